@@ -110,6 +110,7 @@ def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, python_lin
         add("nmea0183-rs", "rust", "parse", [rust_bin, "nmea0183", "parse", corpus_path])
     for op in ops:
         add("ours-python", "python", op, [*py_driver, "ours", op, corpus_path, *py_slice, "--by-type"])
+    add("ours-python", "python", "fixes", [*py_driver, "ours", "fixes", corpus_path, *py_slice])
     if peers:
         for op in ops:
             add("pynmea2", "python", op, [*py_driver, "pynmea2", op, corpus_path, *py_slice])
@@ -336,14 +337,15 @@ def markdown(report: dict) -> str:
         ours = row(results, f"ours-{r['lang']}", r["op"])
         vs_ours = "" if ours is None or ours is r else fmt_ratio(r["ns_per_line"] / ours["ns_per_line"])
         vs_ceiling = fmt_ratio(r["ns_per_line"] / ceiling["ns_per_line"]) if ceiling else ""
-        if r["op"] == "parse":
+        if r["op"] in ("parse", "fixes"):
             identical = ""
         else:
             parsed = row(results, r["name"], "parse")
             identical = "yes" if parsed and r["ok_lines"] == parsed["ok_lines"] else "no"
         out.append(f"| {r['name']} | {r['lang']} | {r['op']} | {r['ns_per_line']:,.1f} | {vs_ceiling} | {vs_ours} "
                    f"| {r['ok_lines']:,}/{r['lines']:,} | {identical} |")
-    out += ["", "ok lines: lines parsed (parse) or written back byte for byte (serialize, roundtrip). "
+    out += ["", "ok lines: lines parsed (parse, fixes) or written back byte for byte (serialize, roundtrip). "
+            "fixes: each line parsed and fed to the fix assembler (nmeaspec.fixes). "
             "byte-identical: every line the implementation parsed is written back byte for byte. The corpus "
             "keeps every checksummed line of those types, malformed ones included (too few or too many fields, "
             "values out of range): ours refuses those with a typed error, so its ok lines are below the corpus "

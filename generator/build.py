@@ -11,8 +11,9 @@ from typing import Any
 from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
-from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Field, GenericMessage, Group, Item, Layout,
-                    Manual, Note, Origin, Outcome, Parameter, ReplyRule, Sentence, Spec, TableDef)
+from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Fact, Field, FixExample,
+                    GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, ReplyRule,
+                    Sentence, Spec, TableDef)
 from .resolve import resolve
 
 
@@ -35,8 +36,8 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     directory's parent (spec/standard/gga.yaml) or, for an overlay, as the overlay was given
     (my-nmea/proprietary/acme_pos.yaml)."""
     errors: list[SpecError] = []
-    docs: dict[str, list[Document]] = {kind: [] for kind in ("manuals", "enums", "bitfields", "tables", "sentences",
-                                                             "extensions")}
+    docs: dict[str, list[Document]] = {kind: [] for kind in ("manuals", "facts", "enums", "bitfields", "tables",
+                                                             "sentences", "extensions")}
     digest = hashlib.sha256()
     file_digests: dict[str, str] = {}
     for tree, names in [(spec_dir, spec_dir.parent), *((extra, None) for extra in extras)]:
@@ -63,6 +64,7 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     manuals = [Manual(**m) for d in docs["manuals"] for m in d.data["manuals"]]
     generic = [GenericMessage(**g, origin=Origin(str(d.path), ("generic", i)))
                for d in docs["manuals"] for i, g in enumerate(d.data.get("generic", []))]
+    facts = [_fact(f, Origin(str(d.path), ("facts", i))) for d in docs["facts"] for i, f in enumerate(d.data["facts"])]
     enums = [_enum(d) for d in docs["enums"]]
     sentences = [_sentence(d) for d in docs["sentences"]]
     bitfields = [_bitfield(d) for d in docs["bitfields"]]
@@ -74,7 +76,15 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
                 sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences", "extensions")
                          for d in docs[kind]],
                 digest=digest.hexdigest()[:16], file_digests=file_digests,
-                bitfields=bitfields, tables=tables, generic=generic)
+                bitfields=bitfields, tables=tables, generic=generic, facts=facts,
+                fix_sources=[str(d.path) for d in docs["facts"]],
+                fix_examples=[FixExample(e["where"], e["lines"], e["expect"], Origin(str(d.path), ("examples", i)))
+                              for d in docs["facts"] for i, e in enumerate(d.data.get("examples", []))],
+                talker_systems={k: v for d in docs["facts"] for k, v in d.data.get("talkers", {}).items()},
+                combined_talker=next((d.data["combined_talker"] for d in docs["facts"]
+                                      if "combined_talker" in d.data), None),
+                satellite_ids=[(r["system"], r["min"], r["max"]) for d in docs["facts"]
+                               for r in d.data.get("satellite_ids", [])])
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
     resolve(spec)
     errors = checks.run(spec, by_file)
@@ -87,6 +97,8 @@ def _tree_files(tree: Path, required_manuals: bool) -> list[tuple[Path, str, str
     """The YAML files of a spec tree, each with its kind and schema, in load order."""
     manuals = tree / "manuals.yaml"
     files = [(manuals, "manuals", "manuals.schema.json")] if required_manuals or manuals.exists() else []
+    facts = tree / "fix.yaml"
+    files += [(facts, "facts", "fix.schema.json")] if facts.exists() else []
     for folder, kind, schema in LAYOUT:
         files += [(p, kind, schema) for p in sorted((tree / folder).glob("*.yaml"))]
     return files
@@ -145,7 +157,13 @@ def _field(data: dict[str, Any], origin: Origin) -> Field:
                  unit=data.get("unit"), min=data.get("min"), max=data.get("max"),
                  max_length=data.get("max_length"), enum_id=data.get("enum"), value=data.get("value"),
                  since=data.get("since"), optional=bool(data.get("optional", False)),
-                 bitfield_id=data.get("bitfield"))
+                 bitfield_id=data.get("bitfield"), fix_id=data.get("fix"))
+
+
+def _fact(data: dict[str, Any], origin: Origin) -> Fact:
+    return Fact(id=data["id"], name=data["name"], doc=data["doc"], types=data["types"], origin=origin,
+                scope=data.get("scope", "epoch"), unit=data.get("unit"), units=data.get("units", {}),
+                enums=data.get("enums", []), values=data.get("values", []), mapping=data.get("from", {}))
 
 
 def _bitfield(doc: Document) -> BitfieldDef:

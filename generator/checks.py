@@ -40,11 +40,13 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
         _check_bitfield(bitfield, manual_ids, report)
     for table in spec.tables:
         _check_table(spec, table, manual_ids, report)
+    _check_facts(spec, report)
     for sentence in spec.sentences:
         _check_manuals(sentence.manuals, manual_ids, sentence.origin, report, "manuals")
         _check_proprietary(spec, sentence, manual_ids, report)
         for layout in sentence.layouts:
             _check_layout(spec, sentence, layout, manual_ids, report)
+            _check_fix(sentence, layout, report)
     if report.errors:
         return report.errors
     _generated_names(spec, report)
@@ -52,6 +54,7 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
     _check_cli(spec, report)
     for sentence in spec.sentences:
         _check_replies(sentence, report)
+    _check_fix_examples(spec, report)
     for sentence in spec.sentences:
         variant_ids = {v.id for v in sentence.variants}
         for example in sentence.examples:
@@ -164,6 +167,77 @@ def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], rep
 
 # Most digits a number field holds in every runtime (NMEA_MAX_DIGITS, runtime.MAX_DIGITS).
 MAX_DIGITS = 18
+
+def _check_facts(spec: Spec, report: _Reporter) -> None:
+    """The facts of spec/fix.yaml: unique ids, and `enums` and `from` that name existing enums,
+    their value ids and the fact's own values."""
+    seen: set[str] = set()
+    for fact in spec.facts:
+        if fact.id in seen:
+            report(fact.origin, "S001", f"fact {fact.id} appears twice", "id")
+        seen.add(fact.id)
+        for i, enum_id in enumerate(fact.enums):
+            if enum_id not in spec.enum_by_id:
+                report(fact.origin, "S047", f"fact {fact.id}: unknown enum {enum_id!r}", "enums", i)
+        for enum_id, mapping in fact.mapping.items():
+            enum = spec.enum_by_id.get(enum_id)
+            if enum is None:
+                report(fact.origin, "S047", f"fact {fact.id}: unknown enum {enum_id!r}", "from", enum_id)
+                continue
+            for value_id, value in mapping.items():
+                if enum.by_id(value_id) is None:
+                    report(fact.origin, "S047", f"fact {fact.id}: enum {enum_id} has no value {value_id!r}",
+                           "from", enum_id)
+                if value not in fact.values:
+                    report(fact.origin, "S047", f"fact {fact.id}: {value!r} is not one of its values "
+                           f"({', '.join(fact.values)})", "from", enum_id)
+
+
+def _check_fix_examples(spec: Spec, report: _Reporter) -> None:
+    """Each line of a fix example is an intact sentence of a layout that carries facts."""
+    for example in spec.fix_examples:
+        for i, line in enumerate(example.lines):
+            if not checksum_ok(line):
+                report(example.origin, "S048", f"the checksum fails (computed {_computed(line)})", "lines", i)
+                continue
+            try:
+                decoded = reference.decode(spec, line)
+            except reference.rt.NmeaError as err:
+                report(example.origin, "S048", f"does not decode: {err}", "lines", i)
+                continue
+            if decoded.layout is None or not decoded.layout.fix_fields:
+                report(example.origin, "S048", "no field of its layout carries a fact of a fix", "lines", i)
+
+
+def _check_fix(sentence: Sentence, layout: Layout, report: _Reporter) -> None:
+    """Each field's `fix` names a fact that a field of its type, unit and enum can carry, in the
+    right place (an epoch fact outside a group, once per layout; a satellite fact in a group)."""
+    seen: set[str] = set()
+    for item in layout.items:
+        grouped = isinstance(item, Group)
+        for f in item.fields if isinstance(item, Group) else [item]:
+            if f.fix_id is None:
+                continue
+            fact = f.fact
+            if fact is None:
+                report(f.origin, "S047", f"field {f.id}: unknown fact {f.fix_id!r} (spec/fix.yaml)", "fix")
+                continue
+            problem = None
+            if f.type not in fact.types:
+                problem = f"a {f.type} field cannot carry fact {fact.id} ({' or '.join(fact.types)})"
+            elif (f.unit or fact.units) and f.unit not in fact.units:
+                problem = f"fact {fact.id} takes units {', '.join(fact.units) or 'none'}, the field is in {f.unit}"
+            elif f.enum is not None and f.enum.id not in fact.enums and f.enum.id not in fact.mapping:
+                problem = f"fact {fact.id} takes no values of enum {f.enum.id} (its `enums` or `from`)"
+            elif grouped != (fact.scope == "satellite"):
+                problem = (f"fact {fact.id} is of one satellite: it belongs to a group's field" if not grouped else
+                           f"fact {fact.id} is of the epoch: it cannot be a group's field")
+            elif not grouped and fact.id in seen:
+                problem = f"fact {fact.id} is carried twice in {sentence.id}{f' ({layout.id})' if layout.id else ''}"
+            if problem:
+                report(f.origin, "S047", f"field {f.id}: {problem}", "fix")
+            seen.add(fact.id)
+
 
 def _check_replies(sentence: Sentence, report: _Reporter) -> None:
     """A command's `when` names fields of its reply with values they can hold; a reply's `outcome`

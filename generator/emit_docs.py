@@ -65,7 +65,8 @@ def rows(layout: Layout) -> list[dict]:
                 "pos": position(f, layout),
                 "id": f"{item.id}[k].{f.id}" if isinstance(item, Group) else f.id,
                 "name": cell(f.name), "type": type_cell(f), "unit": cell(f.unit), "format": cell(f.format),
-                "doc": cell(f.doc), "manuals": ", ".join(f.manuals),
+                "doc": cell(f.doc) + (f" Fix: [`{f.fact.id}`](../fix.md#{f.fact.id})." if f.fact else ""),
+                "manuals": ", ".join(f.manuals),
                 "since": ("v" + f.since) if f.since else ("optional" if f.optional else ""),
             })
     return out
@@ -162,6 +163,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files.update(_indexes(spec, env, banner))
     files["docs/errata.md"] = env.get_template("docs/errata.md.j2").render(
         banner=banner, spec=spec, vectors=[v for v in vectors if v["status"] != "intact"], counts=counts)
+    files["docs/fix.md"] = env.get_template("docs/fix.md.j2").render(
+        banner=banner_of([*spec.fix_sources, "templates/docs/fix.md.j2"]), spec=spec)
     files["docs/json.md"] = banner_of(["runtime/json.md"]) + (RUNTIME / "json.md").read_text(encoding="utf-8")
     return files
 

@@ -11,7 +11,7 @@ import jinja2
 
 from . import emit_vectors, pairing
 from .emit import header, package_readme, runtime_file
-from .model import Field, Group, Layout, Sentence, Spec
+from .model import Field, FixField, Group, Layout, Sentence, Spec
 from .numbers import fmt_num
 
 PACKAGE = "nmeaspec"
@@ -263,14 +263,46 @@ def _outcome(layout: Layout) -> str | None:
     return f"({''.join(t + ', ' for t in tests)})"
 
 
+def fix_field(fix: FixField) -> str:
+    """The FixField(...) entry of a field that carries a fact, for fix_fields.py (at an indent of
+    8, on one line when it fits)."""
+    f, fact = fix.field, fix.fact
+    values = fact.values_of(f)
+    items = [f"{json.dumps(k)}: {json.dumps(v)}" for k, v in (values or {}).items()]
+    args = [json.dumps(fact.id), py_literal(fix.group.id if fix.group else None),
+            py_literal(None if fix.group is not None and fix.group.single else f.id), repr(float(fact.scale(f)))]
+    one = f"FixField({', '.join(args)}, {'{' + ', '.join(items) + '}' if values else 'None'}),"
+    if 8 + len(one) <= WIDTH:
+        return one
+    args.append(py_tuple(items, 12, 0, brackets="{}") if values else "None")
+    return "FixField(" + "".join(f"\n            {arg}," for arg in args) + "\n        ),"
+
+
+def fix_fields(spec: Spec, env: jinja2.Environment) -> str:
+    """fix_fields.py: the fields that carry facts of a fix, per layout (spec/fix.yaml)."""
+    layouts = [(f"({json.dumps(s.id)}, {py_literal(layout.id)})", [fix_field(fix) for fix in layout.fix_fields])
+               for s, layout in spec.fix_layouts]
+    units = py_tuple([f"{json.dumps(fact.id)}: {json.dumps(fact.unit)}" for fact in spec.facts if fact.unit], 0,
+                     len("FACT_UNITS: dict[str, str] = "), brackets="{}")
+    talkers = py_tuple([f"{json.dumps(k)}: {json.dumps(v)}" for k, v in spec.talker_systems.items()], 0,
+                       len("TALKER_SYSTEMS: dict[str, str] = "), brackets="{}")
+    ids = py_tuple([f"({json.dumps(s)}, {low}, {high})" for s, low, high in spec.satellite_ids], 0,
+                   len("SATELLITE_IDS: tuple[tuple[str, int, int], ...] = "))
+    sources = sorted({*spec.fix_sources, *(s.source for s, _ in spec.fix_layouts)})
+    return env.get_template("python/fix_fields.py.j2").render(
+        header=header(spec, "#", ["templates/python/fix_fields.py.j2", *sources]), layouts=layouts,
+        fact_units=units, talkers=talkers, satellite_ids=ids, combined_talker=py_literal(spec.combined_talker))
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     env.globals.update(py=py_literal, json=json, py_call=py_call, py_str=py_str, py_doc=py_doc,
                        py_import=py_import, py_tuple=py_tuple)
     base = f"python/{PACKAGE}"
     files: dict[str, str] = {}
-    for module in ("runtime", "api", "stream", "receiver"):
+    for module in ("runtime", "api", "stream", "receiver", "fixes"):
         files[f"{base}/{module}.py"] = runtime_file(spec, "#", f"python/{module}.py")
     files[f"{base}/py.typed"] = ""
+    files[f"{base}/fix_fields.py"] = fix_fields(spec, env)
     files[f"{base}/enums.py"] = env.get_template("python/enums.py.j2").render(
         header=header(spec, "#", [e.origin.file for e in spec.enums]), enums=spec.enums)
     for sentence in spec.sentences:

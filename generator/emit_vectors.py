@@ -1,5 +1,6 @@
 """Language-neutral test vectors: every example of the manuals, with the JSON each tool must print,
-and lines outside what the manuals allow, with what each tool prints for them by its options."""
+lines outside what the manuals allow, with what each tool prints for them by its options, and the
+fixes an assembler makes of the streams of spec/fix.yaml."""
 
 from __future__ import annotations
 
@@ -169,10 +170,16 @@ def _or_none(value: Callable[[], int]) -> int | None:
         return None
 
 
+def fix_vectors(spec: Spec) -> list[dict]:
+    """The examples of spec/fix.yaml: lines and the facts of each fix an assembler makes of them."""
+    return [{"where": e.where, "lines": e.lines, "fixes": e.expect} for e in spec.fix_examples]
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     def jsonl(records: list[dict]) -> str:
         return "".join(json.dumps(r, ensure_ascii=True, separators=(",", ":")) + "\n" for r in records)
 
     return {"vectors/examples.jsonl": jsonl(example_vectors(spec)),
             "vectors/tolerance.jsonl": jsonl(tolerance_vectors(spec)),
-            "vectors/values.jsonl": jsonl(value_vectors(spec))}
+            "vectors/values.jsonl": jsonl(value_vectors(spec)),
+            "vectors/fixes.jsonl": jsonl(fix_vectors(spec))}

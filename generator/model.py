@@ -111,6 +111,57 @@ class EnumDef:
 
 
 @dataclass
+class Fact:
+    """One fact of a fix (spec/fix.yaml) that sentence fields carry: `fix: <id>`."""
+
+    id: str
+    name: str
+    doc: str
+    types: list[str]
+    origin: Origin
+    scope: str = "epoch"         # or "satellite": a field of a repeated group's entries
+    unit: str | None = None      # the unit the fix gives it in
+    units: dict[str, float] = field(default_factory=dict)   # a field's unit -> factor to `unit`
+    enums: list[str] = field(default_factory=list)          # enums whose value ids it keeps
+    values: list[str] = field(default_factory=list)         # its own values, mapped `from` enums
+    mapping: dict[str, dict[str, str]] = field(default_factory=dict)   # enum id -> value id -> value
+
+    def scale(self, f: Field) -> float:
+        """The factor from the unit of `f` to the fact's unit (1 for a fact without units)."""
+        return self.units.get(f.unit, 1.0) if f.unit else 1.0
+
+    def values_of(self, f: Field) -> dict[str, str] | None:
+        """What each value id of the enum of `f` is as the fact's value; None when the fact keeps
+        the ids (or the field is no enum)."""
+        return self.mapping.get(f.enum.id) if f.enum is not None else None
+
+
+@dataclass
+class FixExample:
+    """A stream of lines and the fixes every assembler must make of them (spec/fix.yaml)."""
+
+    where: str
+    lines: list[str]
+    expect: list[dict[str, Any]]
+    origin: Origin
+
+
+@dataclass
+class FixField:
+    """A field that carries a fact of the fix, in a layout: `group` is the repeated group whose
+    entries hold it, or None."""
+
+    field: Field
+    fact: Fact
+    group: Group | None
+
+    @property
+    def path(self) -> str:
+        """The field's attribute path in a decoded sentence: `time`, `satellites.prn`."""
+        return f"{self.group.id}.{self.field.id}" if self.group else self.field.id
+
+
+@dataclass
 class Field:
     id: str
     name: str
@@ -128,9 +179,11 @@ class Field:
     since: str | None = None
     optional: bool = False
     bitfield_id: str | None = None
+    fix_id: str | None = None    # the fact of a fix it carries (spec/fix.yaml)
     # Derived by resolve():
     enum: EnumDef | None = None
     bitfield: BitfieldDef | None = None
+    fact: Fact | None = None
     wire_index: int = 0          # 1-based index of the first wire field, within its group entry for grouped fields
     group: Group | None = None
 
@@ -296,6 +349,16 @@ class Layout:
                 return at, str(item.value)
             at += item.wire_width
         return None
+
+    @property
+    def fix_fields(self) -> list[FixField]:
+        """The fields that carry facts of a fix, in wire order."""
+        out: list[FixField] = []
+        for item in self.items:
+            for f in item.fields if isinstance(item, Group) else [item]:
+                if f.fact is not None:
+                    out.append(FixField(f, f.fact, item if isinstance(item, Group) else None))
+        return out
 
     def wire_readings(self) -> list[tuple[Any, ...]] | None:
         """What each wire field takes (field_types' readings), in wire order, optional trailing
@@ -565,6 +628,12 @@ class Spec:
     bitfields: list[BitfieldDef] = field(default_factory=list)
     tables: list[TableDef] = field(default_factory=list)
     generic: list[GenericMessage] = field(default_factory=list)
+    facts: list[Fact] = field(default_factory=list)
+    fix_sources: list[str] = field(default_factory=list)   # the fix.yaml files loaded
+    fix_examples: list[FixExample] = field(default_factory=list)
+    talker_systems: dict[str, str] = field(default_factory=dict)   # spec/fix.yaml: talker -> GNSS
+    combined_talker: str | None = None   # spec/fix.yaml: the talker of a solution of several systems
+    satellite_ids: list[tuple[str, int, int]] = field(default_factory=list)  # (GNSS, first id, last id)
     enum_by_id: dict[str, EnumDef] = field(default_factory=dict)
 
     def digest_of(self, sources: list[str]) -> str:
@@ -581,6 +650,11 @@ class Spec:
 
     def manual(self, manual_id: str) -> Manual | None:
         return next((m for m in self.manuals if m.id == manual_id), None)
+
+    @property
+    def fix_layouts(self) -> list[tuple[Sentence, Layout]]:
+        """The layouts with fields that carry facts of a fix, in spec order."""
+        return [(s, layout) for s in self.sentences for layout in s.layouts if layout.fix_fields]
 
     def sentence(self, sentence_id: str) -> Sentence | None:
         return next((s for s in self.sentences if s.id == sentence_id), None)

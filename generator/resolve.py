@@ -1,7 +1,7 @@
 """The resolve pass: the facts of the model derived from what the YAML says, before any check.
 
 Loading (build.py) turns each document into model objects holding what the file says; this pass
-links them (a field's enum and bitfield, a table parameter's, a command's reply sentences) and
+links them (a field's enum, bitfield and fact of a fix, a table parameter's, a command's reply sentences) and
 works out where each field is on the wire (its 1-based index, its group) and whether each
 example's checksum holds. The checks (checks.py)
 then only judge: a reference left unlinked here is an error they report, with its file and line.
@@ -20,6 +20,7 @@ def resolve(spec: Spec) -> None:
         for p in table.parameters:
             p.enum = spec.enum_by_id.get(p.enum_id) if p.enum_id is not None else None
             p.bitfield = bitfields.get(p.bitfield_id) if p.bitfield_id is not None else None
+    facts = {fact.id: fact for fact in spec.facts}
     sentences = {s.id: s for s in spec.sentences}
     for sentence in spec.sentences:
         sentence.replies = []
@@ -35,6 +36,7 @@ def resolve(spec: Spec) -> None:
             for f in _fields(layout):
                 f.enum = spec.enum_by_id.get(f.enum_id) if f.enum_id is not None else None
                 f.bitfield = bitfields.get(f.bitfield_id) if f.bitfield_id is not None else None
+                f.fact = facts.get(f.fix_id) if f.fix_id is not None else None
 
 
 def checksum_ok(line: str) -> bool:

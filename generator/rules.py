@@ -167,6 +167,18 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
     Rule("S046", "overlay extensions extend a sentence",
          "A file of an overlay's extensions/ names (`extends`) a sentence of the spec.",
          "Correct the id, or write the sentence in the overlay's standard/ or proprietary/."),
+    Rule("S047", "fix facts fit their fields",
+         "A field's `fix` names a fact of spec/fix.yaml that a field of its type, unit and enum can carry (the "
+         "fact's `types`, `units`, `enums` or `from`), outside a group for an epoch fact and inside one for a "
+         "satellite fact, and each epoch fact at most once per layout; a fact's `from` maps value ids of existing "
+         "enums to its `values`.",
+         "Correct the field's `fix` or the fact in spec/fix.yaml (add the unit with its factor, the enum to "
+         "`enums` or `from`), or leave the field out of the fix."),
+    Rule("S048", "fix examples are sentences that carry facts",
+         "Every line of an example of spec/fix.yaml has a right checksum and decodes as a layout with fields that "
+         "carry facts of a fix.",
+         "Correct the line (the message has the decoder's error or the computed checksum), or tag the fields "
+         "with `fix:`."),
 )}
 
 

@@ -7,7 +7,8 @@ IMPL: ours (nmeaspec), pynmea2, pynmea2-allfields (parse, then read every attrib
 table names, since pynmea2 converts lazily), pynmeagps (NMEAReader.parse). OP: parse, serialize
 (the lines are parsed chunk by chunk outside the timed region, only writing them back is timed:
 ours .to_sentence(), pynmea2 .render(), pynmeagps .serialize()), roundtrip (both, per line,
-counting lines written back byte for byte). --lines N: only the first N lines.
+counting lines written back byte for byte), fixes (ours only: each line parsed and fed to the fix
+assembler, nmeaspec.fixes; ok lines are the lines parsed). --lines N: only the first N lines.
 """
 
 from __future__ import annotations
@@ -106,7 +107,27 @@ def time_roundtrip(parse, serialize, with_crlf, lines):
     return time.perf_counter() - start, ok
 
 
+def time_fixes(lines):
+    from nmeaspec.fixes import FixAssembler
+    from nmeaspec import NmeaError, parse
+
+    assembler = FixAssembler()
+    ok = 0
+    start = time.perf_counter()
+    for text, _ in lines:
+        try:
+            sentence = parse(text)
+        except NmeaError:
+            continue
+        ok += 1
+        assembler.feed(sentence)
+    assembler.close()
+    return time.perf_counter() - start, ok
+
+
 def run(name, op, lines):
+    if op == "fixes" and name == "ours":
+        return time_fixes(lines)
     parse, serialize = implementation(name)
     if op == "parse":
         return time_parse(parse, lines)

@@ -1,6 +1,7 @@
 """`nmea`: look at a receiver log and build vendor commands, from the command line.
 
     nmea show LOG|-        a table, JSON lines or CSV of the sentences, a summary on stderr
+    nmea show --fixes LOG  the same of the fixes: one row per epoch (fixes.py)
     nmea command ...       the bytes of a vendor command, checked field by field
     nmea listen --port P   the sentences of a live receiver (needs pyserial)
     nmea send --port P ... a vendor command sent to a receiver, and its reply
@@ -26,6 +27,7 @@ from typing import IO, Any
 
 from .. import __version__
 from ..api import Generic, parse
+from ..fixes import Fix, fixes
 from ..receiver import Receiver, ReceiverError, ReplyTimeout, check_baud
 from ..runtime import NmeaError
 from ..stream import lines, too_long
@@ -38,10 +40,14 @@ examples:
   nmea show --json track.nmea | head                     JSON lines of decoded values
   nmea show --csv --fields time,lat,lon,speed --sentences RMC track.nmea > track.csv
   cat /dev/ttyUSB0 | nmea show - --sentences GGA,RMC     a live receiver
+  nmea show --fixes track.nmea                           one row per epoch: time, position, ...
+  nmea show --fixes --json track.nmea                    each fix whole, satellites included
 
 Fields are the field ids of the reference docs (`time`, `lat`, `quality`...), plus `line`,
 `talker` and `sentence`. Latitudes and longitudes are shown in signed decimal degrees, enums by
 value id. The summary (counts per sentence, errors by kind, unknown sentences) goes to stderr.
+With --fixes, the columns are the facts of a fix (FIX_COLUMNS; `used` and `in_view` count the
+satellites), and --json gives every fact of each.
 """
 
 COMMAND_EXAMPLES = """\
@@ -339,6 +345,59 @@ def write_records(
     out.flush()
 
 
+# The columns of `show --fixes` by default; --fields takes any fact of Fix.to_dict().
+FIX_COLUMNS = ["time", "date", "latitude", "longitude", "altitude_msl", "speed", "course", "mode",
+               "fix_quality", "hdop", "used", "in_view", "sentences"]
+
+
+def parsed(items: Iterable[bytes | int], summary: Summary, **options: bool) -> Iterator[Any]:
+    """The decoded sentences of framed lines (an int: the length of an overlong line), each
+    counted in `summary`; errors are only counted."""
+    for item in items:
+        summary.lines += 1
+        try:
+            if isinstance(item, int):
+                raise too_long(item)
+            sentence = parse(item, **options)
+        except NmeaError as err:
+            summary.errors[err.kind] += 1
+            continue
+        if isinstance(sentence, Generic):
+            summary.unknown[sentence.address] += 1
+        else:
+            summary.sentences[sentence.SENTENCE] += 1
+        yield sentence
+
+
+def fix_row(fix: Fix) -> dict[str, Any]:
+    """A fix as one row: its facts (coordinates to 1e-7 degrees, about a centimetre, other numbers
+    to 4 decimals), the satellites counted, the sentences as one text."""
+    row = {k: round(v, 7 if k in ("latitude", "longitude") else 4) if isinstance(v, float) else v
+           for k, v in fix.to_dict().items()}
+    row.update(used=fix.used_count or fix.satellites_used, in_view=fix.in_view_count or None,
+               sentences=" ".join(fix.sentences))
+    return row
+
+
+def write_fixes(stream: Iterable[Fix], form: str, fields: list[str] | None, out: IO[str]) -> None:
+    """The fixes as a table or CSV of `fields` (FIX_COLUMNS by default), or JSON lines of each
+    whole fix (of `fields` only, when given)."""
+    columns = fields or FIX_COLUMNS
+    if form == "json":
+        for fix in stream:
+            whole = fix.to_dict()
+            out.write(json.dumps({f: whole.get(f) for f in fields} if fields else whole) + "\n")
+    elif form == "csv":
+        writer = csv.writer(out, lineterminator="\n")
+        writer.writerow(columns)
+        for fix in stream:
+            row = fix_row(fix)
+            writer.writerow([_text(row.get(f)) for f in columns])
+    else:
+        write_table(([fix_row(fix).get(f) for f in columns] for fix in stream), columns, out)
+    out.flush()
+
+
 def _quiet_stdout() -> None:
     """After a broken pipe (`nmea show log | head`): no error when Python flushes stdout."""
     sys.stdout = io.TextIOWrapper(io.BytesIO())
@@ -354,9 +413,13 @@ def show(args: argparse.Namespace) -> int:
     source, size = open_log(args.log)
     progress = progress_for(args.progress, size)
     summary = Summary()
-    stream = records(_chunks(source, progress), wanted, summary, **parse_options(args))
     try:
-        write_records(stream, args.format, fields, sys.stdout)
+        if args.fixes:
+            sentences = parsed(lines(_chunks(source, progress)), summary, **parse_options(args))
+            write_fixes(fixes(sentences), args.format, fields, sys.stdout)
+        else:
+            stream = records(_chunks(source, progress), wanted, summary, **parse_options(args))
+            write_records(stream, args.format, fields, sys.stdout)
     except BrokenPipeError:  # `nmea show log | head`
         _quiet_stdout()
         return 0
@@ -813,6 +876,9 @@ def parser() -> argparse.ArgumentParser:
     )
     s.add_argument("log", nargs="?", default="-", help="the log file, or - (the default) for stdin")
     _view_options(s)
+    s.add_argument(
+        "--fixes", action="store_true", help="one row per epoch: the fixes the sentences make"
+    )
     add_progress_options(s)
     s.set_defaults(format="table", run=show)
     c = verbs.add_parser(

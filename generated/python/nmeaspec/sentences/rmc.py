@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/standard/rmc.yaml, spec/enums/east_west.yaml, spec/enums/nav_status.yaml,
 #   spec/enums/north_south.yaml, spec/enums/pos_mode.yaml, spec/enums/rmc_mag_var_dir.yaml,
-#   spec/enums/status.yaml (digest 5233c449c234ff9f)
+#   spec/enums/status.yaml (digest ae9a784c2fdad8ed)
 # Regenerate: make generate (python3 -m generator generate)
 """RMC: Recommended minimum specific GNSS data.
 
