@@ -289,9 +289,8 @@ def from_json(obj: Any) -> Any:
 def _json_address(layout: Any, obj: dict[str, Any]) -> str:
     """The address of a `$`/`!` sentence rebuilt from JSON: its talker and sentence id, or the
     proprietary address."""
-    if layout.ADDRESS is None:
-        return runtime.json_word(obj, "talker") + layout.SENTENCE
-    return str(layout.ADDRESS)
+    address: str = layout.ADDRESS or runtime.json_word(obj, "talker") + layout.SENTENCE
+    return address
 
 
 def _read_again(

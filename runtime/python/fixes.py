@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import datetime as _dt
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass, field, fields
+from dataclasses import asdict, dataclass, field, fields
 from typing import Any, NamedTuple
 
 from . import runtime as rt
@@ -114,13 +114,13 @@ class Fix:
     def to_dict(self) -> dict[str, Any]:
         """The fix as plain values (ISO 8601 texts for date and time), for JSON and tables."""
         out: dict[str, Any] = {}
-        for name in self.__slots__:  # type: ignore[attr-defined]
-            value = getattr(self, name)
-            if name == "in_view":
-                value = [{key: getattr(s, key) for key in s.__slots__} for s in value]
+        for member in fields(self):
+            value = getattr(self, member.name)
+            if member.name == "in_view":
+                value = [asdict(s) for s in value]
             elif isinstance(value, (_dt.date, _dt.time)):
                 value = value.isoformat()
-            out[name] = value
+            out[member.name] = value
         return out
 
 
@@ -267,12 +267,12 @@ def _layout(cls: type) -> _Layout | None:
     try:
         return _LAYOUTS[cls]
     except KeyError:
-        fields = FIELDS.get((getattr(cls, "SENTENCE", None), getattr(cls, "VARIANT", None)))
-        layout = None if fields is None else _Layout(
-            tuple(f for f in fields if f.group is None),
-            next((f.group for f in fields if f.group is not None), None),
-            tuple(f for f in fields if f.group is not None),
-            frozenset(f.fact for f in fields),
+        carried = FIELDS.get((getattr(cls, "SENTENCE", ""), getattr(cls, "VARIANT", None)))
+        layout = None if carried is None else _Layout(
+            tuple(f for f in carried if f.group is None),
+            next((f.group for f in carried if f.group is not None), None),
+            tuple(f for f in carried if f.group is not None),
+            frozenset(f.fact for f in carried),
         )
         _LAYOUTS[cls] = layout
         return layout
@@ -342,38 +342,31 @@ def _inferred_mode(fix: Fix) -> str | None:
     return "fix_3d" if fix.altitude_msl is not None or fix.altitude_hae is not None else "fix_2d"
 
 
-# --- Value conversions from the wire text, kept by every value. ACCESSORS: the value types' own
-# int()/float()/degrees/datetime accessors (another branch) replace these four at merge time.
+# --- Value conversions: the value types' own accessors (the same values as C and Rust give).
 
 def _number(value: rt.Number) -> int | float:
-    text = value.text()
-    return float(text) if "." in text else int(text)
+    """A whole number (a count, an id) as int, any other as float."""
+    return float(value) if "." in value.text() else int(value)
 
 
 def _degrees(value: rt.Coordinate) -> float:
-    """ddmm.mmmm (dddmm.mmmm) and the hemisphere as signed decimal degrees."""
-    text = value.text()
-    whole = text.find(".") if "." in text else len(text)
-    degrees = int(text[: whole - 2] or 0) + float(text[whole - 2 :]) / 60.0
-    return -degrees if value.hemisphere in ("S", "W") else degrees
+    return float(value)
 
 
 def _time(value: rt.Time) -> _dt.time | None:
-    """hhmmss[.s...]: a second of 60 (a leap second) is read as 59."""
-    text = value.text()
-    fraction = (text[7:13] if len(text) > 7 else "").ljust(6, "0")
+    """The time of day (Fix.datetime adds UTC); None for a leap second, which datetime cannot
+    hold."""
     try:
-        return _dt.time(int(text[0:2]), int(text[2:4]), min(int(text[4:6]), 59), int(fraction))
+        return value.to_time().replace(tzinfo=None)
     except ValueError:
         return None
 
 
 def _date(value: rt.Date) -> _dt.date | None:
-    """ddmmyy: two-digit years 80-99 are 1980-1999, the others 2000-2079."""
-    text = value.text()
-    year = int(text[4:6])
+    """The date by the runtime's two-digit year rule (Date.full_year); None for a day its month
+    does not have."""
     try:
-        return _dt.date(year + (1900 if year >= 80 else 2000), int(text[2:4]), int(text[0:2]))
+        return value.to_date()
     except ValueError:
         return None
 
