@@ -236,11 +236,11 @@ BENCH_PY_LINES ?= 100000
 bench: build
 	python3 bench/run.py --rounds $(BENCH_ROUNDS) --lines $(BENCH_LINES) --python-lines $(BENCH_PY_LINES)
 
-# `make footprint` (not part of `make test`): the C pair's code size at -Os and sizeof(nmea_sentence),
-# for a five-sentence subset and the whole spec (tools/footprint.py; FOOTPRINT_FLAGS for a cross build,
-# e.g. FOOTPRINT_FLAGS='--cc arm-none-eabi-gcc --cflags "-mcpu=cortex-m4 -mthumb" --ldflags "--specs=nano.specs --specs=nosys.specs"').
+# `make footprint` (not part of `make test`): the C pair's flash, RAM and worst-case stack for the
+# five-sentence firmware of issue 32 and the whole spec, on x86-64 and, when arm-none-eabi-gcc is
+# installed (apt-get install gcc-arm-none-eabi libnewlib-arm-none-eabi), Cortex-M4 (tools/footprint.py).
 footprint: $(STAMP)
-	$(PY) tools/footprint.py $(FOOTPRINT_FLAGS)
+	$(PY) tools/footprint.py
 
 # --- fuzzing ---------------------------------------------------------------------------------
 # `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds (C, Rust, the C and Rust
