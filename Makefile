@@ -157,9 +157,20 @@ build/c/test_examples_san: build/c/nmea-san.o generated/c/tests/test_examples.c
 build/c/nmea-c-san: build/c/nmea-san.o generated/c/nmea_tool.c
 	$(CLANG) $(SANITIZE) -o $@ $^
 
-test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o
+# The five-sentence firmware of issue 32: its subset with the default NMEA_MAX_LINE (the longest
+# line those sentences can have) reading a byte stream fed one byte at a time and pushed in chunks of
+# every size (tests/c/test_stream.c), under the sanitizers.
+FIRMWARE_SUBSET := GGA,RMC,GSV,GSA,VTG
+build/c/subset/c/nmea.c: $(C_PAIR) $(STAMP)
+	$(PY) -m generator generate --quiet --only $(FIRMWARE_SUBSET) --out build/c/subset
+
+build/c/test_stream: build/c/subset/c/nmea.c tests/c/test_stream.c
+	$(CC) $(SANITIZE) -I build/c/subset/c -o $@ $^
+
+test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o build/c/test_stream
 	build/c/test_examples
 	build/c/test_examples_general
+	build/c/test_stream
 
 # The C test program and the C tool under the sanitizers over the examples, the edge cases and
 # every real log, and under valgrind over the examples, the edge cases and the first five lines of

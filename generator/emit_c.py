@@ -38,6 +38,7 @@ def runtime_source(name: str) -> str:
 
 
 MAX_LINE = CONTRACT["limits"]["max_line"]  # NMEA_MAX_LINE
+MAX_DIGITS = CONTRACT["limits"]["max_digits"]  # NMEA_MAX_DIGITS
 MAX_PROBLEMS = CONTRACT["limits"]["max_problems"]  # NMEA_MAX_PROBLEMS
 
 
@@ -473,6 +474,27 @@ def json_max(spec: Spec, views: list[dict]) -> int:
     return MAX_LINE * (1 + per_byte + 6) + fields * per_field + MAX_PROBLEMS * per_problem
 
 
+def longest_line(spec: Spec) -> int:
+    """NMEA_MAX_LINE's default: the longest line a layout of the spec can have (its start, address,
+    every field at the longest text its reader takes, each entry of its group, and the checksum),
+    at most the contract's MAX_LINE, which is also the bound of a layout with a field of no bound
+    and of a text command (its words may be spaced out)."""
+    longest = 0
+    for s in spec.sentences:
+        if s.wire_kind == "text":
+            return MAX_LINE
+        address = len(s.address) if s.is_proprietary else 5  # a talker and the sentence id
+        for lay in s.layouts:
+            texts: list[int | None] = []
+            for item in lay.items:
+                for f in item.fields * item.max if isinstance(item, Group) else [item]:
+                    texts += f.field_type.longest_texts(f, MAX_DIGITS)
+            if None in texts:
+                return MAX_LINE
+            longest = max(longest, 1 + address + sum(1 + t for t in texts if t is not None) + 3)  # $ … *hh
+    return min(longest, MAX_LINE)
+
+
 def _all_fields(layout: Layout) -> list[Field]:
     out: list[Field] = []
     for item in layout.items:
@@ -632,6 +654,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "max_fields": max([v["max_fields"] for v in views] + [1]),
         "json_max": json_max(spec, views),
+        "max_line": longest_line(spec), "contract_max_line": MAX_LINE,
         "runtime_h": (RUNTIME_C / "runtime.h").read_text(encoding="utf-8"),
         "runtime_api_h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),
         "runtime_c": runtime_source("runtime.c"),

@@ -74,8 +74,16 @@ extern "C" {
  *   buf[0]) when the text and its NUL do not fit. They never write past `cap`.
  */
 
-/** Longest line (without its line ending) the parser accepts. */
+/**
+ * Longest line (without its line ending) the parser accepts and the stream framer holds. By
+ * default the longest line a sentence of the generated pair can have (each field at the longest
+ * text its type takes), at most 1024, the bound of the tools; a build sets its own with
+ * -DNMEA_MAX_LINE=N, the same for nmea.c and every file that includes nmea.h. NMEA 0183 allows
+ * 82 bytes, but receivers send longer lines (NMEA 4.11 fields, proprietary sentences).
+ */
+#ifndef NMEA_MAX_LINE
 #define NMEA_MAX_LINE 1024
+#endif
 
 /** Most digits a number may have (it is held in a signed 64-bit integer). */
 #define NMEA_MAX_DIGITS 18
@@ -364,6 +372,7 @@ typedef struct {
  */
 typedef struct {
     size_t length;             /* bytes of the current line so far (counted past NMEA_MAX_LINE) */
+    char next;                 /* nmea_framer_feed: the '$' or '!' that starts the next line, or 0 */
     char line[NMEA_MAX_LINE];  /* its first NMEA_MAX_LINE bytes */
 } nmea_framer;
 
@@ -385,6 +394,16 @@ void nmea_framer_init(nmea_framer *f);
  *         handle(line);
  */
 bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out);
+
+/**
+ * nmea_framer_push for one byte, as an interrupt handler or a DMA callback has it: true when the
+ * byte completes a line, which is then in `*out` (it points into the framer and stays valid until
+ * the framer's next call). The lines are those nmea_framer_push gives for the same bytes.
+ *
+ *     if (nmea_framer_feed(&framer, byte, &line) && line.ptr)
+ *         nmea_parse(&sentence, line.ptr, line.len, &err);
+ */
+bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out);
 
 /** At the end of the stream: the last line, when it had no line ending (true), else false. */
 bool nmea_framer_end(nmea_framer *f, nmea_framed *out);
