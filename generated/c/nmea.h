@@ -353,6 +353,7 @@ size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap);
  * - problems: where parsing lists the problems (the sentence's `problems` then points here, and
  *   serializing it writes the texts of the fields left empty back in their places, so the round
  *   trip stays exact); NULL: they are not kept, and the fields left empty are written empty.
+ *   Parsing writes the list as it goes (no copy on the stack) and sets `count` when it succeeds.
  */
 typedef struct {
     bool lenient;
