@@ -7,8 +7,8 @@ For each target and build (a subset generated with `generate --only`, and the wh
 generated/c) it compiles nmea.c at -Os with -DNMEA_NO_JSON, with and without -DNMEA_NO_FAST_PATH:
 
 - flash, object: text + data of nmea.o, every function of the pair;
-- flash, linked: what a firmware that reads the receiver's bytes one by one into the stream framer
-  and nmea_parse adds to the same program without the library, both linked with
+- flash, linked: what a firmware that feeds the receiver's bytes one by one to the stream framer
+  (nmea_framer_feed) and nmea_parse adds to the same program without the library, both linked with
   -ffunction-sections -fdata-sections -Wl,--gc-sections (newlib-nano on Cortex-M4);
 - RAM: sizeof(nmea_framer) and sizeof(nmea_sentence) as the target's compiler lays them out;
 - stack: the worst case of each entry point over the call graph that gcc writes with
@@ -63,14 +63,9 @@ int main(void)
 {
     nmea_error err;
     nmea_framed line;
-    for (;;) {
-        char byte = uart_data;
-        const char *p = &byte;
-        size_t n = 1;
-        while (nmea_framer_push(&framer, &p, &n, &line))
-            if (line.ptr && nmea_parse(&sentence, line.ptr, line.len, &err))
-                sink += (unsigned)sentence.id;
-    }
+    for (;;)
+        if (nmea_framer_feed(&framer, uart_data, &line) && line.ptr && nmea_parse(&sentence, line.ptr, line.len, &err))
+            sink += (unsigned)sentence.id;
 }
 """
 BASELINE = """volatile char uart_data;
@@ -88,7 +83,7 @@ nmea_sentence sentence_probe;
 
 # The public functions a firmware calls; the per-layout ones (nmea_parse_gga ...) are summed up
 # by their prefix.
-ENTRY_POINTS = ["nmea_framer_push", "nmea_framer_end", "nmea_parse", "nmea_parse_ex", "nmea_serialize",
+ENTRY_POINTS = ["nmea_framer_feed", "nmea_framer_push", "nmea_framer_end", "nmea_parse", "nmea_parse_ex", "nmea_serialize",
                 "nmea_build", "nmea_error_message"]
 PER_LAYOUT = ["nmea_parse_", "nmea_serialize_", "nmea_build_"]
 

@@ -87,11 +87,16 @@ static char ascii_upper(char c)
 /* Whether the upper-case form of `t` (ASCII letters only) is exactly `s`. */
 static bool upper_is(nmea_text t, const char *s)
 {
-    size_t i, n = strlen(s);
-    if (t.len != n)
-        return false;
-    for (i = 0; i < n; i++)
-        if (ascii_upper(t.ptr[i]) != s[i])
-            return false;
-    return true;
+    size_t k;
+    for (k = 0; k < t.len && s[k] && ascii_upper(t.ptr[k]) == s[k]; k++)
+        continue;
+    return k == t.len && s[k] == 0;
+}
+
+/* Whether two words are equal (byte by byte, as text_is: a firmware then links no strcmp). */
+static bool words_equal(const char *a, const char *b)
+{
+    for (; *a && *a == *b; a++, b++)
+        continue;
+    return *a == *b;
 }

@@ -213,7 +213,7 @@ NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts,
 
     for (i = 0; i < layouts->count; i++) {
         const layout *l = LAYOUTS[layouts->ids[i]];
-        if (l->variant && refused && strcmp(refused, l->sentence) == 0 && same_as_main(l, refused_field))
+        if (l->variant && refused && words_equal(refused, l->sentence) && same_as_main(l, refused_field))
             continue;
         if (read_layout(out, layouts->ids[i], wire, err))
             return true;

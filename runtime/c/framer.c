@@ -80,7 +80,9 @@ bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out)
     unsigned char boundary = LINE_BOUNDARY[(unsigned char)byte];
     framer_resume(f);
     if (!boundary || (f->length == 0 && boundary == 2)) {
-        framer_keep(f, &byte, 1);
+        if (f->length < NMEA_MAX_LINE) /* not framer_keep: a firmware that feeds links no memcpy */
+            f->line[f->length] = byte;
+        f->length++;
         return false;
     }
     if (f->length == 0) /* an empty line */

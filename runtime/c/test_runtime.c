@@ -239,6 +239,13 @@ static void test_framer(void)
 
 static void test_numbers(void)
 {
+    /* compare_fixed without a division: by scale, and past 2^64 on the way to one scale */
+    CHECK(compare_fixed(15, 1, 2, 0) < 0 && compare_fixed(25, 1, 2, 0) > 0 && compare_fixed(20, 1, 2, 0) == 0);
+    CHECK(compare_fixed(-15, 1, -2, 0) > 0 && compare_fixed(-1, 0, 0, 3) < 0 && compare_fixed(0, 2, -1, 0) > 0);
+    CHECK(compare_fixed(INT64_MAX, 0, 5, 18) > 0 && compare_fixed(5, 18, INT64_MAX, 0) < 0);
+    CHECK(compare_fixed(-INT64_MAX, 0, -5, 18) < 0 && compare_fixed(INT64_MAX, 18, 9, 0) > 0);
+    CHECK(compare_fixed(999999999999999999, 18, 1, 0) < 0 && compare_fixed(1000000000000000000, 18, 1, 0) == 0);
+
     nmea_number n = nmea_number_of(-5, 1);
     CHECK(n.present && n.digits == 5 && n.scale == 1 && n.sign == '-');
     CHECK(nmea_number_scaled(&n, 1) == -5 && nmea_number_scaled(&n, 3) == -500);
