@@ -142,10 +142,11 @@ build/c/test_examples_general: $(C_PAIR) generated/c/tests/test_examples.c
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -O0 -DNMEA_NO_FAST_PATH -o $@ generated/c/nmea.c generated/c/tests/test_examples.c
 
-# The smallest build must compile without a warning too.
+# The smallest build must compile without a warning too (every option a firmware sets for flash).
+SMALLEST := -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -DNMEA_NO_PROBLEMS -DNMEA_TERSE_ERRORS
 build/c/nmea-small.o: $(C_PAIR)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -O0 -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -c -o $@ generated/c/nmea.c
+	$(CC) $(CFLAGS) -O0 $(SMALLEST) -c -o $@ generated/c/nmea.c
 
 build/c/nmea-san.o: $(C_PAIR)
 	@mkdir -p $(@D)
@@ -159,7 +160,7 @@ build/c/nmea-c-san: build/c/nmea-san.o generated/c/nmea_tool.c
 
 # The five-sentence firmware of issue 32: its subset with the default NMEA_MAX_LINE (the longest
 # line those sentences can have) reading a byte stream fed one byte at a time and pushed in chunks of
-# every size (tests/c/test_stream.c), under the sanitizers.
+# every size (tests/c/test_stream.c), under the sanitizers, as it is and in its smallest build.
 FIRMWARE_SUBSET := GGA,RMC,GSV,GSA,VTG
 build/c/subset/c/nmea.c: $(C_PAIR) $(STAMP)
 	$(PY) -m generator generate --quiet --only $(FIRMWARE_SUBSET) --out build/c/subset
@@ -167,10 +168,15 @@ build/c/subset/c/nmea.c: $(C_PAIR) $(STAMP)
 build/c/test_stream: build/c/subset/c/nmea.c tests/c/test_stream.c
 	$(CC) $(SANITIZE) -I build/c/subset/c -o $@ $^
 
-test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o build/c/test_stream
+build/c/test_stream_smallest: build/c/subset/c/nmea.c tests/c/test_stream.c
+	$(CC) $(SANITIZE) $(SMALLEST) -I build/c/subset/c -o $@ $^
+
+test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o build/c/test_stream \
+        build/c/test_stream_smallest
 	build/c/test_examples
 	build/c/test_examples_general
 	build/c/test_stream
+	build/c/test_stream_smallest
 
 # The C test program and the C tool under the sanitizers over the examples, the edge cases and
 # every real log, and under valgrind over the examples, the edge cases and the first five lines of

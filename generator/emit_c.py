@@ -57,6 +57,12 @@ def c_str(text: str) -> str:
     return "".join(out)
 
 
+def error_text(text: str) -> str:
+    """A text that only errors use (a field's id, what it takes) as nmea.c writes it: in
+    ERROR_TEXT, which -DNMEA_TERSE_ERRORS makes NULL (runtime/c/base.c)."""
+    return f"ERROR_TEXT({c_str(text)})"
+
+
 def c_comment(text: str) -> str:
     """Text that is safe inside a /* */ comment."""
     return text.replace("*/", "* /").replace("/*", "/ *").replace("??", "? ?")
@@ -126,7 +132,7 @@ def c_arg(word: str, f: Field, ranges: Ranges) -> str:
     if word == "word":
         return c_str(f.value or "")
     if word == "hemisphere":
-        return c_str(f.field_type.hemisphere_expected)
+        return error_text(f.field_type.hemisphere_expected)
     if word == "table":
         assert f.enum is not None
         return f"&{enum_def(f.enum)}"
@@ -145,7 +151,7 @@ def field_init(f: Field, owner: str | None, ranges: Ranges) -> str:
     """The layout_field initializer of `f`, a member of struct `owner` (None: stored at offset 0,
     the value of a single-field group)."""
     offset = f"offsetof({owner}, {member(f.id)})" if owner and f.field_type.c_type else "0"
-    return (f"{{{c_str(f.id)}, {c_str(f.expected)}, {field_arg(f, ranges)}, {offset}, FIELD_{f.type.upper()}, "
+    return (f"{{{error_text(f.id)}, {error_text(f.expected)}, {field_arg(f, ranges)}, {offset}, FIELD_{f.type.upper()}, "
             f"{f.wire_width}, {f.max_length or 0}}}")
 
 
@@ -279,7 +285,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
     group_init = None
     if group_view is not None:
         group_init = _designated([
-            ("id", c_str(group.id)),
+            ("id", error_text(group.id)),
             ("fields", f"{snake}_group_fields"),
             ("field_count", len(group.fields)),
             ("width", group.width),

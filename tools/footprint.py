@@ -11,6 +11,7 @@ generated/c) it compiles nmea.c at -Os with -DNMEA_NO_JSON, with and without -DN
   (nmea_framer_feed) and nmea_parse adds to the same program without the library, both linked with
   -ffunction-sections -fdata-sections -Wl,--gc-sections (newlib-nano on Cortex-M4);
 - RAM: sizeof(nmea_framer) and sizeof(nmea_sentence) as the target's compiler lays them out;
+- the options a firmware sets for flash (-DNMEA_NO_PROBLEMS, -DNMEA_TERSE_ERRORS), each measured;
 - stack: the worst case of each entry point over the call graph that gcc writes with
   -fcallgraph-info=su (each function's frame from -fstack-usage), without the C library's
   leaf functions (memcpy, the 64-bit division helpers ...), which are named instead. A recursive
@@ -33,6 +34,8 @@ ROOT = Path(__file__).resolve().parents[1]
 SUBSET = "GGA,RMC,GSV,GSA,VTG"
 SMALL = ["-DNMEA_NO_JSON", "-DNMEA_NO_FAST_PATH"]
 FAST = ["-DNMEA_NO_JSON"]
+# What a firmware short of flash sets besides SMALL, each measured on its own and all together.
+OPTIONS = [["-DNMEA_NO_PROBLEMS"], ["-DNMEA_TERSE_ERRORS"], ["-DNMEA_NO_PROBLEMS", "-DNMEA_TERSE_ERRORS"]]
 SECTIONS = ["-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections"]
 CROSS_PACKAGES = "apt-get install gcc-arm-none-eabi libnewlib-arm-none-eabi"
 
@@ -253,6 +256,16 @@ def main() -> int:
                       f"| {ram['framer']:,} | {ram['sentence']:,} | {shown(entry['nmea_parse'])} |")
                 if source == sources[builds[0][0]]:
                     details.append((target, source))
+        print(f"\nThe options a firmware sets for flash, {builds[0][0]}, linked (no fast path, -DNMEA_NO_JSON) and "
+              "the stack of nmea_parse:")
+        print("\n| options | " + " | ".join(f"{t.name} linked | {t.name} stack" for t, _ in details) + " |")
+        print("| --- |" + " ---: | ---: |" * len(details))
+        for option in [[], *OPTIONS]:
+            cells = []
+            for target, source in details:
+                cells.append(f"{firmware_size(target, source, [*SMALL, *option], work):,}")
+                cells.append(shown(stacks(target, source, [*SMALL, *option], work)["nmea_parse"]))
+            print(f"| {' '.join(option) or '(none)'} | {' | '.join(cells)} |")
         for target, source in details:
             print(f"\nWorst-case stack on {target.name}, {builds[0][0]} (bytes; without the C library's leaf functions):")
             print("\n| entry point | no fast path | fast path | deepest path (no fast path) |")

@@ -23,6 +23,18 @@
 #define NMEA_OUTLINE static
 #endif
 
+/* The texts only errors use: message patterns, field ids, what a field takes. A firmware short of
+   flash builds with -DNMEA_TERSE_ERRORS (and -DNMEA_NO_JSON, whose keys are field ids): an error
+   then says its kind, address and wire field (nmea_error.field), its message is empty. */
+#ifdef NMEA_TERSE_ERRORS
+#ifndef NMEA_NO_JSON
+#error "NMEA_TERSE_ERRORS needs NMEA_NO_JSON: the JSON's keys are the field ids it leaves out"
+#endif
+#define ERROR_TEXT(text) NULL
+#else
+#define ERROR_TEXT(text) text
+#endif
+
 static const char HEX_UPPER[] = "0123456789ABCDEF";
 static const char HEX_LOWER[] = "0123456789abcdef";
 

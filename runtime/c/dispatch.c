@@ -14,7 +14,8 @@ NMEA_INTERNAL bool frame_known(nmea_wire *wire, const char *line, size_t len, ch
         return false;
     if (!is_standard_address(&f) || f.start.ptr[0] != start ||
         !text_is(text_span(f.address.ptr + 2, f.address.ptr + 5), sentence)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, start == '!' ? "line is not a !--%s sentence" : "line is not a $--%s sentence");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE,
+             start == '!' ? ERROR_TEXT("line is not a !--%s sentence") : ERROR_TEXT("line is not a $--%s sentence"));
         set_address(err, f.address, NULL);
         err->str[0] = sentence;
         return false;
@@ -31,7 +32,7 @@ NMEA_INTERNAL bool frame_proprietary(nmea_wire *wire, const char *line, size_t l
     if (!frame_line(&f, line, len, false, err))
         return false;
     if (f.start.ptr[0] != '$' || !text_is(f.address, address)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a $%s sentence");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("line is not a $%s sentence"));
         set_address(err, f.address, NULL);
         err->str[0] = address;
         return false;
@@ -46,7 +47,7 @@ NMEA_INTERNAL bool frame_command(nmea_wire *wire, const char *line, size_t len, 
 {
     nmea_frame f;
     if ((len && (line[0] == '$' || line[0] == '!')) || !word_is(first_word(line, len), command)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a %s command");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("line is not a %s command"));
         err->str[0] = command;
         return false;
     }
@@ -277,12 +278,17 @@ NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wi
 }
 
 /* The first of the layouts that reads the wire (first_fit); when none does, refit (unless the
-   options are strict and not lenient: then nothing is kept). */
+   options are strict and not lenient: then nothing is kept; nor in a build without problems). */
 static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
                        nmea_error *err)
 {
+#ifdef NMEA_NO_PROBLEMS
+    (void)options;
+    return first_fit(out, layouts, wire, err);
+#else
     return first_fit(out, layouts, wire, err) ||
            ((!options->strict || options->lenient) && refit(out, layouts, wire, options, err));
+#endif
 }
 
 static void write_sentence(nmea_writer *w, const nmea_sentence *s)

@@ -77,7 +77,8 @@ bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_frame
 
 bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out)
 {
-    unsigned char boundary = LINE_BOUNDARY[(unsigned char)byte];
+    /* as LINE_BOUNDARY says (a firmware that feeds links no table of 256 bytes) */
+    unsigned boundary = byte == '\r' || byte == '\n' ? 1 : byte == '$' || byte == '!' ? 2 : 0;
     framer_resume(f);
     if (!boundary || (f->length == 0 && boundary == 2)) {
         if (f->length < NMEA_MAX_LINE) /* not framer_keep: a firmware that feeds links no memcpy */

@@ -205,7 +205,9 @@ typedef struct {
     size_t num[3];
 } nmea_error;
 
-/** The message ("checksum is 40, computed 6C"); returns its length (0 when it does not fit). */
+/** The message ("checksum is 40, computed 6C"; in a build with -DNMEA_TERSE_ERRORS, which leaves
+    the texts of errors out, the kind's name: the wire field is in `field`); returns its length
+    (0 when it does not fit). */
 size_t nmea_error_message(const nmea_error *err, char *buf, size_t cap);
 
 /** The name of the field at fault ("satellites[2].prn"), or 0 when there is none. */
@@ -296,6 +298,8 @@ size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap);
  *   serializing it writes the texts of the fields left empty back in their places, so the round
  *   trip stays exact); NULL: they are not kept, and the fields left empty are written empty.
  *   Parsing writes the list as it goes (no copy on the stack) and sets `count` when it succeeds.
+ * A build with -DNMEA_NO_PROBLEMS (a firmware short of flash) keeps no problems: it reads every
+ * sentence strictly, whatever the options say.
  */
 typedef struct {
     bool lenient;
