@@ -143,10 +143,11 @@ build/c/test_examples_general: $(C_PAIR) generated/c/tests/test_examples.c
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -O0 -DNMEA_NO_FAST_PATH -o $@ generated/c/nmea.c generated/c/tests/test_examples.c
 
-# The smallest build must compile without a warning too.
+# The smallest build must compile without a warning too (every option a firmware sets for flash).
+SMALLEST := -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -DNMEA_NO_PROBLEMS -DNMEA_TERSE_ERRORS
 build/c/nmea-small.o: $(C_PAIR)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -O0 -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -c -o $@ generated/c/nmea.c
+	$(CC) $(CFLAGS) -O0 $(SMALLEST) -c -o $@ generated/c/nmea.c
 
 build/c/nmea-san.o: $(C_PAIR)
 	@mkdir -p $(@D)
@@ -158,9 +159,25 @@ build/c/test_examples_san: build/c/nmea-san.o generated/c/tests/test_examples.c
 build/c/nmea-c-san: build/c/nmea-san.o generated/c/nmea_tool.c
 	$(CLANG) $(SANITIZE) -o $@ $^
 
-test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o
+# The five-sentence firmware of issue 32: its subset with the default NMEA_MAX_LINE (the longest
+# line those sentences can have) reading a byte stream fed one byte at a time and pushed in chunks of
+# every size (tests/c/test_stream.c), under the sanitizers, as it is and in its smallest build.
+FIRMWARE_SUBSET := GGA,RMC,GSV,GSA,VTG
+build/c/subset/c/nmea.c: $(C_PAIR) $(STAMP)
+	$(PY) -m generator generate --quiet --only $(FIRMWARE_SUBSET) --out build/c/subset
+
+build/c/test_stream: build/c/subset/c/nmea.c tests/c/test_stream.c
+	$(CC) $(SANITIZE) -I build/c/subset/c -o $@ $^
+
+build/c/test_stream_smallest: build/c/subset/c/nmea.c tests/c/test_stream.c
+	$(CC) $(SANITIZE) $(SMALLEST) -I build/c/subset/c -o $@ $^
+
+test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o build/c/test_stream \
+        build/c/test_stream_smallest
 	build/c/test_examples
 	build/c/test_examples_general
+	build/c/test_stream
+	build/c/test_stream_smallest
 
 # The C test program and the C tool under the sanitizers over the examples, the edge cases and
 # every real log, and under valgrind over the examples, the edge cases and the first five lines of
@@ -238,11 +255,11 @@ BENCH_PY_LINES ?= 100000
 bench: build
 	python3 bench/run.py --rounds $(BENCH_ROUNDS) --lines $(BENCH_LINES) --python-lines $(BENCH_PY_LINES)
 
-# `make footprint` (not part of `make test`): the C pair's code size at -Os and sizeof(nmea_sentence),
-# for a five-sentence subset and the whole spec (tools/footprint.py; FOOTPRINT_FLAGS for a cross build,
-# e.g. FOOTPRINT_FLAGS='--cc arm-none-eabi-gcc --cflags "-mcpu=cortex-m4 -mthumb" --ldflags "--specs=nano.specs --specs=nosys.specs"').
+# `make footprint` (not part of `make test`): the C pair's flash, RAM and worst-case stack for the
+# five-sentence firmware of issue 32 and the whole spec, on x86-64 and, when arm-none-eabi-gcc is
+# installed (apt-get install gcc-arm-none-eabi libnewlib-arm-none-eabi), Cortex-M4 (tools/footprint.py).
 footprint: $(STAMP)
-	$(PY) tools/footprint.py $(FOOTPRINT_FLAGS)
+	$(PY) tools/footprint.py
 
 # --- fuzzing ---------------------------------------------------------------------------------
 # `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds (C, Rust, the C and Rust

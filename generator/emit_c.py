@@ -38,6 +38,7 @@ def runtime_source(name: str) -> str:
 
 
 MAX_LINE = CONTRACT["limits"]["max_line"]  # NMEA_MAX_LINE
+MAX_DIGITS = CONTRACT["limits"]["max_digits"]  # NMEA_MAX_DIGITS
 MAX_PROBLEMS = CONTRACT["limits"]["max_problems"]  # NMEA_MAX_PROBLEMS
 
 
@@ -54,6 +55,12 @@ def c_str(text: str) -> str:
             out.append(f"\\{byte:03o}")
     out.append('"')
     return "".join(out)
+
+
+def error_text(text: str) -> str:
+    """A text that only errors use (a field's id, what it takes) as nmea.c writes it: in
+    ERROR_TEXT, which -DNMEA_TERSE_ERRORS makes NULL (runtime/c/base.c)."""
+    return f"ERROR_TEXT({c_str(text)})"
 
 
 def c_comment(text: str) -> str:
@@ -125,7 +132,7 @@ def c_arg(word: str, f: Field, ranges: Ranges) -> str:
     if word == "word":
         return c_str(f.value or "")
     if word == "hemisphere":
-        return c_str(f.field_type.hemisphere_expected)
+        return error_text(f.field_type.hemisphere_expected)
     if word == "table":
         assert f.enum is not None
         return f"&{enum_def(f.enum)}"
@@ -144,7 +151,7 @@ def field_init(f: Field, owner: str | None, ranges: Ranges) -> str:
     """The layout_field initializer of `f`, a member of struct `owner` (None: stored at offset 0,
     the value of a single-field group)."""
     offset = f"offsetof({owner}, {member(f.id)})" if owner and f.field_type.c_type else "0"
-    return (f"{{{c_str(f.id)}, {c_str(f.expected)}, {field_arg(f, ranges)}, {offset}, FIELD_{f.type.upper()}, "
+    return (f"{{{error_text(f.id)}, {error_text(f.expected)}, {field_arg(f, ranges)}, {offset}, FIELD_{f.type.upper()}, "
             f"{f.wire_width}, {f.max_length or 0}}}")
 
 
@@ -278,7 +285,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
     group_init = None
     if group_view is not None:
         group_init = _designated([
-            ("id", c_str(group.id)),
+            ("id", error_text(group.id)),
             ("fields", f"{snake}_group_fields"),
             ("field_count", len(group.fields)),
             ("width", group.width),
@@ -473,6 +480,27 @@ def json_max(spec: Spec, views: list[dict]) -> int:
     return MAX_LINE * (1 + per_byte + 6) + fields * per_field + MAX_PROBLEMS * per_problem
 
 
+def longest_line(spec: Spec) -> int:
+    """NMEA_MAX_LINE's default: the longest line a layout of the spec can have (its start, address,
+    every field at the longest text its reader takes, each entry of its group, and the checksum),
+    at most the contract's MAX_LINE, which is also the bound of a layout with a field of no bound
+    and of a text command (its words may be spaced out)."""
+    longest = 0
+    for s in spec.sentences:
+        if s.wire_kind == "text":
+            return MAX_LINE
+        address = len(s.address) if s.is_proprietary else 5  # a talker and the sentence id
+        for lay in s.layouts:
+            texts: list[int | None] = []
+            for item in lay.items:
+                for f in item.fields * item.max if isinstance(item, Group) else [item]:
+                    texts += f.field_type.longest_texts(f, MAX_DIGITS)
+            if None in texts:
+                return MAX_LINE
+            longest = max(longest, 1 + address + sum(1 + t for t in texts if t is not None) + 3)  # $ … *hh
+    return min(longest, MAX_LINE)
+
+
 def _all_fields(layout: Layout) -> list[Field]:
     out: list[Field] = []
     for item in layout.items:
@@ -632,6 +660,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "max_fields": max([v["max_fields"] for v in views] + [1]),
         "json_max": json_max(spec, views),
+        "max_line": longest_line(spec), "contract_max_line": MAX_LINE,
         "runtime_h": (RUNTIME_C / "runtime.h").read_text(encoding="utf-8"),
         "runtime_api_h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),
         "runtime_c": runtime_source("runtime.c"),

@@ -75,6 +75,7 @@ class FieldType:
     verbatim: bool = False     # the value is the wire text itself (Rust keeps a group of it as received)
     per_char: bool = False     # codes: one one-character code per character
     hemispheres: str = ""      # coordinates: the letters their hemisphere field takes, positive first
+    longest: int | None = None  # the longest text its readers take (None: no bound, or see longest_texts)
 
     @property
     def numeric(self) -> bool:
@@ -118,6 +119,11 @@ class FieldType:
         """How the manual writes the field's wire text, one string per wire field."""
         return [f.format or self.placeholder]
 
+    def longest_texts(self, f: Field, max_digits: int) -> list[int | None]:
+        """The longest text the runtimes' readers take for field `f`, one per wire field (None: no
+        bound); `max_digits` is the contract's most digits of a number."""
+        return [self.longest]
+
     def readings(self, f: Field) -> list[tuple[Any, ...]]:
         """What field `f` takes, one entry per wire field: two fields (of two layouts) with equal
         readings take the same texts as the same values."""
@@ -152,6 +158,9 @@ class NumberType(FieldType):
             return f"{what} of at most {fmt_num(f.max)}"
         return what
 
+    def longest_texts(self, f: Field, max_digits: int) -> list[int | None]:
+        return [1 + max_digits + (0 if self.integer else 1)]  # a sign, the digits, a point
+
     def read(self, f: Field, texts: list[str], at: Reading) -> Any:
         low, high = (None if b is None else Decimal(str(b)) for b in (f.min, f.max))
         return at.rt.number_field(texts[0], self.integer, at.address, at.index, at.name, f.expected, low, high)
@@ -178,6 +187,10 @@ class HexType(FieldType):
 @dataclass(frozen=True)
 class CoordinateType(FieldType):
     """latitude, longitude: degrees and minutes, then a hemisphere field."""
+    degree_digits: int = 2
+
+    def longest_texts(self, f: Field, max_digits: int) -> list[int | None]:
+        return [self.degree_digits + max_digits + 1, 1]  # degrees, minutes of at most max_digits digits and a point
 
     def read(self, f: Field, texts: list[str], at: Reading) -> Any:
         return at.rt.coordinate_field(texts[0], texts[1], at.address, at.index, at.name, f.expected,
@@ -212,11 +225,17 @@ class WordType(FieldType):
     def placeholders(self, f: Field) -> list[str]:
         return [f.format or f.value or "a"]
 
+    def longest_texts(self, f: Field, max_digits: int) -> list[int | None]:
+        return [len(f.value or "")]
+
 
 @dataclass(frozen=True)
 class TextType(FieldType):
     def expected(self, f: Field) -> str:
         return f"text of at most {f.max_length} characters" if f.max_length else "text"
+
+    def longest_texts(self, f: Field, max_digits: int) -> list[int | None]:
+        return [f.max_length]
 
     def read(self, f: Field, texts: list[str], at: Reading) -> Any:
         return at.rt.text_field(texts[0], at.address, at.index, at.name, f.expected, f.max_length)
@@ -244,6 +263,10 @@ class CodeType(FieldType):
                                           e.code_class, f.max_length)
         return at.rt.enum_field(texts[0], at.address, at.index, at.name, f.expected, by_code, e.code_class,
                                 e.min_len, e.max_len, at.ignore_case)
+
+    def longest_texts(self, f: Field, max_digits: int) -> list[int | None]:
+        assert f.enum is not None
+        return [f.max_length if self.per_char else f.enum.max_len]
 
     def expect_json(self, f: Field, value: Any, rt: ModuleType) -> str:
         assert f.enum is not None
@@ -296,19 +319,21 @@ TYPES: dict[str, FieldType] = {t.name: t for t in (
     NumberType("decimal", "decimal", "x.x", "nmea_number", "present false", "decimal", "number", "Number",
                "rt.Number", "DecimalField", args=("range",), rust_expected=True, memo=True),
     HexType("hex", "hex", "h", "nmea_hex", "present false", "hex", "hex", "Hex", "rt.Hex", "HexField",
-            reader="hex_field", expected_text="hex number", memo=True, bits=True),
+            reader="hex_field", expected_text="hex number", memo=True, bits=True, longest=16),
     FieldType("time", "UTC time", "hhmmss.ss", "nmea_time", "present false", "time", "time", "Time", "rt.Time",
-              "TimeField", reader="time_field", expected_text="time hhmmss[.s]", memo=True),
+              "TimeField", reader="time_field", expected_text="time hhmmss[.s]", memo=True, longest=16),
     FieldType("date", "date", "ddmmyy", "nmea_date", "present false", "date", "date", "Date", "rt.Date",
-              "DateField", reader="date_field", expected_text="date ddmmyy", memo=True),
+              "DateField", reader="date_field", expected_text="date ddmmyy", memo=True, longest=6),
     CoordinateType("latitude", "latitude + N/S", "ddmm.mm", "nmea_coordinate", "present false", "latitude",
                    "coordinate", "Coordinate", "rt.Coordinate", "LatitudeField", wire_width=2,
                    expected_text="latitude ddmm.mmmm", args=("hemisphere",), memo=True, hemispheres="NS"),
     CoordinateType("longitude", "longitude + E/W", "dddmm.mm", "nmea_coordinate", "present false", "longitude",
                    "coordinate", "Coordinate", "rt.Coordinate", "LongitudeField", wire_width=2,
-                   expected_text="longitude dddmm.mmmm", args=("hemisphere",), memo=True, hemispheres="EW"),
+                   expected_text="longitude dddmm.mmmm", args=("hemisphere",), memo=True, hemispheres="EW",
+                   degree_digits=3),
     CharType("char", "character", "a", "char", "0", "char", "char_field", "char", "str", "CharField",
-             reader="char_field", expected_text="one character", c_put_args=("value",), pairing="character"),
+             reader="char_field", expected_text="one character", c_put_args=("value",), pairing="character",
+             longest=1),
     WordType("literal", "literal", "a", "bool", "false", "literal", "literal", "&'a str", "str", "LiteralField",
              args=("word",), c_put_args=("value", "word"), c_doc=' True when the field holds "{value}".',
              rust_expected=True),

@@ -51,6 +51,18 @@
 #define NMEA_OUTLINE static
 #endif
 
+/* The texts only errors use: message patterns, field ids, what a field takes. A firmware short of
+   flash builds with -DNMEA_TERSE_ERRORS (and -DNMEA_NO_JSON, whose keys are field ids): an error
+   then says its kind, address and wire field (nmea_error.field), its message is empty. */
+#ifdef NMEA_TERSE_ERRORS
+#ifndef NMEA_NO_JSON
+#error "NMEA_TERSE_ERRORS needs NMEA_NO_JSON: the JSON's keys are the field ids it leaves out"
+#endif
+#define ERROR_TEXT(text) NULL
+#else
+#define ERROR_TEXT(text) text
+#endif
+
 static const char HEX_UPPER[] = "0123456789ABCDEF";
 static const char HEX_LOWER[] = "0123456789abcdef";
 
@@ -115,13 +127,18 @@ static char ascii_upper(char c)
 /* Whether the upper-case form of `t` (ASCII letters only) is exactly `s`. */
 static bool upper_is(nmea_text t, const char *s)
 {
-    size_t i, n = strlen(s);
-    if (t.len != n)
-        return false;
-    for (i = 0; i < n; i++)
-        if (ascii_upper(t.ptr[i]) != s[i])
-            return false;
-    return true;
+    size_t k;
+    for (k = 0; k < t.len && s[k] && ascii_upper(t.ptr[k]) == s[k]; k++)
+        continue;
+    return k == t.len && s[k] == 0;
+}
+
+/* Whether two words are equal (byte by byte, as text_is: a firmware then links no strcmp). */
+static bool words_equal(const char *a, const char *b)
+{
+    for (; *a && *a == *b; a++, b++)
+        continue;
+    return *a == *b;
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -409,7 +426,7 @@ static void set_address(nmea_error *err, nmea_text address, const char *suffix)
 
 void nmea_error_too_long(nmea_error *err, size_t len)
 {
-    fail(err, NMEA_ERR_TOO_LONG, "line is %n bytes, the limit is %n");
+    fail(err, NMEA_ERR_TOO_LONG, ERROR_TEXT("line is %n bytes, the limit is %n"));
     err->num[0] = len;
     err->num[1] = NMEA_MAX_LINE;
 }
@@ -438,7 +455,7 @@ static void put_error_text(nmea_writer *w, const nmea_error *err, int depth)
 
 static void put_message(nmea_writer *w, const nmea_error *err, int depth)
 {
-    const char *p = err->pattern ? err->pattern : "";
+    const char *p = err->pattern ? err->pattern : nmea_error_kind_name(err->kind); /* terse: the kind */
     unsigned strs = 0, nums = 0;
     for (; *p; p++) {
         size_t n;
@@ -545,7 +562,7 @@ size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap)
 /* A problem as the bad_field error it was. */
 static void problem_error(const nmea_problem *p, nmea_error *err)
 {
-    fail(err, NMEA_ERR_BAD_FIELD, "expected %s, found %q");
+    fail(err, NMEA_ERR_BAD_FIELD, ERROR_TEXT("expected %s, found %q"));
     err->out_of_range = p->kind == NMEA_PROBLEM_OUT_OF_RANGE;
     err->field = p->field;
     err->group = p->group;
@@ -631,10 +648,13 @@ static bool ends_body(unsigned char c)
    `require_checksum`, a sentence without a checksum (or with a bare '*') is refused. */
 static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require_checksum, nmea_error *err)
 {
-    size_t i, star = 0, comma = 0, commas = 0, body_end, words_end;
+    size_t i, star = 0, comma = 0, commas = 0, body_end;
     unsigned sum = 0;
     int high = -1, low = -1; /* the checksum's hex digits */
+#ifndef NMEA_NO_FAST_PATH
+    size_t words_end;
     uint64_t word, words = 0;
+#endif
     bool named = false, lower = false, upper = false;
     nmea_text sent;
 
@@ -643,9 +663,10 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         return false;
     }
     if (len == 0)
-        return fail(err, NMEA_ERR_NOT_A_SENTENCE, "empty line");
+        return fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("empty line"));
     if (line[0] != '$' && line[0] != '!')
-        return fail(err, NMEA_ERR_NOT_A_SENTENCE, "line does not start with '$' or '!'");
+        return fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("line does not start with '$' or '!'"));
+#ifndef NMEA_NO_FAST_PATH /* for speed only: the byte loops below read any line alike */
     if (len > 6 && line[6] == ',' && is_alnum(line[1]) && is_alnum(line[2]) && is_alnum(line[3])
         && is_alnum(line[4]) && is_alnum(line[5])) { /* the usual address: talker and sentence id */
         named = true;
@@ -653,7 +674,9 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         commas = 1;
         comma = 6;
         i = 7;
-    } else {
+    } else
+#endif
+    {
         for (i = 1; i < len && !ends_body((unsigned char)line[i]); i++) { /* the address */
             sum ^= (unsigned char)line[i];
             if (line[i] == ',') {
@@ -663,6 +686,7 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
             }
         }
     }
+#ifndef NMEA_NO_FAST_PATH
     /* the fields, a word at a time up to the usual "*hh" at the end (the byte loop then finds
        where the body really ends) */
     words_end = len >= 3 && line[len - 3] == '*' ? len - 3 : len;
@@ -673,19 +697,20 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         words ^= word;
         commas += count_bytes(zero_bytes(word ^ (',' * BYTES_ONES)));
     }
-    for (; i < len && !ends_body((unsigned char)line[i]); i++) { /* the rest of the body */
-        sum ^= (unsigned char)line[i];
-        commas += line[i] == ',';
-    }
     words ^= words >> 32;
     words ^= words >> 16;
     words ^= words >> 8;
     sum ^= (unsigned char)words;
+#endif
+    for (; i < len && !ends_body((unsigned char)line[i]); i++) { /* the rest of the body */
+        sum ^= (unsigned char)line[i];
+        commas += line[i] == ',';
+    }
     if (i < len && line[i] == '*')
         for (star = i++; i < len && is_printable(line[i]); i++)
             continue;
     if (i < len) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "byte 0x%x at offset %n is not printable ASCII");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("byte 0x%x at offset %n is not printable ASCII"));
         err->num[0] = (unsigned char)line[i];
         err->num[1] = i;
         return false;
@@ -710,14 +735,14 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
             upper = (sent.ptr[0] >= 'A' && sent.ptr[0] <= 'F') || (sent.ptr[1] >= 'A' && sent.ptr[1] <= 'F');
         }
         if (high < 0 || low < 0 || (lower && upper)) {
-            fail(err, NMEA_ERR_BAD_CHECKSUM, "checksum %q is not two hex digits of one letter case");
+            fail(err, NMEA_ERR_BAD_CHECKSUM, ERROR_TEXT("checksum %q is not two hex digits of one letter case"));
             err->text = sent;
             if (named)
                 set_address(err, f->address, NULL);
             return false;
         }
         if ((unsigned)(high * 16 + low) != sum) {
-            fail(err, NMEA_ERR_CHECKSUM_MISMATCH, "checksum is %t, computed %X");
+            fail(err, NMEA_ERR_CHECKSUM_MISMATCH, ERROR_TEXT("checksum is %t, computed %X"));
             err->text = sent;
             err->num[0] = sum;
             if (named)
@@ -727,12 +752,12 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         f->checksum = lower ? NMEA_CHECKSUM_LOWER : NMEA_CHECKSUM_UPPER;
     }
     if (!named) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "address %q is not letters and digits");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("address %q is not letters and digits"));
         err->text = f->address;
         return false;
     }
     if (require_checksum && (f->checksum == NMEA_CHECKSUM_NONE || f->checksum == NMEA_CHECKSUM_EMPTY)) {
-        fail(err, NMEA_ERR_MISSING_CHECKSUM, "the sentence has no checksum");
+        fail(err, NMEA_ERR_MISSING_CHECKSUM, ERROR_TEXT("the sentence has no checksum"));
         set_address(err, f->address, NULL);
         return false;
     }
@@ -761,7 +786,7 @@ static bool text_frame(nmea_frame *f, const char *line, size_t len, nmea_error *
     }
     for (i = 0; i < len; i++) {
         if (!is_printable(line[i])) {
-            fail(err, NMEA_ERR_NOT_A_SENTENCE, "byte 0x%x at offset %n is not printable ASCII");
+            fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("byte 0x%x at offset %n is not printable ASCII"));
             err->num[0] = (unsigned char)line[i];
             err->num[1] = i;
             return false;
@@ -900,6 +925,17 @@ static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] =
 void nmea_framer_init(nmea_framer *f)
 {
     f->length = 0;
+    f->next = 0;
+}
+
+/* Starts the line with the '$' or '!' that ended the one nmea_framer_feed handed on last. */
+static void framer_resume(nmea_framer *f)
+{
+    if (f->next) {
+        f->line[0] = f->next;
+        f->length = 1;
+        f->next = 0;
+    }
 }
 
 /* Adds bytes to the line being assembled (only its first NMEA_MAX_LINE bytes are kept). */
@@ -915,6 +951,7 @@ bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_frame
     const char *p = *data, *end, *q;
     if (*len == 0)
         return false;
+    framer_resume(f);
     end = p + *len;
     if (f->length == 0) {
         while (p < end && LINE_BOUNDARY[(unsigned char)*p] == 1) /* empty lines */
@@ -956,8 +993,29 @@ bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_frame
     return false;
 }
 
+bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out)
+{
+    /* as LINE_BOUNDARY says (a firmware that feeds links no table of 256 bytes) */
+    unsigned boundary = byte == '\r' || byte == '\n' ? 1 : byte == '$' || byte == '!' ? 2 : 0;
+    framer_resume(f);
+    if (!boundary || (f->length == 0 && boundary == 2)) {
+        if (f->length < NMEA_MAX_LINE) /* not framer_keep: a firmware that feeds links no memcpy */
+            f->line[f->length] = byte;
+        f->length++;
+        return false;
+    }
+    if (f->length == 0) /* an empty line */
+        return false;
+    out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
+    out->len = f->length;
+    f->length = 0;
+    f->next = boundary == 2 ? byte : 0; /* the line handed on is still in f->line */
+    return true;
+}
+
 bool nmea_framer_end(nmea_framer *f, nmea_framed *out)
 {
+    framer_resume(f);
     if (f->length == 0)
         return false;
     out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
@@ -1011,28 +1069,27 @@ static bool parse_number(nmea_text t, bool integer, nmea_number *out)
     return true;
 }
 
-/* Compares a * 10^-as with b * 10^-bs (both signed): -1, 0 or 1. */
+/* Compares a * 10^-as with b * 10^-bs (both signed): -1, 0 or 1. No division (a Cortex-M links
+   one of 64 bits as a library routine of 700 bytes): the magnitudes are brought to one scale, and
+   one that would pass 2^64 on the way is the larger. */
 static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
 {
-    int64_t wa, wb, fa, fb;
+    uint64_t ma, mb;
+    int order;
+    if ((a < 0) != (b < 0))
+        return a < 0 ? -1 : 1;
     if (as == bs) /* the common case: an integer against integer bounds */
         return a < b ? -1 : a > b;
-    if (as > bs && b > -POW10[NMEA_MAX_DIGITS - (as - bs)] && b < POW10[NMEA_MAX_DIGITS - (as - bs)]) {
-        b *= POW10[as - bs];
-        return a < b ? -1 : a > b;
-    }
-    if (as < bs && a > -POW10[NMEA_MAX_DIGITS - (bs - as)] && a < POW10[NMEA_MAX_DIGITS - (bs - as)]) {
-        a *= POW10[bs - as];
-        return a < b ? -1 : a > b;
-    }
-    /* whole parts first, then the fractions scaled to NMEA_MAX_DIGITS digits */
-    wa = a / POW10[as];
-    wb = b / POW10[bs];
-    fa = (a % POW10[as]) * POW10[NMEA_MAX_DIGITS - as];
-    fb = (b % POW10[bs]) * POW10[NMEA_MAX_DIGITS - bs];
-    if (wa != wb)
-        return wa < wb ? -1 : 1;
-    return fa < fb ? -1 : fa > fb;
+    ma = a < 0 ? 0 - (uint64_t)a : (uint64_t)a;
+    mb = b < 0 ? 0 - (uint64_t)b : (uint64_t)b;
+    for (; as < bs; as++, ma *= 10)
+        if (ma > UINT64_MAX / 10)
+            return a < 0 ? -1 : 1;
+    for (; bs < as; bs++, mb *= 10)
+        if (mb > UINT64_MAX / 10)
+            return a < 0 ? 1 : -1;
+    order = ma < mb ? -1 : ma > mb;
+    return a < 0 ? -order : order;
 }
 
 static inline bool in_range(const nmea_number *n, const nmea_range *range)
@@ -1178,9 +1235,9 @@ NMEA_HOT bool coordinate_of(uint64_t whole_value, size_t whole, uint64_t minutes
 {
     if (whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_MAX_DIGITS - 2)
         return false;
-    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
+    if ((uint32_t)whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
         return false;
-    out->degrees = (uint16_t)(whole_value / 100);
+    out->degrees = (uint16_t)((uint32_t)whole_value / 100); /* whole <= 5 digits: no 64-bit division */
     out->degree_digits = (uint8_t)(whole - 2);
     out->minutes.digits = (int64_t)minutes;
     out->minutes.scale = (uint8_t)frac;
@@ -1203,7 +1260,7 @@ static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned m
     for (; p < end && is_digit(*p); p++)
         whole_value = whole_value * 10 + (uint64_t)(*p - '0');
     whole = (size_t)(p - t.ptr);
-    minutes = whole_value % 100;
+    minutes = (uint32_t)whole_value % 100; /* of more digits than fit, coordinate_of refuses it */
     if (p < end && *p == '.') {
         for (point = p++; p < end && is_digit(*p); p++)
             minutes = minutes * 10 + (uint64_t)(*p - '0');
@@ -1386,12 +1443,12 @@ static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *patter
 
 static bool too_few(nmea_reader *r, size_t need, size_t found)
 {
-    return count_error(r, NMEA_ERR_TOO_FEW_FIELDS, "%s needs at least %n fields, found %n", need, found);
+    return count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s needs at least %n fields, found %n"), need, found);
 }
 
 static bool too_many(nmea_reader *r, size_t limit, size_t found)
 {
-    return count_error(r, NMEA_ERR_TOO_MANY_FIELDS, "%s takes at most %n fields, found %n", limit, found);
+    return count_error(r, NMEA_ERR_TOO_MANY_FIELDS, ERROR_TEXT("%s takes at most %n fields, found %n"), limit, found);
 }
 
 /* A layout without a repeated group: `fixed` required fields, `max` in all. Sets `optional` to
@@ -1418,7 +1475,7 @@ NMEA_INTERNAL bool build_wire(nmea_writer *w, bool text, nmea_wire *wire, nmea_e
 {
     nmea_frame f;
     if (w->len + 2 >= w->cap) {
-        fail(err, NMEA_ERR_TOO_LONG, "the sentence, its CR LF and a NUL need %n bytes, the buffer holds %n");
+        fail(err, NMEA_ERR_TOO_LONG, ERROR_TEXT("the sentence, its CR LF and a NUL need %n bytes, the buffer holds %n"));
         err->num[0] = w->len + 3;
         err->num[1] = w->cap;
         w->len = w->cap; /* nothing of it is kept */
@@ -1471,7 +1528,7 @@ NMEA_INTERNAL inline bool read_group_count(nmea_reader *r, size_t count, const c
     if (extra > optional_max) {
         if (*repeats == max)
             return too_many(r, fixed + max * width + optional_max, count);
-        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, "%s %s entries take %n fields each, %n left over", width, extra);
+        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
         r->err->str[1] = group;
         return false;
     }
@@ -1482,7 +1539,7 @@ NMEA_INTERNAL inline bool read_group_count(nmea_reader *r, size_t count, const c
 static bool bad_field(nmea_reader *r, unsigned index, const char *name, const char *expected, nmea_text text)
 {
     nmea_error *err = r->err;
-    fail(err, NMEA_ERR_BAD_FIELD, "expected %s, found %q");
+    fail(err, NMEA_ERR_BAD_FIELD, ERROR_TEXT("expected %s, found %q"));
     set_address(err, r->address, r->suffix);
     err->field = index;
     err->group = r->group;
@@ -1925,7 +1982,7 @@ NMEA_HOT bool fast_coordinate(const char **p, nmea_coordinate *out, char positiv
     for (; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
         whole_value = whole_value * 10 + digit;
     whole = (size_t)(q - start);
-    minutes = whole_value % 100;
+    minutes = (uint32_t)whole_value % 100; /* of more digits than fit, coordinate_of refuses it */
     if (*q == '.') {
         for (point = q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
             minutes = minutes * 10 + digit;
@@ -3493,7 +3550,7 @@ static bool param_encoding(const nmea_parameter *p, nmea_param_encoding encoding
     static const char *const NAMES[] = {"hex", "decimal", "decimal_list", "text"};
     if (p->encoding == encoding)
         return true;
-    param_refuse(p, "parameter %n (%s) is written as %s", err);
+    param_refuse(p, ERROR_TEXT("parameter %n (%s) is written as %s"), err);
     err->str[1] = (unsigned)p->encoding < 4 ? NAMES[p->encoding] : "?";
     return false;
 }
@@ -3502,9 +3559,9 @@ static bool param_encoding(const nmea_parameter *p, nmea_param_encoding encoding
 static bool param_in_range(const nmea_parameter *p, int64_t value, unsigned scale, nmea_error *err)
 {
     if (p->range.has_min && compare_fixed(value, scale, p->range.min, p->range.min_scale) < 0)
-        return param_refuse(p, "parameter %n (%s): the value is below its minimum", err);
+        return param_refuse(p, ERROR_TEXT("parameter %n (%s): the value is below its minimum"), err);
     if (p->range.has_max && compare_fixed(value, scale, p->range.max, p->range.max_scale) > 0)
-        return param_refuse(p, "parameter %n (%s): the value is above its maximum", err);
+        return param_refuse(p, ERROR_TEXT("parameter %n (%s): the value is above its maximum"), err);
     return true;
 }
 
@@ -3512,7 +3569,7 @@ static size_t param_finish(nmea_writer *w, nmea_error *err)
 {
     size_t n = writer_finish(w);
     if (n == 0 && w->len) {
-        fail(err, NMEA_ERR_TOO_LONG, "the text needs %n bytes and a NUL, the buffer holds %n");
+        fail(err, NMEA_ERR_TOO_LONG, ERROR_TEXT("the text needs %n bytes and a NUL, the buffer holds %n"));
         err->num[0] = w->len;
         err->num[1] = w->cap;
     }
@@ -3527,14 +3584,14 @@ size_t nmea_param_hex(const nmea_parameter *p, uint64_t value, char *buf, size_t
         return writer_finish(&w);
     if (value > (uint64_t)INT64_MAX) { /* above any bound an int64_t holds */
         if (p->range.has_max) {
-            param_refuse(p, "parameter %n (%s): the value is above its maximum", err);
+            param_refuse(p, ERROR_TEXT("parameter %n (%s): the value is above its maximum"), err);
             return writer_finish(&w);
         }
     } else if (!param_in_range(p, (int64_t)value, 0, err)) {
         return writer_finish(&w);
     }
     if (p->size && p->size < 8 && value >> (8 * p->size)) {
-        param_refuse(p, "parameter %n (%s): the value does not fit %n byte(s)", err);
+        param_refuse(p, ERROR_TEXT("parameter %n (%s): the value does not fit %n byte(s)"), err);
         err->num[1] = p->size;
         return writer_finish(&w);
     }
@@ -3564,7 +3621,7 @@ static bool param_scale(const nmea_parameter *p, unsigned scale, nmea_error *err
 {
     if (scale <= NMEA_MAX_DIGITS)
         return true;
-    return param_refuse(p, "parameter %n (%s): more than 18 decimals", err);
+    return param_refuse(p, ERROR_TEXT("parameter %n (%s): more than 18 decimals"), err);
 }
 
 size_t nmea_param_decimal(const nmea_parameter *p, int64_t value, unsigned scale, char *buf, size_t cap,
@@ -3586,7 +3643,7 @@ size_t nmea_param_decimal_list(const nmea_parameter *p, const int64_t *values, s
     if (!param_encoding(p, NMEA_PARAM_DECIMAL_LIST, err) || !param_scale(p, scale, err))
         return writer_finish(&w);
     if (p->count && n != p->count) {
-        param_refuse(p, "parameter %n (%s): expected %n values, got %n", err);
+        param_refuse(p, ERROR_TEXT("parameter %n (%s): expected %n values, got %n"), err);
         err->num[1] = p->count;
         err->num[2] = n;
         return writer_finish(&w);
@@ -3609,13 +3666,13 @@ size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, siz
     if (!param_encoding(p, NMEA_PARAM_TEXT, err))
         return writer_finish(&w);
     if (p->max_length && n > p->max_length) {
-        param_refuse(p, "parameter %n (%s): text longer than %n", err);
+        param_refuse(p, ERROR_TEXT("parameter %n (%s): text longer than %n"), err);
         err->num[1] = p->max_length;
         return writer_finish(&w);
     }
     for (i = 0; i < n; i++) {
         if (!is_printable(text[i]) || strchr(",*$!", text[i])) {
-            param_refuse(p, "parameter %n (%s): text holds ',', '*', '$', '!' or a byte outside printable ASCII",
+            param_refuse(p, ERROR_TEXT("parameter %n (%s): text holds ',', '*', '$', '!' or a byte outside printable ASCII"),
                          err);
             return writer_finish(&w);
         }
@@ -4331,7 +4388,8 @@ NMEA_INTERNAL bool frame_known(nmea_wire *wire, const char *line, size_t len, ch
         return false;
     if (!is_standard_address(&f) || f.start.ptr[0] != start ||
         !text_is(text_span(f.address.ptr + 2, f.address.ptr + 5), sentence)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, start == '!' ? "line is not a !--%s sentence" : "line is not a $--%s sentence");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE,
+             start == '!' ? ERROR_TEXT("line is not a !--%s sentence") : ERROR_TEXT("line is not a $--%s sentence"));
         set_address(err, f.address, NULL);
         err->str[0] = sentence;
         return false;
@@ -4348,7 +4406,7 @@ NMEA_INTERNAL bool frame_proprietary(nmea_wire *wire, const char *line, size_t l
     if (!frame_line(&f, line, len, false, err))
         return false;
     if (f.start.ptr[0] != '$' || !text_is(f.address, address)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a $%s sentence");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("line is not a $%s sentence"));
         set_address(err, f.address, NULL);
         err->str[0] = address;
         return false;
@@ -4363,7 +4421,7 @@ NMEA_INTERNAL bool frame_command(nmea_wire *wire, const char *line, size_t len, 
 {
     nmea_frame f;
     if ((len && (line[0] == '$' || line[0] == '!')) || !word_is(first_word(line, len), command)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a %s command");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("line is not a %s command"));
         err->str[0] = command;
         return false;
     }
@@ -4493,12 +4551,14 @@ static bool fast_fit(nmea_sentence *out, const nmea_layouts *layouts, const char
     return false;
 }
 
-/* Keeps the error to report: the first one, or the first bad field that comes after it. */
-static void keep_error(nmea_error *kept, bool *have, const nmea_error *err)
+/* Keeps the layout whose error to report (its index in `*kept`, whether that was a bad field in
+   `*kept_bad`): the first one, or the first bad field that comes after it. */
+static void keep_error(size_t *kept, bool *kept_bad, size_t i, const nmea_error *err)
 {
-    if (!*have || (kept->kind != NMEA_ERR_BAD_FIELD && err->kind == NMEA_ERR_BAD_FIELD)) {
-        *kept = *err;
-        *have = true;
+    bool bad = err->kind == NMEA_ERR_BAD_FIELD;
+    if (*kept == SIZE_MAX || (!*kept_bad && bad)) {
+        *kept = i;
+        *kept_bad = bad;
     }
 }
 
@@ -4519,28 +4579,32 @@ static bool same_as_main(const layout *l, unsigned field)
 NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
                                 nmea_error *err)
 {
-    nmea_error attempt, chosen, fallback;
-    bool have_chosen = false, have_fallback = false;
+    /* The errors to report are kept as the layouts that made them, read again at the end: an
+       error copied per candidate would triple this frame on the deepest path of nmea_parse. */
+    size_t chosen = SIZE_MAX, fallback = SIZE_MAX, last = SIZE_MAX, i;
+    bool chosen_bad = false, fallback_bad = false;
     const char *refused = NULL; /* the sentence of the main layout tried last, when it refused */
     unsigned refused_field = 0; /* and the field it refused */
-    size_t i;
 
     for (i = 0; i < layouts->count; i++) {
         const layout *l = LAYOUTS[layouts->ids[i]];
-        if (l->variant && refused && strcmp(refused, l->sentence) == 0 && same_as_main(l, refused_field))
+        if (l->variant && refused && words_equal(refused, l->sentence) && same_as_main(l, refused_field))
             continue;
-        if (read_layout(out, layouts->ids[i], wire, &attempt))
+        if (read_layout(out, layouts->ids[i], wire, err))
             return true;
+        last = i;
         if (!l->variant) {
-            bool bad = attempt.kind == NMEA_ERR_BAD_FIELD && attempt.field;
+            bool bad = err->kind == NMEA_ERR_BAD_FIELD && err->field;
             refused = bad ? l->sentence : NULL;
-            refused_field = attempt.field;
+            refused_field = err->field;
         }
         if (holds_selector(layouts->ids[i], wire))
-            keep_error(&chosen, &have_chosen, &attempt);
-        keep_error(&fallback, &have_fallback, &attempt);
+            keep_error(&chosen, &chosen_bad, i, err);
+        keep_error(&fallback, &fallback_bad, i, err);
     }
-    *err = have_chosen ? chosen : fallback;
+    i = chosen != SIZE_MAX ? chosen : fallback;
+    if (i != last) /* reading is deterministic: the same error again */
+        read_layout(out, layouts->ids[i], wire, err);
     return false;
 }
 
@@ -4561,24 +4625,25 @@ NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wi
                         nmea_error *err)
 {
     nmea_problems *keep = options->problems;
-    nmea_problems problems;
-    problems.count = 0;
+    size_t count = 0; /* the problems, written in `keep` as they come: they count once a layout reads the wire */
     /* a bad field's text is the field's text on the wire, empty once it has been left empty */
-    while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && problems.count < NMEA_MAX_PROBLEMS) {
+    while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && count < NMEA_MAX_PROBLEMS) {
+        nmea_problem_kind kind;
         if (err->out_of_range && !options->strict) {
-            problem_of(&problems.list[problems.count++], err, NMEA_PROBLEM_OUT_OF_RANGE);
+            kind = NMEA_PROBLEM_OUT_OF_RANGE;
             wire->blank[wire->blanks++] = (uint16_t)(err->field | RANGE_KEPT);
         } else if (options->lenient) {
-            problem_of(&problems.list[problems.count++], err, NMEA_PROBLEM_LEFT_EMPTY);
+            kind = NMEA_PROBLEM_LEFT_EMPTY;
             wire->blank[wire->blanks++] = (uint16_t)err->field;
         } else {
             return false;
         }
+        if (keep)
+            problem_of(&keep->list[count], err, kind);
+        count++;
         if (first_fit(out, layouts, wire, err)) {
-            if (keep) {
-                keep->count = problems.count;
-                memcpy(keep->list, problems.list, problems.count * sizeof problems.list[0]);
-            }
+            if (keep)
+                keep->count = (uint8_t)count;
             out->problems = keep;
             return true;
         }
@@ -4587,12 +4652,17 @@ NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wi
 }
 
 /* The first of the layouts that reads the wire (first_fit); when none does, refit (unless the
-   options are strict and not lenient: then nothing is kept). */
+   options are strict and not lenient: then nothing is kept; nor in a build without problems). */
 static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
                        nmea_error *err)
 {
+#ifdef NMEA_NO_PROBLEMS
+    (void)options;
+    return first_fit(out, layouts, wire, err);
+#else
     return first_fit(out, layouts, wire, err) ||
            ((!options->strict || options->lenient) && refit(out, layouts, wire, options, err));
+#endif
 }
 
 static void write_sentence(nmea_writer *w, const nmea_sentence *s)
@@ -8014,11 +8084,11 @@ static const nmea_range range_up_to_999 = {.has_max = true, .max = 999}; /* ..99
 
 /* $GPAAM,A,A,0.10,N,WPTNME*32 */
 static const layout_field aam_fields[] = {
-    {"arrival_circle", "aam_arrival_circle code (A V)", &nmea_aam_arrival_circle_def, offsetof(nmea_aam, arrival_circle), FIELD_ENUM, 1, 0},
-    {"perpendicular", "aam_perpendicular code (A V)", &nmea_aam_perpendicular_def, offsetof(nmea_aam, perpendicular), FIELD_ENUM, 1, 0},
-    {"arrival_radius", "decimal number of at least 0", &range_from_0, offsetof(nmea_aam, arrival_radius), FIELD_DECIMAL, 1, 0},
-    {"arrival_radius_unit", "N or nothing", "N", offsetof(nmea_aam, arrival_radius_unit), FIELD_LITERAL, 1, 0},
-    {"waypoint", "text", NULL, offsetof(nmea_aam, waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("arrival_circle"), ERROR_TEXT("aam_arrival_circle code (A V)"), &nmea_aam_arrival_circle_def, offsetof(nmea_aam, arrival_circle), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("perpendicular"), ERROR_TEXT("aam_perpendicular code (A V)"), &nmea_aam_perpendicular_def, offsetof(nmea_aam, perpendicular), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("arrival_radius"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_aam, arrival_radius), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("arrival_radius_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_aam, arrival_radius_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_aam, waypoint), FIELD_TEXT, 1, 0},
 };
 static const layout aam_layout = {
     .sentence = "AAM", .fields = aam_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_aam),
@@ -8047,11 +8117,11 @@ size_t nmea_build_aam(const nmea_aam *s, char *buf, size_t cap, nmea_error *err)
 
 /* $AIABK,219012679,B,12,1,0*1D */
 static const layout_field abk_fields[] = {
-    {"mmsi", "integer", NULL, offsetof(nmea_abk, mmsi), FIELD_INTEGER, 1, 0},
-    {"channel", "abk_channel code (A B)", &nmea_abk_channel_def, offsetof(nmea_abk, channel), FIELD_ENUM, 1, 0},
-    {"message_id", "decimal number", NULL, offsetof(nmea_abk, message_id), FIELD_DECIMAL, 1, 0},
-    {"sequence_number", "integer 0..9", &range_0_to_9, offsetof(nmea_abk, sequence_number), FIELD_INTEGER, 1, 0},
-    {"ack_type", "abk_ack_type code (0 1 2 3 4 5)", &nmea_abk_ack_type_def, offsetof(nmea_abk, ack_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_abk, mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channel"), ERROR_TEXT("abk_channel code (A B)"), &nmea_abk_channel_def, offsetof(nmea_abk, channel), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("message_id"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_abk, message_id), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sequence_number"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_abk, sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ack_type"), ERROR_TEXT("abk_ack_type code (0 1 2 3 4 5)"), &nmea_abk_ack_type_def, offsetof(nmea_abk, ack_type), FIELD_ENUM, 1, 0},
 };
 static const layout abk_layout = {
     .sentence = "ABK", .fields = abk_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_abk),
@@ -8080,14 +8150,14 @@ size_t nmea_build_abk(const nmea_abk *s, char *buf, size_t cap, nmea_error *err)
 
 /* !AIABM,1,1,0,219997000,0,12,<>j?1GhlLplPD5CDP6B?=P6BF,0*5F */
 static const layout_field abm_fields[] = {
-    {"sentence_count", "integer 1..9", &range_1_to_9, offsetof(nmea_abm, sentence_count), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer 1..9", &range_1_to_9, offsetof(nmea_abm, sentence_number), FIELD_INTEGER, 1, 0},
-    {"message_id", "integer 0..3", &range_0_to_3, offsetof(nmea_abm, message_id), FIELD_INTEGER, 1, 0},
-    {"mmsi", "integer", NULL, offsetof(nmea_abm, mmsi), FIELD_INTEGER, 1, 0},
-    {"channel", "abm_channel code (0 1 2 3)", &nmea_abm_channel_def, offsetof(nmea_abm, channel), FIELD_ENUM, 1, 0},
-    {"message_type", "integer", NULL, offsetof(nmea_abm, message_type), FIELD_INTEGER, 1, 0},
-    {"payload", "text", NULL, offsetof(nmea_abm, payload), FIELD_TEXT, 1, 0},
-    {"fill_bits", "integer 0..5", &range_0_to_5, offsetof(nmea_abm, fill_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_count"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_abm, sentence_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_abm, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message_id"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_abm, message_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_abm, mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channel"), ERROR_TEXT("abm_channel code (0 1 2 3)"), &nmea_abm_channel_def, offsetof(nmea_abm, channel), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("message_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_abm, message_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("payload"), ERROR_TEXT("text"), NULL, offsetof(nmea_abm, payload), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("fill_bits"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_abm, fill_bits), FIELD_INTEGER, 1, 0},
 };
 static const layout abm_layout = {
     .sentence = "ABM", .fields = abm_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_abm),
@@ -8114,21 +8184,21 @@ size_t nmea_build_abm(const nmea_abm *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* ACA: AIS channel assignment message (spec/standard/aca.yaml) */
 static const layout_field aca_fields[] = {
-    {"sequence_number", "integer 0..9", &range_0_to_9, offsetof(nmea_aca, sequence_number), FIELD_INTEGER, 1, 0},
-    {"ne_lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_aca, ne_lat), FIELD_LATITUDE, 2, 0},
-    {"ne_lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_aca, ne_lon), FIELD_LONGITUDE, 2, 0},
-    {"sw_lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_aca, sw_lat), FIELD_LATITUDE, 2, 0},
-    {"sw_lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_aca, sw_lon), FIELD_LONGITUDE, 2, 0},
-    {"transition_zone", "integer 1..8", &range_1_to_8, offsetof(nmea_aca, transition_zone), FIELD_INTEGER, 1, 0},
-    {"channel_a", "integer", NULL, offsetof(nmea_aca, channel_a), FIELD_INTEGER, 1, 0},
-    {"channel_a_bandwidth", "aca_bandwidth code (0 1)", &nmea_aca_bandwidth_def, offsetof(nmea_aca, channel_a_bandwidth), FIELD_ENUM, 1, 0},
-    {"channel_b", "integer", NULL, offsetof(nmea_aca, channel_b), FIELD_INTEGER, 1, 0},
-    {"channel_b_bandwidth", "aca_bandwidth code (0 1)", &nmea_aca_bandwidth_def, offsetof(nmea_aca, channel_b_bandwidth), FIELD_ENUM, 1, 0},
-    {"txrx_mode", "aca_txrx_mode code (0 1 2 3 4 5)", &nmea_aca_txrx_mode_def, offsetof(nmea_aca, txrx_mode), FIELD_ENUM, 1, 0},
-    {"power_level", "aca_power_level code (0 1)", &nmea_aca_power_level_def, offsetof(nmea_aca, power_level), FIELD_ENUM, 1, 0},
-    {"info_source", "aca_info_source code (A B C D M)", &nmea_aca_info_source_def, offsetof(nmea_aca, info_source), FIELD_ENUM, 1, 0},
-    {"in_use", "aca_in_use code (0 1)", &nmea_aca_in_use_def, offsetof(nmea_aca, in_use), FIELD_ENUM, 1, 0},
-    {"in_use_time", "time hhmmss[.s]", NULL, offsetof(nmea_aca, in_use_time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("sequence_number"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_aca, sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ne_lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_aca, ne_lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("ne_lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_aca, ne_lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("sw_lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_aca, sw_lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("sw_lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_aca, sw_lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("transition_zone"), ERROR_TEXT("integer 1..8"), &range_1_to_8, offsetof(nmea_aca, transition_zone), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channel_a"), ERROR_TEXT("integer"), NULL, offsetof(nmea_aca, channel_a), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channel_a_bandwidth"), ERROR_TEXT("aca_bandwidth code (0 1)"), &nmea_aca_bandwidth_def, offsetof(nmea_aca, channel_a_bandwidth), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("channel_b"), ERROR_TEXT("integer"), NULL, offsetof(nmea_aca, channel_b), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channel_b_bandwidth"), ERROR_TEXT("aca_bandwidth code (0 1)"), &nmea_aca_bandwidth_def, offsetof(nmea_aca, channel_b_bandwidth), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("txrx_mode"), ERROR_TEXT("aca_txrx_mode code (0 1 2 3 4 5)"), &nmea_aca_txrx_mode_def, offsetof(nmea_aca, txrx_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("power_level"), ERROR_TEXT("aca_power_level code (0 1)"), &nmea_aca_power_level_def, offsetof(nmea_aca, power_level), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("info_source"), ERROR_TEXT("aca_info_source code (A B C D M)"), &nmea_aca_info_source_def, offsetof(nmea_aca, info_source), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("in_use"), ERROR_TEXT("aca_in_use code (0 1)"), &nmea_aca_in_use_def, offsetof(nmea_aca, in_use), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("in_use_time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_aca, in_use_time), FIELD_TIME, 1, 0},
 };
 static const layout aca_layout = {
     .sentence = "ACA", .fields = aca_fields, .before = 15, .fixed = 19, .max_fields = 19,
@@ -8157,7 +8227,7 @@ size_t nmea_build_aca(const nmea_aca *s, char *buf, size_t cap, nmea_error *err)
 
 /* $VRACK,001*50 */
 static const layout_field ack_fields[] = {
-    {"alarm_number", "integer", NULL, offsetof(nmea_ack, alarm_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("alarm_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ack, alarm_number), FIELD_INTEGER, 1, 0},
 };
 static const layout ack_layout = {
     .sentence = "ACK", .fields = ack_fields, .before = 1, .fixed = 1, .max_fields = 1, .size = sizeof(nmea_ack),
@@ -8186,12 +8256,12 @@ size_t nmea_build_ack(const nmea_ack *s, char *buf, size_t cap, nmea_error *err)
 
 /* $RAACN,220516,TCK,002,1,A,C*00 */
 static const layout_field acn_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_acn, time), FIELD_TIME, 1, 0},
-    {"manufacturer", "text", NULL, offsetof(nmea_acn, manufacturer), FIELD_TEXT, 1, 0},
-    {"alert_id", "integer", NULL, offsetof(nmea_acn, alert_id), FIELD_INTEGER, 1, 0},
-    {"alert_instance", "integer", NULL, offsetof(nmea_acn, alert_instance), FIELD_INTEGER, 1, 0},
-    {"command", "acn_alert_command code (A Q O S)", &nmea_acn_alert_command_def, offsetof(nmea_acn, command), FIELD_ENUM, 1, 0},
-    {"status_flag", "C or nothing", "C", offsetof(nmea_acn, status_flag), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_acn, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("manufacturer"), ERROR_TEXT("text"), NULL, offsetof(nmea_acn, manufacturer), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("alert_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_acn, alert_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("alert_instance"), ERROR_TEXT("integer"), NULL, offsetof(nmea_acn, alert_instance), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("acn_alert_command code (A Q O S)"), &nmea_acn_alert_command_def, offsetof(nmea_acn, command), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status_flag"), ERROR_TEXT("C or nothing"), "C", offsetof(nmea_acn, status_flag), FIELD_LITERAL, 1, 0},
 };
 static const layout acn_layout = {
     .sentence = "ACN", .fields = acn_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_acn),
@@ -8218,12 +8288,12 @@ size_t nmea_build_acn(const nmea_acn *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* ACS: AIS channel management information source (spec/standard/acs.yaml) */
 static const layout_field acs_fields[] = {
-    {"sequence_number", "integer 0..9", &range_0_to_9, offsetof(nmea_acs, sequence_number), FIELD_INTEGER, 1, 0},
-    {"mmsi", "integer", NULL, offsetof(nmea_acs, mmsi), FIELD_INTEGER, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_acs, time), FIELD_TIME, 1, 0},
-    {"day", "integer 1..31", &range_1_to_31, offsetof(nmea_acs, day), FIELD_INTEGER, 1, 0},
-    {"month", "integer 1..12", &range_1_to_12, offsetof(nmea_acs, month), FIELD_INTEGER, 1, 0},
-    {"year", "integer", NULL, offsetof(nmea_acs, year), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sequence_number"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_acs, sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_acs, mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_acs, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("day"), ERROR_TEXT("integer 1..31"), &range_1_to_31, offsetof(nmea_acs, day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("month"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_acs, month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_acs, year), FIELD_INTEGER, 1, 0},
 };
 static const layout acs_layout = {
     .sentence = "ACS", .fields = acs_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_acs),
@@ -8250,18 +8320,18 @@ size_t nmea_build_acs(const nmea_acs *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* AIR: AIS interrogation request (spec/standard/air.yaml) */
 static const layout_field air_fields[] = {
-    {"station1_mmsi", "integer", NULL, offsetof(nmea_air, station1_mmsi), FIELD_INTEGER, 1, 0},
-    {"station1_message1", "decimal number", NULL, offsetof(nmea_air, station1_message1), FIELD_DECIMAL, 1, 0},
-    {"station1_message1_subsection", "integer", NULL, offsetof(nmea_air, station1_message1_subsection), FIELD_INTEGER, 1, 0},
-    {"station1_message2", "decimal number", NULL, offsetof(nmea_air, station1_message2), FIELD_DECIMAL, 1, 0},
-    {"station1_message2_subsection", "integer", NULL, offsetof(nmea_air, station1_message2_subsection), FIELD_INTEGER, 1, 0},
-    {"station2_mmsi", "integer", NULL, offsetof(nmea_air, station2_mmsi), FIELD_INTEGER, 1, 0},
-    {"station2_message", "decimal number", NULL, offsetof(nmea_air, station2_message), FIELD_DECIMAL, 1, 0},
-    {"station2_message_subsection", "integer", NULL, offsetof(nmea_air, station2_message_subsection), FIELD_INTEGER, 1, 0},
-    {"channel", "abk_channel code (A B)", &nmea_abk_channel_def, offsetof(nmea_air, channel), FIELD_ENUM, 1, 0},
-    {"station1_message1_slot", "integer 0..2249", &range_0_to_2249, offsetof(nmea_air, station1_message1_slot), FIELD_INTEGER, 1, 0},
-    {"station1_message2_slot", "integer 0..2249", &range_0_to_2249, offsetof(nmea_air, station1_message2_slot), FIELD_INTEGER, 1, 0},
-    {"station2_message_slot", "integer 0..2249", &range_0_to_2249, offsetof(nmea_air, station2_message_slot), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("station1_mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_air, station1_mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("station1_message1"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_air, station1_message1), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("station1_message1_subsection"), ERROR_TEXT("integer"), NULL, offsetof(nmea_air, station1_message1_subsection), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("station1_message2"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_air, station1_message2), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("station1_message2_subsection"), ERROR_TEXT("integer"), NULL, offsetof(nmea_air, station1_message2_subsection), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("station2_mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_air, station2_mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("station2_message"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_air, station2_message), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("station2_message_subsection"), ERROR_TEXT("integer"), NULL, offsetof(nmea_air, station2_message_subsection), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channel"), ERROR_TEXT("abk_channel code (A B)"), &nmea_abk_channel_def, offsetof(nmea_air, channel), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("station1_message1_slot"), ERROR_TEXT("integer 0..2249"), &range_0_to_2249, offsetof(nmea_air, station1_message1_slot), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("station1_message2_slot"), ERROR_TEXT("integer 0..2249"), &range_0_to_2249, offsetof(nmea_air, station1_message2_slot), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("station2_message_slot"), ERROR_TEXT("integer 0..2249"), &range_0_to_2249, offsetof(nmea_air, station2_message_slot), FIELD_INTEGER, 1, 0},
 };
 static const layout air_layout = {
     .sentence = "AIR", .fields = air_fields, .before = 8, .optional = 4, .fixed = 8, .max_fields = 12,
@@ -8289,14 +8359,14 @@ size_t nmea_build_air(const nmea_air *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* AKD: Acknowledge detail alarm condition (spec/standard/akd.yaml) */
 static const layout_field akd_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_akd, time), FIELD_TIME, 1, 0},
-    {"source_system", "text of at most 2 characters", NULL, offsetof(nmea_akd, source_system), FIELD_TEXT, 1, 2},
-    {"source_subsystem", "text of at most 2 characters", NULL, offsetof(nmea_akd, source_subsystem), FIELD_TEXT, 1, 2},
-    {"source_instance", "integer", NULL, offsetof(nmea_akd, source_instance), FIELD_INTEGER, 1, 0},
-    {"alarm_type", "integer", NULL, offsetof(nmea_akd, alarm_type), FIELD_INTEGER, 1, 0},
-    {"ack_system", "text of at most 2 characters", NULL, offsetof(nmea_akd, ack_system), FIELD_TEXT, 1, 2},
-    {"ack_subsystem", "text of at most 2 characters", NULL, offsetof(nmea_akd, ack_subsystem), FIELD_TEXT, 1, 2},
-    {"ack_instance", "integer", NULL, offsetof(nmea_akd, ack_instance), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_akd, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("source_system"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_akd, source_system), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("source_subsystem"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_akd, source_subsystem), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("source_instance"), ERROR_TEXT("integer"), NULL, offsetof(nmea_akd, source_instance), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("alarm_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_akd, alarm_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ack_system"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_akd, ack_system), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("ack_subsystem"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_akd, ack_subsystem), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("ack_instance"), ERROR_TEXT("integer"), NULL, offsetof(nmea_akd, ack_instance), FIELD_INTEGER, 1, 0},
 };
 static const layout akd_layout = {
     .sentence = "AKD", .fields = akd_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_akd),
@@ -8325,14 +8395,14 @@ size_t nmea_build_akd(const nmea_akd *s, char *buf, size_t cap, nmea_error *err)
 
 /* $FRALA,143955,FR,OT,00,901,N,V,Syst Fault : AutroSafe comm. OK*4F */
 static const layout_field ala_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ala, time), FIELD_TIME, 1, 0},
-    {"source_system", "text of at most 2 characters", NULL, offsetof(nmea_ala, source_system), FIELD_TEXT, 1, 2},
-    {"source_subsystem", "text of at most 2 characters", NULL, offsetof(nmea_ala, source_subsystem), FIELD_TEXT, 1, 2},
-    {"instance", "integer", NULL, offsetof(nmea_ala, instance), FIELD_INTEGER, 1, 0},
-    {"alarm_type", "integer", NULL, offsetof(nmea_ala, alarm_type), FIELD_INTEGER, 1, 0},
-    {"condition", "ala_condition code (N H J L K X)", &nmea_ala_condition_def, offsetof(nmea_ala, condition), FIELD_ENUM, 1, 0},
-    {"ack_state", "ala_ack_state code (A V B H O)", &nmea_ala_ack_state_def, offsetof(nmea_ala, ack_state), FIELD_ENUM, 1, 0},
-    {"description", "text", NULL, offsetof(nmea_ala, description), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ala, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("source_system"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_ala, source_system), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("source_subsystem"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_ala, source_subsystem), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("instance"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ala, instance), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("alarm_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ala, alarm_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("condition"), ERROR_TEXT("ala_condition code (N H J L K X)"), &nmea_ala_condition_def, offsetof(nmea_ala, condition), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("ack_state"), ERROR_TEXT("ala_ack_state code (A V B H O)"), &nmea_ala_ack_state_def, offsetof(nmea_ala, ack_state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("description"), ERROR_TEXT("text"), NULL, offsetof(nmea_ala, description), FIELD_TEXT, 1, 0},
 };
 static const layout ala_layout = {
     .sentence = "ALA", .fields = ala_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_ala),
@@ -8361,19 +8431,19 @@ size_t nmea_build_ala(const nmea_ala *s, char *buf, size_t cap, nmea_error *err)
 
 /* $FBALC,02,01,03,02,FEB,01,02,03,TEB,02,03,04*5f */
 static const layout_field alc_fields[] = {
-    {"sentence_count", "integer 1..99", &range_1_to_99, offsetof(nmea_alc, sentence_count), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer 1..99", &range_1_to_99, offsetof(nmea_alc, sentence_number), FIELD_INTEGER, 1, 0},
-    {"sequence_id", "integer 0..99", &range_0_to_99, offsetof(nmea_alc, sequence_id), FIELD_INTEGER, 1, 0},
-    {"entry_count", "integer", NULL, offsetof(nmea_alc, entry_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_count"), ERROR_TEXT("integer 1..99"), &range_1_to_99, offsetof(nmea_alc, sentence_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer 1..99"), &range_1_to_99, offsetof(nmea_alc, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sequence_id"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_alc, sequence_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("entry_count"), ERROR_TEXT("integer"), NULL, offsetof(nmea_alc, entry_count), FIELD_INTEGER, 1, 0},
 };
 static const layout_field alc_group_fields[] = {
-    {"manufacturer", "text", NULL, offsetof(nmea_alc_alert, manufacturer), FIELD_TEXT, 1, 0},
-    {"alert_id", "integer", NULL, offsetof(nmea_alc_alert, alert_id), FIELD_INTEGER, 1, 0},
-    {"alert_instance", "integer", NULL, offsetof(nmea_alc_alert, alert_instance), FIELD_INTEGER, 1, 0},
-    {"revision_counter", "integer", NULL, offsetof(nmea_alc_alert, revision_counter), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("manufacturer"), ERROR_TEXT("text"), NULL, offsetof(nmea_alc_alert, manufacturer), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("alert_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_alc_alert, alert_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("alert_instance"), ERROR_TEXT("integer"), NULL, offsetof(nmea_alc_alert, alert_instance), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("revision_counter"), ERROR_TEXT("integer"), NULL, offsetof(nmea_alc_alert, revision_counter), FIELD_INTEGER, 1, 0},
 };
 static const layout_group alc_group = {
-    .id = "alerts", .fields = alc_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 10,
+    .id = ERROR_TEXT("alerts"), .fields = alc_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 10,
     .single = false, .offset = offsetof(nmea_alc, alerts), .entry_size = sizeof(nmea_alc_alert),
     .count_offset = offsetof(nmea_alc, alerts.count),
 };
@@ -8409,19 +8479,19 @@ size_t nmea_build_alc(const nmea_alc *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIALF,2,1,1,081950.10,B,A,S,XYZ,0512,1,2,0,HEADING LOST*2D */
 static const layout_field alf_fields[] = {
-    {"sentence_count", "integer 1..2", &range_1_to_2, offsetof(nmea_alf, sentence_count), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer", NULL, offsetof(nmea_alf, sentence_number), FIELD_INTEGER, 1, 0},
-    {"sequence_id", "integer 0..9", &range_0_to_9, offsetof(nmea_alf, sequence_id), FIELD_INTEGER, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_alf, time), FIELD_TIME, 1, 0},
-    {"category", "alf_category code (A B C)", &nmea_alf_category_def, offsetof(nmea_alf, category), FIELD_ENUM, 1, 0},
-    {"priority", "alf_priority code (E A W C)", &nmea_alf_priority_def, offsetof(nmea_alf, priority), FIELD_ENUM, 1, 0},
-    {"state", "alf_state code (V S A O U N)", &nmea_alf_state_def, offsetof(nmea_alf, state), FIELD_ENUM, 1, 0},
-    {"manufacturer", "text", NULL, offsetof(nmea_alf, manufacturer), FIELD_TEXT, 1, 0},
-    {"alert_id", "integer", NULL, offsetof(nmea_alf, alert_id), FIELD_INTEGER, 1, 0},
-    {"alert_instance", "integer", NULL, offsetof(nmea_alf, alert_instance), FIELD_INTEGER, 1, 0},
-    {"revision_counter", "integer", NULL, offsetof(nmea_alf, revision_counter), FIELD_INTEGER, 1, 0},
-    {"escalation_counter", "integer", NULL, offsetof(nmea_alf, escalation_counter), FIELD_INTEGER, 1, 0},
-    {"text", "text", NULL, offsetof(nmea_alf, text), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("sentence_count"), ERROR_TEXT("integer 1..2"), &range_1_to_2, offsetof(nmea_alf, sentence_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_alf, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sequence_id"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_alf, sequence_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_alf, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("category"), ERROR_TEXT("alf_category code (A B C)"), &nmea_alf_category_def, offsetof(nmea_alf, category), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("priority"), ERROR_TEXT("alf_priority code (E A W C)"), &nmea_alf_priority_def, offsetof(nmea_alf, priority), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("state"), ERROR_TEXT("alf_state code (V S A O U N)"), &nmea_alf_state_def, offsetof(nmea_alf, state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("manufacturer"), ERROR_TEXT("text"), NULL, offsetof(nmea_alf, manufacturer), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("alert_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_alf, alert_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("alert_instance"), ERROR_TEXT("integer"), NULL, offsetof(nmea_alf, alert_instance), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("revision_counter"), ERROR_TEXT("integer"), NULL, offsetof(nmea_alf, revision_counter), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("escalation_counter"), ERROR_TEXT("integer"), NULL, offsetof(nmea_alf, escalation_counter), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("text"), ERROR_TEXT("text"), NULL, offsetof(nmea_alf, text), FIELD_TEXT, 1, 0},
 };
 static const layout alf_layout = {
     .sentence = "ALF", .fields = alf_fields, .before = 13, .fixed = 13, .max_fields = 13,
@@ -8450,14 +8520,14 @@ size_t nmea_build_alf(const nmea_alf *s, char *buf, size_t cap, nmea_error *err)
 
 /* $STALK,52,A1,00,00*36 */
 static const layout_field alk_fields[] = {
-    {"command", "hex number", NULL, offsetof(nmea_alk, command), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alk, command), FIELD_HEX, 1, 0},
 };
 static const layout_field alk_group_fields[] = {
-    {"byte", "hex number", NULL, 0, FIELD_HEX, 1, 0},
+    {ERROR_TEXT("byte"), ERROR_TEXT("hex number"), NULL, 0, FIELD_HEX, 1, 0},
 };
 static const layout_group alk_group = {
-    .id = "data", .fields = alk_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 23, .single = true,
-    .offset = offsetof(nmea_alk, data), .entry_size = sizeof(nmea_hex),
+    .id = ERROR_TEXT("data"), .fields = alk_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 23,
+    .single = true, .offset = offsetof(nmea_alk, data), .entry_size = sizeof(nmea_hex),
     .count_offset = offsetof(nmea_alk, data.count),
 };
 static const layout alk_layout = {
@@ -8492,21 +8562,21 @@ size_t nmea_build_alk(const nmea_alk *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPALM,31,1,02,1617,00,50F6,0F,FD98,FD39,A10CF3,81389B,423632,BD913C,148,001*3C */
 static const layout_field alm_fields[] = {
-    {"total_sentences", "integer of at least 1", &range_from_1, offsetof(nmea_alm, total_sentences), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer of at least 1", &range_from_1, offsetof(nmea_alm, sentence_number), FIELD_INTEGER, 1, 0},
-    {"prn", "integer 1..32", &range_1_to_32, offsetof(nmea_alm, prn), FIELD_INTEGER, 1, 0},
-    {"gps_week", "integer", NULL, offsetof(nmea_alm, gps_week), FIELD_INTEGER, 1, 0},
-    {"sv_health", "hex number", NULL, offsetof(nmea_alm, sv_health), FIELD_HEX, 1, 0},
-    {"eccentricity", "hex number", NULL, offsetof(nmea_alm, eccentricity), FIELD_HEX, 1, 0},
-    {"reference_time", "hex number", NULL, offsetof(nmea_alm, reference_time), FIELD_HEX, 1, 0},
-    {"inclination", "hex number", NULL, offsetof(nmea_alm, inclination), FIELD_HEX, 1, 0},
-    {"right_ascension_rate", "hex number", NULL, offsetof(nmea_alm, right_ascension_rate), FIELD_HEX, 1, 0},
-    {"sqrt_semi_major_axis", "hex number", NULL, offsetof(nmea_alm, sqrt_semi_major_axis), FIELD_HEX, 1, 0},
-    {"perigee_argument", "hex number", NULL, offsetof(nmea_alm, perigee_argument), FIELD_HEX, 1, 0},
-    {"ascending_node_longitude", "hex number", NULL, offsetof(nmea_alm, ascending_node_longitude), FIELD_HEX, 1, 0},
-    {"mean_anomaly", "hex number", NULL, offsetof(nmea_alm, mean_anomaly), FIELD_HEX, 1, 0},
-    {"clock_af0", "hex number", NULL, offsetof(nmea_alm, clock_af0), FIELD_HEX, 1, 0},
-    {"clock_af1", "hex number", NULL, offsetof(nmea_alm, clock_af1), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("total_sentences"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_alm, total_sentences), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_alm, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer 1..32"), &range_1_to_32, offsetof(nmea_alm, prn), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_week"), ERROR_TEXT("integer"), NULL, offsetof(nmea_alm, gps_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sv_health"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alm, sv_health), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("eccentricity"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alm, eccentricity), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("reference_time"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alm, reference_time), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("inclination"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alm, inclination), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("right_ascension_rate"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alm, right_ascension_rate), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("sqrt_semi_major_axis"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alm, sqrt_semi_major_axis), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("perigee_argument"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alm, perigee_argument), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("ascending_node_longitude"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alm, ascending_node_longitude), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("mean_anomaly"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alm, mean_anomaly), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("clock_af0"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alm, clock_af0), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("clock_af1"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_alm, clock_af1), FIELD_HEX, 1, 0},
 };
 static const layout alm_layout = {
     .sentence = "ALM", .fields = alm_fields, .before = 15, .fixed = 15, .max_fields = 15,
@@ -8535,11 +8605,11 @@ size_t nmea_build_alm(const nmea_alm *s, char *buf, size_t cap, nmea_error *err)
 
 /* $AIALR,000000.00,026,A,V,AIS: no position sensor in use*5D */
 static const layout_field alr_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_alr, time), FIELD_TIME, 1, 0},
-    {"alarm_number", "integer", NULL, offsetof(nmea_alr, alarm_number), FIELD_INTEGER, 1, 0},
-    {"condition", "alr_condition code (A V)", &nmea_alr_condition_def, offsetof(nmea_alr, condition), FIELD_ENUM, 1, 0},
-    {"ack_state", "alr_ack_state code (A V)", &nmea_alr_ack_state_def, offsetof(nmea_alr, ack_state), FIELD_ENUM, 1, 0},
-    {"description", "text", NULL, offsetof(nmea_alr, description), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_alr, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("alarm_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_alr, alarm_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("condition"), ERROR_TEXT("alr_condition code (A V)"), &nmea_alr_condition_def, offsetof(nmea_alr, condition), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("ack_state"), ERROR_TEXT("alr_ack_state code (A V)"), &nmea_alr_ack_state_def, offsetof(nmea_alr, ack_state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("description"), ERROR_TEXT("text"), NULL, offsetof(nmea_alr, description), FIELD_TEXT, 1, 0},
 };
 static const layout alr_layout = {
     .sentence = "ALR", .fields = alr_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_alr),
@@ -8568,16 +8638,16 @@ size_t nmea_build_alr(const nmea_alr *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPAPA,A,A,0.10,R,N,V,V,011,M,DEST*3F */
 static const layout_field apa_fields[] = {
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_apa, status), FIELD_ENUM, 1, 0},
-    {"cycle_lock_status", "status code (A V)", &nmea_status_def, offsetof(nmea_apa, cycle_lock_status), FIELD_ENUM, 1, 0},
-    {"cross_track_error", "decimal number of at least 0", &range_from_0, offsetof(nmea_apa, cross_track_error), FIELD_DECIMAL, 1, 0},
-    {"steer_direction", "left_right code (L R)", &nmea_left_right_def, offsetof(nmea_apa, steer_direction), FIELD_ENUM, 1, 0},
-    {"cross_track_error_unit", "N or nothing", "N", offsetof(nmea_apa, cross_track_error_unit), FIELD_LITERAL, 1, 0},
-    {"arrival_circle", "aam_arrival_circle code (A V)", &nmea_aam_arrival_circle_def, offsetof(nmea_apa, arrival_circle), FIELD_ENUM, 1, 0},
-    {"perpendicular", "aam_perpendicular code (A V)", &nmea_aam_perpendicular_def, offsetof(nmea_apa, perpendicular), FIELD_ENUM, 1, 0},
-    {"bearing_origin_to_destination", "decimal number of at least 0", &range_from_0, offsetof(nmea_apa, bearing_origin_to_destination), FIELD_DECIMAL, 1, 0},
-    {"bearing_origin_to_destination_ref", "apb_bearing_ref code (M T)", &nmea_apb_bearing_ref_def, offsetof(nmea_apa, bearing_origin_to_destination_ref), FIELD_ENUM, 1, 0},
-    {"destination_waypoint", "text", NULL, offsetof(nmea_apa, destination_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_apa, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cycle_lock_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_apa, cycle_lock_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cross_track_error"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_apa, cross_track_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("steer_direction"), ERROR_TEXT("left_right code (L R)"), &nmea_left_right_def, offsetof(nmea_apa, steer_direction), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cross_track_error_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_apa, cross_track_error_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("arrival_circle"), ERROR_TEXT("aam_arrival_circle code (A V)"), &nmea_aam_arrival_circle_def, offsetof(nmea_apa, arrival_circle), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("perpendicular"), ERROR_TEXT("aam_perpendicular code (A V)"), &nmea_aam_perpendicular_def, offsetof(nmea_apa, perpendicular), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("bearing_origin_to_destination"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_apa, bearing_origin_to_destination), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_origin_to_destination_ref"), ERROR_TEXT("apb_bearing_ref code (M T)"), &nmea_apb_bearing_ref_def, offsetof(nmea_apa, bearing_origin_to_destination_ref), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("destination_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_apa, destination_waypoint), FIELD_TEXT, 1, 0},
 };
 static const layout apa_layout = {
     .sentence = "APA", .fields = apa_fields, .before = 10, .fixed = 10, .max_fields = 10,
@@ -8606,21 +8676,21 @@ size_t nmea_build_apa(const nmea_apa *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPAPB,A,A,0.10,R,N,V,V,011,M,DEST,011,M,011,M*3C */
 static const layout_field apb_fields[] = {
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_apb, status), FIELD_ENUM, 1, 0},
-    {"cycle_lock_status", "status code (A V)", &nmea_status_def, offsetof(nmea_apb, cycle_lock_status), FIELD_ENUM, 1, 0},
-    {"cross_track_error", "decimal number of at least 0", &range_from_0, offsetof(nmea_apb, cross_track_error), FIELD_DECIMAL, 1, 0},
-    {"steer_direction", "left_right code (L R)", &nmea_left_right_def, offsetof(nmea_apb, steer_direction), FIELD_ENUM, 1, 0},
-    {"cross_track_error_unit", "N or nothing", "N", offsetof(nmea_apb, cross_track_error_unit), FIELD_LITERAL, 1, 0},
-    {"arrival_circle", "aam_arrival_circle code (A V)", &nmea_aam_arrival_circle_def, offsetof(nmea_apb, arrival_circle), FIELD_ENUM, 1, 0},
-    {"perpendicular", "aam_perpendicular code (A V)", &nmea_aam_perpendicular_def, offsetof(nmea_apb, perpendicular), FIELD_ENUM, 1, 0},
-    {"bearing_origin_to_destination", "decimal number of at least 0", &range_from_0, offsetof(nmea_apb, bearing_origin_to_destination), FIELD_DECIMAL, 1, 0},
-    {"bearing_origin_to_destination_ref", "apb_bearing_ref code (M T)", &nmea_apb_bearing_ref_def, offsetof(nmea_apb, bearing_origin_to_destination_ref), FIELD_ENUM, 1, 0},
-    {"destination_waypoint", "text", NULL, offsetof(nmea_apb, destination_waypoint), FIELD_TEXT, 1, 0},
-    {"bearing_to_destination", "decimal number of at least 0", &range_from_0, offsetof(nmea_apb, bearing_to_destination), FIELD_DECIMAL, 1, 0},
-    {"bearing_to_destination_ref", "apb_bearing_ref code (M T)", &nmea_apb_bearing_ref_def, offsetof(nmea_apb, bearing_to_destination_ref), FIELD_ENUM, 1, 0},
-    {"heading_to_steer", "decimal number of at least 0", &range_from_0, offsetof(nmea_apb, heading_to_steer), FIELD_DECIMAL, 1, 0},
-    {"heading_to_steer_ref", "apb_bearing_ref code (M T)", &nmea_apb_bearing_ref_def, offsetof(nmea_apb, heading_to_steer_ref), FIELD_ENUM, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_apb, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_apb, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cycle_lock_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_apb, cycle_lock_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cross_track_error"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_apb, cross_track_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("steer_direction"), ERROR_TEXT("left_right code (L R)"), &nmea_left_right_def, offsetof(nmea_apb, steer_direction), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cross_track_error_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_apb, cross_track_error_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("arrival_circle"), ERROR_TEXT("aam_arrival_circle code (A V)"), &nmea_aam_arrival_circle_def, offsetof(nmea_apb, arrival_circle), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("perpendicular"), ERROR_TEXT("aam_perpendicular code (A V)"), &nmea_aam_perpendicular_def, offsetof(nmea_apb, perpendicular), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("bearing_origin_to_destination"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_apb, bearing_origin_to_destination), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_origin_to_destination_ref"), ERROR_TEXT("apb_bearing_ref code (M T)"), &nmea_apb_bearing_ref_def, offsetof(nmea_apb, bearing_origin_to_destination_ref), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("destination_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_apb, destination_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("bearing_to_destination"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_apb, bearing_to_destination), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_to_destination_ref"), ERROR_TEXT("apb_bearing_ref code (M T)"), &nmea_apb_bearing_ref_def, offsetof(nmea_apb, bearing_to_destination_ref), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("heading_to_steer"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_apb, heading_to_steer), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_to_steer_ref"), ERROR_TEXT("apb_bearing_ref code (M T)"), &nmea_apb_bearing_ref_def, offsetof(nmea_apb, heading_to_steer_ref), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_apb, mode), FIELD_ENUM, 1, 0},
 };
 static const layout apb_layout = {
     .sentence = "APB", .fields = apb_fields, .before = 14, .optional = 1, .fixed = 14, .max_fields = 15,
@@ -8650,11 +8720,11 @@ size_t nmea_build_apb(const nmea_apb *s, char *buf, size_t cap, nmea_error *err)
 
 /* $RAARC,220516,TCK,002,1,A*73 */
 static const layout_field arc_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_arc, time), FIELD_TIME, 1, 0},
-    {"manufacturer", "text", NULL, offsetof(nmea_arc, manufacturer), FIELD_TEXT, 1, 0},
-    {"alert_id", "integer", NULL, offsetof(nmea_arc, alert_id), FIELD_INTEGER, 1, 0},
-    {"alert_instance", "integer", NULL, offsetof(nmea_arc, alert_instance), FIELD_INTEGER, 1, 0},
-    {"command", "acn_alert_command code (A Q O S)", &nmea_acn_alert_command_def, offsetof(nmea_arc, command), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_arc, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("manufacturer"), ERROR_TEXT("text"), NULL, offsetof(nmea_arc, manufacturer), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("alert_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_arc, alert_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("alert_instance"), ERROR_TEXT("integer"), NULL, offsetof(nmea_arc, alert_instance), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("acn_alert_command code (A Q O S)"), &nmea_acn_alert_command_def, offsetof(nmea_arc, command), FIELD_ENUM, 1, 0},
 };
 static const layout arc_layout = {
     .sentence = "ARC", .fields = arc_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_arc),
@@ -8683,13 +8753,13 @@ size_t nmea_build_arc(const nmea_arc *s, char *buf, size_t cap, nmea_error *err)
 
 /* !AIBBM,4,1,0,0,8,05d00EOdJ0:gP3Vs6QwPH41kkE0wiKk0r3K<OqT:0M7Q`?u,0*2B */
 static const layout_field bbm_fields[] = {
-    {"sentence_count", "integer 1..9", &range_1_to_9, offsetof(nmea_bbm, sentence_count), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer 1..9", &range_1_to_9, offsetof(nmea_bbm, sentence_number), FIELD_INTEGER, 1, 0},
-    {"message_id", "integer 0..9", &range_0_to_9, offsetof(nmea_bbm, message_id), FIELD_INTEGER, 1, 0},
-    {"channel", "abm_channel code (0 1 2 3)", &nmea_abm_channel_def, offsetof(nmea_bbm, channel), FIELD_ENUM, 1, 0},
-    {"message_type", "integer", NULL, offsetof(nmea_bbm, message_type), FIELD_INTEGER, 1, 0},
-    {"payload", "text", NULL, offsetof(nmea_bbm, payload), FIELD_TEXT, 1, 0},
-    {"fill_bits", "integer 0..5", &range_0_to_5, offsetof(nmea_bbm, fill_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_count"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_bbm, sentence_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_bbm, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message_id"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_bbm, message_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channel"), ERROR_TEXT("abm_channel code (0 1 2 3)"), &nmea_abm_channel_def, offsetof(nmea_bbm, channel), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("message_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_bbm, message_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("payload"), ERROR_TEXT("text"), NULL, offsetof(nmea_bbm, payload), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("fill_bits"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_bbm, fill_bits), FIELD_INTEGER, 1, 0},
 };
 static const layout bbm_layout = {
     .sentence = "BBM", .fields = bbm_fields, .before = 7, .fixed = 7, .max_fields = 7, .size = sizeof(nmea_bbm),
@@ -8718,17 +8788,17 @@ size_t nmea_build_bbm(const nmea_bbm *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPBEC,220516,5130.02,N,00046.34,W,213.8,T,218.0,M,0004.6,N,EGLM*33 */
 static const layout_field bec_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_bec, time), FIELD_TIME, 1, 0},
-    {"waypoint_lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_bec, waypoint_lat), FIELD_LATITUDE, 2, 0},
-    {"waypoint_lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_bec, waypoint_lon), FIELD_LONGITUDE, 2, 0},
-    {"bearing_true", "decimal number of at least 0", &range_from_0, offsetof(nmea_bec, bearing_true), FIELD_DECIMAL, 1, 0},
-    {"bearing_true_ref", "T or nothing", "T", offsetof(nmea_bec, bearing_true_ref), FIELD_LITERAL, 1, 0},
-    {"bearing_magnetic", "decimal number of at least 0", &range_from_0, offsetof(nmea_bec, bearing_magnetic), FIELD_DECIMAL, 1, 0},
-    {"bearing_magnetic_ref", "M or nothing", "M", offsetof(nmea_bec, bearing_magnetic_ref), FIELD_LITERAL, 1, 0},
-    {"distance", "decimal number of at least 0", &range_from_0, offsetof(nmea_bec, distance), FIELD_DECIMAL, 1, 0},
-    {"distance_unit", "N or nothing", "N", offsetof(nmea_bec, distance_unit), FIELD_LITERAL, 1, 0},
-    {"waypoint", "text", NULL, offsetof(nmea_bec, waypoint), FIELD_TEXT, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_bec, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_bec, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("waypoint_lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_bec, waypoint_lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("waypoint_lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_bec, waypoint_lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("bearing_true"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bec, bearing_true), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_true_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_bec, bearing_true_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("bearing_magnetic"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bec, bearing_magnetic), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_magnetic_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_bec, bearing_magnetic_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("distance"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bec, distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("distance_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_bec, distance_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_bec, waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_bec, mode), FIELD_ENUM, 1, 0},
 };
 static const layout bec_layout = {
     .sentence = "BEC", .fields = bec_fields, .before = 10, .optional = 1, .fixed = 12, .max_fields = 13,
@@ -8758,12 +8828,12 @@ size_t nmea_build_bec(const nmea_bec *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPBOD,139.7,T,134.9,M,A002,A003*45 */
 static const layout_field bod_fields[] = {
-    {"bearing_true", "decimal number of at least 0", &range_from_0, offsetof(nmea_bod, bearing_true), FIELD_DECIMAL, 1, 0},
-    {"bearing_true_ref", "T or nothing", "T", offsetof(nmea_bod, bearing_true_ref), FIELD_LITERAL, 1, 0},
-    {"bearing_magnetic", "decimal number of at least 0", &range_from_0, offsetof(nmea_bod, bearing_magnetic), FIELD_DECIMAL, 1, 0},
-    {"bearing_magnetic_ref", "M or nothing", "M", offsetof(nmea_bod, bearing_magnetic_ref), FIELD_LITERAL, 1, 0},
-    {"destination_waypoint", "text", NULL, offsetof(nmea_bod, destination_waypoint), FIELD_TEXT, 1, 0},
-    {"origin_waypoint", "text", NULL, offsetof(nmea_bod, origin_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("bearing_true"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bod, bearing_true), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_true_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_bod, bearing_true_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("bearing_magnetic"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bod, bearing_magnetic), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_magnetic_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_bod, bearing_magnetic_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("destination_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_bod, destination_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("origin_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_bod, origin_waypoint), FIELD_TEXT, 1, 0},
 };
 static const layout bod_layout = {
     .sentence = "BOD", .fields = bod_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_bod),
@@ -8792,17 +8862,17 @@ size_t nmea_build_bod(const nmea_bod *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPBWC,220516,5130.02,N,00046.34,W,213.8,T,218.0,M,0004.6,N,EGLM,A*4C */
 static const layout_field bwc_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_bwc, time), FIELD_TIME, 1, 0},
-    {"waypoint_lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_bwc, waypoint_lat), FIELD_LATITUDE, 2, 0},
-    {"waypoint_lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_bwc, waypoint_lon), FIELD_LONGITUDE, 2, 0},
-    {"bearing_true", "decimal number of at least 0", &range_from_0, offsetof(nmea_bwc, bearing_true), FIELD_DECIMAL, 1, 0},
-    {"bearing_true_ref", "T or nothing", "T", offsetof(nmea_bwc, bearing_true_ref), FIELD_LITERAL, 1, 0},
-    {"bearing_magnetic", "decimal number of at least 0", &range_from_0, offsetof(nmea_bwc, bearing_magnetic), FIELD_DECIMAL, 1, 0},
-    {"bearing_magnetic_ref", "M or nothing", "M", offsetof(nmea_bwc, bearing_magnetic_ref), FIELD_LITERAL, 1, 0},
-    {"distance", "decimal number of at least 0", &range_from_0, offsetof(nmea_bwc, distance), FIELD_DECIMAL, 1, 0},
-    {"distance_unit", "N or nothing", "N", offsetof(nmea_bwc, distance_unit), FIELD_LITERAL, 1, 0},
-    {"waypoint", "text", NULL, offsetof(nmea_bwc, waypoint), FIELD_TEXT, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_bwc, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_bwc, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("waypoint_lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_bwc, waypoint_lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("waypoint_lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_bwc, waypoint_lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("bearing_true"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bwc, bearing_true), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_true_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_bwc, bearing_true_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("bearing_magnetic"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bwc, bearing_magnetic), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_magnetic_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_bwc, bearing_magnetic_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("distance"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bwc, distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("distance_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_bwc, distance_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_bwc, waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_bwc, mode), FIELD_ENUM, 1, 0},
 };
 static const layout bwc_layout = {
     .sentence = "BWC", .fields = bwc_fields, .before = 10, .optional = 1, .fixed = 12, .max_fields = 13,
@@ -8832,17 +8902,17 @@ size_t nmea_build_bwc(const nmea_bwc *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPBWR,220516,5130.02,N,00046.34,W,213.8,T,218.0,M,0004.6,N,EGLM,A*5D */
 static const layout_field bwr_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_bwr, time), FIELD_TIME, 1, 0},
-    {"waypoint_lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_bwr, waypoint_lat), FIELD_LATITUDE, 2, 0},
-    {"waypoint_lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_bwr, waypoint_lon), FIELD_LONGITUDE, 2, 0},
-    {"bearing_true", "decimal number of at least 0", &range_from_0, offsetof(nmea_bwr, bearing_true), FIELD_DECIMAL, 1, 0},
-    {"bearing_true_ref", "T or nothing", "T", offsetof(nmea_bwr, bearing_true_ref), FIELD_LITERAL, 1, 0},
-    {"bearing_magnetic", "decimal number of at least 0", &range_from_0, offsetof(nmea_bwr, bearing_magnetic), FIELD_DECIMAL, 1, 0},
-    {"bearing_magnetic_ref", "M or nothing", "M", offsetof(nmea_bwr, bearing_magnetic_ref), FIELD_LITERAL, 1, 0},
-    {"distance", "decimal number of at least 0", &range_from_0, offsetof(nmea_bwr, distance), FIELD_DECIMAL, 1, 0},
-    {"distance_unit", "N or nothing", "N", offsetof(nmea_bwr, distance_unit), FIELD_LITERAL, 1, 0},
-    {"waypoint", "text", NULL, offsetof(nmea_bwr, waypoint), FIELD_TEXT, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_bwr, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_bwr, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("waypoint_lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_bwr, waypoint_lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("waypoint_lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_bwr, waypoint_lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("bearing_true"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bwr, bearing_true), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_true_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_bwr, bearing_true_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("bearing_magnetic"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bwr, bearing_magnetic), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_magnetic_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_bwr, bearing_magnetic_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("distance"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bwr, distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("distance_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_bwr, distance_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_bwr, waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_bwr, mode), FIELD_ENUM, 1, 0},
 };
 static const layout bwr_layout = {
     .sentence = "BWR", .fields = bwr_fields, .before = 10, .optional = 1, .fixed = 12, .max_fields = 13,
@@ -8872,12 +8942,12 @@ size_t nmea_build_bwr(const nmea_bwr *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPBWW,213.8,T,218.0,M,TOWPT,FROMWPT*42 */
 static const layout_field bww_fields[] = {
-    {"bearing_true", "decimal number of at least 0", &range_from_0, offsetof(nmea_bww, bearing_true), FIELD_DECIMAL, 1, 0},
-    {"bearing_true_ref", "T or nothing", "T", offsetof(nmea_bww, bearing_true_ref), FIELD_LITERAL, 1, 0},
-    {"bearing_magnetic", "decimal number of at least 0", &range_from_0, offsetof(nmea_bww, bearing_magnetic), FIELD_DECIMAL, 1, 0},
-    {"bearing_magnetic_ref", "M or nothing", "M", offsetof(nmea_bww, bearing_magnetic_ref), FIELD_LITERAL, 1, 0},
-    {"to_waypoint", "text", NULL, offsetof(nmea_bww, to_waypoint), FIELD_TEXT, 1, 0},
-    {"from_waypoint", "text", NULL, offsetof(nmea_bww, from_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("bearing_true"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bww, bearing_true), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_true_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_bww, bearing_true_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("bearing_magnetic"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_bww, bearing_magnetic), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_magnetic_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_bww, bearing_magnetic_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("to_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_bww, to_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("from_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_bww, from_waypoint), FIELD_TEXT, 1, 0},
 };
 static const layout bww_layout = {
     .sentence = "BWW", .fields = bww_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_bww),
@@ -8906,17 +8976,17 @@ size_t nmea_build_bww(const nmea_bww *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IICUR,A,0,,,123.4,T,2.5,,,M,B*41 */
 static const layout_field cur_fields[] = {
-    {"validity", "status code (A V)", &nmea_status_def, offsetof(nmea_cur, validity), FIELD_ENUM, 1, 0},
-    {"data_set_number", "integer 0..9", &range_0_to_9, offsetof(nmea_cur, data_set_number), FIELD_INTEGER, 1, 0},
-    {"layer_number", "integer of at least 0", &range_from_0, offsetof(nmea_cur, layer_number), FIELD_INTEGER, 1, 0},
-    {"current_depth", "decimal number", NULL, offsetof(nmea_cur, current_depth), FIELD_DECIMAL, 1, 0},
-    {"current_direction", "decimal number of at least 0", &range_from_0, offsetof(nmea_cur, current_direction), FIELD_DECIMAL, 1, 0},
-    {"direction_reference", "cur_direction_reference code (T R)", &nmea_cur_direction_reference_def, offsetof(nmea_cur, direction_reference), FIELD_ENUM, 1, 0},
-    {"current_speed", "decimal number", NULL, offsetof(nmea_cur, current_speed), FIELD_DECIMAL, 1, 0},
-    {"reference_layer_depth", "decimal number", NULL, offsetof(nmea_cur, reference_layer_depth), FIELD_DECIMAL, 1, 0},
-    {"heading", "decimal number of at least 0", &range_from_0, offsetof(nmea_cur, heading), FIELD_DECIMAL, 1, 0},
-    {"heading_reference", "cur_heading_reference code (T M)", &nmea_cur_heading_reference_def, offsetof(nmea_cur, heading_reference), FIELD_ENUM, 1, 0},
-    {"speed_reference", "cur_speed_reference code (B W P)", &nmea_cur_speed_reference_def, offsetof(nmea_cur, speed_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("validity"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_cur, validity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("data_set_number"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_cur, data_set_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("layer_number"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_cur, layer_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("current_depth"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_cur, current_depth), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("current_direction"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_cur, current_direction), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("direction_reference"), ERROR_TEXT("cur_direction_reference code (T R)"), &nmea_cur_direction_reference_def, offsetof(nmea_cur, direction_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("current_speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_cur, current_speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reference_layer_depth"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_cur, reference_layer_depth), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_cur, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_reference"), ERROR_TEXT("cur_heading_reference code (T M)"), &nmea_cur_heading_reference_def, offsetof(nmea_cur, heading_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("speed_reference"), ERROR_TEXT("cur_speed_reference code (B W P)"), &nmea_cur_speed_reference_def, offsetof(nmea_cur, speed_reference), FIELD_ENUM, 1, 0},
 };
 static const layout cur_layout = {
     .sentence = "CUR", .fields = cur_fields, .before = 11, .fixed = 11, .max_fields = 11,
@@ -8945,12 +9015,12 @@ size_t nmea_build_cur(const nmea_cur *s, char *buf, size_t cap, nmea_error *err)
 
 /* $SDDBK,1330.5,f,0405.5,M,0221.6,F*2E */
 static const layout_field dbk_fields[] = {
-    {"depth_feet", "decimal number", NULL, offsetof(nmea_dbk, depth_feet), FIELD_DECIMAL, 1, 0},
-    {"depth_feet_unit", "f or nothing", "f", offsetof(nmea_dbk, depth_feet_unit), FIELD_LITERAL, 1, 0},
-    {"depth_metres", "decimal number", NULL, offsetof(nmea_dbk, depth_metres), FIELD_DECIMAL, 1, 0},
-    {"depth_metres_unit", "M or nothing", "M", offsetof(nmea_dbk, depth_metres_unit), FIELD_LITERAL, 1, 0},
-    {"depth_fathoms", "decimal number", NULL, offsetof(nmea_dbk, depth_fathoms), FIELD_DECIMAL, 1, 0},
-    {"depth_fathoms_unit", "F or nothing", "F", offsetof(nmea_dbk, depth_fathoms_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("depth_feet"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dbk, depth_feet), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("depth_feet_unit"), ERROR_TEXT("f or nothing"), "f", offsetof(nmea_dbk, depth_feet_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("depth_metres"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dbk, depth_metres), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("depth_metres_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_dbk, depth_metres_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("depth_fathoms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dbk, depth_fathoms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("depth_fathoms_unit"), ERROR_TEXT("F or nothing"), "F", offsetof(nmea_dbk, depth_fathoms_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout dbk_layout = {
     .sentence = "DBK", .fields = dbk_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_dbk),
@@ -8979,12 +9049,12 @@ size_t nmea_build_dbk(const nmea_dbk *s, char *buf, size_t cap, nmea_error *err)
 
 /* $SDDBS,12.3,f,3.75,M,2.05,F*37 */
 static const layout_field dbs_fields[] = {
-    {"depth_feet", "decimal number", NULL, offsetof(nmea_dbs, depth_feet), FIELD_DECIMAL, 1, 0},
-    {"depth_feet_unit", "f or nothing", "f", offsetof(nmea_dbs, depth_feet_unit), FIELD_LITERAL, 1, 0},
-    {"depth_metres", "decimal number", NULL, offsetof(nmea_dbs, depth_metres), FIELD_DECIMAL, 1, 0},
-    {"depth_metres_unit", "M or nothing", "M", offsetof(nmea_dbs, depth_metres_unit), FIELD_LITERAL, 1, 0},
-    {"depth_fathoms", "decimal number", NULL, offsetof(nmea_dbs, depth_fathoms), FIELD_DECIMAL, 1, 0},
-    {"depth_fathoms_unit", "F or nothing", "F", offsetof(nmea_dbs, depth_fathoms_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("depth_feet"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dbs, depth_feet), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("depth_feet_unit"), ERROR_TEXT("f or nothing"), "f", offsetof(nmea_dbs, depth_feet_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("depth_metres"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dbs, depth_metres), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("depth_metres_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_dbs, depth_metres_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("depth_fathoms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dbs, depth_fathoms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("depth_fathoms_unit"), ERROR_TEXT("F or nothing"), "F", offsetof(nmea_dbs, depth_fathoms_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout dbs_layout = {
     .sentence = "DBS", .fields = dbs_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_dbs),
@@ -9013,12 +9083,12 @@ size_t nmea_build_dbs(const nmea_dbs *s, char *buf, size_t cap, nmea_error *err)
 
 /* $SDDBT,7.7,f,2.3,M,1.3,F*05 */
 static const layout_field dbt_fields[] = {
-    {"depth_feet", "decimal number", NULL, offsetof(nmea_dbt, depth_feet), FIELD_DECIMAL, 1, 0},
-    {"depth_feet_unit", "f or nothing", "f", offsetof(nmea_dbt, depth_feet_unit), FIELD_LITERAL, 1, 0},
-    {"depth_metres", "decimal number", NULL, offsetof(nmea_dbt, depth_metres), FIELD_DECIMAL, 1, 0},
-    {"depth_metres_unit", "M or nothing", "M", offsetof(nmea_dbt, depth_metres_unit), FIELD_LITERAL, 1, 0},
-    {"depth_fathoms", "decimal number", NULL, offsetof(nmea_dbt, depth_fathoms), FIELD_DECIMAL, 1, 0},
-    {"depth_fathoms_unit", "F or nothing", "F", offsetof(nmea_dbt, depth_fathoms_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("depth_feet"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dbt, depth_feet), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("depth_feet_unit"), ERROR_TEXT("f or nothing"), "f", offsetof(nmea_dbt, depth_feet_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("depth_metres"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dbt, depth_metres), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("depth_metres_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_dbt, depth_metres_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("depth_fathoms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dbt, depth_fathoms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("depth_fathoms_unit"), ERROR_TEXT("F or nothing"), "F", offsetof(nmea_dbt, depth_fathoms_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout dbt_layout = {
     .sentence = "DBT", .fields = dbt_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_dbt),
@@ -9045,11 +9115,11 @@ size_t nmea_build_dbt(const nmea_dbt *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* DDC: Display dimming control (spec/standard/ddc.yaml) */
 static const layout_field ddc_fields[] = {
-    {"dimming_preset", "ddc_preset code (D K N O)", &nmea_ddc_preset_def, offsetof(nmea_ddc, dimming_preset), FIELD_ENUM, 1, 0},
-    {"brightness", "integer 0..99", &range_0_to_99, offsetof(nmea_ddc, brightness), FIELD_INTEGER, 1, 0},
-    {"color_palette", "ddc_preset code (D K N O)", &nmea_ddc_preset_def, offsetof(nmea_ddc, color_palette), FIELD_ENUM, 1, 0},
-    {"sentence_status", "fsi_sentence_status code (R C)", &nmea_fsi_sentence_status_def, offsetof(nmea_ddc, sentence_status), FIELD_ENUM, 1, 0},
-    {"command_mode", "ddc_command_mode code (O P)", &nmea_ddc_command_mode_def, offsetof(nmea_ddc, command_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("dimming_preset"), ERROR_TEXT("ddc_preset code (D K N O)"), &nmea_ddc_preset_def, offsetof(nmea_ddc, dimming_preset), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("brightness"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_ddc, brightness), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("color_palette"), ERROR_TEXT("ddc_preset code (D K N O)"), &nmea_ddc_preset_def, offsetof(nmea_ddc, color_palette), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sentence_status"), ERROR_TEXT("fsi_sentence_status code (R C)"), &nmea_fsi_sentence_status_def, offsetof(nmea_ddc, sentence_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("command_mode"), ERROR_TEXT("ddc_command_mode code (O P)"), &nmea_ddc_command_mode_def, offsetof(nmea_ddc, command_mode), FIELD_ENUM, 1, 0},
 };
 static const layout ddc_layout = {
     .sentence = "DDC", .fields = ddc_fields, .before = 4, .optional = 1, .fixed = 4, .max_fields = 5,
@@ -9079,15 +9149,15 @@ size_t nmea_build_ddc(const nmea_ddc *s, char *buf, size_t cap, nmea_error *err)
 
 /* $FRDOR,E,233042,FD,FP,000,010,C,C,Door Closed : TEST FPA Name*4D */
 static const layout_field dor_fields[] = {
-    {"message_type", "dor_message_type code (S E F)", &nmea_dor_message_type_def, offsetof(nmea_dor, message_type), FIELD_ENUM, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_dor, time), FIELD_TIME, 1, 0},
-    {"system", "dor_system code (WT WS FD HD OT)", &nmea_dor_system_def, offsetof(nmea_dor, system), FIELD_ENUM, 1, 0},
-    {"division_1", "text", NULL, offsetof(nmea_dor, division_1), FIELD_TEXT, 1, 0},
-    {"division_2", "text", NULL, offsetof(nmea_dor, division_2), FIELD_TEXT, 1, 0},
-    {"door_number", "integer", NULL, offsetof(nmea_dor, door_number), FIELD_INTEGER, 1, 0},
-    {"door_status", "dor_status code (O C S F X)", &nmea_dor_status_def, offsetof(nmea_dor, door_status), FIELD_ENUM, 1, 0},
-    {"switch_setting", "dor_switch_setting code (O C)", &nmea_dor_switch_setting_def, offsetof(nmea_dor, switch_setting), FIELD_ENUM, 1, 0},
-    {"description", "text", NULL, offsetof(nmea_dor, description), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("message_type"), ERROR_TEXT("dor_message_type code (S E F)"), &nmea_dor_message_type_def, offsetof(nmea_dor, message_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_dor, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("system"), ERROR_TEXT("dor_system code (WT WS FD HD OT)"), &nmea_dor_system_def, offsetof(nmea_dor, system), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("division_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_dor, division_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("division_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_dor, division_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("door_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_dor, door_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("door_status"), ERROR_TEXT("dor_status code (O C S F X)"), &nmea_dor_status_def, offsetof(nmea_dor, door_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("switch_setting"), ERROR_TEXT("dor_switch_setting code (O C)"), &nmea_dor_switch_setting_def, offsetof(nmea_dor, switch_setting), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("description"), ERROR_TEXT("text"), NULL, offsetof(nmea_dor, description), FIELD_TEXT, 1, 0},
 };
 static const layout dor_layout = {
     .sentence = "DOR", .fields = dor_fields, .before = 9, .fixed = 9, .max_fields = 9, .size = sizeof(nmea_dor),
@@ -9116,9 +9186,9 @@ size_t nmea_build_dor(const nmea_dor *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIDPT,03.3,00.3,00.7*76 */
 static const layout_field dpt_fields[] = {
-    {"depth", "decimal number", NULL, offsetof(nmea_dpt, depth), FIELD_DECIMAL, 1, 0},
-    {"offset", "decimal number", NULL, offsetof(nmea_dpt, offset), FIELD_DECIMAL, 1, 0},
-    {"max_range_scale", "decimal number", NULL, offsetof(nmea_dpt, max_range_scale), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("depth"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dpt, depth), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("offset"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dpt, offset), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("max_range_scale"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dpt, max_range_scale), FIELD_DECIMAL, 1, 0},
 };
 static const layout dpt_layout = {
     .sentence = "DPT", .fields = dpt_fields, .before = 2, .optional = 1, .fixed = 2, .max_fields = 3,
@@ -9148,17 +9218,17 @@ size_t nmea_build_dpt(const nmea_dpt *s, char *buf, size_t cap, nmea_error *err)
 
 /* $CDDSC,12,3380400790,12,06,00,1423108312,2019,,,S,E*6A */
 static const layout_field dsc_fields[] = {
-    {"format_specifier", "dsc_format code (02 12 14 16 20 23)", &nmea_dsc_format_def, offsetof(nmea_dsc, format_specifier), FIELD_ENUM, 1, 0},
-    {"station_address", "text of at most 10 characters", NULL, offsetof(nmea_dsc, station_address), FIELD_TEXT, 1, 10},
-    {"category", "dsc_category code (00 08 10 12)", &nmea_dsc_category_def, offsetof(nmea_dsc, category), FIELD_ENUM, 1, 0},
-    {"distress_or_telecommand1", "text of at most 2 characters", NULL, offsetof(nmea_dsc, distress_or_telecommand1), FIELD_TEXT, 1, 2},
-    {"comm_type_or_telecommand2", "text of at most 2 characters", NULL, offsetof(nmea_dsc, comm_type_or_telecommand2), FIELD_TEXT, 1, 2},
-    {"position_or_channel", "text", NULL, offsetof(nmea_dsc, position_or_channel), FIELD_TEXT, 1, 0},
-    {"time_or_phone", "text", NULL, offsetof(nmea_dsc, time_or_phone), FIELD_TEXT, 1, 0},
-    {"distress_mmsi", "text of at most 10 characters", NULL, offsetof(nmea_dsc, distress_mmsi), FIELD_TEXT, 1, 10},
-    {"distress_nature", "dsc_distress_nature code (00 01 02 03 04 05 06 07 08 09 10 12)", &nmea_dsc_distress_nature_def, offsetof(nmea_dsc, distress_nature), FIELD_ENUM, 1, 0},
-    {"acknowledgement", "dsc_acknowledgement code (R B S)", &nmea_dsc_acknowledgement_def, offsetof(nmea_dsc, acknowledgement), FIELD_ENUM, 1, 0},
-    {"expansion", "E or nothing", "E", offsetof(nmea_dsc, expansion), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("format_specifier"), ERROR_TEXT("dsc_format code (02 12 14 16 20 23)"), &nmea_dsc_format_def, offsetof(nmea_dsc, format_specifier), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("station_address"), ERROR_TEXT("text of at most 10 characters"), NULL, offsetof(nmea_dsc, station_address), FIELD_TEXT, 1, 10},
+    {ERROR_TEXT("category"), ERROR_TEXT("dsc_category code (00 08 10 12)"), &nmea_dsc_category_def, offsetof(nmea_dsc, category), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("distress_or_telecommand1"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_dsc, distress_or_telecommand1), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("comm_type_or_telecommand2"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_dsc, comm_type_or_telecommand2), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("position_or_channel"), ERROR_TEXT("text"), NULL, offsetof(nmea_dsc, position_or_channel), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("time_or_phone"), ERROR_TEXT("text"), NULL, offsetof(nmea_dsc, time_or_phone), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("distress_mmsi"), ERROR_TEXT("text of at most 10 characters"), NULL, offsetof(nmea_dsc, distress_mmsi), FIELD_TEXT, 1, 10},
+    {ERROR_TEXT("distress_nature"), ERROR_TEXT("dsc_distress_nature code (00 01 02 03 04 05 06 07 08 09 10 12)"), &nmea_dsc_distress_nature_def, offsetof(nmea_dsc, distress_nature), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("acknowledgement"), ERROR_TEXT("dsc_acknowledgement code (R B S)"), &nmea_dsc_acknowledgement_def, offsetof(nmea_dsc, acknowledgement), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("expansion"), ERROR_TEXT("E or nothing"), "E", offsetof(nmea_dsc, expansion), FIELD_LITERAL, 1, 0},
 };
 static const layout dsc_layout = {
     .sentence = "DSC", .fields = dsc_fields, .before = 11, .fixed = 11, .max_fields = 11,
@@ -9187,17 +9257,17 @@ size_t nmea_build_dsc(const nmea_dsc *s, char *buf, size_t cap, nmea_error *err)
 
 /* $CDDSE,1,1,A,3380400790,00,46504437,01,16501437*17 */
 static const layout_field dse_fields[] = {
-    {"sentence_count", "integer of at least 1", &range_from_1, offsetof(nmea_dse, sentence_count), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer of at least 1", &range_from_1, offsetof(nmea_dse, sentence_number), FIELD_INTEGER, 1, 0},
-    {"query_flag", "dse_query_flag code (Q R A)", &nmea_dse_query_flag_def, offsetof(nmea_dse, query_flag), FIELD_ENUM, 1, 0},
-    {"vessel_mmsi", "text of at most 10 characters", NULL, offsetof(nmea_dse, vessel_mmsi), FIELD_TEXT, 1, 10},
+    {ERROR_TEXT("sentence_count"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_dse, sentence_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_dse, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("query_flag"), ERROR_TEXT("dse_query_flag code (Q R A)"), &nmea_dse_query_flag_def, offsetof(nmea_dse, query_flag), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("vessel_mmsi"), ERROR_TEXT("text of at most 10 characters"), NULL, offsetof(nmea_dse, vessel_mmsi), FIELD_TEXT, 1, 10},
 };
 static const layout_field dse_group_fields[] = {
-    {"code", "dse_code code (00 01 02 03 04 05 06)", &nmea_dse_code_def, offsetof(nmea_dse_data_set, code), FIELD_ENUM, 1, 0},
-    {"data", "text", NULL, offsetof(nmea_dse_data_set, data), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("code"), ERROR_TEXT("dse_code code (00 01 02 03 04 05 06)"), &nmea_dse_code_def, offsetof(nmea_dse_data_set, code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("data"), ERROR_TEXT("text"), NULL, offsetof(nmea_dse_data_set, data), FIELD_TEXT, 1, 0},
 };
 static const layout_group dse_group = {
-    .id = "data_sets", .fields = dse_group_fields, .field_count = 2, .width = 2, .min = 1, .max = 8,
+    .id = ERROR_TEXT("data_sets"), .fields = dse_group_fields, .field_count = 2, .width = 2, .min = 1, .max = 8,
     .single = false, .offset = offsetof(nmea_dse, data_sets), .entry_size = sizeof(nmea_dse_data_set),
     .count_offset = offsetof(nmea_dse, data_sets.count),
 };
@@ -9233,14 +9303,14 @@ size_t nmea_build_dse(const nmea_dse *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPDTM,999,,0.002,S,0.005,E,005.8,W84*1A */
 static const layout_field dtm_fields[] = {
-    {"local_datum", "dtm_datum code (W84 W72 S85 P90 999)", &nmea_dtm_datum_def, offsetof(nmea_dtm, local_datum), FIELD_ENUM, 1, 0},
-    {"local_datum_subdivision", "one character", NULL, offsetof(nmea_dtm, local_datum_subdivision), FIELD_CHAR, 1, 0},
-    {"lat_offset", "decimal number", NULL, offsetof(nmea_dtm, lat_offset), FIELD_DECIMAL, 1, 0},
-    {"lat_offset_dir", "dtm_lat_offset_dir code (N S)", &nmea_dtm_lat_offset_dir_def, offsetof(nmea_dtm, lat_offset_dir), FIELD_ENUM, 1, 0},
-    {"lon_offset", "decimal number", NULL, offsetof(nmea_dtm, lon_offset), FIELD_DECIMAL, 1, 0},
-    {"lon_offset_dir", "dtm_lon_offset_dir code (E W)", &nmea_dtm_lon_offset_dir_def, offsetof(nmea_dtm, lon_offset_dir), FIELD_ENUM, 1, 0},
-    {"altitude_offset", "decimal number", NULL, offsetof(nmea_dtm, altitude_offset), FIELD_DECIMAL, 1, 0},
-    {"reference_datum", "dtm_datum code (W84 W72 S85 P90 999)", &nmea_dtm_datum_def, offsetof(nmea_dtm, reference_datum), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("local_datum"), ERROR_TEXT("dtm_datum code (W84 W72 S85 P90 999)"), &nmea_dtm_datum_def, offsetof(nmea_dtm, local_datum), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("local_datum_subdivision"), ERROR_TEXT("one character"), NULL, offsetof(nmea_dtm, local_datum_subdivision), FIELD_CHAR, 1, 0},
+    {ERROR_TEXT("lat_offset"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dtm, lat_offset), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat_offset_dir"), ERROR_TEXT("dtm_lat_offset_dir code (N S)"), &nmea_dtm_lat_offset_dir_def, offsetof(nmea_dtm, lat_offset_dir), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lon_offset"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dtm, lon_offset), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon_offset_dir"), ERROR_TEXT("dtm_lon_offset_dir code (E W)"), &nmea_dtm_lon_offset_dir_def, offsetof(nmea_dtm, lon_offset_dir), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("altitude_offset"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_dtm, altitude_offset), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reference_datum"), ERROR_TEXT("dtm_datum code (W84 W72 S85 P90 999)"), &nmea_dtm_datum_def, offsetof(nmea_dtm, reference_datum), FIELD_ENUM, 1, 0},
 };
 static const layout dtm_layout = {
     .sentence = "DTM", .fields = dtm_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_dtm),
@@ -9269,8 +9339,8 @@ size_t nmea_build_dtm(const nmea_dtm *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPDTM,W84,C*52 */
 static const layout_field dtm_short_fields[] = {
-    {"local_datum", "dtm_datum code (W84 W72 S85 P90 999)", &nmea_dtm_datum_def, offsetof(nmea_dtm_short, local_datum), FIELD_ENUM, 1, 0},
-    {"local_datum_subdivision", "one character", NULL, offsetof(nmea_dtm_short, local_datum_subdivision), FIELD_CHAR, 1, 0},
+    {ERROR_TEXT("local_datum"), ERROR_TEXT("dtm_datum code (W84 W72 S85 P90 999)"), &nmea_dtm_datum_def, offsetof(nmea_dtm_short, local_datum), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("local_datum_subdivision"), ERROR_TEXT("one character"), NULL, offsetof(nmea_dtm_short, local_datum_subdivision), FIELD_CHAR, 1, 0},
 };
 static const layout dtm_short_layout = {
     .sentence = "DTM", .variant = "short", .fields = dtm_short_fields, .before = 2, .fixed = 2, .max_fields = 2,
@@ -9299,11 +9369,11 @@ size_t nmea_build_dtm_short(const nmea_dtm_short *s, char *buf, size_t cap, nmea
 
 /* $IIEPV,C,AI,211000001,111,HEUREKA143*55 */
 static const layout_field epv_fields[] = {
-    {"sentence_status", "fsi_sentence_status code (R C)", &nmea_fsi_sentence_status_def, offsetof(nmea_epv, sentence_status), FIELD_ENUM, 1, 0},
-    {"equipment_type", "text", NULL, offsetof(nmea_epv, equipment_type), FIELD_TEXT, 1, 0},
-    {"unique_id", "text", NULL, offsetof(nmea_epv, unique_id), FIELD_TEXT, 1, 0},
-    {"property_id", "integer of at least 0", &range_from_0, offsetof(nmea_epv, property_id), FIELD_INTEGER, 1, 0},
-    {"value", "text", NULL, offsetof(nmea_epv, value), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("sentence_status"), ERROR_TEXT("fsi_sentence_status code (R C)"), &nmea_fsi_sentence_status_def, offsetof(nmea_epv, sentence_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("equipment_type"), ERROR_TEXT("text"), NULL, offsetof(nmea_epv, equipment_type), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("unique_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_epv, unique_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("property_id"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_epv, property_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, offsetof(nmea_epv, value), FIELD_TEXT, 1, 0},
 };
 static const layout epv_layout = {
     .sentence = "EPV", .fields = epv_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_epv),
@@ -9330,12 +9400,12 @@ size_t nmea_build_epv(const nmea_epv *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* ETL: Engine telegraph operation status (spec/standard/etl.yaml) */
 static const layout_field etl_fields[] = {
-    {"event_time", "time hhmmss[.s]", NULL, offsetof(nmea_etl, event_time), FIELD_TIME, 1, 0},
-    {"message_type", "etl_message_type code (O A)", &nmea_etl_message_type_def, offsetof(nmea_etl, message_type), FIELD_ENUM, 1, 0},
-    {"telegraph_position", "etl_telegraph_position code (00 01 02 03 04 05 11 12 13 14 15)", &nmea_etl_telegraph_position_def, offsetof(nmea_etl, telegraph_position), FIELD_ENUM, 1, 0},
-    {"sub_telegraph", "etl_sub_telegraph code (20 30 40)", &nmea_etl_sub_telegraph_def, offsetof(nmea_etl, sub_telegraph), FIELD_ENUM, 1, 0},
-    {"operating_location", "prc_operating_location code (B P S C E W)", &nmea_prc_operating_location_def, offsetof(nmea_etl, operating_location), FIELD_ENUM, 1, 0},
-    {"engine_number", "integer of at least 0", &range_from_0, offsetof(nmea_etl, engine_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("event_time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_etl, event_time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("message_type"), ERROR_TEXT("etl_message_type code (O A)"), &nmea_etl_message_type_def, offsetof(nmea_etl, message_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("telegraph_position"), ERROR_TEXT("etl_telegraph_position code (00 01 02 03 04 05 11 12 13 14 15)"), &nmea_etl_telegraph_position_def, offsetof(nmea_etl, telegraph_position), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sub_telegraph"), ERROR_TEXT("etl_sub_telegraph code (20 30 40)"), &nmea_etl_sub_telegraph_def, offsetof(nmea_etl, sub_telegraph), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("operating_location"), ERROR_TEXT("prc_operating_location code (B P S C E W)"), &nmea_prc_operating_location_def, offsetof(nmea_etl, operating_location), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("engine_number"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_etl, engine_number), FIELD_INTEGER, 1, 0},
 };
 static const layout etl_layout = {
     .sentence = "ETL", .fields = etl_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_etl),
@@ -9364,9 +9434,9 @@ size_t nmea_build_etl(const nmea_etl *s, char *buf, size_t cap, nmea_error *err)
 
 /* $FREVE,000001,DZ00513,Fire Alarm On: TEST DZ201 Name*0A */
 static const layout_field eve_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_eve, time), FIELD_TIME, 1, 0},
-    {"tag_code", "text", NULL, offsetof(nmea_eve, tag_code), FIELD_TEXT, 1, 0},
-    {"description", "text", NULL, offsetof(nmea_eve, description), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_eve, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("tag_code"), ERROR_TEXT("text"), NULL, offsetof(nmea_eve, tag_code), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("description"), ERROR_TEXT("text"), NULL, offsetof(nmea_eve, description), FIELD_TEXT, 1, 0},
 };
 static const layout eve_layout = {
     .sentence = "EVE", .fields = eve_fields, .before = 3, .fixed = 3, .max_fields = 3, .size = sizeof(nmea_eve),
@@ -9395,15 +9465,15 @@ size_t nmea_build_eve(const nmea_eve *s, char *buf, size_t cap, nmea_error *err)
 
 /* $FRFIR,E,103000,FD,PT,000,007,A,V,Fire Alarm : TEST PT7 Name TEST DZ2 Name*7A */
 static const layout_field fir_fields[] = {
-    {"message_type", "fir_message_type code (S E F D)", &nmea_fir_message_type_def, offsetof(nmea_fir, message_type), FIELD_ENUM, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_fir, time), FIELD_TIME, 1, 0},
-    {"system", "fir_system code (FD FH FS FM GD GO GS GH SF SV CO OT)", &nmea_fir_system_def, offsetof(nmea_fir, system), FIELD_ENUM, 1, 0},
-    {"division_1", "text", NULL, offsetof(nmea_fir, division_1), FIELD_TEXT, 1, 0},
-    {"division_2", "text", NULL, offsetof(nmea_fir, division_2), FIELD_TEXT, 1, 0},
-    {"detector_number", "integer", NULL, offsetof(nmea_fir, detector_number), FIELD_INTEGER, 1, 0},
-    {"condition", "fir_condition code (A V X)", &nmea_fir_condition_def, offsetof(nmea_fir, condition), FIELD_ENUM, 1, 0},
-    {"ack_state", "alr_ack_state code (A V)", &nmea_alr_ack_state_def, offsetof(nmea_fir, ack_state), FIELD_ENUM, 1, 0},
-    {"description", "text", NULL, offsetof(nmea_fir, description), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("message_type"), ERROR_TEXT("fir_message_type code (S E F D)"), &nmea_fir_message_type_def, offsetof(nmea_fir, message_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_fir, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("system"), ERROR_TEXT("fir_system code (FD FH FS FM GD GO GS GH SF SV CO OT)"), &nmea_fir_system_def, offsetof(nmea_fir, system), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("division_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_fir, division_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("division_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_fir, division_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("detector_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_fir, detector_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("condition"), ERROR_TEXT("fir_condition code (A V X)"), &nmea_fir_condition_def, offsetof(nmea_fir, condition), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("ack_state"), ERROR_TEXT("alr_ack_state code (A V)"), &nmea_alr_ack_state_def, offsetof(nmea_fir, ack_state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("description"), ERROR_TEXT("text"), NULL, offsetof(nmea_fir, description), FIELD_TEXT, 1, 0},
 };
 static const layout fir_layout = {
     .sentence = "FIR", .fields = fir_fields, .before = 9, .fixed = 9, .max_fields = 9, .size = sizeof(nmea_fir),
@@ -9432,18 +9502,18 @@ size_t nmea_build_fir(const nmea_fir *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPFMI,160224.40,0.0,0.0,0.0,0.05268,0.001,0.17453,0.17,12,0,2,001C0001*1A */
 static const layout_field fmi_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_fmi, time), FIELD_TIME, 1, 0},
-    {"latitude", "decimal number", NULL, offsetof(nmea_fmi, latitude), FIELD_DECIMAL, 1, 0},
-    {"longitude", "decimal number", NULL, offsetof(nmea_fmi, longitude), FIELD_DECIMAL, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_fmi, altitude), FIELD_DECIMAL, 1, 0},
-    {"roll", "decimal number", NULL, offsetof(nmea_fmi, roll), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number", NULL, offsetof(nmea_fmi, pitch), FIELD_DECIMAL, 1, 0},
-    {"yaw", "decimal number", NULL, offsetof(nmea_fmi, yaw), FIELD_DECIMAL, 1, 0},
-    {"hrms", "decimal number", NULL, offsetof(nmea_fmi, hrms), FIELD_DECIMAL, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_fmi, satellites), FIELD_INTEGER, 1, 0},
-    {"differential_age", "integer", NULL, offsetof(nmea_fmi, differential_age), FIELD_INTEGER, 1, 0},
-    {"nav_mode", "integer", NULL, offsetof(nmea_fmi, nav_mode), FIELD_INTEGER, 1, 0},
-    {"status", "hex number", NULL, offsetof(nmea_fmi, status), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_fmi, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("latitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_fmi, latitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("longitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_fmi, longitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_fmi, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_fmi, roll), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_fmi, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("yaw"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_fmi, yaw), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hrms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_fmi, hrms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_fmi, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("differential_age"), ERROR_TEXT("integer"), NULL, offsetof(nmea_fmi, differential_age), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("nav_mode"), ERROR_TEXT("integer"), NULL, offsetof(nmea_fmi, nav_mode), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_fmi, status), FIELD_HEX, 1, 0},
 };
 static const layout fmi_layout = {
     .sentence = "FMI", .fields = fmi_fields, .before = 12, .fixed = 12, .max_fields = 12,
@@ -9472,11 +9542,11 @@ size_t nmea_build_fmi(const nmea_fmi *s, char *buf, size_t cap, nmea_error *err)
 
 /* $CTFSI,020230,026140,m,0,C */
 static const layout_field fsi_fields[] = {
-    {"transmit_frequency", "text", NULL, offsetof(nmea_fsi, transmit_frequency), FIELD_TEXT, 1, 0},
-    {"receive_frequency", "text", NULL, offsetof(nmea_fsi, receive_frequency), FIELD_TEXT, 1, 0},
-    {"mode", "fsi_mode code (d e m o q s t w x { |)", &nmea_fsi_mode_def, offsetof(nmea_fsi, mode), FIELD_ENUM, 1, 0},
-    {"power_level", "integer 0..9", &range_0_to_9, offsetof(nmea_fsi, power_level), FIELD_INTEGER, 1, 0},
-    {"sentence_status", "fsi_sentence_status code (R C)", &nmea_fsi_sentence_status_def, offsetof(nmea_fsi, sentence_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("transmit_frequency"), ERROR_TEXT("text"), NULL, offsetof(nmea_fsi, transmit_frequency), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("receive_frequency"), ERROR_TEXT("text"), NULL, offsetof(nmea_fsi, receive_frequency), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("fsi_mode code (d e m o q s t w x { |)"), &nmea_fsi_mode_def, offsetof(nmea_fsi, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("power_level"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_fsi, power_level), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_status"), ERROR_TEXT("fsi_sentence_status code (R C)"), &nmea_fsi_sentence_status_def, offsetof(nmea_fsi, sentence_status), FIELD_ENUM, 1, 0},
 };
 static const layout fsi_layout = {
     .sentence = "FSI", .fields = fsi_fields, .before = 4, .optional = 1, .fixed = 4, .max_fields = 5,
@@ -9506,16 +9576,16 @@ size_t nmea_build_fsi(const nmea_fsi *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPGBS,235458.00,1.4,1.3,3.1,03,,-21.4,3.8,1,0*5A */
 static const layout_field gbs_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_gbs, time), FIELD_TIME, 1, 0},
-    {"lat_error", "decimal number", NULL, offsetof(nmea_gbs, lat_error), FIELD_DECIMAL, 1, 0},
-    {"lon_error", "decimal number", NULL, offsetof(nmea_gbs, lon_error), FIELD_DECIMAL, 1, 0},
-    {"alt_error", "decimal number", NULL, offsetof(nmea_gbs, alt_error), FIELD_DECIMAL, 1, 0},
-    {"failed_satellite", "integer", NULL, offsetof(nmea_gbs, failed_satellite), FIELD_INTEGER, 1, 0},
-    {"missed_detection_probability", "decimal number", NULL, offsetof(nmea_gbs, missed_detection_probability), FIELD_DECIMAL, 1, 0},
-    {"bias", "decimal number", NULL, offsetof(nmea_gbs, bias), FIELD_DECIMAL, 1, 0},
-    {"bias_std_dev", "decimal number", NULL, offsetof(nmea_gbs, bias_std_dev), FIELD_DECIMAL, 1, 0},
-    {"system_id", "system_id code (1 2 3 4 5 6 F)", &nmea_system_id_def, offsetof(nmea_gbs, system_id), FIELD_ENUM, 1, 0},
-    {"signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", &nmea_signal_id_def, offsetof(nmea_gbs, signal_id), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gbs, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gbs, lat_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gbs, lon_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("alt_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gbs, alt_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("failed_satellite"), ERROR_TEXT("integer"), NULL, offsetof(nmea_gbs, failed_satellite), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("missed_detection_probability"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gbs, missed_detection_probability), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bias"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gbs, bias), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bias_std_dev"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gbs, bias_std_dev), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("system_id"), ERROR_TEXT("system_id code (1 2 3 4 5 6 F)"), &nmea_system_id_def, offsetof(nmea_gbs, system_id), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("signal_id"), ERROR_TEXT("signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)"), &nmea_signal_id_def, offsetof(nmea_gbs, signal_id), FIELD_ENUM, 1, 0},
 };
 static const layout gbs_layout = {
     .sentence = "GBS", .fields = gbs_fields, .before = 8, .optional = 2, .fixed = 8, .max_fields = 10,
@@ -9545,13 +9615,13 @@ size_t nmea_build_gbs(const nmea_gbs *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPGBS,125027,23.43,M,13.91,M,34.01,M*07 */
 static const layout_field gbs_units_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_gbs_units, time), FIELD_TIME, 1, 0},
-    {"lat_error", "decimal number", NULL, offsetof(nmea_gbs_units, lat_error), FIELD_DECIMAL, 1, 0},
-    {"lat_error_unit", "M or nothing", "M", offsetof(nmea_gbs_units, lat_error_unit), FIELD_LITERAL, 1, 0},
-    {"lon_error", "decimal number", NULL, offsetof(nmea_gbs_units, lon_error), FIELD_DECIMAL, 1, 0},
-    {"lon_error_unit", "M or nothing", "M", offsetof(nmea_gbs_units, lon_error_unit), FIELD_LITERAL, 1, 0},
-    {"alt_error", "decimal number", NULL, offsetof(nmea_gbs_units, alt_error), FIELD_DECIMAL, 1, 0},
-    {"alt_error_unit", "M or nothing", "M", offsetof(nmea_gbs_units, alt_error_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gbs_units, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gbs_units, lat_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat_error_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_gbs_units, lat_error_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("lon_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gbs_units, lon_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon_error_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_gbs_units, lon_error_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("alt_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gbs_units, alt_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("alt_error_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_gbs_units, alt_error_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout gbs_units_layout = {
     .sentence = "GBS", .variant = "units", .fields = gbs_units_fields, .before = 7, .fixed = 7, .max_fields = 7,
@@ -9580,15 +9650,15 @@ size_t nmea_build_gbs_units(const nmea_gbs_units *s, char *buf, size_t cap, nmea
 
 /* $VRGEN,0000,011200.00,0123,4567,89AB,CDEF,0123,4567,89AB,CDEF*64 */
 static const layout_field gen_fields[] = {
-    {"index", "hex number", NULL, offsetof(nmea_gen, index), FIELD_HEX, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_gen, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("index"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_gen, index), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gen, time), FIELD_TIME, 1, 0},
 };
 static const layout_field gen_group_fields[] = {
-    {"word", "hex number", NULL, 0, FIELD_HEX, 1, 0},
+    {ERROR_TEXT("word"), ERROR_TEXT("hex number"), NULL, 0, FIELD_HEX, 1, 0},
 };
 static const layout_group gen_group = {
-    .id = "words", .fields = gen_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 8, .single = true,
-    .offset = offsetof(nmea_gen, words), .entry_size = sizeof(nmea_hex),
+    .id = ERROR_TEXT("words"), .fields = gen_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 8,
+    .single = true, .offset = offsetof(nmea_gen, words), .entry_size = sizeof(nmea_hex),
     .count_offset = offsetof(nmea_gen, words.count),
 };
 static const layout gen_layout = {
@@ -9621,15 +9691,15 @@ size_t nmea_build_gen(const nmea_gen *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* GFA: GNSS fix accuracy and integrity (spec/standard/gfa.yaml) */
 static const layout_field gfa_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_gfa, time), FIELD_TIME, 1, 0},
-    {"hpl", "decimal number", NULL, offsetof(nmea_gfa, hpl), FIELD_DECIMAL, 1, 0},
-    {"vpl", "decimal number", NULL, offsetof(nmea_gfa, vpl), FIELD_DECIMAL, 1, 0},
-    {"semi_major_std", "decimal number", NULL, offsetof(nmea_gfa, semi_major_std), FIELD_DECIMAL, 1, 0},
-    {"semi_minor_std", "decimal number", NULL, offsetof(nmea_gfa, semi_minor_std), FIELD_DECIMAL, 1, 0},
-    {"orientation", "decimal number", NULL, offsetof(nmea_gfa, orientation), FIELD_DECIMAL, 1, 0},
-    {"alt_std", "decimal number", NULL, offsetof(nmea_gfa, alt_std), FIELD_DECIMAL, 1, 0},
-    {"selected_accuracy", "decimal number", NULL, offsetof(nmea_gfa, selected_accuracy), FIELD_DECIMAL, 1, 0},
-    {"integrity", "gfa_integrity codes (V S C U)", &nmea_gfa_integrity_def, offsetof(nmea_gfa, integrity), FIELD_ENUM_CHARS, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gfa, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("hpl"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gfa, hpl), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vpl"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gfa, vpl), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("semi_major_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gfa, semi_major_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("semi_minor_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gfa, semi_minor_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("orientation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gfa, orientation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("alt_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gfa, alt_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("selected_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gfa, selected_accuracy), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("integrity"), ERROR_TEXT("gfa_integrity codes (V S C U)"), &nmea_gfa_integrity_def, offsetof(nmea_gfa, integrity), FIELD_ENUM_CHARS, 1, 0},
 };
 static const layout gfa_layout = {
     .sentence = "GFA", .fields = gfa_fields, .before = 9, .fixed = 9, .max_fields = 9, .size = sizeof(nmea_gfa),
@@ -9658,19 +9728,19 @@ size_t nmea_build_gfa(const nmea_gfa *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPGGA,075140.00,5550.613522,N,03732.251556,E,2,22,0.5,00188.862,M,0014.4,M,001.0,0000*4F */
 static const layout_field gga_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_gga, time), FIELD_TIME, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_gga, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_gga, lon), FIELD_LONGITUDE, 2, 0},
-    {"quality", "gga_quality code (0 1 2 3 4 5 6 7 8 9)", &nmea_gga_quality_def, offsetof(nmea_gga, quality), FIELD_ENUM, 1, 0},
-    {"satellites", "integer 0..99", &range_0_to_99, offsetof(nmea_gga, satellites), FIELD_INTEGER, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_gga, hdop), FIELD_DECIMAL, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_gga, altitude), FIELD_DECIMAL, 1, 0},
-    {"altitude_unit", "M or nothing", "M", offsetof(nmea_gga, altitude_unit), FIELD_LITERAL, 1, 0},
-    {"geoid_separation", "decimal number", NULL, offsetof(nmea_gga, geoid_separation), FIELD_DECIMAL, 1, 0},
-    {"geoid_separation_unit", "M or nothing", "M", offsetof(nmea_gga, geoid_separation_unit), FIELD_LITERAL, 1, 0},
-    {"dgps_age", "decimal number 0..999.9", &range_0_to_999p9, offsetof(nmea_gga, dgps_age), FIELD_DECIMAL, 1, 0},
-    {"dgps_station", "integer 0..4095", &range_0_to_4095, offsetof(nmea_gga, dgps_station), FIELD_INTEGER, 1, 0},
-    {"vdop", "decimal number", NULL, offsetof(nmea_gga, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gga, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_gga, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_gga, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("gga_quality code (0 1 2 3 4 5 6 7 8 9)"), &nmea_gga_quality_def, offsetof(nmea_gga, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_gga, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gga, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gga, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_gga, altitude_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("geoid_separation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gga, geoid_separation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("geoid_separation_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_gga, geoid_separation_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("dgps_age"), ERROR_TEXT("decimal number 0..999.9"), &range_0_to_999p9, offsetof(nmea_gga, dgps_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("dgps_station"), ERROR_TEXT("integer 0..4095"), &range_0_to_4095, offsetof(nmea_gga, dgps_station), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gga, vdop), FIELD_DECIMAL, 1, 0},
 };
 static const layout gga_layout = {
     .sentence = "GGA", .fields = gga_fields, .before = 11, .optional = 2, .fixed = 13, .max_fields = 15,
@@ -9760,17 +9830,17 @@ size_t nmea_build_gga(const nmea_gga *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPGLC,9960,,,,,,,,,,,,*75 */
 static const layout_field glc_fields[] = {
-    {"gri", "integer", NULL, offsetof(nmea_glc, gri), FIELD_INTEGER, 1, 0},
-    {"master_toa", "decimal number", NULL, offsetof(nmea_glc, master_toa), FIELD_DECIMAL, 1, 0},
-    {"master_status", "glc_signal_status code (A B C S)", &nmea_glc_signal_status_def, offsetof(nmea_glc, master_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("gri"), ERROR_TEXT("integer"), NULL, offsetof(nmea_glc, gri), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("master_toa"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_glc, master_toa), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("master_status"), ERROR_TEXT("glc_signal_status code (A B C S)"), &nmea_glc_signal_status_def, offsetof(nmea_glc, master_status), FIELD_ENUM, 1, 0},
 };
 static const layout_field glc_group_fields[] = {
-    {"time_difference", "decimal number", NULL, offsetof(nmea_glc_time_difference, time_difference), FIELD_DECIMAL, 1, 0},
-    {"signal_status", "glc_signal_status code (A B C S)", &nmea_glc_signal_status_def, offsetof(nmea_glc_time_difference, signal_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time_difference"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_glc_time_difference, time_difference), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("signal_status"), ERROR_TEXT("glc_signal_status code (A B C S)"), &nmea_glc_signal_status_def, offsetof(nmea_glc_time_difference, signal_status), FIELD_ENUM, 1, 0},
 };
 static const layout_group glc_group = {
-    .id = "time_differences", .fields = glc_group_fields, .field_count = 2, .width = 2, .min = 5, .max = 5,
-    .single = false, .offset = offsetof(nmea_glc, time_differences),
+    .id = ERROR_TEXT("time_differences"), .fields = glc_group_fields, .field_count = 2, .width = 2, .min = 5,
+    .max = 5, .single = false, .offset = offsetof(nmea_glc, time_differences),
     .entry_size = sizeof(nmea_glc_time_difference), .count_offset = NO_MEMBER,
 };
 static const layout glc_layout = {
@@ -9805,11 +9875,11 @@ size_t nmea_build_glc(const nmea_glc *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GNGLL,5550.612764,N,03732.252689,E,075712.00,V,N*6B */
 static const layout_field gll_fields[] = {
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_gll, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_gll, lon), FIELD_LONGITUDE, 2, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_gll, time), FIELD_TIME, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_gll, status), FIELD_ENUM, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_gll, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_gll, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_gll, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gll, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_gll, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_gll, mode), FIELD_ENUM, 1, 0},
 };
 static const layout gll_layout = {
     .sentence = "GLL", .fields = gll_fields, .before = 4, .optional = 1, .fixed = 6, .max_fields = 7,
@@ -9883,13 +9953,13 @@ size_t nmea_build_gll(const nmea_gll *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPGLL,36000.0000,N,72000.0000,E,000452.981,V*10 */
 static const layout_field gll_sentinel_fields[] = {
-    {"lat_value", "decimal number", NULL, offsetof(nmea_gll_sentinel, lat_value), FIELD_DECIMAL, 1, 0},
-    {"lat_hemisphere", "north_south code (N S)", &nmea_north_south_def, offsetof(nmea_gll_sentinel, lat_hemisphere), FIELD_ENUM, 1, 0},
-    {"lon_value", "decimal number", NULL, offsetof(nmea_gll_sentinel, lon_value), FIELD_DECIMAL, 1, 0},
-    {"lon_hemisphere", "east_west code (E W)", &nmea_east_west_def, offsetof(nmea_gll_sentinel, lon_hemisphere), FIELD_ENUM, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_gll_sentinel, time), FIELD_TIME, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_gll_sentinel, status), FIELD_ENUM, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_gll_sentinel, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lat_value"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gll_sentinel, lat_value), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat_hemisphere"), ERROR_TEXT("north_south code (N S)"), &nmea_north_south_def, offsetof(nmea_gll_sentinel, lat_hemisphere), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lon_value"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gll_sentinel, lon_value), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon_hemisphere"), ERROR_TEXT("east_west code (E W)"), &nmea_east_west_def, offsetof(nmea_gll_sentinel, lon_hemisphere), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gll_sentinel, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_gll_sentinel, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_gll_sentinel, mode), FIELD_ENUM, 1, 0},
 };
 static const uint16_t gll_sentinel_same_as_main[] = {2, 4, 5, 6, 7, 0};
 static const layout gll_sentinel_layout = {
@@ -9969,18 +10039,18 @@ size_t nmea_build_gll_sentinel(const nmea_gll_sentinel *s, char *buf, size_t cap
 
 /* $GPGMP,131745.00,LOC,,45215.125,14587.298,R,11,1.5,125.221,5.214,1.5,454*49 */
 static const layout_field gmp_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_gmp, time), FIELD_TIME, 1, 0},
-    {"projection", "text", NULL, offsetof(nmea_gmp, projection), FIELD_TEXT, 1, 0},
-    {"zone", "text", NULL, offsetof(nmea_gmp, zone), FIELD_TEXT, 1, 0},
-    {"grid_north", "decimal number", NULL, offsetof(nmea_gmp, grid_north), FIELD_DECIMAL, 1, 0},
-    {"grid_east", "decimal number", NULL, offsetof(nmea_gmp, grid_east), FIELD_DECIMAL, 1, 0},
-    {"mode", "gns_mode codes (A D E F G M N P R S)", &nmea_gns_mode_def, offsetof(nmea_gmp, mode), FIELD_ENUM_CHARS, 1, 0},
-    {"satellites", "integer of at least 0", &range_from_0, offsetof(nmea_gmp, satellites), FIELD_INTEGER, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_gmp, hdop), FIELD_DECIMAL, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_gmp, altitude), FIELD_DECIMAL, 1, 0},
-    {"geoid_separation", "decimal number", NULL, offsetof(nmea_gmp, geoid_separation), FIELD_DECIMAL, 1, 0},
-    {"dgps_age", "decimal number", NULL, offsetof(nmea_gmp, dgps_age), FIELD_DECIMAL, 1, 0},
-    {"dgps_station", "integer", NULL, offsetof(nmea_gmp, dgps_station), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gmp, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("projection"), ERROR_TEXT("text"), NULL, offsetof(nmea_gmp, projection), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("zone"), ERROR_TEXT("text"), NULL, offsetof(nmea_gmp, zone), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("grid_north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gmp, grid_north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("grid_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gmp, grid_east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("gns_mode codes (A D E F G M N P R S)"), &nmea_gns_mode_def, offsetof(nmea_gmp, mode), FIELD_ENUM_CHARS, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_gmp, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gmp, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gmp, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("geoid_separation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gmp, geoid_separation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("dgps_age"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gmp, dgps_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("dgps_station"), ERROR_TEXT("integer"), NULL, offsetof(nmea_gmp, dgps_station), FIELD_INTEGER, 1, 0},
 };
 static const layout gmp_layout = {
     .sentence = "GMP", .fields = gmp_fields, .before = 12, .fixed = 12, .max_fields = 12,
@@ -10009,17 +10079,17 @@ size_t nmea_build_gmp(const nmea_gmp *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPGNS,080839.00,5550.611145,N,03732.253491,E,DNNN,10,0.8,00182.290,0014.4,001.0,0000,V*15 */
 static const layout_field gns_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_gns, time), FIELD_TIME, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_gns, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_gns, lon), FIELD_LONGITUDE, 2, 0},
-    {"mode", "gns_mode codes (A D E F G M N P R S)", &nmea_gns_mode_def, offsetof(nmea_gns, mode), FIELD_ENUM_CHARS, 1, 0},
-    {"satellites", "integer 0..99", &range_0_to_99, offsetof(nmea_gns, satellites), FIELD_INTEGER, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_gns, hdop), FIELD_DECIMAL, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_gns, altitude), FIELD_DECIMAL, 1, 0},
-    {"geoid_separation", "decimal number", NULL, offsetof(nmea_gns, geoid_separation), FIELD_DECIMAL, 1, 0},
-    {"dgps_age", "decimal number 0..999.9", &range_0_to_999p9, offsetof(nmea_gns, dgps_age), FIELD_DECIMAL, 1, 0},
-    {"dgps_station", "integer 0..4095", &range_0_to_4095, offsetof(nmea_gns, dgps_station), FIELD_INTEGER, 1, 0},
-    {"nav_status", "nav_status code (S C U V)", &nmea_nav_status_def, offsetof(nmea_gns, nav_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gns, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_gns, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_gns, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("gns_mode codes (A D E F G M N P R S)"), &nmea_gns_mode_def, offsetof(nmea_gns, mode), FIELD_ENUM_CHARS, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_gns, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gns, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gns, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("geoid_separation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gns, geoid_separation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("dgps_age"), ERROR_TEXT("decimal number 0..999.9"), &range_0_to_999p9, offsetof(nmea_gns, dgps_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("dgps_station"), ERROR_TEXT("integer 0..4095"), &range_0_to_4095, offsetof(nmea_gns, dgps_station), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("nav_status"), ERROR_TEXT("nav_status code (S C U V)"), &nmea_nav_status_def, offsetof(nmea_gns, nav_status), FIELD_ENUM, 1, 0},
 };
 static const layout gns_layout = {
     .sentence = "GNS", .fields = gns_fields, .before = 10, .optional = 1, .fixed = 12, .max_fields = 13,
@@ -10105,16 +10175,16 @@ size_t nmea_build_gns(const nmea_gns *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPGNS,080520.00,,,,,11,,,,,*40 */
 static const layout_field gns_aux_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_gns_aux, time), FIELD_TIME, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_gns_aux, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_gns_aux, lon), FIELD_LONGITUDE, 2, 0},
-    {"satellites", "integer 0..99", &range_0_to_99, offsetof(nmea_gns_aux, satellites), FIELD_INTEGER, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_gns_aux, hdop), FIELD_DECIMAL, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_gns_aux, altitude), FIELD_DECIMAL, 1, 0},
-    {"geoid_separation", "decimal number", NULL, offsetof(nmea_gns_aux, geoid_separation), FIELD_DECIMAL, 1, 0},
-    {"dgps_age", "decimal number 0..999.9", &range_0_to_999p9, offsetof(nmea_gns_aux, dgps_age), FIELD_DECIMAL, 1, 0},
-    {"dgps_station", "integer 0..4095", &range_0_to_4095, offsetof(nmea_gns_aux, dgps_station), FIELD_INTEGER, 1, 0},
-    {"nav_status", "nav_status code (S C U V)", &nmea_nav_status_def, offsetof(nmea_gns_aux, nav_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gns_aux, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_gns_aux, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_gns_aux, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_gns_aux, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gns_aux, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gns_aux, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("geoid_separation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gns_aux, geoid_separation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("dgps_age"), ERROR_TEXT("decimal number 0..999.9"), &range_0_to_999p9, offsetof(nmea_gns_aux, dgps_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("dgps_station"), ERROR_TEXT("integer 0..4095"), &range_0_to_4095, offsetof(nmea_gns_aux, dgps_station), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("nav_status"), ERROR_TEXT("nav_status code (S C U V)"), &nmea_nav_status_def, offsetof(nmea_gns_aux, nav_status), FIELD_ENUM, 1, 0},
 };
 static const uint16_t gns_aux_same_as_main[] = {1, 2, 3, 4, 5, 8, 9, 0};
 static const layout gns_aux_layout = {
@@ -10199,16 +10269,16 @@ size_t nmea_build_gns_aux(const nmea_gns_aux *s, char *buf, size_t cap, nmea_err
 
 /* $GPGRS,150119.000,1,-0.33,-2.59,3.03,-0.09,-2.98,7.12,-15.6,17.0,,,,*5A */
 static const layout_field grs_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_grs, time), FIELD_TIME, 1, 0},
-    {"mode", "grs_mode code (0 1)", &nmea_grs_mode_def, offsetof(nmea_grs, mode), FIELD_ENUM, 1, 0},
-    {"system_id", "system_id code (1 2 3 4 5 6 F)", &nmea_system_id_def, offsetof(nmea_grs, system_id), FIELD_ENUM, 1, 0},
-    {"signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", &nmea_signal_id_def, offsetof(nmea_grs, signal_id), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_grs, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("grs_mode code (0 1)"), &nmea_grs_mode_def, offsetof(nmea_grs, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("system_id"), ERROR_TEXT("system_id code (1 2 3 4 5 6 F)"), &nmea_system_id_def, offsetof(nmea_grs, system_id), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("signal_id"), ERROR_TEXT("signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)"), &nmea_signal_id_def, offsetof(nmea_grs, signal_id), FIELD_ENUM, 1, 0},
 };
 static const layout_field grs_group_fields[] = {
-    {"residual", "decimal number", NULL, 0, FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("residual"), ERROR_TEXT("decimal number"), NULL, 0, FIELD_DECIMAL, 1, 0},
 };
 static const layout_group grs_group = {
-    .id = "residuals", .fields = grs_group_fields, .field_count = 1, .width = 1, .min = 12, .max = 12,
+    .id = ERROR_TEXT("residuals"), .fields = grs_group_fields, .field_count = 1, .width = 1, .min = 12, .max = 12,
     .single = true, .offset = offsetof(nmea_grs, residuals), .entry_size = sizeof(nmea_number),
     .count_offset = NO_MEMBER,
 };
@@ -10245,19 +10315,20 @@ size_t nmea_build_grs(const nmea_grs *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GNGSA,A,3,01,10,11,12,13,15,17,18,19,24,28,30,1.0,0.5,0.8,1*30 */
 static const layout_field gsa_fields[] = {
-    {"selection_mode", "gsa_selection_mode code (M A)", &nmea_gsa_selection_mode_def, offsetof(nmea_gsa, selection_mode), FIELD_ENUM, 1, 0},
-    {"fix_type", "gsa_fix_type code (1 2 3)", &nmea_gsa_fix_type_def, offsetof(nmea_gsa, fix_type), FIELD_ENUM, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_gsa, pdop), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_gsa, hdop), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number", NULL, offsetof(nmea_gsa, vdop), FIELD_DECIMAL, 1, 0},
-    {"system_id", "system_id code (1 2 3 4 5 6 F)", &nmea_system_id_def, offsetof(nmea_gsa, system_id), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("selection_mode"), ERROR_TEXT("gsa_selection_mode code (M A)"), &nmea_gsa_selection_mode_def, offsetof(nmea_gsa, selection_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("fix_type"), ERROR_TEXT("gsa_fix_type code (1 2 3)"), &nmea_gsa_fix_type_def, offsetof(nmea_gsa, fix_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("system_id"), ERROR_TEXT("system_id code (1 2 3 4 5 6 F)"), &nmea_system_id_def, offsetof(nmea_gsa, system_id), FIELD_ENUM, 1, 0},
 };
 static const layout_field gsa_group_fields[] = {
-    {"prn", "integer", NULL, 0, FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, 0, FIELD_INTEGER, 1, 0},
 };
 static const layout_group gsa_group = {
-    .id = "prns", .fields = gsa_group_fields, .field_count = 1, .width = 1, .min = 12, .max = 12, .single = true,
-    .offset = offsetof(nmea_gsa, prns), .entry_size = sizeof(nmea_number), .count_offset = NO_MEMBER,
+    .id = ERROR_TEXT("prns"), .fields = gsa_group_fields, .field_count = 1, .width = 1, .min = 12, .max = 12,
+    .single = true, .offset = offsetof(nmea_gsa, prns), .entry_size = sizeof(nmea_number),
+    .count_offset = NO_MEMBER,
 };
 static const layout gsa_layout = {
     .sentence = "GSA", .fields = gsa_fields, .group = &gsa_group, .before = 2, .after = 3, .optional = 1,
@@ -10360,17 +10431,17 @@ size_t nmea_build_gsa(const nmea_gsa *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GNGSA,A,3,18,03,11,86,19,,,,,,1.0,0.6,0.8*2F */
 static const layout_field gsa_short_fields[] = {
-    {"selection_mode", "gsa_selection_mode code (M A)", &nmea_gsa_selection_mode_def, offsetof(nmea_gsa_short, selection_mode), FIELD_ENUM, 1, 0},
-    {"fix_type", "gsa_fix_type code (1 2 3)", &nmea_gsa_fix_type_def, offsetof(nmea_gsa_short, fix_type), FIELD_ENUM, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_gsa_short, pdop), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_gsa_short, hdop), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number", NULL, offsetof(nmea_gsa_short, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("selection_mode"), ERROR_TEXT("gsa_selection_mode code (M A)"), &nmea_gsa_selection_mode_def, offsetof(nmea_gsa_short, selection_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("fix_type"), ERROR_TEXT("gsa_fix_type code (1 2 3)"), &nmea_gsa_fix_type_def, offsetof(nmea_gsa_short, fix_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_short, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_short, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_short, vdop), FIELD_DECIMAL, 1, 0},
 };
 static const layout_field gsa_short_group_fields[] = {
-    {"prn", "integer", NULL, 0, FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, 0, FIELD_INTEGER, 1, 0},
 };
 static const layout_group gsa_short_group = {
-    .id = "prns", .fields = gsa_short_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 11,
+    .id = ERROR_TEXT("prns"), .fields = gsa_short_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 11,
     .single = true, .offset = offsetof(nmea_gsa_short, prns), .entry_size = sizeof(nmea_number),
     .count_offset = offsetof(nmea_gsa_short, prns.count),
 };
@@ -10472,19 +10543,19 @@ size_t nmea_build_gsa_short(const nmea_gsa_short *s, char *buf, size_t cap, nmea
 /* ------------------------------------------------------------------------------------------ */
 /* GSA (More than 12 PRN slots, with the system ID): GNSS DOP and active satellites (spec/standard/gsa.yaml) */
 static const layout_field gsa_wide_system_fields[] = {
-    {"selection_mode", "gsa_selection_mode code (M A)", &nmea_gsa_selection_mode_def, offsetof(nmea_gsa_wide_system, selection_mode), FIELD_ENUM, 1, 0},
-    {"fix_type", "gsa_fix_type code (1 2 3)", &nmea_gsa_fix_type_def, offsetof(nmea_gsa_wide_system, fix_type), FIELD_ENUM, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_gsa_wide_system, pdop), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_gsa_wide_system, hdop), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number", NULL, offsetof(nmea_gsa_wide_system, vdop), FIELD_DECIMAL, 1, 0},
-    {"system_id", "system_id code (1 2 3 4 5 6 F)", &nmea_system_id_def, offsetof(nmea_gsa_wide_system, system_id), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("selection_mode"), ERROR_TEXT("gsa_selection_mode code (M A)"), &nmea_gsa_selection_mode_def, offsetof(nmea_gsa_wide_system, selection_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("fix_type"), ERROR_TEXT("gsa_fix_type code (1 2 3)"), &nmea_gsa_fix_type_def, offsetof(nmea_gsa_wide_system, fix_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_wide_system, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_wide_system, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_wide_system, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("system_id"), ERROR_TEXT("system_id code (1 2 3 4 5 6 F)"), &nmea_system_id_def, offsetof(nmea_gsa_wide_system, system_id), FIELD_ENUM, 1, 0},
 };
 static const layout_field gsa_wide_system_group_fields[] = {
-    {"prn", "integer", NULL, 0, FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, 0, FIELD_INTEGER, 1, 0},
 };
 static const layout_group gsa_wide_system_group = {
-    .id = "prns", .fields = gsa_wide_system_group_fields, .field_count = 1, .width = 1, .min = 13, .max = 24,
-    .single = true, .offset = offsetof(nmea_gsa_wide_system, prns), .entry_size = sizeof(nmea_number),
+    .id = ERROR_TEXT("prns"), .fields = gsa_wide_system_group_fields, .field_count = 1, .width = 1, .min = 13,
+    .max = 24, .single = true, .offset = offsetof(nmea_gsa_wide_system, prns), .entry_size = sizeof(nmea_number),
     .count_offset = offsetof(nmea_gsa_wide_system, prns.count),
 };
 static const layout gsa_wide_system_layout = {
@@ -10588,17 +10659,17 @@ size_t nmea_build_gsa_wide_system(const nmea_gsa_wide_system *s, char *buf, size
 /* ------------------------------------------------------------------------------------------ */
 /* GSA (More than 12 PRN slots): GNSS DOP and active satellites (spec/standard/gsa.yaml) */
 static const layout_field gsa_wide_fields[] = {
-    {"selection_mode", "gsa_selection_mode code (M A)", &nmea_gsa_selection_mode_def, offsetof(nmea_gsa_wide, selection_mode), FIELD_ENUM, 1, 0},
-    {"fix_type", "gsa_fix_type code (1 2 3)", &nmea_gsa_fix_type_def, offsetof(nmea_gsa_wide, fix_type), FIELD_ENUM, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_gsa_wide, pdop), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_gsa_wide, hdop), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number", NULL, offsetof(nmea_gsa_wide, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("selection_mode"), ERROR_TEXT("gsa_selection_mode code (M A)"), &nmea_gsa_selection_mode_def, offsetof(nmea_gsa_wide, selection_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("fix_type"), ERROR_TEXT("gsa_fix_type code (1 2 3)"), &nmea_gsa_fix_type_def, offsetof(nmea_gsa_wide, fix_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_wide, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_wide, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_wide, vdop), FIELD_DECIMAL, 1, 0},
 };
 static const layout_field gsa_wide_group_fields[] = {
-    {"prn", "integer", NULL, 0, FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, 0, FIELD_INTEGER, 1, 0},
 };
 static const layout_group gsa_wide_group = {
-    .id = "prns", .fields = gsa_wide_group_fields, .field_count = 1, .width = 1, .min = 13, .max = 24,
+    .id = ERROR_TEXT("prns"), .fields = gsa_wide_group_fields, .field_count = 1, .width = 1, .min = 13, .max = 24,
     .single = true, .offset = offsetof(nmea_gsa_wide, prns), .entry_size = sizeof(nmea_number),
     .count_offset = offsetof(nmea_gsa_wide, prns.count),
 };
@@ -10702,19 +10773,19 @@ size_t nmea_build_gsa_wide(const nmea_gsa_wide *s, char *buf, size_t cap, nmea_e
 
 /* $GPGSA,A,3,25,32,,,,,,,,,,,5.1,1.3,4.9,3.3*3D */
 static const layout_field gsa_extra_dop_fields[] = {
-    {"selection_mode", "gsa_selection_mode code (M A)", &nmea_gsa_selection_mode_def, offsetof(nmea_gsa_extra_dop, selection_mode), FIELD_ENUM, 1, 0},
-    {"fix_type", "gsa_fix_type code (1 2 3)", &nmea_gsa_fix_type_def, offsetof(nmea_gsa_extra_dop, fix_type), FIELD_ENUM, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_gsa_extra_dop, pdop), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_gsa_extra_dop, hdop), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number", NULL, offsetof(nmea_gsa_extra_dop, vdop), FIELD_DECIMAL, 1, 0},
-    {"fourth_dop", "decimal number", NULL, offsetof(nmea_gsa_extra_dop, fourth_dop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("selection_mode"), ERROR_TEXT("gsa_selection_mode code (M A)"), &nmea_gsa_selection_mode_def, offsetof(nmea_gsa_extra_dop, selection_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("fix_type"), ERROR_TEXT("gsa_fix_type code (1 2 3)"), &nmea_gsa_fix_type_def, offsetof(nmea_gsa_extra_dop, fix_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_extra_dop, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_extra_dop, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_extra_dop, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("fourth_dop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gsa_extra_dop, fourth_dop), FIELD_DECIMAL, 1, 0},
 };
 static const layout_field gsa_extra_dop_group_fields[] = {
-    {"prn", "integer", NULL, 0, FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, 0, FIELD_INTEGER, 1, 0},
 };
 static const layout_group gsa_extra_dop_group = {
-    .id = "prns", .fields = gsa_extra_dop_group_fields, .field_count = 1, .width = 1, .min = 12, .max = 12,
-    .single = true, .offset = offsetof(nmea_gsa_extra_dop, prns), .entry_size = sizeof(nmea_number),
+    .id = ERROR_TEXT("prns"), .fields = gsa_extra_dop_group_fields, .field_count = 1, .width = 1, .min = 12,
+    .max = 12, .single = true, .offset = offsetof(nmea_gsa_extra_dop, prns), .entry_size = sizeof(nmea_number),
     .count_offset = NO_MEMBER,
 };
 static const uint16_t gsa_extra_dop_same_as_main[] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 0};
@@ -10818,14 +10889,14 @@ size_t nmea_build_gsa_extra_dop(const nmea_gsa_extra_dop *s, char *buf, size_t c
 /* ------------------------------------------------------------------------------------------ */
 /* GST: GNSS pseudorange error statistics (spec/standard/gst.yaml) */
 static const layout_field gst_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_gst, time), FIELD_TIME, 1, 0},
-    {"rms", "decimal number", NULL, offsetof(nmea_gst, rms), FIELD_DECIMAL, 1, 0},
-    {"semi_major_std", "decimal number", NULL, offsetof(nmea_gst, semi_major_std), FIELD_DECIMAL, 1, 0},
-    {"semi_minor_std", "decimal number", NULL, offsetof(nmea_gst, semi_minor_std), FIELD_DECIMAL, 1, 0},
-    {"orientation", "decimal number", NULL, offsetof(nmea_gst, orientation), FIELD_DECIMAL, 1, 0},
-    {"lat_std", "decimal number", NULL, offsetof(nmea_gst, lat_std), FIELD_DECIMAL, 1, 0},
-    {"lon_std", "decimal number", NULL, offsetof(nmea_gst, lon_std), FIELD_DECIMAL, 1, 0},
-    {"alt_std", "decimal number", NULL, offsetof(nmea_gst, alt_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gst, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("rms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gst, rms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("semi_major_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gst, semi_major_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("semi_minor_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gst, semi_minor_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("orientation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gst, orientation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gst, lat_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gst, lon_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("alt_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_gst, alt_std), FIELD_DECIMAL, 1, 0},
 };
 static const layout gst_layout = {
     .sentence = "GST", .fields = gst_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_gst),
@@ -10904,19 +10975,19 @@ size_t nmea_build_gst(const nmea_gst *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPGSV,4,1,16,02,43,143,51,03,08,014,39,06,45,081,49,12,87,266,55,1*68 */
 static const layout_field gsv_fields[] = {
-    {"message_count", "integer of at least 1", &range_from_1, offsetof(nmea_gsv, message_count), FIELD_INTEGER, 1, 0},
-    {"message_number", "integer of at least 1", &range_from_1, offsetof(nmea_gsv, message_number), FIELD_INTEGER, 1, 0},
-    {"satellites_in_view", "integer of at least 0", &range_from_0, offsetof(nmea_gsv, satellites_in_view), FIELD_INTEGER, 1, 0},
-    {"signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", &nmea_signal_id_def, offsetof(nmea_gsv, signal_id), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("message_count"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_gsv, message_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message_number"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_gsv, message_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("satellites_in_view"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_gsv, satellites_in_view), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("signal_id"), ERROR_TEXT("signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)"), &nmea_signal_id_def, offsetof(nmea_gsv, signal_id), FIELD_ENUM, 1, 0},
 };
 static const layout_field gsv_group_fields[] = {
-    {"prn", "integer", NULL, offsetof(nmea_gsv_satellite, prn), FIELD_INTEGER, 1, 0},
-    {"elevation", "integer -90..90", &range_minus_90_to_90, offsetof(nmea_gsv_satellite, elevation), FIELD_INTEGER, 1, 0},
-    {"azimuth", "integer 0..360", &range_0_to_360, offsetof(nmea_gsv_satellite, azimuth), FIELD_INTEGER, 1, 0},
-    {"snr", "integer 0..99", &range_0_to_99, offsetof(nmea_gsv_satellite, snr), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, offsetof(nmea_gsv_satellite, prn), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("elevation"), ERROR_TEXT("integer -90..90"), &range_minus_90_to_90, offsetof(nmea_gsv_satellite, elevation), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("azimuth"), ERROR_TEXT("integer 0..360"), &range_0_to_360, offsetof(nmea_gsv_satellite, azimuth), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("snr"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_gsv_satellite, snr), FIELD_INTEGER, 1, 0},
 };
 static const layout_group gsv_group = {
-    .id = "satellites", .fields = gsv_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 4,
+    .id = ERROR_TEXT("satellites"), .fields = gsv_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 4,
     .single = false, .offset = offsetof(nmea_gsv, satellites), .entry_size = sizeof(nmea_gsv_satellite),
     .count_offset = offsetof(nmea_gsv, satellites.count),
 };
@@ -11024,9 +11095,9 @@ size_t nmea_build_gsv(const nmea_gsv *s, char *buf, size_t cap, nmea_error *err)
 
 /* $AIHBT,30,A,1*09 */
 static const layout_field hbt_fields[] = {
-    {"repeat_interval", "decimal number", NULL, offsetof(nmea_hbt, repeat_interval), FIELD_DECIMAL, 1, 0},
-    {"equipment_status", "hbt_equipment_status code (A V)", &nmea_hbt_equipment_status_def, offsetof(nmea_hbt, equipment_status), FIELD_ENUM, 1, 0},
-    {"sequence_id", "integer 0..9", &range_0_to_9, offsetof(nmea_hbt, sequence_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("repeat_interval"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hbt, repeat_interval), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("equipment_status"), ERROR_TEXT("hbt_equipment_status code (A V)"), &nmea_hbt_equipment_status_def, offsetof(nmea_hbt, equipment_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sequence_id"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_hbt, sequence_id), FIELD_INTEGER, 1, 0},
 };
 static const layout hbt_layout = {
     .sentence = "HBT", .fields = hbt_fields, .before = 3, .fixed = 3, .max_fields = 3, .size = sizeof(nmea_hbt),
@@ -11053,10 +11124,10 @@ size_t nmea_build_hbt(const nmea_hbt *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* HCR: Heading correction report (spec/standard/hcr.yaml) */
 static const layout_field hcr_fields[] = {
-    {"heading", "decimal number", NULL, offsetof(nmea_hcr, heading), FIELD_DECIMAL, 1, 0},
-    {"mode", "ths_mode code (A E M S V)", &nmea_ths_mode_def, offsetof(nmea_hcr, mode), FIELD_ENUM, 1, 0},
-    {"correction_state", "hcr_correction_state code (A D S N V)", &nmea_hcr_correction_state_def, offsetof(nmea_hcr, correction_state), FIELD_ENUM, 1, 0},
-    {"correction_value", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_hcr, correction_value), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hcr, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("ths_mode code (A E M S V)"), &nmea_ths_mode_def, offsetof(nmea_hcr, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("correction_state"), ERROR_TEXT("hcr_correction_state code (A D S N V)"), &nmea_hcr_correction_state_def, offsetof(nmea_hcr, correction_state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("correction_value"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_hcr, correction_value), FIELD_DECIMAL, 1, 0},
 };
 static const layout hcr_layout = {
     .sentence = "HCR", .fields = hcr_fields, .before = 4, .fixed = 4, .max_fields = 4, .size = sizeof(nmea_hcr),
@@ -11085,11 +11156,11 @@ size_t nmea_build_hcr(const nmea_hcr *s, char *buf, size_t cap, nmea_error *err)
 
 /* $HCHDG,98.3,0.1,E,12.6,W*56 */
 static const layout_field hdg_fields[] = {
-    {"heading", "decimal number", NULL, offsetof(nmea_hdg, heading), FIELD_DECIMAL, 1, 0},
-    {"deviation", "decimal number", NULL, offsetof(nmea_hdg, deviation), FIELD_DECIMAL, 1, 0},
-    {"deviation_dir", "east_west code (E W)", &nmea_east_west_def, offsetof(nmea_hdg, deviation_dir), FIELD_ENUM, 1, 0},
-    {"variation", "decimal number", NULL, offsetof(nmea_hdg, variation), FIELD_DECIMAL, 1, 0},
-    {"variation_dir", "east_west code (E W)", &nmea_east_west_def, offsetof(nmea_hdg, variation_dir), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hdg, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("deviation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hdg, deviation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("deviation_dir"), ERROR_TEXT("east_west code (E W)"), &nmea_east_west_def, offsetof(nmea_hdg, deviation_dir), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("variation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hdg, variation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("variation_dir"), ERROR_TEXT("east_west code (E W)"), &nmea_east_west_def, offsetof(nmea_hdg, variation_dir), FIELD_ENUM, 1, 0},
 };
 static const layout hdg_layout = {
     .sentence = "HDG", .fields = hdg_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_hdg),
@@ -11118,8 +11189,8 @@ size_t nmea_build_hdg(const nmea_hdg *s, char *buf, size_t cap, nmea_error *err)
 
 /* $APHDM,218.634,M*39 */
 static const layout_field hdm_fields[] = {
-    {"heading", "decimal number", NULL, offsetof(nmea_hdm, heading), FIELD_DECIMAL, 1, 0},
-    {"heading_ref", "M or nothing", "M", offsetof(nmea_hdm, heading_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hdm, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_hdm, heading_ref), FIELD_LITERAL, 1, 0},
 };
 static const layout hdm_layout = {
     .sentence = "HDM", .fields = hdm_fields, .before = 2, .fixed = 2, .max_fields = 2, .size = sizeof(nmea_hdm),
@@ -11146,8 +11217,8 @@ size_t nmea_build_hdm(const nmea_hdm *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* HDT: Heading, true (spec/standard/hdt.yaml) */
 static const layout_field hdt_fields[] = {
-    {"heading", "decimal number", NULL, offsetof(nmea_hdt, heading), FIELD_DECIMAL, 1, 0},
-    {"heading_ref", "T or nothing", "T", offsetof(nmea_hdt, heading_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hdt, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_hdt, heading_ref), FIELD_LITERAL, 1, 0},
 };
 static const layout hdt_layout = {
     .sentence = "HDT", .fields = hdt_fields, .before = 2, .fixed = 2, .max_fields = 2, .size = sizeof(nmea_hdt),
@@ -11214,8 +11285,8 @@ size_t nmea_build_hdt(const nmea_hdt *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPHEV,-0.01*52 */
 static const layout_field hev_fields[] = {
-    {"heave", "decimal number", NULL, offsetof(nmea_hev, heave), FIELD_DECIMAL, 1, 0},
-    {"spare", "text", NULL, offsetof(nmea_hev, spare), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("heave"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hev, heave), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("spare"), ERROR_TEXT("text"), NULL, offsetof(nmea_hev, spare), FIELD_TEXT, 1, 0},
 };
 static const layout hev_layout = {
     .sentence = "HEV", .fields = hev_fields, .before = 1, .optional = 1, .fixed = 1, .max_fields = 2,
@@ -11243,23 +11314,23 @@ size_t nmea_build_hev(const nmea_hev *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* HMR: Heading monitor receive (spec/standard/hmr.yaml) */
 static const layout_field hmr_fields[] = {
-    {"sensor1_id", "text", NULL, offsetof(nmea_hmr, sensor1_id), FIELD_TEXT, 1, 0},
-    {"sensor2_id", "text", NULL, offsetof(nmea_hmr, sensor2_id), FIELD_TEXT, 1, 0},
-    {"set_difference", "decimal number", NULL, offsetof(nmea_hmr, set_difference), FIELD_DECIMAL, 1, 0},
-    {"actual_difference", "decimal number", NULL, offsetof(nmea_hmr, actual_difference), FIELD_DECIMAL, 1, 0},
-    {"difference_status", "hmr_difference_status code (A V)", &nmea_hmr_difference_status_def, offsetof(nmea_hmr, difference_status), FIELD_ENUM, 1, 0},
-    {"sensor1_heading", "decimal number", NULL, offsetof(nmea_hmr, sensor1_heading), FIELD_DECIMAL, 1, 0},
-    {"sensor1_status", "status code (A V)", &nmea_status_def, offsetof(nmea_hmr, sensor1_status), FIELD_ENUM, 1, 0},
-    {"sensor1_reference", "htc_heading_reference code (T M)", &nmea_htc_heading_reference_def, offsetof(nmea_hmr, sensor1_reference), FIELD_ENUM, 1, 0},
-    {"sensor1_deviation", "decimal number", NULL, offsetof(nmea_hmr, sensor1_deviation), FIELD_DECIMAL, 1, 0},
-    {"sensor1_deviation_dir", "east_west code (E W)", &nmea_east_west_def, offsetof(nmea_hmr, sensor1_deviation_dir), FIELD_ENUM, 1, 0},
-    {"sensor2_heading", "decimal number", NULL, offsetof(nmea_hmr, sensor2_heading), FIELD_DECIMAL, 1, 0},
-    {"sensor2_status", "status code (A V)", &nmea_status_def, offsetof(nmea_hmr, sensor2_status), FIELD_ENUM, 1, 0},
-    {"sensor2_reference", "htc_heading_reference code (T M)", &nmea_htc_heading_reference_def, offsetof(nmea_hmr, sensor2_reference), FIELD_ENUM, 1, 0},
-    {"sensor2_deviation", "decimal number", NULL, offsetof(nmea_hmr, sensor2_deviation), FIELD_DECIMAL, 1, 0},
-    {"sensor2_deviation_dir", "east_west code (E W)", &nmea_east_west_def, offsetof(nmea_hmr, sensor2_deviation_dir), FIELD_ENUM, 1, 0},
-    {"variation", "decimal number", NULL, offsetof(nmea_hmr, variation), FIELD_DECIMAL, 1, 0},
-    {"variation_dir", "east_west code (E W)", &nmea_east_west_def, offsetof(nmea_hmr, variation_dir), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sensor1_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_hmr, sensor1_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("sensor2_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_hmr, sensor2_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("set_difference"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hmr, set_difference), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("actual_difference"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hmr, actual_difference), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("difference_status"), ERROR_TEXT("hmr_difference_status code (A V)"), &nmea_hmr_difference_status_def, offsetof(nmea_hmr, difference_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sensor1_heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hmr, sensor1_heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sensor1_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_hmr, sensor1_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sensor1_reference"), ERROR_TEXT("htc_heading_reference code (T M)"), &nmea_htc_heading_reference_def, offsetof(nmea_hmr, sensor1_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sensor1_deviation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hmr, sensor1_deviation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sensor1_deviation_dir"), ERROR_TEXT("east_west code (E W)"), &nmea_east_west_def, offsetof(nmea_hmr, sensor1_deviation_dir), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sensor2_heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hmr, sensor2_heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sensor2_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_hmr, sensor2_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sensor2_reference"), ERROR_TEXT("htc_heading_reference code (T M)"), &nmea_htc_heading_reference_def, offsetof(nmea_hmr, sensor2_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sensor2_deviation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hmr, sensor2_deviation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sensor2_deviation_dir"), ERROR_TEXT("east_west code (E W)"), &nmea_east_west_def, offsetof(nmea_hmr, sensor2_deviation_dir), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("variation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hmr, variation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("variation_dir"), ERROR_TEXT("east_west code (E W)"), &nmea_east_west_def, offsetof(nmea_hmr, variation_dir), FIELD_ENUM, 1, 0},
 };
 static const layout hmr_layout = {
     .sentence = "HMR", .fields = hmr_fields, .before = 17, .fixed = 17, .max_fields = 17,
@@ -11286,9 +11357,9 @@ size_t nmea_build_hmr(const nmea_hmr *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* HMS: Heading monitor set (spec/standard/hms.yaml) */
 static const layout_field hms_fields[] = {
-    {"sensor1_id", "text", NULL, offsetof(nmea_hms, sensor1_id), FIELD_TEXT, 1, 0},
-    {"sensor2_id", "text", NULL, offsetof(nmea_hms, sensor2_id), FIELD_TEXT, 1, 0},
-    {"max_difference", "decimal number of at least 0", &range_from_0, offsetof(nmea_hms, max_difference), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sensor1_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_hms, sensor1_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("sensor2_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_hms, sensor2_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("max_difference"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_hms, max_difference), FIELD_DECIMAL, 1, 0},
 };
 static const layout hms_layout = {
     .sentence = "HMS", .fields = hms_fields, .before = 3, .fixed = 3, .max_fields = 3, .size = sizeof(nmea_hms),
@@ -11317,23 +11388,23 @@ size_t nmea_build_hms(const nmea_hms *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPHPD,2319,462170.00,251.77,-48.16,178.48,40.0789783,116.2365145,63.03,0.001,0.000,-0.003,-0.001,-0.002,-0.001,0.000,48,48*76 */
 static const layout_field hpd_fields[] = {
-    {"gps_week", "integer", NULL, offsetof(nmea_hpd, gps_week), FIELD_INTEGER, 1, 0},
-    {"gps_seconds", "decimal number", NULL, offsetof(nmea_hpd, gps_seconds), FIELD_DECIMAL, 1, 0},
-    {"heading", "decimal number", NULL, offsetof(nmea_hpd, heading), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number", NULL, offsetof(nmea_hpd, pitch), FIELD_DECIMAL, 1, 0},
-    {"track", "decimal number", NULL, offsetof(nmea_hpd, track), FIELD_DECIMAL, 1, 0},
-    {"latitude", "decimal number", NULL, offsetof(nmea_hpd, latitude), FIELD_DECIMAL, 1, 0},
-    {"longitude", "decimal number", NULL, offsetof(nmea_hpd, longitude), FIELD_DECIMAL, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_hpd, altitude), FIELD_DECIMAL, 1, 0},
-    {"velocity_east", "decimal number", NULL, offsetof(nmea_hpd, velocity_east), FIELD_DECIMAL, 1, 0},
-    {"velocity_north", "decimal number", NULL, offsetof(nmea_hpd, velocity_north), FIELD_DECIMAL, 1, 0},
-    {"velocity_up", "decimal number", NULL, offsetof(nmea_hpd, velocity_up), FIELD_DECIMAL, 1, 0},
-    {"velocity_delta_east", "decimal number", NULL, offsetof(nmea_hpd, velocity_delta_east), FIELD_DECIMAL, 1, 0},
-    {"velocity_delta_north", "decimal number", NULL, offsetof(nmea_hpd, velocity_delta_north), FIELD_DECIMAL, 1, 0},
-    {"velocity_delta_up", "decimal number", NULL, offsetof(nmea_hpd, velocity_delta_up), FIELD_DECIMAL, 1, 0},
-    {"baseline", "decimal number", NULL, offsetof(nmea_hpd, baseline), FIELD_DECIMAL, 1, 0},
-    {"satellites_master", "integer", NULL, offsetof(nmea_hpd, satellites_master), FIELD_INTEGER, 1, 0},
-    {"satellites_slave", "integer", NULL, offsetof(nmea_hpd, satellites_slave), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_week"), ERROR_TEXT("integer"), NULL, offsetof(nmea_hpd, gps_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_seconds"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, gps_seconds), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("track"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, track), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("latitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, latitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("longitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, longitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("velocity_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, velocity_east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("velocity_north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, velocity_north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("velocity_up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, velocity_up), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("velocity_delta_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, velocity_delta_east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("velocity_delta_north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, velocity_delta_north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("velocity_delta_up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, velocity_delta_up), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("baseline"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpd, baseline), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("satellites_master"), ERROR_TEXT("integer"), NULL, offsetof(nmea_hpd, satellites_master), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("satellites_slave"), ERROR_TEXT("integer"), NULL, offsetof(nmea_hpd, satellites_slave), FIELD_INTEGER, 1, 0},
 };
 static const layout hpd_layout = {
     .sentence = "HPD", .fields = hpd_fields, .before = 17, .fixed = 17, .max_fields = 17,
@@ -11362,14 +11433,14 @@ size_t nmea_build_hpd(const nmea_hpd *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GNHPR,074615.00,320.9610,-66.1712,000.0000,4,47,0.00,0999*45 */
 static const layout_field hpr_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_hpr, time), FIELD_TIME, 1, 0},
-    {"heading", "decimal number", NULL, offsetof(nmea_hpr, heading), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number", NULL, offsetof(nmea_hpr, pitch), FIELD_DECIMAL, 1, 0},
-    {"roll", "decimal number", NULL, offsetof(nmea_hpr, roll), FIELD_DECIMAL, 1, 0},
-    {"quality", "integer", NULL, offsetof(nmea_hpr, quality), FIELD_INTEGER, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_hpr, satellites), FIELD_INTEGER, 1, 0},
-    {"diff_age", "decimal number", NULL, offsetof(nmea_hpr, diff_age), FIELD_DECIMAL, 1, 0},
-    {"station_id", "text", NULL, offsetof(nmea_hpr, station_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_hpr, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpr, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpr, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpr, roll), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("integer"), NULL, offsetof(nmea_hpr, quality), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_hpr, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("diff_age"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hpr, diff_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("station_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_hpr, station_id), FIELD_TEXT, 1, 0},
 };
 static const layout hpr_layout = {
     .sentence = "HPR", .fields = hpr_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_hpr),
@@ -11396,19 +11467,19 @@ size_t nmea_build_hpr(const nmea_hpr *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* HRM: Heel angle, roll period and roll amplitude (spec/standard/hrm.yaml) */
 static const layout_field hrm_fields[] = {
-    {"heel_angle", "decimal number", NULL, offsetof(nmea_hrm, heel_angle), FIELD_DECIMAL, 1, 0},
-    {"roll_period", "decimal number", NULL, offsetof(nmea_hrm, roll_period), FIELD_DECIMAL, 1, 0},
-    {"roll_amplitude_port", "decimal number", NULL, offsetof(nmea_hrm, roll_amplitude_port), FIELD_DECIMAL, 1, 0},
-    {"roll_amplitude_starboard", "decimal number", NULL, offsetof(nmea_hrm, roll_amplitude_starboard), FIELD_DECIMAL, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_hrm, status), FIELD_ENUM, 1, 0},
-    {"peak_hold_port", "decimal number", NULL, offsetof(nmea_hrm, peak_hold_port), FIELD_DECIMAL, 1, 0},
-    {"peak_hold_starboard", "decimal number", NULL, offsetof(nmea_hrm, peak_hold_starboard), FIELD_DECIMAL, 1, 0},
-    {"peak_hold_reset_time", "time hhmmss[.s]", NULL, offsetof(nmea_hrm, peak_hold_reset_time), FIELD_TIME, 1, 0},
-    {"peak_hold_reset_day", "integer 1..31", &range_1_to_31, offsetof(nmea_hrm, peak_hold_reset_day), FIELD_INTEGER, 1, 0},
-    {"peak_hold_reset_month", "integer 1..12", &range_1_to_12, offsetof(nmea_hrm, peak_hold_reset_month), FIELD_INTEGER, 1, 0},
-    {"peak_hold_reset_year", "integer", NULL, offsetof(nmea_hrm, peak_hold_reset_year), FIELD_INTEGER, 1, 0},
-    {"heel_alert_threshold", "decimal number", NULL, offsetof(nmea_hrm, heel_alert_threshold), FIELD_DECIMAL, 1, 0},
-    {"sentence_status", "hsc_sentence_status code (R C)", &nmea_hsc_sentence_status_def, offsetof(nmea_hrm, sentence_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("heel_angle"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hrm, heel_angle), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll_period"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hrm, roll_period), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll_amplitude_port"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hrm, roll_amplitude_port), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll_amplitude_starboard"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hrm, roll_amplitude_starboard), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_hrm, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("peak_hold_port"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hrm, peak_hold_port), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("peak_hold_starboard"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hrm, peak_hold_starboard), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("peak_hold_reset_time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_hrm, peak_hold_reset_time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("peak_hold_reset_day"), ERROR_TEXT("integer 1..31"), &range_1_to_31, offsetof(nmea_hrm, peak_hold_reset_day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("peak_hold_reset_month"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_hrm, peak_hold_reset_month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("peak_hold_reset_year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_hrm, peak_hold_reset_year), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("heel_alert_threshold"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hrm, heel_alert_threshold), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sentence_status"), ERROR_TEXT("hsc_sentence_status code (R C)"), &nmea_hsc_sentence_status_def, offsetof(nmea_hrm, sentence_status), FIELD_ENUM, 1, 0},
 };
 static const layout hrm_layout = {
     .sentence = "HRM", .fields = hrm_fields, .before = 10, .optional = 3, .fixed = 10, .max_fields = 13,
@@ -11438,11 +11509,11 @@ size_t nmea_build_hrm(const nmea_hrm *s, char *buf, size_t cap, nmea_error *err)
 
 /* $FTHSC,40.12,T,39.11,M*5E */
 static const layout_field hsc_fields[] = {
-    {"heading_true", "decimal number", NULL, offsetof(nmea_hsc, heading_true), FIELD_DECIMAL, 1, 0},
-    {"heading_true_ref", "T or nothing", "T", offsetof(nmea_hsc, heading_true_ref), FIELD_LITERAL, 1, 0},
-    {"heading_magnetic", "decimal number", NULL, offsetof(nmea_hsc, heading_magnetic), FIELD_DECIMAL, 1, 0},
-    {"heading_magnetic_ref", "M or nothing", "M", offsetof(nmea_hsc, heading_magnetic_ref), FIELD_LITERAL, 1, 0},
-    {"sentence_status", "hsc_sentence_status code (R C)", &nmea_hsc_sentence_status_def, offsetof(nmea_hsc, sentence_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("heading_true"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hsc, heading_true), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_true_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_hsc, heading_true_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("heading_magnetic"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hsc, heading_magnetic), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_magnetic_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_hsc, heading_magnetic_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sentence_status"), ERROR_TEXT("hsc_sentence_status code (R C)"), &nmea_hsc_sentence_status_def, offsetof(nmea_hsc, sentence_status), FIELD_ENUM, 1, 0},
 };
 static const layout hsc_layout = {
     .sentence = "HSC", .fields = hsc_fields, .before = 4, .optional = 1, .fixed = 4, .max_fields = 5,
@@ -11470,9 +11541,9 @@ size_t nmea_build_hsc(const nmea_hsc *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* HSS: Hull stress surveillance (spec/standard/hss.yaml) */
 static const layout_field hss_fields[] = {
-    {"point_id", "text", NULL, offsetof(nmea_hss, point_id), FIELD_TEXT, 1, 0},
-    {"value", "decimal number", NULL, offsetof(nmea_hss, value), FIELD_DECIMAL, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_hss, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("point_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_hss, point_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_hss, value), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_hss, status), FIELD_ENUM, 1, 0},
 };
 static const layout hss_layout = {
     .sentence = "HSS", .fields = hss_fields, .before = 3, .fixed = 3, .max_fields = 3, .size = sizeof(nmea_hss),
@@ -11501,20 +11572,20 @@ size_t nmea_build_hss(const nmea_hss *s, char *buf, size_t cap, nmea_error *err)
 
 /* $AGHTC,V,0.1,R,M,,15.0,15.0,,,90.3,,,T*53 */
 static const layout_field htc_fields[] = {
-    {"override", "htc_override code (A V)", &nmea_htc_override_def, offsetof(nmea_htc, override), FIELD_ENUM, 1, 0},
-    {"rudder_angle", "decimal number", NULL, offsetof(nmea_htc, rudder_angle), FIELD_DECIMAL, 1, 0},
-    {"rudder_direction", "left_right code (L R)", &nmea_left_right_def, offsetof(nmea_htc, rudder_direction), FIELD_ENUM, 1, 0},
-    {"steering_mode", "htc_steering_mode code (M S H T R)", &nmea_htc_steering_mode_def, offsetof(nmea_htc, steering_mode), FIELD_ENUM, 1, 0},
-    {"turn_mode", "htc_turn_mode code (R T N)", &nmea_htc_turn_mode_def, offsetof(nmea_htc, turn_mode), FIELD_ENUM, 1, 0},
-    {"rudder_limit", "decimal number of at least 0", &range_from_0, offsetof(nmea_htc, rudder_limit), FIELD_DECIMAL, 1, 0},
-    {"off_heading_limit", "decimal number of at least 0", &range_from_0, offsetof(nmea_htc, off_heading_limit), FIELD_DECIMAL, 1, 0},
-    {"turn_radius", "decimal number", NULL, offsetof(nmea_htc, turn_radius), FIELD_DECIMAL, 1, 0},
-    {"turn_rate", "decimal number", NULL, offsetof(nmea_htc, turn_rate), FIELD_DECIMAL, 1, 0},
-    {"heading_to_steer", "decimal number", NULL, offsetof(nmea_htc, heading_to_steer), FIELD_DECIMAL, 1, 0},
-    {"off_track_limit", "decimal number of at least 0", &range_from_0, offsetof(nmea_htc, off_track_limit), FIELD_DECIMAL, 1, 0},
-    {"track", "decimal number", NULL, offsetof(nmea_htc, track), FIELD_DECIMAL, 1, 0},
-    {"heading_reference", "htc_heading_reference code (T M)", &nmea_htc_heading_reference_def, offsetof(nmea_htc, heading_reference), FIELD_ENUM, 1, 0},
-    {"sentence_status", "hsc_sentence_status code (R C)", &nmea_hsc_sentence_status_def, offsetof(nmea_htc, sentence_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("override"), ERROR_TEXT("htc_override code (A V)"), &nmea_htc_override_def, offsetof(nmea_htc, override), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rudder_angle"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_htc, rudder_angle), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rudder_direction"), ERROR_TEXT("left_right code (L R)"), &nmea_left_right_def, offsetof(nmea_htc, rudder_direction), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("steering_mode"), ERROR_TEXT("htc_steering_mode code (M S H T R)"), &nmea_htc_steering_mode_def, offsetof(nmea_htc, steering_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("turn_mode"), ERROR_TEXT("htc_turn_mode code (R T N)"), &nmea_htc_turn_mode_def, offsetof(nmea_htc, turn_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rudder_limit"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_htc, rudder_limit), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("off_heading_limit"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_htc, off_heading_limit), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("turn_radius"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_htc, turn_radius), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("turn_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_htc, turn_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_to_steer"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_htc, heading_to_steer), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("off_track_limit"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_htc, off_track_limit), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("track"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_htc, track), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_reference"), ERROR_TEXT("htc_heading_reference code (T M)"), &nmea_htc_heading_reference_def, offsetof(nmea_htc, heading_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sentence_status"), ERROR_TEXT("hsc_sentence_status code (R C)"), &nmea_hsc_sentence_status_def, offsetof(nmea_htc, sentence_status), FIELD_ENUM, 1, 0},
 };
 static const layout htc_layout = {
     .sentence = "HTC", .fields = htc_fields, .before = 13, .optional = 1, .fixed = 13, .max_fields = 14,
@@ -11544,24 +11615,24 @@ size_t nmea_build_htc(const nmea_htc *s, char *buf, size_t cap, nmea_error *err)
 
 /* $AGHTD,V,0.1,R,M,,15.0,15.0,,,,,,T,A,A,A,90.3,*39 */
 static const layout_field htd_fields[] = {
-    {"override", "htc_override code (A V)", &nmea_htc_override_def, offsetof(nmea_htd, override), FIELD_ENUM, 1, 0},
-    {"rudder_angle", "decimal number", NULL, offsetof(nmea_htd, rudder_angle), FIELD_DECIMAL, 1, 0},
-    {"rudder_direction", "left_right code (L R)", &nmea_left_right_def, offsetof(nmea_htd, rudder_direction), FIELD_ENUM, 1, 0},
-    {"steering_mode", "htc_steering_mode code (M S H T R)", &nmea_htc_steering_mode_def, offsetof(nmea_htd, steering_mode), FIELD_ENUM, 1, 0},
-    {"turn_mode", "htc_turn_mode code (R T N)", &nmea_htc_turn_mode_def, offsetof(nmea_htd, turn_mode), FIELD_ENUM, 1, 0},
-    {"rudder_limit", "decimal number of at least 0", &range_from_0, offsetof(nmea_htd, rudder_limit), FIELD_DECIMAL, 1, 0},
-    {"off_heading_limit", "decimal number of at least 0", &range_from_0, offsetof(nmea_htd, off_heading_limit), FIELD_DECIMAL, 1, 0},
-    {"turn_radius", "decimal number", NULL, offsetof(nmea_htd, turn_radius), FIELD_DECIMAL, 1, 0},
-    {"turn_rate", "decimal number", NULL, offsetof(nmea_htd, turn_rate), FIELD_DECIMAL, 1, 0},
-    {"heading_to_steer", "decimal number", NULL, offsetof(nmea_htd, heading_to_steer), FIELD_DECIMAL, 1, 0},
-    {"off_track_limit", "decimal number of at least 0", &range_from_0, offsetof(nmea_htd, off_track_limit), FIELD_DECIMAL, 1, 0},
-    {"track", "decimal number", NULL, offsetof(nmea_htd, track), FIELD_DECIMAL, 1, 0},
-    {"heading_reference", "htc_heading_reference code (T M)", &nmea_htc_heading_reference_def, offsetof(nmea_htd, heading_reference), FIELD_ENUM, 1, 0},
-    {"rudder_status", "htd_limit_status code (A V)", &nmea_htd_limit_status_def, offsetof(nmea_htd, rudder_status), FIELD_ENUM, 1, 0},
-    {"off_heading_status", "htd_limit_status code (A V)", &nmea_htd_limit_status_def, offsetof(nmea_htd, off_heading_status), FIELD_ENUM, 1, 0},
-    {"off_track_status", "htd_limit_status code (A V)", &nmea_htd_limit_status_def, offsetof(nmea_htd, off_track_status), FIELD_ENUM, 1, 0},
-    {"vessel_heading", "decimal number", NULL, offsetof(nmea_htd, vessel_heading), FIELD_DECIMAL, 1, 0},
-    {"spare", "text", NULL, offsetof(nmea_htd, spare), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("override"), ERROR_TEXT("htc_override code (A V)"), &nmea_htc_override_def, offsetof(nmea_htd, override), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rudder_angle"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_htd, rudder_angle), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rudder_direction"), ERROR_TEXT("left_right code (L R)"), &nmea_left_right_def, offsetof(nmea_htd, rudder_direction), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("steering_mode"), ERROR_TEXT("htc_steering_mode code (M S H T R)"), &nmea_htc_steering_mode_def, offsetof(nmea_htd, steering_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("turn_mode"), ERROR_TEXT("htc_turn_mode code (R T N)"), &nmea_htc_turn_mode_def, offsetof(nmea_htd, turn_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rudder_limit"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_htd, rudder_limit), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("off_heading_limit"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_htd, off_heading_limit), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("turn_radius"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_htd, turn_radius), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("turn_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_htd, turn_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_to_steer"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_htd, heading_to_steer), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("off_track_limit"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_htd, off_track_limit), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("track"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_htd, track), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_reference"), ERROR_TEXT("htc_heading_reference code (T M)"), &nmea_htc_heading_reference_def, offsetof(nmea_htd, heading_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rudder_status"), ERROR_TEXT("htd_limit_status code (A V)"), &nmea_htd_limit_status_def, offsetof(nmea_htd, rudder_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("off_heading_status"), ERROR_TEXT("htd_limit_status code (A V)"), &nmea_htd_limit_status_def, offsetof(nmea_htd, off_heading_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("off_track_status"), ERROR_TEXT("htd_limit_status code (A V)"), &nmea_htd_limit_status_def, offsetof(nmea_htd, off_track_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("vessel_heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_htd, vessel_heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("spare"), ERROR_TEXT("text"), NULL, offsetof(nmea_htd, spare), FIELD_TEXT, 1, 0},
 };
 static const layout htd_layout = {
     .sentence = "HTD", .fields = htd_fields, .before = 17, .optional = 1, .fixed = 17, .max_fields = 18,
@@ -11591,17 +11662,17 @@ size_t nmea_build_htd(const nmea_htd *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPLLQ,154324.00,111414,546629.232,M,5250781.577,M,1,09,3.876,366.549,M*05 */
 static const layout_field llq_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_llq, time), FIELD_TIME, 1, 0},
-    {"date", "text of at most 6 characters", NULL, offsetof(nmea_llq, date), FIELD_TEXT, 1, 6},
-    {"easting", "decimal number", NULL, offsetof(nmea_llq, easting), FIELD_DECIMAL, 1, 0},
-    {"easting_unit", "M or nothing", "M", offsetof(nmea_llq, easting_unit), FIELD_LITERAL, 1, 0},
-    {"northing", "decimal number", NULL, offsetof(nmea_llq, northing), FIELD_DECIMAL, 1, 0},
-    {"northing_unit", "M or nothing", "M", offsetof(nmea_llq, northing_unit), FIELD_LITERAL, 1, 0},
-    {"quality", "llq_quality code (0 1 2 3)", &nmea_llq_quality_def, offsetof(nmea_llq, quality), FIELD_ENUM, 1, 0},
-    {"satellites", "integer of at least 0", &range_from_0, offsetof(nmea_llq, satellites), FIELD_INTEGER, 1, 0},
-    {"position_quality", "decimal number", NULL, offsetof(nmea_llq, position_quality), FIELD_DECIMAL, 1, 0},
-    {"height", "decimal number", NULL, offsetof(nmea_llq, height), FIELD_DECIMAL, 1, 0},
-    {"height_unit", "M or nothing", "M", offsetof(nmea_llq, height_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_llq, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("text of at most 6 characters"), NULL, offsetof(nmea_llq, date), FIELD_TEXT, 1, 6},
+    {ERROR_TEXT("easting"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_llq, easting), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("easting_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_llq, easting_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("northing"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_llq, northing), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("northing_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_llq, northing_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("llq_quality code (0 1 2 3)"), &nmea_llq_quality_def, offsetof(nmea_llq, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_llq, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("position_quality"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_llq, position_quality), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("height"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_llq, height), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("height_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_llq, height_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout llq_layout = {
     .sentence = "LLQ", .fields = llq_fields, .before = 11, .fixed = 11, .max_fields = 11,
@@ -11628,12 +11699,12 @@ size_t nmea_build_llq(const nmea_llq *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* LR1: AIS long-range reply 1 (spec/standard/lr1.yaml) */
 static const layout_field lr1_fields[] = {
-    {"sequence_number", "integer 0..9", &range_0_to_9, offsetof(nmea_lr1, sequence_number), FIELD_INTEGER, 1, 0},
-    {"responder_mmsi", "integer", NULL, offsetof(nmea_lr1, responder_mmsi), FIELD_INTEGER, 1, 0},
-    {"requestor_mmsi", "integer", NULL, offsetof(nmea_lr1, requestor_mmsi), FIELD_INTEGER, 1, 0},
-    {"ship_name", "text of at most 20 characters", NULL, offsetof(nmea_lr1, ship_name), FIELD_TEXT, 1, 20},
-    {"call_sign", "text of at most 7 characters", NULL, offsetof(nmea_lr1, call_sign), FIELD_TEXT, 1, 7},
-    {"imo_number", "integer", NULL, offsetof(nmea_lr1, imo_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sequence_number"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_lr1, sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("responder_mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_lr1, responder_mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("requestor_mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_lr1, requestor_mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ship_name"), ERROR_TEXT("text of at most 20 characters"), NULL, offsetof(nmea_lr1, ship_name), FIELD_TEXT, 1, 20},
+    {ERROR_TEXT("call_sign"), ERROR_TEXT("text of at most 7 characters"), NULL, offsetof(nmea_lr1, call_sign), FIELD_TEXT, 1, 7},
+    {ERROR_TEXT("imo_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_lr1, imo_number), FIELD_INTEGER, 1, 0},
 };
 static const layout lr1_layout = {
     .sentence = "LR1", .fields = lr1_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_lr1),
@@ -11660,16 +11731,16 @@ size_t nmea_build_lr1(const nmea_lr1 *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* LR2: AIS long-range reply 2 (spec/standard/lr2.yaml) */
 static const layout_field lr2_fields[] = {
-    {"sequence_number", "integer 0..9", &range_0_to_9, offsetof(nmea_lr2, sequence_number), FIELD_INTEGER, 1, 0},
-    {"responder_mmsi", "integer", NULL, offsetof(nmea_lr2, responder_mmsi), FIELD_INTEGER, 1, 0},
-    {"date", "text of at most 8 characters", NULL, offsetof(nmea_lr2, date), FIELD_TEXT, 1, 8},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_lr2, time), FIELD_TIME, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_lr2, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_lr2, lon), FIELD_LONGITUDE, 2, 0},
-    {"cog", "decimal number", NULL, offsetof(nmea_lr2, cog), FIELD_DECIMAL, 1, 0},
-    {"cog_ref", "T or nothing", "T", offsetof(nmea_lr2, cog_ref), FIELD_LITERAL, 1, 0},
-    {"sog", "decimal number", NULL, offsetof(nmea_lr2, sog), FIELD_DECIMAL, 1, 0},
-    {"sog_unit", "N or nothing", "N", offsetof(nmea_lr2, sog_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sequence_number"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_lr2, sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("responder_mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_lr2, responder_mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("text of at most 8 characters"), NULL, offsetof(nmea_lr2, date), FIELD_TEXT, 1, 8},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_lr2, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_lr2, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_lr2, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("cog"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_lr2, cog), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("cog_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_lr2, cog_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sog"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_lr2, sog), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sog_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_lr2, sog_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout lr2_layout = {
     .sentence = "LR2", .fields = lr2_fields, .before = 10, .fixed = 12, .max_fields = 12,
@@ -11696,17 +11767,17 @@ size_t nmea_build_lr2(const nmea_lr2 *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* LR3: AIS long-range reply 3 (spec/standard/lr3.yaml) */
 static const layout_field lr3_fields[] = {
-    {"sequence_number", "integer 0..9", &range_0_to_9, offsetof(nmea_lr3, sequence_number), FIELD_INTEGER, 1, 0},
-    {"responder_mmsi", "integer", NULL, offsetof(nmea_lr3, responder_mmsi), FIELD_INTEGER, 1, 0},
-    {"destination", "text of at most 20 characters", NULL, offsetof(nmea_lr3, destination), FIELD_TEXT, 1, 20},
-    {"eta_date", "date ddmmyy", NULL, offsetof(nmea_lr3, eta_date), FIELD_DATE, 1, 0},
-    {"eta_time", "time hhmmss[.s]", NULL, offsetof(nmea_lr3, eta_time), FIELD_TIME, 1, 0},
-    {"draught", "decimal number of at least 0", &range_from_0, offsetof(nmea_lr3, draught), FIELD_DECIMAL, 1, 0},
-    {"ship_cargo", "integer of at least 0", &range_from_0, offsetof(nmea_lr3, ship_cargo), FIELD_INTEGER, 1, 0},
-    {"length", "decimal number of at least 0", &range_from_0, offsetof(nmea_lr3, length), FIELD_DECIMAL, 1, 0},
-    {"breadth", "decimal number of at least 0", &range_from_0, offsetof(nmea_lr3, breadth), FIELD_DECIMAL, 1, 0},
-    {"ship_type", "integer of at least 0", &range_from_0, offsetof(nmea_lr3, ship_type), FIELD_INTEGER, 1, 0},
-    {"persons", "integer 0..8191", &range_0_to_8191, offsetof(nmea_lr3, persons), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sequence_number"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_lr3, sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("responder_mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_lr3, responder_mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("destination"), ERROR_TEXT("text of at most 20 characters"), NULL, offsetof(nmea_lr3, destination), FIELD_TEXT, 1, 20},
+    {ERROR_TEXT("eta_date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_lr3, eta_date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("eta_time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_lr3, eta_time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("draught"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_lr3, draught), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ship_cargo"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_lr3, ship_cargo), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("length"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_lr3, length), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("breadth"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_lr3, breadth), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ship_type"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_lr3, ship_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("persons"), ERROR_TEXT("integer 0..8191"), &range_0_to_8191, offsetof(nmea_lr3, persons), FIELD_INTEGER, 1, 0},
 };
 static const layout lr3_layout = {
     .sentence = "LR3", .fields = lr3_fields, .before = 11, .fixed = 11, .max_fields = 11,
@@ -11733,11 +11804,11 @@ size_t nmea_build_lr3(const nmea_lr3 *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* LRF: AIS long-range function (spec/standard/lrf.yaml) */
 static const layout_field lrf_fields[] = {
-    {"sequence_number", "integer 0..9", &range_0_to_9, offsetof(nmea_lrf, sequence_number), FIELD_INTEGER, 1, 0},
-    {"requestor_mmsi", "integer", NULL, offsetof(nmea_lrf, requestor_mmsi), FIELD_INTEGER, 1, 0},
-    {"requestor_name", "text of at most 20 characters", NULL, offsetof(nmea_lrf, requestor_name), FIELD_TEXT, 1, 20},
-    {"function_request", "lrf_function codes (A B C E F I O P U W)", &nmea_lrf_function_def, offsetof(nmea_lrf, function_request), FIELD_ENUM_CHARS, 1, 26},
-    {"reply_status", "lrf_reply_status codes (2 3 4)", &nmea_lrf_reply_status_def, offsetof(nmea_lrf, reply_status), FIELD_ENUM_CHARS, 1, 26},
+    {ERROR_TEXT("sequence_number"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_lrf, sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("requestor_mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_lrf, requestor_mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("requestor_name"), ERROR_TEXT("text of at most 20 characters"), NULL, offsetof(nmea_lrf, requestor_name), FIELD_TEXT, 1, 20},
+    {ERROR_TEXT("function_request"), ERROR_TEXT("lrf_function codes (A B C E F I O P U W)"), &nmea_lrf_function_def, offsetof(nmea_lrf, function_request), FIELD_ENUM_CHARS, 1, 26},
+    {ERROR_TEXT("reply_status"), ERROR_TEXT("lrf_reply_status codes (2 3 4)"), &nmea_lrf_reply_status_def, offsetof(nmea_lrf, reply_status), FIELD_ENUM_CHARS, 1, 26},
 };
 static const layout lrf_layout = {
     .sentence = "LRF", .fields = lrf_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_lrf),
@@ -11764,14 +11835,14 @@ size_t nmea_build_lrf(const nmea_lrf *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* LRI: AIS long-range interrogation (spec/standard/lri.yaml) */
 static const layout_field lri_fields[] = {
-    {"sequence_number", "integer 0..9", &range_0_to_9, offsetof(nmea_lri, sequence_number), FIELD_INTEGER, 1, 0},
-    {"control_flag", "lri_control_flag code (0 1)", &nmea_lri_control_flag_def, offsetof(nmea_lri, control_flag), FIELD_ENUM, 1, 0},
-    {"requestor_mmsi", "integer", NULL, offsetof(nmea_lri, requestor_mmsi), FIELD_INTEGER, 1, 0},
-    {"destination_mmsi", "integer", NULL, offsetof(nmea_lri, destination_mmsi), FIELD_INTEGER, 1, 0},
-    {"ne_lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_lri, ne_lat), FIELD_LATITUDE, 2, 0},
-    {"ne_lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_lri, ne_lon), FIELD_LONGITUDE, 2, 0},
-    {"sw_lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_lri, sw_lat), FIELD_LATITUDE, 2, 0},
-    {"sw_lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_lri, sw_lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("sequence_number"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_lri, sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("control_flag"), ERROR_TEXT("lri_control_flag code (0 1)"), &nmea_lri_control_flag_def, offsetof(nmea_lri, control_flag), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("requestor_mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_lri, requestor_mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("destination_mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_lri, destination_mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ne_lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_lri, ne_lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("ne_lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_lri, ne_lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("sw_lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_lri, sw_lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("sw_lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_lri, sw_lon), FIELD_LONGITUDE, 2, 0},
 };
 static const layout lri_layout = {
     .sentence = "LRI", .fields = lri_fields, .before = 8, .fixed = 12, .max_fields = 12, .size = sizeof(nmea_lri),
@@ -11800,26 +11871,26 @@ size_t nmea_build_lri(const nmea_lri *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIMDA,30.0,I,1.0149,B,26.8,C,,C,64.2,16.4,19.5,C,,T,38.7,M,10.88,N,5.60,M*36 */
 static const layout_field mda_fields[] = {
-    {"pressure_inhg", "decimal number", NULL, offsetof(nmea_mda, pressure_inhg), FIELD_DECIMAL, 1, 0},
-    {"pressure_inhg_unit", "I or nothing", "I", offsetof(nmea_mda, pressure_inhg_unit), FIELD_LITERAL, 1, 0},
-    {"pressure_bar", "decimal number", NULL, offsetof(nmea_mda, pressure_bar), FIELD_DECIMAL, 1, 0},
-    {"pressure_bar_unit", "B or nothing", "B", offsetof(nmea_mda, pressure_bar_unit), FIELD_LITERAL, 1, 0},
-    {"air_temperature", "decimal number", NULL, offsetof(nmea_mda, air_temperature), FIELD_DECIMAL, 1, 0},
-    {"air_temperature_unit", "C or nothing", "C", offsetof(nmea_mda, air_temperature_unit), FIELD_LITERAL, 1, 0},
-    {"water_temperature", "decimal number", NULL, offsetof(nmea_mda, water_temperature), FIELD_DECIMAL, 1, 0},
-    {"water_temperature_unit", "C or nothing", "C", offsetof(nmea_mda, water_temperature_unit), FIELD_LITERAL, 1, 0},
-    {"relative_humidity", "decimal number of at least 0", &range_from_0, offsetof(nmea_mda, relative_humidity), FIELD_DECIMAL, 1, 0},
-    {"absolute_humidity", "decimal number", NULL, offsetof(nmea_mda, absolute_humidity), FIELD_DECIMAL, 1, 0},
-    {"dew_point", "decimal number", NULL, offsetof(nmea_mda, dew_point), FIELD_DECIMAL, 1, 0},
-    {"dew_point_unit", "C or nothing", "C", offsetof(nmea_mda, dew_point_unit), FIELD_LITERAL, 1, 0},
-    {"wind_direction_true", "decimal number of at least 0", &range_from_0, offsetof(nmea_mda, wind_direction_true), FIELD_DECIMAL, 1, 0},
-    {"wind_direction_true_ref", "T or nothing", "T", offsetof(nmea_mda, wind_direction_true_ref), FIELD_LITERAL, 1, 0},
-    {"wind_direction_magnetic", "decimal number of at least 0", &range_from_0, offsetof(nmea_mda, wind_direction_magnetic), FIELD_DECIMAL, 1, 0},
-    {"wind_direction_magnetic_ref", "M or nothing", "M", offsetof(nmea_mda, wind_direction_magnetic_ref), FIELD_LITERAL, 1, 0},
-    {"wind_speed_knots", "decimal number", NULL, offsetof(nmea_mda, wind_speed_knots), FIELD_DECIMAL, 1, 0},
-    {"wind_speed_knots_unit", "N or nothing", "N", offsetof(nmea_mda, wind_speed_knots_unit), FIELD_LITERAL, 1, 0},
-    {"wind_speed_ms", "decimal number", NULL, offsetof(nmea_mda, wind_speed_ms), FIELD_DECIMAL, 1, 0},
-    {"wind_speed_ms_unit", "M or nothing", "M", offsetof(nmea_mda, wind_speed_ms_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("pressure_inhg"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mda, pressure_inhg), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pressure_inhg_unit"), ERROR_TEXT("I or nothing"), "I", offsetof(nmea_mda, pressure_inhg_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("pressure_bar"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mda, pressure_bar), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pressure_bar_unit"), ERROR_TEXT("B or nothing"), "B", offsetof(nmea_mda, pressure_bar_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("air_temperature"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mda, air_temperature), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("air_temperature_unit"), ERROR_TEXT("C or nothing"), "C", offsetof(nmea_mda, air_temperature_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("water_temperature"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mda, water_temperature), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("water_temperature_unit"), ERROR_TEXT("C or nothing"), "C", offsetof(nmea_mda, water_temperature_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("relative_humidity"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_mda, relative_humidity), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("absolute_humidity"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mda, absolute_humidity), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("dew_point"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mda, dew_point), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("dew_point_unit"), ERROR_TEXT("C or nothing"), "C", offsetof(nmea_mda, dew_point_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("wind_direction_true"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_mda, wind_direction_true), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("wind_direction_true_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_mda, wind_direction_true_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("wind_direction_magnetic"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_mda, wind_direction_magnetic), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("wind_direction_magnetic_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_mda, wind_direction_magnetic_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("wind_speed_knots"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mda, wind_speed_knots), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("wind_speed_knots_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_mda, wind_speed_knots_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("wind_speed_ms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mda, wind_speed_ms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("wind_speed_ms_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_mda, wind_speed_ms_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout mda_layout = {
     .sentence = "MDA", .fields = mda_fields, .before = 20, .fixed = 20, .max_fields = 20,
@@ -11848,10 +11919,10 @@ size_t nmea_build_mda(const nmea_mda *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIMMB,29.9870,I,1.0154,B*75 */
 static const layout_field mmb_fields[] = {
-    {"pressure_inhg", "decimal number", NULL, offsetof(nmea_mmb, pressure_inhg), FIELD_DECIMAL, 1, 0},
-    {"pressure_inhg_unit", "I or nothing", "I", offsetof(nmea_mmb, pressure_inhg_unit), FIELD_LITERAL, 1, 0},
-    {"pressure_bar", "decimal number", NULL, offsetof(nmea_mmb, pressure_bar), FIELD_DECIMAL, 1, 0},
-    {"pressure_bar_unit", "B or nothing", "B", offsetof(nmea_mmb, pressure_bar_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("pressure_inhg"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mmb, pressure_inhg), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pressure_inhg_unit"), ERROR_TEXT("I or nothing"), "I", offsetof(nmea_mmb, pressure_inhg_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("pressure_bar"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mmb, pressure_bar), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pressure_bar_unit"), ERROR_TEXT("B or nothing"), "B", offsetof(nmea_mmb, pressure_bar_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout mmb_layout = {
     .sentence = "MMB", .fields = mmb_fields, .before = 4, .fixed = 4, .max_fields = 4, .size = sizeof(nmea_mmb),
@@ -11880,18 +11951,18 @@ size_t nmea_build_mmb(const nmea_mmb *s, char *buf, size_t cap, nmea_error *err)
 
 /* $INMOB,ABCDE,V,123456.987,0,311219,132456.876,12.34,N,123.45,E,12.34,23.45,269104520,0*53 */
 static const layout_field mob_fields[] = {
-    {"emitter_id", "hex number", NULL, offsetof(nmea_mob, emitter_id), FIELD_HEX, 1, 0},
-    {"mob_status", "mob_status code (A T M V E)", &nmea_mob_status_def, offsetof(nmea_mob, mob_status), FIELD_ENUM, 1, 0},
-    {"activation_time", "time hhmmss[.s]", NULL, offsetof(nmea_mob, activation_time), FIELD_TIME, 1, 0},
-    {"position_source", "mob_position_source code (0 1 6)", &nmea_mob_position_source_def, offsetof(nmea_mob, position_source), FIELD_ENUM, 1, 0},
-    {"position_day", "integer of at least 0", &range_from_0, offsetof(nmea_mob, position_day), FIELD_INTEGER, 1, 0},
-    {"position_time", "time hhmmss[.s]", NULL, offsetof(nmea_mob, position_time), FIELD_TIME, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_mob, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_mob, lon), FIELD_LONGITUDE, 2, 0},
-    {"cog", "decimal number", NULL, offsetof(nmea_mob, cog), FIELD_DECIMAL, 1, 0},
-    {"sog", "decimal number", NULL, offsetof(nmea_mob, sog), FIELD_DECIMAL, 1, 0},
-    {"mmsi", "integer", NULL, offsetof(nmea_mob, mmsi), FIELD_INTEGER, 1, 0},
-    {"battery", "mob_battery code (0 1 6)", &nmea_mob_battery_def, offsetof(nmea_mob, battery), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("emitter_id"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_mob, emitter_id), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("mob_status"), ERROR_TEXT("mob_status code (A T M V E)"), &nmea_mob_status_def, offsetof(nmea_mob, mob_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("activation_time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_mob, activation_time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("position_source"), ERROR_TEXT("mob_position_source code (0 1 6)"), &nmea_mob_position_source_def, offsetof(nmea_mob, position_source), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("position_day"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_mob, position_day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("position_time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_mob, position_time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_mob, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_mob, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("cog"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mob, cog), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sog"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mob, sog), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mmsi"), ERROR_TEXT("integer"), NULL, offsetof(nmea_mob, mmsi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("battery"), ERROR_TEXT("mob_battery code (0 1 6)"), &nmea_mob_battery_def, offsetof(nmea_mob, battery), FIELD_ENUM, 1, 0},
 };
 static const layout mob_layout = {
     .sentence = "MOB", .fields = mob_fields, .before = 12, .fixed = 14, .max_fields = 14,
@@ -11920,13 +11991,13 @@ size_t nmea_build_mob(const nmea_mob *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPMSK,318.0,A,100,M,2*45 */
 static const layout_field msk_fields[] = {
-    {"frequency", "decimal number", NULL, offsetof(nmea_msk, frequency), FIELD_DECIMAL, 1, 0},
-    {"frequency_mode", "msk_auto_manual code (A M)", &nmea_msk_auto_manual_def, offsetof(nmea_msk, frequency_mode), FIELD_ENUM, 1, 0},
-    {"bit_rate", "decimal number", NULL, offsetof(nmea_msk, bit_rate), FIELD_DECIMAL, 1, 0},
-    {"bit_rate_mode", "msk_auto_manual code (A M)", &nmea_msk_auto_manual_def, offsetof(nmea_msk, bit_rate_mode), FIELD_ENUM, 1, 0},
-    {"mss_interval", "decimal number", NULL, offsetof(nmea_msk, mss_interval), FIELD_DECIMAL, 1, 0},
-    {"channel", "integer", NULL, offsetof(nmea_msk, channel), FIELD_INTEGER, 1, 0},
-    {"sentence_status", "pos_sentence_status code (R C)", &nmea_pos_sentence_status_def, offsetof(nmea_msk, sentence_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("frequency"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_msk, frequency), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("frequency_mode"), ERROR_TEXT("msk_auto_manual code (A M)"), &nmea_msk_auto_manual_def, offsetof(nmea_msk, frequency_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("bit_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_msk, bit_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bit_rate_mode"), ERROR_TEXT("msk_auto_manual code (A M)"), &nmea_msk_auto_manual_def, offsetof(nmea_msk, bit_rate_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mss_interval"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_msk, mss_interval), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("channel"), ERROR_TEXT("integer"), NULL, offsetof(nmea_msk, channel), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_status"), ERROR_TEXT("pos_sentence_status code (R C)"), &nmea_pos_sentence_status_def, offsetof(nmea_msk, sentence_status), FIELD_ENUM, 1, 0},
 };
 static const layout msk_layout = {
     .sentence = "MSK", .fields = msk_fields, .before = 5, .optional = 2, .fixed = 5, .max_fields = 7,
@@ -11956,11 +12027,11 @@ size_t nmea_build_msk(const nmea_msk *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPMSS,26.4,7.2,283.5,200,2*61 */
 static const layout_field mss_fields[] = {
-    {"signal_strength", "decimal number", NULL, offsetof(nmea_mss, signal_strength), FIELD_DECIMAL, 1, 0},
-    {"snr", "decimal number", NULL, offsetof(nmea_mss, snr), FIELD_DECIMAL, 1, 0},
-    {"frequency", "decimal number", NULL, offsetof(nmea_mss, frequency), FIELD_DECIMAL, 1, 0},
-    {"bit_rate", "decimal number", NULL, offsetof(nmea_mss, bit_rate), FIELD_DECIMAL, 1, 0},
-    {"channel", "integer", NULL, offsetof(nmea_mss, channel), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("signal_strength"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mss, signal_strength), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("snr"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mss, snr), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("frequency"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mss, frequency), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bit_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mss, bit_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("channel"), ERROR_TEXT("integer"), NULL, offsetof(nmea_mss, channel), FIELD_INTEGER, 1, 0},
 };
 static const layout mss_layout = {
     .sentence = "MSS", .fields = mss_fields, .before = 4, .optional = 1, .fixed = 4, .max_fields = 5,
@@ -11990,8 +12061,8 @@ size_t nmea_build_mss(const nmea_mss *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIMTA,17.9,C*0A */
 static const layout_field mta_fields[] = {
-    {"temperature", "decimal number", NULL, offsetof(nmea_mta, temperature), FIELD_DECIMAL, 1, 0},
-    {"temperature_unit", "C or nothing", "C", offsetof(nmea_mta, temperature_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("temperature"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mta, temperature), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("temperature_unit"), ERROR_TEXT("C or nothing"), "C", offsetof(nmea_mta, temperature_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout mta_layout = {
     .sentence = "MTA", .fields = mta_fields, .before = 2, .fixed = 2, .max_fields = 2, .size = sizeof(nmea_mta),
@@ -12020,8 +12091,8 @@ size_t nmea_build_mta(const nmea_mta *s, char *buf, size_t cap, nmea_error *err)
 
 /* $INMTW,17.9,C*1B */
 static const layout_field mtw_fields[] = {
-    {"temperature", "decimal number", NULL, offsetof(nmea_mtw, temperature), FIELD_DECIMAL, 1, 0},
-    {"temperature_unit", "C or nothing", "C", offsetof(nmea_mtw, temperature_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("temperature"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mtw, temperature), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("temperature_unit"), ERROR_TEXT("C or nothing"), "C", offsetof(nmea_mtw, temperature_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout mtw_layout = {
     .sentence = "MTW", .fields = mtw_fields, .before = 2, .fixed = 2, .max_fields = 2, .size = sizeof(nmea_mtw),
@@ -12050,14 +12121,14 @@ size_t nmea_build_mtw(const nmea_mtw *s, char *buf, size_t cap, nmea_error *err)
 
 /* $WIMWD,328.2,T,326.8,M,11.2,N,5.8,M*61 */
 static const layout_field mwd_fields[] = {
-    {"direction_true", "decimal number of at least 0", &range_from_0, offsetof(nmea_mwd, direction_true), FIELD_DECIMAL, 1, 0},
-    {"direction_true_ref", "T or nothing", "T", offsetof(nmea_mwd, direction_true_ref), FIELD_LITERAL, 1, 0},
-    {"direction_magnetic", "decimal number of at least 0", &range_from_0, offsetof(nmea_mwd, direction_magnetic), FIELD_DECIMAL, 1, 0},
-    {"direction_magnetic_ref", "M or nothing", "M", offsetof(nmea_mwd, direction_magnetic_ref), FIELD_LITERAL, 1, 0},
-    {"speed_knots", "decimal number", NULL, offsetof(nmea_mwd, speed_knots), FIELD_DECIMAL, 1, 0},
-    {"speed_knots_unit", "N or nothing", "N", offsetof(nmea_mwd, speed_knots_unit), FIELD_LITERAL, 1, 0},
-    {"speed_ms", "decimal number", NULL, offsetof(nmea_mwd, speed_ms), FIELD_DECIMAL, 1, 0},
-    {"speed_ms_unit", "M or nothing", "M", offsetof(nmea_mwd, speed_ms_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("direction_true"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_mwd, direction_true), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("direction_true_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_mwd, direction_true_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("direction_magnetic"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_mwd, direction_magnetic), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("direction_magnetic_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_mwd, direction_magnetic_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_knots"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mwd, speed_knots), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_knots_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_mwd, speed_knots_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_ms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mwd, speed_ms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_ms_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_mwd, speed_ms_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout mwd_layout = {
     .sentence = "MWD", .fields = mwd_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_mwd),
@@ -12086,11 +12157,11 @@ size_t nmea_build_mwd(const nmea_mwd *s, char *buf, size_t cap, nmea_error *err)
 
 /* $WIMWV,57.5,R,13.0,N,A*26 */
 static const layout_field mwv_fields[] = {
-    {"wind_angle", "decimal number of at least 0", &range_from_0, offsetof(nmea_mwv, wind_angle), FIELD_DECIMAL, 1, 0},
-    {"reference", "mwv_reference code (R T)", &nmea_mwv_reference_def, offsetof(nmea_mwv, reference), FIELD_ENUM, 1, 0},
-    {"wind_speed", "decimal number", NULL, offsetof(nmea_mwv, wind_speed), FIELD_DECIMAL, 1, 0},
-    {"wind_speed_unit", "mwv_speed_unit code (K M N S)", &nmea_mwv_speed_unit_def, offsetof(nmea_mwv, wind_speed_unit), FIELD_ENUM, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_mwv, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("wind_angle"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_mwv, wind_angle), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reference"), ERROR_TEXT("mwv_reference code (R T)"), &nmea_mwv_reference_def, offsetof(nmea_mwv, reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("wind_speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_mwv, wind_speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("wind_speed_unit"), ERROR_TEXT("mwv_speed_unit code (K M N S)"), &nmea_mwv_speed_unit_def, offsetof(nmea_mwv, wind_speed_unit), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_mwv, status), FIELD_ENUM, 1, 0},
 };
 static const layout mwv_layout = {
     .sentence = "MWV", .fields = mwv_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_mwv),
@@ -12119,11 +12190,11 @@ size_t nmea_build_mwv(const nmea_mwv *s, char *buf, size_t cap, nmea_error *err)
 
 /* $ANNAK,UP,AID,999999990,11,*1E */
 static const layout_field nak_fields[] = {
-    {"talker_id", "text of at most 2 characters", NULL, offsetof(nmea_nak, talker_id), FIELD_TEXT, 1, 2},
-    {"formatter", "text", NULL, offsetof(nmea_nak, formatter), FIELD_TEXT, 1, 0},
-    {"unique_id", "text", NULL, offsetof(nmea_nak, unique_id), FIELD_TEXT, 1, 0},
-    {"reason", "nak_reason code (0 1 2 3 4 5 6 7 10 11 49)", &nmea_nak_reason_def, offsetof(nmea_nak, reason), FIELD_ENUM, 1, 0},
-    {"text", "text", NULL, offsetof(nmea_nak, text), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("talker_id"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_nak, talker_id), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("formatter"), ERROR_TEXT("text"), NULL, offsetof(nmea_nak, formatter), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("unique_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_nak, unique_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reason"), ERROR_TEXT("nak_reason code (0 1 2 3 4 5 6 7 10 11 49)"), &nmea_nak_reason_def, offsetof(nmea_nak, reason), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("text"), ERROR_TEXT("text"), NULL, offsetof(nmea_nak, text), FIELD_TEXT, 1, 0},
 };
 static const layout nak_layout = {
     .sentence = "NAK", .fields = nak_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_nak),
@@ -12152,11 +12223,11 @@ size_t nmea_build_nak(const nmea_nak *s, char *buf, size_t cap, nmea_error *err)
 
 /* $INNRM,2,1,00001E1F,00000023,C*38 */
 static const layout_field nrm_fields[] = {
-    {"function_code", "nrm_function code (0 1 2 3)", &nmea_nrm_function_def, offsetof(nmea_nrm, function_code), FIELD_ENUM, 1, 0},
-    {"frequency_index", "nrx_frequency code (0 1 2 3)", &nmea_nrx_frequency_def, offsetof(nmea_nrm, frequency_index), FIELD_ENUM, 1, 0},
-    {"coverage_area_mask", "hex number", NULL, offsetof(nmea_nrm, coverage_area_mask), FIELD_HEX, 1, 0},
-    {"message_type_mask", "hex number", NULL, offsetof(nmea_nrm, message_type_mask), FIELD_HEX, 1, 0},
-    {"sentence_status", "fsi_sentence_status code (R C)", &nmea_fsi_sentence_status_def, offsetof(nmea_nrm, sentence_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("function_code"), ERROR_TEXT("nrm_function code (0 1 2 3)"), &nmea_nrm_function_def, offsetof(nmea_nrm, function_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("frequency_index"), ERROR_TEXT("nrx_frequency code (0 1 2 3)"), &nmea_nrx_frequency_def, offsetof(nmea_nrm, frequency_index), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("coverage_area_mask"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_nrm, coverage_area_mask), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("message_type_mask"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_nrm, message_type_mask), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("sentence_status"), ERROR_TEXT("fsi_sentence_status code (R C)"), &nmea_fsi_sentence_status_def, offsetof(nmea_nrm, sentence_status), FIELD_ENUM, 1, 0},
 };
 static const layout nrm_layout = {
     .sentence = "NRM", .fields = nrm_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_nrm),
@@ -12185,19 +12256,19 @@ size_t nmea_build_nrm(const nmea_nrm *s, char *buf, size_t cap, nmea_error *err)
 
 /* $CRNRX,007,001,00,IE69,1,135600,27,06,2001,241,3,A,============================*09 */
 static const layout_field nrx_fields[] = {
-    {"total_sentences", "integer of at least 1", &range_from_1, offsetof(nmea_nrx, total_sentences), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer of at least 1", &range_from_1, offsetof(nmea_nrx, sentence_number), FIELD_INTEGER, 1, 0},
-    {"sequential_message_id", "integer 0..99", &range_0_to_99, offsetof(nmea_nrx, sequential_message_id), FIELD_INTEGER, 1, 0},
-    {"message_code", "text", NULL, offsetof(nmea_nrx, message_code), FIELD_TEXT, 1, 0},
-    {"frequency_index", "nrx_frequency code (0 1 2 3)", &nmea_nrx_frequency_def, offsetof(nmea_nrx, frequency_index), FIELD_ENUM, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_nrx, time), FIELD_TIME, 1, 0},
-    {"day", "integer 1..31", &range_1_to_31, offsetof(nmea_nrx, day), FIELD_INTEGER, 1, 0},
-    {"month", "integer 1..12", &range_1_to_12, offsetof(nmea_nrx, month), FIELD_INTEGER, 1, 0},
-    {"year", "integer", NULL, offsetof(nmea_nrx, year), FIELD_INTEGER, 1, 0},
-    {"total_characters", "integer", NULL, offsetof(nmea_nrx, total_characters), FIELD_INTEGER, 1, 0},
-    {"bad_characters", "integer", NULL, offsetof(nmea_nrx, bad_characters), FIELD_INTEGER, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_nrx, status), FIELD_ENUM, 1, 0},
-    {"message_body", "text", NULL, offsetof(nmea_nrx, message_body), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("total_sentences"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_nrx, total_sentences), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_nrx, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sequential_message_id"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_nrx, sequential_message_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message_code"), ERROR_TEXT("text"), NULL, offsetof(nmea_nrx, message_code), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("frequency_index"), ERROR_TEXT("nrx_frequency code (0 1 2 3)"), &nmea_nrx_frequency_def, offsetof(nmea_nrx, frequency_index), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_nrx, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("day"), ERROR_TEXT("integer 1..31"), &range_1_to_31, offsetof(nmea_nrx, day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("month"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_nrx, month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_nrx, year), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("total_characters"), ERROR_TEXT("integer"), NULL, offsetof(nmea_nrx, total_characters), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("bad_characters"), ERROR_TEXT("integer"), NULL, offsetof(nmea_nrx, bad_characters), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_nrx, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("message_body"), ERROR_TEXT("text"), NULL, offsetof(nmea_nrx, message_body), FIELD_TEXT, 1, 0},
 };
 static const layout nrx_layout = {
     .sentence = "NRX", .fields = nrx_fields, .before = 13, .fixed = 13, .max_fields = 13,
@@ -12224,16 +12295,16 @@ size_t nmea_build_nrx(const nmea_nrx *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* NRX (Furuno NX-700 layout): NAVTEX received message (spec/standard/nrx.yaml) */
 static const layout_field nrx_nx700_fields[] = {
-    {"message_code", "text", NULL, offsetof(nmea_nrx_nx700, message_code), FIELD_TEXT, 1, 0},
-    {"line_number", "integer of at least 1", &range_from_1, offsetof(nmea_nrx_nx700, line_number), FIELD_INTEGER, 1, 0},
-    {"line_count", "integer of at least 1", &range_from_1, offsetof(nmea_nrx_nx700, line_count), FIELD_INTEGER, 1, 0},
-    {"frequency_khz", "integer", NULL, offsetof(nmea_nrx_nx700, frequency_khz), FIELD_INTEGER, 1, 0},
-    {"day", "integer 1..31", &range_1_to_31, offsetof(nmea_nrx_nx700, day), FIELD_INTEGER, 1, 0},
-    {"month", "integer 1..12", &range_1_to_12, offsetof(nmea_nrx_nx700, month), FIELD_INTEGER, 1, 0},
-    {"year", "integer", NULL, offsetof(nmea_nrx_nx700, year), FIELD_INTEGER, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_nrx_nx700, time), FIELD_TIME, 1, 0},
-    {"error_rate", "decimal number", NULL, offsetof(nmea_nrx_nx700, error_rate), FIELD_DECIMAL, 1, 0},
-    {"message_body", "text", NULL, offsetof(nmea_nrx_nx700, message_body), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("message_code"), ERROR_TEXT("text"), NULL, offsetof(nmea_nrx_nx700, message_code), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("line_number"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_nrx_nx700, line_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("line_count"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_nrx_nx700, line_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("frequency_khz"), ERROR_TEXT("integer"), NULL, offsetof(nmea_nrx_nx700, frequency_khz), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("day"), ERROR_TEXT("integer 1..31"), &range_1_to_31, offsetof(nmea_nrx_nx700, day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("month"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_nrx_nx700, month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_nrx_nx700, year), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_nrx_nx700, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("error_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_nrx_nx700, error_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("message_body"), ERROR_TEXT("text"), NULL, offsetof(nmea_nrx_nx700, message_body), FIELD_TEXT, 1, 0},
 };
 static const layout nrx_nx700_layout = {
     .sentence = "NRX", .variant = "nx700", .fields = nrx_nx700_fields, .before = 10, .fixed = 10,
@@ -12261,19 +12332,19 @@ size_t nmea_build_nrx_nx700(const nmea_nrx_nx700 *s, char *buf, size_t cap, nmea
 /* ------------------------------------------------------------------------------------------ */
 /* NSR: Navigation status report (spec/standard/nsr.yaml) */
 static const layout_field nsr_fields[] = {
-    {"heading_integrity", "nsr_integrity code (P F D N)", &nmea_nsr_integrity_def, offsetof(nmea_nsr, heading_integrity), FIELD_ENUM, 1, 0},
-    {"heading_plausibility", "nsr_plausibility code (A V N)", &nmea_nsr_plausibility_def, offsetof(nmea_nsr, heading_plausibility), FIELD_ENUM, 1, 0},
-    {"position_integrity", "nsr_integrity code (P F D N)", &nmea_nsr_integrity_def, offsetof(nmea_nsr, position_integrity), FIELD_ENUM, 1, 0},
-    {"position_plausibility", "nsr_plausibility code (A V N)", &nmea_nsr_plausibility_def, offsetof(nmea_nsr, position_plausibility), FIELD_ENUM, 1, 0},
-    {"stw_integrity", "nsr_integrity code (P F D N)", &nmea_nsr_integrity_def, offsetof(nmea_nsr, stw_integrity), FIELD_ENUM, 1, 0},
-    {"stw_plausibility", "nsr_plausibility code (A V N)", &nmea_nsr_plausibility_def, offsetof(nmea_nsr, stw_plausibility), FIELD_ENUM, 1, 0},
-    {"sog_cog_integrity", "nsr_integrity code (P F D N)", &nmea_nsr_integrity_def, offsetof(nmea_nsr, sog_cog_integrity), FIELD_ENUM, 1, 0},
-    {"sog_cog_plausibility", "nsr_plausibility code (A V N)", &nmea_nsr_plausibility_def, offsetof(nmea_nsr, sog_cog_plausibility), FIELD_ENUM, 1, 0},
-    {"depth_integrity", "nsr_integrity code (P F D N)", &nmea_nsr_integrity_def, offsetof(nmea_nsr, depth_integrity), FIELD_ENUM, 1, 0},
-    {"depth_plausibility", "nsr_plausibility code (A V N)", &nmea_nsr_plausibility_def, offsetof(nmea_nsr, depth_plausibility), FIELD_ENUM, 1, 0},
-    {"stw_mode", "nsr_stw_mode code (W E M N)", &nmea_nsr_stw_mode_def, offsetof(nmea_nsr, stw_mode), FIELD_ENUM, 1, 0},
-    {"time_integrity", "nsr_integrity code (P F D N)", &nmea_nsr_integrity_def, offsetof(nmea_nsr, time_integrity), FIELD_ENUM, 1, 0},
-    {"time_plausibility", "nsr_plausibility code (A V N)", &nmea_nsr_plausibility_def, offsetof(nmea_nsr, time_plausibility), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("heading_integrity"), ERROR_TEXT("nsr_integrity code (P F D N)"), &nmea_nsr_integrity_def, offsetof(nmea_nsr, heading_integrity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("heading_plausibility"), ERROR_TEXT("nsr_plausibility code (A V N)"), &nmea_nsr_plausibility_def, offsetof(nmea_nsr, heading_plausibility), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("position_integrity"), ERROR_TEXT("nsr_integrity code (P F D N)"), &nmea_nsr_integrity_def, offsetof(nmea_nsr, position_integrity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("position_plausibility"), ERROR_TEXT("nsr_plausibility code (A V N)"), &nmea_nsr_plausibility_def, offsetof(nmea_nsr, position_plausibility), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("stw_integrity"), ERROR_TEXT("nsr_integrity code (P F D N)"), &nmea_nsr_integrity_def, offsetof(nmea_nsr, stw_integrity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("stw_plausibility"), ERROR_TEXT("nsr_plausibility code (A V N)"), &nmea_nsr_plausibility_def, offsetof(nmea_nsr, stw_plausibility), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sog_cog_integrity"), ERROR_TEXT("nsr_integrity code (P F D N)"), &nmea_nsr_integrity_def, offsetof(nmea_nsr, sog_cog_integrity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sog_cog_plausibility"), ERROR_TEXT("nsr_plausibility code (A V N)"), &nmea_nsr_plausibility_def, offsetof(nmea_nsr, sog_cog_plausibility), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("depth_integrity"), ERROR_TEXT("nsr_integrity code (P F D N)"), &nmea_nsr_integrity_def, offsetof(nmea_nsr, depth_integrity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("depth_plausibility"), ERROR_TEXT("nsr_plausibility code (A V N)"), &nmea_nsr_plausibility_def, offsetof(nmea_nsr, depth_plausibility), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("stw_mode"), ERROR_TEXT("nsr_stw_mode code (W E M N)"), &nmea_nsr_stw_mode_def, offsetof(nmea_nsr, stw_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time_integrity"), ERROR_TEXT("nsr_integrity code (P F D N)"), &nmea_nsr_integrity_def, offsetof(nmea_nsr, time_integrity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time_plausibility"), ERROR_TEXT("nsr_plausibility code (A V N)"), &nmea_nsr_plausibility_def, offsetof(nmea_nsr, time_plausibility), FIELD_ENUM, 1, 0},
 };
 static const layout nsr_layout = {
     .sentence = "NSR", .fields = nsr_fields, .before = 13, .fixed = 13, .max_fields = 13,
@@ -12302,15 +12373,15 @@ size_t nmea_build_nsr(const nmea_nsr *s, char *buf, size_t cap, nmea_error *err)
 
 /* $RAOSD,35.1,A,36.0,P,10.2,P,15.3,0.1,N*41 */
 static const layout_field osd_fields[] = {
-    {"heading", "decimal number", NULL, offsetof(nmea_osd, heading), FIELD_DECIMAL, 1, 0},
-    {"heading_status", "status code (A V)", &nmea_status_def, offsetof(nmea_osd, heading_status), FIELD_ENUM, 1, 0},
-    {"course", "decimal number", NULL, offsetof(nmea_osd, course), FIELD_DECIMAL, 1, 0},
-    {"course_reference", "osd_reference code (B M W R P)", &nmea_osd_reference_def, offsetof(nmea_osd, course_reference), FIELD_ENUM, 1, 0},
-    {"speed", "decimal number", NULL, offsetof(nmea_osd, speed), FIELD_DECIMAL, 1, 0},
-    {"speed_reference", "osd_reference code (B M W R P)", &nmea_osd_reference_def, offsetof(nmea_osd, speed_reference), FIELD_ENUM, 1, 0},
-    {"set", "decimal number", NULL, offsetof(nmea_osd, set), FIELD_DECIMAL, 1, 0},
-    {"drift", "decimal number", NULL, offsetof(nmea_osd, drift), FIELD_DECIMAL, 1, 0},
-    {"speed_units", "ttm_units code (K N S)", &nmea_ttm_units_def, offsetof(nmea_osd, speed_units), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_osd, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_osd, heading_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("course"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_osd, course), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("course_reference"), ERROR_TEXT("osd_reference code (B M W R P)"), &nmea_osd_reference_def, offsetof(nmea_osd, course_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_osd, speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_reference"), ERROR_TEXT("osd_reference code (B M W R P)"), &nmea_osd_reference_def, offsetof(nmea_osd, speed_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("set"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_osd, set), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("drift"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_osd, drift), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_units"), ERROR_TEXT("ttm_units code (K N S)"), &nmea_ttm_units_def, offsetof(nmea_osd, speed_units), FIELD_ENUM, 1, 0},
 };
 static const layout osd_layout = {
     .sentence = "OSD", .fields = osd_fields, .before = 9, .fixed = 9, .max_fields = 9, .size = sizeof(nmea_osd),
@@ -12337,16 +12408,16 @@ size_t nmea_build_osd(const nmea_osd *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* POS: Device position and ship dimensions (spec/standard/pos.yaml) */
 static const layout_field pos_fields[] = {
-    {"equipment_id", "text of at most 2 characters", NULL, offsetof(nmea_pos, equipment_id), FIELD_TEXT, 1, 2},
-    {"equipment_number", "integer 0..99", &range_0_to_99, offsetof(nmea_pos, equipment_number), FIELD_INTEGER, 1, 0},
-    {"position_validity", "status code (A V)", &nmea_status_def, offsetof(nmea_pos, position_validity), FIELD_ENUM, 1, 0},
-    {"pos_x", "decimal number", NULL, offsetof(nmea_pos, pos_x), FIELD_DECIMAL, 1, 0},
-    {"pos_y", "decimal number", NULL, offsetof(nmea_pos, pos_y), FIELD_DECIMAL, 1, 0},
-    {"pos_z", "decimal number", NULL, offsetof(nmea_pos, pos_z), FIELD_DECIMAL, 1, 0},
-    {"dimensions_validity", "status code (A V)", &nmea_status_def, offsetof(nmea_pos, dimensions_validity), FIELD_ENUM, 1, 0},
-    {"ship_width", "decimal number", NULL, offsetof(nmea_pos, ship_width), FIELD_DECIMAL, 1, 0},
-    {"ship_length", "decimal number", NULL, offsetof(nmea_pos, ship_length), FIELD_DECIMAL, 1, 0},
-    {"sentence_status", "pos_sentence_status code (R C)", &nmea_pos_sentence_status_def, offsetof(nmea_pos, sentence_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("equipment_id"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_pos, equipment_id), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("equipment_number"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_pos, equipment_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("position_validity"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_pos, position_validity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pos_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pos, pos_x), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pos_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pos, pos_y), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pos_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pos, pos_z), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("dimensions_validity"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_pos, dimensions_validity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("ship_width"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pos, ship_width), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ship_length"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pos, ship_length), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sentence_status"), ERROR_TEXT("pos_sentence_status code (R C)"), &nmea_pos_sentence_status_def, offsetof(nmea_pos, sentence_status), FIELD_ENUM, 1, 0},
 };
 static const layout pos_layout = {
     .sentence = "POS", .fields = pos_fields, .before = 10, .fixed = 10, .max_fields = 10,
@@ -12373,14 +12444,14 @@ size_t nmea_build_pos(const nmea_pos *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* PRC: Propulsion remote control status (spec/standard/prc.yaml) */
 static const layout_field prc_fields[] = {
-    {"lever_position", "decimal number -100..100", &range_minus_100_to_100, offsetof(nmea_prc, lever_position), FIELD_DECIMAL, 1, 0},
-    {"lever_status", "status code (A V)", &nmea_status_def, offsetof(nmea_prc, lever_status), FIELD_ENUM, 1, 0},
-    {"rpm_demand", "decimal number", NULL, offsetof(nmea_prc, rpm_demand), FIELD_DECIMAL, 1, 0},
-    {"rpm_mode", "prc_rpm_mode code (P R V)", &nmea_prc_rpm_mode_def, offsetof(nmea_prc, rpm_mode), FIELD_ENUM, 1, 0},
-    {"pitch_demand", "decimal number", NULL, offsetof(nmea_prc, pitch_demand), FIELD_DECIMAL, 1, 0},
-    {"pitch_mode", "prc_pitch_mode code (P D V)", &nmea_prc_pitch_mode_def, offsetof(nmea_prc, pitch_mode), FIELD_ENUM, 1, 0},
-    {"operating_location", "prc_operating_location code (B P S C E W)", &nmea_prc_operating_location_def, offsetof(nmea_prc, operating_location), FIELD_ENUM, 1, 0},
-    {"engine_number", "integer of at least 0", &range_from_0, offsetof(nmea_prc, engine_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("lever_position"), ERROR_TEXT("decimal number -100..100"), &range_minus_100_to_100, offsetof(nmea_prc, lever_position), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lever_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_prc, lever_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rpm_demand"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_prc, rpm_demand), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rpm_mode"), ERROR_TEXT("prc_rpm_mode code (P R V)"), &nmea_prc_rpm_mode_def, offsetof(nmea_prc, rpm_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pitch_demand"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_prc, pitch_demand), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch_mode"), ERROR_TEXT("prc_pitch_mode code (P D V)"), &nmea_prc_pitch_mode_def, offsetof(nmea_prc, pitch_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("operating_location"), ERROR_TEXT("prc_operating_location code (B P S C E W)"), &nmea_prc_operating_location_def, offsetof(nmea_prc, operating_location), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("engine_number"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_prc, engine_number), FIELD_INTEGER, 1, 0},
 };
 static const layout prc_layout = {
     .sentence = "PRC", .fields = prc_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_prc),
@@ -12409,10 +12480,10 @@ size_t nmea_build_prc(const nmea_prc *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPR00,EGLL,EGLM,EGTB,EGUB,EGTK,MBOT,EGTB,,,,,,,*58 */
 static const layout_field r00_group_fields[] = {
-    {"waypoint", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("waypoint"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group r00_group = {
-    .id = "waypoints", .fields = r00_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 14,
+    .id = ERROR_TEXT("waypoints"), .fields = r00_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 14,
     .single = true, .offset = offsetof(nmea_r00, waypoints), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_r00, waypoints.count),
 };
@@ -12448,10 +12519,10 @@ size_t nmea_build_r00(const nmea_r00 *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPRLM,123456789ABCD12,000128.00,3,333344445555666677778888*64 */
 static const layout_field rlm_fields[] = {
-    {"beacon_id", "hex number", NULL, offsetof(nmea_rlm, beacon_id), FIELD_HEX, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_rlm, time), FIELD_TIME, 1, 0},
-    {"message_code", "rlm_message_code code (0 1 2 3 4 5 6 7 8 9 A B C D E F)", &nmea_rlm_message_code_def, offsetof(nmea_rlm, message_code), FIELD_ENUM, 1, 0},
-    {"message_body", "text of at most 24 characters", NULL, offsetof(nmea_rlm, message_body), FIELD_TEXT, 1, 24},
+    {ERROR_TEXT("beacon_id"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_rlm, beacon_id), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_rlm, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("message_code"), ERROR_TEXT("rlm_message_code code (0 1 2 3 4 5 6 7 8 9 A B C D E F)"), &nmea_rlm_message_code_def, offsetof(nmea_rlm, message_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("message_body"), ERROR_TEXT("text of at most 24 characters"), NULL, offsetof(nmea_rlm, message_body), FIELD_TEXT, 1, 24},
 };
 static const layout rlm_layout = {
     .sentence = "RLM", .fields = rlm_fields, .before = 4, .fixed = 4, .max_fields = 4, .size = sizeof(nmea_rlm),
@@ -12480,16 +12551,16 @@ size_t nmea_build_rlm(const nmea_rlm *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPRMA,A,5327.03942,N,11214.42462,W,,,23.1,23,14.8,W*58 */
 static const layout_field rma_fields[] = {
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_rma, status), FIELD_ENUM, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_rma, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_rma, lon), FIELD_LONGITUDE, 2, 0},
-    {"time_difference_a", "decimal number", NULL, offsetof(nmea_rma, time_difference_a), FIELD_DECIMAL, 1, 0},
-    {"time_difference_b", "decimal number", NULL, offsetof(nmea_rma, time_difference_b), FIELD_DECIMAL, 1, 0},
-    {"speed", "decimal number", NULL, offsetof(nmea_rma, speed), FIELD_DECIMAL, 1, 0},
-    {"course", "decimal number", NULL, offsetof(nmea_rma, course), FIELD_DECIMAL, 1, 0},
-    {"mag_var", "decimal number", NULL, offsetof(nmea_rma, mag_var), FIELD_DECIMAL, 1, 0},
-    {"mag_var_dir", "east_west code (E W)", &nmea_east_west_def, offsetof(nmea_rma, mag_var_dir), FIELD_ENUM, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_rma, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_rma, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_rma, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_rma, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("time_difference_a"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rma, time_difference_a), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("time_difference_b"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rma, time_difference_b), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rma, speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("course"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rma, course), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mag_var"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rma, mag_var), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mag_var_dir"), ERROR_TEXT("east_west code (E W)"), &nmea_east_west_def, offsetof(nmea_rma, mag_var_dir), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_rma, mode), FIELD_ENUM, 1, 0},
 };
 static const layout rma_layout = {
     .sentence = "RMA", .fields = rma_fields, .before = 9, .optional = 1, .fixed = 11, .max_fields = 12,
@@ -12519,18 +12590,18 @@ size_t nmea_build_rma(const nmea_rma *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPRMB,A,0.20,R,A003,A002,6004.099,N,01940.515,E,0.310,180.1,-0.3,V,D*68 */
 static const layout_field rmb_fields[] = {
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_rmb, status), FIELD_ENUM, 1, 0},
-    {"cross_track_error", "decimal number of at least 0", &range_from_0, offsetof(nmea_rmb, cross_track_error), FIELD_DECIMAL, 1, 0},
-    {"steer_direction", "left_right code (L R)", &nmea_left_right_def, offsetof(nmea_rmb, steer_direction), FIELD_ENUM, 1, 0},
-    {"origin_waypoint", "text", NULL, offsetof(nmea_rmb, origin_waypoint), FIELD_TEXT, 1, 0},
-    {"destination_waypoint", "text", NULL, offsetof(nmea_rmb, destination_waypoint), FIELD_TEXT, 1, 0},
-    {"destination_lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_rmb, destination_lat), FIELD_LATITUDE, 2, 0},
-    {"destination_lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_rmb, destination_lon), FIELD_LONGITUDE, 2, 0},
-    {"range_to_destination", "decimal number of at least 0", &range_from_0, offsetof(nmea_rmb, range_to_destination), FIELD_DECIMAL, 1, 0},
-    {"bearing_to_destination", "decimal number of at least 0", &range_from_0, offsetof(nmea_rmb, bearing_to_destination), FIELD_DECIMAL, 1, 0},
-    {"closing_velocity", "decimal number", NULL, offsetof(nmea_rmb, closing_velocity), FIELD_DECIMAL, 1, 0},
-    {"arrival_status", "rmb_arrival_status code (A V)", &nmea_rmb_arrival_status_def, offsetof(nmea_rmb, arrival_status), FIELD_ENUM, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_rmb, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_rmb, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cross_track_error"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_rmb, cross_track_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("steer_direction"), ERROR_TEXT("left_right code (L R)"), &nmea_left_right_def, offsetof(nmea_rmb, steer_direction), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("origin_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_rmb, origin_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("destination_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_rmb, destination_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("destination_lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_rmb, destination_lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("destination_lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_rmb, destination_lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("range_to_destination"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_rmb, range_to_destination), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_to_destination"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_rmb, bearing_to_destination), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("closing_velocity"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rmb, closing_velocity), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("arrival_status"), ERROR_TEXT("rmb_arrival_status code (A V)"), &nmea_rmb_arrival_status_def, offsetof(nmea_rmb, arrival_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_rmb, mode), FIELD_ENUM, 1, 0},
 };
 static const layout rmb_layout = {
     .sentence = "RMB", .fields = rmb_fields, .before = 11, .optional = 1, .fixed = 13, .max_fields = 14,
@@ -12560,17 +12631,17 @@ size_t nmea_build_rmb(const nmea_rmb *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GNRMC,102348.00,V,5550.608356,N,03732.248949,E,000.00000,325.5,300518,,,N,V*24 */
 static const layout_field rmc_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_rmc, time), FIELD_TIME, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_rmc, status), FIELD_ENUM, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_rmc, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_rmc, lon), FIELD_LONGITUDE, 2, 0},
-    {"speed", "decimal number", NULL, offsetof(nmea_rmc, speed), FIELD_DECIMAL, 1, 0},
-    {"course", "decimal number 0..359.9", &range_0_to_359p9, offsetof(nmea_rmc, course), FIELD_DECIMAL, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_rmc, date), FIELD_DATE, 1, 0},
-    {"mag_var", "decimal number", NULL, offsetof(nmea_rmc, mag_var), FIELD_DECIMAL, 1, 0},
-    {"mag_var_dir", "rmc_mag_var_dir code (E W)", &nmea_rmc_mag_var_dir_def, offsetof(nmea_rmc, mag_var_dir), FIELD_ENUM, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_rmc, mode), FIELD_ENUM, 1, 0},
-    {"nav_status", "nav_status code (S C U V)", &nmea_nav_status_def, offsetof(nmea_rmc, nav_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_rmc, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_rmc, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_rmc, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_rmc, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rmc, speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("course"), ERROR_TEXT("decimal number 0..359.9"), &range_0_to_359p9, offsetof(nmea_rmc, course), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_rmc, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("mag_var"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rmc, mag_var), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mag_var_dir"), ERROR_TEXT("rmc_mag_var_dir code (E W)"), &nmea_rmc_mag_var_dir_def, offsetof(nmea_rmc, mag_var_dir), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_rmc, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("nav_status"), ERROR_TEXT("nav_status code (S C U V)"), &nmea_nav_status_def, offsetof(nmea_rmc, nav_status), FIELD_ENUM, 1, 0},
 };
 static const layout rmc_layout = {
     .sentence = "RMC", .fields = rmc_fields, .before = 9, .optional = 2, .fixed = 11, .max_fields = 13,
@@ -12656,19 +12727,19 @@ size_t nmea_build_rmc(const nmea_rmc *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPRMC,000452.981,V,36000.0000,N,72000.0000,E,0.000000,,190120,,*32 */
 static const layout_field rmc_sentinel_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_rmc_sentinel, time), FIELD_TIME, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_rmc_sentinel, status), FIELD_ENUM, 1, 0},
-    {"lat_value", "decimal number", NULL, offsetof(nmea_rmc_sentinel, lat_value), FIELD_DECIMAL, 1, 0},
-    {"lat_hemisphere", "north_south code (N S)", &nmea_north_south_def, offsetof(nmea_rmc_sentinel, lat_hemisphere), FIELD_ENUM, 1, 0},
-    {"lon_value", "decimal number", NULL, offsetof(nmea_rmc_sentinel, lon_value), FIELD_DECIMAL, 1, 0},
-    {"lon_hemisphere", "east_west code (E W)", &nmea_east_west_def, offsetof(nmea_rmc_sentinel, lon_hemisphere), FIELD_ENUM, 1, 0},
-    {"speed", "decimal number", NULL, offsetof(nmea_rmc_sentinel, speed), FIELD_DECIMAL, 1, 0},
-    {"course", "decimal number 0..359.9", &range_0_to_359p9, offsetof(nmea_rmc_sentinel, course), FIELD_DECIMAL, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_rmc_sentinel, date), FIELD_DATE, 1, 0},
-    {"mag_var", "decimal number", NULL, offsetof(nmea_rmc_sentinel, mag_var), FIELD_DECIMAL, 1, 0},
-    {"mag_var_dir", "rmc_mag_var_dir code (E W)", &nmea_rmc_mag_var_dir_def, offsetof(nmea_rmc_sentinel, mag_var_dir), FIELD_ENUM, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_rmc_sentinel, mode), FIELD_ENUM, 1, 0},
-    {"nav_status", "nav_status code (S C U V)", &nmea_nav_status_def, offsetof(nmea_rmc_sentinel, nav_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_rmc_sentinel, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_rmc_sentinel, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lat_value"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rmc_sentinel, lat_value), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat_hemisphere"), ERROR_TEXT("north_south code (N S)"), &nmea_north_south_def, offsetof(nmea_rmc_sentinel, lat_hemisphere), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lon_value"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rmc_sentinel, lon_value), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon_hemisphere"), ERROR_TEXT("east_west code (E W)"), &nmea_east_west_def, offsetof(nmea_rmc_sentinel, lon_hemisphere), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rmc_sentinel, speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("course"), ERROR_TEXT("decimal number 0..359.9"), &range_0_to_359p9, offsetof(nmea_rmc_sentinel, course), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_rmc_sentinel, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("mag_var"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rmc_sentinel, mag_var), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mag_var_dir"), ERROR_TEXT("rmc_mag_var_dir code (E W)"), &nmea_rmc_mag_var_dir_def, offsetof(nmea_rmc_sentinel, mag_var_dir), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_rmc_sentinel, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("nav_status"), ERROR_TEXT("nav_status code (S C U V)"), &nmea_nav_status_def, offsetof(nmea_rmc_sentinel, nav_status), FIELD_ENUM, 1, 0},
 };
 static const uint16_t rmc_sentinel_same_as_main[] = {1, 2, 4, 6, 7, 8, 9, 10, 11, 12, 13, 0};
 static const layout rmc_sentinel_layout = {
@@ -12760,15 +12831,15 @@ size_t nmea_build_rmc_sentinel(const nmea_rmc_sentinel *s, char *buf, size_t cap
 
 /* $GPRMC,130711.00,A,5012.790800,N,00806.879600,W,0.5,3.0,010611,,A*6A */
 static const layout_field rmc_no_variation_direction_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_rmc_no_variation_direction, time), FIELD_TIME, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_rmc_no_variation_direction, status), FIELD_ENUM, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_rmc_no_variation_direction, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_rmc_no_variation_direction, lon), FIELD_LONGITUDE, 2, 0},
-    {"speed", "decimal number", NULL, offsetof(nmea_rmc_no_variation_direction, speed), FIELD_DECIMAL, 1, 0},
-    {"course", "decimal number 0..359.9", &range_0_to_359p9, offsetof(nmea_rmc_no_variation_direction, course), FIELD_DECIMAL, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_rmc_no_variation_direction, date), FIELD_DATE, 1, 0},
-    {"mag_var", "decimal number", NULL, offsetof(nmea_rmc_no_variation_direction, mag_var), FIELD_DECIMAL, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_rmc_no_variation_direction, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_rmc_no_variation_direction, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_rmc_no_variation_direction, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_rmc_no_variation_direction, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_rmc_no_variation_direction, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rmc_no_variation_direction, speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("course"), ERROR_TEXT("decimal number 0..359.9"), &range_0_to_359p9, offsetof(nmea_rmc_no_variation_direction, course), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_rmc_no_variation_direction, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("mag_var"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rmc_no_variation_direction, mag_var), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_rmc_no_variation_direction, mode), FIELD_ENUM, 1, 0},
 };
 static const uint16_t rmc_no_variation_direction_same_as_main[] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 0};
 static const layout rmc_no_variation_direction_layout = {
@@ -12850,15 +12921,15 @@ size_t nmea_build_rmc_no_variation_direction(const nmea_rmc_no_variation_directi
 /* ------------------------------------------------------------------------------------------ */
 /* ROR: Rudder order status (spec/standard/ror.yaml) */
 static const layout_field ror_fields[] = {
-    {"starboard_order", "decimal number", NULL, offsetof(nmea_ror, starboard_order), FIELD_DECIMAL, 1, 0},
-    {"starboard_status", "status code (A V)", &nmea_status_def, offsetof(nmea_ror, starboard_status), FIELD_ENUM, 1, 0},
-    {"port_order", "decimal number", NULL, offsetof(nmea_ror, port_order), FIELD_DECIMAL, 1, 0},
-    {"port_status", "status code (A V)", &nmea_status_def, offsetof(nmea_ror, port_status), FIELD_ENUM, 1, 0},
-    {"command_location", "prc_operating_location code (B P S C E W)", &nmea_prc_operating_location_def, offsetof(nmea_ror, command_location), FIELD_ENUM, 1, 0},
-    {"center_order", "decimal number", NULL, offsetof(nmea_ror, center_order), FIELD_DECIMAL, 1, 0},
-    {"center_status", "status code (A V)", &nmea_status_def, offsetof(nmea_ror, center_status), FIELD_ENUM, 1, 0},
-    {"bow_order", "decimal number", NULL, offsetof(nmea_ror, bow_order), FIELD_DECIMAL, 1, 0},
-    {"bow_status", "status code (A V)", &nmea_status_def, offsetof(nmea_ror, bow_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("starboard_order"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ror, starboard_order), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("starboard_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_ror, starboard_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("port_order"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ror, port_order), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("port_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_ror, port_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("command_location"), ERROR_TEXT("prc_operating_location code (B P S C E W)"), &nmea_prc_operating_location_def, offsetof(nmea_ror, command_location), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("center_order"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ror, center_order), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("center_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_ror, center_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("bow_order"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ror, bow_order), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bow_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_ror, bow_status), FIELD_ENUM, 1, 0},
 };
 static const layout ror_layout = {
     .sentence = "ROR", .fields = ror_fields, .before = 5, .optional = 4, .fixed = 5, .max_fields = 9,
@@ -12888,8 +12959,8 @@ size_t nmea_build_ror(const nmea_ror *s, char *buf, size_t cap, nmea_error *err)
 
 /* $HEROT,0.0,A*2B */
 static const layout_field rot_fields[] = {
-    {"rate_of_turn", "decimal number", NULL, offsetof(nmea_rot, rate_of_turn), FIELD_DECIMAL, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_rot, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rate_of_turn"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rot, rate_of_turn), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_rot, status), FIELD_ENUM, 1, 0},
 };
 static const layout rot_layout = {
     .sentence = "ROT", .fields = rot_fields, .before = 2, .fixed = 2, .max_fields = 2, .size = sizeof(nmea_rot),
@@ -12918,11 +12989,11 @@ size_t nmea_build_rot(const nmea_rot *s, char *buf, size_t cap, nmea_error *err)
 
 /* $RCRPM,S,0,74.6,30.0,A*56 */
 static const layout_field rpm_fields[] = {
-    {"source", "rpm_source code (S E)", &nmea_rpm_source_def, offsetof(nmea_rpm, source), FIELD_ENUM, 1, 0},
-    {"number", "integer of at least 0", &range_from_0, offsetof(nmea_rpm, number), FIELD_INTEGER, 1, 0},
-    {"speed", "decimal number", NULL, offsetof(nmea_rpm, speed), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number", NULL, offsetof(nmea_rpm, pitch), FIELD_DECIMAL, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_rpm, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("source"), ERROR_TEXT("rpm_source code (S E)"), &nmea_rpm_source_def, offsetof(nmea_rpm, source), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("number"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_rpm, number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rpm, speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rpm, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_rpm, status), FIELD_ENUM, 1, 0},
 };
 static const layout rpm_layout = {
     .sentence = "RPM", .fields = rpm_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_rpm),
@@ -12949,12 +13020,12 @@ size_t nmea_build_rpm(const nmea_rpm *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* RRT: Report route transfer (spec/standard/rrt.yaml) */
 static const layout_field rrt_fields[] = {
-    {"transfer_type", "rrt_transfer_type code (M A Q)", &nmea_rrt_transfer_type_def, offsetof(nmea_rrt, transfer_type), FIELD_ENUM, 1, 0},
-    {"route_name", "text", NULL, offsetof(nmea_rrt, route_name), FIELD_TEXT, 1, 0},
-    {"route_version", "text", NULL, offsetof(nmea_rrt, route_version), FIELD_TEXT, 1, 0},
-    {"waypoint_id", "text", NULL, offsetof(nmea_rrt, waypoint_id), FIELD_TEXT, 1, 0},
-    {"file_status", "rrt_file_status code (A E)", &nmea_rrt_file_status_def, offsetof(nmea_rrt, file_status), FIELD_ENUM, 1, 0},
-    {"application_status", "rrt_application_status code (A V P N)", &nmea_rrt_application_status_def, offsetof(nmea_rrt, application_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("transfer_type"), ERROR_TEXT("rrt_transfer_type code (M A Q)"), &nmea_rrt_transfer_type_def, offsetof(nmea_rrt, transfer_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("route_name"), ERROR_TEXT("text"), NULL, offsetof(nmea_rrt, route_name), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("route_version"), ERROR_TEXT("text"), NULL, offsetof(nmea_rrt, route_version), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("waypoint_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_rrt, waypoint_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("file_status"), ERROR_TEXT("rrt_file_status code (A E)"), &nmea_rrt_file_status_def, offsetof(nmea_rrt, file_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("application_status"), ERROR_TEXT("rrt_application_status code (A V P N)"), &nmea_rrt_application_status_def, offsetof(nmea_rrt, application_status), FIELD_ENUM, 1, 0},
 };
 static const layout rrt_layout = {
     .sentence = "RRT", .fields = rrt_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_rrt),
@@ -12983,14 +13054,14 @@ size_t nmea_build_rrt(const nmea_rrt *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIRSA,10.5,A,0.4,A*70 */
 static const layout_field rsa_fields[] = {
-    {"starboard_rudder", "decimal number", NULL, offsetof(nmea_rsa, starboard_rudder), FIELD_DECIMAL, 1, 0},
-    {"starboard_status", "status code (A V)", &nmea_status_def, offsetof(nmea_rsa, starboard_status), FIELD_ENUM, 1, 0},
-    {"port_rudder", "decimal number", NULL, offsetof(nmea_rsa, port_rudder), FIELD_DECIMAL, 1, 0},
-    {"port_status", "status code (A V)", &nmea_status_def, offsetof(nmea_rsa, port_status), FIELD_ENUM, 1, 0},
-    {"center_rudder", "decimal number", NULL, offsetof(nmea_rsa, center_rudder), FIELD_DECIMAL, 1, 0},
-    {"center_status", "status code (A V)", &nmea_status_def, offsetof(nmea_rsa, center_status), FIELD_ENUM, 1, 0},
-    {"bow_rudder", "decimal number", NULL, offsetof(nmea_rsa, bow_rudder), FIELD_DECIMAL, 1, 0},
-    {"bow_status", "status code (A V)", &nmea_status_def, offsetof(nmea_rsa, bow_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("starboard_rudder"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsa, starboard_rudder), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("starboard_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_rsa, starboard_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("port_rudder"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsa, port_rudder), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("port_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_rsa, port_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("center_rudder"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsa, center_rudder), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("center_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_rsa, center_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("bow_rudder"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsa, bow_rudder), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bow_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_rsa, bow_status), FIELD_ENUM, 1, 0},
 };
 static const layout rsa_layout = {
     .sentence = "RSA", .fields = rsa_fields, .before = 4, .optional = 4, .fixed = 4, .max_fields = 8,
@@ -13020,19 +13091,19 @@ size_t nmea_build_rsa(const nmea_rsa *s, char *buf, size_t cap, nmea_error *err)
 
 /* $RARSD,12,90,24,45,6,270,12,315,6.5,118,96,N,N*5A */
 static const layout_field rsd_fields[] = {
-    {"origin1_range", "decimal number", NULL, offsetof(nmea_rsd, origin1_range), FIELD_DECIMAL, 1, 0},
-    {"origin1_bearing", "decimal number", NULL, offsetof(nmea_rsd, origin1_bearing), FIELD_DECIMAL, 1, 0},
-    {"vrm1", "decimal number", NULL, offsetof(nmea_rsd, vrm1), FIELD_DECIMAL, 1, 0},
-    {"ebl1", "decimal number", NULL, offsetof(nmea_rsd, ebl1), FIELD_DECIMAL, 1, 0},
-    {"origin2_range", "decimal number", NULL, offsetof(nmea_rsd, origin2_range), FIELD_DECIMAL, 1, 0},
-    {"origin2_bearing", "decimal number", NULL, offsetof(nmea_rsd, origin2_bearing), FIELD_DECIMAL, 1, 0},
-    {"vrm2", "decimal number", NULL, offsetof(nmea_rsd, vrm2), FIELD_DECIMAL, 1, 0},
-    {"ebl2", "decimal number", NULL, offsetof(nmea_rsd, ebl2), FIELD_DECIMAL, 1, 0},
-    {"cursor_range", "decimal number", NULL, offsetof(nmea_rsd, cursor_range), FIELD_DECIMAL, 1, 0},
-    {"cursor_bearing", "decimal number", NULL, offsetof(nmea_rsd, cursor_bearing), FIELD_DECIMAL, 1, 0},
-    {"range_scale", "decimal number", NULL, offsetof(nmea_rsd, range_scale), FIELD_DECIMAL, 1, 0},
-    {"range_units", "ttm_units code (K N S)", &nmea_ttm_units_def, offsetof(nmea_rsd, range_units), FIELD_ENUM, 1, 0},
-    {"display_rotation", "rsd_display_rotation code (C H N)", &nmea_rsd_display_rotation_def, offsetof(nmea_rsd, display_rotation), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("origin1_range"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsd, origin1_range), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("origin1_bearing"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsd, origin1_bearing), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vrm1"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsd, vrm1), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ebl1"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsd, ebl1), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("origin2_range"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsd, origin2_range), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("origin2_bearing"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsd, origin2_bearing), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vrm2"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsd, vrm2), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ebl2"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsd, ebl2), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("cursor_range"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsd, cursor_range), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("cursor_bearing"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsd, cursor_bearing), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("range_scale"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_rsd, range_scale), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("range_units"), ERROR_TEXT("ttm_units code (K N S)"), &nmea_ttm_units_def, offsetof(nmea_rsd, range_units), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("display_rotation"), ERROR_TEXT("rsd_display_rotation code (C H N)"), &nmea_rsd_display_rotation_def, offsetof(nmea_rsd, display_rotation), FIELD_ENUM, 1, 0},
 };
 static const layout rsd_layout = {
     .sentence = "RSD", .fields = rsd_fields, .before = 13, .fixed = 13, .max_fields = 13,
@@ -13061,16 +13132,16 @@ size_t nmea_build_rsd(const nmea_rsd *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPRTE,2,1,c,0,PBRCPK,PBRTO,PTELGR,PPLAND,PYAMBU,PPFAIR,PWARRN,PMORTL,PLISMR*73 */
 static const layout_field rte_fields[] = {
-    {"message_count", "integer of at least 1", &range_from_1, offsetof(nmea_rte, message_count), FIELD_INTEGER, 1, 0},
-    {"message_number", "integer of at least 1", &range_from_1, offsetof(nmea_rte, message_number), FIELD_INTEGER, 1, 0},
-    {"route_mode", "rte_mode code (c w)", &nmea_rte_mode_def, offsetof(nmea_rte, route_mode), FIELD_ENUM, 1, 0},
-    {"route_id", "text", NULL, offsetof(nmea_rte, route_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("message_count"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_rte, message_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message_number"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_rte, message_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("route_mode"), ERROR_TEXT("rte_mode code (c w)"), &nmea_rte_mode_def, offsetof(nmea_rte, route_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("route_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_rte, route_id), FIELD_TEXT, 1, 0},
 };
 static const layout_field rte_group_fields[] = {
-    {"waypoint", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("waypoint"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group rte_group = {
-    .id = "waypoints", .fields = rte_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 32,
+    .id = ERROR_TEXT("waypoints"), .fields = rte_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 32,
     .single = true, .offset = offsetof(nmea_rte, waypoints), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_rte, waypoints.count),
 };
@@ -13104,15 +13175,15 @@ size_t nmea_build_rte(const nmea_rte *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* SFI: Scanning frequency information (spec/standard/sfi.yaml) */
 static const layout_field sfi_fields[] = {
-    {"total_sentences", "integer of at least 1", &range_from_1, offsetof(nmea_sfi, total_sentences), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer of at least 1", &range_from_1, offsetof(nmea_sfi, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("total_sentences"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_sfi, total_sentences), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_sfi, sentence_number), FIELD_INTEGER, 1, 0},
 };
 static const layout_field sfi_group_fields[] = {
-    {"frequency", "text", NULL, offsetof(nmea_sfi_frequencie, frequency), FIELD_TEXT, 1, 0},
-    {"mode", "fsi_mode code (d e m o q s t w x { |)", &nmea_fsi_mode_def, offsetof(nmea_sfi_frequencie, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("frequency"), ERROR_TEXT("text"), NULL, offsetof(nmea_sfi_frequencie, frequency), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("fsi_mode code (d e m o q s t w x { |)"), &nmea_fsi_mode_def, offsetof(nmea_sfi_frequencie, mode), FIELD_ENUM, 1, 0},
 };
 static const layout_group sfi_group = {
-    .id = "frequencies", .fields = sfi_group_fields, .field_count = 2, .width = 2, .min = 0, .max = 6,
+    .id = ERROR_TEXT("frequencies"), .fields = sfi_group_fields, .field_count = 2, .width = 2, .min = 0, .max = 6,
     .single = false, .offset = offsetof(nmea_sfi, frequencies), .entry_size = sizeof(nmea_sfi_frequencie),
     .count_offset = offsetof(nmea_sfi, frequencies.count),
 };
@@ -13146,20 +13217,20 @@ size_t nmea_build_sfi(const nmea_sfi *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* SM1: SafetyNET message, all ships/NAVAREA (spec/standard/sm1.yaml) */
 static const layout_field sm1_fields[] = {
-    {"msi_status", "sm1_msi_status code (A V)", &nmea_sm1_msi_status_def, offsetof(nmea_sm1, msi_status), FIELD_ENUM, 1, 0},
-    {"unique_message_number", "integer 0..999999", &range_0_to_999999, offsetof(nmea_sm1, unique_message_number), FIELD_INTEGER, 1, 0},
-    {"les_sequence_number", "integer", NULL, offsetof(nmea_sm1, les_sequence_number), FIELD_INTEGER, 1, 0},
-    {"les_id", "integer", NULL, offsetof(nmea_sm1, les_id), FIELD_INTEGER, 1, 0},
-    {"ocean_region", "sm1_ocean_region code (0 1 2 3 8 9)", &nmea_sm1_ocean_region_def, offsetof(nmea_sm1, ocean_region), FIELD_ENUM, 1, 0},
-    {"priority", "sm1_priority code (1 2 3 9)", &nmea_sm1_priority_def, offsetof(nmea_sm1, priority), FIELD_ENUM, 1, 0},
-    {"service_code", "integer", NULL, offsetof(nmea_sm1, service_code), FIELD_INTEGER, 1, 0},
-    {"presentation_code", "integer", NULL, offsetof(nmea_sm1, presentation_code), FIELD_INTEGER, 1, 0},
-    {"year", "integer", NULL, offsetof(nmea_sm1, year), FIELD_INTEGER, 1, 0},
-    {"month", "integer 1..12", &range_1_to_12, offsetof(nmea_sm1, month), FIELD_INTEGER, 1, 0},
-    {"day", "integer 1..31", &range_1_to_31, offsetof(nmea_sm1, day), FIELD_INTEGER, 1, 0},
-    {"hour", "integer 0..23", &range_0_to_23, offsetof(nmea_sm1, hour), FIELD_INTEGER, 1, 0},
-    {"minute", "integer 0..59", &range_0_to_59, offsetof(nmea_sm1, minute), FIELD_INTEGER, 1, 0},
-    {"address_code", "integer 0..21", &range_0_to_21, offsetof(nmea_sm1, address_code), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msi_status"), ERROR_TEXT("sm1_msi_status code (A V)"), &nmea_sm1_msi_status_def, offsetof(nmea_sm1, msi_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("unique_message_number"), ERROR_TEXT("integer 0..999999"), &range_0_to_999999, offsetof(nmea_sm1, unique_message_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("les_sequence_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm1, les_sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("les_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm1, les_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ocean_region"), ERROR_TEXT("sm1_ocean_region code (0 1 2 3 8 9)"), &nmea_sm1_ocean_region_def, offsetof(nmea_sm1, ocean_region), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("priority"), ERROR_TEXT("sm1_priority code (1 2 3 9)"), &nmea_sm1_priority_def, offsetof(nmea_sm1, priority), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("service_code"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm1, service_code), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("presentation_code"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm1, presentation_code), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm1, year), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("month"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_sm1, month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("day"), ERROR_TEXT("integer 1..31"), &range_1_to_31, offsetof(nmea_sm1, day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("hour"), ERROR_TEXT("integer 0..23"), &range_0_to_23, offsetof(nmea_sm1, hour), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("minute"), ERROR_TEXT("integer 0..59"), &range_0_to_59, offsetof(nmea_sm1, minute), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("address_code"), ERROR_TEXT("integer 0..21"), &range_0_to_21, offsetof(nmea_sm1, address_code), FIELD_INTEGER, 1, 0},
 };
 static const layout sm1_layout = {
     .sentence = "SM1", .fields = sm1_fields, .before = 14, .fixed = 14, .max_fields = 14,
@@ -13186,22 +13257,22 @@ size_t nmea_build_sm1(const nmea_sm1 *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* SM2: SafetyNET message, coastal warning area (spec/standard/sm2.yaml) */
 static const layout_field sm2_fields[] = {
-    {"msi_status", "sm1_msi_status code (A V)", &nmea_sm1_msi_status_def, offsetof(nmea_sm2, msi_status), FIELD_ENUM, 1, 0},
-    {"unique_message_number", "integer 0..999999", &range_0_to_999999, offsetof(nmea_sm2, unique_message_number), FIELD_INTEGER, 1, 0},
-    {"les_sequence_number", "integer", NULL, offsetof(nmea_sm2, les_sequence_number), FIELD_INTEGER, 1, 0},
-    {"les_id", "integer", NULL, offsetof(nmea_sm2, les_id), FIELD_INTEGER, 1, 0},
-    {"ocean_region", "sm1_ocean_region code (0 1 2 3 8 9)", &nmea_sm1_ocean_region_def, offsetof(nmea_sm2, ocean_region), FIELD_ENUM, 1, 0},
-    {"priority", "sm1_priority code (1 2 3 9)", &nmea_sm1_priority_def, offsetof(nmea_sm2, priority), FIELD_ENUM, 1, 0},
-    {"service_code", "integer", NULL, offsetof(nmea_sm2, service_code), FIELD_INTEGER, 1, 0},
-    {"presentation_code", "integer", NULL, offsetof(nmea_sm2, presentation_code), FIELD_INTEGER, 1, 0},
-    {"year", "integer", NULL, offsetof(nmea_sm2, year), FIELD_INTEGER, 1, 0},
-    {"month", "integer 1..12", &range_1_to_12, offsetof(nmea_sm2, month), FIELD_INTEGER, 1, 0},
-    {"day", "integer 1..31", &range_1_to_31, offsetof(nmea_sm2, day), FIELD_INTEGER, 1, 0},
-    {"hour", "integer 0..23", &range_0_to_23, offsetof(nmea_sm2, hour), FIELD_INTEGER, 1, 0},
-    {"minute", "integer 0..59", &range_0_to_59, offsetof(nmea_sm2, minute), FIELD_INTEGER, 1, 0},
-    {"navarea", "integer 1..21", &range_1_to_21, offsetof(nmea_sm2, navarea), FIELD_INTEGER, 1, 0},
-    {"coastal_warning_area", "one character", NULL, offsetof(nmea_sm2, coastal_warning_area), FIELD_CHAR, 1, 0},
-    {"subject_indicator", "sm2_subject code (A B C D E F G H J K L V W X Y Z)", &nmea_sm2_subject_def, offsetof(nmea_sm2, subject_indicator), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("msi_status"), ERROR_TEXT("sm1_msi_status code (A V)"), &nmea_sm1_msi_status_def, offsetof(nmea_sm2, msi_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("unique_message_number"), ERROR_TEXT("integer 0..999999"), &range_0_to_999999, offsetof(nmea_sm2, unique_message_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("les_sequence_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm2, les_sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("les_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm2, les_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ocean_region"), ERROR_TEXT("sm1_ocean_region code (0 1 2 3 8 9)"), &nmea_sm1_ocean_region_def, offsetof(nmea_sm2, ocean_region), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("priority"), ERROR_TEXT("sm1_priority code (1 2 3 9)"), &nmea_sm1_priority_def, offsetof(nmea_sm2, priority), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("service_code"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm2, service_code), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("presentation_code"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm2, presentation_code), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm2, year), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("month"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_sm2, month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("day"), ERROR_TEXT("integer 1..31"), &range_1_to_31, offsetof(nmea_sm2, day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("hour"), ERROR_TEXT("integer 0..23"), &range_0_to_23, offsetof(nmea_sm2, hour), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("minute"), ERROR_TEXT("integer 0..59"), &range_0_to_59, offsetof(nmea_sm2, minute), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("navarea"), ERROR_TEXT("integer 1..21"), &range_1_to_21, offsetof(nmea_sm2, navarea), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("coastal_warning_area"), ERROR_TEXT("one character"), NULL, offsetof(nmea_sm2, coastal_warning_area), FIELD_CHAR, 1, 0},
+    {ERROR_TEXT("subject_indicator"), ERROR_TEXT("sm2_subject code (A B C D E F G H J K L V W X Y Z)"), &nmea_sm2_subject_def, offsetof(nmea_sm2, subject_indicator), FIELD_ENUM, 1, 0},
 };
 static const layout sm2_layout = {
     .sentence = "SM2", .fields = sm2_fields, .before = 16, .fixed = 16, .max_fields = 16,
@@ -13228,22 +13299,22 @@ size_t nmea_build_sm2(const nmea_sm2 *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* SM3: SafetyNET message, circular area address (spec/standard/sm3.yaml) */
 static const layout_field sm3_fields[] = {
-    {"msi_status", "sm1_msi_status code (A V)", &nmea_sm1_msi_status_def, offsetof(nmea_sm3, msi_status), FIELD_ENUM, 1, 0},
-    {"unique_message_number", "integer 0..999999", &range_0_to_999999, offsetof(nmea_sm3, unique_message_number), FIELD_INTEGER, 1, 0},
-    {"les_sequence_number", "integer", NULL, offsetof(nmea_sm3, les_sequence_number), FIELD_INTEGER, 1, 0},
-    {"les_id", "integer", NULL, offsetof(nmea_sm3, les_id), FIELD_INTEGER, 1, 0},
-    {"ocean_region", "sm1_ocean_region code (0 1 2 3 8 9)", &nmea_sm1_ocean_region_def, offsetof(nmea_sm3, ocean_region), FIELD_ENUM, 1, 0},
-    {"priority", "sm1_priority code (1 2 3 9)", &nmea_sm1_priority_def, offsetof(nmea_sm3, priority), FIELD_ENUM, 1, 0},
-    {"service_code", "integer", NULL, offsetof(nmea_sm3, service_code), FIELD_INTEGER, 1, 0},
-    {"presentation_code", "integer", NULL, offsetof(nmea_sm3, presentation_code), FIELD_INTEGER, 1, 0},
-    {"year", "integer", NULL, offsetof(nmea_sm3, year), FIELD_INTEGER, 1, 0},
-    {"month", "integer 1..12", &range_1_to_12, offsetof(nmea_sm3, month), FIELD_INTEGER, 1, 0},
-    {"day", "integer 1..31", &range_1_to_31, offsetof(nmea_sm3, day), FIELD_INTEGER, 1, 0},
-    {"hour", "integer 0..23", &range_0_to_23, offsetof(nmea_sm3, hour), FIELD_INTEGER, 1, 0},
-    {"minute", "integer 0..59", &range_0_to_59, offsetof(nmea_sm3, minute), FIELD_INTEGER, 1, 0},
-    {"center_lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_sm3, center_lat), FIELD_LATITUDE, 2, 0},
-    {"center_lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_sm3, center_lon), FIELD_LONGITUDE, 2, 0},
-    {"radius", "integer of at most 999", &range_up_to_999, offsetof(nmea_sm3, radius), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msi_status"), ERROR_TEXT("sm1_msi_status code (A V)"), &nmea_sm1_msi_status_def, offsetof(nmea_sm3, msi_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("unique_message_number"), ERROR_TEXT("integer 0..999999"), &range_0_to_999999, offsetof(nmea_sm3, unique_message_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("les_sequence_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm3, les_sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("les_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm3, les_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ocean_region"), ERROR_TEXT("sm1_ocean_region code (0 1 2 3 8 9)"), &nmea_sm1_ocean_region_def, offsetof(nmea_sm3, ocean_region), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("priority"), ERROR_TEXT("sm1_priority code (1 2 3 9)"), &nmea_sm1_priority_def, offsetof(nmea_sm3, priority), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("service_code"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm3, service_code), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("presentation_code"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm3, presentation_code), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm3, year), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("month"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_sm3, month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("day"), ERROR_TEXT("integer 1..31"), &range_1_to_31, offsetof(nmea_sm3, day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("hour"), ERROR_TEXT("integer 0..23"), &range_0_to_23, offsetof(nmea_sm3, hour), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("minute"), ERROR_TEXT("integer 0..59"), &range_0_to_59, offsetof(nmea_sm3, minute), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("center_lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_sm3, center_lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("center_lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_sm3, center_lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("radius"), ERROR_TEXT("integer of at most 999"), &range_up_to_999, offsetof(nmea_sm3, radius), FIELD_INTEGER, 1, 0},
 };
 static const layout sm3_layout = {
     .sentence = "SM3", .fields = sm3_fields, .before = 16, .fixed = 18, .max_fields = 18,
@@ -13270,23 +13341,23 @@ size_t nmea_build_sm3(const nmea_sm3 *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* SM4: SafetyNET message, rectangular area address (spec/standard/sm4.yaml) */
 static const layout_field sm4_fields[] = {
-    {"msi_status", "sm1_msi_status code (A V)", &nmea_sm1_msi_status_def, offsetof(nmea_sm4, msi_status), FIELD_ENUM, 1, 0},
-    {"unique_message_number", "integer 0..999999", &range_0_to_999999, offsetof(nmea_sm4, unique_message_number), FIELD_INTEGER, 1, 0},
-    {"les_sequence_number", "integer", NULL, offsetof(nmea_sm4, les_sequence_number), FIELD_INTEGER, 1, 0},
-    {"les_id", "integer", NULL, offsetof(nmea_sm4, les_id), FIELD_INTEGER, 1, 0},
-    {"ocean_region", "sm1_ocean_region code (0 1 2 3 8 9)", &nmea_sm1_ocean_region_def, offsetof(nmea_sm4, ocean_region), FIELD_ENUM, 1, 0},
-    {"priority", "sm1_priority code (1 2 3 9)", &nmea_sm1_priority_def, offsetof(nmea_sm4, priority), FIELD_ENUM, 1, 0},
-    {"service_code", "integer", NULL, offsetof(nmea_sm4, service_code), FIELD_INTEGER, 1, 0},
-    {"presentation_code", "integer", NULL, offsetof(nmea_sm4, presentation_code), FIELD_INTEGER, 1, 0},
-    {"year", "integer", NULL, offsetof(nmea_sm4, year), FIELD_INTEGER, 1, 0},
-    {"month", "integer 1..12", &range_1_to_12, offsetof(nmea_sm4, month), FIELD_INTEGER, 1, 0},
-    {"day", "integer 1..31", &range_1_to_31, offsetof(nmea_sm4, day), FIELD_INTEGER, 1, 0},
-    {"hour", "integer 0..23", &range_0_to_23, offsetof(nmea_sm4, hour), FIELD_INTEGER, 1, 0},
-    {"minute", "integer 0..59", &range_0_to_59, offsetof(nmea_sm4, minute), FIELD_INTEGER, 1, 0},
-    {"sw_lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_sm4, sw_lat), FIELD_LATITUDE, 2, 0},
-    {"sw_lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_sm4, sw_lon), FIELD_LONGITUDE, 2, 0},
-    {"extent_north", "integer", NULL, offsetof(nmea_sm4, extent_north), FIELD_INTEGER, 1, 0},
-    {"extent_east", "integer", NULL, offsetof(nmea_sm4, extent_east), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msi_status"), ERROR_TEXT("sm1_msi_status code (A V)"), &nmea_sm1_msi_status_def, offsetof(nmea_sm4, msi_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("unique_message_number"), ERROR_TEXT("integer 0..999999"), &range_0_to_999999, offsetof(nmea_sm4, unique_message_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("les_sequence_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm4, les_sequence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("les_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm4, les_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ocean_region"), ERROR_TEXT("sm1_ocean_region code (0 1 2 3 8 9)"), &nmea_sm1_ocean_region_def, offsetof(nmea_sm4, ocean_region), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("priority"), ERROR_TEXT("sm1_priority code (1 2 3 9)"), &nmea_sm1_priority_def, offsetof(nmea_sm4, priority), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("service_code"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm4, service_code), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("presentation_code"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm4, presentation_code), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm4, year), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("month"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_sm4, month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("day"), ERROR_TEXT("integer 1..31"), &range_1_to_31, offsetof(nmea_sm4, day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("hour"), ERROR_TEXT("integer 0..23"), &range_0_to_23, offsetof(nmea_sm4, hour), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("minute"), ERROR_TEXT("integer 0..59"), &range_0_to_59, offsetof(nmea_sm4, minute), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sw_lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_sm4, sw_lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("sw_lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_sm4, sw_lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("extent_north"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm4, extent_north), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("extent_east"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sm4, extent_east), FIELD_INTEGER, 1, 0},
 };
 static const layout sm4_layout = {
     .sentence = "SM4", .fields = sm4_fields, .before = 17, .fixed = 19, .max_fields = 19,
@@ -13315,11 +13386,11 @@ size_t nmea_build_sm4(const nmea_sm4 *s, char *buf, size_t cap, nmea_error *err)
 
 /* $CSSMB,008,001,0,123456,FROM:Maritime Rescue Coordination Centre xxx^0D)0ATO:*48 */
 static const layout_field smb_fields[] = {
-    {"total_sentences", "integer of at least 1", &range_from_1, offsetof(nmea_smb, total_sentences), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer of at least 1", &range_from_1, offsetof(nmea_smb, sentence_number), FIELD_INTEGER, 1, 0},
-    {"sequential_message_id", "integer 0..9", &range_0_to_9, offsetof(nmea_smb, sequential_message_id), FIELD_INTEGER, 1, 0},
-    {"unique_message_number", "integer 0..999999", &range_0_to_999999, offsetof(nmea_smb, unique_message_number), FIELD_INTEGER, 1, 0},
-    {"message_body", "text", NULL, offsetof(nmea_smb, message_body), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("total_sentences"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_smb, total_sentences), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_smb, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sequential_message_id"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_smb, sequential_message_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("unique_message_number"), ERROR_TEXT("integer 0..999999"), &range_0_to_999999, offsetof(nmea_smb, unique_message_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message_body"), ERROR_TEXT("text"), NULL, offsetof(nmea_smb, message_body), FIELD_TEXT, 1, 0},
 };
 static const layout smb_layout = {
     .sentence = "SMB", .fields = smb_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_smb),
@@ -13348,10 +13419,10 @@ size_t nmea_build_smb(const nmea_smb *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IISPW,EPV,211000001,2,SESAME*1A */
 static const layout_field spw_fields[] = {
-    {"protected_sentence", "text", NULL, offsetof(nmea_spw, protected_sentence), FIELD_TEXT, 1, 0},
-    {"unique_id", "text", NULL, offsetof(nmea_spw, unique_id), FIELD_TEXT, 1, 0},
-    {"password_level", "spw_password_level code (1 2)", &nmea_spw_password_level_def, offsetof(nmea_spw, password_level), FIELD_ENUM, 1, 0},
-    {"password", "text", NULL, offsetof(nmea_spw, password), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("protected_sentence"), ERROR_TEXT("text"), NULL, offsetof(nmea_spw, protected_sentence), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("unique_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_spw, unique_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("password_level"), ERROR_TEXT("spw_password_level code (1 2)"), &nmea_spw_password_level_def, offsetof(nmea_spw, password_level), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("password"), ERROR_TEXT("text"), NULL, offsetof(nmea_spw, password), FIELD_TEXT, 1, 0},
 };
 static const layout spw_layout = {
     .sentence = "SPW", .fields = spw_fields, .before = 4, .fixed = 4, .max_fields = 4, .size = sizeof(nmea_spw),
@@ -13378,14 +13449,14 @@ size_t nmea_build_spw(const nmea_spw *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* SSD: AIS ship static data (spec/standard/ssd.yaml) */
 static const layout_field ssd_fields[] = {
-    {"call_sign", "text of at most 7 characters", NULL, offsetof(nmea_ssd, call_sign), FIELD_TEXT, 1, 7},
-    {"ship_name", "text of at most 20 characters", NULL, offsetof(nmea_ssd, ship_name), FIELD_TEXT, 1, 20},
-    {"ref_a", "integer 0..511", &range_0_to_511, offsetof(nmea_ssd, ref_a), FIELD_INTEGER, 1, 0},
-    {"ref_b", "integer 0..511", &range_0_to_511, offsetof(nmea_ssd, ref_b), FIELD_INTEGER, 1, 0},
-    {"ref_c", "integer 0..63", &range_0_to_63, offsetof(nmea_ssd, ref_c), FIELD_INTEGER, 1, 0},
-    {"ref_d", "integer 0..63", &range_0_to_63, offsetof(nmea_ssd, ref_d), FIELD_INTEGER, 1, 0},
-    {"dte", "ssd_dte code (0 1)", &nmea_ssd_dte_def, offsetof(nmea_ssd, dte), FIELD_ENUM, 1, 0},
-    {"source_id", "text of at most 2 characters", NULL, offsetof(nmea_ssd, source_id), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("call_sign"), ERROR_TEXT("text of at most 7 characters"), NULL, offsetof(nmea_ssd, call_sign), FIELD_TEXT, 1, 7},
+    {ERROR_TEXT("ship_name"), ERROR_TEXT("text of at most 20 characters"), NULL, offsetof(nmea_ssd, ship_name), FIELD_TEXT, 1, 20},
+    {ERROR_TEXT("ref_a"), ERROR_TEXT("integer 0..511"), &range_0_to_511, offsetof(nmea_ssd, ref_a), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ref_b"), ERROR_TEXT("integer 0..511"), &range_0_to_511, offsetof(nmea_ssd, ref_b), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ref_c"), ERROR_TEXT("integer 0..63"), &range_0_to_63, offsetof(nmea_ssd, ref_c), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ref_d"), ERROR_TEXT("integer 0..63"), &range_0_to_63, offsetof(nmea_ssd, ref_d), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("dte"), ERROR_TEXT("ssd_dte code (0 1)"), &nmea_ssd_dte_def, offsetof(nmea_ssd, dte), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("source_id"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_ssd, source_id), FIELD_TEXT, 1, 2},
 };
 static const layout ssd_layout = {
     .sentence = "SSD", .fields = ssd_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_ssd),
@@ -13414,7 +13485,7 @@ size_t nmea_build_ssd(const nmea_ssd *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPSTN,34*75 */
 static const layout_field stn_fields[] = {
-    {"talker_id_number", "integer 0..99", &range_0_to_99, offsetof(nmea_stn, talker_id_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("talker_id_number"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_stn, talker_id_number), FIELD_INTEGER, 1, 0},
 };
 static const layout stn_layout = {
     .sentence = "STN", .fields = stn_fields, .before = 1, .fixed = 1, .max_fields = 1, .size = sizeof(nmea_stn),
@@ -13443,8 +13514,8 @@ size_t nmea_build_stn(const nmea_stn *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GNTHS,244.28,A*11 */
 static const layout_field ths_fields[] = {
-    {"heading", "decimal number", NULL, offsetof(nmea_ths, heading), FIELD_DECIMAL, 1, 0},
-    {"mode", "ths_mode code (A E M S V)", &nmea_ths_mode_def, offsetof(nmea_ths, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ths, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("ths_mode code (A E M S V)"), &nmea_ths_mode_def, offsetof(nmea_ths, mode), FIELD_ENUM, 1, 0},
 };
 static const layout ths_layout = {
     .sentence = "THS", .fields = ths_fields, .before = 2, .fixed = 2, .max_fields = 2, .size = sizeof(nmea_ths),
@@ -13473,11 +13544,11 @@ size_t nmea_build_ths(const nmea_ths *s, char *buf, size_t cap, nmea_error *err)
 
 /* $RATLB,1,SHIPONE,2,SHIPTWO,3,SHIPTHREE*3D */
 static const layout_field tlb_group_fields[] = {
-    {"target_number", "decimal number of at least 0", &range_from_0, offsetof(nmea_tlb_label, target_number), FIELD_DECIMAL, 1, 0},
-    {"label", "text", NULL, offsetof(nmea_tlb_label, label), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("target_number"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_tlb_label, target_number), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("label"), ERROR_TEXT("text"), NULL, offsetof(nmea_tlb_label, label), FIELD_TEXT, 1, 0},
 };
 static const layout_group tlb_group = {
-    .id = "labels", .fields = tlb_group_fields, .field_count = 2, .width = 2, .min = 1, .max = 20,
+    .id = ERROR_TEXT("labels"), .fields = tlb_group_fields, .field_count = 2, .width = 2, .min = 1, .max = 20,
     .single = false, .offset = offsetof(nmea_tlb, labels), .entry_size = sizeof(nmea_tlb_label),
     .count_offset = offsetof(nmea_tlb, labels.count),
 };
@@ -13513,13 +13584,13 @@ size_t nmea_build_tlb(const nmea_tlb *s, char *buf, size_t cap, nmea_error *err)
 
 /* $RATLL,1,3646.54266,N,00235.37778,W,test,020915,L,R*78 */
 static const layout_field tll_fields[] = {
-    {"target_number", "integer of at least 0", &range_from_0, offsetof(nmea_tll, target_number), FIELD_INTEGER, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_tll, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_tll, lon), FIELD_LONGITUDE, 2, 0},
-    {"target_name", "text", NULL, offsetof(nmea_tll, target_name), FIELD_TEXT, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_tll, time), FIELD_TIME, 1, 0},
-    {"target_status", "ttm_target_status code (L Q T)", &nmea_ttm_target_status_def, offsetof(nmea_tll, target_status), FIELD_ENUM, 1, 0},
-    {"reference_target", "R or nothing", "R", offsetof(nmea_tll, reference_target), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("target_number"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_tll, target_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_tll, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_tll, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("target_name"), ERROR_TEXT("text"), NULL, offsetof(nmea_tll, target_name), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_tll, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("target_status"), ERROR_TEXT("ttm_target_status code (L Q T)"), &nmea_ttm_target_status_def, offsetof(nmea_tll, target_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("reference_target"), ERROR_TEXT("R or nothing"), "R", offsetof(nmea_tll, reference_target), FIELD_LITERAL, 1, 0},
 };
 static const layout tll_layout = {
     .sentence = "TLL", .fields = tll_fields, .before = 7, .fixed = 9, .max_fields = 9, .size = sizeof(nmea_tll),
@@ -13546,14 +13617,14 @@ size_t nmea_build_tll(const nmea_tll *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* TRA: Heading, pitch and roll (Unicore) (spec/standard/tra.yaml) */
 static const layout_field tra_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_tra, time), FIELD_TIME, 1, 0},
-    {"heading", "decimal number", NULL, offsetof(nmea_tra, heading), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number", NULL, offsetof(nmea_tra, pitch), FIELD_DECIMAL, 1, 0},
-    {"roll", "decimal number", NULL, offsetof(nmea_tra, roll), FIELD_DECIMAL, 1, 0},
-    {"quality", "integer", NULL, offsetof(nmea_tra, quality), FIELD_INTEGER, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_tra, satellites), FIELD_INTEGER, 1, 0},
-    {"differential_age", "decimal number", NULL, offsetof(nmea_tra, differential_age), FIELD_DECIMAL, 1, 0},
-    {"station_id", "text", NULL, offsetof(nmea_tra, station_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_tra, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_tra, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_tra, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_tra, roll), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("integer"), NULL, offsetof(nmea_tra, quality), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_tra, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("differential_age"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_tra, differential_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("station_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_tra, station_id), FIELD_TEXT, 1, 0},
 };
 static const layout tra_layout = {
     .sentence = "TRA", .fields = tra_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_tra),
@@ -13580,14 +13651,14 @@ size_t nmea_build_tra(const nmea_tra *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* TRC: Thruster control data (spec/standard/trc.yaml) */
 static const layout_field trc_fields[] = {
-    {"thruster_number", "integer of at least 0", &range_from_0, offsetof(nmea_trc, thruster_number), FIELD_INTEGER, 1, 0},
-    {"rpm_demand", "decimal number", NULL, offsetof(nmea_trc, rpm_demand), FIELD_DECIMAL, 1, 0},
-    {"rpm_mode", "prc_rpm_mode code (P R V)", &nmea_prc_rpm_mode_def, offsetof(nmea_trc, rpm_mode), FIELD_ENUM, 1, 0},
-    {"pitch_demand", "decimal number", NULL, offsetof(nmea_trc, pitch_demand), FIELD_DECIMAL, 1, 0},
-    {"pitch_mode", "prc_pitch_mode code (P D V)", &nmea_prc_pitch_mode_def, offsetof(nmea_trc, pitch_mode), FIELD_ENUM, 1, 0},
-    {"azimuth_demand", "decimal number", NULL, offsetof(nmea_trc, azimuth_demand), FIELD_DECIMAL, 1, 0},
-    {"operating_location", "prc_operating_location code (B P S C E W)", &nmea_prc_operating_location_def, offsetof(nmea_trc, operating_location), FIELD_ENUM, 1, 0},
-    {"sentence_status", "hsc_sentence_status code (R C)", &nmea_hsc_sentence_status_def, offsetof(nmea_trc, sentence_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("thruster_number"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_trc, thruster_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rpm_demand"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_trc, rpm_demand), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rpm_mode"), ERROR_TEXT("prc_rpm_mode code (P R V)"), &nmea_prc_rpm_mode_def, offsetof(nmea_trc, rpm_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pitch_demand"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_trc, pitch_demand), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch_mode"), ERROR_TEXT("prc_pitch_mode code (P D V)"), &nmea_prc_pitch_mode_def, offsetof(nmea_trc, pitch_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("azimuth_demand"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_trc, azimuth_demand), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("operating_location"), ERROR_TEXT("prc_operating_location code (B P S C E W)"), &nmea_prc_operating_location_def, offsetof(nmea_trc, operating_location), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sentence_status"), ERROR_TEXT("hsc_sentence_status code (R C)"), &nmea_hsc_sentence_status_def, offsetof(nmea_trc, sentence_status), FIELD_ENUM, 1, 0},
 };
 static const layout trc_layout = {
     .sentence = "TRC", .fields = trc_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_trc),
@@ -13614,12 +13685,12 @@ size_t nmea_build_trc(const nmea_trc *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* TRD: Thruster response data (spec/standard/trd.yaml) */
 static const layout_field trd_fields[] = {
-    {"thruster_number", "integer of at least 0", &range_from_0, offsetof(nmea_trd, thruster_number), FIELD_INTEGER, 1, 0},
-    {"rpm_response", "decimal number", NULL, offsetof(nmea_trd, rpm_response), FIELD_DECIMAL, 1, 0},
-    {"rpm_mode", "prc_rpm_mode code (P R V)", &nmea_prc_rpm_mode_def, offsetof(nmea_trd, rpm_mode), FIELD_ENUM, 1, 0},
-    {"pitch_response", "decimal number", NULL, offsetof(nmea_trd, pitch_response), FIELD_DECIMAL, 1, 0},
-    {"pitch_mode", "prc_pitch_mode code (P D V)", &nmea_prc_pitch_mode_def, offsetof(nmea_trd, pitch_mode), FIELD_ENUM, 1, 0},
-    {"azimuth_response", "decimal number", NULL, offsetof(nmea_trd, azimuth_response), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("thruster_number"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_trd, thruster_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rpm_response"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_trd, rpm_response), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rpm_mode"), ERROR_TEXT("prc_rpm_mode code (P R V)"), &nmea_prc_rpm_mode_def, offsetof(nmea_trd, rpm_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pitch_response"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_trd, pitch_response), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch_mode"), ERROR_TEXT("prc_pitch_mode code (P D V)"), &nmea_prc_pitch_mode_def, offsetof(nmea_trd, pitch_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("azimuth_response"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_trd, azimuth_response), FIELD_DECIMAL, 1, 0},
 };
 static const layout trd_layout = {
     .sentence = "TRD", .fields = trd_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_trd),
@@ -13646,16 +13717,16 @@ size_t nmea_build_trd(const nmea_trd *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* TRF: Transit fix data (spec/standard/trf.yaml) */
 static const layout_field trf_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_trf, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_trf, date), FIELD_DATE, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_trf, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_trf, lon), FIELD_LONGITUDE, 2, 0},
-    {"elevation_angle", "decimal number", NULL, offsetof(nmea_trf, elevation_angle), FIELD_DECIMAL, 1, 0},
-    {"iterations", "decimal number", NULL, offsetof(nmea_trf, iterations), FIELD_DECIMAL, 1, 0},
-    {"doppler_intervals", "decimal number", NULL, offsetof(nmea_trf, doppler_intervals), FIELD_DECIMAL, 1, 0},
-    {"update_distance", "decimal number", NULL, offsetof(nmea_trf, update_distance), FIELD_DECIMAL, 1, 0},
-    {"satellite_id", "integer", NULL, offsetof(nmea_trf, satellite_id), FIELD_INTEGER, 1, 0},
-    {"data_validity", "status code (A V)", &nmea_status_def, offsetof(nmea_trf, data_validity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_trf, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_trf, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_trf, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_trf, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("elevation_angle"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_trf, elevation_angle), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("iterations"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_trf, iterations), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("doppler_intervals"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_trf, doppler_intervals), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("update_distance"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_trf, update_distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("satellite_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_trf, satellite_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("data_validity"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_trf, data_validity), FIELD_ENUM, 1, 0},
 };
 static const layout trf_layout = {
     .sentence = "TRF", .fields = trf_fields, .before = 10, .fixed = 12, .max_fields = 12,
@@ -13682,14 +13753,14 @@ size_t nmea_build_trf(const nmea_trf *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* TRL: AIS transmitter-non-functioning log (spec/standard/trl.yaml) */
 static const layout_field trl_fields[] = {
-    {"entry_count", "integer 0..10", &range_0_to_10, offsetof(nmea_trl, entry_count), FIELD_INTEGER, 1, 0},
-    {"entry_number", "integer 1..10", &range_1_to_10, offsetof(nmea_trl, entry_number), FIELD_INTEGER, 1, 0},
-    {"sequence_id", "integer 0..9", &range_0_to_9, offsetof(nmea_trl, sequence_id), FIELD_INTEGER, 1, 0},
-    {"switch_off_date", "text of at most 8 characters", NULL, offsetof(nmea_trl, switch_off_date), FIELD_TEXT, 1, 8},
-    {"switch_off_time", "time hhmmss[.s]", NULL, offsetof(nmea_trl, switch_off_time), FIELD_TIME, 1, 0},
-    {"switch_on_date", "text of at most 8 characters", NULL, offsetof(nmea_trl, switch_on_date), FIELD_TEXT, 1, 8},
-    {"switch_on_time", "time hhmmss[.s]", NULL, offsetof(nmea_trl, switch_on_time), FIELD_TIME, 1, 0},
-    {"reason", "trl_reason code (1 2 3 4 5)", &nmea_trl_reason_def, offsetof(nmea_trl, reason), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("entry_count"), ERROR_TEXT("integer 0..10"), &range_0_to_10, offsetof(nmea_trl, entry_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("entry_number"), ERROR_TEXT("integer 1..10"), &range_1_to_10, offsetof(nmea_trl, entry_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sequence_id"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_trl, sequence_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("switch_off_date"), ERROR_TEXT("text of at most 8 characters"), NULL, offsetof(nmea_trl, switch_off_date), FIELD_TEXT, 1, 8},
+    {ERROR_TEXT("switch_off_time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_trl, switch_off_time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("switch_on_date"), ERROR_TEXT("text of at most 8 characters"), NULL, offsetof(nmea_trl, switch_on_date), FIELD_TEXT, 1, 8},
+    {ERROR_TEXT("switch_on_time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_trl, switch_on_time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("reason"), ERROR_TEXT("trl_reason code (1 2 3 4 5)"), &nmea_trl_reason_def, offsetof(nmea_trl, reason), FIELD_ENUM, 1, 0},
 };
 static const layout trl_layout = {
     .sentence = "TRL", .fields = trl_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_trl),
@@ -13718,11 +13789,11 @@ size_t nmea_build_trl(const nmea_trl *s, char *buf, size_t cap, nmea_error *err)
 
 /* !RATTD,1A,01,1,177KQJ5000G?tO`K>RA1wUbN0TKH,0*72 */
 static const layout_field ttd_fields[] = {
-    {"sentence_count", "hex number", NULL, offsetof(nmea_ttd, sentence_count), FIELD_HEX, 1, 0},
-    {"sentence_number", "hex number", NULL, offsetof(nmea_ttd, sentence_number), FIELD_HEX, 1, 0},
-    {"message_id", "integer 0..9", &range_0_to_9, offsetof(nmea_ttd, message_id), FIELD_INTEGER, 1, 0},
-    {"payload", "text", NULL, offsetof(nmea_ttd, payload), FIELD_TEXT, 1, 0},
-    {"fill_bits", "integer 0..5", &range_0_to_5, offsetof(nmea_ttd, fill_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_count"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ttd, sentence_count), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ttd, sentence_number), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("message_id"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_ttd, message_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("payload"), ERROR_TEXT("text"), NULL, offsetof(nmea_ttd, payload), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("fill_bits"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_ttd, fill_bits), FIELD_INTEGER, 1, 0},
 };
 static const layout ttd_layout = {
     .sentence = "TTD", .fields = ttd_fields, .before = 5, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_ttd),
@@ -13751,21 +13822,21 @@ size_t nmea_build_ttd(const nmea_ttd *s, char *buf, size_t cap, nmea_error *err)
 
 /* $RATTM,01,0.2,190.8,T,12.1,109.7,T,0.1,0.5,N,TGT01,T,,100021.00,A*79 */
 static const layout_field ttm_fields[] = {
-    {"target_number", "integer of at least 0", &range_from_0, offsetof(nmea_ttm, target_number), FIELD_INTEGER, 1, 0},
-    {"target_distance", "decimal number of at least 0", &range_from_0, offsetof(nmea_ttm, target_distance), FIELD_DECIMAL, 1, 0},
-    {"bearing", "decimal number", NULL, offsetof(nmea_ttm, bearing), FIELD_DECIMAL, 1, 0},
-    {"bearing_reference", "ttm_reference code (T R)", &nmea_ttm_reference_def, offsetof(nmea_ttm, bearing_reference), FIELD_ENUM, 1, 0},
-    {"target_speed", "decimal number of at least 0", &range_from_0, offsetof(nmea_ttm, target_speed), FIELD_DECIMAL, 1, 0},
-    {"target_course", "decimal number", NULL, offsetof(nmea_ttm, target_course), FIELD_DECIMAL, 1, 0},
-    {"course_reference", "ttm_reference code (T R)", &nmea_ttm_reference_def, offsetof(nmea_ttm, course_reference), FIELD_ENUM, 1, 0},
-    {"cpa_distance", "decimal number", NULL, offsetof(nmea_ttm, cpa_distance), FIELD_DECIMAL, 1, 0},
-    {"time_to_cpa", "decimal number", NULL, offsetof(nmea_ttm, time_to_cpa), FIELD_DECIMAL, 1, 0},
-    {"units", "ttm_units code (K N S)", &nmea_ttm_units_def, offsetof(nmea_ttm, units), FIELD_ENUM, 1, 0},
-    {"target_name", "text", NULL, offsetof(nmea_ttm, target_name), FIELD_TEXT, 1, 0},
-    {"target_status", "ttm_target_status code (L Q T)", &nmea_ttm_target_status_def, offsetof(nmea_ttm, target_status), FIELD_ENUM, 1, 0},
-    {"reference_target", "R or nothing", "R", offsetof(nmea_ttm, reference_target), FIELD_LITERAL, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ttm, time), FIELD_TIME, 1, 0},
-    {"acquisition", "ttm_acquisition code (A M R)", &nmea_ttm_acquisition_def, offsetof(nmea_ttm, acquisition), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("target_number"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_ttm, target_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("target_distance"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_ttm, target_distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ttm, bearing), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bearing_reference"), ERROR_TEXT("ttm_reference code (T R)"), &nmea_ttm_reference_def, offsetof(nmea_ttm, bearing_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("target_speed"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_ttm, target_speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("target_course"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ttm, target_course), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("course_reference"), ERROR_TEXT("ttm_reference code (T R)"), &nmea_ttm_reference_def, offsetof(nmea_ttm, course_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cpa_distance"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ttm, cpa_distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("time_to_cpa"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ttm, time_to_cpa), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("units"), ERROR_TEXT("ttm_units code (K N S)"), &nmea_ttm_units_def, offsetof(nmea_ttm, units), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("target_name"), ERROR_TEXT("text"), NULL, offsetof(nmea_ttm, target_name), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("target_status"), ERROR_TEXT("ttm_target_status code (L Q T)"), &nmea_ttm_target_status_def, offsetof(nmea_ttm, target_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("reference_target"), ERROR_TEXT("R or nothing"), "R", offsetof(nmea_ttm, reference_target), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ttm, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("acquisition"), ERROR_TEXT("ttm_acquisition code (A M R)"), &nmea_ttm_acquisition_def, offsetof(nmea_ttm, acquisition), FIELD_ENUM, 1, 0},
 };
 static const layout ttm_layout = {
     .sentence = "TTM", .fields = ttm_fields, .before = 13, .optional = 2, .fixed = 13, .max_fields = 15,
@@ -13795,12 +13866,12 @@ size_t nmea_build_ttm(const nmea_ttm *s, char *buf, size_t cap, nmea_error *err)
 
 /* $INTUT,SD,01,01,1,A,5368616C6C6F7720576174657221*4B */
 static const layout_field tut_fields[] = {
-    {"source_id", "text", NULL, offsetof(nmea_tut, source_id), FIELD_TEXT, 1, 0},
-    {"total_sentences", "hex number", NULL, offsetof(nmea_tut, total_sentences), FIELD_HEX, 1, 0},
-    {"sentence_number", "hex number", NULL, offsetof(nmea_tut, sentence_number), FIELD_HEX, 1, 0},
-    {"sequential_message_id", "integer 0..9", &range_0_to_9, offsetof(nmea_tut, sequential_message_id), FIELD_INTEGER, 1, 0},
-    {"translation_code", "text", NULL, offsetof(nmea_tut, translation_code), FIELD_TEXT, 1, 0},
-    {"text_body", "text", NULL, offsetof(nmea_tut, text_body), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("source_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_tut, source_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("total_sentences"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_tut, total_sentences), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_tut, sentence_number), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("sequential_message_id"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_tut, sequential_message_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("translation_code"), ERROR_TEXT("text"), NULL, offsetof(nmea_tut, translation_code), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("text_body"), ERROR_TEXT("text"), NULL, offsetof(nmea_tut, text_body), FIELD_TEXT, 1, 0},
 };
 static const layout tut_layout = {
     .sentence = "TUT", .fields = tut_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_tut),
@@ -13829,10 +13900,10 @@ size_t nmea_build_tut(const nmea_tut *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPTXT,01,01,01,ANTENNA OK*35 */
 static const layout_field txt_fields[] = {
-    {"total_sentences", "integer 1..99", &range_1_to_99, offsetof(nmea_txt, total_sentences), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer 1..99", &range_1_to_99, offsetof(nmea_txt, sentence_number), FIELD_INTEGER, 1, 0},
-    {"text_identifier", "integer 0..99", &range_0_to_99, offsetof(nmea_txt, text_identifier), FIELD_INTEGER, 1, 0},
-    {"text", "text", NULL, offsetof(nmea_txt, text), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("total_sentences"), ERROR_TEXT("integer 1..99"), &range_1_to_99, offsetof(nmea_txt, total_sentences), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer 1..99"), &range_1_to_99, offsetof(nmea_txt, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("text_identifier"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_txt, text_identifier), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("text"), ERROR_TEXT("text"), NULL, offsetof(nmea_txt, text), FIELD_TEXT, 1, 0},
 };
 static const layout txt_layout = {
     .sentence = "TXT", .fields = txt_fields, .before = 4, .fixed = 4, .max_fields = 4, .size = sizeof(nmea_txt),
@@ -13859,8 +13930,8 @@ size_t nmea_build_txt(const nmea_txt *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* UID: User identification code transmission (spec/standard/uid.yaml) */
 static const layout_field uid_fields[] = {
-    {"code_1", "text", NULL, offsetof(nmea_uid, code_1), FIELD_TEXT, 1, 0},
-    {"code_2", "text", NULL, offsetof(nmea_uid, code_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("code_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_uid, code_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("code_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_uid, code_2), FIELD_TEXT, 1, 0},
 };
 static const layout uid_layout = {
     .sentence = "UID", .fields = uid_fields, .before = 2, .fixed = 2, .max_fields = 2, .size = sizeof(nmea_uid),
@@ -13889,16 +13960,16 @@ size_t nmea_build_uid(const nmea_uid *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIVBW,11.0,02.0,A,06.0,03.0,A,05.3,A,01.0,A*43 */
 static const layout_field vbw_fields[] = {
-    {"water_speed_longitudinal", "decimal number", NULL, offsetof(nmea_vbw, water_speed_longitudinal), FIELD_DECIMAL, 1, 0},
-    {"water_speed_transverse", "decimal number", NULL, offsetof(nmea_vbw, water_speed_transverse), FIELD_DECIMAL, 1, 0},
-    {"water_speed_status", "status code (A V)", &nmea_status_def, offsetof(nmea_vbw, water_speed_status), FIELD_ENUM, 1, 0},
-    {"ground_speed_longitudinal", "decimal number", NULL, offsetof(nmea_vbw, ground_speed_longitudinal), FIELD_DECIMAL, 1, 0},
-    {"ground_speed_transverse", "decimal number", NULL, offsetof(nmea_vbw, ground_speed_transverse), FIELD_DECIMAL, 1, 0},
-    {"ground_speed_status", "status code (A V)", &nmea_status_def, offsetof(nmea_vbw, ground_speed_status), FIELD_ENUM, 1, 0},
-    {"stern_water_speed_transverse", "decimal number", NULL, offsetof(nmea_vbw, stern_water_speed_transverse), FIELD_DECIMAL, 1, 0},
-    {"stern_water_speed_status", "status code (A V)", &nmea_status_def, offsetof(nmea_vbw, stern_water_speed_status), FIELD_ENUM, 1, 0},
-    {"stern_ground_speed_transverse", "decimal number", NULL, offsetof(nmea_vbw, stern_ground_speed_transverse), FIELD_DECIMAL, 1, 0},
-    {"stern_ground_speed_status", "status code (A V)", &nmea_status_def, offsetof(nmea_vbw, stern_ground_speed_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("water_speed_longitudinal"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vbw, water_speed_longitudinal), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("water_speed_transverse"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vbw, water_speed_transverse), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("water_speed_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_vbw, water_speed_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("ground_speed_longitudinal"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vbw, ground_speed_longitudinal), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ground_speed_transverse"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vbw, ground_speed_transverse), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ground_speed_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_vbw, ground_speed_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("stern_water_speed_transverse"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vbw, stern_water_speed_transverse), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("stern_water_speed_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_vbw, stern_water_speed_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("stern_ground_speed_transverse"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vbw, stern_ground_speed_transverse), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("stern_ground_speed_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_vbw, stern_ground_speed_status), FIELD_ENUM, 1, 0},
 };
 static const layout vbw_layout = {
     .sentence = "VBW", .fields = vbw_fields, .before = 6, .optional = 4, .fixed = 6, .max_fields = 10,
@@ -13928,12 +13999,12 @@ size_t nmea_build_vbw(const nmea_vbw *s, char *buf, size_t cap, nmea_error *err)
 
 /* !AIVDM,2,1,7,A,53aGulD0000000c7?0918Tq<E>0<Q8U=@Tp400155P:22uG`002ShTj0,0*05 */
 static const layout_field vdm_fields[] = {
-    {"fragment_count", "integer 1..9", &range_1_to_9, offsetof(nmea_vdm, fragment_count), FIELD_INTEGER, 1, 0},
-    {"fragment_number", "integer 1..9", &range_1_to_9, offsetof(nmea_vdm, fragment_number), FIELD_INTEGER, 1, 0},
-    {"message_id", "integer 0..9", &range_0_to_9, offsetof(nmea_vdm, message_id), FIELD_INTEGER, 1, 0},
-    {"channel", "ais_channel code (A B 1 2)", &nmea_ais_channel_def, offsetof(nmea_vdm, channel), FIELD_ENUM, 1, 0},
-    {"payload", "text", NULL, offsetof(nmea_vdm, payload), FIELD_TEXT, 1, 0},
-    {"fill_bits", "integer 0..5", &range_0_to_5, offsetof(nmea_vdm, fill_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("fragment_count"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_vdm, fragment_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("fragment_number"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_vdm, fragment_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message_id"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_vdm, message_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channel"), ERROR_TEXT("ais_channel code (A B 1 2)"), &nmea_ais_channel_def, offsetof(nmea_vdm, channel), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("payload"), ERROR_TEXT("text"), NULL, offsetof(nmea_vdm, payload), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("fill_bits"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_vdm, fill_bits), FIELD_INTEGER, 1, 0},
 };
 static const layout vdm_layout = {
     .sentence = "VDM", .fields = vdm_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_vdm),
@@ -13962,12 +14033,12 @@ size_t nmea_build_vdm(const nmea_vdm *s, char *buf, size_t cap, nmea_error *err)
 
 /* !AIVDO,2,1,4,B,8h2=Vg@0GwwfOANA>AB0OwvlFR06EuOwgr27wnSwe7wvlOwwsAwwnSGm,0*63 */
 static const layout_field vdo_fields[] = {
-    {"fragment_count", "integer 1..9", &range_1_to_9, offsetof(nmea_vdo, fragment_count), FIELD_INTEGER, 1, 0},
-    {"fragment_number", "integer 1..9", &range_1_to_9, offsetof(nmea_vdo, fragment_number), FIELD_INTEGER, 1, 0},
-    {"message_id", "integer 0..9", &range_0_to_9, offsetof(nmea_vdo, message_id), FIELD_INTEGER, 1, 0},
-    {"channel", "ais_channel code (A B 1 2)", &nmea_ais_channel_def, offsetof(nmea_vdo, channel), FIELD_ENUM, 1, 0},
-    {"payload", "text", NULL, offsetof(nmea_vdo, payload), FIELD_TEXT, 1, 0},
-    {"fill_bits", "integer 0..5", &range_0_to_5, offsetof(nmea_vdo, fill_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("fragment_count"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_vdo, fragment_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("fragment_number"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_vdo, fragment_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message_id"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_vdo, message_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channel"), ERROR_TEXT("ais_channel code (A B 1 2)"), &nmea_ais_channel_def, offsetof(nmea_vdo, channel), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("payload"), ERROR_TEXT("text"), NULL, offsetof(nmea_vdo, payload), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("fill_bits"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_vdo, fill_bits), FIELD_INTEGER, 1, 0},
 };
 static const layout vdo_layout = {
     .sentence = "VDO", .fields = vdo_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_vdo),
@@ -13996,12 +14067,12 @@ size_t nmea_build_vdo(const nmea_vdo *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIVDR,10.1,T,12.3,M,1.2,N*3A */
 static const layout_field vdr_fields[] = {
-    {"direction_true", "decimal number of at least 0", &range_from_0, offsetof(nmea_vdr, direction_true), FIELD_DECIMAL, 1, 0},
-    {"direction_true_ref", "T or nothing", "T", offsetof(nmea_vdr, direction_true_ref), FIELD_LITERAL, 1, 0},
-    {"direction_magnetic", "decimal number of at least 0", &range_from_0, offsetof(nmea_vdr, direction_magnetic), FIELD_DECIMAL, 1, 0},
-    {"direction_magnetic_ref", "M or nothing", "M", offsetof(nmea_vdr, direction_magnetic_ref), FIELD_LITERAL, 1, 0},
-    {"current_speed", "decimal number", NULL, offsetof(nmea_vdr, current_speed), FIELD_DECIMAL, 1, 0},
-    {"current_speed_unit", "N or nothing", "N", offsetof(nmea_vdr, current_speed_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("direction_true"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_vdr, direction_true), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("direction_true_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_vdr, direction_true_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("direction_magnetic"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_vdr, direction_magnetic), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("direction_magnetic_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_vdr, direction_magnetic_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("current_speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vdr, current_speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("current_speed_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_vdr, current_speed_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout vdr_layout = {
     .sentence = "VDR", .fields = vdr_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_vdr),
@@ -14028,16 +14099,16 @@ size_t nmea_build_vdr(const nmea_vdr *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* VER: Version (spec/standard/ver.yaml) */
 static const layout_field ver_fields[] = {
-    {"total_sentences", "integer of at least 1", &range_from_1, offsetof(nmea_ver, total_sentences), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer of at least 1", &range_from_1, offsetof(nmea_ver, sentence_number), FIELD_INTEGER, 1, 0},
-    {"device_type", "text", NULL, offsetof(nmea_ver, device_type), FIELD_TEXT, 1, 0},
-    {"vendor_id", "text", NULL, offsetof(nmea_ver, vendor_id), FIELD_TEXT, 1, 0},
-    {"unique_id", "text", NULL, offsetof(nmea_ver, unique_id), FIELD_TEXT, 1, 0},
-    {"serial_number", "text", NULL, offsetof(nmea_ver, serial_number), FIELD_TEXT, 1, 0},
-    {"model_code", "text", NULL, offsetof(nmea_ver, model_code), FIELD_TEXT, 1, 0},
-    {"software_revision", "text", NULL, offsetof(nmea_ver, software_revision), FIELD_TEXT, 1, 0},
-    {"hardware_revision", "text", NULL, offsetof(nmea_ver, hardware_revision), FIELD_TEXT, 1, 0},
-    {"sequential_message_id", "integer 0..9", &range_0_to_9, offsetof(nmea_ver, sequential_message_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("total_sentences"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_ver, total_sentences), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_ver, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("device_type"), ERROR_TEXT("text"), NULL, offsetof(nmea_ver, device_type), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("vendor_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_ver, vendor_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("unique_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_ver, unique_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("serial_number"), ERROR_TEXT("text"), NULL, offsetof(nmea_ver, serial_number), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("model_code"), ERROR_TEXT("text"), NULL, offsetof(nmea_ver, model_code), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("software_revision"), ERROR_TEXT("text"), NULL, offsetof(nmea_ver, software_revision), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("hardware_revision"), ERROR_TEXT("text"), NULL, offsetof(nmea_ver, hardware_revision), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("sequential_message_id"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_ver, sequential_message_id), FIELD_INTEGER, 1, 0},
 };
 static const layout ver_layout = {
     .sentence = "VER", .fields = ver_fields, .before = 10, .fixed = 10, .max_fields = 10,
@@ -14066,14 +14137,14 @@ size_t nmea_build_ver(const nmea_ver *s, char *buf, size_t cap, nmea_error *err)
 
 /* $SDVHW,231.3,T,229.9,M,6.6,N,12.3,K*71 */
 static const layout_field vhw_fields[] = {
-    {"heading_true", "decimal number of at least 0", &range_from_0, offsetof(nmea_vhw, heading_true), FIELD_DECIMAL, 1, 0},
-    {"heading_true_ref", "T or nothing", "T", offsetof(nmea_vhw, heading_true_ref), FIELD_LITERAL, 1, 0},
-    {"heading_magnetic", "decimal number of at least 0", &range_from_0, offsetof(nmea_vhw, heading_magnetic), FIELD_DECIMAL, 1, 0},
-    {"heading_magnetic_ref", "M or nothing", "M", offsetof(nmea_vhw, heading_magnetic_ref), FIELD_LITERAL, 1, 0},
-    {"speed_knots", "decimal number", NULL, offsetof(nmea_vhw, speed_knots), FIELD_DECIMAL, 1, 0},
-    {"speed_knots_unit", "N or nothing", "N", offsetof(nmea_vhw, speed_knots_unit), FIELD_LITERAL, 1, 0},
-    {"speed_kmh", "decimal number", NULL, offsetof(nmea_vhw, speed_kmh), FIELD_DECIMAL, 1, 0},
-    {"speed_kmh_unit", "K or nothing", "K", offsetof(nmea_vhw, speed_kmh_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("heading_true"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_vhw, heading_true), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_true_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_vhw, heading_true_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("heading_magnetic"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_vhw, heading_magnetic), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_magnetic_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_vhw, heading_magnetic_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_knots"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vhw, speed_knots), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_knots_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_vhw, speed_knots_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_kmh"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vhw, speed_kmh), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_kmh_unit"), ERROR_TEXT("K or nothing"), "K", offsetof(nmea_vhw, speed_kmh_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout vhw_layout = {
     .sentence = "VHW", .fields = vhw_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_vhw),
@@ -14102,14 +14173,14 @@ size_t nmea_build_vhw(const nmea_vhw *s, char *buf, size_t cap, nmea_error *err)
 
 /* $SDVLW,,N,545.6,N,1109.4,N,393.6,N*44 */
 static const layout_field vlw_fields[] = {
-    {"total_water_distance", "decimal number", NULL, offsetof(nmea_vlw, total_water_distance), FIELD_DECIMAL, 1, 0},
-    {"total_water_distance_unit", "N or nothing", "N", offsetof(nmea_vlw, total_water_distance_unit), FIELD_LITERAL, 1, 0},
-    {"trip_water_distance", "decimal number", NULL, offsetof(nmea_vlw, trip_water_distance), FIELD_DECIMAL, 1, 0},
-    {"trip_water_distance_unit", "N or nothing", "N", offsetof(nmea_vlw, trip_water_distance_unit), FIELD_LITERAL, 1, 0},
-    {"total_ground_distance", "decimal number", NULL, offsetof(nmea_vlw, total_ground_distance), FIELD_DECIMAL, 1, 0},
-    {"total_ground_distance_unit", "N or nothing", "N", offsetof(nmea_vlw, total_ground_distance_unit), FIELD_LITERAL, 1, 0},
-    {"trip_ground_distance", "decimal number", NULL, offsetof(nmea_vlw, trip_ground_distance), FIELD_DECIMAL, 1, 0},
-    {"trip_ground_distance_unit", "N or nothing", "N", offsetof(nmea_vlw, trip_ground_distance_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("total_water_distance"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vlw, total_water_distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("total_water_distance_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_vlw, total_water_distance_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("trip_water_distance"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vlw, trip_water_distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("trip_water_distance_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_vlw, trip_water_distance_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("total_ground_distance"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vlw, total_ground_distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("total_ground_distance_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_vlw, total_ground_distance_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("trip_ground_distance"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vlw, trip_ground_distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("trip_ground_distance_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_vlw, trip_ground_distance_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout vlw_layout = {
     .sentence = "VLW", .fields = vlw_fields, .before = 4, .optional = 4, .fixed = 4, .max_fields = 8,
@@ -14139,10 +14210,10 @@ size_t nmea_build_vlw(const nmea_vlw *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIVPW,4.5,N,6.7,M*52 */
 static const layout_field vpw_fields[] = {
-    {"speed_knots", "decimal number", NULL, offsetof(nmea_vpw, speed_knots), FIELD_DECIMAL, 1, 0},
-    {"speed_knots_unit", "N or nothing", "N", offsetof(nmea_vpw, speed_knots_unit), FIELD_LITERAL, 1, 0},
-    {"speed_ms", "decimal number", NULL, offsetof(nmea_vpw, speed_ms), FIELD_DECIMAL, 1, 0},
-    {"speed_ms_unit", "M or nothing", "M", offsetof(nmea_vpw, speed_ms_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_knots"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vpw, speed_knots), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_knots_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_vpw, speed_knots_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_ms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vpw, speed_ms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_ms_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_vpw, speed_ms_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout vpw_layout = {
     .sentence = "VPW", .fields = vpw_fields, .before = 4, .fixed = 4, .max_fields = 4, .size = sizeof(nmea_vpw),
@@ -14171,15 +14242,15 @@ size_t nmea_build_vpw(const nmea_vpw *s, char *buf, size_t cap, nmea_error *err)
 
 /* $RAVSD,0,4.5,6,@@@@@@@@@@@@@@@@@@@@,220516,01,02,8,*6E */
 static const layout_field vsd_fields[] = {
-    {"ship_type", "integer 0..255", &range_0_to_255, offsetof(nmea_vsd, ship_type), FIELD_INTEGER, 1, 0},
-    {"draught", "decimal number of at least 0", &range_from_0, offsetof(nmea_vsd, draught), FIELD_DECIMAL, 1, 0},
-    {"persons", "integer 0..8191", &range_0_to_8191, offsetof(nmea_vsd, persons), FIELD_INTEGER, 1, 0},
-    {"destination", "text of at most 20 characters", NULL, offsetof(nmea_vsd, destination), FIELD_TEXT, 1, 20},
-    {"eta_time", "time hhmmss[.s]", NULL, offsetof(nmea_vsd, eta_time), FIELD_TIME, 1, 0},
-    {"eta_day", "integer 0..31", &range_0_to_31, offsetof(nmea_vsd, eta_day), FIELD_INTEGER, 1, 0},
-    {"eta_month", "integer 0..12", &range_0_to_12, offsetof(nmea_vsd, eta_month), FIELD_INTEGER, 1, 0},
-    {"nav_status", "vsd_nav_status code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", &nmea_vsd_nav_status_def, offsetof(nmea_vsd, nav_status), FIELD_ENUM, 1, 0},
-    {"regional_flags", "integer 0..15", &range_0_to_15, offsetof(nmea_vsd, regional_flags), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("ship_type"), ERROR_TEXT("integer 0..255"), &range_0_to_255, offsetof(nmea_vsd, ship_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("draught"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_vsd, draught), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("persons"), ERROR_TEXT("integer 0..8191"), &range_0_to_8191, offsetof(nmea_vsd, persons), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("destination"), ERROR_TEXT("text of at most 20 characters"), NULL, offsetof(nmea_vsd, destination), FIELD_TEXT, 1, 20},
+    {ERROR_TEXT("eta_time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_vsd, eta_time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("eta_day"), ERROR_TEXT("integer 0..31"), &range_0_to_31, offsetof(nmea_vsd, eta_day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("eta_month"), ERROR_TEXT("integer 0..12"), &range_0_to_12, offsetof(nmea_vsd, eta_month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("nav_status"), ERROR_TEXT("vsd_nav_status code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)"), &nmea_vsd_nav_status_def, offsetof(nmea_vsd, nav_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("regional_flags"), ERROR_TEXT("integer 0..15"), &range_0_to_15, offsetof(nmea_vsd, regional_flags), FIELD_INTEGER, 1, 0},
 };
 static const layout vsd_layout = {
     .sentence = "VSD", .fields = vsd_fields, .before = 9, .fixed = 9, .max_fields = 9, .size = sizeof(nmea_vsd),
@@ -14208,15 +14279,15 @@ size_t nmea_build_vsd(const nmea_vsd *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPVTG,213.710,T,213.710,M,0.304,N,0.563,K,A*24 */
 static const layout_field vtg_fields[] = {
-    {"course_true", "decimal number 0..359.9", &range_0_to_359p9, offsetof(nmea_vtg, course_true), FIELD_DECIMAL, 1, 0},
-    {"course_true_ref", "T or nothing", "T", offsetof(nmea_vtg, course_true_ref), FIELD_LITERAL, 1, 0},
-    {"course_magnetic", "decimal number 0..359.9", &range_0_to_359p9, offsetof(nmea_vtg, course_magnetic), FIELD_DECIMAL, 1, 0},
-    {"course_magnetic_ref", "M or nothing", "M", offsetof(nmea_vtg, course_magnetic_ref), FIELD_LITERAL, 1, 0},
-    {"speed_knots", "decimal number", NULL, offsetof(nmea_vtg, speed_knots), FIELD_DECIMAL, 1, 0},
-    {"speed_knots_unit", "N or nothing", "N", offsetof(nmea_vtg, speed_knots_unit), FIELD_LITERAL, 1, 0},
-    {"speed_kmh", "decimal number", NULL, offsetof(nmea_vtg, speed_kmh), FIELD_DECIMAL, 1, 0},
-    {"speed_kmh_unit", "K or nothing", "K", offsetof(nmea_vtg, speed_kmh_unit), FIELD_LITERAL, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_vtg, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("course_true"), ERROR_TEXT("decimal number 0..359.9"), &range_0_to_359p9, offsetof(nmea_vtg, course_true), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("course_true_ref"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_vtg, course_true_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("course_magnetic"), ERROR_TEXT("decimal number 0..359.9"), &range_0_to_359p9, offsetof(nmea_vtg, course_magnetic), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("course_magnetic_ref"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_vtg, course_magnetic_ref), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_knots"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vtg, speed_knots), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_knots_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_vtg, speed_knots_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_kmh"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vtg, speed_kmh), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_kmh_unit"), ERROR_TEXT("K or nothing"), "K", offsetof(nmea_vtg, speed_kmh_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_vtg, mode), FIELD_ENUM, 1, 0},
 };
 static const layout vtg_layout = {
     .sentence = "VTG", .fields = vtg_fields, .before = 8, .optional = 1, .fixed = 8, .max_fields = 9,
@@ -14298,14 +14369,14 @@ size_t nmea_build_vtg(const nmea_vtg *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIVWR,75,R,1.0,N,0.51,M,1.85,K*6C */
 static const layout_field vwr_fields[] = {
-    {"wind_angle", "decimal number 0..180", &range_0_to_180, offsetof(nmea_vwr, wind_angle), FIELD_DECIMAL, 1, 0},
-    {"wind_side", "left_right code (L R)", &nmea_left_right_def, offsetof(nmea_vwr, wind_side), FIELD_ENUM, 1, 0},
-    {"speed_knots", "decimal number", NULL, offsetof(nmea_vwr, speed_knots), FIELD_DECIMAL, 1, 0},
-    {"speed_knots_unit", "N or nothing", "N", offsetof(nmea_vwr, speed_knots_unit), FIELD_LITERAL, 1, 0},
-    {"speed_ms", "decimal number", NULL, offsetof(nmea_vwr, speed_ms), FIELD_DECIMAL, 1, 0},
-    {"speed_ms_unit", "M or nothing", "M", offsetof(nmea_vwr, speed_ms_unit), FIELD_LITERAL, 1, 0},
-    {"speed_kmh", "decimal number", NULL, offsetof(nmea_vwr, speed_kmh), FIELD_DECIMAL, 1, 0},
-    {"speed_kmh_unit", "K or nothing", "K", offsetof(nmea_vwr, speed_kmh_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("wind_angle"), ERROR_TEXT("decimal number 0..180"), &range_0_to_180, offsetof(nmea_vwr, wind_angle), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("wind_side"), ERROR_TEXT("left_right code (L R)"), &nmea_left_right_def, offsetof(nmea_vwr, wind_side), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("speed_knots"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vwr, speed_knots), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_knots_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_vwr, speed_knots_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_ms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vwr, speed_ms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_ms_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_vwr, speed_ms_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_kmh"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vwr, speed_kmh), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_kmh_unit"), ERROR_TEXT("K or nothing"), "K", offsetof(nmea_vwr, speed_kmh_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout vwr_layout = {
     .sentence = "VWR", .fields = vwr_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_vwr),
@@ -14334,14 +14405,14 @@ size_t nmea_build_vwr(const nmea_vwr *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIVWT,030.,R,10.1,N,05.2,M,018.7,K*75 */
 static const layout_field vwt_fields[] = {
-    {"wind_angle", "decimal number 0..180", &range_0_to_180, offsetof(nmea_vwt, wind_angle), FIELD_DECIMAL, 1, 0},
-    {"wind_side", "left_right code (L R)", &nmea_left_right_def, offsetof(nmea_vwt, wind_side), FIELD_ENUM, 1, 0},
-    {"speed_knots", "decimal number", NULL, offsetof(nmea_vwt, speed_knots), FIELD_DECIMAL, 1, 0},
-    {"speed_knots_unit", "N or nothing", "N", offsetof(nmea_vwt, speed_knots_unit), FIELD_LITERAL, 1, 0},
-    {"speed_ms", "decimal number", NULL, offsetof(nmea_vwt, speed_ms), FIELD_DECIMAL, 1, 0},
-    {"speed_ms_unit", "M or nothing", "M", offsetof(nmea_vwt, speed_ms_unit), FIELD_LITERAL, 1, 0},
-    {"speed_kmh", "decimal number", NULL, offsetof(nmea_vwt, speed_kmh), FIELD_DECIMAL, 1, 0},
-    {"speed_kmh_unit", "K or nothing", "K", offsetof(nmea_vwt, speed_kmh_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("wind_angle"), ERROR_TEXT("decimal number 0..180"), &range_0_to_180, offsetof(nmea_vwt, wind_angle), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("wind_side"), ERROR_TEXT("left_right code (L R)"), &nmea_left_right_def, offsetof(nmea_vwt, wind_side), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("speed_knots"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vwt, speed_knots), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_knots_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_vwt, speed_knots_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_ms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vwt, speed_ms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_ms_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_vwt, speed_ms_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("speed_kmh"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_vwt, speed_kmh), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_kmh_unit"), ERROR_TEXT("K or nothing"), "K", offsetof(nmea_vwt, speed_kmh_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout vwt_layout = {
     .sentence = "VWT", .fields = vwt_fields, .before = 8, .fixed = 8, .max_fields = 8, .size = sizeof(nmea_vwt),
@@ -14368,15 +14439,15 @@ size_t nmea_build_vwt(const nmea_vwt *s, char *buf, size_t cap, nmea_error *err)
 /* ------------------------------------------------------------------------------------------ */
 /* WAT: Water level detection (spec/standard/wat.yaml) */
 static const layout_field wat_fields[] = {
-    {"message_type", "wat_message_type code (S E F)", &nmea_wat_message_type_def, offsetof(nmea_wat, message_type), FIELD_ENUM, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_wat, time), FIELD_TIME, 1, 0},
-    {"system", "wat_system code (WL BI HD OT)", &nmea_wat_system_def, offsetof(nmea_wat, system), FIELD_ENUM, 1, 0},
-    {"location_1", "text", NULL, offsetof(nmea_wat, location_1), FIELD_TEXT, 1, 0},
-    {"location_2", "text", NULL, offsetof(nmea_wat, location_2), FIELD_TEXT, 1, 0},
-    {"point_number", "integer", NULL, offsetof(nmea_wat, point_number), FIELD_INTEGER, 1, 0},
-    {"condition", "wat_alarm_condition code (N H J L K X)", &nmea_wat_alarm_condition_def, offsetof(nmea_wat, condition), FIELD_ENUM, 1, 0},
-    {"override", "wat_override code (O N)", &nmea_wat_override_def, offsetof(nmea_wat, override), FIELD_ENUM, 1, 0},
-    {"description", "text", NULL, offsetof(nmea_wat, description), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("message_type"), ERROR_TEXT("wat_message_type code (S E F)"), &nmea_wat_message_type_def, offsetof(nmea_wat, message_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_wat, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("system"), ERROR_TEXT("wat_system code (WL BI HD OT)"), &nmea_wat_system_def, offsetof(nmea_wat, system), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("location_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_wat, location_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("location_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_wat, location_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("point_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_wat, point_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("condition"), ERROR_TEXT("wat_alarm_condition code (N H J L K X)"), &nmea_wat_alarm_condition_def, offsetof(nmea_wat, condition), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("override"), ERROR_TEXT("wat_override code (O N)"), &nmea_wat_override_def, offsetof(nmea_wat, override), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("description"), ERROR_TEXT("text"), NULL, offsetof(nmea_wat, description), FIELD_TEXT, 1, 0},
 };
 static const layout wat_layout = {
     .sentence = "WAT", .fields = wat_fields, .before = 9, .fixed = 9, .max_fields = 9, .size = sizeof(nmea_wat),
@@ -14405,10 +14476,10 @@ size_t nmea_build_wat(const nmea_wat *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPWCV,12.3,N,POINT1*54 */
 static const layout_field wcv_fields[] = {
-    {"velocity", "decimal number", NULL, offsetof(nmea_wcv, velocity), FIELD_DECIMAL, 1, 0},
-    {"velocity_unit", "N or nothing", "N", offsetof(nmea_wcv, velocity_unit), FIELD_LITERAL, 1, 0},
-    {"waypoint", "text", NULL, offsetof(nmea_wcv, waypoint), FIELD_TEXT, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_wcv, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("velocity"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_wcv, velocity), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("velocity_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_wcv, velocity_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_wcv, waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_wcv, mode), FIELD_ENUM, 1, 0},
 };
 static const layout wcv_layout = {
     .sentence = "WCV", .fields = wcv_fields, .before = 3, .optional = 1, .fixed = 3, .max_fields = 4,
@@ -14438,12 +14509,12 @@ size_t nmea_build_wcv(const nmea_wcv *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPWNC,200.00,N,370.40,K,Dest,Origin*58 */
 static const layout_field wnc_fields[] = {
-    {"distance_nmi", "decimal number of at least 0", &range_from_0, offsetof(nmea_wnc, distance_nmi), FIELD_DECIMAL, 1, 0},
-    {"distance_nmi_unit", "N or nothing", "N", offsetof(nmea_wnc, distance_nmi_unit), FIELD_LITERAL, 1, 0},
-    {"distance_km", "decimal number of at least 0", &range_from_0, offsetof(nmea_wnc, distance_km), FIELD_DECIMAL, 1, 0},
-    {"distance_km_unit", "K or nothing", "K", offsetof(nmea_wnc, distance_km_unit), FIELD_LITERAL, 1, 0},
-    {"to_waypoint", "text", NULL, offsetof(nmea_wnc, to_waypoint), FIELD_TEXT, 1, 0},
-    {"from_waypoint", "text", NULL, offsetof(nmea_wnc, from_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("distance_nmi"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_wnc, distance_nmi), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("distance_nmi_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_wnc, distance_nmi_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("distance_km"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_wnc, distance_km), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("distance_km_unit"), ERROR_TEXT("K or nothing"), "K", offsetof(nmea_wnc, distance_km_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("to_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_wnc, to_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("from_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_wnc, from_waypoint), FIELD_TEXT, 1, 0},
 };
 static const layout wnc_layout = {
     .sentence = "WNC", .fields = wnc_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_wnc),
@@ -14472,9 +14543,9 @@ size_t nmea_build_wnc(const nmea_wnc *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPWPL,6004.407,N,01939.993,E,A003*39 */
 static const layout_field wpl_fields[] = {
-    {"waypoint_lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_wpl, waypoint_lat), FIELD_LATITUDE, 2, 0},
-    {"waypoint_lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_wpl, waypoint_lon), FIELD_LONGITUDE, 2, 0},
-    {"waypoint", "text", NULL, offsetof(nmea_wpl, waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("waypoint_lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_wpl, waypoint_lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("waypoint_lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_wpl, waypoint_lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_wpl, waypoint), FIELD_TEXT, 1, 0},
 };
 static const layout wpl_layout = {
     .sentence = "WPL", .fields = wpl_fields, .before = 3, .fixed = 5, .max_fields = 5, .size = sizeof(nmea_wpl),
@@ -14503,15 +14574,15 @@ size_t nmea_build_wpl(const nmea_wpl *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIXDR,C,,C,AIRTEMP,A,-1.0,D,HEEL,A,2.9,D,TRIM,P,,B,BARO,A,-3.9,D,RUDDER*29 */
 static const layout_field xdr_group_fields[] = {
-    {"transducer_type", "xdr_transducer_type code (A C D F G H I N P R S T U V)", &nmea_xdr_transducer_type_def, offsetof(nmea_xdr_measurement, transducer_type), FIELD_ENUM, 1, 0},
-    {"measurement", "decimal number", NULL, offsetof(nmea_xdr_measurement, measurement), FIELD_DECIMAL, 1, 0},
-    {"unit", "xdr_unit code (A B C D H I K M N P R S V)", &nmea_xdr_unit_def, offsetof(nmea_xdr_measurement, unit), FIELD_ENUM, 1, 0},
-    {"name", "text", NULL, offsetof(nmea_xdr_measurement, name), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("transducer_type"), ERROR_TEXT("xdr_transducer_type code (A C D F G H I N P R S T U V)"), &nmea_xdr_transducer_type_def, offsetof(nmea_xdr_measurement, transducer_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("measurement"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_xdr_measurement, measurement), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("unit"), ERROR_TEXT("xdr_unit code (A B C D H I K M N P R S V)"), &nmea_xdr_unit_def, offsetof(nmea_xdr_measurement, unit), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("name"), ERROR_TEXT("text"), NULL, offsetof(nmea_xdr_measurement, name), FIELD_TEXT, 1, 0},
 };
 static const layout_group xdr_group = {
-    .id = "measurements", .fields = xdr_group_fields, .field_count = 4, .width = 4, .min = 1, .max = 10,
-    .single = false, .offset = offsetof(nmea_xdr, measurements), .entry_size = sizeof(nmea_xdr_measurement),
-    .count_offset = offsetof(nmea_xdr, measurements.count),
+    .id = ERROR_TEXT("measurements"), .fields = xdr_group_fields, .field_count = 4, .width = 4, .min = 1,
+    .max = 10, .single = false, .offset = offsetof(nmea_xdr, measurements),
+    .entry_size = sizeof(nmea_xdr_measurement), .count_offset = offsetof(nmea_xdr, measurements.count),
 };
 static const layout xdr_layout = {
     .sentence = "XDR", .fields = NO_FIELDS, .group = &xdr_group, .max_fields = 40, .size = sizeof(nmea_xdr),
@@ -14545,12 +14616,12 @@ size_t nmea_build_xdr(const nmea_xdr *s, char *buf, size_t cap, nmea_error *err)
 
 /* $IIXTE,A,A,5.36,R,N*67 */
 static const layout_field xte_fields[] = {
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_xte, status), FIELD_ENUM, 1, 0},
-    {"cycle_lock_status", "status code (A V)", &nmea_status_def, offsetof(nmea_xte, cycle_lock_status), FIELD_ENUM, 1, 0},
-    {"cross_track_error", "decimal number of at least 0", &range_from_0, offsetof(nmea_xte, cross_track_error), FIELD_DECIMAL, 1, 0},
-    {"steer_direction", "left_right code (L R)", &nmea_left_right_def, offsetof(nmea_xte, steer_direction), FIELD_ENUM, 1, 0},
-    {"cross_track_error_unit", "N or nothing", "N", offsetof(nmea_xte, cross_track_error_unit), FIELD_LITERAL, 1, 0},
-    {"mode", "pos_mode code (A D E F G M N P R S)", &nmea_pos_mode_def, offsetof(nmea_xte, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_xte, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cycle_lock_status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_xte, cycle_lock_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cross_track_error"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_xte, cross_track_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("steer_direction"), ERROR_TEXT("left_right code (L R)"), &nmea_left_right_def, offsetof(nmea_xte, steer_direction), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cross_track_error_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_xte, cross_track_error_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_xte, mode), FIELD_ENUM, 1, 0},
 };
 static const layout xte_layout = {
     .sentence = "XTE", .fields = xte_fields, .before = 5, .optional = 1, .fixed = 5, .max_fields = 6,
@@ -14580,9 +14651,9 @@ size_t nmea_build_xte(const nmea_xte *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPXTR,1.2,,N*06 */
 static const layout_field xtr_fields[] = {
-    {"cross_track_error", "decimal number of at least 0", &range_from_0, offsetof(nmea_xtr, cross_track_error), FIELD_DECIMAL, 1, 0},
-    {"steer_direction", "left_right code (L R)", &nmea_left_right_def, offsetof(nmea_xtr, steer_direction), FIELD_ENUM, 1, 0},
-    {"cross_track_error_unit", "N or nothing", "N", offsetof(nmea_xtr, cross_track_error_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("cross_track_error"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_xtr, cross_track_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("steer_direction"), ERROR_TEXT("left_right code (L R)"), &nmea_left_right_def, offsetof(nmea_xtr, steer_direction), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cross_track_error_unit"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_xtr, cross_track_error_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout xtr_layout = {
     .sentence = "XTR", .fields = xtr_fields, .before = 3, .fixed = 3, .max_fields = 3, .size = sizeof(nmea_xtr),
@@ -14611,12 +14682,12 @@ size_t nmea_build_xtr(const nmea_xtr *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPZDA,072914.00,31,05,2018,+00,00*48 */
 static const layout_field zda_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_zda, time), FIELD_TIME, 1, 0},
-    {"day", "integer 1..31", &range_1_to_31, offsetof(nmea_zda, day), FIELD_INTEGER, 1, 0},
-    {"month", "integer 1..12", &range_1_to_12, offsetof(nmea_zda, month), FIELD_INTEGER, 1, 0},
-    {"year", "integer", NULL, offsetof(nmea_zda, year), FIELD_INTEGER, 1, 0},
-    {"local_zone_hours", "integer -13..13", &range_minus_13_to_13, offsetof(nmea_zda, local_zone_hours), FIELD_INTEGER, 1, 0},
-    {"local_zone_minutes", "integer 0..59", &range_0_to_59, offsetof(nmea_zda, local_zone_minutes), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_zda, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("day"), ERROR_TEXT("integer 1..31"), &range_1_to_31, offsetof(nmea_zda, day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("month"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_zda, month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_zda, year), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("local_zone_hours"), ERROR_TEXT("integer -13..13"), &range_minus_13_to_13, offsetof(nmea_zda, local_zone_hours), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("local_zone_minutes"), ERROR_TEXT("integer 0..59"), &range_0_to_59, offsetof(nmea_zda, local_zone_minutes), FIELD_INTEGER, 1, 0},
 };
 static const layout zda_layout = {
     .sentence = "ZDA", .fields = zda_fields, .before = 6, .fixed = 6, .max_fields = 6, .size = sizeof(nmea_zda),
@@ -14691,9 +14762,9 @@ size_t nmea_build_zda(const nmea_zda *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPZDL,000000,0.0,R*15 */
 static const layout_field zdl_fields[] = {
-    {"time_to_point", "time hhmmss[.s]", NULL, offsetof(nmea_zdl, time_to_point), FIELD_TIME, 1, 0},
-    {"distance_to_point", "decimal number of at least 0", &range_from_0, offsetof(nmea_zdl, distance_to_point), FIELD_DECIMAL, 1, 0},
-    {"point_type", "zdl_point_type code (C T R W)", &nmea_zdl_point_type_def, offsetof(nmea_zdl, point_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time_to_point"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_zdl, time_to_point), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("distance_to_point"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_zdl, distance_to_point), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("point_type"), ERROR_TEXT("zdl_point_type code (C T R W)"), &nmea_zdl_point_type_def, offsetof(nmea_zdl, point_type), FIELD_ENUM, 1, 0},
 };
 static const layout zdl_layout = {
     .sentence = "ZDL", .fields = zdl_fields, .before = 3, .fixed = 3, .max_fields = 3, .size = sizeof(nmea_zdl),
@@ -14722,9 +14793,9 @@ size_t nmea_build_zdl(const nmea_zdl *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPZFO,145832.12,042359.17,WPT*3E */
 static const layout_field zfo_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_zfo, time), FIELD_TIME, 1, 0},
-    {"elapsed_time", "time hhmmss[.s]", NULL, offsetof(nmea_zfo, elapsed_time), FIELD_TIME, 1, 0},
-    {"origin_waypoint", "text", NULL, offsetof(nmea_zfo, origin_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_zfo, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("elapsed_time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_zfo, elapsed_time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("origin_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_zfo, origin_waypoint), FIELD_TEXT, 1, 0},
 };
 static const layout zfo_layout = {
     .sentence = "ZFO", .fields = zfo_fields, .before = 3, .fixed = 3, .max_fields = 3, .size = sizeof(nmea_zfo),
@@ -14753,9 +14824,9 @@ size_t nmea_build_zfo(const nmea_zfo *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPZTG,145832.12,042359.17,WPT*24 */
 static const layout_field ztg_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ztg, time), FIELD_TIME, 1, 0},
-    {"time_to_go", "time hhmmss[.s]", NULL, offsetof(nmea_ztg, time_to_go), FIELD_TIME, 1, 0},
-    {"destination_waypoint", "text", NULL, offsetof(nmea_ztg, destination_waypoint), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ztg, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("time_to_go"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ztg, time_to_go), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("destination_waypoint"), ERROR_TEXT("text"), NULL, offsetof(nmea_ztg, destination_waypoint), FIELD_TEXT, 1, 0},
 };
 static const layout ztg_layout = {
     .sentence = "ZTG", .fields = ztg_fields, .before = 3, .fixed = 3, .max_fields = 3, .size = sizeof(nmea_ztg),
@@ -14784,9 +14855,9 @@ size_t nmea_build_ztg(const nmea_ztg *s, char *buf, size_t cap, nmea_error *err)
 
 /* LOG GPGGA ONTIME 1 */
 static const layout_field comnav_log_fields[] = {
-    {"message", "comnav_log_message code (GPGGA GPGLL GPGSA GPGST GPGSV GPHDT GPRMC GPVTG GPZDA)", &nmea_comnav_log_message_def, offsetof(nmea_comnav_log, message), FIELD_ENUM, 1, 0},
-    {"trigger", "ONTIME", "ONTIME", 0, FIELD_KEYWORD, 1, 0},
-    {"period", "decimal number", NULL, offsetof(nmea_comnav_log, period), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("comnav_log_message code (GPGGA GPGLL GPGSA GPGST GPGSV GPHDT GPRMC GPVTG GPZDA)"), &nmea_comnav_log_message_def, offsetof(nmea_comnav_log, message), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("trigger"), ERROR_TEXT("ONTIME"), "ONTIME", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("period"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_comnav_log, period), FIELD_DECIMAL, 1, 0},
 };
 static const layout comnav_log_layout = {
     .sentence = "COMNAV_LOG", .address = "LOG", .command = "LOG", .selector = "ONTIME",
@@ -14814,8 +14885,8 @@ size_t nmea_build_comnav_log(const nmea_comnav_log *s, char *buf, size_t cap, nm
 /* ------------------------------------------------------------------------------------------ */
 /* COMNAV_NMEATALKER: Set, list or reset the NMEA talker IDs (spec/proprietary/comnav_nmeatalker.yaml) */
 static const layout_field comnav_nmeatalker_fields[] = {
-    {"message", "comnav_talker_sentence code (GGA GSA GSV GST ZDA HDT RMC VTG GLL ALL)", &nmea_comnav_talker_sentence_def, offsetof(nmea_comnav_nmeatalker, message), FIELD_ENUM, 1, 0},
-    {"talker_id", "comnav_talker_id code (GN GP BD GL GA AUTO)", &nmea_comnav_talker_id_def, offsetof(nmea_comnav_nmeatalker, talker_id), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("comnav_talker_sentence code (GGA GSA GSV GST ZDA HDT RMC VTG GLL ALL)"), &nmea_comnav_talker_sentence_def, offsetof(nmea_comnav_nmeatalker, message), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("talker_id"), ERROR_TEXT("comnav_talker_id code (GN GP BD GL GA AUTO)"), &nmea_comnav_talker_id_def, offsetof(nmea_comnav_nmeatalker, talker_id), FIELD_ENUM, 1, 0},
 };
 static const layout comnav_nmeatalker_layout = {
     .sentence = "COMNAV_NMEATALKER", .address = "NMEATALKER", .command = "NMEATALKER",
@@ -14845,7 +14916,7 @@ size_t nmea_build_comnav_nmeatalker(const nmea_comnav_nmeatalker *s, char *buf, 
 
 /* NMEATALKER LIST */
 static const layout_field comnav_nmeatalker_list_fields[] = {
-    {"subcommand", "LIST", "LIST", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("subcommand"), ERROR_TEXT("LIST"), "LIST", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout comnav_nmeatalker_list_layout = {
     .sentence = "COMNAV_NMEATALKER", .address = "NMEATALKER", .command = "NMEATALKER", .variant = "list",
@@ -14876,7 +14947,7 @@ size_t nmea_build_comnav_nmeatalker_list(const nmea_comnav_nmeatalker_list *s, c
 
 /* NMEATALKER RESET */
 static const layout_field comnav_nmeatalker_reset_fields[] = {
-    {"subcommand", "RESET", "RESET", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("subcommand"), ERROR_TEXT("RESET"), "RESET", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout comnav_nmeatalker_reset_layout = {
     .sentence = "COMNAV_NMEATALKER", .address = "NMEATALKER", .command = "NMEATALKER", .variant = "reset",
@@ -14907,7 +14978,7 @@ size_t nmea_build_comnav_nmeatalker_reset(const nmea_comnav_nmeatalker_reset *s,
 
 /* $GPSGG,SWPROT*75 */
 static const layout_field geos5_command_fields[] = {
-    {"command", "geos5_command_word code (SWPROT SAVEFL CSTART WSTART HSTART BDR004 BDR009 BDR019 BDR038 BDR057 BDR115 BDR230 BDR460 BDR921 STOP01 STOP02 GGA ON GGAOFF GLL ON GLLOFF GSA ON GSAOFF GSV ON GSVOFF RMC ON RMCOFF VTG ON VTGOFF ZDA ON ZDAOFF DTM ON DTMOFF RLM ON RLMOFF NMEAV2 NMEAV4 RATE01 RATE02 RATE05 RATE10 PSM ON PSMOFF ELEV05 ELEV06 ELEV07 ELEV08 ELEV09 ELEV10 ELEV11 ELEV12 ELEV13 ELEV14 ELEV15 DATP90 DATW84 NVSGPS NVSGLN NVSMIX)", &nmea_geos5_command_word_def, offsetof(nmea_geos5_command, command), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("geos5_command_word code (SWPROT SAVEFL CSTART WSTART HSTART BDR004 BDR009 BDR019 BDR038 BDR057 BDR115 BDR230 BDR460 BDR921 STOP01 STOP02 GGA ON GGAOFF GLL ON GLLOFF GSA ON GSAOFF GSV ON GSVOFF RMC ON RMCOFF VTG ON VTGOFF ZDA ON ZDAOFF DTM ON DTMOFF RLM ON RLMOFF NMEAV2 NMEAV4 RATE01 RATE02 RATE05 RATE10 PSM ON PSMOFF ELEV05 ELEV06 ELEV07 ELEV08 ELEV09 ELEV10 ELEV11 ELEV12 ELEV13 ELEV14 ELEV15 DATP90 DATW84 NVSGPS NVSGLN NVSMIX)"), &nmea_geos5_command_word_def, offsetof(nmea_geos5_command, command), FIELD_ENUM, 1, 0},
 };
 static const layout geos5_command_layout = {
     .sentence = "GEOS5_COMMAND", .address = "GPSGG", .fields = geos5_command_fields, .before = 1, .fixed = 1,
@@ -14936,8 +15007,8 @@ size_t nmea_build_geos5_command(const nmea_geos5_command *s, char *buf, size_t c
 
 /* $GPSGG,JAMDET,*57 */
 static const layout_field geos5_jamdet_fields[] = {
-    {"keyword", "JAMDET", "JAMDET", 0, FIELD_KEYWORD, 1, 0},
-    {"reserved", "text", NULL, offsetof(nmea_geos5_jamdet, reserved), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("JAMDET"), "JAMDET", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("text"), NULL, offsetof(nmea_geos5_jamdet, reserved), FIELD_TEXT, 1, 0},
 };
 static const layout geos5_jamdet_layout = {
     .sentence = "GEOS5_JAMDET", .address = "GPSGG", .selector = "JAMDET", .fields = geos5_jamdet_fields,
@@ -15005,20 +15076,20 @@ size_t nmea_build_geos5_jamdet(const nmea_geos5_jamdet *s, char *buf, size_t cap
 
 /* $GPSGG,NQUERY,1,3,2,R,0,R,1,0,0,0,1,1,0*71 */
 static const layout_field geos5_nquery_fields[] = {
-    {"keyword", "NQUERY", "NQUERY", 0, FIELD_KEYWORD, 1, 0},
-    {"port", "integer 0..1", &range_0_to_1, offsetof(nmea_geos5_nquery, port), FIELD_INTEGER, 1, 0},
-    {"output_rate", "geos5_output_rate code (0 1 2 3)", &nmea_geos5_output_rate_def, offsetof(nmea_geos5_nquery, output_rate), FIELD_ENUM, 1, 0},
-    {"nmea_version", "geos5_nmea_version code (2 4)", &nmea_geos5_nmea_version_def, offsetof(nmea_geos5_nquery, nmea_version), FIELD_ENUM, 1, 0},
-    {"gga_rate", "geos5_message_rate code (0 1 2 3 R)", &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, gga_rate), FIELD_ENUM, 1, 0},
-    {"gll_rate", "geos5_message_rate code (0 1 2 3 R)", &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, gll_rate), FIELD_ENUM, 1, 0},
-    {"gsa_rate", "geos5_message_rate code (0 1 2 3 R)", &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, gsa_rate), FIELD_ENUM, 1, 0},
-    {"gsv_rate", "geos5_message_rate code (0 1 2 3 R)", &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, gsv_rate), FIELD_ENUM, 1, 0},
-    {"rmc_rate", "geos5_message_rate code (0 1 2 3 R)", &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, rmc_rate), FIELD_ENUM, 1, 0},
-    {"vtg_rate", "geos5_message_rate code (0 1 2 3 R)", &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, vtg_rate), FIELD_ENUM, 1, 0},
-    {"gns_rate", "geos5_message_rate code (0 1 2 3 R)", &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, gns_rate), FIELD_ENUM, 1, 0},
-    {"zda_rate", "geos5_message_rate code (0 1 2 3 R)", &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, zda_rate), FIELD_ENUM, 1, 0},
-    {"dtm_rate", "geos5_message_rate code (0 1 2 3 R)", &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, dtm_rate), FIELD_ENUM, 1, 0},
-    {"rlm_rate", "geos5_message_rate code (0 1 2 3 R)", &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, rlm_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("NQUERY"), "NQUERY", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port"), ERROR_TEXT("integer 0..1"), &range_0_to_1, offsetof(nmea_geos5_nquery, port), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("output_rate"), ERROR_TEXT("geos5_output_rate code (0 1 2 3)"), &nmea_geos5_output_rate_def, offsetof(nmea_geos5_nquery, output_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("nmea_version"), ERROR_TEXT("geos5_nmea_version code (2 4)"), &nmea_geos5_nmea_version_def, offsetof(nmea_geos5_nquery, nmea_version), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("gga_rate"), ERROR_TEXT("geos5_message_rate code (0 1 2 3 R)"), &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, gga_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("gll_rate"), ERROR_TEXT("geos5_message_rate code (0 1 2 3 R)"), &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, gll_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("gsa_rate"), ERROR_TEXT("geos5_message_rate code (0 1 2 3 R)"), &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, gsa_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("gsv_rate"), ERROR_TEXT("geos5_message_rate code (0 1 2 3 R)"), &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, gsv_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rmc_rate"), ERROR_TEXT("geos5_message_rate code (0 1 2 3 R)"), &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, rmc_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("vtg_rate"), ERROR_TEXT("geos5_message_rate code (0 1 2 3 R)"), &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, vtg_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("gns_rate"), ERROR_TEXT("geos5_message_rate code (0 1 2 3 R)"), &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, gns_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("zda_rate"), ERROR_TEXT("geos5_message_rate code (0 1 2 3 R)"), &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, zda_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("dtm_rate"), ERROR_TEXT("geos5_message_rate code (0 1 2 3 R)"), &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, dtm_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rlm_rate"), ERROR_TEXT("geos5_message_rate code (0 1 2 3 R)"), &nmea_geos5_message_rate_def, offsetof(nmea_geos5_nquery, rlm_rate), FIELD_ENUM, 1, 0},
 };
 static const layout geos5_nquery_layout = {
     .sentence = "GEOS5_NQUERY", .address = "GPSGG", .selector = "NQUERY", .fields = geos5_nquery_fields,
@@ -15048,7 +15119,7 @@ size_t nmea_build_geos5_nquery(const nmea_geos5_nquery *s, char *buf, size_t cap
 
 /* $GPSGG,NQUERY*6C */
 static const layout_field geos5_nquery_request_fields[] = {
-    {"keyword", "NQUERY", "NQUERY", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("NQUERY"), "NQUERY", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout geos5_nquery_request_layout = {
     .sentence = "GEOS5_NQUERY_REQUEST", .address = "GPSGG", .selector = "NQUERY",
@@ -15078,13 +15149,13 @@ size_t nmea_build_geos5_nquery_request(const nmea_geos5_nquery_request *s, char 
 
 /* $GPSGG,RQUERY,GEOS-5,V.5.102,100518,00083037,802DC097,F7FF8064*5C */
 static const layout_field geos5_rquery_fields[] = {
-    {"keyword", "RQUERY", "RQUERY", 0, FIELD_KEYWORD, 1, 0},
-    {"receiver_name", "text", NULL, offsetof(nmea_geos5_rquery, receiver_name), FIELD_TEXT, 1, 0},
-    {"software_version", "text", NULL, offsetof(nmea_geos5_rquery, software_version), FIELD_TEXT, 1, 0},
-    {"software_date", "date ddmmyy", NULL, offsetof(nmea_geos5_rquery, software_date), FIELD_DATE, 1, 0},
-    {"status", "hex number", NULL, offsetof(nmea_geos5_rquery, status), FIELD_HEX, 1, 0},
-    {"config_1", "hex number", NULL, offsetof(nmea_geos5_rquery, config_1), FIELD_HEX, 1, 0},
-    {"config_2", "hex number", NULL, offsetof(nmea_geos5_rquery, config_2), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("RQUERY"), "RQUERY", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("receiver_name"), ERROR_TEXT("text"), NULL, offsetof(nmea_geos5_rquery, receiver_name), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("software_version"), ERROR_TEXT("text"), NULL, offsetof(nmea_geos5_rquery, software_version), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("software_date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_geos5_rquery, software_date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_geos5_rquery, status), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("config_1"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_geos5_rquery, config_1), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("config_2"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_geos5_rquery, config_2), FIELD_HEX, 1, 0},
 };
 static const layout geos5_rquery_layout = {
     .sentence = "GEOS5_RQUERY", .address = "GPSGG", .selector = "RQUERY", .fields = geos5_rquery_fields,
@@ -15114,7 +15185,7 @@ size_t nmea_build_geos5_rquery(const nmea_geos5_rquery *s, char *buf, size_t cap
 
 /* $GPSGG,RQUERY*70 */
 static const layout_field geos5_rquery_request_fields[] = {
-    {"keyword", "RQUERY", "RQUERY", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("RQUERY"), "RQUERY", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout geos5_rquery_request_layout = {
     .sentence = "GEOS5_RQUERY_REQUEST", .address = "GPSGG", .selector = "RQUERY",
@@ -15144,8 +15215,8 @@ size_t nmea_build_geos5_rquery_request(const nmea_geos5_rquery_request *s, char 
 
 /* $PAIR001,050,0*3E */
 static const layout_field pair001_fields[] = {
-    {"command", "integer 0..9999", &range_0_to_9999, offsetof(nmea_pair001, command), FIELD_INTEGER, 1, 0},
-    {"result", "airoha_ack_result code (0 1 2 3 4 5)", &nmea_airoha_ack_result_def, offsetof(nmea_pair001, result), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("integer 0..9999"), &range_0_to_9999, offsetof(nmea_pair001, command), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("result"), ERROR_TEXT("airoha_ack_result code (0 1 2 3 4 5)"), &nmea_airoha_ack_result_def, offsetof(nmea_pair001, result), FIELD_ENUM, 1, 0},
 };
 static const layout pair001_layout = {
     .sentence = "PAIR001", .address = "PAIR001", .fields = pair001_fields, .before = 2, .fixed = 2,
@@ -15330,10 +15401,10 @@ size_t nmea_build_pair007(const nmea_pair007 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR010,0,0,2263,403496*32 */
 static const layout_field pair010_fields[] = {
-    {"type", "airoha_aiding_type code (0 1 2)", &nmea_airoha_aiding_type_def, offsetof(nmea_pair010, type), FIELD_ENUM, 1, 0},
-    {"system", "airoha_gnss_system code (0 1 2 3 4)", &nmea_airoha_gnss_system_def, offsetof(nmea_pair010, system), FIELD_ENUM, 1, 0},
-    {"week", "integer of at least 0", &range_from_0, offsetof(nmea_pair010, week), FIELD_INTEGER, 1, 0},
-    {"tow", "integer 0..604799", &range_0_to_604799, offsetof(nmea_pair010, tow), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("airoha_aiding_type code (0 1 2)"), &nmea_airoha_aiding_type_def, offsetof(nmea_pair010, type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("system"), ERROR_TEXT("airoha_gnss_system code (0 1 2 3 4)"), &nmea_airoha_gnss_system_def, offsetof(nmea_pair010, system), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("week"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pair010, week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("tow"), ERROR_TEXT("integer 0..604799"), &range_0_to_604799, offsetof(nmea_pair010, tow), FIELD_INTEGER, 1, 0},
 };
 static const layout pair010_layout = {
     .sentence = "PAIR010", .address = "PAIR010", .fields = pair010_fields, .before = 4, .fixed = 4,
@@ -15404,7 +15475,7 @@ size_t nmea_build_pair010(const nmea_pair010 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR050,1000*12 */
 static const layout_field pair050_fields[] = {
-    {"interval", "integer 100..1000", &range_100_to_1000, offsetof(nmea_pair050, interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("interval"), ERROR_TEXT("integer 100..1000"), &range_100_to_1000, offsetof(nmea_pair050, interval), FIELD_INTEGER, 1, 0},
 };
 static const layout pair050_layout = {
     .sentence = "PAIR050", .address = "PAIR050", .fields = pair050_fields, .before = 1, .fixed = 1,
@@ -15459,7 +15530,7 @@ size_t nmea_build_pair051(const nmea_pair051 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR051,1000*13 */
 static const layout_field pair051_reply_fields[] = {
-    {"interval", "integer 100..1000", &range_100_to_1000, offsetof(nmea_pair051_reply, interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("interval"), ERROR_TEXT("integer 100..1000"), &range_100_to_1000, offsetof(nmea_pair051_reply, interval), FIELD_INTEGER, 1, 0},
 };
 static const layout pair051_reply_layout = {
     .sentence = "PAIR051_REPLY", .address = "PAIR051", .fields = pair051_reply_fields, .before = 1, .fixed = 1,
@@ -15488,7 +15559,7 @@ size_t nmea_build_pair051_reply(const nmea_pair051_reply *s, char *buf, size_t c
 
 /* $PAIR058,15*1F */
 static const layout_field pair058_fields[] = {
-    {"min_snr", "integer 9..37", &range_9_to_37, offsetof(nmea_pair058, min_snr), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("min_snr"), ERROR_TEXT("integer 9..37"), &range_9_to_37, offsetof(nmea_pair058, min_snr), FIELD_INTEGER, 1, 0},
 };
 static const layout pair058_layout = {
     .sentence = "PAIR058", .address = "PAIR058", .fields = pair058_fields, .before = 1, .fixed = 1,
@@ -15543,7 +15614,7 @@ size_t nmea_build_pair059(const nmea_pair059 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR059,15*1E */
 static const layout_field pair059_reply_fields[] = {
-    {"min_snr", "integer 9..37", &range_9_to_37, offsetof(nmea_pair059_reply, min_snr), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("min_snr"), ERROR_TEXT("integer 9..37"), &range_9_to_37, offsetof(nmea_pair059_reply, min_snr), FIELD_INTEGER, 1, 0},
 };
 static const layout pair059_reply_layout = {
     .sentence = "PAIR059_REPLY", .address = "PAIR059", .fields = pair059_reply_fields, .before = 1, .fixed = 1,
@@ -15572,8 +15643,8 @@ size_t nmea_build_pair059_reply(const nmea_pair059_reply *s, char *buf, size_t c
 
 /* $PAIR062,0,3*3D */
 static const layout_field pair062_fields[] = {
-    {"type", "airoha_nmea_type code (-1 0 1 2 3 4 5 6 7 8 9)", &nmea_airoha_nmea_type_def, offsetof(nmea_pair062, type), FIELD_ENUM, 1, 0},
-    {"rate", "integer 0..20", &range_0_to_20, offsetof(nmea_pair062, rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("airoha_nmea_type code (-1 0 1 2 3 4 5 6 7 8 9)"), &nmea_airoha_nmea_type_def, offsetof(nmea_pair062, type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rate"), ERROR_TEXT("integer 0..20"), &range_0_to_20, offsetof(nmea_pair062, rate), FIELD_INTEGER, 1, 0},
 };
 static const layout pair062_layout = {
     .sentence = "PAIR062", .address = "PAIR062", .fields = pair062_fields, .before = 2, .fixed = 2,
@@ -15602,7 +15673,7 @@ size_t nmea_build_pair062(const nmea_pair062 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR063,0*23 */
 static const layout_field pair063_fields[] = {
-    {"type", "airoha_nmea_type code (-1 0 1 2 3 4 5 6 7 8 9)", &nmea_airoha_nmea_type_def, offsetof(nmea_pair063, type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("airoha_nmea_type code (-1 0 1 2 3 4 5 6 7 8 9)"), &nmea_airoha_nmea_type_def, offsetof(nmea_pair063, type), FIELD_ENUM, 1, 0},
 };
 static const layout pair063_layout = {
     .sentence = "PAIR063", .address = "PAIR063", .fields = pair063_fields, .before = 1, .fixed = 1,
@@ -15631,8 +15702,8 @@ size_t nmea_build_pair063(const nmea_pair063 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR063,0,3*3C */
 static const layout_field pair063_reply_fields[] = {
-    {"type", "airoha_nmea_type code (-1 0 1 2 3 4 5 6 7 8 9)", &nmea_airoha_nmea_type_def, offsetof(nmea_pair063_reply, type), FIELD_ENUM, 1, 0},
-    {"rate", "integer 0..20", &range_0_to_20, offsetof(nmea_pair063_reply, rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("airoha_nmea_type code (-1 0 1 2 3 4 5 6 7 8 9)"), &nmea_airoha_nmea_type_def, offsetof(nmea_pair063_reply, type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rate"), ERROR_TEXT("integer 0..20"), &range_0_to_20, offsetof(nmea_pair063_reply, rate), FIELD_INTEGER, 1, 0},
 };
 static const layout pair063_reply_layout = {
     .sentence = "PAIR063_REPLY", .address = "PAIR063", .fields = pair063_reply_fields, .before = 2, .fixed = 2,
@@ -15661,12 +15732,12 @@ size_t nmea_build_pair063_reply(const nmea_pair063_reply *s, char *buf, size_t c
 
 /* $PAIR066,1,1,1,1,0,0*3A */
 static const layout_field pair066_fields[] = {
-    {"gps", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair066, gps), FIELD_ENUM, 1, 0},
-    {"glonass", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair066, glonass), FIELD_ENUM, 1, 0},
-    {"galileo", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair066, galileo), FIELD_ENUM, 1, 0},
-    {"beidou", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair066, beidou), FIELD_ENUM, 1, 0},
-    {"qzss", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair066, qzss), FIELD_ENUM, 1, 0},
-    {"reserved", "integer 0..0", &range_0_to_0, offsetof(nmea_pair066, reserved), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair066, gps), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("glonass"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair066, glonass), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("galileo"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair066, galileo), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("beidou"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair066, beidou), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("qzss"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair066, qzss), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("integer 0..0"), &range_0_to_0, offsetof(nmea_pair066, reserved), FIELD_INTEGER, 1, 0},
 };
 static const layout pair066_layout = {
     .sentence = "PAIR066", .address = "PAIR066", .fields = pair066_fields, .before = 6, .fixed = 6,
@@ -15721,12 +15792,12 @@ size_t nmea_build_pair067(const nmea_pair067 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR067,1,0,0,0,0,0*3A */
 static const layout_field pair067_reply_fields[] = {
-    {"gps", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair067_reply, gps), FIELD_ENUM, 1, 0},
-    {"glonass", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair067_reply, glonass), FIELD_ENUM, 1, 0},
-    {"galileo", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair067_reply, galileo), FIELD_ENUM, 1, 0},
-    {"beidou", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair067_reply, beidou), FIELD_ENUM, 1, 0},
-    {"qzss", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair067_reply, qzss), FIELD_ENUM, 1, 0},
-    {"reserved", "integer 0..0", &range_0_to_0, offsetof(nmea_pair067_reply, reserved), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair067_reply, gps), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("glonass"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair067_reply, glonass), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("galileo"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair067_reply, galileo), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("beidou"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair067_reply, beidou), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("qzss"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair067_reply, qzss), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("integer 0..0"), &range_0_to_0, offsetof(nmea_pair067_reply, reserved), FIELD_INTEGER, 1, 0},
 };
 static const layout pair067_reply_layout = {
     .sentence = "PAIR067_REPLY", .address = "PAIR067", .fields = pair067_reply_fields, .before = 6, .fixed = 6,
@@ -15755,7 +15826,7 @@ size_t nmea_build_pair067_reply(const nmea_pair067_reply *s, char *buf, size_t c
 
 /* $PAIR070,4*25 */
 static const layout_field pair070_fields[] = {
-    {"threshold", "integer 0..20", &range_0_to_20, offsetof(nmea_pair070, threshold), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("threshold"), ERROR_TEXT("integer 0..20"), &range_0_to_20, offsetof(nmea_pair070, threshold), FIELD_INTEGER, 1, 0},
 };
 static const layout pair070_layout = {
     .sentence = "PAIR070", .address = "PAIR070", .fields = pair070_fields, .before = 1, .fixed = 1,
@@ -15810,7 +15881,7 @@ size_t nmea_build_pair071(const nmea_pair071 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR071,0*20 */
 static const layout_field pair071_reply_fields[] = {
-    {"threshold", "decimal number 0..2", &range_0_to_2, offsetof(nmea_pair071_reply, threshold), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("threshold"), ERROR_TEXT("decimal number 0..2"), &range_0_to_2, offsetof(nmea_pair071_reply, threshold), FIELD_DECIMAL, 1, 0},
 };
 static const layout pair071_reply_layout = {
     .sentence = "PAIR071_REPLY", .address = "PAIR071", .fields = pair071_reply_fields, .before = 1, .fixed = 1,
@@ -15839,7 +15910,7 @@ size_t nmea_build_pair071_reply(const nmea_pair071_reply *s, char *buf, size_t c
 
 /* $PAIR072,5*26 */
 static const layout_field pair072_fields[] = {
-    {"elevation", "integer -90..90", &range_minus_90_to_90, offsetof(nmea_pair072, elevation), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("elevation"), ERROR_TEXT("integer -90..90"), &range_minus_90_to_90, offsetof(nmea_pair072, elevation), FIELD_INTEGER, 1, 0},
 };
 static const layout pair072_layout = {
     .sentence = "PAIR072", .address = "PAIR072", .fields = pair072_fields, .before = 1, .fixed = 1,
@@ -15894,7 +15965,7 @@ size_t nmea_build_pair073(const nmea_pair073 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR073,5*27 */
 static const layout_field pair073_reply_fields[] = {
-    {"elevation", "integer -90..90", &range_minus_90_to_90, offsetof(nmea_pair073_reply, elevation), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("elevation"), ERROR_TEXT("integer -90..90"), &range_minus_90_to_90, offsetof(nmea_pair073_reply, elevation), FIELD_INTEGER, 1, 0},
 };
 static const layout pair073_reply_layout = {
     .sentence = "PAIR073_REPLY", .address = "PAIR073", .fields = pair073_reply_fields, .before = 1, .fixed = 1,
@@ -15923,7 +15994,7 @@ size_t nmea_build_pair073_reply(const nmea_pair073_reply *s, char *buf, size_t c
 
 /* $PAIR074,1*24 */
 static const layout_field pair074_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair074, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair074, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair074_layout = {
     .sentence = "PAIR074", .address = "PAIR074", .fields = pair074_fields, .before = 1, .fixed = 1,
@@ -15978,7 +16049,7 @@ size_t nmea_build_pair075(const nmea_pair075 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR075,1*25 */
 static const layout_field pair075_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair075_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair075_reply, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair075_reply_layout = {
     .sentence = "PAIR075_REPLY", .address = "PAIR075", .fields = pair075_reply_fields, .before = 1, .fixed = 1,
@@ -16007,7 +16078,7 @@ size_t nmea_build_pair075_reply(const nmea_pair075_reply *s, char *buf, size_t c
 
 /* $PAIR080,1*2F */
 static const layout_field pair080_fields[] = {
-    {"mode", "airoha_nav_mode code (0 1 4 5 7)", &nmea_airoha_nav_mode_def, offsetof(nmea_pair080, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("airoha_nav_mode code (0 1 4 5 7)"), &nmea_airoha_nav_mode_def, offsetof(nmea_pair080, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pair080_layout = {
     .sentence = "PAIR080", .address = "PAIR080", .fields = pair080_fields, .before = 1, .fixed = 1,
@@ -16062,7 +16133,7 @@ size_t nmea_build_pair081(const nmea_pair081 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR081,0*2F */
 static const layout_field pair081_reply_fields[] = {
-    {"mode", "airoha_nav_mode code (0 1 4 5 7)", &nmea_airoha_nav_mode_def, offsetof(nmea_pair081_reply, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("airoha_nav_mode code (0 1 4 5 7)"), &nmea_airoha_nav_mode_def, offsetof(nmea_pair081_reply, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pair081_reply_layout = {
     .sentence = "PAIR081_REPLY", .address = "PAIR081", .fields = pair081_reply_fields, .before = 1, .fixed = 1,
@@ -16091,7 +16162,7 @@ size_t nmea_build_pair081_reply(const nmea_pair081_reply *s, char *buf, size_t c
 
 /* $PAIR086,1*29 */
 static const layout_field pair086_fields[] = {
-    {"level", "airoha_debug_log code (0 1 2)", &nmea_airoha_debug_log_def, offsetof(nmea_pair086, level), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("level"), ERROR_TEXT("airoha_debug_log code (0 1 2)"), &nmea_airoha_debug_log_def, offsetof(nmea_pair086, level), FIELD_ENUM, 1, 0},
 };
 static const layout pair086_layout = {
     .sentence = "PAIR086", .address = "PAIR086", .fields = pair086_fields, .before = 1, .fixed = 1,
@@ -16146,7 +16217,7 @@ size_t nmea_build_pair087(const nmea_pair087 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR087,0*29 */
 static const layout_field pair087_reply_fields[] = {
-    {"level", "airoha_debug_log code (0 1 2)", &nmea_airoha_debug_log_def, offsetof(nmea_pair087_reply, level), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("level"), ERROR_TEXT("airoha_debug_log code (0 1 2)"), &nmea_airoha_debug_log_def, offsetof(nmea_pair087_reply, level), FIELD_ENUM, 1, 0},
 };
 static const layout pair087_reply_layout = {
     .sentence = "PAIR087_REPLY", .address = "PAIR087", .fields = pair087_reply_fields, .before = 1, .fixed = 1,
@@ -16175,7 +16246,7 @@ size_t nmea_build_pair087_reply(const nmea_pair087_reply *s, char *buf, size_t c
 
 /* $PAIR098,0*27 */
 static const layout_field pair098_fields[] = {
-    {"precision", "airoha_pos_precision code (0 1 2 3)", &nmea_airoha_pos_precision_def, offsetof(nmea_pair098, precision), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("precision"), ERROR_TEXT("airoha_pos_precision code (0 1 2 3)"), &nmea_airoha_pos_precision_def, offsetof(nmea_pair098, precision), FIELD_ENUM, 1, 0},
 };
 static const layout pair098_layout = {
     .sentence = "PAIR098", .address = "PAIR098", .fields = pair098_fields, .before = 1, .fixed = 1,
@@ -16230,7 +16301,7 @@ size_t nmea_build_pair099(const nmea_pair099 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR099,3*25 */
 static const layout_field pair099_reply_fields[] = {
-    {"precision", "airoha_pos_precision code (0 1 2 3)", &nmea_airoha_pos_precision_def, offsetof(nmea_pair099_reply, precision), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("precision"), ERROR_TEXT("airoha_pos_precision code (0 1 2 3)"), &nmea_airoha_pos_precision_def, offsetof(nmea_pair099_reply, precision), FIELD_ENUM, 1, 0},
 };
 static const layout pair099_reply_layout = {
     .sentence = "PAIR099_REPLY", .address = "PAIR099", .fields = pair099_reply_fields, .before = 1, .fixed = 1,
@@ -16259,8 +16330,8 @@ size_t nmea_build_pair099_reply(const nmea_pair099_reply *s, char *buf, size_t c
 
 /* $PAIR100,1,0*3A */
 static const layout_field pair100_fields[] = {
-    {"nmea_mode", "airoha_nmea_output_mode code (0 1 2)", &nmea_airoha_nmea_output_mode_def, offsetof(nmea_pair100, nmea_mode), FIELD_ENUM, 1, 0},
-    {"proprietary", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair100, proprietary), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("nmea_mode"), ERROR_TEXT("airoha_nmea_output_mode code (0 1 2)"), &nmea_airoha_nmea_output_mode_def, offsetof(nmea_pair100, nmea_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("proprietary"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair100, proprietary), FIELD_ENUM, 1, 0},
 };
 static const layout pair100_layout = {
     .sentence = "PAIR100", .address = "PAIR100", .fields = pair100_fields, .before = 2, .fixed = 2,
@@ -16315,8 +16386,8 @@ size_t nmea_build_pair101(const nmea_pair101 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR101,1,0*3B */
 static const layout_field pair101_reply_fields[] = {
-    {"nmea_mode", "airoha_nmea_output_mode code (0 1 2)", &nmea_airoha_nmea_output_mode_def, offsetof(nmea_pair101_reply, nmea_mode), FIELD_ENUM, 1, 0},
-    {"proprietary", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair101_reply, proprietary), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("nmea_mode"), ERROR_TEXT("airoha_nmea_output_mode code (0 1 2)"), &nmea_airoha_nmea_output_mode_def, offsetof(nmea_pair101_reply, nmea_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("proprietary"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair101_reply, proprietary), FIELD_ENUM, 1, 0},
 };
 static const layout pair101_reply_layout = {
     .sentence = "PAIR101_REPLY", .address = "PAIR101", .fields = pair101_reply_fields, .before = 2, .fixed = 2,
@@ -16345,7 +16416,7 @@ size_t nmea_build_pair101_reply(const nmea_pair101_reply *s, char *buf, size_t c
 
 /* $PAIR104,0*23 */
 static const layout_field pair104_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair104, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair104, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair104_layout = {
     .sentence = "PAIR104", .address = "PAIR104", .fields = pair104_fields, .before = 1, .fixed = 1,
@@ -16400,7 +16471,7 @@ size_t nmea_build_pair105(const nmea_pair105 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR105,1*23 */
 static const layout_field pair105_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair105_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair105_reply, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair105_reply_layout = {
     .sentence = "PAIR105_REPLY", .address = "PAIR105", .fields = pair105_reply_fields, .before = 1, .fixed = 1,
@@ -16429,7 +16500,7 @@ size_t nmea_build_pair105_reply(const nmea_pair105_reply *s, char *buf, size_t c
 
 /* $PAIR154,1*27 */
 static const layout_field pair154_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair154, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair154, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair154_layout = {
     .sentence = "PAIR154", .address = "PAIR154", .fields = pair154_fields, .before = 1, .fixed = 1,
@@ -16484,7 +16555,7 @@ size_t nmea_build_pair155(const nmea_pair155 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR155,0*27 */
 static const layout_field pair155_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair155_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair155_reply, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair155_reply_layout = {
     .sentence = "PAIR155_REPLY", .address = "PAIR155", .fields = pair155_reply_fields, .before = 1, .fixed = 1,
@@ -16513,7 +16584,7 @@ size_t nmea_build_pair155_reply(const nmea_pair155_reply *s, char *buf, size_t c
 
 /* $PAIR158,1*2B */
 static const layout_field pair158_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair158, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair158, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair158_layout = {
     .sentence = "PAIR158", .address = "PAIR158", .fields = pair158_fields, .before = 1, .fixed = 1,
@@ -16542,7 +16613,7 @@ size_t nmea_build_pair158(const nmea_pair158 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR382,1*2E */
 static const layout_field pair382_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair382, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair382, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair382_layout = {
     .sentence = "PAIR382", .address = "PAIR382", .fields = pair382_fields, .before = 1, .fixed = 1,
@@ -16571,7 +16642,7 @@ size_t nmea_build_pair382(const nmea_pair382 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR391,1*2C */
 static const layout_field pair391_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair391, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair391, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair391_layout = {
     .sentence = "PAIR391", .address = "PAIR391", .fields = pair391_fields, .before = 1, .fixed = 1,
@@ -16600,7 +16671,7 @@ size_t nmea_build_pair391(const nmea_pair391 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR400,2*20 */
 static const layout_field pair400_fields[] = {
-    {"mode", "airoha_dgps_mode code (0 1 2)", &nmea_airoha_dgps_mode_def, offsetof(nmea_pair400, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("airoha_dgps_mode code (0 1 2)"), &nmea_airoha_dgps_mode_def, offsetof(nmea_pair400, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pair400_layout = {
     .sentence = "PAIR400", .address = "PAIR400", .fields = pair400_fields, .before = 1, .fixed = 1,
@@ -16655,7 +16726,7 @@ size_t nmea_build_pair401(const nmea_pair401 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR401,2*21 */
 static const layout_field pair401_reply_fields[] = {
-    {"mode", "airoha_dgps_mode code (0 1 2)", &nmea_airoha_dgps_mode_def, offsetof(nmea_pair401_reply, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("airoha_dgps_mode code (0 1 2)"), &nmea_airoha_dgps_mode_def, offsetof(nmea_pair401_reply, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pair401_reply_layout = {
     .sentence = "PAIR401_REPLY", .address = "PAIR401", .fields = pair401_reply_fields, .before = 1, .fixed = 1,
@@ -16684,7 +16755,7 @@ size_t nmea_build_pair401_reply(const nmea_pair401_reply *s, char *buf, size_t c
 
 /* $PAIR410,1*22 */
 static const layout_field pair410_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair410, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair410, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair410_layout = {
     .sentence = "PAIR410", .address = "PAIR410", .fields = pair410_fields, .before = 1, .fixed = 1,
@@ -16739,7 +16810,7 @@ size_t nmea_build_pair411(const nmea_pair411 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR411,1*23 */
 static const layout_field pair411_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair411_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair411_reply, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair411_reply_layout = {
     .sentence = "PAIR411_REPLY", .address = "PAIR411", .fields = pair411_reply_fields, .before = 1, .fixed = 1,
@@ -16768,7 +16839,7 @@ size_t nmea_build_pair411_reply(const nmea_pair411_reply *s, char *buf, size_t c
 
 /* $PAIR420,1*21 */
 static const layout_field pair420_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair420, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair420, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair420_layout = {
     .sentence = "PAIR420", .address = "PAIR420", .fields = pair420_fields, .before = 1, .fixed = 1,
@@ -16823,7 +16894,7 @@ size_t nmea_build_pair421(const nmea_pair421 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR421,1*20 */
 static const layout_field pair421_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair421_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair421_reply, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair421_reply_layout = {
     .sentence = "PAIR421_REPLY", .address = "PAIR421", .fields = pair421_reply_fields, .before = 1, .fixed = 1,
@@ -16852,7 +16923,7 @@ size_t nmea_build_pair421_reply(const nmea_pair421_reply *s, char *buf, size_t c
 
 /* $PAIR432,1*22 */
 static const layout_field pair432_fields[] = {
-    {"mode", "airoha_rtcm_mode code (-1 0 1)", &nmea_airoha_rtcm_mode_def, offsetof(nmea_pair432, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("airoha_rtcm_mode code (-1 0 1)"), &nmea_airoha_rtcm_mode_def, offsetof(nmea_pair432, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pair432_layout = {
     .sentence = "PAIR432", .address = "PAIR432", .fields = pair432_fields, .before = 1, .fixed = 1,
@@ -16907,7 +16978,7 @@ size_t nmea_build_pair433(const nmea_pair433 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR433,-1*0E */
 static const layout_field pair433_reply_fields[] = {
-    {"mode", "airoha_rtcm_mode code (-1 0 1)", &nmea_airoha_rtcm_mode_def, offsetof(nmea_pair433_reply, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("airoha_rtcm_mode code (-1 0 1)"), &nmea_airoha_rtcm_mode_def, offsetof(nmea_pair433_reply, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pair433_reply_layout = {
     .sentence = "PAIR433_REPLY", .address = "PAIR433", .fields = pair433_reply_fields, .before = 1, .fixed = 1,
@@ -16936,7 +17007,7 @@ size_t nmea_build_pair433_reply(const nmea_pair433_reply *s, char *buf, size_t c
 
 /* $PAIR434,1*24 */
 static const layout_field pair434_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair434, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair434, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair434_layout = {
     .sentence = "PAIR434", .address = "PAIR434", .fields = pair434_fields, .before = 1, .fixed = 1,
@@ -16991,7 +17062,7 @@ size_t nmea_build_pair435(const nmea_pair435 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR435,1*25 */
 static const layout_field pair435_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair435_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair435_reply, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair435_reply_layout = {
     .sentence = "PAIR435_REPLY", .address = "PAIR435", .fields = pair435_reply_fields, .before = 1, .fixed = 1,
@@ -17020,7 +17091,7 @@ size_t nmea_build_pair435_reply(const nmea_pair435_reply *s, char *buf, size_t c
 
 /* $PAIR436,1*26 */
 static const layout_field pair436_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair436, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair436, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair436_layout = {
     .sentence = "PAIR436", .address = "PAIR436", .fields = pair436_fields, .before = 1, .fixed = 1,
@@ -17075,7 +17146,7 @@ size_t nmea_build_pair437(const nmea_pair437 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR437,1*27 */
 static const layout_field pair437_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair437_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair437_reply, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair437_reply_layout = {
     .sentence = "PAIR437_REPLY", .address = "PAIR437", .fields = pair437_reply_fields, .before = 1, .fixed = 1,
@@ -17104,7 +17175,7 @@ size_t nmea_build_pair437_reply(const nmea_pair437_reply *s, char *buf, size_t c
 
 /* $PAIR490,1*2A */
 static const layout_field pair490_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair490, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair490, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair490_layout = {
     .sentence = "PAIR490", .address = "PAIR490", .fields = pair490_fields, .before = 1, .fixed = 1,
@@ -17159,8 +17230,8 @@ size_t nmea_build_pair491(const nmea_pair491 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR491,1,0*37 */
 static const layout_field pair491_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair491_reply, enabled), FIELD_ENUM, 1, 0},
-    {"status", "airoha_easy_status code (0 1 2 3)", &nmea_airoha_easy_status_def, offsetof(nmea_pair491_reply, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair491_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("airoha_easy_status code (0 1 2 3)"), &nmea_airoha_easy_status_def, offsetof(nmea_pair491_reply, status), FIELD_ENUM, 1, 0},
 };
 static const layout pair491_reply_layout = {
     .sentence = "PAIR491_REPLY", .address = "PAIR491", .fields = pair491_reply_fields, .before = 1, .optional = 1,
@@ -17268,8 +17339,8 @@ size_t nmea_build_pair513(const nmea_pair513 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR6010,0,1*0C */
 static const layout_field pair6010_fields[] = {
-    {"type", "airoha_dr_message code (-1 0 1 2 3 4)", &nmea_airoha_dr_message_def, offsetof(nmea_pair6010, type), FIELD_ENUM, 1, 0},
-    {"state", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair6010, state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("airoha_dr_message code (-1 0 1 2 3 4)"), &nmea_airoha_dr_message_def, offsetof(nmea_pair6010, type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("state"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair6010, state), FIELD_ENUM, 1, 0},
 };
 static const layout pair6010_layout = {
     .sentence = "PAIR6010", .address = "PAIR6010", .fields = pair6010_fields, .before = 2, .fixed = 2,
@@ -17298,7 +17369,7 @@ size_t nmea_build_pair6010(const nmea_pair6010 *s, char *buf, size_t cap, nmea_e
 
 /* $PAIR6011,1*11 */
 static const layout_field pair6011_fields[] = {
-    {"type", "airoha_dr_message code (-1 0 1 2 3 4)", &nmea_airoha_dr_message_def, offsetof(nmea_pair6011, type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("airoha_dr_message code (-1 0 1 2 3 4)"), &nmea_airoha_dr_message_def, offsetof(nmea_pair6011, type), FIELD_ENUM, 1, 0},
 };
 static const layout pair6011_layout = {
     .sentence = "PAIR6011", .address = "PAIR6011", .fields = pair6011_fields, .before = 1, .fixed = 1,
@@ -17327,8 +17398,8 @@ size_t nmea_build_pair6011(const nmea_pair6011 *s, char *buf, size_t cap, nmea_e
 
 /* $PAIR6011,1,0*0D */
 static const layout_field pair6011_reply_fields[] = {
-    {"type", "airoha_dr_message code (-1 0 1 2 3 4)", &nmea_airoha_dr_message_def, offsetof(nmea_pair6011_reply, type), FIELD_ENUM, 1, 0},
-    {"state", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair6011_reply, state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("airoha_dr_message code (-1 0 1 2 3 4)"), &nmea_airoha_dr_message_def, offsetof(nmea_pair6011_reply, type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("state"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair6011_reply, state), FIELD_ENUM, 1, 0},
 };
 static const layout pair6011_reply_layout = {
     .sentence = "PAIR6011_REPLY", .address = "PAIR6011", .fields = pair6011_reply_fields, .before = 2, .fixed = 2,
@@ -17357,7 +17428,7 @@ size_t nmea_build_pair6011_reply(const nmea_pair6011_reply *s, char *buf, size_t
 
 /* $PAIR650,2*27 */
 static const layout_field pair650_fields[] = {
-    {"duration", "integer 0..62208000", &range_0_to_62208000, offsetof(nmea_pair650, duration), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("duration"), ERROR_TEXT("integer 0..62208000"), &range_0_to_62208000, offsetof(nmea_pair650, duration), FIELD_INTEGER, 1, 0},
 };
 static const layout pair650_layout = {
     .sentence = "PAIR650", .address = "PAIR650", .fields = pair650_fields, .before = 1, .fixed = 1,
@@ -17386,7 +17457,7 @@ size_t nmea_build_pair650(const nmea_pair650 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR680,1*29 */
 static const layout_field pair680_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair680, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair680, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair680_layout = {
     .sentence = "PAIR680", .address = "PAIR680", .fields = pair680_fields, .before = 1, .fixed = 1,
@@ -17441,7 +17512,7 @@ size_t nmea_build_pair681(const nmea_pair681 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR681,0*29 */
 static const layout_field pair681_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair681_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair681_reply, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair681_reply_layout = {
     .sentence = "PAIR681_REPLY", .address = "PAIR681", .fields = pair681_reply_fields, .before = 1, .fixed = 1,
@@ -17470,11 +17541,11 @@ size_t nmea_build_pair681_reply(const nmea_pair681_reply *s, char *buf, size_t c
 
 /* $PAIR690,1,21,39,48,72*28 */
 static const layout_field pair690_fields[] = {
-    {"mode", "airoha_periodic_mode code (0 1 2)", &nmea_airoha_periodic_mode_def, offsetof(nmea_pair690, mode), FIELD_ENUM, 1, 0},
-    {"first_run", "integer 3..518400", &range_3_to_518400, offsetof(nmea_pair690, first_run), FIELD_INTEGER, 1, 0},
-    {"first_sleep", "integer 3..518400", &range_3_to_518400, offsetof(nmea_pair690, first_sleep), FIELD_INTEGER, 1, 0},
-    {"second_run", "integer 0..518400", &range_0_to_518400, offsetof(nmea_pair690, second_run), FIELD_INTEGER, 1, 0},
-    {"second_sleep", "integer 0..518400", &range_0_to_518400, offsetof(nmea_pair690, second_sleep), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("airoha_periodic_mode code (0 1 2)"), &nmea_airoha_periodic_mode_def, offsetof(nmea_pair690, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("first_run"), ERROR_TEXT("integer 3..518400"), &range_3_to_518400, offsetof(nmea_pair690, first_run), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("first_sleep"), ERROR_TEXT("integer 3..518400"), &range_3_to_518400, offsetof(nmea_pair690, first_sleep), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("second_run"), ERROR_TEXT("integer 0..518400"), &range_0_to_518400, offsetof(nmea_pair690, second_run), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("second_sleep"), ERROR_TEXT("integer 0..518400"), &range_0_to_518400, offsetof(nmea_pair690, second_sleep), FIELD_INTEGER, 1, 0},
 };
 static const layout pair690_layout = {
     .sentence = "PAIR690", .address = "PAIR690", .fields = pair690_fields, .before = 5, .fixed = 5,
@@ -17529,11 +17600,11 @@ size_t nmea_build_pair691(const nmea_pair691 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR691,1,21,39,48,72*29 */
 static const layout_field pair691_reply_fields[] = {
-    {"mode", "airoha_periodic_mode code (0 1 2)", &nmea_airoha_periodic_mode_def, offsetof(nmea_pair691_reply, mode), FIELD_ENUM, 1, 0},
-    {"first_run", "integer 3..518400", &range_3_to_518400, offsetof(nmea_pair691_reply, first_run), FIELD_INTEGER, 1, 0},
-    {"first_sleep", "integer 3..518400", &range_3_to_518400, offsetof(nmea_pair691_reply, first_sleep), FIELD_INTEGER, 1, 0},
-    {"second_run", "integer 0..518400", &range_0_to_518400, offsetof(nmea_pair691_reply, second_run), FIELD_INTEGER, 1, 0},
-    {"second_sleep", "integer 0..518400", &range_0_to_518400, offsetof(nmea_pair691_reply, second_sleep), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("airoha_periodic_mode code (0 1 2)"), &nmea_airoha_periodic_mode_def, offsetof(nmea_pair691_reply, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("first_run"), ERROR_TEXT("integer 3..518400"), &range_3_to_518400, offsetof(nmea_pair691_reply, first_run), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("first_sleep"), ERROR_TEXT("integer 3..518400"), &range_3_to_518400, offsetof(nmea_pair691_reply, first_sleep), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("second_run"), ERROR_TEXT("integer 0..518400"), &range_0_to_518400, offsetof(nmea_pair691_reply, second_run), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("second_sleep"), ERROR_TEXT("integer 0..518400"), &range_0_to_518400, offsetof(nmea_pair691_reply, second_sleep), FIELD_INTEGER, 1, 0},
 };
 static const layout pair691_reply_layout = {
     .sentence = "PAIR691_REPLY", .address = "PAIR691", .fields = pair691_reply_fields, .before = 5, .fixed = 5,
@@ -17562,7 +17633,7 @@ size_t nmea_build_pair691_reply(const nmea_pair691_reply *s, char *buf, size_t c
 
 /* $PAIR730,1*23 */
 static const layout_field pair730_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair730, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair730, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair730_layout = {
     .sentence = "PAIR730", .address = "PAIR730", .fields = pair730_fields, .before = 1, .fixed = 1,
@@ -17617,7 +17688,7 @@ size_t nmea_build_pair731(const nmea_pair731 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR731,0*23 */
 static const layout_field pair731_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair731_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair731_reply, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair731_reply_layout = {
     .sentence = "PAIR731_REPLY", .address = "PAIR731", .fields = pair731_reply_fields, .before = 1, .fixed = 1,
@@ -17646,7 +17717,7 @@ size_t nmea_build_pair731_reply(const nmea_pair731_reply *s, char *buf, size_t c
 
 /* $PAIR732,1*21 */
 static const layout_field pair732_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair732, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair732, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair732_layout = {
     .sentence = "PAIR732", .address = "PAIR732", .fields = pair732_fields, .before = 1, .fixed = 1,
@@ -17701,7 +17772,7 @@ size_t nmea_build_pair733(const nmea_pair733 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR733,0*21 */
 static const layout_field pair733_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair733_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair733_reply, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair733_reply_layout = {
     .sentence = "PAIR733_REPLY", .address = "PAIR733", .fields = pair733_reply_fields, .before = 1, .fixed = 1,
@@ -17730,8 +17801,8 @@ size_t nmea_build_pair733_reply(const nmea_pair733_reply *s, char *buf, size_t c
 
 /* $PAIR752,2,100*39 */
 static const layout_field pair752_fields[] = {
-    {"pps_type", "airoha_pps_type code (0 1 2 3 4)", &nmea_airoha_pps_type_def, offsetof(nmea_pair752, pps_type), FIELD_ENUM, 1, 0},
-    {"pulse_width", "integer 1..999", &range_1_to_999, offsetof(nmea_pair752, pulse_width), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pps_type"), ERROR_TEXT("airoha_pps_type code (0 1 2 3 4)"), &nmea_airoha_pps_type_def, offsetof(nmea_pair752, pps_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pulse_width"), ERROR_TEXT("integer 1..999"), &range_1_to_999, offsetof(nmea_pair752, pulse_width), FIELD_INTEGER, 1, 0},
 };
 static const layout pair752_layout = {
     .sentence = "PAIR752", .address = "PAIR752", .fields = pair752_fields, .before = 2, .fixed = 2,
@@ -17760,9 +17831,9 @@ size_t nmea_build_pair752(const nmea_pair752 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR864,0,0,115200*1B */
 static const layout_field pair864_fields[] = {
-    {"port_type", "integer 0..0", &range_0_to_0, offsetof(nmea_pair864, port_type), FIELD_INTEGER, 1, 0},
-    {"port_index", "integer of at least 0", &range_from_0, offsetof(nmea_pair864, port_index), FIELD_INTEGER, 1, 0},
-    {"baud", "airoha_baud code (4800 9600 19200 38400 57600 115200 230400 460800 921600)", &nmea_airoha_baud_def, offsetof(nmea_pair864, baud), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("port_type"), ERROR_TEXT("integer 0..0"), &range_0_to_0, offsetof(nmea_pair864, port_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("port_index"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pair864, port_index), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("baud"), ERROR_TEXT("airoha_baud code (4800 9600 19200 38400 57600 115200 230400 460800 921600)"), &nmea_airoha_baud_def, offsetof(nmea_pair864, baud), FIELD_ENUM, 1, 0},
 };
 static const layout pair864_layout = {
     .sentence = "PAIR864", .address = "PAIR864", .fields = pair864_fields, .before = 3, .fixed = 3,
@@ -17791,8 +17862,8 @@ size_t nmea_build_pair864(const nmea_pair864 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR865,0,0*31 */
 static const layout_field pair865_fields[] = {
-    {"port_type", "integer 0..0", &range_0_to_0, offsetof(nmea_pair865, port_type), FIELD_INTEGER, 1, 0},
-    {"port_index", "integer of at least 0", &range_from_0, offsetof(nmea_pair865, port_index), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("port_type"), ERROR_TEXT("integer 0..0"), &range_0_to_0, offsetof(nmea_pair865, port_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("port_index"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pair865, port_index), FIELD_INTEGER, 1, 0},
 };
 static const layout pair865_layout = {
     .sentence = "PAIR865", .address = "PAIR865", .fields = pair865_fields, .before = 2, .fixed = 2,
@@ -17821,7 +17892,7 @@ size_t nmea_build_pair865(const nmea_pair865 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR865,115200*1A */
 static const layout_field pair865_reply_fields[] = {
-    {"baud", "airoha_baud code (4800 9600 19200 38400 57600 115200 230400 460800 921600)", &nmea_airoha_baud_def, offsetof(nmea_pair865_reply, baud), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("baud"), ERROR_TEXT("airoha_baud code (4800 9600 19200 38400 57600 115200 230400 460800 921600)"), &nmea_airoha_baud_def, offsetof(nmea_pair865_reply, baud), FIELD_ENUM, 1, 0},
 };
 static const layout pair865_reply_layout = {
     .sentence = "PAIR865_REPLY", .address = "PAIR865", .fields = pair865_reply_fields, .before = 1, .fixed = 1,
@@ -17850,9 +17921,9 @@ size_t nmea_build_pair865_reply(const nmea_pair865_reply *s, char *buf, size_t c
 
 /* $PAIR866,0,0,1*2F */
 static const layout_field pair866_fields[] = {
-    {"port_type", "integer 0..0", &range_0_to_0, offsetof(nmea_pair866, port_type), FIELD_INTEGER, 1, 0},
-    {"port_index", "integer of at least 0", &range_from_0, offsetof(nmea_pair866, port_index), FIELD_INTEGER, 1, 0},
-    {"flow_control", "integer of at least 0", &range_from_0, offsetof(nmea_pair866, flow_control), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("port_type"), ERROR_TEXT("integer 0..0"), &range_0_to_0, offsetof(nmea_pair866, port_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("port_index"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pair866, port_index), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("flow_control"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pair866, flow_control), FIELD_INTEGER, 1, 0},
 };
 static const layout pair866_layout = {
     .sentence = "PAIR866", .address = "PAIR866", .fields = pair866_fields, .before = 3, .fixed = 3,
@@ -17881,8 +17952,8 @@ size_t nmea_build_pair866(const nmea_pair866 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR867,0,0*33 */
 static const layout_field pair867_fields[] = {
-    {"port_type", "integer 0..0", &range_0_to_0, offsetof(nmea_pair867, port_type), FIELD_INTEGER, 1, 0},
-    {"port_index", "integer of at least 0", &range_from_0, offsetof(nmea_pair867, port_index), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("port_type"), ERROR_TEXT("integer 0..0"), &range_0_to_0, offsetof(nmea_pair867, port_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("port_index"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pair867, port_index), FIELD_INTEGER, 1, 0},
 };
 static const layout pair867_layout = {
     .sentence = "PAIR867", .address = "PAIR867", .fields = pair867_fields, .before = 2, .fixed = 2,
@@ -17911,7 +17982,7 @@ size_t nmea_build_pair867(const nmea_pair867 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR867,0*2F */
 static const layout_field pair867_reply_fields[] = {
-    {"flow_control", "integer of at least 0", &range_from_0, offsetof(nmea_pair867_reply, flow_control), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("flow_control"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pair867_reply, flow_control), FIELD_INTEGER, 1, 0},
 };
 static const layout pair867_reply_layout = {
     .sentence = "PAIR867_REPLY", .address = "PAIR867", .fields = pair867_reply_fields, .before = 1, .fixed = 1,
@@ -17940,16 +18011,16 @@ size_t nmea_build_pair867_reply(const nmea_pair867_reply *s, char *buf, size_t c
 
 /* $PAIR890,1,1,25.0567,121.5743,30*20 */
 static const layout_field pair890_fields[] = {
-    {"count", "integer 0..4", &range_0_to_4, offsetof(nmea_pair890, count), FIELD_INTEGER, 1, 0},
-    {"confidence", "airoha_geofence_confidence code (0 1 2 3)", &nmea_airoha_geofence_confidence_def, offsetof(nmea_pair890, confidence), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("count"), ERROR_TEXT("integer 0..4"), &range_0_to_4, offsetof(nmea_pair890, count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("confidence"), ERROR_TEXT("airoha_geofence_confidence code (0 1 2 3)"), &nmea_airoha_geofence_confidence_def, offsetof(nmea_pair890, confidence), FIELD_ENUM, 1, 0},
 };
 static const layout_field pair890_group_fields[] = {
-    {"lat", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pair890_fence, lat), FIELD_DECIMAL, 1, 0},
-    {"lon", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pair890_fence, lon), FIELD_DECIMAL, 1, 0},
-    {"radius", "decimal number of at least 0", &range_from_0, offsetof(nmea_pair890_fence, radius), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pair890_fence, lat), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pair890_fence, lon), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("radius"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_pair890_fence, radius), FIELD_DECIMAL, 1, 0},
 };
 static const layout_group pair890_group = {
-    .id = "fences", .fields = pair890_group_fields, .field_count = 3, .width = 3, .min = 0, .max = 4,
+    .id = ERROR_TEXT("fences"), .fields = pair890_group_fields, .field_count = 3, .width = 3, .min = 0, .max = 4,
     .single = false, .offset = offsetof(nmea_pair890, fences), .entry_size = sizeof(nmea_pair890_fence),
     .count_offset = offsetof(nmea_pair890, fences.count),
 };
@@ -18011,17 +18082,17 @@ size_t nmea_build_pair891(const nmea_pair891 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR891,0,0*3A */
 static const layout_field pair891_reply_fields[] = {
-    {"count", "integer 0..4", &range_0_to_4, offsetof(nmea_pair891_reply, count), FIELD_INTEGER, 1, 0},
-    {"confidence", "airoha_geofence_confidence code (0 1 2 3)", &nmea_airoha_geofence_confidence_def, offsetof(nmea_pair891_reply, confidence), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("count"), ERROR_TEXT("integer 0..4"), &range_0_to_4, offsetof(nmea_pair891_reply, count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("confidence"), ERROR_TEXT("airoha_geofence_confidence code (0 1 2 3)"), &nmea_airoha_geofence_confidence_def, offsetof(nmea_pair891_reply, confidence), FIELD_ENUM, 1, 0},
 };
 static const layout_field pair891_reply_group_fields[] = {
-    {"lat", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pair891_reply_fence, lat), FIELD_DECIMAL, 1, 0},
-    {"lon", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pair891_reply_fence, lon), FIELD_DECIMAL, 1, 0},
-    {"radius", "decimal number of at least 0", &range_from_0, offsetof(nmea_pair891_reply_fence, radius), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pair891_reply_fence, lat), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pair891_reply_fence, lon), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("radius"), ERROR_TEXT("decimal number of at least 0"), &range_from_0, offsetof(nmea_pair891_reply_fence, radius), FIELD_DECIMAL, 1, 0},
 };
 static const layout_group pair891_reply_group = {
-    .id = "fences", .fields = pair891_reply_group_fields, .field_count = 3, .width = 3, .min = 0, .max = 4,
-    .single = false, .offset = offsetof(nmea_pair891_reply, fences),
+    .id = ERROR_TEXT("fences"), .fields = pair891_reply_group_fields, .field_count = 3, .width = 3, .min = 0,
+    .max = 4, .single = false, .offset = offsetof(nmea_pair891_reply, fences),
     .entry_size = sizeof(nmea_pair891_reply_fence), .count_offset = offsetof(nmea_pair891_reply, fences.count),
 };
 static const layout pair891_reply_layout = {
@@ -18057,7 +18128,7 @@ size_t nmea_build_pair891_reply(const nmea_pair891_reply *s, char *buf, size_t c
 
 /* $PAIR900,1*2E */
 static const layout_field pair900_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair900, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair900, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair900_layout = {
     .sentence = "PAIR900", .address = "PAIR900", .fields = pair900_fields, .before = 1, .fixed = 1,
@@ -18112,7 +18183,7 @@ size_t nmea_build_pair901(const nmea_pair901 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR901,1*2F */
 static const layout_field pair901_reply_fields[] = {
-    {"enabled", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair901_reply, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair901_reply, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pair901_reply_layout = {
     .sentence = "PAIR901_REPLY", .address = "PAIR901", .fields = pair901_reply_fields, .before = 1, .fixed = 1,
@@ -18141,8 +18212,8 @@ size_t nmea_build_pair901_reply(const nmea_pair901_reply *s, char *buf, size_t c
 
 /* $PAIR902,6,1*36 */
 static const layout_field pair902_fields[] = {
-    {"mode", "hex number", NULL, offsetof(nmea_pair902, mode), FIELD_HEX, 1, 0},
-    {"check_3d", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair902, check_3d), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pair902, mode), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("check_3d"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair902, check_3d), FIELD_ENUM, 1, 0},
 };
 static const layout pair902_layout = {
     .sentence = "PAIR902", .address = "PAIR902", .fields = pair902_fields, .before = 2, .fixed = 2,
@@ -18197,8 +18268,8 @@ size_t nmea_build_pair903(const nmea_pair903 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR903,6,1*37 */
 static const layout_field pair903_reply_fields[] = {
-    {"mode", "hex number", NULL, offsetof(nmea_pair903_reply, mode), FIELD_HEX, 1, 0},
-    {"check_3d", "airoha_enable code (0 1)", &nmea_airoha_enable_def, offsetof(nmea_pair903_reply, check_3d), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pair903_reply, mode), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("check_3d"), ERROR_TEXT("airoha_enable code (0 1)"), &nmea_airoha_enable_def, offsetof(nmea_pair903_reply, check_3d), FIELD_ENUM, 1, 0},
 };
 static const layout pair903_reply_layout = {
     .sentence = "PAIR903_REPLY", .address = "PAIR903", .fields = pair903_reply_fields, .before = 2, .fixed = 2,
@@ -18227,8 +18298,8 @@ size_t nmea_build_pair903_reply(const nmea_pair903_reply *s, char *buf, size_t c
 
 /* $PAIR904,0,60*01 */
 static const layout_field pair904_fields[] = {
-    {"threshold_kind", "airoha_locus_threshold code (0 1 2)", &nmea_airoha_locus_threshold_def, offsetof(nmea_pair904, threshold_kind), FIELD_ENUM, 1, 0},
-    {"threshold", "integer 1..50000", &range_1_to_50000, offsetof(nmea_pair904, threshold), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("threshold_kind"), ERROR_TEXT("airoha_locus_threshold code (0 1 2)"), &nmea_airoha_locus_threshold_def, offsetof(nmea_pair904, threshold_kind), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("threshold"), ERROR_TEXT("integer 1..50000"), &range_1_to_50000, offsetof(nmea_pair904, threshold), FIELD_INTEGER, 1, 0},
 };
 static const layout pair904_layout = {
     .sentence = "PAIR904", .address = "PAIR904", .fields = pair904_fields, .before = 2, .fixed = 2,
@@ -18257,7 +18328,7 @@ size_t nmea_build_pair904(const nmea_pair904 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR905,0*2A */
 static const layout_field pair905_fields[] = {
-    {"threshold_kind", "airoha_locus_threshold code (0 1 2)", &nmea_airoha_locus_threshold_def, offsetof(nmea_pair905, threshold_kind), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("threshold_kind"), ERROR_TEXT("airoha_locus_threshold code (0 1 2)"), &nmea_airoha_locus_threshold_def, offsetof(nmea_pair905, threshold_kind), FIELD_ENUM, 1, 0},
 };
 static const layout pair905_layout = {
     .sentence = "PAIR905", .address = "PAIR905", .fields = pair905_fields, .before = 1, .fixed = 1,
@@ -18286,7 +18357,7 @@ size_t nmea_build_pair905(const nmea_pair905 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR906,1*28 */
 static const layout_field pair906_fields[] = {
-    {"type", "airoha_locus_clear code (0 1 2)", &nmea_airoha_locus_clear_def, offsetof(nmea_pair906, type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("airoha_locus_clear code (0 1 2)"), &nmea_airoha_locus_clear_def, offsetof(nmea_pair906, type), FIELD_ENUM, 1, 0},
 };
 static const layout pair906_layout = {
     .sentence = "PAIR906", .address = "PAIR906", .fields = pair906_fields, .before = 1, .fixed = 1,
@@ -18341,7 +18412,7 @@ size_t nmea_build_pair907(const nmea_pair907 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR908,0*27 */
 static const layout_field pair908_fields[] = {
-    {"format", "airoha_locus_format code (0 1)", &nmea_airoha_locus_format_def, offsetof(nmea_pair908, format), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("format"), ERROR_TEXT("airoha_locus_format code (0 1)"), &nmea_airoha_locus_format_def, offsetof(nmea_pair908, format), FIELD_ENUM, 1, 0},
 };
 static const layout pair908_layout = {
     .sentence = "PAIR908", .address = "PAIR908", .fields = pair908_fields, .before = 1, .fixed = 1,
@@ -18396,7 +18467,7 @@ size_t nmea_build_pair909(const nmea_pair909 *s, char *buf, size_t cap, nmea_err
 
 /* $PAIR909,120*25 */
 static const layout_field pair909_reply_fields[] = {
-    {"records", "integer of at least 0", &range_from_0, offsetof(nmea_pair909_reply, records), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("records"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pair909_reply, records), FIELD_INTEGER, 1, 0},
 };
 static const layout pair909_reply_layout = {
     .sentence = "PAIR909_REPLY", .address = "PAIR909", .fields = pair909_reply_fields, .before = 1, .fixed = 1,
@@ -18425,7 +18496,7 @@ size_t nmea_build_pair909_reply(const nmea_pair909_reply *s, char *buf, size_t c
 
 /* $PAIRSPF,1*52 */
 static const layout_field pairspf_fields[] = {
-    {"status", "airoha_jamming_status code (0 1 2 3)", &nmea_airoha_jamming_status_def, offsetof(nmea_pairspf, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("airoha_jamming_status code (0 1 2 3)"), &nmea_airoha_jamming_status_def, offsetof(nmea_pairspf, status), FIELD_ENUM, 1, 0},
 };
 static const layout pairspf_layout = {
     .sentence = "PAIRSPF", .address = "PAIRSPF", .fields = pairspf_fields, .before = 1, .fixed = 1,
@@ -18490,7 +18561,7 @@ size_t nmea_build_pairspf(const nmea_pairspf *s, char *buf, size_t cap, nmea_err
 
 /* $PAIRSPF5,1*67 */
 static const layout_field pairspf5_fields[] = {
-    {"status", "airoha_jamming_status code (0 1 2 3)", &nmea_airoha_jamming_status_def, offsetof(nmea_pairspf5, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("airoha_jamming_status code (0 1 2 3)"), &nmea_airoha_jamming_status_def, offsetof(nmea_pairspf5, status), FIELD_ENUM, 1, 0},
 };
 static const layout pairspf5_layout = {
     .sentence = "PAIRSPF5", .address = "PAIRSPF5", .fields = pairspf5_fields, .before = 1, .fixed = 1,
@@ -18555,7 +18626,7 @@ size_t nmea_build_pairspf5(const nmea_pairspf5 *s, char *buf, size_t cap, nmea_e
 
 /* $PASHQ,ATT */
 static const layout_field pashq_att_fields[] = {
-    {"keyword", "ATT", "ATT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("ATT"), "ATT", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pashq_att_layout = {
     .sentence = "PASHQ_ATT", .address = "PASHQ", .selector = "ATT", .fields = pashq_att_fields, .selector_at = 0,
@@ -18585,7 +18656,7 @@ size_t nmea_build_pashq_att(const nmea_pashq_att *s, char *buf, size_t cap, nmea
 
 /* $PASHQ,ELM */
 static const layout_field pashq_elm_fields[] = {
-    {"keyword", "ELM", "ELM", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("ELM"), "ELM", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pashq_elm_layout = {
     .sentence = "PASHQ_ELM", .address = "PASHQ", .selector = "ELM", .fields = pashq_elm_fields, .selector_at = 0,
@@ -18615,8 +18686,8 @@ size_t nmea_build_pashq_elm(const nmea_pashq_elm *s, char *buf, size_t cap, nmea
 
 /* $PASHQ,NMO,P */
 static const layout_field pashq_nmo_fields[] = {
-    {"keyword", "NMO", "NMO", 0, FIELD_KEYWORD, 1, 0},
-    {"port", "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)", &nmea_ashtech_port_def, offsetof(nmea_pashq_nmo, port), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("NMO"), "NMO", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port"), ERROR_TEXT("ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)"), &nmea_ashtech_port_def, offsetof(nmea_pashq_nmo, port), FIELD_ENUM, 1, 0},
 };
 static const layout pashq_nmo_layout = {
     .sentence = "PASHQ_NMO", .address = "PASHQ", .selector = "NMO", .fields = pashq_nmo_fields, .selector_at = 0,
@@ -18646,7 +18717,7 @@ size_t nmea_build_pashq_nmo(const nmea_pashq_nmo *s, char *buf, size_t cap, nmea
 
 /* $PASHQ,PEM */
 static const layout_field pashq_pem_fields[] = {
-    {"keyword", "PEM", "PEM", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("PEM"), "PEM", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pashq_pem_layout = {
     .sentence = "PASHQ_PEM", .address = "PASHQ", .selector = "PEM", .fields = pashq_pem_fields, .selector_at = 0,
@@ -18676,7 +18747,7 @@ size_t nmea_build_pashq_pem(const nmea_pashq_pem *s, char *buf, size_t cap, nmea
 
 /* $PASHQ,POP*38 */
 static const layout_field pashq_pop_fields[] = {
-    {"keyword", "POP", "POP", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("POP"), "POP", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pashq_pop_layout = {
     .sentence = "PASHQ_POP", .address = "PASHQ", .selector = "POP", .fields = pashq_pop_fields, .selector_at = 0,
@@ -18706,8 +18777,8 @@ size_t nmea_build_pashq_pop(const nmea_pashq_pop *s, char *buf, size_t cap, nmea
 
 /* $PASHQ,POS */
 static const layout_field pashq_pos_fields[] = {
-    {"keyword", "POS", "POS", 0, FIELD_KEYWORD, 1, 0},
-    {"port", "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)", &nmea_ashtech_port_def, offsetof(nmea_pashq_pos, port), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("POS"), "POS", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port"), ERROR_TEXT("ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)"), &nmea_ashtech_port_def, offsetof(nmea_pashq_pos, port), FIELD_ENUM, 1, 0},
 };
 static const layout pashq_pos_layout = {
     .sentence = "PASHQ_POS", .address = "PASHQ", .selector = "POS", .fields = pashq_pos_fields, .selector_at = 0,
@@ -18737,8 +18808,8 @@ size_t nmea_build_pashq_pos(const nmea_pashq_pos *s, char *buf, size_t cap, nmea
 
 /* $PASHQ,PTT,A */
 static const layout_field pashq_ptt_fields[] = {
-    {"keyword", "PTT", "PTT", 0, FIELD_KEYWORD, 1, 0},
-    {"port", "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)", &nmea_ashtech_port_def, offsetof(nmea_pashq_ptt, port), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("PTT"), "PTT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port"), ERROR_TEXT("ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)"), &nmea_ashtech_port_def, offsetof(nmea_pashq_ptt, port), FIELD_ENUM, 1, 0},
 };
 static const layout pashq_ptt_layout = {
     .sentence = "PASHQ_PTT", .address = "PASHQ", .selector = "PTT", .fields = pashq_ptt_fields, .selector_at = 0,
@@ -18768,8 +18839,8 @@ size_t nmea_build_pashq_ptt(const nmea_pashq_ptt *s, char *buf, size_t cap, nmea
 
 /* $PASHQ,SAT */
 static const layout_field pashq_sat_fields[] = {
-    {"keyword", "SAT", "SAT", 0, FIELD_KEYWORD, 1, 0},
-    {"port", "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)", &nmea_ashtech_port_def, offsetof(nmea_pashq_sat, port), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("SAT"), "SAT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port"), ERROR_TEXT("ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)"), &nmea_ashtech_port_def, offsetof(nmea_pashq_sat, port), FIELD_ENUM, 1, 0},
 };
 static const layout pashq_sat_layout = {
     .sentence = "PASHQ_SAT", .address = "PASHQ", .selector = "SAT", .fields = pashq_sat_fields, .selector_at = 0,
@@ -18799,7 +18870,7 @@ size_t nmea_build_pashq_sat(const nmea_pashq_sat *s, char *buf, size_t cap, nmea
 
 /* $PASHQ,SBA */
 static const layout_field pashq_sba_fields[] = {
-    {"keyword", "SBA", "SBA", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("SBA"), "SBA", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pashq_sba_layout = {
     .sentence = "PASHQ_SBA", .address = "PASHQ", .selector = "SBA", .fields = pashq_sba_fields, .selector_at = 0,
@@ -18827,17 +18898,17 @@ size_t nmea_build_pashq_sba(const nmea_pashq_sba *s, char *buf, size_t cap, nmea
 /* ------------------------------------------------------------------------------------------ */
 /* PASHR: Roll and pitch (RT300 form, no message keyword) (spec/proprietary/pashr.yaml) */
 static const layout_field pashr_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pashr, time), FIELD_TIME, 1, 0},
-    {"heading", "decimal number", NULL, offsetof(nmea_pashr, heading), FIELD_DECIMAL, 1, 0},
-    {"heading_true", "T or nothing", "T", offsetof(nmea_pashr, heading_true), FIELD_LITERAL, 1, 0},
-    {"roll", "decimal number", NULL, offsetof(nmea_pashr, roll), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number", NULL, offsetof(nmea_pashr, pitch), FIELD_DECIMAL, 1, 0},
-    {"reserved", "text", NULL, offsetof(nmea_pashr, reserved), FIELD_TEXT, 1, 0},
-    {"roll_accuracy", "decimal number", NULL, offsetof(nmea_pashr, roll_accuracy), FIELD_DECIMAL, 1, 0},
-    {"pitch_accuracy", "decimal number", NULL, offsetof(nmea_pashr, pitch_accuracy), FIELD_DECIMAL, 1, 0},
-    {"heading_accuracy", "decimal number", NULL, offsetof(nmea_pashr, heading_accuracy), FIELD_DECIMAL, 1, 0},
-    {"gnss_quality", "ashtech_rt300_quality code (0 1 2 3 4 5 6)", &nmea_ashtech_rt300_quality_def, offsetof(nmea_pashr, gnss_quality), FIELD_ENUM, 1, 0},
-    {"imu_alignment", "ashtech_rt300_alignment code (0 1 2 3 4)", &nmea_ashtech_rt300_alignment_def, offsetof(nmea_pashr, imu_alignment), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pashr, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_true"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_pashr, heading_true), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr, roll), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("text"), NULL, offsetof(nmea_pashr, reserved), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("roll_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr, roll_accuracy), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr, pitch_accuracy), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr, heading_accuracy), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("gnss_quality"), ERROR_TEXT("ashtech_rt300_quality code (0 1 2 3 4 5 6)"), &nmea_ashtech_rt300_quality_def, offsetof(nmea_pashr, gnss_quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("imu_alignment"), ERROR_TEXT("ashtech_rt300_alignment code (0 1 2 3 4)"), &nmea_ashtech_rt300_alignment_def, offsetof(nmea_pashr, imu_alignment), FIELD_ENUM, 1, 0},
 };
 static const layout pashr_layout = {
     .sentence = "PASHR", .address = "PASHR", .fields = pashr_fields, .before = 11, .fixed = 11, .max_fields = 11,
@@ -18922,7 +18993,7 @@ size_t nmea_build_pashr(const nmea_pashr *s, char *buf, size_t cap, nmea_error *
 
 /* $PASHR,ACK*3D */
 static const layout_field pashr_ack_fields[] = {
-    {"keyword", "ACK", "ACK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("ACK"), "ACK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pashr_ack_layout = {
     .sentence = "PASHR_ACK", .address = "PASHR", .selector = "ACK", .fields = pashr_ack_fields, .selector_at = 0,
@@ -18952,14 +19023,14 @@ size_t nmea_build_pashr_ack(const nmea_pashr_ack *s, char *buf, size_t cap, nmea
 
 /* $PASHR,ATT,88536.0000,345.9640,0.0390,-0.9052,0.0024,0.0144,0*0E */
 static const layout_field pashr_att_fields[] = {
-    {"keyword", "ATT", "ATT", 0, FIELD_KEYWORD, 1, 0},
-    {"week_time", "decimal number 0..604799.99", &range_0_to_604799p99, offsetof(nmea_pashr_att, week_time), FIELD_DECIMAL, 1, 0},
-    {"heading", "decimal number 0..359.99", &range_0_to_359p99, offsetof(nmea_pashr_att, heading), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pashr_att, pitch), FIELD_DECIMAL, 1, 0},
-    {"roll", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pashr_att, roll), FIELD_DECIMAL, 1, 0},
-    {"carrier_rms", "decimal number", NULL, offsetof(nmea_pashr_att, carrier_rms), FIELD_DECIMAL, 1, 0},
-    {"baseline_rms", "decimal number", NULL, offsetof(nmea_pashr_att, baseline_rms), FIELD_DECIMAL, 1, 0},
-    {"ambiguity", "integer of at least 0", &range_from_0, offsetof(nmea_pashr_att, ambiguity), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("ATT"), "ATT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("week_time"), ERROR_TEXT("decimal number 0..604799.99"), &range_0_to_604799p99, offsetof(nmea_pashr_att, week_time), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number 0..359.99"), &range_0_to_359p99, offsetof(nmea_pashr_att, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pashr_att, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pashr_att, roll), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("carrier_rms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr_att, carrier_rms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("baseline_rms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr_att, baseline_rms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ambiguity"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pashr_att, ambiguity), FIELD_INTEGER, 1, 0},
 };
 static const layout pashr_att_layout = {
     .sentence = "PASHR_ATT", .address = "PASHR", .selector = "ATT", .fields = pashr_att_fields, .selector_at = 0,
@@ -19039,8 +19110,8 @@ size_t nmea_build_pashr_att(const nmea_pashr_att *s, char *buf, size_t cap, nmea
 
 /* $PASHR,ELM,5*29 */
 static const layout_field pashr_elm_fields[] = {
-    {"keyword", "ELM", "ELM", 0, FIELD_KEYWORD, 1, 0},
-    {"mask", "integer 0..90", &range_0_to_90, offsetof(nmea_pashr_elm, mask), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("ELM"), "ELM", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("mask"), ERROR_TEXT("integer 0..90"), &range_0_to_90, offsetof(nmea_pashr_elm, mask), FIELD_INTEGER, 1, 0},
 };
 static const layout pashr_elm_layout = {
     .sentence = "PASHR_ELM", .address = "PASHR", .selector = "ELM", .fields = pashr_elm_fields, .selector_at = 0,
@@ -19068,17 +19139,17 @@ size_t nmea_build_pashr_elm(const nmea_pashr_elm *s, char *buf, size_t cap, nmea
 /* ------------------------------------------------------------------------------------------ */
 /* PASHR_HPR: True heading, pitch and roll with baseline state (HPR) (spec/proprietary/pashr_hpr.yaml) */
 static const layout_field pashr_hpr_fields[] = {
-    {"keyword", "HPR", "HPR", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pashr_hpr, time), FIELD_TIME, 1, 0},
-    {"heading", "decimal number 0..359.99999", &range_0_to_359p99999, offsetof(nmea_pashr_hpr, heading), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pashr_hpr, pitch), FIELD_DECIMAL, 1, 0},
-    {"roll", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pashr_hpr, roll), FIELD_DECIMAL, 1, 0},
-    {"carrier_rms", "decimal number", NULL, offsetof(nmea_pashr_hpr, carrier_rms), FIELD_DECIMAL, 1, 0},
-    {"baseline_rms", "decimal number", NULL, offsetof(nmea_pashr_hpr, baseline_rms), FIELD_DECIMAL, 1, 0},
-    {"ambiguity", "integer of at least 0", &range_from_0, offsetof(nmea_pashr_hpr, ambiguity), FIELD_INTEGER, 1, 0},
-    {"mode", "ashtech_hpr_mode code (0 1 2)", &nmea_ashtech_hpr_mode_def, offsetof(nmea_pashr_hpr, mode), FIELD_ENUM, 1, 0},
-    {"antenna_setup", "text", NULL, offsetof(nmea_pashr_hpr, antenna_setup), FIELD_TEXT, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_pashr_hpr, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("HPR"), "HPR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pashr_hpr, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number 0..359.99999"), &range_0_to_359p99999, offsetof(nmea_pashr_hpr, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pashr_hpr, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pashr_hpr, roll), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("carrier_rms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr_hpr, carrier_rms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("baseline_rms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr_hpr, baseline_rms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ambiguity"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pashr_hpr, ambiguity), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("ashtech_hpr_mode code (0 1 2)"), &nmea_ashtech_hpr_mode_def, offsetof(nmea_pashr_hpr, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("antenna_setup"), ERROR_TEXT("text"), NULL, offsetof(nmea_pashr_hpr, antenna_setup), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr_hpr, pdop), FIELD_DECIMAL, 1, 0},
 };
 static const layout pashr_hpr_layout = {
     .sentence = "PASHR_HPR", .address = "PASHR", .selector = "HPR", .fields = pashr_hpr_fields, .selector_at = 0,
@@ -19164,7 +19235,7 @@ size_t nmea_build_pashr_hpr(const nmea_pashr_hpr *s, char *buf, size_t cap, nmea
 
 /* $PASHR,NAK*30 */
 static const layout_field pashr_nak_fields[] = {
-    {"keyword", "NAK", "NAK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("NAK"), "NAK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pashr_nak_layout = {
     .sentence = "PASHR_NAK", .address = "PASHR", .selector = "NAK", .fields = pashr_nak_fields, .selector_at = 0,
@@ -19194,20 +19265,20 @@ size_t nmea_build_pashr_nak(const nmea_pashr_nak *s, char *buf, size_t cap, nmea
 
 /* $PASHR,NMO,P,0,001.00,26,ALM,0.00,DTM,0.00,GGA,0.00,GLL,0.00,GRS,0.00,GSA,0.00,GST,0.00,GSV,0.00,HDT,0.00,RMC,0.00,VTG,0.00,XDR,0,ZDA,0.00,ATT,0.00,CRT,0.00,DCR,0.00,DPO,0.00,POS,0.00,RRE,0.00,SAT,0.00,SGL,0.00,SGP,0.00,VEC,0.00,LTN,0.00,PTT,0,TTT,0*6C */
 static const layout_field pashr_nmo_fields[] = {
-    {"keyword", "NMO", "NMO", 0, FIELD_KEYWORD, 1, 0},
-    {"port", "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)", &nmea_ashtech_port_def, offsetof(nmea_pashr_nmo, port), FIELD_ENUM, 1, 0},
-    {"baud_code", "integer 0..15", &range_0_to_15, offsetof(nmea_pashr_nmo, baud_code), FIELD_INTEGER, 1, 0},
-    {"period", "decimal number 0..999", &range_0_to_999, offsetof(nmea_pashr_nmo, period), FIELD_DECIMAL, 1, 0},
-    {"count", "integer of at least 0", &range_from_0, offsetof(nmea_pashr_nmo, count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("NMO"), "NMO", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port"), ERROR_TEXT("ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)"), &nmea_ashtech_port_def, offsetof(nmea_pashr_nmo, port), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("baud_code"), ERROR_TEXT("integer 0..15"), &range_0_to_15, offsetof(nmea_pashr_nmo, baud_code), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("period"), ERROR_TEXT("decimal number 0..999"), &range_0_to_999, offsetof(nmea_pashr_nmo, period), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("count"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pashr_nmo, count), FIELD_INTEGER, 1, 0},
 };
 static const layout_field pashr_nmo_group_fields[] = {
-    {"message", "text of at most 3 characters", NULL, offsetof(nmea_pashr_nmo_message, message), FIELD_TEXT, 1, 3},
-    {"rate", "decimal number 0..999", &range_0_to_999, offsetof(nmea_pashr_nmo_message, rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("text of at most 3 characters"), NULL, offsetof(nmea_pashr_nmo_message, message), FIELD_TEXT, 1, 3},
+    {ERROR_TEXT("rate"), ERROR_TEXT("decimal number 0..999"), &range_0_to_999, offsetof(nmea_pashr_nmo_message, rate), FIELD_DECIMAL, 1, 0},
 };
 static const layout_group pashr_nmo_group = {
-    .id = "messages", .fields = pashr_nmo_group_fields, .field_count = 2, .width = 2, .min = 0, .max = 64,
-    .single = false, .offset = offsetof(nmea_pashr_nmo, messages), .entry_size = sizeof(nmea_pashr_nmo_message),
-    .count_offset = offsetof(nmea_pashr_nmo, messages.count),
+    .id = ERROR_TEXT("messages"), .fields = pashr_nmo_group_fields, .field_count = 2, .width = 2, .min = 0,
+    .max = 64, .single = false, .offset = offsetof(nmea_pashr_nmo, messages),
+    .entry_size = sizeof(nmea_pashr_nmo_message), .count_offset = offsetof(nmea_pashr_nmo, messages.count),
 };
 static const layout pashr_nmo_layout = {
     .sentence = "PASHR_NMO", .address = "PASHR", .selector = "NMO", .fields = pashr_nmo_fields,
@@ -19242,8 +19313,8 @@ size_t nmea_build_pashr_nmo(const nmea_pashr_nmo *s, char *buf, size_t cap, nmea
 
 /* $PASHR,PEM,9*39 */
 static const layout_field pashr_pem_fields[] = {
-    {"keyword", "PEM", "PEM", 0, FIELD_KEYWORD, 1, 0},
-    {"mask", "integer 0..90", &range_0_to_90, offsetof(nmea_pashr_pem, mask), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("PEM"), "PEM", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("mask"), ERROR_TEXT("integer 0..90"), &range_0_to_90, offsetof(nmea_pashr_pem, mask), FIELD_INTEGER, 1, 0},
 };
 static const layout pashr_pem_layout = {
     .sentence = "PASHR_PEM", .address = "PASHR", .selector = "PEM", .fields = pashr_pem_fields, .selector_at = 0,
@@ -19273,8 +19344,8 @@ size_t nmea_build_pashr_pem(const nmea_pashr_pem *s, char *buf, size_t cap, nmea
 
 /* $PASHR,POP,10*16 */
 static const layout_field pashr_pop_fields[] = {
-    {"keyword", "POP", "POP", 0, FIELD_KEYWORD, 1, 0},
-    {"rate", "integer", NULL, offsetof(nmea_pashr_pop, rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("POP"), "POP", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("rate"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pashr_pop, rate), FIELD_INTEGER, 1, 0},
 };
 static const layout pashr_pop_layout = {
     .sentence = "PASHR_POP", .address = "PASHR", .selector = "POP", .fields = pashr_pop_fields, .selector_at = 0,
@@ -19302,22 +19373,22 @@ size_t nmea_build_pashr_pop(const nmea_pashr_pop *s, char *buf, size_t cap, nmea
 /* ------------------------------------------------------------------------------------------ */
 /* PASHR_POS: Position, velocity and DOP (POS) (spec/proprietary/pashr_pos.yaml) */
 static const layout_field pashr_pos_fields[] = {
-    {"keyword", "POS", "POS", 0, FIELD_KEYWORD, 1, 0},
-    {"solution", "ashtech_pos_solution code (0 1 2 3 5 9 10 12 13 22 23)", &nmea_ashtech_pos_solution_def, offsetof(nmea_pashr_pos, solution), FIELD_ENUM, 1, 0},
-    {"satellites", "integer of at least 0", &range_from_0, offsetof(nmea_pashr_pos, satellites), FIELD_INTEGER, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pashr_pos, time), FIELD_TIME, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_pashr_pos, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_pashr_pos, lon), FIELD_LONGITUDE, 2, 0},
-    {"altitude", "decimal number -9999.999..9999.999", &range_minus_9999p999_to_9999p999, offsetof(nmea_pashr_pos, altitude), FIELD_DECIMAL, 1, 0},
-    {"correction_age", "decimal number 0..999.9", &range_0_to_999p9, offsetof(nmea_pashr_pos, correction_age), FIELD_DECIMAL, 1, 0},
-    {"course", "decimal number 0..359.9", &range_0_to_359p9, offsetof(nmea_pashr_pos, course), FIELD_DECIMAL, 1, 0},
-    {"speed", "decimal number 0..999.999", &range_0_to_999p999, offsetof(nmea_pashr_pos, speed), FIELD_DECIMAL, 1, 0},
-    {"vertical_velocity", "decimal number -999.999..999.999", &range_minus_999p999_to_999p999, offsetof(nmea_pashr_pos, vertical_velocity), FIELD_DECIMAL, 1, 0},
-    {"pdop", "decimal number 0..99.9", &range_0_to_99p9, offsetof(nmea_pashr_pos, pdop), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number 0..99.9", &range_0_to_99p9, offsetof(nmea_pashr_pos, hdop), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number 0..99.9", &range_0_to_99p9, offsetof(nmea_pashr_pos, vdop), FIELD_DECIMAL, 1, 0},
-    {"tdop", "decimal number 0..99.9", &range_0_to_99p9, offsetof(nmea_pashr_pos, tdop), FIELD_DECIMAL, 1, 0},
-    {"base_id", "text", NULL, offsetof(nmea_pashr_pos, base_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("POS"), "POS", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("solution"), ERROR_TEXT("ashtech_pos_solution code (0 1 2 3 5 9 10 12 13 22 23)"), &nmea_ashtech_pos_solution_def, offsetof(nmea_pashr_pos, solution), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pashr_pos, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pashr_pos, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_pashr_pos, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_pashr_pos, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number -9999.999..9999.999"), &range_minus_9999p999_to_9999p999, offsetof(nmea_pashr_pos, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("correction_age"), ERROR_TEXT("decimal number 0..999.9"), &range_0_to_999p9, offsetof(nmea_pashr_pos, correction_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("course"), ERROR_TEXT("decimal number 0..359.9"), &range_0_to_359p9, offsetof(nmea_pashr_pos, course), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed"), ERROR_TEXT("decimal number 0..999.999"), &range_0_to_999p999, offsetof(nmea_pashr_pos, speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vertical_velocity"), ERROR_TEXT("decimal number -999.999..999.999"), &range_minus_999p999_to_999p999, offsetof(nmea_pashr_pos, vertical_velocity), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number 0..99.9"), &range_0_to_99p9, offsetof(nmea_pashr_pos, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number 0..99.9"), &range_0_to_99p9, offsetof(nmea_pashr_pos, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number 0..99.9"), &range_0_to_99p9, offsetof(nmea_pashr_pos, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("tdop"), ERROR_TEXT("decimal number 0..99.9"), &range_0_to_99p9, offsetof(nmea_pashr_pos, tdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("base_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_pashr_pos, base_id), FIELD_TEXT, 1, 0},
 };
 static const layout pashr_pos_layout = {
     .sentence = "PASHR_POS", .address = "PASHR", .selector = "POS", .fields = pashr_pos_fields, .selector_at = 0,
@@ -19413,9 +19484,9 @@ size_t nmea_build_pashr_pos(const nmea_pashr_pos *s, char *buf, size_t cap, nmea
 
 /* $PASHR,PTT,6,20:41:02.0000000*09 */
 static const layout_field pashr_ptt_fields[] = {
-    {"keyword", "PTT", "PTT", 0, FIELD_KEYWORD, 1, 0},
-    {"day_of_week", "integer 1..7", &range_1_to_7, offsetof(nmea_pashr_ptt, day_of_week), FIELD_INTEGER, 1, 0},
-    {"time_tag", "text", NULL, offsetof(nmea_pashr_ptt, time_tag), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("PTT"), "PTT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("day_of_week"), ERROR_TEXT("integer 1..7"), &range_1_to_7, offsetof(nmea_pashr_ptt, day_of_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_tag"), ERROR_TEXT("text"), NULL, offsetof(nmea_pashr_ptt, time_tag), FIELD_TEXT, 1, 0},
 };
 static const layout pashr_ptt_layout = {
     .sentence = "PASHR_PTT", .address = "PASHR", .selector = "PTT", .fields = pashr_ptt_fields, .selector_at = 0,
@@ -19485,19 +19556,19 @@ size_t nmea_build_pashr_ptt(const nmea_pashr_ptt *s, char *buf, size_t cap, nmea
 
 /* $PASHR,SAT,13,20,092,32,44.0,U,13,206,78,50.0,U,23,056,55,48.0,U,33,198,34,44.0,-,17,218,13,42.0,U,25,152,34,38.0,U,04,276,65,50.0,U,02,308,31,48.0,U,77,052,37,48.0,U,84,294,33,48.0,U,83,234,23,48.0,U,78,124,42,46.0,U,68,034,65,48.0,U*35 */
 static const layout_field pashr_sat_fields[] = {
-    {"keyword", "SAT", "SAT", 0, FIELD_KEYWORD, 1, 0},
-    {"count", "integer of at least 0", &range_from_0, offsetof(nmea_pashr_sat, count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("SAT"), "SAT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("count"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pashr_sat, count), FIELD_INTEGER, 1, 0},
 };
 static const layout_field pashr_sat_group_fields[] = {
-    {"prn", "integer", NULL, offsetof(nmea_pashr_sat_satellite, prn), FIELD_INTEGER, 1, 0},
-    {"azimuth", "integer 0..359", &range_0_to_359, offsetof(nmea_pashr_sat_satellite, azimuth), FIELD_INTEGER, 1, 0},
-    {"elevation", "integer 0..90", &range_0_to_90, offsetof(nmea_pashr_sat_satellite, elevation), FIELD_INTEGER, 1, 0},
-    {"snr", "decimal number", NULL, offsetof(nmea_pashr_sat_satellite, snr), FIELD_DECIMAL, 1, 0},
-    {"used", "ashtech_sv_used code (U -)", &nmea_ashtech_sv_used_def, offsetof(nmea_pashr_sat_satellite, used), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pashr_sat_satellite, prn), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("azimuth"), ERROR_TEXT("integer 0..359"), &range_0_to_359, offsetof(nmea_pashr_sat_satellite, azimuth), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("elevation"), ERROR_TEXT("integer 0..90"), &range_0_to_90, offsetof(nmea_pashr_sat_satellite, elevation), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("snr"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pashr_sat_satellite, snr), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("used"), ERROR_TEXT("ashtech_sv_used code (U -)"), &nmea_ashtech_sv_used_def, offsetof(nmea_pashr_sat_satellite, used), FIELD_ENUM, 1, 0},
 };
 static const layout_group pashr_sat_group = {
-    .id = "satellites", .fields = pashr_sat_group_fields, .field_count = 5, .width = 5, .min = 0, .max = 64,
-    .single = false, .offset = offsetof(nmea_pashr_sat, satellites),
+    .id = ERROR_TEXT("satellites"), .fields = pashr_sat_group_fields, .field_count = 5, .width = 5, .min = 0,
+    .max = 64, .single = false, .offset = offsetof(nmea_pashr_sat, satellites),
     .entry_size = sizeof(nmea_pashr_sat_satellite), .count_offset = offsetof(nmea_pashr_sat, satellites.count),
 };
 static const layout pashr_sat_layout = {
@@ -19600,8 +19671,8 @@ size_t nmea_build_pashr_sat(const nmea_pashr_sat *s, char *buf, size_t cap, nmea
 
 /* $PASHR,SBA,ON*09 */
 static const layout_field pashr_sba_fields[] = {
-    {"keyword", "SBA", "SBA", 0, FIELD_KEYWORD, 1, 0},
-    {"state", "ashtech_on_off code (ON OFF)", &nmea_ashtech_on_off_def, offsetof(nmea_pashr_sba, state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("SBA"), "SBA", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("state"), ERROR_TEXT("ashtech_on_off code (ON OFF)"), &nmea_ashtech_on_off_def, offsetof(nmea_pashr_sba, state), FIELD_ENUM, 1, 0},
 };
 static const layout pashr_sba_layout = {
     .sentence = "PASHR_SBA", .address = "PASHR", .selector = "SBA", .fields = pashr_sba_fields, .selector_at = 0,
@@ -19631,9 +19702,9 @@ size_t nmea_build_pashr_sba(const nmea_pashr_sba *s, char *buf, size_t cap, nmea
 
 /* $PASHR,TTT,6,20:41:02.0000000*0D */
 static const layout_field pashr_ttt_fields[] = {
-    {"keyword", "TTT", "TTT", 0, FIELD_KEYWORD, 1, 0},
-    {"day_of_week", "integer 1..7", &range_1_to_7, offsetof(nmea_pashr_ttt, day_of_week), FIELD_INTEGER, 1, 0},
-    {"time_tag", "text", NULL, offsetof(nmea_pashr_ttt, time_tag), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("TTT"), "TTT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("day_of_week"), ERROR_TEXT("integer 1..7"), &range_1_to_7, offsetof(nmea_pashr_ttt, day_of_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_tag"), ERROR_TEXT("text"), NULL, offsetof(nmea_pashr_ttt, time_tag), FIELD_TEXT, 1, 0},
 };
 static const layout pashr_ttt_layout = {
     .sentence = "PASHR_TTT", .address = "PASHR", .selector = "TTT", .fields = pashr_ttt_fields, .selector_at = 0,
@@ -19703,11 +19774,11 @@ size_t nmea_build_pashr_ttt(const nmea_pashr_ttt *s, char *buf, size_t cap, nmea
 
 /* $PASHS,NME,ATT,A,ON,0.5 */
 static const layout_field pashs_nme_fields[] = {
-    {"keyword", "NME", "NME", 0, FIELD_KEYWORD, 1, 0},
-    {"message", "ashtech_nme_message code (ALM DTM GGA GLL GMP GNS GRS GSA GST GSV HDT HD2 RMC VTG ZDA XDR ATT AT2 CRT DCR DDS DPO LTN POS RRE SAT SGA SGL SGP USR VEC VE2 PTT TTT)", &nmea_ashtech_nme_message_def, offsetof(nmea_pashs_nme, message), FIELD_ENUM, 1, 0},
-    {"port", "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)", &nmea_ashtech_port_def, offsetof(nmea_pashs_nme, port), FIELD_ENUM, 1, 0},
-    {"state", "ashtech_on_off code (ON OFF)", &nmea_ashtech_on_off_def, offsetof(nmea_pashs_nme, state), FIELD_ENUM, 1, 0},
-    {"rate", "decimal number 0.05..999", &range_0p05_to_999, offsetof(nmea_pashs_nme, rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("NME"), "NME", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("ashtech_nme_message code (ALM DTM GGA GLL GMP GNS GRS GSA GST GSV HDT HD2 RMC VTG ZDA XDR ATT AT2 CRT DCR DDS DPO LTN POS RRE SAT SGA SGL SGP USR VEC VE2 PTT TTT)"), &nmea_ashtech_nme_message_def, offsetof(nmea_pashs_nme, message), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("port"), ERROR_TEXT("ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)"), &nmea_ashtech_port_def, offsetof(nmea_pashs_nme, port), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("state"), ERROR_TEXT("ashtech_on_off code (ON OFF)"), &nmea_ashtech_on_off_def, offsetof(nmea_pashs_nme, state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rate"), ERROR_TEXT("decimal number 0.05..999"), &range_0p05_to_999, offsetof(nmea_pashs_nme, rate), FIELD_DECIMAL, 1, 0},
 };
 static const layout pashs_nme_layout = {
     .sentence = "PASHS_NME", .address = "PASHS", .selector = "NME", .fields = pashs_nme_fields, .selector_at = 0,
@@ -19737,9 +19808,9 @@ size_t nmea_build_pashs_nme(const nmea_pashs_nme *s, char *buf, size_t cap, nmea
 
 /* $PASHS,NME,PER,5 */
 static const layout_field pashs_nme_period_fields[] = {
-    {"keyword", "NME", "NME", 0, FIELD_KEYWORD, 1, 0},
-    {"per", "PER", "PER", 0, FIELD_KEYWORD, 1, 0},
-    {"period", "decimal number 0.05..999", &range_0p05_to_999, offsetof(nmea_pashs_nme_period, period), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("NME"), "NME", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("per"), ERROR_TEXT("PER"), "PER", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("period"), ERROR_TEXT("decimal number 0.05..999"), &range_0p05_to_999, offsetof(nmea_pashs_nme_period, period), FIELD_DECIMAL, 1, 0},
 };
 static const layout pashs_nme_period_layout = {
     .sentence = "PASHS_NME", .address = "PASHS", .variant = "period", .selector = "NME",
@@ -19769,13 +19840,13 @@ size_t nmea_build_pashs_nme_period(const nmea_pashs_nme_period *s, char *buf, si
 
 /* $PERDCRW,TPS1,20220731120213,2,00000000000000,+18,+18,4*0D */
 static const layout_field perdcrw_fields[] = {
-    {"command", "TPS1", "TPS1", 0, FIELD_KEYWORD, 1, 0},
-    {"date_time", "text of at most 14 characters", NULL, offsetof(nmea_perdcrw, date_time), FIELD_TEXT, 1, 14},
-    {"time_status", "furuno_eride_time_status code (0 1 2)", &nmea_furuno_eride_time_status_def, offsetof(nmea_perdcrw, time_status), FIELD_ENUM, 1, 0},
-    {"leap_update", "text of at most 14 characters", NULL, offsetof(nmea_perdcrw, leap_update), FIELD_TEXT, 1, 14},
-    {"leap_seconds", "integer -31..32", &range_minus_31_to_32, offsetof(nmea_perdcrw, leap_seconds), FIELD_INTEGER, 1, 0},
-    {"future_leap_seconds", "integer -31..32", &range_minus_31_to_32, offsetof(nmea_perdcrw, future_leap_seconds), FIELD_INTEGER, 1, 0},
-    {"pps_sync", "furuno_eride_pps_sync code (0 1 2 3 4)", &nmea_furuno_eride_pps_sync_def, offsetof(nmea_perdcrw, pps_sync), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("TPS1"), "TPS1", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("date_time"), ERROR_TEXT("text of at most 14 characters"), NULL, offsetof(nmea_perdcrw, date_time), FIELD_TEXT, 1, 14},
+    {ERROR_TEXT("time_status"), ERROR_TEXT("furuno_eride_time_status code (0 1 2)"), &nmea_furuno_eride_time_status_def, offsetof(nmea_perdcrw, time_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("leap_update"), ERROR_TEXT("text of at most 14 characters"), NULL, offsetof(nmea_perdcrw, leap_update), FIELD_TEXT, 1, 14},
+    {ERROR_TEXT("leap_seconds"), ERROR_TEXT("integer -31..32"), &range_minus_31_to_32, offsetof(nmea_perdcrw, leap_seconds), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("future_leap_seconds"), ERROR_TEXT("integer -31..32"), &range_minus_31_to_32, offsetof(nmea_perdcrw, future_leap_seconds), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pps_sync"), ERROR_TEXT("furuno_eride_pps_sync code (0 1 2 3 4)"), &nmea_furuno_eride_pps_sync_def, offsetof(nmea_perdcrw, pps_sync), FIELD_ENUM, 1, 0},
 };
 static const layout perdcrw_layout = {
     .sentence = "PERDCRW", .address = "PERDCRW", .selector = "TPS1", .fields = perdcrw_fields, .selector_at = 0,
@@ -19853,17 +19924,17 @@ size_t nmea_build_perdcrw(const nmea_perdcrw *s, char *buf, size_t cap, nmea_err
 
 /* $PERDCRX,TPS2,1,1,0,200,+000000,0,0,0023,-1.178,0000*27 */
 static const layout_field perdcrx_fields[] = {
-    {"command", "TPS2", "TPS2", 0, FIELD_KEYWORD, 1, 0},
-    {"pps_status", "furuno_eride_on_off code (0 1)", &nmea_furuno_eride_on_off_def, offsetof(nmea_perdcrx, pps_status), FIELD_ENUM, 1, 0},
-    {"pps_mode", "furuno_eride_pps_mode code (0 1 2 3 4)", &nmea_furuno_eride_pps_mode_def, offsetof(nmea_perdcrx, pps_mode), FIELD_ENUM, 1, 0},
-    {"period", "furuno_eride_pps_period code (0 1)", &nmea_furuno_eride_pps_period_def, offsetof(nmea_perdcrx, period), FIELD_ENUM, 1, 0},
-    {"pulse_width", "integer 1..500", &range_1_to_500, offsetof(nmea_perdcrx, pulse_width), FIELD_INTEGER, 1, 0},
-    {"cable_delay", "integer -100000..100000", &range_minus_100000_to_100000, offsetof(nmea_perdcrx, cable_delay), FIELD_INTEGER, 1, 0},
-    {"polarity", "furuno_eride_polarity code (0 1)", &nmea_furuno_eride_polarity_def, offsetof(nmea_perdcrx, polarity), FIELD_ENUM, 1, 0},
-    {"pps_type", "furuno_eride_pps_type code (0 1)", &nmea_furuno_eride_pps_type_def, offsetof(nmea_perdcrx, pps_type), FIELD_ENUM, 1, 0},
-    {"estimated_accuracy", "integer 0..9999", &range_0_to_9999, offsetof(nmea_perdcrx, estimated_accuracy), FIELD_INTEGER, 1, 0},
-    {"sawtooth", "decimal number -1.76..1.76", &range_minus_1p76_to_1p76, offsetof(nmea_perdcrx, sawtooth), FIELD_DECIMAL, 1, 0},
-    {"accuracy_threshold", "integer 0..9999", &range_0_to_9999, offsetof(nmea_perdcrx, accuracy_threshold), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("TPS2"), "TPS2", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("pps_status"), ERROR_TEXT("furuno_eride_on_off code (0 1)"), &nmea_furuno_eride_on_off_def, offsetof(nmea_perdcrx, pps_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pps_mode"), ERROR_TEXT("furuno_eride_pps_mode code (0 1 2 3 4)"), &nmea_furuno_eride_pps_mode_def, offsetof(nmea_perdcrx, pps_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("period"), ERROR_TEXT("furuno_eride_pps_period code (0 1)"), &nmea_furuno_eride_pps_period_def, offsetof(nmea_perdcrx, period), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pulse_width"), ERROR_TEXT("integer 1..500"), &range_1_to_500, offsetof(nmea_perdcrx, pulse_width), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("cable_delay"), ERROR_TEXT("integer -100000..100000"), &range_minus_100000_to_100000, offsetof(nmea_perdcrx, cable_delay), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("polarity"), ERROR_TEXT("furuno_eride_polarity code (0 1)"), &nmea_furuno_eride_polarity_def, offsetof(nmea_perdcrx, polarity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pps_type"), ERROR_TEXT("furuno_eride_pps_type code (0 1)"), &nmea_furuno_eride_pps_type_def, offsetof(nmea_perdcrx, pps_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("estimated_accuracy"), ERROR_TEXT("integer 0..9999"), &range_0_to_9999, offsetof(nmea_perdcrx, estimated_accuracy), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sawtooth"), ERROR_TEXT("decimal number -1.76..1.76"), &range_minus_1p76_to_1p76, offsetof(nmea_perdcrx, sawtooth), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("accuracy_threshold"), ERROR_TEXT("integer 0..9999"), &range_0_to_9999, offsetof(nmea_perdcrx, accuracy_threshold), FIELD_INTEGER, 1, 0},
 };
 static const layout perdcrx_layout = {
     .sentence = "PERDCRX", .address = "PERDCRX", .selector = "TPS2", .fields = perdcrx_fields, .selector_at = 0,
@@ -19949,16 +20020,16 @@ size_t nmea_build_perdcrx(const nmea_perdcrx *s, char *buf, size_t cap, nmea_err
 
 /* $PERDCRY,TPS3,3,0049,015,084533,000000,0,0,00,0x20001300*64 */
 static const layout_field perdcry_fields[] = {
-    {"command", "TPS3", "TPS3", 0, FIELD_KEYWORD, 1, 0},
-    {"position_mode", "furuno_eride_position_mode code (0 1 2 3)", &nmea_furuno_eride_position_mode_def, offsetof(nmea_perdcry, position_mode), FIELD_ENUM, 1, 0},
-    {"sigma", "integer 0..1000", &range_0_to_1000, offsetof(nmea_perdcry, sigma), FIELD_INTEGER, 1, 0},
-    {"sigma_threshold", "integer 0..255", &range_0_to_255, offsetof(nmea_perdcry, sigma_threshold), FIELD_INTEGER, 1, 0},
-    {"survey_time", "integer 0..999999", &range_0_to_999999, offsetof(nmea_perdcry, survey_time), FIELD_INTEGER, 1, 0},
-    {"time_threshold", "integer 0..604800", &range_0_to_604800, offsetof(nmea_perdcry, time_threshold), FIELD_INTEGER, 1, 0},
-    {"traim_solution", "furuno_eride_traim_solution code (0 1 2)", &nmea_furuno_eride_traim_solution_def, offsetof(nmea_perdcry, traim_solution), FIELD_ENUM, 1, 0},
-    {"traim_status", "furuno_eride_traim_status code (0 1 2)", &nmea_furuno_eride_traim_status_def, offsetof(nmea_perdcry, traim_status), FIELD_ENUM, 1, 0},
-    {"removed_satellites", "integer 0..3", &range_0_to_3, offsetof(nmea_perdcry, removed_satellites), FIELD_INTEGER, 1, 0},
-    {"receiver_status", "text of at most 10 characters", NULL, offsetof(nmea_perdcry, receiver_status), FIELD_TEXT, 1, 10},
+    {ERROR_TEXT("command"), ERROR_TEXT("TPS3"), "TPS3", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("position_mode"), ERROR_TEXT("furuno_eride_position_mode code (0 1 2 3)"), &nmea_furuno_eride_position_mode_def, offsetof(nmea_perdcry, position_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sigma"), ERROR_TEXT("integer 0..1000"), &range_0_to_1000, offsetof(nmea_perdcry, sigma), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sigma_threshold"), ERROR_TEXT("integer 0..255"), &range_0_to_255, offsetof(nmea_perdcry, sigma_threshold), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("survey_time"), ERROR_TEXT("integer 0..999999"), &range_0_to_999999, offsetof(nmea_perdcry, survey_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_threshold"), ERROR_TEXT("integer 0..604800"), &range_0_to_604800, offsetof(nmea_perdcry, time_threshold), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("traim_solution"), ERROR_TEXT("furuno_eride_traim_solution code (0 1 2)"), &nmea_furuno_eride_traim_solution_def, offsetof(nmea_perdcry, traim_solution), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("traim_status"), ERROR_TEXT("furuno_eride_traim_status code (0 1 2)"), &nmea_furuno_eride_traim_status_def, offsetof(nmea_perdcry, traim_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("removed_satellites"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_perdcry, removed_satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("receiver_status"), ERROR_TEXT("text of at most 10 characters"), NULL, offsetof(nmea_perdcry, receiver_status), FIELD_TEXT, 1, 10},
 };
 static const layout perdcry_layout = {
     .sentence = "PERDCRY", .address = "PERDCRY", .selector = "TPS3", .fields = perdcry_fields, .selector_at = 0,
@@ -20042,18 +20113,18 @@ size_t nmea_build_perdcry(const nmea_perdcry *s, char *buf, size_t cap, nmea_err
 
 /* $PERDCRZ,TPS4,7,1,1,+000000,-000002,+009999,+059054,+00731,880000,0x54,0xA6*7D */
 static const layout_field perdcrz_fields[] = {
-    {"command", "TPS4", "TPS4", 0, FIELD_KEYWORD, 1, 0},
-    {"freq_mode", "furuno_eride_freq_mode code (1 2 3 4 5 6 7)", &nmea_furuno_eride_freq_mode_def, offsetof(nmea_perdcrz, freq_mode), FIELD_ENUM, 1, 0},
-    {"freq_status", "furuno_eride_on_off code (0 1)", &nmea_furuno_eride_on_off_def, offsetof(nmea_perdcrz, freq_status), FIELD_ENUM, 1, 0},
-    {"gclk_accurate", "integer 0..1", &range_0_to_1, offsetof(nmea_perdcrz, gclk_accurate), FIELD_INTEGER, 1, 0},
-    {"phase_delay", "integer -999999..999999", &range_minus_999999_to_999999, offsetof(nmea_perdcrz, phase_delay), FIELD_INTEGER, 1, 0},
-    {"phase_delay_change", "integer -999999..999999", &range_minus_999999_to_999999, offsetof(nmea_perdcrz, phase_delay_change), FIELD_INTEGER, 1, 0},
-    {"lock_count", "integer 0..999999", &range_0_to_999999, offsetof(nmea_perdcrz, lock_count), FIELD_INTEGER, 1, 0},
-    {"lockoff_count", "integer 0..999999", &range_0_to_999999, offsetof(nmea_perdcrz, lockoff_count), FIELD_INTEGER, 1, 0},
-    {"reserved", "text", NULL, offsetof(nmea_perdcrz, reserved), FIELD_TEXT, 1, 0},
-    {"id_tag", "text of at most 6 characters", NULL, offsetof(nmea_perdcrz, id_tag), FIELD_TEXT, 1, 6},
-    {"gclk_setting_1", "text", NULL, offsetof(nmea_perdcrz, gclk_setting_1), FIELD_TEXT, 1, 0},
-    {"gclk_setting_2", "text", NULL, offsetof(nmea_perdcrz, gclk_setting_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("TPS4"), "TPS4", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("freq_mode"), ERROR_TEXT("furuno_eride_freq_mode code (1 2 3 4 5 6 7)"), &nmea_furuno_eride_freq_mode_def, offsetof(nmea_perdcrz, freq_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("freq_status"), ERROR_TEXT("furuno_eride_on_off code (0 1)"), &nmea_furuno_eride_on_off_def, offsetof(nmea_perdcrz, freq_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("gclk_accurate"), ERROR_TEXT("integer 0..1"), &range_0_to_1, offsetof(nmea_perdcrz, gclk_accurate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("phase_delay"), ERROR_TEXT("integer -999999..999999"), &range_minus_999999_to_999999, offsetof(nmea_perdcrz, phase_delay), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("phase_delay_change"), ERROR_TEXT("integer -999999..999999"), &range_minus_999999_to_999999, offsetof(nmea_perdcrz, phase_delay_change), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("lock_count"), ERROR_TEXT("integer 0..999999"), &range_0_to_999999, offsetof(nmea_perdcrz, lock_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("lockoff_count"), ERROR_TEXT("integer 0..999999"), &range_0_to_999999, offsetof(nmea_perdcrz, lockoff_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("text"), NULL, offsetof(nmea_perdcrz, reserved), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("id_tag"), ERROR_TEXT("text of at most 6 characters"), NULL, offsetof(nmea_perdcrz, id_tag), FIELD_TEXT, 1, 6},
+    {ERROR_TEXT("gclk_setting_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_perdcrz, gclk_setting_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("gclk_setting_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_perdcrz, gclk_setting_2), FIELD_TEXT, 1, 0},
 };
 static const layout perdcrz_layout = {
     .sentence = "PERDCRZ", .address = "PERDCRZ", .selector = "TPS4", .fields = perdcrz_fields, .selector_at = 0,
@@ -20139,10 +20210,10 @@ size_t nmea_build_perdcrz(const nmea_perdcrz *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PFEC_GPATT: Attitude, true heading, pitch and roll (GPatt) (spec/proprietary/pfec_gpatt.yaml) */
 static const layout_field pfec_gpatt_fields[] = {
-    {"keyword", "GPatt", "GPatt", 0, FIELD_KEYWORD, 1, 0},
-    {"heading", "decimal number", NULL, offsetof(nmea_pfec_gpatt, heading), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number", NULL, offsetof(nmea_pfec_gpatt, pitch), FIELD_DECIMAL, 1, 0},
-    {"roll", "decimal number", NULL, offsetof(nmea_pfec_gpatt, roll), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("GPatt"), "GPatt", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pfec_gpatt, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pfec_gpatt, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pfec_gpatt, roll), FIELD_DECIMAL, 1, 0},
 };
 static const layout pfec_gpatt_layout = {
     .sentence = "PFEC_GPATT", .address = "PFEC", .selector = "GPATT", .fields = pfec_gpatt_fields,
@@ -20212,9 +20283,9 @@ size_t nmea_build_pfec_gpatt(const nmea_pfec_gpatt *s, char *buf, size_t cap, nm
 /* ------------------------------------------------------------------------------------------ */
 /* PFEC_GPHVE: Heave (GPhve) (spec/proprietary/pfec_gphve.yaml) */
 static const layout_field pfec_gphve_fields[] = {
-    {"keyword", "GPhve", "GPhve", 0, FIELD_KEYWORD, 1, 0},
-    {"heave", "decimal number", NULL, offsetof(nmea_pfec_gphve, heave), FIELD_DECIMAL, 1, 0},
-    {"status", "one character", NULL, offsetof(nmea_pfec_gphve, status), FIELD_CHAR, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("GPhve"), "GPhve", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("heave"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pfec_gphve, heave), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("one character"), NULL, offsetof(nmea_pfec_gphve, status), FIELD_CHAR, 1, 0},
 };
 static const layout pfec_gphve_layout = {
     .sentence = "PFEC_GPHVE", .address = "PFEC", .selector = "GPHVE", .fields = pfec_gphve_fields,
@@ -20282,10 +20353,10 @@ size_t nmea_build_pfec_gphve(const nmea_pfec_gphve *s, char *buf, size_t cap, nm
 /* ------------------------------------------------------------------------------------------ */
 /* PFEC_GPRTC: Route comment data transfer (GPrtc) (spec/proprietary/pfec_gprtc.yaml) */
 static const layout_field pfec_gprtc_fields[] = {
-    {"keyword", "GPrtc", "GPrtc", 0, FIELD_KEYWORD, 1, 0},
-    {"route", "integer 1..200", &range_1_to_200, offsetof(nmea_pfec_gprtc, route), FIELD_INTEGER, 1, 0},
-    {"comment", "text of at most 18 characters", NULL, offsetof(nmea_pfec_gprtc, comment), FIELD_TEXT, 1, 18},
-    {"route_name", "text of at most 6 characters", NULL, offsetof(nmea_pfec_gprtc, route_name), FIELD_TEXT, 1, 6},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("GPrtc"), "GPrtc", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("route"), ERROR_TEXT("integer 1..200"), &range_1_to_200, offsetof(nmea_pfec_gprtc, route), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("comment"), ERROR_TEXT("text of at most 18 characters"), NULL, offsetof(nmea_pfec_gprtc, comment), FIELD_TEXT, 1, 18},
+    {ERROR_TEXT("route_name"), ERROR_TEXT("text of at most 6 characters"), NULL, offsetof(nmea_pfec_gprtc, route_name), FIELD_TEXT, 1, 6},
 };
 static const layout pfec_gprtc_layout = {
     .sentence = "PFEC_GPRTC", .address = "PFEC", .selector = "GPRTC", .fields = pfec_gprtc_fields,
@@ -20356,17 +20427,17 @@ size_t nmea_build_pfec_gprtc(const nmea_pfec_gprtc *s, char *buf, size_t cap, nm
 /* ------------------------------------------------------------------------------------------ */
 /* PFEC_GPWPL: Waypoint data transfer (GPwpl) (spec/proprietary/pfec_gpwpl.yaml) */
 static const layout_field pfec_gpwpl_fields[] = {
-    {"keyword", "GPwpl", "GPwpl", 0, FIELD_KEYWORD, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_pfec_gpwpl, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_pfec_gpwpl, lon), FIELD_LONGITUDE, 2, 0},
-    {"name", "text of at most 8 characters", NULL, offsetof(nmea_pfec_gpwpl, name), FIELD_TEXT, 1, 8},
-    {"color", "integer 0..6", &range_0_to_6, offsetof(nmea_pfec_gpwpl, color), FIELD_INTEGER, 1, 0},
-    {"comment", "text", NULL, offsetof(nmea_pfec_gpwpl, comment), FIELD_TEXT, 1, 0},
-    {"displayed", "one character", NULL, offsetof(nmea_pfec_gpwpl, displayed), FIELD_CHAR, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pfec_gpwpl, time), FIELD_TIME, 1, 0},
-    {"day", "integer", NULL, offsetof(nmea_pfec_gpwpl, day), FIELD_INTEGER, 1, 0},
-    {"month", "integer", NULL, offsetof(nmea_pfec_gpwpl, month), FIELD_INTEGER, 1, 0},
-    {"year", "integer", NULL, offsetof(nmea_pfec_gpwpl, year), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("GPwpl"), "GPwpl", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_pfec_gpwpl, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_pfec_gpwpl, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("name"), ERROR_TEXT("text of at most 8 characters"), NULL, offsetof(nmea_pfec_gpwpl, name), FIELD_TEXT, 1, 8},
+    {ERROR_TEXT("color"), ERROR_TEXT("integer 0..6"), &range_0_to_6, offsetof(nmea_pfec_gpwpl, color), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("comment"), ERROR_TEXT("text"), NULL, offsetof(nmea_pfec_gpwpl, comment), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("displayed"), ERROR_TEXT("one character"), NULL, offsetof(nmea_pfec_gpwpl, displayed), FIELD_CHAR, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pfec_gpwpl, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("day"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pfec_gpwpl, day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("month"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pfec_gpwpl, month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pfec_gpwpl, year), FIELD_INTEGER, 1, 0},
 };
 static const layout pfec_gpwpl_layout = {
     .sentence = "PFEC_GPWPL", .address = "PFEC", .selector = "GPWPL", .fields = pfec_gpwpl_fields,
@@ -20453,9 +20524,9 @@ size_t nmea_build_pfec_gpwpl(const nmea_pfec_gpwpl *s, char *buf, size_t cap, nm
 
 /* $PFEC,GPxfr,CTL,E */
 static const layout_field pfec_gpxfr_fields[] = {
-    {"keyword", "GPxfr", "GPxfr", 0, FIELD_KEYWORD, 1, 0},
-    {"control", "CTL or nothing", "CTL", offsetof(nmea_pfec_gpxfr, control), FIELD_LITERAL, 1, 0},
-    {"code", "one character", NULL, offsetof(nmea_pfec_gpxfr, code), FIELD_CHAR, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("GPxfr"), "GPxfr", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("control"), ERROR_TEXT("CTL or nothing"), "CTL", offsetof(nmea_pfec_gpxfr, control), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("code"), ERROR_TEXT("one character"), NULL, offsetof(nmea_pfec_gpxfr, code), FIELD_CHAR, 1, 0},
 };
 static const layout pfec_gpxfr_layout = {
     .sentence = "PFEC_GPXFR", .address = "PFEC", .selector = "GPXFR", .fields = pfec_gpxfr_fields,
@@ -20525,10 +20596,10 @@ size_t nmea_build_pfec_gpxfr(const nmea_pfec_gpxfr *s, char *buf, size_t cap, nm
 
 /* $PGLOR,1,FIX,1.0,1.0*20 */
 static const layout_field pglor_fix_fields[] = {
-    {"version", "1 or nothing", "1", offsetof(nmea_pglor_fix, version), FIELD_LITERAL, 1, 0},
-    {"sentence_id", "FIX", "FIX", 0, FIELD_KEYWORD, 1, 0},
-    {"ttff_request", "decimal number", NULL, offsetof(nmea_pglor_fix, ttff_request), FIELD_DECIMAL, 1, 0},
-    {"ttff_start", "decimal number", NULL, offsetof(nmea_pglor_fix, ttff_start), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("1 or nothing"), "1", offsetof(nmea_pglor_fix, version), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("FIX"), "FIX", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("ttff_request"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_fix, ttff_request), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ttff_start"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_fix, ttff_start), FIELD_DECIMAL, 1, 0},
 };
 static const layout pglor_fix_layout = {
     .sentence = "PGLOR_FIX", .address = "PGLOR", .selector = "FIX", .fields = pglor_fix_fields, .selector_at = 1,
@@ -20600,29 +20671,29 @@ size_t nmea_build_pglor_fix(const nmea_pglor_fix *s, char *buf, size_t cap, nmea
 
 /* $PGLOR,0,LSQ,000145.00,,,,,,,,,,,,,,,,00*3A */
 static const layout_field pglor_lsq_fields[] = {
-    {"version", "integer", NULL, offsetof(nmea_pglor_lsq, version), FIELD_INTEGER, 1, 0},
-    {"sentence_id", "LSQ", "LSQ", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pglor_lsq, time), FIELD_TIME, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_pglor_lsq, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_pglor_lsq, lon), FIELD_LONGITUDE, 2, 0},
-    {"horizontal_error", "decimal number", NULL, offsetof(nmea_pglor_lsq, horizontal_error), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_pglor_lsq, hdop), FIELD_DECIMAL, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_pglor_lsq, altitude), FIELD_DECIMAL, 1, 0},
-    {"altitude_error", "decimal number", NULL, offsetof(nmea_pglor_lsq, altitude_error), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number", NULL, offsetof(nmea_pglor_lsq, vdop), FIELD_DECIMAL, 1, 0},
-    {"horizontal_speed", "decimal number", NULL, offsetof(nmea_pglor_lsq, horizontal_speed), FIELD_DECIMAL, 1, 0},
-    {"horizontal_speed_error", "decimal number", NULL, offsetof(nmea_pglor_lsq, horizontal_speed_error), FIELD_DECIMAL, 1, 0},
-    {"vertical_speed", "decimal number", NULL, offsetof(nmea_pglor_lsq, vertical_speed), FIELD_DECIMAL, 1, 0},
-    {"vertical_speed_error", "decimal number", NULL, offsetof(nmea_pglor_lsq, vertical_speed_error), FIELD_DECIMAL, 1, 0},
-    {"track", "decimal number", NULL, offsetof(nmea_pglor_lsq, track), FIELD_DECIMAL, 1, 0},
-    {"track_error", "decimal number", NULL, offsetof(nmea_pglor_lsq, track_error), FIELD_DECIMAL, 1, 0},
-    {"satellites_used", "integer", NULL, offsetof(nmea_pglor_lsq, satellites_used), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_lsq, version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("LSQ"), "LSQ", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pglor_lsq, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_pglor_lsq, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_pglor_lsq, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("horizontal_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_lsq, horizontal_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_lsq, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_lsq, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_lsq, altitude_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_lsq, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("horizontal_speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_lsq, horizontal_speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("horizontal_speed_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_lsq, horizontal_speed_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vertical_speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_lsq, vertical_speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vertical_speed_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_lsq, vertical_speed_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("track"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_lsq, track), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("track_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_lsq, track_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("satellites_used"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_lsq, satellites_used), FIELD_INTEGER, 1, 0},
 };
 static const layout_field pglor_lsq_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pglor_lsq_group = {
-    .id = "extra", .fields = pglor_lsq_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 4,
+    .id = ERROR_TEXT("extra"), .fields = pglor_lsq_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 4,
     .single = true, .offset = offsetof(nmea_pglor_lsq, extra), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pglor_lsq, extra.count),
 };
@@ -20748,18 +20819,18 @@ size_t nmea_build_pglor_lsq(const nmea_pglor_lsq *s, char *buf, size_t cap, nmea
 
 /* $PGLOR,3,PWR,mA,15.1,RFTm,510,OscTm,1000,MeasTm,1000,UTC,200314.00*03 */
 static const layout_field pglor_pwr_fields[] = {
-    {"version", "3 or nothing", "3", offsetof(nmea_pglor_pwr, version), FIELD_LITERAL, 1, 0},
-    {"sentence_id", "PWR", "PWR", 0, FIELD_KEYWORD, 1, 0},
-    {"current_label", "mA or nothing", "mA", offsetof(nmea_pglor_pwr, current_label), FIELD_LITERAL, 1, 0},
-    {"current", "decimal number", NULL, offsetof(nmea_pglor_pwr, current), FIELD_DECIMAL, 1, 0},
-    {"rf_on_label", "RFTm or nothing", "RFTm", offsetof(nmea_pglor_pwr, rf_on_label), FIELD_LITERAL, 1, 0},
-    {"rf_on_time", "integer", NULL, offsetof(nmea_pglor_pwr, rf_on_time), FIELD_INTEGER, 1, 0},
-    {"osc_on_label", "OscTm or nothing", "OscTm", offsetof(nmea_pglor_pwr, osc_on_label), FIELD_LITERAL, 1, 0},
-    {"osc_on_time", "integer", NULL, offsetof(nmea_pglor_pwr, osc_on_time), FIELD_INTEGER, 1, 0},
-    {"interval_label", "MeasTm or nothing", "MeasTm", offsetof(nmea_pglor_pwr, interval_label), FIELD_LITERAL, 1, 0},
-    {"interval", "integer", NULL, offsetof(nmea_pglor_pwr, interval), FIELD_INTEGER, 1, 0},
-    {"time_label", "UTC or nothing", "UTC", offsetof(nmea_pglor_pwr, time_label), FIELD_LITERAL, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pglor_pwr, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("3 or nothing"), "3", offsetof(nmea_pglor_pwr, version), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("PWR"), "PWR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("current_label"), ERROR_TEXT("mA or nothing"), "mA", offsetof(nmea_pglor_pwr, current_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("current"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_pwr, current), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rf_on_label"), ERROR_TEXT("RFTm or nothing"), "RFTm", offsetof(nmea_pglor_pwr, rf_on_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("rf_on_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_pwr, rf_on_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("osc_on_label"), ERROR_TEXT("OscTm or nothing"), "OscTm", offsetof(nmea_pglor_pwr, osc_on_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("osc_on_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_pwr, osc_on_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("interval_label"), ERROR_TEXT("MeasTm or nothing"), "MeasTm", offsetof(nmea_pglor_pwr, interval_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("interval"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_pwr, interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_label"), ERROR_TEXT("UTC or nothing"), "UTC", offsetof(nmea_pglor_pwr, time_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pglor_pwr, time), FIELD_TIME, 1, 0},
 };
 static const layout pglor_pwr_layout = {
     .sentence = "PGLOR_PWR", .address = "PGLOR", .selector = "PWR", .fields = pglor_pwr_fields, .selector_at = 1,
@@ -20845,22 +20916,22 @@ size_t nmea_build_pglor_pwr(const nmea_pglor_pwr *s, char *buf, size_t cap, nmea
 /* ------------------------------------------------------------------------------------------ */
 /* PGLOR_PWR (Version 2, average power): Broadcom power consumption report (spec/proprietary/pglor_pwr.yaml) */
 static const layout_field pglor_pwr_v2_fields[] = {
-    {"version", "2 or nothing", "2", offsetof(nmea_pglor_pwr_v2, version), FIELD_LITERAL, 1, 0},
-    {"sentence_id", "PWR", "PWR", 0, FIELD_KEYWORD, 1, 0},
-    {"power_label", "AvgP or nothing", "AvgP", offsetof(nmea_pglor_pwr_v2, power_label), FIELD_LITERAL, 1, 0},
-    {"average_power", "decimal number", NULL, offsetof(nmea_pglor_pwr_v2, average_power), FIELD_DECIMAL, 1, 0},
-    {"rf_on_label", "RFTm or nothing", "RFTm", offsetof(nmea_pglor_pwr_v2, rf_on_label), FIELD_LITERAL, 1, 0},
-    {"rf_on_time", "integer", NULL, offsetof(nmea_pglor_pwr_v2, rf_on_time), FIELD_INTEGER, 1, 0},
-    {"run_label", "RunT or nothing", "RunT", offsetof(nmea_pglor_pwr_v2, run_label), FIELD_LITERAL, 1, 0},
-    {"run_time", "integer", NULL, offsetof(nmea_pglor_pwr_v2, run_time), FIELD_INTEGER, 1, 0},
-    {"osc_on_label", "OscTm or nothing", "OscTm", offsetof(nmea_pglor_pwr_v2, osc_on_label), FIELD_LITERAL, 1, 0},
-    {"osc_on_time", "integer", NULL, offsetof(nmea_pglor_pwr_v2, osc_on_time), FIELD_INTEGER, 1, 0},
-    {"sleep_label", "SlpTm or nothing", "SlpTm", offsetof(nmea_pglor_pwr_v2, sleep_label), FIELD_LITERAL, 1, 0},
-    {"sleep_time", "integer", NULL, offsetof(nmea_pglor_pwr_v2, sleep_time), FIELD_INTEGER, 1, 0},
-    {"interval_label", "MeasTm or nothing", "MeasTm", offsetof(nmea_pglor_pwr_v2, interval_label), FIELD_LITERAL, 1, 0},
-    {"interval", "integer", NULL, offsetof(nmea_pglor_pwr_v2, interval), FIELD_INTEGER, 1, 0},
-    {"time_label", "UTC or nothing", "UTC", offsetof(nmea_pglor_pwr_v2, time_label), FIELD_LITERAL, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pglor_pwr_v2, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("2 or nothing"), "2", offsetof(nmea_pglor_pwr_v2, version), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("PWR"), "PWR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("power_label"), ERROR_TEXT("AvgP or nothing"), "AvgP", offsetof(nmea_pglor_pwr_v2, power_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("average_power"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_pwr_v2, average_power), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rf_on_label"), ERROR_TEXT("RFTm or nothing"), "RFTm", offsetof(nmea_pglor_pwr_v2, rf_on_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("rf_on_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_pwr_v2, rf_on_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("run_label"), ERROR_TEXT("RunT or nothing"), "RunT", offsetof(nmea_pglor_pwr_v2, run_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("run_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_pwr_v2, run_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("osc_on_label"), ERROR_TEXT("OscTm or nothing"), "OscTm", offsetof(nmea_pglor_pwr_v2, osc_on_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("osc_on_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_pwr_v2, osc_on_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sleep_label"), ERROR_TEXT("SlpTm or nothing"), "SlpTm", offsetof(nmea_pglor_pwr_v2, sleep_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sleep_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_pwr_v2, sleep_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("interval_label"), ERROR_TEXT("MeasTm or nothing"), "MeasTm", offsetof(nmea_pglor_pwr_v2, interval_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("interval"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_pwr_v2, interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_label"), ERROR_TEXT("UTC or nothing"), "UTC", offsetof(nmea_pglor_pwr_v2, time_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pglor_pwr_v2, time), FIELD_TIME, 1, 0},
 };
 static const layout pglor_pwr_v2_layout = {
     .sentence = "PGLOR_PWR", .address = "PGLOR", .variant = "v2", .selector = "PWR",
@@ -20956,25 +21027,25 @@ size_t nmea_build_pglor_pwr_v2(const nmea_pglor_pwr_v2 *s, char *buf, size_t cap
 
 /* $PGLOR,4,PWR,mA,26.0,RFTm,1000,OscTm,1000,MeasTm,1000,UTC,000151.00,GNSSmA,26,CPUTm,0,COPTm,0,SrchTm,0,TrkTm,0,Rpc*00 */
 static const layout_field pglor_pwr_v4_fields[] = {
-    {"version", "4 or nothing", "4", offsetof(nmea_pglor_pwr_v4, version), FIELD_LITERAL, 1, 0},
-    {"sentence_id", "PWR", "PWR", 0, FIELD_KEYWORD, 1, 0},
-    {"current_label", "mA or nothing", "mA", offsetof(nmea_pglor_pwr_v4, current_label), FIELD_LITERAL, 1, 0},
-    {"current", "decimal number", NULL, offsetof(nmea_pglor_pwr_v4, current), FIELD_DECIMAL, 1, 0},
-    {"rf_on_label", "RFTm or nothing", "RFTm", offsetof(nmea_pglor_pwr_v4, rf_on_label), FIELD_LITERAL, 1, 0},
-    {"rf_on_time", "integer", NULL, offsetof(nmea_pglor_pwr_v4, rf_on_time), FIELD_INTEGER, 1, 0},
-    {"osc_on_label", "OscTm or nothing", "OscTm", offsetof(nmea_pglor_pwr_v4, osc_on_label), FIELD_LITERAL, 1, 0},
-    {"osc_on_time", "integer", NULL, offsetof(nmea_pglor_pwr_v4, osc_on_time), FIELD_INTEGER, 1, 0},
-    {"interval_label", "MeasTm or nothing", "MeasTm", offsetof(nmea_pglor_pwr_v4, interval_label), FIELD_LITERAL, 1, 0},
-    {"interval", "integer", NULL, offsetof(nmea_pglor_pwr_v4, interval), FIELD_INTEGER, 1, 0},
-    {"time_label", "UTC or nothing", "UTC", offsetof(nmea_pglor_pwr_v4, time_label), FIELD_LITERAL, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pglor_pwr_v4, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("4 or nothing"), "4", offsetof(nmea_pglor_pwr_v4, version), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("PWR"), "PWR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("current_label"), ERROR_TEXT("mA or nothing"), "mA", offsetof(nmea_pglor_pwr_v4, current_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("current"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_pwr_v4, current), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rf_on_label"), ERROR_TEXT("RFTm or nothing"), "RFTm", offsetof(nmea_pglor_pwr_v4, rf_on_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("rf_on_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_pwr_v4, rf_on_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("osc_on_label"), ERROR_TEXT("OscTm or nothing"), "OscTm", offsetof(nmea_pglor_pwr_v4, osc_on_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("osc_on_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_pwr_v4, osc_on_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("interval_label"), ERROR_TEXT("MeasTm or nothing"), "MeasTm", offsetof(nmea_pglor_pwr_v4, interval_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("interval"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_pwr_v4, interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_label"), ERROR_TEXT("UTC or nothing"), "UTC", offsetof(nmea_pglor_pwr_v4, time_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pglor_pwr_v4, time), FIELD_TIME, 1, 0},
 };
 static const layout_field pglor_pwr_v4_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pglor_pwr_v4_group = {
-    .id = "extra", .fields = pglor_pwr_v4_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 16,
-    .single = true, .offset = offsetof(nmea_pglor_pwr_v4, extra), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("extra"), .fields = pglor_pwr_v4_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 16, .single = true, .offset = offsetof(nmea_pglor_pwr_v4, extra), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pglor_pwr_v4, extra.count),
 };
 static const layout pglor_pwr_v4_layout = {
@@ -21089,19 +21160,19 @@ size_t nmea_build_pglor_pwr_v4(const nmea_pglor_pwr_v4 *s, char *buf, size_t cap
 
 /* $PGLOR,2,SAT,3,1,G28,24,1F,G30,33,0B,R11,23,17,G13,33,17,R20,30,1F,G17,41,1F*3B */
 static const layout_field pglor_sat_fields[] = {
-    {"version", "2 or nothing", "2", offsetof(nmea_pglor_sat, version), FIELD_LITERAL, 1, 0},
-    {"sentence_id", "SAT", "SAT", 0, FIELD_KEYWORD, 1, 0},
-    {"total_sentences", "integer of at least 1", &range_from_1, offsetof(nmea_pglor_sat, total_sentences), FIELD_INTEGER, 1, 0},
-    {"sentence_number", "integer of at least 1", &range_from_1, offsetof(nmea_pglor_sat, sentence_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("2 or nothing"), "2", offsetof(nmea_pglor_sat, version), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("SAT"), "SAT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("total_sentences"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_pglor_sat, total_sentences), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_number"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_pglor_sat, sentence_number), FIELD_INTEGER, 1, 0},
 };
 static const layout_field pglor_sat_group_fields[] = {
-    {"satellite", "text of at most 4 characters", NULL, offsetof(nmea_pglor_sat_satellite, satellite), FIELD_TEXT, 1, 4},
-    {"cn0", "integer", NULL, offsetof(nmea_pglor_sat_satellite, cn0), FIELD_INTEGER, 1, 0},
-    {"info", "hex number", NULL, offsetof(nmea_pglor_sat_satellite, info), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("satellite"), ERROR_TEXT("text of at most 4 characters"), NULL, offsetof(nmea_pglor_sat_satellite, satellite), FIELD_TEXT, 1, 4},
+    {ERROR_TEXT("cn0"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sat_satellite, cn0), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("info"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pglor_sat_satellite, info), FIELD_HEX, 1, 0},
 };
 static const layout_group pglor_sat_group = {
-    .id = "satellites", .fields = pglor_sat_group_fields, .field_count = 3, .width = 3, .min = 0, .max = 16,
-    .single = false, .offset = offsetof(nmea_pglor_sat, satellites),
+    .id = ERROR_TEXT("satellites"), .fields = pglor_sat_group_fields, .field_count = 3, .width = 3, .min = 0,
+    .max = 16, .single = false, .offset = offsetof(nmea_pglor_sat, satellites),
     .entry_size = sizeof(nmea_pglor_sat_satellite), .count_offset = offsetof(nmea_pglor_sat, satellites.count),
 };
 static const layout pglor_sat_layout = {
@@ -21202,17 +21273,17 @@ size_t nmea_build_pglor_sat(const nmea_pglor_sat *s, char *buf, size_t cap, nmea
 /* ------------------------------------------------------------------------------------------ */
 /* PGLOR_SAT (Version 1, single sentence): Broadcom per-satellite measurement status (spec/proprietary/pglor_sat.yaml) */
 static const layout_field pglor_sat_v1_fields[] = {
-    {"version", "1 or nothing", "1", offsetof(nmea_pglor_sat_v1, version), FIELD_LITERAL, 1, 0},
-    {"sentence_id", "SAT", "SAT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("1 or nothing"), "1", offsetof(nmea_pglor_sat_v1, version), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("SAT"), "SAT", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout_field pglor_sat_v1_group_fields[] = {
-    {"satellite", "text of at most 4 characters", NULL, offsetof(nmea_pglor_sat_v1_satellite, satellite), FIELD_TEXT, 1, 4},
-    {"cn0", "integer", NULL, offsetof(nmea_pglor_sat_v1_satellite, cn0), FIELD_INTEGER, 1, 0},
-    {"info", "hex number", NULL, offsetof(nmea_pglor_sat_v1_satellite, info), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("satellite"), ERROR_TEXT("text of at most 4 characters"), NULL, offsetof(nmea_pglor_sat_v1_satellite, satellite), FIELD_TEXT, 1, 4},
+    {ERROR_TEXT("cn0"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sat_v1_satellite, cn0), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("info"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pglor_sat_v1_satellite, info), FIELD_HEX, 1, 0},
 };
 static const layout_group pglor_sat_v1_group = {
-    .id = "satellites", .fields = pglor_sat_v1_group_fields, .field_count = 3, .width = 3, .min = 0, .max = 24,
-    .single = false, .offset = offsetof(nmea_pglor_sat_v1, satellites),
+    .id = ERROR_TEXT("satellites"), .fields = pglor_sat_v1_group_fields, .field_count = 3, .width = 3, .min = 0,
+    .max = 24, .single = false, .offset = offsetof(nmea_pglor_sat_v1, satellites),
     .entry_size = sizeof(nmea_pglor_sat_v1_satellite),
     .count_offset = offsetof(nmea_pglor_sat_v1, satellites.count),
 };
@@ -21310,17 +21381,17 @@ size_t nmea_build_pglor_sat_v1(const nmea_pglor_sat_v1 *s, char *buf, size_t cap
 /* ------------------------------------------------------------------------------------------ */
 /* PGLOR_SAT (Version 0, GPS only): Broadcom per-satellite measurement status (spec/proprietary/pglor_sat.yaml) */
 static const layout_field pglor_sat_v0_fields[] = {
-    {"version", "0 or nothing", "0", offsetof(nmea_pglor_sat_v0, version), FIELD_LITERAL, 1, 0},
-    {"sentence_id", "SAT", "SAT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("0 or nothing"), "0", offsetof(nmea_pglor_sat_v0, version), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("SAT"), "SAT", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout_field pglor_sat_v0_group_fields[] = {
-    {"prn", "integer", NULL, offsetof(nmea_pglor_sat_v0_satellite, prn), FIELD_INTEGER, 1, 0},
-    {"cn0", "integer", NULL, offsetof(nmea_pglor_sat_v0_satellite, cn0), FIELD_INTEGER, 1, 0},
-    {"info", "hex number", NULL, offsetof(nmea_pglor_sat_v0_satellite, info), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sat_v0_satellite, prn), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("cn0"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sat_v0_satellite, cn0), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("info"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pglor_sat_v0_satellite, info), FIELD_HEX, 1, 0},
 };
 static const layout_group pglor_sat_v0_group = {
-    .id = "satellites", .fields = pglor_sat_v0_group_fields, .field_count = 3, .width = 3, .min = 0, .max = 24,
-    .single = false, .offset = offsetof(nmea_pglor_sat_v0, satellites),
+    .id = ERROR_TEXT("satellites"), .fields = pglor_sat_v0_group_fields, .field_count = 3, .width = 3, .min = 0,
+    .max = 24, .single = false, .offset = offsetof(nmea_pglor_sat_v0, satellites),
     .entry_size = sizeof(nmea_pglor_sat_v0_satellite),
     .count_offset = offsetof(nmea_pglor_sat_v0, satellites.count),
 };
@@ -21420,28 +21491,28 @@ size_t nmea_build_pglor_sat_v0(const nmea_pglor_sat_v0 *s, char *buf, size_t cap
 
 /* $PGLOR,2,SIO,TxERR,0,RxERR,0,TxCNT,433,RxCNT,4316,MLFRMPKT,0,DTMS,957,DTIN,45,55,DTOUT,470,904,HATMD,40*11 */
 static const layout_field pglor_sio_fields[] = {
-    {"version", "2 or nothing", "2", offsetof(nmea_pglor_sio, version), FIELD_LITERAL, 1, 0},
-    {"sentence_id", "SIO", "SIO", 0, FIELD_KEYWORD, 1, 0},
-    {"tx_errors_label", "TxERR or nothing", "TxERR", offsetof(nmea_pglor_sio, tx_errors_label), FIELD_LITERAL, 1, 0},
-    {"tx_errors", "integer", NULL, offsetof(nmea_pglor_sio, tx_errors), FIELD_INTEGER, 1, 0},
-    {"rx_errors_label", "RxERR or nothing", "RxERR", offsetof(nmea_pglor_sio, rx_errors_label), FIELD_LITERAL, 1, 0},
-    {"rx_errors", "integer", NULL, offsetof(nmea_pglor_sio, rx_errors), FIELD_INTEGER, 1, 0},
-    {"tx_bytes_label", "TxCNT or nothing", "TxCNT", offsetof(nmea_pglor_sio, tx_bytes_label), FIELD_LITERAL, 1, 0},
-    {"tx_bytes", "integer", NULL, offsetof(nmea_pglor_sio, tx_bytes), FIELD_INTEGER, 1, 0},
-    {"rx_bytes_label", "RxCNT or nothing", "RxCNT", offsetof(nmea_pglor_sio, rx_bytes_label), FIELD_LITERAL, 1, 0},
-    {"rx_bytes", "integer", NULL, offsetof(nmea_pglor_sio, rx_bytes), FIELD_INTEGER, 1, 0},
-    {"malformed_label", "MLFRMPKT or nothing", "MLFRMPKT", offsetof(nmea_pglor_sio, malformed_label), FIELD_LITERAL, 1, 0},
-    {"malformed_packets", "integer", NULL, offsetof(nmea_pglor_sio, malformed_packets), FIELD_INTEGER, 1, 0},
-    {"clock_increment_label", "DTMS or nothing", "DTMS", offsetof(nmea_pglor_sio, clock_increment_label), FIELD_LITERAL, 1, 0},
-    {"clock_increment", "integer", NULL, offsetof(nmea_pglor_sio, clock_increment), FIELD_INTEGER, 1, 0},
-    {"time_in_gll_label", "DTIN or nothing", "DTIN", offsetof(nmea_pglor_sio, time_in_gll_label), FIELD_LITERAL, 1, 0},
-    {"max_time_in_gll", "integer", NULL, offsetof(nmea_pglor_sio, max_time_in_gll), FIELD_INTEGER, 1, 0},
-    {"total_time_in_gll", "integer", NULL, offsetof(nmea_pglor_sio, total_time_in_gll), FIELD_INTEGER, 1, 0},
-    {"time_outside_gll_label", "DTOUT or nothing", "DTOUT", offsetof(nmea_pglor_sio, time_outside_gll_label), FIELD_LITERAL, 1, 0},
-    {"max_time_outside_gll", "integer", NULL, offsetof(nmea_pglor_sio, max_time_outside_gll), FIELD_INTEGER, 1, 0},
-    {"total_time_outside_gll", "integer", NULL, offsetof(nmea_pglor_sio, total_time_outside_gll), FIELD_INTEGER, 1, 0},
-    {"time_delta_label", "HATMD or nothing", "HATMD", offsetof(nmea_pglor_sio, time_delta_label), FIELD_LITERAL, 1, 0},
-    {"host_chip_time_delta", "integer", NULL, offsetof(nmea_pglor_sio, host_chip_time_delta), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("2 or nothing"), "2", offsetof(nmea_pglor_sio, version), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("SIO"), "SIO", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("tx_errors_label"), ERROR_TEXT("TxERR or nothing"), "TxERR", offsetof(nmea_pglor_sio, tx_errors_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("tx_errors"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio, tx_errors), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rx_errors_label"), ERROR_TEXT("RxERR or nothing"), "RxERR", offsetof(nmea_pglor_sio, rx_errors_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("rx_errors"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio, rx_errors), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("tx_bytes_label"), ERROR_TEXT("TxCNT or nothing"), "TxCNT", offsetof(nmea_pglor_sio, tx_bytes_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("tx_bytes"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio, tx_bytes), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rx_bytes_label"), ERROR_TEXT("RxCNT or nothing"), "RxCNT", offsetof(nmea_pglor_sio, rx_bytes_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("rx_bytes"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio, rx_bytes), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("malformed_label"), ERROR_TEXT("MLFRMPKT or nothing"), "MLFRMPKT", offsetof(nmea_pglor_sio, malformed_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("malformed_packets"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio, malformed_packets), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("clock_increment_label"), ERROR_TEXT("DTMS or nothing"), "DTMS", offsetof(nmea_pglor_sio, clock_increment_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("clock_increment"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio, clock_increment), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_in_gll_label"), ERROR_TEXT("DTIN or nothing"), "DTIN", offsetof(nmea_pglor_sio, time_in_gll_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("max_time_in_gll"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio, max_time_in_gll), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("total_time_in_gll"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio, total_time_in_gll), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_outside_gll_label"), ERROR_TEXT("DTOUT or nothing"), "DTOUT", offsetof(nmea_pglor_sio, time_outside_gll_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("max_time_outside_gll"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio, max_time_outside_gll), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("total_time_outside_gll"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio, total_time_outside_gll), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_delta_label"), ERROR_TEXT("HATMD or nothing"), "HATMD", offsetof(nmea_pglor_sio, time_delta_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("host_chip_time_delta"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio, host_chip_time_delta), FIELD_INTEGER, 1, 0},
 };
 static const layout pglor_sio_layout = {
     .sentence = "PGLOR_SIO", .address = "PGLOR", .selector = "SIO", .fields = pglor_sio_fields, .selector_at = 1,
@@ -21547,24 +21618,24 @@ size_t nmea_build_pglor_sio(const nmea_pglor_sio *s, char *buf, size_t cap, nmea
 /* ------------------------------------------------------------------------------------------ */
 /* PGLOR_SIO (Version 0, without malformed packets and cumulative times): Broadcom serial link status (spec/proprietary/pglor_sio.yaml) */
 static const layout_field pglor_sio_v0_fields[] = {
-    {"version", "0 or nothing", "0", offsetof(nmea_pglor_sio_v0, version), FIELD_LITERAL, 1, 0},
-    {"sentence_id", "SIO", "SIO", 0, FIELD_KEYWORD, 1, 0},
-    {"tx_errors_label", "TxERR or nothing", "TxERR", offsetof(nmea_pglor_sio_v0, tx_errors_label), FIELD_LITERAL, 1, 0},
-    {"tx_errors", "integer", NULL, offsetof(nmea_pglor_sio_v0, tx_errors), FIELD_INTEGER, 1, 0},
-    {"rx_errors_label", "RxERR or nothing", "RxERR", offsetof(nmea_pglor_sio_v0, rx_errors_label), FIELD_LITERAL, 1, 0},
-    {"rx_errors", "integer", NULL, offsetof(nmea_pglor_sio_v0, rx_errors), FIELD_INTEGER, 1, 0},
-    {"tx_bytes_label", "TxCNT or nothing", "TxCNT", offsetof(nmea_pglor_sio_v0, tx_bytes_label), FIELD_LITERAL, 1, 0},
-    {"tx_bytes", "integer", NULL, offsetof(nmea_pglor_sio_v0, tx_bytes), FIELD_INTEGER, 1, 0},
-    {"rx_bytes_label", "RxCNT or nothing", "RxCNT", offsetof(nmea_pglor_sio_v0, rx_bytes_label), FIELD_LITERAL, 1, 0},
-    {"rx_bytes", "integer", NULL, offsetof(nmea_pglor_sio_v0, rx_bytes), FIELD_INTEGER, 1, 0},
-    {"clock_increment_label", "DTMS or nothing", "DTMS", offsetof(nmea_pglor_sio_v0, clock_increment_label), FIELD_LITERAL, 1, 0},
-    {"clock_increment", "integer", NULL, offsetof(nmea_pglor_sio_v0, clock_increment), FIELD_INTEGER, 1, 0},
-    {"time_in_gll_label", "DTIN or nothing", "DTIN", offsetof(nmea_pglor_sio_v0, time_in_gll_label), FIELD_LITERAL, 1, 0},
-    {"max_time_in_gll", "integer", NULL, offsetof(nmea_pglor_sio_v0, max_time_in_gll), FIELD_INTEGER, 1, 0},
-    {"time_outside_gll_label", "DTOUT or nothing", "DTOUT", offsetof(nmea_pglor_sio_v0, time_outside_gll_label), FIELD_LITERAL, 1, 0},
-    {"max_time_outside_gll", "integer", NULL, offsetof(nmea_pglor_sio_v0, max_time_outside_gll), FIELD_INTEGER, 1, 0},
-    {"time_delta_label", "HATMD or nothing", "HATMD", offsetof(nmea_pglor_sio_v0, time_delta_label), FIELD_LITERAL, 1, 0},
-    {"host_chip_time_delta", "integer", NULL, offsetof(nmea_pglor_sio_v0, host_chip_time_delta), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("0 or nothing"), "0", offsetof(nmea_pglor_sio_v0, version), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("SIO"), "SIO", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("tx_errors_label"), ERROR_TEXT("TxERR or nothing"), "TxERR", offsetof(nmea_pglor_sio_v0, tx_errors_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("tx_errors"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio_v0, tx_errors), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rx_errors_label"), ERROR_TEXT("RxERR or nothing"), "RxERR", offsetof(nmea_pglor_sio_v0, rx_errors_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("rx_errors"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio_v0, rx_errors), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("tx_bytes_label"), ERROR_TEXT("TxCNT or nothing"), "TxCNT", offsetof(nmea_pglor_sio_v0, tx_bytes_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("tx_bytes"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio_v0, tx_bytes), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rx_bytes_label"), ERROR_TEXT("RxCNT or nothing"), "RxCNT", offsetof(nmea_pglor_sio_v0, rx_bytes_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("rx_bytes"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio_v0, rx_bytes), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("clock_increment_label"), ERROR_TEXT("DTMS or nothing"), "DTMS", offsetof(nmea_pglor_sio_v0, clock_increment_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("clock_increment"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio_v0, clock_increment), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_in_gll_label"), ERROR_TEXT("DTIN or nothing"), "DTIN", offsetof(nmea_pglor_sio_v0, time_in_gll_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("max_time_in_gll"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio_v0, max_time_in_gll), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_outside_gll_label"), ERROR_TEXT("DTOUT or nothing"), "DTOUT", offsetof(nmea_pglor_sio_v0, time_outside_gll_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("max_time_outside_gll"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio_v0, max_time_outside_gll), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_delta_label"), ERROR_TEXT("HATMD or nothing"), "HATMD", offsetof(nmea_pglor_sio_v0, time_delta_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("host_chip_time_delta"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sio_v0, host_chip_time_delta), FIELD_INTEGER, 1, 0},
 };
 static const layout pglor_sio_v0_layout = {
     .sentence = "PGLOR_SIO", .address = "PGLOR", .variant = "v0", .selector = "SIO",
@@ -21664,30 +21735,30 @@ size_t nmea_build_pglor_sio_v0(const nmea_pglor_sio_v0 *s, char *buf, size_t cap
 
 /* $PGLOR,9,STA,000145.00,-0.001,0.000,211,1,4,0,P,F,L,0,C,3,S,00000002,0,5,R,000833F4,TPEF,16,89374,LC,,,*64 */
 static const layout_field pglor_sta_fields[] = {
-    {"version", "integer", NULL, offsetof(nmea_pglor_sta, version), FIELD_INTEGER, 1, 0},
-    {"sentence_id", "STA", "STA", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pglor_sta, time), FIELD_TIME, 1, 0},
-    {"rtc_initial_error", "decimal number", NULL, offsetof(nmea_pglor_sta, rtc_initial_error), FIELD_DECIMAL, 1, 0},
-    {"rtc_uncertainty", "decimal number", NULL, offsetof(nmea_pglor_sta, rtc_uncertainty), FIELD_DECIMAL, 1, 0},
-    {"oscillator_offset", "decimal number", NULL, offsetof(nmea_pglor_sta, oscillator_offset), FIELD_DECIMAL, 1, 0},
-    {"oscillator_uncertainty", "decimal number", NULL, offsetof(nmea_pglor_sta, oscillator_uncertainty), FIELD_DECIMAL, 1, 0},
-    {"position_uncertainty", "decimal number", NULL, offsetof(nmea_pglor_sta, position_uncertainty), FIELD_DECIMAL, 1, 0},
-    {"velocity_track_quality", "broadcom_glor_vel_track_quality code (0 1 2 3)", &nmea_broadcom_glor_vel_track_quality_def, offsetof(nmea_pglor_sta, velocity_track_quality), FIELD_ENUM, 1, 0},
-    {"power_label", "P or nothing", "P", offsetof(nmea_pglor_sta, power_label), FIELD_LITERAL, 1, 0},
-    {"power_save", "broadcom_glor_power_save code (D F S G SG)", &nmea_broadcom_glor_power_save_def, offsetof(nmea_pglor_sta, power_save), FIELD_ENUM, 1, 0},
-    {"location_label", "L or nothing", "L", offsetof(nmea_pglor_sta, location_label), FIELD_LITERAL, 1, 0},
-    {"location_request", "broadcom_glor_location_request code (0 1)", &nmea_broadcom_glor_location_request_def, offsetof(nmea_pglor_sta, location_request), FIELD_ENUM, 1, 0},
-    {"confidence_label", "C or nothing", "C", offsetof(nmea_pglor_sta, confidence_label), FIELD_LITERAL, 1, 0},
-    {"confidence", "broadcom_glor_confidence code (0 1 2 3)", &nmea_broadcom_glor_confidence_def, offsetof(nmea_pglor_sta, confidence), FIELD_ENUM, 1, 0},
-    {"source_label", "S or nothing", "S", offsetof(nmea_pglor_sta, source_label), FIELD_LITERAL, 1, 0},
-    {"source", "hex number", NULL, offsetof(nmea_pglor_sta, source), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_sta, version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("STA"), "STA", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pglor_sta, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("rtc_initial_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_sta, rtc_initial_error), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rtc_uncertainty"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_sta, rtc_uncertainty), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("oscillator_offset"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_sta, oscillator_offset), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("oscillator_uncertainty"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_sta, oscillator_uncertainty), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("position_uncertainty"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_sta, position_uncertainty), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("velocity_track_quality"), ERROR_TEXT("broadcom_glor_vel_track_quality code (0 1 2 3)"), &nmea_broadcom_glor_vel_track_quality_def, offsetof(nmea_pglor_sta, velocity_track_quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("power_label"), ERROR_TEXT("P or nothing"), "P", offsetof(nmea_pglor_sta, power_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("power_save"), ERROR_TEXT("broadcom_glor_power_save code (D F S G SG)"), &nmea_broadcom_glor_power_save_def, offsetof(nmea_pglor_sta, power_save), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("location_label"), ERROR_TEXT("L or nothing"), "L", offsetof(nmea_pglor_sta, location_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("location_request"), ERROR_TEXT("broadcom_glor_location_request code (0 1)"), &nmea_broadcom_glor_location_request_def, offsetof(nmea_pglor_sta, location_request), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("confidence_label"), ERROR_TEXT("C or nothing"), "C", offsetof(nmea_pglor_sta, confidence_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("confidence"), ERROR_TEXT("broadcom_glor_confidence code (0 1 2 3)"), &nmea_broadcom_glor_confidence_def, offsetof(nmea_pglor_sta, confidence), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("source_label"), ERROR_TEXT("S or nothing"), "S", offsetof(nmea_pglor_sta, source_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("source"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pglor_sta, source), FIELD_HEX, 1, 0},
 };
 static const layout_field pglor_sta_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pglor_sta_group = {
-    .id = "extra", .fields = pglor_sta_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 16,
-    .single = true, .offset = offsetof(nmea_pglor_sta, extra), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("extra"), .fields = pglor_sta_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 16, .single = true, .offset = offsetof(nmea_pglor_sta, extra), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pglor_sta, extra.count),
 };
 static const layout pglor_sta_layout = {
@@ -21812,17 +21883,17 @@ size_t nmea_build_pglor_sta(const nmea_pglor_sta *s, char *buf, size_t cap, nmea
 
 /* $PGLOR,1,UNC,000145.00,0.011,4.0,3.0,0.11,71.74,4.0,4.0,0.0*1F */
 static const layout_field pglor_unc_fields[] = {
-    {"version", "integer", NULL, offsetof(nmea_pglor_unc, version), FIELD_INTEGER, 1, 0},
-    {"sentence_id", "UNC", "UNC", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pglor_unc, time), FIELD_TIME, 1, 0},
-    {"time_uncertainty", "decimal number", NULL, offsetof(nmea_pglor_unc, time_uncertainty), FIELD_DECIMAL, 1, 0},
-    {"horizontal_uncertainty", "decimal number", NULL, offsetof(nmea_pglor_unc, horizontal_uncertainty), FIELD_DECIMAL, 1, 0},
-    {"vertical_uncertainty", "decimal number", NULL, offsetof(nmea_pglor_unc, vertical_uncertainty), FIELD_DECIMAL, 1, 0},
-    {"speed_rms", "decimal number", NULL, offsetof(nmea_pglor_unc, speed_rms), FIELD_DECIMAL, 1, 0},
-    {"heading_rms", "decimal number", NULL, offsetof(nmea_pglor_unc, heading_rms), FIELD_DECIMAL, 1, 0},
-    {"ellipse_major", "decimal number", NULL, offsetof(nmea_pglor_unc, ellipse_major), FIELD_DECIMAL, 1, 0},
-    {"ellipse_minor", "decimal number", NULL, offsetof(nmea_pglor_unc, ellipse_minor), FIELD_DECIMAL, 1, 0},
-    {"ellipse_orientation", "decimal number", NULL, offsetof(nmea_pglor_unc, ellipse_orientation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pglor_unc, version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sentence_id"), ERROR_TEXT("UNC"), "UNC", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pglor_unc, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("time_uncertainty"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_unc, time_uncertainty), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("horizontal_uncertainty"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_unc, horizontal_uncertainty), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vertical_uncertainty"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_unc, vertical_uncertainty), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_rms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_unc, speed_rms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_rms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_unc, heading_rms), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ellipse_major"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_unc, ellipse_major), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ellipse_minor"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_unc, ellipse_minor), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ellipse_orientation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pglor_unc, ellipse_orientation), FIELD_DECIMAL, 1, 0},
 };
 static const layout pglor_unc_layout = {
     .sentence = "PGLOR_UNC", .address = "PGLOR", .selector = "UNC", .fields = pglor_unc_fields, .selector_at = 1,
@@ -21906,15 +21977,15 @@ size_t nmea_build_pglor_unc(const nmea_pglor_unc *s, char *buf, size_t cap, nmea
 /* ------------------------------------------------------------------------------------------ */
 /* PGRMB: Garmin DGPS beacon information (spec/proprietary/pgrmb.yaml) */
 static const layout_field pgrmb_fields[] = {
-    {"frequency", "decimal number 0..325", &range_0_to_325, offsetof(nmea_pgrmb, frequency), FIELD_DECIMAL, 1, 0},
-    {"bit_rate", "integer", NULL, offsetof(nmea_pgrmb, bit_rate), FIELD_INTEGER, 1, 0},
-    {"snr", "integer 0..31", &range_0_to_31, offsetof(nmea_pgrmb, snr), FIELD_INTEGER, 1, 0},
-    {"quality", "integer 0..100", &range_0_to_100, offsetof(nmea_pgrmb, quality), FIELD_INTEGER, 1, 0},
-    {"distance", "decimal number", NULL, offsetof(nmea_pgrmb, distance), FIELD_DECIMAL, 1, 0},
-    {"distance_unit", "K or nothing", "K", offsetof(nmea_pgrmb, distance_unit), FIELD_LITERAL, 1, 0},
-    {"reserved", "text", NULL, offsetof(nmea_pgrmb, reserved), FIELD_TEXT, 1, 0},
-    {"fix_source", "garmin_dgps_source code (R W N)", &nmea_garmin_dgps_source_def, offsetof(nmea_pgrmb, fix_source), FIELD_ENUM, 1, 0},
-    {"dgps_mode", "garmin_dgps_mode code (A W R N)", &nmea_garmin_dgps_mode_def, offsetof(nmea_pgrmb, dgps_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("frequency"), ERROR_TEXT("decimal number 0..325"), &range_0_to_325, offsetof(nmea_pgrmb, frequency), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bit_rate"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pgrmb, bit_rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("snr"), ERROR_TEXT("integer 0..31"), &range_0_to_31, offsetof(nmea_pgrmb, snr), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("integer 0..100"), &range_0_to_100, offsetof(nmea_pgrmb, quality), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("distance"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pgrmb, distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("distance_unit"), ERROR_TEXT("K or nothing"), "K", offsetof(nmea_pgrmb, distance_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("text"), NULL, offsetof(nmea_pgrmb, reserved), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("fix_source"), ERROR_TEXT("garmin_dgps_source code (R W N)"), &nmea_garmin_dgps_source_def, offsetof(nmea_pgrmb, fix_source), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("dgps_mode"), ERROR_TEXT("garmin_dgps_mode code (A W R N)"), &nmea_garmin_dgps_mode_def, offsetof(nmea_pgrmb, dgps_mode), FIELD_ENUM, 1, 0},
 };
 static const layout pgrmb_layout = {
     .sentence = "PGRMB", .address = "PGRMB", .fields = pgrmb_fields, .before = 6, .optional = 3, .fixed = 6,
@@ -21996,20 +22067,20 @@ size_t nmea_build_pgrmb(const nmea_pgrmb *s, char *buf, size_t cap, nmea_error *
 
 /* $PGRMC,,,,,,,,,,4,,,,*7F */
 static const layout_field pgrmc_fields[] = {
-    {"fix_mode", "garmin_config_fix_mode code (A 2 3)", &nmea_garmin_config_fix_mode_def, offsetof(nmea_pgrmc, fix_mode), FIELD_ENUM, 1, 0},
-    {"altitude", "decimal number -1500..18000", &range_minus_1500_to_18000, offsetof(nmea_pgrmc, altitude), FIELD_DECIMAL, 1, 0},
-    {"datum", "integer of at least 0", &range_from_0, offsetof(nmea_pgrmc, datum), FIELD_INTEGER, 1, 0},
-    {"semi_major_axis", "decimal number 6360000..6380000", &range_6360000_to_6380000, offsetof(nmea_pgrmc, semi_major_axis), FIELD_DECIMAL, 1, 0},
-    {"inverse_flattening", "decimal number 285..310", &range_285_to_310, offsetof(nmea_pgrmc, inverse_flattening), FIELD_DECIMAL, 1, 0},
-    {"delta_x", "decimal number -5000..5000", &range_minus_5000_to_5000, offsetof(nmea_pgrmc, delta_x), FIELD_DECIMAL, 1, 0},
-    {"delta_y", "decimal number -5000..5000", &range_minus_5000_to_5000, offsetof(nmea_pgrmc, delta_y), FIELD_DECIMAL, 1, 0},
-    {"delta_z", "decimal number -5000..5000", &range_minus_5000_to_5000, offsetof(nmea_pgrmc, delta_z), FIELD_DECIMAL, 1, 0},
-    {"differential_mode", "garmin_diff_mode code (A D)", &nmea_garmin_diff_mode_def, offsetof(nmea_pgrmc, differential_mode), FIELD_ENUM, 1, 0},
-    {"baud_rate", "garmin_baud code (1 2 3 4 5 6 7 8)", &nmea_garmin_baud_def, offsetof(nmea_pgrmc, baud_rate), FIELD_ENUM, 1, 0},
-    {"velocity_filter", "integer 0..255", &range_0_to_255, offsetof(nmea_pgrmc, velocity_filter), FIELD_INTEGER, 1, 0},
-    {"pps_mode", "garmin_off_on code (1 2)", &nmea_garmin_off_on_def, offsetof(nmea_pgrmc, pps_mode), FIELD_ENUM, 1, 0},
-    {"pps_length", "integer 0..48", &range_0_to_48, offsetof(nmea_pgrmc, pps_length), FIELD_INTEGER, 1, 0},
-    {"dr_time", "integer 1..30", &range_1_to_30, offsetof(nmea_pgrmc, dr_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("fix_mode"), ERROR_TEXT("garmin_config_fix_mode code (A 2 3)"), &nmea_garmin_config_fix_mode_def, offsetof(nmea_pgrmc, fix_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number -1500..18000"), &range_minus_1500_to_18000, offsetof(nmea_pgrmc, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("datum"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pgrmc, datum), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("semi_major_axis"), ERROR_TEXT("decimal number 6360000..6380000"), &range_6360000_to_6380000, offsetof(nmea_pgrmc, semi_major_axis), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("inverse_flattening"), ERROR_TEXT("decimal number 285..310"), &range_285_to_310, offsetof(nmea_pgrmc, inverse_flattening), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("delta_x"), ERROR_TEXT("decimal number -5000..5000"), &range_minus_5000_to_5000, offsetof(nmea_pgrmc, delta_x), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("delta_y"), ERROR_TEXT("decimal number -5000..5000"), &range_minus_5000_to_5000, offsetof(nmea_pgrmc, delta_y), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("delta_z"), ERROR_TEXT("decimal number -5000..5000"), &range_minus_5000_to_5000, offsetof(nmea_pgrmc, delta_z), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("differential_mode"), ERROR_TEXT("garmin_diff_mode code (A D)"), &nmea_garmin_diff_mode_def, offsetof(nmea_pgrmc, differential_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("baud_rate"), ERROR_TEXT("garmin_baud code (1 2 3 4 5 6 7 8)"), &nmea_garmin_baud_def, offsetof(nmea_pgrmc, baud_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("velocity_filter"), ERROR_TEXT("integer 0..255"), &range_0_to_255, offsetof(nmea_pgrmc, velocity_filter), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pps_mode"), ERROR_TEXT("garmin_off_on code (1 2)"), &nmea_garmin_off_on_def, offsetof(nmea_pgrmc, pps_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pps_length"), ERROR_TEXT("integer 0..48"), &range_0_to_48, offsetof(nmea_pgrmc, pps_length), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("dr_time"), ERROR_TEXT("integer 1..30"), &range_1_to_30, offsetof(nmea_pgrmc, dr_time), FIELD_INTEGER, 1, 0},
 };
 static const layout pgrmc_layout = {
     .sentence = "PGRMC", .address = "PGRMC", .fields = pgrmc_fields, .before = 14, .fixed = 14, .max_fields = 14,
@@ -22038,19 +22109,19 @@ size_t nmea_build_pgrmc(const nmea_pgrmc *s, char *buf, size_t cap, nmea_error *
 
 /* $PGRMC1,1,,,,,,2,W,,,,,*02 */
 static const layout_field pgrmc1_fields[] = {
-    {"output_time", "integer 1..900", &range_1_to_900, offsetof(nmea_pgrmc1, output_time), FIELD_INTEGER, 1, 0},
-    {"binary_output", "garmin_off_on code (1 2)", &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, binary_output), FIELD_ENUM, 1, 0},
-    {"position_averaging", "garmin_off_on code (1 2)", &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, position_averaging), FIELD_ENUM, 1, 0},
-    {"beacon_frequency", "decimal number 0..325", &range_0_to_325, offsetof(nmea_pgrmc1, beacon_frequency), FIELD_DECIMAL, 1, 0},
-    {"beacon_bit_rate", "integer", NULL, offsetof(nmea_pgrmc1, beacon_bit_rate), FIELD_INTEGER, 1, 0},
-    {"beacon_scanning", "garmin_off_on code (1 2)", &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, beacon_scanning), FIELD_ENUM, 1, 0},
-    {"nmea_230", "garmin_off_on code (1 2)", &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, nmea_230), FIELD_ENUM, 1, 0},
-    {"waas_mode", "garmin_waas_mode code (W N)", &nmea_garmin_waas_mode_def, offsetof(nmea_pgrmc1, waas_mode), FIELD_ENUM, 1, 0},
-    {"power_save", "garmin_power_mode code (P N)", &nmea_garmin_power_mode_def, offsetof(nmea_pgrmc1, power_save), FIELD_ENUM, 1, 0},
-    {"adaptive_transmission", "garmin_off_on code (1 2)", &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, adaptive_transmission), FIELD_ENUM, 1, 0},
-    {"auto_power_off", "garmin_off_on code (1 2)", &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, auto_power_off), FIELD_ENUM, 1, 0},
-    {"power_on_external", "garmin_off_on code (1 2)", &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, power_on_external), FIELD_ENUM, 1, 0},
-    {"pulse_auto_off", "garmin_off_on code (1 2)", &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, pulse_auto_off), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("output_time"), ERROR_TEXT("integer 1..900"), &range_1_to_900, offsetof(nmea_pgrmc1, output_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("binary_output"), ERROR_TEXT("garmin_off_on code (1 2)"), &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, binary_output), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("position_averaging"), ERROR_TEXT("garmin_off_on code (1 2)"), &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, position_averaging), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("beacon_frequency"), ERROR_TEXT("decimal number 0..325"), &range_0_to_325, offsetof(nmea_pgrmc1, beacon_frequency), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("beacon_bit_rate"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pgrmc1, beacon_bit_rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("beacon_scanning"), ERROR_TEXT("garmin_off_on code (1 2)"), &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, beacon_scanning), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("nmea_230"), ERROR_TEXT("garmin_off_on code (1 2)"), &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, nmea_230), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("waas_mode"), ERROR_TEXT("garmin_waas_mode code (W N)"), &nmea_garmin_waas_mode_def, offsetof(nmea_pgrmc1, waas_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("power_save"), ERROR_TEXT("garmin_power_mode code (P N)"), &nmea_garmin_power_mode_def, offsetof(nmea_pgrmc1, power_save), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("adaptive_transmission"), ERROR_TEXT("garmin_off_on code (1 2)"), &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, adaptive_transmission), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("auto_power_off"), ERROR_TEXT("garmin_off_on code (1 2)"), &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, auto_power_off), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("power_on_external"), ERROR_TEXT("garmin_off_on code (1 2)"), &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, power_on_external), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pulse_auto_off"), ERROR_TEXT("garmin_off_on code (1 2)"), &nmea_garmin_off_on_def, offsetof(nmea_pgrmc1, pulse_auto_off), FIELD_ENUM, 1, 0},
 };
 static const layout pgrmc1_layout = {
     .sentence = "PGRMC1", .address = "PGRMC1", .fields = pgrmc1_fields, .before = 12, .optional = 1, .fixed = 12,
@@ -22132,12 +22203,12 @@ size_t nmea_build_pgrmce(const nmea_pgrmce *s, char *buf, size_t cap, nmea_error
 
 /* $PGRME,15.0,M,45.0,M,25.0,M*1C */
 static const layout_field pgrme_fields[] = {
-    {"hpe", "decimal number 0..999.9", &range_0_to_999p9, offsetof(nmea_pgrme, hpe), FIELD_DECIMAL, 1, 0},
-    {"hpe_unit", "M or nothing", "M", offsetof(nmea_pgrme, hpe_unit), FIELD_LITERAL, 1, 0},
-    {"vpe", "decimal number 0..999.9", &range_0_to_999p9, offsetof(nmea_pgrme, vpe), FIELD_DECIMAL, 1, 0},
-    {"vpe_unit", "M or nothing", "M", offsetof(nmea_pgrme, vpe_unit), FIELD_LITERAL, 1, 0},
-    {"epe", "decimal number 0..999.9", &range_0_to_999p9, offsetof(nmea_pgrme, epe), FIELD_DECIMAL, 1, 0},
-    {"epe_unit", "M or nothing", "M", offsetof(nmea_pgrme, epe_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("hpe"), ERROR_TEXT("decimal number 0..999.9"), &range_0_to_999p9, offsetof(nmea_pgrme, hpe), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hpe_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_pgrme, hpe_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("vpe"), ERROR_TEXT("decimal number 0..999.9"), &range_0_to_999p9, offsetof(nmea_pgrme, vpe), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vpe_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_pgrme, vpe_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("epe"), ERROR_TEXT("decimal number 0..999.9"), &range_0_to_999p9, offsetof(nmea_pgrme, epe), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("epe_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_pgrme, epe_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout pgrme_layout = {
     .sentence = "PGRME", .address = "PGRME", .fields = pgrme_fields, .before = 6, .fixed = 6, .max_fields = 6,
@@ -22210,19 +22281,19 @@ size_t nmea_build_pgrme(const nmea_pgrme *s, char *buf, size_t cap, nmea_error *
 /* ------------------------------------------------------------------------------------------ */
 /* PGRMF: Garmin GPS fix data (spec/proprietary/pgrmf.yaml) */
 static const layout_field pgrmf_fields[] = {
-    {"gps_week", "integer 0..1023", &range_0_to_1023, offsetof(nmea_pgrmf, gps_week), FIELD_INTEGER, 1, 0},
-    {"gps_seconds", "integer 0..604799", &range_0_to_604799, offsetof(nmea_pgrmf, gps_seconds), FIELD_INTEGER, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_pgrmf, date), FIELD_DATE, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pgrmf, time), FIELD_TIME, 1, 0},
-    {"leap_seconds", "integer", NULL, offsetof(nmea_pgrmf, leap_seconds), FIELD_INTEGER, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_pgrmf, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_pgrmf, lon), FIELD_LONGITUDE, 2, 0},
-    {"mode", "garmin_fix_mode code (M A)", &nmea_garmin_fix_mode_def, offsetof(nmea_pgrmf, mode), FIELD_ENUM, 1, 0},
-    {"fix_type", "garmin_fix_type code (0 1 2)", &nmea_garmin_fix_type_def, offsetof(nmea_pgrmf, fix_type), FIELD_ENUM, 1, 0},
-    {"speed", "integer 0..1851", &range_0_to_1851, offsetof(nmea_pgrmf, speed), FIELD_INTEGER, 1, 0},
-    {"course", "integer 0..359", &range_0_to_359, offsetof(nmea_pgrmf, course), FIELD_INTEGER, 1, 0},
-    {"pdop", "integer 0..9", &range_0_to_9, offsetof(nmea_pgrmf, pdop), FIELD_INTEGER, 1, 0},
-    {"tdop", "integer 0..9", &range_0_to_9, offsetof(nmea_pgrmf, tdop), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_week"), ERROR_TEXT("integer 0..1023"), &range_0_to_1023, offsetof(nmea_pgrmf, gps_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_seconds"), ERROR_TEXT("integer 0..604799"), &range_0_to_604799, offsetof(nmea_pgrmf, gps_seconds), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_pgrmf, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pgrmf, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("leap_seconds"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pgrmf, leap_seconds), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_pgrmf, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_pgrmf, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("garmin_fix_mode code (M A)"), &nmea_garmin_fix_mode_def, offsetof(nmea_pgrmf, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("fix_type"), ERROR_TEXT("garmin_fix_type code (0 1 2)"), &nmea_garmin_fix_type_def, offsetof(nmea_pgrmf, fix_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("speed"), ERROR_TEXT("integer 0..1851"), &range_0_to_1851, offsetof(nmea_pgrmf, speed), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("course"), ERROR_TEXT("integer 0..359"), &range_0_to_359, offsetof(nmea_pgrmf, course), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_pgrmf, pdop), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("tdop"), ERROR_TEXT("integer 0..9"), &range_0_to_9, offsetof(nmea_pgrmf, tdop), FIELD_INTEGER, 1, 0},
 };
 static const layout pgrmf_layout = {
     .sentence = "PGRMF", .address = "PGRMF", .fields = pgrmf_fields, .before = 13, .fixed = 15, .max_fields = 15,
@@ -22311,11 +22382,11 @@ size_t nmea_build_pgrmf(const nmea_pgrmf *s, char *buf, size_t cap, nmea_error *
 
 /* $PGRMI,,,,,,,R*3F */
 static const layout_field pgrmi_fields[] = {
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_pgrmi, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_pgrmi, lon), FIELD_LONGITUDE, 2, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_pgrmi, date), FIELD_DATE, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pgrmi, time), FIELD_TIME, 1, 0},
-    {"receiver_command", "garmin_receiver_command code (A R)", &nmea_garmin_receiver_command_def, offsetof(nmea_pgrmi, receiver_command), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_pgrmi, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_pgrmi, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_pgrmi, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pgrmi, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("receiver_command"), ERROR_TEXT("garmin_receiver_command code (A R)"), &nmea_garmin_receiver_command_def, offsetof(nmea_pgrmi, receiver_command), FIELD_ENUM, 1, 0},
 };
 static const layout pgrmi_layout = {
     .sentence = "PGRMI", .address = "PGRMI", .fields = pgrmi_fields, .before = 5, .fixed = 7, .max_fields = 7,
@@ -22370,7 +22441,7 @@ size_t nmea_build_pgrmie(const nmea_pgrmie *s, char *buf, size_t cap, nmea_error
 
 /* $PGRMM,WGS 84*06 */
 static const layout_field pgrmm_fields[] = {
-    {"datum", "text", NULL, offsetof(nmea_pgrmm, datum), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("datum"), ERROR_TEXT("text"), NULL, offsetof(nmea_pgrmm, datum), FIELD_TEXT, 1, 0},
 };
 static const layout pgrmm_layout = {
     .sentence = "PGRMM", .address = "PGRMM", .fields = pgrmm_fields, .before = 1, .fixed = 1, .max_fields = 1,
@@ -22435,8 +22506,8 @@ size_t nmea_build_pgrmm(const nmea_pgrmm *s, char *buf, size_t cap, nmea_error *
 
 /* $PGRMO,GPALM,1*21 */
 static const layout_field pgrmo_fields[] = {
-    {"target", "text of at most 5 characters", NULL, offsetof(nmea_pgrmo, target), FIELD_TEXT, 1, 5},
-    {"mode", "garmin_output_mode code (0 1 2 3 4 G)", &nmea_garmin_output_mode_def, offsetof(nmea_pgrmo, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("target"), ERROR_TEXT("text of at most 5 characters"), NULL, offsetof(nmea_pgrmo, target), FIELD_TEXT, 1, 5},
+    {ERROR_TEXT("mode"), ERROR_TEXT("garmin_output_mode code (0 1 2 3 4 G)"), &nmea_garmin_output_mode_def, offsetof(nmea_pgrmo, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pgrmo_layout = {
     .sentence = "PGRMO", .address = "PGRMO", .fields = pgrmo_fields, .before = 2, .fixed = 2, .max_fields = 2,
@@ -22465,15 +22536,15 @@ size_t nmea_build_pgrmo(const nmea_pgrmo *s, char *buf, size_t cap, nmea_error *
 
 /* $PGRMT,GPS 15x-W software ver. 4.20,,,,,,,,*6A */
 static const layout_field pgrmt_fields[] = {
-    {"product", "text", NULL, offsetof(nmea_pgrmt, product), FIELD_TEXT, 1, 0},
-    {"rom_checksum", "garmin_pass_fail code (P F)", &nmea_garmin_pass_fail_def, offsetof(nmea_pgrmt, rom_checksum), FIELD_ENUM, 1, 0},
-    {"receiver_failure", "garmin_pass_fail code (P F)", &nmea_garmin_pass_fail_def, offsetof(nmea_pgrmt, receiver_failure), FIELD_ENUM, 1, 0},
-    {"stored_data", "garmin_retained_lost code (R L)", &nmea_garmin_retained_lost_def, offsetof(nmea_pgrmt, stored_data), FIELD_ENUM, 1, 0},
-    {"rtc", "garmin_retained_lost code (R L)", &nmea_garmin_retained_lost_def, offsetof(nmea_pgrmt, rtc), FIELD_ENUM, 1, 0},
-    {"oscillator_drift", "garmin_pass_fail code (P F)", &nmea_garmin_pass_fail_def, offsetof(nmea_pgrmt, oscillator_drift), FIELD_ENUM, 1, 0},
-    {"data_collection", "garmin_data_collection code (C)", &nmea_garmin_data_collection_def, offsetof(nmea_pgrmt, data_collection), FIELD_ENUM, 1, 0},
-    {"temperature", "decimal number", NULL, offsetof(nmea_pgrmt, temperature), FIELD_DECIMAL, 1, 0},
-    {"configuration_data", "garmin_retained_lost code (R L)", &nmea_garmin_retained_lost_def, offsetof(nmea_pgrmt, configuration_data), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("product"), ERROR_TEXT("text"), NULL, offsetof(nmea_pgrmt, product), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("rom_checksum"), ERROR_TEXT("garmin_pass_fail code (P F)"), &nmea_garmin_pass_fail_def, offsetof(nmea_pgrmt, rom_checksum), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("receiver_failure"), ERROR_TEXT("garmin_pass_fail code (P F)"), &nmea_garmin_pass_fail_def, offsetof(nmea_pgrmt, receiver_failure), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("stored_data"), ERROR_TEXT("garmin_retained_lost code (R L)"), &nmea_garmin_retained_lost_def, offsetof(nmea_pgrmt, stored_data), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rtc"), ERROR_TEXT("garmin_retained_lost code (R L)"), &nmea_garmin_retained_lost_def, offsetof(nmea_pgrmt, rtc), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("oscillator_drift"), ERROR_TEXT("garmin_pass_fail code (P F)"), &nmea_garmin_pass_fail_def, offsetof(nmea_pgrmt, oscillator_drift), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("data_collection"), ERROR_TEXT("garmin_data_collection code (C)"), &nmea_garmin_data_collection_def, offsetof(nmea_pgrmt, data_collection), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("temperature"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pgrmt, temperature), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("configuration_data"), ERROR_TEXT("garmin_retained_lost code (R L)"), &nmea_garmin_retained_lost_def, offsetof(nmea_pgrmt, configuration_data), FIELD_ENUM, 1, 0},
 };
 static const layout pgrmt_layout = {
     .sentence = "PGRMT", .address = "PGRMT", .fields = pgrmt_fields, .before = 9, .fixed = 9, .max_fields = 9,
@@ -22554,9 +22625,9 @@ size_t nmea_build_pgrmt(const nmea_pgrmt *s, char *buf, size_t cap, nmea_error *
 
 /* $PGRMV,-2.5,-1.1,0.3*58 */
 static const layout_field pgrmv_fields[] = {
-    {"vel_east", "decimal number -514.4..514.4", &range_minus_514p4_to_514p4, offsetof(nmea_pgrmv, vel_east), FIELD_DECIMAL, 1, 0},
-    {"vel_north", "decimal number -514.4..514.4", &range_minus_514p4_to_514p4, offsetof(nmea_pgrmv, vel_north), FIELD_DECIMAL, 1, 0},
-    {"vel_up", "decimal number -999.9..9999.9", &range_minus_999p9_to_9999p9, offsetof(nmea_pgrmv, vel_up), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vel_east"), ERROR_TEXT("decimal number -514.4..514.4"), &range_minus_514p4_to_514p4, offsetof(nmea_pgrmv, vel_east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vel_north"), ERROR_TEXT("decimal number -514.4..514.4"), &range_minus_514p4_to_514p4, offsetof(nmea_pgrmv, vel_north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vel_up"), ERROR_TEXT("decimal number -999.9..9999.9"), &range_minus_999p9_to_9999p9, offsetof(nmea_pgrmv, vel_up), FIELD_DECIMAL, 1, 0},
 };
 static const layout pgrmv_layout = {
     .sentence = "PGRMV", .address = "PGRMV", .fields = pgrmv_fields, .before = 3, .fixed = 3, .max_fields = 3,
@@ -22625,9 +22696,9 @@ size_t nmea_build_pgrmv(const nmea_pgrmv *s, char *buf, size_t cap, nmea_error *
 
 /* $PGRMZ,2282,f,3*21 */
 static const layout_field pgrmz_fields[] = {
-    {"altitude", "decimal number", NULL, offsetof(nmea_pgrmz, altitude), FIELD_DECIMAL, 1, 0},
-    {"altitude_unit", "f or nothing", "f", offsetof(nmea_pgrmz, altitude_unit), FIELD_LITERAL, 1, 0},
-    {"fix_dimension", "garmin_fix_dimension code (1 2 3)", &nmea_garmin_fix_dimension_def, offsetof(nmea_pgrmz, fix_dimension), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pgrmz, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude_unit"), ERROR_TEXT("f or nothing"), "f", offsetof(nmea_pgrmz, altitude_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("fix_dimension"), ERROR_TEXT("garmin_fix_dimension code (1 2 3)"), &nmea_garmin_fix_dimension_def, offsetof(nmea_pgrmz, fix_dimension), FIELD_ENUM, 1, 0},
 };
 static const layout pgrmz_layout = {
     .sentence = "PGRMZ", .address = "PGRMZ", .fields = pgrmz_fields, .before = 3, .fixed = 3, .max_fields = 3,
@@ -22696,8 +22767,8 @@ size_t nmea_build_pgrmz(const nmea_pgrmz *s, char *buf, size_t cap, nmea_error *
 
 /* $PGTOP,11,2*6E */
 static const layout_field pgtop_11_fields[] = {
-    {"function", "11", "11", 0, FIELD_KEYWORD, 1, 0},
-    {"status", "mtk_antenna_status code (1 2 3)", &nmea_mtk_antenna_status_def, offsetof(nmea_pgtop_11, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("function"), ERROR_TEXT("11"), "11", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("mtk_antenna_status code (1 2 3)"), &nmea_mtk_antenna_status_def, offsetof(nmea_pgtop_11, status), FIELD_ENUM, 1, 0},
 };
 static const layout pgtop_11_layout = {
     .sentence = "PGTOP_11", .address = "PGTOP", .selector = "11", .fields = pgtop_11_fields, .selector_at = 0,
@@ -22765,8 +22836,8 @@ size_t nmea_build_pgtop_11(const nmea_pgtop_11 *s, char *buf, size_t cap, nmea_e
 
 /* $PMGNCMD,TRACK,2*23 */
 static const layout_field pmgncmd_fields[] = {
-    {"command", "magellan_command code (WAYPOINT ROUTE TRACK)", &nmea_magellan_command_def, offsetof(nmea_pmgncmd, command), FIELD_ENUM, 1, 0},
-    {"option", "text", NULL, offsetof(nmea_pmgncmd, option), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("magellan_command code (WAYPOINT ROUTE TRACK)"), &nmea_magellan_command_def, offsetof(nmea_pmgncmd, command), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("option"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmgncmd, option), FIELD_TEXT, 1, 0},
 };
 static const layout pmgncmd_layout = {
     .sentence = "PMGNCMD", .address = "PMGNCMD", .fields = pmgncmd_fields, .before = 1, .optional = 1, .fixed = 1,
@@ -22796,13 +22867,13 @@ size_t nmea_build_pmgncmd(const nmea_pmgncmd *s, char *buf, size_t cap, nmea_err
 
 /* $PMGNST,01.75,3,F,816,11.1,+00000,20*5E */
 static const layout_field pmgnst_fields[] = {
-    {"version", "decimal number", NULL, offsetof(nmea_pmgnst, version), FIELD_DECIMAL, 1, 0},
-    {"mode", "magellan_fix_mode code (1 2 3)", &nmea_magellan_fix_mode_def, offsetof(nmea_pmgnst, mode), FIELD_ENUM, 1, 0},
-    {"fix", "magellan_fix_flag code (T F)", &nmea_magellan_fix_flag_def, offsetof(nmea_pmgnst, fix), FIELD_ENUM, 1, 0},
-    {"unknown_1", "integer", NULL, offsetof(nmea_pmgnst, unknown_1), FIELD_INTEGER, 1, 0},
-    {"battery_time", "decimal number", NULL, offsetof(nmea_pmgnst, battery_time), FIELD_DECIMAL, 1, 0},
-    {"unknown_2", "integer", NULL, offsetof(nmea_pmgnst, unknown_2), FIELD_INTEGER, 1, 0},
-    {"prn", "integer", NULL, offsetof(nmea_pmgnst, prn), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmgnst, version), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("magellan_fix_mode code (1 2 3)"), &nmea_magellan_fix_mode_def, offsetof(nmea_pmgnst, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("fix"), ERROR_TEXT("magellan_fix_flag code (T F)"), &nmea_magellan_fix_flag_def, offsetof(nmea_pmgnst, fix), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("unknown_1"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmgnst, unknown_1), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("battery_time"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmgnst, battery_time), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("unknown_2"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmgnst, unknown_2), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmgnst, prn), FIELD_INTEGER, 1, 0},
 };
 static const layout pmgnst_layout = {
     .sentence = "PMGNST", .address = "PMGNST", .fields = pmgnst_fields, .before = 7, .fixed = 7, .max_fields = 7,
@@ -22879,14 +22950,14 @@ size_t nmea_build_pmgnst(const nmea_pmgnst *s, char *buf, size_t cap, nmea_error
 
 /* $PMGNTRK,3002.731,N,09135.923,W,00000,M,172308.56,A,,250502*6C */
 static const layout_field pmgntrk_fields[] = {
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_pmgntrk, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_pmgntrk, lon), FIELD_LONGITUDE, 2, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_pmgntrk, altitude), FIELD_DECIMAL, 1, 0},
-    {"altitude_unit", "magellan_altitude_unit code (F M)", &nmea_magellan_altitude_unit_def, offsetof(nmea_pmgntrk, altitude_unit), FIELD_ENUM, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pmgntrk, time), FIELD_TIME, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_pmgntrk, status), FIELD_ENUM, 1, 0},
-    {"track_name", "text", NULL, offsetof(nmea_pmgntrk, track_name), FIELD_TEXT, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_pmgntrk, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_pmgntrk, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_pmgntrk, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmgntrk, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude_unit"), ERROR_TEXT("magellan_altitude_unit code (F M)"), &nmea_magellan_altitude_unit_def, offsetof(nmea_pmgntrk, altitude_unit), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pmgntrk, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_pmgntrk, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("track_name"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmgntrk, track_name), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_pmgntrk, date), FIELD_DATE, 1, 0},
 };
 static const layout pmgntrk_layout = {
     .sentence = "PMGNTRK", .address = "PMGNTRK", .fields = pmgntrk_fields, .before = 7, .optional = 1, .fixed = 9,
@@ -22914,14 +22985,14 @@ size_t nmea_build_pmgntrk(const nmea_pmgntrk *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PMGNWPL: Magellan waypoint (spec/proprietary/pmgnwpl.yaml) */
 static const layout_field pmgnwpl_fields[] = {
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_pmgnwpl, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_pmgnwpl, lon), FIELD_LONGITUDE, 2, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_pmgnwpl, altitude), FIELD_DECIMAL, 1, 0},
-    {"altitude_unit", "magellan_altitude_unit code (F M)", &nmea_magellan_altitude_unit_def, offsetof(nmea_pmgnwpl, altitude_unit), FIELD_ENUM, 1, 0},
-    {"name", "text", NULL, offsetof(nmea_pmgnwpl, name), FIELD_TEXT, 1, 0},
-    {"comment", "text", NULL, offsetof(nmea_pmgnwpl, comment), FIELD_TEXT, 1, 0},
-    {"icon", "text", NULL, offsetof(nmea_pmgnwpl, icon), FIELD_TEXT, 1, 0},
-    {"waypoint_type", "text", NULL, offsetof(nmea_pmgnwpl, waypoint_type), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_pmgnwpl, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_pmgnwpl, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmgnwpl, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude_unit"), ERROR_TEXT("magellan_altitude_unit code (F M)"), &nmea_magellan_altitude_unit_def, offsetof(nmea_pmgnwpl, altitude_unit), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("name"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmgnwpl, name), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("comment"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmgnwpl, comment), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("icon"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmgnwpl, icon), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("waypoint_type"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmgnwpl, waypoint_type), FIELD_TEXT, 1, 0},
 };
 static const layout pmgnwpl_layout = {
     .sentence = "PMGNWPL", .address = "PMGNWPL", .fields = pmgnwpl_fields, .before = 7, .optional = 1, .fixed = 9,
@@ -22977,8 +23048,8 @@ size_t nmea_build_pmtk000(const nmea_pmtk000 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK001,604,3*32 */
 static const layout_field pmtk001_fields[] = {
-    {"command", "integer 0..999", &range_0_to_999, offsetof(nmea_pmtk001, command), FIELD_INTEGER, 1, 0},
-    {"flag", "mtk_ack_flag code (0 1 2 3)", &nmea_mtk_ack_flag_def, offsetof(nmea_pmtk001, flag), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("integer 0..999"), &range_0_to_999, offsetof(nmea_pmtk001, command), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("flag"), ERROR_TEXT("mtk_ack_flag code (0 1 2 3)"), &nmea_mtk_ack_flag_def, offsetof(nmea_pmtk001, flag), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk001_layout = {
     .sentence = "PMTK001", .address = "PMTK001", .fields = pmtk001_fields, .before = 2, .fixed = 2,
@@ -23007,9 +23078,9 @@ size_t nmea_build_pmtk001(const nmea_pmtk001 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK001,660,3,40449464*17 */
 static const layout_field pmtk001_sv_mask_fields[] = {
-    {"command", "integer 0..999", &range_0_to_999, offsetof(nmea_pmtk001_sv_mask, command), FIELD_INTEGER, 1, 0},
-    {"flag", "mtk_ack_flag code (0 1 2 3)", &nmea_mtk_ack_flag_def, offsetof(nmea_pmtk001_sv_mask, flag), FIELD_ENUM, 1, 0},
-    {"sv_mask", "hex number", NULL, offsetof(nmea_pmtk001_sv_mask, sv_mask), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("integer 0..999"), &range_0_to_999, offsetof(nmea_pmtk001_sv_mask, command), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("flag"), ERROR_TEXT("mtk_ack_flag code (0 1 2 3)"), &nmea_mtk_ack_flag_def, offsetof(nmea_pmtk001_sv_mask, flag), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sv_mask"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pmtk001_sv_mask, sv_mask), FIELD_HEX, 1, 0},
 };
 static const layout pmtk001_sv_mask_layout = {
     .sentence = "PMTK001", .address = "PMTK001", .variant = "sv_mask", .fields = pmtk001_sv_mask_fields,
@@ -23039,7 +23110,7 @@ size_t nmea_build_pmtk001_sv_mask(const nmea_pmtk001_sv_mask *s, char *buf, size
 
 /* $PMTK010,001*2E */
 static const layout_field pmtk010_fields[] = {
-    {"message", "mtk_system_message code (000 001 002 003)", &nmea_mtk_system_message_def, offsetof(nmea_pmtk010, message), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("mtk_system_message code (000 001 002 003)"), &nmea_mtk_system_message_def, offsetof(nmea_pmtk010, message), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk010_layout = {
     .sentence = "PMTK010", .address = "PMTK010", .fields = pmtk010_fields, .before = 1, .fixed = 1,
@@ -23104,7 +23175,7 @@ size_t nmea_build_pmtk010(const nmea_pmtk010 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK011,MTKGPS*08 */
 static const layout_field pmtk011_fields[] = {
-    {"text", "text", NULL, offsetof(nmea_pmtk011, text), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("text"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmtk011, text), FIELD_TEXT, 1, 0},
 };
 static const layout pmtk011_layout = {
     .sentence = "PMTK011", .address = "PMTK011", .fields = pmtk011_fields, .before = 1, .fixed = 1,
@@ -23273,7 +23344,7 @@ size_t nmea_build_pmtk104(const nmea_pmtk104 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK161,0*28 */
 static const layout_field pmtk161_fields[] = {
-    {"type", "mtk_standby_type code (0 1)", &nmea_mtk_standby_type_def, offsetof(nmea_pmtk161, type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("mtk_standby_type code (0 1)"), &nmea_mtk_standby_type_def, offsetof(nmea_pmtk161, type), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk161_layout = {
     .sentence = "PMTK161", .address = "PMTK161", .fields = pmtk161_fields, .before = 1, .fixed = 1,
@@ -23328,7 +23399,7 @@ size_t nmea_build_pmtk183(const nmea_pmtk183 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK184,1*22 */
 static const layout_field pmtk184_fields[] = {
-    {"type", "1 or nothing", "1", offsetof(nmea_pmtk184, type), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("1 or nothing"), "1", offsetof(nmea_pmtk184, type), FIELD_LITERAL, 1, 0},
 };
 static const layout pmtk184_layout = {
     .sentence = "PMTK184", .address = "PMTK184", .fields = pmtk184_fields, .before = 1, .fixed = 1,
@@ -23357,7 +23428,7 @@ size_t nmea_build_pmtk184(const nmea_pmtk184 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK185,1*23 */
 static const layout_field pmtk185_fields[] = {
-    {"status", "mtk_locus_logger code (0 1)", &nmea_mtk_locus_logger_def, offsetof(nmea_pmtk185, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("mtk_locus_logger code (0 1)"), &nmea_mtk_locus_logger_def, offsetof(nmea_pmtk185, status), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk185_layout = {
     .sentence = "PMTK185", .address = "PMTK185", .fields = pmtk185_fields, .before = 1, .fixed = 1,
@@ -23386,7 +23457,7 @@ size_t nmea_build_pmtk185(const nmea_pmtk185 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK220,1000*1F */
 static const layout_field pmtk220_fields[] = {
-    {"interval", "integer 100..10000", &range_100_to_10000, offsetof(nmea_pmtk220, interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("interval"), ERROR_TEXT("integer 100..10000"), &range_100_to_10000, offsetof(nmea_pmtk220, interval), FIELD_INTEGER, 1, 0},
 };
 static const layout pmtk220_layout = {
     .sentence = "PMTK220", .address = "PMTK220", .fields = pmtk220_fields, .before = 1, .fixed = 1,
@@ -23415,10 +23486,10 @@ size_t nmea_build_pmtk220(const nmea_pmtk220 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK223,1,30,180000,60000*3C */
 static const layout_field pmtk223_fields[] = {
-    {"sv", "integer", NULL, offsetof(nmea_pmtk223, sv), FIELD_INTEGER, 1, 0},
-    {"snr", "integer", NULL, offsetof(nmea_pmtk223, snr), FIELD_INTEGER, 1, 0},
-    {"extension_threshold", "integer", NULL, offsetof(nmea_pmtk223, extension_threshold), FIELD_INTEGER, 1, 0},
-    {"extension_gap", "integer", NULL, offsetof(nmea_pmtk223, extension_gap), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sv"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtk223, sv), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("snr"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtk223, snr), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("extension_threshold"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtk223, extension_threshold), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("extension_gap"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtk223, extension_gap), FIELD_INTEGER, 1, 0},
 };
 static const layout pmtk223_layout = {
     .sentence = "PMTK223", .address = "PMTK223", .fields = pmtk223_fields, .before = 4, .fixed = 4,
@@ -23447,11 +23518,11 @@ size_t nmea_build_pmtk223(const nmea_pmtk223 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK225,1,3000,12000,18000,72000*16 */
 static const layout_field pmtk225_fields[] = {
-    {"mode", "mtk_periodic_mode code (0 1 2 4 8 9)", &nmea_mtk_periodic_mode_def, offsetof(nmea_pmtk225, mode), FIELD_ENUM, 1, 0},
-    {"run_time", "integer of at most 518400000", &range_up_to_518400000, offsetof(nmea_pmtk225, run_time), FIELD_INTEGER, 1, 0},
-    {"sleep_time", "integer 1000..518400000", &range_1000_to_518400000, offsetof(nmea_pmtk225, sleep_time), FIELD_INTEGER, 1, 0},
-    {"second_run_time", "integer of at most 518400000", &range_up_to_518400000, offsetof(nmea_pmtk225, second_run_time), FIELD_INTEGER, 1, 0},
-    {"second_sleep_time", "integer 1000..518400000", &range_1000_to_518400000, offsetof(nmea_pmtk225, second_sleep_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("mtk_periodic_mode code (0 1 2 4 8 9)"), &nmea_mtk_periodic_mode_def, offsetof(nmea_pmtk225, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("run_time"), ERROR_TEXT("integer of at most 518400000"), &range_up_to_518400000, offsetof(nmea_pmtk225, run_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sleep_time"), ERROR_TEXT("integer 1000..518400000"), &range_1000_to_518400000, offsetof(nmea_pmtk225, sleep_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("second_run_time"), ERROR_TEXT("integer of at most 518400000"), &range_up_to_518400000, offsetof(nmea_pmtk225, second_run_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("second_sleep_time"), ERROR_TEXT("integer 1000..518400000"), &range_1000_to_518400000, offsetof(nmea_pmtk225, second_sleep_time), FIELD_INTEGER, 1, 0},
 };
 static const layout pmtk225_layout = {
     .sentence = "PMTK225", .address = "PMTK225", .fields = pmtk225_fields, .before = 1, .optional = 4, .fixed = 1,
@@ -23481,7 +23552,7 @@ size_t nmea_build_pmtk225(const nmea_pmtk225 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK251,38400*27 */
 static const layout_field pmtk251_fields[] = {
-    {"baud", "mtk_baud code (0 4800 9600 14400 19200 38400 57600 115200)", &nmea_mtk_baud_def, offsetof(nmea_pmtk251, baud), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("baud"), ERROR_TEXT("mtk_baud code (0 4800 9600 14400 19200 38400 57600 115200)"), &nmea_mtk_baud_def, offsetof(nmea_pmtk251, baud), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk251_layout = {
     .sentence = "PMTK251", .address = "PMTK251", .fields = pmtk251_fields, .before = 1, .fixed = 1,
@@ -23510,7 +23581,7 @@ size_t nmea_build_pmtk251(const nmea_pmtk251 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK286,0*22 */
 static const layout_field pmtk286_fields[] = {
-    {"enabled", "mtk_enable code (0 1)", &nmea_mtk_enable_def, offsetof(nmea_pmtk286, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("mtk_enable code (0 1)"), &nmea_mtk_enable_def, offsetof(nmea_pmtk286, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk286_layout = {
     .sentence = "PMTK286", .address = "PMTK286", .fields = pmtk286_fields, .before = 1, .fixed = 1,
@@ -23539,11 +23610,11 @@ size_t nmea_build_pmtk286(const nmea_pmtk286 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK300,1000,0,0,0,0*1C */
 static const layout_field pmtk300_fields[] = {
-    {"fix_interval", "integer of at least 100", &range_from_100, offsetof(nmea_pmtk300, fix_interval), FIELD_INTEGER, 1, 0},
-    {"reserved_1", "decimal number", NULL, offsetof(nmea_pmtk300, reserved_1), FIELD_DECIMAL, 1, 0},
-    {"reserved_2", "decimal number", NULL, offsetof(nmea_pmtk300, reserved_2), FIELD_DECIMAL, 1, 0},
-    {"reserved_3", "decimal number", NULL, offsetof(nmea_pmtk300, reserved_3), FIELD_DECIMAL, 1, 0},
-    {"reserved_4", "decimal number", NULL, offsetof(nmea_pmtk300, reserved_4), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("fix_interval"), ERROR_TEXT("integer of at least 100"), &range_from_100, offsetof(nmea_pmtk300, fix_interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_1"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmtk300, reserved_1), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved_2"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmtk300, reserved_2), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved_3"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmtk300, reserved_3), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved_4"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmtk300, reserved_4), FIELD_DECIMAL, 1, 0},
 };
 static const layout pmtk300_layout = {
     .sentence = "PMTK300", .address = "PMTK300", .fields = pmtk300_fields, .before = 5, .fixed = 5,
@@ -23572,7 +23643,7 @@ size_t nmea_build_pmtk300(const nmea_pmtk300 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK301,2*2E */
 static const layout_field pmtk301_fields[] = {
-    {"mode", "mtk_dgps_mode code (0 1 2)", &nmea_mtk_dgps_mode_def, offsetof(nmea_pmtk301, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("mtk_dgps_mode code (0 1 2)"), &nmea_mtk_dgps_mode_def, offsetof(nmea_pmtk301, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk301_layout = {
     .sentence = "PMTK301", .address = "PMTK301", .fields = pmtk301_fields, .before = 1, .fixed = 1,
@@ -23601,7 +23672,7 @@ size_t nmea_build_pmtk301(const nmea_pmtk301 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK313,1*2E */
 static const layout_field pmtk313_fields[] = {
-    {"enabled", "mtk_enable code (0 1)", &nmea_mtk_enable_def, offsetof(nmea_pmtk313, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("mtk_enable code (0 1)"), &nmea_mtk_enable_def, offsetof(nmea_pmtk313, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk313_layout = {
     .sentence = "PMTK313", .address = "PMTK313", .fields = pmtk313_fields, .before = 1, .fixed = 1,
@@ -23630,25 +23701,25 @@ size_t nmea_build_pmtk313(const nmea_pmtk313 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK314,1,1,1,1,1,5,0,0,0,0,0,0,0,0,0,0,0,0,0*2C */
 static const layout_field pmtk314_fields[] = {
-    {"gll", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, gll), FIELD_INTEGER, 1, 0},
-    {"rmc", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, rmc), FIELD_INTEGER, 1, 0},
-    {"vtg", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, vtg), FIELD_INTEGER, 1, 0},
-    {"gga", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, gga), FIELD_INTEGER, 1, 0},
-    {"gsa", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, gsa), FIELD_INTEGER, 1, 0},
-    {"gsv", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, gsv), FIELD_INTEGER, 1, 0},
-    {"grs", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, grs), FIELD_INTEGER, 1, 0},
-    {"gst", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, gst), FIELD_INTEGER, 1, 0},
-    {"reserved_8", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, reserved_8), FIELD_INTEGER, 1, 0},
-    {"reserved_9", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, reserved_9), FIELD_INTEGER, 1, 0},
-    {"reserved_10", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, reserved_10), FIELD_INTEGER, 1, 0},
-    {"reserved_11", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, reserved_11), FIELD_INTEGER, 1, 0},
-    {"reserved_12", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, reserved_12), FIELD_INTEGER, 1, 0},
-    {"malm", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, malm), FIELD_INTEGER, 1, 0},
-    {"meph", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, meph), FIELD_INTEGER, 1, 0},
-    {"mdgp", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, mdgp), FIELD_INTEGER, 1, 0},
-    {"mdbg", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, mdbg), FIELD_INTEGER, 1, 0},
-    {"zda", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, zda), FIELD_INTEGER, 1, 0},
-    {"mchn", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk314, mchn), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gll"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, gll), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rmc"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, rmc), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("vtg"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, vtg), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gga"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, gga), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gsa"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, gsa), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gsv"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, gsv), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("grs"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, grs), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gst"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, gst), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_8"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, reserved_8), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_9"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, reserved_9), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_10"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, reserved_10), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_11"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, reserved_11), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_12"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, reserved_12), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("malm"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, malm), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("meph"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, meph), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mdgp"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, mdgp), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mdbg"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, mdbg), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("zda"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, zda), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mchn"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk314, mchn), FIELD_INTEGER, 1, 0},
 };
 static const layout pmtk314_layout = {
     .sentence = "PMTK314", .address = "PMTK314", .fields = pmtk314_fields, .before = 19, .fixed = 19,
@@ -23677,7 +23748,7 @@ size_t nmea_build_pmtk314(const nmea_pmtk314 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK314,-1*04 */
 static const layout_field pmtk314_restore_default_fields[] = {
-    {"restore", "-1", "-1", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("restore"), ERROR_TEXT("-1"), "-1", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pmtk314_restore_default_layout = {
     .sentence = "PMTK314", .address = "PMTK314", .variant = "restore_default", .selector = "-1",
@@ -23707,7 +23778,7 @@ size_t nmea_build_pmtk314_restore_default(const nmea_pmtk314_restore_default *s,
 
 /* $PMTK319,0*25 */
 static const layout_field pmtk319_fields[] = {
-    {"mode", "mtk_sbas_mode code (0 1)", &nmea_mtk_sbas_mode_def, offsetof(nmea_pmtk319, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("mtk_sbas_mode code (0 1)"), &nmea_mtk_sbas_mode_def, offsetof(nmea_pmtk319, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk319_layout = {
     .sentence = "PMTK319", .address = "PMTK319", .fields = pmtk319_fields, .before = 1, .fixed = 1,
@@ -23736,11 +23807,11 @@ size_t nmea_build_pmtk319(const nmea_pmtk319 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK353,0,1,0,0,0*2A */
 static const layout_field pmtk353_fields[] = {
-    {"gps", "mtk_enable code (0 1)", &nmea_mtk_enable_def, offsetof(nmea_pmtk353, gps), FIELD_ENUM, 1, 0},
-    {"glonass", "mtk_enable code (0 1)", &nmea_mtk_enable_def, offsetof(nmea_pmtk353, glonass), FIELD_ENUM, 1, 0},
-    {"galileo", "mtk_enable code (0 1)", &nmea_mtk_enable_def, offsetof(nmea_pmtk353, galileo), FIELD_ENUM, 1, 0},
-    {"galileo_full", "mtk_enable code (0 1)", &nmea_mtk_enable_def, offsetof(nmea_pmtk353, galileo_full), FIELD_ENUM, 1, 0},
-    {"beidou", "mtk_enable code (0 1)", &nmea_mtk_enable_def, offsetof(nmea_pmtk353, beidou), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("gps"), ERROR_TEXT("mtk_enable code (0 1)"), &nmea_mtk_enable_def, offsetof(nmea_pmtk353, gps), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("glonass"), ERROR_TEXT("mtk_enable code (0 1)"), &nmea_mtk_enable_def, offsetof(nmea_pmtk353, glonass), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("galileo"), ERROR_TEXT("mtk_enable code (0 1)"), &nmea_mtk_enable_def, offsetof(nmea_pmtk353, galileo), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("galileo_full"), ERROR_TEXT("mtk_enable code (0 1)"), &nmea_mtk_enable_def, offsetof(nmea_pmtk353, galileo_full), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("beidou"), ERROR_TEXT("mtk_enable code (0 1)"), &nmea_mtk_enable_def, offsetof(nmea_pmtk353, beidou), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk353_layout = {
     .sentence = "PMTK353", .address = "PMTK353", .fields = pmtk353_fields, .before = 5, .fixed = 5,
@@ -23769,7 +23840,7 @@ size_t nmea_build_pmtk353(const nmea_pmtk353 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK386,1.2*3E */
 static const layout_field pmtk386_fields[] = {
-    {"threshold", "decimal number 0..2", &range_0_to_2, offsetof(nmea_pmtk386, threshold), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("threshold"), ERROR_TEXT("decimal number 0..2"), &range_0_to_2, offsetof(nmea_pmtk386, threshold), FIELD_DECIMAL, 1, 0},
 };
 static const layout pmtk386_layout = {
     .sentence = "PMTK386", .address = "PMTK386", .fields = pmtk386_fields, .before = 1, .fixed = 1,
@@ -23798,7 +23869,7 @@ size_t nmea_build_pmtk386(const nmea_pmtk386 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK397,0.20*0F */
 static const layout_field pmtk397_fields[] = {
-    {"threshold", "decimal number", NULL, offsetof(nmea_pmtk397, threshold), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("threshold"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmtk397, threshold), FIELD_DECIMAL, 1, 0},
 };
 static const layout pmtk397_layout = {
     .sentence = "PMTK397", .address = "PMTK397", .fields = pmtk397_fields, .before = 1, .fixed = 1,
@@ -23957,11 +24028,11 @@ size_t nmea_build_pmtk447(const nmea_pmtk447 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK500,1000,0,0,0,0*1A */
 static const layout_field pmtk500_fields[] = {
-    {"fix_interval", "integer", NULL, offsetof(nmea_pmtk500, fix_interval), FIELD_INTEGER, 1, 0},
-    {"reserved_1", "decimal number", NULL, offsetof(nmea_pmtk500, reserved_1), FIELD_DECIMAL, 1, 0},
-    {"reserved_2", "decimal number", NULL, offsetof(nmea_pmtk500, reserved_2), FIELD_DECIMAL, 1, 0},
-    {"reserved_3", "decimal number", NULL, offsetof(nmea_pmtk500, reserved_3), FIELD_DECIMAL, 1, 0},
-    {"reserved_4", "decimal number", NULL, offsetof(nmea_pmtk500, reserved_4), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("fix_interval"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtk500, fix_interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_1"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmtk500, reserved_1), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved_2"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmtk500, reserved_2), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved_3"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmtk500, reserved_3), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved_4"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pmtk500, reserved_4), FIELD_DECIMAL, 1, 0},
 };
 static const layout pmtk500_layout = {
     .sentence = "PMTK500", .address = "PMTK500", .fields = pmtk500_fields, .before = 5, .fixed = 5,
@@ -23990,7 +24061,7 @@ size_t nmea_build_pmtk500(const nmea_pmtk500 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK501,1*2B */
 static const layout_field pmtk501_fields[] = {
-    {"mode", "mtk_dgps_mode code (0 1 2)", &nmea_mtk_dgps_mode_def, offsetof(nmea_pmtk501, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("mtk_dgps_mode code (0 1 2)"), &nmea_mtk_dgps_mode_def, offsetof(nmea_pmtk501, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk501_layout = {
     .sentence = "PMTK501", .address = "PMTK501", .fields = pmtk501_fields, .before = 1, .fixed = 1,
@@ -24019,7 +24090,7 @@ size_t nmea_build_pmtk501(const nmea_pmtk501 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK513,1*28 */
 static const layout_field pmtk513_fields[] = {
-    {"enabled", "mtk_enable code (0 1)", &nmea_mtk_enable_def, offsetof(nmea_pmtk513, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("mtk_enable code (0 1)"), &nmea_mtk_enable_def, offsetof(nmea_pmtk513, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk513_layout = {
     .sentence = "PMTK513", .address = "PMTK513", .fields = pmtk513_fields, .before = 1, .fixed = 1,
@@ -24046,25 +24117,25 @@ size_t nmea_build_pmtk513(const nmea_pmtk513 *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PMTK514: NMEA sentence output rates (query answer) (spec/proprietary/pmtk514.yaml) */
 static const layout_field pmtk514_fields[] = {
-    {"gll", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, gll), FIELD_INTEGER, 1, 0},
-    {"rmc", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, rmc), FIELD_INTEGER, 1, 0},
-    {"vtg", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, vtg), FIELD_INTEGER, 1, 0},
-    {"gga", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, gga), FIELD_INTEGER, 1, 0},
-    {"gsa", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, gsa), FIELD_INTEGER, 1, 0},
-    {"gsv", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, gsv), FIELD_INTEGER, 1, 0},
-    {"grs", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, grs), FIELD_INTEGER, 1, 0},
-    {"gst", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, gst), FIELD_INTEGER, 1, 0},
-    {"reserved_8", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, reserved_8), FIELD_INTEGER, 1, 0},
-    {"reserved_9", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, reserved_9), FIELD_INTEGER, 1, 0},
-    {"reserved_10", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, reserved_10), FIELD_INTEGER, 1, 0},
-    {"reserved_11", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, reserved_11), FIELD_INTEGER, 1, 0},
-    {"reserved_12", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, reserved_12), FIELD_INTEGER, 1, 0},
-    {"malm", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, malm), FIELD_INTEGER, 1, 0},
-    {"meph", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, meph), FIELD_INTEGER, 1, 0},
-    {"mdgp", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, mdgp), FIELD_INTEGER, 1, 0},
-    {"mdbg", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, mdbg), FIELD_INTEGER, 1, 0},
-    {"zda", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, zda), FIELD_INTEGER, 1, 0},
-    {"mchn", "integer 0..5", &range_0_to_5, offsetof(nmea_pmtk514, mchn), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gll"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, gll), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rmc"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, rmc), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("vtg"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, vtg), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gga"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, gga), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gsa"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, gsa), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gsv"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, gsv), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("grs"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, grs), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gst"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, gst), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_8"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, reserved_8), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_9"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, reserved_9), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_10"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, reserved_10), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_11"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, reserved_11), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_12"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, reserved_12), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("malm"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, malm), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("meph"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, meph), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mdgp"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, mdgp), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mdbg"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, mdbg), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("zda"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, zda), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mchn"), ERROR_TEXT("integer 0..5"), &range_0_to_5, offsetof(nmea_pmtk514, mchn), FIELD_INTEGER, 1, 0},
 };
 static const layout pmtk514_layout = {
     .sentence = "PMTK514", .address = "PMTK514", .fields = pmtk514_fields, .before = 19, .fixed = 19,
@@ -24093,7 +24164,7 @@ size_t nmea_build_pmtk514(const nmea_pmtk514 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK527,1.20*03 */
 static const layout_field pmtk527_fields[] = {
-    {"threshold", "decimal number 0..2", &range_0_to_2, offsetof(nmea_pmtk527, threshold), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("threshold"), ERROR_TEXT("decimal number 0..2"), &range_0_to_2, offsetof(nmea_pmtk527, threshold), FIELD_DECIMAL, 1, 0},
 };
 static const layout pmtk527_layout = {
     .sentence = "PMTK527", .address = "PMTK527", .fields = pmtk527_fields, .before = 1, .fixed = 1,
@@ -24148,7 +24219,7 @@ size_t nmea_build_pmtk605(const nmea_pmtk605 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK622,1*29 */
 static const layout_field pmtk622_fields[] = {
-    {"type", "1 or nothing", "1", offsetof(nmea_pmtk622, type), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("1 or nothing"), "1", offsetof(nmea_pmtk622, type), FIELD_LITERAL, 1, 0},
 };
 static const layout pmtk622_layout = {
     .sentence = "PMTK622", .address = "PMTK622", .fields = pmtk622_fields, .before = 1, .fixed = 1,
@@ -24177,7 +24248,7 @@ size_t nmea_build_pmtk622(const nmea_pmtk622 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK660,1800*17 */
 static const layout_field pmtk660_fields[] = {
-    {"interval", "integer 1..7200", &range_1_to_7200, offsetof(nmea_pmtk660, interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("interval"), ERROR_TEXT("integer 1..7200"), &range_1_to_7200, offsetof(nmea_pmtk660, interval), FIELD_INTEGER, 1, 0},
 };
 static const layout pmtk660_layout = {
     .sentence = "PMTK660", .address = "PMTK660", .fields = pmtk660_fields, .before = 1, .fixed = 1,
@@ -24206,7 +24277,7 @@ size_t nmea_build_pmtk660(const nmea_pmtk660 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK661,30*1C */
 static const layout_field pmtk661_fields[] = {
-    {"interval", "integer of at least 1", &range_from_1, offsetof(nmea_pmtk661, interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("interval"), ERROR_TEXT("integer of at least 1"), &range_from_1, offsetof(nmea_pmtk661, interval), FIELD_INTEGER, 1, 0},
 };
 static const layout pmtk661_layout = {
     .sentence = "PMTK661", .address = "PMTK661", .fields = pmtk661_fields, .before = 1, .fixed = 1,
@@ -24235,10 +24306,10 @@ size_t nmea_build_pmtk661(const nmea_pmtk661 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK705,AXN_2.51_3339_19071200,0002,QUECTEL-L70,1.0*32 */
 static const layout_field pmtk705_fields[] = {
-    {"release", "text", NULL, offsetof(nmea_pmtk705, release), FIELD_TEXT, 1, 0},
-    {"build_id", "text", NULL, offsetof(nmea_pmtk705, build_id), FIELD_TEXT, 1, 0},
-    {"product_model", "text", NULL, offsetof(nmea_pmtk705, product_model), FIELD_TEXT, 1, 0},
-    {"sdk_version", "text", NULL, offsetof(nmea_pmtk705, sdk_version), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("release"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmtk705, release), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("build_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmtk705, build_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("product_model"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmtk705, product_model), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("sdk_version"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmtk705, sdk_version), FIELD_TEXT, 1, 0},
 };
 static const layout pmtk705_layout = {
     .sentence = "PMTK705", .address = "PMTK705", .fields = pmtk705_fields, .before = 3, .optional = 1, .fixed = 3,
@@ -24268,7 +24339,7 @@ size_t nmea_build_pmtk705(const nmea_pmtk705 *s, char *buf, size_t cap, nmea_err
 
 /* $PMTK869,0*29 */
 static const layout_field pmtk869_query_fields[] = {
-    {"cmd_type", "0", "0", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("cmd_type"), ERROR_TEXT("0"), "0", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pmtk869_query_layout = {
     .sentence = "PMTK869_QUERY", .address = "PMTK869", .selector = "0", .fields = pmtk869_query_fields,
@@ -24298,8 +24369,8 @@ size_t nmea_build_pmtk869_query(const nmea_pmtk869_query *s, char *buf, size_t c
 
 /* $PMTK869,2,0*37 */
 static const layout_field pmtk869_result_fields[] = {
-    {"cmd_type", "2", "2", 0, FIELD_KEYWORD, 1, 0},
-    {"enabled", "mtk_enable code (0 1)", &nmea_mtk_enable_def, offsetof(nmea_pmtk869_result, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cmd_type"), ERROR_TEXT("2"), "2", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("mtk_enable code (0 1)"), &nmea_mtk_enable_def, offsetof(nmea_pmtk869_result, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk869_result_layout = {
     .sentence = "PMTK869_RESULT", .address = "PMTK869", .selector = "2", .fields = pmtk869_result_fields,
@@ -24329,8 +24400,8 @@ size_t nmea_build_pmtk869_result(const nmea_pmtk869_result *s, char *buf, size_t
 
 /* $PMTK869,1,1*35 */
 static const layout_field pmtk869_set_fields[] = {
-    {"cmd_type", "1", "1", 0, FIELD_KEYWORD, 1, 0},
-    {"enabled", "mtk_enable code (0 1)", &nmea_mtk_enable_def, offsetof(nmea_pmtk869_set, enabled), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("cmd_type"), ERROR_TEXT("1"), "1", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("enabled"), ERROR_TEXT("mtk_enable code (0 1)"), &nmea_mtk_enable_def, offsetof(nmea_pmtk869_set, enabled), FIELD_ENUM, 1, 0},
 };
 static const layout pmtk869_set_layout = {
     .sentence = "PMTK869_SET", .address = "PMTK869", .selector = "1", .fields = pmtk869_set_fields,
@@ -24360,11 +24431,11 @@ size_t nmea_build_pmtk869_set(const nmea_pmtk869_set *s, char *buf, size_t cap, 
 
 /* $PMTKCHN,14001,29001,23001,02001,21001,11001,16001,28001,05001,20001,22001,18001,06001,19001,07001,09001,25001,08001,13001,30001,10001,03001,04001,27001,26001,01001,24001,15001,31001,17001,12001,32001*46 */
 static const layout_field pmtkchn_group_fields[] = {
-    {"channel", "integer", NULL, 0, FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channel"), ERROR_TEXT("integer"), NULL, 0, FIELD_INTEGER, 1, 0},
 };
 static const layout_group pmtkchn_group = {
-    .id = "channels", .fields = pmtkchn_group_fields, .field_count = 1, .width = 1, .min = 1, .max = 32,
-    .single = true, .offset = offsetof(nmea_pmtkchn, channels), .entry_size = sizeof(nmea_number),
+    .id = ERROR_TEXT("channels"), .fields = pmtkchn_group_fields, .field_count = 1, .width = 1, .min = 1,
+    .max = 32, .single = true, .offset = offsetof(nmea_pmtkchn, channels), .entry_size = sizeof(nmea_number),
     .count_offset = offsetof(nmea_pmtkchn, channels.count),
 };
 static const layout pmtkchn_layout = {
@@ -24452,16 +24523,16 @@ size_t nmea_build_pmtkchn(const nmea_pmtkchn *s, char *buf, size_t cap, nmea_err
 
 /* $PMTKLOG,456,0,11,31,2,0,0,0,3769,46*48 */
 static const layout_field pmtklog_fields[] = {
-    {"serial", "integer 0..65535", &range_0_to_65535, offsetof(nmea_pmtklog, serial), FIELD_INTEGER, 1, 0},
-    {"type", "integer", NULL, offsetof(nmea_pmtklog, type), FIELD_INTEGER, 1, 0},
-    {"mode", "text", NULL, offsetof(nmea_pmtklog, mode), FIELD_TEXT, 1, 0},
-    {"content", "integer", NULL, offsetof(nmea_pmtklog, content), FIELD_INTEGER, 1, 0},
-    {"interval", "integer", NULL, offsetof(nmea_pmtklog, interval), FIELD_INTEGER, 1, 0},
-    {"distance", "integer", NULL, offsetof(nmea_pmtklog, distance), FIELD_INTEGER, 1, 0},
-    {"speed", "integer", NULL, offsetof(nmea_pmtklog, speed), FIELD_INTEGER, 1, 0},
-    {"status", "integer", NULL, offsetof(nmea_pmtklog, status), FIELD_INTEGER, 1, 0},
-    {"records", "integer", NULL, offsetof(nmea_pmtklog, records), FIELD_INTEGER, 1, 0},
-    {"percent", "integer 0..100", &range_0_to_100, offsetof(nmea_pmtklog, percent), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("serial"), ERROR_TEXT("integer 0..65535"), &range_0_to_65535, offsetof(nmea_pmtklog, serial), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtklog, type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("text"), NULL, offsetof(nmea_pmtklog, mode), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("content"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtklog, content), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("interval"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtklog, interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("distance"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtklog, distance), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("speed"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtklog, speed), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtklog, status), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("records"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtklog, records), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("percent"), ERROR_TEXT("integer 0..100"), &range_0_to_100, offsetof(nmea_pmtklog, percent), FIELD_INTEGER, 1, 0},
 };
 static const layout pmtklog_layout = {
     .sentence = "PMTKLOG", .address = "PMTKLOG", .fields = pmtklog_fields, .before = 10, .fixed = 10,
@@ -24490,15 +24561,15 @@ size_t nmea_build_pmtklog(const nmea_pmtklog *s, char *buf, size_t cap, nmea_err
 
 /* $PMTKLOX,1,1,6DD08A50,02BC3E4C,42973FE4,C25B0438,7CD08A50,02B93E4C,42933FE4,C25B0428,8BD08A50,02BC3E4C,42943FE4,C25A04DC,9AD08A50,02B73E4C,42903FE4,C25804C0,A9D08A50,02AA3E4C,42883FE4,C25704F9,B8D08A50,029E3E4C,42843FE4,C25404D3*26 */
 static const layout_field pmtklox_data_fields[] = {
-    {"type", "1", "1", 0, FIELD_KEYWORD, 1, 0},
-    {"line", "integer of at least 0", &range_from_0, offsetof(nmea_pmtklox_data, line), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("1"), "1", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("line"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pmtklox_data, line), FIELD_INTEGER, 1, 0},
 };
 static const layout_field pmtklox_data_group_fields[] = {
-    {"word", "hex number", NULL, 0, FIELD_HEX, 1, 0},
+    {ERROR_TEXT("word"), ERROR_TEXT("hex number"), NULL, 0, FIELD_HEX, 1, 0},
 };
 static const layout_group pmtklox_data_group = {
-    .id = "words", .fields = pmtklox_data_group_fields, .field_count = 1, .width = 1, .min = 1, .max = 24,
-    .single = true, .offset = offsetof(nmea_pmtklox_data, words), .entry_size = sizeof(nmea_hex),
+    .id = ERROR_TEXT("words"), .fields = pmtklox_data_group_fields, .field_count = 1, .width = 1, .min = 1,
+    .max = 24, .single = true, .offset = offsetof(nmea_pmtklox_data, words), .entry_size = sizeof(nmea_hex),
     .count_offset = offsetof(nmea_pmtklox_data, words.count),
 };
 static const layout pmtklox_data_layout = {
@@ -24534,7 +24605,7 @@ size_t nmea_build_pmtklox_data(const nmea_pmtklox_data *s, char *buf, size_t cap
 
 /* $PMTKLOX,2*47 */
 static const layout_field pmtklox_end_fields[] = {
-    {"type", "2", "2", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("2"), "2", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pmtklox_end_layout = {
     .sentence = "PMTKLOX_END", .address = "PMTKLOX", .selector = "2", .fields = pmtklox_end_fields,
@@ -24564,8 +24635,8 @@ size_t nmea_build_pmtklox_end(const nmea_pmtklox_end *s, char *buf, size_t cap, 
 
 /* $PMTKLOX,0,3*5A */
 static const layout_field pmtklox_start_fields[] = {
-    {"type", "0", "0", 0, FIELD_KEYWORD, 1, 0},
-    {"lines", "integer", NULL, offsetof(nmea_pmtklox_start, lines), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("0"), "0", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("lines"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pmtklox_start, lines), FIELD_INTEGER, 1, 0},
 };
 static const layout pmtklox_start_layout = {
     .sentence = "PMTKLOX_START", .address = "PMTKLOX", .selector = "0", .fields = pmtklox_start_fields,
@@ -24595,22 +24666,22 @@ size_t nmea_build_pmtklox_start(const nmea_pmtklox_start *s, char *buf, size_t c
 
 /* $PQGSV,4,1,15,02,20,116,,03,,,,05,34,137,,07,06,045,,0,4*58 */
 static const layout_field pqgsv_fields[] = {
-    {"message_count", "integer", NULL, offsetof(nmea_pqgsv, message_count), FIELD_INTEGER, 1, 0},
-    {"message_number", "integer", NULL, offsetof(nmea_pqgsv, message_number), FIELD_INTEGER, 1, 0},
-    {"satellites_in_view", "integer", NULL, offsetof(nmea_pqgsv, satellites_in_view), FIELD_INTEGER, 1, 0},
-    {"signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", &nmea_signal_id_def, offsetof(nmea_pqgsv, signal_id), FIELD_ENUM, 1, 0},
-    {"system", "system_id code (1 2 3 4 5 6 F)", &nmea_system_id_def, offsetof(nmea_pqgsv, system), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("message_count"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqgsv, message_count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqgsv, message_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("satellites_in_view"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqgsv, satellites_in_view), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("signal_id"), ERROR_TEXT("signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)"), &nmea_signal_id_def, offsetof(nmea_pqgsv, signal_id), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("system"), ERROR_TEXT("system_id code (1 2 3 4 5 6 F)"), &nmea_system_id_def, offsetof(nmea_pqgsv, system), FIELD_ENUM, 1, 0},
 };
 static const layout_field pqgsv_group_fields[] = {
-    {"prn", "integer", NULL, offsetof(nmea_pqgsv_satellite, prn), FIELD_INTEGER, 1, 0},
-    {"elevation", "integer 0..90", &range_0_to_90, offsetof(nmea_pqgsv_satellite, elevation), FIELD_INTEGER, 1, 0},
-    {"azimuth", "integer 0..359", &range_0_to_359, offsetof(nmea_pqgsv_satellite, azimuth), FIELD_INTEGER, 1, 0},
-    {"snr", "integer", NULL, offsetof(nmea_pqgsv_satellite, snr), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqgsv_satellite, prn), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("elevation"), ERROR_TEXT("integer 0..90"), &range_0_to_90, offsetof(nmea_pqgsv_satellite, elevation), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("azimuth"), ERROR_TEXT("integer 0..359"), &range_0_to_359, offsetof(nmea_pqgsv_satellite, azimuth), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("snr"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqgsv_satellite, snr), FIELD_INTEGER, 1, 0},
 };
 static const layout_group pqgsv_group = {
-    .id = "satellites", .fields = pqgsv_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 4,
-    .single = false, .offset = offsetof(nmea_pqgsv, satellites), .entry_size = sizeof(nmea_pqgsv_satellite),
-    .count_offset = offsetof(nmea_pqgsv, satellites.count),
+    .id = ERROR_TEXT("satellites"), .fields = pqgsv_group_fields, .field_count = 4, .width = 4, .min = 0,
+    .max = 4, .single = false, .offset = offsetof(nmea_pqgsv, satellites),
+    .entry_size = sizeof(nmea_pqgsv_satellite), .count_offset = offsetof(nmea_pqgsv, satellites.count),
 };
 static const layout pqgsv_layout = {
     .sentence = "PQGSV", .address = "PQGSV", .fields = pqgsv_fields, .group = &pqgsv_group, .before = 3,
@@ -24718,9 +24789,9 @@ size_t nmea_build_pqgsv(const nmea_pqgsv *s, char *buf, size_t cap, nmea_error *
 
 /* $PQTMANTENNASTATUS,1,1,1*4E */
 static const layout_field pqtmantennastatus_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmantennastatus, msg_version), FIELD_INTEGER, 1, 0},
-    {"status", "quectel_antenna_status code (0 1 2 3)", &nmea_quectel_antenna_status_def, offsetof(nmea_pqtmantennastatus, status), FIELD_ENUM, 1, 0},
-    {"power", "quectel_antenna_power code (0 1 2)", &nmea_quectel_antenna_power_def, offsetof(nmea_pqtmantennastatus, power), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmantennastatus, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("quectel_antenna_status code (0 1 2 3)"), &nmea_quectel_antenna_status_def, offsetof(nmea_pqtmantennastatus, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("power"), ERROR_TEXT("quectel_antenna_power code (0 1 2)"), &nmea_quectel_antenna_power_def, offsetof(nmea_pqtmantennastatus, power), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmantennastatus_layout = {
     .sentence = "PQTMANTENNASTATUS", .address = "PQTMANTENNASTATUS", .fields = pqtmantennastatus_fields,
@@ -24790,10 +24861,10 @@ size_t nmea_build_pqtmantennastatus(const nmea_pqtmantennastatus *s, char *buf, 
 
 /* $PQTMCFGANTDELTA,W,0.0000,0.0000,0.0000*10 */
 static const layout_field pqtmcfgantdelta_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"east", "decimal number -200..200", &range_minus_200_to_200, offsetof(nmea_pqtmcfgantdelta, east), FIELD_DECIMAL, 1, 0},
-    {"north", "decimal number -200..200", &range_minus_200_to_200, offsetof(nmea_pqtmcfgantdelta, north), FIELD_DECIMAL, 1, 0},
-    {"height", "decimal number 0..6.5535", &range_0_to_6p5535, offsetof(nmea_pqtmcfgantdelta, height), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("east"), ERROR_TEXT("decimal number -200..200"), &range_minus_200_to_200, offsetof(nmea_pqtmcfgantdelta, east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("north"), ERROR_TEXT("decimal number -200..200"), &range_minus_200_to_200, offsetof(nmea_pqtmcfgantdelta, north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("height"), ERROR_TEXT("decimal number 0..6.5535"), &range_0_to_6p5535, offsetof(nmea_pqtmcfgantdelta, height), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgantdelta_layout = {
     .sentence = "PQTMCFGANTDELTA", .address = "PQTMCFGANTDELTA", .selector = "W",
@@ -24823,7 +24894,7 @@ size_t nmea_build_pqtmcfgantdelta(const nmea_pqtmcfgantdelta *s, char *buf, size
 
 /* $PQTMCFGANTDELTA,R*27 */
 static const layout_field pqtmcfgantdelta_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgantdelta_read_layout = {
     .sentence = "PQTMCFGANTDELTA", .address = "PQTMCFGANTDELTA", .variant = "read", .selector = "R",
@@ -24853,10 +24924,10 @@ size_t nmea_build_pqtmcfgantdelta_read(const nmea_pqtmcfgantdelta_read *s, char 
 
 /* $PQTMCFGANTDELTA,OK,0.0000,0.0000,0.0000*43 */
 static const layout_field pqtmcfgantdelta_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"east", "decimal number -200..200", &range_minus_200_to_200, offsetof(nmea_pqtmcfgantdelta_result, east), FIELD_DECIMAL, 1, 0},
-    {"north", "decimal number -200..200", &range_minus_200_to_200, offsetof(nmea_pqtmcfgantdelta_result, north), FIELD_DECIMAL, 1, 0},
-    {"height", "decimal number 0..6.5535", &range_0_to_6p5535, offsetof(nmea_pqtmcfgantdelta_result, height), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("east"), ERROR_TEXT("decimal number -200..200"), &range_minus_200_to_200, offsetof(nmea_pqtmcfgantdelta_result, east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("north"), ERROR_TEXT("decimal number -200..200"), &range_minus_200_to_200, offsetof(nmea_pqtmcfgantdelta_result, north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("height"), ERROR_TEXT("decimal number 0..6.5535"), &range_0_to_6p5535, offsetof(nmea_pqtmcfgantdelta_result, height), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgantdelta_result_layout = {
     .sentence = "PQTMCFGANTDELTA_RESULT", .address = "PQTMCFGANTDELTA", .selector = "OK",
@@ -24886,7 +24957,7 @@ size_t nmea_build_pqtmcfgantdelta_result(const nmea_pqtmcfgantdelta_result *s, c
 
 /* $PQTMCFGANTDELTA,OK*71 */
 static const layout_field pqtmcfgantdelta_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgantdelta_result_ack_layout = {
     .sentence = "PQTMCFGANTDELTA_RESULT", .address = "PQTMCFGANTDELTA", .variant = "ack", .selector = "OK",
@@ -24914,8 +24985,8 @@ size_t nmea_build_pqtmcfgantdelta_result_ack(const nmea_pqtmcfgantdelta_result_a
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGANTDELTA_RESULT (Command failed): Configure antenna offset: result (spec/proprietary/pqtmcfgantdelta_result.yaml) */
 static const layout_field pqtmcfgantdelta_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgantdelta_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgantdelta_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgantdelta_result_error_layout = {
     .sentence = "PQTMCFGANTDELTA_RESULT", .address = "PQTMCFGANTDELTA", .variant = "error", .selector = "ERROR",
@@ -24945,10 +25016,10 @@ size_t nmea_build_pqtmcfgantdelta_result_error(const nmea_pqtmcfgantdelta_result
 
 /* $PQTMCFGANTINF,W,,0,*27 */
 static const layout_field pqtmcfgantinf_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"description", "text of at most 31 characters", NULL, offsetof(nmea_pqtmcfgantinf, description), FIELD_TEXT, 1, 31},
-    {"setup_id", "integer 0..255", &range_0_to_255, offsetof(nmea_pqtmcfgantinf, setup_id), FIELD_INTEGER, 1, 0},
-    {"serial_number", "text of at most 31 characters", NULL, offsetof(nmea_pqtmcfgantinf, serial_number), FIELD_TEXT, 1, 31},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("description"), ERROR_TEXT("text of at most 31 characters"), NULL, offsetof(nmea_pqtmcfgantinf, description), FIELD_TEXT, 1, 31},
+    {ERROR_TEXT("setup_id"), ERROR_TEXT("integer 0..255"), &range_0_to_255, offsetof(nmea_pqtmcfgantinf, setup_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("serial_number"), ERROR_TEXT("text of at most 31 characters"), NULL, offsetof(nmea_pqtmcfgantinf, serial_number), FIELD_TEXT, 1, 31},
 };
 static const layout pqtmcfgantinf_layout = {
     .sentence = "PQTMCFGANTINF", .address = "PQTMCFGANTINF", .selector = "W", .fields = pqtmcfgantinf_fields,
@@ -24978,7 +25049,7 @@ size_t nmea_build_pqtmcfgantinf(const nmea_pqtmcfgantinf *s, char *buf, size_t c
 
 /* $PQTMCFGANTINF,R*3E */
 static const layout_field pqtmcfgantinf_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgantinf_read_layout = {
     .sentence = "PQTMCFGANTINF", .address = "PQTMCFGANTINF", .variant = "read", .selector = "R",
@@ -25008,10 +25079,10 @@ size_t nmea_build_pqtmcfgantinf_read(const nmea_pqtmcfgantinf_read *s, char *buf
 
 /* $PQTMCFGANTINF,OK,,0,*74 */
 static const layout_field pqtmcfgantinf_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"description", "text of at most 31 characters", NULL, offsetof(nmea_pqtmcfgantinf_result, description), FIELD_TEXT, 1, 31},
-    {"setup_id", "integer 0..255", &range_0_to_255, offsetof(nmea_pqtmcfgantinf_result, setup_id), FIELD_INTEGER, 1, 0},
-    {"serial_number", "text of at most 31 characters", NULL, offsetof(nmea_pqtmcfgantinf_result, serial_number), FIELD_TEXT, 1, 31},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("description"), ERROR_TEXT("text of at most 31 characters"), NULL, offsetof(nmea_pqtmcfgantinf_result, description), FIELD_TEXT, 1, 31},
+    {ERROR_TEXT("setup_id"), ERROR_TEXT("integer 0..255"), &range_0_to_255, offsetof(nmea_pqtmcfgantinf_result, setup_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("serial_number"), ERROR_TEXT("text of at most 31 characters"), NULL, offsetof(nmea_pqtmcfgantinf_result, serial_number), FIELD_TEXT, 1, 31},
 };
 static const layout pqtmcfgantinf_result_layout = {
     .sentence = "PQTMCFGANTINF_RESULT", .address = "PQTMCFGANTINF", .selector = "OK",
@@ -25041,7 +25112,7 @@ size_t nmea_build_pqtmcfgantinf_result(const nmea_pqtmcfgantinf_result *s, char 
 
 /* $PQTMCFGANTINF,OK*68 */
 static const layout_field pqtmcfgantinf_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgantinf_result_ack_layout = {
     .sentence = "PQTMCFGANTINF_RESULT", .address = "PQTMCFGANTINF", .variant = "ack", .selector = "OK",
@@ -25069,8 +25140,8 @@ size_t nmea_build_pqtmcfgantinf_result_ack(const nmea_pqtmcfgantinf_result_ack *
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGANTINF_RESULT (Command failed): Configure antenna information: result (spec/proprietary/pqtmcfgantinf_result.yaml) */
 static const layout_field pqtmcfgantinf_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgantinf_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgantinf_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgantinf_result_error_layout = {
     .sentence = "PQTMCFGANTINF_RESULT", .address = "PQTMCFGANTINF", .variant = "error", .selector = "ERROR",
@@ -25100,8 +25171,8 @@ size_t nmea_build_pqtmcfgantinf_result_error(const nmea_pqtmcfgantinf_result_err
 
 /* $PQTMCFGBLD,W,1.000*68 */
 static const layout_field pqtmcfgbld_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"distance", "decimal number 0..5", &range_0_to_5, offsetof(nmea_pqtmcfgbld, distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("distance"), ERROR_TEXT("decimal number 0..5"), &range_0_to_5, offsetof(nmea_pqtmcfgbld, distance), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgbld_layout = {
     .sentence = "PQTMCFGBLD", .address = "PQTMCFGBLD", .selector = "W", .fields = pqtmcfgbld_fields,
@@ -25131,7 +25202,7 @@ size_t nmea_build_pqtmcfgbld(const nmea_pqtmcfgbld *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGBLD,R*6E */
 static const layout_field pqtmcfgbld_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgbld_read_layout = {
     .sentence = "PQTMCFGBLD", .address = "PQTMCFGBLD", .variant = "read", .selector = "R",
@@ -25161,8 +25232,8 @@ size_t nmea_build_pqtmcfgbld_read(const nmea_pqtmcfgbld_read *s, char *buf, size
 
 /* $PQTMCFGBLD,OK,1.000*3B */
 static const layout_field pqtmcfgbld_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"distance", "decimal number 0..5", &range_0_to_5, offsetof(nmea_pqtmcfgbld_result, distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("distance"), ERROR_TEXT("decimal number 0..5"), &range_0_to_5, offsetof(nmea_pqtmcfgbld_result, distance), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgbld_result_layout = {
     .sentence = "PQTMCFGBLD_RESULT", .address = "PQTMCFGBLD", .selector = "OK",
@@ -25192,7 +25263,7 @@ size_t nmea_build_pqtmcfgbld_result(const nmea_pqtmcfgbld_result *s, char *buf, 
 
 /* $PQTMCFGBLD,OK*38 */
 static const layout_field pqtmcfgbld_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgbld_result_ack_layout = {
     .sentence = "PQTMCFGBLD_RESULT", .address = "PQTMCFGBLD", .variant = "ack", .selector = "OK",
@@ -25220,8 +25291,8 @@ size_t nmea_build_pqtmcfgbld_result_ack(const nmea_pqtmcfgbld_result_ack *s, cha
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGBLD_RESULT (Command failed): Configure antenna baseline: result (spec/proprietary/pqtmcfgbld_result.yaml) */
 static const layout_field pqtmcfgbld_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgbld_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgbld_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgbld_result_error_layout = {
     .sentence = "PQTMCFGBLD_RESULT", .address = "PQTMCFGBLD", .variant = "error", .selector = "ERROR",
@@ -25251,8 +25322,8 @@ size_t nmea_build_pqtmcfgbld_result_error(const nmea_pqtmcfgbld_result_error *s,
 
 /* $PQTMCFGCNRTHD,W,10.0*15 */
 static const layout_field pqtmcfgcnrthd_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"threshold", "decimal number 0..99", &range_0_to_99, offsetof(nmea_pqtmcfgcnrthd, threshold), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("threshold"), ERROR_TEXT("decimal number 0..99"), &range_0_to_99, offsetof(nmea_pqtmcfgcnrthd, threshold), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgcnrthd_layout = {
     .sentence = "PQTMCFGCNRTHD", .address = "PQTMCFGCNRTHD", .selector = "W", .fields = pqtmcfgcnrthd_fields,
@@ -25282,7 +25353,7 @@ size_t nmea_build_pqtmcfgcnrthd(const nmea_pqtmcfgcnrthd *s, char *buf, size_t c
 
 /* $PQTMCFGCNRTHD,R*23 */
 static const layout_field pqtmcfgcnrthd_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgcnrthd_read_layout = {
     .sentence = "PQTMCFGCNRTHD", .address = "PQTMCFGCNRTHD", .variant = "read", .selector = "R",
@@ -25312,8 +25383,8 @@ size_t nmea_build_pqtmcfgcnrthd_read(const nmea_pqtmcfgcnrthd_read *s, char *buf
 
 /* $PQTMCFGCNRTHD,OK,10.0*46 */
 static const layout_field pqtmcfgcnrthd_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"threshold", "decimal number 0..99", &range_0_to_99, offsetof(nmea_pqtmcfgcnrthd_result, threshold), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("threshold"), ERROR_TEXT("decimal number 0..99"), &range_0_to_99, offsetof(nmea_pqtmcfgcnrthd_result, threshold), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgcnrthd_result_layout = {
     .sentence = "PQTMCFGCNRTHD_RESULT", .address = "PQTMCFGCNRTHD", .selector = "OK",
@@ -25343,7 +25414,7 @@ size_t nmea_build_pqtmcfgcnrthd_result(const nmea_pqtmcfgcnrthd_result *s, char 
 
 /* $PQTMCFGCNRTHD,OK*75 */
 static const layout_field pqtmcfgcnrthd_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgcnrthd_result_ack_layout = {
     .sentence = "PQTMCFGCNRTHD_RESULT", .address = "PQTMCFGCNRTHD", .variant = "ack", .selector = "OK",
@@ -25371,8 +25442,8 @@ size_t nmea_build_pqtmcfgcnrthd_result_ack(const nmea_pqtmcfgcnrthd_result_ack *
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGCNRTHD_RESULT (Command failed): Configure C/N0 threshold: result (spec/proprietary/pqtmcfgcnrthd_result.yaml) */
 static const layout_field pqtmcfgcnrthd_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgcnrthd_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgcnrthd_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgcnrthd_result_error_layout = {
     .sentence = "PQTMCFGCNRTHD_RESULT", .address = "PQTMCFGCNRTHD", .variant = "error", .selector = "ERROR",
@@ -25402,13 +25473,13 @@ size_t nmea_build_pqtmcfgcnrthd_result_error(const nmea_pqtmcfgcnrthd_result_err
 
 /* $PQTMCFGCNST,W,1,1,1,1,0,0*2B */
 static const layout_field pqtmcfgcnst_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"gps", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, gps), FIELD_ENUM, 1, 0},
-    {"glonass", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, glonass), FIELD_ENUM, 1, 0},
-    {"galileo", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, galileo), FIELD_ENUM, 1, 0},
-    {"bds", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, bds), FIELD_ENUM, 1, 0},
-    {"qzss", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, qzss), FIELD_ENUM, 1, 0},
-    {"navic", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, navic), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("gps"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, gps), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("glonass"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, glonass), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("galileo"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, galileo), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("bds"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, bds), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("qzss"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, qzss), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("navic"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst, navic), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgcnst_layout = {
     .sentence = "PQTMCFGCNST", .address = "PQTMCFGCNST", .selector = "W", .fields = pqtmcfgcnst_fields,
@@ -25438,7 +25509,7 @@ size_t nmea_build_pqtmcfgcnst(const nmea_pqtmcfgcnst *s, char *buf, size_t cap, 
 
 /* $PQTMCFGCNST,R*2E */
 static const layout_field pqtmcfgcnst_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgcnst_read_layout = {
     .sentence = "PQTMCFGCNST", .address = "PQTMCFGCNST", .variant = "read", .selector = "R",
@@ -25468,13 +25539,13 @@ size_t nmea_build_pqtmcfgcnst_read(const nmea_pqtmcfgcnst_read *s, char *buf, si
 
 /* $PQTMCFGCNST,OK,1,1,1,1,0,0*78 */
 static const layout_field pqtmcfgcnst_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"gps", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, gps), FIELD_ENUM, 1, 0},
-    {"glonass", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, glonass), FIELD_ENUM, 1, 0},
-    {"galileo", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, galileo), FIELD_ENUM, 1, 0},
-    {"bds", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, bds), FIELD_ENUM, 1, 0},
-    {"qzss", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, qzss), FIELD_ENUM, 1, 0},
-    {"navic", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, navic), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("gps"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, gps), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("glonass"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, glonass), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("galileo"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, galileo), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("bds"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, bds), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("qzss"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, qzss), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("navic"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgcnst_result, navic), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgcnst_result_layout = {
     .sentence = "PQTMCFGCNST_RESULT", .address = "PQTMCFGCNST", .selector = "OK",
@@ -25504,7 +25575,7 @@ size_t nmea_build_pqtmcfgcnst_result(const nmea_pqtmcfgcnst_result *s, char *buf
 
 /* $PQTMCFGCNST,OK*78 */
 static const layout_field pqtmcfgcnst_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgcnst_result_ack_layout = {
     .sentence = "PQTMCFGCNST_RESULT", .address = "PQTMCFGCNST", .variant = "ack", .selector = "OK",
@@ -25532,8 +25603,8 @@ size_t nmea_build_pqtmcfgcnst_result_ack(const nmea_pqtmcfgcnst_result_ack *s, c
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGCNST_RESULT (Command failed): Configure constellations: result (spec/proprietary/pqtmcfgcnst_result.yaml) */
 static const layout_field pqtmcfgcnst_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgcnst_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgcnst_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgcnst_result_error_layout = {
     .sentence = "PQTMCFGCNST_RESULT", .address = "PQTMCFGCNST", .variant = "error", .selector = "ERROR",
@@ -25563,8 +25634,8 @@ size_t nmea_build_pqtmcfgcnst_result_error(const nmea_pqtmcfgcnst_result_error *
 
 /* $PQTMCFGELETHD,W,5.0*32 */
 static const layout_field pqtmcfgelethd_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"elevation", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmcfgelethd, elevation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("elevation"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmcfgelethd, elevation), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgelethd_layout = {
     .sentence = "PQTMCFGELETHD", .address = "PQTMCFGELETHD", .selector = "W", .fields = pqtmcfgelethd_fields,
@@ -25594,7 +25665,7 @@ size_t nmea_build_pqtmcfgelethd(const nmea_pqtmcfgelethd *s, char *buf, size_t c
 
 /* $PQTMCFGELETHD,R*30 */
 static const layout_field pqtmcfgelethd_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgelethd_read_layout = {
     .sentence = "PQTMCFGELETHD", .address = "PQTMCFGELETHD", .variant = "read", .selector = "R",
@@ -25624,8 +25695,8 @@ size_t nmea_build_pqtmcfgelethd_read(const nmea_pqtmcfgelethd_read *s, char *buf
 
 /* $PQTMCFGELETHD,OK,5.0*61 */
 static const layout_field pqtmcfgelethd_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"elevation", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmcfgelethd_result, elevation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("elevation"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmcfgelethd_result, elevation), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgelethd_result_layout = {
     .sentence = "PQTMCFGELETHD_RESULT", .address = "PQTMCFGELETHD", .selector = "OK",
@@ -25655,7 +25726,7 @@ size_t nmea_build_pqtmcfgelethd_result(const nmea_pqtmcfgelethd_result *s, char 
 
 /* $PQTMCFGELETHD,OK*66 */
 static const layout_field pqtmcfgelethd_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgelethd_result_ack_layout = {
     .sentence = "PQTMCFGELETHD_RESULT", .address = "PQTMCFGELETHD", .variant = "ack", .selector = "OK",
@@ -25683,8 +25754,8 @@ size_t nmea_build_pqtmcfgelethd_result_ack(const nmea_pqtmcfgelethd_result_ack *
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGELETHD_RESULT (Command failed): Configure elevation threshold: result (spec/proprietary/pqtmcfgelethd_result.yaml) */
 static const layout_field pqtmcfgelethd_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgelethd_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgelethd_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgelethd_result_error_layout = {
     .sentence = "PQTMCFGELETHD_RESULT", .address = "PQTMCFGELETHD", .variant = "error", .selector = "ERROR",
@@ -25714,8 +25785,8 @@ size_t nmea_build_pqtmcfgelethd_result_error(const nmea_pqtmcfgelethd_result_err
 
 /* $PQTMCFGFIXRATE,W,1000*59 */
 static const layout_field pqtmcfgfixrate_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"fix_interval", "integer", NULL, offsetof(nmea_pqtmcfgfixrate, fix_interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("fix_interval"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgfixrate, fix_interval), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgfixrate_layout = {
     .sentence = "PQTMCFGFIXRATE", .address = "PQTMCFGFIXRATE", .selector = "W", .fields = pqtmcfgfixrate_fields,
@@ -25745,7 +25816,7 @@ size_t nmea_build_pqtmcfgfixrate(const nmea_pqtmcfgfixrate *s, char *buf, size_t
 
 /* $PQTMCFGFIXRATE,R*71 */
 static const layout_field pqtmcfgfixrate_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgfixrate_read_layout = {
     .sentence = "PQTMCFGFIXRATE", .address = "PQTMCFGFIXRATE", .variant = "read", .selector = "R",
@@ -25775,8 +25846,8 @@ size_t nmea_build_pqtmcfgfixrate_read(const nmea_pqtmcfgfixrate_read *s, char *b
 
 /* $PQTMCFGFIXRATE,OK,1000*0A */
 static const layout_field pqtmcfgfixrate_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"fix_interval", "integer", NULL, offsetof(nmea_pqtmcfgfixrate_result, fix_interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("fix_interval"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgfixrate_result, fix_interval), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgfixrate_result_layout = {
     .sentence = "PQTMCFGFIXRATE_RESULT", .address = "PQTMCFGFIXRATE", .selector = "OK",
@@ -25806,7 +25877,7 @@ size_t nmea_build_pqtmcfgfixrate_result(const nmea_pqtmcfgfixrate_result *s, cha
 
 /* $PQTMCFGFIXRATE,OK*27 */
 static const layout_field pqtmcfgfixrate_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgfixrate_result_ack_layout = {
     .sentence = "PQTMCFGFIXRATE_RESULT", .address = "PQTMCFGFIXRATE", .variant = "ack", .selector = "OK",
@@ -25834,8 +25905,8 @@ size_t nmea_build_pqtmcfgfixrate_result_ack(const nmea_pqtmcfgfixrate_result_ack
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGFIXRATE_RESULT (Command failed): Configure fix interval: result (spec/proprietary/pqtmcfgfixrate_result.yaml) */
 static const layout_field pqtmcfgfixrate_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgfixrate_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgfixrate_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgfixrate_result_error_layout = {
     .sentence = "PQTMCFGFIXRATE_RESULT", .address = "PQTMCFGFIXRATE", .variant = "error", .selector = "ERROR",
@@ -25865,19 +25936,19 @@ size_t nmea_build_pqtmcfgfixrate_result_error(const nmea_pqtmcfgfixrate_result_e
 
 /* $PQTMCFGGEOFENCE,W,0,1,0,0,31.451248,117.451245,100.5*18 */
 static const layout_field pqtmcfggeofence_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"index", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfggeofence, index), FIELD_INTEGER, 1, 0},
-    {"mode", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfggeofence, mode), FIELD_ENUM, 1, 0},
-    {"reserved", "integer", NULL, offsetof(nmea_pqtmcfggeofence, reserved), FIELD_INTEGER, 1, 0},
-    {"shape", "quectel_geofence_shape code (0 1 2 3)", &nmea_quectel_geofence_shape_def, offsetof(nmea_pqtmcfggeofence, shape), FIELD_ENUM, 1, 0},
-    {"lat0", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence, lat0), FIELD_DECIMAL, 1, 0},
-    {"lon0", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence, lon0), FIELD_DECIMAL, 1, 0},
-    {"lat1_or_radius", "decimal number", NULL, offsetof(nmea_pqtmcfggeofence, lat1_or_radius), FIELD_DECIMAL, 1, 0},
-    {"lon1", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence, lon1), FIELD_DECIMAL, 1, 0},
-    {"lat2", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence, lat2), FIELD_DECIMAL, 1, 0},
-    {"lon2", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence, lon2), FIELD_DECIMAL, 1, 0},
-    {"lat3", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence, lat3), FIELD_DECIMAL, 1, 0},
-    {"lon3", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence, lon3), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("index"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfggeofence, index), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfggeofence, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfggeofence, reserved), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("shape"), ERROR_TEXT("quectel_geofence_shape code (0 1 2 3)"), &nmea_quectel_geofence_shape_def, offsetof(nmea_pqtmcfggeofence, shape), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lat0"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence, lat0), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon0"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence, lon0), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat1_or_radius"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfggeofence, lat1_or_radius), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon1"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence, lon1), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat2"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence, lat2), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon2"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence, lon2), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat3"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence, lat3), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon3"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence, lon3), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfggeofence_layout = {
     .sentence = "PQTMCFGGEOFENCE", .address = "PQTMCFGGEOFENCE", .selector = "W",
@@ -25908,8 +25979,8 @@ size_t nmea_build_pqtmcfggeofence(const nmea_pqtmcfggeofence *s, char *buf, size
 
 /* $PQTMCFGGEOFENCE,R,0*3E */
 static const layout_field pqtmcfggeofence_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
-    {"index", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfggeofence_read, index), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("index"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfggeofence_read, index), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfggeofence_read_layout = {
     .sentence = "PQTMCFGGEOFENCE", .address = "PQTMCFGGEOFENCE", .variant = "read", .selector = "R",
@@ -25939,19 +26010,19 @@ size_t nmea_build_pqtmcfggeofence_read(const nmea_pqtmcfggeofence_read *s, char 
 
 /* $PQTMCFGGEOFENCE,OK,0,1,0,0,31.451248,117.451245,100.5*4B */
 static const layout_field pqtmcfggeofence_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"index", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfggeofence_result, index), FIELD_INTEGER, 1, 0},
-    {"mode", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfggeofence_result, mode), FIELD_ENUM, 1, 0},
-    {"reserved", "integer", NULL, offsetof(nmea_pqtmcfggeofence_result, reserved), FIELD_INTEGER, 1, 0},
-    {"shape", "quectel_geofence_shape code (0 1 2 3)", &nmea_quectel_geofence_shape_def, offsetof(nmea_pqtmcfggeofence_result, shape), FIELD_ENUM, 1, 0},
-    {"lat0", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence_result, lat0), FIELD_DECIMAL, 1, 0},
-    {"lon0", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence_result, lon0), FIELD_DECIMAL, 1, 0},
-    {"lat1_or_radius", "decimal number", NULL, offsetof(nmea_pqtmcfggeofence_result, lat1_or_radius), FIELD_DECIMAL, 1, 0},
-    {"lon1", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence_result, lon1), FIELD_DECIMAL, 1, 0},
-    {"lat2", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence_result, lat2), FIELD_DECIMAL, 1, 0},
-    {"lon2", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence_result, lon2), FIELD_DECIMAL, 1, 0},
-    {"lat3", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence_result, lat3), FIELD_DECIMAL, 1, 0},
-    {"lon3", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence_result, lon3), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("index"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfggeofence_result, index), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfggeofence_result, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfggeofence_result, reserved), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("shape"), ERROR_TEXT("quectel_geofence_shape code (0 1 2 3)"), &nmea_quectel_geofence_shape_def, offsetof(nmea_pqtmcfggeofence_result, shape), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lat0"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence_result, lat0), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon0"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence_result, lon0), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat1_or_radius"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfggeofence_result, lat1_or_radius), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon1"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence_result, lon1), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat2"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence_result, lat2), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon2"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence_result, lon2), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lat3"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmcfggeofence_result, lat3), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon3"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pqtmcfggeofence_result, lon3), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfggeofence_result_layout = {
     .sentence = "PQTMCFGGEOFENCE_RESULT", .address = "PQTMCFGGEOFENCE", .selector = "OK",
@@ -25982,7 +26053,7 @@ size_t nmea_build_pqtmcfggeofence_result(const nmea_pqtmcfggeofence_result *s, c
 
 /* $PQTMCFGGEOFENCE,OK*74 */
 static const layout_field pqtmcfggeofence_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfggeofence_result_ack_layout = {
     .sentence = "PQTMCFGGEOFENCE_RESULT", .address = "PQTMCFGGEOFENCE", .variant = "ack", .selector = "OK",
@@ -26010,8 +26081,8 @@ size_t nmea_build_pqtmcfggeofence_result_ack(const nmea_pqtmcfggeofence_result_a
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGGEOFENCE_RESULT (Command failed): Configure geofence: result (spec/proprietary/pqtmcfggeofence_result.yaml) */
 static const layout_field pqtmcfggeofence_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfggeofence_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfggeofence_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfggeofence_result_error_layout = {
     .sentence = "PQTMCFGGEOFENCE_RESULT", .address = "PQTMCFGGEOFENCE", .variant = "error", .selector = "ERROR",
@@ -26041,9 +26112,9 @@ size_t nmea_build_pqtmcfggeofence_result_error(const nmea_pqtmcfggeofence_result
 
 /* $PQTMCFGGEOSEP,W,0,0.0000*04 */
 static const layout_field pqtmcfggeosep_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"mode", "quectel_geosep_mode code (0 1)", &nmea_quectel_geosep_mode_def, offsetof(nmea_pqtmcfggeosep, mode), FIELD_ENUM, 1, 0},
-    {"separation", "decimal number -1000..1000", &range_minus_1000_to_1000, offsetof(nmea_pqtmcfggeosep, separation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("quectel_geosep_mode code (0 1)"), &nmea_quectel_geosep_mode_def, offsetof(nmea_pqtmcfggeosep, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("separation"), ERROR_TEXT("decimal number -1000..1000"), &range_minus_1000_to_1000, offsetof(nmea_pqtmcfggeosep, separation), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfggeosep_layout = {
     .sentence = "PQTMCFGGEOSEP", .address = "PQTMCFGGEOSEP", .selector = "W", .fields = pqtmcfggeosep_fields,
@@ -26073,7 +26144,7 @@ size_t nmea_build_pqtmcfggeosep(const nmea_pqtmcfggeosep *s, char *buf, size_t c
 
 /* $PQTMCFGGEOSEP,R*2F */
 static const layout_field pqtmcfggeosep_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfggeosep_read_layout = {
     .sentence = "PQTMCFGGEOSEP", .address = "PQTMCFGGEOSEP", .variant = "read", .selector = "R",
@@ -26103,9 +26174,9 @@ size_t nmea_build_pqtmcfggeosep_read(const nmea_pqtmcfggeosep_read *s, char *buf
 
 /* $PQTMCFGGEOSEP,OK,0,0.0000*57 */
 static const layout_field pqtmcfggeosep_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"mode", "quectel_geosep_mode code (0 1)", &nmea_quectel_geosep_mode_def, offsetof(nmea_pqtmcfggeosep_result, mode), FIELD_ENUM, 1, 0},
-    {"separation", "decimal number -1000..1000", &range_minus_1000_to_1000, offsetof(nmea_pqtmcfggeosep_result, separation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("quectel_geosep_mode code (0 1)"), &nmea_quectel_geosep_mode_def, offsetof(nmea_pqtmcfggeosep_result, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("separation"), ERROR_TEXT("decimal number -1000..1000"), &range_minus_1000_to_1000, offsetof(nmea_pqtmcfggeosep_result, separation), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfggeosep_result_layout = {
     .sentence = "PQTMCFGGEOSEP_RESULT", .address = "PQTMCFGGEOSEP", .selector = "OK",
@@ -26135,7 +26206,7 @@ size_t nmea_build_pqtmcfggeosep_result(const nmea_pqtmcfggeosep_result *s, char 
 
 /* $PQTMCFGGEOSEP,OK*79 */
 static const layout_field pqtmcfggeosep_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfggeosep_result_ack_layout = {
     .sentence = "PQTMCFGGEOSEP_RESULT", .address = "PQTMCFGGEOSEP", .variant = "ack", .selector = "OK",
@@ -26163,8 +26234,8 @@ size_t nmea_build_pqtmcfggeosep_result_ack(const nmea_pqtmcfggeosep_result_ack *
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGGEOSEP_RESULT (Command failed): Configure geoidal separation: result (spec/proprietary/pqtmcfggeosep_result.yaml) */
 static const layout_field pqtmcfggeosep_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfggeosep_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfggeosep_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfggeosep_result_error_layout = {
     .sentence = "PQTMCFGGEOSEP_RESULT", .address = "PQTMCFGGEOSEP", .variant = "error", .selector = "ERROR",
@@ -26194,10 +26265,10 @@ size_t nmea_build_pqtmcfggeosep_result_error(const nmea_pqtmcfggeosep_result_err
 
 /* $PQTMCFGMSGRATE,W,PQTMEPE,1,2*1D */
 static const layout_field pqtmcfgmsgrate_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"message", "text", NULL, offsetof(nmea_pqtmcfgmsgrate, message), FIELD_TEXT, 1, 0},
-    {"rate", "integer 0..1200", &range_0_to_1200, offsetof(nmea_pqtmcfgmsgrate, rate), FIELD_INTEGER, 1, 0},
-    {"version_or_offset", "integer", NULL, offsetof(nmea_pqtmcfgmsgrate, version_or_offset), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmcfgmsgrate, message), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("rate"), ERROR_TEXT("integer 0..1200"), &range_0_to_1200, offsetof(nmea_pqtmcfgmsgrate, rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("version_or_offset"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgmsgrate, version_or_offset), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgmsgrate_layout = {
     .sentence = "PQTMCFGMSGRATE", .address = "PQTMCFGMSGRATE", .selector = "W", .fields = pqtmcfgmsgrate_fields,
@@ -26228,12 +26299,12 @@ size_t nmea_build_pqtmcfgmsgrate(const nmea_pqtmcfgmsgrate *s, char *buf, size_t
 
 /* $PQTMCFGMSGRATE,W,1,1,0AB2,1,1*57 */
 static const layout_field pqtmcfgmsgrate_port_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"port_type", "quectel_port_type code (1)", &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgmsgrate_port, port_type), FIELD_ENUM, 1, 0},
-    {"port_id", "integer 1..3", &range_1_to_3, offsetof(nmea_pqtmcfgmsgrate_port, port_id), FIELD_INTEGER, 1, 0},
-    {"message", "text", NULL, offsetof(nmea_pqtmcfgmsgrate_port, message), FIELD_TEXT, 1, 0},
-    {"rate", "integer 0..1200", &range_0_to_1200, offsetof(nmea_pqtmcfgmsgrate_port, rate), FIELD_INTEGER, 1, 0},
-    {"version_or_offset", "integer", NULL, offsetof(nmea_pqtmcfgmsgrate_port, version_or_offset), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port_type"), ERROR_TEXT("quectel_port_type code (1)"), &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgmsgrate_port, port_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("port_id"), ERROR_TEXT("integer 1..3"), &range_1_to_3, offsetof(nmea_pqtmcfgmsgrate_port, port_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmcfgmsgrate_port, message), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("rate"), ERROR_TEXT("integer 0..1200"), &range_0_to_1200, offsetof(nmea_pqtmcfgmsgrate_port, rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("version_or_offset"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgmsgrate_port, version_or_offset), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgmsgrate_port_layout = {
     .sentence = "PQTMCFGMSGRATE", .address = "PQTMCFGMSGRATE", .variant = "port", .selector = "W",
@@ -26264,11 +26335,11 @@ size_t nmea_build_pqtmcfgmsgrate_port(const nmea_pqtmcfgmsgrate_port *s, char *b
 
 /* $PQTMCFGMSGRATE,R,1,1,0AB2,1*4F */
 static const layout_field pqtmcfgmsgrate_read_port_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
-    {"port_type", "quectel_port_type code (1)", &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgmsgrate_read_port, port_type), FIELD_ENUM, 1, 0},
-    {"port_id", "integer 1..3", &range_1_to_3, offsetof(nmea_pqtmcfgmsgrate_read_port, port_id), FIELD_INTEGER, 1, 0},
-    {"message", "text", NULL, offsetof(nmea_pqtmcfgmsgrate_read_port, message), FIELD_TEXT, 1, 0},
-    {"version_or_offset", "integer", NULL, offsetof(nmea_pqtmcfgmsgrate_read_port, version_or_offset), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port_type"), ERROR_TEXT("quectel_port_type code (1)"), &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgmsgrate_read_port, port_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("port_id"), ERROR_TEXT("integer 1..3"), &range_1_to_3, offsetof(nmea_pqtmcfgmsgrate_read_port, port_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmcfgmsgrate_read_port, message), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("version_or_offset"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgmsgrate_read_port, version_or_offset), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgmsgrate_read_port_layout = {
     .sentence = "PQTMCFGMSGRATE", .address = "PQTMCFGMSGRATE", .variant = "read_port", .selector = "R",
@@ -26299,9 +26370,9 @@ size_t nmea_build_pqtmcfgmsgrate_read_port(const nmea_pqtmcfgmsgrate_read_port *
 
 /* $PQTMCFGMSGRATE,R,PQTMEPE,2*05 */
 static const layout_field pqtmcfgmsgrate_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
-    {"message", "text", NULL, offsetof(nmea_pqtmcfgmsgrate_read, message), FIELD_TEXT, 1, 0},
-    {"version_or_offset", "integer", NULL, offsetof(nmea_pqtmcfgmsgrate_read, version_or_offset), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmcfgmsgrate_read, message), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("version_or_offset"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgmsgrate_read, version_or_offset), FIELD_INTEGER, 1, 0},
 };
 static const uint16_t pqtmcfgmsgrate_read_same_as_main[] = {2, 0};
 static const layout pqtmcfgmsgrate_read_layout = {
@@ -26334,10 +26405,10 @@ size_t nmea_build_pqtmcfgmsgrate_read(const nmea_pqtmcfgmsgrate_read *s, char *b
 
 /* $PQTMCFGMSGRATE,OK,PQTMEPE,1,2*4E */
 static const layout_field pqtmcfgmsgrate_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"message", "text", NULL, offsetof(nmea_pqtmcfgmsgrate_result, message), FIELD_TEXT, 1, 0},
-    {"rate", "integer 0..1200", &range_0_to_1200, offsetof(nmea_pqtmcfgmsgrate_result, rate), FIELD_INTEGER, 1, 0},
-    {"version_or_offset", "integer", NULL, offsetof(nmea_pqtmcfgmsgrate_result, version_or_offset), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmcfgmsgrate_result, message), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("rate"), ERROR_TEXT("integer 0..1200"), &range_0_to_1200, offsetof(nmea_pqtmcfgmsgrate_result, rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("version_or_offset"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgmsgrate_result, version_or_offset), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgmsgrate_result_layout = {
     .sentence = "PQTMCFGMSGRATE_RESULT", .address = "PQTMCFGMSGRATE", .selector = "OK",
@@ -26368,12 +26439,12 @@ size_t nmea_build_pqtmcfgmsgrate_result(const nmea_pqtmcfgmsgrate_result *s, cha
 
 /* $PQTMCFGMSGRATE,OK,1,1,0AB2,1,1*04 */
 static const layout_field pqtmcfgmsgrate_result_port_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"port_type", "quectel_port_type code (1)", &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgmsgrate_result_port, port_type), FIELD_ENUM, 1, 0},
-    {"port_id", "integer 1..3", &range_1_to_3, offsetof(nmea_pqtmcfgmsgrate_result_port, port_id), FIELD_INTEGER, 1, 0},
-    {"message", "text", NULL, offsetof(nmea_pqtmcfgmsgrate_result_port, message), FIELD_TEXT, 1, 0},
-    {"rate", "integer 0..1200", &range_0_to_1200, offsetof(nmea_pqtmcfgmsgrate_result_port, rate), FIELD_INTEGER, 1, 0},
-    {"version_or_offset", "integer", NULL, offsetof(nmea_pqtmcfgmsgrate_result_port, version_or_offset), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port_type"), ERROR_TEXT("quectel_port_type code (1)"), &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgmsgrate_result_port, port_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("port_id"), ERROR_TEXT("integer 1..3"), &range_1_to_3, offsetof(nmea_pqtmcfgmsgrate_result_port, port_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmcfgmsgrate_result_port, message), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("rate"), ERROR_TEXT("integer 0..1200"), &range_0_to_1200, offsetof(nmea_pqtmcfgmsgrate_result_port, rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("version_or_offset"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgmsgrate_result_port, version_or_offset), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgmsgrate_result_port_layout = {
     .sentence = "PQTMCFGMSGRATE_RESULT", .address = "PQTMCFGMSGRATE", .variant = "port", .selector = "OK",
@@ -26404,7 +26475,7 @@ size_t nmea_build_pqtmcfgmsgrate_result_port(const nmea_pqtmcfgmsgrate_result_po
 
 /* $PQTMCFGMSGRATE,OK*29 */
 static const layout_field pqtmcfgmsgrate_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgmsgrate_result_ack_layout = {
     .sentence = "PQTMCFGMSGRATE_RESULT", .address = "PQTMCFGMSGRATE", .variant = "ack", .selector = "OK",
@@ -26432,8 +26503,8 @@ size_t nmea_build_pqtmcfgmsgrate_result_ack(const nmea_pqtmcfgmsgrate_result_ack
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGMSGRATE_RESULT (Command failed): Configure message output rate: result (spec/proprietary/pqtmcfgmsgrate_result.yaml) */
 static const layout_field pqtmcfgmsgrate_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgmsgrate_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgmsgrate_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgmsgrate_result_error_layout = {
     .sentence = "PQTMCFGMSGRATE_RESULT", .address = "PQTMCFGMSGRATE", .variant = "error", .selector = "ERROR",
@@ -26463,13 +26534,13 @@ size_t nmea_build_pqtmcfgmsgrate_result_error(const nmea_pqtmcfgmsgrate_result_e
 
 /* $PQTMCFGNMEADP,W,3,8,3,2,3,2*39 */
 static const layout_field pqtmcfgnmeadp_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"utc_decimals", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp, utc_decimals), FIELD_INTEGER, 1, 0},
-    {"position_decimals", "integer 0..8", &range_0_to_8, offsetof(nmea_pqtmcfgnmeadp, position_decimals), FIELD_INTEGER, 1, 0},
-    {"altitude_decimals", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp, altitude_decimals), FIELD_INTEGER, 1, 0},
-    {"dop_decimals", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp, dop_decimals), FIELD_INTEGER, 1, 0},
-    {"speed_decimals", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp, speed_decimals), FIELD_INTEGER, 1, 0},
-    {"cog_decimals", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp, cog_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("utc_decimals"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp, utc_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("position_decimals"), ERROR_TEXT("integer 0..8"), &range_0_to_8, offsetof(nmea_pqtmcfgnmeadp, position_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("altitude_decimals"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp, altitude_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("dop_decimals"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp, dop_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("speed_decimals"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp, speed_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("cog_decimals"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp, cog_decimals), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgnmeadp_layout = {
     .sentence = "PQTMCFGNMEADP", .address = "PQTMCFGNMEADP", .selector = "W", .fields = pqtmcfgnmeadp_fields,
@@ -26499,7 +26570,7 @@ size_t nmea_build_pqtmcfgnmeadp(const nmea_pqtmcfgnmeadp *s, char *buf, size_t c
 
 /* $PQTMCFGNMEADP,R*37 */
 static const layout_field pqtmcfgnmeadp_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgnmeadp_read_layout = {
     .sentence = "PQTMCFGNMEADP", .address = "PQTMCFGNMEADP", .variant = "read", .selector = "R",
@@ -26529,13 +26600,13 @@ size_t nmea_build_pqtmcfgnmeadp_read(const nmea_pqtmcfgnmeadp_read *s, char *buf
 
 /* $PQTMCFGNMEADP,OK,3,8,3,2,3,2*6A */
 static const layout_field pqtmcfgnmeadp_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"utc_decimals", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp_result, utc_decimals), FIELD_INTEGER, 1, 0},
-    {"position_decimals", "integer 0..8", &range_0_to_8, offsetof(nmea_pqtmcfgnmeadp_result, position_decimals), FIELD_INTEGER, 1, 0},
-    {"altitude_decimals", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp_result, altitude_decimals), FIELD_INTEGER, 1, 0},
-    {"dop_decimals", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp_result, dop_decimals), FIELD_INTEGER, 1, 0},
-    {"speed_decimals", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp_result, speed_decimals), FIELD_INTEGER, 1, 0},
-    {"cog_decimals", "integer 0..3", &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp_result, cog_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("utc_decimals"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp_result, utc_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("position_decimals"), ERROR_TEXT("integer 0..8"), &range_0_to_8, offsetof(nmea_pqtmcfgnmeadp_result, position_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("altitude_decimals"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp_result, altitude_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("dop_decimals"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp_result, dop_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("speed_decimals"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp_result, speed_decimals), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("cog_decimals"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_pqtmcfgnmeadp_result, cog_decimals), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgnmeadp_result_layout = {
     .sentence = "PQTMCFGNMEADP_RESULT", .address = "PQTMCFGNMEADP", .selector = "OK",
@@ -26565,7 +26636,7 @@ size_t nmea_build_pqtmcfgnmeadp_result(const nmea_pqtmcfgnmeadp_result *s, char 
 
 /* $PQTMCFGNMEADP,OK*61 */
 static const layout_field pqtmcfgnmeadp_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgnmeadp_result_ack_layout = {
     .sentence = "PQTMCFGNMEADP_RESULT", .address = "PQTMCFGNMEADP", .variant = "ack", .selector = "OK",
@@ -26593,8 +26664,8 @@ size_t nmea_build_pqtmcfgnmeadp_result_ack(const nmea_pqtmcfgnmeadp_result_ack *
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGNMEADP_RESULT (Command failed): Configure NMEA decimal places: result (spec/proprietary/pqtmcfgnmeadp_result.yaml) */
 static const layout_field pqtmcfgnmeadp_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgnmeadp_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgnmeadp_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgnmeadp_result_error_layout = {
     .sentence = "PQTMCFGNMEADP_RESULT", .address = "PQTMCFGNMEADP", .variant = "error", .selector = "ERROR",
@@ -26624,9 +26695,9 @@ size_t nmea_build_pqtmcfgnmeadp_result_error(const nmea_pqtmcfgnmeadp_result_err
 
 /* $PQTMCFGNMEATID,W,GP,0*58 */
 static const layout_field pqtmcfgnmeatid_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"main_talker", "text of at most 2 characters", NULL, offsetof(nmea_pqtmcfgnmeatid, main_talker), FIELD_TEXT, 1, 2},
-    {"gsv_talker", "quectel_gsv_talker code (0 1)", &nmea_quectel_gsv_talker_def, offsetof(nmea_pqtmcfgnmeatid, gsv_talker), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("main_talker"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_pqtmcfgnmeatid, main_talker), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("gsv_talker"), ERROR_TEXT("quectel_gsv_talker code (0 1)"), &nmea_quectel_gsv_talker_def, offsetof(nmea_pqtmcfgnmeatid, gsv_talker), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgnmeatid_layout = {
     .sentence = "PQTMCFGNMEATID", .address = "PQTMCFGNMEATID", .selector = "W", .fields = pqtmcfgnmeatid_fields,
@@ -26656,7 +26727,7 @@ size_t nmea_build_pqtmcfgnmeatid(const nmea_pqtmcfgnmeatid *s, char *buf, size_t
 
 /* $PQTMCFGNMEATID,R*7A */
 static const layout_field pqtmcfgnmeatid_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgnmeatid_read_layout = {
     .sentence = "PQTMCFGNMEATID", .address = "PQTMCFGNMEATID", .variant = "read", .selector = "R",
@@ -26686,9 +26757,9 @@ size_t nmea_build_pqtmcfgnmeatid_read(const nmea_pqtmcfgnmeatid_read *s, char *b
 
 /* $PQTMCFGNMEATID,OK,GP,0*0B */
 static const layout_field pqtmcfgnmeatid_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"main_talker", "text of at most 2 characters", NULL, offsetof(nmea_pqtmcfgnmeatid_result, main_talker), FIELD_TEXT, 1, 2},
-    {"gsv_talker", "quectel_gsv_talker code (0 1)", &nmea_quectel_gsv_talker_def, offsetof(nmea_pqtmcfgnmeatid_result, gsv_talker), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("main_talker"), ERROR_TEXT("text of at most 2 characters"), NULL, offsetof(nmea_pqtmcfgnmeatid_result, main_talker), FIELD_TEXT, 1, 2},
+    {ERROR_TEXT("gsv_talker"), ERROR_TEXT("quectel_gsv_talker code (0 1)"), &nmea_quectel_gsv_talker_def, offsetof(nmea_pqtmcfgnmeatid_result, gsv_talker), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgnmeatid_result_layout = {
     .sentence = "PQTMCFGNMEATID_RESULT", .address = "PQTMCFGNMEATID", .selector = "OK",
@@ -26718,7 +26789,7 @@ size_t nmea_build_pqtmcfgnmeatid_result(const nmea_pqtmcfgnmeatid_result *s, cha
 
 /* $PQTMCFGNMEATID,OK*2C */
 static const layout_field pqtmcfgnmeatid_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgnmeatid_result_ack_layout = {
     .sentence = "PQTMCFGNMEATID_RESULT", .address = "PQTMCFGNMEATID", .variant = "ack", .selector = "OK",
@@ -26746,8 +26817,8 @@ size_t nmea_build_pqtmcfgnmeatid_result_ack(const nmea_pqtmcfgnmeatid_result_ack
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGNMEATID_RESULT (Command failed): Configure NMEA talker ID: result (spec/proprietary/pqtmcfgnmeatid_result.yaml) */
 static const layout_field pqtmcfgnmeatid_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgnmeatid_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgnmeatid_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgnmeatid_result_error_layout = {
     .sentence = "PQTMCFGNMEATID_RESULT", .address = "PQTMCFGNMEATID", .variant = "error", .selector = "ERROR",
@@ -26777,9 +26848,9 @@ size_t nmea_build_pqtmcfgnmeatid_result_error(const nmea_pqtmcfgnmeatid_result_e
 
 /* $PQTMCFGODO,W,1,10.5*4E */
 static const layout_field pqtmcfgodo_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"state", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgodo, state), FIELD_ENUM, 1, 0},
-    {"initial_distance", "decimal number", NULL, offsetof(nmea_pqtmcfgodo, initial_distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("state"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgodo, state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("initial_distance"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgodo, initial_distance), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgodo_layout = {
     .sentence = "PQTMCFGODO", .address = "PQTMCFGODO", .selector = "W", .fields = pqtmcfgodo_fields,
@@ -26809,7 +26880,7 @@ size_t nmea_build_pqtmcfgodo(const nmea_pqtmcfgodo *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGODO,R*60 */
 static const layout_field pqtmcfgodo_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgodo_read_layout = {
     .sentence = "PQTMCFGODO", .address = "PQTMCFGODO", .variant = "read", .selector = "R",
@@ -26839,9 +26910,9 @@ size_t nmea_build_pqtmcfgodo_read(const nmea_pqtmcfgodo_read *s, char *buf, size
 
 /* $PQTMCFGODO,OK,1,10.5*1D */
 static const layout_field pqtmcfgodo_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"state", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgodo_result, state), FIELD_ENUM, 1, 0},
-    {"initial_distance", "decimal number", NULL, offsetof(nmea_pqtmcfgodo_result, initial_distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("state"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgodo_result, state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("initial_distance"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgodo_result, initial_distance), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgodo_result_layout = {
     .sentence = "PQTMCFGODO_RESULT", .address = "PQTMCFGODO", .selector = "OK",
@@ -26871,7 +26942,7 @@ size_t nmea_build_pqtmcfgodo_result(const nmea_pqtmcfgodo_result *s, char *buf, 
 
 /* $PQTMCFGODO,OK*36 */
 static const layout_field pqtmcfgodo_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgodo_result_ack_layout = {
     .sentence = "PQTMCFGODO_RESULT", .address = "PQTMCFGODO", .variant = "ack", .selector = "OK",
@@ -26899,8 +26970,8 @@ size_t nmea_build_pqtmcfgodo_result_ack(const nmea_pqtmcfgodo_result_ack *s, cha
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGODO_RESULT (Command failed): Configure odometer: result (spec/proprietary/pqtmcfgodo_result.yaml) */
 static const layout_field pqtmcfgodo_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgodo_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgodo_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgodo_result_error_layout = {
     .sentence = "PQTMCFGODO_RESULT", .address = "PQTMCFGODO", .variant = "error", .selector = "ERROR",
@@ -26930,13 +27001,13 @@ size_t nmea_build_pqtmcfgodo_result_error(const nmea_pqtmcfgodo_result_error *s,
 
 /* $PQTMCFGPPS,W,1,1,100,1,1,0*73 */
 static const layout_field pqtmcfgpps_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"index", "integer 1..1", &range_1_to_1, offsetof(nmea_pqtmcfgpps, index), FIELD_INTEGER, 1, 0},
-    {"enable", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgpps, enable), FIELD_ENUM, 1, 0},
-    {"duration", "integer 0..900", &range_0_to_900, offsetof(nmea_pqtmcfgpps, duration), FIELD_INTEGER, 1, 0},
-    {"mode", "quectel_pps_mode code (1 2)", &nmea_quectel_pps_mode_def, offsetof(nmea_pqtmcfgpps, mode), FIELD_ENUM, 1, 0},
-    {"polarity", "quectel_pps_polarity code (0 1)", &nmea_quectel_pps_polarity_def, offsetof(nmea_pqtmcfgpps, polarity), FIELD_ENUM, 1, 0},
-    {"reserved", "integer", NULL, offsetof(nmea_pqtmcfgpps, reserved), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("index"), ERROR_TEXT("integer 1..1"), &range_1_to_1, offsetof(nmea_pqtmcfgpps, index), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("enable"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgpps, enable), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("duration"), ERROR_TEXT("integer 0..900"), &range_0_to_900, offsetof(nmea_pqtmcfgpps, duration), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("quectel_pps_mode code (1 2)"), &nmea_quectel_pps_mode_def, offsetof(nmea_pqtmcfgpps, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("polarity"), ERROR_TEXT("quectel_pps_polarity code (0 1)"), &nmea_quectel_pps_polarity_def, offsetof(nmea_pqtmcfgpps, polarity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgpps, reserved), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgpps_layout = {
     .sentence = "PQTMCFGPPS", .address = "PQTMCFGPPS", .selector = "W", .fields = pqtmcfgpps_fields,
@@ -26967,8 +27038,8 @@ size_t nmea_build_pqtmcfgpps(const nmea_pqtmcfgpps *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGPPS,R,1*6A */
 static const layout_field pqtmcfgpps_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
-    {"index", "integer 1..1", &range_1_to_1, offsetof(nmea_pqtmcfgpps_read, index), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("index"), ERROR_TEXT("integer 1..1"), &range_1_to_1, offsetof(nmea_pqtmcfgpps_read, index), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgpps_read_layout = {
     .sentence = "PQTMCFGPPS", .address = "PQTMCFGPPS", .variant = "read", .selector = "R",
@@ -26998,13 +27069,13 @@ size_t nmea_build_pqtmcfgpps_read(const nmea_pqtmcfgpps_read *s, char *buf, size
 
 /* $PQTMCFGPPS,OK,1,1,100,1,1,0*20 */
 static const layout_field pqtmcfgpps_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"index", "integer 1..1", &range_1_to_1, offsetof(nmea_pqtmcfgpps_result, index), FIELD_INTEGER, 1, 0},
-    {"enable", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgpps_result, enable), FIELD_ENUM, 1, 0},
-    {"duration", "integer 0..900", &range_0_to_900, offsetof(nmea_pqtmcfgpps_result, duration), FIELD_INTEGER, 1, 0},
-    {"mode", "quectel_pps_mode code (1 2)", &nmea_quectel_pps_mode_def, offsetof(nmea_pqtmcfgpps_result, mode), FIELD_ENUM, 1, 0},
-    {"polarity", "quectel_pps_polarity code (0 1)", &nmea_quectel_pps_polarity_def, offsetof(nmea_pqtmcfgpps_result, polarity), FIELD_ENUM, 1, 0},
-    {"reserved", "integer", NULL, offsetof(nmea_pqtmcfgpps_result, reserved), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("index"), ERROR_TEXT("integer 1..1"), &range_1_to_1, offsetof(nmea_pqtmcfgpps_result, index), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("enable"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmcfgpps_result, enable), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("duration"), ERROR_TEXT("integer 0..900"), &range_0_to_900, offsetof(nmea_pqtmcfgpps_result, duration), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("quectel_pps_mode code (1 2)"), &nmea_quectel_pps_mode_def, offsetof(nmea_pqtmcfgpps_result, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("polarity"), ERROR_TEXT("quectel_pps_polarity code (0 1)"), &nmea_quectel_pps_polarity_def, offsetof(nmea_pqtmcfgpps_result, polarity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgpps_result, reserved), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgpps_result_layout = {
     .sentence = "PQTMCFGPPS_RESULT", .address = "PQTMCFGPPS", .selector = "OK",
@@ -27035,7 +27106,7 @@ size_t nmea_build_pqtmcfgpps_result(const nmea_pqtmcfgpps_result *s, char *buf, 
 
 /* $PQTMCFGPPS,OK*21 */
 static const layout_field pqtmcfgpps_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgpps_result_ack_layout = {
     .sentence = "PQTMCFGPPS_RESULT", .address = "PQTMCFGPPS", .variant = "ack", .selector = "OK",
@@ -27063,8 +27134,8 @@ size_t nmea_build_pqtmcfgpps_result_ack(const nmea_pqtmcfgpps_result_ack *s, cha
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGPPS_RESULT (Command failed): Configure PPS: result (spec/proprietary/pqtmcfgpps_result.yaml) */
 static const layout_field pqtmcfgpps_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgpps_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgpps_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgpps_result_error_layout = {
     .sentence = "PQTMCFGPPS_RESULT", .address = "PQTMCFGPPS", .variant = "error", .selector = "ERROR",
@@ -27094,11 +27165,11 @@ size_t nmea_build_pqtmcfgpps_result_error(const nmea_pqtmcfgpps_result_error *s,
 
 /* $PQTMCFGPROT,W,1,1,00000005,00000005*38 */
 static const layout_field pqtmcfgprot_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"port_type", "quectel_port_type code (1)", &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgprot, port_type), FIELD_ENUM, 1, 0},
-    {"port_id", "integer 1..3", &range_1_to_3, offsetof(nmea_pqtmcfgprot, port_id), FIELD_INTEGER, 1, 0},
-    {"input_protocols", "hex number", NULL, offsetof(nmea_pqtmcfgprot, input_protocols), FIELD_HEX, 1, 0},
-    {"output_protocols", "hex number", NULL, offsetof(nmea_pqtmcfgprot, output_protocols), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port_type"), ERROR_TEXT("quectel_port_type code (1)"), &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgprot, port_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("port_id"), ERROR_TEXT("integer 1..3"), &range_1_to_3, offsetof(nmea_pqtmcfgprot, port_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("input_protocols"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgprot, input_protocols), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("output_protocols"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgprot, output_protocols), FIELD_HEX, 1, 0},
 };
 static const layout pqtmcfgprot_layout = {
     .sentence = "PQTMCFGPROT", .address = "PQTMCFGPROT", .selector = "W", .fields = pqtmcfgprot_fields,
@@ -27128,9 +27199,9 @@ size_t nmea_build_pqtmcfgprot(const nmea_pqtmcfgprot *s, char *buf, size_t cap, 
 
 /* $PQTMCFGPROT,R,1,1*3D */
 static const layout_field pqtmcfgprot_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
-    {"port_type", "quectel_port_type code (1)", &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgprot_read, port_type), FIELD_ENUM, 1, 0},
-    {"port_id", "integer 1..3", &range_1_to_3, offsetof(nmea_pqtmcfgprot_read, port_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port_type"), ERROR_TEXT("quectel_port_type code (1)"), &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgprot_read, port_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("port_id"), ERROR_TEXT("integer 1..3"), &range_1_to_3, offsetof(nmea_pqtmcfgprot_read, port_id), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgprot_read_layout = {
     .sentence = "PQTMCFGPROT", .address = "PQTMCFGPROT", .variant = "read", .selector = "R",
@@ -27160,11 +27231,11 @@ size_t nmea_build_pqtmcfgprot_read(const nmea_pqtmcfgprot_read *s, char *buf, si
 
 /* $PQTMCFGPROT,OK,1,1,00000005,00000005*6B */
 static const layout_field pqtmcfgprot_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"port_type", "quectel_port_type code (1)", &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgprot_result, port_type), FIELD_ENUM, 1, 0},
-    {"port_id", "integer 1..3", &range_1_to_3, offsetof(nmea_pqtmcfgprot_result, port_id), FIELD_INTEGER, 1, 0},
-    {"input_protocols", "hex number", NULL, offsetof(nmea_pqtmcfgprot_result, input_protocols), FIELD_HEX, 1, 0},
-    {"output_protocols", "hex number", NULL, offsetof(nmea_pqtmcfgprot_result, output_protocols), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port_type"), ERROR_TEXT("quectel_port_type code (1)"), &nmea_quectel_port_type_def, offsetof(nmea_pqtmcfgprot_result, port_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("port_id"), ERROR_TEXT("integer 1..3"), &range_1_to_3, offsetof(nmea_pqtmcfgprot_result, port_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("input_protocols"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgprot_result, input_protocols), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("output_protocols"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgprot_result, output_protocols), FIELD_HEX, 1, 0},
 };
 static const layout pqtmcfgprot_result_layout = {
     .sentence = "PQTMCFGPROT_RESULT", .address = "PQTMCFGPROT", .selector = "OK",
@@ -27194,7 +27265,7 @@ size_t nmea_build_pqtmcfgprot_result(const nmea_pqtmcfgprot_result *s, char *buf
 
 /* $PQTMCFGPROT,OK*6B */
 static const layout_field pqtmcfgprot_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgprot_result_ack_layout = {
     .sentence = "PQTMCFGPROT_RESULT", .address = "PQTMCFGPROT", .variant = "ack", .selector = "OK",
@@ -27222,8 +27293,8 @@ size_t nmea_build_pqtmcfgprot_result_ack(const nmea_pqtmcfgprot_result_ack *s, c
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGPROT_RESULT (Command failed): Configure port protocols: result (spec/proprietary/pqtmcfgprot_result.yaml) */
 static const layout_field pqtmcfgprot_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgprot_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgprot_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgprot_result_error_layout = {
     .sentence = "PQTMCFGPROT_RESULT", .address = "PQTMCFGPROT", .variant = "error", .selector = "ERROR",
@@ -27253,8 +27324,8 @@ size_t nmea_build_pqtmcfgprot_result_error(const nmea_pqtmcfgprot_result_error *
 
 /* $PQTMCFGRCVRMODE,W,2*29 */
 static const layout_field pqtmcfgrcvrmode_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"mode", "quectel_receiver_mode code (0 1 2)", &nmea_quectel_receiver_mode_def, offsetof(nmea_pqtmcfgrcvrmode, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("quectel_receiver_mode code (0 1 2)"), &nmea_quectel_receiver_mode_def, offsetof(nmea_pqtmcfgrcvrmode, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgrcvrmode_layout = {
     .sentence = "PQTMCFGRCVRMODE", .address = "PQTMCFGRCVRMODE", .selector = "W",
@@ -27284,7 +27355,7 @@ size_t nmea_build_pqtmcfgrcvrmode(const nmea_pqtmcfgrcvrmode *s, char *buf, size
 
 /* $PQTMCFGRCVRMODE,R*32 */
 static const layout_field pqtmcfgrcvrmode_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgrcvrmode_read_layout = {
     .sentence = "PQTMCFGRCVRMODE", .address = "PQTMCFGRCVRMODE", .variant = "read", .selector = "R",
@@ -27314,8 +27385,8 @@ size_t nmea_build_pqtmcfgrcvrmode_read(const nmea_pqtmcfgrcvrmode_read *s, char 
 
 /* $PQTMCFGRCVRMODE,OK,2*7A */
 static const layout_field pqtmcfgrcvrmode_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"mode", "quectel_receiver_mode code (0 1 2)", &nmea_quectel_receiver_mode_def, offsetof(nmea_pqtmcfgrcvrmode_result, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("quectel_receiver_mode code (0 1 2)"), &nmea_quectel_receiver_mode_def, offsetof(nmea_pqtmcfgrcvrmode_result, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgrcvrmode_result_layout = {
     .sentence = "PQTMCFGRCVRMODE_RESULT", .address = "PQTMCFGRCVRMODE", .selector = "OK",
@@ -27345,7 +27416,7 @@ size_t nmea_build_pqtmcfgrcvrmode_result(const nmea_pqtmcfgrcvrmode_result *s, c
 
 /* $PQTMCFGRCVRMODE,OK*64 */
 static const layout_field pqtmcfgrcvrmode_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgrcvrmode_result_ack_layout = {
     .sentence = "PQTMCFGRCVRMODE_RESULT", .address = "PQTMCFGRCVRMODE", .variant = "ack", .selector = "OK",
@@ -27373,8 +27444,8 @@ size_t nmea_build_pqtmcfgrcvrmode_result_ack(const nmea_pqtmcfgrcvrmode_result_a
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGRCVRMODE_RESULT (Command failed): Configure receiver mode: result (spec/proprietary/pqtmcfgrcvrmode_result.yaml) */
 static const layout_field pqtmcfgrcvrmode_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgrcvrmode_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgrcvrmode_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgrcvrmode_result_error_layout = {
     .sentence = "PQTMCFGRCVRMODE_RESULT", .address = "PQTMCFGRCVRMODE", .variant = "error", .selector = "ERROR",
@@ -27404,8 +27475,8 @@ size_t nmea_build_pqtmcfgrcvrmode_result_error(const nmea_pqtmcfgrcvrmode_result
 
 /* $PQTMCFGRSID,W,1024*06 */
 static const layout_field pqtmcfgrsid_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"station_id", "integer 0..4095", &range_0_to_4095, offsetof(nmea_pqtmcfgrsid, station_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("station_id"), ERROR_TEXT("integer 0..4095"), &range_0_to_4095, offsetof(nmea_pqtmcfgrsid, station_id), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgrsid_layout = {
     .sentence = "PQTMCFGRSID", .address = "PQTMCFGRSID", .selector = "W", .fields = pqtmcfgrsid_fields,
@@ -27435,7 +27506,7 @@ size_t nmea_build_pqtmcfgrsid(const nmea_pqtmcfgrsid *s, char *buf, size_t cap, 
 
 /* $PQTMCFGRSID,R*28 */
 static const layout_field pqtmcfgrsid_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgrsid_read_layout = {
     .sentence = "PQTMCFGRSID", .address = "PQTMCFGRSID", .variant = "read", .selector = "R",
@@ -27465,8 +27536,8 @@ size_t nmea_build_pqtmcfgrsid_read(const nmea_pqtmcfgrsid_read *s, char *buf, si
 
 /* $PQTMCFGRSID,OK,1024*55 */
 static const layout_field pqtmcfgrsid_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"station_id", "integer 0..4095", &range_0_to_4095, offsetof(nmea_pqtmcfgrsid_result, station_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("station_id"), ERROR_TEXT("integer 0..4095"), &range_0_to_4095, offsetof(nmea_pqtmcfgrsid_result, station_id), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgrsid_result_layout = {
     .sentence = "PQTMCFGRSID_RESULT", .address = "PQTMCFGRSID", .selector = "OK",
@@ -27496,7 +27567,7 @@ size_t nmea_build_pqtmcfgrsid_result(const nmea_pqtmcfgrsid_result *s, char *buf
 
 /* $PQTMCFGRSID,OK*7E */
 static const layout_field pqtmcfgrsid_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgrsid_result_ack_layout = {
     .sentence = "PQTMCFGRSID_RESULT", .address = "PQTMCFGRSID", .variant = "ack", .selector = "OK",
@@ -27524,8 +27595,8 @@ size_t nmea_build_pqtmcfgrsid_result_ack(const nmea_pqtmcfgrsid_result_ack *s, c
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGRSID_RESULT (Command failed): Configure reference station ID: result (spec/proprietary/pqtmcfgrsid_result.yaml) */
 static const layout_field pqtmcfgrsid_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgrsid_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgrsid_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgrsid_result_error_layout = {
     .sentence = "PQTMCFGRSID_RESULT", .address = "PQTMCFGRSID", .variant = "error", .selector = "ERROR",
@@ -27555,14 +27626,14 @@ size_t nmea_build_pqtmcfgrsid_result_error(const nmea_pqtmcfgrsid_result_error *
 
 /* $PQTMCFGRTCM,W,4,0,-90.0,07,06,1,0*3B */
 static const layout_field pqtmcfgrtcm_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"msm_type", "integer 3..7", &range_3_to_7, offsetof(nmea_pqtmcfgrtcm, msm_type), FIELD_INTEGER, 1, 0},
-    {"msm_mode", "integer 0..0", &range_0_to_0, offsetof(nmea_pqtmcfgrtcm, msm_mode), FIELD_INTEGER, 1, 0},
-    {"msm_elevation", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmcfgrtcm, msm_elevation), FIELD_DECIMAL, 1, 0},
-    {"reserved1", "text", NULL, offsetof(nmea_pqtmcfgrtcm, reserved1), FIELD_TEXT, 1, 0},
-    {"reserved2", "text", NULL, offsetof(nmea_pqtmcfgrtcm, reserved2), FIELD_TEXT, 1, 0},
-    {"eph_mode", "quectel_rtcm_eph_mode code (0 1 2 3)", &nmea_quectel_rtcm_eph_mode_def, offsetof(nmea_pqtmcfgrtcm, eph_mode), FIELD_ENUM, 1, 0},
-    {"eph_interval", "integer 0..7200", &range_0_to_7200, offsetof(nmea_pqtmcfgrtcm, eph_interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("msm_type"), ERROR_TEXT("integer 3..7"), &range_3_to_7, offsetof(nmea_pqtmcfgrtcm, msm_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msm_mode"), ERROR_TEXT("integer 0..0"), &range_0_to_0, offsetof(nmea_pqtmcfgrtcm, msm_mode), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msm_elevation"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmcfgrtcm, msm_elevation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved1"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmcfgrtcm, reserved1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved2"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmcfgrtcm, reserved2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("eph_mode"), ERROR_TEXT("quectel_rtcm_eph_mode code (0 1 2 3)"), &nmea_quectel_rtcm_eph_mode_def, offsetof(nmea_pqtmcfgrtcm, eph_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("eph_interval"), ERROR_TEXT("integer 0..7200"), &range_0_to_7200, offsetof(nmea_pqtmcfgrtcm, eph_interval), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgrtcm_layout = {
     .sentence = "PQTMCFGRTCM", .address = "PQTMCFGRTCM", .selector = "W", .fields = pqtmcfgrtcm_fields,
@@ -27592,7 +27663,7 @@ size_t nmea_build_pqtmcfgrtcm(const nmea_pqtmcfgrtcm *s, char *buf, size_t cap, 
 
 /* $PQTMCFGRTCM,R*2C */
 static const layout_field pqtmcfgrtcm_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgrtcm_read_layout = {
     .sentence = "PQTMCFGRTCM", .address = "PQTMCFGRTCM", .variant = "read", .selector = "R",
@@ -27622,14 +27693,14 @@ size_t nmea_build_pqtmcfgrtcm_read(const nmea_pqtmcfgrtcm_read *s, char *buf, si
 
 /* $PQTMCFGRTCM,OK,4,0,-90.0,07,06,1,0*68 */
 static const layout_field pqtmcfgrtcm_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"msm_type", "integer 3..7", &range_3_to_7, offsetof(nmea_pqtmcfgrtcm_result, msm_type), FIELD_INTEGER, 1, 0},
-    {"msm_mode", "integer 0..0", &range_0_to_0, offsetof(nmea_pqtmcfgrtcm_result, msm_mode), FIELD_INTEGER, 1, 0},
-    {"msm_elevation", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmcfgrtcm_result, msm_elevation), FIELD_DECIMAL, 1, 0},
-    {"reserved1", "text", NULL, offsetof(nmea_pqtmcfgrtcm_result, reserved1), FIELD_TEXT, 1, 0},
-    {"reserved2", "text", NULL, offsetof(nmea_pqtmcfgrtcm_result, reserved2), FIELD_TEXT, 1, 0},
-    {"eph_mode", "quectel_rtcm_eph_mode code (0 1 2 3)", &nmea_quectel_rtcm_eph_mode_def, offsetof(nmea_pqtmcfgrtcm_result, eph_mode), FIELD_ENUM, 1, 0},
-    {"eph_interval", "integer 0..7200", &range_0_to_7200, offsetof(nmea_pqtmcfgrtcm_result, eph_interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("msm_type"), ERROR_TEXT("integer 3..7"), &range_3_to_7, offsetof(nmea_pqtmcfgrtcm_result, msm_type), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msm_mode"), ERROR_TEXT("integer 0..0"), &range_0_to_0, offsetof(nmea_pqtmcfgrtcm_result, msm_mode), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msm_elevation"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmcfgrtcm_result, msm_elevation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved1"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmcfgrtcm_result, reserved1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved2"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmcfgrtcm_result, reserved2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("eph_mode"), ERROR_TEXT("quectel_rtcm_eph_mode code (0 1 2 3)"), &nmea_quectel_rtcm_eph_mode_def, offsetof(nmea_pqtmcfgrtcm_result, eph_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("eph_interval"), ERROR_TEXT("integer 0..7200"), &range_0_to_7200, offsetof(nmea_pqtmcfgrtcm_result, eph_interval), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgrtcm_result_layout = {
     .sentence = "PQTMCFGRTCM_RESULT", .address = "PQTMCFGRTCM", .selector = "OK",
@@ -27659,7 +27730,7 @@ size_t nmea_build_pqtmcfgrtcm_result(const nmea_pqtmcfgrtcm_result *s, char *buf
 
 /* $PQTMCFGRTCM,OK*7A */
 static const layout_field pqtmcfgrtcm_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgrtcm_result_ack_layout = {
     .sentence = "PQTMCFGRTCM_RESULT", .address = "PQTMCFGRTCM", .variant = "ack", .selector = "OK",
@@ -27687,8 +27758,8 @@ size_t nmea_build_pqtmcfgrtcm_result_ack(const nmea_pqtmcfgrtcm_result_ack *s, c
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGRTCM_RESULT (Command failed): Configure RTCM output: result (spec/proprietary/pqtmcfgrtcm_result.yaml) */
 static const layout_field pqtmcfgrtcm_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgrtcm_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgrtcm_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgrtcm_result_error_layout = {
     .sentence = "PQTMCFGRTCM_RESULT", .address = "PQTMCFGRTCM", .variant = "error", .selector = "ERROR",
@@ -27718,10 +27789,10 @@ size_t nmea_build_pqtmcfgrtcm_result_error(const nmea_pqtmcfgrtcm_result_error *
 
 /* $PQTMCFGRTK,W,1,1,60*46 */
 static const layout_field pqtmcfgrtk_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"diff_mode", "quectel_rtk_diff_mode code (0 1 2)", &nmea_quectel_rtk_diff_mode_def, offsetof(nmea_pqtmcfgrtk, diff_mode), FIELD_ENUM, 1, 0},
-    {"rel_mode", "quectel_rtk_rel_mode code (1 2)", &nmea_quectel_rtk_rel_mode_def, offsetof(nmea_pqtmcfgrtk, rel_mode), FIELD_ENUM, 1, 0},
-    {"timeout", "integer 1..600", &range_1_to_600, offsetof(nmea_pqtmcfgrtk, timeout), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("diff_mode"), ERROR_TEXT("quectel_rtk_diff_mode code (0 1 2)"), &nmea_quectel_rtk_diff_mode_def, offsetof(nmea_pqtmcfgrtk, diff_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rel_mode"), ERROR_TEXT("quectel_rtk_rel_mode code (1 2)"), &nmea_quectel_rtk_rel_mode_def, offsetof(nmea_pqtmcfgrtk, rel_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("timeout"), ERROR_TEXT("integer 1..600"), &range_1_to_600, offsetof(nmea_pqtmcfgrtk, timeout), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgrtk_layout = {
     .sentence = "PQTMCFGRTK", .address = "PQTMCFGRTK", .selector = "W", .fields = pqtmcfgrtk_fields,
@@ -27752,7 +27823,7 @@ size_t nmea_build_pqtmcfgrtk(const nmea_pqtmcfgrtk *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGRTK,R*69 */
 static const layout_field pqtmcfgrtk_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgrtk_read_layout = {
     .sentence = "PQTMCFGRTK", .address = "PQTMCFGRTK", .variant = "read", .selector = "R",
@@ -27782,10 +27853,10 @@ size_t nmea_build_pqtmcfgrtk_read(const nmea_pqtmcfgrtk_read *s, char *buf, size
 
 /* $PQTMCFGRTK,OK,1,1,120*20 */
 static const layout_field pqtmcfgrtk_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"diff_mode", "quectel_rtk_diff_mode code (0 1 2)", &nmea_quectel_rtk_diff_mode_def, offsetof(nmea_pqtmcfgrtk_result, diff_mode), FIELD_ENUM, 1, 0},
-    {"rel_mode", "quectel_rtk_rel_mode code (1 2)", &nmea_quectel_rtk_rel_mode_def, offsetof(nmea_pqtmcfgrtk_result, rel_mode), FIELD_ENUM, 1, 0},
-    {"timeout", "integer 1..600", &range_1_to_600, offsetof(nmea_pqtmcfgrtk_result, timeout), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("diff_mode"), ERROR_TEXT("quectel_rtk_diff_mode code (0 1 2)"), &nmea_quectel_rtk_diff_mode_def, offsetof(nmea_pqtmcfgrtk_result, diff_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rel_mode"), ERROR_TEXT("quectel_rtk_rel_mode code (1 2)"), &nmea_quectel_rtk_rel_mode_def, offsetof(nmea_pqtmcfgrtk_result, rel_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("timeout"), ERROR_TEXT("integer 1..600"), &range_1_to_600, offsetof(nmea_pqtmcfgrtk_result, timeout), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgrtk_result_layout = {
     .sentence = "PQTMCFGRTK_RESULT", .address = "PQTMCFGRTK", .selector = "OK",
@@ -27816,7 +27887,7 @@ size_t nmea_build_pqtmcfgrtk_result(const nmea_pqtmcfgrtk_result *s, char *buf, 
 
 /* $PQTMCFGRTK,OK*3F */
 static const layout_field pqtmcfgrtk_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgrtk_result_ack_layout = {
     .sentence = "PQTMCFGRTK_RESULT", .address = "PQTMCFGRTK", .variant = "ack", .selector = "OK",
@@ -27844,8 +27915,8 @@ size_t nmea_build_pqtmcfgrtk_result_ack(const nmea_pqtmcfgrtk_result_ack *s, cha
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGRTK_RESULT (Command failed): Configure RTK: result (spec/proprietary/pqtmcfgrtk_result.yaml) */
 static const layout_field pqtmcfgrtk_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgrtk_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgrtk_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgrtk_result_error_layout = {
     .sentence = "PQTMCFGRTK_RESULT", .address = "PQTMCFGRTK", .variant = "error", .selector = "ERROR",
@@ -27875,8 +27946,8 @@ size_t nmea_build_pqtmcfgrtk_result_error(const nmea_pqtmcfgrtk_result_error *s,
 
 /* $PQTMCFGRTKSRCTYPE,W,1*2B */
 static const layout_field pqtmcfgrtksrctype_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"source_type", "quectel_rtk_source_type code (0 1 2)", &nmea_quectel_rtk_source_type_def, offsetof(nmea_pqtmcfgrtksrctype, source_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("source_type"), ERROR_TEXT("quectel_rtk_source_type code (0 1 2)"), &nmea_quectel_rtk_source_type_def, offsetof(nmea_pqtmcfgrtksrctype, source_type), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgrtksrctype_layout = {
     .sentence = "PQTMCFGRTKSRCTYPE", .address = "PQTMCFGRTKSRCTYPE", .selector = "W",
@@ -27906,7 +27977,7 @@ size_t nmea_build_pqtmcfgrtksrctype(const nmea_pqtmcfgrtksrctype *s, char *buf, 
 
 /* $PQTMCFGRTKSRCTYPE,R*33 */
 static const layout_field pqtmcfgrtksrctype_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgrtksrctype_read_layout = {
     .sentence = "PQTMCFGRTKSRCTYPE", .address = "PQTMCFGRTKSRCTYPE", .variant = "read", .selector = "R",
@@ -27936,8 +28007,8 @@ size_t nmea_build_pqtmcfgrtksrctype_read(const nmea_pqtmcfgrtksrctype_read *s, c
 
 /* $PQTMCFGRTKSRCTYPE,OK,1*78 */
 static const layout_field pqtmcfgrtksrctype_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"source_type", "quectel_rtk_source_type code (0 1 2)", &nmea_quectel_rtk_source_type_def, offsetof(nmea_pqtmcfgrtksrctype_result, source_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("source_type"), ERROR_TEXT("quectel_rtk_source_type code (0 1 2)"), &nmea_quectel_rtk_source_type_def, offsetof(nmea_pqtmcfgrtksrctype_result, source_type), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgrtksrctype_result_layout = {
     .sentence = "PQTMCFGRTKSRCTYPE_RESULT", .address = "PQTMCFGRTKSRCTYPE", .selector = "OK",
@@ -27967,7 +28038,7 @@ size_t nmea_build_pqtmcfgrtksrctype_result(const nmea_pqtmcfgrtksrctype_result *
 
 /* $PQTMCFGRTKSRCTYPE,OK*65 */
 static const layout_field pqtmcfgrtksrctype_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgrtksrctype_result_ack_layout = {
     .sentence = "PQTMCFGRTKSRCTYPE_RESULT", .address = "PQTMCFGRTKSRCTYPE", .variant = "ack", .selector = "OK",
@@ -27995,8 +28066,8 @@ size_t nmea_build_pqtmcfgrtksrctype_result_ack(const nmea_pqtmcfgrtksrctype_resu
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGRTKSRCTYPE_RESULT (Command failed): Configure RTK source type: result (spec/proprietary/pqtmcfgrtksrctype_result.yaml) */
 static const layout_field pqtmcfgrtksrctype_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgrtksrctype_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgrtksrctype_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgrtksrctype_result_error_layout = {
     .sentence = "PQTMCFGRTKSRCTYPE_RESULT", .address = "PQTMCFGRTKSRCTYPE", .variant = "error",
@@ -28027,11 +28098,11 @@ size_t nmea_build_pqtmcfgrtksrctype_result_error(const nmea_pqtmcfgrtksrctype_re
 
 /* $PQTMCFGSAT,W,4,1,BFFCBFFF,1C003FFF*60 */
 static const layout_field pqtmcfgsat_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"system", "system_id code (1 2 3 4 5 6 F)", &nmea_system_id_def, offsetof(nmea_pqtmcfgsat, system), FIELD_ENUM, 1, 0},
-    {"signal", "hex number", NULL, offsetof(nmea_pqtmcfgsat, signal), FIELD_HEX, 1, 0},
-    {"mask_low", "hex number", NULL, offsetof(nmea_pqtmcfgsat, mask_low), FIELD_HEX, 1, 0},
-    {"mask_high", "hex number", NULL, offsetof(nmea_pqtmcfgsat, mask_high), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("system"), ERROR_TEXT("system_id code (1 2 3 4 5 6 F)"), &nmea_system_id_def, offsetof(nmea_pqtmcfgsat, system), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("signal"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsat, signal), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("mask_low"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsat, mask_low), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("mask_high"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsat, mask_high), FIELD_HEX, 1, 0},
 };
 static const layout pqtmcfgsat_layout = {
     .sentence = "PQTMCFGSAT", .address = "PQTMCFGSAT", .selector = "W", .fields = pqtmcfgsat_fields,
@@ -28062,9 +28133,9 @@ size_t nmea_build_pqtmcfgsat(const nmea_pqtmcfgsat *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGSAT,R,1,1*62 */
 static const layout_field pqtmcfgsat_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
-    {"system", "system_id code (1 2 3 4 5 6 F)", &nmea_system_id_def, offsetof(nmea_pqtmcfgsat_read, system), FIELD_ENUM, 1, 0},
-    {"signal", "hex number", NULL, offsetof(nmea_pqtmcfgsat_read, signal), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("system"), ERROR_TEXT("system_id code (1 2 3 4 5 6 F)"), &nmea_system_id_def, offsetof(nmea_pqtmcfgsat_read, system), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("signal"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsat_read, signal), FIELD_HEX, 1, 0},
 };
 static const layout pqtmcfgsat_read_layout = {
     .sentence = "PQTMCFGSAT", .address = "PQTMCFGSAT", .variant = "read", .selector = "R",
@@ -28094,11 +28165,11 @@ size_t nmea_build_pqtmcfgsat_read(const nmea_pqtmcfgsat_read *s, char *buf, size
 
 /* $PQTMCFGSAT,OK,1,01,FFFFFFFF*28 */
 static const layout_field pqtmcfgsat_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"system", "system_id code (1 2 3 4 5 6 F)", &nmea_system_id_def, offsetof(nmea_pqtmcfgsat_result, system), FIELD_ENUM, 1, 0},
-    {"signal", "hex number", NULL, offsetof(nmea_pqtmcfgsat_result, signal), FIELD_HEX, 1, 0},
-    {"mask_low", "hex number", NULL, offsetof(nmea_pqtmcfgsat_result, mask_low), FIELD_HEX, 1, 0},
-    {"mask_high", "hex number", NULL, offsetof(nmea_pqtmcfgsat_result, mask_high), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("system"), ERROR_TEXT("system_id code (1 2 3 4 5 6 F)"), &nmea_system_id_def, offsetof(nmea_pqtmcfgsat_result, system), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("signal"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsat_result, signal), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("mask_low"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsat_result, mask_low), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("mask_high"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsat_result, mask_high), FIELD_HEX, 1, 0},
 };
 static const layout pqtmcfgsat_result_layout = {
     .sentence = "PQTMCFGSAT_RESULT", .address = "PQTMCFGSAT", .selector = "OK",
@@ -28129,7 +28200,7 @@ size_t nmea_build_pqtmcfgsat_result(const nmea_pqtmcfgsat_result *s, char *buf, 
 
 /* $PQTMCFGSAT,OK*34 */
 static const layout_field pqtmcfgsat_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgsat_result_ack_layout = {
     .sentence = "PQTMCFGSAT_RESULT", .address = "PQTMCFGSAT", .variant = "ack", .selector = "OK",
@@ -28157,8 +28228,8 @@ size_t nmea_build_pqtmcfgsat_result_ack(const nmea_pqtmcfgsat_result_ack *s, cha
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGSAT_RESULT (Command failed): Configure satellite mask: result (spec/proprietary/pqtmcfgsat_result.yaml) */
 static const layout_field pqtmcfgsat_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsat_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsat_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgsat_result_error_layout = {
     .sentence = "PQTMCFGSAT_RESULT", .address = "PQTMCFGSAT", .variant = "error", .selector = "ERROR",
@@ -28188,8 +28259,8 @@ size_t nmea_build_pqtmcfgsat_result_error(const nmea_pqtmcfgsat_result_error *s,
 
 /* $PQTMCFGSBAS,W,003F*7B */
 static const layout_field pqtmcfgsbas_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"systems", "hex number", NULL, offsetof(nmea_pqtmcfgsbas, systems), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("systems"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsbas, systems), FIELD_HEX, 1, 0},
 };
 static const layout pqtmcfgsbas_layout = {
     .sentence = "PQTMCFGSBAS", .address = "PQTMCFGSBAS", .selector = "W", .fields = pqtmcfgsbas_fields,
@@ -28219,7 +28290,7 @@ size_t nmea_build_pqtmcfgsbas(const nmea_pqtmcfgsbas *s, char *buf, size_t cap, 
 
 /* $PQTMCFGSBAS,R*27 */
 static const layout_field pqtmcfgsbas_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgsbas_read_layout = {
     .sentence = "PQTMCFGSBAS", .address = "PQTMCFGSBAS", .variant = "read", .selector = "R",
@@ -28249,8 +28320,8 @@ size_t nmea_build_pqtmcfgsbas_read(const nmea_pqtmcfgsbas_read *s, char *buf, si
 
 /* $PQTMCFGSBAS,OK,003F*28 */
 static const layout_field pqtmcfgsbas_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"systems", "hex number", NULL, offsetof(nmea_pqtmcfgsbas_result, systems), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("systems"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsbas_result, systems), FIELD_HEX, 1, 0},
 };
 static const layout pqtmcfgsbas_result_layout = {
     .sentence = "PQTMCFGSBAS_RESULT", .address = "PQTMCFGSBAS", .selector = "OK",
@@ -28280,7 +28351,7 @@ size_t nmea_build_pqtmcfgsbas_result(const nmea_pqtmcfgsbas_result *s, char *buf
 
 /* $PQTMCFGSBAS,OK*71 */
 static const layout_field pqtmcfgsbas_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgsbas_result_ack_layout = {
     .sentence = "PQTMCFGSBAS_RESULT", .address = "PQTMCFGSBAS", .variant = "ack", .selector = "OK",
@@ -28308,8 +28379,8 @@ size_t nmea_build_pqtmcfgsbas_result_ack(const nmea_pqtmcfgsbas_result_ack *s, c
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGSBAS_RESULT (Command failed): Configure SBAS: result (spec/proprietary/pqtmcfgsbas_result.yaml) */
 static const layout_field pqtmcfgsbas_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsbas_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsbas_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgsbas_result_error_layout = {
     .sentence = "PQTMCFGSBAS_RESULT", .address = "PQTMCFGSBAS", .variant = "error", .selector = "ERROR",
@@ -28339,8 +28410,8 @@ size_t nmea_build_pqtmcfgsbas_result_error(const nmea_pqtmcfgsbas_result_error *
 
 /* $PQTMCFGSIGGRP,W,1*24 */
 static const layout_field pqtmcfgsiggrp_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"group", "integer 0..2", &range_0_to_2, offsetof(nmea_pqtmcfgsiggrp, group), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("group"), ERROR_TEXT("integer 0..2"), &range_0_to_2, offsetof(nmea_pqtmcfgsiggrp, group), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgsiggrp_layout = {
     .sentence = "PQTMCFGSIGGRP", .address = "PQTMCFGSIGGRP", .selector = "W", .fields = pqtmcfgsiggrp_fields,
@@ -28370,7 +28441,7 @@ size_t nmea_build_pqtmcfgsiggrp(const nmea_pqtmcfgsiggrp *s, char *buf, size_t c
 
 /* $PQTMCFGSIGGRP,R*3C */
 static const layout_field pqtmcfgsiggrp_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgsiggrp_read_layout = {
     .sentence = "PQTMCFGSIGGRP", .address = "PQTMCFGSIGGRP", .variant = "read", .selector = "R",
@@ -28400,8 +28471,8 @@ size_t nmea_build_pqtmcfgsiggrp_read(const nmea_pqtmcfgsiggrp_read *s, char *buf
 
 /* $PQTMCFGSIGGRP,OK,1*77 */
 static const layout_field pqtmcfgsiggrp_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"group", "integer 0..2", &range_0_to_2, offsetof(nmea_pqtmcfgsiggrp_result, group), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("group"), ERROR_TEXT("integer 0..2"), &range_0_to_2, offsetof(nmea_pqtmcfgsiggrp_result, group), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgsiggrp_result_layout = {
     .sentence = "PQTMCFGSIGGRP_RESULT", .address = "PQTMCFGSIGGRP", .selector = "OK",
@@ -28431,7 +28502,7 @@ size_t nmea_build_pqtmcfgsiggrp_result(const nmea_pqtmcfgsiggrp_result *s, char 
 
 /* $PQTMCFGSIGGRP,OK*6A */
 static const layout_field pqtmcfgsiggrp_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgsiggrp_result_ack_layout = {
     .sentence = "PQTMCFGSIGGRP_RESULT", .address = "PQTMCFGSIGGRP", .variant = "ack", .selector = "OK",
@@ -28459,8 +28530,8 @@ size_t nmea_build_pqtmcfgsiggrp_result_ack(const nmea_pqtmcfgsiggrp_result_ack *
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGSIGGRP_RESULT (Command failed): Configure signal group: result (spec/proprietary/pqtmcfgsiggrp_result.yaml) */
 static const layout_field pqtmcfgsiggrp_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsiggrp_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsiggrp_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgsiggrp_result_error_layout = {
     .sentence = "PQTMCFGSIGGRP_RESULT", .address = "PQTMCFGSIGGRP", .variant = "error", .selector = "ERROR",
@@ -28490,13 +28561,13 @@ size_t nmea_build_pqtmcfgsiggrp_result_error(const nmea_pqtmcfgsiggrp_result_err
 
 /* $PQTMCFGSIGNAL,W,7,3,F,3F,7,1*0E */
 static const layout_field pqtmcfgsignal_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"gps_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal, gps_signals), FIELD_HEX, 1, 0},
-    {"glonass_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal, glonass_signals), FIELD_HEX, 1, 0},
-    {"galileo_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal, galileo_signals), FIELD_HEX, 1, 0},
-    {"bds_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal, bds_signals), FIELD_HEX, 1, 0},
-    {"qzss_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal, qzss_signals), FIELD_HEX, 1, 0},
-    {"navic_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal, navic_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("gps_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal, gps_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("glonass_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal, glonass_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("galileo_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal, galileo_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("bds_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal, bds_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("qzss_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal, qzss_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("navic_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal, navic_signals), FIELD_HEX, 1, 0},
 };
 static const layout pqtmcfgsignal_layout = {
     .sentence = "PQTMCFGSIGNAL", .address = "PQTMCFGSIGNAL", .selector = "W", .fields = pqtmcfgsignal_fields,
@@ -28526,7 +28597,7 @@ size_t nmea_build_pqtmcfgsignal(const nmea_pqtmcfgsignal *s, char *buf, size_t c
 
 /* $PQTMCFGSIGNAL,R*3A */
 static const layout_field pqtmcfgsignal_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgsignal_read_layout = {
     .sentence = "PQTMCFGSIGNAL", .address = "PQTMCFGSIGNAL", .variant = "read", .selector = "R",
@@ -28556,13 +28627,13 @@ size_t nmea_build_pqtmcfgsignal_read(const nmea_pqtmcfgsignal_read *s, char *buf
 
 /* $PQTMCFGSIGNAL2,W,7,3,F,3F,7,1*3C */
 static const layout_field pqtmcfgsignal2_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"gps_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2, gps_signals), FIELD_HEX, 1, 0},
-    {"glonass_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2, glonass_signals), FIELD_HEX, 1, 0},
-    {"galileo_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2, galileo_signals), FIELD_HEX, 1, 0},
-    {"bds_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2, bds_signals), FIELD_HEX, 1, 0},
-    {"qzss_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2, qzss_signals), FIELD_HEX, 1, 0},
-    {"navic_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2, navic_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("gps_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2, gps_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("glonass_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2, glonass_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("galileo_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2, galileo_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("bds_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2, bds_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("qzss_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2, qzss_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("navic_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2, navic_signals), FIELD_HEX, 1, 0},
 };
 static const layout pqtmcfgsignal2_layout = {
     .sentence = "PQTMCFGSIGNAL2", .address = "PQTMCFGSIGNAL2", .selector = "W", .fields = pqtmcfgsignal2_fields,
@@ -28592,7 +28663,7 @@ size_t nmea_build_pqtmcfgsignal2(const nmea_pqtmcfgsignal2 *s, char *buf, size_t
 
 /* $PQTMCFGSIGNAL2,R*08 */
 static const layout_field pqtmcfgsignal2_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgsignal2_read_layout = {
     .sentence = "PQTMCFGSIGNAL2", .address = "PQTMCFGSIGNAL2", .variant = "read", .selector = "R",
@@ -28622,13 +28693,13 @@ size_t nmea_build_pqtmcfgsignal2_read(const nmea_pqtmcfgsignal2_read *s, char *b
 
 /* $PQTMCFGSIGNAL2,OK,07,03,0F,3F,07,01*5F */
 static const layout_field pqtmcfgsignal2_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"gps_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2_result, gps_signals), FIELD_HEX, 1, 0},
-    {"glonass_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2_result, glonass_signals), FIELD_HEX, 1, 0},
-    {"galileo_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2_result, galileo_signals), FIELD_HEX, 1, 0},
-    {"bds_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2_result, bds_signals), FIELD_HEX, 1, 0},
-    {"qzss_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2_result, qzss_signals), FIELD_HEX, 1, 0},
-    {"navic_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal2_result, navic_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("gps_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2_result, gps_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("glonass_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2_result, glonass_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("galileo_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2_result, galileo_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("bds_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2_result, bds_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("qzss_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2_result, qzss_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("navic_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal2_result, navic_signals), FIELD_HEX, 1, 0},
 };
 static const layout pqtmcfgsignal2_result_layout = {
     .sentence = "PQTMCFGSIGNAL2_RESULT", .address = "PQTMCFGSIGNAL2", .selector = "OK",
@@ -28658,7 +28729,7 @@ size_t nmea_build_pqtmcfgsignal2_result(const nmea_pqtmcfgsignal2_result *s, cha
 
 /* $PQTMCFGSIGNAL2,OK*5E */
 static const layout_field pqtmcfgsignal2_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgsignal2_result_ack_layout = {
     .sentence = "PQTMCFGSIGNAL2_RESULT", .address = "PQTMCFGSIGNAL2", .variant = "ack", .selector = "OK",
@@ -28686,8 +28757,8 @@ size_t nmea_build_pqtmcfgsignal2_result_ack(const nmea_pqtmcfgsignal2_result_ack
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGSIGNAL2_RESULT (Command failed): Configure antenna 2 signals: result (spec/proprietary/pqtmcfgsignal2_result.yaml) */
 static const layout_field pqtmcfgsignal2_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsignal2_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsignal2_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgsignal2_result_error_layout = {
     .sentence = "PQTMCFGSIGNAL2_RESULT", .address = "PQTMCFGSIGNAL2", .variant = "error", .selector = "ERROR",
@@ -28717,13 +28788,13 @@ size_t nmea_build_pqtmcfgsignal2_result_error(const nmea_pqtmcfgsignal2_result_e
 
 /* $PQTMCFGSIGNAL,OK,07,03,0F,3F,07,01*6D */
 static const layout_field pqtmcfgsignal_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"gps_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal_result, gps_signals), FIELD_HEX, 1, 0},
-    {"glonass_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal_result, glonass_signals), FIELD_HEX, 1, 0},
-    {"galileo_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal_result, galileo_signals), FIELD_HEX, 1, 0},
-    {"bds_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal_result, bds_signals), FIELD_HEX, 1, 0},
-    {"qzss_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal_result, qzss_signals), FIELD_HEX, 1, 0},
-    {"navic_signals", "hex number", NULL, offsetof(nmea_pqtmcfgsignal_result, navic_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("gps_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal_result, gps_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("glonass_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal_result, glonass_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("galileo_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal_result, galileo_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("bds_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal_result, bds_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("qzss_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal_result, qzss_signals), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("navic_signals"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pqtmcfgsignal_result, navic_signals), FIELD_HEX, 1, 0},
 };
 static const layout pqtmcfgsignal_result_layout = {
     .sentence = "PQTMCFGSIGNAL_RESULT", .address = "PQTMCFGSIGNAL", .selector = "OK",
@@ -28753,7 +28824,7 @@ size_t nmea_build_pqtmcfgsignal_result(const nmea_pqtmcfgsignal_result *s, char 
 
 /* $PQTMCFGSIGNAL,OK*6C */
 static const layout_field pqtmcfgsignal_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgsignal_result_ack_layout = {
     .sentence = "PQTMCFGSIGNAL_RESULT", .address = "PQTMCFGSIGNAL", .variant = "ack", .selector = "OK",
@@ -28781,8 +28852,8 @@ size_t nmea_build_pqtmcfgsignal_result_ack(const nmea_pqtmcfgsignal_result_ack *
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGSIGNAL_RESULT (Command failed): Configure signals: result (spec/proprietary/pqtmcfgsignal_result.yaml) */
 static const layout_field pqtmcfgsignal_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsignal_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsignal_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgsignal_result_error_layout = {
     .sentence = "PQTMCFGSIGNAL_RESULT", .address = "PQTMCFGSIGNAL", .variant = "error", .selector = "ERROR",
@@ -28812,14 +28883,14 @@ size_t nmea_build_pqtmcfgsignal_result_error(const nmea_pqtmcfgsignal_result_err
 
 /* $PQTMCFGSVIN,W,1,3600,1.2,0,0,0,2.5*0F */
 static const layout_field pqtmcfgsvin_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"mode", "quectel_svin_mode code (0 1 2)", &nmea_quectel_svin_mode_def, offsetof(nmea_pqtmcfgsvin, mode), FIELD_ENUM, 1, 0},
-    {"min_fixes", "integer 0..86400", &range_0_to_86400, offsetof(nmea_pqtmcfgsvin, min_fixes), FIELD_INTEGER, 1, 0},
-    {"accuracy_limit", "decimal number 0..1000", &range_0_to_1000, offsetof(nmea_pqtmcfgsvin, accuracy_limit), FIELD_DECIMAL, 1, 0},
-    {"ecef_x", "decimal number", NULL, offsetof(nmea_pqtmcfgsvin, ecef_x), FIELD_DECIMAL, 1, 0},
-    {"ecef_y", "decimal number", NULL, offsetof(nmea_pqtmcfgsvin, ecef_y), FIELD_DECIMAL, 1, 0},
-    {"ecef_z", "decimal number", NULL, offsetof(nmea_pqtmcfgsvin, ecef_z), FIELD_DECIMAL, 1, 0},
-    {"distance", "decimal number 0..10", &range_0_to_10, offsetof(nmea_pqtmcfgsvin, distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("quectel_svin_mode code (0 1 2)"), &nmea_quectel_svin_mode_def, offsetof(nmea_pqtmcfgsvin, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("min_fixes"), ERROR_TEXT("integer 0..86400"), &range_0_to_86400, offsetof(nmea_pqtmcfgsvin, min_fixes), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("accuracy_limit"), ERROR_TEXT("decimal number 0..1000"), &range_0_to_1000, offsetof(nmea_pqtmcfgsvin, accuracy_limit), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ecef_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgsvin, ecef_x), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ecef_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgsvin, ecef_y), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ecef_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgsvin, ecef_z), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("distance"), ERROR_TEXT("decimal number 0..10"), &range_0_to_10, offsetof(nmea_pqtmcfgsvin, distance), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgsvin_layout = {
     .sentence = "PQTMCFGSVIN", .address = "PQTMCFGSVIN", .selector = "W", .fields = pqtmcfgsvin_fields,
@@ -28850,7 +28921,7 @@ size_t nmea_build_pqtmcfgsvin(const nmea_pqtmcfgsvin *s, char *buf, size_t cap, 
 
 /* $PQTMCFGSVIN,R*26 */
 static const layout_field pqtmcfgsvin_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgsvin_read_layout = {
     .sentence = "PQTMCFGSVIN", .address = "PQTMCFGSVIN", .variant = "read", .selector = "R",
@@ -28880,14 +28951,14 @@ size_t nmea_build_pqtmcfgsvin_read(const nmea_pqtmcfgsvin_read *s, char *buf, si
 
 /* $PQTMCFGSVIN,OK,1,3600,1.2,0.0000,0.0000,0.0000,2.5*72 */
 static const layout_field pqtmcfgsvin_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"mode", "quectel_svin_mode code (0 1 2)", &nmea_quectel_svin_mode_def, offsetof(nmea_pqtmcfgsvin_result, mode), FIELD_ENUM, 1, 0},
-    {"min_fixes", "integer 0..86400", &range_0_to_86400, offsetof(nmea_pqtmcfgsvin_result, min_fixes), FIELD_INTEGER, 1, 0},
-    {"accuracy_limit", "decimal number 0..1000", &range_0_to_1000, offsetof(nmea_pqtmcfgsvin_result, accuracy_limit), FIELD_DECIMAL, 1, 0},
-    {"ecef_x", "decimal number", NULL, offsetof(nmea_pqtmcfgsvin_result, ecef_x), FIELD_DECIMAL, 1, 0},
-    {"ecef_y", "decimal number", NULL, offsetof(nmea_pqtmcfgsvin_result, ecef_y), FIELD_DECIMAL, 1, 0},
-    {"ecef_z", "decimal number", NULL, offsetof(nmea_pqtmcfgsvin_result, ecef_z), FIELD_DECIMAL, 1, 0},
-    {"distance", "decimal number 0..10", &range_0_to_10, offsetof(nmea_pqtmcfgsvin_result, distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("quectel_svin_mode code (0 1 2)"), &nmea_quectel_svin_mode_def, offsetof(nmea_pqtmcfgsvin_result, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("min_fixes"), ERROR_TEXT("integer 0..86400"), &range_0_to_86400, offsetof(nmea_pqtmcfgsvin_result, min_fixes), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("accuracy_limit"), ERROR_TEXT("decimal number 0..1000"), &range_0_to_1000, offsetof(nmea_pqtmcfgsvin_result, accuracy_limit), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ecef_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgsvin_result, ecef_x), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ecef_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgsvin_result, ecef_y), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ecef_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgsvin_result, ecef_z), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("distance"), ERROR_TEXT("decimal number 0..10"), &range_0_to_10, offsetof(nmea_pqtmcfgsvin_result, distance), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmcfgsvin_result_layout = {
     .sentence = "PQTMCFGSVIN_RESULT", .address = "PQTMCFGSVIN", .selector = "OK",
@@ -28918,7 +28989,7 @@ size_t nmea_build_pqtmcfgsvin_result(const nmea_pqtmcfgsvin_result *s, char *buf
 
 /* $PQTMCFGSVIN,OK*70 */
 static const layout_field pqtmcfgsvin_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgsvin_result_ack_layout = {
     .sentence = "PQTMCFGSVIN_RESULT", .address = "PQTMCFGSVIN", .variant = "ack", .selector = "OK",
@@ -28946,8 +29017,8 @@ size_t nmea_build_pqtmcfgsvin_result_ack(const nmea_pqtmcfgsvin_result_ack *s, c
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGSVIN_RESULT (Command failed): Configure survey-in: result (spec/proprietary/pqtmcfgsvin_result.yaml) */
 static const layout_field pqtmcfgsvin_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsvin_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgsvin_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgsvin_result_error_layout = {
     .sentence = "PQTMCFGSVIN_RESULT", .address = "PQTMCFGSVIN", .variant = "error", .selector = "ERROR",
@@ -28977,13 +29048,13 @@ size_t nmea_build_pqtmcfgsvin_result_error(const nmea_pqtmcfgsvin_result_error *
 
 /* $PQTMCFGUART,W,1,115200,8,0,1,0*0C */
 static const layout_field pqtmcfguart_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"index", "quectel_uart_index code (1 2 3)", &nmea_quectel_uart_index_def, offsetof(nmea_pqtmcfguart, index), FIELD_ENUM, 1, 0},
-    {"baud_rate", "quectel_baud_rate code (9600 115200 230400 460800 921600)", &nmea_quectel_baud_rate_def, offsetof(nmea_pqtmcfguart, baud_rate), FIELD_ENUM, 1, 0},
-    {"data_bits", "integer 8..8", &range_8_to_8, offsetof(nmea_pqtmcfguart, data_bits), FIELD_INTEGER, 1, 0},
-    {"parity", "quectel_parity code (0 1 2 3 4)", &nmea_quectel_parity_def, offsetof(nmea_pqtmcfguart, parity), FIELD_ENUM, 1, 0},
-    {"stop_bits", "quectel_stop_bits code (1 2)", &nmea_quectel_stop_bits_def, offsetof(nmea_pqtmcfguart, stop_bits), FIELD_ENUM, 1, 0},
-    {"flow_control", "quectel_flow_control code (0)", &nmea_quectel_flow_control_def, offsetof(nmea_pqtmcfguart, flow_control), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("index"), ERROR_TEXT("quectel_uart_index code (1 2 3)"), &nmea_quectel_uart_index_def, offsetof(nmea_pqtmcfguart, index), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("baud_rate"), ERROR_TEXT("quectel_baud_rate code (9600 115200 230400 460800 921600)"), &nmea_quectel_baud_rate_def, offsetof(nmea_pqtmcfguart, baud_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("data_bits"), ERROR_TEXT("integer 8..8"), &range_8_to_8, offsetof(nmea_pqtmcfguart, data_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("parity"), ERROR_TEXT("quectel_parity code (0 1 2 3 4)"), &nmea_quectel_parity_def, offsetof(nmea_pqtmcfguart, parity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("stop_bits"), ERROR_TEXT("quectel_stop_bits code (1 2)"), &nmea_quectel_stop_bits_def, offsetof(nmea_pqtmcfguart, stop_bits), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("flow_control"), ERROR_TEXT("quectel_flow_control code (0)"), &nmea_quectel_flow_control_def, offsetof(nmea_pqtmcfguart, flow_control), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfguart_layout = {
     .sentence = "PQTMCFGUART", .address = "PQTMCFGUART", .selector = "W", .fields = pqtmcfguart_fields,
@@ -29013,8 +29084,8 @@ size_t nmea_build_pqtmcfguart(const nmea_pqtmcfguart *s, char *buf, size_t cap, 
 
 /* $PQTMCFGUART,W,115200*18 */
 static const layout_field pqtmcfguart_current_baud_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"baud_rate", "quectel_baud_rate code (9600 115200 230400 460800 921600)", &nmea_quectel_baud_rate_def, offsetof(nmea_pqtmcfguart_current_baud, baud_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("baud_rate"), ERROR_TEXT("quectel_baud_rate code (9600 115200 230400 460800 921600)"), &nmea_quectel_baud_rate_def, offsetof(nmea_pqtmcfguart_current_baud, baud_rate), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfguart_current_baud_layout = {
     .sentence = "PQTMCFGUART", .address = "PQTMCFGUART", .variant = "current_baud", .selector = "W",
@@ -29044,12 +29115,12 @@ size_t nmea_build_pqtmcfguart_current_baud(const nmea_pqtmcfguart_current_baud *
 
 /* $PQTMCFGUART,W,115200,8,0,1,0*11 */
 static const layout_field pqtmcfguart_current_full_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"baud_rate", "quectel_baud_rate code (9600 115200 230400 460800 921600)", &nmea_quectel_baud_rate_def, offsetof(nmea_pqtmcfguart_current_full, baud_rate), FIELD_ENUM, 1, 0},
-    {"data_bits", "integer 8..8", &range_8_to_8, offsetof(nmea_pqtmcfguart_current_full, data_bits), FIELD_INTEGER, 1, 0},
-    {"parity", "quectel_parity code (0 1 2 3 4)", &nmea_quectel_parity_def, offsetof(nmea_pqtmcfguart_current_full, parity), FIELD_ENUM, 1, 0},
-    {"stop_bits", "quectel_stop_bits code (1 2)", &nmea_quectel_stop_bits_def, offsetof(nmea_pqtmcfguart_current_full, stop_bits), FIELD_ENUM, 1, 0},
-    {"flow_control", "quectel_flow_control code (0)", &nmea_quectel_flow_control_def, offsetof(nmea_pqtmcfguart_current_full, flow_control), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("baud_rate"), ERROR_TEXT("quectel_baud_rate code (9600 115200 230400 460800 921600)"), &nmea_quectel_baud_rate_def, offsetof(nmea_pqtmcfguart_current_full, baud_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("data_bits"), ERROR_TEXT("integer 8..8"), &range_8_to_8, offsetof(nmea_pqtmcfguart_current_full, data_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("parity"), ERROR_TEXT("quectel_parity code (0 1 2 3 4)"), &nmea_quectel_parity_def, offsetof(nmea_pqtmcfguart_current_full, parity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("stop_bits"), ERROR_TEXT("quectel_stop_bits code (1 2)"), &nmea_quectel_stop_bits_def, offsetof(nmea_pqtmcfguart_current_full, stop_bits), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("flow_control"), ERROR_TEXT("quectel_flow_control code (0)"), &nmea_quectel_flow_control_def, offsetof(nmea_pqtmcfguart_current_full, flow_control), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfguart_current_full_layout = {
     .sentence = "PQTMCFGUART", .address = "PQTMCFGUART", .variant = "current_full", .selector = "W",
@@ -29079,9 +29150,9 @@ size_t nmea_build_pqtmcfguart_current_full(const nmea_pqtmcfguart_current_full *
 
 /* $PQTMCFGUART,W,1,115200*05 */
 static const layout_field pqtmcfguart_port_baud_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"index", "quectel_uart_index code (1 2 3)", &nmea_quectel_uart_index_def, offsetof(nmea_pqtmcfguart_port_baud, index), FIELD_ENUM, 1, 0},
-    {"baud_rate", "quectel_baud_rate code (9600 115200 230400 460800 921600)", &nmea_quectel_baud_rate_def, offsetof(nmea_pqtmcfguart_port_baud, baud_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("index"), ERROR_TEXT("quectel_uart_index code (1 2 3)"), &nmea_quectel_uart_index_def, offsetof(nmea_pqtmcfguart_port_baud, index), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("baud_rate"), ERROR_TEXT("quectel_baud_rate code (9600 115200 230400 460800 921600)"), &nmea_quectel_baud_rate_def, offsetof(nmea_pqtmcfguart_port_baud, baud_rate), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfguart_port_baud_layout = {
     .sentence = "PQTMCFGUART", .address = "PQTMCFGUART", .variant = "port_baud", .selector = "W",
@@ -29111,8 +29182,8 @@ size_t nmea_build_pqtmcfguart_port_baud(const nmea_pqtmcfguart_port_baud *s, cha
 
 /* $PQTMCFGUART,R,1*2B */
 static const layout_field pqtmcfguart_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
-    {"index", "quectel_uart_index code (1 2 3)", &nmea_quectel_uart_index_def, offsetof(nmea_pqtmcfguart_read, index), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("index"), ERROR_TEXT("quectel_uart_index code (1 2 3)"), &nmea_quectel_uart_index_def, offsetof(nmea_pqtmcfguart_read, index), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfguart_read_layout = {
     .sentence = "PQTMCFGUART", .address = "PQTMCFGUART", .variant = "read", .selector = "R",
@@ -29143,13 +29214,13 @@ size_t nmea_build_pqtmcfguart_read(const nmea_pqtmcfguart_read *s, char *buf, si
 
 /* $PQTMCFGUART,OK,1,115200,8,0,1,0*5F */
 static const layout_field pqtmcfguart_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"index", "quectel_uart_index code (1 2 3)", &nmea_quectel_uart_index_def, offsetof(nmea_pqtmcfguart_result, index), FIELD_ENUM, 1, 0},
-    {"baud_rate", "quectel_baud_rate code (9600 115200 230400 460800 921600)", &nmea_quectel_baud_rate_def, offsetof(nmea_pqtmcfguart_result, baud_rate), FIELD_ENUM, 1, 0},
-    {"data_bits", "integer 8..8", &range_8_to_8, offsetof(nmea_pqtmcfguart_result, data_bits), FIELD_INTEGER, 1, 0},
-    {"parity", "quectel_parity code (0 1 2 3 4)", &nmea_quectel_parity_def, offsetof(nmea_pqtmcfguart_result, parity), FIELD_ENUM, 1, 0},
-    {"stop_bits", "quectel_stop_bits code (1 2)", &nmea_quectel_stop_bits_def, offsetof(nmea_pqtmcfguart_result, stop_bits), FIELD_ENUM, 1, 0},
-    {"flow_control", "quectel_flow_control code (0)", &nmea_quectel_flow_control_def, offsetof(nmea_pqtmcfguart_result, flow_control), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("index"), ERROR_TEXT("quectel_uart_index code (1 2 3)"), &nmea_quectel_uart_index_def, offsetof(nmea_pqtmcfguart_result, index), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("baud_rate"), ERROR_TEXT("quectel_baud_rate code (9600 115200 230400 460800 921600)"), &nmea_quectel_baud_rate_def, offsetof(nmea_pqtmcfguart_result, baud_rate), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("data_bits"), ERROR_TEXT("integer 8..8"), &range_8_to_8, offsetof(nmea_pqtmcfguart_result, data_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("parity"), ERROR_TEXT("quectel_parity code (0 1 2 3 4)"), &nmea_quectel_parity_def, offsetof(nmea_pqtmcfguart_result, parity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("stop_bits"), ERROR_TEXT("quectel_stop_bits code (1 2)"), &nmea_quectel_stop_bits_def, offsetof(nmea_pqtmcfguart_result, stop_bits), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("flow_control"), ERROR_TEXT("quectel_flow_control code (0)"), &nmea_quectel_flow_control_def, offsetof(nmea_pqtmcfguart_result, flow_control), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfguart_result_layout = {
     .sentence = "PQTMCFGUART_RESULT", .address = "PQTMCFGUART", .selector = "OK",
@@ -29179,7 +29250,7 @@ size_t nmea_build_pqtmcfguart_result(const nmea_pqtmcfguart_result *s, char *buf
 
 /* $PQTMCFGUART,OK*60 */
 static const layout_field pqtmcfguart_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfguart_result_ack_layout = {
     .sentence = "PQTMCFGUART_RESULT", .address = "PQTMCFGUART", .variant = "ack", .selector = "OK",
@@ -29207,8 +29278,8 @@ size_t nmea_build_pqtmcfguart_result_ack(const nmea_pqtmcfguart_result_ack *s, c
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGUART_RESULT (Command failed): Configure UART: result (spec/proprietary/pqtmcfguart_result.yaml) */
 static const layout_field pqtmcfguart_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfguart_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfguart_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfguart_result_error_layout = {
     .sentence = "PQTMCFGUART_RESULT", .address = "PQTMCFGUART", .variant = "error", .selector = "ERROR",
@@ -29238,8 +29309,8 @@ size_t nmea_build_pqtmcfguart_result_error(const nmea_pqtmcfguart_result_error *
 
 /* $PQTMCFGWN,W,2346*17 */
 static const layout_field pqtmcfgwn_fields[] = {
-    {"access", "W", "W", 0, FIELD_KEYWORD, 1, 0},
-    {"week", "integer 1..65535", &range_1_to_65535, offsetof(nmea_pqtmcfgwn, week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("week"), ERROR_TEXT("integer 1..65535"), &range_1_to_65535, offsetof(nmea_pqtmcfgwn, week), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgwn_layout = {
     .sentence = "PQTMCFGWN", .address = "PQTMCFGWN", .selector = "W", .fields = pqtmcfgwn_fields,
@@ -29269,7 +29340,7 @@ size_t nmea_build_pqtmcfgwn(const nmea_pqtmcfgwn *s, char *buf, size_t cap, nmea
 
 /* $PQTMCFGWN,R*3D */
 static const layout_field pqtmcfgwn_read_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgwn_read_layout = {
     .sentence = "PQTMCFGWN", .address = "PQTMCFGWN", .variant = "read", .selector = "R",
@@ -29299,8 +29370,8 @@ size_t nmea_build_pqtmcfgwn_read(const nmea_pqtmcfgwn_read *s, char *buf, size_t
 
 /* $PQTMCFGWN,OK,2346*44 */
 static const layout_field pqtmcfgwn_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"week", "integer 1..65535", &range_1_to_65535, offsetof(nmea_pqtmcfgwn_result, week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("week"), ERROR_TEXT("integer 1..65535"), &range_1_to_65535, offsetof(nmea_pqtmcfgwn_result, week), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmcfgwn_result_layout = {
     .sentence = "PQTMCFGWN_RESULT", .address = "PQTMCFGWN", .selector = "OK", .fields = pqtmcfgwn_result_fields,
@@ -29330,7 +29401,7 @@ size_t nmea_build_pqtmcfgwn_result(const nmea_pqtmcfgwn_result *s, char *buf, si
 
 /* $PQTMCFGWN,OK*6B */
 static const layout_field pqtmcfgwn_result_ack_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmcfgwn_result_ack_layout = {
     .sentence = "PQTMCFGWN_RESULT", .address = "PQTMCFGWN", .variant = "ack", .selector = "OK",
@@ -29358,8 +29429,8 @@ size_t nmea_build_pqtmcfgwn_result_ack(const nmea_pqtmcfgwn_result_ack *s, char 
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGWN_RESULT (Command failed): Configure reference week number: result (spec/proprietary/pqtmcfgwn_result.yaml) */
 static const layout_field pqtmcfgwn_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgwn_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgwn_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmcfgwn_result_error_layout = {
     .sentence = "PQTMCFGWN_RESULT", .address = "PQTMCFGWN", .variant = "error", .selector = "ERROR",
@@ -29441,7 +29512,7 @@ size_t nmea_build_pqtmdebugoff(const nmea_pqtmdebugoff *s, char *buf, size_t cap
 
 /* $PQTMDEBUGOFF,OK*2E */
 static const layout_field pqtmdebugoff_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmdebugoff_result_layout = {
     .sentence = "PQTMDEBUGOFF_RESULT", .address = "PQTMDEBUGOFF", .selector = "OK",
@@ -29469,8 +29540,8 @@ size_t nmea_build_pqtmdebugoff_result(const nmea_pqtmdebugoff_result *s, char *b
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMDEBUGOFF_RESULT (Command failed): Debug log off: result (spec/proprietary/pqtmdebugoff_result.yaml) */
 static const layout_field pqtmdebugoff_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmdebugoff_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmdebugoff_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmdebugoff_result_error_layout = {
     .sentence = "PQTMDEBUGOFF_RESULT", .address = "PQTMDEBUGOFF", .variant = "error", .selector = "ERROR",
@@ -29526,7 +29597,7 @@ size_t nmea_build_pqtmdebugon(const nmea_pqtmdebugon *s, char *buf, size_t cap, 
 
 /* $PQTMDEBUGON,OK*60 */
 static const layout_field pqtmdebugon_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmdebugon_result_layout = {
     .sentence = "PQTMDEBUGON_RESULT", .address = "PQTMDEBUGON", .selector = "OK",
@@ -29554,8 +29625,8 @@ size_t nmea_build_pqtmdebugon_result(const nmea_pqtmdebugon_result *s, char *buf
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMDEBUGON_RESULT (Command failed): Debug log on: result (spec/proprietary/pqtmdebugon_result.yaml) */
 static const layout_field pqtmdebugon_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmdebugon_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmdebugon_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmdebugon_result_error_layout = {
     .sentence = "PQTMDEBUGON_RESULT", .address = "PQTMDEBUGON", .variant = "error", .selector = "ERROR",
@@ -29585,15 +29656,15 @@ size_t nmea_build_pqtmdebugon_result_error(const nmea_pqtmdebugon_result_error *
 
 /* $PQTMDOP,1,570643000,1.01,0.88,0.49,0.73,0.50,0.36,0.35*7C */
 static const layout_field pqtmdop_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmdop, msg_version), FIELD_INTEGER, 1, 0},
-    {"tow", "integer", NULL, offsetof(nmea_pqtmdop, tow), FIELD_INTEGER, 1, 0},
-    {"gdop", "decimal number", NULL, offsetof(nmea_pqtmdop, gdop), FIELD_DECIMAL, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_pqtmdop, pdop), FIELD_DECIMAL, 1, 0},
-    {"tdop", "decimal number", NULL, offsetof(nmea_pqtmdop, tdop), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number", NULL, offsetof(nmea_pqtmdop, vdop), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_pqtmdop, hdop), FIELD_DECIMAL, 1, 0},
-    {"ndop", "decimal number", NULL, offsetof(nmea_pqtmdop, ndop), FIELD_DECIMAL, 1, 0},
-    {"edop", "decimal number", NULL, offsetof(nmea_pqtmdop, edop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmdop, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("tow"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmdop, tow), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmdop, gdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmdop, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("tdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmdop, tdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmdop, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmdop, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ndop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmdop, ndop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("edop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmdop, edop), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmdop_layout = {
     .sentence = "PQTMDOP", .address = "PQTMDOP", .fields = pqtmdop_fields, .before = 9, .fixed = 9,
@@ -29674,11 +29745,11 @@ size_t nmea_build_pqtmdop(const nmea_pqtmdop *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMEOE,1,190423.000,20241224,2346,212681000*65 */
 static const layout_field pqtmeoe_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmeoe, msg_version), FIELD_INTEGER, 1, 0},
-    {"utc", "time hhmmss[.s]", NULL, offsetof(nmea_pqtmeoe, utc), FIELD_TIME, 1, 0},
-    {"date", "text of at most 8 characters", NULL, offsetof(nmea_pqtmeoe, date), FIELD_TEXT, 1, 8},
-    {"week", "integer", NULL, offsetof(nmea_pqtmeoe, week), FIELD_INTEGER, 1, 0},
-    {"tow", "integer", NULL, offsetof(nmea_pqtmeoe, tow), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmeoe, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("utc"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pqtmeoe, utc), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("text of at most 8 characters"), NULL, offsetof(nmea_pqtmeoe, date), FIELD_TEXT, 1, 8},
+    {ERROR_TEXT("week"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmeoe, week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("tow"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmeoe, tow), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmeoe_layout = {
     .sentence = "PQTMEOE", .address = "PQTMEOE", .fields = pqtmeoe_fields, .before = 5, .fixed = 5,
@@ -29751,12 +29822,12 @@ size_t nmea_build_pqtmeoe(const nmea_pqtmeoe *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMEPE,2,1.000,1.000,1.000,1.414,1.732*52 */
 static const layout_field pqtmepe_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmepe, msg_version), FIELD_INTEGER, 1, 0},
-    {"north", "decimal number", NULL, offsetof(nmea_pqtmepe, north), FIELD_DECIMAL, 1, 0},
-    {"east", "decimal number", NULL, offsetof(nmea_pqtmepe, east), FIELD_DECIMAL, 1, 0},
-    {"down", "decimal number", NULL, offsetof(nmea_pqtmepe, down), FIELD_DECIMAL, 1, 0},
-    {"horizontal", "decimal number", NULL, offsetof(nmea_pqtmepe, horizontal), FIELD_DECIMAL, 1, 0},
-    {"spherical", "decimal number", NULL, offsetof(nmea_pqtmepe, spherical), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmepe, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmepe, north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmepe, east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("down"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmepe, down), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("horizontal"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmepe, horizontal), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("spherical"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmepe, spherical), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmepe_layout = {
     .sentence = "PQTMEPE", .address = "PQTMEPE", .fields = pqtmepe_fields, .before = 6, .fixed = 6,
@@ -29831,16 +29902,16 @@ size_t nmea_build_pqtmepe(const nmea_pqtmepe *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMGEOFENCESTATUS,1,124521.000,1,2,2,2*27 */
 static const layout_field pqtmgeofencestatus_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmgeofencestatus, msg_version), FIELD_INTEGER, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pqtmgeofencestatus, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgeofencestatus, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pqtmgeofencestatus, time), FIELD_TIME, 1, 0},
 };
 static const layout_field pqtmgeofencestatus_group_fields[] = {
-    {"state", "quectel_geofence_state code (0 1 2)", &nmea_quectel_geofence_state_def, 0, FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("state"), ERROR_TEXT("quectel_geofence_state code (0 1 2)"), &nmea_quectel_geofence_state_def, 0, FIELD_ENUM, 1, 0},
 };
 static const layout_group pqtmgeofencestatus_group = {
-    .id = "states", .fields = pqtmgeofencestatus_group_fields, .field_count = 1, .width = 1, .min = 4, .max = 4,
-    .single = true, .offset = offsetof(nmea_pqtmgeofencestatus, states), .entry_size = sizeof(nmea_enum),
-    .count_offset = NO_MEMBER,
+    .id = ERROR_TEXT("states"), .fields = pqtmgeofencestatus_group_fields, .field_count = 1, .width = 1, .min = 4,
+    .max = 4, .single = true, .offset = offsetof(nmea_pqtmgeofencestatus, states),
+    .entry_size = sizeof(nmea_enum), .count_offset = NO_MEMBER,
 };
 static const layout pqtmgeofencestatus_layout = {
     .sentence = "PQTMGEOFENCESTATUS", .address = "PQTMGEOFENCESTATUS", .fields = pqtmgeofencestatus_fields,
@@ -29959,7 +30030,7 @@ size_t nmea_build_pqtmgnssstart(const nmea_pqtmgnssstart *s, char *buf, size_t c
 
 /* $PQTMGNSSSTART,OK*79 */
 static const layout_field pqtmgnssstart_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmgnssstart_result_layout = {
     .sentence = "PQTMGNSSSTART_RESULT", .address = "PQTMGNSSSTART", .selector = "OK",
@@ -29987,8 +30058,8 @@ size_t nmea_build_pqtmgnssstart_result(const nmea_pqtmgnssstart_result *s, char 
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMGNSSSTART_RESULT (Command failed): Start GNSS engine: result (spec/proprietary/pqtmgnssstart_result.yaml) */
 static const layout_field pqtmgnssstart_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmgnssstart_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmgnssstart_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmgnssstart_result_error_layout = {
     .sentence = "PQTMGNSSSTART_RESULT", .address = "PQTMGNSSSTART", .variant = "error", .selector = "ERROR",
@@ -30044,7 +30115,7 @@ size_t nmea_build_pqtmgnssstop(const nmea_pqtmgnssstop *s, char *buf, size_t cap
 
 /* $PQTMGNSSSTOP,OK*21 */
 static const layout_field pqtmgnssstop_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmgnssstop_result_layout = {
     .sentence = "PQTMGNSSSTOP_RESULT", .address = "PQTMGNSSSTOP", .selector = "OK",
@@ -30072,8 +30143,8 @@ size_t nmea_build_pqtmgnssstop_result(const nmea_pqtmgnssstop_result *s, char *b
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMGNSSSTOP_RESULT (Command failed): Stop GNSS engine: result (spec/proprietary/pqtmgnssstop_result.yaml) */
 static const layout_field pqtmgnssstop_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmgnssstop_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmgnssstop_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmgnssstop_result_error_layout = {
     .sentence = "PQTMGNSSSTOP_RESULT", .address = "PQTMGNSSSTOP", .variant = "error", .selector = "ERROR",
@@ -30129,49 +30200,49 @@ size_t nmea_build_pqtmhot(const nmea_pqtmhot *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMNAV,1,1,1,190423.000,20241224,212681000,2346,18,,,12,,31.45874521,117.41532415,45.1254,-6.1245,,,1.2451,2.1254,5.1242,,,290,1.0,,78,56,,,,,,,1.2101,1.2148,0.4578,1.1547,,,45.124,,*43 */
 static const layout_field pqtmnav_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmnav, msg_version), FIELD_INTEGER, 1, 0},
-    {"time_status", "quectel_time_status code (0 1)", &nmea_quectel_time_status_def, offsetof(nmea_pqtmnav, time_status), FIELD_ENUM, 1, 0},
-    {"time_reference", "quectel_time_reference code (1 4)", &nmea_quectel_time_reference_def, offsetof(nmea_pqtmnav, time_reference), FIELD_ENUM, 1, 0},
-    {"utc", "time hhmmss[.s]", NULL, offsetof(nmea_pqtmnav, utc), FIELD_TIME, 1, 0},
-    {"date", "text of at most 8 characters", NULL, offsetof(nmea_pqtmnav, date), FIELD_TEXT, 1, 8},
-    {"tow", "integer", NULL, offsetof(nmea_pqtmnav, tow), FIELD_INTEGER, 1, 0},
-    {"week", "integer", NULL, offsetof(nmea_pqtmnav, week), FIELD_INTEGER, 1, 0},
-    {"leap_seconds", "integer", NULL, offsetof(nmea_pqtmnav, leap_seconds), FIELD_INTEGER, 1, 0},
-    {"reserved1", "text", NULL, offsetof(nmea_pqtmnav, reserved1), FIELD_TEXT, 1, 0},
-    {"reserved2", "text", NULL, offsetof(nmea_pqtmnav, reserved2), FIELD_TEXT, 1, 0},
-    {"solution_type", "quectel_solution_type code (0 1 2 5 8 12)", &nmea_quectel_solution_type_def, offsetof(nmea_pqtmnav, solution_type), FIELD_ENUM, 1, 0},
-    {"reserved3", "text", NULL, offsetof(nmea_pqtmnav, reserved3), FIELD_TEXT, 1, 0},
-    {"latitude", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmnav, latitude), FIELD_DECIMAL, 1, 0},
-    {"longitude", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pqtmnav, longitude), FIELD_DECIMAL, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_pqtmnav, altitude), FIELD_DECIMAL, 1, 0},
-    {"separation", "decimal number", NULL, offsetof(nmea_pqtmnav, separation), FIELD_DECIMAL, 1, 0},
-    {"reserved4", "text", NULL, offsetof(nmea_pqtmnav, reserved4), FIELD_TEXT, 1, 0},
-    {"reserved5", "text", NULL, offsetof(nmea_pqtmnav, reserved5), FIELD_TEXT, 1, 0},
-    {"lat_std", "decimal number", NULL, offsetof(nmea_pqtmnav, lat_std), FIELD_DECIMAL, 1, 0},
-    {"lon_std", "decimal number", NULL, offsetof(nmea_pqtmnav, lon_std), FIELD_DECIMAL, 1, 0},
-    {"alt_std", "decimal number", NULL, offsetof(nmea_pqtmnav, alt_std), FIELD_DECIMAL, 1, 0},
-    {"reserved6", "text", NULL, offsetof(nmea_pqtmnav, reserved6), FIELD_TEXT, 1, 0},
-    {"reserved7", "text", NULL, offsetof(nmea_pqtmnav, reserved7), FIELD_TEXT, 1, 0},
-    {"diff_station", "integer 0..4095", &range_0_to_4095, offsetof(nmea_pqtmnav, diff_station), FIELD_INTEGER, 1, 0},
-    {"diff_age", "decimal number", NULL, offsetof(nmea_pqtmnav, diff_age), FIELD_DECIMAL, 1, 0},
-    {"reserved8", "text", NULL, offsetof(nmea_pqtmnav, reserved8), FIELD_TEXT, 1, 0},
-    {"satellites_in_view", "integer", NULL, offsetof(nmea_pqtmnav, satellites_in_view), FIELD_INTEGER, 1, 0},
-    {"satellites_used", "integer", NULL, offsetof(nmea_pqtmnav, satellites_used), FIELD_INTEGER, 1, 0},
-    {"reserved9", "text", NULL, offsetof(nmea_pqtmnav, reserved9), FIELD_TEXT, 1, 0},
-    {"reserved10", "text", NULL, offsetof(nmea_pqtmnav, reserved10), FIELD_TEXT, 1, 0},
-    {"reserved11", "text", NULL, offsetof(nmea_pqtmnav, reserved11), FIELD_TEXT, 1, 0},
-    {"reserved12", "text", NULL, offsetof(nmea_pqtmnav, reserved12), FIELD_TEXT, 1, 0},
-    {"reserved13", "text", NULL, offsetof(nmea_pqtmnav, reserved13), FIELD_TEXT, 1, 0},
-    {"reserved14", "text", NULL, offsetof(nmea_pqtmnav, reserved14), FIELD_TEXT, 1, 0},
-    {"h_vel", "decimal number", NULL, offsetof(nmea_pqtmnav, h_vel), FIELD_DECIMAL, 1, 0},
-    {"v_vel", "decimal number", NULL, offsetof(nmea_pqtmnav, v_vel), FIELD_DECIMAL, 1, 0},
-    {"h_vel_std", "decimal number", NULL, offsetof(nmea_pqtmnav, h_vel_std), FIELD_DECIMAL, 1, 0},
-    {"v_vel_std", "decimal number", NULL, offsetof(nmea_pqtmnav, v_vel_std), FIELD_DECIMAL, 1, 0},
-    {"reserved15", "text", NULL, offsetof(nmea_pqtmnav, reserved15), FIELD_TEXT, 1, 0},
-    {"reserved16", "text", NULL, offsetof(nmea_pqtmnav, reserved16), FIELD_TEXT, 1, 0},
-    {"course", "decimal number 0..360", &range_0_to_360, offsetof(nmea_pqtmnav, course), FIELD_DECIMAL, 1, 0},
-    {"reserved17", "text", NULL, offsetof(nmea_pqtmnav, reserved17), FIELD_TEXT, 1, 0},
-    {"reserved18", "text", NULL, offsetof(nmea_pqtmnav, reserved18), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmnav, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_status"), ERROR_TEXT("quectel_time_status code (0 1)"), &nmea_quectel_time_status_def, offsetof(nmea_pqtmnav, time_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time_reference"), ERROR_TEXT("quectel_time_reference code (1 4)"), &nmea_quectel_time_reference_def, offsetof(nmea_pqtmnav, time_reference), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("utc"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pqtmnav, utc), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("text of at most 8 characters"), NULL, offsetof(nmea_pqtmnav, date), FIELD_TEXT, 1, 8},
+    {ERROR_TEXT("tow"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmnav, tow), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("week"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmnav, week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("leap_seconds"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmnav, leap_seconds), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved1"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved2"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("solution_type"), ERROR_TEXT("quectel_solution_type code (0 1 2 5 8 12)"), &nmea_quectel_solution_type_def, offsetof(nmea_pqtmnav, solution_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("reserved3"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved3), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("latitude"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmnav, latitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("longitude"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pqtmnav, longitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmnav, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("separation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmnav, separation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved4"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved4), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved5"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved5), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("lat_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmnav, lat_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lon_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmnav, lon_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("alt_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmnav, alt_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved6"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved6), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved7"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved7), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("diff_station"), ERROR_TEXT("integer 0..4095"), &range_0_to_4095, offsetof(nmea_pqtmnav, diff_station), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("diff_age"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmnav, diff_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved8"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved8), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("satellites_in_view"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmnav, satellites_in_view), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("satellites_used"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmnav, satellites_used), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved9"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved9), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved10"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved10), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved11"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved11), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved12"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved12), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved13"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved13), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved14"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved14), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("h_vel"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmnav, h_vel), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("v_vel"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmnav, v_vel), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("h_vel_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmnav, h_vel_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("v_vel_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmnav, v_vel_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved15"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved15), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved16"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved16), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("course"), ERROR_TEXT("decimal number 0..360"), &range_0_to_360, offsetof(nmea_pqtmnav, course), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved17"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved17), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved18"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmnav, reserved18), FIELD_TEXT, 1, 0},
 };
 static const layout pqtmnav_layout = {
     .sentence = "PQTMNAV", .address = "PQTMNAV", .fields = pqtmnav_fields, .before = 43, .fixed = 43,
@@ -30320,10 +30391,10 @@ size_t nmea_build_pqtmnav(const nmea_pqtmnav *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMODO,1,120635.000,1,112.3*6E */
 static const layout_field pqtmodo_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmodo, msg_version), FIELD_INTEGER, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pqtmodo, time), FIELD_TIME, 1, 0},
-    {"state", "quectel_enable code (0 1)", &nmea_quectel_enable_def, offsetof(nmea_pqtmodo, state), FIELD_ENUM, 1, 0},
-    {"distance", "decimal number", NULL, offsetof(nmea_pqtmodo, distance), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmodo, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pqtmodo, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("state"), ERROR_TEXT("quectel_enable code (0 1)"), &nmea_quectel_enable_def, offsetof(nmea_pqtmodo, state), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("distance"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmodo, distance), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmodo_layout = {
     .sentence = "PQTMODO", .address = "PQTMODO", .fields = pqtmodo_fields, .before = 4, .fixed = 4,
@@ -30394,20 +30465,20 @@ size_t nmea_build_pqtmodo(const nmea_pqtmodo *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMPL,1,55045200,5.00,1,1,2879,2718,4766,5344,4323,10902,,,*1C */
 static const layout_field pqtmpl_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmpl, msg_version), FIELD_INTEGER, 1, 0},
-    {"tow", "integer", NULL, offsetof(nmea_pqtmpl, tow), FIELD_INTEGER, 1, 0},
-    {"probability", "decimal number", NULL, offsetof(nmea_pqtmpl, probability), FIELD_DECIMAL, 1, 0},
-    {"reserved1", "integer", NULL, offsetof(nmea_pqtmpl, reserved1), FIELD_INTEGER, 1, 0},
-    {"reserved2", "integer", NULL, offsetof(nmea_pqtmpl, reserved2), FIELD_INTEGER, 1, 0},
-    {"pl_pos_north", "integer", NULL, offsetof(nmea_pqtmpl, pl_pos_north), FIELD_INTEGER, 1, 0},
-    {"pl_pos_east", "integer", NULL, offsetof(nmea_pqtmpl, pl_pos_east), FIELD_INTEGER, 1, 0},
-    {"pl_pos_down", "integer", NULL, offsetof(nmea_pqtmpl, pl_pos_down), FIELD_INTEGER, 1, 0},
-    {"pl_vel_north", "integer", NULL, offsetof(nmea_pqtmpl, pl_vel_north), FIELD_INTEGER, 1, 0},
-    {"pl_vel_east", "integer", NULL, offsetof(nmea_pqtmpl, pl_vel_east), FIELD_INTEGER, 1, 0},
-    {"pl_vel_down", "integer", NULL, offsetof(nmea_pqtmpl, pl_vel_down), FIELD_INTEGER, 1, 0},
-    {"reserved3", "text", NULL, offsetof(nmea_pqtmpl, reserved3), FIELD_TEXT, 1, 0},
-    {"reserved4", "text", NULL, offsetof(nmea_pqtmpl, reserved4), FIELD_TEXT, 1, 0},
-    {"pl_time", "integer", NULL, offsetof(nmea_pqtmpl, pl_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpl, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("tow"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpl, tow), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("probability"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmpl, probability), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved1"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpl, reserved1), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved2"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpl, reserved2), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pl_pos_north"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpl, pl_pos_north), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pl_pos_east"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpl, pl_pos_east), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pl_pos_down"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpl, pl_pos_down), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pl_vel_north"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpl, pl_vel_north), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pl_vel_east"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpl, pl_vel_east), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pl_vel_down"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpl, pl_vel_down), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved3"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmpl, reserved3), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved4"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmpl, reserved4), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("pl_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpl, pl_time), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmpl_layout = {
     .sentence = "PQTMPL", .address = "PQTMPL", .fields = pqtmpl_fields, .before = 14, .fixed = 14,
@@ -30498,25 +30569,25 @@ size_t nmea_build_pqtmpl(const nmea_pqtmpl *s, char *buf, size_t cap, nmea_error
 
 /* $PQTMPVT,1,31075000,20221225,083737.000,,3,09,18,31.12738291,117.26372910,34.212,5.267,3.212,2.928,0.238,4.346,34.12,2.16,4.38*51 */
 static const layout_field pqtmpvt_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmpvt, msg_version), FIELD_INTEGER, 1, 0},
-    {"tow", "integer", NULL, offsetof(nmea_pqtmpvt, tow), FIELD_INTEGER, 1, 0},
-    {"date", "text of at most 8 characters", NULL, offsetof(nmea_pqtmpvt, date), FIELD_TEXT, 1, 8},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pqtmpvt, time), FIELD_TIME, 1, 0},
-    {"reserved", "text", NULL, offsetof(nmea_pqtmpvt, reserved), FIELD_TEXT, 1, 0},
-    {"fix_type", "quectel_fix_type code (0 1 2 3)", &nmea_quectel_fix_type_def, offsetof(nmea_pqtmpvt, fix_type), FIELD_ENUM, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_pqtmpvt, satellites), FIELD_INTEGER, 1, 0},
-    {"leap_seconds", "integer", NULL, offsetof(nmea_pqtmpvt, leap_seconds), FIELD_INTEGER, 1, 0},
-    {"latitude", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmpvt, latitude), FIELD_DECIMAL, 1, 0},
-    {"longitude", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pqtmpvt, longitude), FIELD_DECIMAL, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_pqtmpvt, altitude), FIELD_DECIMAL, 1, 0},
-    {"separation", "decimal number", NULL, offsetof(nmea_pqtmpvt, separation), FIELD_DECIMAL, 1, 0},
-    {"vel_north", "decimal number", NULL, offsetof(nmea_pqtmpvt, vel_north), FIELD_DECIMAL, 1, 0},
-    {"vel_east", "decimal number", NULL, offsetof(nmea_pqtmpvt, vel_east), FIELD_DECIMAL, 1, 0},
-    {"vel_down", "decimal number", NULL, offsetof(nmea_pqtmpvt, vel_down), FIELD_DECIMAL, 1, 0},
-    {"speed", "decimal number", NULL, offsetof(nmea_pqtmpvt, speed), FIELD_DECIMAL, 1, 0},
-    {"heading", "decimal number", NULL, offsetof(nmea_pqtmpvt, heading), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_pqtmpvt, hdop), FIELD_DECIMAL, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_pqtmpvt, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpvt, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("tow"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpvt, tow), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("text of at most 8 characters"), NULL, offsetof(nmea_pqtmpvt, date), FIELD_TEXT, 1, 8},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pqtmpvt, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmpvt, reserved), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("fix_type"), ERROR_TEXT("quectel_fix_type code (0 1 2 3)"), &nmea_quectel_fix_type_def, offsetof(nmea_pqtmpvt, fix_type), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpvt, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("leap_seconds"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmpvt, leap_seconds), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("latitude"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmpvt, latitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("longitude"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pqtmpvt, longitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmpvt, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("separation"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmpvt, separation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vel_north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmpvt, vel_north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vel_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmpvt, vel_east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vel_down"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmpvt, vel_down), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmpvt, speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmpvt, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmpvt, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmpvt, pdop), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmpvt_layout = {
     .sentence = "PQTMPVT", .address = "PQTMPVT", .fields = pqtmpvt_fields, .before = 19, .fixed = 19,
@@ -30643,7 +30714,7 @@ size_t nmea_build_pqtmresetodo(const nmea_pqtmresetodo *s, char *buf, size_t cap
 
 /* $PQTMRESETODO,OK*21 */
 static const layout_field pqtmresetodo_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmresetodo_result_layout = {
     .sentence = "PQTMRESETODO_RESULT", .address = "PQTMRESETODO", .selector = "OK",
@@ -30671,8 +30742,8 @@ size_t nmea_build_pqtmresetodo_result(const nmea_pqtmresetodo_result *s, char *b
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMRESETODO_RESULT (Command failed): Reset odometer: result (spec/proprietary/pqtmresetodo_result.yaml) */
 static const layout_field pqtmresetodo_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmresetodo_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmresetodo_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmresetodo_result_error_layout = {
     .sentence = "PQTMRESETODO_RESULT", .address = "PQTMRESETODO", .variant = "error", .selector = "ERROR",
@@ -30728,7 +30799,7 @@ size_t nmea_build_pqtmrestorepar(const nmea_pqtmrestorepar *s, char *buf, size_t
 
 /* $PQTMRESTOREPAR,OK*3B */
 static const layout_field pqtmrestorepar_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmrestorepar_result_layout = {
     .sentence = "PQTMRESTOREPAR_RESULT", .address = "PQTMRESTOREPAR", .selector = "OK",
@@ -30756,8 +30827,8 @@ size_t nmea_build_pqtmrestorepar_result(const nmea_pqtmrestorepar_result *s, cha
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMRESTOREPAR_RESULT (Command failed): Restore default configuration: result (spec/proprietary/pqtmrestorepar_result.yaml) */
 static const layout_field pqtmrestorepar_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmrestorepar_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmrestorepar_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmrestorepar_result_error_layout = {
     .sentence = "PQTMRESTOREPAR_RESULT", .address = "PQTMRESTOREPAR", .variant = "error", .selector = "ERROR",
@@ -30813,7 +30884,7 @@ size_t nmea_build_pqtmsavepar(const nmea_pqtmsavepar *s, char *buf, size_t cap, 
 
 /* $PQTMSAVEPAR,OK*72 */
 static const layout_field pqtmsavepar_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqtmsavepar_result_layout = {
     .sentence = "PQTMSAVEPAR_RESULT", .address = "PQTMSAVEPAR", .selector = "OK",
@@ -30841,8 +30912,8 @@ size_t nmea_build_pqtmsavepar_result(const nmea_pqtmsavepar_result *s, char *buf
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMSAVEPAR_RESULT (Command failed): Save configuration: result (spec/proprietary/pqtmsavepar_result.yaml) */
 static const layout_field pqtmsavepar_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmsavepar_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmsavepar_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmsavepar_result_error_layout = {
     .sentence = "PQTMSAVEPAR_RESULT", .address = "PQTMSAVEPAR", .variant = "error", .selector = "ERROR",
@@ -30898,10 +30969,10 @@ size_t nmea_build_pqtmsn(const nmea_pqtmsn *s, char *buf, size_t cap, nmea_error
 
 /* $PQTMSN,OK,1,16,ESG5241364AUIDE5*3C */
 static const layout_field pqtmsn_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"reserved", "integer", NULL, offsetof(nmea_pqtmsn_result, reserved), FIELD_INTEGER, 1, 0},
-    {"length", "integer", NULL, offsetof(nmea_pqtmsn_result, length), FIELD_INTEGER, 1, 0},
-    {"serial_number", "text", NULL, offsetof(nmea_pqtmsn_result, serial_number), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmsn_result, reserved), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("length"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmsn_result, length), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("serial_number"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmsn_result, serial_number), FIELD_TEXT, 1, 0},
 };
 static const layout pqtmsn_result_layout = {
     .sentence = "PQTMSN_RESULT", .address = "PQTMSN", .selector = "OK", .fields = pqtmsn_result_fields,
@@ -30929,8 +31000,8 @@ size_t nmea_build_pqtmsn_result(const nmea_pqtmsn_result *s, char *buf, size_t c
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMSN_RESULT (Command failed): Module serial number: result (spec/proprietary/pqtmsn_result.yaml) */
 static const layout_field pqtmsn_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmsn_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmsn_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmsn_result_error_layout = {
     .sentence = "PQTMSN_RESULT", .address = "PQTMSN", .variant = "error", .selector = "ERROR",
@@ -30986,17 +31057,17 @@ size_t nmea_build_pqtmsrr(const nmea_pqtmsrr *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMSVINSTATUS,1,1000,1,,01,20,100,-2484434.3645,4875976.9741,3266161.3412,1.2415*3C */
 static const layout_field pqtmsvinstatus_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmsvinstatus, msg_version), FIELD_INTEGER, 1, 0},
-    {"tow", "integer", NULL, offsetof(nmea_pqtmsvinstatus, tow), FIELD_INTEGER, 1, 0},
-    {"valid", "quectel_svin_valid code (0 1 2)", &nmea_quectel_svin_valid_def, offsetof(nmea_pqtmsvinstatus, valid), FIELD_ENUM, 1, 0},
-    {"reserved0", "text", NULL, offsetof(nmea_pqtmsvinstatus, reserved0), FIELD_TEXT, 1, 0},
-    {"reserved1", "text", NULL, offsetof(nmea_pqtmsvinstatus, reserved1), FIELD_TEXT, 1, 0},
-    {"observations", "integer", NULL, offsetof(nmea_pqtmsvinstatus, observations), FIELD_INTEGER, 1, 0},
-    {"min_fixes", "integer", NULL, offsetof(nmea_pqtmsvinstatus, min_fixes), FIELD_INTEGER, 1, 0},
-    {"mean_x", "decimal number", NULL, offsetof(nmea_pqtmsvinstatus, mean_x), FIELD_DECIMAL, 1, 0},
-    {"mean_y", "decimal number", NULL, offsetof(nmea_pqtmsvinstatus, mean_y), FIELD_DECIMAL, 1, 0},
-    {"mean_z", "decimal number", NULL, offsetof(nmea_pqtmsvinstatus, mean_z), FIELD_DECIMAL, 1, 0},
-    {"mean_accuracy", "decimal number", NULL, offsetof(nmea_pqtmsvinstatus, mean_accuracy), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmsvinstatus, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("tow"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmsvinstatus, tow), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("valid"), ERROR_TEXT("quectel_svin_valid code (0 1 2)"), &nmea_quectel_svin_valid_def, offsetof(nmea_pqtmsvinstatus, valid), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("reserved0"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmsvinstatus, reserved0), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved1"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmsvinstatus, reserved1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("observations"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmsvinstatus, observations), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("min_fixes"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmsvinstatus, min_fixes), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mean_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmsvinstatus, mean_x), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mean_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmsvinstatus, mean_y), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mean_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmsvinstatus, mean_z), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mean_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmsvinstatus, mean_accuracy), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmsvinstatus_layout = {
     .sentence = "PQTMSVINSTATUS", .address = "PQTMSVINSTATUS", .fields = pqtmsvinstatus_fields, .before = 11,
@@ -31082,18 +31153,18 @@ size_t nmea_build_pqtmsvinstatus(const nmea_pqtmsvinstatus *s, char *buf, size_t
 
 /* $PQTMTAR,1,165034.000,4,,0.860,1.124780,1.254125,50.968541,0.254125,0.125485,0.012547,21*52 */
 static const layout_field pqtmtar_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmtar, msg_version), FIELD_INTEGER, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pqtmtar, time), FIELD_TIME, 1, 0},
-    {"quality", "quectel_heading_quality code (0 1 2 3 4 5)", &nmea_quectel_heading_quality_def, offsetof(nmea_pqtmtar, quality), FIELD_ENUM, 1, 0},
-    {"reserved", "text", NULL, offsetof(nmea_pqtmtar, reserved), FIELD_TEXT, 1, 0},
-    {"baseline", "decimal number", NULL, offsetof(nmea_pqtmtar, baseline), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pqtmtar, pitch), FIELD_DECIMAL, 1, 0},
-    {"roll", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_pqtmtar, roll), FIELD_DECIMAL, 1, 0},
-    {"heading", "decimal number 0..360", &range_0_to_360, offsetof(nmea_pqtmtar, heading), FIELD_DECIMAL, 1, 0},
-    {"pitch_accuracy", "decimal number", NULL, offsetof(nmea_pqtmtar, pitch_accuracy), FIELD_DECIMAL, 1, 0},
-    {"roll_accuracy", "decimal number", NULL, offsetof(nmea_pqtmtar, roll_accuracy), FIELD_DECIMAL, 1, 0},
-    {"heading_accuracy", "decimal number", NULL, offsetof(nmea_pqtmtar, heading_accuracy), FIELD_DECIMAL, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_pqtmtar, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmtar, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pqtmtar, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("quectel_heading_quality code (0 1 2 3 4 5)"), &nmea_quectel_heading_quality_def, offsetof(nmea_pqtmtar, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmtar, reserved), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("baseline"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmtar, baseline), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pqtmtar, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_pqtmtar, roll), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number 0..360"), &range_0_to_360, offsetof(nmea_pqtmtar, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmtar, pitch_accuracy), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmtar, roll_accuracy), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmtar, heading_accuracy), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmtar, satellites), FIELD_INTEGER, 1, 0},
 };
 static const layout pqtmtar_layout = {
     .sentence = "PQTMTAR", .address = "PQTMTAR", .fields = pqtmtar_fields, .before = 12, .fixed = 12,
@@ -31180,11 +31251,11 @@ size_t nmea_build_pqtmtar(const nmea_pqtmtar *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMTXT,1,01,01,01,0x105f0cf810417c00*1B */
 static const layout_field pqtmtxt_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmtxt, msg_version), FIELD_INTEGER, 1, 0},
-    {"total", "integer 1..99", &range_1_to_99, offsetof(nmea_pqtmtxt, total), FIELD_INTEGER, 1, 0},
-    {"number", "integer 1..99", &range_1_to_99, offsetof(nmea_pqtmtxt, number), FIELD_INTEGER, 1, 0},
-    {"text_id", "quectel_text_id code (01 02 03)", &nmea_quectel_text_id_def, offsetof(nmea_pqtmtxt, text_id), FIELD_ENUM, 1, 0},
-    {"text", "text of at most 57 characters", NULL, offsetof(nmea_pqtmtxt, text), FIELD_TEXT, 1, 57},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmtxt, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("total"), ERROR_TEXT("integer 1..99"), &range_1_to_99, offsetof(nmea_pqtmtxt, total), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("number"), ERROR_TEXT("integer 1..99"), &range_1_to_99, offsetof(nmea_pqtmtxt, number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("text_id"), ERROR_TEXT("quectel_text_id code (01 02 03)"), &nmea_quectel_text_id_def, offsetof(nmea_pqtmtxt, text_id), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("text"), ERROR_TEXT("text of at most 57 characters"), NULL, offsetof(nmea_pqtmtxt, text), FIELD_TEXT, 1, 57},
 };
 static const layout pqtmtxt_layout = {
     .sentence = "PQTMTXT", .address = "PQTMTXT", .fields = pqtmtxt_fields, .before = 5, .fixed = 5,
@@ -31283,9 +31354,9 @@ size_t nmea_build_pqtmuniqid(const nmea_pqtmuniqid *s, char *buf, size_t cap, nm
 
 /* $PQTMUNIQID,OK,16,81D62010EE0AF375BDF5952CDC3757A1*3E */
 static const layout_field pqtmuniqid_result_fields[] = {
-    {"status", "OK", "OK", 0, FIELD_KEYWORD, 1, 0},
-    {"length", "integer", NULL, offsetof(nmea_pqtmuniqid_result, length), FIELD_INTEGER, 1, 0},
-    {"unique_id", "text", NULL, offsetof(nmea_pqtmuniqid_result, unique_id), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("length"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmuniqid_result, length), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("unique_id"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmuniqid_result, unique_id), FIELD_TEXT, 1, 0},
 };
 static const layout pqtmuniqid_result_layout = {
     .sentence = "PQTMUNIQID_RESULT", .address = "PQTMUNIQID", .selector = "OK",
@@ -31313,8 +31384,8 @@ size_t nmea_build_pqtmuniqid_result(const nmea_pqtmuniqid_result *s, char *buf, 
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMUNIQID_RESULT (Command failed): Module unique ID: result (spec/proprietary/pqtmuniqid_result.yaml) */
 static const layout_field pqtmuniqid_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmuniqid_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmuniqid_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmuniqid_result_error_layout = {
     .sentence = "PQTMUNIQID_RESULT", .address = "PQTMUNIQID", .variant = "error", .selector = "ERROR",
@@ -31344,17 +31415,17 @@ size_t nmea_build_pqtmuniqid_result_error(const nmea_pqtmuniqid_result_error *s,
 
 /* $PQTMVEL,1,154512.100,1.251,2.452,1.245,2.752,3.021,180.512,0.124,0.254,0.250*67 */
 static const layout_field pqtmvel_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmvel, msg_version), FIELD_INTEGER, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pqtmvel, time), FIELD_TIME, 1, 0},
-    {"vel_north", "decimal number", NULL, offsetof(nmea_pqtmvel, vel_north), FIELD_DECIMAL, 1, 0},
-    {"vel_east", "decimal number", NULL, offsetof(nmea_pqtmvel, vel_east), FIELD_DECIMAL, 1, 0},
-    {"vel_down", "decimal number", NULL, offsetof(nmea_pqtmvel, vel_down), FIELD_DECIMAL, 1, 0},
-    {"ground_speed", "decimal number", NULL, offsetof(nmea_pqtmvel, ground_speed), FIELD_DECIMAL, 1, 0},
-    {"speed", "decimal number", NULL, offsetof(nmea_pqtmvel, speed), FIELD_DECIMAL, 1, 0},
-    {"course", "decimal number 0..359.999", &range_0_to_359p999, offsetof(nmea_pqtmvel, course), FIELD_DECIMAL, 1, 0},
-    {"ground_speed_accuracy", "decimal number", NULL, offsetof(nmea_pqtmvel, ground_speed_accuracy), FIELD_DECIMAL, 1, 0},
-    {"speed_accuracy", "decimal number", NULL, offsetof(nmea_pqtmvel, speed_accuracy), FIELD_DECIMAL, 1, 0},
-    {"course_accuracy", "decimal number", NULL, offsetof(nmea_pqtmvel, course_accuracy), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmvel, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pqtmvel, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("vel_north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvel, vel_north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vel_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvel, vel_east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vel_down"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvel, vel_down), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ground_speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvel, ground_speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvel, speed), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("course"), ERROR_TEXT("decimal number 0..359.999"), &range_0_to_359p999, offsetof(nmea_pqtmvel, course), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ground_speed_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvel, ground_speed_accuracy), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("speed_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvel, speed_accuracy), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("course_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvel, course_accuracy), FIELD_DECIMAL, 1, 0},
 };
 static const layout pqtmvel_layout = {
     .sentence = "PQTMVEL", .address = "PQTMVEL", .fields = pqtmvel_fields, .before = 11, .fixed = 11,
@@ -31439,11 +31510,11 @@ size_t nmea_build_pqtmvel(const nmea_pqtmvel *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMVER,1,MODULE,LG290P03AANR01A03S,2024/04/30,10:53:07*32 */
 static const layout_field pqtmver_fields[] = {
-    {"msg_version", "integer", NULL, offsetof(nmea_pqtmver, msg_version), FIELD_INTEGER, 1, 0},
-    {"version_name", "text", NULL, offsetof(nmea_pqtmver, version_name), FIELD_TEXT, 1, 0},
-    {"version", "text", NULL, offsetof(nmea_pqtmver, version), FIELD_TEXT, 1, 0},
-    {"build_date", "text", NULL, offsetof(nmea_pqtmver, build_date), FIELD_TEXT, 1, 0},
-    {"build_time", "text", NULL, offsetof(nmea_pqtmver, build_time), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmver, msg_version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("version_name"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmver, version_name), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmver, version), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("build_date"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmver, build_date), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("build_time"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmver, build_time), FIELD_TEXT, 1, 0},
 };
 static const layout pqtmver_layout = {
     .sentence = "PQTMVER", .address = "PQTMVER", .fields = pqtmver_fields, .before = 5, .fixed = 5,
@@ -31516,9 +31587,9 @@ size_t nmea_build_pqtmver(const nmea_pqtmver *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMVER,MODULE_L89HANR01A06S,2022/07/28,18:27:04*7A */
 static const layout_field pqtmver_legacy_fields[] = {
-    {"version", "text", NULL, offsetof(nmea_pqtmver_legacy, version), FIELD_TEXT, 1, 0},
-    {"build_date", "text", NULL, offsetof(nmea_pqtmver_legacy, build_date), FIELD_TEXT, 1, 0},
-    {"build_time", "text", NULL, offsetof(nmea_pqtmver_legacy, build_time), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmver_legacy, version), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("build_date"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmver_legacy, build_date), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("build_time"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmver_legacy, build_time), FIELD_TEXT, 1, 0},
 };
 static const layout pqtmver_legacy_layout = {
     .sentence = "PQTMVER", .address = "PQTMVER", .variant = "legacy", .fields = pqtmver_legacy_fields,
@@ -31614,9 +31685,9 @@ size_t nmea_build_pqtmverno(const nmea_pqtmverno *s, char *buf, size_t cap, nmea
 
 /* $PQTMVERNO,LG290P03AANR01A03S,2024/04/30,10:53:07*18 */
 static const layout_field pqtmverno_result_fields[] = {
-    {"version", "text", NULL, offsetof(nmea_pqtmverno_result, version), FIELD_TEXT, 1, 0},
-    {"build_date", "text", NULL, offsetof(nmea_pqtmverno_result, build_date), FIELD_TEXT, 1, 0},
-    {"build_time", "text", NULL, offsetof(nmea_pqtmverno_result, build_time), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmverno_result, version), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("build_date"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmverno_result, build_date), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("build_time"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmverno_result, build_time), FIELD_TEXT, 1, 0},
 };
 static const layout pqtmverno_result_layout = {
     .sentence = "PQTMVERNO_RESULT", .address = "PQTMVERNO", .fields = pqtmverno_result_fields, .before = 3,
@@ -31644,8 +31715,8 @@ size_t nmea_build_pqtmverno_result(const nmea_pqtmverno_result *s, char *buf, si
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMVERNO_RESULT (Command failed): Firmware version: result (spec/proprietary/pqtmverno_result.yaml) */
 static const layout_field pqtmverno_result_error_fields[] = {
-    {"status", "ERROR", "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {"error_code", "quectel_error_code code (1 2 3)", &nmea_quectel_error_code_def, offsetof(nmea_pqtmverno_result_error, error_code), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmverno_result_error, error_code), FIELD_ENUM, 1, 0},
 };
 static const layout pqtmverno_result_error_layout = {
     .sentence = "PQTMVERNO_RESULT", .address = "PQTMVERNO", .variant = "error", .selector = "ERROR",
@@ -31701,7 +31772,7 @@ size_t nmea_build_pqtmwarm(const nmea_pqtmwarm *s, char *buf, size_t cap, nmea_e
 
 /* $PQVERNO,R*3F */
 static const layout_field pqverno_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pqverno_layout = {
     .sentence = "PQVERNO", .address = "PQVERNO", .selector = "R", .fields = pqverno_fields, .selector_at = 0,
@@ -31731,10 +31802,10 @@ size_t nmea_build_pqverno(const nmea_pqverno *s, char *buf, size_t cap, nmea_err
 
 /* $PQVERNO,R,L70BGR03A05S,2019/10/09,21:12*23 */
 static const layout_field pqverno_result_fields[] = {
-    {"access", "R", "R", 0, FIELD_KEYWORD, 1, 0},
-    {"version", "text", NULL, offsetof(nmea_pqverno_result, version), FIELD_TEXT, 1, 0},
-    {"build_date", "text", NULL, offsetof(nmea_pqverno_result, build_date), FIELD_TEXT, 1, 0},
-    {"build_time", "text", NULL, offsetof(nmea_pqverno_result, build_time), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqverno_result, version), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("build_date"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqverno_result, build_date), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("build_time"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqverno_result, build_time), FIELD_TEXT, 1, 0},
 };
 static const layout pqverno_result_layout = {
     .sentence = "PQVERNO_RESULT", .address = "PQVERNO", .selector = "R", .fields = pqverno_result_fields,
@@ -31764,11 +31835,11 @@ size_t nmea_build_pqverno_result(const nmea_pqverno_result *s, char *buf, size_t
 
 /* $PSRF100,0,9600,8,1,0*0C */
 static const layout_field psrf100_fields[] = {
-    {"protocol", "sirf_protocol code (0 1)", &nmea_sirf_protocol_def, offsetof(nmea_psrf100, protocol), FIELD_ENUM, 1, 0},
-    {"baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", &nmea_sirf_baud_def, offsetof(nmea_psrf100, baud), FIELD_ENUM, 1, 0},
-    {"data_bits", "integer 7..8", &range_7_to_8, offsetof(nmea_psrf100, data_bits), FIELD_INTEGER, 1, 0},
-    {"stop_bits", "integer 0..1", &range_0_to_1, offsetof(nmea_psrf100, stop_bits), FIELD_INTEGER, 1, 0},
-    {"parity", "sirf_parity code (0 1 2)", &nmea_sirf_parity_def, offsetof(nmea_psrf100, parity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("protocol"), ERROR_TEXT("sirf_protocol code (0 1)"), &nmea_sirf_protocol_def, offsetof(nmea_psrf100, protocol), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("baud"), ERROR_TEXT("sirf_baud code (1200 2400 4800 9600 19200 38400)"), &nmea_sirf_baud_def, offsetof(nmea_psrf100, baud), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("data_bits"), ERROR_TEXT("integer 7..8"), &range_7_to_8, offsetof(nmea_psrf100, data_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("stop_bits"), ERROR_TEXT("integer 0..1"), &range_0_to_1, offsetof(nmea_psrf100, stop_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("parity"), ERROR_TEXT("sirf_parity code (0 1 2)"), &nmea_sirf_parity_def, offsetof(nmea_psrf100, parity), FIELD_ENUM, 1, 0},
 };
 static const layout psrf100_layout = {
     .sentence = "PSRF100", .address = "PSRF100", .fields = psrf100_fields, .before = 5, .fixed = 5,
@@ -31797,14 +31868,14 @@ size_t nmea_build_psrf100(const nmea_psrf100 *s, char *buf, size_t cap, nmea_err
 
 /* $PSRF101,-2686700,-4304200,3851624,96000,497260,921,12,3*2F */
 static const layout_field psrf101_fields[] = {
-    {"x", "integer -2147483648..2147483647", &range_minus_2147483648_to_2147483647, offsetof(nmea_psrf101, x), FIELD_INTEGER, 1, 0},
-    {"y", "integer -2147483648..2147483647", &range_minus_2147483648_to_2147483647, offsetof(nmea_psrf101, y), FIELD_INTEGER, 1, 0},
-    {"z", "integer -2147483648..2147483647", &range_minus_2147483648_to_2147483647, offsetof(nmea_psrf101, z), FIELD_INTEGER, 1, 0},
-    {"clock_offset", "integer -2147483648..2147483647", &range_minus_2147483648_to_2147483647, offsetof(nmea_psrf101, clock_offset), FIELD_INTEGER, 1, 0},
-    {"time_of_week", "integer 0..604799", &range_0_to_604799, offsetof(nmea_psrf101, time_of_week), FIELD_INTEGER, 1, 0},
-    {"week", "integer 0..65535", &range_0_to_65535, offsetof(nmea_psrf101, week), FIELD_INTEGER, 1, 0},
-    {"channels", "integer 1..12", &range_1_to_12, offsetof(nmea_psrf101, channels), FIELD_INTEGER, 1, 0},
-    {"reset_cfg", "integer 0..7", &range_0_to_7, offsetof(nmea_psrf101, reset_cfg), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("x"), ERROR_TEXT("integer -2147483648..2147483647"), &range_minus_2147483648_to_2147483647, offsetof(nmea_psrf101, x), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("y"), ERROR_TEXT("integer -2147483648..2147483647"), &range_minus_2147483648_to_2147483647, offsetof(nmea_psrf101, y), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("z"), ERROR_TEXT("integer -2147483648..2147483647"), &range_minus_2147483648_to_2147483647, offsetof(nmea_psrf101, z), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("clock_offset"), ERROR_TEXT("integer -2147483648..2147483647"), &range_minus_2147483648_to_2147483647, offsetof(nmea_psrf101, clock_offset), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_of_week"), ERROR_TEXT("integer 0..604799"), &range_0_to_604799, offsetof(nmea_psrf101, time_of_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("week"), ERROR_TEXT("integer 0..65535"), &range_0_to_65535, offsetof(nmea_psrf101, week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channels"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_psrf101, channels), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reset_cfg"), ERROR_TEXT("integer 0..7"), &range_0_to_7, offsetof(nmea_psrf101, reset_cfg), FIELD_INTEGER, 1, 0},
 };
 static const layout psrf101_layout = {
     .sentence = "PSRF101", .address = "PSRF101", .fields = psrf101_fields, .before = 8, .fixed = 8,
@@ -31833,10 +31904,10 @@ size_t nmea_build_psrf101(const nmea_psrf101 *s, char *buf, size_t cap, nmea_err
 
 /* $PSRF102,9600,8,1,0*12 */
 static const layout_field psrf102_fields[] = {
-    {"baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", &nmea_sirf_baud_def, offsetof(nmea_psrf102, baud), FIELD_ENUM, 1, 0},
-    {"data_bits", "integer 8..8", &range_8_to_8, offsetof(nmea_psrf102, data_bits), FIELD_INTEGER, 1, 0},
-    {"stop_bits", "integer 0..1", &range_0_to_1, offsetof(nmea_psrf102, stop_bits), FIELD_INTEGER, 1, 0},
-    {"parity", "sirf_parity code (0 1 2)", &nmea_sirf_parity_def, offsetof(nmea_psrf102, parity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("baud"), ERROR_TEXT("sirf_baud code (1200 2400 4800 9600 19200 38400)"), &nmea_sirf_baud_def, offsetof(nmea_psrf102, baud), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("data_bits"), ERROR_TEXT("integer 8..8"), &range_8_to_8, offsetof(nmea_psrf102, data_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("stop_bits"), ERROR_TEXT("integer 0..1"), &range_0_to_1, offsetof(nmea_psrf102, stop_bits), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("parity"), ERROR_TEXT("sirf_parity code (0 1 2)"), &nmea_sirf_parity_def, offsetof(nmea_psrf102, parity), FIELD_ENUM, 1, 0},
 };
 static const layout psrf102_layout = {
     .sentence = "PSRF102", .address = "PSRF102", .fields = psrf102_fields, .before = 4, .fixed = 4,
@@ -31865,10 +31936,10 @@ size_t nmea_build_psrf102(const nmea_psrf102 *s, char *buf, size_t cap, nmea_err
 
 /* $PSRF103,00,01,00,01*25 */
 static const layout_field psrf103_fields[] = {
-    {"message", "sirf_nmea_message code (00 01 02 03 04 05)", &nmea_sirf_nmea_message_def, offsetof(nmea_psrf103, message), FIELD_ENUM, 1, 0},
-    {"mode", "sirf_rate_mode code (00 01)", &nmea_sirf_rate_mode_def, offsetof(nmea_psrf103, mode), FIELD_ENUM, 1, 0},
-    {"rate", "integer 0..255", &range_0_to_255, offsetof(nmea_psrf103, rate), FIELD_INTEGER, 1, 0},
-    {"checksum_mode", "sirf_checksum_enable code (00 01)", &nmea_sirf_checksum_enable_def, offsetof(nmea_psrf103, checksum_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("sirf_nmea_message code (00 01 02 03 04 05)"), &nmea_sirf_nmea_message_def, offsetof(nmea_psrf103, message), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("sirf_rate_mode code (00 01)"), &nmea_sirf_rate_mode_def, offsetof(nmea_psrf103, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rate"), ERROR_TEXT("integer 0..255"), &range_0_to_255, offsetof(nmea_psrf103, rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("checksum_mode"), ERROR_TEXT("sirf_checksum_enable code (00 01)"), &nmea_sirf_checksum_enable_def, offsetof(nmea_psrf103, checksum_mode), FIELD_ENUM, 1, 0},
 };
 static const layout psrf103_layout = {
     .sentence = "PSRF103", .address = "PSRF103", .fields = psrf103_fields, .before = 4, .fixed = 4,
@@ -31895,10 +31966,10 @@ size_t nmea_build_psrf103(const nmea_psrf103 *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PSRF103 (One-digit selectors): Query or set the rate of a standard NMEA sentence (spec/proprietary/psrf103.yaml) */
 static const layout_field psrf103_short_codes_fields[] = {
-    {"message", "sirf_nmea_message_digit code (0 1 2 3 4 5)", &nmea_sirf_nmea_message_digit_def, offsetof(nmea_psrf103_short_codes, message), FIELD_ENUM, 1, 0},
-    {"mode", "sirf_rate_mode_digit code (0 1)", &nmea_sirf_rate_mode_digit_def, offsetof(nmea_psrf103_short_codes, mode), FIELD_ENUM, 1, 0},
-    {"rate", "integer 0..255", &range_0_to_255, offsetof(nmea_psrf103_short_codes, rate), FIELD_INTEGER, 1, 0},
-    {"checksum_mode", "sirf_checksum_enable_digit code (0 1)", &nmea_sirf_checksum_enable_digit_def, offsetof(nmea_psrf103_short_codes, checksum_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("sirf_nmea_message_digit code (0 1 2 3 4 5)"), &nmea_sirf_nmea_message_digit_def, offsetof(nmea_psrf103_short_codes, message), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("sirf_rate_mode_digit code (0 1)"), &nmea_sirf_rate_mode_digit_def, offsetof(nmea_psrf103_short_codes, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rate"), ERROR_TEXT("integer 0..255"), &range_0_to_255, offsetof(nmea_psrf103_short_codes, rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("checksum_mode"), ERROR_TEXT("sirf_checksum_enable_digit code (0 1)"), &nmea_sirf_checksum_enable_digit_def, offsetof(nmea_psrf103_short_codes, checksum_mode), FIELD_ENUM, 1, 0},
 };
 static const uint16_t psrf103_short_codes_same_as_main[] = {3, 0};
 static const layout psrf103_short_codes_layout = {
@@ -31930,14 +32001,14 @@ size_t nmea_build_psrf103_short_codes(const nmea_psrf103_short_codes *s, char *b
 
 /* $PSRF104,37.3875111,-121.97232,0,96000,237759,922,12,3*37 */
 static const layout_field psrf104_fields[] = {
-    {"latitude", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_psrf104, latitude), FIELD_DECIMAL, 1, 0},
-    {"longitude", "decimal number -180..180", &range_minus_180_to_180, offsetof(nmea_psrf104, longitude), FIELD_DECIMAL, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_psrf104, altitude), FIELD_DECIMAL, 1, 0},
-    {"clock_offset", "integer -2147483648..2147483647", &range_minus_2147483648_to_2147483647, offsetof(nmea_psrf104, clock_offset), FIELD_INTEGER, 1, 0},
-    {"time_of_week", "integer 0..604799", &range_0_to_604799, offsetof(nmea_psrf104, time_of_week), FIELD_INTEGER, 1, 0},
-    {"week", "integer 0..65535", &range_0_to_65535, offsetof(nmea_psrf104, week), FIELD_INTEGER, 1, 0},
-    {"channels", "integer 1..12", &range_1_to_12, offsetof(nmea_psrf104, channels), FIELD_INTEGER, 1, 0},
-    {"reset_cfg", "integer 0..7", &range_0_to_7, offsetof(nmea_psrf104, reset_cfg), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("latitude"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_psrf104, latitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("longitude"), ERROR_TEXT("decimal number -180..180"), &range_minus_180_to_180, offsetof(nmea_psrf104, longitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psrf104, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("clock_offset"), ERROR_TEXT("integer -2147483648..2147483647"), &range_minus_2147483648_to_2147483647, offsetof(nmea_psrf104, clock_offset), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time_of_week"), ERROR_TEXT("integer 0..604799"), &range_0_to_604799, offsetof(nmea_psrf104, time_of_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("week"), ERROR_TEXT("integer 0..65535"), &range_0_to_65535, offsetof(nmea_psrf104, week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channels"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_psrf104, channels), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reset_cfg"), ERROR_TEXT("integer 0..7"), &range_0_to_7, offsetof(nmea_psrf104, reset_cfg), FIELD_INTEGER, 1, 0},
 };
 static const layout psrf104_layout = {
     .sentence = "PSRF104", .address = "PSRF104", .fields = psrf104_fields, .before = 8, .fixed = 8,
@@ -31966,7 +32037,7 @@ size_t nmea_build_psrf104(const nmea_psrf104 *s, char *buf, size_t cap, nmea_err
 
 /* $PSRF105,1*3E */
 static const layout_field psrf105_fields[] = {
-    {"debug", "sirf_debug code (0 1)", &nmea_sirf_debug_def, offsetof(nmea_psrf105, debug), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("debug"), ERROR_TEXT("sirf_debug code (0 1)"), &nmea_sirf_debug_def, offsetof(nmea_psrf105, debug), FIELD_ENUM, 1, 0},
 };
 static const layout psrf105_layout = {
     .sentence = "PSRF105", .address = "PSRF105", .fields = psrf105_fields, .before = 1, .fixed = 1,
@@ -31993,7 +32064,7 @@ size_t nmea_build_psrf105(const nmea_psrf105 *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PSRF150: OkToSend (spec/proprietary/psrf150.yaml) */
 static const layout_field psrf150_fields[] = {
-    {"ok_to_send", "sirf_ok_to_send code (0 1)", &nmea_sirf_ok_to_send_def, offsetof(nmea_psrf150, ok_to_send), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("ok_to_send"), ERROR_TEXT("sirf_ok_to_send code (0 1)"), &nmea_sirf_ok_to_send_def, offsetof(nmea_psrf150, ok_to_send), FIELD_ENUM, 1, 0},
 };
 static const layout psrf150_layout = {
     .sentence = "PSRF150", .address = "PSRF150", .fields = psrf150_fields, .before = 1, .fixed = 1,
@@ -32058,10 +32129,10 @@ size_t nmea_build_psrf150(const nmea_psrf150 *s, char *buf, size_t cap, nmea_err
 
 /* $PSRF151,3,1485,147236.3,0x43002732*4A */
 static const layout_field psrf151_fields[] = {
-    {"time_valid", "integer 0..3", &range_0_to_3, offsetof(nmea_psrf151, time_valid), FIELD_INTEGER, 1, 0},
-    {"gps_week", "integer of at least 0", &range_from_0, offsetof(nmea_psrf151, gps_week), FIELD_INTEGER, 1, 0},
-    {"gps_tow", "decimal number 0..604800", &range_0_to_604800, offsetof(nmea_psrf151, gps_tow), FIELD_DECIMAL, 1, 0},
-    {"eph_req_mask", "text of at most 10 characters", NULL, offsetof(nmea_psrf151, eph_req_mask), FIELD_TEXT, 1, 10},
+    {ERROR_TEXT("time_valid"), ERROR_TEXT("integer 0..3"), &range_0_to_3, offsetof(nmea_psrf151, time_valid), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_week"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_psrf151, gps_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_tow"), ERROR_TEXT("decimal number 0..604800"), &range_0_to_604800, offsetof(nmea_psrf151, gps_tow), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("eph_req_mask"), ERROR_TEXT("text of at most 10 characters"), NULL, offsetof(nmea_psrf151, eph_req_mask), FIELD_TEXT, 1, 10},
 };
 static const layout psrf151_layout = {
     .sentence = "PSRF151", .address = "PSRF151", .fields = psrf151_fields, .before = 4, .fixed = 4,
@@ -32132,13 +32203,13 @@ size_t nmea_build_psrf151(const nmea_psrf151 *s, char *buf, size_t cap, nmea_err
 
 /* $PSRFEPE,074157.799,A,1.1,24.65,25.14,0.1,61.5*29 */
 static const layout_field psrfepe_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_psrfepe, time), FIELD_TIME, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_psrfepe, status), FIELD_ENUM, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_psrfepe, hdop), FIELD_DECIMAL, 1, 0},
-    {"ehpe", "decimal number", NULL, offsetof(nmea_psrfepe, ehpe), FIELD_DECIMAL, 1, 0},
-    {"evpe", "decimal number", NULL, offsetof(nmea_psrfepe, evpe), FIELD_DECIMAL, 1, 0},
-    {"ehve", "decimal number", NULL, offsetof(nmea_psrfepe, ehve), FIELD_DECIMAL, 1, 0},
-    {"ehe", "decimal number", NULL, offsetof(nmea_psrfepe, ehe), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_psrfepe, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_psrfepe, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psrfepe, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ehpe"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psrfepe, ehpe), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("evpe"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psrfepe, evpe), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ehve"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psrfepe, ehve), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("ehe"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psrfepe, ehe), FIELD_DECIMAL, 1, 0},
 };
 static const layout psrfepe_layout = {
     .sentence = "PSRFEPE", .address = "PSRFEPE", .fields = psrfepe_fields, .before = 7, .fixed = 7,
@@ -32215,19 +32286,19 @@ size_t nmea_build_psrfepe(const nmea_psrfepe *s, char *buf, size_t cap, nmea_err
 
 /* $PSSN,HRP,104751.00,230324,23.455,1.954,0.0125,0.123,0.0234,0.03765,11,0,4.56453,W*20 */
 static const layout_field pssn_hrp_fields[] = {
-    {"keyword", "HRP", "HRP", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pssn_hrp, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_pssn_hrp, date), FIELD_DATE, 1, 0},
-    {"heading", "decimal number", NULL, offsetof(nmea_pssn_hrp, heading), FIELD_DECIMAL, 1, 0},
-    {"roll", "decimal number", NULL, offsetof(nmea_pssn_hrp, roll), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number", NULL, offsetof(nmea_pssn_hrp, pitch), FIELD_DECIMAL, 1, 0},
-    {"heading_std", "decimal number", NULL, offsetof(nmea_pssn_hrp, heading_std), FIELD_DECIMAL, 1, 0},
-    {"roll_std", "decimal number", NULL, offsetof(nmea_pssn_hrp, roll_std), FIELD_DECIMAL, 1, 0},
-    {"pitch_std", "decimal number", NULL, offsetof(nmea_pssn_hrp, pitch_std), FIELD_DECIMAL, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_pssn_hrp, satellites), FIELD_INTEGER, 1, 0},
-    {"attitude_mode", "integer", NULL, offsetof(nmea_pssn_hrp, attitude_mode), FIELD_INTEGER, 1, 0},
-    {"mag_var", "decimal number", NULL, offsetof(nmea_pssn_hrp, mag_var), FIELD_DECIMAL, 1, 0},
-    {"mag_var_dir", "east_west code (E W)", &nmea_east_west_def, offsetof(nmea_pssn_hrp, mag_var_dir), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("HRP"), "HRP", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pssn_hrp, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_pssn_hrp, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_hrp, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_hrp, roll), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_hrp, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("heading_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_hrp, heading_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_hrp, roll_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch_std"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_hrp, pitch_std), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_hrp, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("attitude_mode"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_hrp, attitude_mode), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mag_var"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_hrp, mag_var), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mag_var_dir"), ERROR_TEXT("east_west code (E W)"), &nmea_east_west_def, offsetof(nmea_pssn_hrp, mag_var_dir), FIELD_ENUM, 1, 0},
 };
 static const layout pssn_hrp_layout = {
     .sentence = "PSSN_HRP", .address = "PSSN", .selector = "HRP", .fields = pssn_hrp_fields, .selector_at = 0,
@@ -32315,17 +32386,17 @@ size_t nmea_build_pssn_hrp(const nmea_pssn_hrp *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PSSN_RBD: Rover-base direction (RBD) (spec/proprietary/pssn_rbd.yaml) */
 static const layout_field pssn_rbd_fields[] = {
-    {"keyword", "RBD", "RBD", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pssn_rbd, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_pssn_rbd, date), FIELD_DATE, 1, 0},
-    {"azimuth", "decimal number 0..360", &range_0_to_360, offsetof(nmea_pssn_rbd, azimuth), FIELD_DECIMAL, 1, 0},
-    {"elevation", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_pssn_rbd, elevation), FIELD_DECIMAL, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_pssn_rbd, satellites), FIELD_INTEGER, 1, 0},
-    {"quality", "septentrio_baseline_quality code (0 2 4 5)", &nmea_septentrio_baseline_quality_def, offsetof(nmea_pssn_rbd, quality), FIELD_ENUM, 1, 0},
-    {"base_motion", "septentrio_base_motion code (0 1)", &nmea_septentrio_base_motion_def, offsetof(nmea_pssn_rbd, base_motion), FIELD_ENUM, 1, 0},
-    {"correction_age", "decimal number", NULL, offsetof(nmea_pssn_rbd, correction_age), FIELD_DECIMAL, 1, 0},
-    {"rover_serial", "text", NULL, offsetof(nmea_pssn_rbd, rover_serial), FIELD_TEXT, 1, 0},
-    {"base_id", "integer", NULL, offsetof(nmea_pssn_rbd, base_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("RBD"), "RBD", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pssn_rbd, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_pssn_rbd, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("azimuth"), ERROR_TEXT("decimal number 0..360"), &range_0_to_360, offsetof(nmea_pssn_rbd, azimuth), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("elevation"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_pssn_rbd, elevation), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_rbd, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("septentrio_baseline_quality code (0 2 4 5)"), &nmea_septentrio_baseline_quality_def, offsetof(nmea_pssn_rbd, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("base_motion"), ERROR_TEXT("septentrio_base_motion code (0 1)"), &nmea_septentrio_base_motion_def, offsetof(nmea_pssn_rbd, base_motion), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("correction_age"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_rbd, correction_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rover_serial"), ERROR_TEXT("text"), NULL, offsetof(nmea_pssn_rbd, rover_serial), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("base_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_rbd, base_id), FIELD_INTEGER, 1, 0},
 };
 static const layout pssn_rbd_layout = {
     .sentence = "PSSN_RBD", .address = "PSSN", .selector = "RBD", .fields = pssn_rbd_fields, .selector_at = 0,
@@ -32409,18 +32480,18 @@ size_t nmea_build_pssn_rbd(const nmea_pssn_rbd *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PSSN_RBP: Rover-base position (RBP) (spec/proprietary/pssn_rbp.yaml) */
 static const layout_field pssn_rbp_fields[] = {
-    {"keyword", "RBP", "RBP", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pssn_rbp, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_pssn_rbp, date), FIELD_DATE, 1, 0},
-    {"north", "decimal number", NULL, offsetof(nmea_pssn_rbp, north), FIELD_DECIMAL, 1, 0},
-    {"east", "decimal number", NULL, offsetof(nmea_pssn_rbp, east), FIELD_DECIMAL, 1, 0},
-    {"up", "decimal number", NULL, offsetof(nmea_pssn_rbp, up), FIELD_DECIMAL, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_pssn_rbp, satellites), FIELD_INTEGER, 1, 0},
-    {"quality", "septentrio_baseline_quality code (0 2 4 5)", &nmea_septentrio_baseline_quality_def, offsetof(nmea_pssn_rbp, quality), FIELD_ENUM, 1, 0},
-    {"base_motion", "septentrio_base_motion code (0 1)", &nmea_septentrio_base_motion_def, offsetof(nmea_pssn_rbp, base_motion), FIELD_ENUM, 1, 0},
-    {"correction_age", "decimal number", NULL, offsetof(nmea_pssn_rbp, correction_age), FIELD_DECIMAL, 1, 0},
-    {"rover_serial", "text", NULL, offsetof(nmea_pssn_rbp, rover_serial), FIELD_TEXT, 1, 0},
-    {"base_id", "integer", NULL, offsetof(nmea_pssn_rbp, base_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("RBP"), "RBP", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pssn_rbp, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_pssn_rbp, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_rbp, north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_rbp, east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_rbp, up), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_rbp, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("septentrio_baseline_quality code (0 2 4 5)"), &nmea_septentrio_baseline_quality_def, offsetof(nmea_pssn_rbp, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("base_motion"), ERROR_TEXT("septentrio_base_motion code (0 1)"), &nmea_septentrio_base_motion_def, offsetof(nmea_pssn_rbp, base_motion), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("correction_age"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_rbp, correction_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rover_serial"), ERROR_TEXT("text"), NULL, offsetof(nmea_pssn_rbp, rover_serial), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("base_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_rbp, base_id), FIELD_INTEGER, 1, 0},
 };
 static const layout pssn_rbp_layout = {
     .sentence = "PSSN_RBP", .address = "PSSN", .selector = "RBP", .fields = pssn_rbp_fields, .selector_at = 0,
@@ -32506,18 +32577,18 @@ size_t nmea_build_pssn_rbp(const nmea_pssn_rbp *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PSSN_RBV: Rover-base velocity (RBV) (spec/proprietary/pssn_rbv.yaml) */
 static const layout_field pssn_rbv_fields[] = {
-    {"keyword", "RBV", "RBV", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pssn_rbv, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_pssn_rbv, date), FIELD_DATE, 1, 0},
-    {"north_rate", "decimal number", NULL, offsetof(nmea_pssn_rbv, north_rate), FIELD_DECIMAL, 1, 0},
-    {"east_rate", "decimal number", NULL, offsetof(nmea_pssn_rbv, east_rate), FIELD_DECIMAL, 1, 0},
-    {"up_rate", "decimal number", NULL, offsetof(nmea_pssn_rbv, up_rate), FIELD_DECIMAL, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_pssn_rbv, satellites), FIELD_INTEGER, 1, 0},
-    {"quality", "septentrio_baseline_quality code (0 2 4 5)", &nmea_septentrio_baseline_quality_def, offsetof(nmea_pssn_rbv, quality), FIELD_ENUM, 1, 0},
-    {"base_motion", "septentrio_base_motion code (0 1)", &nmea_septentrio_base_motion_def, offsetof(nmea_pssn_rbv, base_motion), FIELD_ENUM, 1, 0},
-    {"correction_age", "decimal number", NULL, offsetof(nmea_pssn_rbv, correction_age), FIELD_DECIMAL, 1, 0},
-    {"rover_serial", "text", NULL, offsetof(nmea_pssn_rbv, rover_serial), FIELD_TEXT, 1, 0},
-    {"base_id", "integer", NULL, offsetof(nmea_pssn_rbv, base_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("RBV"), "RBV", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pssn_rbv, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_pssn_rbv, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("north_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_rbv, north_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("east_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_rbv, east_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("up_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_rbv, up_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_rbv, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("septentrio_baseline_quality code (0 2 4 5)"), &nmea_septentrio_baseline_quality_def, offsetof(nmea_pssn_rbv, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("base_motion"), ERROR_TEXT("septentrio_base_motion code (0 1)"), &nmea_septentrio_base_motion_def, offsetof(nmea_pssn_rbv, base_motion), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("correction_age"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pssn_rbv, correction_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rover_serial"), ERROR_TEXT("text"), NULL, offsetof(nmea_pssn_rbv, rover_serial), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("base_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_rbv, base_id), FIELD_INTEGER, 1, 0},
 };
 static const layout pssn_rbv_layout = {
     .sentence = "PSSN_RBV", .address = "PSSN", .selector = "RBV", .fields = pssn_rbv_fields, .selector_at = 0,
@@ -32605,12 +32676,12 @@ size_t nmea_build_pssn_rbv(const nmea_pssn_rbv *s, char *buf, size_t cap, nmea_e
 
 /* $PSSN,TFM,104751.00,2,1021,1023,1025*5F */
 static const layout_field pssn_tfm_fields[] = {
-    {"keyword", "TFM", "TFM", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pssn_tfm, time), FIELD_TIME, 1, 0},
-    {"height_indicator", "integer", NULL, offsetof(nmea_pssn_tfm, height_indicator), FIELD_INTEGER, 1, 0},
-    {"msg_1021_1022", "integer", NULL, offsetof(nmea_pssn_tfm, msg_1021_1022), FIELD_INTEGER, 1, 0},
-    {"msg_1023_1024", "integer", NULL, offsetof(nmea_pssn_tfm, msg_1023_1024), FIELD_INTEGER, 1, 0},
-    {"msg_1025_1027", "integer", NULL, offsetof(nmea_pssn_tfm, msg_1025_1027), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("TFM"), "TFM", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pssn_tfm, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("height_indicator"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_tfm, height_indicator), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msg_1021_1022"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_tfm, msg_1021_1022), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msg_1023_1024"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_tfm, msg_1023_1024), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msg_1025_1027"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pssn_tfm, msg_1025_1027), FIELD_INTEGER, 1, 0},
 };
 static const layout pssn_tfm_layout = {
     .sentence = "PSSN_TFM", .address = "PSSN", .selector = "TFM", .fields = pssn_tfm_fields, .selector_at = 0,
@@ -32686,19 +32757,19 @@ size_t nmea_build_pssn_tfm(const nmea_pssn_tfm *s, char *buf, size_t cap, nmea_e
 
 /* $PSTI,030,033010.000,A,2447.0895508,N,12100.5234656,E,94.615,0.00,-0.01,0.04,111219,R,0.999,3.724*1A */
 static const layout_field psti_030_fields[] = {
-    {"keyword", "030", "030", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_psti_030, time), FIELD_TIME, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_psti_030, status), FIELD_ENUM, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_psti_030, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_psti_030, lon), FIELD_LONGITUDE, 2, 0},
-    {"altitude", "decimal number -9999.999..17999.999", &range_minus_9999p999_to_17999p999, offsetof(nmea_psti_030, altitude), FIELD_DECIMAL, 1, 0},
-    {"velocity_east", "decimal number", NULL, offsetof(nmea_psti_030, velocity_east), FIELD_DECIMAL, 1, 0},
-    {"velocity_north", "decimal number", NULL, offsetof(nmea_psti_030, velocity_north), FIELD_DECIMAL, 1, 0},
-    {"velocity_up", "decimal number", NULL, offsetof(nmea_psti_030, velocity_up), FIELD_DECIMAL, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_psti_030, date), FIELD_DATE, 1, 0},
-    {"mode", "skytraq_mode code (A D E F M N O P R S)", &nmea_skytraq_mode_def, offsetof(nmea_psti_030, mode), FIELD_ENUM, 1, 0},
-    {"rtk_age", "decimal number", NULL, offsetof(nmea_psti_030, rtk_age), FIELD_DECIMAL, 1, 0},
-    {"rtk_ratio", "decimal number", NULL, offsetof(nmea_psti_030, rtk_ratio), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("030"), "030", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_psti_030, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_psti_030, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_psti_030, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_psti_030, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number -9999.999..17999.999"), &range_minus_9999p999_to_17999p999, offsetof(nmea_psti_030, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("velocity_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_030, velocity_east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("velocity_north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_030, velocity_north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("velocity_up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_030, velocity_up), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_psti_030, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("skytraq_mode code (A D E F M N O P R S)"), &nmea_skytraq_mode_def, offsetof(nmea_psti_030, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("rtk_age"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_030, rtk_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rtk_ratio"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_030, rtk_ratio), FIELD_DECIMAL, 1, 0},
 };
 static const layout psti_030_layout = {
     .sentence = "PSTI_030", .address = "PSTI", .selector = "030", .fields = psti_030_fields, .selector_at = 0,
@@ -32788,21 +32859,21 @@ size_t nmea_build_psti_030(const nmea_psti_030 *s, char *buf, size_t cap, nmea_e
 
 /* $PSTI,032,033010.000,111219,A,R,-4.968,-10.817,-1.849,12.046,204.67,,,,,*39 */
 static const layout_field psti_032_fields[] = {
-    {"keyword", "032", "032", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_psti_032, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_psti_032, date), FIELD_DATE, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_psti_032, status), FIELD_ENUM, 1, 0},
-    {"mode", "skytraq_mode code (A D E F M N O P R S)", &nmea_skytraq_mode_def, offsetof(nmea_psti_032, mode), FIELD_ENUM, 1, 0},
-    {"baseline_east", "decimal number", NULL, offsetof(nmea_psti_032, baseline_east), FIELD_DECIMAL, 1, 0},
-    {"baseline_north", "decimal number", NULL, offsetof(nmea_psti_032, baseline_north), FIELD_DECIMAL, 1, 0},
-    {"baseline_up", "decimal number", NULL, offsetof(nmea_psti_032, baseline_up), FIELD_DECIMAL, 1, 0},
-    {"baseline_length", "decimal number", NULL, offsetof(nmea_psti_032, baseline_length), FIELD_DECIMAL, 1, 0},
-    {"baseline_course", "decimal number 0..360", &range_0_to_360, offsetof(nmea_psti_032, baseline_course), FIELD_DECIMAL, 1, 0},
-    {"reserved_1", "text", NULL, offsetof(nmea_psti_032, reserved_1), FIELD_TEXT, 1, 0},
-    {"reserved_2", "text", NULL, offsetof(nmea_psti_032, reserved_2), FIELD_TEXT, 1, 0},
-    {"reserved_3", "text", NULL, offsetof(nmea_psti_032, reserved_3), FIELD_TEXT, 1, 0},
-    {"reserved_4", "text", NULL, offsetof(nmea_psti_032, reserved_4), FIELD_TEXT, 1, 0},
-    {"reserved_5", "text", NULL, offsetof(nmea_psti_032, reserved_5), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("032"), "032", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_psti_032, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_psti_032, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_psti_032, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("skytraq_mode code (A D E F M N O P R S)"), &nmea_skytraq_mode_def, offsetof(nmea_psti_032, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("baseline_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_032, baseline_east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("baseline_north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_032, baseline_north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("baseline_up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_032, baseline_up), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("baseline_length"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_032, baseline_length), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("baseline_course"), ERROR_TEXT("decimal number 0..360"), &range_0_to_360, offsetof(nmea_psti_032, baseline_course), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_032, reserved_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_032, reserved_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved_3"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_032, reserved_3), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved_4"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_032, reserved_4), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved_5"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_032, reserved_5), FIELD_TEXT, 1, 0},
 };
 static const layout psti_032_layout = {
     .sentence = "PSTI_032", .address = "PSTI", .selector = "032", .fields = psti_032_fields, .selector_at = 0,
@@ -32896,33 +32967,33 @@ size_t nmea_build_psti_032(const nmea_psti_032 *s, char *buf, size_t cap, nmea_e
 
 /* $PSTI,033,003832.000,290322,2,R,0,G,0,0,,,C,0,0,,,E,0,0,,,R,0,0,,,*5D */
 static const layout_field psti_033_fields[] = {
-    {"keyword", "033", "033", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_psti_033, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_psti_033, date), FIELD_DATE, 1, 0},
-    {"version", "integer", NULL, offsetof(nmea_psti_033, version), FIELD_INTEGER, 1, 0},
-    {"receiver", "skytraq_receiver_role code (R B)", &nmea_skytraq_receiver_role_def, offsetof(nmea_psti_033, receiver), FIELD_ENUM, 1, 0},
-    {"total_slips", "integer", NULL, offsetof(nmea_psti_033, total_slips), FIELD_INTEGER, 1, 0},
-    {"gps_system", "G or nothing", "G", offsetof(nmea_psti_033, gps_system), FIELD_LITERAL, 1, 0},
-    {"gps_l1_slips", "integer", NULL, offsetof(nmea_psti_033, gps_l1_slips), FIELD_INTEGER, 1, 0},
-    {"gps_l2_slips", "integer", NULL, offsetof(nmea_psti_033, gps_l2_slips), FIELD_INTEGER, 1, 0},
-    {"gps_reserved_1", "text", NULL, offsetof(nmea_psti_033, gps_reserved_1), FIELD_TEXT, 1, 0},
-    {"gps_reserved_2", "text", NULL, offsetof(nmea_psti_033, gps_reserved_2), FIELD_TEXT, 1, 0},
-    {"bds_system", "C or nothing", "C", offsetof(nmea_psti_033, bds_system), FIELD_LITERAL, 1, 0},
-    {"bds_b1_slips", "integer", NULL, offsetof(nmea_psti_033, bds_b1_slips), FIELD_INTEGER, 1, 0},
-    {"bds_b2_slips", "integer", NULL, offsetof(nmea_psti_033, bds_b2_slips), FIELD_INTEGER, 1, 0},
-    {"bds_reserved_1", "text", NULL, offsetof(nmea_psti_033, bds_reserved_1), FIELD_TEXT, 1, 0},
-    {"bds_reserved_2", "text", NULL, offsetof(nmea_psti_033, bds_reserved_2), FIELD_TEXT, 1, 0},
-    {"gal_system", "E or nothing", "E", offsetof(nmea_psti_033, gal_system), FIELD_LITERAL, 1, 0},
-    {"gal_e1_slips", "integer", NULL, offsetof(nmea_psti_033, gal_e1_slips), FIELD_INTEGER, 1, 0},
-    {"gal_e5b_slips", "integer", NULL, offsetof(nmea_psti_033, gal_e5b_slips), FIELD_INTEGER, 1, 0},
-    {"gal_reserved_1", "text", NULL, offsetof(nmea_psti_033, gal_reserved_1), FIELD_TEXT, 1, 0},
-    {"gal_reserved_2", "text", NULL, offsetof(nmea_psti_033, gal_reserved_2), FIELD_TEXT, 1, 0},
-    {"glo_system", "R or nothing", "R", offsetof(nmea_psti_033, glo_system), FIELD_LITERAL, 1, 0},
-    {"glo_g1_slips", "integer", NULL, offsetof(nmea_psti_033, glo_g1_slips), FIELD_INTEGER, 1, 0},
-    {"glo_g2_slips", "integer", NULL, offsetof(nmea_psti_033, glo_g2_slips), FIELD_INTEGER, 1, 0},
-    {"glo_reserved_1", "text", NULL, offsetof(nmea_psti_033, glo_reserved_1), FIELD_TEXT, 1, 0},
-    {"glo_reserved_2", "text", NULL, offsetof(nmea_psti_033, glo_reserved_2), FIELD_TEXT, 1, 0},
-    {"reserved_end", "text", NULL, offsetof(nmea_psti_033, reserved_end), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("033"), "033", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_psti_033, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_psti_033, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_psti_033, version), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("receiver"), ERROR_TEXT("skytraq_receiver_role code (R B)"), &nmea_skytraq_receiver_role_def, offsetof(nmea_psti_033, receiver), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("total_slips"), ERROR_TEXT("integer"), NULL, offsetof(nmea_psti_033, total_slips), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_system"), ERROR_TEXT("G or nothing"), "G", offsetof(nmea_psti_033, gps_system), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("gps_l1_slips"), ERROR_TEXT("integer"), NULL, offsetof(nmea_psti_033, gps_l1_slips), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_l2_slips"), ERROR_TEXT("integer"), NULL, offsetof(nmea_psti_033, gps_l2_slips), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_reserved_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_033, gps_reserved_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("gps_reserved_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_033, gps_reserved_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("bds_system"), ERROR_TEXT("C or nothing"), "C", offsetof(nmea_psti_033, bds_system), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("bds_b1_slips"), ERROR_TEXT("integer"), NULL, offsetof(nmea_psti_033, bds_b1_slips), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("bds_b2_slips"), ERROR_TEXT("integer"), NULL, offsetof(nmea_psti_033, bds_b2_slips), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("bds_reserved_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_033, bds_reserved_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("bds_reserved_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_033, bds_reserved_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("gal_system"), ERROR_TEXT("E or nothing"), "E", offsetof(nmea_psti_033, gal_system), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("gal_e1_slips"), ERROR_TEXT("integer"), NULL, offsetof(nmea_psti_033, gal_e1_slips), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gal_e5b_slips"), ERROR_TEXT("integer"), NULL, offsetof(nmea_psti_033, gal_e5b_slips), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gal_reserved_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_033, gal_reserved_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("gal_reserved_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_033, gal_reserved_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("glo_system"), ERROR_TEXT("R or nothing"), "R", offsetof(nmea_psti_033, glo_system), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("glo_g1_slips"), ERROR_TEXT("integer"), NULL, offsetof(nmea_psti_033, glo_g1_slips), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("glo_g2_slips"), ERROR_TEXT("integer"), NULL, offsetof(nmea_psti_033, glo_g2_slips), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("glo_reserved_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_033, glo_reserved_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("glo_reserved_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_033, glo_reserved_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved_end"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_033, reserved_end), FIELD_TEXT, 1, 0},
 };
 static const layout psti_033_layout = {
     .sentence = "PSTI_033", .address = "PSTI", .selector = "033", .fields = psti_033_fields, .selector_at = 0,
@@ -33040,21 +33111,21 @@ size_t nmea_build_psti_033(const nmea_psti_033 *s, char *buf, size_t cap, nmea_e
 
 /* $PSTI,035,003832.000,290322,A,R,-0.815,-0.393,0.044,0.906,244.28,,,,,*17 */
 static const layout_field psti_035_fields[] = {
-    {"keyword", "035", "035", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_psti_035, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_psti_035, date), FIELD_DATE, 1, 0},
-    {"status", "status code (A V)", &nmea_status_def, offsetof(nmea_psti_035, status), FIELD_ENUM, 1, 0},
-    {"mode", "skytraq_mode code (A D E F M N O P R S)", &nmea_skytraq_mode_def, offsetof(nmea_psti_035, mode), FIELD_ENUM, 1, 0},
-    {"baseline_east", "decimal number", NULL, offsetof(nmea_psti_035, baseline_east), FIELD_DECIMAL, 1, 0},
-    {"baseline_north", "decimal number", NULL, offsetof(nmea_psti_035, baseline_north), FIELD_DECIMAL, 1, 0},
-    {"baseline_up", "decimal number", NULL, offsetof(nmea_psti_035, baseline_up), FIELD_DECIMAL, 1, 0},
-    {"baseline_length", "decimal number", NULL, offsetof(nmea_psti_035, baseline_length), FIELD_DECIMAL, 1, 0},
-    {"baseline_course", "decimal number 0..360", &range_0_to_360, offsetof(nmea_psti_035, baseline_course), FIELD_DECIMAL, 1, 0},
-    {"reserved_1", "text", NULL, offsetof(nmea_psti_035, reserved_1), FIELD_TEXT, 1, 0},
-    {"reserved_2", "text", NULL, offsetof(nmea_psti_035, reserved_2), FIELD_TEXT, 1, 0},
-    {"reserved_3", "text", NULL, offsetof(nmea_psti_035, reserved_3), FIELD_TEXT, 1, 0},
-    {"reserved_4", "text", NULL, offsetof(nmea_psti_035, reserved_4), FIELD_TEXT, 1, 0},
-    {"reserved_5", "text", NULL, offsetof(nmea_psti_035, reserved_5), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("035"), "035", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_psti_035, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_psti_035, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_psti_035, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("skytraq_mode code (A D E F M N O P R S)"), &nmea_skytraq_mode_def, offsetof(nmea_psti_035, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("baseline_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_035, baseline_east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("baseline_north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_035, baseline_north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("baseline_up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_035, baseline_up), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("baseline_length"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_035, baseline_length), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("baseline_course"), ERROR_TEXT("decimal number 0..360"), &range_0_to_360, offsetof(nmea_psti_035, baseline_course), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("reserved_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_035, reserved_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_035, reserved_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved_3"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_035, reserved_3), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved_4"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_035, reserved_4), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved_5"), ERROR_TEXT("text"), NULL, offsetof(nmea_psti_035, reserved_5), FIELD_TEXT, 1, 0},
 };
 static const layout psti_035_layout = {
     .sentence = "PSTI_035", .address = "PSTI", .selector = "035", .fields = psti_035_fields, .selector_at = 0,
@@ -33148,13 +33219,13 @@ size_t nmea_build_psti_035(const nmea_psti_035 *s, char *buf, size_t cap, nmea_e
 
 /* $PSTI,036,003832.000,290322,244.28,2.77,0.00,R*5D */
 static const layout_field psti_036_fields[] = {
-    {"keyword", "036", "036", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_psti_036, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_psti_036, date), FIELD_DATE, 1, 0},
-    {"heading", "decimal number 0..360", &range_0_to_360, offsetof(nmea_psti_036, heading), FIELD_DECIMAL, 1, 0},
-    {"pitch", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_psti_036, pitch), FIELD_DECIMAL, 1, 0},
-    {"roll", "decimal number -90..90", &range_minus_90_to_90, offsetof(nmea_psti_036, roll), FIELD_DECIMAL, 1, 0},
-    {"mode", "skytraq_mode code (A D E F M N O P R S)", &nmea_skytraq_mode_def, offsetof(nmea_psti_036, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("036"), "036", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_psti_036, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_psti_036, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number 0..360"), &range_0_to_360, offsetof(nmea_psti_036, heading), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_psti_036, pitch), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number -90..90"), &range_minus_90_to_90, offsetof(nmea_psti_036, roll), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("skytraq_mode code (A D E F M N O P R S)"), &nmea_skytraq_mode_def, offsetof(nmea_psti_036, mode), FIELD_ENUM, 1, 0},
 };
 static const layout psti_036_layout = {
     .sentence = "PSTI_036", .address = "PSTI", .selector = "036", .fields = psti_036_fields, .selector_at = 0,
@@ -33232,18 +33303,18 @@ size_t nmea_build_psti_036(const nmea_psti_036 *s, char *buf, size_t cap, nmea_e
 
 /* $PSTI,20,1,1,1,5,A,0,0,-58.48,20.14,0.01,1.01*73 */
 static const layout_field psti_20_fields[] = {
-    {"keyword", "20", "20", 0, FIELD_KEYWORD, 1, 0},
-    {"dr_calibration", "skytraq_calibration code (0 1)", &nmea_skytraq_calibration_def, offsetof(nmea_psti_20, dr_calibration), FIELD_ENUM, 1, 0},
-    {"gyro_calibration", "skytraq_calibration code (0 1)", &nmea_skytraq_calibration_def, offsetof(nmea_psti_20, gyro_calibration), FIELD_ENUM, 1, 0},
-    {"sensor_input", "skytraq_availability code (0 1)", &nmea_skytraq_availability_def, offsetof(nmea_psti_20, sensor_input), FIELD_ENUM, 1, 0},
-    {"odometer_pulses", "integer", NULL, offsetof(nmea_psti_20, odometer_pulses), FIELD_INTEGER, 1, 0},
-    {"position_mode", "skytraq_dr_mode code (A E N)", &nmea_skytraq_dr_mode_def, offsetof(nmea_psti_20, position_mode), FIELD_ENUM, 1, 0},
-    {"backward", "skytraq_direction code (0 1)", &nmea_skytraq_direction_def, offsetof(nmea_psti_20, backward), FIELD_ENUM, 1, 0},
-    {"antenna", "skytraq_availability code (0 1)", &nmea_skytraq_availability_def, offsetof(nmea_psti_20, antenna), FIELD_ENUM, 1, 0},
-    {"gyro_bias", "decimal number", NULL, offsetof(nmea_psti_20, gyro_bias), FIELD_DECIMAL, 1, 0},
-    {"odometer_scale", "decimal number", NULL, offsetof(nmea_psti_20, odometer_scale), FIELD_DECIMAL, 1, 0},
-    {"rotation_rate", "decimal number", NULL, offsetof(nmea_psti_20, rotation_rate), FIELD_DECIMAL, 1, 0},
-    {"distance_per_second", "decimal number", NULL, offsetof(nmea_psti_20, distance_per_second), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("20"), "20", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("dr_calibration"), ERROR_TEXT("skytraq_calibration code (0 1)"), &nmea_skytraq_calibration_def, offsetof(nmea_psti_20, dr_calibration), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("gyro_calibration"), ERROR_TEXT("skytraq_calibration code (0 1)"), &nmea_skytraq_calibration_def, offsetof(nmea_psti_20, gyro_calibration), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("sensor_input"), ERROR_TEXT("skytraq_availability code (0 1)"), &nmea_skytraq_availability_def, offsetof(nmea_psti_20, sensor_input), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("odometer_pulses"), ERROR_TEXT("integer"), NULL, offsetof(nmea_psti_20, odometer_pulses), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("position_mode"), ERROR_TEXT("skytraq_dr_mode code (A E N)"), &nmea_skytraq_dr_mode_def, offsetof(nmea_psti_20, position_mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("backward"), ERROR_TEXT("skytraq_direction code (0 1)"), &nmea_skytraq_direction_def, offsetof(nmea_psti_20, backward), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("antenna"), ERROR_TEXT("skytraq_availability code (0 1)"), &nmea_skytraq_availability_def, offsetof(nmea_psti_20, antenna), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("gyro_bias"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_20, gyro_bias), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("odometer_scale"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_20, odometer_scale), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("rotation_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_20, rotation_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("distance_per_second"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_psti_20, distance_per_second), FIELD_DECIMAL, 1, 0},
 };
 static const layout psti_20_layout = {
     .sentence = "PSTI_20", .address = "PSTI", .selector = "20", .fields = psti_20_fields, .selector_at = 0,
@@ -33329,11 +33400,11 @@ size_t nmea_build_psti_20(const nmea_psti_20 *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMAGPS: ST STAGPS predicted ephemeris information (spec/proprietary/pstmagps.yaml) */
 static const layout_field pstmagps_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmagps_group = {
-    .id = "values", .fields = pstmagps_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
-    .single = true, .offset = offsetof(nmea_pstmagps, values), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("values"), .fields = pstmagps_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 64, .single = true, .offset = offsetof(nmea_pstmagps, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmagps, values.count),
 };
 static const layout pstmagps_layout = {
@@ -33419,11 +33490,11 @@ size_t nmea_build_pstmagps(const nmea_pstmagps *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMALMANAC: ST almanac data (spec/proprietary/pstmalmanac.yaml) */
 static const layout_field pstmalmanac_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmalmanac_group = {
-    .id = "values", .fields = pstmalmanac_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
-    .single = true, .offset = offsetof(nmea_pstmalmanac, values), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("values"), .fields = pstmalmanac_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 64, .single = true, .offset = offsetof(nmea_pstmalmanac, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmalmanac, values.count),
 };
 static const layout pstmalmanac_layout = {
@@ -33563,7 +33634,7 @@ size_t nmea_build_pstmclrephs(const nmea_pstmclrephs *s, char *buf, size_t cap, 
 
 /* $PSTMCOLD,6 */
 static const layout_field pstmcold_fields[] = {
-    {"mask", "integer 0..15", &range_0_to_15, offsetof(nmea_pstmcold, mask), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("mask"), ERROR_TEXT("integer 0..15"), &range_0_to_15, offsetof(nmea_pstmcold, mask), FIELD_INTEGER, 1, 0},
 };
 static const layout pstmcold_layout = {
     .sentence = "PSTMCOLD", .address = "PSTMCOLD", .fields = pstmcold_fields, .optional = 1, .max_fields = 1,
@@ -33591,11 +33662,11 @@ size_t nmea_build_pstmcold(const nmea_pstmcold *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMCORR: ST correction data (spec/proprietary/pstmcorr.yaml) */
 static const layout_field pstmcorr_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmcorr_group = {
-    .id = "values", .fields = pstmcorr_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
-    .single = true, .offset = offsetof(nmea_pstmcorr, values), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("values"), .fields = pstmcorr_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 64, .single = true, .offset = offsetof(nmea_pstmcorr, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmcorr, values.count),
 };
 static const layout pstmcorr_layout = {
@@ -33683,9 +33754,9 @@ size_t nmea_build_pstmcorr(const nmea_pstmcorr *s, char *buf, size_t cap, nmea_e
 
 /* $PSTMCPU,56.23,-1,98*41 */
 static const layout_field pstmcpu_fields[] = {
-    {"cpu_usage", "decimal number 0..100", &range_0_to_100, offsetof(nmea_pstmcpu, cpu_usage), FIELD_DECIMAL, 1, 0},
-    {"pll", "integer", NULL, offsetof(nmea_pstmcpu, pll), FIELD_INTEGER, 1, 0},
-    {"cpu_speed", "integer of at least 0", &range_from_0, offsetof(nmea_pstmcpu, cpu_speed), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("cpu_usage"), ERROR_TEXT("decimal number 0..100"), &range_0_to_100, offsetof(nmea_pstmcpu, cpu_usage), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("pll"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmcpu, pll), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("cpu_speed"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pstmcpu, cpu_speed), FIELD_INTEGER, 1, 0},
 };
 static const layout pstmcpu_layout = {
     .sentence = "PSTMCPU", .address = "PSTMCPU", .fields = pstmcpu_fields, .before = 3, .fixed = 3,
@@ -33752,11 +33823,11 @@ size_t nmea_build_pstmcpu(const nmea_pstmcpu *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMDIFF: ST differential correction data (spec/proprietary/pstmdiff.yaml) */
 static const layout_field pstmdiff_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmdiff_group = {
-    .id = "values", .fields = pstmdiff_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
-    .single = true, .offset = offsetof(nmea_pstmdiff, values), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("values"), .fields = pstmdiff_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 64, .single = true, .offset = offsetof(nmea_pstmdiff, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmdiff, values.count),
 };
 static const layout pstmdiff_layout = {
@@ -33842,10 +33913,10 @@ size_t nmea_build_pstmdiff(const nmea_pstmdiff *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMEPH: ST ephemeris data (spec/proprietary/pstmeph.yaml) */
 static const layout_field pstmeph_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmeph_group = {
-    .id = "values", .fields = pstmeph_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
+    .id = ERROR_TEXT("values"), .fields = pstmeph_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmeph, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmeph, values.count),
 };
@@ -33934,7 +34005,7 @@ size_t nmea_build_pstmeph(const nmea_pstmeph *s, char *buf, size_t cap, nmea_err
 
 /* $PSTMGETPAR,1403* */
 static const layout_field pstmgetpar_fields[] = {
-    {"block_param", "integer 1000..3999", &range_1000_to_3999, offsetof(nmea_pstmgetpar, block_param), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("block_param"), ERROR_TEXT("integer 1000..3999"), &range_1000_to_3999, offsetof(nmea_pstmgetpar, block_param), FIELD_INTEGER, 1, 0},
 };
 static const layout pstmgetpar_layout = {
     .sentence = "PSTMGETPAR", .address = "PSTMGETPAR", .fields = pstmgetpar_fields, .before = 1, .fixed = 1,
@@ -34011,10 +34082,10 @@ size_t nmea_build_pstmgetrtctime(const nmea_pstmgetrtctime *s, char *buf, size_t
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMGETRTCTIME_REPLY: RTC time and status (spec/proprietary/pstmgetrtctime_reply.yaml) */
 static const layout_field pstmgetrtctime_reply_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pstmgetrtctime_reply, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_pstmgetrtctime_reply, date), FIELD_DATE, 1, 0},
-    {"rtc_status", "teseo_rtc_status code (0 1 2)", &nmea_teseo_rtc_status_def, offsetof(nmea_pstmgetrtctime_reply, rtc_status), FIELD_ENUM, 1, 0},
-    {"time_validity", "teseo_time_validity code (0 1 2 3 4 5 6 7 8)", &nmea_teseo_time_validity_def, offsetof(nmea_pstmgetrtctime_reply, time_validity), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pstmgetrtctime_reply, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_pstmgetrtctime_reply, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("rtc_status"), ERROR_TEXT("teseo_rtc_status code (0 1 2)"), &nmea_teseo_rtc_status_def, offsetof(nmea_pstmgetrtctime_reply, rtc_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time_validity"), ERROR_TEXT("teseo_time_validity code (0 1 2 3 4 5 6 7 8)"), &nmea_teseo_time_validity_def, offsetof(nmea_pstmgetrtctime_reply, time_validity), FIELD_ENUM, 1, 0},
 };
 static const layout pstmgetrtctime_reply_layout = {
     .sentence = "PSTMGETRTCTIME_REPLY", .address = "PSTMGETRTCTIME", .fields = pstmgetrtctime_reply_fields,
@@ -34068,10 +34139,10 @@ size_t nmea_build_pstmgetswver(const nmea_pstmgetswver *s, char *buf, size_t cap
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMGETSWVER_REPLY: Software version (spec/proprietary/pstmgetswver_reply.yaml) */
 static const layout_field pstmgetswver_reply_fields[] = {
-    {"library_version", "text", NULL, offsetof(nmea_pstmgetswver_reply, library_version), FIELD_TEXT, 1, 0},
-    {"compiler", "teseo_compiler_type code (ARM GNU)", &nmea_teseo_compiler_type_def, offsetof(nmea_pstmgetswver_reply, compiler), FIELD_ENUM, 1, 0},
-    {"build_date", "text", NULL, offsetof(nmea_pstmgetswver_reply, build_date), FIELD_TEXT, 1, 0},
-    {"build_time", "text", NULL, offsetof(nmea_pstmgetswver_reply, build_time), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("library_version"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmgetswver_reply, library_version), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("compiler"), ERROR_TEXT("teseo_compiler_type code (ARM GNU)"), &nmea_teseo_compiler_type_def, offsetof(nmea_pstmgetswver_reply, compiler), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("build_date"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmgetswver_reply, build_date), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("build_time"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmgetswver_reply, build_time), FIELD_TEXT, 1, 0},
 };
 static const layout pstmgetswver_reply_layout = {
     .sentence = "PSTMGETSWVER_REPLY", .address = "PSTMGETSWVER", .fields = pstmgetswver_reply_fields, .before = 4,
@@ -34125,11 +34196,11 @@ size_t nmea_build_pstmhot(const nmea_pstmhot *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMKFCOV: ST Kalman filter covariance (spec/proprietary/pstmkfcov.yaml) */
 static const layout_field pstmkfcov_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmkfcov_group = {
-    .id = "values", .fields = pstmkfcov_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
-    .single = true, .offset = offsetof(nmea_pstmkfcov, values), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("values"), .fields = pstmkfcov_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 64, .single = true, .offset = offsetof(nmea_pstmkfcov, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmkfcov, values.count),
 };
 static const layout pstmkfcov_layout = {
@@ -34217,7 +34288,7 @@ size_t nmea_build_pstmkfcov(const nmea_pstmkfcov *s, char *buf, size_t cap, nmea
 
 /* $PSTMNMEAONOFF,0 */
 static const layout_field pstmnmeaonoff_fields[] = {
-    {"on_off", "teseo_nmea_on_off code (0 1)", &nmea_teseo_nmea_on_off_def, offsetof(nmea_pstmnmeaonoff, on_off), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("on_off"), ERROR_TEXT("teseo_nmea_on_off code (0 1)"), &nmea_teseo_nmea_on_off_def, offsetof(nmea_pstmnmeaonoff, on_off), FIELD_ENUM, 1, 0},
 };
 static const layout pstmnmeaonoff_layout = {
     .sentence = "PSTMNMEAONOFF", .address = "PSTMNMEAONOFF", .fields = pstmnmeaonoff_fields, .optional = 1,
@@ -34245,10 +34316,10 @@ size_t nmea_build_pstmnmeaonoff(const nmea_pstmnmeaonoff *s, char *buf, size_t c
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMPA: ST position algorithm data (spec/proprietary/pstmpa.yaml) */
 static const layout_field pstmpa_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmpa_group = {
-    .id = "values", .fields = pstmpa_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
+    .id = ERROR_TEXT("values"), .fields = pstmpa_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmpa, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmpa, values.count),
 };
@@ -34335,11 +34406,11 @@ size_t nmea_build_pstmpa(const nmea_pstmpa *s, char *buf, size_t cap, nmea_error
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMPRES: ST position residuals (spec/proprietary/pstmpres.yaml) */
 static const layout_field pstmpres_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmpres_group = {
-    .id = "values", .fields = pstmpres_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
-    .single = true, .offset = offsetof(nmea_pstmpres, values), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("values"), .fields = pstmpres_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 64, .single = true, .offset = offsetof(nmea_pstmpres, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmpres, values.count),
 };
 static const layout pstmpres_layout = {
@@ -34425,10 +34496,10 @@ size_t nmea_build_pstmpres(const nmea_pstmpres *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMRES: ST residuals (spec/proprietary/pstmres.yaml) */
 static const layout_field pstmres_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmres_group = {
-    .id = "values", .fields = pstmres_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
+    .id = ERROR_TEXT("values"), .fields = pstmres_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmres, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmres, values.count),
 };
@@ -34541,10 +34612,10 @@ size_t nmea_build_pstmrestorepar(const nmea_pstmrestorepar *s, char *buf, size_t
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMRF: ST radio-frequency data (spec/proprietary/pstmrf.yaml) */
 static const layout_field pstmrf_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmrf_group = {
-    .id = "values", .fields = pstmrf_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
+    .id = ERROR_TEXT("values"), .fields = pstmrf_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmrf, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmrf, values.count),
 };
@@ -34631,10 +34702,10 @@ size_t nmea_build_pstmrf(const nmea_pstmrf *s, char *buf, size_t cap, nmea_error
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMSAT: ST satellite information (spec/proprietary/pstmsat.yaml) */
 static const layout_field pstmsat_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmsat_group = {
-    .id = "values", .fields = pstmsat_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
+    .id = ERROR_TEXT("values"), .fields = pstmsat_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmsat, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmsat, values.count),
 };
@@ -34747,11 +34818,11 @@ size_t nmea_build_pstmsavepar(const nmea_pstmsavepar *s, char *buf, size_t cap, 
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMSBAS: ST SBAS data (spec/proprietary/pstmsbas.yaml) */
 static const layout_field pstmsbas_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmsbas_group = {
-    .id = "values", .fields = pstmsbas_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
-    .single = true, .offset = offsetof(nmea_pstmsbas, values), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("values"), .fields = pstmsbas_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 64, .single = true, .offset = offsetof(nmea_pstmsbas, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmsbas, values.count),
 };
 static const layout pstmsbas_layout = {
@@ -34837,11 +34908,11 @@ size_t nmea_build_pstmsbas(const nmea_pstmsbas *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMSBASCORR: ST satellite correction data (spec/proprietary/pstmsbascorr.yaml) */
 static const layout_field pstmsbascorr_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmsbascorr_group = {
-    .id = "values", .fields = pstmsbascorr_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
-    .single = true, .offset = offsetof(nmea_pstmsbascorr, values), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("values"), .fields = pstmsbascorr_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 64, .single = true, .offset = offsetof(nmea_pstmsbascorr, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmsbascorr, values.count),
 };
 static const layout pstmsbascorr_layout = {
@@ -34927,8 +34998,8 @@ size_t nmea_build_pstmsbascorr(const nmea_pstmsbascorr *s, char *buf, size_t cap
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMSET: Get parameter answer, printed form (spec/proprietary/pstmset.yaml) */
 static const layout_field pstmset_fields[] = {
-    {"block_param", "integer 1000..3999", &range_1000_to_3999, offsetof(nmea_pstmset, block_param), FIELD_INTEGER, 1, 0},
-    {"value", "text of at most 80 characters", NULL, offsetof(nmea_pstmset, value), FIELD_TEXT, 1, 80},
+    {ERROR_TEXT("block_param"), ERROR_TEXT("integer 1000..3999"), &range_1000_to_3999, offsetof(nmea_pstmset, block_param), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text of at most 80 characters"), NULL, offsetof(nmea_pstmset, value), FIELD_TEXT, 1, 80},
 };
 static const layout pstmset_layout = {
     .sentence = "PSTMSET", .address = "PSTMSET", .fields = pstmset_fields, .before = 2, .fixed = 2,
@@ -34957,11 +35028,11 @@ size_t nmea_build_pstmset(const nmea_pstmset *s, char *buf, size_t cap, nmea_err
 
 /* $PSTMSET,1403,15,12,12,18 */
 static const layout_field pstmset_dop_fields[] = {
-    {"block_param", "integer 1400..3403", &range_1400_to_3403, offsetof(nmea_pstmset_dop, block_param), FIELD_INTEGER, 1, 0},
-    {"pdop", "decimal number 0..99", &range_0_to_99, offsetof(nmea_pstmset_dop, pdop), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number 0..99", &range_0_to_99, offsetof(nmea_pstmset_dop, vdop), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number 0..99", &range_0_to_99, offsetof(nmea_pstmset_dop, hdop), FIELD_DECIMAL, 1, 0},
-    {"gdop", "decimal number 0..99", &range_0_to_99, offsetof(nmea_pstmset_dop, gdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("block_param"), ERROR_TEXT("integer 1400..3403"), &range_1400_to_3403, offsetof(nmea_pstmset_dop, block_param), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number 0..99"), &range_0_to_99, offsetof(nmea_pstmset_dop, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number 0..99"), &range_0_to_99, offsetof(nmea_pstmset_dop, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number 0..99"), &range_0_to_99, offsetof(nmea_pstmset_dop, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("gdop"), ERROR_TEXT("decimal number 0..99"), &range_0_to_99, offsetof(nmea_pstmset_dop, gdop), FIELD_DECIMAL, 1, 0},
 };
 static const layout pstmset_dop_layout = {
     .sentence = "PSTMSET", .address = "PSTMSET", .variant = "dop", .fields = pstmset_dop_fields, .before = 5,
@@ -34990,9 +35061,9 @@ size_t nmea_build_pstmset_dop(const nmea_pstmset_dop *s, char *buf, size_t cap, 
 
 /* $PSTMSETPAR,1121,10* */
 static const layout_field pstmsetpar_fields[] = {
-    {"block_param", "integer 1000..3999", &range_1000_to_3999, offsetof(nmea_pstmsetpar, block_param), FIELD_INTEGER, 1, 0},
-    {"value", "text of at most 80 characters", NULL, offsetof(nmea_pstmsetpar, value), FIELD_TEXT, 1, 80},
-    {"mode", "teseo_setpar_mode code (0 1 2)", &nmea_teseo_setpar_mode_def, offsetof(nmea_pstmsetpar, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("block_param"), ERROR_TEXT("integer 1000..3999"), &range_1000_to_3999, offsetof(nmea_pstmsetpar, block_param), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text of at most 80 characters"), NULL, offsetof(nmea_pstmsetpar, value), FIELD_TEXT, 1, 80},
+    {ERROR_TEXT("mode"), ERROR_TEXT("teseo_setpar_mode code (0 1 2)"), &nmea_teseo_setpar_mode_def, offsetof(nmea_pstmsetpar, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pstmsetpar_layout = {
     .sentence = "PSTMSETPAR", .address = "PSTMSETPAR", .fields = pstmsetpar_fields, .before = 2, .optional = 1,
@@ -35020,12 +35091,12 @@ size_t nmea_build_pstmsetpar(const nmea_pstmsetpar *s, char *buf, size_t cap, nm
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMSETPAR (DOP thresholds): Set configuration parameter (also the $PSTMGETPAR answer) (spec/proprietary/pstmsetpar.yaml) */
 static const layout_field pstmsetpar_dop_fields[] = {
-    {"block_param", "integer 1400..3403", &range_1400_to_3403, offsetof(nmea_pstmsetpar_dop, block_param), FIELD_INTEGER, 1, 0},
-    {"pdop", "decimal number 0..99", &range_0_to_99, offsetof(nmea_pstmsetpar_dop, pdop), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number 0..99", &range_0_to_99, offsetof(nmea_pstmsetpar_dop, vdop), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number 0..99", &range_0_to_99, offsetof(nmea_pstmsetpar_dop, hdop), FIELD_DECIMAL, 1, 0},
-    {"gdop", "decimal number 0..99", &range_0_to_99, offsetof(nmea_pstmsetpar_dop, gdop), FIELD_DECIMAL, 1, 0},
-    {"mode", "teseo_setpar_mode code (0 1 2)", &nmea_teseo_setpar_mode_def, offsetof(nmea_pstmsetpar_dop, mode), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("block_param"), ERROR_TEXT("integer 1400..3403"), &range_1400_to_3403, offsetof(nmea_pstmsetpar_dop, block_param), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number 0..99"), &range_0_to_99, offsetof(nmea_pstmsetpar_dop, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number 0..99"), &range_0_to_99, offsetof(nmea_pstmsetpar_dop, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number 0..99"), &range_0_to_99, offsetof(nmea_pstmsetpar_dop, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("gdop"), ERROR_TEXT("decimal number 0..99"), &range_0_to_99, offsetof(nmea_pstmsetpar_dop, gdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("mode"), ERROR_TEXT("teseo_setpar_mode code (0 1 2)"), &nmea_teseo_setpar_mode_def, offsetof(nmea_pstmsetpar_dop, mode), FIELD_ENUM, 1, 0},
 };
 static const layout pstmsetpar_dop_layout = {
     .sentence = "PSTMSETPAR", .address = "PSTMSETPAR", .variant = "dop", .fields = pstmsetpar_dop_fields,
@@ -35080,7 +35151,7 @@ size_t nmea_build_pstmsetparerror(const nmea_pstmsetparerror *s, char *buf, size
 
 /* $PSTMSETPAROK,1121* */
 static const layout_field pstmsetparok_fields[] = {
-    {"block_param", "integer 1000..3999", &range_1000_to_3999, offsetof(nmea_pstmsetparok, block_param), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("block_param"), ERROR_TEXT("integer 1000..3999"), &range_1000_to_3999, offsetof(nmea_pstmsetparok, block_param), FIELD_INTEGER, 1, 0},
 };
 static const layout pstmsetparok_layout = {
     .sentence = "PSTMSETPAROK", .address = "PSTMSETPAROK", .fields = pstmsetparok_fields, .before = 1, .fixed = 1,
@@ -35107,11 +35178,11 @@ size_t nmea_build_pstmsetparok(const nmea_pstmsetparok *s, char *buf, size_t cap
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMTESTRF: ST RF test data (spec/proprietary/pstmtestrf.yaml) */
 static const layout_field pstmtestrf_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmtestrf_group = {
-    .id = "values", .fields = pstmtestrf_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
-    .single = true, .offset = offsetof(nmea_pstmtestrf, values), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("values"), .fields = pstmtestrf_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 64, .single = true, .offset = offsetof(nmea_pstmtestrf, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmtestrf, values.count),
 };
 static const layout pstmtestrf_layout = {
@@ -35197,10 +35268,10 @@ size_t nmea_build_pstmtestrf(const nmea_pstmtestrf *s, char *buf, size_t cap, nm
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMTG: ST time and satellites used (spec/proprietary/pstmtg.yaml) */
 static const layout_field pstmtg_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmtg_group = {
-    .id = "values", .fields = pstmtg_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
+    .id = ERROR_TEXT("values"), .fields = pstmtg_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmtg, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmtg, values.count),
 };
@@ -35287,10 +35358,10 @@ size_t nmea_build_pstmtg(const nmea_pstmtg *s, char *buf, size_t cap, nmea_error
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMTIM: ST system time (spec/proprietary/pstmtim.yaml) */
 static const layout_field pstmtim_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmtim_group = {
-    .id = "values", .fields = pstmtim_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
+    .id = ERROR_TEXT("values"), .fields = pstmtim_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmtim, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmtim, values.count),
 };
@@ -35377,10 +35448,10 @@ size_t nmea_build_pstmtim(const nmea_pstmtim *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMTS: ST tracked satellite data (spec/proprietary/pstmts.yaml) */
 static const layout_field pstmts_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmts_group = {
-    .id = "values", .fields = pstmts_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
+    .id = ERROR_TEXT("values"), .fields = pstmts_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmts, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmts, values.count),
 };
@@ -35467,10 +35538,10 @@ size_t nmea_build_pstmts(const nmea_pstmts *s, char *buf, size_t cap, nmea_error
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMVER: ST version string (spec/proprietary/pstmver.yaml) */
 static const layout_field pstmver_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmver_group = {
-    .id = "values", .fields = pstmver_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
+    .id = ERROR_TEXT("values"), .fields = pstmver_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmver, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmver, values.count),
 };
@@ -35557,11 +35628,11 @@ size_t nmea_build_pstmver(const nmea_pstmver *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMVRES: ST velocity residuals (spec/proprietary/pstmvres.yaml) */
 static const layout_field pstmvres_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmvres_group = {
-    .id = "values", .fields = pstmvres_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
-    .single = true, .offset = offsetof(nmea_pstmvres, values), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("values"), .fields = pstmvres_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 64, .single = true, .offset = offsetof(nmea_pstmvres, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmvres, values.count),
 };
 static const layout pstmvres_layout = {
@@ -35647,11 +35718,11 @@ size_t nmea_build_pstmvres(const nmea_pstmvres *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PSTMWAAS: ST WAAS data (spec/proprietary/pstmwaas.yaml) */
 static const layout_field pstmwaas_group_fields[] = {
-    {"value", "text", NULL, 0, FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("value"), ERROR_TEXT("text"), NULL, 0, FIELD_TEXT, 1, 0},
 };
 static const layout_group pstmwaas_group = {
-    .id = "values", .fields = pstmwaas_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
-    .single = true, .offset = offsetof(nmea_pstmwaas, values), .entry_size = sizeof(nmea_text),
+    .id = ERROR_TEXT("values"), .fields = pstmwaas_group_fields, .field_count = 1, .width = 1, .min = 0,
+    .max = 64, .single = true, .offset = offsetof(nmea_pstmwaas, values), .entry_size = sizeof(nmea_text),
     .count_offset = offsetof(nmea_pstmwaas, values.count),
 };
 static const layout pstmwaas_layout = {
@@ -35765,18 +35836,18 @@ size_t nmea_build_pstmwarm(const nmea_pstmwarm *s, char *buf, size_t cap, nmea_e
 
 /* $PTNL,AVR,212405.20,+52.1531,Yaw,-0.0806,Tilt,,,12.575,3,1.4,16*39 */
 static const layout_field ptnl_avr_fields[] = {
-    {"keyword", "AVR", "AVR", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ptnl_avr, time), FIELD_TIME, 1, 0},
-    {"yaw", "decimal number", NULL, offsetof(nmea_ptnl_avr, yaw), FIELD_DECIMAL, 1, 0},
-    {"yaw_label", "Yaw or nothing", "Yaw", offsetof(nmea_ptnl_avr, yaw_label), FIELD_LITERAL, 1, 0},
-    {"tilt", "decimal number", NULL, offsetof(nmea_ptnl_avr, tilt), FIELD_DECIMAL, 1, 0},
-    {"tilt_label", "Tilt or nothing", "Tilt", offsetof(nmea_ptnl_avr, tilt_label), FIELD_LITERAL, 1, 0},
-    {"roll", "decimal number", NULL, offsetof(nmea_ptnl_avr, roll), FIELD_DECIMAL, 1, 0},
-    {"roll_label", "Roll or nothing", "Roll", offsetof(nmea_ptnl_avr, roll_label), FIELD_LITERAL, 1, 0},
-    {"range", "decimal number", NULL, offsetof(nmea_ptnl_avr, range), FIELD_DECIMAL, 1, 0},
-    {"quality", "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_avr, quality), FIELD_ENUM, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_ptnl_avr, pdop), FIELD_DECIMAL, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_ptnl_avr, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("AVR"), "AVR", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ptnl_avr, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("yaw"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_avr, yaw), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("yaw_label"), ERROR_TEXT("Yaw or nothing"), "Yaw", offsetof(nmea_ptnl_avr, yaw_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("tilt"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_avr, tilt), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("tilt_label"), ERROR_TEXT("Tilt or nothing"), "Tilt", offsetof(nmea_ptnl_avr, tilt_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_avr, roll), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("roll_label"), ERROR_TEXT("Roll or nothing"), "Roll", offsetof(nmea_ptnl_avr, roll_label), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("range"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_avr, range), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)"), &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_avr, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_avr, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnl_avr, satellites), FIELD_INTEGER, 1, 0},
 };
 static const layout ptnl_avr_layout = {
     .sentence = "PTNL_AVR", .address = "PTNL", .selector = "AVR", .fields = ptnl_avr_fields, .selector_at = 0,
@@ -35864,14 +35935,14 @@ size_t nmea_build_ptnl_avr(const nmea_ptnl_avr *s, char *buf, size_t cap, nmea_e
 
 /* $PTNL,BPQ,224445.06,021207,3723.09383914,N,12200.32620132,W,EHT-5.923,M,5* */
 static const layout_field ptnl_bpq_fields[] = {
-    {"keyword", "BPQ", "BPQ", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ptnl_bpq, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_ptnl_bpq, date), FIELD_DATE, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_ptnl_bpq, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_ptnl_bpq, lon), FIELD_LONGITUDE, 2, 0},
-    {"height", "text", NULL, offsetof(nmea_ptnl_bpq, height), FIELD_TEXT, 1, 0},
-    {"height_unit", "M or nothing", "M", offsetof(nmea_ptnl_bpq, height_unit), FIELD_LITERAL, 1, 0},
-    {"quality", "trimble_bpq_quality code (0 1 2 4 5)", &nmea_trimble_bpq_quality_def, offsetof(nmea_ptnl_bpq, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("BPQ"), "BPQ", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ptnl_bpq, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_ptnl_bpq, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_ptnl_bpq, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_ptnl_bpq, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("height"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_bpq, height), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("height_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_ptnl_bpq, height_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("trimble_bpq_quality code (0 1 2 4 5)"), &nmea_trimble_bpq_quality_def, offsetof(nmea_ptnl_bpq, quality), FIELD_ENUM, 1, 0},
 };
 static const layout ptnl_bpq_layout = {
     .sentence = "PTNL_BPQ", .address = "PTNL", .selector = "BPQ", .fields = ptnl_bpq_fields, .selector_at = 0,
@@ -35951,13 +36022,13 @@ size_t nmea_build_ptnl_bpq(const nmea_ptnl_bpq *s, char *buf, size_t cap, nmea_e
 
 /* $PTNL,EVT,221212.000008,1,5026,1893,1,17*4F */
 static const layout_field ptnl_evt_fields[] = {
-    {"keyword", "EVT", "EVT", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ptnl_evt, time), FIELD_TIME, 1, 0},
-    {"port", "integer 1..2", &range_1_to_2, offsetof(nmea_ptnl_evt, port), FIELD_INTEGER, 1, 0},
-    {"event_number", "integer", NULL, offsetof(nmea_ptnl_evt, event_number), FIELD_INTEGER, 1, 0},
-    {"week", "integer", NULL, offsetof(nmea_ptnl_evt, week), FIELD_INTEGER, 1, 0},
-    {"day_of_week", "integer 0..6", &range_0_to_6, offsetof(nmea_ptnl_evt, day_of_week), FIELD_INTEGER, 1, 0},
-    {"leap_seconds", "integer", NULL, offsetof(nmea_ptnl_evt, leap_seconds), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("EVT"), "EVT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ptnl_evt, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("port"), ERROR_TEXT("integer 1..2"), &range_1_to_2, offsetof(nmea_ptnl_evt, port), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("event_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnl_evt, event_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("week"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnl_evt, week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("day_of_week"), ERROR_TEXT("integer 0..6"), &range_0_to_6, offsetof(nmea_ptnl_evt, day_of_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("leap_seconds"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnl_evt, leap_seconds), FIELD_INTEGER, 1, 0},
 };
 static const layout ptnl_evt_layout = {
     .sentence = "PTNL_EVT", .address = "PTNL", .selector = "EVT", .fields = ptnl_evt_fields, .selector_at = 0,
@@ -36033,16 +36104,16 @@ size_t nmea_build_ptnl_evt(const nmea_ptnl_evt *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PTNL_GGK: Time, position, position type and DOP (spec/proprietary/ptnl_ggk.yaml) */
 static const layout_field ptnl_ggk_fields[] = {
-    {"keyword", "GGK", "GGK", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ptnl_ggk, time), FIELD_TIME, 1, 0},
-    {"date", "text", NULL, offsetof(nmea_ptnl_ggk, date), FIELD_TEXT, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_ptnl_ggk, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_ptnl_ggk, lon), FIELD_LONGITUDE, 2, 0},
-    {"quality", "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_ggk, quality), FIELD_ENUM, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_ptnl_ggk, satellites), FIELD_INTEGER, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_ptnl_ggk, pdop), FIELD_DECIMAL, 1, 0},
-    {"height", "text", NULL, offsetof(nmea_ptnl_ggk, height), FIELD_TEXT, 1, 0},
-    {"height_unit", "M or nothing", "M", offsetof(nmea_ptnl_ggk, height_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("GGK"), "GGK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ptnl_ggk, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_ggk, date), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_ptnl_ggk, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_ptnl_ggk, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)"), &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_ggk, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnl_ggk, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_ggk, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("height"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_ggk, height), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("height_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_ptnl_ggk, height_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout ptnl_ggk_layout = {
     .sentence = "PTNL_GGK", .address = "PTNL", .selector = "GGK", .fields = ptnl_ggk_fields, .selector_at = 0,
@@ -36124,16 +36195,16 @@ size_t nmea_build_ptnl_ggk(const nmea_ptnl_ggk *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PTNL_GGK_SYNC: Time, synchronized position, position type and DOP (spec/proprietary/ptnl_ggk_sync.yaml) */
 static const layout_field ptnl_ggk_sync_fields[] = {
-    {"keyword", "GGK_SYNC", "GGK_SYNC", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ptnl_ggk_sync, time), FIELD_TIME, 1, 0},
-    {"date", "text", NULL, offsetof(nmea_ptnl_ggk_sync, date), FIELD_TEXT, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_ptnl_ggk_sync, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_ptnl_ggk_sync, lon), FIELD_LONGITUDE, 2, 0},
-    {"quality", "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_ggk_sync, quality), FIELD_ENUM, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_ptnl_ggk_sync, satellites), FIELD_INTEGER, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_ptnl_ggk_sync, pdop), FIELD_DECIMAL, 1, 0},
-    {"height", "text", NULL, offsetof(nmea_ptnl_ggk_sync, height), FIELD_TEXT, 1, 0},
-    {"height_unit", "M or nothing", "M", offsetof(nmea_ptnl_ggk_sync, height_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("GGK_SYNC"), "GGK_SYNC", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ptnl_ggk_sync, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_ggk_sync, date), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_ptnl_ggk_sync, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_ptnl_ggk_sync, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)"), &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_ggk_sync, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnl_ggk_sync, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_ggk_sync, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("height"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_ggk_sync, height), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("height_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_ptnl_ggk_sync, height_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout ptnl_ggk_sync_layout = {
     .sentence = "PTNL_GGK_SYNC", .address = "PTNL", .selector = "GGK_SYNC", .fields = ptnl_ggk_sync_fields,
@@ -36217,18 +36288,18 @@ size_t nmea_build_ptnl_ggk_sync(const nmea_ptnl_ggk_sync *s, char *buf, size_t c
 
 /* $PTNL,PJK,010717.00,081796,+732646.511,N,+1731051.091,E,1,05,2.7,EHT-28.345,M*7C */
 static const layout_field ptnl_pjk_fields[] = {
-    {"keyword", "PJK", "PJK", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ptnl_pjk, time), FIELD_TIME, 1, 0},
-    {"date", "text", NULL, offsetof(nmea_ptnl_pjk, date), FIELD_TEXT, 1, 0},
-    {"northing", "decimal number", NULL, offsetof(nmea_ptnl_pjk, northing), FIELD_DECIMAL, 1, 0},
-    {"northing_dir", "N or nothing", "N", offsetof(nmea_ptnl_pjk, northing_dir), FIELD_LITERAL, 1, 0},
-    {"easting", "decimal number", NULL, offsetof(nmea_ptnl_pjk, easting), FIELD_DECIMAL, 1, 0},
-    {"easting_dir", "E or nothing", "E", offsetof(nmea_ptnl_pjk, easting_dir), FIELD_LITERAL, 1, 0},
-    {"quality", "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_pjk, quality), FIELD_ENUM, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_ptnl_pjk, satellites), FIELD_INTEGER, 1, 0},
-    {"dop", "decimal number", NULL, offsetof(nmea_ptnl_pjk, dop), FIELD_DECIMAL, 1, 0},
-    {"height", "text", NULL, offsetof(nmea_ptnl_pjk, height), FIELD_TEXT, 1, 0},
-    {"height_unit", "M or nothing", "M", offsetof(nmea_ptnl_pjk, height_unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("PJK"), "PJK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ptnl_pjk, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_pjk, date), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("northing"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_pjk, northing), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("northing_dir"), ERROR_TEXT("N or nothing"), "N", offsetof(nmea_ptnl_pjk, northing_dir), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("easting"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_pjk, easting), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("easting_dir"), ERROR_TEXT("E or nothing"), "E", offsetof(nmea_ptnl_pjk, easting_dir), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)"), &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_pjk, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnl_pjk, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("dop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_pjk, dop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("height"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_pjk, height), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("height_unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_ptnl_pjk, height_unit), FIELD_LITERAL, 1, 0},
 };
 static const layout ptnl_pjk_layout = {
     .sentence = "PTNL_PJK", .address = "PTNL", .selector = "PJK", .fields = ptnl_pjk_fields, .selector_at = 0,
@@ -36314,10 +36385,10 @@ size_t nmea_build_ptnl_pjk(const nmea_ptnl_pjk *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* PTNL_PJT: Projection type (spec/proprietary/ptnl_pjt.yaml) */
 static const layout_field ptnl_pjt_fields[] = {
-    {"keyword", "PJT", "PJT", 0, FIELD_KEYWORD, 1, 0},
-    {"coordinate_system", "text", NULL, offsetof(nmea_ptnl_pjt, coordinate_system), FIELD_TEXT, 1, 0},
-    {"projection", "text", NULL, offsetof(nmea_ptnl_pjt, projection), FIELD_TEXT, 1, 0},
-    {"reserved", "text", NULL, offsetof(nmea_ptnl_pjt, reserved), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("PJT"), "PJT", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("coordinate_system"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_pjt, coordinate_system), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("projection"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_pjt, projection), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_pjt, reserved), FIELD_TEXT, 1, 0},
 };
 static const layout ptnl_pjt_layout = {
     .sentence = "PTNL_PJT", .address = "PTNL", .selector = "PJT", .fields = ptnl_pjt_fields, .selector_at = 0,
@@ -36389,16 +36460,16 @@ size_t nmea_build_ptnl_pjt(const nmea_ptnl_pjt *s, char *buf, size_t cap, nmea_e
 
 /* $PTNL,VGK,160159.00,010997,-0000.161,00009.985,-0000.002,3,07,1.4,M*0B */
 static const layout_field ptnl_vgk_fields[] = {
-    {"keyword", "VGK", "VGK", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ptnl_vgk, time), FIELD_TIME, 1, 0},
-    {"date", "text", NULL, offsetof(nmea_ptnl_vgk, date), FIELD_TEXT, 1, 0},
-    {"east", "decimal number", NULL, offsetof(nmea_ptnl_vgk, east), FIELD_DECIMAL, 1, 0},
-    {"north", "decimal number", NULL, offsetof(nmea_ptnl_vgk, north), FIELD_DECIMAL, 1, 0},
-    {"up", "decimal number", NULL, offsetof(nmea_ptnl_vgk, up), FIELD_DECIMAL, 1, 0},
-    {"quality", "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_vgk, quality), FIELD_ENUM, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_ptnl_vgk, satellites), FIELD_INTEGER, 1, 0},
-    {"dop", "decimal number", NULL, offsetof(nmea_ptnl_vgk, dop), FIELD_DECIMAL, 1, 0},
-    {"unit", "M or nothing", "M", offsetof(nmea_ptnl_vgk, unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("VGK"), "VGK", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ptnl_vgk, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_vgk, date), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_vgk, east), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_vgk, north), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_vgk, up), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)"), &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_vgk, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnl_vgk, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("dop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_vgk, dop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_ptnl_vgk, unit), FIELD_LITERAL, 1, 0},
 };
 static const layout ptnl_vgk_layout = {
     .sentence = "PTNL_VGK", .address = "PTNL", .selector = "VGK", .fields = ptnl_vgk_fields, .selector_at = 0,
@@ -36482,19 +36553,19 @@ size_t nmea_build_ptnl_vgk(const nmea_ptnl_vgk *s, char *buf, size_t cap, nmea_e
 
 /* $PTNL,VHD,030556.00,093098,187.718,-22.138,-76.929,-5.015,0.033,0.006,3,07,2.4,M*22 */
 static const layout_field ptnl_vhd_fields[] = {
-    {"keyword", "VHD", "VHD", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ptnl_vhd, time), FIELD_TIME, 1, 0},
-    {"date", "text", NULL, offsetof(nmea_ptnl_vhd, date), FIELD_TEXT, 1, 0},
-    {"azimuth", "decimal number", NULL, offsetof(nmea_ptnl_vhd, azimuth), FIELD_DECIMAL, 1, 0},
-    {"azimuth_rate", "decimal number", NULL, offsetof(nmea_ptnl_vhd, azimuth_rate), FIELD_DECIMAL, 1, 0},
-    {"vertical_angle", "decimal number", NULL, offsetof(nmea_ptnl_vhd, vertical_angle), FIELD_DECIMAL, 1, 0},
-    {"vertical_angle_rate", "decimal number", NULL, offsetof(nmea_ptnl_vhd, vertical_angle_rate), FIELD_DECIMAL, 1, 0},
-    {"range", "decimal number", NULL, offsetof(nmea_ptnl_vhd, range), FIELD_DECIMAL, 1, 0},
-    {"range_rate", "decimal number", NULL, offsetof(nmea_ptnl_vhd, range_rate), FIELD_DECIMAL, 1, 0},
-    {"quality", "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_vhd, quality), FIELD_ENUM, 1, 0},
-    {"satellites", "integer", NULL, offsetof(nmea_ptnl_vhd, satellites), FIELD_INTEGER, 1, 0},
-    {"pdop", "decimal number", NULL, offsetof(nmea_ptnl_vhd, pdop), FIELD_DECIMAL, 1, 0},
-    {"unit", "M or nothing", "M", offsetof(nmea_ptnl_vhd, unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("keyword"), ERROR_TEXT("VHD"), "VHD", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ptnl_vhd, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnl_vhd, date), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("azimuth"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_vhd, azimuth), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("azimuth_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_vhd, azimuth_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vertical_angle"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_vhd, vertical_angle), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vertical_angle_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_vhd, vertical_angle_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("range"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_vhd, range), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("range_rate"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_vhd, range_rate), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)"), &nmea_trimble_gps_quality_def, offsetof(nmea_ptnl_vhd, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnl_vhd, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnl_vhd, pdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_ptnl_vhd, unit), FIELD_LITERAL, 1, 0},
 };
 static const layout ptnl_vhd_layout = {
     .sentence = "PTNL_VHD", .address = "PTNL", .selector = "VHD", .fields = ptnl_vhd_fields, .selector_at = 0,
@@ -36584,17 +36655,17 @@ size_t nmea_build_ptnl_vhd(const nmea_ptnl_vhd *s, char *buf, size_t cap, nmea_e
 
 /* $PTNLDG,44.0,33.0,287.0,100,0,4,1,0,,,*3E */
 static const layout_field ptnldg_fields[] = {
-    {"signal_strength", "decimal number", NULL, offsetof(nmea_ptnldg, signal_strength), FIELD_DECIMAL, 1, 0},
-    {"snr", "decimal number", NULL, offsetof(nmea_ptnldg, snr), FIELD_DECIMAL, 1, 0},
-    {"frequency", "decimal number", NULL, offsetof(nmea_ptnldg, frequency), FIELD_DECIMAL, 1, 0},
-    {"bit_rate", "integer", NULL, offsetof(nmea_ptnldg, bit_rate), FIELD_INTEGER, 1, 0},
-    {"channel", "integer 0..99", &range_0_to_99, offsetof(nmea_ptnldg, channel), FIELD_INTEGER, 1, 0},
-    {"tracking", "trimble_dg_tracking code (0 1 2 3 4 5)", &nmea_trimble_dg_tracking_def, offsetof(nmea_ptnldg, tracking), FIELD_ENUM, 1, 0},
-    {"used", "trimble_dg_channel_used code (0 1)", &nmea_trimble_dg_channel_used_def, offsetof(nmea_ptnldg, used), FIELD_ENUM, 1, 0},
-    {"performance", "integer", NULL, offsetof(nmea_ptnldg, performance), FIELD_INTEGER, 1, 0},
-    {"reserved_1", "text", NULL, offsetof(nmea_ptnldg, reserved_1), FIELD_TEXT, 1, 0},
-    {"reserved_2", "text", NULL, offsetof(nmea_ptnldg, reserved_2), FIELD_TEXT, 1, 0},
-    {"reserved_3", "text", NULL, offsetof(nmea_ptnldg, reserved_3), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("signal_strength"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnldg, signal_strength), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("snr"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnldg, snr), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("frequency"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnldg, frequency), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("bit_rate"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnldg, bit_rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("channel"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_ptnldg, channel), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("tracking"), ERROR_TEXT("trimble_dg_tracking code (0 1 2 3 4 5)"), &nmea_trimble_dg_tracking_def, offsetof(nmea_ptnldg, tracking), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("used"), ERROR_TEXT("trimble_dg_channel_used code (0 1)"), &nmea_trimble_dg_channel_used_def, offsetof(nmea_ptnldg, used), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("performance"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnldg, performance), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved_1"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnldg, reserved_1), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved_2"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnldg, reserved_2), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved_3"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnldg, reserved_3), FIELD_TEXT, 1, 0},
 };
 static const layout ptnldg_layout = {
     .sentence = "PTNLDG", .address = "PTNLDG", .fields = ptnldg_fields, .before = 11, .fixed = 11,
@@ -36677,8 +36748,8 @@ size_t nmea_build_ptnldg(const nmea_ptnldg *s, char *buf, size_t cap, nmea_error
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLEV: Event marker (older receivers) (spec/proprietary/ptnlev.yaml) */
 static const layout_field ptnlev_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_ptnlev, time), FIELD_TIME, 1, 0},
-    {"event_number", "integer", NULL, offsetof(nmea_ptnlev, event_number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_ptnlev, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("event_number"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnlev, event_number), FIELD_INTEGER, 1, 0},
 };
 static const layout ptnlev_layout = {
     .sentence = "PTNLEV", .address = "PTNLEV", .fields = ptnlev_fields, .before = 2, .fixed = 2, .max_fields = 2,
@@ -36743,11 +36814,11 @@ size_t nmea_build_ptnlev(const nmea_ptnlev *s, char *buf, size_t cap, nmea_error
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLID: Receiver identification (older receivers) (spec/proprietary/ptnlid.yaml) */
 static const layout_field ptnlid_fields[] = {
-    {"machine_id", "integer", NULL, offsetof(nmea_ptnlid, machine_id), FIELD_INTEGER, 1, 0},
-    {"product_id", "integer", NULL, offsetof(nmea_ptnlid, product_id), FIELD_INTEGER, 1, 0},
-    {"firmware_major", "integer", NULL, offsetof(nmea_ptnlid, firmware_major), FIELD_INTEGER, 1, 0},
-    {"firmware_minor", "integer", NULL, offsetof(nmea_ptnlid, firmware_minor), FIELD_INTEGER, 1, 0},
-    {"firmware_date", "text", NULL, offsetof(nmea_ptnlid, firmware_date), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("machine_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnlid, machine_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("product_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnlid, product_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("firmware_major"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnlid, firmware_major), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("firmware_minor"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnlid, firmware_minor), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("firmware_date"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnlid, firmware_date), FIELD_TEXT, 1, 0},
 };
 static const layout ptnlid_layout = {
     .sentence = "PTNLID", .address = "PTNLID", .fields = ptnlid_fields, .before = 5, .fixed = 5, .max_fields = 5,
@@ -36842,7 +36913,7 @@ size_t nmea_build_ptnlqio(const nmea_ptnlqio *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLQVR: Query version (spec/proprietary/ptnlqvr.yaml) */
 static const layout_field ptnlqvr_fields[] = {
-    {"part", "trimble_copernicus_version_part code (S H N)", &nmea_trimble_copernicus_version_part_def, offsetof(nmea_ptnlqvr, part), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("part"), ERROR_TEXT("trimble_copernicus_version_part code (S H N)"), &nmea_trimble_copernicus_version_part_def, offsetof(nmea_ptnlqvr, part), FIELD_ENUM, 1, 0},
 };
 static const layout ptnlqvr_layout = {
     .sentence = "PTNLQVR", .address = "PTNLQVR", .fields = ptnlqvr_fields, .before = 1, .fixed = 1,
@@ -36871,8 +36942,8 @@ size_t nmea_build_ptnlqvr(const nmea_ptnlqvr *s, char *buf, size_t cap, nmea_err
 
 /* $PTNLRBA,1,0*56 */
 static const layout_field ptnlrba_fields[] = {
-    {"antenna_status", "trimble_antenna_status code (0 1)", &nmea_trimble_antenna_status_def, offsetof(nmea_ptnlrba, antenna_status), FIELD_ENUM, 1, 0},
-    {"flag", "integer", NULL, offsetof(nmea_ptnlrba, flag), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("antenna_status"), ERROR_TEXT("trimble_antenna_status code (0 1)"), &nmea_trimble_antenna_status_def, offsetof(nmea_ptnlrba, antenna_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("flag"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnlrba, flag), FIELD_INTEGER, 1, 0},
 };
 static const layout ptnlrba_layout = {
     .sentence = "PTNLRBA", .address = "PTNLRBA", .fields = ptnlrba_fields, .before = 2, .fixed = 2,
@@ -36937,14 +37008,14 @@ size_t nmea_build_ptnlrba(const nmea_ptnlrba *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLRIO: Ionosphere data (spec/proprietary/ptnlrio.yaml) */
 static const layout_field ptnlrio_fields[] = {
-    {"alpha0", "hex number", NULL, offsetof(nmea_ptnlrio, alpha0), FIELD_HEX, 1, 0},
-    {"alpha1", "hex number", NULL, offsetof(nmea_ptnlrio, alpha1), FIELD_HEX, 1, 0},
-    {"alpha2", "hex number", NULL, offsetof(nmea_ptnlrio, alpha2), FIELD_HEX, 1, 0},
-    {"alpha3", "hex number", NULL, offsetof(nmea_ptnlrio, alpha3), FIELD_HEX, 1, 0},
-    {"beta0", "hex number", NULL, offsetof(nmea_ptnlrio, beta0), FIELD_HEX, 1, 0},
-    {"beta1", "hex number", NULL, offsetof(nmea_ptnlrio, beta1), FIELD_HEX, 1, 0},
-    {"beta2", "hex number", NULL, offsetof(nmea_ptnlrio, beta2), FIELD_HEX, 1, 0},
-    {"beta3", "hex number", NULL, offsetof(nmea_ptnlrio, beta3), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("alpha0"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlrio, alpha0), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("alpha1"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlrio, alpha1), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("alpha2"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlrio, alpha2), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("alpha3"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlrio, alpha3), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("beta0"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlrio, beta0), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("beta1"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlrio, beta1), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("beta2"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlrio, beta2), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("beta3"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlrio, beta3), FIELD_HEX, 1, 0},
 };
 static const layout ptnlrio_layout = {
     .sentence = "PTNLRIO", .address = "PTNLRIO", .fields = ptnlrio_fields, .before = 8, .fixed = 8,
@@ -36971,7 +37042,7 @@ size_t nmea_build_ptnlrio(const nmea_ptnlrio *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLRIO (Command rejected): Ionosphere data (spec/proprietary/ptnlrio.yaml) */
 static const layout_field ptnlrio_invalid_fields[] = {
-    {"status", "V", "V", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("V"), "V", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout ptnlrio_invalid_layout = {
     .sentence = "PTNLRIO", .address = "PTNLRIO", .variant = "invalid", .selector = "V",
@@ -36999,11 +37070,11 @@ size_t nmea_build_ptnlrio_invalid(const nmea_ptnlrio_invalid *s, char *buf, size
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLRKG: Set initial position: response (spec/proprietary/ptnlrkg.yaml) */
 static const layout_field ptnlrkg_fields[] = {
-    {"gps_week", "integer 0..9999", &range_0_to_9999, offsetof(nmea_ptnlrkg, gps_week), FIELD_INTEGER, 1, 0},
-    {"gps_tow", "integer 0..604799999", &range_0_to_604799999, offsetof(nmea_ptnlrkg, gps_tow), FIELD_INTEGER, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_ptnlrkg, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_ptnlrkg, lon), FIELD_LONGITUDE, 2, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_ptnlrkg, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("gps_week"), ERROR_TEXT("integer 0..9999"), &range_0_to_9999, offsetof(nmea_ptnlrkg, gps_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_tow"), ERROR_TEXT("integer 0..604799999"), &range_0_to_604799999, offsetof(nmea_ptnlrkg, gps_tow), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_ptnlrkg, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_ptnlrkg, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnlrkg, altitude), FIELD_DECIMAL, 1, 0},
 };
 static const layout ptnlrkg_layout = {
     .sentence = "PTNLRKG", .address = "PTNLRKG", .fields = ptnlrkg_fields, .before = 5, .fixed = 7,
@@ -37030,7 +37101,7 @@ size_t nmea_build_ptnlrkg(const nmea_ptnlrkg *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLRKG (Command rejected): Set initial position: response (spec/proprietary/ptnlrkg.yaml) */
 static const layout_field ptnlrkg_invalid_fields[] = {
-    {"status", "V", "V", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("V"), "V", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout ptnlrkg_invalid_layout = {
     .sentence = "PTNLRKG", .address = "PTNLRKG", .variant = "invalid", .selector = "V",
@@ -37058,7 +37129,7 @@ size_t nmea_build_ptnlrkg_invalid(const nmea_ptnlrkg_invalid *s, char *buf, size
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLRSV: Set SBAS satellite mask: rejected (spec/proprietary/ptnlrsv.yaml) */
 static const layout_field ptnlrsv_fields[] = {
-    {"status", "V", "V", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("V"), "V", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout ptnlrsv_layout = {
     .sentence = "PTNLRSV", .address = "PTNLRSV", .selector = "V", .fields = ptnlrsv_fields, .selector_at = 0,
@@ -37088,9 +37159,9 @@ size_t nmea_build_ptnlrsv(const nmea_ptnlrsv *s, char *buf, size_t cap, nmea_err
 
 /* $PTNLRTP,T,21.35,3.0*2E */
 static const layout_field ptnlrtp_fields[] = {
-    {"type", "T or nothing", "T", offsetof(nmea_ptnlrtp, type), FIELD_LITERAL, 1, 0},
-    {"temperature", "decimal number", NULL, offsetof(nmea_ptnlrtp, temperature), FIELD_DECIMAL, 1, 0},
-    {"precision", "decimal number", NULL, offsetof(nmea_ptnlrtp, precision), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("type"), ERROR_TEXT("T or nothing"), "T", offsetof(nmea_ptnlrtp, type), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("temperature"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnlrtp, temperature), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("precision"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnlrtp, precision), FIELD_DECIMAL, 1, 0},
 };
 static const layout ptnlrtp_layout = {
     .sentence = "PTNLRTP", .address = "PTNLRTP", .fields = ptnlrtp_fields, .before = 3, .fixed = 3,
@@ -37157,12 +37228,12 @@ size_t nmea_build_ptnlrtp(const nmea_ptnlrtp *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLRVR: Version (spec/proprietary/ptnlrvr.yaml) */
 static const layout_field ptnlrvr_fields[] = {
-    {"reserved", "text", NULL, offsetof(nmea_ptnlrvr, reserved), FIELD_TEXT, 1, 0},
-    {"receiver_name", "text", NULL, offsetof(nmea_ptnlrvr, receiver_name), FIELD_TEXT, 1, 0},
-    {"version", "text", NULL, offsetof(nmea_ptnlrvr, version), FIELD_TEXT, 1, 0},
-    {"month", "integer 1..12", &range_1_to_12, offsetof(nmea_ptnlrvr, month), FIELD_INTEGER, 1, 0},
-    {"day", "integer 1..31", &range_1_to_31, offsetof(nmea_ptnlrvr, day), FIELD_INTEGER, 1, 0},
-    {"year", "integer", NULL, offsetof(nmea_ptnlrvr, year), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnlrvr, reserved), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("receiver_name"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnlrvr, receiver_name), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("version"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnlrvr, version), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("month"), ERROR_TEXT("integer 1..12"), &range_1_to_12, offsetof(nmea_ptnlrvr, month), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("day"), ERROR_TEXT("integer 1..31"), &range_1_to_31, offsetof(nmea_ptnlrvr, day), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnlrvr, year), FIELD_INTEGER, 1, 0},
 };
 static const layout ptnlrvr_layout = {
     .sentence = "PTNLRVR", .address = "PTNLRVR", .fields = ptnlrvr_fields, .before = 6, .fixed = 6,
@@ -37189,7 +37260,7 @@ size_t nmea_build_ptnlrvr(const nmea_ptnlrvr *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLRVR (Command rejected): Version (spec/proprietary/ptnlrvr.yaml) */
 static const layout_field ptnlrvr_invalid_fields[] = {
-    {"status", "V", "V", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("V"), "V", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout ptnlrvr_invalid_layout = {
     .sentence = "PTNLRVR", .address = "PTNLRVR", .variant = "invalid", .selector = "V",
@@ -37219,8 +37290,8 @@ size_t nmea_build_ptnlrvr_invalid(const nmea_ptnlrvr_invalid *s, char *buf, size
 
 /* $PTNLRXO,1,-270.721*70 */
 static const layout_field ptnlrxo_fields[] = {
-    {"lock", "trimble_oscillator_lock code (0 1)", &nmea_trimble_oscillator_lock_def, offsetof(nmea_ptnlrxo, lock), FIELD_ENUM, 1, 0},
-    {"offset", "decimal number", NULL, offsetof(nmea_ptnlrxo, offset), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("lock"), ERROR_TEXT("trimble_oscillator_lock code (0 1)"), &nmea_trimble_oscillator_lock_def, offsetof(nmea_ptnlrxo, lock), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("offset"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnlrxo, offset), FIELD_DECIMAL, 1, 0},
 };
 static const layout ptnlrxo_layout = {
     .sentence = "PTNLRXO", .address = "PTNLRXO", .fields = ptnlrxo_fields, .before = 2, .fixed = 2,
@@ -37285,14 +37356,14 @@ size_t nmea_build_ptnlrxo(const nmea_ptnlrxo *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLSIO: Set ionosphere data (spec/proprietary/ptnlsio.yaml) */
 static const layout_field ptnlsio_fields[] = {
-    {"alpha0", "hex number", NULL, offsetof(nmea_ptnlsio, alpha0), FIELD_HEX, 1, 0},
-    {"alpha1", "hex number", NULL, offsetof(nmea_ptnlsio, alpha1), FIELD_HEX, 1, 0},
-    {"alpha2", "hex number", NULL, offsetof(nmea_ptnlsio, alpha2), FIELD_HEX, 1, 0},
-    {"alpha3", "hex number", NULL, offsetof(nmea_ptnlsio, alpha3), FIELD_HEX, 1, 0},
-    {"beta0", "hex number", NULL, offsetof(nmea_ptnlsio, beta0), FIELD_HEX, 1, 0},
-    {"beta1", "hex number", NULL, offsetof(nmea_ptnlsio, beta1), FIELD_HEX, 1, 0},
-    {"beta2", "hex number", NULL, offsetof(nmea_ptnlsio, beta2), FIELD_HEX, 1, 0},
-    {"beta3", "hex number", NULL, offsetof(nmea_ptnlsio, beta3), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("alpha0"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlsio, alpha0), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("alpha1"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlsio, alpha1), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("alpha2"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlsio, alpha2), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("alpha3"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlsio, alpha3), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("beta0"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlsio, beta0), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("beta1"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlsio, beta1), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("beta2"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlsio, beta2), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("beta3"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlsio, beta3), FIELD_HEX, 1, 0},
 };
 static const layout ptnlsio_layout = {
     .sentence = "PTNLSIO", .address = "PTNLSIO", .fields = ptnlsio_fields, .before = 8, .fixed = 8,
@@ -37319,11 +37390,11 @@ size_t nmea_build_ptnlsio(const nmea_ptnlsio *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLSKG: Set initial position (spec/proprietary/ptnlskg.yaml) */
 static const layout_field ptnlskg_fields[] = {
-    {"gps_week", "integer 0..9999", &range_0_to_9999, offsetof(nmea_ptnlskg, gps_week), FIELD_INTEGER, 1, 0},
-    {"gps_tow", "integer 0..604799999", &range_0_to_604799999, offsetof(nmea_ptnlskg, gps_tow), FIELD_INTEGER, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_ptnlskg, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_ptnlskg, lon), FIELD_LONGITUDE, 2, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_ptnlskg, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("gps_week"), ERROR_TEXT("integer 0..9999"), &range_0_to_9999, offsetof(nmea_ptnlskg, gps_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("gps_tow"), ERROR_TEXT("integer 0..604799999"), &range_0_to_604799999, offsetof(nmea_ptnlskg, gps_tow), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_ptnlskg, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_ptnlskg, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_ptnlskg, altitude), FIELD_DECIMAL, 1, 0},
 };
 static const layout ptnlskg_layout = {
     .sentence = "PTNLSKG", .address = "PTNLSKG", .fields = ptnlskg_fields, .before = 5, .fixed = 7,
@@ -37350,9 +37421,9 @@ size_t nmea_build_ptnlskg(const nmea_ptnlskg *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* PTNLSM: RTCM special message (older receivers) (spec/proprietary/ptnlsm.yaml) */
 static const layout_field ptnlsm_fields[] = {
-    {"station_id", "integer 0..1023", &range_0_to_1023, offsetof(nmea_ptnlsm, station_id), FIELD_INTEGER, 1, 0},
-    {"message", "text", NULL, offsetof(nmea_ptnlsm, message), FIELD_TEXT, 1, 0},
-    {"reserved", "text", NULL, offsetof(nmea_ptnlsm, reserved), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("station_id"), ERROR_TEXT("integer 0..1023"), &range_0_to_1023, offsetof(nmea_ptnlsm, station_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnlsm, message), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnlsm, reserved), FIELD_TEXT, 1, 0},
 };
 static const layout ptnlsm_layout = {
     .sentence = "PTNLSM", .address = "PTNLSM", .fields = ptnlsm_fields, .before = 2, .optional = 1, .fixed = 2,
@@ -37422,8 +37493,8 @@ size_t nmea_build_ptnlsm(const nmea_ptnlsm *s, char *buf, size_t cap, nmea_error
 
 /* $PTNLSSV,00000000,00008000*58 */
 static const layout_field ptnlssv_fields[] = {
-    {"first_word", "hex number", NULL, offsetof(nmea_ptnlssv, first_word), FIELD_HEX, 1, 0},
-    {"sbas_mask", "hex number", NULL, offsetof(nmea_ptnlssv, sbas_mask), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("first_word"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlssv, first_word), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("sbas_mask"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_ptnlssv, sbas_mask), FIELD_HEX, 1, 0},
 };
 static const layout ptnlssv_layout = {
     .sentence = "PTNLSSV", .address = "PTNLSSV", .fields = ptnlssv_fields, .before = 2, .fixed = 2,
@@ -37452,14 +37523,14 @@ size_t nmea_build_ptnlssv(const nmea_ptnlssv *s, char *buf, size_t cap, nmea_err
 
 /* $PTNTA,20160203131536,2,T4,000000066,+108,3,0,3*18 */
 static const layout_field ptnta_fields[] = {
-    {"datetime", "text", NULL, offsetof(nmea_ptnta, datetime), FIELD_TEXT, 1, 0},
-    {"osc_quality", "spectratime_osc_quality code (0 1 2)", &nmea_spectratime_osc_quality_def, offsetof(nmea_ptnta, osc_quality), FIELD_ENUM, 1, 0},
-    {"format", "T4 or nothing", "T4", offsetof(nmea_ptnta, format), FIELD_LITERAL, 1, 0},
-    {"pps_interval", "integer", NULL, offsetof(nmea_ptnta, pps_interval), FIELD_INTEGER, 1, 0},
-    {"fine_phase", "integer", NULL, offsetof(nmea_ptnta, fine_phase), FIELD_INTEGER, 1, 0},
-    {"status", "spectratime_isync_status code (0 1 2 3 4 5 6 7 8 9)", &nmea_spectratime_isync_status_def, offsetof(nmea_ptnta, status), FIELD_ENUM, 1, 0},
-    {"gps_messages", "spectratime_gps_messages code (0 1 2 3)", &nmea_spectratime_gps_messages_def, offsetof(nmea_ptnta, gps_messages), FIELD_ENUM, 1, 0},
-    {"time_transfer", "spectratime_time_transfer code (0 1 2 3)", &nmea_spectratime_time_transfer_def, offsetof(nmea_ptnta, time_transfer), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("datetime"), ERROR_TEXT("text"), NULL, offsetof(nmea_ptnta, datetime), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("osc_quality"), ERROR_TEXT("spectratime_osc_quality code (0 1 2)"), &nmea_spectratime_osc_quality_def, offsetof(nmea_ptnta, osc_quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("format"), ERROR_TEXT("T4 or nothing"), "T4", offsetof(nmea_ptnta, format), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("pps_interval"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnta, pps_interval), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("fine_phase"), ERROR_TEXT("integer"), NULL, offsetof(nmea_ptnta, fine_phase), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("spectratime_isync_status code (0 1 2 3 4 5 6 7 8 9)"), &nmea_spectratime_isync_status_def, offsetof(nmea_ptnta, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("gps_messages"), ERROR_TEXT("spectratime_gps_messages code (0 1 2 3)"), &nmea_spectratime_gps_messages_def, offsetof(nmea_ptnta, gps_messages), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("time_transfer"), ERROR_TEXT("spectratime_time_transfer code (0 1 2 3)"), &nmea_spectratime_time_transfer_def, offsetof(nmea_ptnta, time_transfer), FIELD_ENUM, 1, 0},
 };
 static const layout ptnta_layout = {
     .sentence = "PTNTA", .address = "PTNTA", .fields = ptnta_fields, .before = 8, .fixed = 8, .max_fields = 8,
@@ -37538,12 +37609,12 @@ size_t nmea_build_ptnta(const nmea_ptnta *s, char *buf, size_t cap, nmea_error *
 
 /* $PUBX,41,1,0007,0003,19200,0*25 */
 static const layout_field pubx_config_fields[] = {
-    {"msg_id", "41", "41", 0, FIELD_KEYWORD, 1, 0},
-    {"port_id", "ublox_port code (0 1 2 3 4)", &nmea_ublox_port_def, offsetof(nmea_pubx_config, port_id), FIELD_ENUM, 1, 0},
-    {"in_proto", "hex number", NULL, offsetof(nmea_pubx_config, in_proto), FIELD_HEX, 1, 0},
-    {"out_proto", "hex number", NULL, offsetof(nmea_pubx_config, out_proto), FIELD_HEX, 1, 0},
-    {"baud_rate", "integer of at least 0", &range_from_0, offsetof(nmea_pubx_config, baud_rate), FIELD_INTEGER, 1, 0},
-    {"autobauding", "ublox_autobauding code (0 1)", &nmea_ublox_autobauding_def, offsetof(nmea_pubx_config, autobauding), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("msg_id"), ERROR_TEXT("41"), "41", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("port_id"), ERROR_TEXT("ublox_port code (0 1 2 3 4)"), &nmea_ublox_port_def, offsetof(nmea_pubx_config, port_id), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("in_proto"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pubx_config, in_proto), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("out_proto"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pubx_config, out_proto), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("baud_rate"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pubx_config, baud_rate), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("autobauding"), ERROR_TEXT("ublox_autobauding code (0 1)"), &nmea_ublox_autobauding_def, offsetof(nmea_pubx_config, autobauding), FIELD_ENUM, 1, 0},
 };
 static const layout pubx_config_layout = {
     .sentence = "PUBX_CONFIG", .address = "PUBX", .selector = "41", .fields = pubx_config_fields,
@@ -37573,24 +37644,24 @@ size_t nmea_build_pubx_config(const nmea_pubx_config *s, char *buf, size_t cap, 
 
 /* $PUBX,00,081350.00,4717.113210,N,00833.915187,E,546.589,G3,2.1,2.0,0.007,77.52,0.007,,0.92,1.19,0.77,9,0,0*5F */
 static const layout_field pubx_position_fields[] = {
-    {"msg_id", "00", "00", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pubx_position, time), FIELD_TIME, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_pubx_position, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_pubx_position, lon), FIELD_LONGITUDE, 2, 0},
-    {"alt_ref", "decimal number", NULL, offsetof(nmea_pubx_position, alt_ref), FIELD_DECIMAL, 1, 0},
-    {"nav_status", "ublox_nav_status code (NF DR G2 G3 D2 D3 RK TT)", &nmea_ublox_nav_status_def, offsetof(nmea_pubx_position, nav_status), FIELD_ENUM, 1, 0},
-    {"h_acc", "decimal number", NULL, offsetof(nmea_pubx_position, h_acc), FIELD_DECIMAL, 1, 0},
-    {"v_acc", "decimal number", NULL, offsetof(nmea_pubx_position, v_acc), FIELD_DECIMAL, 1, 0},
-    {"sog", "decimal number", NULL, offsetof(nmea_pubx_position, sog), FIELD_DECIMAL, 1, 0},
-    {"cog", "decimal number", NULL, offsetof(nmea_pubx_position, cog), FIELD_DECIMAL, 1, 0},
-    {"v_vel", "decimal number", NULL, offsetof(nmea_pubx_position, v_vel), FIELD_DECIMAL, 1, 0},
-    {"diff_age", "decimal number", NULL, offsetof(nmea_pubx_position, diff_age), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_pubx_position, hdop), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number", NULL, offsetof(nmea_pubx_position, vdop), FIELD_DECIMAL, 1, 0},
-    {"tdop", "decimal number", NULL, offsetof(nmea_pubx_position, tdop), FIELD_DECIMAL, 1, 0},
-    {"num_svs", "integer of at least 0", &range_from_0, offsetof(nmea_pubx_position, num_svs), FIELD_INTEGER, 1, 0},
-    {"reserved", "integer", NULL, offsetof(nmea_pubx_position, reserved), FIELD_INTEGER, 1, 0},
-    {"dr_used", "integer", NULL, offsetof(nmea_pubx_position, dr_used), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msg_id"), ERROR_TEXT("00"), "00", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pubx_position, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_pubx_position, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_pubx_position, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("alt_ref"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_position, alt_ref), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("nav_status"), ERROR_TEXT("ublox_nav_status code (NF DR G2 G3 D2 D3 RK TT)"), &nmea_ublox_nav_status_def, offsetof(nmea_pubx_position, nav_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("h_acc"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_position, h_acc), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("v_acc"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_position, v_acc), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sog"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_position, sog), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("cog"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_position, cog), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("v_vel"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_position, v_vel), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("diff_age"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_position, diff_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_position, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_position, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("tdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_position, tdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("num_svs"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pubx_position, num_svs), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pubx_position, reserved), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("dr_used"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pubx_position, dr_used), FIELD_INTEGER, 1, 0},
 };
 static const layout pubx_position_layout = {
     .sentence = "PUBX_POSITION", .address = "PUBX", .selector = "00", .fields = pubx_position_fields,
@@ -37690,7 +37761,7 @@ size_t nmea_build_pubx_position(const nmea_pubx_position *s, char *buf, size_t c
 
 /* $PUBX,00*33 */
 static const layout_field pubx_position_poll_fields[] = {
-    {"msg_id", "00", "00", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("msg_id"), ERROR_TEXT("00"), "00", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pubx_position_poll_layout = {
     .sentence = "PUBX_POSITION_POLL", .address = "PUBX", .selector = "00", .fields = pubx_position_poll_fields,
@@ -37720,14 +37791,14 @@ size_t nmea_build_pubx_position_poll(const nmea_pubx_position_poll *s, char *buf
 
 /* $PUBX,40,GLL,1,0,0,0,0,0*5D */
 static const layout_field pubx_rate_fields[] = {
-    {"msg_id", "40", "40", 0, FIELD_KEYWORD, 1, 0},
-    {"msg", "text of at most 3 characters", NULL, offsetof(nmea_pubx_rate, msg), FIELD_TEXT, 1, 3},
-    {"rate_ddc", "integer of at least 0", &range_from_0, offsetof(nmea_pubx_rate, rate_ddc), FIELD_INTEGER, 1, 0},
-    {"rate_uart1", "integer of at least 0", &range_from_0, offsetof(nmea_pubx_rate, rate_uart1), FIELD_INTEGER, 1, 0},
-    {"rate_uart2", "integer of at least 0", &range_from_0, offsetof(nmea_pubx_rate, rate_uart2), FIELD_INTEGER, 1, 0},
-    {"rate_usb", "integer of at least 0", &range_from_0, offsetof(nmea_pubx_rate, rate_usb), FIELD_INTEGER, 1, 0},
-    {"rate_spi", "integer of at least 0", &range_from_0, offsetof(nmea_pubx_rate, rate_spi), FIELD_INTEGER, 1, 0},
-    {"reserved", "integer", NULL, offsetof(nmea_pubx_rate, reserved), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msg_id"), ERROR_TEXT("40"), "40", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("msg"), ERROR_TEXT("text of at most 3 characters"), NULL, offsetof(nmea_pubx_rate, msg), FIELD_TEXT, 1, 3},
+    {ERROR_TEXT("rate_ddc"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pubx_rate, rate_ddc), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rate_uart1"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pubx_rate, rate_uart1), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rate_uart2"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pubx_rate, rate_uart2), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rate_usb"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pubx_rate, rate_usb), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("rate_spi"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pubx_rate, rate_spi), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("reserved"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pubx_rate, reserved), FIELD_INTEGER, 1, 0},
 };
 static const layout pubx_rate_layout = {
     .sentence = "PUBX_RATE", .address = "PUBX", .selector = "40", .fields = pubx_rate_fields, .selector_at = 0,
@@ -37757,20 +37828,20 @@ size_t nmea_build_pubx_rate(const nmea_pubx_rate *s, char *buf, size_t cap, nmea
 
 /* $PUBX,03,23,1,-,014,06,08,000,12,U,207,43,28,009,14,-,049,06,,000,15,-,171,44,23,000,17,-,064,32,16,000,19,-,094,33,,000,20,U,251,20,31,038,21,-,354,04,,000,23,U,251,27,31,064,24,U,268,89,26,000,25,-,223,05,,000,48,-,,,15,000,52,-,,,28,013,65,-,176,07,,000,66,U,223,57,35,064,67,-,315,42,23,000,68,-,341,00,29,000,75,-,057,37,,000,76,U,303,78,18,000,77,-,253,27,21,000,84,-,018,19,,000,85,-,078,22,,000,86,-,121,01,,000*02 */
 static const layout_field pubx_svstatus_fields[] = {
-    {"msg_id", "03", "03", 0, FIELD_KEYWORD, 1, 0},
-    {"num_sv", "integer of at least 0", &range_from_0, offsetof(nmea_pubx_svstatus, num_sv), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msg_id"), ERROR_TEXT("03"), "03", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("num_sv"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pubx_svstatus, num_sv), FIELD_INTEGER, 1, 0},
 };
 static const layout_field pubx_svstatus_group_fields[] = {
-    {"sv_id", "integer", NULL, offsetof(nmea_pubx_svstatus_satellite, sv_id), FIELD_INTEGER, 1, 0},
-    {"status", "ublox_sv_status code (- U e)", &nmea_ublox_sv_status_def, offsetof(nmea_pubx_svstatus_satellite, status), FIELD_ENUM, 1, 0},
-    {"azimuth", "integer 0..359", &range_0_to_359, offsetof(nmea_pubx_svstatus_satellite, azimuth), FIELD_INTEGER, 1, 0},
-    {"elevation", "integer 0..90", &range_0_to_90, offsetof(nmea_pubx_svstatus_satellite, elevation), FIELD_INTEGER, 1, 0},
-    {"cno", "integer", NULL, offsetof(nmea_pubx_svstatus_satellite, cno), FIELD_INTEGER, 1, 0},
-    {"lock_time", "integer of at least 0", &range_from_0, offsetof(nmea_pubx_svstatus_satellite, lock_time), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("sv_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pubx_svstatus_satellite, sv_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("status"), ERROR_TEXT("ublox_sv_status code (- U e)"), &nmea_ublox_sv_status_def, offsetof(nmea_pubx_svstatus_satellite, status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("azimuth"), ERROR_TEXT("integer 0..359"), &range_0_to_359, offsetof(nmea_pubx_svstatus_satellite, azimuth), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("elevation"), ERROR_TEXT("integer 0..90"), &range_0_to_90, offsetof(nmea_pubx_svstatus_satellite, elevation), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("cno"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pubx_svstatus_satellite, cno), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("lock_time"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pubx_svstatus_satellite, lock_time), FIELD_INTEGER, 1, 0},
 };
 static const layout_group pubx_svstatus_group = {
-    .id = "satellites", .fields = pubx_svstatus_group_fields, .field_count = 6, .width = 6, .min = 0, .max = 64,
-    .single = false, .offset = offsetof(nmea_pubx_svstatus, satellites),
+    .id = ERROR_TEXT("satellites"), .fields = pubx_svstatus_group_fields, .field_count = 6, .width = 6, .min = 0,
+    .max = 64, .single = false, .offset = offsetof(nmea_pubx_svstatus, satellites),
     .entry_size = sizeof(nmea_pubx_svstatus_satellite),
     .count_offset = offsetof(nmea_pubx_svstatus, satellites.count),
 };
@@ -37876,7 +37947,7 @@ size_t nmea_build_pubx_svstatus(const nmea_pubx_svstatus *s, char *buf, size_t c
 
 /* $PUBX,03*30 */
 static const layout_field pubx_svstatus_poll_fields[] = {
-    {"msg_id", "03", "03", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("msg_id"), ERROR_TEXT("03"), "03", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pubx_svstatus_poll_layout = {
     .sentence = "PUBX_SVSTATUS_POLL", .address = "PUBX", .selector = "03", .fields = pubx_svstatus_poll_fields,
@@ -37906,16 +37977,16 @@ size_t nmea_build_pubx_svstatus_poll(const nmea_pubx_svstatus_poll *s, char *buf
 
 /* $PUBX,04,180229.00,200821,496948.99,2171,18,-21782203,376.950,21*3D */
 static const layout_field pubx_time_fields[] = {
-    {"msg_id", "04", "04", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pubx_time, time), FIELD_TIME, 1, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_pubx_time, date), FIELD_DATE, 1, 0},
-    {"utc_tow", "decimal number", NULL, offsetof(nmea_pubx_time, utc_tow), FIELD_DECIMAL, 1, 0},
-    {"utc_week", "integer", NULL, offsetof(nmea_pubx_time, utc_week), FIELD_INTEGER, 1, 0},
-    {"leap_seconds", "text of at most 4 characters", NULL, offsetof(nmea_pubx_time, leap_seconds), FIELD_TEXT, 1, 4},
-    {"clock_bias", "integer", NULL, offsetof(nmea_pubx_time, clock_bias), FIELD_INTEGER, 1, 0},
-    {"clock_drift", "decimal number", NULL, offsetof(nmea_pubx_time, clock_drift), FIELD_DECIMAL, 1, 0},
-    {"tp_granularity", "integer", NULL, offsetof(nmea_pubx_time, tp_granularity), FIELD_INTEGER, 1, 0},
-    {"empty_end", "text", NULL, offsetof(nmea_pubx_time, empty_end), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("msg_id"), ERROR_TEXT("04"), "04", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pubx_time, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_pubx_time, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("utc_tow"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_time, utc_tow), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("utc_week"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pubx_time, utc_week), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("leap_seconds"), ERROR_TEXT("text of at most 4 characters"), NULL, offsetof(nmea_pubx_time, leap_seconds), FIELD_TEXT, 1, 4},
+    {ERROR_TEXT("clock_bias"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pubx_time, clock_bias), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("clock_drift"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_time, clock_drift), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("tp_granularity"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pubx_time, tp_granularity), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("empty_end"), ERROR_TEXT("text"), NULL, offsetof(nmea_pubx_time, empty_end), FIELD_TEXT, 1, 0},
 };
 static const layout pubx_time_layout = {
     .sentence = "PUBX_TIME", .address = "PUBX", .selector = "04", .fields = pubx_time_fields, .selector_at = 0,
@@ -37999,7 +38070,7 @@ size_t nmea_build_pubx_time(const nmea_pubx_time *s, char *buf, size_t cap, nmea
 
 /* $PUBX,04*37 */
 static const layout_field pubx_time_poll_fields[] = {
-    {"msg_id", "04", "04", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("msg_id"), ERROR_TEXT("04"), "04", 0, FIELD_KEYWORD, 1, 0},
 };
 static const layout pubx_time_poll_layout = {
     .sentence = "PUBX_TIME_POLL", .address = "PUBX", .selector = "04", .fields = pubx_time_poll_fields,
@@ -38029,26 +38100,26 @@ size_t nmea_build_pubx_time_poll(const nmea_pubx_time_poll *s, char *buf, size_t
 
 /* $PUBX,01,075142.00,467125.245,E,5236949.763,N,498.235,G3,2.1,1.9,0.005,85.63,0.000,,0.78,0.90,0.52,12,0,0*65 */
 static const layout_field pubx_utm_fields[] = {
-    {"msg_id", "01", "01", 0, FIELD_KEYWORD, 1, 0},
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_pubx_utm, time), FIELD_TIME, 1, 0},
-    {"easting", "decimal number", NULL, offsetof(nmea_pubx_utm, easting), FIELD_DECIMAL, 1, 0},
-    {"east_west", "east_west code (E W)", &nmea_east_west_def, offsetof(nmea_pubx_utm, east_west), FIELD_ENUM, 1, 0},
-    {"northing", "decimal number", NULL, offsetof(nmea_pubx_utm, northing), FIELD_DECIMAL, 1, 0},
-    {"north_south", "north_south code (N S)", &nmea_north_south_def, offsetof(nmea_pubx_utm, north_south), FIELD_ENUM, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_pubx_utm, altitude), FIELD_DECIMAL, 1, 0},
-    {"nav_status", "ublox_nav_status code (NF DR G2 G3 D2 D3 RK TT)", &nmea_ublox_nav_status_def, offsetof(nmea_pubx_utm, nav_status), FIELD_ENUM, 1, 0},
-    {"h_acc", "decimal number 0..9999", &range_0_to_9999, offsetof(nmea_pubx_utm, h_acc), FIELD_DECIMAL, 1, 0},
-    {"v_acc", "decimal number 0..9999", &range_0_to_9999, offsetof(nmea_pubx_utm, v_acc), FIELD_DECIMAL, 1, 0},
-    {"sog", "decimal number", NULL, offsetof(nmea_pubx_utm, sog), FIELD_DECIMAL, 1, 0},
-    {"cog", "decimal number 0..359.99", &range_0_to_359p99, offsetof(nmea_pubx_utm, cog), FIELD_DECIMAL, 1, 0},
-    {"v_vel", "decimal number", NULL, offsetof(nmea_pubx_utm, v_vel), FIELD_DECIMAL, 1, 0},
-    {"diff_age", "decimal number", NULL, offsetof(nmea_pubx_utm, diff_age), FIELD_DECIMAL, 1, 0},
-    {"hdop", "decimal number", NULL, offsetof(nmea_pubx_utm, hdop), FIELD_DECIMAL, 1, 0},
-    {"vdop", "decimal number", NULL, offsetof(nmea_pubx_utm, vdop), FIELD_DECIMAL, 1, 0},
-    {"tdop", "decimal number", NULL, offsetof(nmea_pubx_utm, tdop), FIELD_DECIMAL, 1, 0},
-    {"gps_used", "integer of at least 0", &range_from_0, offsetof(nmea_pubx_utm, gps_used), FIELD_INTEGER, 1, 0},
-    {"glonass_used", "integer", NULL, offsetof(nmea_pubx_utm, glonass_used), FIELD_INTEGER, 1, 0},
-    {"dr_used", "integer", NULL, offsetof(nmea_pubx_utm, dr_used), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("msg_id"), ERROR_TEXT("01"), "01", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pubx_utm, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("easting"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_utm, easting), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("east_west"), ERROR_TEXT("east_west code (E W)"), &nmea_east_west_def, offsetof(nmea_pubx_utm, east_west), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("northing"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_utm, northing), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("north_south"), ERROR_TEXT("north_south code (N S)"), &nmea_north_south_def, offsetof(nmea_pubx_utm, north_south), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_utm, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("nav_status"), ERROR_TEXT("ublox_nav_status code (NF DR G2 G3 D2 D3 RK TT)"), &nmea_ublox_nav_status_def, offsetof(nmea_pubx_utm, nav_status), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("h_acc"), ERROR_TEXT("decimal number 0..9999"), &range_0_to_9999, offsetof(nmea_pubx_utm, h_acc), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("v_acc"), ERROR_TEXT("decimal number 0..9999"), &range_0_to_9999, offsetof(nmea_pubx_utm, v_acc), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("sog"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_utm, sog), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("cog"), ERROR_TEXT("decimal number 0..359.99"), &range_0_to_359p99, offsetof(nmea_pubx_utm, cog), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("v_vel"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_utm, v_vel), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("diff_age"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_utm, diff_age), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_utm, hdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_utm, vdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("tdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pubx_utm, tdop), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("gps_used"), ERROR_TEXT("integer of at least 0"), &range_from_0, offsetof(nmea_pubx_utm, gps_used), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("glonass_used"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pubx_utm, glonass_used), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("dr_used"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pubx_utm, dr_used), FIELD_INTEGER, 1, 0},
 };
 static const layout pubx_utm_layout = {
     .sentence = "PUBX_UTM", .address = "PUBX", .selector = "01", .fields = pubx_utm_fields, .selector_at = 0,

@@ -30,7 +30,10 @@
  * nmea_parse_ex and nmea_serialize first try a fast path for `$` sentences in their usual form
  * (one pass, no error bookkeeping) and fall back to the general path, with the same results.
  * For flash over speed, build nmea.c with -DNMEA_NO_FAST_PATH: about a third less code, parsing
- * and writing about 1.5 to 2 times slower.
+ * and writing about 1.5 to 2 times slower. A firmware short of flash also sets -DNMEA_NO_JSON,
+ * -DNMEA_TERSE_ERRORS (errors without their texts: kind, address and wire field) and
+ * -DNMEA_NO_PROBLEMS (strict reading only), and NMEA_MAX_LINE to the longest line it expects;
+ * it feeds the framer byte by byte with nmea_framer_feed.
  */
 #ifndef NMEA_H
 #define NMEA_H
@@ -74,8 +77,16 @@ extern "C" {
  *   buf[0]) when the text and its NUL do not fit. They never write past `cap`.
  */
 
-/** Longest line (without its line ending) the parser accepts. */
+/**
+ * Longest line (without its line ending) the parser accepts and the stream framer holds. By
+ * default the longest line a sentence of the generated pair can have (each field at the longest
+ * text its type takes), at most 1024, the bound of the tools; a build sets its own with
+ * -DNMEA_MAX_LINE=N, the same for nmea.c and every file that includes nmea.h. NMEA 0183 allows
+ * 82 bytes, but receivers send longer lines (NMEA 4.11 fields, proprietary sentences).
+ */
+#ifndef NMEA_MAX_LINE
 #define NMEA_MAX_LINE 1024
+#endif
 
 /** Most digits a number may have (it is held in a signed 64-bit integer). */
 #define NMEA_MAX_DIGITS 18
@@ -255,7 +266,9 @@ typedef struct {
     size_t num[3];
 } nmea_error;
 
-/** The message ("checksum is 40, computed 6C"); returns its length (0 when it does not fit). */
+/** The message ("checksum is 40, computed 6C"; in a build with -DNMEA_TERSE_ERRORS, which leaves
+    the texts of errors out, the kind's name: the wire field is in `field`); returns its length
+    (0 when it does not fit). */
 size_t nmea_error_message(const nmea_error *err, char *buf, size_t cap);
 
 /** The name of the field at fault ("satellites[2].prn"), or 0 when there is none. */
@@ -345,6 +358,9 @@ size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap);
  * - problems: where parsing lists the problems (the sentence's `problems` then points here, and
  *   serializing it writes the texts of the fields left empty back in their places, so the round
  *   trip stays exact); NULL: they are not kept, and the fields left empty are written empty.
+ *   Parsing writes the list as it goes (no copy on the stack) and sets `count` when it succeeds.
+ * A build with -DNMEA_NO_PROBLEMS (a firmware short of flash) keeps no problems: it reads every
+ * sentence strictly, whatever the options say.
  */
 typedef struct {
     bool lenient;
@@ -364,6 +380,7 @@ typedef struct {
  */
 typedef struct {
     size_t length;             /* bytes of the current line so far (counted past NMEA_MAX_LINE) */
+    char next;                 /* nmea_framer_feed: the '$' or '!' that starts the next line, or 0 */
     char line[NMEA_MAX_LINE];  /* its first NMEA_MAX_LINE bytes */
 } nmea_framer;
 
@@ -385,6 +402,16 @@ void nmea_framer_init(nmea_framer *f);
  *         handle(line);
  */
 bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out);
+
+/**
+ * nmea_framer_push for one byte, as an interrupt handler or a DMA callback has it: true when the
+ * byte completes a line, which is then in `*out` (it points into the framer and stays valid until
+ * the framer's next call). The lines are those nmea_framer_push gives for the same bytes.
+ *
+ *     if (nmea_framer_feed(&framer, byte, &line) && line.ptr)
+ *         nmea_parse(&sentence, line.ptr, line.len, &err);
+ */
+bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out);
 
 /** At the end of the stream: the last line, when it had no line ending (true), else false. */
 bool nmea_framer_end(nmea_framer *f, nmea_framed *out);

@@ -23,6 +23,18 @@
 #define NMEA_OUTLINE static
 #endif
 
+/* The texts only errors use: message patterns, field ids, what a field takes. A firmware short of
+   flash builds with -DNMEA_TERSE_ERRORS (and -DNMEA_NO_JSON, whose keys are field ids): an error
+   then says its kind, address and wire field (nmea_error.field), its message is empty. */
+#ifdef NMEA_TERSE_ERRORS
+#ifndef NMEA_NO_JSON
+#error "NMEA_TERSE_ERRORS needs NMEA_NO_JSON: the JSON's keys are the field ids it leaves out"
+#endif
+#define ERROR_TEXT(text) NULL
+#else
+#define ERROR_TEXT(text) text
+#endif
+
 static const char HEX_UPPER[] = "0123456789ABCDEF";
 static const char HEX_LOWER[] = "0123456789abcdef";
 
@@ -87,11 +99,16 @@ static char ascii_upper(char c)
 /* Whether the upper-case form of `t` (ASCII letters only) is exactly `s`. */
 static bool upper_is(nmea_text t, const char *s)
 {
-    size_t i, n = strlen(s);
-    if (t.len != n)
-        return false;
-    for (i = 0; i < n; i++)
-        if (ascii_upper(t.ptr[i]) != s[i])
-            return false;
-    return true;
+    size_t k;
+    for (k = 0; k < t.len && s[k] && ascii_upper(t.ptr[k]) == s[k]; k++)
+        continue;
+    return k == t.len && s[k] == 0;
+}
+
+/* Whether two words are equal (byte by byte, as text_is: a firmware then links no strcmp). */
+static bool words_equal(const char *a, const char *b)
+{
+    for (; *a && *a == *b; a++, b++)
+        continue;
+    return *a == *b;
 }

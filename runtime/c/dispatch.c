@@ -14,7 +14,8 @@ NMEA_INTERNAL bool frame_known(nmea_wire *wire, const char *line, size_t len, ch
         return false;
     if (!is_standard_address(&f) || f.start.ptr[0] != start ||
         !text_is(text_span(f.address.ptr + 2, f.address.ptr + 5), sentence)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, start == '!' ? "line is not a !--%s sentence" : "line is not a $--%s sentence");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE,
+             start == '!' ? ERROR_TEXT("line is not a !--%s sentence") : ERROR_TEXT("line is not a $--%s sentence"));
         set_address(err, f.address, NULL);
         err->str[0] = sentence;
         return false;
@@ -31,7 +32,7 @@ NMEA_INTERNAL bool frame_proprietary(nmea_wire *wire, const char *line, size_t l
     if (!frame_line(&f, line, len, false, err))
         return false;
     if (f.start.ptr[0] != '$' || !text_is(f.address, address)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a $%s sentence");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("line is not a $%s sentence"));
         set_address(err, f.address, NULL);
         err->str[0] = address;
         return false;
@@ -46,7 +47,7 @@ NMEA_INTERNAL bool frame_command(nmea_wire *wire, const char *line, size_t len, 
 {
     nmea_frame f;
     if ((len && (line[0] == '$' || line[0] == '!')) || !word_is(first_word(line, len), command)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a %s command");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("line is not a %s command"));
         err->str[0] = command;
         return false;
     }
@@ -176,12 +177,14 @@ static bool fast_fit(nmea_sentence *out, const nmea_layouts *layouts, const char
     return false;
 }
 
-/* Keeps the error to report: the first one, or the first bad field that comes after it. */
-static void keep_error(nmea_error *kept, bool *have, const nmea_error *err)
+/* Keeps the layout whose error to report (its index in `*kept`, whether that was a bad field in
+   `*kept_bad`): the first one, or the first bad field that comes after it. */
+static void keep_error(size_t *kept, bool *kept_bad, size_t i, const nmea_error *err)
 {
-    if (!*have || (kept->kind != NMEA_ERR_BAD_FIELD && err->kind == NMEA_ERR_BAD_FIELD)) {
-        *kept = *err;
-        *have = true;
+    bool bad = err->kind == NMEA_ERR_BAD_FIELD;
+    if (*kept == SIZE_MAX || (!*kept_bad && bad)) {
+        *kept = i;
+        *kept_bad = bad;
     }
 }
 
@@ -202,28 +205,32 @@ static bool same_as_main(const layout *l, unsigned field)
 NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
                                 nmea_error *err)
 {
-    nmea_error attempt, chosen, fallback;
-    bool have_chosen = false, have_fallback = false;
+    /* The errors to report are kept as the layouts that made them, read again at the end: an
+       error copied per candidate would triple this frame on the deepest path of nmea_parse. */
+    size_t chosen = SIZE_MAX, fallback = SIZE_MAX, last = SIZE_MAX, i;
+    bool chosen_bad = false, fallback_bad = false;
     const char *refused = NULL; /* the sentence of the main layout tried last, when it refused */
     unsigned refused_field = 0; /* and the field it refused */
-    size_t i;
 
     for (i = 0; i < layouts->count; i++) {
         const layout *l = LAYOUTS[layouts->ids[i]];
-        if (l->variant && refused && strcmp(refused, l->sentence) == 0 && same_as_main(l, refused_field))
+        if (l->variant && refused && words_equal(refused, l->sentence) && same_as_main(l, refused_field))
             continue;
-        if (read_layout(out, layouts->ids[i], wire, &attempt))
+        if (read_layout(out, layouts->ids[i], wire, err))
             return true;
+        last = i;
         if (!l->variant) {
-            bool bad = attempt.kind == NMEA_ERR_BAD_FIELD && attempt.field;
+            bool bad = err->kind == NMEA_ERR_BAD_FIELD && err->field;
             refused = bad ? l->sentence : NULL;
-            refused_field = attempt.field;
+            refused_field = err->field;
         }
         if (holds_selector(layouts->ids[i], wire))
-            keep_error(&chosen, &have_chosen, &attempt);
-        keep_error(&fallback, &have_fallback, &attempt);
+            keep_error(&chosen, &chosen_bad, i, err);
+        keep_error(&fallback, &fallback_bad, i, err);
     }
-    *err = have_chosen ? chosen : fallback;
+    i = chosen != SIZE_MAX ? chosen : fallback;
+    if (i != last) /* reading is deterministic: the same error again */
+        read_layout(out, layouts->ids[i], wire, err);
     return false;
 }
 
@@ -244,24 +251,25 @@ NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wi
                         nmea_error *err)
 {
     nmea_problems *keep = options->problems;
-    nmea_problems problems;
-    problems.count = 0;
+    size_t count = 0; /* the problems, written in `keep` as they come: they count once a layout reads the wire */
     /* a bad field's text is the field's text on the wire, empty once it has been left empty */
-    while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && problems.count < NMEA_MAX_PROBLEMS) {
+    while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && count < NMEA_MAX_PROBLEMS) {
+        nmea_problem_kind kind;
         if (err->out_of_range && !options->strict) {
-            problem_of(&problems.list[problems.count++], err, NMEA_PROBLEM_OUT_OF_RANGE);
+            kind = NMEA_PROBLEM_OUT_OF_RANGE;
             wire->blank[wire->blanks++] = (uint16_t)(err->field | RANGE_KEPT);
         } else if (options->lenient) {
-            problem_of(&problems.list[problems.count++], err, NMEA_PROBLEM_LEFT_EMPTY);
+            kind = NMEA_PROBLEM_LEFT_EMPTY;
             wire->blank[wire->blanks++] = (uint16_t)err->field;
         } else {
             return false;
         }
+        if (keep)
+            problem_of(&keep->list[count], err, kind);
+        count++;
         if (first_fit(out, layouts, wire, err)) {
-            if (keep) {
-                keep->count = problems.count;
-                memcpy(keep->list, problems.list, problems.count * sizeof problems.list[0]);
-            }
+            if (keep)
+                keep->count = (uint8_t)count;
             out->problems = keep;
             return true;
         }
@@ -270,12 +278,17 @@ NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wi
 }
 
 /* The first of the layouts that reads the wire (first_fit); when none does, refit (unless the
-   options are strict and not lenient: then nothing is kept). */
+   options are strict and not lenient: then nothing is kept; nor in a build without problems). */
 static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
                        nmea_error *err)
 {
+#ifdef NMEA_NO_PROBLEMS
+    (void)options;
+    return first_fit(out, layouts, wire, err);
+#else
     return first_fit(out, layouts, wire, err) ||
            ((!options->strict || options->lenient) && refit(out, layouts, wire, options, err));
+#endif
 }
 
 static void write_sentence(nmea_writer *w, const nmea_sentence *s)

@@ -32,7 +32,7 @@ static void set_address(nmea_error *err, nmea_text address, const char *suffix)
 
 void nmea_error_too_long(nmea_error *err, size_t len)
 {
-    fail(err, NMEA_ERR_TOO_LONG, "line is %n bytes, the limit is %n");
+    fail(err, NMEA_ERR_TOO_LONG, ERROR_TEXT("line is %n bytes, the limit is %n"));
     err->num[0] = len;
     err->num[1] = NMEA_MAX_LINE;
 }
@@ -61,7 +61,7 @@ static void put_error_text(nmea_writer *w, const nmea_error *err, int depth)
 
 static void put_message(nmea_writer *w, const nmea_error *err, int depth)
 {
-    const char *p = err->pattern ? err->pattern : "";
+    const char *p = err->pattern ? err->pattern : nmea_error_kind_name(err->kind); /* terse: the kind */
     unsigned strs = 0, nums = 0;
     for (; *p; p++) {
         size_t n;
@@ -168,7 +168,7 @@ size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap)
 /* A problem as the bad_field error it was. */
 static void problem_error(const nmea_problem *p, nmea_error *err)
 {
-    fail(err, NMEA_ERR_BAD_FIELD, "expected %s, found %q");
+    fail(err, NMEA_ERR_BAD_FIELD, ERROR_TEXT("expected %s, found %q"));
     err->out_of_range = p->kind == NMEA_PROBLEM_OUT_OF_RANGE;
     err->field = p->field;
     err->group = p->group;

@@ -234,7 +234,7 @@ NMEA_HOT bool fast_coordinate(const char **p, nmea_coordinate *out, char positiv
     for (; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
         whole_value = whole_value * 10 + digit;
     whole = (size_t)(q - start);
-    minutes = whole_value % 100;
+    minutes = (uint32_t)whole_value % 100; /* of more digits than fit, coordinate_of refuses it */
     if (*q == '.') {
         for (point = q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
             minutes = minutes * 10 + digit;

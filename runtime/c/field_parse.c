@@ -42,28 +42,27 @@ static bool parse_number(nmea_text t, bool integer, nmea_number *out)
     return true;
 }
 
-/* Compares a * 10^-as with b * 10^-bs (both signed): -1, 0 or 1. */
+/* Compares a * 10^-as with b * 10^-bs (both signed): -1, 0 or 1. No division (a Cortex-M links
+   one of 64 bits as a library routine of 700 bytes): the magnitudes are brought to one scale, and
+   one that would pass 2^64 on the way is the larger. */
 static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
 {
-    int64_t wa, wb, fa, fb;
+    uint64_t ma, mb;
+    int order;
+    if ((a < 0) != (b < 0))
+        return a < 0 ? -1 : 1;
     if (as == bs) /* the common case: an integer against integer bounds */
         return a < b ? -1 : a > b;
-    if (as > bs && b > -POW10[NMEA_MAX_DIGITS - (as - bs)] && b < POW10[NMEA_MAX_DIGITS - (as - bs)]) {
-        b *= POW10[as - bs];
-        return a < b ? -1 : a > b;
-    }
-    if (as < bs && a > -POW10[NMEA_MAX_DIGITS - (bs - as)] && a < POW10[NMEA_MAX_DIGITS - (bs - as)]) {
-        a *= POW10[bs - as];
-        return a < b ? -1 : a > b;
-    }
-    /* whole parts first, then the fractions scaled to NMEA_MAX_DIGITS digits */
-    wa = a / POW10[as];
-    wb = b / POW10[bs];
-    fa = (a % POW10[as]) * POW10[NMEA_MAX_DIGITS - as];
-    fb = (b % POW10[bs]) * POW10[NMEA_MAX_DIGITS - bs];
-    if (wa != wb)
-        return wa < wb ? -1 : 1;
-    return fa < fb ? -1 : fa > fb;
+    ma = a < 0 ? 0 - (uint64_t)a : (uint64_t)a;
+    mb = b < 0 ? 0 - (uint64_t)b : (uint64_t)b;
+    for (; as < bs; as++, ma *= 10)
+        if (ma > UINT64_MAX / 10)
+            return a < 0 ? -1 : 1;
+    for (; bs < as; bs++, mb *= 10)
+        if (mb > UINT64_MAX / 10)
+            return a < 0 ? 1 : -1;
+    order = ma < mb ? -1 : ma > mb;
+    return a < 0 ? -order : order;
 }
 
 static inline bool in_range(const nmea_number *n, const nmea_range *range)
@@ -209,9 +208,9 @@ NMEA_HOT bool coordinate_of(uint64_t whole_value, size_t whole, uint64_t minutes
 {
     if (whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_MAX_DIGITS - 2)
         return false;
-    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
+    if ((uint32_t)whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
         return false;
-    out->degrees = (uint16_t)(whole_value / 100);
+    out->degrees = (uint16_t)((uint32_t)whole_value / 100); /* whole <= 5 digits: no 64-bit division */
     out->degree_digits = (uint8_t)(whole - 2);
     out->minutes.digits = (int64_t)minutes;
     out->minutes.scale = (uint8_t)frac;
@@ -234,7 +233,7 @@ static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned m
     for (; p < end && is_digit(*p); p++)
         whole_value = whole_value * 10 + (uint64_t)(*p - '0');
     whole = (size_t)(p - t.ptr);
-    minutes = whole_value % 100;
+    minutes = (uint32_t)whole_value % 100; /* of more digits than fit, coordinate_of refuses it */
     if (p < end && *p == '.') {
         for (point = p++; p < end && is_digit(*p); p++)
             minutes = minutes * 10 + (uint64_t)(*p - '0');

@@ -47,10 +47,13 @@ static bool ends_body(unsigned char c)
    `require_checksum`, a sentence without a checksum (or with a bare '*') is refused. */
 static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require_checksum, nmea_error *err)
 {
-    size_t i, star = 0, comma = 0, commas = 0, body_end, words_end;
+    size_t i, star = 0, comma = 0, commas = 0, body_end;
     unsigned sum = 0;
     int high = -1, low = -1; /* the checksum's hex digits */
+#ifndef NMEA_NO_FAST_PATH
+    size_t words_end;
     uint64_t word, words = 0;
+#endif
     bool named = false, lower = false, upper = false;
     nmea_text sent;
 
@@ -59,9 +62,10 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         return false;
     }
     if (len == 0)
-        return fail(err, NMEA_ERR_NOT_A_SENTENCE, "empty line");
+        return fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("empty line"));
     if (line[0] != '$' && line[0] != '!')
-        return fail(err, NMEA_ERR_NOT_A_SENTENCE, "line does not start with '$' or '!'");
+        return fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("line does not start with '$' or '!'"));
+#ifndef NMEA_NO_FAST_PATH /* for speed only: the byte loops below read any line alike */
     if (len > 6 && line[6] == ',' && is_alnum(line[1]) && is_alnum(line[2]) && is_alnum(line[3])
         && is_alnum(line[4]) && is_alnum(line[5])) { /* the usual address: talker and sentence id */
         named = true;
@@ -69,7 +73,9 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         commas = 1;
         comma = 6;
         i = 7;
-    } else {
+    } else
+#endif
+    {
         for (i = 1; i < len && !ends_body((unsigned char)line[i]); i++) { /* the address */
             sum ^= (unsigned char)line[i];
             if (line[i] == ',') {
@@ -79,6 +85,7 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
             }
         }
     }
+#ifndef NMEA_NO_FAST_PATH
     /* the fields, a word at a time up to the usual "*hh" at the end (the byte loop then finds
        where the body really ends) */
     words_end = len >= 3 && line[len - 3] == '*' ? len - 3 : len;
@@ -89,19 +96,20 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         words ^= word;
         commas += count_bytes(zero_bytes(word ^ (',' * BYTES_ONES)));
     }
-    for (; i < len && !ends_body((unsigned char)line[i]); i++) { /* the rest of the body */
-        sum ^= (unsigned char)line[i];
-        commas += line[i] == ',';
-    }
     words ^= words >> 32;
     words ^= words >> 16;
     words ^= words >> 8;
     sum ^= (unsigned char)words;
+#endif
+    for (; i < len && !ends_body((unsigned char)line[i]); i++) { /* the rest of the body */
+        sum ^= (unsigned char)line[i];
+        commas += line[i] == ',';
+    }
     if (i < len && line[i] == '*')
         for (star = i++; i < len && is_printable(line[i]); i++)
             continue;
     if (i < len) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "byte 0x%x at offset %n is not printable ASCII");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("byte 0x%x at offset %n is not printable ASCII"));
         err->num[0] = (unsigned char)line[i];
         err->num[1] = i;
         return false;
@@ -126,14 +134,14 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
             upper = (sent.ptr[0] >= 'A' && sent.ptr[0] <= 'F') || (sent.ptr[1] >= 'A' && sent.ptr[1] <= 'F');
         }
         if (high < 0 || low < 0 || (lower && upper)) {
-            fail(err, NMEA_ERR_BAD_CHECKSUM, "checksum %q is not two hex digits of one letter case");
+            fail(err, NMEA_ERR_BAD_CHECKSUM, ERROR_TEXT("checksum %q is not two hex digits of one letter case"));
             err->text = sent;
             if (named)
                 set_address(err, f->address, NULL);
             return false;
         }
         if ((unsigned)(high * 16 + low) != sum) {
-            fail(err, NMEA_ERR_CHECKSUM_MISMATCH, "checksum is %t, computed %X");
+            fail(err, NMEA_ERR_CHECKSUM_MISMATCH, ERROR_TEXT("checksum is %t, computed %X"));
             err->text = sent;
             err->num[0] = sum;
             if (named)
@@ -143,12 +151,12 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         f->checksum = lower ? NMEA_CHECKSUM_LOWER : NMEA_CHECKSUM_UPPER;
     }
     if (!named) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "address %q is not letters and digits");
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("address %q is not letters and digits"));
         err->text = f->address;
         return false;
     }
     if (require_checksum && (f->checksum == NMEA_CHECKSUM_NONE || f->checksum == NMEA_CHECKSUM_EMPTY)) {
-        fail(err, NMEA_ERR_MISSING_CHECKSUM, "the sentence has no checksum");
+        fail(err, NMEA_ERR_MISSING_CHECKSUM, ERROR_TEXT("the sentence has no checksum"));
         set_address(err, f->address, NULL);
         return false;
     }
@@ -177,7 +185,7 @@ static bool text_frame(nmea_frame *f, const char *line, size_t len, nmea_error *
     }
     for (i = 0; i < len; i++) {
         if (!is_printable(line[i])) {
-            fail(err, NMEA_ERR_NOT_A_SENTENCE, "byte 0x%x at offset %n is not printable ASCII");
+            fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("byte 0x%x at offset %n is not printable ASCII"));
             err->num[0] = (unsigned char)line[i];
             err->num[1] = i;
             return false;

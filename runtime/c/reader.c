@@ -108,12 +108,12 @@ static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *patter
 
 static bool too_few(nmea_reader *r, size_t need, size_t found)
 {
-    return count_error(r, NMEA_ERR_TOO_FEW_FIELDS, "%s needs at least %n fields, found %n", need, found);
+    return count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s needs at least %n fields, found %n"), need, found);
 }
 
 static bool too_many(nmea_reader *r, size_t limit, size_t found)
 {
-    return count_error(r, NMEA_ERR_TOO_MANY_FIELDS, "%s takes at most %n fields, found %n", limit, found);
+    return count_error(r, NMEA_ERR_TOO_MANY_FIELDS, ERROR_TEXT("%s takes at most %n fields, found %n"), limit, found);
 }
 
 /* A layout without a repeated group: `fixed` required fields, `max` in all. Sets `optional` to
@@ -140,7 +140,7 @@ NMEA_INTERNAL bool build_wire(nmea_writer *w, bool text, nmea_wire *wire, nmea_e
 {
     nmea_frame f;
     if (w->len + 2 >= w->cap) {
-        fail(err, NMEA_ERR_TOO_LONG, "the sentence, its CR LF and a NUL need %n bytes, the buffer holds %n");
+        fail(err, NMEA_ERR_TOO_LONG, ERROR_TEXT("the sentence, its CR LF and a NUL need %n bytes, the buffer holds %n"));
         err->num[0] = w->len + 3;
         err->num[1] = w->cap;
         w->len = w->cap; /* nothing of it is kept */
@@ -193,7 +193,7 @@ NMEA_INTERNAL inline bool read_group_count(nmea_reader *r, size_t count, const c
     if (extra > optional_max) {
         if (*repeats == max)
             return too_many(r, fixed + max * width + optional_max, count);
-        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, "%s %s entries take %n fields each, %n left over", width, extra);
+        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
         r->err->str[1] = group;
         return false;
     }
@@ -204,7 +204,7 @@ NMEA_INTERNAL inline bool read_group_count(nmea_reader *r, size_t count, const c
 static bool bad_field(nmea_reader *r, unsigned index, const char *name, const char *expected, nmea_text text)
 {
     nmea_error *err = r->err;
-    fail(err, NMEA_ERR_BAD_FIELD, "expected %s, found %q");
+    fail(err, NMEA_ERR_BAD_FIELD, ERROR_TEXT("expected %s, found %q"));
     set_address(err, r->address, r->suffix);
     err->field = index;
     err->group = r->group;

@@ -24,7 +24,7 @@ static bool param_encoding(const nmea_parameter *p, nmea_param_encoding encoding
     static const char *const NAMES[] = {"hex", "decimal", "decimal_list", "text"};
     if (p->encoding == encoding)
         return true;
-    param_refuse(p, "parameter %n (%s) is written as %s", err);
+    param_refuse(p, ERROR_TEXT("parameter %n (%s) is written as %s"), err);
     err->str[1] = (unsigned)p->encoding < 4 ? NAMES[p->encoding] : "?";
     return false;
 }
@@ -33,9 +33,9 @@ static bool param_encoding(const nmea_parameter *p, nmea_param_encoding encoding
 static bool param_in_range(const nmea_parameter *p, int64_t value, unsigned scale, nmea_error *err)
 {
     if (p->range.has_min && compare_fixed(value, scale, p->range.min, p->range.min_scale) < 0)
-        return param_refuse(p, "parameter %n (%s): the value is below its minimum", err);
+        return param_refuse(p, ERROR_TEXT("parameter %n (%s): the value is below its minimum"), err);
     if (p->range.has_max && compare_fixed(value, scale, p->range.max, p->range.max_scale) > 0)
-        return param_refuse(p, "parameter %n (%s): the value is above its maximum", err);
+        return param_refuse(p, ERROR_TEXT("parameter %n (%s): the value is above its maximum"), err);
     return true;
 }
 
@@ -43,7 +43,7 @@ static size_t param_finish(nmea_writer *w, nmea_error *err)
 {
     size_t n = writer_finish(w);
     if (n == 0 && w->len) {
-        fail(err, NMEA_ERR_TOO_LONG, "the text needs %n bytes and a NUL, the buffer holds %n");
+        fail(err, NMEA_ERR_TOO_LONG, ERROR_TEXT("the text needs %n bytes and a NUL, the buffer holds %n"));
         err->num[0] = w->len;
         err->num[1] = w->cap;
     }
@@ -58,14 +58,14 @@ size_t nmea_param_hex(const nmea_parameter *p, uint64_t value, char *buf, size_t
         return writer_finish(&w);
     if (value > (uint64_t)INT64_MAX) { /* above any bound an int64_t holds */
         if (p->range.has_max) {
-            param_refuse(p, "parameter %n (%s): the value is above its maximum", err);
+            param_refuse(p, ERROR_TEXT("parameter %n (%s): the value is above its maximum"), err);
             return writer_finish(&w);
         }
     } else if (!param_in_range(p, (int64_t)value, 0, err)) {
         return writer_finish(&w);
     }
     if (p->size && p->size < 8 && value >> (8 * p->size)) {
-        param_refuse(p, "parameter %n (%s): the value does not fit %n byte(s)", err);
+        param_refuse(p, ERROR_TEXT("parameter %n (%s): the value does not fit %n byte(s)"), err);
         err->num[1] = p->size;
         return writer_finish(&w);
     }
@@ -95,7 +95,7 @@ static bool param_scale(const nmea_parameter *p, unsigned scale, nmea_error *err
 {
     if (scale <= NMEA_MAX_DIGITS)
         return true;
-    return param_refuse(p, "parameter %n (%s): more than 18 decimals", err);
+    return param_refuse(p, ERROR_TEXT("parameter %n (%s): more than 18 decimals"), err);
 }
 
 size_t nmea_param_decimal(const nmea_parameter *p, int64_t value, unsigned scale, char *buf, size_t cap,
@@ -117,7 +117,7 @@ size_t nmea_param_decimal_list(const nmea_parameter *p, const int64_t *values, s
     if (!param_encoding(p, NMEA_PARAM_DECIMAL_LIST, err) || !param_scale(p, scale, err))
         return writer_finish(&w);
     if (p->count && n != p->count) {
-        param_refuse(p, "parameter %n (%s): expected %n values, got %n", err);
+        param_refuse(p, ERROR_TEXT("parameter %n (%s): expected %n values, got %n"), err);
         err->num[1] = p->count;
         err->num[2] = n;
         return writer_finish(&w);
@@ -140,13 +140,13 @@ size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, siz
     if (!param_encoding(p, NMEA_PARAM_TEXT, err))
         return writer_finish(&w);
     if (p->max_length && n > p->max_length) {
-        param_refuse(p, "parameter %n (%s): text longer than %n", err);
+        param_refuse(p, ERROR_TEXT("parameter %n (%s): text longer than %n"), err);
         err->num[1] = p->max_length;
         return writer_finish(&w);
     }
     for (i = 0; i < n; i++) {
         if (!is_printable(text[i]) || strchr(",*$!", text[i])) {
-            param_refuse(p, "parameter %n (%s): text holds ',', '*', '$', '!' or a byte outside printable ASCII",
+            param_refuse(p, ERROR_TEXT("parameter %n (%s): text holds ',', '*', '$', '!' or a byte outside printable ASCII"),
                          err);
             return writer_finish(&w);
         }

@@ -194,7 +194,14 @@ static void test_error_kind_names(void)
     CHECK(strcmp(nmea_error_kind_name(NMEA_ERR_BAD_JSON), "bad_json") == 0);
 }
 
-/* Every line the framer gives for `stream`, pushed in chunks of `chunk` bytes, joined by '|'. */
+/* Adds a framed line to `out` (`used` bytes so far), followed by '|'. */
+static size_t add_line(char *out, size_t used, size_t cap, nmea_framed line)
+{
+    return used + (size_t)snprintf(out + used, cap - used, "%.*s|", (int)line.len, line.ptr ? line.ptr : "");
+}
+
+/* Every line the framer gives for `stream`, pushed in chunks of `chunk` bytes (0: fed byte by
+   byte with nmea_framer_feed), joined by '|'. */
 static size_t frame_all(const char *stream, size_t chunk, char *out, size_t cap)
 {
     nmea_framer framer;
@@ -204,12 +211,17 @@ static size_t frame_all(const char *stream, size_t chunk, char *out, size_t cap)
     while (at < total) {
         const char *p = stream + at;
         size_t n = total - at < chunk ? total - at : chunk;
+        if (chunk == 0) {
+            if (nmea_framer_feed(&framer, stream[at++], &line))
+                used = add_line(out, used, cap, line);
+            continue;
+        }
         at += n;
         while (nmea_framer_push(&framer, &p, &n, &line))
-            used += (size_t)snprintf(out + used, cap - used, "%.*s|", (int)line.len, line.ptr ? line.ptr : "");
+            used = add_line(out, used, cap, line);
     }
     if (nmea_framer_end(&framer, &line))
-        used += (size_t)snprintf(out + used, cap - used, "%.*s|", (int)line.len, line.ptr ? line.ptr : "");
+        used = add_line(out, used, cap, line);
     return used;
 }
 
@@ -219,7 +231,7 @@ static void test_framer(void)
     static const char expected[] = "garbage|$GPGLL,1*00|$GPGLL,2|$|$GPTXT,3|!AIVDM,4|";
     char out[256];
     size_t chunk;
-    for (chunk = 1; chunk <= sizeof stream; chunk++) {
+    for (chunk = 0; chunk <= sizeof stream; chunk++) {
         size_t n = frame_all(stream, chunk, out, sizeof out);
         CHECK(n == strlen(expected) && memcmp(out, expected, n) == 0);
     }
@@ -227,6 +239,13 @@ static void test_framer(void)
 
 static void test_numbers(void)
 {
+    /* compare_fixed without a division: by scale, and past 2^64 on the way to one scale */
+    CHECK(compare_fixed(15, 1, 2, 0) < 0 && compare_fixed(25, 1, 2, 0) > 0 && compare_fixed(20, 1, 2, 0) == 0);
+    CHECK(compare_fixed(-15, 1, -2, 0) > 0 && compare_fixed(-1, 0, 0, 3) < 0 && compare_fixed(0, 2, -1, 0) > 0);
+    CHECK(compare_fixed(INT64_MAX, 0, 5, 18) > 0 && compare_fixed(5, 18, INT64_MAX, 0) < 0);
+    CHECK(compare_fixed(-INT64_MAX, 0, -5, 18) < 0 && compare_fixed(INT64_MAX, 18, 9, 0) > 0);
+    CHECK(compare_fixed(999999999999999999, 18, 1, 0) < 0 && compare_fixed(1000000000000000000, 18, 1, 0) == 0);
+
     nmea_number n = nmea_number_of(-5, 1);
     CHECK(n.present && n.digits == 5 && n.scale == 1 && n.sign == '-');
     CHECK(nmea_number_scaled(&n, 1) == -5 && nmea_number_scaled(&n, 3) == -500);

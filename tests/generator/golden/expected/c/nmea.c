@@ -57,19 +57,19 @@ static const nmea_range range_1_to_9 = {.has_min = true, .min = 1, .has_max = tr
 
 /* $GPFIX,123519.50,4807.038,N,01131.000,E,230394,1,08,-12.5,1F,Q,M,AD,HELLO,5*69 */
 static const layout_field fix_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_fix, time), FIELD_TIME, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_fix, lat), FIELD_LATITUDE, 2, 0},
-    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_fix, lon), FIELD_LONGITUDE, 2, 0},
-    {"date", "date ddmmyy", NULL, offsetof(nmea_fix, date), FIELD_DATE, 1, 0},
-    {"quality", "fix_quality code (0 1 2)", &nmea_fix_quality_def, offsetof(nmea_fix, quality), FIELD_ENUM, 1, 0},
-    {"satellites", "integer 0..99", &range_0_to_99, offsetof(nmea_fix, satellites), FIELD_INTEGER, 1, 0},
-    {"altitude", "decimal number", NULL, offsetof(nmea_fix, altitude), FIELD_DECIMAL, 1, 0},
-    {"flags", "hex number", NULL, offsetof(nmea_fix, flags), FIELD_HEX, 1, 0},
-    {"grade", "one character", NULL, offsetof(nmea_fix, grade), FIELD_CHAR, 1, 0},
-    {"unit", "M or nothing", "M", offsetof(nmea_fix, unit), FIELD_LITERAL, 1, 0},
-    {"modes", "system_mode codes (A D N)", &nmea_system_mode_def, offsetof(nmea_fix, modes), FIELD_ENUM_CHARS, 1, 4},
-    {"note", "text of at most 20 characters", NULL, offsetof(nmea_fix, note), FIELD_TEXT, 1, 20},
-    {"extra", "integer", NULL, offsetof(nmea_fix, extra), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_fix, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_fix, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_fix, lon), FIELD_LONGITUDE, 2, 0},
+    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_fix, date), FIELD_DATE, 1, 0},
+    {ERROR_TEXT("quality"), ERROR_TEXT("fix_quality code (0 1 2)"), &nmea_fix_quality_def, offsetof(nmea_fix, quality), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("satellites"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_fix, satellites), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_fix, altitude), FIELD_DECIMAL, 1, 0},
+    {ERROR_TEXT("flags"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_fix, flags), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("grade"), ERROR_TEXT("one character"), NULL, offsetof(nmea_fix, grade), FIELD_CHAR, 1, 0},
+    {ERROR_TEXT("unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_fix, unit), FIELD_LITERAL, 1, 0},
+    {ERROR_TEXT("modes"), ERROR_TEXT("system_mode codes (A D N)"), &nmea_system_mode_def, offsetof(nmea_fix, modes), FIELD_ENUM_CHARS, 1, 4},
+    {ERROR_TEXT("note"), ERROR_TEXT("text of at most 20 characters"), NULL, offsetof(nmea_fix, note), FIELD_TEXT, 1, 20},
+    {ERROR_TEXT("extra"), ERROR_TEXT("integer"), NULL, offsetof(nmea_fix, extra), FIELD_INTEGER, 1, 0},
 };
 static const layout fix_layout = {
     .sentence = "FIX", .fields = fix_fields, .before = 12, .optional = 1, .fixed = 14, .max_fields = 15,
@@ -99,8 +99,8 @@ size_t nmea_build_fix(const nmea_fix *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPFIX,123519.50,4807.038,N*1A */
 static const layout_field fix_short_fields[] = {
-    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_fix_short, time), FIELD_TIME, 1, 0},
-    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_fix_short, lat), FIELD_LATITUDE, 2, 0},
+    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_fix_short, time), FIELD_TIME, 1, 0},
+    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_fix_short, lat), FIELD_LATITUDE, 2, 0},
 };
 static const layout fix_short_layout = {
     .sentence = "FIX", .variant = "short", .fields = fix_short_fields, .before = 2, .fixed = 3, .max_fields = 3,
@@ -129,19 +129,19 @@ size_t nmea_build_fix_short(const nmea_fix_short *s, char *buf, size_t cap, nmea
 
 /* $GPSAT,2,1,07,12,40,083,46,25,,,,1*5D */
 static const layout_field sat_fields[] = {
-    {"total", "integer 1..9", &range_1_to_9, offsetof(nmea_sat, total), FIELD_INTEGER, 1, 0},
-    {"number", "integer 1..9", &range_1_to_9, offsetof(nmea_sat, number), FIELD_INTEGER, 1, 0},
-    {"in_view", "integer", NULL, offsetof(nmea_sat, in_view), FIELD_INTEGER, 1, 0},
-    {"signal", "hex number", NULL, offsetof(nmea_sat, signal), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("total"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_sat, total), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("number"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_sat, number), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("in_view"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sat, in_view), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("signal"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_sat, signal), FIELD_HEX, 1, 0},
 };
 static const layout_field sat_group_fields[] = {
-    {"prn", "integer", NULL, offsetof(nmea_sat_satellite, prn), FIELD_INTEGER, 1, 0},
-    {"elevation", "integer", NULL, offsetof(nmea_sat_satellite, elevation), FIELD_INTEGER, 1, 0},
-    {"azimuth", "integer", NULL, offsetof(nmea_sat_satellite, azimuth), FIELD_INTEGER, 1, 0},
-    {"snr", "integer", NULL, offsetof(nmea_sat_satellite, snr), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sat_satellite, prn), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("elevation"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sat_satellite, elevation), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("azimuth"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sat_satellite, azimuth), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("snr"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sat_satellite, snr), FIELD_INTEGER, 1, 0},
 };
 static const layout_group sat_group = {
-    .id = "satellites", .fields = sat_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 4,
+    .id = ERROR_TEXT("satellites"), .fields = sat_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 4,
     .single = false, .offset = offsetof(nmea_sat, satellites), .entry_size = sizeof(nmea_sat_satellite),
     .count_offset = offsetof(nmea_sat, satellites.count),
 };
@@ -178,10 +178,10 @@ size_t nmea_build_sat(const nmea_sat *s, char *buf, size_t cap, nmea_error *err)
 
 /* !AIXDM,1,1,,13nUgBWP01PkHvDU7<kC4wvJ2>`<*5B */
 static const layout_field xdm_fields[] = {
-    {"count", "integer", NULL, offsetof(nmea_xdm, count), FIELD_INTEGER, 1, 0},
-    {"fragment", "integer", NULL, offsetof(nmea_xdm, fragment), FIELD_INTEGER, 1, 0},
-    {"message_id", "integer", NULL, offsetof(nmea_xdm, message_id), FIELD_INTEGER, 1, 0},
-    {"payload", "text", NULL, offsetof(nmea_xdm, payload), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("count"), ERROR_TEXT("integer"), NULL, offsetof(nmea_xdm, count), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("fragment"), ERROR_TEXT("integer"), NULL, offsetof(nmea_xdm, fragment), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_xdm, message_id), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("payload"), ERROR_TEXT("text"), NULL, offsetof(nmea_xdm, payload), FIELD_TEXT, 1, 0},
 };
 static const layout xdm_layout = {
     .sentence = "XDM", .fields = xdm_fields, .before = 4, .fixed = 4, .max_fields = 4, .size = sizeof(nmea_xdm),
@@ -210,8 +210,8 @@ size_t nmea_build_xdm(const nmea_xdm *s, char *buf, size_t cap, nmea_error *err)
 
 /* LOG GPFIX 1 */
 static const layout_field acme_log_fields[] = {
-    {"message", "text", NULL, offsetof(nmea_acme_log, message), FIELD_TEXT, 1, 0},
-    {"period", "integer", NULL, offsetof(nmea_acme_log, period), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("message"), ERROR_TEXT("text"), NULL, offsetof(nmea_acme_log, message), FIELD_TEXT, 1, 0},
+    {ERROR_TEXT("period"), ERROR_TEXT("integer"), NULL, offsetof(nmea_acme_log, period), FIELD_INTEGER, 1, 0},
 };
 static const layout acme_log_layout = {
     .sentence = "ACME_LOG", .address = "LOG", .command = "LOG", .fields = acme_log_fields, .before = 2,
@@ -240,8 +240,8 @@ size_t nmea_build_acme_log(const nmea_acme_log *s, char *buf, size_t cap, nmea_e
 
 /* $PACMACK,SET,1*25 */
 static const layout_field pacmack_fields[] = {
-    {"command", "text of at most 8 characters", NULL, offsetof(nmea_pacmack, command), FIELD_TEXT, 1, 8},
-    {"ok", "integer 0..1", &range_0_to_1, offsetof(nmea_pacmack, ok), FIELD_INTEGER, 1, 0},
+    {ERROR_TEXT("command"), ERROR_TEXT("text of at most 8 characters"), NULL, offsetof(nmea_pacmack, command), FIELD_TEXT, 1, 8},
+    {ERROR_TEXT("ok"), ERROR_TEXT("integer 0..1"), &range_0_to_1, offsetof(nmea_pacmack, ok), FIELD_INTEGER, 1, 0},
 };
 static const layout pacmack_layout = {
     .sentence = "PACMACK", .address = "PACMACK", .fields = pacmack_fields, .before = 2, .fixed = 2,
@@ -270,9 +270,9 @@ size_t nmea_build_pacmack(const nmea_pacmack *s, char *buf, size_t cap, nmea_err
 
 /* $PACMSET,BAUD,4800,C3*1F */
 static const layout_field pacmset_fields[] = {
-    {"what", "BAUD", "BAUD", 0, FIELD_KEYWORD, 1, 0},
-    {"baud", "acme_baud code (4800 9600)", &nmea_acme_baud_def, offsetof(nmea_pacmset, baud), FIELD_ENUM, 1, 0},
-    {"outputs", "hex number", NULL, offsetof(nmea_pacmset, outputs), FIELD_HEX, 1, 0},
+    {ERROR_TEXT("what"), ERROR_TEXT("BAUD"), "BAUD", 0, FIELD_KEYWORD, 1, 0},
+    {ERROR_TEXT("baud"), ERROR_TEXT("acme_baud code (4800 9600)"), &nmea_acme_baud_def, offsetof(nmea_pacmset, baud), FIELD_ENUM, 1, 0},
+    {ERROR_TEXT("outputs"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pacmset, outputs), FIELD_HEX, 1, 0},
 };
 static const layout pacmset_layout = {
     .sentence = "PACMSET", .address = "PACMSET", .selector = "BAUD", .fields = pacmset_fields, .selector_at = 0,

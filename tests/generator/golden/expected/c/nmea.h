@@ -30,7 +30,10 @@
  * nmea_parse_ex and nmea_serialize first try a fast path for `$` sentences in their usual form
  * (one pass, no error bookkeeping) and fall back to the general path, with the same results.
  * For flash over speed, build nmea.c with -DNMEA_NO_FAST_PATH: about a third less code, parsing
- * and writing about 1.5 to 2 times slower.
+ * and writing about 1.5 to 2 times slower. A firmware short of flash also sets -DNMEA_NO_JSON,
+ * -DNMEA_TERSE_ERRORS (errors without their texts: kind, address and wire field) and
+ * -DNMEA_NO_PROBLEMS (strict reading only), and NMEA_MAX_LINE to the longest line it expects;
+ * it feeds the framer byte by byte with nmea_framer_feed.
  */
 #ifndef NMEA_H
 #define NMEA_H
