@@ -13,6 +13,7 @@ OUT = ROOT / "build" / "bench-smoke"
 LINES = 2000
 OURS = {"ours-c": "c", "ours-rust": "rust", "ours-python": "python"}
 OPS = ("parse", "serialize", "roundtrip")
+FIXES = {"ours-python"}  # the implementations with a fix assembler: a `fixes` row each
 
 
 def test_bench_smoke():
@@ -25,6 +26,7 @@ def test_bench_smoke():
     assert report["corpus"]["bytes"] == (OUT / "corpus.nmea").stat().st_size
     rows = {(r["name"], r["op"]): r for r in report["results"]}
     expected = {(name, op) for name in OURS for op in OPS} | {("ceiling-c", "parse")}
+    expected |= {(name, "fixes") for name in FIXES}
     assert set(rows) == expected
     for (name, op), row in rows.items():
         assert set(row) >= {"name", "lang", "op", "ns_per_line", "ok_lines"}
