@@ -33,7 +33,10 @@ def _slug(heading: str) -> str:
 
 
 def _anchors(path: Path) -> set[str]:
-    return {_slug(m.group(1)) for m in re.finditer(r"^#+ (.+)$", path.read_text(encoding="utf-8"), re.M)}
+    """The headings' anchors and the explicit ones (`<a id="...">`, e.g. of a table's rows)."""
+    text = path.read_text(encoding="utf-8")
+    headings = {_slug(m.group(1)) for m in re.finditer(r"^#+ (.+)$", text, re.M)}
+    return headings | set(re.findall(r'<a id="([^"]+)">', text))
 
 
 def test_every_relative_link_resolves() -> None:
