@@ -52,6 +52,8 @@ use core::fmt::{self, Write};
 
 pub mod bitfields;
 pub mod enums;
+#[cfg(feature = "std")]
+mod fix_fields;
 mod runtime;
 pub mod sentences;
 pub mod tables;
@@ -68,6 +70,12 @@ pub use runtime::{
     Time, BUILD_CAPACITY, MAX_LINE, MAX_PROBLEMS, PIVOT_YEAR,
 };
 use runtime::{read_layout, Decoded, FastReader, Layouts, Outcome};
+
+// Fixes assembled across sentences (docs/fixes.md).
+#[cfg(feature = "std")]
+pub use fix_fields::fixes;
+#[cfg(feature = "std")]
+pub use runtime::fixes::{CalendarDate, Fix, FixAssembler, Fixes, Satellite};
 
 pub use sentences::*;
 
