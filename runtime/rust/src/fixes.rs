@@ -26,7 +26,7 @@ use std::vec::Vec;
 use super::layout::Layout;
 use super::parse::{parse, Layouts};
 use super::types::{Code, CodeChars, CodeEnum, Coordinate, Date, Number, Time};
-use super::values::days_from_civil;
+use super::values::{days_from_civil, DateTime};
 use super::write::write_json_str;
 
 /// A date of the proleptic Gregorian calendar that exists (years 1 to 9999), with its year in
@@ -159,6 +159,12 @@ pub struct Fix {
 }
 
 impl Fix {
+    /// The epoch's UTC date and time, when both are known.
+    pub fn datetime(&self) -> Option<DateTime> {
+        let date = self.date?;
+        DateTime::new(date.year.into(), date.month, date.day, self.time?)
+    }
+
     /// How many satellites the GSA sentences of the epoch list as used.
     pub fn used_count(&self) -> usize {
         self.used.iter().map(|(_, ids)| ids.len()).sum()
@@ -748,6 +754,7 @@ mod tests {
         assert_eq!((first.date, first.mode, first.latitude), (date, Some("fix_2d"), Some(1.5)));
         let second = assembler.finish().unwrap();
         assert_eq!(second.date, CalendarDate::new(2000, 1, 1));
+        assert_eq!(second.datetime().map(DateTime::timestamp_ms), Some(946_684_800_500));
         assert_eq!((second.latitude, second.mode, second.sentences.len()), (None, None, 1));
         let mut json = String::new();
         second.write_json(&mut json).unwrap();
