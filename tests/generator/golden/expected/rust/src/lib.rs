@@ -42,7 +42,8 @@
 //!
 //! Errors carry a kind, the address, the 1-based index and spec name of the field at fault and
 //! the message of docs/json.md. [`json`] writes the tools' JSON lines and, with the `std` feature,
-//! reads them back; `std` also builds the `nmea-rs` tool.
+//! reads them back; `std` also builds the `nmea-rs` tool and assembles fixes across sentences
+//! (`fixes`, `FixAssembler`: one `Fix` per epoch, docs/fixes.md).
 
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
