@@ -220,7 +220,7 @@ test-rust-lint:
 	cargo fmt --manifest-path generated/rust/Cargo.toml --check
 
 test-tools: test-bin $(STAMP)
-	NMEA_TOOLS=$(TEST_BIN) $(PY) -m pytest -q tests/agreement
+	NMEA_TOOLS=$(TEST_BIN) $(PY) -m pytest -q tests/agreement tests/fixes
 
 # The benchmark harness for our implementations only, at a tiny size (no peers, nothing fetched).
 test-bench-smoke: $(STAMP)

@@ -17,7 +17,7 @@ import jinja2
 from . import emit_vectors, pairing
 from .emit import RUNTIME, char_literal, header, package_readme, runtime_file
 from .field_types import codes_expected
-from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel
+from .model import BitfieldDef, EnumDef, Field, FixField, Group, Layout, Sentence, Spec, TableDef, camel
 from .names_rust import bits_const, entry_name, ident, parameter_const
 from .numbers import fixed_point
 from .rust_features import Gates, cfg, with_cfg
@@ -827,6 +827,55 @@ def example_lines(v: dict) -> list[str]:
     ]
 
 
+def fix_value(fix: FixField, value: str) -> str:
+    """The conversion of a field's value (`value`, a Rust expression) to its fact's, by the field's
+    type and the fact's (runtime/rust/src/fixes.rs)."""
+    f, fact = fix.field, fix.fact
+    if f.type in ("time", "date"):
+        return f"fixes::{f.type}({value})"
+    if f.type in ("latitude", "longitude"):
+        return f"fixes::degrees({value})"
+    if f.type == "enum_chars":
+        return f"fixes::first_mode({value})"
+    if f.type == "enum":
+        values = fact.values_of(f)
+        if values is None:
+            return f"fixes::id({value})"
+        pairs = ", ".join(f"({rust_str(k)}, {rust_str(v)})" for k, v in values.items())
+        return f"fixes::mapped({value}, &[{pairs}])"
+    if f.type in ("integer", "decimal"):
+        return f"fixes::real({value}, {float(fact.scale(f))!r})" if "decimal" in fact.types else f"fixes::whole({value})"
+    raise ValueError(f"{f.id}: no Rust conversion of a {f.type} field to fact {fact.id}")
+
+
+def fix_arm(s: Sentence, layout: Layout, gate: str) -> list[str]:
+    """The match arm of one layout in `FixSource for Sentence`: its facts read into a `Facts`."""
+    fixes = layout.fix_fields
+    carried = ", ".join(rust_str(fact) for fact in dict.fromkeys(fix.fact.id for fix in fixes))
+    lines = [f"Self::{s.layout_camel(layout)}(s) => {{", f"let mut f = Facts::of(s, &[{carried}]);"]
+    lines += [f"f.{fix.fact.id} = {fix_value(fix, f's.{ident(fix.field.id)}')};" for fix in fixes if fix.group is None]
+    group = next((fix.group for fix in fixes if fix.group is not None), None)
+    if group is not None:
+        entry = [fix for fix in fixes if fix.group is group]
+        members = [f"{fix.fact.id}: {fix_value(fix, 'e' if group.single else f'e.{ident(fix.field.id)}')}"
+                   for fix in entry]
+        lines.append(f"f.entries = s.{ident(group.id)}.iter().map(|e| fixes::EntryFacts {{ {', '.join(members)}, "
+                     "..fixes::EntryFacts::default() }).collect();")
+    return with_cfg(0, gate, lines + ["Some(f)", "}"])
+
+
+def fix_fields(spec: Spec, env: jinja2.Environment, gates: Gates) -> str:
+    """src/fix_fields.rs: the generated `Sentence` read as the facts of a fix (spec/fix.yaml)."""
+    sources = sorted({*spec.fix_sources, *(s.source for s, _ in spec.fix_layouts)})
+    arms = [line for s, layout in spec.fix_layouts for line in fix_arm(s, layout, gates.sentence(s))]
+    return env.get_template("rust/fix_fields.rs.j2").render(
+        header=header(spec, "//", ["templates/rust/fix_fields.rs.j2", *sources]), arms=arms, crate=CRATE,
+        example=spec.fix_examples[0] if spec.fix_examples else None,
+        talkers=", ".join(f"({rust_str(k)}, {rust_str(v)})" for k, v in spec.talker_systems.items()),
+        satellite_ids=", ".join(f"({rust_str(g)}, {low}, {high})" for g, low, high in spec.satellite_ids),
+        combined_talker=f"Some({rust_str(spec.combined_talker)})" if spec.combined_talker else "None")
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     env.globals.update(rust_str=rust_str, rust_raw=rust_raw, one_line=one_line)
     base = "rust"
@@ -886,6 +935,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         imports=fmt_use("crate::runtime", {"Encoding", "Parameter", "Table"} | (
             {"Bound"} if any(p.min is not None or p.max is not None for t in spec.tables for p in t.parameters)
             else set())) if spec.tables else [])
+    files[f"{base}/src/fix_fields.rs"] = fix_fields(spec, env, gates)
     vectors = emit_vectors.example_vectors(spec)
     intact = [v for v in vectors if v["line"]]
     first = None

@@ -1,5 +1,6 @@
 """The `nmea-py` tool: `decode` NMEA lines to JSON, `encode` that JSON back to sentences,
-`stream` a byte stream that may hold garbage, cut lines or sentences run together.
+`stream` a byte stream that may hold garbage, cut lines or sentences run together, `fixes` the
+fixes of NMEA lines (one JSON object per epoch: Fix.to_dict, docs/fixes.md).
 
 Same behaviour, byte for byte, as nmea-c and nmea-rs; see docs/json.md.
 """
@@ -11,12 +12,13 @@ import sys
 from collections.abc import Iterator
 
 from .. import __version__, decode_json, encode_json
+from ..fixes import fixes
 from ..runtime import json_too_deep
 from ..stream import json_lines
 
 USAGE = (
     "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] [--strict]"
-    " | encode | --version\n"
+    " | encode | fixes | --version\n"
     "       (reads stdin, writes stdout)\n"
 )
 FLAGS = ("--values", "--lenient", "--require-checksum", "--strict")
@@ -54,6 +56,10 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if verb == "--version" and not flags:
         print(f"nmea-py {__version__}")
+        return 0
+    if verb == "fixes" and not flags:
+        for fix in fixes(lines(sys.stdin.buffer.read())):
+            sys.stdout.write(json.dumps(fix.to_dict(), separators=(",", ":")) + "\n")
         return 0
     if verb == "encode" and not flags:
         for line in lines(sys.stdin.buffer.read()):

@@ -27,6 +27,8 @@ mod serialize;
 pub mod stream;
 
 #[cfg(feature = "std")]
+pub mod fixes;
+#[cfg(feature = "std")]
 pub mod json;
 
 pub use error::{Error, ErrorKind, FieldProblem, Name, ProblemKind, Problems};

@@ -1,5 +1,6 @@
 //! The `nmea-rs` tool: `decode` NMEA lines to JSON, `encode` that JSON back to sentences,
-//! `stream` a byte stream that may hold garbage, cut lines or sentences run together.
+//! `stream` a byte stream that may hold garbage, cut lines or sentences run together, `fixes`
+//! the fixes of NMEA lines (one JSON object per epoch, docs/fixes.md).
 //!
 //! Same behaviour, byte for byte, as nmea-c and nmea-py; see docs/json.md. Input is bytes, split
 //! on LF with one CR before it dropped; a line over the limit is reported without being kept.
@@ -10,10 +11,10 @@ use std::process::ExitCode;
 
 use nmeaspec::json::{write_decoded_with, write_encoded, Value, SKIP_CHECK_DEPTH};
 use nmeaspec::stream::{Framer, Item};
-use nmeaspec::{Error, Options, MAX_LINE};
+use nmeaspec::{Error, Fix, FixAssembler, Options, MAX_LINE};
 
 const USAGE: &str =
-    "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] [--strict] | encode | --version\n       \
+    "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] [--strict] | encode | fixes | --version\n       \
      (reads stdin, writes stdout)\n";
 const BUFFER: usize = 1 << 16;
 
@@ -151,6 +152,22 @@ fn encode() -> io::Result<()> {
     out.inner.flush()
 }
 
+fn fixes() -> io::Result<()> {
+    let mut input = BufReader::with_capacity(BUFFER, io::stdin().lock());
+    let mut out = Output::new(BufWriter::with_capacity(BUFFER, io::stdout().lock()));
+    let mut assembler = FixAssembler::new();
+    let write = |out: &mut Output<_>, fix: Option<Fix>| match fix {
+        Some(fix) => out.line(|w| fix.write_json(w)),
+        None => Ok(()),
+    };
+    for_each_line(&mut input, MAX_LINE, |line| match line {
+        Ok(line) => write(&mut out, assembler.feed_line(line)),
+        Err(_) => Ok(()),
+    })?;
+    write(&mut out, assembler.finish())?;
+    out.inner.flush()
+}
+
 /// Flags of decode and stream: each known one at most once, in any order.
 fn flags_ok(flags: &[&str]) -> bool {
     const FLAGS: [&str; 4] = ["--values", "--lenient", "--require-checksum", "--strict"];
@@ -162,6 +179,7 @@ fn main() -> ExitCode {
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let result = match args.as_slice() {
         ["encode"] => encode(),
+        ["fixes"] => fixes(),
         ["--version"] => {
             println!("nmea-rs {}", nmeaspec::VERSION);
             return ExitCode::SUCCESS;

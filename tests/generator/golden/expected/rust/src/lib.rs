@@ -42,7 +42,8 @@
 //!
 //! Errors carry a kind, the address, the 1-based index and spec name of the field at fault and
 //! the message of docs/json.md. [`json`] writes the tools' JSON lines and, with the `std` feature,
-//! reads them back; `std` also builds the `nmea-rs` tool.
+//! reads them back; `std` also builds the `nmea-rs` tool and assembles fixes across sentences
+//! (`fixes`, `FixAssembler`: one `Fix` per epoch, docs/fixes.md).
 
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
@@ -52,6 +53,8 @@ use core::fmt::{self, Write};
 
 pub mod bitfields;
 pub mod enums;
+#[cfg(feature = "std")]
+mod fix_fields;
 mod runtime;
 pub mod sentences;
 pub mod tables;
@@ -68,6 +71,12 @@ pub use runtime::{
     Time, BUILD_CAPACITY, MAX_LINE, MAX_PROBLEMS, PIVOT_YEAR,
 };
 use runtime::{read_layout, Decoded, FastReader, Layouts, Outcome};
+
+// Fixes assembled across sentences (docs/fixes.md).
+#[cfg(feature = "std")]
+pub use fix_fields::fixes;
+#[cfg(feature = "std")]
+pub use runtime::fixes::{CalendarDate, Fix, FixAssembler, Fixes, Satellite};
 
 pub use sentences::*;
 
