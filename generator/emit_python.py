@@ -284,6 +284,8 @@ def fix_fields(spec: Spec, env: jinja2.Environment) -> str:
                for s, layout in spec.fix_layouts]
     units = py_tuple([f"{json.dumps(fact.id)}: {json.dumps(fact.unit)}" for fact in spec.facts if fact.unit], 0,
                      len("FACT_UNITS: dict[str, str] = "), brackets="{}")
+    decimal = py_tuple([json.dumps(fact.id) for fact in spec.facts if "decimal" in fact.types], 0,
+                       len("DECIMAL_FACTS: frozenset[str] = frozenset("), brackets="{}")
     talkers = py_tuple([f"{json.dumps(k)}: {json.dumps(v)}" for k, v in spec.talker_systems.items()], 0,
                        len("TALKER_SYSTEMS: dict[str, str] = "), brackets="{}")
     ids = py_tuple([f"({json.dumps(s)}, {low}, {high})" for s, low, high in spec.satellite_ids], 0,
@@ -291,7 +293,7 @@ def fix_fields(spec: Spec, env: jinja2.Environment) -> str:
     sources = sorted({*spec.fix_sources, *(s.source for s, _ in spec.fix_layouts)})
     return env.get_template("python/fix_fields.py.j2").render(
         header=header(spec, "#", ["templates/python/fix_fields.py.j2", *sources]), layouts=layouts,
-        fact_units=units, talkers=talkers, satellite_ids=ids, combined_talker=py_literal(spec.combined_talker))
+        fact_units=units, decimal_facts=decimal, talkers=talkers, satellite_ids=ids, combined_talker=py_literal(spec.combined_talker))
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:

@@ -29,7 +29,7 @@ from typing import Any, NamedTuple
 
 from . import runtime as rt
 from .api import parse
-from .fix_fields import COMBINED_TALKER, FIELDS, SATELLITE_IDS, TALKER_SYSTEMS, FixField
+from .fix_fields import COMBINED_TALKER, DECIMAL_FACTS, FIELDS, SATELLITE_IDS, TALKER_SYSTEMS, FixField
 from .runtime import NmeaError
 
 
@@ -296,6 +296,9 @@ def _value(value: Any, f: FixField) -> Any:
     the spec's `from`), coordinates in signed degrees, time and date as datetime's."""
     if value is None or value is rt.ABSENT:
         return None
+    if isinstance(value, rt.Number):  # a float where a decimal field may carry the fact
+        number = float(value) if f.fact in DECIMAL_FACTS else int(value)
+        return number * f.scale if f.scale != 1.0 else number
     convert = _CONVERT.get(type(value))
     if convert is not None:
         converted = convert(value)
@@ -344,11 +347,6 @@ def _inferred_mode(fix: Fix) -> str | None:
 
 # --- Value conversions: the value types' own accessors (the same values as C and Rust give).
 
-def _number(value: rt.Number) -> int | float:
-    """A whole number (a count, an id) as int, any other as float."""
-    return float(value) if "." in value.text() else int(value)
-
-
 def _degrees(value: rt.Coordinate) -> float:
     return float(value)
 
@@ -372,5 +370,5 @@ def _date(value: rt.Date) -> _dt.date | None:
 
 
 _CONVERT: dict[type, Any] = {
-    rt.Number: _number, rt.Coordinate: _degrees, rt.Time: _time, rt.Date: _date,
+    rt.Coordinate: _degrees, rt.Time: _time, rt.Date: _date,
 }

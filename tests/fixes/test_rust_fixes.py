@@ -2,10 +2,9 @@
 the `fixes` verb of the nmea-rs tool (one JSON object per epoch, the members of Fix.to_dict).
 
 The tool is NMEA_TOOLS's (make test-tools: build/test-bin), else `make build/test-bin/nmea-rs`
-builds it here. On the logs every fix must equal Python's: the same epochs, each fact the same
-value, doubles compared exactly (the same bits: both sides convert the wire text to the nearest
-double and scale it by the same factor). Equal values, not equal bytes: Python's fixes keep a
-decimal field sent without a point (`0`, `14`) as an int, where Rust's facts are f64 (`0.0`).
+builds it here (and nmea-py beside it). On the logs the two tools print the same bytes: the same
+epochs, each fact the same value (doubles the same bits: both sides convert the wire text to the
+nearest double and scale it by the same factor), written alike.
 """
 
 from __future__ import annotations
@@ -29,7 +28,8 @@ def nmea_rs() -> Path:
     tools = os.environ.get("NMEA_TOOLS")
     if tools:
         return Path(tools) / "nmea-rs"
-    subprocess.run(["make", "--no-print-directory", "-s", "build/test-bin/nmea-rs"], cwd=ROOT, check=True)
+    subprocess.run(["make", "--no-print-directory", "-s", "build/test-bin/nmea-rs", "build/test-bin/nmea-py"],
+                   cwd=ROOT, check=True)
     return ROOT / "build" / "test-bin" / "nmea-rs"
 
 
@@ -56,12 +56,11 @@ def test_fix_vector(nmea_rs: Path, vector: dict[str, Any]) -> None:
 
 @pytest.mark.parametrize("log", gpsd_oracle.logs())
 def test_rust_agrees_with_python(nmea_rs: Path, log: str) -> None:
-    path = CORPUS / f"{log}.nmea"
-    got = rust_fixes(nmea_rs, path.read_bytes())
-    with path.open(encoding="latin-1", newline="") as lines:
-        want = [json.loads(json.dumps(fix.to_dict())) for fix in fixes(lines)]
-    assert len(got) == len(want)
-    for number, (fix, expected) in enumerate(zip(got, want), 1):
-        assert list(fix) == list(expected), f"fix {number}: the members differ"
-        for fact, value in expected.items():
-            assert fix[fact] == value, f"fix {number} ({fix['time']}), {fact}: Rust {fix[fact]!r}, Python {value!r}"
+    """The two tools' `fixes` output on the log, byte for byte."""
+    data = (CORPUS / f"{log}.nmea").read_bytes()
+    rust = subprocess.run([str(nmea_rs), "fixes"], input=data, capture_output=True, check=True).stdout
+    python = subprocess.run([str(nmea_rs.parent / "nmea-py"), "fixes"], input=data, capture_output=True,
+                            check=True).stdout
+    assert rust.count(b"\n") == python.count(b"\n")
+    for number, (got, want) in enumerate(zip(rust.splitlines(), python.splitlines()), 1):
+        assert got == want, f"fix {number}:\n  Rust {got!r}\nPython {want!r}"

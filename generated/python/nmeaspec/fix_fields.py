@@ -4,7 +4,7 @@
 #   spec/proprietary/pubx_svstatus.yaml, spec/proprietary/pubx_time.yaml, spec/standard/gga.yaml,
 #   spec/standard/gll.yaml, spec/standard/gns.yaml, spec/standard/gsa.yaml, spec/standard/gst.yaml,
 #   spec/standard/gsv.yaml, spec/standard/rmc.yaml, spec/standard/vtg.yaml, spec/standard/zda.yaml
-#   (digest 4c7223b359af55ec)
+#   (digest bef37aa52bcc0898)
 # Regenerate: make generate (python3 -m generator generate)
 """The fields that carry the facts of a fix (spec/fix.yaml), per sentence layout: what
 fixes.py assembles a fix from, without naming a sentence itself."""
@@ -45,6 +45,23 @@ FACT_UNITS: dict[str, str] = {
     "snr": "dB-Hz",
 }
 """The unit each fact with one has in a fix."""
+
+DECIMAL_FACTS: frozenset[str] = frozenset({
+    "altitude_msl",
+    "geoid_separation",
+    "altitude_hae",
+    "speed",
+    "course",
+    "pdop",
+    "hdop",
+    "vdop",
+    "tdop",
+    "lat_error",
+    "lon_error",
+    "alt_error",
+    "horizontal_error",
+})
+"""The facts a decimal field may carry: a float in a fix even when sent without a point."""
 
 TALKER_SYSTEMS: dict[str, str] = {
     "GL": "glonass",
