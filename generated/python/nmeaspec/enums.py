@@ -110,17 +110,18 @@
 #   spec/enums/teseo_baud.yaml, spec/enums/teseo_compiler_type.yaml,
 #   spec/enums/teseo_nmea_on_off.yaml, spec/enums/teseo_rtc_status.yaml,
 #   spec/enums/teseo_setpar_mode.yaml, spec/enums/teseo_time_validity.yaml,
-#   spec/enums/ths_mode.yaml, spec/enums/trimble_antenna_status.yaml,
-#   spec/enums/trimble_bpq_quality.yaml, spec/enums/trimble_copernicus_version_part.yaml,
-#   spec/enums/trimble_dg_channel_used.yaml, spec/enums/trimble_dg_tracking.yaml,
-#   spec/enums/trimble_gps_quality.yaml, spec/enums/trimble_oscillator_lock.yaml,
-#   spec/enums/trl_reason.yaml, spec/enums/ttm_acquisition.yaml, spec/enums/ttm_reference.yaml,
+#   spec/enums/ths_mode.yaml, spec/enums/tnt_alarm_status.yaml,
+#   spec/enums/trimble_antenna_status.yaml, spec/enums/trimble_bpq_quality.yaml,
+#   spec/enums/trimble_copernicus_version_part.yaml, spec/enums/trimble_dg_channel_used.yaml,
+#   spec/enums/trimble_dg_tracking.yaml, spec/enums/trimble_gps_quality.yaml,
+#   spec/enums/trimble_oscillator_lock.yaml, spec/enums/trl_reason.yaml,
+#   spec/enums/ttm_acquisition.yaml, spec/enums/ttm_reference.yaml,
 #   spec/enums/ttm_target_status.yaml, spec/enums/ttm_units.yaml, spec/enums/ublox_autobauding.yaml,
 #   spec/enums/ublox_nav_status.yaml, spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml,
 #   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 #   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 #   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-#   (digest 042d4dbd3ca7edd0)
+#   (digest 8a40d4957a3bdfb8)
 # Regenerate: make generate (python3 -m generator generate)
 """The spec's lookup tables. A member's value is its wire code; `.id` is the spec's id."""
 
@@ -4880,6 +4881,30 @@ class ThsMode(CodeEnum):
     """Data not valid, standby included. (nmea0183, jrc_jln720, swiftnmea)"""
 
 
+class TntAlarmStatus(CodeEnum):
+    """TNT compass sensor status: State of one sensor reading of a True North Technologies compass
+    ($PTNTHTM): normal, or which alarm or warning it is in."""
+
+    BY_CODE: ClassVar[dict[str, TntAlarmStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
+    CALIBRATION_ALARM = "C"
+    """Magnetometer calibration alarm."""
+    LOW_ALARM = "L"
+    """Low alarm."""
+    LOW_WARNING = "M"
+    """Low warning."""
+    NORMAL = "N"
+    """Normal."""
+    HIGH_WARNING = "O"
+    """High warning."""
+    HIGH_ALARM = "P"
+    """High alarm."""
+    VOLTAGE_ALARM = "V"
+    """Magnetometer voltage level alarm."""
+
+
 class TrimbleAntennaStatus(CodeEnum):
     """Trimble PTNLRBA antenna status: First field of $PTNLRBA from Trimble-firmware Ericsson GRU 04
     receivers, as gpsd reads it."""
@@ -6630,6 +6655,11 @@ TeseoTimeValidity.MIN_LEN, TeseoTimeValidity.MAX_LEN = 1, 1
 ThsMode.BY_CODE = by_code(ThsMode)
 ThsMode.CODE_CLASS = "letters"
 ThsMode.MIN_LEN, ThsMode.MAX_LEN = 1, 1
+
+
+TntAlarmStatus.BY_CODE = by_code(TntAlarmStatus)
+TntAlarmStatus.CODE_CLASS = "closed"
+TntAlarmStatus.MIN_LEN, TntAlarmStatus.MAX_LEN = 1, 1
 
 
 TrimbleAntennaStatus.BY_CODE = by_code(TrimbleAntennaStatus)

@@ -111,17 +111,18 @@
 //   spec/enums/teseo_baud.yaml, spec/enums/teseo_compiler_type.yaml,
 //   spec/enums/teseo_nmea_on_off.yaml, spec/enums/teseo_rtc_status.yaml,
 //   spec/enums/teseo_setpar_mode.yaml, spec/enums/teseo_time_validity.yaml,
-//   spec/enums/ths_mode.yaml, spec/enums/trimble_antenna_status.yaml,
-//   spec/enums/trimble_bpq_quality.yaml, spec/enums/trimble_copernicus_version_part.yaml,
-//   spec/enums/trimble_dg_channel_used.yaml, spec/enums/trimble_dg_tracking.yaml,
-//   spec/enums/trimble_gps_quality.yaml, spec/enums/trimble_oscillator_lock.yaml,
-//   spec/enums/trl_reason.yaml, spec/enums/ttm_acquisition.yaml, spec/enums/ttm_reference.yaml,
+//   spec/enums/ths_mode.yaml, spec/enums/tnt_alarm_status.yaml,
+//   spec/enums/trimble_antenna_status.yaml, spec/enums/trimble_bpq_quality.yaml,
+//   spec/enums/trimble_copernicus_version_part.yaml, spec/enums/trimble_dg_channel_used.yaml,
+//   spec/enums/trimble_dg_tracking.yaml, spec/enums/trimble_gps_quality.yaml,
+//   spec/enums/trimble_oscillator_lock.yaml, spec/enums/trl_reason.yaml,
+//   spec/enums/ttm_acquisition.yaml, spec/enums/ttm_reference.yaml,
 //   spec/enums/ttm_target_status.yaml, spec/enums/ttm_units.yaml,
 //   spec/enums/ublox_autobauding.yaml, spec/enums/ublox_nav_status.yaml,
 //   spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml, spec/enums/vsd_nav_status.yaml,
 //   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
 //   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
-//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 042d4dbd3ca7edd0)
+//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 8a40d4957a3bdfb8)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -14813,6 +14814,86 @@ impl CodeEnum for ThsMode {
             Self::Manual => "manual",
             Self::Simulator => "simulator",
             Self::Invalid => "invalid",
+        }
+    }
+}
+
+/// TNT compass sensor status: State of one sensor reading of a True North Technologies compass
+/// ($PTNTHTM): normal, or which alarm or warning it is in.
+#[cfg(feature = "tnt_revolution")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum TntAlarmStatus {
+    /// Magnetometer calibration alarm.
+    CalibrationAlarm,
+    /// Low alarm.
+    LowAlarm,
+    /// Low warning.
+    LowWarning,
+    /// Normal.
+    Normal,
+    /// High warning.
+    HighWarning,
+    /// High alarm.
+    HighAlarm,
+    /// Magnetometer voltage level alarm.
+    VoltageAlarm,
+}
+
+#[cfg(feature = "tnt_revolution")]
+impl CodeEnum for TntAlarmStatus {
+    const EXPECTED: &'static str = "tnt_alarm_status code (C L M N O P V)";
+    const EXPECTED_CHARS: &'static str = "tnt_alarm_status codes (C L M N O P V)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[
+        Self::CalibrationAlarm,
+        Self::LowAlarm,
+        Self::LowWarning,
+        Self::Normal,
+        Self::HighWarning,
+        Self::HighAlarm,
+        Self::VoltageAlarm,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"C" => Some(Self::CalibrationAlarm),
+            b"L" => Some(Self::LowAlarm),
+            b"M" => Some(Self::LowWarning),
+            b"N" => Some(Self::Normal),
+            b"O" => Some(Self::HighWarning),
+            b"P" => Some(Self::HighAlarm),
+            b"V" => Some(Self::VoltageAlarm),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::CalibrationAlarm => "C",
+            Self::LowAlarm => "L",
+            Self::LowWarning => "M",
+            Self::Normal => "N",
+            Self::HighWarning => "O",
+            Self::HighAlarm => "P",
+            Self::VoltageAlarm => "V",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::CalibrationAlarm => "calibration_alarm",
+            Self::LowAlarm => "low_alarm",
+            Self::LowWarning => "low_warning",
+            Self::Normal => "normal",
+            Self::HighWarning => "high_warning",
+            Self::HighAlarm => "high_alarm",
+            Self::VoltageAlarm => "voltage_alarm",
         }
     }
 }

@@ -4,7 +4,7 @@
 //   spec/proprietary/pubx_svstatus.yaml, spec/proprietary/pubx_time.yaml, spec/standard/gga.yaml,
 //   spec/standard/gll.yaml, spec/standard/gns.yaml, spec/standard/gsa.yaml, spec/standard/gst.yaml,
 //   spec/standard/gsv.yaml, spec/standard/rmc.yaml, spec/standard/vtg.yaml, spec/standard/zda.yaml
-//   (digest 62f5ef30eb0ca0b6)
+//   (digest 968d9451987bebb6)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The fields that carry the facts of a fix (spec/fix.yaml), per layout: how the runtime's fix
