@@ -1,5 +1,6 @@
 """The `nmea-py` tool: `decode` NMEA lines to JSON, `encode` that JSON back to sentences,
-`stream` a byte stream that may hold garbage, cut lines or sentences run together.
+`stream` a byte stream that may hold garbage, cut lines or sentences run together, `fixes`: the
+fix of each epoch of NMEA lines (Fix.to_dict, one JSON object per line).
 
 Same behaviour, byte for byte, as nmea-c and nmea-rs; see docs/json.md.
 """
@@ -11,12 +12,13 @@ import sys
 from collections.abc import Iterator
 
 from .. import __version__, decode_json, encode_json
+from ..fixes import fixes
 from ..runtime import json_too_deep
 from ..stream import json_lines
 
 USAGE = (
     "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] [--strict]"
-    " | encode | --version\n"
+    " | encode | fixes | --version\n"
     "       (reads stdin, writes stdout)\n"
 )
 FLAGS = ("--values", "--lenient", "--require-checksum", "--strict")
@@ -63,6 +65,10 @@ def main(argv: list[str] | None = None) -> int:
             except (ValueError, AttributeError):
                 pass
             sys.stdout.buffer.write(encode_json(line).encode("latin-1") + b"\n")
+        return 0
+    if verb == "fixes" and not flags:
+        for fix in fixes(lines(sys.stdin.buffer.read())):
+            sys.stdout.write(json.dumps(fix.to_dict(), separators=(",", ":")) + "\n")
         return 0
     sys.stderr.write(USAGE)
     return 2
