@@ -388,7 +388,8 @@ def fix_views(spec: Spec, views: list[dict]) -> list[dict]:
                 "value_list": [c_str(mapping[c.id]) if mapping and c.id in mapping else "NULL" for c in codes],
             })
         if fields:
-            out.append({"name": v["name"], "const": v["const"], "members": fields})
+            entry = v["group"]["value_type"] if v["group"] and any(fix.group for fix in layout.fix_fields) else None
+            out.append({"name": v["name"], "const": v["const"], "members": fields, "entry": entry})
     return out
 
 

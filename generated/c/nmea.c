@@ -5156,6 +5156,10 @@ typedef struct {
 
 static const fix_tables FIX;
 
+/* The value ids the rules name, as arrays for the same reason. */
+static const char FIX_NOT_VALID[] = "not_valid", FIX_INVALID[] = "invalid", FIX_USED[] = "used",
+                  FIX_UNKNOWN[] = "unknown", FIX_NO_FIX[] = "no_fix", FIX_2D[] = "fix_2d", FIX_3D[] = "fix_3d";
+
 /* A fact as a sentence gives it: a number (a time in ms, a date in days) or a value id. */
 typedef struct {
     bool known;
@@ -5167,7 +5171,8 @@ typedef struct {
 /* The facts a fix keeps as the sentences give them, under their own names (the later sentence of
    an epoch wins), in the order of Fix.to_dict. */
 static const struct {
-    const char *name;
+    char name[18]; /* in the table, not a string literal: a firmware that does not assemble fixes
+                      links none of it (-fdata-sections drops a table, not a pooled literal) */
     uint8_t fact;
     uint16_t offset;
     bool is_id; /* a const char * member, else a double */
@@ -5233,7 +5238,7 @@ static const char *first_mode(const nmea_enum_def *def, nmea_text t)
         int v = nmea_enum_lookup(def, t.ptr[i]);
         if (v == NMEA_UNKNOWN_CODE)
             continue;
-        if (strcmp(def->codes[v].id, "not_valid") != 0)
+        if (strcmp(def->codes[v].id, FIX_NOT_VALID) != 0)
             return def->codes[v].id;
         if (!first)
             first = def->codes[v].id;
@@ -5294,33 +5299,22 @@ static fact_value fact_of(const fix_field *ff, const void *at)
     return out;
 }
 
+/* Room for a group entry of the layouts with facts (at most 8 fields, each no larger than a
+   field_value: the generated code asserts it of each). */
+#define FIX_ENTRY_FIELDS 8
+
 /* The facts of entry `i` of the group of `s`, a sentence of layout `l`, into `facts`. */
 static void entry_facts(const layout *l, const fix_layout *fl, const nmea_sentence *s, size_t i,
                         fact_value *facts)
 {
-    const layout_group *g = l->group;
-    const nmea_entries *e = entries_in(g, &s->as);
-    entry_reader c;
-    field_value value;
-    bool on_wire = !e->items && entry_reader_at(&c, l, e, i);
-    size_t j, k;
+    field_value entry[FIX_ENTRY_FIELDS];
+    bool read = l->group->entry_size <= sizeof entry && entry_of(l, &s->as, i, entry);
+    size_t k;
 
     for (k = 0; k < fl->count; k++)
         if (fl->fields[k].in_group)
-            facts[fl->fields[k].fact].known = false;
-    if (!e->items && !on_wire)
-        return; /* past what the wire holds: an empty entry */
-    for (j = 0; j < g->field_count; j++) {
-        const layout_field *f = &g->fields[j];
-        const void *at = &value;
-        if (e->items)
-            at = (const char *)e->items + i * g->entry_size + f->offset;
-        else
-            reread_field(&c, f, &value);
-        for (k = 0; k < fl->count; k++)
-            if (fl->fields[k].field == f)
-                facts[fl->fields[k].fact] = fact_of(&fl->fields[k], at);
-    }
+            facts[fl->fields[k].fact] = read ? fact_of(&fl->fields[k], (const char *)entry + fl->fields[k].field->offset)
+                                             : (fact_value){false, false, 0, NULL};
 }
 
 static void copy_talker(char to[3], const char *from, size_t len)
@@ -5393,7 +5387,7 @@ static nmea_gnss_satellite satellite_of(const fact_value *facts, const char *tal
     s.azimuth = (int16_t)facts[NMEA_FACT_AZIMUTH].number;
     s.has_snr = facts[NMEA_FACT_SNR].known;
     s.snr = (int16_t)facts[NMEA_FACT_SNR].number;
-    s.used = (int8_t)(used->known ? strcmp(used->id, "used") == 0 : -1);
+    s.used = (int8_t)(used->known ? strcmp(used->id, FIX_USED) == 0 : -1);
     return s;
 }
 
@@ -5463,10 +5457,10 @@ static const char *inferred_mode(const nmea_gnss_fix *fix)
     bool position = nmea_fix_has(fix, NMEA_FACT_LATITUDE);
     if (!position && !nmea_fix_has(fix, NMEA_FACT_FIX_QUALITY) && !nmea_fix_has(fix, NMEA_FACT_FIX_STATUS))
         return NULL;
-    if (same_text(fix->fix_status, "invalid") || same_text(fix->fix_quality, "invalid") ||
-        same_text(fix->pos_mode, "not_valid") || !position)
-        return "no_fix";
-    return nmea_fix_has(fix, NMEA_FACT_ALTITUDE_MSL) || nmea_fix_has(fix, NMEA_FACT_ALTITUDE_HAE) ? "fix_3d" : "fix_2d";
+    if (same_text(fix->fix_status, FIX_INVALID) || same_text(fix->fix_quality, FIX_INVALID) ||
+        same_text(fix->pos_mode, FIX_NOT_VALID) || !position)
+        return FIX_NO_FIX;
+    return nmea_fix_has(fix, NMEA_FACT_ALTITUDE_MSL) || nmea_fix_has(fix, NMEA_FACT_ALTITUDE_HAE) ? FIX_3D : FIX_2D;
 }
 
 /* Closes the epoch under way into `out`. */
@@ -5570,7 +5564,7 @@ static void merge(nmea_fix_assembler *a, const layout *l, const fix_layout *fl, 
             if (!facts[NMEA_FACT_USED_SATELLITE].known)
                 continue;
             id = (int32_t)facts[NMEA_FACT_USED_SATELLITE].number;
-            add_used(fix, system ? system : system_of(talker, id) ? system_of(talker, id) : "unknown", id);
+            add_used(fix, system ? system : system_of(talker, id) ? system_of(talker, id) : FIX_UNKNOWN, id);
         }
     }
     if (in_view)
@@ -5584,7 +5578,7 @@ bool nmea_fix_feed(nmea_fix_assembler *a, const nmea_sentence *s, nmea_gnss_fix 
     const fix_layout *fl = s->id == NMEA_SENTENCE_GENERIC ? NULL : &FIX.layouts[s->id];
     const layout *l = LAYOUTS[s->id];
     fact_value facts[NMEA_FACT_COUNT];
-    char talker[3] = "";
+    char talker[3] = {0};
     bool closed = false;
     size_t i;
 
@@ -39706,6 +39700,7 @@ static const fix_field gns_aux_fix_fields[] = {
 };
 
 static const char *const gsa_fix_type_fix_values[] = {"no_fix", "fix_2d", "fix_3d"};
+typedef char gsa_entry_fits[sizeof(nmea_number) <= FIX_ENTRY_FIELDS * sizeof(field_value) ? 1 : -1];
 static const fix_field gsa_fix_fields[] = {
     {NMEA_FACT_MODE, false, &gsa_fields[1], 1.0, gsa_fix_type_fix_values},
     {NMEA_FACT_USED_SATELLITE, true, &gsa_group_fields[0], 1.0, NULL},
@@ -39716,6 +39711,7 @@ static const fix_field gsa_fix_fields[] = {
 };
 
 static const char *const gsa_short_fix_type_fix_values[] = {"no_fix", "fix_2d", "fix_3d"};
+typedef char gsa_short_entry_fits[sizeof(nmea_number) <= FIX_ENTRY_FIELDS * sizeof(field_value) ? 1 : -1];
 static const fix_field gsa_short_fix_fields[] = {
     {NMEA_FACT_MODE, false, &gsa_short_fields[1], 1.0, gsa_short_fix_type_fix_values},
     {NMEA_FACT_USED_SATELLITE, true, &gsa_short_group_fields[0], 1.0, NULL},
@@ -39725,6 +39721,7 @@ static const fix_field gsa_short_fix_fields[] = {
 };
 
 static const char *const gsa_wide_system_fix_type_fix_values[] = {"no_fix", "fix_2d", "fix_3d"};
+typedef char gsa_wide_system_entry_fits[sizeof(nmea_number) <= FIX_ENTRY_FIELDS * sizeof(field_value) ? 1 : -1];
 static const fix_field gsa_wide_system_fix_fields[] = {
     {NMEA_FACT_MODE, false, &gsa_wide_system_fields[1], 1.0, gsa_wide_system_fix_type_fix_values},
     {NMEA_FACT_USED_SATELLITE, true, &gsa_wide_system_group_fields[0], 1.0, NULL},
@@ -39735,6 +39732,7 @@ static const fix_field gsa_wide_system_fix_fields[] = {
 };
 
 static const char *const gsa_wide_fix_type_fix_values[] = {"no_fix", "fix_2d", "fix_3d"};
+typedef char gsa_wide_entry_fits[sizeof(nmea_number) <= FIX_ENTRY_FIELDS * sizeof(field_value) ? 1 : -1];
 static const fix_field gsa_wide_fix_fields[] = {
     {NMEA_FACT_MODE, false, &gsa_wide_fields[1], 1.0, gsa_wide_fix_type_fix_values},
     {NMEA_FACT_USED_SATELLITE, true, &gsa_wide_group_fields[0], 1.0, NULL},
@@ -39744,6 +39742,7 @@ static const fix_field gsa_wide_fix_fields[] = {
 };
 
 static const char *const gsa_extra_dop_fix_type_fix_values[] = {"no_fix", "fix_2d", "fix_3d"};
+typedef char gsa_extra_dop_entry_fits[sizeof(nmea_number) <= FIX_ENTRY_FIELDS * sizeof(field_value) ? 1 : -1];
 static const fix_field gsa_extra_dop_fix_fields[] = {
     {NMEA_FACT_MODE, false, &gsa_extra_dop_fields[1], 1.0, gsa_extra_dop_fix_type_fix_values},
     {NMEA_FACT_USED_SATELLITE, true, &gsa_extra_dop_group_fields[0], 1.0, NULL},
@@ -39759,6 +39758,7 @@ static const fix_field gst_fix_fields[] = {
     {NMEA_FACT_ALT_ERROR, false, &gst_fields[7], 1.0, NULL},
 };
 
+typedef char gsv_entry_fits[sizeof(nmea_gsv_satellite) <= FIX_ENTRY_FIELDS * sizeof(field_value) ? 1 : -1];
 static const fix_field gsv_fix_fields[] = {
     {NMEA_FACT_SET_SIZE, false, &gsv_fields[0], 1.0, NULL},
     {NMEA_FACT_SET_INDEX, false, &gsv_fields[1], 1.0, NULL},
@@ -39835,6 +39835,7 @@ static const fix_field pubx_position_fix_fields[] = {
 };
 
 static const char *const pubx_svstatus_status_fix_values[] = {"unused", "used", "unused"};
+typedef char pubx_svstatus_entry_fits[sizeof(nmea_pubx_svstatus_satellite) <= FIX_ENTRY_FIELDS * sizeof(field_value) ? 1 : -1];
 static const fix_field pubx_svstatus_fix_fields[] = {
     {NMEA_FACT_IN_VIEW_TOTAL, false, &pubx_svstatus_fields[1], 1.0, NULL},
     {NMEA_FACT_SATELLITE, true, &pubx_svstatus_group_fields[0], 1.0, NULL},

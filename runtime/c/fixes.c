@@ -44,6 +44,10 @@ typedef struct {
 
 static const fix_tables FIX;
 
+/* The value ids the rules name, as arrays for the same reason. */
+static const char FIX_NOT_VALID[] = "not_valid", FIX_INVALID[] = "invalid", FIX_USED[] = "used",
+                  FIX_UNKNOWN[] = "unknown", FIX_NO_FIX[] = "no_fix", FIX_2D[] = "fix_2d", FIX_3D[] = "fix_3d";
+
 /* A fact as a sentence gives it: a number (a time in ms, a date in days) or a value id. */
 typedef struct {
     bool known;
@@ -55,7 +59,8 @@ typedef struct {
 /* The facts a fix keeps as the sentences give them, under their own names (the later sentence of
    an epoch wins), in the order of Fix.to_dict. */
 static const struct {
-    const char *name;
+    char name[18]; /* in the table, not a string literal: a firmware that does not assemble fixes
+                      links none of it (-fdata-sections drops a table, not a pooled literal) */
     uint8_t fact;
     uint16_t offset;
     bool is_id; /* a const char * member, else a double */
@@ -121,7 +126,7 @@ static const char *first_mode(const nmea_enum_def *def, nmea_text t)
         int v = nmea_enum_lookup(def, t.ptr[i]);
         if (v == NMEA_UNKNOWN_CODE)
             continue;
-        if (strcmp(def->codes[v].id, "not_valid") != 0)
+        if (strcmp(def->codes[v].id, FIX_NOT_VALID) != 0)
             return def->codes[v].id;
         if (!first)
             first = def->codes[v].id;
@@ -182,33 +187,22 @@ static fact_value fact_of(const fix_field *ff, const void *at)
     return out;
 }
 
+/* Room for a group entry of the layouts with facts (at most 8 fields, each no larger than a
+   field_value: the generated code asserts it of each). */
+#define FIX_ENTRY_FIELDS 8
+
 /* The facts of entry `i` of the group of `s`, a sentence of layout `l`, into `facts`. */
 static void entry_facts(const layout *l, const fix_layout *fl, const nmea_sentence *s, size_t i,
                         fact_value *facts)
 {
-    const layout_group *g = l->group;
-    const nmea_entries *e = entries_in(g, &s->as);
-    entry_reader c;
-    field_value value;
-    bool on_wire = !e->items && entry_reader_at(&c, l, e, i);
-    size_t j, k;
+    field_value entry[FIX_ENTRY_FIELDS];
+    bool read = l->group->entry_size <= sizeof entry && entry_of(l, &s->as, i, entry);
+    size_t k;
 
     for (k = 0; k < fl->count; k++)
         if (fl->fields[k].in_group)
-            facts[fl->fields[k].fact].known = false;
-    if (!e->items && !on_wire)
-        return; /* past what the wire holds: an empty entry */
-    for (j = 0; j < g->field_count; j++) {
-        const layout_field *f = &g->fields[j];
-        const void *at = &value;
-        if (e->items)
-            at = (const char *)e->items + i * g->entry_size + f->offset;
-        else
-            reread_field(&c, f, &value);
-        for (k = 0; k < fl->count; k++)
-            if (fl->fields[k].field == f)
-                facts[fl->fields[k].fact] = fact_of(&fl->fields[k], at);
-    }
+            facts[fl->fields[k].fact] = read ? fact_of(&fl->fields[k], (const char *)entry + fl->fields[k].field->offset)
+                                             : (fact_value){false, false, 0, NULL};
 }
 
 static void copy_talker(char to[3], const char *from, size_t len)
@@ -281,7 +275,7 @@ static nmea_gnss_satellite satellite_of(const fact_value *facts, const char *tal
     s.azimuth = (int16_t)facts[NMEA_FACT_AZIMUTH].number;
     s.has_snr = facts[NMEA_FACT_SNR].known;
     s.snr = (int16_t)facts[NMEA_FACT_SNR].number;
-    s.used = (int8_t)(used->known ? strcmp(used->id, "used") == 0 : -1);
+    s.used = (int8_t)(used->known ? strcmp(used->id, FIX_USED) == 0 : -1);
     return s;
 }
 
@@ -351,10 +345,10 @@ static const char *inferred_mode(const nmea_gnss_fix *fix)
     bool position = nmea_fix_has(fix, NMEA_FACT_LATITUDE);
     if (!position && !nmea_fix_has(fix, NMEA_FACT_FIX_QUALITY) && !nmea_fix_has(fix, NMEA_FACT_FIX_STATUS))
         return NULL;
-    if (same_text(fix->fix_status, "invalid") || same_text(fix->fix_quality, "invalid") ||
-        same_text(fix->pos_mode, "not_valid") || !position)
-        return "no_fix";
-    return nmea_fix_has(fix, NMEA_FACT_ALTITUDE_MSL) || nmea_fix_has(fix, NMEA_FACT_ALTITUDE_HAE) ? "fix_3d" : "fix_2d";
+    if (same_text(fix->fix_status, FIX_INVALID) || same_text(fix->fix_quality, FIX_INVALID) ||
+        same_text(fix->pos_mode, FIX_NOT_VALID) || !position)
+        return FIX_NO_FIX;
+    return nmea_fix_has(fix, NMEA_FACT_ALTITUDE_MSL) || nmea_fix_has(fix, NMEA_FACT_ALTITUDE_HAE) ? FIX_3D : FIX_2D;
 }
 
 /* Closes the epoch under way into `out`. */
@@ -458,7 +452,7 @@ static void merge(nmea_fix_assembler *a, const layout *l, const fix_layout *fl, 
             if (!facts[NMEA_FACT_USED_SATELLITE].known)
                 continue;
             id = (int32_t)facts[NMEA_FACT_USED_SATELLITE].number;
-            add_used(fix, system ? system : system_of(talker, id) ? system_of(talker, id) : "unknown", id);
+            add_used(fix, system ? system : system_of(talker, id) ? system_of(talker, id) : FIX_UNKNOWN, id);
         }
     }
     if (in_view)
@@ -472,7 +466,7 @@ bool nmea_fix_feed(nmea_fix_assembler *a, const nmea_sentence *s, nmea_gnss_fix 
     const fix_layout *fl = s->id == NMEA_SENTENCE_GENERIC ? NULL : &FIX.layouts[s->id];
     const layout *l = LAYOUTS[s->id];
     fact_value facts[NMEA_FACT_COUNT];
-    char talker[3] = "";
+    char talker[3] = {0};
     bool closed = false;
     size_t i;
 

@@ -22,7 +22,10 @@ from nmeaspec.fixes import fixes
 
 @pytest.fixture(scope="module")
 def c_tool(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """nmea-c built unoptimized (the tests need answers, not speed)."""
+    """The nmea-c of $NMEA_TOOLS (make test-tools), else one built here unoptimized (the tests
+    need answers, not speed)."""
+    if os.environ.get("NMEA_TOOLS"):
+        return Path(os.environ["NMEA_TOOLS"]) / "nmea-c"
     tool = tmp_path_factory.mktemp("fixes-c") / "nmea-c"
     cc = os.environ.get("CC", "cc")
     subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O0", "-o", str(tool),

@@ -326,6 +326,7 @@ static const fix_field fix_fix_fields[] = {
     {NMEA_FACT_ALTITUDE_MSL, false, &fix_fields[6], 1.0, NULL},
 };
 
+typedef char sat_entry_fits[sizeof(nmea_sat_satellite) <= FIX_ENTRY_FIELDS * sizeof(field_value) ? 1 : -1];
 static const fix_field sat_fix_fields[] = {
     {NMEA_FACT_SET_SIZE, false, &sat_fields[0], 1.0, NULL},
     {NMEA_FACT_SET_INDEX, false, &sat_fields[1], 1.0, NULL},
