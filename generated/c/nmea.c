@@ -5133,13 +5133,15 @@ typedef struct {
     uint8_t count;           /* 0: the layout carries no fact */
 } fix_layout;
 
+/* Texts in arrays, not string literals, here and below: a firmware that does not assemble fixes
+   links none of them (-fdata-sections drops a table, not a pooled literal). */
 typedef struct {
-    const char *talker;
-    const char *system;
+    char talker[3];
+    char system[12];
 } fix_talker;
 
 typedef struct {
-    const char *system;
+    char system[12];
     uint16_t first;
     uint16_t last;
 } fix_id_range;
@@ -5151,12 +5153,12 @@ typedef struct {
     size_t talker_count;
     const fix_id_range *ids;
     size_t id_count;
-    const char *combined_talker; /* "": none */
+    char combined_talker[3]; /* "": none */
 } fix_tables;
 
 static const fix_tables FIX;
 
-/* The value ids the rules name, as arrays for the same reason. */
+/* The value ids the rules name. */
 static const char FIX_NOT_VALID[] = "not_valid", FIX_INVALID[] = "invalid", FIX_USED[] = "used",
                   FIX_UNKNOWN[] = "unknown", FIX_NO_FIX[] = "no_fix", FIX_2D[] = "fix_2d", FIX_3D[] = "fix_3d";
 
@@ -5171,8 +5173,7 @@ typedef struct {
 /* The facts a fix keeps as the sentences give them, under their own names (the later sentence of
    an epoch wins), in the order of Fix.to_dict. */
 static const struct {
-    char name[18]; /* in the table, not a string literal: a firmware that does not assemble fixes
-                      links none of it (-fdata-sections drops a table, not a pooled literal) */
+    char name[18];
     uint8_t fact;
     uint16_t offset;
     bool is_id; /* a const char * member, else a double */
