@@ -363,6 +363,41 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
     }
 
 
+def fix_views(spec: Spec, views: list[dict]) -> list[dict]:
+    """The fix table (spec/fix.yaml): per layout with facts, its fields that carry them, each a
+    pointer into the layout's field descriptors (runtime/c/fixes.c reads them with read_with's
+    descriptors), the factor to the fact's unit and, for an enum mapped by the fact's `from`, the
+    fact's value of each of the enum's codes."""
+    out = []
+    for v in views:
+        layout = v["layout"]
+        members = [f["field"] for f in v["fields"]]
+        group_fields = layout.group.fields if layout.group is not None else []
+        fields = []
+        for fix in layout.fix_fields:
+            f, fact = fix.field, fix.fact
+            where = (f"&{v['name']}_group_fields[{group_fields.index(f)}]" if fix.group is not None
+                     else f"&{v['name']}_fields[{members.index(f)}]")
+            mapping = fact.values_of(f)
+            codes = f.enum.values if f.enum is not None and mapping is not None else []
+            values = f"{v['name']}_{f.id}_fix_values" if codes else None
+            fields.append({
+                "init": _braced([f"NMEA_FACT_{fact.id.upper()}", "true" if fix.group else "false", where,
+                                            repr(float(fact.scale(f))), values or "NULL"]),
+                "table": values,
+                "value_list": [c_str(mapping[c.id]) if mapping and c.id in mapping else "NULL" for c in codes],
+            })
+        if fields:
+            entry = v["group"]["value_type"] if v["group"] and any(fix.group for fix in layout.fix_fields) else None
+            out.append({"name": v["name"], "const": v["const"], "members": fields, "entry": entry})
+    return out
+
+
+def _braced(members: list[str]) -> str:
+    """A struct's initializer on one line: {a, b, c}."""
+    return "{" + ", ".join(members) + "}"
+
+
 def _designated(members: list[tuple[str, object]], width: int = 110) -> list[str]:
     """The lines of a designated initializer's members (those that are not None), each line at
     most `width` characters after its indentation."""
@@ -657,6 +692,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                    for name in ("standard", "encapsulated") if dispatch[name]},
         "commands": [v for v in views if v["replies"]],
         "pairings": reply_pairings(spec), "judged": reply_judgements(spec),
+        "fixes": fix_views(spec, views), "combined_talker": c_str(spec.combined_talker or ""),
+        "talker_systems": [(c_str(t), c_str(g)) for t, g in spec.talker_systems.items()],
+        "satellite_ids": [(c_str(g), low, high) for g, low, high in spec.satellite_ids],
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "max_fields": max([v["max_fields"] for v in views] + [1]),
         "json_max": json_max(spec, views),

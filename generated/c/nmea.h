@@ -25680,6 +25680,179 @@ bool nmea_date_days(const nmea_date *d, int32_t *days);
     for a day its month lacks and for a leap second (as Python's datetime and Rust's). */
 bool nmea_datetime_ms(const nmea_date *d, const nmea_time *t, int64_t *ms);
 
+#ifndef NMEA_NO_FIXES
+/* Fixes assembled across sentences, one per epoch (docs/fixes.md; the rules are those of the
+   Python runtime's fixes.py, the same fixes on the same lines): no heap, fixed capacities a
+   firmware may set; -DNMEA_NO_FIXES leaves them out. The types are nmea_gnss_*: nmea_<id> is the
+   struct of a sentence, and a spec may have a sentence FIX. */
+
+/** Satellites in view a fix holds (every signal's GSV set of NMEA 4.11: up to 36 satellites per
+    talker and signal, for GPS, GLONASS, Galileo and BeiDou on two signals each and more). */
+#ifndef NMEA_FIX_MAX_SATELLITES
+#define NMEA_FIX_MAX_SATELLITES 288
+#endif
+/** Satellites used a fix holds (GSA: 12 ids per line and system, up to 6 systems and more). */
+#ifndef NMEA_FIX_MAX_USED
+#define NMEA_FIX_MAX_USED 96
+#endif
+/** Sentences a fix names (an epoch of every GSV set above, and the rest). */
+#ifndef NMEA_FIX_MAX_SENTENCES
+#define NMEA_FIX_MAX_SENTENCES 96
+#endif
+/** GSV sets under way at once, and talkers that count satellites used in one epoch. */
+#ifndef NMEA_FIX_MAX_SETS
+#define NMEA_FIX_MAX_SETS 16
+#endif
+
+/** The facts of spec/fix.yaml, as the generated table names them. */
+typedef enum {
+    NMEA_FACT_TIME,
+    NMEA_FACT_DATE,
+    NMEA_FACT_DAY,
+    NMEA_FACT_MONTH,
+    NMEA_FACT_YEAR,
+    NMEA_FACT_LATITUDE,
+    NMEA_FACT_LONGITUDE,
+    NMEA_FACT_ALTITUDE_MSL,
+    NMEA_FACT_GEOID_SEPARATION,
+    NMEA_FACT_ALTITUDE_HAE,
+    NMEA_FACT_SPEED,
+    NMEA_FACT_COURSE,
+    NMEA_FACT_FIX_QUALITY,
+    NMEA_FACT_FIX_STATUS,
+    NMEA_FACT_POS_MODE,
+    NMEA_FACT_MODE,
+    NMEA_FACT_PDOP,
+    NMEA_FACT_HDOP,
+    NMEA_FACT_VDOP,
+    NMEA_FACT_TDOP,
+    NMEA_FACT_LAT_ERROR,
+    NMEA_FACT_LON_ERROR,
+    NMEA_FACT_ALT_ERROR,
+    NMEA_FACT_HORIZONTAL_ERROR,
+    NMEA_FACT_SATELLITES_USED,
+    NMEA_FACT_USED_SYSTEM,
+    NMEA_FACT_USED_SATELLITE,
+    NMEA_FACT_IN_VIEW_TOTAL,
+    NMEA_FACT_SET_SIZE,
+    NMEA_FACT_SET_INDEX,
+    NMEA_FACT_SIGNAL,
+    NMEA_FACT_SATELLITE,
+    NMEA_FACT_ELEVATION,
+    NMEA_FACT_AZIMUTH,
+    NMEA_FACT_SNR,
+    NMEA_FACT_SATELLITE_USED,
+    NMEA_FACT_COUNT
+} nmea_fact;
+
+/** A satellite in view, as one signal's GSV set (or PUBX,03) reports it. Texts are the spec's
+    value ids (static). */
+typedef struct {
+    const char *system; /* gps, sbas, glonass, galileo, beidou, qzss, navic; NULL: not told */
+    const char *signal; /* the signal id of its set (NMEA 4.10), e.g. signal_1; NULL before it */
+    int32_t id;         /* in the NMEA numbering of its talker */
+    char talker[3];     /* "" for a proprietary sentence */
+    bool has_elevation, has_azimuth, has_snr;
+    int16_t elevation; /* degrees */
+    int16_t azimuth;   /* degrees */
+    int16_t snr;       /* dB-Hz; not had: not tracked */
+    int8_t used;       /* 1 or 0 where the receiver says so beside it (PUBX,03), else -1 */
+} nmea_gnss_satellite;
+
+/** A satellite used, and its GNSS ("unknown" when no rule tells it). */
+typedef struct {
+    const char *system;
+    int32_t id;
+} nmea_gnss_used;
+
+/** A sentence a fix came from: talker and sentence id (GP, GGA), or "" and the spec's id of a
+    proprietary sentence (PUBX_POSITION). */
+typedef struct {
+    char talker[3];
+    const char *sentence;
+} nmea_gnss_source;
+
+/**
+ * What the sentences of one epoch say. A fact is there when bit (1 << nmea_fact) of `known` is
+ * set; units are those of spec/fix.yaml (degrees, metres, metres per second); texts are the
+ * spec's value ids (static).
+ */
+typedef struct {
+    uint64_t known;
+    uint64_t whole; /* the bits of the facts read from integer fields in their unit, which the JSON
+                       writes as integers (Python's int); decimals are written as doubles */
+    uint32_t time_ms;   /* UTC time of day */
+    int32_t date_days;  /* days since 1970-01-01 */
+    double latitude;    /* signed degrees, as Python's and Rust's (degrees + minutes / 60) */
+    double longitude;
+    double altitude_msl;
+    double geoid_separation;
+    double altitude_hae; /* as sent (PUBX,00), else altitude_msl + geoid_separation */
+    double speed;
+    double course;
+    const char *fix_quality; /* a value id of gga_quality */
+    const char *fix_status;  /* valid, invalid */
+    const char *pos_mode;    /* a value id of pos_mode */
+    const char *mode;        /* no_fix, fix_2d, fix_3d: the receiver's, else inferred */
+    double pdop, hdop, vdop, tdop;
+    double lat_error, lon_error, alt_error, horizontal_error;
+    int32_t satellites_used; /* the combined talker's count (GN), else the sum of each talker's */
+    uint16_t used_count;
+    uint16_t in_view_len;
+    uint16_t sentence_count;
+    uint16_t overflow; /* satellites and sentences the capacities above left out */
+    nmea_gnss_used used[NMEA_FIX_MAX_USED]; /* in the order GSA lists them */
+    nmea_gnss_satellite in_view[NMEA_FIX_MAX_SATELLITES]; /* one per satellite and signal */
+    nmea_gnss_source sentences[NMEA_FIX_MAX_SENTENCES];
+} nmea_gnss_fix;
+
+/** Whether the epoch gave fact `fact`. */
+bool nmea_fix_has(const nmea_gnss_fix *fix, nmea_fact fact);
+
+/** Whether a number fact was read from an integer field, in its unit (its JSON has no point). */
+bool nmea_fix_is_whole(const nmea_gnss_fix *fix, nmea_fact fact);
+
+/** How many distinct satellites are in view (a satellite of several signals once). */
+size_t nmea_fix_in_view_count(const nmea_gnss_fix *fix);
+
+/** A set of GSV sentences under way (one talker and signal). */
+typedef struct {
+    char talker[3];
+    const char *signal;
+    uint8_t index; /* the last message number received */
+} nmea_gnss_set;
+
+/** The satellites used of one talker, as its GGA (GNS, PUBX,00) counts them. */
+typedef struct {
+    char talker[3];
+    int32_t count;
+} nmea_gnss_count;
+
+/** Turns a stream of sentences into fixes: zero it (or nmea_fix_init), nmea_fix_feed each
+    sentence in order, nmea_fix_finish at the end of the stream. It is large (two fixes' worth of
+    satellites): keep it static or in a long-lived object rather than on a small stack. */
+typedef struct {
+    nmea_gnss_fix fix; /* the epoch under way */
+    bool open;
+    bool has_last_date, last_has_time;
+    int32_t last_date; /* the last epoch with a date: its date and time */
+    uint32_t last_time;
+    uint8_t set_count, count_count;
+    nmea_gnss_set sets[NMEA_FIX_MAX_SETS];
+    nmea_gnss_count counts[NMEA_FIX_MAX_SETS];
+    uint16_t pending_len; /* the satellites of the sets under way */
+    nmea_gnss_satellite pending[NMEA_FIX_MAX_SATELLITES];
+} nmea_fix_assembler;
+
+void nmea_fix_init(nmea_fix_assembler *a);
+
+/** Adds one parsed sentence; true when it closed an epoch, whose fix is then in `out`. */
+bool nmea_fix_feed(nmea_fix_assembler *a, const nmea_sentence *s, nmea_gnss_fix *out);
+
+/** Ends the stream: true when an epoch was under way, its fix then in `out`. */
+bool nmea_fix_finish(nmea_fix_assembler *a, nmea_gnss_fix *out);
+#endif /* NMEA_NO_FIXES */
+
 #ifndef NMEA_NO_JSON
 /* The tools' JSON (json.md of the docs), which -DNMEA_NO_JSON leaves out of a build that only
    parses and writes sentences: about a quarter of the code. */
@@ -25705,6 +25878,16 @@ size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea
  */
 bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
                     nmea_error *err);
+
+#ifndef NMEA_NO_FIXES
+/** The longest JSON of a fix: its facts, and each satellite, satellite used and sentence at its
+    longest. */
+#define NMEA_FIX_JSON_MAX (2048 + 192 * NMEA_FIX_MAX_SATELLITES + 24 * NMEA_FIX_MAX_USED + 48 * NMEA_FIX_MAX_SENTENCES)
+
+/** A fix as Python's Fix.to_dict() in JSON (`nmea-c fixes`): the length written (not counting
+    the NUL it adds), or 0 when `cap` is too small. */
+size_t nmea_fix_to_json(const nmea_gnss_fix *fix, char *buf, size_t cap);
+#endif
 #endif /* NMEA_NO_JSON */
 
 /* ------------------------------------------------------------------------------------------ */

@@ -34,3 +34,4 @@
 #include "api.c"
 #include "values.c"
 #include "json_api.c"
+#include "fixes.c"

@@ -6,9 +6,11 @@
  *     nmea-c decode [--values] [--lenient] [--require-checksum] [--strict]   stdin: NMEA lines
  *     nmea-c stream [--values] [--lenient] [--require-checksum] [--strict]   stdin: any bytes
  *     nmea-c encode                                               stdin: decode's output
+ *     nmea-c fixes                                                stdin: NMEA lines
  *
  * decode splits its input on LF and drops one CR before it; stream frames it with nmea_framer.
- * Both print one JSON object per line; a line longer than NMEA_MAX_LINE is counted, not stored.
+ * fixes prints one JSON object per epoch, the fix its sentences make (Python's Fix.to_dict);
+ * decode and stream print one JSON object per line; a line longer than NMEA_MAX_LINE is counted, not stored.
  * encode holds one line at a time (up to ENCODE_MAX bytes).
  */
 
@@ -29,8 +31,10 @@ static char pending[ENCODE_MAX];
 static char scratch[2 * ENCODE_MAX + sizeof(nmea_problems) + 16];
 static char output[4 * ENCODE_MAX + NMEA_JSON_MAX + 1];
 
+typedef enum { TOOL_DECODE, TOOL_ENCODE, TOOL_FIXES } tool_verb;
+
 typedef struct {
-    bool encode;
+    tool_verb verb;
     bool values;
     nmea_options options;
     nmea_problems problems; /* of the line decoded last */
@@ -136,6 +140,23 @@ static void encode_line(tool *t, const char *line, size_t len, bool complete)
     emit(t, n);
 }
 
+/* The epochs of the lines read so far (fixes): a line that does not parse is skipped. */
+static nmea_fix_assembler assembler;
+static nmea_gnss_fix fix;
+
+static void print_fix(tool *t)
+{
+    emit(t, nmea_fix_to_json(&fix, room(t, NMEA_FIX_JSON_MAX + 1), NMEA_FIX_JSON_MAX));
+}
+
+static void fix_line(tool *t, const char *line, size_t len)
+{
+    nmea_sentence s;
+    nmea_error err;
+    if (len <= NMEA_MAX_LINE && nmea_parse(&s, line, len, &err) && nmea_fix_feed(&assembler, &s, &fix))
+        print_fix(t);
+}
+
 /* One line, without its LF: `len` bytes in all, of which the first `kept` are in `line`. */
 static void handle(tool *t, const char *line, size_t len, size_t kept, char last)
 {
@@ -144,8 +165,10 @@ static void handle(tool *t, const char *line, size_t len, size_t kept, char last
         if (kept > len)
             kept = len;
     }
-    if (t->encode)
+    if (t->verb == TOOL_ENCODE)
         encode_line(t, line, len, kept == len);
+    else if (t->verb == TOOL_FIXES)
+        fix_line(t, line, len);
     else
         decode_line(t, line, len);
 }
@@ -200,15 +223,17 @@ int main(int argc, char **argv)
     if (argc >= 2 && strcmp(argv[1], "stream") == 0 && decode_flags(&t, argc, argv)) {
         return stream(&t);
     } else if (argc >= 2 && strcmp(argv[1], "decode") == 0 && decode_flags(&t, argc, argv)) {
-        t.encode = false;
+        t.verb = TOOL_DECODE;
     } else if (argc == 2 && strcmp(argv[1], "encode") == 0) {
-        t.encode = true;
+        t.verb = TOOL_ENCODE;
+    } else if (argc == 2 && strcmp(argv[1], "fixes") == 0) {
+        t.verb = TOOL_FIXES;
     } else if (argc == 2 && strcmp(argv[1], "--version") == 0) {
         puts("nmea-c " NMEA_VERSION);
         return 0;
     } else {
         fputs("usage: nmea-c decode|stream [--values] [--lenient] [--require-checksum] [--strict] | encode"
-              " | --version\n"
+              " | fixes | --version\n"
               "       (reads stdin, writes stdout)\n",
               stderr);
         return 2;
@@ -226,7 +251,7 @@ int main(int argc, char **argv)
             if (lf && line_len == 0) {
                 handle(&t, p, n, n, last);
             } else {
-                size_t cap = t.encode ? sizeof pending : DECODE_MAX;
+                size_t cap = t.verb == TOOL_ENCODE ? sizeof pending : DECODE_MAX;
                 size_t keep = pending_len + n <= cap ? n : cap - pending_len;
                 memcpy(pending + pending_len, p, keep);
                 pending_len += keep;
@@ -243,6 +268,8 @@ int main(int argc, char **argv)
     }
     if (line_len)
         handle(&t, pending, line_len, pending_len, last);
+    if (t.verb == TOOL_FIXES && nmea_fix_finish(&assembler, &fix))
+        print_fix(&t);
     flush(&t);
     return ferror(stdin) ? 1 : 0;
 }

@@ -312,6 +312,53 @@ static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {
     &pacmset_layout,
 };
 
+#ifndef NMEA_NO_FIXES
+/* ------------------------------------------------------------------------------------------ */
+/* Fixes: the fields that carry the facts of a fix, per layout (spec/fix.yaml) */
+
+static const char *const fix_quality_fix_values[] = {"no_fix", "fix", "fix"};
+static const fix_field fix_fix_fields[] = {
+    {NMEA_FACT_TIME, false, &fix_fields[0], 1.0, NULL},
+    {NMEA_FACT_LATITUDE, false, &fix_fields[1], 1.0, NULL},
+    {NMEA_FACT_LONGITUDE, false, &fix_fields[2], 1.0, NULL},
+    {NMEA_FACT_DATE, false, &fix_fields[3], 1.0, NULL},
+    {NMEA_FACT_FIX_QUALITY, false, &fix_fields[4], 1.0, fix_quality_fix_values},
+    {NMEA_FACT_ALTITUDE_MSL, false, &fix_fields[6], 1.0, NULL},
+};
+
+typedef char sat_entry_fits[sizeof(nmea_sat_satellite) <= FIX_ENTRY_FIELDS * sizeof(field_value) ? 1 : -1];
+static const fix_field sat_fix_fields[] = {
+    {NMEA_FACT_SET_SIZE, false, &sat_fields[0], 1.0, NULL},
+    {NMEA_FACT_SET_INDEX, false, &sat_fields[1], 1.0, NULL},
+    {NMEA_FACT_SATELLITE, true, &sat_group_fields[0], 1.0, NULL},
+    {NMEA_FACT_SNR, true, &sat_group_fields[3], 1.0, NULL},
+};
+
+static const fix_layout FIX_LAYOUTS[NMEA_SENTENCE_COUNT] = {
+    [NMEA_SENTENCE_FIX] = {fix_fix_fields, 6},
+    [NMEA_SENTENCE_SAT] = {sat_fix_fields, 4},
+};
+
+/* The GNSS of each talker that reports on one. */
+static const fix_talker FIX_TALKERS[] = {
+    {"GL", "glonass"},
+};
+
+/* Under a talker of several systems: the GNSS of each range of satellite ids. */
+static const fix_id_range FIX_SATELLITE_IDS[] = {
+    {"gps", 1, 32},
+};
+
+static const fix_tables FIX = {
+    FIX_LAYOUTS,
+    FIX_TALKERS,
+    sizeof FIX_TALKERS / sizeof FIX_TALKERS[0],
+    FIX_SATELLITE_IDS,
+    sizeof FIX_SATELLITE_IDS / sizeof FIX_SATELLITE_IDS[0],
+    "",
+};
+#endif /* NMEA_NO_FIXES */
+
 static const nmea_sentence_id STANDARD_1[] = {NMEA_SENTENCE_FIX, NMEA_SENTENCE_FIX_SHORT};
 static const nmea_sentence_id STANDARD_2[] = {NMEA_SENTENCE_SAT};
 static const nmea_sentence_id ENCAPSULATED_1[] = {NMEA_SENTENCE_XDM};
