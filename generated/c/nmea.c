@@ -5131,7 +5131,7 @@ typedef struct {
 typedef struct {
     const fix_field *fields; /* in wire order */
     uint8_t count;           /* 0: the layout carries no fact */
-} fix_layout;
+} layout_facts;
 
 /* Texts in arrays, not string literals, here and below: a firmware that does not assemble fixes
    links none of them (-fdata-sections drops a table, not a pooled literal). */
@@ -5148,7 +5148,7 @@ typedef struct {
 
 /* What spec/fix.yaml says, as the generated code after the runtime defines it. */
 typedef struct {
-    const fix_layout *layouts; /* by nmea_sentence_id */
+    const layout_facts *layouts; /* by nmea_sentence_id */
     const fix_talker *talkers;
     size_t talker_count;
     const fix_id_range *ids;
@@ -5305,7 +5305,7 @@ static fact_value fact_of(const fix_field *ff, const void *at)
 #define FIX_ENTRY_FIELDS 8
 
 /* The facts of entry `i` of the group of `s`, a sentence of layout `l`, into `facts`. */
-static void entry_facts(const layout *l, const fix_layout *fl, const nmea_sentence *s, size_t i,
+static void entry_facts(const layout *l, const layout_facts *fl, const nmea_sentence *s, size_t i,
                         fact_value *facts)
 {
     field_value entry[FIX_ENTRY_FIELDS];
@@ -5394,7 +5394,7 @@ static nmea_gnss_satellite satellite_of(const fact_value *facts, const char *tal
 
 /* Collects a part of a set of satellites in view; a set is the epoch's when its last part arrives
    (a report in one sentence, PUBX,03, is a set of one); a set missing a part is dropped. */
-static void satellites_in_view(nmea_fix_assembler *a, const layout *l, const fix_layout *fl, const nmea_sentence *s,
+static void satellites_in_view(nmea_fix_assembler *a, const layout *l, const layout_facts *fl, const nmea_sentence *s,
                                fact_value *facts, const char *talker)
 {
     const char *signal = facts[NMEA_FACT_SIGNAL].known ? facts[NMEA_FACT_SIGNAL].id : NULL;
@@ -5521,7 +5521,7 @@ static bool calendar_date(const fact_value *facts, int32_t *days)
 }
 
 /* Merges the facts of a sentence of layout `l` into the epoch under way. */
-static void merge(nmea_fix_assembler *a, const layout *l, const fix_layout *fl, const nmea_sentence *s,
+static void merge(nmea_fix_assembler *a, const layout *l, const layout_facts *fl, const nmea_sentence *s,
                   fact_value *facts, const char *talker)
 {
     nmea_gnss_fix *fix = &a->fix;
@@ -5576,7 +5576,7 @@ void nmea_fix_init(nmea_fix_assembler *a) { memset(a, 0, sizeof *a); }
 
 bool nmea_fix_feed(nmea_fix_assembler *a, const nmea_sentence *s, nmea_gnss_fix *out)
 {
-    const fix_layout *fl = s->id == NMEA_SENTENCE_GENERIC ? NULL : &FIX.layouts[s->id];
+    const layout_facts *fl = s->id == NMEA_SENTENCE_GENERIC ? NULL : &FIX.layouts[s->id];
     const layout *l = LAYOUTS[s->id];
     fact_value facts[NMEA_FACT_COUNT];
     char talker[3] = {0};
@@ -40214,7 +40214,7 @@ static const fix_field pubx_time_fix_fields[] = {
     {NMEA_FACT_DATE, false, &pubx_time_fields[2], 1.0, NULL},
 };
 
-static const fix_layout FIX_LAYOUTS[NMEA_SENTENCE_COUNT] = {
+static const layout_facts FIX_LAYOUTS[NMEA_SENTENCE_COUNT] = {
     [NMEA_SENTENCE_GGA] = {gga_fix_fields, 9},
     [NMEA_SENTENCE_GLL] = {gll_fix_fields, 5},
     [NMEA_SENTENCE_GLL_SENTINEL] = {gll_sentinel_fix_fields, 3},

@@ -334,7 +334,7 @@ static const fix_field sat_fix_fields[] = {
     {NMEA_FACT_SNR, true, &sat_group_fields[3], 1.0, NULL},
 };
 
-static const fix_layout FIX_LAYOUTS[NMEA_SENTENCE_COUNT] = {
+static const layout_facts FIX_LAYOUTS[NMEA_SENTENCE_COUNT] = {
     [NMEA_SENTENCE_FIX] = {fix_fix_fields, 6},
     [NMEA_SENTENCE_SAT] = {sat_fix_fields, 4},
 };
