@@ -5,6 +5,8 @@ tool and a test over the manuals' examples."""
 
 from __future__ import annotations
 
+import functools
+import hashlib
 import json
 import re
 import subprocess
@@ -14,7 +16,7 @@ from pathlib import Path
 
 import jinja2
 
-from . import emit_vectors, pairing
+from . import cache, emit_vectors, pairing
 from .emit import RUNTIME, char_literal, header, package_readme, runtime_file
 from .field_types import codes_expected
 from .model import BitfieldDef, EnumDef, Field, FixField, Group, Layout, Sentence, Spec, TableDef, camel
@@ -1018,18 +1020,40 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
 
 def rustfmt(files: dict[str, str]) -> dict[str, str]:
     """`files` with every .rs file as rustfmt writes it under the crate's rustfmt.toml (so that
-    `cargo fmt --check` passes by construction): one rustfmt process over a copy of them in a
-    temporary directory."""
+    `cargo fmt --check` passes by construction): one rustfmt process over the files it has not
+    formatted before, in a temporary directory. What rustfmt wrote is kept in the generator's cache
+    by the digest of rustfmt's version, its configuration and the file, so that generating again
+    (make check, the tests, a firmware build) runs rustfmt only on the files that changed."""
     sources = [path for path in files if path.endswith(".rs")]
+    identity = _rustfmt_identity()
+    digests = {path: hashlib.sha256(identity + files[path].encode("utf-8")).hexdigest() for path in sources}
+    formatted = {path: data.decode("utf-8") for path in sources if (data := cache.read(f"rustfmt/{digests[path]}"))}
+    todo = [path for path in sources if path not in formatted]
+    if not todo:
+        return files | formatted
     with tempfile.TemporaryDirectory() as tmp:
-        for path in sources:
+        for path in sources:  # every file: a `mod` names its file, formatted or not
             (Path(tmp) / path).parent.mkdir(parents=True, exist_ok=True)
-            (Path(tmp) / path).write_text(files[path], encoding="utf-8")
-        command = ["rustfmt", "--edition", "2021", "--config-path", str(RUNTIME / "rust" / "rustfmt.toml"), *sources]
-        try:
-            run = subprocess.run(command, cwd=tmp, capture_output=True, text=True)
-        except FileNotFoundError:
-            raise SystemExit("generator: rustfmt is missing; install it with `rustup component add rustfmt`") from None
+            (Path(tmp) / path).write_text(formatted.get(path, files[path]), encoding="utf-8")
+        command = ["rustfmt", "--edition", "2021", "--config-path", str(RUSTFMT_CONFIG), "--config", "skip_children=true",
+                   *todo]
+        run = subprocess.run(command, cwd=tmp, capture_output=True, text=True)
         if run.returncode != 0:
             raise SystemExit(f"generator: rustfmt failed on the generated Rust:\n{run.stderr}")
-        return files | {path: (Path(tmp) / path).read_text(encoding="utf-8") for path in sources}
+        for path in todo:
+            formatted[path] = (Path(tmp) / path).read_text(encoding="utf-8")
+            cache.write(f"rustfmt/{digests[path]}", formatted[path].encode("utf-8"))
+    return files | formatted
+
+
+RUSTFMT_CONFIG = RUNTIME / "rust" / "rustfmt.toml"
+
+
+@functools.cache
+def _rustfmt_identity() -> bytes:
+    """What rustfmt's output depends on besides the file: its version and the configuration."""
+    try:
+        version = subprocess.run(["rustfmt", "--version"], capture_output=True, check=True).stdout
+    except (FileNotFoundError, subprocess.CalledProcessError):
+        raise SystemExit("generator: rustfmt is missing; install it with `rustup component add rustfmt`") from None
+    return version + RUSTFMT_CONFIG.read_bytes() + b"\0"

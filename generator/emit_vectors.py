@@ -7,6 +7,8 @@ from __future__ import annotations
 import datetime
 import json
 import struct
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Callable
 
 import jinja2
@@ -15,7 +17,32 @@ from . import reference
 from .model import Spec
 
 
+# One render pass decodes every example once: each emitter that shows the examples asks for them,
+# and the spec does not change while they are rendered (render_all opens the pass).
+_pass: dict[int, tuple[Spec, list[dict]]] | None = None
+
+
+@contextmanager
+def one_render_pass() -> Iterator[None]:
+    global _pass
+    _pass = {}
+    try:
+        yield
+    finally:
+        _pass = None
+
+
 def example_vectors(spec: Spec) -> list[dict]:
+    """Every example of the manuals with what the reference decodes of it (read, never changed, by
+    the emitters)."""
+    if _pass is None:
+        return _example_vectors(spec)
+    if id(spec) not in _pass:
+        _pass[id(spec)] = (spec, _example_vectors(spec))
+    return _pass[id(spec)][1]
+
+
+def _example_vectors(spec: Spec) -> list[dict]:
     out = []
     for sentence in spec.sentences:
         for example in sentence.examples:

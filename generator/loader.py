@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 import pickle
 import sys
 from dataclasses import dataclass, field
@@ -16,6 +15,7 @@ import jsonschema
 import referencing
 import yaml
 
+from . import cache
 from .errors import SpecError
 from .paths import ROOT
 
@@ -65,36 +65,10 @@ def _record_lines(node: yaml.Node, where: Path_, lines: dict[Path_, int]) -> Non
 _LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 
-def _cache_dir() -> Path | None:
-    """Where the parsed documents and the digests of the valid ones are kept between runs: the
-    generator runs many times over the same unchanged files (make check, the tests, a firmware
-    build), and parsing and schema validation are most of a load. NMEASPEC_GEN_CACHE names the
-    folder (`off`: no cache); by default the user's cache folder."""
-    configured = os.environ.get("NMEASPEC_GEN_CACHE")
-    if configured == "off":
-        return None
-    return Path(configured) if configured else Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "nmeaspec-gen"
-
-
-CACHE = _cache_dir()
-
-
-def _write_atomically(path: Path, data: bytes) -> None:
-    """Write `path` whole or not at all (runs side by side share the cache); a cache that cannot be
-    written is no error."""
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        temporary = path.with_name(f"{path.name}.{os.getpid()}")
-        temporary.write_bytes(data)
-        os.replace(temporary, path)
-    except OSError:
-        pass
-
-
 # The documents parsed, by the digest of their text, pickled (a copy loads several times faster
 # than YAML parses); on disk, per Python and PyYAML version.
 _PARSED: dict[str, bytes] = {}
-_PARSED_DIR = CACHE / f"parsed-py{sys.version_info[0]}.{sys.version_info[1]}-yaml{yaml.__version__}" if CACHE else None
+_PARSED_DIR = cache.CACHE / f"parsed-py{sys.version_info[0]}.{sys.version_info[1]}-yaml{yaml.__version__}" if cache.CACHE else None
 
 
 def _parsed(digest: str) -> bytes | None:
@@ -128,7 +102,7 @@ def load_document(path: Path) -> Document:
         _record_lines(node, (), lines)
     _PARSED[digest] = pickle.dumps((data, lines), pickle.HIGHEST_PROTOCOL)
     if _PARSED_DIR is not None:
-        _write_atomically(_PARSED_DIR / digest, _PARSED[digest])
+        cache.write_atomically(_PARSED_DIR / digest, _PARSED[digest])
     return Document(path, data, lines, digest)
 
 
@@ -150,10 +124,10 @@ def _validator(schema_name: str) -> jsonschema.Draft202012Validator:
             (name, referencing.Resource.from_contents(schema)) for name, schema in schemas.items())
         _VALIDATORS.update((name, jsonschema.Draft202012Validator(schema, registry=registry))
                            for name, schema in schemas.items())
-        if CACHE is not None:
+        if cache.CACHE is not None:
             versions = [metadata.version(name) for name in ("jsonschema", "jsonschema-specifications", "referencing")]
             key = hashlib.sha256(json.dumps([versions, texts]).encode()).hexdigest()
-            _VALID_FILE = CACHE / f"valid-{key[:32]}"
+            _VALID_FILE = cache.CACHE / f"valid-{key[:32]}"
             try:
                 _VALID.update(_VALID_FILE.read_text(encoding="ascii").split("\n"))
             except (OSError, UnicodeDecodeError):

@@ -669,7 +669,20 @@ class Spec:
 
     def by_address(self, address: str) -> list[tuple[Sentence, Layout]]:
         """The layouts of the proprietary `$` sentences with this exact address, in parse order."""
-        return _parse_order([s for s in self.sentences if s.address == address and s.framing == "sentence"])
+        return self._addresses().get(address, [])
+
+    def _addresses(self) -> dict[str, list[tuple[Sentence, Layout]]]:
+        """by_address for every address at once (the reference decoder asks once per example),
+        built again when the list of sentences is another or has grown (an overlay, a test)."""
+        cached = self.__dict__.get("_address_index")
+        if cached is None or cached[0] is not self.sentences or cached[1] != len(self.sentences):
+            owners: dict[str, list[Sentence]] = {}
+            for s in self.sentences:
+                if s.address is not None and s.framing == "sentence":
+                    owners.setdefault(s.address, []).append(s)
+            cached = (self.sentences, len(self.sentences), {a: _parse_order(found) for a, found in owners.items()})
+            self.__dict__["_address_index"] = cached
+        return cached[2]
 
     def text_command(self, word: str) -> list[tuple[Sentence, Layout]]:
         """The layouts of the text commands whose command word is `word` (ignoring case), in parse order."""

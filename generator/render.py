@@ -18,8 +18,9 @@ def render_all(spec: Spec) -> dict[str, str]:
     emitters: list[Callable[[Spec, jinja2.Environment], dict[str, str]]] = [
         emit_vectors.emit, emit_python.emit, emit_python_apps.emit, emit_c.emit, emit_packaging.emit, emit_rust.emit, emit_docs.emit,
     ]
-    for emitter in emitters:
-        for path, content in emitter(spec, env).items():
-            assert path not in files, path
-            files[path] = content
+    with emit_vectors.one_render_pass():
+        for emitter in emitters:
+            for path, content in emitter(spec, env).items():
+                assert path not in files, path
+                files[path] = content
     return files

@@ -12,7 +12,7 @@ GENERATOR = Path(__file__).resolve().parents[2] / "generator"
 
 # Bottom to top.
 LAYERS = [
-    {"paths", "errors", "numbers", "rules"},              # rules: the checks' ids and what they mean
+    {"paths", "errors", "numbers", "rules", "cache"},     # rules: the checks' ids; cache: kept between runs
     {"field_types"},                                      # what differs by field type
     {"model"},                                            # the typed spec
     {"loader", "naming", "selection"},                    # reading YAML; naming and picking sentences
