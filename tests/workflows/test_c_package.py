@@ -86,6 +86,6 @@ def test_plain_two_file_build(tmp_path: Path) -> None:
     for name in ("nmea.c", "nmea.h"):
         shutil.copy(GENERATED / "c" / name, tmp_path / name)
     (tmp_path / "app.c").write_text(APP)
-    run(cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2", "-o", "app", "app.c", "nmea.c",
-        cwd=tmp_path)
+    # Unoptimized: the answer is what counts here (make test builds nmea.c with -O2 -Werror too).
+    run(cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-o", "app", "app.c", "nmea.c", cwd=tmp_path)
     assert run(tmp_path / "app").stdout == b"GGA satellites=4\n"

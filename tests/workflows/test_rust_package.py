@@ -1,5 +1,6 @@
 """The Rust crate, packed as crates.io serves it, as a path dependency of a fresh cargo project: one receiver family only
-(`default-features = false, features = ["geos5"]`, still no_std), and `serde` with serde_json."""
+(`default-features = false, features = ["geos5"]`, still no_std), and `serde` with serde_json (the standard
+sentences only: clippy checks serde with every receiver feature)."""
 
 from __future__ import annotations
 
@@ -38,9 +39,9 @@ fn serializes_a_parsed_sentence() {
 
 
 def _packaged_crate(root: Path) -> Path:
-    """The crate as crates.io would hand it to a user: `cargo package` of generated/rust, unpacked.
-    Building it here is also the check that the package is complete (release-check packs the crate
-    without building it)."""
+    """The crate as crates.io would hand it to a user: `cargo package` of generated/rust, unpacked,
+    with every source file of the crate in it (release-check packs the crate without building it;
+    the projects here build only the receiver features they name)."""
     target = root / "package-target"
     run("cargo", "package", "--quiet", "--no-verify", "--allow-dirty", "--manifest-path", GENERATED / "rust" / "Cargo.toml",
         "--target-dir", target)
@@ -48,7 +49,12 @@ def _packaged_crate(root: Path) -> Path:
     with tarfile.open(crate) as archive:
         archive.extractall(root / "vendor", filter="data")
     (unpacked,) = (root / "vendor").glob("nmeaspec-*")
+    assert _rust_sources(unpacked) == _rust_sources(GENERATED / "rust")
     return unpacked.rename(root / "vendor" / "nmeaspec")
+
+
+def _rust_sources(crate: Path) -> set[str]:
+    return {str(path.relative_to(crate)) for path in (crate / "src").rglob("*.rs")}
 
 
 def _project(root: Path, name: str, dependency: str) -> Path:
@@ -81,7 +87,7 @@ def test_one_vendor_without_default_features(tmp_path: Path) -> None:
 def test_serde(tmp_path: Path) -> None:
     cargo = need("cargo", "install Rust (rustup)")
     project = _project(tmp_path, "with-serde",
-                       'nmeaspec = { path = "../vendor/nmeaspec", features = ["serde"] }\n\n'
+                       'nmeaspec = { path = "../vendor/nmeaspec", default-features = false, features = ["serde"] }\n\n'
                        '[dev-dependencies]\nserde_json = "1"')
     (project / "src" / "lib.rs").write_text("")
     (project / "tests").mkdir()
