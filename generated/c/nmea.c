@@ -397,8 +397,8 @@ static void put_json_str(nmea_writer *w, nmea_text t, int depth)
    of the Python and Rust runtimes), an error as JSON, and the problems of the sentences parsing keeps. */
 
 static const char *const ERROR_KINDS[] = {
-    "too_long", "not_a_sentence", "bad_checksum", "checksum_mismatch", "missing_checksum", "too_few_fields",
-    "too_many_fields", "bad_field", "bad_json", "bad_value",
+    "too_long", "not_a_sentence", "bad_tag_block", "bad_checksum", "checksum_mismatch", "missing_checksum",
+    "too_few_fields", "too_many_fields", "bad_field", "bad_json", "bad_value",
 };
 
 const char *nmea_error_kind_name(nmea_error_kind kind)
@@ -916,16 +916,268 @@ static void write_generic(nmea_writer *w, const nmea_generic *g)
 }
 
 /* ------------------------------------------------------------------------------------------ */
-/* The stream framer (nmea_framer): bytes as a serial port or socket delivers them, in chunks of
-   any size, cut into lines at CR, LF, '$' and '!', an overlong line reported by its length. */
+/* TAG blocks (NMEA 0183 4.00, IEC 61162-450): `\code:value,...*hh\` before a sentence or on a
+   line of their own. The blocks of a line are read (checked as the Python and Rust runtimes
+   check them, with the same messages) and kept as their text, which the writer puts back as it
+   is; the codes the spec names and their value types are the generated NMEA_TAG_CODES. */
 
-/* The bytes that end a line (CR, LF) or start a new one ('$', '!'). */
-static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2};
+/* What a value of each type that has a form must look like (a text takes anything). */
+static const char *const TAG_FORMS[] = {[NMEA_TAG_INTEGER] = "digits", [NMEA_TAG_GROUP] = "n-m-id"};
+
+static bool tag_fail(nmea_error *err, const char *pattern)
+{
+    return fail(err, NMEA_ERR_BAD_TAG_BLOCK, pattern);
+}
+
+/* 1 to NMEA_MAX_DIGITS digits from *p on, up to `end` or a '-'; *p moves past them. */
+static bool tag_digits(const char **p, const char *end)
+{
+    const char *start = *p;
+    while (*p < end && is_digit(**p))
+        (*p)++;
+    return *p > start && (size_t)(*p - start) <= NMEA_MAX_DIGITS;
+}
+
+/* An empty value fits any type; an integer is 1 to 18 digits, a group three of them joined by '-'. */
+static bool tag_value_fits(nmea_tag_type type, nmea_text value)
+{
+    const char *p = value.ptr, *end = value.ptr + value.len;
+    int parts = 1;
+    if (!value.len || type == NMEA_TAG_TEXT)
+        return true;
+    if (type == NMEA_TAG_INTEGER)
+        return tag_digits(&p, end) && p == end;
+    for (;;) {
+        if (!tag_digits(&p, end))
+            return false;
+        if (p == end)
+            return parts == 3;
+        p++; /* a '-' */
+        parts++;
+    }
+}
+
+const nmea_tag_code *nmea_tag_code_of(nmea_text code)
+{
+    size_t i;
+    for (i = 0; i < NMEA_TAG_CODE_COUNT; i++)
+        if (text_is(code, NMEA_TAG_CODES[i].code))
+            return &NMEA_TAG_CODES[i];
+    return NULL;
+}
+
+bool nmea_tag_next_param(nmea_text *params, nmea_tag_param *out)
+{
+    const char *p = params->ptr, *end = p + params->len, *colon = NULL, *q;
+    if (!params->ptr)
+        return false;
+    for (q = p; q < end && *q != ','; q++)
+        if (!colon && *q == ':')
+            colon = q;
+    out->code = text_span(p, colon ? colon : q);
+    out->value = colon ? text_span(colon + 1, q) : text_span(q, q);
+    *params = q < end ? text_span(q + 1, end) : nmea_text_of(NULL);
+    return true;
+}
+
+bool nmea_tag_next_block(nmea_text *blocks, nmea_text *params)
+{
+    const char *p = blocks->ptr, *end = p + blocks->len, *star;
+    if (!blocks->len || *p != '\\')
+        return false;
+    for (star = p + 1; star < end && *star != '*'; star++)
+        continue;
+    *params = text_span(p + 1, star);
+    *blocks = text_span(star + 4 <= end ? star + 4 : end, end); /* past "*hh\" */
+    return true;
+}
+
+bool nmea_tag_find(nmea_text blocks, const char *code, nmea_text *value)
+{
+    nmea_text params;
+    nmea_tag_param param;
+    while (nmea_tag_next_block(&blocks, &params))
+        while (nmea_tag_next_param(&params, &param))
+            if (text_is(param.code, code)) {
+                *value = param.value;
+                return true;
+            }
+    return false;
+}
+
+/* One block's parameters (between '\' and '*'): each a code of letters and digits, ':' and a
+   value that fits the code's type. */
+static bool check_tag_params(nmea_text body, nmea_error *err)
+{
+    nmea_tag_param param;
+    const nmea_tag_code *known;
+    size_t i;
+    nmea_text rest = body; /* never NULL: an empty body is one empty parameter */
+    while (nmea_tag_next_param(&rest, &param)) {
+        bool named = param.code.len > 0 && param.value.ptr > param.code.ptr + param.code.len;
+        for (i = 0; i < param.code.len; i++)
+            named = named && is_alnum(param.code.ptr[i]);
+        if (!named) {
+            tag_fail(err, ERROR_TEXT("TAG block parameter %q is not code:value"));
+            err->text = text_span(param.code.ptr, param.value.ptr + param.value.len);
+            return false;
+        }
+        known = nmea_tag_code_of(param.code);
+        if (known && !tag_value_fits(known->type, param.value)) {
+            tag_fail(err, ERROR_TEXT("TAG block parameter %q: expected %s"));
+            err->text = text_span(param.code.ptr, param.value.ptr + param.value.len);
+            err->str[0] = TAG_FORMS[known->type];
+            return false;
+        }
+    }
+    return true;
+}
+
+/* The TAG blocks at the start of a line that starts with '\': their text in *blocks; after them
+   the line holds a '$' or '!' sentence, or nothing. */
+NMEA_INTERNAL bool read_tag_blocks(const char *line, size_t len, nmea_text *blocks, nmea_error *err)
+{
+    const char *p = line, *end = line + len, *close, *star;
+    size_t i;
+    int high, low;
+    bool lower, upper;
+    unsigned sum;
+    for (i = 0; i < len; i++) {
+        if (!is_printable(line[i])) {
+            fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("byte 0x%x at offset %n is not printable ASCII"));
+            err->num[0] = (unsigned char)line[i];
+            err->num[1] = i;
+            return false;
+        }
+    }
+    while (p < end && *p == '\\') {
+        for (close = p + 1; close < end && *close != '\\'; close++)
+            continue;
+        if (close == end)
+            return tag_fail(err, ERROR_TEXT("TAG block has no closing backslash"));
+        for (star = p + 1, sum = 0; star < close && *star != '*'; star++)
+            sum ^= (unsigned char)*star;
+        if (star == close) {
+            tag_fail(err, ERROR_TEXT("TAG block %q has no checksum"));
+            err->text = text_span(p + 1, close);
+            return false;
+        }
+        high = close - star == 3 ? hex_value(star[1]) : -1;
+        low = close - star == 3 ? hex_value(star[2]) : -1;
+        lower = close - star == 3 && ((star[1] >= 'a' && star[1] <= 'f') || (star[2] >= 'a' && star[2] <= 'f'));
+        upper = close - star == 3 && ((star[1] >= 'A' && star[1] <= 'F') || (star[2] >= 'A' && star[2] <= 'F'));
+        if (high < 0 || low < 0 || (lower && upper)) {
+            tag_fail(err, ERROR_TEXT("TAG block checksum %q is not two hex digits of one letter case"));
+            err->text = text_span(star + 1, close);
+            return false;
+        }
+        if ((unsigned)(high * 16 + low) != sum) {
+            tag_fail(err, ERROR_TEXT("TAG block checksum is %t, computed %X"));
+            err->text = text_span(star + 1, close);
+            err->num[0] = sum;
+            return false;
+        }
+        if (!check_tag_params(text_span(p + 1, star), err))
+            return false;
+        p = close + 1;
+    }
+    if (p < end && *p != '$' && *p != '!')
+        return tag_fail(err, ERROR_TEXT("TAG block is followed by neither '$', '!' nor a TAG block"));
+    *blocks = text_span(line, p);
+    return true;
+}
+
+/* One block of `params`, its checksum in `style` (lower or upper case). */
+static void put_tag_block(nmea_writer *w, const nmea_tag_param *params, size_t n, nmea_checksum_style style)
+{
+    size_t i;
+    put_char(w, '\\');
+    w->sum = 0;
+    start_sum(w);
+    for (i = 0; i < n; i++) {
+        if (i)
+            put_char(w, ',');
+        put_text(w, params[i].code);
+        put_char(w, ':');
+        put_text(w, params[i].value);
+    }
+    stop_sum(w);
+    put_char(w, '*');
+    put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[w->sum >> 4]);
+    put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[w->sum & 15]);
+    put_char(w, '\\');
+}
+
+size_t nmea_tag_write(const nmea_tag_param *params, size_t n, nmea_checksum_style style, char *buf, size_t cap,
+                      nmea_error *err)
+{
+    nmea_writer w = writer_of(buf, cap);
+    nmea_text blocks;
+    size_t len;
+    put_tag_block(&w, params, n, style);
+    len = writer_finish(&w);
+    if (!len) {
+        nmea_error_too_long(err, w.len);
+        return 0;
+    }
+    if (!read_tag_blocks(buf, len, &blocks, err)) /* the text refused stays in buf */
+        return 0;
+    if (blocks.len != len) /* a '\\' in a parameter ended the block early */
+        return tag_fail(err, ERROR_TEXT("TAG block parameter holds ',', '*' or a backslash"));
+    return len;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* The stream framer (nmea_framer): bytes as a serial port or socket delivers them, in chunks of
+   any size, cut into lines at CR, LF, '$' and '!', an overlong line reported by its length. A
+   '\' at the start of a line opens a TAG block, which keeps its sentence: up to the block's
+   closing '\' every byte but CR and LF belongs to it, and a '$', '!' or '\' right after that
+   continues the line. */
+
+/* The bytes that end a line (CR, LF), start a new one ('$', '!') or open or close a TAG block. */
+static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2, ['\\'] = 3};
+
+/* Where the line being framed is as to TAG blocks (nmea_framer.tag). */
+enum { FRAMER_OUTSIDE, FRAMER_IN_TAG, FRAMER_AFTER_TAG };
 
 void nmea_framer_init(nmea_framer *f)
 {
     f->length = 0;
     f->next = 0;
+    f->tag = FRAMER_OUTSIDE;
+}
+
+/* What `byte`, after `length` bytes of the line, is to it: 0 a byte of the line, 1 its end, 2 the
+   start of the next line; moves f->tag on. (No table: a firmware that feeds links none.) */
+static unsigned framer_step(nmea_framer *f, size_t length, char byte)
+{
+    unsigned kind = byte == '\r' || byte == '\n' ? 1 : byte == '$' || byte == '!' ? 2 : byte == '\\' ? 3 : 0;
+    if (f->tag == FRAMER_OUTSIDE) {
+        if (kind == 3 && length == 0)
+            f->tag = FRAMER_IN_TAG;
+        return kind == 3 || (kind == 2 && length == 0) ? 0 : kind;
+    }
+    if (kind == 1)
+        return 1;
+    if (kind == 3)
+        f->tag = f->tag == FRAMER_IN_TAG ? FRAMER_AFTER_TAG : FRAMER_IN_TAG;
+    else if (f->tag == FRAMER_AFTER_TAG)
+        f->tag = FRAMER_OUTSIDE; /* the sentence after the blocks, or whatever else follows */
+    return 0;
+}
+
+/* The first byte from `p` on (the line holding `length` bytes before it) that ends the line or
+   starts the next, with *boundary what it is; `end` when none does. */
+static const char *framer_scan(nmea_framer *f, const char *p, const char *end, size_t length, unsigned *boundary)
+{
+    const char *q;
+    for (q = p; q < end; q++) {
+        if (f->tag == FRAMER_OUTSIDE && !LINE_BOUNDARY[(unsigned char)*q])
+            continue; /* the common byte, decided without a call */
+        if ((*boundary = framer_step(f, length + (size_t)(q - p), *q)) != 0)
+            return q;
+    }
+    return end;
 }
 
 /* Starts the line with the '$' or '!' that ended the one nmea_framer_feed handed on last. */
@@ -949,6 +1201,7 @@ static void framer_keep(nmea_framer *f, const char *p, size_t n)
 bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out)
 {
     const char *p = *data, *end, *q;
+    unsigned boundary = 0;
     if (*len == 0)
         return false;
     framer_resume(f);
@@ -962,25 +1215,25 @@ bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_frame
             return false;
         }
         /* a line starts at p: one that ends in this chunk is handed on where it lies */
-        for (q = p + 1; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
-            continue;
+        q = framer_scan(f, p, end, 0, &boundary);
         if (q < end) {
             out->ptr = (size_t)(q - p) <= NMEA_MAX_LINE ? p : NULL;
             out->len = (size_t)(q - p);
-            q += LINE_BOUNDARY[(unsigned char)*q] == 1; /* a '$' or '!' stays for the next line */
+            f->tag = FRAMER_OUTSIDE;
+            q += boundary == 1; /* a '$' or '!' stays for the next line */
             *data = q;
             *len = (size_t)(end - q);
             return true;
         }
     } else {
-        for (q = p; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
-            continue;
+        q = framer_scan(f, p, end, f->length, &boundary);
         framer_keep(f, p, (size_t)(q - p));
         if (q < end) {
             out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
             out->len = f->length;
             f->length = 0;
-            q += LINE_BOUNDARY[(unsigned char)*q] == 1;
+            f->tag = FRAMER_OUTSIDE;
+            q += boundary == 1;
             *data = q;
             *len = (size_t)(end - q);
             return true;
@@ -995,10 +1248,10 @@ bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_frame
 
 bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out)
 {
-    /* as LINE_BOUNDARY says (a firmware that feeds links no table of 256 bytes) */
-    unsigned boundary = byte == '\r' || byte == '\n' ? 1 : byte == '$' || byte == '!' ? 2 : 0;
+    unsigned boundary;
     framer_resume(f);
-    if (!boundary || (f->length == 0 && boundary == 2)) {
+    boundary = framer_step(f, f->length, byte);
+    if (!boundary) {
         if (f->length < NMEA_MAX_LINE) /* not framer_keep: a firmware that feeds links no memcpy */
             f->line[f->length] = byte;
         f->length++;
@@ -1009,6 +1262,7 @@ bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out)
     out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
     out->len = f->length;
     f->length = 0;
+    f->tag = FRAMER_OUTSIDE;
     f->next = boundary == 2 ? byte : 0; /* the line handed on is still in f->line */
     return true;
 }
@@ -1016,6 +1270,7 @@ bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out)
 bool nmea_framer_end(nmea_framer *f, nmea_framed *out)
 {
     framer_resume(f);
+    f->tag = FRAMER_OUTSIDE;
     if (f->length == 0)
         return false;
     out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
@@ -4683,11 +4938,37 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
     return nmea_parse_ex(out, line, len, NULL, err);
 }
 
+/* A line that starts with TAG blocks: the blocks, then the sentence after them (none: a generic
+   sentence with an empty start, address and fields). */
+static bool parse_tagged(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                         nmea_error *err)
+{
+    nmea_text blocks;
+    if (len > NMEA_MAX_LINE) {
+        nmea_error_too_long(err, len);
+        return false;
+    }
+    if (!read_tag_blocks(line, len, &blocks, err))
+        return false;
+    if (blocks.len == len) {
+        memset(out, 0, sizeof *out);
+        out->id = NMEA_SENTENCE_GENERIC;
+        out->as.generic.checksum = NMEA_CHECKSUM_NONE;
+    } else if (!nmea_parse_ex(out, line + blocks.len, len - blocks.len, options, err)) {
+        return false;
+    }
+    out->tag_blocks = blocks;
+    return true;
+}
+
 /* The fast path needs no options: what it reads has a checksum, and a line read without a
    problem is read the same way leniently. */
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
     len = without_line_ending(line, len);
+    out->tag_blocks = nmea_text_of(NULL);
+    if (line && len && line[0] == '\\')
+        return parse_tagged(out, line, len, options, err);
 #ifndef NMEA_NO_FAST_PATH
     if (fast_parse(out, line, len))
         return true;
@@ -4710,7 +4991,28 @@ static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
     return writer_finish(&w);
 }
 
-size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
+/* A line of TAG blocks only (parse_tagged). */
+static bool tag_blocks_only(const nmea_sentence *s)
+{
+    return s->id == NMEA_SENTENCE_GENERIC && s->tag_blocks.len && !s->as.generic.start.len;
+}
+
+/* The sentence's TAG blocks, as they are, at the start of `buf`: their length, or 0 (an empty
+   `buf`) when they and a NUL do not fit. */
+static size_t put_tag_blocks(const nmea_sentence *s, char *buf, size_t cap)
+{
+    size_t n = s->tag_blocks.len;
+    if (n >= cap) {
+        if (cap)
+            buf[0] = 0;
+        return 0;
+    }
+    memcpy(buf, s->tag_blocks.ptr, n);
+    buf[n] = 0;
+    return n;
+}
+
+static size_t serialize_sentence(const nmea_sentence *s, char *buf, size_t cap)
 {
 #ifndef NMEA_NO_FAST_PATH
     size_t n = s->problems && s->problems->count ? 0 : fast_write_sentence(s, buf, cap);
@@ -4718,6 +5020,19 @@ size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
         return n;
 #endif
     return serialize_general(s, buf, cap);
+}
+
+size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
+{
+    size_t tags, n;
+    if (!s->tag_blocks.len)
+        return serialize_sentence(s, buf, cap);
+    if ((tags = put_tag_blocks(s, buf, cap)) == 0 || tag_blocks_only(s))
+        return tags;
+    n = serialize_sentence(s, buf + tags, cap - tags);
+    if (!n)
+        buf[0] = 0;
+    return n ? tags + n : 0;
 }
 
 #ifdef NMEA_TEST_HOOKS
@@ -4830,13 +5145,49 @@ static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant
     return NMEA_SENTENCE_GENERIC;
 }
 
+/* decode's "tag_blocks" member and the object's closing brace: each block's parameters and
+   checksum as received. */
+static void json_tag_blocks(nmea_writer *w, nmea_text blocks)
+{
+    nmea_text params;
+    nmea_tag_param param;
+    bool first_block = true, first;
+    put_str(w, "\"tag_blocks\":[");
+    while (nmea_tag_next_block(&blocks, &params)) {
+        const char *sum = params.ptr + params.len + 1; /* after the '*' */
+        put_str(w, first_block ? "{\"params\":[" : ",{\"params\":[");
+        for (first = true; nmea_tag_next_param(&params, &param); first = false) {
+            put_str(w, first ? "{\"code\":" : ",{\"code\":");
+            put_json_str(w, param.code, 0);
+            put_str(w, ",\"value\":");
+            put_json_str(w, param.value, 0);
+            put_char(w, '}');
+        }
+        put_str(w, "],\"checksum\":\"");
+        put_mem(w, sum, 2);
+        put_str(w, "\"}");
+        first_block = false;
+    }
+    put_str(w, "]}");
+}
+
 size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+    if (tag_blocks_only(s)) {
+        put_str(&w, "{\"ok\":true,");
+        json_tag_blocks(&w, s->tag_blocks);
+        return writer_finish(&w);
+    }
     if (s->id == NMEA_SENTENCE_GENERIC)
         json_generic(&w, &s->as.generic);
     else
         json_with(&w, LAYOUTS[s->id], &s->as, s->problems, values);
+    if (s->tag_blocks.len) { /* the blocks come last: in place of the closing brace */
+        w.len--;
+        put_char(&w, ',');
+        json_tag_blocks(&w, s->tag_blocks);
+    }
     return writer_finish(&w);
 }
 
@@ -5020,11 +5371,84 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
     return read_again(out, id, wire, &lenient, err);
 }
 
-bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
-                    nmea_error *err)
+/* The text of a TAG block parameter's code or value from decode's JSON, copied to the scratch
+   buffer. */
+static bool tag_text_member(nmea_json obj, const char *key, nmea_scratch *s, nmea_error *err)
 {
-    nmea_scratch s;
-    nmea_json root, fields;
+    nmea_json v;
+    nmea_text t;
+    bool present, wide;
+    size_t i;
+    if (!json_text_member(obj, key, false, s, &t, &present, &wide, err))
+        return false;
+    for (i = 0; i < t.len; i++) {
+        if (wide || !is_printable(t.ptr[i]) || t.ptr[i] == ',' || t.ptr[i] == '*' || t.ptr[i] == '\\') {
+            bad_json(err, "TAG block text %q holds ',', '*', a backslash or a byte outside printable ASCII", NULL);
+            json_member(obj, key, &v);
+            err->text = json_inside(v);
+            err->text_json = true;
+            return false;
+        }
+    }
+    return true;
+}
+
+/* decode's "tag_blocks" written back into the scratch buffer, and read there as received ones. */
+static bool tag_blocks_from_json(nmea_json items, nmea_scratch *s, nmea_text *blocks, nmea_error *err)
+{
+    nmea_json item, params, param;
+    nmea_checksum_style style;
+    size_t start = s->len, body;
+    nmea_writer w;
+    nmea_json first;
+    bool first_param;
+    if (!json_is(items, '['))
+        return bad_json(err, "\"%s\" is not an array of TAG blocks", "tag_blocks");
+    first = items = json_items(items);
+    if (!json_next(&first, &item)) /* none */
+        return bad_json(err, "\"%s\" is not an array of TAG blocks", "tag_blocks");
+    while (json_next(&items, &item)) {
+        if (s->len >= s->cap)
+            return scratch_full(err);
+        s->buf[s->len++] = '\\';
+        body = s->len;
+        if (!json_require(item, "params", &params, err))
+            return false;
+        if (!json_is(params, '['))
+            return bad_json(err, "\"%s\" is not an array", "params");
+        for (params = json_items(params), first_param = true; json_next(&params, &param); first_param = false) {
+            if (!first_param) {
+                if (s->len >= s->cap)
+                    return scratch_full(err);
+                s->buf[s->len++] = ',';
+            }
+            if (!tag_text_member(param, "code", s, err))
+                return false;
+            if (s->len >= s->cap)
+                return scratch_full(err);
+            s->buf[s->len++] = ':';
+            if (!tag_text_member(param, "value", s, err))
+                return false;
+        }
+        if (!json_checksum_style(item, &style, err))
+            return false;
+        if (s->cap - s->len < 4)
+            return scratch_full(err);
+        w = writer_of(s->buf + s->len, 4);
+        put_char(&w, '*');
+        w.sum = xor_bytes(s->buf + body, s->len - body);
+        put_char(&w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[w.sum >> 4]);
+        put_char(&w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[w.sum & 15]);
+        s->len += 3;
+        s->buf[s->len++] = '\\';
+    }
+    return read_tag_blocks(s->buf + start, s->len - start, blocks, err);
+}
+
+/* nmea_from_json of the sentence (its TAG blocks read already). */
+static bool sentence_from_json(nmea_sentence *out, nmea_json root, nmea_scratch *s, nmea_error *err)
+{
+    nmea_json fields;
     nmea_text sentence, variant, word;
     nmea_json problems;
     bool has_sentence, has_variant, wide_sentence, wide_variant;
@@ -5035,23 +5459,15 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     nmea_wire wire;
     static const nmea_options tolerant = {false, false, NULL, false};
 
-    s.buf = scratch;
-    s.cap = scratch ? scratch_cap : 0;
-    s.len = 0;
-    out->problems = NULL;
-    if (!json_parse(json, len, &root))
-        return bad_json(err, "not JSON", NULL);
-    if (!json_is(root, '{'))
-        return bad_json(err, "not a JSON object", NULL);
     if (!json_checksum_style(root, &checksum, err)
-        || !json_text_member(root, "sentence", true, &s, &sentence, &has_sentence, &wide_sentence, err))
+        || !json_text_member(root, "sentence", true, s, &sentence, &has_sentence, &wide_sentence, err))
         return false;
     if (!has_sentence) {
         out->id = NMEA_SENTENCE_GENERIC;
         out->as.generic.checksum = checksum;
-        return generic_from_json(&out->as.generic, root, &s, err);
+        return generic_from_json(&out->as.generic, root, s, err);
     }
-    if (!json_text_member(root, "variant", true, &s, &variant, &has_variant, &wide_variant, err))
+    if (!json_text_member(root, "variant", true, s, &variant, &has_variant, &wide_variant, err))
         return false;
     id = wide_sentence || wide_variant ? NMEA_SENTENCE_GENERIC : find_layout(sentence, has_variant ? &variant : NULL);
     if (id == NMEA_SENTENCE_GENERIC) {
@@ -5066,8 +5482,8 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
         return false;
     if (!json_is(fields, '{'))
         return bad_json(err, "\"%s\" is not an object", "fields");
-    c.scratch = &s;
-    c.start = s.len;
+    c.scratch = s;
+    c.start = s->len;
     c.count = 0;
     c.err = err;
     if (!collect_with(LAYOUTS[id], &c, fields))
@@ -5084,14 +5500,14 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     wire.blanks = 0;
     if (json_member(root, "problems", &problems)) {
         wire.ignore_case = info->command != NULL;
-        return with_problems(out, id, root, problems, &s, &wire, err);
+        return with_problems(out, id, root, problems, s, &wire, err);
     }
     if (!info->address) { /* a standard sentence: the talker and the sentence id */
-        if (!json_word_member(root, "talker", &s, &wire.address, err))
+        if (!json_word_member(root, "talker", s, &wire.address, err))
             return false;
         wire.suffix = info->sentence;
     } else if (info->command) { /* a text command: its word as written, its letter case kept */
-        if (!json_word_member(root, "address", &s, &word, err))
+        if (!json_word_member(root, "address", s, &word, err))
             return false;
         if (!upper_is(word, info->command)) {
             bad_json(err, "\"address\" is not %s", NULL);
@@ -5101,12 +5517,45 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
         wire.address = word;
         wire.ignore_case = true;
         wire.checksum = NMEA_CHECKSUM_NONE;
-        if (!command_line(&wire, word, &s, err))
+        if (!command_line(&wire, word, s, err))
             return false;
         return read_layout(out, id, &wire, err); /* text commands are always read strictly */
     }
     return read_again(out, id, &wire, &tolerant, err);
 }
+bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
+                    nmea_error *err)
+{
+    nmea_scratch s;
+    nmea_json root, tags, start;
+    nmea_text blocks = nmea_text_of(NULL);
+
+    s.buf = scratch;
+    s.cap = scratch ? scratch_cap : 0;
+    s.len = 0;
+    out->problems = NULL;
+    out->tag_blocks = blocks;
+    if (!json_parse(json, len, &root))
+        return bad_json(err, "not JSON", NULL);
+    if (!json_is(root, '{'))
+        return bad_json(err, "not a JSON object", NULL);
+    if (json_member(root, "tag_blocks", &tags)) {
+        if (!tag_blocks_from_json(tags, &s, &blocks, err))
+            return false;
+        if (!json_member(root, "start", &start)) { /* a line of TAG blocks only */
+            memset(out, 0, sizeof *out);
+            out->id = NMEA_SENTENCE_GENERIC;
+            out->as.generic.checksum = NMEA_CHECKSUM_NONE;
+            out->tag_blocks = blocks;
+            return true;
+        }
+    }
+    if (!sentence_from_json(out, root, &s, err))
+        return false;
+    out->tag_blocks = blocks;
+    return true;
+}
+
 #endif /* NMEA_NO_JSON */
 
 /* ------------------------------------------------------------------------------------------ */
@@ -39306,6 +39755,18 @@ size_t nmea_build_pubx_utm(const nmea_pubx_utm *s, char *buf, size_t cap, nmea_e
 
 /* ------------------------------------------------------------------------------------------ */
 /* Dispatch */
+
+/* The TAG block codes (spec/tag_block.yaml). */
+const nmea_tag_code NMEA_TAG_CODES[] = {
+    {"c", "time", "UNIX time", NMEA_TAG_INTEGER},
+    {"d", "destination", "Destination", NMEA_TAG_TEXT},
+    {"g", "group", "Sentence grouping", NMEA_TAG_GROUP},
+    {"n", "line_count", "Line count", NMEA_TAG_INTEGER},
+    {"r", "relative_time", "Relative time", NMEA_TAG_INTEGER},
+    {"s", "source", "Source", NMEA_TAG_TEXT},
+    {"t", "text", "Text", NMEA_TAG_TEXT},
+    {"i", "info", "Information", NMEA_TAG_TEXT},
+};
 
 /* Every layout by its nmea_sentence_id (NULL: the generic sentence). */
 static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {

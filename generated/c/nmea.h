@@ -230,6 +230,7 @@ int nmea_enum_lookup(const nmea_enum_def *def, char code);
 typedef enum {
     NMEA_ERR_TOO_LONG,
     NMEA_ERR_NOT_A_SENTENCE,
+    NMEA_ERR_BAD_TAG_BLOCK, /* a TAG block before the sentence (or on its own) is malformed */
     NMEA_ERR_BAD_CHECKSUM,
     NMEA_ERR_CHECKSUM_MISMATCH,
     NMEA_ERR_MISSING_CHECKSUM, /* nmea_options.require_checksum, and the sentence has none */
@@ -381,6 +382,7 @@ typedef struct {
 typedef struct {
     size_t length;             /* bytes of the current line so far (counted past NMEA_MAX_LINE) */
     char next;                 /* nmea_framer_feed: the '$' or '!' that starts the next line, or 0 */
+    unsigned char tag;         /* where the line is as to TAG blocks: outside, in one, right after one */
     char line[NMEA_MAX_LINE];  /* its first NMEA_MAX_LINE bytes */
 } nmea_framer;
 
@@ -415,6 +417,55 @@ bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out);
 
 /** At the end of the stream: the last line, when it had no line ending (true), else false. */
 bool nmea_framer_end(nmea_framer *f, nmea_framed *out);
+
+/* ------------------------------------------------------------------------------------------ */
+/* TAG blocks (NMEA 0183 4.00, IEC 61162-450): `\g:1-2-73874,s:r003669945,c:1241544035*hh\` before
+   a sentence or on a line of their own. A parsed line keeps the text of its blocks
+   (nmea_sentence.tag_blocks, checked, pointing into the line), which nmea_serialize writes back
+   as it is; these functions read the parameters out of it and write a new block. */
+
+/** The value types of the codes the spec names (spec/tag_block.yaml). */
+typedef enum {
+    NMEA_TAG_INTEGER, /* 1 to 18 digits, kept as sent (c: UNIX time, n: line count, ...) */
+    NMEA_TAG_GROUP,   /* sentence number, count and group id joined by '-' (g) */
+    NMEA_TAG_TEXT     /* anything but ',', '*' and '\' (s: source, d: destination, ...) */
+} nmea_tag_type;
+
+/** A code the spec names: NMEA_TAG_CODES (nmea.h) lists them. */
+typedef struct {
+    const char *code; /* as written before the ':' */
+    const char *id;   /* the spec's id: "time", "source", ... */
+    const char *name;
+    nmea_tag_type type;
+} nmea_tag_code;
+
+/** A parameter of a TAG block: its code and value as written (any code: unknown ones are kept). */
+typedef struct {
+    nmea_text code;
+    nmea_text value;
+} nmea_tag_param;
+
+/** The next block of `*blocks` (the text of a line's TAG blocks): true with its parameters' text
+    (between '\' and '*') in `*params`, `*blocks` moved past it; false at the end. */
+bool nmea_tag_next_block(nmea_text *blocks, nmea_text *params);
+
+/** The next parameter of a block's `*params`: true with it in `*out`, `*params` moved past it. */
+bool nmea_tag_next_param(nmea_text *params, nmea_tag_param *out);
+
+/** The value of the first parameter with `code` in a line's TAG blocks; false when none has it. */
+bool nmea_tag_find(nmea_text blocks, const char *code, nmea_text *value);
+
+/** The code the spec names `code`, or NULL. */
+const nmea_tag_code *nmea_tag_code_of(nmea_text code);
+
+/**
+ * One TAG block of `n` parameters, its checksum in `style` (NMEA_CHECKSUM_LOWER or upper case),
+ * written to `buf` as a received one is read back: returns its length, or 0 with `err` filled
+ * (bad_tag_block; too_long when `cap` is too small). Put it before a sentence with
+ * nmea_sentence.tag_blocks, or write it before nmea_build's bytes.
+ */
+size_t nmea_tag_write(const nmea_tag_param *params, size_t n, nmea_checksum_style style, char *buf, size_t cap,
+                      nmea_error *err);
 
 /**
  * A well-formed sentence the spec does not describe. `fields` is the raw text of all fields
@@ -488,6 +539,10 @@ size_t nmea_param_decimal_list(const nmea_parameter *p, const int64_t *values, s
                                size_t cap, nmea_error *err);
 size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, size_t cap, nmea_error *err);
 #endif /* NMEA_NO_TABLES */
+
+/** The TAG block codes of spec/tag_block.yaml (nmea_tag_code_of finds one). */
+#define NMEA_TAG_CODE_COUNT 8
+extern const nmea_tag_code NMEA_TAG_CODES[];
 
 /* ------------------------------------------------------------------------------------------ */
 /* Lookup tables (spec/enums): a C enum of the known codes and the table, nmea_<enum>_def. */
@@ -24878,10 +24933,12 @@ typedef enum {
 
 /* Any sentence: `id` says which member of `as` is set. `problems` (NULL: none) lists the fields
    lenient parsing left empty, in the storage its options gave (nmea_options.problems); the
-   serializer writes their texts back in their places. */
+   serializer writes their texts back in their places, and `tag_blocks` before the sentence. */
 typedef struct {
     nmea_sentence_id id;
     const nmea_problems *problems;
+    nmea_text tag_blocks; /* the TAG blocks before the sentence, as received (empty: none); a line of
+                             TAG blocks only is a generic sentence with an empty start */
     union {
         nmea_generic generic;
         nmea_aam aam;
@@ -25614,8 +25671,8 @@ bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const 
 size_t nmea_serialize_general(const nmea_sentence *s, char *buf, size_t cap);
 #endif
 
-/** The sentence text (no line ending); returns its length, 0 when it (and its NUL) does not
-    fit in `cap` bytes. */
+/** The sentence text after its TAG blocks (no line ending); returns its length, 0 when it (and its
+    NUL) does not fit in `cap` bytes. */
 size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap);
 
 /**
@@ -25626,7 +25683,8 @@ size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap);
  * in `buf`, NUL-terminated: the error points into it), or too_long when `cap` is too small (then
  * `buf` holds an empty string). A zeroed struct is a valid start: keywords are implied, the
  * checksum upper case.
- * nmea_build takes any sentence (a generic one is only checked to be a well-formed line).
+ * nmea_build takes any sentence (a generic one is only checked to be a well-formed line), without
+ * its TAG blocks: nmea_tag_write writes a block to put before the bytes.
  */
 size_t nmea_build(const nmea_sentence *s, char *buf, size_t cap, nmea_error *err);
 

@@ -7,11 +7,37 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
     return nmea_parse_ex(out, line, len, NULL, err);
 }
 
+/* A line that starts with TAG blocks: the blocks, then the sentence after them (none: a generic
+   sentence with an empty start, address and fields). */
+static bool parse_tagged(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                         nmea_error *err)
+{
+    nmea_text blocks;
+    if (len > NMEA_MAX_LINE) {
+        nmea_error_too_long(err, len);
+        return false;
+    }
+    if (!read_tag_blocks(line, len, &blocks, err))
+        return false;
+    if (blocks.len == len) {
+        memset(out, 0, sizeof *out);
+        out->id = NMEA_SENTENCE_GENERIC;
+        out->as.generic.checksum = NMEA_CHECKSUM_NONE;
+    } else if (!nmea_parse_ex(out, line + blocks.len, len - blocks.len, options, err)) {
+        return false;
+    }
+    out->tag_blocks = blocks;
+    return true;
+}
+
 /* The fast path needs no options: what it reads has a checksum, and a line read without a
    problem is read the same way leniently. */
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
     len = without_line_ending(line, len);
+    out->tag_blocks = nmea_text_of(NULL);
+    if (line && len && line[0] == '\\')
+        return parse_tagged(out, line, len, options, err);
 #ifndef NMEA_NO_FAST_PATH
     if (fast_parse(out, line, len))
         return true;
@@ -34,7 +60,28 @@ static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
     return writer_finish(&w);
 }
 
-size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
+/* A line of TAG blocks only (parse_tagged). */
+static bool tag_blocks_only(const nmea_sentence *s)
+{
+    return s->id == NMEA_SENTENCE_GENERIC && s->tag_blocks.len && !s->as.generic.start.len;
+}
+
+/* The sentence's TAG blocks, as they are, at the start of `buf`: their length, or 0 (an empty
+   `buf`) when they and a NUL do not fit. */
+static size_t put_tag_blocks(const nmea_sentence *s, char *buf, size_t cap)
+{
+    size_t n = s->tag_blocks.len;
+    if (n >= cap) {
+        if (cap)
+            buf[0] = 0;
+        return 0;
+    }
+    memcpy(buf, s->tag_blocks.ptr, n);
+    buf[n] = 0;
+    return n;
+}
+
+static size_t serialize_sentence(const nmea_sentence *s, char *buf, size_t cap)
 {
 #ifndef NMEA_NO_FAST_PATH
     size_t n = s->problems && s->problems->count ? 0 : fast_write_sentence(s, buf, cap);
@@ -42,6 +89,19 @@ size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
         return n;
 #endif
     return serialize_general(s, buf, cap);
+}
+
+size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
+{
+    size_t tags, n;
+    if (!s->tag_blocks.len)
+        return serialize_sentence(s, buf, cap);
+    if ((tags = put_tag_blocks(s, buf, cap)) == 0 || tag_blocks_only(s))
+        return tags;
+    n = serialize_sentence(s, buf + tags, cap - tags);
+    if (!n)
+        buf[0] = 0;
+    return n ? tags + n : 0;
 }
 
 #ifdef NMEA_TEST_HOOKS

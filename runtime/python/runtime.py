@@ -296,7 +296,7 @@ class TagBlock:
         self.checksum = checksum
         blocks, rest = read_tag_blocks(type(self), self.to_text())
         if rest or blocks[0].params != self.params:
-            raise _tag_error("TAG block parameter holds ',', '*' or '\\'")
+            raise _tag_error("TAG block parameter holds ',', '*' or a backslash")
 
     def to_text(self) -> str:
         """The block as written on the wire, backslashes included."""
@@ -415,13 +415,14 @@ def tag_blocks_from_json(cls: type[TagBlock], items: Any) -> tuple[TagBlock, ...
     for item in items:
         params = []
         for param in json_list(item, "params"):
-            text = f"{json_str_member(param, 'code')}:{json_str_member(param, 'value')}"
-            if not (text.isascii() and text.isprintable()) or any(c in text for c in ",*\\"):
-                raise bad_json(
-                    f"TAG block parameter {json_str(text)} holds ',', '*', '\\' or a byte"
-                    " outside printable ASCII"
-                )
-            params.append(text)
+            texts = json_str_member(param, "code"), json_str_member(param, "value")
+            for text in texts:
+                if not (text.isascii() and text.isprintable()) or any(c in text for c in ",*\\"):
+                    raise bad_json(
+                        f"TAG block text {json_str(text)} holds ',', '*', a backslash or a byte"
+                        " outside printable ASCII"
+                    )
+            params.append(":".join(texts))
         blocks += _block_text(",".join(params), checksum_case(json_str_member(item, "checksum")))
     return read_tag_blocks(cls, blocks)[0]
 

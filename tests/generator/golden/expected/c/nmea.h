@@ -64,6 +64,10 @@ extern "C" {
 
 /* runtime/c/runtime.h */
 
+/** The TAG block codes of spec/tag_block.yaml (nmea_tag_code_of finds one). */
+#define NMEA_TAG_CODE_COUNT 3
+extern const nmea_tag_code NMEA_TAG_CODES[];
+
 /* ------------------------------------------------------------------------------------------ */
 /* Lookup tables (spec/enums): a C enum of the known codes and the table, nmea_<enum>_def. */
 
@@ -340,10 +344,12 @@ typedef enum {
 
 /* Any sentence: `id` says which member of `as` is set. `problems` (NULL: none) lists the fields
    lenient parsing left empty, in the storage its options gave (nmea_options.problems); the
-   serializer writes their texts back in their places. */
+   serializer writes their texts back in their places, and `tag_blocks` before the sentence. */
 typedef struct {
     nmea_sentence_id id;
     const nmea_problems *problems;
+    nmea_text tag_blocks; /* the TAG blocks before the sentence, as received (empty: none); a line of
+                             TAG blocks only is a generic sentence with an empty start */
     union {
         nmea_generic generic;
         nmea_fix fix;
