@@ -67,10 +67,29 @@ use runtime::is_command_word;
 pub use runtime::{
     days_from_civil, stream, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, DateTime, Encoding, Entries,
     EntryIter, Error, ErrorKind, FieldProblem, Fields, Framing, Generic, Hex, Kind, Layout, Name, NotWhole, Number,
-    Options, ParamValue, Parameter, ParameterError, Problem, ProblemKind, Problems, ReplyOutcome, Sign, Table, Texts,
-    Time, BUILD_CAPACITY, MAX_LINE, MAX_PROBLEMS, PIVOT_YEAR,
+    Options, ParamValue, Parameter, ParameterError, Problem, ProblemKind, Problems, ReplyOutcome, Sign, Table,
+    TagBlock, TagBlocks, TagCode, TagType, Texts, Time, BUILD_CAPACITY, MAX_LINE, MAX_PROBLEMS, PIVOT_YEAR,
 };
 use runtime::{read_layout, Decoded, FastReader, Layouts, Outcome};
+
+/// The TAG block codes of spec/tag_block.yaml.
+pub const TAG_CODES: &[TagCode] = &[
+    TagCode { code: "c", id: "time", name: "UNIX time", kind: TagType::Integer },
+    TagCode { code: "d", id: "destination", name: "Destination", kind: TagType::Text },
+    TagCode { code: "g", id: "group", name: "Sentence grouping", kind: TagType::Group },
+    TagCode { code: "n", id: "line_count", name: "Line count", kind: TagType::Integer },
+    TagCode { code: "r", id: "relative_time", name: "Relative time", kind: TagType::Integer },
+    TagCode { code: "s", id: "source", name: "Source", kind: TagType::Text },
+    TagCode { code: "t", id: "text", name: "Text", kind: TagType::Text },
+    TagCode { code: "i", id: "info", name: "Information", kind: TagType::Text },
+];
+
+/// One TAG block of `params` (`lower`: its checksum in lower case) at the start of `buf`, checked
+/// as a received one is read: its length, or the error (`bad_tag_block`; `too_long` when `buf`
+/// cannot hold it). Put it before a sentence's bytes.
+pub fn write_tag_block<'b>(buf: &'b mut [u8], params: &[(&str, &str)], lower: bool) -> Result<usize, Error<'b>> {
+    runtime::write_tag_block(buf, params, lower, TAG_CODES)
+}
 
 // Fixes assembled across sentences (docs/fixes.md).
 #[cfg(feature = "std")]
@@ -12879,6 +12898,7 @@ impl Layouts for LayoutId {
 
     #[cfg(feature = "std")]
     const ALL: &'static [Self] = Self::ALL;
+    const TAG_CODES: &'static [TagCode] = TAG_CODES;
 
     fn of(start: &str, address: &[u8]) -> &'static [Self] {
         layouts_of(start, address)
@@ -28041,7 +28061,8 @@ pub fn parse<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, Error<'_
     runtime::parse::<LayoutId>(line.as_ref())
 }
 
-/// [`parse`] with options: lenient decoding and required checksums.
+/// [`parse`] with options: lenient decoding and required checksums. A line may start with TAG
+/// blocks ([`Parsed::tag_blocks`], written back before the sentence), which [`parse`] refuses.
 pub fn parse_with<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
     runtime::parse_with::<LayoutId>(line.as_ref(), options)
 }
