@@ -271,11 +271,12 @@ class TagBlock:
     one received, byte for byte.
 
     Built from keywords, in the order given: `TagBlock(source="r003669945", time=1241544035)`
-    is `\\s:r003669945,c:1241544035*hh\\` (to_text()); integers are written as they are, a group as a
-    TagGroup or (number, count, id); `params` come first. The values are checked as a received
-    block's are (NmeaError bad_tag_block). Reading, the generated subclass has a property per
-    code (`block.source`, `block.time`: the first value, an int for an integer, a TagGroup for a
-    group, None when absent or empty); `block.get(code)` gives the text of any code."""
+    is `\\s:r003669945,c:1241544035*hh\\` (to_text()); integers are written as they are, a
+    group as a TagGroup or (number, count, id); `params` come first. The values are checked as
+    a received block's are (NmeaError bad_tag_block). Reading, the generated subclass has a
+    property per code (`block.source`, `block.time`: the first value, an int for an integer, a
+    TagGroup for a group, None when absent or empty); `block.get(code)` gives the text of any
+    code."""
 
     __slots__ = ("params", "checksum")
     CODES: ClassVar[dict[str, TagCode]] = {}
@@ -300,7 +301,8 @@ class TagBlock:
 
     def to_text(self) -> str:
         """The block as written on the wire, backslashes included."""
-        return _block_text(",".join(f"{code}:{value}" for code, value in self.params), self.checksum)
+        body = ",".join(f"{code}:{value}" for code, value in self.params)
+        return _block_text(body, self.checksum)
 
     def get(self, code: str) -> str | None:
         """The text of the first parameter with this code, or None."""

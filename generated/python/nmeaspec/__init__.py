@@ -20,7 +20,9 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from . import enums, fixes, receiver, runtime, sentences, stream
-from .api import Generic, Tagged, decode_json, encode_json, from_json, parse, replies_of, reply_to, to_json
+from .api import (
+    Generic, Tagged, decode_json, encode_json, from_json, parse, replies_of, reply_to, to_json,
+)
 from .enums import *  # noqa: F401,F403
 from .receiver import Receiver, Reply, ReplyTimeout
 from .runtime import ABSENT, Coordinate, Date, Hex, NmeaError, Number, TagGroup, Time
@@ -42,6 +44,7 @@ def __getattr__(name: str) -> Any:
 
 __all__ = [
     "ABSENT", "Coordinate", "Date", "Generic", "Hex", "NmeaError", "Number", "Receiver", "Reply",
-    "ReplyTimeout", "TagBlock", "TagGroup", "Tagged", "Time", "__version__", "decode_json", "encode_json", "enums", "fixes",
-    "from_json", "parse", "receiver", "replies_of", "reply_to", "runtime", "stream", "to_json",
+    "ReplyTimeout", "TagBlock", "TagGroup", "Tagged", "Time", "__version__", "decode_json",
+    "encode_json", "enums", "fixes", "from_json", "parse", "receiver", "replies_of", "reply_to",
+    "runtime", "stream", "to_json",
 ]

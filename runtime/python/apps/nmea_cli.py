@@ -46,9 +46,9 @@ examples:
 Fields are the field ids of the reference docs (`time`, `lat`, `quality`...), plus `line`,
 `talker`, `sentence` and the parameters of a line's TAG blocks as `tag.source`, `tag.time`...
 (generated/docs/tag_block.md; JSON lines carry them as `tag_block`, the table and CSV put
-them first in `fields`; a line of TAG blocks only is a row of sentence `TAG`). Latitudes and longitudes are shown in signed decimal degrees, enums by
-value id. The summary (counts per sentence, errors by kind, unknown sentences) goes to stderr.
-With --fixes, the columns are the facts of a fix (FIX_COLUMNS; `used` and `in_view` count the
+them first in `fields`; a line of TAG blocks only is a row of sentence `TAG`). Latitudes and
+longitudes are shown in signed decimal degrees, enums by value id. The summary (counts per
+sentence, errors by kind, unknown sentences) goes to stderr. With --fixes, the columns are the facts of a fix (FIX_COLUMNS; `used` and `in_view` count the
 satellites), and --json gives every fact of each.
 """
 
