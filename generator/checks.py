@@ -195,10 +195,14 @@ def _check_facts(spec: Spec, report: _Reporter) -> None:
 
 
 def _check_tag_codes(spec: Spec, manual_ids: set[str], report: _Reporter) -> None:
-    """The codes of spec/tag_block.yaml: each code and id once, the manuals known."""
+    """The codes of spec/tag_block.yaml: each code and id once, an id that can be a property of
+    the Python TagBlock (not a keyword nor a member of the runtime's class), the manuals known."""
     codes: set[str] = set()
     ids: set[str] = set()
+    taken = set(dir(reference.rt.TagBlock))
     for tag in spec.tag_codes:
+        if keyword.iskeyword(tag.id) or tag.id in taken:
+            report(tag.origin, "S014", f"TAG block code id {tag.id} is a name of Python's TagBlock itself", "id")
         if tag.code in codes:
             report(tag.origin, "S001", f"TAG block code {tag.code} appears twice", "code")
         if tag.id in ids:
