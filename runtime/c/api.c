@@ -7,10 +7,15 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
     return nmea_parse_ex(out, line, len, NULL, err);
 }
 
-/* A line that starts with TAG blocks: the blocks, then the sentence after them (none: a generic
-   sentence with an empty start, address and fields). */
+/* How the sentence of a line is read: nmea_parse_ex's way (the fast path first) or, for the tests,
+   the general path alone. */
+typedef bool (*sentence_parser)(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                                nmea_error *err);
+
+/* A line that starts with TAG blocks: the blocks, then the sentence after them read by `parse`
+   (none: a generic sentence with an empty start, address and fields). */
 static bool parse_tagged(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
-                         nmea_error *err)
+                         nmea_error *err, sentence_parser parse)
 {
     nmea_text blocks;
     if (len > NMEA_MAX_LINE) {
@@ -23,7 +28,7 @@ static bool parse_tagged(nmea_sentence *out, const char *line, size_t len, const
         memset(out, 0, sizeof *out);
         out->id = NMEA_SENTENCE_GENERIC;
         out->as.generic.checksum = NMEA_CHECKSUM_NONE;
-    } else if (!nmea_parse_ex(out, line + blocks.len, len - blocks.len, options, err)) {
+    } else if (!parse(out, line + blocks.len, len - blocks.len, options, err)) {
         return false;
     }
     out->tag_blocks = blocks;
@@ -37,7 +42,7 @@ bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_
     len = without_line_ending(line, len);
     out->tag_blocks = nmea_text_of(NULL);
     if (line && len && line[0] == '\\')
-        return parse_tagged(out, line, len, options, err);
+        return parse_tagged(out, line, len, options, err, nmea_parse_ex);
 #ifndef NMEA_NO_FAST_PATH
     if (fast_parse(out, line, len))
         return true;
@@ -48,7 +53,11 @@ bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_
 #ifdef NMEA_TEST_HOOKS
 bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
-    return parse_general(out, line, without_line_ending(line, len), options, err);
+    len = without_line_ending(line, len);
+    out->tag_blocks = nmea_text_of(NULL);
+    if (line && len && line[0] == '\\')
+        return parse_tagged(out, line, len, options, err, nmea_parse_general);
+    return parse_general(out, line, len, options, err);
 }
 #endif
 
@@ -66,19 +75,24 @@ static bool tag_blocks_only(const nmea_sentence *s)
     return s->id == NMEA_SENTENCE_GENERIC && s->tag_blocks.len && !s->as.generic.start.len;
 }
 
-/* The sentence's TAG blocks, as they are, at the start of `buf`: their length, or 0 (an empty
-   `buf`) when they and a NUL do not fit. */
-static size_t put_tag_blocks(const nmea_sentence *s, char *buf, size_t cap)
+/* The sentence's TAG blocks as they are, then the sentence written by `write`: the length, or 0
+   (an empty `buf`) when the text and a NUL do not fit. */
+static size_t serialize_tagged(const nmea_sentence *s, char *buf, size_t cap,
+                               size_t (*write)(const nmea_sentence *, char *, size_t))
 {
-    size_t n = s->tag_blocks.len;
-    if (n >= cap) {
-        if (cap)
-            buf[0] = 0;
-        return 0;
+    size_t tags = s->tag_blocks.len, n = 0;
+    if (tags < cap) {
+        memcpy(buf, s->tag_blocks.ptr, tags);
+        buf[tags] = 0;
+        if (tag_blocks_only(s))
+            return tags;
+        n = write(s, buf + tags, cap - tags);
     }
-    memcpy(buf, s->tag_blocks.ptr, n);
-    buf[n] = 0;
-    return n;
+    if (n)
+        return tags + n;
+    if (cap)
+        buf[0] = 0;
+    return 0;
 }
 
 static size_t serialize_sentence(const nmea_sentence *s, char *buf, size_t cap)
@@ -93,21 +107,13 @@ static size_t serialize_sentence(const nmea_sentence *s, char *buf, size_t cap)
 
 size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
 {
-    size_t tags, n;
-    if (!s->tag_blocks.len)
-        return serialize_sentence(s, buf, cap);
-    if ((tags = put_tag_blocks(s, buf, cap)) == 0 || tag_blocks_only(s))
-        return tags;
-    n = serialize_sentence(s, buf + tags, cap - tags);
-    if (!n)
-        buf[0] = 0;
-    return n ? tags + n : 0;
+    return s->tag_blocks.len ? serialize_tagged(s, buf, cap, serialize_sentence) : serialize_sentence(s, buf, cap);
 }
 
 #ifdef NMEA_TEST_HOOKS
 size_t nmea_serialize_general(const nmea_sentence *s, char *buf, size_t cap)
 {
-    return serialize_general(s, buf, cap);
+    return s->tag_blocks.len ? serialize_tagged(s, buf, cap, serialize_general) : serialize_general(s, buf, cap);
 }
 #endif
 
