@@ -63,7 +63,9 @@ def parse(
     line: str | bytes, lenient: bool = False, require_checksum: bool = False, strict: bool = False
 ) -> Any:
     """Decode one line (a trailing CR LF is allowed) into the class of its layout, or a Generic
-    for a well-formed sentence the spec does not describe. Raises NmeaError.
+    for a well-formed sentence the spec does not describe; a line that starts with TAG blocks
+    into a Tagged (the blocks and that sentence, None for a line of blocks only). Raises
+    NmeaError.
 
     A number outside its field's range (but of the right type) is kept as sent and listed in the
     result's `problems` (`out_of_range`); `strict` refuses it as bad_field instead.

@@ -330,7 +330,7 @@ impl<S: Decoded> fmt::Display for Parsed<'_, S> {
 pub fn parse_with<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
     let line = strip_line_ending(line);
     if line.first() == Some(&b'\\') {
-        return parse_tagged::<L>(line, options);
+        return parse_tagged::<L>(line, options, parse_with::<L>);
     }
     let fast = FastReader::frame(line).and_then(|fields| L::read_sentence::<Option<_>>(fields, line));
     if let Some(sentence) = fast {
@@ -339,9 +339,16 @@ pub fn parse_with<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_
     general_with::<L>(line, options)
 }
 
-/// A line that starts with TAG blocks: the blocks, then the sentence after them (none: an empty
-/// [`Generic`] sentence).
-fn parse_tagged<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
+/// How the sentence after a line's TAG blocks is read: [`parse_with`] or its general path alone.
+type SentenceParser<L> = for<'a> fn(&'a [u8], Options) -> Result<Parsed<'a, <L as Layouts>::Sentence<'a>>, Error<'a>>;
+
+/// A line that starts with TAG blocks: the blocks, then the sentence after them read by `parse`
+/// (none: an empty [`Generic`] sentence).
+fn parse_tagged<L: Layouts>(
+    line: &[u8],
+    options: Options,
+    parse: SentenceParser<L>,
+) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
     if line.len() > MAX_LINE {
         return Err(Error::too_long(line.len()));
     }
@@ -350,7 +357,7 @@ fn parse_tagged<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, 
         let empty = Generic { start: "", address: "", fields: Fields::new("", "", 0), checksum: Checksum::None };
         Parsed::from(L::Sentence::from(empty))
     } else {
-        parse_with::<L>(rest, options)?
+        parse(rest, options)?
     };
     parsed.tag_blocks = tag_blocks;
     Ok(parsed)
@@ -358,7 +365,11 @@ fn parse_tagged<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, 
 
 /// [`parse_with`] without its fast path (see [`parse_general`]).
 pub fn parse_with_general<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
-    general_with::<L>(strip_line_ending(line), options)
+    let line = strip_line_ending(line);
+    if line.first() == Some(&b'\\') {
+        return parse_tagged::<L>(line, options, parse_with_general::<L>);
+    }
+    general_with::<L>(line, options)
 }
 
 /// The general path of [`parse_with`], for a line without its line ending.
