@@ -26,7 +26,9 @@ sentences of the clean log are still in the damaged stream, and where, without a
 see `intact`.
 
 Framing (the tools' `stream` verb, generated/docs/json.md): CR and LF end a line, empty lines are
-skipped, a `$` or `!` always starts a new item; `items` is that rule as a regular expression.
+skipped, a `$` or `!` starts a new item, but for a `\` at the start of a line, which opens a TAG
+block: up to its closing `\` every byte but CR and LF belongs to it, and a `$`, `!` or `\` right
+after that continues the line; `items` is that rule as a regular expression.
 """
 
 from __future__ import annotations
@@ -45,12 +47,13 @@ ENDING_RATE = 5 / 100  # cr_lost, lf_lost, eol_lost: per CR, LF or line ending
 CHUNK_MEAN = 160  # interleave: mean chunk length in bytes
 MIX_SHARE = 1 / 5  # mix: each kind at this share of its rate
 
-# One framed item: a '$' or '!' and what follows up to the next CR, LF, '$' or '!'; or a run of
-# other bytes after a line ending (or at the start). Empty lines make no item.
-_ITEM = re.compile(rb"[$!][^\r\n$!]*|[^\r\n$!]+")
+# One framed item: a line that starts with TAG blocks (closed ones, then an open one up to the
+# line ending or what follows the last: a '$' or '!' and the rest up to the next CR, LF, '$' or
+# '!'); a '$' or '!' and what follows up to the next CR, LF, '$' or '!'; or a run of other bytes
+# after a line ending (or at the start). Empty lines make no item.
+_ITEM = re.compile(rb"(?=\\)(?:\\[^\r\n\\]*\\)*(?:\\[^\r\n\\]*|[$!]?[^\r\n$!]*)|[$!][^\r\n$!]*|[^\r\n$!]+")
 _LINE = re.compile(rb"[^\r\n]+")
 _ENDING = re.compile(rb"\r\n|\n|\r")
-BOUNDARY = frozenset(b"\r\n$!")
 
 
 def items(data: bytes) -> list[tuple[int, int]]:
@@ -269,12 +272,10 @@ def intact(damaged: Damaged, clean_items: list[list[tuple[int, int]]]) -> dict[i
     A clean item [start, end) of stream s is intact at offset x when
     - one copy run of s holds all of [start, end) (no byte of it lost, changed or doubled, nothing
       inserted inside it), placing it at x; and
-    - the framer starts an item at x: the item starts with '$' or '!', or x is the start of the
-      stream, or the byte before x is a CR or LF; and
-    - the framer ends that item at x + length: the stream ends there or the byte there is a CR,
-      LF, '$' or '!'.
+    - the framer frames exactly [x, x + length) as an item (`items`).
     A run of doubled bytes can hold a short item twice: both places count."""
     data = damaged.data
+    framed = set(items(data))
     found: dict[int, tuple[int, int, int]] = {}
     starts = [[start for start, _ in spans] for spans in clean_items]
     for run in damaged.runs:
@@ -285,7 +286,7 @@ def intact(damaged: Damaged, clean_items: list[list[tuple[int, int]]]) -> dict[i
         while i < len(spans) and spans[i][1] <= run.end:
             start, end = spans[i]
             x, y = run.at + start - run.start, run.at + end - run.start
-            if (data[x] in b"$!" or x == 0 or data[x - 1] in b"\r\n") and (y == len(data) or data[y] in BOUNDARY):
+            if (x, y) in framed:
                 found[x] = (run.stream, i, end - start)
             i += 1
     return found

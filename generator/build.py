@@ -13,7 +13,7 @@ from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
 from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Fact, Field, FixExample,
                     GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, ReplyRule,
-                    Sentence, Spec, TableDef)
+                    Sentence, Spec, TableDef, TagCode)
 from .resolve import resolve
 
 
@@ -36,7 +36,7 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     directory's parent (spec/standard/gga.yaml) or, for an overlay, as the overlay was given
     (my-nmea/proprietary/acme_pos.yaml)."""
     errors: list[SpecError] = []
-    docs: dict[str, list[Document]] = {kind: [] for kind in ("manuals", "facts", "enums", "bitfields", "tables",
+    docs: dict[str, list[Document]] = {kind: [] for kind in ("manuals", "facts", "tag_block", "enums", "bitfields", "tables",
                                                              "sentences", "extensions")}
     digest = hashlib.sha256()
     file_digests: dict[str, str] = {}
@@ -84,7 +84,12 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
                 combined_talker=next((d.data["combined_talker"] for d in docs["facts"]
                                       if "combined_talker" in d.data), None),
                 satellite_ids=[(r["system"], r["min"], r["max"]) for d in docs["facts"]
-                               for r in d.data.get("satellite_ids", [])])
+                               for r in d.data.get("satellite_ids", [])],
+                tag_codes=[TagCode(c["code"], c["id"], c["name"], c["type"], c["doc"], Origin(str(d.path), ("codes", i)))
+                           for d in docs["tag_block"] for i, c in enumerate(d.data["codes"])],
+                tag_manuals=[m for d in docs["tag_block"] for m in d.data["manuals"]],
+                tag_examples=[(e["where"], e["line"]) for d in docs["tag_block"] for e in d.data.get("examples", [])],
+                tag_sources=[str(d.path) for d in docs["tag_block"]])
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
     resolve(spec)
     errors = checks.run(spec, by_file)
@@ -99,6 +104,8 @@ def _tree_files(tree: Path, required_manuals: bool) -> list[tuple[Path, str, str
     files = [(manuals, "manuals", "manuals.schema.json")] if required_manuals or manuals.exists() else []
     facts = tree / "fix.yaml"
     files += [(facts, "facts", "fix.schema.json")] if facts.exists() else []
+    tag_block = tree / "tag_block.yaml"
+    files += [(tag_block, "tag_block", "tag_block.schema.json")] if tag_block.exists() else []
     for folder, kind, schema in LAYOUT:
         files += [(p, kind, schema) for p in sorted((tree / folder).glob("*.yaml"))]
     return files

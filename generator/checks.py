@@ -41,6 +41,7 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
     for table in spec.tables:
         _check_table(spec, table, manual_ids, report)
     _check_facts(spec, report)
+    _check_tag_codes(spec, manual_ids, report)
     for sentence in spec.sentences:
         _check_manuals(sentence.manuals, manual_ids, sentence.origin, report, "manuals")
         _check_proprietary(spec, sentence, manual_ids, report)
@@ -191,6 +192,25 @@ def _check_facts(spec: Spec, report: _Reporter) -> None:
                 if value not in fact.values:
                     report(fact.origin, "S047", f"fact {fact.id}: {value!r} is not one of its values "
                            f"({', '.join(fact.values)})", "from", enum_id)
+
+
+def _check_tag_codes(spec: Spec, manual_ids: set[str], report: _Reporter) -> None:
+    """The codes of spec/tag_block.yaml: each code and id once, an id that can be a property of
+    the Python TagBlock (not a keyword nor a member of the runtime's class), the manuals known."""
+    codes: set[str] = set()
+    ids: set[str] = set()
+    taken = set(dir(reference.rt.TagBlock))
+    for tag in spec.tag_codes:
+        if keyword.iskeyword(tag.id) or tag.id in taken:
+            report(tag.origin, "S014", f"TAG block code id {tag.id} is a name of Python's TagBlock itself", "id")
+        if tag.code in codes:
+            report(tag.origin, "S001", f"TAG block code {tag.code} appears twice", "code")
+        if tag.id in ids:
+            report(tag.origin, "S001", f"TAG block code id {tag.id} appears twice", "id")
+        codes.add(tag.code)
+        ids.add(tag.id)
+    if spec.tag_codes:
+        _check_manuals(spec.tag_manuals, manual_ids, Origin(spec.tag_codes[0].origin.file, ()), report, "manuals")
 
 
 def _check_fix_examples(spec: Spec, report: _Reporter) -> None:

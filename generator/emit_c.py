@@ -667,6 +667,10 @@ def perfect_hash(codes: list[int]) -> dict:
         bits += 1
 
 
+# The nmea_tag_type of each value type of spec/tag_block.yaml.
+TAG_TYPES = {"integer": "NMEA_TAG_INTEGER", "group": "NMEA_TAG_GROUP", "text": "NMEA_TAG_TEXT"}
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     ranges = Ranges()
     views = [layout_view(s, lay, ranges) for s in spec.sentences for lay in s.layouts]
@@ -695,6 +699,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "fixes": fix_views(spec, views), "combined_talker": c_str(spec.combined_talker or ""),
         "talker_systems": [(c_str(t), c_str(g)) for t, g in spec.talker_systems.items()],
         "satellite_ids": [(c_str(g), low, high) for g, low, high in spec.satellite_ids],
+        "tag_codes": [(c_str(c.code), c_str(c.id), c_str(c.name), TAG_TYPES[c.type]) for c in spec.tag_codes],
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "max_fields": max([v["max_fields"] for v in views] + [1]),
         "json_max": json_max(spec, views),

@@ -165,8 +165,20 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         banner=banner, spec=spec, vectors=[v for v in vectors if v["status"] != "intact"], counts=counts)
     files["docs/fix.md"] = env.get_template("docs/fix.md.j2").render(
         banner=banner_of([*spec.fix_sources, "templates/docs/fix.md.j2"]), spec=spec)
+    files["docs/tag_block.md"] = env.get_template("docs/tag_block.md.j2").render(
+        banner=banner_of([*spec.tag_sources, "templates/docs/tag_block.md.j2"]), spec=spec,
+        examples=[{**v, "outcome": _tag_outcome(json.loads(v["decode"]))} for v in emit_vectors.tag_block_vectors(spec)])
     files["docs/json.md"] = banner_of(["runtime/json.md"]) + (RUNTIME / "json.md").read_text(encoding="utf-8")
     return files
+
+
+def _tag_outcome(decoded: dict) -> str:
+    """What decode made of a TAG block example: its sentence and blocks, or its error."""
+    if not decoded["ok"]:
+        return f"{decoded['error']['kind']}: {decoded['error']['message']}"
+    blocks = "; ".join(", ".join(f"{p['code']}={p['value']}" for p in b["params"]) for b in decoded["tag_blocks"])
+    sentence = decoded.get("sentence") or decoded.get("address")
+    return f"{sentence} behind {blocks}" if sentence else f"TAG blocks only: {blocks}"
 
 
 def receiver_manuals(spec: Spec) -> list[Manual]:

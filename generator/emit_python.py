@@ -296,6 +296,19 @@ def fix_fields(spec: Spec, env: jinja2.Environment) -> str:
         fact_units=units, decimal_facts=decimal, talkers=talkers, satellite_ids=ids, combined_talker=py_literal(spec.combined_talker))
 
 
+# A TAG block value type's Python type and the runtime.TagBlock method that reads it.
+TAG_VALUE_TYPES = {"integer": ("int", "integer_of"), "group": ("rt.TagGroup", "group_of"), "text": ("str", "text_of")}
+
+
+def tag_block(spec: Spec, env: jinja2.Environment) -> str:
+    """tag_block.py: the TAG block class with the codes of spec/tag_block.yaml."""
+    codes = [{"code": py_literal(c.code), "id": c.id, "id_literal": py_literal(c.id), "type": py_literal(c.type),
+              "py_type": TAG_VALUE_TYPES[c.type][0], "reader": TAG_VALUE_TYPES[c.type][1],
+              "doc": py_doc(f"{c.name} ({c.code}): {c.doc}", 8)} for c in spec.tag_codes]
+    return env.get_template("python/tag_block.py.j2").render(
+        header=header(spec, "#", ["templates/python/tag_block.py.j2", *spec.tag_sources]), codes=codes)
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     env.globals.update(py=py_literal, json=json, py_call=py_call, py_str=py_str, py_doc=py_doc,
                        py_import=py_import, py_tuple=py_tuple)
@@ -305,6 +318,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         files[f"{base}/{module}.py"] = runtime_file(spec, "#", f"python/{module}.py")
     files[f"{base}/py.typed"] = ""
     files[f"{base}/fix_fields.py"] = fix_fields(spec, env)
+    files[f"{base}/tag_block.py"] = tag_block(spec, env)
     files[f"{base}/enums.py"] = env.get_template("python/enums.py.j2").render(
         header=header(spec, "#", [e.origin.file for e in spec.enums]), enums=spec.enums)
     for sentence in spec.sentences:

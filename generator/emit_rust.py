@@ -887,6 +887,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/src/bin/nmea-rs.rs"] = runtime_file(spec, "//", "rust/crate/bin/nmea-rs.rs", blank_line=True)
     files[f"{base}/tests/fast_path.rs"] = runtime_file(spec, "//", "rust/crate/tests/fast_path.rs", blank_line=True)
     files[f"{base}/tests/values.rs"] = runtime_file(spec, "//", "rust/crate/tests/values.rs", blank_line=True)
+    files[f"{base}/tests/tag_blocks.rs"] = runtime_file(spec, "//", "rust/crate/tests/tag_blocks.rs", blank_line=True)
 
     gates = Gates(spec)
     layouts = []
@@ -1003,6 +1004,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         standard_like_arms=standard_like_arms, standard_fast_arms=standard_fast_arms,
         proprietary_fast_arms=proprietary_fast_arms, standard_like_fast_arms=standard_like_fast_arms,
         text_commands=text_commands, reply_arms=reply_arms, outcome_arms=outcome_arms,
+        tag_codes=[f"TagCode {{ code: {rust_str(c.code)}, id: {rust_str(c.id)}, name: {rust_str(c.name)}, "
+                   f"kind: TagType::{TAG_TYPES[c.type]} }}," for c in spec.tag_codes],
         runtime_uses=fmt_use("runtime", {"read_layout", "Decoded", "FastReader", "Layouts", "Outcome"}),
         text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
         all_layouts=["    pub const ALL: &'static [Self] = &[",
@@ -1016,6 +1019,10 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         header=header(spec, "//"), vectors=[{"rust": example_lines(v), "cfg": gates.sentence(spec.sentence(v["sentence"]))} for v in vectors],
         crate=CRATE, reply_cases=reply_case_lines(spec, gates))
     return rustfmt(files)
+
+
+# The runtime's TagType of each value type of spec/tag_block.yaml.
+TAG_TYPES = {"integer": "Integer", "group": "Group", "text": "Text"}
 
 
 def rustfmt(files: dict[str, str]) -> dict[str, str]:

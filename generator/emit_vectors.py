@@ -197,6 +197,13 @@ def _or_none(value: Callable[[], int]) -> int | None:
         return None
 
 
+def tag_block_vectors(spec: Spec) -> list[dict]:
+    """The examples of spec/tag_block.yaml: each line and its decode (a good line's encode is
+    the line itself)."""
+    return [{"where": where, "line": line, "decode": reference.decode_json(spec, line)}
+            for where, line in spec.tag_examples]
+
+
 def fix_vectors(spec: Spec) -> list[dict]:
     """The examples of spec/fix.yaml: lines and the facts of each fix an assembler makes of them."""
     return [{"where": e.where, "lines": e.lines, "fixes": e.expect} for e in spec.fix_examples]
@@ -209,4 +216,5 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     return {"vectors/examples.jsonl": jsonl(example_vectors(spec)),
             "vectors/tolerance.jsonl": jsonl(tolerance_vectors(spec)),
             "vectors/values.jsonl": jsonl(value_vectors(spec)),
-            "vectors/fixes.jsonl": jsonl(fix_vectors(spec))}
+            "vectors/fixes.jsonl": jsonl(fix_vectors(spec)),
+            "vectors/tag_blocks.jsonl": jsonl(tag_block_vectors(spec))}

@@ -137,6 +137,19 @@ class Fact:
 
 
 @dataclass
+class TagCode:
+    """A parameter code of a TAG block (spec/tag_block.yaml): `code` as written before the ':',
+    `type` one of integer, group, text."""
+
+    code: str
+    id: str
+    name: str
+    type: str
+    doc: str
+    origin: Origin
+
+
+@dataclass
 class FixExample:
     """A stream of lines and the fixes every assembler must make of them (spec/fix.yaml)."""
 
@@ -634,6 +647,10 @@ class Spec:
     talker_systems: dict[str, str] = field(default_factory=dict)   # spec/fix.yaml: talker -> GNSS
     combined_talker: str | None = None   # spec/fix.yaml: the talker of a solution of several systems
     satellite_ids: list[tuple[str, int, int]] = field(default_factory=list)  # (GNSS, first id, last id)
+    tag_codes: list[TagCode] = field(default_factory=list)   # spec/tag_block.yaml
+    tag_manuals: list[str] = field(default_factory=list)
+    tag_examples: list[tuple[str, str]] = field(default_factory=list)   # (where, line)
+    tag_sources: list[str] = field(default_factory=list)     # the tag_block.yaml files loaded
     enum_by_id: dict[str, EnumDef] = field(default_factory=dict)
 
     def digest_of(self, sources: list[str]) -> str:

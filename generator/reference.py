@@ -280,8 +280,23 @@ def to_json(decoded: Decoded, values: bool = False) -> str:
 
 
 def decode_json(spec: Spec, line: str, values: bool = False, lenient: bool = False, strict: bool = False) -> str:
-    """decode's output line for `line` (with decode's --lenient, --strict): the sentence or the error."""
+    """decode's output line for `line` (with decode's --lenient, --strict): the sentence (after
+    its TAG blocks, which come last in the JSON) or the error."""
     try:
-        return to_json(decode(spec, line, lenient, strict), values)
+        if line[:1] != "\\":
+            return to_json(decode(spec, line, lenient, strict), values)
+        if len(line) > rt.MAX_LINE:
+            raise rt.NmeaError("too_long", f"line is {len(line)} bytes, the limit is {rt.MAX_LINE}")
+        blocks, rest = rt.read_tag_blocks(tag_block_class(spec), line)
+        tags = '"tag_blocks":[' + ",".join(b.to_json() for b in blocks) + "]}"
+        if not rest:
+            return '{"ok":true,' + tags
+        return to_json(decode(spec, rest, lenient, strict), values)[:-1] + "," + tags
     except rt.NmeaError as err:
         return err.to_json()
+
+
+def tag_block_class(spec: Spec) -> type:
+    """The runtime's TagBlock with the spec's codes, as the generated subclass has them."""
+    codes = {c.code: rt.TagCode(c.code, c.id, c.type) for c in spec.tag_codes}
+    return type("TagBlock", (rt.TagBlock,), {"__slots__": (), "CODES": codes})

@@ -7,11 +7,42 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
     return nmea_parse_ex(out, line, len, NULL, err);
 }
 
+/* How the sentence of a line is read: nmea_parse_ex's way (the fast path first) or, for the tests,
+   the general path alone. */
+typedef bool (*sentence_parser)(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                                nmea_error *err);
+
+/* A line that starts with TAG blocks: the blocks, then the sentence after them read by `parse`
+   (none: a generic sentence with an empty start, address and fields). */
+static bool parse_tagged(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                         nmea_error *err, sentence_parser parse)
+{
+    nmea_text blocks;
+    if (len > NMEA_MAX_LINE) {
+        nmea_error_too_long(err, len);
+        return false;
+    }
+    if (!read_tag_blocks(line, len, &blocks, err))
+        return false;
+    if (blocks.len == len) {
+        memset(out, 0, sizeof *out);
+        out->id = NMEA_SENTENCE_GENERIC;
+        out->as.generic.checksum = NMEA_CHECKSUM_NONE;
+    } else if (!parse(out, line + blocks.len, len - blocks.len, options, err)) {
+        return false;
+    }
+    out->tag_blocks = blocks;
+    return true;
+}
+
 /* The fast path needs no options: what it reads has a checksum, and a line read without a
    problem is read the same way leniently. */
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
     len = without_line_ending(line, len);
+    out->tag_blocks = nmea_text_of(NULL);
+    if (line && len && line[0] == '\\')
+        return parse_tagged(out, line, len, options, err, nmea_parse_ex);
 #ifndef NMEA_NO_FAST_PATH
     if (fast_parse(out, line, len))
         return true;
@@ -22,7 +53,11 @@ bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_
 #ifdef NMEA_TEST_HOOKS
 bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
-    return parse_general(out, line, without_line_ending(line, len), options, err);
+    len = without_line_ending(line, len);
+    out->tag_blocks = nmea_text_of(NULL);
+    if (line && len && line[0] == '\\')
+        return parse_tagged(out, line, len, options, err, nmea_parse_general);
+    return parse_general(out, line, len, options, err);
 }
 #endif
 
@@ -34,7 +69,33 @@ static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
     return writer_finish(&w);
 }
 
-size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
+/* A line of TAG blocks only (parse_tagged). */
+static bool tag_blocks_only(const nmea_sentence *s)
+{
+    return s->id == NMEA_SENTENCE_GENERIC && s->tag_blocks.len && !s->as.generic.start.len;
+}
+
+/* The sentence's TAG blocks as they are, then the sentence written by `write`: the length, or 0
+   (an empty `buf`) when the text and a NUL do not fit. */
+static size_t serialize_tagged(const nmea_sentence *s, char *buf, size_t cap,
+                               size_t (*write)(const nmea_sentence *, char *, size_t))
+{
+    size_t tags = s->tag_blocks.len, n = 0;
+    if (tags < cap) {
+        memcpy(buf, s->tag_blocks.ptr, tags);
+        buf[tags] = 0;
+        if (tag_blocks_only(s))
+            return tags;
+        n = write(s, buf + tags, cap - tags);
+    }
+    if (n)
+        return tags + n;
+    if (cap)
+        buf[0] = 0;
+    return 0;
+}
+
+static size_t serialize_sentence(const nmea_sentence *s, char *buf, size_t cap)
 {
 #ifndef NMEA_NO_FAST_PATH
     size_t n = s->problems && s->problems->count ? 0 : fast_write_sentence(s, buf, cap);
@@ -44,10 +105,15 @@ size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
     return serialize_general(s, buf, cap);
 }
 
+size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
+{
+    return s->tag_blocks.len ? serialize_tagged(s, buf, cap, serialize_sentence) : serialize_sentence(s, buf, cap);
+}
+
 #ifdef NMEA_TEST_HOOKS
 size_t nmea_serialize_general(const nmea_sentence *s, char *buf, size_t cap)
 {
-    return serialize_general(s, buf, cap);
+    return s->tag_blocks.len ? serialize_tagged(s, buf, cap, serialize_general) : serialize_general(s, buf, cap);
 }
 #endif
 

@@ -26,8 +26,8 @@ bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const 
 size_t nmea_serialize_general(const nmea_sentence *s, char *buf, size_t cap);
 #endif
 
-/** The sentence text (no line ending); returns its length, 0 when it (and its NUL) does not
-    fit in `cap` bytes. */
+/** The sentence text after its TAG blocks (no line ending); returns its length, 0 when it (and its
+    NUL) does not fit in `cap` bytes. */
 size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap);
 
 /**
@@ -38,7 +38,8 @@ size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap);
  * in `buf`, NUL-terminated: the error points into it), or too_long when `cap` is too small (then
  * `buf` holds an empty string). A zeroed struct is a valid start: keywords are implied, the
  * checksum upper case.
- * nmea_build takes any sentence (a generic one is only checked to be a well-formed line).
+ * nmea_build takes any sentence (a generic one is only checked to be a well-formed line), without
+ * its TAG blocks: nmea_tag_write writes a block to put before the bytes.
  */
 size_t nmea_build(const nmea_sentence *s, char *buf, size_t cap, nmea_error *err);
 

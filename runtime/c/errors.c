@@ -3,8 +3,8 @@
    of the Python and Rust runtimes), an error as JSON, and the problems of the sentences parsing keeps. */
 
 static const char *const ERROR_KINDS[] = {
-    "too_long", "not_a_sentence", "bad_checksum", "checksum_mismatch", "missing_checksum", "too_few_fields",
-    "too_many_fields", "bad_field", "bad_json", "bad_value",
+    "too_long", "not_a_sentence", "bad_tag_block", "bad_checksum", "checksum_mismatch", "missing_checksum",
+    "too_few_fields", "too_many_fields", "bad_field", "bad_json", "bad_value",
 };
 
 const char *nmea_error_kind_name(nmea_error_kind kind)

@@ -16,13 +16,49 @@ static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant
     return NMEA_SENTENCE_GENERIC;
 }
 
+/* decode's "tag_blocks" member and the object's closing brace: each block's parameters and
+   checksum as received. */
+static void json_tag_blocks(nmea_writer *w, nmea_text blocks)
+{
+    nmea_text params;
+    nmea_tag_param param;
+    bool first_block = true, first;
+    put_str(w, "\"tag_blocks\":[");
+    while (nmea_tag_next_block(&blocks, &params)) {
+        const char *sum = params.ptr + params.len + 1; /* after the '*' */
+        put_str(w, first_block ? "{\"params\":[" : ",{\"params\":[");
+        for (first = true; nmea_tag_next_param(&params, &param); first = false) {
+            put_str(w, first ? "{\"code\":" : ",{\"code\":");
+            put_json_str(w, param.code, 0);
+            put_str(w, ",\"value\":");
+            put_json_str(w, param.value, 0);
+            put_char(w, '}');
+        }
+        put_str(w, "],\"checksum\":\"");
+        put_mem(w, sum, 2);
+        put_str(w, "\"}");
+        first_block = false;
+    }
+    put_str(w, "]}");
+}
+
 size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+    if (tag_blocks_only(s)) {
+        put_str(&w, "{\"ok\":true,");
+        json_tag_blocks(&w, s->tag_blocks);
+        return writer_finish(&w);
+    }
     if (s->id == NMEA_SENTENCE_GENERIC)
         json_generic(&w, &s->as.generic);
     else
         json_with(&w, LAYOUTS[s->id], &s->as, s->problems, values);
+    if (s->tag_blocks.len) { /* the blocks come last: in place of the closing brace */
+        w.len--;
+        put_char(&w, ',');
+        json_tag_blocks(&w, s->tag_blocks);
+    }
     return writer_finish(&w);
 }
 
@@ -206,11 +242,84 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
     return read_again(out, id, wire, &lenient, err);
 }
 
-bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
-                    nmea_error *err)
+/* The text of a TAG block parameter's code or value from decode's JSON, copied to the scratch
+   buffer. */
+static bool tag_text_member(nmea_json obj, const char *key, nmea_scratch *s, nmea_error *err)
 {
-    nmea_scratch s;
-    nmea_json root, fields;
+    nmea_json v;
+    nmea_text t;
+    bool present, wide;
+    size_t i;
+    if (!json_text_member(obj, key, false, s, &t, &present, &wide, err))
+        return false;
+    for (i = 0; i < t.len; i++) {
+        if (wide || !is_printable(t.ptr[i]) || t.ptr[i] == ',' || t.ptr[i] == '*' || t.ptr[i] == '\\') {
+            bad_json(err, "TAG block text %q holds ',', '*', a backslash or a byte outside printable ASCII", NULL);
+            json_member(obj, key, &v);
+            err->text = json_inside(v);
+            err->text_json = true;
+            return false;
+        }
+    }
+    return true;
+}
+
+/* decode's "tag_blocks" written back into the scratch buffer, and read there as received ones. */
+static bool tag_blocks_from_json(nmea_json items, nmea_scratch *s, nmea_text *blocks, nmea_error *err)
+{
+    nmea_json item, params, param;
+    nmea_checksum_style style;
+    size_t start = s->len, body;
+    nmea_writer w;
+    nmea_json first;
+    bool first_param;
+    if (!json_is(items, '['))
+        return bad_json(err, "\"%s\" is not an array of TAG blocks", "tag_blocks");
+    first = items = json_items(items);
+    if (!json_next(&first, &item)) /* none */
+        return bad_json(err, "\"%s\" is not an array of TAG blocks", "tag_blocks");
+    while (json_next(&items, &item)) {
+        if (s->len >= s->cap)
+            return scratch_full(err);
+        s->buf[s->len++] = '\\';
+        body = s->len;
+        if (!json_require(item, "params", &params, err))
+            return false;
+        if (!json_is(params, '['))
+            return bad_json(err, "\"%s\" is not an array", "params");
+        for (params = json_items(params), first_param = true; json_next(&params, &param); first_param = false) {
+            if (!first_param) {
+                if (s->len >= s->cap)
+                    return scratch_full(err);
+                s->buf[s->len++] = ',';
+            }
+            if (!tag_text_member(param, "code", s, err))
+                return false;
+            if (s->len >= s->cap)
+                return scratch_full(err);
+            s->buf[s->len++] = ':';
+            if (!tag_text_member(param, "value", s, err))
+                return false;
+        }
+        if (!json_checksum_style(item, &style, err))
+            return false;
+        if (s->cap - s->len < 4)
+            return scratch_full(err);
+        w = writer_of(s->buf + s->len, 4);
+        put_char(&w, '*');
+        w.sum = xor_bytes(s->buf + body, s->len - body);
+        put_char(&w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[w.sum >> 4]);
+        put_char(&w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[w.sum & 15]);
+        s->len += 3;
+        s->buf[s->len++] = '\\';
+    }
+    return read_tag_blocks(s->buf + start, s->len - start, blocks, err);
+}
+
+/* nmea_from_json of the sentence (its TAG blocks read already). */
+static bool sentence_from_json(nmea_sentence *out, nmea_json root, nmea_scratch *s, nmea_error *err)
+{
+    nmea_json fields;
     nmea_text sentence, variant, word;
     nmea_json problems;
     bool has_sentence, has_variant, wide_sentence, wide_variant;
@@ -221,23 +330,15 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     nmea_wire wire;
     static const nmea_options tolerant = {false, false, NULL, false};
 
-    s.buf = scratch;
-    s.cap = scratch ? scratch_cap : 0;
-    s.len = 0;
-    out->problems = NULL;
-    if (!json_parse(json, len, &root))
-        return bad_json(err, "not JSON", NULL);
-    if (!json_is(root, '{'))
-        return bad_json(err, "not a JSON object", NULL);
     if (!json_checksum_style(root, &checksum, err)
-        || !json_text_member(root, "sentence", true, &s, &sentence, &has_sentence, &wide_sentence, err))
+        || !json_text_member(root, "sentence", true, s, &sentence, &has_sentence, &wide_sentence, err))
         return false;
     if (!has_sentence) {
         out->id = NMEA_SENTENCE_GENERIC;
         out->as.generic.checksum = checksum;
-        return generic_from_json(&out->as.generic, root, &s, err);
+        return generic_from_json(&out->as.generic, root, s, err);
     }
-    if (!json_text_member(root, "variant", true, &s, &variant, &has_variant, &wide_variant, err))
+    if (!json_text_member(root, "variant", true, s, &variant, &has_variant, &wide_variant, err))
         return false;
     id = wide_sentence || wide_variant ? NMEA_SENTENCE_GENERIC : find_layout(sentence, has_variant ? &variant : NULL);
     if (id == NMEA_SENTENCE_GENERIC) {
@@ -252,8 +353,8 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
         return false;
     if (!json_is(fields, '{'))
         return bad_json(err, "\"%s\" is not an object", "fields");
-    c.scratch = &s;
-    c.start = s.len;
+    c.scratch = s;
+    c.start = s->len;
     c.count = 0;
     c.err = err;
     if (!collect_with(LAYOUTS[id], &c, fields))
@@ -270,14 +371,14 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     wire.blanks = 0;
     if (json_member(root, "problems", &problems)) {
         wire.ignore_case = info->command != NULL;
-        return with_problems(out, id, root, problems, &s, &wire, err);
+        return with_problems(out, id, root, problems, s, &wire, err);
     }
     if (!info->address) { /* a standard sentence: the talker and the sentence id */
-        if (!json_word_member(root, "talker", &s, &wire.address, err))
+        if (!json_word_member(root, "talker", s, &wire.address, err))
             return false;
         wire.suffix = info->sentence;
     } else if (info->command) { /* a text command: its word as written, its letter case kept */
-        if (!json_word_member(root, "address", &s, &word, err))
+        if (!json_word_member(root, "address", s, &word, err))
             return false;
         if (!upper_is(word, info->command)) {
             bad_json(err, "\"address\" is not %s", NULL);
@@ -287,10 +388,43 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
         wire.address = word;
         wire.ignore_case = true;
         wire.checksum = NMEA_CHECKSUM_NONE;
-        if (!command_line(&wire, word, &s, err))
+        if (!command_line(&wire, word, s, err))
             return false;
         return read_layout(out, id, &wire, err); /* text commands are always read strictly */
     }
     return read_again(out, id, &wire, &tolerant, err);
 }
+bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
+                    nmea_error *err)
+{
+    nmea_scratch s;
+    nmea_json root, tags, start;
+    nmea_text blocks = nmea_text_of(NULL);
+
+    s.buf = scratch;
+    s.cap = scratch ? scratch_cap : 0;
+    s.len = 0;
+    out->problems = NULL;
+    out->tag_blocks = blocks;
+    if (!json_parse(json, len, &root))
+        return bad_json(err, "not JSON", NULL);
+    if (!json_is(root, '{'))
+        return bad_json(err, "not a JSON object", NULL);
+    if (json_member(root, "tag_blocks", &tags)) {
+        if (!tag_blocks_from_json(tags, &s, &blocks, err))
+            return false;
+        if (!json_member(root, "start", &start)) { /* a line of TAG blocks only */
+            memset(out, 0, sizeof *out);
+            out->id = NMEA_SENTENCE_GENERIC;
+            out->as.generic.checksum = NMEA_CHECKSUM_NONE;
+            out->tag_blocks = blocks;
+            return true;
+        }
+    }
+    if (!sentence_from_json(out, root, &s, err))
+        return false;
+    out->tag_blocks = blocks;
+    return true;
+}
+
 #endif /* NMEA_NO_JSON */

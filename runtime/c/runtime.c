@@ -16,6 +16,7 @@
 #include "writer.c"
 #include "errors.c"
 #include "framing.c"
+#include "tag_block.c"
 #include "framer.c"
 #include "field_parse.c"
 #include "reader.c"

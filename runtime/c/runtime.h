@@ -169,6 +169,7 @@ int nmea_enum_lookup(const nmea_enum_def *def, char code);
 typedef enum {
     NMEA_ERR_TOO_LONG,
     NMEA_ERR_NOT_A_SENTENCE,
+    NMEA_ERR_BAD_TAG_BLOCK, /* a TAG block before the sentence (or on its own) is malformed */
     NMEA_ERR_BAD_CHECKSUM,
     NMEA_ERR_CHECKSUM_MISMATCH,
     NMEA_ERR_MISSING_CHECKSUM, /* nmea_options.require_checksum, and the sentence has none */
@@ -320,6 +321,7 @@ typedef struct {
 typedef struct {
     size_t length;             /* bytes of the current line so far (counted past NMEA_MAX_LINE) */
     char next;                 /* nmea_framer_feed: the '$' or '!' that starts the next line, or 0 */
+    unsigned char tag;         /* where the line is as to TAG blocks: outside, in one, right after one */
     char line[NMEA_MAX_LINE];  /* its first NMEA_MAX_LINE bytes */
 } nmea_framer;
 
@@ -354,6 +356,55 @@ bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out);
 
 /** At the end of the stream: the last line, when it had no line ending (true), else false. */
 bool nmea_framer_end(nmea_framer *f, nmea_framed *out);
+
+/* ------------------------------------------------------------------------------------------ */
+/* TAG blocks (NMEA 0183 4.00, IEC 61162-450): `\g:1-2-73874,s:r003669945,c:1241544035*hh\` before
+   a sentence or on a line of their own. A parsed line keeps the text of its blocks
+   (nmea_sentence.tag_blocks, checked, pointing into the line), which nmea_serialize writes back
+   as it is; these functions read the parameters out of it and write a new block. */
+
+/** The value types of the codes the spec names (spec/tag_block.yaml). */
+typedef enum {
+    NMEA_TAG_INTEGER, /* 1 to 18 digits, kept as sent (c: UNIX time, n: line count, ...) */
+    NMEA_TAG_GROUP,   /* sentence number, count and group id joined by '-' (g) */
+    NMEA_TAG_TEXT     /* anything but ',', '*' and '\' (s: source, d: destination, ...) */
+} nmea_tag_type;
+
+/** A code the spec names: NMEA_TAG_CODES (nmea.h) lists them. */
+typedef struct {
+    const char *code; /* as written before the ':' */
+    const char *id;   /* the spec's id: "time", "source", ... */
+    const char *name;
+    nmea_tag_type type;
+} nmea_tag_code;
+
+/** A parameter of a TAG block: its code and value as written (any code: unknown ones are kept). */
+typedef struct {
+    nmea_text code;
+    nmea_text value;
+} nmea_tag_param;
+
+/** The next block of `*blocks` (the text of a line's TAG blocks): true with its parameters' text
+    (between '\' and '*') in `*params`, `*blocks` moved past it; false at the end. */
+bool nmea_tag_next_block(nmea_text *blocks, nmea_text *params);
+
+/** The next parameter of a block's `*params`: true with it in `*out`, `*params` moved past it. */
+bool nmea_tag_next_param(nmea_text *params, nmea_tag_param *out);
+
+/** The value of the first parameter with `code` in a line's TAG blocks; false when none has it. */
+bool nmea_tag_find(nmea_text blocks, const char *code, nmea_text *value);
+
+/** The code the spec names `code`, or NULL. */
+const nmea_tag_code *nmea_tag_code_of(nmea_text code);
+
+/**
+ * One TAG block of `n` parameters, its checksum in `style` (NMEA_CHECKSUM_LOWER or upper case),
+ * written to `buf` as a received one is read back: returns its length, or 0 with `err` filled
+ * (bad_tag_block; too_long when `cap` is too small). Put it before a sentence with
+ * nmea_sentence.tag_blocks, or write it before nmea_build's bytes.
+ */
+size_t nmea_tag_write(const nmea_tag_param *params, size_t n, nmea_checksum_style style, char *buf, size_t cap,
+                      nmea_error *err);
 
 /**
  * A well-formed sentence the spec does not describe. `fields` is the raw text of all fields

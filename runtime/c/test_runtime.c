@@ -33,11 +33,14 @@ typedef enum { NMEA_SENTENCE_GENERIC = 0, NMEA_SENTENCE_TST, NMEA_SENTENCE_COUNT
 typedef struct {
     nmea_sentence_id id;
     const nmea_problems *problems;
+    nmea_text tag_blocks;
     union {
         nmea_generic generic;
         nmea_tst tst;
     } as;
 } nmea_sentence;
+#define NMEA_TAG_CODE_COUNT 3
+extern const nmea_tag_code NMEA_TAG_CODES[];
 #include "api.h"
 
 /* What nmea.c defines before the runtime. */
@@ -73,6 +76,12 @@ static bool nmea_parse_tst(nmea_tst *out, const char *line, size_t len, nmea_err
 }
 
 static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {NULL, &tst_layout};
+
+const nmea_tag_code NMEA_TAG_CODES[] = {
+    {"c", "time", "UNIX time", NMEA_TAG_INTEGER},
+    {"g", "group", "Sentence grouping", NMEA_TAG_GROUP},
+    {"s", "source", "Source", NMEA_TAG_TEXT},
+};
 
 static const nmea_sentence_id STANDARD_1[] = {NMEA_SENTENCE_TST};
 static const nmea_layouts STANDARD[] = {{"TST", 3, "TST", STANDARD_1, 1}};
@@ -237,6 +246,72 @@ static void test_framer(void)
     }
 }
 
+/* A '\\' at the start of a line opens a TAG block, which keeps its sentence; one anywhere else is
+   a byte of the line. */
+static void test_framer_tag_blocks(void)
+{
+    static const char stream[] = "junk\\s:1*00\\$GPGGA,1*00\r\n\\s:x*31\\\\c:1*00\\!AIVDM,x\n$GPRMC\\x\\$GPGGA\n"
+                                 "\\g:1$2\\$GP\\x";
+    static const char expected[] = "junk\\s:1*00\\|$GPGGA,1*00|\\s:x*31\\\\c:1*00\\!AIVDM,x|$GPRMC\\x\\|$GPGGA|"
+                                   "\\g:1$2\\$GP\\x|";
+    char out[256];
+    size_t chunk;
+    for (chunk = 0; chunk <= sizeof stream; chunk++) {
+        size_t n = frame_all(stream, chunk, out, sizeof out);
+        CHECK(n == strlen(expected) && memcmp(out, expected, n) == 0);
+    }
+}
+
+/* nmea_parse's error for a line, its message as expected. */
+static bool refuses(const char *line, nmea_error_kind kind, const char *message)
+{
+    nmea_sentence s;
+    nmea_error err;
+    return !nmea_parse(&s, line, strlen(line), &err) && err.kind == kind && message_is(&err, message);
+}
+
+static void test_tag_blocks(void)
+{
+    static const char line[] = "\\g:1-2-073874,q:u,s:r003669945,c:1241544035*16\\\\t:*4E\\$GPTST,12,abc*27";
+    char buf[128];
+    nmea_sentence s;
+    nmea_error err;
+    nmea_text value, blocks, params;
+    nmea_tag_param param;
+    nmea_tag_param built[] = {{{"s", 1}, {"r003669945", 10}}, {{"c", 1}, {"1241544035", 10}}};
+
+    CHECK(nmea_parse(&s, line, strlen(line), &err) && s.id == NMEA_SENTENCE_TST);
+    CHECK(s.tag_blocks.len == 54 && nmea_serialize(&s, buf, sizeof buf) == strlen(line) && strcmp(buf, line) == 0);
+    CHECK(nmea_serialize(&s, buf, strlen(line)) == 0 && buf[0] == 0);
+    CHECK(nmea_tag_find(s.tag_blocks, "g", &value) && value.len == 10 && memcmp(value.ptr, "1-2-073874", 10) == 0);
+    CHECK(nmea_tag_find(s.tag_blocks, "t", &value) && value.len == 0 && !nmea_tag_find(s.tag_blocks, "d", &value));
+    blocks = s.tag_blocks;
+    CHECK(nmea_tag_next_block(&blocks, &params) && nmea_tag_next_param(&params, &param) && text_is(param.code, "g"));
+    CHECK(nmea_tag_next_param(&params, &param) && text_is(param.code, "q") && text_is(param.value, "u"));
+    CHECK(nmea_tag_next_block(&blocks, &params) && !nmea_tag_next_block(&blocks, &params));
+    CHECK(nmea_tag_code_of(nmea_text_of("c"))->type == NMEA_TAG_INTEGER && !nmea_tag_code_of(nmea_text_of("q")));
+
+    CHECK(nmea_parse(&s, "\\s:2573535,c:1671533231*08\\", 27, &err) && s.id == NMEA_SENTENCE_GENERIC);
+    CHECK(nmea_serialize(&s, buf, sizeof buf) == 27 && memcmp(buf, "\\s:2573535,c:1671533231*08\\", 27) == 0);
+
+    CHECK(nmea_tag_write(built, 2, NMEA_CHECKSUM_UPPER, buf, sizeof buf, &err) == 30);
+    CHECK(strcmp(buf, "\\s:r003669945,c:1241544035*79\\") == 0);
+    built[1].value = nmea_text_of("12a");
+    CHECK(!nmea_tag_write(built, 2, NMEA_CHECKSUM_UPPER, buf, sizeof buf, &err));
+    CHECK(message_is(&err, "TAG block parameter \"c:12a\": expected digits"));
+
+    CHECK(refuses("\\s:x*00\\", NMEA_ERR_BAD_TAG_BLOCK, "TAG block checksum is 00, computed 31"));
+    CHECK(refuses("\\s:x*31", NMEA_ERR_BAD_TAG_BLOCK, "TAG block has no closing backslash"));
+    CHECK(refuses("\\s:x\\", NMEA_ERR_BAD_TAG_BLOCK, "TAG block \"s:x\" has no checksum"));
+    CHECK(refuses("\\s:x*3\\", NMEA_ERR_BAD_TAG_BLOCK, "TAG block checksum \"3\" is not two hex digits of one letter case"));
+    CHECK(refuses("\\sx*0B\\", NMEA_ERR_BAD_TAG_BLOCK, "TAG block parameter \"sx\" is not code:value"));
+    CHECK(refuses("\\*00\\", NMEA_ERR_BAD_TAG_BLOCK, "TAG block parameter \"\" is not code:value"));
+    CHECK(refuses("\\g:1-2*73\\", NMEA_ERR_BAD_TAG_BLOCK, "TAG block parameter \"g:1-2\": expected n-m-id"));
+    CHECK(refuses("\\s:x*31\\GPGGA", NMEA_ERR_BAD_TAG_BLOCK, "TAG block is followed by neither '$', '!' nor a TAG block"));
+    CHECK(refuses("\\s:\x01*30\\", NMEA_ERR_NOT_A_SENTENCE, "byte 0x01 at offset 3 is not printable ASCII"));
+    CHECK(refuses("\\s:x*31\\$GPTST,12,abc*28", NMEA_ERR_CHECKSUM_MISMATCH, "checksum is 28, computed 27"));
+}
+
 static void test_numbers(void)
 {
     /* compare_fixed without a division: by scale, and past 2^64 on the way to one scale */
@@ -396,6 +471,14 @@ static void test_json(void)
                       "\"variant\":null,\"fields\":{\"count\":\"123\",\"name\":\"abc\"},"
                       "\"problems\":[{\"kind\":\"out_of_range\",\"field\":1,\"name\":\"count\",\"text\":\"123\","
                       "\"message\":\"expected integer 0..99, found \\\"123\\\"\"}],\"checksum\":null}"));
+    CHECK(round_trips("\\s:r003669945,c:0241544035*78\\!GPXYZ,1*51", NULL,
+                      "{\"ok\":true,\"start\":\"!\",\"address\":\"GPXYZ\",\"talker\":null,\"sentence\":null,"
+                      "\"variant\":null,\"fields\":[\"1\"],\"checksum\":\"51\",\"tag_blocks\":[{\"params\":["
+                      "{\"code\":\"s\",\"value\":\"r003669945\"},{\"code\":\"c\",\"value\":\"0241544035\"}],"
+                      "\"checksum\":\"78\"}]}"));
+    CHECK(round_trips("\\s:x*31\\\\t:*4e\\", NULL,
+                      "{\"ok\":true,\"tag_blocks\":[{\"params\":[{\"code\":\"s\",\"value\":\"x\"}],\"checksum\":\"31\"},"
+                      "{\"params\":[{\"code\":\"t\",\"value\":\"\"}],\"checksum\":\"4e\"}]}"));
     CHECK(round_trips("$GPXYZ,1,2", NULL,
                       "{\"ok\":true,\"start\":\"$\",\"address\":\"GPXYZ\",\"talker\":null,\"sentence\":null,"
                       "\"variant\":null,\"fields\":[\"1\",\"2\"],\"checksum\":null}"));
@@ -409,6 +492,8 @@ int main(void)
     test_framing();
     test_error_kind_names();
     test_framer();
+    test_framer_tag_blocks();
+    test_tag_blocks();
     test_numbers();
     test_enums();
     test_layouts();

@@ -10,6 +10,7 @@ from . import runtime
 from .runtime import NmeaError
 from . import sentences
 from .sentences import BY_ADDRESS, ENCAPSULATED, STANDARD, TEXT_COMMANDS
+from .tag_block import TagBlock
 
 
 @dataclass(slots=True)
@@ -32,11 +33,39 @@ class Generic:
         return {"address": self.address, "fields": list(self.fields)}
 
 
+@dataclass(slots=True)
+class Tagged:
+    """A line with TAG blocks: the blocks, and the sentence after them (None for a line of TAG
+    blocks only). `Tagged((TagBlock(source="r003669945", time=1241544035),), gga).to_bytes()`
+    puts a block before a sentence."""
+
+    tag_blocks: tuple[TagBlock, ...]
+    sentence: Any = None
+
+    def to_sentence(self) -> str:
+        """The line as received, byte for byte (no line ending)."""
+        tags = "".join(block.to_text() for block in self.tag_blocks)
+        return tags if self.sentence is None else tags + self.sentence.to_sentence()
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, the sentence checked as its to_bytes does."""
+        tags = "".join(block.to_text() for block in self.tag_blocks).encode("ascii")
+        return tags + (b"\r\n" if self.sentence is None else self.sentence.to_bytes())
+
+    def to_dict(self) -> dict[str, Any]:
+        """The sentence's to_dict (if any) and `tag_blocks`, each block's to_dict."""
+        out: dict[str, Any] = {} if self.sentence is None else self.sentence.to_dict()
+        out["tag_blocks"] = [block.to_dict() for block in self.tag_blocks]
+        return out
+
+
 def parse(
     line: str | bytes, lenient: bool = False, require_checksum: bool = False, strict: bool = False
 ) -> Any:
     """Decode one line (a trailing CR LF is allowed) into the class of its layout, or a Generic
-    for a well-formed sentence the spec does not describe. Raises NmeaError.
+    for a well-formed sentence the spec does not describe; a line that starts with TAG blocks
+    into a Tagged (the blocks and that sentence, None for a line of blocks only). Raises
+    NmeaError.
 
     A number outside its field's range (but of the right type) is kept as sent and listed in the
     result's `problems` (`out_of_range`); `strict` refuses it as bad_field instead.
@@ -48,6 +77,8 @@ def parse(
         line = line.decode("latin-1")
     if line.endswith("\n"):
         line = line[:-2] if line.endswith("\r\n") else line[:-1]
+    if line[:1] == "\\":
+        return _tagged(line, lenient, require_checksum, strict)
     # The common case first: a `$` sentence in printable ASCII whose checksum matches, decoded
     # without building a Frame; anything else takes the general path below, which reports it.
     star = len(line) - 3
@@ -115,6 +146,14 @@ def parse(
         if err.kind != "bad_field" or (strict and not lenient):
             raise
         return _refit(layouts, frame.address, frame.fields, checksum, err, lenient, strict)
+
+
+def _tagged(line: str, lenient: bool, require_checksum: bool, strict: bool) -> Tagged:
+    """A line that starts with a TAG block: the blocks, then the sentence after them."""
+    if len(line) > runtime.MAX_LINE:
+        raise NmeaError("too_long", f"line is {len(line)} bytes, the limit is {runtime.MAX_LINE}")
+    blocks, rest = runtime.read_tag_blocks(TagBlock, line)
+    return Tagged(blocks, parse(rest, lenient, require_checksum, strict) if rest else None)
 
 
 _UPPER_HEX = [f"{value:02X}" for value in range(256)]
@@ -202,7 +241,13 @@ def reply_to(command: Any, sentence: Any) -> str | None:
 
 
 def to_json(sentence: Any, values: bool = False) -> str:
-    """The tools' JSON line for a decoded sentence (`values`: decoded values, not texts)."""
+    """The tools' JSON line for a decoded sentence (`values`: decoded values, not texts); a
+    Tagged one has its TAG blocks last."""
+    if isinstance(sentence, Tagged):
+        tags = '"tag_blocks":[' + ",".join(b.to_json() for b in sentence.tag_blocks) + "]}"
+        if sentence.sentence is None:
+            return '{"ok":true,' + tags
+        return to_json(sentence.sentence, values)[:-1] + "," + tags
     text = sentence.to_sentence()
     if isinstance(sentence, Generic):
         fields = "[" + ",".join(runtime.json_str(f) for f in sentence.fields) + "]"
@@ -253,6 +298,11 @@ def from_json(obj: Any) -> Any:
     """Rebuild a sentence from one object of `decode`'s lossless JSON; raises NmeaError."""
     if not isinstance(obj, dict):
         raise runtime.bad_json("not a JSON object")
+    if "tag_blocks" in obj:
+        blocks = runtime.tag_blocks_from_json(TagBlock, obj["tag_blocks"])
+        if "start" not in obj:
+            return Tagged(blocks)
+        return Tagged(blocks, from_json({k: v for k, v in obj.items() if k != "tag_blocks"}))
     checksum = runtime.checksum_case(runtime.json_opt_text(obj, "checksum"))
     sentence_id = runtime.json_opt_text(obj, "sentence")
     if sentence_id is None:

@@ -28,7 +28,7 @@ from dataclasses import asdict, dataclass, field, fields
 from typing import Any, NamedTuple
 
 from . import runtime as rt
-from .api import parse
+from .api import Tagged, parse
 from .fix_fields import COMBINED_TALKER, DECIMAL_FACTS, FIELDS, SATELLITE_IDS, TALKER_SYSTEMS, FixField
 from .runtime import NmeaError
 
@@ -148,6 +148,8 @@ class FixAssembler:
                 sentence = parse(sentence)
             except NmeaError:
                 return None
+        if isinstance(sentence, Tagged):  # the sentence behind its TAG blocks, if any
+            sentence = sentence.sentence
         layout = _layout(type(sentence))
         if layout is None:
             return None

@@ -11,7 +11,8 @@ import datetime as dt
 from dataclasses import dataclass
 from decimal import Decimal
 from enum import Enum
-from typing import Any, Callable, ClassVar, Final, TypeVar
+from collections.abc import Iterable
+from typing import Any, Callable, ClassVar, Final, NamedTuple, TypeVar
 
 MAX_LINE: Final = 1024
 """Longest line (without its line ending) the parser accepts."""
@@ -127,13 +128,7 @@ def frame(line: str, require_checksum: bool = False) -> Frame:
     start = line[0]
     if start != "$" and start != "!":
         raise NmeaError("not_a_sentence", "line does not start with '$' or '!'")
-    if not line.isascii() or not line.isprintable():
-        for offset, ch in enumerate(line):
-            if not " " <= ch <= "~":
-                raise NmeaError(
-                    "not_a_sentence",
-                    f"byte 0x{ord(ch):02x} at offset {offset} is not printable ASCII",
-                )
+    check_printable(line)
     star = line.find("*")
     body = line[1:] if star < 0 else line[1:star]
     parts = body.split(",")
@@ -167,15 +162,22 @@ def frame(line: str, require_checksum: bool = False) -> Frame:
     return Frame(start, address, parts[1:], sent)
 
 
+def check_printable(line: str) -> None:
+    """Refuse a line with a byte outside printable ASCII, naming the first."""
+    if not line.isascii() or not line.isprintable():
+        for offset, ch in enumerate(line):
+            if not " " <= ch <= "~":
+                raise NmeaError(
+                    "not_a_sentence",
+                    f"byte 0x{ord(ch):02x} at offset {offset} is not printable ASCII",
+                )
+
+
 def text_frame(line: str) -> Frame:
     """Split a text command (ComNav: words separated by single spaces, no '$', no checksum)."""
     if len(line) > MAX_LINE:
         raise NmeaError("too_long", f"line is {len(line)} bytes, the limit is {MAX_LINE}")
-    for offset, ch in enumerate(line):
-        if not " " <= ch <= "~":
-            raise NmeaError(
-                "not_a_sentence", f"byte 0x{ord(ch):02x} at offset {offset} is not printable ASCII"
-            )
+    check_printable(line)
     words = line.split(" ")
     return Frame("", words[0], words[1:], None)
 
@@ -215,6 +217,216 @@ def assemble(start: str, address: str, fields: list[str], checksum_style: str | 
         return f"{start}{body}*"
     text = f"{checksum(body):02X}"
     return f"{start}{body}*{text.lower() if checksum_style == 'lower' else text}"
+
+
+# ---------------------------------------------------------------------------------------------
+# TAG blocks (NMEA 0183 4.00, IEC 61162-450): `\code:value,...*hh\` before a sentence, or on a
+# line of its own. The codes, their names and value types come from spec/tag_block.yaml, as the
+# CODES of the generated subclass (nmeaspec.tag_block.TagBlock).
+
+
+class TagCode(NamedTuple):
+    """A parameter code the spec names: its `id` (the keyword TagBlock takes) and value `type`
+    (integer, group or text)."""
+
+    code: str
+    id: str
+    type: str
+
+
+class TagGroup(NamedTuple):
+    """A grouping parameter (g): sentence `number` of `count` in the group `id`."""
+
+    number: int
+    count: int
+    id: int
+
+
+_TAG_FORMS: Final = {"integer": "digits", "group": "n-m-id"}
+"""What a value of each type that has a form must look like (a text takes anything)."""
+
+
+def _is_digits(text: str) -> bool:
+    return 0 < len(text) <= MAX_DIGITS and text.isascii() and text.isdigit()
+
+
+def _tag_value_fits(kind: str, value: str) -> bool:
+    """An empty value fits any type (the parameter has no value); an integer is 1 to 18 digits,
+    a group three of them joined by '-'."""
+    if not value or kind == "text":
+        return True
+    if kind == "integer":
+        return _is_digits(value)
+    parts = value.split("-")
+    return len(parts) == 3 and all(_is_digits(p) for p in parts)
+
+
+def _tag_error(message: str) -> NmeaError:
+    return NmeaError("bad_tag_block", message)
+
+
+class TagBlock:
+    """One TAG block: its parameters (code, value text) in wire order, unknown codes and
+    repeated ones included, and how its checksum is written ("upper" or "lower"). Its text is the
+    one received, byte for byte.
+
+    Built from keywords, in the order given: `TagBlock(source="r003669945", time=1241544035)`
+    is `\\s:r003669945,c:1241544035*hh\\` (to_text()); integers are written as they are, a
+    group as a TagGroup or (number, count, id); `params` come first. The values are checked as
+    a received block's are (NmeaError bad_tag_block). Reading, the generated subclass has a
+    property per code (`block.source`, `block.time`: the first value, an int for an integer, a
+    TagGroup for a group, None when absent or empty); `block.get(code)` gives the text of any
+    code."""
+
+    __slots__ = ("params", "checksum")
+    CODES: ClassVar[dict[str, TagCode]] = {}
+    """The codes the spec names, by code (the generated subclass sets them)."""
+    params: tuple[tuple[str, str], ...]
+    checksum: str
+
+    def __init__(
+        self, params: Iterable[tuple[str, str]] = (), checksum: str = "upper", **values: Any
+    ) -> None:
+        by_id = {c.id: c.code for c in self.CODES.values()}
+        named = []
+        for name, value in values.items():
+            if name not in by_id:
+                raise TypeError(f"a TAG block has no parameter {name!r}")
+            named.append((by_id[name], _tag_text(value)))
+        self.params = (*params, *named)
+        self.checksum = checksum
+        blocks, rest = read_tag_blocks(type(self), self.to_text())
+        if rest or blocks[0].params != self.params:
+            raise _tag_error("TAG block parameter holds ',', '*' or a backslash")
+
+    def to_text(self) -> str:
+        """The block as written on the wire, backslashes included."""
+        body = ",".join(f"{code}:{value}" for code, value in self.params)
+        return _block_text(body, self.checksum)
+
+    def get(self, code: str) -> str | None:
+        """The text of the first parameter with this code, or None."""
+        return next((value for c, value in self.params if c == code), None)
+
+    def integer_of(self, code: str) -> int | None:
+        """The first value of an integer code, None when absent or empty."""
+        value = self.get(code)
+        return int(value) if value else None
+
+    def group_of(self, code: str) -> TagGroup | None:
+        """The first value of a group code, None when absent or empty."""
+        value = self.get(code)
+        return TagGroup(*map(int, value.split("-"))) if value else None
+
+    def text_of(self, code: str) -> str | None:
+        """The first value of a text code, None when absent or empty."""
+        return self.get(code) or None
+
+    def to_dict(self) -> dict[str, Any]:
+        """The parameters as plain values, by the spec's id (an unknown code by itself): the
+        first of each code."""
+        out: dict[str, Any] = {}
+        for code, _ in self.params:
+            known = self.CODES.get(code)
+            key = known.id if known else code
+            if key not in out:
+                value = getattr(self, key) if known else self.get(code)
+                out[key] = value._asdict() if isinstance(value, TagGroup) else value
+        return out
+
+    def to_json(self) -> str:
+        params = ",".join(
+            f'{{"code":{json_str(c)},"value":{json_str(v)}}}' for c, v in self.params
+        )
+        return f'{{"params":[{params}],"checksum":"{self.to_text()[-3:-1]}"}}'
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, TagBlock) and self.to_text() == other.text()
+
+    def __hash__(self) -> int:
+        return hash(self.to_text())
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.to_text()!r})"
+
+
+def _block_text(body: str, checksum_style: str | None) -> str:
+    text = f"{checksum(body):02X}"
+    return f"\\{body}*{text.lower() if checksum_style == 'lower' else text}\\"
+
+
+def _tag_text(value: Any) -> str:
+    if isinstance(value, tuple):
+        return "-".join(str(part) for part in value)
+    return str(value)
+
+
+def read_tag_blocks(cls: type[TagBlock], line: str) -> tuple[tuple[TagBlock, ...], str]:
+    """The TAG blocks at the start of `line` and the rest of the line after them: a `$`/`!`
+    sentence, or empty for a line of TAG blocks only. Raises NmeaError bad_tag_block saying what
+    is wrong (not_a_sentence for a byte outside printable ASCII)."""
+    check_printable(line)
+    blocks = []
+    while line[:1] == "\\":
+        close = line.find("\\", 1)
+        if close < 0:
+            raise _tag_error("TAG block has no closing backslash")
+        inner = line[1:close]
+        star = inner.find("*")
+        if star < 0:
+            raise _tag_error(f"TAG block {json_str(inner)} has no checksum")
+        body, sent = inner[:star], inner[star + 1 :]
+        if (
+            len(sent) != 2
+            or sent[0] not in _HEX_DIGITS
+            or sent[1] not in _HEX_DIGITS
+            or (sent != sent.upper() and sent != sent.lower())
+        ):
+            raise _tag_error(
+                f"TAG block checksum {json_str(sent)} is not two hex digits of one letter case"
+            )
+        computed = checksum(body)
+        if int(sent, 16) != computed:
+            raise _tag_error(f"TAG block checksum is {sent}, computed {computed:02X}")
+        params = []
+        for param in body.split(","):
+            code, colon, value = param.partition(":")
+            if not colon or not code.isascii() or not code.isalnum():
+                raise _tag_error(f"TAG block parameter {json_str(param)} is not code:value")
+            known = cls.CODES.get(code)
+            if known is not None and not _tag_value_fits(known.type, value):
+                raise _tag_error(
+                    f"TAG block parameter {json_str(param)}: expected {_TAG_FORMS[known.type]}"
+                )
+            params.append((code, value))
+        block = object.__new__(cls)
+        block.params = tuple(params)
+        block.checksum = checksum_case(sent) or "upper"
+        blocks.append(block)
+        line = line[close + 1 :]
+    if line[:1] not in ("", "$", "!"):
+        raise _tag_error("TAG block is followed by neither '$', '!' nor a TAG block")
+    return tuple(blocks), line
+
+
+def tag_blocks_from_json(cls: type[TagBlock], items: Any) -> tuple[TagBlock, ...]:
+    """The blocks of a `tag_blocks` array of the tools' JSON, read back as received ones."""
+    if not isinstance(items, list) or not items:
+        raise bad_json('"tag_blocks" is not an array of TAG blocks')
+    blocks = ""
+    for item in items:
+        params = []
+        for param in json_list(item, "params"):
+            texts = json_str_member(param, "code"), json_str_member(param, "value")
+            for text in texts:
+                if not (text.isascii() and text.isprintable()) or any(c in text for c in ",*\\"):
+                    raise bad_json(
+                        f"TAG block text {json_str(text)} holds ',', '*', a backslash or a byte"
+                        " outside printable ASCII"
+                    )
+            params.append(":".join(texts))
+        blocks += _block_text(",".join(params), checksum_case(json_str_member(item, "checksum")))
+    return read_tag_blocks(cls, blocks)[0]
 
 
 # ---------------------------------------------------------------------------------------------

@@ -5,6 +5,9 @@ going whatever arrives:
 - CR LF, LF and a bare CR all end a line; empty lines are skipped;
 - a '$' or '!' always starts a new sentence: whatever came before it on the line (garbage, or a
   sentence cut short) is handed on as a line of its own, and is reported by the decoder;
+- but a '\\' at the start of a line opens a TAG block, which keeps its sentence: until the
+  block's closing '\\' every byte but a line ending belongs to it, and a '$', '!' or '\\' right
+  after that continues the line;
 - a line longer than MAX_LINE is not kept: its bytes are only counted, and it is reported as
   too_long with its length;
 - a last line without an ending still counts.
@@ -22,6 +25,9 @@ from .runtime import MAX_LINE, NmeaError
 
 _STARTS = frozenset(b"$!")
 _ENDS = frozenset(b"\r\n")
+_TAG = ord("\\")
+# Where the line is with respect to TAG blocks.
+_OUTSIDE, _IN_TAG, _AFTER_TAG = 0, 1, 2
 
 
 class Framer:
@@ -31,20 +37,24 @@ class Framer:
         self.max_line = max_line
         self._line = bytearray()
         self._length = 0
+        self._tag = _OUTSIDE
 
     def feed(self, data: bytes) -> list[bytes | int]:
         out: list[bytes | int] = []
         for byte in data:
             if byte in _ENDS:
                 self._finish(out)
-            elif byte in _STARTS:
+                continue
+            if byte == _TAG and (self._length == 0 or self._tag != _OUTSIDE):
+                # opens a block (at the start, or right after one), or closes the open one
+                self._tag = _AFTER_TAG if self._tag == _IN_TAG else _IN_TAG
+            elif byte in _STARTS and self._tag == _OUTSIDE:
                 self._finish(out)
+            elif self._tag == _AFTER_TAG:
+                self._tag = _OUTSIDE  # the sentence after the blocks, or whatever else follows
+            self._length += 1
+            if self._length <= self.max_line:
                 self._line.append(byte)
-                self._length = 1
-            else:
-                self._length += 1
-                if self._length <= self.max_line:
-                    self._line.append(byte)
         return out
 
     def end(self) -> list[bytes | int]:
@@ -58,6 +68,7 @@ class Framer:
             out.append(bytes(self._line) if self._length <= self.max_line else self._length)
         self._line.clear()
         self._length = 0
+        self._tag = _OUTSIDE
 
 
 def _chunks(source: BinaryIO | Any | Iterable[bytes], size: int) -> Iterator[bytes]:

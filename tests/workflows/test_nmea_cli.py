@@ -52,6 +52,26 @@ def test_csv(installed: Venv) -> None:
     assert rows[1][:3] == ["19:32:21.00", "20.6287983", "-87.06808"] and len(rows) == 8
 
 
+TAG_LINES = Path(__file__).resolve().parents[1] / "data" / "tag_blocks" / "real.nmea"
+
+
+def test_tag_blocks_in_table_csv_and_json(installed: Venv) -> None:
+    lines = TAG_LINES.read_bytes() + b"\\s:2573535,c:1671533231*08\\\n"
+    table = nmea(installed, "show", "-", input=lines).stdout.decode().splitlines()
+    assert table[1].split()[:4] == ["1", "AI", "VDM", "tag(group=(number=1"]
+    assert "source=r003669945 time=1241544035)" in table[1]
+    assert table[-1].split() == ["10", "TAG", "tag(source=2573535", "time=1671533231)"]
+    rows = list(csv.reader(io.StringIO(nmea(
+        installed, "show", "--csv", "--fields", "line,sentence,tag.source,tag.time,tag.q", "-", input=lines
+    ).stdout.decode())))
+    assert rows[0] == ["line", "sentence", "tag.source", "tag.time", "tag.q"]
+    assert rows[9] == ["9", "VDM", "rORBCOMM000", "1426032001", "u"]
+    records = [json.loads(r) for r in nmea(installed, "show", "--json", "-", input=lines).stdout.splitlines()]
+    assert records[4]["tag_block"] == {"source": "APIDSSRC1", "group": {"number": 1, "count": 2, "id": 5649},
+                                       "line_count": 8851, "time": 2780328}
+    assert "tag_block" in records[-1] and records[-1]["sentence"] == "TAG"
+
+
 def test_stdin_errors_and_no_progress_bar_in_a_pipe(installed: Venv) -> None:
     data = corpus_log(ERRORS_LOG).read_bytes()
     result = nmea(installed, "-", "--fields", "sentence", input=data)

@@ -225,6 +225,19 @@ def framed(data: bytes) -> list[bytes | int]:
     return framer.feed(data) + framer.end()
 
 
+def test_the_framer_keeps_a_tag_block_with_its_sentence() -> None:
+    """A '\\' at the start of a line opens a TAG block: the '$' or '!' after its closing '\\'
+    continues the line (the cases of the C and Rust framers' tests), in chunks of any size."""
+    stream = (b"junk\\s:1*00\\$GPGGA,1*00\r\n\\s:x*31\\\\c:1*00\\!AIVDM,x\n$GPRMC\\x\\$GPGGA\n"
+              b"\\g:1$2\\$GP\\x")
+    expected = [b"junk\\s:1*00\\", b"$GPGGA,1*00", b"\\s:x*31\\\\c:1*00\\!AIVDM,x", b"$GPRMC\\x\\",
+                b"$GPGGA", b"\\g:1$2\\$GP\\x"]
+    for size in range(1, len(stream) + 1):
+        framer = Framer()
+        items = [i for at in range(0, len(stream), size) for i in framer.feed(stream[at:at + size])]
+        assert items + framer.end() == expected, size
+
+
 # --------------------------------------------------------------------------------------------
 # The API
 

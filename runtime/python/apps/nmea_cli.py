@@ -26,7 +26,7 @@ from itertools import islice
 from typing import IO, Any
 
 from .. import __version__
-from ..api import Generic, parse
+from ..api import Generic, Tagged, parse
 from ..fixes import Fix, fixes
 from ..receiver import Receiver, ReceiverError, ReplyTimeout, check_baud
 from ..runtime import NmeaError
@@ -44,9 +44,11 @@ examples:
   nmea show --fixes --json track.nmea                    each fix whole, satellites included
 
 Fields are the field ids of the reference docs (`time`, `lat`, `quality`...), plus `line`,
-`talker` and `sentence`. Latitudes and longitudes are shown in signed decimal degrees, enums by
-value id. The summary (counts per sentence, errors by kind, unknown sentences) goes to stderr.
-With --fixes, the columns are the facts of a fix (FIX_COLUMNS; `used` and `in_view` count the
+`talker`, `sentence` and the parameters of a line's TAG blocks as `tag.source`, `tag.time`...
+(generated/docs/tag_block.md; JSON lines carry them as `tag_block`, the table and CSV put
+them first in `fields`; a line of TAG blocks only is a row of sentence `TAG`). Latitudes and
+longitudes are shown in signed decimal degrees, enums by value id. The summary (counts per
+sentence, errors by kind, unknown sentences) goes to stderr. With --fixes, the columns are the facts of a fix (FIX_COLUMNS; `used` and `in_view` count the
 satellites), and --json gives every fact of each.
 """
 
@@ -246,13 +248,30 @@ def framed_records(
         except NmeaError as err:
             summary.errors[err.kind] += 1
             continue
-        name, talker, fields = describe(sentence)
+        tags = None
+        if isinstance(sentence, Tagged):
+            tags = tag_values(sentence)
+            sentence = sentence.sentence
+        name, talker, fields = ("TAG", None, {}) if sentence is None else describe(sentence)
         if isinstance(sentence, Generic):
             summary.unknown[name] += 1
         else:
             summary.sentences[name] += 1
         if wanted is None or name in wanted:
-            yield {"line": number, "talker": talker, "sentence": name, "fields": fields}
+            record = {"line": number, "talker": talker, "sentence": name, "fields": fields}
+            if tags is not None:
+                record["tag_block"] = tags
+            yield record
+
+
+def tag_values(tagged: Tagged) -> dict[str, Any]:
+    """The parameters of a line's TAG blocks as plain values by the spec's id (an unknown code
+    by itself), the first of each."""
+    values: dict[str, Any] = {}
+    for block in tagged.tag_blocks:
+        for key, value in block.to_dict().items():
+            values.setdefault(key, value)
+    return values
 
 
 def describe(sentence: Any) -> tuple[str, str | None, dict[str, Any]]:
@@ -266,8 +285,20 @@ def describe(sentence: Any) -> tuple[str, str | None, dict[str, Any]]:
 
 def _row(record: dict[str, Any], fields: list[str] | None) -> list[Any]:
     if fields is None:
-        return [record["line"], record["talker"], record["sentence"], _summary(record["fields"])]
-    return [record[f] if f in SPECIAL_FIELDS else record["fields"].get(f) for f in fields]
+        summary = _summary(record["fields"])
+        if "tag_block" in record:
+            summary = ("tag" + _text(record["tag_block"]) + " " + summary).rstrip()
+        return [record["line"], record["talker"], record["sentence"], summary]
+    return [_cell(record, f) for f in fields]
+
+
+def _cell(record: dict[str, Any], field: str) -> Any:
+    """A --fields column of a record: a special field, a TAG block parameter, a field."""
+    if field in SPECIAL_FIELDS:
+        return record[field]
+    if field.startswith("tag."):
+        return record.get("tag_block", {}).get(field[4:])
+    return record["fields"].get(field)
 
 
 def write_table(
@@ -362,6 +393,11 @@ def parsed(items: Iterable[bytes | int], summary: Summary, **options: bool) -> I
         except NmeaError as err:
             summary.errors[err.kind] += 1
             continue
+        if isinstance(sentence, Tagged):  # the sentence behind its TAG blocks
+            sentence = sentence.sentence
+            if sentence is None:
+                summary.sentences["TAG"] += 1
+                continue
         if isinstance(sentence, Generic):
             summary.unknown[sentence.address] += 1
         else:

@@ -28,7 +28,7 @@ import typing
 from collections import Counter
 from typing import TYPE_CHECKING, Any
 
-from ..api import parse
+from ..api import Tagged, parse
 from ..runtime import Coordinate, Date, NmeaError, Number, Time
 from ..stream import lines, too_long
 from .nmea_cli import CliError, _chunks, add_progress_options, open_log, progress_for
@@ -276,6 +276,10 @@ class Log:
             except NmeaError as err:
                 self._error(number, err, item)
                 continue
+            if isinstance(sentence, Tagged):  # the sentence behind its TAG blocks, if any
+                sentence = sentence.sentence
+                if sentence is None:
+                    continue
             self.add(number, sentence)
         # an epoch cut short by the end of the log (a set not finished, or fewer sets than the
         # epoch before it) counts no satellites in view

@@ -136,3 +136,82 @@ def test_values_as_python_expects_them() -> None:
     assert rt.utc_datetime_of(*parts, time) == when.replace(2003, 10, 14)
     assert rt.plain(rt.ABSENT) is None and rt.plain(lat) == float(lat)
     assert rt.plain(rt.parse_time("235960")) is None
+
+
+class TagBlock(rt.TagBlock):
+    """What the generated nmeaspec.tag_block.TagBlock gives the runtime: the codes, a property
+    each (three of the spec's)."""
+
+    __slots__ = ()
+    CODES = {
+        "c": rt.TagCode("c", "time", "integer"),
+        "g": rt.TagCode("g", "group", "group"),
+        "s": rt.TagCode("s", "source", "text"),
+    }
+
+    @property
+    def time(self) -> int | None:
+        return self.integer_of("c")
+
+    @property
+    def group(self) -> rt.TagGroup | None:
+        return self.group_of("g")
+
+    @property
+    def source(self) -> str | None:
+        return self.text_of("s")
+
+
+def test_tag_blocks_are_read_and_written_back() -> None:
+    line = "\\g:1-2-073874,q:u,s:r003669945,c:1241544035*16\\\\t:*4E\\$GPTST,12,abc*27"
+    blocks, rest = rt.read_tag_blocks(TagBlock, line)
+    assert rest == "$GPTST,12,abc*27"
+    assert "".join(b.to_text() for b in blocks) + rest == line
+    first = blocks[0]
+    assert first.params[1] == ("q", "u") and first.get("t") is None and blocks[1].get("t") == ""
+    assert (first.time, first.group, first.source) == (
+        1241544035, rt.TagGroup(1, 2, 73874), "r003669945"
+    )
+    assert first.to_dict() == {"group": {"number": 1, "count": 2, "id": 73874}, "q": "u",
+                               "source": "r003669945", "time": 1241544035}
+    assert blocks[1].checksum == "upper" and rt.read_tag_blocks(TagBlock, "\\s:x*31\\")[1] == ""
+    lower = rt.read_tag_blocks(TagBlock, "\\t:*4e\\")[0][0]
+    assert lower.checksum == "lower" and lower.to_text() == "\\t:*4e\\"
+    assert first.to_json() == (
+        '{"params":[{"code":"g","value":"1-2-073874"},{"code":"q","value":"u"},'
+        '{"code":"s","value":"r003669945"},{"code":"c","value":"1241544035"}],"checksum":"16"}'
+    )
+
+
+def test_a_tag_block_is_built_from_its_values() -> None:
+    block = TagBlock(source="r003669945", time=1241544035)
+    assert block.to_text() == "\\s:r003669945,c:1241544035*79\\"
+    assert TagBlock([("x", "1")], group=(1, 2, 3)).to_text() == "\\x:1,g:1-2-3*32\\"
+    with pytest.raises(rt.NmeaError, match="expected digits"):
+        TagBlock(time="12a")
+    with pytest.raises(rt.NmeaError, match="holds ',', '\\*' or a backslash"):
+        TagBlock(source="a,b:c")
+    with pytest.raises(TypeError):
+        TagBlock(destination="x")
+
+
+@pytest.mark.parametrize(
+    "line, kind, message",
+    [
+        ("\\s:x*00\\", "bad_tag_block", "TAG block checksum is 00, computed 31"),
+        ("\\s:x*31", "bad_tag_block", "TAG block has no closing backslash"),
+        ("\\s:x\\", "bad_tag_block", 'TAG block "s:x" has no checksum'),
+        ("\\s:x*3\\", "bad_tag_block",
+         'TAG block checksum "3" is not two hex digits of one letter case'),
+        ("\\sx*0B\\", "bad_tag_block", 'TAG block parameter "sx" is not code:value'),
+        ("\\*00\\", "bad_tag_block", 'TAG block parameter "" is not code:value'),
+        ("\\g:1-2*73\\", "bad_tag_block", 'TAG block parameter "g:1-2": expected n-m-id'),
+        ("\\s:x*31\\GPGGA", "bad_tag_block",
+         "TAG block is followed by neither '$', '!' nor a TAG block"),
+        ("\\s:\x01*48\\", "not_a_sentence", "byte 0x01 at offset 3 is not printable ASCII"),
+    ],
+)
+def test_bad_tag_blocks_say_why(line: str, kind: str, message: str) -> None:
+    with pytest.raises(rt.NmeaError) as refused:
+        rt.read_tag_blocks(TagBlock, line)
+    assert (refused.value.kind, refused.value.message) == (kind, message)

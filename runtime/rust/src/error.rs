@@ -14,6 +14,8 @@ pub enum ErrorKind {
     TooLong,
     /// Not a sentence at all: empty, no `$`/`!` start, unprintable bytes, bad address.
     NotASentence,
+    /// A TAG block before the sentence (or on its own) is malformed.
+    BadTagBlock,
     /// The text after `*` is not two hex digits of one letter case.
     BadChecksum,
     /// The checksum differs from the XOR of the sentence body.
@@ -38,6 +40,7 @@ impl ErrorKind {
         match self {
             Self::TooLong => "too_long",
             Self::NotASentence => "not_a_sentence",
+            Self::BadTagBlock => "bad_tag_block",
             Self::BadChecksum => "bad_checksum",
             Self::ChecksumMismatch => "checksum_mismatch",
             Self::TooFewFields => "too_few_fields",
@@ -120,6 +123,41 @@ pub enum Message<'a> {
         /// Its offset in the line.
         offset: usize,
     },
+    /// `TAG block has no closing backslash`
+    TagUnclosed,
+    /// `TAG block "TEXT" has no checksum`
+    TagNoChecksum {
+        /// The block between its backslashes.
+        text: &'a str,
+    },
+    /// `TAG block checksum "TEXT" is not two hex digits of one letter case`
+    TagBadChecksum {
+        /// Everything between the `*` and the closing backslash.
+        text: &'a str,
+    },
+    /// `TAG block checksum is TEXT, computed HH`
+    TagChecksumMismatch {
+        /// The two digits received.
+        sent: &'a str,
+        /// The XOR of the block's parameters.
+        computed: u8,
+    },
+    /// `TAG block parameter "TEXT" is not code:value`
+    TagBadParameter {
+        /// The parameter.
+        text: &'a str,
+    },
+    /// `TAG block parameter "TEXT": expected FORM`
+    TagBadValue {
+        /// The parameter.
+        text: &'a str,
+        /// What its code's value must look like.
+        form: &'static str,
+    },
+    /// `TAG block is followed by neither '$', '!' nor a TAG block`
+    TagFollowed,
+    /// `TAG block parameter holds ',', '*' or a backslash` (a block built from parameters).
+    TagParameterHolds,
     /// `checksum "TEXT" is not two hex digits of one letter case`
     BadChecksum {
         /// Everything after the `*`.
@@ -212,6 +250,14 @@ impl Message<'_> {
             | Self::NotPrintable { .. }
             | Self::BadAddress { .. }
             | Self::WrongSentence { .. } => ErrorKind::NotASentence,
+            Self::TagUnclosed
+            | Self::TagNoChecksum { .. }
+            | Self::TagBadChecksum { .. }
+            | Self::TagChecksumMismatch { .. }
+            | Self::TagBadParameter { .. }
+            | Self::TagBadValue { .. }
+            | Self::TagFollowed
+            | Self::TagParameterHolds => ErrorKind::BadTagBlock,
             Self::BadChecksum { .. } => ErrorKind::BadChecksum,
             Self::ChecksumMismatch { .. } => ErrorKind::ChecksumMismatch,
             Self::TooFew { .. } | Self::GroupCut { .. } => ErrorKind::TooFewFields,
@@ -236,6 +282,32 @@ impl fmt::Display for Message<'_> {
             Self::NotPrintable { byte, offset } => {
                 write!(f, "byte 0x{byte:02x} at offset {offset} is not printable ASCII")
             }
+            Self::TagUnclosed => f.write_str("TAG block has no closing backslash"),
+            Self::TagNoChecksum { text } => {
+                f.write_str("TAG block ")?;
+                write_json_str(f, text)?;
+                f.write_str(" has no checksum")
+            }
+            Self::TagBadChecksum { text } => {
+                f.write_str("TAG block checksum ")?;
+                write_json_str(f, text)?;
+                f.write_str(" is not two hex digits of one letter case")
+            }
+            Self::TagChecksumMismatch { sent, computed } => {
+                write!(f, "TAG block checksum is {sent}, computed {computed:02X}")
+            }
+            Self::TagBadParameter { text } => {
+                f.write_str("TAG block parameter ")?;
+                write_json_str(f, text)?;
+                f.write_str(" is not code:value")
+            }
+            Self::TagBadValue { text, form } => {
+                f.write_str("TAG block parameter ")?;
+                write_json_str(f, text)?;
+                write!(f, ": expected {form}")
+            }
+            Self::TagFollowed => f.write_str("TAG block is followed by neither '$', '!' nor a TAG block"),
+            Self::TagParameterHolds => f.write_str("TAG block parameter holds ',', '*' or a backslash"),
             Self::BadChecksum { text } => {
                 f.write_str("checksum ")?;
                 write_json_str(f, text)?;

@@ -24,7 +24,7 @@ use std::string::String;
 use std::vec::Vec;
 
 use super::layout::Layout;
-use super::parse::{parse, Layouts};
+use super::parse::{parse_with, Layouts, Options};
 use super::types::{Code, CodeChars, CodeEnum, Coordinate, Date, Number, Time};
 use super::values::{days_from_civil, DateTime};
 use super::write::write_json_str;
@@ -516,13 +516,13 @@ impl FixAssembler {
         closed
     }
 
-    /// Parses a line with the layouts `L` and adds it ([`FixAssembler::feed`]); a line that does
-    /// not parse is skipped.
+    /// Parses a line with the layouts `L` and adds it ([`FixAssembler::feed`]), behind its TAG
+    /// blocks if any; a line that does not parse is skipped.
     pub fn feed_line_of<L: Layouts>(&mut self, line: &[u8]) -> Option<Fix>
     where
         for<'a> L::Sentence<'a>: FixSource,
     {
-        parse::<L>(line).ok().and_then(|sentence| self.feed(&sentence))
+        parse_with::<L>(line, Options::default()).ok().and_then(|parsed| self.feed(&parsed.sentence))
     }
 
     /// The fix of the epoch under way, at the end of the stream.

@@ -313,7 +313,7 @@ impl Scan {
     }
 }
 
-fn hex_value(b: u8) -> u8 {
+pub(crate) fn hex_value(b: u8) -> u8 {
     match b {
         b'0'..=b'9' => b - b'0',
         b'a'..=b'f' => b - b'a' + 10,

@@ -340,6 +340,44 @@ impl fmt::Display for JsonStr<'_> {
     }
 }
 
+/// The TAG blocks of a `"tag_blocks"` array written back (each block's parameters and its
+/// checksum, computed in the letter case its `"checksum"` gives); unchecked: parsing reads them.
+pub fn tag_blocks(items: &Value) -> Result<String, Error<'static>> {
+    let not_blocks = || Error::bad_json("\"tag_blocks\" is not an array of TAG blocks");
+    let Value::Array(items) = items else {
+        return Err(not_blocks());
+    };
+    if items.is_empty() {
+        return Err(not_blocks());
+    }
+    let mut text = String::new();
+    for item in items {
+        let mut body = String::new();
+        for (i, param) in list(item, "params")?.iter().enumerate() {
+            let (code, value) = (tag_text(param, "code")?, tag_text(param, "value")?);
+            body.extend([if i == 0 { "" } else { "," }, code, ":", value]);
+        }
+        let sum = super::frame::checksum(body.as_bytes());
+        text += &match checksum_case(Some(str_member(item, "checksum")?)) {
+            Checksum::Lower => format!("\\{body}*{sum:02x}\\"),
+            _ => format!("\\{body}*{sum:02X}\\"),
+        };
+    }
+    Ok(text)
+}
+
+/// A TAG block parameter's code or value: printable ASCII without `,`, `*`, `\`.
+fn tag_text<'v>(param: &'v Value, key: &str) -> Result<&'v str, Error<'static>> {
+    let text = str_member(param, key)?;
+    if text.bytes().all(|b| (0x20..=0x7e).contains(&b) && b != b',' && b != b'*' && b != b'\\') {
+        return Ok(text);
+    }
+    Err(Error::bad_json(format!(
+        "TAG block text {} holds ',', '*', a backslash or a byte outside printable ASCII",
+        JsonStr(text)
+    )))
+}
+
 /// The wire text of a field value: a string or null (empty), printable ASCII without `,`, `*`.
 pub fn text(value: &Value) -> Result<&str, Error<'static>> {
     match value {

@@ -16,6 +16,7 @@ mod frame;
 mod layout;
 mod parse;
 mod table;
+mod tag;
 mod tools;
 mod types;
 mod values;
@@ -43,6 +44,7 @@ pub use parse::{
     Parsed,
 };
 pub use table::{Encoding, ParamValue, Parameter, ParameterError, Problem, Table};
+pub use tag::{write_tag_block, TagBlock, TagBlocks, TagCode, TagType};
 #[cfg(feature = "std")]
 pub use tools::{decode_json, decode_json_with, encode_json, write_encoded, Rebuilt};
 pub use tools::{write_decoded, write_decoded_with};

@@ -10,6 +10,7 @@ use super::error::{Error, ErrorKind, Message, ProblemKind, Problems};
 use super::fast::{FastReader, Unsure};
 use super::frame::{first_word, Fields, Frame, MAX_LINE};
 use super::layout::{build, strip_line_ending, Framing, Generic, Layout};
+use super::tag::{TagBlocks, TagCode};
 use super::types::Checksum;
 use super::write::{ByteWriter, Latin1Bytes};
 
@@ -22,6 +23,9 @@ pub trait Layouts: Copy + PartialEq + 'static {
     /// Every layout, in parse order.
     #[cfg(feature = "std")]
     const ALL: &'static [Self];
+
+    /// The TAG block codes the spec names (spec/tag_block.yaml).
+    const TAG_CODES: &'static [TagCode];
 
     /// The layouts a framed line may have, in the order the parser tries them: those of a `$` or
     /// `!` address, or of a text command's word (start `""`); none for anything else.
@@ -225,28 +229,62 @@ pub struct Options {
     pub strict: bool,
 }
 
-/// A sentence decoded by `parse_with`, and its problems: the numbers kept outside their range,
-/// and the fields lenient parsing left empty (with their text as received, written back by
-/// `Display` so that the round trip stays exact).
+/// A sentence decoded by `parse_with`, its problems (the numbers kept outside their range, and
+/// the fields lenient parsing left empty, with their text as received, written back by `Display`
+/// so that the round trip stays exact) and the TAG blocks before it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Parsed<'a, S> {
-    /// The decoded sentence (fields at fault are `None`).
+    /// The decoded sentence (fields at fault are `None`); an empty [`Generic`] one for a line of
+    /// TAG blocks only ([`TagBlocks::alone`]).
     pub sentence: S,
     /// The numbers kept outside their range and the fields lenient parsing left empty, in the
     /// order their errors came.
     pub problems: Problems<'a>,
+    /// The TAG blocks before the sentence, as received (none: empty).
+    pub tag_blocks: TagBlocks<'a>,
 }
 
 impl<S> From<S> for Parsed<'_, S> {
     fn from(sentence: S) -> Self {
-        Self { sentence, problems: Problems::new() }
+        Self { sentence, problems: Problems::new(), tag_blocks: TagBlocks::NONE }
+    }
+}
+
+/// A writer that holds back the last character written to it: the closing brace of a sentence's
+/// JSON, in whose place the TAG blocks go.
+struct HoldLast<'w, W: ?Sized> {
+    out: &'w mut W,
+    last: Option<char>,
+}
+
+impl<W: Write + ?Sized> Write for HoldLast<'_, W> {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        let mut chars = s.chars();
+        let Some(last) = chars.next_back() else {
+            return Ok(());
+        };
+        if let Some(held) = self.last.replace(last) {
+            self.out.write_char(held)?;
+        }
+        self.out.write_str(chars.as_str())
     }
 }
 
 impl<S: Decoded> Parsed<'_, S> {
-    /// Writes the tools' JSON line: `"problems"` follows `"fields"` when there are any.
+    /// Writes the tools' JSON line: `"problems"` follows `"fields"` when there are any, and
+    /// `"tag_blocks"` comes last (alone after `"ok"` for a line of TAG blocks only).
     pub fn write_json<W: Write + ?Sized>(&self, out: &mut W, values: bool) -> fmt::Result {
-        self.sentence.write_json_with(out, values, &self.problems)
+        if self.tag_blocks.is_empty() {
+            return self.sentence.write_json_with(out, values, &self.problems);
+        }
+        if self.tag_blocks.alone() {
+            out.write_str("{\"ok\":true,")?;
+        } else {
+            self.sentence.write_json_with(&mut HoldLast { out: &mut *out, last: None }, values, &self.problems)?;
+            out.write_char(',')?;
+        }
+        self.tag_blocks.write_json(out)?;
+        out.write_char('}')
     }
 
     /// The tools' JSON line (`values`: decoded values instead of the lossless texts).
@@ -260,13 +298,23 @@ impl<S: Decoded> Parsed<'_, S> {
     /// The sentence text with the problem fields' texts put back (what `Display` writes, no
     /// line ending) at the start of `buf`: its length, or `None` when `buf` cannot hold it.
     pub fn serialize_into(&self, buf: &mut [u8]) -> Option<usize> {
-        self.sentence.serialize_with(buf, &self.problems)
+        let tags = self.tag_blocks.as_str().as_bytes();
+        buf.get_mut(..tags.len())?.copy_from_slice(tags);
+        if self.tag_blocks.alone() {
+            return Some(tags.len());
+        }
+        Some(tags.len() + self.sentence.serialize_with(&mut buf[tags.len()..], &self.problems)?)
     }
 }
 
 impl<S: Decoded> fmt::Display for Parsed<'_, S> {
-    /// The sentence text with the problem fields' texts put back; no line ending.
+    /// The TAG blocks as received and the sentence text with the problem fields' texts put
+    /// back; no line ending.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.tag_blocks.as_str())?;
+        if self.tag_blocks.alone() {
+            return Ok(());
+        }
         if self.problems.is_empty() {
             // Put together on the stack and written at once, as `Sentence`'s `Display` does.
             let mut buf = [0; MAX_LINE];
@@ -281,6 +329,9 @@ impl<S: Decoded> fmt::Display for Parsed<'_, S> {
 /// [`parse`] with options: lenient decoding, required checksums, strict ranges.
 pub fn parse_with<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
     let line = strip_line_ending(line);
+    if line.first() == Some(&b'\\') {
+        return parse_tagged::<L>(line, options, parse_with::<L>);
+    }
     let fast = FastReader::frame(line).and_then(|fields| L::read_sentence::<Option<_>>(fields, line));
     if let Some(sentence) = fast {
         return Ok(sentence.into());
@@ -288,9 +339,37 @@ pub fn parse_with<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_
     general_with::<L>(line, options)
 }
 
+/// How the sentence after a line's TAG blocks is read: [`parse_with`] or its general path alone.
+type SentenceParser<L> = for<'a> fn(&'a [u8], Options) -> Result<Parsed<'a, <L as Layouts>::Sentence<'a>>, Error<'a>>;
+
+/// A line that starts with TAG blocks: the blocks, then the sentence after them read by `parse`
+/// (none: an empty [`Generic`] sentence).
+fn parse_tagged<L: Layouts>(
+    line: &[u8],
+    options: Options,
+    parse: SentenceParser<L>,
+) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
+    if line.len() > MAX_LINE {
+        return Err(Error::too_long(line.len()));
+    }
+    let (tag_blocks, rest) = TagBlocks::read(line, L::TAG_CODES)?;
+    let mut parsed = if rest.is_empty() {
+        let empty = Generic { start: "", address: "", fields: Fields::new("", "", 0), checksum: Checksum::None };
+        Parsed::from(L::Sentence::from(empty))
+    } else {
+        parse(rest, options)?
+    };
+    parsed.tag_blocks = tag_blocks;
+    Ok(parsed)
+}
+
 /// [`parse_with`] without its fast path (see [`parse_general`]).
 pub fn parse_with_general<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
-    general_with::<L>(strip_line_ending(line), options)
+    let line = strip_line_ending(line);
+    if line.first() == Some(&b'\\') {
+        return parse_tagged::<L>(line, options, parse_with_general::<L>);
+    }
+    general_with::<L>(line, options)
 }
 
 /// The general path of [`parse_with`], for a line without its line ending.
@@ -345,7 +424,7 @@ pub fn refit<'a, L: Layouts>(
             ProblemKind::LeftEmpty => fields.with_blank(index),
         };
         match first_fit(layouts, fields, checksum) {
-            Ok(sentence) => return Ok(Parsed { sentence, problems }),
+            Ok(sentence) => return Ok(Parsed { sentence, problems, tag_blocks: TagBlocks::NONE }),
             Err(again) => error = again,
         }
     }
@@ -435,6 +514,7 @@ fn first_fit<'a, L: Layouts>(
 
 #[cfg(test)]
 pub(super) mod tests {
+    use super::super::tag::TagType;
     use super::*;
 
     /// A spec without layouts: every well-formed line is a generic sentence.
@@ -445,6 +525,11 @@ pub(super) mod tests {
         type Sentence<'a> = Generic<'a>;
         #[cfg(feature = "std")]
         const ALL: &'static [Self] = &[];
+        const TAG_CODES: &'static [TagCode] = &[
+            TagCode { code: "c", id: "time", name: "UNIX time", kind: TagType::Integer },
+            TagCode { code: "g", id: "group", name: "Sentence grouping", kind: TagType::Group },
+            TagCode { code: "s", id: "source", name: "Source", kind: TagType::Text },
+        ];
 
         fn of(_: &str, _: &[u8]) -> &'static [Self] {
             &[]

@@ -5,6 +5,9 @@
 //! - CR LF, LF and a bare CR all end a line; empty lines are skipped;
 //! - a `$` or `!` always starts a new sentence: whatever came before it on the line (garbage, or
 //!   a sentence cut short) is handed on as a line of its own, and is reported by the decoder;
+//! - but a `\` at the start of a line opens a TAG block, which keeps its sentence: up to the
+//!   block's closing `\` every byte but CR and LF belongs to it, and a `$`, `!` or `\` right
+//!   after that continues the line;
 //! - a line longer than [`MAX_LINE`] is not kept: its bytes are only counted, and it is reported
 //!   as `too_long` with its length;
 //! - a last line without an ending still counts ([`Framer::finish`]).
@@ -32,6 +35,16 @@ pub struct Framer {
     handed: bool,
     /// The start character (`$`/`!`) the next line begins with, once the current one is handed.
     pending: Option<u8>,
+    /// Where the current line is as to TAG blocks.
+    tag: TagState,
+}
+
+/// Where a line is as to TAG blocks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum TagState {
+    Outside,
+    InBlock,
+    AfterBlock,
 }
 
 impl Default for Framer {
@@ -43,26 +56,31 @@ impl Default for Framer {
 impl Framer {
     /// A framer at the start of a stream.
     pub const fn new() -> Self {
-        Self { line: [0; MAX_LINE], length: 0, handed: false, pending: None }
+        Self { line: [0; MAX_LINE], length: 0, handed: false, pending: None, tag: TagState::Outside }
     }
 
     /// Takes one byte; the item it completes, if any (valid until the next call).
     pub fn push(&mut self, byte: u8) -> Option<Item<'_>> {
         self.restart();
         match byte {
-            b'\r' | b'\n' => self.end_line(),
-            b'$' | b'!' => {
+            b'\r' | b'\n' => return self.end_line(),
+            // opens a block (at the start, or right after one), or closes the open one
+            b'\\' if self.length == 0 || self.tag != TagState::Outside => {
+                self.tag = if self.tag == TagState::InBlock { TagState::AfterBlock } else { TagState::InBlock };
+            }
+            b'$' | b'!' if self.tag == TagState::Outside => {
                 self.pending = Some(byte);
-                self.end_line()
+                return self.end_line();
             }
-            _ => {
-                if let Some(slot) = self.line.get_mut(self.length) {
-                    *slot = byte;
-                }
-                self.length = self.length.saturating_add(1);
-                None
-            }
+            // the sentence after the blocks, or whatever else follows them
+            _ if self.tag == TagState::AfterBlock => self.tag = TagState::Outside,
+            _ => {}
         }
+        if let Some(slot) = self.line.get_mut(self.length) {
+            *slot = byte;
+        }
+        self.length = self.length.saturating_add(1);
+        None
     }
 
     /// Feeds a chunk of the stream; `each` gets every item it completes, in order.
@@ -94,6 +112,7 @@ impl Framer {
 
     fn end_line(&mut self) -> Option<Item<'_>> {
         self.handed = true;
+        self.tag = TagState::Outside;
         match self.length {
             0 => None,
             length if length <= MAX_LINE => Some(Item::Line(&self.line[..length])),
@@ -139,6 +158,34 @@ mod tests {
         }
         let (_, n) = items(&[b"$", b"$"]);
         assert_eq!(n, 2);
+    }
+
+    #[test]
+    fn a_tag_block_keeps_its_sentence() {
+        let stream: &[u8] =
+            b"junk\\s:1*00\\$GPGGA,1*00\r\n\\s:x*31\\\\c:1*00\\!AIVDM,x\n$GPRMC\\x\\$GPGGA\n\\g:1$2\\$GP\\x";
+        let expected: &[u8] =
+            b"junk\\s:1*00\\|$GPGGA,1*00|\\s:x*31\\\\c:1*00\\!AIVDM,x|$GPRMC\\x\\|$GPGGA|\\g:1$2\\$GP\\x|";
+        for chunk in 1..=stream.len() {
+            let mut framer = Framer::new();
+            let (mut out, mut len) = ([0u8; 256], 0);
+            {
+                let mut keep = |item: Item<'_>| {
+                    if let Item::Line(line) = item {
+                        out[len..len + line.len()].copy_from_slice(line);
+                        out[len + line.len()] = b'|';
+                        len += line.len() + 1;
+                    }
+                };
+                for part in stream.chunks(chunk) {
+                    framer.feed(part, &mut keep);
+                }
+                if let Some(item) = framer.finish() {
+                    keep(item);
+                }
+            }
+            assert_eq!(&out[..len], expected);
+        }
     }
 
     #[test]

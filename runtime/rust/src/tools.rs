@@ -8,9 +8,11 @@ use super::parse::{parse_with, Layouts, Options};
 #[cfg(feature = "std")]
 use {
     super::error::{Error, ErrorKind},
+    super::frame::Fields,
     super::json::{self, Value, WireFields},
     super::layout::{Framing, Generic},
     super::parse::{refit, Parsed},
+    super::tag::TagBlocks,
     super::types::Checksum,
     std::string::{String, ToString},
 };
@@ -47,6 +49,8 @@ pub struct Rebuilt<L> {
     line: Option<String>,
     /// A sentence lenient decoding kept (its JSON has `"problems"`): parsed leniently again.
     lenient: bool,
+    /// The TAG blocks before it, written back from the JSON (checked when parsed).
+    tag_blocks: Option<String>,
 }
 
 #[cfg(feature = "std")]
@@ -56,6 +60,23 @@ impl<L: Layouts> Rebuilt<L> {
     /// the problems; a sentence whose JSON lists problems is parsed leniently (text commands
     /// are always read strictly).
     pub fn parse(&self) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
+        let Some(text) = &self.tag_blocks else {
+            return self.parse_sentence();
+        };
+        let (blocks, _) = TagBlocks::read(text.as_bytes(), L::TAG_CODES)?;
+        let alone = self.start.is_empty();
+        let mut parsed = if alone {
+            let empty = Generic { start: "", address: "", fields: Fields::new("", "", 0), checksum: Checksum::None };
+            Parsed::from(L::Sentence::from(empty))
+        } else {
+            self.parse_sentence()?
+        };
+        parsed.tag_blocks = blocks.with_alone(alone);
+        Ok(parsed)
+    }
+
+    /// [`Rebuilt::parse`] of the sentence alone.
+    fn parse_sentence(&self) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
         let mut fields = self.fields.fields(&self.address);
         if let Some(line) = &self.line {
             fields = fields.with_line(line);
@@ -83,6 +104,21 @@ impl<L: Layouts> Rebuilt<L> {
         if !obj.is_object() {
             return Err(Error::bad_json("not a JSON object"));
         }
+        let Some(items) = obj.get("tag_blocks") else {
+            return Self::sentence_from_json(obj);
+        };
+        let tag_blocks = Some(json::tag_blocks(items)?);
+        if obj.get("start").is_none() {
+            // a line of TAG blocks only
+            let (start, address, fields) = (String::new(), String::new(), WireFields::default());
+            let checksum = Checksum::None;
+            return Ok(Self { start, address, fields, checksum, layout: None, line: None, lenient: false, tag_blocks });
+        }
+        Ok(Self { tag_blocks, ..Self::sentence_from_json(obj)? })
+    }
+
+    /// [`Rebuilt::from_json`] of the sentence alone.
+    fn sentence_from_json(obj: &Value) -> Result<Self, Error<'static>> {
         let checksum = json::checksum_case(json::opt_text(obj, "checksum")?);
         let Some(sentence) = json::opt_text(obj, "sentence")? else {
             let items = json::list(obj, "fields")?;
@@ -95,7 +131,16 @@ impl<L: Layouts> Rebuilt<L> {
             for item in items {
                 fields.push(json::text(item)?);
             }
-            return Ok(Self { start, address, fields, checksum, layout: None, line: None, lenient: false });
+            return Ok(Self {
+                start,
+                address,
+                fields,
+                checksum,
+                layout: None,
+                line: None,
+                lenient: false,
+                tag_blocks: None,
+            });
         };
         let variant = json::opt_text(obj, "variant")?;
         let unknown = || Error::bad_json(format!("unknown sentence \"{sentence}\""));
@@ -124,7 +169,16 @@ impl<L: Layouts> Rebuilt<L> {
             }
         };
         let start = "$".to_string();
-        Ok(Self { start, address, fields: wire, checksum, layout: Some(layout), line, lenient: false })
+        Ok(Self {
+            start,
+            address,
+            fields: wire,
+            checksum,
+            layout: Some(layout),
+            line,
+            lenient: false,
+            tag_blocks: None,
+        })
     }
 
     /// A sentence that lenient decoding kept: its problem fields' texts go back where they
@@ -157,6 +211,7 @@ impl<L: Layouts> Rebuilt<L> {
             layout: Some(layout),
             line: None,
             lenient: true,
+            tag_blocks: None,
         })
     }
 }
