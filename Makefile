@@ -205,7 +205,8 @@ test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_example
 # directory: they share no build with the tests, and one directory would hold one cargo at a time.
 # The crate's unit tests are the runtime's (src/runtime): test-runtimes runs them, with and without
 # std, in the runtime's own crate (and clippy reads them there), so neither the tests nor the lints
-# here build the whole library a second time for them. A receiver feature on its own needs rustc's
+# with every feature build the whole library a second time for them (without a receiver feature, the
+# library is small). A receiver feature on its own needs rustc's
 # warnings (an item its gate leaves unused, a name it leaves out); clippy's lints read the same code
 # in the run with every feature.
 RUST_VENDORS = $(shell sed -n 's/^\([a-z0-9_]*\) = \[\]$$/\1/p' generated/rust/Cargo.toml | grep -vx std)
@@ -215,13 +216,10 @@ test-rust:
 	cargo test --quiet --manifest-path generated/rust/Cargo.toml --features std --target-dir $(CARGO_TARGET) --test '*'
 	cargo test --quiet --manifest-path generated/rust/Cargo.toml --features std --target-dir $(CARGO_TARGET) --doc
 
-RUST_LINT_TARGETS := --lib --bins --test '*'
-
 test-rust-lint:
-	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml $(RUST_LINT_TARGETS) --features std,serde,time,chrono \
+	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --lib --bins --test '*' --features std,serde,time,chrono \
 		--target-dir $(LINT_TARGET) -- -D warnings
-	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml $(RUST_LINT_TARGETS) --no-default-features \
-		--target-dir $(LINT_TARGET) -- -D warnings
+	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --no-default-features --target-dir $(LINT_TARGET) -- -D warnings
 	set -e; for vendor in $(RUST_VENDORS); do \
 		RUSTFLAGS="-D warnings" cargo check --quiet --manifest-path generated/rust/Cargo.toml --lib --no-default-features \
 			--features $$vendor --target-dir $(LINT_TARGET); \
