@@ -175,6 +175,21 @@ static bool is_standard_address(const nmea_frame *f)
 
 /* A text command (ComNav: words separated by single spaces, no '$', no checksum): the first
    word is the address, the others are the fields. */
+/* Whether every byte of the line is printable ASCII; the first that is not is the error. */
+static bool all_printable(const char *line, size_t len, nmea_error *err)
+{
+    size_t i;
+    for (i = 0; i < len; i++) {
+        if (!is_printable(line[i])) {
+            fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("byte 0x%x at offset %n is not printable ASCII"));
+            err->num[0] = (unsigned char)line[i];
+            err->num[1] = i;
+            return false;
+        }
+    }
+    return true;
+}
+
 static bool text_frame(nmea_frame *f, const char *line, size_t len, nmea_error *err)
 {
     size_t i, space = 0, spaces = 0;
@@ -183,13 +198,9 @@ static bool text_frame(nmea_frame *f, const char *line, size_t len, nmea_error *
         nmea_error_too_long(err, len);
         return false;
     }
+    if (!all_printable(line, len, err))
+        return false;
     for (i = 0; i < len; i++) {
-        if (!is_printable(line[i])) {
-            fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("byte 0x%x at offset %n is not printable ASCII"));
-            err->num[0] = (unsigned char)line[i];
-            err->num[1] = i;
-            return false;
-        }
         if (line[i] == ' ' && !spaces++)
             space = i;
     }

@@ -120,18 +120,11 @@ static bool check_tag_params(nmea_text body, nmea_error *err)
 NMEA_INTERNAL bool read_tag_blocks(const char *line, size_t len, nmea_text *blocks, nmea_error *err)
 {
     const char *p = line, *end = line + len, *close, *star;
-    size_t i;
     int high, low;
     bool lower, upper;
     unsigned sum;
-    for (i = 0; i < len; i++) {
-        if (!is_printable(line[i])) {
-            fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("byte 0x%x at offset %n is not printable ASCII"));
-            err->num[0] = (unsigned char)line[i];
-            err->num[1] = i;
-            return false;
-        }
-    }
+    if (!all_printable(line, len, err))
+        return false;
     while (p < end && *p == '\\') {
         for (close = p + 1; close < end && *close != '\\'; close++)
             continue;
