@@ -930,7 +930,7 @@ static void write_generic(nmea_writer *w, const nmea_generic *g)
 /* TAG blocks (NMEA 0183 4.00, IEC 61162-450): `\code:value,...*hh\` before a sentence or on a
    line of their own. The blocks of a line are read (checked as the Python and Rust runtimes
    check them, with the same messages) and kept as their text, which the writer puts back as it
-   is; the codes the spec names and their value types are the generated NMEA_TAG_CODES. */
+   is; the codes the spec names and their value types are the generated nmea_tag_codes. */
 
 /* What a value of each type that has a form must look like (a text takes anything). */
 static const char *const TAG_FORMS[] = {[NMEA_TAG_INTEGER] = "digits", [NMEA_TAG_GROUP] = "n-m-id"};
@@ -972,8 +972,8 @@ const nmea_tag_code *nmea_tag_code_of(nmea_text code)
 {
     size_t i;
     for (i = 0; i < NMEA_TAG_CODE_COUNT; i++)
-        if (text_is(code, NMEA_TAG_CODES[i].code))
-            return &NMEA_TAG_CODES[i];
+        if (text_is(code, nmea_tag_codes[i].code))
+            return &nmea_tag_codes[i];
     return NULL;
 }
 
@@ -39767,7 +39767,7 @@ size_t nmea_build_pubx_utm(const nmea_pubx_utm *s, char *buf, size_t cap, nmea_e
 /* Dispatch */
 
 /* The TAG block codes (spec/tag_block.yaml). */
-const nmea_tag_code NMEA_TAG_CODES[] = {
+const nmea_tag_code nmea_tag_codes[] = {
     {"c", "time", "UNIX time", NMEA_TAG_INTEGER},
     {"d", "destination", "Destination", NMEA_TAG_TEXT},
     {"g", "group", "Sentence grouping", NMEA_TAG_GROUP},

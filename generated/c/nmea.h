@@ -431,7 +431,7 @@ typedef enum {
     NMEA_TAG_TEXT     /* anything but ',', '*' and '\' (s: source, d: destination, ...) */
 } nmea_tag_type;
 
-/** A code the spec names: NMEA_TAG_CODES (nmea.h) lists them. */
+/** A code the spec names: nmea_tag_codes (nmea.h) lists them. */
 typedef struct {
     const char *code; /* as written before the ':' */
     const char *id;   /* the spec's id: "time", "source", ... */
@@ -542,7 +542,7 @@ size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, siz
 
 /** The TAG block codes of spec/tag_block.yaml (nmea_tag_code_of finds one). */
 #define NMEA_TAG_CODE_COUNT 8
-extern const nmea_tag_code NMEA_TAG_CODES[];
+extern const nmea_tag_code nmea_tag_codes[];
 
 /* ------------------------------------------------------------------------------------------ */
 /* Lookup tables (spec/enums): a C enum of the known codes and the table, nmea_<enum>_def. */

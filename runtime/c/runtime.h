@@ -370,7 +370,7 @@ typedef enum {
     NMEA_TAG_TEXT     /* anything but ',', '*' and '\' (s: source, d: destination, ...) */
 } nmea_tag_type;
 
-/** A code the spec names: NMEA_TAG_CODES (nmea.h) lists them. */
+/** A code the spec names: nmea_tag_codes (nmea.h) lists them. */
 typedef struct {
     const char *code; /* as written before the ':' */
     const char *id;   /* the spec's id: "time", "source", ... */

@@ -40,7 +40,7 @@ typedef struct {
     } as;
 } nmea_sentence;
 #define NMEA_TAG_CODE_COUNT 3
-extern const nmea_tag_code NMEA_TAG_CODES[];
+extern const nmea_tag_code nmea_tag_codes[];
 #include "api.h"
 
 /* What nmea.c defines before the runtime. */
@@ -77,7 +77,7 @@ static bool nmea_parse_tst(nmea_tst *out, const char *line, size_t len, nmea_err
 
 static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {NULL, &tst_layout};
 
-const nmea_tag_code NMEA_TAG_CODES[] = {
+const nmea_tag_code nmea_tag_codes[] = {
     {"c", "time", "UNIX time", NMEA_TAG_INTEGER},
     {"g", "group", "Sentence grouping", NMEA_TAG_GROUP},
     {"s", "source", "Source", NMEA_TAG_TEXT},

@@ -301,7 +301,7 @@ size_t nmea_build_pacmset(const nmea_pacmset *s, char *buf, size_t cap, nmea_err
 /* Dispatch */
 
 /* The TAG block codes (spec/tag_block.yaml). */
-const nmea_tag_code NMEA_TAG_CODES[] = {
+const nmea_tag_code nmea_tag_codes[] = {
     {"c", "time", "UNIX time", NMEA_TAG_INTEGER},
     {"g", "group", "Sentence grouping", NMEA_TAG_GROUP},
     {"s", "source", "Source", NMEA_TAG_TEXT},

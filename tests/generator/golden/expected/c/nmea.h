@@ -66,7 +66,7 @@ extern "C" {
 
 /** The TAG block codes of spec/tag_block.yaml (nmea_tag_code_of finds one). */
 #define NMEA_TAG_CODE_COUNT 3
-extern const nmea_tag_code NMEA_TAG_CODES[];
+extern const nmea_tag_code nmea_tag_codes[];
 
 /* ------------------------------------------------------------------------------------------ */
 /* Lookup tables (spec/enums): a C enum of the known codes and the table, nmea_<enum>_def. */
