@@ -15,9 +15,9 @@
 #   spec/enums/airoha_nmea_output_mode.yaml, spec/enums/airoha_nmea_type.yaml,
 #   spec/enums/airoha_periodic_mode.yaml, spec/enums/airoha_pos_precision.yaml,
 #   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml, spec/enums/ais_channel.yaml,
-#   spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml, spec/enums/alf_category.yaml,
-#   spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml, spec/enums/alr_ack_state.yaml,
-#   spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
+#   spec/enums/ais_epfd.yaml, spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml,
+#   spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml,
+#   spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
 #   spec/enums/ashtech_hpr_mode.yaml, spec/enums/ashtech_nme_message.yaml,
 #   spec/enums/ashtech_on_off.yaml, spec/enums/ashtech_port.yaml,
 #   spec/enums/ashtech_pos_solution.yaml, spec/enums/ashtech_rt300_alignment.yaml,
@@ -121,7 +121,7 @@
 #   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 #   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 #   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-#   (digest 8a40d4957a3bdfb8)
+#   (digest 60d4b4a8136869c1)
 # Regenerate: make generate (python3 -m generator generate)
 """The spec's lookup tables. A member's value is its wire code; `.id` is the spec's id."""
 
@@ -722,6 +722,37 @@ class AisChannel(CodeEnum):
     """Channel A written as a digit, as some receivers send it. (aivdm_decoding, log_gpsd)"""
     TWO = "2"
     """Channel B written as a digit, as some receivers send it. (aivdm_decoding, log_gpsd)"""
+
+
+class AisEpfd(CodeEnum):
+    """AIS electronic position-fixing device: The kind of device that fixes the position an AIS
+    station reports (ITU-R M.1371-5, annex 8, table 50 note)."""
+
+    BY_CODE: ClassVar[dict[str, AisEpfd]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
+    UNDEFINED = "0"
+    """Undefined (default). (itu_m1371_5, aivdm_decoding)"""
+    GPS = "1"
+    """GPS. (itu_m1371_5, aivdm_decoding)"""
+    GLONASS = "2"
+    """GLONASS. (itu_m1371_5, aivdm_decoding)"""
+    GPS_GLONASS = "3"
+    """Combined GPS and GLONASS. (itu_m1371_5, aivdm_decoding)"""
+    LORAN_C = "4"
+    """Loran-C. (itu_m1371_5, aivdm_decoding)"""
+    CHAYKA = "5"
+    """Chayka. (itu_m1371_5, aivdm_decoding)"""
+    INTEGRATED = "6"
+    """Integrated navigation system. (itu_m1371_5, aivdm_decoding)"""
+    SURVEYED = "7"
+    """Surveyed position (fixed stations). (itu_m1371_5, aivdm_decoding)"""
+    GALILEO = "8"
+    """Galileo. (itu_m1371_5, aivdm_decoding)"""
+    INTERNAL_GNSS = "15"
+    """Internal GNSS (not used on the VDL before M.1371-5 except by fixed stations). (itu_m1371_5,
+    aivdm_decoding)"""
 
 
 class AlaAckState(CodeEnum):
@@ -5590,6 +5621,11 @@ AirohaRtcmMode.MIN_LEN, AirohaRtcmMode.MAX_LEN = 1, 2
 AisChannel.BY_CODE = by_code(AisChannel)
 AisChannel.CODE_CLASS = "closed"
 AisChannel.MIN_LEN, AisChannel.MAX_LEN = 1, 1
+
+
+AisEpfd.BY_CODE = by_code(AisEpfd)
+AisEpfd.CODE_CLASS = "digits"
+AisEpfd.MIN_LEN, AisEpfd.MAX_LEN = 1, 2
 
 
 AlaAckState.BY_CODE = by_code(AlaAckState)

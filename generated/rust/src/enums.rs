@@ -15,9 +15,9 @@
 //   spec/enums/airoha_nmea_output_mode.yaml, spec/enums/airoha_nmea_type.yaml,
 //   spec/enums/airoha_periodic_mode.yaml, spec/enums/airoha_pos_precision.yaml,
 //   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml, spec/enums/ais_channel.yaml,
-//   spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml, spec/enums/alf_category.yaml,
-//   spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml, spec/enums/alr_ack_state.yaml,
-//   spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
+//   spec/enums/ais_epfd.yaml, spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml,
+//   spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml,
+//   spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
 //   spec/enums/ashtech_hpr_mode.yaml, spec/enums/ashtech_nme_message.yaml,
 //   spec/enums/ashtech_on_off.yaml, spec/enums/ashtech_port.yaml,
 //   spec/enums/ashtech_pos_solution.yaml, spec/enums/ashtech_rt300_alignment.yaml,
@@ -122,7 +122,7 @@
 //   spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml, spec/enums/vsd_nav_status.yaml,
 //   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
 //   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
-//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 8a40d4957a3bdfb8)
+//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 60d4b4a8136869c1)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -2000,6 +2000,102 @@ impl CodeEnum for AisChannel {
             Self::B => "b",
             Self::One => "one",
             Self::Two => "two",
+        }
+    }
+}
+
+/// AIS electronic position-fixing device: The kind of device that fixes the position an AIS station
+/// reports (ITU-R M.1371-5, annex 8, table 50 note).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AisEpfd {
+    /// Undefined (default).
+    Undefined,
+    /// GPS.
+    Gps,
+    /// GLONASS.
+    Glonass,
+    /// Combined GPS and GLONASS.
+    GpsGlonass,
+    /// Loran-C.
+    LoranC,
+    /// Chayka.
+    Chayka,
+    /// Integrated navigation system.
+    Integrated,
+    /// Surveyed position (fixed stations).
+    Surveyed,
+    /// Galileo.
+    Galileo,
+    /// Internal GNSS (not used on the VDL before M.1371-5 except by fixed stations).
+    InternalGnss,
+}
+
+impl CodeEnum for AisEpfd {
+    const EXPECTED: &'static str = "ais_epfd code (0 1 2 3 4 5 6 7 8 15)";
+    const EXPECTED_CHARS: &'static str = "ais_epfd codes (0 1 2 3 4 5 6 7 8 15)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 2;
+    const ALL: &'static [Self] = &[
+        Self::Undefined,
+        Self::Gps,
+        Self::Glonass,
+        Self::GpsGlonass,
+        Self::LoranC,
+        Self::Chayka,
+        Self::Integrated,
+        Self::Surveyed,
+        Self::Galileo,
+        Self::InternalGnss,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Undefined),
+            b"1" => Some(Self::Gps),
+            b"2" => Some(Self::Glonass),
+            b"3" => Some(Self::GpsGlonass),
+            b"4" => Some(Self::LoranC),
+            b"5" => Some(Self::Chayka),
+            b"6" => Some(Self::Integrated),
+            b"7" => Some(Self::Surveyed),
+            b"8" => Some(Self::Galileo),
+            b"15" => Some(Self::InternalGnss),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Undefined => "0",
+            Self::Gps => "1",
+            Self::Glonass => "2",
+            Self::GpsGlonass => "3",
+            Self::LoranC => "4",
+            Self::Chayka => "5",
+            Self::Integrated => "6",
+            Self::Surveyed => "7",
+            Self::Galileo => "8",
+            Self::InternalGnss => "15",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Undefined => "undefined",
+            Self::Gps => "gps",
+            Self::Glonass => "glonass",
+            Self::GpsGlonass => "gps_glonass",
+            Self::LoranC => "loran_c",
+            Self::Chayka => "chayka",
+            Self::Integrated => "integrated",
+            Self::Surveyed => "surveyed",
+            Self::Galileo => "galileo",
+            Self::InternalGnss => "internal_gnss",
         }
     }
 }
