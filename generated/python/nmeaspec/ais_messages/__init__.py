@@ -11,7 +11,7 @@
 #   spec/ais/messages/position_report.yaml, spec/ais/messages/safety_broadcast.yaml,
 #   spec/ais/messages/sar_aircraft_report.yaml, spec/ais/messages/single_slot_binary.yaml,
 #   spec/ais/messages/static_data_report.yaml, spec/ais/messages/static_voyage_data.yaml,
-#   spec/ais/messages/utc_inquiry.yaml (digest 1c16a547ffc55176)
+#   spec/ais/messages/utc_inquiry.yaml (digest 6f0ff31ce79281ea)
 # Regenerate: make generate (python3 -m generator generate)
 """AIS messages: the payload of `!AIVDM`/`!AIVDO` decoded into the class of its message type,
 and encoded back to the same armored characters and fill bits."""
