@@ -27,7 +27,8 @@ LAYOUT = (("enums", "enums", "enum.schema.json"),
           ("standard", "sentences", "sentence.schema.json"),
           ("proprietary", "sentences", "sentence.schema.json"),
           ("extensions", "extensions", "extension.schema.json"),
-          ("ais/messages", "payloads", "payload.schema.json"))
+          ("ais/messages", "payloads", "payload.schema.json"),
+          ("ais/applications", "applications", "payload.schema.json"))
 
 
 def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
@@ -39,7 +40,8 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     (my-nmea/proprietary/acme_pos.yaml)."""
     errors: list[SpecError] = []
     docs: dict[str, list[Document]] = {kind: [] for kind in ("manuals", "facts", "enums", "bitfields", "tables",
-                                                             "sentences", "extensions", "payloads")}
+                                                             "sentences", "extensions", "payloads",
+                                                             "applications")}
     digest = hashlib.sha256()
     file_digests: dict[str, str] = {}
     for tree, names in [(spec_dir, spec_dir.parent), *((extra, None) for extra in extras)]:
@@ -72,11 +74,13 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     bitfields = [_bitfield(d) for d in docs["bitfields"]]
     tables = [_table(d) for d in docs["tables"]]
     payloads = [_payload(d) for d in docs["payloads"]]
+    applications = [_payload(d) for d in docs["applications"]]
     errors = _clashes(docs, bitfields, tables) + _extend(sentences, docs["extensions"])
     if errors:
         raise SpecErrors(errors)
     spec = Spec(manuals, enums, sentences,
-                sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences", "extensions", "payloads")
+                sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences", "extensions", "payloads",
+                                                  "applications")
                          for d in docs[kind]],
                 digest=digest.hexdigest()[:16], file_digests=file_digests,
                 bitfields=bitfields, tables=tables, generic=generic, facts=facts,
@@ -88,7 +92,7 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
                                       if "combined_talker" in d.data), None),
                 satellite_ids=[(r["system"], r["min"], r["max"]) for d in docs["facts"]
                                for r in d.data.get("satellite_ids", [])],
-                payloads=payloads)
+                payloads=payloads, applications=applications)
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
     resolve(spec)
     errors = checks.run(spec, by_file)
@@ -252,7 +256,7 @@ def _outcome(data: Any, origin: Origin) -> Outcome | None:
 def _payload_field(data: dict[str, Any], origin: Origin) -> PayloadField:
     return PayloadField(id=data["id"], name=data["name"], type=data["type"], bits=data.get("bits"),
                         doc=data.get("doc", data["name"]), origin=origin, unit=data.get("unit"),
-                        divisor=data.get("divisor"), enum_id=data.get("enum"),
+                        divisor=data.get("divisor"), base=data.get("base"), enum_id=data.get("enum"),
                         optional=bool(data.get("optional", False)),
                         special=[Special(s["raw"], s["id"], s["doc"]) for s in data.get("special", [])],
                         dispatch=data.get("dispatch", []))
@@ -281,5 +285,8 @@ def _payload(doc: Document) -> Payload:
     file = str(doc.path)
     examples = [PayloadExample(e["manual"], e["where"], e["payload"], e["fill_bits"], e.get("expect"),
                                Origin(file, ("examples", i))) for i, e in enumerate(d.get("examples", []))]
-    return Payload(d["message"], d["name"], d["doc"], d["types"], d["manuals"], d.get("length"),
-                   _payload_items(d["fields"], file, ("fields",)), _notes(d), examples, Origin(file, ()))
+    application = d.get("application")
+    return Payload(d["message"], d["name"], d["doc"], d.get("types", []), d["manuals"], d.get("length"),
+                   _payload_items(d["fields"], file, ("fields",)), _notes(d), examples, Origin(file, ()),
+                   application=(application["dac"], application["fid"]) if application else None,
+                   carriers=application["in"] if application else [])

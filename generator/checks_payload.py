@@ -26,6 +26,23 @@ def check(spec: Spec, manual_ids: set[str], report: Report, check_manuals: Calla
             owners.setdefault(number, payload.id)
         check_manuals(payload.manuals, manual_ids, payload.origin, report, "manuals")
         _check_items(spec, payload, report)
+    applications: dict[tuple[int, int] | None, str] = {}
+    for application in spec.applications:
+        stem = application.origin.file.rsplit("/", 1)[-1].removesuffix(".yaml")
+        if stem != application.id:
+            report(application.origin, "S010", f"message {application.id} must live in {application.id}.yaml", "message")
+        if application.application in applications:
+            report(application.origin, "A008", f"DAC and FI {application.application} are also described by "
+                   f"{applications[application.application]}", "application")
+        applications.setdefault(application.application, application.id)
+        for i, number in enumerate(application.carriers):
+            carrier = owners.get(number)
+            message = next((p for p in spec.payloads if p.id == carrier), None)
+            if message is None or message.data_field is None or len(message.data_field.dispatch) != 2:
+                report(application.origin, "A011", f"message type {number} has no data field dispatched by DAC and "
+                       "FI", "application", "in", i)
+        check_manuals(application.manuals, manual_ids, application.origin, report, "manuals")
+        _check_items(spec, application, report)
     for sentence in spec.sentences:
         for role, field_id in (sentence.encapsulates or {}).items():
             if role != "protocol" and any(field_id not in {f.id for f in layout.fields} for layout in sentence.layouts):
@@ -156,8 +173,9 @@ def _check_choice(choice: PayloadChoice, report: Report) -> None:
 
 
 def check_examples(spec: Spec, manual_ids: set[str], report: Report) -> None:
-    """Every example decodes, as a type of its message, to the values of its `expect`."""
-    for payload in spec.payloads:
+    """Every example decodes, as a type of its message (an application's: with it), to the values
+    of its `expect`."""
+    for payload in [*spec.payloads, *spec.applications]:
         _check_examples(payload, spec, manual_ids, report)
 
 
@@ -170,7 +188,12 @@ def _check_examples(payload: Payload, spec: Spec, manual_ids: set[str], report: 
         except reference_ais.PayloadError as err:
             report(example.origin, "A009", f"the example does not decode: {err}", "payload")
             continue
-        if decoded["message_type"] not in payload.types:
+        if payload.application is not None:
+            decoded = decoded.get("application", {"message_type": decoded["message_type"]})
+            if "trailing" not in decoded:
+                report(example.origin, "A009", f"the example's data is not application {payload.id}", "payload")
+                continue
+        elif decoded["message_type"] not in payload.types:
             report(example.origin, "A009", f"the example is a message of type {decoded['message_type']}", "payload")
         for key, value in (example.expect or {}).items():
             if key not in decoded:

@@ -122,7 +122,8 @@ def payload_rows(payload: Payload) -> list[dict]:
         special = "; ".join(f"{s.raw} `{s.id}`: {s.doc}" for s in f.special)
         return {"bits": where, "width": str(f.bits) if f.bits else "rest", "id": prefix + f.id, "name": cell(f.name),
                 "type": kind + (" (optional)" if f.optional else ""), "when": when,
-                "scale": f"÷ {f.divisor}" if f.divisor else "", "unit": cell(f.unit),
+                "scale": " ".join(([f"÷ {f.divisor}"] if f.divisor else []) + ([f"+ {f.base}"] if f.base is not None else [])),
+                "unit": cell(f.unit),
                 "special": cell(special), "doc": cell(f.doc if f.doc != f.name else "")}
 
     def walk(items: list, when: str, previous: str) -> str:
@@ -195,7 +196,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             banner=banner_of([s.source, *sorted({e.origin.file for e in _enums_of(s)}), "spec/manuals.yaml"]),
             s=s, spec=spec, layouts=[(lay, rows(lay), layout_summary(lay)) for lay in s.layouts],
             examples=by_sentence.get(s.id, []), enums=_enums_of(s))
-    for payload in spec.payloads:
+    for payload in [*spec.payloads, *spec.applications]:
         for f in payload.fields:
             link = f"[{payload.id}](../ais/{payload.id}.md)"
             if f.enum and link not in enum_users[f.enum.id]:

@@ -21,7 +21,7 @@ def member_type(f: PayloadField) -> str:
     """The Python type of a field's member: its type's, a float for a number with a divisor, a
     Special besides for one with special values."""
     base = f.bit_type.python_type.format(enum=f.enum.camel if f.enum else "")
-    if f.bit_type.numeric and f.divisor:
+    if f.bit_type.numeric and (f.divisor or isinstance(f.base, float)):
         base = "float"
     return base + (" | ais.Special" if f.special else "") + " | None"
 
@@ -43,6 +43,8 @@ def _field_spec(f: PayloadField, following: list, indent: int) -> list[str]:
         args.append(f"after={after(following)}")
     if f.divisor:
         args.append(f"divisor={f.divisor}")
+    if f.base is not None:
+        args.append(f"base={f.base}")
     specials = [f"ais.Special({json.dumps(s.id)}, {s.raw})" for s in f.special]
     if specials:
         args.append(f"special=({', '.join(specials)},)")
@@ -96,18 +98,26 @@ def layout_lines(payload: Payload, items: list, rest: list, indent: int) -> list
 
 def member(f: PayloadField) -> dict:
     unit = f" [{f.unit}]" if f.unit else ""
-    scale = f" (raw / {f.divisor})" if f.divisor else ""
+    scale = f" (raw / {f.divisor}{f' + {f.base}' if f.base is not None else ''})" if f.divisor else \
+        f" (raw + {f.base})" if f.base is not None else ""
     special = f" Special: {', '.join(f'{s.id} ({s.raw})' for s in f.special)}." if f.special else ""
     return {"line": f"{f.id}: {member_type(f)} = None",
             "doc": docstring(f"{f.name}{unit}{scale}{'' if f.doc == f.name else ': ' + f.doc}.{special}"
                              .replace("..", "."), 4)}
 
 
+def title(payload: Payload) -> str:
+    """What a message is: its name and its type numbers, or (an application) its DAC and FI."""
+    if payload.application is not None:
+        dac, fid = payload.application
+        return f"{payload.name}: AIS application DAC {dac} FI {fid} (in type {', '.join(map(str, payload.carriers))})."
+    numbers = ", ".join(map(str, payload.types))
+    return f"{payload.name}: AIS message type{'s' if len(payload.types) > 1 else ''} {numbers}."
+
+
 def _doc_lines(payload: Payload) -> list[str]:
     """A message class's docstring, line by line (the template adds the quotes and the indent)."""
-    numbers = ", ".join(map(str, payload.types))
-    title = f"{payload.name}: AIS message type{'s' if len(payload.types) > 1 else ''} {numbers}."
-    lines = [*textwrap.wrap(title, WIDTH - 7), "", *textwrap.wrap(" ".join(payload.doc.split()), WIDTH - 4)]
+    lines = [*textwrap.wrap(title(payload), WIDTH - 7), "", *textwrap.wrap(" ".join(payload.doc.split()), WIDTH - 4)]
     if payload.examples:
         example = payload.examples[0]
         lines += ["", f"Example ({example.manual}), {example.fill_bits} fill bits:", example.payload]
@@ -131,6 +141,8 @@ def message_view(payload: Payload) -> dict:
         "payload": payload, "class": payload.camel, "members": members, "entries": entries,
         "doc": _doc_lines(payload),
         "types": f"({types},)" if len(payload.types) == 1 else f"({types})",
+        "title": title(payload),
+        "carriers": ", ".join(map(str, payload.carriers)) + ("," if len(payload.carriers) == 1 else ""),
         "layout": layout_lines(payload, payload.items, [], 8),
         "raws": [{"name": f.id, "doc": docstring(f"The raw integer of {f.id}.", 8)}
                  for f in payload.fields if f.scaled],
@@ -142,11 +154,12 @@ def message_view(payload: Payload) -> dict:
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     base = f"python/{PACKAGE}/ais_messages"
     files: dict[str, str] = {}
-    for payload in spec.payloads:
+    for payload in [*spec.payloads, *spec.applications]:
         sources = [payload.origin.file, *sorted({f.enum.origin.file for f in payload.fields if f.enum})]
         files[f"{base}/{payload.id}.py"] = env.get_template("python/ais_message.py.j2").render(
             header=header(spec, "#", sources), **message_view(payload))
     by_type = sorted((number, p) for p in spec.payloads for number in p.types)
     files[f"{base}/__init__.py"] = env.get_template("python/ais_init.py.j2").render(
-        header=header(spec, "#", [p.origin.file for p in spec.payloads]), payloads=spec.payloads, by_type=by_type)
+        header=header(spec, "#", [p.origin.file for p in [*spec.payloads, *spec.applications]]),
+        payloads=spec.payloads, applications=spec.applications, by_type=by_type)
     return files

@@ -188,10 +188,10 @@ AIS_ERROR_PAYLOADS = (
 
 
 def ais_vectors(spec: Spec) -> list[dict]:
-    """The payload examples of spec/ais/messages with the JSON each decoder must make of them, and
-    payloads each must refuse with the kind of its error."""
+    """The payload examples of spec/ais (messages, and messages that carry an application) with the
+    JSON each decoder must make of them, and payloads each must refuse with the kind of its error."""
     out: list[dict] = []
-    for payload in spec.payloads:
+    for payload in [*spec.payloads, *spec.applications]:
         for e in payload.examples:
             out.append({"message": payload.id, "where": e.where, "payload": e.payload, "fill_bits": e.fill_bits,
                         "decode": reference_ais.decode(spec, e.payload, e.fill_bits)})

@@ -399,8 +399,9 @@ class BitNumber(BitType):
         if not f.scaled:
             return {f.id: raw}
         special = next((s.id for s in f.special if s.raw == raw), None)
-        value = special if special is not None else raw / f.divisor if f.divisor else raw
-        return {f.id: value, f"{f.id}_raw": raw}
+        value = raw / f.divisor if f.divisor else raw
+        return {f.id: special if special is not None else value + f.base if f.base is not None else value,
+                f"{f.id}_raw": raw}
 
 
 @dataclass(frozen=True)

@@ -636,7 +636,8 @@ class PayloadField:
     doc: str
     origin: Origin
     unit: str | None = None
-    divisor: int | None = None   # the value in `unit` is the raw integer divided by it
+    divisor: int | None = None   # the value in `unit` is the raw integer divided by it, plus `base`
+    base: float | None = None    # the value of raw 0
     enum_id: str | None = None
     optional: bool = False       # present when the payload has its bits
     special: list[Special] = field(default_factory=list)
@@ -656,7 +657,7 @@ class PayloadField:
     @property
     def scaled(self) -> bool:
         """A number that has a value in a unit besides its raw integer (a divisor or special values)."""
-        return self.divisor is not None or bool(self.special)
+        return self.divisor is not None or self.base is not None or bool(self.special)
 
     @property
     def camel(self) -> str:
@@ -781,6 +782,14 @@ class Payload:
     examples: list[PayloadExample]
     origin: Origin
     protocol: str = "ais"
+    application: tuple[int, int] | None = None   # an application message: its DAC and FI
+    carriers: list[int] = field(default_factory=list)   # ... and the message types whose data it is
+    applications: list[Payload] = field(default_factory=list)   # derived: a message's applications
+
+    @property
+    def data_field(self) -> PayloadField | None:
+        """The field whose bits an application layout may describe (its `dispatch`)."""
+        return next((f for f in self.fields if f.dispatch), None)
 
     @property
     def fields(self) -> list[PayloadField]:
@@ -815,6 +824,7 @@ class Spec:
     satellite_ids: list[tuple[str, int, int]] = field(default_factory=list)  # (GNSS, first id, last id)
     enum_by_id: dict[str, EnumDef] = field(default_factory=dict)
     payloads: list[Payload] = field(default_factory=list)   # spec/ais/messages
+    applications: list[Payload] = field(default_factory=list)   # spec/ais/applications
 
     def digest_of(self, sources: list[str]) -> str:
         """A short hash of the given spec or template files, so that a generated file's header

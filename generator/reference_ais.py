@@ -112,6 +112,30 @@ def decode(spec: Spec, payload: str, fill_bits: int) -> dict[str, Any]:
     bits = _Bits(bits_text, message)
     out: dict[str, Any] = {}
     _items(message.items, bits, [], out)
+    application = _application(message, out)
+    if application is not None:
+        out["application"] = application
     out["trailing"] = bits.bits[bits.pos:]
     out["padding"] = padding
     return out
+
+
+def _application(message: Payload, out: dict[str, Any]) -> dict[str, Any] | None:
+    """The decoded application of the message's data bits (its DAC and FI name one the spec
+    describes, carried by its type, that reads them); the data member then leaves `out`."""
+    data = message.data_field
+    if data is None or data.id not in out:
+        return None
+    key = tuple(out.get(name) for name in data.dispatch)
+    application = next((a for a in message.applications
+                        if a.application == key and out["message_type"] in a.carriers), None)
+    if application is None:
+        return None
+    bits = _Bits(out[data.id], application)
+    decoded: dict[str, Any] = {}
+    try:
+        _items(application.items, bits, [], decoded)
+    except PayloadError:
+        return None
+    del out[data.id]
+    return {**decoded, "trailing": bits.bits[bits.pos:]}

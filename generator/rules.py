@@ -208,7 +208,7 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "neither.",
          "Correct `by`, the cases' values or their widths."),
     Rule("A008", "message types are described once",
-         "Each message type number belongs to one message file.",
+         "Each message type number belongs to one message file, each DAC and FI to one application file.",
          "Remove the number from one of the files."),
     Rule("A009", "payload examples decode to their expect",
          "Every example's payload decodes, with its fill bits, as a type of its message, to the values its `expect` "
@@ -217,6 +217,10 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
     Rule("A010", "an encapsulation names fields",
          "A sentence's `encapsulates` names fields of each of its layouts as its payload, fill bits and fragment count.",
          "Correct the field ids."),
+    Rule("A011", "an application's carriers dispatch",
+         "The message types an application (spec/ais/applications) is carried `in` have a data field whose "
+         "`dispatch` names their DAC and FI fields.",
+         "Correct `in`, or add `dispatch: [dac, fid]` to the carrier's data field."),
 )}
 
 

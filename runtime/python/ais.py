@@ -126,10 +126,11 @@ def _bad_value(where: str, name: str, value: Any, wanted: str) -> NmeaError:
 
 @dataclass(frozen=True, slots=True)
 class Unsigned(Field):
-    """An unsigned integer; with a divisor, its value in a unit is the raw integer divided by it;
-    special raw values are Special, never a number."""
+    """An unsigned integer; its value in a unit is the raw integer divided by `divisor`, plus
+    `base` (the value of raw 0); special raw values are Special, never a number."""
 
     divisor: int = 1
+    base: int | float = 0
     special: tuple[Special, ...] = ()
 
     def signed(self, raw: int, width: int) -> int:
@@ -143,7 +144,7 @@ class Unsigned(Field):
         for s in self.special:
             if s.raw == number:
                 return s
-        return number / self.divisor if self.divisor != 1 else number
+        return (number / self.divisor if self.divisor != 1 else number) + self.base
 
     def raw_number(self, value: Any, where: str) -> int:
         """The raw integer of a value (a Special, or a number in the field's unit)."""
@@ -151,7 +152,9 @@ class Unsigned(Field):
             return value.raw
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise _bad_value(where, self.id, value, "a number")
-        return value if self.divisor == 1 and isinstance(value, int) else round(value * self.divisor)
+        if self.divisor == 1 and isinstance(value, int) and isinstance(self.base, int):
+            return value - self.base
+        return round((value - self.base) * self.divisor)
 
     def to_raw(self, value: Any, where: str) -> tuple[int, int]:
         assert self.width is not None
@@ -162,7 +165,7 @@ class Unsigned(Field):
         return raw & ((1 << self.width) - 1), self.width
 
     def json(self, value: Any) -> dict[str, Any]:
-        if self.divisor == 1 and not self.special:
+        if self.divisor == 1 and not self.base and not self.special:
             return {self.id: value}
         return {self.id: str(value) if isinstance(value, Special) else value,
                 f"{self.id}_raw": self.raw_number(value, "")}
@@ -344,6 +347,8 @@ def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter, where:
             value = getattr(message, item.id)
             if value is None and item.optional:
                 return False
+            if value is None and isinstance(item, Data) and getattr(message, "application", None) is not None:
+                value = message.application.bits(where)
             writer.put(*item.to_raw(value, where))
         elif isinstance(item, Group):
             for entry in getattr(message, item.id):
@@ -371,21 +376,20 @@ def items_json(items: tuple[Item, ...], message: Any) -> dict[str, Any]:
 
 
 @dataclass(kw_only=True)
-class Message:
-    """What every decoded AIS message has besides its layout's fields."""
+class Record:
+    """A decoded layout (a message, or the application its data bits carry): its fields, then
+    the bits after the layout's last field, as sent ('0' and '1')."""
 
     trailing: str = ""
-    """Bits after the layout's last field, as sent ('0' and '1'): a type 5 of 424 + 2 bits keeps 2."""
-    padding: str = ""
-    """The fill bits' values ('0' and '1'), as sent: fill bits are meant to be 0 but need not be."""
+    """Bits after the layout's last field, as sent: a type 5 of 424 + 2 bits keeps 2."""
 
     LAYOUT: ClassVar[tuple[Item, ...]]
-    TYPES: ClassVar[tuple[int, ...]]
     FIELDS: ClassVar[dict[str, Field]]
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
-        cls.FIELDS = {f.id: f for f in flat_fields(cls.LAYOUT)}
+        if "LAYOUT" in cls.__dict__:
+            cls.FIELDS = {f.id: f for f in flat_fields(cls.LAYOUT)}
 
     @classmethod
     def field(cls, name: str) -> Field:
@@ -398,6 +402,42 @@ class Message:
         value = getattr(self, name)
         f = self.FIELDS[name]
         return None if value is None or not isinstance(f, Unsigned) else f.raw_number(value, "")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The record as the decoded JSON of generated/vectors/ais.jsonl: each field present by
+        its id (a number in a unit beside its raw integer as <id>_raw, a special value by its id,
+        an enum value by its id, text as sent, data as its bits), then trailing."""
+        return {**items_json(self.LAYOUT, self), "trailing": self.trailing}
+
+
+@dataclass(kw_only=True)
+class Application(Record):
+    """An application message (IMO SN.1/Circ.289, regional ones): the data bits of the binary
+    messages CARRIERS whose DAC and FI fields hold DAC and FID."""
+
+    DAC: ClassVar[int]
+    FID: ClassVar[int]
+    CARRIERS: ClassVar[tuple[int, ...]]
+
+    def bits(self, where: str) -> str:
+        """The data bits it is sent as."""
+        writer = BitWriter()
+        write_items(self.LAYOUT, self, writer, where)
+        writer.put_bits(self.trailing)
+        return bits_text(writer.value, writer.length)
+
+
+@dataclass(kw_only=True)
+class Message(Record):
+    """What every decoded AIS message has besides its layout's fields."""
+
+    padding: str = ""
+    """The fill bits' values ('0' and '1'), as sent: fill bits are meant to be 0 but need not be."""
+    application: Application | None = None
+    """What its data bits carry, when the spec describes the application its DAC and FI name (its
+    data member is then None)."""
+
+    TYPES: ClassVar[tuple[int, ...]]
 
     def encode(self) -> tuple[str, int]:
         """The armored payload and its fill bits."""
@@ -413,10 +453,11 @@ class Message:
                        for shift in range(writer.length - 6, -1, -6)), fill
 
     def to_dict(self) -> dict[str, Any]:
-        """The message as the decoded JSON of generated/vectors/ais.jsonl: each field present by
-        its id (a number in a unit beside its raw integer as <id>_raw, a special value by its id,
-        an enum value by its id, text as sent, data as its bits), then trailing and padding."""
-        return {**items_json(self.LAYOUT, self), "trailing": self.trailing, "padding": self.padding}
+        """As Record.to_dict, the application's (when there is one) before trailing, then padding."""
+        out = items_json(self.LAYOUT, self)
+        if self.application is not None:
+            out["application"] = self.application.to_dict()
+        return {**out, "trailing": self.trailing, "padding": self.padding}
 
 
 def unarmor(payload: str, fill_bits: int) -> tuple[BitReader, str]:
@@ -434,8 +475,32 @@ def unarmor(payload: str, fill_bits: int) -> tuple[BitReader, str]:
     return BitReader(value >> fill_bits, length, "AIS"), padding
 
 
-def decode(by_type: dict[int, type[Message]], payload: str, fill_bits: int) -> Message:
-    """The message of an armored payload, as the class its type number names in `by_type`."""
+def _application(message: Message, applications: dict[tuple[int, int], type[Application]]) -> Application | None:
+    """What the message's data bits carry, when an application of `applications` (by DAC and FI)
+    is carried by its type and reads them; its data member is then set to None. Data that the
+    application does not read stays data."""
+    data = next((f for f in message.FIELDS.values() if isinstance(f, Data) and f.dispatch), None)
+    bits = getattr(message, data.id) if data is not None else None
+    if data is None or bits is None:
+        return None
+    dac, fid = (getattr(message, name) for name in data.dispatch)
+    cls = applications.get((dac, fid))
+    if cls is None or getattr(message, "message_type") not in cls.CARRIERS:
+        return None
+    reader = BitReader(int(bits, 2) if bits else 0, len(bits), f"AIS DAC {dac} FI {fid}")
+    values: dict[str, Any] = {}
+    try:
+        read_items(cls.LAYOUT, reader, values)
+    except NmeaError:
+        return None
+    setattr(message, data.id, None)
+    return cls(**values, trailing=bits[reader.pos:])
+
+
+def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int], type[Application]],
+           payload: str, fill_bits: int) -> Message:
+    """The message of an armored payload, as the class its type number names in `by_type`, with
+    the application of `applications` its data bits carry."""
     reader, padding = unarmor(payload, fill_bits)
     message_type = reader.peek(0, 6, "message_type")
     reader.where = f"AIS type {message_type}"
@@ -446,4 +511,6 @@ def decode(by_type: dict[int, type[Message]], payload: str, fill_bits: int) -> M
     values: dict[str, Any] = {}
     read_items(cls.LAYOUT, reader, values)
     trailing = bits_text(reader.value & ((1 << reader.remaining) - 1), reader.remaining)
-    return cls(**values, trailing=trailing, padding=padding)
+    message = cls(**values, trailing=trailing, padding=padding)
+    message.application = _application(message, applications)
+    return message

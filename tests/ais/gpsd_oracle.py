@@ -74,7 +74,7 @@ def data_json(bits: str) -> str:
     return f"{len(bits)}:" + "".join(f"{int(padded[i:i + 8], 2):02x}" for i in range(0, len(padded), 8))
 
 
-def raw_value(message: ais.Message, f: ais.Field) -> Any:
+def raw_value(message: ais.Record, f: ais.Field) -> Any:
     value = getattr(message, f.id)
     if isinstance(f, ais.Unsigned):
         return message.raw(f.id)
@@ -88,8 +88,14 @@ def raw_value(message: ais.Message, f: ais.Field) -> Any:
 
 
 def ours_in_gpsd_form(message: ais.Message) -> dict[str, Any]:
-    """The message's fields as gpsd names and writes them (raw integers)."""
+    """The message's fields, and its application's, as gpsd names and writes them (raw integers)."""
     out: dict[str, Any] = {}
+    application = message.application
+    if application is not None:
+        out.update((f.id, raw_value(application, f)) for f in application.FIELDS.values()
+                   if getattr(application, f.id) is not None)
+        if (application.DAC, application.FID) == (1, 31):
+            out["timestamp"] = "{:02d}T{:02d}:{:02d}Z".format(*(out.pop(k) for k in ("day", "hour", "minute")))
     for item in message.LAYOUT:
         if isinstance(item, ais.Group):
             for n, entry in enumerate(getattr(message, item.id), 1):

@@ -17,7 +17,7 @@ sys.path.insert(0, str(ROOT / "generated" / "python"))
 
 import nmeaspec  # noqa: E402
 from nmeaspec import ais  # noqa: E402
-from nmeaspec.ais_messages import BY_TYPE, decode_payload  # noqa: E402
+from nmeaspec.ais_messages import BY_TYPE, MeteoHydro, decode_payload  # noqa: E402
 from nmeaspec.ais_messages.position_report import PositionReport  # noqa: E402
 from nmeaspec.ais_messages.static_voyage_data import StaticVoyageData  # noqa: E402
 from nmeaspec.enums import VsdNavStatus  # noqa: E402
@@ -133,3 +133,21 @@ def test_a_vdm_sentence_gives_its_message() -> None:
     assert isinstance(vdm.message, PositionReport)
     first = nmeaspec.parse("!AIVDM,2,1,7,A,53aGulD0000000c7?0918Tq<E>0<Q8U=@Tp400155P:22uG`002ShTj0,0*05")
     assert first.message is None
+
+
+def test_an_application_decodes_from_its_message_s_data_and_encodes_back() -> None:
+    payload = "8h2=Vg@0Gh0TN1N>vAB0@PegFPClDIFcgwl?wnSwe7wvlOwwsAwwnSGmwvh0"
+    message = decode_payload(payload, 0)
+    meteo = message.application
+    assert isinstance(meteo, MeteoHydro) and getattr(message, "data") is None
+    assert (meteo.airtemp, meteo.airtemp_raw, meteo.pressure, meteo.pressure_raw) == (15.8, 158, 1012, 213)
+    assert meteo.waterlevel == ais.Special("not_available", 4001)
+    meteo.waterlevel = -9.84   # raw 16: metres from the chart datum, from -10
+    again = decode_payload(*message.encode())
+    assert isinstance(again.application, MeteoHydro)
+    assert (again.application.waterlevel, again.application.waterlevel_raw) == (-9.84, 16)
+
+
+def test_data_an_application_does_not_read_stays_data() -> None:
+    message = decode_payload("85Mwp`1Kf3aCnsNvBWLi=wQuNhA5t43N`5nCuI=p<IBfVqnMgPGs", 0)  # DAC 366 FI 56
+    assert message.application is None and getattr(message, "data")

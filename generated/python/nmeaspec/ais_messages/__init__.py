@@ -11,7 +11,8 @@
 #   spec/ais/messages/position_report.yaml, spec/ais/messages/safety_broadcast.yaml,
 #   spec/ais/messages/sar_aircraft_report.yaml, spec/ais/messages/single_slot_binary.yaml,
 #   spec/ais/messages/static_data_report.yaml, spec/ais/messages/static_voyage_data.yaml,
-#   spec/ais/messages/utc_inquiry.yaml (digest 6f0ff31ce79281ea)
+#   spec/ais/messages/utc_inquiry.yaml, spec/ais/applications/meteo_hydro.yaml
+#   (digest c85eae91c5e8959f)
 # Regenerate: make generate (python3 -m generator generate)
 """AIS messages: the payload of `!AIVDM`/`!AIVDO` decoded into the class of its message type,
 and encoded back to the same armored characters and fill bits."""
@@ -42,6 +43,7 @@ from .single_slot_binary import SingleSlotBinary as SingleSlotBinary
 from .static_data_report import StaticDataReport as StaticDataReport
 from .static_voyage_data import StaticVoyageData as StaticVoyageData
 from .utc_inquiry import UtcInquiry as UtcInquiry
+from .meteo_hydro import MeteoHydro as MeteoHydro
 
 BY_TYPE: dict[int, type[ais.Message]] = {
     1: PositionReport,
@@ -74,8 +76,13 @@ BY_TYPE: dict[int, type[ais.Message]] = {
 }
 """The class of each message type the spec describes."""
 
+APPLICATIONS: dict[tuple[int, int], type[ais.Application]] = {
+    (1, 31): MeteoHydro,
+}
+"""The application messages the spec describes, by DAC and FI."""
+
 
 def decode_payload(payload: str, fill_bits: int) -> ais.Message:
     """The message of an armored payload (one sentence's, or the joined payloads of a message's
     sentences) and its fill bits. Raises NmeaError: bad_armor, short_payload, unknown_message."""
-    return ais.decode(BY_TYPE, payload, fill_bits)
+    return ais.decode(BY_TYPE, APPLICATIONS, payload, fill_bits)

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/addressed_binary.yaml (digest 485a953050d35469)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Binary addressed message (type 6)."""
+"""Binary addressed message: AIS message type 6."""
 
 from __future__ import annotations
 

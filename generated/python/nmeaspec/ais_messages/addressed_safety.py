@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/addressed_safety.yaml (digest 21d26e2e6bcfdcaa)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Addressed safety related message (type 12)."""
+"""Addressed safety related message: AIS message type 12."""
 
 from __future__ import annotations
 

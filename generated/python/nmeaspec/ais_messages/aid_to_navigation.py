@@ -3,7 +3,7 @@
 # Source: spec/ais/messages/aid_to_navigation.yaml, spec/enums/ais_epfd.yaml
 #   (digest e83c54acb1f49303)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Aid-to-navigation report (type 21)."""
+"""Aid-to-navigation report: AIS message type 21."""
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/assignment_command.yaml (digest 6ca379acb76d7d6b)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Assigned mode command (type 16)."""
+"""Assigned mode command: AIS message type 16."""
 
 from __future__ import annotations
 

@@ -3,7 +3,7 @@
 # Source: spec/ais/messages/base_station_report.yaml, spec/enums/ais_epfd.yaml
 #   (digest 557178d5843b3a9e)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Base station report, UTC and date response (types 4, 11)."""
+"""Base station report, UTC and date response: AIS message types 4, 11."""
 
 from __future__ import annotations
 

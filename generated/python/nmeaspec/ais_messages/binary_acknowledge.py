@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/binary_acknowledge.yaml (digest 9381c0adca4ae04e)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Binary acknowledge, safety related acknowledge (types 7, 13)."""
+"""Binary acknowledge, safety related acknowledge: AIS message types 7, 13."""
 
 from __future__ import annotations
 

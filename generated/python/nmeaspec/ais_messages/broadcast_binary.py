@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/broadcast_binary.yaml (digest ddbf0b5d4efc8489)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Binary broadcast message (type 8)."""
+"""Binary broadcast message: AIS message type 8."""
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/channel_management.yaml (digest 03d440c761cdfcdd)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Channel management (type 22)."""
+"""Channel management: AIS message type 22."""
 
 from __future__ import annotations
 

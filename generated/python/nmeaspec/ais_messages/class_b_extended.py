@@ -3,7 +3,7 @@
 # Source: spec/ais/messages/class_b_extended.yaml, spec/enums/ais_epfd.yaml
 #   (digest 834ae58b715f3843)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Extended Class B equipment position report (type 19)."""
+"""Extended Class B equipment position report: AIS message type 19."""
 
 from __future__ import annotations
 

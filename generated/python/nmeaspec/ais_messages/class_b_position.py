@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/class_b_position.yaml (digest 248a9816ea06e253)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Standard Class B equipment position report (type 18)."""
+"""Standard Class B equipment position report: AIS message type 18."""
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/data_link_management.yaml (digest 9c4a642d580882b2)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Data link management message (type 20)."""
+"""Data link management message: AIS message type 20."""
 
 from __future__ import annotations
 

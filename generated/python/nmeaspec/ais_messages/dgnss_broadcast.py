@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/dgnss_broadcast.yaml (digest 57233d003d04c6db)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS GNSS broadcast binary message (type 17)."""
+"""GNSS broadcast binary message: AIS message type 17."""
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/group_assignment.yaml (digest 97e86e693ca40b0d)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Group assignment command (type 23)."""
+"""Group assignment command: AIS message type 23."""
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/interrogation.yaml (digest cc9b72754752221c)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Interrogation (type 15)."""
+"""Interrogation: AIS message type 15."""
 
 from __future__ import annotations
 

@@ -3,7 +3,7 @@
 # Source: spec/ais/messages/long_range_broadcast.yaml, spec/enums/vsd_nav_status.yaml
 #   (digest a136f615a8416f18)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Position report for long-range applications (type 27)."""
+"""Position report for long-range applications: AIS message type 27."""
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/multi_slot_binary.yaml (digest c52cf9e41c19c0d4)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Multiple slot binary message with communication state (type 26)."""
+"""Multiple slot binary message with communication state: AIS message type 26."""
 
 from __future__ import annotations
 

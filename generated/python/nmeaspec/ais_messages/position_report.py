@@ -3,7 +3,7 @@
 # Source: spec/ais/messages/position_report.yaml, spec/enums/vsd_nav_status.yaml
 #   (digest 41bde9629749dfea)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Position report (Class A) (types 1, 2, 3)."""
+"""Position report (Class A): AIS message types 1, 2, 3."""
 
 from __future__ import annotations
 

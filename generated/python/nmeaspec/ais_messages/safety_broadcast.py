@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/safety_broadcast.yaml (digest 79f8239446061d9b)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Safety related broadcast message (type 14)."""
+"""Safety related broadcast message: AIS message type 14."""
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/sar_aircraft_report.yaml (digest 1ed5ba57a0b4c62a)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Standard search and rescue aircraft position report (type 9)."""
+"""Standard search and rescue aircraft position report: AIS message type 9."""
 
 from __future__ import annotations
 

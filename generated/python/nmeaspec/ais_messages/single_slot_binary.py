@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/single_slot_binary.yaml (digest 5157c5854ec28862)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Single slot binary message (type 25)."""
+"""Single slot binary message: AIS message type 25."""
 
 from __future__ import annotations
 

@@ -3,7 +3,7 @@
 # Source: spec/ais/messages/static_data_report.yaml, spec/enums/ais_epfd.yaml
 #   (digest 1bd2579c878d10ee)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Static data report (type 24)."""
+"""Static data report: AIS message type 24."""
 
 from __future__ import annotations
 

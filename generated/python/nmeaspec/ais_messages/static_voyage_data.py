@@ -3,7 +3,7 @@
 # Source: spec/ais/messages/static_voyage_data.yaml, spec/enums/ais_epfd.yaml
 #   (digest d572850bbe663ac7)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Static and voyage related data (type 5)."""
+"""Static and voyage related data: AIS message type 5."""
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/utc_inquiry.yaml (digest 194829e6bc5d5024)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS UTC and date inquiry (type 10)."""
+"""UTC and date inquiry: AIS message type 10."""
 
 from __future__ import annotations
 

@@ -15,8 +15,12 @@ BY_TYPE: dict[int, type[ais.Message]] = {
 }
 """The class of each message type the spec describes."""
 
+APPLICATIONS: dict[tuple[int, int], type[ais.Application]] = {
+}
+"""The application messages the spec describes, by DAC and FI."""
+
 
 def decode_payload(payload: str, fill_bits: int) -> ais.Message:
     """The message of an armored payload (one sentence's, or the joined payloads of a message's
     sentences) and its fill bits. Raises NmeaError: bad_armor, short_payload, unknown_message."""
-    return ais.decode(BY_TYPE, payload, fill_bits)
+    return ais.decode(BY_TYPE, APPLICATIONS, payload, fill_bits)

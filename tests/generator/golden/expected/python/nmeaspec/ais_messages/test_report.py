@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/ais/messages/test_report.yaml, spec/enums/fix_quality.yaml (digest fdc1a3964e84dac7)
 # Regenerate: make generate (python3 -m generator generate)
-"""AIS Test report (type 1)."""
+"""Test report: AIS message type 1."""
 
 from __future__ import annotations
 
