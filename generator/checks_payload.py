@@ -156,9 +156,9 @@ def _check_items(spec: Spec, payload: Payload, report: Report) -> None:
 
 def _check_choice(choice: PayloadChoice, report: Report) -> None:
     selector = choice.selector
-    if selector is None or selector.bits is None or selector.offset is None or not selector.bit_type.numeric \
-            and selector.type not in ("bool", "enum"):
-        report(choice.origin, "A007", f"choice {choice.id}: `by` names no top-level integer, flag or enum field at a "
+    if selector is None or selector.bits is None or selector.offset is None or selector.bit_type.signed \
+            or not (selector.bit_type.numeric or selector.bit_type.coded or selector.type == "bool"):
+        report(choice.origin, "A007", f"choice {choice.id}: `by` names no top-level uint, flag or enum field at a "
                "fixed bit of the message (a choice after it must have cases of one width)", "by")
         return
     low, high = selector.bit_type.raw_range(selector.bits)
