@@ -11,10 +11,10 @@ from typing import Any
 from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
-from .model import (BitfieldDef, Payload, PayloadCase, PayloadChoice, PayloadExample, PayloadField,
-                    PayloadGroup, PayloadItem, Special, Bits, BitValue, EnumDef, EnumValue, Example, Fact, Field, FixExample,
-                    GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, ReplyRule,
-                    Sentence, Spec, TableDef)
+from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Fact, Field, FixExample,
+                    GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
+                    PayloadChoice, PayloadExample, PayloadField, PayloadGroup, PayloadItem, ReplyRule, Sentence, Spec,
+                    Special, TableDef)
 from .resolve import resolve
 
 

@@ -122,7 +122,7 @@ def payload_rows(payload: Payload) -> list[dict]:
         special = "; ".join(f"{s.raw} `{s.id}`: {s.doc}" for s in f.special)
         return {"bits": where, "width": str(f.bits) if f.bits else "rest", "id": prefix + f.id, "name": cell(f.name),
                 "type": kind + (" (optional)" if f.optional else ""), "when": when,
-                "scale": " ".join(([f"÷ {f.divisor}"] if f.divisor else []) + ([f"+ {f.base}"] if f.base is not None else [])),
+                "scale": " ".join([f"÷ {f.divisor}"] * bool(f.divisor) + [f"+ {f.base}"] * (f.base is not None)),
                 "unit": cell(f.unit),
                 "special": cell(special), "doc": cell(f.doc if f.doc != f.name else "")}
 

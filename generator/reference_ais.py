@@ -59,7 +59,8 @@ class _Bits:
 
     def take(self, width: int, name: str) -> str:
         if width > self.left:
-            raise PayloadError("short_payload", f"{self.payload.id}: {name} needs {width} bits at bit {self.pos}, {self.left} left")
+            raise PayloadError("short_payload",
+                               f"{self.payload.id}: {name} needs {width} bits at bit {self.pos}, {self.left} left")
         self.pos += width
         return self.bits[self.pos - width:self.pos]
 

@@ -42,7 +42,8 @@ def known_reason(message_type: int, key: str, ours: Any, theirs: Any) -> str | N
     if message_type in (17, 22, 23) and key.endswith(("lon", "lat")) and isinstance(theirs, float) \
             and abs(theirs / 60 - ours) < 1e-9:
         return "pyais gives these 1/10-minute coordinates in minutes, not degrees"
-    if message_type == 17 and key == "lat" and isinstance(theirs, float) and abs(theirs * 10 - 2**17 - ours * 600) < 1e-6:
+    if message_type == 17 and key == "lat" and isinstance(theirs, float) \
+            and abs(theirs * 10 - 2**17 - ours * 600) < 1e-6:
         return "pyais reads type 17's latitude as unsigned: a southern one comes out above 2^16 / 10 minutes"
     if key in ("ship_type", "epfd") and isinstance(theirs, int) and theirs < ours:
         return ("pyais folds a code its enum lacks into another (0, not available, or the first of a reserved "
