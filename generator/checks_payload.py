@@ -69,7 +69,7 @@ def _check_field(spec: Spec, f: PayloadField, report: Report) -> None:
         report(f.origin, "S002", f"field {f.id} refers to unknown enum {f.enum_id!r}", "enum")
     elif f.enum is not None and any(not v.code.isdigit() for v in f.enum.values):
         report(f.origin, "A002", f"field {f.id}: enum {f.enum.id} has codes that are no unsigned numbers", "enum")
-    if f.dispatch and f.type != "data":
+    if f.dispatch and not t.dispatches:
         report(f.origin, "A002", f"field {f.id}: only data is dispatched", "dispatch")
     if f.bits is not None and t.numeric:
         low, high = t.raw_range(f.bits)
@@ -156,8 +156,7 @@ def _check_items(spec: Spec, payload: Payload, report: Report) -> None:
 
 def _check_choice(choice: PayloadChoice, report: Report) -> None:
     selector = choice.selector
-    if selector is None or selector.bits is None or selector.offset is None or selector.bit_type.signed \
-            or not (selector.bit_type.numeric or selector.bit_type.coded or selector.type == "bool"):
+    if selector is None or selector.bits is None or selector.offset is None or not selector.bit_type.selects:
         report(choice.origin, "A007", f"choice {choice.id}: `by` names no top-level uint, flag or enum field at a "
                "fixed bit of the message (a choice after it must have cases of one width)", "by")
         return

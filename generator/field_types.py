@@ -372,6 +372,8 @@ class BitType:
     numeric: bool = False      # takes a divisor, a unit and special values
     signed: bool = False
     coded: bool = False        # its raw values are codes of an enum
+    selects: bool = False      # its raw value, read unsigned, may pick the case of a choice
+    dispatches: bool = False   # its bits may be an application's, picked by other fields (`dispatch`)
 
     def raw(self, bits: str) -> Any:
         """The reference decoder's raw value of a field from its bits ('0'/'1' text)."""
@@ -437,11 +439,11 @@ class BitData(BitType):
 
 
 BIT_TYPES: dict[str, BitType] = {t.name: t for t in (
-    BitNumber("uint", "unsigned", "Unsigned", "int", numeric=True),
+    BitNumber("uint", "unsigned", "Unsigned", "int", numeric=True, selects=True),
     BitNumber("int", "signed (two's complement)", "Signed", "int", min_bits=2, numeric=True, signed=True),
-    BitFlag("bool", "flag", "Flag", "bool", max_bits=1),
-    BitCode("enum", "enum", "Code", "{enum} | int", coded=True),
+    BitFlag("bool", "flag", "Flag", "bool", max_bits=1, selects=True),
+    BitCode("enum", "enum", "Code", "{enum} | int", coded=True, selects=True),
     BitText("text", "six-bit text", "Text", "str", min_bits=6, max_bits=None, char_bits=6, variable=True),
-    BitData("data", "binary data", "Data", "str", max_bits=None, variable=True),
+    BitData("data", "binary data", "Data", "str", max_bits=None, variable=True, dispatches=True),
     BitType("spare", "spare (kept as sent)", "Spare", "int"),
 )}
