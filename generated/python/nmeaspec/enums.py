@@ -15,20 +15,21 @@
 #   spec/enums/airoha_nmea_output_mode.yaml, spec/enums/airoha_nmea_type.yaml,
 #   spec/enums/airoha_periodic_mode.yaml, spec/enums/airoha_pos_precision.yaml,
 #   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml, spec/enums/ais_channel.yaml,
-#   spec/enums/ais_epfd.yaml, spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml,
-#   spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml,
-#   spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
-#   spec/enums/ashtech_hpr_mode.yaml, spec/enums/ashtech_nme_message.yaml,
-#   spec/enums/ashtech_on_off.yaml, spec/enums/ashtech_port.yaml,
-#   spec/enums/ashtech_pos_solution.yaml, spec/enums/ashtech_rt300_alignment.yaml,
-#   spec/enums/ashtech_rt300_quality.yaml, spec/enums/ashtech_sv_used.yaml,
-#   spec/enums/broadcom_glor_confidence.yaml, spec/enums/broadcom_glor_location_request.yaml,
-#   spec/enums/broadcom_glor_power_save.yaml, spec/enums/broadcom_glor_vel_track_quality.yaml,
-#   spec/enums/comnav_log_message.yaml, spec/enums/comnav_talker_id.yaml,
-#   spec/enums/comnav_talker_sentence.yaml, spec/enums/cur_direction_reference.yaml,
-#   spec/enums/cur_heading_reference.yaml, spec/enums/cur_speed_reference.yaml,
-#   spec/enums/ddc_command_mode.yaml, spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml,
-#   spec/enums/dor_status.yaml, spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
+#   spec/enums/ais_epfd.yaml, spec/enums/ais_ship_type.yaml, spec/enums/ala_ack_state.yaml,
+#   spec/enums/ala_condition.yaml, spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml,
+#   spec/enums/alf_state.yaml, spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml,
+#   spec/enums/apb_bearing_ref.yaml, spec/enums/ashtech_hpr_mode.yaml,
+#   spec/enums/ashtech_nme_message.yaml, spec/enums/ashtech_on_off.yaml,
+#   spec/enums/ashtech_port.yaml, spec/enums/ashtech_pos_solution.yaml,
+#   spec/enums/ashtech_rt300_alignment.yaml, spec/enums/ashtech_rt300_quality.yaml,
+#   spec/enums/ashtech_sv_used.yaml, spec/enums/broadcom_glor_confidence.yaml,
+#   spec/enums/broadcom_glor_location_request.yaml, spec/enums/broadcom_glor_power_save.yaml,
+#   spec/enums/broadcom_glor_vel_track_quality.yaml, spec/enums/comnav_log_message.yaml,
+#   spec/enums/comnav_talker_id.yaml, spec/enums/comnav_talker_sentence.yaml,
+#   spec/enums/cur_direction_reference.yaml, spec/enums/cur_heading_reference.yaml,
+#   spec/enums/cur_speed_reference.yaml, spec/enums/ddc_command_mode.yaml,
+#   spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml, spec/enums/dor_status.yaml,
+#   spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
 #   spec/enums/dsc_acknowledgement.yaml, spec/enums/dsc_category.yaml,
 #   spec/enums/dsc_distress_nature.yaml, spec/enums/dsc_format.yaml, spec/enums/dse_code.yaml,
 #   spec/enums/dse_query_flag.yaml, spec/enums/dtm_datum.yaml, spec/enums/dtm_lat_offset_dir.yaml,
@@ -121,7 +122,7 @@
 #   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 #   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 #   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-#   (digest 60d4b4a8136869c1)
+#   (digest f7b7589a4e3aeed5)
 # Regenerate: make generate (python3 -m generator generate)
 """The spec's lookup tables. A member's value is its wire code; `.id` is the spec's id."""
 
@@ -753,6 +754,135 @@ class AisEpfd(CodeEnum):
     INTERNAL_GNSS = "15"
     """Internal GNSS (not used on the VDL before M.1371-5 except by fixed stations). (itu_m1371_5,
     aivdm_decoding)"""
+
+
+class AisShipType(CodeEnum):
+    """AIS type of ship and cargo: The kind of ship (first digit) and its cargo (second digit), as
+    AIS static data gives it (ITU-R M.1371-5, annex 8, table 53). The codes left out (1-19, 25-29,
+    38-39, 45-48, 65-68, ...) are reserved for future use and kept as their number."""
+
+    BY_CODE: ClassVar[dict[str, AisShipType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
+    NOT_AVAILABLE = "0"
+    """Not available (default). (itu_m1371_5, aivdm_decoding)"""
+    WIG = "20"
+    """Wing in ground craft, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    WIG_HAZARDOUS_A = "21"
+    """Wing in ground craft carrying dangerous goods of category X (A). (itu_m1371_5,
+    aivdm_decoding)"""
+    WIG_HAZARDOUS_B = "22"
+    """Wing in ground craft carrying dangerous goods of category Y (B). (itu_m1371_5,
+    aivdm_decoding)"""
+    WIG_HAZARDOUS_C = "23"
+    """Wing in ground craft carrying dangerous goods of category Z (C). (itu_m1371_5,
+    aivdm_decoding)"""
+    WIG_HAZARDOUS_D = "24"
+    """Wing in ground craft carrying dangerous goods of category OS (D). (itu_m1371_5,
+    aivdm_decoding)"""
+    FISHING = "30"
+    """Fishing. (itu_m1371_5, aivdm_decoding)"""
+    TOWING = "31"
+    """Towing. (itu_m1371_5, aivdm_decoding)"""
+    TOWING_LARGE = "32"
+    """Towing, the tow longer than 200 m or wider than 25 m. (itu_m1371_5, aivdm_decoding)"""
+    DREDGING = "33"
+    """Dredging or underwater operations. (itu_m1371_5, aivdm_decoding)"""
+    DIVING = "34"
+    """Diving operations. (itu_m1371_5, aivdm_decoding)"""
+    MILITARY = "35"
+    """Military operations. (itu_m1371_5, aivdm_decoding)"""
+    SAILING = "36"
+    """Sailing. (itu_m1371_5, aivdm_decoding)"""
+    PLEASURE_CRAFT = "37"
+    """Pleasure craft. (itu_m1371_5, aivdm_decoding)"""
+    HIGH_SPEED_CRAFT = "40"
+    """High speed craft, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    HIGH_SPEED_CRAFT_HAZARDOUS_A = "41"
+    """High speed craft carrying dangerous goods of category X (A). (itu_m1371_5, aivdm_decoding)"""
+    HIGH_SPEED_CRAFT_HAZARDOUS_B = "42"
+    """High speed craft carrying dangerous goods of category Y (B). (itu_m1371_5, aivdm_decoding)"""
+    HIGH_SPEED_CRAFT_HAZARDOUS_C = "43"
+    """High speed craft carrying dangerous goods of category Z (C). (itu_m1371_5, aivdm_decoding)"""
+    HIGH_SPEED_CRAFT_HAZARDOUS_D = "44"
+    """High speed craft carrying dangerous goods of category OS (D). (itu_m1371_5,
+    aivdm_decoding)"""
+    HIGH_SPEED_CRAFT_NO_INFO = "49"
+    """High speed craft, no additional information. (itu_m1371_5, aivdm_decoding)"""
+    PILOT_VESSEL = "50"
+    """Pilot vessel. (itu_m1371_5, aivdm_decoding)"""
+    SEARCH_AND_RESCUE = "51"
+    """Search and rescue vessel. (itu_m1371_5, aivdm_decoding)"""
+    TUG = "52"
+    """Tug. (itu_m1371_5, aivdm_decoding)"""
+    PORT_TENDER = "53"
+    """Port tender. (itu_m1371_5, aivdm_decoding)"""
+    ANTI_POLLUTION = "54"
+    """Vessel with anti-pollution facilities or equipment. (itu_m1371_5, aivdm_decoding)"""
+    LAW_ENFORCEMENT = "55"
+    """Law enforcement vessel. (itu_m1371_5, aivdm_decoding)"""
+    LOCAL_56 = "56"
+    """Spare, for assignment to local vessels. (itu_m1371_5, aivdm_decoding)"""
+    LOCAL_57 = "57"
+    """Spare, for assignment to local vessels. (itu_m1371_5, aivdm_decoding)"""
+    MEDICAL_TRANSPORT = "58"
+    """Medical transport. (itu_m1371_5, aivdm_decoding)"""
+    NONCOMBATANT = "59"
+    """Ship of a State not party to an armed conflict (noncombatant). (itu_m1371_5,
+    aivdm_decoding)"""
+    PASSENGER = "60"
+    """Passenger ship, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    PASSENGER_HAZARDOUS_A = "61"
+    """Passenger ship carrying dangerous goods of category X (A). (itu_m1371_5, aivdm_decoding)"""
+    PASSENGER_HAZARDOUS_B = "62"
+    """Passenger ship carrying dangerous goods of category Y (B). (itu_m1371_5, aivdm_decoding)"""
+    PASSENGER_HAZARDOUS_C = "63"
+    """Passenger ship carrying dangerous goods of category Z (C). (itu_m1371_5, aivdm_decoding)"""
+    PASSENGER_HAZARDOUS_D = "64"
+    """Passenger ship carrying dangerous goods of category OS (D). (itu_m1371_5, aivdm_decoding)"""
+    PASSENGER_NO_INFO = "69"
+    """Passenger ship, no additional information. (itu_m1371_5, aivdm_decoding)"""
+    CARGO = "70"
+    """Cargo ship, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    CARGO_HAZARDOUS_A = "71"
+    """Cargo ship carrying dangerous goods of category X (A). (itu_m1371_5, aivdm_decoding)"""
+    CARGO_HAZARDOUS_B = "72"
+    """Cargo ship carrying dangerous goods of category Y (B). (itu_m1371_5, aivdm_decoding)"""
+    CARGO_HAZARDOUS_C = "73"
+    """Cargo ship carrying dangerous goods of category Z (C). (itu_m1371_5, aivdm_decoding)"""
+    CARGO_HAZARDOUS_D = "74"
+    """Cargo ship carrying dangerous goods of category OS (D). (itu_m1371_5, aivdm_decoding)"""
+    CARGO_NO_INFO = "79"
+    """Cargo ship, no additional information. (itu_m1371_5, aivdm_decoding)"""
+    TANKER = "80"
+    """Tanker, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    TANKER_HAZARDOUS_A = "81"
+    """Tanker carrying dangerous goods of category X (A). (itu_m1371_5, aivdm_decoding)"""
+    TANKER_HAZARDOUS_B = "82"
+    """Tanker carrying dangerous goods of category Y (B). (itu_m1371_5, aivdm_decoding)"""
+    TANKER_HAZARDOUS_C = "83"
+    """Tanker carrying dangerous goods of category Z (C). (itu_m1371_5, aivdm_decoding)"""
+    TANKER_HAZARDOUS_D = "84"
+    """Tanker carrying dangerous goods of category OS (D). (itu_m1371_5, aivdm_decoding)"""
+    TANKER_NO_INFO = "89"
+    """Tanker, no additional information. (itu_m1371_5, aivdm_decoding)"""
+    OTHER = "90"
+    """Other type of ship, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    OTHER_HAZARDOUS_A = "91"
+    """Other type of ship carrying dangerous goods of category X (A). (itu_m1371_5,
+    aivdm_decoding)"""
+    OTHER_HAZARDOUS_B = "92"
+    """Other type of ship carrying dangerous goods of category Y (B). (itu_m1371_5,
+    aivdm_decoding)"""
+    OTHER_HAZARDOUS_C = "93"
+    """Other type of ship carrying dangerous goods of category Z (C). (itu_m1371_5,
+    aivdm_decoding)"""
+    OTHER_HAZARDOUS_D = "94"
+    """Other type of ship carrying dangerous goods of category OS (D). (itu_m1371_5,
+    aivdm_decoding)"""
+    OTHER_NO_INFO = "99"
+    """Other type of ship, no additional information. (itu_m1371_5, aivdm_decoding)"""
 
 
 class AlaAckState(CodeEnum):
@@ -5626,6 +5756,11 @@ AisChannel.MIN_LEN, AisChannel.MAX_LEN = 1, 1
 AisEpfd.BY_CODE = by_code(AisEpfd)
 AisEpfd.CODE_CLASS = "digits"
 AisEpfd.MIN_LEN, AisEpfd.MAX_LEN = 1, 2
+
+
+AisShipType.BY_CODE = by_code(AisShipType)
+AisShipType.CODE_CLASS = "digits"
+AisShipType.MIN_LEN, AisShipType.MAX_LEN = 1, 2
 
 
 AlaAckState.BY_CODE = by_code(AlaAckState)
