@@ -14,22 +14,22 @@
 #   spec/enums/airoha_locus_threshold.yaml, spec/enums/airoha_nav_mode.yaml,
 #   spec/enums/airoha_nmea_output_mode.yaml, spec/enums/airoha_nmea_type.yaml,
 #   spec/enums/airoha_periodic_mode.yaml, spec/enums/airoha_pos_precision.yaml,
-#   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml, spec/enums/ais_channel.yaml,
-#   spec/enums/ais_epfd.yaml, spec/enums/ais_ship_type.yaml, spec/enums/ala_ack_state.yaml,
-#   spec/enums/ala_condition.yaml, spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml,
-#   spec/enums/alf_state.yaml, spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml,
-#   spec/enums/apb_bearing_ref.yaml, spec/enums/ashtech_hpr_mode.yaml,
-#   spec/enums/ashtech_nme_message.yaml, spec/enums/ashtech_on_off.yaml,
-#   spec/enums/ashtech_port.yaml, spec/enums/ashtech_pos_solution.yaml,
-#   spec/enums/ashtech_rt300_alignment.yaml, spec/enums/ashtech_rt300_quality.yaml,
-#   spec/enums/ashtech_sv_used.yaml, spec/enums/broadcom_glor_confidence.yaml,
-#   spec/enums/broadcom_glor_location_request.yaml, spec/enums/broadcom_glor_power_save.yaml,
-#   spec/enums/broadcom_glor_vel_track_quality.yaml, spec/enums/comnav_log_message.yaml,
-#   spec/enums/comnav_talker_id.yaml, spec/enums/comnav_talker_sentence.yaml,
-#   spec/enums/cur_direction_reference.yaml, spec/enums/cur_heading_reference.yaml,
-#   spec/enums/cur_speed_reference.yaml, spec/enums/ddc_command_mode.yaml,
-#   spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml, spec/enums/dor_status.yaml,
-#   spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
+#   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml, spec/enums/ais_aid_type.yaml,
+#   spec/enums/ais_channel.yaml, spec/enums/ais_epfd.yaml, spec/enums/ais_ship_type.yaml,
+#   spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml, spec/enums/alf_category.yaml,
+#   spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml, spec/enums/alr_ack_state.yaml,
+#   spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
+#   spec/enums/ashtech_hpr_mode.yaml, spec/enums/ashtech_nme_message.yaml,
+#   spec/enums/ashtech_on_off.yaml, spec/enums/ashtech_port.yaml,
+#   spec/enums/ashtech_pos_solution.yaml, spec/enums/ashtech_rt300_alignment.yaml,
+#   spec/enums/ashtech_rt300_quality.yaml, spec/enums/ashtech_sv_used.yaml,
+#   spec/enums/broadcom_glor_confidence.yaml, spec/enums/broadcom_glor_location_request.yaml,
+#   spec/enums/broadcom_glor_power_save.yaml, spec/enums/broadcom_glor_vel_track_quality.yaml,
+#   spec/enums/comnav_log_message.yaml, spec/enums/comnav_talker_id.yaml,
+#   spec/enums/comnav_talker_sentence.yaml, spec/enums/cur_direction_reference.yaml,
+#   spec/enums/cur_heading_reference.yaml, spec/enums/cur_speed_reference.yaml,
+#   spec/enums/ddc_command_mode.yaml, spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml,
+#   spec/enums/dor_status.yaml, spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
 #   spec/enums/dsc_acknowledgement.yaml, spec/enums/dsc_category.yaml,
 #   spec/enums/dsc_distress_nature.yaml, spec/enums/dsc_format.yaml, spec/enums/dse_code.yaml,
 #   spec/enums/dse_query_flag.yaml, spec/enums/dtm_datum.yaml, spec/enums/dtm_lat_offset_dir.yaml,
@@ -122,7 +122,7 @@
 #   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 #   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 #   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-#   (digest f7b7589a4e3aeed5)
+#   (digest 1017cea4e20d617a)
 # Regenerate: make generate (python3 -m generator generate)
 """The spec's lookup tables. A member's value is its wire code; `.id` is the spec's id."""
 
@@ -705,6 +705,81 @@ class AirohaRtcmMode(CodeEnum):
     """RTCM 3 MSM4 observations. (airoha_pair, airoha_lc76g)"""
     MSM7 = "1"
     """RTCM 3 MSM7 observations. (airoha_pair, airoha_lc76g)"""
+
+
+class AisAidType(CodeEnum):
+    """AIS type of aid to navigation: The kind of aid to navigation an aid-to-navigation report
+    (type 21) describes: 5-19 are fixed aids, 20-31 floating ones (ITU-R M.1371-5, annex 8, table
+    74)."""
+
+    BY_CODE: ClassVar[dict[str, AisAidType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
+    NOT_SPECIFIED = "0"
+    """Not specified (default). (itu_m1371_5, aivdm_decoding)"""
+    REFERENCE_POINT = "1"
+    """Reference point. (itu_m1371_5, aivdm_decoding)"""
+    RACON = "2"
+    """RACON (radar transponder). (itu_m1371_5, aivdm_decoding)"""
+    FIXED_STRUCTURE = "3"
+    """Fixed structure off shore: a platform, a wind farm. (itu_m1371_5, aivdm_decoding)"""
+    SPARE = "4"
+    """Spare, reserved for future use. (itu_m1371_5, aivdm_decoding)"""
+    LIGHT = "5"
+    """Light, without sectors. (itu_m1371_5, aivdm_decoding)"""
+    LIGHT_SECTORS = "6"
+    """Light, with sectors. (itu_m1371_5, aivdm_decoding)"""
+    LEADING_LIGHT_FRONT = "7"
+    """Leading light, front. (itu_m1371_5, aivdm_decoding)"""
+    LEADING_LIGHT_REAR = "8"
+    """Leading light, rear. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_CARDINAL_N = "9"
+    """Beacon, cardinal north. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_CARDINAL_E = "10"
+    """Beacon, cardinal east. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_CARDINAL_S = "11"
+    """Beacon, cardinal south. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_CARDINAL_W = "12"
+    """Beacon, cardinal west. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_PORT = "13"
+    """Beacon, port hand. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_STARBOARD = "14"
+    """Beacon, starboard hand. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_PREFERRED_PORT = "15"
+    """Beacon, preferred channel port hand. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_PREFERRED_STARBOARD = "16"
+    """Beacon, preferred channel starboard hand. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_ISOLATED_DANGER = "17"
+    """Beacon, isolated danger. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_SAFE_WATER = "18"
+    """Beacon, safe water. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_SPECIAL = "19"
+    """Beacon, special mark. (itu_m1371_5, aivdm_decoding)"""
+    CARDINAL_N = "20"
+    """Cardinal mark north (floating). (itu_m1371_5, aivdm_decoding)"""
+    CARDINAL_E = "21"
+    """Cardinal mark east (floating). (itu_m1371_5, aivdm_decoding)"""
+    CARDINAL_S = "22"
+    """Cardinal mark south (floating). (itu_m1371_5, aivdm_decoding)"""
+    CARDINAL_W = "23"
+    """Cardinal mark west (floating). (itu_m1371_5, aivdm_decoding)"""
+    PORT = "24"
+    """Port hand mark (floating). (itu_m1371_5, aivdm_decoding)"""
+    STARBOARD = "25"
+    """Starboard hand mark (floating). (itu_m1371_5, aivdm_decoding)"""
+    PREFERRED_PORT = "26"
+    """Preferred channel port hand (floating). (itu_m1371_5, aivdm_decoding)"""
+    PREFERRED_STARBOARD = "27"
+    """Preferred channel starboard hand (floating). (itu_m1371_5, aivdm_decoding)"""
+    ISOLATED_DANGER = "28"
+    """Isolated danger (floating). (itu_m1371_5, aivdm_decoding)"""
+    SAFE_WATER = "29"
+    """Safe water (floating). (itu_m1371_5, aivdm_decoding)"""
+    SPECIAL = "30"
+    """Special mark (floating). (itu_m1371_5, aivdm_decoding)"""
+    LIGHT_VESSEL = "31"
+    """Light vessel, LANBY or rig. (itu_m1371_5, aivdm_decoding)"""
 
 
 class AisChannel(CodeEnum):
@@ -5746,6 +5821,11 @@ AirohaPpsType.MIN_LEN, AirohaPpsType.MAX_LEN = 1, 1
 AirohaRtcmMode.BY_CODE = by_code(AirohaRtcmMode)
 AirohaRtcmMode.CODE_CLASS = "digits"
 AirohaRtcmMode.MIN_LEN, AirohaRtcmMode.MAX_LEN = 1, 2
+
+
+AisAidType.BY_CODE = by_code(AisAidType)
+AisAidType.CODE_CLASS = "digits"
+AisAidType.MIN_LEN, AisAidType.MAX_LEN = 1, 2
 
 
 AisChannel.BY_CODE = by_code(AisChannel)

@@ -14,22 +14,22 @@
 //   spec/enums/airoha_locus_threshold.yaml, spec/enums/airoha_nav_mode.yaml,
 //   spec/enums/airoha_nmea_output_mode.yaml, spec/enums/airoha_nmea_type.yaml,
 //   spec/enums/airoha_periodic_mode.yaml, spec/enums/airoha_pos_precision.yaml,
-//   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml, spec/enums/ais_channel.yaml,
-//   spec/enums/ais_epfd.yaml, spec/enums/ais_ship_type.yaml, spec/enums/ala_ack_state.yaml,
-//   spec/enums/ala_condition.yaml, spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml,
-//   spec/enums/alf_state.yaml, spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml,
-//   spec/enums/apb_bearing_ref.yaml, spec/enums/ashtech_hpr_mode.yaml,
-//   spec/enums/ashtech_nme_message.yaml, spec/enums/ashtech_on_off.yaml,
-//   spec/enums/ashtech_port.yaml, spec/enums/ashtech_pos_solution.yaml,
-//   spec/enums/ashtech_rt300_alignment.yaml, spec/enums/ashtech_rt300_quality.yaml,
-//   spec/enums/ashtech_sv_used.yaml, spec/enums/broadcom_glor_confidence.yaml,
-//   spec/enums/broadcom_glor_location_request.yaml, spec/enums/broadcom_glor_power_save.yaml,
-//   spec/enums/broadcom_glor_vel_track_quality.yaml, spec/enums/comnav_log_message.yaml,
-//   spec/enums/comnav_talker_id.yaml, spec/enums/comnav_talker_sentence.yaml,
-//   spec/enums/cur_direction_reference.yaml, spec/enums/cur_heading_reference.yaml,
-//   spec/enums/cur_speed_reference.yaml, spec/enums/ddc_command_mode.yaml,
-//   spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml, spec/enums/dor_status.yaml,
-//   spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
+//   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml,
+//   spec/enums/ais_aid_type.yaml, spec/enums/ais_channel.yaml, spec/enums/ais_epfd.yaml,
+//   spec/enums/ais_ship_type.yaml, spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml,
+//   spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml,
+//   spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
+//   spec/enums/ashtech_hpr_mode.yaml, spec/enums/ashtech_nme_message.yaml,
+//   spec/enums/ashtech_on_off.yaml, spec/enums/ashtech_port.yaml,
+//   spec/enums/ashtech_pos_solution.yaml, spec/enums/ashtech_rt300_alignment.yaml,
+//   spec/enums/ashtech_rt300_quality.yaml, spec/enums/ashtech_sv_used.yaml,
+//   spec/enums/broadcom_glor_confidence.yaml, spec/enums/broadcom_glor_location_request.yaml,
+//   spec/enums/broadcom_glor_power_save.yaml, spec/enums/broadcom_glor_vel_track_quality.yaml,
+//   spec/enums/comnav_log_message.yaml, spec/enums/comnav_talker_id.yaml,
+//   spec/enums/comnav_talker_sentence.yaml, spec/enums/cur_direction_reference.yaml,
+//   spec/enums/cur_heading_reference.yaml, spec/enums/cur_speed_reference.yaml,
+//   spec/enums/ddc_command_mode.yaml, spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml,
+//   spec/enums/dor_status.yaml, spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
 //   spec/enums/dsc_acknowledgement.yaml, spec/enums/dsc_category.yaml,
 //   spec/enums/dsc_distress_nature.yaml, spec/enums/dsc_format.yaml, spec/enums/dse_code.yaml,
 //   spec/enums/dse_query_flag.yaml, spec/enums/dtm_datum.yaml, spec/enums/dtm_lat_offset_dir.yaml,
@@ -123,7 +123,7 @@
 //   spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml, spec/enums/vsd_nav_status.yaml,
 //   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
 //   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
-//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest f7b7589a4e3aeed5)
+//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 1017cea4e20d617a)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -1946,6 +1946,235 @@ impl CodeEnum for AirohaRtcmMode {
             Self::Disabled => "disabled",
             Self::Msm4 => "msm4",
             Self::Msm7 => "msm7",
+        }
+    }
+}
+
+/// AIS type of aid to navigation: The kind of aid to navigation an aid-to-navigation report (type 21) describes: 5-19 are fixed aids, 20-31 floating ones (ITU-R M.1371-5, annex 8, table 74).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AisAidType {
+    /// Not specified (default).
+    NotSpecified,
+    /// Reference point.
+    ReferencePoint,
+    /// RACON (radar transponder).
+    Racon,
+    /// Fixed structure off shore: a platform, a wind farm.
+    FixedStructure,
+    /// Spare, reserved for future use.
+    Spare,
+    /// Light, without sectors.
+    Light,
+    /// Light, with sectors.
+    LightSectors,
+    /// Leading light, front.
+    LeadingLightFront,
+    /// Leading light, rear.
+    LeadingLightRear,
+    /// Beacon, cardinal north.
+    BeaconCardinalN,
+    /// Beacon, cardinal east.
+    BeaconCardinalE,
+    /// Beacon, cardinal south.
+    BeaconCardinalS,
+    /// Beacon, cardinal west.
+    BeaconCardinalW,
+    /// Beacon, port hand.
+    BeaconPort,
+    /// Beacon, starboard hand.
+    BeaconStarboard,
+    /// Beacon, preferred channel port hand.
+    BeaconPreferredPort,
+    /// Beacon, preferred channel starboard hand.
+    BeaconPreferredStarboard,
+    /// Beacon, isolated danger.
+    BeaconIsolatedDanger,
+    /// Beacon, safe water.
+    BeaconSafeWater,
+    /// Beacon, special mark.
+    BeaconSpecial,
+    /// Cardinal mark north (floating).
+    CardinalN,
+    /// Cardinal mark east (floating).
+    CardinalE,
+    /// Cardinal mark south (floating).
+    CardinalS,
+    /// Cardinal mark west (floating).
+    CardinalW,
+    /// Port hand mark (floating).
+    Port,
+    /// Starboard hand mark (floating).
+    Starboard,
+    /// Preferred channel port hand (floating).
+    PreferredPort,
+    /// Preferred channel starboard hand (floating).
+    PreferredStarboard,
+    /// Isolated danger (floating).
+    IsolatedDanger,
+    /// Safe water (floating).
+    SafeWater,
+    /// Special mark (floating).
+    Special,
+    /// Light vessel, LANBY or rig.
+    LightVessel,
+}
+
+impl CodeEnum for AisAidType {
+    const EXPECTED: &'static str =
+        "ais_aid_type code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31)";
+    const EXPECTED_CHARS: &'static str =
+        "ais_aid_type codes (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 2;
+    const ALL: &'static [Self] = &[
+        Self::NotSpecified,
+        Self::ReferencePoint,
+        Self::Racon,
+        Self::FixedStructure,
+        Self::Spare,
+        Self::Light,
+        Self::LightSectors,
+        Self::LeadingLightFront,
+        Self::LeadingLightRear,
+        Self::BeaconCardinalN,
+        Self::BeaconCardinalE,
+        Self::BeaconCardinalS,
+        Self::BeaconCardinalW,
+        Self::BeaconPort,
+        Self::BeaconStarboard,
+        Self::BeaconPreferredPort,
+        Self::BeaconPreferredStarboard,
+        Self::BeaconIsolatedDanger,
+        Self::BeaconSafeWater,
+        Self::BeaconSpecial,
+        Self::CardinalN,
+        Self::CardinalE,
+        Self::CardinalS,
+        Self::CardinalW,
+        Self::Port,
+        Self::Starboard,
+        Self::PreferredPort,
+        Self::PreferredStarboard,
+        Self::IsolatedDanger,
+        Self::SafeWater,
+        Self::Special,
+        Self::LightVessel,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::NotSpecified),
+            b"1" => Some(Self::ReferencePoint),
+            b"2" => Some(Self::Racon),
+            b"3" => Some(Self::FixedStructure),
+            b"4" => Some(Self::Spare),
+            b"5" => Some(Self::Light),
+            b"6" => Some(Self::LightSectors),
+            b"7" => Some(Self::LeadingLightFront),
+            b"8" => Some(Self::LeadingLightRear),
+            b"9" => Some(Self::BeaconCardinalN),
+            b"10" => Some(Self::BeaconCardinalE),
+            b"11" => Some(Self::BeaconCardinalS),
+            b"12" => Some(Self::BeaconCardinalW),
+            b"13" => Some(Self::BeaconPort),
+            b"14" => Some(Self::BeaconStarboard),
+            b"15" => Some(Self::BeaconPreferredPort),
+            b"16" => Some(Self::BeaconPreferredStarboard),
+            b"17" => Some(Self::BeaconIsolatedDanger),
+            b"18" => Some(Self::BeaconSafeWater),
+            b"19" => Some(Self::BeaconSpecial),
+            b"20" => Some(Self::CardinalN),
+            b"21" => Some(Self::CardinalE),
+            b"22" => Some(Self::CardinalS),
+            b"23" => Some(Self::CardinalW),
+            b"24" => Some(Self::Port),
+            b"25" => Some(Self::Starboard),
+            b"26" => Some(Self::PreferredPort),
+            b"27" => Some(Self::PreferredStarboard),
+            b"28" => Some(Self::IsolatedDanger),
+            b"29" => Some(Self::SafeWater),
+            b"30" => Some(Self::Special),
+            b"31" => Some(Self::LightVessel),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::NotSpecified => "0",
+            Self::ReferencePoint => "1",
+            Self::Racon => "2",
+            Self::FixedStructure => "3",
+            Self::Spare => "4",
+            Self::Light => "5",
+            Self::LightSectors => "6",
+            Self::LeadingLightFront => "7",
+            Self::LeadingLightRear => "8",
+            Self::BeaconCardinalN => "9",
+            Self::BeaconCardinalE => "10",
+            Self::BeaconCardinalS => "11",
+            Self::BeaconCardinalW => "12",
+            Self::BeaconPort => "13",
+            Self::BeaconStarboard => "14",
+            Self::BeaconPreferredPort => "15",
+            Self::BeaconPreferredStarboard => "16",
+            Self::BeaconIsolatedDanger => "17",
+            Self::BeaconSafeWater => "18",
+            Self::BeaconSpecial => "19",
+            Self::CardinalN => "20",
+            Self::CardinalE => "21",
+            Self::CardinalS => "22",
+            Self::CardinalW => "23",
+            Self::Port => "24",
+            Self::Starboard => "25",
+            Self::PreferredPort => "26",
+            Self::PreferredStarboard => "27",
+            Self::IsolatedDanger => "28",
+            Self::SafeWater => "29",
+            Self::Special => "30",
+            Self::LightVessel => "31",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::NotSpecified => "not_specified",
+            Self::ReferencePoint => "reference_point",
+            Self::Racon => "racon",
+            Self::FixedStructure => "fixed_structure",
+            Self::Spare => "spare",
+            Self::Light => "light",
+            Self::LightSectors => "light_sectors",
+            Self::LeadingLightFront => "leading_light_front",
+            Self::LeadingLightRear => "leading_light_rear",
+            Self::BeaconCardinalN => "beacon_cardinal_n",
+            Self::BeaconCardinalE => "beacon_cardinal_e",
+            Self::BeaconCardinalS => "beacon_cardinal_s",
+            Self::BeaconCardinalW => "beacon_cardinal_w",
+            Self::BeaconPort => "beacon_port",
+            Self::BeaconStarboard => "beacon_starboard",
+            Self::BeaconPreferredPort => "beacon_preferred_port",
+            Self::BeaconPreferredStarboard => "beacon_preferred_starboard",
+            Self::BeaconIsolatedDanger => "beacon_isolated_danger",
+            Self::BeaconSafeWater => "beacon_safe_water",
+            Self::BeaconSpecial => "beacon_special",
+            Self::CardinalN => "cardinal_n",
+            Self::CardinalE => "cardinal_e",
+            Self::CardinalS => "cardinal_s",
+            Self::CardinalW => "cardinal_w",
+            Self::Port => "port",
+            Self::Starboard => "starboard",
+            Self::PreferredPort => "preferred_port",
+            Self::PreferredStarboard => "preferred_starboard",
+            Self::IsolatedDanger => "isolated_danger",
+            Self::SafeWater => "safe_water",
+            Self::Special => "special",
+            Self::LightVessel => "light_vessel",
         }
     }
 }

@@ -12,7 +12,7 @@
 #   spec/ais/messages/sar_aircraft_report.yaml, spec/ais/messages/single_slot_binary.yaml,
 #   spec/ais/messages/static_data_report.yaml, spec/ais/messages/static_voyage_data.yaml,
 #   spec/ais/messages/utc_inquiry.yaml, spec/ais/applications/meteo_hydro.yaml
-#   (digest 8444e1328cb95cd1)
+#   (digest 368124f4f3f9463c)
 # Regenerate: make generate (python3 -m generator generate)
 """AIS messages: the payload of `!AIVDM`/`!AIVDO` decoded into the class of its message type,
 and encoded back to the same armored characters and fill bits."""
