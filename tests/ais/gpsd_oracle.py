@@ -2,8 +2,8 @@
 (tests/data/ais, PROVENANCE.md) decoded by nmeaspec.ais_messages and compared field by field with
 the JSON gpsd decodes it to (unscaled: raw integers). gpsd's names are mapped to ours here.
 
-Run it to print the agreement per message type and each disagreement with its reason:
-`.venv/bin/python -m tests.ais.gpsd_oracle`."""
+The agreement per message type and each disagreement with its reason are in docs/ais-agreement.md
+(test_gpsd_oracle.py keeps it current); `.venv/bin/python -m tests.ais.gpsd_oracle` writes it again."""
 
 from __future__ import annotations
 
@@ -187,16 +187,36 @@ def agreement() -> dict[int, TypeAgreement]:
     return dict(sorted(found.items()))
 
 
+REPORT = ROOT / "docs" / "ais-agreement.md"
+
+
+def report(found: dict[int, TypeAgreement]) -> str:
+    """The agreement as Markdown: a row per message type, then each disagreement with its reason."""
+    lines = [
+        "# AIS messages checked against gpsd",
+        "",
+        "Every message of gpsd's AIS samples (tests/data/ais, PROVENANCE.md names them) decoded by",
+        "`nmeaspec.ais_messages` and compared field by field, in raw integers, with the JSON gpsd",
+        "decodes it to (tests/ais/gpsd_oracle.py maps gpsd's names to ours). A message agrees when",
+        "every field both decode agrees. Written by `.venv/bin/python -m tests.ais.gpsd_oracle`;",
+        "tests/ais/test_gpsd_oracle.py fails when it is stale or a difference has no known reason.",
+        "",
+        "| type | messages | agree | fields compared | differences |",
+        "|---:|---:|---:|---:|---:|",
+    ]
+    lines += [f"| {t} | {a.messages} | {a.agree} | {a.fields} | {len(a.disagreements)} |" for t, a in found.items()]
+    total = list(found.values())
+    lines.append(f"| all | {sum(a.messages for a in total)} | {sum(a.agree for a in total)} "
+                 f"| {sum(a.fields for a in total)} | {sum(len(a.disagreements) for a in total)} |")
+    lines += ["", "## Differences", ""]
+    lines += [f"- `{d.where}`, type {d.message_type} `{d.key}`: ours `{d.ours!r}`, gpsd `{d.theirs!r}`. "
+              f"{d.reason or 'UNEXPLAINED: a defect of ours'}." for a in total for d in a.disagreements]
+    return "\n".join(lines) + "\n"
+
+
 def main() -> None:
-    found = agreement()
-    print("type  messages  agree  fields  disagreements (explained)")
-    for t, a in found.items():
-        explained = sum(1 for d in a.disagreements if d.reason)
-        print(f"{t:4}  {a.messages:8}  {a.agree:5}  {a.fields:6}  {len(a.disagreements)} ({explained})")
-    for a in found.values():
-        for d in a.disagreements:
-            print(f"{d.where}: type {d.message_type} {d.key}: ours {d.ours!r}, gpsd {d.theirs!r}: "
-                  f"{d.reason or 'UNEXPLAINED'}")
+    REPORT.write_text(report(agreement()), encoding="utf-8")
+    print(f"wrote {REPORT.relative_to(ROOT)}")
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
 """The AIS decoder against gpsd's decodes of its AIS samples (gpsd_oracle.py): every field of
-every message gpsd decodes agrees, or differs for a reason known to be gpsd's. Measured (2026-11):
+every message gpsd decodes agrees, or differs for a reason known to be gpsd's (docs/ais-agreement.md,
+per message type). Measured (2026-11):
 1,721 messages of the 27 types (1,709 agree in every field), 25,387 field values (those of 8
 messages of DAC 1 FI 31 included), 14 differences,
 all gpsd's:
@@ -33,3 +34,8 @@ def test_every_difference_has_a_known_reason() -> None:
 def test_the_known_differences_are_those_measured() -> None:
     found = sorted((d.message_type, d.key) for a in FOUND.values() for d in a.disagreements)
     assert found == sorted([(1, "message")] + [(24, "vendorid")] * 6 + [(26, "radio")] * 5 + [(26, "data")] * 2)
+
+
+def test_the_agreement_report_is_current() -> None:
+    assert gpsd_oracle.REPORT.read_text(encoding="utf-8") == gpsd_oracle.report(FOUND), \
+        "docs/ais-agreement.md is stale: run `.venv/bin/python -m tests.ais.gpsd_oracle`"
