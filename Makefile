@@ -82,11 +82,12 @@ test-generator: $(STAMP)
 	$(PY) -m pytest -q tests/generator
 
 # The edit loop (under two minutes): generated/ up to date, the generator's tests and golden files
-# without the ones that build or generate whole copies, and the manuals' examples in Python.
+# without the ones that build or generate whole copies, the manuals' examples and the AIS codec in Python.
 test-quick: $(STAMP)
 	$(PY) -m generator check
 	$(PY) -m pytest -q -m "not slow" tests/generator
 	cd generated/python && ../../$(PY) -m pytest -q tests
+	$(PY) -m pytest -q tests/ais
 
 # The hand-written runtimes on their own, where they live (runtime/README.md): the C runtime's unit
 # tests under the sanitizers and without JSON, the Rust runtime crate's tests, clippy and rustfmt
@@ -108,6 +109,7 @@ test-runtimes: $(STAMP)
 
 test-python: $(STAMP)
 	cd generated/python && ../../$(PY) -m pytest -q tests
+	$(PY) -m pytest -q tests/ais
 
 # --- the test builds: each binary built once, shared by the steps that run it -----------------
 # nmea.c compiled once per set of flags: the test object (-O2, NMEA_TEST_HOOKS: the programs also

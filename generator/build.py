@@ -12,8 +12,9 @@ from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
 from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Fact, Field, FixExample,
-                    GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, ReplyRule,
-                    Sentence, Spec, TableDef, TagCode)
+                    GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
+                    PayloadChoice, PayloadExample, PayloadField, PayloadGroup, PayloadItem, ReplyRule, Sentence, Spec,
+                    Special, TableDef, TagCode)
 from .resolve import resolve
 
 
@@ -25,7 +26,9 @@ LAYOUT = (("enums", "enums", "enum.schema.json"),
           ("tables", "tables", "table.schema.json"),
           ("standard", "sentences", "sentence.schema.json"),
           ("proprietary", "sentences", "sentence.schema.json"),
-          ("extensions", "extensions", "extension.schema.json"))
+          ("extensions", "extensions", "extension.schema.json"),
+          ("ais/messages", "payloads", "payload.schema.json"),
+          ("ais/applications", "applications", "payload.schema.json"))
 
 
 def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
@@ -37,7 +40,7 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     (my-nmea/proprietary/acme_pos.yaml)."""
     errors: list[SpecError] = []
     docs: dict[str, list[Document]] = {kind: [] for kind in ("manuals", "facts", "tag_block", "enums", "bitfields", "tables",
-                                                             "sentences", "extensions")}
+                                                             "sentences", "extensions", "payloads", "applications")}
     digest = hashlib.sha256()
     file_digests: dict[str, str] = {}
     for tree, names in [(spec_dir, spec_dir.parent), *((extra, None) for extra in extras)]:
@@ -69,11 +72,14 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     sentences = [_sentence(d) for d in docs["sentences"]]
     bitfields = [_bitfield(d) for d in docs["bitfields"]]
     tables = [_table(d) for d in docs["tables"]]
+    payloads = [_payload(d) for d in docs["payloads"]]
+    applications = [_payload(d) for d in docs["applications"]]
     errors = _clashes(docs, bitfields, tables) + _extend(sentences, docs["extensions"])
     if errors:
         raise SpecErrors(errors)
     spec = Spec(manuals, enums, sentences,
-                sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences", "extensions")
+                sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences", "extensions", "payloads",
+                                                  "applications")
                          for d in docs[kind]],
                 digest=digest.hexdigest()[:16], file_digests=file_digests,
                 bitfields=bitfields, tables=tables, generic=generic, facts=facts,
@@ -89,7 +95,8 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
                            for d in docs["tag_block"] for i, c in enumerate(d.data["codes"])],
                 tag_manuals=[m for d in docs["tag_block"] for m in d.data["manuals"]],
                 tag_examples=[(e["where"], e["line"]) for d in docs["tag_block"] for e in d.data.get("examples", [])],
-                tag_sources=[str(d.path) for d in docs["tag_block"]])
+                tag_sources=[str(d.path) for d in docs["tag_block"]],
+                payloads=payloads, applications=applications)
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
     resolve(spec)
     errors = checks.run(spec, by_file)
@@ -222,7 +229,7 @@ def _sentence(doc: Document) -> Sentence:
                     _variants(d, file, outcome), _notes(d), _examples(d, file), Origin(file, ()), file,
                     address=d.get("address"), framing=d.get("framing", "sentence"), start=d.get("start", "$"),
                     domain=d.get("domain"), kind=d.get("kind", "standard"), vendor=d.get("vendor"),
-                    reply_rules=rules)
+                    reply_rules=rules, encapsulates=d.get("encapsulates"))
 
 
 def _variants(d: dict[str, Any], file: str, outcome: Outcome | None) -> list[Layout]:
@@ -250,3 +257,42 @@ def _outcome(data: Any, origin: Origin) -> Outcome | None:
     if isinstance(data, str):
         return Outcome(fixed=data, origin=origin)
     return Outcome(field_id=data["field"], ok=list(data["ok"]), origin=origin)
+
+
+def _payload_field(data: dict[str, Any], origin: Origin) -> PayloadField:
+    return PayloadField(id=data["id"], name=data["name"], type=data["type"], bits=data.get("bits"),
+                        doc=data.get("doc", data["name"]), origin=origin, unit=data.get("unit"),
+                        divisor=data.get("divisor"), base=data.get("base"), enum_id=data.get("enum"),
+                        optional=bool(data.get("optional", False)),
+                        special=[Special(s["raw"], s["id"], s["doc"]) for s in data.get("special", [])],
+                        dispatch=data.get("dispatch", []))
+
+
+def _payload_items(data: list[dict[str, Any]], file: str, where: tuple[str | int, ...]) -> list[PayloadItem]:
+    items: list[PayloadItem] = []
+    for i, item in enumerate(data):
+        at = where + (i,)
+        if "group" in item:
+            fields = [_payload_field(f, Origin(file, at + ("fields", j))) for j, f in enumerate(item["fields"])]
+            items.append(PayloadGroup(item["group"], item["name"], item.get("doc", item["name"]), item.get("min", 1),
+                                      item["max"], fields, Origin(file, at)))
+        elif "choice" in item:
+            cases = [PayloadCase(c.get("when", []), tuple(c["range"]) if "range" in c else None,
+                                 _payload_items(c["fields"], file, at + ("cases", k, "fields")))  # type: ignore[arg-type]
+                     for k, c in enumerate(item["cases"])]
+            items.append(PayloadChoice(item["choice"], item["by"], item.get("doc", ""), cases, Origin(file, at)))
+        else:
+            items.append(_payload_field(item, Origin(file, at)))
+    return items
+
+
+def _payload(doc: Document) -> Payload:
+    d = doc.data
+    file = str(doc.path)
+    examples = [PayloadExample(e["manual"], e["where"], e["payload"], e["fill_bits"], e.get("expect"),
+                               Origin(file, ("examples", i))) for i, e in enumerate(d.get("examples", []))]
+    application = d.get("application")
+    return Payload(d["message"], d["name"], d["doc"], d.get("types", []), d["manuals"], d.get("length"),
+                   _payload_items(d["fields"], file, ("fields",)), _notes(d), examples, Origin(file, ()),
+                   application=(application["dac"], application["fid"]) if application else None,
+                   carriers=application["in"] if application else [])

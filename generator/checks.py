@@ -8,7 +8,7 @@ import json
 import keyword
 from typing import Any
 
-from . import names, names_c, names_rust, reference
+from . import checks_payload, names, names_c, names_rust, reference
 from .resolve import checksum_ok
 from .errors import SpecError
 from .loader import Document
@@ -48,8 +48,10 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
         for layout in sentence.layouts:
             _check_layout(spec, sentence, layout, manual_ids, report)
             _check_fix(sentence, layout, report)
+    checks_payload.check(spec, manual_ids, report, _check_manuals)
     if report.errors:
         return report.errors
+    checks_payload.check_examples(spec, manual_ids, report)
     _generated_names(spec, report)
     _check_generic(spec, report)
     _check_cli(spec, report)

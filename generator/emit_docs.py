@@ -10,7 +10,7 @@ import jinja2
 
 from . import emit_vectors
 from .emit import RUNTIME, markdown_banner
-from .model import Field, Group, Layout, Manual, ReplyRule, Sentence, Spec
+from .model import Field, Group, Layout, Manual, Payload, PayloadField, PayloadGroup, ReplyRule, Sentence, Spec
 
 
 def cell(text: str | None) -> str:
@@ -102,6 +102,57 @@ DOMAINS = {
 }
 
 
+def _bits_cell(f: PayloadField, after: str) -> str:
+    """Where a payload field is: its bits (0 is the first bit sent), or what it follows."""
+    if f.offset is None:
+        return f"after `{after}`"
+    if f.bits == 1:
+        return str(f.offset)
+    return f"{f.offset}–{f.offset + f.bits - 1}" if f.bits else f"{f.offset}–"
+
+
+def payload_rows(payload: Payload) -> list[dict]:
+    """The docs table of a payload: a row per field, in order, with the case of a choice it
+    belongs to and, for a group's fields, where the k-th entry's is."""
+    out: list[dict] = []
+
+    def row(f: PayloadField, where: str, when: str, prefix: str = "") -> dict:
+        t = f.bit_type
+        kind = f"{t.doc_name} [{f.enum.id}](../enums/{f.enum.id}.md)" if f.enum else t.doc_name
+        special = "; ".join(f"{s.raw} `{s.id}`: {s.doc}" for s in f.special)
+        return {"bits": where, "width": str(f.bits) if f.bits else "rest", "id": prefix + f.id, "name": cell(f.name),
+                "type": kind + (" (optional)" if f.optional else ""), "when": when,
+                "scale": " ".join([f"÷ {f.divisor}"] * bool(f.divisor) + [f"+ {f.base}"] * (f.base is not None)),
+                "unit": cell(f.unit),
+                "special": cell(special), "doc": cell(f.doc if f.doc != f.name else "")}
+
+    def walk(items: list, when: str, previous: str) -> str:
+        for item in items:
+            if isinstance(item, PayloadField):
+                out.append(row(item, _bits_cell(item, previous), when))
+                previous = item.id
+            elif isinstance(item, PayloadGroup):
+                at = 0
+                for f in item.fields:
+                    where = (f"{item.offset + at} + {item.entry_width}·k" if item.offset is not None
+                             else f"after `{previous}`")
+                    out.append(row(f, where, f"{item.min} to {item.max} entries", f"{item.id}[k]."))
+                    at += f.bits or 0
+                previous = item.id
+            else:
+                for case in item.cases:
+                    values = ", ".join(map(str, case.values))
+                    cond = (f"{item.by} = {values}" if len(case.values) == 1 else
+                            f"{item.by} in {values}" if case.values else
+                            f"{item.by} in {case.range[0]}..{case.range[1]}" if case.range else f"{item.by}: otherwise")
+                    walk(case.items, f"{when}; {cond}" if when else cond, previous)
+                previous = item.id
+        return previous
+
+    walk(payload.items, "", "")
+    return out
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     env.filters["cell"] = cell
     env.globals["replied_by"] = lambda s: replied_by(spec, s)
@@ -119,8 +170,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         for lay in s.layouts:
             for item in lay.items:
                 for f in (item.fields if isinstance(item, Group) else [item]):
-                    if f.enum and s.id not in enum_users[f.enum.id]:
-                        enum_users[f.enum.id].append(s.id)
+                    link = f"[{s.id}](../sentences/{s.id.lower()}.md)"
+                    if f.enum and link not in enum_users[f.enum.id]:
+                        enum_users[f.enum.id].append(link)
     # The support matrix: the receiver manuals (and the standard) against what they document.
     matrix_manuals = [spec.manual("nmea0183"), *receiver_manuals(spec)]
     matrix = [(s, [m.id in s.manuals or m.id == s.vendor for m in matrix_manuals])
@@ -144,6 +196,16 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             banner=banner_of([s.source, *sorted({e.origin.file for e in _enums_of(s)}), "spec/manuals.yaml"]),
             s=s, spec=spec, layouts=[(lay, rows(lay), layout_summary(lay)) for lay in s.layouts],
             examples=by_sentence.get(s.id, []), enums=_enums_of(s))
+    for payload in [*spec.payloads, *spec.applications]:
+        for f in payload.fields:
+            link = f"[{payload.id}](../ais/{payload.id}.md)"
+            if f.enum and link not in enum_users[f.enum.id]:
+                enum_users[f.enum.id].append(link)
+        files[f"docs/ais/{payload.id}.md"] = env.get_template("docs/ais_message.md.j2").render(
+            banner=banner_of([payload.origin.file, "spec/manuals.yaml"]), p=payload, spec=spec,
+            rows=payload_rows(payload),
+            examples=[{**v, "json": json.dumps(v["decode"], separators=(",", ":"))}
+                      for v in emit_vectors.ais_vectors(spec) if v["message"] == payload.id])
     for e in spec.enums:
         files[f"docs/enums/{e.id}.md"] = env.get_template("docs/enum.md.j2").render(
             banner=banner_of([e.origin.file]), e=e, users=enum_users[e.id])

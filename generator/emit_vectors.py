@@ -13,7 +13,7 @@ from typing import Callable
 
 import jinja2
 
-from . import reference
+from . import reference, reference_ais
 from .model import Spec
 
 
@@ -209,6 +209,36 @@ def fix_vectors(spec: Spec) -> list[dict]:
     return [{"where": e.where, "lines": e.lines, "fixes": e.expect} for e in spec.fix_examples]
 
 
+# Payloads every AIS decoder must refuse, with the kind of its error (json.md, "AIS payloads"),
+# as the spec/ tree describes the messages.
+AIS_ERROR_PAYLOADS = (
+    ("15RTgt0PAso;90TKcjM8h6g208C", 0, "a type 1 cut short inside its radio state"),
+    ("15RTgt0PAso;90TKcjM8h6g208CQ", 6, "fill bits over 5"),
+    ("15RTgt0PAso;90TKcjM8h6g2X8CQ", 0, "X is no armor character"),
+    ("", 1, "fill bits with no payload"),
+    ("w", 0, "message type 63, which no message describes"),
+    ("702R5`hw", 0, "a type 7 with no whole acknowledgement"),
+)
+
+
+def ais_vectors(spec: Spec) -> list[dict]:
+    """The payload examples of spec/ais (messages, and messages that carry an application) with the
+    JSON each decoder must make of them, and payloads each must refuse with the kind of its error."""
+    out: list[dict] = []
+    for payload in [*spec.payloads, *spec.applications]:
+        for e in payload.examples:
+            out.append({"message": payload.id, "where": e.where, "payload": e.payload, "fill_bits": e.fill_bits,
+                        "decode": reference_ais.decode(spec, e.payload, e.fill_bits)})
+    for text, fill_bits, where in AIS_ERROR_PAYLOADS:
+        record: dict = {"message": None, "where": where, "payload": text, "fill_bits": fill_bits}
+        try:
+            record["decode"] = reference_ais.decode(spec, text, fill_bits)   # a spec that describes it
+        except reference_ais.PayloadError as err:
+            record["error"] = err.kind
+        out.append(record)
+    return out
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     def jsonl(records: list[dict]) -> str:
         return "".join(json.dumps(r, ensure_ascii=True, separators=(",", ":")) + "\n" for r in records)
@@ -217,4 +247,5 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             "vectors/tolerance.jsonl": jsonl(tolerance_vectors(spec)),
             "vectors/values.jsonl": jsonl(value_vectors(spec)),
             "vectors/fixes.jsonl": jsonl(fix_vectors(spec)),
-            "vectors/tag_blocks.jsonl": jsonl(tag_block_vectors(spec))}
+            "vectors/tag_blocks.jsonl": jsonl(tag_block_vectors(spec)),
+            "vectors/ais.jsonl": jsonl(ais_vectors(spec))}

@@ -349,3 +349,101 @@ TYPES: dict[str, FieldType] = {t.name: t for t in (
              c_put_args=("value",), rust_reader="code_chars", per_char=True,
              c_doc=" One code of {enum_type} per character (table {enum_table})."),
 )}
+
+
+# Six-bit text: each character's six bits are its index here (ITU-R M.1371-5, table 47; `@` pads).
+SIXBIT_CHARS = "@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_ !\"#$%&'()*+,-./0123456789:;<=>?"
+
+
+@dataclass(frozen=True)
+class BitType:
+    """A type of the fields of bit-packed payloads (spec/ais/messages): what the checks, the
+    reference decoder, the docs and the emitters need to know of it. Its reader and writer are the
+    runtime's field class `python_spec` (runtime/python/ais.py). Adding one: an entry in BIT_TYPES,
+    its name in spec/schema/payload.schema.json and its class in runtime/python/ais.py."""
+    name: str
+    doc_name: str              # the Type column of the docs
+    python_spec: str           # the Python runtime's field class (ais.<python_spec>)
+    python_type: str           # the Python member's type ({enum}: its enum's class)
+    min_bits: int = 1
+    max_bits: int | None = 64  # None: any width (data)
+    char_bits: int = 1         # the width is a whole number of these (text: six-bit characters)
+    variable: bool = False     # may take the bits left (no `bits`)
+    numeric: bool = False      # takes a divisor, a unit and special values
+    signed: bool = False
+    coded: bool = False        # its raw values are codes of an enum
+    selects: bool = False      # its raw value, read unsigned, may pick the case of a choice
+    dispatches: bool = False   # its bits may be an application's, picked by other fields (`dispatch`)
+
+    def raw(self, bits: str) -> Any:
+        """The reference decoder's raw value of a field from its bits ('0'/'1' text)."""
+        return int(bits, 2) if bits else 0
+
+    def json(self, f: Any, raw: Any) -> dict[str, Any]:
+        """The decoded JSON members of field `f` (a PayloadField) with raw value `raw`."""
+        return {f.id: raw}
+
+    def raw_range(self, width: int) -> tuple[int, int]:
+        """The raw values `width` bits hold."""
+        return (-(1 << (width - 1)), (1 << (width - 1)) - 1) if self.signed else (0, (1 << width) - 1)
+
+
+@dataclass(frozen=True)
+class BitNumber(BitType):
+    """uint, int: an integer, in a unit once divided by the field's divisor; a special value is
+    named, never a number."""
+
+    def raw(self, bits: str) -> Any:
+        value = int(bits, 2)
+        return value - (1 << len(bits)) if self.signed and bits[0] == "1" else value
+
+    def json(self, f: Any, raw: Any) -> dict[str, Any]:
+        if not f.scaled:
+            return {f.id: raw}
+        special = next((s.id for s in f.special if s.raw == raw), None)
+        value = raw / f.divisor if f.divisor else raw
+        return {f.id: special if special is not None else value + f.base if f.base is not None else value,
+                f"{f.id}_raw": raw}
+
+
+@dataclass(frozen=True)
+class BitFlag(BitType):
+    def raw(self, bits: str) -> Any:
+        return bits == "1"
+
+
+@dataclass(frozen=True)
+class BitCode(BitType):
+    """enum: an unsigned code of the field's enum (its code is the decimal number); an unknown
+    code is kept as its number."""
+
+    def json(self, f: Any, raw: Any) -> dict[str, Any]:
+        value = f.enum.by_code(str(raw)) if f.enum else None
+        return {f.id: value.id if value else raw}
+
+
+@dataclass(frozen=True)
+class BitText(BitType):
+    """Six-bit text, as sent: `@` padding and trailing spaces kept."""
+
+    def raw(self, bits: str) -> Any:
+        return "".join(SIXBIT_CHARS[int(bits[i:i + 6], 2)] for i in range(0, len(bits) - len(bits) % 6, 6))
+
+
+@dataclass(frozen=True)
+class BitData(BitType):
+    """Binary data, kept as the text of its bits ('0'/'1')."""
+
+    def raw(self, bits: str) -> Any:
+        return bits
+
+
+BIT_TYPES: dict[str, BitType] = {t.name: t for t in (
+    BitNumber("uint", "unsigned", "Unsigned", "int", numeric=True, selects=True),
+    BitNumber("int", "signed (two's complement)", "Signed", "int", min_bits=2, numeric=True, signed=True),
+    BitFlag("bool", "flag", "Flag", "bool", max_bits=1, selects=True),
+    BitCode("enum", "enum", "Code", "{enum} | int", coded=True, selects=True),
+    BitText("text", "six-bit text", "Text", "str", min_bits=6, max_bits=None, char_bits=6, variable=True),
+    BitData("data", "binary data", "Data", "str", max_bits=None, variable=True, dispatches=True),
+    BitType("spare", "spare (kept as sent)", "Spare", "int"),
+)}

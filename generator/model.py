@@ -10,7 +10,7 @@ import hashlib
 from dataclasses import dataclass, field
 from typing import Any
 
-from .field_types import TYPES, FieldType
+from .field_types import BIT_TYPES, TYPES, BitType, FieldType
 from .paths import ROOT
 
 # The NMEA version a parser must assume for fields without `since`.
@@ -481,6 +481,7 @@ class Sentence:
     vendor: str | None = None
     reply_rules: list[ReplyRule] = field(default_factory=list)
     replies: list[Sentence] = field(default_factory=list)   # derived by resolve(): each reply sentence once
+    encapsulates: dict[str, str] | None = None   # the fields that carry a message of spec/ais: protocol, payload, ...
 
     @property
     def reply_ids(self) -> list[str]:
@@ -631,6 +632,193 @@ class TableDef:
 
 
 @dataclass
+class Special:
+    """A raw value of a bit field that is no number: `not_available`, `manual_input`, ..."""
+    raw: int
+    id: str
+    doc: str
+
+
+@dataclass
+class PayloadField:
+    """One field of a bit-packed payload, most significant bit first."""
+    id: str
+    name: str
+    type: str
+    bits: int | None             # None: the bits left (a text: the whole characters left)
+    doc: str
+    origin: Origin
+    unit: str | None = None
+    divisor: int | None = None   # the value in `unit` is the raw integer divided by it, plus `base`
+    base: float | None = None    # the value of raw 0
+    enum_id: str | None = None
+    optional: bool = False       # present when the payload has its bits
+    special: list[Special] = field(default_factory=list)
+    dispatch: list[str] = field(default_factory=list)   # data: the fields that will pick an application layout
+    # Derived by resolve():
+    enum: EnumDef | None = None
+    offset: int | None = None    # the first bit, when no variable item comes before it
+
+    @property
+    def bit_type(self) -> BitType:
+        return BIT_TYPES[self.type]
+
+    @property
+    def width(self) -> int | None:
+        return self.bits
+
+    @property
+    def scaled(self) -> bool:
+        """A number that has a value in a unit besides its raw integer (a divisor or special values)."""
+        return self.divisor is not None or self.base is not None or bool(self.special)
+
+    @property
+    def camel(self) -> str:
+        return camel(self.id)
+
+
+@dataclass
+class PayloadGroup:
+    """Entries repeated while the payload has bits for them (up to `max`)."""
+    id: str
+    name: str
+    doc: str
+    min: int
+    max: int
+    fields: list[PayloadField]
+    origin: Origin
+    offset: int | None = None
+
+    @property
+    def entry_width(self) -> int:
+        return sum(f.bits or 0 for f in self.fields)
+
+    @property
+    def width(self) -> int | None:
+        return None
+
+    @property
+    def camel(self) -> str:
+        return camel(self.id)
+
+
+@dataclass
+class PayloadCase:
+    """One layout of a choice: taken when the selector's raw value is one of `values`, within
+    `range`, or (neither given) when no other case holds. Its items are fields and choices."""
+    values: list[int]
+    range: tuple[int, int] | None
+    items: list[PayloadField | PayloadChoice]
+
+    @property
+    def is_default(self) -> bool:
+        return not self.values and self.range is None
+
+    @property
+    def fields(self) -> list[PayloadField]:
+        return flat_fields(self.items)
+
+    @property
+    def width(self) -> int | None:
+        return items_width(self.items)
+
+    def holds(self, raw: int) -> bool:
+        return raw in self.values or (self.range is not None and self.range[0] <= raw <= self.range[1])
+
+
+@dataclass
+class PayloadChoice:
+    """Bits laid out one of several ways, picked by the raw value of another field."""
+    id: str
+    by: str
+    doc: str
+    cases: list[PayloadCase]
+    origin: Origin
+    # Derived by resolve():
+    selector: PayloadField | None = None
+    offset: int | None = None
+
+    @property
+    def width(self) -> int | None:
+        """The width every case has, or None when they differ."""
+        widths = {c.width for c in self.cases}
+        return widths.pop() if len(widths) == 1 else None
+
+    @property
+    def fields(self) -> list[PayloadField]:
+        return [f for case in self.cases for f in case.fields]
+
+
+PayloadItem = PayloadField | PayloadGroup | PayloadChoice
+
+
+def flat_fields(items: list[PayloadItem] | list[PayloadField | PayloadChoice]) -> list[PayloadField]:
+    """Every field of `items`, those of groups and of every case of choices included, in order."""
+    out: list[PayloadField] = []
+    for item in items:
+        out += [item] if isinstance(item, PayloadField) else item.fields
+    return out
+
+
+def items_width(items: list[PayloadItem] | list[PayloadField | PayloadChoice]) -> int | None:
+    """The sum of the widths when every item is fixed and none optional; else None."""
+    total = 0
+    for item in items:
+        if item.width is None or isinstance(item, PayloadField) and item.optional:
+            return None
+        total += item.width
+    return total
+
+
+@dataclass
+class PayloadExample:
+    manual: str
+    where: str
+    payload: str
+    fill_bits: int
+    expect: dict[str, Any] | None
+    origin: Origin
+
+
+@dataclass
+class Payload:
+    """One bit-packed message layout (spec/ais/messages): the message types it describes and its
+    fields."""
+    id: str
+    name: str
+    doc: str
+    types: list[int]
+    manuals: list[str]
+    length: int | None           # the documented length of a fixed layout
+    items: list[PayloadItem]
+    notes: list[Note]
+    examples: list[PayloadExample]
+    origin: Origin
+    protocol: str = "ais"
+    application: tuple[int, int] | None = None   # an application message: its DAC and FI
+    carriers: list[int] = field(default_factory=list)   # ... and the message types whose data it is
+    applications: list[Payload] = field(default_factory=list)   # derived: a message's applications
+
+    @property
+    def data_field(self) -> PayloadField | None:
+        """The field whose bits an application layout may describe (its `dispatch`)."""
+        return next((f for f in self.fields if f.dispatch), None)
+
+    @property
+    def fields(self) -> list[PayloadField]:
+        """Every field, those of the groups and of every case included, in order."""
+        return flat_fields(self.items)
+
+    @property
+    def fixed_width(self) -> int | None:
+        return items_width(self.items)
+
+    @property
+    def camel(self) -> str:
+        return camel(self.id)
+
+
+@dataclass
 class Spec:
     manuals: list[Manual]
     enums: list[EnumDef]
@@ -652,6 +840,8 @@ class Spec:
     tag_examples: list[tuple[str, str]] = field(default_factory=list)   # (where, line)
     tag_sources: list[str] = field(default_factory=list)     # the tag_block.yaml files loaded
     enum_by_id: dict[str, EnumDef] = field(default_factory=dict)
+    payloads: list[Payload] = field(default_factory=list)   # spec/ais/messages
+    applications: list[Payload] = field(default_factory=list)   # spec/ais/applications
 
     def digest_of(self, sources: list[str]) -> str:
         """A short hash of the given spec or template files, so that a generated file's header

@@ -10,7 +10,7 @@ then only judge: a reference left unlinked here is an error they report, with it
 from __future__ import annotations
 
 from . import reference
-from .model import Field, Group, Layout, Spec
+from .model import Field, Group, Layout, Payload, PayloadChoice, PayloadField, Spec
 
 
 def resolve(spec: Spec) -> None:
@@ -37,6 +37,12 @@ def resolve(spec: Spec) -> None:
                 f.enum = spec.enum_by_id.get(f.enum_id) if f.enum_id is not None else None
                 f.bitfield = bitfields.get(f.bitfield_id) if f.bitfield_id is not None else None
                 f.fact = facts.get(f.fix_id) if f.fix_id is not None else None
+    for payload in [*spec.payloads, *spec.applications]:
+        _place_bits(payload)
+        for f in payload.fields:
+            f.enum = spec.enum_by_id.get(f.enum_id) if f.enum_id is not None else None
+    for payload in spec.payloads:
+        payload.applications = [a for a in spec.applications if set(a.carriers) & set(payload.types)]
 
 
 def checksum_ok(line: str) -> bool:
@@ -75,3 +81,21 @@ def _fields(layout: Layout) -> list[Field]:
     for item in layout.items:
         out += item.fields if isinstance(item, Group) else [item]
     return out
+
+
+def _place_bits(payload: Payload) -> None:
+    """Each item's first bit while no variable item comes before it (None after one), and each
+    choice's selector (a top-level field)."""
+    top = {f.id: f for f in payload.items if isinstance(f, PayloadField)}
+
+    def place(items: list, offset: int | None) -> None:
+        for item in items:
+            item.offset = offset
+            if isinstance(item, PayloadChoice):
+                item.selector = top.get(item.by)
+                for case in item.cases:
+                    place(case.items, offset)
+            width = item.width
+            offset = None if offset is None or width is None else offset + width
+
+    place(payload.items, 0)

@@ -179,6 +179,49 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "carry facts of a fix.",
          "Correct the line (the message has the decoder's error or the computed checksum), or tag the fields "
          "with `fix:`."),
+    Rule("A001", "a fixed payload has its documented length",
+         "The fields of a message (spec/ais/messages) with no variable or optional item take the bits its `length` "
+         "says; a message with one has no `length`.",
+         "Correct a field's `bits` or the length, from the manual's table."),
+    Rule("A002", "bit fields fit their type",
+         "A field's `bits` is within its type's widths (bool 1, text a multiple of 6, numbers 1-64); only text and "
+         "data may leave it out; `divisor`, `unit` and `special` go with uint and int, `enum` with enum (an enum of "
+         "decimal codes), `dispatch` with data.",
+         "Correct the width or the type, or remove the attribute."),
+    Rule("A003", "special values fit their field",
+         "Each special value is a raw value the field's bits hold (two's complement for int), named once.",
+         "Correct the raw value or the width."),
+    Rule("A004", "ids are unique in a message",
+         "No two fields, groups or choices of a message share an id, across the cases of its choices too; no two "
+         "fields of a group entry.",
+         "Rename one of them."),
+    Rule("A005", "a variable item leaves bits it can count",
+         "A repeated group or a field without `bits` is followed only by required fields of fixed width; group "
+         "fields have fixed widths and are required; a group's min is at most its max.",
+         "Give the field a width, or move the fixed fields before the variable item."),
+    Rule("A006", "optional bit fields are trailing",
+         "After an optional field (present when the payload has its bits) only optional fields follow.",
+         "Make the later fields optional, or the earlier one required."),
+    Rule("A007", "a choice finds its selector",
+         "A choice's `by` names a top-level uint, bool or enum field (its raw value unsigned) at a fixed bit offset "
+         "(when it follows the choice, the cases have one width); its `when` and `range` values are raw values of "
+         "it; at most one case has neither.",
+         "Correct `by`, the cases' values or their widths."),
+    Rule("A008", "message types are described once",
+         "Each message type number belongs to one message file, each DAC and FI to one application file.",
+         "Remove the number from one of the files."),
+    Rule("A009", "payload examples decode to their expect",
+         "Every example's payload decodes, with its fill bits, as a type of its message, to the values its `expect` "
+         "names (the decoded JSON's form: a number in a unit beside <id>_raw, special values and enum values by id).",
+         "Correct the payload, the fill bits or `expect` (the message shows the decoded value)."),
+    Rule("A010", "an encapsulation names fields",
+         "A sentence's `encapsulates` names fields of each of its layouts as its payload, fill bits and fragment "
+         "count.",
+         "Correct the field ids."),
+    Rule("A011", "an application's carriers dispatch",
+         "The message types an application (spec/ais/applications) is carried `in` have a data field whose "
+         "`dispatch` names their DAC and FI fields.",
+         "Correct `in`, or add `dispatch: [dac, fid]` to the carrier's data field."),
 )}
 
 

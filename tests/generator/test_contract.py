@@ -68,6 +68,13 @@ def test_error_kinds() -> None:
     assert python_kinds == set(kinds + own["python"])
 
 
+def test_payload_kinds() -> None:
+    ais = (RUNTIME / "python" / "ais.py").read_text(encoding="utf-8")
+    assert set(re.findall(r'NmeaError\(\s*"(\w+)"', ais)) == set(CONTRACT["payload_kinds"])
+    for kind in CONTRACT["payload_kinds"]:
+        assert f"| `{kind}` |" in (RUNTIME / "json.md").read_text(encoding="utf-8"), kind
+
+
 def test_problem_kinds() -> None:
     kinds = CONTRACT["problem_kinds"]
     c_enum = one(r"typedef enum \{([^}]*)\} nmea_problem_kind;", C_HEADER)
@@ -94,7 +101,7 @@ def test_every_runtime_writes_the_message(row: dict[str, str]) -> None:
 
 def test_json_md_tells_the_contract() -> None:
     text = (RUNTIME / "json.md").read_text(encoding="utf-8")
-    table = text[text.index("| kind | when | message |"):]
+    table = text[text.index("| kind | when | message |"):].split("\n\n")[0]
     rows = [[cell.strip() for cell in line.strip("|").split("|")]
             for line in table.splitlines()[2:] if line.startswith("| `")]
     assert len(rows) == len(CONTRACT["messages"])

@@ -17,12 +17,13 @@ LAYERS = [
     {"model"},                                            # the typed spec
     {"loader", "naming", "selection"},                    # reading YAML; naming and picking sentences
     {"names", "names_c", "names_rust", "pairing", "rust_features"},   # what the model implies, per language
-    {"reference"},                                        # the reference decoder
+    {"reference", "reference_ais"},                       # the reference decoders (sentences, bit payloads)
     {"resolve"},
-    {"checks"},
+    {"checks", "checks_payload"},
     {"build", "diff", "reconcile", "scaffold"},           # load, resolve and check a spec; compare specs; new files
     {"emit"},                                             # what the emitters share
-    {"emit_vectors", "emit_python", "emit_python_apps", "emit_c", "emit_rust", "emit_docs", "emit_packaging"},
+    {"emit_vectors", "emit_python", "emit_python_ais", "emit_python_apps", "emit_c", "emit_rust", "emit_docs",
+     "emit_packaging"},
     {"render", "cli", "__main__", "__init__"},            # the drivers
 ]
 LAYER = {module: n for n, layer in enumerate(LAYERS) for module in layer}

@@ -14,7 +14,8 @@
 #   spec/enums/airoha_locus_threshold.yaml, spec/enums/airoha_nav_mode.yaml,
 #   spec/enums/airoha_nmea_output_mode.yaml, spec/enums/airoha_nmea_type.yaml,
 #   spec/enums/airoha_periodic_mode.yaml, spec/enums/airoha_pos_precision.yaml,
-#   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml, spec/enums/ais_channel.yaml,
+#   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml, spec/enums/ais_aid_type.yaml,
+#   spec/enums/ais_channel.yaml, spec/enums/ais_epfd.yaml, spec/enums/ais_ship_type.yaml,
 #   spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml, spec/enums/alf_category.yaml,
 #   spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml, spec/enums/alr_ack_state.yaml,
 #   spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
@@ -121,7 +122,7 @@
 #   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 #   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 #   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-#   (digest 8a40d4957a3bdfb8)
+#   (digest 1017cea4e20d617a)
 # Regenerate: make generate (python3 -m generator generate)
 """The spec's lookup tables. A member's value is its wire code; `.id` is the spec's id."""
 
@@ -706,6 +707,81 @@ class AirohaRtcmMode(CodeEnum):
     """RTCM 3 MSM7 observations. (airoha_pair, airoha_lc76g)"""
 
 
+class AisAidType(CodeEnum):
+    """AIS type of aid to navigation: The kind of aid to navigation an aid-to-navigation report
+    (type 21) describes: 5-19 are fixed aids, 20-31 floating ones (ITU-R M.1371-5, annex 8, table
+    74)."""
+
+    BY_CODE: ClassVar[dict[str, AisAidType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
+    NOT_SPECIFIED = "0"
+    """Not specified (default). (itu_m1371_5, aivdm_decoding)"""
+    REFERENCE_POINT = "1"
+    """Reference point. (itu_m1371_5, aivdm_decoding)"""
+    RACON = "2"
+    """RACON (radar transponder). (itu_m1371_5, aivdm_decoding)"""
+    FIXED_STRUCTURE = "3"
+    """Fixed structure off shore: a platform, a wind farm. (itu_m1371_5, aivdm_decoding)"""
+    SPARE = "4"
+    """Spare, reserved for future use. (itu_m1371_5, aivdm_decoding)"""
+    LIGHT = "5"
+    """Light, without sectors. (itu_m1371_5, aivdm_decoding)"""
+    LIGHT_SECTORS = "6"
+    """Light, with sectors. (itu_m1371_5, aivdm_decoding)"""
+    LEADING_LIGHT_FRONT = "7"
+    """Leading light, front. (itu_m1371_5, aivdm_decoding)"""
+    LEADING_LIGHT_REAR = "8"
+    """Leading light, rear. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_CARDINAL_N = "9"
+    """Beacon, cardinal north. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_CARDINAL_E = "10"
+    """Beacon, cardinal east. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_CARDINAL_S = "11"
+    """Beacon, cardinal south. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_CARDINAL_W = "12"
+    """Beacon, cardinal west. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_PORT = "13"
+    """Beacon, port hand. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_STARBOARD = "14"
+    """Beacon, starboard hand. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_PREFERRED_PORT = "15"
+    """Beacon, preferred channel port hand. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_PREFERRED_STARBOARD = "16"
+    """Beacon, preferred channel starboard hand. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_ISOLATED_DANGER = "17"
+    """Beacon, isolated danger. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_SAFE_WATER = "18"
+    """Beacon, safe water. (itu_m1371_5, aivdm_decoding)"""
+    BEACON_SPECIAL = "19"
+    """Beacon, special mark. (itu_m1371_5, aivdm_decoding)"""
+    CARDINAL_N = "20"
+    """Cardinal mark north (floating). (itu_m1371_5, aivdm_decoding)"""
+    CARDINAL_E = "21"
+    """Cardinal mark east (floating). (itu_m1371_5, aivdm_decoding)"""
+    CARDINAL_S = "22"
+    """Cardinal mark south (floating). (itu_m1371_5, aivdm_decoding)"""
+    CARDINAL_W = "23"
+    """Cardinal mark west (floating). (itu_m1371_5, aivdm_decoding)"""
+    PORT = "24"
+    """Port hand mark (floating). (itu_m1371_5, aivdm_decoding)"""
+    STARBOARD = "25"
+    """Starboard hand mark (floating). (itu_m1371_5, aivdm_decoding)"""
+    PREFERRED_PORT = "26"
+    """Preferred channel port hand (floating). (itu_m1371_5, aivdm_decoding)"""
+    PREFERRED_STARBOARD = "27"
+    """Preferred channel starboard hand (floating). (itu_m1371_5, aivdm_decoding)"""
+    ISOLATED_DANGER = "28"
+    """Isolated danger (floating). (itu_m1371_5, aivdm_decoding)"""
+    SAFE_WATER = "29"
+    """Safe water (floating). (itu_m1371_5, aivdm_decoding)"""
+    SPECIAL = "30"
+    """Special mark (floating). (itu_m1371_5, aivdm_decoding)"""
+    LIGHT_VESSEL = "31"
+    """Light vessel, LANBY or rig. (itu_m1371_5, aivdm_decoding)"""
+
+
 class AisChannel(CodeEnum):
     """AIS radio channel: The VHF data link channel an AIS message was received on (VDM) or sent on
     (VDO). Empty when the channel is not known or, on some own-ship VDO lines, not given."""
@@ -722,6 +798,166 @@ class AisChannel(CodeEnum):
     """Channel A written as a digit, as some receivers send it. (aivdm_decoding, log_gpsd)"""
     TWO = "2"
     """Channel B written as a digit, as some receivers send it. (aivdm_decoding, log_gpsd)"""
+
+
+class AisEpfd(CodeEnum):
+    """AIS electronic position-fixing device: The kind of device that fixes the position an AIS
+    station reports (ITU-R M.1371-5, annex 8, table 50 note)."""
+
+    BY_CODE: ClassVar[dict[str, AisEpfd]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
+    UNDEFINED = "0"
+    """Undefined (default). (itu_m1371_5, aivdm_decoding)"""
+    GPS = "1"
+    """GPS. (itu_m1371_5, aivdm_decoding)"""
+    GLONASS = "2"
+    """GLONASS. (itu_m1371_5, aivdm_decoding)"""
+    GPS_GLONASS = "3"
+    """Combined GPS and GLONASS. (itu_m1371_5, aivdm_decoding)"""
+    LORAN_C = "4"
+    """Loran-C. (itu_m1371_5, aivdm_decoding)"""
+    CHAYKA = "5"
+    """Chayka. (itu_m1371_5, aivdm_decoding)"""
+    INTEGRATED = "6"
+    """Integrated navigation system. (itu_m1371_5, aivdm_decoding)"""
+    SURVEYED = "7"
+    """Surveyed position (fixed stations). (itu_m1371_5, aivdm_decoding)"""
+    GALILEO = "8"
+    """Galileo. (itu_m1371_5, aivdm_decoding)"""
+    INTERNAL_GNSS = "15"
+    """Internal GNSS (not used on the VDL before M.1371-5 except by fixed stations). (itu_m1371_5,
+    aivdm_decoding)"""
+
+
+class AisShipType(CodeEnum):
+    """AIS type of ship and cargo: The kind of ship (first digit) and its cargo (second digit), as
+    AIS static data gives it (ITU-R M.1371-5, annex 8, table 53). The codes left out (1-19, 25-29,
+    38-39, 45-48, 65-68, ...) are reserved for future use and kept as their number."""
+
+    BY_CODE: ClassVar[dict[str, AisShipType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
+    NOT_AVAILABLE = "0"
+    """Not available (default). (itu_m1371_5, aivdm_decoding)"""
+    WIG = "20"
+    """Wing in ground craft, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    WIG_HAZARDOUS_A = "21"
+    """Wing in ground craft carrying dangerous goods of category X (A). (itu_m1371_5,
+    aivdm_decoding)"""
+    WIG_HAZARDOUS_B = "22"
+    """Wing in ground craft carrying dangerous goods of category Y (B). (itu_m1371_5,
+    aivdm_decoding)"""
+    WIG_HAZARDOUS_C = "23"
+    """Wing in ground craft carrying dangerous goods of category Z (C). (itu_m1371_5,
+    aivdm_decoding)"""
+    WIG_HAZARDOUS_D = "24"
+    """Wing in ground craft carrying dangerous goods of category OS (D). (itu_m1371_5,
+    aivdm_decoding)"""
+    FISHING = "30"
+    """Fishing. (itu_m1371_5, aivdm_decoding)"""
+    TOWING = "31"
+    """Towing. (itu_m1371_5, aivdm_decoding)"""
+    TOWING_LARGE = "32"
+    """Towing, the tow longer than 200 m or wider than 25 m. (itu_m1371_5, aivdm_decoding)"""
+    DREDGING = "33"
+    """Dredging or underwater operations. (itu_m1371_5, aivdm_decoding)"""
+    DIVING = "34"
+    """Diving operations. (itu_m1371_5, aivdm_decoding)"""
+    MILITARY = "35"
+    """Military operations. (itu_m1371_5, aivdm_decoding)"""
+    SAILING = "36"
+    """Sailing. (itu_m1371_5, aivdm_decoding)"""
+    PLEASURE_CRAFT = "37"
+    """Pleasure craft. (itu_m1371_5, aivdm_decoding)"""
+    HIGH_SPEED_CRAFT = "40"
+    """High speed craft, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    HIGH_SPEED_CRAFT_HAZARDOUS_A = "41"
+    """High speed craft carrying dangerous goods of category X (A). (itu_m1371_5, aivdm_decoding)"""
+    HIGH_SPEED_CRAFT_HAZARDOUS_B = "42"
+    """High speed craft carrying dangerous goods of category Y (B). (itu_m1371_5, aivdm_decoding)"""
+    HIGH_SPEED_CRAFT_HAZARDOUS_C = "43"
+    """High speed craft carrying dangerous goods of category Z (C). (itu_m1371_5, aivdm_decoding)"""
+    HIGH_SPEED_CRAFT_HAZARDOUS_D = "44"
+    """High speed craft carrying dangerous goods of category OS (D). (itu_m1371_5,
+    aivdm_decoding)"""
+    HIGH_SPEED_CRAFT_NO_INFO = "49"
+    """High speed craft, no additional information. (itu_m1371_5, aivdm_decoding)"""
+    PILOT_VESSEL = "50"
+    """Pilot vessel. (itu_m1371_5, aivdm_decoding)"""
+    SEARCH_AND_RESCUE = "51"
+    """Search and rescue vessel. (itu_m1371_5, aivdm_decoding)"""
+    TUG = "52"
+    """Tug. (itu_m1371_5, aivdm_decoding)"""
+    PORT_TENDER = "53"
+    """Port tender. (itu_m1371_5, aivdm_decoding)"""
+    ANTI_POLLUTION = "54"
+    """Vessel with anti-pollution facilities or equipment. (itu_m1371_5, aivdm_decoding)"""
+    LAW_ENFORCEMENT = "55"
+    """Law enforcement vessel. (itu_m1371_5, aivdm_decoding)"""
+    LOCAL_56 = "56"
+    """Spare, for assignment to local vessels. (itu_m1371_5, aivdm_decoding)"""
+    LOCAL_57 = "57"
+    """Spare, for assignment to local vessels. (itu_m1371_5, aivdm_decoding)"""
+    MEDICAL_TRANSPORT = "58"
+    """Medical transport. (itu_m1371_5, aivdm_decoding)"""
+    NONCOMBATANT = "59"
+    """Ship of a State not party to an armed conflict (noncombatant). (itu_m1371_5,
+    aivdm_decoding)"""
+    PASSENGER = "60"
+    """Passenger ship, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    PASSENGER_HAZARDOUS_A = "61"
+    """Passenger ship carrying dangerous goods of category X (A). (itu_m1371_5, aivdm_decoding)"""
+    PASSENGER_HAZARDOUS_B = "62"
+    """Passenger ship carrying dangerous goods of category Y (B). (itu_m1371_5, aivdm_decoding)"""
+    PASSENGER_HAZARDOUS_C = "63"
+    """Passenger ship carrying dangerous goods of category Z (C). (itu_m1371_5, aivdm_decoding)"""
+    PASSENGER_HAZARDOUS_D = "64"
+    """Passenger ship carrying dangerous goods of category OS (D). (itu_m1371_5, aivdm_decoding)"""
+    PASSENGER_NO_INFO = "69"
+    """Passenger ship, no additional information. (itu_m1371_5, aivdm_decoding)"""
+    CARGO = "70"
+    """Cargo ship, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    CARGO_HAZARDOUS_A = "71"
+    """Cargo ship carrying dangerous goods of category X (A). (itu_m1371_5, aivdm_decoding)"""
+    CARGO_HAZARDOUS_B = "72"
+    """Cargo ship carrying dangerous goods of category Y (B). (itu_m1371_5, aivdm_decoding)"""
+    CARGO_HAZARDOUS_C = "73"
+    """Cargo ship carrying dangerous goods of category Z (C). (itu_m1371_5, aivdm_decoding)"""
+    CARGO_HAZARDOUS_D = "74"
+    """Cargo ship carrying dangerous goods of category OS (D). (itu_m1371_5, aivdm_decoding)"""
+    CARGO_NO_INFO = "79"
+    """Cargo ship, no additional information. (itu_m1371_5, aivdm_decoding)"""
+    TANKER = "80"
+    """Tanker, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    TANKER_HAZARDOUS_A = "81"
+    """Tanker carrying dangerous goods of category X (A). (itu_m1371_5, aivdm_decoding)"""
+    TANKER_HAZARDOUS_B = "82"
+    """Tanker carrying dangerous goods of category Y (B). (itu_m1371_5, aivdm_decoding)"""
+    TANKER_HAZARDOUS_C = "83"
+    """Tanker carrying dangerous goods of category Z (C). (itu_m1371_5, aivdm_decoding)"""
+    TANKER_HAZARDOUS_D = "84"
+    """Tanker carrying dangerous goods of category OS (D). (itu_m1371_5, aivdm_decoding)"""
+    TANKER_NO_INFO = "89"
+    """Tanker, no additional information. (itu_m1371_5, aivdm_decoding)"""
+    OTHER = "90"
+    """Other type of ship, all ships of this type. (itu_m1371_5, aivdm_decoding)"""
+    OTHER_HAZARDOUS_A = "91"
+    """Other type of ship carrying dangerous goods of category X (A). (itu_m1371_5,
+    aivdm_decoding)"""
+    OTHER_HAZARDOUS_B = "92"
+    """Other type of ship carrying dangerous goods of category Y (B). (itu_m1371_5,
+    aivdm_decoding)"""
+    OTHER_HAZARDOUS_C = "93"
+    """Other type of ship carrying dangerous goods of category Z (C). (itu_m1371_5,
+    aivdm_decoding)"""
+    OTHER_HAZARDOUS_D = "94"
+    """Other type of ship carrying dangerous goods of category OS (D). (itu_m1371_5,
+    aivdm_decoding)"""
+    OTHER_NO_INFO = "99"
+    """Other type of ship, no additional information. (itu_m1371_5, aivdm_decoding)"""
 
 
 class AlaAckState(CodeEnum):
@@ -5587,9 +5823,24 @@ AirohaRtcmMode.CODE_CLASS = "digits"
 AirohaRtcmMode.MIN_LEN, AirohaRtcmMode.MAX_LEN = 1, 2
 
 
+AisAidType.BY_CODE = by_code(AisAidType)
+AisAidType.CODE_CLASS = "digits"
+AisAidType.MIN_LEN, AisAidType.MAX_LEN = 1, 2
+
+
 AisChannel.BY_CODE = by_code(AisChannel)
 AisChannel.CODE_CLASS = "closed"
 AisChannel.MIN_LEN, AisChannel.MAX_LEN = 1, 1
+
+
+AisEpfd.BY_CODE = by_code(AisEpfd)
+AisEpfd.CODE_CLASS = "digits"
+AisEpfd.MIN_LEN, AisEpfd.MAX_LEN = 1, 2
+
+
+AisShipType.BY_CODE = by_code(AisShipType)
+AisShipType.CODE_CLASS = "digits"
+AisShipType.MIN_LEN, AisShipType.MAX_LEN = 1, 2
 
 
 AlaAckState.BY_CODE = by_code(AlaAckState)

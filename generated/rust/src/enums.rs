@@ -14,10 +14,11 @@
 //   spec/enums/airoha_locus_threshold.yaml, spec/enums/airoha_nav_mode.yaml,
 //   spec/enums/airoha_nmea_output_mode.yaml, spec/enums/airoha_nmea_type.yaml,
 //   spec/enums/airoha_periodic_mode.yaml, spec/enums/airoha_pos_precision.yaml,
-//   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml, spec/enums/ais_channel.yaml,
-//   spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml, spec/enums/alf_category.yaml,
-//   spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml, spec/enums/alr_ack_state.yaml,
-//   spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
+//   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml,
+//   spec/enums/ais_aid_type.yaml, spec/enums/ais_channel.yaml, spec/enums/ais_epfd.yaml,
+//   spec/enums/ais_ship_type.yaml, spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml,
+//   spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml,
+//   spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
 //   spec/enums/ashtech_hpr_mode.yaml, spec/enums/ashtech_nme_message.yaml,
 //   spec/enums/ashtech_on_off.yaml, spec/enums/ashtech_port.yaml,
 //   spec/enums/ashtech_pos_solution.yaml, spec/enums/ashtech_rt300_alignment.yaml,
@@ -122,7 +123,7 @@
 //   spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml, spec/enums/vsd_nav_status.yaml,
 //   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
 //   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
-//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 8a40d4957a3bdfb8)
+//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 1017cea4e20d617a)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -1949,6 +1950,235 @@ impl CodeEnum for AirohaRtcmMode {
     }
 }
 
+/// AIS type of aid to navigation: The kind of aid to navigation an aid-to-navigation report (type 21) describes: 5-19 are fixed aids, 20-31 floating ones (ITU-R M.1371-5, annex 8, table 74).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AisAidType {
+    /// Not specified (default).
+    NotSpecified,
+    /// Reference point.
+    ReferencePoint,
+    /// RACON (radar transponder).
+    Racon,
+    /// Fixed structure off shore: a platform, a wind farm.
+    FixedStructure,
+    /// Spare, reserved for future use.
+    Spare,
+    /// Light, without sectors.
+    Light,
+    /// Light, with sectors.
+    LightSectors,
+    /// Leading light, front.
+    LeadingLightFront,
+    /// Leading light, rear.
+    LeadingLightRear,
+    /// Beacon, cardinal north.
+    BeaconCardinalN,
+    /// Beacon, cardinal east.
+    BeaconCardinalE,
+    /// Beacon, cardinal south.
+    BeaconCardinalS,
+    /// Beacon, cardinal west.
+    BeaconCardinalW,
+    /// Beacon, port hand.
+    BeaconPort,
+    /// Beacon, starboard hand.
+    BeaconStarboard,
+    /// Beacon, preferred channel port hand.
+    BeaconPreferredPort,
+    /// Beacon, preferred channel starboard hand.
+    BeaconPreferredStarboard,
+    /// Beacon, isolated danger.
+    BeaconIsolatedDanger,
+    /// Beacon, safe water.
+    BeaconSafeWater,
+    /// Beacon, special mark.
+    BeaconSpecial,
+    /// Cardinal mark north (floating).
+    CardinalN,
+    /// Cardinal mark east (floating).
+    CardinalE,
+    /// Cardinal mark south (floating).
+    CardinalS,
+    /// Cardinal mark west (floating).
+    CardinalW,
+    /// Port hand mark (floating).
+    Port,
+    /// Starboard hand mark (floating).
+    Starboard,
+    /// Preferred channel port hand (floating).
+    PreferredPort,
+    /// Preferred channel starboard hand (floating).
+    PreferredStarboard,
+    /// Isolated danger (floating).
+    IsolatedDanger,
+    /// Safe water (floating).
+    SafeWater,
+    /// Special mark (floating).
+    Special,
+    /// Light vessel, LANBY or rig.
+    LightVessel,
+}
+
+impl CodeEnum for AisAidType {
+    const EXPECTED: &'static str =
+        "ais_aid_type code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31)";
+    const EXPECTED_CHARS: &'static str =
+        "ais_aid_type codes (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 2;
+    const ALL: &'static [Self] = &[
+        Self::NotSpecified,
+        Self::ReferencePoint,
+        Self::Racon,
+        Self::FixedStructure,
+        Self::Spare,
+        Self::Light,
+        Self::LightSectors,
+        Self::LeadingLightFront,
+        Self::LeadingLightRear,
+        Self::BeaconCardinalN,
+        Self::BeaconCardinalE,
+        Self::BeaconCardinalS,
+        Self::BeaconCardinalW,
+        Self::BeaconPort,
+        Self::BeaconStarboard,
+        Self::BeaconPreferredPort,
+        Self::BeaconPreferredStarboard,
+        Self::BeaconIsolatedDanger,
+        Self::BeaconSafeWater,
+        Self::BeaconSpecial,
+        Self::CardinalN,
+        Self::CardinalE,
+        Self::CardinalS,
+        Self::CardinalW,
+        Self::Port,
+        Self::Starboard,
+        Self::PreferredPort,
+        Self::PreferredStarboard,
+        Self::IsolatedDanger,
+        Self::SafeWater,
+        Self::Special,
+        Self::LightVessel,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::NotSpecified),
+            b"1" => Some(Self::ReferencePoint),
+            b"2" => Some(Self::Racon),
+            b"3" => Some(Self::FixedStructure),
+            b"4" => Some(Self::Spare),
+            b"5" => Some(Self::Light),
+            b"6" => Some(Self::LightSectors),
+            b"7" => Some(Self::LeadingLightFront),
+            b"8" => Some(Self::LeadingLightRear),
+            b"9" => Some(Self::BeaconCardinalN),
+            b"10" => Some(Self::BeaconCardinalE),
+            b"11" => Some(Self::BeaconCardinalS),
+            b"12" => Some(Self::BeaconCardinalW),
+            b"13" => Some(Self::BeaconPort),
+            b"14" => Some(Self::BeaconStarboard),
+            b"15" => Some(Self::BeaconPreferredPort),
+            b"16" => Some(Self::BeaconPreferredStarboard),
+            b"17" => Some(Self::BeaconIsolatedDanger),
+            b"18" => Some(Self::BeaconSafeWater),
+            b"19" => Some(Self::BeaconSpecial),
+            b"20" => Some(Self::CardinalN),
+            b"21" => Some(Self::CardinalE),
+            b"22" => Some(Self::CardinalS),
+            b"23" => Some(Self::CardinalW),
+            b"24" => Some(Self::Port),
+            b"25" => Some(Self::Starboard),
+            b"26" => Some(Self::PreferredPort),
+            b"27" => Some(Self::PreferredStarboard),
+            b"28" => Some(Self::IsolatedDanger),
+            b"29" => Some(Self::SafeWater),
+            b"30" => Some(Self::Special),
+            b"31" => Some(Self::LightVessel),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::NotSpecified => "0",
+            Self::ReferencePoint => "1",
+            Self::Racon => "2",
+            Self::FixedStructure => "3",
+            Self::Spare => "4",
+            Self::Light => "5",
+            Self::LightSectors => "6",
+            Self::LeadingLightFront => "7",
+            Self::LeadingLightRear => "8",
+            Self::BeaconCardinalN => "9",
+            Self::BeaconCardinalE => "10",
+            Self::BeaconCardinalS => "11",
+            Self::BeaconCardinalW => "12",
+            Self::BeaconPort => "13",
+            Self::BeaconStarboard => "14",
+            Self::BeaconPreferredPort => "15",
+            Self::BeaconPreferredStarboard => "16",
+            Self::BeaconIsolatedDanger => "17",
+            Self::BeaconSafeWater => "18",
+            Self::BeaconSpecial => "19",
+            Self::CardinalN => "20",
+            Self::CardinalE => "21",
+            Self::CardinalS => "22",
+            Self::CardinalW => "23",
+            Self::Port => "24",
+            Self::Starboard => "25",
+            Self::PreferredPort => "26",
+            Self::PreferredStarboard => "27",
+            Self::IsolatedDanger => "28",
+            Self::SafeWater => "29",
+            Self::Special => "30",
+            Self::LightVessel => "31",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::NotSpecified => "not_specified",
+            Self::ReferencePoint => "reference_point",
+            Self::Racon => "racon",
+            Self::FixedStructure => "fixed_structure",
+            Self::Spare => "spare",
+            Self::Light => "light",
+            Self::LightSectors => "light_sectors",
+            Self::LeadingLightFront => "leading_light_front",
+            Self::LeadingLightRear => "leading_light_rear",
+            Self::BeaconCardinalN => "beacon_cardinal_n",
+            Self::BeaconCardinalE => "beacon_cardinal_e",
+            Self::BeaconCardinalS => "beacon_cardinal_s",
+            Self::BeaconCardinalW => "beacon_cardinal_w",
+            Self::BeaconPort => "beacon_port",
+            Self::BeaconStarboard => "beacon_starboard",
+            Self::BeaconPreferredPort => "beacon_preferred_port",
+            Self::BeaconPreferredStarboard => "beacon_preferred_starboard",
+            Self::BeaconIsolatedDanger => "beacon_isolated_danger",
+            Self::BeaconSafeWater => "beacon_safe_water",
+            Self::BeaconSpecial => "beacon_special",
+            Self::CardinalN => "cardinal_n",
+            Self::CardinalE => "cardinal_e",
+            Self::CardinalS => "cardinal_s",
+            Self::CardinalW => "cardinal_w",
+            Self::Port => "port",
+            Self::Starboard => "starboard",
+            Self::PreferredPort => "preferred_port",
+            Self::PreferredStarboard => "preferred_starboard",
+            Self::IsolatedDanger => "isolated_danger",
+            Self::SafeWater => "safe_water",
+            Self::Special => "special",
+            Self::LightVessel => "light_vessel",
+        }
+    }
+}
+
 /// AIS radio channel: The VHF data link channel an AIS message was received on (VDM) or sent on
 /// (VDO). Empty when the channel is not known or, on some own-ship VDO lines, not given.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -2000,6 +2230,463 @@ impl CodeEnum for AisChannel {
             Self::B => "b",
             Self::One => "one",
             Self::Two => "two",
+        }
+    }
+}
+
+/// AIS electronic position-fixing device: The kind of device that fixes the position an AIS station
+/// reports (ITU-R M.1371-5, annex 8, table 50 note).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AisEpfd {
+    /// Undefined (default).
+    Undefined,
+    /// GPS.
+    Gps,
+    /// GLONASS.
+    Glonass,
+    /// Combined GPS and GLONASS.
+    GpsGlonass,
+    /// Loran-C.
+    LoranC,
+    /// Chayka.
+    Chayka,
+    /// Integrated navigation system.
+    Integrated,
+    /// Surveyed position (fixed stations).
+    Surveyed,
+    /// Galileo.
+    Galileo,
+    /// Internal GNSS (not used on the VDL before M.1371-5 except by fixed stations).
+    InternalGnss,
+}
+
+impl CodeEnum for AisEpfd {
+    const EXPECTED: &'static str = "ais_epfd code (0 1 2 3 4 5 6 7 8 15)";
+    const EXPECTED_CHARS: &'static str = "ais_epfd codes (0 1 2 3 4 5 6 7 8 15)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 2;
+    const ALL: &'static [Self] = &[
+        Self::Undefined,
+        Self::Gps,
+        Self::Glonass,
+        Self::GpsGlonass,
+        Self::LoranC,
+        Self::Chayka,
+        Self::Integrated,
+        Self::Surveyed,
+        Self::Galileo,
+        Self::InternalGnss,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Undefined),
+            b"1" => Some(Self::Gps),
+            b"2" => Some(Self::Glonass),
+            b"3" => Some(Self::GpsGlonass),
+            b"4" => Some(Self::LoranC),
+            b"5" => Some(Self::Chayka),
+            b"6" => Some(Self::Integrated),
+            b"7" => Some(Self::Surveyed),
+            b"8" => Some(Self::Galileo),
+            b"15" => Some(Self::InternalGnss),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Undefined => "0",
+            Self::Gps => "1",
+            Self::Glonass => "2",
+            Self::GpsGlonass => "3",
+            Self::LoranC => "4",
+            Self::Chayka => "5",
+            Self::Integrated => "6",
+            Self::Surveyed => "7",
+            Self::Galileo => "8",
+            Self::InternalGnss => "15",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Undefined => "undefined",
+            Self::Gps => "gps",
+            Self::Glonass => "glonass",
+            Self::GpsGlonass => "gps_glonass",
+            Self::LoranC => "loran_c",
+            Self::Chayka => "chayka",
+            Self::Integrated => "integrated",
+            Self::Surveyed => "surveyed",
+            Self::Galileo => "galileo",
+            Self::InternalGnss => "internal_gnss",
+        }
+    }
+}
+
+/// AIS type of ship and cargo: The kind of ship (first digit) and its cargo (second digit), as AIS
+/// static data gives it (ITU-R M.1371-5, annex 8, table 53). The codes left out (1-19, 25-29,
+/// 38-39, 45-48, 65-68, ...) are reserved for future use and kept as their number.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AisShipType {
+    /// Not available (default).
+    NotAvailable,
+    /// Wing in ground craft, all ships of this type.
+    Wig,
+    /// Wing in ground craft carrying dangerous goods of category X (A).
+    WigHazardousA,
+    /// Wing in ground craft carrying dangerous goods of category Y (B).
+    WigHazardousB,
+    /// Wing in ground craft carrying dangerous goods of category Z (C).
+    WigHazardousC,
+    /// Wing in ground craft carrying dangerous goods of category OS (D).
+    WigHazardousD,
+    /// Fishing.
+    Fishing,
+    /// Towing.
+    Towing,
+    /// Towing, the tow longer than 200 m or wider than 25 m.
+    TowingLarge,
+    /// Dredging or underwater operations.
+    Dredging,
+    /// Diving operations.
+    Diving,
+    /// Military operations.
+    Military,
+    /// Sailing.
+    Sailing,
+    /// Pleasure craft.
+    PleasureCraft,
+    /// High speed craft, all ships of this type.
+    HighSpeedCraft,
+    /// High speed craft carrying dangerous goods of category X (A).
+    HighSpeedCraftHazardousA,
+    /// High speed craft carrying dangerous goods of category Y (B).
+    HighSpeedCraftHazardousB,
+    /// High speed craft carrying dangerous goods of category Z (C).
+    HighSpeedCraftHazardousC,
+    /// High speed craft carrying dangerous goods of category OS (D).
+    HighSpeedCraftHazardousD,
+    /// High speed craft, no additional information.
+    HighSpeedCraftNoInfo,
+    /// Pilot vessel.
+    PilotVessel,
+    /// Search and rescue vessel.
+    SearchAndRescue,
+    /// Tug.
+    Tug,
+    /// Port tender.
+    PortTender,
+    /// Vessel with anti-pollution facilities or equipment.
+    AntiPollution,
+    /// Law enforcement vessel.
+    LawEnforcement,
+    /// Spare, for assignment to local vessels.
+    Local56,
+    /// Spare, for assignment to local vessels.
+    Local57,
+    /// Medical transport.
+    MedicalTransport,
+    /// Ship of a State not party to an armed conflict (noncombatant).
+    Noncombatant,
+    /// Passenger ship, all ships of this type.
+    Passenger,
+    /// Passenger ship carrying dangerous goods of category X (A).
+    PassengerHazardousA,
+    /// Passenger ship carrying dangerous goods of category Y (B).
+    PassengerHazardousB,
+    /// Passenger ship carrying dangerous goods of category Z (C).
+    PassengerHazardousC,
+    /// Passenger ship carrying dangerous goods of category OS (D).
+    PassengerHazardousD,
+    /// Passenger ship, no additional information.
+    PassengerNoInfo,
+    /// Cargo ship, all ships of this type.
+    Cargo,
+    /// Cargo ship carrying dangerous goods of category X (A).
+    CargoHazardousA,
+    /// Cargo ship carrying dangerous goods of category Y (B).
+    CargoHazardousB,
+    /// Cargo ship carrying dangerous goods of category Z (C).
+    CargoHazardousC,
+    /// Cargo ship carrying dangerous goods of category OS (D).
+    CargoHazardousD,
+    /// Cargo ship, no additional information.
+    CargoNoInfo,
+    /// Tanker, all ships of this type.
+    Tanker,
+    /// Tanker carrying dangerous goods of category X (A).
+    TankerHazardousA,
+    /// Tanker carrying dangerous goods of category Y (B).
+    TankerHazardousB,
+    /// Tanker carrying dangerous goods of category Z (C).
+    TankerHazardousC,
+    /// Tanker carrying dangerous goods of category OS (D).
+    TankerHazardousD,
+    /// Tanker, no additional information.
+    TankerNoInfo,
+    /// Other type of ship, all ships of this type.
+    Other,
+    /// Other type of ship carrying dangerous goods of category X (A).
+    OtherHazardousA,
+    /// Other type of ship carrying dangerous goods of category Y (B).
+    OtherHazardousB,
+    /// Other type of ship carrying dangerous goods of category Z (C).
+    OtherHazardousC,
+    /// Other type of ship carrying dangerous goods of category OS (D).
+    OtherHazardousD,
+    /// Other type of ship, no additional information.
+    OtherNoInfo,
+}
+
+impl CodeEnum for AisShipType {
+    const EXPECTED: &'static str = "ais_ship_type code (0 20 21 22 23 24 30 31 32 33 34 35 36 37 40 41 42 43 44 49 50 51 52 53 54 55 56 57 58 59 60 61 62 63 64 69 70 71 72 73 74 79 80 81 82 83 84 89 90 91 92 93 94 99)";
+    const EXPECTED_CHARS: &'static str = "ais_ship_type codes (0 20 21 22 23 24 30 31 32 33 34 35 36 37 40 41 42 43 44 49 50 51 52 53 54 55 56 57 58 59 60 61 62 63 64 69 70 71 72 73 74 79 80 81 82 83 84 89 90 91 92 93 94 99)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 2;
+    const ALL: &'static [Self] = &[
+        Self::NotAvailable,
+        Self::Wig,
+        Self::WigHazardousA,
+        Self::WigHazardousB,
+        Self::WigHazardousC,
+        Self::WigHazardousD,
+        Self::Fishing,
+        Self::Towing,
+        Self::TowingLarge,
+        Self::Dredging,
+        Self::Diving,
+        Self::Military,
+        Self::Sailing,
+        Self::PleasureCraft,
+        Self::HighSpeedCraft,
+        Self::HighSpeedCraftHazardousA,
+        Self::HighSpeedCraftHazardousB,
+        Self::HighSpeedCraftHazardousC,
+        Self::HighSpeedCraftHazardousD,
+        Self::HighSpeedCraftNoInfo,
+        Self::PilotVessel,
+        Self::SearchAndRescue,
+        Self::Tug,
+        Self::PortTender,
+        Self::AntiPollution,
+        Self::LawEnforcement,
+        Self::Local56,
+        Self::Local57,
+        Self::MedicalTransport,
+        Self::Noncombatant,
+        Self::Passenger,
+        Self::PassengerHazardousA,
+        Self::PassengerHazardousB,
+        Self::PassengerHazardousC,
+        Self::PassengerHazardousD,
+        Self::PassengerNoInfo,
+        Self::Cargo,
+        Self::CargoHazardousA,
+        Self::CargoHazardousB,
+        Self::CargoHazardousC,
+        Self::CargoHazardousD,
+        Self::CargoNoInfo,
+        Self::Tanker,
+        Self::TankerHazardousA,
+        Self::TankerHazardousB,
+        Self::TankerHazardousC,
+        Self::TankerHazardousD,
+        Self::TankerNoInfo,
+        Self::Other,
+        Self::OtherHazardousA,
+        Self::OtherHazardousB,
+        Self::OtherHazardousC,
+        Self::OtherHazardousD,
+        Self::OtherNoInfo,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::NotAvailable),
+            b"20" => Some(Self::Wig),
+            b"21" => Some(Self::WigHazardousA),
+            b"22" => Some(Self::WigHazardousB),
+            b"23" => Some(Self::WigHazardousC),
+            b"24" => Some(Self::WigHazardousD),
+            b"30" => Some(Self::Fishing),
+            b"31" => Some(Self::Towing),
+            b"32" => Some(Self::TowingLarge),
+            b"33" => Some(Self::Dredging),
+            b"34" => Some(Self::Diving),
+            b"35" => Some(Self::Military),
+            b"36" => Some(Self::Sailing),
+            b"37" => Some(Self::PleasureCraft),
+            b"40" => Some(Self::HighSpeedCraft),
+            b"41" => Some(Self::HighSpeedCraftHazardousA),
+            b"42" => Some(Self::HighSpeedCraftHazardousB),
+            b"43" => Some(Self::HighSpeedCraftHazardousC),
+            b"44" => Some(Self::HighSpeedCraftHazardousD),
+            b"49" => Some(Self::HighSpeedCraftNoInfo),
+            b"50" => Some(Self::PilotVessel),
+            b"51" => Some(Self::SearchAndRescue),
+            b"52" => Some(Self::Tug),
+            b"53" => Some(Self::PortTender),
+            b"54" => Some(Self::AntiPollution),
+            b"55" => Some(Self::LawEnforcement),
+            b"56" => Some(Self::Local56),
+            b"57" => Some(Self::Local57),
+            b"58" => Some(Self::MedicalTransport),
+            b"59" => Some(Self::Noncombatant),
+            b"60" => Some(Self::Passenger),
+            b"61" => Some(Self::PassengerHazardousA),
+            b"62" => Some(Self::PassengerHazardousB),
+            b"63" => Some(Self::PassengerHazardousC),
+            b"64" => Some(Self::PassengerHazardousD),
+            b"69" => Some(Self::PassengerNoInfo),
+            b"70" => Some(Self::Cargo),
+            b"71" => Some(Self::CargoHazardousA),
+            b"72" => Some(Self::CargoHazardousB),
+            b"73" => Some(Self::CargoHazardousC),
+            b"74" => Some(Self::CargoHazardousD),
+            b"79" => Some(Self::CargoNoInfo),
+            b"80" => Some(Self::Tanker),
+            b"81" => Some(Self::TankerHazardousA),
+            b"82" => Some(Self::TankerHazardousB),
+            b"83" => Some(Self::TankerHazardousC),
+            b"84" => Some(Self::TankerHazardousD),
+            b"89" => Some(Self::TankerNoInfo),
+            b"90" => Some(Self::Other),
+            b"91" => Some(Self::OtherHazardousA),
+            b"92" => Some(Self::OtherHazardousB),
+            b"93" => Some(Self::OtherHazardousC),
+            b"94" => Some(Self::OtherHazardousD),
+            b"99" => Some(Self::OtherNoInfo),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::NotAvailable => "0",
+            Self::Wig => "20",
+            Self::WigHazardousA => "21",
+            Self::WigHazardousB => "22",
+            Self::WigHazardousC => "23",
+            Self::WigHazardousD => "24",
+            Self::Fishing => "30",
+            Self::Towing => "31",
+            Self::TowingLarge => "32",
+            Self::Dredging => "33",
+            Self::Diving => "34",
+            Self::Military => "35",
+            Self::Sailing => "36",
+            Self::PleasureCraft => "37",
+            Self::HighSpeedCraft => "40",
+            Self::HighSpeedCraftHazardousA => "41",
+            Self::HighSpeedCraftHazardousB => "42",
+            Self::HighSpeedCraftHazardousC => "43",
+            Self::HighSpeedCraftHazardousD => "44",
+            Self::HighSpeedCraftNoInfo => "49",
+            Self::PilotVessel => "50",
+            Self::SearchAndRescue => "51",
+            Self::Tug => "52",
+            Self::PortTender => "53",
+            Self::AntiPollution => "54",
+            Self::LawEnforcement => "55",
+            Self::Local56 => "56",
+            Self::Local57 => "57",
+            Self::MedicalTransport => "58",
+            Self::Noncombatant => "59",
+            Self::Passenger => "60",
+            Self::PassengerHazardousA => "61",
+            Self::PassengerHazardousB => "62",
+            Self::PassengerHazardousC => "63",
+            Self::PassengerHazardousD => "64",
+            Self::PassengerNoInfo => "69",
+            Self::Cargo => "70",
+            Self::CargoHazardousA => "71",
+            Self::CargoHazardousB => "72",
+            Self::CargoHazardousC => "73",
+            Self::CargoHazardousD => "74",
+            Self::CargoNoInfo => "79",
+            Self::Tanker => "80",
+            Self::TankerHazardousA => "81",
+            Self::TankerHazardousB => "82",
+            Self::TankerHazardousC => "83",
+            Self::TankerHazardousD => "84",
+            Self::TankerNoInfo => "89",
+            Self::Other => "90",
+            Self::OtherHazardousA => "91",
+            Self::OtherHazardousB => "92",
+            Self::OtherHazardousC => "93",
+            Self::OtherHazardousD => "94",
+            Self::OtherNoInfo => "99",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::NotAvailable => "not_available",
+            Self::Wig => "wig",
+            Self::WigHazardousA => "wig_hazardous_a",
+            Self::WigHazardousB => "wig_hazardous_b",
+            Self::WigHazardousC => "wig_hazardous_c",
+            Self::WigHazardousD => "wig_hazardous_d",
+            Self::Fishing => "fishing",
+            Self::Towing => "towing",
+            Self::TowingLarge => "towing_large",
+            Self::Dredging => "dredging",
+            Self::Diving => "diving",
+            Self::Military => "military",
+            Self::Sailing => "sailing",
+            Self::PleasureCraft => "pleasure_craft",
+            Self::HighSpeedCraft => "high_speed_craft",
+            Self::HighSpeedCraftHazardousA => "high_speed_craft_hazardous_a",
+            Self::HighSpeedCraftHazardousB => "high_speed_craft_hazardous_b",
+            Self::HighSpeedCraftHazardousC => "high_speed_craft_hazardous_c",
+            Self::HighSpeedCraftHazardousD => "high_speed_craft_hazardous_d",
+            Self::HighSpeedCraftNoInfo => "high_speed_craft_no_info",
+            Self::PilotVessel => "pilot_vessel",
+            Self::SearchAndRescue => "search_and_rescue",
+            Self::Tug => "tug",
+            Self::PortTender => "port_tender",
+            Self::AntiPollution => "anti_pollution",
+            Self::LawEnforcement => "law_enforcement",
+            Self::Local56 => "local_56",
+            Self::Local57 => "local_57",
+            Self::MedicalTransport => "medical_transport",
+            Self::Noncombatant => "noncombatant",
+            Self::Passenger => "passenger",
+            Self::PassengerHazardousA => "passenger_hazardous_a",
+            Self::PassengerHazardousB => "passenger_hazardous_b",
+            Self::PassengerHazardousC => "passenger_hazardous_c",
+            Self::PassengerHazardousD => "passenger_hazardous_d",
+            Self::PassengerNoInfo => "passenger_no_info",
+            Self::Cargo => "cargo",
+            Self::CargoHazardousA => "cargo_hazardous_a",
+            Self::CargoHazardousB => "cargo_hazardous_b",
+            Self::CargoHazardousC => "cargo_hazardous_c",
+            Self::CargoHazardousD => "cargo_hazardous_d",
+            Self::CargoNoInfo => "cargo_no_info",
+            Self::Tanker => "tanker",
+            Self::TankerHazardousA => "tanker_hazardous_a",
+            Self::TankerHazardousB => "tanker_hazardous_b",
+            Self::TankerHazardousC => "tanker_hazardous_c",
+            Self::TankerHazardousD => "tanker_hazardous_d",
+            Self::TankerNoInfo => "tanker_no_info",
+            Self::Other => "other",
+            Self::OtherHazardousA => "other_hazardous_a",
+            Self::OtherHazardousB => "other_hazardous_b",
+            Self::OtherHazardousC => "other_hazardous_c",
+            Self::OtherHazardousD => "other_hazardous_d",
+            Self::OtherNoInfo => "other_no_info",
         }
     }
 }

@@ -1,0 +1,516 @@
+"""AIS payloads: the six-bit armoring of `!AIVDM`/`!AIVDO`, and one reader and one writer of the
+bit layouts the generated message classes describe (`LAYOUT`, a tuple of the field classes below).
+
+A payload decodes to its message and encodes back to the same characters and fill bits: spare
+bits, text after its `@` padding, the values of the fill bits and bits beyond the layout (kept in
+`trailing`) are all kept as sent. Facts from ITU-R M.1371-5 (armoring: table 47 of annex 8; the
+layouts: annex 8) and gpsd's "AIVDM/AIVDO protocol decoding".
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar, NamedTuple
+
+from .runtime import NmeaError
+
+SIXBIT_TEXT = "@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_ !\"#$%&'()*+,-./0123456789:;<=>?"
+"""The characters of six-bit text, by their value (`@`, value 0, pads a text to its width)."""
+
+_TEXT_VALUES = {ch: i for i, ch in enumerate(SIXBIT_TEXT)}
+
+
+def armor_value(ch: str) -> int | None:
+    """The six bits an armored payload character carries ('0'-'W' are 0-39, '`'-'w' 40-63)."""
+    code = ord(ch)
+    if 48 <= code <= 87:
+        return code - 48
+    if 96 <= code <= 119:
+        return code - 56
+    return None
+
+
+def armor_char(value: int) -> str:
+    return chr(value + 48 if value < 40 else value + 56)
+
+
+class Special(NamedTuple):
+    """A raw value that is no number (`not_available`, `manual_input`, ...): what a field holds
+    instead of a value in its unit."""
+
+    id: str
+    raw: int
+
+    def __str__(self) -> str:
+        return self.id
+
+
+class BitReader:
+    """The bits of a payload, read most significant first."""
+
+    __slots__ = ("value", "length", "pos", "where")
+
+    def __init__(self, value: int, length: int, where: str) -> None:
+        self.value = value
+        self.length = length
+        self.pos = 0
+        self.where = where  # errors' address: "AIS type 5"
+
+    @property
+    def remaining(self) -> int:
+        return self.length - self.pos
+
+    def peek(self, offset: int, width: int, name: str) -> int:
+        """The `width` bits at `offset` as an unsigned integer."""
+        if offset + width > self.length:
+            raise NmeaError("short_payload", f"{name} needs bits {offset}-{offset + width - 1}, the payload has "
+                            f"{self.length}", self.where, name=name)
+        return (self.value >> (self.length - offset - width)) & ((1 << width) - 1)
+
+    def take(self, width: int, name: str) -> int:
+        raw = self.peek(self.pos, width, name)
+        self.pos += width
+        return raw
+
+
+class BitWriter:
+    __slots__ = ("value", "length")
+
+    def __init__(self) -> None:
+        self.value = 0
+        self.length = 0
+
+    def put(self, raw: int, width: int) -> None:
+        self.value = (self.value << width) | (raw & ((1 << width) - 1))
+        self.length += width
+
+    def put_bits(self, bits: str) -> None:
+        if bits:
+            self.put(int(bits, 2), len(bits))
+
+
+def bits_text(value: int, width: int) -> str:
+    return format(value, f"0{width}b") if width else ""
+
+
+@dataclass(frozen=True, slots=True)
+class Field:
+    """One field of a layout: its member, its width (None: the bits left before the `after`
+    bits of the fields that follow), and whether it may be missing at the payload's end."""
+
+    id: str
+    width: int | None
+    optional: bool = False
+    after: int = 0
+
+    def size(self, reader: BitReader) -> int:
+        return self.width if self.width is not None else max(reader.remaining - self.after, 0)
+
+    def from_raw(self, raw: int, width: int) -> Any:
+        return raw
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        """The raw bits of `value` and their width."""
+        assert self.width is not None
+        if not isinstance(value, int) or not 0 <= value < 1 << self.width:
+            raise _bad_value(where, self.id, value, f"an integer of {self.width} bits")
+        return value, self.width
+
+    def json(self, value: Any) -> dict[str, Any]:
+        return {self.id: value}
+
+
+def _bad_value(where: str, name: str, value: Any, wanted: str) -> NmeaError:
+    return NmeaError("bad_value", f"{name} takes {wanted}, not {value!r}", where, name=name)
+
+
+@dataclass(frozen=True, slots=True)
+class Unsigned(Field):
+    """An unsigned integer; its value in a unit is the raw integer divided by `divisor`, plus
+    `base` (the value of raw 0); special raw values are Special, never a number."""
+
+    divisor: int = 1
+    base: int | float = 0
+    special: tuple[Special, ...] = ()
+
+    def signed(self, raw: int, width: int) -> int:
+        return raw
+
+    def bounds(self, width: int) -> tuple[int, int]:
+        return 0, (1 << width) - 1
+
+    def from_raw(self, raw: int, width: int) -> Any:
+        number = self.signed(raw, width)
+        for s in self.special:
+            if s.raw == number:
+                return s
+        return (number / self.divisor if self.divisor != 1 else number) + self.base
+
+    def raw_number(self, value: Any, where: str) -> int:
+        """The raw integer of a value (a Special, or a number in the field's unit)."""
+        if isinstance(value, Special):
+            return value.raw
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise _bad_value(where, self.id, value, "a number")
+        if self.divisor == 1 and isinstance(value, int) and isinstance(self.base, int):
+            return value - self.base
+        return round((value - self.base) * self.divisor)
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        assert self.width is not None
+        raw = self.raw_number(value, where)
+        low, high = self.bounds(self.width)
+        if not low <= raw <= high:
+            raise _bad_value(where, self.id, value, f"a raw value {low}..{high}")
+        return raw & ((1 << self.width) - 1), self.width
+
+    def json(self, value: Any) -> dict[str, Any]:
+        if self.divisor == 1 and not self.base and not self.special:
+            return {self.id: value}
+        return {self.id: str(value) if isinstance(value, Special) else value,
+                f"{self.id}_raw": self.raw_number(value, "")}
+
+
+@dataclass(frozen=True, slots=True)
+class Signed(Unsigned):
+    """A two's-complement integer."""
+
+    def signed(self, raw: int, width: int) -> int:
+        return raw - (1 << width) if raw >> (width - 1) else raw
+
+    def bounds(self, width: int) -> tuple[int, int]:
+        return -(1 << (width - 1)), (1 << (width - 1)) - 1
+
+
+@dataclass(frozen=True, slots=True)
+class Flag(Field):
+    def from_raw(self, raw: int, width: int) -> Any:
+        return bool(raw)
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        if not isinstance(value, bool):
+            raise _bad_value(where, self.id, value, "True or False")
+        return int(value), 1
+
+
+@dataclass(frozen=True, slots=True)
+class Code(Field):
+    """A code of an enum whose codes are decimal numbers; an unknown code stays its number."""
+
+    enum: Any = None
+
+    def from_raw(self, raw: int, width: int) -> Any:
+        try:
+            return self.enum(str(raw))
+        except ValueError:
+            return raw
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        return Field.to_raw(self, int(value.value) if isinstance(value, self.enum) else value, where)
+
+    def json(self, value: Any) -> dict[str, Any]:
+        return {self.id: value.name.lower() if isinstance(value, self.enum) else value}
+
+
+@dataclass(frozen=True, slots=True)
+class Text(Field):
+    """Six-bit text as sent, `@` padding and trailing spaces included; of the bits left (a
+    variable text), the whole characters."""
+
+    def size(self, reader: BitReader) -> int:
+        return self.width if self.width is not None else max(reader.remaining - self.after, 0) // 6 * 6
+
+    def from_raw(self, raw: int, width: int) -> Any:
+        return "".join(SIXBIT_TEXT[(raw >> shift) & 63] for shift in range(width - 6, -1, -6))
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        if not isinstance(value, str) or any(ch not in _TEXT_VALUES for ch in value) \
+                or self.width is not None and len(value) * 6 != self.width:
+            length = f"{self.width // 6} " if self.width is not None else ""
+            raise _bad_value(where, self.id, value, f"{length}six-bit text characters")
+        raw = 0
+        for ch in value:
+            raw = raw << 6 | _TEXT_VALUES[ch]
+        return raw, len(value) * 6
+
+
+@dataclass(frozen=True, slots=True)
+class Data(Field):
+    """Binary data, as the text of its bits ('0' and '1'). `dispatch` names the fields whose
+    values will choose an application layout for them (none is described yet)."""
+
+    dispatch: tuple[str, ...] = ()
+
+    def from_raw(self, raw: int, width: int) -> Any:
+        return bits_text(raw, width)
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        if not isinstance(value, str) or value.strip("01") or self.width is not None and len(value) != self.width:
+            raise _bad_value(where, self.id, value, "a text of bits")
+        return (int(value, 2) if value else 0), len(value)
+
+
+@dataclass(frozen=True, slots=True)
+class Spare(Field):
+    """Spare or reserved bits, kept as sent (some stations send them non-zero)."""
+
+
+@dataclass(frozen=True, slots=True)
+class Group:
+    """Entries of `fields` (the class `entry`) repeated while the bits left before the `after`
+    bits hold one, at most `max` times."""
+
+    id: str
+    entry: type
+    fields: tuple[Field, ...]
+    min: int
+    max: int
+    after: int = 0
+
+    @property
+    def entry_width(self) -> int:
+        return sum(f.width or 0 for f in self.fields)
+
+
+@dataclass(frozen=True, slots=True)
+class Case:
+    """One layout of a choice: taken for the raw values `values` or within `range` (neither: any
+    value no other case takes)."""
+
+    values: frozenset[int]
+    range: tuple[int, int] | None
+    items: tuple[Field | Choice, ...]
+
+    def holds(self, raw: int) -> bool:
+        return raw in self.values or self.range is not None and self.range[0] <= raw <= self.range[1]
+
+
+@dataclass(frozen=True, slots=True)
+class Choice:
+    """Bits laid out as the case that holds the raw value of the field `by` (at bits `offset`..,
+    `width` wide: it may come after the choice)."""
+
+    by: str
+    offset: int
+    width: int
+    cases: tuple[Case, ...]
+
+    def case(self, raw: int) -> Case | None:
+        found = next((c for c in self.cases if c.holds(raw)), None)
+        return found or next((c for c in self.cases if not c.values and c.range is None), None)
+
+    @property
+    def fields(self) -> tuple[Field, ...]:
+        """The fields of every case, in order."""
+        return tuple(f for case in self.cases for f in flat_fields(case.items))
+
+
+Item = Field | Group | Choice
+
+
+def flat_fields(items: tuple[Item, ...]) -> tuple[Field, ...]:
+    return tuple(f for item in items for f in ((item,) if isinstance(item, Field) else
+                                               item.fields if isinstance(item, Choice) else ()))
+
+
+def read_items(items: tuple[Item, ...], reader: BitReader, values: dict[str, Any]) -> bool:
+    """Read `items` into `values`; False once an optional field finds too few bits (it and what
+    follows stay None)."""
+    for item in items:
+        if isinstance(item, Field):
+            width = item.size(reader)
+            if item.optional and reader.remaining < width:
+                return False
+            values[item.id] = item.from_raw(reader.take(width, item.id), width)
+        elif isinstance(item, Group):
+            count = min(item.max, max(reader.remaining - item.after, 0) // item.entry_width)
+            if count < item.min:
+                raise NmeaError("short_payload", f"{item.id} needs at least {item.min} entries of "
+                                f"{item.entry_width} bits, {reader.remaining} bits left", reader.where, name=item.id)
+            entries = []
+            for _ in range(count):
+                entry: dict[str, Any] = {}
+                read_items(item.fields, reader, entry)
+                entries.append(item.entry(**entry))
+            values[item.id] = entries
+        else:
+            case = item.case(reader.peek(item.offset, item.width, item.by))
+            if case is not None and not read_items(case.items, reader, values):
+                return False
+    return True
+
+
+def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter, where: str) -> bool:
+    """Write the values of `items` from `message`'s members; False at an optional field left None."""
+    for item in items:
+        if isinstance(item, Field):
+            value = getattr(message, item.id)
+            if value is None and item.optional:
+                return False
+            if value is None and isinstance(item, Data) and getattr(message, "application", None) is not None:
+                value = message.application.bits(where)
+            writer.put(*item.to_raw(value, where))
+        elif isinstance(item, Group):
+            for entry in getattr(message, item.id):
+                write_items(item.fields, entry, writer, where)
+        else:
+            selector = message.field(item.by)
+            case = item.case(selector.to_raw(getattr(message, item.by), where)[0])
+            if case is not None and not write_items(case.items, message, writer, where):
+                return False
+    return True
+
+
+def items_json(items: tuple[Item, ...], message: Any) -> dict[str, Any]:
+    """The decoded JSON members of a message or group entry: each field present, in order."""
+    out: dict[str, Any] = {}
+    for item in items:
+        if isinstance(item, Group):
+            out[item.id] = [items_json(item.fields, entry) for entry in getattr(message, item.id)]
+        else:
+            for f in (item,) if isinstance(item, Field) else item.fields:
+                value = getattr(message, f.id)
+                if value is not None:
+                    out.update(f.json(value))
+    return out
+
+
+@dataclass(kw_only=True)
+class Record:
+    """A decoded layout (a message, or the application its data bits carry): its fields, then
+    the bits after the layout's last field, as sent ('0' and '1')."""
+
+    trailing: str = ""
+    """Bits after the layout's last field, as sent: a type 5 of 424 + 2 bits keeps 2."""
+
+    LAYOUT: ClassVar[tuple[Item, ...]]
+    FIELDS: ClassVar[dict[str, Field]]
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "LAYOUT" in cls.__dict__:
+            cls.FIELDS = {f.id: f for f in flat_fields(cls.LAYOUT)}
+
+    @classmethod
+    def field(cls, name: str) -> Field:
+        """The layout's field of member `name`."""
+        return cls.FIELDS[name]
+
+    def raw(self, name: str) -> int | None:
+        """The raw integer of a number's member (a value in a unit or a special value); None when
+        the member is None."""
+        value = getattr(self, name)
+        f = self.FIELDS[name]
+        return None if value is None or not isinstance(f, Unsigned) else f.raw_number(value, "")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The record as the decoded JSON of generated/vectors/ais.jsonl: each field present by
+        its id (a number in a unit beside its raw integer as <id>_raw, a special value by its id,
+        an enum value by its id, text as sent, data as its bits), then trailing."""
+        return {**items_json(self.LAYOUT, self), "trailing": self.trailing}
+
+
+@dataclass(kw_only=True)
+class Application(Record):
+    """An application message (IMO SN.1/Circ.289, regional ones): the data bits of the binary
+    messages CARRIERS whose DAC and FI fields hold DAC and FID."""
+
+    DAC: ClassVar[int]
+    FID: ClassVar[int]
+    CARRIERS: ClassVar[tuple[int, ...]]
+
+    def bits(self, where: str) -> str:
+        """The data bits it is sent as."""
+        writer = BitWriter()
+        write_items(self.LAYOUT, self, writer, where)
+        writer.put_bits(self.trailing)
+        return bits_text(writer.value, writer.length)
+
+
+@dataclass(kw_only=True)
+class Message(Record):
+    """What every decoded AIS message has besides its layout's fields."""
+
+    padding: str = ""
+    """The fill bits' values ('0' and '1'), as sent: fill bits are meant to be 0 but need not be."""
+    application: Application | None = None
+    """What its data bits carry, when the spec describes the application its DAC and FI name (its
+    data member is then None)."""
+
+    TYPES: ClassVar[tuple[int, ...]]
+
+    def encode(self) -> tuple[str, int]:
+        """The armored payload and its fill bits."""
+        writer = BitWriter()
+        where = f"AIS type {getattr(self, 'message_type')}"
+        write_items(self.LAYOUT, self, writer, where)
+        writer.put_bits(self.trailing)
+        fill = -writer.length % 6
+        if self.padding.strip("01") or len(self.padding) not in (0, fill):
+            raise _bad_value(where, "padding", self.padding, f"{fill} bits")
+        writer.put_bits(self.padding or "0" * fill)
+        return "".join(armor_char((writer.value >> shift) & 63)
+                       for shift in range(writer.length - 6, -1, -6)), fill
+
+    def to_dict(self) -> dict[str, Any]:
+        """As Record.to_dict, the application's (when there is one) before trailing, then padding."""
+        out = items_json(self.LAYOUT, self)
+        if self.application is not None:
+            out["application"] = self.application.to_dict()
+        return {**out, "trailing": self.trailing, "padding": self.padding}
+
+
+def unarmor(payload: str, fill_bits: int) -> tuple[BitReader, str]:
+    """The payload's message bits, and the values of its fill bits."""
+    if not 0 <= fill_bits <= 5 or fill_bits and not payload:
+        raise NmeaError("bad_armor", f"fill bits are 0-5 (none for an empty payload), not {fill_bits}", "AIS")
+    value = 0
+    for i, ch in enumerate(payload):
+        bits = armor_value(ch)
+        if bits is None:
+            raise NmeaError("bad_armor", f"character {ch!r} at offset {i} is not six-bit armoring", "AIS")
+        value = value << 6 | bits
+    length = len(payload) * 6 - fill_bits
+    padding = bits_text(value & ((1 << fill_bits) - 1), fill_bits)
+    return BitReader(value >> fill_bits, length, "AIS"), padding
+
+
+def _application(message: Message, applications: dict[tuple[int, int], type[Application]]) -> Application | None:
+    """What the message's data bits carry, when an application of `applications` (by DAC and FI)
+    is carried by its type and reads them; its data member is then set to None. Data that the
+    application does not read stays data."""
+    data = next((f for f in message.FIELDS.values() if isinstance(f, Data) and f.dispatch), None)
+    bits = getattr(message, data.id) if data is not None else None
+    if data is None or bits is None:
+        return None
+    dac, fid = (getattr(message, name) for name in data.dispatch)
+    cls = applications.get((dac, fid))
+    if cls is None or getattr(message, "message_type") not in cls.CARRIERS:
+        return None
+    reader = BitReader(int(bits, 2) if bits else 0, len(bits), f"AIS DAC {dac} FI {fid}")
+    values: dict[str, Any] = {}
+    try:
+        read_items(cls.LAYOUT, reader, values)
+    except NmeaError:
+        return None
+    setattr(message, data.id, None)
+    return cls(**values, trailing=bits[reader.pos:])
+
+
+def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int], type[Application]],
+           payload: str, fill_bits: int) -> Message:
+    """The message of an armored payload, as the class its type number names in `by_type`, with
+    the application of `applications` its data bits carry."""
+    reader, padding = unarmor(payload, fill_bits)
+    message_type = reader.peek(0, 6, "message_type")
+    reader.where = f"AIS type {message_type}"
+    cls = by_type.get(message_type)
+    if cls is None:
+        raise NmeaError("unknown_message", f"message type {message_type} is not one the spec describes",
+                        reader.where, name="message_type")
+    values: dict[str, Any] = {}
+    read_items(cls.LAYOUT, reader, values)
+    trailing = bits_text(reader.value & ((1 << reader.remaining) - 1), reader.remaining)
+    message = cls(**values, trailing=trailing, padding=padding)
+    message.application = _application(message, applications)
+    return message
