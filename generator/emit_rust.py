@@ -885,6 +885,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/src/bin/nmea-rs.rs"] = runtime_file(spec, "//", "rust/crate/bin/nmea-rs.rs", blank_line=True)
     files[f"{base}/tests/fast_path.rs"] = runtime_file(spec, "//", "rust/crate/tests/fast_path.rs", blank_line=True)
     files[f"{base}/tests/values.rs"] = runtime_file(spec, "//", "rust/crate/tests/values.rs", blank_line=True)
+    files[f"{base}/tests/ais.rs"] = runtime_file(spec, "//", "rust/crate/tests/ais.rs", blank_line=True)
 
     gates = Gates(spec)
     layouts = []
