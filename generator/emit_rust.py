@@ -888,6 +888,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/tests/fast_path.rs"] = runtime_file(spec, "//", "rust/crate/tests/fast_path.rs", blank_line=True)
     files[f"{base}/tests/values.rs"] = runtime_file(spec, "//", "rust/crate/tests/values.rs", blank_line=True)
     files[f"{base}/tests/tag_blocks.rs"] = runtime_file(spec, "//", "rust/crate/tests/tag_blocks.rs", blank_line=True)
+    files[f"{base}/tests/ais.rs"] = runtime_file(spec, "//", "rust/crate/tests/ais.rs", blank_line=True)
 
     gates = Gates(spec)
     layouts = []

@@ -71,6 +71,10 @@ def test_error_kinds() -> None:
 def test_payload_kinds() -> None:
     ais = (RUNTIME / "python" / "ais.py").read_text(encoding="utf-8")
     assert set(re.findall(r'NmeaError\(\s*"(\w+)"', ais)) == set(CONTRACT["payload_kinds"])
+    ais_rs = (RUNTIME / "rust" / "src" / "ais.rs").read_text(encoding="utf-8")
+    as_str = one(r"impl AisErrorKind \{.*?pub const fn as_str\(self\) -> &'static str \{(.*?)\n    \}", ais_rs)
+    assert {snake(variant): name for variant, name in re.findall(r'AisErrorKind::(\w+) => "(\w+)"', as_str)} \
+        == {k: k for k in CONTRACT["payload_kinds"]}
     for kind in CONTRACT["payload_kinds"]:
         assert f"| `{kind}` |" in (RUNTIME / "json.md").read_text(encoding="utf-8"), kind
 

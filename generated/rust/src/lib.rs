@@ -65,9 +65,9 @@ pub const VERSION: &str = "0.2.0";
 #[cfg(feature = "comnav")]
 use runtime::is_command_word;
 pub use runtime::{
-    days_from_civil, stream, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, DateTime, Encoding, Entries,
-    EntryIter, Error, ErrorKind, FieldProblem, Fields, Framing, Generic, Hex, Kind, Layout, Name, NotWhole, Number,
-    Options, ParamValue, Parameter, ParameterError, Problem, ProblemKind, Problems, ReplyOutcome, Sign, Table,
+    ais, days_from_civil, stream, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, DateTime, Encoding,
+    Entries, EntryIter, Error, ErrorKind, FieldProblem, Fields, Framing, Generic, Hex, Kind, Layout, Name, NotWhole,
+    Number, Options, ParamValue, Parameter, ParameterError, Problem, ProblemKind, Problems, ReplyOutcome, Sign, Table,
     TagBlock, TagBlocks, TagCode, TagType, Texts, Time, BUILD_CAPACITY, MAX_LINE, MAX_PROBLEMS, PIVOT_YEAR,
 };
 use runtime::{read_layout, Decoded, FastReader, Layouts, Outcome};

@@ -25,6 +25,7 @@ mod write;
 #[cfg(feature = "serde")]
 mod serialize;
 
+pub mod ais;
 pub mod stream;
 
 #[cfg(feature = "std")]

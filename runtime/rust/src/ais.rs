@@ -1,0 +1,565 @@
+//! AIS payloads: the six-bit armoring of `!AIVDM`/`!AIVDO`, and a bit reader and writer over it.
+//!
+//! The Rust side of the Python runtime's ais.py, with its rules and error messages. Decoding reads
+//! the armored characters in place and allocates nothing: six-bit text and binary data are views
+//! of the payload's bits. Encoding writes into a fixed buffer. What a decoder keeps as sent (spare
+//! bits, text after its `@` padding, bits after the layout, the values of the fill bits) is read
+//! as views and written back bit for bit. Facts from ITU-R M.1371-5 (armoring: annex 8, table 47)
+//! and gpsd's "AIVDM/AIVDO protocol decoding".
+
+use core::fmt;
+
+/// The characters of six-bit text, by their value (`@`, value 0, pads a text to its width).
+pub const SIXBIT_TEXT: &[u8; 64] = b"@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_ !\"#$%&'()*+,-./0123456789:;<=>?";
+
+/// The most bits an encoded message holds: five slots of 256 bits, more than any message's data
+/// and the bits some transmitters send after it.
+pub const MAX_BITS: usize = 5 * 256;
+
+/// The six bits an armored payload character carries (`0`-`W` are 0-39, `` ` ``-`w` 40-63).
+pub const fn armor_value(ch: u8) -> Option<u8> {
+    match ch {
+        b'0'..=b'W' => Some(ch - 48),
+        b'`'..=b'w' => Some(ch - 56),
+        _ => None,
+    }
+}
+
+/// The armored character of six bits (`value` below 64).
+pub const fn armor_char(value: u8) -> u8 {
+    if value < 40 {
+        value + 48
+    } else {
+        value + 56
+    }
+}
+
+/// The six-bit text value of a character, None for one six-bit text cannot carry.
+pub const fn text_value(ch: u8) -> Option<u8> {
+    match ch {
+        b'@'..=b'_' => Some(ch - 64),
+        b' '..=b'?' => Some(ch),
+        _ => None,
+    }
+}
+
+/// What is wrong with a payload or a value to encode (runtime/contract.yaml's `payload_kinds`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AisErrorKind {
+    /// A character outside the armoring, or fill bits outside 0-5.
+    BadArmor,
+    /// The payload ends before a field's last bit.
+    ShortPayload,
+    /// A message type the spec does not describe.
+    UnknownMessage,
+    /// A value to encode its field cannot hold.
+    BadValue,
+}
+
+impl AisErrorKind {
+    /// The kind as the JSON contract names it.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            AisErrorKind::BadArmor => "bad_armor",
+            AisErrorKind::ShortPayload => "short_payload",
+            AisErrorKind::UnknownMessage => "unknown_message",
+            AisErrorKind::BadValue => "bad_value",
+        }
+    }
+}
+
+/// The facts an error message is written from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Detail {
+    Character { ch: u8, offset: usize },
+    FillBits(u8),
+    Short { offset: usize, width: usize, length: usize },
+    UnknownType(u8),
+    TooWide { raw: i64, width: usize },
+    NotText(u8),
+    TooLong,
+}
+
+/// An AIS payload error: its kind, the message type and field it concerns when known.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AisError {
+    /// What is wrong.
+    pub kind: AisErrorKind,
+    /// The message type, once read.
+    pub message_type: Option<u8>,
+    /// The field being read or written.
+    pub field: Option<&'static str>,
+    detail: Detail,
+}
+
+impl AisError {
+    fn new(kind: AisErrorKind, message_type: Option<u8>, field: Option<&'static str>, detail: Detail) -> Self {
+        AisError { kind, message_type, field, detail }
+    }
+}
+
+impl fmt::Display for AisError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: AIS", self.kind.as_str())?;
+        if let Some(t) = self.message_type {
+            write!(f, " type {t}")?;
+        }
+        f.write_str(": ")?;
+        let field = self.field.unwrap_or("payload");
+        match self.detail {
+            Detail::Character { ch, offset } => {
+                write!(f, "character '{}' at offset {offset} is not six-bit armoring", ch.escape_ascii())
+            }
+            Detail::FillBits(n) => write!(f, "fill bits are 0-5 (none for an empty payload), not {n}"),
+            Detail::Short { offset, width, length } => {
+                write!(f, "{field} needs bits {offset}-{}, the payload has {length}", offset + width - 1)
+            }
+            Detail::UnknownType(t) => write!(f, "message type {t} is not one the spec describes"),
+            Detail::TooWide { raw, width } => write!(f, "{field} takes a raw value of {width} bits, not {raw}"),
+            Detail::NotText(ch) => write!(f, "{field} takes six-bit text characters, not '{}'", ch.escape_ascii()),
+            Detail::TooLong => write!(f, "{field} does not fit in a message of {MAX_BITS} bits"),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for AisError {}
+
+/// An armored payload whose characters and fill bits are checked: its bits, read in place.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Payload<'a> {
+    armored: &'a [u8],
+    fill_bits: u8,
+}
+
+impl<'a> Payload<'a> {
+    /// The payload of a sentence (or of its fragments joined) and its fill bits.
+    pub fn new(armored: &'a [u8], fill_bits: u8) -> Result<Self, AisError> {
+        if fill_bits > 5 || fill_bits > 0 && armored.is_empty() {
+            return Err(AisError::new(AisErrorKind::BadArmor, None, None, Detail::FillBits(fill_bits)));
+        }
+        if let Some(offset) = armored.iter().position(|&ch| armor_value(ch).is_none()) {
+            let ch = armored[offset];
+            return Err(AisError::new(AisErrorKind::BadArmor, None, None, Detail::Character { ch, offset }));
+        }
+        Ok(Payload { armored, fill_bits })
+    }
+
+    /// The message's bits: the characters' bits but the fill bits.
+    pub fn bit_len(&self) -> usize {
+        self.armored.len() * 6 - usize::from(self.fill_bits)
+    }
+
+    /// The number of fill bits.
+    pub fn fill_bits(&self) -> u8 {
+        self.fill_bits
+    }
+
+    /// The values of the fill bits, as sent (some transmitters send them non-zero).
+    pub fn padding(&self) -> u8 {
+        self.armored.last().map_or(0, |&ch| sixbits(ch) & ((1 << self.fill_bits) - 1))
+    }
+
+    /// A reader from the first bit.
+    pub fn reader(&self) -> BitReader<'a> {
+        BitReader { payload: *self, pos: 0, message_type: None }
+    }
+
+    /// The `width` bits (at most 64) at `offset`, most significant first; the caller keeps them
+    /// inside the characters.
+    fn raw(&self, offset: usize, width: usize) -> u64 {
+        let mut raw = 0u64;
+        let (mut pos, end) = (offset, offset + width);
+        while pos < end {
+            let in_char = pos % 6;
+            let take = (6 - in_char).min(end - pos);
+            let chunk = (sixbits(self.armored[pos / 6]) >> (6 - in_char - take)) & ((1 << take) - 1);
+            raw = raw << take | u64::from(chunk);
+            pos += take;
+        }
+        raw
+    }
+}
+
+/// The six bits of a character already checked.
+fn sixbits(ch: u8) -> u8 {
+    armor_value(ch).unwrap_or(0)
+}
+
+/// Bits of a payload kept as sent: binary data, spare bits, bits after a layout.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Bits<'a> {
+    payload: Payload<'a>,
+    offset: usize,
+    len: usize,
+}
+
+impl<'a> Bits<'a> {
+    /// How many bits.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The bits from the first, most significant first.
+    pub fn iter(&self) -> impl Iterator<Item = bool> + 'a {
+        let (payload, offset) = (self.payload, self.offset);
+        (0..self.len).map(move |i| payload.raw(offset + i, 1) == 1)
+    }
+
+    /// The six-bit text these bits carry, whole characters only.
+    pub fn text(&self) -> SixBitText<'a> {
+        SixBitText { bits: Bits { len: self.len / 6 * 6, ..*self } }
+    }
+}
+
+/// The bits as the text of their values (`"0110"`), the form of the vectors' and the JSON's data.
+impl fmt::Display for Bits<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.iter().try_for_each(|bit| f.write_str(if bit { "1" } else { "0" }))
+    }
+}
+
+/// Six-bit text as sent, `@` padding and trailing spaces included.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SixBitText<'a> {
+    bits: Bits<'a>,
+}
+
+impl<'a> SixBitText<'a> {
+    /// The characters.
+    pub fn chars(&self) -> impl Iterator<Item = char> + 'a {
+        let bits = self.bits;
+        (0..bits.len / 6).map(move |i| char::from(SIXBIT_TEXT[bits.payload.raw(bits.offset + 6 * i, 6) as usize]))
+    }
+
+    /// The text up to its first `@`, trailing spaces left out: the name a station meant.
+    pub fn trimmed(&self) -> impl Iterator<Item = char> + 'a {
+        let shown = self.chars().take_while(|&ch| ch != '@');
+        let end = shown.enumerate().filter(|&(_, ch)| ch != ' ').last().map_or(0, |(i, _)| i + 1);
+        self.chars().take(end)
+    }
+
+    /// The bits it was read from.
+    pub fn bits(&self) -> Bits<'a> {
+        self.bits
+    }
+}
+
+impl fmt::Display for SixBitText<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.chars().try_for_each(|ch| fmt::Write::write_char(f, ch))
+    }
+}
+
+impl PartialEq<&str> for SixBitText<'_> {
+    fn eq(&self, other: &&str) -> bool {
+        self.chars().eq(other.chars())
+    }
+}
+
+/// The bits of a payload read most significant first; errors name the message type (once
+/// [`BitReader::set_message_type`] gave it) and the field read.
+#[derive(Clone, Debug)]
+pub struct BitReader<'a> {
+    payload: Payload<'a>,
+    pos: usize,
+    message_type: Option<u8>,
+}
+
+impl<'a> BitReader<'a> {
+    /// The message type errors name from now on.
+    pub fn set_message_type(&mut self, message_type: u8) {
+        self.message_type = Some(message_type);
+    }
+
+    /// The bits read so far.
+    pub fn position(&self) -> usize {
+        self.pos
+    }
+
+    /// The bits left.
+    pub fn remaining(&self) -> usize {
+        self.payload.bit_len() - self.pos
+    }
+
+    /// The error of a message type no layout describes.
+    pub fn unknown_message(&self, message_type: u8) -> AisError {
+        let detail = Detail::UnknownType(message_type);
+        AisError::new(AisErrorKind::UnknownMessage, Some(message_type), Some("message_type"), detail)
+    }
+
+    fn check(&self, offset: usize, width: usize, field: &'static str) -> Result<(), AisError> {
+        let length = self.payload.bit_len();
+        if offset + width > length {
+            let detail = Detail::Short { offset, width, length };
+            return Err(AisError::new(AisErrorKind::ShortPayload, self.message_type, Some(field), detail));
+        }
+        Ok(())
+    }
+
+    /// The `width` bits (at most 64) at `offset` as an unsigned integer, without moving: a
+    /// choice's selector further on.
+    pub fn peek(&self, offset: usize, width: usize, field: &'static str) -> Result<u64, AisError> {
+        debug_assert!(width <= 64);
+        self.check(offset, width, field)?;
+        Ok(self.payload.raw(offset, width))
+    }
+
+    /// The next `width` bits (at most 64), unsigned.
+    pub fn take(&mut self, width: usize, field: &'static str) -> Result<u64, AisError> {
+        let raw = self.peek(self.pos, width, field)?;
+        self.pos += width;
+        Ok(raw)
+    }
+
+    /// The next `width` bits (1 to 64), two's complement.
+    pub fn take_signed(&mut self, width: usize, field: &'static str) -> Result<i64, AisError> {
+        let raw = self.take(width, field)?;
+        let unused = 64 - width as u32;
+        Ok(((raw << unused) as i64) >> unused)
+    }
+
+    /// The next `width` bits as a view.
+    pub fn take_bits(&mut self, width: usize, field: &'static str) -> Result<Bits<'a>, AisError> {
+        self.check(self.pos, width, field)?;
+        let bits = Bits { payload: self.payload, offset: self.pos, len: width };
+        self.pos += width;
+        Ok(bits)
+    }
+
+    /// The next `chars` characters of six-bit text.
+    pub fn take_text(&mut self, chars: usize, field: &'static str) -> Result<SixBitText<'a>, AisError> {
+        Ok(SixBitText { bits: self.take_bits(6 * chars, field)? })
+    }
+}
+
+/// An armored payload being written: fields go in most significant bit first, [`BitWriter::finish`]
+/// pads the last character with the fill bits.
+#[derive(Clone, Debug)]
+pub struct BitWriter {
+    values: [u8; MAX_BITS.div_ceil(6)],
+    len: usize,
+    message_type: Option<u8>,
+}
+
+impl Default for BitWriter {
+    fn default() -> Self {
+        BitWriter { values: [0; MAX_BITS.div_ceil(6)], len: 0, message_type: None }
+    }
+}
+
+impl BitWriter {
+    /// An empty payload whose errors name `message_type`.
+    pub fn new(message_type: u8) -> Self {
+        BitWriter { message_type: Some(message_type), ..BitWriter::default() }
+    }
+
+    fn error(&self, field: &'static str, detail: Detail) -> AisError {
+        AisError::new(AisErrorKind::BadValue, self.message_type, Some(field), detail)
+    }
+
+    /// The bits written so far.
+    pub fn bit_len(&self) -> usize {
+        self.len
+    }
+
+    /// `raw`'s low `width` bits (at most 64); a raw value wider than `width` bits is refused.
+    pub fn put(&mut self, raw: u64, width: usize, field: &'static str) -> Result<(), AisError> {
+        if width < 64 && raw >> width != 0 {
+            return Err(self.error(field, Detail::TooWide { raw: raw as i64, width }));
+        }
+        self.put_raw(raw, width, field)
+    }
+
+    /// `value` in `width` bits (1 to 64), two's complement.
+    pub fn put_signed(&mut self, value: i64, width: usize, field: &'static str) -> Result<(), AisError> {
+        let unused = 64 - width as u32;
+        if (value << unused) >> unused != value {
+            return Err(self.error(field, Detail::TooWide { raw: value, width }));
+        }
+        self.put_raw(value as u64 & (u64::MAX >> unused), width, field)
+    }
+
+    /// Bits kept as sent, bit for bit.
+    pub fn put_bits(&mut self, bits: Bits<'_>, field: &'static str) -> Result<(), AisError> {
+        (0..bits.len).step_by(64).try_for_each(|start| {
+            let width = (bits.len - start).min(64);
+            self.put_raw(bits.payload.raw(bits.offset + start, width), width, field)
+        })
+    }
+
+    /// Six-bit text, each character checked.
+    pub fn put_text(&mut self, text: &str, field: &'static str) -> Result<(), AisError> {
+        text.bytes().try_for_each(|ch| match text_value(ch) {
+            Some(value) => self.put_raw(u64::from(value), 6, field),
+            None => Err(self.error(field, Detail::NotText(ch))),
+        })
+    }
+
+    fn put_raw(&mut self, raw: u64, width: usize, field: &'static str) -> Result<(), AisError> {
+        if self.len + width > MAX_BITS {
+            return Err(self.error(field, Detail::TooLong));
+        }
+        let mut left = width;
+        while left > 0 {
+            let in_char = self.len % 6;
+            let put = (6 - in_char).min(left);
+            let chunk = (raw >> (left - put)) as u8 & ((1 << put) - 1);
+            let value = &mut self.values[self.len / 6];
+            *value = *value << put | chunk;
+            self.len += put;
+            left -= put;
+        }
+        Ok(())
+    }
+
+    /// The armored payload: the last character padded with `padding`, the values of the fill
+    /// bits as sent (0 for a new message).
+    pub fn finish(mut self, padding: u8) -> Result<Armored, AisError> {
+        let fill_bits = ((6 - self.len % 6) % 6) as u8;
+        if u64::from(padding) >> fill_bits != 0 {
+            return Err(self.error("padding", Detail::TooWide { raw: i64::from(padding), width: fill_bits.into() }));
+        }
+        self.put_raw(u64::from(padding), fill_bits.into(), "padding")?;
+        let chars = self.len / 6;
+        self.values[..chars].iter_mut().for_each(|value| *value = armor_char(*value));
+        Ok(Armored { chars: self.values, len: chars, fill_bits })
+    }
+}
+
+/// An encoded payload: its armored characters and fill bits.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Armored {
+    chars: [u8; MAX_BITS.div_ceil(6)],
+    len: usize,
+    fill_bits: u8,
+}
+
+impl Armored {
+    /// The armored characters.
+    pub fn as_str(&self) -> &str {
+        // Armored characters are ASCII.
+        core::str::from_utf8(&self.chars[..self.len]).unwrap_or_default()
+    }
+
+    /// The number of fill bits.
+    pub fn fill_bits(&self) -> u8 {
+        self.fill_bits
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    extern crate std;
+    use std::string::ToString;
+
+    // The README's type 1 (gpsd's sample.aivdm).
+    const TYPE_1: &[u8] = b"15RTgt0PAso;90TKcjM8h6g208CQ";
+    // A type 5 of two sentences joined (sample.aivdm's EVER DIADEM), 2 fill bits.
+    const TYPE_5: &[u8] = b"55?MbV02;H;s<HtKR20EHE:0@T4@Dn2222222216L961O5Gf0NSQEp6ClRp888888888880";
+
+    #[test]
+    fn armoring_covers_the_64_values_both_ways() {
+        for value in 0..64 {
+            assert_eq!(armor_value(armor_char(value)), Some(value));
+        }
+        assert_eq!((armor_value(b'X'), armor_value(b'_'), armor_value(b'x')), (None, None, None));
+        for (value, &ch) in SIXBIT_TEXT.iter().enumerate() {
+            assert_eq!(text_value(ch), Some(value as u8));
+        }
+        assert_eq!(text_value(b'a'), None);
+    }
+
+    #[test]
+    fn a_position_report_reads_field_by_field() {
+        let payload = Payload::new(TYPE_1, 0).unwrap();
+        let mut r = payload.reader();
+        assert_eq!(r.take(6, "message_type"), Ok(1));
+        r.set_message_type(1);
+        assert_eq!((r.take(2, "repeat"), r.take(30, "mmsi")), (Ok(0), Ok(371798000)));
+        assert_eq!((r.take(4, "status"), r.take_signed(8, "turn")), (Ok(0), Ok(-127)));
+        assert_eq!(r.take(10, "speed"), Ok(123));
+        assert_eq!(r.position(), 60);
+        assert_eq!(r.remaining(), 108);
+    }
+
+    #[test]
+    fn text_is_kept_as_sent() {
+        let payload = Payload::new(TYPE_5, 2).unwrap();
+        let mut r = payload.reader();
+        r.take_bits(70, "head").unwrap();
+        let callsign = r.take_text(7, "callsign").unwrap();
+        let shipname = r.take_text(20, "shipname").unwrap();
+        assert_eq!(callsign, "3FOF8  ");
+        assert_eq!(shipname.to_string(), "EVER DIADEM         ");
+        assert!(shipname.trimmed().eq("EVER DIADEM".chars()));
+        assert_eq!(payload.bit_len(), 424);
+    }
+
+    /// Every payload read in pieces of every width and written back gives its characters and
+    /// fill bits, the fill bits' values included.
+    #[test]
+    fn bits_written_back_give_the_same_payload() {
+        let with_padding = b"15RTgt0PAso;90TKcjM8h6g208CS";
+        for (armored, fill) in [(TYPE_1, 0), (TYPE_5, 2), (&with_padding[..], 1)] {
+            let payload = Payload::new(armored, fill).unwrap();
+            for width in [1, 5, 7, 30, 64] {
+                let (mut r, mut w) = (payload.reader(), BitWriter::new(0));
+                while r.remaining() > 0 {
+                    let n = width.min(r.remaining());
+                    w.put(r.take(n, "piece").unwrap(), n, "piece").unwrap();
+                }
+                let out = w.finish(payload.padding()).unwrap();
+                assert_eq!((out.as_str().as_bytes(), out.fill_bits()), (armored, fill));
+            }
+            let mut w = BitWriter::new(0);
+            w.put_bits(payload.reader().take_bits(payload.bit_len(), "all").unwrap(), "all").unwrap();
+            assert_eq!(w.finish(payload.padding()).unwrap().as_str().as_bytes(), armored);
+        }
+    }
+
+    #[test]
+    fn signed_and_text_values_are_written_in_their_width() {
+        let mut w = BitWriter::new(1);
+        w.put_signed(-127, 8, "turn").unwrap();
+        w.put_text("A@ ", "name").unwrap();
+        let out = w.finish(0).unwrap();
+        let payload = Payload::new(out.as_str().as_bytes(), out.fill_bits()).unwrap();
+        let mut r = payload.reader();
+        assert_eq!(r.take_signed(8, "turn"), Ok(-127));
+        assert_eq!(r.take_text(3, "name").unwrap(), "A@ ");
+    }
+
+    #[test]
+    fn errors_name_the_message_type_and_the_field() {
+        let short = Payload::new(&TYPE_1[..11], 0).unwrap();
+        let mut r = short.reader();
+        r.set_message_type(1);
+        let err = r.take_bits(61, "head").and_then(|_| r.take(28, "lon")).unwrap_err();
+        assert_eq!((err.kind, err.message_type, err.field), (AisErrorKind::ShortPayload, Some(1), Some("lon")));
+        assert_eq!(err.to_string(), "short_payload: AIS type 1: lon needs bits 61-88, the payload has 66");
+        let err = Payload::new(b"15RT~", 0).unwrap_err();
+        assert_eq!(err.to_string(), "bad_armor: AIS: character '~' at offset 4 is not six-bit armoring");
+        let err = Payload::new(TYPE_1, 6).unwrap_err();
+        assert_eq!(err.to_string(), "bad_armor: AIS: fill bits are 0-5 (none for an empty payload), not 6");
+        assert_eq!(
+            short.reader().unknown_message(28).to_string(),
+            "unknown_message: AIS type 28: message type 28 is not one the spec describes"
+        );
+        let mut w = BitWriter::new(5);
+        assert_eq!(w.put(64, 6, "repeat").unwrap_err().kind, AisErrorKind::BadValue);
+        assert_eq!(w.put_signed(-129, 8, "turn").unwrap_err().field, Some("turn"));
+        assert_eq!(
+            w.put_text("a", "shipname").unwrap_err().to_string(),
+            "bad_value: AIS type 5: shipname takes six-bit text characters, not 'a'"
+        );
+        w.put(1, 1, "flag").unwrap();
+        assert_eq!(w.finish(32).unwrap_err().field, Some("padding"));
+    }
+}
