@@ -1,10 +1,10 @@
 """pyais (https://github.com/M0r13n/pyais, MIT) as a second oracle of the AIS decoder: every
 message of gpsd's AIS samples (the pairs of gpsd_oracle.py) decoded by both and compared field by
-field in units (pyais scales numbers and names special values by their number). pyais is no
-dependency of the project: its test skips without it.
+field in units (pyais scales numbers and names special values by their number). pyais is a
+dependency of the tests only (requirements.txt), never of the generated code.
 
 Run it to print the agreement per message type and each difference with its reason:
-`.venv/bin/python -m tests.ais.pyais_oracle` (with pyais installed)."""
+`.venv/bin/python -m tests.ais.pyais_oracle`."""
 
 from __future__ import annotations
 
