@@ -41,8 +41,9 @@ static bool tag_value_fits(nmea_tag_type type, nmea_text value)
 
 const nmea_tag_code *nmea_tag_code_of(nmea_text code)
 {
+    const size_t count = NMEA_TAG_CODE_COUNT; /* a variable: a spec without codes compares with 0 */
     size_t i;
-    for (i = 0; i < NMEA_TAG_CODE_COUNT; i++)
+    for (i = 0; i < count; i++)
         if (text_is(code, nmea_tag_codes[i].code))
             return &nmea_tag_codes[i];
     return NULL;

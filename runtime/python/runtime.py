@@ -235,10 +235,10 @@ class TagCode(NamedTuple):
 
 
 class TagGroup(NamedTuple):
-    """A grouping parameter (g): sentence `number` of `count` in the group `id`."""
+    """A grouping parameter (g): sentence `number` of `total` in the group `id`."""
 
     number: int
-    count: int
+    total: int
     id: int
 
 
@@ -341,7 +341,7 @@ class TagBlock:
         return f'{{"params":[{params}],"checksum":"{self.to_text()[-3:-1]}"}}'
 
     def __eq__(self, other: object) -> bool:
-        return isinstance(other, TagBlock) and self.to_text() == other.text()
+        return isinstance(other, TagBlock) and self.to_text() == other.to_text()
 
     def __hash__(self) -> int:
         return hash(self.to_text())
@@ -361,12 +361,15 @@ def _tag_text(value: Any) -> str:
     return str(value)
 
 
-def read_tag_blocks(cls: type[TagBlock], line: str) -> tuple[tuple[TagBlock, ...], str]:
+TagBlockT = TypeVar("TagBlockT", bound=TagBlock)
+
+
+def read_tag_blocks(cls: type[TagBlockT], line: str) -> tuple[tuple[TagBlockT, ...], str]:
     """The TAG blocks at the start of `line` and the rest of the line after them: a `$`/`!`
     sentence, or empty for a line of TAG blocks only. Raises NmeaError bad_tag_block saying what
     is wrong (not_a_sentence for a byte outside printable ASCII)."""
     check_printable(line)
-    blocks = []
+    blocks: list[TagBlockT] = []
     while line[:1] == "\\":
         close = line.find("\\", 1)
         if close < 0:
@@ -409,7 +412,7 @@ def read_tag_blocks(cls: type[TagBlock], line: str) -> tuple[tuple[TagBlock, ...
     return tuple(blocks), line
 
 
-def tag_blocks_from_json(cls: type[TagBlock], items: Any) -> tuple[TagBlock, ...]:
+def tag_blocks_from_json(cls: type[TagBlockT], items: Any) -> tuple[TagBlockT, ...]:
     """The blocks of a `tag_blocks` array of the tools' JSON, read back as received ones."""
     if not isinstance(items, list) or not items:
         raise bad_json('"tag_blocks" is not an array of TAG blocks')
