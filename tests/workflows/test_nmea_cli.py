@@ -67,7 +67,7 @@ def test_tag_blocks_in_table_csv_and_json(installed: Venv) -> None:
     assert rows[0] == ["line", "sentence", "tag.source", "tag.time", "tag.q"]
     assert rows[9] == ["9", "VDM", "rORBCOMM000", "1426032001", "u"]
     records = [json.loads(r) for r in nmea(installed, "show", "--json", "-", input=lines).stdout.splitlines()]
-    assert records[4]["tag_block"] == {"source": "APIDSSRC1", "group": {"number": 1, "count": 2, "id": 5649},
+    assert records[4]["tag_block"] == {"source": "APIDSSRC1", "group": {"number": 1, "total": 2, "id": 5649},
                                        "line_count": 8851, "time": 2780328}
     assert "tag_block" in records[-1] and records[-1]["sentence"] == "TAG"
 

@@ -172,7 +172,7 @@ def test_tag_blocks_are_read_and_written_back() -> None:
     assert (first.time, first.group, first.source) == (
         1241544035, rt.TagGroup(1, 2, 73874), "r003669945"
     )
-    assert first.to_dict() == {"group": {"number": 1, "count": 2, "id": 73874}, "q": "u",
+    assert first.to_dict() == {"group": {"number": 1, "total": 2, "id": 73874}, "q": "u",
                                "source": "r003669945", "time": 1241544035}
     assert blocks[1].checksum == "upper" and rt.read_tag_blocks(TagBlock, "\\s:x*31\\")[1] == ""
     lower = rt.read_tag_blocks(TagBlock, "\\t:*4e\\")[0][0]
