@@ -287,12 +287,13 @@ FUZZ_SECONDS ?= 300
 FUZZ := build/fuzz
 FUZZ_FLAGS = -max_total_time=$(FUZZ_SECONDS) -max_len=1100 -timeout=10 -print_final_stats=1
 
-# The smoke run builds the Rust targets unoptimized (with the test run's cargo settings) and without
-# AddressSanitizer (the crate forbids unsafe code; the C pair has its own ASan target): minutes less
-# to compile, and 15 seconds of fuzzing check the same. What it shares with the other steps of
-# `make test` is built first, by this make, so that the two makes never build one file at once.
+# The smoke run builds the Rust targets unoptimized (with the test run's cargo settings), without
+# instrumented comparisons (they guide long campaigns) and without AddressSanitizer (the crate
+# forbids unsafe code; the C pair has its own ASan target): minutes less to compile, and 15 seconds
+# of fuzzing check the same. What it shares with the other steps of `make test` is built first, by
+# this make, so that the two makes never build one file at once.
 fuzz-smoke: test-bin build/c/nmea-san.o
-	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=15 CARGO_FUZZ_BUILD=--dev CARGO_FUZZ_SANITIZER=none \
+	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=15 CARGO_FUZZ_BUILD="--dev --no-trace-compares" CARGO_FUZZ_SANITIZER=none \
 		FUZZ_LONG= INPROCESS_CORPUS=$(FUZZ)/corpus-inprocess-smoke INPROCESS_SEEDS= \
 		SEED_FLAGS=--no-corpus
 
@@ -317,7 +318,7 @@ fuzz-python: fuzz-seeds
 		$(FUZZ)/corpus-python $(FUZZ)/seeds
 
 CARGO_FUZZ_VERSION := 0.13.2
-# The campaign (`make fuzz`) builds the Rust targets optimized; the smoke run passes --dev.
+# The campaign (`make fuzz`) builds the Rust targets optimized; the smoke run passes --dev and more.
 CARGO_FUZZ_BUILD ?=
 # The Rust targets' sanitizer: AddressSanitizer by default; the crate forbids unsafe code, so a long
 # campaign may take `none` for more executions (the C pair has its own ASan target).
