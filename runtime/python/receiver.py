@@ -210,7 +210,7 @@ class Receiver:
                 ready, _, _ = select.select([self._fd], [], [], max(timeout, 0.0))
                 if not ready:
                     return b""
-            if isinstance(stream, socket.socket):
+            if hasattr(stream, "recv"):  # a socket, or nmeaspec.network's UdpFeed
                 data = stream.recv(65536)
             else:
                 read = getattr(stream, "read1", None) or stream.read
@@ -384,6 +384,6 @@ def _selectable(stream: Any) -> int | None:
         return None
     if not isinstance(fd, int):
         return None
-    if os.name == "nt" and not isinstance(stream, socket.socket):
+    if os.name == "nt" and not hasattr(stream, "recv"):
         return None
     return fd

@@ -3,11 +3,12 @@
     nmea show LOG|-        a table, JSON lines or CSV of the sentences, a summary on stderr
     nmea show --fixes LOG  the same of the fixes: one row per epoch (fixes.py)
     nmea command ...       the bytes of a vendor command, checked field by field
-    nmea listen --port P   the sentences of a live receiver (needs pyserial)
+    nmea listen --port P   the sentences of a live receiver (needs pyserial), or of the network
+                           (--udp PORT for IEC 61162-450 and plain UDP, --tcp HOST:PORT)
     nmea send --port P ... a vendor command sent to a receiver, and its reply
     nmea report LOG        the log as pictures in one HTML page (report.py; needs matplotlib)
 
-Standard library only (listen and send import pyserial when they run). The tool other programs
+Standard library only (listen and send import pyserial when they open a serial port). The tool other programs
 drive, with the JSON the C and Rust tools print too, is `nmea-py` (contract_tool.py), not this one.
 """
 
@@ -28,6 +29,7 @@ from typing import IO, Any
 from .. import __version__
 from ..api import Generic, Tagged, parse
 from ..fixes import Fix, fixes
+from ..network import host_port, tcp_feed, udp_feed
 from ..receiver import Receiver, ReceiverError, ReplyTimeout, check_baud
 from ..runtime import NmeaError
 from ..stream import lines, too_long
@@ -72,6 +74,9 @@ examples (a receiver on a serial port; pip install 'nmeaspec[serial]'):
   nmea listen --port /dev/ttyUSB0 --baud 9600               every sentence, until Ctrl-C
   nmea listen --port /dev/ttyUSB0 --sentences GGA --fields time,lat,lon,quality --log raw.nmea
   nmea listen --port COM3 --json --count 20                  20 sentences, then stop
+  nmea listen --udp 60001 --group 239.192.0.1                an IEC 61162-450 group (MISC)
+  nmea listen --udp 10110                                    a plain UDP feed
+  nmea listen --tcp 192.168.1.10:10110 --sentences VDM       a TCP feed (a gateway, gpsd)
   nmea send --port /dev/ttyUSB0 mtk_pmtk pmtk220 200         5 Hz; prints the reply
   nmea send --port /dev/ttyUSB0 --baud 115200 quectel_lg290p pqtmcfgfixrate 100 --timeout 2
 
@@ -700,11 +705,37 @@ def _seconds(option: str, text: str | float | None) -> float | None:
     return value
 
 
-def _open_port(port: str | None, baud: int, **options: Any) -> Receiver:
-    if not port:
-        raise CliError("which port? give --port DEVICE, e.g. --port /dev/ttyUSB0")
+def _open_source(args: argparse.Namespace, **options: Any) -> Receiver:
+    """The receiver of --port, --tcp or --udp (listen only): exactly one of them."""
+    udp = getattr(args, "udp", None)
+    sources = (("--port", args.port), ("--tcp", args.tcp), ("--udp", udp))
+    given = [name for name, value in sources if value]
+    if len(given) > 1:
+        raise CliError(f"give one source, not {' and '.join(given)}")
+    if getattr(args, "group", None) and udp is None:
+        raise CliError("--group joins a multicast group of a UDP port: give --udp PORT too")
+    if args.tcp:
+        try:
+            host, port = host_port(args.tcp)
+        except ValueError as err:
+            raise CliError(f"--tcp {err}") from None
+        try:
+            return Receiver(tcp_feed(host, port), **options)
+        except OSError as err:
+            raise PortProblem(f"cannot connect to {args.tcp}: {err.strerror or err}") from None
+    if udp is not None:
+        if not 0 < udp < 65536:
+            raise CliError(f"--udp {udp}: give a port number from 1 to 65535")
+        try:
+            return Receiver(udp_feed(udp, args.group, args.interface or ""), **options)
+        except OSError as err:
+            where = f"group {args.group} on UDP port {udp}" if args.group else f"UDP port {udp}"
+            raise PortProblem(f"cannot listen to {where}: {err.strerror or err}") from None
+    if not args.port:
+        also = ", --tcp HOST:PORT or --udp PORT" if hasattr(args, "udp") else " or --tcp HOST:PORT"
+        raise CliError(f"which port? give --port DEVICE (e.g. --port /dev/ttyUSB0){also}")
     try:
-        return Receiver.open(port, baud, **options)
+        return Receiver.open(args.port, _baud(args.baud), **options)
     except ReceiverError as err:
         raise PortProblem(str(err)) from None
 
@@ -720,12 +751,11 @@ def _append_log(path: str | None) -> IO[bytes] | None:
 
 def listen(args: argparse.Namespace) -> int:
     fields, wanted = view_of(args)
-    baud = _baud(args.baud)
     duration = _seconds("--duration", args.duration)
     if args.count is not None and args.count <= 0:
         raise CliError(f"--count {args.count}: give a number of sentences above 0")
     summary = Summary()
-    with _open_port(args.port, baud) as receiver:
+    with _open_source(args) as receiver:
         receiver.log = log = _append_log(args.log)
         stream = framed_records(receiver.lines(duration), wanted, summary, **parse_options(args))
         if args.count is not None:
@@ -805,12 +835,9 @@ def send(args: argparse.Namespace) -> int:
         raise CliError("give VENDOR NAME [ARGS]; see nmea command --list")
     timeout = _seconds("--timeout", args.timeout)
     assert timeout is not None
-    baud = _baud(args.baud)
     sentence = build_sentence(args.words[0], args.words[1:])
-    if not args.port:
-        raise CliError("which port? give --port DEVICE, e.g. --port /dev/ttyUSB0")
     out = sys.stdout
-    with _open_port(args.port, baud, errors="yield") as receiver:
+    with _open_source(args, errors="yield") as receiver:
         receiver.log = log = _append_log(args.log)
         try:
             data = receiver.write(sentence)
@@ -874,13 +901,18 @@ def _port_options(verb: argparse.ArgumentParser) -> None:
     verb.add_argument(
         "--port",
         metavar="DEVICE",
-        help="the serial port: /dev/ttyUSB0, COM3, or a pyserial URL such as socket://host:port",
+        help="the serial port: /dev/ttyUSB0, COM3, or a pyserial URL such as rfc2217://host:port",
+    )
+    verb.add_argument(
+        "--tcp", metavar="HOST:PORT", help="a receiver or feed behind TCP instead of a serial port"
     )
     verb.add_argument(
         "--baud", default="9600", metavar="N", help="its speed in bit/s (default: 9600)"
     )
     verb.add_argument(
-        "--log", metavar="FILE", help="append every byte received to FILE, exactly as it came"
+        "--log",
+        metavar="FILE",
+        help="append every byte received to FILE, exactly as it came (UDP: each datagram's lines)",
     )
 
 
@@ -933,11 +965,26 @@ def parser() -> argparse.ArgumentParser:
     c.set_defaults(run=command)
     li = verbs.add_parser(
         "listen",
-        help="print the sentences of a live receiver on a serial port (needs pyserial)",
+        help="print the sentences of a live receiver on a serial port (needs pyserial) or of "
+        "the network",
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog=LIVE_EXAMPLES,
     )
     _port_options(li)
+    li.add_argument(
+        "--udp",
+        type=int,
+        metavar="PORT",
+        help="the datagrams of a UDP port (IEC 61162-450 or plain)",
+    )
+    li.add_argument(
+        "--group", metavar="ADDR", help="join this multicast group (IEC 61162-450: 239.192.0.x)"
+    )
+    li.add_argument(
+        "--interface",
+        metavar="ADDR",
+        help="the local address to listen on (its interface joins --group)",
+    )
     li.add_argument("--count", type=int, metavar="N", help="stop after N sentences shown")
     li.add_argument("--duration", metavar="S", help="stop after S seconds")
     _view_options(li)
