@@ -215,8 +215,8 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "names (the decoded JSON's form: a number in a unit beside <id>_raw, special values and enum values by id).",
          "Correct the payload, the fill bits or `expect` (the message shows the decoded value)."),
     Rule("A010", "an encapsulation names fields",
-         "A sentence's `encapsulates` names fields of each of its layouts as its payload, fill bits and fragment "
-         "count.",
+         "A sentence's `encapsulates` names fields of each of its layouts as its payload, fill bits, fragment "
+         "count and number, sequential message id and channel.",
          "Correct the field ids."),
     Rule("A011", "an application's carriers dispatch",
          "The message types an application (spec/ais/applications) is carried `in` have a data field whose "

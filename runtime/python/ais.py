@@ -89,6 +89,29 @@ class BitWriter:
             self.put(int(bits, 2), len(bits))
 
 
+class Fragment(NamedTuple):
+    """What an encapsulation sentence (`!AIVDM`) says of the message it carries all or part of:
+    the fields the spec's `encapsulates` names (nmeaspec.assembly joins fragments)."""
+
+    count: int
+    number: int
+    sequence: int | None
+    channel: str | None
+    payload: str
+    fill_bits: int
+
+    @classmethod
+    def of(cls, count: Any, number: Any, sequence: Any, channel: Any, payload: str | None,
+           fill_bits: Any) -> Fragment | None:
+        """From a sentence's fields (Numbers, an enum member or its text); None when the count
+        or number is empty."""
+        if count is None or number is None:
+            return None
+        return cls(int(count), int(number), None if sequence is None else int(sequence),
+                   None if channel is None else str(getattr(channel, "value", channel)), payload or "",
+                   int(fill_bits or 0))
+
+
 def bits_text(value: int, width: int) -> str:
     return format(value, f"0{width}b") if width else ""
 
@@ -383,6 +406,8 @@ class Record:
     trailing: str = ""
     """Bits after the layout's last field, as sent: a type 5 of 424 + 2 bits keeps 2."""
 
+    ID: ClassVar[str]
+    """The spec's id of the message or application (`position_report`, `meteo_hydro`)."""
     LAYOUT: ClassVar[tuple[Item, ...]]
     FIELDS: ClassVar[dict[str, Field]]
 

@@ -28,6 +28,7 @@ from typing import IO, Any
 
 from .. import __version__
 from ..api import Generic, Tagged, parse
+from ..assembly import Assembled, MessageAssembler
 from ..fixes import Fix, fixes
 from ..network import host_port, tcp_feed, udp_feed
 from ..receiver import Receiver, ReceiverError, ReplyTimeout, check_baud
@@ -140,6 +141,8 @@ class Summary:
         self.sentences: Counter[str] = Counter()
         self.errors: Counter[str] = Counter()
         self.unknown: Counter[str] = Counter()
+        self.ais: Counter[str] = Counter()  # AIS messages by id, and what did not decode by kind
+        self.ais_errors: Counter[str] = Counter()
 
     def write(self, out: IO[str]) -> None:
         total_errors = sum(self.errors.values())
@@ -151,6 +154,8 @@ class Summary:
             ("sentences", self.sentences),
             ("unknown", self.unknown),
             ("errors", self.errors),
+            ("AIS messages", self.ais),
+            ("AIS messages that did not decode", self.ais_errors),
         ):
             if counts:
                 ranked = sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))
@@ -243,30 +248,50 @@ def records(
 def framed_records(
     items: Iterable[bytes | int], wanted: set[str] | None, summary: Summary, **options: bool
 ) -> Iterator[dict[str, Any]]:
-    """records() of lines already framed (an int: the length of an overlong line)."""
+    """records() of lines already framed (an int: the length of an overlong line). The record of
+    the sentence that completes an AIS message (nmeaspec.assembly) has it as `ais`."""
+    assembler = MessageAssembler()
     for number, item in enumerate(items, 1):
         summary.lines += 1
         try:
             if isinstance(item, int):
                 raise too_long(item)
-            sentence = parse(item, **options)
+            line = parse(item, **options)
         except NmeaError as err:
             summary.errors[err.kind] += 1
             continue
-        tags = None
-        if isinstance(sentence, Tagged):
-            tags = tag_values(sentence)
-            sentence = sentence.sentence
+        sentence, tags = line, None
+        if isinstance(line, Tagged):
+            tags = tag_values(line)
+            sentence = line.sentence
         name, talker, fields = ("TAG", None, {}) if sentence is None else describe(sentence)
         if isinstance(sentence, Generic):
             summary.unknown[name] += 1
         else:
             summary.sentences[name] += 1
+        message = _assembled(assembler.feed(line), summary)
         if wanted is None or name in wanted:
             record = {"line": number, "talker": talker, "sentence": name, "fields": fields}
             if tags is not None:
                 record["tag_block"] = tags
+            if message is not None:
+                record["ais"] = message
             yield record
+    _assembled(assembler.finish(), summary)
+
+
+def _assembled(done: list[Assembled], summary: Summary) -> dict[str, Any] | None:
+    """The AIS message (as plain values, its id first) that the line completed, if any; each
+    message and each one that did not decode or complete is counted."""
+    found = None
+    for assembled in done:
+        if assembled.message is None:
+            assert assembled.error is not None
+            summary.ais_errors[assembled.error.kind] += 1
+            continue
+        summary.ais[assembled.message.ID] += 1
+        found = {"message": assembled.message.ID, **assembled.message.to_dict()}
+    return found
 
 
 def tag_values(tagged: Tagged) -> dict[str, Any]:
@@ -291,6 +316,8 @@ def describe(sentence: Any) -> tuple[str, str | None, dict[str, Any]]:
 def _row(record: dict[str, Any], fields: list[str] | None) -> list[Any]:
     if fields is None:
         summary = _summary(record["fields"])
+        if "ais" in record:  # the message rather than its armored payload
+            summary = _summary({k: v for k, v in record["ais"].items() if not k.endswith("_raw")})
         if "tag_block" in record:
             summary = ("tag" + _text(record["tag_block"]) + " " + summary).rstrip()
         return [record["line"], record["talker"], record["sentence"], summary]
@@ -298,11 +325,14 @@ def _row(record: dict[str, Any], fields: list[str] | None) -> list[Any]:
 
 
 def _cell(record: dict[str, Any], field: str) -> Any:
-    """A --fields column of a record: a special field, a TAG block parameter, a field."""
+    """A --fields column of a record: a special field, a TAG block parameter, a field of its AIS
+    message, a field."""
     if field in SPECIAL_FIELDS:
         return record[field]
     if field.startswith("tag."):
         return record.get("tag_block", {}).get(field[4:])
+    if field.startswith("ais."):
+        return record.get("ais", {}).get(field[4:])
     return record["fields"].get(field)
 
 

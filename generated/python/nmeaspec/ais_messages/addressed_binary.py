@@ -24,6 +24,7 @@ class AddressedBinary(ais.Message):
     6B?n;be:cbapalgc;i6?Ow4
     """
 
+    ID: ClassVar[str] = "addressed_binary"
     TYPES: ClassVar[tuple[int, ...]] = (6,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -22,6 +22,7 @@ class AddressedSafety(ais.Message):
     <02:oP0kKcv0@<51C5PB5@?BDPD?P:?2?EB7PDB16693P381>>5<PikP
     """
 
+    ID: ClassVar[str] = "addressed_safety"
     TYPES: ClassVar[tuple[int, ...]] = (12,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -25,6 +25,7 @@ class AidToNavigation(ais.Message):
     E>jKuN@1:WdhHP0000000000000@ln4;:n:6p30HHHgfR?
     """
 
+    ID: ClassVar[str] = "aid_to_navigation"
     TYPES: ClassVar[tuple[int, ...]] = (21,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

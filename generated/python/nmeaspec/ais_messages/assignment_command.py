@@ -22,6 +22,7 @@ class AssignmentCommand(ais.Message):
     @01uEO@mMk7P<P00
     """
 
+    ID: ClassVar[str] = "assignment_command"
     TYPES: ClassVar[tuple[int, ...]] = (16,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

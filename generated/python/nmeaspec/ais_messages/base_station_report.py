@@ -25,6 +25,7 @@ class BaseStationReport(ais.Message):
     403OviQuMGCqWrRO9>E6fE700@GO
     """
 
+    ID: ClassVar[str] = "base_station_report"
     TYPES: ClassVar[tuple[int, ...]] = (4, 11)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

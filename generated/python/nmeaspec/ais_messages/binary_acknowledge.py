@@ -33,6 +33,7 @@ class BinaryAcknowledge(ais.Message):
     702R5`hwCjq8
     """
 
+    ID: ClassVar[str] = "binary_acknowledge"
     TYPES: ClassVar[tuple[int, ...]] = (7, 13)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -24,6 +24,7 @@ class BroadcastBinary(ais.Message):
     85Mwp`1Kf3aCnsNvBWLi=wQuNhA5t43N`5nCuI=p<IBfVqnMgPGs
     """
 
+    ID: ClassVar[str] = "broadcast_binary"
     TYPES: ClassVar[tuple[int, ...]] = (8,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

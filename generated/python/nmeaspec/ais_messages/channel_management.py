@@ -23,6 +23,7 @@ class ChannelManagement(ais.Message):
     F030ot22N2P6aoQbhe4736L20000
     """
 
+    ID: ClassVar[str] = "channel_management"
     TYPES: ClassVar[tuple[int, ...]] = (22,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -24,6 +24,7 @@ class ClassBExtended(ais.Message):
     C5N3SRgPEnJGEBT>NhWAwwo862PaLELTBJ:V00000000S0D:R220
     """
 
+    ID: ClassVar[str] = "class_b_extended"
     TYPES: ClassVar[tuple[int, ...]] = (19,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

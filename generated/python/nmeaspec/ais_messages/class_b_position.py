@@ -22,6 +22,7 @@ class ClassBPosition(ais.Message):
     B52K>;h00Fc>jpUlNV@ikwpUoP06
     """
 
+    ID: ClassVar[str] = "class_b_position"
     TYPES: ClassVar[tuple[int, ...]] = (18,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

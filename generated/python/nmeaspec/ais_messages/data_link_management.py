@@ -36,6 +36,7 @@ class DataLinkManagement(ais.Message):
     Dh3OvjB8IN>4
     """
 
+    ID: ClassVar[str] = "data_link_management"
     TYPES: ClassVar[tuple[int, ...]] = (20,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

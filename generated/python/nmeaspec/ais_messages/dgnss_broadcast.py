@@ -23,6 +23,7 @@ class DgnssBroadcast(ais.Message):
     A;wUJKU>io;WlWuwH`W1PpnuN<isf;5iHtOM1S6q?vsvNrNGOqLcr5mfD6t
     """
 
+    ID: ClassVar[str] = "dgnss_broadcast"
     TYPES: ClassVar[tuple[int, ...]] = (17,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -23,6 +23,7 @@ class GroupAssignment(ais.Message):
     G02:Kn01R`sn@291nj600000900
     """
 
+    ID: ClassVar[str] = "group_assignment"
     TYPES: ClassVar[tuple[int, ...]] = (23,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -23,6 +23,7 @@ class Interrogation(ais.Message):
     ?5OP=l00052HD00
     """
 
+    ID: ClassVar[str] = "interrogation"
     TYPES: ClassVar[tuple[int, ...]] = (15,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -24,6 +24,7 @@ class LongRangeBroadcast(ais.Message):
     KCQ9r=hrFUnH7P00
     """
 
+    ID: ClassVar[str] = "long_range_broadcast"
     TYPES: ClassVar[tuple[int, ...]] = (27,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -25,6 +25,7 @@ class MeteoHydro(ais.Application):
     8h2=Vg@0Gh0TN1N>vAB0@PegFPClDIFcgwl?wnSwe7wvlOwwsAwwnSGmwvh0
     """
 
+    ID: ClassVar[str] = "meteo_hydro"
     DAC: ClassVar[int] = 1
     FID: ClassVar[int] = 31
     CARRIERS: ClassVar[tuple[int, ...]] = (8,)

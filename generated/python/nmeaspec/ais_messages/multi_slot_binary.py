@@ -23,6 +23,7 @@ class MultiSlotBinary(ais.Message):
     JB3R0GO7p>vQL8tjw0b5hqpd0706kh9d3lR2vbl0400
     """
 
+    ID: ClassVar[str] = "multi_slot_binary"
     TYPES: ClassVar[tuple[int, ...]] = (26,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -26,6 +26,7 @@ class PositionReport(ais.Message):
     15RTgt0PAso;90TKcjM8h6g208CQ
     """
 
+    ID: ClassVar[str] = "position_report"
     TYPES: ClassVar[tuple[int, ...]] = (1, 2, 3)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

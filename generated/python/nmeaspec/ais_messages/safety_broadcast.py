@@ -22,6 +22,7 @@ class SafetyBroadcast(ais.Message):
     >5?Per18=HB1U:1@E=B0m<L
     """
 
+    ID: ClassVar[str] = "safety_broadcast"
     TYPES: ClassVar[tuple[int, ...]] = (14,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -22,6 +22,7 @@ class SarAircraftReport(ais.Message):
     91b77=h3h00nHt0Q3r@@07000<0b
     """
 
+    ID: ClassVar[str] = "sar_aircraft_report"
     TYPES: ClassVar[tuple[int, ...]] = (9,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -23,6 +23,7 @@ class SingleSlotBinary(ais.Message):
     I6SWo?8P00a3PKpEKEVj0?vNP<65
     """
 
+    ID: ClassVar[str] = "single_slot_binary"
     TYPES: ClassVar[tuple[int, ...]] = (25,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -25,6 +25,7 @@ class StaticDataReport(ais.Message):
     H42O55i18tMET00000000000000
     """
 
+    ID: ClassVar[str] = "static_data_report"
     TYPES: ClassVar[tuple[int, ...]] = (24,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

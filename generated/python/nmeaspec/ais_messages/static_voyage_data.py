@@ -26,6 +26,7 @@ class StaticVoyageData(ais.Message):
     55?MbV02;H;s<HtKR20EHE:0@T4@Dn2222222216L961O5Gf0NSQEp6ClRp888888888880
     """
 
+    ID: ClassVar[str] = "static_voyage_data"
     TYPES: ClassVar[tuple[int, ...]] = (5,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

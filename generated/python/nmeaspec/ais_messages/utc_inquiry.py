@@ -22,6 +22,7 @@ class UtcInquiry(ais.Message):
     :5MlU41GMK6@
     """
 
+    ID: ClassVar[str] = "utc_inquiry"
     TYPES: ClassVar[tuple[int, ...]] = (10,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),

@@ -33,6 +33,7 @@ class TestReport(ais.Message):
     1Uwujj@90Q0@:sa:80wsT0g
     """
 
+    ID: ClassVar[str] = "test_report"
     TYPES: ClassVar[tuple[int, ...]] = (1,)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("message_type", 6),
