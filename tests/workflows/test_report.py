@@ -17,6 +17,7 @@ from .conftest import Venv, corpus_log, need, run
 MULTI_GNSS = "gpsd/ublox-neo-m9n-nmea.nmea"  # GN/GP/GL/GA/GB: GGA, GSA, GSV with signal ids, 1 min
 RMC_ONLY = "gpsd/magellan-ec10.nmea"  # RMC and RMB only: a fix, no satellites
 BAD_LINES = "gpsd/blumax-gps009.nmea"  # 8 SiRF text lines that are not sentences
+AIS_LOG = "gpsd/ais-nmea.nmea"  # AIVDM of 30 ships in a Dutch harbour, type 5 in two sentences
 SECTIONS = ("summary", "track", "sky", "cn0", "quality", "sentences")
 
 
@@ -182,3 +183,20 @@ def test_report_without_the_extra(installed: Venv, tmp_path: Path) -> None:
     assert not list(tmp_path.iterdir())
     assert b"RMC" in nmea(installed, "show", "-q", corpus_log(RMC_ONLY), cwd=tmp_path).stdout
     assert b"report" in nmea(installed, "--help", cwd=tmp_path).stdout
+
+
+def test_report_of_an_ais_log(installed_report: Venv, tmp_path: Path) -> None:
+    """A ship's AIS feed: the stations' tracks on a map and the table of those that sent most,
+    names from their static reports (joined across sentences), between the charts and the sentences."""
+    text, page, stderr = _report(installed_report, AIS_LOG, tmp_path)
+    assert stderr == f"wrote {tmp_path / 'report.html'}: 1496 lines, 1496 sentences, 0 errors\n"
+    _self_contained(text, page)
+    assert list(page.sections) == ["summary", "track", "sky", "cn0", "quality", "ais", "sentences"]
+    assert len(_pngs(page.sections["ais"])) == 1
+    assert "30 AIS stations with positions (141 position reports)" in text
+    rows = page.cells
+    first = rows.index("MMSI")
+    assert rows[first:first + 8] == ["MMSI", "name", "messages", "last position",
+                                     "235084466", "VOS DOROTHEA", "17", "52.83810° N, 5.70402° E"]
+    assert "TIJMA" in rows  # a name from a type 5 message of two sentences
+    assert '<a href="#ais">AIS targets</a>' in text

@@ -29,6 +29,7 @@ from collections import Counter
 from typing import TYPE_CHECKING, Any
 
 from ..api import Tagged, parse
+from ..assembly import MessageAssembler
 from ..runtime import Coordinate, Date, NmeaError, Number, Time
 from ..stream import lines, too_long
 from .nmea_cli import CliError, _chunks, add_progress_options, open_log, progress_for
@@ -62,6 +63,10 @@ TRAIL_LIMIT = 500  # sky positions of one satellite (kept only when they change)
 MAX_SATELLITES = 400  # satellites (and signals) followed; later ones are only counted
 MAX_KEYS = 500  # rows of the sentence table kept apart; the rest are counted together
 FIRST_ERRORS = 10  # error lines quoted
+MAX_TARGETS = 1000  # AIS stations followed; later ones are only counted
+TARGET_TRACK_LIMIT = 500  # positions of one AIS station
+TARGETS_LISTED = 50  # rows of the AIS table
+TARGETS_NAMED = 12  # AIS stations labelled on their map
 COLUMNS = 400  # time columns of the C/N0 picture
 CN0_ROWS = 120  # satellite signals in the C/N0 picture (those with the most samples)
 
@@ -231,6 +236,21 @@ def _date_text(day: int, month: int, year: int) -> str | None:
     return f"{year:04d}-{month:02d}-{day:02d}"
 
 
+class Target:
+    """An AIS station: its name (static reports), its positions (position reports) and how many
+    messages it sent."""
+
+    def __init__(self) -> None:
+        self.name: str | None = None
+        self.messages = 0
+        self.track = Thinned[tuple[float, float]](TARGET_TRACK_LIMIT)
+
+
+def _degrees_of(value: Any) -> float | None:
+    """A position field of an AIS message in degrees; None when not available."""
+    return float(value) if isinstance(value, float) else None
+
+
 class Log:
     """What a report shows of a log, gathered line by line (add) in bounded memory."""
 
@@ -263,6 +283,11 @@ class Log:
         self._epoch_at: At | None = None
         self._open_sets: set[tuple[str, str]] = set()  # GSV sets still waiting for a sentence
         self._sets_before = 0  # GSV sets of the epoch before
+        self.targets: dict[int, Target] = {}
+        self.ais_messages = 0
+        self.ais_unfollowed = 0  # messages of stations beyond MAX_TARGETS
+        self.ais_errors: Counter[str] = Counter()
+        self._assembler = MessageAssembler()
 
     # -- reading ------------------------------------------------------------------------------
 
@@ -276,6 +301,8 @@ class Log:
             except NmeaError as err:
                 self._error(number, err, item)
                 continue
+            for done in self._assembler.feed(sentence):
+                self._ais(done.message, done.error)
             if isinstance(sentence, Tagged):  # the sentence behind its TAG blocks, if any
                 sentence = sentence.sentence
                 if sentence is None:
@@ -285,6 +312,32 @@ class Log:
         # epoch before it) counts no satellites in view
         whole = not self._open_sets and len(self._epoch_keys) >= self._sets_before
         self._end_epoch(counted=whole)
+        for done in self._assembler.finish():
+            self._ais(done.message, done.error)
+
+    def _ais(self, message: Any, error: NmeaError | None) -> None:
+        """Take in an AIS message, or count why one did not decode or complete."""
+        if message is None:
+            assert error is not None
+            self.ais_errors[error.kind] += 1
+            return
+        self.ais_messages += 1
+        mmsi = getattr(message, "mmsi", None)
+        if not isinstance(mmsi, int):
+            return
+        target = self.targets.get(mmsi)
+        if target is None:
+            if len(self.targets) >= MAX_TARGETS:
+                self.ais_unfollowed += 1
+                return
+            target = self.targets[mmsi] = Target()
+        target.messages += 1
+        name = getattr(message, "shipname", None) or getattr(message, "name", None)
+        if isinstance(name, str) and name.rstrip("@ "):
+            target.name = name.rstrip("@ ")
+        lat, lon = _degrees_of(getattr(message, "lat", None)), _degrees_of(getattr(message, "lon", None))
+        if lat is not None and lon is not None:
+            target.track.add((lat, lon))
 
     def _error(self, number: int, err: NmeaError, item: bytes | int) -> None:
         self.errors[err.kind] += 1
@@ -615,6 +668,89 @@ def draw_track(log: Log, axis: Axis) -> tuple[str, str] | None:
         + f"; the track spans {size}. Start ▲, end ■."
     )
     return _png(figure), caption
+
+
+def draw_targets(log: Log) -> tuple[str, str] | None:
+    """The AIS stations' tracks in kilometres east and north of their centre, the last position of
+    each a dot; the stations that sent most are labelled."""
+    tracks = {mmsi: t.track.all() for mmsi, t in log.targets.items() if t.track.added}
+    if not tracks:
+        return None
+    lats = [lat for points in tracks.values() for lat, _ in points]
+    lons = [lon for points in tracks.values() for _, lon in points]
+    wrap = max(lons) - min(lons) > 180  # across the antimeridian
+    if wrap:
+        lons = [lon + 360 if lon < 0 else lon for lon in lons]
+    lat0 = (max(lats) + min(lats)) / 2
+    lon0 = (max(lons) + min(lons)) / 2
+    km = math.pi / 180 * 6371.0088
+
+    def xy(lat: float, lon: float) -> tuple[float, float]:
+        lon = lon + 360 if wrap and lon < 0 else lon
+        return (lon - lon0) * km * math.cos(math.radians(lat0)), (lat - lat0) * km
+
+    spread = xy(max(lats), max(lons))[1] - xy(min(lats), min(lons))[1]
+    world = spread > 2000 or max(lons) - min(lons) > 20  # too wide for a flat map in km
+    figure = _figure(5.6, 5.4)
+    ax = figure.add_subplot()
+    named = sorted(tracks, key=lambda m: (-log.targets[m].messages, m))[:TARGETS_NAMED]
+    for mmsi, points in tracks.items():
+        east, north = zip(*((lon, lat) if world else xy(lat, lon) for lat, lon in points))
+        ax.plot(east, north, linewidth=0.8, color="#7f9fbf", zorder=1)
+        ax.scatter(east[-1:], north[-1:], s=9, color="#1f4e79", zorder=2, linewidths=0)
+        if mmsi in named:
+            ax.annotate(log.targets[mmsi].name or str(mmsi), (east[-1], north[-1]), fontsize=7,
+                        xytext=(3, 3), textcoords="offset points")
+    if world:
+        ax.set_xlabel("longitude [°]")
+        ax.set_ylabel("latitude [°]")
+    else:
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel("east [km]")
+        ax.set_ylabel("north [km]")
+    ax.grid(alpha=0.3)
+    ax.set_title(
+        f"centre {_degrees(lat0, 'NS')}, {_degrees(lon0 if lon0 <= 180 else lon0 - 360, 'EW')}",
+        fontsize=10,
+    )
+    caption = (
+        f"{len(tracks)} AIS stations with positions ({sum(t.track.added for t in log.targets.values())} "
+        f"position reports); the last position of each is a dot, the {len(named)} that sent most "
+        "are named."
+    )
+    return _png(figure), caption
+
+
+def _target_table(log: Log) -> str:
+    """The AIS stations that sent most: MMSI, name, messages, last position."""
+    if not log.ais_messages and not log.ais_errors:
+        return ""
+    rows = []
+    ranked = sorted(log.targets.items(), key=lambda kv: (-kv[1].messages, kv[0]))
+    for mmsi, target in ranked[:TARGETS_LISTED]:
+        points = target.track.all()
+        where = (f"{_degrees(points[-1][0], 'NS')}, {_degrees(points[-1][1], 'EW')}"
+                 if points else "")
+        rows.append(
+            f'<tr><td class="n">{mmsi}</td><td>{html.escape(target.name or "")}</td>'
+            f'<td class="n">{target.messages:,}</td><td>{html.escape(where)}</td></tr>'
+        )
+    out = [
+        "<table><tr><th>MMSI</th><th>name</th>"
+        f'<th class="n">messages</th><th>last position</th></tr>',
+        *rows,
+        "</table>",
+    ]
+    notes = [f"{log.ais_messages:,} AIS messages from {len(log.targets):,} stations"]
+    if len(ranked) > TARGETS_LISTED:
+        notes.append(f"the {TARGETS_LISTED} that sent most listed")
+    if log.ais_unfollowed:
+        notes.append(f"{log.ais_unfollowed:,} messages of further stations only counted")
+    if log.ais_errors:
+        notes.append("not decoded: " + ", ".join(f"{kind} {n:,}" for kind, n in
+                                                 sorted(log.ais_errors.items())))
+    out.append(f'<p class="caption">{html.escape("; ".join(notes))}.</p>')
+    return "".join(out)
 
 
 def _degrees(value: float, hemispheres: str) -> str:
@@ -999,6 +1135,7 @@ def page(log: Log, name: str) -> str:
     sky = draw_sky(log)
     cn0 = draw_cn0(log, axis)
     quality = draw_quality(log, axis)
+    targets = _target_table(log)  # only for a log with AIS messages
     title = f"nmea report: {name}"
     nav = "".join(
         f'<a href="#{anchor}">{text}</a>'
@@ -1007,9 +1144,19 @@ def page(log: Log, name: str) -> str:
             ("sky", "Sky"),
             ("cn0", "C/N0"),
             ("quality", "Fix and DOP"),
+            *((("ais", "AIS targets"),) if targets else ()),
             ("sentences", "Sentences and errors"),
         )
     )
+    ais = ""
+    if targets:
+        ais = _section(
+            "ais",
+            "AIS targets",
+            draw_targets(log),
+            "No positions in the AIS messages of this log.",
+            "the tracks of the AIS stations",
+        ).replace("</section>", targets + "</section>")
     return "".join(
         [
             '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">',
@@ -1048,6 +1195,7 @@ def page(log: Log, name: str) -> str:
                 "satellite counts or DOPs in this log (no GGA, GNS, RMC, GLL, GSA or GSV).",
                 "fix quality, satellites and DOP over time",
             ),
+            ais,
             _tables(log),
             "</main></body></html>\n",
         ]
