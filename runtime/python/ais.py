@@ -34,6 +34,10 @@ def armor_char(value: int) -> str:
     return chr(value + 48 if value < 40 else value + 56)
 
 
+# Each armor character's six bits as text, for str.translate (a payload becomes its bits at C speed).
+_ARMOR_BITS = str.maketrans({armor_char(v): format(v, "06b") for v in range(64)})
+
+
 class Special(NamedTuple):
     """A raw value that is no number (`not_available`, `manual_input`, ...): what a field holds
     instead of a value in its unit."""
@@ -139,8 +143,9 @@ class Field:
             raise _bad_value(where, self.id, value, f"an integer of {self.width} bits")
         return value, self.width
 
-    def json(self, value: Any) -> dict[str, Any]:
-        return {self.id: value}
+    def put_json(self, out: dict[str, Any], value: Any) -> None:
+        """Puts the field's decoded JSON members into `out`."""
+        out[self.id] = value
 
 
 def _bad_value(where: str, name: str, value: Any, wanted: str) -> NmeaError:
@@ -164,9 +169,10 @@ class Unsigned(Field):
 
     def from_raw(self, raw: int, width: int) -> Any:
         number = self.signed(raw, width)
-        for s in self.special:
-            if s.raw == number:
-                return s
+        if self.special:
+            for s in self.special:
+                if s.raw == number:
+                    return s
         return (number / self.divisor if self.divisor != 1 else number) + self.base
 
     def raw_number(self, value: Any, where: str) -> int:
@@ -187,11 +193,15 @@ class Unsigned(Field):
             raise _bad_value(where, self.id, value, f"a raw value {low}..{high}")
         return raw & ((1 << self.width) - 1), self.width
 
-    def json(self, value: Any) -> dict[str, Any]:
+    def put_json(self, out: dict[str, Any], value: Any) -> None:
         if self.divisor == 1 and not self.base and not self.special:
-            return {self.id: value}
-        return {self.id: str(value) if isinstance(value, Special) else value,
-                f"{self.id}_raw": self.raw_number(value, "")}
+            out[self.id] = value
+        elif isinstance(value, Special):
+            out[self.id] = str(value)
+            out[f"{self.id}_raw"] = value.raw
+        else:
+            out[self.id] = value
+            out[f"{self.id}_raw"] = self.raw_number(value, "")
 
 
 @dataclass(frozen=True, slots=True)
@@ -216,6 +226,10 @@ class Flag(Field):
         return int(value), 1
 
 
+_MEMBERS: dict[Any, dict[str, Any]] = {}
+"""The members of each enum by code (an enum call is slow)."""
+
+
 @dataclass(frozen=True, slots=True)
 class Code(Field):
     """A code of an enum whose codes are decimal numbers; an unknown code stays its number."""
@@ -223,16 +237,16 @@ class Code(Field):
     enum: Any = None
 
     def from_raw(self, raw: int, width: int) -> Any:
-        try:
-            return self.enum(str(raw))
-        except ValueError:
-            return raw
+        members = _MEMBERS.get(self.enum)
+        if members is None:
+            members = _MEMBERS[self.enum] = {m.value: m for m in self.enum}
+        return members.get(str(raw), raw)
 
     def to_raw(self, value: Any, where: str) -> tuple[int, int]:
         return Field.to_raw(self, int(value.value) if isinstance(value, self.enum) else value, where)
 
-    def json(self, value: Any) -> dict[str, Any]:
-        return {self.id: value.name.lower() if isinstance(value, self.enum) else value}
+    def put_json(self, out: dict[str, Any], value: Any) -> None:
+        out[self.id] = value.name.lower() if isinstance(value, self.enum) else value
 
 
 @dataclass(frozen=True, slots=True)
@@ -341,10 +355,17 @@ def read_items(items: tuple[Item, ...], reader: BitReader, values: dict[str, Any
     follows stay None)."""
     for item in items:
         if isinstance(item, Field):
-            width = item.size(reader)
-            if item.optional and reader.remaining < width:
-                return False
-            values[item.id] = item.from_raw(reader.take(width, item.id), width)
+            width = item.width
+            if width is None:
+                width = item.size(reader)
+            start = reader.pos
+            left = reader.length - start - width
+            if left < 0:
+                if item.optional:
+                    return False
+                reader.peek(start, width, item.id)  # raises short_payload
+            reader.pos = start + width
+            values[item.id] = item.from_raw((reader.value >> left) & ((1 << width) - 1), width)
         elif isinstance(item, Group):
             count = min(item.max, max(reader.remaining - item.after, 0) // item.entry_width)
             if count < item.min:
@@ -361,6 +382,78 @@ def read_items(items: tuple[Item, ...], reader: BitReader, values: dict[str, Any
             if case is not None and not read_items(case.items, reader, values):
                 return False
     return True
+
+
+class Prefix(NamedTuple):
+    """A layout's leading fields of fixed width compiled into one function (the generic reader
+    costs several calls a field): `read(value, length, values)` reads them from a payload of at
+    least `bits` bits; `put_json(record, out)` puts their decoded JSON members."""
+
+    count: int  # how many of the layout's items it reads
+    bits: int
+    read: Any
+    put_json: Any
+
+
+def compile_prefix(items: tuple[Item, ...]) -> Prefix:
+    """The Prefix of `items`: straight-line code for numbers (their unit and special values
+    included), flags, codes and spare bits, the field's own conversion for the others (text,
+    data); the first item that is not a field of fixed width (a group, a choice, a variable or
+    optional field) ends it. Decoded values and JSON are exactly those of the field classes."""
+    read = ["def read(value, length, values):"]
+    put = ["def put_json(record, out):"]
+    names: dict[str, Any] = {"Special": Special}
+    offset = count = 0
+    for item in items:
+        if not isinstance(item, Field) or item.width is None or item.optional:
+            break
+        width, key, name = item.width, repr(item.id), f"f{count}"
+        names[name] = item
+        read.append(f"    raw = (value >> (length - {offset + width})) & {(1 << width) - 1}")
+        put.append(f"    value = record.{item.id}")
+        if isinstance(item, Unsigned):
+            if isinstance(item, Signed):
+                read.append(f"    raw = raw - {1 << width} if raw >> {width - 1} else raw")
+            number = "raw" if item.divisor == 1 else f"raw / {item.divisor}"
+            number += f" + {item.base!r}" if item.base or isinstance(item.base, float) else ""
+            if item.special:
+                names[f"{name}_special"] = {sp.raw: sp for sp in item.special}
+                read.append(f"    values[{key}] = {name}_special.get(raw) or {number}")
+            else:
+                read.append(f"    values[{key}] = {number}")
+            if item.divisor == 1 and not item.base and not item.special:
+                put.append(f"    if value is not None: out[{key}] = value")
+            else:
+                # the raw integer of a number in the unit; anything else as the field says
+                if item.divisor == 1 and isinstance(item.base, int):
+                    raw = f"value - {item.base} if value.__class__ is int else round(value - {item.base})"
+                else:
+                    raw = f"round((value - {item.base!r}) * {item.divisor})"
+                put.append("    if value.__class__ is float or value.__class__ is int:")
+                put.append(f"        out[{key}] = value")
+                put.append(f"        out[{key[:-1]}_raw'] = {raw}")
+                put.append(f"    elif value is not None: {name}.put_json(out, value)")
+        elif isinstance(item, Flag):
+            read.append(f"    values[{key}] = raw != 0")
+            put.append(f"    if value is not None: out[{key}] = value")
+        elif isinstance(item, Code):
+            names[f"{name}_members"] = {m.value: m for m in item.enum}
+            names[f"{name}_enum"] = item.enum
+            read.append(f"    values[{key}] = {name}_members.get(str(raw), raw)")
+            put.append(f"    if value is not None: out[{key}] = value.name.lower() "
+                       f"if isinstance(value, {name}_enum) else value")
+        elif type(item) in (Field, Spare):
+            read.append(f"    values[{key}] = raw")
+            put.append(f"    if value is not None: out[{key}] = value")
+        else:
+            read.append(f"    values[{key}] = {name}.from_raw(raw, {width})")
+            put.append(f"    if value is not None: {name}.put_json(out, value)")
+        offset += width
+        count += 1
+    read.append("    return values")
+    put.append("    return out")
+    exec("\n".join(read + put), names)  # code built above from the spec's layout, never from input
+    return Prefix(count, offset, names["read"], names["put_json"])
 
 
 def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter, where: str) -> bool:
@@ -394,7 +487,7 @@ def items_json(items: tuple[Item, ...], message: Any) -> dict[str, Any]:
             for f in (item,) if isinstance(item, Field) else item.fields:
                 value = getattr(message, f.id)
                 if value is not None:
-                    out.update(f.json(value))
+                    f.put_json(out, value)
     return out
 
 
@@ -410,11 +503,36 @@ class Record:
     """The spec's id of the message or application (`position_report`, `meteo_hydro`)."""
     LAYOUT: ClassVar[tuple[Item, ...]]
     FIELDS: ClassVar[dict[str, Field]]
+    DISPATCH: ClassVar[Data | None]
+    """The data field whose bits an application may carry (the one with a `dispatch`)."""
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         if "LAYOUT" in cls.__dict__:
             cls.FIELDS = {f.id: f for f in flat_fields(cls.LAYOUT)}
+            cls.DISPATCH = next((f for f in cls.FIELDS.values() if isinstance(f, Data) and f.dispatch), None)
+
+    @classmethod
+    def prefix(cls) -> Prefix:
+        """The layout's compiled prefix, compiled on first use (not when the package loads)."""
+        found: Prefix | None = cls.__dict__.get("_prefix")
+        if found is None:
+            found = compile_prefix(cls.LAYOUT)
+            cls._prefix = found
+        return found
+
+    @classmethod
+    def read(cls, reader: BitReader) -> dict[str, Any]:
+        """The members of the layout from `reader` (its compiled prefix, then the rest)."""
+        prefix = cls.prefix()
+        if reader.pos == 0 and reader.length >= prefix.bits:
+            values = prefix.read(reader.value, reader.length, {})
+            reader.pos = prefix.bits
+            read_items(cls.LAYOUT[prefix.count:], reader, values)
+        else:  # short: the generic reader says where
+            values = {}
+            read_items(cls.LAYOUT, reader, values)
+        return values
 
     @classmethod
     def field(cls, name: str) -> Field:
@@ -432,7 +550,13 @@ class Record:
         """The record as the decoded JSON of generated/vectors/ais.jsonl: each field present by
         its id (a number in a unit beside its raw integer as <id>_raw, a special value by its id,
         an enum value by its id, text as sent, data as its bits), then trailing."""
-        return {**items_json(self.LAYOUT, self), "trailing": self.trailing}
+        return {**self._json(), "trailing": self.trailing}
+
+    def _json(self) -> dict[str, Any]:
+        prefix = self.prefix()
+        out = prefix.put_json(self, {})
+        out.update(items_json(self.LAYOUT[prefix.count:], self))
+        return out
 
 
 @dataclass(kw_only=True)
@@ -479,7 +603,7 @@ class Message(Record):
 
     def to_dict(self) -> dict[str, Any]:
         """As Record.to_dict, the application's (when there is one) before trailing, then padding."""
-        out = items_json(self.LAYOUT, self)
+        out = self._json()
         if self.application is not None:
             out["application"] = self.application.to_dict()
         return {**out, "trailing": self.trailing, "padding": self.padding}
@@ -489,12 +613,11 @@ def unarmor(payload: str, fill_bits: int) -> tuple[BitReader, str]:
     """The payload's message bits, and the values of its fill bits."""
     if not 0 <= fill_bits <= 5 or fill_bits and not payload:
         raise NmeaError("bad_armor", f"fill bits are 0-5 (none for an empty payload), not {fill_bits}", "AIS")
-    value = 0
-    for i, ch in enumerate(payload):
-        bits = armor_value(ch)
-        if bits is None:
-            raise NmeaError("bad_armor", f"character {ch!r} at offset {i} is not six-bit armoring", "AIS")
-        value = value << 6 | bits
+    bits = payload.translate(_ARMOR_BITS)
+    if len(bits) != 6 * len(payload):  # a character no armor value stands for stayed itself
+        offset, ch = next((i, ch) for i, ch in enumerate(payload) if armor_value(ch) is None)
+        raise NmeaError("bad_armor", f"character {ch!r} at offset {offset} is not six-bit armoring", "AIS")
+    value = int(bits, 2) if bits else 0
     length = len(payload) * 6 - fill_bits
     padding = bits_text(value & ((1 << fill_bits) - 1), fill_bits)
     return BitReader(value >> fill_bits, length, "AIS"), padding
@@ -504,7 +627,7 @@ def _application(message: Message, applications: dict[tuple[int, int], type[Appl
     """What the message's data bits carry, when an application of `applications` (by DAC and FI)
     is carried by its type and reads them; its data member is then set to None. Data that the
     application does not read stays data."""
-    data = next((f for f in message.FIELDS.values() if isinstance(f, Data) and f.dispatch), None)
+    data = message.DISPATCH
     bits = getattr(message, data.id) if data is not None else None
     if data is None or bits is None:
         return None
@@ -513,9 +636,8 @@ def _application(message: Message, applications: dict[tuple[int, int], type[Appl
     if cls is None or getattr(message, "message_type") not in cls.CARRIERS:
         return None
     reader = BitReader(int(bits, 2) if bits else 0, len(bits), f"AIS DAC {dac} FI {fid}")
-    values: dict[str, Any] = {}
     try:
-        read_items(cls.LAYOUT, reader, values)
+        values = cls.read(reader)
     except NmeaError:
         return None
     setattr(message, data.id, None)
@@ -533,8 +655,7 @@ def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int]
     if cls is None:
         raise NmeaError("unknown_message", f"message type {message_type} is not one the spec describes",
                         reader.where, name="message_type")
-    values: dict[str, Any] = {}
-    read_items(cls.LAYOUT, reader, values)
+    values = cls.read(reader)
     trailing = bits_text(reader.value & ((1 << reader.remaining) - 1), reader.remaining)
     message = cls(**values, trailing=trailing, padding=padding)
     message.application = _application(message, applications)
