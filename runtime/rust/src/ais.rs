@@ -705,6 +705,32 @@ mod tests {
     }
 
     #[test]
+    fn numbers_and_text_are_written_as_pythons_json() {
+        let mut out = std::string::String::new();
+        let mut j = JsonObject::new(&mut out).unwrap();
+        j.reading("speed", scaled(123, 10.0, 0.0, &[(1023, "not_available")]), "speed_raw", 123).unwrap();
+        j.reading("lat", scaled(0, 600000.0, 0.0, &[]), "lat_raw", 0).unwrap();
+        j.reading("heading", counted(511, 0, &[(511, "not_available")]), "heading_raw", 511).unwrap();
+        j.text("name", "A\"B\\").unwrap();
+        j.finish().unwrap();
+        assert_eq!(
+            out,
+            r#"{"speed":12.3,"speed_raw":123,"lat":0.0,"lat_raw":0,"heading":"not_available","heading_raw":511,"name":"A\"B\\"}"#
+        );
+    }
+
+    #[test]
+    fn a_group_takes_the_entries_the_bits_hold() {
+        // A type 7 of 40 bits after its header: one acknowledgement of 32 bits and 8 bits over.
+        let payload = Payload::new(b"702R5`hwCjq8", 0).unwrap();
+        let mut r = payload.reader();
+        r.take_bits(40, "head").unwrap();
+        assert_eq!(r.entries(1, 4, 32, 0, "acks"), Ok(1));
+        let err = r.entries(2, 4, 32, 0, "acks").unwrap_err();
+        assert_eq!(err.to_string(), "short_payload: AIS: acks needs at least 2 entries of 32 bits, 32 bits left");
+    }
+
+    #[test]
     fn errors_name_the_message_type_and_the_field() {
         let short = Payload::new(&TYPE_1[..11], 0).unwrap();
         let mut r = short.reader();
