@@ -88,13 +88,12 @@ class _Record:
             self.read.append(f"if (!ais_take_bits(r, {width_expr}, {key}, &m->{name})) return false;{has}")
             put = f"if (!ais_put_bits(w, m->{name}, {key})) return false;"
         elif f.type == "int":
-            self.read.append(f"{{ int64_t raw; if (!ais_take_signed(r, {width}, {key}, &raw)) return false; "
-                             f"m->{name} = ({kind})raw;{has} }}")
+            self.read.append(f"if (!ais_take_signed(r, {width}, {key}, &signed_raw)) return false; "
+                             f"m->{name} = ({kind})signed_raw;{has}")
             put = f"if (!ais_put_signed(w, m->{name}, {width}, {key})) return false;"
         else:
             value = "raw == 1" if kind == "bool" else f"({kind})raw"
-            self.read.append(f"{{ uint64_t raw; if (!ais_take(r, {width}, {key}, &raw)) return false; "
-                             f"m->{name} = {value};{has} }}")
+            self.read.append(f"if (!ais_take(r, {width}, {key}, &raw)) return false; m->{name} = {value};{has}")
             put = f"if (!ais_put(w, m->{name}, {width}, {key})) return false;"
         if f.dispatch and self.dispatches:
             put = f"if (m->has_application) {{ if (!ais_write_application(&m->application, w)) return false; }} " \
@@ -159,8 +158,8 @@ class _Record:
             writes.append((case, " ".join(inner.write)))
         selector = f"m->{member_name(by)}"
         guard = "" if member_name(by) in self.certain else f"m->has_{member_name(by)} && "
-        self.read.append(f"{{ uint64_t selector; if (!ais_peek(r, {by.offset}, {by.bits}, {_c_str(by.id)}, &selector)) "
-                         f"return false; {_if_chain(reads, 'selector', '')} }}")
+        self.read.append(f"if (!ais_peek(r, {by.offset}, {by.bits}, {_c_str(by.id)}, &selector)) "
+                         f"return false; {_if_chain(reads, 'selector', '')}")
         self.write.append(f"{{ uint64_t selector = (uint64_t){selector}; {_if_chain(writes, 'selector', guard)} }}")
 
 
@@ -174,8 +173,51 @@ def _if_chain(cases: list, selector: str, guard: str) -> str:
         tests = [f"{selector} == {v}u" for v in case.values]
         if case.range:
             tests.append(f"({selector} >= {case.range[0]}u && {selector} <= {case.range[1]}u)")
-        out.append(f"if ({guard}({' || '.join(tests)})) {{ {body} }}")
+        test = tests[0] if len(tests) == 1 and not guard else f"({' || '.join(tests)})"
+        out.append(f"if ({guard}{test}) {{ {body} }}")
     return " else ".join(out) if out else ""
+
+
+def c_layout(code: str, indent: int = 0) -> str:
+    """C written on one line laid out a statement a line, blocks indented by four: a `{` and a `;`
+    outside parentheses end a line, a `}` stands on its own (`} else` kept together); strings and
+    characters are copied as they are."""
+    lines: list[str] = []
+    line, depth, parens, i = "", indent, 0, 0
+
+    def end(text: str) -> None:
+        if text.strip():
+            lines.append("    " * depth + text.strip())
+
+    while i < len(code):
+        ch = code[i]
+        if ch in "\"'":  # a literal, to its closing quote
+            close = i + 1
+            while code[close] != ch:
+                close += 2 if code[close] == "\\" else 1
+            line += code[i:close + 1]
+            i = close + 1
+            continue
+        parens += (ch == "(") - (ch == ")")
+        if ch == "{":
+            end(line + "{")
+            line, depth = "", depth + 1
+        elif ch == "}":
+            end(line)
+            depth -= 1
+            line = "}"
+            rest = code[i + 1:].lstrip()
+            if not rest.startswith("else") and not rest.startswith(";"):
+                end(line)
+                line = ""
+        elif ch == ";" and parens == 0:
+            end(line + ";")
+            line = ""
+        else:
+            line += ch
+        i += 1
+    end(line)
+    return "\n".join(lines)
 
 
 def record_code(record: _Record, kind: str) -> tuple[str, str]:
@@ -199,13 +241,20 @@ def record_code(record: _Record, kind: str) -> tuple[str, str]:
                 "ais_json_application(&m->application, j); ais_json_close(j); }"
     if kind != "entry":
         json += " ais_json_bits(j, \"trailing\", m->trailing);"
+    # The locals the reads use: a field's raw bits (unsigned, signed), a choice's selector.
+    declared = [f"{c_type} {name};" for c_type, name in
+                (("uint64_t", "raw"), ("int64_t", "signed_raw"), ("uint64_t", "selector")) if f"&{name})" in reads]
+    reads = " ".join(declared) + " " + reads
     code = "\n".join([
         *record.specials,
         f"static bool ais_read_{record.name}(nmea_ais_reader *r, {struct} *m)",
-        f"{{ {reads}{';' if reads.endswith(':') else ''} return true; }}",
+        c_layout(f"{{ {reads}{';' if reads.endswith(':') else ''} return true; }}"),
+        "",
         f"static bool ais_write_{record.name}(const {struct} *m, nmea_ais_writer *w)",
-        f"{{ {writes}{';' if writes.endswith(':') else ''} return true; }}",
-        f"static void ais_json_{record.name}(const {struct} *m, nmea_ais_json_out *j) {{ {json} }}", ""])
+        c_layout(f"{{ {writes}{';' if writes.endswith(':') else ''} return true; }}"),
+        "",
+        f"static void ais_json_{record.name}(const {struct} *m, nmea_ais_json_out *j)",
+        c_layout(f"{{ {json} }}"), ""])
     return typedef, code
 
 

@@ -696,22 +696,290 @@ static const nmea_ais_special ais_meteo_hydro_preciptype_specials[] = {{7, "not_
 static const nmea_ais_special ais_meteo_hydro_salinity_specials[] = {{510, "not_available"}, {511, "no_sensor"}};
 static const nmea_ais_special ais_meteo_hydro_ice_specials[] = {{3, "not_available"}};
 static bool ais_read_meteo_hydro(nmea_ais_reader *r, nmea_ais_meteo_hydro *m)
-{ { int64_t raw; if (!ais_take_signed(r, 25, "lon", &raw)) return false; m->lon_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 24, "lat", &raw)) return false; m->lat_raw = (int32_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "accuracy", &raw)) return false; m->accuracy = raw == 1; } { uint64_t raw; if (!ais_take(r, 5, "day", &raw)) return false; m->day_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 5, "hour", &raw)) return false; m->hour_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "minute", &raw)) return false; m->minute_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 7, "wspeed", &raw)) return false; m->wspeed_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 7, "wgust", &raw)) return false; m->wgust_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "wdir", &raw)) return false; m->wdir_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "wgustdir", &raw)) return false; m->wgustdir_raw = (uint16_t)raw; } { int64_t raw; if (!ais_take_signed(r, 11, "airtemp", &raw)) return false; m->airtemp_raw = (int16_t)raw; } { uint64_t raw; if (!ais_take(r, 7, "humidity", &raw)) return false; m->humidity_raw = (uint8_t)raw; } { int64_t raw; if (!ais_take_signed(r, 10, "dewpoint", &raw)) return false; m->dewpoint_raw = (int16_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "pressure", &raw)) return false; m->pressure_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "pressuretend", &raw)) return false; m->pressuretend_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "visgreater", &raw)) return false; m->visgreater = raw == 1; } { uint64_t raw; if (!ais_take(r, 7, "visibility", &raw)) return false; m->visibility_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 12, "waterlevel", &raw)) return false; m->waterlevel_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "leveltrend", &raw)) return false; m->leveltrend_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 8, "cspeed", &raw)) return false; m->cspeed_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "cdir", &raw)) return false; m->cdir_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 8, "cspeed2", &raw)) return false; m->cspeed2_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "cdir2", &raw)) return false; m->cdir2_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 5, "cdepth2", &raw)) return false; m->cdepth2_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 8, "cspeed3", &raw)) return false; m->cspeed3_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "cdir3", &raw)) return false; m->cdir3_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 5, "cdepth3", &raw)) return false; m->cdepth3_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 8, "waveheight", &raw)) return false; m->waveheight_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "waveperiod", &raw)) return false; m->waveperiod_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "wavedir", &raw)) return false; m->wavedir_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 8, "swellheight", &raw)) return false; m->swellheight_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "swellperiod", &raw)) return false; m->swellperiod_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "swelldir", &raw)) return false; m->swelldir_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "seastate", &raw)) return false; m->seastate_raw = (uint8_t)raw; } { int64_t raw; if (!ais_take_signed(r, 10, "watertemp", &raw)) return false; m->watertemp_raw = (int16_t)raw; } { uint64_t raw; if (!ais_take(r, 3, "preciptype", &raw)) return false; m->preciptype_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "salinity", &raw)) return false; m->salinity_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "ice", &raw)) return false; m->ice_raw = (uint8_t)raw; } if (ais_remaining(r) < 10) goto done; { uint64_t raw; if (!ais_take(r, 10, "spare", &raw)) return false; m->spare = (uint16_t)raw; m->has_spare = true; } done: m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 1, "accuracy", &raw)) return false;
+    m->accuracy = raw == 1;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 7, "wspeed", &raw)) return false;
+    m->wspeed_raw = (uint8_t)raw;
+    if (!ais_take(r, 7, "wgust", &raw)) return false;
+    m->wgust_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "wdir", &raw)) return false;
+    m->wdir_raw = (uint16_t)raw;
+    if (!ais_take(r, 9, "wgustdir", &raw)) return false;
+    m->wgustdir_raw = (uint16_t)raw;
+    if (!ais_take_signed(r, 11, "airtemp", &signed_raw)) return false;
+    m->airtemp_raw = (int16_t)signed_raw;
+    if (!ais_take(r, 7, "humidity", &raw)) return false;
+    m->humidity_raw = (uint8_t)raw;
+    if (!ais_take_signed(r, 10, "dewpoint", &signed_raw)) return false;
+    m->dewpoint_raw = (int16_t)signed_raw;
+    if (!ais_take(r, 9, "pressure", &raw)) return false;
+    m->pressure_raw = (uint16_t)raw;
+    if (!ais_take(r, 2, "pressuretend", &raw)) return false;
+    m->pressuretend_raw = (uint8_t)raw;
+    if (!ais_take(r, 1, "visgreater", &raw)) return false;
+    m->visgreater = raw == 1;
+    if (!ais_take(r, 7, "visibility", &raw)) return false;
+    m->visibility_raw = (uint8_t)raw;
+    if (!ais_take(r, 12, "waterlevel", &raw)) return false;
+    m->waterlevel_raw = (uint16_t)raw;
+    if (!ais_take(r, 2, "leveltrend", &raw)) return false;
+    m->leveltrend_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "cspeed", &raw)) return false;
+    m->cspeed_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "cdir", &raw)) return false;
+    m->cdir_raw = (uint16_t)raw;
+    if (!ais_take(r, 8, "cspeed2", &raw)) return false;
+    m->cspeed2_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "cdir2", &raw)) return false;
+    m->cdir2_raw = (uint16_t)raw;
+    if (!ais_take(r, 5, "cdepth2", &raw)) return false;
+    m->cdepth2_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "cspeed3", &raw)) return false;
+    m->cspeed3_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "cdir3", &raw)) return false;
+    m->cdir3_raw = (uint16_t)raw;
+    if (!ais_take(r, 5, "cdepth3", &raw)) return false;
+    m->cdepth3_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "waveheight", &raw)) return false;
+    m->waveheight_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "waveperiod", &raw)) return false;
+    m->waveperiod_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "wavedir", &raw)) return false;
+    m->wavedir_raw = (uint16_t)raw;
+    if (!ais_take(r, 8, "swellheight", &raw)) return false;
+    m->swellheight_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "swellperiod", &raw)) return false;
+    m->swellperiod_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "swelldir", &raw)) return false;
+    m->swelldir_raw = (uint16_t)raw;
+    if (!ais_take(r, 4, "seastate", &raw)) return false;
+    m->seastate_raw = (uint8_t)raw;
+    if (!ais_take_signed(r, 10, "watertemp", &signed_raw)) return false;
+    m->watertemp_raw = (int16_t)signed_raw;
+    if (!ais_take(r, 3, "preciptype", &raw)) return false;
+    m->preciptype_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "salinity", &raw)) return false;
+    m->salinity_raw = (uint16_t)raw;
+    if (!ais_take(r, 2, "ice", &raw)) return false;
+    m->ice_raw = (uint8_t)raw;
+    if (ais_remaining(r) < 10) goto done;
+    if (!ais_take(r, 10, "spare", &raw)) return false;
+    m->spare = (uint16_t)raw;
+    m->has_spare = true;
+    done: m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_meteo_hydro(const nmea_ais_meteo_hydro *m, nmea_ais_writer *w)
-{ if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false; if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false; if (!ais_put(w, m->accuracy, 1, "accuracy")) return false; if (!ais_put(w, m->day_raw, 5, "day")) return false; if (!ais_put(w, m->hour_raw, 5, "hour")) return false; if (!ais_put(w, m->minute_raw, 6, "minute")) return false; if (!ais_put(w, m->wspeed_raw, 7, "wspeed")) return false; if (!ais_put(w, m->wgust_raw, 7, "wgust")) return false; if (!ais_put(w, m->wdir_raw, 9, "wdir")) return false; if (!ais_put(w, m->wgustdir_raw, 9, "wgustdir")) return false; if (!ais_put_signed(w, m->airtemp_raw, 11, "airtemp")) return false; if (!ais_put(w, m->humidity_raw, 7, "humidity")) return false; if (!ais_put_signed(w, m->dewpoint_raw, 10, "dewpoint")) return false; if (!ais_put(w, m->pressure_raw, 9, "pressure")) return false; if (!ais_put(w, m->pressuretend_raw, 2, "pressuretend")) return false; if (!ais_put(w, m->visgreater, 1, "visgreater")) return false; if (!ais_put(w, m->visibility_raw, 7, "visibility")) return false; if (!ais_put(w, m->waterlevel_raw, 12, "waterlevel")) return false; if (!ais_put(w, m->leveltrend_raw, 2, "leveltrend")) return false; if (!ais_put(w, m->cspeed_raw, 8, "cspeed")) return false; if (!ais_put(w, m->cdir_raw, 9, "cdir")) return false; if (!ais_put(w, m->cspeed2_raw, 8, "cspeed2")) return false; if (!ais_put(w, m->cdir2_raw, 9, "cdir2")) return false; if (!ais_put(w, m->cdepth2_raw, 5, "cdepth2")) return false; if (!ais_put(w, m->cspeed3_raw, 8, "cspeed3")) return false; if (!ais_put(w, m->cdir3_raw, 9, "cdir3")) return false; if (!ais_put(w, m->cdepth3_raw, 5, "cdepth3")) return false; if (!ais_put(w, m->waveheight_raw, 8, "waveheight")) return false; if (!ais_put(w, m->waveperiod_raw, 6, "waveperiod")) return false; if (!ais_put(w, m->wavedir_raw, 9, "wavedir")) return false; if (!ais_put(w, m->swellheight_raw, 8, "swellheight")) return false; if (!ais_put(w, m->swellperiod_raw, 6, "swellperiod")) return false; if (!ais_put(w, m->swelldir_raw, 9, "swelldir")) return false; if (!ais_put(w, m->seastate_raw, 4, "seastate")) return false; if (!ais_put_signed(w, m->watertemp_raw, 10, "watertemp")) return false; if (!ais_put(w, m->preciptype_raw, 3, "preciptype")) return false; if (!ais_put(w, m->salinity_raw, 9, "salinity")) return false; if (!ais_put(w, m->ice_raw, 2, "ice")) return false; if (!m->has_spare) goto done; if (!ais_put(w, m->spare, 10, "spare")) return false; done: if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_meteo_hydro(const nmea_ais_meteo_hydro *m, nmea_ais_json_out *j) { ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_meteo_hydro_lon_specials, 1); ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_meteo_hydro_lat_specials, 1); ais_json_flag(j, "accuracy", m->accuracy); ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_meteo_hydro_day_specials, 1); ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_meteo_hydro_hour_specials, 1); ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_meteo_hydro_minute_specials, 1); ais_json_reading(j, "wspeed", (int64_t)m->wspeed_raw, 1.0, 0.0, false, ais_meteo_hydro_wspeed_specials, 1); ais_json_reading(j, "wgust", (int64_t)m->wgust_raw, 1.0, 0.0, false, ais_meteo_hydro_wgust_specials, 1); ais_json_reading(j, "wdir", (int64_t)m->wdir_raw, 1.0, 0.0, false, ais_meteo_hydro_wdir_specials, 1); ais_json_reading(j, "wgustdir", (int64_t)m->wgustdir_raw, 1.0, 0.0, false, ais_meteo_hydro_wgustdir_specials, 1); ais_json_reading(j, "airtemp", (int64_t)m->airtemp_raw, 10.0, 0.0, true, ais_meteo_hydro_airtemp_specials, 1); ais_json_reading(j, "humidity", (int64_t)m->humidity_raw, 1.0, 0.0, false, ais_meteo_hydro_humidity_specials, 1); ais_json_reading(j, "dewpoint", (int64_t)m->dewpoint_raw, 10.0, 0.0, true, ais_meteo_hydro_dewpoint_specials, 1); ais_json_reading(j, "pressure", (int64_t)m->pressure_raw, 1.0, 799.0, false, ais_meteo_hydro_pressure_specials, 1); ais_json_reading(j, "pressuretend", (int64_t)m->pressuretend_raw, 1.0, 0.0, false, ais_meteo_hydro_pressuretend_specials, 1); ais_json_flag(j, "visgreater", m->visgreater); ais_json_reading(j, "visibility", (int64_t)m->visibility_raw, 10.0, 0.0, true, ais_meteo_hydro_visibility_specials, 1); ais_json_reading(j, "waterlevel", (int64_t)m->waterlevel_raw, 100.0, -10.0, true, ais_meteo_hydro_waterlevel_specials, 1); ais_json_reading(j, "leveltrend", (int64_t)m->leveltrend_raw, 1.0, 0.0, false, ais_meteo_hydro_leveltrend_specials, 1); ais_json_reading(j, "cspeed", (int64_t)m->cspeed_raw, 10.0, 0.0, true, ais_meteo_hydro_cspeed_specials, 1); ais_json_reading(j, "cdir", (int64_t)m->cdir_raw, 1.0, 0.0, false, ais_meteo_hydro_cdir_specials, 1); ais_json_reading(j, "cspeed2", (int64_t)m->cspeed2_raw, 10.0, 0.0, true, ais_meteo_hydro_cspeed2_specials, 1); ais_json_reading(j, "cdir2", (int64_t)m->cdir2_raw, 1.0, 0.0, false, ais_meteo_hydro_cdir2_specials, 1); ais_json_reading(j, "cdepth2", (int64_t)m->cdepth2_raw, 1.0, 0.0, false, ais_meteo_hydro_cdepth2_specials, 1); ais_json_reading(j, "cspeed3", (int64_t)m->cspeed3_raw, 10.0, 0.0, true, ais_meteo_hydro_cspeed3_specials, 1); ais_json_reading(j, "cdir3", (int64_t)m->cdir3_raw, 1.0, 0.0, false, ais_meteo_hydro_cdir3_specials, 1); ais_json_reading(j, "cdepth3", (int64_t)m->cdepth3_raw, 1.0, 0.0, false, ais_meteo_hydro_cdepth3_specials, 1); ais_json_reading(j, "waveheight", (int64_t)m->waveheight_raw, 10.0, 0.0, true, ais_meteo_hydro_waveheight_specials, 1); ais_json_reading(j, "waveperiod", (int64_t)m->waveperiod_raw, 1.0, 0.0, false, ais_meteo_hydro_waveperiod_specials, 1); ais_json_reading(j, "wavedir", (int64_t)m->wavedir_raw, 1.0, 0.0, false, ais_meteo_hydro_wavedir_specials, 1); ais_json_reading(j, "swellheight", (int64_t)m->swellheight_raw, 10.0, 0.0, true, ais_meteo_hydro_swellheight_specials, 1); ais_json_reading(j, "swellperiod", (int64_t)m->swellperiod_raw, 1.0, 0.0, false, ais_meteo_hydro_swellperiod_specials, 1); ais_json_reading(j, "swelldir", (int64_t)m->swelldir_raw, 1.0, 0.0, false, ais_meteo_hydro_swelldir_specials, 1); ais_json_reading(j, "seastate", (int64_t)m->seastate_raw, 1.0, 0.0, false, ais_meteo_hydro_seastate_specials, 1); ais_json_reading(j, "watertemp", (int64_t)m->watertemp_raw, 10.0, 0.0, true, ais_meteo_hydro_watertemp_specials, 1); ais_json_reading(j, "preciptype", (int64_t)m->preciptype_raw, 1.0, 0.0, false, ais_meteo_hydro_preciptype_specials, 1); ais_json_reading(j, "salinity", (int64_t)m->salinity_raw, 10.0, 0.0, true, ais_meteo_hydro_salinity_specials, 2); ais_json_reading(j, "ice", (int64_t)m->ice_raw, 1.0, 0.0, false, ais_meteo_hydro_ice_specials, 1); if (m->has_spare) { ais_json_int(j, "spare", (long long)m->spare); } ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+    if (!ais_put(w, m->accuracy, 1, "accuracy")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->wspeed_raw, 7, "wspeed")) return false;
+    if (!ais_put(w, m->wgust_raw, 7, "wgust")) return false;
+    if (!ais_put(w, m->wdir_raw, 9, "wdir")) return false;
+    if (!ais_put(w, m->wgustdir_raw, 9, "wgustdir")) return false;
+    if (!ais_put_signed(w, m->airtemp_raw, 11, "airtemp")) return false;
+    if (!ais_put(w, m->humidity_raw, 7, "humidity")) return false;
+    if (!ais_put_signed(w, m->dewpoint_raw, 10, "dewpoint")) return false;
+    if (!ais_put(w, m->pressure_raw, 9, "pressure")) return false;
+    if (!ais_put(w, m->pressuretend_raw, 2, "pressuretend")) return false;
+    if (!ais_put(w, m->visgreater, 1, "visgreater")) return false;
+    if (!ais_put(w, m->visibility_raw, 7, "visibility")) return false;
+    if (!ais_put(w, m->waterlevel_raw, 12, "waterlevel")) return false;
+    if (!ais_put(w, m->leveltrend_raw, 2, "leveltrend")) return false;
+    if (!ais_put(w, m->cspeed_raw, 8, "cspeed")) return false;
+    if (!ais_put(w, m->cdir_raw, 9, "cdir")) return false;
+    if (!ais_put(w, m->cspeed2_raw, 8, "cspeed2")) return false;
+    if (!ais_put(w, m->cdir2_raw, 9, "cdir2")) return false;
+    if (!ais_put(w, m->cdepth2_raw, 5, "cdepth2")) return false;
+    if (!ais_put(w, m->cspeed3_raw, 8, "cspeed3")) return false;
+    if (!ais_put(w, m->cdir3_raw, 9, "cdir3")) return false;
+    if (!ais_put(w, m->cdepth3_raw, 5, "cdepth3")) return false;
+    if (!ais_put(w, m->waveheight_raw, 8, "waveheight")) return false;
+    if (!ais_put(w, m->waveperiod_raw, 6, "waveperiod")) return false;
+    if (!ais_put(w, m->wavedir_raw, 9, "wavedir")) return false;
+    if (!ais_put(w, m->swellheight_raw, 8, "swellheight")) return false;
+    if (!ais_put(w, m->swellperiod_raw, 6, "swellperiod")) return false;
+    if (!ais_put(w, m->swelldir_raw, 9, "swelldir")) return false;
+    if (!ais_put(w, m->seastate_raw, 4, "seastate")) return false;
+    if (!ais_put_signed(w, m->watertemp_raw, 10, "watertemp")) return false;
+    if (!ais_put(w, m->preciptype_raw, 3, "preciptype")) return false;
+    if (!ais_put(w, m->salinity_raw, 9, "salinity")) return false;
+    if (!ais_put(w, m->ice_raw, 2, "ice")) return false;
+    if (!m->has_spare) goto done;
+    if (!ais_put(w, m->spare, 10, "spare")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_meteo_hydro(const nmea_ais_meteo_hydro *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_meteo_hydro_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_meteo_hydro_lat_specials, 1);
+    ais_json_flag(j, "accuracy", m->accuracy);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_meteo_hydro_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_meteo_hydro_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_meteo_hydro_minute_specials, 1);
+    ais_json_reading(j, "wspeed", (int64_t)m->wspeed_raw, 1.0, 0.0, false, ais_meteo_hydro_wspeed_specials, 1);
+    ais_json_reading(j, "wgust", (int64_t)m->wgust_raw, 1.0, 0.0, false, ais_meteo_hydro_wgust_specials, 1);
+    ais_json_reading(j, "wdir", (int64_t)m->wdir_raw, 1.0, 0.0, false, ais_meteo_hydro_wdir_specials, 1);
+    ais_json_reading(j, "wgustdir", (int64_t)m->wgustdir_raw, 1.0, 0.0, false, ais_meteo_hydro_wgustdir_specials, 1);
+    ais_json_reading(j, "airtemp", (int64_t)m->airtemp_raw, 10.0, 0.0, true, ais_meteo_hydro_airtemp_specials, 1);
+    ais_json_reading(j, "humidity", (int64_t)m->humidity_raw, 1.0, 0.0, false, ais_meteo_hydro_humidity_specials, 1);
+    ais_json_reading(j, "dewpoint", (int64_t)m->dewpoint_raw, 10.0, 0.0, true, ais_meteo_hydro_dewpoint_specials, 1);
+    ais_json_reading(j, "pressure", (int64_t)m->pressure_raw, 1.0, 799.0, false, ais_meteo_hydro_pressure_specials, 1);
+    ais_json_reading(j, "pressuretend", (int64_t)m->pressuretend_raw, 1.0, 0.0, false, ais_meteo_hydro_pressuretend_specials, 1);
+    ais_json_flag(j, "visgreater", m->visgreater);
+    ais_json_reading(j, "visibility", (int64_t)m->visibility_raw, 10.0, 0.0, true, ais_meteo_hydro_visibility_specials, 1);
+    ais_json_reading(j, "waterlevel", (int64_t)m->waterlevel_raw, 100.0, -10.0, true, ais_meteo_hydro_waterlevel_specials, 1);
+    ais_json_reading(j, "leveltrend", (int64_t)m->leveltrend_raw, 1.0, 0.0, false, ais_meteo_hydro_leveltrend_specials, 1);
+    ais_json_reading(j, "cspeed", (int64_t)m->cspeed_raw, 10.0, 0.0, true, ais_meteo_hydro_cspeed_specials, 1);
+    ais_json_reading(j, "cdir", (int64_t)m->cdir_raw, 1.0, 0.0, false, ais_meteo_hydro_cdir_specials, 1);
+    ais_json_reading(j, "cspeed2", (int64_t)m->cspeed2_raw, 10.0, 0.0, true, ais_meteo_hydro_cspeed2_specials, 1);
+    ais_json_reading(j, "cdir2", (int64_t)m->cdir2_raw, 1.0, 0.0, false, ais_meteo_hydro_cdir2_specials, 1);
+    ais_json_reading(j, "cdepth2", (int64_t)m->cdepth2_raw, 1.0, 0.0, false, ais_meteo_hydro_cdepth2_specials, 1);
+    ais_json_reading(j, "cspeed3", (int64_t)m->cspeed3_raw, 10.0, 0.0, true, ais_meteo_hydro_cspeed3_specials, 1);
+    ais_json_reading(j, "cdir3", (int64_t)m->cdir3_raw, 1.0, 0.0, false, ais_meteo_hydro_cdir3_specials, 1);
+    ais_json_reading(j, "cdepth3", (int64_t)m->cdepth3_raw, 1.0, 0.0, false, ais_meteo_hydro_cdepth3_specials, 1);
+    ais_json_reading(j, "waveheight", (int64_t)m->waveheight_raw, 10.0, 0.0, true, ais_meteo_hydro_waveheight_specials, 1);
+    ais_json_reading(j, "waveperiod", (int64_t)m->waveperiod_raw, 1.0, 0.0, false, ais_meteo_hydro_waveperiod_specials, 1);
+    ais_json_reading(j, "wavedir", (int64_t)m->wavedir_raw, 1.0, 0.0, false, ais_meteo_hydro_wavedir_specials, 1);
+    ais_json_reading(j, "swellheight", (int64_t)m->swellheight_raw, 10.0, 0.0, true, ais_meteo_hydro_swellheight_specials, 1);
+    ais_json_reading(j, "swellperiod", (int64_t)m->swellperiod_raw, 1.0, 0.0, false, ais_meteo_hydro_swellperiod_specials, 1);
+    ais_json_reading(j, "swelldir", (int64_t)m->swelldir_raw, 1.0, 0.0, false, ais_meteo_hydro_swelldir_specials, 1);
+    ais_json_reading(j, "seastate", (int64_t)m->seastate_raw, 1.0, 0.0, false, ais_meteo_hydro_seastate_specials, 1);
+    ais_json_reading(j, "watertemp", (int64_t)m->watertemp_raw, 10.0, 0.0, true, ais_meteo_hydro_watertemp_specials, 1);
+    ais_json_reading(j, "preciptype", (int64_t)m->preciptype_raw, 1.0, 0.0, false, ais_meteo_hydro_preciptype_specials, 1);
+    ais_json_reading(j, "salinity", (int64_t)m->salinity_raw, 10.0, 0.0, true, ais_meteo_hydro_salinity_specials, 2);
+    ais_json_reading(j, "ice", (int64_t)m->ice_raw, 1.0, 0.0, false, ais_meteo_hydro_ice_specials, 1);
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_addressed_binary(nmea_ais_reader *r, nmea_ais_addressed_binary *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "seqno", &raw)) return false; m->seqno = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "dest_mmsi", &raw)) return false; m->dest_mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "retransmit", &raw)) return false; m->retransmit = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 10, "dac", &raw)) return false; m->dac = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "fid", &raw)) return false; m->fid = (uint8_t)raw; } if (!ais_take_bits(r, ais_remaining(r), "data", &m->data)) return false; m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "seqno", &raw)) return false;
+    m->seqno = (uint8_t)raw;
+    if (!ais_take(r, 30, "dest_mmsi", &raw)) return false;
+    m->dest_mmsi = (uint32_t)raw;
+    if (!ais_take(r, 1, "retransmit", &raw)) return false;
+    m->retransmit = raw == 1;
+    if (!ais_take(r, 1, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take(r, 10, "dac", &raw)) return false;
+    m->dac = (uint16_t)raw;
+    if (!ais_take(r, 6, "fid", &raw)) return false;
+    m->fid = (uint8_t)raw;
+    if (!ais_take_bits(r, ais_remaining(r), "data", &m->data)) return false;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_addressed_binary(const nmea_ais_addressed_binary *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->seqno, 2, "seqno")) return false; if (!ais_put(w, m->dest_mmsi, 30, "dest_mmsi")) return false; if (!ais_put(w, m->retransmit, 1, "retransmit")) return false; if (!ais_put(w, m->spare, 1, "spare")) return false; if (!ais_put(w, m->dac, 10, "dac")) return false; if (!ais_put(w, m->fid, 6, "fid")) return false; if (!ais_put_bits(w, m->data, "data")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_addressed_binary(const nmea_ais_addressed_binary *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "seqno", (long long)m->seqno); ais_json_int(j, "dest_mmsi", (long long)m->dest_mmsi); ais_json_flag(j, "retransmit", m->retransmit); ais_json_int(j, "spare", (long long)m->spare); ais_json_int(j, "dac", (long long)m->dac); ais_json_int(j, "fid", (long long)m->fid); ais_json_bits(j, "data", m->data); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->seqno, 2, "seqno")) return false;
+    if (!ais_put(w, m->dest_mmsi, 30, "dest_mmsi")) return false;
+    if (!ais_put(w, m->retransmit, 1, "retransmit")) return false;
+    if (!ais_put(w, m->spare, 1, "spare")) return false;
+    if (!ais_put(w, m->dac, 10, "dac")) return false;
+    if (!ais_put(w, m->fid, 6, "fid")) return false;
+    if (!ais_put_bits(w, m->data, "data")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_addressed_binary(const nmea_ais_addressed_binary *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "seqno", (long long)m->seqno);
+    ais_json_int(j, "dest_mmsi", (long long)m->dest_mmsi);
+    ais_json_flag(j, "retransmit", m->retransmit);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_int(j, "dac", (long long)m->dac);
+    ais_json_int(j, "fid", (long long)m->fid);
+    ais_json_bits(j, "data", m->data);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_addressed_safety(nmea_ais_reader *r, nmea_ais_addressed_safety *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "seqno", &raw)) return false; m->seqno = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "dest_mmsi", &raw)) return false; m->dest_mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "retransmit", &raw)) return false; m->retransmit = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "spare", &raw)) return false; m->spare = (uint8_t)raw; } if (!ais_take_bits(r, ais_remaining(r) / 6 * 6, "text", &m->text)) return false; m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "seqno", &raw)) return false;
+    m->seqno = (uint8_t)raw;
+    if (!ais_take(r, 30, "dest_mmsi", &raw)) return false;
+    m->dest_mmsi = (uint32_t)raw;
+    if (!ais_take(r, 1, "retransmit", &raw)) return false;
+    m->retransmit = raw == 1;
+    if (!ais_take(r, 1, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take_bits(r, ais_remaining(r) / 6 * 6, "text", &m->text)) return false;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_addressed_safety(const nmea_ais_addressed_safety *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->seqno, 2, "seqno")) return false; if (!ais_put(w, m->dest_mmsi, 30, "dest_mmsi")) return false; if (!ais_put(w, m->retransmit, 1, "retransmit")) return false; if (!ais_put(w, m->spare, 1, "spare")) return false; if (!ais_put_bits(w, m->text, "text")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_addressed_safety(const nmea_ais_addressed_safety *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "seqno", (long long)m->seqno); ais_json_int(j, "dest_mmsi", (long long)m->dest_mmsi); ais_json_flag(j, "retransmit", m->retransmit); ais_json_int(j, "spare", (long long)m->spare); ais_json_text(j, "text", m->text); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->seqno, 2, "seqno")) return false;
+    if (!ais_put(w, m->dest_mmsi, 30, "dest_mmsi")) return false;
+    if (!ais_put(w, m->retransmit, 1, "retransmit")) return false;
+    if (!ais_put(w, m->spare, 1, "spare")) return false;
+    if (!ais_put_bits(w, m->text, "text")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_addressed_safety(const nmea_ais_addressed_safety *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "seqno", (long long)m->seqno);
+    ais_json_int(j, "dest_mmsi", (long long)m->dest_mmsi);
+    ais_json_flag(j, "retransmit", m->retransmit);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_text(j, "text", m->text);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static const nmea_ais_special ais_aid_to_navigation_lon_specials[] = {{108600000, "not_available"}};
 static const nmea_ais_special ais_aid_to_navigation_lat_specials[] = {{54600000, "not_available"}};
@@ -721,16 +989,178 @@ static const nmea_ais_special ais_aid_to_navigation_to_port_specials[] = {{0, "n
 static const nmea_ais_special ais_aid_to_navigation_to_starboard_specials[] = {{0, "not_available"}};
 static const nmea_ais_special ais_aid_to_navigation_second_specials[] = {{60, "not_available"}, {61, "manual_input"}, {62, "dead_reckoning"}, {63, "inoperative"}};
 static bool ais_read_aid_to_navigation(nmea_ais_reader *r, nmea_ais_aid_to_navigation *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 5, "aid_type", &raw)) return false; m->aid_type_raw = (uint8_t)raw; } if (!ais_take_bits(r, 120, "name", &m->name)) return false; { uint64_t raw; if (!ais_take(r, 1, "accuracy", &raw)) return false; m->accuracy = raw == 1; } { int64_t raw; if (!ais_take_signed(r, 28, "lon", &raw)) return false; m->lon_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 27, "lat", &raw)) return false; m->lat_raw = (int32_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "to_bow", &raw)) return false; m->to_bow_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "to_stern", &raw)) return false; m->to_stern_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "to_port", &raw)) return false; m->to_port_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "to_starboard", &raw)) return false; m->to_starboard_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "epfd", &raw)) return false; m->epfd_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "second", &raw)) return false; m->second_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "off_position", &raw)) return false; m->off_position = raw == 1; } { uint64_t raw; if (!ais_take(r, 8, "regional", &raw)) return false; m->regional = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "raim", &raw)) return false; m->raim = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "virtual_aid", &raw)) return false; m->virtual_aid = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "assigned", &raw)) return false; m->assigned = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "spare", &raw)) return false; m->spare = (uint8_t)raw; } if (!ais_take_bits(r, ais_remaining(r) / 6 * 6, "name_ext", &m->name_ext)) return false; m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 5, "aid_type", &raw)) return false;
+    m->aid_type_raw = (uint8_t)raw;
+    if (!ais_take_bits(r, 120, "name", &m->name)) return false;
+    if (!ais_take(r, 1, "accuracy", &raw)) return false;
+    m->accuracy = raw == 1;
+    if (!ais_take_signed(r, 28, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 27, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 9, "to_bow", &raw)) return false;
+    m->to_bow_raw = (uint16_t)raw;
+    if (!ais_take(r, 9, "to_stern", &raw)) return false;
+    m->to_stern_raw = (uint16_t)raw;
+    if (!ais_take(r, 6, "to_port", &raw)) return false;
+    m->to_port_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "to_starboard", &raw)) return false;
+    m->to_starboard_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "epfd", &raw)) return false;
+    m->epfd_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "second", &raw)) return false;
+    m->second_raw = (uint8_t)raw;
+    if (!ais_take(r, 1, "off_position", &raw)) return false;
+    m->off_position = raw == 1;
+    if (!ais_take(r, 8, "regional", &raw)) return false;
+    m->regional = (uint8_t)raw;
+    if (!ais_take(r, 1, "raim", &raw)) return false;
+    m->raim = raw == 1;
+    if (!ais_take(r, 1, "virtual_aid", &raw)) return false;
+    m->virtual_aid = raw == 1;
+    if (!ais_take(r, 1, "assigned", &raw)) return false;
+    m->assigned = raw == 1;
+    if (!ais_take(r, 1, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take_bits(r, ais_remaining(r) / 6 * 6, "name_ext", &m->name_ext)) return false;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_aid_to_navigation(const nmea_ais_aid_to_navigation *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->aid_type_raw, 5, "aid_type")) return false; if (!ais_put_bits(w, m->name, "name")) return false; if (!ais_put(w, m->accuracy, 1, "accuracy")) return false; if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false; if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false; if (!ais_put(w, m->to_bow_raw, 9, "to_bow")) return false; if (!ais_put(w, m->to_stern_raw, 9, "to_stern")) return false; if (!ais_put(w, m->to_port_raw, 6, "to_port")) return false; if (!ais_put(w, m->to_starboard_raw, 6, "to_starboard")) return false; if (!ais_put(w, m->epfd_raw, 4, "epfd")) return false; if (!ais_put(w, m->second_raw, 6, "second")) return false; if (!ais_put(w, m->off_position, 1, "off_position")) return false; if (!ais_put(w, m->regional, 8, "regional")) return false; if (!ais_put(w, m->raim, 1, "raim")) return false; if (!ais_put(w, m->virtual_aid, 1, "virtual_aid")) return false; if (!ais_put(w, m->assigned, 1, "assigned")) return false; if (!ais_put(w, m->spare, 1, "spare")) return false; if (!ais_put_bits(w, m->name_ext, "name_ext")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_aid_to_navigation(const nmea_ais_aid_to_navigation *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_code(j, "aid_type", ais_ais_aid_type_id(m->aid_type_raw), m->aid_type_raw); ais_json_text(j, "name", m->name); ais_json_flag(j, "accuracy", m->accuracy); ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_aid_to_navigation_lon_specials, 1); ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_aid_to_navigation_lat_specials, 1); ais_json_reading(j, "to_bow", (int64_t)m->to_bow_raw, 1.0, 0.0, false, ais_aid_to_navigation_to_bow_specials, 1); ais_json_reading(j, "to_stern", (int64_t)m->to_stern_raw, 1.0, 0.0, false, ais_aid_to_navigation_to_stern_specials, 1); ais_json_reading(j, "to_port", (int64_t)m->to_port_raw, 1.0, 0.0, false, ais_aid_to_navigation_to_port_specials, 1); ais_json_reading(j, "to_starboard", (int64_t)m->to_starboard_raw, 1.0, 0.0, false, ais_aid_to_navigation_to_starboard_specials, 1); ais_json_code(j, "epfd", ais_ais_epfd_id(m->epfd_raw), m->epfd_raw); ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_aid_to_navigation_second_specials, 4); ais_json_flag(j, "off_position", m->off_position); ais_json_int(j, "regional", (long long)m->regional); ais_json_flag(j, "raim", m->raim); ais_json_flag(j, "virtual_aid", m->virtual_aid); ais_json_flag(j, "assigned", m->assigned); ais_json_int(j, "spare", (long long)m->spare); ais_json_text(j, "name_ext", m->name_ext); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->aid_type_raw, 5, "aid_type")) return false;
+    if (!ais_put_bits(w, m->name, "name")) return false;
+    if (!ais_put(w, m->accuracy, 1, "accuracy")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
+    if (!ais_put(w, m->to_bow_raw, 9, "to_bow")) return false;
+    if (!ais_put(w, m->to_stern_raw, 9, "to_stern")) return false;
+    if (!ais_put(w, m->to_port_raw, 6, "to_port")) return false;
+    if (!ais_put(w, m->to_starboard_raw, 6, "to_starboard")) return false;
+    if (!ais_put(w, m->epfd_raw, 4, "epfd")) return false;
+    if (!ais_put(w, m->second_raw, 6, "second")) return false;
+    if (!ais_put(w, m->off_position, 1, "off_position")) return false;
+    if (!ais_put(w, m->regional, 8, "regional")) return false;
+    if (!ais_put(w, m->raim, 1, "raim")) return false;
+    if (!ais_put(w, m->virtual_aid, 1, "virtual_aid")) return false;
+    if (!ais_put(w, m->assigned, 1, "assigned")) return false;
+    if (!ais_put(w, m->spare, 1, "spare")) return false;
+    if (!ais_put_bits(w, m->name_ext, "name_ext")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_aid_to_navigation(const nmea_ais_aid_to_navigation *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_code(j, "aid_type", ais_ais_aid_type_id(m->aid_type_raw), m->aid_type_raw);
+    ais_json_text(j, "name", m->name);
+    ais_json_flag(j, "accuracy", m->accuracy);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_aid_to_navigation_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_aid_to_navigation_lat_specials, 1);
+    ais_json_reading(j, "to_bow", (int64_t)m->to_bow_raw, 1.0, 0.0, false, ais_aid_to_navigation_to_bow_specials, 1);
+    ais_json_reading(j, "to_stern", (int64_t)m->to_stern_raw, 1.0, 0.0, false, ais_aid_to_navigation_to_stern_specials, 1);
+    ais_json_reading(j, "to_port", (int64_t)m->to_port_raw, 1.0, 0.0, false, ais_aid_to_navigation_to_port_specials, 1);
+    ais_json_reading(j, "to_starboard", (int64_t)m->to_starboard_raw, 1.0, 0.0, false, ais_aid_to_navigation_to_starboard_specials, 1);
+    ais_json_code(j, "epfd", ais_ais_epfd_id(m->epfd_raw), m->epfd_raw);
+    ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_aid_to_navigation_second_specials, 4);
+    ais_json_flag(j, "off_position", m->off_position);
+    ais_json_int(j, "regional", (long long)m->regional);
+    ais_json_flag(j, "raim", m->raim);
+    ais_json_flag(j, "virtual_aid", m->virtual_aid);
+    ais_json_flag(j, "assigned", m->assigned);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_text(j, "name_ext", m->name_ext);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_assignment_command(nmea_ais_reader *r, nmea_ais_assignment_command *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi1", &raw)) return false; m->mmsi1 = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 12, "offset1", &raw)) return false; m->offset1 = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 10, "increment1", &raw)) return false; m->increment1 = (uint16_t)raw; } if (ais_remaining(r) < 30) goto done; { uint64_t raw; if (!ais_take(r, 30, "mmsi2", &raw)) return false; m->mmsi2 = (uint32_t)raw; m->has_mmsi2 = true; } if (ais_remaining(r) < 12) goto done; { uint64_t raw; if (!ais_take(r, 12, "offset2", &raw)) return false; m->offset2 = (uint16_t)raw; m->has_offset2 = true; } if (ais_remaining(r) < 10) goto done; { uint64_t raw; if (!ais_take(r, 10, "increment2", &raw)) return false; m->increment2 = (uint16_t)raw; m->has_increment2 = true; } done: m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi1", &raw)) return false;
+    m->mmsi1 = (uint32_t)raw;
+    if (!ais_take(r, 12, "offset1", &raw)) return false;
+    m->offset1 = (uint16_t)raw;
+    if (!ais_take(r, 10, "increment1", &raw)) return false;
+    m->increment1 = (uint16_t)raw;
+    if (ais_remaining(r) < 30) goto done;
+    if (!ais_take(r, 30, "mmsi2", &raw)) return false;
+    m->mmsi2 = (uint32_t)raw;
+    m->has_mmsi2 = true;
+    if (ais_remaining(r) < 12) goto done;
+    if (!ais_take(r, 12, "offset2", &raw)) return false;
+    m->offset2 = (uint16_t)raw;
+    m->has_offset2 = true;
+    if (ais_remaining(r) < 10) goto done;
+    if (!ais_take(r, 10, "increment2", &raw)) return false;
+    m->increment2 = (uint16_t)raw;
+    m->has_increment2 = true;
+    done: m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_assignment_command(const nmea_ais_assignment_command *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->spare, 2, "spare")) return false; if (!ais_put(w, m->mmsi1, 30, "mmsi1")) return false; if (!ais_put(w, m->offset1, 12, "offset1")) return false; if (!ais_put(w, m->increment1, 10, "increment1")) return false; if (!m->has_mmsi2) goto done; if (!ais_put(w, m->mmsi2, 30, "mmsi2")) return false; if (!m->has_offset2) goto done; if (!ais_put(w, m->offset2, 12, "offset2")) return false; if (!m->has_increment2) goto done; if (!ais_put(w, m->increment2, 10, "increment2")) return false; done: if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_assignment_command(const nmea_ais_assignment_command *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "spare", (long long)m->spare); ais_json_int(j, "mmsi1", (long long)m->mmsi1); ais_json_int(j, "offset1", (long long)m->offset1); ais_json_int(j, "increment1", (long long)m->increment1); if (m->has_mmsi2) { ais_json_int(j, "mmsi2", (long long)m->mmsi2); } if (m->has_offset2) { ais_json_int(j, "offset2", (long long)m->offset2); } if (m->has_increment2) { ais_json_int(j, "increment2", (long long)m->increment2); } ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->spare, 2, "spare")) return false;
+    if (!ais_put(w, m->mmsi1, 30, "mmsi1")) return false;
+    if (!ais_put(w, m->offset1, 12, "offset1")) return false;
+    if (!ais_put(w, m->increment1, 10, "increment1")) return false;
+    if (!m->has_mmsi2) goto done;
+    if (!ais_put(w, m->mmsi2, 30, "mmsi2")) return false;
+    if (!m->has_offset2) goto done;
+    if (!ais_put(w, m->offset2, 12, "offset2")) return false;
+    if (!m->has_increment2) goto done;
+    if (!ais_put(w, m->increment2, 10, "increment2")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_assignment_command(const nmea_ais_assignment_command *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_int(j, "mmsi1", (long long)m->mmsi1);
+    ais_json_int(j, "offset1", (long long)m->offset1);
+    ais_json_int(j, "increment1", (long long)m->increment1);
+    if (m->has_mmsi2) {
+        ais_json_int(j, "mmsi2", (long long)m->mmsi2);
+    }
+    if (m->has_offset2) {
+        ais_json_int(j, "offset2", (long long)m->offset2);
+    }
+    if (m->has_increment2) {
+        ais_json_int(j, "increment2", (long long)m->increment2);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static const nmea_ais_special ais_base_station_report_year_specials[] = {{0, "not_available"}};
 static const nmea_ais_special ais_base_station_report_month_specials[] = {{0, "not_available"}};
@@ -741,34 +1171,388 @@ static const nmea_ais_special ais_base_station_report_second_specials[] = {{60, 
 static const nmea_ais_special ais_base_station_report_lon_specials[] = {{108600000, "not_available"}};
 static const nmea_ais_special ais_base_station_report_lat_specials[] = {{54600000, "not_available"}};
 static bool ais_read_base_station_report(nmea_ais_reader *r, nmea_ais_base_station_report *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 14, "year", &raw)) return false; m->year_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "month", &raw)) return false; m->month_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 5, "day", &raw)) return false; m->day_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 5, "hour", &raw)) return false; m->hour_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "minute", &raw)) return false; m->minute_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "second", &raw)) return false; m->second_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "accuracy", &raw)) return false; m->accuracy = raw == 1; } { int64_t raw; if (!ais_take_signed(r, 28, "lon", &raw)) return false; m->lon_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 27, "lat", &raw)) return false; m->lat_raw = (int32_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "epfd", &raw)) return false; m->epfd_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 10, "spare", &raw)) return false; m->spare = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "raim", &raw)) return false; m->raim = raw == 1; } { uint64_t raw; if (!ais_take(r, 19, "radio", &raw)) return false; m->radio = (uint32_t)raw; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 14, "year", &raw)) return false;
+    m->year_raw = (uint16_t)raw;
+    if (!ais_take(r, 4, "month", &raw)) return false;
+    m->month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "second", &raw)) return false;
+    m->second_raw = (uint8_t)raw;
+    if (!ais_take(r, 1, "accuracy", &raw)) return false;
+    m->accuracy = raw == 1;
+    if (!ais_take_signed(r, 28, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 27, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 4, "epfd", &raw)) return false;
+    m->epfd_raw = (uint8_t)raw;
+    if (!ais_take(r, 10, "spare", &raw)) return false;
+    m->spare = (uint16_t)raw;
+    if (!ais_take(r, 1, "raim", &raw)) return false;
+    m->raim = raw == 1;
+    if (!ais_take(r, 19, "radio", &raw)) return false;
+    m->radio = (uint32_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_base_station_report(const nmea_ais_base_station_report *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->year_raw, 14, "year")) return false; if (!ais_put(w, m->month_raw, 4, "month")) return false; if (!ais_put(w, m->day_raw, 5, "day")) return false; if (!ais_put(w, m->hour_raw, 5, "hour")) return false; if (!ais_put(w, m->minute_raw, 6, "minute")) return false; if (!ais_put(w, m->second_raw, 6, "second")) return false; if (!ais_put(w, m->accuracy, 1, "accuracy")) return false; if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false; if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false; if (!ais_put(w, m->epfd_raw, 4, "epfd")) return false; if (!ais_put(w, m->spare, 10, "spare")) return false; if (!ais_put(w, m->raim, 1, "raim")) return false; if (!ais_put(w, m->radio, 19, "radio")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_base_station_report(const nmea_ais_base_station_report *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_reading(j, "year", (int64_t)m->year_raw, 1.0, 0.0, false, ais_base_station_report_year_specials, 1); ais_json_reading(j, "month", (int64_t)m->month_raw, 1.0, 0.0, false, ais_base_station_report_month_specials, 1); ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_base_station_report_day_specials, 1); ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_base_station_report_hour_specials, 1); ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_base_station_report_minute_specials, 1); ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_base_station_report_second_specials, 1); ais_json_flag(j, "accuracy", m->accuracy); ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_base_station_report_lon_specials, 1); ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_base_station_report_lat_specials, 1); ais_json_code(j, "epfd", ais_ais_epfd_id(m->epfd_raw), m->epfd_raw); ais_json_int(j, "spare", (long long)m->spare); ais_json_flag(j, "raim", m->raim); ais_json_int(j, "radio", (long long)m->radio); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->year_raw, 14, "year")) return false;
+    if (!ais_put(w, m->month_raw, 4, "month")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->second_raw, 6, "second")) return false;
+    if (!ais_put(w, m->accuracy, 1, "accuracy")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
+    if (!ais_put(w, m->epfd_raw, 4, "epfd")) return false;
+    if (!ais_put(w, m->spare, 10, "spare")) return false;
+    if (!ais_put(w, m->raim, 1, "raim")) return false;
+    if (!ais_put(w, m->radio, 19, "radio")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_base_station_report(const nmea_ais_base_station_report *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_reading(j, "year", (int64_t)m->year_raw, 1.0, 0.0, false, ais_base_station_report_year_specials, 1);
+    ais_json_reading(j, "month", (int64_t)m->month_raw, 1.0, 0.0, false, ais_base_station_report_month_specials, 1);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_base_station_report_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_base_station_report_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_base_station_report_minute_specials, 1);
+    ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_base_station_report_second_specials, 1);
+    ais_json_flag(j, "accuracy", m->accuracy);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_base_station_report_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_base_station_report_lat_specials, 1);
+    ais_json_code(j, "epfd", ais_ais_epfd_id(m->epfd_raw), m->epfd_raw);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_flag(j, "raim", m->raim);
+    ais_json_int(j, "radio", (long long)m->radio);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_binary_acknowledge_ack(nmea_ais_reader *r, nmea_ais_binary_acknowledge_ack *m)
-{ { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "seqno", &raw)) return false; m->seqno = (uint8_t)raw; } return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "seqno", &raw)) return false;
+    m->seqno = (uint8_t)raw;
+    return true;
+}
+
 static bool ais_write_binary_acknowledge_ack(const nmea_ais_binary_acknowledge_ack *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->seqno, 2, "seqno")) return false; return true; }
-static void ais_json_binary_acknowledge_ack(const nmea_ais_binary_acknowledge_ack *m, nmea_ais_json_out *j) { ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "seqno", (long long)m->seqno); }
+{
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->seqno, 2, "seqno")) return false;
+    return true;
+}
+
+static void ais_json_binary_acknowledge_ack(const nmea_ais_binary_acknowledge_ack *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "seqno", (long long)m->seqno);
+}
 
 static bool ais_read_binary_acknowledge(nmea_ais_reader *r, nmea_ais_binary_acknowledge *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { size_t i; if (!ais_entries(r, 1, 4, 32, 0, "acks", &m->acks_count)) return false; for (i = 0; i < m->acks_count; i++) if (!ais_read_binary_acknowledge_ack(r, &m->acks[i])) return false; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    {
+        size_t i;
+        if (!ais_entries(r, 1, 4, 32, 0, "acks", &m->acks_count)) return false;
+        for (i = 0; i < m->acks_count; i++) if (!ais_read_binary_acknowledge_ack(r, &m->acks[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_binary_acknowledge(const nmea_ais_binary_acknowledge *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->spare, 2, "spare")) return false; { size_t i; for (i = 0; i < m->acks_count; i++) if (!ais_write_binary_acknowledge_ack(&m->acks[i], w)) return false; } if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_binary_acknowledge(const nmea_ais_binary_acknowledge *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "spare", (long long)m->spare); { size_t i; ais_json_key(j, "acks"); ais_json_puts(j, "["); for (i = 0; i < m->acks_count; i++) { if (i) ais_json_puts(j, ","); ais_json_open(j); ais_json_binary_acknowledge_ack(&m->acks[i], j); ais_json_close(j); } ais_json_puts(j, "]"); } ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->spare, 2, "spare")) return false;
+    {
+        size_t i;
+        for (i = 0; i < m->acks_count; i++) if (!ais_write_binary_acknowledge_ack(&m->acks[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_binary_acknowledge(const nmea_ais_binary_acknowledge *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "spare", (long long)m->spare);
+    {
+        size_t i;
+        ais_json_key(j, "acks");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->acks_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_binary_acknowledge_ack(&m->acks[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_broadcast_binary(nmea_ais_reader *r, nmea_ais_broadcast_binary *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 10, "dac", &raw)) return false; m->dac = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "fid", &raw)) return false; m->fid = (uint8_t)raw; } if (!ais_take_bits(r, ais_remaining(r), "data", &m->data)) return false; m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take(r, 10, "dac", &raw)) return false;
+    m->dac = (uint16_t)raw;
+    if (!ais_take(r, 6, "fid", &raw)) return false;
+    m->fid = (uint8_t)raw;
+    if (!ais_take_bits(r, ais_remaining(r), "data", &m->data)) return false;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_broadcast_binary(const nmea_ais_broadcast_binary *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->spare, 2, "spare")) return false; if (!ais_put(w, m->dac, 10, "dac")) return false; if (!ais_put(w, m->fid, 6, "fid")) return false; if (m->has_application) { if (!ais_write_application(&m->application, w)) return false; } else { if (!ais_put_bits(w, m->data, "data")) return false; } if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_broadcast_binary(const nmea_ais_broadcast_binary *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "spare", (long long)m->spare); ais_json_int(j, "dac", (long long)m->dac); ais_json_int(j, "fid", (long long)m->fid); if (!m->has_application) { ais_json_bits(j, "data", m->data); } if (m->has_application) { ais_json_key(j, "application"); ais_json_open(j); ais_json_application(&m->application, j); ais_json_close(j); } ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->spare, 2, "spare")) return false;
+    if (!ais_put(w, m->dac, 10, "dac")) return false;
+    if (!ais_put(w, m->fid, 6, "fid")) return false;
+    if (m->has_application) {
+        if (!ais_write_application(&m->application, w)) return false;
+    } else {
+        if (!ais_put_bits(w, m->data, "data")) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_broadcast_binary(const nmea_ais_broadcast_binary *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_int(j, "dac", (long long)m->dac);
+    ais_json_int(j, "fid", (long long)m->fid);
+    if (!m->has_application) {
+        ais_json_bits(j, "data", m->data);
+    }
+    if (m->has_application) {
+        ais_json_key(j, "application");
+        ais_json_open(j);
+        ais_json_application(&m->application, j);
+        ais_json_close(j);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_channel_management(nmea_ais_reader *r, nmea_ais_channel_management *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 12, "channel_a", &raw)) return false; m->channel_a = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 12, "channel_b", &raw)) return false; m->channel_b = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "txrx", &raw)) return false; m->txrx = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "power", &raw)) return false; m->power = raw == 1; } { uint64_t selector; if (!ais_peek(r, 139, 1, "addressed", &selector)) return false; if ((selector == 0u)) { { int64_t raw; if (!ais_take_signed(r, 18, "ne_lon", &raw)) return false; m->ne_lon_raw = (int32_t)raw; m->has_ne_lon_raw = true; } { int64_t raw; if (!ais_take_signed(r, 17, "ne_lat", &raw)) return false; m->ne_lat_raw = (int32_t)raw; m->has_ne_lat_raw = true; } { int64_t raw; if (!ais_take_signed(r, 18, "sw_lon", &raw)) return false; m->sw_lon_raw = (int32_t)raw; m->has_sw_lon_raw = true; } { int64_t raw; if (!ais_take_signed(r, 17, "sw_lat", &raw)) return false; m->sw_lat_raw = (int32_t)raw; m->has_sw_lat_raw = true; } } else if ((selector == 1u)) { { uint64_t raw; if (!ais_take(r, 30, "dest1", &raw)) return false; m->dest1 = (uint32_t)raw; m->has_dest1 = true; } { uint64_t raw; if (!ais_take(r, 5, "empty1", &raw)) return false; m->empty1 = (uint8_t)raw; m->has_empty1 = true; } { uint64_t raw; if (!ais_take(r, 30, "dest2", &raw)) return false; m->dest2 = (uint32_t)raw; m->has_dest2 = true; } { uint64_t raw; if (!ais_take(r, 5, "empty2", &raw)) return false; m->empty2 = (uint8_t)raw; m->has_empty2 = true; } } } { uint64_t raw; if (!ais_take(r, 1, "addressed", &raw)) return false; m->addressed = raw == 1; m->has_addressed = true; } { uint64_t raw; if (!ais_take(r, 1, "band_a", &raw)) return false; m->band_a = raw == 1; m->has_band_a = true; } { uint64_t raw; if (!ais_take(r, 1, "band_b", &raw)) return false; m->band_b = raw == 1; m->has_band_b = true; } { uint64_t raw; if (!ais_take(r, 3, "zonesize", &raw)) return false; m->zonesize = (uint8_t)raw; m->has_zonesize = true; } { uint64_t raw; if (!ais_take(r, 23, "spare2", &raw)) return false; m->spare2 = (uint32_t)raw; m->has_spare2 = true; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    uint64_t selector;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take(r, 12, "channel_a", &raw)) return false;
+    m->channel_a = (uint16_t)raw;
+    if (!ais_take(r, 12, "channel_b", &raw)) return false;
+    m->channel_b = (uint16_t)raw;
+    if (!ais_take(r, 4, "txrx", &raw)) return false;
+    m->txrx = (uint8_t)raw;
+    if (!ais_take(r, 1, "power", &raw)) return false;
+    m->power = raw == 1;
+    if (!ais_peek(r, 139, 1, "addressed", &selector)) return false;
+    if (selector == 0u) {
+        if (!ais_take_signed(r, 18, "ne_lon", &signed_raw)) return false;
+        m->ne_lon_raw = (int32_t)signed_raw;
+        m->has_ne_lon_raw = true;
+        if (!ais_take_signed(r, 17, "ne_lat", &signed_raw)) return false;
+        m->ne_lat_raw = (int32_t)signed_raw;
+        m->has_ne_lat_raw = true;
+        if (!ais_take_signed(r, 18, "sw_lon", &signed_raw)) return false;
+        m->sw_lon_raw = (int32_t)signed_raw;
+        m->has_sw_lon_raw = true;
+        if (!ais_take_signed(r, 17, "sw_lat", &signed_raw)) return false;
+        m->sw_lat_raw = (int32_t)signed_raw;
+        m->has_sw_lat_raw = true;
+    } else if (selector == 1u) {
+        if (!ais_take(r, 30, "dest1", &raw)) return false;
+        m->dest1 = (uint32_t)raw;
+        m->has_dest1 = true;
+        if (!ais_take(r, 5, "empty1", &raw)) return false;
+        m->empty1 = (uint8_t)raw;
+        m->has_empty1 = true;
+        if (!ais_take(r, 30, "dest2", &raw)) return false;
+        m->dest2 = (uint32_t)raw;
+        m->has_dest2 = true;
+        if (!ais_take(r, 5, "empty2", &raw)) return false;
+        m->empty2 = (uint8_t)raw;
+        m->has_empty2 = true;
+    }
+    if (!ais_take(r, 1, "addressed", &raw)) return false;
+    m->addressed = raw == 1;
+    m->has_addressed = true;
+    if (!ais_take(r, 1, "band_a", &raw)) return false;
+    m->band_a = raw == 1;
+    m->has_band_a = true;
+    if (!ais_take(r, 1, "band_b", &raw)) return false;
+    m->band_b = raw == 1;
+    m->has_band_b = true;
+    if (!ais_take(r, 3, "zonesize", &raw)) return false;
+    m->zonesize = (uint8_t)raw;
+    m->has_zonesize = true;
+    if (!ais_take(r, 23, "spare2", &raw)) return false;
+    m->spare2 = (uint32_t)raw;
+    m->has_spare2 = true;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_channel_management(const nmea_ais_channel_management *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->spare, 2, "spare")) return false; if (!ais_put(w, m->channel_a, 12, "channel_a")) return false; if (!ais_put(w, m->channel_b, 12, "channel_b")) return false; if (!ais_put(w, m->txrx, 4, "txrx")) return false; if (!ais_put(w, m->power, 1, "power")) return false; { uint64_t selector = (uint64_t)m->addressed; if (m->has_addressed && (selector == 0u)) { if (!m->has_ne_lon_raw) goto done; if (!ais_put_signed(w, m->ne_lon_raw, 18, "ne_lon")) return false; if (!m->has_ne_lat_raw) goto done; if (!ais_put_signed(w, m->ne_lat_raw, 17, "ne_lat")) return false; if (!m->has_sw_lon_raw) goto done; if (!ais_put_signed(w, m->sw_lon_raw, 18, "sw_lon")) return false; if (!m->has_sw_lat_raw) goto done; if (!ais_put_signed(w, m->sw_lat_raw, 17, "sw_lat")) return false; } else if (m->has_addressed && (selector == 1u)) { if (!m->has_dest1) goto done; if (!ais_put(w, m->dest1, 30, "dest1")) return false; if (!m->has_empty1) goto done; if (!ais_put(w, m->empty1, 5, "empty1")) return false; if (!m->has_dest2) goto done; if (!ais_put(w, m->dest2, 30, "dest2")) return false; if (!m->has_empty2) goto done; if (!ais_put(w, m->empty2, 5, "empty2")) return false; } } if (!m->has_addressed) goto done; if (!ais_put(w, m->addressed, 1, "addressed")) return false; if (!m->has_band_a) goto done; if (!ais_put(w, m->band_a, 1, "band_a")) return false; if (!m->has_band_b) goto done; if (!ais_put(w, m->band_b, 1, "band_b")) return false; if (!m->has_zonesize) goto done; if (!ais_put(w, m->zonesize, 3, "zonesize")) return false; if (!m->has_spare2) goto done; if (!ais_put(w, m->spare2, 23, "spare2")) return false; done: if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_channel_management(const nmea_ais_channel_management *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "spare", (long long)m->spare); ais_json_int(j, "channel_a", (long long)m->channel_a); ais_json_int(j, "channel_b", (long long)m->channel_b); ais_json_int(j, "txrx", (long long)m->txrx); ais_json_flag(j, "power", m->power); if (m->has_ne_lon_raw) { ais_json_reading(j, "ne_lon", (int64_t)m->ne_lon_raw, 600.0, 0.0, true, NULL, 0); } if (m->has_ne_lat_raw) { ais_json_reading(j, "ne_lat", (int64_t)m->ne_lat_raw, 600.0, 0.0, true, NULL, 0); } if (m->has_sw_lon_raw) { ais_json_reading(j, "sw_lon", (int64_t)m->sw_lon_raw, 600.0, 0.0, true, NULL, 0); } if (m->has_sw_lat_raw) { ais_json_reading(j, "sw_lat", (int64_t)m->sw_lat_raw, 600.0, 0.0, true, NULL, 0); } if (m->has_dest1) { ais_json_int(j, "dest1", (long long)m->dest1); } if (m->has_empty1) { ais_json_int(j, "empty1", (long long)m->empty1); } if (m->has_dest2) { ais_json_int(j, "dest2", (long long)m->dest2); } if (m->has_empty2) { ais_json_int(j, "empty2", (long long)m->empty2); } if (m->has_addressed) { ais_json_flag(j, "addressed", m->addressed); } if (m->has_band_a) { ais_json_flag(j, "band_a", m->band_a); } if (m->has_band_b) { ais_json_flag(j, "band_b", m->band_b); } if (m->has_zonesize) { ais_json_int(j, "zonesize", (long long)m->zonesize); } if (m->has_spare2) { ais_json_int(j, "spare2", (long long)m->spare2); } ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->spare, 2, "spare")) return false;
+    if (!ais_put(w, m->channel_a, 12, "channel_a")) return false;
+    if (!ais_put(w, m->channel_b, 12, "channel_b")) return false;
+    if (!ais_put(w, m->txrx, 4, "txrx")) return false;
+    if (!ais_put(w, m->power, 1, "power")) return false;
+    {
+        uint64_t selector = (uint64_t)m->addressed;
+        if (m->has_addressed && (selector == 0u)) {
+            if (!m->has_ne_lon_raw) goto done;
+            if (!ais_put_signed(w, m->ne_lon_raw, 18, "ne_lon")) return false;
+            if (!m->has_ne_lat_raw) goto done;
+            if (!ais_put_signed(w, m->ne_lat_raw, 17, "ne_lat")) return false;
+            if (!m->has_sw_lon_raw) goto done;
+            if (!ais_put_signed(w, m->sw_lon_raw, 18, "sw_lon")) return false;
+            if (!m->has_sw_lat_raw) goto done;
+            if (!ais_put_signed(w, m->sw_lat_raw, 17, "sw_lat")) return false;
+        } else if (m->has_addressed && (selector == 1u)) {
+            if (!m->has_dest1) goto done;
+            if (!ais_put(w, m->dest1, 30, "dest1")) return false;
+            if (!m->has_empty1) goto done;
+            if (!ais_put(w, m->empty1, 5, "empty1")) return false;
+            if (!m->has_dest2) goto done;
+            if (!ais_put(w, m->dest2, 30, "dest2")) return false;
+            if (!m->has_empty2) goto done;
+            if (!ais_put(w, m->empty2, 5, "empty2")) return false;
+        }
+    }
+    if (!m->has_addressed) goto done;
+    if (!ais_put(w, m->addressed, 1, "addressed")) return false;
+    if (!m->has_band_a) goto done;
+    if (!ais_put(w, m->band_a, 1, "band_a")) return false;
+    if (!m->has_band_b) goto done;
+    if (!ais_put(w, m->band_b, 1, "band_b")) return false;
+    if (!m->has_zonesize) goto done;
+    if (!ais_put(w, m->zonesize, 3, "zonesize")) return false;
+    if (!m->has_spare2) goto done;
+    if (!ais_put(w, m->spare2, 23, "spare2")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_channel_management(const nmea_ais_channel_management *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_int(j, "channel_a", (long long)m->channel_a);
+    ais_json_int(j, "channel_b", (long long)m->channel_b);
+    ais_json_int(j, "txrx", (long long)m->txrx);
+    ais_json_flag(j, "power", m->power);
+    if (m->has_ne_lon_raw) {
+        ais_json_reading(j, "ne_lon", (int64_t)m->ne_lon_raw, 600.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_ne_lat_raw) {
+        ais_json_reading(j, "ne_lat", (int64_t)m->ne_lat_raw, 600.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_sw_lon_raw) {
+        ais_json_reading(j, "sw_lon", (int64_t)m->sw_lon_raw, 600.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_sw_lat_raw) {
+        ais_json_reading(j, "sw_lat", (int64_t)m->sw_lat_raw, 600.0, 0.0, true, NULL, 0);
+    }
+    if (m->has_dest1) {
+        ais_json_int(j, "dest1", (long long)m->dest1);
+    }
+    if (m->has_empty1) {
+        ais_json_int(j, "empty1", (long long)m->empty1);
+    }
+    if (m->has_dest2) {
+        ais_json_int(j, "dest2", (long long)m->dest2);
+    }
+    if (m->has_empty2) {
+        ais_json_int(j, "empty2", (long long)m->empty2);
+    }
+    if (m->has_addressed) {
+        ais_json_flag(j, "addressed", m->addressed);
+    }
+    if (m->has_band_a) {
+        ais_json_flag(j, "band_a", m->band_a);
+    }
+    if (m->has_band_b) {
+        ais_json_flag(j, "band_b", m->band_b);
+    }
+    if (m->has_zonesize) {
+        ais_json_int(j, "zonesize", (long long)m->zonesize);
+    }
+    if (m->has_spare2) {
+        ais_json_int(j, "spare2", (long long)m->spare2);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static const nmea_ais_special ais_class_b_extended_speed_specials[] = {{1023, "not_available"}};
 static const nmea_ais_special ais_class_b_extended_lon_specials[] = {{108600000, "not_available"}};
@@ -781,10 +1565,114 @@ static const nmea_ais_special ais_class_b_extended_to_stern_specials[] = {{0, "n
 static const nmea_ais_special ais_class_b_extended_to_port_specials[] = {{0, "not_available"}};
 static const nmea_ais_special ais_class_b_extended_to_starboard_specials[] = {{0, "not_available"}};
 static bool ais_read_class_b_extended(nmea_ais_reader *r, nmea_ais_class_b_extended *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 8, "reserved", &raw)) return false; m->reserved = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 10, "speed", &raw)) return false; m->speed_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "accuracy", &raw)) return false; m->accuracy = raw == 1; } { int64_t raw; if (!ais_take_signed(r, 28, "lon", &raw)) return false; m->lon_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 27, "lat", &raw)) return false; m->lat_raw = (int32_t)raw; } { uint64_t raw; if (!ais_take(r, 12, "course", &raw)) return false; m->course_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "heading", &raw)) return false; m->heading_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "second", &raw)) return false; m->second_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "regional", &raw)) return false; m->regional = (uint8_t)raw; } if (!ais_take_bits(r, 120, "shipname", &m->shipname)) return false; { uint64_t raw; if (!ais_take(r, 8, "shiptype", &raw)) return false; m->shiptype_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "to_bow", &raw)) return false; m->to_bow_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "to_stern", &raw)) return false; m->to_stern_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "to_port", &raw)) return false; m->to_port_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "to_starboard", &raw)) return false; m->to_starboard_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "epfd", &raw)) return false; m->epfd_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "raim", &raw)) return false; m->raim = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "dte", &raw)) return false; m->dte = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "assigned", &raw)) return false; m->assigned = raw == 1; } { uint64_t raw; if (!ais_take(r, 4, "spare", &raw)) return false; m->spare = (uint8_t)raw; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 8, "reserved", &raw)) return false;
+    m->reserved = (uint8_t)raw;
+    if (!ais_take(r, 10, "speed", &raw)) return false;
+    m->speed_raw = (uint16_t)raw;
+    if (!ais_take(r, 1, "accuracy", &raw)) return false;
+    m->accuracy = raw == 1;
+    if (!ais_take_signed(r, 28, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 27, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 12, "course", &raw)) return false;
+    m->course_raw = (uint16_t)raw;
+    if (!ais_take(r, 9, "heading", &raw)) return false;
+    m->heading_raw = (uint16_t)raw;
+    if (!ais_take(r, 6, "second", &raw)) return false;
+    m->second_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "regional", &raw)) return false;
+    m->regional = (uint8_t)raw;
+    if (!ais_take_bits(r, 120, "shipname", &m->shipname)) return false;
+    if (!ais_take(r, 8, "shiptype", &raw)) return false;
+    m->shiptype_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "to_bow", &raw)) return false;
+    m->to_bow_raw = (uint16_t)raw;
+    if (!ais_take(r, 9, "to_stern", &raw)) return false;
+    m->to_stern_raw = (uint16_t)raw;
+    if (!ais_take(r, 6, "to_port", &raw)) return false;
+    m->to_port_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "to_starboard", &raw)) return false;
+    m->to_starboard_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "epfd", &raw)) return false;
+    m->epfd_raw = (uint8_t)raw;
+    if (!ais_take(r, 1, "raim", &raw)) return false;
+    m->raim = raw == 1;
+    if (!ais_take(r, 1, "dte", &raw)) return false;
+    m->dte = raw == 1;
+    if (!ais_take(r, 1, "assigned", &raw)) return false;
+    m->assigned = raw == 1;
+    if (!ais_take(r, 4, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_class_b_extended(const nmea_ais_class_b_extended *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->reserved, 8, "reserved")) return false; if (!ais_put(w, m->speed_raw, 10, "speed")) return false; if (!ais_put(w, m->accuracy, 1, "accuracy")) return false; if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false; if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false; if (!ais_put(w, m->course_raw, 12, "course")) return false; if (!ais_put(w, m->heading_raw, 9, "heading")) return false; if (!ais_put(w, m->second_raw, 6, "second")) return false; if (!ais_put(w, m->regional, 4, "regional")) return false; if (!ais_put_bits(w, m->shipname, "shipname")) return false; if (!ais_put(w, m->shiptype_raw, 8, "shiptype")) return false; if (!ais_put(w, m->to_bow_raw, 9, "to_bow")) return false; if (!ais_put(w, m->to_stern_raw, 9, "to_stern")) return false; if (!ais_put(w, m->to_port_raw, 6, "to_port")) return false; if (!ais_put(w, m->to_starboard_raw, 6, "to_starboard")) return false; if (!ais_put(w, m->epfd_raw, 4, "epfd")) return false; if (!ais_put(w, m->raim, 1, "raim")) return false; if (!ais_put(w, m->dte, 1, "dte")) return false; if (!ais_put(w, m->assigned, 1, "assigned")) return false; if (!ais_put(w, m->spare, 4, "spare")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_class_b_extended(const nmea_ais_class_b_extended *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "reserved", (long long)m->reserved); ais_json_reading(j, "speed", (int64_t)m->speed_raw, 10.0, 0.0, true, ais_class_b_extended_speed_specials, 1); ais_json_flag(j, "accuracy", m->accuracy); ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_class_b_extended_lon_specials, 1); ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_class_b_extended_lat_specials, 1); ais_json_reading(j, "course", (int64_t)m->course_raw, 10.0, 0.0, true, ais_class_b_extended_course_specials, 1); ais_json_reading(j, "heading", (int64_t)m->heading_raw, 1.0, 0.0, false, ais_class_b_extended_heading_specials, 1); ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_class_b_extended_second_specials, 4); ais_json_int(j, "regional", (long long)m->regional); ais_json_text(j, "shipname", m->shipname); ais_json_code(j, "shiptype", ais_ais_ship_type_id(m->shiptype_raw), m->shiptype_raw); ais_json_reading(j, "to_bow", (int64_t)m->to_bow_raw, 1.0, 0.0, false, ais_class_b_extended_to_bow_specials, 1); ais_json_reading(j, "to_stern", (int64_t)m->to_stern_raw, 1.0, 0.0, false, ais_class_b_extended_to_stern_specials, 1); ais_json_reading(j, "to_port", (int64_t)m->to_port_raw, 1.0, 0.0, false, ais_class_b_extended_to_port_specials, 1); ais_json_reading(j, "to_starboard", (int64_t)m->to_starboard_raw, 1.0, 0.0, false, ais_class_b_extended_to_starboard_specials, 1); ais_json_code(j, "epfd", ais_ais_epfd_id(m->epfd_raw), m->epfd_raw); ais_json_flag(j, "raim", m->raim); ais_json_flag(j, "dte", m->dte); ais_json_flag(j, "assigned", m->assigned); ais_json_int(j, "spare", (long long)m->spare); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->reserved, 8, "reserved")) return false;
+    if (!ais_put(w, m->speed_raw, 10, "speed")) return false;
+    if (!ais_put(w, m->accuracy, 1, "accuracy")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
+    if (!ais_put(w, m->course_raw, 12, "course")) return false;
+    if (!ais_put(w, m->heading_raw, 9, "heading")) return false;
+    if (!ais_put(w, m->second_raw, 6, "second")) return false;
+    if (!ais_put(w, m->regional, 4, "regional")) return false;
+    if (!ais_put_bits(w, m->shipname, "shipname")) return false;
+    if (!ais_put(w, m->shiptype_raw, 8, "shiptype")) return false;
+    if (!ais_put(w, m->to_bow_raw, 9, "to_bow")) return false;
+    if (!ais_put(w, m->to_stern_raw, 9, "to_stern")) return false;
+    if (!ais_put(w, m->to_port_raw, 6, "to_port")) return false;
+    if (!ais_put(w, m->to_starboard_raw, 6, "to_starboard")) return false;
+    if (!ais_put(w, m->epfd_raw, 4, "epfd")) return false;
+    if (!ais_put(w, m->raim, 1, "raim")) return false;
+    if (!ais_put(w, m->dte, 1, "dte")) return false;
+    if (!ais_put(w, m->assigned, 1, "assigned")) return false;
+    if (!ais_put(w, m->spare, 4, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_class_b_extended(const nmea_ais_class_b_extended *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "reserved", (long long)m->reserved);
+    ais_json_reading(j, "speed", (int64_t)m->speed_raw, 10.0, 0.0, true, ais_class_b_extended_speed_specials, 1);
+    ais_json_flag(j, "accuracy", m->accuracy);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_class_b_extended_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_class_b_extended_lat_specials, 1);
+    ais_json_reading(j, "course", (int64_t)m->course_raw, 10.0, 0.0, true, ais_class_b_extended_course_specials, 1);
+    ais_json_reading(j, "heading", (int64_t)m->heading_raw, 1.0, 0.0, false, ais_class_b_extended_heading_specials, 1);
+    ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_class_b_extended_second_specials, 4);
+    ais_json_int(j, "regional", (long long)m->regional);
+    ais_json_text(j, "shipname", m->shipname);
+    ais_json_code(j, "shiptype", ais_ais_ship_type_id(m->shiptype_raw), m->shiptype_raw);
+    ais_json_reading(j, "to_bow", (int64_t)m->to_bow_raw, 1.0, 0.0, false, ais_class_b_extended_to_bow_specials, 1);
+    ais_json_reading(j, "to_stern", (int64_t)m->to_stern_raw, 1.0, 0.0, false, ais_class_b_extended_to_stern_specials, 1);
+    ais_json_reading(j, "to_port", (int64_t)m->to_port_raw, 1.0, 0.0, false, ais_class_b_extended_to_port_specials, 1);
+    ais_json_reading(j, "to_starboard", (int64_t)m->to_starboard_raw, 1.0, 0.0, false, ais_class_b_extended_to_starboard_specials, 1);
+    ais_json_code(j, "epfd", ais_ais_epfd_id(m->epfd_raw), m->epfd_raw);
+    ais_json_flag(j, "raim", m->raim);
+    ais_json_flag(j, "dte", m->dte);
+    ais_json_flag(j, "assigned", m->assigned);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static const nmea_ais_special ais_class_b_position_speed_specials[] = {{1023, "not_available"}};
 static const nmea_ais_special ais_class_b_position_lon_specials[] = {{108600000, "not_available"}};
@@ -793,58 +1681,607 @@ static const nmea_ais_special ais_class_b_position_course_specials[] = {{3600, "
 static const nmea_ais_special ais_class_b_position_heading_specials[] = {{511, "not_available"}};
 static const nmea_ais_special ais_class_b_position_second_specials[] = {{60, "not_available"}, {61, "manual_input"}, {62, "dead_reckoning"}, {63, "inoperative"}};
 static bool ais_read_class_b_position(nmea_ais_reader *r, nmea_ais_class_b_position *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 8, "reserved", &raw)) return false; m->reserved = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 10, "speed", &raw)) return false; m->speed_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "accuracy", &raw)) return false; m->accuracy = raw == 1; } { int64_t raw; if (!ais_take_signed(r, 28, "lon", &raw)) return false; m->lon_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 27, "lat", &raw)) return false; m->lat_raw = (int32_t)raw; } { uint64_t raw; if (!ais_take(r, 12, "course", &raw)) return false; m->course_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "heading", &raw)) return false; m->heading_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "second", &raw)) return false; m->second_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "regional", &raw)) return false; m->regional = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "cs", &raw)) return false; m->cs = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "display", &raw)) return false; m->display = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "dsc", &raw)) return false; m->dsc = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "band", &raw)) return false; m->band = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "msg22", &raw)) return false; m->msg22 = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "assigned", &raw)) return false; m->assigned = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "raim", &raw)) return false; m->raim = raw == 1; } { uint64_t raw; if (!ais_take(r, 20, "radio", &raw)) return false; m->radio = (uint32_t)raw; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 8, "reserved", &raw)) return false;
+    m->reserved = (uint8_t)raw;
+    if (!ais_take(r, 10, "speed", &raw)) return false;
+    m->speed_raw = (uint16_t)raw;
+    if (!ais_take(r, 1, "accuracy", &raw)) return false;
+    m->accuracy = raw == 1;
+    if (!ais_take_signed(r, 28, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 27, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 12, "course", &raw)) return false;
+    m->course_raw = (uint16_t)raw;
+    if (!ais_take(r, 9, "heading", &raw)) return false;
+    m->heading_raw = (uint16_t)raw;
+    if (!ais_take(r, 6, "second", &raw)) return false;
+    m->second_raw = (uint8_t)raw;
+    if (!ais_take(r, 2, "regional", &raw)) return false;
+    m->regional = (uint8_t)raw;
+    if (!ais_take(r, 1, "cs", &raw)) return false;
+    m->cs = raw == 1;
+    if (!ais_take(r, 1, "display", &raw)) return false;
+    m->display = raw == 1;
+    if (!ais_take(r, 1, "dsc", &raw)) return false;
+    m->dsc = raw == 1;
+    if (!ais_take(r, 1, "band", &raw)) return false;
+    m->band = raw == 1;
+    if (!ais_take(r, 1, "msg22", &raw)) return false;
+    m->msg22 = raw == 1;
+    if (!ais_take(r, 1, "assigned", &raw)) return false;
+    m->assigned = raw == 1;
+    if (!ais_take(r, 1, "raim", &raw)) return false;
+    m->raim = raw == 1;
+    if (!ais_take(r, 20, "radio", &raw)) return false;
+    m->radio = (uint32_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_class_b_position(const nmea_ais_class_b_position *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->reserved, 8, "reserved")) return false; if (!ais_put(w, m->speed_raw, 10, "speed")) return false; if (!ais_put(w, m->accuracy, 1, "accuracy")) return false; if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false; if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false; if (!ais_put(w, m->course_raw, 12, "course")) return false; if (!ais_put(w, m->heading_raw, 9, "heading")) return false; if (!ais_put(w, m->second_raw, 6, "second")) return false; if (!ais_put(w, m->regional, 2, "regional")) return false; if (!ais_put(w, m->cs, 1, "cs")) return false; if (!ais_put(w, m->display, 1, "display")) return false; if (!ais_put(w, m->dsc, 1, "dsc")) return false; if (!ais_put(w, m->band, 1, "band")) return false; if (!ais_put(w, m->msg22, 1, "msg22")) return false; if (!ais_put(w, m->assigned, 1, "assigned")) return false; if (!ais_put(w, m->raim, 1, "raim")) return false; if (!ais_put(w, m->radio, 20, "radio")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_class_b_position(const nmea_ais_class_b_position *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "reserved", (long long)m->reserved); ais_json_reading(j, "speed", (int64_t)m->speed_raw, 10.0, 0.0, true, ais_class_b_position_speed_specials, 1); ais_json_flag(j, "accuracy", m->accuracy); ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_class_b_position_lon_specials, 1); ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_class_b_position_lat_specials, 1); ais_json_reading(j, "course", (int64_t)m->course_raw, 10.0, 0.0, true, ais_class_b_position_course_specials, 1); ais_json_reading(j, "heading", (int64_t)m->heading_raw, 1.0, 0.0, false, ais_class_b_position_heading_specials, 1); ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_class_b_position_second_specials, 4); ais_json_int(j, "regional", (long long)m->regional); ais_json_flag(j, "cs", m->cs); ais_json_flag(j, "display", m->display); ais_json_flag(j, "dsc", m->dsc); ais_json_flag(j, "band", m->band); ais_json_flag(j, "msg22", m->msg22); ais_json_flag(j, "assigned", m->assigned); ais_json_flag(j, "raim", m->raim); ais_json_int(j, "radio", (long long)m->radio); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->reserved, 8, "reserved")) return false;
+    if (!ais_put(w, m->speed_raw, 10, "speed")) return false;
+    if (!ais_put(w, m->accuracy, 1, "accuracy")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
+    if (!ais_put(w, m->course_raw, 12, "course")) return false;
+    if (!ais_put(w, m->heading_raw, 9, "heading")) return false;
+    if (!ais_put(w, m->second_raw, 6, "second")) return false;
+    if (!ais_put(w, m->regional, 2, "regional")) return false;
+    if (!ais_put(w, m->cs, 1, "cs")) return false;
+    if (!ais_put(w, m->display, 1, "display")) return false;
+    if (!ais_put(w, m->dsc, 1, "dsc")) return false;
+    if (!ais_put(w, m->band, 1, "band")) return false;
+    if (!ais_put(w, m->msg22, 1, "msg22")) return false;
+    if (!ais_put(w, m->assigned, 1, "assigned")) return false;
+    if (!ais_put(w, m->raim, 1, "raim")) return false;
+    if (!ais_put(w, m->radio, 20, "radio")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_class_b_position(const nmea_ais_class_b_position *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "reserved", (long long)m->reserved);
+    ais_json_reading(j, "speed", (int64_t)m->speed_raw, 10.0, 0.0, true, ais_class_b_position_speed_specials, 1);
+    ais_json_flag(j, "accuracy", m->accuracy);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_class_b_position_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_class_b_position_lat_specials, 1);
+    ais_json_reading(j, "course", (int64_t)m->course_raw, 10.0, 0.0, true, ais_class_b_position_course_specials, 1);
+    ais_json_reading(j, "heading", (int64_t)m->heading_raw, 1.0, 0.0, false, ais_class_b_position_heading_specials, 1);
+    ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_class_b_position_second_specials, 4);
+    ais_json_int(j, "regional", (long long)m->regional);
+    ais_json_flag(j, "cs", m->cs);
+    ais_json_flag(j, "display", m->display);
+    ais_json_flag(j, "dsc", m->dsc);
+    ais_json_flag(j, "band", m->band);
+    ais_json_flag(j, "msg22", m->msg22);
+    ais_json_flag(j, "assigned", m->assigned);
+    ais_json_flag(j, "raim", m->raim);
+    ais_json_int(j, "radio", (long long)m->radio);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_data_link_management_reservation(nmea_ais_reader *r, nmea_ais_data_link_management_reservation *m)
-{ { uint64_t raw; if (!ais_take(r, 12, "offset", &raw)) return false; m->offset = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "number", &raw)) return false; m->number = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 3, "timeout", &raw)) return false; m->timeout = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 11, "increment", &raw)) return false; m->increment = (uint16_t)raw; } return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 12, "offset", &raw)) return false;
+    m->offset = (uint16_t)raw;
+    if (!ais_take(r, 4, "number", &raw)) return false;
+    m->number = (uint8_t)raw;
+    if (!ais_take(r, 3, "timeout", &raw)) return false;
+    m->timeout = (uint8_t)raw;
+    if (!ais_take(r, 11, "increment", &raw)) return false;
+    m->increment = (uint16_t)raw;
+    return true;
+}
+
 static bool ais_write_data_link_management_reservation(const nmea_ais_data_link_management_reservation *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->offset, 12, "offset")) return false; if (!ais_put(w, m->number, 4, "number")) return false; if (!ais_put(w, m->timeout, 3, "timeout")) return false; if (!ais_put(w, m->increment, 11, "increment")) return false; return true; }
-static void ais_json_data_link_management_reservation(const nmea_ais_data_link_management_reservation *m, nmea_ais_json_out *j) { ais_json_int(j, "offset", (long long)m->offset); ais_json_int(j, "number", (long long)m->number); ais_json_int(j, "timeout", (long long)m->timeout); ais_json_int(j, "increment", (long long)m->increment); }
+{
+    if (!ais_put(w, m->offset, 12, "offset")) return false;
+    if (!ais_put(w, m->number, 4, "number")) return false;
+    if (!ais_put(w, m->timeout, 3, "timeout")) return false;
+    if (!ais_put(w, m->increment, 11, "increment")) return false;
+    return true;
+}
+
+static void ais_json_data_link_management_reservation(const nmea_ais_data_link_management_reservation *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "offset", (long long)m->offset);
+    ais_json_int(j, "number", (long long)m->number);
+    ais_json_int(j, "timeout", (long long)m->timeout);
+    ais_json_int(j, "increment", (long long)m->increment);
+}
 
 static bool ais_read_data_link_management(nmea_ais_reader *r, nmea_ais_data_link_management *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { size_t i; if (!ais_entries(r, 1, 4, 30, 0, "reservations", &m->reservations_count)) return false; for (i = 0; i < m->reservations_count; i++) if (!ais_read_data_link_management_reservation(r, &m->reservations[i])) return false; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    {
+        size_t i;
+        if (!ais_entries(r, 1, 4, 30, 0, "reservations", &m->reservations_count)) return false;
+        for (i = 0; i < m->reservations_count; i++) if (!ais_read_data_link_management_reservation(r, &m->reservations[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_data_link_management(const nmea_ais_data_link_management *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->spare, 2, "spare")) return false; { size_t i; for (i = 0; i < m->reservations_count; i++) if (!ais_write_data_link_management_reservation(&m->reservations[i], w)) return false; } if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_data_link_management(const nmea_ais_data_link_management *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "spare", (long long)m->spare); { size_t i; ais_json_key(j, "reservations"); ais_json_puts(j, "["); for (i = 0; i < m->reservations_count; i++) { if (i) ais_json_puts(j, ","); ais_json_open(j); ais_json_data_link_management_reservation(&m->reservations[i], j); ais_json_close(j); } ais_json_puts(j, "]"); } ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->spare, 2, "spare")) return false;
+    {
+        size_t i;
+        for (i = 0; i < m->reservations_count; i++) if (!ais_write_data_link_management_reservation(&m->reservations[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_data_link_management(const nmea_ais_data_link_management *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "spare", (long long)m->spare);
+    {
+        size_t i;
+        ais_json_key(j, "reservations");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->reservations_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_data_link_management_reservation(&m->reservations[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static const nmea_ais_special ais_dgnss_broadcast_lon_specials[] = {{108600, "not_available"}};
 static const nmea_ais_special ais_dgnss_broadcast_lat_specials[] = {{54600, "not_available"}};
 static bool ais_read_dgnss_broadcast(nmea_ais_reader *r, nmea_ais_dgnss_broadcast *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { int64_t raw; if (!ais_take_signed(r, 18, "lon", &raw)) return false; m->lon_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 17, "lat", &raw)) return false; m->lat_raw = (int32_t)raw; } { uint64_t raw; if (!ais_take(r, 5, "spare2", &raw)) return false; m->spare2 = (uint8_t)raw; } if (!ais_take_bits(r, ais_remaining(r), "data", &m->data)) return false; m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take_signed(r, 18, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 17, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 5, "spare2", &raw)) return false;
+    m->spare2 = (uint8_t)raw;
+    if (!ais_take_bits(r, ais_remaining(r), "data", &m->data)) return false;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_dgnss_broadcast(const nmea_ais_dgnss_broadcast *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->spare, 2, "spare")) return false; if (!ais_put_signed(w, m->lon_raw, 18, "lon")) return false; if (!ais_put_signed(w, m->lat_raw, 17, "lat")) return false; if (!ais_put(w, m->spare2, 5, "spare2")) return false; if (!ais_put_bits(w, m->data, "data")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_dgnss_broadcast(const nmea_ais_dgnss_broadcast *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "spare", (long long)m->spare); ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600.0, 0.0, true, ais_dgnss_broadcast_lon_specials, 1); ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600.0, 0.0, true, ais_dgnss_broadcast_lat_specials, 1); ais_json_int(j, "spare2", (long long)m->spare2); ais_json_bits(j, "data", m->data); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->spare, 2, "spare")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 18, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 17, "lat")) return false;
+    if (!ais_put(w, m->spare2, 5, "spare2")) return false;
+    if (!ais_put_bits(w, m->data, "data")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_dgnss_broadcast(const nmea_ais_dgnss_broadcast *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600.0, 0.0, true, ais_dgnss_broadcast_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600.0, 0.0, true, ais_dgnss_broadcast_lat_specials, 1);
+    ais_json_int(j, "spare2", (long long)m->spare2);
+    ais_json_bits(j, "data", m->data);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_group_assignment(nmea_ais_reader *r, nmea_ais_group_assignment *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { int64_t raw; if (!ais_take_signed(r, 18, "ne_lon", &raw)) return false; m->ne_lon_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 17, "ne_lat", &raw)) return false; m->ne_lat_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 18, "sw_lon", &raw)) return false; m->sw_lon_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 17, "sw_lat", &raw)) return false; m->sw_lat_raw = (int32_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "station_type", &raw)) return false; m->station_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 8, "ship_type", &raw)) return false; m->ship_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 22, "spare2", &raw)) return false; m->spare2 = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "txrx", &raw)) return false; m->txrx = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "interval", &raw)) return false; m->interval = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "quiet", &raw)) return false; m->quiet = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "spare3", &raw)) return false; m->spare3 = (uint8_t)raw; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take_signed(r, 18, "ne_lon", &signed_raw)) return false;
+    m->ne_lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 17, "ne_lat", &signed_raw)) return false;
+    m->ne_lat_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 18, "sw_lon", &signed_raw)) return false;
+    m->sw_lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 17, "sw_lat", &signed_raw)) return false;
+    m->sw_lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 4, "station_type", &raw)) return false;
+    m->station_type = (uint8_t)raw;
+    if (!ais_take(r, 8, "ship_type", &raw)) return false;
+    m->ship_type = (uint8_t)raw;
+    if (!ais_take(r, 22, "spare2", &raw)) return false;
+    m->spare2 = (uint32_t)raw;
+    if (!ais_take(r, 2, "txrx", &raw)) return false;
+    m->txrx = (uint8_t)raw;
+    if (!ais_take(r, 4, "interval", &raw)) return false;
+    m->interval = (uint8_t)raw;
+    if (!ais_take(r, 4, "quiet", &raw)) return false;
+    m->quiet = (uint8_t)raw;
+    if (!ais_take(r, 6, "spare3", &raw)) return false;
+    m->spare3 = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_group_assignment(const nmea_ais_group_assignment *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->spare, 2, "spare")) return false; if (!ais_put_signed(w, m->ne_lon_raw, 18, "ne_lon")) return false; if (!ais_put_signed(w, m->ne_lat_raw, 17, "ne_lat")) return false; if (!ais_put_signed(w, m->sw_lon_raw, 18, "sw_lon")) return false; if (!ais_put_signed(w, m->sw_lat_raw, 17, "sw_lat")) return false; if (!ais_put(w, m->station_type, 4, "station_type")) return false; if (!ais_put(w, m->ship_type, 8, "ship_type")) return false; if (!ais_put(w, m->spare2, 22, "spare2")) return false; if (!ais_put(w, m->txrx, 2, "txrx")) return false; if (!ais_put(w, m->interval, 4, "interval")) return false; if (!ais_put(w, m->quiet, 4, "quiet")) return false; if (!ais_put(w, m->spare3, 6, "spare3")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_group_assignment(const nmea_ais_group_assignment *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "spare", (long long)m->spare); ais_json_reading(j, "ne_lon", (int64_t)m->ne_lon_raw, 600.0, 0.0, true, NULL, 0); ais_json_reading(j, "ne_lat", (int64_t)m->ne_lat_raw, 600.0, 0.0, true, NULL, 0); ais_json_reading(j, "sw_lon", (int64_t)m->sw_lon_raw, 600.0, 0.0, true, NULL, 0); ais_json_reading(j, "sw_lat", (int64_t)m->sw_lat_raw, 600.0, 0.0, true, NULL, 0); ais_json_int(j, "station_type", (long long)m->station_type); ais_json_int(j, "ship_type", (long long)m->ship_type); ais_json_int(j, "spare2", (long long)m->spare2); ais_json_int(j, "txrx", (long long)m->txrx); ais_json_int(j, "interval", (long long)m->interval); ais_json_int(j, "quiet", (long long)m->quiet); ais_json_int(j, "spare3", (long long)m->spare3); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->spare, 2, "spare")) return false;
+    if (!ais_put_signed(w, m->ne_lon_raw, 18, "ne_lon")) return false;
+    if (!ais_put_signed(w, m->ne_lat_raw, 17, "ne_lat")) return false;
+    if (!ais_put_signed(w, m->sw_lon_raw, 18, "sw_lon")) return false;
+    if (!ais_put_signed(w, m->sw_lat_raw, 17, "sw_lat")) return false;
+    if (!ais_put(w, m->station_type, 4, "station_type")) return false;
+    if (!ais_put(w, m->ship_type, 8, "ship_type")) return false;
+    if (!ais_put(w, m->spare2, 22, "spare2")) return false;
+    if (!ais_put(w, m->txrx, 2, "txrx")) return false;
+    if (!ais_put(w, m->interval, 4, "interval")) return false;
+    if (!ais_put(w, m->quiet, 4, "quiet")) return false;
+    if (!ais_put(w, m->spare3, 6, "spare3")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_group_assignment(const nmea_ais_group_assignment *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_reading(j, "ne_lon", (int64_t)m->ne_lon_raw, 600.0, 0.0, true, NULL, 0);
+    ais_json_reading(j, "ne_lat", (int64_t)m->ne_lat_raw, 600.0, 0.0, true, NULL, 0);
+    ais_json_reading(j, "sw_lon", (int64_t)m->sw_lon_raw, 600.0, 0.0, true, NULL, 0);
+    ais_json_reading(j, "sw_lat", (int64_t)m->sw_lat_raw, 600.0, 0.0, true, NULL, 0);
+    ais_json_int(j, "station_type", (long long)m->station_type);
+    ais_json_int(j, "ship_type", (long long)m->ship_type);
+    ais_json_int(j, "spare2", (long long)m->spare2);
+    ais_json_int(j, "txrx", (long long)m->txrx);
+    ais_json_int(j, "interval", (long long)m->interval);
+    ais_json_int(j, "quiet", (long long)m->quiet);
+    ais_json_int(j, "spare3", (long long)m->spare3);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_interrogation(nmea_ais_reader *r, nmea_ais_interrogation *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi1", &raw)) return false; m->mmsi1 = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "type1_1", &raw)) return false; m->type1_1 = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 12, "offset1_1", &raw)) return false; m->offset1_1 = (uint16_t)raw; } if (ais_remaining(r) < 2) goto done; { uint64_t raw; if (!ais_take(r, 2, "spare2", &raw)) return false; m->spare2 = (uint8_t)raw; m->has_spare2 = true; } if (ais_remaining(r) < 6) goto done; { uint64_t raw; if (!ais_take(r, 6, "type1_2", &raw)) return false; m->type1_2 = (uint8_t)raw; m->has_type1_2 = true; } if (ais_remaining(r) < 12) goto done; { uint64_t raw; if (!ais_take(r, 12, "offset1_2", &raw)) return false; m->offset1_2 = (uint16_t)raw; m->has_offset1_2 = true; } if (ais_remaining(r) < 2) goto done; { uint64_t raw; if (!ais_take(r, 2, "spare3", &raw)) return false; m->spare3 = (uint8_t)raw; m->has_spare3 = true; } if (ais_remaining(r) < 30) goto done; { uint64_t raw; if (!ais_take(r, 30, "mmsi2", &raw)) return false; m->mmsi2 = (uint32_t)raw; m->has_mmsi2 = true; } if (ais_remaining(r) < 6) goto done; { uint64_t raw; if (!ais_take(r, 6, "type2_1", &raw)) return false; m->type2_1 = (uint8_t)raw; m->has_type2_1 = true; } if (ais_remaining(r) < 12) goto done; { uint64_t raw; if (!ais_take(r, 12, "offset2_1", &raw)) return false; m->offset2_1 = (uint16_t)raw; m->has_offset2_1 = true; } if (ais_remaining(r) < 2) goto done; { uint64_t raw; if (!ais_take(r, 2, "spare4", &raw)) return false; m->spare4 = (uint8_t)raw; m->has_spare4 = true; } done: m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi1", &raw)) return false;
+    m->mmsi1 = (uint32_t)raw;
+    if (!ais_take(r, 6, "type1_1", &raw)) return false;
+    m->type1_1 = (uint8_t)raw;
+    if (!ais_take(r, 12, "offset1_1", &raw)) return false;
+    m->offset1_1 = (uint16_t)raw;
+    if (ais_remaining(r) < 2) goto done;
+    if (!ais_take(r, 2, "spare2", &raw)) return false;
+    m->spare2 = (uint8_t)raw;
+    m->has_spare2 = true;
+    if (ais_remaining(r) < 6) goto done;
+    if (!ais_take(r, 6, "type1_2", &raw)) return false;
+    m->type1_2 = (uint8_t)raw;
+    m->has_type1_2 = true;
+    if (ais_remaining(r) < 12) goto done;
+    if (!ais_take(r, 12, "offset1_2", &raw)) return false;
+    m->offset1_2 = (uint16_t)raw;
+    m->has_offset1_2 = true;
+    if (ais_remaining(r) < 2) goto done;
+    if (!ais_take(r, 2, "spare3", &raw)) return false;
+    m->spare3 = (uint8_t)raw;
+    m->has_spare3 = true;
+    if (ais_remaining(r) < 30) goto done;
+    if (!ais_take(r, 30, "mmsi2", &raw)) return false;
+    m->mmsi2 = (uint32_t)raw;
+    m->has_mmsi2 = true;
+    if (ais_remaining(r) < 6) goto done;
+    if (!ais_take(r, 6, "type2_1", &raw)) return false;
+    m->type2_1 = (uint8_t)raw;
+    m->has_type2_1 = true;
+    if (ais_remaining(r) < 12) goto done;
+    if (!ais_take(r, 12, "offset2_1", &raw)) return false;
+    m->offset2_1 = (uint16_t)raw;
+    m->has_offset2_1 = true;
+    if (ais_remaining(r) < 2) goto done;
+    if (!ais_take(r, 2, "spare4", &raw)) return false;
+    m->spare4 = (uint8_t)raw;
+    m->has_spare4 = true;
+    done: m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_interrogation(const nmea_ais_interrogation *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->spare, 2, "spare")) return false; if (!ais_put(w, m->mmsi1, 30, "mmsi1")) return false; if (!ais_put(w, m->type1_1, 6, "type1_1")) return false; if (!ais_put(w, m->offset1_1, 12, "offset1_1")) return false; if (!m->has_spare2) goto done; if (!ais_put(w, m->spare2, 2, "spare2")) return false; if (!m->has_type1_2) goto done; if (!ais_put(w, m->type1_2, 6, "type1_2")) return false; if (!m->has_offset1_2) goto done; if (!ais_put(w, m->offset1_2, 12, "offset1_2")) return false; if (!m->has_spare3) goto done; if (!ais_put(w, m->spare3, 2, "spare3")) return false; if (!m->has_mmsi2) goto done; if (!ais_put(w, m->mmsi2, 30, "mmsi2")) return false; if (!m->has_type2_1) goto done; if (!ais_put(w, m->type2_1, 6, "type2_1")) return false; if (!m->has_offset2_1) goto done; if (!ais_put(w, m->offset2_1, 12, "offset2_1")) return false; if (!m->has_spare4) goto done; if (!ais_put(w, m->spare4, 2, "spare4")) return false; done: if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_interrogation(const nmea_ais_interrogation *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "spare", (long long)m->spare); ais_json_int(j, "mmsi1", (long long)m->mmsi1); ais_json_int(j, "type1_1", (long long)m->type1_1); ais_json_int(j, "offset1_1", (long long)m->offset1_1); if (m->has_spare2) { ais_json_int(j, "spare2", (long long)m->spare2); } if (m->has_type1_2) { ais_json_int(j, "type1_2", (long long)m->type1_2); } if (m->has_offset1_2) { ais_json_int(j, "offset1_2", (long long)m->offset1_2); } if (m->has_spare3) { ais_json_int(j, "spare3", (long long)m->spare3); } if (m->has_mmsi2) { ais_json_int(j, "mmsi2", (long long)m->mmsi2); } if (m->has_type2_1) { ais_json_int(j, "type2_1", (long long)m->type2_1); } if (m->has_offset2_1) { ais_json_int(j, "offset2_1", (long long)m->offset2_1); } if (m->has_spare4) { ais_json_int(j, "spare4", (long long)m->spare4); } ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->spare, 2, "spare")) return false;
+    if (!ais_put(w, m->mmsi1, 30, "mmsi1")) return false;
+    if (!ais_put(w, m->type1_1, 6, "type1_1")) return false;
+    if (!ais_put(w, m->offset1_1, 12, "offset1_1")) return false;
+    if (!m->has_spare2) goto done;
+    if (!ais_put(w, m->spare2, 2, "spare2")) return false;
+    if (!m->has_type1_2) goto done;
+    if (!ais_put(w, m->type1_2, 6, "type1_2")) return false;
+    if (!m->has_offset1_2) goto done;
+    if (!ais_put(w, m->offset1_2, 12, "offset1_2")) return false;
+    if (!m->has_spare3) goto done;
+    if (!ais_put(w, m->spare3, 2, "spare3")) return false;
+    if (!m->has_mmsi2) goto done;
+    if (!ais_put(w, m->mmsi2, 30, "mmsi2")) return false;
+    if (!m->has_type2_1) goto done;
+    if (!ais_put(w, m->type2_1, 6, "type2_1")) return false;
+    if (!m->has_offset2_1) goto done;
+    if (!ais_put(w, m->offset2_1, 12, "offset2_1")) return false;
+    if (!m->has_spare4) goto done;
+    if (!ais_put(w, m->spare4, 2, "spare4")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_interrogation(const nmea_ais_interrogation *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_int(j, "mmsi1", (long long)m->mmsi1);
+    ais_json_int(j, "type1_1", (long long)m->type1_1);
+    ais_json_int(j, "offset1_1", (long long)m->offset1_1);
+    if (m->has_spare2) {
+        ais_json_int(j, "spare2", (long long)m->spare2);
+    }
+    if (m->has_type1_2) {
+        ais_json_int(j, "type1_2", (long long)m->type1_2);
+    }
+    if (m->has_offset1_2) {
+        ais_json_int(j, "offset1_2", (long long)m->offset1_2);
+    }
+    if (m->has_spare3) {
+        ais_json_int(j, "spare3", (long long)m->spare3);
+    }
+    if (m->has_mmsi2) {
+        ais_json_int(j, "mmsi2", (long long)m->mmsi2);
+    }
+    if (m->has_type2_1) {
+        ais_json_int(j, "type2_1", (long long)m->type2_1);
+    }
+    if (m->has_offset2_1) {
+        ais_json_int(j, "offset2_1", (long long)m->offset2_1);
+    }
+    if (m->has_spare4) {
+        ais_json_int(j, "spare4", (long long)m->spare4);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static const nmea_ais_special ais_long_range_broadcast_lon_specials[] = {{108600, "not_available"}};
 static const nmea_ais_special ais_long_range_broadcast_lat_specials[] = {{54600, "not_available"}};
 static const nmea_ais_special ais_long_range_broadcast_speed_specials[] = {{63, "not_available"}};
 static const nmea_ais_special ais_long_range_broadcast_course_specials[] = {{511, "not_available"}};
 static bool ais_read_long_range_broadcast(nmea_ais_reader *r, nmea_ais_long_range_broadcast *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "accuracy", &raw)) return false; m->accuracy = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "raim", &raw)) return false; m->raim = raw == 1; } { uint64_t raw; if (!ais_take(r, 4, "status", &raw)) return false; m->status_raw = (uint8_t)raw; } { int64_t raw; if (!ais_take_signed(r, 18, "lon", &raw)) return false; m->lon_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 17, "lat", &raw)) return false; m->lat_raw = (int32_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "speed", &raw)) return false; m->speed_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "course", &raw)) return false; m->course_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "gnss", &raw)) return false; m->gnss = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "spare", &raw)) return false; m->spare = (uint8_t)raw; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 1, "accuracy", &raw)) return false;
+    m->accuracy = raw == 1;
+    if (!ais_take(r, 1, "raim", &raw)) return false;
+    m->raim = raw == 1;
+    if (!ais_take(r, 4, "status", &raw)) return false;
+    m->status_raw = (uint8_t)raw;
+    if (!ais_take_signed(r, 18, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 17, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 6, "speed", &raw)) return false;
+    m->speed_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "course", &raw)) return false;
+    m->course_raw = (uint16_t)raw;
+    if (!ais_take(r, 1, "gnss", &raw)) return false;
+    m->gnss = raw == 1;
+    if (!ais_take(r, 1, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_long_range_broadcast(const nmea_ais_long_range_broadcast *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->accuracy, 1, "accuracy")) return false; if (!ais_put(w, m->raim, 1, "raim")) return false; if (!ais_put(w, m->status_raw, 4, "status")) return false; if (!ais_put_signed(w, m->lon_raw, 18, "lon")) return false; if (!ais_put_signed(w, m->lat_raw, 17, "lat")) return false; if (!ais_put(w, m->speed_raw, 6, "speed")) return false; if (!ais_put(w, m->course_raw, 9, "course")) return false; if (!ais_put(w, m->gnss, 1, "gnss")) return false; if (!ais_put(w, m->spare, 1, "spare")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_long_range_broadcast(const nmea_ais_long_range_broadcast *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_flag(j, "accuracy", m->accuracy); ais_json_flag(j, "raim", m->raim); ais_json_code(j, "status", ais_vsd_nav_status_id(m->status_raw), m->status_raw); ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600.0, 0.0, true, ais_long_range_broadcast_lon_specials, 1); ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600.0, 0.0, true, ais_long_range_broadcast_lat_specials, 1); ais_json_reading(j, "speed", (int64_t)m->speed_raw, 1.0, 0.0, false, ais_long_range_broadcast_speed_specials, 1); ais_json_reading(j, "course", (int64_t)m->course_raw, 1.0, 0.0, false, ais_long_range_broadcast_course_specials, 1); ais_json_flag(j, "gnss", m->gnss); ais_json_int(j, "spare", (long long)m->spare); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->accuracy, 1, "accuracy")) return false;
+    if (!ais_put(w, m->raim, 1, "raim")) return false;
+    if (!ais_put(w, m->status_raw, 4, "status")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 18, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 17, "lat")) return false;
+    if (!ais_put(w, m->speed_raw, 6, "speed")) return false;
+    if (!ais_put(w, m->course_raw, 9, "course")) return false;
+    if (!ais_put(w, m->gnss, 1, "gnss")) return false;
+    if (!ais_put(w, m->spare, 1, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_long_range_broadcast(const nmea_ais_long_range_broadcast *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_flag(j, "accuracy", m->accuracy);
+    ais_json_flag(j, "raim", m->raim);
+    ais_json_code(j, "status", ais_vsd_nav_status_id(m->status_raw), m->status_raw);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600.0, 0.0, true, ais_long_range_broadcast_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600.0, 0.0, true, ais_long_range_broadcast_lat_specials, 1);
+    ais_json_reading(j, "speed", (int64_t)m->speed_raw, 1.0, 0.0, false, ais_long_range_broadcast_speed_specials, 1);
+    ais_json_reading(j, "course", (int64_t)m->course_raw, 1.0, 0.0, false, ais_long_range_broadcast_course_specials, 1);
+    ais_json_flag(j, "gnss", m->gnss);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_multi_slot_binary(nmea_ais_reader *r, nmea_ais_multi_slot_binary *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "addressed", &raw)) return false; m->addressed = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "structured", &raw)) return false; m->structured = raw == 1; } { uint64_t selector; if (!ais_peek(r, 38, 1, "addressed", &selector)) return false; if ((selector == 1u)) { { uint64_t raw; if (!ais_take(r, 30, "dest_mmsi", &raw)) return false; m->dest_mmsi = (uint32_t)raw; m->has_dest_mmsi = true; } } else if ((selector == 0u)) {  } } { uint64_t selector; if (!ais_peek(r, 39, 1, "structured", &selector)) return false; if ((selector == 1u)) { { uint64_t raw; if (!ais_take(r, 10, "dac", &raw)) return false; m->dac = (uint16_t)raw; m->has_dac = true; } { uint64_t raw; if (!ais_take(r, 6, "fid", &raw)) return false; m->fid = (uint8_t)raw; m->has_fid = true; } } else if ((selector == 0u)) {  } } if (!ais_take_bits(r, (ais_remaining(r) > 20 ? ais_remaining(r) - 20 : 0), "data", &m->data)) return false; m->has_data = true; { uint64_t raw; if (!ais_take(r, 20, "radio", &raw)) return false; m->radio = (uint32_t)raw; m->has_radio = true; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    uint64_t selector;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 1, "addressed", &raw)) return false;
+    m->addressed = raw == 1;
+    if (!ais_take(r, 1, "structured", &raw)) return false;
+    m->structured = raw == 1;
+    if (!ais_peek(r, 38, 1, "addressed", &selector)) return false;
+    if (selector == 1u) {
+        if (!ais_take(r, 30, "dest_mmsi", &raw)) return false;
+        m->dest_mmsi = (uint32_t)raw;
+        m->has_dest_mmsi = true;
+    } else if (selector == 0u) {
+    }
+    if (!ais_peek(r, 39, 1, "structured", &selector)) return false;
+    if (selector == 1u) {
+        if (!ais_take(r, 10, "dac", &raw)) return false;
+        m->dac = (uint16_t)raw;
+        m->has_dac = true;
+        if (!ais_take(r, 6, "fid", &raw)) return false;
+        m->fid = (uint8_t)raw;
+        m->has_fid = true;
+    } else if (selector == 0u) {
+    }
+    if (!ais_take_bits(r, (ais_remaining(r) > 20 ? ais_remaining(r) - 20 : 0), "data", &m->data)) return false;
+    m->has_data = true;
+    if (!ais_take(r, 20, "radio", &raw)) return false;
+    m->radio = (uint32_t)raw;
+    m->has_radio = true;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_multi_slot_binary(const nmea_ais_multi_slot_binary *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->addressed, 1, "addressed")) return false; if (!ais_put(w, m->structured, 1, "structured")) return false; { uint64_t selector = (uint64_t)m->addressed; if ((selector == 1u)) { if (!m->has_dest_mmsi) goto done; if (!ais_put(w, m->dest_mmsi, 30, "dest_mmsi")) return false; } else if ((selector == 0u)) {  } } { uint64_t selector = (uint64_t)m->structured; if ((selector == 1u)) { if (!m->has_dac) goto done; if (!ais_put(w, m->dac, 10, "dac")) return false; if (!m->has_fid) goto done; if (!ais_put(w, m->fid, 6, "fid")) return false; } else if ((selector == 0u)) {  } } if (!m->has_data) goto done; if (!ais_put_bits(w, m->data, "data")) return false; if (!m->has_radio) goto done; if (!ais_put(w, m->radio, 20, "radio")) return false; done: if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_multi_slot_binary(const nmea_ais_multi_slot_binary *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_flag(j, "addressed", m->addressed); ais_json_flag(j, "structured", m->structured); if (m->has_dest_mmsi) { ais_json_int(j, "dest_mmsi", (long long)m->dest_mmsi); } if (m->has_dac) { ais_json_int(j, "dac", (long long)m->dac); } if (m->has_fid) { ais_json_int(j, "fid", (long long)m->fid); } if (m->has_data) { ais_json_bits(j, "data", m->data); } if (m->has_radio) { ais_json_int(j, "radio", (long long)m->radio); } ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->addressed, 1, "addressed")) return false;
+    if (!ais_put(w, m->structured, 1, "structured")) return false;
+    {
+        uint64_t selector = (uint64_t)m->addressed;
+        if (selector == 1u) {
+            if (!m->has_dest_mmsi) goto done;
+            if (!ais_put(w, m->dest_mmsi, 30, "dest_mmsi")) return false;
+        } else if (selector == 0u) {
+        }
+    }
+    {
+        uint64_t selector = (uint64_t)m->structured;
+        if (selector == 1u) {
+            if (!m->has_dac) goto done;
+            if (!ais_put(w, m->dac, 10, "dac")) return false;
+            if (!m->has_fid) goto done;
+            if (!ais_put(w, m->fid, 6, "fid")) return false;
+        } else if (selector == 0u) {
+        }
+    }
+    if (!m->has_data) goto done;
+    if (!ais_put_bits(w, m->data, "data")) return false;
+    if (!m->has_radio) goto done;
+    if (!ais_put(w, m->radio, 20, "radio")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_multi_slot_binary(const nmea_ais_multi_slot_binary *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_flag(j, "addressed", m->addressed);
+    ais_json_flag(j, "structured", m->structured);
+    if (m->has_dest_mmsi) {
+        ais_json_int(j, "dest_mmsi", (long long)m->dest_mmsi);
+    }
+    if (m->has_dac) {
+        ais_json_int(j, "dac", (long long)m->dac);
+    }
+    if (m->has_fid) {
+        ais_json_int(j, "fid", (long long)m->fid);
+    }
+    if (m->has_data) {
+        ais_json_bits(j, "data", m->data);
+    }
+    if (m->has_radio) {
+        ais_json_int(j, "radio", (long long)m->radio);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static const nmea_ais_special ais_position_report_turn_specials[] = {{-128, "not_available"}, {127, "right_no_indicator"}, {-127, "left_no_indicator"}};
 static const nmea_ais_special ais_position_report_speed_specials[] = {{1023, "not_available"}};
@@ -854,16 +2291,124 @@ static const nmea_ais_special ais_position_report_course_specials[] = {{3600, "n
 static const nmea_ais_special ais_position_report_heading_specials[] = {{511, "not_available"}};
 static const nmea_ais_special ais_position_report_second_specials[] = {{60, "not_available"}, {61, "manual_input"}, {62, "dead_reckoning"}, {63, "inoperative"}};
 static bool ais_read_position_report(nmea_ais_reader *r, nmea_ais_position_report *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "status", &raw)) return false; m->status_raw = (uint8_t)raw; } { int64_t raw; if (!ais_take_signed(r, 8, "turn", &raw)) return false; m->turn_raw = (int8_t)raw; } { uint64_t raw; if (!ais_take(r, 10, "speed", &raw)) return false; m->speed_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "accuracy", &raw)) return false; m->accuracy = raw == 1; } { int64_t raw; if (!ais_take_signed(r, 28, "lon", &raw)) return false; m->lon_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 27, "lat", &raw)) return false; m->lat_raw = (int32_t)raw; } { uint64_t raw; if (!ais_take(r, 12, "course", &raw)) return false; m->course_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "heading", &raw)) return false; m->heading_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "second", &raw)) return false; m->second_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "maneuver", &raw)) return false; m->maneuver = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 3, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "raim", &raw)) return false; m->raim = raw == 1; } { uint64_t raw; if (!ais_take(r, 19, "radio", &raw)) return false; m->radio = (uint32_t)raw; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 4, "status", &raw)) return false;
+    m->status_raw = (uint8_t)raw;
+    if (!ais_take_signed(r, 8, "turn", &signed_raw)) return false;
+    m->turn_raw = (int8_t)signed_raw;
+    if (!ais_take(r, 10, "speed", &raw)) return false;
+    m->speed_raw = (uint16_t)raw;
+    if (!ais_take(r, 1, "accuracy", &raw)) return false;
+    m->accuracy = raw == 1;
+    if (!ais_take_signed(r, 28, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 27, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 12, "course", &raw)) return false;
+    m->course_raw = (uint16_t)raw;
+    if (!ais_take(r, 9, "heading", &raw)) return false;
+    m->heading_raw = (uint16_t)raw;
+    if (!ais_take(r, 6, "second", &raw)) return false;
+    m->second_raw = (uint8_t)raw;
+    if (!ais_take(r, 2, "maneuver", &raw)) return false;
+    m->maneuver = (uint8_t)raw;
+    if (!ais_take(r, 3, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take(r, 1, "raim", &raw)) return false;
+    m->raim = raw == 1;
+    if (!ais_take(r, 19, "radio", &raw)) return false;
+    m->radio = (uint32_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_position_report(const nmea_ais_position_report *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->status_raw, 4, "status")) return false; if (!ais_put_signed(w, m->turn_raw, 8, "turn")) return false; if (!ais_put(w, m->speed_raw, 10, "speed")) return false; if (!ais_put(w, m->accuracy, 1, "accuracy")) return false; if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false; if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false; if (!ais_put(w, m->course_raw, 12, "course")) return false; if (!ais_put(w, m->heading_raw, 9, "heading")) return false; if (!ais_put(w, m->second_raw, 6, "second")) return false; if (!ais_put(w, m->maneuver, 2, "maneuver")) return false; if (!ais_put(w, m->spare, 3, "spare")) return false; if (!ais_put(w, m->raim, 1, "raim")) return false; if (!ais_put(w, m->radio, 19, "radio")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_position_report(const nmea_ais_position_report *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_code(j, "status", ais_vsd_nav_status_id(m->status_raw), m->status_raw); ais_json_reading(j, "turn", (int64_t)m->turn_raw, 1.0, 0.0, false, ais_position_report_turn_specials, 3); ais_json_reading(j, "speed", (int64_t)m->speed_raw, 10.0, 0.0, true, ais_position_report_speed_specials, 1); ais_json_flag(j, "accuracy", m->accuracy); ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_position_report_lon_specials, 1); ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_position_report_lat_specials, 1); ais_json_reading(j, "course", (int64_t)m->course_raw, 10.0, 0.0, true, ais_position_report_course_specials, 1); ais_json_reading(j, "heading", (int64_t)m->heading_raw, 1.0, 0.0, false, ais_position_report_heading_specials, 1); ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_position_report_second_specials, 4); ais_json_int(j, "maneuver", (long long)m->maneuver); ais_json_int(j, "spare", (long long)m->spare); ais_json_flag(j, "raim", m->raim); ais_json_int(j, "radio", (long long)m->radio); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->status_raw, 4, "status")) return false;
+    if (!ais_put_signed(w, m->turn_raw, 8, "turn")) return false;
+    if (!ais_put(w, m->speed_raw, 10, "speed")) return false;
+    if (!ais_put(w, m->accuracy, 1, "accuracy")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
+    if (!ais_put(w, m->course_raw, 12, "course")) return false;
+    if (!ais_put(w, m->heading_raw, 9, "heading")) return false;
+    if (!ais_put(w, m->second_raw, 6, "second")) return false;
+    if (!ais_put(w, m->maneuver, 2, "maneuver")) return false;
+    if (!ais_put(w, m->spare, 3, "spare")) return false;
+    if (!ais_put(w, m->raim, 1, "raim")) return false;
+    if (!ais_put(w, m->radio, 19, "radio")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_position_report(const nmea_ais_position_report *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_code(j, "status", ais_vsd_nav_status_id(m->status_raw), m->status_raw);
+    ais_json_reading(j, "turn", (int64_t)m->turn_raw, 1.0, 0.0, false, ais_position_report_turn_specials, 3);
+    ais_json_reading(j, "speed", (int64_t)m->speed_raw, 10.0, 0.0, true, ais_position_report_speed_specials, 1);
+    ais_json_flag(j, "accuracy", m->accuracy);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_position_report_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_position_report_lat_specials, 1);
+    ais_json_reading(j, "course", (int64_t)m->course_raw, 10.0, 0.0, true, ais_position_report_course_specials, 1);
+    ais_json_reading(j, "heading", (int64_t)m->heading_raw, 1.0, 0.0, false, ais_position_report_heading_specials, 1);
+    ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_position_report_second_specials, 4);
+    ais_json_int(j, "maneuver", (long long)m->maneuver);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_flag(j, "raim", m->raim);
+    ais_json_int(j, "radio", (long long)m->radio);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_safety_broadcast(nmea_ais_reader *r, nmea_ais_safety_broadcast *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "spare", &raw)) return false; m->spare = (uint8_t)raw; } if (!ais_take_bits(r, ais_remaining(r) / 6 * 6, "text", &m->text)) return false; m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take_bits(r, ais_remaining(r) / 6 * 6, "text", &m->text)) return false;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_safety_broadcast(const nmea_ais_safety_broadcast *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->spare, 2, "spare")) return false; if (!ais_put_bits(w, m->text, "text")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_safety_broadcast(const nmea_ais_safety_broadcast *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "spare", (long long)m->spare); ais_json_text(j, "text", m->text); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->spare, 2, "spare")) return false;
+    if (!ais_put_bits(w, m->text, "text")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_safety_broadcast(const nmea_ais_safety_broadcast *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_text(j, "text", m->text);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static const nmea_ais_special ais_sar_aircraft_report_alt_specials[] = {{4095, "not_available"}};
 static const nmea_ais_special ais_sar_aircraft_report_speed_specials[] = {{1023, "not_available"}};
@@ -872,26 +2417,355 @@ static const nmea_ais_special ais_sar_aircraft_report_lat_specials[] = {{5460000
 static const nmea_ais_special ais_sar_aircraft_report_course_specials[] = {{3600, "not_available"}};
 static const nmea_ais_special ais_sar_aircraft_report_second_specials[] = {{60, "not_available"}, {61, "manual_input"}, {62, "dead_reckoning"}, {63, "inoperative"}};
 static bool ais_read_sar_aircraft_report(nmea_ais_reader *r, nmea_ais_sar_aircraft_report *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 12, "alt", &raw)) return false; m->alt_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 10, "speed", &raw)) return false; m->speed_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "accuracy", &raw)) return false; m->accuracy = raw == 1; } { int64_t raw; if (!ais_take_signed(r, 28, "lon", &raw)) return false; m->lon_raw = (int32_t)raw; } { int64_t raw; if (!ais_take_signed(r, 27, "lat", &raw)) return false; m->lat_raw = (int32_t)raw; } { uint64_t raw; if (!ais_take(r, 12, "course", &raw)) return false; m->course_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "second", &raw)) return false; m->second_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 8, "regional", &raw)) return false; m->regional = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "dte", &raw)) return false; m->dte = raw == 1; } { uint64_t raw; if (!ais_take(r, 3, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "assigned", &raw)) return false; m->assigned = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "raim", &raw)) return false; m->raim = raw == 1; } { uint64_t raw; if (!ais_take(r, 20, "radio", &raw)) return false; m->radio = (uint32_t)raw; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 12, "alt", &raw)) return false;
+    m->alt_raw = (uint16_t)raw;
+    if (!ais_take(r, 10, "speed", &raw)) return false;
+    m->speed_raw = (uint16_t)raw;
+    if (!ais_take(r, 1, "accuracy", &raw)) return false;
+    m->accuracy = raw == 1;
+    if (!ais_take_signed(r, 28, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 27, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 12, "course", &raw)) return false;
+    m->course_raw = (uint16_t)raw;
+    if (!ais_take(r, 6, "second", &raw)) return false;
+    m->second_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "regional", &raw)) return false;
+    m->regional = (uint8_t)raw;
+    if (!ais_take(r, 1, "dte", &raw)) return false;
+    m->dte = raw == 1;
+    if (!ais_take(r, 3, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take(r, 1, "assigned", &raw)) return false;
+    m->assigned = raw == 1;
+    if (!ais_take(r, 1, "raim", &raw)) return false;
+    m->raim = raw == 1;
+    if (!ais_take(r, 20, "radio", &raw)) return false;
+    m->radio = (uint32_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_sar_aircraft_report(const nmea_ais_sar_aircraft_report *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->alt_raw, 12, "alt")) return false; if (!ais_put(w, m->speed_raw, 10, "speed")) return false; if (!ais_put(w, m->accuracy, 1, "accuracy")) return false; if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false; if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false; if (!ais_put(w, m->course_raw, 12, "course")) return false; if (!ais_put(w, m->second_raw, 6, "second")) return false; if (!ais_put(w, m->regional, 8, "regional")) return false; if (!ais_put(w, m->dte, 1, "dte")) return false; if (!ais_put(w, m->spare, 3, "spare")) return false; if (!ais_put(w, m->assigned, 1, "assigned")) return false; if (!ais_put(w, m->raim, 1, "raim")) return false; if (!ais_put(w, m->radio, 20, "radio")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_sar_aircraft_report(const nmea_ais_sar_aircraft_report *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_reading(j, "alt", (int64_t)m->alt_raw, 1.0, 0.0, false, ais_sar_aircraft_report_alt_specials, 1); ais_json_reading(j, "speed", (int64_t)m->speed_raw, 1.0, 0.0, false, ais_sar_aircraft_report_speed_specials, 1); ais_json_flag(j, "accuracy", m->accuracy); ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_sar_aircraft_report_lon_specials, 1); ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_sar_aircraft_report_lat_specials, 1); ais_json_reading(j, "course", (int64_t)m->course_raw, 10.0, 0.0, true, ais_sar_aircraft_report_course_specials, 1); ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_sar_aircraft_report_second_specials, 4); ais_json_int(j, "regional", (long long)m->regional); ais_json_flag(j, "dte", m->dte); ais_json_int(j, "spare", (long long)m->spare); ais_json_flag(j, "assigned", m->assigned); ais_json_flag(j, "raim", m->raim); ais_json_int(j, "radio", (long long)m->radio); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->alt_raw, 12, "alt")) return false;
+    if (!ais_put(w, m->speed_raw, 10, "speed")) return false;
+    if (!ais_put(w, m->accuracy, 1, "accuracy")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
+    if (!ais_put(w, m->course_raw, 12, "course")) return false;
+    if (!ais_put(w, m->second_raw, 6, "second")) return false;
+    if (!ais_put(w, m->regional, 8, "regional")) return false;
+    if (!ais_put(w, m->dte, 1, "dte")) return false;
+    if (!ais_put(w, m->spare, 3, "spare")) return false;
+    if (!ais_put(w, m->assigned, 1, "assigned")) return false;
+    if (!ais_put(w, m->raim, 1, "raim")) return false;
+    if (!ais_put(w, m->radio, 20, "radio")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_sar_aircraft_report(const nmea_ais_sar_aircraft_report *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_reading(j, "alt", (int64_t)m->alt_raw, 1.0, 0.0, false, ais_sar_aircraft_report_alt_specials, 1);
+    ais_json_reading(j, "speed", (int64_t)m->speed_raw, 1.0, 0.0, false, ais_sar_aircraft_report_speed_specials, 1);
+    ais_json_flag(j, "accuracy", m->accuracy);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_sar_aircraft_report_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_sar_aircraft_report_lat_specials, 1);
+    ais_json_reading(j, "course", (int64_t)m->course_raw, 10.0, 0.0, true, ais_sar_aircraft_report_course_specials, 1);
+    ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_sar_aircraft_report_second_specials, 4);
+    ais_json_int(j, "regional", (long long)m->regional);
+    ais_json_flag(j, "dte", m->dte);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_flag(j, "assigned", m->assigned);
+    ais_json_flag(j, "raim", m->raim);
+    ais_json_int(j, "radio", (long long)m->radio);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_single_slot_binary(nmea_ais_reader *r, nmea_ais_single_slot_binary *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 1, "addressed", &raw)) return false; m->addressed = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "structured", &raw)) return false; m->structured = raw == 1; } { uint64_t selector; if (!ais_peek(r, 38, 1, "addressed", &selector)) return false; if ((selector == 1u)) { { uint64_t raw; if (!ais_take(r, 30, "dest_mmsi", &raw)) return false; m->dest_mmsi = (uint32_t)raw; m->has_dest_mmsi = true; } } else if ((selector == 0u)) {  } } { uint64_t selector; if (!ais_peek(r, 39, 1, "structured", &selector)) return false; if ((selector == 1u)) { { uint64_t raw; if (!ais_take(r, 10, "dac", &raw)) return false; m->dac = (uint16_t)raw; m->has_dac = true; } { uint64_t raw; if (!ais_take(r, 6, "fid", &raw)) return false; m->fid = (uint8_t)raw; m->has_fid = true; } } else if ((selector == 0u)) {  } } if (!ais_take_bits(r, ais_remaining(r), "data", &m->data)) return false; m->has_data = true; m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    uint64_t selector;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 1, "addressed", &raw)) return false;
+    m->addressed = raw == 1;
+    if (!ais_take(r, 1, "structured", &raw)) return false;
+    m->structured = raw == 1;
+    if (!ais_peek(r, 38, 1, "addressed", &selector)) return false;
+    if (selector == 1u) {
+        if (!ais_take(r, 30, "dest_mmsi", &raw)) return false;
+        m->dest_mmsi = (uint32_t)raw;
+        m->has_dest_mmsi = true;
+    } else if (selector == 0u) {
+    }
+    if (!ais_peek(r, 39, 1, "structured", &selector)) return false;
+    if (selector == 1u) {
+        if (!ais_take(r, 10, "dac", &raw)) return false;
+        m->dac = (uint16_t)raw;
+        m->has_dac = true;
+        if (!ais_take(r, 6, "fid", &raw)) return false;
+        m->fid = (uint8_t)raw;
+        m->has_fid = true;
+    } else if (selector == 0u) {
+    }
+    if (!ais_take_bits(r, ais_remaining(r), "data", &m->data)) return false;
+    m->has_data = true;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_single_slot_binary(const nmea_ais_single_slot_binary *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->addressed, 1, "addressed")) return false; if (!ais_put(w, m->structured, 1, "structured")) return false; { uint64_t selector = (uint64_t)m->addressed; if ((selector == 1u)) { if (!m->has_dest_mmsi) goto done; if (!ais_put(w, m->dest_mmsi, 30, "dest_mmsi")) return false; } else if ((selector == 0u)) {  } } { uint64_t selector = (uint64_t)m->structured; if ((selector == 1u)) { if (!m->has_dac) goto done; if (!ais_put(w, m->dac, 10, "dac")) return false; if (!m->has_fid) goto done; if (!ais_put(w, m->fid, 6, "fid")) return false; } else if ((selector == 0u)) {  } } if (!m->has_data) goto done; if (!ais_put_bits(w, m->data, "data")) return false; done: if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_single_slot_binary(const nmea_ais_single_slot_binary *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_flag(j, "addressed", m->addressed); ais_json_flag(j, "structured", m->structured); if (m->has_dest_mmsi) { ais_json_int(j, "dest_mmsi", (long long)m->dest_mmsi); } if (m->has_dac) { ais_json_int(j, "dac", (long long)m->dac); } if (m->has_fid) { ais_json_int(j, "fid", (long long)m->fid); } if (m->has_data) { ais_json_bits(j, "data", m->data); } ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->addressed, 1, "addressed")) return false;
+    if (!ais_put(w, m->structured, 1, "structured")) return false;
+    {
+        uint64_t selector = (uint64_t)m->addressed;
+        if (selector == 1u) {
+            if (!m->has_dest_mmsi) goto done;
+            if (!ais_put(w, m->dest_mmsi, 30, "dest_mmsi")) return false;
+        } else if (selector == 0u) {
+        }
+    }
+    {
+        uint64_t selector = (uint64_t)m->structured;
+        if (selector == 1u) {
+            if (!m->has_dac) goto done;
+            if (!ais_put(w, m->dac, 10, "dac")) return false;
+            if (!m->has_fid) goto done;
+            if (!ais_put(w, m->fid, 6, "fid")) return false;
+        } else if (selector == 0u) {
+        }
+    }
+    if (!m->has_data) goto done;
+    if (!ais_put_bits(w, m->data, "data")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_single_slot_binary(const nmea_ais_single_slot_binary *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_flag(j, "addressed", m->addressed);
+    ais_json_flag(j, "structured", m->structured);
+    if (m->has_dest_mmsi) {
+        ais_json_int(j, "dest_mmsi", (long long)m->dest_mmsi);
+    }
+    if (m->has_dac) {
+        ais_json_int(j, "dac", (long long)m->dac);
+    }
+    if (m->has_fid) {
+        ais_json_int(j, "fid", (long long)m->fid);
+    }
+    if (m->has_data) {
+        ais_json_bits(j, "data", m->data);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static const nmea_ais_special ais_static_data_report_to_bow_specials[] = {{0, "not_available"}};
 static const nmea_ais_special ais_static_data_report_to_stern_specials[] = {{0, "not_available"}};
 static const nmea_ais_special ais_static_data_report_to_port_specials[] = {{0, "not_available"}};
 static const nmea_ais_special ais_static_data_report_to_starboard_specials[] = {{0, "not_available"}};
 static bool ais_read_static_data_report(nmea_ais_reader *r, nmea_ais_static_data_report *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "partno", &raw)) return false; m->partno = (uint8_t)raw; } { uint64_t selector; if (!ais_peek(r, 38, 2, "partno", &selector)) return false; if ((selector == 0u)) { if (!ais_take_bits(r, 120, "shipname", &m->shipname)) return false; m->has_shipname = true; if (ais_remaining(r) < 8) goto done; { uint64_t raw; if (!ais_take(r, 8, "spare", &raw)) return false; m->spare = (uint8_t)raw; m->has_spare = true; } } else if ((selector == 1u)) { { uint64_t raw; if (!ais_take(r, 8, "shiptype", &raw)) return false; m->shiptype_raw = (uint8_t)raw; m->has_shiptype_raw = true; } if (!ais_take_bits(r, 18, "vendorid", &m->vendorid)) return false; m->has_vendorid = true; { uint64_t raw; if (!ais_take(r, 4, "model", &raw)) return false; m->model = (uint8_t)raw; m->has_model = true; } { uint64_t raw; if (!ais_take(r, 20, "serial", &raw)) return false; m->serial = (uint32_t)raw; m->has_serial = true; } if (!ais_take_bits(r, 42, "callsign", &m->callsign)) return false; m->has_callsign = true; { uint64_t selector; if (!ais_peek(r, 8, 30, "mmsi", &selector)) return false; if (((selector >= 980000000u && selector <= 989999999u))) { { uint64_t raw; if (!ais_take(r, 30, "mothership_mmsi", &raw)) return false; m->mothership_mmsi = (uint32_t)raw; m->has_mothership_mmsi = true; } } else { { uint64_t raw; if (!ais_take(r, 9, "to_bow", &raw)) return false; m->to_bow_raw = (uint16_t)raw; m->has_to_bow_raw = true; } { uint64_t raw; if (!ais_take(r, 9, "to_stern", &raw)) return false; m->to_stern_raw = (uint16_t)raw; m->has_to_stern_raw = true; } { uint64_t raw; if (!ais_take(r, 6, "to_port", &raw)) return false; m->to_port_raw = (uint8_t)raw; m->has_to_port_raw = true; } { uint64_t raw; if (!ais_take(r, 6, "to_starboard", &raw)) return false; m->to_starboard_raw = (uint8_t)raw; m->has_to_starboard_raw = true; } } } { uint64_t raw; if (!ais_take(r, 4, "epfd", &raw)) return false; m->epfd_raw = (uint8_t)raw; m->has_epfd_raw = true; } { uint64_t raw; if (!ais_take(r, 2, "spare2", &raw)) return false; m->spare2 = (uint8_t)raw; m->has_spare2 = true; } } else { if (!ais_take_bits(r, ais_remaining(r), "other_part", &m->other_part)) return false; m->has_other_part = true; } } done: m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    uint64_t selector;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "partno", &raw)) return false;
+    m->partno = (uint8_t)raw;
+    if (!ais_peek(r, 38, 2, "partno", &selector)) return false;
+    if (selector == 0u) {
+        if (!ais_take_bits(r, 120, "shipname", &m->shipname)) return false;
+        m->has_shipname = true;
+        if (ais_remaining(r) < 8) goto done;
+        if (!ais_take(r, 8, "spare", &raw)) return false;
+        m->spare = (uint8_t)raw;
+        m->has_spare = true;
+    } else if (selector == 1u) {
+        if (!ais_take(r, 8, "shiptype", &raw)) return false;
+        m->shiptype_raw = (uint8_t)raw;
+        m->has_shiptype_raw = true;
+        if (!ais_take_bits(r, 18, "vendorid", &m->vendorid)) return false;
+        m->has_vendorid = true;
+        if (!ais_take(r, 4, "model", &raw)) return false;
+        m->model = (uint8_t)raw;
+        m->has_model = true;
+        if (!ais_take(r, 20, "serial", &raw)) return false;
+        m->serial = (uint32_t)raw;
+        m->has_serial = true;
+        if (!ais_take_bits(r, 42, "callsign", &m->callsign)) return false;
+        m->has_callsign = true;
+        if (!ais_peek(r, 8, 30, "mmsi", &selector)) return false;
+        if ((selector >= 980000000u && selector <= 989999999u)) {
+            if (!ais_take(r, 30, "mothership_mmsi", &raw)) return false;
+            m->mothership_mmsi = (uint32_t)raw;
+            m->has_mothership_mmsi = true;
+        } else {
+            if (!ais_take(r, 9, "to_bow", &raw)) return false;
+            m->to_bow_raw = (uint16_t)raw;
+            m->has_to_bow_raw = true;
+            if (!ais_take(r, 9, "to_stern", &raw)) return false;
+            m->to_stern_raw = (uint16_t)raw;
+            m->has_to_stern_raw = true;
+            if (!ais_take(r, 6, "to_port", &raw)) return false;
+            m->to_port_raw = (uint8_t)raw;
+            m->has_to_port_raw = true;
+            if (!ais_take(r, 6, "to_starboard", &raw)) return false;
+            m->to_starboard_raw = (uint8_t)raw;
+            m->has_to_starboard_raw = true;
+        }
+        if (!ais_take(r, 4, "epfd", &raw)) return false;
+        m->epfd_raw = (uint8_t)raw;
+        m->has_epfd_raw = true;
+        if (!ais_take(r, 2, "spare2", &raw)) return false;
+        m->spare2 = (uint8_t)raw;
+        m->has_spare2 = true;
+    } else {
+        if (!ais_take_bits(r, ais_remaining(r), "other_part", &m->other_part)) return false;
+        m->has_other_part = true;
+    }
+    done: m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_static_data_report(const nmea_ais_static_data_report *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->partno, 2, "partno")) return false; { uint64_t selector = (uint64_t)m->partno; if ((selector == 0u)) { if (!m->has_shipname) goto done; if (!ais_put_bits(w, m->shipname, "shipname")) return false; if (!m->has_spare) goto done; if (!ais_put(w, m->spare, 8, "spare")) return false; } else if ((selector == 1u)) { if (!m->has_shiptype_raw) goto done; if (!ais_put(w, m->shiptype_raw, 8, "shiptype")) return false; if (!m->has_vendorid) goto done; if (!ais_put_bits(w, m->vendorid, "vendorid")) return false; if (!m->has_model) goto done; if (!ais_put(w, m->model, 4, "model")) return false; if (!m->has_serial) goto done; if (!ais_put(w, m->serial, 20, "serial")) return false; if (!m->has_callsign) goto done; if (!ais_put_bits(w, m->callsign, "callsign")) return false; { uint64_t selector = (uint64_t)m->mmsi; if (((selector >= 980000000u && selector <= 989999999u))) { if (!m->has_mothership_mmsi) goto done; if (!ais_put(w, m->mothership_mmsi, 30, "mothership_mmsi")) return false; } else { if (!m->has_to_bow_raw) goto done; if (!ais_put(w, m->to_bow_raw, 9, "to_bow")) return false; if (!m->has_to_stern_raw) goto done; if (!ais_put(w, m->to_stern_raw, 9, "to_stern")) return false; if (!m->has_to_port_raw) goto done; if (!ais_put(w, m->to_port_raw, 6, "to_port")) return false; if (!m->has_to_starboard_raw) goto done; if (!ais_put(w, m->to_starboard_raw, 6, "to_starboard")) return false; } } if (!m->has_epfd_raw) goto done; if (!ais_put(w, m->epfd_raw, 4, "epfd")) return false; if (!m->has_spare2) goto done; if (!ais_put(w, m->spare2, 2, "spare2")) return false; } else { if (!m->has_other_part) goto done; if (!ais_put_bits(w, m->other_part, "other_part")) return false; } } done: if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_static_data_report(const nmea_ais_static_data_report *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "partno", (long long)m->partno); if (m->has_shipname) { ais_json_text(j, "shipname", m->shipname); } if (m->has_spare) { ais_json_int(j, "spare", (long long)m->spare); } if (m->has_shiptype_raw) { ais_json_code(j, "shiptype", ais_ais_ship_type_id(m->shiptype_raw), m->shiptype_raw); } if (m->has_vendorid) { ais_json_text(j, "vendorid", m->vendorid); } if (m->has_model) { ais_json_int(j, "model", (long long)m->model); } if (m->has_serial) { ais_json_int(j, "serial", (long long)m->serial); } if (m->has_callsign) { ais_json_text(j, "callsign", m->callsign); } if (m->has_mothership_mmsi) { ais_json_int(j, "mothership_mmsi", (long long)m->mothership_mmsi); } if (m->has_to_bow_raw) { ais_json_reading(j, "to_bow", (int64_t)m->to_bow_raw, 1.0, 0.0, false, ais_static_data_report_to_bow_specials, 1); } if (m->has_to_stern_raw) { ais_json_reading(j, "to_stern", (int64_t)m->to_stern_raw, 1.0, 0.0, false, ais_static_data_report_to_stern_specials, 1); } if (m->has_to_port_raw) { ais_json_reading(j, "to_port", (int64_t)m->to_port_raw, 1.0, 0.0, false, ais_static_data_report_to_port_specials, 1); } if (m->has_to_starboard_raw) { ais_json_reading(j, "to_starboard", (int64_t)m->to_starboard_raw, 1.0, 0.0, false, ais_static_data_report_to_starboard_specials, 1); } if (m->has_epfd_raw) { ais_json_code(j, "epfd", ais_ais_epfd_id(m->epfd_raw), m->epfd_raw); } if (m->has_spare2) { ais_json_int(j, "spare2", (long long)m->spare2); } if (m->has_other_part) { ais_json_bits(j, "other_part", m->other_part); } ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->partno, 2, "partno")) return false;
+    {
+        uint64_t selector = (uint64_t)m->partno;
+        if (selector == 0u) {
+            if (!m->has_shipname) goto done;
+            if (!ais_put_bits(w, m->shipname, "shipname")) return false;
+            if (!m->has_spare) goto done;
+            if (!ais_put(w, m->spare, 8, "spare")) return false;
+        } else if (selector == 1u) {
+            if (!m->has_shiptype_raw) goto done;
+            if (!ais_put(w, m->shiptype_raw, 8, "shiptype")) return false;
+            if (!m->has_vendorid) goto done;
+            if (!ais_put_bits(w, m->vendorid, "vendorid")) return false;
+            if (!m->has_model) goto done;
+            if (!ais_put(w, m->model, 4, "model")) return false;
+            if (!m->has_serial) goto done;
+            if (!ais_put(w, m->serial, 20, "serial")) return false;
+            if (!m->has_callsign) goto done;
+            if (!ais_put_bits(w, m->callsign, "callsign")) return false;
+            {
+                uint64_t selector = (uint64_t)m->mmsi;
+                if ((selector >= 980000000u && selector <= 989999999u)) {
+                    if (!m->has_mothership_mmsi) goto done;
+                    if (!ais_put(w, m->mothership_mmsi, 30, "mothership_mmsi")) return false;
+                } else {
+                    if (!m->has_to_bow_raw) goto done;
+                    if (!ais_put(w, m->to_bow_raw, 9, "to_bow")) return false;
+                    if (!m->has_to_stern_raw) goto done;
+                    if (!ais_put(w, m->to_stern_raw, 9, "to_stern")) return false;
+                    if (!m->has_to_port_raw) goto done;
+                    if (!ais_put(w, m->to_port_raw, 6, "to_port")) return false;
+                    if (!m->has_to_starboard_raw) goto done;
+                    if (!ais_put(w, m->to_starboard_raw, 6, "to_starboard")) return false;
+                }
+            }
+            if (!m->has_epfd_raw) goto done;
+            if (!ais_put(w, m->epfd_raw, 4, "epfd")) return false;
+            if (!m->has_spare2) goto done;
+            if (!ais_put(w, m->spare2, 2, "spare2")) return false;
+        } else {
+            if (!m->has_other_part) goto done;
+            if (!ais_put_bits(w, m->other_part, "other_part")) return false;
+        }
+    }
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_static_data_report(const nmea_ais_static_data_report *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "partno", (long long)m->partno);
+    if (m->has_shipname) {
+        ais_json_text(j, "shipname", m->shipname);
+    }
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    if (m->has_shiptype_raw) {
+        ais_json_code(j, "shiptype", ais_ais_ship_type_id(m->shiptype_raw), m->shiptype_raw);
+    }
+    if (m->has_vendorid) {
+        ais_json_text(j, "vendorid", m->vendorid);
+    }
+    if (m->has_model) {
+        ais_json_int(j, "model", (long long)m->model);
+    }
+    if (m->has_serial) {
+        ais_json_int(j, "serial", (long long)m->serial);
+    }
+    if (m->has_callsign) {
+        ais_json_text(j, "callsign", m->callsign);
+    }
+    if (m->has_mothership_mmsi) {
+        ais_json_int(j, "mothership_mmsi", (long long)m->mothership_mmsi);
+    }
+    if (m->has_to_bow_raw) {
+        ais_json_reading(j, "to_bow", (int64_t)m->to_bow_raw, 1.0, 0.0, false, ais_static_data_report_to_bow_specials, 1);
+    }
+    if (m->has_to_stern_raw) {
+        ais_json_reading(j, "to_stern", (int64_t)m->to_stern_raw, 1.0, 0.0, false, ais_static_data_report_to_stern_specials, 1);
+    }
+    if (m->has_to_port_raw) {
+        ais_json_reading(j, "to_port", (int64_t)m->to_port_raw, 1.0, 0.0, false, ais_static_data_report_to_port_specials, 1);
+    }
+    if (m->has_to_starboard_raw) {
+        ais_json_reading(j, "to_starboard", (int64_t)m->to_starboard_raw, 1.0, 0.0, false, ais_static_data_report_to_starboard_specials, 1);
+    }
+    if (m->has_epfd_raw) {
+        ais_json_code(j, "epfd", ais_ais_epfd_id(m->epfd_raw), m->epfd_raw);
+    }
+    if (m->has_spare2) {
+        ais_json_int(j, "spare2", (long long)m->spare2);
+    }
+    if (m->has_other_part) {
+        ais_json_bits(j, "other_part", m->other_part);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static const nmea_ais_special ais_static_voyage_data_imo_specials[] = {{0, "not_available"}};
 static const nmea_ais_special ais_static_voyage_data_to_bow_specials[] = {{0, "not_available"}};
@@ -904,16 +2778,145 @@ static const nmea_ais_special ais_static_voyage_data_eta_hour_specials[] = {{24,
 static const nmea_ais_special ais_static_voyage_data_eta_minute_specials[] = {{60, "not_available"}};
 static const nmea_ais_special ais_static_voyage_data_draught_specials[] = {{0, "not_available"}};
 static bool ais_read_static_voyage_data(nmea_ais_reader *r, nmea_ais_static_voyage_data *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "ais_version", &raw)) return false; m->ais_version = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "imo", &raw)) return false; m->imo_raw = (uint32_t)raw; } if (!ais_take_bits(r, 42, "callsign", &m->callsign)) return false; if (!ais_take_bits(r, 120, "shipname", &m->shipname)) return false; { uint64_t raw; if (!ais_take(r, 8, "shiptype", &raw)) return false; m->shiptype_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "to_bow", &raw)) return false; m->to_bow_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 9, "to_stern", &raw)) return false; m->to_stern_raw = (uint16_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "to_port", &raw)) return false; m->to_port_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "to_starboard", &raw)) return false; m->to_starboard_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "epfd", &raw)) return false; m->epfd_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 4, "eta_month", &raw)) return false; m->eta_month_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 5, "eta_day", &raw)) return false; m->eta_day_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 5, "eta_hour", &raw)) return false; m->eta_hour_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 6, "eta_minute", &raw)) return false; m->eta_minute_raw = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 8, "draught", &raw)) return false; m->draught_raw = (uint8_t)raw; } if (!ais_take_bits(r, 120, "destination", &m->destination)) return false; { uint64_t raw; if (!ais_take(r, 1, "dte", &raw)) return false; m->dte = raw == 1; } { uint64_t raw; if (!ais_take(r, 1, "spare", &raw)) return false; m->spare = (uint8_t)raw; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "ais_version", &raw)) return false;
+    m->ais_version = (uint8_t)raw;
+    if (!ais_take(r, 30, "imo", &raw)) return false;
+    m->imo_raw = (uint32_t)raw;
+    if (!ais_take_bits(r, 42, "callsign", &m->callsign)) return false;
+    if (!ais_take_bits(r, 120, "shipname", &m->shipname)) return false;
+    if (!ais_take(r, 8, "shiptype", &raw)) return false;
+    m->shiptype_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "to_bow", &raw)) return false;
+    m->to_bow_raw = (uint16_t)raw;
+    if (!ais_take(r, 9, "to_stern", &raw)) return false;
+    m->to_stern_raw = (uint16_t)raw;
+    if (!ais_take(r, 6, "to_port", &raw)) return false;
+    m->to_port_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "to_starboard", &raw)) return false;
+    m->to_starboard_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "epfd", &raw)) return false;
+    m->epfd_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "eta_month", &raw)) return false;
+    m->eta_month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "eta_day", &raw)) return false;
+    m->eta_day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "eta_hour", &raw)) return false;
+    m->eta_hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "eta_minute", &raw)) return false;
+    m->eta_minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "draught", &raw)) return false;
+    m->draught_raw = (uint8_t)raw;
+    if (!ais_take_bits(r, 120, "destination", &m->destination)) return false;
+    if (!ais_take(r, 1, "dte", &raw)) return false;
+    m->dte = raw == 1;
+    if (!ais_take(r, 1, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_static_voyage_data(const nmea_ais_static_voyage_data *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->ais_version, 2, "ais_version")) return false; if (!ais_put(w, m->imo_raw, 30, "imo")) return false; if (!ais_put_bits(w, m->callsign, "callsign")) return false; if (!ais_put_bits(w, m->shipname, "shipname")) return false; if (!ais_put(w, m->shiptype_raw, 8, "shiptype")) return false; if (!ais_put(w, m->to_bow_raw, 9, "to_bow")) return false; if (!ais_put(w, m->to_stern_raw, 9, "to_stern")) return false; if (!ais_put(w, m->to_port_raw, 6, "to_port")) return false; if (!ais_put(w, m->to_starboard_raw, 6, "to_starboard")) return false; if (!ais_put(w, m->epfd_raw, 4, "epfd")) return false; if (!ais_put(w, m->eta_month_raw, 4, "eta_month")) return false; if (!ais_put(w, m->eta_day_raw, 5, "eta_day")) return false; if (!ais_put(w, m->eta_hour_raw, 5, "eta_hour")) return false; if (!ais_put(w, m->eta_minute_raw, 6, "eta_minute")) return false; if (!ais_put(w, m->draught_raw, 8, "draught")) return false; if (!ais_put_bits(w, m->destination, "destination")) return false; if (!ais_put(w, m->dte, 1, "dte")) return false; if (!ais_put(w, m->spare, 1, "spare")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_static_voyage_data(const nmea_ais_static_voyage_data *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "ais_version", (long long)m->ais_version); ais_json_reading(j, "imo", (int64_t)m->imo_raw, 1.0, 0.0, false, ais_static_voyage_data_imo_specials, 1); ais_json_text(j, "callsign", m->callsign); ais_json_text(j, "shipname", m->shipname); ais_json_code(j, "shiptype", ais_ais_ship_type_id(m->shiptype_raw), m->shiptype_raw); ais_json_reading(j, "to_bow", (int64_t)m->to_bow_raw, 1.0, 0.0, false, ais_static_voyage_data_to_bow_specials, 1); ais_json_reading(j, "to_stern", (int64_t)m->to_stern_raw, 1.0, 0.0, false, ais_static_voyage_data_to_stern_specials, 1); ais_json_reading(j, "to_port", (int64_t)m->to_port_raw, 1.0, 0.0, false, ais_static_voyage_data_to_port_specials, 1); ais_json_reading(j, "to_starboard", (int64_t)m->to_starboard_raw, 1.0, 0.0, false, ais_static_voyage_data_to_starboard_specials, 1); ais_json_code(j, "epfd", ais_ais_epfd_id(m->epfd_raw), m->epfd_raw); ais_json_reading(j, "eta_month", (int64_t)m->eta_month_raw, 1.0, 0.0, false, ais_static_voyage_data_eta_month_specials, 1); ais_json_reading(j, "eta_day", (int64_t)m->eta_day_raw, 1.0, 0.0, false, ais_static_voyage_data_eta_day_specials, 1); ais_json_reading(j, "eta_hour", (int64_t)m->eta_hour_raw, 1.0, 0.0, false, ais_static_voyage_data_eta_hour_specials, 1); ais_json_reading(j, "eta_minute", (int64_t)m->eta_minute_raw, 1.0, 0.0, false, ais_static_voyage_data_eta_minute_specials, 1); ais_json_reading(j, "draught", (int64_t)m->draught_raw, 10.0, 0.0, true, ais_static_voyage_data_draught_specials, 1); ais_json_text(j, "destination", m->destination); ais_json_flag(j, "dte", m->dte); ais_json_int(j, "spare", (long long)m->spare); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->ais_version, 2, "ais_version")) return false;
+    if (!ais_put(w, m->imo_raw, 30, "imo")) return false;
+    if (!ais_put_bits(w, m->callsign, "callsign")) return false;
+    if (!ais_put_bits(w, m->shipname, "shipname")) return false;
+    if (!ais_put(w, m->shiptype_raw, 8, "shiptype")) return false;
+    if (!ais_put(w, m->to_bow_raw, 9, "to_bow")) return false;
+    if (!ais_put(w, m->to_stern_raw, 9, "to_stern")) return false;
+    if (!ais_put(w, m->to_port_raw, 6, "to_port")) return false;
+    if (!ais_put(w, m->to_starboard_raw, 6, "to_starboard")) return false;
+    if (!ais_put(w, m->epfd_raw, 4, "epfd")) return false;
+    if (!ais_put(w, m->eta_month_raw, 4, "eta_month")) return false;
+    if (!ais_put(w, m->eta_day_raw, 5, "eta_day")) return false;
+    if (!ais_put(w, m->eta_hour_raw, 5, "eta_hour")) return false;
+    if (!ais_put(w, m->eta_minute_raw, 6, "eta_minute")) return false;
+    if (!ais_put(w, m->draught_raw, 8, "draught")) return false;
+    if (!ais_put_bits(w, m->destination, "destination")) return false;
+    if (!ais_put(w, m->dte, 1, "dte")) return false;
+    if (!ais_put(w, m->spare, 1, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_static_voyage_data(const nmea_ais_static_voyage_data *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "ais_version", (long long)m->ais_version);
+    ais_json_reading(j, "imo", (int64_t)m->imo_raw, 1.0, 0.0, false, ais_static_voyage_data_imo_specials, 1);
+    ais_json_text(j, "callsign", m->callsign);
+    ais_json_text(j, "shipname", m->shipname);
+    ais_json_code(j, "shiptype", ais_ais_ship_type_id(m->shiptype_raw), m->shiptype_raw);
+    ais_json_reading(j, "to_bow", (int64_t)m->to_bow_raw, 1.0, 0.0, false, ais_static_voyage_data_to_bow_specials, 1);
+    ais_json_reading(j, "to_stern", (int64_t)m->to_stern_raw, 1.0, 0.0, false, ais_static_voyage_data_to_stern_specials, 1);
+    ais_json_reading(j, "to_port", (int64_t)m->to_port_raw, 1.0, 0.0, false, ais_static_voyage_data_to_port_specials, 1);
+    ais_json_reading(j, "to_starboard", (int64_t)m->to_starboard_raw, 1.0, 0.0, false, ais_static_voyage_data_to_starboard_specials, 1);
+    ais_json_code(j, "epfd", ais_ais_epfd_id(m->epfd_raw), m->epfd_raw);
+    ais_json_reading(j, "eta_month", (int64_t)m->eta_month_raw, 1.0, 0.0, false, ais_static_voyage_data_eta_month_specials, 1);
+    ais_json_reading(j, "eta_day", (int64_t)m->eta_day_raw, 1.0, 0.0, false, ais_static_voyage_data_eta_day_specials, 1);
+    ais_json_reading(j, "eta_hour", (int64_t)m->eta_hour_raw, 1.0, 0.0, false, ais_static_voyage_data_eta_hour_specials, 1);
+    ais_json_reading(j, "eta_minute", (int64_t)m->eta_minute_raw, 1.0, 0.0, false, ais_static_voyage_data_eta_minute_specials, 1);
+    ais_json_reading(j, "draught", (int64_t)m->draught_raw, 10.0, 0.0, true, ais_static_voyage_data_draught_specials, 1);
+    ais_json_text(j, "destination", m->destination);
+    ais_json_flag(j, "dte", m->dte);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_utc_inquiry(nmea_ais_reader *r, nmea_ais_utc_inquiry *m)
-{ { uint64_t raw; if (!ais_take(r, 6, "message_type", &raw)) return false; m->message_type = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "repeat", &raw)) return false; m->repeat = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "mmsi", &raw)) return false; m->mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "spare", &raw)) return false; m->spare = (uint8_t)raw; } { uint64_t raw; if (!ais_take(r, 30, "dest_mmsi", &raw)) return false; m->dest_mmsi = (uint32_t)raw; } { uint64_t raw; if (!ais_take(r, 2, "spare2", &raw)) return false; m->spare2 = (uint8_t)raw; } m->trailing = ais_rest(r); return true; }
+{
+    uint64_t raw;
+    if (!ais_take(r, 6, "message_type", &raw)) return false;
+    m->message_type = (uint8_t)raw;
+    if (!ais_take(r, 2, "repeat", &raw)) return false;
+    m->repeat = (uint8_t)raw;
+    if (!ais_take(r, 30, "mmsi", &raw)) return false;
+    m->mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take(r, 30, "dest_mmsi", &raw)) return false;
+    m->dest_mmsi = (uint32_t)raw;
+    if (!ais_take(r, 2, "spare2", &raw)) return false;
+    m->spare2 = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
 static bool ais_write_utc_inquiry(const nmea_ais_utc_inquiry *m, nmea_ais_writer *w)
-{ if (!ais_put(w, m->message_type, 6, "message_type")) return false; if (!ais_put(w, m->repeat, 2, "repeat")) return false; if (!ais_put(w, m->mmsi, 30, "mmsi")) return false; if (!ais_put(w, m->spare, 2, "spare")) return false; if (!ais_put(w, m->dest_mmsi, 30, "dest_mmsi")) return false; if (!ais_put(w, m->spare2, 2, "spare2")) return false; if (!ais_put_bits(w, m->trailing, "trailing")) return false; return true; }
-static void ais_json_utc_inquiry(const nmea_ais_utc_inquiry *m, nmea_ais_json_out *j) { ais_json_int(j, "message_type", (long long)m->message_type); ais_json_int(j, "repeat", (long long)m->repeat); ais_json_int(j, "mmsi", (long long)m->mmsi); ais_json_int(j, "spare", (long long)m->spare); ais_json_int(j, "dest_mmsi", (long long)m->dest_mmsi); ais_json_int(j, "spare2", (long long)m->spare2); ais_json_bits(j, "trailing", m->trailing); }
+{
+    if (!ais_put(w, m->message_type, 6, "message_type")) return false;
+    if (!ais_put(w, m->repeat, 2, "repeat")) return false;
+    if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
+    if (!ais_put(w, m->spare, 2, "spare")) return false;
+    if (!ais_put(w, m->dest_mmsi, 30, "dest_mmsi")) return false;
+    if (!ais_put(w, m->spare2, 2, "spare2")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_utc_inquiry(const nmea_ais_utc_inquiry *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "message_type", (long long)m->message_type);
+    ais_json_int(j, "repeat", (long long)m->repeat);
+    ais_json_int(j, "mmsi", (long long)m->mmsi);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_int(j, "dest_mmsi", (long long)m->dest_mmsi);
+    ais_json_int(j, "spare2", (long long)m->spare2);
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 /* The application of `data` sent as DAC `dac`, FI `fid` in a message of type `message_type`:
    false when the spec describes none or its layout does not read the bits. */
