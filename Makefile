@@ -170,7 +170,7 @@ build/c/subset/c/nmea.c: $(C_PAIR) $(STAMP)
 
 build/c/test_ais: generated/c/nmea_ais.c generated/c/nmea_ais.h runtime/c/test_ais.c
 	@mkdir -p build/c
-	$(CC) $(CFLAGS) -O0 -I generated/c -o $@ generated/c/nmea_ais.c runtime/c/test_ais.c -lm
+	$(CC) $(CFLAGS) -O0 -I generated/c -o $@ generated/c/nmea_ais.c runtime/c/test_ais.c
 
 build/c/test_stream: build/c/subset/c/nmea.c tests/c/test_stream.c
 	$(CC) $(SANITIZE) -I build/c/subset/c -o $@ $^

@@ -258,10 +258,14 @@ def record_code(record: _Record, kind: str) -> tuple[str, str]:
     return typedef, code
 
 
+def carries_ais(spec: Spec) -> bool:
+    """Whether the C pair holds a sentence that encapsulates AIS (VDM, VDO), and so the AIS pair
+    beside it: a `--only` subset without them has none of it."""
+    return bool(spec.payloads) and any((s.encapsulates or {}).get("protocol") == "ais" for s in spec.sentences)
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    """The pair when the C pair holds a sentence that encapsulates AIS (VDM, VDO): a `--only`
-    subset without them has none of it."""
-    if not spec.payloads or not any((s.encapsulates or {}).get("protocol") == "ais" for s in spec.sentences):
+    if not carries_ais(spec):
         return {}
     typedefs: list[str] = []
     app_typedefs: list[str] = []

@@ -12,14 +12,13 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/meteo_hydro.yaml (digest 0e9be211ad3d2a25)
+//   spec/ais/applications/meteo_hydro.yaml (digest f1dbed7aa0a6fb56)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
 
 /* AIS payloads: armoring, the bit reader and writer, text and JSON (see ais.h). */
 
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

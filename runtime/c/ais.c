@@ -1,6 +1,5 @@
 /* AIS payloads: armoring, the bit reader and writer, text and JSON (see ais.h). */
 
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
