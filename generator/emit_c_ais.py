@@ -13,6 +13,7 @@ import jinja2
 
 from .emit import RUNTIME, header
 from .emit_rust_ais import member_name
+from .emit_python_ais import title as title_of
 from .model import Payload, PayloadChoice, PayloadField, PayloadGroup, Spec
 from .reference_ais import after
 
@@ -220,7 +221,7 @@ def c_layout(code: str, indent: int = 0) -> str:
     return "\n".join(lines)
 
 
-def record_code(record: _Record, kind: str) -> tuple[str, str]:
+def record_code(record: _Record, kind: str, doc: str) -> tuple[str, str]:
     """The struct (for the header) and the functions of a record."""
     struct = struct_name(record.name)
     members = list(record.members)
@@ -230,7 +231,7 @@ def record_code(record: _Record, kind: str) -> tuple[str, str]:
         members.append("uint8_t padding; /* the fill bits' values, as sent */")
         if record.dispatches:
             members += ["bool has_application;", "nmea_ais_application application;"]
-    typedef = "typedef struct {\n    " + "\n    ".join(members) + f"\n}} {struct};\n"
+    typedef = f"/* {doc} */\n" + "typedef struct {\n    " + "\n    ".join(members) + f"\n}} {struct};\n"
     done = " done:" if record.optional else ""
     reads = " ".join(record.read) + done + (" m->trailing = ais_rest(r);" if kind != "entry" else "")
     writes = " ".join(record.write) + (" done:" if record.uncertain else "") + \
@@ -279,10 +280,11 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             dispatching.append(payload)
         certain[payload.id] = record.certain
         for entry in record.entries:
-            t, c = record_code(entry, "entry")
+            t, c = record_code(entry, "entry", f"One entry of {entry.name}.")
             (app_typedefs if payload.application else typedefs).append(t)
             functions.append(c)
-        t, c = record_code(record, kind)
+        title = title_of(payload)
+        t, c = record_code(record, kind, title)
         (app_typedefs if payload.application else typedefs).append(t)
         functions.append(c)
     enums = sorted({f.enum.id: f.enum for p in [*spec.payloads, *spec.applications] for f in p.fields if f.enum}.items())

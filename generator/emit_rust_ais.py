@@ -16,6 +16,7 @@ import jinja2
 
 from .emit import header
 from .emit_rust import rust_str, rustfmt
+from .emit_python_ais import title as title_of
 from .model import Payload, PayloadChoice, PayloadField, PayloadGroup, Spec, camel
 
 from .reference_ais import after
@@ -299,9 +300,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         record = _Record(payload.camel, payload.items, bool(payload.applications))
         for entry in record.entries:
             blocks.append(record_code(entry, "entry", f"/// One entry of {entry.name}."))
-        title = f"/// {payload.name}: " + (f"application DAC {payload.application[0]} FI {payload.application[1]}."
-                                           if payload.application else
-                                           f"AIS message type {', '.join(map(str, payload.types))}.")
+        title = f"/// {title_of(payload)}"
         blocks.append(record_code(record, kind, title))
         if record.dispatches:
             reads[payload.id] = application_read(payload, record)

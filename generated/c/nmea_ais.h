@@ -94,6 +94,7 @@ typedef struct {
     bool empty;
 } nmea_ais_json_out;
 
+/* Meteorological and hydrographic data: AIS application DAC 1 FI 31 (in type 8). */
 typedef struct {
     int32_t lon_raw; /* Longitude [degrees] */
     int32_t lat_raw; /* Latitude [degrees] */
@@ -150,6 +151,7 @@ typedef struct {
     } as;
 } nmea_ais_application;
 
+/* Binary addressed message: AIS message type 6. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -165,6 +167,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_addressed_binary;
 
+/* Addressed safety related message: AIS message type 12. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -178,6 +181,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_addressed_safety;
 
+/* Aid-to-navigation report: AIS message type 21. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -204,6 +208,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_aid_to_navigation;
 
+/* Assigned mode command: AIS message type 16. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -222,6 +227,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_assignment_command;
 
+/* Base station report, UTC and date response: AIS message types 4, 11. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -243,11 +249,13 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_base_station_report;
 
+/* One entry of binary_acknowledge_ack. */
 typedef struct {
     uint32_t mmsi; /* Destination MMSI */
     uint8_t seqno; /* Sequence number */
 } nmea_ais_binary_acknowledge_ack;
 
+/* Binary acknowledge, safety related acknowledge: AIS message types 7, 13. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -259,6 +267,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_binary_acknowledge;
 
+/* Binary broadcast message: AIS message type 8. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -273,6 +282,7 @@ typedef struct {
     nmea_ais_application application;
 } nmea_ais_broadcast_binary;
 
+/* Channel management: AIS message type 22. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -312,6 +322,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_channel_management;
 
+/* Extended Class B equipment position report: AIS message type 19. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -340,6 +351,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_class_b_extended;
 
+/* Standard Class B equipment position report: AIS message type 18. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -365,6 +377,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_class_b_position;
 
+/* One entry of data_link_management_reservation. */
 typedef struct {
     uint16_t offset; /* Offset number */
     uint8_t number; /* Number of slots */
@@ -372,6 +385,7 @@ typedef struct {
     uint16_t increment; /* Increment */
 } nmea_ais_data_link_management_reservation;
 
+/* Data link management message: AIS message type 20. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -383,6 +397,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_data_link_management;
 
+/* GNSS broadcast binary message: AIS message type 17. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -396,6 +411,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_dgnss_broadcast;
 
+/* Group assignment command: AIS message type 23. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -416,6 +432,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_group_assignment;
 
+/* Interrogation: AIS message type 15. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -444,6 +461,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_interrogation;
 
+/* Position report for long-range applications: AIS message type 27. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -461,6 +479,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_long_range_broadcast;
 
+/* Multiple slot binary message with communication state: AIS message type 26. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -481,6 +500,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_multi_slot_binary;
 
+/* Position report (Class A): AIS message types 1, 2, 3. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -502,6 +522,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_position_report;
 
+/* Safety related broadcast message: AIS message type 14. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -512,6 +533,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_safety_broadcast;
 
+/* Standard search and rescue aircraft position report: AIS message type 9. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -533,6 +555,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_sar_aircraft_report;
 
+/* Single slot binary message: AIS message type 25. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -551,6 +574,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_single_slot_binary;
 
+/* Static data report: AIS message type 24. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -590,6 +614,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_static_data_report;
 
+/* Static and voyage related data: AIS message type 5. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */
@@ -616,6 +641,7 @@ typedef struct {
     uint8_t padding; /* the fill bits' values, as sent */
 } nmea_ais_static_voyage_data;
 
+/* UTC and date inquiry: AIS message type 10. */
 typedef struct {
     uint8_t message_type; /* Message type */
     uint8_t repeat; /* Repeat indicator */

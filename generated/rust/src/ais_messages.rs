@@ -467,7 +467,7 @@ impl<'a> AssignmentCommand<'a> {
     }
 }
 
-/// Base station report, UTC and date response: AIS message type 4, 11.
+/// Base station report, UTC and date response: AIS message types 4, 11.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct BaseStationReport<'a> {
     /// Message type.
@@ -651,7 +651,7 @@ impl BinaryAcknowledgeAck {
     }
 }
 
-/// Binary acknowledge, safety related acknowledge: AIS message type 7, 13.
+/// Binary acknowledge, safety related acknowledge: AIS message types 7, 13.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct BinaryAcknowledge<'a> {
     /// Message type.
@@ -2145,7 +2145,7 @@ impl<'a> MultiSlotBinary<'a> {
     }
 }
 
-/// Position report (Class A): AIS message type 1, 2, 3.
+/// Position report (Class A): AIS message types 1, 2, 3.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PositionReport<'a> {
     /// Message type.
@@ -3137,7 +3137,7 @@ impl<'a> UtcInquiry<'a> {
     }
 }
 
-/// Meteorological and hydrographic data: application DAC 1 FI 31.
+/// Meteorological and hydrographic data: AIS application DAC 1 FI 31 (in type 8).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct MeteoHydro<'a> {
     /// Longitude [degrees].
