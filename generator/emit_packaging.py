@@ -8,6 +8,7 @@ import jinja2
 
 from .emit import header, license_texts
 from .emit_c import MAX_LINE, longest_line
+from .emit_c_ais import carries_ais
 from .model import Spec
 from .paths import PACKAGE_FOLDERS
 
@@ -15,7 +16,7 @@ from .paths import PACKAGE_FOLDERS
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files = {"c/CMakeLists.txt": env.get_template("c/CMakeLists.txt.j2").render(
         header=header(spec, "#", ["templates/c/CMakeLists.txt.j2"]), max_line=longest_line(spec),
-        contract_max_line=MAX_LINE)}
+        contract_max_line=MAX_LINE, ais=carries_ais(spec))}
     for folder in PACKAGE_FOLDERS:
         files.update(license_texts(folder))
     return files

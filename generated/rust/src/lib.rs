@@ -51,6 +51,7 @@
 
 use core::fmt::{self, Write};
 
+pub mod ais_messages;
 pub mod bitfields;
 pub mod enums;
 #[cfg(feature = "std")]

@@ -78,6 +78,7 @@ enum Detail {
     TooWide { raw: i64, width: usize },
     NotText(u8),
     TooLong,
+    FewEntries { min: usize, width: usize, left: usize },
 }
 
 /// An AIS payload error: its kind, the message type and field it concerns when known.
@@ -118,6 +119,9 @@ impl fmt::Display for AisError {
             Detail::TooWide { raw, width } => write!(f, "{field} takes a raw value of {width} bits, not {raw}"),
             Detail::NotText(ch) => write!(f, "{field} takes six-bit text characters, not '{}'", ch.escape_ascii()),
             Detail::TooLong => write!(f, "{field} does not fit in a message of {MAX_BITS} bits"),
+            Detail::FewEntries { min, width, left } => {
+                write!(f, "{field} needs at least {min} entries of {width} bits, {left} bits left")
+            }
         }
     }
 }
@@ -126,7 +130,7 @@ impl fmt::Display for AisError {
 impl std::error::Error for AisError {}
 
 /// An armored payload whose characters and fill bits are checked: its bits, read in place.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Payload<'a> {
     armored: &'a [u8],
     fill_bits: u8,
@@ -162,7 +166,7 @@ impl<'a> Payload<'a> {
 
     /// A reader from the first bit.
     pub fn reader(&self) -> BitReader<'a> {
-        BitReader { payload: *self, pos: 0, message_type: None }
+        BitReader { payload: *self, pos: 0, end: self.bit_len(), message_type: None }
     }
 
     /// The `width` bits (at most 64) at `offset`, most significant first; the caller keeps them
@@ -187,7 +191,7 @@ fn sixbits(ch: u8) -> u8 {
 }
 
 /// Bits of a payload kept as sent: binary data, spare bits, bits after a layout.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Bits<'a> {
     payload: Payload<'a>,
     offset: usize,
@@ -211,6 +215,11 @@ impl<'a> Bits<'a> {
         (0..self.len).map(move |i| payload.raw(offset + i, 1) == 1)
     }
 
+    /// A reader of these bits alone (an application's layout in a message's data).
+    pub fn reader(&self) -> BitReader<'a> {
+        BitReader { payload: self.payload, pos: self.offset, end: self.offset + self.len, message_type: None }
+    }
+
     /// The six-bit text these bits carry, whole characters only.
     pub fn text(&self) -> SixBitText<'a> {
         SixBitText { bits: Bits { len: self.len / 6 * 6, ..*self } }
@@ -225,7 +234,7 @@ impl fmt::Display for Bits<'_> {
 }
 
 /// Six-bit text as sent, `@` padding and trailing spaces included.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SixBitText<'a> {
     bits: Bits<'a>,
 }
@@ -268,6 +277,7 @@ impl PartialEq<&str> for SixBitText<'_> {
 pub struct BitReader<'a> {
     payload: Payload<'a>,
     pos: usize,
+    end: usize,
     message_type: Option<u8>,
 }
 
@@ -284,7 +294,26 @@ impl<'a> BitReader<'a> {
 
     /// The bits left.
     pub fn remaining(&self) -> usize {
-        self.payload.bit_len() - self.pos
+        self.end - self.pos
+    }
+
+    /// How many entries of `width` bits a repeated group holds: as many as the bits left before
+    /// the `after` bits of what follows it hold, at most `max`; too few for `min` is an error.
+    pub fn entries(&self, min: usize, max: usize, width: usize, after: usize, field: &'static str) -> Result<usize, AisError> {
+        let left = self.remaining();
+        let count = max.min(left.saturating_sub(after) / width);
+        if count < min {
+            let detail = Detail::FewEntries { min, width, left };
+            return Err(AisError::new(AisErrorKind::ShortPayload, self.message_type, Some(field), detail));
+        }
+        Ok(count)
+    }
+
+    /// The bits from here to the end, as sent (the bits after a layout).
+    pub fn rest(&mut self) -> Bits<'a> {
+        let bits = Bits { payload: self.payload, offset: self.pos, len: self.remaining() };
+        self.pos = self.end;
+        bits
     }
 
     /// The error of a message type no layout describes.
@@ -294,7 +323,7 @@ impl<'a> BitReader<'a> {
     }
 
     fn check(&self, offset: usize, width: usize, field: &'static str) -> Result<(), AisError> {
-        let length = self.payload.bit_len();
+        let length = self.end;
         if offset + width > length {
             let detail = Detail::Short { offset, width, length };
             return Err(AisError::new(AisErrorKind::ShortPayload, self.message_type, Some(field), detail));
@@ -453,6 +482,145 @@ impl Armored {
     }
 }
 
+/// The value of a number in its unit, or the special value its raw integer is instead.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Reading<T> {
+    /// A value in the field's unit.
+    Value(T),
+    /// A raw value that is no number (`not_available`, `manual_input`, ...), by its spec id.
+    Special(&'static str),
+}
+
+/// The special value of `raw` among `specials` (raw value, id).
+fn special(raw: i64, specials: &[(i64, &'static str)]) -> Option<&'static str> {
+    specials.iter().find(|&&(value, _)| value == raw).map(|&(_, id)| id)
+}
+
+/// A number with a divisor or a fractional base: `raw / divisor + base`, or its special value.
+pub fn scaled(raw: i64, divisor: f64, base: f64, specials: &[(i64, &'static str)]) -> Reading<f64> {
+    special(raw, specials).map_or_else(|| Reading::Value(raw as f64 / divisor + base), Reading::Special)
+}
+
+/// A whole number: `raw + base`, or its special value.
+pub fn counted(raw: i64, base: i64, specials: &[(i64, &'static str)]) -> Reading<i64> {
+    special(raw, specials).map_or_else(|| Reading::Value(raw + base), Reading::Special)
+}
+
+/// The value of an enum field's raw code, None for a code the enum does not name.
+pub fn code<E: super::CodeEnum>(raw: u64) -> Option<E> {
+    let mut digits = [0u8; 20];
+    let mut start = digits.len();
+    let mut rest = raw;
+    loop {
+        start -= 1;
+        digits[start] = b'0' + (rest % 10) as u8;
+        rest /= 10;
+        if rest == 0 {
+            break;
+        }
+    }
+    E::from_code_bytes(&digits[start..])
+}
+
+/// A JSON object written member by member, in the form of generated/vectors/ais.jsonl (Python's
+/// `json.dumps` with compact separators): what the tools print and the tests compare.
+pub struct JsonObject<'w, W: fmt::Write> {
+    out: &'w mut W,
+    empty: bool,
+}
+
+impl<'w, W: fmt::Write> JsonObject<'w, W> {
+    /// An object opened at the end of `out`.
+    pub fn new(out: &'w mut W) -> Result<Self, fmt::Error> {
+        out.write_char('{')?;
+        Ok(JsonObject { out, empty: true })
+    }
+
+    /// The writer, after the key `name` of the next member (its value is the caller's to write).
+    pub fn key(&mut self, name: &str) -> Result<&mut W, fmt::Error> {
+        if !self.empty {
+            self.out.write_char(',')?;
+        }
+        self.empty = false;
+        write!(self.out, "\"{name}\":")?;
+        Ok(self.out)
+    }
+
+    /// An integer member.
+    pub fn int(&mut self, name: &str, value: impl Into<i128>) -> fmt::Result {
+        write!(self.key(name)?, "{}", value.into())
+    }
+
+    /// A true or false member.
+    pub fn flag(&mut self, name: &str, value: bool) -> fmt::Result {
+        write!(self.key(name)?, "{value}")
+    }
+
+    /// A string member (text of bits or six-bit characters, `"` and `\\` escaped).
+    pub fn text(&mut self, name: &str, value: impl fmt::Display) -> fmt::Result {
+        let out = self.key(name)?;
+        out.write_char('"')?;
+        fmt::Write::write_fmt(&mut Escaped(out), format_args!("{value}"))?;
+        out.write_char('"')
+    }
+
+    /// A number's members: its value (or special value's id), then its raw integer as `raw_name`.
+    pub fn reading<T: JsonNumber>(&mut self, name: &str, value: Reading<T>, raw_name: &str, raw: i64) -> fmt::Result {
+        match value {
+            Reading::Value(number) => number.write(self.key(name)?)?,
+            Reading::Special(id) => self.text(name, id)?,
+        }
+        self.int(raw_name, raw)
+    }
+
+    /// An enum's member: the id of its value, or the raw code the enum does not name.
+    pub fn code(&mut self, name: &str, id: Option<&str>, raw: u64) -> fmt::Result {
+        match id {
+            Some(id) => self.text(name, id),
+            None => self.int(name, raw),
+        }
+    }
+
+    /// Closes the object.
+    pub fn finish(self) -> fmt::Result {
+        self.out.write_char('}')
+    }
+}
+
+/// A number as Python's JSON writes it: a float always with a fraction or an exponent.
+pub trait JsonNumber: Copy {
+    /// Writes the number.
+    fn write<W: fmt::Write>(self, out: &mut W) -> fmt::Result;
+}
+
+impl JsonNumber for i64 {
+    fn write<W: fmt::Write>(self, out: &mut W) -> fmt::Result {
+        write!(out, "{self}")
+    }
+}
+
+impl JsonNumber for f64 {
+    fn write<W: fmt::Write>(self, out: &mut W) -> fmt::Result {
+        if self.abs() < 1e16 && self == (self as i64) as f64 {
+            write!(out, "{self:.1}")
+        } else {
+            write!(out, "{self}")
+        }
+    }
+}
+
+/// A writer escaping what a JSON string cannot hold as it is.
+struct Escaped<'w, W: fmt::Write>(&'w mut W);
+
+impl<W: fmt::Write> fmt::Write for Escaped<'_, W> {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        s.chars().try_for_each(|ch| match ch {
+            '"' | '\\' => write!(self.0, "\\{ch}"),
+            _ => self.0.write_char(ch),
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -534,6 +702,32 @@ mod tests {
         let mut r = payload.reader();
         assert_eq!(r.take_signed(8, "turn"), Ok(-127));
         assert_eq!(r.take_text(3, "name").unwrap(), "A@ ");
+    }
+
+    #[test]
+    fn numbers_and_text_are_written_as_pythons_json() {
+        let mut out = std::string::String::new();
+        let mut j = JsonObject::new(&mut out).unwrap();
+        j.reading("speed", scaled(123, 10.0, 0.0, &[(1023, "not_available")]), "speed_raw", 123).unwrap();
+        j.reading("lat", scaled(0, 600000.0, 0.0, &[]), "lat_raw", 0).unwrap();
+        j.reading("heading", counted(511, 0, &[(511, "not_available")]), "heading_raw", 511).unwrap();
+        j.text("name", "A\"B\\").unwrap();
+        j.finish().unwrap();
+        assert_eq!(
+            out,
+            r#"{"speed":12.3,"speed_raw":123,"lat":0.0,"lat_raw":0,"heading":"not_available","heading_raw":511,"name":"A\"B\\"}"#
+        );
+    }
+
+    #[test]
+    fn a_group_takes_the_entries_the_bits_hold() {
+        // A type 7 of 40 bits after its header: one acknowledgement of 32 bits and 8 bits over.
+        let payload = Payload::new(b"702R5`hwCjq8", 0).unwrap();
+        let mut r = payload.reader();
+        r.take_bits(40, "head").unwrap();
+        assert_eq!(r.entries(1, 4, 32, 0, "acks"), Ok(1));
+        let err = r.entries(2, 4, 32, 0, "acks").unwrap_err();
+        assert_eq!(err.to_string(), "short_payload: AIS: acks needs at least 2 entries of 32 bits, 32 bits left");
     }
 
     #[test]

@@ -1,0 +1,377 @@
+/* AIS payloads: armoring, the bit reader and writer, text and JSON (see ais.h). */
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The characters of six-bit text by their value ('@', value 0, pads a text to its width). */
+static const char AIS_TEXT[] = "@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_ !\"#$%&'()*+,-./0123456789:;<=>?";
+
+const char *nmea_ais_error_kind_name(nmea_ais_error_kind kind)
+{
+    static const char *const names[] = {"ok", "bad_armor", "short_payload", "unknown_message", "bad_value"};
+    return names[kind];
+}
+
+/* The six bits an armored character carries ('0'-'W' are 0-39, '`'-'w' 40-63), -1 for none. */
+static int ais_armor_value(char ch)
+{
+    if (ch >= '0' && ch <= 'W')
+        return ch - 48;
+    if (ch >= '`' && ch <= 'w')
+        return ch - 56;
+    return -1;
+}
+
+static bool ais_fail(nmea_ais_error *err, nmea_ais_error_kind kind, int message_type, const char *field)
+{
+    err->kind = kind;
+    err->message_type = message_type;
+    err->field = field;
+    return false;
+}
+
+/* Checks a payload's characters and fill bits; a reader of its message bits. */
+static bool ais_open(nmea_ais_reader *r, const char *armored, size_t len, unsigned fill_bits, nmea_ais_error *err)
+{
+    size_t i;
+    r->armored = armored;
+    r->pos = 0;
+    r->message_type = -1;
+    r->err = err;
+    if (fill_bits > 5 || (fill_bits && !len)) {
+        snprintf(err->message, sizeof err->message, "fill bits are 0-5 (none for an empty payload), not %u", fill_bits);
+        return ais_fail(err, NMEA_AIS_BAD_ARMOR, -1, NULL);
+    }
+    for (i = 0; i < len; i++) {
+        if (ais_armor_value(armored[i]) < 0) {
+            snprintf(err->message, sizeof err->message, "character '%c' at offset %zu is not six-bit armoring",
+                     armored[i], i);
+            return ais_fail(err, NMEA_AIS_BAD_ARMOR, -1, NULL);
+        }
+    }
+    r->end = len * 6 - fill_bits;
+    return true;
+}
+
+/* The `width` bits (at most 64) at `offset` of checked characters. */
+static uint64_t ais_raw(const char *armored, size_t offset, size_t width)
+{
+    uint64_t raw = 0;
+    size_t pos = offset, end = offset + width;
+    while (pos < end) {
+        size_t in_char = pos % 6, take = 6 - in_char < end - pos ? 6 - in_char : end - pos;
+        unsigned chunk = ((unsigned)ais_armor_value(armored[pos / 6]) >> (6 - in_char - take)) & ((1u << take) - 1);
+        raw = raw << take | chunk;
+        pos += take;
+    }
+    return raw;
+}
+
+static bool ais_check(nmea_ais_reader *r, size_t offset, size_t width, const char *field)
+{
+    if (offset + width <= r->end)
+        return true;
+    snprintf(r->err->message, sizeof r->err->message, "%s needs bits %zu-%zu, the payload has %zu", field, offset,
+             offset + width - 1, r->end);
+    return ais_fail(r->err, NMEA_AIS_SHORT_PAYLOAD, r->message_type, field);
+}
+
+static bool ais_peek(nmea_ais_reader *r, size_t offset, size_t width, const char *field, uint64_t *out)
+{
+    if (!ais_check(r, offset, width, field))
+        return false;
+    *out = ais_raw(r->armored, offset, width);
+    return true;
+}
+
+static bool ais_take(nmea_ais_reader *r, size_t width, const char *field, uint64_t *out)
+{
+    if (!ais_peek(r, r->pos, width, field, out))
+        return false;
+    r->pos += width;
+    return true;
+}
+
+static bool ais_take_signed(nmea_ais_reader *r, size_t width, const char *field, int64_t *out)
+{
+    uint64_t raw;
+    if (!ais_take(r, width, field, &raw))
+        return false;
+    *out = raw >> (width - 1) ? (int64_t)(raw - ((uint64_t)1 << (width - 1))) - ((int64_t)1 << (width - 1))
+                              : (int64_t)raw;
+    return true;
+}
+
+static bool ais_take_bits(nmea_ais_reader *r, size_t width, const char *field, nmea_ais_bits *out)
+{
+    if (!ais_check(r, r->pos, width, field))
+        return false;
+    out->armored = r->armored;
+    out->offset = r->pos;
+    out->len = width;
+    r->pos += width;
+    return true;
+}
+
+static size_t ais_remaining(const nmea_ais_reader *r)
+{
+    return r->end - r->pos;
+}
+
+/* The bits from here to the end (the bits after a layout). */
+static nmea_ais_bits ais_rest(nmea_ais_reader *r)
+{
+    nmea_ais_bits bits;
+    bits.armored = r->armored;
+    bits.offset = r->pos;
+    bits.len = r->end - r->pos;
+    r->pos = r->end;
+    return bits;
+}
+
+/* A reader of `bits` alone (an application's layout in a message's data). */
+static nmea_ais_reader ais_bits_reader(nmea_ais_bits bits, nmea_ais_error *err)
+{
+    nmea_ais_reader r;
+    r.armored = bits.armored;
+    r.pos = bits.offset;
+    r.end = bits.offset + bits.len;
+    r.message_type = -1;
+    r.err = err;
+    return r;
+}
+
+/* How many entries of `width` bits a repeated group holds (see ais.py's Group). */
+static bool ais_entries(nmea_ais_reader *r, size_t min, size_t max, size_t width, size_t after, const char *field,
+                        size_t *count)
+{
+    size_t left = ais_remaining(r);
+    *count = (left > after ? left - after : 0) / width;
+    if (*count > max)
+        *count = max;
+    if (*count >= min)
+        return true;
+    snprintf(r->err->message, sizeof r->err->message, "%s needs at least %zu entries of %zu bits, %zu bits left",
+             field, min, width, left);
+    return ais_fail(r->err, NMEA_AIS_SHORT_PAYLOAD, r->message_type, field);
+}
+
+static void ais_writer_init(nmea_ais_writer *w, int message_type, nmea_ais_error *err)
+{
+    memset(w->values, 0, sizeof w->values);
+    w->len = 0;
+    w->message_type = message_type;
+    w->err = err;
+}
+
+static bool ais_put_raw(nmea_ais_writer *w, uint64_t raw, size_t width, const char *field)
+{
+    size_t left = width;
+    if (w->len + width > NMEA_AIS_MAX_BITS) {
+        snprintf(w->err->message, sizeof w->err->message, "%s does not fit in a message of %d bits", field,
+                 NMEA_AIS_MAX_BITS);
+        return ais_fail(w->err, NMEA_AIS_BAD_VALUE, w->message_type, field);
+    }
+    while (left > 0) {
+        size_t in_char = w->len % 6, put = 6 - in_char < left ? 6 - in_char : left;
+        uint8_t chunk = (uint8_t)((raw >> (left - put)) & ((1u << put) - 1));
+        w->values[w->len / 6] = (uint8_t)(w->values[w->len / 6] << put | chunk);
+        w->len += put;
+        left -= put;
+    }
+    return true;
+}
+
+/* `raw` in `width` bits; a value wider is refused. */
+static bool ais_put(nmea_ais_writer *w, uint64_t raw, size_t width, const char *field)
+{
+    if (width < 64 && raw >> width) {
+        snprintf(w->err->message, sizeof w->err->message, "%s takes a raw value of %zu bits, not %llu", field, width,
+                 (unsigned long long)raw);
+        return ais_fail(w->err, NMEA_AIS_BAD_VALUE, w->message_type, field);
+    }
+    return ais_put_raw(w, raw, width, field);
+}
+
+/* `value` in `width` bits, two's complement. */
+static bool ais_put_signed(nmea_ais_writer *w, int64_t value, size_t width, const char *field)
+{
+    int64_t low = -((int64_t)1 << (width - 1)), high = ((int64_t)1 << (width - 1)) - 1;
+    if (value < low || value > high) {
+        snprintf(w->err->message, sizeof w->err->message, "%s takes a raw value of %zu bits, not %lld", field, width,
+                 (long long)value);
+        return ais_fail(w->err, NMEA_AIS_BAD_VALUE, w->message_type, field);
+    }
+    return ais_put_raw(w, (uint64_t)value & (width == 64 ? UINT64_MAX : ((uint64_t)1 << width) - 1), width, field);
+}
+
+/* Bits kept as sent, bit for bit. */
+static bool ais_put_bits(nmea_ais_writer *w, nmea_ais_bits bits, const char *field)
+{
+    size_t start;
+    for (start = 0; start < bits.len; start += 64) {
+        size_t width = bits.len - start < 64 ? bits.len - start : 64;
+        if (!ais_put_raw(w, ais_raw(bits.armored, bits.offset + start, width), width, field))
+            return false;
+    }
+    return true;
+}
+
+/* The armored payload, its last character padded with `padding` (the fill bits' values). */
+static bool ais_finish(nmea_ais_writer *w, unsigned padding, nmea_ais_armored *out)
+{
+    size_t i, chars;
+    unsigned fill_bits = (unsigned)((6 - w->len % 6) % 6);
+    if (padding >> fill_bits) {
+        snprintf(w->err->message, sizeof w->err->message, "padding takes a raw value of %u bits, not %u", fill_bits,
+                 padding);
+        return ais_fail(w->err, NMEA_AIS_BAD_VALUE, w->message_type, "padding");
+    }
+    if (!ais_put_raw(w, padding, fill_bits, "padding"))
+        return false;
+    chars = w->len / 6;
+    for (i = 0; i < chars; i++)
+        out->chars[i] = (char)(w->values[i] < 40 ? w->values[i] + 48 : w->values[i] + 56);
+    out->chars[chars] = '\0';
+    out->fill_bits = (uint8_t)fill_bits;
+    return true;
+}
+
+/* The special value of `raw` among `specials`, NULL for a number. */
+static const char *ais_special(int64_t raw, const nmea_ais_special *specials, size_t count)
+{
+    size_t i;
+    for (i = 0; i < count; i++)
+        if (specials[i].raw == raw)
+            return specials[i].id;
+    return NULL;
+}
+
+static void ais_json_put(nmea_ais_json_out *j, const char *text, size_t len)
+{
+    if (j->len < j->cap)
+        memcpy(j->buf + j->len, text, j->len + len < j->cap ? len : j->cap - j->len);
+    j->len += len;
+    if (j->cap)
+        j->buf[j->len < j->cap ? j->len : j->cap - 1] = '\0';
+}
+
+static void ais_json_puts(nmea_ais_json_out *j, const char *text)
+{
+    ais_json_put(j, text, strlen(text));
+}
+
+static void ais_json_open(nmea_ais_json_out *j)
+{
+    ais_json_puts(j, "{");
+    j->empty = true;
+}
+
+static void ais_json_close(nmea_ais_json_out *j)
+{
+    ais_json_puts(j, "}");
+    j->empty = false;
+}
+
+static void ais_json_key(nmea_ais_json_out *j, const char *name)
+{
+    if (!j->empty)
+        ais_json_puts(j, ",");
+    j->empty = false;
+    ais_json_puts(j, "\"");
+    ais_json_puts(j, name);
+    ais_json_puts(j, "\":");
+}
+
+static void ais_json_int(nmea_ais_json_out *j, const char *name, long long value)
+{
+    char text[24];
+    ais_json_key(j, name);
+    ais_json_put(j, text, (size_t)snprintf(text, sizeof text, "%lld", value));
+}
+
+static void ais_json_flag(nmea_ais_json_out *j, const char *name, bool value)
+{
+    ais_json_key(j, name);
+    ais_json_puts(j, value ? "true" : "false");
+}
+
+static void ais_json_string(nmea_ais_json_out *j, const char *name, const char *value)
+{
+    ais_json_key(j, name);
+    ais_json_puts(j, "\"");
+    ais_json_puts(j, value);
+    ais_json_puts(j, "\"");
+}
+
+/* Six-bit text as sent, '"' and '\' escaped. */
+static void ais_json_text(nmea_ais_json_out *j, const char *name, nmea_ais_bits bits)
+{
+    size_t i;
+    ais_json_key(j, name);
+    ais_json_puts(j, "\"");
+    for (i = 0; i + 6 <= bits.len; i += 6) {
+        char ch = AIS_TEXT[ais_raw(bits.armored, bits.offset + i, 6)];
+        if (ch == '"' || ch == '\\')
+            ais_json_puts(j, "\\");
+        ais_json_put(j, &ch, 1);
+    }
+    ais_json_puts(j, "\"");
+}
+
+/* Bits as the text of their values ("0110"). */
+static void ais_json_bits(nmea_ais_json_out *j, const char *name, nmea_ais_bits bits)
+{
+    size_t i;
+    ais_json_key(j, name);
+    ais_json_puts(j, "\"");
+    for (i = 0; i < bits.len; i++)
+        ais_json_puts(j, ais_raw(bits.armored, bits.offset + i, 1) ? "1" : "0");
+    ais_json_puts(j, "\"");
+}
+
+/* A float as Python's repr writes it: the shortest digits that read back, positionally for
+   exponents -4 to 15 (always with a fraction), else as an exponent. */
+static void ais_json_float(nmea_ais_json_out *j, double value)
+{
+    char text[48];
+    int digits, exponent;
+    for (digits = 1; digits < 17; digits++) {
+        snprintf(text, sizeof text, "%.*e", digits - 1, value);
+        if (strtod(text, NULL) == value)
+            break;
+    }
+    snprintf(text, sizeof text, "%.*e", digits - 1, value);
+    exponent = atoi(strchr(text, 'e') + 1);
+    if (exponent >= -4 && exponent < 16)
+        snprintf(text, sizeof text, "%.*f", digits - 1 - exponent > 0 ? digits - 1 - exponent : 1, value);
+    ais_json_puts(j, text);
+}
+
+/* A number's members: its value (`raw / divisor + base`, a float when `real`) or special value's
+   id, then its raw integer. */
+static void ais_json_reading(nmea_ais_json_out *j, const char *name, int64_t raw, double divisor, double base, bool real,
+                             const nmea_ais_special *specials, size_t count)
+{
+    char raw_name[64];
+    const char *special = ais_special(raw, specials, count);
+    if (special)
+        ais_json_string(j, name, special);
+    else if (real) {
+        ais_json_key(j, name);
+        ais_json_float(j, (double)raw / divisor + base);
+    } else
+        ais_json_int(j, name, (long long)(raw + (int64_t)base));
+    snprintf(raw_name, sizeof raw_name, "%s_raw", name);
+    ais_json_int(j, raw_name, (long long)raw);
+}
+
+/* An enum's member: the id of its code, or the code it does not name. */
+static void ais_json_code(nmea_ais_json_out *j, const char *name, const char *id, uint64_t raw)
+{
+    if (id)
+        ais_json_string(j, name, id);
+    else
+        ais_json_int(j, name, (long long)raw);
+}
