@@ -4,7 +4,10 @@ will sit on.
 A frame is the sync bytes B5 62, a class and an id byte, the payload's length (two bytes, little
 endian, the payload alone) and the payload, closed by a Fletcher-8 checksum over class..payload.
 A frame decodes to its class, id and payload and encodes back to the same bytes; a frame of a
-class/id nobody describes is kept with its payload. Facts from u-blox UBX-13003221 (u-blox 8 / M8
+class/id nobody describes is kept with its payload. A payload is read and written by the field
+classes and item walkers of the AIS payloads (ais.py: one model of payloads) through ByteReader and
+ByteWriter, which hold the little-endian byte order: offsets and widths stay in bits, whole bytes
+here. Facts from u-blox UBX-13003221 (u-blox 8 / M8
 Receiver description, "UBX protocol": frame structure and checksum).
 """
 
@@ -43,6 +46,47 @@ class Frame:
     def encode(self) -> bytes:
         body = bytes((self.msg_class, self.msg_id)) + len(self.payload).to_bytes(2, "little") + self.payload
         return SYNC + body + fletcher8(body)
+
+
+class ByteReader:
+    """A payload's little-endian fields, with BitReader's interface (ais.read_items walks either):
+    offsets and widths in bits, each a whole number of bytes."""
+
+    __slots__ = ("payload", "length", "pos", "where")
+
+    def __init__(self, payload: bytes, where: str) -> None:
+        self.payload = payload
+        self.length = 8 * len(payload)
+        self.pos = 0
+        self.where = where  # errors' address: "UBX NAV-PVT"
+
+    @property
+    def remaining(self) -> int:
+        return self.length - self.pos
+
+    def peek(self, offset: int, width: int, name: str) -> int:
+        first, last = offset // 8, (offset + width) // 8 - 1
+        if offset + width > self.length:
+            raise NmeaError("short_payload", f"{name} needs bytes {first}-{last}, the payload has "
+                            f"{len(self.payload)}", self.where, name=name)
+        return int.from_bytes(self.payload[first:last + 1], "little")
+
+    def take(self, width: int, name: str) -> int:
+        raw = self.peek(self.pos, width, name)
+        self.pos += width
+        return raw
+
+
+class ByteWriter:
+    """A payload's fields written little endian, with BitWriter's interface (ais.write_items)."""
+
+    __slots__ = ("payload",)
+
+    def __init__(self) -> None:
+        self.payload = bytearray()
+
+    def put(self, raw: int, width: int) -> None:
+        self.payload += raw.to_bytes(width // 8, "little")
 
 
 def frame_size(data: bytes | memoryview, start: int = 0) -> int:
