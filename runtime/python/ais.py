@@ -358,14 +358,9 @@ def read_items(items: tuple[Item, ...], reader: BitReader, values: dict[str, Any
             width = item.width
             if width is None:
                 width = item.size(reader)
-            start = reader.pos
-            left = reader.length - start - width
-            if left < 0:
-                if item.optional:
-                    return False
-                reader.peek(start, width, item.id)  # raises short_payload
-            reader.pos = start + width
-            values[item.id] = item.from_raw((reader.value >> left) & ((1 << width) - 1), width)
+            if item.optional and reader.remaining < width:
+                return False
+            values[item.id] = item.from_raw(reader.take(width, item.id), width)
         elif isinstance(item, Group):
             count = min(item.max, max(reader.remaining - item.after, 0) // item.entry_width)
             if count < item.min:
