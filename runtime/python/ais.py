@@ -97,7 +97,7 @@ class Fragment(NamedTuple):
     """What an encapsulation sentence (`!AIVDM`) says of the message it carries all or part of:
     the fields the spec's `encapsulates` names (nmeaspec.assembly joins fragments)."""
 
-    count: int
+    total: int
     number: int
     sequence: int | None
     channel: str | None
@@ -105,13 +105,13 @@ class Fragment(NamedTuple):
     fill_bits: int
 
     @classmethod
-    def of(cls, count: Any, number: Any, sequence: Any, channel: Any, payload: str | None,
+    def of(cls, total: Any, number: Any, sequence: Any, channel: Any, payload: str | None,
            fill_bits: Any) -> Fragment | None:
         """From a sentence's fields (Numbers, an enum member or its text); None when the count
         or number is empty."""
-        if count is None or number is None:
+        if total is None or number is None:
             return None
-        return cls(int(count), int(number), None if sequence is None else int(sequence),
+        return cls(int(total), int(number), None if sequence is None else int(sequence),
                    None if channel is None else str(getattr(channel, "value", channel)), payload or "",
                    int(fill_bits or 0))
 
@@ -384,7 +384,7 @@ class Prefix(NamedTuple):
     costs several calls a field): `read(value, length, values)` reads them from a payload of at
     least `bits` bits; `put_json(record, out)` puts their decoded JSON members."""
 
-    count: int  # how many of the layout's items it reads
+    items: int  # how many of the layout's items it reads
     bits: int
     read: Any
     put_json: Any
@@ -498,6 +498,7 @@ class Record:
     """The spec's id of the message or application (`position_report`, `meteo_hydro`)."""
     LAYOUT: ClassVar[tuple[Item, ...]]
     FIELDS: ClassVar[dict[str, Field]]
+    _prefix: ClassVar[Prefix]
     DISPATCH: ClassVar[Data | None]
     """The data field whose bits an application may carry (the one with a `dispatch`)."""
 
@@ -521,9 +522,9 @@ class Record:
         """The members of the layout from `reader` (its compiled prefix, then the rest)."""
         prefix = cls.prefix()
         if reader.pos == 0 and reader.length >= prefix.bits:
-            values = prefix.read(reader.value, reader.length, {})
+            values: dict[str, Any] = prefix.read(reader.value, reader.length, {})
             reader.pos = prefix.bits
-            read_items(cls.LAYOUT[prefix.count:], reader, values)
+            read_items(cls.LAYOUT[prefix.items:], reader, values)
         else:  # short: the generic reader says where
             values = {}
             read_items(cls.LAYOUT, reader, values)
@@ -549,8 +550,8 @@ class Record:
 
     def _json(self) -> dict[str, Any]:
         prefix = self.prefix()
-        out = prefix.put_json(self, {})
-        out.update(items_json(self.LAYOUT[prefix.count:], self))
+        out: dict[str, Any] = prefix.put_json(self, {})
+        out.update(items_json(self.LAYOUT[prefix.items:], self))
         return out
 
 

@@ -17,9 +17,9 @@ A message of one sentence comes back at once. A message of several comes back wi
 missing fragment, whatever the order they came in, interleaved with any other sentences; it keeps
 its sentences (in fragment order), so it writes back exactly as received. A message that cannot
 complete comes back with an `incomplete_message` error and the fragments that came: when a
-fragment it has comes again (a new message under its key) or one with another count, when `lifetime` more encapsulation
-sentences have come since its first fragment, or when every one of the `slots` is taken and a
-newer message needs one. Memory is bounded by `slots`; nothing but the incomplete message is lost.
+fragment it has comes again (a new message under its key) or one with another total, when
+`lifetime` more encapsulation sentences have come since its first fragment, or when every one of
+the `slots` is taken and a newer message needs one. Memory is bounded by `slots`; nothing but the incomplete message is lost.
 """
 
 from __future__ import annotations
@@ -47,7 +47,7 @@ class Assembled(NamedTuple):
 @dataclass
 class _Partial:
     key: Hashable
-    count: int
+    total: int
     started: int  # the encapsulation sentence it started with (MessageAssembler's count)
     parts: dict[int, tuple[Any, Fragment]] = field(default_factory=dict)
 
@@ -75,19 +75,19 @@ class MessageAssembler:
         self._seen += 1
         done = [self._incomplete(p) for p in list(self._partials.values())
                 if self._seen - p.started >= self.lifetime]
-        if fragment.count == 1:
+        if fragment.total == 1:
             return done + [_decoded((line,), fragment.payload, fragment.fill_bits)]
         key = _key(line, sentence, fragment)
         partial = self._partials.get(key)
-        if partial is not None and (fragment.number in partial.parts or fragment.count != partial.count):
+        if partial is not None and (fragment.number in partial.parts or fragment.total != partial.total):
             done.append(self._incomplete(partial))  # a new message under the same key
             partial = None
         if partial is None:
             if len(self._partials) >= self.slots:
                 done.append(self._incomplete(next(iter(self._partials.values()))))
-            partial = self._partials[key] = _Partial(key, fragment.count, self._seen)
+            partial = self._partials[key] = _Partial(key, fragment.total, self._seen)
         partial.parts[fragment.number] = (line, fragment)
-        if len(partial.parts) == partial.count:
+        if len(partial.parts) == partial.total:
             del self._partials[key]
             parts = [partial.parts[n] for n in sorted(partial.parts)]
             payload = "".join(f.payload for _, f in parts)
@@ -101,12 +101,12 @@ class MessageAssembler:
     def _incomplete(self, partial: _Partial) -> Assembled:
         del self._partials[partial.key]
         numbers = sorted(partial.parts)
-        missing = [n for n in range(1, partial.count + 1) if n not in partial.parts]
+        missing = [n for n in range(1, partial.total + 1) if n not in partial.parts]
         sentences = tuple(partial.parts[n][0] for n in numbers)
         name = _name(sentences[0])
         error = NmeaError("incomplete_message",
                           f"fragment{'s' * (len(missing) > 1)} {', '.join(map(str, missing))} of "
-                          f"{partial.count} never came", name, name="fragment_number")
+                          f"{partial.total} never came", name, name="fragment_number")
         return Assembled(sentences, None, error)
 
 
