@@ -299,7 +299,14 @@ impl<'a> BitReader<'a> {
 
     /// How many entries of `width` bits a repeated group holds: as many as the bits left before
     /// the `after` bits of what follows it hold, at most `max`; too few for `min` is an error.
-    pub fn entries(&self, min: usize, max: usize, width: usize, after: usize, field: &'static str) -> Result<usize, AisError> {
+    pub fn entries(
+        &self,
+        min: usize,
+        max: usize,
+        width: usize,
+        after: usize,
+        field: &'static str,
+    ) -> Result<usize, AisError> {
         let left = self.remaining();
         let count = max.min(left.saturating_sub(after) / width);
         if count < min {
