@@ -335,26 +335,47 @@ static size_t writer_finish(nmea_writer *w)
     return 0;
 }
 
-/* A character of a JSON string escaped `depth` times; `wide`: `c` is the low byte of a character
-   above 0xFF, which the tools escape as \u00hh of that byte. */
+/* `n` characters escaped once for a JSON string into `out` (room for 6 each): '"' and '\\' behind a
+   backslash, anything not printable (or every character, `wide`: the low bytes of characters above
+   0xFF) as \u00hh. The length written. */
+static size_t escape_once(const char *in, size_t n, bool wide, char *out)
+{
+    size_t i, len = 0;
+    for (i = 0; i < n; i++) {
+        char c = in[i];
+        unsigned char u = (unsigned char)c;
+        if (!wide && (c == '"' || c == '\\')) {
+            out[len++] = '\\';
+            out[len++] = c;
+        } else if (wide || !is_printable(c)) {
+            memcpy(out + len, "\\u00", 4);
+            out[len + 4] = HEX_LOWER[u >> 4];
+            out[len + 5] = HEX_LOWER[u & 15];
+            len += 6;
+        } else {
+            out[len++] = c;
+        }
+    }
+    return len;
+}
+
+/* A character of a JSON string escaped `depth` times (at most twice: a quoted text inside an
+   error message inside JSON), a level at a time, without recursion; `wide`: `c` is the low byte
+   of a character above 0xFF, which the tools escape as \u00hh of that byte. */
 static void put_escaped_char(nmea_writer *w, char c, bool wide, int depth)
 {
-    unsigned char u = (unsigned char)c;
+    char once[6], twice[36];
+    size_t n;
     if (depth == 0) {
         put_char(w, c);
-    } else if (!wide && (c == '"' || c == '\\')) {
-        put_escaped_char(w, '\\', false, depth - 1);
-        put_escaped_char(w, c, false, depth - 1);
-    } else if (wide || !is_printable(c)) {
-        put_escaped_char(w, '\\', false, depth - 1);
-        put_escaped_char(w, 'u', false, depth - 1);
-        put_escaped_char(w, '0', false, depth - 1);
-        put_escaped_char(w, '0', false, depth - 1);
-        put_escaped_char(w, HEX_LOWER[u >> 4], false, depth - 1);
-        put_escaped_char(w, HEX_LOWER[u & 15], false, depth - 1);
-    } else {
-        put_escaped_char(w, c, false, depth - 1);
+        return;
     }
+    n = escape_once(&c, 1, wide, once);
+    if (depth == 1) {
+        put_mem(w, once, n);
+        return;
+    }
+    put_mem(w, twice, escape_once(once, n, false, twice));
 }
 
 /* A character of a JSON string, escaped `depth` times (a message holding a quoted text is
@@ -4943,31 +4964,27 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
     return nmea_parse_ex(out, line, len, NULL, err);
 }
 
-/* How the sentence of a line is read: nmea_parse_ex's way (the fast path first) or, for the tests,
-   the general path alone. */
-typedef bool (*sentence_parser)(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
-                                nmea_error *err);
-
-/* A line that starts with TAG blocks: the blocks, then the sentence after them read by `parse`
-   (none: a generic sentence with an empty start, address and fields). */
-static bool parse_tagged(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
-                         nmea_error *err, sentence_parser parse)
+/* The TAG blocks a line starts with (`line` at its first '\\'), taken off the line: false with
+   `err` for bad blocks; `*only` when the line is blocks alone, `out` then its sentence (a generic
+   one with an empty start, address and fields). No callback: the stack stays bounded. */
+static bool take_tag_blocks(nmea_sentence *out, const char **line, size_t *len, nmea_text *blocks, bool *only,
+                            nmea_error *err)
 {
-    nmea_text blocks;
-    if (len > NMEA_MAX_LINE) {
-        nmea_error_too_long(err, len);
+    if (*len > NMEA_MAX_LINE) {
+        nmea_error_too_long(err, *len);
         return false;
     }
-    if (!read_tag_blocks(line, len, &blocks, err))
+    if (!read_tag_blocks(*line, *len, blocks, err))
         return false;
-    if (blocks.len == len) {
+    *only = blocks->len == *len;
+    if (*only) {
         memset(out, 0, sizeof *out);
         out->id = NMEA_SENTENCE_GENERIC;
         out->as.generic.checksum = NMEA_CHECKSUM_NONE;
-    } else if (!parse(out, line + blocks.len, len - blocks.len, options, err)) {
-        return false;
+        out->tag_blocks = *blocks;
     }
-    out->tag_blocks = blocks;
+    *line += blocks->len;
+    *len -= blocks->len;
     return true;
 }
 
@@ -4975,25 +4992,35 @@ static bool parse_tagged(nmea_sentence *out, const char *line, size_t len, const
    problem is read the same way leniently. */
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
+    nmea_text blocks = nmea_text_of(NULL);
+    bool only = false;
     len = without_line_ending(line, len);
-    out->tag_blocks = nmea_text_of(NULL);
-    if (line && len && line[0] == '\\')
-        return parse_tagged(out, line, len, options, err, nmea_parse_ex);
+    if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &blocks, &only, err) || only))
+        return only;
 #ifndef NMEA_NO_FAST_PATH
-    if (fast_parse(out, line, len))
+    if (fast_parse(out, line, len)) {
+        out->tag_blocks = blocks;
         return true;
+    }
 #endif
-    return parse_general(out, line, len, options, err);
+    if (!parse_general(out, line, len, options, err))
+        return false;
+    out->tag_blocks = blocks;
+    return true;
 }
 
 #ifdef NMEA_TEST_HOOKS
 bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
+    nmea_text blocks = nmea_text_of(NULL);
+    bool only = false;
     len = without_line_ending(line, len);
-    out->tag_blocks = nmea_text_of(NULL);
-    if (line && len && line[0] == '\\')
-        return parse_tagged(out, line, len, options, err, nmea_parse_general);
-    return parse_general(out, line, len, options, err);
+    if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &blocks, &only, err) || only))
+        return only;
+    if (!parse_general(out, line, len, options, err))
+        return false;
+    out->tag_blocks = blocks;
+    return true;
 }
 #endif
 
@@ -5005,7 +5032,7 @@ static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
     return writer_finish(&w);
 }
 
-/* A line of TAG blocks only (parse_tagged). */
+/* A line of TAG blocks only (take_tag_blocks). */
 static bool tag_blocks_only(const nmea_sentence *s)
 {
     return s->id == NMEA_SENTENCE_GENERIC && s->tag_blocks.len && !s->as.generic.start.len;

@@ -7,31 +7,27 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
     return nmea_parse_ex(out, line, len, NULL, err);
 }
 
-/* How the sentence of a line is read: nmea_parse_ex's way (the fast path first) or, for the tests,
-   the general path alone. */
-typedef bool (*sentence_parser)(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
-                                nmea_error *err);
-
-/* A line that starts with TAG blocks: the blocks, then the sentence after them read by `parse`
-   (none: a generic sentence with an empty start, address and fields). */
-static bool parse_tagged(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
-                         nmea_error *err, sentence_parser parse)
+/* The TAG blocks a line starts with (`line` at its first '\\'), taken off the line: false with
+   `err` for bad blocks; `*only` when the line is blocks alone, `out` then its sentence (a generic
+   one with an empty start, address and fields). No callback: the stack stays bounded. */
+static bool take_tag_blocks(nmea_sentence *out, const char **line, size_t *len, nmea_text *blocks, bool *only,
+                            nmea_error *err)
 {
-    nmea_text blocks;
-    if (len > NMEA_MAX_LINE) {
-        nmea_error_too_long(err, len);
+    if (*len > NMEA_MAX_LINE) {
+        nmea_error_too_long(err, *len);
         return false;
     }
-    if (!read_tag_blocks(line, len, &blocks, err))
+    if (!read_tag_blocks(*line, *len, blocks, err))
         return false;
-    if (blocks.len == len) {
+    *only = blocks->len == *len;
+    if (*only) {
         memset(out, 0, sizeof *out);
         out->id = NMEA_SENTENCE_GENERIC;
         out->as.generic.checksum = NMEA_CHECKSUM_NONE;
-    } else if (!parse(out, line + blocks.len, len - blocks.len, options, err)) {
-        return false;
+        out->tag_blocks = *blocks;
     }
-    out->tag_blocks = blocks;
+    *line += blocks->len;
+    *len -= blocks->len;
     return true;
 }
 
@@ -39,25 +35,35 @@ static bool parse_tagged(nmea_sentence *out, const char *line, size_t len, const
    problem is read the same way leniently. */
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
+    nmea_text blocks = nmea_text_of(NULL);
+    bool only = false;
     len = without_line_ending(line, len);
-    out->tag_blocks = nmea_text_of(NULL);
-    if (line && len && line[0] == '\\')
-        return parse_tagged(out, line, len, options, err, nmea_parse_ex);
+    if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &blocks, &only, err) || only))
+        return only;
 #ifndef NMEA_NO_FAST_PATH
-    if (fast_parse(out, line, len))
+    if (fast_parse(out, line, len)) {
+        out->tag_blocks = blocks;
         return true;
+    }
 #endif
-    return parse_general(out, line, len, options, err);
+    if (!parse_general(out, line, len, options, err))
+        return false;
+    out->tag_blocks = blocks;
+    return true;
 }
 
 #ifdef NMEA_TEST_HOOKS
 bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
+    nmea_text blocks = nmea_text_of(NULL);
+    bool only = false;
     len = without_line_ending(line, len);
-    out->tag_blocks = nmea_text_of(NULL);
-    if (line && len && line[0] == '\\')
-        return parse_tagged(out, line, len, options, err, nmea_parse_general);
-    return parse_general(out, line, len, options, err);
+    if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &blocks, &only, err) || only))
+        return only;
+    if (!parse_general(out, line, len, options, err))
+        return false;
+    out->tag_blocks = blocks;
+    return true;
 }
 #endif
 
@@ -69,7 +75,7 @@ static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
     return writer_finish(&w);
 }
 
-/* A line of TAG blocks only (parse_tagged). */
+/* A line of TAG blocks only (take_tag_blocks). */
 static bool tag_blocks_only(const nmea_sentence *s)
 {
     return s->id == NMEA_SENTENCE_GENERIC && s->tag_blocks.len && !s->as.generic.start.len;

@@ -191,26 +191,47 @@ static size_t writer_finish(nmea_writer *w)
     return 0;
 }
 
-/* A character of a JSON string escaped `depth` times; `wide`: `c` is the low byte of a character
-   above 0xFF, which the tools escape as \u00hh of that byte. */
+/* `n` characters escaped once for a JSON string into `out` (room for 6 each): '"' and '\\' behind a
+   backslash, anything not printable (or every character, `wide`: the low bytes of characters above
+   0xFF) as \u00hh. The length written. */
+static size_t escape_once(const char *in, size_t n, bool wide, char *out)
+{
+    size_t i, len = 0;
+    for (i = 0; i < n; i++) {
+        char c = in[i];
+        unsigned char u = (unsigned char)c;
+        if (!wide && (c == '"' || c == '\\')) {
+            out[len++] = '\\';
+            out[len++] = c;
+        } else if (wide || !is_printable(c)) {
+            memcpy(out + len, "\\u00", 4);
+            out[len + 4] = HEX_LOWER[u >> 4];
+            out[len + 5] = HEX_LOWER[u & 15];
+            len += 6;
+        } else {
+            out[len++] = c;
+        }
+    }
+    return len;
+}
+
+/* A character of a JSON string escaped `depth` times (at most twice: a quoted text inside an
+   error message inside JSON), a level at a time, without recursion; `wide`: `c` is the low byte
+   of a character above 0xFF, which the tools escape as \u00hh of that byte. */
 static void put_escaped_char(nmea_writer *w, char c, bool wide, int depth)
 {
-    unsigned char u = (unsigned char)c;
+    char once[6], twice[36];
+    size_t n;
     if (depth == 0) {
         put_char(w, c);
-    } else if (!wide && (c == '"' || c == '\\')) {
-        put_escaped_char(w, '\\', false, depth - 1);
-        put_escaped_char(w, c, false, depth - 1);
-    } else if (wide || !is_printable(c)) {
-        put_escaped_char(w, '\\', false, depth - 1);
-        put_escaped_char(w, 'u', false, depth - 1);
-        put_escaped_char(w, '0', false, depth - 1);
-        put_escaped_char(w, '0', false, depth - 1);
-        put_escaped_char(w, HEX_LOWER[u >> 4], false, depth - 1);
-        put_escaped_char(w, HEX_LOWER[u & 15], false, depth - 1);
-    } else {
-        put_escaped_char(w, c, false, depth - 1);
+        return;
     }
+    n = escape_once(&c, 1, wide, once);
+    if (depth == 1) {
+        put_mem(w, once, n);
+        return;
+    }
+    put_mem(w, twice, escape_once(once, n, false, twice));
 }
 
 /* A character of a JSON string, escaped `depth` times (a message holding a quoted text is
