@@ -152,10 +152,12 @@ impl<const SLOTS: usize, const CAPACITY: usize> Assembler<SLOTS, CAPACITY> {
     /// message) completes or gives up, in order; `tags` are the line's TAG blocks.
     pub fn feed(&mut self, fragment: Option<Fragment<'_>>, tags: TagBlocks<'_>, mut done: impl FnMut(Assembled<'_>)) {
         let line = self.lines;
-        self.lines += 1;
+        self.lines = self.lines.wrapping_add(1);
         let Some(fragment) = fragment else { return };
-        self.seen += 1;
-        while let Some(oldest) = self.oldest().filter(|&i| self.seen - self.slots[i].started >= self.lifetime) {
+        self.seen = self.seen.wrapping_add(1);
+        while let Some(oldest) =
+            self.oldest().filter(|&i| self.seen.wrapping_sub(self.slots[i].started) >= self.lifetime)
+        {
             self.give_up(oldest, &mut done);
         }
         if fragment.count == 1 {
@@ -195,7 +197,7 @@ impl<const SLOTS: usize, const CAPACITY: usize> Assembler<SLOTS, CAPACITY> {
         };
         let s = &mut self.slots[i];
         let (start, payload) = (s.used(), fragment.payload.as_bytes());
-        if start + payload.len() > CAPACITY || s.n_parts == MAX_FRAGMENTS {
+        if start + payload.len() > CAPACITY {
             self.give_up(i, &mut done);
             return done(Assembled { lines: &[line], joined: None });
         }
