@@ -889,6 +889,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/tests/values.rs"] = runtime_file(spec, "//", "rust/crate/tests/values.rs", blank_line=True)
     files[f"{base}/tests/tag_blocks.rs"] = runtime_file(spec, "//", "rust/crate/tests/tag_blocks.rs", blank_line=True)
     files[f"{base}/tests/ais.rs"] = runtime_file(spec, "//", "rust/crate/tests/ais.rs", blank_line=True)
+    files[f"{base}/tests/assembly.rs"] = runtime_file(spec, "//", "rust/crate/tests/assembly.rs", blank_line=True)
 
     gates = Gates(spec)
     layouts = []
@@ -911,6 +912,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                 "sentence": s, "name": name, "layout": view["layout"], "title": view["title"], "type": view["type"],
                 "main": s.layout_camel(s.layout),
                 "same_as_main": s.same_as_main(view["layout"]) if view["layout"].id else [],
+                "encapsulates": s.encapsulates if (s.encapsulates or {}).get("protocol") == "ais" else None,
+                "layout_sentence": rust_str(s.id),
                 "lifetime": view["lifetime"], "kind": camel(s.kind), "parse_arm": parse_arm, "fast_arm": fast_arm, "cfg": gate,
                 "framing_arm": with_cfg(12, gate, fmt_arm(12, f"Self::{name}", framing_expr(s))),
                 "replies_arm": with_cfg(12, gate, fmt_slice(12, f"Self::{name} => ", [f"Self::{r}" for r in reply_names],

@@ -12,6 +12,7 @@ import subprocess
 import sys
 
 from .gpsd_oracle import DATA  # first: it puts generated/python on the path
+from . import assembly_cases  # noqa: E402
 
 from nmeaspec import NmeaError, Tagged, parse  # noqa: E402
 from nmeaspec.assembly import Assembled, MessageAssembler  # noqa: E402
@@ -171,3 +172,9 @@ def test_nmea_show_gives_each_message_with_the_sentence_that_completes_it() -> N
                            capture_output=True, check=True,
                            env={**os.environ, "PYTHONPATH": str(DATA.parents[2] / "generated" / "python")})
     assert table.stdout.decode().splitlines()[4].split() == ["4", "static_voyage_data", "371255000"]
+
+
+def test_the_shared_cases_are_what_this_assembler_gives() -> None:
+    """tests/data/ais/assembly_cases.jsonl, which the C and Rust assemblers are tested against, is
+    current (`.venv/bin/python -m tests.ais.assembly_cases` writes it again)."""
+    assert assembly_cases.PATH.read_text(encoding="utf-8") == assembly_cases.render()

@@ -26,6 +26,7 @@ mod write;
 mod serialize;
 
 pub mod ais;
+pub mod assembly;
 pub mod stream;
 
 #[cfg(feature = "std")]

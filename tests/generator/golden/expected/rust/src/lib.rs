@@ -66,10 +66,11 @@ pub const VERSION: &str = "0.2.0";
 #[cfg(feature = "acme")]
 use runtime::is_command_word;
 pub use runtime::{
-    ais, days_from_civil, stream, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, DateTime, Encoding,
-    Entries, EntryIter, Error, ErrorKind, FieldProblem, Fields, Framing, Generic, Hex, Kind, Layout, Name, NotWhole,
-    Number, Options, ParamValue, Parameter, ParameterError, Problem, ProblemKind, Problems, ReplyOutcome, Sign, Table,
-    TagBlock, TagBlocks, TagCode, TagType, Texts, Time, BUILD_CAPACITY, MAX_LINE, MAX_PROBLEMS, PIVOT_YEAR,
+    ais, assembly, days_from_civil, stream, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, DateTime,
+    Encoding, Entries, EntryIter, Error, ErrorKind, FieldProblem, Fields, Framing, Generic, Hex, Kind, Layout, Name,
+    NotWhole, Number, Options, ParamValue, Parameter, ParameterError, Problem, ProblemKind, Problems, ReplyOutcome,
+    Sign, Table, TagBlock, TagBlocks, TagCode, TagType, Texts, Time, BUILD_CAPACITY, MAX_LINE, MAX_PROBLEMS,
+    PIVOT_YEAR,
 };
 use runtime::{read_layout, Decoded, FastReader, Layouts, Outcome};
 
@@ -354,6 +355,13 @@ impl Layouts for LayoutId {
 }
 
 impl Sentence<'_> {
+    /// What an encapsulation sentence says of the AIS message it carries all or part of (for an
+    /// [`assembly::Assembler`]), `None` for another sentence or one without a usable count or number.
+    pub fn fragment(&self) -> Option<assembly::Fragment<'_>> {
+        let _ = self; // a subset of the spec without encapsulation sentences
+        None
+    }
+
     /// The layout, `None` for a generic sentence.
     pub const fn layout(&self) -> Option<LayoutId> {
         match self {
