@@ -81,6 +81,8 @@ CASES: list[dict[str, Any]] = [
     {"where": "TAG groups tie fragments whatever their ids",
      "lines": [tagged("1-2-1001", FIRST), tagged("1-2-1002", with_id(FIRST, "9")),
                tagged("2-2-1002", with_id(SECOND, "4")), tagged("2-2-1001", with_id(SECOND, "7"))]},
+    {"where": "a TAG group's id is a number: leading zeros name the same group",
+     "lines": [tagged("1-2-0073874", FIRST), tagged("2-2-73874", SECOND)]},
     {"where": "a TAG group from another source is another message",
      "lines": [tagged("1-2-7", FIRST), tagged("2-2-7", SECOND, "r1"), tagged("2-2-7", SECOND)]},
     {"where": "a joined payload that does not decode",

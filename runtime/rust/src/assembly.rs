@@ -261,7 +261,9 @@ fn write_key(key: &mut [u8; KEY_CAPACITY], fragment: &Fragment<'_>, tags: TagBlo
         Some(())
     };
     if let Some(group) = tags.get("g") {
-        let id = group.rsplit('-').next().unwrap_or(group);
+        // The id is a number (Python compares it as one): leading zeros name the same group.
+        let id = group.rsplit('-').next().unwrap_or(group).trim_start_matches('0');
+        let id = if id.is_empty() { "0" } else { id };
         put(b"g")?;
         put(tags.get("s").unwrap_or_default().as_bytes())?;
         put(id.as_bytes())?;
