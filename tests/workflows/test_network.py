@@ -141,3 +141,28 @@ def test_listen_to_the_network_mistakes(installed: Venv) -> None:
     result = run(nmea, "listen", "--tcp", f"127.0.0.1:{port}", check=False, timeout=WAIT)
     assert result.returncode == 3
     assert result.stderr.decode() == f"nmea: cannot connect to 127.0.0.1:{port}: Connection refused\n"
+
+
+def test_send_to_a_receiver_behind_tcp(installed: Venv) -> None:
+    """`nmea send --tcp`: the command written to the socket, the reply the spec pairs with it read
+    back (a serial-to-TCP bridge in front of an MTK receiver)."""
+    server = socket.create_server(("127.0.0.1", 0))
+    host, port = server.getsockname()[:2]
+    received: list[bytes] = []
+
+    def bridge() -> None:
+        connection, _ = server.accept()
+        with connection:
+            received.append(connection.recv(100))
+            connection.sendall(b"$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47\r\n"
+                               b"$PMTK001,220,3*30\r\n")
+        server.close()
+
+    thread = threading.Thread(target=bridge, daemon=True)
+    thread.start()
+    result = run(installed.bin / "nmea", "send", "--tcp", f"{host}:{port}", "mtk_pmtk", "pmtk220", "1000",
+                 check=False, timeout=WAIT)
+    thread.join(WAIT)
+    assert received == [b"$PMTK220,1000*1F\r\n"]
+    assert (result.returncode, result.stdout.decode()) == (
+        0, "> $PMTK220,1000*1F\n< $PMTK001,220,3*30\nok: PMTK001  command=220 flag=success\n"), result.stderr

@@ -807,7 +807,13 @@ def listen(args: argparse.Namespace) -> int:
     return 0
 
 
-SEND_OPTIONS = {"--port": "port", "--baud": "baud", "--timeout": "timeout", "--log": "log"}
+SEND_OPTIONS = {
+    "--port": "port",
+    "--tcp": "tcp",
+    "--baud": "baud",
+    "--timeout": "timeout",
+    "--log": "log",
+}
 SEND_FLAGS = {"--show-all": "show_all"}
 
 
@@ -822,7 +828,8 @@ def send_options(argv: list[str]) -> argparse.Namespace:
     """`nmea send`'s own options, anywhere on the line, and the command's words. After VENDOR
     NAME an option that is also an argument of that command is the command's
     (`mtk_pmtk pmtk251 --baud 115200`)."""
-    values: dict[str, Any] = {"port": None, "baud": "9600", "timeout": "5", "log": None}
+    values: dict[str, Any] = {"port": None, "tcp": None, "baud": "9600", "timeout": "5"}
+    values["log"] = None
     values["show_all"] = False
     words: list[str] = []
     i = 0
