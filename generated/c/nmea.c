@@ -3371,13 +3371,24 @@ static bool json_char_at(const char **p, const char *end, long *cp)
     return true;
 }
 
-/* Past the string starting at p (at its quote); NULL when it is not a valid string. */
+/* Whether c stands for itself in a JSON string (no quote, backslash or control character). */
+static bool json_plain(char c)
+{
+    return c != '"' && c != '\\' && (unsigned char)c >= 0x20;
+}
+
+/* Past the string starting at p (at its quote); NULL when it is not a valid string. Runs of plain
+   characters are stepped over without decoding: every lookup walks the members' strings. */
 static const char *json_string_end(const char *p, const char *end)
 {
     long cp;
     p++;
-    while (json_char_at(&p, end, &cp))
-        continue;
+    for (;;) {
+        while (p < end && json_plain(*p))
+            p++;
+        if (p >= end || *p != '\\' || !json_char_at(&p, end, &cp))
+            break;
+    }
     return p < end && *p == '"' ? p + 1 : NULL;
 }
 
@@ -3525,7 +3536,11 @@ static bool json_key_is(const char *p, const char *end, const char *key)
 {
     long cp;
     p++;
-    while (json_char_at(&p, end, &cp)) {
+    for (;;) {
+        if (p < end && json_plain(*p))
+            cp = (unsigned char)*p++;
+        else if (!json_char_at(&p, end, &cp))
+            break;
         if (!*key || cp != (unsigned char)*key)
             return false;
         key++;
