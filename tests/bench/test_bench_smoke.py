@@ -1,7 +1,7 @@
 """The benchmark harness at a tiny size: our implementations only (no peers, nothing fetched), one
 round over 2,000 lines, the Rust driver built with the standard sentences only (the crate's
-tests build the rest). Checks the shape of results.json and that every line parses and comes back
-byte for byte; the timings of so small a run mean nothing."""
+tests build the rest), the C driver unoptimized. Checks the shape of results.json and that every
+line parses and comes back byte for byte; the timings of so small a run mean nothing."""
 
 import json
 import subprocess
@@ -18,7 +18,8 @@ FIXES = {"ours-python"}  # the implementations with a fix assembler: a `fixes` r
 
 def test_bench_smoke():
     subprocess.run([sys.executable, "bench/run.py", "--lines", str(LINES), "--rounds", "1", "--no-peers",
-                    "--no-docs", "--no-memory", "--no-instructions", "--cargo-profile", "smoke", "--standard-only",
+                    "--no-docs", "--no-memory", "--no-instructions", "--cargo-profile", "smoke", "--c-optimization=-O0",
+                    "--standard-only",
                     "--out", str(OUT)],
                    cwd=ROOT, check=True, stdout=subprocess.DEVNULL)
     report = json.loads((OUT / "results.json").read_text())
