@@ -15,9 +15,10 @@ CARGO_TARGET := build/rust-target
         bench test-bench-smoke \
         fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
 
+# --no-compile: Python compiles the modules a run imports as it imports them, not every module ahead.
 $(STAMP): requirements.txt
 	python3 -m venv $(VENV)
-	$(PY) -m pip install --quiet --disable-pip-version-check -r requirements.txt
+	$(PY) -m pip install --quiet --disable-pip-version-check --no-compile -r requirements.txt
 	touch $@
 
 generate: $(STAMP)
@@ -58,7 +59,7 @@ DOCS_STAMP := $(DOCS_VENV)/.installed
 
 $(DOCS_STAMP): docs/requirements-docs.txt
 	python3 -m venv $(DOCS_VENV)
-	$(DOCS_VENV)/bin/pip install --quiet --disable-pip-version-check -r docs/requirements-docs.txt
+	$(DOCS_VENV)/bin/pip install --quiet --disable-pip-version-check --no-compile -r docs/requirements-docs.txt
 	touch $@
 
 docs-site: $(DOCS_STAMP)

@@ -123,7 +123,8 @@ def python_package(version: str) -> None:
     env_dir = OUT / "python-venv"
     shutil.rmtree(env_dir, ignore_errors=True)
     venv.create(env_dir, with_pip=True)
-    run(env_dir / "bin" / "python", "-m", "pip", "install", "--quiet", "--disable-pip-version-check", wheels[0])
+    run(env_dir / "bin" / "python", "-m", "pip", "install", "--quiet", "--disable-pip-version-check", "--no-compile",
+        wheels[0])
     check(run(env_dir / "bin" / "nmea", "--version").strip() == f"nmea {version}", "nmea --version")
     check(run(env_dir / "bin" / "nmea-py", "--version").strip() == f"nmea-py {version}", "nmea-py --version")
     shown = run(env_dir / "bin" / "python", "-c", "import nmeaspec; print(nmeaspec.__version__)").strip()

@@ -398,8 +398,8 @@ def python_env(copies: Path) -> Path:
     # With setuptools 77 or later (the license is an SPDX expression) and wheel in the venv, pip
     # builds without fetching a build environment for each package.
     has_tools = subprocess.run([python, "-m", "pip", "install", "--quiet", "--disable-pip-version-check",
-                                "setuptools>=77", "wheel"], capture_output=True).returncode == 0
-    options = ["--no-deps", "--no-build-isolation"] if has_tools else ["--no-deps"]
+                                "--no-compile", "setuptools>=77", "wheel"], capture_output=True).returncode == 0
+    options = ["--no-compile", "--no-deps"] + (["--no-build-isolation"] if has_tools else [])
     run(python, "-m", "pip", "install", "--quiet", *options, copies / "default/python", copies / "gs5/python",
         cwd=copies)
     return python

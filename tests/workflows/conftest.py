@@ -49,7 +49,8 @@ class Venv:
         return self.bin / "python"
 
     def pip(self, *args: str | Path) -> None:
-        run(self.python, "-m", "pip", "install", "--quiet", "--disable-pip-version-check", *args)
+        # --no-compile: Python compiles what a test imports when it imports it, not all of it ahead.
+        run(self.python, "-m", "pip", "install", "--quiet", "--disable-pip-version-check", "--no-compile", *args)
 
 
 @pytest.fixture(scope="session")

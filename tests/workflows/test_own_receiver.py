@@ -37,7 +37,7 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Path:
     [wheel] = (home / "dist").glob("*.whl")
     venv.create(home / "venv", with_pip=True)
     python = home / "venv" / "bin" / "python"
-    run(python, "-m", "pip", "install", "--quiet", "--disable-pip-version-check", "--no-deps", wheel)
+    run(python, "-m", "pip", "install", "--quiet", "--disable-pip-version-check", "--no-compile", "--no-deps", wheel)
     # The generator's dependencies come from the project's environment, not from the network.
     site = run(python, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])").stdout.decode().strip()
     ours = [p for p in sys.path if p.endswith("site-packages") and Path(p, "jinja2").is_dir()]
