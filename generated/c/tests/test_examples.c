@@ -6181,10 +6181,10 @@ static char json[NMEA_JSON_MAX];
    group counts. A sentence without a group is left as it is. */
 static bool regroup(nmea_sentence *s)
 {
-    size_t i = 0;
     switch (s->id) {
     case NMEA_SENTENCE_ALC: {
         static nmea_alc_alert items[10];
+        size_t i = 0;
         while (i < 10 && nmea_alc_alerts_at(&s->as.alc, i, &items[i]))
             i++;
         s->as.alc.alerts.items = items;
@@ -6194,6 +6194,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_ALK: {
         static nmea_hex items[23];
+        size_t i = 0;
         while (i < 23 && nmea_alk_data_at(&s->as.alk, i, &items[i]))
             i++;
         s->as.alk.data.items = items;
@@ -6203,6 +6204,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_DSE: {
         static nmea_dse_data_set items[8];
+        size_t i = 0;
         while (i < 8 && nmea_dse_data_sets_at(&s->as.dse, i, &items[i]))
             i++;
         s->as.dse.data_sets.items = items;
@@ -6212,6 +6214,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_GEN: {
         static nmea_hex items[8];
+        size_t i = 0;
         while (i < 8 && nmea_gen_words_at(&s->as.gen, i, &items[i]))
             i++;
         s->as.gen.words.items = items;
@@ -6221,6 +6224,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_GLC: {
         static nmea_glc_time_difference items[5];
+        size_t i = 0;
         while (i < 5 && nmea_glc_time_differences_at(&s->as.glc, i, &items[i]))
             i++;
         s->as.glc.time_differences.items = items;
@@ -6230,6 +6234,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_GRS: {
         static nmea_number items[12];
+        size_t i = 0;
         while (i < 12 && nmea_grs_residuals_at(&s->as.grs, i, &items[i]))
             i++;
         s->as.grs.residuals.items = items;
@@ -6239,6 +6244,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_GSA: {
         static nmea_number items[12];
+        size_t i = 0;
         while (i < 12 && nmea_gsa_prns_at(&s->as.gsa, i, &items[i]))
             i++;
         s->as.gsa.prns.items = items;
@@ -6248,6 +6254,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_GSA_SHORT: {
         static nmea_number items[11];
+        size_t i = 0;
         while (i < 11 && nmea_gsa_short_prns_at(&s->as.gsa_short, i, &items[i]))
             i++;
         s->as.gsa_short.prns.items = items;
@@ -6257,6 +6264,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_GSA_WIDE_SYSTEM: {
         static nmea_number items[24];
+        size_t i = 0;
         while (i < 24 && nmea_gsa_wide_system_prns_at(&s->as.gsa_wide_system, i, &items[i]))
             i++;
         s->as.gsa_wide_system.prns.items = items;
@@ -6266,6 +6274,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_GSA_WIDE: {
         static nmea_number items[24];
+        size_t i = 0;
         while (i < 24 && nmea_gsa_wide_prns_at(&s->as.gsa_wide, i, &items[i]))
             i++;
         s->as.gsa_wide.prns.items = items;
@@ -6275,6 +6284,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_GSA_EXTRA_DOP: {
         static nmea_number items[12];
+        size_t i = 0;
         while (i < 12 && nmea_gsa_extra_dop_prns_at(&s->as.gsa_extra_dop, i, &items[i]))
             i++;
         s->as.gsa_extra_dop.prns.items = items;
@@ -6284,6 +6294,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_GSV: {
         static nmea_gsv_satellite items[4];
+        size_t i = 0;
         while (i < 4 && nmea_gsv_satellites_at(&s->as.gsv, i, &items[i]))
             i++;
         s->as.gsv.satellites.items = items;
@@ -6293,6 +6304,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_R00: {
         static nmea_text items[14];
+        size_t i = 0;
         while (i < 14 && nmea_r00_waypoints_at(&s->as.r00, i, &items[i]))
             i++;
         s->as.r00.waypoints.items = items;
@@ -6302,6 +6314,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_RTE: {
         static nmea_text items[32];
+        size_t i = 0;
         while (i < 32 && nmea_rte_waypoints_at(&s->as.rte, i, &items[i]))
             i++;
         s->as.rte.waypoints.items = items;
@@ -6311,6 +6324,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_SFI: {
         static nmea_sfi_frequencie items[6];
+        size_t i = 0;
         while (i < 6 && nmea_sfi_frequencies_at(&s->as.sfi, i, &items[i]))
             i++;
         s->as.sfi.frequencies.items = items;
@@ -6320,6 +6334,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_TLB: {
         static nmea_tlb_label items[20];
+        size_t i = 0;
         while (i < 20 && nmea_tlb_labels_at(&s->as.tlb, i, &items[i]))
             i++;
         s->as.tlb.labels.items = items;
@@ -6329,6 +6344,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_TXT_TEXT_WITH_COMMAS: {
         static nmea_text items[32];
+        size_t i = 0;
         while (i < 32 && nmea_txt_text_with_commas_parts_at(&s->as.txt_text_with_commas, i, &items[i]))
             i++;
         s->as.txt_text_with_commas.parts.items = items;
@@ -6338,6 +6354,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_XDR: {
         static nmea_xdr_measurement items[10];
+        size_t i = 0;
         while (i < 10 && nmea_xdr_measurements_at(&s->as.xdr, i, &items[i]))
             i++;
         s->as.xdr.measurements.items = items;
@@ -6347,6 +6364,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PAIR890: {
         static nmea_pair890_fence items[4];
+        size_t i = 0;
         while (i < 4 && nmea_pair890_fences_at(&s->as.pair890, i, &items[i]))
             i++;
         s->as.pair890.fences.items = items;
@@ -6356,6 +6374,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PAIR891_REPLY: {
         static nmea_pair891_reply_fence items[4];
+        size_t i = 0;
         while (i < 4 && nmea_pair891_reply_fences_at(&s->as.pair891_reply, i, &items[i]))
             i++;
         s->as.pair891_reply.fences.items = items;
@@ -6365,6 +6384,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PASHR_NMO: {
         static nmea_pashr_nmo_message items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pashr_nmo_messages_at(&s->as.pashr_nmo, i, &items[i]))
             i++;
         s->as.pashr_nmo.messages.items = items;
@@ -6374,6 +6394,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PASHR_SAT: {
         static nmea_pashr_sat_satellite items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pashr_sat_satellites_at(&s->as.pashr_sat, i, &items[i]))
             i++;
         s->as.pashr_sat.satellites.items = items;
@@ -6383,6 +6404,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PGLOR_LSQ: {
         static nmea_text items[4];
+        size_t i = 0;
         while (i < 4 && nmea_pglor_lsq_extra_at(&s->as.pglor_lsq, i, &items[i]))
             i++;
         s->as.pglor_lsq.extra.items = items;
@@ -6392,6 +6414,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PGLOR_PWR_V4: {
         static nmea_text items[16];
+        size_t i = 0;
         while (i < 16 && nmea_pglor_pwr_v4_extra_at(&s->as.pglor_pwr_v4, i, &items[i]))
             i++;
         s->as.pglor_pwr_v4.extra.items = items;
@@ -6401,6 +6424,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PGLOR_SAT: {
         static nmea_pglor_sat_satellite items[16];
+        size_t i = 0;
         while (i < 16 && nmea_pglor_sat_satellites_at(&s->as.pglor_sat, i, &items[i]))
             i++;
         s->as.pglor_sat.satellites.items = items;
@@ -6410,6 +6434,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PGLOR_SAT_V1: {
         static nmea_pglor_sat_v1_satellite items[24];
+        size_t i = 0;
         while (i < 24 && nmea_pglor_sat_v1_satellites_at(&s->as.pglor_sat_v1, i, &items[i]))
             i++;
         s->as.pglor_sat_v1.satellites.items = items;
@@ -6419,6 +6444,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PGLOR_SAT_V0: {
         static nmea_pglor_sat_v0_satellite items[24];
+        size_t i = 0;
         while (i < 24 && nmea_pglor_sat_v0_satellites_at(&s->as.pglor_sat_v0, i, &items[i]))
             i++;
         s->as.pglor_sat_v0.satellites.items = items;
@@ -6428,6 +6454,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PGLOR_STA: {
         static nmea_text items[16];
+        size_t i = 0;
         while (i < 16 && nmea_pglor_sta_extra_at(&s->as.pglor_sta, i, &items[i]))
             i++;
         s->as.pglor_sta.extra.items = items;
@@ -6437,6 +6464,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PMTKCHN: {
         static nmea_number items[32];
+        size_t i = 0;
         while (i < 32 && nmea_pmtkchn_channels_at(&s->as.pmtkchn, i, &items[i]))
             i++;
         s->as.pmtkchn.channels.items = items;
@@ -6446,6 +6474,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PMTKLOX_DATA: {
         static nmea_hex items[24];
+        size_t i = 0;
         while (i < 24 && nmea_pmtklox_data_words_at(&s->as.pmtklox_data, i, &items[i]))
             i++;
         s->as.pmtklox_data.words.items = items;
@@ -6455,6 +6484,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PQGSV: {
         static nmea_pqgsv_satellite items[4];
+        size_t i = 0;
         while (i < 4 && nmea_pqgsv_satellites_at(&s->as.pqgsv, i, &items[i]))
             i++;
         s->as.pqgsv.satellites.items = items;
@@ -6464,6 +6494,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PQTMGEOFENCESTATUS: {
         static nmea_enum items[4];
+        size_t i = 0;
         while (i < 4 && nmea_pqtmgeofencestatus_states_at(&s->as.pqtmgeofencestatus, i, &items[i]))
             i++;
         s->as.pqtmgeofencestatus.states.items = items;
@@ -6473,6 +6504,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMAGPS: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmagps_values_at(&s->as.pstmagps, i, &items[i]))
             i++;
         s->as.pstmagps.values.items = items;
@@ -6482,6 +6514,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMALMANAC: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmalmanac_values_at(&s->as.pstmalmanac, i, &items[i]))
             i++;
         s->as.pstmalmanac.values.items = items;
@@ -6491,6 +6524,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMCORR: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmcorr_values_at(&s->as.pstmcorr, i, &items[i]))
             i++;
         s->as.pstmcorr.values.items = items;
@@ -6500,6 +6534,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMDIFF: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmdiff_values_at(&s->as.pstmdiff, i, &items[i]))
             i++;
         s->as.pstmdiff.values.items = items;
@@ -6509,6 +6544,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMEPH: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmeph_values_at(&s->as.pstmeph, i, &items[i]))
             i++;
         s->as.pstmeph.values.items = items;
@@ -6518,6 +6554,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMKFCOV: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmkfcov_values_at(&s->as.pstmkfcov, i, &items[i]))
             i++;
         s->as.pstmkfcov.values.items = items;
@@ -6527,6 +6564,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMPA: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmpa_values_at(&s->as.pstmpa, i, &items[i]))
             i++;
         s->as.pstmpa.values.items = items;
@@ -6536,6 +6574,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMPRES: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmpres_values_at(&s->as.pstmpres, i, &items[i]))
             i++;
         s->as.pstmpres.values.items = items;
@@ -6545,6 +6584,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMRES: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmres_values_at(&s->as.pstmres, i, &items[i]))
             i++;
         s->as.pstmres.values.items = items;
@@ -6554,6 +6594,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMRF: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmrf_values_at(&s->as.pstmrf, i, &items[i]))
             i++;
         s->as.pstmrf.values.items = items;
@@ -6563,6 +6604,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMSAT: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmsat_values_at(&s->as.pstmsat, i, &items[i]))
             i++;
         s->as.pstmsat.values.items = items;
@@ -6572,6 +6614,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMSBAS: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmsbas_values_at(&s->as.pstmsbas, i, &items[i]))
             i++;
         s->as.pstmsbas.values.items = items;
@@ -6581,6 +6624,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMSBASCORR: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmsbascorr_values_at(&s->as.pstmsbascorr, i, &items[i]))
             i++;
         s->as.pstmsbascorr.values.items = items;
@@ -6590,6 +6634,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMTESTRF: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmtestrf_values_at(&s->as.pstmtestrf, i, &items[i]))
             i++;
         s->as.pstmtestrf.values.items = items;
@@ -6599,6 +6644,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMTG: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmtg_values_at(&s->as.pstmtg, i, &items[i]))
             i++;
         s->as.pstmtg.values.items = items;
@@ -6608,6 +6654,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMTIM: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmtim_values_at(&s->as.pstmtim, i, &items[i]))
             i++;
         s->as.pstmtim.values.items = items;
@@ -6617,6 +6664,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMTS: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmts_values_at(&s->as.pstmts, i, &items[i]))
             i++;
         s->as.pstmts.values.items = items;
@@ -6626,6 +6674,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMVER: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmver_values_at(&s->as.pstmver, i, &items[i]))
             i++;
         s->as.pstmver.values.items = items;
@@ -6635,6 +6684,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMVRES: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmvres_values_at(&s->as.pstmvres, i, &items[i]))
             i++;
         s->as.pstmvres.values.items = items;
@@ -6644,6 +6694,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PSTMWAAS: {
         static nmea_text items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pstmwaas_values_at(&s->as.pstmwaas, i, &items[i]))
             i++;
         s->as.pstmwaas.values.items = items;
@@ -6653,6 +6704,7 @@ static bool regroup(nmea_sentence *s)
     }
     case NMEA_SENTENCE_PUBX_SVSTATUS: {
         static nmea_pubx_svstatus_satellite items[64];
+        size_t i = 0;
         while (i < 64 && nmea_pubx_svstatus_satellites_at(&s->as.pubx_svstatus, i, &items[i]))
             i++;
         s->as.pubx_svstatus.satellites.items = items;

@@ -109,10 +109,10 @@ static char json[NMEA_JSON_MAX];
    group counts. A sentence without a group is left as it is. */
 static bool regroup(nmea_sentence *s)
 {
-    size_t i = 0;
     switch (s->id) {
     case NMEA_SENTENCE_SAT: {
         static nmea_sat_satellite items[4];
+        size_t i = 0;
         while (i < 4 && nmea_sat_satellites_at(&s->as.sat, i, &items[i]))
             i++;
         s->as.sat.satellites.items = items;
