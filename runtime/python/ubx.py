@@ -1,22 +1,32 @@
-"""u-blox UBX frames: the framing layer (spec/binary/ubx/protocol.yaml) that the message layouts
-will sit on.
+"""u-blox UBX frames: the framing layer (spec/binary/ubx/protocol.yaml) and the base of the
+generated message classes (nmeaspec.ubx_messages, from spec/binary/ubx/messages).
 
 A frame is the sync bytes B5 62, a class and an id byte, the payload's length (two bytes, little
 endian, the payload alone) and the payload, closed by a Fletcher-8 checksum over class..payload.
-A frame decodes to its class, id and payload and encodes back to the same bytes; a frame of a
-class/id nobody describes is kept with its payload. A payload is read and written by the field
-classes and item walkers of the AIS payloads (ais.py: one model of payloads) through ByteReader and
-ByteWriter, which hold the little-endian byte order: offsets and widths stay in bits, whole bytes
-here. Facts from u-blox UBX-13003221 (u-blox 8 / M8
-Receiver description, "UBX protocol": frame structure and checksum).
+A frame decodes to its class, id and payload and encodes back to the same bytes. A payload is
+read and written by the field classes and item walkers of the AIS payloads (ais.py: one model of
+payloads) through ByteReader and ByteWriter, which hold the little-endian byte order: offsets and
+widths stay in bits, whole bytes here. A message decodes into the class of its layout and encodes
+back to the same bytes (reserved bytes, bits of a bitfield no part names and bytes after the
+layout are kept); a frame of a class/id the spec does not describe stays an Unknown with its
+payload. Facts from u-blox UBX-13003221 (u-blox 8 / M8 Receiver description, "UBX protocol":
+frame structure and checksum).
 """
 
 from __future__ import annotations
 
+import math
+import struct
 from collections.abc import Iterator
 from dataclasses import dataclass
+from typing import Any, ClassVar
 
+from .ais import Bitfield, Field, Group, Item, Unsigned, _bad_value, flat_fields, items_json, read_items, write_items
 from .runtime import NmeaError
+
+__all__ = ["Bitfield", "Bytes", "ByteReader", "ByteWriter", "Chars", "Float", "Frame", "Group", "Message",
+           "NmeaError", "Unknown", "decode_frame", "fletcher8", "frame_size", "main_layout", "message",
+           "split_frames"]
 
 SYNC = b"\xb5\x62"
 HEADER_SIZE = 6  # sync, class, id, length
@@ -127,3 +137,163 @@ def split_frames(data: bytes) -> Iterator[tuple[int, Frame]]:
             continue
         yield pos, frame
         pos = data.find(SYNC, pos + size)
+
+
+@dataclass(frozen=True, slots=True)
+class Float(Field):
+    """r4, r8: an IEEE 754 float, little endian (JSON: NaN and the infinities as "nan", "inf")."""
+
+    def from_raw(self, raw: int, width: int) -> Any:
+        return struct.unpack("<f" if width == 32 else "<d", raw.to_bytes(width // 8, "little"))[0]
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        assert self.width is not None
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise _bad_value(where, self.id, value, "a number")
+        return int.from_bytes(struct.pack("<f" if self.width == 32 else "<d", value), "little"), self.width
+
+    def put_json(self, out: dict[str, Any], value: Any) -> None:
+        out[self.id] = value if math.isfinite(value) else str(value)
+
+
+@dataclass(frozen=True, slots=True)
+class Chars(Field):
+    """ch: characters as sent, ISO 8859-1, NUL padding included; without a width, the bytes left."""
+
+    def from_raw(self, raw: int, width: int) -> Any:
+        return raw.to_bytes(width // 8, "little").decode("latin-1")
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        data = value.encode("latin-1", "replace") if isinstance(value, str) else None
+        if data is None or self.width is not None and 8 * len(data) != self.width:
+            size = f"{self.width // 8} " if self.width is not None else ""
+            raise _bad_value(where, self.id, value, f"a text of {size}ISO 8859-1 characters")
+        return int.from_bytes(data, "little"), 8 * len(data)
+
+
+@dataclass(frozen=True, slots=True)
+class Bytes(Field):
+    """bytes: binary data as sent (JSON: lower-case hex); without a width, the bytes left."""
+
+    def from_raw(self, raw: int, width: int) -> Any:
+        return raw.to_bytes(width // 8, "little")
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        if not isinstance(value, bytes) or self.width is not None and 8 * len(value) != self.width:
+            raise _bad_value(where, self.id, value, "bytes" if self.width is None else f"{self.width // 8} bytes")
+        return int.from_bytes(value, "little"), 8 * len(value)
+
+    def put_json(self, out: dict[str, Any], value: Any) -> None:
+        out[self.id] = value.hex()
+
+
+@dataclass(kw_only=True)
+class Message:
+    """A decoded UBX message, one layout of a class and id (the generated classes of
+    nmeaspec.ubx_messages): its fields, then the payload's bytes after the layout, as sent."""
+
+    trailing: bytes = b""
+    """Bytes after the layout's last field, as sent (a newer firmware's additions)."""
+
+    ID: ClassVar[str]
+    """The spec's id of the layout (`nav_pvt`, `nav_pvt_poll`)."""
+    ADDRESS: ClassVar[str]
+    """How u-blox names the message: NAV-PVT."""
+    CLASS: ClassVar[int]
+    MSG_ID: ClassVar[int]
+    DIRECTIONS: ClassVar[tuple[str, ...]]
+    """Who sends it: "poll" and "input" go to the receiver, "output" comes from it."""
+    LENGTH: ClassVar[int | None]
+    """The payload's bytes, when the layout fixes them."""
+    VERSION: ClassVar[int | None]
+    """The value of its `version` field that tells it from another layout of its class and id."""
+    REPLIES: ClassVar[tuple[str, ...]]
+    """The layouts (ids) the receiver answers it with."""
+    LAYOUT: ClassVar[tuple[Item, ...]]
+    FIELDS: ClassVar[dict[str, Field]]
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "LAYOUT" in cls.__dict__:
+            cls.FIELDS = {f.id: f for f in flat_fields(cls.LAYOUT)}
+
+    @classmethod
+    def fits(cls, payload: bytes) -> bool:
+        """Whether `payload` has this layout's length (a fixed one) and version (when it has one)."""
+        if cls.LENGTH is not None and len(payload) != cls.LENGTH:
+            return False
+        if cls.VERSION is not None:
+            at = next(i for i, item in enumerate(cls.LAYOUT) if isinstance(item, Field) and item.id == "version")
+            offset = sum((f.width or 0) for f in cls.LAYOUT[:at] if isinstance(f, Field)) // 8
+            return offset < len(payload) and payload[offset] == cls.VERSION
+        return True
+
+    @classmethod
+    def from_payload(cls, payload: bytes) -> Message:
+        """The message of `payload`, read as this layout."""
+        reader = ByteReader(payload, f"UBX {cls.ADDRESS}")
+        values: dict[str, Any] = {}
+        read_items(cls.LAYOUT, reader, values)
+        return cls(**values, trailing=payload[reader.pos // 8:])
+
+    def payload(self) -> bytes:
+        """The payload it is sent as; a count left None is its group's number of entries."""
+        where = f"UBX {self.ADDRESS}"
+        for group in (item for item in self.LAYOUT if isinstance(item, Group) and item.count):
+            if getattr(self, group.count or "") is None:
+                setattr(self, group.count or "", len(getattr(self, group.id)))
+        writer = ByteWriter()
+        write_items(self.LAYOUT, self, writer, where)
+        return bytes(writer.payload) + self.trailing
+
+    def frame(self) -> Frame:
+        return Frame(self.CLASS, self.MSG_ID, self.payload())
+
+    def encode(self) -> bytes:
+        """The whole frame, sync bytes to checksum."""
+        return self.frame().encode()
+
+    def raw(self, name: str) -> int | None:
+        """The raw integer of a scaled number's member; None when the member is None."""
+        value = getattr(self, name)
+        f = self.FIELDS[name]
+        return None if value is None or not isinstance(f, Unsigned) else f.raw_number(value, "")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The message as the decoded JSON of generated/vectors/ubx.jsonl: the layout's id as
+        `message`, each field present by its id (a number in a unit beside its raw integer as
+        <id>_raw, an enum value by its id, a bitfield's word and then its parts, characters as
+        sent, bytes as hex), then the trailing bytes as hex."""
+        return {"message": self.ID, **items_json(self.LAYOUT, self), "trailing": self.trailing.hex()}
+
+
+@dataclass
+class Unknown:
+    """A frame of a class and id the spec does not describe, kept with its payload."""
+
+    msg_class: int
+    msg_id: int
+    payload: bytes
+
+    def encode(self) -> bytes:
+        return Frame(self.msg_class, self.msg_id, self.payload).encode()
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"message": None, "class": self.msg_class, "id": self.msg_id, "payload": self.payload.hex()}
+
+
+def message(by_id: dict[tuple[int, int], tuple[type[Message], ...]], frame: Frame) -> Message | Unknown:
+    """The message of `frame` as the layout of its class and id (in `by_id`, in spec order) whose
+    length and version the payload has, else its main layout (the first the receiver sends: a
+    short payload then names the field it cuts, a long one keeps the rest as trailing); an Unknown
+    when no layout describes the class and id."""
+    layouts = by_id.get((frame.msg_class, frame.msg_id))
+    if not layouts:
+        return Unknown(frame.msg_class, frame.msg_id, frame.payload)
+    cls = next((c for c in layouts if c.fits(frame.payload)), None) or main_layout(layouts)
+    return cls.from_payload(frame.payload)
+
+
+def main_layout(layouts: tuple[type[Message], ...]) -> type[Message]:
+    """The layout a payload of no layout's length is read as: the first output one, else the last."""
+    return next((c for c in layouts if "output" in c.DIRECTIONS), layouts[-1])
