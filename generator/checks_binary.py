@@ -61,7 +61,7 @@ def _check_binary_items(layout: Payload, report: Report) -> None:
             if f.parts and not f.bit_type.has_parts:
                 report(f.origin, "B002", f"field {f.id}: only a bitfield word (x1, x2, x4) has parts", "parts")
             _check_parts(f, report)
-        if isinstance(item, PayloadGroup) and item.count is not None:
+        if isinstance(item, PayloadGroup) and isinstance(item.count, str):
             count = seen.get(item.count)
             if count is None or count.bit_type.name not in ("u1", "u2", "u4", "uint"):
                 report(item.origin, "B003", f"group {item.id}: count {item.count} names no unsigned field or part "

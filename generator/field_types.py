@@ -411,6 +411,8 @@ class BitNumber(BitType):
         return value - (1 << len(bits)) if self.signed and bits[0] == "1" else value
 
     def json(self, f: Any, raw: Any) -> dict[str, Any]:
+        if f.enum:   # a byte type's codes (u1 with an enum), as an enum field's
+            return BIT_TYPES["enum"].json(f, raw)
         if not f.scaled:
             return {f.id: raw}
         special = next((s.id for s in f.special if s.raw == raw), None)

@@ -681,8 +681,8 @@ class PayloadField:
 
 @dataclass
 class PayloadGroup:
-    """Entries repeated while the payload has bits for them (up to `max`), or as many as the
-    field `count` (read before the group) says."""
+    """Entries repeated while the payload has bits for them (up to `max`), as many as the field
+    `count` (read before the group) says, or (`count` a number) that many."""
     id: str
     name: str
     doc: str
@@ -690,7 +690,7 @@ class PayloadGroup:
     max: int
     fields: list[PayloadField]
     origin: Origin
-    count: str | None = None
+    count: str | int | None = None
     offset: int | None = None
 
     @property
@@ -699,7 +699,7 @@ class PayloadGroup:
 
     @property
     def width(self) -> int | None:
-        return None
+        return self.entry_width * self.count if isinstance(self.count, int) else None
 
     @property
     def camel(self) -> str:

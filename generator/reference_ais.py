@@ -72,7 +72,7 @@ def _items(items: list, bits: Any, rest: list, out: dict[str, Any]) -> bool:
     for i, item in enumerate(items):
         following = items[i + 1:] + rest
         if isinstance(item, PayloadGroup):
-            count = out[item.count] if item.count else \
+            count = item.count if isinstance(item.count, int) else out[item.count] if item.count else \
                 min(item.max, max(bits.left - after(following), 0) // item.entry_width)
             if count < item.min or count * item.entry_width > bits.left:
                 raise PayloadError("short_payload", f"{bits.payload.id}: {item.id} needs {max(count, item.min)} entries")

@@ -322,7 +322,8 @@ class Bitfield(Field):
 @dataclass(frozen=True, slots=True)
 class Group:
     """Entries of `fields` (the class `entry`) repeated as many times as the member `count` says
-    or, without one, while the bits left before the `after` bits hold one, at most `max` times."""
+    (`count` a number: that many times) or, without one, while the bits left before the `after`
+    bits hold one, at most `max` times."""
 
     id: str
     entry: type
@@ -330,7 +331,7 @@ class Group:
     min: int
     max: int
     after: int = 0
-    count: str | None = None
+    count: str | int | None = None
 
     @property
     def entry_width(self) -> int:
@@ -398,7 +399,7 @@ def read_items(items: tuple[Item, ...], reader: BitReader, values: dict[str, Any
             if item.count is None:
                 count = min(item.max, max(reader.remaining - item.after, 0) // item.entry_width)
             else:
-                count = values[item.count]
+                count = item.count if isinstance(item.count, int) else values[item.count]
             if count < item.min or count * item.entry_width > reader.remaining:
                 raise NmeaError("short_payload", f"{item.id} needs {max(count, item.min)} entries of "
                                 f"{item.entry_width} bits, {reader.remaining} bits left", reader.where, name=item.id)

@@ -239,9 +239,9 @@ class Message:
     def payload(self) -> bytes:
         """The payload it is sent as; a count left None is its group's number of entries."""
         where = f"UBX {self.ADDRESS}"
-        for group in (item for item in self.LAYOUT if isinstance(item, Group) and item.count):
-            if getattr(self, group.count or "") is None:
-                setattr(self, group.count or "", len(getattr(self, group.id)))
+        for group in self.LAYOUT:
+            if isinstance(group, Group) and isinstance(group.count, str) and getattr(self, group.count) is None:
+                setattr(self, group.count, len(getattr(self, group.id)))
         writer = ByteWriter()
         write_items(self.LAYOUT, self, writer, where)
         return bytes(writer.payload) + self.trailing

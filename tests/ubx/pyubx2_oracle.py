@@ -13,6 +13,7 @@ import re
 import sys
 from collections import Counter
 from dataclasses import dataclass, field
+from enum import Enum
 from pathlib import Path
 from typing import Any
 
@@ -63,16 +64,31 @@ def _key(name: str) -> str:
     return name.replace("_", "").lower()
 
 
-def our_fields(decoded: dict[str, Any]) -> dict[str, Any]:
-    """Our decoded JSON by pyubx2's keys: a group entry's fields suffixed with its number."""
-    out: dict[str, Any] = {}
-    for name, value in decoded.items():
-        if isinstance(value, list):
-            for k, entry in enumerate(value, 1):
-                out.update({f"{_key(n)}_{k:02d}": v for n, v in entry.items() if not n.endswith("_raw")})
-        elif not name.endswith("_raw") and name not in ("message", "trailing"):
-            out[_key(name)] = value
+def our_fields(message: ubx.Message) -> dict[str, Any]:
+    """Our decoded message by pyubx2's keys (an enum member as its code, as pyubx2 has no enums; a
+    group entry's fields suffixed with its number); the raw integers beside scaled values left
+    out."""
+    def members(record: Any, fields: Any, suffix: str) -> dict[str, Any]:
+        out = {}
+        for f in fields:
+            value = getattr(record, f.id)
+            if value is not None and not isinstance(f, ubx.Group):
+                out[_key(f.id) + suffix] = _plain(value)
+        return out
+
+    out = members(message, message.FIELDS.values(), "")
+    for group in (item for item in message.LAYOUT if isinstance(item, ubx.Group)):
+        fields = [f for item in group.fields for f in ubx.flat_fields((item,))]
+        for k, entry in enumerate(getattr(message, group.id), 1):
+            out.update(members(entry, fields, f"_{k:02d}"))
     return out
+
+
+def _plain(value: Any) -> Any:
+    """A member's value as pyubx2 gives it: an enum member as its code, bytes as hex."""
+    if isinstance(value, Enum):
+        return int(value.value)
+    return value.hex() if isinstance(value, bytes) else value
 
 
 def their_fields(message: Any) -> dict[str, Any]:
@@ -121,7 +137,7 @@ def field_agreement() -> dict[str, Agreement]:
         row = out.setdefault(message.ADDRESS, Agreement())
         row.frames += 1
         row.encoded += message.encode() == raw
-        ours, theirs = our_fields(message.to_dict()), their_fields(pyubx2_message(raw))
+        ours, theirs = our_fields(message), their_fields(pyubx2_message(raw))
         for name, value in ours.items():
             if name not in theirs:
                 row.only_ours.add(name)
@@ -165,6 +181,10 @@ REASONS = {
     "reserved13": "pyubx2 names the reserved bit 15 of NAV-SAT's flags",
     "enable": "u-blox names the TX-ready enable bit `en`; pyubx2 `enable`",
     "en": "u-blox names the TX-ready enable bit `en`; pyubx2 `enable`",
+    "mem": "u-blox names MON-TXBUF's memory allocation error bit `mem`; pyubx2 `lem`",
+    "lem": "u-blox names MON-TXBUF's memory allocation error bit `mem`; pyubx2 `lem`",
+    "reserved0": "the same reserved byte, numbered as UBX-13003221 numbers it (reserved1) and as pyubx2 does",
+    "reserved1": "the same reserved byte, numbered as UBX-13003221 numbers it (reserved1) and as pyubx2 does",
 }
 
 
