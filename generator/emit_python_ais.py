@@ -56,7 +56,7 @@ def _field_spec(f: PayloadField, following: list, indent: int) -> list[str]:
     if parts:
         args.append(f"parts=({', '.join(parts)},)")
     # a field with an enum reads codes (an AIS enum, a UBX u1 with one); else its type's class
-    call = f"ais.Code(" if f.enum else f"{f.bit_type.module}.{f.bit_type.python_spec}("
+    call = "ais.Code(" if f.enum else f"{f.bit_type.module}.{f.bit_type.python_spec}("
     one = call + ", ".join(args) + "),"
     if indent + len(one) <= WIDTH:
         return [one]

@@ -17,11 +17,6 @@ from .model import BinaryMessage, Payload, PayloadField, PayloadGroup, Spec
 PACKAGE = "nmeaspec"
 
 
-def class_name(layout: Payload) -> str:
-    """NavPvt for the output layout nav_pvt, NavPvtPoll for its poll."""
-    return layout.camel
-
-
 def _members(fields: list[PayloadField]) -> list[dict]:
     """A member per field, a bitfield's parts after its word."""
     return [member(m) for f in fields for m in (f, *f.parts)]
@@ -50,7 +45,7 @@ def layout_view(message: BinaryMessage, layout: Payload) -> dict:
     doc = [*textwrap.wrap(title(message, layout), WIDTH - 7), "",
            *textwrap.wrap(" ".join(layout.doc.split()), WIDTH - 4)]
     return {
-        "layout": layout, "class": class_name(layout), "members": members, "entries": entries,
+        "layout": layout, "class": layout.camel, "members": members, "entries": entries,
         "doc": [line.replace("\\", "\\\\").replace('"""', '\\"\\"\\"') for line in doc],
         "directions": "(" + ", ".join(f'"{d}"' for d in layout.directions) + ("," if len(layout.directions) == 1 else "")
         + ")",
@@ -69,10 +64,10 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     if not messages:
         return {}
     for message in messages:
-        fields = [f for layout in message.layouts for f in layout.fields]
-        enums = sorted({f.enum.camel for f in fields + [p for f in fields for p in f.parts] if f.enum})
+        fields = [m for layout in message.layouts for f in layout.fields for m in (f, *f.parts)]
+        enums = sorted({f.enum.camel for f in fields if f.enum})
         sources = [message.origin.file, *sorted({f.enum.origin.file for f in fields if f.enum})]
-        modules = sorted({f.bit_type.module for f in fields + [p for f in fields for p in f.parts]} | {"ais", "ubx"})
+        modules = sorted({f.bit_type.module for f in fields} | {"ais", "ubx"})
         files[f"{base}/{message.id}.py"] = env.get_template("python/ubx_message.py.j2").render(
             header=header(spec, "#", sources), message=message, enums=enums, modules=", ".join(modules),
             uses_field=any(isinstance(i, PayloadGroup) for layout in message.layouts for i in layout.items),

@@ -19,9 +19,11 @@ import math
 import struct
 from collections.abc import Iterator
 from dataclasses import dataclass
+from itertools import accumulate
 from typing import Any, ClassVar
 
-from .ais import Bitfield, Field, Group, Item, Unsigned, _bad_value, flat_fields, items_json, read_items, write_items
+from .ais import (Bitfield, Code, Field, Flag, Group, Item, Signed, Spare, Special, Unsigned, _bad_value, flat_fields,
+                  items_json, read_items, write_items)
 from .runtime import NmeaError
 
 __all__ = ["Bitfield", "Bytes", "ByteReader", "ByteWriter", "Chars", "Float", "Frame", "Group", "Message",
@@ -34,12 +36,10 @@ CHECKSUM_SIZE = 2
 
 
 def fletcher8(data: bytes) -> bytes:
-    """The two checksum bytes (CK_A, CK_B) of `data`: 8-bit Fletcher, both sums modulo 256."""
-    ck_a = ck_b = 0
-    for byte in data:
-        ck_a = (ck_a + byte) & 0xFF
-        ck_b = (ck_b + ck_a) & 0xFF
-    return bytes((ck_a, ck_b))
+    """The two checksum bytes (CK_A, CK_B) of `data`: 8-bit Fletcher, both sums modulo 256. CK_A
+    after each byte is the running sum of the bytes, CK_B the sum of those running sums: both
+    summed in C, not byte by byte."""
+    return bytes((sum(data) & 0xFF, sum(accumulate(data)) & 0xFF))
 
 
 @dataclass(frozen=True)
@@ -187,6 +187,138 @@ class Bytes(Field):
         out[self.id] = value.hex()
 
 
+_INTEGER_CODES = {8: "B", 16: "H", 32: "I", 64: "Q"}
+
+
+def _struct_code(f: Field) -> str | None:
+    """The struct code that reads field `f` whole (None: a width no code reads)."""
+    width = f.width
+    if width is None:
+        return None
+    if isinstance(f, Float):
+        return "f" if width == 32 else "d"
+    if isinstance(f, (Chars, Bytes)):
+        return f"{width // 8}s"
+    code = _INTEGER_CODES.get(width, f"{width // 8}s" if type(f) is Spare else None)
+    return code.lower() if code is not None and isinstance(f, Signed) else code
+
+
+class _Compiler:
+    """Straight-line source of a layout's reader: struct.unpack_from for runs of fixed fields and
+    each group entry, the values converted inline as the field classes convert them (the generic
+    reader costs several calls a field; this one a call per run). Decoded values are exactly
+    those of read_items, which tests/ubx checks frame by frame."""
+
+    def __init__(self) -> None:
+        self.names: dict[str, Any] = {"Special": Special, "unpack_from": struct.unpack_from,
+                                      "iter_unpack": struct.iter_unpack, "from_bytes": int.from_bytes}
+        self.lines: list[str] = []
+
+    def name(self, value: Any) -> str:
+        key = f"n{len(self.names)}"
+        self.names[key] = value
+        return key
+
+    def convert(self, f: Field, raw: str, target: str, pad: str) -> None:
+        """Lines that put field `f`'s value of raw value `raw` (an expression) into `target`."""
+        key = repr(f.id)
+        if isinstance(f, Unsigned):
+            number = raw
+            if isinstance(f, Signed) and f.width is not None and not _struct_code(f):   # a part: sign by hand
+                number = f"(({raw}) - {1 << f.width} if ({raw}) >> {f.width - 1} else ({raw}))"
+            value = number if f.divisor == 1 else f"{number} / {f.divisor}"
+            value += f" + {f.base!r}" if f.base or isinstance(f.base, float) else ""
+            if f.special:
+                value = f"{self.name({sp.raw: sp for sp in f.special})}.get({number}) or {value}"
+            self.lines.append(f"{pad}{target}[{key}] = {value}")
+        elif isinstance(f, Flag):
+            self.lines.append(f"{pad}{target}[{key}] = {raw} != 0")
+        elif isinstance(f, Code):
+            members = self.name({m.value: m for m in f.enum})
+            self.lines.append(f"{pad}{target}[{key}] = {members}.get(str({raw}), {raw})")
+        elif isinstance(f, Chars):
+            self.lines.append(f"{pad}{target}[{key}] = {raw}.decode('latin-1')")
+        elif type(f) is Spare and f.width not in _INTEGER_CODES:
+            self.lines.append(f"{pad}{target}[{key}] = from_bytes({raw}, 'little')")
+        else:   # a whole integer, a float, bytes
+            self.lines.append(f"{pad}{target}[{key}] = {raw}")
+        if isinstance(f, Bitfield):
+            self.lines.append(f"{pad}word = {target}[{key}]")
+            for low, part in f.parts:
+                self.convert(part, f"(word >> {low} & {(1 << (part.width or 1)) - 1})", target, pad)
+
+    def run(self, fields: list[Field], target: str, source: str, pad: str) -> str:
+        """Lines that read the fixed `fields` from `source` (a tuple's expression) into `target`;
+        the struct format they take."""
+        fmt = "<" + "".join(_struct_code(f) or "" for f in fields)
+        for i, f in enumerate(fields):
+            self.convert(f, f"{source}[{i}]", target, pad)
+        return fmt
+
+
+def compile_reader(items: tuple[Item, ...]) -> Any:
+    """`read(payload, values)` of a layout: its values from `payload` and the bytes it read, or
+    None when the payload is not one it reads whole (too short, a count too large: the generic
+    reader then says where), or when a layout has what it does not compile (a choice; a group
+    of variable entries)."""
+    c = _Compiler()
+    pos = "0"
+    fixed: list[Field] = []
+
+    def flush() -> None:
+        nonlocal pos, fixed
+        if not fixed:
+            return
+        start = len(c.lines)
+        fmt = c.run(fixed, "values", "t", "    ")
+        size = struct.calcsize(fmt)
+        run = [f"    if len(payload) < {pos} + {size}: return None",
+               f"    t = unpack_from({fmt!r}, payload, {pos})"]
+        c.lines[start:start] = run
+        pos = f"{pos} + {size}" if pos != "0" else str(size)
+        fixed = []
+
+    for index, item in enumerate(items):
+        if isinstance(item, Field) and _struct_code(item) and not item.optional:
+            fixed.append(item)
+            continue
+        flush()
+        if isinstance(item, Field) and item.optional and _struct_code(item):
+            size = (item.width or 0) // 8
+            c.lines.append(f"    if len(payload) < {pos} + {size}: return values, {pos}")
+            fixed.append(item)
+            flush()
+        elif isinstance(item, (Chars, Bytes)) and item.width is None and index == len(items) - 1:
+            c.lines.append(f"    t = (payload[{pos}:],)")
+            c.convert(item, "t[0]", "values", "    ")
+            pos = "len(payload)"
+        elif isinstance(item, Group) and all(_struct_code(f) for f in item.fields):
+            entry = c.name(item.entry)
+            fmt = "<" + "".join(_struct_code(f) or "" for f in item.fields)
+            size = struct.calcsize(fmt)
+            if isinstance(item.count, int):
+                c.lines.append(f"    count = {item.count}")
+            elif item.count:
+                c.lines.append(f"    count = values[{item.count!r}]")
+            else:
+                c.lines.append(f"    count = min({item.max}, (len(payload) - ({pos}) - {item.after // 8}) // {size})")
+            end = f"end{index}"
+            c.lines += [f"    {end} = {pos} + count * {size}",
+                        f"    if count < {item.min} or len(payload) < {end}: return None",
+                        "    entries = []",
+                        f"    for t in iter_unpack({fmt!r}, payload[{pos}:{end}]):",
+                        "        e = {}"]
+            c.run(list(item.fields), "e", "t", "        ")
+            c.lines += [f"        entries.append({entry}(**e))", f"    values[{item.id!r}] = entries"]
+            pos = end
+        else:
+            return None
+    flush()
+    body = ["def read(payload):", "    values = {}", *c.lines, f"    return values, {pos}"]
+    exec("\n".join(body), c.names)  # code built above from the generated layout, never from input
+    return c.names["read"]
+
+
 @dataclass(kw_only=True)
 class Message:
     """A decoded UBX message, one layout of a class and id (the generated classes of
@@ -211,6 +343,8 @@ class Message:
     """The layouts (ids) the receiver answers it with."""
     LAYOUT: ClassVar[tuple[Item, ...]]
     FIELDS: ClassVar[dict[str, Field]]
+    _read: ClassVar[Any]
+    """The layout's compiled reader (compile_reader), made on first use; False: none."""
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
@@ -230,7 +364,19 @@ class Message:
 
     @classmethod
     def from_payload(cls, payload: bytes) -> Message:
-        """The message of `payload`, read as this layout."""
+        """The message of `payload`, read as this layout: by its compiled reader, else (a payload
+        it does not read whole) by the generic one, which names what is missing."""
+        read = cls.__dict__.get("_read")
+        if read is None:
+            read = cls._read = compile_reader(cls.LAYOUT) or False
+        found = read(payload) if read else None
+        if found is not None:
+            return cls(**found[0], trailing=payload[found[1]:])
+        return cls.read_generic(payload)
+
+    @classmethod
+    def read_generic(cls, payload: bytes) -> Message:
+        """The message of `payload` read field by field by ais.read_items."""
         reader = ByteReader(payload, f"UBX {cls.ADDRESS}")
         values: dict[str, Any] = {}
         read_items(cls.LAYOUT, reader, values)

@@ -23,6 +23,13 @@ def test_every_logged_message_agrees_with_pyubx2_and_encodes_back() -> None:
         assert (a.equal, a.encoded) == (a.compared, a.frames), (name, a.differing)
 
 
+def test_the_compiled_readers_read_as_the_generic_reader() -> None:
+    for _, _, frame in log_frames():
+        message = ubx_messages.message(frame)
+        assert isinstance(message, ubx.Message)
+        assert message == type(message).read_generic(frame.payload), message.ADDRESS
+
+
 @pytest.mark.parametrize("vector", VECTORS, ids=[v["where"] for v in VECTORS])
 def test_the_shared_vectors(vector: dict) -> None:
     data = bytes.fromhex(vector["frame"])
