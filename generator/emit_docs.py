@@ -238,6 +238,10 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     documents = {d: title for p in spec.protocols for d, title in p.documents.items()}
     ubx_vectors = emit_vectors.ubx_vectors(spec)
     for m in spec.binary:
+        link = f"[{m.address}](../ubx/{m.id}.md)"
+        for f in (part for lay in m.layouts for f in lay.fields for part in (f, *f.parts)):
+            if f.enum and link not in enum_users[f.enum.id]:
+                enum_users[f.enum.id].append(link)
         files[f"docs/ubx/{m.id}.md"] = env.get_template("docs/ubx_message.md.j2").render(
             banner=banner_of([m.origin.file]), m=m, documents=documents,
             layouts=[{"layout": lay, "rows": binary_rows(lay),

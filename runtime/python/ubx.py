@@ -77,8 +77,9 @@ class ByteReader:
     def peek(self, offset: int, width: int, name: str) -> int:
         first, last = offset // 8, (offset + width) // 8 - 1
         if offset + width > self.length:
-            raise NmeaError("short_payload", f"{name} needs bytes {first}-{last}, the payload has "
-                            f"{len(self.payload)}", self.where, name=name)
+            where = f"byte {first}" if first == last else f"bytes {first}-{last}"
+            raise NmeaError("short_payload", f"{name} needs {where}, the payload has {len(self.payload)}", self.where,
+                            name=name)
         return int.from_bytes(self.payload[first:last + 1], "little")
 
     def take(self, width: int, name: str) -> int:
@@ -383,8 +384,11 @@ class Message:
         return cls(**values, trailing=payload[reader.pos // 8:])
 
     def payload(self) -> bytes:
-        """The payload it is sent as; a count left None is its group's number of entries."""
+        """The payload it is sent as; a count left None is its group's number of entries, a
+        version left None the layout's."""
         where = f"UBX {self.ADDRESS}"
+        if self.VERSION is not None and getattr(self, "version") is None:
+            setattr(self, "version", self.VERSION)
         for group in self.LAYOUT:
             if isinstance(group, Group) and isinstance(group.count, str) and getattr(self, group.count) is None:
                 setattr(self, group.count, len(getattr(self, group.id)))

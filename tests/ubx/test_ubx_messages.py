@@ -75,3 +75,16 @@ def test_a_poll_and_its_reply_are_paired() -> None:
     poll = ubx_messages.decode(ubx_messages.NavPvtPoll().encode())
     assert isinstance(poll, ubx_messages.NavPvtPoll) and poll.REPLIES == ("nav_pvt",)
     assert ubx_messages.CfgPrt.REPLIES == ("ack_ack", "ack_nak")
+
+
+def test_layouts_of_one_class_and_id_are_told_apart_by_version_and_length() -> None:
+    key = ubx_messages.cfg_valget.CfgValgetPollKey(key=0x40520001)   # a u4 item: its size in bits 28-30
+    poll = ubx_messages.decode(ubx_messages.CfgValgetPoll(layer=0, position=0, keys=[key]).encode())
+    assert isinstance(poll, ubx_messages.CfgValgetPoll) and poll.version == 0 and poll.keys == [key]
+    answer = ubx_messages.CfgValget(layer=0, position=0, cfg_data=bytes.fromhex("01005240 00c20100"))
+    assert isinstance(ubx_messages.decode(answer.encode()), ubx_messages.CfgValget)
+    old = ubx_messages.NavRelposnedV0(ref_station_id=0, itow=0, rel_pos_n=0, rel_pos_e=0, rel_pos_d=0, rel_pos_hpn=0,
+                                      rel_pos_hpe=0, rel_pos_hpd=0, reserved1=0, reserved2=0, acc_n=0, acc_e=0,
+                                      acc_d=0, carr_soln=2)
+    decoded = ubx_messages.decode(old.encode())
+    assert isinstance(decoded, ubx_messages.NavRelposnedV0) and decoded.carr_soln == 2 and decoded.version == 0
