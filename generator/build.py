@@ -330,7 +330,9 @@ def _binary_message(doc: Document) -> BinaryMessage:
                                [], d["documents"], 8 * lay["length"] if "length" in lay else None,
                                _payload_items(lay["fields"], file, at + ("fields",)), [], [], Origin(file, at),
                                protocol=protocol, directions=lay["direction"], version=lay.get("version"),
-                               replies=lay.get("replies", [])))
+                               replies=lay.get("replies", []),
+                               acknowledges=(lay["acknowledges"]["class"], lay["acknowledges"]["id"])
+                               if "acknowledges" in lay else None))
     message = BinaryMessage(d["message"], d["name"], d["doc"], protocol, d["class"], d["id"], d["documents"], layouts,
                             Origin(file, ()),
                             examples=[BinaryExample(e["where"], bytes.fromhex(e["frame"]), e.get("expect"),

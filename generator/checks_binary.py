@@ -46,6 +46,11 @@ def check(spec: Spec, report: Report) -> None:
                     report(layout.origin, "B006", f"reply {reply} is no layout of a binary message", "replies", i)
             if "poll" in layout.directions and not layout.replies:
                 report(layout.origin, "B006", f"poll {layout.id} names the layout that answers it", "replies")
+            for key, field_id in zip(("class", "id"), layout.acknowledges or ()):
+                found = next((f for f in layout.fields if f.id == field_id), None)
+                if found is None or found.type != "u1":
+                    report(layout.origin, "B006", f"acknowledges.{key}: {field_id} is no u1 field of {layout.id}",
+                           "acknowledges", key)
         _check_told_apart(message, report)
 
 

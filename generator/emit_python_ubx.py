@@ -51,6 +51,8 @@ def layout_view(message: BinaryMessage, layout: Payload) -> dict:
         + ")",
         "replies": "(" + ", ".join(f'"{r}"' for r in layout.replies) + ("," if len(layout.replies) == 1 else "") + ")",
         "length": str(layout.fixed_width // 8) if layout.fixed_width is not None else "None",
+        "acknowledges": "({!r}, {!r})".format(*layout.acknowledges).replace("'", '"') if layout.acknowledges
+        else "None",
         "descriptor": layout_lines(layout, layout.items, [], 8),
         "raws": [{"name": f.id, "doc": docstring(f"The raw integer of {f.id}.", 8)}
                  for f in layout.fields if f.scaled],

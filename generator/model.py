@@ -805,6 +805,7 @@ class Payload:
     directions: list[str] = field(default_factory=list)   # a binary layout: poll, input, output
     version: int | None = None   # a binary layout told apart by its first field's value
     replies: list[str] = field(default_factory=list)   # the layouts that answer this one (ids)
+    acknowledges: tuple[str, str] | None = None   # an acknowledgement: its fields of the answered class and id
     frame: BinaryMessage | None = None   # a binary layout: its message (class and id)
 
     @property

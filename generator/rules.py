@@ -244,8 +244,8 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "Correct the id, or add the document to protocol.yaml."),
     Rule("B006", "replies name layouts",
          "A layout's `replies` name layouts of binary messages (ack_ack, nav_pvt); every poll names the layout "
-         "that answers it.",
-         "Correct or add `replies`."),
+         "that answers it; an acknowledgement's `acknowledges` names its u1 fields of the answered class and id.",
+         "Correct or add `replies`, or correct `acknowledges`."),
     Rule("B007", "binary examples decode to their expect",
          "Every example is a whole frame of its message (sync, length and checksum right) that the reference "
          "decoder reads, as the layout its length and version pick, to the values its `expect` names (the decoded "

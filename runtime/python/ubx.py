@@ -27,7 +27,7 @@ from .ais import (Bitfield, Code, Field, Flag, Group, Item, Signed, Spare, Speci
 from .runtime import NmeaError
 
 __all__ = ["Bitfield", "Bytes", "ByteReader", "ByteWriter", "Chars", "Float", "Frame", "Group", "Message",
-           "NmeaError", "Unknown", "decode_frame", "fletcher8", "frame_size", "main_layout", "message",
+           "NmeaError", "Unknown", "answers", "decode_frame", "fletcher8", "frame_size", "main_layout", "message",
            "split_frames"]
 
 SYNC = b"\xb5\x62"
@@ -342,6 +342,8 @@ class Message:
     """The value of its `version` field that tells it from another layout of its class and id."""
     REPLIES: ClassVar[tuple[str, ...]]
     """The layouts (ids) the receiver answers it with."""
+    ACKNOWLEDGES: ClassVar[tuple[str, str] | None] = None
+    """An acknowledgement: its members that hold the class and id of the message it answers."""
     LAYOUT: ClassVar[tuple[Item, ...]]
     FIELDS: ClassVar[dict[str, Field]]
     _read: ClassVar[Any]
@@ -415,6 +417,18 @@ class Message:
         <id>_raw, an enum value by its id, a bitfield's word and then its parts, characters as
         sent, bytes as hex), then the trailing bytes as hex."""
         return {"message": self.ID, **items_json(self.LAYOUT, self), "trailing": self.trailing.hex()}
+
+
+def answers(request: Message, reply: Message | Unknown) -> bool:
+    """Whether `reply` answers `request`: a layout the request's REPLIES names, and (an
+    acknowledgement, ACK-ACK or ACK-NAK) one of the request's class and id (UBX-13003221: a CFG
+    message is answered by one of them)."""
+    if not isinstance(reply, Message) or reply.ID not in request.REPLIES:
+        return False
+    if reply.ACKNOWLEDGES is None:
+        return True
+    msg_class, msg_id = (getattr(reply, name) for name in reply.ACKNOWLEDGES)
+    return (msg_class, msg_id) == (request.CLASS, request.MSG_ID)
 
 
 @dataclass

@@ -88,3 +88,13 @@ def test_layouts_of_one_class_and_id_are_told_apart_by_version_and_length() -> N
                                       acc_d=0, carr_soln=2)
     decoded = ubx_messages.decode(old.encode())
     assert isinstance(decoded, ubx_messages.NavRelposnedV0) and decoded.carr_soln == 2 and decoded.version == 0
+
+
+def test_a_reply_answers_the_request_it_names() -> None:
+    rate = ubx_messages.CfgRate(meas_rate=200, nav_rate=1, time_ref=1)
+    assert ubx.answers(rate, ubx_messages.AckAck(cls_id=0x06, msg_id=0x08))
+    assert ubx.answers(rate, ubx_messages.AckNak(cls_id=0x06, msg_id=0x08))
+    assert not ubx.answers(rate, ubx_messages.AckAck(cls_id=0x06, msg_id=0x00))   # CFG-PRT's
+    poll = ubx_messages.NavPvtPoll()
+    assert ubx.answers(poll, ubx_messages.NavPvt())
+    assert not ubx.answers(poll, ubx_messages.AckAck(cls_id=0x01, msg_id=0x07))
