@@ -9,6 +9,7 @@ are u-blox's names in snake case (h_msl for hMSL), a group entry's k-th field is
 from __future__ import annotations
 
 import math
+import random
 import re
 import sys
 from collections import Counter
@@ -102,9 +103,10 @@ def their_fields(message: Any) -> dict[str, Any]:
 
 
 def same(ours: Any, theirs: Any) -> bool:
-    """Whether our JSON value is pyubx2's (its scaled numbers within rounding)."""
-    if isinstance(theirs, bytes):   # characters pyubx2 keeps as bytes
-        return bool(ours.encode("latin-1") == theirs)
+    """Whether our value is pyubx2's (its scaled numbers within rounding)."""
+    if isinstance(theirs, bytes):   # characters or a bitfield word pyubx2 keeps as bytes
+        return bool(ours.encode("latin-1") == theirs if isinstance(ours, str) else
+                    ours == int.from_bytes(theirs, "little"))
     if isinstance(ours, str) and isinstance(theirs, int):   # our bytes (hex), its little-endian integer
         return int.from_bytes(bytes.fromhex(ours), "little") == theirs
     if isinstance(theirs, float) or isinstance(ours, float):
@@ -127,6 +129,24 @@ class Agreement:
     words: set[str] = field(default_factory=set)   # our bitfield words (keys)
 
 
+def _compare(row: Agreement, message: ubx.Message, theirs: Any) -> None:
+    """Adds one decoded message and pyubx2's decode of the same frame to `row`."""
+    ours, their_values = our_fields(message), their_fields(theirs)
+    for name, value in ours.items():
+        if name not in their_values:
+            row.only_ours.add(name)
+            continue
+        row.compared += 1
+        if same(value, their_values[name]):
+            row.equal += 1
+        else:
+            row.differing[name] += 1
+    row.only_theirs |= {name for name in their_values if name not in ours}
+    row.words |= {_key(f.id) for f in message.FIELDS.values() if isinstance(f, ubx.Bitfield)}
+    for group in (item for item in message.LAYOUT if isinstance(item, ubx.Group)):
+        row.words |= {_key(f.id) for f in group.fields if isinstance(f, ubx.Bitfield)}
+
+
 def field_agreement() -> dict[str, Agreement]:
     """Per message our classes decode: how its fields agree with pyubx2's."""
     out: dict[str, Agreement] = {}
@@ -137,21 +157,34 @@ def field_agreement() -> dict[str, Agreement]:
         row = out.setdefault(message.ADDRESS, Agreement())
         row.frames += 1
         row.encoded += message.encode() == raw
-        ours, theirs = our_fields(message), their_fields(pyubx2_message(raw))
-        for name, value in ours.items():
-            if name not in theirs:
-                row.only_ours.add(name)
-                continue
-            row.compared += 1
-            if same(value, theirs[name]):
-                row.equal += 1
-            else:
-                row.differing[name] += 1
-        row.only_theirs |= {name for name in theirs if name not in ours}
-        row.words |= {_key(f.id) for f in message.FIELDS.values() if isinstance(f, ubx.Bitfield)}
-        for group in (item for item in message.LAYOUT if isinstance(item, ubx.Group)):
-            row.words |= {_key(f.id) for f in group.fields if isinstance(f, ubx.Bitfield)}
+        _compare(row, message, pyubx2_message(raw))
     return out
+
+
+def made_up_agreement() -> dict[str, Agreement]:
+    """Per fixed layout with a payload that no log carries: how its fields agree with pyubx2's on
+    a made-up payload (bytes drawn from a generator seeded with the layout's id; its version set),
+    parsed by pyubx2 in the mode of the layout's direction."""
+    logged = {message.ID for _, _, frame in log_frames() for message in [ubx_messages.message(frame)]
+              if isinstance(message, ubx.Message)}
+    out: dict[str, Agreement] = {}
+    for layouts in ubx_messages.BY_ID.values():
+        for cls in layouts:
+            if cls.ID in logged or not cls.LENGTH:
+                continue
+            draw = random.Random(cls.ID)
+            payload = bytearray(draw.randrange(256) for _ in range(cls.LENGTH))
+            if cls.VERSION is not None:
+                payload[0] = cls.VERSION
+            frame = ubx.Frame(cls.CLASS, cls.MSG_ID, bytes(payload))
+            message = ubx_messages.message(frame)
+            assert isinstance(message, cls)
+            mode = pyubx2.GET if "output" in cls.DIRECTIONS else pyubx2.SET if "input" in cls.DIRECTIONS else pyubx2.POLL
+            row = out.setdefault(cls.ID, Agreement())
+            row.frames += 1
+            row.encoded += message.encode() == frame.encode()
+            _compare(row, message, pyubx2.UBXReader.parse(frame.encode(), msgmode=mode))
+    return dict(sorted(out.items()))
 
 
 def agreement() -> dict[str, tuple[int, int]]:
@@ -165,26 +198,33 @@ def agreement() -> dict[str, tuple[int, int]]:
     return {identity: (frames[identity], same[identity]) for identity in sorted(frames)}
 
 
-# Why a field one side has is missing on the other, by message and field (pyubx2's keys).
+# Why a field one side has is missing on the other, or differs, by field (pyubx2's keys).
+HIGH_PRECISION = ("pyubx2 adds the high precision component to the standard one (its lat is lat + lat_hp); we keep "
+                  "both as sent")
+NEWER = "a bit that newer F9 firmware names and the layout's document reserves"
 REASONS = {
     "sec": "u-blox names the second `sec`; pyubx2 `second`",
     "second": "u-blox names the second `sec`; pyubx2 `second`",
-    "authtime": "a part of flags3 that only newer F9 firmware describes (pyubx2 names bits of our reserved bytes)",
-    "nmafixstatus": "a part of flags3 that only newer F9 firmware describes (pyubx2 names bits of our reserved bytes)",
+    "authtime": NEWER, "nmafixstatus": NEWER, "authstatus": NEWER, "tpnotlocked": NEWER,
+    "clascorrused": NEWER, "lppcorrused": NEWER, "hascorrused": NEWER,
+    "relposheadingvalid": "a bit version 1 names and version 0 reserves",
+    "relposnormalized": "a bit version 1 names and version 0 reserves",
     "calibttag": "pyubx2 repeats the data entries over the whole payload: it reads our optional calib_ttag as one "
                  "more data entry (its datafield_NN and datatype_NN beyond num_meas)",
     "datafield": "pyubx2 reads the optional calib_ttag as one more data entry",
     "datatype": "pyubx2 reads the optional calib_ttag as one more data entry",
-    "clascorrused": "parts of a NAV-SAT flags word that u-blox 8 reserves (bits 23-25 of newer F9 firmware)",
-    "lppcorrused": "parts of a NAV-SAT flags word that u-blox 8 reserves",
-    "hascorrused": "parts of a NAV-SAT flags word that u-blox 8 reserves",
-    "reserved13": "pyubx2 names the reserved bit 15 of NAV-SAT's flags",
     "enable": "u-blox names the TX-ready enable bit `en`; pyubx2 `enable`",
     "en": "u-blox names the TX-ready enable bit `en`; pyubx2 `enable`",
     "mem": "u-blox names MON-TXBUF's memory allocation error bit `mem`; pyubx2 `lem`",
     "lem": "u-blox names MON-TXBUF's memory allocation error bit `mem`; pyubx2 `lem`",
-    "reserved0": "the same reserved byte, numbered as UBX-13003221 numbers it (reserved1) and as pyubx2 does",
-    "reserved1": "the same reserved byte, numbered as UBX-13003221 numbers it (reserved1) and as pyubx2 does",
+    "rate": "the rate on the current port, or our group of the six ports' rates; pyubx2 names each port's rate",
+    "rateddc": "pyubx2 names each port's rate; ours are a group of six (or the current port's one)",
+    "rateuart1": "pyubx2 names each port's rate", "rateuart2": "pyubx2 names each port's rate",
+    "rateusb": "pyubx2 names each port's rate", "ratespi": "pyubx2 names each port's rate",
+    "reserved": "pyubx2 names each port's rate and the sixth (reserved) port's",
+    **{name: HIGH_PRECISION for name in ("lon", "lat", "height", "hmsl", "lonhp", "lathp", "heighthp", "hmslhp",
+                                         "relposn", "relpose", "relposd", "relposlength", "relposhpn", "relposhpe",
+                                         "relposhpd", "relposhplength")},
 }
 
 
@@ -192,12 +232,26 @@ def _reason(name: str, words: set[str]) -> str:
     base = re.sub(r"_\d\d$", "", name)
     if base in words:
         return "the bitfield word itself: pyubx2 gives only its parts (we keep the word for bits no part names)"
-    return REASONS.get(base, "not described by the other side")
+    if base in REASONS:
+        return REASONS[base]
+    if base.startswith("reserved"):
+        return "reserved bytes, numbered as the document numbers them (from 1) and as pyubx2 does (from 0)"
+    return "not described by the other side"
+
+
+def differences(name: str, a: Agreement) -> list[str]:
+    """The rows of the differences table of one message or layout."""
+    rows = []
+    for side, names in (("ours", a.only_ours), ("pyubx2", a.only_theirs), ("differs", set(a.differing))):
+        for base in sorted({re.sub(r"_\d\d$", "", n) for n in names}):
+            rows.append(f"| {name} | `{base}` | {side} | {_reason(base, a.words)} |")
+    return rows
 
 
 def report() -> str:
     rows = agreement()
     fields = field_agreement()
+    made_up = made_up_agreement()
     logs = Counter(name for name, _, _ in log_frames())
     lines = [
         "# UBX frames: agreement with pyubx2",
@@ -226,16 +280,26 @@ def report() -> str:
         "| --- | ---: | ---: | ---: | ---: |",
         *(f"| {name} | {a.frames} | {a.compared} | {a.equal} | {a.encoded} |" for name, a in sorted(fields.items())),
         "",
-        "Fields one side has and the other does not, and why:",
+        "Fields one side has and the other does not, or whose values differ, and why:",
         "",
         "| message | field | side | why |",
         "| --- | --- | --- | --- |",
+        *(row for name, a in sorted(fields.items()) for row in differences(name, a)),
+        "",
+        "## Layouts no log carries",
+        "",
+        "Each fixed layout with a payload that no frame of the logs has, decoded from a made-up payload",
+        "(bytes drawn from a generator seeded with the layout's id, its version set) by our class and by",
+        "pyubx2 parsing it as the layout's direction (output, input, poll), compared as above.",
+        "",
+        "| layout | values compared | equal | encoded back byte-exact |",
+        "| --- | ---: | ---: | ---: |",
+        *(f"| {name} | {a.compared} | {a.equal} | {'yes' if a.encoded == a.frames else 'no'} |" for name, a in made_up.items()),
+        "",
+        "| layout | field | side | why |",
+        "| --- | --- | --- | --- |",
+        *(row for name, a in made_up.items() for row in differences(name, a)),
     ]
-    for name, a in sorted(fields.items()):
-        words = a.words
-        for side, names in (("ours", a.only_ours), ("pyubx2", a.only_theirs)):
-            for base in sorted({re.sub(r"_\d\d$", "", n) for n in names}):
-                lines.append(f"| {name} | `{base}` | {side} | {_reason(base, words)} |")
     lines.append("")
     return "\n".join(lines)
 
