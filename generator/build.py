@@ -12,8 +12,8 @@ from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
 from .field_types import BIT_TYPES
-from .model import (BinaryExample, BinaryMessage, BinaryProtocol, BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Fact, Field, FixExample,
-                    GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
+from .model import (BinaryExample, BinaryMessage, BinaryProtocol, BitfieldDef, Bits, BitValue, EnumDef, EnumValue,
+                    Example, Fact, Field, FixExample, GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
                     PayloadChoice, PayloadExample, PayloadField, PayloadGroup, PayloadItem, ReplyRule, Sentence, Spec,
                     Special, TableDef, TagCode)
 from .resolve import resolve
@@ -123,7 +123,8 @@ def _tree_files(tree: Path, required_manuals: bool) -> list[tuple[Path, str, str
         files += [(p, kind, schema) for p in sorted((tree / folder).glob("*.yaml"))]
     for protocol in sorted((tree / "binary").glob("*/protocol.yaml")):   # a binary protocol, then its messages
         files.append((protocol, "protocols", "binary_protocol.schema.json"))
-        files += [(p, "binary", "binary_message.schema.json") for p in sorted((protocol.parent / "messages").glob("*.yaml"))]
+        messages = sorted((protocol.parent / "messages").glob("*.yaml"))
+        files += [(p, "binary", "binary_message.schema.json") for p in messages]
     return files
 
 

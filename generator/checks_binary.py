@@ -81,8 +81,8 @@ def _check_parts(f: PayloadField, report: Report) -> None:
     for i, part in enumerate(f.parts):
         checks_payload.check_field(part, report)
         if f.bits is not None and part.low + (part.bits or 0) > f.bits:
-            report(part.origin, "B002", f"part {part.id} of {f.id} takes bits {part.low}-{part.low + (part.bits or 1) - 1}"
-                   f" of a {f.bits}-bit word", "bit")
+            report(part.origin, "B002", f"part {part.id} of {f.id} takes bits {part.low}-"
+                   f"{part.low + (part.bits or 1) - 1} of a {f.bits}-bit word", "bit")
         mask = ((1 << (part.bits or 1)) - 1) << part.low
         if used & mask:
             report(part.origin, "B002", f"part {part.id} of {f.id} overlaps an earlier part", "bit")
@@ -130,6 +130,7 @@ def check_examples(spec: Spec, report: Report) -> None:
                 continue
             for key, value in (example.expect or {}).items():
                 if key not in decoded:
-                    report(example.origin, "B007", f"expect names {key}, which the example does not have", "expect", key)
+                    report(example.origin, "B007", f"expect names {key}, which the example does not have", "expect",
+                           key)
                 elif decoded[key] != value or type(decoded[key]) is not type(value):
                     report(example.origin, "B007", f"{key} decodes to {decoded[key]!r}, not {value!r}", "expect", key)

@@ -143,7 +143,8 @@ def check_items(payload: Payload, report: Report) -> None:
             if optional is not None and not (isinstance(item, PayloadField) and item.optional) and here not in reported:
                 report(item.origin, "A006", f"{optional} is optional: what follows it must be optional too")
                 reported.add(here)
-            if isinstance(item, PayloadGroup) and item.count is None or isinstance(item, PayloadField) and item.bits is None:
+            if isinstance(item, PayloadGroup) and item.count is None \
+                    or isinstance(item, PayloadField) and item.bits is None:
                 variable = variable or item.id
             if isinstance(item, PayloadField) and item.optional:
                 optional = optional or item.id

@@ -118,7 +118,7 @@ def binary_rows(layout: Payload) -> list[dict]:
 
     def row(f: PayloadField, offset: str, prefix: str = "") -> None:
         kind = f"{f.bit_type.doc_name}" + (f" [{f.enum.id}](../enums/{f.enum.id}.md)" if f.enum else "")
-        size = f" ({f.bits // 8} bytes)" if f.bits and not f.bit_type.size else " (the bytes left)" if not f.bits else ""
+        size = " (the bytes left)" if not f.bits else f" ({f.bits // 8} bytes)" if not f.bit_type.size else ""
         out.append({"offset": offset, "type": kind + size + (" (optional)" if f.optional else ""),
                     "id": prefix + f.id, "name": cell(f.name), "scale": f"÷ {f.divisor}" if f.divisor else "",
                     "unit": cell(f.unit), "doc": cell(f.doc if f.doc != f.name else "")})

@@ -28,6 +28,11 @@ def title(message: BinaryMessage, layout: Payload) -> str:
         f"{directions}."
 
 
+def _tuple(words: list[str]) -> str:
+    """A tuple of strings as Python source."""
+    return "(" + ", ".join(f'"{w}"' for w in words) + ("," if len(words) == 1 else "") + ")"
+
+
 def layout_view(message: BinaryMessage, layout: Payload) -> dict:
     members: list[dict] = []
     entries: list[dict] = []
@@ -47,9 +52,8 @@ def layout_view(message: BinaryMessage, layout: Payload) -> dict:
     return {
         "layout": layout, "class": layout.camel, "members": members, "entries": entries,
         "doc": [line.replace("\\", "\\\\").replace('"""', '\\"\\"\\"') for line in doc],
-        "directions": "(" + ", ".join(f'"{d}"' for d in layout.directions) + ("," if len(layout.directions) == 1 else "")
-        + ")",
-        "replies": "(" + ", ".join(f'"{r}"' for r in layout.replies) + ("," if len(layout.replies) == 1 else "") + ")",
+        "directions": _tuple(layout.directions),
+        "replies": _tuple(layout.replies),
         "length": str(layout.fixed_width // 8) if layout.fixed_width is not None else "None",
         "acknowledges": "({!r}, {!r})".format(*layout.acknowledges).replace("'", '"') if layout.acknowledges
         else "None",

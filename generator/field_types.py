@@ -496,8 +496,8 @@ def _byte_types() -> list[BitType]:
     out: list[BitType] = []
     for size in (1, 2, 4, 8):
         bits = 8 * size
-        out += [BitNumber(f"u{size}", f"U{size} unsigned", "Unsigned", "int", min_bits=bits, max_bits=bits, numeric=True,
-                          enums=True, selects=True, size=size, order="le"),
+        out += [BitNumber(f"u{size}", f"U{size} unsigned", "Unsigned", "int", min_bits=bits, max_bits=bits,
+                          numeric=True, enums=True, selects=True, size=size, order="le"),
                 BitNumber(f"i{size}", f"I{size} signed", "Signed", "int", min_bits=bits, max_bits=bits, numeric=True,
                           signed=True, size=size, order="le")]
         if size < 8:

@@ -75,7 +75,8 @@ def _items(items: list, bits: Any, rest: list, out: dict[str, Any]) -> bool:
             count = item.count if isinstance(item.count, int) else out[item.count] if item.count else \
                 min(item.max, max(bits.left - after(following), 0) // item.entry_width)
             if count < item.min or count * item.entry_width > bits.left:
-                raise PayloadError("short_payload", f"{bits.payload.id}: {item.id} needs {max(count, item.min)} entries")
+                raise PayloadError("short_payload",
+                                   f"{bits.payload.id}: {item.id} needs {max(count, item.min)} entries")
             entries = []
             for _ in range(count):
                 entry: dict[str, Any] = {}

@@ -62,8 +62,8 @@ def ubx_frame(data: bytes) -> tuple[int, int, bytes]:
 
 
 def message_of(spec: Spec, protocol: str, msg_class: int, msg_id: int) -> BinaryMessage | None:
-    return next((m for m in spec.binary if m.protocol == protocol and (m.class_number, m.msg_id) == (msg_class, msg_id)),
-                None)
+    return next((m for m in spec.binary
+                 if m.protocol == protocol and (m.class_number, m.msg_id) == (msg_class, msg_id)), None)
 
 
 def layout_for(message: BinaryMessage, payload: bytes) -> Payload:

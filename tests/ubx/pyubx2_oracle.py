@@ -179,7 +179,8 @@ def made_up_agreement() -> dict[str, Agreement]:
             frame = ubx.Frame(cls.CLASS, cls.MSG_ID, bytes(payload))
             message = ubx_messages.message(frame)
             assert isinstance(message, cls)
-            mode = pyubx2.GET if "output" in cls.DIRECTIONS else pyubx2.SET if "input" in cls.DIRECTIONS else pyubx2.POLL
+            mode = (pyubx2.GET if "output" in cls.DIRECTIONS else pyubx2.SET if "input" in cls.DIRECTIONS
+                    else pyubx2.POLL)
             row = out.setdefault(cls.ID, Agreement())
             row.frames += 1
             row.encoded += message.encode() == frame.encode()
@@ -294,7 +295,8 @@ def report() -> str:
         "",
         "| layout | values compared | equal | encoded back byte-exact |",
         "| --- | ---: | ---: | ---: |",
-        *(f"| {name} | {a.compared} | {a.equal} | {'yes' if a.encoded == a.frames else 'no'} |" for name, a in made_up.items()),
+        *(f"| {name} | {a.compared} | {a.equal} | {'yes' if a.encoded == a.frames else 'no'} |"
+          for name, a in made_up.items()),
         "",
         "| layout | field | side | why |",
         "| --- | --- | --- | --- |",
