@@ -6,6 +6,7 @@ the reference decoder does; typed errors naming protocol, message and field."""
 from __future__ import annotations
 
 import json
+import random
 from pathlib import Path
 
 import pytest
@@ -67,8 +68,8 @@ def test_an_unknown_class_and_id_keeps_its_payload() -> None:
 
 
 def test_a_message_built_in_code_encodes_its_counts_and_parts() -> None:
-    sat = ubx_messages.NavSat(itow=1000, version=1, reserved0=0, sv=[
-        ubx_messages.nav_sat.NavSatSvEntry(gnss_id=0, sv_id=5, cno=40, elev=30, azim=120, pr_res=-1.5, flags=None,
+    sat = ubx_messages.NavSat(itow=1000, version=1, reserved0=0, svs=[
+        ubx_messages.nav_sat.NavSatSv(gnss_id=0, sv_id=5, cno=40, elev=30, azim=120, pr_res=-1.5, flags=None,
                                       sv_used=True, quality_ind=7, health=1, diff_corr=False, smoothed=False,
                                       orbit_source=1, eph_avail=True, alm_avail=True, ano_avail=False, aop_avail=False,
                                       sbas_corr_used=False, rtcm_corr_used=False, slas_corr_used=False,
@@ -76,7 +77,7 @@ def test_a_message_built_in_code_encodes_its_counts_and_parts() -> None:
                                       do_corr_used=False)])
     decoded = ubx_messages.decode(sat.encode())
     assert isinstance(decoded, ubx_messages.NavSat)
-    assert decoded.num_svs == 1 and decoded.sv[0].pr_res == -1.5 and decoded.sv[0].flags == 0x191F
+    assert decoded.num_svs == 1 and decoded.svs[0].pr_res == -1.5 and decoded.svs[0].flags == 0x191F
 
 
 def test_a_poll_and_its_reply_are_paired() -> None:
@@ -106,3 +107,16 @@ def test_a_reply_answers_the_request_it_names() -> None:
     poll = ubx_messages.NavPvtPoll()
     assert ubx.answers(poll, ubx_messages.NavPvt())
     assert not ubx.answers(poll, ubx_messages.AckAck(cls_id=0x01, msg_id=0x07))
+
+
+def test_any_payload_decodes_and_encodes_back_or_gets_a_typed_error() -> None:
+    draw = random.Random(31)
+    for (msg_class, msg_id) in ubx_messages.BY_ID:
+        for _ in range(60):
+            frame = ubx.Frame(msg_class, msg_id, bytes(draw.randrange(256) for _ in range(draw.randrange(110))))
+            try:
+                message = ubx_messages.message(frame)
+            except ubx.NmeaError as err:
+                assert err.kind == "short_payload" and err.address.startswith("UBX "), str(err)
+                continue
+            assert message.encode() == frame.encode(), message

@@ -24,7 +24,7 @@
 #   spec/binary/ubx/messages/nav_velecef.yaml, spec/binary/ubx/messages/nav_velned.yaml,
 #   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
 #   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/tim_tp.yaml
-#   (digest dbee8127e462c40c)
+#   (digest 34fac83500b04f0c)
 # Regenerate: make generate (python3 -m generator generate)
 """UBX messages: a frame's payload decoded into the class of its layout (by class and id, then
 length and version) and encoded back to the same bytes; a class and id the spec does not describe
