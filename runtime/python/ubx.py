@@ -142,19 +142,23 @@ def split_frames(data: bytes) -> Iterator[tuple[int, Frame]]:
 
 @dataclass(frozen=True, slots=True)
 class Float(Field):
-    """r4, r8: an IEEE 754 float, little endian (JSON: NaN and the infinities as "nan", "inf")."""
+    """r4, r8: an IEEE 754 float, little endian. A NaN is a Special("nan", raw) that keeps its bits
+    (a float would lose a single's payload); JSON: "nan", and the infinities "inf", "-inf"."""
 
     def from_raw(self, raw: int, width: int) -> Any:
-        return struct.unpack("<f" if width == 32 else "<d", raw.to_bytes(width // 8, "little"))[0]
+        value = struct.unpack("<f" if width == 32 else "<d", raw.to_bytes(width // 8, "little"))[0]
+        return value if value == value else Special("nan", raw)
 
     def to_raw(self, value: Any, where: str) -> tuple[int, int]:
         assert self.width is not None
+        if isinstance(value, Special):
+            return value.raw, self.width
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise _bad_value(where, self.id, value, "a number")
         return int.from_bytes(struct.pack("<f" if self.width == 32 else "<d", value), "little"), self.width
 
     def put_json(self, out: dict[str, Any], value: Any) -> None:
-        out[self.id] = value if math.isfinite(value) else str(value)
+        out[self.id] = str(value) if isinstance(value, Special) or not math.isfinite(value) else value
 
 
 @dataclass(frozen=True, slots=True)
@@ -192,12 +196,11 @@ _INTEGER_CODES = {8: "B", 16: "H", 32: "I", 64: "Q"}
 
 
 def _struct_code(f: Field) -> str | None:
-    """The struct code that reads field `f` whole (None: a width no code reads)."""
+    """The struct code that reads field `f` whole (None: a width no code reads); a float is read as
+    its integer (Float.from_raw keeps a NaN's bits)."""
     width = f.width
     if width is None:
         return None
-    if isinstance(f, Float):
-        return "f" if width == 32 else "d"
     if isinstance(f, (Chars, Bytes)):
         return f"{width // 8}s"
     code = _INTEGER_CODES.get(width, f"{width // 8}s" if type(f) is Spare else None)
@@ -239,9 +242,11 @@ class _Compiler:
             self.lines.append(f"{pad}{target}[{key}] = {members}.get(str({raw}), {raw})")
         elif isinstance(f, Chars):
             self.lines.append(f"{pad}{target}[{key}] = {raw}.decode('latin-1')")
+        elif isinstance(f, Float):   # read as its integer: a NaN keeps its bits
+            self.lines.append(f"{pad}{target}[{key}] = {self.name(f)}.from_raw({raw}, {f.width})")
         elif type(f) is Spare and f.width not in _INTEGER_CODES:
             self.lines.append(f"{pad}{target}[{key}] = from_bytes({raw}, 'little')")
-        else:   # a whole integer, a float, bytes
+        else:   # a whole integer, bytes
             self.lines.append(f"{pad}{target}[{key}] = {raw}")
         if isinstance(f, Bitfield):
             self.lines.append(f"{pad}word = {target}[{key}]")

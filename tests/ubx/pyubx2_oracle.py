@@ -235,6 +235,10 @@ def _reason(name: str, words: set[str]) -> str:
         return "the bitfield word itself: pyubx2 gives only its parts (we keep the word for bits no part names)"
     if base in REASONS:
         return REASONS[base]
+    if re.fullmatch(r"prn\d+", base):
+        return "pyubx2 names each PRN bit of the SBAS scan masks; we keep the masks as words"
+    if base in ("devbbr", "devflash", "deveeprom", "devspiflash"):
+        return "pyubx2 reads CFG-CFG without its device mask (12 bytes) as if it had one"
     if base.startswith("reserved"):
         return "reserved bytes, numbered as the document numbers them (from 1) and as pyubx2 does (from 0)"
     return "not described by the other side"

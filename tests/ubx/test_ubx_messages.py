@@ -120,3 +120,10 @@ def test_any_payload_decodes_and_encodes_back_or_gets_a_typed_error() -> None:
                 assert err.kind == "short_payload" and err.address.startswith("UBX "), str(err)
                 continue
             assert message.encode() == frame.encode(), message
+
+
+def test_a_nan_keeps_its_bits() -> None:
+    payload = bytes(16) + bytes.fromhex("0100a07f") + bytes(44)   # pos_cov_nn: a signalling NaN
+    message = ubx_messages.message(ubx.Frame(0x01, 0x36, payload))
+    assert isinstance(message, ubx_messages.NavCov) and message.to_dict()["pos_cov_nn"] == "nan"
+    assert message.payload() == payload

@@ -37,11 +37,11 @@ class RxmRawxPoll(ubx.Message):
 class RxmRawxMeasurement:
     """One entry of measurements."""
 
-    pr_mes: float | None = None
+    pr_mes: float | ais.Special | None = None
     """Pseudorange [m]."""
-    cp_mes: float | None = None
+    cp_mes: float | ais.Special | None = None
     """Carrier phase [cycles]."""
-    do_mes: float | None = None
+    do_mes: float | ais.Special | None = None
     """Doppler [Hz]."""
     gnss_id: UbxGnssId | int | None = None
     """GNSS identifier."""
@@ -136,7 +136,7 @@ class RxmRawx(ubx.Message):
         ), 0, 65535, count="num_meas"),
     )
 
-    rcv_tow: float | None = None
+    rcv_tow: float | ais.Special | None = None
     """Receiver time of week of the measurements [s]."""
     week: int | None = None
     """GPS week number of the receiver time."""
