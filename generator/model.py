@@ -803,7 +803,7 @@ class Payload:
     carriers: list[int] = field(default_factory=list)   # ... and the message types whose data it is
     applications: list[Payload] = field(default_factory=list)   # derived: a message's applications
     directions: list[str] = field(default_factory=list)   # a binary layout: poll, input, output
-    version: int | None = None   # a binary layout told apart by its first field's value
+    version: int | None = None   # a binary layout told apart by the value of its `version` field
     replies: list[str] = field(default_factory=list)   # the layouts that answer this one (ids)
     acknowledges: tuple[str, str] | None = None   # an acknowledgement: its fields of the answered class and id
     frame: BinaryMessage | None = None   # a binary layout: its message (class and id)

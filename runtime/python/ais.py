@@ -3,8 +3,9 @@ bit layouts the generated message classes describe (`LAYOUT`, a tuple of the fie
 
 A payload decodes to its message and encodes back to the same characters and fill bits: spare
 bits, text after its `@` padding, the values of the fill bits and bits beyond the layout (kept in
-`trailing`) are all kept as sent. Facts from ITU-R M.1371-5 (armoring: table 47 of annex 8; the
-layouts: annex 8) and gpsd's "AIVDM/AIVDO protocol decoding".
+`trailing`) are all kept as sent. The same reader and writer walk the payloads of binary frames
+(ubx.py: little-endian bytes, bitfields, counted groups). Facts from ITU-R M.1371-5 (armoring:
+table 47 of annex 8; the layouts: annex 8) and gpsd's "AIVDM/AIVDO protocol decoding".
 """
 
 from __future__ import annotations

@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 import struct
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from itertools import accumulate
 from typing import Any, ClassVar
 
@@ -391,16 +391,16 @@ class Message:
         return cls(**values, trailing=payload[reader.pos // 8:])
 
     def payload(self) -> bytes:
-        """The payload it is sent as; a count left None is its group's number of entries, a
-        version left None the layout's."""
-        where = f"UBX {self.ADDRESS}"
+        """The payload it is sent as; a count left None is written as its group's number of
+        entries, a version left None as the layout's (the message itself is left as it is)."""
+        implied: dict[str, int] = {}
         if self.VERSION is not None and getattr(self, "version") is None:
-            setattr(self, "version", self.VERSION)
+            implied["version"] = self.VERSION
         for group in self.LAYOUT:
             if isinstance(group, Group) and isinstance(group.count, str) and getattr(self, group.count) is None:
-                setattr(self, group.count, len(getattr(self, group.id)))
+                implied[group.count] = len(getattr(self, group.id))
         writer = ByteWriter()
-        write_items(self.LAYOUT, self, writer, where)
+        write_items(self.LAYOUT, replace(self, **implied) if implied else self, writer, f"UBX {self.ADDRESS}")
         return bytes(writer.payload) + self.trailing
 
     def frame(self) -> Frame:
