@@ -223,6 +223,8 @@ REASONS = {
     "rateuart1": "pyubx2 names each port's rate", "rateuart2": "pyubx2 names each port's rate",
     "rateusb": "pyubx2 names each port's rate", "ratespi": "pyubx2 names each port's rate",
     "reserved": "pyubx2 names each port's rate and the sixth (reserved) port's",
+    **{name: "pyubx2 gives the raw integer (0.1 mm); ours is in mm, its <id>_raw pyubx2's value"
+       for name in ("fixedposacc", "svinacclimit", "meanxhp", "meanyhp", "meanzhp", "meanacc")},
     **{name: HIGH_PRECISION for name in ("lon", "lat", "height", "hmsl", "lonhp", "lathp", "heighthp", "hmslhp",
                                          "relposn", "relpose", "relposd", "relposlength", "relposhpn", "relposhpe",
                                          "relposhpd", "relposhplength")},

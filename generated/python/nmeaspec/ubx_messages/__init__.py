@@ -2,37 +2,40 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/binary/ubx/messages/ack_ack.yaml, spec/binary/ubx/messages/ack_nak.yaml,
 #   spec/binary/ubx/messages/cfg_ant.yaml, spec/binary/ubx/messages/cfg_cfg.yaml,
-#   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
-#   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_prt.yaml,
-#   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
-#   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
-#   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
-#   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/esf_alg.yaml,
-#   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/esf_meas.yaml,
-#   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/hnr_att.yaml,
-#   spec/binary/ubx/messages/hnr_ins.yaml, spec/binary/ubx/messages/hnr_pvt.yaml,
-#   spec/binary/ubx/messages/inf_debug.yaml, spec/binary/ubx/messages/inf_error.yaml,
-#   spec/binary/ubx/messages/inf_notice.yaml, spec/binary/ubx/messages/inf_test.yaml,
-#   spec/binary/ubx/messages/inf_warning.yaml, spec/binary/ubx/messages/mon_hw.yaml,
-#   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
-#   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_ver.yaml,
-#   spec/binary/ubx/messages/nav_att.yaml, spec/binary/ubx/messages/nav_clock.yaml,
-#   spec/binary/ubx/messages/nav_cov.yaml, spec/binary/ubx/messages/nav_dop.yaml,
-#   spec/binary/ubx/messages/nav_eell.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
-#   spec/binary/ubx/messages/nav_hpposllh.yaml, spec/binary/ubx/messages/nav_odo.yaml,
-#   spec/binary/ubx/messages/nav_posecef.yaml, spec/binary/ubx/messages/nav_posllh.yaml,
-#   spec/binary/ubx/messages/nav_pvt.yaml, spec/binary/ubx/messages/nav_relposned.yaml,
-#   spec/binary/ubx/messages/nav_resetodo.yaml, spec/binary/ubx/messages/nav_sat.yaml,
-#   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
-#   spec/binary/ubx/messages/nav_sol.yaml, spec/binary/ubx/messages/nav_status.yaml,
+#   spec/binary/ubx/messages/cfg_dgnss.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
+#   spec/binary/ubx/messages/cfg_hnr.yaml, spec/binary/ubx/messages/cfg_inf.yaml,
+#   spec/binary/ubx/messages/cfg_msg.yaml, spec/binary/ubx/messages/cfg_nav5.yaml,
+#   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
+#   spec/binary/ubx/messages/cfg_rst.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
+#   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_tmode3.yaml,
+#   spec/binary/ubx/messages/cfg_tp5.yaml, spec/binary/ubx/messages/cfg_valdel.yaml,
+#   spec/binary/ubx/messages/cfg_valget.yaml, spec/binary/ubx/messages/cfg_valset.yaml,
+#   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
+#   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_status.yaml,
+#   spec/binary/ubx/messages/hnr_att.yaml, spec/binary/ubx/messages/hnr_ins.yaml,
+#   spec/binary/ubx/messages/hnr_pvt.yaml, spec/binary/ubx/messages/inf_debug.yaml,
+#   spec/binary/ubx/messages/inf_error.yaml, spec/binary/ubx/messages/inf_notice.yaml,
+#   spec/binary/ubx/messages/inf_test.yaml, spec/binary/ubx/messages/inf_warning.yaml,
+#   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+#   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
+#   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav_att.yaml,
+#   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_cov.yaml,
+#   spec/binary/ubx/messages/nav_dop.yaml, spec/binary/ubx/messages/nav_eell.yaml,
+#   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
+#   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_posecef.yaml,
+#   spec/binary/ubx/messages/nav_posllh.yaml, spec/binary/ubx/messages/nav_pvt.yaml,
+#   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
+#   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_sbas.yaml,
+#   spec/binary/ubx/messages/nav_sig.yaml, spec/binary/ubx/messages/nav_sol.yaml,
+#   spec/binary/ubx/messages/nav_status.yaml, spec/binary/ubx/messages/nav_svin.yaml,
 #   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
 #   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
 #   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timels.yaml,
 #   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_velecef.yaml,
 #   spec/binary/ubx/messages/nav_velned.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
-#   spec/binary/ubx/messages/rxm_sfrbx.yaml, spec/binary/ubx/messages/sec_uniqid.yaml,
-#   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tp.yaml
-#   (digest a14b0c0753a498d2)
+#   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
+#   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
+#   spec/binary/ubx/messages/tim_tp.yaml (digest 83e98af740b357bd)
 # Regenerate: make generate (python3 -m generator generate)
 """UBX messages: a frame's payload decoded into the class of its layout (by class and id, then
 length and version) and encoded back to the same bytes; a class and id the spec does not describe
@@ -45,7 +48,10 @@ from .ack_ack import AckAck as AckAck
 from .ack_nak import AckNak as AckNak
 from .cfg_ant import CfgAntPoll as CfgAntPoll, CfgAnt as CfgAnt
 from .cfg_cfg import CfgCfgAllDevices as CfgCfgAllDevices, CfgCfg as CfgCfg
+from .cfg_dgnss import CfgDgnssPoll as CfgDgnssPoll, CfgDgnss as CfgDgnss
 from .cfg_gnss import CfgGnssPoll as CfgGnssPoll, CfgGnss as CfgGnss
+from .cfg_hnr import CfgHnrPoll as CfgHnrPoll, CfgHnr as CfgHnr
+from .cfg_inf import CfgInfPoll as CfgInfPoll, CfgInf as CfgInf
 from .cfg_msg import (
     CfgMsgPoll as CfgMsgPoll,
     CfgMsgCurrentPort as CfgMsgCurrentPort,
@@ -55,7 +61,9 @@ from .cfg_nav5 import CfgNav5Poll as CfgNav5Poll, CfgNav5 as CfgNav5
 from .cfg_prt import CfgPrtPoll as CfgPrtPoll, CfgPrtPollPort as CfgPrtPollPort, CfgPrt as CfgPrt
 from .cfg_rate import CfgRatePoll as CfgRatePoll, CfgRate as CfgRate
 from .cfg_rst import CfgRst as CfgRst
+from .cfg_rxm import CfgRxmPoll as CfgRxmPoll, CfgRxm as CfgRxm
 from .cfg_sbas import CfgSbasPoll as CfgSbasPoll, CfgSbas as CfgSbas
+from .cfg_tmode3 import CfgTmode3Poll as CfgTmode3Poll, CfgTmode3 as CfgTmode3
 from .cfg_tp5 import CfgTp5Poll as CfgTp5Poll, CfgTp5PollIndex as CfgTp5PollIndex, CfgTp5 as CfgTp5
 from .cfg_valdel import CfgValdelV0 as CfgValdelV0, CfgValdel as CfgValdel
 from .cfg_valget import CfgValgetPoll as CfgValgetPoll, CfgValget as CfgValget
@@ -99,6 +107,7 @@ from .nav_sbas import NavSbasPoll as NavSbasPoll, NavSbas as NavSbas
 from .nav_sig import NavSigPoll as NavSigPoll, NavSig as NavSig
 from .nav_sol import NavSolPoll as NavSolPoll, NavSol as NavSol
 from .nav_status import NavStatusPoll as NavStatusPoll, NavStatus as NavStatus
+from .nav_svin import NavSvinPoll as NavSvinPoll, NavSvin as NavSvin
 from .nav_svinfo import NavSvinfoPoll as NavSvinfoPoll, NavSvinfo as NavSvinfo
 from .nav_timebds import NavTimebdsPoll as NavTimebdsPoll, NavTimebds as NavTimebds
 from .nav_timegal import NavTimegalPoll as NavTimegalPoll, NavTimegal as NavTimegal
@@ -109,6 +118,7 @@ from .nav_timeutc import NavTimeutcPoll as NavTimeutcPoll, NavTimeutc as NavTime
 from .nav_velecef import NavVelecefPoll as NavVelecefPoll, NavVelecef as NavVelecef
 from .nav_velned import NavVelnedPoll as NavVelnedPoll, NavVelned as NavVelned
 from .rxm_rawx import RxmRawxPoll as RxmRawxPoll, RxmRawx as RxmRawx
+from .rxm_rtcm import RxmRtcm as RxmRtcm
 from .rxm_sfrbx import RxmSfrbx as RxmSfrbx
 from .sec_uniqid import SecUniqidPoll as SecUniqidPoll, SecUniqid as SecUniqid
 from .tim_tm2 import TimTm2Poll as TimTm2Poll, TimTm2 as TimTm2
@@ -138,12 +148,14 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x01, 0x32): (NavSbasPoll, NavSbas),
     (0x01, 0x35): (NavSatPoll, NavSat),
     (0x01, 0x36): (NavCovPoll, NavCov),
+    (0x01, 0x3B): (NavSvinPoll, NavSvin),
     (0x01, 0x3C): (NavRelposnedPoll, NavRelposned, NavRelposnedV0),
     (0x01, 0x3D): (NavEellPoll, NavEell),
     (0x01, 0x43): (NavSigPoll, NavSig),
     (0x01, 0x61): (NavEoe,),
     (0x02, 0x13): (RxmSfrbx,),
     (0x02, 0x15): (RxmRawxPoll, RxmRawx),
+    (0x02, 0x32): (RxmRtcm,),
     (0x04, 0x00): (InfError,),
     (0x04, 0x01): (InfWarning,),
     (0x04, 0x02): (InfNotice,),
@@ -153,14 +165,19 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x05, 0x01): (AckAck,),
     (0x06, 0x00): (CfgPrtPoll, CfgPrtPollPort, CfgPrt),
     (0x06, 0x01): (CfgMsgPoll, CfgMsgCurrentPort, CfgMsg),
+    (0x06, 0x02): (CfgInfPoll, CfgInf),
     (0x06, 0x04): (CfgRst,),
     (0x06, 0x08): (CfgRatePoll, CfgRate),
     (0x06, 0x09): (CfgCfgAllDevices, CfgCfg),
+    (0x06, 0x11): (CfgRxmPoll, CfgRxm),
     (0x06, 0x13): (CfgAntPoll, CfgAnt),
     (0x06, 0x16): (CfgSbasPoll, CfgSbas),
     (0x06, 0x24): (CfgNav5Poll, CfgNav5),
     (0x06, 0x31): (CfgTp5Poll, CfgTp5PollIndex, CfgTp5),
     (0x06, 0x3E): (CfgGnssPoll, CfgGnss),
+    (0x06, 0x5C): (CfgHnrPoll, CfgHnr),
+    (0x06, 0x70): (CfgDgnssPoll, CfgDgnss),
+    (0x06, 0x71): (CfgTmode3Poll, CfgTmode3),
     (0x06, 0x8A): (CfgValsetV0, CfgValset),
     (0x06, 0x8B): (CfgValgetPoll, CfgValget),
     (0x06, 0x8C): (CfgValdelV0, CfgValdel),
