@@ -39,8 +39,7 @@ def layout_view(message: BinaryMessage, layout: Payload) -> dict:
     for item in layout.items:
         if isinstance(item, PayloadGroup):
             name = entry_class(layout, item)
-            count = (str(item.count) if isinstance(item.count, int) else f"as many as {item.count} says" if item.count
-                     else f"{item.min} to {item.max}")
+            count = str(item.count) if item.count is not None else f"{item.min} to {item.max}"   # 6, num_svs
             members.append({"line": f"{item.id}: list[{name}] = field(default_factory=list)",
                             "doc": docstring(f"{item.name}: {count} entries.", 4)})
             entries.append({"class": name, "doc": docstring(f"One entry of {item.name.lower()}.", 4),

@@ -94,4 +94,4 @@ class CfgGnss(ubx.Message):
     num_config_blocks: int | None = None
     """Configuration blocks."""
     blocks: list[CfgGnssBlock] = field(default_factory=list)
-    """Configuration blocks: as many as num_config_blocks says entries."""
+    """Configuration blocks: num_config_blocks entries."""

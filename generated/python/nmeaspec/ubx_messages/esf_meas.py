@@ -79,6 +79,6 @@ class EsfMeas(ubx.Message):
     id: int | None = None
     """Data provider identification."""
     measurements: list[EsfMeasMeasurement] = field(default_factory=list)
-    """Measurements: as many as num_meas says entries."""
+    """Measurements: num_meas entries."""
     calib_ttag: int | None = None
     """Receiver local time calibrated [ms]: Present when calib_ttag_valid is set."""

@@ -148,4 +148,4 @@ class EsfStatus(ubx.Message):
     num_sens: int | None = None
     """Number of sensors."""
     sensors: list[EsfStatusSensor] = field(default_factory=list)
-    """Sensors: as many as num_sens says entries."""
+    """Sensors: num_sens entries."""

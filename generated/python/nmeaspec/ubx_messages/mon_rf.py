@@ -112,4 +112,4 @@ class MonRf(ubx.Message):
     reserved0: int | None = None
     """Reserved."""
     blocks: list[MonRfBlock] = field(default_factory=list)
-    """RF blocks: as many as n_blocks says entries."""
+    """RF blocks: n_blocks entries."""

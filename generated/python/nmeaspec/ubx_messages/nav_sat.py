@@ -151,7 +151,7 @@ class NavSat(ubx.Message):
     reserved0: int | None = None
     """Reserved."""
     svs: list[NavSatSv] = field(default_factory=list)
-    """Satellites: as many as num_svs says entries."""
+    """Satellites: num_svs entries."""
 
     @property
     def pr_res_raw(self) -> int | None:

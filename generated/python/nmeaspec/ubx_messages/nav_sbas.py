@@ -130,4 +130,4 @@ class NavSbas(ubx.Message):
     reserved1: int | None = None
     """Reserved."""
     channels: list[NavSbasChannel] = field(default_factory=list)
-    """Satellites with corrections: as many as cnt says entries."""
+    """Satellites with corrections: cnt entries."""

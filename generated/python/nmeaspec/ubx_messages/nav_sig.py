@@ -137,7 +137,7 @@ class NavSig(ubx.Message):
     reserved0: int | None = None
     """Reserved."""
     signals: list[NavSigSignal] = field(default_factory=list)
-    """Signals: as many as num_sigs says entries."""
+    """Signals: num_sigs entries."""
 
     @property
     def pr_res_raw(self) -> int | None:

@@ -126,4 +126,4 @@ class NavSvinfo(ubx.Message):
     reserved1: int | None = None
     """Reserved."""
     channels: list[NavSvinfoChannel] = field(default_factory=list)
-    """Channels: as many as num_ch says entries."""
+    """Channels: num_ch entries."""

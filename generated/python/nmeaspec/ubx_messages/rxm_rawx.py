@@ -155,4 +155,4 @@ class RxmRawx(ubx.Message):
     reserved1: int | None = None
     """Reserved."""
     measurements: list[RxmRawxMeasurement] = field(default_factory=list)
-    """Measurements: as many as num_meas says entries."""
+    """Measurements: num_meas entries."""

@@ -69,4 +69,4 @@ class RxmSfrbx(ubx.Message):
     reserved0: int | None = None
     """Reserved."""
     words: list[RxmSfrbxWord] = field(default_factory=list)
-    """Data words: as many as num_words says entries."""
+    """Data words: num_words entries."""
