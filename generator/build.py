@@ -11,11 +11,14 @@ from typing import Any
 from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
-from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Fact, Field, FixExample,
-                    GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
+from .field_types import BIT_TYPES
+from .model import (BinaryExample, BinaryMessage, BinaryProtocol, BitfieldDef, Bits, BitValue, EnumDef, EnumValue,
+                    Example, Fact, Field, FixExample, GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
                     PayloadChoice, PayloadExample, PayloadField, PayloadGroup, PayloadItem, ReplyRule, Sentence, Spec,
                     Special, TableDef, TagCode)
 from .resolve import resolve
+
+MAX_ENTRIES = 65535   # a group with no `max`: as many entries as a frame's length allows
 
 
 # The folders of a spec tree, each with the kind of its files and their schema. An overlay
@@ -40,7 +43,8 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     (my-nmea/proprietary/acme_pos.yaml)."""
     errors: list[SpecError] = []
     docs: dict[str, list[Document]] = {kind: [] for kind in ("manuals", "facts", "tag_block", "enums", "bitfields", "tables",
-                                                             "sentences", "extensions", "payloads", "applications")}
+                                                             "sentences", "extensions", "payloads", "applications",
+                                                             "protocols", "binary")}
     digest = hashlib.sha256()
     file_digests: dict[str, str] = {}
     for tree, names in [(spec_dir, spec_dir.parent), *((extra, None) for extra in extras)]:
@@ -74,12 +78,14 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     tables = [_table(d) for d in docs["tables"]]
     payloads = [_payload(d) for d in docs["payloads"]]
     applications = [_payload(d) for d in docs["applications"]]
+    protocols = [_protocol(d) for d in docs["protocols"]]
+    binary = [_binary_message(d) for d in docs["binary"]]
     errors = _clashes(docs, bitfields, tables) + _extend(sentences, docs["extensions"])
     if errors:
         raise SpecErrors(errors)
     spec = Spec(manuals, enums, sentences,
                 sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences", "extensions", "payloads",
-                                                  "applications")
+                                                  "applications", "protocols", "binary")
                          for d in docs[kind]],
                 digest=digest.hexdigest()[:16], file_digests=file_digests,
                 bitfields=bitfields, tables=tables, generic=generic, facts=facts,
@@ -96,7 +102,7 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
                 tag_manuals=[m for d in docs["tag_block"] for m in d.data["manuals"]],
                 tag_examples=[(e["where"], e["line"]) for d in docs["tag_block"] for e in d.data.get("examples", [])],
                 tag_sources=[str(d.path) for d in docs["tag_block"]],
-                payloads=payloads, applications=applications)
+                payloads=payloads, applications=applications, protocols=protocols, binary=binary)
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
     resolve(spec)
     errors = checks.run(spec, by_file)
@@ -115,6 +121,10 @@ def _tree_files(tree: Path, required_manuals: bool) -> list[tuple[Path, str, str
     files += [(tag_block, "tag_block", "tag_block.schema.json")] if tag_block.exists() else []
     for folder, kind, schema in LAYOUT:
         files += [(p, kind, schema) for p in sorted((tree / folder).glob("*.yaml"))]
+    for protocol in sorted((tree / "binary").glob("*/protocol.yaml")):   # a binary protocol, then its messages
+        files.append((protocol, "protocols", "binary_protocol.schema.json"))
+        messages = sorted((protocol.parent / "messages").glob("*.yaml"))
+        files += [(p, "binary", "binary_message.schema.json") for p in messages]
     return files
 
 
@@ -260,12 +270,26 @@ def _outcome(data: Any, origin: Origin) -> Outcome | None:
 
 
 def _payload_field(data: dict[str, Any], origin: Origin) -> PayloadField:
-    return PayloadField(id=data["id"], name=data["name"], type=data["type"], bits=data.get("bits"),
+    """A field of a bit payload (`bits`: its width) or of a binary frame (its type's bytes, or
+    `size` bytes)."""
+    size = BIT_TYPES[data["type"]].size if data["type"] in BIT_TYPES else None
+    bits = data["bits"] if "bits" in data else 8 * data["size"] if "size" in data else 8 * size if size else None
+    return PayloadField(id=data["id"], name=data["name"], type=data["type"], bits=bits,
                         doc=data.get("doc", data["name"]), origin=origin, unit=data.get("unit"),
                         divisor=data.get("divisor"), base=data.get("base"), enum_id=data.get("enum"),
                         optional=bool(data.get("optional", False)),
                         special=[Special(s["raw"], s["id"], s["doc"]) for s in data.get("special", [])],
-                        dispatch=data.get("dispatch", []))
+                        dispatch=data.get("dispatch", []),
+                        parts=[_part(p, Origin(origin.file, origin.path + ("parts", i)))
+                               for i, p in enumerate(data.get("parts", []))])
+
+
+def _part(data: dict[str, Any], origin: Origin) -> PayloadField:
+    """A named bit range of a bitfield word: a flag, or an unsigned (signed, enum) number."""
+    width = data.get("width", 1)
+    return PayloadField(id=data["id"], name=data["name"], type=data.get("type", "bool" if width == 1 else "uint"),
+                        bits=width, doc=data.get("doc", data["name"]), origin=origin, unit=data.get("unit"),
+                        divisor=data.get("divisor"), enum_id=data.get("enum"), low=data["bit"])
 
 
 def _payload_items(data: list[dict[str, Any]], file: str, where: tuple[str | int, ...]) -> list[PayloadItem]:
@@ -274,8 +298,9 @@ def _payload_items(data: list[dict[str, Any]], file: str, where: tuple[str | int
         at = where + (i,)
         if "group" in item:
             fields = [_payload_field(f, Origin(file, at + ("fields", j))) for j, f in enumerate(item["fields"])]
-            items.append(PayloadGroup(item["group"], item["name"], item.get("doc", item["name"]), item.get("min", 1),
-                                      item["max"], fields, Origin(file, at)))
+            items.append(PayloadGroup(item["group"], item["name"], item.get("doc", item["name"]),
+                                      item.get("min", 0 if "count" in item else 1), item.get("max", MAX_ENTRIES),
+                                      fields, Origin(file, at), count=item.get("count")))
         elif "choice" in item:
             cases = [PayloadCase(c.get("when", []), tuple(c["range"]) if "range" in c else None,
                                  _payload_items(c["fields"], file, at + ("cases", k, "fields")))  # type: ignore[arg-type]
@@ -284,6 +309,39 @@ def _payload_items(data: list[dict[str, Any]], file: str, where: tuple[str | int
         else:
             items.append(_payload_field(item, Origin(file, at)))
     return items
+
+
+def _protocol(doc: Document) -> BinaryProtocol:
+    d = doc.data
+    return BinaryProtocol(d["protocol"], d["name"], {m["id"]: m["title"] for m in d["documents"]}, d["classes"],
+                          Origin(str(doc.path), ()))
+
+
+def _binary_message(doc: Document) -> BinaryMessage:
+    """A binary message and its layouts, each a Payload named by the message's id and its variant
+    (a poll's default: poll)."""
+    d = doc.data
+    file = str(doc.path)
+    protocol = doc.path.parent.parent.name
+    layouts = []
+    for i, lay in enumerate(d["layouts"]):
+        variant = lay.get("variant", "poll" if lay["direction"] == ["poll"] else "")
+        at: tuple[str | int, ...] = ("layouts", i)
+        layouts.append(Payload(d["message"] + (f"_{variant}" if variant else ""), d["name"], lay.get("doc", d["doc"]),
+                               [], d["documents"], 8 * lay["length"] if "length" in lay else None,
+                               _payload_items(lay["fields"], file, at + ("fields",)), [], [], Origin(file, at),
+                               protocol=protocol, directions=lay["direction"], version=lay.get("version"),
+                               replies=lay.get("replies", []),
+                               acknowledges=(lay["acknowledges"]["class"], lay["acknowledges"]["id"])
+                               if "acknowledges" in lay else None))
+    message = BinaryMessage(d["message"], d["name"], d["doc"], protocol, d["class"], d["id"], d["documents"], layouts,
+                            Origin(file, ()),
+                            examples=[BinaryExample(e["where"], bytes.fromhex(e["frame"]), e.get("expect"),
+                                                    Origin(file, ("examples", i)))
+                                      for i, e in enumerate(d.get("examples", []))])
+    for layout in layouts:
+        layout.frame = message
+    return message
 
 
 def _payload(doc: Document) -> Payload:

@@ -25,7 +25,7 @@ def check(spec: Spec, manual_ids: set[str], report: Report, check_manuals: Calla
                 report(payload.origin, "A008", f"message type {number} is also described by {owners[number]}", "types", i)
             owners.setdefault(number, payload.id)
         check_manuals(payload.manuals, manual_ids, payload.origin, report, "manuals")
-        _check_items(spec, payload, report)
+        check_items(payload, report)
     applications: dict[tuple[int, int] | None, str] = {}
     for application in spec.applications:
         stem = application.origin.file.rsplit("/", 1)[-1].removesuffix(".yaml")
@@ -42,7 +42,7 @@ def check(spec: Spec, manual_ids: set[str], report: Report, check_manuals: Calla
                 report(application.origin, "A011", f"message type {number} has no data field dispatched by DAC and "
                        "FI", "application", "in", i)
         check_manuals(application.manuals, manual_ids, application.origin, report, "manuals")
-        _check_items(spec, application, report)
+        check_items(application, report)
     for sentence in spec.sentences:
         for role, field_id in (sentence.encapsulates or {}).items():
             if role != "protocol" and any(field_id not in {f.id for f in layout.fields} for layout in sentence.layouts):
@@ -50,10 +50,10 @@ def check(spec: Spec, manual_ids: set[str], report: Report, check_manuals: Calla
                        f"{sentence.id}", "encapsulates", role)
 
 
-def _check_field(spec: Spec, f: PayloadField, report: Report) -> None:
+def check_field(f: PayloadField, report: Report) -> None:
     t = f.bit_type
     if f.bits is None and not t.variable:
-        report(f.origin, "A002", f"field {f.id}: a {f.type} field needs `bits`", "bits")
+        report(f.origin, "A002", f"field {f.id}: a {f.type} field needs `{'size' if t.in_bytes else 'bits'}`", "bits")
     if f.bits is not None:
         if f.bits < t.min_bits or t.max_bits is not None and f.bits > t.max_bits or f.bits % t.char_bits:
             most = f"at most {t.max_bits}" if t.max_bits is not None else "any number of"
@@ -63,8 +63,9 @@ def _check_field(spec: Spec, f: PayloadField, report: Report) -> None:
     for key, given in (("divisor", f.divisor), ("unit", f.unit), ("special", f.special)):
         if given and not t.numeric:
             report(f.origin, "A002", f"field {f.id}: `{key}` goes with a number (uint, int), not {f.type}", key)
-    if t.coded != (f.enum_id is not None):
-        report(f.origin, "A002", f"field {f.id}: `enum` goes with type enum and type enum needs one", "enum")
+    if t.coded and f.enum_id is None or f.enum_id is not None and not t.enums:
+        report(f.origin, "A002", f"field {f.id}: `enum` goes with type enum (or an unsigned byte type) and type "
+               "enum needs one", "enum")
     elif f.enum_id is not None and f.enum is None:
         report(f.origin, "S002", f"field {f.id} refers to unknown enum {f.enum_id!r}", "enum")
     elif f.enum is not None and any(not v.code.isdigit() for v in f.enum.values):
@@ -104,7 +105,7 @@ def _choices(items: list) -> list[PayloadChoice]:
     return out
 
 
-def _check_items(spec: Spec, payload: Payload, report: Report) -> None:
+def check_items(payload: Payload, report: Report) -> None:
     ids: dict[str, Origin] = {}
     for item in [*(i for i in payload.items if isinstance(i, PayloadGroup)), *_choices(payload.items)]:
         if item.id in ids:
@@ -114,11 +115,11 @@ def _check_items(spec: Spec, payload: Payload, report: Report) -> None:
         if f.id in ids:
             report(f.origin, "A004", f"id {f.id} is also used at {'.'.join(map(str, ids[f.id].path))}", "id")
         ids.setdefault(f.id, f.origin)
-        _check_field(spec, f, report)
+        check_field(f, report)
     for group in (i for i in payload.items if isinstance(i, PayloadGroup)):
         entry_ids: set[str] = set()
         for f in group.fields:
-            _check_field(spec, f, report)
+            check_field(f, report)
             if f.id in entry_ids:
                 report(f.origin, "A004", f"id {f.id} appears twice in group {group.id}", "id")
             entry_ids.add(f.id)
@@ -142,12 +143,13 @@ def _check_items(spec: Spec, payload: Payload, report: Report) -> None:
             if optional is not None and not (isinstance(item, PayloadField) and item.optional) and here not in reported:
                 report(item.origin, "A006", f"{optional} is optional: what follows it must be optional too")
                 reported.add(here)
-            if isinstance(item, PayloadGroup) or item.bits is None:
+            if isinstance(item, PayloadGroup) and item.count is None \
+                    or isinstance(item, PayloadField) and item.bits is None:
                 variable = variable or item.id
             if isinstance(item, PayloadField) and item.optional:
                 optional = optional or item.id
     fixed = payload.fixed_width
-    if fixed is not None and payload.length != fixed:
+    if fixed is not None and payload.length != fixed and (payload.length is not None or payload.frame is None):
         report(payload.origin, "A001", f"the fields of message {payload.id} take {fixed} bits; `length` says "
                f"{payload.length}", "length")
     elif fixed is None and payload.length is not None:

@@ -111,6 +111,35 @@ def _bits_cell(f: PayloadField, after: str) -> str:
     return f"{f.offset}–{f.offset + f.bits - 1}" if f.bits else f"{f.offset}–"
 
 
+def binary_rows(layout: Payload) -> list[dict]:
+    """The docs table of a binary layout: a row per field (a group's: where its k-th entry's is),
+    a bitfield's parts below it."""
+    out: list[dict] = []
+
+    def row(f: PayloadField, offset: str, prefix: str = "") -> None:
+        kind = f"{f.bit_type.doc_name}" + (f" [{f.enum.id}](../enums/{f.enum.id}.md)" if f.enum else "")
+        size = " (the bytes left)" if not f.bits else f" ({f.bits // 8} bytes)" if not f.bit_type.size else ""
+        out.append({"offset": offset, "type": kind + size + (" (optional)" if f.optional else ""),
+                    "id": prefix + f.id, "name": cell(f.name), "scale": f"÷ {f.divisor}" if f.divisor else "",
+                    "unit": cell(f.unit), "doc": cell(f.doc if f.doc != f.name else "")})
+        for part in f.parts:
+            bits = str(part.low) if part.bits == 1 else f"{part.low}–{part.low + (part.bits or 1) - 1}"
+            out.append({"offset": f"bit {bits}", "type": part.bit_type.doc_name, "id": prefix + part.id,
+                        "name": cell(part.name), "scale": f"÷ {part.divisor}" if part.divisor else "",
+                        "unit": cell(part.unit), "doc": cell(part.doc if part.doc != part.name else "")})
+
+    for item in layout.items:
+        if isinstance(item, PayloadField):
+            row(item, str(item.offset // 8) if item.offset is not None else "after the group")
+        elif isinstance(item, PayloadGroup):
+            at = 0
+            for f in item.fields:
+                start = f"{item.offset // 8} + " if item.offset is not None else ""
+                row(f, f"{start}{at // 8} + {item.entry_width // 8}·k", f"{item.id}[k].")
+                at += f.bits or 0
+    return out
+
+
 def payload_rows(payload: Payload) -> list[dict]:
     """The docs table of a payload: a row per field, in order, with the case of a choice it
     belongs to and, for a group's fields, where the k-th entry's is."""
@@ -206,6 +235,19 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             rows=payload_rows(payload),
             examples=[{**v, "json": json.dumps(v["decode"], separators=(",", ":"))}
                       for v in emit_vectors.ais_vectors(spec) if v["message"] == payload.id])
+    documents = {d: title for p in spec.protocols for d, title in p.documents.items()}
+    ubx_vectors = emit_vectors.ubx_vectors(spec)
+    for m in spec.binary:
+        link = f"[{m.address}](../ubx/{m.id}.md)"
+        for f in (part for lay in m.layouts for f in lay.fields for part in (f, *f.parts)):
+            if f.enum and link not in enum_users[f.enum.id]:
+                enum_users[f.enum.id].append(link)
+        files[f"docs/ubx/{m.id}.md"] = env.get_template("docs/ubx_message.md.j2").render(
+            banner=banner_of([m.origin.file]), m=m, documents=documents,
+            layouts=[{"layout": lay, "rows": binary_rows(lay),
+                      "length": lay.fixed_width // 8 if lay.fixed_width is not None else None} for lay in m.layouts],
+            examples=[{**v, "json": json.dumps(v["decode"], separators=(",", ":"))}
+                      for v in ubx_vectors if v["message"] == m.id])
     for e in spec.enums:
         files[f"docs/enums/{e.id}.md"] = env.get_template("docs/enum.md.j2").render(
             banner=banner_of([e.origin.file]), e=e, users=enum_users[e.id])

@@ -20,7 +20,7 @@ PACKAGE = "nmeaspec"
 def member_type(f: PayloadField) -> str:
     """The Python type of a field's member: its type's, a float for a number with a divisor, a
     Special besides for one with special values."""
-    base = f.bit_type.python_type.format(enum=f.enum.camel if f.enum else "")
+    base = f"{f.enum.camel} | int" if f.enum else f.bit_type.python_type
     if f.bit_type.numeric and (f.divisor or isinstance(f.base, float)):
         base = "float"
     return base + (" | ais.Special" if f.special else "") + " | None"
@@ -52,7 +52,11 @@ def _field_spec(f: PayloadField, following: list, indent: int) -> list[str]:
         args.append(f"enum={f.enum.camel}")
     if f.dispatch:
         args.append(f"dispatch=({', '.join(json.dumps(d) for d in f.dispatch)},)")
-    call = f"ais.{f.bit_type.python_spec}("
+    parts = [f"({p.low}, {' '.join(_field_spec(p, [], 0))[:-1]})" for p in f.parts]
+    if parts:
+        args.append(f"parts=({', '.join(parts)},)")
+    # a field with an enum reads codes (an AIS enum, a UBX u1 with one); else its type's class
+    call = "ais.Code(" if f.enum else f"{f.bit_type.module}.{f.bit_type.python_spec}("
     one = call + ", ".join(args) + "),"
     if indent + len(one) <= WIDTH:
         return [one]
@@ -60,6 +64,8 @@ def _field_spec(f: PayloadField, following: list, indent: int) -> list[str]:
     for arg in args:
         if arg.startswith("special=") and indent + 4 + len(arg) + 1 > WIDTH:
             lines += ["    special=(", *(f"        {s}," for s in specials), "    ),"]
+        elif arg.startswith("parts=") and indent + 4 + len(arg) + 1 > WIDTH:
+            lines += ["    parts=(", *(f"        {p}," for p in parts), "    ),"]
         else:
             lines.append(f"    {arg},")
     return lines + ["),"]
@@ -75,6 +81,7 @@ def layout_lines(payload: Payload, items: list, rest: list, indent: int) -> list
             out += _field_spec(item, following, indent)
         elif isinstance(item, PayloadGroup):
             extra = f", after={after(following)}" if after(following) else ""
+            extra += f", count={json.dumps(item.count)}" if item.count else ""
             out.append(f"ais.Group({json.dumps(item.id)}, {entry_class(payload, item)}, (")
             for f in item.fields:
                 out += [pad + line for line in _field_spec(f, [], indent + 4)]

@@ -13,7 +13,7 @@ from typing import Callable
 
 import jinja2
 
-from . import reference, reference_ais
+from . import reference, reference_ais, reference_binary
 from .model import Spec
 
 
@@ -239,11 +239,41 @@ def ais_vectors(spec: Spec) -> list[dict]:
     return out
 
 
+# Frames every UBX decoder must read as the reference decoder does, or refuse with the same kind of
+# error: (frame hex, what it shows).
+UBX_CASES = (
+    ("b5 62 01 20 00 00 21 64", "a NAV-TIMEGPS poll (empty payload)"),
+    ("b5 62 01 20 0a 00 00 00 00 00 00 00 00 00 00 00 2b 26", "a NAV-TIMEGPS cut to 10 bytes: leap_s is cut"),
+    ("b5 62 05 01 03 00 06 00 07 16 51", "an ACK-ACK of 3 bytes: its main layout, the third byte trailing"),
+    ("b5 62 7f 7f 02 00 01 02 03 81", "class 0x7F id 0x7F, which no message describes: kept with its payload"),
+    ("b5 62 05 01 02 00 06 00 0e 38", "a checksum off by one"),
+)
+
+
+def ubx_vectors(spec: Spec) -> list[dict]:
+    """The example frames of spec/binary/ubx with the JSON each decoder must make of them, and
+    frames each must refuse with the kind of its error."""
+    out: list[dict] = []
+    for message in spec.binary:
+        for e in message.examples:
+            out.append({"message": message.id, "where": e.where, "frame": e.frame.hex(" "),
+                        "decode": reference_binary.decode(spec, e.frame)})
+    for frame, where in UBX_CASES:
+        record: dict = {"message": None, "where": where, "frame": frame}
+        try:
+            record["decode"] = reference_binary.decode(spec, bytes.fromhex(frame))
+        except reference_ais.PayloadError as err:
+            record["error"] = err.kind
+        out.append(record)
+    return out
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     def jsonl(records: list[dict]) -> str:
         return "".join(json.dumps(r, ensure_ascii=True, separators=(",", ":")) + "\n" for r in records)
 
-    return {"vectors/examples.jsonl": jsonl(example_vectors(spec)),
+    files = {"vectors/ubx.jsonl": jsonl(ubx_vectors(spec))} if spec.binary else {}
+    return {**files, "vectors/examples.jsonl": jsonl(example_vectors(spec)),
             "vectors/tolerance.jsonl": jsonl(tolerance_vectors(spec)),
             "vectors/values.jsonl": jsonl(value_vectors(spec)),
             "vectors/fixes.jsonl": jsonl(fix_vectors(spec)),

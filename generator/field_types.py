@@ -23,6 +23,8 @@ the FastReader method in fast.rs). No other file of generator/ changes.
 
 from __future__ import annotations
 
+import math
+import struct
 from dataclasses import dataclass
 from decimal import Decimal
 from types import ModuleType
@@ -372,11 +374,22 @@ class BitType:
     numeric: bool = False      # takes a divisor, a unit and special values
     signed: bool = False
     coded: bool = False        # its raw values are codes of an enum
+    enums: bool = False        # may name an enum whose codes its raw values are (enum; u1..u8)
     selects: bool = False      # its raw value, read unsigned, may pick the case of a choice
     dispatches: bool = False   # its bits may be an application's, picked by other fields (`dispatch`)
+    size: int | None = None    # a byte type (binary frames): its bytes, when the type fixes them
+    order: str = "msb"         # "msb": bits, most significant first (AIS); "le": whole bytes, little endian
+    module: str = "ais"        # the Python runtime module of its field class
+    has_parts: bool = False    # a bitfield word whose bit ranges are named (`parts`)
+
+    @property
+    def in_bytes(self) -> bool:
+        """A type of byte-oriented frames (spec/binary), little endian."""
+        return self.order == "le"
 
     def raw(self, bits: str) -> Any:
-        """The reference decoder's raw value of a field from its bits ('0'/'1' text)."""
+        """The reference decoder's raw value of a field from its bits ('0'/'1' text; a byte
+        type's: its little-endian integer's bits)."""
         return int(bits, 2) if bits else 0
 
     def json(self, f: Any, raw: Any) -> dict[str, Any]:
@@ -398,6 +411,8 @@ class BitNumber(BitType):
         return value - (1 << len(bits)) if self.signed and bits[0] == "1" else value
 
     def json(self, f: Any, raw: Any) -> dict[str, Any]:
+        if f.enum:   # a byte type's codes (u1 with an enum), as an enum field's
+            return BIT_TYPES["enum"].json(f, raw)
         if not f.scaled:
             return {f.id: raw}
         special = next((s.id for s in f.special if s.raw == raw), None)
@@ -438,12 +453,76 @@ class BitData(BitType):
         return bits
 
 
+@dataclass(frozen=True)
+class ByteFloat(BitType):
+    """r4, r8: an IEEE 754 float, little endian."""
+
+    def raw(self, bits: str) -> Any:
+        value = struct.unpack("<f" if len(bits) == 32 else "<d", int(bits, 2).to_bytes(len(bits) // 8, "little"))[0]
+        return value if math.isfinite(value) else str(value)   # JSON has no NaN or infinity
+
+
+@dataclass(frozen=True)
+class ByteWord(BitType):
+    """x1..x4: a bitfield word; its raw integer, and each named part (`parts`) by its id."""
+
+    def json(self, f: Any, raw: Any) -> dict[str, Any]:
+        out = {f.id: raw}
+        for part in f.parts:
+            out.update(part.bit_type.json(part, part.bit_type.raw(format(raw >> part.low & (1 << part.bits) - 1,
+                                                                         f"0{part.bits}b"))))
+        return out
+
+
+@dataclass(frozen=True)
+class ByteChars(BitType):
+    """ch: characters as sent (ISO 8859-1, NUL padding kept)."""
+
+    def raw(self, bits: str) -> Any:
+        return int(bits, 2).to_bytes(len(bits) // 8, "little").decode("latin-1") if bits else ""
+
+
+@dataclass(frozen=True)
+class ByteData(BitType):
+    """bytes: binary data, kept as sent (JSON: lower-case hex)."""
+
+    def raw(self, bits: str) -> Any:
+        return int(bits, 2).to_bytes(len(bits) // 8, "little").hex() if bits else ""
+
+
+def _byte_types() -> list[BitType]:
+    """The integers of binary frames (u-blox's notation): U1..U8 unsigned, I1..I8 two's complement,
+    X1..X4 bitfields, each of 1, 2, 4 or 8 bytes, little endian."""
+    out: list[BitType] = []
+    for size in (1, 2, 4, 8):
+        bits = 8 * size
+        out += [BitNumber(f"u{size}", f"U{size} unsigned", "Unsigned", "int", min_bits=bits, max_bits=bits,
+                          numeric=True, enums=True, selects=True, size=size, order="le"),
+                BitNumber(f"i{size}", f"I{size} signed", "Signed", "int", min_bits=bits, max_bits=bits, numeric=True,
+                          signed=True, size=size, order="le")]
+        if size < 8:
+            out.append(ByteWord(f"x{size}", f"X{size} bitfield", "Bitfield", "int", min_bits=bits, max_bits=bits,
+                                selects=True, size=size, order="le", has_parts=True))
+    return out
+
+
 BIT_TYPES: dict[str, BitType] = {t.name: t for t in (
     BitNumber("uint", "unsigned", "Unsigned", "int", numeric=True, selects=True),
     BitNumber("int", "signed (two's complement)", "Signed", "int", min_bits=2, numeric=True, signed=True),
     BitFlag("bool", "flag", "Flag", "bool", max_bits=1, selects=True),
-    BitCode("enum", "enum", "Code", "{enum} | int", coded=True, selects=True),
+    BitCode("enum", "enum", "Code", "{enum} | int", coded=True, enums=True, selects=True),
     BitText("text", "six-bit text", "Text", "str", min_bits=6, max_bits=None, char_bits=6, variable=True),
     BitData("data", "binary data", "Data", "str", max_bits=None, variable=True, dispatches=True),
     BitType("spare", "spare (kept as sent)", "Spare", "int"),
+    *_byte_types(),
+    ByteFloat("r4", "R4 float (IEEE 754 single)", "Float", "float | ais.Special", min_bits=32, max_bits=32, numeric=True, size=4,
+              order="le", module="ubx"),
+    ByteFloat("r8", "R8 float (IEEE 754 double)", "Float", "float | ais.Special", min_bits=64, max_bits=64, numeric=True, size=8,
+              order="le", module="ubx"),
+    ByteChars("ch", "characters (kept as sent)", "Chars", "str", min_bits=8, max_bits=None, char_bits=8,
+              variable=True, order="le", module="ubx"),
+    ByteData("bytes", "bytes (kept as sent)", "Bytes", "bytes", min_bits=8, max_bits=None, char_bits=8,
+             variable=True, order="le", module="ubx"),
+    BitType("reserved", "reserved (kept as sent)", "Spare", "int", min_bits=8, max_bits=None, char_bits=8,
+            order="le"),
 )}

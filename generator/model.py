@@ -655,6 +655,8 @@ class PayloadField:
     optional: bool = False       # present when the payload has its bits
     special: list[Special] = field(default_factory=list)
     dispatch: list[str] = field(default_factory=list)   # data: the fields that will pick an application layout
+    parts: list[PayloadField] = field(default_factory=list)   # a bitfield word's named bit ranges
+    low: int = 0                 # a part: its lowest bit in the word (bit 0: the least significant)
     # Derived by resolve():
     enum: EnumDef | None = None
     offset: int | None = None    # the first bit, when no variable item comes before it
@@ -679,7 +681,8 @@ class PayloadField:
 
 @dataclass
 class PayloadGroup:
-    """Entries repeated while the payload has bits for them (up to `max`)."""
+    """Entries repeated while the payload has bits for them (up to `max`), as many as the field
+    `count` (read before the group) says, or (`count` a number) that many."""
     id: str
     name: str
     doc: str
@@ -687,6 +690,7 @@ class PayloadGroup:
     max: int
     fields: list[PayloadField]
     origin: Origin
+    count: str | int | None = None
     offset: int | None = None
 
     @property
@@ -695,7 +699,7 @@ class PayloadGroup:
 
     @property
     def width(self) -> int | None:
-        return None
+        return self.entry_width * self.count if isinstance(self.count, int) else None
 
     @property
     def camel(self) -> str:
@@ -798,6 +802,11 @@ class Payload:
     application: tuple[int, int] | None = None   # an application message: its DAC and FI
     carriers: list[int] = field(default_factory=list)   # ... and the message types whose data it is
     applications: list[Payload] = field(default_factory=list)   # derived: a message's applications
+    directions: list[str] = field(default_factory=list)   # a binary layout: poll, input, output
+    version: int | None = None   # a binary layout told apart by the value of its `version` field
+    replies: list[str] = field(default_factory=list)   # the layouts that answer this one (ids)
+    acknowledges: tuple[str, str] | None = None   # an acknowledgement: its fields of the answered class and id
+    frame: BinaryMessage | None = None   # a binary layout: its message (class and id)
 
     @property
     def data_field(self) -> PayloadField | None:
@@ -816,6 +825,48 @@ class Payload:
     @property
     def camel(self) -> str:
         return camel(self.id)
+
+
+@dataclass
+class BinaryProtocol:
+    """A binary protocol's framing (spec/binary/<protocol>/protocol.yaml): its documents and the
+    classes its message ids are grouped in."""
+    id: str
+    name: str
+    documents: dict[str, str]   # id -> title
+    classes: dict[str, int]     # name (nav) -> class number
+    origin: Origin
+
+
+@dataclass
+class BinaryExample:
+    """A whole frame of the message (from a receiver's log) and values it decodes to."""
+    where: str
+    frame: bytes
+    expect: dict[str, Any] | None
+    origin: Origin
+
+
+@dataclass
+class BinaryMessage:
+    """One message of a binary protocol (a UBX class and id) and its layouts: one per direction,
+    or several of one direction told apart by length or version."""
+    id: str                     # nav_pvt
+    name: str
+    doc: str
+    protocol: str
+    msg_class: str              # nav
+    msg_id: int
+    documents: list[str]
+    layouts: list[Payload]
+    origin: Origin
+    examples: list[BinaryExample] = field(default_factory=list)
+    class_number: int = 0       # derived from the protocol's classes
+
+    @property
+    def address(self) -> str:
+        """How documents and errors name it: NAV-PVT."""
+        return self.id.upper().replace("_", "-", 1)
 
 
 @dataclass
@@ -842,6 +893,8 @@ class Spec:
     enum_by_id: dict[str, EnumDef] = field(default_factory=dict)
     payloads: list[Payload] = field(default_factory=list)   # spec/ais/messages
     applications: list[Payload] = field(default_factory=list)   # spec/ais/applications
+    protocols: list[BinaryProtocol] = field(default_factory=list)   # spec/binary/*/protocol.yaml
+    binary: list[BinaryMessage] = field(default_factory=list)      # spec/binary/*/messages
 
     def digest_of(self, sources: list[str]) -> str:
         """A short hash of the given spec or template files, so that a generated file's header

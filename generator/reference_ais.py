@@ -65,15 +65,18 @@ class _Bits:
         return self.bits[self.pos - width:self.pos]
 
 
-def _items(items: list, bits: _Bits, rest: list, out: dict[str, Any]) -> bool:
+def _items(items: list, bits: Any, rest: list, out: dict[str, Any]) -> bool:
     """Decode `items` (followed by the items `rest`) into `out`; False when an optional field is
-    missing (nothing after it is read)."""
+    missing (nothing after it is read). `bits` is a cursor over the payload: _Bits here, or
+    reference_binary's over little-endian bytes (both give a field's bits as '0'/'1' text)."""
     for i, item in enumerate(items):
         following = items[i + 1:] + rest
         if isinstance(item, PayloadGroup):
-            count = min(item.max, max(bits.left - after(following), 0) // item.entry_width)
-            if count < item.min:
-                raise PayloadError("short_payload", f"{bits.payload.id}: {item.id} needs {item.min} entries")
+            count = item.count if isinstance(item.count, int) else out[item.count] if item.count else \
+                min(item.max, max(bits.left - after(following), 0) // item.entry_width)
+            if count < item.min or count * item.entry_width > bits.left:
+                raise PayloadError("short_payload",
+                                   f"{bits.payload.id}: {item.id} needs {max(count, item.min)} entries")
             entries = []
             for _ in range(count):
                 entry: dict[str, Any] = {}

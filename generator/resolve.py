@@ -43,6 +43,13 @@ def resolve(spec: Spec) -> None:
             f.enum = spec.enum_by_id.get(f.enum_id) if f.enum_id is not None else None
     for payload in spec.payloads:
         payload.applications = [a for a in spec.applications if set(a.carriers) & set(payload.types)]
+    classes = {p.id: p.classes for p in spec.protocols}
+    for message in spec.binary:
+        message.class_number = classes.get(message.protocol, {}).get(message.msg_class, 0)
+        for layout in message.layouts:
+            _place_bits(layout)
+            for f in layout.fields + [part for f in layout.fields for part in f.parts]:
+                f.enum = spec.enum_by_id.get(f.enum_id) if f.enum_id is not None else None
 
 
 def checksum_ok(line: str) -> bool:

@@ -184,9 +184,10 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "says; a message with one has no `length`.",
          "Correct a field's `bits` or the length, from the manual's table."),
     Rule("A002", "bit fields fit their type",
-         "A field's `bits` is within its type's widths (bool 1, text a multiple of 6, numbers 1-64); only text and "
-         "data may leave it out; `divisor`, `unit` and `special` go with uint and int, `enum` with enum (an enum of "
-         "decimal codes), `dispatch` with data.",
+         "A field's `bits` is within its type's widths (bool 1, text a multiple of 6, numbers 1-64; a binary "
+         "frame's: its type's bytes or `size`); only text and data (ch, bytes) may leave it out; `divisor`, `unit` "
+         "and `special` go with numbers, `enum` with enum or an unsigned byte type (an enum of decimal codes), "
+         "`dispatch` with data.",
          "Correct the width or the type, or remove the attribute."),
     Rule("A003", "special values fit their field",
          "Each special value is a raw value the field's bits hold (two's complement for int), named once.",
@@ -222,6 +223,34 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "The message types an application (spec/ais/applications) is carried `in` have a data field whose "
          "`dispatch` names their DAC and FI fields.",
          "Correct `in`, or add `dispatch: [dac, fid]` to the carrier's data field."),
+    Rule("B001", "a binary message has one class and id",
+         "A message of spec/binary/<protocol>/messages names a class of its protocol.yaml, its id starts with that "
+         "class (nav_pvt), and no other message of the protocol has its class and id.",
+         "Correct `class`, `id` or `message`."),
+    Rule("B002", "binary fields are byte fields",
+         "The fields of a binary layout have byte types (u1..u8, i1..i8, r4, r8, x1..x4, ch, bytes, reserved); "
+         "only a bitfield word (x1, x2, x4) has `parts`, each inside the word and overlapping no other.",
+         "Correct the type, or the part's `bit` and `width`."),
+    Rule("B003", "a counted group names its count",
+         "A group's `count` names an unsigned field or bitfield part that comes before the group.",
+         "Correct `count`, or leave it out (the group then takes the bytes left)."),
+    Rule("B004", "layouts of one message are told apart",
+         "Layout ids (message id and `variant`) are unique; two layouts that share a direction differ in their "
+         "fixed length or their `version`, and a layout with a `version` has a u1 field `version` at a fixed "
+         "offset.",
+         "Give one layout a `variant`, a `version`, or correct its fields."),
+    Rule("B005", "binary messages name their protocol's documents",
+         "Each of a message's `documents` is one of its protocol.yaml's documents.",
+         "Correct the id, or add the document to protocol.yaml."),
+    Rule("B006", "replies name layouts",
+         "A layout's `replies` name layouts of binary messages (ack_ack, nav_pvt); every poll names the layout "
+         "that answers it; an acknowledgement's `acknowledges` names its u1 fields of the answered class and id.",
+         "Correct or add `replies`, or correct `acknowledges`."),
+    Rule("B007", "binary examples decode to their expect",
+         "Every example is a whole frame of its message (sync, length and checksum right) that the reference "
+         "decoder reads, as the layout its length and version pick, to the values its `expect` names (the decoded "
+         "JSON's form).",
+         "Correct the frame or `expect` (the message shows the decoded value)."),
 )}
 
 

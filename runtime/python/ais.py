@@ -3,8 +3,9 @@ bit layouts the generated message classes describe (`LAYOUT`, a tuple of the fie
 
 A payload decodes to its message and encodes back to the same characters and fill bits: spare
 bits, text after its `@` padding, the values of the fill bits and bits beyond the layout (kept in
-`trailing`) are all kept as sent. Facts from ITU-R M.1371-5 (armoring: table 47 of annex 8; the
-layouts: annex 8) and gpsd's "AIVDM/AIVDO protocol decoding".
+`trailing`) are all kept as sent. The same reader and writer walk the payloads of binary frames
+(ubx.py: little-endian bytes, bitfields, counted groups). Facts from ITU-R M.1371-5 (armoring:
+table 47 of annex 8; the layouts: annex 8) and gpsd's "AIVDM/AIVDO protocol decoding".
 """
 
 from __future__ import annotations
@@ -293,8 +294,36 @@ class Spare(Field):
 
 
 @dataclass(frozen=True, slots=True)
+class Bitfield(Field):
+    """A word of flags and small numbers: its raw integer is the member `id`, each named part
+    (`parts`: its lowest bit and its field) a member of its own. Written back, the parts' values
+    replace their bits of the word; the bits no part names stay as sent."""
+
+    parts: tuple[tuple[int, Field], ...] = ()
+
+    def read_parts(self, raw: int, values: dict[str, Any]) -> None:
+        for low, part in self.parts:
+            width = part.width or 1
+            values[part.id] = part.from_raw(raw >> low & ((1 << width) - 1), width)
+
+    def word(self, record: Any, where: str) -> int:
+        """The word of `record`'s members: its raw word (0 when None) with the parts set."""
+        raw = getattr(record, self.id) or 0
+        for low, part in self.parts:
+            value = getattr(record, part.id)
+            if value is not None:
+                bits, width = part.to_raw(value, where)
+                raw = raw & ~(((1 << width) - 1) << low) | bits << low
+        return raw
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        raise AssertionError("a bitfield is written from its record (word)")
+
+
+@dataclass(frozen=True, slots=True)
 class Group:
-    """Entries of `fields` (the class `entry`) repeated while the bits left before the `after`
+    """Entries of `fields` (the class `entry`) repeated as many times as the member `count` says
+    (`count` a number: that many times) or, without one, while the bits left before the `after`
     bits hold one, at most `max` times."""
 
     id: str
@@ -303,6 +332,7 @@ class Group:
     min: int
     max: int
     after: int = 0
+    count: str | int | None = None
 
     @property
     def entry_width(self) -> int:
@@ -346,7 +376,9 @@ Item = Field | Group | Choice
 
 
 def flat_fields(items: tuple[Item, ...]) -> tuple[Field, ...]:
-    return tuple(f for item in items for f in ((item,) if isinstance(item, Field) else
+    """The fields of `items` outside groups, a bitfield's parts after it."""
+    return tuple(f for item in items for f in ((item, *(p for _, p in item.parts)) if isinstance(item, Bitfield) else
+                                               (item,) if isinstance(item, Field) else
                                                item.fields if isinstance(item, Choice) else ()))
 
 
@@ -360,11 +392,17 @@ def read_items(items: tuple[Item, ...], reader: BitReader, values: dict[str, Any
                 width = item.size(reader)
             if item.optional and reader.remaining < width:
                 return False
-            values[item.id] = item.from_raw(reader.take(width, item.id), width)
+            raw = reader.take(width, item.id)
+            values[item.id] = item.from_raw(raw, width)
+            if isinstance(item, Bitfield):
+                item.read_parts(raw, values)
         elif isinstance(item, Group):
-            count = min(item.max, max(reader.remaining - item.after, 0) // item.entry_width)
-            if count < item.min:
-                raise NmeaError("short_payload", f"{item.id} needs at least {item.min} entries of "
+            if item.count is None:
+                count = min(item.max, max(reader.remaining - item.after, 0) // item.entry_width)
+            else:
+                count = item.count if isinstance(item.count, int) else values[item.count]
+            if count < item.min or count * item.entry_width > reader.remaining:
+                raise NmeaError("short_payload", f"{item.id} needs {max(count, item.min)} entries of "
                                 f"{item.entry_width} bits, {reader.remaining} bits left", reader.where, name=item.id)
             entries = []
             for _ in range(count):
@@ -460,7 +498,10 @@ def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter, where:
                 return False
             if value is None and isinstance(item, Data) and getattr(message, "application", None) is not None:
                 value = message.application.bits(where)
-            writer.put(*item.to_raw(value, where))
+            if isinstance(item, Bitfield):
+                writer.put(item.word(message, where), item.width or 0)
+            else:
+                writer.put(*item.to_raw(value, where))
         elif isinstance(item, Group):
             for entry in getattr(message, item.id):
                 write_items(item.fields, entry, writer, where)
@@ -479,7 +520,7 @@ def items_json(items: tuple[Item, ...], message: Any) -> dict[str, Any]:
         if isinstance(item, Group):
             out[item.id] = [items_json(item.fields, entry) for entry in getattr(message, item.id)]
         else:
-            for f in (item,) if isinstance(item, Field) else item.fields:
+            for f in flat_fields((item,)):
                 value = getattr(message, f.id)
                 if value is not None:
                     f.put_json(out, value)

@@ -1,22 +1,34 @@
-"""u-blox UBX frames: the framing layer (spec/binary/ubx/protocol.yaml) that the message layouts
-will sit on.
+"""u-blox UBX frames: the framing layer (spec/binary/ubx/protocol.yaml) and the base of the
+generated message classes (nmeaspec.ubx_messages, from spec/binary/ubx/messages).
 
 A frame is the sync bytes B5 62, a class and an id byte, the payload's length (two bytes, little
 endian, the payload alone) and the payload, closed by a Fletcher-8 checksum over class..payload.
-A frame decodes to its class, id and payload and encodes back to the same bytes; a frame of a
-class/id nobody describes is kept with its payload. A payload is read and written by the field
-classes and item walkers of the AIS payloads (ais.py: one model of payloads) through ByteReader and
-ByteWriter, which hold the little-endian byte order: offsets and widths stay in bits, whole bytes
-here. Facts from u-blox UBX-13003221 (u-blox 8 / M8
-Receiver description, "UBX protocol": frame structure and checksum).
+A frame decodes to its class, id and payload and encodes back to the same bytes. A payload is
+read and written by the field classes and item walkers of the AIS payloads (ais.py: one model of
+payloads) through ByteReader and ByteWriter, which hold the little-endian byte order: offsets and
+widths stay in bits, whole bytes here. A message decodes into the class of its layout and encodes
+back to the same bytes (reserved bytes, bits of a bitfield no part names and bytes after the
+layout are kept); a frame of a class/id the spec does not describe stays an Unknown with its
+payload. Facts from u-blox UBX-13003221 (u-blox 8 / M8 Receiver description, "UBX protocol":
+frame structure and checksum).
 """
 
 from __future__ import annotations
 
+import math
+import struct
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from itertools import accumulate
+from typing import Any, ClassVar
 
+from .ais import (Bitfield, Code, Field, Flag, Group, Item, Signed, Spare, Special, Unsigned, _bad_value, flat_fields,
+                  items_json, read_items, write_items)
 from .runtime import NmeaError
+
+__all__ = ["Bitfield", "Bytes", "ByteReader", "ByteWriter", "Chars", "Float", "Frame", "Group", "Message",
+           "NmeaError", "Unknown", "answers", "decode_frame", "fletcher8", "frame_size", "main_layout", "message",
+           "split_frames"]
 
 SYNC = b"\xb5\x62"
 HEADER_SIZE = 6  # sync, class, id, length
@@ -24,12 +36,10 @@ CHECKSUM_SIZE = 2
 
 
 def fletcher8(data: bytes) -> bytes:
-    """The two checksum bytes (CK_A, CK_B) of `data`: 8-bit Fletcher, both sums modulo 256."""
-    ck_a = ck_b = 0
-    for byte in data:
-        ck_a = (ck_a + byte) & 0xFF
-        ck_b = (ck_b + ck_a) & 0xFF
-    return bytes((ck_a, ck_b))
+    """The two checksum bytes (CK_A, CK_B) of `data`: 8-bit Fletcher, both sums modulo 256. CK_A
+    after each byte is the running sum of the bytes, CK_B the sum of those running sums: both
+    summed in C, not byte by byte."""
+    return bytes((sum(data) & 0xFF, sum(accumulate(data)) & 0xFF))
 
 
 @dataclass(frozen=True)
@@ -67,8 +77,9 @@ class ByteReader:
     def peek(self, offset: int, width: int, name: str) -> int:
         first, last = offset // 8, (offset + width) // 8 - 1
         if offset + width > self.length:
-            raise NmeaError("short_payload", f"{name} needs bytes {first}-{last}, the payload has "
-                            f"{len(self.payload)}", self.where, name=name)
+            where = f"byte {first}" if first == last else f"bytes {first}-{last}"
+            raise NmeaError("short_payload", f"{name} needs {where}, the payload has {len(self.payload)}", self.where,
+                            name=name)
         return int.from_bytes(self.payload[first:last + 1], "little")
 
     def take(self, width: int, name: str) -> int:
@@ -127,3 +138,331 @@ def split_frames(data: bytes) -> Iterator[tuple[int, Frame]]:
             continue
         yield pos, frame
         pos = data.find(SYNC, pos + size)
+
+
+@dataclass(frozen=True, slots=True)
+class Float(Field):
+    """r4, r8: an IEEE 754 float, little endian. A NaN is a Special("nan", raw) that keeps its bits
+    (a float would lose a single's payload); JSON: "nan", and the infinities "inf", "-inf"."""
+
+    def from_raw(self, raw: int, width: int) -> Any:
+        value = struct.unpack("<f" if width == 32 else "<d", raw.to_bytes(width // 8, "little"))[0]
+        return value if value == value else Special("nan", raw)
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        assert self.width is not None
+        if isinstance(value, Special):
+            return value.raw, self.width
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise _bad_value(where, self.id, value, "a number")
+        return int.from_bytes(struct.pack("<f" if self.width == 32 else "<d", value), "little"), self.width
+
+    def put_json(self, out: dict[str, Any], value: Any) -> None:
+        out[self.id] = str(value) if isinstance(value, Special) or not math.isfinite(value) else value
+
+
+@dataclass(frozen=True, slots=True)
+class Chars(Field):
+    """ch: characters as sent, ISO 8859-1, NUL padding included; without a width, the bytes left."""
+
+    def from_raw(self, raw: int, width: int) -> Any:
+        return raw.to_bytes(width // 8, "little").decode("latin-1")
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        data = value.encode("latin-1", "replace") if isinstance(value, str) else None
+        if data is None or self.width is not None and 8 * len(data) != self.width:
+            size = f"{self.width // 8} " if self.width is not None else ""
+            raise _bad_value(where, self.id, value, f"a text of {size}ISO 8859-1 characters")
+        return int.from_bytes(data, "little"), 8 * len(data)
+
+
+@dataclass(frozen=True, slots=True)
+class Bytes(Field):
+    """bytes: binary data as sent (JSON: lower-case hex); without a width, the bytes left."""
+
+    def from_raw(self, raw: int, width: int) -> Any:
+        return raw.to_bytes(width // 8, "little")
+
+    def to_raw(self, value: Any, where: str) -> tuple[int, int]:
+        if not isinstance(value, bytes) or self.width is not None and 8 * len(value) != self.width:
+            raise _bad_value(where, self.id, value, "bytes" if self.width is None else f"{self.width // 8} bytes")
+        return int.from_bytes(value, "little"), 8 * len(value)
+
+    def put_json(self, out: dict[str, Any], value: Any) -> None:
+        out[self.id] = value.hex()
+
+
+_INTEGER_CODES = {8: "B", 16: "H", 32: "I", 64: "Q"}
+
+
+def _struct_code(f: Field) -> str | None:
+    """The struct code that reads field `f` whole (None: a width no code reads); a float is read as
+    its integer (Float.from_raw keeps a NaN's bits)."""
+    width = f.width
+    if width is None:
+        return None
+    if isinstance(f, (Chars, Bytes)):
+        return f"{width // 8}s"
+    code = _INTEGER_CODES.get(width, f"{width // 8}s" if type(f) is Spare else None)
+    return code.lower() if code is not None and isinstance(f, Signed) else code
+
+
+class _Compiler:
+    """Straight-line source of a layout's reader: struct.unpack_from for runs of fixed fields and
+    each group entry, the values converted inline as the field classes convert them (the generic
+    reader costs several calls a field; this one a call per run). Decoded values are exactly
+    those of read_items, which tests/ubx checks frame by frame."""
+
+    def __init__(self) -> None:
+        self.names: dict[str, Any] = {"Special": Special, "unpack_from": struct.unpack_from,
+                                      "iter_unpack": struct.iter_unpack, "from_bytes": int.from_bytes}
+        self.lines: list[str] = []
+
+    def name(self, value: Any) -> str:
+        key = f"n{len(self.names)}"
+        self.names[key] = value
+        return key
+
+    def convert(self, f: Field, raw: str, target: str, pad: str) -> None:
+        """Lines that put field `f`'s value of raw value `raw` (an expression) into `target`."""
+        key = repr(f.id)
+        if isinstance(f, Unsigned):
+            number = raw
+            if isinstance(f, Signed) and f.width is not None and not _struct_code(f):   # a part: sign by hand
+                number = f"(({raw}) - {1 << f.width} if ({raw}) >> {f.width - 1} else ({raw}))"
+            value = number if f.divisor == 1 else f"{number} / {f.divisor}"
+            value += f" + {f.base!r}" if f.base or isinstance(f.base, float) else ""
+            if f.special:
+                value = f"{self.name({sp.raw: sp for sp in f.special})}.get({number}) or {value}"
+            self.lines.append(f"{pad}{target}[{key}] = {value}")
+        elif isinstance(f, Flag):
+            self.lines.append(f"{pad}{target}[{key}] = {raw} != 0")
+        elif isinstance(f, Code):
+            members = self.name({m.value: m for m in f.enum})
+            self.lines.append(f"{pad}{target}[{key}] = {members}.get(str({raw}), {raw})")
+        elif isinstance(f, Chars):
+            self.lines.append(f"{pad}{target}[{key}] = {raw}.decode('latin-1')")
+        elif isinstance(f, Float):   # read as its integer: a NaN keeps its bits
+            self.lines.append(f"{pad}{target}[{key}] = {self.name(f)}.from_raw({raw}, {f.width})")
+        elif type(f) is Spare and f.width not in _INTEGER_CODES:
+            self.lines.append(f"{pad}{target}[{key}] = from_bytes({raw}, 'little')")
+        else:   # a whole integer, bytes
+            self.lines.append(f"{pad}{target}[{key}] = {raw}")
+        if isinstance(f, Bitfield):
+            self.lines.append(f"{pad}word = {target}[{key}]")
+            for low, part in f.parts:
+                self.convert(part, f"(word >> {low} & {(1 << (part.width or 1)) - 1})", target, pad)
+
+    def run(self, fields: list[Field], target: str, source: str, pad: str) -> str:
+        """Lines that read the fixed `fields` from `source` (a tuple's expression) into `target`;
+        the struct format they take."""
+        fmt = "<" + "".join(_struct_code(f) or "" for f in fields)
+        for i, f in enumerate(fields):
+            self.convert(f, f"{source}[{i}]", target, pad)
+        return fmt
+
+
+def compile_reader(items: tuple[Item, ...]) -> Any:
+    """`read(payload, values)` of a layout: its values from `payload` and the bytes it read, or
+    None when the payload is not one it reads whole (too short, a count too large: the generic
+    reader then says where), or when a layout has what it does not compile (a choice; a group
+    of variable entries)."""
+    c = _Compiler()
+    pos = "0"
+    fixed: list[Field] = []
+
+    def flush() -> None:
+        nonlocal pos, fixed
+        if not fixed:
+            return
+        start = len(c.lines)
+        fmt = c.run(fixed, "values", "t", "    ")
+        size = struct.calcsize(fmt)
+        run = [f"    if len(payload) < {pos} + {size}: return None",
+               f"    t = unpack_from({fmt!r}, payload, {pos})"]
+        c.lines[start:start] = run
+        pos = f"{pos} + {size}" if pos != "0" else str(size)
+        fixed = []
+
+    for index, item in enumerate(items):
+        if isinstance(item, Field) and _struct_code(item) and not item.optional:
+            fixed.append(item)
+            continue
+        flush()
+        if isinstance(item, Field) and item.optional and _struct_code(item):
+            size = (item.width or 0) // 8
+            c.lines.append(f"    if len(payload) < {pos} + {size}: return values, {pos}")
+            fixed.append(item)
+            flush()
+        elif isinstance(item, (Chars, Bytes)) and item.width is None and index == len(items) - 1:
+            c.lines.append(f"    t = (payload[{pos}:],)")
+            c.convert(item, "t[0]", "values", "    ")
+            pos = "len(payload)"
+        elif isinstance(item, Group) and all(_struct_code(f) for f in item.fields):
+            entry = c.name(item.entry)
+            fmt = "<" + "".join(_struct_code(f) or "" for f in item.fields)
+            size = struct.calcsize(fmt)
+            if isinstance(item.count, int):
+                c.lines.append(f"    count = {item.count}")
+            elif item.count:
+                c.lines.append(f"    count = values[{item.count!r}]")
+            else:
+                c.lines.append(f"    count = min({item.max}, (len(payload) - ({pos}) - {item.after // 8}) // {size})")
+            end = f"end{index}"
+            c.lines += [f"    {end} = {pos} + count * {size}",
+                        f"    if count < {item.min} or len(payload) < {end}: return None",
+                        "    entries = []",
+                        f"    for t in iter_unpack({fmt!r}, payload[{pos}:{end}]):",
+                        "        e = {}"]
+            c.run(list(item.fields), "e", "t", "        ")
+            c.lines += [f"        entries.append({entry}(**e))", f"    values[{item.id!r}] = entries"]
+            pos = end
+        else:
+            return None
+    flush()
+    body = ["def read(payload):", "    values = {}", *c.lines, f"    return values, {pos}"]
+    exec("\n".join(body), c.names)  # code built above from the generated layout, never from input
+    return c.names["read"]
+
+
+@dataclass(kw_only=True)
+class Message:
+    """A decoded UBX message, one layout of a class and id (the generated classes of
+    nmeaspec.ubx_messages): its fields, then the payload's bytes after the layout, as sent."""
+
+    trailing: bytes = b""
+    """Bytes after the layout's last field, as sent (a newer firmware's additions)."""
+
+    ID: ClassVar[str]
+    """The spec's id of the layout (`nav_pvt`, `nav_pvt_poll`)."""
+    ADDRESS: ClassVar[str]
+    """How u-blox names the message: NAV-PVT."""
+    CLASS: ClassVar[int]
+    MSG_ID: ClassVar[int]
+    DIRECTIONS: ClassVar[tuple[str, ...]]
+    """Who sends it: "poll" and "input" go to the receiver, "output" comes from it."""
+    LENGTH: ClassVar[int | None]
+    """The payload's bytes, when the layout fixes them."""
+    VERSION: ClassVar[int | None]
+    """The value of its `version` field that tells it from another layout of its class and id."""
+    REPLIES: ClassVar[tuple[str, ...]]
+    """The layouts (ids) the receiver answers it with."""
+    ACKNOWLEDGES: ClassVar[tuple[str, str] | None] = None
+    """An acknowledgement: its members that hold the class and id of the message it answers."""
+    LAYOUT: ClassVar[tuple[Item, ...]]
+    FIELDS: ClassVar[dict[str, Field]]
+    _read: ClassVar[Any]
+    """The layout's compiled reader (compile_reader), made on first use; False: none."""
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "LAYOUT" in cls.__dict__:
+            cls.FIELDS = {f.id: f for f in flat_fields(cls.LAYOUT)}
+
+    @classmethod
+    def fits(cls, payload: bytes) -> bool:
+        """Whether `payload` has this layout's length (a fixed one) and version (when it has one)."""
+        if cls.LENGTH is not None and len(payload) != cls.LENGTH:
+            return False
+        if cls.VERSION is not None:
+            at = next(i for i, item in enumerate(cls.LAYOUT) if isinstance(item, Field) and item.id == "version")
+            offset = sum((f.width or 0) for f in cls.LAYOUT[:at] if isinstance(f, Field)) // 8
+            return offset < len(payload) and payload[offset] == cls.VERSION
+        return True
+
+    @classmethod
+    def from_payload(cls, payload: bytes) -> Message:
+        """The message of `payload`, read as this layout: by its compiled reader, else (a payload
+        it does not read whole) by the generic one, which names what is missing."""
+        read = cls.__dict__.get("_read")
+        if read is None:
+            read = cls._read = compile_reader(cls.LAYOUT) or False
+        found = read(payload) if read else None
+        if found is not None:
+            return cls(**found[0], trailing=payload[found[1]:])
+        return cls.read_generic(payload)
+
+    @classmethod
+    def read_generic(cls, payload: bytes) -> Message:
+        """The message of `payload` read field by field by ais.read_items."""
+        reader = ByteReader(payload, f"UBX {cls.ADDRESS}")
+        values: dict[str, Any] = {}
+        read_items(cls.LAYOUT, reader, values)
+        return cls(**values, trailing=payload[reader.pos // 8:])
+
+    def payload(self) -> bytes:
+        """The payload it is sent as; a count left None is written as its group's number of
+        entries, a version left None as the layout's (the message itself is left as it is)."""
+        implied: dict[str, int] = {}
+        if self.VERSION is not None and getattr(self, "version") is None:
+            implied["version"] = self.VERSION
+        for group in self.LAYOUT:
+            if isinstance(group, Group) and isinstance(group.count, str) and getattr(self, group.count) is None:
+                implied[group.count] = len(getattr(self, group.id))
+        writer = ByteWriter()
+        write_items(self.LAYOUT, replace(self, **implied) if implied else self, writer, f"UBX {self.ADDRESS}")
+        return bytes(writer.payload) + self.trailing
+
+    def frame(self) -> Frame:
+        return Frame(self.CLASS, self.MSG_ID, self.payload())
+
+    def encode(self) -> bytes:
+        """The whole frame, sync bytes to checksum."""
+        return self.frame().encode()
+
+    def raw(self, name: str) -> int | None:
+        """The raw integer of a scaled number's member; None when the member is None."""
+        value = getattr(self, name)
+        f = self.FIELDS[name]
+        return None if value is None or not isinstance(f, Unsigned) else f.raw_number(value, "")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The message as the decoded JSON of generated/vectors/ubx.jsonl: the layout's id as
+        `message`, each field present by its id (a number in a unit beside its raw integer as
+        <id>_raw, an enum value by its id, a bitfield's word and then its parts, characters as
+        sent, bytes as hex), then the trailing bytes as hex."""
+        return {"message": self.ID, **items_json(self.LAYOUT, self), "trailing": self.trailing.hex()}
+
+
+def answers(request: Message, reply: Message | Unknown) -> bool:
+    """Whether `reply` answers `request`: a layout the request's REPLIES names, and (an
+    acknowledgement, ACK-ACK or ACK-NAK) one of the request's class and id (UBX-13003221: a CFG
+    message is answered by one of them)."""
+    if not isinstance(reply, Message) or reply.ID not in request.REPLIES:
+        return False
+    if reply.ACKNOWLEDGES is None:
+        return True
+    msg_class, msg_id = (getattr(reply, name) for name in reply.ACKNOWLEDGES)
+    return (msg_class, msg_id) == (request.CLASS, request.MSG_ID)
+
+
+@dataclass
+class Unknown:
+    """A frame of a class and id the spec does not describe, kept with its payload."""
+
+    msg_class: int
+    msg_id: int
+    payload: bytes
+
+    def encode(self) -> bytes:
+        return Frame(self.msg_class, self.msg_id, self.payload).encode()
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"message": None, "class": self.msg_class, "id": self.msg_id, "payload": self.payload.hex()}
+
+
+def message(by_id: dict[tuple[int, int], tuple[type[Message], ...]], frame: Frame) -> Message | Unknown:
+    """The message of `frame` as the layout of its class and id (in `by_id`, in spec order) whose
+    length and version the payload has, else its main layout (the first the receiver sends: a
+    short payload then names the field it cuts, a long one keeps the rest as trailing); an Unknown
+    when no layout describes the class and id."""
+    layouts = by_id.get((frame.msg_class, frame.msg_id))
+    if not layouts:
+        return Unknown(frame.msg_class, frame.msg_id, frame.payload)
+    cls = next((c for c in layouts if c.fits(frame.payload)), None) or main_layout(layouts)
+    return cls.from_payload(frame.payload)
+
+
+def main_layout(layouts: tuple[type[Message], ...]) -> type[Message]:
+    """The layout a payload of no layout's length is read as: the first output one, else the last."""
+    return next((c for c in layouts if "output" in c.DIRECTIONS), layouts[-1])

@@ -68,10 +68,11 @@ def test_the_registry_knows_every_field_type_of_the_schema() -> None:
 def test_bad_spec_is_rejected(fixture: Path, tmp_path: Path) -> None:
     rule, message = _fixture_header(fixture)
     shutil.copytree(SPEC, tmp_path / "spec")
-    name = fixture.name if fixture.stem == "wrong_file_name" else "xyz.yaml"
     text = fixture.read_text(encoding="utf-8")
-    folder = "standard" if "\nmessage: " not in text else "ais/applications" if "\napplication: " in text \
-        else "ais/messages"
+    binary = "\nlayouts:" in text
+    name = fixture.name if fixture.stem == "wrong_file_name" else "nav_xyz.yaml" if binary else "xyz.yaml"
+    folder = "binary/ubx/messages" if binary else "standard" if "\nmessage: " not in text else \
+        "ais/applications" if "\napplication: " in text else "ais/messages"
     shutil.copy(fixture, tmp_path / "spec" / folder / name)
     with pytest.raises(SpecErrors) as caught:
         load_spec(tmp_path / "spec")

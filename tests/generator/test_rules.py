@@ -19,7 +19,7 @@ def _reported_ids() -> set[str]:
     ids = set()
     for path in GENERATOR.glob("*.py"):
         if path.name != "rules.py":
-            ids |= set(re.findall(r'"([SA]\d{3}|schema|yaml)"', path.read_text(encoding="utf-8")))
+            ids |= set(re.findall(r'"([SAB]\d{3}|schema|yaml)"', path.read_text(encoding="utf-8")))
     return ids
 
 

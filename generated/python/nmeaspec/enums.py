@@ -119,10 +119,10 @@
 #   spec/enums/ttm_acquisition.yaml, spec/enums/ttm_reference.yaml,
 #   spec/enums/ttm_target_status.yaml, spec/enums/ttm_units.yaml, spec/enums/ublox_autobauding.yaml,
 #   spec/enums/ublox_nav_status.yaml, spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml,
-#   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
-#   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
-#   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-#   (digest 1017cea4e20d617a)
+#   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml, spec/enums/vsd_nav_status.yaml,
+#   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
+#   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
+#   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 7abfa7a6c9c4626d)
 # Regenerate: make generate (python3 -m generator generate)
 """The spec's lookup tables. A member's value is its wire code; `.id` is the spec's id."""
 
@@ -5447,6 +5447,54 @@ class UbloxSvStatus(CodeEnum):
     it as usable for navigation, no ephemeris). (ublox_m8, ublox_antaris_fv25)"""
 
 
+class UbxFixType(CodeEnum):
+    """UBX GNSS fix type: The kind of fix a u-blox receiver's UBX navigation messages report
+    (NAV-PVT fixType, NAV-STATUS and NAV-SOL gpsFix, HNR-PVT gpsFix; u-blox UBX-13003221)."""
+
+    BY_CODE: ClassVar[dict[str, UbxFixType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
+    NO_FIX = "0"
+    """No fix. (ublox_m8)"""
+    DEAD_RECKONING = "1"
+    """Dead reckoning only. (ublox_m8)"""
+    FIX_2D = "2"
+    """2D fix. (ublox_m8)"""
+    FIX_3D = "3"
+    """3D fix. (ublox_m8)"""
+    GNSS_DEAD_RECKONING = "4"
+    """GNSS and dead reckoning combined. (ublox_m8)"""
+    TIME_ONLY = "5"
+    """Time only fix. (ublox_m8)"""
+
+
+class UbxGnssId(CodeEnum):
+    """UBX GNSS identifier: The satellite system a UBX message's gnssId names (u-blox UBX-13003221,
+    \"GNSS identifiers\")."""
+
+    BY_CODE: ClassVar[dict[str, UbxGnssId]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
+    GPS = "0"
+    """GPS. (ublox_m8)"""
+    SBAS = "1"
+    """SBAS. (ublox_m8)"""
+    GALILEO = "2"
+    """Galileo. (ublox_m8)"""
+    BEIDOU = "3"
+    """BeiDou. (ublox_m8)"""
+    IMES = "4"
+    """IMES. (ublox_m8)"""
+    QZSS = "5"
+    """QZSS. (ublox_m8)"""
+    GLONASS = "6"
+    """GLONASS. (ublox_m8)"""
+    NAVIC = "7"
+    """NavIC (IRNSS; F9 and later). (ublox_m8)"""
+
+
 class VsdNavStatus(CodeEnum):
     """AIS navigational status: Navigational status of the ship as AIS transmits it (ITU-R M.1371),
     entered through VSD."""
@@ -6991,6 +7039,16 @@ UbloxPort.MIN_LEN, UbloxPort.MAX_LEN = 1, 1
 UbloxSvStatus.BY_CODE = by_code(UbloxSvStatus)
 UbloxSvStatus.CODE_CLASS = "letters"
 UbloxSvStatus.MIN_LEN, UbloxSvStatus.MAX_LEN = 1, 1
+
+
+UbxFixType.BY_CODE = by_code(UbxFixType)
+UbxFixType.CODE_CLASS = "digits"
+UbxFixType.MIN_LEN, UbxFixType.MAX_LEN = 1, 1
+
+
+UbxGnssId.BY_CODE = by_code(UbxGnssId)
+UbxGnssId.CODE_CLASS = "digits"
+UbxGnssId.MIN_LEN, UbxGnssId.MAX_LEN = 1, 1
 
 
 VsdNavStatus.BY_CODE = by_code(VsdNavStatus)

@@ -120,10 +120,11 @@
 //   spec/enums/ttm_acquisition.yaml, spec/enums/ttm_reference.yaml,
 //   spec/enums/ttm_target_status.yaml, spec/enums/ttm_units.yaml,
 //   spec/enums/ublox_autobauding.yaml, spec/enums/ublox_nav_status.yaml,
-//   spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml, spec/enums/vsd_nav_status.yaml,
+//   spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml, spec/enums/ubx_fix_type.yaml,
+//   spec/enums/ubx_gnss_id.yaml, spec/enums/vsd_nav_status.yaml,
 //   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
 //   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
-//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 1017cea4e20d617a)
+//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 7abfa7a6c9c4626d)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -16546,6 +16547,148 @@ impl CodeEnum for UbloxSvStatus {
             Self::NotUsed => "not_used",
             Self::Used => "used",
             Self::EphemerisNotUsed => "ephemeris_not_used",
+        }
+    }
+}
+
+/// UBX GNSS fix type: The kind of fix a u-blox receiver's UBX navigation messages report (NAV-PVT
+/// fixType, NAV-STATUS and NAV-SOL gpsFix, HNR-PVT gpsFix; u-blox UBX-13003221).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum UbxFixType {
+    /// No fix.
+    NoFix,
+    /// Dead reckoning only.
+    DeadReckoning,
+    /// 2D fix.
+    Fix2d,
+    /// 3D fix.
+    Fix3d,
+    /// GNSS and dead reckoning combined.
+    GnssDeadReckoning,
+    /// Time only fix.
+    TimeOnly,
+}
+
+impl CodeEnum for UbxFixType {
+    const EXPECTED: &'static str = "ubx_fix_type code (0 1 2 3 4 5)";
+    const EXPECTED_CHARS: &'static str = "ubx_fix_type codes (0 1 2 3 4 5)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] =
+        &[Self::NoFix, Self::DeadReckoning, Self::Fix2d, Self::Fix3d, Self::GnssDeadReckoning, Self::TimeOnly];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::NoFix),
+            b"1" => Some(Self::DeadReckoning),
+            b"2" => Some(Self::Fix2d),
+            b"3" => Some(Self::Fix3d),
+            b"4" => Some(Self::GnssDeadReckoning),
+            b"5" => Some(Self::TimeOnly),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::NoFix => "0",
+            Self::DeadReckoning => "1",
+            Self::Fix2d => "2",
+            Self::Fix3d => "3",
+            Self::GnssDeadReckoning => "4",
+            Self::TimeOnly => "5",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::NoFix => "no_fix",
+            Self::DeadReckoning => "dead_reckoning",
+            Self::Fix2d => "fix_2d",
+            Self::Fix3d => "fix_3d",
+            Self::GnssDeadReckoning => "gnss_dead_reckoning",
+            Self::TimeOnly => "time_only",
+        }
+    }
+}
+
+/// UBX GNSS identifier: The satellite system a UBX message's gnssId names (u-blox UBX-13003221,
+/// "GNSS identifiers").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum UbxGnssId {
+    /// GPS.
+    Gps,
+    /// SBAS.
+    Sbas,
+    /// Galileo.
+    Galileo,
+    /// BeiDou.
+    Beidou,
+    /// IMES.
+    Imes,
+    /// QZSS.
+    Qzss,
+    /// GLONASS.
+    Glonass,
+    /// NavIC (IRNSS; F9 and later).
+    Navic,
+}
+
+impl CodeEnum for UbxGnssId {
+    const EXPECTED: &'static str = "ubx_gnss_id code (0 1 2 3 4 5 6 7)";
+    const EXPECTED_CHARS: &'static str = "ubx_gnss_id codes (0 1 2 3 4 5 6 7)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] =
+        &[Self::Gps, Self::Sbas, Self::Galileo, Self::Beidou, Self::Imes, Self::Qzss, Self::Glonass, Self::Navic];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Gps),
+            b"1" => Some(Self::Sbas),
+            b"2" => Some(Self::Galileo),
+            b"3" => Some(Self::Beidou),
+            b"4" => Some(Self::Imes),
+            b"5" => Some(Self::Qzss),
+            b"6" => Some(Self::Glonass),
+            b"7" => Some(Self::Navic),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Gps => "0",
+            Self::Sbas => "1",
+            Self::Galileo => "2",
+            Self::Beidou => "3",
+            Self::Imes => "4",
+            Self::Qzss => "5",
+            Self::Glonass => "6",
+            Self::Navic => "7",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Gps => "gps",
+            Self::Sbas => "sbas",
+            Self::Galileo => "galileo",
+            Self::Beidou => "beidou",
+            Self::Imes => "imes",
+            Self::Qzss => "qzss",
+            Self::Glonass => "glonass",
+            Self::Navic => "navic",
         }
     }
 }

@@ -1,0 +1,136 @@
+"""Semantic checks of binary messages (spec/binary): the field checks of the bit payloads
+(checks_payload, rules A002-A007) on each layout, then what binary frames add: where a message
+lives and its class, bitfield parts, counted groups, layouts told apart, documents, replies and
+examples. Rule ids B001-B007 (generator/rules.py)."""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from . import checks_payload, reference_binary
+from .model import BinaryMessage, Payload, PayloadField, PayloadGroup, Spec
+
+Report = Callable[..., None]   # checks._Reporter: (origin, rule, message, *yaml path)
+
+
+def check(spec: Spec, report: Report) -> None:
+    """Everything but the examples (check_examples, once the spec holds together)."""
+    protocols = {p.id: p for p in spec.protocols}
+    owners: dict[tuple[str, int, int], str] = {}
+    layout_ids = {layout.id for m in spec.binary for layout in m.layouts}
+    for message in spec.binary:
+        stem = message.origin.file.rsplit("/", 1)[-1].removesuffix(".yaml")
+        if stem != message.id:
+            report(message.origin, "S010", f"message {message.id} must live in {message.id}.yaml", "message")
+        protocol = protocols.get(message.protocol)
+        if protocol is None or message.msg_class not in protocol.classes:
+            report(message.origin, "B001", f"class {message.msg_class} is not a class of protocol {message.protocol}",
+                   "class")
+        elif not message.id.startswith(message.msg_class + "_"):
+            report(message.origin, "B001", f"message {message.id} of class {message.msg_class} starts with "
+                   f"{message.msg_class}_", "message")
+        key = (message.protocol, message.class_number, message.msg_id)
+        if key in owners:
+            report(message.origin, "B001", f"class and id {message.msg_class} 0x{message.msg_id:02X} are also "
+                   f"described by {owners[key]}", "id")
+        owners.setdefault(key, message.id)
+        for i, document in enumerate(message.documents):
+            if protocol is not None and document not in protocol.documents:
+                report(message.origin, "B005", f"{document} is not a document of protocol {message.protocol} "
+                       f"({', '.join(protocol.documents)})", "documents", i)
+        for layout in message.layouts:
+            checks_payload.check_items(layout, report)
+            _check_binary_items(layout, report)
+            for i, reply in enumerate(layout.replies):
+                if reply not in layout_ids:
+                    report(layout.origin, "B006", f"reply {reply} is no layout of a binary message", "replies", i)
+            if "poll" in layout.directions and not layout.replies:
+                report(layout.origin, "B006", f"poll {layout.id} names the layout that answers it", "replies")
+            for key, field_id in zip(("class", "id"), layout.acknowledges or ()):
+                found = next((f for f in layout.fields if f.id == field_id), None)
+                if found is None or found.type != "u1":
+                    report(layout.origin, "B006", f"acknowledges.{key}: {field_id} is no u1 field of {layout.id}",
+                           "acknowledges", key)
+        _check_told_apart(message, report)
+
+
+def _check_binary_items(layout: Payload, report: Report) -> None:
+    """Byte types only, bitfield parts inside their word, counted groups after their count."""
+    seen: dict[str, PayloadField] = {}
+    for item in layout.items:
+        fields = item.fields if isinstance(item, PayloadGroup) else [item] if isinstance(item, PayloadField) else []
+        for f in fields:
+            if not f.bit_type.in_bytes:
+                report(f.origin, "B002", f"field {f.id}: {f.type} is a type of bit payloads, not of binary frames",
+                       "type")
+            if f.parts and not f.bit_type.has_parts:
+                report(f.origin, "B002", f"field {f.id}: only a bitfield word (x1, x2, x4) has parts", "parts")
+            _check_parts(f, report)
+        if isinstance(item, PayloadGroup) and isinstance(item.count, str):
+            count = seen.get(item.count)
+            if count is None or count.bit_type.name not in ("u1", "u2", "u4", "uint"):
+                report(item.origin, "B003", f"group {item.id}: count {item.count} names no unsigned field or part "
+                       "before it", "count")
+        if isinstance(item, PayloadField):
+            seen.update({f.id: f for f in (item, *item.parts)})
+
+
+def _check_parts(f: PayloadField, report: Report) -> None:
+    used = 0
+    ids = {f.id}
+    for i, part in enumerate(f.parts):
+        checks_payload.check_field(part, report)
+        if f.bits is not None and part.low + (part.bits or 0) > f.bits:
+            report(part.origin, "B002", f"part {part.id} of {f.id} takes bits {part.low}-"
+                   f"{part.low + (part.bits or 1) - 1} of a {f.bits}-bit word", "bit")
+        mask = ((1 << (part.bits or 1)) - 1) << part.low
+        if used & mask:
+            report(part.origin, "B002", f"part {part.id} of {f.id} overlaps an earlier part", "bit")
+        used |= mask
+        if part.id in ids:
+            report(part.origin, "A004", f"id {part.id} appears twice in bitfield {f.id}", "id")
+        ids.add(part.id)
+
+
+def _check_told_apart(message: BinaryMessage, report: Report) -> None:
+    """Two layouts of one direction differ in their fixed length or their version."""
+    ids: set[str] = set()
+    for i, layout in enumerate(message.layouts):
+        if layout.id in ids:
+            report(layout.origin, "B004", f"layout id {layout.id} is used twice: give one a `variant`", "variant")
+        ids.add(layout.id)
+        if layout.version is not None:
+            version = next((f for f in layout.fields if f.id == "version"), None)
+            if version is None or version.type != "u1" or version.offset is None:
+                report(layout.origin, "B004", f"layout {layout.id} has a `version` but no u1 field `version` at a "
+                       "fixed offset", "version")
+        for other in message.layouts[:i]:
+            if not set(layout.directions) & set(other.directions):
+                continue
+            if layout.version is not None and other.version is not None and layout.version != other.version:
+                continue
+            widths = layout.fixed_width, other.fixed_width
+            if None not in widths and widths[0] != widths[1]:
+                continue
+            report(layout.origin, "B004", f"layouts {other.id} and {layout.id} share a direction and are not told "
+                   "apart by a fixed length or a version", "direction")
+
+
+def check_examples(spec: Spec, report: Report) -> None:
+    """Every example is a whole frame of its message that decodes to the values of its `expect`."""
+    for message in spec.binary:
+        for example in message.examples:
+            try:
+                decoded = reference_binary.decode(spec, example.frame)
+            except reference_binary.PayloadError as err:
+                report(example.origin, "B007", f"the example does not decode: {err}", "frame")
+                continue
+            if decoded["message"] not in {layout.id for layout in message.layouts}:
+                report(example.origin, "B007", f"the example is not a frame of {message.address}", "frame")
+                continue
+            for key, value in (example.expect or {}).items():
+                if key not in decoded:
+                    report(example.origin, "B007", f"expect names {key}, which the example does not have", "expect",
+                           key)
+                elif decoded[key] != value or type(decoded[key]) is not type(value):
+                    report(example.origin, "B007", f"{key} decodes to {decoded[key]!r}, not {value!r}", "expect", key)
