@@ -347,7 +347,7 @@ int main(void) {{
 }}
 """)
     cc = os.environ.get("CC", "gcc")
-    run(cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O1", "-Idefault/c", "-Igs5/c", "-o", "both",
+    run(cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Idefault/c", "-Igs5/c", "-o", "both",
         "both.c", "default/c/nmea.c", "gs5/c/gs5.c", cwd=copies)
     assert run("./both", cwd=copies) == "both copies parse\n"
     run(cc, "-std=c99", "-c", "-o", "gs5.o", "gs5/c/gs5.c", cwd=copies)
