@@ -121,16 +121,27 @@ def random_lines(spec: Spec, per_layout: int, seed: int) -> list[tuple[Sentence,
     for sentence in spec.sentences:
         for layout in sentence.layouts:
             for _ in range(per_layout):
-                out.append((sentence, layout, _fitting_line(rng, sentence, layout)))
+                out.append((sentence, layout, _fitting_line(rng, spec, sentence, layout)))
     return out
 
 
-def _fitting_line(rng: random.Random, sentence: Sentence, layout: Layout) -> str:
-    """A random line of the layout no longer than the parsers take (MAX_LINE): a layout with a
-    long group (Ashtech's satellite list) can draw a longer one, and draws again."""
+def _fitting_line(rng: random.Random, spec: Spec, sentence: Sentence, layout: Layout) -> str:
+    """A random line of the layout that the parsers take, drawn again until it is: no longer than
+    MAX_LINE (a layout with a long group, Ashtech's satellite list, can draw a longer one) and, for
+    a variant, not one that its main layout refuses at a field the variant reads alike (a variant
+    never takes what the main layout rightly rejects: RMC's no-fix sentinel variant, drawn with a
+    latitude but no hemisphere)."""
     line = sentence_line(rng, sentence, layout)
     for _ in range(20):
-        if len(line) <= reference.rt.MAX_LINE:
+        if len(line) <= reference.rt.MAX_LINE and (layout is sentence.layout or _decodes(spec, line)):
             break
         line = sentence_line(rng, sentence, layout)
     return line
+
+
+def _decodes(spec: Spec, line: str) -> bool:
+    try:
+        reference.decode(spec, line)
+    except reference.rt.NmeaError:
+        return False
+    return True

@@ -4,7 +4,7 @@
 #   spec/proprietary/pubx_svstatus.yaml, spec/proprietary/pubx_time.yaml, spec/standard/gga.yaml,
 #   spec/standard/gll.yaml, spec/standard/gns.yaml, spec/standard/gsa.yaml, spec/standard/gst.yaml,
 #   spec/standard/gsv.yaml, spec/standard/rmc.yaml, spec/standard/vtg.yaml, spec/standard/zda.yaml
-#   (digest 85ae99f6a9ab37fb)
+#   (digest 9f87300d86702fa0)
 # Regenerate: make generate (python3 -m generator generate)
 """The fields that carry the facts of a fix (spec/fix.yaml), per sentence layout: what
 fixes.py assembles a fix from, without naming a sentence itself."""
@@ -108,6 +108,13 @@ FIELDS: dict[tuple[str, str | None], tuple[FixField, ...]] = {
         FixField("time", None, "time", 1.0, None),
         FixField("fix_status", None, "status", 1.0, {"valid": "valid", "invalid": "invalid"}),
         FixField("pos_mode", None, "mode", 1.0, None),
+    ),
+    ("GLL", "mode_before_status"): (
+        FixField("latitude", None, "lat", 1.0, None),
+        FixField("longitude", None, "lon", 1.0, None),
+        FixField("time", None, "time", 1.0, None),
+        FixField("pos_mode", None, "mode", 1.0, None),
+        FixField("fix_status", None, "status", 1.0, {"valid": "valid", "invalid": "invalid"}),
     ),
     ("GNS", None): (
         FixField("time", None, "time", 1.0, None),

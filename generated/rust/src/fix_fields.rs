@@ -4,7 +4,7 @@
 //   spec/proprietary/pubx_svstatus.yaml, spec/proprietary/pubx_time.yaml, spec/standard/gga.yaml,
 //   spec/standard/gll.yaml, spec/standard/gns.yaml, spec/standard/gsa.yaml, spec/standard/gst.yaml,
 //   spec/standard/gsv.yaml, spec/standard/rmc.yaml, spec/standard/vtg.yaml, spec/standard/zda.yaml
-//   (digest 968d9451987bebb6)
+//   (digest b97400ff68418cb8)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The fields that carry the facts of a fix (spec/fix.yaml), per layout: how the runtime's fix
@@ -70,6 +70,15 @@ impl FixSource for Sentence<'_> {
                 f.time = fixes::time(s.time);
                 f.fix_status = fixes::mapped(s.status, &[("valid", "valid"), ("invalid", "invalid")]);
                 f.pos_mode = fixes::id(s.mode);
+                Some(f)
+            }
+            Self::GllModeBeforeStatus(s) => {
+                let mut f = Facts::of(s, &["latitude", "longitude", "time", "pos_mode", "fix_status"]);
+                f.latitude = fixes::degrees(s.lat);
+                f.longitude = fixes::degrees(s.lon);
+                f.time = fixes::time(s.time);
+                f.pos_mode = fixes::id(s.mode);
+                f.fix_status = fixes::mapped(s.status, &[("valid", "valid"), ("invalid", "invalid")]);
                 Some(f)
             }
             Self::Gns(s) => {

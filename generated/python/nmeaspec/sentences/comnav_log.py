@@ -50,6 +50,7 @@ class ComnavLog(rt.Sentence):
         ("GGA", None, ()),
         ("GLL", None, ()),
         ("GLL", "sentinel", ()),
+        ("GLL", "mode_before_status", ()),
         ("GSA", None, ()),
         ("GSA", "short", ()),
         ("GSA", "wide_system", ()),

@@ -128,7 +128,7 @@ impl fmt::Display for Pqtmver<'_> {
 /// $PQTMVER,c--c,yyyy/mm/dd,hh:mm:ss*hh
 /// ```
 ///
-/// Example (gpsd NMEA 0183 driver (drivers/driver_nmea0183.c), field notes on Quectel PQGSV, PQVERNO and PQTMVER):
+/// Example (gpsd NMEA 0183 driver (drivers/driver_nmea0183.c), field notes on Quectel PQGSV, PQGSA, PQVERNO and PQTMVER):
 ///
 /// ```text
 /// $PQTMVER,MODULE_L89HANR01A06S,2022/07/28,18:27:04*7A

@@ -27,7 +27,7 @@ use crate::LayoutId;
 /// Keywords (fixed words, not members: parsing checks them, writing puts them back): `access` =
 /// `R`.
 ///
-/// Example (gpsd NMEA 0183 driver (drivers/driver_nmea0183.c), field notes on Quectel PQGSV, PQVERNO and PQTMVER):
+/// Example (gpsd NMEA 0183 driver (drivers/driver_nmea0183.c), field notes on Quectel PQGSV, PQGSA, PQVERNO and PQTMVER):
 ///
 /// ```text
 /// $PQVERNO,R*3F
