@@ -173,9 +173,12 @@ FIRMWARE_SUBSET := GGA,RMC,GSV,GSA,VTG
 build/c/subset/c/nmea.c: $(C_PAIR) $(STAMP)
 	$(PY) -m generator generate --quiet --only $(FIRMWARE_SUBSET) --out build/c/subset
 
-build/c/test_ais: generated/c/nmea_ais.c generated/c/nmea_ais.h runtime/c/test_ais.c
+# The AIS pair's tests, once more with the two slots of an assembly case.
+build/c/test_ais build/c/test_ais_2_slots: build/c/nmea-test.o generated/c/nmea_ais.c generated/c/nmea_ais.h \
+        runtime/c/test_ais.c
 	@mkdir -p build/c
-	$(CC) $(CFLAGS) -O0 -I generated/c -o $@ generated/c/nmea_ais.c runtime/c/test_ais.c
+	$(CC) $(CFLAGS) -O0 $(if $(findstring 2_slots,$@),-DNMEA_AIS_SLOTS=2) -I generated/c -o $@ \
+		build/c/nmea-test.o generated/c/nmea_ais.c runtime/c/test_ais.c
 
 build/c/test_stream: build/c/subset/c/nmea.c tests/c/test_stream.c
 	$(CC) $(SANITIZE) -I build/c/subset/c -o $@ $^
@@ -184,9 +187,10 @@ build/c/test_stream_smallest: build/c/subset/c/nmea.c tests/c/test_stream.c
 	$(CC) $(SANITIZE) $(SMALLEST) -I build/c/subset/c -o $@ $^
 
 test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o build/c/test_stream \
-        build/c/test_stream_smallest build/c/test_ais
+        build/c/test_stream_smallest build/c/test_ais build/c/test_ais_2_slots
 	build/c/test_examples
-	build/c/test_ais generated/vectors/ais.jsonl
+	build/c/test_ais generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
+	build/c/test_ais_2_slots generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
 	build/c/test_examples_general
 	build/c/test_stream
 	build/c/test_stream_smallest
