@@ -12,7 +12,7 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/meteo_hydro.yaml (digest a90389fc5bb1c0e4)
+//   spec/ais/applications/meteo_hydro.yaml (digest c3f53a369d70559c)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -395,6 +395,41 @@ static void ais_json_code(nmea_ais_json_out *j, const char *name, const char *id
         ais_json_int(j, name, (long long)raw);
 }
 
+size_t nmea_ais_error_json(const nmea_ais_error *err, char *buf, size_t cap)
+{
+    nmea_ais_json_out j;
+    char address[32];
+    const char *p;
+    j.buf = buf;
+    j.cap = cap;
+    j.len = 0;
+    if (err->message_type >= 0)
+        snprintf(address, sizeof address, "AIS type %d", err->message_type);
+    else
+        strcpy(address, "AIS");
+    ais_json_open(&j);
+    ais_json_string(&j, "kind", nmea_ais_error_kind_name(err->kind));
+    ais_json_string(&j, "address", address);
+    ais_json_key(&j, "field");
+    ais_json_puts(&j, "null");
+    if (err->field)
+        ais_json_string(&j, "name", err->field);
+    else {
+        ais_json_key(&j, "name");
+        ais_json_puts(&j, "null");
+    }
+    ais_json_key(&j, "message");
+    ais_json_puts(&j, "\"");
+    for (p = err->message; *p; p++) {
+        if (*p == '"' || *p == '\\')
+            ais_json_puts(&j, "\\");
+        ais_json_put(&j, p, 1);
+    }
+    ais_json_puts(&j, "\"");
+    ais_json_close(&j);
+    return j.len;
+}
+
 void nmea_ais_assembler_init(nmea_ais_assembler *a, uint32_t lifetime)
 {
     memset(a, 0, sizeof *a);
@@ -603,10 +638,11 @@ size_t nmea_ais_incomplete_message(const nmea_ais_assembled *done, char *buf, si
                             (unsigned)done->count);
 }
 
-/* A fragment field's number as a small count (digits only, no fraction, no minus); -1 for none. */
+/* A fragment field's number when it is a whole 0-255 written without a minus (as Python's and
+   Rust's fragments take it); -1 for another or none. */
 static int ais_small(const nmea_number *n)
 {
-    return n->present && n->scale == 0 && n->digits <= 255 && (n->sign != '-' || n->digits == 0) ? (int)n->digits : -1;
+    return n->present && n->scale == 0 && n->sign != '-' && n->digits <= 255 ? (int)n->digits : -1;
 }
 
 bool nmea_ais_fragment_of(const nmea_sentence *s, nmea_ais_fragment *out)

@@ -12,7 +12,7 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/meteo_hydro.yaml (digest 903c159f77d3491a)
+//   spec/ais/applications/meteo_hydro.yaml (digest c21e53bb124bfd6a)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
@@ -96,6 +96,10 @@ typedef struct {
     size_t cap, len;
     bool empty;
 } nmea_ais_json_out;
+
+/* The error as the tools' JSON error object (kind, address `AIS type N` or `AIS`, field null,
+   the field as name, message) into `buf` (NUL-terminated when `cap` > 0): the length it needs. */
+size_t nmea_ais_error_json(const nmea_ais_error *err, char *buf, size_t cap);
 
 /* Messages across sentences: how many may be under way at once, and how many payload characters
    each may hold (nine fragments of 62); a firmware may set both. */

@@ -376,6 +376,41 @@ static void ais_json_code(nmea_ais_json_out *j, const char *name, const char *id
         ais_json_int(j, name, (long long)raw);
 }
 
+size_t nmea_ais_error_json(const nmea_ais_error *err, char *buf, size_t cap)
+{
+    nmea_ais_json_out j;
+    char address[32];
+    const char *p;
+    j.buf = buf;
+    j.cap = cap;
+    j.len = 0;
+    if (err->message_type >= 0)
+        snprintf(address, sizeof address, "AIS type %d", err->message_type);
+    else
+        strcpy(address, "AIS");
+    ais_json_open(&j);
+    ais_json_string(&j, "kind", nmea_ais_error_kind_name(err->kind));
+    ais_json_string(&j, "address", address);
+    ais_json_key(&j, "field");
+    ais_json_puts(&j, "null");
+    if (err->field)
+        ais_json_string(&j, "name", err->field);
+    else {
+        ais_json_key(&j, "name");
+        ais_json_puts(&j, "null");
+    }
+    ais_json_key(&j, "message");
+    ais_json_puts(&j, "\"");
+    for (p = err->message; *p; p++) {
+        if (*p == '"' || *p == '\\')
+            ais_json_puts(&j, "\\");
+        ais_json_put(&j, p, 1);
+    }
+    ais_json_puts(&j, "\"");
+    ais_json_close(&j);
+    return j.len;
+}
+
 void nmea_ais_assembler_init(nmea_ais_assembler *a, uint32_t lifetime)
 {
     memset(a, 0, sizeof *a);

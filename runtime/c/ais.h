@@ -71,6 +71,10 @@ typedef struct {
     bool empty;
 } nmea_ais_json_out;
 
+/* The error as the tools' JSON error object (kind, address `AIS type N` or `AIS`, field null,
+   the field as name, message) into `buf` (NUL-terminated when `cap` > 0): the length it needs. */
+size_t nmea_ais_error_json(const nmea_ais_error *err, char *buf, size_t cap);
+
 /* Messages across sentences: how many may be under way at once, and how many payload characters
    each may hold (nine fragments of 62); a firmware may set both. */
 #ifndef NMEA_AIS_SLOTS

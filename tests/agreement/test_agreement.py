@@ -238,6 +238,36 @@ STREAM_CASES = Path(__file__).with_name("stream_cases.bin")
 REGRESSIONS = ROOT / "fuzz" / "regressions"
 
 
+AIS_LOGS = sorted((ROOT / "tests" / "data" / "ais").glob("*.chk")) + [ROOT / "tests" / "data" / "ais" / "sample.aivdm"]
+AIS_CASES = ROOT / "tests" / "data" / "ais" / "assembly_cases.jsonl"
+
+
+def test_ais_messages() -> None:
+    """The AIS messages of gpsd's samples (tests/data/ais), of the shared assembly cases' lines, of
+    the real logs that hold AIS and of the edge cases: decode adds each message of one sentence, stream also those joined across
+    sentences and an incomplete_message line for each given up, byte for byte alike in the three
+    tools, with and without --values and --lenient; every decode line with its message encodes
+    back to the line."""
+    cases = [json.loads(line) for line in AIS_CASES.read_text().splitlines()]
+    data = b"".join(path.read_bytes() for path in AIS_LOGS)
+    data += "".join(line + "\n" for case in cases for line in case["lines"]).encode()
+    data += b"".join(path.read_bytes() for path in CORPUS_FILES if b"!AIVD" in path.read_bytes())
+    data += EDGE_CASES.read_bytes()  # payloads that do not decode, fragments and keys out of bounds
+    decoded = check_stream(data)
+    one = [o for o in decoded if o["ok"] and o.get("sentence") in ("VDM", "VDO") and o["fields"]["fragment_count"] == "1"]
+    assert one and all(("ais" in o) != ("ais_error" in o) for o in one)
+    assert not [o for o in decoded if ("ais" in o or "ais_error" in o) and o not in one]
+    for args in (["stream"], ["stream", "--values"], ["stream", "--lenient"]):
+        streamed = [json.loads(line) for line in agreed(args, data).splitlines()]
+        messages = [o for o in streamed if "ais" in o]
+        given_up = [o for o in streamed if not o["ok"] and o["error"]["kind"] == "incomplete_message"]
+        assert len(messages) > len([o for o in one if "ais" in o]) and given_up
+    kinds = {o["ais_error"]["kind"] for o in decoded if "ais_error" in o}
+    assert kinds >= {"bad_armor", "short_payload"}, kinds
+    print(f"AIS: {len(one)} single-sentence messages decoded alike ({len(kinds)} error kinds), "
+          f"{len(messages)} in stream with {len(given_up)} given up")
+
+
 def test_stream_verb() -> None:
     """stream frames garbage, cut lines, sentences run together, bare CRs and overlong lines the
     same way in the three tools, with and without --lenient."""
