@@ -319,7 +319,8 @@ fuzz-seeds: $(STAMP)
 
 fuzz-c: fuzz-seeds build/c/nmea-san.o
 	@mkdir -p $(FUZZ)/corpus-c
-	$(CLANG) $(SANITIZE) -fsanitize=fuzzer -Igenerated/c -o $(FUZZ)/fuzz-c build/c/nmea-san.o fuzz/c/fuzz_nmea.c fuzz/c/field_mutator.c
+	$(CLANG) $(SANITIZE) -fsanitize=fuzzer -Igenerated/c -o $(FUZZ)/fuzz-c build/c/nmea-san.o generated/c/nmea_ais.c \
+		fuzz/c/fuzz_nmea.c fuzz/c/field_mutator.c
 	$(FUZZ)/fuzz-c $(FUZZ_FLAGS) -artifact_prefix=$(FUZZ)/crash-c- $(FUZZ)/corpus-c $(FUZZ)/seeds
 
 fuzz-python: fuzz-seeds

@@ -12,7 +12,7 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/meteo_hydro.yaml (digest c3f53a369d70559c)
+//   spec/ais/applications/meteo_hydro.yaml (digest 2c4fd2a6bbcded59)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -453,7 +453,7 @@ static bool ais_key(const nmea_ais_fragment *f, nmea_text tags, char *key, size_
 {
     nmea_text group, source = {"", 0};
     *len = 0;
-    if (nmea_tag_find(tags, "g", &group)) {
+    if (tags.len && nmea_tag_find(tags, "g", &group)) {
         /* The id is a number (Python compares it as one): leading zeros name the same group. */
         const char *id = group.ptr + group.len;
         size_t n = 0;
@@ -594,7 +594,10 @@ void nmea_ais_assembler_feed(nmea_ais_assembler *a, const nmea_ais_fragment *f, 
         size_t start = s->n_parts ? s->parts[s->n_parts - 1].end : 0;
         nmea_ais_part *p = &s->parts[s->n_parts];
         if (f->payload.len > NMEA_AIS_CAPACITY - start) {
-            ais_give_up(a, slot, done, context);
+            if (s->n_parts)
+                ais_give_up(a, slot, done, context);
+            else
+                s->count = 0; /* a message that never started */
             ais_alone(f, line, false, done, context);
             return;
         }

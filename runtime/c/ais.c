@@ -434,7 +434,7 @@ static bool ais_key(const nmea_ais_fragment *f, nmea_text tags, char *key, size_
 {
     nmea_text group, source = {"", 0};
     *len = 0;
-    if (nmea_tag_find(tags, "g", &group)) {
+    if (tags.len && nmea_tag_find(tags, "g", &group)) {
         /* The id is a number (Python compares it as one): leading zeros name the same group. */
         const char *id = group.ptr + group.len;
         size_t n = 0;
@@ -575,7 +575,10 @@ void nmea_ais_assembler_feed(nmea_ais_assembler *a, const nmea_ais_fragment *f, 
         size_t start = s->n_parts ? s->parts[s->n_parts - 1].end : 0;
         nmea_ais_part *p = &s->parts[s->n_parts];
         if (f->payload.len > NMEA_AIS_CAPACITY - start) {
-            ais_give_up(a, slot, done, context);
+            if (s->n_parts)
+                ais_give_up(a, slot, done, context);
+            else
+                s->count = 0; /* a message that never started */
             ais_alone(f, line, false, done, context);
             return;
         }

@@ -98,7 +98,11 @@ class MessageAssembler:
                 done.append(self._incomplete(next(iter(self._partials.values()))))
             partial = self._partials[key] = _Partial(key, fragment.total, self._seen)
         if sum(len(f.payload) for _, f in partial.parts.values()) + len(fragment.payload) > self.capacity:
-            return done + [self._incomplete(partial), _alone(line, fragment)]
+            if partial.parts:
+                done.append(self._incomplete(partial))
+            else:
+                del self._partials[key]  # a message that never started
+            return done + [_alone(line, fragment)]
         partial.parts[fragment.number] = (line, fragment)
         if len(partial.parts) == partial.total:
             del self._partials[key]

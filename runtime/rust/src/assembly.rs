@@ -236,7 +236,11 @@ impl<const SLOTS: usize, const CAPACITY: usize> Assembler<SLOTS, CAPACITY> {
         let s = &mut self.slots[i];
         let (start, payload) = (s.used(), fragment.payload.as_bytes());
         if start + payload.len() > CAPACITY {
-            self.give_up(i, &mut done);
+            if s.n_parts > 0 {
+                self.give_up(i, &mut done);
+            } else {
+                s.count = 0; // a message that never started
+            }
             return done(alone(None));
         }
         s.payload[start..start + payload.len()].copy_from_slice(payload);
