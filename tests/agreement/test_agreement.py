@@ -112,6 +112,15 @@ def wrong_checksum(line: bytes) -> bool:
     return value != int(digits, 16)
 
 
+def sentence_json(output: bytes) -> list[str]:
+    """decode's lines without the AIS message a line's object may end with (json.md: the tools add
+    it; the reference decodes the sentence)."""
+    lines = output.decode().splitlines()
+    for member in (',"ais":', ',"ais_error":'):
+        lines = [line[:line.find(member)] + "}" if member in line else line for line in lines]
+    return lines
+
+
 def test_tools_are_built() -> None:
     for tool in TOOLS:
         assert (BIN / tool).exists(), f"{tool} missing: run make build"
@@ -123,11 +132,11 @@ def test_examples_match_the_reference() -> None:
     lines = [v["line"] for v in vectors if v["line"]]
     data = "".join(line + "\n" for line in lines).encode()
     check_stream(data)
-    assert decode_all(data).decode().splitlines() == [v["decode"] for v in vectors if v["line"]]
-    assert decode_all(data, True).decode().splitlines() == [v["decode_values"] for v in vectors if v["line"]]
+    assert sentence_json(decode_all(data)) == [v["decode"] for v in vectors if v["line"]]
+    assert sentence_json(decode_all(data, True)) == [v["decode_values"] for v in vectors if v["line"]]
     damaged = [v for v in vectors if "raw_decode" in v]
     raw = "".join(v["raw"] + "\n" for v in damaged).encode()
-    assert decode_all(raw).decode().splitlines() == [v["raw_decode"] for v in damaged]
+    assert sentence_json(decode_all(raw)) == [v["raw_decode"] for v in damaged]
 
 
 def test_tolerance_vectors() -> None:
@@ -158,7 +167,7 @@ def test_tag_blocks() -> None:
     vectors = [json.loads(line) for line in TAG_BLOCKS.read_text().splitlines()]
     data = "".join(v["line"] + "\n" for v in vectors).encode()
     out = agreed(["decode"], data).decode().splitlines()
-    assert out == [v["decode"] for v in vectors]
+    assert sentence_json(agreed(["decode"], data)) == [v["decode"] for v in vectors]
     agreed(["decode", "--values"], data)
     assert agreed(["stream"], data).decode().splitlines() == out
     kept = [(v["line"], o) for v, o in zip(vectors, out) if o.startswith('{"ok":true')]
