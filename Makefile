@@ -37,15 +37,16 @@ build: $(BIN)/nmea-py $(BIN)/nmea-c $(BIN)/nmea-rs
 PY_SOURCES   = $(shell find generated/python -name '*.py' 2>/dev/null)
 RUST_SOURCES = $(shell find generated/rust -name '*.rs' -o -name Cargo.toml 2>/dev/null)
 C_PAIR       := generated/c/nmea.c generated/c/nmea.h
+C_AIS        := generated/c/nmea_ais.c generated/c/nmea_ais.h
 
 $(BIN)/nmea-py $(TEST_BIN)/nmea-py: $(PY_SOURCES)
 	@mkdir -p $(@D)
 	printf '#!/bin/sh\nPYTHONPATH="%s" exec python3 -m nmeaspec "$$@"\n' "$(CURDIR)/generated/python" > $@
 	chmod +x $@
 
-$(BIN)/nmea-c: $(C_PAIR) generated/c/nmea_tool.c
+$(BIN)/nmea-c: $(C_PAIR) $(C_AIS) generated/c/nmea_tool.c
 	@mkdir -p $(BIN)
-	$(CC) $(CFLAGS) -o $@ generated/c/nmea.c generated/c/nmea_tool.c
+	$(CC) $(CFLAGS) -o $@ generated/c/nmea.c generated/c/nmea_ais.c generated/c/nmea_tool.c
 
 $(BIN)/nmea-rs: $(RUST_SOURCES)
 	@mkdir -p $(BIN)
@@ -137,7 +138,7 @@ build/c/nmea-test.o: $(C_PAIR)
 build/c/test_examples: build/c/nmea-test.o generated/c/tests/test_examples.c
 	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -o $@ $^
 
-$(TEST_BIN)/nmea-c: build/c/nmea-test.o generated/c/nmea_tool.c
+$(TEST_BIN)/nmea-c: build/c/nmea-test.o generated/c/nmea_ais.c generated/c/nmea_tool.c
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -o $@ $^
 
@@ -164,7 +165,7 @@ build/c/nmea-san.o: $(C_PAIR)
 build/c/test_examples_san: build/c/nmea-san.o generated/c/tests/test_examples.c
 	$(CLANG) $(SANITIZE) -o $@ $^
 
-build/c/nmea-c-san: build/c/nmea-san.o generated/c/nmea_tool.c
+build/c/nmea-c-san: build/c/nmea-san.o generated/c/nmea_ais.c generated/c/nmea_tool.c
 	$(CLANG) $(SANITIZE) -o $@ $^
 
 # The five-sentence firmware of issue 32: its subset with the default NMEA_MAX_LINE (the longest
@@ -174,9 +175,12 @@ FIRMWARE_SUBSET := GGA,RMC,GSV,GSA,VTG
 build/c/subset/c/nmea.c: $(C_PAIR) $(STAMP)
 	$(PY) -m generator generate --quiet --only $(FIRMWARE_SUBSET) --out build/c/subset
 
-build/c/test_ais: generated/c/nmea_ais.c generated/c/nmea_ais.h runtime/c/test_ais.c
+# The AIS pair's tests, once more with the two slots of an assembly case.
+build/c/test_ais build/c/test_ais_2_slots: build/c/nmea-test.o generated/c/nmea_ais.c generated/c/nmea_ais.h \
+        runtime/c/test_ais.c
 	@mkdir -p build/c
-	$(CC) $(CFLAGS) -O0 -I generated/c -o $@ generated/c/nmea_ais.c runtime/c/test_ais.c
+	$(CC) $(CFLAGS) -O0 $(if $(findstring 2_slots,$@),-DNMEA_AIS_SLOTS=2) -I generated/c -o $@ \
+		build/c/nmea-test.o generated/c/nmea_ais.c runtime/c/test_ais.c
 
 build/c/test_stream: build/c/subset/c/nmea.c tests/c/test_stream.c
 	$(CC) $(SANITIZE) -I build/c/subset/c -o $@ $^
@@ -185,9 +189,10 @@ build/c/test_stream_smallest: build/c/subset/c/nmea.c tests/c/test_stream.c
 	$(CC) $(SANITIZE) $(SMALLEST) -I build/c/subset/c -o $@ $^
 
 test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o build/c/test_stream \
-        build/c/test_stream_smallest build/c/test_ais
+        build/c/test_stream_smallest build/c/test_ais build/c/test_ais_2_slots
 	build/c/test_examples
-	build/c/test_ais generated/vectors/ais.jsonl
+	build/c/test_ais generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
+	build/c/test_ais_2_slots generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
 	build/c/test_examples_general
 	build/c/test_stream
 	build/c/test_stream_smallest
@@ -320,7 +325,8 @@ fuzz-seeds: $(STAMP)
 
 fuzz-c: fuzz-seeds build/c/nmea-san.o
 	@mkdir -p $(FUZZ)/corpus-c
-	$(CLANG) $(SANITIZE) -fsanitize=fuzzer -Igenerated/c -o $(FUZZ)/fuzz-c build/c/nmea-san.o fuzz/c/fuzz_nmea.c fuzz/c/field_mutator.c
+	$(CLANG) $(SANITIZE) -fsanitize=fuzzer -Igenerated/c -o $(FUZZ)/fuzz-c build/c/nmea-san.o generated/c/nmea_ais.c \
+		fuzz/c/fuzz_nmea.c fuzz/c/field_mutator.c
 	$(FUZZ)/fuzz-c $(FUZZ_FLAGS) -artifact_prefix=$(FUZZ)/crash-c- $(FUZZ)/corpus-c $(FUZZ)/seeds
 
 fuzz-python: fuzz-seeds

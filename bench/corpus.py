@@ -3,7 +3,10 @@ of one of the common types, repeated in order to the wanted number of lines, CR 
 
 Deterministic: the logs are read in sorted path order and the lines kept in file order.
 
-    python3 bench/corpus.py [--lines N] [--source DIR] [--out FILE]
+    python3 bench/corpus.py [--lines N] [--source DIR] [--out FILE] [--ais]
+
+--ais: the AIS corpus instead (build_ais: gpsd's single-sentence AIS lines of tests/data/ais), for
+bench/python/driver.py's ours-ais and pyais (AIS rows in run.py are still to come).
 """
 
 from __future__ import annotations
@@ -60,13 +63,36 @@ def build(lines: int, source: Path = DEFAULT_SOURCE, out: Path = DEFAULT_OUT) ->
             "by_type": dict(sorted(by_type.items()))}
 
 
+AIS_SOURCE = ROOT / "tests" / "data" / "ais"
+AIS_OUT = ROOT / "build" / "bench" / "corpus-ais.nmea"
+# A single-sentence `!AIVDM`/`!AIVDO` line: count and number 1, a payload, fill bits, checksum.
+AIS_SENTENCE = re.compile(rb"!AIVD[MO],1,1,[0-9]?,[AB12]?,[0-W`-w]+,[0-5]\*[0-9A-F]{2}")
+
+
+def build_ais(lines: int, source: Path = AIS_SOURCE, out: Path = AIS_OUT) -> dict:
+    """The AIS corpus: gpsd's real AIS sentences (tests/data/ais) of one sentence each, with their
+    checksums intact, repeated in file order to `lines` lines, CR LF endings."""
+    pool = [line.rstrip(b"\r") for path in sorted(source.glob("*.chk")) + [source / "sample.aivdm"]
+            for line in path.read_bytes().split(b"\n")
+            if AIS_SENTENCE.fullmatch(line.rstrip(b"\r")) and checksum_ok(line.rstrip(b"\r"))]
+    data = b"".join(pool[i % len(pool)] + b"\r\n" for i in range(lines))
+    out.parent.mkdir(parents=True, exist_ok=True)
+    if not out.exists() or out.read_bytes() != data:
+        out.write_bytes(data)
+    return {"lines": lines, "bytes": len(data), "distinct_lines": len(set(pool)), "source_lines": len(pool)}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--lines", type=int, default=1_000_000)
-    parser.add_argument("--source", type=Path, default=DEFAULT_SOURCE)
-    parser.add_argument("--out", type=Path, default=DEFAULT_OUT)
+    parser.add_argument("--source", type=Path)
+    parser.add_argument("--out", type=Path)
+    parser.add_argument("--ais", action="store_true", help="the AIS corpus (build_ais) from --source or tests/data/ais")
     args = parser.parse_args()
-    print(json.dumps(build(args.lines, args.source, args.out)))
+    if args.ais:
+        print(json.dumps(build_ais(args.lines, args.source or AIS_SOURCE, args.out or AIS_OUT)))
+    else:
+        print(json.dumps(build(args.lines, args.source or DEFAULT_SOURCE, args.out or DEFAULT_OUT)))
 
 
 if __name__ == "__main__":

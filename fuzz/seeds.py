@@ -1,5 +1,6 @@
 """Seed corpus for the fuzzers: every example of the manuals (intact and damaged), the edge
-cases, a sample of every real log, random sentences of every layout, decode's JSON of some
+cases, a sample of every real log and of gpsd's AIS samples (with whole messages of several
+sentences and the assembly cases), random sentences of every layout, decode's JSON of some
 of them (the fuzz targets also read their input as JSON), and the corpus the last campaign grew
 (fuzz/corpus.tar.xz, minimized), so that each run starts where the last one stopped. One file
 per input, no line ending.
@@ -43,11 +44,28 @@ def seeds(with_corpus: bool = True) -> list[bytes]:
         logged = [line.rstrip(b"\r") for line in path.read_bytes().split(b"\n") if line]
         step = max(1, len(logged) // PER_LOG)
         out += logged[::step][:PER_LOG]
+    out += ais_seeds()
     out += [reference.decode_json(spec, line).encode() for line in lines[:400]]
     out += sorted(p.read_bytes() for p in (ROOT / "fuzz" / "regressions").glob("*") if p.is_file())
     if with_corpus:
         out += campaign_corpus()
     return [s for s in dict.fromkeys(out) if s]
+
+
+def ais_seeds() -> list[bytes]:
+    """A sample of gpsd's AIS sentences (tests/data/ais), the messages of several sentences among
+    them whole (their lines joined), and the lines of each shared assembly case, for the
+    assemblers."""
+    ais = ROOT / "tests" / "data" / "ais"
+    out: list[bytes] = []
+    for path in sorted(ais.glob("*.chk")) + [ais / "sample.aivdm"]:
+        logged = [line.rstrip(b"\r") for line in path.read_bytes().split(b"\n") if line.startswith(b"!")]
+        out += logged[::max(1, len(logged) // PER_LOG)][:PER_LOG]
+        firsts = [i for i, line in enumerate(logged) if line.split(b",")[1:3] == [b"2", b"1"]]
+        out += [b"\n".join(logged[i:i + 2]) for i in firsts[:PER_LOG // 4]]
+    cases = (json.loads(line) for line in (ais / "assembly_cases.jsonl").read_text().splitlines())
+    out += ["\n".join(case["lines"]).encode("latin-1") for case in cases]
+    return out
 
 
 def campaign_corpus() -> list[bytes]:

@@ -17,6 +17,7 @@ import jinja2
 
 from . import emit_vectors, pairing
 from .emit import CONTRACT, RUNTIME, char_literal, header, runtime_file
+from .emit_c_ais import carries_ais
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef
 from .names_c import (bits_const, bits_function, bits_mask, entry_type, enum_const, enum_def, enum_type,
                       group_accessor, layout_const, layout_type, member, parameter_macro, table_count, table_name)
@@ -703,7 +704,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "max_fields": max([v["max_fields"] for v in views] + [1]),
         "json_max": json_max(spec, views),
-        "max_line": longest_line(spec), "contract_max_line": MAX_LINE,
+        "max_line": longest_line(spec), "contract_max_line": MAX_LINE, "ais": carries_ais(spec),
         "runtime_h": (RUNTIME_C / "runtime.h").read_text(encoding="utf-8"),
         "runtime_api_h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),
         "runtime_c": runtime_source("runtime.c"),

@@ -15,6 +15,7 @@ from .emit import RUNTIME, header
 from .emit_rust_ais import member_name
 from .emit_python_ais import title as title_of
 from .model import Payload, PayloadChoice, PayloadField, PayloadGroup, Spec
+from .names_c import layout_const, member
 from .reference_ais import after
 
 BITS = "nmea_ais_bits"
@@ -289,7 +290,12 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         functions.append(c)
     enums = sorted({f.enum.id: f.enum for p in [*spec.payloads, *spec.applications] for f in p.fields if f.enum}.items())
     sources = [p.origin.file for p in [*spec.payloads, *spec.applications]]
-    context = dict(payloads=spec.payloads, applications=spec.applications, typedefs=typedefs,
+    # nmea_ais_fragment_of: each layout of an encapsulation sentence, its fields by their roles.
+    encapsulations = [dict(const=layout_const(s, lay), sentence=s.id, struct=s.layout_snake(lay),
+                           roles={role: member(f) for role, f in s.encapsulates.items() if role != "protocol"})
+                      for s in spec.sentences if (s.encapsulates or {}).get("protocol") == "ais"
+                      for lay in s.layouts]
+    context = dict(encapsulations=encapsulations, payloads=spec.payloads, applications=spec.applications, typedefs=typedefs,
                    app_typedefs=app_typedefs, functions=functions, enums=[e for _, e in enums],
                    dispatching=dispatching,
                    has=lambda p, name: "" if name in certain[p.id] else f"m->has_{name} && ",

@@ -4,7 +4,9 @@ implementation over its lines and prints a JSON object.
     driver.py IMPL OP CORPUS [--lines N] [--by-type]
 
 IMPL: ours (nmeaspec), pynmea2, pynmea2-allfields (parse, then read every attribute its `fields`
-table names, since pynmea2 converts lazily), pynmeagps (NMEAReader.parse). OP: parse, serialize
+table names, since pynmea2 converts lazily), pynmeagps (NMEAReader.parse); over the AIS corpus
+(corpus.build_ais), ours-ais (the line parsed and its AIS message decoded, every field; serialize:
+the message encoded, the sentence written back) and pyais (pyais.decode; serialize: encode_msg). OP: parse, serialize
 (the lines are parsed chunk by chunk outside the timed region, only writing them back is timed:
 ours .to_sentence(), pynmea2 .render(), pynmeagps .serialize()), roundtrip (both, per line,
 counting lines written back byte for byte), fixes (ours only: each line parsed and fed to the fix
@@ -60,6 +62,36 @@ def implementation(name: str):
             return message
 
         return parse_gps, (lambda message: message.serialize())
+    if name == "ours-ais":
+        import nmeaspec
+
+        parse = nmeaspec.parse
+
+        def decode_ais(text, raw):
+            sentence = parse(text)
+            return sentence, sentence.message  # every field of the message decoded
+
+        def encode_ais(parsed):
+            sentence, message = parsed
+            payload, fill_bits = message.encode()
+            return sentence.to_sentence() if (payload, fill_bits) == (sentence.payload, int(sentence.fill_bits)) else ""
+
+        return decode_ais, encode_ais
+    if name == "pyais":
+        import pyais
+
+        decode, encode = pyais.decode, pyais.encode_msg
+
+        def decode_pyais(text, raw):
+            fields = text.split(",")
+            return fields[0][3:], fields[4], decode(text)  # pyais decodes every field eagerly
+
+        def encode_pyais(parsed):
+            kind, channel, message = parsed
+            channel = {"1": "A", "2": "B", "": "A"}.get(channel, channel)  # pyais takes A or B only
+            return encode(message, talker_id="AI", sentence_type=kind, radio_channel=channel)[0]
+
+        return decode_pyais, encode_pyais
     sys.exit(f"unknown implementation {name}")
 
 

@@ -14,7 +14,11 @@
  * - JSON that rebuilds a sentence must serialize, and that sentence must parse again;
  * - the stream framer must cut the input into the same items as a byte-at-a-time model of the
  *   Python reference's Framer, whether it gets the input whole or in chunks of any size (the
- *   chunk sizes are derived from the input).
+ *   chunk sizes are derived from the input);
+ * - AIS: a payload that decodes (a VDM/VDO line's of one sentence, one the assembler joins, or the
+ *   input itself after a first byte that gives the fill bits) must encode back to its characters
+ *   and fill bits when it fits a message's bits, and its JSON or its error's must be written;
+ *   the assembler fed the input's lines must account for every fragment exactly once.
  * Any broken promise aborts, and AddressSanitizer/UndefinedBehaviorSanitizer catch the rest.
  */
 #include <stdint.h>
@@ -22,6 +26,7 @@
 #include <string.h>
 
 #include "nmea.h"
+#include "nmea_ais.h"
 
 static char text[NMEA_MAX_LINE + 8];
 static char again[NMEA_MAX_LINE + 8];
@@ -189,6 +194,7 @@ static void model_finish(size_t *length, size_t *start)
 
 static void model_frame(const char *data, size_t size)
 {
+    enum { OUTSIDE, IN_TAG, AFTER_TAG } tag = OUTSIDE; /* where the line is as to TAG blocks */
     size_t i, length = 0, start = 0;
     model_count = 0;
     model_used = 0;
@@ -196,15 +202,19 @@ static void model_frame(const char *data, size_t size)
         char c = data[i];
         if (c == '\r' || c == '\n') {
             model_finish(&length, &start);
-        } else if (c == '$' || c == '!') {
-            model_finish(&length, &start);
-            model_bytes[model_used++] = c;
-            length = 1;
-        } else {
-            length++;
-            if (length <= NMEA_MAX_LINE)
-                model_bytes[model_used++] = c;
+            tag = OUTSIDE;
+            continue;
         }
+        if (c == '\\' && (length == 0 || tag != OUTSIDE)) {
+            tag = tag == IN_TAG ? AFTER_TAG : IN_TAG; /* opens a block, or closes the open one */
+        } else if ((c == '$' || c == '!') && tag == OUTSIDE) {
+            model_finish(&length, &start);
+        } else if (tag == AFTER_TAG) {
+            tag = OUTSIDE;
+        }
+        length++;
+        if (length <= NMEA_MAX_LINE)
+            model_bytes[model_used++] = c;
     }
     model_finish(&length, &start);
 }
@@ -263,6 +273,68 @@ static void as_stream(const char *data, size_t size)
     frame_chunked(data, size, sizes, 16, false);
 }
 
+/* ---------------------------------------------------------------------------------------- */
+/* AIS */
+
+static char ais_json[1 << 17];
+
+static void ais_round_trip(const char *payload, size_t len, unsigned fill_bits)
+{
+    static nmea_ais_message message;
+    static nmea_ais_armored armored;
+    nmea_ais_error err;
+    if (!nmea_ais_decode(payload, len, fill_bits, &message, &err)) {
+        check(nmea_ais_error_json(&err, ais_json, sizeof ais_json) < sizeof ais_json);
+        return;
+    }
+    check(nmea_ais_json(&message, fill_bits, ais_json, sizeof ais_json) < sizeof ais_json);
+    if (nmea_ais_encode(&message, &armored, &err))
+        check(armored.fill_bits == fill_bits && strlen(armored.chars) == len && memcmp(armored.chars, payload, len) == 0);
+    else
+        check(len > NMEA_AIS_MAX_CHARS);
+}
+
+/* Counts what the assembler gives back, and checks each message it completes. */
+static size_t ais_reported;
+
+static void ais_done(const nmea_ais_assembled *done, void *context)
+{
+    char message[64];
+    (void)context;
+    check(done->n >= 1 && done->n <= NMEA_AIS_MAX_FRAGMENTS && done->payload_len <= NMEA_AIS_CAPACITY + NMEA_MAX_LINE);
+    ais_reported += done->n;
+    if (done->complete)
+        ais_round_trip(done->payload, done->payload_len, done->fill_bits);
+    else
+        check(nmea_ais_incomplete_message(done, message, sizeof message) < sizeof message);
+}
+
+static void as_ais(const char *data, size_t size)
+{
+    static nmea_ais_assembler assembler;
+    static const nmea_text no_tags = {NULL, 0};
+    const char *line = data, *end = data + size;
+    size_t fed = 0;
+    if (size)
+        ais_round_trip(data + 1, size - 1, (unsigned char)data[0] % 8);
+    ais_reported = 0;
+    nmea_ais_assembler_init(&assembler, 1 + (size ? (unsigned char)data[size - 1] % 8 : 0));
+    while (line < end) { /* the input's lines, each fed */
+        const char *lf = memchr(line, '\n', (size_t)(end - line));
+        size_t len = (size_t)((lf ? lf : end) - line);
+        nmea_sentence s;
+        nmea_error err;
+        nmea_ais_fragment fragment;
+        bool is_fragment = nmea_parse(&s, line, len, &err) && nmea_ais_fragment_of(&s, &fragment);
+        nmea_ais_assembler_feed(&assembler, is_fragment ? &fragment : NULL, is_fragment ? s.tag_blocks : no_tags,
+                                ais_done, NULL);
+        fed += is_fragment;
+        line += len + 1;
+    }
+    nmea_ais_assembler_finish(&assembler, ais_done, NULL);
+    check(ais_reported == fed);
+}
+
 /* field_mutator.c: sentences mutated field by field, their checksums made right again. */
 size_t nmea_fuzz_mutate(uint8_t *data, size_t size, size_t max_size, unsigned int seed);
 
@@ -276,5 +348,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     as_line((const char *)data, size);
     as_json((const char *)data, size);
     as_stream((const char *)data, size);
+    as_ais((const char *)data, size);
     return 0;
 }

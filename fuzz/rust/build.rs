@@ -1,4 +1,4 @@
-//! Builds the generated C pair, the shim the differential target calls it through, and the
+//! Builds the generated C pair (and its AIS pair), the shim the differential target calls it through, and the
 //! field mutator the targets share (../c/field_mutator.c). With clang, the C code carries
 //! libFuzzer's coverage counters too, so the fuzzer also steers by the C pair's branches.
 use std::process::Command;
@@ -8,6 +8,7 @@ fn main() {
     let mut build = cc::Build::new();
     build
         .file(format!("{generated}/nmea.c"))
+        .file(format!("{generated}/nmea_ais.c"))
         .file("c_shim.c")
         .file("../c/field_mutator.c")
         .include(generated)
@@ -17,7 +18,14 @@ fn main() {
         build.compiler("clang").flag("-fsanitize-coverage=inline-8bit-counters,pc-table,trace-cmp");
     }
     build.compile("nmea_c");
-    let sources = [format!("{generated}/nmea.c"), format!("{generated}/nmea.h"), "c_shim.c".into(), "../c/field_mutator.c".into()];
+    let sources = [
+        format!("{generated}/nmea.c"),
+        format!("{generated}/nmea.h"),
+        format!("{generated}/nmea_ais.c"),
+        format!("{generated}/nmea_ais.h"),
+        "c_shim.c".into(),
+        "../c/field_mutator.c".into(),
+    ];
     for path in sources {
         println!("cargo:rerun-if-changed={path}");
     }

@@ -1,12 +1,14 @@
 /*
  * What the differential target asks of the C pair, in terms of bytes only (the Rust side needs
  * no nmea_sentence layout): decode's JSON of a line with options, encode's output for a line of
- * JSON, and the framer's items for a stream fed in chunks.
+ * JSON, the framer's items for a stream fed in chunks, an AIS payload's JSON and encoding, and
+ * the AIS assembler's events for lines.
  */
 #include <stdio.h>
 #include <string.h>
 
 #include "nmea.h"
+#include "nmea_ais.h"
 
 #define INPUT_MAX 4096
 
@@ -77,4 +79,71 @@ size_t shim_frame(const char *data, size_t len, size_t chunk, char *out, size_t 
     if (nmea_framer_end(&framer, &item) && (n = put_item(&item, out + used, cap - used)) != 0)
         used += n;
     return used;
+}
+
+/* An AIS payload's JSON (or its error's), then "|", the armored characters and fill bits it
+   encodes to (or "|bad_value") when it decodes. */
+size_t shim_ais(const char *payload, size_t len, unsigned fill_bits, char *out, size_t cap)
+{
+    static nmea_ais_message message;
+    static nmea_ais_armored armored;
+    nmea_ais_error err;
+    size_t n;
+    if (!nmea_ais_decode(payload, len, fill_bits, &message, &err))
+        return nmea_ais_error_json(&err, out, cap);
+    n = nmea_ais_json(&message, fill_bits, out, cap);
+    if (n >= cap)
+        return n;
+    if (nmea_ais_encode(&message, &armored, &err))
+        return n + (size_t)snprintf(out + n, cap - n, "|%s,%u", armored.chars, (unsigned)armored.fill_bits);
+    return n + (size_t)snprintf(out + n, cap - n, "|%s", nmea_ais_error_kind_name(err.kind));
+}
+
+typedef struct {
+    char *out;
+    size_t cap, used;
+} events;
+
+/* An event as "<line>,<line>...:P<payload>,<fill bits>;" or ":I<incomplete message>;". */
+static void put_event(const nmea_ais_assembled *done, void *context)
+{
+    events *e = context;
+    char message[64];
+    size_t i;
+    for (i = 0; i < done->n && e->used < e->cap; i++)
+        e->used += (size_t)snprintf(e->out + e->used, e->cap - e->used, "%s%lu", i ? "," : "",
+                                    (unsigned long)done->lines[i]);
+    nmea_ais_incomplete_message(done, message, sizeof message);
+    if (e->used < e->cap)
+        e->used += done->complete ? (size_t)snprintf(e->out + e->used, e->cap - e->used, ":P%.*s,%u;",
+                                                     (int)done->payload_len, done->payload, done->fill_bits)
+                                  : (size_t)snprintf(e->out + e->used, e->cap - e->used, ":I%s;", message);
+    if (e->used > e->cap)
+        e->used = e->cap;
+}
+
+/* The assembler's events for the lines of `data` (split on LF, each parsed strictly). */
+size_t shim_assemble(const char *data, size_t len, unsigned lifetime, char *out, size_t cap)
+{
+    static nmea_ais_assembler assembler;
+    static const nmea_text no_tags = {NULL, 0};
+    const char *line = data, *end = data + len;
+    events e;
+    e.out = out;
+    e.cap = cap;
+    e.used = 0;
+    nmea_ais_assembler_init(&assembler, lifetime);
+    while (line < end) {
+        const char *lf = memchr(line, '\n', (size_t)(end - line));
+        size_t n = (size_t)((lf ? lf : end) - line);
+        nmea_sentence s;
+        nmea_error err;
+        nmea_ais_fragment fragment;
+        bool is_fragment = nmea_parse(&s, line, n, &err) && nmea_ais_fragment_of(&s, &fragment);
+        nmea_ais_assembler_feed(&assembler, is_fragment ? &fragment : NULL, is_fragment ? s.tag_blocks : no_tags,
+                                put_event, &e);
+        line += n + 1;
+    }
+    nmea_ais_assembler_finish(&assembler, put_event, &e);
+    return e.used;
 }

@@ -59,6 +59,9 @@ extern "C" {
     at most NMEA_MAX_LINE bytes. */
 #define NMEA_JSON_MAX 91100
 
+/** The AIS pair nmea_ais.h / nmea_ais.c is generated beside this one (its sentences carry AIS). */
+#define NMEA_WITH_AIS
+
 /*
  * Runtime types (hand-written: runtime/c/runtime.h).
  *

@@ -12,14 +12,17 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/meteo_hydro.yaml (digest cac468ab3b862a17)
+//   spec/ais/applications/meteo_hydro.yaml (digest c21e53bb124bfd6a)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
-   back to the same characters and fill bits, with no heap. */
+   back to the same characters and fill bits, and messages joined across sentences, with no heap.
+   Beside the NMEA pair, over its header (sentences, TAG blocks). */
 
 #ifndef NMEA_AIS_H
 #define NMEA_AIS_H
+
+#include "nmea.h"
 
 /* AIS payloads: the six-bit armoring of !AIVDM/!AIVDO and a bit reader and writer over it, the C
    side of the Python runtime's ais.py (its rules and error kinds). Reading keeps views of the
@@ -93,6 +96,105 @@ typedef struct {
     size_t cap, len;
     bool empty;
 } nmea_ais_json_out;
+
+/* The error as the tools' JSON error object (kind, address `AIS type N` or `AIS`, field null,
+   the field as name, message) into `buf` (NUL-terminated when `cap` > 0): the length it needs. */
+size_t nmea_ais_error_json(const nmea_ais_error *err, char *buf, size_t cap);
+
+/* Messages across sentences: how many may be under way at once, and how many payload characters
+   each may hold (nine fragments of 62); a firmware may set both. */
+#ifndef NMEA_AIS_SLOTS
+#define NMEA_AIS_SLOTS 16
+#endif
+#ifndef NMEA_AIS_CAPACITY
+#define NMEA_AIS_CAPACITY 558
+#endif
+/* The most fragments of one message (NMEA 0183: a count is one digit). */
+#define NMEA_AIS_MAX_FRAGMENTS 9
+/* The bytes of a key: a TAG source and group id, or a talker, sentence, channel and id. */
+#define NMEA_AIS_KEY_CAPACITY 40
+
+/* What an encapsulation sentence (!AIVDM) says of the message it carries all or part of: the
+   fields its spec's `encapsulates` names, with its talker and sentence id for the key. Views of
+   the parsed line. */
+typedef struct {
+    nmea_text talker, sentence;
+    uint8_t count, number; /* how many fragments the message has (1-9), which this is */
+    int sequence;          /* the sequential message id, -1 for none */
+    nmea_text channel;     /* empty: none */
+    nmea_text payload;
+    uint8_t fill_bits;
+} nmea_ais_fragment;
+
+/* What an encapsulation sentence says of its message; false for another sentence, or one whose
+   count is not 1-9 or whose number is empty. */
+bool nmea_ais_fragment_of(const nmea_sentence *s, nmea_ais_fragment *out);
+
+/* A message done with: the lines that carried it (their indices among the lines fed, in fragment
+   order) with their fragment numbers and, when it is whole, its joined payload and the last
+   fragment's fill bits; else it was given up (incomplete_message). Valid during the callback. */
+typedef struct {
+    const uint32_t *lines;
+    const uint8_t *numbers;
+    size_t n;
+    uint8_t count;
+    bool complete;
+    const char *payload;
+    size_t payload_len;
+    uint8_t fill_bits;
+} nmea_ais_assembled;
+
+typedef void nmea_ais_done(const nmea_ais_assembled *done, void *context);
+
+typedef struct {
+    uint8_t number, fill_bits;
+    uint32_t line;
+    size_t start, end; /* of its payload in the slot's */
+} nmea_ais_part;
+
+/* A message under way (`count` 0: a free slot); payloads kept in the order they came. */
+typedef struct {
+    char key[NMEA_AIS_KEY_CAPACITY];
+    size_t key_len;
+    uint8_t count;
+    uint32_t started;
+    nmea_ais_part parts[NMEA_AIS_MAX_FRAGMENTS];
+    size_t n_parts;
+    char payload[NMEA_AIS_CAPACITY];
+} nmea_ais_slot;
+
+/* Joins the fragments of multi-sentence AIS messages in fixed memory, as Python's
+   nmeaspec.assembly and Rust's assembly::Assembler do (tests/data/ais/assembly_cases.jsonl).
+   A message of one sentence comes back at once; one of several with its last missing fragment,
+   whatever their order, interleaved with other sentences, joined under its key: the TAG group
+   (with its source) when the line has one, else the talker, sentence, channel and sequential id.
+   It is given up when a fragment it has comes again or one with another count, when `lifetime`
+   encapsulation sentences have come since its first fragment, when every slot is taken and a
+   newer message needs one (the oldest goes), when its payload outgrows NMEA_AIS_CAPACITY or its
+   key NMEA_AIS_KEY_CAPACITY, and at nmea_ais_assembler_finish. */
+typedef struct {
+    nmea_ais_slot slots[NMEA_AIS_SLOTS];
+    uint32_t lifetime, lines, seen;
+    uint32_t out_lines[NMEA_AIS_MAX_FRAGMENTS];
+    uint8_t out_numbers[NMEA_AIS_MAX_FRAGMENTS];
+    char out_payload[NMEA_AIS_CAPACITY];
+} nmea_ais_assembler;
+
+/* An empty assembler that gives a message up after `lifetime` (at least 1) encapsulation
+   sentences. */
+void nmea_ais_assembler_init(nmea_ais_assembler *a, uint32_t lifetime);
+
+/* Counts a line (from 0) and calls `done` with what its fragment (NULL: the line carries no AIS
+   message) completes or gives up, in order; `tag_blocks` are the line's (nmea_sentence's). */
+void nmea_ais_assembler_feed(nmea_ais_assembler *a, const nmea_ais_fragment *fragment, nmea_text tag_blocks,
+                             nmea_ais_done *done, void *context);
+
+/* Gives up every message still under way, oldest first (the stream has ended). */
+void nmea_ais_assembler_finish(nmea_ais_assembler *a, nmea_ais_done *done, void *context);
+
+/* The message of a given-up message's incomplete_message error ("fragment 2 of 2 never came")
+   into `buf` (NUL-terminated when `cap` > 0): the length it needs. */
+size_t nmea_ais_incomplete_message(const nmea_ais_assembled *done, char *buf, size_t cap);
 
 /* Meteorological and hydrographic data: AIS application DAC 1 FI 31 (in type 8). */
 typedef struct {

@@ -375,3 +375,249 @@ static void ais_json_code(nmea_ais_json_out *j, const char *name, const char *id
     else
         ais_json_int(j, name, (long long)raw);
 }
+
+size_t nmea_ais_error_json(const nmea_ais_error *err, char *buf, size_t cap)
+{
+    nmea_ais_json_out j;
+    char address[32];
+    const char *p;
+    j.buf = buf;
+    j.cap = cap;
+    j.len = 0;
+    if (err->message_type >= 0)
+        snprintf(address, sizeof address, "AIS type %d", err->message_type);
+    else
+        strcpy(address, "AIS");
+    ais_json_open(&j);
+    ais_json_string(&j, "kind", nmea_ais_error_kind_name(err->kind));
+    ais_json_string(&j, "address", address);
+    ais_json_key(&j, "field");
+    ais_json_puts(&j, "null");
+    if (err->field)
+        ais_json_string(&j, "name", err->field);
+    else {
+        ais_json_key(&j, "name");
+        ais_json_puts(&j, "null");
+    }
+    ais_json_key(&j, "message");
+    ais_json_puts(&j, "\"");
+    for (p = err->message; *p; p++) {
+        if (*p == '"' || *p == '\\')
+            ais_json_puts(&j, "\\");
+        ais_json_put(&j, p, 1);
+    }
+    ais_json_puts(&j, "\"");
+    ais_json_close(&j);
+    return j.len;
+}
+
+void nmea_ais_assembler_init(nmea_ais_assembler *a, uint32_t lifetime)
+{
+    memset(a, 0, sizeof *a);
+    a->lifetime = lifetime;
+}
+
+/* Appends `text` and a NUL to the key; false when it does not fit. */
+static bool ais_key_put(char *key, size_t *len, const char *text, size_t n)
+{
+    if (*len + n + 1 > NMEA_AIS_KEY_CAPACITY)
+        return false;
+    memcpy(key + *len, text, n);
+    key[*len + n] = '\0';
+    *len += n + 1;
+    return true;
+}
+
+/* The fragment's key: 'g', the TAG source and group id when the line has a group, else 'a', the
+   talker, sentence, channel and sequential id, each ended by a NUL; false when it does not fit. */
+static bool ais_key(const nmea_ais_fragment *f, nmea_text tags, char *key, size_t *len)
+{
+    nmea_text group, source = {"", 0};
+    *len = 0;
+    if (tags.len && nmea_tag_find(tags, "g", &group)) {
+        /* The id is a number (Python compares it as one): leading zeros name the same group. */
+        const char *id = group.ptr + group.len;
+        size_t n = 0;
+        while (id > group.ptr && id[-1] != '-')
+            id--, n++;
+        while (n > 1 && *id == '0')
+            id++, n--;
+        if (n == 0)
+            id = "0", n = 1;
+        nmea_tag_find(tags, "s", &source);
+        return ais_key_put(key, len, "g", 1) && ais_key_put(key, len, source.ptr, source.len)
+            && ais_key_put(key, len, id, n);
+    } else {
+        char sequence[2];
+        sequence[0] = (char)(f->sequence >= 0);
+        sequence[1] = (char)(f->sequence >= 0 ? f->sequence : 0);
+        return ais_key_put(key, len, "a", 1) && ais_key_put(key, len, f->talker.ptr, f->talker.len)
+            && ais_key_put(key, len, f->sentence.ptr, f->sentence.len)
+            && ais_key_put(key, len, f->channel.ptr, f->channel.len) && ais_key_put(key, len, sequence, 2);
+    }
+}
+
+/* The slot of the message under way that started first, -1 for none. */
+static int ais_oldest(const nmea_ais_assembler *a)
+{
+    int i, oldest = -1;
+    for (i = 0; i < NMEA_AIS_SLOTS; i++)
+        if (a->slots[i].count && (oldest < 0 || a->slots[i].started < a->slots[oldest].started))
+            oldest = i;
+    return oldest;
+}
+
+/* Frees the slot, its lines, numbers and payload put in fragment order into the output buffers. */
+static void ais_join(nmea_ais_assembler *a, int slot, nmea_ais_assembled *out)
+{
+    nmea_ais_slot *s = &a->slots[slot];
+    size_t i, k, used = 0;
+    for (i = 1; i < s->n_parts; i++) /* insertion sort by number: at most nine */
+        for (k = i; k > 0 && s->parts[k - 1].number > s->parts[k].number; k--) {
+            nmea_ais_part swap = s->parts[k];
+            s->parts[k] = s->parts[k - 1];
+            s->parts[k - 1] = swap;
+        }
+    for (i = 0; i < s->n_parts; i++) {
+        const nmea_ais_part *p = &s->parts[i];
+        a->out_lines[i] = p->line;
+        a->out_numbers[i] = p->number;
+        memcpy(a->out_payload + used, s->payload + p->start, p->end - p->start);
+        used += p->end - p->start;
+    }
+    out->lines = a->out_lines;
+    out->numbers = a->out_numbers;
+    out->n = s->n_parts;
+    out->count = s->count;
+    out->complete = false;
+    out->payload = a->out_payload;
+    out->payload_len = used;
+    out->fill_bits = s->n_parts ? s->parts[s->n_parts - 1].fill_bits : 0;
+    s->count = 0;
+}
+
+static void ais_give_up(nmea_ais_assembler *a, int slot, nmea_ais_done *done, void *context)
+{
+    nmea_ais_assembled out;
+    ais_join(a, slot, &out);
+    done(&out, context);
+}
+
+/* The fragment alone: complete (a message of one sentence) or given up. */
+static void ais_alone(const nmea_ais_fragment *f, uint32_t line, bool complete, nmea_ais_done *done, void *context)
+{
+    nmea_ais_assembled out;
+    out.lines = &line;
+    out.numbers = &f->number;
+    out.n = 1;
+    out.count = f->count;
+    out.complete = complete;
+    out.payload = f->payload.ptr;
+    out.payload_len = complete ? f->payload.len : 0;
+    out.fill_bits = f->fill_bits;
+    done(&out, context);
+}
+
+void nmea_ais_assembler_feed(nmea_ais_assembler *a, const nmea_ais_fragment *f, nmea_text tags, nmea_ais_done *done,
+                             void *context)
+{
+    uint32_t line = a->lines++;
+    char key[NMEA_AIS_KEY_CAPACITY];
+    size_t key_len, i;
+    int slot = -1, oldest;
+    nmea_ais_slot *s;
+    if (!f)
+        return;
+    a->seen++;
+    while ((oldest = ais_oldest(a)) >= 0 && a->seen - a->slots[oldest].started >= a->lifetime)
+        ais_give_up(a, oldest, done, context);
+    if (f->count == 1) {
+        ais_alone(f, line, true, done, context);
+        return;
+    }
+    if (!ais_key(f, tags, key, &key_len)) {
+        ais_alone(f, line, false, done, context);
+        return;
+    }
+    for (i = 0; i < NMEA_AIS_SLOTS && slot < 0; i++)
+        if (a->slots[i].count && a->slots[i].key_len == key_len && memcmp(a->slots[i].key, key, key_len) == 0)
+            slot = (int)i;
+    if (slot >= 0) {
+        bool again = a->slots[slot].count != f->count;
+        for (i = 0; i < a->slots[slot].n_parts; i++)
+            again = again || a->slots[slot].parts[i].number == f->number;
+        if (again) { /* a new message under the same key */
+            ais_give_up(a, slot, done, context);
+            slot = -1;
+        }
+    }
+    if (slot < 0) {
+        for (i = 0; i < NMEA_AIS_SLOTS && slot < 0; i++)
+            if (!a->slots[i].count)
+                slot = (int)i;
+        if (slot < 0) {
+            slot = ais_oldest(a);
+            if (slot < 0) { /* no slot at all */
+                ais_alone(f, line, false, done, context);
+                return;
+            }
+            ais_give_up(a, slot, done, context);
+        }
+        s = &a->slots[slot];
+        memcpy(s->key, key, key_len);
+        s->key_len = key_len;
+        s->count = f->count;
+        s->started = a->seen;
+        s->n_parts = 0;
+    }
+    s = &a->slots[slot];
+    {
+        size_t start = s->n_parts ? s->parts[s->n_parts - 1].end : 0;
+        nmea_ais_part *p = &s->parts[s->n_parts];
+        if (f->payload.len > NMEA_AIS_CAPACITY - start) {
+            if (s->n_parts)
+                ais_give_up(a, slot, done, context);
+            else
+                s->count = 0; /* a message that never started */
+            ais_alone(f, line, false, done, context);
+            return;
+        }
+        memcpy(s->payload + start, f->payload.ptr, f->payload.len);
+        p->number = f->number;
+        p->line = line;
+        p->fill_bits = f->fill_bits;
+        p->start = start;
+        p->end = start + f->payload.len;
+        s->n_parts++;
+    }
+    if (s->n_parts == s->count) {
+        nmea_ais_assembled out;
+        ais_join(a, slot, &out);
+        out.complete = true;
+        done(&out, context);
+    }
+}
+
+void nmea_ais_assembler_finish(nmea_ais_assembler *a, nmea_ais_done *done, void *context)
+{
+    int oldest;
+    while ((oldest = ais_oldest(a)) >= 0)
+        ais_give_up(a, oldest, done, context);
+}
+
+size_t nmea_ais_incomplete_message(const nmea_ais_assembled *done, char *buf, size_t cap)
+{
+    char text[64];
+    size_t len = 0, k, missing = 0;
+    unsigned n;
+    text[0] = '\0';
+    for (n = 1; n <= done->count; n++) {
+        bool came = false;
+        for (k = 0; k < done->n; k++)
+            came = came || done->numbers[k] == n;
+        if (!came)
+            len += (size_t)snprintf(text + len, sizeof text - len, "%s%u", missing++ ? ", " : "", n);
+    }
+    return (size_t)snprintf(buf, cap, "fragment%s %s of %u never came", missing > 1 ? "s" : "", text,
+                            (unsigned)done->count);
+}

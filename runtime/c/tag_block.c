@@ -51,9 +51,10 @@ const nmea_tag_code *nmea_tag_code_of(nmea_text code)
 
 bool nmea_tag_next_param(nmea_text *params, nmea_tag_param *out)
 {
-    const char *p = params->ptr, *end = p + params->len, *colon = NULL, *q;
-    if (!params->ptr)
+    const char *p = params->ptr, *end, *colon = NULL, *q;
+    if (!p) /* past the last parameter */
         return false;
+    end = p + params->len;
     for (q = p; q < end && *q != ','; q++)
         if (!colon && *q == ':')
             colon = q;

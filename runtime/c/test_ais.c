@@ -1,7 +1,9 @@
 /* The AIS messages (nmea_ais.c) against generated/vectors/ais.jsonl, which the Python codec
    decodes and encodes too: every payload decodes to the same JSON as Python's or fails with the
-   same error kind, and encodes back to the same armored characters and fill bits.
-   Usage: test_ais path/to/ais.jsonl */
+   same error kind, and encodes back to the same armored characters and fill bits. Then the
+   assembler against tests/data/ais/assembly_cases.jsonl, the events Python's gives of the same
+   lines: those cases whose slots are this build's NMEA_AIS_SLOTS (the Makefile builds it twice).
+   Usage: test_ais path/to/ais.jsonl path/to/assembly_cases.jsonl */
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,14 +32,105 @@ static void member(const char *record, const char *key, char *out, size_t cap)
     out[len] = '\0';
 }
 
+/* The events of an assembly case as the file writes them, gathered by the callback. */
+typedef struct {
+    char text[8192];
+    size_t len;
+    long after; /* the line fed last, -1 once finished */
+} events;
+
+static void add_event(const nmea_ais_assembled *done, void *context)
+{
+    events *e = context;
+    nmea_ais_message message;
+    nmea_ais_error err;
+    size_t i;
+    char *out = e->text + e->len;
+    size_t cap = sizeof e->text - e->len;
+    int n = e->after < 0 ? snprintf(out, cap, "{\"after\":null,\"lines\":[")
+                         : snprintf(out, cap, "{\"after\":%ld,\"lines\":[", e->after);
+    for (i = 0; i < done->n; i++)
+        n += snprintf(out + n, cap - (size_t)n, "%s%lu", i ? "," : "", (unsigned long)done->lines[i]);
+    if (done->complete) {
+        n += snprintf(out + n, cap - (size_t)n, "],\"payload\":\"%.*s\",\"fill_bits\":%u", (int)done->payload_len,
+                      done->payload, done->fill_bits);
+        if (!nmea_ais_decode(done->payload, done->payload_len, done->fill_bits, &message, &err))
+            n += snprintf(out + n, cap - (size_t)n, ",\"error\":\"%s\"", nmea_ais_error_kind_name(err.kind));
+        n += snprintf(out + n, cap - (size_t)n, "},");
+    } else {
+        n += snprintf(out + n, cap - (size_t)n, "],\"error\":\"incomplete_message\"},");
+    }
+    e->len += (size_t)n;
+}
+
+/* The next JSON string of `*p` (whose only escapes are \\ and \") into `out`; false at the
+   array's end. */
+static bool next_string(const char **p, char *out, size_t cap)
+{
+    size_t len = 0;
+    while (**p == ',' || **p == '[')
+        (*p)++;
+    if (**p != '"')
+        return false;
+    for ((*p)++; **p && **p != '"'; (*p)++) {
+        if (**p == '\\')
+            (*p)++;
+        if (len + 1 < cap)
+            out[len++] = **p;
+    }
+    (*p)++;
+    out[len] = '\0';
+    return true;
+}
+
+/* Runs the case of `record` when its slots are this build's: 1 passed, 0 skipped, -1 failed. */
+static int assembly_case(const char *record)
+{
+    static nmea_ais_assembler assembler;
+    static events got;
+    char slots[8], lifetime[8], line[NMEA_MAX_LINE + 1];
+    const char *p = strstr(record, "\"lines\":[") + 8;
+    const char *want = strstr(record, "\"events\":") + 9;
+    member(record, "slots", slots, sizeof slots);
+    member(record, "lifetime", lifetime, sizeof lifetime);
+    if (atoi(slots) != NMEA_AIS_SLOTS)
+        return 0;
+    nmea_ais_assembler_init(&assembler, (uint32_t)atoi(lifetime));
+    got.text[0] = '[';
+    got.len = 1;
+    for (got.after = 0; next_string(&p, line, sizeof line); got.after++) {
+        nmea_sentence s;
+        nmea_error err;
+        nmea_ais_fragment fragment;
+        if (!nmea_parse(&s, line, strlen(line), &err)) {
+            char message[256];
+            nmea_error_message(&err, message, sizeof message);
+            printf("FAIL %s: %s\n", message, line);
+            return -1;
+        }
+        nmea_ais_assembler_feed(&assembler, nmea_ais_fragment_of(&s, &fragment) ? &fragment : NULL, s.tag_blocks,
+                                add_event, &got);
+    }
+    got.after = -1;
+    nmea_ais_assembler_finish(&assembler, add_event, &got);
+    got.len -= got.len > 1; /* the last comma */
+    got.text[got.len++] = ']';
+    if (got.len != strlen(want) - 1 || strncmp(got.text, want, got.len) != 0) {
+        printf("FAIL assembly\n  got  %.*s\n  want %s\n", (int)got.len, got.text, want);
+        return -1;
+    }
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
     static char record[8192], json[8192];
     char payload[512], fill[8], error[32];
-    int decoded = 0, refused = 0, failed = 0;
-    FILE *file = argc > 1 ? fopen(argv[1], "r") : NULL;
-    if (!file) {
-        fprintf(stderr, "usage: test_ais ais.jsonl\n");
+    int decoded = 0, refused = 0, failed = 0, assembled = 0;
+    FILE *file = argc > 2 ? fopen(argv[1], "r") : NULL;
+    FILE *cases = argc > 2 ? fopen(argv[2], "r") : NULL;
+    if (!file || !cases) {
+        fprintf(stderr, "usage: test_ais ais.jsonl assembly_cases.jsonl\n");
         return 2;
     }
     while (fgets(record, sizeof record, file)) {
@@ -80,6 +173,15 @@ int main(int argc, char **argv)
         decoded++;
     }
     fclose(file);
-    printf("%d decoded, %d refused, %d failed\n", decoded, refused, failed);
-    return failed || decoded != 44 || refused != 6;
+    while (fgets(record, sizeof record, cases)) {
+        int outcome;
+        record[strcspn(record, "\n")] = '\0';
+        outcome = assembly_case(record);
+        assembled += outcome > 0;
+        failed += outcome < 0;
+    }
+    fclose(cases);
+    printf("%d decoded, %d refused, %d assembly cases of %d slots, %d failed\n", decoded, refused, assembled,
+           NMEA_AIS_SLOTS, failed);
+    return failed || decoded != 44 || refused != 6 || !assembled;
 }

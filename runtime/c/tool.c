@@ -11,6 +11,9 @@
  * decode splits its input on LF and drops one CR before it; stream frames it with nmea_framer.
  * fixes prints one JSON object per epoch, the fix its sentences make (Python's Fix.to_dict);
  * decode and stream print one JSON object per line; a line longer than NMEA_MAX_LINE is counted, not stored.
+ * With the AIS pair, a line's object ends with the AIS message it carries (decode: a message of
+ * one sentence; stream: also one joined across sentences, and an incomplete_message line after the
+ * line that gave a message up).
  * encode holds one line at a time (up to ENCODE_MAX bytes).
  */
 
@@ -19,6 +22,9 @@
 #include <string.h>
 
 #include "nmea.h"
+#ifdef NMEA_WITH_AIS
+#include "nmea_ais.h"
+#endif
 
 #define CHUNK 65536
 #define DECODE_MAX (NMEA_MAX_LINE + 1) /* a line and its CR */
@@ -35,6 +41,7 @@ typedef enum { TOOL_DECODE, TOOL_ENCODE, TOOL_FIXES } tool_verb;
 
 typedef struct {
     tool_verb verb;
+    bool stream; /* decode joins AIS messages across lines */
     bool values;
     nmea_options options;
     nmea_problems problems; /* of the line decoded last */
@@ -94,9 +101,88 @@ static void check_written(const nmea_sentence *s, const char *out, size_t cap, s
 }
 #endif
 
+#ifdef NMEA_WITH_AIS
+/* The JSON of a message of a payload as long as a line holds. */
+#define AIS_JSON_MAX (1u << 17)
+
+/* The messages stream joins across lines, and the errors of those given up for the line fed last
+   (each line ends with a LF; a feed gives up at most every slot, one more message and a fragment). */
+static nmea_ais_assembler ais_assembler;
+static char given_up[(NMEA_AIS_SLOTS + 2) * 256];
+static size_t given_up_len;
+
+/* A line's JSON object, to which its AIS message is added. */
+typedef struct {
+    char *json;
+    size_t len;
+} object;
+
+/* Adds "ais", the message of the payload, or "ais_error", why none decodes from it, as the
+   object's last member. */
+static void add_message(object *o, const char *payload, size_t len, unsigned fill_bits)
+{
+    static nmea_ais_message message;
+    nmea_ais_error err;
+    char *at = o->json + o->len - 1; /* its closing brace */
+    if (nmea_ais_decode(payload, len, fill_bits, &message, &err)) {
+        memcpy(at, ",\"ais\":", 7);
+        at += 7 + nmea_ais_json(&message, fill_bits, at + 7, AIS_JSON_MAX);
+    } else {
+        memcpy(at, ",\"ais_error\":", 13);
+        at += 13 + nmea_ais_error_json(&err, at + 13, AIS_JSON_MAX);
+    }
+    *at++ = '}';
+    o->len = (size_t)(at - o->json);
+}
+
+static void assembled(const nmea_ais_assembled *done, void *context)
+{
+    char message[64];
+    if (done->complete) {
+        add_message(context, done->payload, done->payload_len, done->fill_bits);
+        return;
+    }
+    nmea_ais_incomplete_message(done, message, sizeof message);
+    given_up_len += (size_t)sprintf(given_up + given_up_len,
+                                    "{\"ok\":false,\"error\":{\"kind\":\"incomplete_message\",\"address\":\"AIS\","
+                                    "\"field\":null,\"name\":null,\"message\":\"%s\"}}\n", message);
+}
+
+/* Adds the AIS message a decoded line carries or completes to its JSON (`out`, `n` bytes). */
+static size_t with_message(tool *t, const char *line, size_t len, char *out, size_t n)
+{
+    nmea_sentence s;
+    nmea_error err;
+    nmea_ais_fragment fragment;
+    object o;
+    o.json = out;
+    o.len = n;
+    if ((line[0] != '!' && line[0] != '\\') || !nmea_parse_ex(&s, line, len, &t->options, &err)
+        || !nmea_ais_fragment_of(&s, &fragment))
+        return n;
+    if (t->stream)
+        nmea_ais_assembler_feed(&ais_assembler, &fragment, s.tag_blocks, assembled, &o);
+    else if (fragment.count == 1)
+        add_message(&o, fragment.payload.ptr, fragment.payload.len, fragment.fill_bits);
+    return o.len;
+}
+
+/* The errors of the messages given up, as lines of their own. */
+static void emit_given_up(tool *t)
+{
+    memcpy(room(t, given_up_len), given_up, given_up_len);
+    t->out_len += given_up_len;
+    given_up_len = 0;
+}
+#endif
+
 static void decode_line(tool *t, const char *line, size_t len)
 {
+#ifdef NMEA_WITH_AIS
+    char *out = room(t, NMEA_JSON_MAX + AIS_JSON_MAX + 32);
+#else
     char *out = room(t, NMEA_JSON_MAX + 1);
+#endif
     size_t n;
     if (len > NMEA_MAX_LINE) {
         nmea_error err;
@@ -107,8 +193,14 @@ static void decode_line(tool *t, const char *line, size_t len)
 #ifdef NMEA_TEST_HOOKS
         check_general(t, line, len, out, n);
 #endif
+#ifdef NMEA_WITH_AIS
+        n = with_message(t, line, len, out, n);
+#endif
     }
     emit(t, n);
+#ifdef NMEA_WITH_AIS
+    emit_given_up(t);
+#endif
 }
 
 static void encode_line(tool *t, const char *line, size_t len, bool complete)
@@ -202,6 +294,10 @@ static int stream(tool *t)
     size_t got;
 
     nmea_framer_init(&framer);
+#ifdef NMEA_WITH_AIS
+    t->stream = true;
+    nmea_ais_assembler_init(&ais_assembler, 100);
+#endif
     while ((got = fread(input, 1, sizeof input, stdin)) > 0) {
         const char *p = input;
         while (nmea_framer_push(&framer, &p, &got, &line))
@@ -209,6 +305,10 @@ static int stream(tool *t)
     }
     if (nmea_framer_end(&framer, &line))
         decode_line(t, line.ptr, line.len);
+#ifdef NMEA_WITH_AIS
+    nmea_ais_assembler_finish(&ais_assembler, assembled, NULL);
+    emit_given_up(t);
+#endif
     flush(t);
     return ferror(stdin) ? 1 : 0;
 }

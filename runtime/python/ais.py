@@ -109,12 +109,23 @@ class Fragment(NamedTuple):
     def of(cls, total: Any, number: Any, sequence: Any, channel: Any, payload: str | None,
            fill_bits: Any) -> Fragment | None:
         """From a sentence's fields (Numbers, an enum member or its text); None when the count
-        or number is empty."""
-        if total is None or number is None:
+        is not 1-9 or the number is empty. A number counts when it is a whole 0-255 written
+        without a minus (what the C and Rust fragments hold): the sequential id is None
+        otherwise, the fill bits 0."""
+        count, number = _small(total), _small(number)
+        if count is None or not 1 <= count <= 9 or number is None:
             return None
-        return cls(int(total), int(number), None if sequence is None else int(sequence),
+        return cls(count, number, _small(sequence),
                    None if channel is None else str(getattr(channel, "value", channel)), payload or "",
-                   int(fill_bits or 0))
+                   _small(fill_bits) or 0)
+
+
+def _small(number: Any) -> int | None:
+    """A fragment field's number (a Number) when it is a whole 0-255 written without a minus,
+    None for another or none."""
+    if number is None or number.scale or number.sign == "-" or number.digits > 255:
+        return None
+    return int(number.digits)
 
 
 def bits_text(value: int, width: int) -> str:
@@ -653,7 +664,7 @@ def unarmor(payload: str, fill_bits: int) -> tuple[BitReader, str]:
     bits = payload.translate(_ARMOR_BITS)
     if len(bits) != 6 * len(payload):  # a character no armor value stands for stayed itself
         offset, ch = next((i, ch) for i, ch in enumerate(payload) if armor_value(ch) is None)
-        raise NmeaError("bad_armor", f"character {ch!r} at offset {offset} is not six-bit armoring", "AIS")
+        raise NmeaError("bad_armor", f"character '{ch}' at offset {offset} is not six-bit armoring", "AIS")
     value = int(bits, 2) if bits else 0
     length = len(payload) * 6 - fill_bits
     padding = bits_text(value & ((1 << fill_bits) - 1), fill_bits)

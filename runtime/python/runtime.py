@@ -63,10 +63,14 @@ class NmeaError(ValueError):
         return f"{self.kind}: {where}: {self.message}"
 
     def to_json(self) -> str:
+        return f'{{"ok":false,"error":{self.error_json()}}}'
+
+    def error_json(self) -> str:
+        """The error object of to_json (also an AIS message's `ais_error`)."""
         return (
-            f'{{"ok":false,"error":{{"kind":{json_str(self.kind)},"address":{json_opt(self.address)},'
+            f'{{"kind":{json_str(self.kind)},"address":{json_opt(self.address)},'
             f'"field":{"null" if self.field is None else self.field},"name":{json_opt(self.name)},'
-            f'"message":{json_str(self.message)}}}}}'
+            f'"message":{json_str(self.message)}}}'
         )
 
 

@@ -85,6 +85,10 @@ CASES: list[dict[str, Any]] = [
      "lines": [tagged("1-2-0073874", FIRST), tagged("2-2-73874", SECOND)]},
     {"where": "a TAG group from another source is another message",
      "lines": [tagged("1-2-7", FIRST), tagged("2-2-7", SECOND, "r1"), tagged("2-2-7", SECOND)]},
+    {"where": "a payload past the capacity (558 characters): the message is given up, the fragment alone",
+     "lines": [three(1, "5" * 300), three(2, "5" * 300), checksummed("!AIVDM,2,1,6,A," + "5" * 600 + ",0"), SINGLE]},
+    {"where": "a key past its 40 bytes (a long TAG source): the fragment is given up alone",
+     "lines": [tagged("1-2-7", FIRST, "s" * 40), SINGLE]},
     {"where": "a joined payload that does not decode",
      "lines": [checksummed("!AIVDM,2,1,1,A,w,0"), checksummed("!AIVDM,2,2,1,A,w,0")]},
 ]

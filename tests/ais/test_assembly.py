@@ -113,7 +113,7 @@ def test_a_lost_fragment_is_reported_and_nothing_else_is_lost() -> None:
     (gone, single) = feed(assembler, [SINGLE])
     assert texts(gone) == [FIRST] and gone.message is None
     assert isinstance(gone.error, NmeaError) and gone.error.kind == "incomplete_message"
-    assert str(gone.error) == "incomplete_message: VDM: fragment 2 of 2 never came"
+    assert str(gone.error) == "incomplete_message: AIS: fragment 2 of 2 never came"
     assert texts(single) == [SINGLE]
     assembler = MessageAssembler()
     assert feed(assembler, [SECOND]) == []

@@ -79,6 +79,38 @@ def test_payload_kinds() -> None:
         assert f"| `{kind}` |" in (RUNTIME / "json.md").read_text(encoding="utf-8"), kind
 
 
+def test_assembly_kinds_and_bounds() -> None:
+    """The kind of a message given up and the assemblers' bounds, alike in the three runtimes and
+    their tools (json.md's "AIS messages in decode and stream")."""
+    bounds = CONTRACT["assembly"]
+    python = (RUNTIME / "python" / "assembly.py").read_text(encoding="utf-8")
+    rust = (RUNTIME / "rust" / "src" / "assembly.rs").read_text(encoding="utf-8")
+    c = (RUNTIME / "c" / "ais.h").read_text(encoding="utf-8")
+    assert one(r"slots: int = (\d+), lifetime: int = (\d+), capacity: int = (\d+)", python) \
+        == (str(bounds["slots"]), str(bounds["lifetime"]), str(bounds["capacity"]))
+    assert int(one(r"KEY_CAPACITY = (\d+)", python)) == bounds["key_capacity"]
+    assert one(r"pub struct Assembler<const SLOTS: usize = (\d+), const CAPACITY: usize = (\d+)>", rust) \
+        == (str(bounds["slots"]), str(bounds["capacity"]))
+    assert int(one(r"pub const KEY_CAPACITY: usize = (\d+);", rust)) == bounds["key_capacity"]
+    for name, key in (("SLOTS", "slots"), ("CAPACITY", "capacity"), ("KEY_CAPACITY", "key_capacity")):
+        assert int(one(rf"#define NMEA_AIS_{name} (\d+)", c)) == bounds[key], name
+    tools = {"c": RUNTIME / "c" / "tool.c", "rust": RUNTIME / "rust" / "crate" / "bin" / "nmea-rs.rs",
+             "python": RUNTIME / "python" / "apps" / "contract_tool.py"}
+    lifetimes = {"c": r"nmea_ais_assembler_init\(&ais_assembler, (\d+)\)", "rust": r"Assembler::new\((\d+)\)",
+                 "python": r"MessageAssembler\(\)"}
+    for language, path in tools.items():
+        text = path.read_text(encoding="utf-8")
+        found = re.search(lifetimes[language], text)
+        assert found and (language == "python" or int(found[1]) == bounds["lifetime"]), language
+        for kind in CONTRACT["assembly_kinds"]:
+            assert kind in text or kind in python, (language, kind)
+    json_md = (RUNTIME / "json.md").read_text(encoding="utf-8")
+    for kind in CONTRACT["assembly_kinds"]:
+        assert f"| `{kind}` |" in json_md, kind
+    for text in ("16 messages", "100 encapsulation sentences", "558 characters", "40 bytes"):
+        assert text in json_md.replace("\n", " "), text
+
+
 def test_problem_kinds() -> None:
     kinds = CONTRACT["problem_kinds"]
     c_enum = one(r"typedef enum \{([^}]*)\} nmea_problem_kind;", C_HEADER)

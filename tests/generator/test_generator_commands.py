@@ -356,7 +356,8 @@ int main(void) {{
     run(cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-o", "gs5_tests", "gs5/c/gs5.c",
         "gs5/c/tests/test_examples.c", cwd=copies)
     assert " 0 failed" in run("./gs5_tests", cwd=copies)
-    run(cc, "-std=c99", "-o", "gs5-c", "gs5/c/gs5.c", "gs5/c/gs5_tool.c", cwd=copies)
+    pair = [str(p.relative_to(copies)) for p in sorted((copies / "gs5" / "c").glob("*.c"))]  # with the AIS pair, if any
+    run(cc, "-std=c99", "-o", "gs5-c", *pair, cwd=copies)
     usage = subprocess.run(["./gs5-c"], cwd=copies, capture_output=True, text=True)
     assert usage.returncode == 2 and usage.stderr.startswith("usage: gs5-c decode"), usage.stderr
 

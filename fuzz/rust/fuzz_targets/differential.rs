@@ -4,19 +4,26 @@
 //!   requiring a checksum, both): accept or reject, the error kind and message, every field;
 //! - encode's output for the input as a line of JSON: the re-serialized sentence or the error,
 //!   and whether the line is a failure line that encode skips;
-//! - the stream framer's items for the input fed whole and in chunks of sizes taken from it.
+//! - the stream framer's items for the input fed whole and in chunks of sizes taken from it;
+//! - AIS: the input after its first byte (which gives the fill bits) as a payload, when it is
+//!   printable ASCII as in a sentence: its message's JSON or its error's, and what the message encodes back to; the assemblers' events for the
+//!   input's lines (the lines and joined payload of each message, or why it was given up).
 //! Python stays in the replay differential (fuzz/differential.py).
 #![no_main]
 use libfuzzer_sys::fuzz_target;
+use nmeaspec::ais_messages::Message;
+use nmeaspec::assembly::{Assembled, Assembler};
 use nmeaspec::json::{Value, SKIP_CHECK_DEPTH};
 use nmeaspec::stream::{Framer, Item};
-use nmeaspec::Options;
+use nmeaspec::{Options, TagBlocks};
 use std::fmt::Write;
 
 extern "C" {
     fn shim_decode(line: *const u8, len: usize, values: i32, lenient: i32, required: i32, out: *mut u8, cap: usize) -> usize;
     fn shim_encode(json: *const u8, len: usize, out: *mut u8, cap: usize) -> usize;
     fn shim_frame(data: *const u8, len: usize, chunk: usize, out: *mut u8, cap: usize) -> usize;
+    fn shim_ais(payload: *const u8, len: usize, fill_bits: u32, out: *mut u8, cap: usize) -> usize;
+    fn shim_assemble(data: *const u8, len: usize, lifetime: u32, out: *mut u8, cap: usize) -> usize;
     fn nmea_fuzz_mutate(data: *mut u8, size: usize, max_size: usize, seed: u32) -> usize;
 }
 
@@ -94,9 +101,55 @@ fn frame(data: &[u8], chunk: usize) {
     assert!(c == rust, "framing in chunks of {chunk}:\n   C: {:?}\nRust: {:?}", String::from_utf8_lossy(&c), String::from_utf8_lossy(&rust));
 }
 
+fn ais(data: &[u8]) {
+    let Some((&first, payload)) = data.split_first() else { return };
+    if !payload.iter().all(|b| (0x20..=0x7e).contains(b)) {
+        return; // a payload as a sentence carries it: printable ASCII
+    }
+    let fill_bits = first % 8;
+    let c = c_text(|out, cap| unsafe { shim_ais(payload.as_ptr(), payload.len(), fill_bits.into(), out, cap) }).unwrap();
+    let mut rust = String::new();
+    match Message::decode(payload, fill_bits) {
+        Ok(message) => {
+            message.write_json(&mut rust, fill_bits).unwrap();
+            match message.encode() {
+                Ok(armored) => write!(rust, "|{},{}", armored.as_str(), armored.fill_bits()).unwrap(),
+                Err(err) => write!(rust, "|{}", err.kind.as_str()).unwrap(),
+            }
+        }
+        Err(err) => err.write_json(&mut rust).unwrap(),
+    }
+    assert!(c == latin1(&rust), "AIS payload:\n   C: {}\nRust: {rust}", String::from_utf8_lossy(&c));
+}
+
+fn assemble(data: &[u8]) {
+    let lifetime = 1 + u32::from(data.last().copied().unwrap_or(0) % 8);
+    let c = c_text(|out, cap| unsafe { shim_assemble(data.as_ptr(), data.len(), lifetime, out, cap) }).unwrap();
+    let mut rust = String::new();
+    let mut put = |done: Assembled<'_>| {
+        let lines: Vec<String> = done.lines.iter().map(u32::to_string).collect();
+        match done.joined {
+            Some((payload, fill_bits)) => write!(rust, "{}:P{payload},{fill_bits};", lines.join(",")),
+            None => write!(rust, "{}:I{};", lines.join(","), done.incomplete_message()),
+        }
+        .unwrap();
+    };
+    let mut assembler: Assembler = Assembler::new(lifetime);
+    for line in data.split(|&b| b == b'\n') {
+        match nmeaspec::parse_with(line, Options::default()) {
+            Ok(parsed) => assembler.feed(parsed.sentence.fragment(), parsed.tag_blocks, &mut put),
+            Err(_) => assembler.feed(None, TagBlocks::default(), &mut put),
+        }
+    }
+    assembler.finish(&mut put);
+    assert!(c == latin1(&rust), "AIS assembly:\n   C: {}\nRust: {rust}", String::from_utf8_lossy(&c));
+}
+
 fuzz_target!(|data: &[u8]| {
     decode(data);
     encode(data);
+    ais(data);
+    assemble(data);
     frame(data, data.len().max(1));
     frame(data, 1 + data.first().copied().unwrap_or(0) as usize % 7);
 });

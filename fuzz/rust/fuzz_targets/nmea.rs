@@ -11,10 +11,16 @@
 //! - JSON that encodes to a sentence must parse again (leniently);
 //! - the stream framer must cut the input into the same items as a byte-at-a-time model of the
 //!   Python reference's Framer, whether it gets the input whole or in chunks of sizes derived
-//!   from the input.
+//!   from the input;
+//! - AIS: a payload that decodes (a VDM/VDO line's of one sentence, one the assembler joins, or the
+//!   input itself after a first byte that gives the fill bits) must encode back to its characters
+//!   and fill bits when it fits a message's bits; the assembler fed the input's lines must account
+//!   for every fragment exactly once.
 //! Nothing may panic.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
+use nmeaspec::ais_messages::Message;
+use nmeaspec::assembly::Assembler;
 use nmeaspec::stream::{Framer, Item};
 use nmeaspec::{ErrorKind, Options, ProblemKind};
 
@@ -36,6 +42,9 @@ fn as_line(data: &[u8]) {
         return; // parse() drops one line ending: the round trip is checked without it
     }
     let Ok(sentence) = nmeaspec::parse(data) else {
+        if nmeaspec::parse_with(data, Options::default()).is_ok() {
+            return; // a line behind TAG blocks: parse() takes none, parse_with reads them
+        }
         if let Ok(parsed) = nmeaspec::parse_with(data, LENIENT) {
             assert!(!parsed.problems.is_empty(), "lenient parsing kept a line strict parsing refused, without problems");
             assert_eq!(parsed.to_string().as_bytes(), data, "lenient round trip changed the line");
@@ -108,7 +117,14 @@ impl From<Item<'_>> for Owned {
 /// The Python reference's Framer, one byte at a time.
 fn model(data: &[u8]) -> Vec<Owned> {
     let max = nmeaspec::MAX_LINE;
-    let (mut out, mut line, mut length) = (Vec::new(), Vec::new(), 0usize);
+    // where the line is as to TAG blocks: outside, in one, right after one
+    #[derive(PartialEq)]
+    enum Tag {
+        Outside,
+        In,
+        After,
+    }
+    let (mut out, mut line, mut length, mut tag) = (Vec::new(), Vec::new(), 0usize, Tag::Outside);
     let mut finish = |line: &mut Vec<u8>, length: &mut usize| {
         if *length > 0 {
             out.push(if *length <= max { Owned::Line(line.clone()) } else { Owned::TooLong(*length) });
@@ -117,19 +133,21 @@ fn model(data: &[u8]) -> Vec<Owned> {
         *length = 0;
     };
     for &b in data {
-        match b {
-            b'\r' | b'\n' => finish(&mut line, &mut length),
-            b'$' | b'!' => {
-                finish(&mut line, &mut length);
-                line.push(b);
-                length = 1;
-            }
-            _ => {
-                length += 1;
-                if length <= max {
-                    line.push(b);
-                }
-            }
+        if b == b'\r' || b == b'\n' {
+            finish(&mut line, &mut length);
+            tag = Tag::Outside;
+            continue;
+        }
+        if b == b'\\' && (length == 0 || tag != Tag::Outside) {
+            tag = if tag == Tag::In { Tag::After } else { Tag::In }; // opens a block, or closes it
+        } else if (b == b'$' || b == b'!') && tag == Tag::Outside {
+            finish(&mut line, &mut length);
+        } else if tag == Tag::After {
+            tag = Tag::Outside;
+        }
+        length += 1;
+        if length <= max {
+            line.push(b);
         }
     }
     finish(&mut line, &mut length);
@@ -171,10 +189,53 @@ fn as_stream(data: &[u8]) {
     assert_eq!(framed(chunks.into_iter()), expected, "framing depends on the chunking");
 }
 
+/// A payload that decodes must encode back to it, when it fits a message's bits.
+fn ais_round_trip(payload: &str, fill_bits: u8) {
+    let Ok(message) = Message::decode(payload.as_bytes(), fill_bits) else {
+        return;
+    };
+    let mut json = String::new();
+    message.write_json(&mut json, fill_bits).expect("an AIS message's JSON");
+    match message.encode() {
+        Ok(armored) => assert_eq!((armored.as_str(), armored.fill_bits()), (payload, fill_bits), "AIS round trip"),
+        Err(err) => assert!(payload.len() * 6 > nmeaspec::ais::MAX_BITS, "a payload that fits did not encode: {err}"),
+    }
+}
+
+fn as_ais(data: &[u8]) {
+    if let Some((&first, payload)) = data.split_first() {
+        if let Ok(payload) = core::str::from_utf8(payload) {
+            ais_round_trip(payload, first % 8);
+        }
+    }
+    let mut assembler: Assembler = Assembler::new(1 + u32::from(data.last().copied().unwrap_or(0) % 8));
+    let (mut fed, mut reported) = (0usize, 0usize);
+    let mut done = |d: nmeaspec::assembly::Assembled<'_>| {
+        assert!((1..=9).contains(&d.lines.len()) && d.lines.len() == d.numbers.len(), "an assembled message's lines");
+        reported += d.lines.len();
+        match d.joined {
+            Some((payload, fill_bits)) => ais_round_trip(payload, fill_bits),
+            None => drop(d.incomplete_message().to_string()),
+        }
+    };
+    for line in data.split(|&b| b == b'\n') {
+        let Ok(parsed) = nmeaspec::parse_with(line, Options::default()) else {
+            assembler.feed(None, nmeaspec::TagBlocks::default(), &mut done);
+            continue;
+        };
+        let fragment = parsed.sentence.fragment();
+        fed += usize::from(fragment.is_some());
+        assembler.feed(fragment, parsed.tag_blocks, &mut done);
+    }
+    assembler.finish(&mut done);
+    assert_eq!(fed, reported, "the assembler lost or repeated a fragment");
+}
+
 fuzz_target!(|data: &[u8]| {
     as_line(data);
     as_json(data);
     as_stream(data);
+    as_ais(data);
 });
 
 extern "C" {

@@ -1,6 +1,7 @@
 """The `nmea-py` tool: `decode` NMEA lines to JSON, `encode` that JSON back to sentences,
 `stream` a byte stream that may hold garbage, cut lines or sentences run together, `fixes` the
-fixes of NMEA lines (one JSON object per epoch: Fix.to_dict, docs/fixes.md).
+fixes of NMEA lines (one JSON object per epoch: Fix.to_dict, docs/fixes.md). decode and stream
+add the AIS message a line carries, stream also those joined across sentences.
 
 Same behaviour, byte for byte, as nmea-c and nmea-rs; see docs/json.md.
 """
@@ -9,12 +10,15 @@ from __future__ import annotations
 
 import json
 import sys
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
+from typing import Any
 
-from .. import __version__, decode_json, encode_json
+from .. import __version__, encode_json
+from ..api import Tagged, parse, to_json
+from ..assembly import Assembled, MessageAssembler
 from ..fixes import fixes
-from ..runtime import json_too_deep
-from ..stream import json_lines
+from ..runtime import NmeaError, json_too_deep
+from ..stream import lines as framed, too_long
 
 USAGE = (
     "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] [--strict]"
@@ -32,6 +36,59 @@ def lines(data: bytes) -> list[str]:
     return [(p[:-1] if p.endswith(b"\r") else p).decode("latin-1") for p in parts]
 
 
+def with_message(text: str, assembled: Assembled) -> str:
+    """A line's JSON with the AIS message it completes last: `ais`, or `ais_error` when its payload
+    does not decode."""
+    if assembled.message is not None:
+        return f'{text[:-1]},"ais":{json.dumps(assembled.message.to_dict(), separators=(",", ":"))}}}'
+    assert assembled.error is not None
+    return f'{text[:-1]},"ais_error":{assembled.error.error_json()}}}'
+
+
+def decoded(items: Iterable[str], values: bool, options: dict[str, bool]) -> Iterator[str]:
+    """decode: each line's JSON, with the AIS message of a sentence that carries a whole one."""
+    for line in items:
+        try:
+            sentence = parse(line, **options)
+        except NmeaError as err:
+            yield err.to_json()
+            continue
+        text = to_json(sentence, values)
+        inner = sentence.sentence if isinstance(sentence, Tagged) else sentence
+        fragment = getattr(inner, "fragment", None)
+        if fragment is not None and fragment.total == 1:
+            (assembled,) = MessageAssembler().feed(sentence)  # a message of one sentence, at once
+            text = with_message(text, assembled)
+        yield text
+
+
+def streamed(items: Iterable[bytes | int], values: bool, options: dict[str, bool]) -> Iterator[str]:
+    """stream: each framed line's JSON, with the AIS message it completes (of one sentence or
+    joined across several); after it, an incomplete_message error for each message it gives up,
+    and at the end for those left under way."""
+    assembler = MessageAssembler()
+    for item in items:
+        try:
+            if isinstance(item, int):
+                raise too_long(item)
+            sentence: Any = parse(item, **options)
+        except NmeaError as err:
+            yield err.to_json()
+            continue
+        text = to_json(sentence, values)
+        given_up = []
+        for assembled in assembler.feed(sentence):
+            if assembled.error is not None and assembled.error.kind == "incomplete_message":
+                given_up.append(assembled.error.to_json())
+            else:
+                text = with_message(text, assembled)
+        yield text
+        yield from given_up
+    for assembled in assembler.finish():
+        assert assembled.error is not None
+        yield assembled.error.to_json()
+
+
 def main(argv: list[str] | None = None) -> int:
     args = sys.argv[1:] if argv is None else argv
     verb, flags = (args[0], args[1:]) if args else ("", [])
@@ -41,15 +98,12 @@ def main(argv: list[str] | None = None) -> int:
         and len(set(flags)) == len(flags)
     ):
         values, lenient, required, strict = (f in flags for f in FLAGS)
+        options = {"lenient": lenient, "require_checksum": required, "strict": strict}
         out: Iterator[str]
         if verb == "decode":
-            out = (
-                decode_json(line, values, lenient, required, strict)
-                for line in lines(sys.stdin.buffer.read())
-            )
+            out = decoded(lines(sys.stdin.buffer.read()), values, options)
         else:
-            options = {"lenient": lenient, "require_checksum": required, "strict": strict}
-            out = json_lines(sys.stdin.buffer, values, **options)
+            out = streamed(framed(sys.stdin.buffer), values, options)
         write = sys.stdout.buffer.write
         for text in out:
             write(text.encode("latin-1") + b"\n")

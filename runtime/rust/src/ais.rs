@@ -99,17 +99,48 @@ impl AisError {
     }
 }
 
+impl AisError {
+    /// The error's message alone (`"fill bits are 0-5 (none for an empty payload), not 7"`).
+    pub fn message(&self) -> impl fmt::Display + '_ {
+        AisMessage(self)
+    }
+
+    /// The error as the tools' JSON error object: its kind, `AIS type N` (`AIS` before the type
+    /// is read) as its address, the field as its name, and its message.
+    pub fn write_json<W: fmt::Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write!(w, "{{\"kind\":\"{}\",\"address\":\"AIS", self.kind.as_str())?;
+        if let Some(t) = self.message_type {
+            write!(w, " type {t}")?;
+        }
+        w.write_str("\",\"field\":null,\"name\":")?;
+        match self.field {
+            Some(field) => write!(w, "\"{field}\"")?,
+            None => w.write_str("null")?,
+        }
+        w.write_str(",\"message\":")?;
+        super::write::write_json_display(w, &self.message())?;
+        w.write_char('}')
+    }
+}
+
 impl fmt::Display for AisError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}: AIS", self.kind.as_str())?;
         if let Some(t) = self.message_type {
             write!(f, " type {t}")?;
         }
-        f.write_str(": ")?;
-        let field = self.field.unwrap_or("payload");
-        match self.detail {
+        write!(f, ": {}", self.message())
+    }
+}
+
+struct AisMessage<'e>(&'e AisError);
+
+impl fmt::Display for AisMessage<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let field = self.0.field.unwrap_or("payload");
+        match self.0.detail {
             Detail::Character { ch, offset } => {
-                write!(f, "character '{}' at offset {offset} is not six-bit armoring", ch.escape_ascii())
+                write!(f, "character '{}' at offset {offset} is not six-bit armoring", char::from(ch))
             }
             Detail::FillBits(n) => write!(f, "fill bits are 0-5 (none for an empty payload), not {n}"),
             Detail::Short { offset, width, length } => {

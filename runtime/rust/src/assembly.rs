@@ -14,7 +14,9 @@
 //! Each message names its sentences by the indices of the lines fed ([`Assembler::feed`] counts
 //! every line from 0), in fragment order, so that the caller writes back exactly what came.
 
-use super::{Number, TagBlocks};
+use core::fmt;
+
+use super::{Number, Sign, TagBlocks};
 
 /// The most fragments of one message (NMEA 0183: a count is one digit).
 pub const MAX_FRAGMENTS: usize = 9;
@@ -46,14 +48,16 @@ pub struct Fragment<'a> {
 impl<'a> Fragment<'a> {
     /// From an encapsulation sentence's talker and sentence id, its count, number, sequential id
     /// and fill bits, channel and payload; `None` when the count is not 1 to [`MAX_FRAGMENTS`] or
-    /// the number is empty.
+    /// the number is empty. A number counts when it is a whole 0-255 written without a minus: the
+    /// sequential id is `None` otherwise, the fill bits 0.
     pub fn of(
         (talker, sentence): (&'a str, &'a str),
         [count, number, sequence, fill_bits]: [Option<Number>; 4],
         channel: Option<&'a str>,
         payload: Option<&'a str>,
     ) -> Option<Self> {
-        let small = |n: Number| u8::try_from(n.digits).ok().filter(|_| n.scale == 0);
+        // a whole 0-255 written without a minus
+        let small = |n: Number| u8::try_from(n.digits).ok().filter(|_| n.scale == 0 && n.sign != Sign::Minus);
         let count = small(count?).filter(|c| (1..=MAX_FRAGMENTS as u8).contains(c))?;
         Some(Self {
             talker,
@@ -74,8 +78,38 @@ impl<'a> Fragment<'a> {
 pub struct Assembled<'e> {
     /// The indices of the lines fed that carried it, in fragment order.
     pub lines: &'e [u32],
+    /// Their fragment numbers, and how many fragments the message has.
+    pub numbers: &'e [u8],
+    #[allow(missing_docs)]
+    pub count: u8,
     /// The joined payload and the last fragment's fill bits.
     pub joined: Option<(&'e str, u8)>,
+}
+
+impl Assembled<'_> {
+    /// The message of a given-up message's `incomplete_message` error: `fragment 2 of 2 never
+    /// came`, `fragments 1, 3 of 3 never came`.
+    pub fn incomplete_message(&self) -> impl fmt::Display + '_ {
+        Incomplete(self)
+    }
+}
+
+struct Incomplete<'a, 'e>(&'a Assembled<'e>);
+
+impl fmt::Display for Incomplete<'_, '_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let done = self.0;
+        let mut missing = (1..=done.count).filter(|n| !done.numbers.contains(n));
+        let several = missing.clone().nth(1).is_some();
+        f.write_str(if several { "fragments " } else { "fragment " })?;
+        if let Some(first) = missing.next() {
+            write!(f, "{first}")?;
+        }
+        for n in missing {
+            write!(f, ", {n}")?;
+        }
+        write!(f, " of {} never came", done.count)
+    }
 }
 
 #[derive(Clone, Copy)]
@@ -131,6 +165,7 @@ pub struct Assembler<const SLOTS: usize = 16, const CAPACITY: usize = 558> {
     lines: u32,
     seen: u32,
     out_lines: [u32; MAX_FRAGMENTS],
+    out_numbers: [u8; MAX_FRAGMENTS],
     out_payload: [u8; CAPACITY],
 }
 
@@ -144,6 +179,7 @@ impl<const SLOTS: usize, const CAPACITY: usize> Assembler<SLOTS, CAPACITY> {
             lines: 0,
             seen: 0,
             out_lines: [0; MAX_FRAGMENTS],
+            out_numbers: [0; MAX_FRAGMENTS],
             out_payload: [0; CAPACITY],
         }
     }
@@ -160,12 +196,14 @@ impl<const SLOTS: usize, const CAPACITY: usize> Assembler<SLOTS, CAPACITY> {
         {
             self.give_up(oldest, &mut done);
         }
+        let (lines, numbers) = ([line], [fragment.number]);
+        let alone = |joined| Assembled { lines: &lines, numbers: &numbers, count: fragment.count, joined };
         if fragment.count == 1 {
-            return done(Assembled { lines: &[line], joined: Some((fragment.payload, fragment.fill_bits)) });
+            return done(alone(Some((fragment.payload, fragment.fill_bits))));
         }
         let mut key = [0; KEY_CAPACITY];
         let Some(key_len) = write_key(&mut key, &fragment, tags) else {
-            return done(Assembled { lines: &[line], joined: None });
+            return done(alone(None));
         };
         let key = &key[..key_len];
         let mut slot = self.slots.iter().position(|s| s.count != 0 && s.key() == key);
@@ -180,7 +218,7 @@ impl<const SLOTS: usize, const CAPACITY: usize> Assembler<SLOTS, CAPACITY> {
                     Some(free) => free,
                     None => {
                         let Some(oldest) = self.oldest() else {
-                            return done(Assembled { lines: &[line], joined: None });
+                            return done(alone(None));
                         };
                         self.give_up(oldest, &mut done);
                         oldest
@@ -198,18 +236,23 @@ impl<const SLOTS: usize, const CAPACITY: usize> Assembler<SLOTS, CAPACITY> {
         let s = &mut self.slots[i];
         let (start, payload) = (s.used(), fragment.payload.as_bytes());
         if start + payload.len() > CAPACITY {
-            self.give_up(i, &mut done);
-            return done(Assembled { lines: &[line], joined: None });
+            if s.n_parts > 0 {
+                self.give_up(i, &mut done);
+            } else {
+                s.count = 0; // a message that never started
+            }
+            return done(alone(None));
         }
         s.payload[start..start + payload.len()].copy_from_slice(payload);
         s.parts[s.n_parts] =
             Part { number: fragment.number, line, fill_bits: fragment.fill_bits, start, end: start + payload.len() };
         s.n_parts += 1;
         if s.n_parts == usize::from(s.count) {
-            let (n, used, fill_bits) = self.join(i);
+            let (n, count, used, fill_bits) = self.join(i);
             // Fragments' payloads are text, and joined whole.
             let text = core::str::from_utf8(&self.out_payload[..used]).unwrap_or_default();
-            done(Assembled { lines: &self.out_lines[..n], joined: Some((text, fill_bits)) });
+            let (lines, numbers) = (&self.out_lines[..n], &self.out_numbers[..n]);
+            done(Assembled { lines, numbers, count, joined: Some((text, fill_bits)) });
         }
     }
 
@@ -226,25 +269,27 @@ impl<const SLOTS: usize, const CAPACITY: usize> Assembler<SLOTS, CAPACITY> {
     }
 
     fn give_up(&mut self, slot: usize, done: &mut impl FnMut(Assembled<'_>)) {
-        let (n, _, _) = self.join(slot);
-        done(Assembled { lines: &self.out_lines[..n], joined: None });
+        let (n, count, _, _) = self.join(slot);
+        done(Assembled { lines: &self.out_lines[..n], numbers: &self.out_numbers[..n], count, joined: None });
     }
 
-    /// Frees the slot, its lines and payload put in fragment order into the output buffers: how
-    /// many lines, how many bytes of payload, and the last fragment's fill bits.
-    fn join(&mut self, slot: usize) -> (usize, usize, u8) {
+    /// Frees the slot, its lines, fragment numbers and payload put in fragment order into the
+    /// output buffers: how many lines, the fragment count, how many bytes of payload, and the last
+    /// fragment's fill bits.
+    fn join(&mut self, slot: usize) -> (usize, u8, usize, u8) {
         let s = &mut self.slots[slot];
         let parts = &mut s.parts[..s.n_parts];
         parts.sort_unstable_by_key(|p| p.number);
         let mut used = 0;
         for (k, part) in parts.iter().enumerate() {
             self.out_lines[k] = part.line;
+            self.out_numbers[k] = part.number;
             let len = part.end - part.start;
             self.out_payload[used..used + len].copy_from_slice(&s.payload[part.start..part.end]);
             used += len;
         }
-        s.count = 0;
-        (s.n_parts, used, parts.last().map_or(0, |p| p.fill_bits))
+        let count = core::mem::take(&mut s.count);
+        (s.n_parts, count, used, parts.last().map_or(0, |p| p.fill_bits))
     }
 }
 

@@ -4,14 +4,19 @@
 //!
 //! Same behaviour, byte for byte, as nmea-c and nmea-py; see docs/json.md. Input is bytes, split
 //! on LF with one CR before it dropped; a line over the limit is reported without being kept.
+//! decode and stream end a line's object with the AIS message it carries (decode: a message of
+//! one sentence; stream: also one joined across sentences, and an `incomplete_message` line after
+//! the line that gave a message up).
 
-use std::fmt;
+use std::fmt::{self, Write as _};
 use std::io::{self, BufRead, BufReader, BufWriter, Read, Write};
 use std::process::ExitCode;
 
-use nmeaspec::json::{write_decoded_with, write_encoded, Value, SKIP_CHECK_DEPTH};
+use nmeaspec::ais_messages::Message;
+use nmeaspec::assembly::Assembler;
+use nmeaspec::json::{write_encoded, Value, SKIP_CHECK_DEPTH};
 use nmeaspec::stream::{Framer, Item};
-use nmeaspec::{Error, Fix, FixAssembler, Options, MAX_LINE};
+use nmeaspec::{parse_with, Error, Fix, FixAssembler, Options, MAX_LINE};
 
 const USAGE: &str =
     "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] [--strict] | encode | fixes | --version\n       \
@@ -88,11 +93,69 @@ fn for_each_line(
     Ok(())
 }
 
+/// Adds the AIS message of a payload to a line's JSON object as its last member: `"ais"`, or
+/// `"ais_error"`, why no message decodes from it.
+fn add_message(json: &mut String, payload: &str, fill_bits: u8) -> fmt::Result {
+    json.pop(); // its closing brace
+    match Message::decode(payload.as_bytes(), fill_bits) {
+        Ok(message) => {
+            json.push_str(",\"ais\":");
+            message.write_json(json, fill_bits)?;
+        }
+        Err(err) => {
+            json.push_str(",\"ais_error\":");
+            err.write_json(json)?;
+        }
+    }
+    json.push('}');
+    Ok(())
+}
+
+/// Writes a line's JSON with the AIS message it carries (decode: `assembler` is `None`) or
+/// completes (stream); the errors of the messages it gives up go to `given_up`, a line each.
+fn write_line(
+    w: &mut String,
+    line: &[u8],
+    values: bool,
+    options: Options,
+    assembler: Option<&mut Assembler>,
+    given_up: &mut String,
+) -> fmt::Result {
+    let parsed = match parse_with(line, options) {
+        Ok(parsed) => parsed,
+        Err(err) => return err.write_json(w),
+    };
+    parsed.write_json(w, values)?;
+    let Some(fragment) = parsed.sentence.fragment() else {
+        return Ok(());
+    };
+    let Some(assembler) = assembler else {
+        return if fragment.count == 1 { add_message(w, fragment.payload, fragment.fill_bits) } else { Ok(()) };
+    };
+    let mut written = Ok(());
+    assembler.feed(Some(fragment), parsed.tag_blocks, |done| {
+        written = written.and(match done.joined {
+            Some((payload, fill_bits)) => add_message(w, payload, fill_bits),
+            None => incomplete(given_up, &done.incomplete_message()),
+        });
+    });
+    written
+}
+
+/// The error line of a message given up (`incomplete_message`).
+fn incomplete(out: &mut String, message: &dyn fmt::Display) -> fmt::Result {
+    writeln!(
+        out,
+        "{{\"ok\":false,\"error\":{{\"kind\":\"incomplete_message\",\"address\":\"AIS\",\"field\":null,\"name\":null,\"message\":\"{message}\"}}}}"
+    )
+}
+
 fn decode(values: bool, options: Options) -> io::Result<()> {
     let mut input = BufReader::with_capacity(BUFFER, io::stdin().lock());
     let mut out = Output::new(BufWriter::with_capacity(BUFFER, io::stdout().lock()));
+    let mut unused = String::new();
     for_each_line(&mut input, MAX_LINE, |line| match line {
-        Ok(line) => out.line(|w| write_decoded_with(w, line, values, options)),
+        Ok(line) => out.line(|w| write_line(w, line, values, options, None, &mut unused)),
         Err(length) => out.line(|w| Error::too_long(length).write_json(w)),
     })?;
     out.inner.flush()
@@ -103,9 +166,18 @@ fn stream(values: bool, options: Options) -> io::Result<()> {
     let mut out = Output::new(BufWriter::with_capacity(BUFFER, io::stdout().lock()));
     let mut framer = Framer::new();
     let mut chunk = vec![0u8; BUFFER];
-    let write = |out: &mut Output<_>, item: Item<'_>| match item {
-        Item::Line(line) => out.line(|w| write_decoded_with(w, line, values, options)),
-        Item::TooLong(length) => out.line(|w| Error::too_long(length).write_json(w)),
+    let mut assembler: Assembler = Assembler::new(100);
+    let mut given_up = String::new();
+    let mut write = |out: &mut Output<BufWriter<io::StdoutLock<'_>>>, item: Item<'_>| {
+        match item {
+            Item::Line(line) => {
+                out.line(|w| write_line(w, line, values, options, Some(&mut assembler), &mut given_up))?
+            }
+            Item::TooLong(length) => out.line(|w| Error::too_long(length).write_json(w))?,
+        }
+        out.inner.write_all(given_up.as_bytes())?;
+        given_up.clear();
+        Ok::<_, io::Error>(())
     };
     loop {
         let n = match input.read(&mut chunk) {
@@ -123,6 +195,11 @@ fn stream(values: bool, options: Options) -> io::Result<()> {
     if let Some(item) = framer.finish() {
         write(&mut out, item)?;
     }
+    given_up.clear();
+    let mut written = Ok(());
+    assembler.finish(|done| written = written.and(incomplete(&mut given_up, &done.incomplete_message())));
+    written.map_err(|_| io::Error::other("formatting failed"))?;
+    out.inner.write_all(given_up.as_bytes())?;
     out.inner.flush()
 }
 

@@ -87,5 +87,5 @@ fn messages_assemble_as_the_shared_cases_say() {
         assert_eq!(events, expected, "{record}");
         cases += 1;
     }
-    assert_eq!(cases, 13);
+    assert_eq!(cases, 15);
 }
