@@ -11,7 +11,8 @@ generated/c) it compiles nmea.c at -Os with -DNMEA_NO_JSON, with and without -DN
   (nmea_framer_feed) and nmea_parse adds to the same program without the library, both linked with
   -ffunction-sections -fdata-sections -Wl,--gc-sections (newlib-nano on Cortex-M4);
 - RAM: sizeof(nmea_framer) and sizeof(nmea_sentence) as the target's compiler lays them out;
-- the options a firmware sets for flash (-DNMEA_NO_PROBLEMS, -DNMEA_TERSE_ERRORS), each measured;
+- the options a firmware sets for flash (-DNMEA_NO_PROBLEMS, -DNMEA_TERSE_ERRORS,
+  -DNMEA_NO_TAG_BLOCKS), each measured and all together;
 - stack: the worst case of each entry point over the call graph that gcc writes with
   -fcallgraph-info=su (each function's frame from -fstack-usage), without the C library's
   leaf functions (memcpy, the 64-bit division helpers ...), which are named instead. A recursive
@@ -35,7 +36,8 @@ SUBSET = "GGA,RMC,GSV,GSA,VTG"
 SMALL = ["-DNMEA_NO_JSON", "-DNMEA_NO_FAST_PATH"]
 FAST = ["-DNMEA_NO_JSON"]
 # What a firmware short of flash sets besides SMALL, each measured on its own and all together.
-OPTIONS = [["-DNMEA_NO_PROBLEMS"], ["-DNMEA_TERSE_ERRORS"], ["-DNMEA_NO_PROBLEMS", "-DNMEA_TERSE_ERRORS"]]
+OPTIONS = [["-DNMEA_NO_PROBLEMS"], ["-DNMEA_TERSE_ERRORS"], ["-DNMEA_NO_TAG_BLOCKS"],
+           ["-DNMEA_NO_PROBLEMS", "-DNMEA_TERSE_ERRORS", "-DNMEA_NO_TAG_BLOCKS"]]
 SECTIONS = ["-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections"]
 CROSS_PACKAGES = "apt-get install gcc-arm-none-eabi libnewlib-arm-none-eabi"
 

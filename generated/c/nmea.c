@@ -63,6 +63,11 @@
 #define ERROR_TEXT(text) text
 #endif
 
+/* The tools' JSON carries a line's TAG blocks: a build without them has none. */
+#if defined(NMEA_NO_TAG_BLOCKS) && !defined(NMEA_NO_JSON)
+#error "NMEA_NO_TAG_BLOCKS needs NMEA_NO_JSON: the tools' JSON carries the TAG blocks it leaves out"
+#endif
+
 static const char HEX_UPPER[] = "0123456789ABCDEF";
 static const char HEX_LOWER[] = "0123456789abcdef";
 
@@ -951,7 +956,10 @@ static void write_generic(nmea_writer *w, const nmea_generic *g)
 /* TAG blocks (NMEA 0183 4.00, IEC 61162-450): `\code:value,...*hh\` before a sentence or on a
    line of their own. The blocks of a line are read (checked as the Python and Rust runtimes
    check them, with the same messages) and kept as their text, which the writer puts back as it
-   is; the codes the spec names and their value types are the generated nmea_tag_codes. */
+   is; the codes the spec names and their value types are the generated nmea_tag_codes. Left out
+   by -DNMEA_NO_TAG_BLOCKS. */
+
+#ifndef NMEA_NO_TAG_BLOCKS
 
 /* What a value of each type that has a form must look like (a text takes anything). */
 static const char *const TAG_FORMS[] = {[NMEA_TAG_INTEGER] = "digits", [NMEA_TAG_GROUP] = "n-m-id"};
@@ -1152,13 +1160,14 @@ size_t nmea_tag_write(const nmea_tag_param *params, size_t n, nmea_checksum_styl
         return tag_fail(err, ERROR_TEXT("TAG block parameter holds ',', '*' or a backslash"));
     return len;
 }
+#endif /* NMEA_NO_TAG_BLOCKS */
 
 /* ------------------------------------------------------------------------------------------ */
 /* The stream framer (nmea_framer): bytes as a serial port or socket delivers them, in chunks of
    any size, cut into lines at CR, LF, '$' and '!', an overlong line reported by its length. A
    '\' at the start of a line opens a TAG block, which keeps its sentence: up to the block's
    closing '\' every byte but CR and LF belongs to it, and a '$', '!' or '\' right after that
-   continues the line. */
+   continues the line (unless -DNMEA_NO_TAG_BLOCKS: a '\' is then a byte like any other). */
 
 /* The bytes that end a line (CR, LF), start a new one ('$', '!') or open or close a TAG block. */
 static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2, ['\\'] = 3};
@@ -1177,19 +1186,23 @@ void nmea_framer_init(nmea_framer *f)
    start of the next line; moves f->tag on. (No table: a firmware that feeds links none.) */
 static unsigned framer_step(nmea_framer *f, size_t length, char byte)
 {
-    unsigned kind = byte == '\r' || byte == '\n' ? 1 : byte == '$' || byte == '!' ? 2 : byte == '\\' ? 3 : 0;
-    if (f->tag == FRAMER_OUTSIDE) {
-        if (kind == 3 && length == 0)
-            f->tag = FRAMER_IN_TAG;
-        return kind == 3 || (kind == 2 && length == 0) ? 0 : kind;
+    unsigned kind = byte == '\r' || byte == '\n' ? 1 : byte == '$' || byte == '!' ? 2 : 0;
+#ifndef NMEA_NO_TAG_BLOCKS
+    if (f->tag != FRAMER_OUTSIDE) {
+        if (kind == 1)
+            return 1;
+        if (byte == '\\')
+            f->tag = f->tag == FRAMER_IN_TAG ? FRAMER_AFTER_TAG : FRAMER_IN_TAG;
+        else if (f->tag == FRAMER_AFTER_TAG)
+            f->tag = FRAMER_OUTSIDE; /* the sentence after the blocks, or whatever else follows */
+        return 0;
     }
-    if (kind == 1)
-        return 1;
-    if (kind == 3)
-        f->tag = f->tag == FRAMER_IN_TAG ? FRAMER_AFTER_TAG : FRAMER_IN_TAG;
-    else if (f->tag == FRAMER_AFTER_TAG)
-        f->tag = FRAMER_OUTSIDE; /* the sentence after the blocks, or whatever else follows */
-    return 0;
+    if (byte == '\\' && length == 0)
+        f->tag = FRAMER_IN_TAG;
+#else
+    (void)f;
+#endif
+    return kind == 2 && length == 0 ? 0 : kind;
 }
 
 /* The first byte from `p` on (the line holding `length` bytes before it) that ends the line or
@@ -4964,6 +4977,7 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
     return nmea_parse_ex(out, line, len, NULL, err);
 }
 
+#ifndef NMEA_NO_TAG_BLOCKS
 /* The TAG blocks a line starts with (`line` at its first '\\'), taken off the line: false with
    `err` for bad blocks; `*only` when the line is blocks alone, `out` then its sentence (a generic
    one with an empty start, address and fields). No callback: the stack stays bounded. */
@@ -4987,31 +5001,42 @@ static bool take_tag_blocks(nmea_sentence *out, const char **line, size_t *len, 
     *len -= blocks->len;
     return true;
 }
+#endif
 
-/* The fast path needs no options: what it reads has a checksum, and a line read without a
-   problem is read the same way leniently. */
+/* The sentence of a line (after its TAG blocks): the fast path, which needs no options (what it
+   reads has a checksum, and a line read without a problem is read the same way leniently), then
+   the general path. */
+static bool parse_sentence(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                           nmea_error *err)
+{
+#ifndef NMEA_NO_FAST_PATH
+    if (fast_parse(out, line, len))
+        return true;
+#endif
+    return parse_general(out, line, len, options, err);
+}
+
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
+#ifndef NMEA_NO_TAG_BLOCKS
     nmea_text blocks = nmea_text_of(NULL);
     bool only = false;
     len = without_line_ending(line, len);
     if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &blocks, &only, err) || only))
         return only;
-#ifndef NMEA_NO_FAST_PATH
-    if (fast_parse(out, line, len)) {
-        out->tag_blocks = blocks;
-        return true;
-    }
-#endif
-    if (!parse_general(out, line, len, options, err))
+    if (!parse_sentence(out, line, len, options, err))
         return false;
     out->tag_blocks = blocks;
     return true;
+#else
+    return parse_sentence(out, line, without_line_ending(line, len), options, err);
+#endif
 }
 
 #ifdef NMEA_TEST_HOOKS
 bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
+#ifndef NMEA_NO_TAG_BLOCKS
     nmea_text blocks = nmea_text_of(NULL);
     bool only = false;
     len = without_line_ending(line, len);
@@ -5021,6 +5046,9 @@ bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const 
         return false;
     out->tag_blocks = blocks;
     return true;
+#else
+    return parse_general(out, line, without_line_ending(line, len), options, err);
+#endif
 }
 #endif
 
@@ -5032,6 +5060,7 @@ static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
     return writer_finish(&w);
 }
 
+#ifndef NMEA_NO_TAG_BLOCKS
 /* A line of TAG blocks only (take_tag_blocks). */
 static bool tag_blocks_only(const nmea_sentence *s)
 {
@@ -5057,6 +5086,7 @@ static size_t serialize_tagged(const nmea_sentence *s, char *buf, size_t cap,
         buf[0] = 0;
     return 0;
 }
+#endif
 
 static size_t serialize_sentence(const nmea_sentence *s, char *buf, size_t cap)
 {
@@ -5070,13 +5100,21 @@ static size_t serialize_sentence(const nmea_sentence *s, char *buf, size_t cap)
 
 size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
 {
-    return s->tag_blocks.len ? serialize_tagged(s, buf, cap, serialize_sentence) : serialize_sentence(s, buf, cap);
+#ifndef NMEA_NO_TAG_BLOCKS
+    if (s->tag_blocks.len)
+        return serialize_tagged(s, buf, cap, serialize_sentence);
+#endif
+    return serialize_sentence(s, buf, cap);
 }
 
 #ifdef NMEA_TEST_HOOKS
 size_t nmea_serialize_general(const nmea_sentence *s, char *buf, size_t cap)
 {
-    return s->tag_blocks.len ? serialize_tagged(s, buf, cap, serialize_general) : serialize_general(s, buf, cap);
+#ifndef NMEA_NO_TAG_BLOCKS
+    if (s->tag_blocks.len)
+        return serialize_tagged(s, buf, cap, serialize_general);
+#endif
+    return serialize_general(s, buf, cap);
 }
 #endif
 
@@ -39908,6 +39946,7 @@ size_t nmea_build_pubx_utm(const nmea_pubx_utm *s, char *buf, size_t cap, nmea_e
 /* ------------------------------------------------------------------------------------------ */
 /* Dispatch */
 
+#ifndef NMEA_NO_TAG_BLOCKS
 /* The TAG block codes (spec/tag_block.yaml). */
 const nmea_tag_code nmea_tag_codes[] = {
     {"c", "time", "UNIX time", NMEA_TAG_INTEGER},
@@ -39919,6 +39958,7 @@ const nmea_tag_code nmea_tag_codes[] = {
     {"t", "text", "Text", NMEA_TAG_TEXT},
     {"i", "info", "Information", NMEA_TAG_TEXT},
 };
+#endif
 
 /* Every layout by its nmea_sentence_id (NULL: the generic sentence). */
 static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {

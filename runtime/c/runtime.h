@@ -357,11 +357,15 @@ bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out);
 /** At the end of the stream: the last line, when it had no line ending (true), else false. */
 bool nmea_framer_end(nmea_framer *f, nmea_framed *out);
 
+#ifndef NMEA_NO_TAG_BLOCKS
 /* ------------------------------------------------------------------------------------------ */
 /* TAG blocks (NMEA 0183 4.00, IEC 61162-450): `\g:1-2-73874,s:r003669945,c:1241544035*hh\` before
    a sentence or on a line of their own. A parsed line keeps the text of its blocks
    (nmea_sentence.tag_blocks, checked, pointing into the line), which nmea_serialize writes back
-   as it is; these functions read the parameters out of it and write a new block. */
+   as it is; these functions read the parameters out of it and write a new block. A firmware
+   whose receiver sends none builds with -DNMEA_NO_TAG_BLOCKS (and -DNMEA_NO_JSON): no reader,
+   writer nor nmea_sentence.tag_blocks, and a '\' is a byte like any other (a line that starts
+   with one is not_a_sentence). */
 
 /** The value types of the codes the spec names (spec/tag_block.yaml). */
 typedef enum {
@@ -405,6 +409,7 @@ const nmea_tag_code *nmea_tag_code_of(nmea_text code);
  */
 size_t nmea_tag_write(const nmea_tag_param *params, size_t n, nmea_checksum_style style, char *buf, size_t cap,
                       nmea_error *err);
+#endif /* NMEA_NO_TAG_BLOCKS */
 
 /**
  * A well-formed sentence the spec does not describe. `fields` is the raw text of all fields

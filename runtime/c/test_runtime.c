@@ -33,14 +33,18 @@ typedef enum { NMEA_SENTENCE_GENERIC = 0, NMEA_SENTENCE_TST, NMEA_SENTENCE_COUNT
 typedef struct {
     nmea_sentence_id id;
     const nmea_problems *problems;
+#ifndef NMEA_NO_TAG_BLOCKS
     nmea_text tag_blocks;
+#endif
     union {
         nmea_generic generic;
         nmea_tst tst;
     } as;
 } nmea_sentence;
+#ifndef NMEA_NO_TAG_BLOCKS
 #define NMEA_TAG_CODE_COUNT 3
 extern const nmea_tag_code nmea_tag_codes[];
+#endif
 #include "api.h"
 
 /* What nmea.c defines before the runtime. */
@@ -77,11 +81,13 @@ static bool nmea_parse_tst(nmea_tst *out, const char *line, size_t len, nmea_err
 
 static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {NULL, &tst_layout};
 
+#ifndef NMEA_NO_TAG_BLOCKS
 const nmea_tag_code nmea_tag_codes[] = {
     {"c", "time", "UNIX time", NMEA_TAG_INTEGER},
     {"g", "group", "Sentence grouping", NMEA_TAG_GROUP},
     {"s", "source", "Source", NMEA_TAG_TEXT},
 };
+#endif
 
 static const nmea_sentence_id STANDARD_1[] = {NMEA_SENTENCE_TST};
 static const nmea_layouts STANDARD[] = {{"TST", 3, "TST", STANDARD_1, 1}};
@@ -246,6 +252,15 @@ static void test_framer(void)
     }
 }
 
+/* nmea_parse's error for a line, its message as expected. */
+static bool refuses(const char *line, nmea_error_kind kind, const char *message)
+{
+    nmea_sentence s;
+    nmea_error err;
+    return !nmea_parse(&s, line, strlen(line), &err) && err.kind == kind && message_is(&err, message);
+}
+
+#ifndef NMEA_NO_TAG_BLOCKS
 /* A '\\' at the start of a line opens a TAG block, which keeps its sentence; one anywhere else is
    a byte of the line. */
 static void test_framer_tag_blocks(void)
@@ -260,14 +275,6 @@ static void test_framer_tag_blocks(void)
         size_t n = frame_all(stream, chunk, out, sizeof out);
         CHECK(n == strlen(expected) && memcmp(out, expected, n) == 0);
     }
-}
-
-/* nmea_parse's error for a line, its message as expected. */
-static bool refuses(const char *line, nmea_error_kind kind, const char *message)
-{
-    nmea_sentence s;
-    nmea_error err;
-    return !nmea_parse(&s, line, strlen(line), &err) && err.kind == kind && message_is(&err, message);
 }
 
 static void test_tag_blocks(void)
@@ -311,6 +318,23 @@ static void test_tag_blocks(void)
     CHECK(refuses("\\s:\x01*30\\", NMEA_ERR_NOT_A_SENTENCE, "byte 0x01 at offset 3 is not printable ASCII"));
     CHECK(refuses("\\s:x*31\\$GPTST,12,abc*28", NMEA_ERR_CHECKSUM_MISMATCH, "checksum is 28, computed 27"));
 }
+
+#else
+/* Without TAG blocks a '\\' is a byte like any other: the framer cuts no line around one and the
+   parser refuses a line that starts with one. */
+static void test_without_tag_blocks(void)
+{
+    static const char stream[] = "\\s:1*00\\$GPGGA,1*00\r\n$GPRMC\\x\\$GPGGA\n";
+    static const char expected[] = "\\s:1*00\\|$GPGGA,1*00|$GPRMC\\x\\|$GPGGA|";
+    char out[256];
+    size_t chunk;
+    for (chunk = 0; chunk <= sizeof stream; chunk++) {
+        size_t n = frame_all(stream, chunk, out, sizeof out);
+        CHECK(n == strlen(expected) && memcmp(out, expected, n) == 0);
+    }
+    CHECK(refuses("\\s:x*31\\$GPTST,12,abc*27", NMEA_ERR_NOT_A_SENTENCE, "line does not start with '$' or '!'"));
+}
+#endif
 
 static void test_numbers(void)
 {
@@ -492,8 +516,12 @@ int main(void)
     test_framing();
     test_error_kind_names();
     test_framer();
+#ifndef NMEA_NO_TAG_BLOCKS
     test_framer_tag_blocks();
     test_tag_blocks();
+#else
+    test_without_tag_blocks();
+#endif
     test_numbers();
     test_enums();
     test_layouts();

@@ -300,12 +300,14 @@ size_t nmea_build_pacmset(const nmea_pacmset *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* Dispatch */
 
+#ifndef NMEA_NO_TAG_BLOCKS
 /* The TAG block codes (spec/tag_block.yaml). */
 const nmea_tag_code nmea_tag_codes[] = {
     {"c", "time", "UNIX time", NMEA_TAG_INTEGER},
     {"g", "group", "Sentence grouping", NMEA_TAG_GROUP},
     {"s", "source", "Source", NMEA_TAG_TEXT},
 };
+#endif
 
 /* Every layout by its nmea_sentence_id (NULL: the generic sentence). */
 static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {
