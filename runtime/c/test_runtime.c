@@ -47,8 +47,14 @@ extern const nmea_tag_code nmea_tag_codes[];
 #endif
 #include "api.h"
 
-/* What nmea.c defines before the runtime. */
+/* What nmea.c defines before the runtime: the most wire fields of a layout, the ranges and what
+   the fields take by kind (layout_field indexes them). */
 #define NMEA_MAX_FIELDS 2
+static const nmea_range range_0_to_99 = {.has_min = true, .min = 0, .has_max = true, .max = 99};
+static const nmea_range *const FIELD_RANGES[] = {&range_0_to_99};
+static const nmea_enum_def *const FIELD_ENUMS[] = {NULL};
+static const char *const FIELD_WORDS[] = {NULL};
+static const char *const FIELD_EXPECTED[] = {"integer 0..99", "text of at most 8 characters"};
 
 /* The runtime's internals that only some specs use are unused here. */
 #if defined(__GNUC__)
@@ -61,11 +67,9 @@ extern const nmea_tag_code nmea_tag_codes[];
    for TST, without a fast path: the fast reader and writer leave every line to the general ones,
    which must then give the same results on their own. */
 
-static const nmea_range range_0_to_99 = {.has_min = true, .min = 0, .has_max = true, .max = 99};
-
 static const layout_field tst_fields[] = {
-    {"count", "integer 0..99", &range_0_to_99, offsetof(nmea_tst, count), FIELD_INTEGER, 1, 0},
-    {"name", "text of at most 8 characters", NULL, offsetof(nmea_tst, name), FIELD_TEXT, 1, 8},
+    {offsetof(nmea_tst, count), 0, FIELD_INTEGER, 0, FIELD_NAMES(0, "count")},
+    {offsetof(nmea_tst, name), NO_ARG, FIELD_TEXT, 8, FIELD_NAMES(1, "name")},
 };
 
 static const layout tst_layout = {
