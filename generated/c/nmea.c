@@ -2491,7 +2491,7 @@ static size_t take_digits(const char **p, const char *end, int64_t *value, size_
     return room;
 }
 
-/* [+-]digits[.digits] (no point for an integer), at most NMEA_MAX_DIGITS digits. */
+/* [+-]digits[.digits] (no point for an integer), at most NMEA_NUMBER_DIGITS digits. */
 static bool parse_number(nmea_text t, bool integer, nmea_number *out)
 {
     const char *p = t.ptr, *end = t.ptr + t.len;
@@ -2502,15 +2502,15 @@ static bool parse_number(nmea_text t, bool integer, nmea_number *out)
 
     if (p < end && (*p == '+' || *p == '-'))
         sign = *p++;
-    whole = take_digits(&p, end, &digits, NMEA_MAX_DIGITS);
+    whole = take_digits(&p, end, &digits, NMEA_NUMBER_DIGITS);
     if (p < end && *p == '.' && !integer) {
         point = true;
         p++;
-        frac = take_digits(&p, end, &digits, NMEA_MAX_DIGITS - whole);
+        frac = take_digits(&p, end, &digits, NMEA_NUMBER_DIGITS - whole);
     }
     if (p != end || whole + frac == 0)
         return false;
-    out->digits = digits;
+    out->digits = (nmea_digits)digits;
     out->scale = (uint8_t)frac;
     out->width = (uint8_t)whole;
     out->sign = sign;
@@ -2579,7 +2579,7 @@ nmea_number nmea_number_of(int64_t value, unsigned scale)
     if (scale > NMEA_MAX_DIGITS)
         scale = NMEA_MAX_DIGITS;
     whole = magnitude / (uint64_t)POW10[scale];
-    n.digits = (int64_t)magnitude;
+    n.digits = (nmea_digits)magnitude;
     n.scale = (uint8_t)scale;
     for (n.width = 1; whole >= 10; whole /= 10)
         n.width++;
@@ -2683,13 +2683,13 @@ static bool parse_date(nmea_text t, nmea_date *out)
 NMEA_HOT bool coordinate_of(uint64_t whole_value, size_t whole, uint64_t minutes, size_t frac, bool point,
                             unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
 {
-    if (whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_MAX_DIGITS - 2)
+    if (whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_NUMBER_DIGITS - 2)
         return false;
     if ((uint32_t)whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
         return false;
     out->degrees = (uint16_t)((uint32_t)whole_value / 100); /* whole <= 5 digits: no 64-bit division */
     out->degree_digits = (uint8_t)(whole - 2);
-    out->minutes.digits = (int64_t)minutes;
+    out->minutes.digits = (nmea_digits)minutes;
     out->minutes.scale = (uint8_t)frac;
     out->minutes.width = 2;
     out->minutes.sign = 0;
@@ -3018,7 +3018,7 @@ NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const char *name, c
 }
 
 /* The common case of read_number, in the one pass that finds the end of the field: an empty
-   field, or digits with (`integer` false) at most one point, NMEA_MAX_DIGITS digits in all, in
+   field, or digits with (`integer` false) at most one point, NMEA_NUMBER_DIGITS digits in all, in
    `range`. Anything else (a sign, more digits, not a number, out of range, a field at fault
    in a second reading) is left to read_number: returns false without having read it. */
 NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
@@ -3038,10 +3038,10 @@ NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *r
         for (point = p++; p < end && (digit = (unsigned)(unsigned char)*p - '0') < 10; p++)
             digits = digits * 10 + digit;
     count = (size_t)(p - r->next) - (point != NULL); /* digits before and after the point */
-    if ((p < end && *p != r->sep) || count > NMEA_MAX_DIGITS || (point && count == 0))
+    if ((p < end && *p != r->sep) || count > NMEA_NUMBER_DIGITS || (point && count == 0))
         return false;
     if (count) {
-        n.digits = (int64_t)digits;
+        n.digits = (nmea_digits)digits;
         n.scale = (uint8_t)(count - whole);
         n.width = (uint8_t)whole;
         n.sign = 0;
@@ -3278,7 +3278,7 @@ NMEA_HOT bool fast_printable_span(const char **p, nmea_text *out)
 }
 
 /* An integer or decimal field in one pass: empty, or an optional '-', digits and (`integer`
-   false) at most one point, NMEA_MAX_DIGITS digits in all, in `range`. This general form takes
+   false) at most one point, NMEA_NUMBER_DIGITS digits in all, in `range`. This general form takes
    the fields fast_number leaves to it: a sign, or a point first. Returns where the next field
    starts, or NULL. (Not a pointer to the caller's position: that would keep it out of a
    register in every field's reader.) */
@@ -3299,10 +3299,10 @@ NMEA_RARE const char *fast_signed_number(const char *q, nmea_number *out, const 
         for (point = q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
             digits = digits * 10 + digit;
     count = (size_t)(q - digits_start) - (point != NULL);
-    if ((*q != ',' && *q != '*') || count > NMEA_MAX_DIGITS || (count == 0 && (point || n.sign)))
+    if ((*q != ',' && *q != '*') || count > NMEA_NUMBER_DIGITS || (count == 0 && (point || n.sign)))
         return NULL;
     if (count) {
-        n.digits = (int64_t)digits;
+        n.digits = (nmea_digits)digits;
         n.scale = (uint8_t)(count - whole);
         n.width = (uint8_t)whole;
         n.point = point != NULL;
@@ -3342,9 +3342,9 @@ NMEA_HOT bool fast_number(const char **p, nmea_number *out, const nmea_range *ra
             digits = digits * 10 + digit;
         count = (size_t)(q - start) - 1;
     }
-    if ((*q != ',' && *q != '*') || count > NMEA_MAX_DIGITS)
+    if ((*q != ',' && *q != '*') || count > NMEA_NUMBER_DIGITS)
         return false;
-    n.digits = (int64_t)digits;
+    n.digits = (nmea_digits)digits;
     n.scale = (uint8_t)(count - whole);
     n.width = (uint8_t)whole;
     n.sign = 0;

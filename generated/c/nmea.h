@@ -89,8 +89,22 @@ extern "C" {
 #define NMEA_MAX_LINE 1024
 #endif
 
-/** Most digits a number may have (it is held in a signed 64-bit integer). */
+/** Most digits a number's text may have (a TAG block's integer too). */
 #define NMEA_MAX_DIGITS 18
+
+/**
+ * The digits of a number field (nmea_number.digits) and how many it holds: NMEA_MAX_DIGITS in a
+ * signed 64-bit integer; with -DNMEA_DIGITS_32 (a firmware short of RAM: 12-byte numbers, not 16)
+ * 9 in a 32-bit one, and a number field of more digits is then refused as a bad field, as one of
+ * more than 18 is by default.
+ */
+#ifdef NMEA_DIGITS_32
+typedef int32_t nmea_digits;
+#define NMEA_NUMBER_DIGITS 9
+#else
+typedef int64_t nmea_digits;
+#define NMEA_NUMBER_DIGITS NMEA_MAX_DIGITS
+#endif
 
 /** A run of bytes that belongs to someone else (usually the parsed line). */
 typedef struct {
@@ -116,7 +130,7 @@ typedef enum {
  * the exact text for the round trip: "-007.50" is {750, 2, 3, '-', true}.
  */
 typedef struct {
-    int64_t digits;
+    nmea_digits digits;
     uint8_t scale;
     uint8_t width;
     char sign;
@@ -130,7 +144,7 @@ int64_t nmea_number_scaled(const nmea_number *n, unsigned scale);
 
 /** The number value * 10^-scale written the plain way (no leading zeros, no '+', `scale`
     decimals), for a struct to build: nmea_number_of(1201, 0) is "1201", (-5, 1) is "-0.5".
-    `scale` is at most NMEA_MAX_DIGITS. */
+    `scale` is at most NMEA_MAX_DIGITS, `value` of at most NMEA_NUMBER_DIGITS digits. */
 nmea_number nmea_number_of(int64_t value, unsigned scale);
 
 /** An inclusive value range (integer and decimal fields, table parameters): min * 10^-min_scale

@@ -340,6 +340,24 @@ static void test_without_tag_blocks(void)
 }
 #endif
 
+/* A number field holds NMEA_NUMBER_DIGITS digits (9 with -DNMEA_DIGITS_32): one more is no number
+   of its type (not a number out of its range), in the general reading and in the quick one. */
+static void test_number_digits(void)
+{
+    char line[32] = "$GPTST,";
+    nmea_sentence s;
+    nmea_error err;
+    nmea_number n;
+    memset(line + 7, '9', NMEA_NUMBER_DIGITS + 1);
+    CHECK(parse_number(text_span(line + 7, line + 7 + NMEA_NUMBER_DIGITS), true, &n));
+    CHECK(n.digits == POW10[NMEA_NUMBER_DIGITS] - 1);
+    CHECK(!parse_number(text_span(line + 7, line + 8 + NMEA_NUMBER_DIGITS), true, &n));
+    memcpy(line + 8 + NMEA_NUMBER_DIGITS, ",x", 3);
+    CHECK(!nmea_parse(&s, line, strlen(line), &err) && err.kind == NMEA_ERR_BAD_FIELD && !err.out_of_range);
+    memmove(line + 7, line + 8, strlen(line + 8) + 1);
+    CHECK(nmea_parse(&s, line, strlen(line), &err) && s.as.tst.count.digits == POW10[NMEA_NUMBER_DIGITS] - 1);
+}
+
 static void test_numbers(void)
 {
     /* compare_fixed without a division: by scale, and past 2^64 on the way to one scale */
@@ -354,6 +372,7 @@ static void test_numbers(void)
     CHECK(nmea_number_scaled(&n, 1) == -5 && nmea_number_scaled(&n, 3) == -500);
     n = nmea_number_of(1201, 0);
     CHECK(nmea_number_scaled(&n, 0) == 1201 && nmea_number_scaled(&n, 2) == 120100);
+    test_number_digits();
 }
 
 static const nmea_enum_code status_codes[] = {{"A", "valid"}, {"V", "invalid"}};
