@@ -33,8 +33,8 @@
  * and writing about 1.5 to 2 times slower. A firmware short of flash also sets -DNMEA_NO_JSON,
  * -DNMEA_TERSE_ERRORS (errors without their texts: kind, address and wire field),
  * -DNMEA_NO_PROBLEMS (strict reading only) and -DNMEA_NO_TAG_BLOCKS (no TAG blocks: its receiver
- * sends none), and NMEA_MAX_LINE to the longest line it expects; it feeds the framer byte by
- * byte with nmea_framer_feed.
+ * sends none), for RAM -DNMEA_DIGITS_32 (numbers of at most 9 digits) and NMEA_MAX_LINE to the
+ * longest line it expects; it feeds the framer byte by byte with nmea_framer_feed.
  */
 #ifndef NMEA_H
 #define NMEA_H
