@@ -103,7 +103,7 @@ test-runtimes: $(STAMP)
 	@mkdir -p build/c
 	$(CC) $(SANITIZE) -o build/c/test_runtime runtime/c/test_runtime.c
 	build/c/test_runtime
-	$(CC) $(CFLAGS) -DNMEA_NO_JSON -o build/c/test_runtime_small runtime/c/test_runtime.c
+	$(CC) $(CFLAGS) -DNMEA_NO_JSON -DNMEA_NO_TAG_BLOCKS -DNMEA_DIGITS_32 -o build/c/test_runtime_small runtime/c/test_runtime.c
 	build/c/test_runtime_small
 	cargo test --quiet --manifest-path runtime/rust/Cargo.toml --features time,chrono --target-dir $(CARGO_TARGET)
 	cargo test --quiet --manifest-path runtime/rust/Cargo.toml --no-default-features --target-dir $(CARGO_TARGET)
@@ -153,7 +153,7 @@ build/c/test_examples_general: $(C_PAIR) generated/c/tests/test_examples.c
 	$(CC) $(CFLAGS) -O0 -DNMEA_NO_FAST_PATH -o $@ generated/c/nmea.c generated/c/tests/test_examples.c
 
 # The smallest build must compile without a warning too (every option a firmware sets for flash).
-SMALLEST := -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -DNMEA_NO_PROBLEMS -DNMEA_TERSE_ERRORS
+SMALLEST := -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -DNMEA_NO_PROBLEMS -DNMEA_TERSE_ERRORS -DNMEA_NO_TAG_BLOCKS -DNMEA_DIGITS_32
 build/c/nmea-small.o: $(C_PAIR)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -O0 $(SMALLEST) -c -o $@ generated/c/nmea.c

@@ -132,8 +132,6 @@ def c_arg(word: str, f: Field, ranges: Ranges) -> str:
         return ranges.ref(f)
     if word == "word":
         return c_str(f.value or "")
-    if word == "hemisphere":
-        return error_text(f.field_type.hemisphere_expected)
     if word == "table":
         assert f.enum is not None
         return f"&{enum_def(f.enum)}"
@@ -141,19 +139,47 @@ def c_arg(word: str, f: Field, ranges: Ranges) -> str:
     return str(f.max_length or 0)
 
 
-def field_arg(f: Field, ranges: Ranges) -> str:
-    """The `arg` of a field's layout_field: its range, enum table, word, or what its hemisphere
-    takes (its max_length has a place of its own)."""
-    args = [c_arg(word, f, ranges) for word in f.field_type.args if word != "max_length"]
-    return args[0] if args else "NULL"
+class FieldArgs:
+    """What the fields of the generated layouts take besides their type, kind by kind, each once:
+    the tables layout_field indexes (FIELD_RANGES, FIELD_ENUMS, FIELD_WORDS and FIELD_EXPECTED of
+    runtime/c/layout.c), so that a subset holds only what its own fields take."""
+
+    def __init__(self, ranges: Ranges) -> None:
+        self.ranges = ranges
+        self.kinds: dict[str, dict[str, int]] = {"range": {}, "table": {}, "word": {}, "expected": {}}
+
+    def _index(self, kind: str, ref: str) -> int:
+        return self.kinds[kind].setdefault(ref, len(self.kinds[kind]))
+
+    def arg(self, f: Field) -> str:
+        """The layout_field.arg of `f`: its index in the table of its kind, or NO_ARG."""
+        if "hemisphere" in f.field_type.args:
+            return str(self.expected(f.field_type.hemisphere_expected))
+        kind = next((word for word in f.field_type.args if word in ("range", "table", "word")), None)
+        ref = c_arg(kind, f, self.ranges) if kind else "NULL"
+        return "NO_ARG" if ref == "NULL" else str(self._index(kind, ref))  # NULL: a number of any value
+
+    def expected(self, text: str) -> int:
+        """The index of an error's `text` (what a field takes) in FIELD_EXPECTED."""
+        return self._index("expected", c_str(text))
+
+    def tables(self) -> list[dict]:
+        """The tables as nmea.c defines them: name, element type and entries in index order, and
+        whether only errors read them (-DNMEA_TERSE_ERRORS leaves those out)."""
+        return [{"name": name, "type": c_type, "entries": list(self.kinds[kind]), "errors": kind == "expected"}
+                for kind, name, c_type in (("range", "FIELD_RANGES", "nmea_range"),
+                                           ("table", "FIELD_ENUMS", "nmea_enum_def"), ("word", "FIELD_WORDS", "char"),
+                                           ("expected", "FIELD_EXPECTED", "char"))]
 
 
-def field_init(f: Field, owner: str | None, ranges: Ranges) -> str:
+def field_init(f: Field, owner: str | None, args: FieldArgs) -> str:
     """The layout_field initializer of `f`, a member of struct `owner` (None: stored at offset 0,
-    the value of a single-field group)."""
+    the value of a single-field group); its last members, the texts of its errors, in FIELD_NAMES,
+    which -DNMEA_TERSE_ERRORS leaves out."""
     offset = f"offsetof({owner}, {member(f.id)})" if owner and f.field_type.c_type else "0"
-    return (f"{{{error_text(f.id)}, {error_text(f.expected)}, {field_arg(f, ranges)}, {offset}, FIELD_{f.type.upper()}, "
-            f"{f.wire_width}, {f.max_length or 0}}}")
+    assert (f.max_length or 0) < 256, f"{f.id}: layout_field.max_length is a byte"
+    return (f"{{{offset}, {args.arg(f)}, FIELD_{f.type.upper()}, {f.max_length or 0}, "
+            f"FIELD_NAMES({args.expected(f.expected)}, {c_str(f.id)})}}")
 
 
 def fast_call(f: Field, target: str, ranges: Ranges) -> str:
@@ -195,7 +221,7 @@ def member_doc(f: Field) -> list[str]:
 # Layout views
 
 
-def field_view(f: Field, base: str, ranges: Ranges, owner: str | None) -> dict:
+def field_view(f: Field, base: str, args: FieldArgs, owner: str | None) -> dict:
     """A field of struct `owner` (None: the value of a single-field group), read and written on
     the fast path through `base` ("s->", "e->" or the entry itself)."""
     target = f"{base}{member(f.id)}" if base.endswith(("->", ".")) else base
@@ -205,8 +231,9 @@ def field_view(f: Field, base: str, ranges: Ranges, owner: str | None) -> dict:
         "member": member(f.id) if stored else None,
         "type": f.field_type.c_type,
         "doc": member_doc(f) if stored else [],
-        "init": field_init(f, owner, ranges),
-        "fast": fast_call(f, target, ranges),
+        "init": field_init(f, owner, args),
+        "takes": c_comment(f.expected),
+        "fast": fast_call(f, target, args.ranges),
         "fast_put": fast_put_call(f, target),
     }
 
@@ -227,7 +254,7 @@ def optional_count_expr(widths: list[int]) -> str:
     return f"(uint8_t)({expr})"
 
 
-def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
+def layout_view(sentence: Sentence, layout: Layout, args: FieldArgs) -> dict:
     snake = sentence.layout_snake(layout)
     group = layout.group
     kind = sentence.wire_kind
@@ -239,7 +266,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         if isinstance(item, Group):
             seen_group = True
             continue
-        view = field_view(item, "s->", ranges, f"nmea_{snake}")
+        view = field_view(item, "s->", args, f"nmea_{snake}")
         if item.is_optional:
             optional.append(view)
         elif seen_group:
@@ -255,9 +282,9 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         single = group.single
         etype = entry_type(sentence, layout, group)
         if single:
-            fields = [field_view(group.fields[0], "value", ranges, None)]
+            fields = [field_view(group.fields[0], "value", args, None)]
         else:
-            fields = [field_view(f, "e->", ranges, etype) for f in group.fields]
+            fields = [field_view(f, "e->", args, etype) for f in group.fields]
         stored = [v for v in fields if v["member"] is not None]
         value_type = (group.fields[0].field_type.c_type if single else etype) if stored else None
         name = member(group.id)
@@ -674,7 +701,8 @@ TAG_TYPES = {"integer": "NMEA_TAG_INTEGER", "group": "NMEA_TAG_GROUP", "text": "
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     ranges = Ranges()
-    views = [layout_view(s, lay, ranges) for s in spec.sentences for lay in s.layouts]
+    args = FieldArgs(ranges)
+    views = [layout_view(s, lay, args) for s in spec.sentences for lay in s.layouts]
     enums = [enum_view(e) for e in spec.enums]
     bitfields = [bitfield_view(b) for b in spec.bitfields]
     tables = [table_view(t) for t in spec.tables]
@@ -692,6 +720,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     context = {
         "shadowing_talker_like": bool(shadowing),
         "enums": enums, "layouts": views, "sentences": sentences, "ranges": ranges.all,
+        "field_args": args.tables(),
         "bitfields": bitfields, "tables": tables, "dispatch": dispatch,
         "hashes": {name: perfect_hash([int(e["code"], 16) for e in dispatch[name]])
                    for name in ("standard", "encapsulated") if dispatch[name]},

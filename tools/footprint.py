@@ -11,7 +11,8 @@ generated/c) it compiles nmea.c at -Os with -DNMEA_NO_JSON, with and without -DN
   (nmea_framer_feed) and nmea_parse adds to the same program without the library, both linked with
   -ffunction-sections -fdata-sections -Wl,--gc-sections (newlib-nano on Cortex-M4);
 - RAM: sizeof(nmea_framer) and sizeof(nmea_sentence) as the target's compiler lays them out;
-- the options a firmware sets for flash (-DNMEA_NO_PROBLEMS, -DNMEA_TERSE_ERRORS), each measured;
+- the options a firmware sets for flash and RAM (-DNMEA_NO_PROBLEMS, -DNMEA_TERSE_ERRORS,
+  -DNMEA_NO_TAG_BLOCKS, -DNMEA_DIGITS_32), each measured and all together;
 - stack: the worst case of each entry point over the call graph that gcc writes with
   -fcallgraph-info=su (each function's frame from -fstack-usage), without the C library's
   leaf functions (memcpy, the 64-bit division helpers ...), which are named instead. A recursive
@@ -35,7 +36,8 @@ SUBSET = "GGA,RMC,GSV,GSA,VTG"
 SMALL = ["-DNMEA_NO_JSON", "-DNMEA_NO_FAST_PATH"]
 FAST = ["-DNMEA_NO_JSON"]
 # What a firmware short of flash sets besides SMALL, each measured on its own and all together.
-OPTIONS = [["-DNMEA_NO_PROBLEMS"], ["-DNMEA_TERSE_ERRORS"], ["-DNMEA_NO_PROBLEMS", "-DNMEA_TERSE_ERRORS"]]
+OPTIONS = [["-DNMEA_NO_PROBLEMS"], ["-DNMEA_TERSE_ERRORS"], ["-DNMEA_NO_TAG_BLOCKS"], ["-DNMEA_DIGITS_32"],
+           ["-DNMEA_NO_PROBLEMS", "-DNMEA_TERSE_ERRORS", "-DNMEA_NO_TAG_BLOCKS", "-DNMEA_DIGITS_32"]]
 SECTIONS = ["-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections"]
 CROSS_PACKAGES = "apt-get install gcc-arm-none-eabi libnewlib-arm-none-eabi"
 
@@ -130,11 +132,11 @@ def firmware_size(target: Target, source: Path, flags: list[str], work: Path) ->
     return sizes[0] - sizes[1]
 
 
-def ram_sizes(target: Target, source: Path, work: Path) -> dict[str, int]:
+def ram_sizes(target: Target, source: Path, work: Path, flags: list[str]) -> dict[str, int]:
     """sizeof(nmea_framer) and sizeof(nmea_sentence) on the target, from a probe object's symbols."""
     (work / "probe.c").write_text(PROBE, encoding="utf-8")
     obj = work / "probe.o"
-    run(*target.cc, "-std=c99", *target.cflags, "-fno-common", "-I", source, "-c", "-o", obj, work / "probe.c")
+    run(*target.cc, "-std=c99", *target.cflags, *flags, "-fno-common", "-I", source, "-c", "-o", obj, work / "probe.c")
     sizes = {}
     for line in run(f"{target.tools_prefix}nm", "-S", obj).splitlines():
         _, size, _, name = line.split()
@@ -250,20 +252,22 @@ def main() -> int:
                 fast = text_and_data(target, compile_object(target, source, FAST, work))
                 linked_small = firmware_size(target, source, SMALL, work)
                 linked_fast = firmware_size(target, source, FAST, work)
-                ram = ram_sizes(target, source, work)
+                ram = ram_sizes(target, source, work, SMALL)
                 entry = stacks(target, source, SMALL, work)
                 print(f"| {target.name}, {name} | {small:,} | {fast:,} | {linked_small:,} | {linked_fast:,} "
                       f"| {ram['framer']:,} | {ram['sentence']:,} | {shown(entry['nmea_parse'])} |")
                 if source == sources[builds[0][0]]:
                     details.append((target, source))
-        print(f"\nThe options a firmware sets for flash, {builds[0][0]}, linked (no fast path, -DNMEA_NO_JSON) and "
-              "the stack of nmea_parse:")
-        print("\n| options | " + " | ".join(f"{t.name} linked | {t.name} stack" for t, _ in details) + " |")
-        print("| --- |" + " ---: | ---: |" * len(details))
+        print(f"\nThe options a firmware sets, {builds[0][0]}, linked (no fast path, -DNMEA_NO_JSON), "
+              "nmea_sentence and the stack of nmea_parse:")
+        print("\n| options | " + " | ".join(f"{t.name} linked | {t.name} nmea_sentence | {t.name} stack"
+                                           for t, _ in details) + " |")
+        print("| --- |" + " ---: | ---: | ---: |" * len(details))
         for option in [[], *OPTIONS]:
             cells = []
             for target, source in details:
                 cells.append(f"{firmware_size(target, source, [*SMALL, *option], work):,}")
+                cells.append(f"{ram_sizes(target, source, work, [*SMALL, *option])['sentence']:,}")
                 cells.append(shown(stacks(target, source, [*SMALL, *option], work)["nmea_parse"]))
             print(f"| {' '.join(option) or '(none)'} | {' | '.join(cells)} |")
         for target, source in details:

@@ -7,6 +7,7 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
     return nmea_parse_ex(out, line, len, NULL, err);
 }
 
+#ifndef NMEA_NO_TAG_BLOCKS
 /* The TAG blocks a line starts with (`line` at its first '\\'), taken off the line: false with
    `err` for bad blocks; `*only` when the line is blocks alone, `out` then its sentence (a generic
    one with an empty start, address and fields). No callback: the stack stays bounded. */
@@ -30,31 +31,42 @@ static bool take_tag_blocks(nmea_sentence *out, const char **line, size_t *len, 
     *len -= blocks->len;
     return true;
 }
+#endif
 
-/* The fast path needs no options: what it reads has a checksum, and a line read without a
-   problem is read the same way leniently. */
+/* The sentence of a line (after its TAG blocks): the fast path, which needs no options (what it
+   reads has a checksum, and a line read without a problem is read the same way leniently), then
+   the general path. */
+static bool parse_sentence(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                           nmea_error *err)
+{
+#ifndef NMEA_NO_FAST_PATH
+    if (fast_parse(out, line, len))
+        return true;
+#endif
+    return parse_general(out, line, len, options, err);
+}
+
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
+#ifndef NMEA_NO_TAG_BLOCKS
     nmea_text blocks = nmea_text_of(NULL);
     bool only = false;
     len = without_line_ending(line, len);
     if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &blocks, &only, err) || only))
         return only;
-#ifndef NMEA_NO_FAST_PATH
-    if (fast_parse(out, line, len)) {
-        out->tag_blocks = blocks;
-        return true;
-    }
-#endif
-    if (!parse_general(out, line, len, options, err))
+    if (!parse_sentence(out, line, len, options, err))
         return false;
     out->tag_blocks = blocks;
     return true;
+#else
+    return parse_sentence(out, line, without_line_ending(line, len), options, err);
+#endif
 }
 
 #ifdef NMEA_TEST_HOOKS
 bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
+#ifndef NMEA_NO_TAG_BLOCKS
     nmea_text blocks = nmea_text_of(NULL);
     bool only = false;
     len = without_line_ending(line, len);
@@ -64,6 +76,9 @@ bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const 
         return false;
     out->tag_blocks = blocks;
     return true;
+#else
+    return parse_general(out, line, without_line_ending(line, len), options, err);
+#endif
 }
 #endif
 
@@ -75,6 +90,7 @@ static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
     return writer_finish(&w);
 }
 
+#ifndef NMEA_NO_TAG_BLOCKS
 /* A line of TAG blocks only (take_tag_blocks). */
 static bool tag_blocks_only(const nmea_sentence *s)
 {
@@ -100,6 +116,7 @@ static size_t serialize_tagged(const nmea_sentence *s, char *buf, size_t cap,
         buf[0] = 0;
     return 0;
 }
+#endif
 
 static size_t serialize_sentence(const nmea_sentence *s, char *buf, size_t cap)
 {
@@ -113,13 +130,21 @@ static size_t serialize_sentence(const nmea_sentence *s, char *buf, size_t cap)
 
 size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
 {
-    return s->tag_blocks.len ? serialize_tagged(s, buf, cap, serialize_sentence) : serialize_sentence(s, buf, cap);
+#ifndef NMEA_NO_TAG_BLOCKS
+    if (s->tag_blocks.len)
+        return serialize_tagged(s, buf, cap, serialize_sentence);
+#endif
+    return serialize_sentence(s, buf, cap);
 }
 
 #ifdef NMEA_TEST_HOOKS
 size_t nmea_serialize_general(const nmea_sentence *s, char *buf, size_t cap)
 {
-    return s->tag_blocks.len ? serialize_tagged(s, buf, cap, serialize_general) : serialize_general(s, buf, cap);
+#ifndef NMEA_NO_TAG_BLOCKS
+    if (s->tag_blocks.len)
+        return serialize_tagged(s, buf, cap, serialize_general);
+#endif
+    return serialize_general(s, buf, cap);
 }
 #endif
 

@@ -35,6 +35,11 @@
 #define ERROR_TEXT(text) text
 #endif
 
+/* The tools' JSON carries a line's TAG blocks: a build without them has none. */
+#if defined(NMEA_NO_TAG_BLOCKS) && !defined(NMEA_NO_JSON)
+#error "NMEA_NO_TAG_BLOCKS needs NMEA_NO_JSON: the tools' JSON carries the TAG blocks it leaves out"
+#endif
+
 static const char HEX_UPPER[] = "0123456789ABCDEF";
 static const char HEX_LOWER[] = "0123456789abcdef";
 

@@ -80,7 +80,7 @@ NMEA_HOT bool fast_printable_span(const char **p, nmea_text *out)
 }
 
 /* An integer or decimal field in one pass: empty, or an optional '-', digits and (`integer`
-   false) at most one point, NMEA_MAX_DIGITS digits in all, in `range`. This general form takes
+   false) at most one point, NMEA_NUMBER_DIGITS digits in all, in `range`. This general form takes
    the fields fast_number leaves to it: a sign, or a point first. Returns where the next field
    starts, or NULL. (Not a pointer to the caller's position: that would keep it out of a
    register in every field's reader.) */
@@ -101,10 +101,10 @@ NMEA_RARE const char *fast_signed_number(const char *q, nmea_number *out, const 
         for (point = q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
             digits = digits * 10 + digit;
     count = (size_t)(q - digits_start) - (point != NULL);
-    if ((*q != ',' && *q != '*') || count > NMEA_MAX_DIGITS || (count == 0 && (point || n.sign)))
+    if ((*q != ',' && *q != '*') || count > NMEA_NUMBER_DIGITS || (count == 0 && (point || n.sign)))
         return NULL;
     if (count) {
-        n.digits = (int64_t)digits;
+        n.digits = (nmea_digits)digits;
         n.scale = (uint8_t)(count - whole);
         n.width = (uint8_t)whole;
         n.point = point != NULL;
@@ -144,9 +144,9 @@ NMEA_HOT bool fast_number(const char **p, nmea_number *out, const nmea_range *ra
             digits = digits * 10 + digit;
         count = (size_t)(q - start) - 1;
     }
-    if ((*q != ',' && *q != '*') || count > NMEA_MAX_DIGITS)
+    if ((*q != ',' && *q != '*') || count > NMEA_NUMBER_DIGITS)
         return false;
-    n.digits = (int64_t)digits;
+    n.digits = (nmea_digits)digits;
     n.scale = (uint8_t)(count - whole);
     n.width = (uint8_t)whole;
     n.sign = 0;

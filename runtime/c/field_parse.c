@@ -14,7 +14,7 @@ static size_t take_digits(const char **p, const char *end, int64_t *value, size_
     return room;
 }
 
-/* [+-]digits[.digits] (no point for an integer), at most NMEA_MAX_DIGITS digits. */
+/* [+-]digits[.digits] (no point for an integer), at most NMEA_NUMBER_DIGITS digits. */
 static bool parse_number(nmea_text t, bool integer, nmea_number *out)
 {
     const char *p = t.ptr, *end = t.ptr + t.len;
@@ -25,15 +25,15 @@ static bool parse_number(nmea_text t, bool integer, nmea_number *out)
 
     if (p < end && (*p == '+' || *p == '-'))
         sign = *p++;
-    whole = take_digits(&p, end, &digits, NMEA_MAX_DIGITS);
+    whole = take_digits(&p, end, &digits, NMEA_NUMBER_DIGITS);
     if (p < end && *p == '.' && !integer) {
         point = true;
         p++;
-        frac = take_digits(&p, end, &digits, NMEA_MAX_DIGITS - whole);
+        frac = take_digits(&p, end, &digits, NMEA_NUMBER_DIGITS - whole);
     }
     if (p != end || whole + frac == 0)
         return false;
-    out->digits = digits;
+    out->digits = (nmea_digits)digits;
     out->scale = (uint8_t)frac;
     out->width = (uint8_t)whole;
     out->sign = sign;
@@ -102,7 +102,7 @@ nmea_number nmea_number_of(int64_t value, unsigned scale)
     if (scale > NMEA_MAX_DIGITS)
         scale = NMEA_MAX_DIGITS;
     whole = magnitude / (uint64_t)POW10[scale];
-    n.digits = (int64_t)magnitude;
+    n.digits = (nmea_digits)magnitude;
     n.scale = (uint8_t)scale;
     for (n.width = 1; whole >= 10; whole /= 10)
         n.width++;
@@ -206,13 +206,13 @@ static bool parse_date(nmea_text t, nmea_date *out)
 NMEA_HOT bool coordinate_of(uint64_t whole_value, size_t whole, uint64_t minutes, size_t frac, bool point,
                             unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
 {
-    if (whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_MAX_DIGITS - 2)
+    if (whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_NUMBER_DIGITS - 2)
         return false;
     if ((uint32_t)whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
         return false;
     out->degrees = (uint16_t)((uint32_t)whole_value / 100); /* whole <= 5 digits: no 64-bit division */
     out->degree_digits = (uint8_t)(whole - 2);
-    out->minutes.digits = (int64_t)minutes;
+    out->minutes.digits = (nmea_digits)minutes;
     out->minutes.scale = (uint8_t)frac;
     out->minutes.width = 2;
     out->minutes.sign = 0;

@@ -174,12 +174,12 @@ static fact_value fact_of(const fix_field *ff, const void *at)
     case FIELD_ENUM: { /* an unknown code gives no fact */
         const nmea_enum *e = (const nmea_enum *)at;
         if (e->present && e->value != NMEA_UNKNOWN_CODE)
-            out.id = ff->values ? ff->values[e->value] : ((const nmea_enum_def *)f->arg)->codes[e->value].id;
+            out.id = ff->values ? ff->values[e->value] : table_of(f)->codes[e->value].id;
         out.known = out.id != NULL;
         break;
     }
     case FIELD_ENUM_CHARS:
-        out.id = first_mode((const nmea_enum_def *)f->arg, *(const nmea_text *)at);
+        out.id = first_mode(table_of(f), *(const nmea_text *)at);
         out.known = out.id != NULL;
         break;
     default:

@@ -2,7 +2,7 @@
    any size, cut into lines at CR, LF, '$' and '!', an overlong line reported by its length. A
    '\' at the start of a line opens a TAG block, which keeps its sentence: up to the block's
    closing '\' every byte but CR and LF belongs to it, and a '$', '!' or '\' right after that
-   continues the line. */
+   continues the line (unless -DNMEA_NO_TAG_BLOCKS: a '\' is then a byte like any other). */
 
 /* The bytes that end a line (CR, LF), start a new one ('$', '!') or open or close a TAG block. */
 static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2, ['\\'] = 3};
@@ -21,19 +21,23 @@ void nmea_framer_init(nmea_framer *f)
    start of the next line; moves f->tag on. (No table: a firmware that feeds links none.) */
 static unsigned framer_step(nmea_framer *f, size_t length, char byte)
 {
-    unsigned kind = byte == '\r' || byte == '\n' ? 1 : byte == '$' || byte == '!' ? 2 : byte == '\\' ? 3 : 0;
-    if (f->tag == FRAMER_OUTSIDE) {
-        if (kind == 3 && length == 0)
-            f->tag = FRAMER_IN_TAG;
-        return kind == 3 || (kind == 2 && length == 0) ? 0 : kind;
+    unsigned kind = byte == '\r' || byte == '\n' ? 1 : byte == '$' || byte == '!' ? 2 : 0;
+#ifndef NMEA_NO_TAG_BLOCKS
+    if (f->tag != FRAMER_OUTSIDE) {
+        if (kind == 1)
+            return 1;
+        if (byte == '\\')
+            f->tag = f->tag == FRAMER_IN_TAG ? FRAMER_AFTER_TAG : FRAMER_IN_TAG;
+        else if (f->tag == FRAMER_AFTER_TAG)
+            f->tag = FRAMER_OUTSIDE; /* the sentence after the blocks, or whatever else follows */
+        return 0;
     }
-    if (kind == 1)
-        return 1;
-    if (kind == 3)
-        f->tag = f->tag == FRAMER_IN_TAG ? FRAMER_AFTER_TAG : FRAMER_IN_TAG;
-    else if (f->tag == FRAMER_AFTER_TAG)
-        f->tag = FRAMER_OUTSIDE; /* the sentence after the blocks, or whatever else follows */
-    return 0;
+    if (byte == '\\' && length == 0)
+        f->tag = FRAMER_IN_TAG;
+#else
+    (void)f;
+#endif
+    return kind == 2 && length == 0 ? 0 : kind;
 }
 
 /* The first byte from `p` on (the line holding `length` bytes before it) that ends the line or

@@ -1,8 +1,9 @@
 /* What the generated code after the runtime in nmea.c defines for each spec, declared here for
    the pieces that follow (dispatch.c, api.c, json_api.c); the runtime's tests define a small
    fixture of it instead (test_runtime.c). Besides these, nmea.h gives the sentences' types
-   (nmea_sentence, nmea_sentence_id, NMEA_SENTENCE_COUNT) and nmea.c defines NMEA_MAX_FIELDS, the
-   most wire fields any layout takes, before the runtime. */
+   (nmea_sentence, nmea_sentence_id, NMEA_SENTENCE_COUNT), and nmea.c defines before the runtime
+   NMEA_MAX_FIELDS, the most wire fields any layout takes, and the tables layout_field indexes:
+   FIELD_RANGES, FIELD_ENUMS, FIELD_WORDS, FIELD_EXPECTED (only what the build's fields take). */
 
 /* Every layout by its nmea_sentence_id (NULL: the generic sentence). */
 static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT];

@@ -20,18 +20,86 @@ typedef enum {
     FIELD_ENUM_CHARS
 } field_type;
 
-/* A field of a layout, or of the entries of its repeated group. */
+/* A field of a layout, or of the entries of its repeated group: 12 bytes on a 32-bit target, 6 in
+   a terse build. What it takes besides its type (a range, a lookup table, a word, the texts of its
+   errors) is an index into the table of its kind, which holds what the build's fields take, each
+   once. */
 typedef struct {
-    const char *id;
-    const char *expected; /* what the field takes, for errors */
-    const void *arg;      /* integer, decimal: its nmea_range (NULL: any value); enum, enum_chars:
-                             its nmea_enum_def; keyword, literal: its word; latitude, longitude:
-                             what the hemisphere takes */
-    uint16_t offset;      /* of its member in the layout struct (or the entry); 0 for a keyword */
-    uint8_t type;         /* field_type */
-    uint8_t width;        /* wire fields: 2 for a latitude or longitude, else 1 */
-    uint16_t max_length;  /* text, enum_chars: most characters (0: any number) */
+    uint16_t offset;    /* of its member in the layout struct (or the entry); 0 for a keyword */
+    uint16_t arg;       /* integer, decimal: FIELD_RANGES (NO_ARG: any value); enum, enum_chars:
+                           FIELD_ENUMS; keyword, literal: FIELD_WORDS; latitude, longitude:
+                           FIELD_EXPECTED, what its hemisphere takes; else NO_ARG */
+    uint8_t type;       /* field_type */
+    uint8_t max_length; /* text, enum_chars: most characters (0: any number) */
+#ifndef NMEA_TERSE_ERRORS
+    uint16_t expected;  /* FIELD_EXPECTED: what it takes, for errors */
+    const char *id;     /* for errors and the JSON's keys */
+#endif
 } layout_field;
+
+/* The last members of a layout_field as the generator writes them, which -DNMEA_TERSE_ERRORS
+   leaves out with the texts of errors (the table FIELD_EXPECTED too). */
+#ifdef NMEA_TERSE_ERRORS
+#define FIELD_NAMES(expected, id)
+#else
+#define FIELD_NAMES(expected, id) expected, id
+#endif
+
+/* layout_field.arg of a field that takes nothing besides its type. */
+#define NO_ARG 0xFFFFu
+
+/* A field's id, what it takes and what its hemisphere takes (NULL in a terse build). */
+static const char *field_id(const layout_field *f)
+{
+#ifdef NMEA_TERSE_ERRORS
+    (void)f;
+    return NULL;
+#else
+    return f->id;
+#endif
+}
+
+static const char *field_expected(const layout_field *f)
+{
+#ifdef NMEA_TERSE_ERRORS
+    (void)f;
+    return NULL;
+#else
+    return FIELD_EXPECTED[f->expected];
+#endif
+}
+
+static const char *hemisphere_expected(const layout_field *f)
+{
+#ifdef NMEA_TERSE_ERRORS
+    (void)f;
+    return NULL;
+#else
+    return FIELD_EXPECTED[f->arg];
+#endif
+}
+
+/* Its range (NULL: any value), lookup table and word. */
+static const nmea_range *range_of(const layout_field *f)
+{
+    return f->arg == NO_ARG ? NULL : FIELD_RANGES[f->arg];
+}
+
+static const nmea_enum_def *table_of(const layout_field *f)
+{
+    return FIELD_ENUMS[f->arg];
+}
+
+static const char *word_of(const layout_field *f)
+{
+    return FIELD_WORDS[f->arg];
+}
+
+/* The wire fields a field spans: a latitude or longitude and its hemisphere two, any other one. */
+static size_t field_width(const layout_field *f)
+{
+    return f->type == FIELD_LATITUDE || f->type == FIELD_LONGITUDE ? 2 : 1;
+}
 
 /* The fields of a layout without any (its `fields` point here, never NULL: no arithmetic on it;
    a spec in which every layout has fields leaves it unused). */
@@ -99,7 +167,7 @@ static size_t optional_present(const layout *l, size_t optional)
     const layout_field *f = l->fields + l->before + l->after;
     size_t n, wire = 0;
     for (n = 0; n < l->optional; n++) {
-        wire += f[n].width;
+        wire += field_width(&f[n]);
         if (wire > optional)
             break;
     }
@@ -131,33 +199,34 @@ static const nmea_entries *entries_in(const layout_group *g, const void *s)
 /* Reads field `f` into `out`, a value of its type (nothing for a keyword). */
 static bool read_field(nmea_reader *r, const layout_field *f, void *out)
 {
+    const char *id = field_id(f), *expected = field_expected(f);
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
-        return read_keyword(r, f->id, f->expected, f->arg);
+        return read_keyword(r, id, expected, word_of(f));
     case FIELD_INTEGER:
-        return read_integer(r, out, f->id, f->expected, f->arg);
+        return read_integer(r, out, id, expected, range_of(f));
     case FIELD_DECIMAL:
-        return read_decimal(r, out, f->id, f->expected, f->arg);
+        return read_decimal(r, out, id, expected, range_of(f));
     case FIELD_HEX:
-        return read_hex(r, out, f->id, f->expected);
+        return read_hex(r, out, id, expected);
     case FIELD_TIME:
-        return read_time(r, out, f->id, f->expected);
+        return read_time(r, out, id, expected);
     case FIELD_DATE:
-        return read_date(r, out, f->id, f->expected);
+        return read_date(r, out, id, expected);
     case FIELD_LATITUDE:
-        return read_latitude(r, out, f->id, f->expected, f->arg);
+        return read_latitude(r, out, id, expected, hemisphere_expected(f));
     case FIELD_LONGITUDE:
-        return read_longitude(r, out, f->id, f->expected, f->arg);
+        return read_longitude(r, out, id, expected, hemisphere_expected(f));
     case FIELD_CHAR:
-        return read_char(r, out, f->id, f->expected);
+        return read_char(r, out, id, expected);
     case FIELD_LITERAL:
-        return read_literal(r, out, f->id, f->expected, f->arg);
+        return read_literal(r, out, id, expected, word_of(f));
     case FIELD_TEXT:
-        return read_text(r, out, f->id, f->expected, f->max_length);
+        return read_text(r, out, id, expected, f->max_length);
     case FIELD_ENUM:
-        return read_enum(r, out, f->id, f->expected, f->arg);
+        return read_enum(r, out, id, expected, table_of(f));
     case FIELD_ENUM_CHARS:
-        return read_enum_chars(r, out, f->id, f->expected, f->arg, f->max_length);
+        return read_enum_chars(r, out, id, expected, table_of(f), f->max_length);
     }
     return false;
 }
@@ -248,9 +317,9 @@ static void reread_field(entry_reader *c, const layout_field *f, void *out)
         return;
     if (size)
         memset(out, 0, size);
-    c->r.next = fields_end(next, c->r.end, c->r.sep, f->width);
+    c->r.next = fields_end(next, c->r.end, c->r.sep, field_width(f));
     c->r.next += c->r.next < c->r.end;
-    c->r.index = index + f->width;
+    c->r.index = index + (unsigned)field_width(f);
 }
 
 /* Reads the wire into `s`, a struct of layout `l`. */

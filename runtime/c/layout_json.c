@@ -9,7 +9,7 @@ static void json_field(nmea_writer *w, const char *key, const layout_field *f, c
 {
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
-        json_keyword(w, key, f->arg, values);
+        json_keyword(w, key, word_of(f), values);
         break;
     case FIELD_INTEGER:
     case FIELD_DECIMAL:
@@ -32,16 +32,16 @@ static void json_field(nmea_writer *w, const char *key, const layout_field *f, c
         json_char(w, key, *(const char *)in, values);
         break;
     case FIELD_LITERAL:
-        json_literal(w, key, *(const bool *)in, f->arg, values);
+        json_literal(w, key, *(const bool *)in, word_of(f), values);
         break;
     case FIELD_TEXT:
         json_text(w, key, *(const nmea_text *)in, values);
         break;
     case FIELD_ENUM:
-        json_enum(w, key, in, f->arg, values);
+        json_enum(w, key, in, table_of(f), values);
         break;
     case FIELD_ENUM_CHARS:
-        json_enum_chars(w, key, *(const nmea_text *)in, f->arg, values);
+        json_enum_chars(w, key, *(const nmea_text *)in, table_of(f), values);
         break;
     }
 }
@@ -162,22 +162,22 @@ static bool collect_with(const layout *l, nmea_collector *c, nmea_json fields)
     size_t i;
 
     for (i = 0; i < l->before; i++)
-        if (!collect_field(c, fields, f[i].id, f[i].width))
+        if (!collect_field(c, fields, f[i].id, field_width(&f[i])))
             return false;
     if (g) {
         if (!collect_group(c, fields, g->id, &entries))
             return false;
         while (json_next(&entries, &entry))
             for (i = 0; i < g->field_count; i++)
-                if (!(g->single ? collect_value(c, entry, g->fields[i].width)
-                                : collect_field(c, entry, g->fields[i].id, g->fields[i].width)))
+                if (!(g->single ? collect_value(c, entry, field_width(&g->fields[i]))
+                                : collect_field(c, entry, g->fields[i].id, field_width(&g->fields[i]))))
                     return false;
     }
     for (f += l->before, i = 0; i < l->after; i++)
-        if (!collect_field(c, fields, f[i].id, f[i].width))
+        if (!collect_field(c, fields, f[i].id, field_width(&f[i])))
             return false;
     for (f += l->after, i = 0; i < l->optional; i++)
-        if (!collect_optional(c, fields, f[i].id, f[i].width))
+        if (!collect_optional(c, fields, f[i].id, field_width(&f[i])))
             return false;
     return true;
 }

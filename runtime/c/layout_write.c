@@ -8,7 +8,7 @@ static void write_field(nmea_writer *w, const layout_field *f, const void *in)
 {
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
-        put_keyword(w, f->arg);
+        put_keyword(w, word_of(f));
         break;
     case FIELD_INTEGER:
     case FIELD_DECIMAL:
@@ -31,14 +31,14 @@ static void write_field(nmea_writer *w, const layout_field *f, const void *in)
         put_char_field(w, *(const char *)in);
         break;
     case FIELD_LITERAL:
-        put_literal(w, *(const bool *)in, f->arg);
+        put_literal(w, *(const bool *)in, word_of(f));
         break;
     case FIELD_TEXT:
     case FIELD_ENUM_CHARS:
         put_text_field(w, *(const nmea_text *)in);
         break;
     case FIELD_ENUM:
-        put_enum(w, in, f->arg);
+        put_enum(w, in, table_of(f));
         break;
     }
 }

@@ -233,7 +233,7 @@ NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const char *name, c
 }
 
 /* The common case of read_number, in the one pass that finds the end of the field: an empty
-   field, or digits with (`integer` false) at most one point, NMEA_MAX_DIGITS digits in all, in
+   field, or digits with (`integer` false) at most one point, NMEA_NUMBER_DIGITS digits in all, in
    `range`. Anything else (a sign, more digits, not a number, out of range, a field at fault
    in a second reading) is left to read_number: returns false without having read it. */
 NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
@@ -253,10 +253,10 @@ NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *r
         for (point = p++; p < end && (digit = (unsigned)(unsigned char)*p - '0') < 10; p++)
             digits = digits * 10 + digit;
     count = (size_t)(p - r->next) - (point != NULL); /* digits before and after the point */
-    if ((p < end && *p != r->sep) || count > NMEA_MAX_DIGITS || (point && count == 0))
+    if ((p < end && *p != r->sep) || count > NMEA_NUMBER_DIGITS || (point && count == 0))
         return false;
     if (count) {
-        n.digits = (int64_t)digits;
+        n.digits = (nmea_digits)digits;
         n.scale = (uint8_t)(count - whole);
         n.width = (uint8_t)whole;
         n.sign = 0;

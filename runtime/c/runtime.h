@@ -27,8 +27,22 @@
 #define NMEA_MAX_LINE 1024
 #endif
 
-/** Most digits a number may have (it is held in a signed 64-bit integer). */
+/** Most digits a number's text may have (a TAG block's integer too). */
 #define NMEA_MAX_DIGITS 18
+
+/**
+ * The digits of a number field (nmea_number.digits) and how many it holds: NMEA_MAX_DIGITS in a
+ * signed 64-bit integer; with -DNMEA_DIGITS_32 (a firmware short of RAM: 12-byte numbers, not 16)
+ * 9 in a 32-bit one, and a number field of more digits is then refused as a bad field, as one of
+ * more than 18 is by default.
+ */
+#ifdef NMEA_DIGITS_32
+typedef int32_t nmea_digits;
+#define NMEA_NUMBER_DIGITS 9
+#else
+typedef int64_t nmea_digits;
+#define NMEA_NUMBER_DIGITS NMEA_MAX_DIGITS
+#endif
 
 /** A run of bytes that belongs to someone else (usually the parsed line). */
 typedef struct {
@@ -54,7 +68,7 @@ typedef enum {
  * the exact text for the round trip: "-007.50" is {750, 2, 3, '-', true}.
  */
 typedef struct {
-    int64_t digits;
+    nmea_digits digits;
     uint8_t scale;
     uint8_t width;
     char sign;
@@ -68,7 +82,7 @@ int64_t nmea_number_scaled(const nmea_number *n, unsigned scale);
 
 /** The number value * 10^-scale written the plain way (no leading zeros, no '+', `scale`
     decimals), for a struct to build: nmea_number_of(1201, 0) is "1201", (-5, 1) is "-0.5".
-    `scale` is at most NMEA_MAX_DIGITS. */
+    `scale` is at most NMEA_MAX_DIGITS, `value` of at most NMEA_NUMBER_DIGITS digits. */
 nmea_number nmea_number_of(int64_t value, unsigned scale);
 
 /** An inclusive value range (integer and decimal fields, table parameters): min * 10^-min_scale
@@ -357,11 +371,15 @@ bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out);
 /** At the end of the stream: the last line, when it had no line ending (true), else false. */
 bool nmea_framer_end(nmea_framer *f, nmea_framed *out);
 
+#ifndef NMEA_NO_TAG_BLOCKS
 /* ------------------------------------------------------------------------------------------ */
 /* TAG blocks (NMEA 0183 4.00, IEC 61162-450): `\g:1-2-73874,s:r003669945,c:1241544035*hh\` before
    a sentence or on a line of their own. A parsed line keeps the text of its blocks
    (nmea_sentence.tag_blocks, checked, pointing into the line), which nmea_serialize writes back
-   as it is; these functions read the parameters out of it and write a new block. */
+   as it is; these functions read the parameters out of it and write a new block. A firmware
+   whose receiver sends none builds with -DNMEA_NO_TAG_BLOCKS (and -DNMEA_NO_JSON): no reader,
+   writer nor nmea_sentence.tag_blocks, and a '\' is a byte like any other (a line that starts
+   with one is not_a_sentence). */
 
 /** The value types of the codes the spec names (spec/tag_block.yaml). */
 typedef enum {
@@ -405,6 +423,7 @@ const nmea_tag_code *nmea_tag_code_of(nmea_text code);
  */
 size_t nmea_tag_write(const nmea_tag_param *params, size_t n, nmea_checksum_style style, char *buf, size_t cap,
                       nmea_error *err);
+#endif /* NMEA_NO_TAG_BLOCKS */
 
 /**
  * A well-formed sentence the spec does not describe. `fields` is the raw text of all fields

@@ -1,7 +1,10 @@
 /* TAG blocks (NMEA 0183 4.00, IEC 61162-450): `\code:value,...*hh\` before a sentence or on a
    line of their own. The blocks of a line are read (checked as the Python and Rust runtimes
    check them, with the same messages) and kept as their text, which the writer puts back as it
-   is; the codes the spec names and their value types are the generated nmea_tag_codes. */
+   is; the codes the spec names and their value types are the generated nmea_tag_codes. Left out
+   by -DNMEA_NO_TAG_BLOCKS. */
+
+#ifndef NMEA_NO_TAG_BLOCKS
 
 /* What a value of each type that has a form must look like (a text takes anything). */
 static const char *const TAG_FORMS[] = {[NMEA_TAG_INTEGER] = "digits", [NMEA_TAG_GROUP] = "n-m-id"};
@@ -203,3 +206,4 @@ size_t nmea_tag_write(const nmea_tag_param *params, size_t n, nmea_checksum_styl
         return tag_fail(err, ERROR_TEXT("TAG block parameter holds ',', '*' or a backslash"));
     return len;
 }
+#endif /* NMEA_NO_TAG_BLOCKS */

@@ -33,18 +33,28 @@ typedef enum { NMEA_SENTENCE_GENERIC = 0, NMEA_SENTENCE_TST, NMEA_SENTENCE_COUNT
 typedef struct {
     nmea_sentence_id id;
     const nmea_problems *problems;
+#ifndef NMEA_NO_TAG_BLOCKS
     nmea_text tag_blocks;
+#endif
     union {
         nmea_generic generic;
         nmea_tst tst;
     } as;
 } nmea_sentence;
+#ifndef NMEA_NO_TAG_BLOCKS
 #define NMEA_TAG_CODE_COUNT 3
 extern const nmea_tag_code nmea_tag_codes[];
+#endif
 #include "api.h"
 
-/* What nmea.c defines before the runtime. */
+/* What nmea.c defines before the runtime: the most wire fields of a layout, the ranges and what
+   the fields take by kind (layout_field indexes them). */
 #define NMEA_MAX_FIELDS 2
+static const nmea_range range_0_to_99 = {.has_min = true, .min = 0, .has_max = true, .max = 99};
+static const nmea_range *const FIELD_RANGES[] = {&range_0_to_99};
+static const nmea_enum_def *const FIELD_ENUMS[] = {NULL};
+static const char *const FIELD_WORDS[] = {NULL};
+static const char *const FIELD_EXPECTED[] = {"integer 0..99", "text of at most 8 characters"};
 
 /* The runtime's internals that only some specs use are unused here. */
 #if defined(__GNUC__)
@@ -57,11 +67,9 @@ extern const nmea_tag_code nmea_tag_codes[];
    for TST, without a fast path: the fast reader and writer leave every line to the general ones,
    which must then give the same results on their own. */
 
-static const nmea_range range_0_to_99 = {.has_min = true, .min = 0, .has_max = true, .max = 99};
-
 static const layout_field tst_fields[] = {
-    {"count", "integer 0..99", &range_0_to_99, offsetof(nmea_tst, count), FIELD_INTEGER, 1, 0},
-    {"name", "text of at most 8 characters", NULL, offsetof(nmea_tst, name), FIELD_TEXT, 1, 8},
+    {offsetof(nmea_tst, count), 0, FIELD_INTEGER, 0, FIELD_NAMES(0, "count")},
+    {offsetof(nmea_tst, name), NO_ARG, FIELD_TEXT, 8, FIELD_NAMES(1, "name")},
 };
 
 static const layout tst_layout = {
@@ -77,11 +85,13 @@ static bool nmea_parse_tst(nmea_tst *out, const char *line, size_t len, nmea_err
 
 static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {NULL, &tst_layout};
 
+#ifndef NMEA_NO_TAG_BLOCKS
 const nmea_tag_code nmea_tag_codes[] = {
     {"c", "time", "UNIX time", NMEA_TAG_INTEGER},
     {"g", "group", "Sentence grouping", NMEA_TAG_GROUP},
     {"s", "source", "Source", NMEA_TAG_TEXT},
 };
+#endif
 
 static const nmea_sentence_id STANDARD_1[] = {NMEA_SENTENCE_TST};
 static const nmea_layouts STANDARD[] = {{"TST", 3, "TST", STANDARD_1, 1}};
@@ -246,6 +256,15 @@ static void test_framer(void)
     }
 }
 
+/* nmea_parse's error for a line, its message as expected. */
+static bool refuses(const char *line, nmea_error_kind kind, const char *message)
+{
+    nmea_sentence s;
+    nmea_error err;
+    return !nmea_parse(&s, line, strlen(line), &err) && err.kind == kind && message_is(&err, message);
+}
+
+#ifndef NMEA_NO_TAG_BLOCKS
 /* A '\\' at the start of a line opens a TAG block, which keeps its sentence; one anywhere else is
    a byte of the line. */
 static void test_framer_tag_blocks(void)
@@ -260,14 +279,6 @@ static void test_framer_tag_blocks(void)
         size_t n = frame_all(stream, chunk, out, sizeof out);
         CHECK(n == strlen(expected) && memcmp(out, expected, n) == 0);
     }
-}
-
-/* nmea_parse's error for a line, its message as expected. */
-static bool refuses(const char *line, nmea_error_kind kind, const char *message)
-{
-    nmea_sentence s;
-    nmea_error err;
-    return !nmea_parse(&s, line, strlen(line), &err) && err.kind == kind && message_is(&err, message);
 }
 
 static void test_tag_blocks(void)
@@ -312,6 +323,41 @@ static void test_tag_blocks(void)
     CHECK(refuses("\\s:x*31\\$GPTST,12,abc*28", NMEA_ERR_CHECKSUM_MISMATCH, "checksum is 28, computed 27"));
 }
 
+#else
+/* Without TAG blocks a '\\' is a byte like any other: the framer cuts no line around one and the
+   parser refuses a line that starts with one. */
+static void test_without_tag_blocks(void)
+{
+    static const char stream[] = "\\s:1*00\\$GPGGA,1*00\r\n$GPRMC\\x\\$GPGGA\n";
+    static const char expected[] = "\\s:1*00\\|$GPGGA,1*00|$GPRMC\\x\\|$GPGGA|";
+    char out[256];
+    size_t chunk;
+    for (chunk = 0; chunk <= sizeof stream; chunk++) {
+        size_t n = frame_all(stream, chunk, out, sizeof out);
+        CHECK(n == strlen(expected) && memcmp(out, expected, n) == 0);
+    }
+    CHECK(refuses("\\s:x*31\\$GPTST,12,abc*27", NMEA_ERR_NOT_A_SENTENCE, "line does not start with '$' or '!'"));
+}
+#endif
+
+/* A number field holds NMEA_NUMBER_DIGITS digits (9 with -DNMEA_DIGITS_32): one more is no number
+   of its type (not a number out of its range), in the general reading and in the quick one. */
+static void test_number_digits(void)
+{
+    char line[32] = "$GPTST,";
+    nmea_sentence s;
+    nmea_error err;
+    nmea_number n;
+    memset(line + 7, '9', NMEA_NUMBER_DIGITS + 1);
+    CHECK(parse_number(text_span(line + 7, line + 7 + NMEA_NUMBER_DIGITS), true, &n));
+    CHECK(n.digits == POW10[NMEA_NUMBER_DIGITS] - 1);
+    CHECK(!parse_number(text_span(line + 7, line + 8 + NMEA_NUMBER_DIGITS), true, &n));
+    memcpy(line + 8 + NMEA_NUMBER_DIGITS, ",x", 3);
+    CHECK(!nmea_parse(&s, line, strlen(line), &err) && err.kind == NMEA_ERR_BAD_FIELD && !err.out_of_range);
+    memmove(line + 7, line + 8, strlen(line + 8) + 1);
+    CHECK(nmea_parse(&s, line, strlen(line), &err) && s.as.tst.count.digits == POW10[NMEA_NUMBER_DIGITS] - 1);
+}
+
 static void test_numbers(void)
 {
     /* compare_fixed without a division: by scale, and past 2^64 on the way to one scale */
@@ -326,6 +372,7 @@ static void test_numbers(void)
     CHECK(nmea_number_scaled(&n, 1) == -5 && nmea_number_scaled(&n, 3) == -500);
     n = nmea_number_of(1201, 0);
     CHECK(nmea_number_scaled(&n, 0) == 1201 && nmea_number_scaled(&n, 2) == 120100);
+    test_number_digits();
 }
 
 static const nmea_enum_code status_codes[] = {{"A", "valid"}, {"V", "invalid"}};
@@ -492,8 +539,12 @@ int main(void)
     test_framing();
     test_error_kind_names();
     test_framer();
+#ifndef NMEA_NO_TAG_BLOCKS
     test_framer_tag_blocks();
     test_tag_blocks();
+#else
+    test_without_tag_blocks();
+#endif
     test_numbers();
     test_enums();
     test_layouts();

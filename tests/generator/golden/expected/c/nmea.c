@@ -11,6 +11,51 @@
 /* The most wire fields any layout takes (runtime/c/generated.c). */
 #define NMEA_MAX_FIELDS 20
 
+/* The value ranges of integer and decimal fields, and what the layouts' fields take by kind, each
+   once, which layout_field indexes (runtime/c/layout.c). */
+static const nmea_range range_0_to_1 = {.has_min = true, .min = 0, .has_max = true, .max = 1}; /* 0..1 */
+static const nmea_range range_0_to_99 = {.has_min = true, .min = 0, .has_max = true, .max = 99}; /* 0..99 */
+static const nmea_range range_1_to_9 = {.has_min = true, .min = 1, .has_max = true, .max = 9}; /* 1..9 */
+static const nmea_range *const FIELD_RANGES[] = {
+    &range_0_to_99,
+    &range_1_to_9,
+    &range_0_to_1,
+};
+static const nmea_enum_def *const FIELD_ENUMS[] = {
+    &nmea_fix_quality_def,
+    &nmea_system_mode_def,
+    &nmea_acme_baud_def,
+};
+static const char *const FIELD_WORDS[] = {
+    "M",
+    "BAUD",
+};
+#ifndef NMEA_TERSE_ERRORS
+static const char *const FIELD_EXPECTED[] = {
+    "time hhmmss[.s]",
+    "hemisphere N or S",
+    "latitude ddmm.mmmm",
+    "hemisphere E or W",
+    "longitude dddmm.mmmm",
+    "date ddmmyy",
+    "fix_quality code (0 1 2)",
+    "integer 0..99",
+    "decimal number",
+    "hex number",
+    "one character",
+    "M or nothing",
+    "system_mode codes (A D N)",
+    "text of at most 20 characters",
+    "integer",
+    "integer 1..9",
+    "text",
+    "text of at most 8 characters",
+    "integer 0..1",
+    "BAUD",
+    "acme_baud code (4800 9600)",
+};
+#endif
+
 /* runtime/c/runtime.c */
 
 /* ========================================================================================== */
@@ -45,31 +90,25 @@ const nmea_enum_def nmea_system_mode_def = {
     "system_mode", system_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-/* ------------------------------------------------------------------------------------------ */
-/* Value ranges of integer and decimal fields */
-
-static const nmea_range range_0_to_1 = {.has_min = true, .min = 0, .has_max = true, .max = 1}; /* 0..1 */
-static const nmea_range range_0_to_99 = {.has_min = true, .min = 0, .has_max = true, .max = 99}; /* 0..99 */
-static const nmea_range range_1_to_9 = {.has_min = true, .min = 1, .has_max = true, .max = 9}; /* 1..9 */
 
 /* ------------------------------------------------------------------------------------------ */
 /* FIX: Fix with every field type (spec/standard/fix.yaml) */
 
 /* $GPFIX,123519.50,4807.038,N,01131.000,E,230394,1,08,-12.5,1F,Q,M,AD,HELLO,5*69 */
 static const layout_field fix_fields[] = {
-    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_fix, time), FIELD_TIME, 1, 0},
-    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_fix, lat), FIELD_LATITUDE, 2, 0},
-    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_fix, lon), FIELD_LONGITUDE, 2, 0},
-    {ERROR_TEXT("date"), ERROR_TEXT("date ddmmyy"), NULL, offsetof(nmea_fix, date), FIELD_DATE, 1, 0},
-    {ERROR_TEXT("quality"), ERROR_TEXT("fix_quality code (0 1 2)"), &nmea_fix_quality_def, offsetof(nmea_fix, quality), FIELD_ENUM, 1, 0},
-    {ERROR_TEXT("satellites"), ERROR_TEXT("integer 0..99"), &range_0_to_99, offsetof(nmea_fix, satellites), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_fix, altitude), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("flags"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_fix, flags), FIELD_HEX, 1, 0},
-    {ERROR_TEXT("grade"), ERROR_TEXT("one character"), NULL, offsetof(nmea_fix, grade), FIELD_CHAR, 1, 0},
-    {ERROR_TEXT("unit"), ERROR_TEXT("M or nothing"), "M", offsetof(nmea_fix, unit), FIELD_LITERAL, 1, 0},
-    {ERROR_TEXT("modes"), ERROR_TEXT("system_mode codes (A D N)"), &nmea_system_mode_def, offsetof(nmea_fix, modes), FIELD_ENUM_CHARS, 1, 4},
-    {ERROR_TEXT("note"), ERROR_TEXT("text of at most 20 characters"), NULL, offsetof(nmea_fix, note), FIELD_TEXT, 1, 20},
-    {ERROR_TEXT("extra"), ERROR_TEXT("integer"), NULL, offsetof(nmea_fix, extra), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_fix, time), NO_ARG, FIELD_TIME, 0, FIELD_NAMES(0, "time")}, /* time hhmmss[.s] */
+    {offsetof(nmea_fix, lat), 1, FIELD_LATITUDE, 0, FIELD_NAMES(2, "lat")}, /* latitude ddmm.mmmm */
+    {offsetof(nmea_fix, lon), 3, FIELD_LONGITUDE, 0, FIELD_NAMES(4, "lon")}, /* longitude dddmm.mmmm */
+    {offsetof(nmea_fix, date), NO_ARG, FIELD_DATE, 0, FIELD_NAMES(5, "date")}, /* date ddmmyy */
+    {offsetof(nmea_fix, quality), 0, FIELD_ENUM, 0, FIELD_NAMES(6, "quality")}, /* fix_quality code (0 1 2) */
+    {offsetof(nmea_fix, satellites), 0, FIELD_INTEGER, 0, FIELD_NAMES(7, "satellites")}, /* integer 0..99 */
+    {offsetof(nmea_fix, altitude), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(8, "altitude")}, /* decimal number */
+    {offsetof(nmea_fix, flags), NO_ARG, FIELD_HEX, 0, FIELD_NAMES(9, "flags")}, /* hex number */
+    {offsetof(nmea_fix, grade), NO_ARG, FIELD_CHAR, 0, FIELD_NAMES(10, "grade")}, /* one character */
+    {offsetof(nmea_fix, unit), 0, FIELD_LITERAL, 0, FIELD_NAMES(11, "unit")}, /* M or nothing */
+    {offsetof(nmea_fix, modes), 1, FIELD_ENUM_CHARS, 4, FIELD_NAMES(12, "modes")}, /* system_mode codes (A D N) */
+    {offsetof(nmea_fix, note), NO_ARG, FIELD_TEXT, 20, FIELD_NAMES(13, "note")}, /* text of at most 20 characters */
+    {offsetof(nmea_fix, extra), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(14, "extra")}, /* integer */
 };
 static const layout fix_layout = {
     .sentence = "FIX", .fields = fix_fields, .before = 12, .optional = 1, .fixed = 14, .max_fields = 15,
@@ -99,8 +138,8 @@ size_t nmea_build_fix(const nmea_fix *s, char *buf, size_t cap, nmea_error *err)
 
 /* $GPFIX,123519.50,4807.038,N*1A */
 static const layout_field fix_short_fields[] = {
-    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_fix_short, time), FIELD_TIME, 1, 0},
-    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_fix_short, lat), FIELD_LATITUDE, 2, 0},
+    {offsetof(nmea_fix_short, time), NO_ARG, FIELD_TIME, 0, FIELD_NAMES(0, "time")}, /* time hhmmss[.s] */
+    {offsetof(nmea_fix_short, lat), 1, FIELD_LATITUDE, 0, FIELD_NAMES(2, "lat")}, /* latitude ddmm.mmmm */
 };
 static const layout fix_short_layout = {
     .sentence = "FIX", .variant = "short", .fields = fix_short_fields, .before = 2, .fixed = 3, .max_fields = 3,
@@ -129,16 +168,16 @@ size_t nmea_build_fix_short(const nmea_fix_short *s, char *buf, size_t cap, nmea
 
 /* $GPSAT,2,1,07,12,40,083,46,25,,,,1*5D */
 static const layout_field sat_fields[] = {
-    {ERROR_TEXT("total"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_sat, total), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("number"), ERROR_TEXT("integer 1..9"), &range_1_to_9, offsetof(nmea_sat, number), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("in_view"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sat, in_view), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("signal"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_sat, signal), FIELD_HEX, 1, 0},
+    {offsetof(nmea_sat, total), 1, FIELD_INTEGER, 0, FIELD_NAMES(15, "total")}, /* integer 1..9 */
+    {offsetof(nmea_sat, number), 1, FIELD_INTEGER, 0, FIELD_NAMES(15, "number")}, /* integer 1..9 */
+    {offsetof(nmea_sat, in_view), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(14, "in_view")}, /* integer */
+    {offsetof(nmea_sat, signal), NO_ARG, FIELD_HEX, 0, FIELD_NAMES(9, "signal")}, /* hex number */
 };
 static const layout_field sat_group_fields[] = {
-    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sat_satellite, prn), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("elevation"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sat_satellite, elevation), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("azimuth"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sat_satellite, azimuth), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("snr"), ERROR_TEXT("integer"), NULL, offsetof(nmea_sat_satellite, snr), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_sat_satellite, prn), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(14, "prn")}, /* integer */
+    {offsetof(nmea_sat_satellite, elevation), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(14, "elevation")}, /* integer */
+    {offsetof(nmea_sat_satellite, azimuth), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(14, "azimuth")}, /* integer */
+    {offsetof(nmea_sat_satellite, snr), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(14, "snr")}, /* integer */
 };
 static const layout_group sat_group = {
     .id = ERROR_TEXT("satellites"), .fields = sat_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 4,
@@ -178,10 +217,10 @@ size_t nmea_build_sat(const nmea_sat *s, char *buf, size_t cap, nmea_error *err)
 
 /* !AIXDM,1,1,,13nUgBWP01PkHvDU7<kC4wvJ2>`<*5B */
 static const layout_field xdm_fields[] = {
-    {ERROR_TEXT("count"), ERROR_TEXT("integer"), NULL, offsetof(nmea_xdm, count), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("fragment"), ERROR_TEXT("integer"), NULL, offsetof(nmea_xdm, fragment), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("message_id"), ERROR_TEXT("integer"), NULL, offsetof(nmea_xdm, message_id), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("payload"), ERROR_TEXT("text"), NULL, offsetof(nmea_xdm, payload), FIELD_TEXT, 1, 0},
+    {offsetof(nmea_xdm, count), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(14, "count")}, /* integer */
+    {offsetof(nmea_xdm, fragment), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(14, "fragment")}, /* integer */
+    {offsetof(nmea_xdm, message_id), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(14, "message_id")}, /* integer */
+    {offsetof(nmea_xdm, payload), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(16, "payload")}, /* text */
 };
 static const layout xdm_layout = {
     .sentence = "XDM", .fields = xdm_fields, .before = 4, .fixed = 4, .max_fields = 4, .size = sizeof(nmea_xdm),
@@ -210,8 +249,8 @@ size_t nmea_build_xdm(const nmea_xdm *s, char *buf, size_t cap, nmea_error *err)
 
 /* LOG GPFIX 1 */
 static const layout_field acme_log_fields[] = {
-    {ERROR_TEXT("message"), ERROR_TEXT("text"), NULL, offsetof(nmea_acme_log, message), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("period"), ERROR_TEXT("integer"), NULL, offsetof(nmea_acme_log, period), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_acme_log, message), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(16, "message")}, /* text */
+    {offsetof(nmea_acme_log, period), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(14, "period")}, /* integer */
 };
 static const layout acme_log_layout = {
     .sentence = "ACME_LOG", .address = "LOG", .command = "LOG", .fields = acme_log_fields, .before = 2,
@@ -240,8 +279,8 @@ size_t nmea_build_acme_log(const nmea_acme_log *s, char *buf, size_t cap, nmea_e
 
 /* $PACMACK,SET,1*25 */
 static const layout_field pacmack_fields[] = {
-    {ERROR_TEXT("command"), ERROR_TEXT("text of at most 8 characters"), NULL, offsetof(nmea_pacmack, command), FIELD_TEXT, 1, 8},
-    {ERROR_TEXT("ok"), ERROR_TEXT("integer 0..1"), &range_0_to_1, offsetof(nmea_pacmack, ok), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pacmack, command), NO_ARG, FIELD_TEXT, 8, FIELD_NAMES(17, "command")}, /* text of at most 8 characters */
+    {offsetof(nmea_pacmack, ok), 2, FIELD_INTEGER, 0, FIELD_NAMES(18, "ok")}, /* integer 0..1 */
 };
 static const layout pacmack_layout = {
     .sentence = "PACMACK", .address = "PACMACK", .fields = pacmack_fields, .before = 2, .fixed = 2,
@@ -270,9 +309,9 @@ size_t nmea_build_pacmack(const nmea_pacmack *s, char *buf, size_t cap, nmea_err
 
 /* $PACMSET,BAUD,4800,C3*1F */
 static const layout_field pacmset_fields[] = {
-    {ERROR_TEXT("what"), ERROR_TEXT("BAUD"), "BAUD", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("baud"), ERROR_TEXT("acme_baud code (4800 9600)"), &nmea_acme_baud_def, offsetof(nmea_pacmset, baud), FIELD_ENUM, 1, 0},
-    {ERROR_TEXT("outputs"), ERROR_TEXT("hex number"), NULL, offsetof(nmea_pacmset, outputs), FIELD_HEX, 1, 0},
+    {0, 1, FIELD_KEYWORD, 0, FIELD_NAMES(19, "what")}, /* BAUD */
+    {offsetof(nmea_pacmset, baud), 2, FIELD_ENUM, 0, FIELD_NAMES(20, "baud")}, /* acme_baud code (4800 9600) */
+    {offsetof(nmea_pacmset, outputs), NO_ARG, FIELD_HEX, 0, FIELD_NAMES(9, "outputs")}, /* hex number */
 };
 static const layout pacmset_layout = {
     .sentence = "PACMSET", .address = "PACMSET", .selector = "BAUD", .fields = pacmset_fields, .selector_at = 0,
@@ -300,12 +339,14 @@ size_t nmea_build_pacmset(const nmea_pacmset *s, char *buf, size_t cap, nmea_err
 /* ------------------------------------------------------------------------------------------ */
 /* Dispatch */
 
+#ifndef NMEA_NO_TAG_BLOCKS
 /* The TAG block codes (spec/tag_block.yaml). */
 const nmea_tag_code nmea_tag_codes[] = {
     {"c", "time", "UNIX time", NMEA_TAG_INTEGER},
     {"g", "group", "Sentence grouping", NMEA_TAG_GROUP},
     {"s", "source", "Source", NMEA_TAG_TEXT},
 };
+#endif
 
 /* Every layout by its nmea_sentence_id (NULL: the generic sentence). */
 static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {

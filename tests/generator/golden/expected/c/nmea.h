@@ -31,9 +31,10 @@
  * (one pass, no error bookkeeping) and fall back to the general path, with the same results.
  * For flash over speed, build nmea.c with -DNMEA_NO_FAST_PATH: about a third less code, parsing
  * and writing about 1.5 to 2 times slower. A firmware short of flash also sets -DNMEA_NO_JSON,
- * -DNMEA_TERSE_ERRORS (errors without their texts: kind, address and wire field) and
- * -DNMEA_NO_PROBLEMS (strict reading only), and NMEA_MAX_LINE to the longest line it expects;
- * it feeds the framer byte by byte with nmea_framer_feed.
+ * -DNMEA_TERSE_ERRORS (errors without their texts: kind, address and wire field),
+ * -DNMEA_NO_PROBLEMS (strict reading only) and -DNMEA_NO_TAG_BLOCKS (no TAG blocks: its receiver
+ * sends none), for RAM -DNMEA_DIGITS_32 (numbers of at most 9 digits) and NMEA_MAX_LINE to the
+ * longest line it expects; it feeds the framer byte by byte with nmea_framer_feed.
  */
 #ifndef NMEA_H
 #define NMEA_H
@@ -64,9 +65,11 @@ extern "C" {
 
 /* runtime/c/runtime.h */
 
+#ifndef NMEA_NO_TAG_BLOCKS
 /** The TAG block codes of spec/tag_block.yaml (nmea_tag_code_of finds one). */
 #define NMEA_TAG_CODE_COUNT 3
 extern const nmea_tag_code nmea_tag_codes[];
+#endif
 
 /* ------------------------------------------------------------------------------------------ */
 /* Lookup tables (spec/enums): a C enum of the known codes and the table, nmea_<enum>_def. */
@@ -344,12 +347,15 @@ typedef enum {
 
 /* Any sentence: `id` says which member of `as` is set. `problems` (NULL: none) lists the fields
    lenient parsing left empty, in the storage its options gave (nmea_options.problems); the
-   serializer writes their texts back in their places, and `tag_blocks` before the sentence. */
+   serializer writes their texts back in their places, and `tag_blocks` before the sentence
+   (a member left out by -DNMEA_NO_TAG_BLOCKS). */
 typedef struct {
     nmea_sentence_id id;
     const nmea_problems *problems;
+#ifndef NMEA_NO_TAG_BLOCKS
     nmea_text tag_blocks; /* the TAG blocks before the sentence, as received (empty: none); a line of
                              TAG blocks only is a generic sentence with an empty start */
+#endif
     union {
         nmea_generic generic;
         nmea_fix fix;
