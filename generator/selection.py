@@ -93,8 +93,10 @@ def subset(spec: Spec, words: list[str]) -> Spec:
     owners = {s.vendor for s in sentences if s.vendor} | (lowered & {m.id for m in model.manuals})
     tables = [t for t in model.tables if any(m in owners and m != "nmea0183" for m in t.manuals)]
     enum_ids = {f.enum.id for s in sentences for f in _fields(s) if f.enum}
-    # The AIS messages are kept whole (a subset selects sentences): their enums too.
+    # The AIS and binary messages are kept whole (a subset selects sentences): their enums too.
     enum_ids |= {f.enum.id for p in (*model.payloads, *model.applications) for f in p.fields if f.enum}
+    enum_ids |= {part.enum.id for m in model.binary for layout in m.layouts for f in layout.fields
+                 for part in (f, *f.parts) if part.enum}
     enum_ids |= {p.enum.id for t in tables for p in t.parameters if p.enum}
     bitfield_ids = {f.bitfield.id for s in sentences for f in _fields(s) if f.bitfield}
     bitfield_ids |= {p.bitfield.id for t in tables for p in t.parameters if p.bitfield}

@@ -1028,9 +1028,9 @@ static const char *const FIELD_EXPECTED[] = {
     "quectel_antenna_status code (0 1 2 3)",
     "quectel_antenna_power code (0 1 2)",
     "W",
+    "R",
     "decimal number -200..200",
     "decimal number 0..6.5535",
-    "R",
     "OK",
     "ERROR",
     "quectel_error_code code (1 2 3)",
@@ -12569,11 +12569,11 @@ size_t nmea_build_gll_sentinel(const nmea_gll_sentinel *s, char *buf, size_t cap
 
 /* $GPGLL,3728.0549,N,12213.8639,W,014413.076,N,V*50 */
 static const layout_field gll_mode_before_status_fields[] = {
-    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_gll_mode_before_status, lat), FIELD_LATITUDE, 2, 0},
-    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_gll_mode_before_status, lon), FIELD_LONGITUDE, 2, 0},
-    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_gll_mode_before_status, time), FIELD_TIME, 1, 0},
-    {ERROR_TEXT("mode"), ERROR_TEXT("pos_mode code (A D E F G M N P R S)"), &nmea_pos_mode_def, offsetof(nmea_gll_mode_before_status, mode), FIELD_ENUM, 1, 0},
-    {ERROR_TEXT("status"), ERROR_TEXT("status code (A V)"), &nmea_status_def, offsetof(nmea_gll_mode_before_status, status), FIELD_ENUM, 1, 0},
+    {offsetof(nmea_gll_mode_before_status, lat), 14, FIELD_LATITUDE, 0, FIELD_NAMES(15, "lat")}, /* latitude ddmm.mmmm */
+    {offsetof(nmea_gll_mode_before_status, lon), 16, FIELD_LONGITUDE, 0, FIELD_NAMES(17, "lon")}, /* longitude dddmm.mmmm */
+    {offsetof(nmea_gll_mode_before_status, time), NO_ARG, FIELD_TIME, 0, FIELD_NAMES(24, "time")}, /* time hhmmss[.s] */
+    {offsetof(nmea_gll_mode_before_status, mode), 21, FIELD_ENUM, 0, FIELD_NAMES(47, "mode")}, /* pos_mode code (A D E F G M N P R S) */
+    {offsetof(nmea_gll_mode_before_status, status), 18, FIELD_ENUM, 0, FIELD_NAMES(44, "status")}, /* status code (A V) */
 };
 static const uint16_t gll_mode_before_status_same_as_main[] = {1, 2, 3, 4, 5, 0};
 static const layout gll_mode_before_status_layout = {
@@ -25492,7 +25492,7 @@ size_t nmea_build_pgtop_11(const nmea_pgtop_11 *s, char *buf, size_t cap, nmea_e
 
 /* $PINVCRES,0*1A */
 static const layout_field pinvcres_fields[] = {
-    {ERROR_TEXT("value"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pinvcres, value), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pinvcres, value), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "value")}, /* integer */
 };
 static const layout pinvcres_layout = {
     .sentence = "PINVCRES", .address = "PINVCRES", .fields = pinvcres_fields, .before = 1, .fixed = 1,
@@ -25521,7 +25521,7 @@ size_t nmea_build_pinvcres(const nmea_pinvcres *s, char *buf, size_t cap, nmea_e
 
 /* $PINVCSTR,14*3E */
 static const layout_field pinvcstr_fields[] = {
-    {ERROR_TEXT("value"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pinvcstr, value), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pinvcstr, value), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "value")}, /* integer */
 };
 static const layout pinvcstr_layout = {
     .sentence = "PINVCSTR", .address = "PINVCSTR", .fields = pinvcstr_fields, .before = 1, .fixed = 1,
@@ -25550,9 +25550,9 @@ size_t nmea_build_pinvcstr(const nmea_pinvcstr *s, char *buf, size_t cap, nmea_e
 
 /* $PINVMATTIT,-20.652,32.265,0.000*3C */
 static const layout_field pinvmattit_fields[] = {
-    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmattit, roll), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmattit, pitch), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("yaw"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmattit, yaw), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pinvmattit, roll), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "roll")}, /* decimal number */
+    {offsetof(nmea_pinvmattit, pitch), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pitch")}, /* decimal number */
+    {offsetof(nmea_pinvmattit, yaw), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "yaw")}, /* decimal number */
 };
 static const layout pinvmattit_layout = {
     .sentence = "PINVMATTIT", .address = "PINVMATTIT", .fields = pinvmattit_fields, .before = 3, .fixed = 3,
@@ -25621,13 +25621,13 @@ size_t nmea_build_pinvmattit(const nmea_pinvmattit *s, char *buf, size_t cap, nm
 
 /* $PINVMIMU,1114.106,-0.36990,1.51074,9.81383,0.67139,0.61035,-0.30518*22 */
 static const layout_field pinvmimu_fields[] = {
-    {ERROR_TEXT("time"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmimu, time), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmimu, acc_x), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmimu, acc_y), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmimu, acc_z), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmimu, gyro_x), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmimu, gyro_y), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmimu, gyro_z), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pinvmimu, time), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "time")}, /* decimal number */
+    {offsetof(nmea_pinvmimu, acc_x), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_x")}, /* decimal number */
+    {offsetof(nmea_pinvmimu, acc_y), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_y")}, /* decimal number */
+    {offsetof(nmea_pinvmimu, acc_z), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_z")}, /* decimal number */
+    {offsetof(nmea_pinvmimu, gyro_x), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_x")}, /* decimal number */
+    {offsetof(nmea_pinvmimu, gyro_y), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_y")}, /* decimal number */
+    {offsetof(nmea_pinvmimu, gyro_z), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_z")}, /* decimal number */
 };
 static const layout pinvmimu_layout = {
     .sentence = "PINVMIMU", .address = "PINVMIMU", .fields = pinvmimu_fields, .before = 7, .fixed = 7,
@@ -25704,12 +25704,12 @@ size_t nmea_build_pinvmimu(const nmea_pinvmimu *s, char *buf, size_t cap, nmea_e
 
 /* $PINVMSLOPE,-3.13,-0.05,0.93,54.42,2.60,1.86*3B */
 static const layout_field pinvmslope_fields[] = {
-    {ERROR_TEXT("slope"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmslope, slope), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("altitude_difference"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmslope, altitude_difference), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("distance"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmslope, distance), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("slope_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmslope, slope_accuracy), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("altitude_difference_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmslope, altitude_difference_accuracy), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("distance_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pinvmslope, distance_accuracy), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pinvmslope, slope), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "slope")}, /* decimal number */
+    {offsetof(nmea_pinvmslope, altitude_difference), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "altitude_difference")}, /* decimal number */
+    {offsetof(nmea_pinvmslope, distance), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "distance")}, /* decimal number */
+    {offsetof(nmea_pinvmslope, slope_accuracy), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "slope_accuracy")}, /* decimal number */
+    {offsetof(nmea_pinvmslope, altitude_difference_accuracy), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "altitude_difference_accuracy")}, /* decimal number */
+    {offsetof(nmea_pinvmslope, distance_accuracy), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "distance_accuracy")}, /* decimal number */
 };
 static const layout pinvmslope_layout = {
     .sentence = "PINVMSLOPE", .address = "PINVMSLOPE", .fields = pinvmslope_fields, .before = 6, .fixed = 6,
@@ -25784,7 +25784,7 @@ size_t nmea_build_pinvmslope(const nmea_pinvmslope *s, char *buf, size_t cap, nm
 
 /* $PINVMSTR,0*05 */
 static const layout_field pinvmstr_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pinvmstr, status), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pinvmstr, status), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "status")}, /* integer */
 };
 static const layout pinvmstr_layout = {
     .sentence = "PINVMSTR", .address = "PINVMSTR", .fields = pinvmstr_fields, .before = 1, .fixed = 1,
@@ -25849,8 +25849,8 @@ size_t nmea_build_pinvmstr(const nmea_pinvmstr *s, char *buf, size_t cap, nmea_e
 
 /* $PLSC,SLOPE,1*78 */
 static const layout_field plsc_fields[] = {
-    {ERROR_TEXT("message"), ERROR_TEXT("text"), NULL, offsetof(nmea_plsc, message), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("value"), ERROR_TEXT("integer"), NULL, offsetof(nmea_plsc, value), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_plsc, message), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "message")}, /* text */
+    {offsetof(nmea_plsc, value), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "value")}, /* integer */
 };
 static const layout plsc_layout = {
     .sentence = "PLSC", .address = "PLSC", .fields = plsc_fields, .before = 1, .optional = 1, .fixed = 1,
@@ -25880,9 +25880,9 @@ size_t nmea_build_plsc(const nmea_plsc *s, char *buf, size_t cap, nmea_error *er
 
 /* $PLSR,SLOPE,1,OK*41 */
 static const layout_field plsr_fields[] = {
-    {ERROR_TEXT("message"), ERROR_TEXT("text"), NULL, offsetof(nmea_plsr, message), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("value"), ERROR_TEXT("integer"), NULL, offsetof(nmea_plsr, value), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("response"), ERROR_TEXT("text"), NULL, offsetof(nmea_plsr, response), FIELD_TEXT, 1, 0},
+    {offsetof(nmea_plsr, message), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "message")}, /* text */
+    {offsetof(nmea_plsr, value), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "value")}, /* integer */
+    {offsetof(nmea_plsr, response), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "response")}, /* text */
 };
 static const layout plsr_layout = {
     .sentence = "PLSR", .address = "PLSR", .fields = plsr_fields, .before = 3, .fixed = 3, .max_fields = 3,
@@ -25911,12 +25911,12 @@ size_t nmea_build_plsr(const nmea_plsr *s, char *buf, size_t cap, nmea_error *er
 
 /* $PLSVD,1,0,-16,16,15,13*77 */
 static const layout_field plsvd_fields[] = {
-    {ERROR_TEXT("vel_east"), ERROR_TEXT("integer"), NULL, offsetof(nmea_plsvd, vel_east), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("vel_north"), ERROR_TEXT("integer"), NULL, offsetof(nmea_plsvd, vel_north), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("vel_down"), ERROR_TEXT("integer"), NULL, offsetof(nmea_plsvd, vel_down), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("vel_east_deviation"), ERROR_TEXT("integer"), NULL, offsetof(nmea_plsvd, vel_east_deviation), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("vel_north_deviation"), ERROR_TEXT("integer"), NULL, offsetof(nmea_plsvd, vel_north_deviation), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("vel_down_deviation"), ERROR_TEXT("integer"), NULL, offsetof(nmea_plsvd, vel_down_deviation), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_plsvd, vel_east), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "vel_east")}, /* integer */
+    {offsetof(nmea_plsvd, vel_north), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "vel_north")}, /* integer */
+    {offsetof(nmea_plsvd, vel_down), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "vel_down")}, /* integer */
+    {offsetof(nmea_plsvd, vel_east_deviation), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "vel_east_deviation")}, /* integer */
+    {offsetof(nmea_plsvd, vel_north_deviation), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "vel_north_deviation")}, /* integer */
+    {offsetof(nmea_plsvd, vel_down_deviation), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "vel_down_deviation")}, /* integer */
 };
 static const layout plsvd_layout = {
     .sentence = "PLSVD", .address = "PLSVD", .fields = plsvd_fields, .before = 6, .fixed = 6, .max_fields = 6,
@@ -27821,15 +27821,15 @@ size_t nmea_build_pmtklox_start(const nmea_pmtklox_start *s, char *buf, size_t c
 
 /* $PQGSA,A,3,12,,,,,,,,,,,,1.2,0.9,0.9,4*3C */
 static const layout_field pqgsa_fields[] = {
-    {ERROR_TEXT("selection_mode"), ERROR_TEXT("gsa_selection_mode code (M A)"), &nmea_gsa_selection_mode_def, offsetof(nmea_pqgsa, selection_mode), FIELD_ENUM, 1, 0},
-    {ERROR_TEXT("fix_type"), ERROR_TEXT("gsa_fix_type code (1 2 3)"), &nmea_gsa_fix_type_def, offsetof(nmea_pqgsa, fix_type), FIELD_ENUM, 1, 0},
-    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqgsa, pdop), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqgsa, hdop), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqgsa, vdop), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("system"), ERROR_TEXT("system_id code (1 2 3 4 5 6 F)"), &nmea_system_id_def, offsetof(nmea_pqgsa, system), FIELD_ENUM, 1, 0},
+    {offsetof(nmea_pqgsa, selection_mode), 59, FIELD_ENUM, 0, FIELD_NAMES(95, "selection_mode")}, /* gsa_selection_mode code (M A) */
+    {offsetof(nmea_pqgsa, fix_type), 60, FIELD_ENUM, 0, FIELD_NAMES(96, "fix_type")}, /* gsa_fix_type code (1 2 3) */
+    {offsetof(nmea_pqgsa, pdop), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pdop")}, /* decimal number */
+    {offsetof(nmea_pqgsa, hdop), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "hdop")}, /* decimal number */
+    {offsetof(nmea_pqgsa, vdop), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vdop")}, /* decimal number */
+    {offsetof(nmea_pqgsa, system), 49, FIELD_ENUM, 0, FIELD_NAMES(83, "system")}, /* system_id code (1 2 3 4 5 6 F) */
 };
 static const layout_field pqgsa_group_fields[] = {
-    {ERROR_TEXT("prn"), ERROR_TEXT("integer"), NULL, 0, FIELD_INTEGER, 1, 0},
+    {0, NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "prn")}, /* integer */
 };
 static const layout_group pqgsa_group = {
     .id = ERROR_TEXT("prns"), .fields = pqgsa_group_fields, .field_count = 1, .width = 1, .min = 12, .max = 12,
@@ -28132,8 +28132,8 @@ size_t nmea_build_pqtmantennastatus(const nmea_pqtmantennastatus *s, char *buf, 
 
 /* $PQTMCFGAIC,W,1*77 */
 static const layout_field pqtmcfgaic_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("state"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgaic, state), FIELD_INTEGER, 1, 0},
+    {0, 75, FIELD_KEYWORD, 0, FIELD_NAMES(398, "access")}, /* W */
+    {offsetof(nmea_pqtmcfgaic, state), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "state")}, /* integer */
 };
 static const layout pqtmcfgaic_layout = {
     .sentence = "PQTMCFGAIC", .address = "PQTMCFGAIC", .selector = "W", .fields = pqtmcfgaic_fields,
@@ -28163,7 +28163,7 @@ size_t nmea_build_pqtmcfgaic(const nmea_pqtmcfgaic *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGAIC,R*6F */
 static const layout_field pqtmcfgaic_read_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgaic_read_layout = {
     .sentence = "PQTMCFGAIC", .address = "PQTMCFGAIC", .variant = "read", .selector = "R",
@@ -28194,9 +28194,9 @@ size_t nmea_build_pqtmcfgaic_read(const nmea_pqtmcfgaic_read *s, char *buf, size
 /* $PQTMCFGANTDELTA,W,0.0000,0.0000,0.0000*10 */
 static const layout_field pqtmcfgantdelta_fields[] = {
     {0, 75, FIELD_KEYWORD, 0, FIELD_NAMES(398, "access")}, /* W */
-    {offsetof(nmea_pqtmcfgantdelta, east), 91, FIELD_DECIMAL, 0, FIELD_NAMES(399, "east")}, /* decimal number -200..200 */
-    {offsetof(nmea_pqtmcfgantdelta, north), 91, FIELD_DECIMAL, 0, FIELD_NAMES(399, "north")}, /* decimal number -200..200 */
-    {offsetof(nmea_pqtmcfgantdelta, height), 92, FIELD_DECIMAL, 0, FIELD_NAMES(400, "height")}, /* decimal number 0..6.5535 */
+    {offsetof(nmea_pqtmcfgantdelta, east), 91, FIELD_DECIMAL, 0, FIELD_NAMES(400, "east")}, /* decimal number -200..200 */
+    {offsetof(nmea_pqtmcfgantdelta, north), 91, FIELD_DECIMAL, 0, FIELD_NAMES(400, "north")}, /* decimal number -200..200 */
+    {offsetof(nmea_pqtmcfgantdelta, height), 92, FIELD_DECIMAL, 0, FIELD_NAMES(401, "height")}, /* decimal number 0..6.5535 */
 };
 static const layout pqtmcfgantdelta_layout = {
     .sentence = "PQTMCFGANTDELTA", .address = "PQTMCFGANTDELTA", .selector = "W",
@@ -28226,7 +28226,7 @@ size_t nmea_build_pqtmcfgantdelta(const nmea_pqtmcfgantdelta *s, char *buf, size
 
 /* $PQTMCFGANTDELTA,R*27 */
 static const layout_field pqtmcfgantdelta_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgantdelta_read_layout = {
     .sentence = "PQTMCFGANTDELTA", .address = "PQTMCFGANTDELTA", .variant = "read", .selector = "R",
@@ -28257,9 +28257,9 @@ size_t nmea_build_pqtmcfgantdelta_read(const nmea_pqtmcfgantdelta_read *s, char 
 /* $PQTMCFGANTDELTA,OK,0.0000,0.0000,0.0000*43 */
 static const layout_field pqtmcfgantdelta_result_fields[] = {
     {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
-    {offsetof(nmea_pqtmcfgantdelta_result, east), 91, FIELD_DECIMAL, 0, FIELD_NAMES(399, "east")}, /* decimal number -200..200 */
-    {offsetof(nmea_pqtmcfgantdelta_result, north), 91, FIELD_DECIMAL, 0, FIELD_NAMES(399, "north")}, /* decimal number -200..200 */
-    {offsetof(nmea_pqtmcfgantdelta_result, height), 92, FIELD_DECIMAL, 0, FIELD_NAMES(400, "height")}, /* decimal number 0..6.5535 */
+    {offsetof(nmea_pqtmcfgantdelta_result, east), 91, FIELD_DECIMAL, 0, FIELD_NAMES(400, "east")}, /* decimal number -200..200 */
+    {offsetof(nmea_pqtmcfgantdelta_result, north), 91, FIELD_DECIMAL, 0, FIELD_NAMES(400, "north")}, /* decimal number -200..200 */
+    {offsetof(nmea_pqtmcfgantdelta_result, height), 92, FIELD_DECIMAL, 0, FIELD_NAMES(401, "height")}, /* decimal number 0..6.5535 */
 };
 static const layout pqtmcfgantdelta_result_layout = {
     .sentence = "PQTMCFGANTDELTA_RESULT", .address = "PQTMCFGANTDELTA", .selector = "OK",
@@ -28381,7 +28381,7 @@ size_t nmea_build_pqtmcfgantinf(const nmea_pqtmcfgantinf *s, char *buf, size_t c
 
 /* $PQTMCFGANTINF,R*3E */
 static const layout_field pqtmcfgantinf_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgantinf_read_layout = {
     .sentence = "PQTMCFGANTINF", .address = "PQTMCFGANTINF", .variant = "read", .selector = "R",
@@ -28534,7 +28534,7 @@ size_t nmea_build_pqtmcfgbld(const nmea_pqtmcfgbld *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGBLD,R*6E */
 static const layout_field pqtmcfgbld_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgbld_read_layout = {
     .sentence = "PQTMCFGBLD", .address = "PQTMCFGBLD", .variant = "read", .selector = "R",
@@ -28685,7 +28685,7 @@ size_t nmea_build_pqtmcfgcnrthd(const nmea_pqtmcfgcnrthd *s, char *buf, size_t c
 
 /* $PQTMCFGCNRTHD,R*23 */
 static const layout_field pqtmcfgcnrthd_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgcnrthd_read_layout = {
     .sentence = "PQTMCFGCNRTHD", .address = "PQTMCFGCNRTHD", .variant = "read", .selector = "R",
@@ -28841,7 +28841,7 @@ size_t nmea_build_pqtmcfgcnst(const nmea_pqtmcfgcnst *s, char *buf, size_t cap, 
 
 /* $PQTMCFGCNST,R*2E */
 static const layout_field pqtmcfgcnst_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgcnst_read_layout = {
     .sentence = "PQTMCFGCNST", .address = "PQTMCFGCNST", .variant = "read", .selector = "R",
@@ -28966,8 +28966,8 @@ size_t nmea_build_pqtmcfgcnst_result_error(const nmea_pqtmcfgcnst_result_error *
 
 /* $PQTMCFGDR,W,1*2A */
 static const layout_field pqtmcfgdr_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("dr_state"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgdr, dr_state), FIELD_INTEGER, 1, 0},
+    {0, 75, FIELD_KEYWORD, 0, FIELD_NAMES(398, "access")}, /* W */
+    {offsetof(nmea_pqtmcfgdr, dr_state), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "dr_state")}, /* integer */
 };
 static const layout pqtmcfgdr_layout = {
     .sentence = "PQTMCFGDR", .address = "PQTMCFGDR", .selector = "W", .fields = pqtmcfgdr_fields,
@@ -28997,7 +28997,7 @@ size_t nmea_build_pqtmcfgdr(const nmea_pqtmcfgdr *s, char *buf, size_t cap, nmea
 
 /* $PQTMCFGDR,R*32 */
 static const layout_field pqtmcfgdr_read_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgdr_read_layout = {
     .sentence = "PQTMCFGDR", .address = "PQTMCFGDR", .variant = "read", .selector = "R",
@@ -29027,8 +29027,8 @@ size_t nmea_build_pqtmcfgdr_read(const nmea_pqtmcfgdr_read *s, char *buf, size_t
 
 /* $PQTMCFGDR,OK,1*79 */
 static const layout_field pqtmcfgdr_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("dr_state"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgdr_result, dr_state), FIELD_INTEGER, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
+    {offsetof(nmea_pqtmcfgdr_result, dr_state), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "dr_state")}, /* integer */
 };
 static const layout pqtmcfgdr_result_layout = {
     .sentence = "PQTMCFGDR_RESULT", .address = "PQTMCFGDR", .selector = "OK", .fields = pqtmcfgdr_result_fields,
@@ -29058,7 +29058,7 @@ size_t nmea_build_pqtmcfgdr_result(const nmea_pqtmcfgdr_result *s, char *buf, si
 
 /* $PQTMCFGDR,OK*64 */
 static const layout_field pqtmcfgdr_result_ack_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
 };
 static const layout pqtmcfgdr_result_ack_layout = {
     .sentence = "PQTMCFGDR_RESULT", .address = "PQTMCFGDR", .variant = "ack", .selector = "OK",
@@ -29086,8 +29086,8 @@ size_t nmea_build_pqtmcfgdr_result_ack(const nmea_pqtmcfgdr_result_ack *s, char 
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGDR_RESULT (Command failed): Configure dead reckoning: result (spec/proprietary/pqtmcfgdr_result.yaml) */
 static const layout_field pqtmcfgdr_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgdr_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmcfgdr_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmcfgdr_result_error_layout = {
     .sentence = "PQTMCFGDR_RESULT", .address = "PQTMCFGDR", .variant = "error", .selector = "ERROR",
@@ -29115,8 +29115,8 @@ size_t nmea_build_pqtmcfgdr_result_error(const nmea_pqtmcfgdr_result_error *s, c
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGDRHOT: Configure DR hot start (spec/proprietary/pqtmcfgdrhot.yaml) */
 static const layout_field pqtmcfgdrhot_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("mode"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgdrhot, mode), FIELD_INTEGER, 1, 0},
+    {0, 75, FIELD_KEYWORD, 0, FIELD_NAMES(398, "access")}, /* W */
+    {offsetof(nmea_pqtmcfgdrhot, mode), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "mode")}, /* integer */
 };
 static const layout pqtmcfgdrhot_layout = {
     .sentence = "PQTMCFGDRHOT", .address = "PQTMCFGDRHOT", .selector = "W", .fields = pqtmcfgdrhot_fields,
@@ -29144,7 +29144,7 @@ size_t nmea_build_pqtmcfgdrhot(const nmea_pqtmcfgdrhot *s, char *buf, size_t cap
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGDRHOT (Read the setting): Configure DR hot start (spec/proprietary/pqtmcfgdrhot.yaml) */
 static const layout_field pqtmcfgdrhot_read_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgdrhot_read_layout = {
     .sentence = "PQTMCFGDRHOT", .address = "PQTMCFGDRHOT", .variant = "read", .selector = "R",
@@ -29174,8 +29174,8 @@ size_t nmea_build_pqtmcfgdrhot_read(const nmea_pqtmcfgdrhot_read *s, char *buf, 
 
 /* $PQTMCFGDRHOT,OK,1*2A */
 static const layout_field pqtmcfgdrhot_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("mode"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgdrhot_result, mode), FIELD_INTEGER, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
+    {offsetof(nmea_pqtmcfgdrhot_result, mode), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "mode")}, /* integer */
 };
 static const layout pqtmcfgdrhot_result_layout = {
     .sentence = "PQTMCFGDRHOT_RESULT", .address = "PQTMCFGDRHOT", .selector = "OK",
@@ -29203,7 +29203,7 @@ size_t nmea_build_pqtmcfgdrhot_result(const nmea_pqtmcfgdrhot_result *s, char *b
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGDRHOT_RESULT (Write acknowledged): Configure DR hot start: result (spec/proprietary/pqtmcfgdrhot_result.yaml) */
 static const layout_field pqtmcfgdrhot_result_ack_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
 };
 static const layout pqtmcfgdrhot_result_ack_layout = {
     .sentence = "PQTMCFGDRHOT_RESULT", .address = "PQTMCFGDRHOT", .variant = "ack", .selector = "OK",
@@ -29231,8 +29231,8 @@ size_t nmea_build_pqtmcfgdrhot_result_ack(const nmea_pqtmcfgdrhot_result_ack *s,
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGDRHOT_RESULT (Command failed): Configure DR hot start: result (spec/proprietary/pqtmcfgdrhot_result.yaml) */
 static const layout_field pqtmcfgdrhot_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgdrhot_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmcfgdrhot_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmcfgdrhot_result_error_layout = {
     .sentence = "PQTMCFGDRHOT_RESULT", .address = "PQTMCFGDRHOT", .variant = "error", .selector = "ERROR",
@@ -29260,9 +29260,9 @@ size_t nmea_build_pqtmcfgdrhot_result_error(const nmea_pqtmcfgdrhot_result_error
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGDRRTD: Configure DR running time and distance (spec/proprietary/pqtmcfgdrrtd.yaml) */
 static const layout_field pqtmcfgdrrtd_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgdrrtd, time), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("distance"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgdrrtd, distance), FIELD_INTEGER, 1, 0},
+    {0, 75, FIELD_KEYWORD, 0, FIELD_NAMES(398, "access")}, /* W */
+    {offsetof(nmea_pqtmcfgdrrtd, time), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "time")}, /* integer */
+    {offsetof(nmea_pqtmcfgdrrtd, distance), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "distance")}, /* integer */
 };
 static const layout pqtmcfgdrrtd_layout = {
     .sentence = "PQTMCFGDRRTD", .address = "PQTMCFGDRRTD", .selector = "W", .fields = pqtmcfgdrrtd_fields,
@@ -29290,7 +29290,7 @@ size_t nmea_build_pqtmcfgdrrtd(const nmea_pqtmcfgdrrtd *s, char *buf, size_t cap
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGDRRTD (Read the setting): Configure DR running time and distance (spec/proprietary/pqtmcfgdrrtd.yaml) */
 static const layout_field pqtmcfgdrrtd_read_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgdrrtd_read_layout = {
     .sentence = "PQTMCFGDRRTD", .address = "PQTMCFGDRRTD", .variant = "read", .selector = "R",
@@ -29320,9 +29320,9 @@ size_t nmea_build_pqtmcfgdrrtd_read(const nmea_pqtmcfgdrrtd_read *s, char *buf, 
 
 /* $PQTMCFGDRRTD,OK,600,10000*21 */
 static const layout_field pqtmcfgdrrtd_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgdrrtd_result, time), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("distance"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgdrrtd_result, distance), FIELD_INTEGER, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
+    {offsetof(nmea_pqtmcfgdrrtd_result, time), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "time")}, /* integer */
+    {offsetof(nmea_pqtmcfgdrrtd_result, distance), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "distance")}, /* integer */
 };
 static const layout pqtmcfgdrrtd_result_layout = {
     .sentence = "PQTMCFGDRRTD_RESULT", .address = "PQTMCFGDRRTD", .selector = "OK",
@@ -29350,7 +29350,7 @@ size_t nmea_build_pqtmcfgdrrtd_result(const nmea_pqtmcfgdrrtd_result *s, char *b
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGDRRTD_RESULT (Write acknowledged): Configure DR running time and distance: result (spec/proprietary/pqtmcfgdrrtd_result.yaml) */
 static const layout_field pqtmcfgdrrtd_result_ack_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
 };
 static const layout pqtmcfgdrrtd_result_ack_layout = {
     .sentence = "PQTMCFGDRRTD_RESULT", .address = "PQTMCFGDRRTD", .variant = "ack", .selector = "OK",
@@ -29378,8 +29378,8 @@ size_t nmea_build_pqtmcfgdrrtd_result_ack(const nmea_pqtmcfgdrrtd_result_ack *s,
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGDRRTD_RESULT (Command failed): Configure DR running time and distance: result (spec/proprietary/pqtmcfgdrrtd_result.yaml) */
 static const layout_field pqtmcfgdrrtd_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgdrrtd_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmcfgdrrtd_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmcfgdrrtd_result_error_layout = {
     .sentence = "PQTMCFGDRRTD_RESULT", .address = "PQTMCFGDRRTD", .variant = "error", .selector = "ERROR",
@@ -29409,11 +29409,11 @@ size_t nmea_build_pqtmcfgdrrtd_result_error(const nmea_pqtmcfgdrrtd_result_error
 
 /* $PQTMCFGEINSMSG,1,1,1,1,10*3F */
 static const layout_field pqtmcfgeinsmsg_fields[] = {
-    {ERROR_TEXT("msg_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgeinsmsg, msg_type), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("ins_enabled"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgeinsmsg, ins_enabled), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("imu_enabled"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgeinsmsg, imu_enabled), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("gps_enabled"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgeinsmsg, gps_enabled), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("rate"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgeinsmsg, rate), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pqtmcfgeinsmsg, msg_type), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_type")}, /* integer */
+    {offsetof(nmea_pqtmcfgeinsmsg, ins_enabled), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "ins_enabled")}, /* integer */
+    {offsetof(nmea_pqtmcfgeinsmsg, imu_enabled), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "imu_enabled")}, /* integer */
+    {offsetof(nmea_pqtmcfgeinsmsg, gps_enabled), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "gps_enabled")}, /* integer */
+    {offsetof(nmea_pqtmcfgeinsmsg, rate), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "rate")}, /* integer */
 };
 static const layout pqtmcfgeinsmsg_layout = {
     .sentence = "PQTMCFGEINSMSG", .address = "PQTMCFGEINSMSG", .fields = pqtmcfgeinsmsg_fields, .before = 5,
@@ -29518,7 +29518,7 @@ size_t nmea_build_pqtmcfgelethd(const nmea_pqtmcfgelethd *s, char *buf, size_t c
 
 /* $PQTMCFGELETHD,R*30 */
 static const layout_field pqtmcfgelethd_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgelethd_read_layout = {
     .sentence = "PQTMCFGELETHD", .address = "PQTMCFGELETHD", .variant = "read", .selector = "R",
@@ -29669,7 +29669,7 @@ size_t nmea_build_pqtmcfgfixrate(const nmea_pqtmcfgfixrate *s, char *buf, size_t
 
 /* $PQTMCFGFIXRATE,R*71 */
 static const layout_field pqtmcfgfixrate_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgfixrate_read_layout = {
     .sentence = "PQTMCFGFIXRATE", .address = "PQTMCFGFIXRATE", .variant = "read", .selector = "R",
@@ -29832,7 +29832,7 @@ size_t nmea_build_pqtmcfggeofence(const nmea_pqtmcfggeofence *s, char *buf, size
 
 /* $PQTMCFGGEOFENCE,R,0*3E */
 static const layout_field pqtmcfggeofence_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
     {offsetof(nmea_pqtmcfggeofence_read, index), 3, FIELD_INTEGER, 0, FIELD_NAMES(11, "index")}, /* integer 0..3 */
 };
 static const layout pqtmcfggeofence_read_layout = {
@@ -29997,7 +29997,7 @@ size_t nmea_build_pqtmcfggeosep(const nmea_pqtmcfggeosep *s, char *buf, size_t c
 
 /* $PQTMCFGGEOSEP,R*2F */
 static const layout_field pqtmcfggeosep_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfggeosep_read_layout = {
     .sentence = "PQTMCFGGEOSEP", .address = "PQTMCFGGEOSEP", .variant = "read", .selector = "R",
@@ -30116,8 +30116,8 @@ size_t nmea_build_pqtmcfggeosep_result_error(const nmea_pqtmcfggeosep_result_err
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGIMUTC: Configure IMU temperature compensation (spec/proprietary/pqtmcfgimutc.yaml) */
 static const layout_field pqtmcfgimutc_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("state"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgimutc, state), FIELD_INTEGER, 1, 0},
+    {0, 75, FIELD_KEYWORD, 0, FIELD_NAMES(398, "access")}, /* W */
+    {offsetof(nmea_pqtmcfgimutc, state), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "state")}, /* integer */
 };
 static const layout pqtmcfgimutc_layout = {
     .sentence = "PQTMCFGIMUTC", .address = "PQTMCFGIMUTC", .selector = "W", .fields = pqtmcfgimutc_fields,
@@ -30145,7 +30145,7 @@ size_t nmea_build_pqtmcfgimutc(const nmea_pqtmcfgimutc *s, char *buf, size_t cap
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGIMUTC (Read the setting): Configure IMU temperature compensation (spec/proprietary/pqtmcfgimutc.yaml) */
 static const layout_field pqtmcfgimutc_read_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgimutc_read_layout = {
     .sentence = "PQTMCFGIMUTC", .address = "PQTMCFGIMUTC", .variant = "read", .selector = "R",
@@ -30175,8 +30175,8 @@ size_t nmea_build_pqtmcfgimutc_read(const nmea_pqtmcfgimutc_read *s, char *buf, 
 
 /* $PQTMCFGIMUTC,OK,1*29 */
 static const layout_field pqtmcfgimutc_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("state"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgimutc_result, state), FIELD_INTEGER, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
+    {offsetof(nmea_pqtmcfgimutc_result, state), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "state")}, /* integer */
 };
 static const layout pqtmcfgimutc_result_layout = {
     .sentence = "PQTMCFGIMUTC_RESULT", .address = "PQTMCFGIMUTC", .selector = "OK",
@@ -30204,7 +30204,7 @@ size_t nmea_build_pqtmcfgimutc_result(const nmea_pqtmcfgimutc_result *s, char *b
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGIMUTC_RESULT (Write acknowledged): Configure IMU temperature compensation: result (spec/proprietary/pqtmcfgimutc_result.yaml) */
 static const layout_field pqtmcfgimutc_result_ack_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
 };
 static const layout pqtmcfgimutc_result_ack_layout = {
     .sentence = "PQTMCFGIMUTC_RESULT", .address = "PQTMCFGIMUTC", .variant = "ack", .selector = "OK",
@@ -30232,8 +30232,8 @@ size_t nmea_build_pqtmcfgimutc_result_ack(const nmea_pqtmcfgimutc_result_ack *s,
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGIMUTC_RESULT (Command failed): Configure IMU temperature compensation: result (spec/proprietary/pqtmcfgimutc_result.yaml) */
 static const layout_field pqtmcfgimutc_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgimutc_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmcfgimutc_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmcfgimutc_result_error_layout = {
     .sentence = "PQTMCFGIMUTC_RESULT", .address = "PQTMCFGIMUTC", .variant = "error", .selector = "ERROR",
@@ -30263,11 +30263,11 @@ size_t nmea_build_pqtmcfgimutc_result_error(const nmea_pqtmcfgimutc_result_error
 
 /* $PQTMCFGLA,W,1,0.212,0.514,0.113*31 */
 static const layout_field pqtmcfgla_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("lever_arm_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgla, lever_arm_type), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgla, x), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgla, y), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgla, z), FIELD_DECIMAL, 1, 0},
+    {0, 75, FIELD_KEYWORD, 0, FIELD_NAMES(398, "access")}, /* W */
+    {offsetof(nmea_pqtmcfgla, lever_arm_type), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "lever_arm_type")}, /* integer */
+    {offsetof(nmea_pqtmcfgla, x), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "x")}, /* decimal number */
+    {offsetof(nmea_pqtmcfgla, y), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "y")}, /* decimal number */
+    {offsetof(nmea_pqtmcfgla, z), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "z")}, /* decimal number */
 };
 static const layout pqtmcfgla_layout = {
     .sentence = "PQTMCFGLA", .address = "PQTMCFGLA", .selector = "W", .fields = pqtmcfgla_fields,
@@ -30297,8 +30297,8 @@ size_t nmea_build_pqtmcfgla(const nmea_pqtmcfgla *s, char *buf, size_t cap, nmea
 
 /* $PQTMCFGLA,R,1*34 */
 static const layout_field pqtmcfgla_read_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("lever_arm_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgla_read, lever_arm_type), FIELD_INTEGER, 1, 0},
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
+    {offsetof(nmea_pqtmcfgla_read, lever_arm_type), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "lever_arm_type")}, /* integer */
 };
 static const layout pqtmcfgla_read_layout = {
     .sentence = "PQTMCFGLA", .address = "PQTMCFGLA", .variant = "read", .selector = "R",
@@ -30328,11 +30328,11 @@ size_t nmea_build_pqtmcfgla_read(const nmea_pqtmcfgla_read *s, char *buf, size_t
 
 /* $PQTMCFGLA,OK,1,0.212,0.514,0.113*62 */
 static const layout_field pqtmcfgla_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("lever_arm_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgla_result, lever_arm_type), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgla_result, x), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgla_result, y), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmcfgla_result, z), FIELD_DECIMAL, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
+    {offsetof(nmea_pqtmcfgla_result, lever_arm_type), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "lever_arm_type")}, /* integer */
+    {offsetof(nmea_pqtmcfgla_result, x), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "x")}, /* decimal number */
+    {offsetof(nmea_pqtmcfgla_result, y), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "y")}, /* decimal number */
+    {offsetof(nmea_pqtmcfgla_result, z), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "z")}, /* decimal number */
 };
 static const layout pqtmcfgla_result_layout = {
     .sentence = "PQTMCFGLA_RESULT", .address = "PQTMCFGLA", .selector = "OK", .fields = pqtmcfgla_result_fields,
@@ -30362,7 +30362,7 @@ size_t nmea_build_pqtmcfgla_result(const nmea_pqtmcfgla_result *s, char *buf, si
 
 /* $PQTMCFGLA,OK*7F */
 static const layout_field pqtmcfgla_result_ack_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
 };
 static const layout pqtmcfgla_result_ack_layout = {
     .sentence = "PQTMCFGLA_RESULT", .address = "PQTMCFGLA", .variant = "ack", .selector = "OK",
@@ -30390,8 +30390,8 @@ size_t nmea_build_pqtmcfgla_result_ack(const nmea_pqtmcfgla_result_ack *s, char 
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGLA_RESULT (Command failed): Configure lever arm: result (spec/proprietary/pqtmcfgla_result.yaml) */
 static const layout_field pqtmcfgla_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgla_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmcfgla_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmcfgla_result_error_layout = {
     .sentence = "PQTMCFGLA_RESULT", .address = "PQTMCFGLA", .variant = "error", .selector = "ERROR",
@@ -30421,8 +30421,8 @@ size_t nmea_build_pqtmcfgla_result_error(const nmea_pqtmcfgla_result_error *s, c
 
 /* $PQTMCFGLAM,W,2*7F */
 static const layout_field pqtmcfglam_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("mode"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfglam, mode), FIELD_INTEGER, 1, 0},
+    {0, 75, FIELD_KEYWORD, 0, FIELD_NAMES(398, "access")}, /* W */
+    {offsetof(nmea_pqtmcfglam, mode), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "mode")}, /* integer */
 };
 static const layout pqtmcfglam_layout = {
     .sentence = "PQTMCFGLAM", .address = "PQTMCFGLAM", .selector = "W", .fields = pqtmcfglam_fields,
@@ -30452,7 +30452,7 @@ size_t nmea_build_pqtmcfglam(const nmea_pqtmcfglam *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGLAM,R*64 */
 static const layout_field pqtmcfglam_read_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfglam_read_layout = {
     .sentence = "PQTMCFGLAM", .address = "PQTMCFGLAM", .variant = "read", .selector = "R",
@@ -30482,8 +30482,8 @@ size_t nmea_build_pqtmcfglam_read(const nmea_pqtmcfglam_read *s, char *buf, size
 
 /* $PQTMCFGLAM,OK,2*2C */
 static const layout_field pqtmcfglam_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("mode"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfglam_result, mode), FIELD_INTEGER, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
+    {offsetof(nmea_pqtmcfglam_result, mode), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "mode")}, /* integer */
 };
 static const layout pqtmcfglam_result_layout = {
     .sentence = "PQTMCFGLAM_RESULT", .address = "PQTMCFGLAM", .selector = "OK",
@@ -30513,7 +30513,7 @@ size_t nmea_build_pqtmcfglam_result(const nmea_pqtmcfglam_result *s, char *buf, 
 
 /* $PQTMCFGLAM,OK*32 */
 static const layout_field pqtmcfglam_result_ack_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
 };
 static const layout pqtmcfglam_result_ack_layout = {
     .sentence = "PQTMCFGLAM_RESULT", .address = "PQTMCFGLAM", .variant = "ack", .selector = "OK",
@@ -30541,8 +30541,8 @@ size_t nmea_build_pqtmcfglam_result_ack(const nmea_pqtmcfglam_result_ack *s, cha
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGLAM_RESULT (Command failed): Configure lever arm mode: result (spec/proprietary/pqtmcfglam_result.yaml) */
 static const layout_field pqtmcfglam_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfglam_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmcfglam_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmcfglam_result_error_layout = {
     .sentence = "PQTMCFGLAM_RESULT", .address = "PQTMCFGLAM", .variant = "error", .selector = "ERROR",
@@ -30642,7 +30642,7 @@ size_t nmea_build_pqtmcfgmsgrate_port(const nmea_pqtmcfgmsgrate_port *s, char *b
 
 /* $PQTMCFGMSGRATE,R,1,1,0AB2,1*4F */
 static const layout_field pqtmcfgmsgrate_read_port_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
     {offsetof(nmea_pqtmcfgmsgrate_read_port, port_type), 207, FIELD_ENUM, 0, FIELD_NAMES(413, "port_type")}, /* quectel_port_type code (1) */
     {offsetof(nmea_pqtmcfgmsgrate_read_port, port_id), 95, FIELD_INTEGER, 0, FIELD_NAMES(414, "port_id")}, /* integer 1..3 */
     {offsetof(nmea_pqtmcfgmsgrate_read_port, message), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "message")}, /* text */
@@ -30677,7 +30677,7 @@ size_t nmea_build_pqtmcfgmsgrate_read_port(const nmea_pqtmcfgmsgrate_read_port *
 
 /* $PQTMCFGMSGRATE,R,PQTMEPE,2*05 */
 static const layout_field pqtmcfgmsgrate_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
     {offsetof(nmea_pqtmcfgmsgrate_read, message), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "message")}, /* text */
     {offsetof(nmea_pqtmcfgmsgrate_read, version_or_offset), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "version_or_offset")}, /* integer */
 };
@@ -30841,8 +30841,8 @@ size_t nmea_build_pqtmcfgmsgrate_result_error(const nmea_pqtmcfgmsgrate_result_e
 
 /* $PQTMCFGNAVMODE,W,10*56 */
 static const layout_field pqtmcfgnavmode_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("mode"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgnavmode, mode), FIELD_INTEGER, 1, 0},
+    {0, 75, FIELD_KEYWORD, 0, FIELD_NAMES(398, "access")}, /* W */
+    {offsetof(nmea_pqtmcfgnavmode, mode), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "mode")}, /* integer */
 };
 static const layout pqtmcfgnavmode_layout = {
     .sentence = "PQTMCFGNAVMODE", .address = "PQTMCFGNAVMODE", .selector = "W", .fields = pqtmcfgnavmode_fields,
@@ -30872,7 +30872,7 @@ size_t nmea_build_pqtmcfgnavmode(const nmea_pqtmcfgnavmode *s, char *buf, size_t
 
 /* $PQTMCFGNAVMODE,R*7E */
 static const layout_field pqtmcfgnavmode_read_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgnavmode_read_layout = {
     .sentence = "PQTMCFGNAVMODE", .address = "PQTMCFGNAVMODE", .variant = "read", .selector = "R",
@@ -30938,7 +30938,7 @@ size_t nmea_build_pqtmcfgnmeadp(const nmea_pqtmcfgnmeadp *s, char *buf, size_t c
 
 /* $PQTMCFGNMEADP,R*37 */
 static const layout_field pqtmcfgnmeadp_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgnmeadp_read_layout = {
     .sentence = "PQTMCFGNMEADP", .address = "PQTMCFGNMEADP", .variant = "read", .selector = "R",
@@ -31095,7 +31095,7 @@ size_t nmea_build_pqtmcfgnmeatid(const nmea_pqtmcfgnmeatid *s, char *buf, size_t
 
 /* $PQTMCFGNMEATID,R*7A */
 static const layout_field pqtmcfgnmeatid_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgnmeatid_read_layout = {
     .sentence = "PQTMCFGNMEATID", .address = "PQTMCFGNMEATID", .variant = "read", .selector = "R",
@@ -31248,7 +31248,7 @@ size_t nmea_build_pqtmcfgodo(const nmea_pqtmcfgodo *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGODO,R*60 */
 static const layout_field pqtmcfgodo_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgodo_read_layout = {
     .sentence = "PQTMCFGODO", .address = "PQTMCFGODO", .variant = "read", .selector = "R",
@@ -31406,7 +31406,7 @@ size_t nmea_build_pqtmcfgpps(const nmea_pqtmcfgpps *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGPPS,R,1*6A */
 static const layout_field pqtmcfgpps_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
     {offsetof(nmea_pqtmcfgpps_read, index), 97, FIELD_INTEGER, 0, FIELD_NAMES(417, "index")}, /* integer 1..1 */
 };
 static const layout pqtmcfgpps_read_layout = {
@@ -31567,7 +31567,7 @@ size_t nmea_build_pqtmcfgprot(const nmea_pqtmcfgprot *s, char *buf, size_t cap, 
 
 /* $PQTMCFGPROT,R,1,1*3D */
 static const layout_field pqtmcfgprot_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
     {offsetof(nmea_pqtmcfgprot_read, port_type), 207, FIELD_ENUM, 0, FIELD_NAMES(413, "port_type")}, /* quectel_port_type code (1) */
     {offsetof(nmea_pqtmcfgprot_read, port_id), 95, FIELD_INTEGER, 0, FIELD_NAMES(414, "port_id")}, /* integer 1..3 */
 };
@@ -31723,7 +31723,7 @@ size_t nmea_build_pqtmcfgrcvrmode(const nmea_pqtmcfgrcvrmode *s, char *buf, size
 
 /* $PQTMCFGRCVRMODE,R*32 */
 static const layout_field pqtmcfgrcvrmode_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgrcvrmode_read_layout = {
     .sentence = "PQTMCFGRCVRMODE", .address = "PQTMCFGRCVRMODE", .variant = "read", .selector = "R",
@@ -31874,7 +31874,7 @@ size_t nmea_build_pqtmcfgrsid(const nmea_pqtmcfgrsid *s, char *buf, size_t cap, 
 
 /* $PQTMCFGRSID,R*28 */
 static const layout_field pqtmcfgrsid_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgrsid_read_layout = {
     .sentence = "PQTMCFGRSID", .address = "PQTMCFGRSID", .variant = "read", .selector = "R",
@@ -32031,7 +32031,7 @@ size_t nmea_build_pqtmcfgrtcm(const nmea_pqtmcfgrtcm *s, char *buf, size_t cap, 
 
 /* $PQTMCFGRTCM,R*2C */
 static const layout_field pqtmcfgrtcm_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgrtcm_read_layout = {
     .sentence = "PQTMCFGRTCM", .address = "PQTMCFGRTCM", .variant = "read", .selector = "R",
@@ -32191,7 +32191,7 @@ size_t nmea_build_pqtmcfgrtk(const nmea_pqtmcfgrtk *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGRTK,R*69 */
 static const layout_field pqtmcfgrtk_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgrtk_read_layout = {
     .sentence = "PQTMCFGRTK", .address = "PQTMCFGRTK", .variant = "read", .selector = "R",
@@ -32345,7 +32345,7 @@ size_t nmea_build_pqtmcfgrtksrctype(const nmea_pqtmcfgrtksrctype *s, char *buf, 
 
 /* $PQTMCFGRTKSRCTYPE,R*33 */
 static const layout_field pqtmcfgrtksrctype_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgrtksrctype_read_layout = {
     .sentence = "PQTMCFGRTKSRCTYPE", .address = "PQTMCFGRTKSRCTYPE", .variant = "read", .selector = "R",
@@ -32501,7 +32501,7 @@ size_t nmea_build_pqtmcfgsat(const nmea_pqtmcfgsat *s, char *buf, size_t cap, nm
 
 /* $PQTMCFGSAT,R,1,1*62 */
 static const layout_field pqtmcfgsat_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
     {offsetof(nmea_pqtmcfgsat_read, system), 49, FIELD_ENUM, 0, FIELD_NAMES(83, "system")}, /* system_id code (1 2 3 4 5 6 F) */
     {offsetof(nmea_pqtmcfgsat_read, signal), NO_ARG, FIELD_HEX, 0, FIELD_NAMES(39, "signal")}, /* hex number */
 };
@@ -32658,7 +32658,7 @@ size_t nmea_build_pqtmcfgsbas(const nmea_pqtmcfgsbas *s, char *buf, size_t cap, 
 
 /* $PQTMCFGSBAS,R*27 */
 static const layout_field pqtmcfgsbas_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgsbas_read_layout = {
     .sentence = "PQTMCFGSBAS", .address = "PQTMCFGSBAS", .variant = "read", .selector = "R",
@@ -32809,7 +32809,7 @@ size_t nmea_build_pqtmcfgsiggrp(const nmea_pqtmcfgsiggrp *s, char *buf, size_t c
 
 /* $PQTMCFGSIGGRP,R*3C */
 static const layout_field pqtmcfgsiggrp_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgsiggrp_read_layout = {
     .sentence = "PQTMCFGSIGGRP", .address = "PQTMCFGSIGGRP", .variant = "read", .selector = "R",
@@ -32965,7 +32965,7 @@ size_t nmea_build_pqtmcfgsignal(const nmea_pqtmcfgsignal *s, char *buf, size_t c
 
 /* $PQTMCFGSIGNAL,R*3A */
 static const layout_field pqtmcfgsignal_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgsignal_read_layout = {
     .sentence = "PQTMCFGSIGNAL", .address = "PQTMCFGSIGNAL", .variant = "read", .selector = "R",
@@ -33031,7 +33031,7 @@ size_t nmea_build_pqtmcfgsignal2(const nmea_pqtmcfgsignal2 *s, char *buf, size_t
 
 /* $PQTMCFGSIGNAL2,R*08 */
 static const layout_field pqtmcfgsignal2_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgsignal2_read_layout = {
     .sentence = "PQTMCFGSIGNAL2", .address = "PQTMCFGSIGNAL2", .variant = "read", .selector = "R",
@@ -33251,8 +33251,8 @@ size_t nmea_build_pqtmcfgsignal_result_error(const nmea_pqtmcfgsignal_result_err
 
 /* $PQTMCFGSTATICHOLD,W,1*2B */
 static const layout_field pqtmcfgstatichold_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("state"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgstatichold, state), FIELD_INTEGER, 1, 0},
+    {0, 75, FIELD_KEYWORD, 0, FIELD_NAMES(398, "access")}, /* W */
+    {offsetof(nmea_pqtmcfgstatichold, state), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "state")}, /* integer */
 };
 static const layout pqtmcfgstatichold_layout = {
     .sentence = "PQTMCFGSTATICHOLD", .address = "PQTMCFGSTATICHOLD", .selector = "W",
@@ -33282,7 +33282,7 @@ size_t nmea_build_pqtmcfgstatichold(const nmea_pqtmcfgstatichold *s, char *buf, 
 
 /* $PQTMCFGSTATICHOLD,R*33 */
 static const layout_field pqtmcfgstatichold_read_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgstatichold_read_layout = {
     .sentence = "PQTMCFGSTATICHOLD", .address = "PQTMCFGSTATICHOLD", .variant = "read", .selector = "R",
@@ -33312,8 +33312,8 @@ size_t nmea_build_pqtmcfgstatichold_read(const nmea_pqtmcfgstatichold_read *s, c
 
 /* $PQTMCFGSTATICHOLD,OK,1*78 */
 static const layout_field pqtmcfgstatichold_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("state"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgstatichold_result, state), FIELD_INTEGER, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
+    {offsetof(nmea_pqtmcfgstatichold_result, state), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "state")}, /* integer */
 };
 static const layout pqtmcfgstatichold_result_layout = {
     .sentence = "PQTMCFGSTATICHOLD_RESULT", .address = "PQTMCFGSTATICHOLD", .selector = "OK",
@@ -33343,7 +33343,7 @@ size_t nmea_build_pqtmcfgstatichold_result(const nmea_pqtmcfgstatichold_result *
 
 /* $PQTMCFGSTATICHOLD,OK*65 */
 static const layout_field pqtmcfgstatichold_result_ack_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
 };
 static const layout pqtmcfgstatichold_result_ack_layout = {
     .sentence = "PQTMCFGSTATICHOLD_RESULT", .address = "PQTMCFGSTATICHOLD", .variant = "ack", .selector = "OK",
@@ -33371,8 +33371,8 @@ size_t nmea_build_pqtmcfgstatichold_result_ack(const nmea_pqtmcfgstatichold_resu
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGSTATICHOLD_RESULT (Command failed): Configure static hold: result (spec/proprietary/pqtmcfgstatichold_result.yaml) */
 static const layout_field pqtmcfgstatichold_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgstatichold_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmcfgstatichold_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmcfgstatichold_result_error_layout = {
     .sentence = "PQTMCFGSTATICHOLD_RESULT", .address = "PQTMCFGSTATICHOLD", .variant = "error",
@@ -33441,7 +33441,7 @@ size_t nmea_build_pqtmcfgsvin(const nmea_pqtmcfgsvin *s, char *buf, size_t cap, 
 
 /* $PQTMCFGSVIN,R*26 */
 static const layout_field pqtmcfgsvin_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgsvin_read_layout = {
     .sentence = "PQTMCFGSVIN", .address = "PQTMCFGSVIN", .variant = "read", .selector = "R",
@@ -33702,7 +33702,7 @@ size_t nmea_build_pqtmcfguart_port_baud(const nmea_pqtmcfguart_port_baud *s, cha
 
 /* $PQTMCFGUART,R,1*2B */
 static const layout_field pqtmcfguart_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
     {offsetof(nmea_pqtmcfguart_read, index), 217, FIELD_ENUM, 0, FIELD_NAMES(434, "index")}, /* quectel_uart_index code (1 2 3) */
 };
 static const layout pqtmcfguart_read_layout = {
@@ -33829,9 +33829,9 @@ size_t nmea_build_pqtmcfguart_result_error(const nmea_pqtmcfguart_result_error *
 
 /* $PQTMCFGVEHMOT,W,1,1*2C */
 static const layout_field pqtmcfgvehmot_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("W"), "W", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("mode"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgvehmot, mode), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("vehicle_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgvehmot, vehicle_type), FIELD_INTEGER, 1, 0},
+    {0, 75, FIELD_KEYWORD, 0, FIELD_NAMES(398, "access")}, /* W */
+    {offsetof(nmea_pqtmcfgvehmot, mode), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "mode")}, /* integer */
+    {offsetof(nmea_pqtmcfgvehmot, vehicle_type), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "vehicle_type")}, /* integer */
 };
 static const layout pqtmcfgvehmot_layout = {
     .sentence = "PQTMCFGVEHMOT", .address = "PQTMCFGVEHMOT", .selector = "W", .fields = pqtmcfgvehmot_fields,
@@ -33861,7 +33861,7 @@ size_t nmea_build_pqtmcfgvehmot(const nmea_pqtmcfgvehmot *s, char *buf, size_t c
 
 /* $PQTMCFGVEHMOT,R*29 */
 static const layout_field pqtmcfgvehmot_read_fields[] = {
-    {ERROR_TEXT("access"), ERROR_TEXT("R"), "R", 0, FIELD_KEYWORD, 1, 0},
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgvehmot_read_layout = {
     .sentence = "PQTMCFGVEHMOT", .address = "PQTMCFGVEHMOT", .variant = "read", .selector = "R",
@@ -33891,9 +33891,9 @@ size_t nmea_build_pqtmcfgvehmot_read(const nmea_pqtmcfgvehmot_read *s, char *buf
 
 /* $PQTMCFGVEHMOT,OK,1,1*7F */
 static const layout_field pqtmcfgvehmot_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("mode"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgvehmot_result, mode), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("vehicle_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmcfgvehmot_result, vehicle_type), FIELD_INTEGER, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
+    {offsetof(nmea_pqtmcfgvehmot_result, mode), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "mode")}, /* integer */
+    {offsetof(nmea_pqtmcfgvehmot_result, vehicle_type), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "vehicle_type")}, /* integer */
 };
 static const layout pqtmcfgvehmot_result_layout = {
     .sentence = "PQTMCFGVEHMOT_RESULT", .address = "PQTMCFGVEHMOT", .selector = "OK",
@@ -33923,7 +33923,7 @@ size_t nmea_build_pqtmcfgvehmot_result(const nmea_pqtmcfgvehmot_result *s, char 
 
 /* $PQTMCFGVEHMOT,OK*7F */
 static const layout_field pqtmcfgvehmot_result_ack_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
 };
 static const layout pqtmcfgvehmot_result_ack_layout = {
     .sentence = "PQTMCFGVEHMOT_RESULT", .address = "PQTMCFGVEHMOT", .variant = "ack", .selector = "OK",
@@ -33951,8 +33951,8 @@ size_t nmea_build_pqtmcfgvehmot_result_ack(const nmea_pqtmcfgvehmot_result_ack *
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMCFGVEHMOT_RESULT (Command failed): Configure vehicle motion detection: result (spec/proprietary/pqtmcfgvehmot_result.yaml) */
 static const layout_field pqtmcfgvehmot_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmcfgvehmot_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmcfgvehmot_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmcfgvehmot_result_error_layout = {
     .sentence = "PQTMCFGVEHMOT_RESULT", .address = "PQTMCFGVEHMOT", .variant = "error", .selector = "ERROR",
@@ -34013,7 +34013,7 @@ size_t nmea_build_pqtmcfgwn(const nmea_pqtmcfgwn *s, char *buf, size_t cap, nmea
 
 /* $PQTMCFGWN,R*3D */
 static const layout_field pqtmcfgwn_read_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqtmcfgwn_read_layout = {
     .sentence = "PQTMCFGWN", .address = "PQTMCFGWN", .variant = "read", .selector = "R",
@@ -34418,9 +34418,9 @@ size_t nmea_build_pqtmdop(const nmea_pqtmdop *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMDRCAL,1,0,1*5C */
 static const layout_field pqtmdrcal_fields[] = {
-    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmdrcal, msg_version), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("calibration_state"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmdrcal, calibration_state), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("navigation_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmdrcal, navigation_type), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pqtmdrcal, msg_version), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_version")}, /* integer */
+    {offsetof(nmea_pqtmdrcal, calibration_state), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "calibration_state")}, /* integer */
+    {offsetof(nmea_pqtmdrcal, navigation_type), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "navigation_type")}, /* integer */
 };
 static const layout pqtmdrcal_layout = {
     .sentence = "PQTMDRCAL", .address = "PQTMDRCAL", .fields = pqtmdrcal_fields, .before = 3, .fixed = 3,
@@ -34515,7 +34515,7 @@ size_t nmea_build_pqtmdrclr(const nmea_pqtmdrclr *s, char *buf, size_t cap, nmea
 
 /* $PQTMDRCLR,OK*7B */
 static const layout_field pqtmdrclr_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
 };
 static const layout pqtmdrclr_result_layout = {
     .sentence = "PQTMDRCLR_RESULT", .address = "PQTMDRCLR", .selector = "OK", .fields = pqtmdrclr_result_fields,
@@ -34543,8 +34543,8 @@ size_t nmea_build_pqtmdrclr_result(const nmea_pqtmdrclr_result *s, char *buf, si
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMDRCLR_RESULT (Command failed): Clear DR calibration data: result (spec/proprietary/pqtmdrclr_result.yaml) */
 static const layout_field pqtmdrclr_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmdrclr_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmdrclr_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmdrclr_result_error_layout = {
     .sentence = "PQTMDRCLR_RESULT", .address = "PQTMDRCLR", .variant = "error", .selector = "ERROR",
@@ -34707,7 +34707,7 @@ size_t nmea_build_pqtmdrsave(const nmea_pqtmdrsave *s, char *buf, size_t cap, nm
 
 /* $PQTMDRSAVE,OK*27 */
 static const layout_field pqtmdrsave_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
 };
 static const layout pqtmdrsave_result_layout = {
     .sentence = "PQTMDRSAVE_RESULT", .address = "PQTMDRSAVE", .selector = "OK",
@@ -34735,8 +34735,8 @@ size_t nmea_build_pqtmdrsave_result(const nmea_pqtmdrsave_result *s, char *buf, 
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMDRSAVE_RESULT (Command failed): Save DR calibration data: result (spec/proprietary/pqtmdrsave_result.yaml) */
 static const layout_field pqtmdrsave_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmdrsave_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmdrsave_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmdrsave_result_error_layout = {
     .sentence = "PQTMDRSAVE_RESULT", .address = "PQTMDRSAVE", .variant = "error", .selector = "ERROR",
@@ -35051,16 +35051,16 @@ size_t nmea_build_pqtmgetutc(const nmea_pqtmgetutc *s, char *buf, size_t cap, nm
 
 /* $PQTMGETUTC,OK,2024,10,22,2,52,30,295,,18*0C */
 static const layout_field pqtmgetutc_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgetutc_result, year), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("month"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgetutc_result, month), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("day"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgetutc_result, day), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("hour"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgetutc_result, hour), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("minute"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgetutc_result, minute), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("second"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgetutc_result, second), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("millisecond"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgetutc_result, millisecond), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("reserved"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmgetutc_result, reserved), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("leap_seconds"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgetutc_result, leap_seconds), FIELD_INTEGER, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
+    {offsetof(nmea_pqtmgetutc_result, year), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "year")}, /* integer */
+    {offsetof(nmea_pqtmgetutc_result, month), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "month")}, /* integer */
+    {offsetof(nmea_pqtmgetutc_result, day), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "day")}, /* integer */
+    {offsetof(nmea_pqtmgetutc_result, hour), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "hour")}, /* integer */
+    {offsetof(nmea_pqtmgetutc_result, minute), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "minute")}, /* integer */
+    {offsetof(nmea_pqtmgetutc_result, second), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "second")}, /* integer */
+    {offsetof(nmea_pqtmgetutc_result, millisecond), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "millisecond")}, /* integer */
+    {offsetof(nmea_pqtmgetutc_result, reserved), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "reserved")}, /* text */
+    {offsetof(nmea_pqtmgetutc_result, leap_seconds), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "leap_seconds")}, /* integer */
 };
 static const layout pqtmgetutc_result_layout = {
     .sentence = "PQTMGETUTC_RESULT", .address = "PQTMGETUTC", .selector = "OK",
@@ -35088,8 +35088,8 @@ size_t nmea_build_pqtmgetutc_result(const nmea_pqtmgetutc_result *s, char *buf, 
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMGETUTC_RESULT (Command failed): Get UTC time: result (spec/proprietary/pqtmgetutc_result.yaml) */
 static const layout_field pqtmgetutc_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmgetutc_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmgetutc_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmgetutc_result_error_layout = {
     .sentence = "PQTMGETUTC_RESULT", .address = "PQTMGETUTC", .variant = "error", .selector = "ERROR",
@@ -35289,18 +35289,18 @@ size_t nmea_build_pqtmgnssstop_result_error(const nmea_pqtmgnssstop_result_error
 
 /* $PQTMGPS,86139,94183,31.82218794,117.11579022,65.755080,0.027,94.68,2.533952,0.555471,0.886183,29,3*6B */
 static const layout_field pqtmgps_fields[] = {
-    {ERROR_TEXT("timestamp"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgps, timestamp), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("tow"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgps, tow), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("lat"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmgps, lat), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("lon"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmgps, lon), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("altitude"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmgps, altitude), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("speed"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmgps, speed), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmgps, heading), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmgps, accuracy), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmgps, hdop), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmgps, pdop), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("satellites"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgps, satellites), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("fix_mode"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmgps, fix_mode), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pqtmgps, timestamp), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "timestamp")}, /* integer */
+    {offsetof(nmea_pqtmgps, tow), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "tow")}, /* integer */
+    {offsetof(nmea_pqtmgps, lat), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lat")}, /* decimal number */
+    {offsetof(nmea_pqtmgps, lon), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lon")}, /* decimal number */
+    {offsetof(nmea_pqtmgps, altitude), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "altitude")}, /* decimal number */
+    {offsetof(nmea_pqtmgps, speed), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "speed")}, /* decimal number */
+    {offsetof(nmea_pqtmgps, heading), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "heading")}, /* decimal number */
+    {offsetof(nmea_pqtmgps, accuracy), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "accuracy")}, /* decimal number */
+    {offsetof(nmea_pqtmgps, hdop), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "hdop")}, /* decimal number */
+    {offsetof(nmea_pqtmgps, pdop), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pdop")}, /* decimal number */
+    {offsetof(nmea_pqtmgps, satellites), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "satellites")}, /* integer */
+    {offsetof(nmea_pqtmgps, fix_mode), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "fix_mode")}, /* integer */
 };
 static const layout pqtmgps_layout = {
     .sentence = "PQTMGPS", .address = "PQTMGPS", .fields = pqtmgps_fields, .before = 12, .fixed = 12,
@@ -35413,15 +35413,15 @@ size_t nmea_build_pqtmhot(const nmea_pqtmhot *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMIMU,45454,-1.356730,-0.210568,9.757930,0.564879,0.549612,-0.412209,0,0*77 */
 static const layout_field pqtmimu_fields[] = {
-    {ERROR_TEXT("timestamp"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmimu, timestamp), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("acc_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmimu, acc_x), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmimu, acc_y), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmimu, acc_z), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("rate_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmimu, rate_x), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("rate_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmimu, rate_y), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("rate_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmimu, rate_z), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("wheel_ticks"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmimu, wheel_ticks), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("last_tick_timestamp"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmimu, last_tick_timestamp), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pqtmimu, timestamp), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "timestamp")}, /* integer */
+    {offsetof(nmea_pqtmimu, acc_x), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_x")}, /* decimal number */
+    {offsetof(nmea_pqtmimu, acc_y), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_y")}, /* decimal number */
+    {offsetof(nmea_pqtmimu, acc_z), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_z")}, /* decimal number */
+    {offsetof(nmea_pqtmimu, rate_x), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "rate_x")}, /* decimal number */
+    {offsetof(nmea_pqtmimu, rate_y), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "rate_y")}, /* decimal number */
+    {offsetof(nmea_pqtmimu, rate_z), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "rate_z")}, /* decimal number */
+    {offsetof(nmea_pqtmimu, wheel_ticks), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "wheel_ticks")}, /* integer */
+    {offsetof(nmea_pqtmimu, last_tick_timestamp), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "last_tick_timestamp")}, /* integer */
 };
 static const layout pqtmimu_layout = {
     .sentence = "PQTMIMU", .address = "PQTMIMU", .fields = pqtmimu_fields, .before = 9, .fixed = 9,
@@ -35502,8 +35502,8 @@ size_t nmea_build_pqtmimu(const nmea_pqtmimu *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMIMUTYPE,1,2*52 */
 static const layout_field pqtmimutype_fields[] = {
-    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmimutype, msg_version), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("imu_status"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmimutype, imu_status), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pqtmimutype, msg_version), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_version")}, /* integer */
+    {offsetof(nmea_pqtmimutype, imu_status), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "imu_status")}, /* integer */
 };
 static const layout pqtmimutype_layout = {
     .sentence = "PQTMIMUTYPE", .address = "PQTMIMUTYPE", .fields = pqtmimutype_fields, .before = 2, .fixed = 2,
@@ -35570,17 +35570,17 @@ size_t nmea_build_pqtmimutype(const nmea_pqtmimutype *s, char *buf, size_t cap, 
 
 /* $PQTMINS,240951,1,31.82222216,117.11578436,62.555605,-0.004233,0.005535,-0.004011,0.00,0.00,127.41*40 */
 static const layout_field pqtmins_fields[] = {
-    {ERROR_TEXT("timestamp"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmins, timestamp), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("solution_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmins, solution_type), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("lat"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmins, lat), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("lon"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmins, lon), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("height"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmins, height), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmins, vel_north), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmins, vel_east), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_down"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmins, vel_down), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmins, roll), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmins, pitch), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("yaw"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmins, yaw), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pqtmins, timestamp), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "timestamp")}, /* integer */
+    {offsetof(nmea_pqtmins, solution_type), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "solution_type")}, /* integer */
+    {offsetof(nmea_pqtmins, lat), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lat")}, /* decimal number */
+    {offsetof(nmea_pqtmins, lon), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lon")}, /* decimal number */
+    {offsetof(nmea_pqtmins, height), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "height")}, /* decimal number */
+    {offsetof(nmea_pqtmins, vel_north), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_north")}, /* decimal number */
+    {offsetof(nmea_pqtmins, vel_east), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_east")}, /* decimal number */
+    {offsetof(nmea_pqtmins, vel_down), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_down")}, /* decimal number */
+    {offsetof(nmea_pqtmins, roll), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "roll")}, /* decimal number */
+    {offsetof(nmea_pqtmins, pitch), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pitch")}, /* decimal number */
+    {offsetof(nmea_pqtmins, yaw), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "yaw")}, /* decimal number */
 };
 static const layout pqtmins_layout = {
     .sentence = "PQTMINS", .address = "PQTMINS", .fields = pqtmins_fields, .before = 11, .fixed = 11,
@@ -35665,8 +35665,8 @@ size_t nmea_build_pqtmins(const nmea_pqtmins *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMJAMMINGSTATUS,1,1*47 */
 static const layout_field pqtmjammingstatus_fields[] = {
-    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmjammingstatus, msg_version), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("jamming_status"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmjammingstatus, jamming_status), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pqtmjammingstatus, msg_version), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_version")}, /* integer */
+    {offsetof(nmea_pqtmjammingstatus, jamming_status), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "jamming_status")}, /* integer */
 };
 static const layout pqtmjammingstatus_layout = {
     .sentence = "PQTMJAMMINGSTATUS", .address = "PQTMJAMMINGSTATUS", .fields = pqtmjammingstatus_fields,
@@ -35734,17 +35734,17 @@ size_t nmea_build_pqtmjammingstatus(const nmea_pqtmjammingstatus *s, char *buf, 
 
 /* $PQTMLS,1,195494,1,2299,18,0,1,,137,7,18*2C */
 static const layout_field pqtmls_fields[] = {
-    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmls, msg_version), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("tow"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmls, tow), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("leap_second_reference"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmls, leap_second_reference), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("week"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmls, week), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("leap_seconds"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmls, leap_seconds), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("flag"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmls, flag), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("forecast_reference"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmls, forecast_reference), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("reserved"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmls, reserved), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("event_week"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmls, event_week), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("event_day"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmls, event_day), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("future_leap_seconds"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmls, future_leap_seconds), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pqtmls, msg_version), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_version")}, /* integer */
+    {offsetof(nmea_pqtmls, tow), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "tow")}, /* integer */
+    {offsetof(nmea_pqtmls, leap_second_reference), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "leap_second_reference")}, /* integer */
+    {offsetof(nmea_pqtmls, week), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "week")}, /* integer */
+    {offsetof(nmea_pqtmls, leap_seconds), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "leap_seconds")}, /* integer */
+    {offsetof(nmea_pqtmls, flag), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "flag")}, /* integer */
+    {offsetof(nmea_pqtmls, forecast_reference), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "forecast_reference")}, /* integer */
+    {offsetof(nmea_pqtmls, reserved), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "reserved")}, /* text */
+    {offsetof(nmea_pqtmls, event_week), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "event_week")}, /* integer */
+    {offsetof(nmea_pqtmls, event_day), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "event_day")}, /* integer */
+    {offsetof(nmea_pqtmls, future_leap_seconds), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "future_leap_seconds")}, /* integer */
 };
 static const layout pqtmls_layout = {
     .sentence = "PQTMLS", .address = "PQTMLS", .fields = pqtmls_fields, .before = 11, .fixed = 11,
@@ -36317,7 +36317,7 @@ size_t nmea_build_pqtmpvt(const nmea_pqtmpvt *s, char *buf, size_t cap, nmea_err
 
 /* $PQTMQVER,1*15 */
 static const layout_field pqtmqver_fields[] = {
-    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmqver, msg_version), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pqtmqver, msg_version), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_version")}, /* integer */
 };
 static const layout pqtmqver_layout = {
     .sentence = "PQTMQVER", .address = "PQTMQVER", .fields = pqtmqver_fields, .before = 1, .fixed = 1,
@@ -36346,12 +36346,12 @@ size_t nmea_build_pqtmqver(const nmea_pqtmqver *s, char *buf, size_t cap, nmea_e
 
 /* $PQTMQVER,OK,1,MODULE,LC29HCANR11A07S_DSA4,2025/06/03,15:28:01*52 */
 static const layout_field pqtmqver_result_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("OK"), "OK", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmqver_result, msg_version), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("description"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmqver_result, description), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("version"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmqver_result, version), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("build_date"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmqver_result, build_date), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("build_time"), ERROR_TEXT("text"), NULL, offsetof(nmea_pqtmqver_result, build_time), FIELD_TEXT, 1, 0},
+    {0, 76, FIELD_KEYWORD, 0, FIELD_NAMES(402, "status")}, /* OK */
+    {offsetof(nmea_pqtmqver_result, msg_version), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_version")}, /* integer */
+    {offsetof(nmea_pqtmqver_result, description), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "description")}, /* text */
+    {offsetof(nmea_pqtmqver_result, version), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "version")}, /* text */
+    {offsetof(nmea_pqtmqver_result, build_date), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "build_date")}, /* text */
+    {offsetof(nmea_pqtmqver_result, build_time), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "build_time")}, /* text */
 };
 static const layout pqtmqver_result_layout = {
     .sentence = "PQTMQVER_RESULT", .address = "PQTMQVER", .selector = "OK", .fields = pqtmqver_result_fields,
@@ -36379,8 +36379,8 @@ size_t nmea_build_pqtmqver_result(const nmea_pqtmqver_result *s, char *buf, size
 /* ------------------------------------------------------------------------------------------ */
 /* PQTMQVER_RESULT (Command failed): Query version: result (spec/proprietary/pqtmqver_result.yaml) */
 static const layout_field pqtmqver_result_error_fields[] = {
-    {ERROR_TEXT("status"), ERROR_TEXT("ERROR"), "ERROR", 0, FIELD_KEYWORD, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("quectel_error_code code (1 2 3)"), &nmea_quectel_error_code_def, offsetof(nmea_pqtmqver_result_error, error_code), FIELD_ENUM, 1, 0},
+    {0, 77, FIELD_KEYWORD, 0, FIELD_NAMES(403, "status")}, /* ERROR */
+    {offsetof(nmea_pqtmqver_result_error, error_code), 203, FIELD_ENUM, 0, FIELD_NAMES(404, "error_code")}, /* quectel_error_code code (1 2 3) */
 };
 static const layout pqtmqver_result_error_layout = {
     .sentence = "PQTMQVER_RESULT", .address = "PQTMQVER", .variant = "error", .selector = "ERROR",
@@ -36665,11 +36665,11 @@ size_t nmea_build_pqtmsavepar_result_error(const nmea_pqtmsavepar_result_error *
 
 /* $PQTMSENMSG,2,1000,22.21,0.124521,1.241541,0.912451,0.145785,1.241541,8.954214*2D */
 static const layout_field pqtmsenmsg_fields[] = {
-    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmsenmsg, msg_version), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("timestamp"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmsenmsg, timestamp), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pqtmsenmsg, msg_version), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_version")}, /* integer */
+    {offsetof(nmea_pqtmsenmsg, timestamp), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "timestamp")}, /* integer */
 };
 static const layout_field pqtmsenmsg_group_fields[] = {
-    {ERROR_TEXT("value"), ERROR_TEXT("decimal number"), NULL, 0, FIELD_DECIMAL, 1, 0},
+    {0, NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "value")}, /* decimal number */
 };
 static const layout_group pqtmsenmsg_group = {
     .id = ERROR_TEXT("values"), .fields = pqtmsenmsg_group_fields, .field_count = 1, .width = 1, .min = 0,
@@ -37347,14 +37347,14 @@ size_t nmea_build_pqtmuniqid_result_error(const nmea_pqtmuniqid_result_error *s,
 
 /* $PQTMVEHATT,1,1000,10.002154,20.235412,160.145185,1.254123,5.451214,5.102154*3D */
 static const layout_field pqtmvehatt_fields[] = {
-    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmvehatt, msg_version), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("timestamp"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmvehatt, timestamp), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvehatt, roll), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvehatt, pitch), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvehatt, heading), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("roll_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvehatt, roll_accuracy), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pitch_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvehatt, pitch_accuracy), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("heading_accuracy"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pqtmvehatt, heading_accuracy), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pqtmvehatt, msg_version), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_version")}, /* integer */
+    {offsetof(nmea_pqtmvehatt, timestamp), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "timestamp")}, /* integer */
+    {offsetof(nmea_pqtmvehatt, roll), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "roll")}, /* decimal number */
+    {offsetof(nmea_pqtmvehatt, pitch), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pitch")}, /* decimal number */
+    {offsetof(nmea_pqtmvehatt, heading), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "heading")}, /* decimal number */
+    {offsetof(nmea_pqtmvehatt, roll_accuracy), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "roll_accuracy")}, /* decimal number */
+    {offsetof(nmea_pqtmvehatt, pitch_accuracy), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pitch_accuracy")}, /* decimal number */
+    {offsetof(nmea_pqtmvehatt, heading_accuracy), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "heading_accuracy")}, /* decimal number */
 };
 static const layout pqtmvehatt_layout = {
     .sentence = "PQTMVEHATT", .address = "PQTMVEHATT", .fields = pqtmvehatt_fields, .before = 8, .fixed = 8,
@@ -37433,10 +37433,10 @@ size_t nmea_build_pqtmvehatt(const nmea_pqtmvehatt *s, char *buf, size_t cap, nm
 
 /* $PQTMVEHMOT,1,0.288124,0.159930*0A */
 static const layout_field pqtmvehmot_fields[] = {
-    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmvehmot, msg_version), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pqtmvehmot, msg_version), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_version")}, /* integer */
 };
 static const layout_field pqtmvehmot_group_fields[] = {
-    {ERROR_TEXT("value"), ERROR_TEXT("decimal number"), NULL, 0, FIELD_DECIMAL, 1, 0},
+    {0, NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "value")}, /* decimal number */
 };
 static const layout_group pqtmvehmot_group = {
     .id = ERROR_TEXT("values"), .fields = pqtmvehmot_group_fields, .field_count = 1, .width = 1, .min = 0,
@@ -37533,11 +37533,11 @@ size_t nmea_build_pqtmvehmot(const nmea_pqtmvehmot *s, char *buf, size_t cap, nm
 
 /* $PQTMVEHMSG,2,153954,100,1*27 */
 static const layout_field pqtmvehmsg_fields[] = {
-    {ERROR_TEXT("msg_version"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmvehmsg, msg_version), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("timestamp"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pqtmvehmsg, timestamp), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pqtmvehmsg, msg_version), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_version")}, /* integer */
+    {offsetof(nmea_pqtmvehmsg, timestamp), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "timestamp")}, /* integer */
 };
 static const layout_field pqtmvehmsg_group_fields[] = {
-    {ERROR_TEXT("value"), ERROR_TEXT("decimal number"), NULL, 0, FIELD_DECIMAL, 1, 0},
+    {0, NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "value")}, /* decimal number */
 };
 static const layout_group pqtmvehmsg_group = {
     .id = ERROR_TEXT("values"), .fields = pqtmvehmsg_group_fields, .field_count = 1, .width = 1, .min = 0,
@@ -37993,7 +37993,7 @@ size_t nmea_build_pqtmwarm(const nmea_pqtmwarm *s, char *buf, size_t cap, nmea_e
 
 /* $PQVERNO,R*3F */
 static const layout_field pqverno_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
 };
 static const layout pqverno_layout = {
     .sentence = "PQVERNO", .address = "PQVERNO", .selector = "R", .fields = pqverno_fields, .selector_at = 0,
@@ -38023,7 +38023,7 @@ size_t nmea_build_pqverno(const nmea_pqverno *s, char *buf, size_t cap, nmea_err
 
 /* $PQVERNO,R,L70BGR03A05S,2019/10/09,21:12*23 */
 static const layout_field pqverno_result_fields[] = {
-    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(401, "access")}, /* R */
+    {0, 9, FIELD_KEYWORD, 0, FIELD_NAMES(399, "access")}, /* R */
     {offsetof(nmea_pqverno_result, version), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "version")}, /* text */
     {offsetof(nmea_pqverno_result, build_date), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "build_date")}, /* text */
     {offsetof(nmea_pqverno_result, build_time), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "build_time")}, /* text */
@@ -40136,19 +40136,19 @@ size_t nmea_build_pstmdiff(const nmea_pstmdiff *s, char *buf, size_t cap, nmea_e
 
 /* $PSTMDR1,-1.63,-1.67,-91.75,1.009,-0.754,-0.197,0.118,-0.029,0.254,0.176,0.081,0.000,0.000*39 */
 static const layout_field pstmdr1_fields[] = {
-    {ERROR_TEXT("misalignment_pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, misalignment_pitch), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("misalignment_roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, misalignment_roll), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("misalignment_yaw"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, misalignment_yaw), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_z_sensitivity"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, gyro_z_sensitivity), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_x_bias"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, gyro_x_bias), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_y_bias"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, gyro_y_bias), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_z_bias"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, gyro_z_bias), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_x_bias"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, acc_x_bias), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_y_bias"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, acc_y_bias), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_z_bias"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, acc_z_bias), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("odometer_scale"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, odometer_scale), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("reserved1"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, reserved1), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("reserved2"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr1, reserved2), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pstmdr1, misalignment_pitch), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "misalignment_pitch")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, misalignment_roll), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "misalignment_roll")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, misalignment_yaw), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "misalignment_yaw")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, gyro_z_sensitivity), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_z_sensitivity")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, gyro_x_bias), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_x_bias")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, gyro_y_bias), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_y_bias")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, gyro_z_bias), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_z_bias")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, acc_x_bias), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_x_bias")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, acc_y_bias), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_y_bias")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, acc_z_bias), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_z_bias")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, odometer_scale), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "odometer_scale")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, reserved1), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "reserved1")}, /* decimal number */
+    {offsetof(nmea_pstmdr1, reserved2), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "reserved2")}, /* decimal number */
 };
 static const layout pstmdr1_layout = {
     .sentence = "PSTMDR1", .address = "PSTMDR1", .fields = pstmdr1_fields, .before = 13, .fixed = 13,
@@ -40237,16 +40237,16 @@ size_t nmea_build_pstmdr1(const nmea_pstmdr1 *s, char *buf, size_t cap, nmea_err
 
 /* $PSTMDR2,CC,AA,2,0,1,0.48,2.23,1,0.000,0*2D */
 static const layout_field pstmdr2_fields[] = {
-    {ERROR_TEXT("imu_calibration"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdr2, imu_calibration), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("as_calibration"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdr2, as_calibration), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("motion_status"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdr2, motion_status), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("error_code"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdr2, error_code), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("system_ready"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdr2, system_ready), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("cross_track_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr2, cross_track_error), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("along_track_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr2, along_track_error), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("system_aligned"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdr2, system_aligned), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("tire_circumference"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdr2, tire_circumference), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("tire_state"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdr2, tire_state), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pstmdr2, imu_calibration), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "imu_calibration")}, /* text */
+    {offsetof(nmea_pstmdr2, as_calibration), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "as_calibration")}, /* text */
+    {offsetof(nmea_pstmdr2, motion_status), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "motion_status")}, /* integer */
+    {offsetof(nmea_pstmdr2, error_code), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "error_code")}, /* integer */
+    {offsetof(nmea_pstmdr2, system_ready), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "system_ready")}, /* integer */
+    {offsetof(nmea_pstmdr2, cross_track_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "cross_track_error")}, /* decimal number */
+    {offsetof(nmea_pstmdr2, along_track_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "along_track_error")}, /* decimal number */
+    {offsetof(nmea_pstmdr2, system_aligned), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "system_aligned")}, /* integer */
+    {offsetof(nmea_pstmdr2, tire_circumference), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "tire_circumference")}, /* decimal number */
+    {offsetof(nmea_pstmdr2, tire_state), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "tire_state")}, /* integer */
 };
 static const layout pstmdr2_layout = {
     .sentence = "PSTMDR2", .address = "PSTMDR2", .fields = pstmdr2_fields, .before = 10, .fixed = 10,
@@ -40329,14 +40329,14 @@ size_t nmea_build_pstmdr2(const nmea_pstmdr2 *s, char *buf, size_t cap, nmea_err
 
 /* $PSTMDRBSD,073922.000,1837870321,0.058,0.058,0.019,0.078,0.077,0.058*42 */
 static const layout_field pstmdrbsd_fields[] = {
-    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pstmdrbsd, time), FIELD_TIME, 1, 0},
-    {ERROR_TEXT("cpu_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrbsd, cpu_time), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("gyro_x_bias_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrbsd, gyro_x_bias_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_y_bias_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrbsd, gyro_y_bias_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_z_bias_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrbsd, gyro_z_bias_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_x_bias_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrbsd, acc_x_bias_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_y_bias_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrbsd, acc_y_bias_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_z_bias_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrbsd, acc_z_bias_sd), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pstmdrbsd, time), NO_ARG, FIELD_TIME, 0, FIELD_NAMES(24, "time")}, /* time hhmmss[.s] */
+    {offsetof(nmea_pstmdrbsd, cpu_time), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "cpu_time")}, /* integer */
+    {offsetof(nmea_pstmdrbsd, gyro_x_bias_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_x_bias_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrbsd, gyro_y_bias_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_y_bias_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrbsd, gyro_z_bias_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_z_bias_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrbsd, acc_x_bias_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_x_bias_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrbsd, acc_y_bias_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_y_bias_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrbsd, acc_z_bias_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_z_bias_sd")}, /* decimal number */
 };
 static const layout pstmdrbsd_layout = {
     .sentence = "PSTMDRBSD", .address = "PSTMDRBSD", .fields = pstmdrbsd_fields, .before = 8, .fixed = 8,
@@ -40415,14 +40415,14 @@ size_t nmea_build_pstmdrbsd(const nmea_pstmdrbsd *s, char *buf, size_t cap, nmea
 
 /* $PSTMDRCAL,1,1,1,1,ff,1,1,F*04 */
 static const layout_field pstmdrcal_fields[] = {
-    {ERROR_TEXT("dr_calibrated"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrcal, dr_calibrated), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("odometer_calibrated"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrcal, odometer_calibrated), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("gyro_sensitivity_calibrated"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrcal, gyro_sensitivity_calibrated), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("gyro_bias_calibrated"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrcal, gyro_bias_calibrated), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("imu_flags"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdrcal, imu_flags), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("gyro_integrity"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrcal, gyro_integrity), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("acc_integrity"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrcal, acc_integrity), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("calibration_state"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdrcal, calibration_state), FIELD_TEXT, 1, 0},
+    {offsetof(nmea_pstmdrcal, dr_calibrated), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "dr_calibrated")}, /* integer */
+    {offsetof(nmea_pstmdrcal, odometer_calibrated), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "odometer_calibrated")}, /* integer */
+    {offsetof(nmea_pstmdrcal, gyro_sensitivity_calibrated), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "gyro_sensitivity_calibrated")}, /* integer */
+    {offsetof(nmea_pstmdrcal, gyro_bias_calibrated), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "gyro_bias_calibrated")}, /* integer */
+    {offsetof(nmea_pstmdrcal, imu_flags), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "imu_flags")}, /* text */
+    {offsetof(nmea_pstmdrcal, gyro_integrity), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "gyro_integrity")}, /* integer */
+    {offsetof(nmea_pstmdrcal, acc_integrity), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "acc_integrity")}, /* integer */
+    {offsetof(nmea_pstmdrcal, calibration_state), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "calibration_state")}, /* text */
 };
 static const layout pstmdrcal_layout = {
     .sentence = "PSTMDRCAL", .address = "PSTMDRCAL", .fields = pstmdrcal_fields, .before = 8, .fixed = 8,
@@ -40501,19 +40501,19 @@ size_t nmea_build_pstmdrcal(const nmea_pstmdrcal *s, char *buf, size_t cap, nmea
 
 /* $PSTMDRCONFID,100.00,100.00,180.0419,0.1004,0.00,0.0857,0.000993,0.050002,100.3594,100.0,100.0,90.0,0.0*0A */
 static const layout_field pstmdrconfid_fields[] = {
-    {ERROR_TEXT("lat_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrconfid, lat_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("lon_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrconfid, lon_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("heading_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrconfid, heading_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("reserved1"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdrconfid, reserved1), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("gyro_bias_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrconfid, gyro_bias_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("odometer_scale_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrconfid, odometer_scale_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("reserved2"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdrconfid, reserved2), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("acc_offset_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrconfid, acc_offset_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("height_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrconfid, height_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("semi_major"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrconfid, semi_major), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("semi_minor"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrconfid, semi_minor), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("ellipse_angle"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrconfid, ellipse_angle), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("speed_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrconfid, speed_sd), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pstmdrconfid, lat_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lat_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrconfid, lon_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lon_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrconfid, heading_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "heading_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrconfid, reserved1), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "reserved1")}, /* text */
+    {offsetof(nmea_pstmdrconfid, gyro_bias_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_bias_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrconfid, odometer_scale_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "odometer_scale_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrconfid, reserved2), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "reserved2")}, /* text */
+    {offsetof(nmea_pstmdrconfid, acc_offset_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_offset_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrconfid, height_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "height_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrconfid, semi_major), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "semi_major")}, /* decimal number */
+    {offsetof(nmea_pstmdrconfid, semi_minor), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "semi_minor")}, /* decimal number */
+    {offsetof(nmea_pstmdrconfid, ellipse_angle), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "ellipse_angle")}, /* decimal number */
+    {offsetof(nmea_pstmdrconfid, speed_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "speed_sd")}, /* decimal number */
 };
 static const layout pstmdrconfid_layout = {
     .sentence = "PSTMDRCONFID", .address = "PSTMDRCONFID", .fields = pstmdrconfid_fields, .before = 13,
@@ -40603,12 +40603,12 @@ size_t nmea_build_pstmdrconfid(const nmea_pstmdrconfid *s, char *buf, size_t cap
 
 /* $PSTMDRDEBUG,0.6,-2.0,-8.7,0.0,10.5,0.0*62 */
 static const layout_field pstmdrdebug_fields[] = {
-    {ERROR_TEXT("lat_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrdebug, lat_error), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("lon_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrdebug, lon_error), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("heading_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrdebug, heading_error), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("speed_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrdebug, speed_error), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("height_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrdebug, height_error), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vertical_speed_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrdebug, vertical_speed_error), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pstmdrdebug, lat_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lat_error")}, /* decimal number */
+    {offsetof(nmea_pstmdrdebug, lon_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lon_error")}, /* decimal number */
+    {offsetof(nmea_pstmdrdebug, heading_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "heading_error")}, /* decimal number */
+    {offsetof(nmea_pstmdrdebug, speed_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "speed_error")}, /* decimal number */
+    {offsetof(nmea_pstmdrdebug, height_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "height_error")}, /* decimal number */
+    {offsetof(nmea_pstmdrdebug, vertical_speed_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vertical_speed_error")}, /* decimal number */
 };
 static const layout pstmdrdebug_layout = {
     .sentence = "PSTMDRDEBUG", .address = "PSTMDRDEBUG", .fields = pstmdrdebug_fields, .before = 6, .fixed = 6,
@@ -40683,8 +40683,8 @@ size_t nmea_build_pstmdrdebug(const nmea_pstmdrdebug *s, char *buf, size_t cap, 
 
 /* $PSTMDREPE,141.42,-1.00*72 */
 static const layout_field pstmdrepe_fields[] = {
-    {ERROR_TEXT("ehpe"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrepe, ehpe), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("reserved"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrepe, reserved), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pstmdrepe, ehpe), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "ehpe")}, /* decimal number */
+    {offsetof(nmea_pstmdrepe, reserved), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "reserved")}, /* decimal number */
 };
 static const layout pstmdrepe_layout = {
     .sentence = "PSTMDREPE", .address = "PSTMDREPE", .fields = pstmdrepe_fields, .before = 2, .fixed = 2,
@@ -40751,17 +40751,17 @@ size_t nmea_build_pstmdrepe(const nmea_pstmdrepe *s, char *buf, size_t cap, nmea
 
 /* $PSTMDRGPS,31.853778470,117.253363350,0.69824,-3.58118,1.254,0.793,0.969,30.811,0.520,-0.07642,28.7*76 */
 static const layout_field pstmdrgps_fields[] = {
-    {ERROR_TEXT("lat"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrgps, lat), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("lon"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrgps, lon), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrgps, vel_north), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrgps, vel_east), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrgps, pdop), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("hdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrgps, hdop), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vdop"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrgps, vdop), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("rms_position_residual"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrgps, rms_position_residual), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("rms_velocity_residual"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrgps, rms_velocity_residual), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrgps, vel_up), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("height"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrgps, height), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pstmdrgps, lat), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lat")}, /* decimal number */
+    {offsetof(nmea_pstmdrgps, lon), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lon")}, /* decimal number */
+    {offsetof(nmea_pstmdrgps, vel_north), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_north")}, /* decimal number */
+    {offsetof(nmea_pstmdrgps, vel_east), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_east")}, /* decimal number */
+    {offsetof(nmea_pstmdrgps, pdop), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pdop")}, /* decimal number */
+    {offsetof(nmea_pstmdrgps, hdop), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "hdop")}, /* decimal number */
+    {offsetof(nmea_pstmdrgps, vdop), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vdop")}, /* decimal number */
+    {offsetof(nmea_pstmdrgps, rms_position_residual), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "rms_position_residual")}, /* decimal number */
+    {offsetof(nmea_pstmdrgps, rms_velocity_residual), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "rms_velocity_residual")}, /* decimal number */
+    {offsetof(nmea_pstmdrgps, vel_up), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_up")}, /* decimal number */
+    {offsetof(nmea_pstmdrgps, height), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "height")}, /* decimal number */
 };
 static const layout pstmdrgps_layout = {
     .sentence = "PSTMDRGPS", .address = "PSTMDRGPS", .fields = pstmdrgps_fields, .before = 11, .fixed = 11,
@@ -40846,19 +40846,19 @@ size_t nmea_build_pstmdrgps(const nmea_pstmdrgps *s, char *buf, size_t cap, nmea
 
 /* $PSTMDRMMFB,160836.000,1,1,1,1,45.4567890,9.4567890,180.5,90.0,10.1,10.2,4.7,0.3*3E */
 static const layout_field pstmdrmmfb_fields[] = {
-    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pstmdrmmfb, time), FIELD_TIME, 1, 0},
-    {ERROR_TEXT("lat_valid"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrmmfb, lat_valid), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("lon_valid"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrmmfb, lon_valid), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("height_valid"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrmmfb, height_valid), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("heading_valid"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrmmfb, heading_valid), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("lat"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfb, lat), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("lon"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfb, lon), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("height"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfb, height), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfb, heading), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("lat_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfb, lat_error), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("lon_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfb, lon_error), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("height_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfb, height_error), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("heading_error"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfb, heading_error), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pstmdrmmfb, time), NO_ARG, FIELD_TIME, 0, FIELD_NAMES(24, "time")}, /* time hhmmss[.s] */
+    {offsetof(nmea_pstmdrmmfb, lat_valid), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "lat_valid")}, /* integer */
+    {offsetof(nmea_pstmdrmmfb, lon_valid), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "lon_valid")}, /* integer */
+    {offsetof(nmea_pstmdrmmfb, height_valid), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "height_valid")}, /* integer */
+    {offsetof(nmea_pstmdrmmfb, heading_valid), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "heading_valid")}, /* integer */
+    {offsetof(nmea_pstmdrmmfb, lat), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lat")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfb, lon), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lon")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfb, height), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "height")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfb, heading), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "heading")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfb, lat_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lat_error")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfb, lon_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lon_error")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfb, height_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "height_error")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfb, heading_error), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "heading_error")}, /* decimal number */
 };
 static const layout pstmdrmmfb_layout = {
     .sentence = "PSTMDRMMFB", .address = "PSTMDRMMFB", .fields = pstmdrmmfb_fields, .before = 13, .fixed = 13,
@@ -40887,21 +40887,21 @@ size_t nmea_build_pstmdrmmfb(const nmea_pstmdrmmfb *s, char *buf, size_t cap, nm
 
 /* $PSTMDRMMFBKF,85064305,846411,-9,0,0,0.00,0.00,0.00,0.00,0.00,0.00,0,0.00,0.00,0.00*14 */
 static const layout_field pstmdrmmfbkf_fields[] = {
-    {ERROR_TEXT("cpu_time"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfbkf, cpu_time), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("elapsed_time"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfbkf, elapsed_time), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("utc_delta_seconds"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfbkf, utc_delta_seconds), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("utc_delta_ms"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfbkf, utc_delta_ms), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("position_accepted"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfbkf, position_accepted), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("reserved1"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdrmmfbkf, reserved1), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("reserved2"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdrmmfbkf, reserved2), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("lat_noise"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfbkf, lat_noise), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("lon_noise"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfbkf, lon_noise), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("reserved3"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdrmmfbkf, reserved3), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("reserved4"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdrmmfbkf, reserved4), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("heading_accepted"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfbkf, heading_accepted), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("reserved5"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdrmmfbkf, reserved5), FIELD_TEXT, 1, 0},
-    {ERROR_TEXT("heading_noise"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrmmfbkf, heading_noise), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("reserved6"), ERROR_TEXT("text"), NULL, offsetof(nmea_pstmdrmmfbkf, reserved6), FIELD_TEXT, 1, 0},
+    {offsetof(nmea_pstmdrmmfbkf, cpu_time), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "cpu_time")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfbkf, elapsed_time), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "elapsed_time")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfbkf, utc_delta_seconds), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "utc_delta_seconds")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfbkf, utc_delta_ms), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "utc_delta_ms")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfbkf, position_accepted), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "position_accepted")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfbkf, reserved1), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "reserved1")}, /* text */
+    {offsetof(nmea_pstmdrmmfbkf, reserved2), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "reserved2")}, /* text */
+    {offsetof(nmea_pstmdrmmfbkf, lat_noise), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lat_noise")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfbkf, lon_noise), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lon_noise")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfbkf, reserved3), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "reserved3")}, /* text */
+    {offsetof(nmea_pstmdrmmfbkf, reserved4), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "reserved4")}, /* text */
+    {offsetof(nmea_pstmdrmmfbkf, heading_accepted), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "heading_accepted")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfbkf, reserved5), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "reserved5")}, /* text */
+    {offsetof(nmea_pstmdrmmfbkf, heading_noise), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "heading_noise")}, /* decimal number */
+    {offsetof(nmea_pstmdrmmfbkf, reserved6), NO_ARG, FIELD_TEXT, 0, FIELD_NAMES(4, "reserved6")}, /* text */
 };
 static const layout pstmdrmmfbkf_layout = {
     .sentence = "PSTMDRMMFBKF", .address = "PSTMDRMMFBKF", .fields = pstmdrmmfbkf_fields, .before = 15,
@@ -40995,17 +40995,17 @@ size_t nmea_build_pstmdrmmfbkf(const nmea_pstmdrmmfbkf *s, char *buf, size_t cap
 
 /* $PSTMDRPVA,064420.000,24295094,31.8222713,117.1157794,33.1,0.00,0.00,0.21,1.64,-2.10,26.61*48 */
 static const layout_field pstmdrpva_fields[] = {
-    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pstmdrpva, time), FIELD_TIME, 1, 0},
-    {ERROR_TEXT("cpu_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrpva, cpu_time), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("lat"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpva, lat), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("lon"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpva, lon), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("height"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpva, height), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_north"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpva, vel_north), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpva, vel_east), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpva, vel_up), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pitch"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpva, pitch), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("roll"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpva, roll), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("heading"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpva, heading), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pstmdrpva, time), NO_ARG, FIELD_TIME, 0, FIELD_NAMES(24, "time")}, /* time hhmmss[.s] */
+    {offsetof(nmea_pstmdrpva, cpu_time), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "cpu_time")}, /* integer */
+    {offsetof(nmea_pstmdrpva, lat), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lat")}, /* decimal number */
+    {offsetof(nmea_pstmdrpva, lon), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lon")}, /* decimal number */
+    {offsetof(nmea_pstmdrpva, height), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "height")}, /* decimal number */
+    {offsetof(nmea_pstmdrpva, vel_north), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_north")}, /* decimal number */
+    {offsetof(nmea_pstmdrpva, vel_east), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_east")}, /* decimal number */
+    {offsetof(nmea_pstmdrpva, vel_up), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_up")}, /* decimal number */
+    {offsetof(nmea_pstmdrpva, pitch), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pitch")}, /* decimal number */
+    {offsetof(nmea_pstmdrpva, roll), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "roll")}, /* decimal number */
+    {offsetof(nmea_pstmdrpva, heading), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "heading")}, /* decimal number */
 };
 static const layout pstmdrpva_layout = {
     .sentence = "PSTMDRPVA", .address = "PSTMDRPVA", .fields = pstmdrpva_fields, .before = 11, .fixed = 11,
@@ -41090,23 +41090,23 @@ size_t nmea_build_pstmdrpva(const nmea_pstmdrpva *s, char *buf, size_t cap, nmea
 
 /* $PSTMDRPVASD,064420.000,24295094,17.9,22.0,13.5,2.83,1.77,1.80,0.00,0.00,180.01,11.5,7.2,8.9,1.32,0.61,0.79*78 */
 static const layout_field pstmdrpvasd_fields[] = {
-    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pstmdrpvasd, time), FIELD_TIME, 1, 0},
-    {ERROR_TEXT("cpu_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrpvasd, cpu_time), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("lat_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, lat_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("lon_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, lon_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("height_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, height_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_north_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, vel_north_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_east_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, vel_east_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_up_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, vel_up_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pitch_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, pitch_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("roll_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, roll_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("heading_sd"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, heading_sd), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pos_north_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, pos_north_east), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pos_north_up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, pos_north_up), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pos_east_up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, pos_east_up), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_north_east"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, vel_north_east), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_north_up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, vel_north_up), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("vel_east_up"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrpvasd, vel_east_up), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pstmdrpvasd, time), NO_ARG, FIELD_TIME, 0, FIELD_NAMES(24, "time")}, /* time hhmmss[.s] */
+    {offsetof(nmea_pstmdrpvasd, cpu_time), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "cpu_time")}, /* integer */
+    {offsetof(nmea_pstmdrpvasd, lat_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lat_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, lon_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "lon_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, height_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "height_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, vel_north_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_north_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, vel_east_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_east_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, vel_up_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_up_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, pitch_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pitch_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, roll_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "roll_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, heading_sd), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "heading_sd")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, pos_north_east), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pos_north_east")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, pos_north_up), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pos_north_up")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, pos_east_up), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pos_east_up")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, vel_north_east), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_north_east")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, vel_north_up), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_north_up")}, /* decimal number */
+    {offsetof(nmea_pstmdrpvasd, vel_east_up), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "vel_east_up")}, /* decimal number */
 };
 static const layout pstmdrpvasd_layout = {
     .sentence = "PSTMDRPVASD", .address = "PSTMDRPVASD", .fields = pstmdrpvasd_fields, .before = 17, .fixed = 17,
@@ -41203,11 +41203,11 @@ size_t nmea_build_pstmdrpvasd(const nmea_pstmdrpvasd *s, char *buf, size_t cap, 
 
 /* $PSTMDRSENMSG,30,3248512115,299,-35,16514*02 */
 static const layout_field pstmdrsenmsg_fields[] = {
-    {ERROR_TEXT("msg_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrsenmsg, msg_type), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("timestamp"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrsenmsg, timestamp), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pstmdrsenmsg, msg_type), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "msg_type")}, /* integer */
+    {offsetof(nmea_pstmdrsenmsg, timestamp), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "timestamp")}, /* integer */
 };
 static const layout_field pstmdrsenmsg_group_fields[] = {
-    {ERROR_TEXT("value"), ERROR_TEXT("decimal number"), NULL, 0, FIELD_DECIMAL, 1, 0},
+    {0, NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "value")}, /* decimal number */
 };
 static const layout_group pstmdrsenmsg_group = {
     .id = ERROR_TEXT("values"), .fields = pstmdrsenmsg_group_fields, .field_count = 1, .width = 1, .min = 0,
@@ -41306,20 +41306,20 @@ size_t nmea_build_pstmdrsenmsg(const nmea_pstmdrsenmsg *s, char *buf, size_t cap
 
 /* $PSTMDRSINT,100,100,0,0,1.000,1.000,0.000,-0.42,0.79,-0.07,0.26,0.35,10.05,0.00*05 */
 static const layout_field pstmdrsint_fields[] = {
-    {ERROR_TEXT("gyro_samples"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrsint, gyro_samples), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("acc_samples"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrsint, acc_samples), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("pressure_samples"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrsint, pressure_samples), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("odometer_pulses"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrsint, odometer_pulses), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("gyro_time"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsint, gyro_time), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_time"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsint, acc_time), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pressure_time"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsint, pressure_time), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsint, gyro_x), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsint, gyro_y), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("gyro_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsint, gyro_z), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsint, acc_x), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsint, acc_y), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsint, acc_z), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("pressure"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsint, pressure), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pstmdrsint, gyro_samples), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "gyro_samples")}, /* integer */
+    {offsetof(nmea_pstmdrsint, acc_samples), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "acc_samples")}, /* integer */
+    {offsetof(nmea_pstmdrsint, pressure_samples), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "pressure_samples")}, /* integer */
+    {offsetof(nmea_pstmdrsint, odometer_pulses), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "odometer_pulses")}, /* integer */
+    {offsetof(nmea_pstmdrsint, gyro_time), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_time")}, /* decimal number */
+    {offsetof(nmea_pstmdrsint, acc_time), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_time")}, /* decimal number */
+    {offsetof(nmea_pstmdrsint, pressure_time), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pressure_time")}, /* decimal number */
+    {offsetof(nmea_pstmdrsint, gyro_x), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_x")}, /* decimal number */
+    {offsetof(nmea_pstmdrsint, gyro_y), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_y")}, /* decimal number */
+    {offsetof(nmea_pstmdrsint, gyro_z), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "gyro_z")}, /* decimal number */
+    {offsetof(nmea_pstmdrsint, acc_x), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_x")}, /* decimal number */
+    {offsetof(nmea_pstmdrsint, acc_y), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_y")}, /* decimal number */
+    {offsetof(nmea_pstmdrsint, acc_z), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_z")}, /* decimal number */
+    {offsetof(nmea_pstmdrsint, pressure), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "pressure")}, /* decimal number */
 };
 static const layout pstmdrsint_layout = {
     .sentence = "PSTMDRSINT", .address = "PSTMDRSINT", .fields = pstmdrsint_fields, .before = 14, .fixed = 14,
@@ -41410,7 +41410,7 @@ size_t nmea_build_pstmdrsint(const nmea_pstmdrsint *s, char *buf, size_t cap, nm
 
 /* $PSTMDRSTYPE,3*58 */
 static const layout_field pstmdrstype_fields[] = {
-    {ERROR_TEXT("sensor_type"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrstype, sensor_type), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pstmdrstype, sensor_type), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "sensor_type")}, /* integer */
 };
 static const layout pstmdrstype_layout = {
     .sentence = "PSTMDRSTYPE", .address = "PSTMDRSTYPE", .fields = pstmdrstype_fields, .before = 1, .fixed = 1,
@@ -41475,14 +41475,14 @@ size_t nmea_build_pstmdrstype(const nmea_pstmdrstype *s, char *buf, size_t cap, 
 
 /* $PSTMDRSVF,064420.000,24295094,0.00,0.00,0.00,0.00,0.00,0.00*50 */
 static const layout_field pstmdrsvf_fields[] = {
-    {ERROR_TEXT("time"), ERROR_TEXT("time hhmmss[.s]"), NULL, offsetof(nmea_pstmdrsvf, time), FIELD_TIME, 1, 0},
-    {ERROR_TEXT("cpu_time"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmdrsvf, cpu_time), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("acc_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsvf, acc_x), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsvf, acc_y), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("acc_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsvf, acc_z), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("rate_x"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsvf, rate_x), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("rate_y"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsvf, rate_y), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("rate_z"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmdrsvf, rate_z), FIELD_DECIMAL, 1, 0},
+    {offsetof(nmea_pstmdrsvf, time), NO_ARG, FIELD_TIME, 0, FIELD_NAMES(24, "time")}, /* time hhmmss[.s] */
+    {offsetof(nmea_pstmdrsvf, cpu_time), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "cpu_time")}, /* integer */
+    {offsetof(nmea_pstmdrsvf, acc_x), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_x")}, /* decimal number */
+    {offsetof(nmea_pstmdrsvf, acc_y), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_y")}, /* decimal number */
+    {offsetof(nmea_pstmdrsvf, acc_z), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "acc_z")}, /* decimal number */
+    {offsetof(nmea_pstmdrsvf, rate_x), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "rate_x")}, /* decimal number */
+    {offsetof(nmea_pstmdrsvf, rate_y), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "rate_y")}, /* decimal number */
+    {offsetof(nmea_pstmdrsvf, rate_z), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "rate_z")}, /* decimal number */
 };
 static const layout pstmdrsvf_layout = {
     .sentence = "PSTMDRSVF", .address = "PSTMDRSVF", .fields = pstmdrsvf_fields, .before = 8, .fixed = 8,
@@ -41844,7 +41844,7 @@ size_t nmea_build_pstmhot(const nmea_pstmhot *s, char *buf, size_t cap, nmea_err
 
 /* $PSTMIMUSELFTESTCMD,1*16 */
 static const layout_field pstmimuselftestcmd_fields[] = {
-    {ERROR_TEXT("imu_category"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmimuselftestcmd, imu_category), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pstmimuselftestcmd, imu_category), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "imu_category")}, /* integer */
 };
 static const layout pstmimuselftestcmd_layout = {
     .sentence = "PSTMIMUSELFTESTCMD", .address = "PSTMIMUSELFTESTCMD", .fields = pstmimuselftestcmd_fields,
@@ -41874,15 +41874,15 @@ size_t nmea_build_pstmimuselftestcmd(const nmea_pstmimuselftestcmd *s, char *buf
 
 /* $PSTMINITGPS,3149.121,N,11707.883,E,0530,05,08,2022,09,44,12*5E */
 static const layout_field pstminitgps_fields[] = {
-    {ERROR_TEXT("lat"), ERROR_TEXT("latitude ddmm.mmmm"), ERROR_TEXT("hemisphere N or S"), offsetof(nmea_pstminitgps, lat), FIELD_LATITUDE, 2, 0},
-    {ERROR_TEXT("lon"), ERROR_TEXT("longitude dddmm.mmmm"), ERROR_TEXT("hemisphere E or W"), offsetof(nmea_pstminitgps, lon), FIELD_LONGITUDE, 2, 0},
-    {ERROR_TEXT("altitude"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminitgps, altitude), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("day"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminitgps, day), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("month"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminitgps, month), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminitgps, year), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("hour"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminitgps, hour), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("minute"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminitgps, minute), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("second"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminitgps, second), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pstminitgps, lat), 14, FIELD_LATITUDE, 0, FIELD_NAMES(15, "lat")}, /* latitude ddmm.mmmm */
+    {offsetof(nmea_pstminitgps, lon), 16, FIELD_LONGITUDE, 0, FIELD_NAMES(17, "lon")}, /* longitude dddmm.mmmm */
+    {offsetof(nmea_pstminitgps, altitude), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "altitude")}, /* integer */
+    {offsetof(nmea_pstminitgps, day), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "day")}, /* integer */
+    {offsetof(nmea_pstminitgps, month), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "month")}, /* integer */
+    {offsetof(nmea_pstminitgps, year), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "year")}, /* integer */
+    {offsetof(nmea_pstminitgps, hour), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "hour")}, /* integer */
+    {offsetof(nmea_pstminitgps, minute), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "minute")}, /* integer */
+    {offsetof(nmea_pstminitgps, second), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "second")}, /* integer */
 };
 static const layout pstminitgps_layout = {
     .sentence = "PSTMINITGPS", .address = "PSTMINITGPS", .fields = pstminitgps_fields, .before = 9, .fixed = 11,
@@ -41937,12 +41937,12 @@ size_t nmea_build_pstminitgpsok(const nmea_pstminitgpsok *s, char *buf, size_t c
 
 /* $PSTMINITTIME,05,08,2022,09,44,12*10 */
 static const layout_field pstminittime_fields[] = {
-    {ERROR_TEXT("day"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminittime, day), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("month"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminittime, month), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("year"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminittime, year), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("hour"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminittime, hour), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("minute"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminittime, minute), FIELD_INTEGER, 1, 0},
-    {ERROR_TEXT("second"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstminittime, second), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pstminittime, day), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "day")}, /* integer */
+    {offsetof(nmea_pstminittime, month), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "month")}, /* integer */
+    {offsetof(nmea_pstminittime, year), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "year")}, /* integer */
+    {offsetof(nmea_pstminittime, hour), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "hour")}, /* integer */
+    {offsetof(nmea_pstminittime, minute), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "minute")}, /* integer */
+    {offsetof(nmea_pstminittime, second), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "second")}, /* integer */
 };
 static const layout pstminittime_layout = {
     .sentence = "PSTMINITTIME", .address = "PSTMINITTIME", .fields = pstminittime_fields, .before = 6, .fixed = 6,
@@ -43005,9 +43005,9 @@ size_t nmea_build_pstmsrr(const nmea_pstmsrr *s, char *buf, size_t cap, nmea_err
 
 /* $PSTMTEMP,31,134,1*3F */
 static const layout_field pstmtemp_fields[] = {
-    {ERROR_TEXT("temperature"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmtemp, temperature), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("raw_temperature"), ERROR_TEXT("decimal number"), NULL, offsetof(nmea_pstmtemp, raw_temperature), FIELD_DECIMAL, 1, 0},
-    {ERROR_TEXT("calibration"), ERROR_TEXT("integer"), NULL, offsetof(nmea_pstmtemp, calibration), FIELD_INTEGER, 1, 0},
+    {offsetof(nmea_pstmtemp, temperature), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "temperature")}, /* decimal number */
+    {offsetof(nmea_pstmtemp, raw_temperature), NO_ARG, FIELD_DECIMAL, 0, FIELD_NAMES(7, "raw_temperature")}, /* decimal number */
+    {offsetof(nmea_pstmtemp, calibration), NO_ARG, FIELD_INTEGER, 0, FIELD_NAMES(5, "calibration")}, /* integer */
 };
 static const layout pstmtemp_layout = {
     .sentence = "PSTMTEMP", .address = "PSTMTEMP", .fields = pstmtemp_fields, .before = 3, .fixed = 3,
