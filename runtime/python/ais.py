@@ -11,9 +11,12 @@ table 47 of annex 8; the layouts: annex 8) and gpsd's "AIVDM/AIVDO protocol deco
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, ClassVar, NamedTuple
+from typing import TYPE_CHECKING, Any, ClassVar, NamedTuple
 
 from .runtime import NmeaError
+
+if TYPE_CHECKING:  # binary frames read and write their payloads with the same item walkers
+    from .ubx import ByteReader, ByteWriter
 
 SIXBIT_TEXT = "@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_ !\"#$%&'()*+,-./0123456789:;<=>?"
 """The characters of six-bit text, by their value (`@`, value 0, pads a text to its width)."""
@@ -142,7 +145,7 @@ class Field:
     optional: bool = False
     after: int = 0
 
-    def size(self, reader: BitReader) -> int:
+    def size(self, reader: BitReader | ByteReader) -> int:
         return self.width if self.width is not None else max(reader.remaining - self.after, 0)
 
     def from_raw(self, raw: int, width: int) -> Any:
@@ -266,7 +269,7 @@ class Text(Field):
     """Six-bit text as sent, `@` padding and trailing spaces included; of the bits left (a
     variable text), the whole characters."""
 
-    def size(self, reader: BitReader) -> int:
+    def size(self, reader: BitReader | ByteReader) -> int:
         return self.width if self.width is not None else max(reader.remaining - self.after, 0) // 6 * 6
 
     def from_raw(self, raw: int, width: int) -> Any:
@@ -393,7 +396,7 @@ def flat_fields(items: tuple[Item, ...]) -> tuple[Field, ...]:
                                                item.fields if isinstance(item, Choice) else ()))
 
 
-def read_items(items: tuple[Item, ...], reader: BitReader, values: dict[str, Any]) -> bool:
+def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: dict[str, Any]) -> bool:
     """Read `items` into `values`; False once an optional field finds too few bits (it and what
     follows stay None)."""
     for item in items:
@@ -413,8 +416,10 @@ def read_items(items: tuple[Item, ...], reader: BitReader, values: dict[str, Any
             else:
                 count = item.count if isinstance(item.count, int) else values[item.count]
             if count < item.min or count * item.entry_width > reader.remaining:
-                raise NmeaError("short_payload", f"{item.id} needs {max(count, item.min)} entries of "
-                                f"{item.entry_width} bits, {reader.remaining} bits left", reader.where, name=item.id)
+                # A count from the bits left says the least a group takes (as C and Rust say it).
+                needs = f"at least {item.min}" if item.count is None else str(count)
+                raise NmeaError("short_payload", f"{item.id} needs {needs} entries of {item.entry_width} bits, "
+                                f"{reader.remaining} bits left", reader.where, name=item.id)
             entries = []
             for _ in range(count):
                 entry: dict[str, Any] = {}
@@ -500,7 +505,7 @@ def compile_prefix(items: tuple[Item, ...]) -> Prefix:
     return Prefix(count, offset, names["read"], names["put_json"])
 
 
-def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter, where: str) -> bool:
+def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteWriter, where: str) -> bool:
     """Write the values of `items` from `message`'s members; False at an optional field left None."""
     for item in items:
         if isinstance(item, Field):

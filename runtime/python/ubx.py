@@ -374,7 +374,7 @@ class Message:
     def from_payload(cls, payload: bytes) -> Message:
         """The message of `payload`, read as this layout: by its compiled reader, else (a payload
         it does not read whole) by the generic one, which names what is missing."""
-        read = cls.__dict__.get("_read")
+        read: Any = cls.__dict__.get("_read")
         if read is None:
             read = cls._read = compile_reader(cls.LAYOUT) or False
         found = read(payload) if read else None
@@ -393,7 +393,7 @@ class Message:
     def payload(self) -> bytes:
         """The payload it is sent as; a count left None is written as its group's number of
         entries, a version left None as the layout's (the message itself is left as it is)."""
-        implied: dict[str, int] = {}
+        implied: dict[str, Any] = {}
         if self.VERSION is not None and getattr(self, "version") is None:
             implied["version"] = self.VERSION
         for group in self.LAYOUT:
