@@ -11,9 +11,15 @@ BIN     := build/bin
 TEST_BIN := build/test-bin
 CARGO_TARGET := build/rust-target
 
+# Python keeps the bytecode it compiles under build/, even where the environment asks it not to
+# (PYTHONDONTWRITEBYTECODE=1): a test run starts hundreds of Python processes, and compiling the
+# generator, the package and pytest again in each took a fifth of their time.
+unexport PYTHONDONTWRITEBYTECODE
+export PYTHONPYCACHEPREFIX ?= $(CURDIR)/build/pycache
+
 .PHONY: generate validate check build test-bin footprint release-check changelog test test-quick test-steps system-deps test-runtimes test-generator test-python test-c test-c-memory test-rust test-rust-lint test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
-        fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
+        fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-rust-replay fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
 
 # --no-compile: Python compiles the modules a run imports as it imports them, not every module ahead.
 $(STAMP): requirements.txt
@@ -39,9 +45,12 @@ RUST_SOURCES = $(shell find generated/rust -name '*.rs' -o -name Cargo.toml 2>/d
 C_PAIR       := generated/c/nmea.c generated/c/nmea.h
 C_AIS        := generated/c/nmea_ais.c generated/c/nmea_ais.h
 
+# The interpreter itself, not a launcher in front of it (pyenv's shims take 0.15 s a call), and
+# without site-packages (-S): the package needs nothing beyond the standard library.
+PYTHON3 = $(shell python3 -c 'import sys; print(sys.executable)')
 $(BIN)/nmea-py $(TEST_BIN)/nmea-py: $(PY_SOURCES)
 	@mkdir -p $(@D)
-	printf '#!/bin/sh\nPYTHONPATH="%s" exec python3 -m nmeaspec "$$@"\n' "$(CURDIR)/generated/python" > $@
+	printf '#!/bin/sh\nPYTHONPATH="%s" exec "%s" -S -m nmeaspec "$$@"\n' "$(CURDIR)/generated/python" "$(PYTHON3)" > $@
 	chmod +x $@
 
 $(BIN)/nmea-c: $(C_PAIR) $(C_AIS) generated/c/nmea_tool.c
@@ -303,15 +312,25 @@ FUZZ_SECONDS ?= 300
 FUZZ := build/fuzz
 FUZZ_FLAGS = -max_total_time=$(FUZZ_SECONDS) -max_len=1100 -timeout=10 -print_final_stats=1
 
-# The smoke run builds the Rust targets unoptimized (with the test run's cargo settings), without
-# instrumented comparisons (they guide long campaigns) and without AddressSanitizer (the crate
-# forbids unsafe code; the C pair has its own ASan target): minutes less to compile, and 15 seconds
-# of fuzzing check the same. What it shares with the other steps of `make test` is built first, by
-# this make, so that the two makes never build one file at once.
+# The smoke run fuzzes the C pair (whose sanitized object the other steps build anyway) and the
+# Python package for 15 seconds each, replays the seeds and every regression through the two Rust
+# targets built without coverage instrumentation (fuzz-rust-replay), then through the three tools
+# (fuzz-differential). The coverage-guided Rust runs are the campaign's (`make fuzz`): their
+# instrumented build of the whole crate took more CPU than the rest of the smoke run together. What
+# the smoke shares with the other steps of `make test` is built first, by this make, so that the
+# two makes never build one file at once.
 fuzz-smoke: test-bin build/c/nmea-san.o
-	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=15 CARGO_FUZZ_BUILD="--dev --no-trace-compares" CARGO_FUZZ_SANITIZER=none \
-		FUZZ_LONG= INPROCESS_CORPUS=$(FUZZ)/corpus-inprocess-smoke INPROCESS_SEEDS= \
-		SEED_FLAGS=--no-corpus
+	$(MAKE) --no-print-directory fuzz-c fuzz-python fuzz-rust-replay FUZZ_SECONDS=15 SEED_FLAGS=--no-corpus
+	$(MAKE) --no-print-directory fuzz-differential
+
+# Each input a file of its own: libFuzzer runs every one once and stops at the first that fails.
+fuzz-rust-replay: fuzz-seeds
+	cargo build --quiet --manifest-path fuzz/rust/Cargo.toml --bins --target-dir $(FUZZ)/replay-target
+	set -e; for target in nmea differential; do \
+		find $(FUZZ)/seeds fuzz/regressions -type f -size +0 -print0 | \
+			xargs -0 $(FUZZ)/replay-target/debug/$$target -artifact_prefix=$(FUZZ)/crash-replay-$$target- 2> $(FUZZ)/replay-$$target.log \
+			|| { tail -n 40 $(FUZZ)/replay-$$target.log; exit 1; }; \
+	done
 
 # The long runs of what `make test` checks briefly (fault injection, bounded memory).
 FUZZ_LONG ?= fuzz-faults fuzz-memory
@@ -335,7 +354,7 @@ fuzz-python: fuzz-seeds
 		$(FUZZ)/corpus-python $(FUZZ)/seeds
 
 CARGO_FUZZ_VERSION := 0.13.2
-# The campaign (`make fuzz`) builds the Rust targets optimized; the smoke run passes --dev and more.
+# The Rust targets are built optimized; CARGO_FUZZ_BUILD="--dev" builds them faster, for a short run.
 CARGO_FUZZ_BUILD ?=
 # The Rust targets' sanitizer: AddressSanitizer by default; the crate forbids unsafe code, so a long
 # campaign may take `none` for more executions (the C pair has its own ASan target).
@@ -348,15 +367,12 @@ fuzz-rust: fuzz-seeds
 		$(FUZZ_FLAGS) -artifact_prefix=$(CURDIR)/$(FUZZ)/crash-rust- $(CURDIR)/$(FUZZ)/corpus-rust $(CURDIR)/$(FUZZ)/seeds
 
 # The in-process differential: the C pair (built by fuzz/rust/build.rs) and the Rust crate in one
-# target, every answer compared byte for byte (fuzz/rust/fuzz_targets/differential.rs). The smoke
-# run (an unoptimized build, a few hundred inputs a second) starts from the regressions only.
-INPROCESS_CORPUS ?= $(FUZZ)/corpus-inprocess
-INPROCESS_SEEDS ?= $(CURDIR)/$(FUZZ)/seeds
+# target, every answer compared byte for byte (fuzz/rust/fuzz_targets/differential.rs).
 fuzz-inprocess: fuzz-seeds
 	@command -v cargo-fuzz >/dev/null || cargo install --quiet --locked cargo-fuzz --version $(CARGO_FUZZ_VERSION)
-	@mkdir -p $(INPROCESS_CORPUS)
+	@mkdir -p $(FUZZ)/corpus-inprocess
 	RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run $(CARGO_FUZZ_BUILD) -s $(CARGO_FUZZ_SANITIZER) --fuzz-dir fuzz/rust differential -- \
-		$(FUZZ_FLAGS) -artifact_prefix=$(CURDIR)/$(FUZZ)/crash-inprocess- $(CURDIR)/$(INPROCESS_CORPUS) $(INPROCESS_SEEDS) \
+		$(FUZZ_FLAGS) -artifact_prefix=$(CURDIR)/$(FUZZ)/crash-inprocess- $(CURDIR)/$(FUZZ)/corpus-inprocess $(CURDIR)/$(FUZZ)/seeds \
 		$(CURDIR)/fuzz/regressions
 
 fuzz-differential: test-bin $(STAMP)
