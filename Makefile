@@ -10,6 +10,11 @@ CFLAGS  ?= -std=c99 -Wall -Wextra -Werror -pedantic -O2
 BIN     := build/bin
 TEST_BIN := build/test-bin
 CARGO_TARGET := build/rust-target
+# The tests build the generated crate once (its default features and std, unoptimized) for its own
+# tests, the tests' Rust tool and the fuzz targets' replay: from the fuzz targets' workspace, where
+# the crate is a path dependency with std. Cargo keys a path dependency's build by its path from the
+# workspace's root, so two workspaces could not share it.
+SHARED_RUST := --manifest-path fuzz/rust/Cargo.toml --target-dir $(CARGO_TARGET)
 
 # Python keeps the bytecode it compiles under build/, even where the environment asks it not to
 # (PYTHONDONTWRITEBYTECODE=1): a test run starts hundreds of Python processes, and compiling the
@@ -153,7 +158,7 @@ $(TEST_BIN)/nmea-c: build/c/nmea-test.o generated/c/nmea_ais.c generated/c/nmea_
 
 $(TEST_BIN)/nmea-rs: $(RUST_SOURCES)
 	@mkdir -p $(@D)
-	cargo build --quiet --manifest-path generated/rust/Cargo.toml --features std --bin nmea-rs --target-dir $(CARGO_TARGET)
+	cargo build --quiet $(SHARED_RUST) -p nmeaspec --bin nmea-rs
 	cp $(CARGO_TARGET)/debug/nmea-rs $@
 
 # The general path alone, unoptimized (the examples only need answers).
@@ -226,7 +231,7 @@ test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_example
 	valgrind -q --error-exitcode=1 --leak-check=full $(TEST_BIN)/nmea-c decode < tests/agreement/edge_cases.txt > /dev/null
 	valgrind -q --error-exitcode=1 --leak-check=full $(TEST_BIN)/nmea-c encode < build/c/valgrind.jsonl > /dev/null
 
-# The generated crate's tests (with std: the dev build the tools' tests share) and its doc examples,
+# The generated crate's tests (SHARED_RUST: the build the tests' tool and the fuzz replay share) and its doc examples,
 # and apart, so that the two run side by side, its lints: clippy with every feature and with none,
 # each receiver feature (default: all of them) on its own, rustfmt. The lints have their own target
 # directory: they share no build with the tests, and one directory would hold one cargo at a time.
@@ -243,8 +248,8 @@ LINT_TARGET := build/rust-lint-target
 FEATURE_CRATE := build/rust-features
 
 test-rust:
-	cargo test --quiet --manifest-path generated/rust/Cargo.toml --features std --target-dir $(CARGO_TARGET) --test '*'
-	cargo test --quiet --manifest-path generated/rust/Cargo.toml --features std --target-dir $(CARGO_TARGET) --doc
+	cargo test --quiet $(SHARED_RUST) -p nmeaspec --test '*'
+	cargo test --quiet $(SHARED_RUST) -p nmeaspec --doc
 
 test-rust-lint: $(STAMP)
 	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --lib --bins --test '*' --features std,serde,time,chrono \
@@ -325,10 +330,10 @@ fuzz-smoke: test-bin build/c/nmea-san.o
 
 # Each input a file of its own: libFuzzer runs every one once and stops at the first that fails.
 fuzz-rust-replay: fuzz-seeds
-	cargo build --quiet --manifest-path fuzz/rust/Cargo.toml --bins --target-dir $(FUZZ)/replay-target
+	cargo build --quiet $(SHARED_RUST) -p nmeaspec-fuzz --bins
 	set -e; for target in nmea differential; do \
 		find $(FUZZ)/seeds fuzz/regressions -type f -size +0 -print0 | \
-			xargs -0 $(FUZZ)/replay-target/debug/$$target -artifact_prefix=$(FUZZ)/crash-replay-$$target- 2> $(FUZZ)/replay-$$target.log \
+			xargs -0 $(CARGO_TARGET)/debug/$$target -artifact_prefix=$(FUZZ)/crash-replay-$$target- 2> $(FUZZ)/replay-$$target.log \
 			|| { tail -n 40 $(FUZZ)/replay-$$target.log; exit 1; }; \
 	done
 

@@ -1,5 +1,5 @@
-"""The three `stream` verbs read a stream in bounded memory: their peak resident memory on a
-16 MB stream (real lines, garbage, NULs, overlong lines, and a last line that never ends) is the
+"""The three `stream` verbs read a stream in bounded memory: their peak resident memory on an
+8 MB stream (real lines, garbage, NULs, overlong lines, and a last line that never ends) is the
 one they have on a 2 MB stream. `make fuzz-memory` runs the same with 1 GB (fuzz/bounded_memory.py)."""
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ sys.path.insert(0, str(ROOT / "fuzz"))
 
 import bounded_memory  # noqa: E402
 
-SLACK_MB = 8.0
+SLACK_MB = 4.0  # a reader that kept its input would grow by 6 MB
 
 
 def test_the_measure_sees_a_reader_that_keeps_its_input() -> None:
@@ -26,7 +26,7 @@ def test_the_measure_sees_a_reader_that_keeps_its_input() -> None:
 
 
 def test_stream_verbs_keep_their_memory() -> None:
-    result = subprocess.run([sys.executable, str(ROOT / "fuzz" / "bounded_memory.py"), "--size", "2M", "--size", "16M",
+    result = subprocess.run([sys.executable, str(ROOT / "fuzz" / "bounded_memory.py"), "--size", "2M", "--size", "8M",
                              "--slack", str(SLACK_MB)], capture_output=True, text=True, timeout=600)
     print(result.stdout)
     assert result.returncode == 0, result.stdout + result.stderr
