@@ -1215,6 +1215,8 @@ MAX_JSON_DEPTH: Final = 500
 def json_too_deep(text: str) -> bool:
     """Whether `text` opens more than MAX_JSON_DEPTH arrays and objects at once (outside
     strings)."""
+    if text.count("[") + text.count("{") <= MAX_JSON_DEPTH:  # nothing can be deeper than that: no scan
+        return False
     depth = 0
     in_string = escaped = False
     for ch in text:
