@@ -264,7 +264,7 @@ test-rust-lint: $(STAMP)
 	cargo fmt --manifest-path generated/rust/Cargo.toml --check
 
 test-tools: test-bin $(STAMP)
-	NMEA_TOOLS=$(TEST_BIN) $(PY) -m pytest -q tests/agreement tests/fixes
+	NMEA_TOOLS=$(TEST_BIN) NMEA_C_OBJECT=build/c/nmea-test.o $(PY) -m pytest -q tests/agreement tests/fixes
 
 # The benchmark harness for our implementations only, at a tiny size (no peers, nothing fetched).
 test-bench-smoke: $(STAMP)

@@ -1,4 +1,4 @@
-"""A serial line's damage, applied to a real log: the damage model of the fault-injection test
+r"""A serial line's damage, applied to a real log: the damage model of the fault-injection test
 (tests/agreement/test_faults.py, `make test` and `make fuzz-faults`).
 
 Each kind of damage is applied on its own, from a seeded random generator (the same log, kind,
