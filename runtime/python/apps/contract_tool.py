@@ -11,14 +11,16 @@ from __future__ import annotations
 import json
 import sys
 from collections.abc import Iterable, Iterator
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .. import __version__, encode_json
 from ..api import Tagged, parse, to_json
-from ..assembly import Assembled, MessageAssembler
 from ..fixes import fixes
 from ..runtime import NmeaError, json_too_deep
 from ..stream import lines as framed, too_long
+
+if TYPE_CHECKING:
+    from ..assembly import Assembled
 
 USAGE = (
     "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] [--strict]"
@@ -57,6 +59,8 @@ def decoded(items: Iterable[str], values: bool, options: dict[str, bool]) -> Ite
         inner = sentence.sentence if isinstance(sentence, Tagged) else sentence
         fragment = getattr(inner, "fragment", None)
         if fragment is not None and fragment.total == 1:
+            from ..assembly import MessageAssembler  # by the first AIS line
+
             (assembled,) = MessageAssembler().feed(sentence)  # a message of one sentence, at once
             text = with_message(text, assembled)
         yield text
@@ -66,6 +70,8 @@ def streamed(items: Iterable[bytes | int], values: bool, options: dict[str, bool
     """stream: each framed line's JSON, with the AIS message it completes (of one sentence or
     joined across several); after it, an incomplete_message error for each message it gives up,
     and at the end for those left under way."""
+    from ..assembly import MessageAssembler
+
     assembler = MessageAssembler()
     for item in items:
         try:
