@@ -1,12 +1,18 @@
-"""The C pair in another project: add_subdirectory() of a copy of generated/c from a fresh CMake
-project, and the plain two-file build any other build system does."""
+"""The C pair in another project: add_subdirectory() of a copy from a fresh CMake project, its own
+CMake build installed and found by find_package(), and the plain two-file build any other build
+system does. The CMake projects build a pair of GGA alone, as a firmware team generates it (its
+CMake files are those of any pair; compiling all 641 sentences three times would test nothing
+more): the plain build compiles the whole pair of generated/c."""
 
 from __future__ import annotations
 
 import shutil
+import sys
 from pathlib import Path
 
-from .conftest import GENERATED, need, run
+import pytest
+
+from .conftest import GENERATED, ROOT, need, run
 
 APP = r"""
 #include <stdio.h>
@@ -39,15 +45,22 @@ target_link_libraries(app PRIVATE nmea::nmea)
 """
 
 
-def _project(tmp_path: Path) -> Path:
-    shutil.copytree(GENERATED / "c", tmp_path / "third_party" / "nmea", ignore=shutil.ignore_patterns("tests"))
+@pytest.fixture(scope="module")
+def gga_pair(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("gga-pair")
+    run(sys.executable, "-m", "generator", "generate", "--quiet", "--only", "GGA", "--out", out, cwd=ROOT)
+    return out / "c"
+
+
+def _project(tmp_path: Path, pair: Path) -> Path:
+    shutil.copytree(pair, tmp_path / "third_party" / "nmea", ignore=shutil.ignore_patterns("tests"))
     (tmp_path / "app.c").write_text(APP)
     return tmp_path
 
 
-def test_cmake_add_subdirectory(tmp_path: Path) -> None:
+def test_cmake_add_subdirectory(tmp_path: Path, gga_pair: Path) -> None:
     cmake = need("cmake", "apt-get install cmake")
-    project = _project(tmp_path)
+    project = _project(tmp_path, gga_pair)
     (project / "CMakeLists.txt").write_text(CMAKE)
     run(cmake, "-S", project, "-B", project / "build", "-DCMAKE_C_FLAGS=-Wall -Wextra -Werror -pedantic")
     run(cmake, "--build", project / "build")
@@ -56,10 +69,10 @@ def test_cmake_add_subdirectory(tmp_path: Path) -> None:
     assert not (project / "build" / "third_party" / "nmea" / "nmea-c").exists(), "the tool is opt-in when vendored"
 
 
-def test_cmake_top_level_builds_the_tool_and_installs(tmp_path: Path) -> None:
+def test_cmake_top_level_builds_the_tool_and_installs(tmp_path: Path, gga_pair: Path) -> None:
     cmake = need("cmake", "apt-get install cmake")
     source = tmp_path / "nmea"
-    shutil.copytree(GENERATED / "c", source, ignore=shutil.ignore_patterns("tests"))
+    shutil.copytree(gga_pair, source, ignore=shutil.ignore_patterns("tests"))
     run(cmake, "-S", source, "-B", tmp_path / "build", f"-DCMAKE_INSTALL_PREFIX={tmp_path / 'prefix'}")
     run(cmake, "--build", tmp_path / "build")
     run(cmake, "--install", tmp_path / "build")
