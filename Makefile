@@ -267,8 +267,8 @@ test-tools: test-bin $(STAMP)
 	NMEA_TOOLS=$(TEST_BIN) NMEA_C_OBJECT=build/c/nmea-test.o $(PY) -m pytest -q tests/agreement tests/fixes
 
 # The benchmark harness for our implementations only, at a tiny size (no peers, nothing fetched).
-test-bench-smoke: $(STAMP)
-	$(PY) -m pytest -q tests/bench
+test-bench-smoke: build/c/nmea-test.o $(STAMP)
+	NMEA_C_OBJECT=build/c/nmea-test.o $(PY) -m pytest -q tests/bench
 
 # The users' workflows from fresh temporary directories: the C pair in a CMake project and a plain
 # build, the Rust crate as a path dependency with vendor features and serde, the Python package

@@ -45,12 +45,16 @@ def log(message: str) -> None:
 
 # --- building ----------------------------------------------------------------------------------
 
-def build_c(out: Path, optimization: str) -> Path:
-    """The C driver, linked with nmea.o compiled as `make build` does (heap_symbols reads it), or at
-    another optimization level (the smoke test's -O0)."""
+def build_c(out: Path, optimization: str, compiled: Path | None = None) -> Path:
+    """The C driver, linked with nmea.o compiled as `make build` does (heap_symbols reads it), at
+    another optimization level (the smoke test's -O0), or the object `compiled` (the smoke test's
+    make test object)."""
     obj, binary = out / "nmea.o", out / "bench-c"
     flags = [*CFLAGS[:-1], optimization]
-    sh(["gcc", *flags, "-c", "-o", str(obj), "generated/c/nmea.c"])
+    if compiled:
+        shutil.copyfile(compiled, obj)
+    else:
+        sh(["gcc", *flags, "-c", "-o", str(obj), "generated/c/nmea.c"])
     sh(["gcc", *flags, "-Igenerated/c", "-Ibench/c", "-o", str(binary), "bench/c/driver.c", "bench/c/ceiling.c", str(obj)])
     return binary
 
@@ -446,6 +450,9 @@ def main() -> None:
                         help="smoke: a quick build for the smoke test, whose timings mean nothing")
     parser.add_argument("--c-optimization", default=CFLAGS[-1],
                         help="-O0: a quick build of the C driver for the smoke test, whose timings mean nothing")
+    parser.add_argument("--c-object", type=Path,
+                        help="link this object of generated/c/nmea.c instead of compiling it (the smoke test: "
+                             "make test's test object)")
     parser.add_argument("--standard-only", action="store_true",
                         help="the Rust driver with the crate's standard sentences only, the others read as generic "
                              "sentences (the smoke test: a quicker build of the same harness)")
@@ -459,7 +466,7 @@ def main() -> None:
     corpus_info = corpus.build(args.lines, out=corpus_path)
     python_lines = min(args.python_lines, args.lines) if args.python_lines else args.lines
     log(f"corpus: {corpus_info['lines']} lines, {corpus_info['bytes']} bytes")
-    c_bin = build_c(out, args.c_optimization)
+    c_bin = build_c(out, args.c_optimization, args.c_object)
     rust_bin = build_rust(out, peers, args.cargo_profile, args.standard_only)
     python = python_for(out, peers)
 

@@ -1,9 +1,11 @@
 """The benchmark harness at a tiny size: our implementations only (no peers, nothing fetched), one
 round over 2,000 lines, the Rust driver built with the standard sentences only (the crate's
-tests build the rest), the C driver unoptimized. Checks the shape of results.json and that every
+tests build the rest), the C driver unoptimized and linked with make test's test object of nmea.c
+when there is one (NMEA_C_OBJECT). Checks the shape of results.json and that every
 line parses and comes back byte for byte; the timings of so small a run mean nothing."""
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -17,9 +19,10 @@ FIXES = {"ours-python"}  # the implementations with a fix assembler: a `fixes` r
 
 
 def test_bench_smoke():
+    compiled = ["--c-object", os.environ["NMEA_C_OBJECT"]] if os.environ.get("NMEA_C_OBJECT") else []
     subprocess.run([sys.executable, "bench/run.py", "--lines", str(LINES), "--rounds", "1", "--no-peers",
                     "--no-docs", "--no-memory", "--no-instructions", "--cargo-profile", "smoke", "--c-optimization=-O0",
-                    "--standard-only",
+                    "--standard-only", *compiled,
                     "--out", str(OUT)],
                    cwd=ROOT, check=True, stdout=subprocess.DEVNULL)
     report = json.loads((OUT / "results.json").read_text())
