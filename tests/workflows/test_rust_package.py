@@ -1,6 +1,6 @@
 """The Rust crate, packed as crates.io serves it, as a path dependency of a fresh cargo project: one receiver family only
-(`default-features = false, features = ["geos5"]`, still no_std), and `serde` with serde_json (the standard
-sentences only: clippy checks serde with every receiver feature)."""
+(`default-features = false, features = ["geos5"]`, still no_std) and `serde` with serde_json (the standard
+sentences and GeoS-5's: clippy checks serde with every receiver feature)."""
 
 from __future__ import annotations
 
@@ -73,23 +73,20 @@ def _cargo_env(root: Path) -> dict[str, str]:
     return env
 
 
-def test_one_vendor_without_default_features(tmp_path: Path) -> None:
+def test_one_vendor_without_default_features_and_with_serde(tmp_path: Path) -> None:
+    """One project for both (the crate compiled once): a binary that reads GeoS-5's sentences and
+    not ST's, and a test that serializes sentences with serde_json."""
     cargo = need("cargo", "install Rust (rustup)")
-    project = _project(tmp_path, "geos5-only",
-                       'nmeaspec = { path = "../vendor/nmeaspec", default-features = false, features = ["geos5"] }')
+    project = _project(tmp_path, "geos5-serde",
+                       'nmeaspec = { path = "../vendor/nmeaspec", default-features = false, features = ["geos5", "serde"] }'
+                       '\n\n[dev-dependencies]\nserde_json = "1"')
     (project / "src" / "main.rs").write_text(GEOS5_MAIN)
     out = run(cargo, "run", "--quiet", cwd=project, env=_cargo_env(tmp_path)).stdout.decode()
     assert out == "$GPSGG,NQUERY,1,3,2,R,0,R,1,0,0,0,1,1,0*71 GGA $GPSGG,NQUERY*6C\n"
-    tree = run(cargo, "tree", "--edges", "normal", "--prefix", "none", cwd=project, env=_cargo_env(tmp_path)).stdout
-    assert sorted(line.split()[0] for line in tree.decode().splitlines()) == [b"geos5-only".decode(), "nmeaspec"]
-
-
-def test_serde(tmp_path: Path) -> None:
-    cargo = need("cargo", "install Rust (rustup)")
-    project = _project(tmp_path, "with-serde",
-                       'nmeaspec = { path = "../vendor/nmeaspec", default-features = false, features = ["serde"] }\n\n'
-                       '[dev-dependencies]\nserde_json = "1"')
-    (project / "src" / "lib.rs").write_text("")
+    # Without serde the crate depends on nothing.
+    tree = run(cargo, "tree", "--edges", "normal", "--prefix", "none", "--no-default-features", "--features", "geos5",
+               cwd=tmp_path / "vendor" / "nmeaspec", env=_cargo_env(tmp_path)).stdout
+    assert [line.split()[0] for line in tree.decode().splitlines()] == ["nmeaspec"]
     (project / "tests").mkdir()
     (project / "tests" / "serde.rs").write_text(SERDE_TEST)
     out = run(cargo, "test", "--quiet", "--", "--nocapture", cwd=project, env=_cargo_env(tmp_path)).stdout.decode()
