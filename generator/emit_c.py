@@ -532,7 +532,7 @@ def json_max(spec: Spec, views: list[dict]) -> int:
     punctuation."""
     longest_id = max([len(v.id) for e in spec.enums for v in e.values] + [0])
     per_byte = max(8, longest_id + 4)
-    all_fields = [f for s in spec.sentences for lay in s.layouts for f in _all_fields(lay)]
+    all_fields = [f for s in spec.sentences for lay in s.layouts for f in lay.all_fields]
     keys = [len(f.id) for f in all_fields]
     per_field = max(keys + [0]) + 64
     fields = max([v["max_fields"] for v in views] + [0]) + 2
@@ -564,11 +564,6 @@ def longest_line(spec: Spec) -> int:
     return min(longest, MAX_LINE)
 
 
-def _all_fields(layout: Layout) -> list[Field]:
-    out: list[Field] = []
-    for item in layout.items:
-        out += item.fields if isinstance(item, Group) else [item]
-    return out
 
 
 # ------------------------------------------------------------------------------------------------

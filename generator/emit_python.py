@@ -325,13 +325,13 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     for sentence in spec.sentences:
         files[f"{base}/sentences/{sentence.id.lower()}.py"] = env.get_template("python/sentence.py.j2").render(
             header=header(spec, "#", [sentence.source, *sorted({f.enum.origin.file for lay in sentence.layouts
-                                                               for f in _all_fields(lay) if f.enum})]),
+                                                               for f in lay.all_fields if f.enum})]),
             sentence=sentence,
             layouts=[layout_view(sentence, lay) for lay in sentence.layouts],
-            enums=sorted({f.enum.camel for lay in sentence.layouts for f in _all_fields(lay) if f.enum}),
+            enums=sorted({f.enum.camel for lay in sentence.layouts for f in lay.all_fields if f.enum}),
             uses_datetime=any(lay.calendar for lay in sentence.layouts),
             uses_decimal=any(f.field_type.numeric and "Decimal" in _bound(f.min) + _bound(f.max)
-                             for lay in sentence.layouts for f in _all_fields(lay)))
+                             for lay in sentence.layouts for f in lay.all_fields))
     by_address = {s.address: spec.by_address(s.address) for s in spec.proprietary if s.framing == "sentence"}
     text_commands = {s.address.upper(): spec.text_command(s.address) for s in spec.proprietary if s.framing == "text"}
     files[f"{base}/bitfields.py"] = env.get_template("python/bitfields.py.j2").render(
@@ -355,8 +355,3 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     return files
 
 
-def _all_fields(layout: Layout) -> list[Field]:
-    out: list[Field] = []
-    for item in layout.items:
-        out += item.fields if isinstance(item, Group) else [item]
-    return out

@@ -802,11 +802,6 @@ def command_example(spec: Spec) -> dict | None:
     return {"layout": s.layout_camel(lay), "bytes": "b" + rust_str(line)[:-1] + '\\r\\n"'}
 
 
-def all_fields(layout: Layout) -> list[Field]:
-    out: list[Field] = []
-    for item in layout.items:
-        out += item.fields if isinstance(item, Group) else [item]
-    return out
 
 
 def sentence_module(s: Sentence) -> str:
@@ -896,8 +891,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     for s in spec.sentences:
         views = [layout_view(spec, s, lay) for lay in s.layouts]
         gate = gates.sentence(s)
-        enum_files = sorted({f.enum.origin.file for lay in s.layouts for f in all_fields(lay) if f.enum})
-        bitfield_files = sorted({f.bitfield.origin.file for lay in s.layouts for f in all_fields(lay) if f.bitfield})
+        enum_files = sorted({f.enum.origin.file for lay in s.layouts for f in lay.all_fields if f.enum})
+        bitfield_files = sorted({f.bitfield.origin.file for lay in s.layouts for f in lay.all_fields if f.bitfield})
         module_file = sentence_module(s).removeprefix("r#")
         files[f"{base}/src/sentences/{module_file}.rs"] = env.get_template("rust/sentence.rs.j2").render(
             header=header(spec, "//", [s.source, *enum_files, *bitfield_files]), sentence=s, doc=doc_lines(s.doc),
@@ -930,13 +925,13 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/src/bitfields.rs"] = env.get_template("rust/bitfields.rs.j2").render(
         header=header(spec, "//", [b.origin.file for b in spec.bitfields]),
         bitfields=[{"cfg": gates.bitfield(b.id)} | bitfield_view(b, any(f.bitfield is b and f.field_type.numeric for s in spec.sentences
-                                        for lay in s.layouts for f in all_fields(lay)))
+                                        for lay in s.layouts for f in lay.all_fields))
                    for b in spec.bitfields],
         uses_numbers=any(f.bitfield is not None and f.field_type.numeric for s in spec.sentences
-                         for lay in s.layouts for f in all_fields(lay)),
+                         for lay in s.layouts for f in lay.all_fields),
         hex_cfg=gates.union([gates.bitfield(b.id) for b in spec.bitfields]),
         number_cfg=gates.union([gates.bitfield(f.bitfield.id) for s in spec.sentences for lay in s.layouts
-                                for f in all_fields(lay) if f.bitfield is not None and f.field_type.numeric]))
+                                for f in lay.all_fields if f.bitfield is not None and f.field_type.numeric]))
     files[f"{base}/src/tables.rs"] = env.get_template("rust/tables.rs.j2").render(
         header=header(spec, "//", [t.origin.file for t in spec.tables]), tables=[{**table_view(t), "cfg": gates.table(t.id)} for t in spec.tables],
         imports=fmt_use("crate::runtime", {"Encoding", "Parameter", "Table"} | (

@@ -324,6 +324,14 @@ class Layout:
         return next((i for i in self.items if isinstance(i, Group)), None)
 
     @property
+    def all_fields(self) -> list[Field]:
+        """Every field in wire order, a group's as in one entry."""
+        out: list[Field] = []
+        for item in self.items:
+            out += item.fields if isinstance(item, Group) else [item]
+        return out
+
+    @property
     def required_items(self) -> list[Item]:
         return [i for i in self.items if not (isinstance(i, Field) and i.is_optional)]
 

@@ -10,7 +10,7 @@ then only judge: a reference left unlinked here is an error they report, with it
 from __future__ import annotations
 
 from . import reference
-from .model import Field, Group, Layout, Payload, PayloadChoice, PayloadField, Spec
+from .model import Group, Layout, Payload, PayloadChoice, PayloadField, Spec
 
 
 def resolve(spec: Spec) -> None:
@@ -33,7 +33,7 @@ def resolve(spec: Spec) -> None:
                                    or checksum_ok(example.raw))
         for layout in sentence.layouts:
             _place(layout)
-            for f in _fields(layout):
+            for f in layout.all_fields:
                 f.enum = spec.enum_by_id.get(f.enum_id) if f.enum_id is not None else None
                 f.bitfield = bitfields.get(f.bitfield_id) if f.bitfield_id is not None else None
                 f.fact = facts.get(f.fix_id) if f.fix_id is not None else None
@@ -83,11 +83,6 @@ def _place(layout: Layout) -> None:
             index += item.wire_width
 
 
-def _fields(layout: Layout) -> list[Field]:
-    out: list[Field] = []
-    for item in layout.items:
-        out += item.fields if isinstance(item, Group) else [item]
-    return out
 
 
 def _place_bits(payload: Payload) -> None:

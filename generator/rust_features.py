@@ -4,7 +4,7 @@ tables only they use compile only with its feature; without it their lines parse
 
 from __future__ import annotations
 
-from .model import Group, Sentence, Spec
+from .model import Sentence, Spec
 
 
 def vendor_features(spec: Spec) -> list[str]:
@@ -40,12 +40,11 @@ class Gates:
 
         for s in spec.sentences:
             for layout in s.layouts:
-                for item in layout.items:
-                    for f in (item.fields if isinstance(item, Group) else [item]):
-                        if f.enum is not None:
-                            use("enum:" + f.enum.id, self.sentence_vendors(s))
-                        if f.bitfield is not None:
-                            use("bitfield:" + f.bitfield.id, self.sentence_vendors(s))
+                for f in layout.all_fields:
+                    if f.enum is not None:
+                        use("enum:" + f.enum.id, self.sentence_vendors(s))
+                    if f.bitfield is not None:
+                        use("bitfield:" + f.bitfield.id, self.sentence_vendors(s))
         self.tables = {t.id: (set(t.manuals) & feature_set) or None for t in spec.tables}
         for t in spec.tables:
             for p in t.parameters:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import copy
 
-from .model import Field, Group, Sentence, Spec
+from .model import Field, Sentence, Spec
 
 
 class SelectionError(ValueError):
@@ -62,11 +62,7 @@ def selected_sentences(spec: Spec, words: list[str]) -> list[Sentence]:
 
 
 def _fields(sentence: Sentence) -> list[Field]:
-    out: list[Field] = []
-    for layout in sentence.layouts:
-        for item in layout.items:
-            out.extend(item.fields if isinstance(item, Group) else [item])
-    return out
+    return [f for layout in sentence.layouts for f in layout.all_fields]
 
 
 def subset(spec: Spec, words: list[str]) -> Spec:

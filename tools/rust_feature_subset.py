@@ -22,7 +22,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from generator.build import load_spec  # noqa: E402
-from generator.model import Group, Sentence  # noqa: E402
+from generator.model import Sentence  # noqa: E402
 from generator.rust_features import vendor_features  # noqa: E402
 
 
@@ -30,12 +30,11 @@ def gated_items(sentence: Sentence) -> set[str]:
     """The enums and bitfields a sentence's layouts use, the things a feature gate can leave out."""
     used = set()
     for layout in sentence.layouts:
-        for item in layout.items:
-            for f in item.fields if isinstance(item, Group) else [item]:
-                if f.enum is not None:
-                    used.add("enum:" + f.enum.id)
-                if f.bitfield is not None:
-                    used.add("bitfield:" + f.bitfield.id)
+        for f in layout.all_fields:
+            if f.enum is not None:
+                used.add("enum:" + f.enum.id)
+            if f.bitfield is not None:
+                used.add("bitfield:" + f.bitfield.id)
     return used
 
 
