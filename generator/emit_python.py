@@ -320,8 +320,11 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/py.typed"] = ""
     files[f"{base}/fix_fields.py"] = fix_fields(spec, env)
     files[f"{base}/tag_block.py"] = tag_block(spec, env)
-    files[f"{base}/enums.py"] = env.get_template("python/enums.py.j2").render(
-        header=header(spec, "#", [e.origin.file for e in spec.enums]), enums=spec.enums)
+    files[f"{base}/enums/__init__.py"] = env.get_template("python/enums_init.py.j2").render(
+        header=header(spec, "#"), enums=spec.enums)
+    for e in spec.enums:
+        files[f"{base}/enums/{e.id}.py"] = env.get_template("python/enum.py.j2").render(
+            header=header(spec, "#", [e.origin.file]), e=e)
     for sentence in spec.sentences:
         files[f"{base}/sentences/{sentence.id.lower()}.py"] = env.get_template("python/sentence.py.j2").render(
             header=header(spec, "#", [sentence.source, *sorted({f.enum.origin.file for lay in sentence.layouts

@@ -133,17 +133,17 @@ def test_worked_example_new_manual_revision(tmp_path: Path) -> None:
 
     out = gen("--spec", "spec", "generate", "--out", "generated", cwd=tmp_path).stdout
     updated = {line.split(" ", 1)[1] for line in out.splitlines() if line.startswith("updated ")}
-    for path in ("c/nmea.h", "c/nmea.c", "python/nmeaspec/sentences/geos5_nquery.py", "python/nmeaspec/enums.py",
-                 "rust/src/sentences/geos5_nquery.rs", "rust/src/enums.rs", "vectors/examples.jsonl"):
+    for path in ("c/nmea.h", "c/nmea.c", "python/nmeaspec/sentences/geos5_nquery.py",
+                 "python/nmeaspec/enums/geos5_output_rate.py", "rust/src/sentences/geos5_nquery.rs", "rust/src/enums.rs", "vectors/examples.jsonl"):
         assert f"generated/{path}" in updated, out
     for path in ("python/nmeaspec/sentences/gga.py", "rust/src/sentences/gga.rs", "python/nmeaspec/runtime.py",
-                 "docs/sentences/gga.md", "docs/enums/gga_quality.md", "docs/json.md"):
+                 "python/nmeaspec/enums/gga_quality.py", "docs/sentences/gga.md", "docs/enums/gga_quality.md", "docs/json.md"):
         assert f"generated/{path}" not in updated
     summary = out.splitlines()[-1]
     assert re.fullmatch(rf"generated/: 0 created, {len(updated)} updated, 0 removed, \d+ unchanged", summary), summary
     code = (tmp_path / "generated/python/nmeaspec/sentences/geos5_nquery.py").read_text()
     assert "gst_rate" in code
-    assert "RATE_20HZ" in (tmp_path / "generated/python/nmeaspec/enums.py").read_text()
+    assert "RATE_20HZ" in (tmp_path / "generated/python/nmeaspec/enums/geos5_output_rate.py").read_text()
     assert "gst_rate" in (tmp_path / "generated/c/nmea.h").read_text()
     assert gen("--spec", "spec", "generate", "--out", "generated", cwd=tmp_path).stdout.startswith("nothing changed")
 

@@ -23,23 +23,26 @@ from . import enums, fixes, receiver, runtime, sentences, stream
 from .api import (
     Generic, Tagged, decode_json, encode_json, from_json, parse, replies_of, reply_to, to_json,
 )
-from .enums import *  # noqa: F401,F403
 from .receiver import Receiver, Reply, ReplyTimeout
 from .runtime import ABSENT, Coordinate, Date, Hex, NmeaError, Number, TagGroup, Time
 from .tag_block import TagBlock
 
 if TYPE_CHECKING:
+    from .enums import *  # noqa: F401,F403
     from .sentences import *  # noqa: F401,F403
 
 __version__ = "0.2.0"
 
 
 def __getattr__(name: str) -> Any:
-    """A sentence class (`nmeaspec.Gga`), its module imported on first use."""
-    try:
-        return getattr(sentences, name)
-    except AttributeError:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
+    """A sentence class (`nmeaspec.Gga`) or an enum (`nmeaspec.GgaQuality`), its module imported on
+    first use."""
+    for lazy in (sentences, enums):
+        try:
+            return getattr(lazy, name)
+        except AttributeError:
+            pass
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 __all__ = [
