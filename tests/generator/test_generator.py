@@ -64,18 +64,29 @@ def test_the_registry_knows_every_field_type_of_the_schema() -> None:
         assert f" fast_{t.c_fast}(" in c and f" fast_put_{t.c_put}(" in c, t.name
 
 
+@pytest.fixture(scope="module")
+def spec_copy(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A copy of the spec that each bad fixture joins for its test alone (one copy, not one a test)."""
+    copy = tmp_path_factory.mktemp("bad") / "spec"
+    shutil.copytree(SPEC, copy)
+    return copy
+
+
 @pytest.mark.parametrize("fixture", sorted(BAD.glob("*.yaml")), ids=lambda p: p.stem)
-def test_bad_spec_is_rejected(fixture: Path, tmp_path: Path) -> None:
+def test_bad_spec_is_rejected(fixture: Path, spec_copy: Path) -> None:
     rule, message = _fixture_header(fixture)
-    shutil.copytree(SPEC, tmp_path / "spec")
     text = fixture.read_text(encoding="utf-8")
     binary = "\nlayouts:" in text
     name = fixture.name if fixture.stem == "wrong_file_name" else "nav_xyz.yaml" if binary else "xyz.yaml"
     folder = "binary/ubx/messages" if binary else "standard" if "\nmessage: " not in text else \
         "ais/applications" if "\napplication: " in text else "ais/messages"
-    shutil.copy(fixture, tmp_path / "spec" / folder / name)
-    with pytest.raises(SpecErrors) as caught:
-        load_spec(tmp_path / "spec")
+    added = spec_copy / folder / name
+    shutil.copy(fixture, added)
+    try:
+        with pytest.raises(SpecErrors) as caught:
+            load_spec(spec_copy)
+    finally:
+        added.unlink()
     errors = caught.value.errors
     ours = [e for e in errors if e.file.endswith(name)]
     assert ours, f"no error in the fixture; got {[str(e) for e in errors]}"
@@ -102,6 +113,7 @@ def files(spec) -> dict[str, str]:
     return render_all(spec)
 
 
+@pytest.mark.slow  # a second rendering of the whole spec
 def test_generation_is_deterministic(files) -> None:
     assert render_all(load_spec(SPEC)) == files
 
