@@ -349,8 +349,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/__init__.py"] = env.get_template("python/init.py.j2").render(
         header=header(spec, "#"), sentences=spec.sentences, enums=spec.enums)
     files["python/pyproject.toml"] = env.get_template("python/pyproject.toml.j2").render(
-        header=header(spec, "#", ["templates/python/pyproject.toml.j2"]), package=PACKAGE,
-        binary=bool(spec.binary))
+        header=header(spec, "#", ["templates/python/pyproject.toml.j2"]), package=PACKAGE)
     files["python/README.md"] = package_readme(spec, env, "python/README.md.j2", package=PACKAGE)
     files["python/tests/test_examples.py"] = env.get_template("python/test_examples.py.j2").render(
         header=header(spec, "#"), vectors=[v for v in emit_vectors.example_vectors(spec)], package=PACKAGE,
