@@ -328,12 +328,13 @@ fuzz-smoke: test-bin build/c/nmea-san.o
 	$(MAKE) --no-print-directory fuzz-c fuzz-python fuzz-rust-replay FUZZ_SECONDS=15 SEED_FLAGS=--no-corpus
 	$(MAKE) --no-print-directory fuzz-differential
 
-# Each input a file of its own: libFuzzer runs every one once and stops at the first that fails.
+# Each input a file of its own, run once by the targets built without libFuzzer (a plain program
+# each, fuzz/rust/src/lib.rs), which stop at the first that fails.
 fuzz-rust-replay: fuzz-seeds
-	cargo build --quiet $(SHARED_RUST) -p nmeaspec-fuzz --bins
+	cargo build --quiet $(SHARED_RUST) -p nmeaspec-fuzz --bins --no-default-features
 	set -e; for target in nmea differential; do \
 		find $(FUZZ)/seeds fuzz/regressions -type f -size +0 -print0 | \
-			xargs -0 $(CARGO_TARGET)/debug/$$target -artifact_prefix=$(FUZZ)/crash-replay-$$target- 2> $(FUZZ)/replay-$$target.log \
+			xargs -0 $(CARGO_TARGET)/debug/$$target 2> $(FUZZ)/replay-$$target.log \
 			|| { tail -n 40 $(FUZZ)/replay-$$target.log; exit 1; }; \
 	done
 

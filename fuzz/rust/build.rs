@@ -1,6 +1,7 @@
 //! Builds the generated C pair (and its AIS pair), the shim the differential target calls it through, and the
-//! field mutator the targets share (../c/field_mutator.c). With clang, the C code carries
-//! libFuzzer's coverage counters too, so the fuzzer also steers by the C pair's branches.
+//! field mutator the targets share (../c/field_mutator.c). With clang and libFuzzer (the default
+//! feature), the C code carries libFuzzer's coverage counters too, so the fuzzer also steers by the
+//! C pair's branches.
 use std::process::Command;
 
 fn main() {
@@ -14,7 +15,8 @@ fn main() {
         .include(generated)
         .flag("-std=c99")
         .warnings(false);
-    if Command::new("clang").arg("--version").output().is_ok() {
+    let libfuzzer = std::env::var_os("CARGO_FEATURE_LIBFUZZER").is_some();
+    if libfuzzer && Command::new("clang").arg("--version").output().is_ok() {
         build.compiler("clang").flag("-fsanitize-coverage=inline-8bit-counters,pc-table,trace-cmp");
     }
     build.compile("nmea_c");

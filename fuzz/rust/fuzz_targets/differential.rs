@@ -9,8 +9,7 @@
 //!   printable ASCII as in a sentence: its message's JSON or its error's, and what the message encodes back to; the assemblers' events for the
 //!   input's lines (the lines and joined payload of each message, or why it was given up).
 //! Python stays in the replay differential (fuzz/differential.py).
-#![no_main]
-use libfuzzer_sys::fuzz_target;
+#![cfg_attr(feature = "libfuzzer", no_main)]
 use nmeaspec::ais_messages::Message;
 use nmeaspec::assembly::{Assembled, Assembler};
 use nmeaspec::json::{Value, SKIP_CHECK_DEPTH};
@@ -24,6 +23,10 @@ extern "C" {
     fn shim_frame(data: *const u8, len: usize, chunk: usize, out: *mut u8, cap: usize) -> usize;
     fn shim_ais(payload: *const u8, len: usize, fill_bits: u32, out: *mut u8, cap: usize) -> usize;
     fn shim_assemble(data: *const u8, len: usize, lifetime: u32, out: *mut u8, cap: usize) -> usize;
+}
+
+#[cfg(feature = "libfuzzer")]
+extern "C" {
     fn nmea_fuzz_mutate(data: *mut u8, size: usize, max_size: usize, seed: u32) -> usize;
 }
 
@@ -145,15 +148,24 @@ fn assemble(data: &[u8]) {
     assert!(c == latin1(&rust), "AIS assembly:\n   C: {}\nRust: {rust}", String::from_utf8_lossy(&c));
 }
 
-fuzz_target!(|data: &[u8]| {
+fn check(data: &[u8]) {
     decode(data);
     encode(data);
     ais(data);
     assemble(data);
     frame(data, data.len().max(1));
     frame(data, 1 + data.first().copied().unwrap_or(0) as usize % 7);
-});
+}
 
+#[cfg(feature = "libfuzzer")]
+libfuzzer_sys::fuzz_target!(|data: &[u8]| check(data));
+
+#[cfg(not(feature = "libfuzzer"))]
+fn main() -> std::process::ExitCode {
+    nmeaspec_fuzz::replay_files(check)
+}
+
+#[cfg(feature = "libfuzzer")]
 libfuzzer_sys::fuzz_mutator!(|data: &mut [u8], size: usize, max_size: usize, seed: u32| {
     unsafe { nmea_fuzz_mutate(data.as_mut_ptr(), size, max_size, seed) }
 });

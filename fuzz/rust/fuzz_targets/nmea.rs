@@ -17,8 +17,7 @@
 //!   and fill bits when it fits a message's bits; the assembler fed the input's lines must account
 //!   for every fragment exactly once.
 //! Nothing may panic.
-#![no_main]
-use libfuzzer_sys::fuzz_target;
+#![cfg_attr(feature = "libfuzzer", no_main)]
 use nmeaspec::ais_messages::Message;
 use nmeaspec::assembly::Assembler;
 use nmeaspec::stream::{Framer, Item};
@@ -231,18 +230,28 @@ fn as_ais(data: &[u8]) {
     assert_eq!(fed, reported, "the assembler lost or repeated a fragment");
 }
 
-fuzz_target!(|data: &[u8]| {
+fn check(data: &[u8]) {
     as_line(data);
     as_json(data);
     as_stream(data);
     as_ais(data);
-});
+}
 
+#[cfg(feature = "libfuzzer")]
+libfuzzer_sys::fuzz_target!(|data: &[u8]| check(data));
+
+#[cfg(not(feature = "libfuzzer"))]
+fn main() -> std::process::ExitCode {
+    nmeaspec_fuzz::replay_files(check)
+}
+
+#[cfg(feature = "libfuzzer")]
 extern "C" {
     /// fuzz/c/field_mutator.c: sentences mutated field by field, their checksums made right again.
     fn nmea_fuzz_mutate(data: *mut u8, size: usize, max_size: usize, seed: u32) -> usize;
 }
 
+#[cfg(feature = "libfuzzer")]
 libfuzzer_sys::fuzz_mutator!(|data: &mut [u8], size: usize, max_size: usize, seed: u32| {
     unsafe { nmea_fuzz_mutate(data.as_mut_ptr(), size, max_size, seed) }
 });
