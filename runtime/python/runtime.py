@@ -564,8 +564,17 @@ class Number(_Value):
         return float(-digits if sign == "-" else digits) / float(10**scale)
 
     def value_json(self) -> str:
-        digits, scale, _, sign, _ = self._split()
-        return decimal_json(digits, scale, sign == "-")
+        """The number in JSON, from its text: no '+', no leading or trailing zeros, no sign on
+        zero (what decimal_json writes of its parts)."""
+        text = self.text()
+        negative = text[0] == "-"
+        if negative or text[0] == "+":
+            text = text[1:]
+        whole, _, frac = text.partition(".")
+        whole = whole.lstrip("0") or "0"
+        frac = frac.rstrip("0")
+        out = whole + "." + frac if frac else whole
+        return "-" + out if negative and (frac or whole != "0") else out
 
     @classmethod
     def of(cls, value: int | str | Decimal) -> Number:
@@ -1522,8 +1531,20 @@ def text_json(value: Any) -> str:
     return json_str(text_of(value))
 
 
+def field_text_json(value: Any) -> str:
+    """text_json of the value of one wire field (not a coordinate's two); numbers first, most of
+    what a log carries, whose text is digits, a sign and a point only."""
+    if value.__class__ is Number:
+        return f'"{value.text()}"'
+    if value is None:
+        return "null"
+    return json_str(text_of(value))
+
+
 def value_json(value: Any) -> str:
     """A field value in the decoded JSON form of `decode --values`."""
+    if value.__class__ is Number:  # most of what a log carries
+        return value.value_json()
     if value is None:
         return "null"
     if isinstance(value, str):
@@ -1978,6 +1999,7 @@ class Layout:
         "field_ids",
         "parse",
         "write",
+        "_json_writers",
     )
 
     def __init__(
@@ -2003,6 +2025,8 @@ class Layout:
                     item.ignore_case = True  # a text command's words match ignoring case
         self.parse: Callable[..., Any] = self._compile()
         self.write: Callable[[Any], list[str]] = self._compile_writer()
+        # json(sentence, values) for the texts and the values, each compiled on first use.
+        self._json_writers: list[Callable[[Any], str] | None] = [None, None]
 
     def _compile(self) -> Callable[..., Any]:
         """parse(cls, address, fields, checksum, line): an instance of `cls` read from the wire
@@ -2147,26 +2171,54 @@ class Layout:
 
     def json(self, sentence: Any, values: bool) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = value_json if values else text_json
-        parts: list[str] = []
-        for item in self.items:
+        writer = self._json_writers[values]
+        if writer is None:
+            writer = self._json_writers[values] = self._compile_json(values)
+        return writer(sentence)
+
+    def _compile_json(self, values: bool) -> Callable[[Any], str]:
+        """json(sentence) for one form, compiled once as the reader is (decode writes every line
+        of a log): one f-string of the members in wire order, a group's entries joined before it,
+        each optional trailing field appended when present."""
+        names: dict[str, Any] = {
+            "show": value_json if values else text_json,
+            "show1": value_json if values else field_text_json,
+            "ABSENT": ABSENT,
+        }
+
+        def member(spec: FieldSpec, owner: str) -> str:
+            show = "show" if spec.width == 2 else "show1"
+            return f'"{spec.id}":{{{show}({owner}.{spec.id})}}'
+
+        code = ["def json(s):"]
+        required: list[str] = []
+        optional: list[FieldSpec] = []
+        for n, item in enumerate(self.items):
             if isinstance(item, Group):
-                entries = getattr(sentence, item.id)
                 if item.entry is None:
-                    shown = ",".join(show(value) for value in entries)
+                    show = "show" if item.fields[0].width == 2 else "show1"
+                    entries = f"{show}(e) for e in s.{item.id}"
                 else:
-                    shown = ",".join(
-                        "{"
-                        + ",".join(f'"{f.id}":' + show(getattr(entry, f.id)) for f in item.fields)
-                        + "}"
-                        for entry in entries
-                    )
-                parts.append(f'"{item.id}":[{shown}]')
-                continue
-            value = getattr(sentence, item.id)
-            if not (item.optional_index and value is ABSENT):
-                parts.append(f'"{item.id}":' + show(value))
-        return "{" + ",".join(parts) + "}"
+                    entry = ",".join(member(f, "e") for f in item.fields)
+                    entries = f"f'{{{{{entry}}}}}' for e in s.{item.id}"
+                code.append(f"    entries{n} = ','.join([{entries}])")
+                required.append(f'"{item.id}":[{{entries{n}}}]')
+            elif item.optional_index:
+                optional.append(item)
+            else:
+                required.append(member(item, "s"))
+        # Each optional member is written with a comma before it; without a required member, the
+        # first comma is dropped at the end.
+        code.append(f"    text = f'{{{{{','.join(required)}'" if required else "    text = ''")
+        for item in optional:
+            code += [
+                f"    if s.{item.id} is not ABSENT:",
+                f"        text += f',{member(item, 's')}'",
+            ]
+        code.append("    return text + '}'" if required else "    return '{' + text[1:] + '}'")
+        exec("\n".join(code), names)  # noqa: S102 (source made above from the layout's own items)
+        json: Callable[[Any], str] = names["json"]
+        return json
 
     def to_dict(self, sentence: Any) -> dict[str, Any]:
         """The fields of `sentence` as plain Python values (FieldSpec.plain), by field id; a
