@@ -373,11 +373,25 @@ def _with_problems(layout: Any, obj: dict[str, Any], texts: list[str], checksum:
 def encode_json(line: str) -> str:
     """`encode`'s output for one line of `decode` output: the sentence, or the error as JSON."""
     try:
+        obj = read_json_line(line)
+    except NmeaError as err:
+        return err.to_json()
+    return encode_object(obj)
+
+
+def read_json_line(line: str) -> Any:
+    """One line of JSON as Python values; NmeaError (bad_json) where it is no JSON or nests
+    deeper than the tools read."""
+    try:
         if runtime.json_too_deep(line):
             raise ValueError("too deep")
-        obj = json.loads(line)
+        return json.loads(line)
     except ValueError:
-        return runtime.bad_json("not JSON").to_json()
+        raise runtime.bad_json("not JSON") from None
+
+
+def encode_object(obj: Any) -> str:
+    """encode_json of a line already read (read_json_line)."""
     try:
         sentence: str = from_json(obj).to_sentence()
     except NmeaError as err:

@@ -13,10 +13,10 @@ import sys
 from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING, Any
 
-from .. import __version__, encode_json
-from ..api import Tagged, parse, to_json
+from .. import __version__
+from ..api import Tagged, encode_object, parse, read_json_line, to_json
 from ..fixes import fixes
-from ..runtime import NmeaError, json_too_deep
+from ..runtime import NmeaError
 from ..stream import lines as framed, too_long
 
 if TYPE_CHECKING:
@@ -124,11 +124,14 @@ def main(argv: list[str] | None = None) -> int:
     if verb == "encode" and not flags:
         for line in lines(sys.stdin.buffer.read()):
             try:
-                if not json_too_deep(line) and json.loads(line).get("ok") is False:
-                    continue
-            except (ValueError, AttributeError):
-                pass
-            sys.stdout.buffer.write(encode_json(line).encode("latin-1") + b"\n")
+                obj = read_json_line(line)
+            except NmeaError as err:
+                text = err.to_json()
+            else:
+                if isinstance(obj, dict) and obj.get("ok") is False:
+                    continue  # decode's line for a line it refused: nothing to encode
+                text = encode_object(obj)
+            sys.stdout.buffer.write(text.encode("latin-1") + b"\n")
         return 0
     sys.stderr.write(USAGE)
     return 2
