@@ -9,10 +9,13 @@ import subprocess
 import sys
 from pathlib import Path
 
+import jinja2
 import pytest
 
+from generator import cache
 from generator.build import load_spec
 from generator.cli import main
+from generator.emit import environment
 from generator.errors import SpecErrors
 from generator.selection import parse_selector, subset
 
@@ -97,6 +100,26 @@ examples:
     with pytest.raises(SpecErrors) as caught:
         load_spec(SPEC, [overlay])
     assert [(e.file, e.line, e.rule) for e in caught.value.errors] == [(str(extension), 1, "S046")]
+
+
+def test_a_template_changed_after_a_run_is_compiled_again(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The templates a run compiled are kept for the next (generator/emit.py), found by name and
+    used only while their source is the same."""
+    monkeypatch.setattr(cache, "CACHE", tmp_path / "cache")
+    templates = tmp_path / "templates"
+    templates.mkdir()
+    (templates / "t.j2").write_text("{{ x }} one")
+
+    def render() -> str:
+        env = environment()
+        env.loader = jinja2.FileSystemLoader(str(templates))
+        return env.get_template("t.j2").render(x=1)
+
+    assert render() == "1 one"
+    assert len(list((tmp_path / "cache" / "templates").iterdir())) == 1
+    assert render() == "1 one"
+    (templates / "t.j2").write_text("{{ x }} two")
+    assert render() == "1 two"
 
 
 def test_the_cache_between_runs_never_hides_a_change(overlay: Path, tmp_path: Path) -> None:
