@@ -86,16 +86,12 @@ def installed(tmp_path_factory: pytest.TempPathFactory, wheel: Path) -> Venv:
 
 
 @pytest.fixture(scope="session")
-def installed_serial(tmp_path_factory: pytest.TempPathFactory, wheel: Path) -> Venv:
-    """The same with the serial extra (`pip install 'nmeaspec[serial]'`: pyserial), for `nmea
-    listen` and `nmea send`."""
-    return _install(tmp_path_factory, wheel, "pyserialuser", "serial")
+def installed_extras(tmp_path_factory: pytest.TempPathFactory, wheel: Path) -> Venv:
+    """The same with both extras (`pip install 'nmeaspec[serial,report]'`): pyserial for `nmea
+    listen` and `nmea send`, matplotlib for `nmea report`. One environment for both: each is
+    a venv and an install less, and neither extra changes what the other does."""
+    return _install(tmp_path_factory, wheel, "pyextrasuser", "serial,report")
 
-
-@pytest.fixture(scope="session")
-def installed_report(tmp_path_factory: pytest.TempPathFactory, wheel: Path) -> Venv:
-    """The same with the `report` extra (`pip install 'nmeaspec[report]'`: matplotlib)."""
-    return _install(tmp_path_factory, wheel, "pyreportuser", "report")
 
 
 def corpus_log(name: str) -> Path:

@@ -97,8 +97,8 @@ def _screenshot(page: Path, shot: Path) -> numpy.ndarray:
     return pixels
 
 
-def test_report_of_a_multi_gnss_log(installed_report: Venv, tmp_path: Path) -> None:
-    text, page, stderr = _report(installed_report, MULTI_GNSS, tmp_path)
+def test_report_of_a_multi_gnss_log(installed_extras: Venv, tmp_path: Path) -> None:
+    text, page, stderr = _report(installed_extras, MULTI_GNSS, tmp_path)
     assert stderr == f"wrote {tmp_path / 'report.html'}: 1403 lines, 1403 sentences, 0 errors\n"
     _self_contained(text, page)
     assert list(page.sections) == list(SECTIONS)
@@ -129,8 +129,8 @@ def test_report_of_a_multi_gnss_log(installed_report: Venv, tmp_path: Path) -> N
     assert distinct > 500, distinct
 
 
-def test_report_of_an_rmc_only_log(installed_report: Venv, tmp_path: Path) -> None:
-    text, page, stderr = _report(installed_report, RMC_ONLY, tmp_path, "--progress")
+def test_report_of_an_rmc_only_log(installed_extras: Venv, tmp_path: Path) -> None:
+    text, page, stderr = _report(installed_extras, RMC_ONLY, tmp_path, "--progress")
     assert "100%" in stderr and stderr.startswith("\r[")  # the bar `show` draws, on request
     _self_contained(text, page)
     assert list(page.sections) == list(SECTIONS)
@@ -141,12 +141,12 @@ def test_report_of_an_rmc_only_log(installed_report: Venv, tmp_path: Path) -> No
     assert "21 fixes from RMC" in text and "Not in this log: satellite counts" in text
     assert "2005-06-09" in text
     again = tmp_path / "again.html"
-    nmea(installed_report, "report", "-q", "--no-progress", corpus_log(RMC_ONLY), "-o", again, cwd=tmp_path)
+    nmea(installed_extras, "report", "-q", "--no-progress", corpus_log(RMC_ONLY), "-o", again, cwd=tmp_path)
     assert again.read_text(encoding="utf-8") == text, "two reports of one log differ"
 
 
-def test_report_counts_bad_lines(installed_report: Venv, tmp_path: Path) -> None:
-    text, page, stderr = _report(installed_report, BAD_LINES, tmp_path)
+def test_report_counts_bad_lines(installed_extras: Venv, tmp_path: Path) -> None:
+    text, page, stderr = _report(installed_extras, BAD_LINES, tmp_path)
     assert stderr.endswith(": 67 lines, 59 sentences, 8 errors\n")
     rows = page.cells
     assert rows[rows.index("not_a_sentence"):rows.index("not_a_sentence") + 2] == ["not_a_sentence", "8"]
@@ -155,20 +155,20 @@ def test_report_counts_bad_lines(installed_report: Venv, tmp_path: Path) -> None
     assert sorted(name for name, srcs in page.sections.items() if srcs) == ["cn0", "quality", "sky", "track"]
 
 
-def test_report_errors(installed_report: Venv, tmp_path: Path) -> None:
-    missing = nmea(installed_report, "report", tmp_path / "nowhere.nmea", "-o", tmp_path / "out.html",
+def test_report_errors(installed_extras: Venv, tmp_path: Path) -> None:
+    missing = nmea(installed_extras, "report", tmp_path / "nowhere.nmea", "-o", tmp_path / "out.html",
                    cwd=tmp_path, check=False)
     assert missing.returncode == 2 and missing.stdout == b""
     assert missing.stderr.decode() == f"nmea: cannot read {tmp_path / 'nowhere.nmea'}: No such file or directory\n"
     binary = tmp_path / "photo.jpg"
     binary.write_bytes(bytes(range(256)) * 40 + b"\nhello\nworld\n")
-    not_nmea = nmea(installed_report, "report", binary, "-o", tmp_path / "out.html", cwd=tmp_path, check=False)
+    not_nmea = nmea(installed_extras, "report", binary, "-o", tmp_path / "out.html", cwd=tmp_path, check=False)
     assert not_nmea.returncode == 2
     message = not_nmea.stderr.decode()
     assert message.startswith(f"nmea: {binary} is not an NMEA log: none of its ") and message.count("\n") == 1
     empty = tmp_path / "empty.nmea"
     empty.write_bytes(b"")
-    assert nmea(installed_report, "report", empty, cwd=tmp_path, check=False).stderr == \
+    assert nmea(installed_extras, "report", empty, cwd=tmp_path, check=False).stderr == \
         f"nmea: {empty} is empty\n".encode()
     assert not (tmp_path / "out.html").exists() and not (tmp_path / "empty.html").exists()
 
@@ -185,10 +185,10 @@ def test_report_without_the_extra(installed: Venv, tmp_path: Path) -> None:
     assert b"report" in nmea(installed, "--help", cwd=tmp_path).stdout
 
 
-def test_report_of_an_ais_log(installed_report: Venv, tmp_path: Path) -> None:
+def test_report_of_an_ais_log(installed_extras: Venv, tmp_path: Path) -> None:
     """A ship's AIS feed: the stations' tracks on a map and the table of those that sent most,
     names from their static reports (joined across sentences), between the charts and the sentences."""
-    text, page, stderr = _report(installed_report, AIS_LOG, tmp_path)
+    text, page, stderr = _report(installed_extras, AIS_LOG, tmp_path)
     assert stderr == f"wrote {tmp_path / 'report.html'}: 1496 lines, 1496 sentences, 0 errors\n"
     _self_contained(text, page)
     assert list(page.sections) == ["summary", "track", "sky", "cn0", "quality", "ais", "sentences"]

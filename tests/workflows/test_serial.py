@@ -330,14 +330,14 @@ def _out(result: subprocess.CompletedProcess) -> tuple[str, str]:
     return result.stdout.decode(), result.stderr.decode()
 
 
-def test_send_ok_and_error(installed_serial: Venv, simulate: Any) -> None:
+def test_send_ok_and_error(installed_extras: Venv, simulate: Any) -> None:
     sim = simulate({"PMTK220": "ok", "PQTMCFGFIXRATE": "error"})
-    result = nmea(installed_serial, "send", "--port", sim.path, "--baud", "9600", "mtk_pmtk", "pmtk220", "1000",
+    result = nmea(installed_extras, "send", "--port", sim.path, "--baud", "9600", "mtk_pmtk", "pmtk220", "1000",
                   "--timeout", str(ANSWER))
     out, err = _out(result)
     assert result.returncode == 0, err
     assert out == "> $PMTK220,1000*1F\n< $PMTK001,220,3*30\nok: PMTK001  command=220 flag=success\n"
-    result = nmea(installed_serial, "send", "--port", sim.path, "quectel_lg290p", "pqtmcfgfixrate", "1000",
+    result = nmea(installed_extras, "send", "--port", sim.path, "quectel_lg290p", "pqtmcfgfixrate", "1000",
                   "--timeout", str(ANSWER))
     out, err = _out(result)
     error_reply = sim.replies[-1].decode().rstrip()
@@ -347,10 +347,10 @@ def test_send_ok_and_error(installed_serial: Venv, simulate: Any) -> None:
     assert out.splitlines()[2].startswith("error: PQTMCFGFIXRATE_RESULT  status=ERROR error_code=")
 
 
-def test_send_silence_is_a_timeout(installed_serial: Venv, simulate: Any) -> None:
+def test_send_silence_is_a_timeout(installed_extras: Venv, simulate: Any) -> None:
     sim = simulate({})
     started = time.monotonic()
-    result = nmea(installed_serial, "send", "--port", sim.path, "mtk_pmtk", "pmtk220", "200", "--timeout", str(SILENCE))
+    result = nmea(installed_extras, "send", "--port", sim.path, "mtk_pmtk", "pmtk220", "200", "--timeout", str(SILENCE))
     elapsed = time.monotonic() - started
     out, err = _out(result)
     assert result.returncode == 2 and SILENCE < elapsed < SILENCE + 10
@@ -359,11 +359,11 @@ def test_send_silence_is_a_timeout(installed_serial: Venv, simulate: Any) -> Non
     assert "Traceback" not in err and sim.wait_for_command().SENTENCE == "PMTK220"
 
 
-def test_send_keeps_what_comes_meanwhile(installed_serial: Venv, simulate: Any, tmp_path: Path) -> None:
+def test_send_keeps_what_comes_meanwhile(installed_extras: Venv, simulate: Any, tmp_path: Path) -> None:
     sim = simulate({"PMTK220": "ok"}, delay=1.5)  # more than a round of the log (115 lines)
     log = tmp_path / "raw.nmea"
     log.write_bytes(b"$GPTXT,01,01,02,earlier*00\r\n")  # appended to, never overwritten
-    result = nmea(installed_serial, "send", "--port", sim.path, "--show-all", "--log", log, "mtk_pmtk", "pmtk220",
+    result = nmea(installed_extras, "send", "--port", sim.path, "--show-all", "--log", log, "mtk_pmtk", "pmtk220",
                   "1000", "--timeout", str(ANSWER))
     out, err = _out(result)
     assert result.returncode == 0, err
@@ -390,63 +390,63 @@ def test_send_keeps_what_comes_meanwhile(installed_serial: Venv, simulate: Any, 
     assert any(row.startswith("  PMTK001  command=3") for row in shown)  # other acknowledgements
 
 
-def test_send_mistakes(installed_serial: Venv, simulate: Any) -> None:
-    missing = nmea(installed_serial, "send", "--port", "/dev/ttyNOSUCHPORT", "mtk_pmtk", "pmtk220", "1000")
+def test_send_mistakes(installed_extras: Venv, simulate: Any) -> None:
+    missing = nmea(installed_extras, "send", "--port", "/dev/ttyNOSUCHPORT", "mtk_pmtk", "pmtk220", "1000")
     assert missing.returncode == 3
     assert missing.stderr == b"nmea: cannot open /dev/ttyNOSUCHPORT: No such file or directory\n"
     for baud in ("12345", "-9600", "fast", "0"):
-        bad = nmea(installed_serial, "send", "--port", "/dev/ttyNOSUCHPORT", "--baud", baud, "mtk_pmtk", "pmtk220",
+        bad = nmea(installed_extras, "send", "--port", "/dev/ttyNOSUCHPORT", "--baud", baud, "mtk_pmtk", "pmtk220",
                    "1000")
         assert bad.returncode == 2 and bad.stderr.startswith(f"nmea: --baud '{baud}' is not a standard baud rate: ".encode())
-    bad = nmea(installed_serial, "send", "--port", "/dev/ttyNOSUCHPORT", "mtk_pmtk", "pmtk220", "50")
+    bad = nmea(installed_extras, "send", "--port", "/dev/ttyNOSUCHPORT", "mtk_pmtk", "pmtk220", "50")
     assert bad.returncode == 2
     assert bad.stderr == b'nmea: pmtk220 interval: expected integer 100..10000, found "50"; usage: pmtk220 INTERVAL\n'
-    bad = nmea(installed_serial, "send", "--port", "/dev/ttyNOSUCHPORT", "mtk_pmtk", "pmtk251", "1234")
+    bad = nmea(installed_extras, "send", "--port", "/dev/ttyNOSUCHPORT", "mtk_pmtk", "pmtk251", "1234")
     assert bad.returncode == 2 and bad.stderr.startswith(b"nmea: baud: '1234' is not one of 0 (default), 4800 (baud-4800)")
-    bad = nmea(installed_serial, "send", "--port", "/dev/ttyNOSUCHPORT", "mtk_pmtk", "pmtk220", "1000", "--timeout", "0")
+    bad = nmea(installed_extras, "send", "--port", "/dev/ttyNOSUCHPORT", "mtk_pmtk", "pmtk220", "1000", "--timeout", "0")
     assert bad.returncode == 2 and b"--timeout '0'" in bad.stderr
     assert all(b"Traceback" not in r.stderr for r in (missing, bad))
     # a command that nothing answers: sent, and done
     sim = simulate({})
-    sent = nmea(installed_serial, "send", "--port", sim.path, "teseo", "pstmhot", "--timeout", str(SILENCE))
+    sent = nmea(installed_extras, "send", "--port", sim.path, "teseo", "pstmhot", "--timeout", str(SILENCE))
     assert sent.returncode == 0
     assert sent.stdout == b"> $PSTMHOT*49\nnothing answers PSTMHOT in the spec: sent, not waiting\n"
     assert sim.wait_for_command().SENTENCE == "PSTMHOT"
     # --baud after the command is the command's own argument when it has one
     sim = simulate({})
-    sent = nmea(installed_serial, "send", "--port", sim.path, "--baud", "9600", "mtk_pmtk", "pmtk251", "--baud",
+    sent = nmea(installed_extras, "send", "--port", sim.path, "--baud", "9600", "mtk_pmtk", "pmtk251", "--baud",
                 "115200", "--timeout", str(SILENCE))
     assert sent.stdout == b"> $PMTK251,115200*1F\nnothing answers PMTK251 in the spec: sent, not waiting\n"
 
 
-def test_listen_count_and_formats(installed_serial: Venv, simulate: Any, tmp_path: Path) -> None:
+def test_listen_count_and_formats(installed_extras: Venv, simulate: Any, tmp_path: Path) -> None:
     sim = simulate({})
     log = tmp_path / "raw.nmea"
-    result = nmea(installed_serial, "listen", "--port", sim.path, "--baud", "9600", "--count", "5", "--log", log)
+    result = nmea(installed_extras, "listen", "--port", sim.path, "--baud", "9600", "--count", "5", "--log", log)
     out, err = _out(result)
     assert result.returncode == 0, err
     rows = out.splitlines()
     assert rows[0].split() == ["line", "talker", "sentence", "fields"] and len(rows) == 6
     assert " lines: " in err.splitlines()[0]
     assert bytes(log.read_bytes()) in bytes(sim.sent)
-    result = nmea(installed_serial, "listen", "--port", sim.path, "--json", "--sentences", "GGA", "--fields",
+    result = nmea(installed_extras, "listen", "--port", sim.path, "--json", "--sentences", "GGA", "--fields",
                   "sentence,time,lat,quality", "--count", "3", "-q")
     lines = result.stdout.decode().splitlines()
     assert result.returncode == 0 and result.stderr == b"" and len(lines) == 3
     assert all(json.loads(line)["sentence"] == "GGA" and set(json.loads(line)) == {"sentence", "time", "lat", "quality"}
                for line in lines)
     started = time.monotonic()
-    result = nmea(installed_serial, "listen", "--port", sim.path, "--csv", "--fields", "sentence", "--duration", "1")
+    result = nmea(installed_extras, "listen", "--port", sim.path, "--csv", "--fields", "sentence", "--duration", "1")
     assert result.returncode == 0 and 1 <= time.monotonic() - started < 10
     assert result.stdout.decode().splitlines()[0] == "sentence" and len(result.stdout.splitlines()) > 10
     assert result.stderr.decode().startswith(f"{result.stderr.decode().split()[0]} lines: ")
 
 
-def test_listen_until_ctrl_c(installed_serial: Venv, simulate: Any) -> None:
+def test_listen_until_ctrl_c(installed_extras: Venv, simulate: Any) -> None:
     sim = simulate({})
     # As at a terminal: SIGINT not ignored (a shell's background job inherits it ignored, and
     # Python then installs no KeyboardInterrupt handler).
-    process = subprocess.Popen([installed_serial.bin / "nmea", "listen", "--port", sim.path, "--fields", "sentence"],
+    process = subprocess.Popen([installed_extras.bin / "nmea", "listen", "--port", sim.path, "--fields", "sentence"],
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
@@ -461,10 +461,10 @@ def test_listen_until_ctrl_c(installed_serial: Venv, simulate: Any) -> None:
     assert process.returncode == 0 and b"Traceback" not in err and b" lines: " in err
 
 
-def test_listen_and_send_bad_ports(installed_serial: Venv, installed: Venv) -> None:
-    result = nmea(installed_serial, "listen", "--port", "/dev/ttyNOSUCHPORT", "--count", "1")
+def test_listen_and_send_bad_ports(installed_extras: Venv, installed: Venv) -> None:
+    result = nmea(installed_extras, "listen", "--port", "/dev/ttyNOSUCHPORT", "--count", "1")
     assert result.returncode == 3 and result.stderr == b"nmea: cannot open /dev/ttyNOSUCHPORT: No such file or directory\n"
-    result = nmea(installed_serial, "listen", "--port", "/dev/null", "--baud", "9601")
+    result = nmea(installed_extras, "listen", "--port", "/dev/null", "--baud", "9601")
     assert result.returncode == 2 and b"not a standard baud rate" in result.stderr
     # without the extra: the package works, and the verbs say what to install
     for verb in (["listen"], ["send", "mtk_pmtk", "pmtk220", "1000"]):
