@@ -10,7 +10,7 @@ table 47 of annex 8; the layouts: annex 8) and gpsd's "AIVDM/AIVDO protocol deco
 
 from __future__ import annotations
 
-from binascii import b2a_base64
+import binascii
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar, NamedTuple
 
@@ -39,29 +39,19 @@ def armor_char(value: int) -> str:
     return chr(value + 48 if value < 40 else value + 56)
 
 
-def _octal_digit_table(shift: int) -> bytes:
-    """A bytes.translate table: each armor character to one octal digit of its six bits (the
-    digit `shift` bits up), any other byte to 'x', which no octal number holds."""
-    values = (armor_value(chr(code)) for code in range(256))
-    return bytes(120 if v is None else 48 + (v >> shift & 7) for v in values)
-
-
-# A payload becomes its bits at C speed: its bytes translated to their high and low octal digits,
-# interleaved and read as one octal number (two bytes a character rather than six binary digits).
-_HIGH_DIGIT, _LOW_DIGIT = _octal_digit_table(3), _octal_digit_table(0)
-
 # Base64 (RFC 4648) also packs six bits a character, most significant first: armoring is base64
-# with another alphabet, so bits become armor at C speed too.
-_BASE64_TO_ARMOR = bytes.maketrans(
-    b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/",
-    bytes(ord(armor_char(v)) for v in range(64)))
+# with another alphabet, so a payload becomes its bits, and bits their armor, at C speed.
+_BASE64 = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/"
+_BASE64_TO_ARMOR = bytes.maketrans(_BASE64, bytes(ord(armor_char(v)) for v in range(64)))
+_ARMOR_TO_BASE64 = bytes(_BASE64[v] if (v := armor_value(chr(code))) is not None else ord("!") for code in range(256))
+"""Each armor character to its base64 one, any other byte to '!', which base64 has not."""
 
 
 def armor(value: int, length: int) -> str:
     """The armored characters of `length` bits (a multiple of six) holding `value`."""
     pad = -length % 24  # base64 takes whole bytes, three for four characters
     data = (value << pad).to_bytes((length + pad) // 8, "big")
-    return b2a_base64(data, newline=False)[:length // 6].translate(_BASE64_TO_ARMOR).decode("ascii")
+    return binascii.b2a_base64(data, newline=False)[:length // 6].translate(_BASE64_TO_ARMOR).decode("ascii")
 
 
 class Special(NamedTuple):
@@ -746,12 +736,10 @@ def unarmor(payload: str, fill_bits: int) -> tuple[BitReader, str]:
     if not 0 <= fill_bits <= 5 or fill_bits and not payload:
         raise NmeaError("bad_armor", f"fill bits are 0-5 (none for an empty payload), not {fill_bits}", "AIS")
     try:
-        chars = payload.encode("ascii")
-        digits = bytearray(2 * len(chars))
-        digits[0::2] = chars.translate(_HIGH_DIGIT)
-        digits[1::2] = chars.translate(_LOW_DIGIT)
-        value = int(digits, 8) if digits else 0
-    except (UnicodeEncodeError, ValueError):  # a character no armor value stands for
+        pad = -len(payload) % 4  # base64 takes four characters at a time
+        data = binascii.a2b_base64(payload.encode("ascii").translate(_ARMOR_TO_BASE64) + b"A" * pad, strict_mode=True)
+        value = int.from_bytes(data, "big") >> 6 * pad
+    except (UnicodeEncodeError, binascii.Error):  # a character no armor value stands for
         offset, ch = next((i, ch) for i, ch in enumerate(payload) if armor_value(ch) is None)
         raise NmeaError("bad_armor", f"character '{ch}' at offset {offset} is not six-bit armoring", "AIS") from None
     length = len(payload) * 6 - fill_bits
