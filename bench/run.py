@@ -55,7 +55,8 @@ def build_c(out: Path, optimization: str, compiled: Path | None = None) -> Path:
         shutil.copyfile(compiled, obj)
     else:
         sh(["gcc", *flags, "-c", "-o", str(obj), "generated/c/nmea.c"])
-    sh(["gcc", *flags, "-Igenerated/c", "-Ibench/c", "-o", str(binary), "bench/c/driver.c", "bench/c/ceiling.c", str(obj)])
+    sh(["gcc", *flags, "-Igenerated/c", "-Ibench/c", "-o", str(binary), "bench/c/driver.c", "bench/c/ceiling.c",
+        "generated/c/nmea_ais.c", str(obj)])
     return binary
 
 
@@ -96,14 +97,15 @@ def python_for(out: Path, peers: bool) -> str:
 
 # --- the timed runs ----------------------------------------------------------------------------
 
-def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, python_lines: int, peers: bool) -> list[dict]:
-    """Every (name, lang, op) with its command line."""
+def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, ais_corpus_path: Path, python_lines: int,
+         peers: bool) -> list[dict]:
+    """Every (name, lang, op) with its command line and the corpus it runs over (nmea or ais)."""
     py_driver = [python, str(BENCH / "python" / "driver.py")]
     py_slice = ["--lines", str(python_lines)] if python_lines else []
     found = []
 
-    def add(name, lang, op, cmd):
-        found.append({"name": name, "lang": lang, "op": op, "cmd": [str(part) for part in cmd]})
+    def add(name, lang, op, cmd, corpus_name="nmea"):
+        found.append({"name": name, "lang": lang, "op": op, "corpus": corpus_name, "cmd": [str(part) for part in cmd]})
 
     ops = ("parse", "serialize", "roundtrip")
     for op in ops:
@@ -123,6 +125,13 @@ def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, python_lin
         add("pynmea2-allfields", "python", "parse", [*py_driver, "pynmea2-allfields", "parse", corpus_path, *py_slice])
         for op in ops:
             add("pynmeagps", "python", op, [*py_driver, "pynmeagps", op, corpus_path, *py_slice])
+    # AIS: parse is the line read and its message decoded, every field; serialize the message encoded
+    # and the line written back.
+    add("ours-c-ais", "c", "parse", [c_bin, "ours-ais", "parse", ais_corpus_path], "ais")
+    for op in ("parse", "serialize"):
+        add("ours-python-ais", "python", op, [*py_driver, "ours-ais", op, ais_corpus_path, *py_slice], "ais")
+        if peers:
+            add("pyais", "python", op, [*py_driver, "pyais", op, ais_corpus_path, *py_slice], "ais")
     return found
 
 
@@ -139,7 +148,7 @@ def run_rounds(all_jobs: list[dict], rounds: int, cpu: int) -> list[dict]:
     for job in all_jobs:
         samples = runs[(job["name"], job["op"])]
         first = samples[0]
-        row = {"name": job["name"], "lang": job["lang"], "op": job["op"],
+        row = {"name": job["name"], "lang": job["lang"], "op": job["op"], "corpus": job["corpus"],
                "ns_per_line": round(statistics.median(s["ns_per_line"] for s in samples), 2),
                "ok_lines": first["ok_lines"], "lines": first["lines"], "runs": len(samples),
                "samples": [s["ns_per_line"] for s in samples]}
@@ -304,17 +313,21 @@ def targets(results: list[dict], heap_free: bool, counts: dict) -> list[dict]:
     at_most("Python parse / pynmeagps parse", ratio(results, "ours-python", "parse", "pynmeagps", "parse"), 0.15)
     for name in ("ours-c", "ours-rust", "ours-python"):
         at_most(f"{name} serialize / parse", ratio(results, name, "serialize", name, "parse"), 1.0)
+    at_most("Python AIS decode / pyais decode", ratio(results, "ours-python-ais", "parse", "pyais", "parse"), 0.5)
+    at_most("Python AIS encode / decode", ratio(results, "ours-python-ais", "serialize", "ours-python-ais", "parse"),
+            1.0)
     if counts:
         at_most("C parse / ceiling-c parse (instructions)", counted("ours-c", "parse", "ceiling-c", "parse"), 2.0)
         at_most("Rust parse / nmea-rs parse (instructions)", counted("ours-rust", "parse", "nmea-rs", "parse"), 0.25)
         at_most("Rust parse / C parse (instructions)", counted("ours-rust", "parse", "ours-c", "parse"), 1.5)
         for name in ("ours-c", "ours-rust"):
             at_most(f"{name} serialize / parse (instructions)", counted(name, "serialize", name, "parse"), 1.0)
-    for name in ("ours-c", "ours-rust", "ours-python"):
-        parsed, trip = row(results, name, "parse"), row(results, name, "roundtrip")
+    for name, written in (("ours-c", "roundtrip"), ("ours-rust", "roundtrip"), ("ours-python", "roundtrip"),
+                          ("ours-python-ais", "serialize")):
+        parsed, trip = row(results, name, "parse"), row(results, name, written)
         if parsed and trip:
             exact = trip["ok_lines"] == parsed["ok_lines"]
-            checks.append({"target": f"{name} round trip byte-exact (every parsed line)",
+            checks.append({"target": f"{name} {written} byte-exact (every parsed line)",
                            "value": f"{trip['ok_lines']}/{parsed['ok_lines']}", "limit": "all", "met": exact})
     for op in ("parse", "serialize", "roundtrip"):
         rust = row(results, "ours-rust", op)
@@ -331,24 +344,27 @@ def fmt_ratio(value: float | None) -> str:
 
 def markdown(report: dict) -> str:
     results = report["results"]
-    corpus_info = report["corpus"]
+    corpus_info, ais_info = report["corpus"], report["ais_corpus"]
     out = [f"Corpus: {corpus_info['lines']:,} lines, {corpus_info['bytes']:,} bytes "
-           f"({corpus_info['distinct_lines']:,} distinct lines of the real logs, repeated); the Python "
-           f"implementations, ours included, run over the first {report['python_lines']:,} lines. "
+           f"({corpus_info['distinct_lines']:,} distinct lines of the real logs, repeated); AIS corpus (the rows "
+           f"marked AIS): {ais_info['lines']:,} lines, {ais_info['bytes']:,} bytes ({ais_info['distinct_lines']:,} "
+           f"distinct real single-sentence AIS lines, repeated); the Python "
+           f"implementations, ours included, run over the first {report['python_lines']:,} lines of each. "
            f"Median of {report['rounds']} rounds, pinned to CPU {report['cpu']}.", "",
            "| name | lang | op | ns/line | vs ceiling-c | vs ours (same lang, op) | ok lines | byte-identical |",
            "| --- | --- | --- | ---: | ---: | ---: | ---: | --- |"]
     ceiling = row(results, "ceiling-c", "parse")
     for r in results:
-        ours = row(results, f"ours-{r['lang']}", r["op"])
+        ais = r["corpus"] == "ais"
+        ours = row(results, f"ours-{r['lang']}" + ("-ais" if ais else ""), r["op"])
         vs_ours = "" if ours is None or ours is r else fmt_ratio(r["ns_per_line"] / ours["ns_per_line"])
-        vs_ceiling = fmt_ratio(r["ns_per_line"] / ceiling["ns_per_line"]) if ceiling else ""
+        vs_ceiling = fmt_ratio(r["ns_per_line"] / ceiling["ns_per_line"]) if ceiling and not ais else ""
         if r["op"] in ("parse", "fixes"):
             identical = ""
         else:
             parsed = row(results, r["name"], "parse")
             identical = "yes" if parsed and r["ok_lines"] == parsed["ok_lines"] else "no"
-        out.append(f"| {r['name']} | {r['lang']} | {r['op']} | {r['ns_per_line']:,.1f} | {vs_ceiling} | {vs_ours} "
+        out.append(f"| {r['name']} | {r['lang']} | {r['op']}{' (AIS)' if ais else ''} | {r['ns_per_line']:,.1f} | {vs_ceiling} | {vs_ours} "
                    f"| {r['ok_lines']:,}/{r['lines']:,} | {identical} |")
     out += ["", "ok lines: lines parsed (parse, fixes) or written back byte for byte (serialize, roundtrip). "
             "fixes: each line parsed and fed to the fix assembler (nmeaspec.fixes). "
@@ -359,7 +375,12 @@ def markdown(report: dict) -> str:
             "nmea-rs, nmea0183-rs and pynmea2-allfields have no serialize or roundtrip row: the crates have "
             "no serializer, and pynmea2's is measured under `pynmea2`. Rust serialize is `Sentence::serialize_into` "
             "(the sentence's text into a byte buffer, as `nmea_serialize` in C); `to_bytes`, which also reads the "
-            "line back and appends CR LF, is listed below.", ""]
+            "line back and appends CR LF, is listed below. "
+            "AIS: parse is the `!AIVDM` line read and its message decoded, every field (ours in C: `nmea_parse`, "
+            "`nmea_ais_fragment_of`, `nmea_ais_decode`; in Python: `nmeaspec.parse(line).message`; pyais: "
+            "`pyais.decode`); serialize is the decoded message encoded and "
+            "the line written back (ours: `Message.encode` and `to_sentence`; pyais: `encode_msg`, which writes "
+            "some lines otherwise, so fewer of its lines count).", ""]
     out += ["## Targets", "", "| target | measured | limit | met |", "| --- | --- | --- | --- |"]
     for check in report["targets"]:
         met = {True: "yes", False: "**no**", None: "n/a"}[check["met"]]
@@ -421,7 +442,7 @@ def docs_page(report: dict, table: str) -> str:
         "not the absolute times)",
         f"- Compilers: {m['gcc']}; {m['rustc']}; Python {m['python']}",
         f"- Peers: Rust crates `nmea` and `nmea0183` as pinned in `bench/rust/Cargo.lock`; Python "
-        "`pynmea2` and `pynmeagps` as pinned in `bench/requirements.txt`.", "",
+        "`pynmea2`, `pynmeagps` and `pyais` as pinned in `bench/requirements.txt`.", "",
         "## How it is measured", "",
         "The corpus is every line of `../shared/corpus/real` that is `$...*HH` with a valid checksum and one of "
         "GGA RMC GSV GSA VTG GLL ZDA GST, in sorted file order, repeated to the wanted length, CR LF endings. "
@@ -430,7 +451,9 @@ def docs_page(report: dict, table: str) -> str:
         "and each figure is the median over the rounds. parse converts every field into its typed value; "
         "serialize times only writing back sentences parsed beforehand (chunks of 2,048 lines), one after another into one buffer as a program writing a stream would; roundtrip is "
         "parse plus serialize per line. ceiling-c (bench/c/ceiling.c) only checks the checksum and records "
-        "where each field starts: no parser can do less.", "",
+        "where each field starts: no parser can do less. The AIS corpus (`bench/corpus.py --ais`) is every "
+        "single-sentence `!AIVDM`/`!AIVDO` line with a valid checksum of gpsd's real AIS logs in tests/data/ais, "
+        "repeated the same way.", "",
         "Reproduce: `make bench` (`BENCH_ROUNDS=5 BENCH_LINES=1000000`; `BENCH_PY_LINES` for the Python slice).", "",
         "## Results", "", table])
 
@@ -464,19 +487,23 @@ def main() -> None:
 
     corpus_path = out / "corpus.nmea"
     corpus_info = corpus.build(args.lines, out=corpus_path)
+    ais_corpus_path = out / "corpus-ais.nmea"
+    ais_info = corpus.build_ais(args.lines, out=ais_corpus_path)
     python_lines = min(args.python_lines, args.lines) if args.python_lines else args.lines
     log(f"corpus: {corpus_info['lines']} lines, {corpus_info['bytes']} bytes")
     c_bin = build_c(out, args.c_optimization, args.c_object)
     rust_bin = build_rust(out, peers, args.cargo_profile, args.standard_only)
     python = python_for(out, peers)
 
-    all_jobs = jobs(c_bin, rust_bin, python, corpus_path, python_lines if python_lines < args.lines else 0, peers)
+    all_jobs = jobs(c_bin, rust_bin, python, corpus_path, ais_corpus_path,
+                    python_lines if python_lines < args.lines else 0, peers)
     results = run_rounds(all_jobs, args.rounds, args.cpu)
     c_object = heap_symbols(out)
     instructions = {} if args.no_instructions else instruction_counts(c_bin, rust_bin, out, corpus_path, peers)
     report = {
         "corpus": {"lines": corpus_info["lines"], "bytes": corpus_info["bytes"],
                    "distinct_lines": corpus_info["distinct_lines"], "by_type": corpus_info["by_type"]},
+        "ais_corpus": ais_info,
         "python_lines": python_lines,
         "rounds": args.rounds,
         "cpu": args.cpu,

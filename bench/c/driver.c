@@ -2,7 +2,7 @@
  * The C benchmark driver: reads the corpus into memory once, then times one operation of one
  * implementation over every line and prints a JSON object.
  *
- *     bench-c ours|ceiling parse|serialize|roundtrip|none CORPUS [--by-type]
+ *     bench-c ours|ceiling|ours-ais parse|serialize|roundtrip|none CORPUS [--by-type]
  *
  * parse: nmea_parse of every line (ok = lines parsed). serialize: the lines are parsed chunk by
  * chunk outside the timed region, then only nmea_serialize of the chunk is timed, the sentences
@@ -10,7 +10,9 @@
  * written back byte for byte). roundtrip: parse then serialize each line, comparing with the input.
  * ceiling: ceiling_scan (checksum and field boundaries), parse only. --by-type repeats the timing
  * over the lines of each sentence type separately. none: nothing (the cost of reading the corpus,
- * which bench/run.py subtracts from instruction counts).
+ * which bench/run.py subtracts from instruction counts). ours-ais (over the AIS corpus), parse only:
+ * each line parsed and, when it is a whole message, its AIS message decoded, every field (ok =
+ * messages decoded).
  */
 #define _POSIX_C_SOURCE 199309L
 #include <stdint.h>
@@ -21,6 +23,7 @@
 
 #include "ceiling.h"
 #include "nmea.h"
+#include "nmea_ais.h"
 
 #define CHUNK 2048
 
@@ -101,6 +104,28 @@ static timing time_parse(const line_ref *lines, size_t n)
     return (timing){start, ok, n};
 }
 
+static timing time_ais_decode(const line_ref *lines, size_t n)
+{
+    nmea_sentence s;
+    nmea_error err;
+    nmea_ais_fragment fragment;
+    nmea_ais_message message;
+    nmea_ais_error ais_err;
+    size_t ok = 0, i, layouts = 0;
+    double start = now();
+    for (i = 0; i < n; i++) {
+        if (nmea_parse(&s, lines[i].ptr, lines[i].len, &err) && nmea_ais_fragment_of(&s, &fragment)
+            && fragment.count == 1
+            && nmea_ais_decode(fragment.payload.ptr, fragment.payload.len, fragment.fill_bits, &message, &ais_err)) {
+            ok++;
+            layouts += (size_t)message.layout;
+        }
+    }
+    start = now() - start;
+    sink = layouts;
+    return (timing){start, ok, n};
+}
+
 static timing time_ceiling(const line_ref *lines, size_t n)
 {
     unsigned short starts[CEILING_MAX_FIELDS];
@@ -176,6 +201,8 @@ static timing run(const char *impl, const char *op, const line_ref *lines, size_
         return time_ceiling(lines, n);
     if (strcmp(impl, "ours") == 0 && strcmp(op, "parse") == 0)
         return time_parse(lines, n);
+    if (strcmp(impl, "ours-ais") == 0 && strcmp(op, "parse") == 0)
+        return time_ais_decode(lines, n);
     if (strcmp(impl, "ours") == 0 && strcmp(op, "serialize") == 0)
         return time_serialize(lines, n);
     if (strcmp(impl, "ours") == 0 && strcmp(op, "roundtrip") == 0)
@@ -239,7 +266,7 @@ int main(int argc, char **argv)
     line_ref *lines;
     timing r;
     if (argc < 4) {
-        fprintf(stderr, "usage: %s ours|ceiling parse|serialize|roundtrip|none CORPUS [--by-type]\n", argv[0]);
+        fprintf(stderr, "usage: %s ours|ceiling|ours-ais parse|serialize|roundtrip|none CORPUS [--by-type]\n", argv[0]);
         return 2;
     }
     data = read_file(argv[3], &size);

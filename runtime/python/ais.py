@@ -10,6 +10,7 @@ table 47 of annex 8; the layouts: annex 8) and gpsd's "AIVDM/AIVDO protocol deco
 
 from __future__ import annotations
 
+import binascii
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar, NamedTuple
 
@@ -38,8 +39,19 @@ def armor_char(value: int) -> str:
     return chr(value + 48 if value < 40 else value + 56)
 
 
-# Each armor character's six bits as text, for str.translate (a payload becomes its bits at C speed).
-_ARMOR_BITS = str.maketrans({armor_char(v): format(v, "06b") for v in range(64)})
+# Base64 (RFC 4648) also packs six bits a character, most significant first: armoring is base64
+# with another alphabet, so a payload becomes its bits, and bits their armor, at C speed.
+_BASE64 = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/"
+_BASE64_TO_ARMOR = bytes.maketrans(_BASE64, bytes(ord(armor_char(v)) for v in range(64)))
+_ARMOR_TO_BASE64 = bytes(_BASE64[v] if (v := armor_value(chr(code))) is not None else ord("!") for code in range(256))
+"""Each armor character to its base64 one, any other byte to '!', which base64 has not."""
+
+
+def armor(value: int, length: int) -> str:
+    """The armored characters of `length` bits (a multiple of six) holding `value`."""
+    pad = -length % 24  # base64 takes whole bytes, three for four characters
+    data = (value << pad).to_bytes((length + pad) // 8, "big")
+    return binascii.b2a_base64(data, newline=False)[:length // 6].translate(_BASE64_TO_ARMOR).decode("ascii")
 
 
 class Special(NamedTuple):
@@ -505,6 +517,55 @@ def compile_prefix(items: tuple[Item, ...]) -> Prefix:
     return Prefix(count, offset, names["read"], names["put_json"])
 
 
+class WritePrefix(NamedTuple):
+    """A layout's leading fields of fixed width that are numbers, flags, codes or spare bits,
+    compiled into one function: `write(record, where)` returns their `bits` bits as one integer."""
+
+    items: int  # how many of the layout's items it writes
+    bits: int
+    write: Any
+
+
+def compile_write_prefix(items: tuple[Item, ...]) -> WritePrefix:
+    """The WritePrefix of `items`: straight-line code for the values a decoder gives (an int or
+    float in range, a bool), the field's own to_raw for any other, which raises the error
+    write_items would. The first item of another kind ends it (text and data check more, a
+    bitfield writes from its parts, a data field may be an application's)."""
+    code = ["def write(record, where):", "    bits = 0"]
+    names: dict[str, Any] = {}
+    offset = count = 0
+    for item in items:
+        if type(item) not in (Field, Spare, Unsigned, Signed, Flag, Code) or item.width is None or item.optional:
+            break
+        width, name = item.width, f"f{count}"
+        names[name] = item
+        code.append(f"    value = record.{item.id}")
+        fallback = f"bits = bits << {width} | {name}.to_raw(value, where)[0]"
+        if isinstance(item, Unsigned):
+            low, high = item.bounds(width)
+            if item.divisor == 1 and isinstance(item.base, int):
+                number = f"value - {item.base} if value.__class__ is int else round(value - {item.base})"
+            else:
+                number = f"round((value - {item.base!r}) * {item.divisor})"
+            code.append(f"    raw = {number} if value.__class__ is int or value.__class__ is float else None")
+            fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw & {(1 << width) - 1}"
+        elif isinstance(item, Flag):
+            fast = "value is True or value is False", "bits = bits << 1 | value"
+        elif isinstance(item, Code):  # an enum member's code: the field's to_raw finds it
+            fast = None
+        else:
+            fast = f"value.__class__ is int and 0 <= value <= {(1 << width) - 1}", f"bits = bits << {width} | value"
+        if fast is None:
+            code.append(f"    {fallback}")
+        else:
+            code += [f"    if {fast[0]}:", f"        {fast[1]}", "    else:", f"        {fallback}"]
+        offset += width
+        count += 1
+    code.append("    return bits")
+    exec("\n".join(code), names)  # code built above from the spec's layout, never from input
+    return WritePrefix(count, offset, names["write"])
+
+
 def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteWriter, where: str) -> bool:
     """Write the values of `items` from `message`'s members; False at an optional field left None."""
     for item in items:
@@ -556,6 +617,7 @@ class Record:
     LAYOUT: ClassVar[tuple[Item, ...]]
     FIELDS: ClassVar[dict[str, Field]]
     _prefix: ClassVar[Prefix]
+    _write_prefix: ClassVar[WritePrefix]
     DISPATCH: ClassVar[Data | None]
     """The data field whose bits an application may carry (the one with a `dispatch`)."""
 
@@ -573,6 +635,16 @@ class Record:
             found = compile_prefix(cls.LAYOUT)
             cls._prefix = found
         return found
+
+    def write(self, writer: BitWriter, where: str) -> None:
+        """Writes the layout's fields (its compiled write prefix, then the rest), then trailing."""
+        prefix: WritePrefix | None = type(self).__dict__.get("_write_prefix")
+        if prefix is None:
+            prefix = compile_write_prefix(self.LAYOUT)
+            type(self)._write_prefix = prefix
+        writer.put(prefix.write(self, where), prefix.bits)
+        write_items(self.LAYOUT[prefix.items:], self, writer, where)
+        writer.put_bits(self.trailing)
 
     @classmethod
     def read(cls, reader: BitReader) -> dict[str, Any]:
@@ -624,8 +696,7 @@ class Application(Record):
     def bits(self, where: str) -> str:
         """The data bits it is sent as."""
         writer = BitWriter()
-        write_items(self.LAYOUT, self, writer, where)
-        writer.put_bits(self.trailing)
+        self.write(writer, where)
         return bits_text(writer.value, writer.length)
 
 
@@ -645,14 +716,12 @@ class Message(Record):
         """The armored payload and its fill bits."""
         writer = BitWriter()
         where = f"AIS type {getattr(self, 'message_type')}"
-        write_items(self.LAYOUT, self, writer, where)
-        writer.put_bits(self.trailing)
+        self.write(writer, where)
         fill = -writer.length % 6
         if self.padding.strip("01") or len(self.padding) not in (0, fill):
             raise _bad_value(where, "padding", self.padding, f"{fill} bits")
         writer.put_bits(self.padding or "0" * fill)
-        return "".join(armor_char((writer.value >> shift) & 63)
-                       for shift in range(writer.length - 6, -1, -6)), fill
+        return armor(writer.value, writer.length), fill
 
     def to_dict(self) -> dict[str, Any]:
         """As Record.to_dict, the application's (when there is one) before trailing, then padding."""
@@ -666,11 +735,13 @@ def unarmor(payload: str, fill_bits: int) -> tuple[BitReader, str]:
     """The payload's message bits, and the values of its fill bits."""
     if not 0 <= fill_bits <= 5 or fill_bits and not payload:
         raise NmeaError("bad_armor", f"fill bits are 0-5 (none for an empty payload), not {fill_bits}", "AIS")
-    bits = payload.translate(_ARMOR_BITS)
-    if len(bits) != 6 * len(payload):  # a character no armor value stands for stayed itself
+    try:
+        pad = -len(payload) % 4  # base64 takes four characters at a time
+        data = binascii.a2b_base64(payload.encode("ascii").translate(_ARMOR_TO_BASE64) + b"A" * pad, strict_mode=True)
+        value = int.from_bytes(data, "big") >> 6 * pad
+    except (UnicodeEncodeError, binascii.Error):  # a character no armor value stands for
         offset, ch = next((i, ch) for i, ch in enumerate(payload) if armor_value(ch) is None)
-        raise NmeaError("bad_armor", f"character '{ch}' at offset {offset} is not six-bit armoring", "AIS")
-    value = int(bits, 2) if bits else 0
+        raise NmeaError("bad_armor", f"character '{ch}' at offset {offset} is not six-bit armoring", "AIS") from None
     length = len(payload) * 6 - fill_bits
     padding = bits_text(value & ((1 << fill_bits) - 1), fill_bits)
     return BitReader(value >> fill_bits, length, "AIS"), padding
