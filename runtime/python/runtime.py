@@ -554,7 +554,9 @@ class Number(_Value):
 
     def __int__(self) -> int:
         """The integer part (toward zero), as int() of a float."""
-        return int(self.value)
+        digits, scale, _, sign, _ = self._split()
+        whole = digits // 10**scale
+        return -whole if sign == "-" else whole
 
     def __float__(self) -> float:
         """The nearest double for up to 15 significant digits (2^53); the same double as C's
