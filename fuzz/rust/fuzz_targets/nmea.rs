@@ -110,6 +110,7 @@ impl From<Item<'_>> for Owned {
         match item {
             Item::Line(line) => Owned::Line(line.to_vec()),
             Item::TooLong(length) => Owned::TooLong(length),
+            Item::Frame(..) | Item::BadFrame(..) => unreachable!("an NMEA framer"),
         }
     }
 }
@@ -160,7 +161,7 @@ fn framed<'c>(chunks: impl Iterator<Item = &'c [u8]>) -> Vec<Owned> {
     for chunk in chunks {
         framer.feed(chunk, |item| out.push(item.into()));
     }
-    out.extend(framer.finish().map(Owned::from));
+    framer.finish(|item| out.push(item.into()));
     out
 }
 

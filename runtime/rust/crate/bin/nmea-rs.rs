@@ -174,6 +174,7 @@ fn stream(values: bool, options: Options) -> io::Result<()> {
                 out.line(|w| write_line(w, line, values, options, Some(&mut assembler), &mut given_up))?
             }
             Item::TooLong(length) => out.line(|w| Error::too_long(length).write_json(w))?,
+            Item::Frame(..) | Item::BadFrame(..) => unreachable!("the framer takes NMEA lines only"),
         }
         out.inner.write_all(given_up.as_bytes())?;
         given_up.clear();
@@ -186,15 +187,21 @@ fn stream(values: bool, options: Options) -> io::Result<()> {
             Err(err) if err.kind() == io::ErrorKind::Interrupted => continue,
             Err(err) => return Err(err),
         };
-        for &byte in &chunk[..n] {
-            if let Some(item) = framer.push(byte) {
-                write(&mut out, item)?;
+        let mut written = Ok(());
+        framer.feed(&chunk[..n], |item| {
+            if written.is_ok() {
+                written = write(&mut out, item);
             }
+        });
+        written?;
+    }
+    let mut written = Ok(());
+    framer.finish(|item| {
+        if written.is_ok() {
+            written = write(&mut out, item);
         }
-    }
-    if let Some(item) = framer.finish() {
-        write(&mut out, item)?;
-    }
+    });
+    written?;
     given_up.clear();
     let mut written = Ok(());
     assembler.finish(|done| written = written.and(incomplete(&mut given_up, &done.incomplete_message())));
