@@ -100,6 +100,15 @@ class BinaryFrame:
         number = self.data[3] << 4 | self.data[4] >> 4 if len(self.data) >= 8 else None
         return {"message_number": number}
 
+    def to_json(self) -> str:
+        """The `stream` verb's object of the frame (json.md, "Binary frames in stream")."""
+        data = self.data
+        if self.protocol == "ubx":
+            identity = f'"class":{data[2]},"id":{data[3]}'
+        else:
+            identity = f'"message_number":{data[3] << 4 | data[4] >> 4 if len(data) >= 8 else "null"}'
+        return f'{{"ok":true,"protocol":"{self.protocol}",{identity},"length":{len(data)},"frame":"{data.hex()}"}}'
+
     def message(self) -> Any:
         """A UBX frame's decoded message (nmeaspec.ubx_messages: a ubx.Message, or ubx.Unknown)."""
         if self.protocol != "ubx":
@@ -119,6 +128,11 @@ class BadFrame:
     reason: str
     message: str
     data: bytes
+
+    def to_json(self) -> str:
+        """The `stream` verb's object of it (json.md, "Binary frames in stream")."""
+        return (f'{{"ok":false,"protocol":"{self.protocol}","error":{{"kind":"{self.reason}",'
+                f'"message":"{self.message}"}},"bytes":"{self.data.hex()}"}}')
 
 
 Item = bytes | int | BinaryFrame | BadFrame
@@ -279,10 +293,12 @@ def sentences(source: BinaryIO | Any | Iterable[bytes], **options: bool) -> Iter
 def json_lines(
     source: BinaryIO | Any | Iterable[bytes], values: bool = False, **options: bool
 ) -> Iterator[str]:
-    """The `stream` verb: the JSON of `decode` for every framed item."""
-    for item in lines(source):
-        yield (
-            too_long(item).to_json()
-            if isinstance(item, int)
-            else decode_json(item, values, **options)
-        )
+    """The `stream` verb without AIS messages: the JSON of `decode` for every framed line, and
+    of every binary frame."""
+    for item in lines(source, binary=True):
+        if isinstance(item, int):
+            yield too_long(item).to_json()
+        elif isinstance(item, bytes):
+            yield decode_json(item, values, **options)
+        else:
+            yield item.to_json()
