@@ -167,7 +167,8 @@ build/c/test_examples_general: $(C_PAIR) generated/c/tests/test_examples.c
 	$(CC) $(CFLAGS) -O0 -DNMEA_NO_FAST_PATH -o $@ generated/c/nmea.c generated/c/tests/test_examples.c
 
 # The smallest build must compile without a warning too (every option a firmware sets for flash).
-SMALLEST := -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -DNMEA_NO_PROBLEMS -DNMEA_TERSE_ERRORS -DNMEA_NO_TAG_BLOCKS -DNMEA_DIGITS_32
+SMALLEST := -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -DNMEA_NO_PROBLEMS -DNMEA_TERSE_ERRORS -DNMEA_NO_TAG_BLOCKS -DNMEA_DIGITS_32 \
+            -DNMEA_NO_BINARY_FRAMES
 build/c/nmea-small.o: $(C_PAIR)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -O0 $(SMALLEST) -c -o $@ generated/c/nmea.c
