@@ -2546,6 +2546,10 @@ static bool frame_byte(nmea_framer *f, unsigned char c, nmea_framed *out)
     f->frame[f->frame_len++] = c;
     if (f->frame_len == frame_header_len(f->protocol)) {
         f->frame_size = frame_size(f->protocol, f->frame);
+        for (body = frame_sync_len(f->protocol); body < f->frame_len && f->frame[body] == 0; body++)
+            ;
+        if (body == f->frame_len) /* a header of NUL bytes: what a break after a sync makes */
+            return frame_reject(f, NMEA_FRAME_NUL_HEADER, out);
         if (f->frame_size > NMEA_MAX_FRAME)
             return frame_reject(f, NMEA_FRAME_TOO_LONG, out);
     } else if (f->frame_len == f->frame_size) {

@@ -400,7 +400,7 @@ typedef struct {
 typedef enum { NMEA_LINE, NMEA_UBX, NMEA_RTCM3 } nmea_protocol;
 
 /** Why what began like a binary frame is not one (NMEA_FRAME_OK: it is one). */
-typedef enum { NMEA_FRAME_OK, NMEA_FRAME_BAD_CHECKSUM, NMEA_FRAME_TOO_LONG, NMEA_FRAME_CUT } nmea_frame_error;
+typedef enum { NMEA_FRAME_OK, NMEA_FRAME_BAD_CHECKSUM, NMEA_FRAME_TOO_LONG, NMEA_FRAME_NUL_HEADER, NMEA_FRAME_CUT } nmea_frame_error;
 #endif
 
 /**

@@ -219,7 +219,7 @@ static size_t add_line(char *out, size_t used, size_t cap, nmea_framed line)
 {
 #ifndef NMEA_NO_BINARY_FRAMES
     static const char *const protocols[] = {"", "ubx", "rtcm3"};
-    static const char *const reasons[] = {"", " bad_checksum", " too_long", " cut"};
+    static const char *const reasons[] = {"", " bad_checksum", " too_long", " nul_header", " cut"};
     if (line.protocol != NMEA_LINE)
         return used + (size_t)snprintf(out + used, cap - used, "%s%s|", protocols[line.protocol], reasons[line.error]);
 #endif
@@ -293,6 +293,7 @@ static void test_framer_binary(void)
     CHECK_BINARY("$A\n\xd3\x00\x05\x01", "$A|rtcm3 cut|\x00\x05\x01|");
     CHECK_BINARY("\xb5\x62\x01\x02\x03\x00" ACK "$A", "ubx bad_checksum|\x01\x02\x03\x00|ubx|$A|");
     CHECK_BINARY("\xb5\x00\xd3\xff\xb5" ACK "\xd3", "\xb5\x00\xd3\xff\xb5|ubx|\xd3|");
+    check_binary("\xb5\x62\x00\x00\x00\x00\x00\x00$A", 10, "ubx nul_header|\x00\x00\x00\x00\x00\x00|$A|", 25);
 #ifndef NMEA_NO_TAG_BLOCKS
     CHECK_BINARY("\\s:\xb5\x62*00\\$A", "\\s:\xb5\x62*00\\$A|");
 #endif

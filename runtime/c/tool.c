@@ -308,6 +308,7 @@ static void emit_frame(tool *t, const nmea_framed *item)
         n = (size_t)sprintf(out, "{\"ok\":false,\"protocol\":\"%s\",\"error\":{\"kind\":\"%s\",\"message\":\"",
                             protocol, item->error == NMEA_FRAME_BAD_CHECKSUM ? "bad_checksum"
                                       : item->error == NMEA_FRAME_TOO_LONG   ? "too_long"
+                                      : item->error == NMEA_FRAME_NUL_HEADER ? "nul_header"
                                                                              : "cut");
         if (item->error == NMEA_FRAME_BAD_CHECKSUM) {
             n += (size_t)sprintf(out + n, "checksum");
@@ -319,6 +320,8 @@ static void emit_frame(tool *t, const nmea_framed *item)
                                      upper[item->computed >> 8 * i & 15]);
         } else if (item->error == NMEA_FRAME_TOO_LONG) {
             n += (size_t)sprintf(out + n, "frame is %lu bytes, the limit is %d", (unsigned long)item->size, NMEA_MAX_FRAME);
+        } else if (item->error == NMEA_FRAME_NUL_HEADER) {
+            n += (size_t)sprintf(out + n, "the header after the sync is NUL bytes");
         } else {
             n += (size_t)sprintf(out + n, "the stream ends inside the frame");
         }

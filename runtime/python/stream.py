@@ -121,8 +121,8 @@ class BinaryFrame:
 @dataclass(frozen=True, slots=True)
 class BadFrame:
     """What looked like the start of a binary frame and is not one: its protocol, why (`bad_checksum`,
-    `too_long`, `cut`: the stream ended inside it), a message, and its sync bytes; the framer reads the
-    bytes after them again."""
+    `too_long`, `nul_header`, `cut`: the stream ended inside it), a message, and its sync bytes; the
+    framer reads the bytes after them again."""
 
     protocol: str
     reason: str
@@ -202,6 +202,9 @@ class Framer:
         frame.append(byte)
         if len(frame) == framing.header:
             self._size = framing.size(frame)
+            if not any(frame[len(framing.sync):]):  # what a break's NUL bytes after a sync make
+                out.append(self._bad("nul_header", "the header after the sync is NUL bytes"))
+                return self._rest()
             if self._size > self.max_frame:
                 out.append(self._bad("too_long", f"frame is {self._size} bytes, the limit is {self.max_frame}"))
                 return self._rest()

@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 import yaml
 
+from fuzz import faults
 from tests.ubx.pyubx2_oracle import ubx
 
 from nmeaspec import stream  # isort: skip (pyubx2_oracle puts generated/python on the path)
@@ -98,6 +99,8 @@ def kinds(items: list[stream.Item]) -> list[object]:
     (b"\xb5\x00\xd3\xff" + GGA, [b"\xb5\x00\xd3\xff", GGA[:-2]]),
     # a frame inside another's bad frame is found
     (b"\xb5\x62\x01\x02\x03\x00" + ACK + GGA, ["ubx bad_checksum", b"\x01\x02\x03\x00", "ubx", GGA[:-2]]),
+    # a break's NUL bytes after a sync (a checksum of NULs matches them)
+    (b"\xb5\x62" + bytes(6) + GGA, ["ubx nul_header", bytes(4 + 2), GGA[:-2]]),
     # no frame inside a TAG block
     (b"\\s:\xb5\x62*00\\" + GGA, [b"\\s:\xb5\x62*00\\" + GGA[:-2]]),
 ])
@@ -127,3 +130,33 @@ def test_the_rtcm3_framing_spec() -> None:
     assert [(f["type"], f.get("value")) for f in frame["header"]] == [("b6", 0), ("b10", None)]
     assert frame["checksum"] == {"algorithm": "crc24q", "over": ["sync", "payload"]}
     assert spec["identity"] == [{"id": "message_number", "type": "b12"}]
+
+
+def frame_spans(data: bytes) -> list[tuple[int, int]]:
+    """Where the frames the framer finds in `data` lie."""
+    spans, pos = [], 0
+    for frame in (item for item in split(data) if isinstance(item, stream.BinaryFrame)):
+        pos = data.index(frame.data, pos)
+        spans.append((pos, pos + len(frame.data)))
+        pos += len(frame.data)
+    return spans
+
+
+@pytest.mark.parametrize("kind", faults.KINDS)
+def test_damage_loses_no_intact_frame_and_takes_no_damaged_one(kind: str) -> None:
+    """fuzz/faults.py's damage over a log of UBX and NMEA (the other stream of `interleave`: one of
+    RTCM 3 and NMEA): every frame a copy run holds whole is found, every frame found is one of the
+    clean logs'."""
+    logs = [(ROOT / "tests" / "data" / "ubx" / "ublox-neo-m8l.log").read_bytes(),
+            (ROOT / "tests" / "data" / "rtcm3" / "ublox-f9p-rtcm.log").read_bytes()]
+    spans = [frame_spans(log) for log in logs]
+    damaged = faults.damage(kind, 1, logs[0], logs[1])
+    found = [item.data for item in split(damaged.data) if isinstance(item, stream.BinaryFrame)]
+    clean = {logs[s][a:b] for s in range(2) for a, b in spans[s]}
+    assert all(frame in clean for frame in found), "a damaged frame was taken"
+    whole = [logs[run.stream][a:b] for run in damaged.runs if run.stream >= 0
+             for a, b in spans[run.stream] if run.start <= a and b <= run.end]
+    assert whole and len(found) >= len(whole)
+    left = list(found)
+    for frame in whole:  # each intact frame among those found (a doubled run holds one twice)
+        left.remove(frame)

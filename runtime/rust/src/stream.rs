@@ -135,6 +135,9 @@ pub enum FrameError {
     },
     /// Its length field says more bytes than [`MAX_FRAME`]: the frame's length.
     TooLong(usize),
+    /// Its header after the sync is NUL bytes (a UBX frame of class 0, id 0 and no payload would
+    /// have a checksum of NULs too): what a break after a sync makes.
+    NulHeader,
     /// The stream ends inside it.
     Cut,
 }
@@ -145,6 +148,7 @@ impl FrameError {
         match self {
             FrameError::BadChecksum { .. } => "bad_checksum",
             FrameError::TooLong(_) => "too_long",
+            FrameError::NulHeader => "nul_header",
             FrameError::Cut => "cut",
         }
     }
@@ -284,7 +288,9 @@ impl Framer {
         self.frame_len += 1;
         if self.frame_len == protocol.header_len() {
             self.frame_size = protocol.frame_len(&self.frame[..self.frame_len]);
-            if self.frame_size > MAX_FRAME {
+            if self.frame[protocol.sync_len()..self.frame_len].iter().all(|&b| b == 0) {
+                self.reject(FrameError::NulHeader, each); // what a break's NUL bytes after a sync make
+            } else if self.frame_size > MAX_FRAME {
                 self.reject(FrameError::TooLong(self.frame_size), each);
             }
         } else if self.frame_len == self.frame_size {
@@ -501,5 +507,7 @@ mod tests {
     fn a_frame_longer_than_the_buffer_is_reported() {
         // UBX, payload length 0x0800: 2,056 bytes in all
         binary_items(b"\xb5\x62\x01\x02\x00\x08ab", b"ubx too_long|\x01\x02\x00\x08ab|");
+        // what a break's NUL bytes after a sync make (its checksum would be NULs too)
+        binary_items(b"\xb5\x62\0\0\0\0\0\0$A", b"ubx nul_header|\0\0\0\0\0\0|$A|");
     }
 }

@@ -197,6 +197,7 @@ fn write_bad_frame(w: &mut String, protocol: Protocol, error: FrameError, sync: 
             }
         }
         FrameError::TooLong(length) => write!(w, "frame is {length} bytes, the limit is {MAX_FRAME}")?,
+        FrameError::NulHeader => w.push_str("the header after the sync is NUL bytes"),
         FrameError::Cut => w.push_str("the stream ends inside the frame"),
     }
     w.push_str("\"},\"bytes\":\"");
