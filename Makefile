@@ -167,7 +167,8 @@ build/c/test_examples_general: $(C_PAIR) generated/c/tests/test_examples.c
 	$(CC) $(CFLAGS) -O0 -DNMEA_NO_FAST_PATH -o $@ generated/c/nmea.c generated/c/tests/test_examples.c
 
 # The smallest build must compile without a warning too (every option a firmware sets for flash).
-SMALLEST := -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -DNMEA_NO_PROBLEMS -DNMEA_TERSE_ERRORS -DNMEA_NO_TAG_BLOCKS -DNMEA_DIGITS_32
+SMALLEST := -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -DNMEA_NO_PROBLEMS -DNMEA_TERSE_ERRORS -DNMEA_NO_TAG_BLOCKS -DNMEA_DIGITS_32 \
+            -DNMEA_NO_BINARY_FRAMES
 build/c/nmea-small.o: $(C_PAIR)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -O0 $(SMALLEST) -c -o $@ generated/c/nmea.c
@@ -225,6 +226,7 @@ test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_example
 	build/c/nmea-c-san stream --lenient < build/c/memory.nmea > build/c/asan-lenient.jsonl
 	LC_ALL=C sort -u build/c/asan.jsonl build/c/asan-lenient.jsonl | build/c/nmea-c-san encode > /dev/null
 	build/c/nmea-c-san stream --require-checksum < tests/agreement/stream_cases.bin > /dev/null
+	cat tests/data/ubx/*.log tests/data/rtcm3/*.log | build/c/nmea-c-san stream > /dev/null
 	build/c/nmea-c-san fixes < build/c/memory.nmea > /dev/null
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_examples > /dev/null
 	$(PY) tools/distinct_lines.py 5 < build/c/asan.jsonl > build/c/valgrind.jsonl

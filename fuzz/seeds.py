@@ -1,6 +1,7 @@
 """Seed corpus for the fuzzers: every example of the manuals (intact and damaged), the edge
 cases, a sample of every real log and of gpsd's AIS samples (with whole messages of several
-sentences and the assembly cases), random sentences of every layout, decode's JSON of some
+sentences and the assembly cases), stretches of gpsd's logs that mix NMEA with UBX and RTCM 3
+frames, random sentences of every layout, decode's JSON of some
 of them (the fuzz targets also read their input as JSON), and the corpus the last campaign grew
 (fuzz/corpus.tar.xz, minimized), so that each run starts where the last one stopped. One file
 per input, no line ending.
@@ -45,6 +46,7 @@ def seeds(with_corpus: bool = True) -> list[bytes]:
         step = max(1, len(logged) // PER_LOG)
         out += logged[::step][:PER_LOG]
     out += ais_seeds()
+    out += binary_seeds()
     out += [reference.decode_json(spec, line).encode() for line in lines[:400]]
     out += sorted(p.read_bytes() for p in (ROOT / "fuzz" / "regressions").glob("*") if p.is_file())
     if with_corpus:
@@ -65,6 +67,17 @@ def ais_seeds() -> list[bytes]:
         out += [b"\n".join(logged[i:i + 2]) for i in firsts[:PER_LOG // 4]]
     cases = (json.loads(line) for line in (ais / "assembly_cases.jsonl").read_text().splitlines())
     out += ["\n".join(case["lines"]).encode("latin-1") for case in cases]
+    return out
+
+
+def binary_seeds() -> list[bytes]:
+    """Stretches of gpsd's logs that interleave NMEA with UBX and RTCM 3 frames (tests/data/ubx,
+    tests/data/rtcm3), up to a fuzz input's length, for the stream framers."""
+    out: list[bytes] = []
+    for path in sorted((ROOT / "tests" / "data" / "ubx").glob("*.log")) + sorted((ROOT / "tests" / "data" / "rtcm3").glob("*.log")):
+        data = path.read_bytes()
+        step = max(1000, len(data) // PER_LOG)
+        out += [data[at:at + 1000] for at in range(0, len(data), step)]
     return out
 
 

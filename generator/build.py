@@ -313,7 +313,7 @@ def _payload_items(data: list[dict[str, Any]], file: str, where: tuple[str | int
 
 def _protocol(doc: Document) -> BinaryProtocol:
     d = doc.data
-    return BinaryProtocol(d["protocol"], d["name"], {m["id"]: m["title"] for m in d["documents"]}, d["classes"],
+    return BinaryProtocol(d["protocol"], d["name"], {m["id"]: m["title"] for m in d["documents"]}, d.get("classes", {}),
                           Origin(str(doc.path), ()))
 
 

@@ -12,7 +12,7 @@ generated/c) it compiles nmea.c at -Os with -DNMEA_NO_JSON, with and without -DN
   -ffunction-sections -fdata-sections -Wl,--gc-sections (newlib-nano on Cortex-M4);
 - RAM: sizeof(nmea_framer) and sizeof(nmea_sentence) as the target's compiler lays them out;
 - the options a firmware sets for flash and RAM (-DNMEA_NO_PROBLEMS, -DNMEA_TERSE_ERRORS,
-  -DNMEA_NO_TAG_BLOCKS, -DNMEA_DIGITS_32), each measured and all together;
+  -DNMEA_NO_TAG_BLOCKS, -DNMEA_DIGITS_32, -DNMEA_NO_BINARY_FRAMES), each measured and all together;
 - stack: the worst case of each entry point over the call graph that gcc writes with
   -fcallgraph-info=su (each function's frame from -fstack-usage), without the C library's
   leaf functions (memcpy, the 64-bit division helpers ...), which are named instead. A recursive
@@ -36,7 +36,9 @@ SMALL = ["-DNMEA_NO_JSON", "-DNMEA_NO_FAST_PATH"]
 FAST = ["-DNMEA_NO_JSON"]
 # What a firmware short of flash sets besides SMALL, each measured on its own and all together.
 OPTIONS = [["-DNMEA_NO_PROBLEMS"], ["-DNMEA_TERSE_ERRORS"], ["-DNMEA_NO_TAG_BLOCKS"], ["-DNMEA_DIGITS_32"],
-           ["-DNMEA_NO_PROBLEMS", "-DNMEA_TERSE_ERRORS", "-DNMEA_NO_TAG_BLOCKS", "-DNMEA_DIGITS_32"]]
+           ["-DNMEA_NO_BINARY_FRAMES"],
+           ["-DNMEA_NO_PROBLEMS", "-DNMEA_TERSE_ERRORS", "-DNMEA_NO_TAG_BLOCKS", "-DNMEA_DIGITS_32",
+            "-DNMEA_NO_BINARY_FRAMES"]]
 SECTIONS = ["-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections"]
 CROSS_PACKAGES = "apt-get install gcc-arm-none-eabi libnewlib-arm-none-eabi"
 
@@ -67,9 +69,18 @@ int main(void)
 {
     nmea_error err;
     nmea_framed line;
-    for (;;)
-        if (nmea_framer_feed(&framer, uart_data, &line) && line.ptr && nmea_parse(&sentence, line.ptr, line.len, &err))
-            sink += (unsigned)sentence.id;
+    for (;;) {
+        bool more = nmea_framer_feed(&framer, uart_data, &line);
+        while (more) {
+            if (line.ptr && nmea_parse(&sentence, line.ptr, line.len, &err))
+                sink += (unsigned)sentence.id;
+#ifndef NMEA_NO_BINARY_FRAMES
+            more = nmea_framer_next(&framer, &line); /* what a rejected binary frame held */
+#else
+            more = false;
+#endif
+        }
+    }
 }
 """
 BASELINE = """volatile char uart_data;
@@ -87,7 +98,7 @@ nmea_sentence sentence_probe;
 
 # The public functions a firmware calls; the per-layout ones (nmea_parse_gga ...) are summed up
 # by their prefix.
-ENTRY_POINTS = ["nmea_framer_feed", "nmea_framer_push", "nmea_framer_end", "nmea_parse", "nmea_parse_ex", "nmea_serialize",
+ENTRY_POINTS = ["nmea_framer_feed", "nmea_framer_next", "nmea_framer_push", "nmea_framer_end", "nmea_parse", "nmea_parse_ex", "nmea_serialize",
                 "nmea_build", "nmea_error_message"]
 PER_LAYOUT = ["nmea_parse_", "nmea_serialize_", "nmea_build_"]
 

@@ -173,6 +173,9 @@ static void as_json(const char *data, size_t size)
 typedef struct {
     size_t start; /* offset in model_bytes of the kept bytes */
     size_t len;   /* the line's length (> NMEA_MAX_LINE: overlong, only counted) */
+    nmea_protocol protocol; /* a binary frame's (its bytes at `frame`), else NMEA_LINE */
+    nmea_frame_error error; /* a rejected frame's: `frame` holds its sync bytes */
+    const char *frame;
 } model_item;
 
 static model_item model[STREAM_MAX];
@@ -180,16 +183,84 @@ static size_t model_count;
 static char model_bytes[STREAM_MAX];
 static size_t model_used;
 
-/* The Python reference's Framer, one byte at a time. */
+/* The Python reference's Framer, one byte at a time; a binary frame read ahead in the whole input,
+   and after a rejected one the input read again from the byte after its sync. */
 static void model_finish(size_t *length, size_t *start)
 {
     if (*length) {
         model[model_count].start = *start;
         model[model_count].len = *length;
+        model[model_count].protocol = NMEA_LINE;
         model_count++;
     }
     *length = 0;
     *start = model_used;
+}
+
+static void model_binary(nmea_protocol protocol, nmea_frame_error error, const char *frame, size_t len)
+{
+    model[model_count].protocol = protocol;
+    model[model_count].error = error;
+    model[model_count].frame = frame;
+    model[model_count].len = len;
+    model_count++;
+}
+
+/* A UBX frame's Fletcher-8 over class to payload, or an RTCM 3 frame's CRC-24Q over the whole, of
+   the `len` bytes before its checksum. */
+static unsigned long model_checksum(nmea_protocol protocol, const unsigned char *b, size_t len)
+{
+    unsigned long a = 0, c = 0;
+    size_t i;
+    int bit;
+    for (i = protocol == NMEA_UBX ? 2 : 0; i < len; i++) {
+        if (protocol == NMEA_UBX) {
+            a = (a + b[i]) % 256;
+            c = (c + a) % 256;
+            continue;
+        }
+        c ^= (unsigned long)b[i] << 16;
+        for (bit = 0; bit < 8; bit++)
+            c = (c << 1 ^ (c & 0x800000 ? 0x1864CFB : 0)) & 0xFFFFFF;
+    }
+    return protocol == NMEA_UBX ? a << 8 | c : c;
+}
+
+/* What the framer makes of a first sync byte at data[i] (outside a TAG block): the items, and
+   where reading goes on; 0 when it starts no frame (a byte of the line). */
+static size_t model_sync(const char *data, size_t size, size_t i, size_t *length, size_t *start)
+{
+    const unsigned char *b = (const unsigned char *)data + i;
+    nmea_protocol protocol = b[0] == 0xB5 ? NMEA_UBX : NMEA_RTCM3;
+    size_t sync = protocol == NMEA_UBX ? 2 : 1, header = protocol == NMEA_UBX ? 6 : 3, trailer = protocol == NMEA_UBX ? 2 : 3;
+    size_t left = size - i, frame, k;
+    unsigned long sent = 0;
+    if (left < 2 || (protocol == NMEA_UBX ? b[1] != 0x62 : (b[1] & 0xFC) != 0))
+        return 0;
+    model_finish(length, start);
+    if (left < header) {
+        model_binary(protocol, NMEA_FRAME_CUT, data + i, sync);
+        return i + sync;
+    }
+    for (k = sync; k < header && b[k] == 0; k++)
+        ;
+    if (k == header) {
+        model_binary(protocol, NMEA_FRAME_NUL_HEADER, data + i, sync);
+        return i + sync;
+    }
+    frame = header + trailer + (protocol == NMEA_UBX ? (size_t)b[4] | (size_t)b[5] << 8 : (size_t)(b[1] & 3) << 8 | b[2]);
+    if (frame > NMEA_MAX_FRAME || frame > left) {
+        model_binary(protocol, frame > NMEA_MAX_FRAME ? NMEA_FRAME_TOO_LONG : NMEA_FRAME_CUT, data + i, sync);
+        return i + sync;
+    }
+    for (k = frame - trailer; k < frame; k++)
+        sent = sent << 8 | b[k];
+    if (sent != model_checksum(protocol, b, frame - trailer)) {
+        model_binary(protocol, NMEA_FRAME_BAD_CHECKSUM, data + i, sync);
+        return i + sync;
+    }
+    model_binary(protocol, NMEA_FRAME_OK, data + i, frame);
+    return i + frame;
 }
 
 static void model_frame(const char *data, size_t size)
@@ -200,6 +271,12 @@ static void model_frame(const char *data, size_t size)
     model_used = 0;
     for (i = 0; i < size; i++) {
         char c = data[i];
+        size_t after;
+        if (((unsigned char)c == 0xB5 || (unsigned char)c == 0xD3) && tag == OUTSIDE
+            && (after = model_sync(data, size, i, &length, &start)) != 0) {
+            i = after - 1;
+            continue;
+        }
         if (c == '\r' || c == '\n') {
             model_finish(&length, &start);
             tag = OUTSIDE;
@@ -225,8 +302,10 @@ static void expect_item(size_t *next, nmea_framed item)
     const model_item *m;
     check(*next < model_count);
     m = &model[(*next)++];
-    check(item.len == m->len);
-    if (item.len > NMEA_MAX_LINE)
+    check(item.len == m->len && item.protocol == m->protocol);
+    if (item.protocol != NMEA_LINE)
+        check(item.error == m->error && item.ptr != NULL && memcmp(item.ptr, m->frame, item.len) == 0);
+    else if (item.len > NMEA_MAX_LINE)
         check(item.ptr == NULL);
     else
         check(item.ptr != NULL && memcmp(item.ptr, model_bytes + m->start, item.len) == 0);
@@ -248,12 +327,12 @@ static void frame_chunked(const char *data, size_t size, const size_t *sizes, si
         pos += len;
         while (nmea_framer_push(&framer, &p, &len, &item)) {
             expect_item(&next, item);
-            if (decode)
+            if (decode && item.protocol == NMEA_LINE)
                 nmea_decode_json_ex(item.ptr, item.len, false, &LENIENT, json, sizeof json);
         }
         check(len == 0 && p == data + pos);
     }
-    if (nmea_framer_end(&framer, &item))
+    while (nmea_framer_end(&framer, &item))
         expect_item(&next, item);
     check(next == model_count && !nmea_framer_end(&framer, &item));
 }

@@ -39,19 +39,27 @@ size_t shim_encode(const char *json, size_t len, char *out, size_t cap)
     return nmea_error_to_json(&err, out, cap);
 }
 
-/* Appends an item as "L<len>:<bytes>" or "T<len>;" (an overlong line); 0 when out is full. */
+/* Appends an item as "L<len>:<bytes>", "T<len>;" (an overlong line), "F<protocol>:<len>:<bytes>"
+   (a binary frame) or "B<protocol>.<error>:<len>:<bytes>" (a rejected one's sync bytes), the
+   numbers those of nmea_protocol and nmea_frame_error; 0 when out is full. */
 static size_t put_item(const nmea_framed *item, char *out, size_t cap)
 {
     char head[32];
     size_t n;
-    if (item->ptr == NULL) {
+    if (item->protocol != NMEA_LINE) {
+        n = item->error == NMEA_FRAME_OK
+                ? (size_t)snprintf(head, sizeof head, "F%d:%lu:", (int)item->protocol, (unsigned long)item->len)
+                : (size_t)snprintf(head, sizeof head, "B%d.%d:%lu:", (int)item->protocol, (int)item->error,
+                                   (unsigned long)item->len);
+    } else if (item->ptr == NULL) {
         n = (size_t)snprintf(head, sizeof head, "T%lu;", (unsigned long)item->len);
         if (n > cap)
             return 0;
         memcpy(out, head, n);
         return n;
     }
-    n = (size_t)snprintf(head, sizeof head, "L%lu:", (unsigned long)item->len);
+    else
+        n = (size_t)snprintf(head, sizeof head, "L%lu:", (unsigned long)item->len);
     if (n + item->len > cap)
         return 0;
     memcpy(out, head, n);
@@ -76,8 +84,11 @@ size_t shim_frame(const char *data, size_t len, size_t chunk, char *out, size_t 
             used += n;
         }
     }
-    if (nmea_framer_end(&framer, &item) && (n = put_item(&item, out + used, cap - used)) != 0)
+    while (nmea_framer_end(&framer, &item)) {
+        if ((n = put_item(&item, out + used, cap - used)) == 0)
+            return used;
         used += n;
+    }
     return used;
 }
 

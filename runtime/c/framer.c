@@ -2,19 +2,45 @@
    any size, cut into lines at CR, LF, '$' and '!', an overlong line reported by its length. A
    '\' at the start of a line opens a TAG block, which keeps its sentence: up to the block's
    closing '\' every byte but CR and LF belongs to it, and a '$', '!' or '\' right after that
-   continues the line (unless -DNMEA_NO_TAG_BLOCKS: a '\' is then a byte like any other). */
+   continues the line (unless -DNMEA_NO_TAG_BLOCKS: a '\' is then a byte like any other). Unless
+   -DNMEA_NO_BINARY_FRAMES, a UBX or RTCM 3 frame's first sync byte outside a TAG block starts a
+   frame, which its checksum decides (runtime.h). */
 
-/* The bytes that end a line (CR, LF), start a new one ('$', '!') or open or close a TAG block. */
-static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2, ['\\'] = 3};
+/* The bytes that end a line (CR, LF), start a new one ('$', '!'), open or close a TAG block, or
+   may start a binary frame (UBX B5, RTCM 3 D3). */
+static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2, ['\\'] = 3,
+#ifndef NMEA_NO_BINARY_FRAMES
+                                                 [0xB5] = 4, [0xD3] = 4
+#endif
+};
 
 /* Where the line being framed is as to TAG blocks (nmea_framer.tag). */
 enum { FRAMER_OUTSIDE, FRAMER_IN_TAG, FRAMER_AFTER_TAG };
+
+/* What framer_scan stops at besides a line's end (1) and the next line's start (2). */
+enum { FRAMER_SYNC = 3 };
 
 void nmea_framer_init(nmea_framer *f)
 {
     f->length = 0;
     f->next = 0;
     f->tag = FRAMER_OUTSIDE;
+#ifndef NMEA_NO_BINARY_FRAMES
+    f->frame_len = 0;
+    f->replay = 0;
+#endif
+}
+
+/* A line of `len` bytes at `ptr` (NULL when it is too long) as the item in *out. */
+static bool framed_line(nmea_framed *out, const char *ptr, size_t len)
+{
+    out->ptr = len <= NMEA_MAX_LINE ? ptr : NULL;
+    out->len = len;
+#ifndef NMEA_NO_BINARY_FRAMES
+    out->protocol = NMEA_LINE;
+    out->error = NMEA_FRAME_OK;
+#endif
+    return true;
 }
 
 /* What `byte`, after `length` bytes of the line, is to it: 0 a byte of the line, 1 its end, 2 the
@@ -40,14 +66,22 @@ static unsigned framer_step(nmea_framer *f, size_t length, char byte)
     return kind == 2 && length == 0 ? 0 : kind;
 }
 
-/* The first byte from `p` on (the line holding `length` bytes before it) that ends the line or
-   starts the next, with *boundary what it is; `end` when none does. */
+/* The first byte from `p` on (the line holding `length` bytes before it) that ends the line,
+   starts the next or may start a binary frame, with *boundary what it is; `end` when none does. */
 static const char *framer_scan(nmea_framer *f, const char *p, const char *end, size_t length, unsigned *boundary)
 {
     const char *q;
     for (q = p; q < end; q++) {
-        if (f->tag == FRAMER_OUTSIDE && !LINE_BOUNDARY[(unsigned char)*q])
-            continue; /* the common byte, decided without a call */
+        if (f->tag == FRAMER_OUTSIDE) {
+            if (!LINE_BOUNDARY[(unsigned char)*q])
+                continue; /* the common byte, decided without a call */
+#ifndef NMEA_NO_BINARY_FRAMES
+            if (LINE_BOUNDARY[(unsigned char)*q] == 4) {
+                *boundary = FRAMER_SYNC;
+                return q;
+            }
+#endif
+        }
         if ((*boundary = framer_step(f, length + (size_t)(q - p), *q)) != 0)
             return q;
     }
@@ -72,55 +106,21 @@ static void framer_keep(nmea_framer *f, const char *p, size_t n)
     f->length += n;
 }
 
-bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out)
+/* Hands on the line under way, if it has bytes. */
+static bool framer_end_line(nmea_framer *f, nmea_framed *out)
 {
-    const char *p = *data, *end, *q;
-    unsigned boundary = 0;
-    if (*len == 0)
-        return false;
+    size_t length;
     framer_resume(f);
-    end = p + *len;
-    if (f->length == 0) {
-        while (p < end && LINE_BOUNDARY[(unsigned char)*p] == 1) /* empty lines */
-            p++;
-        if (p == end) {
-            *data = end;
-            *len = 0;
-            return false;
-        }
-        /* a line starts at p: one that ends in this chunk is handed on where it lies */
-        q = framer_scan(f, p, end, 0, &boundary);
-        if (q < end) {
-            out->ptr = (size_t)(q - p) <= NMEA_MAX_LINE ? p : NULL;
-            out->len = (size_t)(q - p);
-            f->tag = FRAMER_OUTSIDE;
-            q += boundary == 1; /* a '$' or '!' stays for the next line */
-            *data = q;
-            *len = (size_t)(end - q);
-            return true;
-        }
-    } else {
-        q = framer_scan(f, p, end, f->length, &boundary);
-        framer_keep(f, p, (size_t)(q - p));
-        if (q < end) {
-            out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
-            out->len = f->length;
-            f->length = 0;
-            f->tag = FRAMER_OUTSIDE;
-            q += boundary == 1;
-            *data = q;
-            *len = (size_t)(end - q);
-            return true;
-        }
-        p = q;
-    }
-    framer_keep(f, p, (size_t)(end - p));
-    *data = end;
-    *len = 0;
-    return false;
+    f->tag = FRAMER_OUTSIDE;
+    if (f->length == 0)
+        return false;
+    length = f->length;
+    f->length = 0;
+    return framed_line(out, f->line, length);
 }
 
-bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out)
+/* One byte of a line: true when it completes one (nmea_framer_feed without binary frames). */
+static bool framer_line_byte(nmea_framer *f, char byte, nmea_framed *out)
 {
     unsigned boundary;
     framer_resume(f);
@@ -133,22 +133,234 @@ bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out)
     }
     if (f->length == 0) /* an empty line */
         return false;
-    out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
-    out->len = f->length;
+    framed_line(out, f->line, f->length);
     f->length = 0;
     f->tag = FRAMER_OUTSIDE;
     f->next = boundary == 2 ? byte : 0; /* the line handed on is still in f->line */
     return true;
 }
 
+#ifndef NMEA_NO_BINARY_FRAMES
+/* The framing of spec/binary/ubx/protocol.yaml and spec/binary/rtcm3/protocol.yaml. */
+static size_t frame_sync_len(unsigned protocol)
+{
+    return protocol == NMEA_UBX ? 2 : 1;
+}
+
+/* Bytes from the sync to the end of the length field. */
+static size_t frame_header_len(unsigned protocol)
+{
+    return protocol == NMEA_UBX ? 6 : 3;
+}
+
+static size_t frame_trailer_len(unsigned protocol)
+{
+    return protocol == NMEA_UBX ? 2 : 3;
+}
+
+/* Whether the byte after the first sync byte may go on a frame (RTCM 3: 6 reserved bits, zero). */
+static bool frame_follows_sync(unsigned protocol, unsigned char c)
+{
+    return protocol == NMEA_UBX ? c == 0x62 : (c & 0xFC) == 0;
+}
+
+/* The frame's bytes, sync to checksum, from its header (UBX: 16-bit little-endian payload length;
+   RTCM 3: 10 bits, big endian). */
+static size_t frame_size(unsigned protocol, const unsigned char *h)
+{
+    size_t payload = protocol == NMEA_UBX ? (size_t)h[4] | (size_t)h[5] << 8 : (size_t)(h[1] & 0x03) << 8 | h[2];
+    return frame_header_len(protocol) + payload + frame_trailer_len(protocol);
+}
+
+/* The checksum of the `len` bytes before a frame's trailer: UBX's Fletcher-8 over class to
+   payload, RTCM 3's CRC-24Q (polynomial 0x1864CFB, initial value 0) over the whole. */
+static unsigned long frame_checksum(unsigned protocol, const unsigned char *frame, size_t len)
+{
+    unsigned long crc = 0;
+    size_t i;
+    unsigned bit;
+    if (protocol == NMEA_UBX) {
+        unsigned a = 0, b = 0;
+        for (i = 2; i < len; i++) {
+            a = (a + frame[i]) & 0xFF;
+            b = (b + a) & 0xFF;
+        }
+        return (unsigned long)a << 8 | b;
+    }
+    for (i = 0; i < len; i++) {
+        crc ^= (unsigned long)frame[i] << 16;
+        for (bit = 0; bit < 8; bit++)
+            crc = crc & 0x800000 ? (crc << 1) ^ 0x1864CFB : crc << 1;
+    }
+    return crc & 0xFFFFFF;
+}
+
+/* Hands on the frame under way as rejected for `error`: its sync bytes. The bytes after them are
+   to be read again, before those still to be read again; both lie at the end of f->frame (a frame
+   found among them grows from its start and never reaches the byte being read). */
+static bool frame_reject(nmea_framer *f, nmea_frame_error error, nmea_framed *out)
+{
+    size_t sync = frame_sync_len(f->protocol), rest = f->frame_len - sync, i;
+    unsigned char *to = f->frame + NMEA_MAX_FRAME - f->replay - rest;
+    out->ptr = (const char *)f->frame;
+    out->len = sync;
+    out->protocol = (nmea_protocol)f->protocol;
+    out->error = error;
+    out->size = f->frame_size;
+    for (i = rest; i > 0; i--) /* to lies after the bytes it takes: from the last on */
+        to[i - 1] = f->frame[sync + i - 1];
+    f->replay += rest;
+    f->frame_len = 0;
+    f->frame_size = 0;
+    return true;
+}
+
+/* A byte of the frame under way, after its first: true when it completes an item (the line before
+   the frame, the frame, or what rejects it). */
+static bool frame_byte(nmea_framer *f, unsigned char c, nmea_framed *out)
+{
+    bool line = f->frame_len == 1 && framer_end_line(f, out);
+    size_t body;
+    f->frame[f->frame_len++] = c;
+    if (f->frame_len == frame_header_len(f->protocol)) {
+        f->frame_size = frame_size(f->protocol, f->frame);
+        for (body = frame_sync_len(f->protocol); body < f->frame_len && f->frame[body] == 0; body++)
+            ;
+        if (body == f->frame_len) /* a header of NUL bytes: what a break after a sync makes */
+            return frame_reject(f, NMEA_FRAME_NUL_HEADER, out);
+        if (f->frame_size > NMEA_MAX_FRAME)
+            return frame_reject(f, NMEA_FRAME_TOO_LONG, out);
+    } else if (f->frame_len == f->frame_size) {
+        body = f->frame_size - frame_trailer_len(f->protocol);
+        out->computed = frame_checksum(f->protocol, f->frame, body);
+        for (out->sent = 0; body < f->frame_size; body++)
+            out->sent = out->sent << 8 | f->frame[body];
+        if (out->sent != out->computed)
+            return frame_reject(f, NMEA_FRAME_BAD_CHECKSUM, out);
+        out->ptr = (const char *)f->frame;
+        out->len = f->frame_size;
+        out->protocol = (nmea_protocol)f->protocol;
+        out->error = NMEA_FRAME_OK;
+        f->frame_len = 0;
+        return true;
+    }
+    return line;
+}
+
+/* One byte of the stream, or of a rejected frame read again: true when it completes an item. */
+static bool framer_byte(nmea_framer *f, char byte, nmea_framed *out)
+{
+    unsigned char c = (unsigned char)byte;
+    if (f->frame_len == 1 && !frame_follows_sync(f->protocol, c)) {
+        f->frame_len = 0; /* no frame: its first byte is one of the line (and ends none) */
+        (void)framer_line_byte(f, (char)f->frame[0], out);
+    }
+    if (f->frame_len > 0)
+        return frame_byte(f, c, out);
+    if ((c == 0xB5 || c == 0xD3) && f->tag == FRAMER_OUTSIDE) {
+        framer_resume(f); /* a '$' handed on last starts the line the frame may end */
+        f->protocol = c == 0xB5 ? NMEA_UBX : NMEA_RTCM3;
+        f->frame[0] = c;
+        f->frame_len = 1;
+        return false;
+    }
+    return framer_line_byte(f, byte, out);
+}
+
+bool nmea_framer_next(nmea_framer *f, nmea_framed *out)
+{
+    while (f->replay > 0)
+        if (framer_byte(f, (char)f->frame[NMEA_MAX_FRAME - f->replay--], out))
+            return true;
+    return false;
+}
+#endif
+
+bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out)
+{
+    const char *p, *end, *q;
+    unsigned boundary = 0;
+#ifndef NMEA_NO_BINARY_FRAMES
+    if (nmea_framer_next(f, out))
+        return true;
+    for (;;) {
+        while (f->frame_len > 0 && *len > 0) { /* a frame under way takes its bytes one by one */
+            (*len)--;
+            if (framer_byte(f, *(*data)++, out))
+                return true;
+        }
+#endif
+        if (*len == 0)
+            return false;
+        framer_resume(f);
+        p = *data;
+        end = p + *len;
+        if (f->length == 0) {
+            while (p < end && LINE_BOUNDARY[(unsigned char)*p] == 1) /* empty lines */
+                p++;
+            if (p == end) {
+                *data = end;
+                *len = 0;
+                return false;
+            }
+            /* a line starts at p: one that ends in this chunk is handed on where it lies */
+            q = framer_scan(f, p, end, 0, &boundary);
+            if (q < end && boundary != FRAMER_SYNC) {
+                framed_line(out, p, (size_t)(q - p));
+                f->tag = FRAMER_OUTSIDE;
+                q += boundary == 1; /* a '$' or '!' stays for the next line */
+                *data = q;
+                *len = (size_t)(end - q);
+                return true;
+            }
+        } else {
+            q = framer_scan(f, p, end, f->length, &boundary);
+            if (q < end && boundary != FRAMER_SYNC) {
+                framer_keep(f, p, (size_t)(q - p));
+                framed_line(out, f->line, f->length);
+                f->length = 0;
+                f->tag = FRAMER_OUTSIDE;
+                q += boundary == 1;
+                *data = q;
+                *len = (size_t)(end - q);
+                return true;
+            }
+        }
+        framer_keep(f, p, (size_t)(q - p));
+        *data = q;
+        *len = (size_t)(end - q);
+#ifndef NMEA_NO_BINARY_FRAMES
+        if (q < end) { /* a first sync byte: the line so far is kept, the frame starts */
+            (*len)--;
+            (void)framer_byte(f, *(*data)++, out);
+        }
+    }
+#endif
+    return false;
+}
+
+bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out)
+{
+#ifndef NMEA_NO_BINARY_FRAMES
+    return framer_byte(f, byte, out);
+#else
+    return framer_line_byte(f, byte, out);
+#endif
+}
+
 bool nmea_framer_end(nmea_framer *f, nmea_framed *out)
 {
-    framer_resume(f);
-    f->tag = FRAMER_OUTSIDE;
-    if (f->length == 0)
-        return false;
-    out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
-    out->len = f->length;
-    f->length = 0;
-    return true;
+#ifndef NMEA_NO_BINARY_FRAMES
+    while (f->frame_len > 0 || f->replay > 0) {
+        if (nmea_framer_next(f, out))
+            return true;
+        if (f->frame_len == 1) {
+            f->frame_len = 0; /* a lone first sync byte: a byte of the line */
+            (void)framer_line_byte(f, (char)f->frame[0], out);
+        } else if (f->frame_len > 1) {
+            return frame_reject(f, NMEA_FRAME_CUT, out);
+        }
+    }
+#endif
+    return framer_end_line(f, out);
 }

@@ -326,24 +326,58 @@ typedef struct {
 /* ------------------------------------------------------------------------------------------ */
 /* Stream framing: bytes as a serial port or socket delivers them, in chunks of any size. */
 
+#ifndef NMEA_NO_BINARY_FRAMES
+/** The longest binary frame the framer holds: an RTCM 3 frame's 1,029 bytes, and the long UBX
+    frames of a multi-band receiver (a ZED-F9P's NAV-SAT or RXM-RAWX of 40 signals: 1,200 bytes). */
+#define NMEA_MAX_FRAME 2048
+
+/** What a framed item is: a line, or a binary frame of a protocol of spec/binary/. */
+typedef enum { NMEA_LINE, NMEA_UBX, NMEA_RTCM3 } nmea_protocol;
+
+/** Why what began like a binary frame is not one (NMEA_FRAME_OK: it is one). */
+typedef enum { NMEA_FRAME_OK, NMEA_FRAME_BAD_CHECKSUM, NMEA_FRAME_TOO_LONG, NMEA_FRAME_NUL_HEADER, NMEA_FRAME_CUT } nmea_frame_error;
+#endif
+
 /**
  * Cuts a byte stream into lines: CR LF, LF and a bare CR end a line, and empty lines are skipped;
  * a '$' or '!' always starts a new line, so whatever came before it (garbage, a sentence cut
- * short) is a line of its own; a line longer than NMEA_MAX_LINE is not kept, only counted. The
- * struct holds the line being assembled across chunks (no heap): zero it, or nmea_framer_init.
+ * short) is a line of its own; a line longer than NMEA_MAX_LINE is not kept, only counted.
+ * Unless -DNMEA_NO_BINARY_FRAMES, it also takes the UBX and RTCM 3 frames a receiver interleaves
+ * with its sentences: outside a TAG block, a frame's sync bytes end the line before them, and the
+ * frame is handed on whole once its checksum matches; a frame whose checksum fails, that the
+ * stream cuts short or that is longer than NMEA_MAX_FRAME is handed on as its sync bytes with
+ * the reason, and the bytes after them are read again, so that nothing intact they held is lost.
+ * The struct holds the line and the frame being assembled across chunks (no heap): zero it, or
+ * nmea_framer_init.
  */
 typedef struct {
     size_t length;             /* bytes of the current line so far (counted past NMEA_MAX_LINE) */
     char next;                 /* nmea_framer_feed: the '$' or '!' that starts the next line, or 0 */
     unsigned char tag;         /* where the line is as to TAG blocks: outside, in one, right after one */
     char line[NMEA_MAX_LINE];  /* its first NMEA_MAX_LINE bytes */
+#ifndef NMEA_NO_BINARY_FRAMES
+    unsigned char protocol;    /* nmea_protocol of the frame under way */
+    size_t frame_len;          /* its bytes so far, from its first sync byte; 0: none under way */
+    size_t frame_size;         /* its length from its header, once that is in */
+    size_t replay;             /* bytes of rejected frames to read again, at the end of `frame` */
+    unsigned char frame[NMEA_MAX_FRAME];
+#endif
 } nmea_framer;
 
-/** A framed line: `len` bytes at `ptr`, or for a line longer than NMEA_MAX_LINE its length in
-    `len` and `ptr` NULL (nmea_parse refuses it as too_long without reading it, so it can be
-    handed on as it is). `ptr` points into the chunk given to nmea_framer_push or into the
+/** A framed item: a line of `len` bytes at `ptr`, or for a line longer than NMEA_MAX_LINE its
+    length in `len` and `ptr` NULL (nmea_parse refuses it as too_long without reading it, so it
+    can be handed on as it is). `ptr` points into the chunk given to nmea_framer_push or into the
     framer, and stays valid until the framer's next call. */
-typedef nmea_text nmea_framed;
+typedef struct {
+    const char *ptr;
+    size_t len;
+#ifndef NMEA_NO_BINARY_FRAMES
+    nmea_protocol protocol;    /* NMEA_LINE, or a binary frame's: `ptr` holds it, sync to checksum */
+    nmea_frame_error error;    /* not NMEA_FRAME_OK: no frame, `ptr` holds its sync bytes */
+    unsigned long sent, computed; /* NMEA_FRAME_BAD_CHECKSUM: the checksums, as big-endian numbers */
+    size_t size;               /* NMEA_FRAME_TOO_LONG: the length its header says */
+#endif
+} nmea_framed;
 
 void nmea_framer_init(nmea_framer *f);
 
@@ -361,14 +395,22 @@ bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_frame
 /**
  * nmea_framer_push for one byte, as an interrupt handler or a DMA callback has it: true when the
  * byte completes a line, which is then in `*out` (it points into the framer and stays valid until
- * the framer's next call). The lines are those nmea_framer_push gives for the same bytes.
+ * the framer's next call). The lines are those nmea_framer_push gives for the same bytes. With
+ * binary frames, a rejected frame's bytes read again can complete more items: after a true, call
+ * nmea_framer_next until it returns false before feeding the next byte.
  *
  *     if (nmea_framer_feed(&framer, byte, &line) && line.ptr)
  *         nmea_parse(&sentence, line.ptr, line.len, &err);
  */
 bool nmea_framer_feed(nmea_framer *f, char byte, nmea_framed *out);
 
-/** At the end of the stream: the last line, when it had no line ending (true), else false. */
+#ifndef NMEA_NO_BINARY_FRAMES
+/** After nmea_framer_feed: the next item the bytes of a rejected frame complete (true), else false. */
+bool nmea_framer_next(nmea_framer *f, nmea_framed *out);
+#endif
+
+/** At the end of the stream: the last line, when it had no line ending, and what a frame cut
+    short by the end held; call it until it returns false. */
 bool nmea_framer_end(nmea_framer *f, nmea_framed *out);
 
 #ifndef NMEA_NO_TAG_BLOCKS

@@ -213,36 +213,95 @@ static void test_error_kind_names(void)
     CHECK(strcmp(nmea_error_kind_name(NMEA_ERR_BAD_JSON), "bad_json") == 0);
 }
 
-/* Adds a framed line to `out` (`used` bytes so far), followed by '|'. */
+/* Adds a framed item to `out` (`used` bytes so far), followed by '|': a line as it is, a frame
+   as its protocol, a rejected one as its protocol and reason. */
 static size_t add_line(char *out, size_t used, size_t cap, nmea_framed line)
 {
-    return used + (size_t)snprintf(out + used, cap - used, "%.*s|", (int)line.len, line.ptr ? line.ptr : "");
+#ifndef NMEA_NO_BINARY_FRAMES
+    static const char *const protocols[] = {"", "ubx", "rtcm3"};
+    static const char *const reasons[] = {"", " bad_checksum", " too_long", " nul_header", " cut"};
+    if (line.protocol != NMEA_LINE)
+        return used + (size_t)snprintf(out + used, cap - used, "%s%s|", protocols[line.protocol], reasons[line.error]);
+#endif
+    size_t len = line.ptr ? line.len : 0;
+    if (used + len >= cap)
+        return cap; /* too much: the comparison fails */
+    memcpy(out + used, line.ptr ? line.ptr : "", len);
+    out[used + len] = '|';
+    return used + len + 1;
 }
 
-/* Every line the framer gives for `stream`, pushed in chunks of `chunk` bytes (0: fed byte by
-   byte with nmea_framer_feed), joined by '|'. */
-static size_t frame_all(const char *stream, size_t chunk, char *out, size_t cap)
+/* Every item the framer gives for the `total` bytes of `stream`, pushed in chunks of `chunk` bytes
+   (0: fed byte by byte with nmea_framer_feed), joined by '|'. */
+static size_t frame_bytes(const char *stream, size_t total, size_t chunk, char *out, size_t cap)
 {
     nmea_framer framer;
     nmea_framed line;
-    size_t used = 0, at = 0, total = strlen(stream);
+    size_t used = 0, at = 0;
     nmea_framer_init(&framer);
     while (at < total) {
         const char *p = stream + at;
         size_t n = total - at < chunk ? total - at : chunk;
         if (chunk == 0) {
-            if (nmea_framer_feed(&framer, stream[at++], &line))
+            if (nmea_framer_feed(&framer, stream[at++], &line)) {
                 used = add_line(out, used, cap, line);
+#ifndef NMEA_NO_BINARY_FRAMES
+                while (nmea_framer_next(&framer, &line))
+                    used = add_line(out, used, cap, line);
+#endif
+            }
             continue;
         }
         at += n;
         while (nmea_framer_push(&framer, &p, &n, &line))
             used = add_line(out, used, cap, line);
     }
-    if (nmea_framer_end(&framer, &line))
+    while (nmea_framer_end(&framer, &line))
         used = add_line(out, used, cap, line);
     return used;
 }
+
+static size_t frame_all(const char *stream, size_t chunk, char *out, size_t cap)
+{
+    return frame_bytes(stream, strlen(stream), chunk, out, cap);
+}
+
+#ifndef NMEA_NO_BINARY_FRAMES
+/* `stream` (a string literal) framed as `expected`, in chunks of every size. */
+#define CHECK_BINARY(stream, expected) check_binary(stream, sizeof stream - 1, expected, sizeof expected - 1)
+
+static void check_binary(const char *stream, size_t total, const char *expected, size_t length)
+{
+    char out[512];
+    size_t chunk;
+    for (chunk = 0; chunk <= total; chunk++) {
+        size_t n = frame_bytes(stream, total, chunk, out, sizeof out);
+        CHECK(n == length && memcmp(out, expected, n) == 0);
+    }
+}
+
+/* UBX and RTCM 3 frames between and inside lines; damaged ones reported, and what they held read
+   again (the cases of the Rust framer's tests). */
+static void test_framer_binary(void)
+{
+    /* UBX ACK-ACK of CFG-PRT; RTCM 3 of message number 0x3EE */
+#define ACK "\xb5\x62\x05\x01\x02\x00\x06\x00\x0e\x37"
+#define RTCM "\xd3\x00\x02\x3e\xe0\x6d\x7f\x60"
+    CHECK_BINARY("$GPGGA,1\r\n" ACK "$GP" RTCM "GGA\n$A", "$GPGGA,1|ubx|$GP|rtcm3|GGA|$A|");
+    CHECK_BINARY("\xb5\x62\x05\x01\x02\x00\x06\x00\x0e\x00$A\n", "ubx bad_checksum|\x05\x01\x02\x00\x06\x00\x0e\x00|$A|");
+    CHECK_BINARY("\xb5\x62\x05\x01\x02\x00\x06$A,1\n", "ubx bad_checksum|\x05\x01\x02\x00\x06|$A,1|");
+    CHECK_BINARY("$A\n\xd3\x00\x05\x01", "$A|rtcm3 cut|\x00\x05\x01|");
+    CHECK_BINARY("\xb5\x62\x01\x02\x03\x00" ACK "$A", "ubx bad_checksum|\x01\x02\x03\x00|ubx|$A|");
+    CHECK_BINARY("\xb5\x00\xd3\xff\xb5" ACK "\xd3", "\xb5\x00\xd3\xff\xb5|ubx|\xd3|");
+    check_binary("\xb5\x62\x00\x00\x00\x00\x00\x00$A", 10, "ubx nul_header|\x00\x00\x00\x00\x00\x00|$A|", 25);
+#ifndef NMEA_NO_TAG_BLOCKS
+    CHECK_BINARY("\\s:\xb5\x62*00\\$A", "\\s:\xb5\x62*00\\$A|");
+#endif
+    CHECK_BINARY("\xb5\x62\x01\x02\x00\x08" "ab", "ubx too_long|\x01\x02\x00\x08" "ab|"); /* 2,056 bytes */
+#undef ACK
+#undef RTCM
+}
+#endif
 
 static void test_framer(void)
 {
@@ -539,6 +598,9 @@ int main(void)
     test_framing();
     test_error_kind_names();
     test_framer();
+#ifndef NMEA_NO_BINARY_FRAMES
+    test_framer_binary();
+#endif
 #ifndef NMEA_NO_TAG_BLOCKS
     test_framer_tag_blocks();
     test_tag_blocks();

@@ -286,7 +286,66 @@ static bool decode_flags(tool *t, int argc, char **argv)
     return true;
 }
 
-/* stream: the framed lines of stdin, each decoded. */
+/* A binary frame's JSON (docs/json.md, "Binary frames in stream"): a frame with its identity and
+   bytes, or the sync bytes of what was not one with the reason. */
+static void emit_frame(tool *t, const nmea_framed *item)
+{
+    static const char hex[] = "0123456789abcdef", upper[] = "0123456789ABCDEF";
+    const unsigned char *b = (const unsigned char *)item->ptr;
+    const char *protocol = item->protocol == NMEA_UBX ? "ubx" : "rtcm3";
+    char *out = room(t, 160 + 2 * NMEA_MAX_FRAME);
+    size_t n, i, width = item->protocol == NMEA_UBX ? 2 : 3;
+    if (item->error == NMEA_FRAME_OK) {
+        n = (size_t)sprintf(out, "{\"ok\":true,\"protocol\":\"%s\",", protocol);
+        if (item->protocol == NMEA_UBX)
+            n += (size_t)sprintf(out + n, "\"class\":%u,\"id\":%u,", b[2], b[3]);
+        else if (item->len >= 8) /* a message number: the payload's first 12 bits */
+            n += (size_t)sprintf(out + n, "\"message_number\":%u,", (unsigned)b[3] << 4 | b[4] >> 4);
+        else
+            n += (size_t)sprintf(out + n, "\"message_number\":null,");
+        n += (size_t)sprintf(out + n, "\"length\":%lu,\"frame\":\"", (unsigned long)item->len);
+    } else {
+        n = (size_t)sprintf(out, "{\"ok\":false,\"protocol\":\"%s\",\"error\":{\"kind\":\"%s\",\"message\":\"",
+                            protocol, item->error == NMEA_FRAME_BAD_CHECKSUM ? "bad_checksum"
+                                      : item->error == NMEA_FRAME_TOO_LONG   ? "too_long"
+                                      : item->error == NMEA_FRAME_NUL_HEADER ? "nul_header"
+                                                                             : "cut");
+        if (item->error == NMEA_FRAME_BAD_CHECKSUM) {
+            n += (size_t)sprintf(out + n, "checksum");
+            for (i = width; i-- > 0;)
+                n += (size_t)sprintf(out + n, " %c%c", upper[item->sent >> (8 * i + 4) & 15], upper[item->sent >> 8 * i & 15]);
+            n += (size_t)sprintf(out + n, ", computed");
+            for (i = width; i-- > 0;)
+                n += (size_t)sprintf(out + n, " %c%c", upper[item->computed >> (8 * i + 4) & 15],
+                                     upper[item->computed >> 8 * i & 15]);
+        } else if (item->error == NMEA_FRAME_TOO_LONG) {
+            n += (size_t)sprintf(out + n, "frame is %lu bytes, the limit is %d", (unsigned long)item->size, NMEA_MAX_FRAME);
+        } else if (item->error == NMEA_FRAME_NUL_HEADER) {
+            n += (size_t)sprintf(out + n, "the header after the sync is NUL bytes");
+        } else {
+            n += (size_t)sprintf(out + n, "the stream ends inside the frame");
+        }
+        n += (size_t)sprintf(out + n, "\"},\"bytes\":\"");
+    }
+    for (i = 0; i < item->len; i++) {
+        out[n++] = hex[b[i] >> 4];
+        out[n++] = hex[b[i] & 15];
+    }
+    out[n++] = '"';
+    out[n++] = '}';
+    emit(t, n);
+}
+
+/* One framed item of stdin, as JSON. */
+static void emit_item(tool *t, const nmea_framed *item)
+{
+    if (item->protocol != NMEA_LINE)
+        emit_frame(t, item);
+    else
+        decode_line(t, item->ptr, item->len);
+}
+
+/* stream: the framed items of stdin, each line decoded, each binary frame told. */
 static int stream(tool *t)
 {
     static nmea_framer framer;
@@ -301,10 +360,10 @@ static int stream(tool *t)
     while ((got = fread(input, 1, sizeof input, stdin)) > 0) {
         const char *p = input;
         while (nmea_framer_push(&framer, &p, &got, &line))
-            decode_line(t, line.ptr, line.len);
+            emit_item(t, &line);
     }
-    if (nmea_framer_end(&framer, &line))
-        decode_line(t, line.ptr, line.len);
+    while (nmea_framer_end(&framer, &line))
+        emit_item(t, &line);
 #ifdef NMEA_WITH_AIS
     nmea_ais_assembler_finish(&ais_assembler, assembled, NULL);
     emit_given_up(t);

@@ -11,18 +11,29 @@ going whatever arrives:
 - a line longer than MAX_LINE is not kept: its bytes are only counted, and it is reported as
   too_long with its length;
 - a last line without an ending still counts.
+With `binary=True` the framer also takes the binary frames a receiver interleaves with its
+sentences (spec/binary/*/protocol.yaml): outside a TAG block, a frame's sync bytes end the line
+before them, and the frame is handed on whole (a BinaryFrame) once its checksum matches. A frame
+whose checksum fails, that the stream cuts short or that is longer than MAX_FRAME is a BadFrame of
+its sync bytes, and the bytes after them are read again, so that no sentence or frame it seemed to
+hold is lost. Lines, frames and bad frames concatenate to the stream less the line endings.
 Every line is then decoded like the `decode` verb does it, so NUL and other control bytes are
 reported as not_a_sentence, and a text command is recognised as such.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
+from functools import cache
 from typing import Any, BinaryIO
 
 from .api import decode_json, parse
 from .runtime import MAX_LINE, NmeaError
 
+# The longest binary frame the framer holds: an RTCM 3 frame's 1,029 bytes, and the long UBX
+# frames of a multi-band receiver (a ZED-F9P's NAV-SAT or RXM-RAWX of 40 signals: 1,200 bytes).
+MAX_FRAME = 2048
 _STARTS = frozenset(b"$!")
 _ENDS = frozenset(b"\r\n")
 _TAG = ord("\\")
@@ -30,40 +41,211 @@ _TAG = ord("\\")
 _OUTSIDE, _IN_TAG, _AFTER_TAG = 0, 1, 2
 
 
-class Framer:
-    """Cuts bytes fed in any chunks into lines (bytes) and overlong lines (their length, an int)."""
+def crc24q(data: bytes) -> bytes:
+    """The three checksum bytes of an RTCM 3 frame: CRC-24Q (polynomial 0x1864CFB, initial value
+    0, no reflection), big endian."""
+    crc = 0
+    for byte in data:
+        crc ^= byte << 16
+        for _ in range(8):
+            crc = (crc << 1) ^ 0x1864CFB if crc & 0x800000 else crc << 1
+    return (crc & 0xFFFFFF).to_bytes(3, "big")
 
-    def __init__(self, max_line: int = MAX_LINE) -> None:
+
+@dataclass(frozen=True, slots=True)
+class _Framing:
+    """How a binary protocol's frame is told from noise (spec/binary/<protocol>/protocol.yaml)."""
+
+    protocol: str
+    sync: bytes
+    follows_sync: Callable[[int], bool]  # whether the byte after the first sync byte may go on a frame
+    header: int  # bytes from the sync to the end of the length field
+    size: Callable[[bytearray], int]  # the frame's bytes, sync to checksum, from its header
+    trailer: int  # checksum bytes
+    checksum: Callable[[bytes], bytes]  # what the frame, less its trailer, must end with
+
+
+@cache
+def _framings() -> dict[int, _Framing]:
+    """The protocols by their first sync byte (ubx, imported when a binary stream is read)."""
+    from . import ubx
+
+    return {
+        0xB5: _Framing("ubx", ubx.SYNC, ubx.SYNC[1].__eq__, ubx.HEADER_SIZE, ubx.frame_size, ubx.CHECKSUM_SIZE,
+                       lambda frame: ubx.fletcher8(frame[len(ubx.SYNC):])),
+        0xD3: _Framing("rtcm3", b"\xd3", lambda byte: byte & 0xFC == 0,  # 6 reserved bits, zero
+                       3, lambda header: 3 + ((header[1] & 0x03) << 8 | header[2]) + 3, 3, crc24q),
+    }
+
+
+@dataclass(frozen=True, slots=True)
+class BinaryFrame:
+    """A binary frame whose checksum matched: its protocol ("ubx", "rtcm3") and its bytes, sync
+    bytes to checksum."""
+
+    protocol: str
+    data: bytes
+
+    @property
+    def identity(self) -> dict[str, Any]:
+        """What the frame is: a UBX frame's class, id and message name (null where the spec does not
+        describe it), an RTCM 3 frame's message number (null when its payload is shorter)."""
+        if self.protocol == "ubx":
+            from . import ubx
+            from .ubx_messages import BY_ID  # the generated layouts, imported when a frame needs them
+
+            layouts = BY_ID.get((self.data[2], self.data[3]))
+            name = ubx.main_layout(layouts).ADDRESS if layouts else None
+            return {"class": self.data[2], "id": self.data[3], "name": name}
+        number = self.data[3] << 4 | self.data[4] >> 4 if len(self.data) >= 8 else None
+        return {"message_number": number}
+
+    def to_json(self) -> str:
+        """The `stream` verb's object of the frame (json.md, "Binary frames in stream")."""
+        data = self.data
+        if self.protocol == "ubx":
+            identity = f'"class":{data[2]},"id":{data[3]}'
+        else:
+            identity = f'"message_number":{data[3] << 4 | data[4] >> 4 if len(data) >= 8 else "null"}'
+        return f'{{"ok":true,"protocol":"{self.protocol}",{identity},"length":{len(data)},"frame":"{data.hex()}"}}'
+
+    def message(self) -> Any:
+        """A UBX frame's decoded message (nmeaspec.ubx_messages: a ubx.Message, or ubx.Unknown)."""
+        if self.protocol != "ubx":
+            raise ValueError(f"{self.protocol} messages are not decoded")
+        from .ubx_messages import decode
+
+        return decode(self.data)
+
+
+@dataclass(frozen=True, slots=True)
+class BadFrame:
+    """What looked like the start of a binary frame and is not one: its protocol, why (`bad_checksum`,
+    `too_long`, `nul_header`, `cut`: the stream ended inside it), a message, and its sync bytes; the
+    framer reads the bytes after them again."""
+
+    protocol: str
+    reason: str
+    message: str
+    data: bytes
+
+    def to_json(self) -> str:
+        """The `stream` verb's object of it (json.md, "Binary frames in stream")."""
+        return (f'{{"ok":false,"protocol":"{self.protocol}","error":{{"kind":"{self.reason}",'
+                f'"message":"{self.message}"}},"bytes":"{self.data.hex()}"}}')
+
+
+Item = bytes | int | BinaryFrame | BadFrame
+
+
+class Framer:
+    """Cuts bytes fed in any chunks into lines (bytes) and overlong lines (their length, an int);
+    with `binary`, also binary frames (BinaryFrame) and what failed to be one (BadFrame)."""
+
+    def __init__(self, max_line: int = MAX_LINE, binary: bool = False, max_frame: int = MAX_FRAME) -> None:
         self.max_line = max_line
+        self.max_frame = max_frame
         self._line = bytearray()
         self._length = 0
         self._tag = _OUTSIDE
+        self._syncs = _framings() if binary else {}
+        self._frame = bytearray()  # a binary frame under way, from its first sync byte
+        self._framing: _Framing  # the protocol of the frame under way
+        self._size = 0  # the frame's bytes, once its header is in
 
-    def feed(self, data: bytes) -> list[bytes | int]:
-        out: list[bytes | int] = []
+    def feed(self, data: bytes) -> list[Item]:
+        out: list[Item] = []
         for byte in data:
-            if byte in _ENDS:
-                self._finish(out)
+            if not self._frame and byte not in self._syncs:  # the common byte, without a frame's checks
+                self._line_byte(byte, out)
                 continue
-            if byte == _TAG and (self._length == 0 or self._tag != _OUTSIDE):
-                # opens a block (at the start, or right after one), or closes the open one
-                self._tag = _AFTER_TAG if self._tag == _IN_TAG else _IN_TAG
-            elif byte in _STARTS and self._tag == _OUTSIDE:
-                self._finish(out)
-            elif self._tag == _AFTER_TAG:
-                self._tag = _OUTSIDE  # the sentence after the blocks, or whatever else follows
-            self._length += 1
-            if self._length <= self.max_line:
-                self._line.append(byte)
+            again = self._push(byte, out)
+            while again:  # bytes after a rejected frame's sync, read once more (no recursion)
+                replay, again = again, b""
+                for i, byte in enumerate(replay):
+                    if more := self._push(byte, out):
+                        again = more + replay[i + 1:]
+                        break
         return out
 
-    def end(self) -> list[bytes | int]:
-        """The last line, when the stream ended without a line ending."""
-        out: list[bytes | int] = []
+    def end(self) -> list[Item]:
+        """The last line, when the stream ended without a line ending (or the bytes of a frame cut
+        short by the end, read again)."""
+        out: list[Item] = []
+        while self._frame:
+            if len(self._frame) == 1:  # a lone first sync byte
+                self._line_byte(self._frame.pop(), out)
+            else:
+                out.append(self._bad("cut", "the stream ends inside the frame"))
+                out += self.feed(self._rest())
         self._finish(out)
         return out
 
-    def _finish(self, out: list[bytes | int]) -> None:
+    def _push(self, byte: int, out: list[Item]) -> bytes:
+        """Takes one byte; what must be read again (bytes of a frame found wanting)."""
+        if self._frame:
+            return self._frame_byte(byte, out)
+        if byte in self._syncs and self._tag == _OUTSIDE:
+            self._frame.append(byte)
+            self._framing = self._syncs[byte]
+            return b""
+        self._line_byte(byte, out)
+        return b""
+
+    def _frame_byte(self, byte: int, out: list[Item]) -> bytes:
+        frame, framing = self._frame, self._framing
+        if len(frame) == 1:
+            if not framing.follows_sync(byte):  # no frame: its first byte was one of the line
+                self._line_byte(frame.pop(), out)
+                return bytes((byte,))
+            self._finish(out)  # the line before the frame
+        frame.append(byte)
+        if len(frame) == framing.header:
+            self._size = framing.size(frame)
+            if not any(frame[len(framing.sync):]):  # what a break's NUL bytes after a sync make
+                out.append(self._bad("nul_header", "the header after the sync is NUL bytes"))
+                return self._rest()
+            if self._size > self.max_frame:
+                out.append(self._bad("too_long", f"frame is {self._size} bytes, the limit is {self.max_frame}"))
+                return self._rest()
+        elif len(frame) == self._size:
+            body, sent = bytes(frame[:-framing.trailer]), bytes(frame[-framing.trailer:])
+            computed = framing.checksum(body)
+            if sent != computed:
+                out.append(self._bad("bad_checksum", f"checksum {sent.hex(' ').upper()}, computed "
+                                     f"{computed.hex(' ').upper()}"))
+                return self._rest()
+            out.append(BinaryFrame(framing.protocol, bytes(frame)))
+            frame.clear()
+            self._size = 0
+        return b""
+
+    def _bad(self, reason: str, message: str) -> BadFrame:
+        return BadFrame(self._framing.protocol, reason, message, bytes(self._frame[:len(self._framing.sync)]))
+
+    def _rest(self) -> bytes:
+        """Drops the frame under way; the bytes after its sync, to be read again."""
+        rest = bytes(self._frame[len(self._framing.sync):])
+        self._frame.clear()
+        self._size = 0
+        return rest
+
+    def _line_byte(self, byte: int, out: list[Item]) -> None:
+        if byte in _ENDS:
+            self._finish(out)
+            return
+        if byte == _TAG and (self._length == 0 or self._tag != _OUTSIDE):
+            # opens a block (at the start, or right after one), or closes the open one
+            self._tag = _AFTER_TAG if self._tag == _IN_TAG else _IN_TAG
+        elif byte in _STARTS and self._tag == _OUTSIDE:
+            self._finish(out)
+        elif self._tag == _AFTER_TAG:
+            self._tag = _OUTSIDE  # the sentence after the blocks, or whatever else follows
+        self._length += 1
+        if self._length <= self.max_line:
+            self._line.append(byte)
+
+    def _finish(self, out: list[Item]) -> None:
         if self._length:
             out.append(bytes(self._line) if self._length <= self.max_line else self._length)
         self._line.clear()
@@ -84,11 +266,11 @@ def _chunks(source: BinaryIO | Any | Iterable[bytes], size: int) -> Iterator[byt
 
 
 def lines(
-    source: BinaryIO | Any | Iterable[bytes], chunk_size: int = 4096
-) -> Iterator[bytes | int]:
+    source: BinaryIO | Any | Iterable[bytes], chunk_size: int = 4096, binary: bool = False
+) -> Iterator[Item]:
     """The framed lines of a file, socket or iterable of byte chunks (an int for an overlong
-    line)."""
-    framer = Framer()
+    line); with `binary`, also its binary frames (see Framer)."""
+    framer = Framer(binary=binary)
     for chunk in _chunks(source, chunk_size):
         yield from framer.feed(chunk)
     yield from framer.end()
@@ -114,10 +296,12 @@ def sentences(source: BinaryIO | Any | Iterable[bytes], **options: bool) -> Iter
 def json_lines(
     source: BinaryIO | Any | Iterable[bytes], values: bool = False, **options: bool
 ) -> Iterator[str]:
-    """The `stream` verb: the JSON of `decode` for every framed item."""
-    for item in lines(source):
-        yield (
-            too_long(item).to_json()
-            if isinstance(item, int)
-            else decode_json(item, values, **options)
-        )
+    """The `stream` verb without AIS messages: the JSON of `decode` for every framed line, and
+    of every binary frame."""
+    for item in lines(source, binary=True):
+        if isinstance(item, int):
+            yield too_long(item).to_json()
+        elif isinstance(item, bytes):
+            yield decode_json(item, values, **options)
+        else:
+            yield item.to_json()

@@ -287,6 +287,50 @@ def test_stream_verb() -> None:
     agreed(["stream", "--require-checksum"], data)
 
 
+BINARY_LOGS = sorted((ROOT / "tests" / "data" / "ubx").glob("*.log")) + sorted((ROOT / "tests" / "data" / "rtcm3").glob("*.log"))
+ACK = bytes.fromhex("b562 0501 0200 0600 0e37")  # UBX ACK-ACK of CFG-PRT
+RTCM = bytes.fromhex("d3 0002 3ee0 6d7f60")  # RTCM 3, message number 0x3EE
+GGA = b"$GPGGA,1*00\r\n"
+# binary bytes between sentences; a '$' and a line ending in a payload; a bad checksum; frames cut
+# by a sentence and by the end; sync bytes that start no frame; a frame in a bad one; one longer
+# than the readers hold; none in a TAG block
+BINARY_CASES = (GGA + ACK + GGA + RTCM + b"$GPGGA" + ACK + b",1*00\r\n"
+                + bytes.fromhex("b562 0102 0500") + b"$GP\r\n" + bytes.fromhex("4f88") + GGA
+                + ACK[:-1] + b"\x00" + GGA + ACK[:7] + GGA + RTCM[:4] + GGA
+                + b"\xb5\x00\xd3\xff" + GGA + b"\xb5\x62\x01\x02\x03\x00" + ACK + GGA
+                + b"\xb5\x62" + bytes(6) + GGA + b"\xb5\x62\x01\x02\x00\x08" + b"abc\n" * 600 + b"\\s:\xb5\x62*00\\" + GGA + ACK[:7])
+
+
+def test_binary_frames_in_stream() -> None:
+    """stream splits gpsd's logs that interleave NMEA with UBX and RTCM 3, and the binary cases,
+    byte for byte alike in the three tools: every frame's checksum right, the UBX frames those
+    ubx.split_frames finds, and the items concatenating to the input less its line endings."""
+    from tests.ubx.pyubx2_oracle import ubx
+    from nmeaspec.stream import crc24q
+
+    for data in [path.read_bytes() for path in BINARY_LOGS] + [BINARY_CASES]:
+        objects = [json.loads(line) for line in agreed(["stream"], data).splitlines()]
+        frames = [bytes.fromhex(o["frame"]) for o in objects if "frame" in o]
+        assert [f for f, o in zip(frames, [o for o in objects if "frame" in o]) if o["protocol"] == "ubx"] == [
+            frame.encode() for _, frame in ubx.split_frames(data) if frame.encode()[2:6] != bytes(4)]  # not nul_header
+        for frame, o in zip(frames, [o for o in objects if "frame" in o]):
+            assert o["length"] == len(frame)
+            if o["protocol"] == "rtcm3":
+                assert crc24q(frame[:-3]) == frame[-3:] and o["message_number"] == (frame[3] << 4 | frame[4] >> 4)
+            else:
+                assert ubx.fletcher8(frame[2:-2]) == frame[-2:] and (o["class"], o["id"]) == (frame[2], frame[3])
+        # the frames and rejected sync bytes lie in the input in their order (tests/ubx holds the
+        # lines between them byte-exact)
+        rest = data
+        for o in objects:
+            if "frame" in o or "bytes" in o:
+                piece = bytes.fromhex(o.get("frame") or o["bytes"])
+                rest = rest[rest.index(piece) + len(piece):]
+    kinds = {o["error"]["kind"] for o in objects if "bytes" in o}
+    assert kinds == {"bad_checksum", "too_long", "nul_header", "cut"}, kinds
+    agreed(["stream", "--values"], BINARY_CASES)
+
+
 def test_lenient_and_required_checksum() -> None:
     data = EDGE_CASES.read_bytes()
     lenient = agreed(["decode", "--lenient"], data)

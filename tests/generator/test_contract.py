@@ -122,6 +122,29 @@ def test_problem_kinds() -> None:
         assert f'"kind":"{kind}"' in json_md
 
 
+def test_binary_frames() -> None:
+    """The stream readers hold the same longest frame and name the same protocols and reasons, as
+    json.md tells (its "Binary frames in stream")."""
+    frames, kinds = CONTRACT["frames"], CONTRACT["frame_kinds"]
+    python = (RUNTIME / "python" / "stream.py").read_text(encoding="utf-8")
+    rust = (RUNTIME / "rust" / "src" / "stream.rs").read_text(encoding="utf-8")
+    assert int(one(r"#define NMEA_MAX_FRAME (\d+)", C_HEADER)) == frames["max_frame"]
+    assert int(one(r"pub const MAX_FRAME: usize = (\d+);", rust)) == frames["max_frame"]
+    assert int(one(r"\nMAX_FRAME = (\d+)", python)) == frames["max_frame"]
+    c_enum = one(r"typedef enum \{([^}]*)\} nmea_frame_error;", C_HEADER)
+    assert [k.lower() for k in re.findall(r"NMEA_FRAME_(\w+)", c_enum)] == ["ok"] + kinds
+    assert [p.lower() for p in re.findall(r"NMEA_(\w+)", one(r"typedef enum \{([^}]*)\} nmea_protocol;", C_HEADER))] \
+        == ["line"] + frames["protocols"]
+    json_md = (RUNTIME / "json.md").read_text(encoding="utf-8")
+    for kind in kinds:
+        assert f'"{kind}"' in rust and f'"{kind}"' in python, kind
+        assert f"| `{kind}` |" in json_md, kind
+    for protocol in frames["protocols"]:
+        assert f'"{protocol}"' in rust and f'"{protocol}"' in python, protocol
+        assert f'"protocol":"{protocol}"' in json_md, protocol
+    assert f"limit is {frames['max_frame']}" in json_md
+
+
 def fragments(message: str) -> list[str]:
     """The literal runs of a message pattern, quotes around a {quoted} part left out."""
     runs = re.split(r"\{\w+\}", message)

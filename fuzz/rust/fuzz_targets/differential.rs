@@ -13,7 +13,7 @@
 use nmeaspec::ais_messages::Message;
 use nmeaspec::assembly::{Assembled, Assembler};
 use nmeaspec::json::{Value, SKIP_CHECK_DEPTH};
-use nmeaspec::stream::{Framer, Item};
+use nmeaspec::stream::{FrameError, Framer, Item};
 use nmeaspec::{Options, TagBlocks};
 use std::fmt::Write;
 
@@ -93,14 +93,27 @@ fn frame(data: &[u8], chunk: usize) {
             rust.extend_from_slice(line);
         }
         Item::TooLong(len) => rust.extend_from_slice(format!("T{len};").as_bytes()),
+        // c_shim.c's numbers: nmea_protocol and nmea_frame_error
+        Item::Frame(protocol, frame) => {
+            rust.extend_from_slice(format!("F{}:{}:", protocol as u8 + 1, frame.len()).as_bytes());
+            rust.extend_from_slice(frame);
+        }
+        Item::BadFrame(protocol, error, sync) => {
+            let error = match error {
+                FrameError::BadChecksum { .. } => 1,
+                FrameError::TooLong(_) => 2,
+                FrameError::NulHeader => 3,
+                FrameError::Cut => 4,
+            };
+            rust.extend_from_slice(format!("B{}.{error}:{}:", protocol as u8 + 1, sync.len()).as_bytes());
+            rust.extend_from_slice(sync);
+        }
     };
-    let mut framer = Framer::new();
+    let mut framer = Framer::with_binary_frames();
     for piece in data.chunks(chunk.max(1)) {
         framer.feed(piece, &mut put);
     }
-    if let Some(item) = framer.finish() {
-        put(item);
-    }
+    framer.finish(&mut put);
     assert!(c == rust, "framing in chunks of {chunk}:\n   C: {:?}\nRust: {:?}", String::from_utf8_lossy(&c), String::from_utf8_lossy(&rust));
 }
 

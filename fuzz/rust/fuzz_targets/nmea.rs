@@ -9,9 +9,9 @@
 //!   (`parse_general`, `parse_with_general`), with every option;
 //! - `serialize_into` must write those same bytes, and give `None` for a buffer a byte short;
 //! - JSON that encodes to a sentence must parse again (leniently);
-//! - the stream framer must cut the input into the same items as a byte-at-a-time model of the
-//!   Python reference's Framer, whether it gets the input whole or in chunks of sizes derived
-//!   from the input;
+//! - the stream framer (with binary frames) must cut the input into the same items as a
+//!   byte-at-a-time model of the Python reference's Framer, whether it gets the input whole or in
+//!   chunks of sizes derived from the input;
 //! - AIS: a payload that decodes (a VDM/VDO line's of one sentence, one the assembler joins, or the
 //!   input itself after a first byte that gives the fill bits) must encode back to its characters
 //!   and fill bits when it fits a message's bits; the assembler fed the input's lines must account
@@ -20,7 +20,7 @@
 #![cfg_attr(feature = "libfuzzer", no_main)]
 use nmeaspec::ais_messages::Message;
 use nmeaspec::assembly::Assembler;
-use nmeaspec::stream::{Framer, Item};
+use nmeaspec::stream::{crc24q, Framer, Item, MAX_FRAME};
 use nmeaspec::{ErrorKind, Options, ProblemKind};
 
 const LENIENT: Options = Options { lenient: true, require_checksum: false, strict: false };
@@ -97,11 +97,14 @@ fn as_json(data: &[u8]) {
     assert!(nmeaspec::parse_with(out.as_bytes(), LENIENT).is_ok(), "an encoded sentence does not parse: {out:?}");
 }
 
-/// What came out of framing: each line's bytes, or the length of an overlong one.
+/// What came out of framing: each line's bytes, or the length of an overlong one; a binary
+/// frame's protocol and bytes, or a rejected one's protocol, reason and sync bytes.
 #[derive(Debug, PartialEq, Eq)]
 enum Owned {
     Line(Vec<u8>),
     TooLong(usize),
+    Frame(&'static str, Vec<u8>),
+    Bad(&'static str, &'static str, Vec<u8>),
 }
 
 impl From<Item<'_>> for Owned {
@@ -109,8 +112,52 @@ impl From<Item<'_>> for Owned {
         match item {
             Item::Line(line) => Owned::Line(line.to_vec()),
             Item::TooLong(length) => Owned::TooLong(length),
+            Item::Frame(protocol, frame) => Owned::Frame(protocol.name(), frame.to_vec()),
+            Item::BadFrame(protocol, error, sync) => Owned::Bad(protocol.name(), error.kind(), sync.to_vec()),
         }
     }
+}
+
+/// What the framer makes of a first sync byte at the start of `data`: the item, and how many bytes
+/// it takes (reading goes on after them); None when it starts no frame. The frame is read ahead
+/// in the whole input; a rejected one gives up its sync bytes only.
+fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
+    let ubx = data[0] == 0xB5;
+    let (name, sync, header, trailer) = if ubx { ("ubx", 2, 6, 2) } else { ("rtcm3", 1, 3, 3) };
+    let second = *data.get(1)?;
+    if (ubx && second != 0x62) || (!ubx && second & 0xFC != 0) {
+        return None;
+    }
+    let bad = |kind| Some((Owned::Bad(name, kind, data[..sync].to_vec()), sync));
+    if data.len() < header {
+        return bad("cut");
+    }
+    if data[sync..header].iter().all(|&b| b == 0) {
+        return bad("nul_header");
+    }
+    let payload = if ubx { usize::from(data[4]) | usize::from(data[5]) << 8 } else { usize::from(data[1] & 3) << 8 | usize::from(data[2]) };
+    let size = header + payload + trailer;
+    if size > MAX_FRAME {
+        return bad("too_long");
+    }
+    if size > data.len() {
+        return bad("cut");
+    }
+    let body = &data[..size - trailer];
+    let computed = if ubx {
+        let (mut a, mut b) = (0u8, 0u8);
+        for &byte in &body[2..] {
+            a = a.wrapping_add(byte);
+            b = b.wrapping_add(a);
+        }
+        vec![a, b]
+    } else {
+        crc24q(body).to_be_bytes()[1..].to_vec()
+    };
+    if computed != data[size - trailer..size] {
+        return bad("bad_checksum");
+    }
+    Some((Owned::Frame(name, data[..size].to_vec()), size))
 }
 
 /// The Python reference's Framer, one byte at a time.
@@ -124,23 +171,34 @@ fn model(data: &[u8]) -> Vec<Owned> {
         After,
     }
     let (mut out, mut line, mut length, mut tag) = (Vec::new(), Vec::new(), 0usize, Tag::Outside);
-    let mut finish = |line: &mut Vec<u8>, length: &mut usize| {
+    let finish = |out: &mut Vec<Owned>, line: &mut Vec<u8>, length: &mut usize| {
         if *length > 0 {
             out.push(if *length <= max { Owned::Line(line.clone()) } else { Owned::TooLong(*length) });
         }
         line.clear();
         *length = 0;
     };
-    for &b in data {
+    let mut at = 0;
+    while at < data.len() {
+        let b = data[at];
+        at += 1;
+        if (b == 0xB5 || b == 0xD3) && tag == Tag::Outside {
+            if let Some((item, taken)) = model_frame(&data[at - 1..]) {
+                finish(&mut out, &mut line, &mut length);
+                out.push(item);
+                at += taken - 1;
+                continue;
+            }
+        }
         if b == b'\r' || b == b'\n' {
-            finish(&mut line, &mut length);
+            finish(&mut out, &mut line, &mut length);
             tag = Tag::Outside;
             continue;
         }
         if b == b'\\' && (length == 0 || tag != Tag::Outside) {
             tag = if tag == Tag::In { Tag::After } else { Tag::In }; // opens a block, or closes it
         } else if (b == b'$' || b == b'!') && tag == Tag::Outside {
-            finish(&mut line, &mut length);
+            finish(&mut out, &mut line, &mut length);
         } else if tag == Tag::After {
             tag = Tag::Outside;
         }
@@ -149,17 +207,17 @@ fn model(data: &[u8]) -> Vec<Owned> {
             line.push(b);
         }
     }
-    finish(&mut line, &mut length);
+    finish(&mut out, &mut line, &mut length);
     out
 }
 
 fn framed<'c>(chunks: impl Iterator<Item = &'c [u8]>) -> Vec<Owned> {
-    let mut framer = Framer::new();
+    let mut framer = Framer::with_binary_frames();
     let mut out = Vec::new();
     for chunk in chunks {
         framer.feed(chunk, |item| out.push(item.into()));
     }
-    out.extend(framer.finish().map(Owned::from));
+    framer.finish(|item| out.push(item.into()));
     out
 }
 

@@ -17,7 +17,7 @@ from .. import __version__
 from ..api import Tagged, encode_object, parse, read_json_line, to_json
 from ..fixes import fixes
 from ..runtime import NmeaError
-from ..stream import lines as framed, too_long
+from ..stream import BadFrame, BinaryFrame, Item, lines as framed, too_long
 
 if TYPE_CHECKING:
     from ..assembly import Assembled
@@ -66,14 +66,17 @@ def decoded(items: Iterable[str], values: bool, options: dict[str, bool]) -> Ite
         yield text
 
 
-def streamed(items: Iterable[bytes | int], values: bool, options: dict[str, bool]) -> Iterator[str]:
+def streamed(items: Iterable[Item], values: bool, options: dict[str, bool]) -> Iterator[str]:
     """stream: each framed line's JSON, with the AIS message it completes (of one sentence or
     joined across several); after it, an incomplete_message error for each message it gives up,
-    and at the end for those left under way."""
+    and at the end for those left under way; each binary frame's JSON."""
     from ..assembly import MessageAssembler
 
     assembler = MessageAssembler()
     for item in items:
+        if isinstance(item, (BinaryFrame, BadFrame)):
+            yield item.to_json()
+            continue
         try:
             if isinstance(item, int):
                 raise too_long(item)
@@ -109,7 +112,7 @@ def main(argv: list[str] | None = None) -> int:
         if verb == "decode":
             out = decoded(lines(sys.stdin.buffer.read()), values, options)
         else:
-            out = streamed(framed(sys.stdin.buffer), values, options)
+            out = streamed(framed(sys.stdin.buffer, binary=True), values, options)
         write = sys.stdout.buffer.write
         for text in out:
             write(text.encode("latin-1") + b"\n")

@@ -12,9 +12,147 @@
 //!   as `too_long` with its length;
 //! - a last line without an ending still counts ([`Framer::finish`]).
 //!
-//! The framer holds one line in a fixed array: no allocation.
+//! [`Framer::with_binary_frames`] also takes the binary frames a receiver interleaves with its
+//! sentences (spec/binary/*/protocol.yaml: UBX, RTCM 3): outside a TAG block, a frame's sync bytes
+//! end the line before them, and the frame is handed on whole once its checksum matches. A frame
+//! whose checksum fails, that the stream cuts short or that is longer than [`MAX_FRAME`] is a
+//! [`Item::BadFrame`] of its sync bytes, and the bytes after them are read again, so that no
+//! sentence or frame it seemed to hold is lost. Lines, frames and bad frames concatenate to the
+//! stream less the line endings.
+//!
+//! The framer holds one line and one frame in fixed arrays: no allocation.
 
 use super::frame::MAX_LINE;
+
+/// The longest binary frame the framer holds: an RTCM 3 frame's 1,029 bytes, and the long UBX
+/// frames of a multi-band receiver (a ZED-F9P's NAV-SAT or RXM-RAWX of 40 signals: 1,200 bytes).
+pub const MAX_FRAME: usize = 2048;
+
+/// A binary protocol the framer tells from NMEA.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Protocol {
+    /// u-blox UBX: sync `B5 62`, class, id, a 16-bit little-endian length, Fletcher-8.
+    Ubx,
+    /// RTCM 3: preamble `D3`, 6 reserved bits and a 10-bit length, CRC-24Q.
+    Rtcm3,
+}
+
+impl Protocol {
+    /// Its name in the tools' JSON: `ubx`, `rtcm3`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Protocol::Ubx => "ubx",
+            Protocol::Rtcm3 => "rtcm3",
+        }
+    }
+
+    /// The protocol whose frames start with `byte`.
+    const fn starting_with(byte: u8) -> Option<Protocol> {
+        match byte {
+            0xB5 => Some(Protocol::Ubx),
+            0xD3 => Some(Protocol::Rtcm3),
+            _ => None,
+        }
+    }
+
+    /// Its sync bytes.
+    pub const fn sync_len(self) -> usize {
+        match self {
+            Protocol::Ubx => 2,
+            Protocol::Rtcm3 => 1,
+        }
+    }
+
+    /// Whether the byte after the first sync byte may go on a frame.
+    const fn follows_sync(self, byte: u8) -> bool {
+        match self {
+            Protocol::Ubx => byte == 0x62,
+            Protocol::Rtcm3 => byte & 0xFC == 0, // 6 reserved bits, zero
+        }
+    }
+
+    /// Bytes from the sync to the end of the length field.
+    const fn header_len(self) -> usize {
+        match self {
+            Protocol::Ubx => 6,
+            Protocol::Rtcm3 => 3,
+        }
+    }
+
+    /// Checksum bytes.
+    pub const fn trailer_len(self) -> usize {
+        match self {
+            Protocol::Ubx => 2,
+            Protocol::Rtcm3 => 3,
+        }
+    }
+
+    /// The frame's bytes, sync to checksum, from its header.
+    fn frame_len(self, header: &[u8]) -> usize {
+        let payload = match self {
+            Protocol::Ubx => usize::from(u16::from_le_bytes([header[4], header[5]])),
+            Protocol::Rtcm3 => usize::from(header[1] & 0x03) << 8 | usize::from(header[2]),
+        };
+        self.header_len() + payload + self.trailer_len()
+    }
+
+    /// The checksum a frame (less its trailer) must end with, as a big-endian number.
+    fn checksum(self, frame: &[u8]) -> u32 {
+        match self {
+            Protocol::Ubx => {
+                let (a, b) = frame[2..].iter().fold((0u8, 0u8), |(a, b), &byte| {
+                    let a = a.wrapping_add(byte);
+                    (a, b.wrapping_add(a))
+                });
+                u32::from(a) << 8 | u32::from(b)
+            }
+            Protocol::Rtcm3 => crc24q(frame),
+        }
+    }
+}
+
+/// CRC-24Q of RTCM 3 (polynomial 0x1864CFB, initial value 0, no reflection).
+pub fn crc24q(data: &[u8]) -> u32 {
+    let mut crc = 0u32;
+    for &byte in data {
+        crc ^= u32::from(byte) << 16;
+        for _ in 0..8 {
+            crc = if crc & 0x80_0000 != 0 { (crc << 1) ^ 0x186_4CFB } else { crc << 1 };
+        }
+    }
+    crc & 0xFF_FFFF
+}
+
+/// Why what began like a binary frame is not one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameError {
+    /// The checksum sent differs from the one computed.
+    BadChecksum {
+        /// The frame's checksum bytes, as a big-endian number.
+        sent: u32,
+        /// What they should be.
+        computed: u32,
+    },
+    /// Its length field says more bytes than [`MAX_FRAME`]: the frame's length.
+    TooLong(usize),
+    /// Its header after the sync is NUL bytes (a UBX frame of class 0, id 0 and no payload would
+    /// have a checksum of NULs too): what a break after a sync makes.
+    NulHeader,
+    /// The stream ends inside it.
+    Cut,
+}
+
+impl FrameError {
+    /// Its kind in the tools' JSON.
+    pub const fn kind(self) -> &'static str {
+        match self {
+            FrameError::BadChecksum { .. } => "bad_checksum",
+            FrameError::TooLong(_) => "too_long",
+            FrameError::NulHeader => "nul_header",
+            FrameError::Cut => "cut",
+        }
+    }
+}
 
 /// One framed item of the stream.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,20 +161,32 @@ pub enum Item<'a> {
     Line(&'a [u8]),
     /// A line over [`MAX_LINE`] bytes: its length (the bytes were not kept).
     TooLong(usize),
+    /// A binary frame whose checksum matched: sync bytes to checksum.
+    Frame(Protocol, &'a [u8]),
+    /// What began like a binary frame and is not one: its sync bytes (the bytes after them are
+    /// read again).
+    BadFrame(Protocol, FrameError, &'a [u8]),
 }
 
-/// Cuts bytes fed in any chunks into lines and overlong lines (see the module documentation).
+/// Cuts bytes fed in any chunks into lines, overlong lines and (with binary frames) frames (see
+/// the module documentation).
 #[derive(Clone, Debug)]
 pub struct Framer {
     line: [u8; MAX_LINE],
     /// Bytes of the current line, counted (also past [`MAX_LINE`]).
     length: usize,
-    /// The current line was handed out: start a new one at the next byte.
-    handed: bool,
-    /// The start character (`$`/`!`) the next line begins with, once the current one is handed.
-    pending: Option<u8>,
     /// Where the current line is as to TAG blocks.
     tag: TagState,
+    /// Whether binary frames are taken.
+    binary: bool,
+    /// A binary frame under way, from its first sync byte; the bytes to read again at the end.
+    frame: [u8; MAX_FRAME],
+    frame_len: usize,
+    /// Its length from its header, once that is in; 0 before.
+    frame_size: usize,
+    protocol: Protocol,
+    /// Where the bytes to read again start in `frame` (they end at its end): [`MAX_FRAME`] when none.
+    replay: usize,
 }
 
 /// Where a line is as to TAG blocks.
@@ -54,24 +204,129 @@ impl Default for Framer {
 }
 
 impl Framer {
-    /// A framer at the start of a stream.
+    /// A framer of NMEA lines at the start of a stream.
     pub const fn new() -> Self {
-        Self { line: [0; MAX_LINE], length: 0, handed: false, pending: None, tag: TagState::Outside }
+        Self {
+            line: [0; MAX_LINE],
+            length: 0,
+            tag: TagState::Outside,
+            binary: false,
+            frame: [0; MAX_FRAME],
+            frame_len: 0,
+            frame_size: 0,
+            protocol: Protocol::Ubx,
+            replay: MAX_FRAME,
+        }
     }
 
-    /// Takes one byte; the item it completes, if any (valid until the next call).
-    pub fn push(&mut self, byte: u8) -> Option<Item<'_>> {
-        self.restart();
+    /// A framer of NMEA lines and binary frames at the start of a stream.
+    pub const fn with_binary_frames() -> Self {
+        let mut framer = Self::new();
+        framer.binary = true;
+        framer
+    }
+
+    /// Feeds a chunk of the stream; `each` gets every item it completes, in order (each valid
+    /// for the call).
+    pub fn feed(&mut self, data: &[u8], mut each: impl FnMut(Item<'_>)) {
+        for &byte in data {
+            self.step(byte, &mut each);
+            self.read_again(&mut each);
+        }
+    }
+
+    /// Ends the stream: `each` gets the last line, when the stream ended without a line ending,
+    /// and what a frame cut short by the end held; the framer is then at the start of a new stream.
+    pub fn finish(&mut self, mut each: impl FnMut(Item<'_>)) {
+        while self.frame_len > 0 {
+            if self.frame_len == 1 {
+                self.frame_len = 0; // a lone first sync byte: a byte of the line
+                self.line_byte(self.frame[0], &mut each);
+            } else {
+                self.reject(FrameError::Cut, &mut each);
+                self.read_again(&mut each);
+            }
+        }
+        self.end_line(&mut each);
+    }
+
+    /// Reads the bytes of rejected frames again, up to the buffer's end.
+    fn read_again(&mut self, each: &mut impl FnMut(Item<'_>)) {
+        while self.replay < MAX_FRAME {
+            let byte = self.frame[self.replay];
+            self.replay += 1;
+            self.step(byte, each);
+        }
+    }
+
+    /// Takes one byte.
+    fn step(&mut self, byte: u8, each: &mut impl FnMut(Item<'_>)) {
+        if self.frame_len == 1 && !self.protocol.follows_sync(byte) {
+            self.frame_len = 0; // no frame: its first byte was one of the line
+            self.line_byte(self.frame[0], each);
+        }
+        if self.frame_len > 0 {
+            self.frame_byte(byte, each);
+        } else if let Some(protocol) =
+            Protocol::starting_with(byte).filter(|_| self.binary && self.tag == TagState::Outside)
+        {
+            self.protocol = protocol;
+            self.frame[0] = byte;
+            self.frame_len = 1;
+        } else {
+            self.line_byte(byte, each);
+        }
+    }
+
+    /// A byte of the frame under way, after its first.
+    fn frame_byte(&mut self, byte: u8, each: &mut impl FnMut(Item<'_>)) {
+        let protocol = self.protocol;
+        if self.frame_len == 1 {
+            self.end_line(each); // the line before the frame
+        }
+        self.frame[self.frame_len] = byte;
+        self.frame_len += 1;
+        if self.frame_len == protocol.header_len() {
+            self.frame_size = protocol.frame_len(&self.frame[..self.frame_len]);
+            if self.frame[protocol.sync_len()..self.frame_len].iter().all(|&b| b == 0) {
+                self.reject(FrameError::NulHeader, each); // what a break's NUL bytes after a sync make
+            } else if self.frame_size > MAX_FRAME {
+                self.reject(FrameError::TooLong(self.frame_size), each);
+            }
+        } else if self.frame_len == self.frame_size {
+            let body = self.frame_size - protocol.trailer_len();
+            let sent = self.frame[body..self.frame_size].iter().fold(0u32, |sum, &b| sum << 8 | u32::from(b));
+            let computed = protocol.checksum(&self.frame[..body]);
+            if sent == computed {
+                each(Item::Frame(protocol, &self.frame[..self.frame_size]));
+                self.frame_len = 0;
+                self.frame_size = 0;
+            } else {
+                self.reject(FrameError::BadChecksum { sent, computed }, each);
+            }
+        }
+    }
+
+    /// Reports the frame under way as `error`; the bytes after its sync are to be read again,
+    /// before those still to be read again: both lie at the buffer's end. (A frame found among
+    /// them grows from the buffer's start and never reaches the byte being read.)
+    fn reject(&mut self, error: FrameError, each: &mut impl FnMut(Item<'_>)) {
+        let sync = self.protocol.sync_len();
+        each(Item::BadFrame(self.protocol, error, &self.frame[..sync]));
+        self.replay -= self.frame_len - sync;
+        self.frame.copy_within(sync..self.frame_len, self.replay);
+        self.frame_len = 0;
+        self.frame_size = 0;
+    }
+
+    fn line_byte(&mut self, byte: u8, each: &mut impl FnMut(Item<'_>)) {
         match byte {
-            b'\r' | b'\n' => return self.end_line(),
+            b'\r' | b'\n' => return self.end_line(each),
             // opens a block (at the start, or right after one), or closes the open one
             b'\\' if self.length == 0 || self.tag != TagState::Outside => {
                 self.tag = if self.tag == TagState::InBlock { TagState::AfterBlock } else { TagState::InBlock };
             }
-            b'$' | b'!' if self.tag == TagState::Outside => {
-                self.pending = Some(byte);
-                return self.end_line();
-            }
+            b'$' | b'!' if self.tag == TagState::Outside => self.end_line(each),
             // the sentence after the blocks, or whatever else follows them
             _ if self.tag == TagState::AfterBlock => self.tag = TagState::Outside,
             _ => {}
@@ -80,44 +335,16 @@ impl Framer {
             *slot = byte;
         }
         self.length = self.length.saturating_add(1);
-        None
     }
 
-    /// Feeds a chunk of the stream; `each` gets every item it completes, in order.
-    pub fn feed(&mut self, data: &[u8], mut each: impl FnMut(Item<'_>)) {
-        for &byte in data {
-            if let Some(item) = self.push(byte) {
-                each(item);
-            }
-        }
-    }
-
-    /// The last line, when the stream ended without a line ending; the framer is then at the
-    /// start of a new stream.
-    pub fn finish(&mut self) -> Option<Item<'_>> {
-        self.restart();
-        self.end_line()
-    }
-
-    fn restart(&mut self) {
-        if self.handed {
-            self.handed = false;
-            self.length = 0;
-            if let Some(start) = self.pending.take() {
-                self.line[0] = start;
-                self.length = 1;
-            }
-        }
-    }
-
-    fn end_line(&mut self) -> Option<Item<'_>> {
-        self.handed = true;
+    fn end_line(&mut self, each: &mut impl FnMut(Item<'_>)) {
         self.tag = TagState::Outside;
         match self.length {
-            0 => None,
-            length if length <= MAX_LINE => Some(Item::Line(&self.line[..length])),
-            length => Some(Item::TooLong(length)),
+            0 => {}
+            length if length <= MAX_LINE => each(Item::Line(&self.line[..length])),
+            length => each(Item::TooLong(length)),
         }
+        self.length = 0;
     }
 }
 
@@ -136,15 +363,14 @@ mod tests {
                     out[n].1 = line.len();
                 }
                 Item::TooLong(length) => out[n].1 = 1000 + length,
+                Item::Frame(..) | Item::BadFrame(..) => unreachable!("no binary frames"),
             }
             n += 1;
         };
         for chunk in chunks {
             framer.feed(chunk, &mut keep);
         }
-        if let Some(item) = framer.finish() {
-            keep(item);
-        }
+        framer.finish(&mut keep);
         (out, n)
     }
 
@@ -180,9 +406,7 @@ mod tests {
                 for part in stream.chunks(chunk) {
                     framer.feed(part, &mut keep);
                 }
-                if let Some(item) = framer.finish() {
-                    keep(item);
-                }
+                framer.finish(&mut keep);
             }
             assert_eq!(&out[..len], expected);
         }
@@ -191,14 +415,99 @@ mod tests {
     #[test]
     fn overlong_lines_are_counted() {
         let mut framer = Framer::new();
-        let mut seen = None;
+        let mut seen = 0;
         for _ in 0..MAX_LINE + 5 {
-            assert!(framer.push(b'a').is_none());
+            framer.feed(b"a", |_| seen += 1);
         }
-        if let Some(item) = framer.push(b'\n') {
-            seen = Some(item == Item::TooLong(MAX_LINE + 5));
+        assert_eq!(seen, 0);
+        framer.feed(b"\n", |item| {
+            assert_eq!(item, Item::TooLong(MAX_LINE + 5));
+            seen += 1;
+        });
+        framer.finish(|_| seen += 1);
+        assert_eq!(seen, 1);
+    }
+
+    const ACK: &[u8] = b"\xb5\x62\x05\x01\x02\x00\x06\x00\x0e\x37"; // UBX ACK-ACK of CFG-PRT
+    const RTCM: &[u8] = b"\xd3\x00\x02\x3e\xe0\x6d\x7f\x60"; // RTCM 3, message number 0x3EE
+
+    /// The items of `stream` fed in chunks of every size, alike, each written as text: a line or
+    /// a bad frame's sync bytes in hex, a frame as its protocol, a bad frame with its kind.
+    fn binary_items(stream: &[u8], expected: &[u8]) {
+        for chunk in 1..=stream.len() {
+            let mut framer = Framer::with_binary_frames();
+            let (mut out, mut len) = ([0u8; 512], 0);
+            {
+                let mut put = |text: &[u8]| {
+                    out[len..len + text.len()].copy_from_slice(text);
+                    len += text.len();
+                };
+                let mut keep = |item: Item<'_>| {
+                    match item {
+                        Item::Line(line) => put(line),
+                        Item::TooLong(_) => put(b"too long"),
+                        Item::Frame(protocol, frame) => {
+                            assert_eq!(&frame[..1], if protocol == Protocol::Ubx { &ACK[..1] } else { &RTCM[..1] });
+                            put(protocol.name().as_bytes());
+                        }
+                        Item::BadFrame(protocol, error, sync) => {
+                            assert_eq!(sync.len(), protocol.sync_len());
+                            put(protocol.name().as_bytes());
+                            put(b" ");
+                            put(error.kind().as_bytes());
+                        }
+                    }
+                    put(b"|");
+                };
+                for part in stream.chunks(chunk) {
+                    framer.feed(part, &mut keep);
+                }
+                framer.finish(&mut keep);
+            }
+            assert_eq!(&out[..len], expected, "chunks of {chunk}");
         }
-        assert_eq!(seen, Some(true));
-        assert!(framer.finish().is_none());
+    }
+
+    #[test]
+    fn binary_frames_between_and_inside_lines() {
+        let mut stream = [0u8; 64];
+        let parts: [&[u8]; 5] = [b"$GPGGA,1\r\n", ACK, b"$GP", RTCM, b"GGA\n$A"];
+        let mut len = 0;
+        for part in parts {
+            stream[len..len + part.len()].copy_from_slice(part);
+            len += part.len();
+        }
+        binary_items(&stream[..len], b"$GPGGA,1|ubx|$GP|rtcm3|GGA|$A|");
+        assert_eq!(crc24q(&RTCM[..5]), 0x6D_7F60);
+    }
+
+    #[test]
+    fn a_bad_frame_is_reported_and_what_it_held_read_again() {
+        // a bad checksum; a frame cut short by a sentence, then by the stream's end
+        binary_items(
+            b"\xb5\x62\x05\x01\x02\x00\x06\x00\x0e\x00$A\n",
+            b"ubx bad_checksum|\x05\x01\x02\x00\x06\x00\x0e\x00|$A|",
+        );
+        binary_items(b"\xb5\x62\x05\x01\x02\x00\x06$A,1\n", b"ubx bad_checksum|\x05\x01\x02\x00\x06|$A,1|");
+        binary_items(b"$A\n\xd3\x00\x05\x01", b"$A|rtcm3 cut|\x00\x05\x01|");
+        // a frame inside a bad one; sync bytes that start no frame; a lone sync byte at the end
+        binary_items(
+            b"\xb5\x62\x01\x02\x03\x00\xb5\x62\x05\x01\x02\x00\x06\x00\x0e\x37$A",
+            b"ubx bad_checksum|\x01\x02\x03\x00|ubx|$A|",
+        );
+        binary_items(
+            b"\xb5\x00\xd3\xff\xb5\xb5\x62\x05\x01\x02\x00\x06\x00\x0e\x37\xd3",
+            b"\xb5\x00\xd3\xff\xb5|ubx|\xd3|",
+        );
+        // no frame inside a TAG block
+        binary_items(b"\\s:\xb5\x62*00\\$A", b"\\s:\xb5\x62*00\\$A|");
+    }
+
+    #[test]
+    fn a_frame_longer_than_the_buffer_is_reported() {
+        // UBX, payload length 0x0800: 2,056 bytes in all
+        binary_items(b"\xb5\x62\x01\x02\x00\x08ab", b"ubx too_long|\x01\x02\x00\x08ab|");
+        // what a break's NUL bytes after a sync make (its checksum would be NULs too)
+        binary_items(b"\xb5\x62\0\0\0\0\0\0$A", b"ubx nul_header|\0\0\0\0\0\0|$A|");
     }
 }

@@ -15,7 +15,7 @@ use std::process::ExitCode;
 use nmeaspec::ais_messages::Message;
 use nmeaspec::assembly::Assembler;
 use nmeaspec::json::{write_encoded, Value, SKIP_CHECK_DEPTH};
-use nmeaspec::stream::{Framer, Item};
+use nmeaspec::stream::{FrameError, Framer, Item, Protocol, MAX_FRAME};
 use nmeaspec::{parse_with, Error, Fix, FixAssembler, Options, MAX_LINE};
 
 const USAGE: &str =
@@ -161,10 +161,62 @@ fn decode(values: bool, options: Options) -> io::Result<()> {
     out.inner.flush()
 }
 
+/// A binary frame's JSON (docs/json.md, "Binary frames in stream").
+fn write_frame(w: &mut String, protocol: Protocol, frame: &[u8]) -> fmt::Result {
+    write!(w, "{{\"ok\":true,\"protocol\":\"{}\",", protocol.name())?;
+    match protocol {
+        Protocol::Ubx => write!(w, "\"class\":{},\"id\":{},", frame[2], frame[3])?,
+        // the payload's first 12 bits
+        Protocol::Rtcm3 if frame.len() >= 8 => {
+            write!(w, "\"message_number\":{},", u16::from(frame[3]) << 4 | u16::from(frame[4] >> 4))?
+        }
+        Protocol::Rtcm3 => w.push_str("\"message_number\":null,"),
+    }
+    write!(w, "\"length\":{},\"frame\":\"", frame.len())?;
+    write_hex(w, frame)
+}
+
+/// The JSON of what began like a binary frame and is not one: its sync bytes and the reason.
+fn write_bad_frame(w: &mut String, protocol: Protocol, error: FrameError, sync: &[u8]) -> fmt::Result {
+    write!(
+        w,
+        "{{\"ok\":false,\"protocol\":\"{}\",\"error\":{{\"kind\":\"{}\",\"message\":\"",
+        protocol.name(),
+        error.kind()
+    )?;
+    match error {
+        FrameError::BadChecksum { sent, computed } => {
+            let width = protocol.trailer_len();
+            w.push_str("checksum");
+            for i in (0..width).rev() {
+                write!(w, " {:02X}", sent >> (8 * i) & 0xFF)?;
+            }
+            w.push_str(", computed");
+            for i in (0..width).rev() {
+                write!(w, " {:02X}", computed >> (8 * i) & 0xFF)?;
+            }
+        }
+        FrameError::TooLong(length) => write!(w, "frame is {length} bytes, the limit is {MAX_FRAME}")?,
+        FrameError::NulHeader => w.push_str("the header after the sync is NUL bytes"),
+        FrameError::Cut => w.push_str("the stream ends inside the frame"),
+    }
+    w.push_str("\"},\"bytes\":\"");
+    write_hex(w, sync)
+}
+
+/// Bytes as lowercase hex, then the closing quote and brace.
+fn write_hex(w: &mut String, bytes: &[u8]) -> fmt::Result {
+    for byte in bytes {
+        write!(w, "{byte:02x}")?;
+    }
+    w.push_str("\"}");
+    Ok(())
+}
+
 fn stream(values: bool, options: Options) -> io::Result<()> {
     let mut input = io::stdin().lock();
     let mut out = Output::new(BufWriter::with_capacity(BUFFER, io::stdout().lock()));
-    let mut framer = Framer::new();
+    let mut framer = Framer::with_binary_frames();
     let mut chunk = vec![0u8; BUFFER];
     let mut assembler: Assembler = Assembler::new(100);
     let mut given_up = String::new();
@@ -174,6 +226,8 @@ fn stream(values: bool, options: Options) -> io::Result<()> {
                 out.line(|w| write_line(w, line, values, options, Some(&mut assembler), &mut given_up))?
             }
             Item::TooLong(length) => out.line(|w| Error::too_long(length).write_json(w))?,
+            Item::Frame(protocol, frame) => out.line(|w| write_frame(w, protocol, frame))?,
+            Item::BadFrame(protocol, error, sync) => out.line(|w| write_bad_frame(w, protocol, error, sync))?,
         }
         out.inner.write_all(given_up.as_bytes())?;
         given_up.clear();
@@ -186,15 +240,21 @@ fn stream(values: bool, options: Options) -> io::Result<()> {
             Err(err) if err.kind() == io::ErrorKind::Interrupted => continue,
             Err(err) => return Err(err),
         };
-        for &byte in &chunk[..n] {
-            if let Some(item) = framer.push(byte) {
-                write(&mut out, item)?;
+        let mut written = Ok(());
+        framer.feed(&chunk[..n], |item| {
+            if written.is_ok() {
+                written = write(&mut out, item);
             }
+        });
+        written?;
+    }
+    let mut written = Ok(());
+    framer.finish(|item| {
+        if written.is_ok() {
+            written = write(&mut out, item);
         }
-    }
-    if let Some(item) = framer.finish() {
-        write(&mut out, item)?;
-    }
+    });
+    written?;
     given_up.clear();
     let mut written = Ok(());
     assembler.finish(|done| written = written.and(incomplete(&mut given_up, &done.incomplete_message())));
