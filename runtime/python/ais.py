@@ -535,7 +535,8 @@ def compile_write_prefix(items: tuple[Item, ...]) -> WritePrefix:
     names: dict[str, Any] = {}
     offset = count = 0
     for item in items:
-        if type(item) not in (Field, Spare, Unsigned, Signed, Flag, Code) or item.width is None or item.optional:
+        if (not isinstance(item, Field) or type(item) not in (Field, Spare, Unsigned, Signed, Flag, Code)
+                or item.width is None or item.optional):
             break
         width, name = item.width, f"f{count}"
         names[name] = item

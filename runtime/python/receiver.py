@@ -35,12 +35,14 @@ from collections import Counter, deque
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from types import TracebackType
-from typing import Any
+from typing import Any, cast
 
 from .api import parse, reply_to
 from .runtime import NmeaError
 from .stream import Framer, too_long
 
+# What a Framer without binary frames gives: lines, and the lengths of lines too long to keep.
+_Lines = list[bytes | int]
 # The rates a serial port is set to (pyserial's list, and 14400 and 28800 that some receivers
 # offer); anything else is a mistake.
 BAUD_RATES = (
@@ -230,13 +232,13 @@ class Receiver:
         data = self._read_some(timeout)
         if data is None:
             self.ended = True
-            self._pending.extend(self._framer.end())
+            self._pending.extend(cast(_Lines, self._framer.end()))
             return False
         if data:
             if self.log is not None:
                 self.log.write(data)
                 self.log.flush()
-            self._pending.extend(self._framer.feed(data))
+            self._pending.extend(cast(_Lines, self._framer.feed(data)))
         return True
 
     def lines(self, duration: float | None = None) -> Iterator[bytes | int]:

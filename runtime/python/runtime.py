@@ -555,7 +555,7 @@ class Number(_Value):
     def __int__(self) -> int:
         """The integer part (toward zero), as int() of a float."""
         digits, scale, _, sign, _ = self._split()
-        whole = digits // 10**scale
+        whole: int = digits // 10**scale
         return -whole if sign == "-" else whole
 
     def __float__(self) -> float:

@@ -23,10 +23,11 @@ reported as not_a_sentence, and a text command is recognised as such.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from functools import cache
-from typing import Any, BinaryIO
+from typing import Any, BinaryIO, Literal, overload
 
 from .api import decode_json, parse
 from .runtime import MAX_LINE, NmeaError
@@ -37,6 +38,9 @@ MAX_FRAME = 2048
 _STARTS = frozenset(b"$!")
 _ENDS = frozenset(b"\r\n")
 _TAG = ord("\\")
+# The bytes that may do more than lengthen the line outside a TAG block: everything else is taken
+# a run at a time. With binary frames, their first sync bytes too (_framings).
+_SPECIAL = b"\r\n\\$!"
 # Where the line is with respect to TAG blocks.
 _OUTSIDE, _IN_TAG, _AFTER_TAG = 0, 1, 2
 
@@ -149,14 +153,28 @@ class Framer:
         self._length = 0
         self._tag = _OUTSIDE
         self._syncs = _framings() if binary else {}
+        self._next_special = re.compile(b"[" + re.escape(_SPECIAL + bytes(self._syncs)) + b"]").search
         self._frame = bytearray()  # a binary frame under way, from its first sync byte
         self._framing: _Framing  # the protocol of the frame under way
         self._size = 0  # the frame's bytes, once its header is in
 
     def feed(self, data: bytes) -> list[Item]:
         out: list[Item] = []
-        for byte in data:
-            if not self._frame and byte not in self._syncs:  # the common byte, without a frame's checks
+        at, end = 0, len(data)
+        while at < end:
+            if self._tag == _OUTSIDE and not self._frame:  # the bytes up to the next special one
+                found = self._next_special(data, at)
+                stop = found.start() if found else end
+                if stop > at:
+                    room = self.max_line - self._length
+                    if room > 0:
+                        self._line += data[at : min(stop, at + room)]
+                    self._length += stop - at
+                    at = stop
+                    continue
+            byte = data[at]
+            at += 1
+            if not self._frame and byte not in self._syncs:  # a line's byte, without a frame's checks
                 self._line_byte(byte, out)
                 continue
             again = self._push(byte, out)
@@ -265,6 +283,14 @@ def _chunks(source: BinaryIO | Any | Iterable[bytes], size: int) -> Iterator[byt
         yield from source
 
 
+@overload
+def lines(
+    source: BinaryIO | Any | Iterable[bytes], chunk_size: int = 4096, binary: Literal[False] = False
+) -> Iterator[bytes | int]: ...
+@overload
+def lines(
+    source: BinaryIO | Any | Iterable[bytes], chunk_size: int = 4096, *, binary: Literal[True]
+) -> Iterator[Item]: ...
 def lines(
     source: BinaryIO | Any | Iterable[bytes], chunk_size: int = 4096, binary: bool = False
 ) -> Iterator[Item]:

@@ -100,7 +100,7 @@ class ByteWriter:
         self.payload += raw.to_bytes(width // 8, "little")
 
 
-def frame_size(data: bytes | memoryview, start: int = 0) -> int:
+def frame_size(data: bytes | bytearray | memoryview, start: int = 0) -> int:
     """The size of the frame whose sync bytes are at `start`, read from its length field."""
     if len(data) - start < HEADER_SIZE:
         raise NmeaError("short_frame", f"a UBX header needs {HEADER_SIZE} bytes, there are {len(data) - start}", "UBX")
