@@ -110,9 +110,11 @@ def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, ais_corpus
     ops = ("parse", "serialize", "roundtrip")
     for op in ops:
         add("ours-c", "c", op, [c_bin, "ours", op, corpus_path, "--by-type"])
+    add("ours-c", "c", "fixes", [c_bin, "ours", "fixes", corpus_path])
     add("ceiling-c", "c", "parse", [c_bin, "ceiling", "parse", corpus_path])
     for op in ops:
         add("ours-rust", "rust", op, [rust_bin, "ours", op, corpus_path, "--by-type"])
+    add("ours-rust", "rust", "fixes", [rust_bin, "ours", "fixes", corpus_path])
     if peers:
         add("nmea-rs", "rust", "parse", [rust_bin, "nmea", "parse", corpus_path])
         add("nmea0183-rs", "rust", "parse", [rust_bin, "nmea0183", "parse", corpus_path])
@@ -367,7 +369,8 @@ def markdown(report: dict) -> str:
         out.append(f"| {r['name']} | {r['lang']} | {r['op']}{' (AIS)' if ais else ''} | {r['ns_per_line']:,.1f} | {vs_ceiling} | {vs_ours} "
                    f"| {r['ok_lines']:,}/{r['lines']:,} | {identical} |")
     out += ["", "ok lines: lines parsed (parse, fixes) or written back byte for byte (serialize, roundtrip). "
-            "fixes: each line parsed and fed to the fix assembler (nmeaspec.fixes). "
+            "fixes: each line parsed and fed to the fix assembler (C `nmea_fix_feed`, Rust `FixAssembler::feed`, "
+            "Python `nmeaspec.fixes.FixAssembler.feed`). "
             "byte-identical: every line the implementation parsed is written back byte for byte. The corpus "
             "keeps every checksummed line of those types, malformed ones included (too few or too many fields, "
             "values out of range): ours refuses those with a typed error, so its ok lines are below the corpus "

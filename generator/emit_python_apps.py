@@ -61,7 +61,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     commands, shortcuts = command_views(spec)
     vendors = [m for m in spec.manuals if any(c["vendor"] == m.id for c in commands)]
     files = {f"{base}/apps/{module}.py": runtime_file(spec, "#", f"python/apps/{module}.py")
-             for module in ("__init__", "contract_tool", "nmea_cli", "report")}
+             for module in ("__init__", "contract_tool", "nmea_cli", "report", "export")}
     files[f"{base}/apps/commands.py"] = env.get_template("python/apps/commands.py.j2").render(
         header=header(spec, "#"), commands=commands, shortcuts=shortcuts, vendors=vendors, py=py_literal,
         py_call=py_call, py_str=py_str)

@@ -2,7 +2,7 @@
  * The C benchmark driver: reads the corpus into memory once, then times one operation of one
  * implementation over every line and prints a JSON object.
  *
- *     bench-c ours|ceiling|ours-ais parse|serialize|roundtrip|none CORPUS [--by-type]
+ *     bench-c ours|ceiling|ours-ais parse|serialize|roundtrip|fixes|none CORPUS [--by-type]
  *
  * parse: nmea_parse of every line (ok = lines parsed). serialize: the lines are parsed chunk by
  * chunk outside the timed region, then only nmea_serialize of the chunk is timed, the sentences
@@ -12,7 +12,8 @@
  * over the lines of each sentence type separately. none: nothing (the cost of reading the corpus,
  * which bench/run.py subtracts from instruction counts). ours-ais (over the AIS corpus), parse only:
  * each line parsed and, when it is a whole message, its AIS message decoded, every field (ok =
- * messages decoded).
+ * messages decoded). fixes (ours): each line parsed and fed to the fix assembler, nmea_fix_feed
+ * (ok = lines parsed).
  */
 #define _POSIX_C_SOURCE 199309L
 #include <stdint.h>
@@ -126,6 +127,27 @@ static timing time_ais_decode(const line_ref *lines, size_t n)
     return (timing){start, ok, n};
 }
 
+static timing time_fixes(const line_ref *lines, size_t n)
+{
+    static nmea_fix_assembler assembler; /* two fixes' worth of satellites: not on the stack */
+    static nmea_gnss_fix fix;
+    nmea_sentence s;
+    nmea_error err;
+    size_t ok = 0, i, fixes = 0;
+    double start = now();
+    nmea_fix_init(&assembler);
+    for (i = 0; i < n; i++) {
+        if (nmea_parse(&s, lines[i].ptr, lines[i].len, &err)) {
+            ok++;
+            fixes += nmea_fix_feed(&assembler, &s, &fix);
+        }
+    }
+    fixes += nmea_fix_finish(&assembler, &fix);
+    start = now() - start;
+    sink = fixes;
+    return (timing){start, ok, n};
+}
+
 static timing time_ceiling(const line_ref *lines, size_t n)
 {
     unsigned short starts[CEILING_MAX_FIELDS];
@@ -207,6 +229,8 @@ static timing run(const char *impl, const char *op, const line_ref *lines, size_
         return time_serialize(lines, n);
     if (strcmp(impl, "ours") == 0 && strcmp(op, "roundtrip") == 0)
         return time_roundtrip(lines, n);
+    if (strcmp(impl, "ours") == 0 && strcmp(op, "fixes") == 0)
+        return time_fixes(lines, n);
     fprintf(stderr, "unknown implementation/operation %s %s\n", impl, op);
     exit(2);
 }
@@ -266,7 +290,7 @@ int main(int argc, char **argv)
     line_ref *lines;
     timing r;
     if (argc < 4) {
-        fprintf(stderr, "usage: %s ours|ceiling|ours-ais parse|serialize|roundtrip|none CORPUS [--by-type]\n", argv[0]);
+        fprintf(stderr, "usage: %s ours|ceiling|ours-ais parse|serialize|roundtrip|fixes|none CORPUS [--by-type]\n", argv[0]);
         return 2;
     }
     data = read_file(argv[3], &size);

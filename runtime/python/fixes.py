@@ -252,6 +252,12 @@ def fixes(stream: Iterable[Any]) -> Iterator[Fix]:
         yield last
 
 
+def carries_facts(sentence: Any) -> bool:
+    """Whether a parsed sentence has fields that carry facts of a fix (FixAssembler.feed takes
+    it into an epoch; it skips the others)."""
+    return _layout(type(sentence)) is not None
+
+
 class _Layout(NamedTuple):
     """The fields of a layout that carry facts, as the assembler reads them."""
 

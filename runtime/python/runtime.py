@@ -1718,6 +1718,8 @@ class FieldSpec:
     __slots__ = ("id", "expected", "width", "optional_index", "offset")
 
     width_of: ClassVar[int] = 1
+    PLAIN: ClassVar[Any] = str
+    """The type of what plain() gives for the field's values (None aside): for tables."""
 
     def __init__(self, id: str, expected: str, optional: bool = False) -> None:
         self.id = id
@@ -1761,6 +1763,7 @@ class IntegerField(_Memo):
 
     __slots__ = ("low", "high")
     KIND: ClassVar[str] = "integer"
+    PLAIN: ClassVar[Any] = int
 
     def __init__(
         self,
@@ -1784,6 +1787,7 @@ class IntegerField(_Memo):
 class DecimalField(IntegerField):
     __slots__ = ()
     KIND = "decimal"
+    PLAIN = float
 
     def plain(self, value: Any) -> Any:
         return plain(value)
@@ -1821,16 +1825,19 @@ _PARSERS: dict[str, Callable[..., Any]] = {"hex": hex_field, "time": time_field,
 class HexField(_Parsed):
     __slots__ = ()
     KIND = "hex"
+    PLAIN = int
 
 
 class TimeField(_Parsed):
     __slots__ = ()
     KIND = "time"
+    PLAIN = dt.time
 
 
 class DateField(_Parsed):
     __slots__ = ()
     KIND = "date"
+    PLAIN = dt.date
 
 
 class LatitudeField(_Memo):
@@ -1838,6 +1845,7 @@ class LatitudeField(_Memo):
 
     __slots__ = ("hemisphere_expected",)
     width_of = 2
+    PLAIN = float  # signed decimal degrees
     HEMISPHERES: ClassVar[str] = "NS"
 
     def __init__(
@@ -1935,6 +1943,7 @@ class EnumCharsField(FieldSpec):
     """A run of one-character codes (GNS mode "ANNN")."""
 
     __slots__ = ("enum", "max_length")
+    PLAIN = list[str]
 
     def __init__(
         self,

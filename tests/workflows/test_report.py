@@ -105,7 +105,8 @@ def test_report_of_a_multi_gnss_log(installed_extras: Venv, tmp_path: Path) -> N
     pictures = {name: _pngs(srcs) for name, srcs in page.sections.items() if srcs}
     assert sorted(pictures) == ["cn0", "quality", "sky", "track"] and not page.empty
     assert all(len(p) == 1 for p in pictures.values())
-    assert "61 fixes from GGA" in text and "43 satellites in GSV" in text
+    assert "61 fixes with a position, merged from GSV, GSA, RMC, VTG, GGA, GLL, GST, ZDA" in text
+    assert "43 satellites in view" in text
     assert "30 satellite signals with a C/N0" in text
     assert "22:37:45 – 22:38:45" in text and "2020-07-11" in text  # UTC span and date of the log
     # the sentence table: GSV per talker, GGA, with their counts; no errors
@@ -138,7 +139,8 @@ def test_report_of_an_rmc_only_log(installed_extras: Venv, tmp_path: Path) -> No
     _pngs(page.sections["track"] + page.sections["quality"])
     assert page.empty["sky"].startswith("No satellite positions in this log")
     assert page.empty["cn0"].startswith("No signal strengths in this log")
-    assert "21 fixes from RMC" in text and "Not in this log: satellite counts" in text
+    assert "21 fixes with a position, merged from RMC" in text  # 17 of its 38 say V: no fix
+    assert "Not in this log: satellite counts" in text
     assert "2005-06-09" in text
     again = tmp_path / "again.html"
     nmea(installed_extras, "report", "-q", "--no-progress", corpus_log(RMC_ONLY), "-o", again, cwd=tmp_path)
@@ -174,8 +176,8 @@ def test_report_errors(installed_extras: Venv, tmp_path: Path) -> None:
 
 
 def test_report_without_the_extra(installed: Venv, tmp_path: Path) -> None:
-    """The package itself needs only the standard library: without matplotlib the verb says what
-    to install, and the rest of `nmea` works."""
+    """The package itself needs only the standard library: without matplotlib (pyarrow) `nmea
+    report` (`nmea export`) says what to install, and the rest of `nmea` works."""
     result = nmea(installed, "report", corpus_log(RMC_ONLY), cwd=tmp_path, check=False)
     assert result.returncode == 2
     assert result.stderr == b"nmea: nmea report draws with matplotlib, which is not installed: " \
@@ -183,6 +185,10 @@ def test_report_without_the_extra(installed: Venv, tmp_path: Path) -> None:
     assert not list(tmp_path.iterdir())
     assert b"RMC" in nmea(installed, "show", "-q", corpus_log(RMC_ONLY), cwd=tmp_path).stdout
     assert b"report" in nmea(installed, "--help", cwd=tmp_path).stdout
+    exported = nmea(installed, "export", corpus_log(RMC_ONLY), "-o", tmp_path / "tables", cwd=tmp_path, check=False)
+    assert exported.returncode == 2 and not (tmp_path / "tables").exists()
+    assert exported.stderr == b"nmea: nmea export writes Parquet with pyarrow, which is not installed: " \
+                              b"pip install 'nmeaspec[parquet]'\n"
 
 
 def test_report_of_an_ais_log(installed_extras: Venv, tmp_path: Path) -> None:

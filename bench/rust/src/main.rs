@@ -2,14 +2,15 @@
 //! implementation over every line and prints a JSON object.
 //!
 //! ```text
-//! bench-rs ours|nmea|nmea0183 parse|serialize|roundtrip|none CORPUS [--by-type]
+//! bench-rs ours|nmea|nmea0183 parse|serialize|roundtrip|fixes|none CORPUS [--by-type]
 //! ```
 //!
 //! `ours` is `nmeaspec`: parse is `nmeaspec::parse`; serialize is `serialize_into` of each parsed
 //! sentence (its text, what `Display` writes), the sentences being parsed chunk by chunk outside
 //! the timed region and written one after another into one buffer, as a program writing a stream
 //! would; `to_bytes` (text, read-back check, CR LF) is timed the same way and reported beside it;
-//! roundtrip parses and writes each line and compares it with the input. A counting global allocator reports the allocations made inside
+//! roundtrip parses and writes each line and compares it with the input; fixes parses each line and
+//! feeds it to a `FixAssembler` (ok: the lines parsed). A counting global allocator reports the allocations made inside
 //! our timed loops. The peers only parse: `nmea::parse_str` per line, and one `nmea0183::Parser`
 //! fed every line with its CR LF (built with the `peers` feature).
 
@@ -179,6 +180,26 @@ fn time_nmea0183_parse(lines: &[Line<'_>]) -> Timing {
     }
 }
 
+fn time_ours_fixes(lines: &[Line<'_>]) -> Timing {
+    let mut assembler = nmeaspec::FixAssembler::new();
+    let before = allocations();
+    let start = Instant::now();
+    let mut ok = 0;
+    for line in lines {
+        if let Ok(sentence) = &nmeaspec::parse(line.text) {
+            black_box(assembler.feed(sentence));
+            ok += 1;
+        }
+    }
+    black_box(assembler.finish());
+    let seconds = start.elapsed().as_secs_f64();
+    Timing {
+        seconds,
+        ok,
+        allocations: allocations() - before,
+    }
+}
+
 fn run(implementation: &str, op: &str, lines: &[Line<'_>]) -> Timing {
     match (implementation, op) {
         // Reading the corpus only: the baseline bench/run.py subtracts from instruction counts.
@@ -189,6 +210,7 @@ fn run(implementation: &str, op: &str, lines: &[Line<'_>]) -> Timing {
             sentence.to_bytes(buf).ok().map(<[u8]>::len)
         }),
         ("ours", "roundtrip") => time_ours_roundtrip(lines),
+        ("ours", "fixes") => time_ours_fixes(lines),
         #[cfg(feature = "peers")]
         ("nmea", "parse") => time_nmea_parse(lines),
         #[cfg(feature = "peers")]
@@ -246,7 +268,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() < 4 {
         eprintln!(
-            "usage: bench-rs ours|nmea|nmea0183 parse|serialize|roundtrip|none CORPUS [--by-type]"
+            "usage: bench-rs ours|nmea|nmea0183 parse|serialize|roundtrip|fixes|none CORPUS [--by-type]"
         );
         std::process::exit(2);
     }

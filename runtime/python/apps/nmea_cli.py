@@ -972,7 +972,7 @@ def parser() -> argparse.ArgumentParser:
         + LIVE_EXAMPLES,
     )
     top.add_argument("--version", action="version", version=f"nmea {__version__}")
-    verbs = top.add_subparsers(dest="verb", metavar="show|command|listen|send|report")
+    verbs = top.add_subparsers(dest="verb", metavar="show|command|listen|send|report|export")
     s = verbs.add_parser(
         "show",
         help="print the sentences of a log (a file, or - for stdin)",
@@ -1042,13 +1042,15 @@ def parser() -> argparse.ArgumentParser:
         "--show-all", action="store_true", help="print the sentences that come before the reply"
     )
     _command_words(se, "the command, as `nmea command` takes it")
-    from .report import add_parser as add_report  # here: report imports this module
+    from .export import add_parser as add_export  # here: export and report import this module
+    from .report import add_parser as add_report
 
     add_report(verbs)
+    add_export(verbs)
     return top
 
 
-VERBS = ("show", "command", "listen", "send", "report", "-h", "--help", "--version")
+VERBS = ("show", "command", "listen", "send", "report", "export", "-h", "--help", "--version")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -6,8 +6,9 @@ The page shows what a receiver's own viewer shows: the track, a sky plot, C/N0 p
 time, the fix quality, the satellites used and the DOPs over time, and the sentences and decode
 errors of the log. Nothing on it is fetched when it is viewed: the pictures are PNGs inside it.
 
-The log is read once, as a stream of decoded sentences, and what the pictures need is gathered as
-it goes. A series that grows past its limit is thinned (every other point dropped, and from then
+The log is read once, as a stream of decoded sentences; the charts draw the fixes they make, one
+per epoch (nmeaspec.fixes: the facts of GGA, RMC, GSA, GSV, PUBX and the other sentences of one
+UTC time merged), gathered as it goes. A series that grows past its limit is thinned (every other point dropped, and from then
 on only every second, fourth... point kept), so memory stays bounded however long the log is.
 The pictures are drawn by matplotlib, an optional dependency (`pip install 'nmeaspec[report]'`)
 imported only when a report is drawn: the rest of the package needs only the standard library.
@@ -17,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import base64
+import datetime as dt
 import html
 import io
 import itertools
@@ -30,7 +32,8 @@ from typing import TYPE_CHECKING, Any
 
 from ..api import Tagged, parse
 from ..assembly import MessageAssembler
-from ..runtime import Coordinate, Date, NmeaError, Number, Time
+from ..fixes import Fix, FixAssembler, Satellite, carries_facts
+from ..runtime import NmeaError
 from ..stream import lines, too_long
 from .nmea_cli import CliError, _chunks, add_progress_options, open_log, progress_for
 
@@ -95,29 +98,38 @@ LEVELS: dict[str, str] = {
     "RTK fixed": "#2ca02c",
     "other": "#e377c2",
 }
-GGA_LEVELS = {
-    "0": "no fix",
-    "1": "autonomous",
-    "2": "differential",
-    "3": "precise",
-    "4": "RTK fixed",
-    "5": "RTK float",
-    "6": "dead reckoning",
+# The level of a fix: GGA's quality where the epoch has it (value ids of gga_quality), else the
+# mode indicator of NMEA 2.3 (pos_mode, gns_mode), else the fix dimension (GSA, PUBX,00).
+QUALITY_LEVELS = {
+    "invalid": "no fix",
+    "autonomous": "autonomous",
+    "differential": "differential",
+    "pps": "precise",
+    "rtk_fixed": "RTK fixed",
+    "rtk_float": "RTK float",
+    "dead_reckoning": "dead reckoning",
 }
-MODE_LEVELS = {  # the mode letter of RMC, GLL and GNS
-    "N": "no fix",
-    "E": "dead reckoning",
-    "A": "autonomous",
-    "D": "differential",
-    "P": "precise",
-    "F": "RTK float",
-    "R": "RTK fixed",
+MODE_LEVELS = {
+    "not_valid": "no fix",
+    "estimated": "dead reckoning",
+    "autonomous": "autonomous",
+    "differential": "differential",
+    "precise": "precise",
+    "rtk_float": "RTK float",
+    "rtk_fixed": "RTK fixed",
+    "fixed_or_coarse": "RTK fixed",
 }
-GSA_LEVELS = {"1": "no fix", "2": "2D", "3": "3D"}
-# The sources of fixes and of the quality chart, the preferred first; sentences that carry UTC.
-FIX_SOURCES = ("GGA", "GNS", "RMC", "GLL")
-QUALITY_SOURCES = (*FIX_SOURCES, "GSA")
-TIMED = frozenset(("GGA", "GNS", "RMC", "GLL", "ZDA", "GST", "GBS", "GRS"))
+DIMENSION_LEVELS = {"no_fix": "no fix", "fix_2d": "2D", "fix_3d": "3D"}
+# A satellite system's letter (RINEX style), by the fix's system names.
+SYSTEM_LETTERS = {
+    "gps": "G",
+    "glonass": "R",
+    "galileo": "E",
+    "beidou": "C",
+    "qzss": "J",
+    "navic": "I",
+    "sbas": "S",
+}
 
 At = tuple[int, "float | None"]  # where a sample is: its line, and UTC seconds when known
 P = typing.TypeVar("P")
@@ -152,10 +164,10 @@ class Thinned(typing.Generic[P]):
 
 
 class Clock:
-    """UTC time of day from the sentences that carry it, in seconds, with the day counted on past
-    midnight: each time is put on the day that brings it within 12 hours of the previous one, so
-    23:59:59 then 00:00:00 is a second later (and a receiver whose clock steps back across
-    midnight goes back)."""
+    """UTC time of day of the epochs, in seconds, with the day counted on past midnight: each
+    time is put on the day that brings it within 12 hours of the previous one, so 23:59:59 then
+    00:00:00 is a second later (and a receiver whose clock steps back across midnight goes
+    back)."""
 
     def __init__(self) -> None:
         self.now: float | None = None
@@ -163,10 +175,8 @@ class Clock:
         self.low = math.inf
         self.high = -math.inf
 
-    def see(self, time: Time) -> None:
-        seconds = time.hour * 3600 + time.minute * 60 + time.second
-        if time.fraction_digits:
-            seconds += time.fraction / 10**time.fraction_digits
+    def see(self, time: dt.time) -> None:
+        seconds = time.hour * 3600 + time.minute * 60 + time.second + time.microsecond / 1e6
         value = seconds + self.days * 86400
         if self.now is not None and value < self.now - 43200:
             self.days += 1
@@ -179,61 +189,37 @@ class Clock:
         self.high = max(self.high, value)
 
 
-def _num(value: Any) -> float | None:
-    """A decoded number as a float; None for an empty or absent field."""
-    return float(value) if isinstance(value, Number) else None
-
-
-def _code(value: Any) -> str | None:
-    """A decoded enum's wire code (an unknown code stays text); None for an empty field."""
-    if isinstance(value, str):
-        return value
-    code = getattr(value, "value", None)
-    return code if isinstance(code, str) else None
-
-
-def satellite(talker: str, prn: int) -> tuple[str, int]:
-    """A satellite's system letter and number from the talker and ID of a GSV entry: the talker
-    names the system, except GP and GN, whose IDs have the ranges of NMEA 0183 (1-32 GPS, 33-64
-    SBAS, 65-96 GLONASS) and those receivers use beyond them (QZSS 193-202, Galileo 301-336,
-    BeiDou 401-463)."""
-    if talker == "GL":
-        return "R", prn - 64 if 65 <= prn <= 96 else prn
-    if talker == "GA":
-        return "E", prn - 300 if 301 <= prn <= 336 else prn
-    if talker in ("GB", "BD"):
-        return "C", prn - 400 if 401 <= prn <= 463 else prn - 200 if 201 <= prn <= 263 else prn
-    if talker in ("GQ", "QZ"):
-        return "J", prn - 192 if 193 <= prn <= 202 else prn
-    if talker == "GI":
-        return "I", prn
-    if 1 <= prn <= 32:
-        return "G", prn
-    if 33 <= prn <= 64:
-        return "S", prn + 87
-    if 65 <= prn <= 96:
-        return "R", prn - 64
-    if 120 <= prn <= 158:
-        return "S", prn
-    if 193 <= prn <= 202:
-        return "J", prn - 192
-    if 301 <= prn <= 336:
-        return "E", prn - 300
-    if 401 <= prn <= 463:
-        return "C", prn - 400
-    return ("G", prn) if talker == "GP" else ("?", prn)
+def satellite(sat: Satellite) -> tuple[str, int]:
+    """A satellite's system letter and its number in that system, from the fix's system and the
+    NMEA id (GLONASS 65-96, Galileo 301-336, BeiDou 401-463 or 201-263, QZSS 193-202 and SBAS
+    33-64 as receivers number them, taken back to the system's own numbers)."""
+    letter, prn = SYSTEM_LETTERS.get(sat.system or "", "?"), sat.id
+    if letter == "R" and 65 <= prn <= 96:
+        return letter, prn - 64
+    if letter == "E" and 301 <= prn <= 336:
+        return letter, prn - 300
+    if letter == "C":
+        return letter, prn - 400 if 401 <= prn <= 463 else prn - 200 if 201 <= prn <= 263 else prn
+    if letter == "J" and 193 <= prn <= 202:
+        return letter, prn - 192
+    if letter == "S" and 33 <= prn <= 64:
+        return letter, prn + 87
+    return letter, prn
 
 
 def satellite_name(system: str, number: int) -> str:
     return f"{system}{number:02d}"
 
 
-def _date_text(day: int, month: int, year: int) -> str | None:
-    if not (1 <= day <= 31 and 1 <= month <= 12):
-        return None
-    if year < 100:
-        year += 2000 if year < 80 else 1900
-    return f"{year:04d}-{month:02d}-{day:02d}"
+def level_of(fix: Fix) -> str | None:
+    """The fix level of an epoch (QUALITY_LEVELS), None when no sentence of it tells."""
+    if fix.mode == "no_fix" or fix.fix_status == "invalid":
+        return "no fix"
+    for value, levels in ((fix.fix_quality, QUALITY_LEVELS), (fix.pos_mode, MODE_LEVELS),
+                          (fix.mode, DIMENSION_LEVELS)):
+        if value is not None:
+            return levels.get(value, "other")
+    return "autonomous" if fix.fix_status == "valid" else None
 
 
 class Target:
@@ -252,7 +238,9 @@ def _degrees_of(value: Any) -> float | None:
 
 
 class Log:
-    """What a report shows of a log, gathered line by line (add) in bounded memory."""
+    """What a report shows of a log, gathered line by line (read) in bounded memory: the
+    sentences and errors counted, and the fixes the sentences make (nmeaspec.fixes), epoch by
+    epoch, as series over time."""
 
     def __init__(self) -> None:
         self.lines = 0
@@ -265,29 +253,24 @@ class Log:
         self.timed = 0
         self.untimed = 0
         self.dates: list[str] = []  # the first and the last date seen
-        self.tracks = {s: Thinned[tuple[At, float, float, str]](TRACK_LIMIT) for s in FIX_SOURCES}
-        self.quality = {s: Thinned[tuple[At, str]](SERIES_LIMIT) for s in QUALITY_SOURCES}
+        self.epochs = 0
+        self.fix_sentences: Counter[str] = Counter()  # the sentences that made the fixes
+        self.track = Thinned[tuple[At, float, float, str]](TRACK_LIMIT)
+        self.quality = Thinned[tuple[At, str]](SERIES_LIMIT)
         self.used = Thinned[tuple[At, float]](SERIES_LIMIT)
         self.in_view = Thinned[tuple[At, float]](SERIES_LIMIT)
-        self.dops = {
-            name: Thinned[tuple[At, float]](SERIES_LIMIT)
-            for name in ("HDOP (GGA)", "HDOP", "PDOP", "VDOP")
-        }
+        self.dops = {name: Thinned[tuple[At, float]](SERIES_LIMIT) for name in ("HDOP", "PDOP", "VDOP")}
         self.cn0: dict[tuple[str, int, str], Thinned[tuple[At, float]]] = {}
         self.trails: dict[tuple[str, int], Thinned[tuple[float, float]]] = {}
         self.tracked: dict[tuple[str, int], bool] = {}  # whether it had a C/N0 in its last epoch
         self.ignored_satellites = 0
-        self._epoch_keys: set[tuple[str, str]] = set()
-        self._epoch_sats: set[tuple[str, int]] = set()
-        self._epoch_tracked: set[tuple[str, int]] = set()  # with a C/N0 on some signal
-        self._epoch_at: At | None = None
-        self._open_sets: set[tuple[str, str]] = set()  # GSV sets still waiting for a sentence
-        self._sets_before = 0  # GSV sets of the epoch before
         self.targets: dict[int, Target] = {}
         self.ais_messages = 0
         self.ais_unfollowed = 0  # messages of stations beyond MAX_TARGETS
         self.ais_errors: Counter[str] = Counter()
         self._assembler = MessageAssembler()
+        self._fixes = FixAssembler()
+        self._epoch_line = 0  # the first line of the epoch under way
 
     # -- reading ------------------------------------------------------------------------------
 
@@ -308,10 +291,9 @@ class Log:
                 if sentence is None:
                     continue
             self.add(number, sentence)
-        # an epoch cut short by the end of the log (a set not finished, or fewer sets than the
-        # epoch before it) counts no satellites in view
-        whole = not self._open_sets and len(self._epoch_keys) >= self._sets_before
-        self._end_epoch(counted=whole)
+        fix = self._fixes.close()
+        if fix is not None:
+            self._epoch(fix, self._epoch_line)
         for done in self._assembler.finish():
             self._ais(done.message, done.error)
 
@@ -362,153 +344,72 @@ class Log:
             return
         talker = getattr(sentence, "talker", "") if sentence.ADDRESS is None else ""
         self._count(name, talker, _description(sentence))
-        if name in TIMED and isinstance(getattr(sentence, "time", None), Time):
-            self.clock.see(sentence.time)
-        handler = _HANDLERS.get(name)
-        if handler is not None:
-            handler(self, sentence, self._at(number), talker)
+        if not carries_facts(sentence):
+            return
+        self.fix_sentences[name] += 1
+        fix = self._fixes.feed(sentence)
+        if fix is not None:
+            self._epoch(fix, self._epoch_line)
+            self._epoch_line = 0
+        self._epoch_line = self._epoch_line or number
 
-    def _at(self, number: int) -> At:
-        if self.clock.now is None:
-            self.untimed += 1
-        else:
+    def _epoch(self, fix: Fix, line: int) -> None:
+        """Take in the fix of an epoch that began at `line`."""
+        self.epochs += 1
+        if fix.time is not None:
+            self.clock.see(fix.time)
             self.timed += 1
-        return number, self.clock.now
-
-    def _date(self, text: str | None) -> None:
-        if text is not None:
+            at: At = (line, self.clock.now)
+        else:
+            self.untimed += 1
+            at = (line, None)
+        if fix.date is not None:
+            text = fix.date.isoformat()
             if not self.dates:
                 self.dates.append(text)
             self.dates[1:] = [text]
+        level = level_of(fix)
+        if level is not None:
+            self.quality.add((at, level))
+            position = (fix.latitude, fix.longitude)
+            if level != "no fix" and position[0] is not None and position[1] is not None \
+                    and position != (0.0, 0.0):  # 0, 0: a receiver's placeholder, not a place
+                self.track.add((at, position[0], position[1], level))
+        used = fix.satellites_used if fix.satellites_used is not None else fix.used_count or None
+        if used is not None:
+            self.used.add((at, float(used)))
+        if fix.in_view:
+            self.in_view.add((at, float(fix.in_view_count)))
+        for name in self.dops:
+            value = getattr(fix, name.lower())
+            if value is not None:
+                self.dops[name].add((at, value))
+        self._satellites(fix, at)
 
-    def _fix(self, source: str, at: At, sentence: Any, level: str | None) -> None:
-        if level is None:
-            return
-        self.quality[source].add((at, level))
-        lat, lon = getattr(sentence, "lat", None), getattr(sentence, "lon", None)
-        if level != "no fix" and isinstance(lat, Coordinate) and isinstance(lon, Coordinate):
-            point = (lat.decimal_degrees, lon.decimal_degrees)
-            if point != (0.0, 0.0):  # a receiver's placeholder, not a place
-                self.tracks[source].add((at, point[0], point[1], level))
-
-    @staticmethod
-    def _once(series: Thinned[tuple[At, float]], at: At, value: float | None) -> None:
-        """A value per epoch: several sentences of one epoch (GSA per system) give it once."""
-        if value is None:
-            return
-        last = series.last
-        if last is not None and at[1] is not None and last[0][1] == at[1]:
-            return
-        series.add((at, value))
-
-    def _gga(self, s: Any, at: At, talker: str) -> None:
-        code = _code(s.quality)
-        self._fix("GGA", at, s, None if code is None else GGA_LEVELS.get(code, "other"))
-        self._once(self.used, at, _num(s.satellites))
-        self._once(self.dops["HDOP (GGA)"], at, _num(s.hdop))
-
-    def _gns(self, s: Any, at: At, talker: str) -> None:
-        modes = getattr(s, "mode", None)
-        levels = [MODE_LEVELS.get(c, "other") for c in (_code(m) for m in modes or ()) if c]
-        ranked = list(LEVELS)
-        self._fix("GNS", at, s, max(levels, key=ranked.index) if levels else None)
-        self._once(self.used, at, _num(s.satellites))
-        self._once(self.dops["HDOP (GGA)"], at, _num(s.hdop))
-
-    def _rmc_gll(self, source: str, s: Any, at: At) -> None:
-        status, mode = _code(s.status), _code(s.mode)
-        if status == "V":
-            level: str | None = "no fix"
-        elif mode is not None:
-            level = MODE_LEVELS.get(mode, "other")
-        else:
-            level = "autonomous" if status == "A" else None
-        self._fix(source, at, s, level)
-
-    def _rmc(self, s: Any, at: At, talker: str) -> None:
-        self._rmc_gll("RMC", s, at)
-        if isinstance(s.date, Date):
-            self._date(_date_text(s.date.day, s.date.month, s.date.year))
-
-    def _gll(self, s: Any, at: At, talker: str) -> None:
-        self._rmc_gll("GLL", s, at)
-
-    def _zda(self, s: Any, at: At, talker: str) -> None:
-        day, month, year = _num(s.day), _num(s.month), _num(s.year)
-        if day is not None and month is not None and year is not None:
-            self._date(_date_text(int(day), int(month), int(year)))
-
-    def _gsa(self, s: Any, at: At, talker: str) -> None:
-        code = _code(s.fix_type)
-        if code is not None:
-            series = self.quality["GSA"]
-            level = GSA_LEVELS.get(code, "other")
-            last = series.last
-            if last is None or at[1] is None or last[0][1] != at[1] or last[1] != level:
-                series.add((at, level))
-        for name in ("HDOP", "PDOP", "VDOP"):
-            self._once(self.dops[name], at, _num(getattr(s, name.lower())))
-
-    def _gsv(self, s: Any, at: At, talker: str) -> None:
-        signal = _code(s.signal_id) or ""
-        key = (talker, signal)
-        if _num(s.message_number) == 1 and key in self._epoch_keys:
-            self._end_epoch()
-        if self._epoch_at is None:
-            self._epoch_at = at
-        self._epoch_keys.add(key)
-        number, count = _num(s.message_number), _num(s.message_count)
-        if number is not None and count is not None and number < count:
-            self._open_sets.add(key)
-        else:
-            self._open_sets.discard(key)
-        for entry in s.satellites:
-            prn = _num(entry.prn)
-            if prn is None:
-                continue
-            sat = satellite(talker, int(prn))
+    def _satellites(self, fix: Fix, at: At) -> None:
+        """The sky positions and C/N0 of the satellites in view of an epoch."""
+        tracked: dict[tuple[str, int], bool] = {}
+        for entry in fix.in_view:
+            sat = satellite(entry)
             if sat not in self.trails and len(self.trails) >= MAX_SATELLITES:
                 self.ignored_satellites += 1
                 continue
-            self._epoch_sats.add(sat)
-            elevation, azimuth, snr = _num(entry.elevation), _num(entry.azimuth), _num(entry.snr)
             trail = self.trails.setdefault(sat, Thinned(TRAIL_LIMIT))
+            elevation, azimuth = entry.elevation, entry.azimuth
             if azimuth is not None and elevation is not None and 0 <= elevation <= 90:
-                place = (azimuth, elevation)
+                place = (float(azimuth), float(elevation))
                 if trail.last != place:
                     trail.add(place)
-            if snr:  # 0 is what some receivers send for a satellite they do not track
-                self._epoch_tracked.add(sat)
-                cn0 = self.cn0.get((*sat, signal))
+            tracked.setdefault(sat, False)
+            if entry.snr:  # 0 is what some receivers send for a satellite they do not track
+                tracked[sat] = True
+                key = (*sat, entry.signal or "")
+                cn0 = self.cn0.get(key)
                 if cn0 is None and len(self.cn0) < MAX_SATELLITES:
-                    cn0 = self.cn0[(*sat, signal)] = Thinned(CN0_LIMIT)
+                    cn0 = self.cn0[key] = Thinned(CN0_LIMIT)
                 if cn0 is not None:
-                    cn0.add((at, snr))
-
-    def _end_epoch(self, counted: bool = True) -> None:
-        """An epoch's GSV sets are over: the satellites they reported make the count in view, and
-        those with a C/N0 on any signal were tracked."""
-        if counted and self._epoch_at is not None and self._epoch_sats:
-            self.in_view.add((self._epoch_at, float(len(self._epoch_sats))))
-        for sat in self._epoch_sats:
-            self.tracked[sat] = sat in self._epoch_tracked
-        self._sets_before = len(self._epoch_keys)
-        self._epoch_keys.clear()
-        self._epoch_sats.clear()
-        self._epoch_tracked.clear()
-        self._open_sets.clear()
-        self._epoch_at = None
-
-
-_HANDLERS: dict[str, typing.Callable[[Log, Any, At, str], None]] = {
-    "GGA": Log._gga,
-    "GNS": Log._gns,
-    "RMC": Log._rmc,
-    "GLL": Log._gll,
-    "ZDA": Log._zda,
-    "GSA": Log._gsa,
-    "GSV": Log._gsv,
-}
+                    cn0.add((at, float(entry.snr)))
+        self.tracked.update(tracked)
 
 
 def _description(sentence: Any) -> str:
@@ -592,17 +493,16 @@ def _png(figure: Figure) -> str:
 DPI = 130
 
 
-def _source(log: Log, sources: tuple[str, ...], series: dict[str, Thinned[Any]]) -> str | None:
-    """The preferred source that has samples."""
-    return next((s for s in sources if series[s].added), None)
+def _sources(log: Log) -> str:
+    """The sentences the fixes came from, most first: "GGA, RMC, GSA"."""
+    return ", ".join(name for name, _ in log.fix_sentences.most_common())
 
 
 def draw_track(log: Log, axis: Axis) -> tuple[str, str] | None:
     """The track in metres east and north of its centre (equal aspect), coloured by fix level."""
-    source = _source(log, FIX_SOURCES, log.tracks)
-    if source is None:
+    if not log.track.added:
         return None
-    points = log.tracks[source].all()
+    points = log.track.all()
     lats = [p[1] for p in points]
     lons = [p[2] for p in points]
     if max(lons) - min(lons) > 180:  # across the antimeridian
@@ -663,9 +563,9 @@ def draw_track(log: Log, axis: Axis) -> tuple[str, str] | None:
     )
     size = f"{extent / scale:.3g} {unit}"
     caption = (
-        f"{log.tracks[source].added} fixes from {source}"
-        + (f" (every {log.tracks[source].stride}th drawn)" if log.tracks[source].stride > 1 else "")
-        + f"; the track spans {size}. Start ▲, end ■."
+        f"{log.track.added} fixes with a position"
+        + (f" (every {log.track.stride}th drawn)" if log.track.stride > 1 else "")
+        + f", merged from {_sources(log)}; the track spans {size}. Start ▲, end ■."
     )
     return _png(figure), caption
 
@@ -737,7 +637,7 @@ def _target_table(log: Log) -> str:
         )
     out = [
         "<table><tr><th>MMSI</th><th>name</th>"
-        f'<th class="n">messages</th><th>last position</th></tr>',
+        '<th class="n">messages</th><th>last position</th></tr>',
         *rows,
         "</table>",
     ]
@@ -808,7 +708,7 @@ def draw_sky(log: Log) -> tuple[str, str] | None:
         ax.scatter([], [], s=40, color=colour, label=f"{name} ({count})")
     figure.legend(loc="outside lower center", ncols=min(len(systems), 5), fontsize=8, frameon=False)
     caption = (
-        f"{len(sats)} satellites in GSV. Lines: where each was over the log; dots: where it was "
+        f"{len(sats)} satellites in view. Lines: where each was over the log; dots: where it was "
         "last seen, filled when it was tracked then (it had a C/N0)."
     )
     if log.ignored_satellites:
@@ -896,7 +796,7 @@ def draw_cn0(log: Log, axis: Axis) -> tuple[str, str] | None:
     ax.set_facecolor("#f4f4f4")
     axis.style(ax, low, high)
     caption = (
-        f"{rows} satellite signals with a C/N0 in GSV, coloured by dB-Hz (blank: not tracked)"
+        f"{rows} satellite signals with a C/N0, coloured by dB-Hz (blank: not tracked)"
         + (f"; {hidden} more with fewer samples are left out" if hidden else "")
         + ". Labels are coloured by system."
     )
@@ -906,12 +806,10 @@ def draw_cn0(log: Log, axis: Axis) -> tuple[str, str] | None:
 def draw_quality(log: Log, axis: Axis) -> tuple[str, str] | None:
     """Fix level, satellites used and in view, and DOPs over time, one above the other: the
     charts that have something to show."""
-    source = _source(log, QUALITY_SOURCES, log.quality)
-    quality_x, quality = axis.points(log.quality[source].all()) if source else ([], [])
+    quality_x, quality = axis.points(log.quality.all())
     used = axis.points(log.used.all())
     view = axis.points(log.in_view.all())
-    hdop = "HDOP (GGA)" if log.dops["HDOP (GGA)"].added else "HDOP"
-    dops = {name.split()[0]: axis.points(log.dops[name].all()) for name in (hdop, "PDOP", "VDOP")}
+    dops = {name: axis.points(series.all()) for name, series in log.dops.items()}
     dops = {name: xy for name, xy in dops.items() if xy[0]}
     present = [lv for lv in LEVELS if lv in set(quality)]
     charts = [
@@ -940,13 +838,13 @@ def draw_quality(log: Log, axis: Axis) -> tuple[str, str] | None:
             )
             ax.set_yticks(range(len(present)), present, fontsize=8)
             ax.set_ylim(-0.6, len(present) - 0.4)
-            ax.set_title(f"fix ({source})", fontsize=9, loc="left")
+            ax.set_title("fix", fontsize=9, loc="left")
             every += quality_x
         elif name == "satellites":
             peak = 1.0
             for (xs, values), label, colour in (
-                (view, "in view (GSV)", "#9e9e9e"),
-                (used, "used (GGA)", "#1f77b4"),
+                (view, "in view", "#9e9e9e"),
+                (used, "used", "#1f77b4"),
             ):
                 if xs:
                     ax.step(
@@ -985,9 +883,9 @@ def draw_quality(log: Log, axis: Axis) -> tuple[str, str] | None:
             ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.005, 1.0), frameon=False)
         ax.grid(alpha=0.3)
     for name, text in (
-        ("fix", "fix quality (GGA, GNS, RMC, GLL, GSA)"),
-        ("satellites", "satellite counts (GGA, GNS, GSV)"),
-        ("dop", "DOPs (GGA, GNS, GSA)"),
+        ("fix", "fix quality"),
+        ("satellites", "satellite counts"),
+        ("dop", "DOPs"),
     ):
         if name not in {n for n, _ in charts}:
             missing.append(text)
@@ -995,7 +893,7 @@ def draw_quality(log: Log, axis: Axis) -> tuple[str, str] | None:
     span = (high - low) * 0.01 or 0.5
     axes[-1].set_xlim(low - span, high + span)
     axis.style(axes[-1], low, high)
-    caption = "Fix level, satellites used and in view, and DOPs over time."
+    caption = f"Fix level, satellites used and in view, and DOPs over time, epoch by epoch ({_sources(log)})."
     if missing:
         caption += f" Not in this log: {'; '.join(missing)}."
     if axis.dropped:
@@ -1070,10 +968,8 @@ def _summary(log: Log, name: str) -> str:
         tiles.append(_tile(f"{clock_text(low)} – {clock_text(high)}", "UTC"))
         tiles.append(_tile(_duration(high - low), "duration"))
     if log.dates:
-        tiles.append(_tile(" – ".join(dict.fromkeys(log.dates)), "date (RMC, ZDA)"))
-    source = _source(log, FIX_SOURCES, log.tracks)
-    fixes = log.tracks[source].added if source else 0
-    tiles.append(_tile(f"{fixes:,}", f"fixes ({source})" if source else "fixes"))
+        tiles.append(_tile(" – ".join(dict.fromkeys(log.dates)), "date"))
+    tiles.append(_tile(f"{log.track.added:,}", "fixes with a position"))
     systems = Counter(system for system, _ in log.trails)
     if systems:
         seen = ", ".join(
@@ -1169,14 +1065,14 @@ def page(log: Log, name: str) -> str:
                 "track",
                 "Track",
                 track,
-                "No position fixes in this log (no GGA, GNS, RMC or GLL with a valid fix).",
+                "No position fixes in this log (no epoch with a valid position).",
                 "the track of the fixes",
             ),
             _section(
                 "sky",
                 "Sky plot",
                 sky,
-                "No satellite positions in this log (no GSV with elevation and azimuth).",
+                "No satellite positions in this log (no satellites in view with elevation and azimuth).",
                 "sky plot of the satellites",
             ),
             "</div>",
@@ -1184,7 +1080,7 @@ def page(log: Log, name: str) -> str:
                 "cn0",
                 "C/N0 per satellite",
                 cn0,
-                "No signal strengths in this log (no GSV with a C/N0).",
+                "No signal strengths in this log (no satellites in view with a C/N0).",
                 "C/N0 of each satellite over time",
             ),
             _section(
@@ -1192,7 +1088,7 @@ def page(log: Log, name: str) -> str:
                 "Fix quality, satellites and DOP",
                 quality,
                 "No fix quality, "
-                "satellite counts or DOPs in this log (no GGA, GNS, RMC, GLL, GSA or GSV).",
+                "satellite counts or DOPs in this log (no sentence that carries them).",
                 "fix quality, satellites and DOP over time",
             ),
             ais,
