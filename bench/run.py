@@ -130,6 +130,9 @@ def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, ais_corpus
     # AIS: parse is the line read and its message decoded, every field; serialize the message encoded
     # and the line written back.
     add("ours-c-ais", "c", "parse", [c_bin, "ours-ais", "parse", ais_corpus_path], "ais")
+    add("ours-rust-ais", "rust", "parse", [rust_bin, "ours-ais", "parse", ais_corpus_path], "ais")
+    if peers:
+        add("nmea-parser", "rust", "parse", [rust_bin, "nmea-parser", "parse", ais_corpus_path], "ais")
     for op in ("parse", "serialize"):
         add("ours-python-ais", "python", op, [*py_driver, "ours-ais", op, ais_corpus_path, *py_slice], "ais")
         if peers:
@@ -318,6 +321,9 @@ def targets(results: list[dict], heap_free: bool, counts: dict) -> list[dict]:
     at_most("Python AIS decode / pyais decode", ratio(results, "ours-python-ais", "parse", "pyais", "parse"), 0.5)
     at_most("Python AIS encode / decode", ratio(results, "ours-python-ais", "serialize", "ours-python-ais", "parse"),
             1.0)
+    at_most("Rust AIS decode / nmea-parser decode", ratio(results, "ours-rust-ais", "parse", "nmea-parser", "parse"),
+            0.5)
+    at_most("C AIS decode / Rust AIS decode", ratio(results, "ours-c-ais", "parse", "ours-rust-ais", "parse"), 1.0)
     if counts:
         at_most("C parse / ceiling-c parse (instructions)", counted("ours-c", "parse", "ceiling-c", "parse"), 2.0)
         at_most("Rust parse / nmea-rs parse (instructions)", counted("ours-rust", "parse", "nmea-rs", "parse"), 0.25)
@@ -331,10 +337,11 @@ def targets(results: list[dict], heap_free: bool, counts: dict) -> list[dict]:
             exact = trip["ok_lines"] == parsed["ok_lines"]
             checks.append({"target": f"{name} {written} byte-exact (every parsed line)",
                            "value": f"{trip['ok_lines']}/{parsed['ok_lines']}", "limit": "all", "met": exact})
-    for op in ("parse", "serialize", "roundtrip"):
-        rust = row(results, "ours-rust", op)
+    for name, op in (("ours-rust", "parse"), ("ours-rust", "serialize"), ("ours-rust", "roundtrip"),
+                     ("ours-rust-ais", "parse")):
+        rust = row(results, name, op)
         if rust:
-            checks.append({"target": f"ours-rust {op} allocates nothing", "value": rust.get("allocations"),
+            checks.append({"target": f"{name} {op} allocates nothing", "value": rust.get("allocations"),
                            "limit": 0, "met": rust.get("allocations") == 0})
     checks.append({"target": "C nmea.o calls no heap function", "value": None, "limit": None, "met": heap_free})
     return checks
@@ -380,7 +387,9 @@ def markdown(report: dict) -> str:
             "(the sentence's text into a byte buffer, as `nmea_serialize` in C); `to_bytes`, which also reads the "
             "line back and appends CR LF, is listed below. "
             "AIS: parse is the `!AIVDM` line read and its message decoded, every field (ours in C: `nmea_parse`, "
-            "`nmea_ais_fragment_of`, `nmea_ais_decode`; in Python: `nmeaspec.parse(line).message`; pyais: "
+            "`nmea_ais_fragment_of`, `nmea_ais_decode`; in Rust: `nmeaspec::parse`, `Sentence::fragment`, "
+            "`ais_messages::Message::decode`; nmea-parser: `NmeaParser::parse_sentence`; in Python: "
+            "`nmeaspec.parse(line).message`; pyais: "
             "`pyais.decode`); serialize is the decoded message encoded and "
             "the line written back (ours: `Message.encode` and `to_sentence`; pyais: `encode_msg`, which writes "
             "some lines otherwise, so fewer of its lines count).", ""]
@@ -444,7 +453,7 @@ def docs_page(report: dict, table: str) -> str:
         f"- Machine: {m['cpu']}, {m['cores']} cores, Linux {m['kernel']} (shared with other jobs: quote the ratios, "
         "not the absolute times)",
         f"- Compilers: {m['gcc']}; {m['rustc']}; Python {m['python']}",
-        f"- Peers: Rust crates `nmea` and `nmea0183` as pinned in `bench/rust/Cargo.lock`; Python "
+        f"- Peers: Rust crates `nmea`, `nmea0183` and `nmea-parser` (AIS) as pinned in `bench/rust/Cargo.lock`; Python "
         "`pynmea2`, `pynmeagps` and `pyais` as pinned in `bench/requirements.txt`.", "",
         "## How it is measured", "",
         "The corpus is every line of `../shared/corpus/real` that is `$...*HH` with a valid checksum and one of "

@@ -15,8 +15,8 @@ OUT = ROOT / "build" / "bench-smoke"
 LINES = 2000
 OURS = {"ours-c": "c", "ours-rust": "rust", "ours-python": "python"}
 OPS = ("parse", "serialize", "roundtrip")
-AIS = {"ours-c-ais": "c", "ours-python-ais": "python"}  # over the AIS corpus
-AIS_ROWS = {("ours-c-ais", "parse"), ("ours-python-ais", "parse"), ("ours-python-ais", "serialize")}
+AIS = {"ours-c-ais": "c", "ours-rust-ais": "rust", "ours-python-ais": "python"}  # over the AIS corpus
+AIS_ROWS = {("ours-c-ais", "parse"), ("ours-rust-ais", "parse"), ("ours-python-ais", "parse"), ("ours-python-ais", "serialize")}
 FIXES = set(OURS)  # each has a fix assembler: a `fixes` row (parse and assemble every line) each
 
 
@@ -46,7 +46,8 @@ def test_bench_smoke():
     # shorter than their type's layout: ours refuses them).
     decoded = rows[("ours-python-ais", "parse")]["ok_lines"]
     assert LINES * 0.99 < decoded == rows[("ours-python-ais", "serialize")]["ok_lines"]
-    assert rows[("ours-c-ais", "parse")]["ok_lines"] == decoded
+    assert rows[("ours-c-ais", "parse")]["ok_lines"] == rows[("ours-rust-ais", "parse")]["ok_lines"] == decoded
+    assert rows[("ours-rust-ais", "parse")]["allocations"] == 0
     assert report["ais_corpus"]["bytes"] == (OUT / "corpus-ais.nmea").stat().st_size
     for op in OPS:
         assert rows[("ours-rust", op)]["allocations"] == 0

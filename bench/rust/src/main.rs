@@ -2,7 +2,7 @@
 //! implementation over every line and prints a JSON object.
 //!
 //! ```text
-//! bench-rs ours|nmea|nmea0183 parse|serialize|roundtrip|fixes|none CORPUS [--by-type]
+//! bench-rs ours|nmea|nmea0183|ours-ais|nmea-parser parse|serialize|roundtrip|fixes|none CORPUS [--by-type]
 //! ```
 //!
 //! `ours` is `nmeaspec`: parse is `nmeaspec::parse`; serialize is `serialize_into` of each parsed
@@ -10,7 +10,10 @@
 //! the timed region and written one after another into one buffer, as a program writing a stream
 //! would; `to_bytes` (text, read-back check, CR LF) is timed the same way and reported beside it;
 //! roundtrip parses and writes each line and compares it with the input; fixes parses each line and
-//! feeds it to a `FixAssembler` (ok: the lines parsed). A counting global allocator reports the allocations made inside
+//! feeds it to a `FixAssembler` (ok: the lines parsed). `ours-ais` (over the AIS corpus) parses
+//! each line and, when it is a whole message, decodes its AIS message, every field
+//! (`ais_messages::Message::decode`; ok: messages decoded); its peer is `nmea-parser`'s
+//! `NmeaParser::parse_sentence`, which decodes the message of a VDM/VDO line into a struct. A counting global allocator reports the allocations made inside
 //! our timed loops. The peers only parse: `nmea::parse_str` per line, and one `nmea0183::Parser`
 //! fed every line with its CR LF (built with the `peers` feature).
 
@@ -200,6 +203,51 @@ fn time_ours_fixes(lines: &[Line<'_>]) -> Timing {
     }
 }
 
+fn time_ours_ais_parse(lines: &[Line<'_>]) -> Timing {
+    let before = allocations();
+    let start = Instant::now();
+    let mut ok = 0;
+    for line in lines {
+        if let Ok(sentence) = &nmeaspec::parse(line.text) {
+            if let Some(fragment) = sentence.fragment().filter(|f| f.count == 1) {
+                let decoded =
+                    nmeaspec::ais_messages::Message::decode(fragment.payload.as_bytes(), fragment.fill_bits);
+                if let Ok(message) = &decoded {
+                    black_box(message);
+                    ok += 1;
+                }
+            }
+        }
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    Timing {
+        seconds,
+        ok,
+        allocations: allocations() - before,
+    }
+}
+
+#[cfg(feature = "peers")]
+fn time_nmea_parser_parse(lines: &[Line<'_>]) -> Timing {
+    let mut parser = nmea_parser::NmeaParser::new();
+    let start = Instant::now();
+    let mut ok = 0;
+    for line in lines {
+        match parser.parse_sentence(line.text) {
+            Ok(nmea_parser::ParsedMessage::Incomplete) | Err(_) => {}
+            Ok(message) => {
+                black_box(&message);
+                ok += 1;
+            }
+        }
+    }
+    Timing {
+        seconds: start.elapsed().as_secs_f64(),
+        ok,
+        allocations: 0,
+    }
+}
+
 fn run(implementation: &str, op: &str, lines: &[Line<'_>]) -> Timing {
     match (implementation, op) {
         // Reading the corpus only: the baseline bench/run.py subtracts from instruction counts.
@@ -211,6 +259,9 @@ fn run(implementation: &str, op: &str, lines: &[Line<'_>]) -> Timing {
         }),
         ("ours", "roundtrip") => time_ours_roundtrip(lines),
         ("ours", "fixes") => time_ours_fixes(lines),
+        ("ours-ais", "parse") => time_ours_ais_parse(lines),
+        #[cfg(feature = "peers")]
+        ("nmea-parser", "parse") => time_nmea_parser_parse(lines),
         #[cfg(feature = "peers")]
         ("nmea", "parse") => time_nmea_parse(lines),
         #[cfg(feature = "peers")]
@@ -268,7 +319,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() < 4 {
         eprintln!(
-            "usage: bench-rs ours|nmea|nmea0183 parse|serialize|roundtrip|fixes|none CORPUS [--by-type]"
+            "usage: bench-rs ours|nmea|nmea0183|ours-ais|nmea-parser parse|serialize|roundtrip|fixes|none CORPUS [--by-type]"
         );
         std::process::exit(2);
     }
