@@ -127,9 +127,13 @@ def decode_frame(data: bytes) -> Frame:
 def split_frames(data: bytes) -> Iterator[tuple[int, Frame]]:
     """The valid frames in a stream that mixes them with text (NMEA) and noise, each with its
     offset. A sync pair whose frame is cut short or fails its checksum is skipped byte by byte, as
-    a receiver resynchronizes."""
+    a receiver resynchronizes; so is one whose header is NUL bytes (class 0, id 0, length 0: what a
+    line break's NULs after a sync make, its checksum of NULs matching), as the stream readers do."""
     pos = data.find(SYNC)
     while pos >= 0:
+        if not any(data[pos + 2:pos + 6]) and len(data) >= pos + 6:
+            pos = data.find(SYNC, pos + 1)
+            continue
         try:
             size = frame_size(data, pos)
             frame = decode_frame(data[pos:pos + size])

@@ -45,6 +45,9 @@ def test_an_error_names_the_frame() -> None:
 def test_split_frames_skips_text_and_broken_frames() -> None:
     stream = b"$GPGGA,,*66\r\n" + ACK[:-1] + b"\x38" + ACK + b"\xb5" + ACK
     assert [pos for pos, _ in ubx.split_frames(stream)] == [23, 34]
+    nuls = b"\xb5\x62" + bytes(6)  # class 0, id 0, length 0 and its checksum of NULs: a break's bytes
+    assert ubx.decode_frame(nuls).encode() == nuls
+    assert [pos for pos, _ in ubx.split_frames(nuls + ACK)] == [8]
 
 
 def test_every_logged_frame_encodes_back_byte_exact() -> None:

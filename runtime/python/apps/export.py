@@ -27,6 +27,7 @@ import dataclasses
 import datetime as dt
 import os
 import sys
+import types
 import typing
 from collections.abc import Iterable, Iterator
 from typing import Any
@@ -138,7 +139,7 @@ def _fix_row(fix: fix_module.Fix, log: str, first: int, last: int) -> dict[str, 
 def _arrow_type(pa: Any, hint: Any) -> Any:
     """The Arrow type of a plain Python type (a type hint: int, float, list[str], a dataclass)."""
     origin, args = typing.get_origin(hint), typing.get_args(hint)
-    if origin in (typing.Union, getattr(__import__("types"), "UnionType", None)):
+    if origin in (typing.Union, types.UnionType):  # X | None: the column is nullable anyway
         (hint,) = [a for a in args if a is not type(None)]
         return _arrow_type(pa, hint)
     if origin is list:

@@ -375,7 +375,9 @@ class Log:
             if level != "no fix" and position[0] is not None and position[1] is not None \
                     and position != (0.0, 0.0):  # 0, 0: a receiver's placeholder, not a place
                 self.track.add((at, position[0], position[1], level))
-        used = fix.satellites_used if fix.satellites_used is not None else fix.used_count or None
+        # the receiver's count (GGA caps it at 12 on some) or the ids GSA lists, the larger
+        used = max(fix.satellites_used or 0, fix.used_count) if fix.satellites_used is not None \
+            or fix.used else None
         if used is not None:
             self.used.add((at, float(used)))
         if fix.in_view:
