@@ -28383,6 +28383,7 @@ typedef struct {
     uint16_t in_view_len;
     uint16_t sentence_count;
     uint16_t overflow; /* satellites and sentences the capacities above left out */
+    /* Only the first used_count, in_view_len and sentence_count entries are written. */
     nmea_gnss_used used[NMEA_FIX_MAX_USED]; /* in the order GSA lists them */
     nmea_gnss_satellite in_view[NMEA_FIX_MAX_SATELLITES]; /* one per satellite and signal */
     nmea_gnss_source sentences[NMEA_FIX_MAX_SENTENCES];

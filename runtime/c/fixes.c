@@ -393,7 +393,11 @@ static void finish_epoch(nmea_fix_assembler *a, nmea_gnss_fix *out)
         if (fix->mode)
             fix->known |= fact_bit(NMEA_FACT_MODE);
     }
-    memcpy(out, fix, sizeof *out);
+    /* What the counts cover, not the whole capacity (tens of kilobytes, most of it unused) */
+    memcpy(out, fix, offsetof(nmea_gnss_fix, used));
+    memcpy(out->used, fix->used, fix->used_count * sizeof fix->used[0]);
+    memcpy(out->in_view, fix->in_view, fix->in_view_len * sizeof fix->in_view[0]);
+    memcpy(out->sentences, fix->sentences, fix->sentence_count * sizeof fix->sentences[0]);
     a->open = false;
 }
 
