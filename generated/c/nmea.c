@@ -7465,7 +7465,10 @@ static void finish_epoch(nmea_fix_assembler *a, nmea_gnss_fix *out)
         int32_t sum = 0;
         for (i = 0; i < a->count_count; i++)
             sum += a->counts[i].count;
-        for (i = 0; i < a->count_count; i++)
+        for (i = 0; i < a->count_count; i++) /* a proprietary sentence's is the receiver's total */
+            if (a->counts[i].talker[0] == '\0')
+                sum = a->counts[i].count;
+        for (i = 0; i < a->count_count; i++) /* and the combined talker's before it */
             if (same_text(a->counts[i].talker, FIX.combined_talker))
                 sum = a->counts[i].count;
         fix->satellites_used = sum;

@@ -28378,7 +28378,8 @@ typedef struct {
     const char *mode;        /* no_fix, fix_2d, fix_3d: the receiver's, else inferred */
     double pdop, hdop, vdop, tdop;
     double lat_error, lon_error, alt_error, horizontal_error;
-    int32_t satellites_used; /* the combined talker's count (GN), else the sum of each talker's */
+    int32_t satellites_used; /* the combined talker's count (GN), else a proprietary sentence's (the
+                                receiver's total), else the sum of each talker's */
     uint16_t used_count;
     uint16_t in_view_len;
     uint16_t sentence_count;

@@ -85,7 +85,8 @@ class Fix:
     horizontal_error: float | None = None
     satellites_used: int | None = None
     """The receiver's count of satellites used (GGA, GNS, PUBX,00): the combined talker's (GN),
-    else the sum of each talker's (one GGA per system)."""
+    else a proprietary sentence's (the receiver's total: PUBX,00 beside GPGGA), else the sum of
+    each talker's (one GGA per system)."""
     used: dict[str, list[int]] = field(default_factory=dict)
     """The ids of the satellites used, per GNSS ("unknown" when no rule tells it)."""
     in_view: list[Satellite] = field(default_factory=list)
@@ -230,8 +231,9 @@ class FixAssembler:
         if fix.date is not None:
             self._last_date = (fix.date, fix.time)
         counts, self._counts = self._counts, {}
-        if counts:
-            fix.satellites_used = counts.get(COMBINED_TALKER or "", sum(counts.values()))
+        if counts:  # the combined talker's, else a proprietary sentence's (the receiver's total)
+            total = counts.get(COMBINED_TALKER) if COMBINED_TALKER else None
+            fix.satellites_used = total if total is not None else counts.get("", sum(counts.values()))
         msl, separation = fix.altitude_msl, fix.geoid_separation
         if fix.altitude_hae is None and msl is not None and separation is not None:
             fix.altitude_hae = msl + separation

@@ -146,7 +146,8 @@ pub struct Fix {
     /// Horizontal error \[m\].
     pub horizontal_error: Option<f64>,
     /// The receiver's count of satellites used (GGA, GNS, PUBX,00): the combined talker's (GN),
-    /// else the sum of each talker's (one GGA per system).
+    /// else a proprietary sentence's (the receiver's total: PUBX,00 beside GPGGA), else the sum of
+    /// each talker's (one GGA per system).
     pub satellites_used: Option<i64>,
     /// The ids of the satellites used, per GNSS (`"unknown"` when no rule tells it), in the
     /// order they came.
@@ -627,8 +628,10 @@ impl FixAssembler {
             self.last_date = Some((date, fix.time));
         }
         if !self.counts.is_empty() {
-            let combined = self.counts.iter().find(|(talker, _)| Some(talker.as_str()) == self.systems.combined_talker);
-            fix.satellites_used = Some(combined.map_or_else(|| self.counts.iter().map(|(_, n)| n).sum(), |(_, n)| *n));
+            // The combined talker's count, else a proprietary sentence's (the receiver's total), else the sum.
+            let of = |wanted: Option<&str>| self.counts.iter().find(|(talker, _)| Some(talker.as_str()) == wanted);
+            let total = of(self.systems.combined_talker).or_else(|| of(Some("")));
+            fix.satellites_used = Some(total.map_or_else(|| self.counts.iter().map(|(_, n)| n).sum(), |(_, n)| *n));
             self.counts.clear();
         }
         if let (None, Some(msl), Some(separation)) = (fix.altitude_hae, fix.altitude_msl, fix.geoid_separation) {
