@@ -79,11 +79,13 @@ def parse(
         line = line[:-2] if line.endswith("\r\n") else line[:-1]
     if line[:1] == "\\":
         return _tagged(line, lenient, require_checksum, strict)
-    # The common case first: a `$` sentence in printable ASCII whose checksum matches, decoded
-    # without building a Frame; anything else takes the general path below, which reports it.
+    # The common case first: a `$` or `!` sentence in printable ASCII whose checksum matches,
+    # decoded without building a Frame; anything else takes the general path below, which reports
+    # it.
     star = len(line) - 3
+    start = line[:1]
     if (
-        line[:1] == "$"
+        (start == "$" or start == "!")
         and line.find("*") == star
         and len(line) <= runtime.MAX_LINE
         and line.isascii()
@@ -103,13 +105,18 @@ def parse(
         address = fields[0]
         if checksum is not None and address.isalnum():
             del fields[0]
-            layouts = BY_ADDRESS.get(address) or sentences.by_address(address)
-            if layouts is not None and not runtime.claimed(layouts, fields):
-                layouts = None
-            if layouts is None and len(address) == 5 and address[0] != "P":
-                layouts = STANDARD.get(address[2:]) or sentences.standard(address[2:])
+            if start == "!":  # an encapsulation sentence (AIS VDM): by its formatter only
+                formatter = address[2:]
+                layouts = (ENCAPSULATED.get(formatter) or sentences.encapsulated(formatter)) if \
+                    runtime.is_standard_address(start, address) else None
+            else:
+                layouts = BY_ADDRESS.get(address) or sentences.by_address(address)
+                if layouts is not None and not runtime.claimed(layouts, fields):
+                    layouts = None
+                if layouts is None and len(address) == 5 and address[0] != "P":
+                    layouts = STANDARD.get(address[2:]) or sentences.standard(address[2:])
             if layouts is None:
-                return Generic(address, fields, "$", checksum)
+                return Generic(address, fields, start, checksum)
             try:
                 if len(layouts) == 1:
                     return layouts[0].parse_fields(address, fields, checksum, line)
