@@ -13,9 +13,10 @@
 //! feeds it to a `FixAssembler` (ok: the lines parsed). `ours-ais` (over the AIS corpus) parses
 //! each line and, when it is a whole message, decodes its AIS message, every field
 //! (`ais_messages::Message::decode`; ok: messages decoded); its peer is `nmea-parser`'s
-//! `NmeaParser::parse_sentence`, which decodes the message of a VDM/VDO line into a struct. A counting global allocator reports the allocations made inside
-//! our timed loops. The peers only parse: `nmea::parse_str` per line, and one `nmea0183::Parser`
-//! fed every line with its CR LF (built with the `peers` feature).
+//! `NmeaParser::parse_sentence`, which decodes the message of a VDM/VDO line into a struct. A
+//! counting global allocator reports the allocations made inside every timed loop. The peers only
+//! parse: `nmea::parse_str` per line, and one `nmea0183::Parser` fed every line with its CR LF
+//! (built with the `peers` feature).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::hint::black_box;
@@ -67,23 +68,30 @@ struct Line<'a> {
     raw: &'a [u8],
 }
 
-fn time_ours_parse(lines: &[Line<'_>]) -> Timing {
+/// Times `work` (which returns its ok count), counting the allocations made meanwhile.
+fn timed(work: impl FnOnce() -> usize) -> Timing {
     let before = allocations();
     let start = Instant::now();
-    let mut ok = 0;
-    for line in lines {
-        // Looked at in place, as C's caller reads the struct nmea_parse filled: not moved out.
-        if let Ok(sentence) = &nmeaspec::parse(line.text) {
-            black_box(sentence);
-            ok += 1;
-        }
-    }
-    let seconds = start.elapsed().as_secs_f64();
+    let ok = work();
     Timing {
-        seconds,
+        seconds: start.elapsed().as_secs_f64(),
         ok,
         allocations: allocations() - before,
     }
+}
+
+fn time_ours_parse(lines: &[Line<'_>]) -> Timing {
+    timed(|| {
+        let mut ok = 0;
+        for line in lines {
+            // Looked at in place, as C's caller reads the struct nmea_parse filled: not moved out.
+            if let Ok(sentence) = &nmeaspec::parse(line.text) {
+                black_box(sentence);
+                ok += 1;
+            }
+        }
+        ok
+    })
 }
 
 /// Times `write` over the sentences of each chunk, parsed beforehand, written one after another
@@ -131,129 +139,105 @@ fn time_ours_serialize(
 
 fn time_ours_roundtrip(lines: &[Line<'_>]) -> Timing {
     let mut buf = [0u8; LINE_CAPACITY];
-    let before = allocations();
-    let start = Instant::now();
-    let mut ok = 0;
-    for line in lines {
-        if let Ok(sentence) = nmeaspec::parse(line.text) {
-            let written = sentence.serialize_into(&mut buf);
-            ok += usize::from(written.is_some_and(|n| &buf[..n] == line.text.as_bytes()));
+    timed(|| {
+        let mut ok = 0;
+        for line in lines {
+            if let Ok(sentence) = nmeaspec::parse(line.text) {
+                let written = sentence.serialize_into(&mut buf);
+                ok += usize::from(written.is_some_and(|n| &buf[..n] == line.text.as_bytes()));
+            }
         }
-    }
-    let seconds = start.elapsed().as_secs_f64();
-    Timing {
-        seconds,
-        ok,
-        allocations: allocations() - before,
-    }
+        ok
+    })
 }
 
 #[cfg(feature = "peers")]
 fn time_nmea_parse(lines: &[Line<'_>]) -> Timing {
-    let start = Instant::now();
-    let mut ok = 0;
-    for line in lines {
-        if let Ok(result) = nmea::parse_str(line.text) {
-            black_box(&result);
-            ok += 1;
-        }
-    }
-    Timing {
-        seconds: start.elapsed().as_secs_f64(),
-        ok,
-        allocations: 0,
-    }
+    timed(|| {
+        lines
+            .iter()
+            .filter(|line| nmea::parse_str(line.text).map(|r| black_box(r)).is_ok())
+            .count()
+    })
 }
 
 #[cfg(feature = "peers")]
 fn time_nmea0183_parse(lines: &[Line<'_>]) -> Timing {
     let mut parser = nmea0183::Parser::new();
-    let start = Instant::now();
-    let mut ok = 0;
-    for line in lines {
-        for result in parser.parse_from_bytes(line.raw).flatten() {
-            black_box(&result);
-            ok += 1;
+    timed(|| {
+        let mut ok = 0;
+        for line in lines {
+            for result in parser.parse_from_bytes(line.raw).flatten() {
+                black_box(&result);
+                ok += 1;
+            }
         }
-    }
-    Timing {
-        seconds: start.elapsed().as_secs_f64(),
-        ok,
-        allocations: 0,
-    }
+        ok
+    })
 }
 
 fn time_ours_fixes(lines: &[Line<'_>]) -> Timing {
     let mut assembler = nmeaspec::FixAssembler::new();
-    let before = allocations();
-    let start = Instant::now();
-    let mut ok = 0;
-    for line in lines {
-        if let Ok(sentence) = &nmeaspec::parse(line.text) {
-            black_box(assembler.feed(sentence));
-            ok += 1;
+    timed(|| {
+        let mut ok = 0;
+        for line in lines {
+            if let Ok(sentence) = &nmeaspec::parse(line.text) {
+                black_box(assembler.feed(sentence));
+                ok += 1;
+            }
         }
-    }
-    black_box(assembler.finish());
-    let seconds = start.elapsed().as_secs_f64();
-    Timing {
-        seconds,
-        ok,
-        allocations: allocations() - before,
-    }
+        black_box(assembler.finish());
+        ok
+    })
 }
 
 fn time_ours_ais_parse(lines: &[Line<'_>]) -> Timing {
-    let before = allocations();
-    let start = Instant::now();
-    let mut ok = 0;
-    for line in lines {
-        if let Ok(sentence) = &nmeaspec::parse(line.text) {
-            if let Some(fragment) = sentence.fragment().filter(|f| f.count == 1) {
-                let decoded =
-                    nmeaspec::ais_messages::Message::decode(fragment.payload.as_bytes(), fragment.fill_bits);
-                if let Ok(message) = &decoded {
-                    black_box(message);
-                    ok += 1;
-                }
+    timed(|| {
+        let mut ok = 0;
+        for line in lines {
+            let Ok(sentence) = &nmeaspec::parse(line.text) else {
+                continue;
+            };
+            let Some(fragment) = sentence.fragment().filter(|f| f.count == 1) else {
+                continue;
+            };
+            if let Ok(message) = &nmeaspec::ais_messages::Message::decode(
+                fragment.payload.as_bytes(),
+                fragment.fill_bits,
+            ) {
+                black_box(message);
+                ok += 1;
             }
         }
-    }
-    let seconds = start.elapsed().as_secs_f64();
-    Timing {
-        seconds,
-        ok,
-        allocations: allocations() - before,
-    }
+        ok
+    })
 }
 
 #[cfg(feature = "peers")]
 fn time_nmea_parser_parse(lines: &[Line<'_>]) -> Timing {
     let mut parser = nmea_parser::NmeaParser::new();
-    let start = Instant::now();
-    let mut ok = 0;
-    for line in lines {
-        match parser.parse_sentence(line.text) {
-            Ok(nmea_parser::ParsedMessage::Incomplete) | Err(_) => {}
-            Ok(message) => {
-                black_box(&message);
-                ok += 1;
+    timed(|| {
+        let mut ok = 0;
+        for line in lines {
+            match parser.parse_sentence(line.text) {
+                Ok(nmea_parser::ParsedMessage::Incomplete) | Err(_) => {}
+                Ok(message) => {
+                    black_box(&message);
+                    ok += 1;
+                }
             }
         }
-    }
-    Timing {
-        seconds: start.elapsed().as_secs_f64(),
-        ok,
-        allocations: 0,
-    }
+        ok
+    })
 }
-
 fn run(implementation: &str, op: &str, lines: &[Line<'_>]) -> Timing {
     match (implementation, op) {
         // Reading the corpus only: the baseline bench/run.py subtracts from instruction counts.
         (_, "none") => Timing::default(),
         ("ours", "parse") => time_ours_parse(lines),
-        ("ours", "serialize") => time_ours_serialize(lines, false, |sentence, buf| sentence.serialize_into(buf)),
+        ("ours", "serialize") => {
+            time_ours_serialize(lines, false, |sentence, buf| sentence.serialize_into(buf))
+        }
         ("ours", "to_bytes") => time_ours_serialize(lines, true, |sentence, buf| {
             sentence.to_bytes(buf).ok().map(<[u8]>::len)
         }),
