@@ -157,7 +157,7 @@ NMEA_INTERNAL bool claimed(const nmea_layouts *layouts, const nmea_wire *wire)
 }
 
 /* Parses the wire with one layout. */
-static bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
+NMEA_LEAF bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
 {
     out->id = id;
     return read_with(LAYOUTS[id], &out->as, wire, err);
@@ -202,7 +202,7 @@ static bool same_as_main(const layout *l, unsigned field)
    of its sentence, tried last before it, refused a field the variant reads the same way. When
    none does, `err` gets the error of the layouts whose keyword the first field holds (else of
    all of them): the first bad field among them, else their first error. */
-NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
+NMEA_LEAF bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
                                 nmea_error *err)
 {
     /* The errors to report are kept as the layouts that made them, read again at the end: an
@@ -238,47 +238,42 @@ NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts,
    bookkeeping of errors to compare). */
 static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
 {
-    if (layouts->count == 1)
+    if (NMEA_MAX_LAYOUTS == 1 || layouts->count == 1) /* (a spec of one layout an address has no first_of_many) */
         return read_layout(out, layouts->ids[0], wire, err);
     return first_of_many(out, layouts, wire, err);
 }
 
-/* After first_fit fails: the fields at fault one at a time, a number outside its range kept as
-   sent (unless options->strict) or any other (options->lenient) read as empty, each kept as a
-   problem, until a layout reads the wire, a field cannot be helped, or a problem would be one
-   too many. The sentence's problems are then kept in options->problems (NULL: not kept). */
-NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
-                        nmea_error *err)
+/* After first_fit fails: the field at fault, a number outside its range kept as sent (unless
+   options->strict) or any other (options->lenient) read as empty, kept as problem `*count` in
+   options->problems (NULL: not kept), so that the layouts read the wire again (true); false when
+   the field cannot be helped or a problem would be one too many. Out of line, beside the
+   reading rather than above it: its frame is not on the stack under the layouts' reading. */
+NMEA_OUTLINE bool refit(nmea_wire *wire, const nmea_options *options, const nmea_error *err, size_t *count)
 {
     nmea_problems *keep = options->problems;
-    size_t count = 0; /* the problems, written in `keep` as they come: they count once a layout reads the wire */
+    nmea_problem_kind kind;
     /* a bad field's text is the field's text on the wire, empty once it has been left empty */
-    while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && count < NMEA_MAX_PROBLEMS) {
-        nmea_problem_kind kind;
-        if (err->out_of_range && !options->strict) {
-            kind = NMEA_PROBLEM_OUT_OF_RANGE;
-            wire->blank[wire->blanks++] = (uint16_t)(err->field | RANGE_KEPT);
-        } else if (options->lenient) {
-            kind = NMEA_PROBLEM_LEFT_EMPTY;
-            wire->blank[wire->blanks++] = (uint16_t)err->field;
-        } else {
-            return false;
-        }
-        if (keep)
-            problem_of(&keep->list[count], err, kind);
-        count++;
-        if (first_fit(out, layouts, wire, err)) {
-            if (keep)
-                keep->count = (uint8_t)count;
-            out->problems = keep;
-            return true;
-        }
+    if (err->kind != NMEA_ERR_BAD_FIELD || !err->field || !err->text.len || *count >= NMEA_MAX_PROBLEMS)
+        return false;
+    if (err->out_of_range && !options->strict) {
+        kind = NMEA_PROBLEM_OUT_OF_RANGE;
+        wire->blank[wire->blanks++] = (uint16_t)(err->field | RANGE_KEPT);
+    } else if (options->lenient) {
+        kind = NMEA_PROBLEM_LEFT_EMPTY;
+        wire->blank[wire->blanks++] = (uint16_t)err->field;
+    } else {
+        return false;
     }
-    return false;
+    if (keep)
+        problem_of(&keep->list[*count], err, kind); /* written as they come: they count once a layout reads the wire */
+    ++*count;
+    return true;
 }
 
-/* The first of the layouts that reads the wire (first_fit); when none does, refit (unless the
-   options are strict and not lenient: then nothing is kept; nor in a build without problems). */
+/* The first of the layouts that reads the wire (first_fit); when none does, the fields at fault
+   one at a time (refit) until a layout reads it, unless the options are strict and not lenient
+   (then nothing is kept; nor in a build without problems). The sentence's problems are then
+   kept in options->problems (NULL: not kept). */
 static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
                        nmea_error *err)
 {
@@ -286,8 +281,16 @@ static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wir
     (void)options;
     return first_fit(out, layouts, wire, err);
 #else
-    return first_fit(out, layouts, wire, err) ||
-           ((!options->strict || options->lenient) && refit(out, layouts, wire, options, err));
+    size_t count = 0;
+    while (!first_fit(out, layouts, wire, err)) /* (one call: inlined once) */
+        if (!refit(wire, options, err, &count))
+            return false;
+    if (count) {
+        if (options->problems)
+            options->problems->count = (uint8_t)count;
+        out->problems = options->problems;
+    }
+    return true;
 #endif
 }
 
