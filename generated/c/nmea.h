@@ -97,7 +97,7 @@ extern "C" {
 
 /**
  * The digits of a number field (nmea_number.digits) and how many it holds: NMEA_MAX_DIGITS in a
- * signed 64-bit integer; with -DNMEA_DIGITS_32 (a firmware short of RAM: 12-byte numbers, not 16)
+ * signed 64-bit integer; with -DNMEA_DIGITS_32 (a firmware short of RAM: 8-byte numbers, not 16)
  * 9 in a 32-bit one, and a number field of more digits is then refused as a bad field, as one of
  * more than 18 is by default.
  */
@@ -137,8 +137,13 @@ typedef struct {
     uint8_t scale;
     uint8_t width;
     char sign;
+#ifdef NMEA_DIGITS_32 /* the two flags in one byte: 8 bytes in all, not 12 */
+    bool point : 1;
+    bool present : 1;
+#else
     bool point;
     bool present;
+#endif
 } nmea_number;
 
 /** The value of `n` in units of 10^-scale (truncated toward zero), e.g. scale 3 for
