@@ -1225,8 +1225,8 @@ static const char *const FIELD_EXPECTED[] = {
 /* NMEA_FRAME, NMEA_HOT_FRAME: a function of nmea_parse's descent kept out of line at -Os (a
    microcontroller's build), where its frame would otherwise be merged into its caller's and the
    deepest path would hold the locals of every field type's reader at once; otherwise as
-   NMEA_INTERNAL and NMEA_HOT. NMEA_LEAF: a small function inlined at -Os, so that it adds no
-   frame at the bottom of that descent; otherwise the compiler's choice (NMEA_RARE_LEAF: NMEA_RARE). */
+   NMEA_INTERNAL and NMEA_HOT. NMEA_LEAF: inlined at -Os, so that it adds no frame of its own to
+   that descent; otherwise the compiler's choice (NMEA_RARE_LEAF: NMEA_RARE). */
 
 /* The texts only errors use: message patterns, field ids, what a field takes. A firmware short of
    flash builds with -DNMEA_TERSE_ERRORS (and -DNMEA_NO_JSON, whose keys are field ids): an error
@@ -2755,9 +2755,8 @@ NMEA_FRAME bool parse_number(nmea_text t, bool integer, nmea_number *out)
 
 /* Compares a * 10^-as with b * 10^-bs (both signed): -1, 0 or 1. No division (a Cortex-M links
    one of 64 bits as a library routine of 700 bytes): the magnitudes are brought to one scale, and
-   one that would pass 2^64 on the way is the larger. In in_range's frame at -Os (NMEA_LEAF): no
-   frame of its own at the bottom of nmea_parse's descent. */
-NMEA_LEAF int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
+   one that would pass 2^64 on the way is the larger. */
+static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
 {
     uint64_t ma, mb;
     int order;
@@ -2777,8 +2776,7 @@ NMEA_LEAF int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
     return a < 0 ? -order : order;
 }
 
-/* Whether `n` is within `range` (NULL: any value). At -Os a frame of its own (a leaf: the
-   comparison inlined) rather than inlined where numbers are read. */
+/* Whether `n` is within `range` (NULL: any value). */
 static inline bool in_range(const nmea_number *n, const nmea_range *range)
 {
     int64_t value;
@@ -3277,14 +3275,22 @@ NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *r
     return true;
 }
 
+/* An integer or decimal field: quick_number, else read_number. A build for size (-Os) has one
+   scanner of numbers, read_number: quick_number is there for speed only. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define QUICK_NUMBER(r, out, range, integer) false
+#else
+#define QUICK_NUMBER(r, out, range, integer) quick_number(r, out, range, integer)
+#endif
+
 NMEA_HOT_FRAME bool read_integer(nmea_reader *r, nmea_number *out, const nmea_range *range)
 {
-    return quick_number(r, out, range, true) || read_number(r, out, range, true);
+    return QUICK_NUMBER(r, out, range, true) || read_number(r, out, range, true);
 }
 
 NMEA_HOT_FRAME bool read_decimal(nmea_reader *r, nmea_number *out, const nmea_range *range)
 {
-    return quick_number(r, out, range, false) || read_number(r, out, range, false);
+    return QUICK_NUMBER(r, out, range, false) || read_number(r, out, range, false);
 }
 
 NMEA_FRAME bool read_hex(nmea_reader *r, nmea_hex *out)

@@ -156,14 +156,15 @@ int64_t nmea_number_scaled(const nmea_number *n, unsigned scale);
 nmea_number nmea_number_of(int64_t value, unsigned scale);
 
 /** An inclusive value range (integer and decimal fields, table parameters): min * 10^-min_scale
-    to max * 10^-max_scale, each bound only when has_min / has_max. */
+    to max * 10^-max_scale, each bound only when has_min / has_max. (The small members last: 24
+    bytes, not 40; the generated code initializes it by member names.) */
 typedef struct {
+    int64_t min;
+    int64_t max;
+    uint8_t min_scale;
+    uint8_t max_scale;
     bool has_min;
     bool has_max;
-    int64_t min;
-    uint8_t min_scale;
-    int64_t max;
-    uint8_t max_scale;
 } nmea_range;
 
 /** An unsigned hexadecimal number; the digit count and the letter case are kept. */

@@ -37,8 +37,8 @@
 /* NMEA_FRAME, NMEA_HOT_FRAME: a function of nmea_parse's descent kept out of line at -Os (a
    microcontroller's build), where its frame would otherwise be merged into its caller's and the
    deepest path would hold the locals of every field type's reader at once; otherwise as
-   NMEA_INTERNAL and NMEA_HOT. NMEA_LEAF: a small function inlined at -Os, so that it adds no
-   frame at the bottom of that descent; otherwise the compiler's choice (NMEA_RARE_LEAF: NMEA_RARE). */
+   NMEA_INTERNAL and NMEA_HOT. NMEA_LEAF: inlined at -Os, so that it adds no frame of its own to
+   that descent; otherwise the compiler's choice (NMEA_RARE_LEAF: NMEA_RARE). */
 
 /* The texts only errors use: message patterns, field ids, what a field takes. A firmware short of
    flash builds with -DNMEA_TERSE_ERRORS (and -DNMEA_NO_JSON, whose keys are field ids): an error

@@ -44,9 +44,8 @@ NMEA_FRAME bool parse_number(nmea_text t, bool integer, nmea_number *out)
 
 /* Compares a * 10^-as with b * 10^-bs (both signed): -1, 0 or 1. No division (a Cortex-M links
    one of 64 bits as a library routine of 700 bytes): the magnitudes are brought to one scale, and
-   one that would pass 2^64 on the way is the larger. In in_range's frame at -Os (NMEA_LEAF): no
-   frame of its own at the bottom of nmea_parse's descent. */
-NMEA_LEAF int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
+   one that would pass 2^64 on the way is the larger. */
+static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
 {
     uint64_t ma, mb;
     int order;
@@ -66,8 +65,7 @@ NMEA_LEAF int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
     return a < 0 ? -order : order;
 }
 
-/* Whether `n` is within `range` (NULL: any value). At -Os a frame of its own (a leaf: the
-   comparison inlined) rather than inlined where numbers are read. */
+/* Whether `n` is within `range` (NULL: any value). */
 static inline bool in_range(const nmea_number *n, const nmea_range *range)
 {
     int64_t value;

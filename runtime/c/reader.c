@@ -255,14 +255,22 @@ NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *r
     return true;
 }
 
+/* An integer or decimal field: quick_number, else read_number. A build for size (-Os) has one
+   scanner of numbers, read_number: quick_number is there for speed only. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define QUICK_NUMBER(r, out, range, integer) false
+#else
+#define QUICK_NUMBER(r, out, range, integer) quick_number(r, out, range, integer)
+#endif
+
 NMEA_HOT_FRAME bool read_integer(nmea_reader *r, nmea_number *out, const nmea_range *range)
 {
-    return quick_number(r, out, range, true) || read_number(r, out, range, true);
+    return QUICK_NUMBER(r, out, range, true) || read_number(r, out, range, true);
 }
 
 NMEA_HOT_FRAME bool read_decimal(nmea_reader *r, nmea_number *out, const nmea_range *range)
 {
-    return quick_number(r, out, range, false) || read_number(r, out, range, false);
+    return QUICK_NUMBER(r, out, range, false) || read_number(r, out, range, false);
 }
 
 NMEA_FRAME bool read_hex(nmea_reader *r, nmea_hex *out)
