@@ -6359,15 +6359,12 @@ static bool fast_fit(nmea_sentence *out, const nmea_layouts *layouts, const char
     return false;
 }
 
-/* Keeps the layout whose error to report (its index in `*kept`, whether that was a bad field in
-   `*kept_bad`): the first one, or the first bad field that comes after it. */
-static void keep_error(size_t *kept, bool *kept_bad, size_t i, const nmea_error *err)
+/* Keeps the layout whose error to report, `kept` (its index times two, plus one for a bad field),
+   in `*at`: the first one, or the first bad field that comes after it. */
+static void keep_error(int *at, int kept)
 {
-    bool bad = err->kind == NMEA_ERR_BAD_FIELD;
-    if (*kept == SIZE_MAX || (!*kept_bad && bad)) {
-        *kept = i;
-        *kept_bad = bad;
-    }
+    if (*at < 0 || (!(*at & 1) && (kept & 1)))
+        *at = kept;
 }
 
 /* Whether variant `l` reads wire field `field` as its main layout does (see same_as_main). */
@@ -6388,29 +6385,31 @@ NMEA_LEAF bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, co
                                 nmea_error *err)
 {
     /* The errors to report are kept as the layouts that made them, read again at the end: an
-       error copied per candidate would triple this frame on the deepest path of nmea_parse. */
-    size_t chosen = SIZE_MAX, fallback = SIZE_MAX, last = SIZE_MAX, i;
-    bool chosen_bad = false, fallback_bad = false;
+       error copied per candidate would triple this frame on the deepest path of nmea_parse.
+       Each is its index times two plus whether it was a bad field (-1: none yet), so that this
+       loop's state takes few registers where it is inlined. */
+    int chosen = -1, fallback = -1, last = -1, i;
     const char *refused = NULL; /* the sentence of the main layout tried last, when it refused */
     unsigned refused_field = 0; /* and the field it refused */
 
-    for (i = 0; i < layouts->count; i++) {
+    for (i = 0; i < (int)layouts->count; i++) {
         const layout *l = LAYOUTS[layouts->ids[i]];
+        int kept;
         if (l->variant && refused && words_equal(refused, l->sentence) && same_as_main(l, refused_field))
             continue;
         if (read_layout(out, layouts->ids[i], wire, err))
             return true;
         last = i;
+        kept = 2 * i + (err->kind == NMEA_ERR_BAD_FIELD);
         if (!l->variant) {
-            bool bad = err->kind == NMEA_ERR_BAD_FIELD && err->field;
-            refused = bad ? l->sentence : NULL;
+            refused = err->kind == NMEA_ERR_BAD_FIELD && err->field ? l->sentence : NULL;
             refused_field = err->field;
         }
         if (holds_selector(layouts->ids[i], wire))
-            keep_error(&chosen, &chosen_bad, i, err);
-        keep_error(&fallback, &fallback_bad, i, err);
+            keep_error(&chosen, kept);
+        keep_error(&fallback, kept);
     }
-    i = chosen != SIZE_MAX ? chosen : fallback;
+    i = (chosen >= 0 ? chosen : fallback) / 2;
     if (i != last) /* reading is deterministic: the same error again */
         read_layout(out, layouts->ids[i], wire, err);
     return false;
