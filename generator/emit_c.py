@@ -727,6 +727,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "tag_codes": [(c_str(c.code), c_str(c.id), c_str(c.name), TAG_TYPES[c.type]) for c in spec.tag_codes],
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "max_fields": max([v["max_fields"] for v in views] + [1]),
+        # the most layouts one address or command word has (1: first_fit reads the one directly)
+        "max_layouts": max([len(e["ids"]) for table in dispatch.values() for e in table] + [1]),
         "json_max": json_max(spec, views),
         "max_line": longest_line(spec), "contract_max_line": MAX_LINE, "ais": carries_ais(spec),
         "runtime_h": (RUNTIME_C / "runtime.h").read_text(encoding="utf-8"),

@@ -11,6 +11,10 @@
 /* The most wire fields any layout takes (runtime/c/generated.c). */
 #define NMEA_MAX_FIELDS 386
 
+/* The most layouts one address (or command word) has (1: no line has several to choose among,
+   and first_fit reads the one: runtime/c/dispatch.c). */
+#define NMEA_MAX_LAYOUTS 14
+
 /* The value ranges of integer and decimal fields, and what the layouts' fields take by kind, each
    once, which layout_field indexes (runtime/c/layout.c). */
 static const nmea_range range_0_to_0 = {.has_min = true, .min = 0, .has_max = true, .max = 0}; /* 0..0 */
@@ -1195,17 +1199,34 @@ static const char *const FIELD_EXPECTED[] = {
 #define NMEA_RARE static __attribute__((noinline, cold))
 #define NMEA_HOT static inline
 #define NMEA_OUTLINE static __attribute__((noinline, unused))
+#define NMEA_FRAME static __attribute__((noinline, unused))
+#define NMEA_HOT_FRAME static __attribute__((noinline, unused))
+#define NMEA_LEAF static inline __attribute__((always_inline, unused))
+#define NMEA_RARE_LEAF NMEA_LEAF
 #elif defined(__GNUC__)
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
 #define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
 #define NMEA_OUTLINE static __attribute__((noinline, unused))
+#define NMEA_FRAME static __attribute__((unused))
+#define NMEA_HOT_FRAME NMEA_HOT
+#define NMEA_LEAF static __attribute__((unused))
+#define NMEA_RARE_LEAF NMEA_RARE
 #else
 #define NMEA_INTERNAL static
 #define NMEA_RARE static
 #define NMEA_HOT static
 #define NMEA_OUTLINE static
+#define NMEA_FRAME static
+#define NMEA_HOT_FRAME static
+#define NMEA_LEAF static
+#define NMEA_RARE_LEAF static
 #endif
+/* NMEA_FRAME, NMEA_HOT_FRAME: a function of nmea_parse's descent kept out of line at -Os (a
+   microcontroller's build), where its frame would otherwise be merged into its caller's and the
+   deepest path would hold the locals of every field type's reader at once; otherwise as
+   NMEA_INTERNAL and NMEA_HOT. NMEA_LEAF: inlined at -Os, so that it adds no frame of its own to
+   that descent; otherwise the compiler's choice (NMEA_RARE_LEAF: NMEA_RARE). */
 
 /* The texts only errors use: message patterns, field ids, what a field takes. A firmware short of
    flash builds with -DNMEA_TERSE_ERRORS (and -DNMEA_NO_JSON, whose keys are field ids): an error
@@ -2705,7 +2726,7 @@ static size_t take_digits(const char **p, const char *end, int64_t *value, size_
 }
 
 /* [+-]digits[.digits] (no point for an integer), at most NMEA_NUMBER_DIGITS digits. */
-static bool parse_number(nmea_text t, bool integer, nmea_number *out)
+NMEA_FRAME bool parse_number(nmea_text t, bool integer, nmea_number *out)
 {
     const char *p = t.ptr, *end = t.ptr + t.len;
     size_t whole, frac = 0;
@@ -2755,6 +2776,7 @@ static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
     return a < 0 ? -order : order;
 }
 
+/* Whether `n` is within `range` (NULL: any value). */
 static inline bool in_range(const nmea_number *n, const nmea_range *range)
 {
     int64_t value;
@@ -2802,7 +2824,7 @@ nmea_number nmea_number_of(int64_t value, unsigned scale)
     return n;
 }
 
-static bool parse_hex(nmea_text t, nmea_hex *out)
+NMEA_FRAME bool parse_hex(nmea_text t, nmea_hex *out)
 {
     size_t i;
     uint64_t value = 0;
@@ -2857,7 +2879,7 @@ NMEA_HOT bool time_of(const char *t, uint32_t fraction, size_t frac, bool point,
 }
 
 /* hhmmss[.f...], at most 9 fraction digits. */
-static bool parse_time(nmea_text t, nmea_time *out)
+NMEA_FRAME bool parse_time(nmea_text t, nmea_time *out)
 {
     size_t frac = 0, i;
     uint32_t fraction = 0;
@@ -2886,7 +2908,7 @@ NMEA_HOT bool date_of(const char *t, nmea_date *out)
     return true;
 }
 
-static bool parse_date(nmea_text t, nmea_date *out)
+NMEA_FRAME bool parse_date(nmea_text t, nmea_date *out)
 {
     return t.len == 6 && all_digits(t.ptr, 6) && date_of(t.ptr, out);
 }
@@ -2914,7 +2936,7 @@ NMEA_HOT bool coordinate_of(uint64_t whole_value, size_t whole, uint64_t minutes
 
 /* ddmm.mmmm (latitude) or dddmm.mmmm (longitude): the two digits before the point are whole
    minutes, the digits before them degrees. */
-static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
+NMEA_FRAME bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
 {
     const char *p = t.ptr, *end = t.ptr + t.len, *point = NULL;
     uint64_t whole_value = 0, minutes; /* unsigned: digits too many for them are refused below */
@@ -3005,33 +3027,39 @@ typedef struct {
     nmea_text address;
     const char *suffix;
     nmea_text fields;
-    size_t count;
-    char sep;                     /* between fields: ',' or ' ' (the words of a text command) */
-    bool ignore_case;             /* a text command: keywords and enum codes match ignoring case */
-    nmea_checksum_style checksum;
     nmea_text line;               /* a text command: the command as received */
     uint16_t blank[NMEA_MAX_PROBLEMS]; /* the wire fields at fault: read as empty (lenient parsing), */
-    unsigned blanks;                   /* or with RANGE_KEPT, numbers read without their range */
+    uint8_t blanks;                    /* or with RANGE_KEPT, numbers read without their range */
+    char sep;                     /* between fields: ',' or ' ' (the words of a text command) */
+    bool ignore_case;             /* a text command: keywords and enum codes match ignoring case */
+    uint8_t checksum;             /* nmea_checksum_style (small types: the wire is on the stack all
+                                     the while a line is parsed) */
+    uint16_t count;               /* fields */
 } nmea_wire;
 
 /* Added to a wire index in nmea_wire.blank: the number there is kept outside its range. (No
    line has that many fields, and an index so marked is never taken for a field read as empty.) */
 #define RANGE_KEPT 0x8000u
 
+/* The cursor of a layout's reading. It refers to the wire (the address and the blanks, for
+   errors and lenient parsing) rather than copying it, and keeps the field being read (its id and
+   what it takes), so that each field type's reader takes the cursor, its value and at most two
+   more arguments: the calls from read_field are then jumps, and nmea_parse's descent stays
+   within a few hundred bytes of stack on a microcontroller. */
 typedef struct {
     const char *next;
     const char *end;
-    unsigned index; /* 1-based wire index of the field read last */
-    nmea_text address;
-    const char *suffix;
+    const nmea_wire *wire;
     const char *sentence;
     const char *group;
-    unsigned entry;
+    uint16_t index; /* 1-based wire index of the field read last */
+    uint16_t entry;
+    const char *name;     /* the field being read: its id (NULL in a terse build), */
+    const char *expected; /* and what it takes */
     char sep;
     bool ignore_case;
     bool any_range;   /* numbers are not held to their range (a parsed sentence's entries read again) */
-    const uint16_t *blank;
-    unsigned blanks;
+    uint8_t blanks;   /* of wire->blank */
     nmea_error *err;
 } nmea_reader;
 
@@ -3040,15 +3068,13 @@ static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sent
     r->next = wire->fields.ptr;
     r->end = wire->fields.ptr + wire->fields.len;
     r->index = 0;
-    r->address = wire->address;
-    r->suffix = wire->suffix;
+    r->wire = wire;
     r->sentence = sentence;
     r->group = NULL;
     r->entry = 0;
     r->sep = wire->sep;
     r->ignore_case = wire->ignore_case;
     r->any_range = false;
-    r->blank = wire->blank;
     r->blanks = wire->blanks;
     r->err = err;
 }
@@ -3063,7 +3089,7 @@ NMEA_OUTLINE void clear_layout(void *s, size_t size)
 }
 
 /* Whether lenient parsing reads wire field `index` (1-based) as empty. */
-NMEA_RARE bool is_blank(const uint16_t *blank, unsigned blanks, unsigned index)
+NMEA_RARE_LEAF bool is_blank(const uint16_t *blank, unsigned blanks, unsigned index)
 {
     unsigned i;
     for (i = 0; i < blanks; i++)
@@ -3076,7 +3102,7 @@ NMEA_RARE bool is_blank(const uint16_t *blank, unsigned blanks, unsigned index)
 NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
 {
     r->group = group;
-    r->entry = (unsigned)index + 1;
+    r->entry = (uint16_t)(index + 1);
 }
 
 static inline nmea_text next_field(nmea_reader *r)
@@ -3089,7 +3115,7 @@ static inline nmea_text next_field(nmea_reader *r)
         q++;
     t = text_span(p, q);
     r->next = q < end ? q + 1 : q;
-    if (r->blanks && is_blank(r->blank, r->blanks, r->index))
+    if (r->blanks && is_blank(r->wire->blank, r->blanks, r->index))
         t.len = 0;
     return t;
 }
@@ -3097,7 +3123,7 @@ static inline nmea_text next_field(nmea_reader *r)
 static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *pattern, size_t n, size_t m)
 {
     fail(r->err, kind, pattern);
-    set_address(r->err, r->address, r->suffix);
+    set_address(r->err, r->wire->address, r->wire->suffix);
     r->err->str[0] = r->sentence;
     r->err->num[0] = n;
     r->err->num[1] = m;
@@ -3124,10 +3150,10 @@ static void wire_of(nmea_wire *wire, const nmea_frame *f, const char *suffix, co
     wire->address = suffix ? text_span(f->address.ptr, f->address.ptr + f->address.len - 3) : f->address;
     wire->suffix = suffix;
     wire->fields = f->fields;
-    wire->count = f->count;
+    wire->count = (uint16_t)f->count;
     wire->sep = line ? ' ' : ',';
     wire->ignore_case = line != NULL;
-    wire->checksum = f->checksum;
+    wire->checksum = (uint8_t)f->checksum;
     wire->line = line ? text_span(line, f->fields.ptr + f->fields.len) : nmea_text_of(NULL);
     wire->blanks = 0;
 }
@@ -3175,57 +3201,37 @@ NMEA_INTERNAL inline bool read_count(nmea_reader *r, size_t count, size_t fixed,
     return true;
 }
 
-/* A layout with a repeated group of `width` wire fields, `min` to `max` times, and `fixed`
-   required fields besides: how many times it occurs and how many optional wire fields follow. */
-NMEA_INTERNAL inline bool read_group_count(nmea_reader *r, size_t count, const char *group, size_t fixed, size_t width,
-                                           size_t min, size_t max, size_t optional_max, size_t *repeats, size_t *optional)
-{
-    size_t rest, extra;
-    *repeats = 0; /* (set first: once inlined, gcc -O1 cannot tell they are read only on success) */
-    *optional = 0;
-    if (count < fixed + min * width)
-        return too_few(r, fixed + min * width, count);
-    rest = count - fixed;
-    *repeats = rest / width < max ? rest / width : max;
-    extra = rest - *repeats * width;
-    if (extra > optional_max) {
-        if (*repeats == max)
-            return too_many(r, fixed + max * width + optional_max, count);
-        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
-        r->err->str[1] = group;
-        return false;
-    }
-    *optional = extra;
-    return true;
-}
-
-static bool bad_field(nmea_reader *r, unsigned index, const char *name, const char *expected, nmea_text text)
+/* The error of the field being read, at wire field `index`, whose `text` is not what it takes. */
+NMEA_FRAME bool bad_field(nmea_reader *r, unsigned index, nmea_text text)
 {
     nmea_error *err = r->err;
-    fail(err, NMEA_ERR_BAD_FIELD, ERROR_TEXT("expected %s, found %q"));
-    set_address(err, r->address, r->suffix);
+    memset(err, 0, sizeof *err); /* fail's work, in this frame: the deepest of nmea_parse's paths end here */
+    err->kind = NMEA_ERR_BAD_FIELD;
+    err->pattern = ERROR_TEXT("expected %s, found %q");
+    err->has_address = true;
+    err->address = r->wire->address;
+    err->address_suffix = r->wire->suffix;
     err->field = index;
     err->group = r->group;
     err->entry = r->entry;
-    err->name = name;
-    err->str[0] = expected;
+    err->name = r->name;
+    err->str[0] = r->expected;
     err->text = text;
     return false;
 }
 
 /* The general reading of an integer or decimal field: out of its range, an error that says so
    (out_of_range), unless the field is one whose number is kept outside its range. */
-NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                           const nmea_range *range, bool integer)
+NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
 {
     nmea_text t = next_field(r);
     if (!t.len)
         return true;
     if (!parse_number(t, integer, out))
-        return bad_field(r, r->index, name, expected, t);
-    if (in_range(out, range) || r->any_range || is_blank(r->blank, r->blanks, r->index | RANGE_KEPT))
+        return bad_field(r, r->index, t);
+    if (in_range(out, range) || r->any_range || is_blank(r->wire->blank, r->blanks, r->index | RANGE_KEPT))
         return true;
-    bad_field(r, r->index, name, expected, t);
+    bad_field(r, r->index, t);
     r->err->out_of_range = true;
     return false;
 }
@@ -3269,115 +3275,118 @@ NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *r
     return true;
 }
 
-NMEA_HOT bool read_integer(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                           const nmea_range *range)
+/* An integer or decimal field: quick_number, else read_number. A build for size (-Os) has one
+   scanner of numbers, read_number: quick_number is there for speed only. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define QUICK_NUMBER(r, out, range, integer) false
+#else
+#define QUICK_NUMBER(r, out, range, integer) quick_number(r, out, range, integer)
+#endif
+
+NMEA_HOT_FRAME bool read_integer(nmea_reader *r, nmea_number *out, const nmea_range *range)
 {
-    return quick_number(r, out, range, true) || read_number(r, out, name, expected, range, true);
+    return QUICK_NUMBER(r, out, range, true) || read_number(r, out, range, true);
 }
 
-NMEA_HOT bool read_decimal(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                           const nmea_range *range)
+NMEA_HOT_FRAME bool read_decimal(nmea_reader *r, nmea_number *out, const nmea_range *range)
 {
-    return quick_number(r, out, range, false) || read_number(r, out, name, expected, range, false);
+    return QUICK_NUMBER(r, out, range, false) || read_number(r, out, range, false);
 }
 
-NMEA_INTERNAL bool read_hex(nmea_reader *r, nmea_hex *out, const char *name, const char *expected)
+NMEA_FRAME bool read_hex(nmea_reader *r, nmea_hex *out)
 {
     nmea_text t = next_field(r);
     if (t.len && !parse_hex(t, out))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     return true;
 }
 
-NMEA_INTERNAL bool read_time(nmea_reader *r, nmea_time *out, const char *name, const char *expected)
+NMEA_FRAME bool read_time(nmea_reader *r, nmea_time *out)
 {
     nmea_text t = next_field(r);
     if (t.len && !parse_time(t, out))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     return true;
 }
 
-NMEA_INTERNAL bool read_date(nmea_reader *r, nmea_date *out, const char *name, const char *expected)
+NMEA_FRAME bool read_date(nmea_reader *r, nmea_date *out)
 {
     nmea_text t = next_field(r);
     if (t.len && !parse_date(t, out))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     return true;
 }
 
 /* A value field and a hemisphere field, both empty or both set. */
-static bool read_coordinate(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
-                            const char *hemisphere_expected, const char *hemispheres, unsigned max_degree_digits,
-                            unsigned max_degrees)
+static bool read_coordinate(nmea_reader *r, nmea_coordinate *out, const char *hemisphere_expected, bool longitude)
 {
+    const char *hemispheres = longitude ? "EW" : "NS";
     nmea_text value = next_field(r);
     nmea_text hemisphere = next_field(r);
     if (!value.len) {
         if (hemisphere.len)
-            return bad_field(r, r->index - 1, name, expected, value);
+            return bad_field(r, r->index - 1, value);
         return true;
     }
-    if (!parse_coordinate(value, max_degree_digits, max_degrees, out))
-        return bad_field(r, r->index - 1, name, expected, value);
+    if (!parse_coordinate(value, 2u + longitude, longitude ? 180 : 90, out))
+        return bad_field(r, r->index - 1, value);
     if (hemisphere.len != 1 || (hemisphere.ptr[0] != hemispheres[0] && hemisphere.ptr[0] != hemispheres[1])) {
         out->present = false;
-        return bad_field(r, r->index, name, hemisphere_expected, hemisphere);
+        r->expected = hemisphere_expected;
+        return bad_field(r, r->index, hemisphere);
     }
     out->hemisphere = hemisphere.ptr[0];
     return true;
 }
 
-NMEA_INTERNAL bool read_latitude(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
-                                 const char *hemisphere_expected)
+NMEA_FRAME bool read_latitude(nmea_reader *r, nmea_coordinate *out, const char *hemisphere_expected)
 {
-    return read_coordinate(r, out, name, expected, hemisphere_expected, "NS", 2, 90);
+    return read_coordinate(r, out, hemisphere_expected, false);
 }
 
-NMEA_INTERNAL bool read_longitude(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
-                                  const char *hemisphere_expected)
+NMEA_FRAME bool read_longitude(nmea_reader *r, nmea_coordinate *out, const char *hemisphere_expected)
 {
-    return read_coordinate(r, out, name, expected, hemisphere_expected, "EW", 3, 180);
+    return read_coordinate(r, out, hemisphere_expected, true);
 }
 
-NMEA_INTERNAL bool read_char(nmea_reader *r, char *out, const char *name, const char *expected)
+NMEA_FRAME bool read_char(nmea_reader *r, char *out)
 {
     nmea_text t = next_field(r);
     if (t.len > 1)
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     *out = t.len ? t.ptr[0] : 0;
     return true;
 }
 
-NMEA_INTERNAL bool read_literal(nmea_reader *r, bool *out, const char *name, const char *expected, const char *literal)
+NMEA_FRAME bool read_literal(nmea_reader *r, bool *out, const char *literal)
 {
     nmea_text t = next_field(r);
     if (t.len && !text_is(t, literal))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     *out = t.len > 0;
     return true;
 }
 
 /* A fixed word that must be there (it picks the layout); in a text command ignoring case. */
-NMEA_INTERNAL bool read_keyword(nmea_reader *r, const char *name, const char *expected, const char *keyword)
+NMEA_FRAME bool read_keyword(nmea_reader *r, const char *keyword)
 {
     nmea_text t = next_field(r);
     if (!text_is(t, keyword) && !(r->ignore_case && upper_is(t, keyword)))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     return true;
 }
 
-NMEA_INTERNAL bool read_text(nmea_reader *r, nmea_text *out, const char *name, const char *expected, size_t max_length)
+NMEA_FRAME bool read_text(nmea_reader *r, nmea_text *out, size_t max_length)
 {
     nmea_text t = next_field(r);
     if (max_length && t.len > max_length)
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     *out = t;
     return true;
 }
 
 /* A known code, or a well-formed unknown one (kept in `code`). */
-NMEA_INTERNAL bool read_enum(nmea_reader *r, nmea_enum *out, const char *name, const char *expected,
-                             const nmea_enum_def *def)
+NMEA_FRAME bool read_enum(nmea_reader *r, nmea_enum *out, const nmea_enum_def *def)
 {
     nmea_text t = next_field(r);
     size_t i;
@@ -3385,7 +3394,7 @@ NMEA_INTERNAL bool read_enum(nmea_reader *r, nmea_enum *out, const char *name, c
         return true;
     out->value = r->ignore_case ? enum_find_upper(def, t) : enum_find(def, t.ptr, t.len);
     if (out->value == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr, t.len, def->min_len, def->max_len))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     for (i = 0; i < t.len; i++) /* t.len <= max_len <= NMEA_CODE_MAX; a code is a character or two */
         out->code[i] = t.ptr[i];
     out->code[t.len] = 0;
@@ -3394,16 +3403,15 @@ NMEA_INTERNAL bool read_enum(nmea_reader *r, nmea_enum *out, const char *name, c
 }
 
 /* A run of one-character codes (GNS mode "ANNN"), kept as text. */
-NMEA_INTERNAL bool read_enum_chars(nmea_reader *r, nmea_text *out, const char *name, const char *expected,
-                                   const nmea_enum_def *def, size_t max_length)
+NMEA_FRAME bool read_enum_chars(nmea_reader *r, nmea_text *out, const nmea_enum_def *def, size_t max_length)
 {
     nmea_text t = next_field(r);
     size_t i;
     if (max_length && t.len > max_length)
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     for (i = 0; i < t.len; i++)
         if (enum_find(def, t.ptr + i, 1) == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr + i, 1, 1, 1))
-            return bad_field(r, r->index, name, expected, t);
+            return bad_field(r, r->index, t);
     *out = t;
     return true;
 }
@@ -5559,37 +5567,40 @@ static const nmea_entries *entries_in(const layout_group *g, const void *s)
     return g->offset == NO_MEMBER ? NULL : (const nmea_entries *)const_member_at(s, g->offset);
 }
 
-/* Reads field `f` into `out`, a value of its type (nothing for a keyword). */
+/* Reads field `f` into `out`, a value of its type (nothing for a keyword). The field's id and
+   what it takes go in the reader, for its errors: each type's reader takes at most four
+   arguments, so that at -Os these calls are jumps (no frame of read_field under them). */
 static bool read_field(nmea_reader *r, const layout_field *f, void *out)
 {
-    const char *id = field_id(f), *expected = field_expected(f);
+    r->name = field_id(f);
+    r->expected = field_expected(f);
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
-        return read_keyword(r, id, expected, word_of(f));
+        return read_keyword(r, word_of(f));
     case FIELD_INTEGER:
-        return read_integer(r, out, id, expected, range_of(f));
+        return read_integer(r, out, range_of(f));
     case FIELD_DECIMAL:
-        return read_decimal(r, out, id, expected, range_of(f));
+        return read_decimal(r, out, range_of(f));
     case FIELD_HEX:
-        return read_hex(r, out, id, expected);
+        return read_hex(r, out);
     case FIELD_TIME:
-        return read_time(r, out, id, expected);
+        return read_time(r, out);
     case FIELD_DATE:
-        return read_date(r, out, id, expected);
+        return read_date(r, out);
     case FIELD_LATITUDE:
-        return read_latitude(r, out, id, expected, hemisphere_expected(f));
+        return read_latitude(r, out, hemisphere_expected(f));
     case FIELD_LONGITUDE:
-        return read_longitude(r, out, id, expected, hemisphere_expected(f));
+        return read_longitude(r, out, hemisphere_expected(f));
     case FIELD_CHAR:
-        return read_char(r, out, id, expected);
+        return read_char(r, out);
     case FIELD_LITERAL:
-        return read_literal(r, out, id, expected, word_of(f));
+        return read_literal(r, out, word_of(f));
     case FIELD_TEXT:
-        return read_text(r, out, id, expected, f->max_length);
+        return read_text(r, out, f->max_length);
     case FIELD_ENUM:
-        return read_enum(r, out, id, expected, table_of(f));
+        return read_enum(r, out, table_of(f));
     case FIELD_ENUM_CHARS:
-        return read_enum_chars(r, out, id, expected, table_of(f), f->max_length);
+        return read_enum_chars(r, out, table_of(f), f->max_length);
     }
     return false;
 }
@@ -5662,6 +5673,7 @@ static const char *fields_end(const char *p, const char *end, char sep, size_t n
 typedef struct {
     nmea_reader r;
     nmea_error err;
+    nmea_wire wire;
 } entry_reader;
 
 static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries *e, size_t i);
@@ -5685,78 +5697,125 @@ static void reread_field(entry_reader *c, const layout_field *f, void *out)
     c->r.index = index + (unsigned)field_width(f);
 }
 
-/* Reads the wire into `s`, a struct of layout `l`. */
-NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
+/* A layout with a repeated group (`width` wire fields, `min` to `max` times) and `fixed`
+   required fields besides: how many times it occurs and how many optional wire fields follow. */
+static bool read_group_count(nmea_reader *r, const layout *l, size_t count, size_t *repeats, size_t *optional)
 {
     const layout_group *g = l->group;
-    nmea_reader r;
-    size_t i, repeats = 0, optional, present;
+    size_t rest, extra, width = g->width;
+    *repeats = 0; /* (set first: gcc cannot tell they are read only on success) */
+    *optional = 0;
+    if (count < l->fixed + g->min * width)
+        return too_few(r, l->fixed + g->min * width, count);
+    rest = count - l->fixed;
+    *repeats = rest / width < g->max ? rest / width : g->max;
+    extra = rest - *repeats * width;
+    if (extra > l->optional_max) {
+        if (*repeats == g->max)
+            return too_many(r, l->fixed + g->max * width + l->optional_max, count);
+        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
+        r->err->str[1] = g->id;
+        return false;
+    }
+    *optional = extra;
+    return true;
+}
 
-    reader_start(&r, wire, l->sentence, err);
-    if (g ? !read_group_count(&r, wire->count, g->id, l->fixed, g->width, g->min, g->max, l->optional_max, &repeats,
-                              &optional)
-          : !read_count(&r, wire->count, l->fixed, l->max_fields, &optional))
+/* Reads the entries of the group of layout `l` (they stay on the wire, each checked here) into
+   its nmea_entries in `s`, a struct of the layout. Each value is read into that nmea_entries,
+   which is only filled afterwards: no value on the stack (a keyword, the only field of a group
+   that stores nothing, reads into nothing). */
+static bool read_entries(nmea_reader *r, const layout *l, void *s, size_t repeats)
+{
+    const layout_group *g = l->group;
+    const char *start = r->next;
+    unsigned first = r->index;
+    void *value = member_at(s, g->offset == NO_MEMBER ? 0 : g->offset);
+    size_t i, j;
+    typedef char value_fits[sizeof(field_value) <= sizeof(nmea_entries) ? 1 : -1];
+    (void)sizeof(value_fits);
+
+    for (i = 0; i < repeats; i++) {
+        reader_entry(r, g->id, i);
+        for (j = 0; j < g->field_count; j++)
+            if (!read_field(r, &g->fields[j], value))
+                return false;
+    }
+    if (g->offset != NO_MEMBER) { /* the entries stay on the wire, read when asked for */
+        const nmea_wire *wire = r->wire;
+        nmea_entries *e = (nmea_entries *)value;
+        memset(e, 0, sizeof *e);
+        e->wire = text_span(start, repeats ? fields_end(start, r->end, r->sep, repeats * g->width) : start);
+        for (j = 0; j < wire->blanks; j++)
+            if (wire->blank[j] > first && wire->blank[j] <= r->index)
+                e->blank[e->blanks++] = (uint16_t)(wire->blank[j] - first);
+    }
+    if (g->count_offset != NO_MEMBER)
+        *(uint8_t *)member_at(s, g->count_offset) = (uint8_t)repeats;
+    reader_entry(r, NULL, 0);
+    return true;
+}
+
+/* The start of read_with: the wire's field count checked against layout `l`, `s` cleared and
+   given what the wire holds besides the fields; `counts` the entries of the group and the
+   optional fields on the wire. */
+static bool read_start(nmea_reader *r, const layout *l, void *s, size_t *counts)
+{
+    const nmea_wire *wire = r->wire;
+    size_t optional;
+
+    counts[0] = 0;
+    if (l->group ? !read_group_count(r, l, wire->count, &counts[0], &optional)
+                 : !read_count(r, wire->count, l->fixed, l->max_fields, &optional))
         return false;
     clear_layout(s, l->size);
     if (l->head != NO_MEMBER)
         *(nmea_text *)member_at(s, l->head) = l->kind == LAYOUT_TEXT ? wire->line : wire->address;
     if (l->checksum != NO_MEMBER)
-        *(nmea_checksum_style *)member_at(s, l->checksum) = wire->checksum;
-    present = optional_present(l, optional);
+        *(nmea_checksum_style *)member_at(s, l->checksum) = (nmea_checksum_style)wire->checksum;
+    counts[1] = optional_present(l, optional);
     if (l->optional_count != NO_MEMBER)
-        *(uint8_t *)member_at(s, l->optional_count) = (uint8_t)present;
-    if (!read_fields(&r, l->fields, l->before, s))
-        return false;
-    if (g) {
-        const char *start = r.next;
-        unsigned first = r.index;
-        field_value value;
-        size_t j;
-        for (i = 0; i < repeats; i++) {
-            reader_entry(&r, g->id, i);
-            for (j = 0; j < g->field_count; j++)
-                if (!read_field(&r, &g->fields[j], &value))
-                    return false;
-        }
-        if (g->offset != NO_MEMBER) { /* the entries stay on the wire, read when asked for */
-            nmea_entries *e = (nmea_entries *)member_at(s, g->offset);
-            e->wire = text_span(start, repeats ? fields_end(start, r.end, r.sep, repeats * g->width) : start);
-            for (j = 0; j < wire->blanks; j++)
-                if (wire->blank[j] > first && wire->blank[j] <= r.index)
-                    e->blank[e->blanks++] = (uint16_t)(wire->blank[j] - first);
-        }
-        if (g->count_offset != NO_MEMBER)
-            *(uint8_t *)member_at(s, g->count_offset) = (uint8_t)repeats;
-        reader_entry(&r, NULL, 0);
-    }
-    return read_fields(&r, l->fields + l->before, l->after + present, s);
+        *(uint8_t *)member_at(s, l->optional_count) = (uint8_t)counts[1];
+    return true;
+}
+
+/* Reads the wire into `s`, a struct of layout `l`. */
+NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
+{
+    nmea_reader r;
+    size_t counts[2]; /* the group's entries, the optional fields present */
+
+    reader_start(&r, wire, l->sentence, err);
+    return read_start(&r, l, s, counts) && read_fields(&r, l->fields, l->before, s) &&
+           (!l->group || read_entries(&r, l, s, counts[0])) &&
+           read_fields(&r, l->fields + l->before, l->after + counts[1], s);
 }
 
 /* Starts `c` at entry `i` of the group of layout `l` whose entries `e` holds on the wire; false
    when the wire ends before it. */
 static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries *e, size_t i)
 {
-    nmea_wire w;
+    nmea_wire *w = &c->wire;
     const char *p = e->wire.ptr, *end = p ? p + e->wire.len : NULL;
     size_t skip;
 
-    memset(&w, 0, sizeof w);
-    w.sep = l->kind == LAYOUT_TEXT ? ' ' : ',';
-    w.ignore_case = l->kind == LAYOUT_TEXT;
+    memset(w, 0, sizeof *w);
+    w->sep = l->kind == LAYOUT_TEXT ? ' ' : ',';
+    w->ignore_case = l->kind == LAYOUT_TEXT;
     for (skip = i * l->group->width; skip > 0; skip--) {
-        p = fields_end(p, end, w.sep, 1);
+        p = fields_end(p, end, w->sep, 1);
         if (p == end)
             return false;
         p++;
     }
     if (p == NULL || (p == end && i > 0))
         return false;
-    w.fields = text_span(p, end);
-    reader_start(&c->r, &w, l->sentence, &c->err);
+    w->fields = text_span(p, end);
+    w->blanks = e->blanks < NMEA_MAX_PROBLEMS ? e->blanks : NMEA_MAX_PROBLEMS;
+    memcpy(w->blank, e->blank, w->blanks * sizeof w->blank[0]);
+    reader_start(&c->r, w, l->sentence, &c->err);
     c->r.any_range = true; /* parsing has held each number to its range, or kept it outside */
     c->r.index = (unsigned)(i * l->group->width); /* the blanks count from the first entry */
-    c->r.blank = e->blank;
-    c->r.blanks = e->blanks < NMEA_MAX_PROBLEMS ? e->blanks : NMEA_MAX_PROBLEMS;
     return true;
 }
 
@@ -6100,7 +6159,8 @@ static bool collect_with(const layout *l, nmea_collector *c, nmea_json fields)
    the pieces that follow (dispatch.c, api.c, json_api.c); the runtime's tests define a small
    fixture of it instead (test_runtime.c). Besides these, nmea.h gives the sentences' types
    (nmea_sentence, nmea_sentence_id, NMEA_SENTENCE_COUNT), and nmea.c defines before the runtime
-   NMEA_MAX_FIELDS, the most wire fields any layout takes, and the tables layout_field indexes:
+   NMEA_MAX_FIELDS, the most wire fields any layout takes, NMEA_MAX_LAYOUTS, the most layouts one
+   address has, and the tables layout_field indexes:
    FIELD_RANGES, FIELD_ENUMS, FIELD_WORDS, FIELD_EXPECTED (only what the build's fields take). */
 
 /* Every layout by its nmea_sentence_id (NULL: the generic sentence). */
@@ -6279,7 +6339,7 @@ NMEA_INTERNAL bool claimed(const nmea_layouts *layouts, const nmea_wire *wire)
 }
 
 /* Parses the wire with one layout. */
-static bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
+NMEA_LEAF bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
 {
     out->id = id;
     return read_with(LAYOUTS[id], &out->as, wire, err);
@@ -6299,15 +6359,12 @@ static bool fast_fit(nmea_sentence *out, const nmea_layouts *layouts, const char
     return false;
 }
 
-/* Keeps the layout whose error to report (its index in `*kept`, whether that was a bad field in
-   `*kept_bad`): the first one, or the first bad field that comes after it. */
-static void keep_error(size_t *kept, bool *kept_bad, size_t i, const nmea_error *err)
+/* Keeps the layout whose error to report, `kept` (its index times two, plus one for a bad field),
+   in `*at`: the first one, or the first bad field that comes after it. */
+static void keep_error(int *at, int kept)
 {
-    bool bad = err->kind == NMEA_ERR_BAD_FIELD;
-    if (*kept == SIZE_MAX || (!*kept_bad && bad)) {
-        *kept = i;
-        *kept_bad = bad;
-    }
+    if (*at < 0 || (!(*at & 1) && (kept & 1)))
+        *at = kept;
 }
 
 /* Whether variant `l` reads wire field `field` as its main layout does (see same_as_main). */
@@ -6324,33 +6381,35 @@ static bool same_as_main(const layout *l, unsigned field)
    of its sentence, tried last before it, refused a field the variant reads the same way. When
    none does, `err` gets the error of the layouts whose keyword the first field holds (else of
    all of them): the first bad field among them, else their first error. */
-NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
+NMEA_LEAF bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
                                 nmea_error *err)
 {
     /* The errors to report are kept as the layouts that made them, read again at the end: an
-       error copied per candidate would triple this frame on the deepest path of nmea_parse. */
-    size_t chosen = SIZE_MAX, fallback = SIZE_MAX, last = SIZE_MAX, i;
-    bool chosen_bad = false, fallback_bad = false;
+       error copied per candidate would triple this frame on the deepest path of nmea_parse.
+       Each is its index times two plus whether it was a bad field (-1: none yet), so that this
+       loop's state takes few registers where it is inlined. */
+    int chosen = -1, fallback = -1, last = -1, i;
     const char *refused = NULL; /* the sentence of the main layout tried last, when it refused */
     unsigned refused_field = 0; /* and the field it refused */
 
-    for (i = 0; i < layouts->count; i++) {
+    for (i = 0; i < (int)layouts->count; i++) {
         const layout *l = LAYOUTS[layouts->ids[i]];
+        int kept;
         if (l->variant && refused && words_equal(refused, l->sentence) && same_as_main(l, refused_field))
             continue;
         if (read_layout(out, layouts->ids[i], wire, err))
             return true;
         last = i;
+        kept = 2 * i + (err->kind == NMEA_ERR_BAD_FIELD);
         if (!l->variant) {
-            bool bad = err->kind == NMEA_ERR_BAD_FIELD && err->field;
-            refused = bad ? l->sentence : NULL;
+            refused = err->kind == NMEA_ERR_BAD_FIELD && err->field ? l->sentence : NULL;
             refused_field = err->field;
         }
         if (holds_selector(layouts->ids[i], wire))
-            keep_error(&chosen, &chosen_bad, i, err);
-        keep_error(&fallback, &fallback_bad, i, err);
+            keep_error(&chosen, kept);
+        keep_error(&fallback, kept);
     }
-    i = chosen != SIZE_MAX ? chosen : fallback;
+    i = (chosen >= 0 ? chosen : fallback) / 2;
     if (i != last) /* reading is deterministic: the same error again */
         read_layout(out, layouts->ids[i], wire, err);
     return false;
@@ -6360,47 +6419,42 @@ NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts,
    bookkeeping of errors to compare). */
 static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
 {
-    if (layouts->count == 1)
+    if (NMEA_MAX_LAYOUTS == 1 || layouts->count == 1) /* (a spec of one layout an address has no first_of_many) */
         return read_layout(out, layouts->ids[0], wire, err);
     return first_of_many(out, layouts, wire, err);
 }
 
-/* After first_fit fails: the fields at fault one at a time, a number outside its range kept as
-   sent (unless options->strict) or any other (options->lenient) read as empty, each kept as a
-   problem, until a layout reads the wire, a field cannot be helped, or a problem would be one
-   too many. The sentence's problems are then kept in options->problems (NULL: not kept). */
-NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
-                        nmea_error *err)
+/* After first_fit fails: the field at fault, a number outside its range kept as sent (unless
+   options->strict) or any other (options->lenient) read as empty, kept as problem `*count` in
+   options->problems (NULL: not kept), so that the layouts read the wire again (true); false when
+   the field cannot be helped or a problem would be one too many. Out of line, beside the
+   reading rather than above it: its frame is not on the stack under the layouts' reading. */
+NMEA_OUTLINE bool refit(nmea_wire *wire, const nmea_options *options, const nmea_error *err, size_t *count)
 {
     nmea_problems *keep = options->problems;
-    size_t count = 0; /* the problems, written in `keep` as they come: they count once a layout reads the wire */
+    nmea_problem_kind kind;
     /* a bad field's text is the field's text on the wire, empty once it has been left empty */
-    while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && count < NMEA_MAX_PROBLEMS) {
-        nmea_problem_kind kind;
-        if (err->out_of_range && !options->strict) {
-            kind = NMEA_PROBLEM_OUT_OF_RANGE;
-            wire->blank[wire->blanks++] = (uint16_t)(err->field | RANGE_KEPT);
-        } else if (options->lenient) {
-            kind = NMEA_PROBLEM_LEFT_EMPTY;
-            wire->blank[wire->blanks++] = (uint16_t)err->field;
-        } else {
-            return false;
-        }
-        if (keep)
-            problem_of(&keep->list[count], err, kind);
-        count++;
-        if (first_fit(out, layouts, wire, err)) {
-            if (keep)
-                keep->count = (uint8_t)count;
-            out->problems = keep;
-            return true;
-        }
+    if (err->kind != NMEA_ERR_BAD_FIELD || !err->field || !err->text.len || *count >= NMEA_MAX_PROBLEMS)
+        return false;
+    if (err->out_of_range && !options->strict) {
+        kind = NMEA_PROBLEM_OUT_OF_RANGE;
+        wire->blank[wire->blanks++] = (uint16_t)(err->field | RANGE_KEPT);
+    } else if (options->lenient) {
+        kind = NMEA_PROBLEM_LEFT_EMPTY;
+        wire->blank[wire->blanks++] = (uint16_t)err->field;
+    } else {
+        return false;
     }
-    return false;
+    if (keep)
+        problem_of(&keep->list[*count], err, kind); /* written as they come: they count once a layout reads the wire */
+    ++*count;
+    return true;
 }
 
-/* The first of the layouts that reads the wire (first_fit); when none does, refit (unless the
-   options are strict and not lenient: then nothing is kept; nor in a build without problems). */
+/* The first of the layouts that reads the wire (first_fit); when none does, the fields at fault
+   one at a time (refit) until a layout reads it, unless the options are strict and not lenient
+   (then nothing is kept; nor in a build without problems). The sentence's problems are then
+   kept in options->problems (NULL: not kept). */
 static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
                        nmea_error *err)
 {
@@ -6408,8 +6462,16 @@ static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wir
     (void)options;
     return first_fit(out, layouts, wire, err);
 #else
-    return first_fit(out, layouts, wire, err) ||
-           ((!options->strict || options->lenient) && refit(out, layouts, wire, options, err));
+    size_t count = 0;
+    while (!first_fit(out, layouts, wire, err)) /* (one call: inlined once) */
+        if (!refit(wire, options, err, &count))
+            return false;
+    if (count) {
+        if (options->problems)
+            options->problems->count = (uint8_t)count;
+        out->problems = options->problems;
+    }
+    return true;
 #endif
 }
 
@@ -6446,10 +6508,11 @@ static bool take_tag_blocks(nmea_sentence *out, const char **line, size_t *len, 
         return false;
     *only = blocks->len == *len;
     if (*only) {
+        nmea_text kept = *blocks; /* (`blocks` may be out->tag_blocks) */
         memset(out, 0, sizeof *out);
         out->id = NMEA_SENTENCE_GENERIC;
         out->as.generic.checksum = NMEA_CHECKSUM_NONE;
-        out->tag_blocks = *blocks;
+        out->tag_blocks = kept;
     }
     *line += blocks->len;
     *len -= blocks->len;
@@ -6473,15 +6536,12 @@ static bool parse_sentence(nmea_sentence *out, const char *line, size_t len, con
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
 #ifndef NMEA_NO_TAG_BLOCKS
-    nmea_text blocks = nmea_text_of(NULL);
     bool only = false;
     len = without_line_ending(line, len);
-    if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &blocks, &only, err) || only))
+    out->tag_blocks = nmea_text_of(NULL); /* kept in `out` (no copy on the stack under the parsing) */
+    if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &out->tag_blocks, &only, err) || only))
         return only;
-    if (!parse_sentence(out, line, len, options, err))
-        return false;
-    out->tag_blocks = blocks;
-    return true;
+    return parse_sentence(out, line, len, options, err);
 #else
     return parse_sentence(out, line, without_line_ending(line, len), options, err);
 #endif
@@ -51567,52 +51627,54 @@ nmea_reply nmea_reply_to(const nmea_sentence *s, nmea_sentence_id command)
     return answers ? reply_outcome(s) : NMEA_REPLY_NONE;
 }
 
-/* nmea_parse_ex's general path: every line, every option, every error. */
-static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
-                          nmea_error *err)
+/* What route gives for a line that is a generic sentence. */
+static const nmea_layouts GENERIC_LINE;
+
+/* The layouts that may read the line in wire->line, its wire then framed in `*wire`: NULL when
+   the line is refused (`err`), GENERIC_LINE when it is a generic sentence (in `out`). Out of line
+   and with four arguments: the frame is on the stack only while the line is framed, not under
+   the layouts' reading. */
+NMEA_OUTLINE const nmea_layouts *route(nmea_sentence *out, nmea_wire *wire, bool require_checksum, nmea_error *err)
 {
-    static const nmea_options defaults = {false, false, NULL, false};
+    const char *line = wire->line.ptr;
+    size_t len = wire->line.len;
     nmea_frame f;
-    nmea_wire wire;
     const nmea_layouts *layouts = NULL;
 
-    if (!options)
-        options = &defaults;
-    out->problems = NULL;
     if (len > NMEA_MAX_LINE) { /* not even read (a framed overlong line has no bytes) */
         nmea_error_too_long(err, len);
-        return false;
+        return NULL;
     }
 
     if (len && line[0] != '$' && line[0] != '!' && (layouts = find_command(first_word(line, len))) != NULL) {
         if (!text_frame(&f, line, len, err))
-            return false;
-        wire_of(&wire, &f, NULL, line);
-        return first_fit(out, layouts, &wire, err);
+            return NULL;
+        wire_of(wire, &f, NULL, line);
+        return layouts;
     }
-    if (!frame_line(&f, line, len, options->require_checksum, err))
-        return false;
+    if (!frame_line(&f, line, len, require_checksum, err))
+        return NULL;
     if (is_standard_address(&f) && f.start.ptr[0] == '$') {
         if ((layouts = find_layouts(TALKER_LIKE, TALKER_LIKE_COUNT, f.address)) != NULL) {
-            wire_of(&wire, &f, NULL, NULL);
-            if (claimed(layouts, &wire))
-                return fit(out, layouts, &wire, options, err);
+            wire_of(wire, &f, NULL, NULL);
+            if (claimed(layouts, wire))
+                return layouts;
         }
         layouts = find_standard(f.address.ptr + 2);
         if (layouts) {
-            wire_of(&wire, &f, layouts->suffix, NULL);
-            return fit(out, layouts, &wire, options, err);
+            wire_of(wire, &f, layouts->suffix, NULL);
+            return layouts;
         }
     } else if (is_standard_address(&f)) {
         layouts = find_encapsulated(f.address.ptr + 2);
         if (layouts) {
-            wire_of(&wire, &f, layouts->suffix, NULL);
-            return fit(out, layouts, &wire, options, err);
+            wire_of(wire, &f, layouts->suffix, NULL);
+            return layouts;
         }
     } else if (f.start.ptr[0] == '$' && (layouts = find_layouts(PROPRIETARY, PROPRIETARY_COUNT, f.address)) != NULL) {
-        wire_of(&wire, &f, NULL, NULL);
-        if (claimed(layouts, &wire))
-            return fit(out, layouts, &wire, options, err);
+        wire_of(wire, &f, NULL, NULL);
+        if (claimed(layouts, wire))
+            return layouts;
     }
     out->id = NMEA_SENTENCE_GENERIC;
     out->as.generic.start = f.start;
@@ -51620,5 +51682,28 @@ static bool parse_general(nmea_sentence *out, const char *line, size_t len, cons
     out->as.generic.fields = f.fields;
     out->as.generic.field_count = f.count;
     out->as.generic.checksum = f.checksum;
-    return true;
+    return &GENERIC_LINE;
+}
+
+/* nmea_parse_ex's general path: every line, every option, every error. A text command is read
+   strictly, whatever the options. */
+static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                          nmea_error *err)
+{
+    static const nmea_options defaults = {false, false, NULL, false};
+    static const nmea_options strict = {false, false, NULL, true};
+    nmea_wire wire;
+    const nmea_layouts *layouts;
+
+    if (!options)
+        options = &defaults;
+    out->problems = NULL;
+    wire.line.ptr = line;
+    wire.line.len = len;
+    layouts = route(out, &wire, options->require_checksum, err);
+    if (!layouts || layouts == &GENERIC_LINE)
+        return layouts != NULL;
+    if (wire.ignore_case)
+        options = &strict;
+    return fit(out, layouts, &wire, options, err);
 }

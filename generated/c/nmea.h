@@ -97,7 +97,7 @@ extern "C" {
 
 /**
  * The digits of a number field (nmea_number.digits) and how many it holds: NMEA_MAX_DIGITS in a
- * signed 64-bit integer; with -DNMEA_DIGITS_32 (a firmware short of RAM: 12-byte numbers, not 16)
+ * signed 64-bit integer; with -DNMEA_DIGITS_32 (a firmware short of RAM: 8-byte numbers, not 16)
  * 9 in a 32-bit one, and a number field of more digits is then refused as a bad field, as one of
  * more than 18 is by default.
  */
@@ -137,8 +137,13 @@ typedef struct {
     uint8_t scale;
     uint8_t width;
     char sign;
+#ifdef NMEA_DIGITS_32 /* the two flags in one byte: 8 bytes in all, not 12 */
+    bool point : 1;
+    bool present : 1;
+#else
     bool point;
     bool present;
+#endif
 } nmea_number;
 
 /** The value of `n` in units of 10^-scale (truncated toward zero), e.g. scale 3 for
@@ -151,14 +156,15 @@ int64_t nmea_number_scaled(const nmea_number *n, unsigned scale);
 nmea_number nmea_number_of(int64_t value, unsigned scale);
 
 /** An inclusive value range (integer and decimal fields, table parameters): min * 10^-min_scale
-    to max * 10^-max_scale, each bound only when has_min / has_max. */
+    to max * 10^-max_scale, each bound only when has_min / has_max. (The small members last: 24
+    bytes, not 40; the generated code initializes it by member names.) */
 typedef struct {
+    int64_t min;
+    int64_t max;
+    uint8_t min_scale;
+    uint8_t max_scale;
     bool has_min;
     bool has_max;
-    int64_t min;
-    uint8_t min_scale;
-    int64_t max;
-    uint8_t max_scale;
 } nmea_range;
 
 /** An unsigned hexadecimal number; the digit count and the letter case are kept. */

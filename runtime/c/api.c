@@ -22,10 +22,11 @@ static bool take_tag_blocks(nmea_sentence *out, const char **line, size_t *len, 
         return false;
     *only = blocks->len == *len;
     if (*only) {
+        nmea_text kept = *blocks; /* (`blocks` may be out->tag_blocks) */
         memset(out, 0, sizeof *out);
         out->id = NMEA_SENTENCE_GENERIC;
         out->as.generic.checksum = NMEA_CHECKSUM_NONE;
-        out->tag_blocks = *blocks;
+        out->tag_blocks = kept;
     }
     *line += blocks->len;
     *len -= blocks->len;
@@ -49,15 +50,12 @@ static bool parse_sentence(nmea_sentence *out, const char *line, size_t len, con
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
 #ifndef NMEA_NO_TAG_BLOCKS
-    nmea_text blocks = nmea_text_of(NULL);
     bool only = false;
     len = without_line_ending(line, len);
-    if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &blocks, &only, err) || only))
+    out->tag_blocks = nmea_text_of(NULL); /* kept in `out` (no copy on the stack under the parsing) */
+    if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &out->tag_blocks, &only, err) || only))
         return only;
-    if (!parse_sentence(out, line, len, options, err))
-        return false;
-    out->tag_blocks = blocks;
-    return true;
+    return parse_sentence(out, line, len, options, err);
 #else
     return parse_sentence(out, line, without_line_ending(line, len), options, err);
 #endif

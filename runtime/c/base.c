@@ -11,17 +11,34 @@
 #define NMEA_RARE static __attribute__((noinline, cold))
 #define NMEA_HOT static inline
 #define NMEA_OUTLINE static __attribute__((noinline, unused))
+#define NMEA_FRAME static __attribute__((noinline, unused))
+#define NMEA_HOT_FRAME static __attribute__((noinline, unused))
+#define NMEA_LEAF static inline __attribute__((always_inline, unused))
+#define NMEA_RARE_LEAF NMEA_LEAF
 #elif defined(__GNUC__)
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
 #define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
 #define NMEA_OUTLINE static __attribute__((noinline, unused))
+#define NMEA_FRAME static __attribute__((unused))
+#define NMEA_HOT_FRAME NMEA_HOT
+#define NMEA_LEAF static __attribute__((unused))
+#define NMEA_RARE_LEAF NMEA_RARE
 #else
 #define NMEA_INTERNAL static
 #define NMEA_RARE static
 #define NMEA_HOT static
 #define NMEA_OUTLINE static
+#define NMEA_FRAME static
+#define NMEA_HOT_FRAME static
+#define NMEA_LEAF static
+#define NMEA_RARE_LEAF static
 #endif
+/* NMEA_FRAME, NMEA_HOT_FRAME: a function of nmea_parse's descent kept out of line at -Os (a
+   microcontroller's build), where its frame would otherwise be merged into its caller's and the
+   deepest path would hold the locals of every field type's reader at once; otherwise as
+   NMEA_INTERNAL and NMEA_HOT. NMEA_LEAF: inlined at -Os, so that it adds no frame of its own to
+   that descent; otherwise the compiler's choice (NMEA_RARE_LEAF: NMEA_RARE). */
 
 /* The texts only errors use: message patterns, field ids, what a field takes. A firmware short of
    flash builds with -DNMEA_TERSE_ERRORS (and -DNMEA_NO_JSON, whose keys are field ids): an error

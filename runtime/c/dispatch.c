@@ -157,7 +157,7 @@ NMEA_INTERNAL bool claimed(const nmea_layouts *layouts, const nmea_wire *wire)
 }
 
 /* Parses the wire with one layout. */
-static bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
+NMEA_LEAF bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
 {
     out->id = id;
     return read_with(LAYOUTS[id], &out->as, wire, err);
@@ -177,15 +177,12 @@ static bool fast_fit(nmea_sentence *out, const nmea_layouts *layouts, const char
     return false;
 }
 
-/* Keeps the layout whose error to report (its index in `*kept`, whether that was a bad field in
-   `*kept_bad`): the first one, or the first bad field that comes after it. */
-static void keep_error(size_t *kept, bool *kept_bad, size_t i, const nmea_error *err)
+/* Keeps the layout whose error to report, `kept` (its index times two, plus one for a bad field),
+   in `*at`: the first one, or the first bad field that comes after it. */
+static void keep_error(int *at, int kept)
 {
-    bool bad = err->kind == NMEA_ERR_BAD_FIELD;
-    if (*kept == SIZE_MAX || (!*kept_bad && bad)) {
-        *kept = i;
-        *kept_bad = bad;
-    }
+    if (*at < 0 || (!(*at & 1) && (kept & 1)))
+        *at = kept;
 }
 
 /* Whether variant `l` reads wire field `field` as its main layout does (see same_as_main). */
@@ -202,33 +199,35 @@ static bool same_as_main(const layout *l, unsigned field)
    of its sentence, tried last before it, refused a field the variant reads the same way. When
    none does, `err` gets the error of the layouts whose keyword the first field holds (else of
    all of them): the first bad field among them, else their first error. */
-NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
+NMEA_LEAF bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
                                 nmea_error *err)
 {
     /* The errors to report are kept as the layouts that made them, read again at the end: an
-       error copied per candidate would triple this frame on the deepest path of nmea_parse. */
-    size_t chosen = SIZE_MAX, fallback = SIZE_MAX, last = SIZE_MAX, i;
-    bool chosen_bad = false, fallback_bad = false;
+       error copied per candidate would triple this frame on the deepest path of nmea_parse.
+       Each is its index times two plus whether it was a bad field (-1: none yet), so that this
+       loop's state takes few registers where it is inlined. */
+    int chosen = -1, fallback = -1, last = -1, i;
     const char *refused = NULL; /* the sentence of the main layout tried last, when it refused */
     unsigned refused_field = 0; /* and the field it refused */
 
-    for (i = 0; i < layouts->count; i++) {
+    for (i = 0; i < (int)layouts->count; i++) {
         const layout *l = LAYOUTS[layouts->ids[i]];
+        int kept;
         if (l->variant && refused && words_equal(refused, l->sentence) && same_as_main(l, refused_field))
             continue;
         if (read_layout(out, layouts->ids[i], wire, err))
             return true;
         last = i;
+        kept = 2 * i + (err->kind == NMEA_ERR_BAD_FIELD);
         if (!l->variant) {
-            bool bad = err->kind == NMEA_ERR_BAD_FIELD && err->field;
-            refused = bad ? l->sentence : NULL;
+            refused = err->kind == NMEA_ERR_BAD_FIELD && err->field ? l->sentence : NULL;
             refused_field = err->field;
         }
         if (holds_selector(layouts->ids[i], wire))
-            keep_error(&chosen, &chosen_bad, i, err);
-        keep_error(&fallback, &fallback_bad, i, err);
+            keep_error(&chosen, kept);
+        keep_error(&fallback, kept);
     }
-    i = chosen != SIZE_MAX ? chosen : fallback;
+    i = (chosen >= 0 ? chosen : fallback) / 2;
     if (i != last) /* reading is deterministic: the same error again */
         read_layout(out, layouts->ids[i], wire, err);
     return false;
@@ -238,47 +237,42 @@ NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts,
    bookkeeping of errors to compare). */
 static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
 {
-    if (layouts->count == 1)
+    if (NMEA_MAX_LAYOUTS == 1 || layouts->count == 1) /* (a spec of one layout an address has no first_of_many) */
         return read_layout(out, layouts->ids[0], wire, err);
     return first_of_many(out, layouts, wire, err);
 }
 
-/* After first_fit fails: the fields at fault one at a time, a number outside its range kept as
-   sent (unless options->strict) or any other (options->lenient) read as empty, each kept as a
-   problem, until a layout reads the wire, a field cannot be helped, or a problem would be one
-   too many. The sentence's problems are then kept in options->problems (NULL: not kept). */
-NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
-                        nmea_error *err)
+/* After first_fit fails: the field at fault, a number outside its range kept as sent (unless
+   options->strict) or any other (options->lenient) read as empty, kept as problem `*count` in
+   options->problems (NULL: not kept), so that the layouts read the wire again (true); false when
+   the field cannot be helped or a problem would be one too many. Out of line, beside the
+   reading rather than above it: its frame is not on the stack under the layouts' reading. */
+NMEA_OUTLINE bool refit(nmea_wire *wire, const nmea_options *options, const nmea_error *err, size_t *count)
 {
     nmea_problems *keep = options->problems;
-    size_t count = 0; /* the problems, written in `keep` as they come: they count once a layout reads the wire */
+    nmea_problem_kind kind;
     /* a bad field's text is the field's text on the wire, empty once it has been left empty */
-    while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && count < NMEA_MAX_PROBLEMS) {
-        nmea_problem_kind kind;
-        if (err->out_of_range && !options->strict) {
-            kind = NMEA_PROBLEM_OUT_OF_RANGE;
-            wire->blank[wire->blanks++] = (uint16_t)(err->field | RANGE_KEPT);
-        } else if (options->lenient) {
-            kind = NMEA_PROBLEM_LEFT_EMPTY;
-            wire->blank[wire->blanks++] = (uint16_t)err->field;
-        } else {
-            return false;
-        }
-        if (keep)
-            problem_of(&keep->list[count], err, kind);
-        count++;
-        if (first_fit(out, layouts, wire, err)) {
-            if (keep)
-                keep->count = (uint8_t)count;
-            out->problems = keep;
-            return true;
-        }
+    if (err->kind != NMEA_ERR_BAD_FIELD || !err->field || !err->text.len || *count >= NMEA_MAX_PROBLEMS)
+        return false;
+    if (err->out_of_range && !options->strict) {
+        kind = NMEA_PROBLEM_OUT_OF_RANGE;
+        wire->blank[wire->blanks++] = (uint16_t)(err->field | RANGE_KEPT);
+    } else if (options->lenient) {
+        kind = NMEA_PROBLEM_LEFT_EMPTY;
+        wire->blank[wire->blanks++] = (uint16_t)err->field;
+    } else {
+        return false;
     }
-    return false;
+    if (keep)
+        problem_of(&keep->list[*count], err, kind); /* written as they come: they count once a layout reads the wire */
+    ++*count;
+    return true;
 }
 
-/* The first of the layouts that reads the wire (first_fit); when none does, refit (unless the
-   options are strict and not lenient: then nothing is kept; nor in a build without problems). */
+/* The first of the layouts that reads the wire (first_fit); when none does, the fields at fault
+   one at a time (refit) until a layout reads it, unless the options are strict and not lenient
+   (then nothing is kept; nor in a build without problems). The sentence's problems are then
+   kept in options->problems (NULL: not kept). */
 static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
                        nmea_error *err)
 {
@@ -286,8 +280,16 @@ static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wir
     (void)options;
     return first_fit(out, layouts, wire, err);
 #else
-    return first_fit(out, layouts, wire, err) ||
-           ((!options->strict || options->lenient) && refit(out, layouts, wire, options, err));
+    size_t count = 0;
+    while (!first_fit(out, layouts, wire, err)) /* (one call: inlined once) */
+        if (!refit(wire, options, err, &count))
+            return false;
+    if (count) {
+        if (options->problems)
+            options->problems->count = (uint8_t)count;
+        out->problems = options->problems;
+    }
+    return true;
 #endif
 }
 

@@ -15,7 +15,7 @@ static size_t take_digits(const char **p, const char *end, int64_t *value, size_
 }
 
 /* [+-]digits[.digits] (no point for an integer), at most NMEA_NUMBER_DIGITS digits. */
-static bool parse_number(nmea_text t, bool integer, nmea_number *out)
+NMEA_FRAME bool parse_number(nmea_text t, bool integer, nmea_number *out)
 {
     const char *p = t.ptr, *end = t.ptr + t.len;
     size_t whole, frac = 0;
@@ -65,6 +65,7 @@ static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
     return a < 0 ? -order : order;
 }
 
+/* Whether `n` is within `range` (NULL: any value). */
 static inline bool in_range(const nmea_number *n, const nmea_range *range)
 {
     int64_t value;
@@ -112,7 +113,7 @@ nmea_number nmea_number_of(int64_t value, unsigned scale)
     return n;
 }
 
-static bool parse_hex(nmea_text t, nmea_hex *out)
+NMEA_FRAME bool parse_hex(nmea_text t, nmea_hex *out)
 {
     size_t i;
     uint64_t value = 0;
@@ -167,7 +168,7 @@ NMEA_HOT bool time_of(const char *t, uint32_t fraction, size_t frac, bool point,
 }
 
 /* hhmmss[.f...], at most 9 fraction digits. */
-static bool parse_time(nmea_text t, nmea_time *out)
+NMEA_FRAME bool parse_time(nmea_text t, nmea_time *out)
 {
     size_t frac = 0, i;
     uint32_t fraction = 0;
@@ -196,7 +197,7 @@ NMEA_HOT bool date_of(const char *t, nmea_date *out)
     return true;
 }
 
-static bool parse_date(nmea_text t, nmea_date *out)
+NMEA_FRAME bool parse_date(nmea_text t, nmea_date *out)
 {
     return t.len == 6 && all_digits(t.ptr, 6) && date_of(t.ptr, out);
 }
@@ -224,7 +225,7 @@ NMEA_HOT bool coordinate_of(uint64_t whole_value, size_t whole, uint64_t minutes
 
 /* ddmm.mmmm (latitude) or dddmm.mmmm (longitude): the two digits before the point are whole
    minutes, the digits before them degrees. */
-static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
+NMEA_FRAME bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
 {
     const char *p = t.ptr, *end = t.ptr + t.len, *point = NULL;
     uint64_t whole_value = 0, minutes; /* unsigned: digits too many for them are refused below */

@@ -2,7 +2,8 @@
    the pieces that follow (dispatch.c, api.c, json_api.c); the runtime's tests define a small
    fixture of it instead (test_runtime.c). Besides these, nmea.h gives the sentences' types
    (nmea_sentence, nmea_sentence_id, NMEA_SENTENCE_COUNT), and nmea.c defines before the runtime
-   NMEA_MAX_FIELDS, the most wire fields any layout takes, and the tables layout_field indexes:
+   NMEA_MAX_FIELDS, the most wire fields any layout takes, NMEA_MAX_LAYOUTS, the most layouts one
+   address has, and the tables layout_field indexes:
    FIELD_RANGES, FIELD_ENUMS, FIELD_WORDS, FIELD_EXPECTED (only what the build's fields take). */
 
 /* Every layout by its nmea_sentence_id (NULL: the generic sentence). */

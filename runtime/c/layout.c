@@ -196,37 +196,40 @@ static const nmea_entries *entries_in(const layout_group *g, const void *s)
     return g->offset == NO_MEMBER ? NULL : (const nmea_entries *)const_member_at(s, g->offset);
 }
 
-/* Reads field `f` into `out`, a value of its type (nothing for a keyword). */
+/* Reads field `f` into `out`, a value of its type (nothing for a keyword). The field's id and
+   what it takes go in the reader, for its errors: each type's reader takes at most four
+   arguments, so that at -Os these calls are jumps (no frame of read_field under them). */
 static bool read_field(nmea_reader *r, const layout_field *f, void *out)
 {
-    const char *id = field_id(f), *expected = field_expected(f);
+    r->name = field_id(f);
+    r->expected = field_expected(f);
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
-        return read_keyword(r, id, expected, word_of(f));
+        return read_keyword(r, word_of(f));
     case FIELD_INTEGER:
-        return read_integer(r, out, id, expected, range_of(f));
+        return read_integer(r, out, range_of(f));
     case FIELD_DECIMAL:
-        return read_decimal(r, out, id, expected, range_of(f));
+        return read_decimal(r, out, range_of(f));
     case FIELD_HEX:
-        return read_hex(r, out, id, expected);
+        return read_hex(r, out);
     case FIELD_TIME:
-        return read_time(r, out, id, expected);
+        return read_time(r, out);
     case FIELD_DATE:
-        return read_date(r, out, id, expected);
+        return read_date(r, out);
     case FIELD_LATITUDE:
-        return read_latitude(r, out, id, expected, hemisphere_expected(f));
+        return read_latitude(r, out, hemisphere_expected(f));
     case FIELD_LONGITUDE:
-        return read_longitude(r, out, id, expected, hemisphere_expected(f));
+        return read_longitude(r, out, hemisphere_expected(f));
     case FIELD_CHAR:
-        return read_char(r, out, id, expected);
+        return read_char(r, out);
     case FIELD_LITERAL:
-        return read_literal(r, out, id, expected, word_of(f));
+        return read_literal(r, out, word_of(f));
     case FIELD_TEXT:
-        return read_text(r, out, id, expected, f->max_length);
+        return read_text(r, out, f->max_length);
     case FIELD_ENUM:
-        return read_enum(r, out, id, expected, table_of(f));
+        return read_enum(r, out, table_of(f));
     case FIELD_ENUM_CHARS:
-        return read_enum_chars(r, out, id, expected, table_of(f), f->max_length);
+        return read_enum_chars(r, out, table_of(f), f->max_length);
     }
     return false;
 }
@@ -299,6 +302,7 @@ static const char *fields_end(const char *p, const char *end, char sep, size_t n
 typedef struct {
     nmea_reader r;
     nmea_error err;
+    nmea_wire wire;
 } entry_reader;
 
 static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries *e, size_t i);
@@ -322,78 +326,125 @@ static void reread_field(entry_reader *c, const layout_field *f, void *out)
     c->r.index = index + (unsigned)field_width(f);
 }
 
-/* Reads the wire into `s`, a struct of layout `l`. */
-NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
+/* A layout with a repeated group (`width` wire fields, `min` to `max` times) and `fixed`
+   required fields besides: how many times it occurs and how many optional wire fields follow. */
+static bool read_group_count(nmea_reader *r, const layout *l, size_t count, size_t *repeats, size_t *optional)
 {
     const layout_group *g = l->group;
-    nmea_reader r;
-    size_t i, repeats = 0, optional, present;
+    size_t rest, extra, width = g->width;
+    *repeats = 0; /* (set first: gcc cannot tell they are read only on success) */
+    *optional = 0;
+    if (count < l->fixed + g->min * width)
+        return too_few(r, l->fixed + g->min * width, count);
+    rest = count - l->fixed;
+    *repeats = rest / width < g->max ? rest / width : g->max;
+    extra = rest - *repeats * width;
+    if (extra > l->optional_max) {
+        if (*repeats == g->max)
+            return too_many(r, l->fixed + g->max * width + l->optional_max, count);
+        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
+        r->err->str[1] = g->id;
+        return false;
+    }
+    *optional = extra;
+    return true;
+}
 
-    reader_start(&r, wire, l->sentence, err);
-    if (g ? !read_group_count(&r, wire->count, g->id, l->fixed, g->width, g->min, g->max, l->optional_max, &repeats,
-                              &optional)
-          : !read_count(&r, wire->count, l->fixed, l->max_fields, &optional))
+/* Reads the entries of the group of layout `l` (they stay on the wire, each checked here) into
+   its nmea_entries in `s`, a struct of the layout. Each value is read into that nmea_entries,
+   which is only filled afterwards: no value on the stack (a keyword, the only field of a group
+   that stores nothing, reads into nothing). */
+static bool read_entries(nmea_reader *r, const layout *l, void *s, size_t repeats)
+{
+    const layout_group *g = l->group;
+    const char *start = r->next;
+    unsigned first = r->index;
+    void *value = member_at(s, g->offset == NO_MEMBER ? 0 : g->offset);
+    size_t i, j;
+    typedef char value_fits[sizeof(field_value) <= sizeof(nmea_entries) ? 1 : -1];
+    (void)sizeof(value_fits);
+
+    for (i = 0; i < repeats; i++) {
+        reader_entry(r, g->id, i);
+        for (j = 0; j < g->field_count; j++)
+            if (!read_field(r, &g->fields[j], value))
+                return false;
+    }
+    if (g->offset != NO_MEMBER) { /* the entries stay on the wire, read when asked for */
+        const nmea_wire *wire = r->wire;
+        nmea_entries *e = (nmea_entries *)value;
+        memset(e, 0, sizeof *e);
+        e->wire = text_span(start, repeats ? fields_end(start, r->end, r->sep, repeats * g->width) : start);
+        for (j = 0; j < wire->blanks; j++)
+            if (wire->blank[j] > first && wire->blank[j] <= r->index)
+                e->blank[e->blanks++] = (uint16_t)(wire->blank[j] - first);
+    }
+    if (g->count_offset != NO_MEMBER)
+        *(uint8_t *)member_at(s, g->count_offset) = (uint8_t)repeats;
+    reader_entry(r, NULL, 0);
+    return true;
+}
+
+/* The start of read_with: the wire's field count checked against layout `l`, `s` cleared and
+   given what the wire holds besides the fields; `counts` the entries of the group and the
+   optional fields on the wire. */
+static bool read_start(nmea_reader *r, const layout *l, void *s, size_t *counts)
+{
+    const nmea_wire *wire = r->wire;
+    size_t optional;
+
+    counts[0] = 0;
+    if (l->group ? !read_group_count(r, l, wire->count, &counts[0], &optional)
+                 : !read_count(r, wire->count, l->fixed, l->max_fields, &optional))
         return false;
     clear_layout(s, l->size);
     if (l->head != NO_MEMBER)
         *(nmea_text *)member_at(s, l->head) = l->kind == LAYOUT_TEXT ? wire->line : wire->address;
     if (l->checksum != NO_MEMBER)
-        *(nmea_checksum_style *)member_at(s, l->checksum) = wire->checksum;
-    present = optional_present(l, optional);
+        *(nmea_checksum_style *)member_at(s, l->checksum) = (nmea_checksum_style)wire->checksum;
+    counts[1] = optional_present(l, optional);
     if (l->optional_count != NO_MEMBER)
-        *(uint8_t *)member_at(s, l->optional_count) = (uint8_t)present;
-    if (!read_fields(&r, l->fields, l->before, s))
-        return false;
-    if (g) {
-        const char *start = r.next;
-        unsigned first = r.index;
-        field_value value;
-        size_t j;
-        for (i = 0; i < repeats; i++) {
-            reader_entry(&r, g->id, i);
-            for (j = 0; j < g->field_count; j++)
-                if (!read_field(&r, &g->fields[j], &value))
-                    return false;
-        }
-        if (g->offset != NO_MEMBER) { /* the entries stay on the wire, read when asked for */
-            nmea_entries *e = (nmea_entries *)member_at(s, g->offset);
-            e->wire = text_span(start, repeats ? fields_end(start, r.end, r.sep, repeats * g->width) : start);
-            for (j = 0; j < wire->blanks; j++)
-                if (wire->blank[j] > first && wire->blank[j] <= r.index)
-                    e->blank[e->blanks++] = (uint16_t)(wire->blank[j] - first);
-        }
-        if (g->count_offset != NO_MEMBER)
-            *(uint8_t *)member_at(s, g->count_offset) = (uint8_t)repeats;
-        reader_entry(&r, NULL, 0);
-    }
-    return read_fields(&r, l->fields + l->before, l->after + present, s);
+        *(uint8_t *)member_at(s, l->optional_count) = (uint8_t)counts[1];
+    return true;
+}
+
+/* Reads the wire into `s`, a struct of layout `l`. */
+NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
+{
+    nmea_reader r;
+    size_t counts[2]; /* the group's entries, the optional fields present */
+
+    reader_start(&r, wire, l->sentence, err);
+    return read_start(&r, l, s, counts) && read_fields(&r, l->fields, l->before, s) &&
+           (!l->group || read_entries(&r, l, s, counts[0])) &&
+           read_fields(&r, l->fields + l->before, l->after + counts[1], s);
 }
 
 /* Starts `c` at entry `i` of the group of layout `l` whose entries `e` holds on the wire; false
    when the wire ends before it. */
 static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries *e, size_t i)
 {
-    nmea_wire w;
+    nmea_wire *w = &c->wire;
     const char *p = e->wire.ptr, *end = p ? p + e->wire.len : NULL;
     size_t skip;
 
-    memset(&w, 0, sizeof w);
-    w.sep = l->kind == LAYOUT_TEXT ? ' ' : ',';
-    w.ignore_case = l->kind == LAYOUT_TEXT;
+    memset(w, 0, sizeof *w);
+    w->sep = l->kind == LAYOUT_TEXT ? ' ' : ',';
+    w->ignore_case = l->kind == LAYOUT_TEXT;
     for (skip = i * l->group->width; skip > 0; skip--) {
-        p = fields_end(p, end, w.sep, 1);
+        p = fields_end(p, end, w->sep, 1);
         if (p == end)
             return false;
         p++;
     }
     if (p == NULL || (p == end && i > 0))
         return false;
-    w.fields = text_span(p, end);
-    reader_start(&c->r, &w, l->sentence, &c->err);
+    w->fields = text_span(p, end);
+    w->blanks = e->blanks < NMEA_MAX_PROBLEMS ? e->blanks : NMEA_MAX_PROBLEMS;
+    memcpy(w->blank, e->blank, w->blanks * sizeof w->blank[0]);
+    reader_start(&c->r, w, l->sentence, &c->err);
     c->r.any_range = true; /* parsing has held each number to its range, or kept it outside */
     c->r.index = (unsigned)(i * l->group->width); /* the blanks count from the first entry */
-    c->r.blank = e->blank;
-    c->r.blanks = e->blanks < NMEA_MAX_PROBLEMS ? e->blanks : NMEA_MAX_PROBLEMS;
     return true;
 }
 

@@ -7,33 +7,39 @@ typedef struct {
     nmea_text address;
     const char *suffix;
     nmea_text fields;
-    size_t count;
-    char sep;                     /* between fields: ',' or ' ' (the words of a text command) */
-    bool ignore_case;             /* a text command: keywords and enum codes match ignoring case */
-    nmea_checksum_style checksum;
     nmea_text line;               /* a text command: the command as received */
     uint16_t blank[NMEA_MAX_PROBLEMS]; /* the wire fields at fault: read as empty (lenient parsing), */
-    unsigned blanks;                   /* or with RANGE_KEPT, numbers read without their range */
+    uint8_t blanks;                    /* or with RANGE_KEPT, numbers read without their range */
+    char sep;                     /* between fields: ',' or ' ' (the words of a text command) */
+    bool ignore_case;             /* a text command: keywords and enum codes match ignoring case */
+    uint8_t checksum;             /* nmea_checksum_style (small types: the wire is on the stack all
+                                     the while a line is parsed) */
+    uint16_t count;               /* fields */
 } nmea_wire;
 
 /* Added to a wire index in nmea_wire.blank: the number there is kept outside its range. (No
    line has that many fields, and an index so marked is never taken for a field read as empty.) */
 #define RANGE_KEPT 0x8000u
 
+/* The cursor of a layout's reading. It refers to the wire (the address and the blanks, for
+   errors and lenient parsing) rather than copying it, and keeps the field being read (its id and
+   what it takes), so that each field type's reader takes the cursor, its value and at most two
+   more arguments: the calls from read_field are then jumps, and nmea_parse's descent stays
+   within a few hundred bytes of stack on a microcontroller. */
 typedef struct {
     const char *next;
     const char *end;
-    unsigned index; /* 1-based wire index of the field read last */
-    nmea_text address;
-    const char *suffix;
+    const nmea_wire *wire;
     const char *sentence;
     const char *group;
-    unsigned entry;
+    uint16_t index; /* 1-based wire index of the field read last */
+    uint16_t entry;
+    const char *name;     /* the field being read: its id (NULL in a terse build), */
+    const char *expected; /* and what it takes */
     char sep;
     bool ignore_case;
     bool any_range;   /* numbers are not held to their range (a parsed sentence's entries read again) */
-    const uint16_t *blank;
-    unsigned blanks;
+    uint8_t blanks;   /* of wire->blank */
     nmea_error *err;
 } nmea_reader;
 
@@ -42,15 +48,13 @@ static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sent
     r->next = wire->fields.ptr;
     r->end = wire->fields.ptr + wire->fields.len;
     r->index = 0;
-    r->address = wire->address;
-    r->suffix = wire->suffix;
+    r->wire = wire;
     r->sentence = sentence;
     r->group = NULL;
     r->entry = 0;
     r->sep = wire->sep;
     r->ignore_case = wire->ignore_case;
     r->any_range = false;
-    r->blank = wire->blank;
     r->blanks = wire->blanks;
     r->err = err;
 }
@@ -65,7 +69,7 @@ NMEA_OUTLINE void clear_layout(void *s, size_t size)
 }
 
 /* Whether lenient parsing reads wire field `index` (1-based) as empty. */
-NMEA_RARE bool is_blank(const uint16_t *blank, unsigned blanks, unsigned index)
+NMEA_RARE_LEAF bool is_blank(const uint16_t *blank, unsigned blanks, unsigned index)
 {
     unsigned i;
     for (i = 0; i < blanks; i++)
@@ -78,7 +82,7 @@ NMEA_RARE bool is_blank(const uint16_t *blank, unsigned blanks, unsigned index)
 NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
 {
     r->group = group;
-    r->entry = (unsigned)index + 1;
+    r->entry = (uint16_t)(index + 1);
 }
 
 static inline nmea_text next_field(nmea_reader *r)
@@ -91,7 +95,7 @@ static inline nmea_text next_field(nmea_reader *r)
         q++;
     t = text_span(p, q);
     r->next = q < end ? q + 1 : q;
-    if (r->blanks && is_blank(r->blank, r->blanks, r->index))
+    if (r->blanks && is_blank(r->wire->blank, r->blanks, r->index))
         t.len = 0;
     return t;
 }
@@ -99,7 +103,7 @@ static inline nmea_text next_field(nmea_reader *r)
 static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *pattern, size_t n, size_t m)
 {
     fail(r->err, kind, pattern);
-    set_address(r->err, r->address, r->suffix);
+    set_address(r->err, r->wire->address, r->wire->suffix);
     r->err->str[0] = r->sentence;
     r->err->num[0] = n;
     r->err->num[1] = m;
@@ -126,10 +130,10 @@ static void wire_of(nmea_wire *wire, const nmea_frame *f, const char *suffix, co
     wire->address = suffix ? text_span(f->address.ptr, f->address.ptr + f->address.len - 3) : f->address;
     wire->suffix = suffix;
     wire->fields = f->fields;
-    wire->count = f->count;
+    wire->count = (uint16_t)f->count;
     wire->sep = line ? ' ' : ',';
     wire->ignore_case = line != NULL;
-    wire->checksum = f->checksum;
+    wire->checksum = (uint8_t)f->checksum;
     wire->line = line ? text_span(line, f->fields.ptr + f->fields.len) : nmea_text_of(NULL);
     wire->blanks = 0;
 }
@@ -177,57 +181,37 @@ NMEA_INTERNAL inline bool read_count(nmea_reader *r, size_t count, size_t fixed,
     return true;
 }
 
-/* A layout with a repeated group of `width` wire fields, `min` to `max` times, and `fixed`
-   required fields besides: how many times it occurs and how many optional wire fields follow. */
-NMEA_INTERNAL inline bool read_group_count(nmea_reader *r, size_t count, const char *group, size_t fixed, size_t width,
-                                           size_t min, size_t max, size_t optional_max, size_t *repeats, size_t *optional)
-{
-    size_t rest, extra;
-    *repeats = 0; /* (set first: once inlined, gcc -O1 cannot tell they are read only on success) */
-    *optional = 0;
-    if (count < fixed + min * width)
-        return too_few(r, fixed + min * width, count);
-    rest = count - fixed;
-    *repeats = rest / width < max ? rest / width : max;
-    extra = rest - *repeats * width;
-    if (extra > optional_max) {
-        if (*repeats == max)
-            return too_many(r, fixed + max * width + optional_max, count);
-        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
-        r->err->str[1] = group;
-        return false;
-    }
-    *optional = extra;
-    return true;
-}
-
-static bool bad_field(nmea_reader *r, unsigned index, const char *name, const char *expected, nmea_text text)
+/* The error of the field being read, at wire field `index`, whose `text` is not what it takes. */
+NMEA_FRAME bool bad_field(nmea_reader *r, unsigned index, nmea_text text)
 {
     nmea_error *err = r->err;
-    fail(err, NMEA_ERR_BAD_FIELD, ERROR_TEXT("expected %s, found %q"));
-    set_address(err, r->address, r->suffix);
+    memset(err, 0, sizeof *err); /* fail's work, in this frame: the deepest of nmea_parse's paths end here */
+    err->kind = NMEA_ERR_BAD_FIELD;
+    err->pattern = ERROR_TEXT("expected %s, found %q");
+    err->has_address = true;
+    err->address = r->wire->address;
+    err->address_suffix = r->wire->suffix;
     err->field = index;
     err->group = r->group;
     err->entry = r->entry;
-    err->name = name;
-    err->str[0] = expected;
+    err->name = r->name;
+    err->str[0] = r->expected;
     err->text = text;
     return false;
 }
 
 /* The general reading of an integer or decimal field: out of its range, an error that says so
    (out_of_range), unless the field is one whose number is kept outside its range. */
-NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                           const nmea_range *range, bool integer)
+NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
 {
     nmea_text t = next_field(r);
     if (!t.len)
         return true;
     if (!parse_number(t, integer, out))
-        return bad_field(r, r->index, name, expected, t);
-    if (in_range(out, range) || r->any_range || is_blank(r->blank, r->blanks, r->index | RANGE_KEPT))
+        return bad_field(r, r->index, t);
+    if (in_range(out, range) || r->any_range || is_blank(r->wire->blank, r->blanks, r->index | RANGE_KEPT))
         return true;
-    bad_field(r, r->index, name, expected, t);
+    bad_field(r, r->index, t);
     r->err->out_of_range = true;
     return false;
 }
@@ -271,115 +255,118 @@ NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *r
     return true;
 }
 
-NMEA_HOT bool read_integer(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                           const nmea_range *range)
+/* An integer or decimal field: quick_number, else read_number. A build for size (-Os) has one
+   scanner of numbers, read_number: quick_number is there for speed only. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define QUICK_NUMBER(r, out, range, integer) false
+#else
+#define QUICK_NUMBER(r, out, range, integer) quick_number(r, out, range, integer)
+#endif
+
+NMEA_HOT_FRAME bool read_integer(nmea_reader *r, nmea_number *out, const nmea_range *range)
 {
-    return quick_number(r, out, range, true) || read_number(r, out, name, expected, range, true);
+    return QUICK_NUMBER(r, out, range, true) || read_number(r, out, range, true);
 }
 
-NMEA_HOT bool read_decimal(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                           const nmea_range *range)
+NMEA_HOT_FRAME bool read_decimal(nmea_reader *r, nmea_number *out, const nmea_range *range)
 {
-    return quick_number(r, out, range, false) || read_number(r, out, name, expected, range, false);
+    return QUICK_NUMBER(r, out, range, false) || read_number(r, out, range, false);
 }
 
-NMEA_INTERNAL bool read_hex(nmea_reader *r, nmea_hex *out, const char *name, const char *expected)
+NMEA_FRAME bool read_hex(nmea_reader *r, nmea_hex *out)
 {
     nmea_text t = next_field(r);
     if (t.len && !parse_hex(t, out))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     return true;
 }
 
-NMEA_INTERNAL bool read_time(nmea_reader *r, nmea_time *out, const char *name, const char *expected)
+NMEA_FRAME bool read_time(nmea_reader *r, nmea_time *out)
 {
     nmea_text t = next_field(r);
     if (t.len && !parse_time(t, out))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     return true;
 }
 
-NMEA_INTERNAL bool read_date(nmea_reader *r, nmea_date *out, const char *name, const char *expected)
+NMEA_FRAME bool read_date(nmea_reader *r, nmea_date *out)
 {
     nmea_text t = next_field(r);
     if (t.len && !parse_date(t, out))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     return true;
 }
 
 /* A value field and a hemisphere field, both empty or both set. */
-static bool read_coordinate(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
-                            const char *hemisphere_expected, const char *hemispheres, unsigned max_degree_digits,
-                            unsigned max_degrees)
+static bool read_coordinate(nmea_reader *r, nmea_coordinate *out, const char *hemisphere_expected, bool longitude)
 {
+    const char *hemispheres = longitude ? "EW" : "NS";
     nmea_text value = next_field(r);
     nmea_text hemisphere = next_field(r);
     if (!value.len) {
         if (hemisphere.len)
-            return bad_field(r, r->index - 1, name, expected, value);
+            return bad_field(r, r->index - 1, value);
         return true;
     }
-    if (!parse_coordinate(value, max_degree_digits, max_degrees, out))
-        return bad_field(r, r->index - 1, name, expected, value);
+    if (!parse_coordinate(value, 2u + longitude, longitude ? 180 : 90, out))
+        return bad_field(r, r->index - 1, value);
     if (hemisphere.len != 1 || (hemisphere.ptr[0] != hemispheres[0] && hemisphere.ptr[0] != hemispheres[1])) {
         out->present = false;
-        return bad_field(r, r->index, name, hemisphere_expected, hemisphere);
+        r->expected = hemisphere_expected;
+        return bad_field(r, r->index, hemisphere);
     }
     out->hemisphere = hemisphere.ptr[0];
     return true;
 }
 
-NMEA_INTERNAL bool read_latitude(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
-                                 const char *hemisphere_expected)
+NMEA_FRAME bool read_latitude(nmea_reader *r, nmea_coordinate *out, const char *hemisphere_expected)
 {
-    return read_coordinate(r, out, name, expected, hemisphere_expected, "NS", 2, 90);
+    return read_coordinate(r, out, hemisphere_expected, false);
 }
 
-NMEA_INTERNAL bool read_longitude(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
-                                  const char *hemisphere_expected)
+NMEA_FRAME bool read_longitude(nmea_reader *r, nmea_coordinate *out, const char *hemisphere_expected)
 {
-    return read_coordinate(r, out, name, expected, hemisphere_expected, "EW", 3, 180);
+    return read_coordinate(r, out, hemisphere_expected, true);
 }
 
-NMEA_INTERNAL bool read_char(nmea_reader *r, char *out, const char *name, const char *expected)
+NMEA_FRAME bool read_char(nmea_reader *r, char *out)
 {
     nmea_text t = next_field(r);
     if (t.len > 1)
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     *out = t.len ? t.ptr[0] : 0;
     return true;
 }
 
-NMEA_INTERNAL bool read_literal(nmea_reader *r, bool *out, const char *name, const char *expected, const char *literal)
+NMEA_FRAME bool read_literal(nmea_reader *r, bool *out, const char *literal)
 {
     nmea_text t = next_field(r);
     if (t.len && !text_is(t, literal))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     *out = t.len > 0;
     return true;
 }
 
 /* A fixed word that must be there (it picks the layout); in a text command ignoring case. */
-NMEA_INTERNAL bool read_keyword(nmea_reader *r, const char *name, const char *expected, const char *keyword)
+NMEA_FRAME bool read_keyword(nmea_reader *r, const char *keyword)
 {
     nmea_text t = next_field(r);
     if (!text_is(t, keyword) && !(r->ignore_case && upper_is(t, keyword)))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     return true;
 }
 
-NMEA_INTERNAL bool read_text(nmea_reader *r, nmea_text *out, const char *name, const char *expected, size_t max_length)
+NMEA_FRAME bool read_text(nmea_reader *r, nmea_text *out, size_t max_length)
 {
     nmea_text t = next_field(r);
     if (max_length && t.len > max_length)
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     *out = t;
     return true;
 }
 
 /* A known code, or a well-formed unknown one (kept in `code`). */
-NMEA_INTERNAL bool read_enum(nmea_reader *r, nmea_enum *out, const char *name, const char *expected,
-                             const nmea_enum_def *def)
+NMEA_FRAME bool read_enum(nmea_reader *r, nmea_enum *out, const nmea_enum_def *def)
 {
     nmea_text t = next_field(r);
     size_t i;
@@ -387,7 +374,7 @@ NMEA_INTERNAL bool read_enum(nmea_reader *r, nmea_enum *out, const char *name, c
         return true;
     out->value = r->ignore_case ? enum_find_upper(def, t) : enum_find(def, t.ptr, t.len);
     if (out->value == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr, t.len, def->min_len, def->max_len))
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     for (i = 0; i < t.len; i++) /* t.len <= max_len <= NMEA_CODE_MAX; a code is a character or two */
         out->code[i] = t.ptr[i];
     out->code[t.len] = 0;
@@ -396,16 +383,15 @@ NMEA_INTERNAL bool read_enum(nmea_reader *r, nmea_enum *out, const char *name, c
 }
 
 /* A run of one-character codes (GNS mode "ANNN"), kept as text. */
-NMEA_INTERNAL bool read_enum_chars(nmea_reader *r, nmea_text *out, const char *name, const char *expected,
-                                   const nmea_enum_def *def, size_t max_length)
+NMEA_FRAME bool read_enum_chars(nmea_reader *r, nmea_text *out, const nmea_enum_def *def, size_t max_length)
 {
     nmea_text t = next_field(r);
     size_t i;
     if (max_length && t.len > max_length)
-        return bad_field(r, r->index, name, expected, t);
+        return bad_field(r, r->index, t);
     for (i = 0; i < t.len; i++)
         if (enum_find(def, t.ptr + i, 1) == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr + i, 1, 1, 1))
-            return bad_field(r, r->index, name, expected, t);
+            return bad_field(r, r->index, t);
     *out = t;
     return true;
 }

@@ -50,6 +50,7 @@ extern const nmea_tag_code nmea_tag_codes[];
 /* What nmea.c defines before the runtime: the most wire fields of a layout, the ranges and what
    the fields take by kind (layout_field indexes them). */
 #define NMEA_MAX_FIELDS 2
+#define NMEA_MAX_LAYOUTS 1
 static const nmea_range range_0_to_99 = {.has_min = true, .min = 0, .has_max = true, .max = 99};
 static const nmea_range *const FIELD_RANGES[] = {&range_0_to_99};
 static const nmea_enum_def *const FIELD_ENUMS[] = {NULL};

@@ -11,6 +11,10 @@
 /* The most wire fields any layout takes (runtime/c/generated.c). */
 #define NMEA_MAX_FIELDS 20
 
+/* The most layouts one address (or command word) has (1: no line has several to choose among,
+   and first_fit reads the one: runtime/c/dispatch.c). */
+#define NMEA_MAX_LAYOUTS 2
+
 /* The value ranges of integer and decimal fields, and what the layouts' fields take by kind, each
    once, which layout_field indexes (runtime/c/layout.c). */
 static const nmea_range range_0_to_1 = {.has_min = true, .min = 0, .has_max = true, .max = 1}; /* 0..1 */
@@ -579,47 +583,49 @@ nmea_reply nmea_reply_to(const nmea_sentence *s, nmea_sentence_id command)
     return answers ? reply_outcome(s) : NMEA_REPLY_NONE;
 }
 
-/* nmea_parse_ex's general path: every line, every option, every error. */
-static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
-                          nmea_error *err)
+/* What route gives for a line that is a generic sentence. */
+static const nmea_layouts GENERIC_LINE;
+
+/* The layouts that may read the line in wire->line, its wire then framed in `*wire`: NULL when
+   the line is refused (`err`), GENERIC_LINE when it is a generic sentence (in `out`). Out of line
+   and with four arguments: the frame is on the stack only while the line is framed, not under
+   the layouts' reading. */
+NMEA_OUTLINE const nmea_layouts *route(nmea_sentence *out, nmea_wire *wire, bool require_checksum, nmea_error *err)
 {
-    static const nmea_options defaults = {false, false, NULL, false};
+    const char *line = wire->line.ptr;
+    size_t len = wire->line.len;
     nmea_frame f;
-    nmea_wire wire;
     const nmea_layouts *layouts = NULL;
 
-    if (!options)
-        options = &defaults;
-    out->problems = NULL;
     if (len > NMEA_MAX_LINE) { /* not even read (a framed overlong line has no bytes) */
         nmea_error_too_long(err, len);
-        return false;
+        return NULL;
     }
 
     if (len && line[0] != '$' && line[0] != '!' && (layouts = find_command(first_word(line, len))) != NULL) {
         if (!text_frame(&f, line, len, err))
-            return false;
-        wire_of(&wire, &f, NULL, line);
-        return first_fit(out, layouts, &wire, err);
+            return NULL;
+        wire_of(wire, &f, NULL, line);
+        return layouts;
     }
-    if (!frame_line(&f, line, len, options->require_checksum, err))
-        return false;
+    if (!frame_line(&f, line, len, require_checksum, err))
+        return NULL;
     if (is_standard_address(&f) && f.start.ptr[0] == '$') {
         layouts = find_standard(f.address.ptr + 2);
         if (layouts) {
-            wire_of(&wire, &f, layouts->suffix, NULL);
-            return fit(out, layouts, &wire, options, err);
+            wire_of(wire, &f, layouts->suffix, NULL);
+            return layouts;
         }
     } else if (is_standard_address(&f)) {
         layouts = find_encapsulated(f.address.ptr + 2);
         if (layouts) {
-            wire_of(&wire, &f, layouts->suffix, NULL);
-            return fit(out, layouts, &wire, options, err);
+            wire_of(wire, &f, layouts->suffix, NULL);
+            return layouts;
         }
     } else if (f.start.ptr[0] == '$' && (layouts = find_layouts(PROPRIETARY, PROPRIETARY_COUNT, f.address)) != NULL) {
-        wire_of(&wire, &f, NULL, NULL);
-        if (claimed(layouts, &wire))
-            return fit(out, layouts, &wire, options, err);
+        wire_of(wire, &f, NULL, NULL);
+        if (claimed(layouts, wire))
+            return layouts;
     }
     out->id = NMEA_SENTENCE_GENERIC;
     out->as.generic.start = f.start;
@@ -627,5 +633,28 @@ static bool parse_general(nmea_sentence *out, const char *line, size_t len, cons
     out->as.generic.fields = f.fields;
     out->as.generic.field_count = f.count;
     out->as.generic.checksum = f.checksum;
-    return true;
+    return &GENERIC_LINE;
+}
+
+/* nmea_parse_ex's general path: every line, every option, every error. A text command is read
+   strictly, whatever the options. */
+static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                          nmea_error *err)
+{
+    static const nmea_options defaults = {false, false, NULL, false};
+    static const nmea_options strict = {false, false, NULL, true};
+    nmea_wire wire;
+    const nmea_layouts *layouts;
+
+    if (!options)
+        options = &defaults;
+    out->problems = NULL;
+    wire.line.ptr = line;
+    wire.line.len = len;
+    layouts = route(out, &wire, options->require_checksum, err);
+    if (!layouts || layouts == &GENERIC_LINE)
+        return layouts != NULL;
+    if (wire.ignore_case)
+        options = &strict;
+    return fit(out, layouts, &wire, options, err);
 }
