@@ -133,14 +133,14 @@ def build_parser() -> argparse.ArgumentParser:
                "--spec-extra (the last one if several), or print it when none is given. A new sentence or "
                "command has one placeholder field and an example with a right checksum: it validates as "
                "written; replace the placeholders with what the manual says.",
-               f"  {PROG} new manual acme --vendor acme --title 'ACME X1 receiver, NMEA reference' --spec-extra my-nmea\n"
+               f"  {PROG} new manual acme --maker acme --title 'ACME X1 receiver, NMEA reference' --spec-extra my-nmea\n"
                f"  {PROG} new sentence PACMEPOS --manual acme --spec-extra my-nmea\n"
                f"  {PROG} new command PACMESET --manual acme --spec-extra my-nmea\n")
     new.add_argument("what", choices=("manual", "sentence", "command"))
     new.add_argument("id", metavar="ID", help="the manual's id (lower case) or the sentence's (upper case)")
     new.add_argument("--manual", metavar="M", help="sentence, command: the manual that documents it")
     new.add_argument("--address", help="sentence, command: the address after $ (default: the id)")
-    new.add_argument("--vendor", help="manual: who makes the receiver")
+    new.add_argument("--maker", help="manual: who makes the receiver")
     new.add_argument("--title", help="manual: its title")
 
     rules = verb("rules", "list every rule id of the spec's errors: what it checks, how to fix it",
@@ -182,10 +182,10 @@ def main(argv: list[str] | None = None) -> int:
 
 def _new_manual(args: argparse.Namespace) -> int:
     from .scaffold import MANUALS_HEADER, manual_entry
-    if not (args.vendor and args.title):
-        print("new manual: give --vendor and --title", file=sys.stderr)
+    if not (args.maker and args.title):
+        print("new manual: give --maker and --title", file=sys.stderr)
         return 2
-    entry = manual_entry(args.id, args.vendor, args.title)
+    entry = manual_entry(args.id, args.maker, args.title)
     if not args.spec_extra:
         print(MANUALS_HEADER + entry, end="")
         return 0

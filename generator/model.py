@@ -27,7 +27,8 @@ class Origin:
 class Manual:
     id: str
     title: str
-    vendor: str
+    maker: str
+    """Who makes the receivers the manual describes (`standard` for the NMEA standard)."""
     file: str | None = None
     url: str | None = None
     language: str | None = None
@@ -39,7 +40,7 @@ class GenericMessage:
     """A proprietary message real receivers send that stays a generic sentence: no public document
     gives its layout (spec/manuals.yaml, `generic`)."""
     message: str
-    vendor: str
+    maker: str
     example: str
     where: str
     why: str

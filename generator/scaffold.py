@@ -18,10 +18,10 @@ class ScaffoldError(ValueError):
     pass
 
 
-def manual_entry(manual_id: str, vendor: str, title: str) -> str:
+def manual_entry(manual_id: str, maker: str, title: str) -> str:
     return f"""  - id: {manual_id}
     title: {title}
-    vendor: {vendor}
+    maker: {maker}
 """
 
 

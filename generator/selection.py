@@ -76,7 +76,7 @@ def subset(spec: Spec, words: list[str]) -> Spec:
     # examples come from (a standard sentence keeps the examples of every manual: they are its tests).
     vendors = {s.vendor for s in sentences if s.vendor} | (lowered & {m.id for m in model.manuals})
     vendors |= {e.manual for s in sentences for e in s.examples}
-    manuals = [m for m in model.manuals if m.vendor == "standard" or m.id in vendors]
+    manuals = [m for m in model.manuals if m.maker == "standard" or m.id in vendors]
     manual_ids = {m.id for m in manuals}
     for s in sentences:
         s.manuals = [m for m in s.manuals if m in manual_ids]

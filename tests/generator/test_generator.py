@@ -199,7 +199,7 @@ def test_what_stays_generic_must(message: str, example: str, rule: str, error: s
     shutil.copytree(SPEC, tmp_path / "spec")
     manuals = tmp_path / "spec" / "manuals.yaml"
     manuals.write_text(manuals.read_text() + f'''  - message: "{message}"
-    vendor: test
+    maker: test
     example: "{example}"
     where: a test
     why: a test

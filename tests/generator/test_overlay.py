@@ -27,7 +27,7 @@ SPEC = ROOT / "spec"
 def overlay(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     """An overlay started by `new`: a manual, a sentence and a command, as written."""
     monkeypatch.chdir(tmp_path)
-    for argv in (["new", "manual", "acme", "--vendor", "acme", "--title", "ACME X1, NMEA reference"],
+    for argv in (["new", "manual", "acme", "--maker", "acme", "--title", "ACME X1, NMEA reference"],
                  ["new", "sentence", "PACMEPOS", "--manual", "acme"],
                  ["new", "command", "PACMESET", "--manual", "acme"]):
         assert main([*argv, "--spec-extra", "my-nmea"]) == 0
@@ -41,7 +41,7 @@ def test_what_new_writes_validates_and_only_selects_it(overlay: Path) -> None:
     assert spec.sentence("PACMESET").kind == "command"
     chosen = subset(spec, parse_selector("acme"))
     assert [s.id for s in chosen.sentences] == ["PACMEPOS", "PACMESET"]
-    assert [m.id for m in chosen.manuals if m.vendor != "standard"] == ["acme"]
+    assert [m.id for m in chosen.manuals if m.maker != "standard"] == ["acme"]
 
 
 def test_errors_name_the_overlay_file_and_line(overlay: Path) -> None:
@@ -59,7 +59,7 @@ def test_a_clash_names_both_files(overlay: Path) -> None:
         (overlay / folder).mkdir()
         shutil.copy(SPEC / folder / name, overlay / folder)
     manuals = overlay / "manuals.yaml"
-    manuals.write_text(manuals.read_text() + "  - id: geos5\n    title: a second GeoS-5\n    vendor: geostar\n")
+    manuals.write_text(manuals.read_text() + "  - id: geos5\n    title: a second GeoS-5\n    maker: geostar\n")
     with pytest.raises(SpecErrors) as caught:
         load_spec(SPEC, [overlay])
     found = {(e.file, e.rule, e.message) for e in caught.value.errors}

@@ -21,7 +21,7 @@ def test_the_readme_counts_what_the_spec_describes() -> None:
         "u-blox UBX messages": len({(m.id) for m in spec.binary if m.protocol == "ubx"}),
         "proprietary sentences, commands and replies": len(proprietary),
         "manuals of": len({s.vendor for s in proprietary}),
-        "receiver makers": len({manuals[s.vendor].vendor for s in proprietary}),
+        "receiver makers": len({manuals[s.vendor].maker for s in proprietary}),
         "typed command builders": sum(len(s.layouts) for s in spec.sentences if s.kind == "command"),
     }
     for words, count in counts.items():
