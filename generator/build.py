@@ -160,6 +160,7 @@ def _extend(sentences: list[Sentence], extensions: list[Document]) -> list[SpecE
             errors.append(doc.error(("extends",), f"no sentence {d['extends']} to extend", "S046"))
             continue
         file = str(doc.path)
+        sentence.extensions.append(file)
         sentence.manuals += [m for m in d["manuals"] if m not in sentence.manuals]
         sentence.variants += _variants(d, file, sentence.layout.outcome)
         sentence.notes += _notes(d)

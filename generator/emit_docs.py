@@ -222,7 +222,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         domains=[d for d in domains if d["sentences"]])
     for s in spec.sentences:
         files[f"docs/sentences/{s.id.lower()}.md"] = env.get_template("docs/sentence.md.j2").render(
-            banner=banner_of([s.source, *sorted({e.origin.file for e in _enums_of(s)}), "spec/manuals.yaml"]),
+            banner=banner_of([*s.files, *sorted({e.origin.file for e in _enums_of(s)}), "spec/manuals.yaml"]),
             s=s, spec=spec, layouts=[(lay, rows(lay), layout_summary(lay)) for lay in s.layouts],
             examples=by_sentence.get(s.id, []), enums=_enums_of(s))
     for payload in [*spec.payloads, *spec.applications]:

@@ -291,7 +291,7 @@ def fix_fields(spec: Spec, env: jinja2.Environment) -> str:
                        len("TALKER_SYSTEMS: dict[str, str] = "), brackets="{}")
     ids = py_tuple([f"({json.dumps(s)}, {low}, {high})" for s, low, high in spec.satellite_ids], 0,
                    len("SATELLITE_IDS: tuple[tuple[str, int, int], ...] = "))
-    sources = sorted({*spec.fix_sources, *(s.source for s, _ in spec.fix_layouts)})
+    sources = sorted({*spec.fix_sources, *(f for s, _ in spec.fix_layouts for f in s.files)})
     return env.get_template("python/fix_fields.py.j2").render(
         header=header(spec, "#", ["templates/python/fix_fields.py.j2", *sources]), layouts=layouts,
         fact_units=units, decimal_facts=decimal, talkers=talkers, satellite_ids=ids, combined_talker=py_literal(spec.combined_talker))
@@ -327,7 +327,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             header=header(spec, "#", [e.origin.file]), e=e)
     for sentence in spec.sentences:
         files[f"{base}/sentences/{sentence.id.lower()}.py"] = env.get_template("python/sentence.py.j2").render(
-            header=header(spec, "#", [sentence.source, *sorted({f.enum.origin.file for lay in sentence.layouts
+            header=header(spec, "#", [*sentence.files, *sorted({f.enum.origin.file for lay in sentence.layouts
                                                                for f in lay.all_fields if f.enum})]),
             sentence=sentence,
             layouts=[layout_view(sentence, lay) for lay in sentence.layouts],

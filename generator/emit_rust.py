@@ -863,7 +863,7 @@ def fix_arm(s: Sentence, layout: Layout, gate: str) -> list[str]:
 
 def fix_fields(spec: Spec, env: jinja2.Environment, gates: Gates) -> str:
     """src/fix_fields.rs: the generated `Sentence` read as the facts of a fix (spec/fix.yaml)."""
-    sources = sorted({*spec.fix_sources, *(s.source for s, _ in spec.fix_layouts)})
+    sources = sorted({*spec.fix_sources, *(f for s, _ in spec.fix_layouts for f in s.files)})
     arms = [line for s, layout in spec.fix_layouts for line in fix_arm(s, layout, gates.sentence(s))]
     return env.get_template("rust/fix_fields.rs.j2").render(
         header=header(spec, "//", ["templates/rust/fix_fields.rs.j2", *sources]), arms=arms, crate=CRATE,
@@ -895,7 +895,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         bitfield_files = sorted({f.bitfield.origin.file for lay in s.layouts for f in lay.all_fields if f.bitfield})
         module_file = sentence_module(s).removeprefix("r#")
         files[f"{base}/src/sentences/{module_file}.rs"] = env.get_template("rust/sentence.rs.j2").render(
-            header=header(spec, "//", [s.source, *enum_files, *bitfield_files]), sentence=s, doc=doc_lines(s.doc),
+            header=header(spec, "//", [*s.files, *enum_files, *bitfield_files]), sentence=s, doc=doc_lines(s.doc),
             layouts=views, imports=module_imports(views))
         for view in views:
             name = view["name"]

@@ -482,6 +482,7 @@ class Sentence:
     examples: list[Example]
     origin: Origin
     source: str                  # spec file, relative to the repository
+    extensions: list[str] = field(default_factory=list)   # overlays' extensions/ files that add to it
     address: str | None = None   # proprietary: the exact address (text framing: the command word)
     framing: str = "sentence"    # "sentence" ($…*hh) or "text" (space-separated words)
     start: str = "$"             # standard sentences: "$", or "!" for encapsulation (AIS VDM/VDO)
@@ -491,6 +492,11 @@ class Sentence:
     reply_rules: list[ReplyRule] = field(default_factory=list)
     replies: list[Sentence] = field(default_factory=list)   # derived by resolve(): each reply sentence once
     encapsulates: dict[str, str] | None = None   # the fields that carry a message of spec/ais: protocol, payload, ...
+
+    @property
+    def files(self) -> list[str]:
+        """The spec files the sentence is made from: its own, then the extensions laid over it."""
+        return [self.source, *self.extensions]
 
     @property
     def reply_ids(self) -> list[str]:

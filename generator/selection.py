@@ -103,6 +103,6 @@ def subset(spec: Spec, words: list[str]) -> Spec:
     model.enums = [e for e in model.enums if e.id in enum_ids]
     model.bitfields = [b for b in model.bitfields if b.id in bitfield_ids]
     model.enum_by_id = {e.id: e for e in model.enums}
-    kept_files = {s.source for s in sentences} | {x.origin.file for x in (*model.enums, *model.bitfields, *model.tables)}
+    kept_files = {f for s in sentences for f in s.files} | {x.origin.file for x in (*model.enums, *model.bitfields, *model.tables)}
     model.sources = [f for f in model.sources if f in kept_files]
     return model

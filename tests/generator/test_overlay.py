@@ -92,6 +92,12 @@ examples:
     spec = load_spec(SPEC, [overlay])
     zda = spec.sentence("ZDA")
     assert "acme" in zda.manuals and zda.examples[-1].origin.file == str(extension)
+    # the files of the sentence, and so the digest in its generated files' headers, take the extension in
+    assert zda.files == [zda.source, str(extension)]
+    before = spec.digest_of(zda.files)
+    extension.write_text(extension.read_text().replace("ACME X1 reference, ZDA", "ACME X1 reference rev. B, ZDA"))
+    spec = load_spec(SPEC, [overlay])
+    assert spec.digest_of(spec.sentence("ZDA").files) != before
     extension.write_text(extension.read_text().replace("local_zone_minutes: 0", "local_zone_minutes: 5"))
     with pytest.raises(SpecErrors) as caught:
         load_spec(SPEC, [overlay])
