@@ -19,9 +19,11 @@ import pyarrow as pa  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
 
 import nmeaspec  # noqa: E402
-from nmeaspec import sentences  # noqa: E402
+from nmeaspec import ais, sentences  # noqa: E402
+from nmeaspec.ais_messages import BY_TYPE, decode_payload  # noqa: E402
 from nmeaspec.apps import export  # noqa: E402
 from nmeaspec.apps.nmea_cli import main  # noqa: E402
+from nmeaspec.assembly import MessageAssembler  # noqa: E402
 from nmeaspec.fixes import carries_facts, fixes  # noqa: E402
 
 CORPUS = ROOT.parent / "shared" / "corpus" / "real"
@@ -205,3 +207,51 @@ def test_mistakes(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(SystemExit):
         main(["export", str(LOG)])  # no -o
     assert "-o/--output" in capsys.readouterr().err
+
+
+AIS_LOG = CORPUS / "gpsd" / "ais-nmea.nmea"  # AIVDM of 30 ships in a Dutch harbour, type 5 in two sentences
+
+
+def test_ais_messages_are_tables_of_their_kind(tmp_path: Path) -> None:
+    assert main(["export", "-q", str(AIS_LOG), "-o", str(tmp_path)]) == 0
+    decoded: dict[str, list[tuple[int, Any]]] = {}
+    assembler = MessageAssembler()
+    for number, line in enumerate(lines_of(AIS_LOG), 1):
+        for done in assembler.feed(nmeaspec.parse(line)):
+            if done.message is not None:
+                decoded.setdefault(f"ais_{done.message.ID}", []).append((number, done.message))
+    assert sorted(p.stem for p in tmp_path.glob("ais_*.parquet")) == sorted(decoded)
+    assert "ais_static_voyage_data" in decoded  # assembled from two sentences each
+    for table, messages in decoded.items():
+        rows = pq.read_table(tmp_path / f"{table}.parquet").to_pylist()
+        assert [(r["line"], r["mmsi"], r["message_type"]) for r in rows] == \
+            [(n, m.mmsi, m.message_type) for n, m in messages], table
+    report = pq.read_table(tmp_path / "ais_position_report.parquet").to_pylist()
+    for row, (_, message) in zip(report, decoded["ais_position_report"]):
+        for name in ("lon", "lat", "speed", "course", "heading", "turn"):
+            value = getattr(message, name)
+            if isinstance(value, ais.Special):  # "not available" is said as such, never a number
+                assert (row[name], row[f"{name}_special"], row[f"{name}_raw"]) == (None, value.id, value.raw)
+            else:
+                assert row[name] == value and row[f"{name}_special"] is None
+        assert row["status"] == (message.status.name.lower() if message.status is not None else None)
+    voyage = pq.read_table(tmp_path / "ais_static_voyage_data.parquet").to_pylist()
+    assert any(r["shipname"].rstrip("@ ") == "TIJMA" for r in voyage)  # text as sent, padding kept
+
+
+def test_every_ais_vector_fits_its_kinds_schema() -> None:
+    """The columns of every AIS message kind come from its layout: each decoded vector of
+    generated/vectors/ais.jsonl makes a row of its table's schema, unchanged through Arrow."""
+    kinds = {cls.ID for cls in BY_TYPE.values()}
+    for kind in kinds:
+        assert export.schema(pa, f"ais_{kind}").names[:2] == ["log", "line"]
+    seen = set()
+    for record in map(json.loads, (VECTORS / "ais.jsonl").read_text(encoding="utf-8").splitlines()):
+        if "decode" not in record:  # a vector of a payload that decodes to an error
+            continue
+        message = decode_payload(record["payload"], record["fill_bits"])
+        row = export._ais_row(message, "vectors", 1)
+        table = pa.Table.from_pylist([row.values], schema=export.schema(pa, row.table))
+        assert _same(table.to_pylist()[0], row.values), record["where"]
+        seen.add(message.ID)
+    assert seen == kinds

@@ -11,6 +11,10 @@ writes into tables/:
   float64, coordinates in signed decimal degrees, times, dates, enums as their value ids, a
   repeated group as a list), the variant it was read as, the problems tolerant reading noted,
   and the log and line;
+- one file per AIS message kind decoded from VDM/VDO sentences, assembled across sentences
+  (`ais_position_report.parquet`, `ais_static_voyage_data.parquet`, ...): a column per field, a
+  number in its unit beside its raw integer (`speed`, `speed_raw`) and its special value's name
+  where it has one (`heading_special`: not_available), codes as value ids, text as sent;
 - `unknown.parquet`: the well-formed sentences the spec does not describe (address, fields);
 - `errors.parquet`: the lines that do not decode (kind, message, the line as text).
 
@@ -32,8 +36,11 @@ import typing
 from collections.abc import Iterable, Iterator
 from typing import Any
 
+from .. import ais
 from .. import fixes as fix_module
 from .. import runtime as rt
+from ..ais_messages import BY_TYPE
+from ..assembly import MessageAssembler
 from ..api import Generic, Tagged, parse
 from ..runtime import NmeaError
 from ..sentences import layouts
@@ -59,6 +66,7 @@ BUFFERED = 131072  # rows held in all tables together before every table is writ
 FIXES = "fixes"
 UNKNOWN = "unknown"
 ERRORS = "errors"
+AIS = "ais_"  # the prefix of an AIS message kind's table: ais_position_report
 
 
 # --- Rows --------------------------------------------------------------------------------------
@@ -75,7 +83,8 @@ def rows(items: Iterable[bytes | int], log: str) -> Iterator[Row]:
     sentence or error, and one per fix as its epoch ends. The engine-neutral core of the export:
     docs/export.md feeds it to Dask."""
     assembler = fix_module.FixAssembler()
-    first = last = 0  # the lines of the epoch under way that carried facts
+    messages = MessageAssembler()
+    first = last = number = 0  # the lines of the epoch under way that carried facts; the line
     for number, item in enumerate(items, 1):
         try:
             if isinstance(item, int):
@@ -86,6 +95,9 @@ def rows(items: Iterable[bytes | int], log: str) -> Iterator[Row]:
             yield Row(ERRORS, {"log": log, "line": number, "kind": err.kind,
                                "message": str(err), "text": text})
             continue
+        for done in messages.feed(sentence):
+            if done.message is not None:
+                yield _ais_row(done.message, log, number)
         if isinstance(sentence, Tagged):  # the sentence behind its TAG blocks, if any
             sentence = sentence.sentence
             if sentence is None:
@@ -104,6 +116,10 @@ def rows(items: Iterable[bytes | int], log: str) -> Iterator[Row]:
     fix = assembler.close()
     if fix is not None:
         yield Row(FIXES, _fix_row(fix, log, first, last))
+    # what is left incomplete at the end of the log is no message
+    for done in messages.finish():
+        if done.message is not None:
+            yield _ais_row(done.message, log, number)
 
 
 def _sentence_row(sentence: Any, log: str, number: int) -> dict[str, Any]:
@@ -118,6 +134,48 @@ def _sentence_row(sentence: Any, log: str, number: int) -> dict[str, Any]:
 
 def _problem(problem: NmeaError) -> dict[str, Any]:
     return {"kind": problem.problem_kind, "field": problem.name, "message": str(problem)}
+
+
+def _ais_row(message: Any, log: str, number: int) -> Row:
+    """An AIS message's row; `number`: the line of its last sentence."""
+    row: dict[str, Any] = {"log": log, "line": number}
+    for item in message.LAYOUT:
+        if isinstance(item, ais.Group):
+            row[item.id] = [_ais_values(entry, item.fields, {}) for entry in getattr(message, item.id) or ()]
+    _ais_values(message, _ais_fields(message.LAYOUT), row)
+    row["trailing"], row["padding"] = message.trailing, message.padding
+    return Row(AIS + message.ID, row)
+
+
+def _ais_fields(items: Iterable[Any]) -> list[Any]:
+    """The fields outside groups, each id once (a choice's cases may name one twice)."""
+    seen: dict[str, Any] = {}
+    for f in ais.flat_fields(tuple(items)):
+        seen.setdefault(f.id, f)
+    return list(seen.values())
+
+
+def _ais_values(record: Any, fields: Iterable[Any], row: dict[str, Any]) -> dict[str, Any]:
+    """The columns of `fields` of a message or group entry, into `row`."""
+    for f in fields:
+        value = getattr(record, f.id, None)
+        if isinstance(f, ais.Unsigned):
+            number = value if isinstance(value, (int, float)) and not isinstance(value, bool) else None
+            row[f.id] = float(number) if number is not None and _scaled(f) else number
+            if _scaled(f) or f.special:
+                row[f"{f.id}_raw"] = None if value is None else f.raw_number(value, "")
+            if f.special:
+                row[f"{f.id}_special"] = value.id if isinstance(value, ais.Special) else None
+        elif isinstance(f, ais.Code):
+            row[f.id] = None if value is None else value.name.lower() if isinstance(value, f.enum) else str(value)
+        else:
+            row[f.id] = value
+    return row
+
+
+def _scaled(f: Any) -> bool:
+    """Whether a number's value is in a unit (a float), not its raw integer."""
+    return f.divisor != 1 or isinstance(f.base, float)
 
 
 def _fix_row(fix: fix_module.Fix, log: str, first: int, last: int) -> dict[str, Any]:
@@ -211,6 +269,34 @@ def _merged(pa: Any, a: Any, b: Any) -> Any:
     raise TypeError(f"{a} and {b}")
 
 
+def _ais_field_columns(pa: Any, f: Any) -> list[tuple[str, Any]]:
+    if isinstance(f, ais.Unsigned):
+        columns = [(f.id, pa.float64() if _scaled(f) else pa.int64())]
+        if _scaled(f) or f.special:
+            columns.append((f"{f.id}_raw", pa.int64()))
+        if f.special:
+            columns.append((f"{f.id}_special", pa.string()))
+        return columns
+    if isinstance(f, ais.Flag):
+        return [(f.id, pa.bool_())]
+    if isinstance(f, (ais.Code, ais.Text, ais.Data)):
+        return [(f.id, pa.string())]
+    return [(f.id, pa.int64())]  # spare bits, a bitfield's word: their raw integer
+
+
+def ais_schema(pa: Any, cls: Any) -> Any:
+    """The schema of an AIS message kind's table."""
+    columns: list[tuple[str, Any]] = [("log", pa.string()), ("line", pa.int64())]
+    for f in _ais_fields(cls.LAYOUT):
+        columns += _ais_field_columns(pa, f)
+    for item in cls.LAYOUT:
+        if isinstance(item, ais.Group):
+            entry = [c for f in item.fields for c in _ais_field_columns(pa, f)]
+            columns.append((item.id, pa.list_(pa.struct(entry))))
+    columns += [("trailing", pa.string()), ("padding", pa.string())]
+    return pa.schema(columns)
+
+
 def fix_schema(pa: Any) -> Any:
     hints = typing.get_type_hints(fix_module.Fix)
     columns: list[tuple[str, Any]] = [
@@ -231,6 +317,10 @@ def schema(pa: Any, table: str) -> Any:
     if table == UNKNOWN:
         return pa.schema([("log", pa.string()), ("line", pa.int64()), ("address", pa.string()),
                           ("fields", pa.list_(pa.string()))])
+    if table.startswith(AIS):
+        kinds = {cls.ID: cls for cls in BY_TYPE.values()}
+        if table[len(AIS):] in kinds:
+            return ais_schema(pa, kinds[table[len(AIS):]])
     if table == ERRORS:
         return pa.schema([("log", pa.string()), ("line", pa.int64()), ("kind", pa.string()),
                           ("message", pa.string()), ("text", pa.string())])
