@@ -105,26 +105,7 @@ def parse(
         address = fields[0]
         if checksum is not None and address.isalnum():
             del fields[0]
-            if start == "!":  # an encapsulation sentence (AIS VDM): by its formatter only
-                formatter = address[2:]
-                layouts = (ENCAPSULATED.get(formatter) or sentences.encapsulated(formatter)) if \
-                    runtime.is_standard_address(start, address) else None
-            else:
-                layouts = BY_ADDRESS.get(address) or sentences.by_address(address)
-                if layouts is not None and not runtime.claimed(layouts, fields):
-                    layouts = None
-                if layouts is None and len(address) == 5 and address[0] != "P":
-                    layouts = STANDARD.get(address[2:]) or sentences.standard(address[2:])
-            if layouts is None:
-                return Generic(address, fields, start, checksum)
-            try:
-                if len(layouts) == 1:
-                    return layouts[0].parse_fields(address, fields, checksum, line)
-                return _first_fit(layouts, address, fields, checksum, line)
-            except NmeaError as err:
-                if err.kind != "bad_field" or (strict and not lenient):
-                    raise
-                return _refit(layouts, address, fields, checksum, err, lenient, strict)
+            return _read(start, address, fields, checksum, line, lenient, strict)
     if line[:1] not in ("$", "!"):
         word = runtime.first_word(line).upper()
         layouts = TEXT_COMMANDS.get(word) or sentences.text_command(word)
@@ -133,26 +114,41 @@ def parse(
             return _first_fit(layouts, frame.address, frame.fields, None, line)
     frame = runtime.frame(line, require_checksum)
     checksum = runtime.checksum_case(frame.checksum)
-    address = frame.address
-    layouts = (
-        (BY_ADDRESS.get(address) or sentences.by_address(address)) if frame.start == "$" else None
-    )
-    if layouts is not None and not runtime.claimed(layouts, frame.fields):
-        layouts = None
-    if layouts is None and runtime.is_standard_address(frame.start, address):
+    return _read(frame.start, frame.address, frame.fields, checksum, line, lenient, strict)
+
+
+def _read(
+    start: str,
+    address: str,
+    fields: list[str],
+    checksum: str | None,
+    line: str,
+    lenient: bool,
+    strict: bool,
+) -> Any:
+    """A framed `$` or `!` sentence read with the layouts of its address (a Generic when none
+    claims it), by the fast path and the general one alike."""
+    layouts = None
+    if start == "$":
+        layouts = BY_ADDRESS.get(address) or sentences.by_address(address)
+        if layouts is not None and not runtime.claimed(layouts, fields):
+            layouts = None
+    if layouts is None and runtime.is_standard_address(start, address):
         formatter = address[2:]
-        if frame.start == "$":
+        if start == "$":
             layouts = STANDARD.get(formatter) or sentences.standard(formatter)
-        else:
+        else:  # an encapsulation sentence (AIS VDM): by its formatter only
             layouts = ENCAPSULATED.get(formatter) or sentences.encapsulated(formatter)
     if layouts is None:
-        return Generic(address, frame.fields, frame.start, checksum)
+        return Generic(address, fields, start, checksum)
     try:
-        return _first_fit(layouts, frame.address, frame.fields, checksum, line)
+        if len(layouts) == 1:
+            return layouts[0].parse_fields(address, fields, checksum, line)
+        return _first_fit(layouts, address, fields, checksum, line)
     except NmeaError as err:
         if err.kind != "bad_field" or (strict and not lenient):
             raise
-        return _refit(layouts, frame.address, frame.fields, checksum, err, lenient, strict)
+        return _refit(layouts, address, fields, checksum, err, lenient, strict)
 
 
 def _tagged(line: str, lenient: bool, require_checksum: bool, strict: bool) -> Tagged:

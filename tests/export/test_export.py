@@ -114,10 +114,7 @@ def test_out_of_range_values_are_kept_with_their_problem(tmp_path: Path) -> None
 
 
 def _with_checksum(body: str) -> str:
-    total = 0
-    for char in body[1:]:
-        total ^= ord(char)
-    return f"{body}*{total:02X}"
+    return f"{body}*{nmeaspec.runtime.checksum(body[1:]):02X}"
 
 
 def test_every_sentence_of_the_spec_has_a_table_schema() -> None:

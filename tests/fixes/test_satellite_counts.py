@@ -15,13 +15,11 @@ import pytest
 
 from .gpsd_oracle import ROOT
 from nmeaspec.fixes import fixes
+from nmeaspec.runtime import checksum
 
 
 def sentence(body: str) -> str:
-    total = 0
-    for char in body[1:]:
-        total ^= ord(char)
-    return f"{body}*{total:02X}"
+    return f"{body}*{checksum(body[1:]):02X}"
 
 
 GPGGA = sentence("$GPGGA,081350.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,")

@@ -45,7 +45,7 @@ from ..api import Generic, Tagged, parse
 from ..runtime import NmeaError
 from ..sentences import layouts
 from ..stream import lines, too_long
-from .nmea_cli import CliError, Progress, _chunks, add_progress_options, open_log
+from .nmea_cli import CliError, Progress, _chunks, add_progress_options, open_log, progress_for
 
 EXPORT_EXAMPLES = """\
 examples:
@@ -413,9 +413,7 @@ def export(args: argparse.Namespace) -> int:
         if path != "-" and not os.path.isfile(path):
             raise CliError(f"cannot read {path}: No such file or directory")
         sizes.append(0 if path == "-" else os.path.getsize(path))
-    total = sum(sizes)
-    wanted = args.progress if args.progress is not None else sys.stderr.isatty() and total >= 4 << 20
-    progress = Progress(total, sys.stderr) if wanted and total else None
+    progress = progress_for(args.progress, sum(sizes))
     only = set(args.only.split(",")) if args.only else None
     try:
         counts = export_logs(args.logs, args.output, only, progress)
