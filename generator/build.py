@@ -3,6 +3,7 @@ runs the semantic checks (checks.py)."""
 
 from __future__ import annotations
 
+import copy
 import hashlib
 from collections.abc import Sequence
 from pathlib import Path
@@ -80,7 +81,7 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     applications = [_payload(d) for d in docs["applications"]]
     protocols = [_protocol(d) for d in docs["protocols"]]
     binary = [_binary_message(d) for d in docs["binary"]]
-    errors = _clashes(docs, bitfields, tables) + _extend(sentences, docs["extensions"])
+    errors = _clashes(docs, bitfields, tables) + _extend(sentences, docs["extensions"]) + _alike(sentences, docs["sentences"])
     if errors:
         raise SpecErrors(errors)
     spec = Spec(manuals, enums, sentences,
@@ -168,6 +169,33 @@ def _extend(sentences: list[Sentence], extensions: list[Document]) -> list[SpecE
     return errors
 
 
+def _alike(sentences: list[Sentence], documents: list[Document]) -> list[SpecError]:
+    """Give each sentence sent `like` another the other's main layout: its fields, without the
+    facts of a fix (the other formatter says the values are not the receiver's fix: Unicore's
+    GGAH is the second antenna's position)."""
+    errors = []
+    by_id = {s.id: s for s in sentences}
+    by_file = {str(doc.path): doc for doc in documents}
+    for sentence in sentences:
+        if sentence.like is None:
+            continue
+        model = by_id.get(sentence.like)
+        if model is None or model.is_proprietary or model.like is not None:
+            errors.append(by_file[sentence.source].error(
+                ("like",), f"`like: {sentence.like}` names no standard sentence with fields of its own", "S049"))
+            continue
+        sentence.like_source = model.source
+        sentence.layout.items = [_unfixed(item) for item in copy.deepcopy(model.layout.items)]
+    return errors
+
+
+def _unfixed(item: Item) -> Item:
+    """A copied item without the facts of a fix its fields carry."""
+    for f in item.fields if isinstance(item, Group) else [item]:
+        f.fix_id = None
+    return item
+
+
 def _enum(doc: Document) -> EnumDef:
     d = doc.data
     values = [EnumValue(v["code"], v["id"], v["doc"], v.get("manuals", []), v.get("since"),
@@ -231,7 +259,7 @@ def _sentence(doc: Document) -> Sentence:
     d = doc.data
     file = str(doc.path)
     outcome = _outcome(d.get("outcome"), Origin(file, ("outcome",)))
-    layout = Layout(None, d["name"], d["doc"], _items(d["fields"], file, ("fields",)), d["manuals"],
+    layout = Layout(None, d["name"], d["doc"], _items(d.get("fields", []), file, ("fields",)), d["manuals"],
                     Origin(file, ("fields",)), outcome)
     rules = [ReplyRule(r, {}, Origin(file, ("replies", i))) if isinstance(r, str)
              else ReplyRule(r["sentence"], dict(r["when"]), Origin(file, ("replies", i)))
@@ -240,7 +268,7 @@ def _sentence(doc: Document) -> Sentence:
                     _variants(d, file, outcome), _notes(d), _examples(d, file), Origin(file, ()), file,
                     address=d.get("address"), framing=d.get("framing", "sentence"), start=d.get("start", "$"),
                     domain=d.get("domain"), kind=d.get("kind", "standard"), vendor=d.get("vendor"),
-                    reply_rules=rules, encapsulates=d.get("encapsulates"))
+                    reply_rules=rules, encapsulates=d.get("encapsulates"), like=d.get("like"))
 
 
 def _variants(d: dict[str, Any], file: str, outcome: Outcome | None) -> list[Layout]:

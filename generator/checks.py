@@ -134,9 +134,10 @@ def _unique(spec: Spec, report: _Reporter) -> None:
 
 def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], report: _Reporter) -> None:
     if not sentence.is_proprietary:
-        if len(sentence.id) != 3 or not sentence.id.isalnum():
-            report(sentence.origin, "S034", f"standard sentence {sentence.id}: the id is the 3-character formatter; "
-                   "a proprietary sentence needs `address`", "sentence")
+        if len(sentence.id) not in (3, 4) or not sentence.id.isalnum():
+            report(sentence.origin, "S034", f"standard sentence {sentence.id}: the id is the 3-character formatter "
+                   "(or 4, a receiver's own formatter such as Unicore's GGAH); a proprietary sentence needs "
+                   "`address`", "sentence")
         for key, value in (("kind", sentence.kind != "standard"), ("vendor", sentence.vendor), ("replies", sentence.reply_rules),
                            ("framing", sentence.framing != "sentence")):
             if value:

@@ -656,7 +656,7 @@ def _dispatch(spec: Spec, views: list[dict]) -> dict[str, list[dict]]:
                 "sort": key.encode(), "ids": [const[(s.id, lay.id)] for s, lay in pairs], "code": f"0x{code:06X}"}
 
     def standard_like(address: str) -> bool:  # what is_standard_address accepts
-        return len(address) == 5 and address[0] != "P"
+        return len(address) in (5, 6) and address[0] != "P"
 
     standard = [entry(s.id, s.id, [(s, lay) for lay in s.layouts]) for s in spec.standard if s.start == "$"]
     encapsulated = [entry(s.id, s.id, [(s, lay) for lay in s.layouts]) for s in spec.standard if s.start == "!"]

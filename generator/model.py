@@ -492,11 +492,14 @@ class Sentence:
     reply_rules: list[ReplyRule] = field(default_factory=list)
     replies: list[Sentence] = field(default_factory=list)   # derived by resolve(): each reply sentence once
     encapsulates: dict[str, str] | None = None   # the fields that carry a message of spec/ais: protocol, payload, ...
+    like: str | None = None      # a standard sentence whose main layout this one takes (Unicore's GGAH: GGA)
+    like_source: str | None = None   # that sentence's spec file
 
     @property
     def files(self) -> list[str]:
-        """The spec files the sentence is made from: its own, then the extensions laid over it."""
-        return [self.source, *self.extensions]
+        """The spec files the sentence is made from: its own, the extensions laid over it, and
+        the file of the sentence whose fields it takes (`like`)."""
+        return [self.source, *self.extensions, *([self.like_source] if self.like_source else [])]
 
     @property
     def reply_ids(self) -> list[str]:

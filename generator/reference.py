@@ -271,7 +271,7 @@ def to_json(decoded: Decoded, values: bool = False) -> str:
         fields = "[" + ",".join(rt.json_str(f) for f in frame.fields) + "]"
         return head + '"talker":null,"sentence":null,"variant":null,"fields":' + fields + tail
     variant = rt.json_opt(decoded.layout.id if decoded.layout else None)
-    talker = "null" if decoded.sentence.is_proprietary else rt.json_str(frame.address[:-3])
+    talker = "null" if decoded.sentence.is_proprietary else rt.json_str(frame.address[:2])
     problems = ""
     if decoded.problems:
         problems = ',"problems":[' + ",".join(rt.problem_json(p) for p in decoded.problems) + "]"

@@ -128,7 +128,8 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "Correct the line, move the example to the sentence it is, or fix the layout (the message has the "
          "decoder's error)."),
     Rule("S034", "a standard id is its formatter",
-         "A standard sentence's id is its 3-character formatter.",
+         "A standard sentence's id is its 3-character formatter, or 4 characters for a formatter some receivers "
+         "add to the standard ones (Unicore's GGAH).",
          "Use the formatter as id; a proprietary sentence goes to proprietary/ with `address`."),
     Rule("S035", "standard sentences are plain",
          "A standard sentence has no `kind`, `vendor`, `replies` or `framing`.",
@@ -179,6 +180,10 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "carry facts of a fix.",
          "Correct the line (the message has the decoder's error or the computed checksum), or tag the fields "
          "with `fix:`."),
+    Rule("S049", "like names a standard sentence",
+         "A sentence's `like` names a standard sentence of the spec that has fields of its own (not a `like` "
+         "itself): its main layout is copied, without the facts of a fix.",
+         "Correct the id, or give the sentence its own `fields`."),
     Rule("A001", "a fixed payload has its documented length",
          "The fields of a message (spec/ais/messages) with no variable or optional item take the bits its `length` "
          "says; a message with one has no `length`.",

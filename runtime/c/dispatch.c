@@ -13,7 +13,7 @@ NMEA_INTERNAL bool frame_known(nmea_wire *wire, const char *line, size_t len, ch
     if (!frame_line(&f, line, len, false, err))
         return false;
     if (!is_standard_address(&f) || f.start.ptr[0] != start ||
-        !text_is(text_span(f.address.ptr + 2, f.address.ptr + 5), sentence)) {
+        !text_is(text_span(f.address.ptr + 2, f.address.ptr + f.address.len), sentence)) {
         fail(err, NMEA_ERR_NOT_A_SENTENCE,
              start == '!' ? ERROR_TEXT("line is not a !--%s sentence") : ERROR_TEXT("line is not a $--%s sentence"));
         set_address(err, f.address, NULL);
@@ -109,10 +109,13 @@ NMEA_INTERNAL inline const nmea_layouts *find_layouts(const nmea_layouts *table,
     return NULL;
 }
 
-/* The 3 characters at `id` as a number (big-endian), as the _CODES tables hold them. */
-NMEA_INTERNAL inline uint32_t standard_code(const char *id)
+/* A formatter of 3 or 4 characters (`id.len`) as a number (big-endian), as the _CODES tables
+   hold them. */
+NMEA_INTERNAL inline uint32_t standard_code(nmea_text id)
 {
-    return (uint32_t)(unsigned char)id[0] << 16 | (uint32_t)(unsigned char)id[1] << 8 | (unsigned char)id[2];
+    uint32_t code = (uint32_t)(unsigned char)id.ptr[0] << 16 | (uint32_t)(unsigned char)id.ptr[1] << 8 |
+                    (unsigned char)id.ptr[2];
+    return id.len == 4 ? code << 8 | (unsigned char)id.ptr[3] : code;
 }
 
 /* Wire field `index` (0-based) of `fields` (separated by `sep`); empty past the end. */

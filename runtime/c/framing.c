@@ -165,12 +165,13 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
     return true;
 }
 
-/* A talker ID and a 3-letter sentence formatter: '$' (or '!', an encapsulation sentence such as
-   AIS VDM), 5 characters, not proprietary ('P...'). */
+/* A talker ID and a sentence formatter: '$' (or '!', an encapsulation sentence such as AIS VDM),
+   5 characters (6 for a receiver's 4-character formatter, Unicore's GGAH), not proprietary
+   ('P...'). */
 static bool is_standard_address(const nmea_frame *f)
 {
-    return f->start.len == 1 && (f->start.ptr[0] == '$' || f->start.ptr[0] == '!') && f->address.len == 5 &&
-           f->address.ptr[0] != 'P';
+    return f->start.len == 1 && (f->start.ptr[0] == '$' || f->start.ptr[0] == '!') &&
+           (f->address.len == 5 || f->address.len == 6) && f->address.ptr[0] != 'P';
 }
 
 /* A text command (ComNav: words separated by single spaces, no '$', no checksum): the first

@@ -122,12 +122,12 @@ static bool too_many(nmea_reader *r, size_t limit, size_t found)
 
 /* A layout without a repeated group: `fixed` required fields, `max` in all. Sets `optional` to
    the number of optional trailing wire fields present. */
-/* The wire of a framed line: a standard sentence's address is its talker followed by `suffix`
-   (its 3-character sentence id); a text command (`line`, as received) has words separated by
+/* The wire of a framed line: a standard sentence's address is its 2-character talker followed
+   by `suffix` (its sentence id); a text command (`line`, as received) has words separated by
    spaces. */
 static void wire_of(nmea_wire *wire, const nmea_frame *f, const char *suffix, const char *line)
 {
-    wire->address = suffix ? text_span(f->address.ptr, f->address.ptr + f->address.len - 3) : f->address;
+    wire->address = suffix ? text_span(f->address.ptr, f->address.ptr + 2) : f->address;
     wire->suffix = suffix;
     wire->fields = f->fields;
     wire->count = (uint16_t)f->count;

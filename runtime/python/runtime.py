@@ -206,9 +206,10 @@ def words_json(ids: tuple[str, ...], line: str) -> str:
 
 
 def is_standard_address(start: str, address: str) -> bool:
-    """A talker ID and a 3-letter sentence formatter: `$` (or `!`, an encapsulation sentence such
-    as AIS VDM), 5 characters, not proprietary (`P…`)."""
-    return start in ("$", "!") and len(address) == 5 and address[0] != "P"
+    """A talker ID and a sentence formatter: `$` (or `!`, an encapsulation sentence such as AIS
+    VDM), 5 characters (6 for a receiver's 4-character formatter, Unicore's GGAH), not
+    proprietary (`P…`)."""
+    return start in ("$", "!") and (len(address) == 5 or len(address) == 6) and address[0] != "P"
 
 
 def assemble(start: str, address: str, fields: list[str], checksum_style: str | None) -> str:
@@ -2117,7 +2118,7 @@ class Layout:
             else:
                 code.append(f"    v{n} = {read(item, str(n), place, repr(item.id))}")
             at += item.width
-        head = {"standard": ["address[:-3]"], "proprietary": [], "text": ["line"]}[self.kind]
+        head = {"standard": ["address[:2]"], "proprietary": [], "text": ["line"]}[self.kind]
         tail = ["[]"] if self.kind == "text" else ["[]", "checksum"]
         code.append(f"    return cls({', '.join(head + values + tail)})")
         exec("\n".join(code), names)  # noqa: S102 (source made above from the layout's own items)

@@ -52,3 +52,18 @@ def test_the_count_of_satellites_used(lines: list[str], used: int) -> None:
         out = subprocess.run([str(tool(name)), "fixes"], input=stream, capture_output=True, check=True).stdout
         (printed,) = [json.loads(line) for line in out.decode("ascii").splitlines()]
         assert printed["satellites_used"] == used, name
+
+
+def test_a_second_antennas_sentences_are_not_the_fix() -> None:
+    """Unicore's GGAH carries GGA's fields for the heading antenna (spec `like: GGA`): the three
+    tools keep it out of the fix, whose position and count stay the first antenna's GGA's."""
+    first = sentence("$GNGGA,073346.00,4004.73874301,N,11614.19077585,E,1,28,0.6,64.2831,M,8.4925,M,,")
+    second = sentence("$GNGGAH,073346.00,4004.73814597,N,11614.19908275,E,4,20,0.6,64.3000,M,8.4925,M,,")
+    (fix,) = fixes([first, second])
+    assert (fix.satellites_used, fix.fix_quality, fix.sentences) == (28, "autonomous", ["GNGGA"])
+    assert abs(fix.latitude - (40 + 4.73874301 / 60)) < 1e-12
+    stream = f"{first}\r\n{second}\r\n".encode()
+    for name in ("nmea-c", "nmea-rs", "nmea-py"):
+        out = subprocess.run([str(tool(name)), "fixes"], input=stream, capture_output=True, check=True).stdout
+        (printed,) = [json.loads(line) for line in out.decode("ascii").splitlines()]
+        assert (printed["satellites_used"], printed["latitude"]) == (28, fix.latitude), name

@@ -224,10 +224,11 @@ pub fn is_command_word(word: &[u8], upper: &str) -> bool {
     expected.next().is_none()
 }
 
-/// Whether a line is a standard sentence, a talker ID and a 3-letter formatter: `$` (or `!`, an
-/// encapsulation sentence such as AIS VDM) and 5 characters, not proprietary (`P…`).
+/// Whether a line is a standard sentence, a talker ID and a formatter: `$` (or `!`, an
+/// encapsulation sentence such as AIS VDM) and 5 characters (6 for a receiver's 4-character
+/// formatter, Unicore's `GGAH`), not proprietary (`P…`).
 pub fn is_standard_address(start: &str, address: &str) -> bool {
-    matches!(start, "$" | "!") && address.len() == 5 && !address.starts_with('P')
+    matches!(start, "$" | "!") && matches!(address.len(), 5 | 6) && !address.starts_with('P')
 }
 
 /// What one pass over the bytes after the start finds: whether all are printable ASCII, their
@@ -384,10 +385,14 @@ impl<'a> Fields<'a> {
         self.address
     }
 
-    /// The talker ID of a standard sentence: the address without its last 3 characters.
+    /// The talker ID of a standard sentence: the first 2 characters of its address (empty for
+    /// an address too short to be one).
     pub fn talker(&self) -> &'a str {
-        let end = self.address.len().saturating_sub(3);
-        self.address.get(..end).unwrap_or("")
+        if self.address.len() > 2 {
+            self.address.get(..2).unwrap_or("")
+        } else {
+            ""
+        }
     }
 
     /// The fields as received, joined by `,` (by spaces in a text command as received).

@@ -460,16 +460,16 @@ static const nmea_layouts TEXT[] = {
 };
 #define TEXT_COUNT 1
 
-/* The standard sentence whose id is the 3 characters at `id`, or NULL: one probe of the hash. */
-static const nmea_layouts *find_standard(const char *id)
+/* The standard sentence whose id is `id` (3 or 4 characters), or NULL: one probe of the hash. */
+static const nmea_layouts *find_standard(nmea_text id)
 {
     uint32_t code = standard_code(id);
     unsigned slot = STANDARD_SLOTS[STANDARD_HASH(code)];
     return slot && STANDARD_CODES[slot - 1] == code ? &STANDARD[slot - 1] : NULL;
 }
 
-/* The encapsulated sentence whose id is the 3 characters at `id`, or NULL: one probe of the hash. */
-static const nmea_layouts *find_encapsulated(const char *id)
+/* The encapsulated sentence whose id is `id` (3 or 4 characters), or NULL: one probe of the hash. */
+static const nmea_layouts *find_encapsulated(nmea_text id)
 {
     uint32_t code = standard_code(id);
     unsigned slot = ENCAPSULATED_SLOTS[ENCAPSULATED_HASH(code)];
@@ -514,7 +514,7 @@ NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len)
     if (line[6] == ',' && line[1] != 'P') {
         if (!is_alnum(line[1]) || !is_alnum(line[2]))
             return false;
-        layouts = find_standard(line + 3);
+        layouts = find_standard(text_span(line + 3, line + 6));
         return layouts && fast_fit(out, layouts, line, line + 7, line + len - 2, count);
     }
     for (comma = 1; is_alnum(line[comma]); comma++) /* the address: letters and digits up to a comma */
@@ -611,13 +611,13 @@ NMEA_OUTLINE const nmea_layouts *route(nmea_sentence *out, nmea_wire *wire, bool
     if (!frame_line(&f, line, len, require_checksum, err))
         return NULL;
     if (is_standard_address(&f) && f.start.ptr[0] == '$') {
-        layouts = find_standard(f.address.ptr + 2);
+        layouts = find_standard(text_span(f.address.ptr + 2, f.address.ptr + f.address.len));
         if (layouts) {
             wire_of(wire, &f, layouts->suffix, NULL);
             return layouts;
         }
     } else if (is_standard_address(&f)) {
-        layouts = find_encapsulated(f.address.ptr + 2);
+        layouts = find_encapsulated(text_span(f.address.ptr + 2, f.address.ptr + f.address.len));
         if (layouts) {
             wire_of(wire, &f, layouts->suffix, NULL);
             return layouts;

@@ -746,22 +746,25 @@ fn layouts_of(start: &str, address: &[u8]) -> &'static [LayoutId] {
 
 /// The layouts of a `$` address: a proprietary one (those that look standard, like GeoS-5's
 /// `GPSGG`, are looked up before the standard sentences), else a standard sentence's: a talker
-/// ID and a formatter, 5 characters, not proprietary (`P…`; see [`runtime::is_standard_address`]).
+/// ID and a formatter, 5 characters (6 for a 4-character formatter), not proprietary (`P…`; see
+/// [`runtime::is_standard_address`]).
 fn sentence_layouts(address: &[u8]) -> &'static [LayoutId] {
     match address {
-        &[first, _, a, b, c] if first != b'P' => standard([a, b, c]),
+        &[first, _, a, b, c] if first != b'P' => standard(&[a, b, c]),
         #[cfg(feature = "acme")]
         b"PACMACK" => &[LayoutId::Pacmack],
         #[cfg(feature = "acme")]
         b"PACMSET" => &[LayoutId::Pacmset],
+        &[first, _, a, b, c, d] if first != b'P' => standard(&[a, b, c, d]),
         _ => &[],
     }
 }
 
-/// The layouts of the standard sentence with formatter `formatter` (`GGA`): a match on the three
-/// bytes, which compiles to a few byte comparisons rather than string comparisons.
-fn standard(formatter: [u8; 3]) -> &'static [LayoutId] {
-    match &formatter {
+/// The layouts of the standard sentence with formatter `formatter` (`GGA`, or a receiver's
+/// 4-character one such as `GGAH`): a match on the bytes, which compiles to a few byte
+/// comparisons rather than string comparisons.
+fn standard(formatter: &[u8]) -> &'static [LayoutId] {
+    match formatter {
         b"FIX" => &[LayoutId::Fix, LayoutId::FixShort],
         b"SAT" => &[LayoutId::Sat],
         _ => &[],
