@@ -146,10 +146,12 @@ static void as_line(const char *data, size_t size)
     check(j == k && memcmp(json, json2, j) == 0);
 
     /* a required checksum refuses exactly the $/! sentences without one (the sentence's checksum
-       member is the last, or the one before its TAG blocks) */
+       member is the last, or the one before its TAG blocks or stray '$') */
     no_checksum = ends_with(json, j, "\"checksum\":null}") || ends_with(json, j, "\"checksum\":\"\"}") ||
                   contains(json, j, "\"checksum\":null,\"tag_blocks\":") ||
-                  contains(json, j, "\"checksum\":\"\",\"tag_blocks\":");
+                  contains(json, j, "\"checksum\":\"\",\"tag_blocks\":") ||
+                  contains(json, j, "\"checksum\":null,\"stray\":") ||
+                  contains(json, j, "\"checksum\":\"\",\"stray\":");
     text_command = j > 21 && memcmp(json, "{\"ok\":true,\"start\":\"\"", 21) == 0;
     if (nmea_parse_ex(&other, data, size, &REQUIRED, &err)) {
         k = nmea_to_json(&other, false, json2, sizeof json2);

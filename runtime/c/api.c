@@ -32,6 +32,31 @@ static bool take_tag_blocks(nmea_sentence *out, const char **line, size_t *len, 
     *len -= blocks->len;
     return true;
 }
+
+/* The `$` a line sends before its sentence's own start ($$GNGSA: the first), taken off the
+   line and kept after its TAG blocks in `*before` (they are next to each other on the line):
+   false with `err` for a line too long or not printable ASCII (offsets counted from here, as
+   for the blocks). */
+static bool take_stray(const char **line, size_t *len, nmea_text *before, nmea_error *err)
+{
+    size_t n = 0;
+    if (*len < 2 || (*line)[0] != '$' || (*line)[1] != '$')
+        return true;
+    if (*len > NMEA_MAX_LINE) {
+        nmea_error_too_long(err, *len);
+        return false;
+    }
+    if (!all_printable(*line, *len, err))
+        return false;
+    while (n + 1 < *len && (*line)[n + 1] == '$')
+        n++;
+    if (!before->len)
+        before->ptr = *line;
+    before->len += n;
+    *line += n;
+    *len -= n;
+    return true;
+}
 #endif
 
 /* The sentence of a line (after its TAG blocks): the fast path, which needs no options (what it
@@ -55,6 +80,8 @@ bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_
     out->tag_blocks = nmea_text_of(NULL); /* kept in `out` (no copy on the stack under the parsing) */
     if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &out->tag_blocks, &only, err) || only))
         return only;
+    if (line && !take_stray(&line, &len, &out->tag_blocks, err))
+        return false;
     return parse_sentence(out, line, len, options, err);
 #else
     return parse_sentence(out, line, without_line_ending(line, len), options, err);
@@ -70,6 +97,8 @@ bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const 
     len = without_line_ending(line, len);
     if (line && len && line[0] == '\\' && (!take_tag_blocks(out, &line, &len, &blocks, &only, err) || only))
         return only;
+    if (line && !take_stray(&line, &len, &blocks, err))
+        return false;
     if (!parse_general(out, line, len, options, err))
         return false;
     out->tag_blocks = blocks;

@@ -16,13 +16,23 @@ static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant
     return NMEA_SENTENCE_GENERIC;
 }
 
-/* decode's "tag_blocks" member and the object's closing brace: each block's parameters and
-   checksum as received. */
-static void json_tag_blocks(nmea_writer *w, nmea_text blocks)
+/* decode's members for what came before the sentence, and the object's closing brace: the
+   "tag_blocks" array (each block's parameters and checksum as received), when there are blocks
+   or no stray '$', then "stray" (the '$' sent before the sentence's own start). */
+static void json_tag_blocks(nmea_writer *w, nmea_text before)
 {
-    nmea_text params;
+    nmea_text params, blocks = before, stray;
     nmea_tag_param param;
     bool first_block = true, first;
+    while (blocks.len && blocks.ptr[blocks.len - 1] == '$') /* a block ends with '\\' */
+        blocks.len--;
+    stray = text_span(before.ptr + blocks.len, before.ptr + before.len);
+    if (stray.len && !blocks.len) {
+        put_str(w, "\"stray\":");
+        put_json_str(w, stray, 0);
+        put_char(w, '}');
+        return;
+    }
     put_str(w, "\"tag_blocks\":[");
     while (nmea_tag_next_block(&blocks, &params)) {
         const char *sum = params.ptr + params.len + 1; /* after the '*' */
@@ -39,7 +49,12 @@ static void json_tag_blocks(nmea_writer *w, nmea_text blocks)
         put_str(w, "\"}");
         first_block = false;
     }
-    put_str(w, "]}");
+    put_char(w, ']');
+    if (stray.len) {
+        put_str(w, ",\"stray\":");
+        put_json_str(w, stray, 0);
+    }
+    put_char(w, '}');
 }
 
 size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap)
@@ -316,6 +331,27 @@ static bool tag_blocks_from_json(nmea_json items, nmea_scratch *s, nmea_text *bl
     return read_tag_blocks(s->buf + start, s->len - start, blocks, err);
 }
 
+/* decode's "stray" written into the scratch buffer after the TAG blocks (`*before`, which it
+   extends): one or more '$'. */
+static bool stray_from_json(nmea_json stray, nmea_scratch *s, nmea_text *before, nmea_error *err)
+{
+    nmea_text text;
+    bool wide;
+    size_t i;
+    if (!json_is(stray, '"'))
+        return bad_json(err, "\"stray\" is not one or more \"$\"", NULL);
+    if (!json_string(stray, s, &text, &wide))
+        return scratch_full(err);
+    for (i = 0; i < text.len && text.ptr[i] == '$'; i++)
+        continue;
+    if (!text.len || i < text.len)
+        return bad_json(err, "\"stray\" is not one or more \"$\"", NULL);
+    if (!before->len)
+        before->ptr = text.ptr;
+    before->len += text.len;
+    return true;
+}
+
 /* nmea_from_json of the sentence (its TAG blocks read already). */
 static bool sentence_from_json(nmea_sentence *out, nmea_json root, nmea_scratch *s, nmea_error *err)
 {
@@ -398,7 +434,7 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
                     nmea_error *err)
 {
     nmea_scratch s;
-    nmea_json root, tags, start;
+    nmea_json root, tags, stray, start;
     nmea_text blocks = nmea_text_of(NULL);
 
     s.buf = scratch;
@@ -410,10 +446,14 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
         return bad_json(err, "not JSON", NULL);
     if (!json_is(root, '{'))
         return bad_json(err, "not a JSON object", NULL);
-    if (json_member(root, "tag_blocks", &tags)) {
-        if (!tag_blocks_from_json(tags, &s, &blocks, err))
-            return false;
+    if (json_member(root, "tag_blocks", &tags) && !tag_blocks_from_json(tags, &s, &blocks, err))
+        return false;
+    if (json_member(root, "stray", &stray) && !stray_from_json(stray, &s, &blocks, err))
+        return false;
+    if (blocks.len) {
         if (!json_member(root, "start", &start)) { /* a line of TAG blocks only */
+            if (blocks.ptr[blocks.len - 1] == '$')
+                return bad_json(err, "\"stray\" without a sentence", NULL);
             memset(out, 0, sizeof *out);
             out->id = NMEA_SENTENCE_GENERIC;
             out->as.generic.checksum = NMEA_CHECKSUM_NONE;

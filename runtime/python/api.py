@@ -35,27 +35,33 @@ class Generic:
 
 @dataclass(slots=True)
 class Tagged:
-    """A line with TAG blocks: the blocks, and the sentence after them (None for a line of TAG
-    blocks only). `Tagged((TagBlock(source="r003669945", time=1241544035),), gga).to_bytes()`
-    puts a block before a sentence."""
+    """A line with something before its sentence, kept as received: TAG blocks, then the stray
+    `$` of a start sent twice (an ST Teseo's `$$GNGSA,...`: `stray` is "$", the checksum is the
+    sentence's own). The sentence is None for a line of TAG blocks only.
+    `Tagged((TagBlock(source="r003669945", time=1241544035),), gga).to_bytes()` puts a block
+    before a sentence."""
 
     tag_blocks: tuple[TagBlock, ...]
     sentence: Any = None
+    stray: str = ""
 
     def to_sentence(self) -> str:
         """The line as received, byte for byte (no line ending)."""
-        tags = "".join(block.to_text() for block in self.tag_blocks)
-        return tags if self.sentence is None else tags + self.sentence.to_sentence()
+        head = "".join(block.to_text() for block in self.tag_blocks) + self.stray
+        return head if self.sentence is None else head + self.sentence.to_sentence()
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, the sentence checked as its to_bytes does."""
-        tags = "".join(block.to_text() for block in self.tag_blocks).encode("ascii")
-        return tags + (b"\r\n" if self.sentence is None else self.sentence.to_bytes())
+        head = ("".join(block.to_text() for block in self.tag_blocks) + self.stray).encode("ascii")
+        return head + (b"\r\n" if self.sentence is None else self.sentence.to_bytes())
 
     def to_dict(self) -> dict[str, Any]:
-        """The sentence's to_dict (if any) and `tag_blocks`, each block's to_dict."""
+        """The sentence's to_dict (if any) and `tag_blocks`, each block's to_dict (and `stray`,
+        when the start was sent twice)."""
         out: dict[str, Any] = {} if self.sentence is None else self.sentence.to_dict()
         out["tag_blocks"] = [block.to_dict() for block in self.tag_blocks]
+        if self.stray:
+            out["stray"] = self.stray
         return out
 
 
@@ -79,6 +85,8 @@ def parse(
         line = line[:-2] if line.endswith("\r\n") else line[:-1]
     if line[:1] == "\\":
         return _tagged(line, lenient, require_checksum, strict)
+    if line[:2] == "$$":
+        return _stray(line, lenient, require_checksum, strict)
     # The common case first: a `$` or `!` sentence in printable ASCII whose checksum matches,
     # decoded without building a Frame; anything else takes the general path below, which reports
     # it.
@@ -156,7 +164,23 @@ def _tagged(line: str, lenient: bool, require_checksum: bool, strict: bool) -> T
     if len(line) > runtime.MAX_LINE:
         raise NmeaError("too_long", f"line is {len(line)} bytes, the limit is {runtime.MAX_LINE}")
     blocks, rest = runtime.read_tag_blocks(TagBlock, line)
-    return Tagged(blocks, parse(rest, lenient, require_checksum, strict) if rest else None)
+    if not rest:
+        return Tagged(blocks)
+    sentence = parse(rest, lenient, require_checksum, strict)
+    if isinstance(sentence, Tagged):  # a stray start after the blocks
+        return Tagged(blocks, sentence.sentence, sentence.stray)
+    return Tagged(blocks, sentence)
+
+
+def _stray(line: str, lenient: bool, require_checksum: bool, strict: bool) -> Tagged:
+    """A line whose `$` start is sent more than once: the sentence from the last `$`, the ones
+    before it kept as its stray start."""
+    if len(line) > runtime.MAX_LINE:
+        raise NmeaError("too_long", f"line is {len(line)} bytes, the limit is {runtime.MAX_LINE}")
+    runtime.check_printable(line)
+    rest = line.lstrip("$")
+    stray = line[: len(line) - len(rest) - 1]
+    return Tagged((), parse("$" + rest, lenient, require_checksum, strict), stray)
 
 
 _UPPER_HEX = [f"{value:02X}" for value in range(256)]
@@ -247,10 +271,15 @@ def to_json(sentence: Any, values: bool = False) -> str:
     """The tools' JSON line for a decoded sentence (`values`: decoded values, not texts); a
     Tagged one has its TAG blocks last."""
     if isinstance(sentence, Tagged):
-        tags = '"tag_blocks":[' + ",".join(b.to_json() for b in sentence.tag_blocks) + "]}"
+        members = []
+        if sentence.tag_blocks or not sentence.stray:
+            members.append('"tag_blocks":[' + ",".join(b.to_json() for b in sentence.tag_blocks) + "]")
+        if sentence.stray:
+            members.append(f'"stray":{runtime.json_str(sentence.stray)}')
+        tail = ",".join(members) + "}"
         if sentence.sentence is None:
-            return '{"ok":true,' + tags
-        return to_json(sentence.sentence, values)[:-1] + "," + tags
+            return '{"ok":true,' + tail
+        return to_json(sentence.sentence, values)[:-1] + "," + tail
     text = sentence.to_sentence()
     if isinstance(sentence, Generic):
         fields = "[" + ",".join(runtime.json_str(f) for f in sentence.fields) + "]"
@@ -301,11 +330,17 @@ def from_json(obj: Any) -> Any:
     """Rebuild a sentence from one object of `decode`'s lossless JSON; raises NmeaError."""
     if not isinstance(obj, dict):
         raise runtime.bad_json("not a JSON object")
-    if "tag_blocks" in obj:
-        blocks = runtime.tag_blocks_from_json(TagBlock, obj["tag_blocks"])
+    if "tag_blocks" in obj or "stray" in obj:
+        blocks = runtime.tag_blocks_from_json(TagBlock, obj["tag_blocks"]) if "tag_blocks" in obj else ()
+        stray = obj.get("stray", "")
+        if "stray" in obj and (not isinstance(stray, str) or not stray or stray.strip("$")):
+            raise runtime.bad_json('"stray" is not one or more "$"')
+        rest = {k: v for k, v in obj.items() if k not in ("tag_blocks", "stray")}
         if "start" not in obj:
+            if stray:
+                raise runtime.bad_json('"stray" without a sentence')
             return Tagged(blocks)
-        return Tagged(blocks, from_json({k: v for k, v in obj.items() if k != "tag_blocks"}))
+        return Tagged(blocks, from_json(rest), stray)
     checksum = runtime.checksum_case(runtime.json_opt_text(obj, "checksum"))
     sentence_id = runtime.json_opt_text(obj, "sentence")
     if sentence_id is None:

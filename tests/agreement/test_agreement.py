@@ -97,7 +97,8 @@ def check_stream(data: bytes, origin: Callable[[int], str] = line_number) -> lis
 
 
 def wrong_checksum(line: bytes) -> bool:
-    """A printable line of the form $...*HH whose two hex digits differ from the XOR of its body."""
+    """A printable line of the form $...*HH whose two hex digits differ from the XOR of its body
+    (after its last leading `$`: `$$GNGSA` is the sentence `$GNGSA` behind a stray `$`)."""
     if not line or line[:1] not in (b"$", b"!") or len(line) > 1024 or any(b < 0x20 or b > 0x7E for b in line):
         return False
     star = line.find(b"*")
@@ -107,7 +108,7 @@ def wrong_checksum(line: bytes) -> bool:
     if not all(c in "0123456789abcdefABCDEF" for c in digits) or (digits.lower() != digits and digits.upper() != digits):
         return False
     value = 0
-    for byte in line[1:star]:
+    for byte in line[len(line) - len(line.lstrip(b"$")) or 1:star]:
         value ^= byte
     return value != int(digits, 16)
 

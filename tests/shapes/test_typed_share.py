@@ -1,6 +1,6 @@
 """The typed share of real logs outside the shared corpus: per log, the lines (those that start
-with `$` or `!`) that the Python package decodes into a sentence the spec describes, rather than a
-Generic one or an error. No log may fall below the figure measured (typed_share.json); after a
+with `$` or `!`) that the Python package decodes into a sentence the spec describes (behind its
+TAG blocks or stray `$`, if any), rather than a Generic one or an error. No log may fall below the figure measured (typed_share.json); after a
 change that raises one, record the new figures with
 `UPDATE_TYPED_SHARE=1 .venv/bin/python -m pytest tests/shapes`.
 
@@ -43,7 +43,9 @@ def typed_share(log: str) -> tuple[int, int]:
             sentence = nmeaspec.parse(raw.decode("latin-1"))
         except nmeaspec.NmeaError:
             continue
-        typed += not isinstance(sentence, nmeaspec.Generic)
+        if isinstance(sentence, nmeaspec.Tagged):  # TAG blocks or a stray `$` before the sentence
+            sentence = sentence.sentence
+        typed += sentence is not None and not isinstance(sentence, nmeaspec.Generic)
     return typed, lines
 
 

@@ -66,10 +66,12 @@ fn as_line(data: &[u8]) {
         "lenient parsing left a field of a valid line empty"
     );
     assert_eq!(lenient.sentence.to_json(false), json, "lenient parsing disagrees on a valid line");
-    // The sentence's checksum member is the last, or the one before its TAG blocks.
-    let no_checksum = ["\"checksum\":null", "\"checksum\":\"\""]
-        .iter()
-        .any(|member| json.ends_with(&format!("{member}}}")) || json.contains(&format!("{member},\"tag_blocks\":")));
+    // The sentence's checksum member is the last, or the one before its TAG blocks or stray `$`.
+    let no_checksum = ["\"checksum\":null", "\"checksum\":\"\""].iter().any(|member| {
+        json.ends_with(&format!("{member}}}"))
+            || json.contains(&format!("{member},\"tag_blocks\":"))
+            || json.contains(&format!("{member},\"stray\":"))
+    });
     let text_command = json.starts_with("{\"ok\":true,\"start\":\"\"");
     match nmeaspec::parse_with(data, REQUIRED) {
         Ok(parsed) => {

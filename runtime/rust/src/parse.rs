@@ -231,7 +231,7 @@ pub struct Options {
 
 /// A sentence decoded by `parse_with`, its problems (the numbers kept outside their range, and
 /// the fields lenient parsing left empty, with their text as received, written back by `Display`
-/// so that the round trip stays exact) and the TAG blocks before it.
+/// so that the round trip stays exact) and what came before it (TAG blocks, a stray `$`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Parsed<'a, S> {
     /// The decoded sentence (fields at fault are `None`); an empty [`Generic`] one for a line of
@@ -240,7 +240,8 @@ pub struct Parsed<'a, S> {
     /// The numbers kept outside their range and the fields lenient parsing left empty, in the
     /// order their errors came.
     pub problems: Problems<'a>,
-    /// The TAG blocks before the sentence, as received (none: empty).
+    /// The TAG blocks before the sentence and the stray `$` of a start sent twice, as received
+    /// (none: empty).
     pub tag_blocks: TagBlocks<'a>,
 }
 
@@ -272,7 +273,7 @@ impl<W: Write + ?Sized> Write for HoldLast<'_, W> {
 
 impl<S: Decoded> Parsed<'_, S> {
     /// Writes the tools' JSON line: `"problems"` follows `"fields"` when there are any, and
-    /// `"tag_blocks"` comes last (alone after `"ok"` for a line of TAG blocks only).
+    /// `"tag_blocks"` and `"stray"` come last (alone after `"ok"` for a line of TAG blocks only).
     pub fn write_json<W: Write + ?Sized>(&self, out: &mut W, values: bool) -> fmt::Result {
         if self.tag_blocks.is_empty() {
             return self.sentence.write_json_with(out, values, &self.problems);
@@ -329,7 +330,7 @@ impl<S: Decoded> fmt::Display for Parsed<'_, S> {
 /// [`parse`] with options: lenient decoding, required checksums, strict ranges.
 pub fn parse_with<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
     let line = strip_line_ending(line);
-    if line.first() == Some(&b'\\') {
+    if line.first() == Some(&b'\\') || line.starts_with(b"$$") {
         return parse_tagged::<L>(line, options, parse_with::<L>);
     }
     let fast = FastReader::frame(line).and_then(|fields| L::read_sentence::<Option<_>>(fields, line));
@@ -342,8 +343,9 @@ pub fn parse_with<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_
 /// How the sentence after a line's TAG blocks is read: [`parse_with`] or its general path alone.
 type SentenceParser<L> = for<'a> fn(&'a [u8], Options) -> Result<Parsed<'a, <L as Layouts>::Sentence<'a>>, Error<'a>>;
 
-/// A line that starts with TAG blocks: the blocks, then the sentence after them read by `parse`
-/// (none: an empty [`Generic`] sentence).
+/// A line that starts with TAG blocks or a start sent more than once (`$$GNGSA`): what comes
+/// before the sentence ([`TagBlocks`]), then the sentence read by `parse` (none: an empty
+/// [`Generic`] sentence).
 fn parse_tagged<L: Layouts>(
     line: &[u8],
     options: Options,
@@ -366,7 +368,7 @@ fn parse_tagged<L: Layouts>(
 /// [`parse_with`] without its fast path (see [`parse_general`]).
 pub fn parse_with_general<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
     let line = strip_line_ending(line);
-    if line.first() == Some(&b'\\') {
+    if line.first() == Some(&b'\\') || line.starts_with(b"$$") {
         return parse_tagged::<L>(line, options, parse_with_general::<L>);
     }
     general_with::<L>(line, options)

@@ -58,7 +58,9 @@ pub struct TagCode {
     pub kind: TagType,
 }
 
-/// The TAG blocks of a line as received, one after another (empty: none).
+/// What a line holds before its sentence, as received: its TAG blocks one after another, then
+/// the stray `$` of a start sent more than once (an ST Teseo's `$$GNGSA,…`: the first `$`; the
+/// checksum is the sentence's own). Empty: nothing.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct TagBlocks<'a> {
     text: &'a str,
@@ -69,14 +71,25 @@ impl<'a> TagBlocks<'a> {
     /// No TAG blocks.
     pub const NONE: Self = Self { text: "", alone: false };
 
-    /// The blocks' text, backslashes included.
+    /// The text before the sentence: the blocks, backslashes included, and the stray `$`.
     pub const fn as_str(&self) -> &'a str {
         self.text
     }
 
-    /// Whether the line had none.
+    /// Whether the line had nothing before its sentence.
     pub const fn is_empty(&self) -> bool {
         self.text.is_empty()
+    }
+
+    /// The blocks' text, backslashes included (a block ends with `\`, so the stray `$` are
+    /// what follows the last one).
+    pub fn blocks_str(&self) -> &'a str {
+        self.text.trim_end_matches('$')
+    }
+
+    /// The `$` sent before the sentence's own start (`$$GNGSA`: `"$"`); empty for none.
+    pub fn stray(&self) -> &'a str {
+        &self.text[self.blocks_str().len()..]
     }
 
     /// Whether the line holds TAG blocks only (its sentence is then an empty generic one).
@@ -87,7 +100,7 @@ impl<'a> TagBlocks<'a> {
     /// Each block in turn.
     pub fn iter(&self) -> impl Iterator<Item = TagBlock<'a>> {
         // A checked block: `\`, its parameters, `*`, two digits, `\`.
-        self.text.split_terminator('\\').filter(|part| !part.is_empty()).map(|inner| {
+        self.blocks_str().split_terminator('\\').filter(|part| !part.is_empty()).map(|inner| {
             let (params, checksum) = inner.rsplit_once('*').unwrap_or((inner, ""));
             TagBlock { params, checksum }
         })
@@ -98,8 +111,9 @@ impl<'a> TagBlocks<'a> {
         self.iter().flat_map(|block| block.params()).find(|&(c, _)| c == code).map(|(_, value)| value)
     }
 
-    /// Checks the TAG blocks at the start of `line`, which starts with `\`: the blocks and the
-    /// rest of the line, a `$`/`!` sentence or nothing.
+    /// Checks the TAG blocks at the start of `line` (which starts with `\\`, or with the `$$`
+    /// of a start sent more than once), and takes the stray `$` after them: what comes before
+    /// the sentence, and the rest of the line, a `$`/`!` sentence or nothing.
     pub fn read(line: &'a [u8], codes: &[TagCode]) -> Result<(Self, &'a [u8]), Error<'a>> {
         let error = |message| Err(Error::new(None, message));
         if let Some(offset) = line.iter().position(|b| !(0x20..=0x7e).contains(b)) {
@@ -143,6 +157,8 @@ impl<'a> TagBlocks<'a> {
         if !rest.is_empty() && !rest.starts_with(['$', '!']) {
             return error(Message::TagFollowed);
         }
+        let stray = rest.bytes().take_while(|&b| b == b'$').count().saturating_sub(1);
+        let rest = &rest[stray..];
         let blocks = &text[..text.len() - rest.len()];
         Ok((Self { text: blocks, alone: rest.is_empty() }, rest.as_bytes()))
     }
@@ -153,8 +169,23 @@ impl<'a> TagBlocks<'a> {
         Self { alone, ..self }
     }
 
-    /// Writes the tools' `"tag_blocks"` array.
+    /// Writes the tools' members for what comes before the sentence: the `"tag_blocks"` array
+    /// (when there are blocks, or nothing at all), then `"stray"` (when there is a stray `$`).
     pub fn write_json<W: Write + ?Sized>(&self, out: &mut W) -> fmt::Result {
+        let stray = self.stray();
+        if !stray.is_empty() {
+            if !self.blocks_str().is_empty() {
+                self.write_blocks_json(out)?;
+                out.write_char(',')?;
+            }
+            out.write_str("\"stray\":")?;
+            return write_json_str(out, stray);
+        }
+        self.write_blocks_json(out)
+    }
+
+    /// Writes the tools' `"tag_blocks"` array.
+    fn write_blocks_json<W: Write + ?Sized>(&self, out: &mut W) -> fmt::Result {
         out.write_str("\"tag_blocks\":[")?;
         for (i, block) in self.iter().enumerate() {
             out.write_str(if i == 0 { "{\"params\":[" } else { ",{\"params\":[" })?;

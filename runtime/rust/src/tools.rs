@@ -49,7 +49,8 @@ pub struct Rebuilt<L> {
     line: Option<String>,
     /// A sentence lenient decoding kept (its JSON has `"problems"`): parsed leniently again.
     lenient: bool,
-    /// The TAG blocks before it, written back from the JSON (checked when parsed).
+    /// The TAG blocks and stray `$` before it, written back from the JSON (checked when parsed),
+    /// followed by a `$` that stands for the sentence's start.
     tag_blocks: Option<String>,
 }
 
@@ -104,11 +105,26 @@ impl<L: Layouts> Rebuilt<L> {
         if !obj.is_object() {
             return Err(Error::bad_json("not a JSON object"));
         }
-        let Some(items) = obj.get("tag_blocks") else {
+        if obj.get("tag_blocks").is_none() && obj.get("stray").is_none() {
             return Self::sentence_from_json(obj);
+        }
+        let mut before = match obj.get("tag_blocks") {
+            Some(items) => json::tag_blocks(items)?,
+            None => String::new(),
         };
-        let tag_blocks = Some(json::tag_blocks(items)?);
+        if let Some(stray) = obj.get("stray") {
+            match stray {
+                Value::String(text) if !text.is_empty() && text.bytes().all(|b| b == b'$') => before.push_str(text),
+                _ => return Err(Error::bad_json("\"stray\" is not one or more \"$\"")),
+            }
+        }
+        before.push('$');
+        let stray = obj.get("stray").is_some();
+        let tag_blocks = Some(before);
         if obj.get("start").is_none() {
+            if stray {
+                return Err(Error::bad_json("\"stray\" without a sentence"));
+            }
             // a line of TAG blocks only
             let (start, address, fields) = (String::new(), String::new(), WireFields::default());
             let checksum = Checksum::None;
