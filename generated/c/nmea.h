@@ -27901,8 +27901,9 @@ typedef struct {
     nmea_sentence_id id;
     const nmea_problems *problems;
 #ifndef NMEA_NO_TAG_BLOCKS
-    nmea_text tag_blocks; /* the TAG blocks before the sentence, as received (empty: none); a line of
-                             TAG blocks only is a generic sentence with an empty start */
+    nmea_text tag_blocks; /* what came before the sentence, as received (empty: nothing): its TAG
+                             blocks, then the stray '$' of a start sent twice ($$GNGSA: the first);
+                             a line of TAG blocks only is a generic sentence with an empty start */
 #endif
     union {
         nmea_generic generic;
