@@ -264,6 +264,7 @@ test-rust-lint: $(STAMP)
 			--features $$vendor --target-dir $(LINT_TARGET); \
 	done
 	cargo fmt --manifest-path generated/rust/Cargo.toml --check
+	rustfmt --edition 2021 --check fuzz/rust/build.rs fuzz/rust/src/*.rs fuzz/rust/fuzz_targets/*.rs
 
 test-tools: test-bin $(STAMP)
 	NMEA_TOOLS=$(TEST_BIN) NMEA_C_OBJECT=build/c/nmea-test.o $(PY) -m pytest -q tests/agreement tests/fixes

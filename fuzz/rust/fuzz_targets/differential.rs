@@ -18,7 +18,15 @@ use nmeaspec::{Options, TagBlocks};
 use std::fmt::Write;
 
 extern "C" {
-    fn shim_decode(line: *const u8, len: usize, values: i32, lenient: i32, required: i32, out: *mut u8, cap: usize) -> usize;
+    fn shim_decode(
+        line: *const u8,
+        len: usize,
+        values: i32,
+        lenient: i32,
+        required: i32,
+        out: *mut u8,
+        cap: usize,
+    ) -> usize;
     fn shim_encode(json: *const u8, len: usize, out: *mut u8, cap: usize) -> usize;
     fn shim_frame(data: *const u8, len: usize, chunk: usize, out: *mut u8, cap: usize) -> usize;
     fn shim_ais(payload: *const u8, len: usize, fill_bits: u32, out: *mut u8, cap: usize) -> usize;
@@ -55,7 +63,11 @@ fn decode(data: &[u8]) {
                 shim_decode(data.as_ptr(), data.len(), values.into(), lenient.into(), required.into(), out, cap)
             })
             .unwrap();
-            let rust = nmeaspec::json::decode_json_with(data, values, Options { lenient, require_checksum: required, strict: false });
+            let rust = nmeaspec::json::decode_json_with(
+                data,
+                values,
+                Options { lenient, require_checksum: required, strict: false },
+            );
             assert!(
                 c == latin1(&rust),
                 "decode (values {values}, lenient {lenient}, require_checksum {required}):\n   C: {}\nRust: {rust}",
@@ -78,7 +90,12 @@ fn encode(data: &[u8]) {
         let mut rust = String::new();
         nmeaspec::json::write_encoded(&mut rust, value.as_ref()).unwrap();
         let rust = latin1(&rust);
-        assert!(c == rust, "encode:\n   C: {:?}\nRust: {:?}", String::from_utf8_lossy(&c), String::from_utf8_lossy(&rust));
+        assert!(
+            c == rust,
+            "encode:\n   C: {:?}\nRust: {:?}",
+            String::from_utf8_lossy(&c),
+            String::from_utf8_lossy(&rust)
+        );
     }
 }
 
@@ -114,7 +131,12 @@ fn frame(data: &[u8], chunk: usize) {
         framer.feed(piece, &mut put);
     }
     framer.finish(&mut put);
-    assert!(c == rust, "framing in chunks of {chunk}:\n   C: {:?}\nRust: {:?}", String::from_utf8_lossy(&c), String::from_utf8_lossy(&rust));
+    assert!(
+        c == rust,
+        "framing in chunks of {chunk}:\n   C: {:?}\nRust: {:?}",
+        String::from_utf8_lossy(&c),
+        String::from_utf8_lossy(&rust)
+    );
 }
 
 fn ais(data: &[u8]) {
@@ -123,7 +145,8 @@ fn ais(data: &[u8]) {
         return; // a payload as a sentence carries it: printable ASCII
     }
     let fill_bits = first % 8;
-    let c = c_text(|out, cap| unsafe { shim_ais(payload.as_ptr(), payload.len(), fill_bits.into(), out, cap) }).unwrap();
+    let c =
+        c_text(|out, cap| unsafe { shim_ais(payload.as_ptr(), payload.len(), fill_bits.into(), out, cap) }).unwrap();
     let mut rust = String::new();
     match Message::decode(payload, fill_bits) {
         Ok(message) => {

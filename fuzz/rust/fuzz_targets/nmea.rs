@@ -27,7 +27,11 @@ const LENIENT: Options = Options { lenient: true, require_checksum: false, stric
 const REQUIRED: Options = Options { lenient: false, require_checksum: true, strict: false };
 
 fn as_line(data: &[u8]) {
-    assert_eq!(nmeaspec::parse(data), nmeaspec::paths::parse_general(data), "the fast path disagrees with the general path");
+    assert_eq!(
+        nmeaspec::parse(data),
+        nmeaspec::paths::parse_general(data),
+        "the fast path disagrees with the general path"
+    );
     let strict = Options { lenient: false, require_checksum: false, strict: true };
     for options in [LENIENT, REQUIRED, strict, Options { lenient: true, require_checksum: true, strict: true }] {
         assert_eq!(
@@ -45,12 +49,19 @@ fn as_line(data: &[u8]) {
             return; // a line behind TAG blocks: parse() takes none, parse_with reads them
         }
         if let Ok(parsed) = nmeaspec::parse_with(data, LENIENT) {
-            assert!(!parsed.problems.is_empty(), "lenient parsing kept a line strict parsing refused, without problems");
+            assert!(
+                !parsed.problems.is_empty(),
+                "lenient parsing kept a line strict parsing refused, without problems"
+            );
             assert_eq!(parsed.to_string().as_bytes(), data, "lenient round trip changed the line");
             assert_serialized(|buf| parsed.serialize_into(buf), data);
             let _ = parsed.to_json(true);
             let json = parsed.to_json(false);
-            assert_eq!(nmeaspec::json::encode_json(json.as_bytes()).as_bytes(), data, "JSON with problems changed the line");
+            assert_eq!(
+                nmeaspec::json::encode_json(json.as_bytes()).as_bytes(),
+                data,
+                "JSON with problems changed the line"
+            );
         }
         return;
     };
@@ -140,7 +151,11 @@ fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
     if data[sync..header].iter().all(|&b| b == 0) {
         return bad("nul_header");
     }
-    let payload = if ubx { usize::from(data[4]) | usize::from(data[5]) << 8 } else { usize::from(data[1] & 3) << 8 | usize::from(data[2]) };
+    let payload = if ubx {
+        usize::from(data[4]) | usize::from(data[5]) << 8
+    } else {
+        usize::from(data[1] & 3) << 8 | usize::from(data[2])
+    };
     let size = header + payload + trailer;
     if size > MAX_FRAME {
         return bad("too_long");
