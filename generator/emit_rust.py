@@ -382,6 +382,33 @@ def entry_read(fields: list[dict]) -> list[str]:
     return ["        Ok(Self { " + ", ".join(line.strip().rstrip(",") for fv in fields for line in fv["read"]) + " })"]
 
 
+def needs_reads_first(spec: Spec, sentence: Sentence, layout: Layout) -> bool:
+    """Whether the dispatch asks a layout whether a line's first field reads as its first (see
+    the runtime's `claimed`): a proprietary `$` layout without a keyword whose address has
+    layouts with one."""
+    return (sentence.is_proprietary and sentence.framing == "sentence" and layout.selector is None
+            and any(other.selector is not None for _, other in spec.by_address(sentence.address or "")))
+
+
+def reads_first_body(spec: Spec, sentence: Sentence, layout: Layout, lifetime: bool) -> list[str] | None:
+    """The body of a layout's `reads_first` (`needs_reads_first`), or None: the first field read
+    as parse_fields reads it, a number outside its range accepted."""
+    if not needs_reads_first(spec, sentence, layout):
+        return None
+    if not layout.items:
+        return ["        fields.is_empty()"]
+    first = layout.items[0]
+    if isinstance(first, Group):
+        return ["        let _ = fields;", "        true"]
+    callee, args = read_call(first)
+    value = f"Option<{base_type(first)}>"
+    short = "fields.is_empty()" if first.wire_width == 1 else f"fields.len() < {first.wire_width}"
+    lines = [f"        if {short} {{", "            return true;", "        }", "        let mut f = fields.reader();"]
+    lines += fmt_call(8, f"let read: Result<{value}, Error<'_>> = ", callee, args, ";")
+    lines.append("        read.map_or_else(|error| error.is_out_of_range(), |_| true)")
+    return lines
+
+
 def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     name = sentence.layout_camel(layout)
     text = is_text(sentence)
@@ -486,6 +513,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 or any(it["kind"] in ("texts", "values", "entries") for it in items))
     keywords = [it["field"] for it in items if it["kind"] == "keyword"]
     reader = "fields.reader().ignoring_case()" if text else "fields.reader()"
+    reads_first = reads_first_body(spec, sentence, layout, lifetime)
     if text:
         what = f"`{sentence.address} …` command (its words in any letter case)"
     elif sentence.is_proprietary:
@@ -522,6 +550,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
         "fast": fast,
         "fast_path": sentence.fast_path and not text,
         "reader": fmt_const(8, "let mut f", reader) if items else [],
+        "reads_first": reads_first,
         "checksum_arg": "_checksum" if text else "checksum",
         "keywords": doc_lines("Keywords (fixed words, not members: parsing checks them, writing puts them "
                               "back): " + ", ".join(f"`{f.id}` = `{f.value}`" for f in keywords) + ".")
@@ -910,6 +939,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                 "encapsulates": s.encapsulates if (s.encapsulates or {}).get("protocol") == "ais" else None,
                 "layout_sentence": rust_str(s.id),
                 "lifetime": view["lifetime"], "kind": camel(s.kind), "parse_arm": parse_arm, "fast_arm": fast_arm, "cfg": gate,
+                "reads_first": view["reads_first"] is not None,
                 "framing_arm": with_cfg(12, gate, fmt_arm(12, f"Self::{name}", framing_expr(s))),
                 "replies_arm": with_cfg(12, gate, fmt_slice(12, f"Self::{name} => ", [f"Self::{r}" for r in reply_names],
                                                             ",")),

@@ -58,7 +58,10 @@ def candidates(spec: Spec, line: str) -> tuple[Any, list[tuple[Sentence, Layout]
         return frame, spec.text_command(frame.address)
     frame = rt.frame(line)
     found = spec.by_address(frame.address) if frame.start == "$" else []
-    if not any(layout.selector is None or holds_selector(layout, frame.fields) for _, layout in found):
+    keyed = any(layout.selector is not None for _, layout in found)
+    if not any(holds_selector(layout, frame.fields) if layout.selector is not None
+               else not keyed or _reads_first(layout, frame)
+               for _, layout in found):
         found = []  # a message of a known family the spec does not know: a generic sentence
     if not found and rt.is_standard_address(frame.start, frame.address):
         standard = spec.sentence(frame.address[2:])
@@ -182,6 +185,22 @@ def _decode_layout(sentence: Sentence, layout: Layout, frame: Any) -> list[tuple
         values.append((item.id, value, fields[pos:pos + item.wire_width]))
         pos += item.wire_width
     return values
+
+
+def _reads_first(layout: Layout, frame: Any) -> bool:
+    """Whether the line's first field reads as the first field of a keyword-less `layout` whose
+    address has layouts with keywords (a number outside its range does; a layout without fields:
+    whether the line has none; one that starts with a group: yes)."""
+    if not layout.items:
+        return not frame.fields
+    first = layout.items[0]
+    if isinstance(first, Group) or len(frame.fields) < first.wire_width:
+        return True
+    try:
+        _field(first, frame.fields, 0, frame.address, first.id, False)
+    except rt.NmeaError as err:
+        return bool(err.out_of_range)
+    return True
 
 
 def _field(f: Field, fields: list[str], pos: int, address: str, name: str, ignore_case: bool) -> Any:

@@ -6330,15 +6330,39 @@ static bool holds_selector(nmea_sentence_id id, const nmea_wire *wire)
     return upper_is(field_at(wire->fields, wire->sep, l->selector_at), l->selector);
 }
 
-/* Whether one of the layouts of a `$` line's address may read it: one without a keyword, or
-   one whose keyword the line holds; else the line is a message of a known family that the spec
-   does not know, kept as a generic sentence. */
+/* Whether the line's first field reads as the first field of layout `l` (a number outside its
+   range does; a layout without fields: whether the line has none). A layout that starts with a
+   group, or a line too short for the first field, is left to the reader's count. */
+static bool reads_first(const layout *l, const nmea_wire *wire)
+{
+    nmea_reader r;
+    nmea_error err;
+    field_value value;
+    if (!l->before && !l->group && !l->optional)
+        return wire->count == 0;
+    if ((!l->before && l->group) || wire->count < field_width(&l->fields[0]))
+        return true;
+    reader_start(&r, wire, l->sentence, &err);
+    r.any_range = true;
+    return read_field(&r, &l->fields[0], &value);
+}
+
+/* Whether one of the layouts of a `$` line's address may read it: one whose keyword the line
+   holds, or one without a keyword, when no layout of the address has one or when the line's
+   first field reads as that layout's first (reads_first); else the line is a message of a known
+   family that the spec does not know, kept as a generic sentence ($PASHR,BTS,... beside RT300's
+   keyword-less $PASHR,<time>,...). */
 NMEA_INTERNAL bool claimed(const nmea_layouts *layouts, const nmea_wire *wire)
 {
     size_t i;
+    bool keyed = false;
     for (i = 0; i < layouts->count; i++)
-        if (!LAYOUTS[layouts->ids[i]]->selector || holds_selector(layouts->ids[i], wire))
+        keyed = keyed || LAYOUTS[layouts->ids[i]]->selector;
+    for (i = 0; i < layouts->count; i++) {
+        const layout *l = LAYOUTS[layouts->ids[i]];
+        if (l->selector ? holds_selector(layouts->ids[i], wire) : !keyed || reads_first(l, wire))
             return true;
+    }
     return false;
 }
 

@@ -1056,10 +1056,33 @@ def holds_selector(layout: Any, fields: list[str]) -> bool:
 
 
 def claimed(layouts: tuple[Any, ...], fields: list[str]) -> bool:
-    """Whether one of the layouts of an address may read the line: one without a keyword, or one
-    whose keyword the line holds. Else the line is a message of a known family that the spec does
-    not know, kept as a generic sentence."""
-    return any(layout.SELECTOR is None or holds_selector(layout, fields) for layout in layouts)
+    """Whether one of the layouts of an address may read the line: one whose keyword the line
+    holds, or one without a keyword, when no layout of the address has one or when the line's
+    first field reads as that layout's first (reads_first). Else the line is a message of a known
+    family that the spec does not know, kept as a generic sentence: `$PASHR,BTS,...` beside the
+    keyword-less `$PASHR,<time>,...` of RT300."""
+    keyed = any(layout.SELECTOR is not None for layout in layouts)
+    return any(
+        holds_selector(layout, fields) if layout.SELECTOR is not None else not keyed or reads_first(layout, fields)
+        for layout in layouts
+    )
+
+
+def reads_first(layout: Any, fields: list[str]) -> bool:
+    """Whether the line's first field reads as the first field of `layout` (a number outside its
+    range does; a layout without fields: whether the line has none). A layout that starts with a
+    group, or a line too short for the first field, is left to the reader's count."""
+    items = layout.LAYOUT.items
+    if not items:
+        return not fields
+    first = items[0]
+    if not isinstance(first, FieldSpec) or len(fields) < first.width:
+        return True
+    try:
+        first.read(fields, 0, "", first.id)
+    except NmeaError as err:
+        return err.out_of_range
+    return True
 
 
 # A reply's pairing with a command and its outcome (generated REPLY_RULES and OUTCOME):

@@ -15124,6 +15124,57 @@ impl Layouts for LayoutId {
         }
     }
 
+    fn reads_first(self, fields: Fields<'_>) -> bool {
+        match self {
+            #[cfg(feature = "geos5")]
+            Self::Geos5Command => Geos5Command::reads_first(fields),
+            #[cfg(feature = "ashtech")]
+            Self::Pashr => Pashr::reads_first(fields),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk314 => Pmtk314::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmdebugoff => Pqtmdebugoff::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmdebugon => Pqtmdebugon::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmdrclr => Pqtmdrclr::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmdrsave => Pqtmdrsave::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmgetutc => Pqtmgetutc::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmgnssstart => Pqtmgnssstart::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmgnssstop => Pqtmgnssstop::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmqver => Pqtmqver::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmresetodo => Pqtmresetodo::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmrestorepar => Pqtmrestorepar::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmsavepar => Pqtmsavepar::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmsn => Pqtmsn::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmuniqid => Pqtmuniqid::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmverno => Pqtmverno::reads_first(fields),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmvernoResult => PqtmvernoResult::reads_first(fields),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlrio => Ptnlrio::reads_first(fields),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlrkg => Ptnlrkg::reads_first(fields),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlrvr => Ptnlrvr::reads_first(fields),
+            _ => {
+                let _ = fields; // (the features of the layouts above may all be off)
+                true
+            }
+        }
+    }
+
     fn main_layout(self) -> Self {
         match self {
             Self::DtmShort => Self::Dtm,

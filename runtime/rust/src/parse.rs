@@ -45,6 +45,14 @@ pub trait Layouts: Copy + PartialEq + 'static {
     /// The keyword that picks this layout and its wire index (0-based, after the address).
     fn keyword(self) -> Option<(&'static str, usize)>;
 
+    /// Whether the line's first field reads as this layout's first (a number outside its range
+    /// does; a layout without fields: whether the line has none), asked of a layout without a
+    /// keyword whose address has layouts with one ([`claimed`]).
+    fn reads_first(self, fields: Fields<'_>) -> bool {
+        let _ = fields;
+        true
+    }
+
     /// The main layout of this layout's sentence (itself for a main layout).
     fn main_layout(self) -> Self {
         self
@@ -449,13 +457,19 @@ fn holds_keyword<L: Layouts>(layout: L, fields: &Fields<'_>) -> bool {
     })
 }
 
-/// Whether one of the layouts of the line's address may read it: for a `$` line, one without a
-/// keyword or one whose keyword the line holds; else the line is a message of a known family
-/// that the spec does not know, kept as a [`Generic`] sentence.
+/// Whether one of the layouts of the line's address may read it: for a `$` line, one whose
+/// keyword the line holds, or one without a keyword, when no layout of the address has one or
+/// when the line's first field reads as that layout's first ([`Layouts::reads_first`]); else the
+/// line is a message of a known family that the spec does not know, kept as a [`Generic`]
+/// sentence (`$PASHR,BTS,…` beside RT300's keyword-less `$PASHR,<time>,…`).
 fn claimed<L: Layouts>(layouts: &[L], frame: &Frame<'_>) -> bool {
+    let keyed = layouts.iter().any(|layout| layout.keyword().is_some());
     !layouts.is_empty()
         && (frame.start != "$"
-            || layouts.iter().any(|&layout| layout.keyword().is_none() || holds_keyword(layout, &frame.fields)))
+            || layouts.iter().any(|&layout| match layout.keyword() {
+                Some(_) => holds_keyword(layout, &frame.fields),
+                None => !keyed || layout.reads_first(frame.fields),
+            }))
 }
 
 /// The first of `layouts` (not empty) that fits the fields; a variant is passed over when the main

@@ -76,6 +76,17 @@ impl<'a> Pashr<'a> {
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pashr.build(buf, |w| self.write_sentence(w))
     }
+
+    /// Whether a line's first field reads as this layout's first (a number outside its range
+    /// does): its address has layouts with keywords, and this one claims a line only then.
+    pub(crate) fn reads_first(fields: Fields<'a>) -> bool {
+        if fields.is_empty() {
+            return true;
+        }
+        let mut f = fields.reader();
+        let read: Result<Option<Time>, Error<'_>> = f.time("time");
+        read.map_or_else(|error| error.is_out_of_range(), |_| true)
+    }
 }
 
 impl<'a> Layout<'a> for Pashr<'a> {

@@ -115,6 +115,18 @@ impl Pmtk314 {
         LayoutId::Pmtk314.build(buf, |w| self.write_sentence(w))
     }
 
+    /// Whether a line's first field reads as this layout's first (a number outside its range
+    /// does): its address has layouts with keywords, and this one claims a line only then.
+    pub(crate) fn reads_first(fields: Fields<'_>) -> bool {
+        if fields.is_empty() {
+            return true;
+        }
+        let mut f = fields.reader();
+        let read: Result<Option<Number>, Error<'_>> =
+            f.integer("gll", "integer 0..5", Range::between(Bound::int(0), Bound::int(5)));
+        read.map_or_else(|error| error.is_out_of_range(), |_| true)
+    }
+
     /// The layouts of the sentences that answer this command.
     pub const REPLIES: &'static [LayoutId] = LayoutId::Pmtk314.replies();
 }

@@ -49,6 +49,17 @@ impl Pqtmqver {
         LayoutId::Pqtmqver.build(buf, |w| self.write_sentence(w))
     }
 
+    /// Whether a line's first field reads as this layout's first (a number outside its range
+    /// does): its address has layouts with keywords, and this one claims a line only then.
+    pub(crate) fn reads_first(fields: Fields<'_>) -> bool {
+        if fields.is_empty() {
+            return true;
+        }
+        let mut f = fields.reader();
+        let read: Result<Option<Number>, Error<'_>> = f.integer("msg_version", "integer", Range::ANY);
+        read.map_or_else(|error| error.is_out_of_range(), |_| true)
+    }
+
     /// The layouts of the sentences that answer this command.
     pub const REPLIES: &'static [LayoutId] = LayoutId::Pqtmqver.replies();
 }

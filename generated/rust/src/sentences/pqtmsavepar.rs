@@ -47,6 +47,12 @@ impl Pqtmsavepar {
         LayoutId::Pqtmsavepar.build(buf, |w| self.write_sentence(w))
     }
 
+    /// Whether a line's first field reads as this layout's first (a number outside its range
+    /// does): its address has layouts with keywords, and this one claims a line only then.
+    pub(crate) fn reads_first(fields: Fields<'_>) -> bool {
+        fields.is_empty()
+    }
+
     /// The layouts of the sentences that answer this command.
     pub const REPLIES: &'static [LayoutId] = LayoutId::Pqtmsavepar.replies();
 }

@@ -55,6 +55,18 @@ impl Ptnlrkg {
         LayoutId::Ptnlrkg.build(buf, |w| self.write_sentence(w))
     }
 
+    /// Whether a line's first field reads as this layout's first (a number outside its range
+    /// does): its address has layouts with keywords, and this one claims a line only then.
+    pub(crate) fn reads_first(fields: Fields<'_>) -> bool {
+        if fields.is_empty() {
+            return true;
+        }
+        let mut f = fields.reader();
+        let read: Result<Option<Number>, Error<'_>> =
+            f.integer("gps_week", "integer 0..9999", Range::between(Bound::int(0), Bound::int(9999)));
+        read.map_or_else(|error| error.is_out_of_range(), |_| true)
+    }
+
     /// Latitude in signed decimal degrees (south negative).
     pub fn latitude(&self) -> Option<f64> {
         self.lat.map(f64::from)

@@ -54,6 +54,17 @@ impl<'a> Ptnlrvr<'a> {
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Ptnlrvr.build(buf, |w| self.write_sentence(w))
     }
+
+    /// Whether a line's first field reads as this layout's first (a number outside its range
+    /// does): its address has layouts with keywords, and this one claims a line only then.
+    pub(crate) fn reads_first(fields: Fields<'a>) -> bool {
+        if fields.is_empty() {
+            return true;
+        }
+        let mut f = fields.reader();
+        let read: Result<Option<&'a str>, Error<'_>> = f.text("reserved", "text", None);
+        read.map_or_else(|error| error.is_out_of_range(), |_| true)
+    }
 }
 
 impl<'a> Layout<'a> for Ptnlrvr<'a> {
