@@ -3,10 +3,11 @@ of one of the common types, repeated in order to the wanted number of lines, CR 
 
 Deterministic: the logs are read in sorted path order and the lines kept in file order.
 
-    python3 bench/corpus.py [--lines N] [--source DIR] [--out FILE] [--ais]
+    python3 bench/corpus.py [--lines N] [--source DIR] [--out FILE] [--ais | --ubx]
 
---ais: the AIS corpus instead (build_ais: gpsd's single-sentence AIS lines of tests/data/ais), for
-bench/python/driver.py's ours-ais and pyais (AIS rows in run.py are still to come).
+--ais: the AIS corpus instead (build_ais: gpsd's single-sentence AIS lines of tests/data/ais), for the
+drivers' ours-ais and peers; --ubx: the UBX corpus (build_ubx: the frames of gpsd's u-blox logs in
+tests/data/ubx, a frame as hex digits a line), for bench/python/driver.py's ours-ubx and pyubx2.
 """
 
 from __future__ import annotations
@@ -82,14 +83,52 @@ def build_ais(lines: int, source: Path = AIS_SOURCE, out: Path = AIS_OUT) -> dic
     return {"lines": lines, "bytes": len(data), "distinct_lines": len(set(pool)), "source_lines": len(pool)}
 
 
+UBX_SOURCE = ROOT / "tests" / "data" / "ubx"
+UBX_OUT = ROOT / "build" / "bench" / "corpus-ubx.hex"
+
+
+def ubx_frames(data: bytes) -> list[bytes]:
+    """The UBX frames of a log, in order: sync B5 62, class, id, length, payload and a Fletcher-8
+    checksum that holds (a sync pair whose frame does not check is passed over byte by byte)."""
+    frames, at = [], data.find(b"\xb5\x62")
+    while 0 <= at <= len(data) - 8:
+        end = at + 8 + int.from_bytes(data[at + 4:at + 6], "little")
+        a = b = 0
+        for byte in data[at + 2:end - 2]:
+            a = (a + byte) & 0xFF
+            b = (b + a) & 0xFF
+        if end <= len(data) and data[end - 2:end] == bytes((a, b)) and data[at + 2:at + 6] != bytes(4):
+            frames.append(data[at:end])
+            at = data.find(b"\xb5\x62", end)
+        else:
+            at = data.find(b"\xb5\x62", at + 1)
+    return frames
+
+
+def build_ubx(frames: int, source: Path = UBX_SOURCE, out: Path = UBX_OUT) -> dict:
+    """The UBX corpus: the frames of gpsd's u-blox logs (tests/data/ubx), in file order, repeated
+    to `frames` frames, each as one line of hex digits (the drivers turn them back into bytes
+    before they time anything)."""
+    pool = [frame for path in sorted(source.glob("*.log")) for frame in ubx_frames(path.read_bytes())]
+    data = b"".join(pool[i % len(pool)].hex().encode() + b"\n" for i in range(frames))
+    out.parent.mkdir(parents=True, exist_ok=True)
+    if not out.exists() or out.read_bytes() != data:
+        out.write_bytes(data)
+    return {"frames": frames, "bytes": sum(len(pool[i % len(pool)]) for i in range(frames)),
+            "distinct_frames": len(set(pool)), "source_frames": len(pool)}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--lines", type=int, default=1_000_000)
     parser.add_argument("--source", type=Path)
     parser.add_argument("--out", type=Path)
     parser.add_argument("--ais", action="store_true", help="the AIS corpus (build_ais) from --source or tests/data/ais")
+    parser.add_argument("--ubx", action="store_true", help="the UBX corpus (build_ubx) from --source or tests/data/ubx")
     args = parser.parse_args()
-    if args.ais:
+    if args.ubx:
+        print(json.dumps(build_ubx(args.lines, args.source or UBX_SOURCE, args.out or UBX_OUT)))
+    elif args.ais:
         print(json.dumps(build_ais(args.lines, args.source or AIS_SOURCE, args.out or AIS_OUT)))
     else:
         print(json.dumps(build(args.lines, args.source or DEFAULT_SOURCE, args.out or DEFAULT_OUT)))

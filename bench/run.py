@@ -97,8 +97,8 @@ def python_for(out: Path, peers: bool) -> str:
 
 # --- the timed runs ----------------------------------------------------------------------------
 
-def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, ais_corpus_path: Path, python_lines: int,
-         peers: bool) -> list[dict]:
+def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, ais_corpus_path: Path, ubx_corpus_path: Path,
+         python_lines: int, peers: bool) -> list[dict]:
     """Every (name, lang, op) with its command line and the corpus it runs over (nmea or ais)."""
     py_driver = [python, str(BENCH / "python" / "driver.py")]
     py_slice = ["--lines", str(python_lines)] if python_lines else []
@@ -137,6 +137,10 @@ def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, ais_corpus
         add("ours-python-ais", "python", op, [*py_driver, "ours-ais", op, ais_corpus_path, *py_slice], "ais")
         if peers:
             add("pyais", "python", op, [*py_driver, "pyais", op, ais_corpus_path, *py_slice], "ais")
+    # UBX: a frame decoded, every field of its message.
+    add("ours-python-ubx", "python", "parse", [*py_driver, "ours-ubx", "parse", ubx_corpus_path, *py_slice], "ubx")
+    if peers:
+        add("pyubx2", "python", "parse", [*py_driver, "pyubx2", "parse", ubx_corpus_path, *py_slice], "ubx")
     return found
 
 
@@ -324,6 +328,7 @@ def targets(results: list[dict], heap_free: bool, counts: dict) -> list[dict]:
     at_most("Rust AIS decode / nmea-parser decode", ratio(results, "ours-rust-ais", "parse", "nmea-parser", "parse"),
             0.5)
     at_most("C AIS decode / Rust AIS decode", ratio(results, "ours-c-ais", "parse", "ours-rust-ais", "parse"), 1.0)
+    at_most("Python UBX decode / pyubx2 decode", ratio(results, "ours-python-ubx", "parse", "pyubx2", "parse"), 0.05)
     if counts:
         at_most("C parse / ceiling-c parse (instructions)", counted("ours-c", "parse", "ceiling-c", "parse"), 2.0)
         at_most("Rust parse / nmea-rs parse (instructions)", counted("ours-rust", "parse", "nmea-rs", "parse"), 0.25)
@@ -353,27 +358,29 @@ def fmt_ratio(value: float | None) -> str:
 
 def markdown(report: dict) -> str:
     results = report["results"]
-    corpus_info, ais_info = report["corpus"], report["ais_corpus"]
+    corpus_info, ais_info, ubx_info = report["corpus"], report["ais_corpus"], report["ubx_corpus"]
     out = [f"Corpus: {corpus_info['lines']:,} lines, {corpus_info['bytes']:,} bytes "
            f"({corpus_info['distinct_lines']:,} distinct lines of the real logs, repeated); AIS corpus (the rows "
            f"marked AIS): {ais_info['lines']:,} lines, {ais_info['bytes']:,} bytes ({ais_info['distinct_lines']:,} "
-           f"distinct real single-sentence AIS lines, repeated); the Python "
+           f"distinct real single-sentence AIS lines, repeated); UBX corpus (the rows marked UBX, ns per frame): "
+           f"{ubx_info['frames']:,} frames, {ubx_info['bytes']:,} bytes ({ubx_info['distinct_frames']:,} distinct "
+           f"frames of gpsd's u-blox logs, repeated); the Python "
            f"implementations, ours included, run over the first {report['python_lines']:,} lines of each. "
            f"Median of {report['rounds']} rounds, pinned to CPU {report['cpu']}.", "",
            "| name | lang | op | ns/line | vs ceiling-c | vs ours (same lang, op) | ok lines | byte-identical |",
            "| --- | --- | --- | ---: | ---: | ---: | ---: | --- |"]
     ceiling = row(results, "ceiling-c", "parse")
     for r in results:
-        ais = r["corpus"] == "ais"
-        ours = row(results, f"ours-{r['lang']}" + ("-ais" if ais else ""), r["op"])
+        other = r["corpus"] if r["corpus"] in ("ais", "ubx") else ""  # not the NMEA corpus
+        ours = row(results, f"ours-{r['lang']}" + (f"-{other}" if other else ""), r["op"])
         vs_ours = "" if ours is None or ours is r else fmt_ratio(r["ns_per_line"] / ours["ns_per_line"])
-        vs_ceiling = fmt_ratio(r["ns_per_line"] / ceiling["ns_per_line"]) if ceiling and not ais else ""
+        vs_ceiling = fmt_ratio(r["ns_per_line"] / ceiling["ns_per_line"]) if ceiling and not other else ""
         if r["op"] in ("parse", "fixes"):
             identical = ""
         else:
             parsed = row(results, r["name"], "parse")
             identical = "yes" if parsed and r["ok_lines"] == parsed["ok_lines"] else "no"
-        out.append(f"| {r['name']} | {r['lang']} | {r['op']}{' (AIS)' if ais else ''} | {r['ns_per_line']:,.1f} | {vs_ceiling} | {vs_ours} "
+        out.append(f"| {r['name']} | {r['lang']} | {r['op']}{f' ({other.upper()})' if other else ''} | {r['ns_per_line']:,.1f} | {vs_ceiling} | {vs_ours} "
                    f"| {r['ok_lines']:,}/{r['lines']:,} | {identical} |")
     out += ["", "ok lines: lines parsed (parse, fixes) or written back byte for byte (serialize, roundtrip). "
             "fixes: each line parsed and fed to the fix assembler (C `nmea_fix_feed`, Rust `FixAssembler::feed`, "
@@ -392,7 +399,9 @@ def markdown(report: dict) -> str:
             "`nmeaspec.parse(line).message`; pyais: "
             "`pyais.decode`); serialize is the decoded message encoded and "
             "the line written back (ours: `Message.encode` and `to_sentence`; pyais: `encode_msg`, which writes "
-            "some lines otherwise, so fewer of its lines count).", ""]
+            "some lines otherwise, so fewer of its lines count). "
+            "UBX: parse is a frame (its bytes) decoded into its message, every field, the checksum checked (ours: "
+            "`nmeaspec.ubx_messages.decode`; pyubx2: `UBXReader.parse`).", ""]
     out += ["## Targets", "", "| target | measured | limit | met |", "| --- | --- | --- | --- |"]
     for check in report["targets"]:
         met = {True: "yes", False: "**no**", None: "n/a"}[check["met"]]
@@ -454,7 +463,7 @@ def docs_page(report: dict, table: str) -> str:
         "not the absolute times)",
         f"- Compilers: {m['gcc']}; {m['rustc']}; Python {m['python']}",
         f"- Peers: Rust crates `nmea`, `nmea0183` and `nmea-parser` (AIS) as pinned in `bench/rust/Cargo.lock`; Python "
-        "`pynmea2`, `pynmeagps` and `pyais` as pinned in `bench/requirements.txt`.", "",
+        "`pynmea2`, `pynmeagps`, `pyais` and `pyubx2` as pinned in `bench/requirements.txt`.", "",
         "## How it is measured", "",
         "The corpus is every line of `../shared/corpus/real` that is `$...*HH` with a valid checksum and one of "
         "GGA RMC GSV GSA VTG GLL ZDA GST, in sorted file order, repeated to the wanted length, CR LF endings. "
@@ -501,13 +510,15 @@ def main() -> None:
     corpus_info = corpus.build(args.lines, out=corpus_path)
     ais_corpus_path = out / "corpus-ais.nmea"
     ais_info = corpus.build_ais(args.lines, out=ais_corpus_path)
+    ubx_corpus_path = out / "corpus-ubx.hex"
+    ubx_info = corpus.build_ubx(args.lines, out=ubx_corpus_path)
     python_lines = min(args.python_lines, args.lines) if args.python_lines else args.lines
     log(f"corpus: {corpus_info['lines']} lines, {corpus_info['bytes']} bytes")
     c_bin = build_c(out, args.c_optimization, args.c_object)
     rust_bin = build_rust(out, peers, args.cargo_profile, args.standard_only)
     python = python_for(out, peers)
 
-    all_jobs = jobs(c_bin, rust_bin, python, corpus_path, ais_corpus_path,
+    all_jobs = jobs(c_bin, rust_bin, python, corpus_path, ais_corpus_path, ubx_corpus_path,
                     python_lines if python_lines < args.lines else 0, peers)
     results = run_rounds(all_jobs, args.rounds, args.cpu)
     c_object = heap_symbols(out)
@@ -516,6 +527,7 @@ def main() -> None:
         "corpus": {"lines": corpus_info["lines"], "bytes": corpus_info["bytes"],
                    "distinct_lines": corpus_info["distinct_lines"], "by_type": corpus_info["by_type"]},
         "ais_corpus": ais_info,
+        "ubx_corpus": ubx_info,
         "python_lines": python_lines,
         "rounds": args.rounds,
         "cpu": args.cpu,

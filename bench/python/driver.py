@@ -6,7 +6,9 @@ implementation over its lines and prints a JSON object.
 IMPL: ours (nmeaspec), pynmea2, pynmea2-allfields (parse, then read every attribute its `fields`
 table names, since pynmea2 converts lazily), pynmeagps (NMEAReader.parse); over the AIS corpus
 (corpus.build_ais), ours-ais (the line parsed and its AIS message decoded, every field; serialize:
-the message encoded, the sentence written back) and pyais (pyais.decode; serialize: encode_msg). OP: parse, serialize
+the message encoded, the sentence written back) and pyais (pyais.decode; serialize: encode_msg); over the UBX
+corpus (corpus.build_ubx, a frame as hex digits a line), ours-ubx (nmeaspec.ubx_messages.decode, every field)
+and pyubx2 (UBXReader.parse, checksum checked), parse only. OP: parse, serialize
 (the lines are parsed chunk by chunk outside the timed region, only writing them back is timed:
 ours .to_sentence(), pynmea2 .render(), pynmeagps .serialize()), roundtrip (both, per line,
 counting lines written back byte for byte), fixes (ours only: each line parsed and fed to the fix
@@ -25,6 +27,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "generated" / "python"))
 
 CHUNK = 2048
+UBX = ("ours-ubx", "pyubx2")  # over the UBX corpus (corpus.build_ubx)
 
 
 def implementation(name: str):
@@ -77,6 +80,16 @@ def implementation(name: str):
             return sentence.to_sentence() if (payload, fill_bits) == (sentence.payload, int(sentence.fill_bits)) else ""
 
         return decode_ais, encode_ais
+    if name == "ours-ubx":
+        from nmeaspec import ubx_messages
+
+        decode_ubx = ubx_messages.decode
+        return (lambda frame, raw: decode_ubx(frame)), None  # every field of the message decoded
+    if name == "pyubx2":
+        import pyubx2
+
+        reader_parse, validate = pyubx2.UBXReader.parse, pyubx2.VALCKSUM
+        return (lambda frame, raw: reader_parse(frame, validate=validate)), None
     if name == "pyais":
         import pyais
 
@@ -185,6 +198,8 @@ def main() -> None:
     if args.lines:
         raws = raws[:args.lines]
     lines = [(raw.decode("ascii").rstrip("\r\n"), raw) for raw in raws]
+    if args.impl in UBX:  # the UBX corpus: a frame's bytes as hex digits a line
+        lines = [(bytes.fromhex(text), raw) for text, raw in lines]
     run(args.impl, args.op, lines[:2000])  # warm up: imports, caches
     seconds, ok = run(args.impl, args.op, lines)
     result = {"impl": args.impl, "op": args.op, "lines": len(lines), "bytes": sum(map(len, raws)),

@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 import struct
 from collections.abc import Iterator
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields as dataclass_fields, replace
 from itertools import accumulate
 from typing import Any, ClassVar
 
@@ -27,7 +27,7 @@ from .ais import (Bitfield, Code, Field, Flag, Group, Item, Signed, Spare, Speci
 from .runtime import NmeaError
 
 __all__ = ["Bitfield", "Bytes", "ByteReader", "ByteWriter", "Chars", "Float", "Frame", "Group", "Message",
-           "NmeaError", "Unknown", "answers", "decode_frame", "fletcher8", "frame_size", "main_layout", "message",
+           "NmeaError", "Unknown", "answers", "decode", "decode_frame", "fletcher8", "frame_size", "main_layout", "message",
            "split_frames"]
 
 SYNC = b"\xb5\x62"
@@ -319,7 +319,7 @@ def compile_reader(items: tuple[Item, ...]) -> Any:
                         f"    for t in iter_unpack({fmt!r}, payload[{pos}:{end}]):",
                         "        e = {}"]
             c.run(list(item.fields), "e", "t", "        ")
-            c.lines += [f"        entries.append({entry}(**e))", f"    values[{item.id!r}] = entries"]
+            c.lines += [f"        entries.append({entry}(*e.values()))", f"    values[{item.id!r}] = entries"]
             pos = end
         else:
             return None
@@ -357,6 +357,10 @@ class Message:
     FIELDS: ClassVar[dict[str, Field]]
     _read: ClassVar[Any]
     """The layout's compiled reader (compile_reader), made on first use; False: none."""
+    _members: ClassVar[int]
+    """How many members a payload read whole gives (from_payload); set with _read."""
+    _version_at: ClassVar[int]
+    """The byte of the `version` field (fits), found on first use."""
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
@@ -369,8 +373,10 @@ class Message:
         if cls.LENGTH is not None and len(payload) != cls.LENGTH:
             return False
         if cls.VERSION is not None:
-            at = next(i for i, item in enumerate(cls.LAYOUT) if isinstance(item, Field) and item.id == "version")
-            offset = sum((f.width or 0) for f in cls.LAYOUT[:at] if isinstance(f, Field)) // 8
+            offset: int | None = cls.__dict__.get("_version_at")
+            if offset is None:
+                at = next(i for i, item in enumerate(cls.LAYOUT) if isinstance(item, Field) and item.id == "version")
+                offset = cls._version_at = sum((f.width or 0) for f in cls.LAYOUT[:at] if isinstance(f, Field)) // 8
             return offset < len(payload) and payload[offset] == cls.VERSION
         return True
 
@@ -381,10 +387,17 @@ class Message:
         read: Any = cls.__dict__.get("_read")
         if read is None:
             read = cls._read = compile_reader(cls.LAYOUT) or False
+            cls._members = len(dataclass_fields(cls)) - 1  # the fields of the layout, not trailing
         found = read(payload) if read else None
-        if found is not None:
-            return cls(**found[0], trailing=payload[found[1]:])
-        return cls.read_generic(payload)
+        if found is None:
+            return cls.read_generic(payload)
+        values, end = found
+        if len(values) == cls._members:  # every member read: the instance takes them as they are
+            message = object.__new__(cls)
+            values["trailing"] = payload[end:]
+            message.__dict__ = values
+            return message
+        return cls(**values, trailing=payload[end:])
 
     @classmethod
     def read_generic(cls, payload: bytes) -> Message:
@@ -465,6 +478,24 @@ def message(by_id: dict[tuple[int, int], tuple[type[Message], ...]], frame: Fram
         return Unknown(frame.msg_class, frame.msg_id, frame.payload)
     cls = next((c for c in layouts if c.fits(frame.payload)), None) or main_layout(layouts)
     return cls.from_payload(frame.payload)
+
+
+def decode(by_id: dict[tuple[int, int], tuple[type[Message], ...]], data: bytes) -> Message | Unknown:
+    """message(by_id, decode_frame(data)): a frame whose sync, length and checksum are right and
+    whose class and id `by_id` describes is read without building its Frame (the common case);
+    anything else is decode_frame's, which says what is wrong."""
+    size = len(data)
+    if (size >= HEADER_SIZE + CHECKSUM_SIZE and data[0] == 0xB5 and data[1] == 0x62
+            and size == HEADER_SIZE + CHECKSUM_SIZE + (data[4] | data[5] << 8)):
+        body = bytes(data[2:size - CHECKSUM_SIZE])
+        layouts = by_id.get((body[0], body[1]))
+        if layouts and sum(body) & 0xFF == data[size - 2] and sum(accumulate(body)) & 0xFF == data[size - 1]:
+            payload = body[4:]
+            for cls in layouts:
+                if cls.fits(payload):
+                    return cls.from_payload(payload)
+            return main_layout(layouts).from_payload(payload)
+    return message(by_id, decode_frame(data))
 
 
 def main_layout(layouts: tuple[type[Message], ...]) -> type[Message]:

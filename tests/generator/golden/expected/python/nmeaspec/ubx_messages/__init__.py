@@ -27,4 +27,4 @@ def message(frame: ubx.Frame) -> ubx.Message | ubx.Unknown:
 
 def decode(data: bytes) -> ubx.Message | ubx.Unknown:
     """The message of one whole frame, its sync bytes, length and checksum checked."""
-    return message(ubx.decode_frame(data))
+    return ubx.decode(BY_ID, data)
