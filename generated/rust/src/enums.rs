@@ -56,9 +56,10 @@
 //   spec/enums/gfa_integrity.yaml, spec/enums/gga_quality.yaml, spec/enums/glc_signal_status.yaml,
 //   spec/enums/gns_mode.yaml, spec/enums/grs_mode.yaml, spec/enums/gsa_fix_type.yaml,
 //   spec/enums/gsa_selection_mode.yaml, spec/enums/hbt_equipment_status.yaml,
-//   spec/enums/hcr_correction_state.yaml, spec/enums/hmr_difference_status.yaml,
-//   spec/enums/hsc_sentence_status.yaml, spec/enums/htc_heading_reference.yaml,
-//   spec/enums/htc_override.yaml, spec/enums/htc_steering_mode.yaml, spec/enums/htc_turn_mode.yaml,
+//   spec/enums/hcr_correction_state.yaml, spec/enums/hemisphere_heading_source.yaml,
+//   spec/enums/hmr_difference_status.yaml, spec/enums/hsc_sentence_status.yaml,
+//   spec/enums/htc_heading_reference.yaml, spec/enums/htc_override.yaml,
+//   spec/enums/htc_steering_mode.yaml, spec/enums/htc_turn_mode.yaml,
 //   spec/enums/htd_limit_status.yaml, spec/enums/left_right.yaml, spec/enums/llq_quality.yaml,
 //   spec/enums/lrf_function.yaml, spec/enums/lrf_reply_status.yaml,
 //   spec/enums/lri_control_flag.yaml, spec/enums/magellan_altitude_unit.yaml,
@@ -95,8 +96,9 @@
 //   spec/enums/rpm_source.yaml, spec/enums/rrt_application_status.yaml,
 //   spec/enums/rrt_file_status.yaml, spec/enums/rrt_transfer_type.yaml,
 //   spec/enums/rsd_display_rotation.yaml, spec/enums/rte_mode.yaml,
-//   spec/enums/septentrio_base_motion.yaml, spec/enums/septentrio_baseline_quality.yaml,
-//   spec/enums/signal_id.yaml, spec/enums/sirf_baud.yaml, spec/enums/sirf_checksum_enable.yaml,
+//   spec/enums/seapath_quality.yaml, spec/enums/septentrio_base_motion.yaml,
+//   spec/enums/septentrio_baseline_quality.yaml, spec/enums/signal_id.yaml,
+//   spec/enums/sirf_baud.yaml, spec/enums/sirf_checksum_enable.yaml,
 //   spec/enums/sirf_checksum_enable_digit.yaml, spec/enums/sirf_debug.yaml,
 //   spec/enums/sirf_nmea_message.yaml, spec/enums/sirf_nmea_message_digit.yaml,
 //   spec/enums/sirf_ok_to_send.yaml, spec/enums/sirf_parity.yaml, spec/enums/sirf_protocol.yaml,
@@ -124,7 +126,7 @@
 //   spec/enums/ubx_gnss_id.yaml, spec/enums/vsd_nav_status.yaml,
 //   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
 //   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
-//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 7abfa7a6c9c4626d)
+//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 15d9428791b6f612)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -8578,6 +8580,52 @@ impl CodeEnum for HcrCorrectionState {
     }
 }
 
+/// Hemisphere heading source: What a Hemisphere GNSS compass computed its heading from ($PSAT,HPR).
+#[cfg(feature = "hemisphere_csi")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum HemisphereHeadingSource {
+    /// The GNSS antennas' baseline.
+    Gnss,
+    /// The gyro, while the GNSS heading is not available.
+    Gyro,
+}
+
+#[cfg(feature = "hemisphere_csi")]
+impl CodeEnum for HemisphereHeadingSource {
+    const EXPECTED: &'static str = "hemisphere_heading_source code (N G)";
+    const EXPECTED_CHARS: &'static str = "hemisphere_heading_source codes (N G)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::Gnss, Self::Gyro];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"N" => Some(Self::Gnss),
+            b"G" => Some(Self::Gyro),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Gnss => "N",
+            Self::Gyro => "G",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Gnss => "gnss",
+            Self::Gyro => "gyro",
+        }
+    }
+}
+
 /// Heading difference warning: Whether the difference between the two monitored heading sensors
 /// stays within the limit set by HMS (HMR).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -13100,6 +13148,57 @@ impl CodeEnum for RteMode {
         match self {
             Self::Complete => "complete",
             Self::Working => "working",
+        }
+    }
+}
+
+/// Seapath quality: How good a part of a Kongsberg Seapath solution is ($PSXN,20).
+#[cfg(feature = "kongsberg_seapath")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SeapathQuality {
+    /// Normal performance.
+    Normal,
+    /// Reduced performance.
+    Reduced,
+    /// The data is not valid.
+    Invalid,
+}
+
+#[cfg(feature = "kongsberg_seapath")]
+impl CodeEnum for SeapathQuality {
+    const EXPECTED: &'static str = "seapath_quality code (0 1 2)";
+    const EXPECTED_CHARS: &'static str = "seapath_quality codes (0 1 2)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::Normal, Self::Reduced, Self::Invalid];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Normal),
+            b"1" => Some(Self::Reduced),
+            b"2" => Some(Self::Invalid),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Normal => "0",
+            Self::Reduced => "1",
+            Self::Invalid => "2",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Normal => "normal",
+            Self::Reduced => "reduced",
+            Self::Invalid => "invalid",
         }
     }
 }
