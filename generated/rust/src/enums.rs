@@ -74,7 +74,8 @@
 //   spec/enums/mwv_reference.yaml, spec/enums/mwv_speed_unit.yaml, spec/enums/nak_reason.yaml,
 //   spec/enums/nav_status.yaml, spec/enums/north_south.yaml, spec/enums/nrm_function.yaml,
 //   spec/enums/nrx_frequency.yaml, spec/enums/nsr_integrity.yaml, spec/enums/nsr_plausibility.yaml,
-//   spec/enums/nsr_stw_mode.yaml, spec/enums/osd_reference.yaml, spec/enums/pos_mode.yaml,
+//   spec/enums/nsr_stw_mode.yaml, spec/enums/osd_reference.yaml, spec/enums/phins_pitch_sense.yaml,
+//   spec/enums/phins_roll_sense.yaml, spec/enums/pos_mode.yaml,
 //   spec/enums/pos_sentence_status.yaml, spec/enums/prc_operating_location.yaml,
 //   spec/enums/prc_pitch_mode.yaml, spec/enums/prc_rpm_mode.yaml,
 //   spec/enums/quectel_antenna_power.yaml, spec/enums/quectel_antenna_status.yaml,
@@ -126,7 +127,7 @@
 //   spec/enums/ubx_gnss_id.yaml, spec/enums/vsd_nav_status.yaml,
 //   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
 //   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
-//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 15d9428791b6f612)
+//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 127dcb65176f7d4e)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -10841,6 +10842,98 @@ impl CodeEnum for OsdReference {
             Self::Water => "water",
             Self::Radar => "radar",
             Self::Positioning => "positioning",
+        }
+    }
+}
+
+/// PHINS pitch sense: Which way the pitch angle of an iXblue PHINS $PHTRO goes.
+#[cfg(feature = "ixblue_phins")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PhinsPitchSense {
+    /// Bow up.
+    BowUp,
+    /// Bow down.
+    BowDown,
+}
+
+#[cfg(feature = "ixblue_phins")]
+impl CodeEnum for PhinsPitchSense {
+    const EXPECTED: &'static str = "phins_pitch_sense code (M P)";
+    const EXPECTED_CHARS: &'static str = "phins_pitch_sense codes (M P)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::BowUp, Self::BowDown];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"M" => Some(Self::BowUp),
+            b"P" => Some(Self::BowDown),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::BowUp => "M",
+            Self::BowDown => "P",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::BowUp => "bow_up",
+            Self::BowDown => "bow_down",
+        }
+    }
+}
+
+/// PHINS roll sense: Which way the roll angle of an iXblue PHINS $PHTRO goes.
+#[cfg(feature = "ixblue_phins")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PhinsRollSense {
+    /// Port side down.
+    PortDown,
+    /// Port side up.
+    PortUp,
+}
+
+#[cfg(feature = "ixblue_phins")]
+impl CodeEnum for PhinsRollSense {
+    const EXPECTED: &'static str = "phins_roll_sense code (B T)";
+    const EXPECTED_CHARS: &'static str = "phins_roll_sense codes (B T)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::PortDown, Self::PortUp];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"B" => Some(Self::PortDown),
+            b"T" => Some(Self::PortUp),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::PortDown => "B",
+            Self::PortUp => "T",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::PortDown => "port_down",
+            Self::PortUp => "port_up",
         }
     }
 }
