@@ -23,7 +23,7 @@ if TYPE_CHECKING:  # binary frames read and write their payloads with the same i
 SIXBIT_TEXT = "@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_ !\"#$%&'()*+,-./0123456789:;<=>?"
 """The characters of six-bit text, by their value (`@`, value 0, pads a text to its width)."""
 
-_TEXT_VALUES = {ch: i for i, ch in enumerate(SIXBIT_TEXT)}
+_TEXT_CHARS = frozenset(SIXBIT_TEXT)
 
 
 def armor_value(ch: str) -> int | None:
@@ -44,6 +44,9 @@ def armor_char(value: int) -> str:
 # with another alphabet, so a payload becomes its bits, and bits their armor, at C speed.
 _BASE64 = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/"
 _BASE64_TO_ARMOR = bytes.maketrans(_BASE64, bytes(ord(armor_char(v)) for v in range(64)))
+_BASE64_TO_TEXT = bytes.maketrans(_BASE64, SIXBIT_TEXT.encode("ascii"))
+_TEXT_TO_BASE64 = bytes.maketrans(SIXBIT_TEXT.encode("ascii"), _BASE64)
+"""Each six-bit text character to its base64 one (to_raw has checked the text)."""
 _ARMOR_TO_BASE64 = bytes(_BASE64[v] if (v := armor_value(chr(code))) is not None else ord("!") for code in range(256))
 """Each armor character to its base64 one, any other byte to '!', which base64 has not."""
 
@@ -286,17 +289,23 @@ class Text(Field):
         return self.width if self.width is not None else max(reader.remaining - self.after, 0) // 6 * 6
 
     def from_raw(self, raw: int, width: int) -> Any:
-        return "".join(SIXBIT_TEXT[(raw >> shift) & 63] for shift in range(width - 6, -1, -6))
+        # the characters of the whole six-bit groups from the top, by base64 at C speed
+        count = width // 6
+        if not count:
+            return ""
+        bits = count * 6
+        pad = -bits % 24
+        data = ((raw >> (width - bits) & ((1 << bits) - 1)) << pad).to_bytes((bits + pad) // 8, "big")
+        return binascii.b2a_base64(data, newline=False)[:count].translate(_BASE64_TO_TEXT).decode("ascii")
 
     def to_raw(self, value: Any, where: str) -> tuple[int, int]:
-        if not isinstance(value, str) or any(ch not in _TEXT_VALUES for ch in value) \
+        if not isinstance(value, str) or not _TEXT_CHARS.issuperset(value) \
                 or self.width is not None and len(value) * 6 != self.width:
             length = f"{self.width // 6} " if self.width is not None else ""
             raise _bad_value(where, self.id, value, f"{length}six-bit text characters")
-        raw = 0
-        for ch in value:
-            raw = raw << 6 | _TEXT_VALUES[ch]
-        return raw, len(value) * 6
+        pad = -len(value) % 4  # base64 takes four characters at a time
+        data = binascii.a2b_base64(value.encode("ascii").translate(_TEXT_TO_BASE64) + b"A" * pad, strict_mode=True)
+        return int.from_bytes(data, "big") >> 6 * pad, len(value) * 6
 
 
 @dataclass(frozen=True, slots=True)
