@@ -557,7 +557,7 @@ def compile_write_prefix(items: tuple[Item, ...]) -> WritePrefix:
     (text always), which raises the error write_items would. The first item of another kind ends
     it (a bitfield writes from its parts, a data field may be an application's)."""
     code = ["def write(record, where):", "    bits = 0"]
-    names: dict[str, Any] = {}
+    names: dict[str, Any] = {"Special": Special}
     offset = count = 0
     for item in items:
         if (not isinstance(item, Field) or type(item) not in (Field, Spare, Unsigned, Signed, Flag, Code, Text)
@@ -573,7 +573,8 @@ def compile_write_prefix(items: tuple[Item, ...]) -> WritePrefix:
                 number = f"value - {item.base} if value.__class__ is int else round(value - {item.base})"
             else:
                 number = f"round((value - {item.base!r}) * {item.divisor})"
-            code.append(f"    raw = {number} if value.__class__ is int or value.__class__ is float else None")
+            special = " else value.raw if value.__class__ is Special" if item.special else ""
+            code.append(f"    raw = {number} if value.__class__ is int or value.__class__ is float{special} else None")
             fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw & {(1 << width) - 1}"
         elif isinstance(item, Flag):
             fast = "value is True or value is False", "bits = bits << 1 | value"
@@ -682,7 +683,8 @@ class Record:
             prefix = compile_write_prefix(self.LAYOUT)
             type(self)._write_prefix = prefix
         writer.put(prefix.write(self, where), prefix.bits)
-        write_items(self.LAYOUT[prefix.items:], self, writer, where)
+        if prefix.items < len(self.LAYOUT):
+            write_items(self.LAYOUT[prefix.items:], self, writer, where)
         writer.put_bits(self.trailing)
 
     @classmethod
