@@ -11,6 +11,7 @@ table 47 of annex 8; the layouts: annex 8) and gpsd's "AIVDM/AIVDO protocol deco
 from __future__ import annotations
 
 import binascii
+import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar, NamedTuple
 
@@ -22,7 +23,7 @@ if TYPE_CHECKING:  # binary frames read and write their payloads with the same i
 SIXBIT_TEXT = "@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_ !\"#$%&'()*+,-./0123456789:;<=>?"
 """The characters of six-bit text, by their value (`@`, value 0, pads a text to its width)."""
 
-_TEXT_VALUES = {ch: i for i, ch in enumerate(SIXBIT_TEXT)}
+_TEXT_CHARS = frozenset(SIXBIT_TEXT)
 
 
 def armor_value(ch: str) -> int | None:
@@ -43,6 +44,9 @@ def armor_char(value: int) -> str:
 # with another alphabet, so a payload becomes its bits, and bits their armor, at C speed.
 _BASE64 = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/"
 _BASE64_TO_ARMOR = bytes.maketrans(_BASE64, bytes(ord(armor_char(v)) for v in range(64)))
+_BASE64_TO_TEXT = bytes.maketrans(_BASE64, SIXBIT_TEXT.encode("ascii"))
+_TEXT_TO_BASE64 = bytes.maketrans(SIXBIT_TEXT.encode("ascii"), _BASE64)
+"""Each six-bit text character to its base64 one (to_raw has checked the text)."""
 _ARMOR_TO_BASE64 = bytes(_BASE64[v] if (v := armor_value(chr(code))) is not None else ord("!") for code in range(256))
 """Each armor character to its base64 one, any other byte to '!', which base64 has not."""
 
@@ -285,17 +289,23 @@ class Text(Field):
         return self.width if self.width is not None else max(reader.remaining - self.after, 0) // 6 * 6
 
     def from_raw(self, raw: int, width: int) -> Any:
-        return "".join(SIXBIT_TEXT[(raw >> shift) & 63] for shift in range(width - 6, -1, -6))
+        # the characters of the whole six-bit groups from the top, by base64 at C speed
+        count = width // 6
+        if not count:
+            return ""
+        bits = count * 6
+        pad = -bits % 24
+        data = ((raw >> (width - bits) & ((1 << bits) - 1)) << pad).to_bytes((bits + pad) // 8, "big")
+        return binascii.b2a_base64(data, newline=False)[:count].translate(_BASE64_TO_TEXT).decode("ascii")
 
     def to_raw(self, value: Any, where: str) -> tuple[int, int]:
-        if not isinstance(value, str) or any(ch not in _TEXT_VALUES for ch in value) \
+        if not isinstance(value, str) or not _TEXT_CHARS.issuperset(value) \
                 or self.width is not None and len(value) * 6 != self.width:
             length = f"{self.width // 6} " if self.width is not None else ""
             raise _bad_value(where, self.id, value, f"{length}six-bit text characters")
-        raw = 0
-        for ch in value:
-            raw = raw << 6 | _TEXT_VALUES[ch]
-        return raw, len(value) * 6
+        pad = -len(value) % 4  # base64 takes four characters at a time
+        data = binascii.a2b_base64(value.encode("ascii").translate(_TEXT_TO_BASE64) + b"A" * pad, strict_mode=True)
+        return int.from_bytes(data, "big") >> 6 * pad, len(value) * 6
 
 
 @dataclass(frozen=True, slots=True)
@@ -447,7 +457,7 @@ def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: 
 
 class Prefix(NamedTuple):
     """A layout's leading fields of fixed width compiled into one function (the generic reader
-    costs several calls a field): `read(value, length, values)` reads them from a payload of at
+    costs several calls a field): `read(value, length)` returns their members (a dict) from a payload of at
     least `bits` bits; `put_json(record, out)` puts their decoded JSON members."""
 
     items: int  # how many of the layout's items it reads
@@ -461,64 +471,79 @@ def compile_prefix(items: tuple[Item, ...]) -> Prefix:
     included), flags, codes and spare bits, the field's own conversion for the others (text,
     data); the first item that is not a field of fixed width (a group, a choice, a variable or
     optional field) ends it. Decoded values and JSON are exactly those of the field classes."""
-    read = ["def read(value, length, values):"]
     put = ["def put_json(record, out):"]
     names: dict[str, Any] = {"Special": Special}
+    members: list[str] = []  # each field's key and value expression in a dict display
     offset = count = 0
+    prefix_bits = 0
+    for item in items:
+        if not isinstance(item, Field) or item.width is None or item.optional:
+            break
+        prefix_bits += item.width
     for item in items:
         if not isinstance(item, Field) or item.width is None or item.optional:
             break
         width, key, name = item.width, repr(item.id), f"f{count}"
         names[name] = item
-        read.append(f"    raw = (value >> (length - {offset + width})) & {(1 << width) - 1}")
+        # `v` holds the prefix's bits only: constant shifts and masks take each field out
+        shift = prefix_bits - offset - width
+        raw = "v" if shift == 0 else f"v >> {shift}"
+        if offset:
+            raw = f"({raw}) & {(1 << width) - 1}"
+        raw = f"({raw})"
         put.append(f"    value = record.{item.id}")
         if isinstance(item, Unsigned):
             if isinstance(item, Signed):
-                read.append(f"    raw = raw - {1 << width} if raw >> {width - 1} else raw")
-            number = "raw" if item.divisor == 1 else f"raw / {item.divisor}"
+                raw = f"(r - {1 << width} if (r := {raw}) >> {width - 1} else r)"
+            operand = "r" if item.special else raw
+            number = operand if item.divisor == 1 else f"{operand} / {item.divisor}"
             number += f" + {item.base!r}" if item.base or isinstance(item.base, float) else ""
             if item.special:
                 names[f"{name}_special"] = {sp.raw: sp for sp in item.special}
-                read.append(f"    values[{key}] = {name}_special.get(raw) or {number}")
+                members.append(f"{key}: {name}_special.get(r := {raw}) or {number}")
             else:
-                read.append(f"    values[{key}] = {number}")
+                members.append(f"{key}: {number}")
             if item.divisor == 1 and not item.base and not item.special:
                 put.append(f"    if value is not None: out[{key}] = value")
             else:
                 # the raw integer of a number in the unit; anything else as the field says
                 if item.divisor == 1 and isinstance(item.base, int):
-                    raw = f"value - {item.base} if value.__class__ is int else round(value - {item.base})"
+                    back = f"value - {item.base} if value.__class__ is int else round(value - {item.base})"
                 else:
-                    raw = f"round((value - {item.base!r}) * {item.divisor})"
+                    back = f"round((value - {item.base!r}) * {item.divisor})"
                 put.append("    if value.__class__ is float or value.__class__ is int:")
                 put.append(f"        out[{key}] = value")
-                put.append(f"        out[{key[:-1]}_raw'] = {raw}")
+                put.append(f"        out[{key[:-1]}_raw'] = {back}")
                 put.append(f"    elif value is not None: {name}.put_json(out, value)")
         elif isinstance(item, Flag):
-            read.append(f"    values[{key}] = raw != 0")
+            members.append(f"{key}: {raw} != 0")
             put.append(f"    if value is not None: out[{key}] = value")
         elif isinstance(item, Code):
-            names[f"{name}_members"] = {m.value: m for m in item.enum}
+            # by the raw integer of each member whose value is one written in decimal
+            names[f"{name}_members"] = {int(m.value): m for m in item.enum
+                                        if isinstance(m.value, str) and m.value.isdigit()
+                                        and str(int(m.value)) == m.value}
             names[f"{name}_enum"] = item.enum
-            read.append(f"    values[{key}] = {name}_members.get(str(raw), raw)")
+            members.append(f"{key}: {name}_members.get(r := {raw}, r)")
             put.append(f"    if value is not None: out[{key}] = value.name.lower() "
                        f"if isinstance(value, {name}_enum) else value")
         elif type(item) in (Field, Spare):
-            read.append(f"    values[{key}] = raw")
+            members.append(f"{key}: {raw}")
             put.append(f"    if value is not None: out[{key}] = value")
         else:
-            read.append(f"    values[{key}] = {name}.from_raw(raw, {width})")
+            members.append(f"{key}: {name}.from_raw({raw}, {width})")
             put.append(f"    if value is not None: {name}.put_json(out, value)")
         offset += width
         count += 1
-    read.append("    return values")
+    read = ["def read(value, length):", f"    v = value >> (length - {offset})",
+            "    return {", *(f"        {m}," for m in members), "    }"]
     put.append("    return out")
     exec("\n".join(read + put), names)  # code built above from the spec's layout, never from input
     return Prefix(count, offset, names["read"], names["put_json"])
 
 
 class WritePrefix(NamedTuple):
-    """A layout's leading fields of fixed width that are numbers, flags, codes or spare bits,
+    """A layout's leading fields of fixed width that are numbers, flags, codes, text or spare bits,
     compiled into one function: `write(record, where)` returns their `bits` bits as one integer."""
 
     items: int  # how many of the layout's items it writes
@@ -528,14 +553,14 @@ class WritePrefix(NamedTuple):
 
 def compile_write_prefix(items: tuple[Item, ...]) -> WritePrefix:
     """The WritePrefix of `items`: straight-line code for the values a decoder gives (an int or
-    float in range, a bool), the field's own to_raw for any other, which raises the error
-    write_items would. The first item of another kind ends it (text and data check more, a
-    bitfield writes from its parts, a data field may be an application's)."""
+    float in range, a bool, a member of the field's enum), the field's own to_raw for any other
+    (text always), which raises the error write_items would. The first item of another kind ends
+    it (a bitfield writes from its parts, a data field may be an application's)."""
     code = ["def write(record, where):", "    bits = 0"]
-    names: dict[str, Any] = {}
+    names: dict[str, Any] = {"Special": Special}
     offset = count = 0
     for item in items:
-        if (not isinstance(item, Field) or type(item) not in (Field, Spare, Unsigned, Signed, Flag, Code)
+        if (not isinstance(item, Field) or type(item) not in (Field, Spare, Unsigned, Signed, Flag, Code, Text)
                 or item.width is None or item.optional):
             break
         width, name = item.width, f"f{count}"
@@ -548,12 +573,25 @@ def compile_write_prefix(items: tuple[Item, ...]) -> WritePrefix:
                 number = f"value - {item.base} if value.__class__ is int else round(value - {item.base})"
             else:
                 number = f"round((value - {item.base!r}) * {item.divisor})"
-            code.append(f"    raw = {number} if value.__class__ is int or value.__class__ is float else None")
+            special = " else value.raw if value.__class__ is Special" if item.special else ""
+            code.append(f"    raw = {number} if value.__class__ is int or value.__class__ is float{special} else None")
             fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw & {(1 << width) - 1}"
         elif isinstance(item, Flag):
             fast = "value is True or value is False", "bits = bits << 1 | value"
-        elif isinstance(item, Code):  # an enum member's code: the field's to_raw finds it
+        elif isinstance(item, Text):  # text of its whole width: the field's to_raw checks it
             fast = None
+        elif isinstance(item, Code):  # a member of the field's enum whose code fits; to_raw for any other
+            codes: dict[Any, int] = {}  # by each member's value
+            for member in item.enum:
+                try:
+                    code_value = int(member.value)
+                except (TypeError, ValueError):
+                    continue
+                if 0 <= code_value <= (1 << width) - 1:
+                    codes[member._value_] = code_value
+            names[f"{name}_enum"], names[f"{name}_codes"] = item.enum, codes
+            fast = (f"value.__class__ is {name}_enum and (raw := {name}_codes.get(value._value_)) is not None",
+                    f"bits = bits << {width} | raw")
         else:
             fast = f"value.__class__ is int and 0 <= value <= {(1 << width) - 1}", f"bits = bits << {width} | value"
         if fast is None:
@@ -619,6 +657,7 @@ class Record:
     FIELDS: ClassVar[dict[str, Field]]
     _prefix: ClassVar[Prefix]
     _write_prefix: ClassVar[WritePrefix]
+    _blank: ClassVar[dict[str, Any]]
     DISPATCH: ClassVar[Data | None]
     """The data field whose bits an application may carry (the one with a `dispatch`)."""
 
@@ -644,7 +683,8 @@ class Record:
             prefix = compile_write_prefix(self.LAYOUT)
             type(self)._write_prefix = prefix
         writer.put(prefix.write(self, where), prefix.bits)
-        write_items(self.LAYOUT[prefix.items:], self, writer, where)
+        if prefix.items < len(self.LAYOUT):
+            write_items(self.LAYOUT[prefix.items:], self, writer, where)
         writer.put_bits(self.trailing)
 
     @classmethod
@@ -652,13 +692,27 @@ class Record:
         """The members of the layout from `reader` (its compiled prefix, then the rest)."""
         prefix = cls.prefix()
         if reader.pos == 0 and reader.length >= prefix.bits:
-            values: dict[str, Any] = prefix.read(reader.value, reader.length, {})
+            values: dict[str, Any] = prefix.read(reader.value, reader.length)
             reader.pos = prefix.bits
             read_items(cls.LAYOUT[prefix.items:], reader, values)
         else:  # short: the generic reader says where
             values = {}
             read_items(cls.LAYOUT, reader, values)
         return values
+
+    @classmethod
+    def blank(cls) -> dict[str, Any]:
+        """The members of an instance made with no arguments, in the order its __init__ sets them
+        (none when a default is made by a factory or __init__ does more: then it is called)."""
+        found: dict[str, Any] | None = cls.__dict__.get("_blank")
+        if found is None:
+            fields = dataclasses.fields(cls)
+            found = {}
+            if "__post_init__" not in dir(cls) and all(
+                    f.init and f.default is not dataclasses.MISSING for f in fields):
+                found = {f.name: f.default for f in fields}
+            cls._blank = found
+        return found
 
     @classmethod
     def field(cls, name: str) -> Field:
@@ -734,6 +788,12 @@ class Message(Record):
 
 def unarmor(payload: str, fill_bits: int) -> tuple[BitReader, str]:
     """The payload's message bits, and the values of its fill bits."""
+    value, length, padding = _unarmor(payload, fill_bits)
+    return BitReader(value, length, "AIS"), padding
+
+
+def _unarmor(payload: str, fill_bits: int) -> tuple[int, int, str]:
+    """The payload's message bits as one integer, their count, and the values of its fill bits."""
     if not 0 <= fill_bits <= 5 or fill_bits and not payload:
         raise NmeaError("bad_armor", f"fill bits are 0-5 (none for an empty payload), not {fill_bits}", "AIS")
     try:
@@ -743,9 +803,9 @@ def unarmor(payload: str, fill_bits: int) -> tuple[BitReader, str]:
     except (UnicodeEncodeError, binascii.Error):  # a character no armor value stands for
         offset, ch = next((i, ch) for i, ch in enumerate(payload) if armor_value(ch) is None)
         raise NmeaError("bad_armor", f"character '{ch}' at offset {offset} is not six-bit armoring", "AIS") from None
-    length = len(payload) * 6 - fill_bits
-    padding = bits_text(value & ((1 << fill_bits) - 1), fill_bits)
-    return BitReader(value >> fill_bits, length, "AIS"), padding
+    if fill_bits:
+        return value >> fill_bits, len(payload) * 6 - fill_bits, format(value & ((1 << fill_bits) - 1), f"0{fill_bits}b")
+    return value, len(payload) * 6, ""
 
 
 def _application(message: Message, applications: dict[tuple[int, int], type[Application]]) -> Application | None:
@@ -773,15 +833,35 @@ def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int]
            payload: str, fill_bits: int) -> Message:
     """The message of an armored payload, as the class its type number names in `by_type`, with
     the application of `applications` its data bits carry."""
-    reader, padding = unarmor(payload, fill_bits)
-    message_type = reader.peek(0, 6, "message_type")
-    reader.where = f"AIS type {message_type}"
+    value, length, padding = _unarmor(payload, fill_bits)
+    if length < 6:
+        BitReader(value, length, "AIS").peek(0, 6, "message_type")  # raises short_payload
+    message_type = value >> (length - 6)
     cls = by_type.get(message_type)
     if cls is None:
         raise NmeaError("unknown_message", f"message type {message_type} is not one the spec describes",
-                        reader.where, name="message_type")
-    values = cls.read(reader)
-    trailing = bits_text(reader.value & ((1 << reader.remaining) - 1), reader.remaining)
-    message = cls(**values, trailing=trailing, padding=padding)
-    message.application = _application(message, applications)
+                        f"AIS type {message_type}", name="message_type")
+    prefix = cls.__dict__.get("_prefix") or cls.prefix()
+    rest = length - prefix.bits
+    if rest >= 0 and prefix.items == len(cls.LAYOUT):  # every field in the compiled prefix
+        values = prefix.read(value, length)
+        trailing = format(value & ((1 << rest) - 1), f"0{rest}b") if rest else ""
+    else:
+        reader = BitReader(value, length, f"AIS type {message_type}")
+        values = cls.read(reader)
+        trailing = bits_text(reader.value & ((1 << reader.remaining) - 1), reader.remaining)
+    blank = cls.__dict__.get("_blank")
+    if blank is None:
+        blank = cls.blank()
+    if not blank:
+        message = cls(**values, trailing=trailing, padding=padding)
+    else:  # what the dataclass's __init__ would set, without its keyword arguments' cost
+        members = blank.copy()
+        members.update(values)
+        members["trailing"] = trailing
+        members["padding"] = padding
+        message = object.__new__(cls)
+        message.__dict__ = members
+    if cls.DISPATCH is not None:
+        message.application = _application(message, applications)
     return message

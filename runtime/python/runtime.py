@@ -555,6 +555,9 @@ class Number(_Value):
 
     def __int__(self) -> int:
         """The integer part (toward zero), as int() of a float."""
+        text = getattr(self, "_text", None)
+        if text is not None and text.isdigit() and text.isascii():  # a whole number as received
+            return int(text)
         digits, scale, _, sign, _ = self._split()
         whole: int = digits // 10**scale
         return -whole if sign == "-" else whole
