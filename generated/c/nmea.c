@@ -2932,14 +2932,14 @@ NMEA_FRAME bool parse_date(nmea_text t, nmea_date *out)
 
 /* A coordinate's value read as `whole` digits before the point (worth `whole_value`) and `frac`
    after it (the minutes, fraction included, worth `minutes`): checked and stored in `out`. */
-NMEA_HOT bool coordinate_of(uint64_t whole_value, size_t whole, uint64_t minutes, size_t frac, bool point,
+NMEA_HOT bool coordinate_of(uint32_t whole_value, size_t whole, uint64_t minutes, size_t frac, bool point,
                             unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
 {
     if (whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_NUMBER_DIGITS - 2)
         return false;
-    if ((uint32_t)whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
+    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
         return false;
-    out->degrees = (uint16_t)((uint32_t)whole_value / 100); /* whole <= 5 digits: no 64-bit division */
+    out->degrees = (uint16_t)(whole_value / 100); /* whole <= 5 digits: no 64-bit division */
     out->degree_digits = (uint8_t)(whole - 2);
     out->minutes.digits = (nmea_digits)minutes;
     out->minutes.scale = (uint8_t)frac;
@@ -2952,17 +2952,19 @@ NMEA_HOT bool coordinate_of(uint64_t whole_value, size_t whole, uint64_t minutes
 }
 
 /* ddmm.mmmm (latitude) or dddmm.mmmm (longitude): the two digits before the point are whole
-   minutes, the digits before them degrees. */
-NMEA_FRAME bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
+   minutes, the digits before them degrees. A leaf: at -Os inlined in read_coordinate, its only
+   caller, so that its frame is not added below that reader's on nmea_parse's deepest path. */
+NMEA_LEAF bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
 {
     const char *p = t.ptr, *end = t.ptr + t.len, *point = NULL;
-    uint64_t whole_value = 0, minutes; /* unsigned: digits too many for them are refused below */
+    uint32_t whole_value = 0; /* unsigned: digits too many for it are refused below (by their count) */
+    uint64_t minutes;
     size_t whole, frac = 0;
 
     for (; p < end && is_digit(*p); p++)
-        whole_value = whole_value * 10 + (uint64_t)(*p - '0');
+        whole_value = whole_value * 10 + (uint32_t)(*p - '0');
     whole = (size_t)(p - t.ptr);
-    minutes = (uint32_t)whole_value % 100; /* of more digits than fit, coordinate_of refuses it */
+    minutes = whole_value % 100; /* of more digits than fit, coordinate_of refuses it */
     if (p < end && *p == '.') {
         for (point = p++; p < end && is_digit(*p); p++)
             minutes = minutes * 10 + (uint64_t)(*p - '0');
@@ -3222,7 +3224,12 @@ NMEA_INTERNAL inline bool read_count(nmea_reader *r, size_t count, size_t fixed,
 NMEA_FRAME bool bad_field(nmea_reader *r, unsigned index, nmea_text text)
 {
     nmea_error *err = r->err;
-    memset(err, 0, sizeof *err); /* fail's work, in this frame: the deepest of nmea_parse's paths end here */
+    /* fail's work, in this frame (the deepest of nmea_parse's paths end here): the error cleared
+       around `text`, stored first, so that no argument is held across the calls */
+    err->text = text;
+    memset(err, 0, offsetof(nmea_error, text));
+    memset((char *)err + offsetof(nmea_error, text) + sizeof err->text, 0,
+           sizeof *err - offsetof(nmea_error, text) - sizeof err->text);
     err->kind = NMEA_ERR_BAD_FIELD;
     err->pattern = ERROR_TEXT("expected %s, found %q");
     err->has_address = true;
@@ -3233,7 +3240,6 @@ NMEA_FRAME bool bad_field(nmea_reader *r, unsigned index, nmea_text text)
     err->entry = r->entry;
     err->name = r->name;
     err->str[0] = r->expected;
-    err->text = text;
     return false;
 }
 
@@ -3663,14 +3669,15 @@ NMEA_HOT bool fast_coordinate(const char **p, nmea_coordinate *out, char positiv
                               unsigned max_degree_digits, unsigned max_degrees)
 {
     const char *start = *p, *q = start, *point = NULL;
-    uint64_t whole_value = 0, minutes; /* unsigned: digits too many for them are refused below */
+    uint32_t whole_value = 0; /* unsigned: digits too many for it are refused below (by their count) */
+    uint64_t minutes;
     unsigned digit;                    /* unsigned: a byte below '0' wraps to a large value */
     size_t whole, frac = 0;
 
     for (; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
         whole_value = whole_value * 10 + digit;
     whole = (size_t)(q - start);
-    minutes = (uint32_t)whole_value % 100; /* of more digits than fit, coordinate_of refuses it */
+    minutes = whole_value % 100; /* of more digits than fit, coordinate_of refuses it */
     if (*q == '.') {
         for (point = q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
             minutes = minutes * 10 + digit;

@@ -227,14 +227,15 @@ NMEA_HOT bool fast_coordinate(const char **p, nmea_coordinate *out, char positiv
                               unsigned max_degree_digits, unsigned max_degrees)
 {
     const char *start = *p, *q = start, *point = NULL;
-    uint64_t whole_value = 0, minutes; /* unsigned: digits too many for them are refused below */
+    uint32_t whole_value = 0; /* unsigned: digits too many for it are refused below (by their count) */
+    uint64_t minutes;
     unsigned digit;                    /* unsigned: a byte below '0' wraps to a large value */
     size_t whole, frac = 0;
 
     for (; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
         whole_value = whole_value * 10 + digit;
     whole = (size_t)(q - start);
-    minutes = (uint32_t)whole_value % 100; /* of more digits than fit, coordinate_of refuses it */
+    minutes = whole_value % 100; /* of more digits than fit, coordinate_of refuses it */
     if (*q == '.') {
         for (point = q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
             minutes = minutes * 10 + digit;

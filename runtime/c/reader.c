@@ -185,7 +185,12 @@ NMEA_INTERNAL inline bool read_count(nmea_reader *r, size_t count, size_t fixed,
 NMEA_FRAME bool bad_field(nmea_reader *r, unsigned index, nmea_text text)
 {
     nmea_error *err = r->err;
-    memset(err, 0, sizeof *err); /* fail's work, in this frame: the deepest of nmea_parse's paths end here */
+    /* fail's work, in this frame (the deepest of nmea_parse's paths end here): the error cleared
+       around `text`, stored first, so that no argument is held across the calls */
+    err->text = text;
+    memset(err, 0, offsetof(nmea_error, text));
+    memset((char *)err + offsetof(nmea_error, text) + sizeof err->text, 0,
+           sizeof *err - offsetof(nmea_error, text) - sizeof err->text);
     err->kind = NMEA_ERR_BAD_FIELD;
     err->pattern = ERROR_TEXT("expected %s, found %q");
     err->has_address = true;
@@ -196,7 +201,6 @@ NMEA_FRAME bool bad_field(nmea_reader *r, unsigned index, nmea_text text)
     err->entry = r->entry;
     err->name = r->name;
     err->str[0] = r->expected;
-    err->text = text;
     return false;
 }
 
