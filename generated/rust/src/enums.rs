@@ -23,13 +23,14 @@
 //   spec/enums/ashtech_on_off.yaml, spec/enums/ashtech_port.yaml,
 //   spec/enums/ashtech_pos_solution.yaml, spec/enums/ashtech_rt300_alignment.yaml,
 //   spec/enums/ashtech_rt300_quality.yaml, spec/enums/ashtech_sv_used.yaml,
-//   spec/enums/broadcom_glor_confidence.yaml, spec/enums/broadcom_glor_location_request.yaml,
-//   spec/enums/broadcom_glor_power_save.yaml, spec/enums/broadcom_glor_vel_track_quality.yaml,
-//   spec/enums/comnav_log_message.yaml, spec/enums/comnav_talker_id.yaml,
-//   spec/enums/comnav_talker_sentence.yaml, spec/enums/cur_direction_reference.yaml,
-//   spec/enums/cur_heading_reference.yaml, spec/enums/cur_speed_reference.yaml,
-//   spec/enums/ddc_command_mode.yaml, spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml,
-//   spec/enums/dor_status.yaml, spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
+//   spec/enums/ashtech_vector_mode.yaml, spec/enums/broadcom_glor_confidence.yaml,
+//   spec/enums/broadcom_glor_location_request.yaml, spec/enums/broadcom_glor_power_save.yaml,
+//   spec/enums/broadcom_glor_vel_track_quality.yaml, spec/enums/comnav_log_message.yaml,
+//   spec/enums/comnav_talker_id.yaml, spec/enums/comnav_talker_sentence.yaml,
+//   spec/enums/cur_direction_reference.yaml, spec/enums/cur_heading_reference.yaml,
+//   spec/enums/cur_speed_reference.yaml, spec/enums/ddc_command_mode.yaml,
+//   spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml, spec/enums/dor_status.yaml,
+//   spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
 //   spec/enums/dsc_acknowledgement.yaml, spec/enums/dsc_category.yaml,
 //   spec/enums/dsc_distress_nature.yaml, spec/enums/dsc_format.yaml, spec/enums/dse_code.yaml,
 //   spec/enums/dse_query_flag.yaml, spec/enums/dtm_datum.yaml, spec/enums/dtm_lat_offset_dir.yaml,
@@ -127,7 +128,7 @@
 //   spec/enums/ubx_gnss_id.yaml, spec/enums/vsd_nav_status.yaml,
 //   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
 //   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
-//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 127dcb65176f7d4e)
+//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 5db4c9a162ec4500)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -3918,6 +3919,69 @@ impl CodeEnum for AshtechSvUsed {
         match self {
             Self::Used => "used",
             Self::NotUsed => "not_used",
+        }
+    }
+}
+
+/// Ashtech vector solution mode: Kind of solution of a baseline vector between two antennas, in
+/// $PASHR,ARR.
+#[cfg(feature = "ashtech")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AshtechVectorMode {
+    /// No valid baseline.
+    Invalid,
+    /// Code differential solution.
+    Differential,
+    /// RTK solution with float ambiguities.
+    RtkFloat,
+    /// RTK solution with fixed ambiguities.
+    RtkFixed,
+    /// Any other estimate (dead reckoning, poor accuracy, or the difference of two standalone
+    /// positions); a user wanting only proven vectors may drop these.
+    Other,
+}
+
+#[cfg(feature = "ashtech")]
+impl CodeEnum for AshtechVectorMode {
+    const EXPECTED: &'static str = "ashtech_vector_mode code (0 1 2 3 5)";
+    const EXPECTED_CHARS: &'static str = "ashtech_vector_mode codes (0 1 2 3 5)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::Invalid, Self::Differential, Self::RtkFloat, Self::RtkFixed, Self::Other];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Invalid),
+            b"1" => Some(Self::Differential),
+            b"2" => Some(Self::RtkFloat),
+            b"3" => Some(Self::RtkFixed),
+            b"5" => Some(Self::Other),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Invalid => "0",
+            Self::Differential => "1",
+            Self::RtkFloat => "2",
+            Self::RtkFixed => "3",
+            Self::Other => "5",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Invalid => "invalid",
+            Self::Differential => "differential",
+            Self::RtkFloat => "rtk_float",
+            Self::RtkFixed => "rtk_fixed",
+            Self::Other => "other",
         }
     }
 }
