@@ -390,7 +390,7 @@ def needs_reads_first(spec: Spec, sentence: Sentence, layout: Layout) -> bool:
             and any(other.selector is not None for _, other in spec.by_address(sentence.address or "")))
 
 
-def reads_first_body(spec: Spec, sentence: Sentence, layout: Layout, lifetime: bool) -> list[str] | None:
+def reads_first_body(spec: Spec, sentence: Sentence, layout: Layout) -> list[str] | None:
     """The body of a layout's `reads_first` (`needs_reads_first`), or None: the first field read
     as parse_fields reads it, a number outside its range accepted."""
     if not needs_reads_first(spec, sentence, layout):
@@ -513,7 +513,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 or any(it["kind"] in ("texts", "values", "entries") for it in items))
     keywords = [it["field"] for it in items if it["kind"] == "keyword"]
     reader = "fields.reader().ignoring_case()" if text else "fields.reader()"
-    reads_first = reads_first_body(spec, sentence, layout, lifetime)
+    reads_first = reads_first_body(spec, sentence, layout)
     if text:
         what = f"`{sentence.address} …` command (its words in any letter case)"
     elif sentence.is_proprietary:
