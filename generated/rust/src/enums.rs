@@ -125,10 +125,11 @@
 //   spec/enums/ttm_target_status.yaml, spec/enums/ttm_units.yaml,
 //   spec/enums/ublox_autobauding.yaml, spec/enums/ublox_nav_status.yaml,
 //   spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml, spec/enums/vsd_nav_status.yaml,
-//   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
-//   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
-//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 5db4c9a162ec4500)
+//   spec/enums/ubx_gnss_id.yaml, spec/enums/unicore_travel_direction.yaml,
+//   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
+//   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
+//   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
+//   (digest 8827572f965de620)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -16945,6 +16946,53 @@ impl CodeEnum for UbxGnssId {
             Self::Qzss => "qzss",
             Self::Glonass => "glonass",
             Self::Navic => "navic",
+        }
+    }
+}
+
+/// Unicore vehicle direction: Which way the vehicle moves, from the direction signal wired to a
+/// Unicore GNSS/INS module ($GYOACC); meaningless when no signal is connected.
+#[cfg(feature = "unicore_ins")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum UnicoreTravelDirection {
+    /// Moving forward.
+    Forward,
+    /// Moving backward.
+    Backward,
+}
+
+#[cfg(feature = "unicore_ins")]
+impl CodeEnum for UnicoreTravelDirection {
+    const EXPECTED: &'static str = "unicore_travel_direction code (0 1)";
+    const EXPECTED_CHARS: &'static str = "unicore_travel_direction codes (0 1)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::Forward, Self::Backward];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Forward),
+            b"1" => Some(Self::Backward),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Forward => "0",
+            Self::Backward => "1",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Forward => "forward",
+            Self::Backward => "backward",
         }
     }
 }
