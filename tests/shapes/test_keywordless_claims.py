@@ -2,7 +2,7 @@
 layout without a keyword claims it only when the line's first field reads as that layout's
 first field (a number outside its range does; a layout without fields: when the line has none).
 Otherwise the line is a message of the family the spec does not know, kept as a Generic
-sentence, not refused: Ashtech's `$PASHR,BTS,...` beside RT300's keyword-less
+sentence, not refused: an Ashtech `$PASHR,<keyword>,...` the spec does not know beside RT300's keyword-less
 `$PASHR,<time>,...`. The three languages agree on these lines (tests/agreement/edge_cases.txt)."""
 
 from __future__ import annotations
@@ -26,7 +26,8 @@ def line(body: str) -> str:
 @pytest.mark.parametrize("body, sentence", [
     ("PASHR,123519.00,1.0,T,2.0,3.0,,0.1,0.1,0.1,1,2", "PASHR"),          # RT300: a time first
     ("PASHR,,1.0,T,2.0,3.0,,0.1,0.1,0.1,1,2", "PASHR"),                   # an empty field reads
-    ("PASHR,BTS,C,1,btsdev1,hs-344-fg,87,H,1,btsdev2,pc-377xs,68,T,0,,,", None),  # no keyword known
+    ("PASHR,BTS,C,1,btsdev1,hs-344-fg,87,H,1,btsdev2,pc-377xs,68,T,0,,,", "PASHR_BTS"),  # a keyword
+    ("PASHR,QQQ,C,1,btsdev1,hs-344-fg,87,H,1,btsdev2,pc-377xs,68,T,0,,,", None),  # no keyword known
     ("PASHR,12X519.00,1.0,T", None),
     ("PQTMDEBUGOFF", "PQTMDEBUGOFF"),                                    # no fields, as its layout
     ("PQTMDEBUGOFF,OK", "PQTMDEBUGOFF_RESULT"),                           # the reply's keyword

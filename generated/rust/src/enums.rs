@@ -19,18 +19,19 @@
 //   spec/enums/ais_ship_type.yaml, spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml,
 //   spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml,
 //   spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
+//   spec/enums/ashtech_base_kind.yaml, spec/enums/ashtech_base_motion.yaml,
 //   spec/enums/ashtech_hpr_mode.yaml, spec/enums/ashtech_nme_message.yaml,
 //   spec/enums/ashtech_on_off.yaml, spec/enums/ashtech_port.yaml,
 //   spec/enums/ashtech_pos_solution.yaml, spec/enums/ashtech_rt300_alignment.yaml,
 //   spec/enums/ashtech_rt300_quality.yaml, spec/enums/ashtech_sv_used.yaml,
-//   spec/enums/ashtech_vector_mode.yaml, spec/enums/broadcom_glor_confidence.yaml,
-//   spec/enums/broadcom_glor_location_request.yaml, spec/enums/broadcom_glor_power_save.yaml,
-//   spec/enums/broadcom_glor_vel_track_quality.yaml, spec/enums/comnav_log_message.yaml,
-//   spec/enums/comnav_talker_id.yaml, spec/enums/comnav_talker_sentence.yaml,
-//   spec/enums/cur_direction_reference.yaml, spec/enums/cur_heading_reference.yaml,
-//   spec/enums/cur_speed_reference.yaml, spec/enums/ddc_command_mode.yaml,
-//   spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml, spec/enums/dor_status.yaml,
-//   spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
+//   spec/enums/ashtech_vec_mode.yaml, spec/enums/ashtech_vector_mode.yaml,
+//   spec/enums/broadcom_glor_confidence.yaml, spec/enums/broadcom_glor_location_request.yaml,
+//   spec/enums/broadcom_glor_power_save.yaml, spec/enums/broadcom_glor_vel_track_quality.yaml,
+//   spec/enums/comnav_log_message.yaml, spec/enums/comnav_talker_id.yaml,
+//   spec/enums/comnav_talker_sentence.yaml, spec/enums/cur_direction_reference.yaml,
+//   spec/enums/cur_heading_reference.yaml, spec/enums/cur_speed_reference.yaml,
+//   spec/enums/ddc_command_mode.yaml, spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml,
+//   spec/enums/dor_status.yaml, spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
 //   spec/enums/dsc_acknowledgement.yaml, spec/enums/dsc_category.yaml,
 //   spec/enums/dsc_distress_nature.yaml, spec/enums/dsc_format.yaml, spec/enums/dse_code.yaml,
 //   spec/enums/dse_query_flag.yaml, spec/enums/dtm_datum.yaml, spec/enums/dtm_lat_offset_dir.yaml,
@@ -129,7 +130,7 @@
 //   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 //   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 //   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-//   (digest 8827572f965de620)
+//   (digest ccf28b4d81de5467)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -3131,6 +3132,100 @@ impl CodeEnum for ApbBearingRef {
     }
 }
 
+/// Ashtech base kind: Whether the base of a baseline vector ($PASHR,VCT) is a real station or a
+/// virtual one.
+#[cfg(feature = "ashtech")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AshtechBaseKind {
+    /// A physical base station.
+    Physical,
+    /// A virtual reference station (VRS).
+    Virtual,
+}
+
+#[cfg(feature = "ashtech")]
+impl CodeEnum for AshtechBaseKind {
+    const EXPECTED: &'static str = "ashtech_base_kind code (0 1)";
+    const EXPECTED_CHARS: &'static str = "ashtech_base_kind codes (0 1)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::Physical, Self::Virtual];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Physical),
+            b"1" => Some(Self::Virtual),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Physical => "0",
+            Self::Virtual => "1",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Physical => "physical",
+            Self::Virtual => "virtual",
+        }
+    }
+}
+
+/// Ashtech base motion assumption: Whether the base of a baseline vector ($PASHR,VCT) is taken to
+/// stand still or to move.
+#[cfg(feature = "ashtech")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AshtechBaseMotion {
+    /// The base is assumed static.
+    Static,
+    /// The base is assumed moving.
+    Moving,
+}
+
+#[cfg(feature = "ashtech")]
+impl CodeEnum for AshtechBaseMotion {
+    const EXPECTED: &'static str = "ashtech_base_motion code (0 1)";
+    const EXPECTED_CHARS: &'static str = "ashtech_base_motion codes (0 1)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::Static, Self::Moving];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Static),
+            b"1" => Some(Self::Moving),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Static => "0",
+            Self::Moving => "1",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Static => "static",
+            Self::Moving => "moving",
+        }
+    }
+}
+
 /// Ashtech HPR attitude/heading mode: State of the baseline processing of a heading receiver, in
 /// $PASHR,HPR.
 #[cfg(feature = "ashtech")]
@@ -3920,6 +4015,68 @@ impl CodeEnum for AshtechSvUsed {
         match self {
             Self::Used => "used",
             Self::NotUsed => "not_used",
+        }
+    }
+}
+
+/// Ashtech VEC position mode: Kind of position solution a $PASHR,VEC vector comes from.
+#[cfg(feature = "ashtech")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AshtechVecMode {
+    /// Autonomous position.
+    Autonomous,
+    /// Code differential (RTCM corrections, or SBAS differential).
+    Differential,
+    /// RTK solution with float ambiguities.
+    RtkFloat,
+    /// RTK solution with fixed ambiguities.
+    RtkFixed,
+    /// SBAS differential, when the receiver is set to report it with its own code.
+    SbasDifferential,
+}
+
+#[cfg(feature = "ashtech")]
+impl CodeEnum for AshtechVecMode {
+    const EXPECTED: &'static str = "ashtech_vec_mode code (0 1 2 3 9)";
+    const EXPECTED_CHARS: &'static str = "ashtech_vec_mode codes (0 1 2 3 9)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] =
+        &[Self::Autonomous, Self::Differential, Self::RtkFloat, Self::RtkFixed, Self::SbasDifferential];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Autonomous),
+            b"1" => Some(Self::Differential),
+            b"2" => Some(Self::RtkFloat),
+            b"3" => Some(Self::RtkFixed),
+            b"9" => Some(Self::SbasDifferential),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Autonomous => "0",
+            Self::Differential => "1",
+            Self::RtkFloat => "2",
+            Self::RtkFixed => "3",
+            Self::SbasDifferential => "9",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Autonomous => "autonomous",
+            Self::Differential => "differential",
+            Self::RtkFloat => "rtk_float",
+            Self::RtkFixed => "rtk_fixed",
+            Self::SbasDifferential => "sbas_differential",
         }
     }
 }
