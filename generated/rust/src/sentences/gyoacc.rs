@@ -34,7 +34,7 @@ use crate::LayoutId;
 /// $GYOACC,ddmmyy,hhmmss.sss,x.x,x.x,x.x,x,x.x,x.x,x.x,x,x,x,x,x*hh
 /// ```
 ///
-/// Example (Unicore reference commands manual for the UM621 and UM681A GNSS/INS modules, NMEA outputs GYOACC and IMURAW (public web edition)):
+/// Example (Unicore reference commands manual for the UM621 and UM681A GNSS/INS modules (also UC6580, UM620, UM670A, UM680A), NMEA outputs GYOACC and IMURAW, PRODUCTINFO (public web edition)):
 ///
 /// ```text
 /// $GYOACC,081118,053152.000,0.017618,0.031686,0.019729,200,6.489322,-6.913150,2.960812,200,0,5,200,1*2C

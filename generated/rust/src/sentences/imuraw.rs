@@ -29,7 +29,7 @@ use crate::LayoutId;
 /// $IMURAW,ddmmyy,hhmmss.sss,x.x,x.x,x.x,x.x,x.x,x.x,x*hh
 /// ```
 ///
-/// Example (Unicore reference commands manual for the UM621 and UM681A GNSS/INS modules, NMEA outputs GYOACC and IMURAW (public web edition)):
+/// Example (Unicore reference commands manual for the UM621 and UM681A GNSS/INS modules (also UC6580, UM620, UM670A, UM680A), NMEA outputs GYOACC and IMURAW, PRODUCTINFO (public web edition)):
 ///
 /// ```text
 /// $IMURAW,111223,064122.661,-0.017642,0.016745,0.015113,0.347367,-0.004711,10.241478,2*29
