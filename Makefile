@@ -203,9 +203,20 @@ build/c/test_stream: build/c/subset/c/nmea.c tests/c/test_stream.c
 build/c/test_stream_smallest: build/c/subset/c/nmea.c tests/c/test_stream.c
 	$(CC) $(SANITIZE) $(SMALLEST) -I build/c/subset/c -o $@ $^
 
+# The UBX pair's tests (runtime/c/test_ubx.c): the shared vectors, then every UBX frame the framer
+# finds in gpsd's logs decoded and encoded back byte for byte.
+UBX_LOGS := $(sort $(wildcard tests/data/ubx/*.log)) $(sort $(wildcard tests/data/rtcm3/*.log))
+build/c/test_ubx: build/c/nmea-test.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
+	@mkdir -p build/c
+	$(CC) $(CFLAGS) -O0 -I generated/c -o $@ build/c/nmea-test.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
+
+build/c/test_ubx_san: build/c/nmea-san.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
+	$(CLANG) $(SANITIZE) -I generated/c -o $@ build/c/nmea-san.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
+
 test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o build/c/test_stream \
-        build/c/test_stream_smallest build/c/test_ais build/c/test_ais_2_slots
+        build/c/test_stream_smallest build/c/test_ais build/c/test_ais_2_slots build/c/test_ubx
 	build/c/test_examples
+	build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS)
 	build/c/test_ais generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
 	build/c/test_ais_2_slots generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
 	build/c/test_examples_general
@@ -218,8 +229,11 @@ test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o
 # the first five lines of each kind (sentence and address, or error) of every real log.
 MEMORY_INPUTS := tests/agreement/edge_cases.txt $(sort $(wildcard ../shared/corpus/real/*/*.nmea))
 
-test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_examples $(TEST_BIN)/nmea-c $(STAMP)
+test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_examples $(TEST_BIN)/nmea-c $(STAMP) \
+        build/c/test_ubx_san build/c/test_ubx
 	build/c/test_examples_san
+	build/c/test_ubx_san generated/vectors/ubx.jsonl $(UBX_LOGS)
+	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS) > /dev/null
 	@cat $(MEMORY_INPUTS) > build/c/memory.nmea
 	build/c/nmea-c-san decode < build/c/memory.nmea > build/c/asan.jsonl
 	build/c/nmea-c-san decode --values < build/c/memory.nmea > /dev/null
