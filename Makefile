@@ -210,13 +210,18 @@ build/c/test_ubx: build/c/nmea-test.o generated/c/nmea_ubx.c generated/c/nmea_ub
 	@mkdir -p build/c
 	$(CC) $(CFLAGS) -O0 -I generated/c -o $@ build/c/nmea-test.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
 
+# ... and with every group's array lowered to 8 entries: what has more is refused as too_many_entries.
+build/c/test_ubx_8: build/c/nmea-test.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
+	$(CC) $(CFLAGS) -O0 -DNMEA_UBX_MAX_ENTRIES=8 -I generated/c -o $@ build/c/nmea-test.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
+
 build/c/test_ubx_san: build/c/nmea-san.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
 	$(CLANG) $(SANITIZE) -I generated/c -o $@ build/c/nmea-san.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
 
 test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o build/c/test_stream \
-        build/c/test_stream_smallest build/c/test_ais build/c/test_ais_2_slots build/c/test_ubx
+        build/c/test_stream_smallest build/c/test_ais build/c/test_ais_2_slots build/c/test_ubx build/c/test_ubx_8
 	build/c/test_examples
 	build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS)
+	build/c/test_ubx_8 generated/vectors/ubx.jsonl $(UBX_LOGS)
 	build/c/test_ais generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
 	build/c/test_ais_2_slots generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
 	build/c/test_examples_general
