@@ -36,7 +36,7 @@
 //   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
 //   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/hnr_pvt.yaml,
 //   spec/binary/ubx/messages/hnr_att.yaml, spec/binary/ubx/messages/hnr_ins.yaml,
-//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest abb9212f48db8b34)
+//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest fe65b33e67f552a8)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -148,91 +148,100 @@ static bool ubx_short(ubx_reader *r, const char *field, size_t need)
     return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, field);
 }
 
-/* Reads `items` into the struct at `m`; false with the error set. `*done` is set when an optional
-   field is missing (nothing after it is read). */
-static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, uint8_t *m, bool *done)
+/* Reads one field (not a group) into the struct at `m`; `*word` is the last bitfield word read,
+   whose parts follow it. False with the error set; `*done` set when an optional field is missing
+   (nothing after it is read). */
+static bool ubx_read_field(ubx_reader *r, const nmea_ubx_item *it, uint8_t *m, uint64_t *word, bool *done)
+{
+    uint8_t *at = m + it->offset;
+    size_t left = r->len - r->pos;
+    uint64_t raw;
+    if (it->kind >= NMEA_UBX_ITEM_PART && it->kind <= NMEA_UBX_ITEM_PART_FLAG) {
+        raw = *word >> it->low & (it->size < 64 ? ((uint64_t)1 << it->size) - 1 : ~(uint64_t)0);
+        if (it->kind == NMEA_UBX_ITEM_PART_FLAG)
+            *(bool *)(void *)at = raw != 0;
+        else
+            ubx_set(at, it->member, it->kind == NMEA_UBX_ITEM_PART_SIGNED ? ubx_sign(raw, it->size) : raw);
+        return true;
+    }
+    if (it->kind == NMEA_UBX_ITEM_VIEW) {
+        nmea_ubx_bytes view;
+        view.ptr = r->p + r->pos;
+        view.len = left > it->after ? left - it->after : 0;
+        memcpy(at, &view, sizeof view);
+        r->pos += view.len;
+        return true;
+    }
+    if (it->size > left) {
+        if (it->optional) {
+            *done = true;
+            return true;
+        }
+        return ubx_short(r, it->id, it->size);
+    }
+    if (it->optional)
+        *(bool *)(void *)(m + it->has) = true;
+    if (it->kind == NMEA_UBX_ITEM_ARRAY) {
+        memcpy(at, r->p + r->pos, it->size);
+    } else {
+        raw = ubx_le(r->p + r->pos, it->size);
+        if (it->kind == NMEA_UBX_ITEM_FLOAT && it->size == 4) {
+            uint32_t bits = (uint32_t)raw;
+            memcpy(at, &bits, 4); /* a float's bits, as sent (a NaN's too) */
+        } else if (it->kind == NMEA_UBX_ITEM_FLOAT) {
+            memcpy(at, &raw, 8);
+        } else {
+            ubx_set(at, it->member, it->kind == NMEA_UBX_ITEM_SIGNED ? ubx_sign(raw, 8u * it->size) : raw);
+        }
+        *word = raw;
+    }
+    r->pos += it->size;
+    return true;
+}
+
+/* Reads a layout's `items` into the struct at `m`, a group's entries field by field (a group
+   holds no group: the reader does not recurse). False with the error set. */
+static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, uint8_t *m)
 {
     uint64_t word = 0;
-    size_t i, k, left;
-    for (i = 0; i < n; i++) {
+    bool done = false;
+    size_t i, k, f;
+    for (i = 0; i < n && !done; i++) {
         const nmea_ubx_item *it = &items[i];
-        uint8_t *at = m + it->offset;
-        left = r->len - r->pos;
-        switch (it->kind) {
-        case NMEA_UBX_ITEM_PART:
-        case NMEA_UBX_ITEM_PART_SIGNED:
-        case NMEA_UBX_ITEM_PART_FLAG: {
-            uint64_t raw = word >> it->low & (it->size < 64 ? ((uint64_t)1 << it->size) - 1 : ~(uint64_t)0);
-            if (it->kind == NMEA_UBX_ITEM_PART_FLAG)
-                *(bool *)(void *)at = raw != 0;
-            else
-                ubx_set(at, it->member, it->kind == NMEA_UBX_ITEM_PART_SIGNED ? ubx_sign(raw, it->size) : raw);
+        const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
+        size_t left = r->len - r->pos, count;
+        uint16_t stored;
+        if (it->kind != NMEA_UBX_ITEM_GROUP) {
+            if (!ubx_read_field(r, it, m, &word, &done))
+                return false;
             continue;
         }
-        case NMEA_UBX_ITEM_GROUP: {
-            const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
-            size_t count = g->count_kind == NMEA_UBX_COUNT_FIXED   ? g->count
-                           : g->count_kind == NMEA_UBX_COUNT_FIELD ? (size_t)ubx_get(m + g->count_offset, g->count_member, false)
-                           : left > g->after                       ? (left - g->after) / g->entry_bytes
-                                                                   : 0;
-            uint16_t stored;
-            if (g->count_kind == NMEA_UBX_COUNT_LEFT && count > g->limit)
-                count = g->limit;
-            if (count < g->min || count * g->entry_bytes > left) {
-                snprintf(r->err->text, sizeof r->err->text, "%s needs %lu entries of %u bytes at byte %lu, the payload has %lu",
-                         it->id, (unsigned long)(count < g->min ? g->min : count), (unsigned)g->entry_bytes,
-                         (unsigned long)r->pos, (unsigned long)r->len);
-                return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, it->id);
-            }
-            if (count > g->max) {
-                snprintf(r->err->text, sizeof r->err->text, "%s has %lu entries, this build holds %u (NMEA_UBX_MAX_ENTRIES)",
-                         it->id, (unsigned long)count, (unsigned)g->max);
-                return ubx_fail(r->err, NMEA_UBX_TOO_MANY, r->address, it->id);
-            }
-            for (k = 0; k < count; k++) {
-                bool ignored = false;
-                if (!ubx_read_items(r, g->items, g->n_items, at + k * g->entry_size, &ignored))
+        count = g->count_kind == NMEA_UBX_COUNT_FIXED   ? g->count
+                : g->count_kind == NMEA_UBX_COUNT_FIELD ? (size_t)ubx_get(m + g->count_offset, g->count_member, false)
+                : left > g->after                       ? (left - g->after) / g->entry_bytes
+                                                        : 0;
+        if (g->count_kind == NMEA_UBX_COUNT_LEFT && count > g->limit)
+            count = g->limit;
+        if (count < g->min || count * g->entry_bytes > left) {
+            snprintf(r->err->text, sizeof r->err->text, "%s needs %lu entries of %u bytes at byte %lu, the payload has %lu",
+                     it->id, (unsigned long)(count < g->min ? g->min : count), (unsigned)g->entry_bytes,
+                     (unsigned long)r->pos, (unsigned long)r->len);
+            return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, it->id);
+        }
+        if (count > g->max) {
+            snprintf(r->err->text, sizeof r->err->text, "%s has %lu entries, this build holds %u (NMEA_UBX_MAX_ENTRIES)",
+                     it->id, (unsigned long)count, (unsigned)g->max);
+            return ubx_fail(r->err, NMEA_UBX_TOO_MANY, r->address, it->id);
+        }
+        for (k = 0; k < count; k++) {
+            uint64_t entry_word = 0;
+            bool ignored = false;
+            for (f = 0; f < g->n_items; f++)
+                if (!ubx_read_field(r, &g->items[f], m + it->offset + k * g->entry_size, &entry_word, &ignored))
                     return false;
-            }
-            stored = (uint16_t)count;
-            memcpy(m + g->n_offset, &stored, sizeof stored);
-            continue;
         }
-        case NMEA_UBX_ITEM_VIEW: {
-            nmea_ubx_bytes view;
-            view.ptr = r->p + r->pos;
-            view.len = left > it->after ? left - it->after : 0;
-            memcpy(at, &view, sizeof view);
-            r->pos += view.len;
-            continue;
-        }
-        default:
-            break;
-        }
-        if (it->size > left) {
-            if (it->optional) {
-                *done = true;
-                return true;
-            }
-            return ubx_short(r, it->id, it->size);
-        }
-        if (it->optional)
-            *(bool *)(void *)(m + it->has) = true;
-        if (it->kind == NMEA_UBX_ITEM_ARRAY) {
-            memcpy(at, r->p + r->pos, it->size);
-        } else {
-            uint64_t raw = ubx_le(r->p + r->pos, it->size);
-            if (it->kind == NMEA_UBX_ITEM_FLOAT && it->size == 4) {
-                uint32_t bits = (uint32_t)raw;
-                memcpy(at, &bits, 4); /* a float's bits, as sent (a NaN's too) */
-            } else if (it->kind == NMEA_UBX_ITEM_FLOAT) {
-                memcpy(at, &raw, 8);
-            } else {
-                ubx_set(at, it->member, it->kind == NMEA_UBX_ITEM_SIGNED ? ubx_sign(raw, 8u * it->size) : raw);
-            }
-            word = raw;
-        }
-        r->pos += it->size;
+        stored = (uint16_t)count;
+        memcpy(m + g->n_offset, &stored, sizeof stored);
     }
     return true;
 }
@@ -281,84 +290,83 @@ static bool ubx_fits(uint64_t value, unsigned bits, bool is_signed)
     return value >> bits == 0;
 }
 
-/* Writes `items` of the struct at `m`; stops at an optional field whose flag is false. */
+/* Writes field `items[i]` (not a group) of the struct at `m`: a bitfield word with its parts,
+   which follow it, in their bits; a part is written with its word. */
+static bool ubx_write_field(ubx_writer *w, const nmea_ubx_item *items, size_t n, size_t i, const uint8_t *m)
+{
+    const nmea_ubx_item *it = &items[i];
+    const uint8_t *at = m + it->offset;
+    uint64_t value = 0;
+    size_t k;
+    switch (it->kind) {
+    case NMEA_UBX_ITEM_PART:
+    case NMEA_UBX_ITEM_PART_SIGNED:
+    case NMEA_UBX_ITEM_PART_FLAG:
+        return true;
+    case NMEA_UBX_ITEM_VIEW: {
+        nmea_ubx_bytes view;
+        memcpy(&view, at, sizeof view);
+        return !view.len || ubx_put(w, view.ptr, view.len, it->id);
+    }
+    case NMEA_UBX_ITEM_ARRAY:
+        return ubx_put(w, at, it->size, it->id);
+    case NMEA_UBX_ITEM_FLOAT:
+        if (it->size == 4) {
+            uint32_t bits;
+            memcpy(&bits, at, 4);
+            value = bits;
+        } else {
+            memcpy(&value, at, 8);
+        }
+        return ubx_put_le(w, value, it->size, it->id);
+    case NMEA_UBX_ITEM_WORD:
+        /* The word with its parts' values in their bits; bits no part names stay as they are. */
+        value = ubx_get(at, it->member, false);
+        for (k = i + 1; k < n && items[k].kind >= NMEA_UBX_ITEM_PART && items[k].kind <= NMEA_UBX_ITEM_PART_FLAG; k++) {
+            const nmea_ubx_item *part = &items[k];
+            uint64_t mask = part->size < 64 ? ((uint64_t)1 << part->size) - 1 : ~(uint64_t)0;
+            uint64_t bits = part->kind == NMEA_UBX_ITEM_PART_FLAG
+                                ? *(const bool *)(const void *)(m + part->offset)
+                                : ubx_get(m + part->offset, part->member, part->kind == NMEA_UBX_ITEM_PART_SIGNED);
+            if (!ubx_fits(bits, part->size, part->kind == NMEA_UBX_ITEM_PART_SIGNED))
+                return ubx_bad_value(w, part->id, part->size);
+            value = (value & ~(mask << part->low)) | (bits & mask) << part->low;
+        }
+        return ubx_put_le(w, value, it->size, it->id);
+    default:
+        value = ubx_get(at, it->member, it->kind == NMEA_UBX_ITEM_SIGNED);
+        if (!ubx_fits(value, 8u * it->size, it->kind == NMEA_UBX_ITEM_SIGNED))
+            return ubx_bad_value(w, it->id, 8u * it->size);
+        return ubx_put_le(w, value, it->size, it->id);
+    }
+}
+
+/* Writes a layout's `items` of the struct at `m`, a group's entries field by field; stops at an
+   optional field whose flag is false. */
 static bool ubx_write_items(ubx_writer *w, const nmea_ubx_item *items, size_t n, const uint8_t *m)
 {
-    size_t i, k;
+    size_t i, k, f;
     for (i = 0; i < n; i++) {
         const nmea_ubx_item *it = &items[i];
-        const uint8_t *at = m + it->offset;
+        const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
+        uint16_t count;
         if (it->optional && !*(const bool *)(const void *)(m + it->has))
             return true;
-        switch (it->kind) {
-        case NMEA_UBX_ITEM_PART:
-        case NMEA_UBX_ITEM_PART_SIGNED:
-        case NMEA_UBX_ITEM_PART_FLAG:
-            break; /* written with their word */
-        case NMEA_UBX_ITEM_GROUP: {
-            const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
-            uint16_t count;
-            memcpy(&count, m + g->n_offset, sizeof count);
-            if (count > g->max) {
-                snprintf(w->err->text, sizeof w->err->text, "%s has %u entries, its array holds %u", it->id,
-                         (unsigned)count, (unsigned)g->max);
-                return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, it->id);
-            }
-            for (k = 0; k < count; k++)
-                if (!ubx_write_items(w, g->items, g->n_items, at + k * g->entry_size))
+        if (it->kind != NMEA_UBX_ITEM_GROUP) {
+            if (!ubx_write_field(w, items, n, i, m))
+                return false;
+            continue;
+        }
+        memcpy(&count, m + g->n_offset, sizeof count);
+        if (count > g->max) {
+            snprintf(w->err->text, sizeof w->err->text, "%s has %u entries, its array holds %u", it->id, (unsigned)count,
+                     (unsigned)g->max);
+            return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, it->id);
+        }
+        for (k = 0; k < count; k++)
+            for (f = 0; f < g->n_items; f++)
+                if (!ubx_write_field(w, g->items, g->n_items, f, m + it->offset + k * g->entry_size))
                     return false;
-            break;
-        }
-        case NMEA_UBX_ITEM_VIEW: {
-            nmea_ubx_bytes view;
-            memcpy(&view, at, sizeof view);
-            if (view.len && !ubx_put(w, view.ptr, view.len, it->id))
-                return false;
-            break;
-        }
-        case NMEA_UBX_ITEM_ARRAY:
-            if (!ubx_put(w, at, it->size, it->id))
-                return false;
-            break;
-        case NMEA_UBX_ITEM_FLOAT: {
-            uint64_t raw = 0;
-            if (it->size == 4) {
-                uint32_t bits;
-                memcpy(&bits, at, 4);
-                raw = bits;
-            } else {
-                memcpy(&raw, at, 8);
-            }
-            if (!ubx_put_le(w, raw, it->size, it->id))
-                return false;
-            break;
-        }
-        case NMEA_UBX_ITEM_WORD: {
-            /* The word with its parts' values in their bits; bits no part names stay as they are. */
-            uint64_t word = ubx_get(at, it->member, false);
-            for (k = i + 1; k < n && items[k].kind >= NMEA_UBX_ITEM_PART && items[k].kind <= NMEA_UBX_ITEM_PART_FLAG; k++) {
-                const nmea_ubx_item *part = &items[k];
-                uint64_t mask = part->size < 64 ? ((uint64_t)1 << part->size) - 1 : ~(uint64_t)0;
-                uint64_t value = part->kind == NMEA_UBX_ITEM_PART_FLAG
-                                     ? *(const bool *)(const void *)(m + part->offset)
-                                     : ubx_get(m + part->offset, part->member, part->kind == NMEA_UBX_ITEM_PART_SIGNED);
-                if (!ubx_fits(value, part->size, part->kind == NMEA_UBX_ITEM_PART_SIGNED))
-                    return ubx_bad_value(w, part->id, part->size);
-                word = (word & ~(mask << part->low)) | (value & mask) << part->low;
-            }
-            if (!ubx_put_le(w, word, it->size, it->id))
-                return false;
-            break;
-        }
-        default: {
-            bool is_signed = it->kind == NMEA_UBX_ITEM_SIGNED;
-            uint64_t value = ubx_get(at, it->member, is_signed);
-            if (!ubx_fits(value, 8u * it->size, is_signed))
-                return ubx_bad_value(w, it->id, 8u * it->size);
-            if (!ubx_put_le(w, value, it->size, it->id))
-                return false;
-        }
-        }
     }
     return true;
 }
@@ -484,104 +492,114 @@ static void ubx_json_big(ubx_json_out *j, const uint8_t *p, size_t len)
         ubx_json_put(j, &digits[count], 1);
 }
 
-/* The JSON members of `items` of the struct at `m` (those of generated/vectors/ubx.jsonl). */
-static void ubx_json_items(ubx_json_out *j, const nmea_ubx_item *items, size_t n, const uint8_t *m)
+/* The JSON member of field `it` (not a group) of the struct at `m`. */
+static void ubx_json_field(ubx_json_out *j, const nmea_ubx_item *it, const uint8_t *m)
 {
-    size_t i, k;
-    for (i = 0; i < n; i++) {
-        const nmea_ubx_item *it = &items[i];
-        const uint8_t *at = m + it->offset;
-        bool is_signed = it->kind == NMEA_UBX_ITEM_SIGNED || it->kind == NMEA_UBX_ITEM_PART_SIGNED;
-        uint64_t value;
-        if (it->optional && !*(const bool *)(const void *)(m + it->has))
-            return;
-        ubx_json_key(j, it->id);
-        switch (it->kind) {
-        case NMEA_UBX_ITEM_GROUP: {
-            const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
-            uint16_t count;
-            memcpy(&count, m + g->n_offset, sizeof count);
-            ubx_json_puts(j, "[");
-            for (k = 0; k < count; k++) {
-                ubx_json_puts(j, k ? ",{" : "{");
-                j->empty = true;
-                ubx_json_items(j, g->items, g->n_items, at + k * g->entry_size);
-                ubx_json_puts(j, "}");
-            }
-            ubx_json_puts(j, "]");
-            j->empty = false;
-            continue;
+    const uint8_t *at = m + it->offset;
+    bool is_signed = it->kind == NMEA_UBX_ITEM_SIGNED || it->kind == NMEA_UBX_ITEM_PART_SIGNED;
+    uint64_t value;
+    size_t k;
+    ubx_json_key(j, it->id);
+    switch (it->kind) {
+    case NMEA_UBX_ITEM_VIEW: {
+        nmea_ubx_bytes view;
+        memcpy(&view, at, sizeof view);
+        if (it->print == NMEA_UBX_PRINT_CHARS)
+            ubx_json_chars(j, view.ptr, view.len);
+        else
+            ubx_json_hex(j, view.ptr, view.len);
+        return;
+    }
+    case NMEA_UBX_ITEM_ARRAY:
+        if (it->print == NMEA_UBX_PRINT_CHARS)
+            ubx_json_chars(j, at, it->size);
+        else if (it->print == NMEA_UBX_PRINT_HEX)
+            ubx_json_hex(j, at, it->size);
+        else
+            ubx_json_big(j, at, it->size);
+        return;
+    case NMEA_UBX_ITEM_FLOAT:
+        if (it->size == 4) {
+            float f;
+            memcpy(&f, at, 4);
+            ubx_json_float(j, (double)f);
+        } else {
+            double d;
+            memcpy(&d, at, 8);
+            ubx_json_float(j, d);
         }
-        case NMEA_UBX_ITEM_VIEW: {
-            nmea_ubx_bytes view;
-            memcpy(&view, at, sizeof view);
-            if (it->print == NMEA_UBX_PRINT_CHARS)
-                ubx_json_chars(j, view.ptr, view.len);
-            else
-                ubx_json_hex(j, view.ptr, view.len);
-            continue;
-        }
-        case NMEA_UBX_ITEM_ARRAY:
-            if (it->print == NMEA_UBX_PRINT_CHARS)
-                ubx_json_chars(j, at, it->size);
-            else if (it->print == NMEA_UBX_PRINT_HEX)
-                ubx_json_hex(j, at, it->size);
-            else
-                ubx_json_big(j, at, it->size);
-            continue;
-        case NMEA_UBX_ITEM_FLOAT:
-            if (it->size == 4) {
-                float f;
-                memcpy(&f, at, 4);
-                ubx_json_float(j, (double)f);
-            } else {
-                double d;
-                memcpy(&d, at, 8);
-                ubx_json_float(j, d);
-            }
-            continue;
-        case NMEA_UBX_ITEM_PART_FLAG:
-            ubx_json_puts(j, *(const bool *)(const void *)at ? "true" : "false");
-            continue;
-        default:
-            break;
-        }
-        value = ubx_get(at, it->member, is_signed);
-        if (it->print == NMEA_UBX_PRINT_CODE) { /* an enum's code: its id, or the number of one it does not name */
-            const nmea_ubx_codes *codes = (const nmea_ubx_codes *)it->extra;
-            const char *id = NULL;
-            for (k = 0; k < codes->n && !id; k++)
-                if (codes->codes[k].code == (int64_t)value)
-                    id = codes->codes[k].id;
-            if (id) {
-                ubx_json_puts(j, "\"");
-                ubx_json_puts(j, id);
-                ubx_json_puts(j, "\"");
-            } else {
-                ubx_json_number(j, value, is_signed);
-            }
-        } else if (it->print == NMEA_UBX_PRINT_SCALED) { /* its value or special value's id, then its raw integer */
-            const nmea_ubx_scale *s = (const nmea_ubx_scale *)it->extra;
-            const char *special = NULL;
-            char raw_name[64];
-            for (k = 0; k < s->n_specials && !special; k++)
-                if (s->specials[k].raw == (int64_t)value)
-                    special = s->specials[k].id;
-            if (special) {
-                ubx_json_puts(j, "\"");
-                ubx_json_puts(j, special);
-                ubx_json_puts(j, "\"");
-            } else if (s->real) {
-                ubx_json_float(j, (is_signed ? (double)(int64_t)value : (double)value) / s->divisor + s->base);
-            } else {
-                ubx_json_number(j, value + (uint64_t)(int64_t)s->base, true);
-            }
-            snprintf(raw_name, sizeof raw_name, "%s_raw", it->id);
-            ubx_json_key(j, raw_name);
-            ubx_json_number(j, value, is_signed);
+        return;
+    case NMEA_UBX_ITEM_PART_FLAG:
+        ubx_json_puts(j, *(const bool *)(const void *)at ? "true" : "false");
+        return;
+    default:
+        break;
+    }
+    value = ubx_get(at, it->member, is_signed);
+    if (it->print == NMEA_UBX_PRINT_CODE) { /* an enum's code: its id, or the number of one it does not name */
+        const nmea_ubx_codes *codes = (const nmea_ubx_codes *)it->extra;
+        const char *id = NULL;
+        for (k = 0; k < codes->n && !id; k++)
+            if (codes->codes[k].code == (int64_t)value)
+                id = codes->codes[k].id;
+        if (id) {
+            ubx_json_puts(j, "\"");
+            ubx_json_puts(j, id);
+            ubx_json_puts(j, "\"");
         } else {
             ubx_json_number(j, value, is_signed);
         }
+    } else if (it->print == NMEA_UBX_PRINT_SCALED) { /* its value or special value's id, then its raw integer */
+        const nmea_ubx_scale *s = (const nmea_ubx_scale *)it->extra;
+        const char *special = NULL;
+        char raw_name[64];
+        for (k = 0; k < s->n_specials && !special; k++)
+            if (s->specials[k].raw == (int64_t)value)
+                special = s->specials[k].id;
+        if (special) {
+            ubx_json_puts(j, "\"");
+            ubx_json_puts(j, special);
+            ubx_json_puts(j, "\"");
+        } else if (s->real) {
+            ubx_json_float(j, (is_signed ? (double)(int64_t)value : (double)value) / s->divisor + s->base);
+        } else {
+            ubx_json_number(j, value + (uint64_t)(int64_t)s->base, true);
+        }
+        snprintf(raw_name, sizeof raw_name, "%s_raw", it->id);
+        ubx_json_key(j, raw_name);
+        ubx_json_number(j, value, is_signed);
+    } else {
+        ubx_json_number(j, value, is_signed);
+    }
+}
+
+/* The JSON members of a layout's `items` of the struct at `m` (those of
+   generated/vectors/ubx.jsonl), a group's entries field by field. */
+static void ubx_json_items(ubx_json_out *j, const nmea_ubx_item *items, size_t n, const uint8_t *m)
+{
+    size_t i, k, f;
+    for (i = 0; i < n; i++) {
+        const nmea_ubx_item *it = &items[i];
+        const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
+        uint16_t count;
+        if (it->optional && !*(const bool *)(const void *)(m + it->has))
+            return;
+        if (it->kind != NMEA_UBX_ITEM_GROUP) {
+            ubx_json_field(j, it, m);
+            continue;
+        }
+        memcpy(&count, m + g->n_offset, sizeof count);
+        ubx_json_key(j, it->id);
+        ubx_json_puts(j, "[");
+        for (k = 0; k < count; k++) {
+            ubx_json_puts(j, k ? ",{" : "{");
+            j->empty = true;
+            for (f = 0; f < g->n_items; f++)
+                ubx_json_field(j, &g->items[f], m + it->offset + k * g->entry_size);
+            ubx_json_puts(j, "}");
+        }
+        ubx_json_puts(j, "]");
+        j->empty = false;
     }
 }
 
@@ -611,14 +629,13 @@ static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payloa
                             nmea_ubx_error *err)
 {
     ubx_reader r;
-    bool done = false;
     nmea_ubx_bytes trailing;
     r.p = payload;
     r.len = len;
     r.pos = 0;
     r.address = l->address;
     r.err = err;
-    if (!ubx_read_items(&r, l->items, l->n_items, m, &done))
+    if (!ubx_read_items(&r, l->items, l->n_items, m))
         return false;
     trailing.ptr = payload + r.pos;
     trailing.len = len - r.pos;
