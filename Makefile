@@ -24,7 +24,7 @@ export PYTHONPYCACHEPREFIX ?= $(CURDIR)/build/pycache
 
 .PHONY: generate validate check build test-bin footprint release-check changelog test test-quick test-steps system-deps test-runtimes test-generator test-python test-c test-c-memory test-rust test-rust-lint test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
-        fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-rust-replay fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
+        fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-c-ubx fuzz-python fuzz-rust fuzz-rust-replay fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
 
 # --no-compile: Python compiles the modules a run imports as it imports them, not every module ahead.
 $(STAMP): requirements.txt
@@ -365,6 +365,18 @@ FUZZ_LONG ?= fuzz-faults fuzz-memory
 # The replay comes after the runs whose findings it replays.
 fuzz: fuzz-c fuzz-rust fuzz-inprocess fuzz-python
 	$(MAKE) --no-print-directory fuzz-differential $(FUZZ_LONG)
+
+# The C UBX pair on its own (fuzz/c/fuzz_ubx.c), seeded with every UBX frame of the logs as class,
+# id and payload; not part of the smoke run.
+fuzz-c-ubx: $(STAMP)
+	@mkdir -p $(FUZZ)/corpus-ubx $(FUZZ)/seeds-ubx
+	PYTHONPATH=generated/python $(PY) -c 'import sys, pathlib; from nmeaspec import ubx; \
+		[pathlib.Path(sys.argv[1], f"{log.stem}-{pos}").write_bytes(bytes((f.msg_class, f.msg_id)) + f.payload) \
+		 for log in map(pathlib.Path, sys.argv[2:]) for pos, f in ubx.split_frames(log.read_bytes())]' \
+		$(FUZZ)/seeds-ubx $(UBX_LOGS)
+	$(CLANG) $(SANITIZE) -fsanitize=fuzzer -Igenerated/c -o $(FUZZ)/fuzz-c-ubx generated/c/nmea_ubx.c fuzz/c/fuzz_ubx.c
+	$(FUZZ)/fuzz-c-ubx $(subst -max_len=1100,-max_len=2100,$(FUZZ_FLAGS)) -artifact_prefix=$(FUZZ)/crash-c-ubx- $(FUZZ)/corpus-ubx \
+		$(FUZZ)/seeds-ubx
 
 fuzz-seeds: $(STAMP)
 	@rm -rf $(FUZZ)/seeds
