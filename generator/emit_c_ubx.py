@@ -13,13 +13,11 @@ every other member's offset stays small whatever the maxima."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import jinja2
 
 from .emit import RUNTIME, header
 from .emit_python_ubx import title
-from .model import BinaryMessage, EnumDef, Payload, PayloadField, PayloadGroup, Spec
+from .model import EnumDef, PayloadField, PayloadGroup, Spec
 from .names_c import member
 from .reference_ais import after
 
@@ -36,21 +34,14 @@ def _int_bytes(size: int) -> int:
 
 
 def _part_bytes(bits: int) -> int:
+    """The bytes of the C integer that holds a bitfield's part of `bits` bits."""
     return _int_bytes((bits + 7) // 8)
 
 
-@dataclass
-class _Item:
-    """One descriptor row, and the struct member it describes."""
-    decl: str                 # the member's declaration
-    row: dict[str, str]       # the descriptor's members by name
-    comment: str = ""
-    extra: list[str] = field(default_factory=list)   # members it adds (a has_ flag)
-
-
 def _doc(f: PayloadField) -> str:
+    """A member's comment: the field's name, unit, and its enum or how its raw integer scales."""
     unit = f" [{f.unit}]" if f.unit else ""
-    scale = ""
+    scale = f"; a code of {f.enum.id} (its JSON: the code's id)" if f.enum is not None else ""
     if f.scaled:
         scale = f"; raw, value = raw{f' / {f.divisor}' if f.divisor else ''}{f' + {f.base}' if f.base else ''}"
     return (f.name + unit + scale).replace("*/", "* /")
@@ -161,6 +152,8 @@ class _Layout:
             self._row(part, pname, "PART_SIGNED" if psigned else "PART", bits, pwidth, low=part.low)
 
     def _group(self, g: PayloadGroup, following: list) -> None:
+        # The interpreter reads an entry field by field: no group, optional field or bytes left in it.
+        assert all(isinstance(f, PayloadField) and f.bits is not None and not f.optional for f in g.fields), g.id
         word = g.id[:-1] if g.id.endswith("s") else g.id + "_entry"
         entry = _Layout(f"{self.struct}_{word}", f"{self.prefix}_{word}", list(g.fields), f"{self.upper}_{word.upper()}")
         assert not entry.entries, f"{self.struct}.{g.id}: a group in a group"
@@ -215,10 +208,6 @@ def enum_table(e: EnumDef) -> str:
             f"static const nmea_ubx_codes ubx_enum_{e.id} = {{ubx_enum_{e.id}_list, {len(e.values)}}};\n")
 
 
-def _layout(message: BinaryMessage, layout: Payload) -> _Layout:
-    return _Layout(f"nmea_ubx_{layout.id}", f"ubx_{layout.id}", layout.items, layout.id.upper())
-
-
 def carries_ubx(spec: Spec) -> bool:
     """Whether the spec describes UBX messages, and so the UBX pair beside the NMEA one."""
     return any(m.protocol == "ubx" for m in spec.binary)
@@ -230,15 +219,15 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     messages = sorted((m for m in spec.binary if m.protocol == "ubx"), key=lambda m: (m.class_number, m.msg_id))
     layouts = []
     for message in messages:
-        for i, layout in enumerate(message.layouts):
-            code = _layout(message, layout)
+        for layout in message.layouts:
+            code = _Layout(f"nmea_ubx_{layout.id}", f"ubx_{layout.id}", layout.items, layout.id.upper())
             version_at = 0
             if layout.version is not None:
                 version = next(f for f in layout.fields if f.id == "version")
                 assert version.offset is not None
                 version_at = version.offset // 8
             layouts.append(dict(
-                message=message, layout=layout, code=code, first=i == 0, last=i == len(message.layouts) - 1,
+                message=message, layout=layout, code=code,
                 typedefs=[e.typedef(e.doc, False) for e in code.entries] + [code.typedef(title(message, layout), True)],
                 tables="\n".join([*(e.code() for e in code.entries), code.code()]),
                 defines=[d for e in code.entries for d in e.defines] + code.defines,

@@ -308,7 +308,7 @@ typedef struct {
 /* Receiver navigation status: UBX NAV-STATUS (class 0x01 id 0x03), output. */
 typedef struct {
     uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
-    uint8_t gps_fix; /* GPS fix type */
+    uint8_t gps_fix; /* GPS fix type; a code of ubx_fix_type (its JSON: the code's id) */
     uint8_t flags; /* Navigation status flags (bitfield) */
     bool gps_fix_ok; /* Fix within the navigation output limits (flags bit 0) */
     bool diff_soln; /* Differential corrections applied (flags bit 1) */
@@ -374,7 +374,7 @@ typedef struct {
     uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
     int32_t ftow; /* Fraction of itow [ns] */
     int16_t week; /* GPS week number */
-    uint8_t gps_fix; /* GPS fix type */
+    uint8_t gps_fix; /* GPS fix type; a code of ubx_fix_type (its JSON: the code's id) */
     uint8_t flags; /* Fix status flags (bitfield) */
     bool gps_fix_ok; /* Fix within the navigation output limits (flags bit 0) */
     bool diff_soln; /* Differential corrections applied (flags bit 1) */
@@ -416,7 +416,7 @@ typedef struct {
     bool valid_mag; /* Valid magnetic declination (valid bit 3) */
     uint32_t t_acc; /* Time accuracy estimate (UTC) [ns] */
     int32_t nano; /* Fraction of second (UTC) [ns] */
-    uint8_t fix_type; /* GNSS fix type */
+    uint8_t fix_type; /* GNSS fix type; a code of ubx_fix_type (its JSON: the code's id) */
     uint8_t flags; /* Fix status flags (bitfield) */
     bool gnss_fix_ok; /* Valid fix (within the DOP and accuracy masks) (flags bit 0) */
     bool diff_soln; /* Differential corrections applied (flags bit 1) */
@@ -757,7 +757,7 @@ typedef struct {
 
 /* One entry of satellites (svs). */
 typedef struct {
-    uint8_t gnss_id; /* GNSS identifier */
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
     uint8_t sv_id; /* Satellite identifier */
     uint8_t cno; /* Carrier to noise ratio [dBHz] */
     int8_t elev; /* Elevation [deg] */
@@ -937,7 +937,7 @@ typedef struct {
 
 /* One entry of signals (signals). */
 typedef struct {
-    uint8_t gnss_id; /* GNSS identifier */
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
     uint8_t sv_id; /* Satellite identifier */
     uint8_t sig_id; /* Signal identifier */
     uint8_t freq_id; /* GLONASS frequency slot + 7 */
@@ -982,7 +982,7 @@ typedef struct {
 
 /* Broadcast navigation data subframe: UBX RXM-SFRBX (class 0x02 id 0x13), output. */
 typedef struct {
-    uint8_t gnss_id; /* GNSS identifier */
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
     uint8_t sv_id; /* Satellite identifier */
     uint8_t sig_id; /* Signal identifier (reserved on u-blox 8) */
     uint8_t freq_id; /* GLONASS frequency slot + 7 */
@@ -1005,7 +1005,7 @@ typedef struct {
     double pr_mes; /* Pseudorange [m] (its bits as sent) */
     double cp_mes; /* Carrier phase [cycles] (its bits as sent) */
     float do_mes; /* Doppler [Hz] (its bits as sent) */
-    uint8_t gnss_id; /* GNSS identifier */
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
     uint8_t sv_id; /* Satellite identifier */
     uint8_t sig_id; /* Signal identifier (reserved on u-blox 8) */
     uint8_t freq_id; /* GLONASS frequency slot + 7 */
@@ -1383,7 +1383,7 @@ typedef struct {
 
 /* One entry of configuration blocks (blocks). */
 typedef struct {
-    uint8_t gnss_id; /* GNSS identifier */
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
     uint8_t res_trk_ch; /* Tracking channels reserved */
     uint8_t max_trk_ch; /* Most tracking channels used */
     uint8_t reserved1; /* Reserved (reserved, as sent) */
@@ -1892,7 +1892,7 @@ typedef struct {
     bool valid_time; /* Valid UTC time of day (valid bit 1) */
     bool fully_resolved; /* UTC time of day fully resolved (valid bit 2) */
     int32_t nano; /* Fraction of second (UTC) [ns] */
-    uint8_t gps_fix; /* GPS fix type */
+    uint8_t gps_fix; /* GPS fix type; a code of ubx_fix_type (its JSON: the code's id) */
     uint8_t flags; /* Fix status flags (bitfield) */
     bool gps_fix_ok; /* Fix within the navigation output limits (flags bit 0) */
     bool diff_soln; /* Differential corrections applied (flags bit 1) */
