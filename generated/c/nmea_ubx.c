@@ -36,7 +36,7 @@
 //   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
 //   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/hnr_pvt.yaml,
 //   spec/binary/ubx/messages/hnr_att.yaml, spec/binary/ubx/messages/hnr_ins.yaml,
-//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest fe65b33e67f552a8)
+//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest a60d944d7760980e)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -2522,9 +2522,12 @@ static const struct {
 bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, size_t len, nmea_ubx_message *out,
                      nmea_ubx_error *err)
 {
+    static const uint8_t none[1] = {0};
     size_t lo = 0, hi = sizeof ubx_messages / sizeof ubx_messages[0], at;
     unsigned key = (unsigned)msg_class << 8 | msg_id;
     memset(out, 0, sizeof *out); /* every has_ flag false */
+    if (!len)
+        payload = none; /* a poll's payload may be NULL: its views point somewhere */
     while (lo < hi) { /* ubx_messages is sorted by class and id */
         size_t mid = lo + (hi - lo) / 2;
         unsigned here = (unsigned)ubx_messages[mid].msg_class << 8 | ubx_messages[mid].msg_id;

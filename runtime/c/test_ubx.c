@@ -213,12 +213,14 @@ static int log_frames(const char *path)
 #endif
 
 /* Messages built by hand: CFG-RATE at 1 Hz (the frame of u-blox's examples), and a bitfield's
-   part set on a decoded CFG-PRT (its word follows: in_proto_mask 0x07 -> 0x27). */
+   part set on a decoded CFG-PRT (its word follows: in_proto_mask 0x07 -> 0x27); a NAV-PVT poll
+   decoded from no payload (NULL) and encoded. */
 static void by_hand(void)
 {
     static const uint8_t rate[] = {0xB5, 0x62, 0x06, 0x08, 0x06, 0x00, 0xE8, 0x03, 0x01, 0x00, 0x01, 0x00, 0x01, 0x39};
     static const uint8_t prt[] = {0xB5, 0x62, 0x06, 0x00, 0x14, 0x00, 0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
                                   0x00, 0x00, 0x00, 0x00, 0x07, 0x00, 0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x27, 0xCE};
+    static const uint8_t poll[] = {0xB5, 0x62, 0x01, 0x07, 0x00, 0x00, 0x08, 0x19};
     static nmea_ubx_message message;
     nmea_ubx_error err;
     uint8_t frame[64];
@@ -231,6 +233,11 @@ static void by_hand(void)
     n = nmea_ubx_encode(&message, frame, sizeof frame, &err);
     if (n != sizeof rate || memcmp(frame, rate, n) != 0) {
         printf("FAIL CFG-RATE built by hand\n");
+        failed++;
+    }
+    if (!nmea_ubx_decode(0x01, 0x07, NULL, 0, &message, &err) || message.layout != NMEA_UBX_MSG_NAV_PVT_POLL ||
+        nmea_ubx_encode(&message, frame, sizeof frame, &err) != 8 || memcmp(frame, poll, 8) != 0) {
+        printf("FAIL a NAV-PVT poll of no payload (NULL)\n");
         failed++;
     }
     if (!nmea_ubx_decode_frame(prt, sizeof prt, &message, &err) || message.layout != NMEA_UBX_MSG_CFG_PRT ||
