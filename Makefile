@@ -24,7 +24,7 @@ export PYTHONPYCACHEPREFIX ?= $(CURDIR)/build/pycache
 
 .PHONY: generate validate check build test-bin footprint release-check changelog test test-quick test-steps system-deps test-runtimes test-generator test-python test-c test-c-memory test-rust test-rust-lint test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
-        fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-rust-replay fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
+        fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-c-ubx fuzz-python fuzz-rust fuzz-rust-replay fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
 
 # --no-compile: Python compiles the modules a run imports as it imports them, not every module ahead.
 $(STAMP): requirements.txt
@@ -203,9 +203,25 @@ build/c/test_stream: build/c/subset/c/nmea.c tests/c/test_stream.c
 build/c/test_stream_smallest: build/c/subset/c/nmea.c tests/c/test_stream.c
 	$(CC) $(SANITIZE) $(SMALLEST) -I build/c/subset/c -o $@ $^
 
+# The UBX pair's tests (runtime/c/test_ubx.c): the shared vectors, then every UBX frame the framer
+# finds in gpsd's logs decoded and encoded back byte for byte.
+UBX_LOGS := $(sort $(wildcard tests/data/ubx/*.log)) $(sort $(wildcard tests/data/rtcm3/*.log))
+build/c/test_ubx: build/c/nmea-test.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
+	@mkdir -p build/c
+	$(CC) $(CFLAGS) -O0 -I generated/c -o $@ build/c/nmea-test.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
+
+# ... and with every group's array lowered to 8 entries: what has more is refused as too_many_entries.
+build/c/test_ubx_8: build/c/nmea-test.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
+	$(CC) $(CFLAGS) -O0 -DNMEA_UBX_MAX_ENTRIES=8 -I generated/c -o $@ build/c/nmea-test.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
+
+build/c/test_ubx_san: build/c/nmea-san.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
+	$(CLANG) $(SANITIZE) -I generated/c -o $@ build/c/nmea-san.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
+
 test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o build/c/test_stream \
-        build/c/test_stream_smallest build/c/test_ais build/c/test_ais_2_slots
+        build/c/test_stream_smallest build/c/test_ais build/c/test_ais_2_slots build/c/test_ubx build/c/test_ubx_8
 	build/c/test_examples
+	build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS)
+	build/c/test_ubx_8 generated/vectors/ubx.jsonl $(UBX_LOGS)
 	build/c/test_ais generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
 	build/c/test_ais_2_slots generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
 	build/c/test_examples_general
@@ -218,8 +234,11 @@ test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o
 # the first five lines of each kind (sentence and address, or error) of every real log.
 MEMORY_INPUTS := tests/agreement/edge_cases.txt $(sort $(wildcard ../shared/corpus/real/*/*.nmea))
 
-test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_examples $(TEST_BIN)/nmea-c $(STAMP)
+test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_examples $(TEST_BIN)/nmea-c $(STAMP) \
+        build/c/test_ubx_san build/c/test_ubx
 	build/c/test_examples_san
+	build/c/test_ubx_san generated/vectors/ubx.jsonl $(UBX_LOGS)
+	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS) > /dev/null
 	@cat $(MEMORY_INPUTS) > build/c/memory.nmea
 	build/c/nmea-c-san decode < build/c/memory.nmea > build/c/asan.jsonl
 	build/c/nmea-c-san decode --values < build/c/memory.nmea > /dev/null
@@ -346,6 +365,18 @@ FUZZ_LONG ?= fuzz-faults fuzz-memory
 # The replay comes after the runs whose findings it replays.
 fuzz: fuzz-c fuzz-rust fuzz-inprocess fuzz-python
 	$(MAKE) --no-print-directory fuzz-differential $(FUZZ_LONG)
+
+# The C UBX pair on its own (fuzz/c/fuzz_ubx.c), seeded with every UBX frame of the logs as class,
+# id and payload; not part of the smoke run.
+fuzz-c-ubx: $(STAMP)
+	@mkdir -p $(FUZZ)/corpus-ubx $(FUZZ)/seeds-ubx
+	PYTHONPATH=generated/python $(PY) -c 'import sys, pathlib; from nmeaspec import ubx; \
+		[pathlib.Path(sys.argv[1], f"{log.stem}-{pos}").write_bytes(bytes((f.msg_class, f.msg_id)) + f.payload) \
+		 for log in map(pathlib.Path, sys.argv[2:]) for pos, f in ubx.split_frames(log.read_bytes())]' \
+		$(FUZZ)/seeds-ubx $(UBX_LOGS)
+	$(CLANG) $(SANITIZE) -fsanitize=fuzzer -Igenerated/c -o $(FUZZ)/fuzz-c-ubx generated/c/nmea_ubx.c fuzz/c/fuzz_ubx.c
+	$(FUZZ)/fuzz-c-ubx $(subst -max_len=1100,-max_len=2100,$(FUZZ_FLAGS)) -artifact_prefix=$(FUZZ)/crash-c-ubx- $(FUZZ)/corpus-ubx \
+		$(FUZZ)/seeds-ubx
 
 fuzz-seeds: $(STAMP)
 	@rm -rf $(FUZZ)/seeds

@@ -9,6 +9,7 @@ import jinja2
 from .emit import header, license_texts
 from .emit_c import MAX_LINE, longest_line
 from .emit_c_ais import carries_ais
+from .emit_c_ubx import carries_ubx
 from .model import Spec
 from .paths import PACKAGE_FOLDERS
 
@@ -16,7 +17,7 @@ from .paths import PACKAGE_FOLDERS
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files = {"c/CMakeLists.txt": env.get_template("c/CMakeLists.txt.j2").render(
         header=header(spec, "#", ["templates/c/CMakeLists.txt.j2"]), max_line=longest_line(spec),
-        contract_max_line=MAX_LINE, ais=carries_ais(spec))}
+        contract_max_line=MAX_LINE, ais=carries_ais(spec), ubx=carries_ubx(spec))}
     for folder in PACKAGE_FOLDERS:
         files.update(license_texts(folder))
     return files

@@ -24,7 +24,7 @@ LAYERS = [
     {"emit"},                                             # what the emitters share
     {"emit_vectors", "emit_python", "emit_python_ais", "emit_python_ubx", "emit_python_apps", "emit_c", "emit_c_ais", "emit_rust",
      "emit_rust_ais", "emit_docs",
-     "emit_packaging"},
+     "emit_packaging", "emit_c_ubx"},
     {"render", "cli", "__main__", "__init__"},            # the drivers
 ]
 LAYER = {module: n for n, layer in enumerate(LAYERS) for module in layer}

@@ -1,0 +1,248 @@
+"""C emitter of the binary messages (spec/binary/ubx): the pair nmea_ubx.h / nmea_ubx.c, beside
+the NMEA pair and independent of it (a firmware links it only if it wants UBX). A struct per
+layout, every field typed; a descriptor per layout (its items: kind, bytes, member offset, scale,
+enum, group) that one reader, one writer and one JSON printer interpret (runtime/c/ubx.{h,c},
+pasted in), as STYLE.md's "layouts as data" says; nmea_ubx_decode / nmea_ubx_encode /
+nmea_ubx_json dispatch on the class and id, then the length and version, as Python's ubx.message.
+
+No heap, no VLA: a group is an array of a fixed maximum (what its count field, the spec's maximum
+and a 65535-byte payload allow, lowered by a firmware with NMEA_UBX_MAX_ENTRIES or the group's own
+NMEA_UBX_<LAYOUT>_<GROUP>_MAX); a field of the bytes left and the trailing bytes are views of the
+payload. Struct members keep the wire order except the groups' arrays, which come last so that
+every other member's offset stays small whatever the maxima."""
+
+from __future__ import annotations
+
+import jinja2
+
+from .emit import RUNTIME, header
+from .emit_python_ubx import title
+from .model import EnumDef, PayloadField, PayloadGroup, Spec
+from .names_c import member
+from .reference_ais import after
+
+MAX_PAYLOAD = 0xFFFF
+
+
+def _c_str(text: str) -> str:
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def _int_bytes(size: int) -> int:
+    """The bytes of the C integer that holds `size` bytes."""
+    return next(n for n in (1, 2, 4, 8) if size <= n)
+
+
+def _part_bytes(bits: int) -> int:
+    """The bytes of the C integer that holds a bitfield's part of `bits` bits."""
+    return _int_bytes((bits + 7) // 8)
+
+
+def _doc(f: PayloadField) -> str:
+    """A member's comment: the field's name, unit, and its enum or how its raw integer scales."""
+    unit = f" [{f.unit}]" if f.unit else ""
+    scale = f"; a code of {f.enum.id} (its JSON: the code's id)" if f.enum is not None else ""
+    if f.scaled:
+        scale = f"; raw, value = raw{f' / {f.divisor}' if f.divisor else ''}{f' + {f.base}' if f.base else ''}"
+    return (f.name + unit + scale).replace("*/", "* /")
+
+
+class _Layout:
+    """The C code of one layout (or a group's entry): its struct and its descriptor rows."""
+
+    def __init__(self, struct: str, prefix: str, items: list, upper: str) -> None:
+        # The bytes of each integer member a group may be counted by (a field, a bitfield's part).
+        self.counters: dict[str, tuple[int, int]] = {}
+        for f in items:
+            if isinstance(f, PayloadField) and f.bits is not None and f.bit_type.size:
+                self.counters[f.id] = (_int_bytes(f.bits // 8), f.bits)
+                self.counters.update({p.id: (_part_bytes(p.bits or 1), p.bits or 1) for p in f.parts})
+        self.items = items
+        self.doc = ""
+        self.struct = struct        # nmea_ubx_nav_pvt
+        self.prefix = prefix        # ubx_nav_pvt (of its tables)
+        self.upper = upper          # NAV_PVT (of its defines)
+        self.members: list[str] = []
+        self.arrays: list[str] = []
+        self.rows: list[str] = []
+        self.tables: list[str] = []     # scales, enums, groups: before the rows
+        self.entries: list[_Layout] = []
+        self.defines: list[str] = []
+        self.names: set[str] = set()
+        for i, item in enumerate(items):
+            if isinstance(item, PayloadGroup):
+                self._group(item, items[i + 1:])
+            else:
+                self._field(item, items[i + 1:])
+
+    def _name(self, name: str) -> str:
+        assert name not in self.names, f"{self.struct}: two members named {name}"
+        self.names.add(name)
+        return name
+
+    def _row(self, f: PayloadField, name: str, kind: str, size: int, width: int, *, low: int = 0,
+             print_as: str = "NUMBER", has: str = "0", after_bytes: int = 0, optional: bool = False) -> None:
+        extra = "NULL"
+        if f.enum is not None:   # its enum's table (enum_table), one for every field of it
+            extra, print_as = f"&ubx_enum_{f.enum.id}", "CODE"
+        elif f.scaled and f.type not in ("r4", "r8"):
+            specials = "NULL, 0"
+            if f.special:
+                rows = ", ".join(f"{{{s.raw}, {_c_str(s.id)}}}" for s in f.special)
+                self.tables.append(f"static const nmea_ubx_special {self.prefix}_{f.id}_specials[] = {{{rows}}};")
+                specials = f"{self.prefix}_{f.id}_specials, {len(f.special)}"
+            real = "true" if f.divisor is not None or isinstance(f.base, float) else "false"
+            self.tables.append(f"static const nmea_ubx_scale {self.prefix}_{f.id}_scale = "
+                               f"{{{float(f.divisor or 1)!r}, {float(f.base or 0)!r}, {real}, {specials}}};")
+            extra, print_as = f"&{self.prefix}_{f.id}_scale", "SCALED"
+        self.rows.append(self.row(f.id, extra, f"offsetof({self.struct}, {name})", has, after_bytes, kind, size, width, low,
+                                  print_as, optional))
+
+    @staticmethod
+    def row(key: str, extra: str, offset: str, has: str, after_bytes: int, kind: str, size: int, width: int, low: int,
+            print_as: str, optional: bool) -> str:
+        """A descriptor row (nmea_ubx_item) in its members' order."""
+        return (f"{{{_c_str(key)}, {extra}, {offset}, {has}, {after_bytes}, NMEA_UBX_ITEM_{kind}, {size}, {width}, {low}, "
+                f"NMEA_UBX_PRINT_{print_as}, {'true' if optional else 'false'}}}")
+
+    def _field(self, f: PayloadField, following: list) -> None:
+        t = f.bit_type
+        name = self._name(member(f.id))
+        has = "0"
+        if f.optional:
+            flag = self._name(f"has_{name}")
+            self.members.append(f"bool {flag}; /* whether the payload has {name} */")
+            has = f"offsetof({self.struct}, {flag})"
+        doc = _doc(f)
+        if f.bits is None:   # ch, bytes of the bytes left: a view
+            assert t.name in ("ch", "bytes"), f"{self.struct}.{name}: {t.name} of the bytes left"
+            self.members.append(f"nmea_ubx_bytes {name}; /* {doc} (the bytes left{', ISO 8859-1' if t.name == 'ch' else ''}) */")
+            self._row(f, name, "VIEW", 0, 0, print_as="CHARS" if t.name == "ch" else "HEX",
+                      after_bytes=after(following) // 8)
+            return
+        size = f.bits // 8
+        if t.name in ("ch", "bytes") or t.name == "reserved" and size > 8:
+            c_type = "char" if t.name == "ch" else "uint8_t"
+            self.members.append(f"{c_type} {name}[{size}]; /* {doc}{' (as sent)' if t.name != 'bytes' else ''} */")
+            self._row(f, name, "ARRAY", size, size,
+                      print_as={"ch": "CHARS", "bytes": "HEX"}.get(t.name, "BIG"), has=has, optional=f.optional)
+            return
+        if t.name in ("r4", "r8"):
+            self.members.append(f"{'float' if size == 4 else 'double'} {name}; /* {doc} (its bits as sent) */")
+            self._row(f, name, "FLOAT", size, size, has=has, optional=f.optional)
+            return
+        width = _int_bytes(size)
+        signed = t.signed
+        kind = "WORD" if t.has_parts else "SIGNED" if signed else "UNSIGNED"
+        self.members.append(f"{'int' if signed else 'uint'}{8 * width}_t {name}; /* {doc}"
+                            f"{' (bitfield)' if t.has_parts else ''}{' (reserved, as sent)' if t.name == 'reserved' else ''} */")
+        self._row(f, name, kind, size, width, has=has, optional=f.optional)
+        for part in f.parts:
+            pname = self._name(member(part.id))
+            bits = part.bits or 1
+            last = part.low + bits - 1
+            where = f"bit {part.low}" if bits == 1 else f"bits {part.low}-{last}"
+            if part.type == "bool":
+                self.members.append(f"bool {pname}; /* {_doc(part)} ({name} {where}) */")
+                self._row(part, pname, "PART_FLAG", bits, 1, low=part.low)
+                continue
+            pwidth = _part_bytes(bits)
+            psigned = part.bit_type.signed
+            self.members.append(f"{'int' if psigned else 'uint'}{8 * pwidth}_t {pname}; /* {_doc(part)} ({name} {where}) */")
+            self._row(part, pname, "PART_SIGNED" if psigned else "PART", bits, pwidth, low=part.low)
+
+    def _group(self, g: PayloadGroup, following: list) -> None:
+        # The interpreter reads an entry field by field: no group, optional field or bytes left in it.
+        assert all(isinstance(f, PayloadField) and f.bits is not None and not f.optional for f in g.fields), g.id
+        word = g.id[:-1] if g.id.endswith("s") else g.id + "_entry"
+        entry = _Layout(f"{self.struct}_{word}", f"{self.prefix}_{word}", list(g.fields), f"{self.upper}_{word.upper()}")
+        assert not entry.entries, f"{self.struct}.{g.id}: a group in a group"
+        entry.doc = f"One entry of {g.name.lower()} ({g.id})."
+        self.entries.append(entry)
+        name = self._name(member(g.id))
+        count_name = self._name(f"{name}_count")
+        entry_bytes = g.entry_width // 8
+        fixed = sum(f.bits // 8 for f in self.items if isinstance(f, PayloadField) and f.bits is not None)
+        natural = min(g.max, (MAX_PAYLOAD - fixed) // entry_bytes)
+        count_kind, count, count_offset, count_member = "LEFT", 0, "0", 1
+        if isinstance(g.count, int):
+            count_kind, count, natural = "FIXED", g.count, g.count
+        elif g.count:
+            count_member, bits = self.counters[g.count]
+            count_kind, count_offset = "FIELD", f"offsetof({self.struct}, {member(g.count)})"
+            natural = min(natural, (1 << bits) - 1)
+        define = f"NMEA_UBX_{self.upper}_{g.id.upper()}_MAX"
+        self.defines += [f"#ifndef {define}",
+                         f"#define {define} ({natural} < NMEA_UBX_MAX_ENTRIES ? {natural} : NMEA_UBX_MAX_ENTRIES)",
+                         "#endif"]
+        self.members.append(f"uint16_t {count_name}; /* the entries of {name} */")
+        self.arrays.append(f"{entry.struct} {name}[{define}]; /* {g.name} */")
+        table = f"{self.prefix}_{g.id}_group"
+        self.tables.append(
+            f"static const nmea_ubx_group {table} = {{{entry.prefix}_items, {len(entry.rows)}, NMEA_UBX_COUNT_{count_kind}, "
+            f"{count_member}, {count_offset}, {count}, {g.min}, {g.max}, {define}, {entry_bytes}, sizeof({entry.struct}), "
+            f"{after(following) // 8}, offsetof({self.struct}, {count_name})}};")
+        self.rows.append(self.row(g.id, f"&{table}", f"offsetof({self.struct}, {name})", "0", 0, "GROUP", 0, 0, 0,
+                                  "NUMBER", False))
+
+    def typedef(self, doc: str, trailing: bool) -> str:
+        members = list(self.members)
+        if trailing:
+            members.append("nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */")
+        members += self.arrays
+        if not members:
+            members = ["uint8_t empty; /* no field */"]
+        return f"/* {doc} */\n" + "typedef struct {\n    " + "\n    ".join(members) + f"\n}} {self.struct};\n"
+
+    def code(self) -> str:
+        rows = ",\n    ".join(self.rows)
+        items = f"static const nmea_ubx_item {self.prefix}_items[] = {{\n    {rows}\n}};" if self.rows \
+            else f"static const nmea_ubx_item {self.prefix}_items[1] = {{{self.row('', 'NULL', '0', '0', 0, 'UNSIGNED', 0, 0, 0, 'NUMBER', False)}}};"
+        return "\n".join([*self.tables, items, ""])
+
+
+def enum_table(e: EnumDef) -> str:
+    """An enum's codes and ids (nmea_ubx_codes), which its fields' JSON prints."""
+    rows = ", ".join(f"{{{v.code}, {_c_str(v.id)}}}" for v in e.values)
+    return (f"static const nmea_ubx_code ubx_enum_{e.id}_list[] = {{{rows}}};\n"
+            f"static const nmea_ubx_codes ubx_enum_{e.id} = {{ubx_enum_{e.id}_list, {len(e.values)}}};\n")
+
+
+def carries_ubx(spec: Spec) -> bool:
+    """Whether the spec describes UBX messages, and so the UBX pair beside the NMEA one."""
+    return any(m.protocol == "ubx" for m in spec.binary)
+
+
+def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
+    if not carries_ubx(spec):
+        return {}
+    messages = sorted((m for m in spec.binary if m.protocol == "ubx"), key=lambda m: (m.class_number, m.msg_id))
+    layouts = []
+    for message in messages:
+        for layout in message.layouts:
+            code = _Layout(f"nmea_ubx_{layout.id}", f"ubx_{layout.id}", layout.items, layout.id.upper())
+            version_at = 0
+            if layout.version is not None:
+                version = next(f for f in layout.fields if f.id == "version")
+                assert version.offset is not None
+                version_at = version.offset // 8
+            layouts.append(dict(
+                message=message, layout=layout, code=code,
+                typedefs=[e.typedef(e.doc, False) for e in code.entries] + [code.typedef(title(message, layout), True)],
+                tables="\n".join([*(e.code() for e in code.entries), code.code()]),
+                defines=[d for e in code.entries for d in e.defines] + code.defines,
+                length=layout.fixed_width // 8 if layout.fixed_width is not None else -1,
+                version=layout.version if layout.version is not None else -1, version_at=version_at,
+                n_items=len(code.rows), output="output" in layout.directions))
+    enums = {f.enum.id: f.enum for m in messages for lay in m.layouts for field in lay.fields
+             for f in (field, *field.parts) if f.enum}
+    sources = [m.origin.file for m in messages] + sorted({e.origin.file for e in enums.values()})
+    context = dict(layouts=layouts, messages=messages, enums=[enum_table(enums[key]) for key in sorted(enums)],
+                   runtime_h=(RUNTIME / "c" / "ubx.h").read_text(encoding="utf-8"),
+                   runtime_c=(RUNTIME / "c" / "ubx.c").read_text(encoding="utf-8"))
+    return {
+        "c/nmea_ubx.h": env.get_template("c/nmea_ubx.h.j2").render(
+            header=header(spec, "//", ["templates/c/nmea_ubx.h.j2", "runtime/c/ubx.h", *sources]), **context),
+        "c/nmea_ubx.c": env.get_template("c/nmea_ubx.c.j2").render(
+            header=header(spec, "//", ["templates/c/nmea_ubx.c.j2", "runtime/c/ubx.c", *sources]), **context),
+    }

@@ -1,0 +1,356 @@
+/* The UBX messages (nmea_ubx.c) against generated/vectors/ubx.jsonl, which the Python codec decodes
+   and encodes too: every frame decodes to the same JSON as Python's or fails with the same error
+   kind, and encodes back to the same bytes; then every UBX frame nmea.c's framer finds in the
+   logs given (gpsd's, tests/data/ubx and tests/data/rtcm3) decodes and encodes back byte for
+   byte, and a frame cut short, a buffer too small and a count over a group's array are refused.
+   With --json, the JSON of every frame of the files given, a frame in hex a line, a line each
+   (tests/ubx/test_c_ubx.py compares it with Python's; built with -DUBX_TEST_JSON_ONLY, it needs
+   no nmea.c).
+   Usage: test_ubx path/to/ubx.jsonl log...
+          test_ubx path/to/ubx.jsonl --json frames.hex... */
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef UBX_TEST_JSON_ONLY
+#include "nmea.h"
+#endif
+#include "nmea_ubx.h"
+
+/* The text of a member of a JSON record into `out` (a string's without its quotes). */
+static void member(const char *record, const char *key, char *out, size_t cap)
+{
+    char pattern[64];
+    const char *start;
+    size_t len;
+    snprintf(pattern, sizeof pattern, "\"%s\":", key);
+    start = strstr(record, pattern);
+    out[0] = '\0';
+    if (!start)
+        return;
+    start += strlen(pattern);
+    if (*start == '"')
+        start++;
+    len = strcspn(start, "\",}");
+    if (len >= cap)
+        len = cap - 1;
+    memcpy(out, start, len);
+    out[len] = '\0';
+}
+
+/* Bytes written as hex pairs, spaces between them or not. */
+static size_t unhex(const char *text, uint8_t *out, size_t cap)
+{
+    size_t n = 0;
+    unsigned value;
+    while (*text && n < cap) {
+        if (*text == ' ') {
+            text++;
+            continue;
+        }
+        if (sscanf(text, "%2x", &value) != 1)
+            break;
+        out[n++] = (uint8_t)value;
+        text += 2;
+    }
+    return n;
+}
+
+static int failed, cut_payloads, over_maximum;
+
+/* A build with NMEA_UBX_MAX_ENTRIES below what the logs' groups have (make test-c builds one with 8)
+   refuses those payloads as too_many_entries, naming the group. */
+static bool over_the_maximum(const nmea_ubx_error *err)
+{
+    if (NMEA_UBX_MAX_ENTRIES < 255 && err->kind == NMEA_UBX_TOO_MANY && err->field) {
+        over_maximum++;
+        return true;
+    }
+    return false;
+}
+
+/* Decodes a whole frame and encodes it back: false (after saying why) when the bytes differ. */
+static bool round_trip(const uint8_t *frame, size_t len, nmea_ubx_message *message, const char *where)
+{
+    static uint8_t again[70000];
+    nmea_ubx_error err;
+    size_t n;
+    if (!nmea_ubx_decode_frame(frame, len, message, &err)) {
+        if (over_the_maximum(&err))
+            return false;
+        printf("FAIL %s: %s %s: %s\n", where, nmea_ubx_error_kind_name(err.kind), err.message ? err.message : "", err.text);
+        failed++;
+        return false;
+    }
+    n = nmea_ubx_encode(message, again, sizeof again, &err);
+    if (n != len || memcmp(again, frame, len) != 0) {
+        printf("FAIL %s: encodes to %lu other bytes (%s)\n", where, (unsigned long)n, n ? "" : err.text);
+        failed++;
+        return false;
+    }
+    /* Too small a buffer by one byte: refused, and nothing written past it. */
+    again[len - 1] = 0xA5;
+    if (nmea_ubx_encode(message, again, len - 1, &err) != 0 || err.kind != NMEA_UBX_NO_ROOM || again[len - 1] != 0xA5) {
+        printf("FAIL %s: a buffer of %lu bytes taken\n", where, (unsigned long)(len - 1));
+        failed++;
+        return false;
+    }
+    return true;
+}
+
+/* A frame and its JSON, or the kind of error that refuses it, as a line; a frame that decodes
+   must also encode back. */
+static void print_json(const uint8_t *frame, size_t len, nmea_ubx_message *message)
+{
+    static char text[1 << 17];
+    nmea_ubx_error err;
+    size_t i;
+    printf("{\"frame\":\"");
+    for (i = 0; i < len; i++)
+        printf("%02x", frame[i]);
+    if (!nmea_ubx_decode_frame(frame, len, message, &err)) {
+        printf("\",\"error\":\"%s\",\"field\":\"%s\"}\n", nmea_ubx_error_kind_name(err.kind), err.field ? err.field : "");
+        return;
+    }
+    nmea_ubx_json(message, text, sizeof text);
+    printf("\",\"decode\":%s}\n", text);
+    round_trip(frame, len, message, "frame");
+}
+
+/* Every frame of a file of frames in hex, a line each, as print_json prints them. */
+static int hex_frames(const char *path)
+{
+    static char line[1 << 17];
+    static uint8_t frame[1 << 16];
+    static nmea_ubx_message message;
+    int frames = 0;
+    FILE *file = fopen(path, "r");
+    if (!file) {
+        printf("FAIL cannot open %s\n", path);
+        failed++;
+        return 0;
+    }
+    while (fgets(line, sizeof line, file)) {
+        line[strcspn(line, "\n")] = '\0';
+        print_json(frame, unhex(line, frame, sizeof frame), &message);
+        frames++;
+    }
+    fclose(file);
+    return frames;
+}
+
+#ifndef UBX_TEST_JSON_ONLY
+/* The payload of a frame cut at every length: refused with short_payload, or decoded into a
+   message that encodes to the frame of the bytes kept. */
+static void cuts(const uint8_t *frame, size_t len)
+{
+    static uint8_t cut[NMEA_MAX_FRAME], again[NMEA_MAX_FRAME];
+    static nmea_ubx_message message;
+    nmea_ubx_error err;
+    size_t keep, n;
+    for (keep = 0; keep + NMEA_UBX_OVERHEAD < len; keep++) {
+        cut_payloads++;
+        if (!nmea_ubx_decode(frame[2], frame[3], frame + 6, keep, &message, &err)) {
+            if ((err.kind != NMEA_UBX_SHORT_PAYLOAD || !err.field) && !over_the_maximum(&err)) {
+                printf("FAIL %02x %02x cut to %lu: %s\n", frame[2], frame[3], (unsigned long)keep, err.text);
+                failed++;
+            }
+            continue;
+        }
+        memcpy(cut, frame, 6 + keep);
+        cut[4] = (uint8_t)(keep & 0xFF);
+        cut[5] = (uint8_t)(keep >> 8);
+        n = nmea_ubx_encode(&message, again, sizeof again, &err);
+        if (n != keep + NMEA_UBX_OVERHEAD || memcmp(again, cut, 6 + keep) != 0) {
+            printf("FAIL %02x %02x cut to %lu encodes to other bytes\n", frame[2], frame[3], (unsigned long)keep);
+            failed++;
+        }
+    }
+}
+
+/* Every UBX frame of a log, as the framer gives them. */
+static int log_frames(const char *path)
+{
+    static char chunk[4096];
+    static nmea_framer framer;
+    static nmea_ubx_message message;
+    nmea_framed item;
+    size_t got;
+    int frames = 0;
+    static uint8_t seen[65536 / 8]; /* the classes and ids met */
+    FILE *file = fopen(path, "rb");
+    if (!file) {
+        printf("FAIL cannot open %s\n", path);
+        failed++;
+        return 0;
+    }
+    memset(seen, 0, sizeof seen);
+    nmea_framer_init(&framer);
+    for (;;) {
+        const char *p = chunk;
+        bool more;
+        got = fread(chunk, 1, sizeof chunk, file);
+        while ((more = got ? nmea_framer_push(&framer, &p, &got, &item) : nmea_framer_end(&framer, &item))) {
+            if (item.protocol == NMEA_UBX && item.error == NMEA_FRAME_OK) {
+                frames++;
+                const uint8_t *frame = (const uint8_t *)item.ptr;
+                unsigned key = (unsigned)frame[2] << 8 | frame[3];
+                round_trip(frame, item.len, &message, path);
+                if (!(seen[key / 8] >> key % 8 & 1)) /* the first of each class and id of the log */
+                    cuts(frame, item.len);
+                seen[key / 8] |= (uint8_t)(1u << key % 8);
+            }
+            if (!got && !more)
+                break;
+        }
+        if (feof(file) && !got && !more)
+            break;
+    }
+    fclose(file);
+    return frames;
+}
+#endif
+
+/* Messages built by hand: CFG-RATE at 1 Hz (the frame of u-blox's examples), and a bitfield's
+   part set on a decoded CFG-PRT (its word follows: in_proto_mask 0x07 -> 0x27); a NAV-PVT poll
+   decoded from no payload (NULL) and encoded. */
+static void by_hand(void)
+{
+    static const uint8_t rate[] = {0xB5, 0x62, 0x06, 0x08, 0x06, 0x00, 0xE8, 0x03, 0x01, 0x00, 0x01, 0x00, 0x01, 0x39};
+    static const uint8_t prt[] = {0xB5, 0x62, 0x06, 0x00, 0x14, 0x00, 0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+                                  0x00, 0x00, 0x00, 0x00, 0x07, 0x00, 0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x27, 0xCE};
+    static const uint8_t poll[] = {0xB5, 0x62, 0x01, 0x07, 0x00, 0x00, 0x08, 0x19};
+    static nmea_ubx_message message;
+    nmea_ubx_error err;
+    uint8_t frame[64];
+    size_t n;
+    memset(&message, 0, sizeof message);
+    message.layout = NMEA_UBX_MSG_CFG_RATE;
+    message.as.cfg_rate.meas_rate = 1000;
+    message.as.cfg_rate.nav_rate = 1;
+    message.as.cfg_rate.time_ref = 1;
+    n = nmea_ubx_encode(&message, frame, sizeof frame, &err);
+    if (n != sizeof rate || memcmp(frame, rate, n) != 0) {
+        printf("FAIL CFG-RATE built by hand\n");
+        failed++;
+    }
+    if (!nmea_ubx_decode(0x01, 0x07, NULL, 0, &message, &err) || message.layout != NMEA_UBX_MSG_NAV_PVT_POLL ||
+        nmea_ubx_encode(&message, frame, sizeof frame, &err) != 8 || memcmp(frame, poll, 8) != 0) {
+        printf("FAIL a NAV-PVT poll of no payload (NULL)\n");
+        failed++;
+    }
+    if (!nmea_ubx_decode_frame(prt, sizeof prt, &message, &err) || message.layout != NMEA_UBX_MSG_CFG_PRT ||
+        message.as.cfg_prt.in_proto_mask != 7 || !message.as.cfg_prt.in_nmea || message.as.cfg_prt.in_rtcm3) {
+        printf("FAIL CFG-PRT decoded\n");
+        failed++;
+        return;
+    }
+    message.as.cfg_prt.in_rtcm3 = true;
+    n = nmea_ubx_encode(&message, frame, sizeof frame, &err);
+    if (n != sizeof prt || !nmea_ubx_decode_frame(frame, n, &message, &err) || message.as.cfg_prt.in_proto_mask != 0x27) {
+        printf("FAIL CFG-PRT with in_rtcm3 set\n");
+        failed++;
+    }
+}
+
+/* The refusals the vectors do not show: a payload cut inside a group, a count over the array. */
+static void refusals(void)
+{
+    /* NAV-SAT of one satellite (8 + 12 bytes), its numSvs made 2: the second entry is cut. */
+    static const uint8_t payload[20] = {1, 0, 0, 0, 1, 1, 0, 0, 0, 5, 40, 30, 0x10, 0, 0, 0, 0x1f, 0, 0, 0};
+    static nmea_ubx_message message;
+    uint8_t cut[20];
+    nmea_ubx_error err;
+    uint8_t frame[64];
+    memcpy(cut, payload, sizeof cut);
+    cut[5] = 2;
+    if (nmea_ubx_decode(0x01, 0x35, cut, sizeof cut, &message, &err) || err.kind != NMEA_UBX_SHORT_PAYLOAD ||
+        strcmp(err.field, "svs") != 0 || strcmp(err.message, "NAV-SAT") != 0) {
+        printf("FAIL a NAV-SAT cut in its second satellite: %s\n", err.text);
+        failed++;
+    }
+    if (!nmea_ubx_decode(0x01, 0x35, payload, sizeof payload, &message, &err) || message.layout != NMEA_UBX_MSG_NAV_SAT ||
+        message.as.nav_sat.svs_count != 1 || message.as.nav_sat.svs[0].cno != 40) {
+        printf("FAIL a NAV-SAT of one satellite\n");
+        failed++;
+    }
+    message.as.nav_sat.svs_count = NMEA_UBX_NAV_SAT_SVS_MAX + 1;
+    if (nmea_ubx_encode(&message, frame, sizeof frame, &err) != 0 || err.kind != NMEA_UBX_BAD_VALUE) {
+        printf("FAIL a NAV-SAT of more satellites than its array encoded\n");
+        failed++;
+    }
+    message.as.nav_sat.svs_count = 1;
+    message.as.nav_sat.svs[0].quality_ind = 8; /* three bits */
+    if (nmea_ubx_encode(&message, frame, sizeof frame, &err) != 0 || err.kind != NMEA_UBX_BAD_VALUE ||
+        strcmp(err.field, "quality_ind") != 0) {
+        printf("FAIL a quality_ind of 8 encoded in 3 bits\n");
+        failed++;
+    }
+}
+
+int main(int argc, char **argv)
+{
+    static char record[1 << 17], json[1 << 17], frame_text[1 << 16], error[32];
+    static uint8_t frame[1 << 15];
+    static nmea_ubx_message message;
+    int decoded = 0, refused = 0, frames = 0, i;
+    bool as_json = argc > 2 && strcmp(argv[2], "--json") == 0;
+    FILE *file = argc > 1 ? fopen(argv[1], "r") : NULL;
+    if (!file) {
+        fprintf(stderr, "usage: test_ubx ubx.jsonl [--json] log...\n");
+        return 2;
+    }
+    while (!as_json && fgets(record, sizeof record, file)) {
+        nmea_ubx_error err;
+        const char *decode;
+        size_t len;
+        bool ok;
+        record[strcspn(record, "\n")] = '\0';
+        member(record, "frame", frame_text, sizeof frame_text);
+        member(record, "error", error, sizeof error);
+        if (strstr(record, "\"decode\":")) /* its decoded fields may have an `error` */
+            error[0] = '\0';
+        len = unhex(frame_text, frame, sizeof frame);
+        ok = nmea_ubx_decode_frame(frame, len, &message, &err);
+        if (error[0]) {
+            if (ok || strcmp(nmea_ubx_error_kind_name(err.kind), error) != 0) {
+                printf("FAIL error %s: %s\n", ok ? "none" : nmea_ubx_error_kind_name(err.kind), record);
+                failed++;
+            }
+            refused++;
+            continue;
+        }
+        if (!ok && over_the_maximum(&err))
+            continue;
+        if (!ok) {
+            printf("FAIL %s: %s\n", err.text, record);
+            failed++;
+            continue;
+        }
+        nmea_ubx_json(&message, json, sizeof json);
+        decode = strstr(record, "\"decode\":") + 9;
+        if (strncmp(json, decode, strlen(decode) - 1) != 0 || strlen(json) != strlen(decode) - 1) {
+            printf("FAIL json\n  got  %s\n  want %.*s\n", json, (int)strlen(decode) - 1, decode);
+            failed++;
+        }
+        round_trip(frame, len, &message, "vector");
+        decoded++;
+    }
+    fclose(file);
+    if (as_json) {
+        for (i = 3; i < argc; i++)
+            frames += hex_frames(argv[i]);
+        return failed != 0;
+    }
+#ifndef UBX_TEST_JSON_ONLY
+    for (i = 2; i < argc; i++)
+        frames += log_frames(argv[i]);
+#endif
+    refusals();
+    by_hand();
+    printf("%d decoded, %d refused, %d frames of %d logs round-tripped, %d cut payloads, %d over NMEA_UBX_MAX_ENTRIES %d, "
+           "%d failed\n", decoded, refused, frames, argc - 2, cut_payloads, over_maximum, NMEA_UBX_MAX_ENTRIES, failed);
+    return failed || decoded < 20 || refused < 2 || frames < 1000 || cut_payloads < 1000 ||
+           (NMEA_UBX_MAX_ENTRIES < 255) != (over_maximum > 0);
+}

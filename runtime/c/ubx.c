@@ -1,0 +1,684 @@
+/* UBX messages: the frame, the descriptors' reader, writer and JSON (see ubx.h). */
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *nmea_ubx_error_kind_name(nmea_ubx_error_kind kind)
+{
+    static const char *const names[] = {"ok",         "bad_frame",        "bad_checksum", "short_payload",
+                                        "too_many_entries", "bad_value", "no_room"};
+    return names[kind];
+}
+
+static bool ubx_fail(nmea_ubx_error *err, nmea_ubx_error_kind kind, const char *message, const char *field)
+{
+    err->kind = kind;
+    err->message = message;
+    err->field = field;
+    return false;
+}
+
+/* Fletcher-8 over `len` bytes (UBX-13003221, "UBX checksum"): CK_A in the low byte. */
+static unsigned ubx_checksum(const uint8_t *p, size_t len)
+{
+    unsigned a = 0, b = 0;
+    size_t i;
+    for (i = 0; i < len; i++) {
+        a = (a + p[i]) & 0xFF;
+        b = (b + a) & 0xFF;
+    }
+    return a | b << 8;
+}
+
+/* The `n` bytes (at most 8) at `p`, little endian. */
+static uint64_t ubx_le(const uint8_t *p, size_t n)
+{
+    uint64_t raw = 0;
+    while (n-- > 0)
+        raw = raw << 8 | p[n];
+    return raw;
+}
+
+/* A member of `member` bytes at `m` as an integer (signed: sign-extended). */
+static uint64_t ubx_get(const uint8_t *m, unsigned member, bool is_signed)
+{
+    uint8_t u8;
+    uint16_t u16;
+    uint32_t u32;
+    uint64_t u64;
+    switch (member) {
+    case 1:
+        memcpy(&u8, m, 1);
+        return is_signed ? (uint64_t)(int64_t)(int8_t)u8 : u8;
+    case 2:
+        memcpy(&u16, m, 2);
+        return is_signed ? (uint64_t)(int64_t)(int16_t)u16 : u16;
+    case 4:
+        memcpy(&u32, m, 4);
+        return is_signed ? (uint64_t)(int64_t)(int32_t)u32 : u32;
+    default:
+        memcpy(&u64, m, 8);
+        return u64;
+    }
+}
+
+static void ubx_set(uint8_t *m, unsigned member, uint64_t value)
+{
+    uint8_t u8 = (uint8_t)value;
+    uint16_t u16 = (uint16_t)value;
+    uint32_t u32 = (uint32_t)value;
+    switch (member) {
+    case 1:
+        memcpy(m, &u8, 1);
+        break;
+    case 2:
+        memcpy(m, &u16, 2);
+        break;
+    case 4:
+        memcpy(m, &u32, 4);
+        break;
+    default:
+        memcpy(m, &value, 8);
+    }
+}
+
+/* `raw` of `bits` bits read as two's complement. */
+static uint64_t ubx_sign(uint64_t raw, unsigned bits)
+{
+    return bits < 64 && raw >> (bits - 1) & 1 ? raw | ~(uint64_t)0 << bits : raw;
+}
+
+/* A payload being read. */
+typedef struct {
+    const uint8_t *p;
+    size_t len, pos;
+    const char *address;
+    nmea_ubx_error *err;
+} ubx_reader;
+
+static bool ubx_short(ubx_reader *r, const char *field, size_t need)
+{
+    snprintf(r->err->text, sizeof r->err->text, "%s needs bytes %lu-%lu, the payload has %lu", field,
+             (unsigned long)r->pos, (unsigned long)(r->pos + need - 1), (unsigned long)r->len);
+    return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, field);
+}
+
+/* Reads one field (not a group) into the struct at `m`; `*word` is the last bitfield word read,
+   whose parts follow it. False with the error set; `*done` set when an optional field is missing
+   (nothing after it is read). */
+static bool ubx_read_field(ubx_reader *r, const nmea_ubx_item *it, uint8_t *m, uint64_t *word, bool *done)
+{
+    uint8_t *at = m + it->offset;
+    size_t left = r->len - r->pos;
+    uint64_t raw;
+    if (it->kind >= NMEA_UBX_ITEM_PART && it->kind <= NMEA_UBX_ITEM_PART_FLAG) {
+        raw = *word >> it->low & (it->size < 64 ? ((uint64_t)1 << it->size) - 1 : ~(uint64_t)0);
+        if (it->kind == NMEA_UBX_ITEM_PART_FLAG)
+            *(bool *)(void *)at = raw != 0;
+        else
+            ubx_set(at, it->member, it->kind == NMEA_UBX_ITEM_PART_SIGNED ? ubx_sign(raw, it->size) : raw);
+        return true;
+    }
+    if (it->kind == NMEA_UBX_ITEM_VIEW) {
+        nmea_ubx_bytes view;
+        view.ptr = r->p + r->pos;
+        view.len = left > it->after ? left - it->after : 0;
+        memcpy(at, &view, sizeof view);
+        r->pos += view.len;
+        return true;
+    }
+    if (it->size > left) {
+        if (it->optional) {
+            *done = true;
+            return true;
+        }
+        return ubx_short(r, it->id, it->size);
+    }
+    if (it->optional)
+        *(bool *)(void *)(m + it->has) = true;
+    if (it->kind == NMEA_UBX_ITEM_ARRAY) {
+        memcpy(at, r->p + r->pos, it->size);
+    } else {
+        raw = ubx_le(r->p + r->pos, it->size);
+        if (it->kind == NMEA_UBX_ITEM_FLOAT && it->size == 4) {
+            uint32_t bits = (uint32_t)raw;
+            memcpy(at, &bits, 4); /* a float's bits, as sent (a NaN's too) */
+        } else if (it->kind == NMEA_UBX_ITEM_FLOAT) {
+            memcpy(at, &raw, 8);
+        } else {
+            ubx_set(at, it->member, it->kind == NMEA_UBX_ITEM_SIGNED ? ubx_sign(raw, 8u * it->size) : raw);
+        }
+        *word = raw;
+    }
+    r->pos += it->size;
+    return true;
+}
+
+/* Reads a layout's `items` into the struct at `m`, a group's entries field by field (a group
+   holds no group: the reader does not recurse). False with the error set. */
+static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, uint8_t *m)
+{
+    uint64_t word = 0;
+    bool done = false;
+    size_t i, k, f;
+    for (i = 0; i < n && !done; i++) {
+        const nmea_ubx_item *it = &items[i];
+        const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
+        size_t left = r->len - r->pos, count;
+        uint16_t stored;
+        if (it->kind != NMEA_UBX_ITEM_GROUP) {
+            if (!ubx_read_field(r, it, m, &word, &done))
+                return false;
+            continue;
+        }
+        count = g->count_kind == NMEA_UBX_COUNT_FIXED   ? g->count
+                : g->count_kind == NMEA_UBX_COUNT_FIELD ? (size_t)ubx_get(m + g->count_offset, g->count_member, false)
+                : left > g->after                       ? (left - g->after) / g->entry_bytes
+                                                        : 0;
+        if (g->count_kind == NMEA_UBX_COUNT_LEFT && count > g->limit)
+            count = g->limit;
+        if (count < g->min || count * g->entry_bytes > left) {
+            snprintf(r->err->text, sizeof r->err->text, "%s needs %lu entries of %u bytes at byte %lu, the payload has %lu",
+                     it->id, (unsigned long)(count < g->min ? g->min : count), (unsigned)g->entry_bytes,
+                     (unsigned long)r->pos, (unsigned long)r->len);
+            return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, it->id);
+        }
+        if (count > g->max) {
+            snprintf(r->err->text, sizeof r->err->text, "%s has %lu entries, this build holds %u (NMEA_UBX_MAX_ENTRIES)",
+                     it->id, (unsigned long)count, (unsigned)g->max);
+            return ubx_fail(r->err, NMEA_UBX_TOO_MANY, r->address, it->id);
+        }
+        for (k = 0; k < count; k++) {
+            uint64_t entry_word = 0;
+            bool ignored = false;
+            for (f = 0; f < g->n_items; f++)
+                if (!ubx_read_field(r, &g->items[f], m + it->offset + k * g->entry_size, &entry_word, &ignored))
+                    return false;
+        }
+        stored = (uint16_t)count;
+        memcpy(m + g->n_offset, &stored, sizeof stored);
+    }
+    return true;
+}
+
+/* A payload being written after the frame's 6 header bytes. */
+typedef struct {
+    uint8_t *buf;
+    size_t cap, len;
+    const char *address;
+    nmea_ubx_error *err;
+} ubx_writer;
+
+static bool ubx_put(ubx_writer *w, const uint8_t *bytes, size_t n, const char *field)
+{
+    if (n > w->cap - w->len) {
+        snprintf(w->err->text, sizeof w->err->text, "the frame needs more than the buffer's %lu bytes", (unsigned long)w->cap);
+        return ubx_fail(w->err, NMEA_UBX_NO_ROOM, w->address, field);
+    }
+    memcpy(w->buf + w->len, bytes, n);
+    w->len += n;
+    return true;
+}
+
+static bool ubx_put_le(ubx_writer *w, uint64_t value, size_t n, const char *field)
+{
+    uint8_t bytes[8];
+    size_t i;
+    for (i = 0; i < n; i++)
+        bytes[i] = (uint8_t)(value >> 8 * i);
+    return ubx_put(w, bytes, n, field);
+}
+
+static bool ubx_bad_value(ubx_writer *w, const char *field, unsigned bits)
+{
+    snprintf(w->err->text, sizeof w->err->text, "%s does not fit in %u bits", field, bits);
+    return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, field);
+}
+
+/* Whether `value` (sign-extended when `is_signed`) fits `bits` bits. */
+static bool ubx_fits(uint64_t value, unsigned bits, bool is_signed)
+{
+    if (bits >= 64)
+        return true;
+    if (is_signed)
+        return (int64_t)value >= -((int64_t)1 << (bits - 1)) && (int64_t)value < ((int64_t)1 << (bits - 1));
+    return value >> bits == 0;
+}
+
+/* Writes field `items[i]` (not a group) of the struct at `m`: a bitfield word with its parts,
+   which follow it, in their bits; a part is written with its word. */
+static bool ubx_write_field(ubx_writer *w, const nmea_ubx_item *items, size_t n, size_t i, const uint8_t *m)
+{
+    const nmea_ubx_item *it = &items[i];
+    const uint8_t *at = m + it->offset;
+    uint64_t value = 0;
+    size_t k;
+    switch (it->kind) {
+    case NMEA_UBX_ITEM_PART:
+    case NMEA_UBX_ITEM_PART_SIGNED:
+    case NMEA_UBX_ITEM_PART_FLAG:
+        return true;
+    case NMEA_UBX_ITEM_VIEW: {
+        nmea_ubx_bytes view;
+        memcpy(&view, at, sizeof view);
+        return !view.len || ubx_put(w, view.ptr, view.len, it->id);
+    }
+    case NMEA_UBX_ITEM_ARRAY:
+        return ubx_put(w, at, it->size, it->id);
+    case NMEA_UBX_ITEM_FLOAT:
+        if (it->size == 4) {
+            uint32_t bits;
+            memcpy(&bits, at, 4);
+            value = bits;
+        } else {
+            memcpy(&value, at, 8);
+        }
+        return ubx_put_le(w, value, it->size, it->id);
+    case NMEA_UBX_ITEM_WORD:
+        /* The word with its parts' values in their bits; bits no part names stay as they are. */
+        value = ubx_get(at, it->member, false);
+        for (k = i + 1; k < n && items[k].kind >= NMEA_UBX_ITEM_PART && items[k].kind <= NMEA_UBX_ITEM_PART_FLAG; k++) {
+            const nmea_ubx_item *part = &items[k];
+            uint64_t mask = part->size < 64 ? ((uint64_t)1 << part->size) - 1 : ~(uint64_t)0;
+            uint64_t bits = part->kind == NMEA_UBX_ITEM_PART_FLAG
+                                ? *(const bool *)(const void *)(m + part->offset)
+                                : ubx_get(m + part->offset, part->member, part->kind == NMEA_UBX_ITEM_PART_SIGNED);
+            if (!ubx_fits(bits, part->size, part->kind == NMEA_UBX_ITEM_PART_SIGNED))
+                return ubx_bad_value(w, part->id, part->size);
+            value = (value & ~(mask << part->low)) | (bits & mask) << part->low;
+        }
+        return ubx_put_le(w, value, it->size, it->id);
+    default:
+        value = ubx_get(at, it->member, it->kind == NMEA_UBX_ITEM_SIGNED);
+        if (!ubx_fits(value, 8u * it->size, it->kind == NMEA_UBX_ITEM_SIGNED))
+            return ubx_bad_value(w, it->id, 8u * it->size);
+        return ubx_put_le(w, value, it->size, it->id);
+    }
+}
+
+/* Writes a layout's `items` of the struct at `m`, a group's entries field by field; stops at an
+   optional field whose flag is false. */
+static bool ubx_write_items(ubx_writer *w, const nmea_ubx_item *items, size_t n, const uint8_t *m)
+{
+    size_t i, k, f;
+    for (i = 0; i < n; i++) {
+        const nmea_ubx_item *it = &items[i];
+        const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
+        uint16_t count;
+        if (it->optional && !*(const bool *)(const void *)(m + it->has))
+            return true;
+        if (it->kind != NMEA_UBX_ITEM_GROUP) {
+            if (!ubx_write_field(w, items, n, i, m))
+                return false;
+            continue;
+        }
+        memcpy(&count, m + g->n_offset, sizeof count);
+        if (count > g->max) {
+            snprintf(w->err->text, sizeof w->err->text, "%s has %u entries, its array holds %u", it->id, (unsigned)count,
+                     (unsigned)g->max);
+            return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, it->id);
+        }
+        for (k = 0; k < count; k++)
+            for (f = 0; f < g->n_items; f++)
+                if (!ubx_write_field(w, g->items, g->n_items, f, m + it->offset + k * g->entry_size))
+                    return false;
+    }
+    return true;
+}
+
+/* JSON written into a caller's buffer; `len` counts what did not fit too. */
+typedef struct {
+    char *buf;
+    size_t cap, len;
+    bool empty;
+} ubx_json_out;
+
+static void ubx_json_put(ubx_json_out *j, const char *text, size_t len)
+{
+    if (j->len < j->cap)
+        memcpy(j->buf + j->len, text, j->len + len < j->cap ? len : j->cap - j->len);
+    j->len += len;
+    if (j->cap)
+        j->buf[j->len < j->cap ? j->len : j->cap - 1] = '\0';
+}
+
+static void ubx_json_puts(ubx_json_out *j, const char *text)
+{
+    ubx_json_put(j, text, strlen(text));
+}
+
+static void ubx_json_key(ubx_json_out *j, const char *name)
+{
+    if (!j->empty)
+        ubx_json_puts(j, ",");
+    j->empty = false;
+    ubx_json_puts(j, "\"");
+    ubx_json_puts(j, name);
+    ubx_json_puts(j, "\":");
+}
+
+static void ubx_json_number(ubx_json_out *j, uint64_t value, bool is_signed)
+{
+    char text[24];
+    ubx_json_put(j, text,
+                 (size_t)(is_signed ? snprintf(text, sizeof text, "%lld", (long long)(int64_t)value)
+                                    : snprintf(text, sizeof text, "%llu", (unsigned long long)value)));
+}
+
+/* A float as Python's repr writes it: the shortest digits that read back, positionally for
+   exponents -4 to 15 (always with a fraction), else as an exponent; "nan", "inf", "-inf" as the
+   strings Python's JSON of a payload gives. */
+static void ubx_json_float(ubx_json_out *j, double value)
+{
+    char text[48];
+    int digits, exponent;
+    if (value != value || value - value != 0) {
+        ubx_json_puts(j, value != value ? "\"nan\"" : value > 0 ? "\"inf\"" : "\"-inf\"");
+        return;
+    }
+    for (digits = 1; digits < 17; digits++) {
+        snprintf(text, sizeof text, "%.*e", digits - 1, value);
+        if (strtod(text, NULL) == value)
+            break;
+    }
+    snprintf(text, sizeof text, "%.*e", digits - 1, value);
+    exponent = atoi(strchr(text, 'e') + 1);
+    if (exponent >= -4 && exponent < 16)
+        snprintf(text, sizeof text, "%.*f", digits - 1 - exponent > 0 ? digits - 1 - exponent : 1, value);
+    ubx_json_puts(j, text);
+}
+
+/* Characters (ISO 8859-1) as a JSON string: '"' and '\' escaped, the bytes outside 0x20-0x7E as
+   Python's json.dumps writes them (\n, \u00e9). */
+static void ubx_json_chars(ubx_json_out *j, const uint8_t *p, size_t len)
+{
+    static const char hex[] = "0123456789abcdef";
+    size_t i;
+    ubx_json_puts(j, "\"");
+    for (i = 0; i < len; i++) {
+        char esc[7] = {'\\', 'u', '0', '0', hex[p[i] >> 4], hex[p[i] & 15], 0};
+        const char *named = p[i] == '"' ? "\\\"" : p[i] == '\\' ? "\\\\" : p[i] == '\n' ? "\\n" : p[i] == '\r' ? "\\r"
+                                                   : p[i] == '\t' ? "\\t" : p[i] == '\b' ? "\\b" : p[i] == '\f' ? "\\f"
+                                                                                                         : NULL;
+        if (named)
+            ubx_json_puts(j, named);
+        else if (p[i] < 0x20 || p[i] > 0x7E)
+            ubx_json_puts(j, esc);
+        else
+            ubx_json_put(j, (const char *)p + i, 1);
+    }
+    ubx_json_puts(j, "\"");
+}
+
+static void ubx_json_hex(ubx_json_out *j, const uint8_t *p, size_t len)
+{
+    static const char hex[] = "0123456789abcdef";
+    size_t i;
+    ubx_json_puts(j, "\"");
+    for (i = 0; i < len; i++) {
+        char pair[2];
+        pair[0] = hex[p[i] >> 4];
+        pair[1] = hex[p[i] & 15];
+        ubx_json_put(j, pair, 2);
+    }
+    ubx_json_puts(j, "\"");
+}
+
+/* The decimal digits of a little-endian integer of `len` bytes (at most 32). */
+static void ubx_json_big(ubx_json_out *j, const uint8_t *p, size_t len)
+{
+    uint8_t n[32];
+    char digits[80];
+    size_t i, count = 0;
+    bool zero;
+    memcpy(n, p, len);
+    do { /* divide by 10, most significant byte first; the remainder is the next digit */
+        unsigned rest = 0;
+        zero = true;
+        for (i = len; i-- > 0;) {
+            unsigned cur = rest << 8 | n[i];
+            n[i] = (uint8_t)(cur / 10);
+            rest = cur % 10;
+            zero = zero && n[i] == 0;
+        }
+        digits[count++] = (char)('0' + rest);
+    } while (!zero);
+    while (count-- > 0)
+        ubx_json_put(j, &digits[count], 1);
+}
+
+/* The JSON member of field `it` (not a group) of the struct at `m`. */
+static void ubx_json_field(ubx_json_out *j, const nmea_ubx_item *it, const uint8_t *m)
+{
+    const uint8_t *at = m + it->offset;
+    bool is_signed = it->kind == NMEA_UBX_ITEM_SIGNED || it->kind == NMEA_UBX_ITEM_PART_SIGNED;
+    uint64_t value;
+    size_t k;
+    ubx_json_key(j, it->id);
+    switch (it->kind) {
+    case NMEA_UBX_ITEM_VIEW: {
+        nmea_ubx_bytes view;
+        memcpy(&view, at, sizeof view);
+        if (it->print == NMEA_UBX_PRINT_CHARS)
+            ubx_json_chars(j, view.ptr, view.len);
+        else
+            ubx_json_hex(j, view.ptr, view.len);
+        return;
+    }
+    case NMEA_UBX_ITEM_ARRAY:
+        if (it->print == NMEA_UBX_PRINT_CHARS)
+            ubx_json_chars(j, at, it->size);
+        else if (it->print == NMEA_UBX_PRINT_HEX)
+            ubx_json_hex(j, at, it->size);
+        else
+            ubx_json_big(j, at, it->size);
+        return;
+    case NMEA_UBX_ITEM_FLOAT:
+        if (it->size == 4) {
+            float f;
+            memcpy(&f, at, 4);
+            ubx_json_float(j, (double)f);
+        } else {
+            double d;
+            memcpy(&d, at, 8);
+            ubx_json_float(j, d);
+        }
+        return;
+    case NMEA_UBX_ITEM_PART_FLAG:
+        ubx_json_puts(j, *(const bool *)(const void *)at ? "true" : "false");
+        return;
+    default:
+        break;
+    }
+    value = ubx_get(at, it->member, is_signed);
+    if (it->print == NMEA_UBX_PRINT_CODE) { /* an enum's code: its id, or the number of one it does not name */
+        const nmea_ubx_codes *codes = (const nmea_ubx_codes *)it->extra;
+        const char *id = NULL;
+        for (k = 0; k < codes->n && !id; k++)
+            if (codes->codes[k].code == (int64_t)value)
+                id = codes->codes[k].id;
+        if (id) {
+            ubx_json_puts(j, "\"");
+            ubx_json_puts(j, id);
+            ubx_json_puts(j, "\"");
+        } else {
+            ubx_json_number(j, value, is_signed);
+        }
+    } else if (it->print == NMEA_UBX_PRINT_SCALED) { /* its value or special value's id, then its raw integer */
+        const nmea_ubx_scale *s = (const nmea_ubx_scale *)it->extra;
+        const char *special = NULL;
+        char raw_name[64];
+        for (k = 0; k < s->n_specials && !special; k++)
+            if (s->specials[k].raw == (int64_t)value)
+                special = s->specials[k].id;
+        if (special) {
+            ubx_json_puts(j, "\"");
+            ubx_json_puts(j, special);
+            ubx_json_puts(j, "\"");
+        } else if (s->real) {
+            ubx_json_float(j, (is_signed ? (double)(int64_t)value : (double)value) / s->divisor + s->base);
+        } else {
+            ubx_json_number(j, value + (uint64_t)(int64_t)s->base, true);
+        }
+        snprintf(raw_name, sizeof raw_name, "%s_raw", it->id);
+        ubx_json_key(j, raw_name);
+        ubx_json_number(j, value, is_signed);
+    } else {
+        ubx_json_number(j, value, is_signed);
+    }
+}
+
+/* The JSON members of a layout's `items` of the struct at `m` (those of
+   generated/vectors/ubx.jsonl), a group's entries field by field. */
+static void ubx_json_items(ubx_json_out *j, const nmea_ubx_item *items, size_t n, const uint8_t *m)
+{
+    size_t i, k, f;
+    for (i = 0; i < n; i++) {
+        const nmea_ubx_item *it = &items[i];
+        const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
+        uint16_t count;
+        if (it->optional && !*(const bool *)(const void *)(m + it->has))
+            return;
+        if (it->kind != NMEA_UBX_ITEM_GROUP) {
+            ubx_json_field(j, it, m);
+            continue;
+        }
+        memcpy(&count, m + g->n_offset, sizeof count);
+        ubx_json_key(j, it->id);
+        ubx_json_puts(j, "[");
+        for (k = 0; k < count; k++) {
+            ubx_json_puts(j, k ? ",{" : "{");
+            j->empty = true;
+            for (f = 0; f < g->n_items; f++)
+                ubx_json_field(j, &g->items[f], m + it->offset + k * g->entry_size);
+            ubx_json_puts(j, "}");
+        }
+        ubx_json_puts(j, "]");
+        j->empty = false;
+    }
+}
+
+/* The layout a payload of `len` bytes of class and id `first` to `last` (in spec order) is read
+   as: the first whose fixed length (when it has one) and version byte (when it has one) are the
+   payload's, else the first the receiver sends, else the last. */
+static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, size_t last, const uint8_t *payload,
+                             size_t len)
+{
+    size_t i;
+    for (i = first; i <= last; i++) {
+        const nmea_ubx_layout_info *l = &layouts[i];
+        if (l->length >= 0 && (size_t)l->length != len)
+            continue;
+        if (l->version >= 0 && (l->version_at >= len || payload[l->version_at] != l->version))
+            continue;
+        return i;
+    }
+    for (i = first; i <= last; i++)
+        if (layouts[i].output)
+            return i;
+    return last;
+}
+
+/* Reads a payload as layout `l` into the struct at `m` (zeroed first). */
+static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payload, size_t len, uint8_t *m,
+                            nmea_ubx_error *err)
+{
+    ubx_reader r;
+    nmea_ubx_bytes trailing;
+    r.p = payload;
+    r.len = len;
+    r.pos = 0;
+    r.address = l->address;
+    r.err = err;
+    if (!ubx_read_items(&r, l->items, l->n_items, m))
+        return false;
+    trailing.ptr = payload + r.pos;
+    trailing.len = len - r.pos;
+    memcpy(m + l->trailing, &trailing, sizeof trailing);
+    return true;
+}
+
+/* Writes the frame of class and id `l` (NULL: an unknown message's `unknown`) into `buf`: its
+   length, 0 with the error set. */
+static size_t ubx_write_frame(const nmea_ubx_layout_info *l, const uint8_t *m, const nmea_ubx_unknown *unknown,
+                              uint8_t *buf, size_t cap, nmea_ubx_error *err)
+{
+    ubx_writer w;
+    size_t payload;
+    unsigned sum;
+    w.buf = buf;
+    w.cap = cap;
+    w.len = 0;
+    w.address = l ? l->address : NULL;
+    w.err = err;
+    if (cap < NMEA_UBX_OVERHEAD) {
+        snprintf(err->text, sizeof err->text, "a frame needs at least %d bytes, the buffer has %lu", NMEA_UBX_OVERHEAD,
+                 (unsigned long)cap);
+        return (size_t)ubx_fail(err, NMEA_UBX_NO_ROOM, w.address, NULL);
+    }
+    w.cap = cap - 2; /* room for the checksum */
+    w.len = 6;
+    if (l) {
+        nmea_ubx_bytes trailing;
+        memcpy(&trailing, m + l->trailing, sizeof trailing);
+        if (!ubx_write_items(&w, l->items, l->n_items, m) ||
+            (trailing.len && !ubx_put(&w, trailing.ptr, trailing.len, "trailing")))
+            return 0;
+    } else if (unknown->payload.len && !ubx_put(&w, unknown->payload.ptr, unknown->payload.len, "payload")) {
+        return 0;
+    }
+    payload = w.len - 6;
+    if (payload > 0xFFFF) {
+        snprintf(err->text, sizeof err->text, "the payload is %lu bytes, a frame holds 65535", (unsigned long)payload);
+        return (size_t)ubx_fail(err, NMEA_UBX_BAD_VALUE, w.address, NULL);
+    }
+    buf[0] = 0xB5;
+    buf[1] = 0x62;
+    buf[2] = l ? l->msg_class : unknown->msg_class;
+    buf[3] = l ? l->msg_id : unknown->msg_id;
+    buf[4] = (uint8_t)(payload & 0xFF);
+    buf[5] = (uint8_t)(payload >> 8);
+    sum = ubx_checksum(buf + 2, w.len - 2);
+    buf[w.len] = (uint8_t)(sum & 0xFF);
+    buf[w.len + 1] = (uint8_t)(sum >> 8);
+    return w.len + 2;
+}
+
+/* Checks a whole frame's sync, length and checksum: its class, id and payload. */
+static bool ubx_open_frame(const uint8_t *frame, size_t len, const uint8_t **payload, size_t *payload_len,
+                           nmea_ubx_error *err)
+{
+    unsigned sum;
+    if (len < NMEA_UBX_OVERHEAD || frame[0] != 0xB5 || frame[1] != 0x62) {
+        snprintf(err->text, sizeof err->text, "a UBX frame is B5 62, class, id, length, payload and two checksum bytes");
+        return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
+    }
+    *payload_len = (size_t)frame[4] | (size_t)frame[5] << 8;
+    if (len != NMEA_UBX_OVERHEAD + *payload_len) {
+        snprintf(err->text, sizeof err->text, "the length field says %lu payload bytes, the frame has %lu",
+                 (unsigned long)*payload_len, (unsigned long)(len - NMEA_UBX_OVERHEAD));
+        return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
+    }
+    sum = ubx_checksum(frame + 2, len - 4);
+    if ((sum & 0xFF) != frame[len - 2] || sum >> 8 != frame[len - 1]) {
+        snprintf(err->text, sizeof err->text, "checksum %02X %02X, computed %02X %02X", frame[len - 2], frame[len - 1],
+                 sum & 0xFF, sum >> 8);
+        return ubx_fail(err, NMEA_UBX_BAD_CHECKSUM, NULL, NULL);
+    }
+    *payload = frame + 6;
+    return true;
+}
+
+/* JSON opened on a caller's buffer. */
+static void ubx_json_start(ubx_json_out *j, char *buf, size_t cap)
+{
+    j->buf = buf;
+    j->cap = cap;
+    j->len = 0;
+    j->empty = true;
+    if (cap)
+        buf[0] = '\0';
+    ubx_json_puts(j, "{");
+}

@@ -1,0 +1,143 @@
+/* UBX messages: the frame (sync B5 62, class, id, little-endian length, payload, Fletcher-8) and
+   one interpreter of the generated layout descriptors that reads a payload into a layout's struct,
+   writes it back byte for byte and prints its JSON, the C side of the Python runtime's ubx.py
+   (its rules and error kinds). No heap: a field of the bytes left, the trailing bytes and an
+   unknown message's payload are views of the decoded payload. Facts from u-blox UBX-13003221
+   ("UBX frame structure", "UBX checksum", "Data types"). */
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/* The bytes around a payload: sync (2), class, id, length (2) and the checksum (2). */
+#define NMEA_UBX_OVERHEAD 8
+
+typedef enum {
+    NMEA_UBX_OK,
+    NMEA_UBX_BAD_FRAME,      /* no sync, or a length field other than the frame's */
+    NMEA_UBX_BAD_CHECKSUM,   /* the Fletcher-8 sent is not the computed one */
+    NMEA_UBX_SHORT_PAYLOAD,  /* the payload ends before a field's last byte */
+    NMEA_UBX_TOO_MANY,       /* a group has more entries than its struct holds (NMEA_UBX_MAX_ENTRIES) */
+    NMEA_UBX_BAD_VALUE,      /* a value to encode its field cannot hold */
+    NMEA_UBX_NO_ROOM         /* the buffer to encode into is too small */
+} nmea_ubx_error_kind;
+
+/* An error: its kind, the message (`NAV-PVT`, NULL before one is known) and field, and its text. */
+typedef struct {
+    nmea_ubx_error_kind kind;
+    const char *message;
+    const char *field;
+    char text[112];
+} nmea_ubx_error;
+
+/* The kind as the JSON contract names it ("short_payload"). */
+const char *nmea_ubx_error_kind_name(nmea_ubx_error_kind kind);
+
+/* Bytes of a decoded payload, read in place (characters: ISO 8859-1, as sent). */
+typedef struct {
+    const uint8_t *ptr;
+    size_t len;
+} nmea_ubx_bytes;
+
+/* A frame of a class and id the spec does not describe, kept with its payload. */
+typedef struct {
+    uint8_t msg_class, msg_id;
+    nmea_ubx_bytes payload;
+} nmea_ubx_unknown;
+
+/* The descriptors the interpreter walks (generated per layout; not for use by hand). */
+typedef enum {
+    NMEA_UBX_ITEM_UNSIGNED, /* u1..u8 (and a reserved field of up to 8 bytes) */
+    NMEA_UBX_ITEM_SIGNED,   /* i1..i8 */
+    NMEA_UBX_ITEM_WORD,     /* x1..x4: its parts follow it */
+    NMEA_UBX_ITEM_FLOAT,    /* r4, r8: float, double (their bits as sent) */
+    NMEA_UBX_ITEM_ARRAY,    /* ch, bytes, reserved of a fixed width: an array of that many bytes */
+    NMEA_UBX_ITEM_VIEW,     /* ch, bytes of the bytes left: a view */
+    NMEA_UBX_ITEM_PART,     /* a bitfield's unsigned part */
+    NMEA_UBX_ITEM_PART_SIGNED,
+    NMEA_UBX_ITEM_PART_FLAG,
+    NMEA_UBX_ITEM_GROUP
+} nmea_ubx_kind;
+
+/* How an item prints in JSON besides its kind. */
+typedef enum {
+    NMEA_UBX_PRINT_NUMBER,
+    NMEA_UBX_PRINT_CHARS, /* an array or view of characters */
+    NMEA_UBX_PRINT_HEX,   /* bytes: lower-case hex */
+    NMEA_UBX_PRINT_BIG,   /* a reserved array: its little-endian integer */
+    NMEA_UBX_PRINT_CODE,  /* a number that is a code of an enum: its id */
+    NMEA_UBX_PRINT_SCALED /* a number in a unit, beside its raw integer */
+} nmea_ubx_print;
+
+/* A raw value that is no number ("not_available", ...). */
+typedef struct {
+    int64_t raw;
+    const char *id;
+} nmea_ubx_special;
+
+/* A number in a unit: raw / divisor + base (a float when `real`), or a special value. */
+typedef struct {
+    double divisor, base;
+    bool real;
+    const nmea_ubx_special *specials;
+    uint8_t n_specials;
+} nmea_ubx_scale;
+
+/* A code of an enum by its id. */
+typedef struct {
+    int64_t code;
+    const char *id;
+} nmea_ubx_code;
+
+typedef struct {
+    const nmea_ubx_code *codes;
+    uint16_t n;
+} nmea_ubx_codes;
+
+typedef struct {
+    const char *id;
+    const void *extra; /* a nmea_ubx_scale (PRINT_SCALED), nmea_ubx_codes (PRINT_CODE), nmea_ubx_group */
+    uint16_t offset;   /* of its member in the layout's struct */
+    uint16_t has;      /* an optional field (present when the payload has its bytes): its flag's offset */
+    uint16_t after;    /* a field of the bytes left: the bytes of the required fields after it */
+    uint8_t kind;      /* nmea_ubx_kind */
+    uint8_t size;      /* bytes in the payload (0: the bytes left); a part: its bits */
+    uint8_t member;    /* bytes of the member (a number), of the array */
+    uint8_t low;       /* a part: its lowest bit in the word */
+    uint8_t print;     /* nmea_ubx_print */
+    bool optional;
+} nmea_ubx_item;
+
+typedef enum {
+    NMEA_UBX_COUNT_FIXED, /* `count` entries */
+    NMEA_UBX_COUNT_FIELD, /* as many as the member at `count_offset` says */
+    NMEA_UBX_COUNT_LEFT   /* while the bytes left before `after` hold one, at most `max` */
+} nmea_ubx_count;
+
+typedef struct nmea_ubx_group {
+    const nmea_ubx_item *items;
+    uint8_t n_items;
+    uint8_t count_kind;     /* nmea_ubx_count */
+    uint8_t count_member;   /* bytes of the count's member */
+    uint16_t count_offset;  /* of the count's member */
+    uint16_t count;         /* a fixed count */
+    uint16_t min, limit;    /* limit: the most the bytes left may give (the spec's maximum) */
+    uint16_t max;           /* the entries its array holds */
+    uint16_t entry_bytes;   /* of an entry in the payload */
+    uint16_t entry_size;    /* sizeof an entry's struct */
+    uint16_t after;         /* bytes of the required fields after the group */
+    uint16_t n_offset;      /* of the member that says how many entries the array holds (uint16_t) */
+} nmea_ubx_group;
+
+typedef struct {
+    const char *id;      /* nav_pvt */
+    const char *address; /* NAV-PVT */
+    uint8_t msg_class, msg_id;
+    bool output;         /* the receiver sends it */
+    int32_t length;      /* its fixed payload bytes, -1 for none */
+    int16_t version;     /* the value of its version byte that tells it apart, -1 for none */
+    uint16_t version_at; /* ... at this byte */
+    const nmea_ubx_item *items;
+    uint8_t n_items;
+    uint16_t trailing;   /* the offset of its `trailing` member */
+} nmea_ubx_layout_info;
