@@ -13,7 +13,8 @@ from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
 from .field_types import BIT_TYPES
-from .model import (BinaryExample, BinaryMessage, BinaryProtocol, ConfigDatabase, ConfigEnum, ConfigKey, ConfigGroup, BitfieldDef, Bits, BitValue, EnumDef, EnumValue,
+from .model import (BinaryExample, BinaryMessage, BinaryProtocol, BitfieldDef, Bits, BitValue, ConfigDatabase,
+                    ConfigEnum, ConfigGroup, ConfigKey, EnumDef, EnumValue,
                     Example, Fact, Field, FixExample, GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
                     PayloadChoice, PayloadExample, PayloadField, PayloadGroup, PayloadItem, ReplyRule, Sentence, Spec,
                     Special, TableDef, TagCode)
