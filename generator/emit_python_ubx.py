@@ -83,5 +83,6 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         header=header(spec, "#", [m.origin.file for m in messages]), messages=messages)
     if spec.config_keys:   # the configuration database: its runtime, key table and docs page
         files[f"python/{PACKAGE}/ubx_config.py"] = runtime_file(spec, "#", "python/ubx_config.py")
+        files[f"python/{PACKAGE}/apps/ubx_cli.py"] = runtime_file(spec, "#", "python/apps/ubx_cli.py")
         files.update(emit_ubx_config.emit(spec, env))
     return files
