@@ -1,7 +1,8 @@
 """The configuration database (spec/binary/<protocol>/config_keys.yaml) as the Python package's
 key table (nmeaspec.ubx_config_keys, read by the runtime's ubx_config: keys by name and id for
-CFG-VALSET, -VALGET and -VALDEL) and as a docs page with every key (docs/ubx/config_keys.md).
-Called by emit_python_ubx."""
+CFG-VALSET, -VALGET and -VALDEL), as static data of the C pair (nmea_ubx_config.h/.c: a macro
+per key id, a table sorted by id) and of the Rust crate (ubx_config_keys.rs: a constant per key,
+KEYS), and as a docs page with every key (docs/ubx/config_keys.md). Called by emit_python_ubx."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ import jinja2
 
 from .emit import header, markdown_banner
 from .emit_python import WIDTH
+from .emit_rust import rustfmt
 from .model import ConfigDatabase, ConfigKey, Spec
 
 PACKAGE = "nmeaspec"
@@ -71,6 +73,46 @@ def _docs(spec: Spec, env: jinja2.Environment, db: ConfigDatabase) -> str:
         documents=documents, count=len(db.keys), not_found=" ".join(db.not_found.split()))
 
 
+TYPES = {"L": "One bit (in a byte): false or true.", "U1": "Unsigned, one byte.", "U2": "Unsigned, two bytes.",
+         "U4": "Unsigned, four bytes.", "U8": "Unsigned, eight bytes.", "I1": "Signed, one byte.",
+         "I2": "Signed, two bytes.", "I4": "Signed, four bytes.", "I8": "Signed, eight bytes.",
+         "X1": "Bits, one byte.", "X2": "Bits, two bytes.", "X4": "Bits, four bytes.", "X8": "Bits, eight bytes.",
+         "E1": "An enumeration, one byte.", "E2": "An enumeration, two bytes.", "E4": "An enumeration, four bytes.",
+         "R4": "An IEEE 754 single.", "R8": "An IEEE 754 double."}
+
+
+def _static_keys(db: ConfigDatabase) -> list[dict]:
+    """Each key's name, id, type, divisor, unit and description, and its name as a C macro and a
+    Rust constant (CFG_RATE_MEAS; no two alike)."""
+    keys = [{"name": k.name, "id": k.id, "type": k.type, "divisor": k.divisor, "unit": k.unit, "doc": k.doc,
+             "const": k.name.replace("-", "_").upper(), "macro": "NMEA_UBX_" + k.name.replace("-", "_").upper()}
+            for k in db.keys]
+    assert len({k["const"] for k in keys}) == len(keys)
+    return keys
+
+
+def _c(spec: Spec, env: jinja2.Environment, db: ConfigDatabase) -> dict[str, str]:
+    keys = _static_keys(db)
+    context = {"keys": keys, "keys_by_id": sorted(keys, key=lambda k: k["id"]), "types": list(TYPES)}
+    return {f"c/nmea_ubx_config.{ext}": env.get_template(f"c/nmea_ubx_config.{ext}.j2").render(
+        header=header(spec, "//", [db.origin.file, f"templates/c/nmea_ubx_config.{ext}.j2"]), **context)
+        for ext in ("h", "c")}
+
+
+def _rust(spec: Spec, env: jinja2.Environment, db: ConfigDatabase) -> dict[str, str]:
+    keys = _static_keys(db)
+    sizes: dict[int, list[str]] = {}
+    for t in TYPES:
+        sizes.setdefault(1 if t == "L" else int(t[1:]), []).append(f"Self::{t}")
+    test = "templates/rust/ubx_config_keys_test.rs.j2"
+    return rustfmt({
+        "rust/src/ubx_config_keys.rs": env.get_template("rust/ubx_config_keys.rs.j2").render(
+            header=header(spec, "//", [db.origin.file, "templates/rust/ubx_config_keys.rs.j2"]), keys=keys,
+            keys_by_id=sorted(keys, key=lambda k: k["id"]), types=list(TYPES.items()), sizes=sorted(sizes.items())),
+        "rust/tests/ubx_config_keys.rs": env.get_template(test.removeprefix("templates/")).render(
+            header=header(spec, "//", [db.origin.file, test]), count=len(keys))})
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files: dict[str, str] = {}
     for db in spec.config_keys:
@@ -78,4 +120,6 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             continue
         files[f"python/{PACKAGE}/ubx_config_keys.py"] = _python(spec, env, db)
         files["docs/ubx/config_keys.md"] = _docs(spec, env, db)
+        files.update(_c(spec, env, db))
+        files.update(_rust(spec, env, db))
     return files

@@ -33621,6 +33621,8 @@ pub mod paths {
     }
 }
 
+pub mod ubx_config_keys;
+
 /// The fast path of [`parse`] (see [`runtime::Layouts::read_sentence`]): the addresses of
 /// [`sentence_layouts`], matched here once more so that the reader is picked in one step.
 fn read_sentence<'a, O: Outcome<'a, LayoutId>>(fields: FastReader<'a>, line: &'a [u8]) -> O {
