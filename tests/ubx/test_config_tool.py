@@ -204,3 +204,26 @@ def test_the_readme_example_as_written() -> None:
     with fake_receiver(answer) as (where, got):
         status, out, err = run("config", "get", "CFG-RATE-*", "--tcp", where)
     assert (status, out, err) == (0, block + "\n", "")
+
+
+def test_a_wildcard_get_pages_and_named_keys_do_not() -> None:
+    """CFG-MSGOUT-* has more than 64 keys: asked again from position 64 until an answer is short;
+    64 named keys are one poll."""
+    msgout = [k for k in DB.keys if k.name.startswith("CFG-MSGOUT-")]
+    named = msgout[:64]
+
+    def answer(frame: bytes) -> bytes:
+        payload = ubx.decode_frame(frame).payload
+        position = int.from_bytes(payload[2:4], "little")
+        wanted = msgout if payload[4:8] == (0x0091FFFF).to_bytes(4, "little") else named
+        page = wanted[position:position + 64]
+        return valget_answer(b"".join(k.id.to_bytes(4, "little") + b"\x01" for k in page), position=position) \
+            + ack(0x8B)
+
+    with fake_receiver(answer) as (where, got):
+        status, out, err = run("config", "get", "CFG-MSGOUT-*", "--json", "--tcp", where)
+        assert (status, err) == (0, "")
+        assert json.loads(out) == {k.name: 1 for k in msgout}
+        assert len(got) == len(msgout) // 64 + 1
+        status, out, err = run("config", "get", *(k.name for k in named), "--json", "--tcp", where)
+        assert (status, len(json.loads(out)), len(got)) == (0, 64, len(msgout) // 64 + 2)

@@ -173,10 +173,11 @@ def config(argv: list[str]) -> int:
 
 
 def _get(receiver: Receiver, poll: Any, args: argparse.Namespace, timeout: float, out: IO[str]) -> int:
-    """CFG-VALGET, asked again from the next position while an answer is full (64 values: a
-    wildcard's group has more)."""
+    """CFG-VALGET, asked again from the next position while the answer to a wildcard is full (64
+    values: the group has more)."""
     db = ubx_config.database()
     found: dict[str, Any] = {}
+    wildcard = any(e.key & 0xFFFF == ubx_config.WILDCARD_ITEM for e in poll.keys)
     while True:
         reply = _exchange(receiver, poll, timeout, out if not args.json else io.StringIO(), args.show_all)
         if not reply.ok:
@@ -189,7 +190,7 @@ def _get(receiver: Receiver, poll: Any, args: argparse.Namespace, timeout: float
             sys.stderr.write(f"nmea: {err}\n")
             return 1
         found.update(values)
-        if len(values) < ubx_config.MAX_KEYS:
+        if len(values) < ubx_config.MAX_KEYS or not wildcard:  # named keys: answered at once
             break
         poll = replace(poll, position=poll.position + len(values))
     if args.json:
