@@ -13,7 +13,8 @@ from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
 from .field_types import BIT_TYPES
-from .model import (BinaryExample, BinaryMessage, BinaryProtocol, BitfieldDef, Bits, BitValue, EnumDef, EnumValue,
+from .model import (BinaryExample, BinaryMessage, BinaryProtocol, BitfieldDef, Bits, BitValue, ConfigDatabase,
+                    ConfigEnum, ConfigGroup, ConfigKey, EnumDef, EnumValue,
                     Example, Fact, Field, FixExample, GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
                     PayloadChoice, PayloadExample, PayloadField, PayloadGroup, PayloadItem, ReplyRule, Sentence, Spec,
                     Special, TableDef, TagCode)
@@ -45,7 +46,7 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     errors: list[SpecError] = []
     docs: dict[str, list[Document]] = {kind: [] for kind in ("manuals", "facts", "tag_block", "enums", "bitfields", "tables",
                                                              "sentences", "extensions", "payloads", "applications",
-                                                             "protocols", "binary")}
+                                                             "protocols", "binary", "config_keys")}
     digest = hashlib.sha256()
     file_digests: dict[str, str] = {}
     for tree, names in [(spec_dir, spec_dir.parent), *((extra, None) for extra in extras)]:
@@ -81,12 +82,13 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     applications = [_payload(d) for d in docs["applications"]]
     protocols = [_protocol(d) for d in docs["protocols"]]
     binary = [_binary_message(d) for d in docs["binary"]]
+    config_keys = [_config_database(d) for d in docs["config_keys"]]
     errors = _clashes(docs, bitfields, tables) + _extend(sentences, docs["extensions"]) + _alike(sentences, docs["sentences"])
     if errors:
         raise SpecErrors(errors)
     spec = Spec(manuals, enums, sentences,
                 sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences", "extensions", "payloads",
-                                                  "applications", "protocols", "binary")
+                                                  "applications", "protocols", "binary", "config_keys")
                          for d in docs[kind]],
                 digest=digest.hexdigest()[:16], file_digests=file_digests,
                 bitfields=bitfields, tables=tables, generic=generic, facts=facts,
@@ -103,7 +105,8 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
                 tag_manuals=[m for d in docs["tag_block"] for m in d.data["manuals"]],
                 tag_examples=[(e["where"], e["line"]) for d in docs["tag_block"] for e in d.data.get("examples", [])],
                 tag_sources=[str(d.path) for d in docs["tag_block"]],
-                payloads=payloads, applications=applications, protocols=protocols, binary=binary)
+                payloads=payloads, applications=applications, protocols=protocols, binary=binary,
+                config_keys=config_keys)
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
     resolve(spec)
     errors = checks.run(spec, by_file)
@@ -126,6 +129,8 @@ def _tree_files(tree: Path, required_manuals: bool) -> list[tuple[Path, str, str
         files.append((protocol, "protocols", "binary_protocol.schema.json"))
         messages = sorted((protocol.parent / "messages").glob("*.yaml"))
         files += [(p, "binary", "binary_message.schema.json") for p in messages]
+        keys = protocol.parent / "config_keys.yaml"
+        files += [(keys, "config_keys", "config_keys.schema.json")] if keys.exists() else []
     return files
 
 
@@ -344,6 +349,24 @@ def _protocol(doc: Document) -> BinaryProtocol:
     d = doc.data
     return BinaryProtocol(d["protocol"], d["name"], {m["id"]: m["title"] for m in d["documents"]}, d.get("classes", {}),
                           Origin(str(doc.path), ()))
+
+
+def _config_database(doc: Document) -> ConfigDatabase:
+    """A configuration database: its enums and its groups of keys, each key given its group's id
+    and documents."""
+    d = doc.data
+    file = str(doc.path)
+    enums = {e: ConfigEnum(e, v["doc"], dict(v["values"]), Origin(file, ("enums", e))) for e, v in d["enums"].items()}
+    groups = []
+    for i, g in enumerate(d["groups"]):
+        documents = list(g.get("documents", []))
+        keys = [ConfigKey(g["group"], k["item"], k["id"], k["type"], Origin(file, ("groups", i, "keys", j)),
+                          group_id=g["id"], scale=k.get("scale"), unit=k.get("unit"), enum_id=k.get("enum"),
+                          aliases=list(k.get("aliases", [])), doc=k.get("doc", ""), documents=documents,
+                          enum=enums.get(k.get("enum", "")))
+                for j, k in enumerate(g["keys"])]
+        groups.append(ConfigGroup(g["id"], g["group"], g["name"], documents, keys, Origin(file, ("groups", i))))
+    return ConfigDatabase(d["config_keys"], d["library"], d["not_found"], enums, groups, Origin(file, ()))
 
 
 def _binary_message(doc: Document) -> BinaryMessage:

@@ -1,14 +1,15 @@
 """Semantic checks of binary messages (spec/binary): the field checks of the bit payloads
 (checks_payload, rules A002-A007) on each layout, then what binary frames add: where a message
 lives and its class, bitfield parts, counted groups, layouts told apart, documents, replies and
-examples. Rule ids B001-B007 (generator/rules.py)."""
+examples; the keys of a configuration database (spec/binary/<protocol>/config_keys.yaml). Rule ids
+B001-B009 (generator/rules.py)."""
 
 from __future__ import annotations
 
 from typing import Callable
 
 from . import checks_payload, reference_binary
-from .model import BinaryMessage, Payload, PayloadField, PayloadGroup, Spec
+from .model import CONFIG_TYPE_SIZE, BinaryMessage, ConfigDatabase, Payload, PayloadField, PayloadGroup, Spec
 
 Report = Callable[..., None]   # checks._Reporter: (origin, rule, message, *yaml path)
 
@@ -52,6 +53,8 @@ def check(spec: Spec, report: Report) -> None:
                     report(layout.origin, "B006", f"acknowledges.{key}: {field_id} is no u1 field of {layout.id}",
                            "acknowledges", key)
         _check_told_apart(message, report)
+    for database in spec.config_keys:
+        _check_config(database, protocols.get(database.protocol), report)
 
 
 def _check_binary_items(layout: Payload, report: Report) -> None:
@@ -134,3 +137,62 @@ def check_examples(spec: Spec, report: Report) -> None:
                            key)
                 elif decoded[key] != value or type(decoded[key]) is not type(value):
                     report(example.origin, "B007", f"{key} decodes to {decoded[key]!r}, not {value!r}", "expect", key)
+
+
+_RESERVED_KEY_BITS = 0x8F00F000   # bits 12-15, 24-27 and 31 of a key id
+
+
+def _check_config(database: ConfigDatabase, protocol: object, report: Report) -> None:
+    """B008: ids and names unique, each id's group and size bits its group's and its type's; B009:
+    enums named exist and fit, scales only on numbers, documents those of the protocol."""
+    documents = getattr(protocol, "documents", None)
+    if documents is None:
+        report(database.origin, "B009", f"protocol {database.protocol} has no protocol.yaml", "config_keys")
+        documents = {}
+    names: dict[str, str] = {}
+    ids: dict[int, str] = {}
+    groups: dict[tuple[str, int], int] = {}
+    for group in database.groups:
+        if (group.name, group.id) in groups:
+            report(group.origin, "B008", f"group {group.name} 0x{group.id:02X} is listed twice", "group")
+        groups[(group.name, group.id)] = 1
+        for i, document in enumerate(group.documents):
+            if document not in documents:
+                report(group.origin, "B009", f"{document} is not a document of protocol {database.protocol}",
+                       "documents", i)
+    for key in database.keys:
+        for j, name in enumerate([key.item, *key.aliases]):
+            full = f"CFG-{key.group}-{name}"
+            if full in names:
+                report(key.origin, "B008", f"{full} is also the name of key {names[full]}", *(("aliases", j - 1) if j
+                                                                                             else ("item",)))
+            names.setdefault(full, key.name)
+        if key.id in ids:
+            report(key.origin, "B008", f"{key.name}: id 0x{key.id:08X} is also the id of {ids[key.id]} (an other "
+                   "name of one key is an alias)", "id")
+        ids.setdefault(key.id, key.name)
+        size = key.id >> 28 & 7
+        if size != CONFIG_TYPE_SIZE[key.type]:
+            report(key.origin, "B008", f"{key.name}: id 0x{key.id:08X} has size bits {size}, a {key.type} value has "
+                   f"{CONFIG_TYPE_SIZE[key.type]}", "id")
+        if key.id >> 16 & 0xFF != key.group_id:
+            report(key.origin, "B008", f"{key.name}: id 0x{key.id:08X} is of group 0x{key.id >> 16 & 0xFF:02X}, not "
+                   f"of its group's 0x{key.group_id:02X}", "id")
+        if key.id & _RESERVED_KEY_BITS:
+            report(key.origin, "B008", f"{key.name}: id 0x{key.id:08X} sets reserved bits", "id")
+        if key.enum_id is not None:
+            if key.enum is None:
+                report(key.origin, "B009", f"{key.name}: enum {key.enum_id} is not in the file's enums", "enum")
+            elif key.type[0] not in "EU":
+                report(key.origin, "B009", f"{key.name}: a {key.type} value has no enum", "enum")
+            else:
+                bits = 8 * int(key.type[1])
+                for value_id, value in key.enum.values.items():
+                    if not 0 <= value < 1 << bits:
+                        report(key.origin, "B009", f"{key.name}: enum {key.enum_id}'s {value_id} = {value} does not "
+                               f"fit a {key.type} value", "enum")
+        if key.scale is not None:
+            if key.type[0] not in "UIR":
+                report(key.origin, "B009", f"{key.name}: a {key.type} value has no scale", "scale")
+            elif abs(1 / key.scale - round(1 / key.scale)) > 1e-6 * (1 / key.scale):
+                report(key.origin, "B009", f"{key.name}: scale {key.scale} is not 1 over a whole number", "scale")

@@ -1,7 +1,8 @@
 """Python emitter of the binary messages (spec/binary/ubx): the package `nmeaspec.ubx_messages`,
 a module per message with a dataclass per layout and its LAYOUT, the descriptor that the AIS
 payloads' one reader and one writer (runtime/python/ais.py) interpret over little-endian bytes
-(runtime/python/ubx.py). The descriptors are those of emit_python_ais: one model of payloads."""
+(runtime/python/ubx.py). The descriptors are those of emit_python_ais: one model of payloads.
+With a configuration database, also the runtime ubx_config.py and emit_ubx_config's files."""
 
 from __future__ import annotations
 
@@ -9,7 +10,8 @@ import textwrap
 
 import jinja2
 
-from .emit import header
+from . import emit_ubx_config
+from .emit import header, runtime_file
 from .emit_python import WIDTH, docstring
 from .emit_python_ais import entry_class, layout_lines, member
 from .model import BinaryMessage, Payload, PayloadField, PayloadGroup, Spec
@@ -79,4 +81,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             layouts=[layout_view(message, layout) for layout in message.layouts])
     files[f"{base}/__init__.py"] = env.get_template("python/ubx_init.py.j2").render(
         header=header(spec, "#", [m.origin.file for m in messages]), messages=messages)
+    if spec.config_keys:   # the configuration database: its runtime, key table and docs page
+        files[f"python/{PACKAGE}/ubx_config.py"] = runtime_file(spec, "#", "python/ubx_config.py")
+        files[f"python/{PACKAGE}/apps/ubx_cli.py"] = runtime_file(spec, "#", "python/apps/ubx_cli.py")
+        files.update(emit_ubx_config.emit(spec, env))
     return files

@@ -887,6 +887,77 @@ class BinaryMessage:
         return self.id.upper().replace("_", "-", 1)
 
 
+# The bytes of a configuration value by the size code of its key id (bits 28-30): 1 a bit (in a
+# byte), 2 one byte, 3 two, 4 four, 5 eight (u-blox UBX-18010854, "Configuration interface").
+CONFIG_SIZES = {1: 1, 2: 1, 3: 2, 4: 4, 5: 8}
+# The size code of each configuration value type.
+CONFIG_TYPE_SIZE = {"L": 1, "U1": 2, "I1": 2, "X1": 2, "E1": 2, "U2": 3, "I2": 3, "X2": 3, "E2": 3,
+                    "U4": 4, "I4": 4, "X4": 4, "E4": 4, "R4": 4, "U8": 5, "I8": 5, "X8": 5, "R8": 5}
+
+
+@dataclass
+class ConfigEnum:
+    """Named values of configuration keys of an enumeration type (E1, E2, E4)."""
+    id: str
+    doc: str
+    values: dict[str, int]
+    origin: Origin
+
+
+@dataclass
+class ConfigKey:
+    """One key of a configuration database: CFG-RATE-MEAS, its 32-bit id, its value's type and
+    the scale and unit of the number it holds."""
+    group: str                  # RATE
+    item: str                   # MEAS
+    id: int
+    type: str                   # L, U1 .. U8, I1 .. I8, X1 .. X8, E1 .. E4, R4, R8
+    origin: Origin
+    group_id: int = 0           # the group's id (bits 16-23 of `id`, checked)
+    scale: float | None = None
+    unit: str | None = None
+    enum_id: str | None = None
+    aliases: list[str] = field(default_factory=list)
+    doc: str = ""
+    documents: list[str] = field(default_factory=list)   # the group's
+    enum: ConfigEnum | None = None   # resolved
+
+    @property
+    def name(self) -> str:
+        """How u-blox names it: CFG-RATE-MEAS."""
+        return f"CFG-{self.group}-{self.item}"
+
+    @property
+    def divisor(self) -> int:
+        """The raw integer divided by it is the value in `unit` (1/scale, a whole number)."""
+        return 1 if self.scale is None else round(1 / self.scale)
+
+
+@dataclass
+class ConfigGroup:
+    id: int
+    name: str                   # RATE
+    title: str
+    documents: list[str]
+    keys: list[ConfigKey]
+    origin: Origin
+
+
+@dataclass
+class ConfigDatabase:
+    """spec/binary/<protocol>/config_keys.yaml: the keys of a receiver's configuration database."""
+    protocol: str
+    library: str
+    not_found: str
+    enums: dict[str, ConfigEnum]
+    groups: list[ConfigGroup]
+    origin: Origin
+
+    @property
+    def keys(self) -> list[ConfigKey]:
+        return [k for g in self.groups for k in g.keys]
+
+
 @dataclass
 class Spec:
     manuals: list[Manual]
@@ -913,6 +984,7 @@ class Spec:
     applications: list[Payload] = field(default_factory=list)   # spec/ais/applications
     protocols: list[BinaryProtocol] = field(default_factory=list)   # spec/binary/*/protocol.yaml
     binary: list[BinaryMessage] = field(default_factory=list)      # spec/binary/*/messages
+    config_keys: list[ConfigDatabase] = field(default_factory=list)  # spec/binary/*/config_keys.yaml
 
     def digest_of(self, sources: list[str]) -> str:
         """A short hash of the given spec or template files, so that a generated file's header

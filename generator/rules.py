@@ -256,6 +256,16 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "decoder reads, as the layout its length and version pick, to the values its `expect` names (the decoded "
          "JSON's form).",
          "Correct the frame or `expect` (the message shows the decoded value)."),
+    Rule("B008", "configuration keys are unique and sized by their id",
+         "In a configuration database (spec/binary/<protocol>/config_keys.yaml) no two keys share an id or a name "
+         "(an item's aliases included), a group (name and id) is listed once, and each key id's bits 28-30 give "
+         "its type's size (1 L, 2 one byte, 3 two, 4 four, 5 eight), its bits 16-23 its group's id, and its "
+         "reserved bits (12-15, 24-27, 31) are 0.",
+         "Correct the id, the type or the group, or make a second name of one key an `alias`."),
+    Rule("B009", "configuration keys' enums, scales and documents resolve",
+         "A key's `enum` is one of the file's enums, on an E or U type, whose values fit the type; a `scale` is on "
+         "a number type (U, I, R) and is 1 over a whole number; a group's `documents` are its protocol.yaml's.",
+         "Correct the enum, the scale or the document id."),
 )}
 
 

@@ -20,6 +20,12 @@ usually cut, and noise happens. `errors="yield"` yields each as its NmeaError in
 `errors="raise"` raises it. Well-formed sentences the spec does not describe are yielded as
 `Generic` sentences.
 
+`binary=True` also reads the binary frames a receiver interleaves with its sentences: a UBX frame
+is yielded as its decoded message (nmeaspec.ubx_messages), an RTCM 3 frame as its
+stream.BinaryFrame, and one whose checksum fails as an NmeaError of its reason. A UBX message is
+sent like a command: `send(ubx_config.valset({...}))` waits for the ACK-ACK or ACK-NAK of its class
+and id, a poll for its answer (the layouts its REPLIES names).
+
 Only the standard library is imported here; pyserial is imported when a port is opened by name.
 """
 
@@ -35,14 +41,12 @@ from collections import Counter, deque
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from types import TracebackType
-from typing import Any, cast
+from typing import Any
 
 from .api import parse, reply_to
 from .runtime import NmeaError
-from .stream import Framer, too_long
+from .stream import BadFrame, BinaryFrame, Framer, Item, too_long
 
-# What a Framer without binary frames gives: lines, and the lengths of lines too long to keep.
-_Lines = list[bytes | int]
 # The rates a serial port is set to (pyserial's list, and 14400 and 28800 that some receivers
 # offer); anything else is a mistake.
 BAUD_RATES = (
@@ -115,12 +119,35 @@ def check_baud(baud: int | str) -> int:
 
 
 def _name(command: Any) -> str:
+    if _is_ubx(command):
+        return f"UBX {command.ADDRESS}"
     sentence = getattr(command, "SENTENCE", None)
     return str(sentence) if sentence is not None else repr(command)
 
 
+def _is_ubx(command: Any) -> bool:
+    """A UBX message (nmeaspec.ubx.Message: an instance or class of nmeaspec.ubx_messages)."""
+    return all(hasattr(command, name) for name in ("ADDRESS", "MSG_ID", "REPLIES"))
+
+
+def _ubx_outcome(command: Any, reply: Any) -> str | None:
+    """How a decoded UBX message answers the UBX `command`: "error" (an ACK-NAK of its class
+    and id), "ok" (an ACK-ACK of them, or another layout its REPLIES names), None (no answer)."""
+    from .ubx import Message, answers
+
+    if not isinstance(reply, Message) or not answers(command, reply):
+        return None
+    return "error" if reply.ID == "ack_nak" else "ok"
+
+
 def expected_replies(command: Any) -> tuple[str, ...]:
-    """The replies the spec pairs with `command`, as text: ("PMTK001 command=220",)."""
+    """The replies the spec pairs with `command`, as text: ("PMTK001 command=220",); a UBX
+    message's: ("ACK-ACK", "ACK-NAK")."""
+    if _is_ubx(command):
+        from .ubx_messages import BY_ID
+
+        names = {c.ID: c.ADDRESS for layouts in BY_ID.values() for c in layouts}
+        return tuple(dict.fromkeys(names.get(r, r) for r in command.REPLIES))
     out: list[str] = []
     for reply_id, _variant, tests in getattr(command, "REPLY_RULES", ()):
         text = " ".join([reply_id, *(f"{field_id}={value}" for field_id, _, value in tests)])
@@ -158,6 +185,7 @@ class Receiver:
         lenient: bool = False,
         log: Any = None,
         close_stream: bool = True,
+        binary: bool = False,
     ) -> None:
         if errors not in ERRORS:
             raise ValueError(f"errors={errors!r}: one of {', '.join(ERRORS)}")
@@ -170,8 +198,10 @@ class Receiver:
         """The lines skipped (errors="skip"), by error kind."""
         self.ended = False
         """The stream has ended (a file read to its end, a closed socket)."""
-        self._framer = Framer()
-        self._pending: deque[bytes | int] = deque()
+        self.binary = binary
+        """Binary frames (UBX, RTCM 3) are read too."""
+        self._framer = Framer(binary=binary)
+        self._pending: deque[Item] = deque()
         self._fd = _selectable(stream)
         if _is_serial(stream) and stream.timeout != POLL:
             stream.timeout = POLL
@@ -232,18 +262,19 @@ class Receiver:
         data = self._read_some(timeout)
         if data is None:
             self.ended = True
-            self._pending.extend(cast(_Lines, self._framer.end()))
+            self._pending.extend(self._framer.end())
             return False
         if data:
             if self.log is not None:
                 self.log.write(data)
                 self.log.flush()
-            self._pending.extend(cast(_Lines, self._framer.feed(data)))
+            self._pending.extend(self._framer.feed(data))
         return True
 
-    def lines(self, duration: float | None = None) -> Iterator[bytes | int]:
-        """The framed lines as they come (an int: the length of a line too long to keep), for
-        `duration` seconds (None: until the stream ends)."""
+    def lines(self, duration: float | None = None) -> Iterator[Item]:
+        """The framed lines as they come (an int: the length of a line too long to keep; with
+        binary=True, also BinaryFrame and BadFrame), for `duration` seconds (None: until the
+        stream ends)."""
         deadline = None if duration is None else time.monotonic() + duration
         while True:
             while self._pending:
@@ -254,11 +285,16 @@ class Receiver:
             if not self._fill(left) and not self._pending:
                 return
 
-    def _decode(self, item: bytes | int) -> Any:
-        """The sentence of a framed line, its NmeaError (errors="yield"), or None (skipped)."""
+    def _decode(self, item: Any) -> Any:
+        """The sentence of a framed line (a binary frame: its UBX message, or the frame), its
+        NmeaError (errors="yield"), or None (skipped)."""
         try:
             if isinstance(item, int):
                 raise too_long(item)
+            if isinstance(item, BinaryFrame):
+                return item.message() if item.protocol == "ubx" else item
+            if isinstance(item, BadFrame):
+                raise NmeaError(item.reason, item.message, item.protocol.upper())
             return parse(item, lenient=self.lenient)
         except NmeaError as err:
             if self.on_error == "raise":
@@ -295,12 +331,16 @@ class Receiver:
     # writing
 
     def write(self, command: Any) -> bytes:
-        """Send a command (a sentence instance, or its text or bytes; CR LF is added when
-        missing) without waiting for anything; returns the bytes written."""
+        """Send a command (a sentence instance, a UBX message, or its text or bytes; CR LF is
+        added to a text's when missing, not to a binary frame's) without waiting for anything;
+        returns the bytes written."""
         if isinstance(command, str):
             command = command.encode("latin-1")
         if isinstance(command, (bytes, bytearray)):
-            data = bytes(command) if command.endswith(b"\n") else bytes(command) + b"\r\n"
+            binary = command.startswith(b"\xb5\x62") or command.endswith(b"\n")
+            data = bytes(command) if binary else bytes(command) + b"\r\n"
+        elif _is_ubx(command):
+            data = command.encode()
         else:
             data = command.to_bytes()
         try:
@@ -321,19 +361,29 @@ class Receiver:
         nmeaspec.reply_to). Returns the Reply, whose `received` holds what came meanwhile; raises
         ReplyTimeout when nothing answers within `timeout` seconds, ValueError for a command
         that the spec gives no reply (send it with write())."""
-        if isinstance(command, (str, bytes, bytearray)):
+        if isinstance(command, (bytes, bytearray)) and command.startswith(b"\xb5\x62"):
+            from .ubx_messages import decode
+
+            sentence = decode(bytes(command))
+        elif isinstance(command, (str, bytes, bytearray)):
             text = command if isinstance(command, str) else bytes(command).decode("latin-1")
             sentence = parse(text.rstrip("\r\n"))
         else:
             sentence = command
-        if not getattr(sentence, "REPLY_RULES", ()):
+        if not expected_replies(sentence):
             raise ValueError(f"nothing answers {_name(sentence)} in the spec; send it with write()")
         self.write(command)
         return self.wait_reply(sentence, timeout)
 
     def wait_reply(self, command: Any, timeout: float = 5.0) -> Reply:
         """send() after write(): read until a sentence answers `command` (a sentence instance or
-        class), for at most `timeout` seconds."""
+        class; a UBX message: the message that answers it, which needs binary=True), for at most
+        `timeout` seconds."""
+        ubx = _is_ubx(command)
+        if ubx and not self.binary:
+            raise ValueError(
+                f"the reply to {_name(command)} is a binary frame: open the receiver with binary=True"
+            )
         deadline = time.monotonic() + timeout
         received: list[Any] = []
         while True:
@@ -342,7 +392,11 @@ class Receiver:
                 item = self._decode(line)
                 if item is None:
                     continue
-                if not isinstance(item, NmeaError) and isinstance(line, bytes):
+                if ubx and isinstance(line, BinaryFrame):
+                    outcome = _ubx_outcome(command, item)
+                    if outcome is not None:
+                        return Reply(command, outcome, item, line.data, received)
+                elif not ubx and not isinstance(item, NmeaError) and isinstance(line, bytes):
                     outcome = reply_to(command, item)
                     if outcome is not None:
                         return Reply(command, outcome, item, line, received)

@@ -24,7 +24,7 @@ import time
 from collections import Counter
 from collections.abc import Iterable, Iterator
 from itertools import islice
-from typing import IO, Any
+from typing import IO, Any, cast
 
 from .. import __version__
 from ..api import Generic, Tagged, parse
@@ -80,6 +80,9 @@ examples (a receiver on a serial port; pip install 'nmeaspec[serial]'):
   nmea listen --tcp 192.168.1.10:10110 --sentences VDM       a TCP feed (a gateway, gpsd)
   nmea send --port /dev/ttyUSB0 mtk_pmtk pmtk220 200         5 Hz; prints the reply
   nmea send --port /dev/ttyUSB0 --baud 115200 quectel_lg290p pqtmcfgfixrate 100 --timeout 2
+  nmea send --port /dev/ttyACM0 ubx MON-VER                  a UBX poll, and its answer
+  nmea config get CFG-RATE-MEAS --port /dev/ttyACM0          u-blox configuration keys by name
+  nmea config set CFG-RATE-MEAS 0.2 --layer ram,bbr --port /dev/ttyACM0
 
 `send` builds the command as `nmea command` does, writes it and waits for the reply that the
 spec pairs with it (e.g. $PMTK001,220,3 for $PMTK220). Exit status: 0 the reply says OK, 1 it
@@ -787,7 +790,8 @@ def listen(args: argparse.Namespace) -> int:
     summary = Summary()
     with _open_source(args) as receiver:
         receiver.log = log = _append_log(args.log)
-        stream = framed_records(receiver.lines(duration), wanted, summary, **parse_options(args))
+        lines_read = cast(Iterator[bytes | int], receiver.lines(duration))  # not binary: lines only
+        stream = framed_records(lines_read, wanted, summary, **parse_options(args))
         if args.count is not None:
             stream = islice(stream, args.count)
         try:
@@ -868,8 +872,12 @@ def _meanwhile(items: list[Any], out: IO[str]) -> None:
 
 
 def send(args: argparse.Namespace) -> int:
+    if args.words[:1] == ["ubx"]:  # a UBX message: apps/ubx_cli.py
+        from .ubx_cli import send_ubx
+
+        return send_ubx(args)
     if len(args.words) < 2:
-        raise CliError("give VENDOR NAME [ARGS]; see nmea command --list")
+        raise CliError("give VENDOR NAME [ARGS] (or ubx MESSAGE [JSON]); see nmea command --list")
     timeout = _seconds("--timeout", args.timeout)
     assert timeout is not None
     sentence = build_sentence(args.words[0], args.words[1:])
@@ -972,7 +980,7 @@ def parser() -> argparse.ArgumentParser:
         + LIVE_EXAMPLES,
     )
     top.add_argument("--version", action="version", version=f"nmea {__version__}")
-    verbs = top.add_subparsers(dest="verb", metavar="show|command|listen|send|report|export")
+    verbs = top.add_subparsers(dest="verb", metavar="show|command|listen|send|config|report|export")
     s = verbs.add_parser(
         "show",
         help="print the sentences of a log (a file, or - for stdin)",
@@ -1041,7 +1049,13 @@ def parser() -> argparse.ArgumentParser:
     se.add_argument(
         "--show-all", action="store_true", help="print the sentences that come before the reply"
     )
-    _command_words(se, "the command, as `nmea command` takes it")
+    _command_words(se, "the command, as `nmea command` takes it; or ubx MESSAGE [JSON], or ubx HEX")
+    verbs.add_parser(
+        "config",
+        help="read, write and delete u-blox configuration keys by name (CFG-VALGET, CFG-VALSET, "
+        "CFG-VALDEL; see nmea config -h)",
+        add_help=False,
+    )
     from .export import add_parser as add_export  # here: export and report import this module
     from .report import add_parser as add_report
 
@@ -1050,7 +1064,7 @@ def parser() -> argparse.ArgumentParser:
     return top
 
 
-VERBS = ("show", "command", "listen", "send", "report", "export", "-h", "--help", "--version")
+VERBS = ("show", "command", "listen", "send", "config", "report", "export", "-h", "--help", "--version")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -1072,6 +1086,10 @@ def main(argv: list[str] | None = None) -> int:
             )
         if args[0] == "send":
             return send(send_options(args[1:]))
+        if args[0] == "config":  # u-blox configuration keys: apps/ubx_cli.py
+            from .ubx_cli import config
+
+            return config(args[1:])
         parsed = parser().parse_args(args)
         result: int = parsed.run(parsed)
         return result
