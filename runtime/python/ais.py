@@ -212,8 +212,10 @@ class Unsigned(Field):
             return value.raw
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise _bad_value(where, self.id, value, "a number")
-        if self.divisor == 1 and isinstance(value, int) and isinstance(self.base, int):
-            return value - self.base
+        if self.divisor == 1 and isinstance(self.base, int):
+            if isinstance(value, float) and not value.is_integer():  # never rounded in silence
+                raise _bad_value(where, self.id, value, "a whole number")
+            return int(value) - self.base
         return round((value - self.base) * self.divisor)
 
     def to_raw(self, value: Any, where: str) -> tuple[int, int]:
@@ -569,12 +571,13 @@ def compile_write_prefix(items: tuple[Item, ...]) -> WritePrefix:
         fallback = f"bits = bits << {width} | {name}.to_raw(value, where)[0]"
         if isinstance(item, Unsigned):
             low, high = item.bounds(width)
-            if item.divisor == 1 and isinstance(item.base, int):
-                number = f"value - {item.base} if value.__class__ is int else round(value - {item.base})"
+            if item.divisor == 1 and isinstance(item.base, int):  # a float: to_raw, which takes whole ones only
+                number, numeric = f"value - {item.base}", "value.__class__ is int"
             else:
                 number = f"round((value - {item.base!r}) * {item.divisor})"
+                numeric = "value.__class__ is int or value.__class__ is float"
             special = " else value.raw if value.__class__ is Special" if item.special else ""
-            code.append(f"    raw = {number} if value.__class__ is int or value.__class__ is float{special} else None")
+            code.append(f"    raw = {number} if {numeric}{special} else None")
             fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw & {(1 << width) - 1}"
         elif isinstance(item, Flag):
             fast = "value is True or value is False", "bits = bits << 1 | value"

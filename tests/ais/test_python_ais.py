@@ -127,6 +127,22 @@ def test_encoding_refuses_a_value_its_field_cannot_hold() -> None:
     assert (caught.value.kind, caught.value.name, caught.value.address) == ("bad_value", "heading", "AIS type 1")
 
 
+@pytest.mark.parametrize("value, refused", [(1.5, True), (False, True), (123.0, False), (123, False)])
+def test_a_whole_number_field_is_never_rounded_in_silence(value: object, refused: bool) -> None:
+    """A float for a field of whole numbers (no scale) is taken only when it is one: 1.5 MMSIs is an
+    error, not MMSI 2; a scaled field rounds to its nearest raw value, as its unit says it must."""
+    m = decode_payload("15RTgt0PAso;90TKcjM8h6g208CQ", 0)
+    m.mmsi = value
+    if refused:
+        with pytest.raises(NmeaError) as caught:
+            m.encode()
+        assert (caught.value.kind, caught.value.name) == ("bad_value", "mmsi")
+    else:
+        assert decode_payload(*m.encode()).mmsi == 123
+    m.mmsi, m.speed = 123, 10.04  # knots in tenths: the nearest, 100
+    assert decode_payload(*m.encode()).speed == 10.0
+
+
 def test_a_vdm_sentence_gives_its_message() -> None:
     vdm = nmeaspec.parse("!AIVDM,1,1,,B,13nUgBWP01PkHvDU7<kC4wvJ2>`<,0*27")
     assert vdm.message == decode_payload("13nUgBWP01PkHvDU7<kC4wvJ2>`<", 0)

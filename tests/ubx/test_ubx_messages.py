@@ -127,3 +127,14 @@ def test_a_nan_keeps_its_bits() -> None:
     message = ubx_messages.message(ubx.Frame(0x01, 0x36, payload))
     assert isinstance(message, ubx_messages.NavCov) and message.to_dict()["pos_cov_nn"] == "nan"
     assert message.payload() == payload
+
+
+def test_a_whole_number_field_is_never_rounded_in_silence() -> None:
+    """CFG-RATE's measurement period is whole milliseconds: 100.7 is refused, 100.0 taken."""
+    rate = ubx_messages.decode(bytes.fromhex("b562060806006400010001007a12"))
+    rate.meas_rate = 100.7
+    with pytest.raises(ubx.NmeaError) as caught:
+        rate.encode()
+    assert (caught.value.kind, caught.value.name) == ("bad_value", "meas_rate")
+    rate.meas_rate = 100.0
+    assert rate.encode() == bytes.fromhex("b562060806006400010001007a12")
