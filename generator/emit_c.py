@@ -506,18 +506,47 @@ def _read_condition(view: dict, call: str) -> str:
     return "!" + view[call]
 
 
+def text_pool(name: str, texts: list[str]) -> tuple[list[str], dict[str, str]]:
+    """A table's texts as one char array `name` (each text once, NUL-terminated): the lines of
+    literals that initialize it and, for each text, its C expression (`name + offset`). The texts
+    of a table that a firmware does not link are then left out with it (-fdata-sections
+    --gc-sections): as string literals they would share one section with every other table's."""
+    pieces: list[str] = []
+    at: dict[str, str] = {}
+    offset = 0
+    for text in texts:
+        if text not in at:
+            at[text] = f"{name} + {offset}" if offset else name
+            pieces.append(c_str(text)[:-1] + '\\0"')
+            offset += len(text.encode("utf-8")) + 1
+    if offset > 4095:  # the longest string literal C99 asks every compiler to take (-pedantic)
+        raise ValueError(f"{name}: {offset} bytes of texts, more than a C99 string literal holds")
+    lines: list[str] = []
+    for piece in pieces:  # a few to a line
+        if lines and len(lines[-1]) + 1 + len(piece) <= 100:
+            lines[-1] += " " + piece
+        else:
+            lines.append(piece)
+    return lines, at
+
+
 def enum_view(e: EnumDef) -> dict:
+    lines, at = text_pool(f"{e.id}_texts", [e.id, *(text for v in e.values for text in (v.code, v.id))])
     return {
         "enum": e,
         "type": enum_type(e),
         "def": enum_def(e),
         "codes": f"{e.id}_codes",
+        "texts": f"{e.id}_texts",
+        "pool": lines,
+        "name": at[e.id],
         "doc": doc_lines(f"{e.id}: {e.name}. {e.doc}"),
         "class": f"NMEA_CODES_{e.code_class.upper()}",
         "values": [{
             "const": enum_const(e, v.id),
-            "code": c_str(v.code),
-            "id": c_str(v.id),
+            "code": at[v.code],
+            "id": at[v.id],
+            "comment": f"{c_str(v.code)}: {c_str(v.id)}".replace("*/", "*\\/"),  # quoted: a renamed copy keeps them
             "doc": doc_lines(f'"{v.code}": {v.doc}' + (f" (NMEA {v.since})" if v.since else ""), 88),
         } for v in e.values],
     }

@@ -8026,3026 +8026,3771 @@ size_t nmea_fix_to_json(const nmea_gnss_fix *fix, char *buf, size_t cap)
 /* ------------------------------------------------------------------------------------------ */
 /* Lookup tables */
 
+static const char aam_arrival_circle_texts[] =
+    "aam_arrival_circle\0" "A\0" "entered\0" "V\0" "not_entered\0";
 static const nmea_enum_code aam_arrival_circle_codes[] = {
-    {"A", "entered"},
-    {"V", "not_entered"},
+    {aam_arrival_circle_texts + 19, aam_arrival_circle_texts + 21}, /* "A": "entered" */
+    {aam_arrival_circle_texts + 29, aam_arrival_circle_texts + 31}, /* "V": "not_entered" */
 };
 const nmea_enum_def nmea_aam_arrival_circle_def = {
-    "aam_arrival_circle", aam_arrival_circle_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    aam_arrival_circle_texts, aam_arrival_circle_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char aam_perpendicular_texts[] =
+    "aam_perpendicular\0" "A\0" "passed\0" "V\0" "not_passed\0";
 static const nmea_enum_code aam_perpendicular_codes[] = {
-    {"A", "passed"},
-    {"V", "not_passed"},
+    {aam_perpendicular_texts + 18, aam_perpendicular_texts + 20}, /* "A": "passed" */
+    {aam_perpendicular_texts + 27, aam_perpendicular_texts + 29}, /* "V": "not_passed" */
 };
 const nmea_enum_def nmea_aam_perpendicular_def = {
-    "aam_perpendicular", aam_perpendicular_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    aam_perpendicular_texts, aam_perpendicular_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char abk_ack_type_texts[] =
+    "abk_ack_type\0" "0\0" "received\0" "1\0" "no_acknowledgement\0" "2\0" "not_broadcast\0" "3\0"
+    "broadcast_done\0" "4\0" "late_reception\0" "5\0" "read_on_display\0";
 static const nmea_enum_code abk_ack_type_codes[] = {
-    {"0", "received"},
-    {"1", "no_acknowledgement"},
-    {"2", "not_broadcast"},
-    {"3", "broadcast_done"},
-    {"4", "late_reception"},
-    {"5", "read_on_display"},
+    {abk_ack_type_texts + 13, abk_ack_type_texts + 15}, /* "0": "received" */
+    {abk_ack_type_texts + 24, abk_ack_type_texts + 26}, /* "1": "no_acknowledgement" */
+    {abk_ack_type_texts + 45, abk_ack_type_texts + 47}, /* "2": "not_broadcast" */
+    {abk_ack_type_texts + 61, abk_ack_type_texts + 63}, /* "3": "broadcast_done" */
+    {abk_ack_type_texts + 78, abk_ack_type_texts + 80}, /* "4": "late_reception" */
+    {abk_ack_type_texts + 95, abk_ack_type_texts + 97}, /* "5": "read_on_display" */
 };
 const nmea_enum_def nmea_abk_ack_type_def = {
-    "abk_ack_type", abk_ack_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    abk_ack_type_texts, abk_ack_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char abk_channel_texts[] =
+    "abk_channel\0" "A\0" "a\0" "B\0" "b\0";
 static const nmea_enum_code abk_channel_codes[] = {
-    {"A", "a"},
-    {"B", "b"},
+    {abk_channel_texts + 12, abk_channel_texts + 14}, /* "A": "a" */
+    {abk_channel_texts + 16, abk_channel_texts + 18}, /* "B": "b" */
 };
 const nmea_enum_def nmea_abk_channel_def = {
-    "abk_channel", abk_channel_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    abk_channel_texts, abk_channel_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char abm_channel_texts[] =
+    "abm_channel\0" "0\0" "no_preference\0" "1\0" "a\0" "2\0" "b\0" "3\0" "both\0";
 static const nmea_enum_code abm_channel_codes[] = {
-    {"0", "no_preference"},
-    {"1", "a"},
-    {"2", "b"},
-    {"3", "both"},
+    {abm_channel_texts + 12, abm_channel_texts + 14}, /* "0": "no_preference" */
+    {abm_channel_texts + 28, abm_channel_texts + 30}, /* "1": "a" */
+    {abm_channel_texts + 32, abm_channel_texts + 34}, /* "2": "b" */
+    {abm_channel_texts + 36, abm_channel_texts + 38}, /* "3": "both" */
 };
 const nmea_enum_def nmea_abm_channel_def = {
-    "abm_channel", abm_channel_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    abm_channel_texts, abm_channel_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char aca_bandwidth_texts[] =
+    "aca_bandwidth\0" "0\0" "by_channel_number\0" "1\0" "khz_12_5\0";
 static const nmea_enum_code aca_bandwidth_codes[] = {
-    {"0", "by_channel_number"},
-    {"1", "khz_12_5"},
+    {aca_bandwidth_texts + 14, aca_bandwidth_texts + 16}, /* "0": "by_channel_number" */
+    {aca_bandwidth_texts + 34, aca_bandwidth_texts + 36}, /* "1": "khz_12_5" */
 };
 const nmea_enum_def nmea_aca_bandwidth_def = {
-    "aca_bandwidth", aca_bandwidth_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    aca_bandwidth_texts, aca_bandwidth_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char aca_in_use_texts[] =
+    "aca_in_use\0" "0\0" "not_in_use\0" "1\0" "in_use\0";
 static const nmea_enum_code aca_in_use_codes[] = {
-    {"0", "not_in_use"},
-    {"1", "in_use"},
+    {aca_in_use_texts + 11, aca_in_use_texts + 13}, /* "0": "not_in_use" */
+    {aca_in_use_texts + 24, aca_in_use_texts + 26}, /* "1": "in_use" */
 };
 const nmea_enum_def nmea_aca_in_use_def = {
-    "aca_in_use", aca_in_use_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    aca_in_use_texts, aca_in_use_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char aca_info_source_texts[] =
+    "aca_info_source\0" "A\0" "message22_addressed\0" "B\0" "message22_broadcast\0" "C\0"
+    "aca_sentence\0" "D\0" "dsc_telecommand\0" "M\0" "manual\0";
 static const nmea_enum_code aca_info_source_codes[] = {
-    {"A", "message22_addressed"},
-    {"B", "message22_broadcast"},
-    {"C", "aca_sentence"},
-    {"D", "dsc_telecommand"},
-    {"M", "manual"},
+    {aca_info_source_texts + 16, aca_info_source_texts + 18}, /* "A": "message22_addressed" */
+    {aca_info_source_texts + 38, aca_info_source_texts + 40}, /* "B": "message22_broadcast" */
+    {aca_info_source_texts + 60, aca_info_source_texts + 62}, /* "C": "aca_sentence" */
+    {aca_info_source_texts + 75, aca_info_source_texts + 77}, /* "D": "dsc_telecommand" */
+    {aca_info_source_texts + 93, aca_info_source_texts + 95}, /* "M": "manual" */
 };
 const nmea_enum_def nmea_aca_info_source_def = {
-    "aca_info_source", aca_info_source_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    aca_info_source_texts, aca_info_source_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char aca_power_level_texts[] =
+    "aca_power_level\0" "0\0" "high\0" "1\0" "low\0";
 static const nmea_enum_code aca_power_level_codes[] = {
-    {"0", "high"},
-    {"1", "low"},
+    {aca_power_level_texts + 16, aca_power_level_texts + 18}, /* "0": "high" */
+    {aca_power_level_texts + 23, aca_power_level_texts + 25}, /* "1": "low" */
 };
 const nmea_enum_def nmea_aca_power_level_def = {
-    "aca_power_level", aca_power_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    aca_power_level_texts, aca_power_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char aca_txrx_mode_texts[] =
+    "aca_txrx_mode\0" "0\0" "tx_ab_rx_ab\0" "1\0" "tx_a_rx_ab\0" "2\0" "tx_b_rx_ab\0" "3\0"
+    "no_tx_rx_ab\0" "4\0" "no_tx_rx_a\0" "5\0" "no_tx_rx_b\0";
 static const nmea_enum_code aca_txrx_mode_codes[] = {
-    {"0", "tx_ab_rx_ab"},
-    {"1", "tx_a_rx_ab"},
-    {"2", "tx_b_rx_ab"},
-    {"3", "no_tx_rx_ab"},
-    {"4", "no_tx_rx_a"},
-    {"5", "no_tx_rx_b"},
+    {aca_txrx_mode_texts + 14, aca_txrx_mode_texts + 16}, /* "0": "tx_ab_rx_ab" */
+    {aca_txrx_mode_texts + 28, aca_txrx_mode_texts + 30}, /* "1": "tx_a_rx_ab" */
+    {aca_txrx_mode_texts + 41, aca_txrx_mode_texts + 43}, /* "2": "tx_b_rx_ab" */
+    {aca_txrx_mode_texts + 54, aca_txrx_mode_texts + 56}, /* "3": "no_tx_rx_ab" */
+    {aca_txrx_mode_texts + 68, aca_txrx_mode_texts + 70}, /* "4": "no_tx_rx_a" */
+    {aca_txrx_mode_texts + 81, aca_txrx_mode_texts + 83}, /* "5": "no_tx_rx_b" */
 };
 const nmea_enum_def nmea_aca_txrx_mode_def = {
-    "aca_txrx_mode", aca_txrx_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    aca_txrx_mode_texts, aca_txrx_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char acn_alert_command_texts[] =
+    "acn_alert_command\0" "A\0" "acknowledge\0" "Q\0" "request_repeat\0" "O\0"
+    "responsibility_transfer\0" "S\0" "silence\0";
 static const nmea_enum_code acn_alert_command_codes[] = {
-    {"A", "acknowledge"},
-    {"Q", "request_repeat"},
-    {"O", "responsibility_transfer"},
-    {"S", "silence"},
+    {acn_alert_command_texts + 18, acn_alert_command_texts + 20}, /* "A": "acknowledge" */
+    {acn_alert_command_texts + 32, acn_alert_command_texts + 34}, /* "Q": "request_repeat" */
+    {acn_alert_command_texts + 49, acn_alert_command_texts + 51}, /* "O": "responsibility_transfer" */
+    {acn_alert_command_texts + 75, acn_alert_command_texts + 77}, /* "S": "silence" */
 };
 const nmea_enum_def nmea_acn_alert_command_def = {
-    "acn_alert_command", acn_alert_command_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    acn_alert_command_texts, acn_alert_command_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char airoha_ack_result_texts[] =
+    "airoha_ack_result\0" "0\0" "success\0" "1\0" "processing\0" "2\0" "failed\0" "3\0" "unsupported\0"
+    "4\0" "parameter_error\0" "5\0" "busy\0";
 static const nmea_enum_code airoha_ack_result_codes[] = {
-    {"0", "success"},
-    {"1", "processing"},
-    {"2", "failed"},
-    {"3", "unsupported"},
-    {"4", "parameter_error"},
-    {"5", "busy"},
+    {airoha_ack_result_texts + 18, airoha_ack_result_texts + 20}, /* "0": "success" */
+    {airoha_ack_result_texts + 28, airoha_ack_result_texts + 30}, /* "1": "processing" */
+    {airoha_ack_result_texts + 41, airoha_ack_result_texts + 43}, /* "2": "failed" */
+    {airoha_ack_result_texts + 50, airoha_ack_result_texts + 52}, /* "3": "unsupported" */
+    {airoha_ack_result_texts + 64, airoha_ack_result_texts + 66}, /* "4": "parameter_error" */
+    {airoha_ack_result_texts + 82, airoha_ack_result_texts + 84}, /* "5": "busy" */
 };
 const nmea_enum_def nmea_airoha_ack_result_def = {
-    "airoha_ack_result", airoha_ack_result_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    airoha_ack_result_texts, airoha_ack_result_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_aiding_type_texts[] =
+    "airoha_aiding_type\0" "0\0" "epo\0" "1\0" "time\0" "2\0" "location\0";
 static const nmea_enum_code airoha_aiding_type_codes[] = {
-    {"0", "epo"},
-    {"1", "time"},
-    {"2", "location"},
+    {airoha_aiding_type_texts + 19, airoha_aiding_type_texts + 21}, /* "0": "epo" */
+    {airoha_aiding_type_texts + 25, airoha_aiding_type_texts + 27}, /* "1": "time" */
+    {airoha_aiding_type_texts + 32, airoha_aiding_type_texts + 34}, /* "2": "location" */
 };
 const nmea_enum_def nmea_airoha_aiding_type_def = {
-    "airoha_aiding_type", airoha_aiding_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    airoha_aiding_type_texts, airoha_aiding_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_baud_texts[] =
+    "airoha_baud\0" "4800\0" "baud_4800\0" "9600\0" "baud_9600\0" "19200\0" "baud_19200\0" "38400\0"
+    "baud_38400\0" "57600\0" "baud_57600\0" "115200\0" "baud_115200\0" "230400\0" "baud_230400\0"
+    "460800\0" "baud_460800\0" "921600\0" "baud_921600\0";
 static const nmea_enum_code airoha_baud_codes[] = {
-    {"4800", "baud_4800"},
-    {"9600", "baud_9600"},
-    {"19200", "baud_19200"},
-    {"38400", "baud_38400"},
-    {"57600", "baud_57600"},
-    {"115200", "baud_115200"},
-    {"230400", "baud_230400"},
-    {"460800", "baud_460800"},
-    {"921600", "baud_921600"},
+    {airoha_baud_texts + 12, airoha_baud_texts + 17}, /* "4800": "baud_4800" */
+    {airoha_baud_texts + 27, airoha_baud_texts + 32}, /* "9600": "baud_9600" */
+    {airoha_baud_texts + 42, airoha_baud_texts + 48}, /* "19200": "baud_19200" */
+    {airoha_baud_texts + 59, airoha_baud_texts + 65}, /* "38400": "baud_38400" */
+    {airoha_baud_texts + 76, airoha_baud_texts + 82}, /* "57600": "baud_57600" */
+    {airoha_baud_texts + 93, airoha_baud_texts + 100}, /* "115200": "baud_115200" */
+    {airoha_baud_texts + 112, airoha_baud_texts + 119}, /* "230400": "baud_230400" */
+    {airoha_baud_texts + 131, airoha_baud_texts + 138}, /* "460800": "baud_460800" */
+    {airoha_baud_texts + 150, airoha_baud_texts + 157}, /* "921600": "baud_921600" */
 };
 const nmea_enum_def nmea_airoha_baud_def = {
-    "airoha_baud", airoha_baud_codes, 9, 4, 6, NMEA_CODES_DIGITS
+    airoha_baud_texts, airoha_baud_codes, 9, 4, 6, NMEA_CODES_DIGITS
 };
 
+static const char airoha_debug_log_texts[] =
+    "airoha_debug_log\0" "0\0" "disabled\0" "1\0" "full\0" "2\0" "lite\0";
 static const nmea_enum_code airoha_debug_log_codes[] = {
-    {"0", "disabled"},
-    {"1", "full"},
-    {"2", "lite"},
+    {airoha_debug_log_texts + 17, airoha_debug_log_texts + 19}, /* "0": "disabled" */
+    {airoha_debug_log_texts + 28, airoha_debug_log_texts + 30}, /* "1": "full" */
+    {airoha_debug_log_texts + 35, airoha_debug_log_texts + 37}, /* "2": "lite" */
 };
 const nmea_enum_def nmea_airoha_debug_log_def = {
-    "airoha_debug_log", airoha_debug_log_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    airoha_debug_log_texts, airoha_debug_log_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_dgps_mode_texts[] =
+    "airoha_dgps_mode\0" "0\0" "none\0" "1\0" "rtcm\0" "2\0" "sbas\0";
 static const nmea_enum_code airoha_dgps_mode_codes[] = {
-    {"0", "none"},
-    {"1", "rtcm"},
-    {"2", "sbas"},
+    {airoha_dgps_mode_texts + 17, airoha_dgps_mode_texts + 19}, /* "0": "none" */
+    {airoha_dgps_mode_texts + 24, airoha_dgps_mode_texts + 26}, /* "1": "rtcm" */
+    {airoha_dgps_mode_texts + 31, airoha_dgps_mode_texts + 33}, /* "2": "sbas" */
 };
 const nmea_enum_def nmea_airoha_dgps_mode_def = {
-    "airoha_dgps_mode", airoha_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    airoha_dgps_mode_texts, airoha_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_dr_message_texts[] =
+    "airoha_dr_message\0" "-1\0" "all\0" "0\0" "pqtmvehmsg\0" "1\0" "pqtmsenmsg\0" "2\0" "pqtmdrcal\0"
+    "3\0" "pqtmimutype\0" "4\0" "pqtmvehmot\0";
 static const nmea_enum_code airoha_dr_message_codes[] = {
-    {"-1", "all"},
-    {"0", "pqtmvehmsg"},
-    {"1", "pqtmsenmsg"},
-    {"2", "pqtmdrcal"},
-    {"3", "pqtmimutype"},
-    {"4", "pqtmvehmot"},
+    {airoha_dr_message_texts + 18, airoha_dr_message_texts + 21}, /* "-1": "all" */
+    {airoha_dr_message_texts + 25, airoha_dr_message_texts + 27}, /* "0": "pqtmvehmsg" */
+    {airoha_dr_message_texts + 38, airoha_dr_message_texts + 40}, /* "1": "pqtmsenmsg" */
+    {airoha_dr_message_texts + 51, airoha_dr_message_texts + 53}, /* "2": "pqtmdrcal" */
+    {airoha_dr_message_texts + 63, airoha_dr_message_texts + 65}, /* "3": "pqtmimutype" */
+    {airoha_dr_message_texts + 77, airoha_dr_message_texts + 79}, /* "4": "pqtmvehmot" */
 };
 const nmea_enum_def nmea_airoha_dr_message_def = {
-    "airoha_dr_message", airoha_dr_message_codes, 6, 1, 2, NMEA_CODES_DIGITS
+    airoha_dr_message_texts, airoha_dr_message_codes, 6, 1, 2, NMEA_CODES_DIGITS
 };
 
+static const char airoha_easy_status_texts[] =
+    "airoha_easy_status\0" "0\0" "not_finished\0" "1\0" "day_1\0" "2\0" "day_2\0" "3\0" "day_3\0";
 static const nmea_enum_code airoha_easy_status_codes[] = {
-    {"0", "not_finished"},
-    {"1", "day_1"},
-    {"2", "day_2"},
-    {"3", "day_3"},
+    {airoha_easy_status_texts + 19, airoha_easy_status_texts + 21}, /* "0": "not_finished" */
+    {airoha_easy_status_texts + 34, airoha_easy_status_texts + 36}, /* "1": "day_1" */
+    {airoha_easy_status_texts + 42, airoha_easy_status_texts + 44}, /* "2": "day_2" */
+    {airoha_easy_status_texts + 50, airoha_easy_status_texts + 52}, /* "3": "day_3" */
 };
 const nmea_enum_def nmea_airoha_easy_status_def = {
-    "airoha_easy_status", airoha_easy_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    airoha_easy_status_texts, airoha_easy_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_enable_texts[] =
+    "airoha_enable\0" "0\0" "disabled\0" "1\0" "enabled\0";
 static const nmea_enum_code airoha_enable_codes[] = {
-    {"0", "disabled"},
-    {"1", "enabled"},
+    {airoha_enable_texts + 14, airoha_enable_texts + 16}, /* "0": "disabled" */
+    {airoha_enable_texts + 25, airoha_enable_texts + 27}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_airoha_enable_def = {
-    "airoha_enable", airoha_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    airoha_enable_texts, airoha_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char airoha_geofence_confidence_texts[] =
+    "airoha_geofence_confidence\0" "0\0" "none\0" "1\0" "sigma_1\0" "2\0" "sigma_2\0" "3\0" "sigma_3\0";
 static const nmea_enum_code airoha_geofence_confidence_codes[] = {
-    {"0", "none"},
-    {"1", "sigma_1"},
-    {"2", "sigma_2"},
-    {"3", "sigma_3"},
+    {airoha_geofence_confidence_texts + 27, airoha_geofence_confidence_texts + 29}, /* "0": "none" */
+    {airoha_geofence_confidence_texts + 34, airoha_geofence_confidence_texts + 36}, /* "1": "sigma_1" */
+    {airoha_geofence_confidence_texts + 44, airoha_geofence_confidence_texts + 46}, /* "2": "sigma_2" */
+    {airoha_geofence_confidence_texts + 54, airoha_geofence_confidence_texts + 56}, /* "3": "sigma_3" */
 };
 const nmea_enum_def nmea_airoha_geofence_confidence_def = {
-    "airoha_geofence_confidence", airoha_geofence_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    airoha_geofence_confidence_texts, airoha_geofence_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_gnss_system_texts[] =
+    "airoha_gnss_system\0" "0\0" "gps\0" "1\0" "glonass\0" "2\0" "galileo\0" "3\0" "beidou\0" "4\0"
+    "qzss\0";
 static const nmea_enum_code airoha_gnss_system_codes[] = {
-    {"0", "gps"},
-    {"1", "glonass"},
-    {"2", "galileo"},
-    {"3", "beidou"},
-    {"4", "qzss"},
+    {airoha_gnss_system_texts + 19, airoha_gnss_system_texts + 21}, /* "0": "gps" */
+    {airoha_gnss_system_texts + 25, airoha_gnss_system_texts + 27}, /* "1": "glonass" */
+    {airoha_gnss_system_texts + 35, airoha_gnss_system_texts + 37}, /* "2": "galileo" */
+    {airoha_gnss_system_texts + 45, airoha_gnss_system_texts + 47}, /* "3": "beidou" */
+    {airoha_gnss_system_texts + 54, airoha_gnss_system_texts + 56}, /* "4": "qzss" */
 };
 const nmea_enum_def nmea_airoha_gnss_system_def = {
-    "airoha_gnss_system", airoha_gnss_system_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    airoha_gnss_system_texts, airoha_gnss_system_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_jamming_status_texts[] =
+    "airoha_jamming_status\0" "0\0" "unknown\0" "1\0" "good\0" "2\0" "warning\0" "3\0" "critical\0";
 static const nmea_enum_code airoha_jamming_status_codes[] = {
-    {"0", "unknown"},
-    {"1", "good"},
-    {"2", "warning"},
-    {"3", "critical"},
+    {airoha_jamming_status_texts + 22, airoha_jamming_status_texts + 24}, /* "0": "unknown" */
+    {airoha_jamming_status_texts + 32, airoha_jamming_status_texts + 34}, /* "1": "good" */
+    {airoha_jamming_status_texts + 39, airoha_jamming_status_texts + 41}, /* "2": "warning" */
+    {airoha_jamming_status_texts + 49, airoha_jamming_status_texts + 51}, /* "3": "critical" */
 };
 const nmea_enum_def nmea_airoha_jamming_status_def = {
-    "airoha_jamming_status", airoha_jamming_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    airoha_jamming_status_texts, airoha_jamming_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_locus_clear_texts[] =
+    "airoha_locus_clear\0" "0\0" "records_and_settings\0" "1\0" "records\0" "2\0" "settings\0";
 static const nmea_enum_code airoha_locus_clear_codes[] = {
-    {"0", "records_and_settings"},
-    {"1", "records"},
-    {"2", "settings"},
+    {airoha_locus_clear_texts + 19, airoha_locus_clear_texts + 21}, /* "0": "records_and_settings" */
+    {airoha_locus_clear_texts + 42, airoha_locus_clear_texts + 44}, /* "1": "records" */
+    {airoha_locus_clear_texts + 52, airoha_locus_clear_texts + 54}, /* "2": "settings" */
 };
 const nmea_enum_def nmea_airoha_locus_clear_def = {
-    "airoha_locus_clear", airoha_locus_clear_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    airoha_locus_clear_texts, airoha_locus_clear_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_locus_format_texts[] =
+    "airoha_locus_format\0" "0\0" "nmea\0" "1\0" "pair_hex\0";
 static const nmea_enum_code airoha_locus_format_codes[] = {
-    {"0", "nmea"},
-    {"1", "pair_hex"},
+    {airoha_locus_format_texts + 20, airoha_locus_format_texts + 22}, /* "0": "nmea" */
+    {airoha_locus_format_texts + 27, airoha_locus_format_texts + 29}, /* "1": "pair_hex" */
 };
 const nmea_enum_def nmea_airoha_locus_format_def = {
-    "airoha_locus_format", airoha_locus_format_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    airoha_locus_format_texts, airoha_locus_format_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_locus_threshold_texts[] =
+    "airoha_locus_threshold\0" "0\0" "time\0" "1\0" "speed\0" "2\0" "distance\0";
 static const nmea_enum_code airoha_locus_threshold_codes[] = {
-    {"0", "time"},
-    {"1", "speed"},
-    {"2", "distance"},
+    {airoha_locus_threshold_texts + 23, airoha_locus_threshold_texts + 25}, /* "0": "time" */
+    {airoha_locus_threshold_texts + 30, airoha_locus_threshold_texts + 32}, /* "1": "speed" */
+    {airoha_locus_threshold_texts + 38, airoha_locus_threshold_texts + 40}, /* "2": "distance" */
 };
 const nmea_enum_def nmea_airoha_locus_threshold_def = {
-    "airoha_locus_threshold", airoha_locus_threshold_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    airoha_locus_threshold_texts, airoha_locus_threshold_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_nav_mode_texts[] =
+    "airoha_nav_mode\0" "0\0" "normal\0" "1\0" "fitness\0" "4\0" "stationary\0" "5\0" "drone\0" "7\0"
+    "swimming\0";
 static const nmea_enum_code airoha_nav_mode_codes[] = {
-    {"0", "normal"},
-    {"1", "fitness"},
-    {"4", "stationary"},
-    {"5", "drone"},
-    {"7", "swimming"},
+    {airoha_nav_mode_texts + 16, airoha_nav_mode_texts + 18}, /* "0": "normal" */
+    {airoha_nav_mode_texts + 25, airoha_nav_mode_texts + 27}, /* "1": "fitness" */
+    {airoha_nav_mode_texts + 35, airoha_nav_mode_texts + 37}, /* "4": "stationary" */
+    {airoha_nav_mode_texts + 48, airoha_nav_mode_texts + 50}, /* "5": "drone" */
+    {airoha_nav_mode_texts + 56, airoha_nav_mode_texts + 58}, /* "7": "swimming" */
 };
 const nmea_enum_def nmea_airoha_nav_mode_def = {
-    "airoha_nav_mode", airoha_nav_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    airoha_nav_mode_texts, airoha_nav_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_nmea_output_mode_texts[] =
+    "airoha_nmea_output_mode\0" "0\0" "disabled\0" "1\0" "nmea_4_10\0" "2\0" "nmea_3_01\0";
 static const nmea_enum_code airoha_nmea_output_mode_codes[] = {
-    {"0", "disabled"},
-    {"1", "nmea_4_10"},
-    {"2", "nmea_3_01"},
+    {airoha_nmea_output_mode_texts + 24, airoha_nmea_output_mode_texts + 26}, /* "0": "disabled" */
+    {airoha_nmea_output_mode_texts + 35, airoha_nmea_output_mode_texts + 37}, /* "1": "nmea_4_10" */
+    {airoha_nmea_output_mode_texts + 47, airoha_nmea_output_mode_texts + 49}, /* "2": "nmea_3_01" */
 };
 const nmea_enum_def nmea_airoha_nmea_output_mode_def = {
-    "airoha_nmea_output_mode", airoha_nmea_output_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    airoha_nmea_output_mode_texts, airoha_nmea_output_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_nmea_type_texts[] =
+    "airoha_nmea_type\0" "-1\0" "all\0" "0\0" "gga\0" "1\0" "gll\0" "2\0" "gsa\0" "3\0" "gsv\0" "4\0"
+    "rmc\0" "5\0" "vtg\0" "6\0" "zda\0" "7\0" "grs\0" "8\0" "gst\0" "9\0" "gns\0";
 static const nmea_enum_code airoha_nmea_type_codes[] = {
-    {"-1", "all"},
-    {"0", "gga"},
-    {"1", "gll"},
-    {"2", "gsa"},
-    {"3", "gsv"},
-    {"4", "rmc"},
-    {"5", "vtg"},
-    {"6", "zda"},
-    {"7", "grs"},
-    {"8", "gst"},
-    {"9", "gns"},
+    {airoha_nmea_type_texts + 17, airoha_nmea_type_texts + 20}, /* "-1": "all" */
+    {airoha_nmea_type_texts + 24, airoha_nmea_type_texts + 26}, /* "0": "gga" */
+    {airoha_nmea_type_texts + 30, airoha_nmea_type_texts + 32}, /* "1": "gll" */
+    {airoha_nmea_type_texts + 36, airoha_nmea_type_texts + 38}, /* "2": "gsa" */
+    {airoha_nmea_type_texts + 42, airoha_nmea_type_texts + 44}, /* "3": "gsv" */
+    {airoha_nmea_type_texts + 48, airoha_nmea_type_texts + 50}, /* "4": "rmc" */
+    {airoha_nmea_type_texts + 54, airoha_nmea_type_texts + 56}, /* "5": "vtg" */
+    {airoha_nmea_type_texts + 60, airoha_nmea_type_texts + 62}, /* "6": "zda" */
+    {airoha_nmea_type_texts + 66, airoha_nmea_type_texts + 68}, /* "7": "grs" */
+    {airoha_nmea_type_texts + 72, airoha_nmea_type_texts + 74}, /* "8": "gst" */
+    {airoha_nmea_type_texts + 78, airoha_nmea_type_texts + 80}, /* "9": "gns" */
 };
 const nmea_enum_def nmea_airoha_nmea_type_def = {
-    "airoha_nmea_type", airoha_nmea_type_codes, 11, 1, 2, NMEA_CODES_DIGITS
+    airoha_nmea_type_texts, airoha_nmea_type_codes, 11, 1, 2, NMEA_CODES_DIGITS
 };
 
+static const char airoha_periodic_mode_texts[] =
+    "airoha_periodic_mode\0" "0\0" "disabled\0" "1\0" "smart\0" "2\0" "strict\0";
 static const nmea_enum_code airoha_periodic_mode_codes[] = {
-    {"0", "disabled"},
-    {"1", "smart"},
-    {"2", "strict"},
+    {airoha_periodic_mode_texts + 21, airoha_periodic_mode_texts + 23}, /* "0": "disabled" */
+    {airoha_periodic_mode_texts + 32, airoha_periodic_mode_texts + 34}, /* "1": "smart" */
+    {airoha_periodic_mode_texts + 40, airoha_periodic_mode_texts + 42}, /* "2": "strict" */
 };
 const nmea_enum_def nmea_airoha_periodic_mode_def = {
-    "airoha_periodic_mode", airoha_periodic_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    airoha_periodic_mode_texts, airoha_periodic_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_pos_precision_texts[] =
+    "airoha_pos_precision\0" "0\0" "lat_lon_4_alt_1\0" "1\0" "lat_lon_5_alt_2\0" "2\0"
+    "lat_lon_6_alt_3\0" "3\0" "lat_lon_7_alt_3\0";
 static const nmea_enum_code airoha_pos_precision_codes[] = {
-    {"0", "lat_lon_4_alt_1"},
-    {"1", "lat_lon_5_alt_2"},
-    {"2", "lat_lon_6_alt_3"},
-    {"3", "lat_lon_7_alt_3"},
+    {airoha_pos_precision_texts + 21, airoha_pos_precision_texts + 23}, /* "0": "lat_lon_4_alt_1" */
+    {airoha_pos_precision_texts + 39, airoha_pos_precision_texts + 41}, /* "1": "lat_lon_5_alt_2" */
+    {airoha_pos_precision_texts + 57, airoha_pos_precision_texts + 59}, /* "2": "lat_lon_6_alt_3" */
+    {airoha_pos_precision_texts + 75, airoha_pos_precision_texts + 77}, /* "3": "lat_lon_7_alt_3" */
 };
 const nmea_enum_def nmea_airoha_pos_precision_def = {
-    "airoha_pos_precision", airoha_pos_precision_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    airoha_pos_precision_texts, airoha_pos_precision_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_pps_type_texts[] =
+    "airoha_pps_type\0" "0\0" "disabled\0" "1\0" "after_first_fix\0" "2\0" "fix_3d\0" "3\0"
+    "fix_2d_3d\0" "4\0" "always\0";
 static const nmea_enum_code airoha_pps_type_codes[] = {
-    {"0", "disabled"},
-    {"1", "after_first_fix"},
-    {"2", "fix_3d"},
-    {"3", "fix_2d_3d"},
-    {"4", "always"},
+    {airoha_pps_type_texts + 16, airoha_pps_type_texts + 18}, /* "0": "disabled" */
+    {airoha_pps_type_texts + 27, airoha_pps_type_texts + 29}, /* "1": "after_first_fix" */
+    {airoha_pps_type_texts + 45, airoha_pps_type_texts + 47}, /* "2": "fix_3d" */
+    {airoha_pps_type_texts + 54, airoha_pps_type_texts + 56}, /* "3": "fix_2d_3d" */
+    {airoha_pps_type_texts + 66, airoha_pps_type_texts + 68}, /* "4": "always" */
 };
 const nmea_enum_def nmea_airoha_pps_type_def = {
-    "airoha_pps_type", airoha_pps_type_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    airoha_pps_type_texts, airoha_pps_type_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char airoha_rtcm_mode_texts[] =
+    "airoha_rtcm_mode\0" "-1\0" "disabled\0" "0\0" "msm4\0" "1\0" "msm7\0";
 static const nmea_enum_code airoha_rtcm_mode_codes[] = {
-    {"-1", "disabled"},
-    {"0", "msm4"},
-    {"1", "msm7"},
+    {airoha_rtcm_mode_texts + 17, airoha_rtcm_mode_texts + 20}, /* "-1": "disabled" */
+    {airoha_rtcm_mode_texts + 29, airoha_rtcm_mode_texts + 31}, /* "0": "msm4" */
+    {airoha_rtcm_mode_texts + 36, airoha_rtcm_mode_texts + 38}, /* "1": "msm7" */
 };
 const nmea_enum_def nmea_airoha_rtcm_mode_def = {
-    "airoha_rtcm_mode", airoha_rtcm_mode_codes, 3, 1, 2, NMEA_CODES_DIGITS
+    airoha_rtcm_mode_texts, airoha_rtcm_mode_codes, 3, 1, 2, NMEA_CODES_DIGITS
 };
 
+static const char ais_aid_type_texts[] =
+    "ais_aid_type\0" "0\0" "not_specified\0" "1\0" "reference_point\0" "2\0" "racon\0" "3\0"
+    "fixed_structure\0" "4\0" "spare\0" "5\0" "light\0" "6\0" "light_sectors\0" "7\0"
+    "leading_light_front\0" "8\0" "leading_light_rear\0" "9\0" "beacon_cardinal_n\0" "10\0"
+    "beacon_cardinal_e\0" "11\0" "beacon_cardinal_s\0" "12\0" "beacon_cardinal_w\0" "13\0"
+    "beacon_port\0" "14\0" "beacon_starboard\0" "15\0" "beacon_preferred_port\0" "16\0"
+    "beacon_preferred_starboard\0" "17\0" "beacon_isolated_danger\0" "18\0" "beacon_safe_water\0" "19\0"
+    "beacon_special\0" "20\0" "cardinal_n\0" "21\0" "cardinal_e\0" "22\0" "cardinal_s\0" "23\0"
+    "cardinal_w\0" "24\0" "port\0" "25\0" "starboard\0" "26\0" "preferred_port\0" "27\0"
+    "preferred_starboard\0" "28\0" "isolated_danger\0" "29\0" "safe_water\0" "30\0" "special\0" "31\0"
+    "light_vessel\0";
 static const nmea_enum_code ais_aid_type_codes[] = {
-    {"0", "not_specified"},
-    {"1", "reference_point"},
-    {"2", "racon"},
-    {"3", "fixed_structure"},
-    {"4", "spare"},
-    {"5", "light"},
-    {"6", "light_sectors"},
-    {"7", "leading_light_front"},
-    {"8", "leading_light_rear"},
-    {"9", "beacon_cardinal_n"},
-    {"10", "beacon_cardinal_e"},
-    {"11", "beacon_cardinal_s"},
-    {"12", "beacon_cardinal_w"},
-    {"13", "beacon_port"},
-    {"14", "beacon_starboard"},
-    {"15", "beacon_preferred_port"},
-    {"16", "beacon_preferred_starboard"},
-    {"17", "beacon_isolated_danger"},
-    {"18", "beacon_safe_water"},
-    {"19", "beacon_special"},
-    {"20", "cardinal_n"},
-    {"21", "cardinal_e"},
-    {"22", "cardinal_s"},
-    {"23", "cardinal_w"},
-    {"24", "port"},
-    {"25", "starboard"},
-    {"26", "preferred_port"},
-    {"27", "preferred_starboard"},
-    {"28", "isolated_danger"},
-    {"29", "safe_water"},
-    {"30", "special"},
-    {"31", "light_vessel"},
+    {ais_aid_type_texts + 13, ais_aid_type_texts + 15}, /* "0": "not_specified" */
+    {ais_aid_type_texts + 29, ais_aid_type_texts + 31}, /* "1": "reference_point" */
+    {ais_aid_type_texts + 47, ais_aid_type_texts + 49}, /* "2": "racon" */
+    {ais_aid_type_texts + 55, ais_aid_type_texts + 57}, /* "3": "fixed_structure" */
+    {ais_aid_type_texts + 73, ais_aid_type_texts + 75}, /* "4": "spare" */
+    {ais_aid_type_texts + 81, ais_aid_type_texts + 83}, /* "5": "light" */
+    {ais_aid_type_texts + 89, ais_aid_type_texts + 91}, /* "6": "light_sectors" */
+    {ais_aid_type_texts + 105, ais_aid_type_texts + 107}, /* "7": "leading_light_front" */
+    {ais_aid_type_texts + 127, ais_aid_type_texts + 129}, /* "8": "leading_light_rear" */
+    {ais_aid_type_texts + 148, ais_aid_type_texts + 150}, /* "9": "beacon_cardinal_n" */
+    {ais_aid_type_texts + 168, ais_aid_type_texts + 171}, /* "10": "beacon_cardinal_e" */
+    {ais_aid_type_texts + 189, ais_aid_type_texts + 192}, /* "11": "beacon_cardinal_s" */
+    {ais_aid_type_texts + 210, ais_aid_type_texts + 213}, /* "12": "beacon_cardinal_w" */
+    {ais_aid_type_texts + 231, ais_aid_type_texts + 234}, /* "13": "beacon_port" */
+    {ais_aid_type_texts + 246, ais_aid_type_texts + 249}, /* "14": "beacon_starboard" */
+    {ais_aid_type_texts + 266, ais_aid_type_texts + 269}, /* "15": "beacon_preferred_port" */
+    {ais_aid_type_texts + 291, ais_aid_type_texts + 294}, /* "16": "beacon_preferred_starboard" */
+    {ais_aid_type_texts + 321, ais_aid_type_texts + 324}, /* "17": "beacon_isolated_danger" */
+    {ais_aid_type_texts + 347, ais_aid_type_texts + 350}, /* "18": "beacon_safe_water" */
+    {ais_aid_type_texts + 368, ais_aid_type_texts + 371}, /* "19": "beacon_special" */
+    {ais_aid_type_texts + 386, ais_aid_type_texts + 389}, /* "20": "cardinal_n" */
+    {ais_aid_type_texts + 400, ais_aid_type_texts + 403}, /* "21": "cardinal_e" */
+    {ais_aid_type_texts + 414, ais_aid_type_texts + 417}, /* "22": "cardinal_s" */
+    {ais_aid_type_texts + 428, ais_aid_type_texts + 431}, /* "23": "cardinal_w" */
+    {ais_aid_type_texts + 442, ais_aid_type_texts + 445}, /* "24": "port" */
+    {ais_aid_type_texts + 450, ais_aid_type_texts + 453}, /* "25": "starboard" */
+    {ais_aid_type_texts + 463, ais_aid_type_texts + 466}, /* "26": "preferred_port" */
+    {ais_aid_type_texts + 481, ais_aid_type_texts + 484}, /* "27": "preferred_starboard" */
+    {ais_aid_type_texts + 504, ais_aid_type_texts + 507}, /* "28": "isolated_danger" */
+    {ais_aid_type_texts + 523, ais_aid_type_texts + 526}, /* "29": "safe_water" */
+    {ais_aid_type_texts + 537, ais_aid_type_texts + 540}, /* "30": "special" */
+    {ais_aid_type_texts + 548, ais_aid_type_texts + 551}, /* "31": "light_vessel" */
 };
 const nmea_enum_def nmea_ais_aid_type_def = {
-    "ais_aid_type", ais_aid_type_codes, 32, 1, 2, NMEA_CODES_DIGITS
+    ais_aid_type_texts, ais_aid_type_codes, 32, 1, 2, NMEA_CODES_DIGITS
 };
 
+static const char ais_channel_texts[] =
+    "ais_channel\0" "A\0" "a\0" "B\0" "b\0" "1\0" "one\0" "2\0" "two\0";
 static const nmea_enum_code ais_channel_codes[] = {
-    {"A", "a"},
-    {"B", "b"},
-    {"1", "one"},
-    {"2", "two"},
+    {ais_channel_texts + 12, ais_channel_texts + 14}, /* "A": "a" */
+    {ais_channel_texts + 16, ais_channel_texts + 18}, /* "B": "b" */
+    {ais_channel_texts + 20, ais_channel_texts + 22}, /* "1": "one" */
+    {ais_channel_texts + 26, ais_channel_texts + 28}, /* "2": "two" */
 };
 const nmea_enum_def nmea_ais_channel_def = {
-    "ais_channel", ais_channel_codes, 4, 1, 1, NMEA_CODES_CLOSED
+    ais_channel_texts, ais_channel_codes, 4, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char ais_epfd_texts[] =
+    "ais_epfd\0" "0\0" "undefined\0" "1\0" "gps\0" "2\0" "glonass\0" "3\0" "gps_glonass\0" "4\0"
+    "loran_c\0" "5\0" "chayka\0" "6\0" "integrated\0" "7\0" "surveyed\0" "8\0" "galileo\0" "15\0"
+    "internal_gnss\0";
 static const nmea_enum_code ais_epfd_codes[] = {
-    {"0", "undefined"},
-    {"1", "gps"},
-    {"2", "glonass"},
-    {"3", "gps_glonass"},
-    {"4", "loran_c"},
-    {"5", "chayka"},
-    {"6", "integrated"},
-    {"7", "surveyed"},
-    {"8", "galileo"},
-    {"15", "internal_gnss"},
+    {ais_epfd_texts + 9, ais_epfd_texts + 11}, /* "0": "undefined" */
+    {ais_epfd_texts + 21, ais_epfd_texts + 23}, /* "1": "gps" */
+    {ais_epfd_texts + 27, ais_epfd_texts + 29}, /* "2": "glonass" */
+    {ais_epfd_texts + 37, ais_epfd_texts + 39}, /* "3": "gps_glonass" */
+    {ais_epfd_texts + 51, ais_epfd_texts + 53}, /* "4": "loran_c" */
+    {ais_epfd_texts + 61, ais_epfd_texts + 63}, /* "5": "chayka" */
+    {ais_epfd_texts + 70, ais_epfd_texts + 72}, /* "6": "integrated" */
+    {ais_epfd_texts + 83, ais_epfd_texts + 85}, /* "7": "surveyed" */
+    {ais_epfd_texts + 94, ais_epfd_texts + 96}, /* "8": "galileo" */
+    {ais_epfd_texts + 104, ais_epfd_texts + 107}, /* "15": "internal_gnss" */
 };
 const nmea_enum_def nmea_ais_epfd_def = {
-    "ais_epfd", ais_epfd_codes, 10, 1, 2, NMEA_CODES_DIGITS
+    ais_epfd_texts, ais_epfd_codes, 10, 1, 2, NMEA_CODES_DIGITS
 };
 
+static const char ais_ship_type_texts[] =
+    "ais_ship_type\0" "0\0" "not_available\0" "20\0" "wig\0" "21\0" "wig_hazardous_a\0" "22\0"
+    "wig_hazardous_b\0" "23\0" "wig_hazardous_c\0" "24\0" "wig_hazardous_d\0" "30\0" "fishing\0" "31\0"
+    "towing\0" "32\0" "towing_large\0" "33\0" "dredging\0" "34\0" "diving\0" "35\0" "military\0" "36\0"
+    "sailing\0" "37\0" "pleasure_craft\0" "40\0" "high_speed_craft\0" "41\0"
+    "high_speed_craft_hazardous_a\0" "42\0" "high_speed_craft_hazardous_b\0" "43\0"
+    "high_speed_craft_hazardous_c\0" "44\0" "high_speed_craft_hazardous_d\0" "49\0"
+    "high_speed_craft_no_info\0" "50\0" "pilot_vessel\0" "51\0" "search_and_rescue\0" "52\0" "tug\0"
+    "53\0" "port_tender\0" "54\0" "anti_pollution\0" "55\0" "law_enforcement\0" "56\0" "local_56\0"
+    "57\0" "local_57\0" "58\0" "medical_transport\0" "59\0" "noncombatant\0" "60\0" "passenger\0" "61\0"
+    "passenger_hazardous_a\0" "62\0" "passenger_hazardous_b\0" "63\0" "passenger_hazardous_c\0" "64\0"
+    "passenger_hazardous_d\0" "69\0" "passenger_no_info\0" "70\0" "cargo\0" "71\0" "cargo_hazardous_a\0"
+    "72\0" "cargo_hazardous_b\0" "73\0" "cargo_hazardous_c\0" "74\0" "cargo_hazardous_d\0" "79\0"
+    "cargo_no_info\0" "80\0" "tanker\0" "81\0" "tanker_hazardous_a\0" "82\0" "tanker_hazardous_b\0"
+    "83\0" "tanker_hazardous_c\0" "84\0" "tanker_hazardous_d\0" "89\0" "tanker_no_info\0" "90\0"
+    "other\0" "91\0" "other_hazardous_a\0" "92\0" "other_hazardous_b\0" "93\0" "other_hazardous_c\0"
+    "94\0" "other_hazardous_d\0" "99\0" "other_no_info\0";
 static const nmea_enum_code ais_ship_type_codes[] = {
-    {"0", "not_available"},
-    {"20", "wig"},
-    {"21", "wig_hazardous_a"},
-    {"22", "wig_hazardous_b"},
-    {"23", "wig_hazardous_c"},
-    {"24", "wig_hazardous_d"},
-    {"30", "fishing"},
-    {"31", "towing"},
-    {"32", "towing_large"},
-    {"33", "dredging"},
-    {"34", "diving"},
-    {"35", "military"},
-    {"36", "sailing"},
-    {"37", "pleasure_craft"},
-    {"40", "high_speed_craft"},
-    {"41", "high_speed_craft_hazardous_a"},
-    {"42", "high_speed_craft_hazardous_b"},
-    {"43", "high_speed_craft_hazardous_c"},
-    {"44", "high_speed_craft_hazardous_d"},
-    {"49", "high_speed_craft_no_info"},
-    {"50", "pilot_vessel"},
-    {"51", "search_and_rescue"},
-    {"52", "tug"},
-    {"53", "port_tender"},
-    {"54", "anti_pollution"},
-    {"55", "law_enforcement"},
-    {"56", "local_56"},
-    {"57", "local_57"},
-    {"58", "medical_transport"},
-    {"59", "noncombatant"},
-    {"60", "passenger"},
-    {"61", "passenger_hazardous_a"},
-    {"62", "passenger_hazardous_b"},
-    {"63", "passenger_hazardous_c"},
-    {"64", "passenger_hazardous_d"},
-    {"69", "passenger_no_info"},
-    {"70", "cargo"},
-    {"71", "cargo_hazardous_a"},
-    {"72", "cargo_hazardous_b"},
-    {"73", "cargo_hazardous_c"},
-    {"74", "cargo_hazardous_d"},
-    {"79", "cargo_no_info"},
-    {"80", "tanker"},
-    {"81", "tanker_hazardous_a"},
-    {"82", "tanker_hazardous_b"},
-    {"83", "tanker_hazardous_c"},
-    {"84", "tanker_hazardous_d"},
-    {"89", "tanker_no_info"},
-    {"90", "other"},
-    {"91", "other_hazardous_a"},
-    {"92", "other_hazardous_b"},
-    {"93", "other_hazardous_c"},
-    {"94", "other_hazardous_d"},
-    {"99", "other_no_info"},
+    {ais_ship_type_texts + 14, ais_ship_type_texts + 16}, /* "0": "not_available" */
+    {ais_ship_type_texts + 30, ais_ship_type_texts + 33}, /* "20": "wig" */
+    {ais_ship_type_texts + 37, ais_ship_type_texts + 40}, /* "21": "wig_hazardous_a" */
+    {ais_ship_type_texts + 56, ais_ship_type_texts + 59}, /* "22": "wig_hazardous_b" */
+    {ais_ship_type_texts + 75, ais_ship_type_texts + 78}, /* "23": "wig_hazardous_c" */
+    {ais_ship_type_texts + 94, ais_ship_type_texts + 97}, /* "24": "wig_hazardous_d" */
+    {ais_ship_type_texts + 113, ais_ship_type_texts + 116}, /* "30": "fishing" */
+    {ais_ship_type_texts + 124, ais_ship_type_texts + 127}, /* "31": "towing" */
+    {ais_ship_type_texts + 134, ais_ship_type_texts + 137}, /* "32": "towing_large" */
+    {ais_ship_type_texts + 150, ais_ship_type_texts + 153}, /* "33": "dredging" */
+    {ais_ship_type_texts + 162, ais_ship_type_texts + 165}, /* "34": "diving" */
+    {ais_ship_type_texts + 172, ais_ship_type_texts + 175}, /* "35": "military" */
+    {ais_ship_type_texts + 184, ais_ship_type_texts + 187}, /* "36": "sailing" */
+    {ais_ship_type_texts + 195, ais_ship_type_texts + 198}, /* "37": "pleasure_craft" */
+    {ais_ship_type_texts + 213, ais_ship_type_texts + 216}, /* "40": "high_speed_craft" */
+    {ais_ship_type_texts + 233, ais_ship_type_texts + 236}, /* "41": "high_speed_craft_hazardous_a" */
+    {ais_ship_type_texts + 265, ais_ship_type_texts + 268}, /* "42": "high_speed_craft_hazardous_b" */
+    {ais_ship_type_texts + 297, ais_ship_type_texts + 300}, /* "43": "high_speed_craft_hazardous_c" */
+    {ais_ship_type_texts + 329, ais_ship_type_texts + 332}, /* "44": "high_speed_craft_hazardous_d" */
+    {ais_ship_type_texts + 361, ais_ship_type_texts + 364}, /* "49": "high_speed_craft_no_info" */
+    {ais_ship_type_texts + 389, ais_ship_type_texts + 392}, /* "50": "pilot_vessel" */
+    {ais_ship_type_texts + 405, ais_ship_type_texts + 408}, /* "51": "search_and_rescue" */
+    {ais_ship_type_texts + 426, ais_ship_type_texts + 429}, /* "52": "tug" */
+    {ais_ship_type_texts + 433, ais_ship_type_texts + 436}, /* "53": "port_tender" */
+    {ais_ship_type_texts + 448, ais_ship_type_texts + 451}, /* "54": "anti_pollution" */
+    {ais_ship_type_texts + 466, ais_ship_type_texts + 469}, /* "55": "law_enforcement" */
+    {ais_ship_type_texts + 485, ais_ship_type_texts + 488}, /* "56": "local_56" */
+    {ais_ship_type_texts + 497, ais_ship_type_texts + 500}, /* "57": "local_57" */
+    {ais_ship_type_texts + 509, ais_ship_type_texts + 512}, /* "58": "medical_transport" */
+    {ais_ship_type_texts + 530, ais_ship_type_texts + 533}, /* "59": "noncombatant" */
+    {ais_ship_type_texts + 546, ais_ship_type_texts + 549}, /* "60": "passenger" */
+    {ais_ship_type_texts + 559, ais_ship_type_texts + 562}, /* "61": "passenger_hazardous_a" */
+    {ais_ship_type_texts + 584, ais_ship_type_texts + 587}, /* "62": "passenger_hazardous_b" */
+    {ais_ship_type_texts + 609, ais_ship_type_texts + 612}, /* "63": "passenger_hazardous_c" */
+    {ais_ship_type_texts + 634, ais_ship_type_texts + 637}, /* "64": "passenger_hazardous_d" */
+    {ais_ship_type_texts + 659, ais_ship_type_texts + 662}, /* "69": "passenger_no_info" */
+    {ais_ship_type_texts + 680, ais_ship_type_texts + 683}, /* "70": "cargo" */
+    {ais_ship_type_texts + 689, ais_ship_type_texts + 692}, /* "71": "cargo_hazardous_a" */
+    {ais_ship_type_texts + 710, ais_ship_type_texts + 713}, /* "72": "cargo_hazardous_b" */
+    {ais_ship_type_texts + 731, ais_ship_type_texts + 734}, /* "73": "cargo_hazardous_c" */
+    {ais_ship_type_texts + 752, ais_ship_type_texts + 755}, /* "74": "cargo_hazardous_d" */
+    {ais_ship_type_texts + 773, ais_ship_type_texts + 776}, /* "79": "cargo_no_info" */
+    {ais_ship_type_texts + 790, ais_ship_type_texts + 793}, /* "80": "tanker" */
+    {ais_ship_type_texts + 800, ais_ship_type_texts + 803}, /* "81": "tanker_hazardous_a" */
+    {ais_ship_type_texts + 822, ais_ship_type_texts + 825}, /* "82": "tanker_hazardous_b" */
+    {ais_ship_type_texts + 844, ais_ship_type_texts + 847}, /* "83": "tanker_hazardous_c" */
+    {ais_ship_type_texts + 866, ais_ship_type_texts + 869}, /* "84": "tanker_hazardous_d" */
+    {ais_ship_type_texts + 888, ais_ship_type_texts + 891}, /* "89": "tanker_no_info" */
+    {ais_ship_type_texts + 906, ais_ship_type_texts + 909}, /* "90": "other" */
+    {ais_ship_type_texts + 915, ais_ship_type_texts + 918}, /* "91": "other_hazardous_a" */
+    {ais_ship_type_texts + 936, ais_ship_type_texts + 939}, /* "92": "other_hazardous_b" */
+    {ais_ship_type_texts + 957, ais_ship_type_texts + 960}, /* "93": "other_hazardous_c" */
+    {ais_ship_type_texts + 978, ais_ship_type_texts + 981}, /* "94": "other_hazardous_d" */
+    {ais_ship_type_texts + 999, ais_ship_type_texts + 1002}, /* "99": "other_no_info" */
 };
 const nmea_enum_def nmea_ais_ship_type_def = {
-    "ais_ship_type", ais_ship_type_codes, 54, 1, 2, NMEA_CODES_DIGITS
+    ais_ship_type_texts, ais_ship_type_codes, 54, 1, 2, NMEA_CODES_DIGITS
 };
 
+static const char ala_ack_state_texts[] =
+    "ala_ack_state\0" "A\0" "acknowledged\0" "V\0" "not_acknowledged\0" "B\0" "broadcast\0" "H\0"
+    "harbour_mode\0" "O\0" "override\0";
 static const nmea_enum_code ala_ack_state_codes[] = {
-    {"A", "acknowledged"},
-    {"V", "not_acknowledged"},
-    {"B", "broadcast"},
-    {"H", "harbour_mode"},
-    {"O", "override"},
+    {ala_ack_state_texts + 14, ala_ack_state_texts + 16}, /* "A": "acknowledged" */
+    {ala_ack_state_texts + 29, ala_ack_state_texts + 31}, /* "V": "not_acknowledged" */
+    {ala_ack_state_texts + 48, ala_ack_state_texts + 50}, /* "B": "broadcast" */
+    {ala_ack_state_texts + 60, ala_ack_state_texts + 62}, /* "H": "harbour_mode" */
+    {ala_ack_state_texts + 75, ala_ack_state_texts + 77}, /* "O": "override" */
 };
 const nmea_enum_def nmea_ala_ack_state_def = {
-    "ala_ack_state", ala_ack_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    ala_ack_state_texts, ala_ack_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char ala_condition_texts[] =
+    "ala_condition\0" "N\0" "normal\0" "H\0" "high\0" "J\0" "extreme_high\0" "L\0" "low\0" "K\0"
+    "extreme_low\0" "X\0" "other\0";
 static const nmea_enum_code ala_condition_codes[] = {
-    {"N", "normal"},
-    {"H", "high"},
-    {"J", "extreme_high"},
-    {"L", "low"},
-    {"K", "extreme_low"},
-    {"X", "other"},
+    {ala_condition_texts + 14, ala_condition_texts + 16}, /* "N": "normal" */
+    {ala_condition_texts + 23, ala_condition_texts + 25}, /* "H": "high" */
+    {ala_condition_texts + 30, ala_condition_texts + 32}, /* "J": "extreme_high" */
+    {ala_condition_texts + 45, ala_condition_texts + 47}, /* "L": "low" */
+    {ala_condition_texts + 51, ala_condition_texts + 53}, /* "K": "extreme_low" */
+    {ala_condition_texts + 65, ala_condition_texts + 67}, /* "X": "other" */
 };
 const nmea_enum_def nmea_ala_condition_def = {
-    "ala_condition", ala_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    ala_condition_texts, ala_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char alf_category_texts[] =
+    "alf_category\0" "A\0" "category_a\0" "B\0" "category_b\0" "C\0" "category_c\0";
 static const nmea_enum_code alf_category_codes[] = {
-    {"A", "category_a"},
-    {"B", "category_b"},
-    {"C", "category_c"},
+    {alf_category_texts + 13, alf_category_texts + 15}, /* "A": "category_a" */
+    {alf_category_texts + 26, alf_category_texts + 28}, /* "B": "category_b" */
+    {alf_category_texts + 39, alf_category_texts + 41}, /* "C": "category_c" */
 };
 const nmea_enum_def nmea_alf_category_def = {
-    "alf_category", alf_category_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    alf_category_texts, alf_category_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char alf_priority_texts[] =
+    "alf_priority\0" "E\0" "emergency_alarm\0" "A\0" "alarm\0" "W\0" "warning\0" "C\0" "caution\0";
 static const nmea_enum_code alf_priority_codes[] = {
-    {"E", "emergency_alarm"},
-    {"A", "alarm"},
-    {"W", "warning"},
-    {"C", "caution"},
+    {alf_priority_texts + 13, alf_priority_texts + 15}, /* "E": "emergency_alarm" */
+    {alf_priority_texts + 31, alf_priority_texts + 33}, /* "A": "alarm" */
+    {alf_priority_texts + 39, alf_priority_texts + 41}, /* "W": "warning" */
+    {alf_priority_texts + 49, alf_priority_texts + 51}, /* "C": "caution" */
 };
 const nmea_enum_def nmea_alf_priority_def = {
-    "alf_priority", alf_priority_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    alf_priority_texts, alf_priority_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char alf_state_texts[] =
+    "alf_state\0" "V\0" "active_unacknowledged\0" "S\0" "active_silenced\0" "A\0"
+    "active_acknowledged\0" "O\0" "active_responsibility_transferred\0" "U\0"
+    "rectified_unacknowledged\0" "N\0" "normal\0";
 static const nmea_enum_code alf_state_codes[] = {
-    {"V", "active_unacknowledged"},
-    {"S", "active_silenced"},
-    {"A", "active_acknowledged"},
-    {"O", "active_responsibility_transferred"},
-    {"U", "rectified_unacknowledged"},
-    {"N", "normal"},
+    {alf_state_texts + 10, alf_state_texts + 12}, /* "V": "active_unacknowledged" */
+    {alf_state_texts + 34, alf_state_texts + 36}, /* "S": "active_silenced" */
+    {alf_state_texts + 52, alf_state_texts + 54}, /* "A": "active_acknowledged" */
+    {alf_state_texts + 74, alf_state_texts + 76}, /* "O": "active_responsibility_transferred" */
+    {alf_state_texts + 110, alf_state_texts + 112}, /* "U": "rectified_unacknowledged" */
+    {alf_state_texts + 137, alf_state_texts + 139}, /* "N": "normal" */
 };
 const nmea_enum_def nmea_alf_state_def = {
-    "alf_state", alf_state_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    alf_state_texts, alf_state_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char alr_ack_state_texts[] =
+    "alr_ack_state\0" "A\0" "acknowledged\0" "V\0" "unacknowledged\0";
 static const nmea_enum_code alr_ack_state_codes[] = {
-    {"A", "acknowledged"},
-    {"V", "unacknowledged"},
+    {alr_ack_state_texts + 14, alr_ack_state_texts + 16}, /* "A": "acknowledged" */
+    {alr_ack_state_texts + 29, alr_ack_state_texts + 31}, /* "V": "unacknowledged" */
 };
 const nmea_enum_def nmea_alr_ack_state_def = {
-    "alr_ack_state", alr_ack_state_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    alr_ack_state_texts, alr_ack_state_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char alr_condition_texts[] =
+    "alr_condition\0" "A\0" "threshold_exceeded\0" "V\0" "not_exceeded\0";
 static const nmea_enum_code alr_condition_codes[] = {
-    {"A", "threshold_exceeded"},
-    {"V", "not_exceeded"},
+    {alr_condition_texts + 14, alr_condition_texts + 16}, /* "A": "threshold_exceeded" */
+    {alr_condition_texts + 35, alr_condition_texts + 37}, /* "V": "not_exceeded" */
 };
 const nmea_enum_def nmea_alr_condition_def = {
-    "alr_condition", alr_condition_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    alr_condition_texts, alr_condition_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char apb_bearing_ref_texts[] =
+    "apb_bearing_ref\0" "M\0" "magnetic\0" "T\0" "true_north\0";
 static const nmea_enum_code apb_bearing_ref_codes[] = {
-    {"M", "magnetic"},
-    {"T", "true_north"},
+    {apb_bearing_ref_texts + 16, apb_bearing_ref_texts + 18}, /* "M": "magnetic" */
+    {apb_bearing_ref_texts + 27, apb_bearing_ref_texts + 29}, /* "T": "true_north" */
 };
 const nmea_enum_def nmea_apb_bearing_ref_def = {
-    "apb_bearing_ref", apb_bearing_ref_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    apb_bearing_ref_texts, apb_bearing_ref_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char ashtech_hpr_mode_texts[] =
+    "ashtech_hpr_mode\0" "0\0" "fixed_baseline\0" "1\0" "calibrating\0" "2\0" "flexible_baseline\0";
 static const nmea_enum_code ashtech_hpr_mode_codes[] = {
-    {"0", "fixed_baseline"},
-    {"1", "calibrating"},
-    {"2", "flexible_baseline"},
+    {ashtech_hpr_mode_texts + 17, ashtech_hpr_mode_texts + 19}, /* "0": "fixed_baseline" */
+    {ashtech_hpr_mode_texts + 34, ashtech_hpr_mode_texts + 36}, /* "1": "calibrating" */
+    {ashtech_hpr_mode_texts + 48, ashtech_hpr_mode_texts + 50}, /* "2": "flexible_baseline" */
 };
 const nmea_enum_def nmea_ashtech_hpr_mode_def = {
-    "ashtech_hpr_mode", ashtech_hpr_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    ashtech_hpr_mode_texts, ashtech_hpr_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char ashtech_nme_message_texts[] =
+    "ashtech_nme_message\0" "ALM\0" "alm\0" "DTM\0" "dtm\0" "GGA\0" "gga\0" "GLL\0" "gll\0" "GMP\0"
+    "gmp\0" "GNS\0" "gns\0" "GRS\0" "grs\0" "GSA\0" "gsa\0" "GST\0" "gst\0" "GSV\0" "gsv\0" "HDT\0"
+    "hdt\0" "HD2\0" "hd2\0" "RMC\0" "rmc\0" "VTG\0" "vtg\0" "ZDA\0" "zda\0" "XDR\0" "xdr\0" "ATT\0"
+    "att\0" "AT2\0" "at2\0" "CRT\0" "crt\0" "DCR\0" "dcr\0" "DDS\0" "dds\0" "DPO\0" "dpo\0" "LTN\0"
+    "ltn\0" "POS\0" "pos\0" "RRE\0" "rre\0" "SAT\0" "sat\0" "SGA\0" "sga\0" "SGL\0" "sgl\0" "SGP\0"
+    "sgp\0" "USR\0" "usr\0" "VEC\0" "vec\0" "VE2\0" "ve2\0" "PTT\0" "ptt\0" "TTT\0" "ttt\0";
 static const nmea_enum_code ashtech_nme_message_codes[] = {
-    {"ALM", "alm"},
-    {"DTM", "dtm"},
-    {"GGA", "gga"},
-    {"GLL", "gll"},
-    {"GMP", "gmp"},
-    {"GNS", "gns"},
-    {"GRS", "grs"},
-    {"GSA", "gsa"},
-    {"GST", "gst"},
-    {"GSV", "gsv"},
-    {"HDT", "hdt"},
-    {"HD2", "hd2"},
-    {"RMC", "rmc"},
-    {"VTG", "vtg"},
-    {"ZDA", "zda"},
-    {"XDR", "xdr"},
-    {"ATT", "att"},
-    {"AT2", "at2"},
-    {"CRT", "crt"},
-    {"DCR", "dcr"},
-    {"DDS", "dds"},
-    {"DPO", "dpo"},
-    {"LTN", "ltn"},
-    {"POS", "pos"},
-    {"RRE", "rre"},
-    {"SAT", "sat"},
-    {"SGA", "sga"},
-    {"SGL", "sgl"},
-    {"SGP", "sgp"},
-    {"USR", "usr"},
-    {"VEC", "vec"},
-    {"VE2", "ve2"},
-    {"PTT", "ptt"},
-    {"TTT", "ttt"},
+    {ashtech_nme_message_texts + 20, ashtech_nme_message_texts + 24}, /* "ALM": "alm" */
+    {ashtech_nme_message_texts + 28, ashtech_nme_message_texts + 32}, /* "DTM": "dtm" */
+    {ashtech_nme_message_texts + 36, ashtech_nme_message_texts + 40}, /* "GGA": "gga" */
+    {ashtech_nme_message_texts + 44, ashtech_nme_message_texts + 48}, /* "GLL": "gll" */
+    {ashtech_nme_message_texts + 52, ashtech_nme_message_texts + 56}, /* "GMP": "gmp" */
+    {ashtech_nme_message_texts + 60, ashtech_nme_message_texts + 64}, /* "GNS": "gns" */
+    {ashtech_nme_message_texts + 68, ashtech_nme_message_texts + 72}, /* "GRS": "grs" */
+    {ashtech_nme_message_texts + 76, ashtech_nme_message_texts + 80}, /* "GSA": "gsa" */
+    {ashtech_nme_message_texts + 84, ashtech_nme_message_texts + 88}, /* "GST": "gst" */
+    {ashtech_nme_message_texts + 92, ashtech_nme_message_texts + 96}, /* "GSV": "gsv" */
+    {ashtech_nme_message_texts + 100, ashtech_nme_message_texts + 104}, /* "HDT": "hdt" */
+    {ashtech_nme_message_texts + 108, ashtech_nme_message_texts + 112}, /* "HD2": "hd2" */
+    {ashtech_nme_message_texts + 116, ashtech_nme_message_texts + 120}, /* "RMC": "rmc" */
+    {ashtech_nme_message_texts + 124, ashtech_nme_message_texts + 128}, /* "VTG": "vtg" */
+    {ashtech_nme_message_texts + 132, ashtech_nme_message_texts + 136}, /* "ZDA": "zda" */
+    {ashtech_nme_message_texts + 140, ashtech_nme_message_texts + 144}, /* "XDR": "xdr" */
+    {ashtech_nme_message_texts + 148, ashtech_nme_message_texts + 152}, /* "ATT": "att" */
+    {ashtech_nme_message_texts + 156, ashtech_nme_message_texts + 160}, /* "AT2": "at2" */
+    {ashtech_nme_message_texts + 164, ashtech_nme_message_texts + 168}, /* "CRT": "crt" */
+    {ashtech_nme_message_texts + 172, ashtech_nme_message_texts + 176}, /* "DCR": "dcr" */
+    {ashtech_nme_message_texts + 180, ashtech_nme_message_texts + 184}, /* "DDS": "dds" */
+    {ashtech_nme_message_texts + 188, ashtech_nme_message_texts + 192}, /* "DPO": "dpo" */
+    {ashtech_nme_message_texts + 196, ashtech_nme_message_texts + 200}, /* "LTN": "ltn" */
+    {ashtech_nme_message_texts + 204, ashtech_nme_message_texts + 208}, /* "POS": "pos" */
+    {ashtech_nme_message_texts + 212, ashtech_nme_message_texts + 216}, /* "RRE": "rre" */
+    {ashtech_nme_message_texts + 220, ashtech_nme_message_texts + 224}, /* "SAT": "sat" */
+    {ashtech_nme_message_texts + 228, ashtech_nme_message_texts + 232}, /* "SGA": "sga" */
+    {ashtech_nme_message_texts + 236, ashtech_nme_message_texts + 240}, /* "SGL": "sgl" */
+    {ashtech_nme_message_texts + 244, ashtech_nme_message_texts + 248}, /* "SGP": "sgp" */
+    {ashtech_nme_message_texts + 252, ashtech_nme_message_texts + 256}, /* "USR": "usr" */
+    {ashtech_nme_message_texts + 260, ashtech_nme_message_texts + 264}, /* "VEC": "vec" */
+    {ashtech_nme_message_texts + 268, ashtech_nme_message_texts + 272}, /* "VE2": "ve2" */
+    {ashtech_nme_message_texts + 276, ashtech_nme_message_texts + 280}, /* "PTT": "ptt" */
+    {ashtech_nme_message_texts + 284, ashtech_nme_message_texts + 288}, /* "TTT": "ttt" */
 };
 const nmea_enum_def nmea_ashtech_nme_message_def = {
-    "ashtech_nme_message", ashtech_nme_message_codes, 34, 3, 3, NMEA_CODES_ALNUM
+    ashtech_nme_message_texts, ashtech_nme_message_codes, 34, 3, 3, NMEA_CODES_ALNUM
 };
 
+static const char ashtech_on_off_texts[] =
+    "ashtech_on_off\0" "ON\0" "on\0" "OFF\0" "off\0";
 static const nmea_enum_code ashtech_on_off_codes[] = {
-    {"ON", "on"},
-    {"OFF", "off"},
+    {ashtech_on_off_texts + 15, ashtech_on_off_texts + 18}, /* "ON": "on" */
+    {ashtech_on_off_texts + 21, ashtech_on_off_texts + 25}, /* "OFF": "off" */
 };
 const nmea_enum_def nmea_ashtech_on_off_def = {
-    "ashtech_on_off", ashtech_on_off_codes, 2, 2, 3, NMEA_CODES_CLOSED
+    ashtech_on_off_texts, ashtech_on_off_codes, 2, 2, 3, NMEA_CODES_CLOSED
 };
 
+static const char ashtech_port_texts[] =
+    "ashtech_port\0" "A\0" "serial_a\0" "B\0" "serial_b\0" "F\0" "serial_f\0" "D\0" "serial_d\0" "C\0"
+    "bluetooth\0" "I\0" "ethernet_i\0" "P\0" "ethernet_p\0" "Q\0" "ethernet_q\0" "I1\0" "ethernet_i1\0"
+    "I2\0" "ethernet_i2\0" "I3\0" "ethernet_i3\0" "I4\0" "ethernet_i4\0" "I5\0" "ethernet_i5\0" "I6\0"
+    "ethernet_i6\0" "I7\0" "ethernet_i7\0" "I8\0" "ethernet_i8\0" "I9\0" "ethernet_i9\0" "E\0" "modem\0"
+    "M\0" "internal_memory\0" "U\0" "usb_key\0" "R\0" "recording_session\0";
 static const nmea_enum_code ashtech_port_codes[] = {
-    {"A", "serial_a"},
-    {"B", "serial_b"},
-    {"F", "serial_f"},
-    {"D", "serial_d"},
-    {"C", "bluetooth"},
-    {"I", "ethernet_i"},
-    {"P", "ethernet_p"},
-    {"Q", "ethernet_q"},
-    {"I1", "ethernet_i1"},
-    {"I2", "ethernet_i2"},
-    {"I3", "ethernet_i3"},
-    {"I4", "ethernet_i4"},
-    {"I5", "ethernet_i5"},
-    {"I6", "ethernet_i6"},
-    {"I7", "ethernet_i7"},
-    {"I8", "ethernet_i8"},
-    {"I9", "ethernet_i9"},
-    {"E", "modem"},
-    {"M", "internal_memory"},
-    {"U", "usb_key"},
-    {"R", "recording_session"},
+    {ashtech_port_texts + 13, ashtech_port_texts + 15}, /* "A": "serial_a" */
+    {ashtech_port_texts + 24, ashtech_port_texts + 26}, /* "B": "serial_b" */
+    {ashtech_port_texts + 35, ashtech_port_texts + 37}, /* "F": "serial_f" */
+    {ashtech_port_texts + 46, ashtech_port_texts + 48}, /* "D": "serial_d" */
+    {ashtech_port_texts + 57, ashtech_port_texts + 59}, /* "C": "bluetooth" */
+    {ashtech_port_texts + 69, ashtech_port_texts + 71}, /* "I": "ethernet_i" */
+    {ashtech_port_texts + 82, ashtech_port_texts + 84}, /* "P": "ethernet_p" */
+    {ashtech_port_texts + 95, ashtech_port_texts + 97}, /* "Q": "ethernet_q" */
+    {ashtech_port_texts + 108, ashtech_port_texts + 111}, /* "I1": "ethernet_i1" */
+    {ashtech_port_texts + 123, ashtech_port_texts + 126}, /* "I2": "ethernet_i2" */
+    {ashtech_port_texts + 138, ashtech_port_texts + 141}, /* "I3": "ethernet_i3" */
+    {ashtech_port_texts + 153, ashtech_port_texts + 156}, /* "I4": "ethernet_i4" */
+    {ashtech_port_texts + 168, ashtech_port_texts + 171}, /* "I5": "ethernet_i5" */
+    {ashtech_port_texts + 183, ashtech_port_texts + 186}, /* "I6": "ethernet_i6" */
+    {ashtech_port_texts + 198, ashtech_port_texts + 201}, /* "I7": "ethernet_i7" */
+    {ashtech_port_texts + 213, ashtech_port_texts + 216}, /* "I8": "ethernet_i8" */
+    {ashtech_port_texts + 228, ashtech_port_texts + 231}, /* "I9": "ethernet_i9" */
+    {ashtech_port_texts + 243, ashtech_port_texts + 245}, /* "E": "modem" */
+    {ashtech_port_texts + 251, ashtech_port_texts + 253}, /* "M": "internal_memory" */
+    {ashtech_port_texts + 269, ashtech_port_texts + 271}, /* "U": "usb_key" */
+    {ashtech_port_texts + 279, ashtech_port_texts + 281}, /* "R": "recording_session" */
 };
 const nmea_enum_def nmea_ashtech_port_def = {
-    "ashtech_port", ashtech_port_codes, 21, 1, 2, NMEA_CODES_ALNUM
+    ashtech_port_texts, ashtech_port_codes, 21, 1, 2, NMEA_CODES_ALNUM
 };
 
+static const char ashtech_pos_solution_texts[] =
+    "ashtech_pos_solution\0" "0\0" "autonomous\0" "1\0" "code_differential\0" "2\0" "rtk_float\0" "3\0"
+    "rtk_fixed\0" "5\0" "dead_reckoning\0" "9\0" "sbas_differential\0" "10\0" "beidou_differential\0"
+    "12\0" "rtk_float_alt\0" "13\0" "rtk_fixed_alt\0" "22\0" "rtk_float_dithered\0" "23\0"
+    "rtk_fixed_dithered\0";
 static const nmea_enum_code ashtech_pos_solution_codes[] = {
-    {"0", "autonomous"},
-    {"1", "code_differential"},
-    {"2", "rtk_float"},
-    {"3", "rtk_fixed"},
-    {"5", "dead_reckoning"},
-    {"9", "sbas_differential"},
-    {"10", "beidou_differential"},
-    {"12", "rtk_float_alt"},
-    {"13", "rtk_fixed_alt"},
-    {"22", "rtk_float_dithered"},
-    {"23", "rtk_fixed_dithered"},
+    {ashtech_pos_solution_texts + 21, ashtech_pos_solution_texts + 23}, /* "0": "autonomous" */
+    {ashtech_pos_solution_texts + 34, ashtech_pos_solution_texts + 36}, /* "1": "code_differential" */
+    {ashtech_pos_solution_texts + 54, ashtech_pos_solution_texts + 56}, /* "2": "rtk_float" */
+    {ashtech_pos_solution_texts + 66, ashtech_pos_solution_texts + 68}, /* "3": "rtk_fixed" */
+    {ashtech_pos_solution_texts + 78, ashtech_pos_solution_texts + 80}, /* "5": "dead_reckoning" */
+    {ashtech_pos_solution_texts + 95, ashtech_pos_solution_texts + 97}, /* "9": "sbas_differential" */
+    {ashtech_pos_solution_texts + 115, ashtech_pos_solution_texts + 118}, /* "10": "beidou_differential" */
+    {ashtech_pos_solution_texts + 138, ashtech_pos_solution_texts + 141}, /* "12": "rtk_float_alt" */
+    {ashtech_pos_solution_texts + 155, ashtech_pos_solution_texts + 158}, /* "13": "rtk_fixed_alt" */
+    {ashtech_pos_solution_texts + 172, ashtech_pos_solution_texts + 175}, /* "22": "rtk_float_dithered" */
+    {ashtech_pos_solution_texts + 194, ashtech_pos_solution_texts + 197}, /* "23": "rtk_fixed_dithered" */
 };
 const nmea_enum_def nmea_ashtech_pos_solution_def = {
-    "ashtech_pos_solution", ashtech_pos_solution_codes, 11, 1, 2, NMEA_CODES_DIGITS
+    ashtech_pos_solution_texts, ashtech_pos_solution_codes, 11, 1, 2, NMEA_CODES_DIGITS
 };
 
+static const char ashtech_rt300_alignment_texts[] =
+    "ashtech_rt300_alignment\0" "0\0" "gps_only\0" "1\0" "coarse_leveling\0" "2\0" "degraded\0" "3\0"
+    "aligned\0" "4\0" "full_navigation\0";
 static const nmea_enum_code ashtech_rt300_alignment_codes[] = {
-    {"0", "gps_only"},
-    {"1", "coarse_leveling"},
-    {"2", "degraded"},
-    {"3", "aligned"},
-    {"4", "full_navigation"},
+    {ashtech_rt300_alignment_texts + 24, ashtech_rt300_alignment_texts + 26}, /* "0": "gps_only" */
+    {ashtech_rt300_alignment_texts + 35, ashtech_rt300_alignment_texts + 37}, /* "1": "coarse_leveling" */
+    {ashtech_rt300_alignment_texts + 53, ashtech_rt300_alignment_texts + 55}, /* "2": "degraded" */
+    {ashtech_rt300_alignment_texts + 64, ashtech_rt300_alignment_texts + 66}, /* "3": "aligned" */
+    {ashtech_rt300_alignment_texts + 74, ashtech_rt300_alignment_texts + 76}, /* "4": "full_navigation" */
 };
 const nmea_enum_def nmea_ashtech_rt300_alignment_def = {
-    "ashtech_rt300_alignment", ashtech_rt300_alignment_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    ashtech_rt300_alignment_texts, ashtech_rt300_alignment_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char ashtech_rt300_quality_texts[] =
+    "ashtech_rt300_quality\0" "0\0" "no_fix\0" "1\0" "sps\0" "2\0" "dgps\0" "3\0" "pps\0" "4\0"
+    "rtk_fixed\0" "5\0" "rtk_float\0" "6\0" "dead_reckoning\0";
 static const nmea_enum_code ashtech_rt300_quality_codes[] = {
-    {"0", "no_fix"},
-    {"1", "sps"},
-    {"2", "dgps"},
-    {"3", "pps"},
-    {"4", "rtk_fixed"},
-    {"5", "rtk_float"},
-    {"6", "dead_reckoning"},
+    {ashtech_rt300_quality_texts + 22, ashtech_rt300_quality_texts + 24}, /* "0": "no_fix" */
+    {ashtech_rt300_quality_texts + 31, ashtech_rt300_quality_texts + 33}, /* "1": "sps" */
+    {ashtech_rt300_quality_texts + 37, ashtech_rt300_quality_texts + 39}, /* "2": "dgps" */
+    {ashtech_rt300_quality_texts + 44, ashtech_rt300_quality_texts + 46}, /* "3": "pps" */
+    {ashtech_rt300_quality_texts + 50, ashtech_rt300_quality_texts + 52}, /* "4": "rtk_fixed" */
+    {ashtech_rt300_quality_texts + 62, ashtech_rt300_quality_texts + 64}, /* "5": "rtk_float" */
+    {ashtech_rt300_quality_texts + 74, ashtech_rt300_quality_texts + 76}, /* "6": "dead_reckoning" */
 };
 const nmea_enum_def nmea_ashtech_rt300_quality_def = {
-    "ashtech_rt300_quality", ashtech_rt300_quality_codes, 7, 1, 1, NMEA_CODES_DIGITS
+    ashtech_rt300_quality_texts, ashtech_rt300_quality_codes, 7, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char ashtech_sv_used_texts[] =
+    "ashtech_sv_used\0" "U\0" "used\0" "-\0" "not_used\0";
 static const nmea_enum_code ashtech_sv_used_codes[] = {
-    {"U", "used"},
-    {"-", "not_used"},
+    {ashtech_sv_used_texts + 16, ashtech_sv_used_texts + 18}, /* "U": "used" */
+    {ashtech_sv_used_texts + 23, ashtech_sv_used_texts + 25}, /* "-": "not_used" */
 };
 const nmea_enum_def nmea_ashtech_sv_used_def = {
-    "ashtech_sv_used", ashtech_sv_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    ashtech_sv_used_texts, ashtech_sv_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char ashtech_vector_mode_texts[] =
+    "ashtech_vector_mode\0" "0\0" "invalid\0" "1\0" "differential\0" "2\0" "rtk_float\0" "3\0"
+    "rtk_fixed\0" "5\0" "other\0";
 static const nmea_enum_code ashtech_vector_mode_codes[] = {
-    {"0", "invalid"},
-    {"1", "differential"},
-    {"2", "rtk_float"},
-    {"3", "rtk_fixed"},
-    {"5", "other"},
+    {ashtech_vector_mode_texts + 20, ashtech_vector_mode_texts + 22}, /* "0": "invalid" */
+    {ashtech_vector_mode_texts + 30, ashtech_vector_mode_texts + 32}, /* "1": "differential" */
+    {ashtech_vector_mode_texts + 45, ashtech_vector_mode_texts + 47}, /* "2": "rtk_float" */
+    {ashtech_vector_mode_texts + 57, ashtech_vector_mode_texts + 59}, /* "3": "rtk_fixed" */
+    {ashtech_vector_mode_texts + 69, ashtech_vector_mode_texts + 71}, /* "5": "other" */
 };
 const nmea_enum_def nmea_ashtech_vector_mode_def = {
-    "ashtech_vector_mode", ashtech_vector_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    ashtech_vector_mode_texts, ashtech_vector_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char broadcom_glor_confidence_texts[] =
+    "broadcom_glor_confidence\0" "0\0" "unknown\0" "1\0" "low\0" "2\0" "medium\0" "3\0" "high\0";
 static const nmea_enum_code broadcom_glor_confidence_codes[] = {
-    {"0", "unknown"},
-    {"1", "low"},
-    {"2", "medium"},
-    {"3", "high"},
+    {broadcom_glor_confidence_texts + 25, broadcom_glor_confidence_texts + 27}, /* "0": "unknown" */
+    {broadcom_glor_confidence_texts + 35, broadcom_glor_confidence_texts + 37}, /* "1": "low" */
+    {broadcom_glor_confidence_texts + 41, broadcom_glor_confidence_texts + 43}, /* "2": "medium" */
+    {broadcom_glor_confidence_texts + 50, broadcom_glor_confidence_texts + 52}, /* "3": "high" */
 };
 const nmea_enum_def nmea_broadcom_glor_confidence_def = {
-    "broadcom_glor_confidence", broadcom_glor_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    broadcom_glor_confidence_texts, broadcom_glor_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char broadcom_glor_location_request_texts[] =
+    "broadcom_glor_location_request\0" "0\0" "not_needed\0" "1\0" "requested\0";
 static const nmea_enum_code broadcom_glor_location_request_codes[] = {
-    {"0", "not_needed"},
-    {"1", "requested"},
+    {broadcom_glor_location_request_texts + 31, broadcom_glor_location_request_texts + 33}, /* "0": "not_needed" */
+    {broadcom_glor_location_request_texts + 44, broadcom_glor_location_request_texts + 46}, /* "1": "requested" */
 };
 const nmea_enum_def nmea_broadcom_glor_location_request_def = {
-    "broadcom_glor_location_request", broadcom_glor_location_request_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    broadcom_glor_location_request_texts, broadcom_glor_location_request_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char broadcom_glor_power_save_texts[] =
+    "broadcom_glor_power_save\0" "D\0" "disabled\0" "F\0" "full_power\0" "S\0" "power_save\0" "G\0"
+    "glonass_low_power\0" "SG\0" "power_save_glonass_low_power\0";
 static const nmea_enum_code broadcom_glor_power_save_codes[] = {
-    {"D", "disabled"},
-    {"F", "full_power"},
-    {"S", "power_save"},
-    {"G", "glonass_low_power"},
-    {"SG", "power_save_glonass_low_power"},
+    {broadcom_glor_power_save_texts + 25, broadcom_glor_power_save_texts + 27}, /* "D": "disabled" */
+    {broadcom_glor_power_save_texts + 36, broadcom_glor_power_save_texts + 38}, /* "F": "full_power" */
+    {broadcom_glor_power_save_texts + 49, broadcom_glor_power_save_texts + 51}, /* "S": "power_save" */
+    {broadcom_glor_power_save_texts + 62, broadcom_glor_power_save_texts + 64}, /* "G": "glonass_low_power" */
+    {broadcom_glor_power_save_texts + 82, broadcom_glor_power_save_texts + 85}, /* "SG": "power_save_glonass_low_power" */
 };
 const nmea_enum_def nmea_broadcom_glor_power_save_def = {
-    "broadcom_glor_power_save", broadcom_glor_power_save_codes, 5, 1, 2, NMEA_CODES_LETTERS
+    broadcom_glor_power_save_texts, broadcom_glor_power_save_codes, 5, 1, 2, NMEA_CODES_LETTERS
 };
 
+static const char broadcom_glor_vel_track_quality_texts[] =
+    "broadcom_glor_vel_track_quality\0" "0\0" "poor_velocity_poor_track\0" "1\0"
+    "good_velocity_poor_track\0" "2\0" "poor_velocity_good_track\0" "3\0" "good_velocity_good_track\0";
 static const nmea_enum_code broadcom_glor_vel_track_quality_codes[] = {
-    {"0", "poor_velocity_poor_track"},
-    {"1", "good_velocity_poor_track"},
-    {"2", "poor_velocity_good_track"},
-    {"3", "good_velocity_good_track"},
+    {broadcom_glor_vel_track_quality_texts + 32, broadcom_glor_vel_track_quality_texts + 34}, /* "0": "poor_velocity_poor_track" */
+    {broadcom_glor_vel_track_quality_texts + 59, broadcom_glor_vel_track_quality_texts + 61}, /* "1": "good_velocity_poor_track" */
+    {broadcom_glor_vel_track_quality_texts + 86, broadcom_glor_vel_track_quality_texts + 88}, /* "2": "poor_velocity_good_track" */
+    {broadcom_glor_vel_track_quality_texts + 113, broadcom_glor_vel_track_quality_texts + 115}, /* "3": "good_velocity_good_track" */
 };
 const nmea_enum_def nmea_broadcom_glor_vel_track_quality_def = {
-    "broadcom_glor_vel_track_quality", broadcom_glor_vel_track_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    broadcom_glor_vel_track_quality_texts, broadcom_glor_vel_track_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char comnav_log_message_texts[] =
+    "comnav_log_message\0" "GPGGA\0" "gpgga\0" "GPGLL\0" "gpgll\0" "GPGSA\0" "gpgsa\0" "GPGST\0"
+    "gpgst\0" "GPGSV\0" "gpgsv\0" "GPHDT\0" "gphdt\0" "GPRMC\0" "gprmc\0" "GPVTG\0" "gpvtg\0" "GPZDA\0"
+    "gpzda\0";
 static const nmea_enum_code comnav_log_message_codes[] = {
-    {"GPGGA", "gpgga"},
-    {"GPGLL", "gpgll"},
-    {"GPGSA", "gpgsa"},
-    {"GPGST", "gpgst"},
-    {"GPGSV", "gpgsv"},
-    {"GPHDT", "gphdt"},
-    {"GPRMC", "gprmc"},
-    {"GPVTG", "gpvtg"},
-    {"GPZDA", "gpzda"},
+    {comnav_log_message_texts + 19, comnav_log_message_texts + 25}, /* "GPGGA": "gpgga" */
+    {comnav_log_message_texts + 31, comnav_log_message_texts + 37}, /* "GPGLL": "gpgll" */
+    {comnav_log_message_texts + 43, comnav_log_message_texts + 49}, /* "GPGSA": "gpgsa" */
+    {comnav_log_message_texts + 55, comnav_log_message_texts + 61}, /* "GPGST": "gpgst" */
+    {comnav_log_message_texts + 67, comnav_log_message_texts + 73}, /* "GPGSV": "gpgsv" */
+    {comnav_log_message_texts + 79, comnav_log_message_texts + 85}, /* "GPHDT": "gphdt" */
+    {comnav_log_message_texts + 91, comnav_log_message_texts + 97}, /* "GPRMC": "gprmc" */
+    {comnav_log_message_texts + 103, comnav_log_message_texts + 109}, /* "GPVTG": "gpvtg" */
+    {comnav_log_message_texts + 115, comnav_log_message_texts + 121}, /* "GPZDA": "gpzda" */
 };
 const nmea_enum_def nmea_comnav_log_message_def = {
-    "comnav_log_message", comnav_log_message_codes, 9, 5, 5, NMEA_CODES_LETTERS
+    comnav_log_message_texts, comnav_log_message_codes, 9, 5, 5, NMEA_CODES_LETTERS
 };
 
+static const char comnav_talker_id_texts[] =
+    "comnav_talker_id\0" "GN\0" "gn\0" "GP\0" "gp\0" "BD\0" "bd\0" "GL\0" "gl\0" "GA\0" "ga\0" "AUTO\0"
+    "auto\0";
 static const nmea_enum_code comnav_talker_id_codes[] = {
-    {"GN", "gn"},
-    {"GP", "gp"},
-    {"BD", "bd"},
-    {"GL", "gl"},
-    {"GA", "ga"},
-    {"AUTO", "auto"},
+    {comnav_talker_id_texts + 17, comnav_talker_id_texts + 20}, /* "GN": "gn" */
+    {comnav_talker_id_texts + 23, comnav_talker_id_texts + 26}, /* "GP": "gp" */
+    {comnav_talker_id_texts + 29, comnav_talker_id_texts + 32}, /* "BD": "bd" */
+    {comnav_talker_id_texts + 35, comnav_talker_id_texts + 38}, /* "GL": "gl" */
+    {comnav_talker_id_texts + 41, comnav_talker_id_texts + 44}, /* "GA": "ga" */
+    {comnav_talker_id_texts + 47, comnav_talker_id_texts + 52}, /* "AUTO": "auto" */
 };
 const nmea_enum_def nmea_comnav_talker_id_def = {
-    "comnav_talker_id", comnav_talker_id_codes, 6, 2, 4, NMEA_CODES_LETTERS
+    comnav_talker_id_texts, comnav_talker_id_codes, 6, 2, 4, NMEA_CODES_LETTERS
 };
 
+static const char comnav_talker_sentence_texts[] =
+    "comnav_talker_sentence\0" "GGA\0" "gga\0" "GSA\0" "gsa\0" "GSV\0" "gsv\0" "GST\0" "gst\0" "ZDA\0"
+    "zda\0" "HDT\0" "hdt\0" "RMC\0" "rmc\0" "VTG\0" "vtg\0" "GLL\0" "gll\0" "ALL\0" "all\0";
 static const nmea_enum_code comnav_talker_sentence_codes[] = {
-    {"GGA", "gga"},
-    {"GSA", "gsa"},
-    {"GSV", "gsv"},
-    {"GST", "gst"},
-    {"ZDA", "zda"},
-    {"HDT", "hdt"},
-    {"RMC", "rmc"},
-    {"VTG", "vtg"},
-    {"GLL", "gll"},
-    {"ALL", "all"},
+    {comnav_talker_sentence_texts + 23, comnav_talker_sentence_texts + 27}, /* "GGA": "gga" */
+    {comnav_talker_sentence_texts + 31, comnav_talker_sentence_texts + 35}, /* "GSA": "gsa" */
+    {comnav_talker_sentence_texts + 39, comnav_talker_sentence_texts + 43}, /* "GSV": "gsv" */
+    {comnav_talker_sentence_texts + 47, comnav_talker_sentence_texts + 51}, /* "GST": "gst" */
+    {comnav_talker_sentence_texts + 55, comnav_talker_sentence_texts + 59}, /* "ZDA": "zda" */
+    {comnav_talker_sentence_texts + 63, comnav_talker_sentence_texts + 67}, /* "HDT": "hdt" */
+    {comnav_talker_sentence_texts + 71, comnav_talker_sentence_texts + 75}, /* "RMC": "rmc" */
+    {comnav_talker_sentence_texts + 79, comnav_talker_sentence_texts + 83}, /* "VTG": "vtg" */
+    {comnav_talker_sentence_texts + 87, comnav_talker_sentence_texts + 91}, /* "GLL": "gll" */
+    {comnav_talker_sentence_texts + 95, comnav_talker_sentence_texts + 99}, /* "ALL": "all" */
 };
 const nmea_enum_def nmea_comnav_talker_sentence_def = {
-    "comnav_talker_sentence", comnav_talker_sentence_codes, 10, 3, 3, NMEA_CODES_LETTERS
+    comnav_talker_sentence_texts, comnav_talker_sentence_codes, 10, 3, 3, NMEA_CODES_LETTERS
 };
 
+static const char cur_direction_reference_texts[] =
+    "cur_direction_reference\0" "T\0" "true_north\0" "R\0" "relative\0";
 static const nmea_enum_code cur_direction_reference_codes[] = {
-    {"T", "true_north"},
-    {"R", "relative"},
+    {cur_direction_reference_texts + 24, cur_direction_reference_texts + 26}, /* "T": "true_north" */
+    {cur_direction_reference_texts + 37, cur_direction_reference_texts + 39}, /* "R": "relative" */
 };
 const nmea_enum_def nmea_cur_direction_reference_def = {
-    "cur_direction_reference", cur_direction_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    cur_direction_reference_texts, cur_direction_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char cur_heading_reference_texts[] =
+    "cur_heading_reference\0" "T\0" "true_north\0" "M\0" "magnetic\0";
 static const nmea_enum_code cur_heading_reference_codes[] = {
-    {"T", "true_north"},
-    {"M", "magnetic"},
+    {cur_heading_reference_texts + 22, cur_heading_reference_texts + 24}, /* "T": "true_north" */
+    {cur_heading_reference_texts + 35, cur_heading_reference_texts + 37}, /* "M": "magnetic" */
 };
 const nmea_enum_def nmea_cur_heading_reference_def = {
-    "cur_heading_reference", cur_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    cur_heading_reference_texts, cur_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char cur_speed_reference_texts[] =
+    "cur_speed_reference\0" "B\0" "bottom_track\0" "W\0" "water_track\0" "P\0" "positioning_system\0";
 static const nmea_enum_code cur_speed_reference_codes[] = {
-    {"B", "bottom_track"},
-    {"W", "water_track"},
-    {"P", "positioning_system"},
+    {cur_speed_reference_texts + 20, cur_speed_reference_texts + 22}, /* "B": "bottom_track" */
+    {cur_speed_reference_texts + 35, cur_speed_reference_texts + 37}, /* "W": "water_track" */
+    {cur_speed_reference_texts + 49, cur_speed_reference_texts + 51}, /* "P": "positioning_system" */
 };
 const nmea_enum_def nmea_cur_speed_reference_def = {
-    "cur_speed_reference", cur_speed_reference_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    cur_speed_reference_texts, cur_speed_reference_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char ddc_command_mode_texts[] =
+    "ddc_command_mode\0" "O\0" "operational\0" "P\0" "preset\0";
 static const nmea_enum_code ddc_command_mode_codes[] = {
-    {"O", "operational"},
-    {"P", "preset"},
+    {ddc_command_mode_texts + 17, ddc_command_mode_texts + 19}, /* "O": "operational" */
+    {ddc_command_mode_texts + 31, ddc_command_mode_texts + 33}, /* "P": "preset" */
 };
 const nmea_enum_def nmea_ddc_command_mode_def = {
-    "ddc_command_mode", ddc_command_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    ddc_command_mode_texts, ddc_command_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char ddc_preset_texts[] =
+    "ddc_preset\0" "D\0" "day\0" "K\0" "dusk\0" "N\0" "night\0" "O\0" "backlight_off\0";
 static const nmea_enum_code ddc_preset_codes[] = {
-    {"D", "day"},
-    {"K", "dusk"},
-    {"N", "night"},
-    {"O", "backlight_off"},
+    {ddc_preset_texts + 11, ddc_preset_texts + 13}, /* "D": "day" */
+    {ddc_preset_texts + 17, ddc_preset_texts + 19}, /* "K": "dusk" */
+    {ddc_preset_texts + 24, ddc_preset_texts + 26}, /* "N": "night" */
+    {ddc_preset_texts + 32, ddc_preset_texts + 34}, /* "O": "backlight_off" */
 };
 const nmea_enum_def nmea_ddc_preset_def = {
-    "ddc_preset", ddc_preset_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    ddc_preset_texts, ddc_preset_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char dor_message_type_texts[] =
+    "dor_message_type\0" "S\0" "section_status\0" "E\0" "single_door\0" "F\0" "system_fault\0";
 static const nmea_enum_code dor_message_type_codes[] = {
-    {"S", "section_status"},
-    {"E", "single_door"},
-    {"F", "system_fault"},
+    {dor_message_type_texts + 17, dor_message_type_texts + 19}, /* "S": "section_status" */
+    {dor_message_type_texts + 34, dor_message_type_texts + 36}, /* "E": "single_door" */
+    {dor_message_type_texts + 48, dor_message_type_texts + 50}, /* "F": "system_fault" */
 };
 const nmea_enum_def nmea_dor_message_type_def = {
-    "dor_message_type", dor_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    dor_message_type_texts, dor_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char dor_status_texts[] =
+    "dor_status\0" "O\0" "open\0" "C\0" "closed\0" "S\0" "secured\0" "F\0" "free\0" "X\0" "fault\0";
 static const nmea_enum_code dor_status_codes[] = {
-    {"O", "open"},
-    {"C", "closed"},
-    {"S", "secured"},
-    {"F", "free"},
-    {"X", "fault"},
+    {dor_status_texts + 11, dor_status_texts + 13}, /* "O": "open" */
+    {dor_status_texts + 18, dor_status_texts + 20}, /* "C": "closed" */
+    {dor_status_texts + 27, dor_status_texts + 29}, /* "S": "secured" */
+    {dor_status_texts + 37, dor_status_texts + 39}, /* "F": "free" */
+    {dor_status_texts + 44, dor_status_texts + 46}, /* "X": "fault" */
 };
 const nmea_enum_def nmea_dor_status_def = {
-    "dor_status", dor_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    dor_status_texts, dor_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char dor_switch_setting_texts[] =
+    "dor_switch_setting\0" "O\0" "harbour_mode\0" "C\0" "sea_mode\0";
 static const nmea_enum_code dor_switch_setting_codes[] = {
-    {"O", "harbour_mode"},
-    {"C", "sea_mode"},
+    {dor_switch_setting_texts + 19, dor_switch_setting_texts + 21}, /* "O": "harbour_mode" */
+    {dor_switch_setting_texts + 34, dor_switch_setting_texts + 36}, /* "C": "sea_mode" */
 };
 const nmea_enum_def nmea_dor_switch_setting_def = {
-    "dor_switch_setting", dor_switch_setting_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    dor_switch_setting_texts, dor_switch_setting_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char dor_system_texts[] =
+    "dor_system\0" "WT\0" "watertight\0" "WS\0" "semi_watertight\0" "FD\0" "fire_door\0" "HD\0"
+    "hull_door\0" "OT\0" "other\0";
 static const nmea_enum_code dor_system_codes[] = {
-    {"WT", "watertight"},
-    {"WS", "semi_watertight"},
-    {"FD", "fire_door"},
-    {"HD", "hull_door"},
-    {"OT", "other"},
+    {dor_system_texts + 11, dor_system_texts + 14}, /* "WT": "watertight" */
+    {dor_system_texts + 25, dor_system_texts + 28}, /* "WS": "semi_watertight" */
+    {dor_system_texts + 44, dor_system_texts + 47}, /* "FD": "fire_door" */
+    {dor_system_texts + 57, dor_system_texts + 60}, /* "HD": "hull_door" */
+    {dor_system_texts + 70, dor_system_texts + 73}, /* "OT": "other" */
 };
 const nmea_enum_def nmea_dor_system_def = {
-    "dor_system", dor_system_codes, 5, 2, 2, NMEA_CODES_LETTERS
+    dor_system_texts, dor_system_codes, 5, 2, 2, NMEA_CODES_LETTERS
 };
 
+static const char dsc_acknowledgement_texts[] =
+    "dsc_acknowledgement\0" "R\0" "request\0" "B\0" "acknowledgement\0" "S\0" "end_of_sequence\0";
 static const nmea_enum_code dsc_acknowledgement_codes[] = {
-    {"R", "request"},
-    {"B", "acknowledgement"},
-    {"S", "end_of_sequence"},
+    {dsc_acknowledgement_texts + 20, dsc_acknowledgement_texts + 22}, /* "R": "request" */
+    {dsc_acknowledgement_texts + 30, dsc_acknowledgement_texts + 32}, /* "B": "acknowledgement" */
+    {dsc_acknowledgement_texts + 48, dsc_acknowledgement_texts + 50}, /* "S": "end_of_sequence" */
 };
 const nmea_enum_def nmea_dsc_acknowledgement_def = {
-    "dsc_acknowledgement", dsc_acknowledgement_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    dsc_acknowledgement_texts, dsc_acknowledgement_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char dsc_category_texts[] =
+    "dsc_category\0" "00\0" "routine\0" "08\0" "safety\0" "10\0" "urgency\0" "12\0" "distress\0";
 static const nmea_enum_code dsc_category_codes[] = {
-    {"00", "routine"},
-    {"08", "safety"},
-    {"10", "urgency"},
-    {"12", "distress"},
+    {dsc_category_texts + 13, dsc_category_texts + 16}, /* "00": "routine" */
+    {dsc_category_texts + 24, dsc_category_texts + 27}, /* "08": "safety" */
+    {dsc_category_texts + 34, dsc_category_texts + 37}, /* "10": "urgency" */
+    {dsc_category_texts + 45, dsc_category_texts + 48}, /* "12": "distress" */
 };
 const nmea_enum_def nmea_dsc_category_def = {
-    "dsc_category", dsc_category_codes, 4, 2, 2, NMEA_CODES_DIGITS
+    dsc_category_texts, dsc_category_codes, 4, 2, 2, NMEA_CODES_DIGITS
 };
 
+static const char dsc_distress_nature_texts[] =
+    "dsc_distress_nature\0" "00\0" "fire\0" "01\0" "flooding\0" "02\0" "collision\0" "03\0"
+    "grounding\0" "04\0" "listing\0" "05\0" "sinking\0" "06\0" "adrift\0" "07\0" "undesignated\0" "08\0"
+    "abandoning_ship\0" "09\0" "piracy\0" "10\0" "man_overboard\0" "12\0" "epirb\0";
 static const nmea_enum_code dsc_distress_nature_codes[] = {
-    {"00", "fire"},
-    {"01", "flooding"},
-    {"02", "collision"},
-    {"03", "grounding"},
-    {"04", "listing"},
-    {"05", "sinking"},
-    {"06", "adrift"},
-    {"07", "undesignated"},
-    {"08", "abandoning_ship"},
-    {"09", "piracy"},
-    {"10", "man_overboard"},
-    {"12", "epirb"},
+    {dsc_distress_nature_texts + 20, dsc_distress_nature_texts + 23}, /* "00": "fire" */
+    {dsc_distress_nature_texts + 28, dsc_distress_nature_texts + 31}, /* "01": "flooding" */
+    {dsc_distress_nature_texts + 40, dsc_distress_nature_texts + 43}, /* "02": "collision" */
+    {dsc_distress_nature_texts + 53, dsc_distress_nature_texts + 56}, /* "03": "grounding" */
+    {dsc_distress_nature_texts + 66, dsc_distress_nature_texts + 69}, /* "04": "listing" */
+    {dsc_distress_nature_texts + 77, dsc_distress_nature_texts + 80}, /* "05": "sinking" */
+    {dsc_distress_nature_texts + 88, dsc_distress_nature_texts + 91}, /* "06": "adrift" */
+    {dsc_distress_nature_texts + 98, dsc_distress_nature_texts + 101}, /* "07": "undesignated" */
+    {dsc_distress_nature_texts + 114, dsc_distress_nature_texts + 117}, /* "08": "abandoning_ship" */
+    {dsc_distress_nature_texts + 133, dsc_distress_nature_texts + 136}, /* "09": "piracy" */
+    {dsc_distress_nature_texts + 143, dsc_distress_nature_texts + 146}, /* "10": "man_overboard" */
+    {dsc_distress_nature_texts + 160, dsc_distress_nature_texts + 163}, /* "12": "epirb" */
 };
 const nmea_enum_def nmea_dsc_distress_nature_def = {
-    "dsc_distress_nature", dsc_distress_nature_codes, 12, 2, 2, NMEA_CODES_DIGITS
+    dsc_distress_nature_texts, dsc_distress_nature_codes, 12, 2, 2, NMEA_CODES_DIGITS
 };
 
+static const char dsc_format_texts[] =
+    "dsc_format\0" "02\0" "geographic_area\0" "12\0" "distress\0" "14\0" "common_interest\0" "16\0"
+    "all_ships\0" "20\0" "individual\0" "23\0" "individual_automatic\0";
 static const nmea_enum_code dsc_format_codes[] = {
-    {"02", "geographic_area"},
-    {"12", "distress"},
-    {"14", "common_interest"},
-    {"16", "all_ships"},
-    {"20", "individual"},
-    {"23", "individual_automatic"},
+    {dsc_format_texts + 11, dsc_format_texts + 14}, /* "02": "geographic_area" */
+    {dsc_format_texts + 30, dsc_format_texts + 33}, /* "12": "distress" */
+    {dsc_format_texts + 42, dsc_format_texts + 45}, /* "14": "common_interest" */
+    {dsc_format_texts + 61, dsc_format_texts + 64}, /* "16": "all_ships" */
+    {dsc_format_texts + 74, dsc_format_texts + 77}, /* "20": "individual" */
+    {dsc_format_texts + 88, dsc_format_texts + 91}, /* "23": "individual_automatic" */
 };
 const nmea_enum_def nmea_dsc_format_def = {
-    "dsc_format", dsc_format_codes, 6, 2, 2, NMEA_CODES_DIGITS
+    dsc_format_texts, dsc_format_codes, 6, 2, 2, NMEA_CODES_DIGITS
 };
 
+static const char dse_code_texts[] =
+    "dse_code\0" "00\0" "enhanced_position\0" "01\0" "position_source_datum\0" "02\0" "speed\0" "03\0"
+    "course\0" "04\0" "station_id\0" "05\0" "enhanced_geographic_area\0" "06\0" "persons_on_board\0";
 static const nmea_enum_code dse_code_codes[] = {
-    {"00", "enhanced_position"},
-    {"01", "position_source_datum"},
-    {"02", "speed"},
-    {"03", "course"},
-    {"04", "station_id"},
-    {"05", "enhanced_geographic_area"},
-    {"06", "persons_on_board"},
+    {dse_code_texts + 9, dse_code_texts + 12}, /* "00": "enhanced_position" */
+    {dse_code_texts + 30, dse_code_texts + 33}, /* "01": "position_source_datum" */
+    {dse_code_texts + 55, dse_code_texts + 58}, /* "02": "speed" */
+    {dse_code_texts + 64, dse_code_texts + 67}, /* "03": "course" */
+    {dse_code_texts + 74, dse_code_texts + 77}, /* "04": "station_id" */
+    {dse_code_texts + 88, dse_code_texts + 91}, /* "05": "enhanced_geographic_area" */
+    {dse_code_texts + 116, dse_code_texts + 119}, /* "06": "persons_on_board" */
 };
 const nmea_enum_def nmea_dse_code_def = {
-    "dse_code", dse_code_codes, 7, 2, 2, NMEA_CODES_DIGITS
+    dse_code_texts, dse_code_codes, 7, 2, 2, NMEA_CODES_DIGITS
 };
 
+static const char dse_query_flag_texts[] =
+    "dse_query_flag\0" "Q\0" "query\0" "R\0" "reply\0" "A\0" "automatic\0";
 static const nmea_enum_code dse_query_flag_codes[] = {
-    {"Q", "query"},
-    {"R", "reply"},
-    {"A", "automatic"},
+    {dse_query_flag_texts + 15, dse_query_flag_texts + 17}, /* "Q": "query" */
+    {dse_query_flag_texts + 23, dse_query_flag_texts + 25}, /* "R": "reply" */
+    {dse_query_flag_texts + 31, dse_query_flag_texts + 33}, /* "A": "automatic" */
 };
 const nmea_enum_def nmea_dse_query_flag_def = {
-    "dse_query_flag", dse_query_flag_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    dse_query_flag_texts, dse_query_flag_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char dtm_datum_texts[] =
+    "dtm_datum\0" "W84\0" "wgs84\0" "W72\0" "wgs72\0" "S85\0" "sgs85\0" "P90\0" "pz90\0" "999\0"
+    "user_defined\0";
 static const nmea_enum_code dtm_datum_codes[] = {
-    {"W84", "wgs84"},
-    {"W72", "wgs72"},
-    {"S85", "sgs85"},
-    {"P90", "pz90"},
-    {"999", "user_defined"},
+    {dtm_datum_texts + 10, dtm_datum_texts + 14}, /* "W84": "wgs84" */
+    {dtm_datum_texts + 20, dtm_datum_texts + 24}, /* "W72": "wgs72" */
+    {dtm_datum_texts + 30, dtm_datum_texts + 34}, /* "S85": "sgs85" */
+    {dtm_datum_texts + 40, dtm_datum_texts + 44}, /* "P90": "pz90" */
+    {dtm_datum_texts + 49, dtm_datum_texts + 53}, /* "999": "user_defined" */
 };
 const nmea_enum_def nmea_dtm_datum_def = {
-    "dtm_datum", dtm_datum_codes, 5, 3, 3, NMEA_CODES_ALNUM
+    dtm_datum_texts, dtm_datum_codes, 5, 3, 3, NMEA_CODES_ALNUM
 };
 
+static const char dtm_lat_offset_dir_texts[] =
+    "dtm_lat_offset_dir\0" "N\0" "north\0" "S\0" "south\0";
 static const nmea_enum_code dtm_lat_offset_dir_codes[] = {
-    {"N", "north"},
-    {"S", "south"},
+    {dtm_lat_offset_dir_texts + 19, dtm_lat_offset_dir_texts + 21}, /* "N": "north" */
+    {dtm_lat_offset_dir_texts + 27, dtm_lat_offset_dir_texts + 29}, /* "S": "south" */
 };
 const nmea_enum_def nmea_dtm_lat_offset_dir_def = {
-    "dtm_lat_offset_dir", dtm_lat_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    dtm_lat_offset_dir_texts, dtm_lat_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char dtm_lon_offset_dir_texts[] =
+    "dtm_lon_offset_dir\0" "E\0" "east\0" "W\0" "west\0";
 static const nmea_enum_code dtm_lon_offset_dir_codes[] = {
-    {"E", "east"},
-    {"W", "west"},
+    {dtm_lon_offset_dir_texts + 19, dtm_lon_offset_dir_texts + 21}, /* "E": "east" */
+    {dtm_lon_offset_dir_texts + 26, dtm_lon_offset_dir_texts + 28}, /* "W": "west" */
 };
 const nmea_enum_def nmea_dtm_lon_offset_dir_def = {
-    "dtm_lon_offset_dir", dtm_lon_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    dtm_lon_offset_dir_texts, dtm_lon_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char east_west_texts[] =
+    "east_west\0" "E\0" "east\0" "W\0" "west\0";
 static const nmea_enum_code east_west_codes[] = {
-    {"E", "east"},
-    {"W", "west"},
+    {east_west_texts + 10, east_west_texts + 12}, /* "E": "east" */
+    {east_west_texts + 17, east_west_texts + 19}, /* "W": "west" */
 };
 const nmea_enum_def nmea_east_west_def = {
-    "east_west", east_west_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    east_west_texts, east_west_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char etl_message_type_texts[] =
+    "etl_message_type\0" "O\0" "order\0" "A\0" "answer_back\0";
 static const nmea_enum_code etl_message_type_codes[] = {
-    {"O", "order"},
-    {"A", "answer_back"},
+    {etl_message_type_texts + 17, etl_message_type_texts + 19}, /* "O": "order" */
+    {etl_message_type_texts + 25, etl_message_type_texts + 27}, /* "A": "answer_back" */
 };
 const nmea_enum_def nmea_etl_message_type_def = {
-    "etl_message_type", etl_message_type_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    etl_message_type_texts, etl_message_type_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char etl_sub_telegraph_texts[] =
+    "etl_sub_telegraph\0" "20\0" "standby\0" "30\0" "full_away\0" "40\0" "finished_with_engine\0";
 static const nmea_enum_code etl_sub_telegraph_codes[] = {
-    {"20", "standby"},
-    {"30", "full_away"},
-    {"40", "finished_with_engine"},
+    {etl_sub_telegraph_texts + 18, etl_sub_telegraph_texts + 21}, /* "20": "standby" */
+    {etl_sub_telegraph_texts + 29, etl_sub_telegraph_texts + 32}, /* "30": "full_away" */
+    {etl_sub_telegraph_texts + 42, etl_sub_telegraph_texts + 45}, /* "40": "finished_with_engine" */
 };
 const nmea_enum_def nmea_etl_sub_telegraph_def = {
-    "etl_sub_telegraph", etl_sub_telegraph_codes, 3, 2, 2, NMEA_CODES_DIGITS
+    etl_sub_telegraph_texts, etl_sub_telegraph_codes, 3, 2, 2, NMEA_CODES_DIGITS
 };
 
+static const char etl_telegraph_position_texts[] =
+    "etl_telegraph_position\0" "00\0" "stop\0" "01\0" "ahead_dead_slow\0" "02\0" "ahead_slow\0" "03\0"
+    "ahead_half\0" "04\0" "ahead_full\0" "05\0" "ahead_navigation_full\0" "11\0" "astern_dead_slow\0"
+    "12\0" "astern_slow\0" "13\0" "astern_half\0" "14\0" "astern_full\0" "15\0" "crash_astern\0";
 static const nmea_enum_code etl_telegraph_position_codes[] = {
-    {"00", "stop"},
-    {"01", "ahead_dead_slow"},
-    {"02", "ahead_slow"},
-    {"03", "ahead_half"},
-    {"04", "ahead_full"},
-    {"05", "ahead_navigation_full"},
-    {"11", "astern_dead_slow"},
-    {"12", "astern_slow"},
-    {"13", "astern_half"},
-    {"14", "astern_full"},
-    {"15", "crash_astern"},
+    {etl_telegraph_position_texts + 23, etl_telegraph_position_texts + 26}, /* "00": "stop" */
+    {etl_telegraph_position_texts + 31, etl_telegraph_position_texts + 34}, /* "01": "ahead_dead_slow" */
+    {etl_telegraph_position_texts + 50, etl_telegraph_position_texts + 53}, /* "02": "ahead_slow" */
+    {etl_telegraph_position_texts + 64, etl_telegraph_position_texts + 67}, /* "03": "ahead_half" */
+    {etl_telegraph_position_texts + 78, etl_telegraph_position_texts + 81}, /* "04": "ahead_full" */
+    {etl_telegraph_position_texts + 92, etl_telegraph_position_texts + 95}, /* "05": "ahead_navigation_full" */
+    {etl_telegraph_position_texts + 117, etl_telegraph_position_texts + 120}, /* "11": "astern_dead_slow" */
+    {etl_telegraph_position_texts + 137, etl_telegraph_position_texts + 140}, /* "12": "astern_slow" */
+    {etl_telegraph_position_texts + 152, etl_telegraph_position_texts + 155}, /* "13": "astern_half" */
+    {etl_telegraph_position_texts + 167, etl_telegraph_position_texts + 170}, /* "14": "astern_full" */
+    {etl_telegraph_position_texts + 182, etl_telegraph_position_texts + 185}, /* "15": "crash_astern" */
 };
 const nmea_enum_def nmea_etl_telegraph_position_def = {
-    "etl_telegraph_position", etl_telegraph_position_codes, 11, 2, 2, NMEA_CODES_DIGITS
+    etl_telegraph_position_texts, etl_telegraph_position_codes, 11, 2, 2, NMEA_CODES_DIGITS
 };
 
+static const char fir_condition_texts[] =
+    "fir_condition\0" "A\0" "activation\0" "V\0" "non_activation\0" "X\0" "fault\0";
 static const nmea_enum_code fir_condition_codes[] = {
-    {"A", "activation"},
-    {"V", "non_activation"},
-    {"X", "fault"},
+    {fir_condition_texts + 14, fir_condition_texts + 16}, /* "A": "activation" */
+    {fir_condition_texts + 27, fir_condition_texts + 29}, /* "V": "non_activation" */
+    {fir_condition_texts + 44, fir_condition_texts + 46}, /* "X": "fault" */
 };
 const nmea_enum_def nmea_fir_condition_def = {
-    "fir_condition", fir_condition_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    fir_condition_texts, fir_condition_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char fir_message_type_texts[] =
+    "fir_message_type\0" "S\0" "section_status\0" "E\0" "event\0" "F\0" "fault\0" "D\0" "disabled\0";
 static const nmea_enum_code fir_message_type_codes[] = {
-    {"S", "section_status"},
-    {"E", "event"},
-    {"F", "fault"},
-    {"D", "disabled"},
+    {fir_message_type_texts + 17, fir_message_type_texts + 19}, /* "S": "section_status" */
+    {fir_message_type_texts + 34, fir_message_type_texts + 36}, /* "E": "event" */
+    {fir_message_type_texts + 42, fir_message_type_texts + 44}, /* "F": "fault" */
+    {fir_message_type_texts + 50, fir_message_type_texts + 52}, /* "D": "disabled" */
 };
 const nmea_enum_def nmea_fir_message_type_def = {
-    "fir_message_type", fir_message_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    fir_message_type_texts, fir_message_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char fir_system_texts[] =
+    "fir_system\0" "FD\0" "generic_fire_detector\0" "FH\0" "heat_detector\0" "FS\0" "smoke_detector\0"
+    "FM\0" "manual_call_point\0" "GD\0" "gas_detector\0" "GO\0" "oxygen_detector\0" "GS\0"
+    "hydrogen_sulphide_detector\0" "GH\0" "hydrocarbon_detector\0" "SF\0" "sprinkler_flow_switch\0"
+    "SV\0" "sprinkler_manual_valve\0" "CO\0" "co2_manual_release\0" "OT\0" "other\0";
 static const nmea_enum_code fir_system_codes[] = {
-    {"FD", "generic_fire_detector"},
-    {"FH", "heat_detector"},
-    {"FS", "smoke_detector"},
-    {"FM", "manual_call_point"},
-    {"GD", "gas_detector"},
-    {"GO", "oxygen_detector"},
-    {"GS", "hydrogen_sulphide_detector"},
-    {"GH", "hydrocarbon_detector"},
-    {"SF", "sprinkler_flow_switch"},
-    {"SV", "sprinkler_manual_valve"},
-    {"CO", "co2_manual_release"},
-    {"OT", "other"},
+    {fir_system_texts + 11, fir_system_texts + 14}, /* "FD": "generic_fire_detector" */
+    {fir_system_texts + 36, fir_system_texts + 39}, /* "FH": "heat_detector" */
+    {fir_system_texts + 53, fir_system_texts + 56}, /* "FS": "smoke_detector" */
+    {fir_system_texts + 71, fir_system_texts + 74}, /* "FM": "manual_call_point" */
+    {fir_system_texts + 92, fir_system_texts + 95}, /* "GD": "gas_detector" */
+    {fir_system_texts + 108, fir_system_texts + 111}, /* "GO": "oxygen_detector" */
+    {fir_system_texts + 127, fir_system_texts + 130}, /* "GS": "hydrogen_sulphide_detector" */
+    {fir_system_texts + 157, fir_system_texts + 160}, /* "GH": "hydrocarbon_detector" */
+    {fir_system_texts + 181, fir_system_texts + 184}, /* "SF": "sprinkler_flow_switch" */
+    {fir_system_texts + 206, fir_system_texts + 209}, /* "SV": "sprinkler_manual_valve" */
+    {fir_system_texts + 232, fir_system_texts + 235}, /* "CO": "co2_manual_release" */
+    {fir_system_texts + 254, fir_system_texts + 257}, /* "OT": "other" */
 };
 const nmea_enum_def nmea_fir_system_def = {
-    "fir_system", fir_system_codes, 12, 2, 2, NMEA_CODES_LETTERS
+    fir_system_texts, fir_system_codes, 12, 2, 2, NMEA_CODES_LETTERS
 };
 
+static const char fsi_mode_texts[] =
+    "fsi_mode\0" "d\0" "f3e_g3e_simplex_telephone\0" "e\0" "f3e_g3e_duplex_telephone\0" "m\0"
+    "j3e_telephone\0" "o\0" "h3e_telephone\0" "q\0" "nbdp_fec\0" "s\0" "nbdp_arq\0" "t\0"
+    "f1b_j2b_receive_only\0" "w\0" "f1b_j2b_teleprinter_dsc\0" "x\0" "a1a_morse_recorder\0" "{\0"
+    "a1a_morse_key\0" "|\0" "facsimile\0";
 static const nmea_enum_code fsi_mode_codes[] = {
-    {"d", "f3e_g3e_simplex_telephone"},
-    {"e", "f3e_g3e_duplex_telephone"},
-    {"m", "j3e_telephone"},
-    {"o", "h3e_telephone"},
-    {"q", "nbdp_fec"},
-    {"s", "nbdp_arq"},
-    {"t", "f1b_j2b_receive_only"},
-    {"w", "f1b_j2b_teleprinter_dsc"},
-    {"x", "a1a_morse_recorder"},
-    {"{", "a1a_morse_key"},
-    {"|", "facsimile"},
+    {fsi_mode_texts + 9, fsi_mode_texts + 11}, /* "d": "f3e_g3e_simplex_telephone" */
+    {fsi_mode_texts + 37, fsi_mode_texts + 39}, /* "e": "f3e_g3e_duplex_telephone" */
+    {fsi_mode_texts + 64, fsi_mode_texts + 66}, /* "m": "j3e_telephone" */
+    {fsi_mode_texts + 80, fsi_mode_texts + 82}, /* "o": "h3e_telephone" */
+    {fsi_mode_texts + 96, fsi_mode_texts + 98}, /* "q": "nbdp_fec" */
+    {fsi_mode_texts + 107, fsi_mode_texts + 109}, /* "s": "nbdp_arq" */
+    {fsi_mode_texts + 118, fsi_mode_texts + 120}, /* "t": "f1b_j2b_receive_only" */
+    {fsi_mode_texts + 141, fsi_mode_texts + 143}, /* "w": "f1b_j2b_teleprinter_dsc" */
+    {fsi_mode_texts + 167, fsi_mode_texts + 169}, /* "x": "a1a_morse_recorder" */
+    {fsi_mode_texts + 188, fsi_mode_texts + 190}, /* "{": "a1a_morse_key" */
+    {fsi_mode_texts + 204, fsi_mode_texts + 206}, /* "|": "facsimile" */
 };
 const nmea_enum_def nmea_fsi_mode_def = {
-    "fsi_mode", fsi_mode_codes, 11, 1, 1, NMEA_CODES_LETTERS
+    fsi_mode_texts, fsi_mode_codes, 11, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char fsi_sentence_status_texts[] =
+    "fsi_sentence_status\0" "R\0" "report\0" "C\0" "command\0";
 static const nmea_enum_code fsi_sentence_status_codes[] = {
-    {"R", "report"},
-    {"C", "command"},
+    {fsi_sentence_status_texts + 20, fsi_sentence_status_texts + 22}, /* "R": "report" */
+    {fsi_sentence_status_texts + 29, fsi_sentence_status_texts + 31}, /* "C": "command" */
 };
 const nmea_enum_def nmea_fsi_sentence_status_def = {
-    "fsi_sentence_status", fsi_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    fsi_sentence_status_texts, fsi_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char furuno_eride_freq_mode_texts[] =
+    "furuno_eride_freq_mode\0" "1\0" "warm_up\0" "2\0" "lock\0" "3\0" "hold_over\0" "4\0" "free_run\0"
+    "5\0" "coarse\0" "6\0" "fine\0" "7\0" "undocumented_7\0";
 static const nmea_enum_code furuno_eride_freq_mode_codes[] = {
-    {"1", "warm_up"},
-    {"2", "lock"},
-    {"3", "hold_over"},
-    {"4", "free_run"},
-    {"5", "coarse"},
-    {"6", "fine"},
-    {"7", "undocumented_7"},
+    {furuno_eride_freq_mode_texts + 23, furuno_eride_freq_mode_texts + 25}, /* "1": "warm_up" */
+    {furuno_eride_freq_mode_texts + 33, furuno_eride_freq_mode_texts + 35}, /* "2": "lock" */
+    {furuno_eride_freq_mode_texts + 40, furuno_eride_freq_mode_texts + 42}, /* "3": "hold_over" */
+    {furuno_eride_freq_mode_texts + 52, furuno_eride_freq_mode_texts + 54}, /* "4": "free_run" */
+    {furuno_eride_freq_mode_texts + 63, furuno_eride_freq_mode_texts + 65}, /* "5": "coarse" */
+    {furuno_eride_freq_mode_texts + 72, furuno_eride_freq_mode_texts + 74}, /* "6": "fine" */
+    {furuno_eride_freq_mode_texts + 79, furuno_eride_freq_mode_texts + 81}, /* "7": "undocumented_7" */
 };
 const nmea_enum_def nmea_furuno_eride_freq_mode_def = {
-    "furuno_eride_freq_mode", furuno_eride_freq_mode_codes, 7, 1, 1, NMEA_CODES_DIGITS
+    furuno_eride_freq_mode_texts, furuno_eride_freq_mode_codes, 7, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char furuno_eride_on_off_texts[] =
+    "furuno_eride_on_off\0" "0\0" "off\0" "1\0" "on\0";
 static const nmea_enum_code furuno_eride_on_off_codes[] = {
-    {"0", "off"},
-    {"1", "on"},
+    {furuno_eride_on_off_texts + 20, furuno_eride_on_off_texts + 22}, /* "0": "off" */
+    {furuno_eride_on_off_texts + 26, furuno_eride_on_off_texts + 28}, /* "1": "on" */
 };
 const nmea_enum_def nmea_furuno_eride_on_off_def = {
-    "furuno_eride_on_off", furuno_eride_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    furuno_eride_on_off_texts, furuno_eride_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char furuno_eride_polarity_texts[] =
+    "furuno_eride_polarity\0" "0\0" "rising\0" "1\0" "falling\0";
 static const nmea_enum_code furuno_eride_polarity_codes[] = {
-    {"0", "rising"},
-    {"1", "falling"},
+    {furuno_eride_polarity_texts + 22, furuno_eride_polarity_texts + 24}, /* "0": "rising" */
+    {furuno_eride_polarity_texts + 31, furuno_eride_polarity_texts + 33}, /* "1": "falling" */
 };
 const nmea_enum_def nmea_furuno_eride_polarity_def = {
-    "furuno_eride_polarity", furuno_eride_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    furuno_eride_polarity_texts, furuno_eride_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char furuno_eride_position_mode_texts[] =
+    "furuno_eride_position_mode\0" "0\0" "normal\0" "1\0" "survey_restart\0" "2\0" "survey_continue\0"
+    "3\0" "position_hold\0";
 static const nmea_enum_code furuno_eride_position_mode_codes[] = {
-    {"0", "normal"},
-    {"1", "survey_restart"},
-    {"2", "survey_continue"},
-    {"3", "position_hold"},
+    {furuno_eride_position_mode_texts + 27, furuno_eride_position_mode_texts + 29}, /* "0": "normal" */
+    {furuno_eride_position_mode_texts + 36, furuno_eride_position_mode_texts + 38}, /* "1": "survey_restart" */
+    {furuno_eride_position_mode_texts + 53, furuno_eride_position_mode_texts + 55}, /* "2": "survey_continue" */
+    {furuno_eride_position_mode_texts + 71, furuno_eride_position_mode_texts + 73}, /* "3": "position_hold" */
 };
 const nmea_enum_def nmea_furuno_eride_position_mode_def = {
-    "furuno_eride_position_mode", furuno_eride_position_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    furuno_eride_position_mode_texts, furuno_eride_position_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char furuno_eride_pps_mode_texts[] =
+    "furuno_eride_pps_mode\0" "0\0" "always_off\0" "1\0" "always_on\0" "2\0" "when_fixed\0" "3\0"
+    "when_traim_ok\0" "4\0" "when_accurate\0";
 static const nmea_enum_code furuno_eride_pps_mode_codes[] = {
-    {"0", "always_off"},
-    {"1", "always_on"},
-    {"2", "when_fixed"},
-    {"3", "when_traim_ok"},
-    {"4", "when_accurate"},
+    {furuno_eride_pps_mode_texts + 22, furuno_eride_pps_mode_texts + 24}, /* "0": "always_off" */
+    {furuno_eride_pps_mode_texts + 35, furuno_eride_pps_mode_texts + 37}, /* "1": "always_on" */
+    {furuno_eride_pps_mode_texts + 47, furuno_eride_pps_mode_texts + 49}, /* "2": "when_fixed" */
+    {furuno_eride_pps_mode_texts + 60, furuno_eride_pps_mode_texts + 62}, /* "3": "when_traim_ok" */
+    {furuno_eride_pps_mode_texts + 76, furuno_eride_pps_mode_texts + 78}, /* "4": "when_accurate" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_mode_def = {
-    "furuno_eride_pps_mode", furuno_eride_pps_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    furuno_eride_pps_mode_texts, furuno_eride_pps_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char furuno_eride_pps_period_texts[] =
+    "furuno_eride_pps_period\0" "0\0" "pps\0" "1\0" "pp2s\0";
 static const nmea_enum_code furuno_eride_pps_period_codes[] = {
-    {"0", "pps"},
-    {"1", "pp2s"},
+    {furuno_eride_pps_period_texts + 24, furuno_eride_pps_period_texts + 26}, /* "0": "pps" */
+    {furuno_eride_pps_period_texts + 30, furuno_eride_pps_period_texts + 32}, /* "1": "pp2s" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_period_def = {
-    "furuno_eride_pps_period", furuno_eride_pps_period_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    furuno_eride_pps_period_texts, furuno_eride_pps_period_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char furuno_eride_pps_sync_texts[] =
+    "furuno_eride_pps_sync\0" "0\0" "rtc\0" "1\0" "gps\0" "2\0" "utc_usno\0" "3\0" "utc_su\0" "4\0"
+    "undocumented_4\0";
 static const nmea_enum_code furuno_eride_pps_sync_codes[] = {
-    {"0", "rtc"},
-    {"1", "gps"},
-    {"2", "utc_usno"},
-    {"3", "utc_su"},
-    {"4", "undocumented_4"},
+    {furuno_eride_pps_sync_texts + 22, furuno_eride_pps_sync_texts + 24}, /* "0": "rtc" */
+    {furuno_eride_pps_sync_texts + 28, furuno_eride_pps_sync_texts + 30}, /* "1": "gps" */
+    {furuno_eride_pps_sync_texts + 34, furuno_eride_pps_sync_texts + 36}, /* "2": "utc_usno" */
+    {furuno_eride_pps_sync_texts + 45, furuno_eride_pps_sync_texts + 47}, /* "3": "utc_su" */
+    {furuno_eride_pps_sync_texts + 54, furuno_eride_pps_sync_texts + 56}, /* "4": "undocumented_4" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_sync_def = {
-    "furuno_eride_pps_sync", furuno_eride_pps_sync_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    furuno_eride_pps_sync_texts, furuno_eride_pps_sync_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char furuno_eride_pps_type_texts[] =
+    "furuno_eride_pps_type\0" "0\0" "legacy\0" "1\0" "gclk\0";
 static const nmea_enum_code furuno_eride_pps_type_codes[] = {
-    {"0", "legacy"},
-    {"1", "gclk"},
+    {furuno_eride_pps_type_texts + 22, furuno_eride_pps_type_texts + 24}, /* "0": "legacy" */
+    {furuno_eride_pps_type_texts + 31, furuno_eride_pps_type_texts + 33}, /* "1": "gclk" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_type_def = {
-    "furuno_eride_pps_type", furuno_eride_pps_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    furuno_eride_pps_type_texts, furuno_eride_pps_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char furuno_eride_time_status_texts[] =
+    "furuno_eride_time_status\0" "0\0" "rtc\0" "1\0" "gps\0" "2\0" "utc\0";
 static const nmea_enum_code furuno_eride_time_status_codes[] = {
-    {"0", "rtc"},
-    {"1", "gps"},
-    {"2", "utc"},
+    {furuno_eride_time_status_texts + 25, furuno_eride_time_status_texts + 27}, /* "0": "rtc" */
+    {furuno_eride_time_status_texts + 31, furuno_eride_time_status_texts + 33}, /* "1": "gps" */
+    {furuno_eride_time_status_texts + 37, furuno_eride_time_status_texts + 39}, /* "2": "utc" */
 };
 const nmea_enum_def nmea_furuno_eride_time_status_def = {
-    "furuno_eride_time_status", furuno_eride_time_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    furuno_eride_time_status_texts, furuno_eride_time_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char furuno_eride_traim_solution_texts[] =
+    "furuno_eride_traim_solution\0" "0\0" "ok\0" "1\0" "alarm\0" "2\0" "unknown\0";
 static const nmea_enum_code furuno_eride_traim_solution_codes[] = {
-    {"0", "ok"},
-    {"1", "alarm"},
-    {"2", "unknown"},
+    {furuno_eride_traim_solution_texts + 28, furuno_eride_traim_solution_texts + 30}, /* "0": "ok" */
+    {furuno_eride_traim_solution_texts + 33, furuno_eride_traim_solution_texts + 35}, /* "1": "alarm" */
+    {furuno_eride_traim_solution_texts + 41, furuno_eride_traim_solution_texts + 43}, /* "2": "unknown" */
 };
 const nmea_enum_def nmea_furuno_eride_traim_solution_def = {
-    "furuno_eride_traim_solution", furuno_eride_traim_solution_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    furuno_eride_traim_solution_texts, furuno_eride_traim_solution_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char furuno_eride_traim_status_texts[] =
+    "furuno_eride_traim_status\0" "0\0" "detect_and_isolate\0" "1\0" "detect_only\0" "2\0" "none\0";
 static const nmea_enum_code furuno_eride_traim_status_codes[] = {
-    {"0", "detect_and_isolate"},
-    {"1", "detect_only"},
-    {"2", "none"},
+    {furuno_eride_traim_status_texts + 26, furuno_eride_traim_status_texts + 28}, /* "0": "detect_and_isolate" */
+    {furuno_eride_traim_status_texts + 47, furuno_eride_traim_status_texts + 49}, /* "1": "detect_only" */
+    {furuno_eride_traim_status_texts + 61, furuno_eride_traim_status_texts + 63}, /* "2": "none" */
 };
 const nmea_enum_def nmea_furuno_eride_traim_status_def = {
-    "furuno_eride_traim_status", furuno_eride_traim_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    furuno_eride_traim_status_texts, furuno_eride_traim_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char garmin_baud_texts[] =
+    "garmin_baud\0" "1\0" "baud_1200\0" "2\0" "baud_2400\0" "3\0" "baud_4800\0" "4\0" "baud_9600\0"
+    "5\0" "baud_19200\0" "6\0" "baud_300\0" "7\0" "baud_600\0" "8\0" "baud_38400\0";
 static const nmea_enum_code garmin_baud_codes[] = {
-    {"1", "baud_1200"},
-    {"2", "baud_2400"},
-    {"3", "baud_4800"},
-    {"4", "baud_9600"},
-    {"5", "baud_19200"},
-    {"6", "baud_300"},
-    {"7", "baud_600"},
-    {"8", "baud_38400"},
+    {garmin_baud_texts + 12, garmin_baud_texts + 14}, /* "1": "baud_1200" */
+    {garmin_baud_texts + 24, garmin_baud_texts + 26}, /* "2": "baud_2400" */
+    {garmin_baud_texts + 36, garmin_baud_texts + 38}, /* "3": "baud_4800" */
+    {garmin_baud_texts + 48, garmin_baud_texts + 50}, /* "4": "baud_9600" */
+    {garmin_baud_texts + 60, garmin_baud_texts + 62}, /* "5": "baud_19200" */
+    {garmin_baud_texts + 73, garmin_baud_texts + 75}, /* "6": "baud_300" */
+    {garmin_baud_texts + 84, garmin_baud_texts + 86}, /* "7": "baud_600" */
+    {garmin_baud_texts + 95, garmin_baud_texts + 97}, /* "8": "baud_38400" */
 };
 const nmea_enum_def nmea_garmin_baud_def = {
-    "garmin_baud", garmin_baud_codes, 8, 1, 1, NMEA_CODES_DIGITS
+    garmin_baud_texts, garmin_baud_codes, 8, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char garmin_config_fix_mode_texts[] =
+    "garmin_config_fix_mode\0" "A\0" "automatic\0" "2\0" "only_2d\0" "3\0" "only_3d\0";
 static const nmea_enum_code garmin_config_fix_mode_codes[] = {
-    {"A", "automatic"},
-    {"2", "only_2d"},
-    {"3", "only_3d"},
+    {garmin_config_fix_mode_texts + 23, garmin_config_fix_mode_texts + 25}, /* "A": "automatic" */
+    {garmin_config_fix_mode_texts + 35, garmin_config_fix_mode_texts + 37}, /* "2": "only_2d" */
+    {garmin_config_fix_mode_texts + 45, garmin_config_fix_mode_texts + 47}, /* "3": "only_3d" */
 };
 const nmea_enum_def nmea_garmin_config_fix_mode_def = {
-    "garmin_config_fix_mode", garmin_config_fix_mode_codes, 3, 1, 1, NMEA_CODES_ALNUM
+    garmin_config_fix_mode_texts, garmin_config_fix_mode_codes, 3, 1, 1, NMEA_CODES_ALNUM
 };
 
+static const char garmin_data_collection_texts[] =
+    "garmin_data_collection\0" "C\0" "collecting\0";
 static const nmea_enum_code garmin_data_collection_codes[] = {
-    {"C", "collecting"},
+    {garmin_data_collection_texts + 23, garmin_data_collection_texts + 25}, /* "C": "collecting" */
 };
 const nmea_enum_def nmea_garmin_data_collection_def = {
-    "garmin_data_collection", garmin_data_collection_codes, 1, 1, 1, NMEA_CODES_LETTERS
+    garmin_data_collection_texts, garmin_data_collection_codes, 1, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char garmin_dgps_mode_texts[] =
+    "garmin_dgps_mode\0" "A\0" "automatic\0" "W\0" "waas_only\0" "R\0" "rtcm_only\0" "N\0" "none\0";
 static const nmea_enum_code garmin_dgps_mode_codes[] = {
-    {"A", "automatic"},
-    {"W", "waas_only"},
-    {"R", "rtcm_only"},
-    {"N", "none"},
+    {garmin_dgps_mode_texts + 17, garmin_dgps_mode_texts + 19}, /* "A": "automatic" */
+    {garmin_dgps_mode_texts + 29, garmin_dgps_mode_texts + 31}, /* "W": "waas_only" */
+    {garmin_dgps_mode_texts + 41, garmin_dgps_mode_texts + 43}, /* "R": "rtcm_only" */
+    {garmin_dgps_mode_texts + 53, garmin_dgps_mode_texts + 55}, /* "N": "none" */
 };
 const nmea_enum_def nmea_garmin_dgps_mode_def = {
-    "garmin_dgps_mode", garmin_dgps_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    garmin_dgps_mode_texts, garmin_dgps_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char garmin_dgps_source_texts[] =
+    "garmin_dgps_source\0" "R\0" "rtcm\0" "W\0" "waas\0" "N\0" "none\0";
 static const nmea_enum_code garmin_dgps_source_codes[] = {
-    {"R", "rtcm"},
-    {"W", "waas"},
-    {"N", "none"},
+    {garmin_dgps_source_texts + 19, garmin_dgps_source_texts + 21}, /* "R": "rtcm" */
+    {garmin_dgps_source_texts + 26, garmin_dgps_source_texts + 28}, /* "W": "waas" */
+    {garmin_dgps_source_texts + 33, garmin_dgps_source_texts + 35}, /* "N": "none" */
 };
 const nmea_enum_def nmea_garmin_dgps_source_def = {
-    "garmin_dgps_source", garmin_dgps_source_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    garmin_dgps_source_texts, garmin_dgps_source_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char garmin_diff_mode_texts[] =
+    "garmin_diff_mode\0" "A\0" "automatic\0" "D\0" "differential_only\0";
 static const nmea_enum_code garmin_diff_mode_codes[] = {
-    {"A", "automatic"},
-    {"D", "differential_only"},
+    {garmin_diff_mode_texts + 17, garmin_diff_mode_texts + 19}, /* "A": "automatic" */
+    {garmin_diff_mode_texts + 29, garmin_diff_mode_texts + 31}, /* "D": "differential_only" */
 };
 const nmea_enum_def nmea_garmin_diff_mode_def = {
-    "garmin_diff_mode", garmin_diff_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    garmin_diff_mode_texts, garmin_diff_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char garmin_fix_dimension_texts[] =
+    "garmin_fix_dimension\0" "1\0" "no_fix\0" "2\0" "fix_2d\0" "3\0" "fix_3d\0";
 static const nmea_enum_code garmin_fix_dimension_codes[] = {
-    {"1", "no_fix"},
-    {"2", "fix_2d"},
-    {"3", "fix_3d"},
+    {garmin_fix_dimension_texts + 21, garmin_fix_dimension_texts + 23}, /* "1": "no_fix" */
+    {garmin_fix_dimension_texts + 30, garmin_fix_dimension_texts + 32}, /* "2": "fix_2d" */
+    {garmin_fix_dimension_texts + 39, garmin_fix_dimension_texts + 41}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_garmin_fix_dimension_def = {
-    "garmin_fix_dimension", garmin_fix_dimension_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    garmin_fix_dimension_texts, garmin_fix_dimension_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char garmin_fix_mode_texts[] =
+    "garmin_fix_mode\0" "M\0" "manual\0" "A\0" "automatic\0";
 static const nmea_enum_code garmin_fix_mode_codes[] = {
-    {"M", "manual"},
-    {"A", "automatic"},
+    {garmin_fix_mode_texts + 16, garmin_fix_mode_texts + 18}, /* "M": "manual" */
+    {garmin_fix_mode_texts + 25, garmin_fix_mode_texts + 27}, /* "A": "automatic" */
 };
 const nmea_enum_def nmea_garmin_fix_mode_def = {
-    "garmin_fix_mode", garmin_fix_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    garmin_fix_mode_texts, garmin_fix_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char garmin_fix_type_texts[] =
+    "garmin_fix_type\0" "0\0" "no_fix\0" "1\0" "fix_2d\0" "2\0" "fix_3d\0";
 static const nmea_enum_code garmin_fix_type_codes[] = {
-    {"0", "no_fix"},
-    {"1", "fix_2d"},
-    {"2", "fix_3d"},
+    {garmin_fix_type_texts + 16, garmin_fix_type_texts + 18}, /* "0": "no_fix" */
+    {garmin_fix_type_texts + 25, garmin_fix_type_texts + 27}, /* "1": "fix_2d" */
+    {garmin_fix_type_texts + 34, garmin_fix_type_texts + 36}, /* "2": "fix_3d" */
 };
 const nmea_enum_def nmea_garmin_fix_type_def = {
-    "garmin_fix_type", garmin_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    garmin_fix_type_texts, garmin_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char garmin_off_on_texts[] =
+    "garmin_off_on\0" "1\0" "off\0" "2\0" "on\0";
 static const nmea_enum_code garmin_off_on_codes[] = {
-    {"1", "off"},
-    {"2", "on"},
+    {garmin_off_on_texts + 14, garmin_off_on_texts + 16}, /* "1": "off" */
+    {garmin_off_on_texts + 20, garmin_off_on_texts + 22}, /* "2": "on" */
 };
 const nmea_enum_def nmea_garmin_off_on_def = {
-    "garmin_off_on", garmin_off_on_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    garmin_off_on_texts, garmin_off_on_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char garmin_output_mode_texts[] =
+    "garmin_output_mode\0" "0\0" "disable\0" "1\0" "enable\0" "2\0" "disable_all\0" "3\0" "enable_all\0"
+    "4\0" "restore_defaults\0" "G\0" "garmin_binary\0";
 static const nmea_enum_code garmin_output_mode_codes[] = {
-    {"0", "disable"},
-    {"1", "enable"},
-    {"2", "disable_all"},
-    {"3", "enable_all"},
-    {"4", "restore_defaults"},
-    {"G", "garmin_binary"},
+    {garmin_output_mode_texts + 19, garmin_output_mode_texts + 21}, /* "0": "disable" */
+    {garmin_output_mode_texts + 29, garmin_output_mode_texts + 31}, /* "1": "enable" */
+    {garmin_output_mode_texts + 38, garmin_output_mode_texts + 40}, /* "2": "disable_all" */
+    {garmin_output_mode_texts + 52, garmin_output_mode_texts + 54}, /* "3": "enable_all" */
+    {garmin_output_mode_texts + 65, garmin_output_mode_texts + 67}, /* "4": "restore_defaults" */
+    {garmin_output_mode_texts + 84, garmin_output_mode_texts + 86}, /* "G": "garmin_binary" */
 };
 const nmea_enum_def nmea_garmin_output_mode_def = {
-    "garmin_output_mode", garmin_output_mode_codes, 6, 1, 1, NMEA_CODES_ALNUM
+    garmin_output_mode_texts, garmin_output_mode_codes, 6, 1, 1, NMEA_CODES_ALNUM
 };
 
+static const char garmin_pass_fail_texts[] =
+    "garmin_pass_fail\0" "P\0" "pass\0" "F\0" "fail\0";
 static const nmea_enum_code garmin_pass_fail_codes[] = {
-    {"P", "pass"},
-    {"F", "fail"},
+    {garmin_pass_fail_texts + 17, garmin_pass_fail_texts + 19}, /* "P": "pass" */
+    {garmin_pass_fail_texts + 24, garmin_pass_fail_texts + 26}, /* "F": "fail" */
 };
 const nmea_enum_def nmea_garmin_pass_fail_def = {
-    "garmin_pass_fail", garmin_pass_fail_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    garmin_pass_fail_texts, garmin_pass_fail_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char garmin_power_mode_texts[] =
+    "garmin_power_mode\0" "P\0" "power_save\0" "N\0" "normal\0";
 static const nmea_enum_code garmin_power_mode_codes[] = {
-    {"P", "power_save"},
-    {"N", "normal"},
+    {garmin_power_mode_texts + 18, garmin_power_mode_texts + 20}, /* "P": "power_save" */
+    {garmin_power_mode_texts + 31, garmin_power_mode_texts + 33}, /* "N": "normal" */
 };
 const nmea_enum_def nmea_garmin_power_mode_def = {
-    "garmin_power_mode", garmin_power_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    garmin_power_mode_texts, garmin_power_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char garmin_receiver_command_texts[] =
+    "garmin_receiver_command\0" "A\0" "auto_locate\0" "R\0" "reset\0";
 static const nmea_enum_code garmin_receiver_command_codes[] = {
-    {"A", "auto_locate"},
-    {"R", "reset"},
+    {garmin_receiver_command_texts + 24, garmin_receiver_command_texts + 26}, /* "A": "auto_locate" */
+    {garmin_receiver_command_texts + 38, garmin_receiver_command_texts + 40}, /* "R": "reset" */
 };
 const nmea_enum_def nmea_garmin_receiver_command_def = {
-    "garmin_receiver_command", garmin_receiver_command_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    garmin_receiver_command_texts, garmin_receiver_command_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char garmin_retained_lost_texts[] =
+    "garmin_retained_lost\0" "R\0" "retained\0" "L\0" "lost\0";
 static const nmea_enum_code garmin_retained_lost_codes[] = {
-    {"R", "retained"},
-    {"L", "lost"},
+    {garmin_retained_lost_texts + 21, garmin_retained_lost_texts + 23}, /* "R": "retained" */
+    {garmin_retained_lost_texts + 32, garmin_retained_lost_texts + 34}, /* "L": "lost" */
 };
 const nmea_enum_def nmea_garmin_retained_lost_def = {
-    "garmin_retained_lost", garmin_retained_lost_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    garmin_retained_lost_texts, garmin_retained_lost_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char garmin_waas_mode_texts[] =
+    "garmin_waas_mode\0" "W\0" "enabled\0" "N\0" "disabled\0";
 static const nmea_enum_code garmin_waas_mode_codes[] = {
-    {"W", "enabled"},
-    {"N", "disabled"},
+    {garmin_waas_mode_texts + 17, garmin_waas_mode_texts + 19}, /* "W": "enabled" */
+    {garmin_waas_mode_texts + 27, garmin_waas_mode_texts + 29}, /* "N": "disabled" */
 };
 const nmea_enum_def nmea_garmin_waas_mode_def = {
-    "garmin_waas_mode", garmin_waas_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    garmin_waas_mode_texts, garmin_waas_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char geos5_command_word_texts[] =
+    "geos5_command_word\0" "SWPROT\0" "switch_to_binary\0" "SAVEFL\0" "save_almanacs\0" "CSTART\0"
+    "cold_start\0" "WSTART\0" "warm_start\0" "HSTART\0" "hot_start\0" "BDR004\0" "baud_4800\0"
+    "BDR009\0" "baud_9600\0" "BDR019\0" "baud_19200\0" "BDR038\0" "baud_38400\0" "BDR057\0"
+    "baud_57600\0" "BDR115\0" "baud_115200\0" "BDR230\0" "baud_230400\0" "BDR460\0" "baud_460800\0"
+    "BDR921\0" "baud_921600\0" "STOP01\0" "stop_bits_1\0" "STOP02\0" "stop_bits_2\0" "GGA ON\0"
+    "gga_gns_on\0" "GGAOFF\0" "gga_gns_off\0" "GLL ON\0" "gll_on\0" "GLLOFF\0" "gll_off\0" "GSA ON\0"
+    "gsa_on\0" "GSAOFF\0" "gsa_off\0" "GSV ON\0" "gsv_on\0" "GSVOFF\0" "gsv_off\0" "RMC ON\0" "rmc_on\0"
+    "RMCOFF\0" "rmc_off\0" "VTG ON\0" "vtg_on\0" "VTGOFF\0" "vtg_off\0" "ZDA ON\0" "zda_on\0" "ZDAOFF\0"
+    "zda_off\0" "DTM ON\0" "dtm_on\0" "DTMOFF\0" "dtm_off\0" "RLM ON\0" "rlm_on\0" "RLMOFF\0"
+    "rlm_off\0" "NMEAV2\0" "nmea_v2\0" "NMEAV4\0" "nmea_v4_10\0" "RATE01\0" "rate_1hz\0" "RATE02\0"
+    "rate_2hz\0" "RATE05\0" "rate_5hz\0" "RATE10\0" "rate_10hz\0" "PSM ON\0" "power_saving_on\0"
+    "PSMOFF\0" "power_saving_off\0" "ELEV05\0" "elevation_mask_5\0" "ELEV06\0" "elevation_mask_6\0"
+    "ELEV07\0" "elevation_mask_7\0" "ELEV08\0" "elevation_mask_8\0" "ELEV09\0" "elevation_mask_9\0"
+    "ELEV10\0" "elevation_mask_10\0" "ELEV11\0" "elevation_mask_11\0" "ELEV12\0" "elevation_mask_12\0"
+    "ELEV13\0" "elevation_mask_13\0" "ELEV14\0" "elevation_mask_14\0" "ELEV15\0" "elevation_mask_15\0"
+    "DATP90\0" "datum_pz90\0" "DATW84\0" "datum_wgs84\0" "NVSGPS\0" "gps_only\0" "NVSGLN\0"
+    "glonass_only\0" "NVSMIX\0" "glonass_gps_galileo\0";
 static const nmea_enum_code geos5_command_word_codes[] = {
-    {"SWPROT", "switch_to_binary"},
-    {"SAVEFL", "save_almanacs"},
-    {"CSTART", "cold_start"},
-    {"WSTART", "warm_start"},
-    {"HSTART", "hot_start"},
-    {"BDR004", "baud_4800"},
-    {"BDR009", "baud_9600"},
-    {"BDR019", "baud_19200"},
-    {"BDR038", "baud_38400"},
-    {"BDR057", "baud_57600"},
-    {"BDR115", "baud_115200"},
-    {"BDR230", "baud_230400"},
-    {"BDR460", "baud_460800"},
-    {"BDR921", "baud_921600"},
-    {"STOP01", "stop_bits_1"},
-    {"STOP02", "stop_bits_2"},
-    {"GGA ON", "gga_gns_on"},
-    {"GGAOFF", "gga_gns_off"},
-    {"GLL ON", "gll_on"},
-    {"GLLOFF", "gll_off"},
-    {"GSA ON", "gsa_on"},
-    {"GSAOFF", "gsa_off"},
-    {"GSV ON", "gsv_on"},
-    {"GSVOFF", "gsv_off"},
-    {"RMC ON", "rmc_on"},
-    {"RMCOFF", "rmc_off"},
-    {"VTG ON", "vtg_on"},
-    {"VTGOFF", "vtg_off"},
-    {"ZDA ON", "zda_on"},
-    {"ZDAOFF", "zda_off"},
-    {"DTM ON", "dtm_on"},
-    {"DTMOFF", "dtm_off"},
-    {"RLM ON", "rlm_on"},
-    {"RLMOFF", "rlm_off"},
-    {"NMEAV2", "nmea_v2"},
-    {"NMEAV4", "nmea_v4_10"},
-    {"RATE01", "rate_1hz"},
-    {"RATE02", "rate_2hz"},
-    {"RATE05", "rate_5hz"},
-    {"RATE10", "rate_10hz"},
-    {"PSM ON", "power_saving_on"},
-    {"PSMOFF", "power_saving_off"},
-    {"ELEV05", "elevation_mask_5"},
-    {"ELEV06", "elevation_mask_6"},
-    {"ELEV07", "elevation_mask_7"},
-    {"ELEV08", "elevation_mask_8"},
-    {"ELEV09", "elevation_mask_9"},
-    {"ELEV10", "elevation_mask_10"},
-    {"ELEV11", "elevation_mask_11"},
-    {"ELEV12", "elevation_mask_12"},
-    {"ELEV13", "elevation_mask_13"},
-    {"ELEV14", "elevation_mask_14"},
-    {"ELEV15", "elevation_mask_15"},
-    {"DATP90", "datum_pz90"},
-    {"DATW84", "datum_wgs84"},
-    {"NVSGPS", "gps_only"},
-    {"NVSGLN", "glonass_only"},
-    {"NVSMIX", "glonass_gps_galileo"},
+    {geos5_command_word_texts + 19, geos5_command_word_texts + 26}, /* "SWPROT": "switch_to_binary" */
+    {geos5_command_word_texts + 43, geos5_command_word_texts + 50}, /* "SAVEFL": "save_almanacs" */
+    {geos5_command_word_texts + 64, geos5_command_word_texts + 71}, /* "CSTART": "cold_start" */
+    {geos5_command_word_texts + 82, geos5_command_word_texts + 89}, /* "WSTART": "warm_start" */
+    {geos5_command_word_texts + 100, geos5_command_word_texts + 107}, /* "HSTART": "hot_start" */
+    {geos5_command_word_texts + 117, geos5_command_word_texts + 124}, /* "BDR004": "baud_4800" */
+    {geos5_command_word_texts + 134, geos5_command_word_texts + 141}, /* "BDR009": "baud_9600" */
+    {geos5_command_word_texts + 151, geos5_command_word_texts + 158}, /* "BDR019": "baud_19200" */
+    {geos5_command_word_texts + 169, geos5_command_word_texts + 176}, /* "BDR038": "baud_38400" */
+    {geos5_command_word_texts + 187, geos5_command_word_texts + 194}, /* "BDR057": "baud_57600" */
+    {geos5_command_word_texts + 205, geos5_command_word_texts + 212}, /* "BDR115": "baud_115200" */
+    {geos5_command_word_texts + 224, geos5_command_word_texts + 231}, /* "BDR230": "baud_230400" */
+    {geos5_command_word_texts + 243, geos5_command_word_texts + 250}, /* "BDR460": "baud_460800" */
+    {geos5_command_word_texts + 262, geos5_command_word_texts + 269}, /* "BDR921": "baud_921600" */
+    {geos5_command_word_texts + 281, geos5_command_word_texts + 288}, /* "STOP01": "stop_bits_1" */
+    {geos5_command_word_texts + 300, geos5_command_word_texts + 307}, /* "STOP02": "stop_bits_2" */
+    {geos5_command_word_texts + 319, geos5_command_word_texts + 326}, /* "GGA ON": "gga_gns_on" */
+    {geos5_command_word_texts + 337, geos5_command_word_texts + 344}, /* "GGAOFF": "gga_gns_off" */
+    {geos5_command_word_texts + 356, geos5_command_word_texts + 363}, /* "GLL ON": "gll_on" */
+    {geos5_command_word_texts + 370, geos5_command_word_texts + 377}, /* "GLLOFF": "gll_off" */
+    {geos5_command_word_texts + 385, geos5_command_word_texts + 392}, /* "GSA ON": "gsa_on" */
+    {geos5_command_word_texts + 399, geos5_command_word_texts + 406}, /* "GSAOFF": "gsa_off" */
+    {geos5_command_word_texts + 414, geos5_command_word_texts + 421}, /* "GSV ON": "gsv_on" */
+    {geos5_command_word_texts + 428, geos5_command_word_texts + 435}, /* "GSVOFF": "gsv_off" */
+    {geos5_command_word_texts + 443, geos5_command_word_texts + 450}, /* "RMC ON": "rmc_on" */
+    {geos5_command_word_texts + 457, geos5_command_word_texts + 464}, /* "RMCOFF": "rmc_off" */
+    {geos5_command_word_texts + 472, geos5_command_word_texts + 479}, /* "VTG ON": "vtg_on" */
+    {geos5_command_word_texts + 486, geos5_command_word_texts + 493}, /* "VTGOFF": "vtg_off" */
+    {geos5_command_word_texts + 501, geos5_command_word_texts + 508}, /* "ZDA ON": "zda_on" */
+    {geos5_command_word_texts + 515, geos5_command_word_texts + 522}, /* "ZDAOFF": "zda_off" */
+    {geos5_command_word_texts + 530, geos5_command_word_texts + 537}, /* "DTM ON": "dtm_on" */
+    {geos5_command_word_texts + 544, geos5_command_word_texts + 551}, /* "DTMOFF": "dtm_off" */
+    {geos5_command_word_texts + 559, geos5_command_word_texts + 566}, /* "RLM ON": "rlm_on" */
+    {geos5_command_word_texts + 573, geos5_command_word_texts + 580}, /* "RLMOFF": "rlm_off" */
+    {geos5_command_word_texts + 588, geos5_command_word_texts + 595}, /* "NMEAV2": "nmea_v2" */
+    {geos5_command_word_texts + 603, geos5_command_word_texts + 610}, /* "NMEAV4": "nmea_v4_10" */
+    {geos5_command_word_texts + 621, geos5_command_word_texts + 628}, /* "RATE01": "rate_1hz" */
+    {geos5_command_word_texts + 637, geos5_command_word_texts + 644}, /* "RATE02": "rate_2hz" */
+    {geos5_command_word_texts + 653, geos5_command_word_texts + 660}, /* "RATE05": "rate_5hz" */
+    {geos5_command_word_texts + 669, geos5_command_word_texts + 676}, /* "RATE10": "rate_10hz" */
+    {geos5_command_word_texts + 686, geos5_command_word_texts + 693}, /* "PSM ON": "power_saving_on" */
+    {geos5_command_word_texts + 709, geos5_command_word_texts + 716}, /* "PSMOFF": "power_saving_off" */
+    {geos5_command_word_texts + 733, geos5_command_word_texts + 740}, /* "ELEV05": "elevation_mask_5" */
+    {geos5_command_word_texts + 757, geos5_command_word_texts + 764}, /* "ELEV06": "elevation_mask_6" */
+    {geos5_command_word_texts + 781, geos5_command_word_texts + 788}, /* "ELEV07": "elevation_mask_7" */
+    {geos5_command_word_texts + 805, geos5_command_word_texts + 812}, /* "ELEV08": "elevation_mask_8" */
+    {geos5_command_word_texts + 829, geos5_command_word_texts + 836}, /* "ELEV09": "elevation_mask_9" */
+    {geos5_command_word_texts + 853, geos5_command_word_texts + 860}, /* "ELEV10": "elevation_mask_10" */
+    {geos5_command_word_texts + 878, geos5_command_word_texts + 885}, /* "ELEV11": "elevation_mask_11" */
+    {geos5_command_word_texts + 903, geos5_command_word_texts + 910}, /* "ELEV12": "elevation_mask_12" */
+    {geos5_command_word_texts + 928, geos5_command_word_texts + 935}, /* "ELEV13": "elevation_mask_13" */
+    {geos5_command_word_texts + 953, geos5_command_word_texts + 960}, /* "ELEV14": "elevation_mask_14" */
+    {geos5_command_word_texts + 978, geos5_command_word_texts + 985}, /* "ELEV15": "elevation_mask_15" */
+    {geos5_command_word_texts + 1003, geos5_command_word_texts + 1010}, /* "DATP90": "datum_pz90" */
+    {geos5_command_word_texts + 1021, geos5_command_word_texts + 1028}, /* "DATW84": "datum_wgs84" */
+    {geos5_command_word_texts + 1040, geos5_command_word_texts + 1047}, /* "NVSGPS": "gps_only" */
+    {geos5_command_word_texts + 1056, geos5_command_word_texts + 1063}, /* "NVSGLN": "glonass_only" */
+    {geos5_command_word_texts + 1076, geos5_command_word_texts + 1083}, /* "NVSMIX": "glonass_gps_galileo" */
 };
 const nmea_enum_def nmea_geos5_command_word_def = {
-    "geos5_command_word", geos5_command_word_codes, 58, 6, 6, NMEA_CODES_ALNUM
+    geos5_command_word_texts, geos5_command_word_codes, 58, 6, 6, NMEA_CODES_ALNUM
 };
 
+static const char geos5_message_rate_texts[] =
+    "geos5_message_rate\0" "0\0" "off\0" "1\0" "every_1s\0" "2\0" "every_2s\0" "3\0" "every_20s\0" "R\0"
+    "output_rate\0";
 static const nmea_enum_code geos5_message_rate_codes[] = {
-    {"0", "off"},
-    {"1", "every_1s"},
-    {"2", "every_2s"},
-    {"3", "every_20s"},
-    {"R", "output_rate"},
+    {geos5_message_rate_texts + 19, geos5_message_rate_texts + 21}, /* "0": "off" */
+    {geos5_message_rate_texts + 25, geos5_message_rate_texts + 27}, /* "1": "every_1s" */
+    {geos5_message_rate_texts + 36, geos5_message_rate_texts + 38}, /* "2": "every_2s" */
+    {geos5_message_rate_texts + 47, geos5_message_rate_texts + 49}, /* "3": "every_20s" */
+    {geos5_message_rate_texts + 59, geos5_message_rate_texts + 61}, /* "R": "output_rate" */
 };
 const nmea_enum_def nmea_geos5_message_rate_def = {
-    "geos5_message_rate", geos5_message_rate_codes, 5, 1, 1, NMEA_CODES_ALNUM
+    geos5_message_rate_texts, geos5_message_rate_codes, 5, 1, 1, NMEA_CODES_ALNUM
 };
 
+static const char geos5_nmea_version_texts[] =
+    "geos5_nmea_version\0" "2\0" "v2_x\0" "4\0" "v4_10\0";
 static const nmea_enum_code geos5_nmea_version_codes[] = {
-    {"2", "v2_x"},
-    {"4", "v4_10"},
+    {geos5_nmea_version_texts + 19, geos5_nmea_version_texts + 21}, /* "2": "v2_x" */
+    {geos5_nmea_version_texts + 26, geos5_nmea_version_texts + 28}, /* "4": "v4_10" */
 };
 const nmea_enum_def nmea_geos5_nmea_version_def = {
-    "geos5_nmea_version", geos5_nmea_version_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    geos5_nmea_version_texts, geos5_nmea_version_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char geos5_output_rate_texts[] =
+    "geos5_output_rate\0" "0\0" "rate_10hz\0" "1\0" "rate_5hz\0" "2\0" "rate_2hz\0" "3\0" "rate_1hz\0";
 static const nmea_enum_code geos5_output_rate_codes[] = {
-    {"0", "rate_10hz"},
-    {"1", "rate_5hz"},
-    {"2", "rate_2hz"},
-    {"3", "rate_1hz"},
+    {geos5_output_rate_texts + 18, geos5_output_rate_texts + 20}, /* "0": "rate_10hz" */
+    {geos5_output_rate_texts + 30, geos5_output_rate_texts + 32}, /* "1": "rate_5hz" */
+    {geos5_output_rate_texts + 41, geos5_output_rate_texts + 43}, /* "2": "rate_2hz" */
+    {geos5_output_rate_texts + 52, geos5_output_rate_texts + 54}, /* "3": "rate_1hz" */
 };
 const nmea_enum_def nmea_geos5_output_rate_def = {
-    "geos5_output_rate", geos5_output_rate_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    geos5_output_rate_texts, geos5_output_rate_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char gfa_integrity_texts[] =
+    "gfa_integrity\0" "V\0" "not_in_use\0" "S\0" "safe\0" "C\0" "caution\0" "U\0" "unsafe\0";
 static const nmea_enum_code gfa_integrity_codes[] = {
-    {"V", "not_in_use"},
-    {"S", "safe"},
-    {"C", "caution"},
-    {"U", "unsafe"},
+    {gfa_integrity_texts + 14, gfa_integrity_texts + 16}, /* "V": "not_in_use" */
+    {gfa_integrity_texts + 27, gfa_integrity_texts + 29}, /* "S": "safe" */
+    {gfa_integrity_texts + 34, gfa_integrity_texts + 36}, /* "C": "caution" */
+    {gfa_integrity_texts + 44, gfa_integrity_texts + 46}, /* "U": "unsafe" */
 };
 const nmea_enum_def nmea_gfa_integrity_def = {
-    "gfa_integrity", gfa_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    gfa_integrity_texts, gfa_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char gga_quality_texts[] =
+    "gga_quality\0" "0\0" "invalid\0" "1\0" "autonomous\0" "2\0" "differential\0" "3\0" "pps\0" "4\0"
+    "rtk_fixed\0" "5\0" "rtk_float\0" "6\0" "dead_reckoning\0" "7\0" "manual_input\0" "8\0"
+    "simulator\0" "9\0" "geopath\0";
 static const nmea_enum_code gga_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "autonomous"},
-    {"2", "differential"},
-    {"3", "pps"},
-    {"4", "rtk_fixed"},
-    {"5", "rtk_float"},
-    {"6", "dead_reckoning"},
-    {"7", "manual_input"},
-    {"8", "simulator"},
-    {"9", "geopath"},
+    {gga_quality_texts + 12, gga_quality_texts + 14}, /* "0": "invalid" */
+    {gga_quality_texts + 22, gga_quality_texts + 24}, /* "1": "autonomous" */
+    {gga_quality_texts + 35, gga_quality_texts + 37}, /* "2": "differential" */
+    {gga_quality_texts + 50, gga_quality_texts + 52}, /* "3": "pps" */
+    {gga_quality_texts + 56, gga_quality_texts + 58}, /* "4": "rtk_fixed" */
+    {gga_quality_texts + 68, gga_quality_texts + 70}, /* "5": "rtk_float" */
+    {gga_quality_texts + 80, gga_quality_texts + 82}, /* "6": "dead_reckoning" */
+    {gga_quality_texts + 97, gga_quality_texts + 99}, /* "7": "manual_input" */
+    {gga_quality_texts + 112, gga_quality_texts + 114}, /* "8": "simulator" */
+    {gga_quality_texts + 124, gga_quality_texts + 126}, /* "9": "geopath" */
 };
 const nmea_enum_def nmea_gga_quality_def = {
-    "gga_quality", gga_quality_codes, 10, 1, 1, NMEA_CODES_DIGITS
+    gga_quality_texts, gga_quality_codes, 10, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char glc_signal_status_texts[] =
+    "glc_signal_status\0" "A\0" "valid\0" "B\0" "blink_warning\0" "C\0" "cycle_warning\0" "S\0"
+    "snr_warning\0";
 static const nmea_enum_code glc_signal_status_codes[] = {
-    {"A", "valid"},
-    {"B", "blink_warning"},
-    {"C", "cycle_warning"},
-    {"S", "snr_warning"},
+    {glc_signal_status_texts + 18, glc_signal_status_texts + 20}, /* "A": "valid" */
+    {glc_signal_status_texts + 26, glc_signal_status_texts + 28}, /* "B": "blink_warning" */
+    {glc_signal_status_texts + 42, glc_signal_status_texts + 44}, /* "C": "cycle_warning" */
+    {glc_signal_status_texts + 58, glc_signal_status_texts + 60}, /* "S": "snr_warning" */
 };
 const nmea_enum_def nmea_glc_signal_status_def = {
-    "glc_signal_status", glc_signal_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    glc_signal_status_texts, glc_signal_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char gns_mode_texts[] =
+    "gns_mode\0" "A\0" "autonomous\0" "D\0" "differential\0" "E\0" "estimated\0" "F\0" "rtk_float\0"
+    "G\0" "geopath\0" "M\0" "manual_input\0" "N\0" "not_valid\0" "P\0" "precise\0" "R\0" "rtk_fixed\0"
+    "S\0" "simulator\0";
 static const nmea_enum_code gns_mode_codes[] = {
-    {"A", "autonomous"},
-    {"D", "differential"},
-    {"E", "estimated"},
-    {"F", "rtk_float"},
-    {"G", "geopath"},
-    {"M", "manual_input"},
-    {"N", "not_valid"},
-    {"P", "precise"},
-    {"R", "rtk_fixed"},
-    {"S", "simulator"},
+    {gns_mode_texts + 9, gns_mode_texts + 11}, /* "A": "autonomous" */
+    {gns_mode_texts + 22, gns_mode_texts + 24}, /* "D": "differential" */
+    {gns_mode_texts + 37, gns_mode_texts + 39}, /* "E": "estimated" */
+    {gns_mode_texts + 49, gns_mode_texts + 51}, /* "F": "rtk_float" */
+    {gns_mode_texts + 61, gns_mode_texts + 63}, /* "G": "geopath" */
+    {gns_mode_texts + 71, gns_mode_texts + 73}, /* "M": "manual_input" */
+    {gns_mode_texts + 86, gns_mode_texts + 88}, /* "N": "not_valid" */
+    {gns_mode_texts + 98, gns_mode_texts + 100}, /* "P": "precise" */
+    {gns_mode_texts + 108, gns_mode_texts + 110}, /* "R": "rtk_fixed" */
+    {gns_mode_texts + 120, gns_mode_texts + 122}, /* "S": "simulator" */
 };
 const nmea_enum_def nmea_gns_mode_def = {
-    "gns_mode", gns_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    gns_mode_texts, gns_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char grs_mode_texts[] =
+    "grs_mode\0" "0\0" "used_in_fix\0" "1\0" "recomputed\0";
 static const nmea_enum_code grs_mode_codes[] = {
-    {"0", "used_in_fix"},
-    {"1", "recomputed"},
+    {grs_mode_texts + 9, grs_mode_texts + 11}, /* "0": "used_in_fix" */
+    {grs_mode_texts + 23, grs_mode_texts + 25}, /* "1": "recomputed" */
 };
 const nmea_enum_def nmea_grs_mode_def = {
-    "grs_mode", grs_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    grs_mode_texts, grs_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char gsa_fix_type_texts[] =
+    "gsa_fix_type\0" "1\0" "no_fix\0" "2\0" "fix_2d\0" "3\0" "fix_3d\0";
 static const nmea_enum_code gsa_fix_type_codes[] = {
-    {"1", "no_fix"},
-    {"2", "fix_2d"},
-    {"3", "fix_3d"},
+    {gsa_fix_type_texts + 13, gsa_fix_type_texts + 15}, /* "1": "no_fix" */
+    {gsa_fix_type_texts + 22, gsa_fix_type_texts + 24}, /* "2": "fix_2d" */
+    {gsa_fix_type_texts + 31, gsa_fix_type_texts + 33}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_gsa_fix_type_def = {
-    "gsa_fix_type", gsa_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    gsa_fix_type_texts, gsa_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char gsa_selection_mode_texts[] =
+    "gsa_selection_mode\0" "M\0" "manual\0" "A\0" "automatic\0";
 static const nmea_enum_code gsa_selection_mode_codes[] = {
-    {"M", "manual"},
-    {"A", "automatic"},
+    {gsa_selection_mode_texts + 19, gsa_selection_mode_texts + 21}, /* "M": "manual" */
+    {gsa_selection_mode_texts + 28, gsa_selection_mode_texts + 30}, /* "A": "automatic" */
 };
 const nmea_enum_def nmea_gsa_selection_mode_def = {
-    "gsa_selection_mode", gsa_selection_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    gsa_selection_mode_texts, gsa_selection_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char hbt_equipment_status_texts[] =
+    "hbt_equipment_status\0" "A\0" "normal\0" "V\0" "not_normal\0";
 static const nmea_enum_code hbt_equipment_status_codes[] = {
-    {"A", "normal"},
-    {"V", "not_normal"},
+    {hbt_equipment_status_texts + 21, hbt_equipment_status_texts + 23}, /* "A": "normal" */
+    {hbt_equipment_status_texts + 30, hbt_equipment_status_texts + 32}, /* "V": "not_normal" */
 };
 const nmea_enum_def nmea_hbt_equipment_status_def = {
-    "hbt_equipment_status", hbt_equipment_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    hbt_equipment_status_texts, hbt_equipment_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char hcr_correction_state_texts[] =
+    "hcr_correction_state\0" "A\0" "speed_latitude_and_dynamic\0" "D\0" "dynamic\0" "S\0"
+    "speed_latitude\0" "N\0" "none\0" "V\0" "unavailable\0";
 static const nmea_enum_code hcr_correction_state_codes[] = {
-    {"A", "speed_latitude_and_dynamic"},
-    {"D", "dynamic"},
-    {"S", "speed_latitude"},
-    {"N", "none"},
-    {"V", "unavailable"},
+    {hcr_correction_state_texts + 21, hcr_correction_state_texts + 23}, /* "A": "speed_latitude_and_dynamic" */
+    {hcr_correction_state_texts + 50, hcr_correction_state_texts + 52}, /* "D": "dynamic" */
+    {hcr_correction_state_texts + 60, hcr_correction_state_texts + 62}, /* "S": "speed_latitude" */
+    {hcr_correction_state_texts + 77, hcr_correction_state_texts + 79}, /* "N": "none" */
+    {hcr_correction_state_texts + 84, hcr_correction_state_texts + 86}, /* "V": "unavailable" */
 };
 const nmea_enum_def nmea_hcr_correction_state_def = {
-    "hcr_correction_state", hcr_correction_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    hcr_correction_state_texts, hcr_correction_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char hemisphere_heading_source_texts[] =
+    "hemisphere_heading_source\0" "N\0" "gnss\0" "G\0" "gyro\0";
 static const nmea_enum_code hemisphere_heading_source_codes[] = {
-    {"N", "gnss"},
-    {"G", "gyro"},
+    {hemisphere_heading_source_texts + 26, hemisphere_heading_source_texts + 28}, /* "N": "gnss" */
+    {hemisphere_heading_source_texts + 33, hemisphere_heading_source_texts + 35}, /* "G": "gyro" */
 };
 const nmea_enum_def nmea_hemisphere_heading_source_def = {
-    "hemisphere_heading_source", hemisphere_heading_source_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    hemisphere_heading_source_texts, hemisphere_heading_source_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char hmr_difference_status_texts[] =
+    "hmr_difference_status\0" "A\0" "within_limit\0" "V\0" "limit_exceeded\0";
 static const nmea_enum_code hmr_difference_status_codes[] = {
-    {"A", "within_limit"},
-    {"V", "limit_exceeded"},
+    {hmr_difference_status_texts + 22, hmr_difference_status_texts + 24}, /* "A": "within_limit" */
+    {hmr_difference_status_texts + 37, hmr_difference_status_texts + 39}, /* "V": "limit_exceeded" */
 };
 const nmea_enum_def nmea_hmr_difference_status_def = {
-    "hmr_difference_status", hmr_difference_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    hmr_difference_status_texts, hmr_difference_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char hsc_sentence_status_texts[] =
+    "hsc_sentence_status\0" "R\0" "report\0" "C\0" "command\0";
 static const nmea_enum_code hsc_sentence_status_codes[] = {
-    {"R", "report"},
-    {"C", "command"},
+    {hsc_sentence_status_texts + 20, hsc_sentence_status_texts + 22}, /* "R": "report" */
+    {hsc_sentence_status_texts + 29, hsc_sentence_status_texts + 31}, /* "C": "command" */
 };
 const nmea_enum_def nmea_hsc_sentence_status_def = {
-    "hsc_sentence_status", hsc_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    hsc_sentence_status_texts, hsc_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char htc_heading_reference_texts[] =
+    "htc_heading_reference\0" "T\0" "true_north\0" "M\0" "magnetic\0";
 static const nmea_enum_code htc_heading_reference_codes[] = {
-    {"T", "true_north"},
-    {"M", "magnetic"},
+    {htc_heading_reference_texts + 22, htc_heading_reference_texts + 24}, /* "T": "true_north" */
+    {htc_heading_reference_texts + 35, htc_heading_reference_texts + 37}, /* "M": "magnetic" */
 };
 const nmea_enum_def nmea_htc_heading_reference_def = {
-    "htc_heading_reference", htc_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    htc_heading_reference_texts, htc_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char htc_override_texts[] =
+    "htc_override\0" "A\0" "in_use\0" "V\0" "not_in_use\0";
 static const nmea_enum_code htc_override_codes[] = {
-    {"A", "in_use"},
-    {"V", "not_in_use"},
+    {htc_override_texts + 13, htc_override_texts + 15}, /* "A": "in_use" */
+    {htc_override_texts + 22, htc_override_texts + 24}, /* "V": "not_in_use" */
 };
 const nmea_enum_def nmea_htc_override_def = {
-    "htc_override", htc_override_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    htc_override_texts, htc_override_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char htc_steering_mode_texts[] =
+    "htc_steering_mode\0" "M\0" "manual\0" "S\0" "stand_alone\0" "H\0" "heading_control\0" "T\0"
+    "track_control\0" "R\0" "rudder_control\0";
 static const nmea_enum_code htc_steering_mode_codes[] = {
-    {"M", "manual"},
-    {"S", "stand_alone"},
-    {"H", "heading_control"},
-    {"T", "track_control"},
-    {"R", "rudder_control"},
+    {htc_steering_mode_texts + 18, htc_steering_mode_texts + 20}, /* "M": "manual" */
+    {htc_steering_mode_texts + 27, htc_steering_mode_texts + 29}, /* "S": "stand_alone" */
+    {htc_steering_mode_texts + 41, htc_steering_mode_texts + 43}, /* "H": "heading_control" */
+    {htc_steering_mode_texts + 59, htc_steering_mode_texts + 61}, /* "T": "track_control" */
+    {htc_steering_mode_texts + 75, htc_steering_mode_texts + 77}, /* "R": "rudder_control" */
 };
 const nmea_enum_def nmea_htc_steering_mode_def = {
-    "htc_steering_mode", htc_steering_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    htc_steering_mode_texts, htc_steering_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char htc_turn_mode_texts[] =
+    "htc_turn_mode\0" "R\0" "radius_controlled\0" "T\0" "rate_controlled\0" "N\0" "not_controlled\0";
 static const nmea_enum_code htc_turn_mode_codes[] = {
-    {"R", "radius_controlled"},
-    {"T", "rate_controlled"},
-    {"N", "not_controlled"},
+    {htc_turn_mode_texts + 14, htc_turn_mode_texts + 16}, /* "R": "radius_controlled" */
+    {htc_turn_mode_texts + 34, htc_turn_mode_texts + 36}, /* "T": "rate_controlled" */
+    {htc_turn_mode_texts + 52, htc_turn_mode_texts + 54}, /* "N": "not_controlled" */
 };
 const nmea_enum_def nmea_htc_turn_mode_def = {
-    "htc_turn_mode", htc_turn_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    htc_turn_mode_texts, htc_turn_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char htd_limit_status_texts[] =
+    "htd_limit_status\0" "A\0" "within_limits\0" "V\0" "limit_reached\0";
 static const nmea_enum_code htd_limit_status_codes[] = {
-    {"A", "within_limits"},
-    {"V", "limit_reached"},
+    {htd_limit_status_texts + 17, htd_limit_status_texts + 19}, /* "A": "within_limits" */
+    {htd_limit_status_texts + 33, htd_limit_status_texts + 35}, /* "V": "limit_reached" */
 };
 const nmea_enum_def nmea_htd_limit_status_def = {
-    "htd_limit_status", htd_limit_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    htd_limit_status_texts, htd_limit_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char left_right_texts[] =
+    "left_right\0" "L\0" "left\0" "R\0" "right\0";
 static const nmea_enum_code left_right_codes[] = {
-    {"L", "left"},
-    {"R", "right"},
+    {left_right_texts + 11, left_right_texts + 13}, /* "L": "left" */
+    {left_right_texts + 18, left_right_texts + 20}, /* "R": "right" */
 };
 const nmea_enum_def nmea_left_right_def = {
-    "left_right", left_right_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    left_right_texts, left_right_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char llq_quality_texts[] =
+    "llq_quality\0" "0\0" "invalid\0" "1\0" "gps_nav_fix\0" "2\0" "dgps_fix\0" "3\0" "rtk_fix\0";
 static const nmea_enum_code llq_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "gps_nav_fix"},
-    {"2", "dgps_fix"},
-    {"3", "rtk_fix"},
+    {llq_quality_texts + 12, llq_quality_texts + 14}, /* "0": "invalid" */
+    {llq_quality_texts + 22, llq_quality_texts + 24}, /* "1": "gps_nav_fix" */
+    {llq_quality_texts + 36, llq_quality_texts + 38}, /* "2": "dgps_fix" */
+    {llq_quality_texts + 47, llq_quality_texts + 49}, /* "3": "rtk_fix" */
 };
 const nmea_enum_def nmea_llq_quality_def = {
-    "llq_quality", llq_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    llq_quality_texts, llq_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char lrf_function_texts[] =
+    "lrf_function\0" "A\0" "ship_id\0" "B\0" "date_time\0" "C\0" "position\0" "E\0" "course\0" "F\0"
+    "speed\0" "I\0" "destination\0" "O\0" "draught\0" "P\0" "cargo\0" "U\0" "dimensions\0" "W\0"
+    "persons\0";
 static const nmea_enum_code lrf_function_codes[] = {
-    {"A", "ship_id"},
-    {"B", "date_time"},
-    {"C", "position"},
-    {"E", "course"},
-    {"F", "speed"},
-    {"I", "destination"},
-    {"O", "draught"},
-    {"P", "cargo"},
-    {"U", "dimensions"},
-    {"W", "persons"},
+    {lrf_function_texts + 13, lrf_function_texts + 15}, /* "A": "ship_id" */
+    {lrf_function_texts + 23, lrf_function_texts + 25}, /* "B": "date_time" */
+    {lrf_function_texts + 35, lrf_function_texts + 37}, /* "C": "position" */
+    {lrf_function_texts + 46, lrf_function_texts + 48}, /* "E": "course" */
+    {lrf_function_texts + 55, lrf_function_texts + 57}, /* "F": "speed" */
+    {lrf_function_texts + 63, lrf_function_texts + 65}, /* "I": "destination" */
+    {lrf_function_texts + 77, lrf_function_texts + 79}, /* "O": "draught" */
+    {lrf_function_texts + 87, lrf_function_texts + 89}, /* "P": "cargo" */
+    {lrf_function_texts + 95, lrf_function_texts + 97}, /* "U": "dimensions" */
+    {lrf_function_texts + 108, lrf_function_texts + 110}, /* "W": "persons" */
 };
 const nmea_enum_def nmea_lrf_function_def = {
-    "lrf_function", lrf_function_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    lrf_function_texts, lrf_function_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char lrf_reply_status_texts[] =
+    "lrf_reply_status\0" "2\0" "provided\0" "3\0" "not_available\0" "4\0" "restricted\0";
 static const nmea_enum_code lrf_reply_status_codes[] = {
-    {"2", "provided"},
-    {"3", "not_available"},
-    {"4", "restricted"},
+    {lrf_reply_status_texts + 17, lrf_reply_status_texts + 19}, /* "2": "provided" */
+    {lrf_reply_status_texts + 28, lrf_reply_status_texts + 30}, /* "3": "not_available" */
+    {lrf_reply_status_texts + 44, lrf_reply_status_texts + 46}, /* "4": "restricted" */
 };
 const nmea_enum_def nmea_lrf_reply_status_def = {
-    "lrf_reply_status", lrf_reply_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    lrf_reply_status_texts, lrf_reply_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char lri_control_flag_texts[] =
+    "lri_control_flag\0" "0\0" "normal\0" "1\0" "geographic\0";
 static const nmea_enum_code lri_control_flag_codes[] = {
-    {"0", "normal"},
-    {"1", "geographic"},
+    {lri_control_flag_texts + 17, lri_control_flag_texts + 19}, /* "0": "normal" */
+    {lri_control_flag_texts + 26, lri_control_flag_texts + 28}, /* "1": "geographic" */
 };
 const nmea_enum_def nmea_lri_control_flag_def = {
-    "lri_control_flag", lri_control_flag_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    lri_control_flag_texts, lri_control_flag_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char magellan_altitude_unit_texts[] =
+    "magellan_altitude_unit\0" "F\0" "feet\0" "M\0" "meters\0";
 static const nmea_enum_code magellan_altitude_unit_codes[] = {
-    {"F", "feet"},
-    {"M", "meters"},
+    {magellan_altitude_unit_texts + 23, magellan_altitude_unit_texts + 25}, /* "F": "feet" */
+    {magellan_altitude_unit_texts + 30, magellan_altitude_unit_texts + 32}, /* "M": "meters" */
 };
 const nmea_enum_def nmea_magellan_altitude_unit_def = {
-    "magellan_altitude_unit", magellan_altitude_unit_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    magellan_altitude_unit_texts, magellan_altitude_unit_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char magellan_command_texts[] =
+    "magellan_command\0" "WAYPOINT\0" "waypoint\0" "ROUTE\0" "route\0" "TRACK\0" "track\0";
 static const nmea_enum_code magellan_command_codes[] = {
-    {"WAYPOINT", "waypoint"},
-    {"ROUTE", "route"},
-    {"TRACK", "track"},
+    {magellan_command_texts + 17, magellan_command_texts + 26}, /* "WAYPOINT": "waypoint" */
+    {magellan_command_texts + 35, magellan_command_texts + 41}, /* "ROUTE": "route" */
+    {magellan_command_texts + 47, magellan_command_texts + 53}, /* "TRACK": "track" */
 };
 const nmea_enum_def nmea_magellan_command_def = {
-    "magellan_command", magellan_command_codes, 3, 5, 8, NMEA_CODES_LETTERS
+    magellan_command_texts, magellan_command_codes, 3, 5, 8, NMEA_CODES_LETTERS
 };
 
+static const char magellan_fix_flag_texts[] =
+    "magellan_fix_flag\0" "T\0" "fix\0" "F\0" "no_fix\0";
 static const nmea_enum_code magellan_fix_flag_codes[] = {
-    {"T", "fix"},
-    {"F", "no_fix"},
+    {magellan_fix_flag_texts + 18, magellan_fix_flag_texts + 20}, /* "T": "fix" */
+    {magellan_fix_flag_texts + 24, magellan_fix_flag_texts + 26}, /* "F": "no_fix" */
 };
 const nmea_enum_def nmea_magellan_fix_flag_def = {
-    "magellan_fix_flag", magellan_fix_flag_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    magellan_fix_flag_texts, magellan_fix_flag_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char magellan_fix_mode_texts[] =
+    "magellan_fix_mode\0" "1\0" "no_fix\0" "2\0" "fix_2d\0" "3\0" "fix_3d\0";
 static const nmea_enum_code magellan_fix_mode_codes[] = {
-    {"1", "no_fix"},
-    {"2", "fix_2d"},
-    {"3", "fix_3d"},
+    {magellan_fix_mode_texts + 18, magellan_fix_mode_texts + 20}, /* "1": "no_fix" */
+    {magellan_fix_mode_texts + 27, magellan_fix_mode_texts + 29}, /* "2": "fix_2d" */
+    {magellan_fix_mode_texts + 36, magellan_fix_mode_texts + 38}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_magellan_fix_mode_def = {
-    "magellan_fix_mode", magellan_fix_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    magellan_fix_mode_texts, magellan_fix_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char mob_battery_texts[] =
+    "mob_battery\0" "0\0" "good\0" "1\0" "low\0" "6\0" "error\0";
 static const nmea_enum_code mob_battery_codes[] = {
-    {"0", "good"},
-    {"1", "low"},
-    {"6", "error"},
+    {mob_battery_texts + 12, mob_battery_texts + 14}, /* "0": "good" */
+    {mob_battery_texts + 19, mob_battery_texts + 21}, /* "1": "low" */
+    {mob_battery_texts + 25, mob_battery_texts + 27}, /* "6": "error" */
 };
 const nmea_enum_def nmea_mob_battery_def = {
-    "mob_battery", mob_battery_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    mob_battery_texts, mob_battery_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char mob_position_source_texts[] =
+    "mob_position_source\0" "0\0" "vessel_estimate\0" "1\0" "emitter_report\0" "6\0" "error\0";
 static const nmea_enum_code mob_position_source_codes[] = {
-    {"0", "vessel_estimate"},
-    {"1", "emitter_report"},
-    {"6", "error"},
+    {mob_position_source_texts + 20, mob_position_source_texts + 22}, /* "0": "vessel_estimate" */
+    {mob_position_source_texts + 38, mob_position_source_texts + 40}, /* "1": "emitter_report" */
+    {mob_position_source_texts + 55, mob_position_source_texts + 57}, /* "6": "error" */
 };
 const nmea_enum_def nmea_mob_position_source_def = {
-    "mob_position_source", mob_position_source_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    mob_position_source_texts, mob_position_source_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char mob_status_texts[] =
+    "mob_status\0" "A\0" "activated\0" "T\0" "test\0" "M\0" "manual_button\0" "V\0" "not_in_use\0" "E\0"
+    "error\0";
 static const nmea_enum_code mob_status_codes[] = {
-    {"A", "activated"},
-    {"T", "test"},
-    {"M", "manual_button"},
-    {"V", "not_in_use"},
-    {"E", "error"},
+    {mob_status_texts + 11, mob_status_texts + 13}, /* "A": "activated" */
+    {mob_status_texts + 23, mob_status_texts + 25}, /* "T": "test" */
+    {mob_status_texts + 30, mob_status_texts + 32}, /* "M": "manual_button" */
+    {mob_status_texts + 46, mob_status_texts + 48}, /* "V": "not_in_use" */
+    {mob_status_texts + 59, mob_status_texts + 61}, /* "E": "error" */
 };
 const nmea_enum_def nmea_mob_status_def = {
-    "mob_status", mob_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    mob_status_texts, mob_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char msk_auto_manual_texts[] =
+    "msk_auto_manual\0" "A\0" "automatic\0" "M\0" "manual\0";
 static const nmea_enum_code msk_auto_manual_codes[] = {
-    {"A", "automatic"},
-    {"M", "manual"},
+    {msk_auto_manual_texts + 16, msk_auto_manual_texts + 18}, /* "A": "automatic" */
+    {msk_auto_manual_texts + 28, msk_auto_manual_texts + 30}, /* "M": "manual" */
 };
 const nmea_enum_def nmea_msk_auto_manual_def = {
-    "msk_auto_manual", msk_auto_manual_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    msk_auto_manual_texts, msk_auto_manual_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char mtk_ack_flag_texts[] =
+    "mtk_ack_flag\0" "0\0" "invalid\0" "1\0" "unsupported\0" "2\0" "failed\0" "3\0" "success\0";
 static const nmea_enum_code mtk_ack_flag_codes[] = {
-    {"0", "invalid"},
-    {"1", "unsupported"},
-    {"2", "failed"},
-    {"3", "success"},
+    {mtk_ack_flag_texts + 13, mtk_ack_flag_texts + 15}, /* "0": "invalid" */
+    {mtk_ack_flag_texts + 23, mtk_ack_flag_texts + 25}, /* "1": "unsupported" */
+    {mtk_ack_flag_texts + 37, mtk_ack_flag_texts + 39}, /* "2": "failed" */
+    {mtk_ack_flag_texts + 46, mtk_ack_flag_texts + 48}, /* "3": "success" */
 };
 const nmea_enum_def nmea_mtk_ack_flag_def = {
-    "mtk_ack_flag", mtk_ack_flag_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    mtk_ack_flag_texts, mtk_ack_flag_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char mtk_antenna_status_texts[] =
+    "mtk_antenna_status\0" "1\0" "active_shorted\0" "2\0" "internal\0" "3\0" "active\0";
 static const nmea_enum_code mtk_antenna_status_codes[] = {
-    {"1", "active_shorted"},
-    {"2", "internal"},
-    {"3", "active"},
+    {mtk_antenna_status_texts + 19, mtk_antenna_status_texts + 21}, /* "1": "active_shorted" */
+    {mtk_antenna_status_texts + 36, mtk_antenna_status_texts + 38}, /* "2": "internal" */
+    {mtk_antenna_status_texts + 47, mtk_antenna_status_texts + 49}, /* "3": "active" */
 };
 const nmea_enum_def nmea_mtk_antenna_status_def = {
-    "mtk_antenna_status", mtk_antenna_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    mtk_antenna_status_texts, mtk_antenna_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char mtk_baud_texts[] =
+    "mtk_baud\0" "0\0" "default\0" "4800\0" "baud_4800\0" "9600\0" "baud_9600\0" "14400\0"
+    "baud_14400\0" "19200\0" "baud_19200\0" "38400\0" "baud_38400\0" "57600\0" "baud_57600\0" "115200\0"
+    "baud_115200\0";
 static const nmea_enum_code mtk_baud_codes[] = {
-    {"0", "default"},
-    {"4800", "baud_4800"},
-    {"9600", "baud_9600"},
-    {"14400", "baud_14400"},
-    {"19200", "baud_19200"},
-    {"38400", "baud_38400"},
-    {"57600", "baud_57600"},
-    {"115200", "baud_115200"},
+    {mtk_baud_texts + 9, mtk_baud_texts + 11}, /* "0": "default" */
+    {mtk_baud_texts + 19, mtk_baud_texts + 24}, /* "4800": "baud_4800" */
+    {mtk_baud_texts + 34, mtk_baud_texts + 39}, /* "9600": "baud_9600" */
+    {mtk_baud_texts + 49, mtk_baud_texts + 55}, /* "14400": "baud_14400" */
+    {mtk_baud_texts + 66, mtk_baud_texts + 72}, /* "19200": "baud_19200" */
+    {mtk_baud_texts + 83, mtk_baud_texts + 89}, /* "38400": "baud_38400" */
+    {mtk_baud_texts + 100, mtk_baud_texts + 106}, /* "57600": "baud_57600" */
+    {mtk_baud_texts + 117, mtk_baud_texts + 124}, /* "115200": "baud_115200" */
 };
 const nmea_enum_def nmea_mtk_baud_def = {
-    "mtk_baud", mtk_baud_codes, 8, 1, 6, NMEA_CODES_DIGITS
+    mtk_baud_texts, mtk_baud_codes, 8, 1, 6, NMEA_CODES_DIGITS
 };
 
+static const char mtk_dgps_mode_texts[] =
+    "mtk_dgps_mode\0" "0\0" "none\0" "1\0" "rtcm\0" "2\0" "sbas\0";
 static const nmea_enum_code mtk_dgps_mode_codes[] = {
-    {"0", "none"},
-    {"1", "rtcm"},
-    {"2", "sbas"},
+    {mtk_dgps_mode_texts + 14, mtk_dgps_mode_texts + 16}, /* "0": "none" */
+    {mtk_dgps_mode_texts + 21, mtk_dgps_mode_texts + 23}, /* "1": "rtcm" */
+    {mtk_dgps_mode_texts + 28, mtk_dgps_mode_texts + 30}, /* "2": "sbas" */
 };
 const nmea_enum_def nmea_mtk_dgps_mode_def = {
-    "mtk_dgps_mode", mtk_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    mtk_dgps_mode_texts, mtk_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char mtk_enable_texts[] =
+    "mtk_enable\0" "0\0" "disabled\0" "1\0" "enabled\0";
 static const nmea_enum_code mtk_enable_codes[] = {
-    {"0", "disabled"},
-    {"1", "enabled"},
+    {mtk_enable_texts + 11, mtk_enable_texts + 13}, /* "0": "disabled" */
+    {mtk_enable_texts + 22, mtk_enable_texts + 24}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_mtk_enable_def = {
-    "mtk_enable", mtk_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    mtk_enable_texts, mtk_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char mtk_locus_logger_texts[] =
+    "mtk_locus_logger\0" "0\0" "start\0" "1\0" "stop\0";
 static const nmea_enum_code mtk_locus_logger_codes[] = {
-    {"0", "start"},
-    {"1", "stop"},
+    {mtk_locus_logger_texts + 17, mtk_locus_logger_texts + 19}, /* "0": "start" */
+    {mtk_locus_logger_texts + 25, mtk_locus_logger_texts + 27}, /* "1": "stop" */
 };
 const nmea_enum_def nmea_mtk_locus_logger_def = {
-    "mtk_locus_logger", mtk_locus_logger_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    mtk_locus_logger_texts, mtk_locus_logger_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char mtk_periodic_mode_texts[] =
+    "mtk_periodic_mode\0" "0\0" "normal\0" "1\0" "periodic_backup\0" "2\0" "periodic_standby\0" "4\0"
+    "perpetual_backup\0" "8\0" "alwayslocate_standby\0" "9\0" "alwayslocate_backup\0";
 static const nmea_enum_code mtk_periodic_mode_codes[] = {
-    {"0", "normal"},
-    {"1", "periodic_backup"},
-    {"2", "periodic_standby"},
-    {"4", "perpetual_backup"},
-    {"8", "alwayslocate_standby"},
-    {"9", "alwayslocate_backup"},
+    {mtk_periodic_mode_texts + 18, mtk_periodic_mode_texts + 20}, /* "0": "normal" */
+    {mtk_periodic_mode_texts + 27, mtk_periodic_mode_texts + 29}, /* "1": "periodic_backup" */
+    {mtk_periodic_mode_texts + 45, mtk_periodic_mode_texts + 47}, /* "2": "periodic_standby" */
+    {mtk_periodic_mode_texts + 64, mtk_periodic_mode_texts + 66}, /* "4": "perpetual_backup" */
+    {mtk_periodic_mode_texts + 83, mtk_periodic_mode_texts + 85}, /* "8": "alwayslocate_standby" */
+    {mtk_periodic_mode_texts + 106, mtk_periodic_mode_texts + 108}, /* "9": "alwayslocate_backup" */
 };
 const nmea_enum_def nmea_mtk_periodic_mode_def = {
-    "mtk_periodic_mode", mtk_periodic_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    mtk_periodic_mode_texts, mtk_periodic_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char mtk_sbas_mode_texts[] =
+    "mtk_sbas_mode\0" "0\0" "testing\0" "1\0" "integrity\0";
 static const nmea_enum_code mtk_sbas_mode_codes[] = {
-    {"0", "testing"},
-    {"1", "integrity"},
+    {mtk_sbas_mode_texts + 14, mtk_sbas_mode_texts + 16}, /* "0": "testing" */
+    {mtk_sbas_mode_texts + 24, mtk_sbas_mode_texts + 26}, /* "1": "integrity" */
 };
 const nmea_enum_def nmea_mtk_sbas_mode_def = {
-    "mtk_sbas_mode", mtk_sbas_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    mtk_sbas_mode_texts, mtk_sbas_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char mtk_standby_type_texts[] =
+    "mtk_standby_type\0" "0\0" "stop\0" "1\0" "sleep\0";
 static const nmea_enum_code mtk_standby_type_codes[] = {
-    {"0", "stop"},
-    {"1", "sleep"},
+    {mtk_standby_type_texts + 17, mtk_standby_type_texts + 19}, /* "0": "stop" */
+    {mtk_standby_type_texts + 24, mtk_standby_type_texts + 26}, /* "1": "sleep" */
 };
 const nmea_enum_def nmea_mtk_standby_type_def = {
-    "mtk_standby_type", mtk_standby_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    mtk_standby_type_texts, mtk_standby_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char mtk_system_message_texts[] =
+    "mtk_system_message\0" "000\0" "unknown\0" "001\0" "startup\0" "002\0" "epo_aiding\0" "003\0"
+    "normal_mode\0";
 static const nmea_enum_code mtk_system_message_codes[] = {
-    {"000", "unknown"},
-    {"001", "startup"},
-    {"002", "epo_aiding"},
-    {"003", "normal_mode"},
+    {mtk_system_message_texts + 19, mtk_system_message_texts + 23}, /* "000": "unknown" */
+    {mtk_system_message_texts + 31, mtk_system_message_texts + 35}, /* "001": "startup" */
+    {mtk_system_message_texts + 43, mtk_system_message_texts + 47}, /* "002": "epo_aiding" */
+    {mtk_system_message_texts + 58, mtk_system_message_texts + 62}, /* "003": "normal_mode" */
 };
 const nmea_enum_def nmea_mtk_system_message_def = {
-    "mtk_system_message", mtk_system_message_codes, 4, 3, 3, NMEA_CODES_DIGITS
+    mtk_system_message_texts, mtk_system_message_codes, 4, 3, 3, NMEA_CODES_DIGITS
 };
 
+static const char mwv_reference_texts[] =
+    "mwv_reference\0" "R\0" "relative\0" "T\0" "theoretical\0";
 static const nmea_enum_code mwv_reference_codes[] = {
-    {"R", "relative"},
-    {"T", "theoretical"},
+    {mwv_reference_texts + 14, mwv_reference_texts + 16}, /* "R": "relative" */
+    {mwv_reference_texts + 25, mwv_reference_texts + 27}, /* "T": "theoretical" */
 };
 const nmea_enum_def nmea_mwv_reference_def = {
-    "mwv_reference", mwv_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    mwv_reference_texts, mwv_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char mwv_speed_unit_texts[] =
+    "mwv_speed_unit\0" "K\0" "kmh\0" "M\0" "metres_per_second\0" "N\0" "knots\0" "S\0" "statute_mph\0";
 static const nmea_enum_code mwv_speed_unit_codes[] = {
-    {"K", "kmh"},
-    {"M", "metres_per_second"},
-    {"N", "knots"},
-    {"S", "statute_mph"},
+    {mwv_speed_unit_texts + 15, mwv_speed_unit_texts + 17}, /* "K": "kmh" */
+    {mwv_speed_unit_texts + 21, mwv_speed_unit_texts + 23}, /* "M": "metres_per_second" */
+    {mwv_speed_unit_texts + 41, mwv_speed_unit_texts + 43}, /* "N": "knots" */
+    {mwv_speed_unit_texts + 49, mwv_speed_unit_texts + 51}, /* "S": "statute_mph" */
 };
 const nmea_enum_def nmea_mwv_speed_unit_def = {
-    "mwv_speed_unit", mwv_speed_unit_codes, 4, 1, 1, NMEA_CODES_CLOSED
+    mwv_speed_unit_texts, mwv_speed_unit_codes, 4, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char nak_reason_texts[] =
+    "nak_reason\0" "0\0" "query_not_supported\0" "1\0" "formatter_not_supported\0" "2\0"
+    "formatter_not_enabled\0" "3\0" "formatter_temporarily_unavailable\0" "4\0"
+    "query_for_formatter_not_supported\0" "5\0" "access_denied\0" "6\0" "bad_checksum\0" "7\0"
+    "listener_processing_issue\0" "10\0" "cannot_perform\0" "11\0" "bad_data_field\0" "49\0" "other\0";
 static const nmea_enum_code nak_reason_codes[] = {
-    {"0", "query_not_supported"},
-    {"1", "formatter_not_supported"},
-    {"2", "formatter_not_enabled"},
-    {"3", "formatter_temporarily_unavailable"},
-    {"4", "query_for_formatter_not_supported"},
-    {"5", "access_denied"},
-    {"6", "bad_checksum"},
-    {"7", "listener_processing_issue"},
-    {"10", "cannot_perform"},
-    {"11", "bad_data_field"},
-    {"49", "other"},
+    {nak_reason_texts + 11, nak_reason_texts + 13}, /* "0": "query_not_supported" */
+    {nak_reason_texts + 33, nak_reason_texts + 35}, /* "1": "formatter_not_supported" */
+    {nak_reason_texts + 59, nak_reason_texts + 61}, /* "2": "formatter_not_enabled" */
+    {nak_reason_texts + 83, nak_reason_texts + 85}, /* "3": "formatter_temporarily_unavailable" */
+    {nak_reason_texts + 119, nak_reason_texts + 121}, /* "4": "query_for_formatter_not_supported" */
+    {nak_reason_texts + 155, nak_reason_texts + 157}, /* "5": "access_denied" */
+    {nak_reason_texts + 171, nak_reason_texts + 173}, /* "6": "bad_checksum" */
+    {nak_reason_texts + 186, nak_reason_texts + 188}, /* "7": "listener_processing_issue" */
+    {nak_reason_texts + 214, nak_reason_texts + 217}, /* "10": "cannot_perform" */
+    {nak_reason_texts + 232, nak_reason_texts + 235}, /* "11": "bad_data_field" */
+    {nak_reason_texts + 250, nak_reason_texts + 253}, /* "49": "other" */
 };
 const nmea_enum_def nmea_nak_reason_def = {
-    "nak_reason", nak_reason_codes, 11, 1, 2, NMEA_CODES_DIGITS
+    nak_reason_texts, nak_reason_codes, 11, 1, 2, NMEA_CODES_DIGITS
 };
 
+static const char nav_status_texts[] =
+    "nav_status\0" "S\0" "safe\0" "C\0" "caution\0" "U\0" "unsafe\0" "V\0" "not_valid\0";
 static const nmea_enum_code nav_status_codes[] = {
-    {"S", "safe"},
-    {"C", "caution"},
-    {"U", "unsafe"},
-    {"V", "not_valid"},
+    {nav_status_texts + 11, nav_status_texts + 13}, /* "S": "safe" */
+    {nav_status_texts + 18, nav_status_texts + 20}, /* "C": "caution" */
+    {nav_status_texts + 28, nav_status_texts + 30}, /* "U": "unsafe" */
+    {nav_status_texts + 37, nav_status_texts + 39}, /* "V": "not_valid" */
 };
 const nmea_enum_def nmea_nav_status_def = {
-    "nav_status", nav_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    nav_status_texts, nav_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char north_south_texts[] =
+    "north_south\0" "N\0" "north\0" "S\0" "south\0";
 static const nmea_enum_code north_south_codes[] = {
-    {"N", "north"},
-    {"S", "south"},
+    {north_south_texts + 12, north_south_texts + 14}, /* "N": "north" */
+    {north_south_texts + 20, north_south_texts + 22}, /* "S": "south" */
 };
 const nmea_enum_def nmea_north_south_def = {
-    "north_south", north_south_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    north_south_texts, north_south_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char nrm_function_texts[] =
+    "nrm_function\0" "0\0" "request_messages\0" "1\0" "storage_mask\0" "2\0" "printer_mask\0" "3\0"
+    "ins_mask\0";
 static const nmea_enum_code nrm_function_codes[] = {
-    {"0", "request_messages"},
-    {"1", "storage_mask"},
-    {"2", "printer_mask"},
-    {"3", "ins_mask"},
+    {nrm_function_texts + 13, nrm_function_texts + 15}, /* "0": "request_messages" */
+    {nrm_function_texts + 32, nrm_function_texts + 34}, /* "1": "storage_mask" */
+    {nrm_function_texts + 47, nrm_function_texts + 49}, /* "2": "printer_mask" */
+    {nrm_function_texts + 62, nrm_function_texts + 64}, /* "3": "ins_mask" */
 };
 const nmea_enum_def nmea_nrm_function_def = {
-    "nrm_function", nrm_function_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    nrm_function_texts, nrm_function_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char nrx_frequency_texts[] =
+    "nrx_frequency\0" "0\0" "not_over_air\0" "1\0" "khz_490\0" "2\0" "khz_518\0" "3\0" "khz_4209_5\0";
 static const nmea_enum_code nrx_frequency_codes[] = {
-    {"0", "not_over_air"},
-    {"1", "khz_490"},
-    {"2", "khz_518"},
-    {"3", "khz_4209_5"},
+    {nrx_frequency_texts + 14, nrx_frequency_texts + 16}, /* "0": "not_over_air" */
+    {nrx_frequency_texts + 29, nrx_frequency_texts + 31}, /* "1": "khz_490" */
+    {nrx_frequency_texts + 39, nrx_frequency_texts + 41}, /* "2": "khz_518" */
+    {nrx_frequency_texts + 49, nrx_frequency_texts + 51}, /* "3": "khz_4209_5" */
 };
 const nmea_enum_def nmea_nrx_frequency_def = {
-    "nrx_frequency", nrx_frequency_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    nrx_frequency_texts, nrx_frequency_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char nsr_integrity_texts[] =
+    "nsr_integrity\0" "P\0" "passed\0" "F\0" "failed\0" "D\0" "doubtful\0" "N\0" "not_available\0";
 static const nmea_enum_code nsr_integrity_codes[] = {
-    {"P", "passed"},
-    {"F", "failed"},
-    {"D", "doubtful"},
-    {"N", "not_available"},
+    {nsr_integrity_texts + 14, nsr_integrity_texts + 16}, /* "P": "passed" */
+    {nsr_integrity_texts + 23, nsr_integrity_texts + 25}, /* "F": "failed" */
+    {nsr_integrity_texts + 32, nsr_integrity_texts + 34}, /* "D": "doubtful" */
+    {nsr_integrity_texts + 43, nsr_integrity_texts + 45}, /* "N": "not_available" */
 };
 const nmea_enum_def nmea_nsr_integrity_def = {
-    "nsr_integrity", nsr_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    nsr_integrity_texts, nsr_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char nsr_plausibility_texts[] =
+    "nsr_plausibility\0" "A\0" "plausible\0" "V\0" "not_plausible\0" "N\0" "not_available\0";
 static const nmea_enum_code nsr_plausibility_codes[] = {
-    {"A", "plausible"},
-    {"V", "not_plausible"},
-    {"N", "not_available"},
+    {nsr_plausibility_texts + 17, nsr_plausibility_texts + 19}, /* "A": "plausible" */
+    {nsr_plausibility_texts + 29, nsr_plausibility_texts + 31}, /* "V": "not_plausible" */
+    {nsr_plausibility_texts + 45, nsr_plausibility_texts + 47}, /* "N": "not_available" */
 };
 const nmea_enum_def nmea_nsr_plausibility_def = {
-    "nsr_plausibility", nsr_plausibility_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    nsr_plausibility_texts, nsr_plausibility_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char nsr_stw_mode_texts[] =
+    "nsr_stw_mode\0" "W\0" "water_referenced\0" "E\0" "estimated\0" "M\0" "manual\0" "N\0"
+    "not_available\0";
 static const nmea_enum_code nsr_stw_mode_codes[] = {
-    {"W", "water_referenced"},
-    {"E", "estimated"},
-    {"M", "manual"},
-    {"N", "not_available"},
+    {nsr_stw_mode_texts + 13, nsr_stw_mode_texts + 15}, /* "W": "water_referenced" */
+    {nsr_stw_mode_texts + 32, nsr_stw_mode_texts + 34}, /* "E": "estimated" */
+    {nsr_stw_mode_texts + 44, nsr_stw_mode_texts + 46}, /* "M": "manual" */
+    {nsr_stw_mode_texts + 53, nsr_stw_mode_texts + 55}, /* "N": "not_available" */
 };
 const nmea_enum_def nmea_nsr_stw_mode_def = {
-    "nsr_stw_mode", nsr_stw_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    nsr_stw_mode_texts, nsr_stw_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char osd_reference_texts[] =
+    "osd_reference\0" "B\0" "bottom_track\0" "M\0" "manual\0" "W\0" "water\0" "R\0" "radar\0" "P\0"
+    "positioning\0";
 static const nmea_enum_code osd_reference_codes[] = {
-    {"B", "bottom_track"},
-    {"M", "manual"},
-    {"W", "water"},
-    {"R", "radar"},
-    {"P", "positioning"},
+    {osd_reference_texts + 14, osd_reference_texts + 16}, /* "B": "bottom_track" */
+    {osd_reference_texts + 29, osd_reference_texts + 31}, /* "M": "manual" */
+    {osd_reference_texts + 38, osd_reference_texts + 40}, /* "W": "water" */
+    {osd_reference_texts + 46, osd_reference_texts + 48}, /* "R": "radar" */
+    {osd_reference_texts + 54, osd_reference_texts + 56}, /* "P": "positioning" */
 };
 const nmea_enum_def nmea_osd_reference_def = {
-    "osd_reference", osd_reference_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    osd_reference_texts, osd_reference_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char phins_pitch_sense_texts[] =
+    "phins_pitch_sense\0" "M\0" "bow_up\0" "P\0" "bow_down\0";
 static const nmea_enum_code phins_pitch_sense_codes[] = {
-    {"M", "bow_up"},
-    {"P", "bow_down"},
+    {phins_pitch_sense_texts + 18, phins_pitch_sense_texts + 20}, /* "M": "bow_up" */
+    {phins_pitch_sense_texts + 27, phins_pitch_sense_texts + 29}, /* "P": "bow_down" */
 };
 const nmea_enum_def nmea_phins_pitch_sense_def = {
-    "phins_pitch_sense", phins_pitch_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    phins_pitch_sense_texts, phins_pitch_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char phins_roll_sense_texts[] =
+    "phins_roll_sense\0" "B\0" "port_down\0" "T\0" "port_up\0";
 static const nmea_enum_code phins_roll_sense_codes[] = {
-    {"B", "port_down"},
-    {"T", "port_up"},
+    {phins_roll_sense_texts + 17, phins_roll_sense_texts + 19}, /* "B": "port_down" */
+    {phins_roll_sense_texts + 29, phins_roll_sense_texts + 31}, /* "T": "port_up" */
 };
 const nmea_enum_def nmea_phins_roll_sense_def = {
-    "phins_roll_sense", phins_roll_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    phins_roll_sense_texts, phins_roll_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char pos_mode_texts[] =
+    "pos_mode\0" "A\0" "autonomous\0" "D\0" "differential\0" "E\0" "estimated\0" "F\0" "rtk_float\0"
+    "G\0" "geopath\0" "M\0" "manual_input\0" "N\0" "not_valid\0" "P\0" "precise\0" "R\0"
+    "fixed_or_coarse\0" "S\0" "simulator\0";
 static const nmea_enum_code pos_mode_codes[] = {
-    {"A", "autonomous"},
-    {"D", "differential"},
-    {"E", "estimated"},
-    {"F", "rtk_float"},
-    {"G", "geopath"},
-    {"M", "manual_input"},
-    {"N", "not_valid"},
-    {"P", "precise"},
-    {"R", "fixed_or_coarse"},
-    {"S", "simulator"},
+    {pos_mode_texts + 9, pos_mode_texts + 11}, /* "A": "autonomous" */
+    {pos_mode_texts + 22, pos_mode_texts + 24}, /* "D": "differential" */
+    {pos_mode_texts + 37, pos_mode_texts + 39}, /* "E": "estimated" */
+    {pos_mode_texts + 49, pos_mode_texts + 51}, /* "F": "rtk_float" */
+    {pos_mode_texts + 61, pos_mode_texts + 63}, /* "G": "geopath" */
+    {pos_mode_texts + 71, pos_mode_texts + 73}, /* "M": "manual_input" */
+    {pos_mode_texts + 86, pos_mode_texts + 88}, /* "N": "not_valid" */
+    {pos_mode_texts + 98, pos_mode_texts + 100}, /* "P": "precise" */
+    {pos_mode_texts + 108, pos_mode_texts + 110}, /* "R": "fixed_or_coarse" */
+    {pos_mode_texts + 126, pos_mode_texts + 128}, /* "S": "simulator" */
 };
 const nmea_enum_def nmea_pos_mode_def = {
-    "pos_mode", pos_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    pos_mode_texts, pos_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char pos_sentence_status_texts[] =
+    "pos_sentence_status\0" "R\0" "report\0" "C\0" "command\0";
 static const nmea_enum_code pos_sentence_status_codes[] = {
-    {"R", "report"},
-    {"C", "command"},
+    {pos_sentence_status_texts + 20, pos_sentence_status_texts + 22}, /* "R": "report" */
+    {pos_sentence_status_texts + 29, pos_sentence_status_texts + 31}, /* "C": "command" */
 };
 const nmea_enum_def nmea_pos_sentence_status_def = {
-    "pos_sentence_status", pos_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    pos_sentence_status_texts, pos_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char prc_operating_location_texts[] =
+    "prc_operating_location\0" "B\0" "bridge\0" "P\0" "port_wing\0" "S\0" "starboard_wing\0" "C\0"
+    "engine_control_room\0" "E\0" "engine_side\0" "W\0" "wing\0";
 static const nmea_enum_code prc_operating_location_codes[] = {
-    {"B", "bridge"},
-    {"P", "port_wing"},
-    {"S", "starboard_wing"},
-    {"C", "engine_control_room"},
-    {"E", "engine_side"},
-    {"W", "wing"},
+    {prc_operating_location_texts + 23, prc_operating_location_texts + 25}, /* "B": "bridge" */
+    {prc_operating_location_texts + 32, prc_operating_location_texts + 34}, /* "P": "port_wing" */
+    {prc_operating_location_texts + 44, prc_operating_location_texts + 46}, /* "S": "starboard_wing" */
+    {prc_operating_location_texts + 61, prc_operating_location_texts + 63}, /* "C": "engine_control_room" */
+    {prc_operating_location_texts + 83, prc_operating_location_texts + 85}, /* "E": "engine_side" */
+    {prc_operating_location_texts + 97, prc_operating_location_texts + 99}, /* "W": "wing" */
 };
 const nmea_enum_def nmea_prc_operating_location_def = {
-    "prc_operating_location", prc_operating_location_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    prc_operating_location_texts, prc_operating_location_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char prc_pitch_mode_texts[] =
+    "prc_pitch_mode\0" "P\0" "percent\0" "D\0" "degrees\0" "V\0" "invalid\0";
 static const nmea_enum_code prc_pitch_mode_codes[] = {
-    {"P", "percent"},
-    {"D", "degrees"},
-    {"V", "invalid"},
+    {prc_pitch_mode_texts + 15, prc_pitch_mode_texts + 17}, /* "P": "percent" */
+    {prc_pitch_mode_texts + 25, prc_pitch_mode_texts + 27}, /* "D": "degrees" */
+    {prc_pitch_mode_texts + 35, prc_pitch_mode_texts + 37}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_prc_pitch_mode_def = {
-    "prc_pitch_mode", prc_pitch_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    prc_pitch_mode_texts, prc_pitch_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char prc_rpm_mode_texts[] =
+    "prc_rpm_mode\0" "P\0" "percent\0" "R\0" "rpm\0" "V\0" "invalid\0";
 static const nmea_enum_code prc_rpm_mode_codes[] = {
-    {"P", "percent"},
-    {"R", "rpm"},
-    {"V", "invalid"},
+    {prc_rpm_mode_texts + 13, prc_rpm_mode_texts + 15}, /* "P": "percent" */
+    {prc_rpm_mode_texts + 23, prc_rpm_mode_texts + 25}, /* "R": "rpm" */
+    {prc_rpm_mode_texts + 29, prc_rpm_mode_texts + 31}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_prc_rpm_mode_def = {
-    "prc_rpm_mode", prc_rpm_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    prc_rpm_mode_texts, prc_rpm_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char quectel_antenna_power_texts[] =
+    "quectel_antenna_power\0" "0\0" "off\0" "1\0" "on\0" "2\0" "unknown\0";
 static const nmea_enum_code quectel_antenna_power_codes[] = {
-    {"0", "off"},
-    {"1", "on"},
-    {"2", "unknown"},
+    {quectel_antenna_power_texts + 22, quectel_antenna_power_texts + 24}, /* "0": "off" */
+    {quectel_antenna_power_texts + 28, quectel_antenna_power_texts + 30}, /* "1": "on" */
+    {quectel_antenna_power_texts + 33, quectel_antenna_power_texts + 35}, /* "2": "unknown" */
 };
 const nmea_enum_def nmea_quectel_antenna_power_def = {
-    "quectel_antenna_power", quectel_antenna_power_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    quectel_antenna_power_texts, quectel_antenna_power_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_antenna_status_texts[] =
+    "quectel_antenna_status\0" "0\0" "unknown\0" "1\0" "normal\0" "2\0" "open_circuit\0" "3\0"
+    "short_circuit\0";
 static const nmea_enum_code quectel_antenna_status_codes[] = {
-    {"0", "unknown"},
-    {"1", "normal"},
-    {"2", "open_circuit"},
-    {"3", "short_circuit"},
+    {quectel_antenna_status_texts + 23, quectel_antenna_status_texts + 25}, /* "0": "unknown" */
+    {quectel_antenna_status_texts + 33, quectel_antenna_status_texts + 35}, /* "1": "normal" */
+    {quectel_antenna_status_texts + 42, quectel_antenna_status_texts + 44}, /* "2": "open_circuit" */
+    {quectel_antenna_status_texts + 57, quectel_antenna_status_texts + 59}, /* "3": "short_circuit" */
 };
 const nmea_enum_def nmea_quectel_antenna_status_def = {
-    "quectel_antenna_status", quectel_antenna_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    quectel_antenna_status_texts, quectel_antenna_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_baud_rate_texts[] =
+    "quectel_baud_rate\0" "9600\0" "baud_9600\0" "115200\0" "baud_115200\0" "230400\0" "baud_230400\0"
+    "460800\0" "baud_460800\0" "921600\0" "baud_921600\0";
 static const nmea_enum_code quectel_baud_rate_codes[] = {
-    {"9600", "baud_9600"},
-    {"115200", "baud_115200"},
-    {"230400", "baud_230400"},
-    {"460800", "baud_460800"},
-    {"921600", "baud_921600"},
+    {quectel_baud_rate_texts + 18, quectel_baud_rate_texts + 23}, /* "9600": "baud_9600" */
+    {quectel_baud_rate_texts + 33, quectel_baud_rate_texts + 40}, /* "115200": "baud_115200" */
+    {quectel_baud_rate_texts + 52, quectel_baud_rate_texts + 59}, /* "230400": "baud_230400" */
+    {quectel_baud_rate_texts + 71, quectel_baud_rate_texts + 78}, /* "460800": "baud_460800" */
+    {quectel_baud_rate_texts + 90, quectel_baud_rate_texts + 97}, /* "921600": "baud_921600" */
 };
 const nmea_enum_def nmea_quectel_baud_rate_def = {
-    "quectel_baud_rate", quectel_baud_rate_codes, 5, 4, 6, NMEA_CODES_DIGITS
+    quectel_baud_rate_texts, quectel_baud_rate_codes, 5, 4, 6, NMEA_CODES_DIGITS
 };
 
+static const char quectel_enable_texts[] =
+    "quectel_enable\0" "0\0" "disabled\0" "1\0" "enabled\0";
 static const nmea_enum_code quectel_enable_codes[] = {
-    {"0", "disabled"},
-    {"1", "enabled"},
+    {quectel_enable_texts + 15, quectel_enable_texts + 17}, /* "0": "disabled" */
+    {quectel_enable_texts + 26, quectel_enable_texts + 28}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_quectel_enable_def = {
-    "quectel_enable", quectel_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    quectel_enable_texts, quectel_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char quectel_error_code_texts[] =
+    "quectel_error_code\0" "1\0" "invalid_parameters\0" "2\0" "execution_failed\0" "3\0"
+    "unsupported_command\0";
 static const nmea_enum_code quectel_error_code_codes[] = {
-    {"1", "invalid_parameters"},
-    {"2", "execution_failed"},
-    {"3", "unsupported_command"},
+    {quectel_error_code_texts + 19, quectel_error_code_texts + 21}, /* "1": "invalid_parameters" */
+    {quectel_error_code_texts + 40, quectel_error_code_texts + 42}, /* "2": "execution_failed" */
+    {quectel_error_code_texts + 59, quectel_error_code_texts + 61}, /* "3": "unsupported_command" */
 };
 const nmea_enum_def nmea_quectel_error_code_def = {
-    "quectel_error_code", quectel_error_code_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    quectel_error_code_texts, quectel_error_code_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_fix_type_texts[] =
+    "quectel_fix_type\0" "0\0" "no_fix\0" "1\0" "reserved\0" "2\0" "fix_2d\0" "3\0" "fix_3d\0";
 static const nmea_enum_code quectel_fix_type_codes[] = {
-    {"0", "no_fix"},
-    {"1", "reserved"},
-    {"2", "fix_2d"},
-    {"3", "fix_3d"},
+    {quectel_fix_type_texts + 17, quectel_fix_type_texts + 19}, /* "0": "no_fix" */
+    {quectel_fix_type_texts + 26, quectel_fix_type_texts + 28}, /* "1": "reserved" */
+    {quectel_fix_type_texts + 37, quectel_fix_type_texts + 39}, /* "2": "fix_2d" */
+    {quectel_fix_type_texts + 46, quectel_fix_type_texts + 48}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_quectel_fix_type_def = {
-    "quectel_fix_type", quectel_fix_type_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    quectel_fix_type_texts, quectel_fix_type_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_flow_control_texts[] =
+    "quectel_flow_control\0" "0\0" "none\0";
 static const nmea_enum_code quectel_flow_control_codes[] = {
-    {"0", "none"},
+    {quectel_flow_control_texts + 21, quectel_flow_control_texts + 23}, /* "0": "none" */
 };
 const nmea_enum_def nmea_quectel_flow_control_def = {
-    "quectel_flow_control", quectel_flow_control_codes, 1, 1, 1, NMEA_CODES_DIGITS
+    quectel_flow_control_texts, quectel_flow_control_codes, 1, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_geofence_shape_texts[] =
+    "quectel_geofence_shape\0" "0\0" "circle_radius\0" "1\0" "circle_point\0" "2\0" "triangle\0" "3\0"
+    "quadrangle\0";
 static const nmea_enum_code quectel_geofence_shape_codes[] = {
-    {"0", "circle_radius"},
-    {"1", "circle_point"},
-    {"2", "triangle"},
-    {"3", "quadrangle"},
+    {quectel_geofence_shape_texts + 23, quectel_geofence_shape_texts + 25}, /* "0": "circle_radius" */
+    {quectel_geofence_shape_texts + 39, quectel_geofence_shape_texts + 41}, /* "1": "circle_point" */
+    {quectel_geofence_shape_texts + 54, quectel_geofence_shape_texts + 56}, /* "2": "triangle" */
+    {quectel_geofence_shape_texts + 65, quectel_geofence_shape_texts + 67}, /* "3": "quadrangle" */
 };
 const nmea_enum_def nmea_quectel_geofence_shape_def = {
-    "quectel_geofence_shape", quectel_geofence_shape_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    quectel_geofence_shape_texts, quectel_geofence_shape_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_geofence_state_texts[] =
+    "quectel_geofence_state\0" "0\0" "unknown\0" "1\0" "inside\0" "2\0" "outside\0";
 static const nmea_enum_code quectel_geofence_state_codes[] = {
-    {"0", "unknown"},
-    {"1", "inside"},
-    {"2", "outside"},
+    {quectel_geofence_state_texts + 23, quectel_geofence_state_texts + 25}, /* "0": "unknown" */
+    {quectel_geofence_state_texts + 33, quectel_geofence_state_texts + 35}, /* "1": "inside" */
+    {quectel_geofence_state_texts + 42, quectel_geofence_state_texts + 44}, /* "2": "outside" */
 };
 const nmea_enum_def nmea_quectel_geofence_state_def = {
-    "quectel_geofence_state", quectel_geofence_state_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    quectel_geofence_state_texts, quectel_geofence_state_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_geosep_mode_texts[] =
+    "quectel_geosep_mode\0" "0\0" "auto\0" "1\0" "manual\0";
 static const nmea_enum_code quectel_geosep_mode_codes[] = {
-    {"0", "auto"},
-    {"1", "manual"},
+    {quectel_geosep_mode_texts + 20, quectel_geosep_mode_texts + 22}, /* "0": "auto" */
+    {quectel_geosep_mode_texts + 27, quectel_geosep_mode_texts + 29}, /* "1": "manual" */
 };
 const nmea_enum_def nmea_quectel_geosep_mode_def = {
-    "quectel_geosep_mode", quectel_geosep_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    quectel_geosep_mode_texts, quectel_geosep_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_gsv_talker_texts[] =
+    "quectel_gsv_talker\0" "0\0" "by_constellation\0" "1\0" "same_as_main\0";
 static const nmea_enum_code quectel_gsv_talker_codes[] = {
-    {"0", "by_constellation"},
-    {"1", "same_as_main"},
+    {quectel_gsv_talker_texts + 19, quectel_gsv_talker_texts + 21}, /* "0": "by_constellation" */
+    {quectel_gsv_talker_texts + 38, quectel_gsv_talker_texts + 40}, /* "1": "same_as_main" */
 };
 const nmea_enum_def nmea_quectel_gsv_talker_def = {
-    "quectel_gsv_talker", quectel_gsv_talker_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    quectel_gsv_talker_texts, quectel_gsv_talker_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_heading_quality_texts[] =
+    "quectel_heading_quality\0" "0\0" "invalid\0" "1\0" "autonomous\0" "2\0" "differential\0" "3\0"
+    "pps\0" "4\0" "rtk_fixed\0" "5\0" "rtk_float\0";
 static const nmea_enum_code quectel_heading_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "autonomous"},
-    {"2", "differential"},
-    {"3", "pps"},
-    {"4", "rtk_fixed"},
-    {"5", "rtk_float"},
+    {quectel_heading_quality_texts + 24, quectel_heading_quality_texts + 26}, /* "0": "invalid" */
+    {quectel_heading_quality_texts + 34, quectel_heading_quality_texts + 36}, /* "1": "autonomous" */
+    {quectel_heading_quality_texts + 47, quectel_heading_quality_texts + 49}, /* "2": "differential" */
+    {quectel_heading_quality_texts + 62, quectel_heading_quality_texts + 64}, /* "3": "pps" */
+    {quectel_heading_quality_texts + 68, quectel_heading_quality_texts + 70}, /* "4": "rtk_fixed" */
+    {quectel_heading_quality_texts + 80, quectel_heading_quality_texts + 82}, /* "5": "rtk_float" */
 };
 const nmea_enum_def nmea_quectel_heading_quality_def = {
-    "quectel_heading_quality", quectel_heading_quality_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    quectel_heading_quality_texts, quectel_heading_quality_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_parity_texts[] =
+    "quectel_parity\0" "0\0" "none\0" "1\0" "odd\0" "2\0" "even\0" "3\0" "mark\0" "4\0" "space\0";
 static const nmea_enum_code quectel_parity_codes[] = {
-    {"0", "none"},
-    {"1", "odd"},
-    {"2", "even"},
-    {"3", "mark"},
-    {"4", "space"},
+    {quectel_parity_texts + 15, quectel_parity_texts + 17}, /* "0": "none" */
+    {quectel_parity_texts + 22, quectel_parity_texts + 24}, /* "1": "odd" */
+    {quectel_parity_texts + 28, quectel_parity_texts + 30}, /* "2": "even" */
+    {quectel_parity_texts + 35, quectel_parity_texts + 37}, /* "3": "mark" */
+    {quectel_parity_texts + 42, quectel_parity_texts + 44}, /* "4": "space" */
 };
 const nmea_enum_def nmea_quectel_parity_def = {
-    "quectel_parity", quectel_parity_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    quectel_parity_texts, quectel_parity_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_port_type_texts[] =
+    "quectel_port_type\0" "1\0" "uart\0";
 static const nmea_enum_code quectel_port_type_codes[] = {
-    {"1", "uart"},
+    {quectel_port_type_texts + 18, quectel_port_type_texts + 20}, /* "1": "uart" */
 };
 const nmea_enum_def nmea_quectel_port_type_def = {
-    "quectel_port_type", quectel_port_type_codes, 1, 1, 1, NMEA_CODES_DIGITS
+    quectel_port_type_texts, quectel_port_type_codes, 1, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_pps_mode_texts[] =
+    "quectel_pps_mode\0" "1\0" "always\0" "2\0" "fix_only\0";
 static const nmea_enum_code quectel_pps_mode_codes[] = {
-    {"1", "always"},
-    {"2", "fix_only"},
+    {quectel_pps_mode_texts + 17, quectel_pps_mode_texts + 19}, /* "1": "always" */
+    {quectel_pps_mode_texts + 26, quectel_pps_mode_texts + 28}, /* "2": "fix_only" */
 };
 const nmea_enum_def nmea_quectel_pps_mode_def = {
-    "quectel_pps_mode", quectel_pps_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    quectel_pps_mode_texts, quectel_pps_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_pps_polarity_texts[] =
+    "quectel_pps_polarity\0" "0\0" "low\0" "1\0" "high\0";
 static const nmea_enum_code quectel_pps_polarity_codes[] = {
-    {"0", "low"},
-    {"1", "high"},
+    {quectel_pps_polarity_texts + 21, quectel_pps_polarity_texts + 23}, /* "0": "low" */
+    {quectel_pps_polarity_texts + 27, quectel_pps_polarity_texts + 29}, /* "1": "high" */
 };
 const nmea_enum_def nmea_quectel_pps_polarity_def = {
-    "quectel_pps_polarity", quectel_pps_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    quectel_pps_polarity_texts, quectel_pps_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char quectel_receiver_mode_texts[] =
+    "quectel_receiver_mode\0" "0\0" "unknown\0" "1\0" "rover\0" "2\0" "base\0";
 static const nmea_enum_code quectel_receiver_mode_codes[] = {
-    {"0", "unknown"},
-    {"1", "rover"},
-    {"2", "base"},
+    {quectel_receiver_mode_texts + 22, quectel_receiver_mode_texts + 24}, /* "0": "unknown" */
+    {quectel_receiver_mode_texts + 32, quectel_receiver_mode_texts + 34}, /* "1": "rover" */
+    {quectel_receiver_mode_texts + 40, quectel_receiver_mode_texts + 42}, /* "2": "base" */
 };
 const nmea_enum_def nmea_quectel_receiver_mode_def = {
-    "quectel_receiver_mode", quectel_receiver_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    quectel_receiver_mode_texts, quectel_receiver_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_rtcm_eph_mode_texts[] =
+    "quectel_rtcm_eph_mode\0" "0\0" "disabled\0" "1\0" "on_update\0" "2\0" "on_update_and_interval\0"
+    "3\0" "every_epoch\0";
 static const nmea_enum_code quectel_rtcm_eph_mode_codes[] = {
-    {"0", "disabled"},
-    {"1", "on_update"},
-    {"2", "on_update_and_interval"},
-    {"3", "every_epoch"},
+    {quectel_rtcm_eph_mode_texts + 22, quectel_rtcm_eph_mode_texts + 24}, /* "0": "disabled" */
+    {quectel_rtcm_eph_mode_texts + 33, quectel_rtcm_eph_mode_texts + 35}, /* "1": "on_update" */
+    {quectel_rtcm_eph_mode_texts + 45, quectel_rtcm_eph_mode_texts + 47}, /* "2": "on_update_and_interval" */
+    {quectel_rtcm_eph_mode_texts + 70, quectel_rtcm_eph_mode_texts + 72}, /* "3": "every_epoch" */
 };
 const nmea_enum_def nmea_quectel_rtcm_eph_mode_def = {
-    "quectel_rtcm_eph_mode", quectel_rtcm_eph_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    quectel_rtcm_eph_mode_texts, quectel_rtcm_eph_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_rtk_diff_mode_texts[] =
+    "quectel_rtk_diff_mode\0" "0\0" "disabled\0" "1\0" "auto\0" "2\0" "rtd_only\0";
 static const nmea_enum_code quectel_rtk_diff_mode_codes[] = {
-    {"0", "disabled"},
-    {"1", "auto"},
-    {"2", "rtd_only"},
+    {quectel_rtk_diff_mode_texts + 22, quectel_rtk_diff_mode_texts + 24}, /* "0": "disabled" */
+    {quectel_rtk_diff_mode_texts + 33, quectel_rtk_diff_mode_texts + 35}, /* "1": "auto" */
+    {quectel_rtk_diff_mode_texts + 40, quectel_rtk_diff_mode_texts + 42}, /* "2": "rtd_only" */
 };
 const nmea_enum_def nmea_quectel_rtk_diff_mode_def = {
-    "quectel_rtk_diff_mode", quectel_rtk_diff_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    quectel_rtk_diff_mode_texts, quectel_rtk_diff_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_rtk_rel_mode_texts[] =
+    "quectel_rtk_rel_mode\0" "1\0" "absolute\0" "2\0" "relative\0";
 static const nmea_enum_code quectel_rtk_rel_mode_codes[] = {
-    {"1", "absolute"},
-    {"2", "relative"},
+    {quectel_rtk_rel_mode_texts + 21, quectel_rtk_rel_mode_texts + 23}, /* "1": "absolute" */
+    {quectel_rtk_rel_mode_texts + 32, quectel_rtk_rel_mode_texts + 34}, /* "2": "relative" */
 };
 const nmea_enum_def nmea_quectel_rtk_rel_mode_def = {
-    "quectel_rtk_rel_mode", quectel_rtk_rel_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    quectel_rtk_rel_mode_texts, quectel_rtk_rel_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_rtk_source_type_texts[] =
+    "quectel_rtk_source_type\0" "0\0" "auto\0" "1\0" "normal\0" "2\0" "wide_lane\0";
 static const nmea_enum_code quectel_rtk_source_type_codes[] = {
-    {"0", "auto"},
-    {"1", "normal"},
-    {"2", "wide_lane"},
+    {quectel_rtk_source_type_texts + 24, quectel_rtk_source_type_texts + 26}, /* "0": "auto" */
+    {quectel_rtk_source_type_texts + 31, quectel_rtk_source_type_texts + 33}, /* "1": "normal" */
+    {quectel_rtk_source_type_texts + 40, quectel_rtk_source_type_texts + 42}, /* "2": "wide_lane" */
 };
 const nmea_enum_def nmea_quectel_rtk_source_type_def = {
-    "quectel_rtk_source_type", quectel_rtk_source_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    quectel_rtk_source_type_texts, quectel_rtk_source_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_solution_type_texts[] =
+    "quectel_solution_type\0" "0\0" "no_fix\0" "1\0" "single\0" "2\0" "sbas\0" "5\0" "dgnss\0" "8\0"
+    "rtk_float\0" "12\0" "rtk_fixed\0";
 static const nmea_enum_code quectel_solution_type_codes[] = {
-    {"0", "no_fix"},
-    {"1", "single"},
-    {"2", "sbas"},
-    {"5", "dgnss"},
-    {"8", "rtk_float"},
-    {"12", "rtk_fixed"},
+    {quectel_solution_type_texts + 22, quectel_solution_type_texts + 24}, /* "0": "no_fix" */
+    {quectel_solution_type_texts + 31, quectel_solution_type_texts + 33}, /* "1": "single" */
+    {quectel_solution_type_texts + 40, quectel_solution_type_texts + 42}, /* "2": "sbas" */
+    {quectel_solution_type_texts + 47, quectel_solution_type_texts + 49}, /* "5": "dgnss" */
+    {quectel_solution_type_texts + 55, quectel_solution_type_texts + 57}, /* "8": "rtk_float" */
+    {quectel_solution_type_texts + 67, quectel_solution_type_texts + 70}, /* "12": "rtk_fixed" */
 };
 const nmea_enum_def nmea_quectel_solution_type_def = {
-    "quectel_solution_type", quectel_solution_type_codes, 6, 1, 2, NMEA_CODES_DIGITS
+    quectel_solution_type_texts, quectel_solution_type_codes, 6, 1, 2, NMEA_CODES_DIGITS
 };
 
+static const char quectel_stop_bits_texts[] =
+    "quectel_stop_bits\0" "1\0" "one\0" "2\0" "two\0";
 static const nmea_enum_code quectel_stop_bits_codes[] = {
-    {"1", "one"},
-    {"2", "two"},
+    {quectel_stop_bits_texts + 18, quectel_stop_bits_texts + 20}, /* "1": "one" */
+    {quectel_stop_bits_texts + 24, quectel_stop_bits_texts + 26}, /* "2": "two" */
 };
 const nmea_enum_def nmea_quectel_stop_bits_def = {
-    "quectel_stop_bits", quectel_stop_bits_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    quectel_stop_bits_texts, quectel_stop_bits_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_svin_mode_texts[] =
+    "quectel_svin_mode\0" "0\0" "disabled\0" "1\0" "survey_in\0" "2\0" "fixed\0";
 static const nmea_enum_code quectel_svin_mode_codes[] = {
-    {"0", "disabled"},
-    {"1", "survey_in"},
-    {"2", "fixed"},
+    {quectel_svin_mode_texts + 18, quectel_svin_mode_texts + 20}, /* "0": "disabled" */
+    {quectel_svin_mode_texts + 29, quectel_svin_mode_texts + 31}, /* "1": "survey_in" */
+    {quectel_svin_mode_texts + 41, quectel_svin_mode_texts + 43}, /* "2": "fixed" */
 };
 const nmea_enum_def nmea_quectel_svin_mode_def = {
-    "quectel_svin_mode", quectel_svin_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    quectel_svin_mode_texts, quectel_svin_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_svin_valid_texts[] =
+    "quectel_svin_valid\0" "0\0" "invalid\0" "1\0" "in_progress\0" "2\0" "valid\0";
 static const nmea_enum_code quectel_svin_valid_codes[] = {
-    {"0", "invalid"},
-    {"1", "in_progress"},
-    {"2", "valid"},
+    {quectel_svin_valid_texts + 19, quectel_svin_valid_texts + 21}, /* "0": "invalid" */
+    {quectel_svin_valid_texts + 29, quectel_svin_valid_texts + 31}, /* "1": "in_progress" */
+    {quectel_svin_valid_texts + 43, quectel_svin_valid_texts + 45}, /* "2": "valid" */
 };
 const nmea_enum_def nmea_quectel_svin_valid_def = {
-    "quectel_svin_valid", quectel_svin_valid_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    quectel_svin_valid_texts, quectel_svin_valid_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_text_id_texts[] =
+    "quectel_text_id\0" "01\0" "notice\0" "02\0" "warning\0" "03\0" "error\0";
 static const nmea_enum_code quectel_text_id_codes[] = {
-    {"01", "notice"},
-    {"02", "warning"},
-    {"03", "error"},
+    {quectel_text_id_texts + 16, quectel_text_id_texts + 19}, /* "01": "notice" */
+    {quectel_text_id_texts + 26, quectel_text_id_texts + 29}, /* "02": "warning" */
+    {quectel_text_id_texts + 37, quectel_text_id_texts + 40}, /* "03": "error" */
 };
 const nmea_enum_def nmea_quectel_text_id_def = {
-    "quectel_text_id", quectel_text_id_codes, 3, 2, 2, NMEA_CODES_DIGITS
+    quectel_text_id_texts, quectel_text_id_codes, 3, 2, 2, NMEA_CODES_DIGITS
 };
 
+static const char quectel_time_reference_texts[] =
+    "quectel_time_reference\0" "1\0" "gps\0" "4\0" "reserved\0";
 static const nmea_enum_code quectel_time_reference_codes[] = {
-    {"1", "gps"},
-    {"4", "reserved"},
+    {quectel_time_reference_texts + 23, quectel_time_reference_texts + 25}, /* "1": "gps" */
+    {quectel_time_reference_texts + 29, quectel_time_reference_texts + 31}, /* "4": "reserved" */
 };
 const nmea_enum_def nmea_quectel_time_reference_def = {
-    "quectel_time_reference", quectel_time_reference_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    quectel_time_reference_texts, quectel_time_reference_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char quectel_time_status_texts[] =
+    "quectel_time_status\0" "0\0" "invalid\0" "1\0" "valid\0";
 static const nmea_enum_code quectel_time_status_codes[] = {
-    {"0", "invalid"},
-    {"1", "valid"},
+    {quectel_time_status_texts + 20, quectel_time_status_texts + 22}, /* "0": "invalid" */
+    {quectel_time_status_texts + 30, quectel_time_status_texts + 32}, /* "1": "valid" */
 };
 const nmea_enum_def nmea_quectel_time_status_def = {
-    "quectel_time_status", quectel_time_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    quectel_time_status_texts, quectel_time_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char quectel_uart_index_texts[] =
+    "quectel_uart_index\0" "1\0" "uart1\0" "2\0" "uart2\0" "3\0" "uart3\0";
 static const nmea_enum_code quectel_uart_index_codes[] = {
-    {"1", "uart1"},
-    {"2", "uart2"},
-    {"3", "uart3"},
+    {quectel_uart_index_texts + 19, quectel_uart_index_texts + 21}, /* "1": "uart1" */
+    {quectel_uart_index_texts + 27, quectel_uart_index_texts + 29}, /* "2": "uart2" */
+    {quectel_uart_index_texts + 35, quectel_uart_index_texts + 37}, /* "3": "uart3" */
 };
 const nmea_enum_def nmea_quectel_uart_index_def = {
-    "quectel_uart_index", quectel_uart_index_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    quectel_uart_index_texts, quectel_uart_index_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char rlm_message_code_texts[] =
+    "rlm_message_code\0" "0\0" "reserved_0\0" "1\0" "acknowledgement\0" "2\0" "command\0" "3\0"
+    "message\0" "4\0" "reserved_4\0" "5\0" "reserved_5\0" "6\0" "reserved_6\0" "7\0" "reserved_7\0"
+    "8\0" "reserved_8\0" "9\0" "reserved_9\0" "A\0" "reserved_a\0" "B\0" "reserved_b\0" "C\0"
+    "reserved_c\0" "D\0" "reserved_d\0" "E\0" "reserved_e\0" "F\0" "test\0";
 static const nmea_enum_code rlm_message_code_codes[] = {
-    {"0", "reserved_0"},
-    {"1", "acknowledgement"},
-    {"2", "command"},
-    {"3", "message"},
-    {"4", "reserved_4"},
-    {"5", "reserved_5"},
-    {"6", "reserved_6"},
-    {"7", "reserved_7"},
-    {"8", "reserved_8"},
-    {"9", "reserved_9"},
-    {"A", "reserved_a"},
-    {"B", "reserved_b"},
-    {"C", "reserved_c"},
-    {"D", "reserved_d"},
-    {"E", "reserved_e"},
-    {"F", "test"},
+    {rlm_message_code_texts + 17, rlm_message_code_texts + 19}, /* "0": "reserved_0" */
+    {rlm_message_code_texts + 30, rlm_message_code_texts + 32}, /* "1": "acknowledgement" */
+    {rlm_message_code_texts + 48, rlm_message_code_texts + 50}, /* "2": "command" */
+    {rlm_message_code_texts + 58, rlm_message_code_texts + 60}, /* "3": "message" */
+    {rlm_message_code_texts + 68, rlm_message_code_texts + 70}, /* "4": "reserved_4" */
+    {rlm_message_code_texts + 81, rlm_message_code_texts + 83}, /* "5": "reserved_5" */
+    {rlm_message_code_texts + 94, rlm_message_code_texts + 96}, /* "6": "reserved_6" */
+    {rlm_message_code_texts + 107, rlm_message_code_texts + 109}, /* "7": "reserved_7" */
+    {rlm_message_code_texts + 120, rlm_message_code_texts + 122}, /* "8": "reserved_8" */
+    {rlm_message_code_texts + 133, rlm_message_code_texts + 135}, /* "9": "reserved_9" */
+    {rlm_message_code_texts + 146, rlm_message_code_texts + 148}, /* "A": "reserved_a" */
+    {rlm_message_code_texts + 159, rlm_message_code_texts + 161}, /* "B": "reserved_b" */
+    {rlm_message_code_texts + 172, rlm_message_code_texts + 174}, /* "C": "reserved_c" */
+    {rlm_message_code_texts + 185, rlm_message_code_texts + 187}, /* "D": "reserved_d" */
+    {rlm_message_code_texts + 198, rlm_message_code_texts + 200}, /* "E": "reserved_e" */
+    {rlm_message_code_texts + 211, rlm_message_code_texts + 213}, /* "F": "test" */
 };
 const nmea_enum_def nmea_rlm_message_code_def = {
-    "rlm_message_code", rlm_message_code_codes, 16, 1, 1, NMEA_CODES_ALNUM
+    rlm_message_code_texts, rlm_message_code_codes, 16, 1, 1, NMEA_CODES_ALNUM
 };
 
+static const char rmb_arrival_status_texts[] =
+    "rmb_arrival_status\0" "A\0" "arrived\0" "V\0" "not_arrived\0";
 static const nmea_enum_code rmb_arrival_status_codes[] = {
-    {"A", "arrived"},
-    {"V", "not_arrived"},
+    {rmb_arrival_status_texts + 19, rmb_arrival_status_texts + 21}, /* "A": "arrived" */
+    {rmb_arrival_status_texts + 29, rmb_arrival_status_texts + 31}, /* "V": "not_arrived" */
 };
 const nmea_enum_def nmea_rmb_arrival_status_def = {
-    "rmb_arrival_status", rmb_arrival_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    rmb_arrival_status_texts, rmb_arrival_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char rmc_mag_var_dir_texts[] =
+    "rmc_mag_var_dir\0" "E\0" "east\0" "W\0" "west\0";
 static const nmea_enum_code rmc_mag_var_dir_codes[] = {
-    {"E", "east"},
-    {"W", "west"},
+    {rmc_mag_var_dir_texts + 16, rmc_mag_var_dir_texts + 18}, /* "E": "east" */
+    {rmc_mag_var_dir_texts + 23, rmc_mag_var_dir_texts + 25}, /* "W": "west" */
 };
 const nmea_enum_def nmea_rmc_mag_var_dir_def = {
-    "rmc_mag_var_dir", rmc_mag_var_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    rmc_mag_var_dir_texts, rmc_mag_var_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char rpm_source_texts[] =
+    "rpm_source\0" "S\0" "shaft\0" "E\0" "engine\0";
 static const nmea_enum_code rpm_source_codes[] = {
-    {"S", "shaft"},
-    {"E", "engine"},
+    {rpm_source_texts + 11, rpm_source_texts + 13}, /* "S": "shaft" */
+    {rpm_source_texts + 19, rpm_source_texts + 21}, /* "E": "engine" */
 };
 const nmea_enum_def nmea_rpm_source_def = {
-    "rpm_source", rpm_source_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    rpm_source_texts, rpm_source_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char rrt_application_status_texts[] =
+    "rrt_application_status\0" "A\0" "accepted\0" "V\0" "rejected\0" "P\0" "pending\0" "N\0"
+    "not_applicable\0";
 static const nmea_enum_code rrt_application_status_codes[] = {
-    {"A", "accepted"},
-    {"V", "rejected"},
-    {"P", "pending"},
-    {"N", "not_applicable"},
+    {rrt_application_status_texts + 23, rrt_application_status_texts + 25}, /* "A": "accepted" */
+    {rrt_application_status_texts + 34, rrt_application_status_texts + 36}, /* "V": "rejected" */
+    {rrt_application_status_texts + 45, rrt_application_status_texts + 47}, /* "P": "pending" */
+    {rrt_application_status_texts + 55, rrt_application_status_texts + 57}, /* "N": "not_applicable" */
 };
 const nmea_enum_def nmea_rrt_application_status_def = {
-    "rrt_application_status", rrt_application_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    rrt_application_status_texts, rrt_application_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char rrt_file_status_texts[] =
+    "rrt_file_status\0" "A\0" "received\0" "E\0" "error\0";
 static const nmea_enum_code rrt_file_status_codes[] = {
-    {"A", "received"},
-    {"E", "error"},
+    {rrt_file_status_texts + 16, rrt_file_status_texts + 18}, /* "A": "received" */
+    {rrt_file_status_texts + 27, rrt_file_status_texts + 29}, /* "E": "error" */
 };
 const nmea_enum_def nmea_rrt_file_status_def = {
-    "rrt_file_status", rrt_file_status_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    rrt_file_status_texts, rrt_file_status_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char rrt_transfer_type_texts[] =
+    "rrt_transfer_type\0" "M\0" "monitored\0" "A\0" "alternate\0" "Q\0" "query\0";
 static const nmea_enum_code rrt_transfer_type_codes[] = {
-    {"M", "monitored"},
-    {"A", "alternate"},
-    {"Q", "query"},
+    {rrt_transfer_type_texts + 18, rrt_transfer_type_texts + 20}, /* "M": "monitored" */
+    {rrt_transfer_type_texts + 30, rrt_transfer_type_texts + 32}, /* "A": "alternate" */
+    {rrt_transfer_type_texts + 42, rrt_transfer_type_texts + 44}, /* "Q": "query" */
 };
 const nmea_enum_def nmea_rrt_transfer_type_def = {
-    "rrt_transfer_type", rrt_transfer_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    rrt_transfer_type_texts, rrt_transfer_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char rsd_display_rotation_texts[] =
+    "rsd_display_rotation\0" "C\0" "course_up\0" "H\0" "head_up\0" "N\0" "north_up\0";
 static const nmea_enum_code rsd_display_rotation_codes[] = {
-    {"C", "course_up"},
-    {"H", "head_up"},
-    {"N", "north_up"},
+    {rsd_display_rotation_texts + 21, rsd_display_rotation_texts + 23}, /* "C": "course_up" */
+    {rsd_display_rotation_texts + 33, rsd_display_rotation_texts + 35}, /* "H": "head_up" */
+    {rsd_display_rotation_texts + 43, rsd_display_rotation_texts + 45}, /* "N": "north_up" */
 };
 const nmea_enum_def nmea_rsd_display_rotation_def = {
-    "rsd_display_rotation", rsd_display_rotation_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    rsd_display_rotation_texts, rsd_display_rotation_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char rte_mode_texts[] =
+    "rte_mode\0" "c\0" "complete\0" "w\0" "working\0";
 static const nmea_enum_code rte_mode_codes[] = {
-    {"c", "complete"},
-    {"w", "working"},
+    {rte_mode_texts + 9, rte_mode_texts + 11}, /* "c": "complete" */
+    {rte_mode_texts + 20, rte_mode_texts + 22}, /* "w": "working" */
 };
 const nmea_enum_def nmea_rte_mode_def = {
-    "rte_mode", rte_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    rte_mode_texts, rte_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char seapath_quality_texts[] =
+    "seapath_quality\0" "0\0" "normal\0" "1\0" "reduced\0" "2\0" "invalid\0";
 static const nmea_enum_code seapath_quality_codes[] = {
-    {"0", "normal"},
-    {"1", "reduced"},
-    {"2", "invalid"},
+    {seapath_quality_texts + 16, seapath_quality_texts + 18}, /* "0": "normal" */
+    {seapath_quality_texts + 25, seapath_quality_texts + 27}, /* "1": "reduced" */
+    {seapath_quality_texts + 35, seapath_quality_texts + 37}, /* "2": "invalid" */
 };
 const nmea_enum_def nmea_seapath_quality_def = {
-    "seapath_quality", seapath_quality_codes, 3, 1, 1, NMEA_CODES_CLOSED
+    seapath_quality_texts, seapath_quality_codes, 3, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char septentrio_base_motion_texts[] =
+    "septentrio_base_motion\0" "0\0" "static\0" "1\0" "moving\0";
 static const nmea_enum_code septentrio_base_motion_codes[] = {
-    {"0", "static"},
-    {"1", "moving"},
+    {septentrio_base_motion_texts + 23, septentrio_base_motion_texts + 25}, /* "0": "static" */
+    {septentrio_base_motion_texts + 32, septentrio_base_motion_texts + 34}, /* "1": "moving" */
 };
 const nmea_enum_def nmea_septentrio_base_motion_def = {
-    "septentrio_base_motion", septentrio_base_motion_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    septentrio_base_motion_texts, septentrio_base_motion_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char septentrio_baseline_quality_texts[] =
+    "septentrio_baseline_quality\0" "0\0" "invalid\0" "2\0" "dgps\0" "4\0" "rtk_fixed\0" "5\0"
+    "rtk_float\0";
 static const nmea_enum_code septentrio_baseline_quality_codes[] = {
-    {"0", "invalid"},
-    {"2", "dgps"},
-    {"4", "rtk_fixed"},
-    {"5", "rtk_float"},
+    {septentrio_baseline_quality_texts + 28, septentrio_baseline_quality_texts + 30}, /* "0": "invalid" */
+    {septentrio_baseline_quality_texts + 38, septentrio_baseline_quality_texts + 40}, /* "2": "dgps" */
+    {septentrio_baseline_quality_texts + 45, septentrio_baseline_quality_texts + 47}, /* "4": "rtk_fixed" */
+    {septentrio_baseline_quality_texts + 57, septentrio_baseline_quality_texts + 59}, /* "5": "rtk_float" */
 };
 const nmea_enum_def nmea_septentrio_baseline_quality_def = {
-    "septentrio_baseline_quality", septentrio_baseline_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    septentrio_baseline_quality_texts, septentrio_baseline_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char signal_id_texts[] =
+    "signal_id\0" "0\0" "all_signals\0" "1\0" "signal_1\0" "2\0" "signal_2\0" "3\0" "signal_3\0" "4\0"
+    "signal_4\0" "5\0" "signal_5\0" "6\0" "signal_6\0" "7\0" "signal_7\0" "8\0" "signal_8\0" "9\0"
+    "signal_9\0" "A\0" "signal_a\0" "B\0" "signal_b\0" "C\0" "signal_c\0";
 static const nmea_enum_code signal_id_codes[] = {
-    {"0", "all_signals"},
-    {"1", "signal_1"},
-    {"2", "signal_2"},
-    {"3", "signal_3"},
-    {"4", "signal_4"},
-    {"5", "signal_5"},
-    {"6", "signal_6"},
-    {"7", "signal_7"},
-    {"8", "signal_8"},
-    {"9", "signal_9"},
-    {"A", "signal_a"},
-    {"B", "signal_b"},
-    {"C", "signal_c"},
+    {signal_id_texts + 10, signal_id_texts + 12}, /* "0": "all_signals" */
+    {signal_id_texts + 24, signal_id_texts + 26}, /* "1": "signal_1" */
+    {signal_id_texts + 35, signal_id_texts + 37}, /* "2": "signal_2" */
+    {signal_id_texts + 46, signal_id_texts + 48}, /* "3": "signal_3" */
+    {signal_id_texts + 57, signal_id_texts + 59}, /* "4": "signal_4" */
+    {signal_id_texts + 68, signal_id_texts + 70}, /* "5": "signal_5" */
+    {signal_id_texts + 79, signal_id_texts + 81}, /* "6": "signal_6" */
+    {signal_id_texts + 90, signal_id_texts + 92}, /* "7": "signal_7" */
+    {signal_id_texts + 101, signal_id_texts + 103}, /* "8": "signal_8" */
+    {signal_id_texts + 112, signal_id_texts + 114}, /* "9": "signal_9" */
+    {signal_id_texts + 123, signal_id_texts + 125}, /* "A": "signal_a" */
+    {signal_id_texts + 134, signal_id_texts + 136}, /* "B": "signal_b" */
+    {signal_id_texts + 145, signal_id_texts + 147}, /* "C": "signal_c" */
 };
 const nmea_enum_def nmea_signal_id_def = {
-    "signal_id", signal_id_codes, 13, 1, 1, NMEA_CODES_ALNUM
+    signal_id_texts, signal_id_codes, 13, 1, 1, NMEA_CODES_ALNUM
 };
 
+static const char sirf_baud_texts[] =
+    "sirf_baud\0" "1200\0" "baud_1200\0" "2400\0" "baud_2400\0" "4800\0" "baud_4800\0" "9600\0"
+    "baud_9600\0" "19200\0" "baud_19200\0" "38400\0" "baud_38400\0";
 static const nmea_enum_code sirf_baud_codes[] = {
-    {"1200", "baud_1200"},
-    {"2400", "baud_2400"},
-    {"4800", "baud_4800"},
-    {"9600", "baud_9600"},
-    {"19200", "baud_19200"},
-    {"38400", "baud_38400"},
+    {sirf_baud_texts + 10, sirf_baud_texts + 15}, /* "1200": "baud_1200" */
+    {sirf_baud_texts + 25, sirf_baud_texts + 30}, /* "2400": "baud_2400" */
+    {sirf_baud_texts + 40, sirf_baud_texts + 45}, /* "4800": "baud_4800" */
+    {sirf_baud_texts + 55, sirf_baud_texts + 60}, /* "9600": "baud_9600" */
+    {sirf_baud_texts + 70, sirf_baud_texts + 76}, /* "19200": "baud_19200" */
+    {sirf_baud_texts + 87, sirf_baud_texts + 93}, /* "38400": "baud_38400" */
 };
 const nmea_enum_def nmea_sirf_baud_def = {
-    "sirf_baud", sirf_baud_codes, 6, 4, 5, NMEA_CODES_DIGITS
+    sirf_baud_texts, sirf_baud_codes, 6, 4, 5, NMEA_CODES_DIGITS
 };
 
+static const char sirf_checksum_enable_texts[] =
+    "sirf_checksum_enable\0" "00\0" "disabled\0" "01\0" "enabled\0";
 static const nmea_enum_code sirf_checksum_enable_codes[] = {
-    {"00", "disabled"},
-    {"01", "enabled"},
+    {sirf_checksum_enable_texts + 21, sirf_checksum_enable_texts + 24}, /* "00": "disabled" */
+    {sirf_checksum_enable_texts + 33, sirf_checksum_enable_texts + 36}, /* "01": "enabled" */
 };
 const nmea_enum_def nmea_sirf_checksum_enable_def = {
-    "sirf_checksum_enable", sirf_checksum_enable_codes, 2, 2, 2, NMEA_CODES_CLOSED
+    sirf_checksum_enable_texts, sirf_checksum_enable_codes, 2, 2, 2, NMEA_CODES_CLOSED
 };
 
+static const char sirf_checksum_enable_digit_texts[] =
+    "sirf_checksum_enable_digit\0" "0\0" "disabled\0" "1\0" "enabled\0";
 static const nmea_enum_code sirf_checksum_enable_digit_codes[] = {
-    {"0", "disabled"},
-    {"1", "enabled"},
+    {sirf_checksum_enable_digit_texts + 27, sirf_checksum_enable_digit_texts + 29}, /* "0": "disabled" */
+    {sirf_checksum_enable_digit_texts + 38, sirf_checksum_enable_digit_texts + 40}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_sirf_checksum_enable_digit_def = {
-    "sirf_checksum_enable_digit", sirf_checksum_enable_digit_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    sirf_checksum_enable_digit_texts, sirf_checksum_enable_digit_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char sirf_debug_texts[] =
+    "sirf_debug\0" "0\0" "off\0" "1\0" "on\0";
 static const nmea_enum_code sirf_debug_codes[] = {
-    {"0", "off"},
-    {"1", "on"},
+    {sirf_debug_texts + 11, sirf_debug_texts + 13}, /* "0": "off" */
+    {sirf_debug_texts + 17, sirf_debug_texts + 19}, /* "1": "on" */
 };
 const nmea_enum_def nmea_sirf_debug_def = {
-    "sirf_debug", sirf_debug_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    sirf_debug_texts, sirf_debug_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char sirf_nmea_message_texts[] =
+    "sirf_nmea_message\0" "00\0" "gga\0" "01\0" "gll\0" "02\0" "gsa\0" "03\0" "gsv\0" "04\0" "rmc\0"
+    "05\0" "vtg\0";
 static const nmea_enum_code sirf_nmea_message_codes[] = {
-    {"00", "gga"},
-    {"01", "gll"},
-    {"02", "gsa"},
-    {"03", "gsv"},
-    {"04", "rmc"},
-    {"05", "vtg"},
+    {sirf_nmea_message_texts + 18, sirf_nmea_message_texts + 21}, /* "00": "gga" */
+    {sirf_nmea_message_texts + 25, sirf_nmea_message_texts + 28}, /* "01": "gll" */
+    {sirf_nmea_message_texts + 32, sirf_nmea_message_texts + 35}, /* "02": "gsa" */
+    {sirf_nmea_message_texts + 39, sirf_nmea_message_texts + 42}, /* "03": "gsv" */
+    {sirf_nmea_message_texts + 46, sirf_nmea_message_texts + 49}, /* "04": "rmc" */
+    {sirf_nmea_message_texts + 53, sirf_nmea_message_texts + 56}, /* "05": "vtg" */
 };
 const nmea_enum_def nmea_sirf_nmea_message_def = {
-    "sirf_nmea_message", sirf_nmea_message_codes, 6, 2, 2, NMEA_CODES_DIGITS
+    sirf_nmea_message_texts, sirf_nmea_message_codes, 6, 2, 2, NMEA_CODES_DIGITS
 };
 
+static const char sirf_nmea_message_digit_texts[] =
+    "sirf_nmea_message_digit\0" "0\0" "gga\0" "1\0" "gll\0" "2\0" "gsa\0" "3\0" "gsv\0" "4\0" "rmc\0"
+    "5\0" "vtg\0";
 static const nmea_enum_code sirf_nmea_message_digit_codes[] = {
-    {"0", "gga"},
-    {"1", "gll"},
-    {"2", "gsa"},
-    {"3", "gsv"},
-    {"4", "rmc"},
-    {"5", "vtg"},
+    {sirf_nmea_message_digit_texts + 24, sirf_nmea_message_digit_texts + 26}, /* "0": "gga" */
+    {sirf_nmea_message_digit_texts + 30, sirf_nmea_message_digit_texts + 32}, /* "1": "gll" */
+    {sirf_nmea_message_digit_texts + 36, sirf_nmea_message_digit_texts + 38}, /* "2": "gsa" */
+    {sirf_nmea_message_digit_texts + 42, sirf_nmea_message_digit_texts + 44}, /* "3": "gsv" */
+    {sirf_nmea_message_digit_texts + 48, sirf_nmea_message_digit_texts + 50}, /* "4": "rmc" */
+    {sirf_nmea_message_digit_texts + 54, sirf_nmea_message_digit_texts + 56}, /* "5": "vtg" */
 };
 const nmea_enum_def nmea_sirf_nmea_message_digit_def = {
-    "sirf_nmea_message_digit", sirf_nmea_message_digit_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    sirf_nmea_message_digit_texts, sirf_nmea_message_digit_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char sirf_ok_to_send_texts[] =
+    "sirf_ok_to_send\0" "0\0" "not_ok\0" "1\0" "ok\0";
 static const nmea_enum_code sirf_ok_to_send_codes[] = {
-    {"0", "not_ok"},
-    {"1", "ok"},
+    {sirf_ok_to_send_texts + 16, sirf_ok_to_send_texts + 18}, /* "0": "not_ok" */
+    {sirf_ok_to_send_texts + 25, sirf_ok_to_send_texts + 27}, /* "1": "ok" */
 };
 const nmea_enum_def nmea_sirf_ok_to_send_def = {
-    "sirf_ok_to_send", sirf_ok_to_send_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    sirf_ok_to_send_texts, sirf_ok_to_send_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char sirf_parity_texts[] =
+    "sirf_parity\0" "0\0" "none\0" "1\0" "odd\0" "2\0" "even\0";
 static const nmea_enum_code sirf_parity_codes[] = {
-    {"0", "none"},
-    {"1", "odd"},
-    {"2", "even"},
+    {sirf_parity_texts + 12, sirf_parity_texts + 14}, /* "0": "none" */
+    {sirf_parity_texts + 19, sirf_parity_texts + 21}, /* "1": "odd" */
+    {sirf_parity_texts + 25, sirf_parity_texts + 27}, /* "2": "even" */
 };
 const nmea_enum_def nmea_sirf_parity_def = {
-    "sirf_parity", sirf_parity_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    sirf_parity_texts, sirf_parity_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char sirf_protocol_texts[] =
+    "sirf_protocol\0" "0\0" "sirf_binary\0" "1\0" "nmea\0";
 static const nmea_enum_code sirf_protocol_codes[] = {
-    {"0", "sirf_binary"},
-    {"1", "nmea"},
+    {sirf_protocol_texts + 14, sirf_protocol_texts + 16}, /* "0": "sirf_binary" */
+    {sirf_protocol_texts + 28, sirf_protocol_texts + 30}, /* "1": "nmea" */
 };
 const nmea_enum_def nmea_sirf_protocol_def = {
-    "sirf_protocol", sirf_protocol_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    sirf_protocol_texts, sirf_protocol_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char sirf_rate_mode_texts[] =
+    "sirf_rate_mode\0" "00\0" "set_rate\0" "01\0" "query\0";
 static const nmea_enum_code sirf_rate_mode_codes[] = {
-    {"00", "set_rate"},
-    {"01", "query"},
+    {sirf_rate_mode_texts + 15, sirf_rate_mode_texts + 18}, /* "00": "set_rate" */
+    {sirf_rate_mode_texts + 27, sirf_rate_mode_texts + 30}, /* "01": "query" */
 };
 const nmea_enum_def nmea_sirf_rate_mode_def = {
-    "sirf_rate_mode", sirf_rate_mode_codes, 2, 2, 2, NMEA_CODES_DIGITS
+    sirf_rate_mode_texts, sirf_rate_mode_codes, 2, 2, 2, NMEA_CODES_DIGITS
 };
 
+static const char sirf_rate_mode_digit_texts[] =
+    "sirf_rate_mode_digit\0" "0\0" "set_rate\0" "1\0" "query\0";
 static const nmea_enum_code sirf_rate_mode_digit_codes[] = {
-    {"0", "set_rate"},
-    {"1", "query"},
+    {sirf_rate_mode_digit_texts + 21, sirf_rate_mode_digit_texts + 23}, /* "0": "set_rate" */
+    {sirf_rate_mode_digit_texts + 32, sirf_rate_mode_digit_texts + 34}, /* "1": "query" */
 };
 const nmea_enum_def nmea_sirf_rate_mode_digit_def = {
-    "sirf_rate_mode_digit", sirf_rate_mode_digit_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    sirf_rate_mode_digit_texts, sirf_rate_mode_digit_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char skytraq_availability_texts[] =
+    "skytraq_availability\0" "0\0" "not_available\0" "1\0" "available\0";
 static const nmea_enum_code skytraq_availability_codes[] = {
-    {"0", "not_available"},
-    {"1", "available"},
+    {skytraq_availability_texts + 21, skytraq_availability_texts + 23}, /* "0": "not_available" */
+    {skytraq_availability_texts + 37, skytraq_availability_texts + 39}, /* "1": "available" */
 };
 const nmea_enum_def nmea_skytraq_availability_def = {
-    "skytraq_availability", skytraq_availability_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    skytraq_availability_texts, skytraq_availability_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char skytraq_calibration_texts[] =
+    "skytraq_calibration\0" "0\0" "not_calibrated\0" "1\0" "calibrated\0";
 static const nmea_enum_code skytraq_calibration_codes[] = {
-    {"0", "not_calibrated"},
-    {"1", "calibrated"},
+    {skytraq_calibration_texts + 20, skytraq_calibration_texts + 22}, /* "0": "not_calibrated" */
+    {skytraq_calibration_texts + 37, skytraq_calibration_texts + 39}, /* "1": "calibrated" */
 };
 const nmea_enum_def nmea_skytraq_calibration_def = {
-    "skytraq_calibration", skytraq_calibration_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    skytraq_calibration_texts, skytraq_calibration_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char skytraq_direction_texts[] =
+    "skytraq_direction\0" "0\0" "forward\0" "1\0" "backward\0";
 static const nmea_enum_code skytraq_direction_codes[] = {
-    {"0", "forward"},
-    {"1", "backward"},
+    {skytraq_direction_texts + 18, skytraq_direction_texts + 20}, /* "0": "forward" */
+    {skytraq_direction_texts + 28, skytraq_direction_texts + 30}, /* "1": "backward" */
 };
 const nmea_enum_def nmea_skytraq_direction_def = {
-    "skytraq_direction", skytraq_direction_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    skytraq_direction_texts, skytraq_direction_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char skytraq_dr_mode_texts[] =
+    "skytraq_dr_mode\0" "A\0" "gnss_fix\0" "E\0" "dead_reckoning\0" "N\0" "not_valid\0";
 static const nmea_enum_code skytraq_dr_mode_codes[] = {
-    {"A", "gnss_fix"},
-    {"E", "dead_reckoning"},
-    {"N", "not_valid"},
+    {skytraq_dr_mode_texts + 16, skytraq_dr_mode_texts + 18}, /* "A": "gnss_fix" */
+    {skytraq_dr_mode_texts + 27, skytraq_dr_mode_texts + 29}, /* "E": "dead_reckoning" */
+    {skytraq_dr_mode_texts + 44, skytraq_dr_mode_texts + 46}, /* "N": "not_valid" */
 };
 const nmea_enum_def nmea_skytraq_dr_mode_def = {
-    "skytraq_dr_mode", skytraq_dr_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    skytraq_dr_mode_texts, skytraq_dr_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char skytraq_mode_texts[] =
+    "skytraq_mode\0" "A\0" "autonomous\0" "D\0" "differential\0" "E\0" "estimated\0" "F\0" "rtk_float\0"
+    "M\0" "manual_input\0" "N\0" "not_valid\0" "O\0" "float_other\0" "P\0" "precise\0" "R\0"
+    "rtk_fixed\0" "S\0" "simulator\0";
 static const nmea_enum_code skytraq_mode_codes[] = {
-    {"A", "autonomous"},
-    {"D", "differential"},
-    {"E", "estimated"},
-    {"F", "rtk_float"},
-    {"M", "manual_input"},
-    {"N", "not_valid"},
-    {"O", "float_other"},
-    {"P", "precise"},
-    {"R", "rtk_fixed"},
-    {"S", "simulator"},
+    {skytraq_mode_texts + 13, skytraq_mode_texts + 15}, /* "A": "autonomous" */
+    {skytraq_mode_texts + 26, skytraq_mode_texts + 28}, /* "D": "differential" */
+    {skytraq_mode_texts + 41, skytraq_mode_texts + 43}, /* "E": "estimated" */
+    {skytraq_mode_texts + 53, skytraq_mode_texts + 55}, /* "F": "rtk_float" */
+    {skytraq_mode_texts + 65, skytraq_mode_texts + 67}, /* "M": "manual_input" */
+    {skytraq_mode_texts + 80, skytraq_mode_texts + 82}, /* "N": "not_valid" */
+    {skytraq_mode_texts + 92, skytraq_mode_texts + 94}, /* "O": "float_other" */
+    {skytraq_mode_texts + 106, skytraq_mode_texts + 108}, /* "P": "precise" */
+    {skytraq_mode_texts + 116, skytraq_mode_texts + 118}, /* "R": "rtk_fixed" */
+    {skytraq_mode_texts + 128, skytraq_mode_texts + 130}, /* "S": "simulator" */
 };
 const nmea_enum_def nmea_skytraq_mode_def = {
-    "skytraq_mode", skytraq_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    skytraq_mode_texts, skytraq_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char skytraq_receiver_role_texts[] =
+    "skytraq_receiver_role\0" "R\0" "rover\0" "B\0" "base\0";
 static const nmea_enum_code skytraq_receiver_role_codes[] = {
-    {"R", "rover"},
-    {"B", "base"},
+    {skytraq_receiver_role_texts + 22, skytraq_receiver_role_texts + 24}, /* "R": "rover" */
+    {skytraq_receiver_role_texts + 30, skytraq_receiver_role_texts + 32}, /* "B": "base" */
 };
 const nmea_enum_def nmea_skytraq_receiver_role_def = {
-    "skytraq_receiver_role", skytraq_receiver_role_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    skytraq_receiver_role_texts, skytraq_receiver_role_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char sm1_msi_status_texts[] =
+    "sm1_msi_status\0" "A\0" "complete\0" "V\0" "incomplete\0";
 static const nmea_enum_code sm1_msi_status_codes[] = {
-    {"A", "complete"},
-    {"V", "incomplete"},
+    {sm1_msi_status_texts + 15, sm1_msi_status_texts + 17}, /* "A": "complete" */
+    {sm1_msi_status_texts + 26, sm1_msi_status_texts + 28}, /* "V": "incomplete" */
 };
 const nmea_enum_def nmea_sm1_msi_status_def = {
-    "sm1_msi_status", sm1_msi_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    sm1_msi_status_texts, sm1_msi_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char sm1_ocean_region_texts[] =
+    "sm1_ocean_region\0" "0\0" "atlantic_west\0" "1\0" "atlantic_east\0" "2\0" "pacific\0" "3\0"
+    "indian\0" "8\0" "unknown\0" "9\0" "all\0";
 static const nmea_enum_code sm1_ocean_region_codes[] = {
-    {"0", "atlantic_west"},
-    {"1", "atlantic_east"},
-    {"2", "pacific"},
-    {"3", "indian"},
-    {"8", "unknown"},
-    {"9", "all"},
+    {sm1_ocean_region_texts + 17, sm1_ocean_region_texts + 19}, /* "0": "atlantic_west" */
+    {sm1_ocean_region_texts + 33, sm1_ocean_region_texts + 35}, /* "1": "atlantic_east" */
+    {sm1_ocean_region_texts + 49, sm1_ocean_region_texts + 51}, /* "2": "pacific" */
+    {sm1_ocean_region_texts + 59, sm1_ocean_region_texts + 61}, /* "3": "indian" */
+    {sm1_ocean_region_texts + 68, sm1_ocean_region_texts + 70}, /* "8": "unknown" */
+    {sm1_ocean_region_texts + 78, sm1_ocean_region_texts + 80}, /* "9": "all" */
 };
 const nmea_enum_def nmea_sm1_ocean_region_def = {
-    "sm1_ocean_region", sm1_ocean_region_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    sm1_ocean_region_texts, sm1_ocean_region_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char sm1_priority_texts[] =
+    "sm1_priority\0" "1\0" "safety\0" "2\0" "urgency\0" "3\0" "distress\0" "9\0" "unknown\0";
 static const nmea_enum_code sm1_priority_codes[] = {
-    {"1", "safety"},
-    {"2", "urgency"},
-    {"3", "distress"},
-    {"9", "unknown"},
+    {sm1_priority_texts + 13, sm1_priority_texts + 15}, /* "1": "safety" */
+    {sm1_priority_texts + 22, sm1_priority_texts + 24}, /* "2": "urgency" */
+    {sm1_priority_texts + 32, sm1_priority_texts + 34}, /* "3": "distress" */
+    {sm1_priority_texts + 43, sm1_priority_texts + 45}, /* "9": "unknown" */
 };
 const nmea_enum_def nmea_sm1_priority_def = {
-    "sm1_priority", sm1_priority_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    sm1_priority_texts, sm1_priority_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char sm2_subject_texts[] =
+    "sm2_subject\0" "A\0" "navigational_warning\0" "B\0" "meteorological_warning\0" "C\0" "ice_report\0"
+    "D\0" "sar_and_piracy\0" "E\0" "meteorological_forecast\0" "F\0" "pilot_service\0" "G\0" "ais\0"
+    "H\0" "loran\0" "J\0" "satnav\0" "K\0" "other_electronic_navaid\0" "L\0"
+    "other_navigational_warning\0" "V\0" "special_service_v\0" "W\0" "special_service_w\0" "X\0"
+    "special_service_x\0" "Y\0" "special_service_y\0" "Z\0" "no_messages\0";
 static const nmea_enum_code sm2_subject_codes[] = {
-    {"A", "navigational_warning"},
-    {"B", "meteorological_warning"},
-    {"C", "ice_report"},
-    {"D", "sar_and_piracy"},
-    {"E", "meteorological_forecast"},
-    {"F", "pilot_service"},
-    {"G", "ais"},
-    {"H", "loran"},
-    {"J", "satnav"},
-    {"K", "other_electronic_navaid"},
-    {"L", "other_navigational_warning"},
-    {"V", "special_service_v"},
-    {"W", "special_service_w"},
-    {"X", "special_service_x"},
-    {"Y", "special_service_y"},
-    {"Z", "no_messages"},
+    {sm2_subject_texts + 12, sm2_subject_texts + 14}, /* "A": "navigational_warning" */
+    {sm2_subject_texts + 35, sm2_subject_texts + 37}, /* "B": "meteorological_warning" */
+    {sm2_subject_texts + 60, sm2_subject_texts + 62}, /* "C": "ice_report" */
+    {sm2_subject_texts + 73, sm2_subject_texts + 75}, /* "D": "sar_and_piracy" */
+    {sm2_subject_texts + 90, sm2_subject_texts + 92}, /* "E": "meteorological_forecast" */
+    {sm2_subject_texts + 116, sm2_subject_texts + 118}, /* "F": "pilot_service" */
+    {sm2_subject_texts + 132, sm2_subject_texts + 134}, /* "G": "ais" */
+    {sm2_subject_texts + 138, sm2_subject_texts + 140}, /* "H": "loran" */
+    {sm2_subject_texts + 146, sm2_subject_texts + 148}, /* "J": "satnav" */
+    {sm2_subject_texts + 155, sm2_subject_texts + 157}, /* "K": "other_electronic_navaid" */
+    {sm2_subject_texts + 181, sm2_subject_texts + 183}, /* "L": "other_navigational_warning" */
+    {sm2_subject_texts + 210, sm2_subject_texts + 212}, /* "V": "special_service_v" */
+    {sm2_subject_texts + 230, sm2_subject_texts + 232}, /* "W": "special_service_w" */
+    {sm2_subject_texts + 250, sm2_subject_texts + 252}, /* "X": "special_service_x" */
+    {sm2_subject_texts + 270, sm2_subject_texts + 272}, /* "Y": "special_service_y" */
+    {sm2_subject_texts + 290, sm2_subject_texts + 292}, /* "Z": "no_messages" */
 };
 const nmea_enum_def nmea_sm2_subject_def = {
-    "sm2_subject", sm2_subject_codes, 16, 1, 1, NMEA_CODES_LETTERS
+    sm2_subject_texts, sm2_subject_codes, 16, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char spectratime_gps_messages_texts[] =
+    "spectratime_gps_messages\0" "0\0" "ignored\0" "1\0" "none_received\0" "2\0" "partially_ok\0" "3\0"
+    "ok\0";
 static const nmea_enum_code spectratime_gps_messages_codes[] = {
-    {"0", "ignored"},
-    {"1", "none_received"},
-    {"2", "partially_ok"},
-    {"3", "ok"},
+    {spectratime_gps_messages_texts + 25, spectratime_gps_messages_texts + 27}, /* "0": "ignored" */
+    {spectratime_gps_messages_texts + 35, spectratime_gps_messages_texts + 37}, /* "1": "none_received" */
+    {spectratime_gps_messages_texts + 51, spectratime_gps_messages_texts + 53}, /* "2": "partially_ok" */
+    {spectratime_gps_messages_texts + 66, spectratime_gps_messages_texts + 68}, /* "3": "ok" */
 };
 const nmea_enum_def nmea_spectratime_gps_messages_def = {
-    "spectratime_gps_messages", spectratime_gps_messages_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    spectratime_gps_messages_texts, spectratime_gps_messages_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char spectratime_isync_status_texts[] =
+    "spectratime_isync_status\0" "0\0" "warming_up\0" "1\0" "tracking_setup\0" "2\0" "tracking\0" "3\0"
+    "synchronised\0" "4\0" "free_run_tracking_off\0" "5\0" "free_run_reference_unstable\0" "6\0"
+    "free_run_no_reference\0" "7\0" "freeze\0" "8\0" "factory\0" "9\0" "searching_rb_line\0";
 static const nmea_enum_code spectratime_isync_status_codes[] = {
-    {"0", "warming_up"},
-    {"1", "tracking_setup"},
-    {"2", "tracking"},
-    {"3", "synchronised"},
-    {"4", "free_run_tracking_off"},
-    {"5", "free_run_reference_unstable"},
-    {"6", "free_run_no_reference"},
-    {"7", "freeze"},
-    {"8", "factory"},
-    {"9", "searching_rb_line"},
+    {spectratime_isync_status_texts + 25, spectratime_isync_status_texts + 27}, /* "0": "warming_up" */
+    {spectratime_isync_status_texts + 38, spectratime_isync_status_texts + 40}, /* "1": "tracking_setup" */
+    {spectratime_isync_status_texts + 55, spectratime_isync_status_texts + 57}, /* "2": "tracking" */
+    {spectratime_isync_status_texts + 66, spectratime_isync_status_texts + 68}, /* "3": "synchronised" */
+    {spectratime_isync_status_texts + 81, spectratime_isync_status_texts + 83}, /* "4": "free_run_tracking_off" */
+    {spectratime_isync_status_texts + 105, spectratime_isync_status_texts + 107}, /* "5": "free_run_reference_unstable" */
+    {spectratime_isync_status_texts + 135, spectratime_isync_status_texts + 137}, /* "6": "free_run_no_reference" */
+    {spectratime_isync_status_texts + 159, spectratime_isync_status_texts + 161}, /* "7": "freeze" */
+    {spectratime_isync_status_texts + 168, spectratime_isync_status_texts + 170}, /* "8": "factory" */
+    {spectratime_isync_status_texts + 178, spectratime_isync_status_texts + 180}, /* "9": "searching_rb_line" */
 };
 const nmea_enum_def nmea_spectratime_isync_status_def = {
-    "spectratime_isync_status", spectratime_isync_status_codes, 10, 1, 1, NMEA_CODES_DIGITS
+    spectratime_isync_status_texts, spectratime_isync_status_codes, 10, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char spectratime_osc_quality_texts[] =
+    "spectratime_osc_quality\0" "0\0" "warming_up\0" "1\0" "free_run\0" "2\0" "disciplined\0";
 static const nmea_enum_code spectratime_osc_quality_codes[] = {
-    {"0", "warming_up"},
-    {"1", "free_run"},
-    {"2", "disciplined"},
+    {spectratime_osc_quality_texts + 24, spectratime_osc_quality_texts + 26}, /* "0": "warming_up" */
+    {spectratime_osc_quality_texts + 37, spectratime_osc_quality_texts + 39}, /* "1": "free_run" */
+    {spectratime_osc_quality_texts + 48, spectratime_osc_quality_texts + 50}, /* "2": "disciplined" */
 };
 const nmea_enum_def nmea_spectratime_osc_quality_def = {
-    "spectratime_osc_quality", spectratime_osc_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    spectratime_osc_quality_texts, spectratime_osc_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char spectratime_time_transfer_texts[] =
+    "spectratime_time_transfer\0" "0\0" "none\0" "1\0" "manual\0" "2\0" "gps_old\0" "3\0" "gps_fresh\0";
 static const nmea_enum_code spectratime_time_transfer_codes[] = {
-    {"0", "none"},
-    {"1", "manual"},
-    {"2", "gps_old"},
-    {"3", "gps_fresh"},
+    {spectratime_time_transfer_texts + 26, spectratime_time_transfer_texts + 28}, /* "0": "none" */
+    {spectratime_time_transfer_texts + 33, spectratime_time_transfer_texts + 35}, /* "1": "manual" */
+    {spectratime_time_transfer_texts + 42, spectratime_time_transfer_texts + 44}, /* "2": "gps_old" */
+    {spectratime_time_transfer_texts + 52, spectratime_time_transfer_texts + 54}, /* "3": "gps_fresh" */
 };
 const nmea_enum_def nmea_spectratime_time_transfer_def = {
-    "spectratime_time_transfer", spectratime_time_transfer_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    spectratime_time_transfer_texts, spectratime_time_transfer_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char spw_password_level_texts[] =
+    "spw_password_level\0" "1\0" "user\0" "2\0" "administrator\0";
 static const nmea_enum_code spw_password_level_codes[] = {
-    {"1", "user"},
-    {"2", "administrator"},
+    {spw_password_level_texts + 19, spw_password_level_texts + 21}, /* "1": "user" */
+    {spw_password_level_texts + 26, spw_password_level_texts + 28}, /* "2": "administrator" */
 };
 const nmea_enum_def nmea_spw_password_level_def = {
-    "spw_password_level", spw_password_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    spw_password_level_texts, spw_password_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char ssd_dte_texts[] =
+    "ssd_dte\0" "0\0" "available\0" "1\0" "not_available\0";
 static const nmea_enum_code ssd_dte_codes[] = {
-    {"0", "available"},
-    {"1", "not_available"},
+    {ssd_dte_texts + 8, ssd_dte_texts + 10}, /* "0": "available" */
+    {ssd_dte_texts + 20, ssd_dte_texts + 22}, /* "1": "not_available" */
 };
 const nmea_enum_def nmea_ssd_dte_def = {
-    "ssd_dte", ssd_dte_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    ssd_dte_texts, ssd_dte_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char status_texts[] =
+    "status\0" "A\0" "valid\0" "V\0" "invalid\0";
 static const nmea_enum_code status_codes[] = {
-    {"A", "valid"},
-    {"V", "invalid"},
+    {status_texts + 7, status_texts + 9}, /* "A": "valid" */
+    {status_texts + 15, status_texts + 17}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_status_def = {
-    "status", status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    status_texts, status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char system_id_texts[] =
+    "system_id\0" "1\0" "gps\0" "2\0" "glonass\0" "3\0" "galileo\0" "4\0" "beidou\0" "5\0" "qzss\0"
+    "6\0" "navic\0" "F\0" "geos5_qzss\0";
 static const nmea_enum_code system_id_codes[] = {
-    {"1", "gps"},
-    {"2", "glonass"},
-    {"3", "galileo"},
-    {"4", "beidou"},
-    {"5", "qzss"},
-    {"6", "navic"},
-    {"F", "geos5_qzss"},
+    {system_id_texts + 10, system_id_texts + 12}, /* "1": "gps" */
+    {system_id_texts + 16, system_id_texts + 18}, /* "2": "glonass" */
+    {system_id_texts + 26, system_id_texts + 28}, /* "3": "galileo" */
+    {system_id_texts + 36, system_id_texts + 38}, /* "4": "beidou" */
+    {system_id_texts + 45, system_id_texts + 47}, /* "5": "qzss" */
+    {system_id_texts + 52, system_id_texts + 54}, /* "6": "navic" */
+    {system_id_texts + 60, system_id_texts + 62}, /* "F": "geos5_qzss" */
 };
 const nmea_enum_def nmea_system_id_def = {
-    "system_id", system_id_codes, 7, 1, 1, NMEA_CODES_ALNUM
+    system_id_texts, system_id_codes, 7, 1, 1, NMEA_CODES_ALNUM
 };
 
+static const char teseo_baud_texts[] =
+    "teseo_baud\0" "0\0" "baud_300\0" "1\0" "baud_600\0" "2\0" "baud_1200\0" "3\0" "baud_2400\0" "4\0"
+    "baud_4800\0" "5\0" "baud_9600\0" "6\0" "baud_14400\0" "7\0" "baud_19200\0" "8\0" "baud_38400\0"
+    "9\0" "baud_57600\0" "A\0" "baud_115200\0" "B\0" "baud_230400\0" "C\0" "baud_460800\0" "D\0"
+    "baud_921600\0";
 static const nmea_enum_code teseo_baud_codes[] = {
-    {"0", "baud_300"},
-    {"1", "baud_600"},
-    {"2", "baud_1200"},
-    {"3", "baud_2400"},
-    {"4", "baud_4800"},
-    {"5", "baud_9600"},
-    {"6", "baud_14400"},
-    {"7", "baud_19200"},
-    {"8", "baud_38400"},
-    {"9", "baud_57600"},
-    {"A", "baud_115200"},
-    {"B", "baud_230400"},
-    {"C", "baud_460800"},
-    {"D", "baud_921600"},
+    {teseo_baud_texts + 11, teseo_baud_texts + 13}, /* "0": "baud_300" */
+    {teseo_baud_texts + 22, teseo_baud_texts + 24}, /* "1": "baud_600" */
+    {teseo_baud_texts + 33, teseo_baud_texts + 35}, /* "2": "baud_1200" */
+    {teseo_baud_texts + 45, teseo_baud_texts + 47}, /* "3": "baud_2400" */
+    {teseo_baud_texts + 57, teseo_baud_texts + 59}, /* "4": "baud_4800" */
+    {teseo_baud_texts + 69, teseo_baud_texts + 71}, /* "5": "baud_9600" */
+    {teseo_baud_texts + 81, teseo_baud_texts + 83}, /* "6": "baud_14400" */
+    {teseo_baud_texts + 94, teseo_baud_texts + 96}, /* "7": "baud_19200" */
+    {teseo_baud_texts + 107, teseo_baud_texts + 109}, /* "8": "baud_38400" */
+    {teseo_baud_texts + 120, teseo_baud_texts + 122}, /* "9": "baud_57600" */
+    {teseo_baud_texts + 133, teseo_baud_texts + 135}, /* "A": "baud_115200" */
+    {teseo_baud_texts + 147, teseo_baud_texts + 149}, /* "B": "baud_230400" */
+    {teseo_baud_texts + 161, teseo_baud_texts + 163}, /* "C": "baud_460800" */
+    {teseo_baud_texts + 175, teseo_baud_texts + 177}, /* "D": "baud_921600" */
 };
 const nmea_enum_def nmea_teseo_baud_def = {
-    "teseo_baud", teseo_baud_codes, 14, 1, 1, NMEA_CODES_ALNUM
+    teseo_baud_texts, teseo_baud_codes, 14, 1, 1, NMEA_CODES_ALNUM
 };
 
+static const char teseo_compiler_type_texts[] =
+    "teseo_compiler_type\0" "ARM\0" "arm\0" "GNU\0" "gnu\0";
 static const nmea_enum_code teseo_compiler_type_codes[] = {
-    {"ARM", "arm"},
-    {"GNU", "gnu"},
+    {teseo_compiler_type_texts + 20, teseo_compiler_type_texts + 24}, /* "ARM": "arm" */
+    {teseo_compiler_type_texts + 28, teseo_compiler_type_texts + 32}, /* "GNU": "gnu" */
 };
 const nmea_enum_def nmea_teseo_compiler_type_def = {
-    "teseo_compiler_type", teseo_compiler_type_codes, 2, 3, 3, NMEA_CODES_LETTERS
+    teseo_compiler_type_texts, teseo_compiler_type_codes, 2, 3, 3, NMEA_CODES_LETTERS
 };
 
+static const char teseo_nmea_on_off_texts[] =
+    "teseo_nmea_on_off\0" "0\0" "off\0" "1\0" "on\0";
 static const nmea_enum_code teseo_nmea_on_off_codes[] = {
-    {"0", "off"},
-    {"1", "on"},
+    {teseo_nmea_on_off_texts + 18, teseo_nmea_on_off_texts + 20}, /* "0": "off" */
+    {teseo_nmea_on_off_texts + 24, teseo_nmea_on_off_texts + 26}, /* "1": "on" */
 };
 const nmea_enum_def nmea_teseo_nmea_on_off_def = {
-    "teseo_nmea_on_off", teseo_nmea_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    teseo_nmea_on_off_texts, teseo_nmea_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char teseo_rtc_status_texts[] =
+    "teseo_rtc_status\0" "0\0" "invalid\0" "1\0" "stored\0" "2\0" "approximate\0";
 static const nmea_enum_code teseo_rtc_status_codes[] = {
-    {"0", "invalid"},
-    {"1", "stored"},
-    {"2", "approximate"},
+    {teseo_rtc_status_texts + 17, teseo_rtc_status_texts + 19}, /* "0": "invalid" */
+    {teseo_rtc_status_texts + 27, teseo_rtc_status_texts + 29}, /* "1": "stored" */
+    {teseo_rtc_status_texts + 36, teseo_rtc_status_texts + 38}, /* "2": "approximate" */
 };
 const nmea_enum_def nmea_teseo_rtc_status_def = {
-    "teseo_rtc_status", teseo_rtc_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    teseo_rtc_status_texts, teseo_rtc_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char teseo_setpar_mode_texts[] =
+    "teseo_setpar_mode\0" "0\0" "replace\0" "1\0" "set_bits\0" "2\0" "clear_bits\0";
 static const nmea_enum_code teseo_setpar_mode_codes[] = {
-    {"0", "replace"},
-    {"1", "set_bits"},
-    {"2", "clear_bits"},
+    {teseo_setpar_mode_texts + 18, teseo_setpar_mode_texts + 20}, /* "0": "replace" */
+    {teseo_setpar_mode_texts + 28, teseo_setpar_mode_texts + 30}, /* "1": "set_bits" */
+    {teseo_setpar_mode_texts + 39, teseo_setpar_mode_texts + 41}, /* "2": "clear_bits" */
 };
 const nmea_enum_def nmea_teseo_setpar_mode_def = {
-    "teseo_setpar_mode", teseo_setpar_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    teseo_setpar_mode_texts, teseo_setpar_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char teseo_time_validity_texts[] =
+    "teseo_time_validity\0" "0\0" "no_time\0" "1\0" "flash_time\0" "2\0" "user_time\0" "3\0"
+    "user_rtc_time\0" "4\0" "rtc_time\0" "5\0" "accurate_rtc_time\0" "6\0" "approximate_time\0" "7\0"
+    "position_time\0" "8\0" "ephemeris_time\0";
 static const nmea_enum_code teseo_time_validity_codes[] = {
-    {"0", "no_time"},
-    {"1", "flash_time"},
-    {"2", "user_time"},
-    {"3", "user_rtc_time"},
-    {"4", "rtc_time"},
-    {"5", "accurate_rtc_time"},
-    {"6", "approximate_time"},
-    {"7", "position_time"},
-    {"8", "ephemeris_time"},
+    {teseo_time_validity_texts + 20, teseo_time_validity_texts + 22}, /* "0": "no_time" */
+    {teseo_time_validity_texts + 30, teseo_time_validity_texts + 32}, /* "1": "flash_time" */
+    {teseo_time_validity_texts + 43, teseo_time_validity_texts + 45}, /* "2": "user_time" */
+    {teseo_time_validity_texts + 55, teseo_time_validity_texts + 57}, /* "3": "user_rtc_time" */
+    {teseo_time_validity_texts + 71, teseo_time_validity_texts + 73}, /* "4": "rtc_time" */
+    {teseo_time_validity_texts + 82, teseo_time_validity_texts + 84}, /* "5": "accurate_rtc_time" */
+    {teseo_time_validity_texts + 102, teseo_time_validity_texts + 104}, /* "6": "approximate_time" */
+    {teseo_time_validity_texts + 121, teseo_time_validity_texts + 123}, /* "7": "position_time" */
+    {teseo_time_validity_texts + 137, teseo_time_validity_texts + 139}, /* "8": "ephemeris_time" */
 };
 const nmea_enum_def nmea_teseo_time_validity_def = {
-    "teseo_time_validity", teseo_time_validity_codes, 9, 1, 1, NMEA_CODES_DIGITS
+    teseo_time_validity_texts, teseo_time_validity_codes, 9, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char ths_mode_texts[] =
+    "ths_mode\0" "A\0" "autonomous\0" "E\0" "estimated\0" "M\0" "manual\0" "S\0" "simulator\0" "V\0"
+    "invalid\0";
 static const nmea_enum_code ths_mode_codes[] = {
-    {"A", "autonomous"},
-    {"E", "estimated"},
-    {"M", "manual"},
-    {"S", "simulator"},
-    {"V", "invalid"},
+    {ths_mode_texts + 9, ths_mode_texts + 11}, /* "A": "autonomous" */
+    {ths_mode_texts + 22, ths_mode_texts + 24}, /* "E": "estimated" */
+    {ths_mode_texts + 34, ths_mode_texts + 36}, /* "M": "manual" */
+    {ths_mode_texts + 43, ths_mode_texts + 45}, /* "S": "simulator" */
+    {ths_mode_texts + 55, ths_mode_texts + 57}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_ths_mode_def = {
-    "ths_mode", ths_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    ths_mode_texts, ths_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char tnt_alarm_status_texts[] =
+    "tnt_alarm_status\0" "C\0" "calibration_alarm\0" "L\0" "low_alarm\0" "M\0" "low_warning\0" "N\0"
+    "normal\0" "O\0" "high_warning\0" "P\0" "high_alarm\0" "V\0" "voltage_alarm\0";
 static const nmea_enum_code tnt_alarm_status_codes[] = {
-    {"C", "calibration_alarm"},
-    {"L", "low_alarm"},
-    {"M", "low_warning"},
-    {"N", "normal"},
-    {"O", "high_warning"},
-    {"P", "high_alarm"},
-    {"V", "voltage_alarm"},
+    {tnt_alarm_status_texts + 17, tnt_alarm_status_texts + 19}, /* "C": "calibration_alarm" */
+    {tnt_alarm_status_texts + 37, tnt_alarm_status_texts + 39}, /* "L": "low_alarm" */
+    {tnt_alarm_status_texts + 49, tnt_alarm_status_texts + 51}, /* "M": "low_warning" */
+    {tnt_alarm_status_texts + 63, tnt_alarm_status_texts + 65}, /* "N": "normal" */
+    {tnt_alarm_status_texts + 72, tnt_alarm_status_texts + 74}, /* "O": "high_warning" */
+    {tnt_alarm_status_texts + 87, tnt_alarm_status_texts + 89}, /* "P": "high_alarm" */
+    {tnt_alarm_status_texts + 100, tnt_alarm_status_texts + 102}, /* "V": "voltage_alarm" */
 };
 const nmea_enum_def nmea_tnt_alarm_status_def = {
-    "tnt_alarm_status", tnt_alarm_status_codes, 7, 1, 1, NMEA_CODES_CLOSED
+    tnt_alarm_status_texts, tnt_alarm_status_codes, 7, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char trimble_antenna_status_texts[] =
+    "trimble_antenna_status\0" "0\0" "fault\0" "1\0" "ok\0";
 static const nmea_enum_code trimble_antenna_status_codes[] = {
-    {"0", "fault"},
-    {"1", "ok"},
+    {trimble_antenna_status_texts + 23, trimble_antenna_status_texts + 25}, /* "0": "fault" */
+    {trimble_antenna_status_texts + 31, trimble_antenna_status_texts + 33}, /* "1": "ok" */
 };
 const nmea_enum_def nmea_trimble_antenna_status_def = {
-    "trimble_antenna_status", trimble_antenna_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    trimble_antenna_status_texts, trimble_antenna_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char trimble_bpq_quality_texts[] =
+    "trimble_bpq_quality\0" "0\0" "invalid\0" "1\0" "autonomous\0" "2\0" "sbas_or_vbs\0" "4\0"
+    "rtk_fixed\0" "5\0" "float_or_high_precision\0";
 static const nmea_enum_code trimble_bpq_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "autonomous"},
-    {"2", "sbas_or_vbs"},
-    {"4", "rtk_fixed"},
-    {"5", "float_or_high_precision"},
+    {trimble_bpq_quality_texts + 20, trimble_bpq_quality_texts + 22}, /* "0": "invalid" */
+    {trimble_bpq_quality_texts + 30, trimble_bpq_quality_texts + 32}, /* "1": "autonomous" */
+    {trimble_bpq_quality_texts + 43, trimble_bpq_quality_texts + 45}, /* "2": "sbas_or_vbs" */
+    {trimble_bpq_quality_texts + 57, trimble_bpq_quality_texts + 59}, /* "4": "rtk_fixed" */
+    {trimble_bpq_quality_texts + 69, trimble_bpq_quality_texts + 71}, /* "5": "float_or_high_precision" */
 };
 const nmea_enum_def nmea_trimble_bpq_quality_def = {
-    "trimble_bpq_quality", trimble_bpq_quality_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    trimble_bpq_quality_texts, trimble_bpq_quality_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char trimble_copernicus_version_part_texts[] =
+    "trimble_copernicus_version_part\0" "S\0" "application\0" "H\0" "hardware\0" "N\0" "navigation\0";
 static const nmea_enum_code trimble_copernicus_version_part_codes[] = {
-    {"S", "application"},
-    {"H", "hardware"},
-    {"N", "navigation"},
+    {trimble_copernicus_version_part_texts + 32, trimble_copernicus_version_part_texts + 34}, /* "S": "application" */
+    {trimble_copernicus_version_part_texts + 46, trimble_copernicus_version_part_texts + 48}, /* "H": "hardware" */
+    {trimble_copernicus_version_part_texts + 57, trimble_copernicus_version_part_texts + 59}, /* "N": "navigation" */
 };
 const nmea_enum_def nmea_trimble_copernicus_version_part_def = {
-    "trimble_copernicus_version_part", trimble_copernicus_version_part_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    trimble_copernicus_version_part_texts, trimble_copernicus_version_part_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char trimble_dg_channel_used_texts[] =
+    "trimble_dg_channel_used\0" "0\0" "not_used\0" "1\0" "used\0";
 static const nmea_enum_code trimble_dg_channel_used_codes[] = {
-    {"0", "not_used"},
-    {"1", "used"},
+    {trimble_dg_channel_used_texts + 24, trimble_dg_channel_used_texts + 26}, /* "0": "not_used" */
+    {trimble_dg_channel_used_texts + 35, trimble_dg_channel_used_texts + 37}, /* "1": "used" */
 };
 const nmea_enum_def nmea_trimble_dg_channel_used_def = {
-    "trimble_dg_channel_used", trimble_dg_channel_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    trimble_dg_channel_used_texts, trimble_dg_channel_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char trimble_dg_tracking_texts[] =
+    "trimble_dg_tracking\0" "0\0" "idle\0" "1\0" "wideband_fft_search\0" "2\0" "searching\0" "3\0"
+    "acquired\0" "4\0" "locked\0" "5\0" "disabled\0";
 static const nmea_enum_code trimble_dg_tracking_codes[] = {
-    {"0", "idle"},
-    {"1", "wideband_fft_search"},
-    {"2", "searching"},
-    {"3", "acquired"},
-    {"4", "locked"},
-    {"5", "disabled"},
+    {trimble_dg_tracking_texts + 20, trimble_dg_tracking_texts + 22}, /* "0": "idle" */
+    {trimble_dg_tracking_texts + 27, trimble_dg_tracking_texts + 29}, /* "1": "wideband_fft_search" */
+    {trimble_dg_tracking_texts + 49, trimble_dg_tracking_texts + 51}, /* "2": "searching" */
+    {trimble_dg_tracking_texts + 61, trimble_dg_tracking_texts + 63}, /* "3": "acquired" */
+    {trimble_dg_tracking_texts + 72, trimble_dg_tracking_texts + 74}, /* "4": "locked" */
+    {trimble_dg_tracking_texts + 81, trimble_dg_tracking_texts + 83}, /* "5": "disabled" */
 };
 const nmea_enum_def nmea_trimble_dg_tracking_def = {
-    "trimble_dg_tracking", trimble_dg_tracking_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    trimble_dg_tracking_texts, trimble_dg_tracking_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char trimble_gps_quality_texts[] =
+    "trimble_gps_quality\0" "0\0" "invalid\0" "1\0" "autonomous\0" "2\0" "rtk_float\0" "3\0"
+    "rtk_fixed\0" "4\0" "dgps\0" "5\0" "sbas\0" "6\0" "network_rtk_float_3d\0" "7\0"
+    "network_rtk_fixed_3d\0" "8\0" "network_rtk_float_2d\0" "9\0" "network_rtk_fixed_2d\0" "10\0"
+    "omnistar_hp_xp\0" "11\0" "omnistar_vbs\0" "12\0" "location_rtk\0" "13\0" "beacon_dgps\0" "14\0"
+    "centerpoint_rtx\0" "15\0" "xfill\0";
 static const nmea_enum_code trimble_gps_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "autonomous"},
-    {"2", "rtk_float"},
-    {"3", "rtk_fixed"},
-    {"4", "dgps"},
-    {"5", "sbas"},
-    {"6", "network_rtk_float_3d"},
-    {"7", "network_rtk_fixed_3d"},
-    {"8", "network_rtk_float_2d"},
-    {"9", "network_rtk_fixed_2d"},
-    {"10", "omnistar_hp_xp"},
-    {"11", "omnistar_vbs"},
-    {"12", "location_rtk"},
-    {"13", "beacon_dgps"},
-    {"14", "centerpoint_rtx"},
-    {"15", "xfill"},
+    {trimble_gps_quality_texts + 20, trimble_gps_quality_texts + 22}, /* "0": "invalid" */
+    {trimble_gps_quality_texts + 30, trimble_gps_quality_texts + 32}, /* "1": "autonomous" */
+    {trimble_gps_quality_texts + 43, trimble_gps_quality_texts + 45}, /* "2": "rtk_float" */
+    {trimble_gps_quality_texts + 55, trimble_gps_quality_texts + 57}, /* "3": "rtk_fixed" */
+    {trimble_gps_quality_texts + 67, trimble_gps_quality_texts + 69}, /* "4": "dgps" */
+    {trimble_gps_quality_texts + 74, trimble_gps_quality_texts + 76}, /* "5": "sbas" */
+    {trimble_gps_quality_texts + 81, trimble_gps_quality_texts + 83}, /* "6": "network_rtk_float_3d" */
+    {trimble_gps_quality_texts + 104, trimble_gps_quality_texts + 106}, /* "7": "network_rtk_fixed_3d" */
+    {trimble_gps_quality_texts + 127, trimble_gps_quality_texts + 129}, /* "8": "network_rtk_float_2d" */
+    {trimble_gps_quality_texts + 150, trimble_gps_quality_texts + 152}, /* "9": "network_rtk_fixed_2d" */
+    {trimble_gps_quality_texts + 173, trimble_gps_quality_texts + 176}, /* "10": "omnistar_hp_xp" */
+    {trimble_gps_quality_texts + 191, trimble_gps_quality_texts + 194}, /* "11": "omnistar_vbs" */
+    {trimble_gps_quality_texts + 207, trimble_gps_quality_texts + 210}, /* "12": "location_rtk" */
+    {trimble_gps_quality_texts + 223, trimble_gps_quality_texts + 226}, /* "13": "beacon_dgps" */
+    {trimble_gps_quality_texts + 238, trimble_gps_quality_texts + 241}, /* "14": "centerpoint_rtx" */
+    {trimble_gps_quality_texts + 257, trimble_gps_quality_texts + 260}, /* "15": "xfill" */
 };
 const nmea_enum_def nmea_trimble_gps_quality_def = {
-    "trimble_gps_quality", trimble_gps_quality_codes, 16, 1, 2, NMEA_CODES_DIGITS
+    trimble_gps_quality_texts, trimble_gps_quality_codes, 16, 1, 2, NMEA_CODES_DIGITS
 };
 
+static const char trimble_oscillator_lock_texts[] =
+    "trimble_oscillator_lock\0" "0\0" "unlocked\0" "1\0" "locked\0";
 static const nmea_enum_code trimble_oscillator_lock_codes[] = {
-    {"0", "unlocked"},
-    {"1", "locked"},
+    {trimble_oscillator_lock_texts + 24, trimble_oscillator_lock_texts + 26}, /* "0": "unlocked" */
+    {trimble_oscillator_lock_texts + 35, trimble_oscillator_lock_texts + 37}, /* "1": "locked" */
 };
 const nmea_enum_def nmea_trimble_oscillator_lock_def = {
-    "trimble_oscillator_lock", trimble_oscillator_lock_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    trimble_oscillator_lock_texts, trimble_oscillator_lock_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char trl_reason_texts[] =
+    "trl_reason\0" "1\0" "power_off\0" "2\0" "silent_mode\0" "3\0" "channel_management\0" "4\0"
+    "equipment_malfunction\0" "5\0" "invalid_configuration\0";
 static const nmea_enum_code trl_reason_codes[] = {
-    {"1", "power_off"},
-    {"2", "silent_mode"},
-    {"3", "channel_management"},
-    {"4", "equipment_malfunction"},
-    {"5", "invalid_configuration"},
+    {trl_reason_texts + 11, trl_reason_texts + 13}, /* "1": "power_off" */
+    {trl_reason_texts + 23, trl_reason_texts + 25}, /* "2": "silent_mode" */
+    {trl_reason_texts + 37, trl_reason_texts + 39}, /* "3": "channel_management" */
+    {trl_reason_texts + 58, trl_reason_texts + 60}, /* "4": "equipment_malfunction" */
+    {trl_reason_texts + 82, trl_reason_texts + 84}, /* "5": "invalid_configuration" */
 };
 const nmea_enum_def nmea_trl_reason_def = {
-    "trl_reason", trl_reason_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    trl_reason_texts, trl_reason_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char ttm_acquisition_texts[] =
+    "ttm_acquisition\0" "A\0" "automatic\0" "M\0" "manual\0" "R\0" "reported\0";
 static const nmea_enum_code ttm_acquisition_codes[] = {
-    {"A", "automatic"},
-    {"M", "manual"},
-    {"R", "reported"},
+    {ttm_acquisition_texts + 16, ttm_acquisition_texts + 18}, /* "A": "automatic" */
+    {ttm_acquisition_texts + 28, ttm_acquisition_texts + 30}, /* "M": "manual" */
+    {ttm_acquisition_texts + 37, ttm_acquisition_texts + 39}, /* "R": "reported" */
 };
 const nmea_enum_def nmea_ttm_acquisition_def = {
-    "ttm_acquisition", ttm_acquisition_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    ttm_acquisition_texts, ttm_acquisition_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char ttm_reference_texts[] =
+    "ttm_reference\0" "T\0" "true_north\0" "R\0" "relative\0";
 static const nmea_enum_code ttm_reference_codes[] = {
-    {"T", "true_north"},
-    {"R", "relative"},
+    {ttm_reference_texts + 14, ttm_reference_texts + 16}, /* "T": "true_north" */
+    {ttm_reference_texts + 27, ttm_reference_texts + 29}, /* "R": "relative" */
 };
 const nmea_enum_def nmea_ttm_reference_def = {
-    "ttm_reference", ttm_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    ttm_reference_texts, ttm_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char ttm_target_status_texts[] =
+    "ttm_target_status\0" "L\0" "lost\0" "Q\0" "query\0" "T\0" "tracking\0";
 static const nmea_enum_code ttm_target_status_codes[] = {
-    {"L", "lost"},
-    {"Q", "query"},
-    {"T", "tracking"},
+    {ttm_target_status_texts + 18, ttm_target_status_texts + 20}, /* "L": "lost" */
+    {ttm_target_status_texts + 25, ttm_target_status_texts + 27}, /* "Q": "query" */
+    {ttm_target_status_texts + 33, ttm_target_status_texts + 35}, /* "T": "tracking" */
 };
 const nmea_enum_def nmea_ttm_target_status_def = {
-    "ttm_target_status", ttm_target_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    ttm_target_status_texts, ttm_target_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char ttm_units_texts[] =
+    "ttm_units\0" "K\0" "kilometres\0" "N\0" "nautical_miles\0" "S\0" "statute_miles\0";
 static const nmea_enum_code ttm_units_codes[] = {
-    {"K", "kilometres"},
-    {"N", "nautical_miles"},
-    {"S", "statute_miles"},
+    {ttm_units_texts + 10, ttm_units_texts + 12}, /* "K": "kilometres" */
+    {ttm_units_texts + 23, ttm_units_texts + 25}, /* "N": "nautical_miles" */
+    {ttm_units_texts + 40, ttm_units_texts + 42}, /* "S": "statute_miles" */
 };
 const nmea_enum_def nmea_ttm_units_def = {
-    "ttm_units", ttm_units_codes, 3, 1, 1, NMEA_CODES_CLOSED
+    ttm_units_texts, ttm_units_codes, 3, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char ublox_autobauding_texts[] =
+    "ublox_autobauding\0" "0\0" "disabled\0" "1\0" "enabled\0";
 static const nmea_enum_code ublox_autobauding_codes[] = {
-    {"0", "disabled"},
-    {"1", "enabled"},
+    {ublox_autobauding_texts + 18, ublox_autobauding_texts + 20}, /* "0": "disabled" */
+    {ublox_autobauding_texts + 29, ublox_autobauding_texts + 31}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_ublox_autobauding_def = {
-    "ublox_autobauding", ublox_autobauding_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    ublox_autobauding_texts, ublox_autobauding_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
+static const char ublox_nav_status_texts[] =
+    "ublox_nav_status\0" "NF\0" "no_fix\0" "DR\0" "dead_reckoning\0" "G2\0" "standalone_2d\0" "G3\0"
+    "standalone_3d\0" "D2\0" "differential_2d\0" "D3\0" "differential_3d\0" "RK\0"
+    "gnss_dead_reckoning\0" "TT\0" "time_only\0";
 static const nmea_enum_code ublox_nav_status_codes[] = {
-    {"NF", "no_fix"},
-    {"DR", "dead_reckoning"},
-    {"G2", "standalone_2d"},
-    {"G3", "standalone_3d"},
-    {"D2", "differential_2d"},
-    {"D3", "differential_3d"},
-    {"RK", "gnss_dead_reckoning"},
-    {"TT", "time_only"},
+    {ublox_nav_status_texts + 17, ublox_nav_status_texts + 20}, /* "NF": "no_fix" */
+    {ublox_nav_status_texts + 27, ublox_nav_status_texts + 30}, /* "DR": "dead_reckoning" */
+    {ublox_nav_status_texts + 45, ublox_nav_status_texts + 48}, /* "G2": "standalone_2d" */
+    {ublox_nav_status_texts + 62, ublox_nav_status_texts + 65}, /* "G3": "standalone_3d" */
+    {ublox_nav_status_texts + 79, ublox_nav_status_texts + 82}, /* "D2": "differential_2d" */
+    {ublox_nav_status_texts + 98, ublox_nav_status_texts + 101}, /* "D3": "differential_3d" */
+    {ublox_nav_status_texts + 117, ublox_nav_status_texts + 120}, /* "RK": "gnss_dead_reckoning" */
+    {ublox_nav_status_texts + 140, ublox_nav_status_texts + 143}, /* "TT": "time_only" */
 };
 const nmea_enum_def nmea_ublox_nav_status_def = {
-    "ublox_nav_status", ublox_nav_status_codes, 8, 2, 2, NMEA_CODES_ALNUM
+    ublox_nav_status_texts, ublox_nav_status_codes, 8, 2, 2, NMEA_CODES_ALNUM
 };
 
+static const char ublox_port_texts[] =
+    "ublox_port\0" "0\0" "ddc\0" "1\0" "uart1\0" "2\0" "uart2\0" "3\0" "usb\0" "4\0" "spi\0";
 static const nmea_enum_code ublox_port_codes[] = {
-    {"0", "ddc"},
-    {"1", "uart1"},
-    {"2", "uart2"},
-    {"3", "usb"},
-    {"4", "spi"},
+    {ublox_port_texts + 11, ublox_port_texts + 13}, /* "0": "ddc" */
+    {ublox_port_texts + 17, ublox_port_texts + 19}, /* "1": "uart1" */
+    {ublox_port_texts + 25, ublox_port_texts + 27}, /* "2": "uart2" */
+    {ublox_port_texts + 33, ublox_port_texts + 35}, /* "3": "usb" */
+    {ublox_port_texts + 39, ublox_port_texts + 41}, /* "4": "spi" */
 };
 const nmea_enum_def nmea_ublox_port_def = {
-    "ublox_port", ublox_port_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    ublox_port_texts, ublox_port_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char ublox_sv_status_texts[] =
+    "ublox_sv_status\0" "-\0" "not_used\0" "U\0" "used\0" "e\0" "ephemeris_not_used\0";
 static const nmea_enum_code ublox_sv_status_codes[] = {
-    {"-", "not_used"},
-    {"U", "used"},
-    {"e", "ephemeris_not_used"},
+    {ublox_sv_status_texts + 16, ublox_sv_status_texts + 18}, /* "-": "not_used" */
+    {ublox_sv_status_texts + 27, ublox_sv_status_texts + 29}, /* "U": "used" */
+    {ublox_sv_status_texts + 34, ublox_sv_status_texts + 36}, /* "e": "ephemeris_not_used" */
 };
 const nmea_enum_def nmea_ublox_sv_status_def = {
-    "ublox_sv_status", ublox_sv_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    ublox_sv_status_texts, ublox_sv_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char ubx_fix_type_texts[] =
+    "ubx_fix_type\0" "0\0" "no_fix\0" "1\0" "dead_reckoning\0" "2\0" "fix_2d\0" "3\0" "fix_3d\0" "4\0"
+    "gnss_dead_reckoning\0" "5\0" "time_only\0";
 static const nmea_enum_code ubx_fix_type_codes[] = {
-    {"0", "no_fix"},
-    {"1", "dead_reckoning"},
-    {"2", "fix_2d"},
-    {"3", "fix_3d"},
-    {"4", "gnss_dead_reckoning"},
-    {"5", "time_only"},
+    {ubx_fix_type_texts + 13, ubx_fix_type_texts + 15}, /* "0": "no_fix" */
+    {ubx_fix_type_texts + 22, ubx_fix_type_texts + 24}, /* "1": "dead_reckoning" */
+    {ubx_fix_type_texts + 39, ubx_fix_type_texts + 41}, /* "2": "fix_2d" */
+    {ubx_fix_type_texts + 48, ubx_fix_type_texts + 50}, /* "3": "fix_3d" */
+    {ubx_fix_type_texts + 57, ubx_fix_type_texts + 59}, /* "4": "gnss_dead_reckoning" */
+    {ubx_fix_type_texts + 79, ubx_fix_type_texts + 81}, /* "5": "time_only" */
 };
 const nmea_enum_def nmea_ubx_fix_type_def = {
-    "ubx_fix_type", ubx_fix_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    ubx_fix_type_texts, ubx_fix_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char ubx_gnss_id_texts[] =
+    "ubx_gnss_id\0" "0\0" "gps\0" "1\0" "sbas\0" "2\0" "galileo\0" "3\0" "beidou\0" "4\0" "imes\0" "5\0"
+    "qzss\0" "6\0" "glonass\0" "7\0" "navic\0";
 static const nmea_enum_code ubx_gnss_id_codes[] = {
-    {"0", "gps"},
-    {"1", "sbas"},
-    {"2", "galileo"},
-    {"3", "beidou"},
-    {"4", "imes"},
-    {"5", "qzss"},
-    {"6", "glonass"},
-    {"7", "navic"},
+    {ubx_gnss_id_texts + 12, ubx_gnss_id_texts + 14}, /* "0": "gps" */
+    {ubx_gnss_id_texts + 18, ubx_gnss_id_texts + 20}, /* "1": "sbas" */
+    {ubx_gnss_id_texts + 25, ubx_gnss_id_texts + 27}, /* "2": "galileo" */
+    {ubx_gnss_id_texts + 35, ubx_gnss_id_texts + 37}, /* "3": "beidou" */
+    {ubx_gnss_id_texts + 44, ubx_gnss_id_texts + 46}, /* "4": "imes" */
+    {ubx_gnss_id_texts + 51, ubx_gnss_id_texts + 53}, /* "5": "qzss" */
+    {ubx_gnss_id_texts + 58, ubx_gnss_id_texts + 60}, /* "6": "glonass" */
+    {ubx_gnss_id_texts + 68, ubx_gnss_id_texts + 70}, /* "7": "navic" */
 };
 const nmea_enum_def nmea_ubx_gnss_id_def = {
-    "ubx_gnss_id", ubx_gnss_id_codes, 8, 1, 1, NMEA_CODES_DIGITS
+    ubx_gnss_id_texts, ubx_gnss_id_codes, 8, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char vsd_nav_status_texts[] =
+    "vsd_nav_status\0" "0\0" "under_way_engine\0" "1\0" "at_anchor\0" "2\0" "not_under_command\0" "3\0"
+    "restricted_manoeuvrability\0" "4\0" "constrained_by_draught\0" "5\0" "moored\0" "6\0" "aground\0"
+    "7\0" "fishing\0" "8\0" "under_way_sailing\0" "9\0" "reserved_hsc\0" "10\0" "reserved_wig\0" "11\0"
+    "towing_astern\0" "12\0" "pushing_ahead\0" "13\0" "reserved\0" "14\0" "emergency_beacon_active\0"
+    "15\0" "not_defined\0";
 static const nmea_enum_code vsd_nav_status_codes[] = {
-    {"0", "under_way_engine"},
-    {"1", "at_anchor"},
-    {"2", "not_under_command"},
-    {"3", "restricted_manoeuvrability"},
-    {"4", "constrained_by_draught"},
-    {"5", "moored"},
-    {"6", "aground"},
-    {"7", "fishing"},
-    {"8", "under_way_sailing"},
-    {"9", "reserved_hsc"},
-    {"10", "reserved_wig"},
-    {"11", "towing_astern"},
-    {"12", "pushing_ahead"},
-    {"13", "reserved"},
-    {"14", "emergency_beacon_active"},
-    {"15", "not_defined"},
+    {vsd_nav_status_texts + 15, vsd_nav_status_texts + 17}, /* "0": "under_way_engine" */
+    {vsd_nav_status_texts + 34, vsd_nav_status_texts + 36}, /* "1": "at_anchor" */
+    {vsd_nav_status_texts + 46, vsd_nav_status_texts + 48}, /* "2": "not_under_command" */
+    {vsd_nav_status_texts + 66, vsd_nav_status_texts + 68}, /* "3": "restricted_manoeuvrability" */
+    {vsd_nav_status_texts + 95, vsd_nav_status_texts + 97}, /* "4": "constrained_by_draught" */
+    {vsd_nav_status_texts + 120, vsd_nav_status_texts + 122}, /* "5": "moored" */
+    {vsd_nav_status_texts + 129, vsd_nav_status_texts + 131}, /* "6": "aground" */
+    {vsd_nav_status_texts + 139, vsd_nav_status_texts + 141}, /* "7": "fishing" */
+    {vsd_nav_status_texts + 149, vsd_nav_status_texts + 151}, /* "8": "under_way_sailing" */
+    {vsd_nav_status_texts + 169, vsd_nav_status_texts + 171}, /* "9": "reserved_hsc" */
+    {vsd_nav_status_texts + 184, vsd_nav_status_texts + 187}, /* "10": "reserved_wig" */
+    {vsd_nav_status_texts + 200, vsd_nav_status_texts + 203}, /* "11": "towing_astern" */
+    {vsd_nav_status_texts + 217, vsd_nav_status_texts + 220}, /* "12": "pushing_ahead" */
+    {vsd_nav_status_texts + 234, vsd_nav_status_texts + 237}, /* "13": "reserved" */
+    {vsd_nav_status_texts + 246, vsd_nav_status_texts + 249}, /* "14": "emergency_beacon_active" */
+    {vsd_nav_status_texts + 273, vsd_nav_status_texts + 276}, /* "15": "not_defined" */
 };
 const nmea_enum_def nmea_vsd_nav_status_def = {
-    "vsd_nav_status", vsd_nav_status_codes, 16, 1, 2, NMEA_CODES_DIGITS
+    vsd_nav_status_texts, vsd_nav_status_codes, 16, 1, 2, NMEA_CODES_DIGITS
 };
 
+static const char wat_alarm_condition_texts[] =
+    "wat_alarm_condition\0" "N\0" "normal\0" "H\0" "high\0" "J\0" "extreme_high\0" "L\0" "low\0" "K\0"
+    "extreme_low\0" "X\0" "fault\0";
 static const nmea_enum_code wat_alarm_condition_codes[] = {
-    {"N", "normal"},
-    {"H", "high"},
-    {"J", "extreme_high"},
-    {"L", "low"},
-    {"K", "extreme_low"},
-    {"X", "fault"},
+    {wat_alarm_condition_texts + 20, wat_alarm_condition_texts + 22}, /* "N": "normal" */
+    {wat_alarm_condition_texts + 29, wat_alarm_condition_texts + 31}, /* "H": "high" */
+    {wat_alarm_condition_texts + 36, wat_alarm_condition_texts + 38}, /* "J": "extreme_high" */
+    {wat_alarm_condition_texts + 51, wat_alarm_condition_texts + 53}, /* "L": "low" */
+    {wat_alarm_condition_texts + 57, wat_alarm_condition_texts + 59}, /* "K": "extreme_low" */
+    {wat_alarm_condition_texts + 71, wat_alarm_condition_texts + 73}, /* "X": "fault" */
 };
 const nmea_enum_def nmea_wat_alarm_condition_def = {
-    "wat_alarm_condition", wat_alarm_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    wat_alarm_condition_texts, wat_alarm_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char wat_message_type_texts[] =
+    "wat_message_type\0" "S\0" "section_status\0" "E\0" "single_detector\0" "F\0" "system_fault\0";
 static const nmea_enum_code wat_message_type_codes[] = {
-    {"S", "section_status"},
-    {"E", "single_detector"},
-    {"F", "system_fault"},
+    {wat_message_type_texts + 17, wat_message_type_texts + 19}, /* "S": "section_status" */
+    {wat_message_type_texts + 34, wat_message_type_texts + 36}, /* "E": "single_detector" */
+    {wat_message_type_texts + 52, wat_message_type_texts + 54}, /* "F": "system_fault" */
 };
 const nmea_enum_def nmea_wat_message_type_def = {
-    "wat_message_type", wat_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    wat_message_type_texts, wat_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char wat_override_texts[] =
+    "wat_override\0" "O\0" "override\0" "N\0" "normal\0";
 static const nmea_enum_code wat_override_codes[] = {
-    {"O", "override"},
-    {"N", "normal"},
+    {wat_override_texts + 13, wat_override_texts + 15}, /* "O": "override" */
+    {wat_override_texts + 24, wat_override_texts + 26}, /* "N": "normal" */
 };
 const nmea_enum_def nmea_wat_override_def = {
-    "wat_override", wat_override_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    wat_override_texts, wat_override_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char wat_system_texts[] =
+    "wat_system\0" "WL\0" "water_level_detection\0" "BI\0" "bilge_high_level\0" "HD\0"
+    "hull_door_leakage\0" "OT\0" "other\0";
 static const nmea_enum_code wat_system_codes[] = {
-    {"WL", "water_level_detection"},
-    {"BI", "bilge_high_level"},
-    {"HD", "hull_door_leakage"},
-    {"OT", "other"},
+    {wat_system_texts + 11, wat_system_texts + 14}, /* "WL": "water_level_detection" */
+    {wat_system_texts + 36, wat_system_texts + 39}, /* "BI": "bilge_high_level" */
+    {wat_system_texts + 56, wat_system_texts + 59}, /* "HD": "hull_door_leakage" */
+    {wat_system_texts + 77, wat_system_texts + 80}, /* "OT": "other" */
 };
 const nmea_enum_def nmea_wat_system_def = {
-    "wat_system", wat_system_codes, 4, 2, 2, NMEA_CODES_LETTERS
+    wat_system_texts, wat_system_codes, 4, 2, 2, NMEA_CODES_LETTERS
 };
 
+static const char xdr_transducer_type_texts[] =
+    "xdr_transducer_type\0" "A\0" "angular_displacement\0" "C\0" "temperature\0" "D\0"
+    "linear_displacement\0" "F\0" "frequency\0" "G\0" "generic\0" "H\0" "humidity\0" "I\0" "current\0"
+    "N\0" "force\0" "P\0" "pressure\0" "R\0" "flow_rate\0" "S\0" "switch_or_valve\0" "T\0"
+    "tachometer\0" "U\0" "voltage\0" "V\0" "volume\0";
 static const nmea_enum_code xdr_transducer_type_codes[] = {
-    {"A", "angular_displacement"},
-    {"C", "temperature"},
-    {"D", "linear_displacement"},
-    {"F", "frequency"},
-    {"G", "generic"},
-    {"H", "humidity"},
-    {"I", "current"},
-    {"N", "force"},
-    {"P", "pressure"},
-    {"R", "flow_rate"},
-    {"S", "switch_or_valve"},
-    {"T", "tachometer"},
-    {"U", "voltage"},
-    {"V", "volume"},
+    {xdr_transducer_type_texts + 20, xdr_transducer_type_texts + 22}, /* "A": "angular_displacement" */
+    {xdr_transducer_type_texts + 43, xdr_transducer_type_texts + 45}, /* "C": "temperature" */
+    {xdr_transducer_type_texts + 57, xdr_transducer_type_texts + 59}, /* "D": "linear_displacement" */
+    {xdr_transducer_type_texts + 79, xdr_transducer_type_texts + 81}, /* "F": "frequency" */
+    {xdr_transducer_type_texts + 91, xdr_transducer_type_texts + 93}, /* "G": "generic" */
+    {xdr_transducer_type_texts + 101, xdr_transducer_type_texts + 103}, /* "H": "humidity" */
+    {xdr_transducer_type_texts + 112, xdr_transducer_type_texts + 114}, /* "I": "current" */
+    {xdr_transducer_type_texts + 122, xdr_transducer_type_texts + 124}, /* "N": "force" */
+    {xdr_transducer_type_texts + 130, xdr_transducer_type_texts + 132}, /* "P": "pressure" */
+    {xdr_transducer_type_texts + 141, xdr_transducer_type_texts + 143}, /* "R": "flow_rate" */
+    {xdr_transducer_type_texts + 153, xdr_transducer_type_texts + 155}, /* "S": "switch_or_valve" */
+    {xdr_transducer_type_texts + 171, xdr_transducer_type_texts + 173}, /* "T": "tachometer" */
+    {xdr_transducer_type_texts + 184, xdr_transducer_type_texts + 186}, /* "U": "voltage" */
+    {xdr_transducer_type_texts + 194, xdr_transducer_type_texts + 196}, /* "V": "volume" */
 };
 const nmea_enum_def nmea_xdr_transducer_type_def = {
-    "xdr_transducer_type", xdr_transducer_type_codes, 14, 1, 1, NMEA_CODES_LETTERS
+    xdr_transducer_type_texts, xdr_transducer_type_codes, 14, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char xdr_unit_texts[] =
+    "xdr_unit\0" "A\0" "amperes\0" "B\0" "bars_or_binary\0" "C\0" "celsius\0" "D\0" "degrees\0" "H\0"
+    "hertz\0" "I\0" "litres_per_second\0" "K\0" "kelvin_or_density\0" "M\0" "metres_or_cubic_metres\0"
+    "N\0" "newtons\0" "P\0" "percent_or_pascals\0" "R\0" "rpm\0" "S\0" "parts_per_thousand\0" "V\0"
+    "volts\0";
 static const nmea_enum_code xdr_unit_codes[] = {
-    {"A", "amperes"},
-    {"B", "bars_or_binary"},
-    {"C", "celsius"},
-    {"D", "degrees"},
-    {"H", "hertz"},
-    {"I", "litres_per_second"},
-    {"K", "kelvin_or_density"},
-    {"M", "metres_or_cubic_metres"},
-    {"N", "newtons"},
-    {"P", "percent_or_pascals"},
-    {"R", "rpm"},
-    {"S", "parts_per_thousand"},
-    {"V", "volts"},
+    {xdr_unit_texts + 9, xdr_unit_texts + 11}, /* "A": "amperes" */
+    {xdr_unit_texts + 19, xdr_unit_texts + 21}, /* "B": "bars_or_binary" */
+    {xdr_unit_texts + 36, xdr_unit_texts + 38}, /* "C": "celsius" */
+    {xdr_unit_texts + 46, xdr_unit_texts + 48}, /* "D": "degrees" */
+    {xdr_unit_texts + 56, xdr_unit_texts + 58}, /* "H": "hertz" */
+    {xdr_unit_texts + 64, xdr_unit_texts + 66}, /* "I": "litres_per_second" */
+    {xdr_unit_texts + 84, xdr_unit_texts + 86}, /* "K": "kelvin_or_density" */
+    {xdr_unit_texts + 104, xdr_unit_texts + 106}, /* "M": "metres_or_cubic_metres" */
+    {xdr_unit_texts + 129, xdr_unit_texts + 131}, /* "N": "newtons" */
+    {xdr_unit_texts + 139, xdr_unit_texts + 141}, /* "P": "percent_or_pascals" */
+    {xdr_unit_texts + 160, xdr_unit_texts + 162}, /* "R": "rpm" */
+    {xdr_unit_texts + 166, xdr_unit_texts + 168}, /* "S": "parts_per_thousand" */
+    {xdr_unit_texts + 187, xdr_unit_texts + 189}, /* "V": "volts" */
 };
 const nmea_enum_def nmea_xdr_unit_def = {
-    "xdr_unit", xdr_unit_codes, 13, 1, 1, NMEA_CODES_LETTERS
+    xdr_unit_texts, xdr_unit_codes, 13, 1, 1, NMEA_CODES_LETTERS
 };
 
+static const char zdl_point_type_texts[] =
+    "zdl_point_type\0" "C\0" "collision\0" "T\0" "turning_point\0" "R\0" "reference\0" "W\0"
+    "wheelover\0";
 static const nmea_enum_code zdl_point_type_codes[] = {
-    {"C", "collision"},
-    {"T", "turning_point"},
-    {"R", "reference"},
-    {"W", "wheelover"},
+    {zdl_point_type_texts + 15, zdl_point_type_texts + 17}, /* "C": "collision" */
+    {zdl_point_type_texts + 27, zdl_point_type_texts + 29}, /* "T": "turning_point" */
+    {zdl_point_type_texts + 43, zdl_point_type_texts + 45}, /* "R": "reference" */
+    {zdl_point_type_texts + 55, zdl_point_type_texts + 57}, /* "W": "wheelover" */
 };
 const nmea_enum_def nmea_zdl_point_type_def = {
-    "zdl_point_type", zdl_point_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    zdl_point_type_texts, zdl_point_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 /* ------------------------------------------------------------------------------------------ */

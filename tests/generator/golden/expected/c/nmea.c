@@ -68,30 +68,36 @@ static const char *const FIELD_EXPECTED[] = {
 /* ------------------------------------------------------------------------------------------ */
 /* Lookup tables */
 
+static const char acme_baud_texts[] =
+    "acme_baud\0" "4800\0" "baud_4800\0" "9600\0" "baud_9600\0";
 static const nmea_enum_code acme_baud_codes[] = {
-    {"4800", "baud_4800"},
-    {"9600", "baud_9600"},
+    {acme_baud_texts + 10, acme_baud_texts + 15}, /* "4800": "baud_4800" */
+    {acme_baud_texts + 25, acme_baud_texts + 30}, /* "9600": "baud_9600" */
 };
 const nmea_enum_def nmea_acme_baud_def = {
-    "acme_baud", acme_baud_codes, 2, 4, 4, NMEA_CODES_CLOSED
+    acme_baud_texts, acme_baud_codes, 2, 4, 4, NMEA_CODES_CLOSED
 };
 
+static const char fix_quality_texts[] =
+    "fix_quality\0" "0\0" "invalid\0" "1\0" "autonomous\0" "2\0" "differential\0";
 static const nmea_enum_code fix_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "autonomous"},
-    {"2", "differential"},
+    {fix_quality_texts + 12, fix_quality_texts + 14}, /* "0": "invalid" */
+    {fix_quality_texts + 22, fix_quality_texts + 24}, /* "1": "autonomous" */
+    {fix_quality_texts + 35, fix_quality_texts + 37}, /* "2": "differential" */
 };
 const nmea_enum_def nmea_fix_quality_def = {
-    "fix_quality", fix_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    fix_quality_texts, fix_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
+static const char system_mode_texts[] =
+    "system_mode\0" "A\0" "autonomous\0" "D\0" "differential\0" "N\0" "not_used\0";
 static const nmea_enum_code system_mode_codes[] = {
-    {"A", "autonomous"},
-    {"D", "differential"},
-    {"N", "not_used"},
+    {system_mode_texts + 12, system_mode_texts + 14}, /* "A": "autonomous" */
+    {system_mode_texts + 25, system_mode_texts + 27}, /* "D": "differential" */
+    {system_mode_texts + 40, system_mode_texts + 42}, /* "N": "not_used" */
 };
 const nmea_enum_def nmea_system_mode_def = {
-    "system_mode", system_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    system_mode_texts, system_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 
