@@ -1281,11 +1281,25 @@ static const char *const FIELD_EXPECTED[] = {
 static const char HEX_UPPER[] = "0123456789ABCDEF";
 static const char HEX_LOWER[] = "0123456789abcdef";
 
-static const int64_t POW10[NMEA_MAX_DIGITS + 1] = {
+/* 10^k for k from 0 to NMEA_MAX_DIGITS: a table, or in a build for size (-Os) a loop, which
+   takes a few instructions of flash where the table takes 152 bytes. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+NMEA_INTERNAL int64_t pow10_of(unsigned k)
+{
+    int64_t p = 1;
+    while (k--)
+        p *= 10;
+    return p;
+}
+#define POW10(k) pow10_of((unsigned)(k))
+#else
+static const int64_t POW10_TABLE[NMEA_MAX_DIGITS + 1] = {
     1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000,
     10000000000, 100000000000, 1000000000000, 10000000000000, 100000000000000,
     1000000000000000, 10000000000000000, 100000000000000000, 1000000000000000000,
 };
+#define POW10(k) POW10_TABLE[k]
+#endif
 
 static bool is_digit(char c) { return c >= '0' && c <= '9'; }
 static bool is_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
@@ -2847,7 +2861,7 @@ nmea_number nmea_number_of(int64_t value, unsigned scale)
     uint64_t magnitude = value < 0 ? (uint64_t)0 - (uint64_t)value : (uint64_t)value, whole;
     if (scale > NMEA_MAX_DIGITS)
         scale = NMEA_MAX_DIGITS;
-    whole = magnitude / (uint64_t)POW10[scale];
+    whole = magnitude / (uint64_t)POW10(scale);
     n.digits = (nmea_digits)magnitude;
     n.scale = (uint8_t)scale;
     for (n.width = 1; whole >= 10; whole /= 10)
@@ -2954,7 +2968,7 @@ NMEA_HOT bool coordinate_of(uint32_t whole_value, size_t whole, uint64_t minutes
 {
     if (whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_NUMBER_DIGITS - 2)
         return false;
-    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
+    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10(frac)))
         return false;
     out->degrees = (uint16_t)(whole_value / 100); /* whole <= 5 digits: no 64-bit division */
     out->degree_digits = (uint8_t)(whole - 2);
@@ -3156,9 +3170,11 @@ static inline nmea_text next_field(nmea_reader *r)
     return t;
 }
 
-static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *pattern, size_t n, size_t m)
+/* A field count refused (too_few_fields; too_many sets its own kind after): four arguments, none
+   passed on the stack, so that read_with's frame has no room for one. */
+static bool count_error(nmea_reader *r, const char *pattern, size_t n, size_t m)
 {
-    fail(r->err, kind, pattern);
+    fail(r->err, NMEA_ERR_TOO_FEW_FIELDS, pattern);
     set_address(r->err, r->wire->address, r->wire->suffix);
     r->err->str[0] = r->sentence;
     r->err->num[0] = n;
@@ -3168,12 +3184,14 @@ static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *patter
 
 static bool too_few(nmea_reader *r, size_t need, size_t found)
 {
-    return count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s needs at least %n fields, found %n"), need, found);
+    return count_error(r, ERROR_TEXT("%s needs at least %n fields, found %n"), need, found);
 }
 
 static bool too_many(nmea_reader *r, size_t limit, size_t found)
 {
-    return count_error(r, NMEA_ERR_TOO_MANY_FIELDS, ERROR_TEXT("%s takes at most %n fields, found %n"), limit, found);
+    count_error(r, ERROR_TEXT("%s takes at most %n fields, found %n"), limit, found);
+    r->err->kind = NMEA_ERR_TOO_MANY_FIELDS;
+    return false;
 }
 
 /* A layout without a repeated group: `fixed` required fields, `max` in all. Sets `optional` to
@@ -3357,19 +3375,22 @@ NMEA_FRAME bool read_date(nmea_reader *r, nmea_date *out)
     return true;
 }
 
-/* A value field and a hemisphere field, both empty or both set. */
+/* A value field and a hemisphere field, both empty or both set. A value that does not read is
+   refused before the hemisphere is taken (the same error: the reading ends there), so that the
+   two fields' texts are not both held across the parsing: 8 bytes less of this frame on
+   nmea_parse's deepest path at -Os. */
 static bool read_coordinate(nmea_reader *r, nmea_coordinate *out, const char *hemisphere_expected, bool longitude)
 {
     const char *hemispheres = longitude ? "EW" : "NS";
-    nmea_text value = next_field(r);
-    nmea_text hemisphere = next_field(r);
+    nmea_text value = next_field(r), hemisphere;
+    if (value.len && !parse_coordinate(value, 2u + longitude, longitude ? 180 : 90, out))
+        return bad_field(r, r->index, value);
+    hemisphere = next_field(r);
     if (!value.len) {
         if (hemisphere.len)
             return bad_field(r, r->index - 1, value);
         return true;
     }
-    if (!parse_coordinate(value, 2u + longitude, longitude ? 180 : 90, out))
-        return bad_field(r, r->index - 1, value);
     if (hemisphere.len != 1 || (hemisphere.ptr[0] != hemispheres[0] && hemisphere.ptr[0] != hemispheres[1])) {
         out->present = false;
         r->expected = hemisphere_expected;
@@ -3847,7 +3868,7 @@ NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
         }
         *--p = '.';
     } else if (n->scale && n->scale <= NMEA_MAX_DIGITS) {
-        v /= (uint64_t)POW10[n->scale];
+        v /= (uint64_t)POW10(n->scale);
     }
     if (n->width)
         p = uint_text(p, v, n->width);
@@ -3860,7 +3881,7 @@ NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
 static inline unsigned digit_count(uint64_t v)
 {
     unsigned count = 1;
-    while (count <= NMEA_MAX_DIGITS && v >= (uint64_t)POW10[count])
+    while (count <= NMEA_MAX_DIGITS && v >= (uint64_t)POW10(count))
         count++;
     return count;
 }
@@ -4175,7 +4196,7 @@ NMEA_OUTLINE char *fast_any_number_text(char *p, const nmea_number *n)
     uint64_t v = (uint64_t)n->digits;
     unsigned count = (unsigned)n->width + n->scale;
     char *point, *end;
-    if (n->digits < 0 || count > NMEA_MAX_DIGITS || v >= (uint64_t)POW10[count] || (n->scale && !n->point))
+    if (n->digits < 0 || count > NMEA_MAX_DIGITS || v >= (uint64_t)POW10(count) || (n->scale && !n->point))
         return NULL;
     point = p + (n->sign != 0) + n->width;
     end = point + (n->point != 0) + n->scale;
@@ -4263,7 +4284,7 @@ NMEA_HOT bool fast_put_time(fast_writer *w, const nmea_time *t)
     if (t->point) {
         *w->p++ = '.';
         if (t->fraction_digits) {
-            if (t->fraction >= (uint64_t)POW10[t->fraction_digits])
+            if (t->fraction >= (uint64_t)POW10(t->fraction_digits))
                 return false;
             fast_copy(w, uint_text(end, t->fraction, t->fraction_digits), t->fraction_digits);
         }
@@ -4285,7 +4306,7 @@ NMEA_HOT bool fast_put_coordinate(fast_writer *w, const nmea_coordinate *c)
     if (!fast_sep(w))
         return false;
     if (c->present) {
-        if (c->degree_digits > 3 || c->degrees > 999 || (c->degree_digits && c->degrees >= POW10[c->degree_digits]))
+        if (c->degree_digits > 3 || c->degrees > 999 || (c->degree_digits && c->degrees >= POW10(c->degree_digits)))
             return false;
         if (c->degree_digits)
             fast_copy(w, uint_text(end, c->degrees, c->degree_digits), c->degree_digits);
@@ -4395,7 +4416,7 @@ NMEA_INTERNAL void json_close(nmea_writer *w, char bracket)
 static void decimal_json(nmea_writer *w, const nmea_number *n)
 {
     uint64_t digits = (uint64_t)n->digits;
-    uint64_t unit = (uint64_t)POW10[n->scale <= NMEA_MAX_DIGITS ? n->scale : 0];
+    uint64_t unit = (uint64_t)POW10(n->scale <= NMEA_MAX_DIGITS ? n->scale : 0);
     uint64_t frac = digits % unit;
     unsigned scale = n->scale;
     if (n->sign == '-' && digits)
@@ -5334,7 +5355,7 @@ size_t nmea_param_hex(const nmea_parameter *p, uint64_t value, char *buf, size_t
 static void param_number(nmea_writer *w, int64_t value, unsigned scale)
 {
     uint64_t magnitude = value < 0 ? (uint64_t)0 - (uint64_t)value : (uint64_t)value;
-    uint64_t unit = (uint64_t)POW10[scale];
+    uint64_t unit = (uint64_t)POW10(scale);
     if (value < 0)
         put_char(w, '-');
     put_uint(w, magnitude / unit, 1);
@@ -5754,7 +5775,7 @@ static bool read_group_count(nmea_reader *r, const layout *l, size_t count, size
     if (extra > l->optional_max) {
         if (*repeats == g->max)
             return too_many(r, l->fixed + g->max * width + l->optional_max, count);
-        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
+        count_error(r, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
         r->err->str[1] = g->id;
         return false;
     }
@@ -6756,7 +6777,7 @@ double nmea_to_double(const nmea_number *n)
     /* Both operands are exact doubles up to 2^53 digits (10^18 is one too), so one rounding:
        the nearest double for up to 15 significant digits. */
     int64_t digits = n->sign == '-' ? -n->digits : n->digits;
-    return (double)digits / (double)POW10[n->scale];
+    return (double)digits / (double)POW10(n->scale);
 }
 
 float nmea_to_float(const nmea_number *n) { return (float)nmea_to_double(n); }
@@ -6767,8 +6788,8 @@ int32_t nmea_coordinate_e7(const nmea_coordinate *c)
        away from zero. The minutes are at most 60 (digits <= 60 x 10^scale, scale <= 16), so
        neither branch overflows. */
     const nmea_number *m = &c->minutes;
-    int64_t e7 = m->scale <= 7 ? (m->digits * POW10[7 - m->scale] + 30) / 60
-                               : (m->digits + 30 * POW10[m->scale - 7]) / (60 * POW10[m->scale - 7]);
+    int64_t e7 = m->scale <= 7 ? (m->digits * POW10(7 - m->scale) + 30) / 60
+                               : (m->digits + 30 * POW10(m->scale - 7)) / (60 * POW10(m->scale - 7));
     e7 += (int64_t)c->degrees * 10000000;
     return (int32_t)(c->hemisphere == 'S' || c->hemisphere == 'W' ? -e7 : e7);
 }
@@ -6776,7 +6797,7 @@ int32_t nmea_coordinate_e7(const nmea_coordinate *c)
 uint32_t nmea_time_ms(const nmea_time *t)
 {
     uint32_t seconds = ((uint32_t)t->hour * 60 + t->minute) * 60 + t->second;
-    uint64_t ms = (uint64_t)t->fraction * 1000 / (uint64_t)POW10[t->fraction_digits];
+    uint64_t ms = (uint64_t)t->fraction * 1000 / (uint64_t)POW10(t->fraction_digits);
     return seconds * 1000 + (uint32_t)ms;
 }
 
@@ -8024,3773 +8045,4294 @@ size_t nmea_fix_to_json(const nmea_gnss_fix *fix, char *buf, size_t cap)
 /* Generated from the spec */
 
 /* ------------------------------------------------------------------------------------------ */
-/* Lookup tables */
+/* Lookup tables: their texts each in an array of its own (see enum_texts in generator/emit_c.py),
+   then the tables */
 
-static const char aam_arrival_circle_texts[] =
-    "aam_arrival_circle\0" "A\0" "entered\0" "V\0" "not_entered\0";
+static const char enum_text_0[] = "aam_arrival_circle";
+static const char enum_text_4[] = "not_entered";
+static const char enum_text_5[] = "aam_perpendicular";
+static const char enum_text_7[] = "not_passed";
+static const char enum_text_8[] = "abk_ack_type";
+static const char enum_text_12[] = "no_acknowledgement";
+static const char enum_text_14[] = "not_broadcast";
+static const char enum_text_16[] = "broadcast_done";
+static const char enum_text_18[] = "late_reception";
+static const char enum_text_20[] = "read_on_display";
+static const char enum_text_21[] = "abk_channel";
+static const char enum_text_23[] = "B";
+static const char enum_text_25[] = "abm_channel";
+static const char enum_text_26[] = "no_preference";
+static const char enum_text_27[] = "both";
+static const char enum_text_28[] = "aca_bandwidth";
+static const char enum_text_29[] = "by_channel_number";
+static const char enum_text_30[] = "khz_12_5";
+static const char enum_text_31[] = "aca_in_use";
+static const char enum_text_32[] = "not_in_use";
+static const char enum_text_34[] = "aca_info_source";
+static const char enum_text_35[] = "message22_addressed";
+static const char enum_text_36[] = "message22_broadcast";
+static const char enum_text_38[] = "aca_sentence";
+static const char enum_text_40[] = "dsc_telecommand";
+static const char enum_text_43[] = "aca_power_level";
+static const char enum_text_46[] = "aca_txrx_mode";
+static const char enum_text_47[] = "tx_ab_rx_ab";
+static const char enum_text_48[] = "tx_a_rx_ab";
+static const char enum_text_49[] = "tx_b_rx_ab";
+static const char enum_text_50[] = "no_tx_rx_ab";
+static const char enum_text_51[] = "no_tx_rx_a";
+static const char enum_text_52[] = "no_tx_rx_b";
+static const char enum_text_53[] = "acn_alert_command";
+static const char enum_text_54[] = "acknowledge";
+static const char enum_text_55[] = "Q";
+static const char enum_text_56[] = "request_repeat";
+static const char enum_text_58[] = "responsibility_transfer";
+static const char enum_text_60[] = "silence";
+static const char enum_text_61[] = "airoha_ack_result";
+static const char enum_text_62[] = "success";
+static const char enum_text_63[] = "processing";
+static const char enum_text_65[] = "unsupported";
+static const char enum_text_66[] = "parameter_error";
+static const char enum_text_67[] = "busy";
+static const char enum_text_68[] = "airoha_aiding_type";
+static const char enum_text_69[] = "epo";
+static const char enum_text_72[] = "airoha_baud";
+static const char enum_text_74[] = "baud_4800";
+static const char enum_text_76[] = "baud_9600";
+static const char enum_text_78[] = "baud_19200";
+static const char enum_text_80[] = "baud_38400";
+static const char enum_text_82[] = "baud_57600";
+static const char enum_text_84[] = "baud_115200";
+static const char enum_text_86[] = "baud_230400";
+static const char enum_text_88[] = "baud_460800";
+static const char enum_text_90[] = "baud_921600";
+static const char enum_text_91[] = "airoha_debug_log";
+static const char enum_text_92[] = "disabled";
+static const char enum_text_94[] = "lite";
+static const char enum_text_95[] = "airoha_dgps_mode";
+static const char enum_text_96[] = "none";
+static const char enum_text_97[] = "rtcm";
+static const char enum_text_98[] = "sbas";
+static const char enum_text_99[] = "airoha_dr_message";
+static const char enum_text_100[] = "-1";
+static const char enum_text_102[] = "pqtmvehmsg";
+static const char enum_text_103[] = "pqtmsenmsg";
+static const char enum_text_104[] = "pqtmdrcal";
+static const char enum_text_105[] = "pqtmimutype";
+static const char enum_text_106[] = "pqtmvehmot";
+static const char enum_text_107[] = "airoha_easy_status";
+static const char enum_text_108[] = "not_finished";
+static const char enum_text_109[] = "day_1";
+static const char enum_text_110[] = "day_2";
+static const char enum_text_111[] = "day_3";
+static const char enum_text_112[] = "airoha_enable";
+static const char enum_text_114[] = "airoha_geofence_confidence";
+static const char enum_text_115[] = "sigma_1";
+static const char enum_text_116[] = "sigma_2";
+static const char enum_text_117[] = "sigma_3";
+static const char enum_text_118[] = "airoha_gnss_system";
+static const char enum_text_122[] = "beidou";
+static const char enum_text_124[] = "airoha_jamming_status";
+static const char enum_text_125[] = "unknown";
+static const char enum_text_126[] = "good";
+static const char enum_text_128[] = "critical";
+static const char enum_text_129[] = "airoha_locus_clear";
+static const char enum_text_130[] = "records_and_settings";
+static const char enum_text_131[] = "records";
+static const char enum_text_133[] = "airoha_locus_format";
+static const char enum_text_134[] = "nmea";
+static const char enum_text_135[] = "pair_hex";
+static const char enum_text_136[] = "airoha_locus_threshold";
+static const char enum_text_137[] = "speed";
+static const char enum_text_138[] = "distance";
+static const char enum_text_139[] = "airoha_nav_mode";
+static const char enum_text_141[] = "fitness";
+static const char enum_text_142[] = "stationary";
+static const char enum_text_143[] = "drone";
+static const char enum_text_145[] = "swimming";
+static const char enum_text_146[] = "airoha_nmea_output_mode";
+static const char enum_text_147[] = "nmea_4_10";
+static const char enum_text_148[] = "nmea_3_01";
+static const char enum_text_149[] = "airoha_nmea_type";
+static const char enum_text_158[] = "grs";
+static const char enum_text_162[] = "gns";
+static const char enum_text_163[] = "airoha_periodic_mode";
+static const char enum_text_164[] = "smart";
+static const char enum_text_165[] = "strict";
+static const char enum_text_166[] = "airoha_pos_precision";
+static const char enum_text_167[] = "lat_lon_4_alt_1";
+static const char enum_text_168[] = "lat_lon_5_alt_2";
+static const char enum_text_169[] = "lat_lon_6_alt_3";
+static const char enum_text_170[] = "lat_lon_7_alt_3";
+static const char enum_text_171[] = "airoha_pps_type";
+static const char enum_text_172[] = "after_first_fix";
+static const char enum_text_173[] = "fix_3d";
+static const char enum_text_174[] = "fix_2d_3d";
+static const char enum_text_175[] = "always";
+static const char enum_text_176[] = "airoha_rtcm_mode";
+static const char enum_text_177[] = "msm4";
+static const char enum_text_178[] = "msm7";
+static const char enum_text_179[] = "ais_aid_type";
+static const char enum_text_180[] = "not_specified";
+static const char enum_text_181[] = "reference_point";
+static const char enum_text_182[] = "racon";
+static const char enum_text_183[] = "fixed_structure";
+static const char enum_text_184[] = "spare";
+static const char enum_text_185[] = "light";
+static const char enum_text_186[] = "light_sectors";
+static const char enum_text_187[] = "leading_light_front";
+static const char enum_text_188[] = "leading_light_rear";
+static const char enum_text_189[] = "beacon_cardinal_n";
+static const char enum_text_191[] = "beacon_cardinal_e";
+static const char enum_text_193[] = "beacon_cardinal_s";
+static const char enum_text_195[] = "beacon_cardinal_w";
+static const char enum_text_197[] = "beacon_port";
+static const char enum_text_199[] = "beacon_starboard";
+static const char enum_text_201[] = "beacon_preferred_port";
+static const char enum_text_202[] = "16";
+static const char enum_text_203[] = "beacon_preferred_starboard";
+static const char enum_text_204[] = "17";
+static const char enum_text_205[] = "beacon_isolated_danger";
+static const char enum_text_207[] = "beacon_safe_water";
+static const char enum_text_209[] = "beacon_special";
+static const char enum_text_210[] = "20";
+static const char enum_text_214[] = "22";
+static const char enum_text_216[] = "23";
+static const char enum_text_218[] = "24";
+static const char enum_text_220[] = "25";
+static const char enum_text_222[] = "26";
+static const char enum_text_224[] = "27";
+static const char enum_text_226[] = "28";
+static const char enum_text_228[] = "29";
+static const char enum_text_232[] = "31";
+static const char enum_text_233[] = "light_vessel";
+static const char enum_text_234[] = "ais_channel";
+static const char enum_text_236[] = "two";
+static const char enum_text_237[] = "ais_epfd";
+static const char enum_text_238[] = "undefined";
+static const char enum_text_239[] = "gps_glonass";
+static const char enum_text_240[] = "loran_c";
+static const char enum_text_241[] = "chayka";
+static const char enum_text_242[] = "integrated";
+static const char enum_text_243[] = "surveyed";
+static const char enum_text_244[] = "internal_gnss";
+static const char enum_text_245[] = "ais_ship_type";
+static const char enum_text_246[] = "not_available";
+static const char enum_text_248[] = "wig_hazardous_a";
+static const char enum_text_249[] = "wig_hazardous_b";
+static const char enum_text_250[] = "wig_hazardous_c";
+static const char enum_text_251[] = "wig_hazardous_d";
+static const char enum_text_252[] = "fishing";
+static const char enum_text_253[] = "towing";
+static const char enum_text_254[] = "32";
+static const char enum_text_255[] = "towing_large";
+static const char enum_text_256[] = "33";
+static const char enum_text_257[] = "dredging";
+static const char enum_text_258[] = "34";
+static const char enum_text_259[] = "diving";
+static const char enum_text_260[] = "35";
+static const char enum_text_261[] = "military";
+static const char enum_text_262[] = "36";
+static const char enum_text_264[] = "37";
+static const char enum_text_265[] = "pleasure_craft";
+static const char enum_text_266[] = "40";
+static const char enum_text_267[] = "high_speed_craft";
+static const char enum_text_268[] = "41";
+static const char enum_text_269[] = "high_speed_craft_hazardous_a";
+static const char enum_text_270[] = "42";
+static const char enum_text_271[] = "high_speed_craft_hazardous_b";
+static const char enum_text_272[] = "43";
+static const char enum_text_273[] = "high_speed_craft_hazardous_c";
+static const char enum_text_274[] = "44";
+static const char enum_text_275[] = "high_speed_craft_hazardous_d";
+static const char enum_text_276[] = "49";
+static const char enum_text_277[] = "high_speed_craft_no_info";
+static const char enum_text_278[] = "50";
+static const char enum_text_279[] = "pilot_vessel";
+static const char enum_text_280[] = "51";
+static const char enum_text_281[] = "search_and_rescue";
+static const char enum_text_282[] = "52";
+static const char enum_text_283[] = "tug";
+static const char enum_text_284[] = "53";
+static const char enum_text_285[] = "port_tender";
+static const char enum_text_286[] = "54";
+static const char enum_text_287[] = "anti_pollution";
+static const char enum_text_288[] = "55";
+static const char enum_text_289[] = "law_enforcement";
+static const char enum_text_291[] = "local_56";
+static const char enum_text_293[] = "local_57";
+static const char enum_text_294[] = "58";
+static const char enum_text_295[] = "medical_transport";
+static const char enum_text_296[] = "59";
+static const char enum_text_297[] = "noncombatant";
+static const char enum_text_299[] = "passenger";
+static const char enum_text_300[] = "61";
+static const char enum_text_301[] = "passenger_hazardous_a";
+static const char enum_text_302[] = "62";
+static const char enum_text_303[] = "passenger_hazardous_b";
+static const char enum_text_304[] = "63";
+static const char enum_text_305[] = "passenger_hazardous_c";
+static const char enum_text_306[] = "64";
+static const char enum_text_307[] = "passenger_hazardous_d";
+static const char enum_text_308[] = "69";
+static const char enum_text_309[] = "passenger_no_info";
+static const char enum_text_310[] = "70";
+static const char enum_text_311[] = "cargo";
+static const char enum_text_312[] = "71";
+static const char enum_text_313[] = "cargo_hazardous_a";
+static const char enum_text_315[] = "cargo_hazardous_b";
+static const char enum_text_316[] = "73";
+static const char enum_text_317[] = "cargo_hazardous_c";
+static const char enum_text_318[] = "74";
+static const char enum_text_319[] = "cargo_hazardous_d";
+static const char enum_text_320[] = "79";
+static const char enum_text_321[] = "cargo_no_info";
+static const char enum_text_322[] = "80";
+static const char enum_text_323[] = "tanker";
+static const char enum_text_324[] = "81";
+static const char enum_text_325[] = "tanker_hazardous_a";
+static const char enum_text_326[] = "82";
+static const char enum_text_327[] = "tanker_hazardous_b";
+static const char enum_text_328[] = "83";
+static const char enum_text_329[] = "tanker_hazardous_c";
+static const char enum_text_331[] = "tanker_hazardous_d";
+static const char enum_text_332[] = "89";
+static const char enum_text_333[] = "tanker_no_info";
+static const char enum_text_336[] = "91";
+static const char enum_text_337[] = "other_hazardous_a";
+static const char enum_text_338[] = "92";
+static const char enum_text_339[] = "other_hazardous_b";
+static const char enum_text_340[] = "93";
+static const char enum_text_341[] = "other_hazardous_c";
+static const char enum_text_342[] = "94";
+static const char enum_text_343[] = "other_hazardous_d";
+static const char enum_text_345[] = "other_no_info";
+static const char enum_text_346[] = "ala_ack_state";
+static const char enum_text_348[] = "not_acknowledged";
+static const char enum_text_351[] = "harbour_mode";
+static const char enum_text_353[] = "ala_condition";
+static const char enum_text_355[] = "J";
+static const char enum_text_356[] = "extreme_high";
+static const char enum_text_359[] = "extreme_low";
+static const char enum_text_361[] = "alf_category";
+static const char enum_text_362[] = "category_a";
+static const char enum_text_363[] = "category_b";
+static const char enum_text_364[] = "category_c";
+static const char enum_text_365[] = "alf_priority";
+static const char enum_text_367[] = "emergency_alarm";
+static const char enum_text_369[] = "W";
+static const char enum_text_370[] = "caution";
+static const char enum_text_371[] = "alf_state";
+static const char enum_text_372[] = "active_unacknowledged";
+static const char enum_text_373[] = "active_silenced";
+static const char enum_text_374[] = "active_acknowledged";
+static const char enum_text_375[] = "active_responsibility_transferred";
+static const char enum_text_377[] = "rectified_unacknowledged";
+static const char enum_text_378[] = "alr_ack_state";
+static const char enum_text_380[] = "alr_condition";
+static const char enum_text_381[] = "threshold_exceeded";
+static const char enum_text_382[] = "not_exceeded";
+static const char enum_text_383[] = "apb_bearing_ref";
+static const char enum_text_384[] = "magnetic";
+static const char enum_text_386[] = "true_north";
+static const char enum_text_387[] = "ashtech_hpr_mode";
+static const char enum_text_388[] = "fixed_baseline";
+static const char enum_text_389[] = "calibrating";
+static const char enum_text_390[] = "flexible_baseline";
+static const char enum_text_391[] = "ashtech_nme_message";
+static const char enum_text_392[] = "ALM";
+static const char enum_text_393[] = "alm";
+static const char enum_text_394[] = "DTM";
+static const char enum_text_395[] = "dtm";
+static const char enum_text_398[] = "GMP";
+static const char enum_text_399[] = "gmp";
+static const char enum_text_400[] = "GNS";
+static const char enum_text_401[] = "GRS";
+static const char enum_text_407[] = "HD2";
+static const char enum_text_408[] = "hd2";
+static const char enum_text_412[] = "XDR";
+static const char enum_text_413[] = "xdr";
+static const char enum_text_414[] = "ATT";
+static const char enum_text_415[] = "att";
+static const char enum_text_416[] = "AT2";
+static const char enum_text_417[] = "at2";
+static const char enum_text_418[] = "CRT";
+static const char enum_text_419[] = "crt";
+static const char enum_text_420[] = "DCR";
+static const char enum_text_421[] = "dcr";
+static const char enum_text_422[] = "DDS";
+static const char enum_text_423[] = "dds";
+static const char enum_text_424[] = "DPO";
+static const char enum_text_425[] = "dpo";
+static const char enum_text_426[] = "LTN";
+static const char enum_text_427[] = "ltn";
+static const char enum_text_428[] = "POS";
+static const char enum_text_429[] = "pos";
+static const char enum_text_430[] = "RRE";
+static const char enum_text_431[] = "rre";
+static const char enum_text_432[] = "SAT";
+static const char enum_text_433[] = "sat";
+static const char enum_text_434[] = "SGA";
+static const char enum_text_435[] = "sga";
+static const char enum_text_436[] = "SGL";
+static const char enum_text_437[] = "sgl";
+static const char enum_text_438[] = "SGP";
+static const char enum_text_439[] = "sgp";
+static const char enum_text_440[] = "USR";
+static const char enum_text_441[] = "usr";
+static const char enum_text_442[] = "VEC";
+static const char enum_text_443[] = "vec";
+static const char enum_text_444[] = "VE2";
+static const char enum_text_445[] = "ve2";
+static const char enum_text_446[] = "PTT";
+static const char enum_text_447[] = "ptt";
+static const char enum_text_448[] = "TTT";
+static const char enum_text_449[] = "ttt";
+static const char enum_text_450[] = "ashtech_on_off";
+static const char enum_text_455[] = "ashtech_port";
+static const char enum_text_456[] = "serial_a";
+static const char enum_text_457[] = "serial_b";
+static const char enum_text_459[] = "serial_f";
+static const char enum_text_460[] = "serial_d";
+static const char enum_text_461[] = "bluetooth";
+static const char enum_text_463[] = "ethernet_i";
+static const char enum_text_465[] = "ethernet_p";
+static const char enum_text_466[] = "ethernet_q";
+static const char enum_text_467[] = "I1";
+static const char enum_text_468[] = "ethernet_i1";
+static const char enum_text_469[] = "I2";
+static const char enum_text_470[] = "ethernet_i2";
+static const char enum_text_471[] = "I3";
+static const char enum_text_472[] = "ethernet_i3";
+static const char enum_text_473[] = "I4";
+static const char enum_text_474[] = "ethernet_i4";
+static const char enum_text_475[] = "I5";
+static const char enum_text_476[] = "ethernet_i5";
+static const char enum_text_477[] = "I6";
+static const char enum_text_478[] = "ethernet_i6";
+static const char enum_text_479[] = "I7";
+static const char enum_text_480[] = "ethernet_i7";
+static const char enum_text_481[] = "I8";
+static const char enum_text_482[] = "ethernet_i8";
+static const char enum_text_483[] = "I9";
+static const char enum_text_484[] = "ethernet_i9";
+static const char enum_text_485[] = "modem";
+static const char enum_text_486[] = "internal_memory";
+static const char enum_text_487[] = "usb_key";
+static const char enum_text_489[] = "recording_session";
+static const char enum_text_490[] = "ashtech_pos_solution";
+static const char enum_text_491[] = "autonomous";
+static const char enum_text_492[] = "code_differential";
+static const char enum_text_493[] = "rtk_float";
+static const char enum_text_494[] = "rtk_fixed";
+static const char enum_text_496[] = "sbas_differential";
+static const char enum_text_497[] = "beidou_differential";
+static const char enum_text_498[] = "rtk_float_alt";
+static const char enum_text_499[] = "rtk_fixed_alt";
+static const char enum_text_500[] = "rtk_float_dithered";
+static const char enum_text_501[] = "rtk_fixed_dithered";
+static const char enum_text_502[] = "ashtech_rt300_alignment";
+static const char enum_text_503[] = "gps_only";
+static const char enum_text_504[] = "coarse_leveling";
+static const char enum_text_505[] = "degraded";
+static const char enum_text_506[] = "aligned";
+static const char enum_text_507[] = "full_navigation";
+static const char enum_text_508[] = "ashtech_rt300_quality";
+static const char enum_text_509[] = "no_fix";
+static const char enum_text_510[] = "sps";
+static const char enum_text_512[] = "pps";
+static const char enum_text_513[] = "ashtech_sv_used";
+static const char enum_text_515[] = "-";
+static const char enum_text_517[] = "ashtech_vector_mode";
+static const char enum_text_518[] = "invalid";
+static const char enum_text_520[] = "broadcom_glor_confidence";
+static const char enum_text_521[] = "medium";
+static const char enum_text_522[] = "broadcom_glor_location_request";
+static const char enum_text_523[] = "not_needed";
+static const char enum_text_524[] = "requested";
+static const char enum_text_525[] = "broadcom_glor_power_save";
+static const char enum_text_526[] = "full_power";
+static const char enum_text_530[] = "SG";
+static const char enum_text_531[] = "power_save_glonass_low_power";
+static const char enum_text_532[] = "broadcom_glor_vel_track_quality";
+static const char enum_text_533[] = "poor_velocity_poor_track";
+static const char enum_text_534[] = "good_velocity_poor_track";
+static const char enum_text_535[] = "poor_velocity_good_track";
+static const char enum_text_536[] = "good_velocity_good_track";
+static const char enum_text_537[] = "comnav_log_message";
+static const char enum_text_538[] = "GPGGA";
+static const char enum_text_539[] = "gpgga";
+static const char enum_text_540[] = "GPGLL";
+static const char enum_text_541[] = "gpgll";
+static const char enum_text_542[] = "GPGSA";
+static const char enum_text_543[] = "gpgsa";
+static const char enum_text_544[] = "GPGST";
+static const char enum_text_545[] = "gpgst";
+static const char enum_text_546[] = "GPGSV";
+static const char enum_text_547[] = "gpgsv";
+static const char enum_text_548[] = "GPHDT";
+static const char enum_text_549[] = "gphdt";
+static const char enum_text_550[] = "GPRMC";
+static const char enum_text_551[] = "gprmc";
+static const char enum_text_552[] = "GPVTG";
+static const char enum_text_553[] = "gpvtg";
+static const char enum_text_554[] = "GPZDA";
+static const char enum_text_555[] = "gpzda";
+static const char enum_text_556[] = "comnav_talker_id";
+static const char enum_text_557[] = "GN";
+static const char enum_text_558[] = "gn";
+static const char enum_text_561[] = "BD";
+static const char enum_text_562[] = "bd";
+static const char enum_text_567[] = "AUTO";
+static const char enum_text_568[] = "auto";
+static const char enum_text_569[] = "comnav_talker_sentence";
+static const char enum_text_570[] = "ALL";
+static const char enum_text_571[] = "cur_direction_reference";
+static const char enum_text_572[] = "relative";
+static const char enum_text_573[] = "cur_heading_reference";
+static const char enum_text_574[] = "cur_speed_reference";
+static const char enum_text_575[] = "bottom_track";
+static const char enum_text_576[] = "water_track";
+static const char enum_text_577[] = "positioning_system";
+static const char enum_text_578[] = "ddc_command_mode";
+static const char enum_text_579[] = "operational";
+static const char enum_text_581[] = "ddc_preset";
+static const char enum_text_582[] = "day";
+static const char enum_text_583[] = "dusk";
+static const char enum_text_584[] = "night";
+static const char enum_text_585[] = "backlight_off";
+static const char enum_text_586[] = "dor_message_type";
+static const char enum_text_587[] = "section_status";
+static const char enum_text_588[] = "single_door";
+static const char enum_text_589[] = "system_fault";
+static const char enum_text_590[] = "dor_status";
+static const char enum_text_591[] = "open";
+static const char enum_text_592[] = "closed";
+static const char enum_text_593[] = "secured";
+static const char enum_text_594[] = "free";
+static const char enum_text_596[] = "dor_switch_setting";
+static const char enum_text_597[] = "sea_mode";
+static const char enum_text_598[] = "dor_system";
+static const char enum_text_599[] = "WT";
+static const char enum_text_601[] = "WS";
+static const char enum_text_602[] = "semi_watertight";
+static const char enum_text_603[] = "FD";
+static const char enum_text_604[] = "fire_door";
+static const char enum_text_605[] = "HD";
+static const char enum_text_606[] = "hull_door";
+static const char enum_text_608[] = "dsc_acknowledgement";
+static const char enum_text_611[] = "end_of_sequence";
+static const char enum_text_612[] = "dsc_category";
+static const char enum_text_614[] = "routine";
+static const char enum_text_616[] = "safety";
+static const char enum_text_617[] = "urgency";
+static const char enum_text_618[] = "distress";
+static const char enum_text_619[] = "dsc_distress_nature";
+static const char enum_text_620[] = "fire";
+static const char enum_text_622[] = "flooding";
+static const char enum_text_624[] = "collision";
+static const char enum_text_626[] = "grounding";
+static const char enum_text_628[] = "listing";
+static const char enum_text_630[] = "sinking";
+static const char enum_text_632[] = "adrift";
+static const char enum_text_634[] = "undesignated";
+static const char enum_text_635[] = "abandoning_ship";
+static const char enum_text_638[] = "man_overboard";
+static const char enum_text_639[] = "epirb";
+static const char enum_text_640[] = "dsc_format";
+static const char enum_text_642[] = "common_interest";
+static const char enum_text_643[] = "all_ships";
+static const char enum_text_644[] = "individual";
+static const char enum_text_645[] = "individual_automatic";
+static const char enum_text_646[] = "dse_code";
+static const char enum_text_647[] = "enhanced_position";
+static const char enum_text_648[] = "position_source_datum";
+static const char enum_text_649[] = "course";
+static const char enum_text_650[] = "station_id";
+static const char enum_text_651[] = "enhanced_geographic_area";
+static const char enum_text_652[] = "persons_on_board";
+static const char enum_text_653[] = "dse_query_flag";
+static const char enum_text_654[] = "query";
+static const char enum_text_655[] = "reply";
+static const char enum_text_657[] = "dtm_datum";
+static const char enum_text_660[] = "W72";
+static const char enum_text_661[] = "wgs72";
+static const char enum_text_662[] = "S85";
+static const char enum_text_663[] = "sgs85";
+static const char enum_text_666[] = "999";
+static const char enum_text_667[] = "user_defined";
+static const char enum_text_668[] = "dtm_lat_offset_dir";
+static const char enum_text_671[] = "dtm_lon_offset_dir";
+static const char enum_text_674[] = "east_west";
+static const char enum_text_675[] = "etl_message_type";
+static const char enum_text_677[] = "answer_back";
+static const char enum_text_678[] = "etl_sub_telegraph";
+static const char enum_text_680[] = "full_away";
+static const char enum_text_681[] = "finished_with_engine";
+static const char enum_text_682[] = "etl_telegraph_position";
+static const char enum_text_683[] = "stop";
+static const char enum_text_684[] = "ahead_dead_slow";
+static const char enum_text_685[] = "ahead_slow";
+static const char enum_text_686[] = "ahead_half";
+static const char enum_text_687[] = "ahead_full";
+static const char enum_text_688[] = "ahead_navigation_full";
+static const char enum_text_689[] = "astern_dead_slow";
+static const char enum_text_690[] = "astern_slow";
+static const char enum_text_691[] = "astern_half";
+static const char enum_text_692[] = "astern_full";
+static const char enum_text_693[] = "crash_astern";
+static const char enum_text_694[] = "fir_condition";
+static const char enum_text_696[] = "non_activation";
+static const char enum_text_697[] = "fir_message_type";
+static const char enum_text_698[] = "event";
+static const char enum_text_699[] = "fir_system";
+static const char enum_text_700[] = "generic_fire_detector";
+static const char enum_text_701[] = "FH";
+static const char enum_text_702[] = "heat_detector";
+static const char enum_text_703[] = "FS";
+static const char enum_text_704[] = "smoke_detector";
+static const char enum_text_705[] = "FM";
+static const char enum_text_706[] = "manual_call_point";
+static const char enum_text_707[] = "GD";
+static const char enum_text_708[] = "gas_detector";
+static const char enum_text_709[] = "GO";
+static const char enum_text_710[] = "oxygen_detector";
+static const char enum_text_711[] = "GS";
+static const char enum_text_712[] = "hydrogen_sulphide_detector";
+static const char enum_text_713[] = "GH";
+static const char enum_text_714[] = "hydrocarbon_detector";
+static const char enum_text_715[] = "SF";
+static const char enum_text_716[] = "sprinkler_flow_switch";
+static const char enum_text_718[] = "sprinkler_manual_valve";
+static const char enum_text_719[] = "CO";
+static const char enum_text_720[] = "co2_manual_release";
+static const char enum_text_721[] = "fsi_mode";
+static const char enum_text_723[] = "f3e_g3e_simplex_telephone";
+static const char enum_text_725[] = "f3e_g3e_duplex_telephone";
+static const char enum_text_727[] = "j3e_telephone";
+static const char enum_text_729[] = "h3e_telephone";
+static const char enum_text_731[] = "nbdp_fec";
+static const char enum_text_733[] = "nbdp_arq";
+static const char enum_text_735[] = "f1b_j2b_receive_only";
+static const char enum_text_737[] = "f1b_j2b_teleprinter_dsc";
+static const char enum_text_739[] = "a1a_morse_recorder";
+static const char enum_text_740[] = "{";
+static const char enum_text_741[] = "a1a_morse_key";
+static const char enum_text_742[] = "|";
+static const char enum_text_743[] = "facsimile";
+static const char enum_text_744[] = "fsi_sentence_status";
+static const char enum_text_747[] = "furuno_eride_freq_mode";
+static const char enum_text_748[] = "warm_up";
+static const char enum_text_750[] = "hold_over";
+static const char enum_text_751[] = "free_run";
+static const char enum_text_753[] = "fine";
+static const char enum_text_754[] = "undocumented_7";
+static const char enum_text_755[] = "furuno_eride_on_off";
+static const char enum_text_756[] = "furuno_eride_polarity";
+static const char enum_text_757[] = "rising";
+static const char enum_text_758[] = "falling";
+static const char enum_text_759[] = "furuno_eride_position_mode";
+static const char enum_text_760[] = "survey_restart";
+static const char enum_text_761[] = "survey_continue";
+static const char enum_text_762[] = "position_hold";
+static const char enum_text_763[] = "furuno_eride_pps_mode";
+static const char enum_text_764[] = "always_off";
+static const char enum_text_765[] = "always_on";
+static const char enum_text_766[] = "when_fixed";
+static const char enum_text_767[] = "when_traim_ok";
+static const char enum_text_768[] = "when_accurate";
+static const char enum_text_769[] = "furuno_eride_pps_period";
+static const char enum_text_770[] = "pp2s";
+static const char enum_text_771[] = "furuno_eride_pps_sync";
+static const char enum_text_772[] = "rtc";
+static const char enum_text_773[] = "utc_usno";
+static const char enum_text_774[] = "utc_su";
+static const char enum_text_775[] = "undocumented_4";
+static const char enum_text_776[] = "furuno_eride_pps_type";
+static const char enum_text_777[] = "legacy";
+static const char enum_text_778[] = "gclk";
+static const char enum_text_779[] = "furuno_eride_time_status";
+static const char enum_text_780[] = "utc";
+static const char enum_text_781[] = "furuno_eride_traim_solution";
+static const char enum_text_783[] = "furuno_eride_traim_status";
+static const char enum_text_784[] = "detect_and_isolate";
+static const char enum_text_785[] = "detect_only";
+static const char enum_text_786[] = "garmin_baud";
+static const char enum_text_787[] = "baud_1200";
+static const char enum_text_788[] = "baud_2400";
+static const char enum_text_789[] = "baud_300";
+static const char enum_text_790[] = "baud_600";
+static const char enum_text_791[] = "garmin_config_fix_mode";
+static const char enum_text_792[] = "only_2d";
+static const char enum_text_793[] = "only_3d";
+static const char enum_text_794[] = "garmin_data_collection";
+static const char enum_text_795[] = "collecting";
+static const char enum_text_796[] = "garmin_dgps_mode";
+static const char enum_text_797[] = "waas_only";
+static const char enum_text_798[] = "rtcm_only";
+static const char enum_text_799[] = "garmin_dgps_source";
+static const char enum_text_800[] = "waas";
+static const char enum_text_801[] = "garmin_diff_mode";
+static const char enum_text_802[] = "differential_only";
+static const char enum_text_803[] = "garmin_fix_dimension";
+static const char enum_text_804[] = "fix_2d";
+static const char enum_text_805[] = "garmin_fix_mode";
+static const char enum_text_806[] = "garmin_fix_type";
+static const char enum_text_807[] = "garmin_off_on";
+static const char enum_text_808[] = "garmin_output_mode";
+static const char enum_text_809[] = "disable";
+static const char enum_text_811[] = "disable_all";
+static const char enum_text_812[] = "enable_all";
+static const char enum_text_813[] = "restore_defaults";
+static const char enum_text_814[] = "garmin_binary";
+static const char enum_text_815[] = "garmin_pass_fail";
+static const char enum_text_816[] = "pass";
+static const char enum_text_818[] = "garmin_power_mode";
+static const char enum_text_819[] = "garmin_receiver_command";
+static const char enum_text_820[] = "auto_locate";
+static const char enum_text_822[] = "garmin_retained_lost";
+static const char enum_text_823[] = "retained";
+static const char enum_text_825[] = "garmin_waas_mode";
+static const char enum_text_826[] = "geos5_command_word";
+static const char enum_text_827[] = "SWPROT";
+static const char enum_text_828[] = "switch_to_binary";
+static const char enum_text_829[] = "SAVEFL";
+static const char enum_text_830[] = "save_almanacs";
+static const char enum_text_831[] = "CSTART";
+static const char enum_text_832[] = "cold_start";
+static const char enum_text_833[] = "WSTART";
+static const char enum_text_834[] = "warm_start";
+static const char enum_text_835[] = "HSTART";
+static const char enum_text_836[] = "hot_start";
+static const char enum_text_837[] = "BDR004";
+static const char enum_text_838[] = "BDR009";
+static const char enum_text_839[] = "BDR019";
+static const char enum_text_840[] = "BDR038";
+static const char enum_text_841[] = "BDR057";
+static const char enum_text_842[] = "BDR115";
+static const char enum_text_843[] = "BDR230";
+static const char enum_text_844[] = "BDR460";
+static const char enum_text_845[] = "BDR921";
+static const char enum_text_846[] = "STOP01";
+static const char enum_text_847[] = "stop_bits_1";
+static const char enum_text_848[] = "STOP02";
+static const char enum_text_849[] = "stop_bits_2";
+static const char enum_text_850[] = "GGA ON";
+static const char enum_text_851[] = "gga_gns_on";
+static const char enum_text_852[] = "GGAOFF";
+static const char enum_text_853[] = "gga_gns_off";
+static const char enum_text_854[] = "GLL ON";
+static const char enum_text_855[] = "gll_on";
+static const char enum_text_856[] = "GLLOFF";
+static const char enum_text_857[] = "gll_off";
+static const char enum_text_858[] = "GSA ON";
+static const char enum_text_859[] = "gsa_on";
+static const char enum_text_860[] = "GSAOFF";
+static const char enum_text_861[] = "gsa_off";
+static const char enum_text_862[] = "GSV ON";
+static const char enum_text_863[] = "gsv_on";
+static const char enum_text_864[] = "GSVOFF";
+static const char enum_text_865[] = "gsv_off";
+static const char enum_text_866[] = "RMC ON";
+static const char enum_text_867[] = "rmc_on";
+static const char enum_text_868[] = "RMCOFF";
+static const char enum_text_869[] = "rmc_off";
+static const char enum_text_870[] = "VTG ON";
+static const char enum_text_871[] = "vtg_on";
+static const char enum_text_872[] = "VTGOFF";
+static const char enum_text_873[] = "vtg_off";
+static const char enum_text_874[] = "ZDA ON";
+static const char enum_text_875[] = "zda_on";
+static const char enum_text_876[] = "ZDAOFF";
+static const char enum_text_877[] = "zda_off";
+static const char enum_text_878[] = "DTM ON";
+static const char enum_text_879[] = "dtm_on";
+static const char enum_text_880[] = "DTMOFF";
+static const char enum_text_881[] = "dtm_off";
+static const char enum_text_882[] = "RLM ON";
+static const char enum_text_883[] = "rlm_on";
+static const char enum_text_884[] = "RLMOFF";
+static const char enum_text_885[] = "rlm_off";
+static const char enum_text_886[] = "NMEAV2";
+static const char enum_text_887[] = "nmea_v2";
+static const char enum_text_888[] = "NMEAV4";
+static const char enum_text_889[] = "nmea_v4_10";
+static const char enum_text_890[] = "RATE01";
+static const char enum_text_891[] = "rate_1hz";
+static const char enum_text_892[] = "RATE02";
+static const char enum_text_893[] = "rate_2hz";
+static const char enum_text_894[] = "RATE05";
+static const char enum_text_895[] = "rate_5hz";
+static const char enum_text_896[] = "RATE10";
+static const char enum_text_897[] = "rate_10hz";
+static const char enum_text_898[] = "PSM ON";
+static const char enum_text_899[] = "power_saving_on";
+static const char enum_text_900[] = "PSMOFF";
+static const char enum_text_901[] = "power_saving_off";
+static const char enum_text_902[] = "ELEV05";
+static const char enum_text_903[] = "elevation_mask_5";
+static const char enum_text_904[] = "ELEV06";
+static const char enum_text_905[] = "elevation_mask_6";
+static const char enum_text_906[] = "ELEV07";
+static const char enum_text_907[] = "elevation_mask_7";
+static const char enum_text_908[] = "ELEV08";
+static const char enum_text_909[] = "elevation_mask_8";
+static const char enum_text_910[] = "ELEV09";
+static const char enum_text_911[] = "elevation_mask_9";
+static const char enum_text_912[] = "ELEV10";
+static const char enum_text_913[] = "elevation_mask_10";
+static const char enum_text_914[] = "ELEV11";
+static const char enum_text_915[] = "elevation_mask_11";
+static const char enum_text_916[] = "ELEV12";
+static const char enum_text_917[] = "elevation_mask_12";
+static const char enum_text_918[] = "ELEV13";
+static const char enum_text_919[] = "elevation_mask_13";
+static const char enum_text_920[] = "ELEV14";
+static const char enum_text_921[] = "elevation_mask_14";
+static const char enum_text_922[] = "ELEV15";
+static const char enum_text_923[] = "elevation_mask_15";
+static const char enum_text_924[] = "DATP90";
+static const char enum_text_925[] = "datum_pz90";
+static const char enum_text_926[] = "DATW84";
+static const char enum_text_927[] = "datum_wgs84";
+static const char enum_text_928[] = "NVSGPS";
+static const char enum_text_929[] = "NVSGLN";
+static const char enum_text_930[] = "glonass_only";
+static const char enum_text_931[] = "NVSMIX";
+static const char enum_text_932[] = "glonass_gps_galileo";
+static const char enum_text_933[] = "geos5_message_rate";
+static const char enum_text_934[] = "every_1s";
+static const char enum_text_935[] = "every_2s";
+static const char enum_text_936[] = "every_20s";
+static const char enum_text_938[] = "geos5_nmea_version";
+static const char enum_text_939[] = "v2_x";
+static const char enum_text_941[] = "geos5_output_rate";
+static const char enum_text_942[] = "gfa_integrity";
+static const char enum_text_944[] = "unsafe";
+static const char enum_text_945[] = "gga_quality";
+static const char enum_text_946[] = "manual_input";
+static const char enum_text_947[] = "simulator";
+static const char enum_text_948[] = "geopath";
+static const char enum_text_949[] = "glc_signal_status";
+static const char enum_text_951[] = "blink_warning";
+static const char enum_text_952[] = "cycle_warning";
+static const char enum_text_953[] = "snr_warning";
+static const char enum_text_954[] = "gns_mode";
+static const char enum_text_955[] = "estimated";
+static const char enum_text_956[] = "not_valid";
+static const char enum_text_957[] = "precise";
+static const char enum_text_958[] = "grs_mode";
+static const char enum_text_959[] = "used_in_fix";
+static const char enum_text_960[] = "recomputed";
+static const char enum_text_961[] = "gsa_fix_type";
+static const char enum_text_962[] = "gsa_selection_mode";
+static const char enum_text_963[] = "hbt_equipment_status";
+static const char enum_text_964[] = "not_normal";
+static const char enum_text_965[] = "hcr_correction_state";
+static const char enum_text_966[] = "speed_latitude_and_dynamic";
+static const char enum_text_968[] = "speed_latitude";
+static const char enum_text_970[] = "hemisphere_heading_source";
+static const char enum_text_972[] = "gyro";
+static const char enum_text_973[] = "hmr_difference_status";
+static const char enum_text_974[] = "within_limit";
+static const char enum_text_975[] = "limit_exceeded";
+static const char enum_text_976[] = "hsc_sentence_status";
+static const char enum_text_977[] = "htc_heading_reference";
+static const char enum_text_978[] = "htc_override";
+static const char enum_text_979[] = "htc_steering_mode";
+static const char enum_text_980[] = "stand_alone";
+static const char enum_text_981[] = "heading_control";
+static const char enum_text_982[] = "track_control";
+static const char enum_text_983[] = "rudder_control";
+static const char enum_text_984[] = "htc_turn_mode";
+static const char enum_text_985[] = "radius_controlled";
+static const char enum_text_986[] = "rate_controlled";
+static const char enum_text_987[] = "not_controlled";
+static const char enum_text_988[] = "htd_limit_status";
+static const char enum_text_989[] = "within_limits";
+static const char enum_text_990[] = "limit_reached";
+static const char enum_text_991[] = "left_right";
+static const char enum_text_992[] = "left";
+static const char enum_text_994[] = "llq_quality";
+static const char enum_text_995[] = "gps_nav_fix";
+static const char enum_text_996[] = "dgps_fix";
+static const char enum_text_997[] = "rtk_fix";
+static const char enum_text_998[] = "lrf_function";
+static const char enum_text_999[] = "ship_id";
+static const char enum_text_1000[] = "date_time";
+static const char enum_text_1002[] = "destination";
+static const char enum_text_1004[] = "dimensions";
+static const char enum_text_1005[] = "persons";
+static const char enum_text_1006[] = "lrf_reply_status";
+static const char enum_text_1007[] = "provided";
+static const char enum_text_1008[] = "restricted";
+static const char enum_text_1009[] = "lri_control_flag";
+static const char enum_text_1010[] = "geographic";
+static const char enum_text_1011[] = "magellan_altitude_unit";
+static const char enum_text_1012[] = "feet";
+static const char enum_text_1014[] = "magellan_command";
+static const char enum_text_1015[] = "WAYPOINT";
+static const char enum_text_1016[] = "waypoint";
+static const char enum_text_1017[] = "ROUTE";
+static const char enum_text_1018[] = "route";
+static const char enum_text_1019[] = "TRACK";
+static const char enum_text_1021[] = "magellan_fix_flag";
+static const char enum_text_1023[] = "magellan_fix_mode";
+static const char enum_text_1024[] = "mob_battery";
+static const char enum_text_1026[] = "mob_position_source";
+static const char enum_text_1027[] = "vessel_estimate";
+static const char enum_text_1028[] = "emitter_report";
+static const char enum_text_1029[] = "mob_status";
+static const char enum_text_1030[] = "activated";
+static const char enum_text_1031[] = "test";
+static const char enum_text_1032[] = "manual_button";
+static const char enum_text_1033[] = "msk_auto_manual";
+static const char enum_text_1034[] = "mtk_ack_flag";
+static const char enum_text_1035[] = "mtk_antenna_status";
+static const char enum_text_1036[] = "active_shorted";
+static const char enum_text_1037[] = "internal";
+static const char enum_text_1039[] = "mtk_baud";
+static const char enum_text_1040[] = "default";
+static const char enum_text_1042[] = "baud_14400";
+static const char enum_text_1043[] = "mtk_dgps_mode";
+static const char enum_text_1044[] = "mtk_enable";
+static const char enum_text_1045[] = "mtk_locus_logger";
+static const char enum_text_1047[] = "mtk_periodic_mode";
+static const char enum_text_1048[] = "periodic_backup";
+static const char enum_text_1049[] = "periodic_standby";
+static const char enum_text_1050[] = "perpetual_backup";
+static const char enum_text_1051[] = "alwayslocate_standby";
+static const char enum_text_1052[] = "alwayslocate_backup";
+static const char enum_text_1053[] = "mtk_sbas_mode";
+static const char enum_text_1054[] = "testing";
+static const char enum_text_1056[] = "mtk_standby_type";
+static const char enum_text_1057[] = "sleep";
+static const char enum_text_1058[] = "mtk_system_message";
+static const char enum_text_1059[] = "000";
+static const char enum_text_1060[] = "001";
+static const char enum_text_1061[] = "startup";
+static const char enum_text_1062[] = "002";
+static const char enum_text_1063[] = "epo_aiding";
+static const char enum_text_1064[] = "003";
+static const char enum_text_1065[] = "normal_mode";
+static const char enum_text_1066[] = "mwv_reference";
+static const char enum_text_1067[] = "theoretical";
+static const char enum_text_1068[] = "mwv_speed_unit";
+static const char enum_text_1069[] = "kmh";
+static const char enum_text_1070[] = "metres_per_second";
+static const char enum_text_1071[] = "knots";
+static const char enum_text_1072[] = "statute_mph";
+static const char enum_text_1073[] = "nak_reason";
+static const char enum_text_1074[] = "query_not_supported";
+static const char enum_text_1076[] = "formatter_not_enabled";
+static const char enum_text_1077[] = "formatter_temporarily_unavailable";
+static const char enum_text_1078[] = "query_for_formatter_not_supported";
+static const char enum_text_1079[] = "access_denied";
+static const char enum_text_1080[] = "bad_checksum";
+static const char enum_text_1081[] = "listener_processing_issue";
+static const char enum_text_1082[] = "cannot_perform";
+static const char enum_text_1083[] = "bad_data_field";
+static const char enum_text_1085[] = "north_south";
+static const char enum_text_1086[] = "nrm_function";
+static const char enum_text_1087[] = "request_messages";
+static const char enum_text_1088[] = "storage_mask";
+static const char enum_text_1089[] = "printer_mask";
+static const char enum_text_1090[] = "ins_mask";
+static const char enum_text_1091[] = "nrx_frequency";
+static const char enum_text_1092[] = "not_over_air";
+static const char enum_text_1093[] = "khz_490";
+static const char enum_text_1094[] = "khz_518";
+static const char enum_text_1095[] = "khz_4209_5";
+static const char enum_text_1096[] = "nsr_integrity";
+static const char enum_text_1097[] = "doubtful";
+static const char enum_text_1098[] = "nsr_plausibility";
+static const char enum_text_1100[] = "not_plausible";
+static const char enum_text_1101[] = "nsr_stw_mode";
+static const char enum_text_1102[] = "water_referenced";
+static const char enum_text_1103[] = "osd_reference";
+static const char enum_text_1105[] = "radar";
+static const char enum_text_1106[] = "positioning";
+static const char enum_text_1107[] = "phins_pitch_sense";
+static const char enum_text_1108[] = "bow_up";
+static const char enum_text_1109[] = "bow_down";
+static const char enum_text_1110[] = "phins_roll_sense";
+static const char enum_text_1111[] = "port_down";
+static const char enum_text_1112[] = "port_up";
+static const char enum_text_1113[] = "pos_mode";
+static const char enum_text_1114[] = "fixed_or_coarse";
+static const char enum_text_1115[] = "pos_sentence_status";
+static const char enum_text_1116[] = "prc_operating_location";
+static const char enum_text_1117[] = "bridge";
+static const char enum_text_1118[] = "port_wing";
+static const char enum_text_1119[] = "starboard_wing";
+static const char enum_text_1120[] = "engine_control_room";
+static const char enum_text_1121[] = "engine_side";
+static const char enum_text_1123[] = "prc_pitch_mode";
+static const char enum_text_1124[] = "percent";
+static const char enum_text_1125[] = "degrees";
+static const char enum_text_1126[] = "prc_rpm_mode";
+static const char enum_text_1127[] = "rpm";
+static const char enum_text_1128[] = "quectel_antenna_power";
+static const char enum_text_1129[] = "quectel_antenna_status";
+static const char enum_text_1130[] = "open_circuit";
+static const char enum_text_1131[] = "short_circuit";
+static const char enum_text_1132[] = "quectel_baud_rate";
+static const char enum_text_1133[] = "quectel_enable";
+static const char enum_text_1134[] = "quectel_error_code";
+static const char enum_text_1135[] = "invalid_parameters";
+static const char enum_text_1136[] = "execution_failed";
+static const char enum_text_1137[] = "unsupported_command";
+static const char enum_text_1138[] = "quectel_fix_type";
+static const char enum_text_1139[] = "reserved";
+static const char enum_text_1140[] = "quectel_flow_control";
+static const char enum_text_1141[] = "quectel_geofence_shape";
+static const char enum_text_1142[] = "circle_radius";
+static const char enum_text_1143[] = "circle_point";
+static const char enum_text_1144[] = "triangle";
+static const char enum_text_1145[] = "quadrangle";
+static const char enum_text_1146[] = "quectel_geofence_state";
+static const char enum_text_1147[] = "inside";
+static const char enum_text_1148[] = "outside";
+static const char enum_text_1149[] = "quectel_geosep_mode";
+static const char enum_text_1150[] = "quectel_gsv_talker";
+static const char enum_text_1151[] = "by_constellation";
+static const char enum_text_1152[] = "same_as_main";
+static const char enum_text_1153[] = "quectel_heading_quality";
+static const char enum_text_1154[] = "quectel_parity";
+static const char enum_text_1155[] = "odd";
+static const char enum_text_1156[] = "even";
+static const char enum_text_1157[] = "mark";
+static const char enum_text_1158[] = "space";
+static const char enum_text_1159[] = "quectel_port_type";
+static const char enum_text_1160[] = "uart";
+static const char enum_text_1161[] = "quectel_pps_mode";
+static const char enum_text_1162[] = "fix_only";
+static const char enum_text_1163[] = "quectel_pps_polarity";
+static const char enum_text_1164[] = "quectel_receiver_mode";
+static const char enum_text_1165[] = "rover";
+static const char enum_text_1166[] = "base";
+static const char enum_text_1167[] = "quectel_rtcm_eph_mode";
+static const char enum_text_1168[] = "on_update";
+static const char enum_text_1169[] = "on_update_and_interval";
+static const char enum_text_1170[] = "every_epoch";
+static const char enum_text_1171[] = "quectel_rtk_diff_mode";
+static const char enum_text_1172[] = "rtd_only";
+static const char enum_text_1173[] = "quectel_rtk_rel_mode";
+static const char enum_text_1174[] = "absolute";
+static const char enum_text_1175[] = "quectel_rtk_source_type";
+static const char enum_text_1176[] = "wide_lane";
+static const char enum_text_1177[] = "quectel_solution_type";
+static const char enum_text_1178[] = "single";
+static const char enum_text_1179[] = "dgnss";
+static const char enum_text_1180[] = "quectel_stop_bits";
+static const char enum_text_1181[] = "quectel_svin_mode";
+static const char enum_text_1182[] = "survey_in";
+static const char enum_text_1184[] = "quectel_svin_valid";
+static const char enum_text_1185[] = "in_progress";
+static const char enum_text_1186[] = "quectel_text_id";
+static const char enum_text_1187[] = "notice";
+static const char enum_text_1188[] = "quectel_time_reference";
+static const char enum_text_1189[] = "quectel_time_status";
+static const char enum_text_1190[] = "quectel_uart_index";
+static const char enum_text_1191[] = "uart1";
+static const char enum_text_1192[] = "uart2";
+static const char enum_text_1193[] = "uart3";
+static const char enum_text_1194[] = "rlm_message_code";
+static const char enum_text_1195[] = "reserved_0";
+static const char enum_text_1197[] = "reserved_4";
+static const char enum_text_1198[] = "reserved_5";
+static const char enum_text_1199[] = "reserved_6";
+static const char enum_text_1200[] = "reserved_7";
+static const char enum_text_1201[] = "reserved_8";
+static const char enum_text_1202[] = "reserved_9";
+static const char enum_text_1203[] = "reserved_a";
+static const char enum_text_1204[] = "reserved_b";
+static const char enum_text_1205[] = "reserved_c";
+static const char enum_text_1206[] = "reserved_d";
+static const char enum_text_1207[] = "reserved_e";
+static const char enum_text_1208[] = "rmb_arrival_status";
+static const char enum_text_1210[] = "not_arrived";
+static const char enum_text_1211[] = "rmc_mag_var_dir";
+static const char enum_text_1212[] = "rpm_source";
+static const char enum_text_1213[] = "shaft";
+static const char enum_text_1215[] = "rrt_application_status";
+static const char enum_text_1216[] = "accepted";
+static const char enum_text_1217[] = "rejected";
+static const char enum_text_1218[] = "pending";
+static const char enum_text_1219[] = "not_applicable";
+static const char enum_text_1220[] = "rrt_file_status";
+static const char enum_text_1221[] = "rrt_transfer_type";
+static const char enum_text_1222[] = "monitored";
+static const char enum_text_1223[] = "alternate";
+static const char enum_text_1224[] = "rsd_display_rotation";
+static const char enum_text_1225[] = "course_up";
+static const char enum_text_1226[] = "head_up";
+static const char enum_text_1227[] = "north_up";
+static const char enum_text_1228[] = "rte_mode";
+static const char enum_text_1231[] = "working";
+static const char enum_text_1232[] = "seapath_quality";
+static const char enum_text_1233[] = "reduced";
+static const char enum_text_1234[] = "septentrio_base_motion";
+static const char enum_text_1235[] = "static";
+static const char enum_text_1236[] = "moving";
+static const char enum_text_1237[] = "septentrio_baseline_quality";
+static const char enum_text_1238[] = "signal_id";
+static const char enum_text_1239[] = "all_signals";
+static const char enum_text_1240[] = "signal_1";
+static const char enum_text_1241[] = "signal_2";
+static const char enum_text_1242[] = "signal_3";
+static const char enum_text_1243[] = "signal_4";
+static const char enum_text_1244[] = "signal_5";
+static const char enum_text_1245[] = "signal_6";
+static const char enum_text_1246[] = "signal_7";
+static const char enum_text_1247[] = "signal_8";
+static const char enum_text_1248[] = "signal_9";
+static const char enum_text_1249[] = "signal_a";
+static const char enum_text_1250[] = "signal_b";
+static const char enum_text_1251[] = "signal_c";
+static const char enum_text_1252[] = "sirf_baud";
+static const char enum_text_1255[] = "sirf_checksum_enable";
+static const char enum_text_1256[] = "sirf_checksum_enable_digit";
+static const char enum_text_1257[] = "sirf_debug";
+static const char enum_text_1258[] = "sirf_nmea_message";
+static const char enum_text_1259[] = "sirf_nmea_message_digit";
+static const char enum_text_1260[] = "sirf_ok_to_send";
+static const char enum_text_1261[] = "not_ok";
+static const char enum_text_1262[] = "sirf_parity";
+static const char enum_text_1263[] = "sirf_protocol";
+static const char enum_text_1264[] = "sirf_binary";
+static const char enum_text_1265[] = "sirf_rate_mode";
+static const char enum_text_1266[] = "set_rate";
+static const char enum_text_1267[] = "sirf_rate_mode_digit";
+static const char enum_text_1268[] = "skytraq_availability";
+static const char enum_text_1270[] = "skytraq_calibration";
+static const char enum_text_1271[] = "not_calibrated";
+static const char enum_text_1273[] = "skytraq_direction";
+static const char enum_text_1274[] = "forward";
+static const char enum_text_1275[] = "backward";
+static const char enum_text_1276[] = "skytraq_dr_mode";
+static const char enum_text_1277[] = "gnss_fix";
+static const char enum_text_1278[] = "skytraq_mode";
+static const char enum_text_1279[] = "float_other";
+static const char enum_text_1280[] = "skytraq_receiver_role";
+static const char enum_text_1281[] = "sm1_msi_status";
+static const char enum_text_1282[] = "incomplete";
+static const char enum_text_1283[] = "sm1_ocean_region";
+static const char enum_text_1284[] = "atlantic_west";
+static const char enum_text_1285[] = "atlantic_east";
+static const char enum_text_1286[] = "pacific";
+static const char enum_text_1287[] = "indian";
+static const char enum_text_1288[] = "sm1_priority";
+static const char enum_text_1289[] = "sm2_subject";
+static const char enum_text_1291[] = "meteorological_warning";
+static const char enum_text_1292[] = "ice_report";
+static const char enum_text_1293[] = "sar_and_piracy";
+static const char enum_text_1294[] = "meteorological_forecast";
+static const char enum_text_1295[] = "pilot_service";
+static const char enum_text_1296[] = "ais";
+static const char enum_text_1297[] = "loran";
+static const char enum_text_1298[] = "satnav";
+static const char enum_text_1299[] = "other_electronic_navaid";
+static const char enum_text_1300[] = "other_navigational_warning";
+static const char enum_text_1301[] = "special_service_v";
+static const char enum_text_1302[] = "special_service_w";
+static const char enum_text_1303[] = "special_service_x";
+static const char enum_text_1304[] = "Y";
+static const char enum_text_1305[] = "special_service_y";
+static const char enum_text_1306[] = "Z";
+static const char enum_text_1307[] = "no_messages";
+static const char enum_text_1308[] = "spectratime_gps_messages";
+static const char enum_text_1309[] = "ignored";
+static const char enum_text_1310[] = "none_received";
+static const char enum_text_1311[] = "partially_ok";
+static const char enum_text_1312[] = "spectratime_isync_status";
+static const char enum_text_1313[] = "warming_up";
+static const char enum_text_1314[] = "tracking_setup";
+static const char enum_text_1316[] = "synchronised";
+static const char enum_text_1317[] = "free_run_tracking_off";
+static const char enum_text_1318[] = "free_run_reference_unstable";
+static const char enum_text_1319[] = "free_run_no_reference";
+static const char enum_text_1320[] = "freeze";
+static const char enum_text_1321[] = "factory";
+static const char enum_text_1322[] = "searching_rb_line";
+static const char enum_text_1323[] = "spectratime_osc_quality";
+static const char enum_text_1324[] = "disciplined";
+static const char enum_text_1325[] = "spectratime_time_transfer";
+static const char enum_text_1326[] = "gps_old";
+static const char enum_text_1327[] = "gps_fresh";
+static const char enum_text_1328[] = "spw_password_level";
+static const char enum_text_1329[] = "user";
+static const char enum_text_1330[] = "administrator";
+static const char enum_text_1331[] = "ssd_dte";
+static const char enum_text_1333[] = "system_id";
+static const char enum_text_1334[] = "navic";
+static const char enum_text_1335[] = "geos5_qzss";
+static const char enum_text_1336[] = "teseo_baud";
+static const char enum_text_1337[] = "teseo_compiler_type";
+static const char enum_text_1338[] = "ARM";
+static const char enum_text_1340[] = "GNU";
+static const char enum_text_1341[] = "gnu";
+static const char enum_text_1342[] = "teseo_nmea_on_off";
+static const char enum_text_1343[] = "teseo_rtc_status";
+static const char enum_text_1344[] = "stored";
+static const char enum_text_1345[] = "approximate";
+static const char enum_text_1346[] = "teseo_setpar_mode";
+static const char enum_text_1347[] = "replace";
+static const char enum_text_1348[] = "set_bits";
+static const char enum_text_1349[] = "clear_bits";
+static const char enum_text_1350[] = "teseo_time_validity";
+static const char enum_text_1351[] = "no_time";
+static const char enum_text_1352[] = "flash_time";
+static const char enum_text_1353[] = "user_time";
+static const char enum_text_1354[] = "user_rtc_time";
+static const char enum_text_1356[] = "accurate_rtc_time";
+static const char enum_text_1357[] = "approximate_time";
+static const char enum_text_1358[] = "position_time";
+static const char enum_text_1359[] = "ephemeris_time";
+static const char enum_text_1360[] = "ths_mode";
+static const char enum_text_1361[] = "tnt_alarm_status";
+static const char enum_text_1362[] = "calibration_alarm";
+static const char enum_text_1363[] = "low_alarm";
+static const char enum_text_1364[] = "low_warning";
+static const char enum_text_1365[] = "high_warning";
+static const char enum_text_1366[] = "high_alarm";
+static const char enum_text_1367[] = "voltage_alarm";
+static const char enum_text_1368[] = "trimble_antenna_status";
+static const char enum_text_1369[] = "trimble_bpq_quality";
+static const char enum_text_1370[] = "sbas_or_vbs";
+static const char enum_text_1371[] = "float_or_high_precision";
+static const char enum_text_1372[] = "trimble_copernicus_version_part";
+static const char enum_text_1373[] = "application";
+static const char enum_text_1374[] = "hardware";
+static const char enum_text_1376[] = "trimble_dg_channel_used";
+static const char enum_text_1377[] = "trimble_dg_tracking";
+static const char enum_text_1378[] = "idle";
+static const char enum_text_1379[] = "wideband_fft_search";
+static const char enum_text_1380[] = "searching";
+static const char enum_text_1381[] = "acquired";
+static const char enum_text_1383[] = "trimble_gps_quality";
+static const char enum_text_1384[] = "network_rtk_float_3d";
+static const char enum_text_1385[] = "network_rtk_fixed_3d";
+static const char enum_text_1386[] = "network_rtk_float_2d";
+static const char enum_text_1387[] = "network_rtk_fixed_2d";
+static const char enum_text_1388[] = "omnistar_hp_xp";
+static const char enum_text_1389[] = "omnistar_vbs";
+static const char enum_text_1390[] = "location_rtk";
+static const char enum_text_1391[] = "beacon_dgps";
+static const char enum_text_1392[] = "centerpoint_rtx";
+static const char enum_text_1393[] = "xfill";
+static const char enum_text_1394[] = "trimble_oscillator_lock";
+static const char enum_text_1395[] = "unlocked";
+static const char enum_text_1396[] = "trl_reason";
+static const char enum_text_1397[] = "power_off";
+static const char enum_text_1398[] = "silent_mode";
+static const char enum_text_1399[] = "channel_management";
+static const char enum_text_1400[] = "equipment_malfunction";
+static const char enum_text_1401[] = "invalid_configuration";
+static const char enum_text_1402[] = "ttm_acquisition";
+static const char enum_text_1403[] = "reported";
+static const char enum_text_1404[] = "ttm_reference";
+static const char enum_text_1405[] = "ttm_target_status";
+static const char enum_text_1406[] = "ttm_units";
+static const char enum_text_1407[] = "kilometres";
+static const char enum_text_1408[] = "nautical_miles";
+static const char enum_text_1409[] = "statute_miles";
+static const char enum_text_1410[] = "ublox_autobauding";
+static const char enum_text_1411[] = "ublox_nav_status";
+static const char enum_text_1412[] = "NF";
+static const char enum_text_1414[] = "G2";
+static const char enum_text_1415[] = "standalone_2d";
+static const char enum_text_1416[] = "G3";
+static const char enum_text_1417[] = "standalone_3d";
+static const char enum_text_1419[] = "differential_2d";
+static const char enum_text_1420[] = "D3";
+static const char enum_text_1421[] = "differential_3d";
+static const char enum_text_1422[] = "RK";
+static const char enum_text_1423[] = "gnss_dead_reckoning";
+static const char enum_text_1425[] = "time_only";
+static const char enum_text_1426[] = "ublox_port";
+static const char enum_text_1427[] = "ddc";
+static const char enum_text_1428[] = "usb";
+static const char enum_text_1429[] = "spi";
+static const char enum_text_1430[] = "ublox_sv_status";
+static const char enum_text_1431[] = "ephemeris_not_used";
+static const char enum_text_1432[] = "ubx_fix_type";
+static const char enum_text_1433[] = "ubx_gnss_id";
+static const char enum_text_1434[] = "imes";
+static const char enum_text_1435[] = "vsd_nav_status";
+static const char enum_text_1436[] = "under_way_engine";
+static const char enum_text_1437[] = "at_anchor";
+static const char enum_text_1438[] = "not_under_command";
+static const char enum_text_1439[] = "restricted_manoeuvrability";
+static const char enum_text_1440[] = "constrained_by_draught";
+static const char enum_text_1441[] = "moored";
+static const char enum_text_1442[] = "aground";
+static const char enum_text_1443[] = "under_way_sailing";
+static const char enum_text_1444[] = "reserved_hsc";
+static const char enum_text_1445[] = "reserved_wig";
+static const char enum_text_1446[] = "towing_astern";
+static const char enum_text_1447[] = "pushing_ahead";
+static const char enum_text_1448[] = "emergency_beacon_active";
+static const char enum_text_1449[] = "not_defined";
+static const char enum_text_1450[] = "wat_alarm_condition";
+static const char enum_text_1451[] = "wat_message_type";
+static const char enum_text_1452[] = "single_detector";
+static const char enum_text_1453[] = "wat_override";
+static const char enum_text_1454[] = "wat_system";
+static const char enum_text_1455[] = "WL";
+static const char enum_text_1456[] = "water_level_detection";
+static const char enum_text_1457[] = "BI";
+static const char enum_text_1458[] = "bilge_high_level";
+static const char enum_text_1459[] = "hull_door_leakage";
+static const char enum_text_1460[] = "xdr_transducer_type";
+static const char enum_text_1461[] = "angular_displacement";
+static const char enum_text_1462[] = "temperature";
+static const char enum_text_1463[] = "linear_displacement";
+static const char enum_text_1465[] = "generic";
+static const char enum_text_1466[] = "humidity";
+static const char enum_text_1467[] = "current";
+static const char enum_text_1468[] = "force";
+static const char enum_text_1469[] = "pressure";
+static const char enum_text_1470[] = "flow_rate";
+static const char enum_text_1471[] = "switch_or_valve";
+static const char enum_text_1472[] = "tachometer";
+static const char enum_text_1473[] = "voltage";
+static const char enum_text_1474[] = "volume";
+static const char enum_text_1475[] = "xdr_unit";
+static const char enum_text_1476[] = "amperes";
+static const char enum_text_1477[] = "bars_or_binary";
+static const char enum_text_1478[] = "celsius";
+static const char enum_text_1479[] = "hertz";
+static const char enum_text_1480[] = "litres_per_second";
+static const char enum_text_1481[] = "kelvin_or_density";
+static const char enum_text_1482[] = "metres_or_cubic_metres";
+static const char enum_text_1483[] = "newtons";
+static const char enum_text_1484[] = "percent_or_pascals";
+static const char enum_text_1485[] = "parts_per_thousand";
+static const char enum_text_1486[] = "volts";
+static const char enum_text_1487[] = "zdl_point_type";
+static const char enum_text_1488[] = "turning_point";
+static const char enum_text_1490[] = "wheelover";
+
 static const nmea_enum_code aam_arrival_circle_codes[] = {
-    {aam_arrival_circle_texts + 19, aam_arrival_circle_texts + 21}, /* "A": "entered" */
-    {aam_arrival_circle_texts + 29, aam_arrival_circle_texts + 31}, /* "V": "not_entered" */
+    {enum_text_538 + 4, enum_text_4 + 4}, /* "A": "entered" */
+    {enum_text_546 + 4, enum_text_4}, /* "V": "not_entered" */
 };
 const nmea_enum_def nmea_aam_arrival_circle_def = {
-    aam_arrival_circle_texts, aam_arrival_circle_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_0, aam_arrival_circle_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char aam_perpendicular_texts[] =
-    "aam_perpendicular\0" "A\0" "passed\0" "V\0" "not_passed\0";
 static const nmea_enum_code aam_perpendicular_codes[] = {
-    {aam_perpendicular_texts + 18, aam_perpendicular_texts + 20}, /* "A": "passed" */
-    {aam_perpendicular_texts + 27, aam_perpendicular_texts + 29}, /* "V": "not_passed" */
+    {enum_text_538 + 4, enum_text_7 + 4}, /* "A": "passed" */
+    {enum_text_546 + 4, enum_text_7}, /* "V": "not_passed" */
 };
 const nmea_enum_def nmea_aam_perpendicular_def = {
-    aam_perpendicular_texts, aam_perpendicular_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_5, aam_perpendicular_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char abk_ack_type_texts[] =
-    "abk_ack_type\0" "0\0" "received\0" "1\0" "no_acknowledgement\0" "2\0" "not_broadcast\0" "3\0"
-    "broadcast_done\0" "4\0" "late_reception\0" "5\0" "read_on_display\0";
 static const nmea_enum_code abk_ack_type_codes[] = {
-    {abk_ack_type_texts + 13, abk_ack_type_texts + 15}, /* "0": "received" */
-    {abk_ack_type_texts + 24, abk_ack_type_texts + 26}, /* "1": "no_acknowledgement" */
-    {abk_ack_type_texts + 45, abk_ack_type_texts + 47}, /* "2": "not_broadcast" */
-    {abk_ack_type_texts + 61, abk_ack_type_texts + 63}, /* "3": "broadcast_done" */
-    {abk_ack_type_texts + 78, abk_ack_type_texts + 80}, /* "4": "late_reception" */
-    {abk_ack_type_texts + 95, abk_ack_type_texts + 97}, /* "5": "read_on_display" */
+    {enum_text_889 + 9, enum_text_1310 + 5}, /* "0": "received" */
+    {enum_text_100 + 1, enum_text_12}, /* "1": "no_acknowledgement" */
+    {enum_text_916 + 5, enum_text_14}, /* "2": "not_broadcast" */
+    {enum_text_918 + 5, enum_text_16}, /* "3": "broadcast_done" */
+    {enum_text_920 + 5, enum_text_18}, /* "4": "late_reception" */
+    {enum_text_842 + 5, enum_text_20}, /* "5": "read_on_display" */
 };
 const nmea_enum_def nmea_abk_ack_type_def = {
-    abk_ack_type_texts, abk_ack_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_8, abk_ack_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char abk_channel_texts[] =
-    "abk_channel\0" "A\0" "a\0" "B\0" "b\0";
 static const nmea_enum_code abk_channel_codes[] = {
-    {abk_channel_texts + 12, abk_channel_texts + 14}, /* "A": "a" */
-    {abk_channel_texts + 16, abk_channel_texts + 18}, /* "B": "b" */
+    {enum_text_538 + 4, enum_text_539 + 4}, /* "A": "a" */
+    {enum_text_23, enum_text_1428 + 2}, /* "B": "b" */
 };
 const nmea_enum_def nmea_abk_channel_def = {
-    abk_channel_texts, abk_channel_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_21, abk_channel_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char abm_channel_texts[] =
-    "abm_channel\0" "0\0" "no_preference\0" "1\0" "a\0" "2\0" "b\0" "3\0" "both\0";
 static const nmea_enum_code abm_channel_codes[] = {
-    {abm_channel_texts + 12, abm_channel_texts + 14}, /* "0": "no_preference" */
-    {abm_channel_texts + 28, abm_channel_texts + 30}, /* "1": "a" */
-    {abm_channel_texts + 32, abm_channel_texts + 34}, /* "2": "b" */
-    {abm_channel_texts + 36, abm_channel_texts + 38}, /* "3": "both" */
+    {enum_text_889 + 9, enum_text_26}, /* "0": "no_preference" */
+    {enum_text_100 + 1, enum_text_539 + 4}, /* "1": "a" */
+    {enum_text_916 + 5, enum_text_1428 + 2}, /* "2": "b" */
+    {enum_text_918 + 5, enum_text_27}, /* "3": "both" */
 };
 const nmea_enum_def nmea_abm_channel_def = {
-    abm_channel_texts, abm_channel_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_25, abm_channel_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char aca_bandwidth_texts[] =
-    "aca_bandwidth\0" "0\0" "by_channel_number\0" "1\0" "khz_12_5\0";
 static const nmea_enum_code aca_bandwidth_codes[] = {
-    {aca_bandwidth_texts + 14, aca_bandwidth_texts + 16}, /* "0": "by_channel_number" */
-    {aca_bandwidth_texts + 34, aca_bandwidth_texts + 36}, /* "1": "khz_12_5" */
+    {enum_text_889 + 9, enum_text_29}, /* "0": "by_channel_number" */
+    {enum_text_100 + 1, enum_text_30}, /* "1": "khz_12_5" */
 };
 const nmea_enum_def nmea_aca_bandwidth_def = {
-    aca_bandwidth_texts, aca_bandwidth_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_28, aca_bandwidth_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char aca_in_use_texts[] =
-    "aca_in_use\0" "0\0" "not_in_use\0" "1\0" "in_use\0";
 static const nmea_enum_code aca_in_use_codes[] = {
-    {aca_in_use_texts + 11, aca_in_use_texts + 13}, /* "0": "not_in_use" */
-    {aca_in_use_texts + 24, aca_in_use_texts + 26}, /* "1": "in_use" */
+    {enum_text_889 + 9, enum_text_32}, /* "0": "not_in_use" */
+    {enum_text_100 + 1, enum_text_31 + 4}, /* "1": "in_use" */
 };
 const nmea_enum_def nmea_aca_in_use_def = {
-    aca_in_use_texts, aca_in_use_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_31, aca_in_use_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char aca_info_source_texts[] =
-    "aca_info_source\0" "A\0" "message22_addressed\0" "B\0" "message22_broadcast\0" "C\0"
-    "aca_sentence\0" "D\0" "dsc_telecommand\0" "M\0" "manual\0";
 static const nmea_enum_code aca_info_source_codes[] = {
-    {aca_info_source_texts + 16, aca_info_source_texts + 18}, /* "A": "message22_addressed" */
-    {aca_info_source_texts + 38, aca_info_source_texts + 40}, /* "B": "message22_broadcast" */
-    {aca_info_source_texts + 60, aca_info_source_texts + 62}, /* "C": "aca_sentence" */
-    {aca_info_source_texts + 75, aca_info_source_texts + 77}, /* "D": "dsc_telecommand" */
-    {aca_info_source_texts + 93, aca_info_source_texts + 95}, /* "M": "manual" */
+    {enum_text_538 + 4, enum_text_35}, /* "A": "message22_addressed" */
+    {enum_text_23, enum_text_36}, /* "B": "message22_broadcast" */
+    {enum_text_550 + 4, enum_text_38}, /* "C": "aca_sentence" */
+    {enum_text_561 + 1, enum_text_40}, /* "D": "dsc_telecommand" */
+    {enum_text_705 + 1, enum_text_1033 + 9}, /* "M": "manual" */
 };
 const nmea_enum_def nmea_aca_info_source_def = {
-    aca_info_source_texts, aca_info_source_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_34, aca_info_source_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char aca_power_level_texts[] =
-    "aca_power_level\0" "0\0" "high\0" "1\0" "low\0";
 static const nmea_enum_code aca_power_level_codes[] = {
-    {aca_power_level_texts + 16, aca_power_level_texts + 18}, /* "0": "high" */
-    {aca_power_level_texts + 23, aca_power_level_texts + 25}, /* "1": "low" */
+    {enum_text_889 + 9, enum_text_356 + 8}, /* "0": "high" */
+    {enum_text_100 + 1, enum_text_685 + 7}, /* "1": "low" */
 };
 const nmea_enum_def nmea_aca_power_level_def = {
-    aca_power_level_texts, aca_power_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_43, aca_power_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char aca_txrx_mode_texts[] =
-    "aca_txrx_mode\0" "0\0" "tx_ab_rx_ab\0" "1\0" "tx_a_rx_ab\0" "2\0" "tx_b_rx_ab\0" "3\0"
-    "no_tx_rx_ab\0" "4\0" "no_tx_rx_a\0" "5\0" "no_tx_rx_b\0";
 static const nmea_enum_code aca_txrx_mode_codes[] = {
-    {aca_txrx_mode_texts + 14, aca_txrx_mode_texts + 16}, /* "0": "tx_ab_rx_ab" */
-    {aca_txrx_mode_texts + 28, aca_txrx_mode_texts + 30}, /* "1": "tx_a_rx_ab" */
-    {aca_txrx_mode_texts + 41, aca_txrx_mode_texts + 43}, /* "2": "tx_b_rx_ab" */
-    {aca_txrx_mode_texts + 54, aca_txrx_mode_texts + 56}, /* "3": "no_tx_rx_ab" */
-    {aca_txrx_mode_texts + 68, aca_txrx_mode_texts + 70}, /* "4": "no_tx_rx_a" */
-    {aca_txrx_mode_texts + 81, aca_txrx_mode_texts + 83}, /* "5": "no_tx_rx_b" */
+    {enum_text_889 + 9, enum_text_47}, /* "0": "tx_ab_rx_ab" */
+    {enum_text_100 + 1, enum_text_48}, /* "1": "tx_a_rx_ab" */
+    {enum_text_916 + 5, enum_text_49}, /* "2": "tx_b_rx_ab" */
+    {enum_text_918 + 5, enum_text_50}, /* "3": "no_tx_rx_ab" */
+    {enum_text_920 + 5, enum_text_51}, /* "4": "no_tx_rx_a" */
+    {enum_text_842 + 5, enum_text_52}, /* "5": "no_tx_rx_b" */
 };
 const nmea_enum_def nmea_aca_txrx_mode_def = {
-    aca_txrx_mode_texts, aca_txrx_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_46, aca_txrx_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char acn_alert_command_texts[] =
-    "acn_alert_command\0" "A\0" "acknowledge\0" "Q\0" "request_repeat\0" "O\0"
-    "responsibility_transfer\0" "S\0" "silence\0";
 static const nmea_enum_code acn_alert_command_codes[] = {
-    {acn_alert_command_texts + 18, acn_alert_command_texts + 20}, /* "A": "acknowledge" */
-    {acn_alert_command_texts + 32, acn_alert_command_texts + 34}, /* "Q": "request_repeat" */
-    {acn_alert_command_texts + 49, acn_alert_command_texts + 51}, /* "O": "responsibility_transfer" */
-    {acn_alert_command_texts + 75, acn_alert_command_texts + 77}, /* "S": "silence" */
+    {enum_text_538 + 4, enum_text_54}, /* "A": "acknowledge" */
+    {enum_text_55, enum_text_56}, /* "Q": "request_repeat" */
+    {enum_text_709 + 1, enum_text_58}, /* "O": "responsibility_transfer" */
+    {enum_text_601 + 1, enum_text_60}, /* "S": "silence" */
 };
 const nmea_enum_def nmea_acn_alert_command_def = {
-    acn_alert_command_texts, acn_alert_command_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_53, acn_alert_command_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char airoha_ack_result_texts[] =
-    "airoha_ack_result\0" "0\0" "success\0" "1\0" "processing\0" "2\0" "failed\0" "3\0" "unsupported\0"
-    "4\0" "parameter_error\0" "5\0" "busy\0";
 static const nmea_enum_code airoha_ack_result_codes[] = {
-    {airoha_ack_result_texts + 18, airoha_ack_result_texts + 20}, /* "0": "success" */
-    {airoha_ack_result_texts + 28, airoha_ack_result_texts + 30}, /* "1": "processing" */
-    {airoha_ack_result_texts + 41, airoha_ack_result_texts + 43}, /* "2": "failed" */
-    {airoha_ack_result_texts + 50, airoha_ack_result_texts + 52}, /* "3": "unsupported" */
-    {airoha_ack_result_texts + 64, airoha_ack_result_texts + 66}, /* "4": "parameter_error" */
-    {airoha_ack_result_texts + 82, airoha_ack_result_texts + 84}, /* "5": "busy" */
+    {enum_text_889 + 9, enum_text_62}, /* "0": "success" */
+    {enum_text_100 + 1, enum_text_63}, /* "1": "processing" */
+    {enum_text_916 + 5, enum_text_1136 + 10}, /* "2": "failed" */
+    {enum_text_918 + 5, enum_text_65}, /* "3": "unsupported" */
+    {enum_text_920 + 5, enum_text_66}, /* "4": "parameter_error" */
+    {enum_text_842 + 5, enum_text_67}, /* "5": "busy" */
 };
 const nmea_enum_def nmea_airoha_ack_result_def = {
-    airoha_ack_result_texts, airoha_ack_result_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_61, airoha_ack_result_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_aiding_type_texts[] =
-    "airoha_aiding_type\0" "0\0" "epo\0" "1\0" "time\0" "2\0" "location\0";
 static const nmea_enum_code airoha_aiding_type_codes[] = {
-    {airoha_aiding_type_texts + 19, airoha_aiding_type_texts + 21}, /* "0": "epo" */
-    {airoha_aiding_type_texts + 25, airoha_aiding_type_texts + 27}, /* "1": "time" */
-    {airoha_aiding_type_texts + 32, airoha_aiding_type_texts + 34}, /* "2": "location" */
+    {enum_text_889 + 9, enum_text_69}, /* "0": "epo" */
+    {enum_text_100 + 1, enum_text_1351 + 3}, /* "1": "time" */
+    {enum_text_916 + 5, enum_text_1116 + 14}, /* "2": "location" */
 };
 const nmea_enum_def nmea_airoha_aiding_type_def = {
-    airoha_aiding_type_texts, airoha_aiding_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_68, airoha_aiding_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_baud_texts[] =
-    "airoha_baud\0" "4800\0" "baud_4800\0" "9600\0" "baud_9600\0" "19200\0" "baud_19200\0" "38400\0"
-    "baud_38400\0" "57600\0" "baud_57600\0" "115200\0" "baud_115200\0" "230400\0" "baud_230400\0"
-    "460800\0" "baud_460800\0" "921600\0" "baud_921600\0";
 static const nmea_enum_code airoha_baud_codes[] = {
-    {airoha_baud_texts + 12, airoha_baud_texts + 17}, /* "4800": "baud_4800" */
-    {airoha_baud_texts + 27, airoha_baud_texts + 32}, /* "9600": "baud_9600" */
-    {airoha_baud_texts + 42, airoha_baud_texts + 48}, /* "19200": "baud_19200" */
-    {airoha_baud_texts + 59, airoha_baud_texts + 65}, /* "38400": "baud_38400" */
-    {airoha_baud_texts + 76, airoha_baud_texts + 82}, /* "57600": "baud_57600" */
-    {airoha_baud_texts + 93, airoha_baud_texts + 100}, /* "115200": "baud_115200" */
-    {airoha_baud_texts + 112, airoha_baud_texts + 119}, /* "230400": "baud_230400" */
-    {airoha_baud_texts + 131, airoha_baud_texts + 138}, /* "460800": "baud_460800" */
-    {airoha_baud_texts + 150, airoha_baud_texts + 157}, /* "921600": "baud_921600" */
+    {enum_text_74 + 5, enum_text_74}, /* "4800": "baud_4800" */
+    {enum_text_76 + 5, enum_text_76}, /* "9600": "baud_9600" */
+    {enum_text_78 + 5, enum_text_78}, /* "19200": "baud_19200" */
+    {enum_text_80 + 5, enum_text_80}, /* "38400": "baud_38400" */
+    {enum_text_82 + 5, enum_text_82}, /* "57600": "baud_57600" */
+    {enum_text_84 + 5, enum_text_84}, /* "115200": "baud_115200" */
+    {enum_text_86 + 5, enum_text_86}, /* "230400": "baud_230400" */
+    {enum_text_88 + 5, enum_text_88}, /* "460800": "baud_460800" */
+    {enum_text_90 + 5, enum_text_90}, /* "921600": "baud_921600" */
 };
 const nmea_enum_def nmea_airoha_baud_def = {
-    airoha_baud_texts, airoha_baud_codes, 9, 4, 6, NMEA_CODES_DIGITS
+    enum_text_72, airoha_baud_codes, 9, 4, 6, NMEA_CODES_DIGITS
 };
 
-static const char airoha_debug_log_texts[] =
-    "airoha_debug_log\0" "0\0" "disabled\0" "1\0" "full\0" "2\0" "lite\0";
 static const nmea_enum_code airoha_debug_log_codes[] = {
-    {airoha_debug_log_texts + 17, airoha_debug_log_texts + 19}, /* "0": "disabled" */
-    {airoha_debug_log_texts + 28, airoha_debug_log_texts + 30}, /* "1": "full" */
-    {airoha_debug_log_texts + 35, airoha_debug_log_texts + 37}, /* "2": "lite" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_687 + 6}, /* "1": "full" */
+    {enum_text_916 + 5, enum_text_94}, /* "2": "lite" */
 };
 const nmea_enum_def nmea_airoha_debug_log_def = {
-    airoha_debug_log_texts, airoha_debug_log_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_91, airoha_debug_log_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_dgps_mode_texts[] =
-    "airoha_dgps_mode\0" "0\0" "none\0" "1\0" "rtcm\0" "2\0" "sbas\0";
 static const nmea_enum_code airoha_dgps_mode_codes[] = {
-    {airoha_dgps_mode_texts + 17, airoha_dgps_mode_texts + 19}, /* "0": "none" */
-    {airoha_dgps_mode_texts + 24, airoha_dgps_mode_texts + 26}, /* "1": "rtcm" */
-    {airoha_dgps_mode_texts + 31, airoha_dgps_mode_texts + 33}, /* "2": "sbas" */
+    {enum_text_889 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_97}, /* "1": "rtcm" */
+    {enum_text_916 + 5, enum_text_98}, /* "2": "sbas" */
 };
 const nmea_enum_def nmea_airoha_dgps_mode_def = {
-    airoha_dgps_mode_texts, airoha_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_95, airoha_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_dr_message_texts[] =
-    "airoha_dr_message\0" "-1\0" "all\0" "0\0" "pqtmvehmsg\0" "1\0" "pqtmsenmsg\0" "2\0" "pqtmdrcal\0"
-    "3\0" "pqtmimutype\0" "4\0" "pqtmvehmot\0";
 static const nmea_enum_code airoha_dr_message_codes[] = {
-    {airoha_dr_message_texts + 18, airoha_dr_message_texts + 21}, /* "-1": "all" */
-    {airoha_dr_message_texts + 25, airoha_dr_message_texts + 27}, /* "0": "pqtmvehmsg" */
-    {airoha_dr_message_texts + 38, airoha_dr_message_texts + 40}, /* "1": "pqtmsenmsg" */
-    {airoha_dr_message_texts + 51, airoha_dr_message_texts + 53}, /* "2": "pqtmdrcal" */
-    {airoha_dr_message_texts + 63, airoha_dr_message_texts + 65}, /* "3": "pqtmimutype" */
-    {airoha_dr_message_texts + 77, airoha_dr_message_texts + 79}, /* "4": "pqtmvehmot" */
+    {enum_text_100, enum_text_812 + 7}, /* "-1": "all" */
+    {enum_text_889 + 9, enum_text_102}, /* "0": "pqtmvehmsg" */
+    {enum_text_100 + 1, enum_text_103}, /* "1": "pqtmsenmsg" */
+    {enum_text_916 + 5, enum_text_104}, /* "2": "pqtmdrcal" */
+    {enum_text_918 + 5, enum_text_105}, /* "3": "pqtmimutype" */
+    {enum_text_920 + 5, enum_text_106}, /* "4": "pqtmvehmot" */
 };
 const nmea_enum_def nmea_airoha_dr_message_def = {
-    airoha_dr_message_texts, airoha_dr_message_codes, 6, 1, 2, NMEA_CODES_DIGITS
+    enum_text_99, airoha_dr_message_codes, 6, 1, 2, NMEA_CODES_DIGITS
 };
 
-static const char airoha_easy_status_texts[] =
-    "airoha_easy_status\0" "0\0" "not_finished\0" "1\0" "day_1\0" "2\0" "day_2\0" "3\0" "day_3\0";
 static const nmea_enum_code airoha_easy_status_codes[] = {
-    {airoha_easy_status_texts + 19, airoha_easy_status_texts + 21}, /* "0": "not_finished" */
-    {airoha_easy_status_texts + 34, airoha_easy_status_texts + 36}, /* "1": "day_1" */
-    {airoha_easy_status_texts + 42, airoha_easy_status_texts + 44}, /* "2": "day_2" */
-    {airoha_easy_status_texts + 50, airoha_easy_status_texts + 52}, /* "3": "day_3" */
+    {enum_text_889 + 9, enum_text_108}, /* "0": "not_finished" */
+    {enum_text_100 + 1, enum_text_109}, /* "1": "day_1" */
+    {enum_text_916 + 5, enum_text_110}, /* "2": "day_2" */
+    {enum_text_918 + 5, enum_text_111}, /* "3": "day_3" */
 };
 const nmea_enum_def nmea_airoha_easy_status_def = {
-    airoha_easy_status_texts, airoha_easy_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_107, airoha_easy_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_enable_texts[] =
-    "airoha_enable\0" "0\0" "disabled\0" "1\0" "enabled\0";
 static const nmea_enum_code airoha_enable_codes[] = {
-    {airoha_enable_texts + 14, airoha_enable_texts + 16}, /* "0": "disabled" */
-    {airoha_enable_texts + 25, airoha_enable_texts + 27}, /* "1": "enabled" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1076 + 14}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_airoha_enable_def = {
-    airoha_enable_texts, airoha_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_112, airoha_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char airoha_geofence_confidence_texts[] =
-    "airoha_geofence_confidence\0" "0\0" "none\0" "1\0" "sigma_1\0" "2\0" "sigma_2\0" "3\0" "sigma_3\0";
 static const nmea_enum_code airoha_geofence_confidence_codes[] = {
-    {airoha_geofence_confidence_texts + 27, airoha_geofence_confidence_texts + 29}, /* "0": "none" */
-    {airoha_geofence_confidence_texts + 34, airoha_geofence_confidence_texts + 36}, /* "1": "sigma_1" */
-    {airoha_geofence_confidence_texts + 44, airoha_geofence_confidence_texts + 46}, /* "2": "sigma_2" */
-    {airoha_geofence_confidence_texts + 54, airoha_geofence_confidence_texts + 56}, /* "3": "sigma_3" */
+    {enum_text_889 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_115}, /* "1": "sigma_1" */
+    {enum_text_916 + 5, enum_text_116}, /* "2": "sigma_2" */
+    {enum_text_918 + 5, enum_text_117}, /* "3": "sigma_3" */
 };
 const nmea_enum_def nmea_airoha_geofence_confidence_def = {
-    airoha_geofence_confidence_texts, airoha_geofence_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_114, airoha_geofence_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_gnss_system_texts[] =
-    "airoha_gnss_system\0" "0\0" "gps\0" "1\0" "glonass\0" "2\0" "galileo\0" "3\0" "beidou\0" "4\0"
-    "qzss\0";
 static const nmea_enum_code airoha_gnss_system_codes[] = {
-    {airoha_gnss_system_texts + 19, airoha_gnss_system_texts + 21}, /* "0": "gps" */
-    {airoha_gnss_system_texts + 25, airoha_gnss_system_texts + 27}, /* "1": "glonass" */
-    {airoha_gnss_system_texts + 35, airoha_gnss_system_texts + 37}, /* "2": "galileo" */
-    {airoha_gnss_system_texts + 45, airoha_gnss_system_texts + 47}, /* "3": "beidou" */
-    {airoha_gnss_system_texts + 54, airoha_gnss_system_texts + 56}, /* "4": "qzss" */
+    {enum_text_889 + 9, enum_text_1391 + 8}, /* "0": "gps" */
+    {enum_text_100 + 1, enum_text_239 + 4}, /* "1": "glonass" */
+    {enum_text_916 + 5, enum_text_932 + 12}, /* "2": "galileo" */
+    {enum_text_918 + 5, enum_text_122}, /* "3": "beidou" */
+    {enum_text_920 + 5, enum_text_1335 + 6}, /* "4": "qzss" */
 };
 const nmea_enum_def nmea_airoha_gnss_system_def = {
-    airoha_gnss_system_texts, airoha_gnss_system_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_118, airoha_gnss_system_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_jamming_status_texts[] =
-    "airoha_jamming_status\0" "0\0" "unknown\0" "1\0" "good\0" "2\0" "warning\0" "3\0" "critical\0";
 static const nmea_enum_code airoha_jamming_status_codes[] = {
-    {airoha_jamming_status_texts + 22, airoha_jamming_status_texts + 24}, /* "0": "unknown" */
-    {airoha_jamming_status_texts + 32, airoha_jamming_status_texts + 34}, /* "1": "good" */
-    {airoha_jamming_status_texts + 39, airoha_jamming_status_texts + 41}, /* "2": "warning" */
-    {airoha_jamming_status_texts + 49, airoha_jamming_status_texts + 51}, /* "3": "critical" */
+    {enum_text_889 + 9, enum_text_125}, /* "0": "unknown" */
+    {enum_text_100 + 1, enum_text_126}, /* "1": "good" */
+    {enum_text_916 + 5, enum_text_953 + 4}, /* "2": "warning" */
+    {enum_text_918 + 5, enum_text_128}, /* "3": "critical" */
 };
 const nmea_enum_def nmea_airoha_jamming_status_def = {
-    airoha_jamming_status_texts, airoha_jamming_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_124, airoha_jamming_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_locus_clear_texts[] =
-    "airoha_locus_clear\0" "0\0" "records_and_settings\0" "1\0" "records\0" "2\0" "settings\0";
 static const nmea_enum_code airoha_locus_clear_codes[] = {
-    {airoha_locus_clear_texts + 19, airoha_locus_clear_texts + 21}, /* "0": "records_and_settings" */
-    {airoha_locus_clear_texts + 42, airoha_locus_clear_texts + 44}, /* "1": "records" */
-    {airoha_locus_clear_texts + 52, airoha_locus_clear_texts + 54}, /* "2": "settings" */
+    {enum_text_889 + 9, enum_text_130}, /* "0": "records_and_settings" */
+    {enum_text_100 + 1, enum_text_131}, /* "1": "records" */
+    {enum_text_916 + 5, enum_text_130 + 12}, /* "2": "settings" */
 };
 const nmea_enum_def nmea_airoha_locus_clear_def = {
-    airoha_locus_clear_texts, airoha_locus_clear_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_129, airoha_locus_clear_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_locus_format_texts[] =
-    "airoha_locus_format\0" "0\0" "nmea\0" "1\0" "pair_hex\0";
 static const nmea_enum_code airoha_locus_format_codes[] = {
-    {airoha_locus_format_texts + 20, airoha_locus_format_texts + 22}, /* "0": "nmea" */
-    {airoha_locus_format_texts + 27, airoha_locus_format_texts + 29}, /* "1": "pair_hex" */
+    {enum_text_889 + 9, enum_text_134}, /* "0": "nmea" */
+    {enum_text_100 + 1, enum_text_135}, /* "1": "pair_hex" */
 };
 const nmea_enum_def nmea_airoha_locus_format_def = {
-    airoha_locus_format_texts, airoha_locus_format_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_133, airoha_locus_format_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_locus_threshold_texts[] =
-    "airoha_locus_threshold\0" "0\0" "time\0" "1\0" "speed\0" "2\0" "distance\0";
 static const nmea_enum_code airoha_locus_threshold_codes[] = {
-    {airoha_locus_threshold_texts + 23, airoha_locus_threshold_texts + 25}, /* "0": "time" */
-    {airoha_locus_threshold_texts + 30, airoha_locus_threshold_texts + 32}, /* "1": "speed" */
-    {airoha_locus_threshold_texts + 38, airoha_locus_threshold_texts + 40}, /* "2": "distance" */
+    {enum_text_889 + 9, enum_text_1351 + 3}, /* "0": "time" */
+    {enum_text_100 + 1, enum_text_137}, /* "1": "speed" */
+    {enum_text_916 + 5, enum_text_138}, /* "2": "distance" */
 };
 const nmea_enum_def nmea_airoha_locus_threshold_def = {
-    airoha_locus_threshold_texts, airoha_locus_threshold_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_136, airoha_locus_threshold_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_nav_mode_texts[] =
-    "airoha_nav_mode\0" "0\0" "normal\0" "1\0" "fitness\0" "4\0" "stationary\0" "5\0" "drone\0" "7\0"
-    "swimming\0";
 static const nmea_enum_code airoha_nav_mode_codes[] = {
-    {airoha_nav_mode_texts + 16, airoha_nav_mode_texts + 18}, /* "0": "normal" */
-    {airoha_nav_mode_texts + 25, airoha_nav_mode_texts + 27}, /* "1": "fitness" */
-    {airoha_nav_mode_texts + 35, airoha_nav_mode_texts + 37}, /* "4": "stationary" */
-    {airoha_nav_mode_texts + 48, airoha_nav_mode_texts + 50}, /* "5": "drone" */
-    {airoha_nav_mode_texts + 56, airoha_nav_mode_texts + 58}, /* "7": "swimming" */
+    {enum_text_889 + 9, enum_text_964 + 4}, /* "0": "normal" */
+    {enum_text_100 + 1, enum_text_141}, /* "1": "fitness" */
+    {enum_text_920 + 5, enum_text_142}, /* "4": "stationary" */
+    {enum_text_842 + 5, enum_text_143}, /* "5": "drone" */
+    {enum_text_204 + 1, enum_text_145}, /* "7": "swimming" */
 };
 const nmea_enum_def nmea_airoha_nav_mode_def = {
-    airoha_nav_mode_texts, airoha_nav_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_139, airoha_nav_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_nmea_output_mode_texts[] =
-    "airoha_nmea_output_mode\0" "0\0" "disabled\0" "1\0" "nmea_4_10\0" "2\0" "nmea_3_01\0";
 static const nmea_enum_code airoha_nmea_output_mode_codes[] = {
-    {airoha_nmea_output_mode_texts + 24, airoha_nmea_output_mode_texts + 26}, /* "0": "disabled" */
-    {airoha_nmea_output_mode_texts + 35, airoha_nmea_output_mode_texts + 37}, /* "1": "nmea_4_10" */
-    {airoha_nmea_output_mode_texts + 47, airoha_nmea_output_mode_texts + 49}, /* "2": "nmea_3_01" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_147}, /* "1": "nmea_4_10" */
+    {enum_text_916 + 5, enum_text_148}, /* "2": "nmea_3_01" */
 };
 const nmea_enum_def nmea_airoha_nmea_output_mode_def = {
-    airoha_nmea_output_mode_texts, airoha_nmea_output_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_146, airoha_nmea_output_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_nmea_type_texts[] =
-    "airoha_nmea_type\0" "-1\0" "all\0" "0\0" "gga\0" "1\0" "gll\0" "2\0" "gsa\0" "3\0" "gsv\0" "4\0"
-    "rmc\0" "5\0" "vtg\0" "6\0" "zda\0" "7\0" "grs\0" "8\0" "gst\0" "9\0" "gns\0";
 static const nmea_enum_code airoha_nmea_type_codes[] = {
-    {airoha_nmea_type_texts + 17, airoha_nmea_type_texts + 20}, /* "-1": "all" */
-    {airoha_nmea_type_texts + 24, airoha_nmea_type_texts + 26}, /* "0": "gga" */
-    {airoha_nmea_type_texts + 30, airoha_nmea_type_texts + 32}, /* "1": "gll" */
-    {airoha_nmea_type_texts + 36, airoha_nmea_type_texts + 38}, /* "2": "gsa" */
-    {airoha_nmea_type_texts + 42, airoha_nmea_type_texts + 44}, /* "3": "gsv" */
-    {airoha_nmea_type_texts + 48, airoha_nmea_type_texts + 50}, /* "4": "rmc" */
-    {airoha_nmea_type_texts + 54, airoha_nmea_type_texts + 56}, /* "5": "vtg" */
-    {airoha_nmea_type_texts + 60, airoha_nmea_type_texts + 62}, /* "6": "zda" */
-    {airoha_nmea_type_texts + 66, airoha_nmea_type_texts + 68}, /* "7": "grs" */
-    {airoha_nmea_type_texts + 72, airoha_nmea_type_texts + 74}, /* "8": "gst" */
-    {airoha_nmea_type_texts + 78, airoha_nmea_type_texts + 80}, /* "9": "gns" */
+    {enum_text_100, enum_text_812 + 7}, /* "-1": "all" */
+    {enum_text_889 + 9, enum_text_539 + 2}, /* "0": "gga" */
+    {enum_text_100 + 1, enum_text_541 + 2}, /* "1": "gll" */
+    {enum_text_916 + 5, enum_text_543 + 2}, /* "2": "gsa" */
+    {enum_text_918 + 5, enum_text_547 + 2}, /* "3": "gsv" */
+    {enum_text_920 + 5, enum_text_551 + 2}, /* "4": "rmc" */
+    {enum_text_842 + 5, enum_text_553 + 2}, /* "5": "vtg" */
+    {enum_text_202 + 1, enum_text_555 + 2}, /* "6": "zda" */
+    {enum_text_204 + 1, enum_text_158}, /* "7": "grs" */
+    {enum_text_1094 + 6, enum_text_545 + 2}, /* "8": "gst" */
+    {enum_text_839 + 5, enum_text_162}, /* "9": "gns" */
 };
 const nmea_enum_def nmea_airoha_nmea_type_def = {
-    airoha_nmea_type_texts, airoha_nmea_type_codes, 11, 1, 2, NMEA_CODES_DIGITS
+    enum_text_149, airoha_nmea_type_codes, 11, 1, 2, NMEA_CODES_DIGITS
 };
 
-static const char airoha_periodic_mode_texts[] =
-    "airoha_periodic_mode\0" "0\0" "disabled\0" "1\0" "smart\0" "2\0" "strict\0";
 static const nmea_enum_code airoha_periodic_mode_codes[] = {
-    {airoha_periodic_mode_texts + 21, airoha_periodic_mode_texts + 23}, /* "0": "disabled" */
-    {airoha_periodic_mode_texts + 32, airoha_periodic_mode_texts + 34}, /* "1": "smart" */
-    {airoha_periodic_mode_texts + 40, airoha_periodic_mode_texts + 42}, /* "2": "strict" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_164}, /* "1": "smart" */
+    {enum_text_916 + 5, enum_text_165}, /* "2": "strict" */
 };
 const nmea_enum_def nmea_airoha_periodic_mode_def = {
-    airoha_periodic_mode_texts, airoha_periodic_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_163, airoha_periodic_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_pos_precision_texts[] =
-    "airoha_pos_precision\0" "0\0" "lat_lon_4_alt_1\0" "1\0" "lat_lon_5_alt_2\0" "2\0"
-    "lat_lon_6_alt_3\0" "3\0" "lat_lon_7_alt_3\0";
 static const nmea_enum_code airoha_pos_precision_codes[] = {
-    {airoha_pos_precision_texts + 21, airoha_pos_precision_texts + 23}, /* "0": "lat_lon_4_alt_1" */
-    {airoha_pos_precision_texts + 39, airoha_pos_precision_texts + 41}, /* "1": "lat_lon_5_alt_2" */
-    {airoha_pos_precision_texts + 57, airoha_pos_precision_texts + 59}, /* "2": "lat_lon_6_alt_3" */
-    {airoha_pos_precision_texts + 75, airoha_pos_precision_texts + 77}, /* "3": "lat_lon_7_alt_3" */
+    {enum_text_889 + 9, enum_text_167}, /* "0": "lat_lon_4_alt_1" */
+    {enum_text_100 + 1, enum_text_168}, /* "1": "lat_lon_5_alt_2" */
+    {enum_text_916 + 5, enum_text_169}, /* "2": "lat_lon_6_alt_3" */
+    {enum_text_918 + 5, enum_text_170}, /* "3": "lat_lon_7_alt_3" */
 };
 const nmea_enum_def nmea_airoha_pos_precision_def = {
-    airoha_pos_precision_texts, airoha_pos_precision_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_166, airoha_pos_precision_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_pps_type_texts[] =
-    "airoha_pps_type\0" "0\0" "disabled\0" "1\0" "after_first_fix\0" "2\0" "fix_3d\0" "3\0"
-    "fix_2d_3d\0" "4\0" "always\0";
 static const nmea_enum_code airoha_pps_type_codes[] = {
-    {airoha_pps_type_texts + 16, airoha_pps_type_texts + 18}, /* "0": "disabled" */
-    {airoha_pps_type_texts + 27, airoha_pps_type_texts + 29}, /* "1": "after_first_fix" */
-    {airoha_pps_type_texts + 45, airoha_pps_type_texts + 47}, /* "2": "fix_3d" */
-    {airoha_pps_type_texts + 54, airoha_pps_type_texts + 56}, /* "3": "fix_2d_3d" */
-    {airoha_pps_type_texts + 66, airoha_pps_type_texts + 68}, /* "4": "always" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_172}, /* "1": "after_first_fix" */
+    {enum_text_916 + 5, enum_text_173}, /* "2": "fix_3d" */
+    {enum_text_918 + 5, enum_text_174}, /* "3": "fix_2d_3d" */
+    {enum_text_920 + 5, enum_text_175}, /* "4": "always" */
 };
 const nmea_enum_def nmea_airoha_pps_type_def = {
-    airoha_pps_type_texts, airoha_pps_type_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_171, airoha_pps_type_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char airoha_rtcm_mode_texts[] =
-    "airoha_rtcm_mode\0" "-1\0" "disabled\0" "0\0" "msm4\0" "1\0" "msm7\0";
 static const nmea_enum_code airoha_rtcm_mode_codes[] = {
-    {airoha_rtcm_mode_texts + 17, airoha_rtcm_mode_texts + 20}, /* "-1": "disabled" */
-    {airoha_rtcm_mode_texts + 29, airoha_rtcm_mode_texts + 31}, /* "0": "msm4" */
-    {airoha_rtcm_mode_texts + 36, airoha_rtcm_mode_texts + 38}, /* "1": "msm7" */
+    {enum_text_100, enum_text_92}, /* "-1": "disabled" */
+    {enum_text_889 + 9, enum_text_177}, /* "0": "msm4" */
+    {enum_text_100 + 1, enum_text_178}, /* "1": "msm7" */
 };
 const nmea_enum_def nmea_airoha_rtcm_mode_def = {
-    airoha_rtcm_mode_texts, airoha_rtcm_mode_codes, 3, 1, 2, NMEA_CODES_DIGITS
+    enum_text_176, airoha_rtcm_mode_codes, 3, 1, 2, NMEA_CODES_DIGITS
 };
 
-static const char ais_aid_type_texts[] =
-    "ais_aid_type\0" "0\0" "not_specified\0" "1\0" "reference_point\0" "2\0" "racon\0" "3\0"
-    "fixed_structure\0" "4\0" "spare\0" "5\0" "light\0" "6\0" "light_sectors\0" "7\0"
-    "leading_light_front\0" "8\0" "leading_light_rear\0" "9\0" "beacon_cardinal_n\0" "10\0"
-    "beacon_cardinal_e\0" "11\0" "beacon_cardinal_s\0" "12\0" "beacon_cardinal_w\0" "13\0"
-    "beacon_port\0" "14\0" "beacon_starboard\0" "15\0" "beacon_preferred_port\0" "16\0"
-    "beacon_preferred_starboard\0" "17\0" "beacon_isolated_danger\0" "18\0" "beacon_safe_water\0" "19\0"
-    "beacon_special\0" "20\0" "cardinal_n\0" "21\0" "cardinal_e\0" "22\0" "cardinal_s\0" "23\0"
-    "cardinal_w\0" "24\0" "port\0" "25\0" "starboard\0" "26\0" "preferred_port\0" "27\0"
-    "preferred_starboard\0" "28\0" "isolated_danger\0" "29\0" "safe_water\0" "30\0" "special\0" "31\0"
-    "light_vessel\0";
 static const nmea_enum_code ais_aid_type_codes[] = {
-    {ais_aid_type_texts + 13, ais_aid_type_texts + 15}, /* "0": "not_specified" */
-    {ais_aid_type_texts + 29, ais_aid_type_texts + 31}, /* "1": "reference_point" */
-    {ais_aid_type_texts + 47, ais_aid_type_texts + 49}, /* "2": "racon" */
-    {ais_aid_type_texts + 55, ais_aid_type_texts + 57}, /* "3": "fixed_structure" */
-    {ais_aid_type_texts + 73, ais_aid_type_texts + 75}, /* "4": "spare" */
-    {ais_aid_type_texts + 81, ais_aid_type_texts + 83}, /* "5": "light" */
-    {ais_aid_type_texts + 89, ais_aid_type_texts + 91}, /* "6": "light_sectors" */
-    {ais_aid_type_texts + 105, ais_aid_type_texts + 107}, /* "7": "leading_light_front" */
-    {ais_aid_type_texts + 127, ais_aid_type_texts + 129}, /* "8": "leading_light_rear" */
-    {ais_aid_type_texts + 148, ais_aid_type_texts + 150}, /* "9": "beacon_cardinal_n" */
-    {ais_aid_type_texts + 168, ais_aid_type_texts + 171}, /* "10": "beacon_cardinal_e" */
-    {ais_aid_type_texts + 189, ais_aid_type_texts + 192}, /* "11": "beacon_cardinal_s" */
-    {ais_aid_type_texts + 210, ais_aid_type_texts + 213}, /* "12": "beacon_cardinal_w" */
-    {ais_aid_type_texts + 231, ais_aid_type_texts + 234}, /* "13": "beacon_port" */
-    {ais_aid_type_texts + 246, ais_aid_type_texts + 249}, /* "14": "beacon_starboard" */
-    {ais_aid_type_texts + 266, ais_aid_type_texts + 269}, /* "15": "beacon_preferred_port" */
-    {ais_aid_type_texts + 291, ais_aid_type_texts + 294}, /* "16": "beacon_preferred_starboard" */
-    {ais_aid_type_texts + 321, ais_aid_type_texts + 324}, /* "17": "beacon_isolated_danger" */
-    {ais_aid_type_texts + 347, ais_aid_type_texts + 350}, /* "18": "beacon_safe_water" */
-    {ais_aid_type_texts + 368, ais_aid_type_texts + 371}, /* "19": "beacon_special" */
-    {ais_aid_type_texts + 386, ais_aid_type_texts + 389}, /* "20": "cardinal_n" */
-    {ais_aid_type_texts + 400, ais_aid_type_texts + 403}, /* "21": "cardinal_e" */
-    {ais_aid_type_texts + 414, ais_aid_type_texts + 417}, /* "22": "cardinal_s" */
-    {ais_aid_type_texts + 428, ais_aid_type_texts + 431}, /* "23": "cardinal_w" */
-    {ais_aid_type_texts + 442, ais_aid_type_texts + 445}, /* "24": "port" */
-    {ais_aid_type_texts + 450, ais_aid_type_texts + 453}, /* "25": "starboard" */
-    {ais_aid_type_texts + 463, ais_aid_type_texts + 466}, /* "26": "preferred_port" */
-    {ais_aid_type_texts + 481, ais_aid_type_texts + 484}, /* "27": "preferred_starboard" */
-    {ais_aid_type_texts + 504, ais_aid_type_texts + 507}, /* "28": "isolated_danger" */
-    {ais_aid_type_texts + 523, ais_aid_type_texts + 526}, /* "29": "safe_water" */
-    {ais_aid_type_texts + 537, ais_aid_type_texts + 540}, /* "30": "special" */
-    {ais_aid_type_texts + 548, ais_aid_type_texts + 551}, /* "31": "light_vessel" */
+    {enum_text_889 + 9, enum_text_180}, /* "0": "not_specified" */
+    {enum_text_100 + 1, enum_text_181}, /* "1": "reference_point" */
+    {enum_text_916 + 5, enum_text_182}, /* "2": "racon" */
+    {enum_text_918 + 5, enum_text_183}, /* "3": "fixed_structure" */
+    {enum_text_920 + 5, enum_text_184}, /* "4": "spare" */
+    {enum_text_842 + 5, enum_text_185}, /* "5": "light" */
+    {enum_text_202 + 1, enum_text_186}, /* "6": "light_sectors" */
+    {enum_text_204 + 1, enum_text_187}, /* "7": "leading_light_front" */
+    {enum_text_1094 + 6, enum_text_188}, /* "8": "leading_light_rear" */
+    {enum_text_839 + 5, enum_text_189}, /* "9": "beacon_cardinal_n" */
+    {enum_text_889 + 8, enum_text_191}, /* "10": "beacon_cardinal_e" */
+    {enum_text_914 + 4, enum_text_193}, /* "11": "beacon_cardinal_s" */
+    {enum_text_916 + 4, enum_text_195}, /* "12": "beacon_cardinal_w" */
+    {enum_text_918 + 4, enum_text_197}, /* "13": "beacon_port" */
+    {enum_text_920 + 4, enum_text_199}, /* "14": "beacon_starboard" */
+    {enum_text_842 + 4, enum_text_201}, /* "15": "beacon_preferred_port" */
+    {enum_text_202, enum_text_203}, /* "16": "beacon_preferred_starboard" */
+    {enum_text_204, enum_text_205}, /* "17": "beacon_isolated_danger" */
+    {enum_text_1094 + 5, enum_text_207}, /* "18": "beacon_safe_water" */
+    {enum_text_839 + 4, enum_text_209}, /* "19": "beacon_special" */
+    {enum_text_210, enum_text_189 + 7}, /* "20": "cardinal_n" */
+    {enum_text_845 + 4, enum_text_191 + 7}, /* "21": "cardinal_e" */
+    {enum_text_214, enum_text_193 + 7}, /* "22": "cardinal_s" */
+    {enum_text_216, enum_text_195 + 7}, /* "23": "cardinal_w" */
+    {enum_text_218, enum_text_1292 + 6}, /* "24": "port" */
+    {enum_text_220, enum_text_199 + 7}, /* "25": "starboard" */
+    {enum_text_222, enum_text_201 + 7}, /* "26": "preferred_port" */
+    {enum_text_224, enum_text_203 + 7}, /* "27": "preferred_starboard" */
+    {enum_text_226, enum_text_205 + 7}, /* "28": "isolated_danger" */
+    {enum_text_228, enum_text_207 + 7}, /* "29": "safe_water" */
+    {enum_text_843 + 4, enum_text_209 + 7}, /* "30": "special" */
+    {enum_text_232, enum_text_233}, /* "31": "light_vessel" */
 };
 const nmea_enum_def nmea_ais_aid_type_def = {
-    ais_aid_type_texts, ais_aid_type_codes, 32, 1, 2, NMEA_CODES_DIGITS
+    enum_text_179, ais_aid_type_codes, 32, 1, 2, NMEA_CODES_DIGITS
 };
 
-static const char ais_channel_texts[] =
-    "ais_channel\0" "A\0" "a\0" "B\0" "b\0" "1\0" "one\0" "2\0" "two\0";
 static const nmea_enum_code ais_channel_codes[] = {
-    {ais_channel_texts + 12, ais_channel_texts + 14}, /* "A": "a" */
-    {ais_channel_texts + 16, ais_channel_texts + 18}, /* "B": "b" */
-    {ais_channel_texts + 20, ais_channel_texts + 22}, /* "1": "one" */
-    {ais_channel_texts + 26, ais_channel_texts + 28}, /* "2": "two" */
+    {enum_text_538 + 4, enum_text_539 + 4}, /* "A": "a" */
+    {enum_text_23, enum_text_1428 + 2}, /* "B": "b" */
+    {enum_text_100 + 1, enum_text_96 + 1}, /* "1": "one" */
+    {enum_text_916 + 5, enum_text_236}, /* "2": "two" */
 };
 const nmea_enum_def nmea_ais_channel_def = {
-    ais_channel_texts, ais_channel_codes, 4, 1, 1, NMEA_CODES_CLOSED
+    enum_text_234, ais_channel_codes, 4, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char ais_epfd_texts[] =
-    "ais_epfd\0" "0\0" "undefined\0" "1\0" "gps\0" "2\0" "glonass\0" "3\0" "gps_glonass\0" "4\0"
-    "loran_c\0" "5\0" "chayka\0" "6\0" "integrated\0" "7\0" "surveyed\0" "8\0" "galileo\0" "15\0"
-    "internal_gnss\0";
 static const nmea_enum_code ais_epfd_codes[] = {
-    {ais_epfd_texts + 9, ais_epfd_texts + 11}, /* "0": "undefined" */
-    {ais_epfd_texts + 21, ais_epfd_texts + 23}, /* "1": "gps" */
-    {ais_epfd_texts + 27, ais_epfd_texts + 29}, /* "2": "glonass" */
-    {ais_epfd_texts + 37, ais_epfd_texts + 39}, /* "3": "gps_glonass" */
-    {ais_epfd_texts + 51, ais_epfd_texts + 53}, /* "4": "loran_c" */
-    {ais_epfd_texts + 61, ais_epfd_texts + 63}, /* "5": "chayka" */
-    {ais_epfd_texts + 70, ais_epfd_texts + 72}, /* "6": "integrated" */
-    {ais_epfd_texts + 83, ais_epfd_texts + 85}, /* "7": "surveyed" */
-    {ais_epfd_texts + 94, ais_epfd_texts + 96}, /* "8": "galileo" */
-    {ais_epfd_texts + 104, ais_epfd_texts + 107}, /* "15": "internal_gnss" */
+    {enum_text_889 + 9, enum_text_238}, /* "0": "undefined" */
+    {enum_text_100 + 1, enum_text_1391 + 8}, /* "1": "gps" */
+    {enum_text_916 + 5, enum_text_239 + 4}, /* "2": "glonass" */
+    {enum_text_918 + 5, enum_text_239}, /* "3": "gps_glonass" */
+    {enum_text_920 + 5, enum_text_240}, /* "4": "loran_c" */
+    {enum_text_842 + 5, enum_text_241}, /* "5": "chayka" */
+    {enum_text_202 + 1, enum_text_242}, /* "6": "integrated" */
+    {enum_text_204 + 1, enum_text_243}, /* "7": "surveyed" */
+    {enum_text_1094 + 6, enum_text_932 + 12}, /* "8": "galileo" */
+    {enum_text_842 + 4, enum_text_244}, /* "15": "internal_gnss" */
 };
 const nmea_enum_def nmea_ais_epfd_def = {
-    ais_epfd_texts, ais_epfd_codes, 10, 1, 2, NMEA_CODES_DIGITS
+    enum_text_237, ais_epfd_codes, 10, 1, 2, NMEA_CODES_DIGITS
 };
 
-static const char ais_ship_type_texts[] =
-    "ais_ship_type\0" "0\0" "not_available\0" "20\0" "wig\0" "21\0" "wig_hazardous_a\0" "22\0"
-    "wig_hazardous_b\0" "23\0" "wig_hazardous_c\0" "24\0" "wig_hazardous_d\0" "30\0" "fishing\0" "31\0"
-    "towing\0" "32\0" "towing_large\0" "33\0" "dredging\0" "34\0" "diving\0" "35\0" "military\0" "36\0"
-    "sailing\0" "37\0" "pleasure_craft\0" "40\0" "high_speed_craft\0" "41\0"
-    "high_speed_craft_hazardous_a\0" "42\0" "high_speed_craft_hazardous_b\0" "43\0"
-    "high_speed_craft_hazardous_c\0" "44\0" "high_speed_craft_hazardous_d\0" "49\0"
-    "high_speed_craft_no_info\0" "50\0" "pilot_vessel\0" "51\0" "search_and_rescue\0" "52\0" "tug\0"
-    "53\0" "port_tender\0" "54\0" "anti_pollution\0" "55\0" "law_enforcement\0" "56\0" "local_56\0"
-    "57\0" "local_57\0" "58\0" "medical_transport\0" "59\0" "noncombatant\0" "60\0" "passenger\0" "61\0"
-    "passenger_hazardous_a\0" "62\0" "passenger_hazardous_b\0" "63\0" "passenger_hazardous_c\0" "64\0"
-    "passenger_hazardous_d\0" "69\0" "passenger_no_info\0" "70\0" "cargo\0" "71\0" "cargo_hazardous_a\0"
-    "72\0" "cargo_hazardous_b\0" "73\0" "cargo_hazardous_c\0" "74\0" "cargo_hazardous_d\0" "79\0"
-    "cargo_no_info\0" "80\0" "tanker\0" "81\0" "tanker_hazardous_a\0" "82\0" "tanker_hazardous_b\0"
-    "83\0" "tanker_hazardous_c\0" "84\0" "tanker_hazardous_d\0" "89\0" "tanker_no_info\0" "90\0"
-    "other\0" "91\0" "other_hazardous_a\0" "92\0" "other_hazardous_b\0" "93\0" "other_hazardous_c\0"
-    "94\0" "other_hazardous_d\0" "99\0" "other_no_info\0";
 static const nmea_enum_code ais_ship_type_codes[] = {
-    {ais_ship_type_texts + 14, ais_ship_type_texts + 16}, /* "0": "not_available" */
-    {ais_ship_type_texts + 30, ais_ship_type_texts + 33}, /* "20": "wig" */
-    {ais_ship_type_texts + 37, ais_ship_type_texts + 40}, /* "21": "wig_hazardous_a" */
-    {ais_ship_type_texts + 56, ais_ship_type_texts + 59}, /* "22": "wig_hazardous_b" */
-    {ais_ship_type_texts + 75, ais_ship_type_texts + 78}, /* "23": "wig_hazardous_c" */
-    {ais_ship_type_texts + 94, ais_ship_type_texts + 97}, /* "24": "wig_hazardous_d" */
-    {ais_ship_type_texts + 113, ais_ship_type_texts + 116}, /* "30": "fishing" */
-    {ais_ship_type_texts + 124, ais_ship_type_texts + 127}, /* "31": "towing" */
-    {ais_ship_type_texts + 134, ais_ship_type_texts + 137}, /* "32": "towing_large" */
-    {ais_ship_type_texts + 150, ais_ship_type_texts + 153}, /* "33": "dredging" */
-    {ais_ship_type_texts + 162, ais_ship_type_texts + 165}, /* "34": "diving" */
-    {ais_ship_type_texts + 172, ais_ship_type_texts + 175}, /* "35": "military" */
-    {ais_ship_type_texts + 184, ais_ship_type_texts + 187}, /* "36": "sailing" */
-    {ais_ship_type_texts + 195, ais_ship_type_texts + 198}, /* "37": "pleasure_craft" */
-    {ais_ship_type_texts + 213, ais_ship_type_texts + 216}, /* "40": "high_speed_craft" */
-    {ais_ship_type_texts + 233, ais_ship_type_texts + 236}, /* "41": "high_speed_craft_hazardous_a" */
-    {ais_ship_type_texts + 265, ais_ship_type_texts + 268}, /* "42": "high_speed_craft_hazardous_b" */
-    {ais_ship_type_texts + 297, ais_ship_type_texts + 300}, /* "43": "high_speed_craft_hazardous_c" */
-    {ais_ship_type_texts + 329, ais_ship_type_texts + 332}, /* "44": "high_speed_craft_hazardous_d" */
-    {ais_ship_type_texts + 361, ais_ship_type_texts + 364}, /* "49": "high_speed_craft_no_info" */
-    {ais_ship_type_texts + 389, ais_ship_type_texts + 392}, /* "50": "pilot_vessel" */
-    {ais_ship_type_texts + 405, ais_ship_type_texts + 408}, /* "51": "search_and_rescue" */
-    {ais_ship_type_texts + 426, ais_ship_type_texts + 429}, /* "52": "tug" */
-    {ais_ship_type_texts + 433, ais_ship_type_texts + 436}, /* "53": "port_tender" */
-    {ais_ship_type_texts + 448, ais_ship_type_texts + 451}, /* "54": "anti_pollution" */
-    {ais_ship_type_texts + 466, ais_ship_type_texts + 469}, /* "55": "law_enforcement" */
-    {ais_ship_type_texts + 485, ais_ship_type_texts + 488}, /* "56": "local_56" */
-    {ais_ship_type_texts + 497, ais_ship_type_texts + 500}, /* "57": "local_57" */
-    {ais_ship_type_texts + 509, ais_ship_type_texts + 512}, /* "58": "medical_transport" */
-    {ais_ship_type_texts + 530, ais_ship_type_texts + 533}, /* "59": "noncombatant" */
-    {ais_ship_type_texts + 546, ais_ship_type_texts + 549}, /* "60": "passenger" */
-    {ais_ship_type_texts + 559, ais_ship_type_texts + 562}, /* "61": "passenger_hazardous_a" */
-    {ais_ship_type_texts + 584, ais_ship_type_texts + 587}, /* "62": "passenger_hazardous_b" */
-    {ais_ship_type_texts + 609, ais_ship_type_texts + 612}, /* "63": "passenger_hazardous_c" */
-    {ais_ship_type_texts + 634, ais_ship_type_texts + 637}, /* "64": "passenger_hazardous_d" */
-    {ais_ship_type_texts + 659, ais_ship_type_texts + 662}, /* "69": "passenger_no_info" */
-    {ais_ship_type_texts + 680, ais_ship_type_texts + 683}, /* "70": "cargo" */
-    {ais_ship_type_texts + 689, ais_ship_type_texts + 692}, /* "71": "cargo_hazardous_a" */
-    {ais_ship_type_texts + 710, ais_ship_type_texts + 713}, /* "72": "cargo_hazardous_b" */
-    {ais_ship_type_texts + 731, ais_ship_type_texts + 734}, /* "73": "cargo_hazardous_c" */
-    {ais_ship_type_texts + 752, ais_ship_type_texts + 755}, /* "74": "cargo_hazardous_d" */
-    {ais_ship_type_texts + 773, ais_ship_type_texts + 776}, /* "79": "cargo_no_info" */
-    {ais_ship_type_texts + 790, ais_ship_type_texts + 793}, /* "80": "tanker" */
-    {ais_ship_type_texts + 800, ais_ship_type_texts + 803}, /* "81": "tanker_hazardous_a" */
-    {ais_ship_type_texts + 822, ais_ship_type_texts + 825}, /* "82": "tanker_hazardous_b" */
-    {ais_ship_type_texts + 844, ais_ship_type_texts + 847}, /* "83": "tanker_hazardous_c" */
-    {ais_ship_type_texts + 866, ais_ship_type_texts + 869}, /* "84": "tanker_hazardous_d" */
-    {ais_ship_type_texts + 888, ais_ship_type_texts + 891}, /* "89": "tanker_no_info" */
-    {ais_ship_type_texts + 906, ais_ship_type_texts + 909}, /* "90": "other" */
-    {ais_ship_type_texts + 915, ais_ship_type_texts + 918}, /* "91": "other_hazardous_a" */
-    {ais_ship_type_texts + 936, ais_ship_type_texts + 939}, /* "92": "other_hazardous_b" */
-    {ais_ship_type_texts + 957, ais_ship_type_texts + 960}, /* "93": "other_hazardous_c" */
-    {ais_ship_type_texts + 978, ais_ship_type_texts + 981}, /* "94": "other_hazardous_d" */
-    {ais_ship_type_texts + 999, ais_ship_type_texts + 1002}, /* "99": "other_no_info" */
+    {enum_text_889 + 9, enum_text_246}, /* "0": "not_available" */
+    {enum_text_210, enum_text_1445 + 9}, /* "20": "wig" */
+    {enum_text_845 + 4, enum_text_248}, /* "21": "wig_hazardous_a" */
+    {enum_text_214, enum_text_249}, /* "22": "wig_hazardous_b" */
+    {enum_text_216, enum_text_250}, /* "23": "wig_hazardous_c" */
+    {enum_text_218, enum_text_251}, /* "24": "wig_hazardous_d" */
+    {enum_text_843 + 4, enum_text_252}, /* "30": "fishing" */
+    {enum_text_232, enum_text_253}, /* "31": "towing" */
+    {enum_text_254, enum_text_255}, /* "32": "towing_large" */
+    {enum_text_256, enum_text_257}, /* "33": "dredging" */
+    {enum_text_258, enum_text_259}, /* "34": "diving" */
+    {enum_text_260, enum_text_261}, /* "35": "military" */
+    {enum_text_262, enum_text_1443 + 10}, /* "36": "sailing" */
+    {enum_text_264, enum_text_265}, /* "37": "pleasure_craft" */
+    {enum_text_266, enum_text_267}, /* "40": "high_speed_craft" */
+    {enum_text_268, enum_text_269}, /* "41": "high_speed_craft_hazardous_a" */
+    {enum_text_270, enum_text_271}, /* "42": "high_speed_craft_hazardous_b" */
+    {enum_text_272, enum_text_273}, /* "43": "high_speed_craft_hazardous_c" */
+    {enum_text_274, enum_text_275}, /* "44": "high_speed_craft_hazardous_d" */
+    {enum_text_276, enum_text_277}, /* "49": "high_speed_craft_no_info" */
+    {enum_text_278, enum_text_279}, /* "50": "pilot_vessel" */
+    {enum_text_280, enum_text_281}, /* "51": "search_and_rescue" */
+    {enum_text_282, enum_text_283}, /* "52": "tug" */
+    {enum_text_284, enum_text_285}, /* "53": "port_tender" */
+    {enum_text_286, enum_text_287}, /* "54": "anti_pollution" */
+    {enum_text_288, enum_text_289}, /* "55": "law_enforcement" */
+    {enum_text_291 + 6, enum_text_291}, /* "56": "local_56" */
+    {enum_text_841 + 4, enum_text_293}, /* "57": "local_57" */
+    {enum_text_294, enum_text_295}, /* "58": "medical_transport" */
+    {enum_text_296, enum_text_297}, /* "59": "noncombatant" */
+    {enum_text_844 + 4, enum_text_299}, /* "60": "passenger" */
+    {enum_text_300, enum_text_301}, /* "61": "passenger_hazardous_a" */
+    {enum_text_302, enum_text_303}, /* "62": "passenger_hazardous_b" */
+    {enum_text_304, enum_text_305}, /* "63": "passenger_hazardous_c" */
+    {enum_text_306, enum_text_307}, /* "64": "passenger_hazardous_d" */
+    {enum_text_308, enum_text_309}, /* "69": "passenger_no_info" */
+    {enum_text_310, enum_text_311}, /* "70": "cargo" */
+    {enum_text_312, enum_text_313}, /* "71": "cargo_hazardous_a" */
+    {enum_text_660 + 1, enum_text_315}, /* "72": "cargo_hazardous_b" */
+    {enum_text_316, enum_text_317}, /* "73": "cargo_hazardous_c" */
+    {enum_text_318, enum_text_319}, /* "74": "cargo_hazardous_d" */
+    {enum_text_320, enum_text_321}, /* "79": "cargo_no_info" */
+    {enum_text_322, enum_text_323}, /* "80": "tanker" */
+    {enum_text_324, enum_text_325}, /* "81": "tanker_hazardous_a" */
+    {enum_text_326, enum_text_327}, /* "82": "tanker_hazardous_b" */
+    {enum_text_328, enum_text_329}, /* "83": "tanker_hazardous_c" */
+    {enum_text_926 + 4, enum_text_331}, /* "84": "tanker_hazardous_d" */
+    {enum_text_332, enum_text_333}, /* "89": "tanker_no_info" */
+    {enum_text_924 + 4, enum_text_1279 + 6}, /* "90": "other" */
+    {enum_text_336, enum_text_337}, /* "91": "other_hazardous_a" */
+    {enum_text_338, enum_text_339}, /* "92": "other_hazardous_b" */
+    {enum_text_340, enum_text_341}, /* "93": "other_hazardous_c" */
+    {enum_text_342, enum_text_343}, /* "94": "other_hazardous_d" */
+    {enum_text_666 + 1, enum_text_345}, /* "99": "other_no_info" */
 };
 const nmea_enum_def nmea_ais_ship_type_def = {
-    ais_ship_type_texts, ais_ship_type_codes, 54, 1, 2, NMEA_CODES_DIGITS
+    enum_text_245, ais_ship_type_codes, 54, 1, 2, NMEA_CODES_DIGITS
 };
 
-static const char ala_ack_state_texts[] =
-    "ala_ack_state\0" "A\0" "acknowledged\0" "V\0" "not_acknowledged\0" "B\0" "broadcast\0" "H\0"
-    "harbour_mode\0" "O\0" "override\0";
 static const nmea_enum_code ala_ack_state_codes[] = {
-    {ala_ack_state_texts + 14, ala_ack_state_texts + 16}, /* "A": "acknowledged" */
-    {ala_ack_state_texts + 29, ala_ack_state_texts + 31}, /* "V": "not_acknowledged" */
-    {ala_ack_state_texts + 48, ala_ack_state_texts + 50}, /* "B": "broadcast" */
-    {ala_ack_state_texts + 60, ala_ack_state_texts + 62}, /* "H": "harbour_mode" */
-    {ala_ack_state_texts + 75, ala_ack_state_texts + 77}, /* "O": "override" */
+    {enum_text_538 + 4, enum_text_372 + 9}, /* "A": "acknowledged" */
+    {enum_text_546 + 4, enum_text_348}, /* "V": "not_acknowledged" */
+    {enum_text_23, enum_text_14 + 4}, /* "B": "broadcast" */
+    {enum_text_701 + 1, enum_text_351}, /* "H": "harbour_mode" */
+    {enum_text_709 + 1, enum_text_978 + 4}, /* "O": "override" */
 };
 const nmea_enum_def nmea_ala_ack_state_def = {
-    ala_ack_state_texts, ala_ack_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_346, ala_ack_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char ala_condition_texts[] =
-    "ala_condition\0" "N\0" "normal\0" "H\0" "high\0" "J\0" "extreme_high\0" "L\0" "low\0" "K\0"
-    "extreme_low\0" "X\0" "other\0";
 static const nmea_enum_code ala_condition_codes[] = {
-    {ala_condition_texts + 14, ala_condition_texts + 16}, /* "N": "normal" */
-    {ala_condition_texts + 23, ala_condition_texts + 25}, /* "H": "high" */
-    {ala_condition_texts + 30, ala_condition_texts + 32}, /* "J": "extreme_high" */
-    {ala_condition_texts + 45, ala_condition_texts + 47}, /* "L": "low" */
-    {ala_condition_texts + 51, ala_condition_texts + 53}, /* "K": "extreme_low" */
-    {ala_condition_texts + 65, ala_condition_texts + 67}, /* "X": "other" */
+    {enum_text_850 + 5, enum_text_964 + 4}, /* "N": "normal" */
+    {enum_text_701 + 1, enum_text_356 + 8}, /* "H": "high" */
+    {enum_text_355, enum_text_356}, /* "J": "extreme_high" */
+    {enum_text_436 + 2, enum_text_685 + 7}, /* "L": "low" */
+    {enum_text_1422 + 1, enum_text_359}, /* "K": "extreme_low" */
+    {enum_text_931 + 5, enum_text_1279 + 6}, /* "X": "other" */
 };
 const nmea_enum_def nmea_ala_condition_def = {
-    ala_condition_texts, ala_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    enum_text_353, ala_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char alf_category_texts[] =
-    "alf_category\0" "A\0" "category_a\0" "B\0" "category_b\0" "C\0" "category_c\0";
 static const nmea_enum_code alf_category_codes[] = {
-    {alf_category_texts + 13, alf_category_texts + 15}, /* "A": "category_a" */
-    {alf_category_texts + 26, alf_category_texts + 28}, /* "B": "category_b" */
-    {alf_category_texts + 39, alf_category_texts + 41}, /* "C": "category_c" */
+    {enum_text_538 + 4, enum_text_362}, /* "A": "category_a" */
+    {enum_text_23, enum_text_363}, /* "B": "category_b" */
+    {enum_text_550 + 4, enum_text_364}, /* "C": "category_c" */
 };
 const nmea_enum_def nmea_alf_category_def = {
-    alf_category_texts, alf_category_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_361, alf_category_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char alf_priority_texts[] =
-    "alf_priority\0" "E\0" "emergency_alarm\0" "A\0" "alarm\0" "W\0" "warning\0" "C\0" "caution\0";
 static const nmea_enum_code alf_priority_codes[] = {
-    {alf_priority_texts + 13, alf_priority_texts + 15}, /* "E": "emergency_alarm" */
-    {alf_priority_texts + 31, alf_priority_texts + 33}, /* "A": "alarm" */
-    {alf_priority_texts + 39, alf_priority_texts + 41}, /* "W": "warning" */
-    {alf_priority_texts + 49, alf_priority_texts + 51}, /* "C": "caution" */
+    {enum_text_430 + 2, enum_text_367}, /* "E": "emergency_alarm" */
+    {enum_text_538 + 4, enum_text_1363 + 4}, /* "A": "alarm" */
+    {enum_text_369, enum_text_953 + 4}, /* "W": "warning" */
+    {enum_text_550 + 4, enum_text_370}, /* "C": "caution" */
 };
 const nmea_enum_def nmea_alf_priority_def = {
-    alf_priority_texts, alf_priority_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_365, alf_priority_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char alf_state_texts[] =
-    "alf_state\0" "V\0" "active_unacknowledged\0" "S\0" "active_silenced\0" "A\0"
-    "active_acknowledged\0" "O\0" "active_responsibility_transferred\0" "U\0"
-    "rectified_unacknowledged\0" "N\0" "normal\0";
 static const nmea_enum_code alf_state_codes[] = {
-    {alf_state_texts + 10, alf_state_texts + 12}, /* "V": "active_unacknowledged" */
-    {alf_state_texts + 34, alf_state_texts + 36}, /* "S": "active_silenced" */
-    {alf_state_texts + 52, alf_state_texts + 54}, /* "A": "active_acknowledged" */
-    {alf_state_texts + 74, alf_state_texts + 76}, /* "O": "active_responsibility_transferred" */
-    {alf_state_texts + 110, alf_state_texts + 112}, /* "U": "rectified_unacknowledged" */
-    {alf_state_texts + 137, alf_state_texts + 139}, /* "N": "normal" */
+    {enum_text_546 + 4, enum_text_372}, /* "V": "active_unacknowledged" */
+    {enum_text_601 + 1, enum_text_373}, /* "S": "active_silenced" */
+    {enum_text_538 + 4, enum_text_374}, /* "A": "active_acknowledged" */
+    {enum_text_709 + 1, enum_text_375}, /* "O": "active_responsibility_transferred" */
+    {enum_text_1340 + 2, enum_text_377}, /* "U": "rectified_unacknowledged" */
+    {enum_text_850 + 5, enum_text_964 + 4}, /* "N": "normal" */
 };
 const nmea_enum_def nmea_alf_state_def = {
-    alf_state_texts, alf_state_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    enum_text_371, alf_state_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char alr_ack_state_texts[] =
-    "alr_ack_state\0" "A\0" "acknowledged\0" "V\0" "unacknowledged\0";
 static const nmea_enum_code alr_ack_state_codes[] = {
-    {alr_ack_state_texts + 14, alr_ack_state_texts + 16}, /* "A": "acknowledged" */
-    {alr_ack_state_texts + 29, alr_ack_state_texts + 31}, /* "V": "unacknowledged" */
+    {enum_text_538 + 4, enum_text_372 + 9}, /* "A": "acknowledged" */
+    {enum_text_546 + 4, enum_text_372 + 7}, /* "V": "unacknowledged" */
 };
 const nmea_enum_def nmea_alr_ack_state_def = {
-    alr_ack_state_texts, alr_ack_state_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_378, alr_ack_state_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char alr_condition_texts[] =
-    "alr_condition\0" "A\0" "threshold_exceeded\0" "V\0" "not_exceeded\0";
 static const nmea_enum_code alr_condition_codes[] = {
-    {alr_condition_texts + 14, alr_condition_texts + 16}, /* "A": "threshold_exceeded" */
-    {alr_condition_texts + 35, alr_condition_texts + 37}, /* "V": "not_exceeded" */
+    {enum_text_538 + 4, enum_text_381}, /* "A": "threshold_exceeded" */
+    {enum_text_546 + 4, enum_text_382}, /* "V": "not_exceeded" */
 };
 const nmea_enum_def nmea_alr_condition_def = {
-    alr_condition_texts, alr_condition_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_380, alr_condition_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char apb_bearing_ref_texts[] =
-    "apb_bearing_ref\0" "M\0" "magnetic\0" "T\0" "true_north\0";
 static const nmea_enum_code apb_bearing_ref_codes[] = {
-    {apb_bearing_ref_texts + 16, apb_bearing_ref_texts + 18}, /* "M": "magnetic" */
-    {apb_bearing_ref_texts + 27, apb_bearing_ref_texts + 29}, /* "T": "true_north" */
+    {enum_text_705 + 1, enum_text_384}, /* "M": "magnetic" */
+    {enum_text_599 + 1, enum_text_386}, /* "T": "true_north" */
 };
 const nmea_enum_def nmea_apb_bearing_ref_def = {
-    apb_bearing_ref_texts, apb_bearing_ref_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_383, apb_bearing_ref_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char ashtech_hpr_mode_texts[] =
-    "ashtech_hpr_mode\0" "0\0" "fixed_baseline\0" "1\0" "calibrating\0" "2\0" "flexible_baseline\0";
 static const nmea_enum_code ashtech_hpr_mode_codes[] = {
-    {ashtech_hpr_mode_texts + 17, ashtech_hpr_mode_texts + 19}, /* "0": "fixed_baseline" */
-    {ashtech_hpr_mode_texts + 34, ashtech_hpr_mode_texts + 36}, /* "1": "calibrating" */
-    {ashtech_hpr_mode_texts + 48, ashtech_hpr_mode_texts + 50}, /* "2": "flexible_baseline" */
+    {enum_text_889 + 9, enum_text_388}, /* "0": "fixed_baseline" */
+    {enum_text_100 + 1, enum_text_389}, /* "1": "calibrating" */
+    {enum_text_916 + 5, enum_text_390}, /* "2": "flexible_baseline" */
 };
 const nmea_enum_def nmea_ashtech_hpr_mode_def = {
-    ashtech_hpr_mode_texts, ashtech_hpr_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_387, ashtech_hpr_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char ashtech_nme_message_texts[] =
-    "ashtech_nme_message\0" "ALM\0" "alm\0" "DTM\0" "dtm\0" "GGA\0" "gga\0" "GLL\0" "gll\0" "GMP\0"
-    "gmp\0" "GNS\0" "gns\0" "GRS\0" "grs\0" "GSA\0" "gsa\0" "GST\0" "gst\0" "GSV\0" "gsv\0" "HDT\0"
-    "hdt\0" "HD2\0" "hd2\0" "RMC\0" "rmc\0" "VTG\0" "vtg\0" "ZDA\0" "zda\0" "XDR\0" "xdr\0" "ATT\0"
-    "att\0" "AT2\0" "at2\0" "CRT\0" "crt\0" "DCR\0" "dcr\0" "DDS\0" "dds\0" "DPO\0" "dpo\0" "LTN\0"
-    "ltn\0" "POS\0" "pos\0" "RRE\0" "rre\0" "SAT\0" "sat\0" "SGA\0" "sga\0" "SGL\0" "sgl\0" "SGP\0"
-    "sgp\0" "USR\0" "usr\0" "VEC\0" "vec\0" "VE2\0" "ve2\0" "PTT\0" "ptt\0" "TTT\0" "ttt\0";
 static const nmea_enum_code ashtech_nme_message_codes[] = {
-    {ashtech_nme_message_texts + 20, ashtech_nme_message_texts + 24}, /* "ALM": "alm" */
-    {ashtech_nme_message_texts + 28, ashtech_nme_message_texts + 32}, /* "DTM": "dtm" */
-    {ashtech_nme_message_texts + 36, ashtech_nme_message_texts + 40}, /* "GGA": "gga" */
-    {ashtech_nme_message_texts + 44, ashtech_nme_message_texts + 48}, /* "GLL": "gll" */
-    {ashtech_nme_message_texts + 52, ashtech_nme_message_texts + 56}, /* "GMP": "gmp" */
-    {ashtech_nme_message_texts + 60, ashtech_nme_message_texts + 64}, /* "GNS": "gns" */
-    {ashtech_nme_message_texts + 68, ashtech_nme_message_texts + 72}, /* "GRS": "grs" */
-    {ashtech_nme_message_texts + 76, ashtech_nme_message_texts + 80}, /* "GSA": "gsa" */
-    {ashtech_nme_message_texts + 84, ashtech_nme_message_texts + 88}, /* "GST": "gst" */
-    {ashtech_nme_message_texts + 92, ashtech_nme_message_texts + 96}, /* "GSV": "gsv" */
-    {ashtech_nme_message_texts + 100, ashtech_nme_message_texts + 104}, /* "HDT": "hdt" */
-    {ashtech_nme_message_texts + 108, ashtech_nme_message_texts + 112}, /* "HD2": "hd2" */
-    {ashtech_nme_message_texts + 116, ashtech_nme_message_texts + 120}, /* "RMC": "rmc" */
-    {ashtech_nme_message_texts + 124, ashtech_nme_message_texts + 128}, /* "VTG": "vtg" */
-    {ashtech_nme_message_texts + 132, ashtech_nme_message_texts + 136}, /* "ZDA": "zda" */
-    {ashtech_nme_message_texts + 140, ashtech_nme_message_texts + 144}, /* "XDR": "xdr" */
-    {ashtech_nme_message_texts + 148, ashtech_nme_message_texts + 152}, /* "ATT": "att" */
-    {ashtech_nme_message_texts + 156, ashtech_nme_message_texts + 160}, /* "AT2": "at2" */
-    {ashtech_nme_message_texts + 164, ashtech_nme_message_texts + 168}, /* "CRT": "crt" */
-    {ashtech_nme_message_texts + 172, ashtech_nme_message_texts + 176}, /* "DCR": "dcr" */
-    {ashtech_nme_message_texts + 180, ashtech_nme_message_texts + 184}, /* "DDS": "dds" */
-    {ashtech_nme_message_texts + 188, ashtech_nme_message_texts + 192}, /* "DPO": "dpo" */
-    {ashtech_nme_message_texts + 196, ashtech_nme_message_texts + 200}, /* "LTN": "ltn" */
-    {ashtech_nme_message_texts + 204, ashtech_nme_message_texts + 208}, /* "POS": "pos" */
-    {ashtech_nme_message_texts + 212, ashtech_nme_message_texts + 216}, /* "RRE": "rre" */
-    {ashtech_nme_message_texts + 220, ashtech_nme_message_texts + 224}, /* "SAT": "sat" */
-    {ashtech_nme_message_texts + 228, ashtech_nme_message_texts + 232}, /* "SGA": "sga" */
-    {ashtech_nme_message_texts + 236, ashtech_nme_message_texts + 240}, /* "SGL": "sgl" */
-    {ashtech_nme_message_texts + 244, ashtech_nme_message_texts + 248}, /* "SGP": "sgp" */
-    {ashtech_nme_message_texts + 252, ashtech_nme_message_texts + 256}, /* "USR": "usr" */
-    {ashtech_nme_message_texts + 260, ashtech_nme_message_texts + 264}, /* "VEC": "vec" */
-    {ashtech_nme_message_texts + 268, ashtech_nme_message_texts + 272}, /* "VE2": "ve2" */
-    {ashtech_nme_message_texts + 276, ashtech_nme_message_texts + 280}, /* "PTT": "ptt" */
-    {ashtech_nme_message_texts + 284, ashtech_nme_message_texts + 288}, /* "TTT": "ttt" */
+    {enum_text_392, enum_text_393}, /* "ALM": "alm" */
+    {enum_text_394, enum_text_395}, /* "DTM": "dtm" */
+    {enum_text_538 + 2, enum_text_539 + 2}, /* "GGA": "gga" */
+    {enum_text_540 + 2, enum_text_541 + 2}, /* "GLL": "gll" */
+    {enum_text_398, enum_text_399}, /* "GMP": "gmp" */
+    {enum_text_400, enum_text_162}, /* "GNS": "gns" */
+    {enum_text_401, enum_text_158}, /* "GRS": "grs" */
+    {enum_text_542 + 2, enum_text_543 + 2}, /* "GSA": "gsa" */
+    {enum_text_544 + 2, enum_text_545 + 2}, /* "GST": "gst" */
+    {enum_text_546 + 2, enum_text_547 + 2}, /* "GSV": "gsv" */
+    {enum_text_548 + 2, enum_text_549 + 2}, /* "HDT": "hdt" */
+    {enum_text_407, enum_text_408}, /* "HD2": "hd2" */
+    {enum_text_550 + 2, enum_text_551 + 2}, /* "RMC": "rmc" */
+    {enum_text_552 + 2, enum_text_553 + 2}, /* "VTG": "vtg" */
+    {enum_text_554 + 2, enum_text_555 + 2}, /* "ZDA": "zda" */
+    {enum_text_412, enum_text_413}, /* "XDR": "xdr" */
+    {enum_text_414, enum_text_415}, /* "ATT": "att" */
+    {enum_text_416, enum_text_417}, /* "AT2": "at2" */
+    {enum_text_418, enum_text_419}, /* "CRT": "crt" */
+    {enum_text_420, enum_text_421}, /* "DCR": "dcr" */
+    {enum_text_422, enum_text_423}, /* "DDS": "dds" */
+    {enum_text_424, enum_text_425}, /* "DPO": "dpo" */
+    {enum_text_426, enum_text_427}, /* "LTN": "ltn" */
+    {enum_text_428, enum_text_429}, /* "POS": "pos" */
+    {enum_text_430, enum_text_431}, /* "RRE": "rre" */
+    {enum_text_432, enum_text_433}, /* "SAT": "sat" */
+    {enum_text_434, enum_text_435}, /* "SGA": "sga" */
+    {enum_text_436, enum_text_437}, /* "SGL": "sgl" */
+    {enum_text_438, enum_text_439}, /* "SGP": "sgp" */
+    {enum_text_440, enum_text_441}, /* "USR": "usr" */
+    {enum_text_442, enum_text_443}, /* "VEC": "vec" */
+    {enum_text_444, enum_text_445}, /* "VE2": "ve2" */
+    {enum_text_446, enum_text_447}, /* "PTT": "ptt" */
+    {enum_text_448, enum_text_449}, /* "TTT": "ttt" */
 };
 const nmea_enum_def nmea_ashtech_nme_message_def = {
-    ashtech_nme_message_texts, ashtech_nme_message_codes, 34, 3, 3, NMEA_CODES_ALNUM
+    enum_text_391, ashtech_nme_message_codes, 34, 3, 3, NMEA_CODES_ALNUM
 };
 
-static const char ashtech_on_off_texts[] =
-    "ashtech_on_off\0" "ON\0" "on\0" "OFF\0" "off\0";
 static const nmea_enum_code ashtech_on_off_codes[] = {
-    {ashtech_on_off_texts + 15, ashtech_on_off_texts + 18}, /* "ON": "on" */
-    {ashtech_on_off_texts + 21, ashtech_on_off_texts + 25}, /* "OFF": "off" */
+    {enum_text_850 + 4, enum_text_182 + 3}, /* "ON": "on" */
+    {enum_text_852 + 3, enum_text_857 + 4}, /* "OFF": "off" */
 };
 const nmea_enum_def nmea_ashtech_on_off_def = {
-    ashtech_on_off_texts, ashtech_on_off_codes, 2, 2, 3, NMEA_CODES_CLOSED
+    enum_text_450, ashtech_on_off_codes, 2, 2, 3, NMEA_CODES_CLOSED
 };
 
-static const char ashtech_port_texts[] =
-    "ashtech_port\0" "A\0" "serial_a\0" "B\0" "serial_b\0" "F\0" "serial_f\0" "D\0" "serial_d\0" "C\0"
-    "bluetooth\0" "I\0" "ethernet_i\0" "P\0" "ethernet_p\0" "Q\0" "ethernet_q\0" "I1\0" "ethernet_i1\0"
-    "I2\0" "ethernet_i2\0" "I3\0" "ethernet_i3\0" "I4\0" "ethernet_i4\0" "I5\0" "ethernet_i5\0" "I6\0"
-    "ethernet_i6\0" "I7\0" "ethernet_i7\0" "I8\0" "ethernet_i8\0" "I9\0" "ethernet_i9\0" "E\0" "modem\0"
-    "M\0" "internal_memory\0" "U\0" "usb_key\0" "R\0" "recording_session\0";
 static const nmea_enum_code ashtech_port_codes[] = {
-    {ashtech_port_texts + 13, ashtech_port_texts + 15}, /* "A": "serial_a" */
-    {ashtech_port_texts + 24, ashtech_port_texts + 26}, /* "B": "serial_b" */
-    {ashtech_port_texts + 35, ashtech_port_texts + 37}, /* "F": "serial_f" */
-    {ashtech_port_texts + 46, ashtech_port_texts + 48}, /* "D": "serial_d" */
-    {ashtech_port_texts + 57, ashtech_port_texts + 59}, /* "C": "bluetooth" */
-    {ashtech_port_texts + 69, ashtech_port_texts + 71}, /* "I": "ethernet_i" */
-    {ashtech_port_texts + 82, ashtech_port_texts + 84}, /* "P": "ethernet_p" */
-    {ashtech_port_texts + 95, ashtech_port_texts + 97}, /* "Q": "ethernet_q" */
-    {ashtech_port_texts + 108, ashtech_port_texts + 111}, /* "I1": "ethernet_i1" */
-    {ashtech_port_texts + 123, ashtech_port_texts + 126}, /* "I2": "ethernet_i2" */
-    {ashtech_port_texts + 138, ashtech_port_texts + 141}, /* "I3": "ethernet_i3" */
-    {ashtech_port_texts + 153, ashtech_port_texts + 156}, /* "I4": "ethernet_i4" */
-    {ashtech_port_texts + 168, ashtech_port_texts + 171}, /* "I5": "ethernet_i5" */
-    {ashtech_port_texts + 183, ashtech_port_texts + 186}, /* "I6": "ethernet_i6" */
-    {ashtech_port_texts + 198, ashtech_port_texts + 201}, /* "I7": "ethernet_i7" */
-    {ashtech_port_texts + 213, ashtech_port_texts + 216}, /* "I8": "ethernet_i8" */
-    {ashtech_port_texts + 228, ashtech_port_texts + 231}, /* "I9": "ethernet_i9" */
-    {ashtech_port_texts + 243, ashtech_port_texts + 245}, /* "E": "modem" */
-    {ashtech_port_texts + 251, ashtech_port_texts + 253}, /* "M": "internal_memory" */
-    {ashtech_port_texts + 269, ashtech_port_texts + 271}, /* "U": "usb_key" */
-    {ashtech_port_texts + 279, ashtech_port_texts + 281}, /* "R": "recording_session" */
+    {enum_text_538 + 4, enum_text_456}, /* "A": "serial_a" */
+    {enum_text_23, enum_text_457}, /* "B": "serial_b" */
+    {enum_text_715 + 1, enum_text_459}, /* "F": "serial_f" */
+    {enum_text_561 + 1, enum_text_460}, /* "D": "serial_d" */
+    {enum_text_550 + 4, enum_text_461}, /* "C": "bluetooth" */
+    {enum_text_1457 + 1, enum_text_463}, /* "I": "ethernet_i" */
+    {enum_text_438 + 2, enum_text_465}, /* "P": "ethernet_p" */
+    {enum_text_55, enum_text_466}, /* "Q": "ethernet_q" */
+    {enum_text_467, enum_text_468}, /* "I1": "ethernet_i1" */
+    {enum_text_469, enum_text_470}, /* "I2": "ethernet_i2" */
+    {enum_text_471, enum_text_472}, /* "I3": "ethernet_i3" */
+    {enum_text_473, enum_text_474}, /* "I4": "ethernet_i4" */
+    {enum_text_475, enum_text_476}, /* "I5": "ethernet_i5" */
+    {enum_text_477, enum_text_478}, /* "I6": "ethernet_i6" */
+    {enum_text_479, enum_text_480}, /* "I7": "ethernet_i7" */
+    {enum_text_481, enum_text_482}, /* "I8": "ethernet_i8" */
+    {enum_text_483, enum_text_484}, /* "I9": "ethernet_i9" */
+    {enum_text_430 + 2, enum_text_485}, /* "E": "modem" */
+    {enum_text_705 + 1, enum_text_486}, /* "M": "internal_memory" */
+    {enum_text_1340 + 2, enum_text_487}, /* "U": "usb_key" */
+    {enum_text_412 + 2, enum_text_489}, /* "R": "recording_session" */
 };
 const nmea_enum_def nmea_ashtech_port_def = {
-    ashtech_port_texts, ashtech_port_codes, 21, 1, 2, NMEA_CODES_ALNUM
+    enum_text_455, ashtech_port_codes, 21, 1, 2, NMEA_CODES_ALNUM
 };
 
-static const char ashtech_pos_solution_texts[] =
-    "ashtech_pos_solution\0" "0\0" "autonomous\0" "1\0" "code_differential\0" "2\0" "rtk_float\0" "3\0"
-    "rtk_fixed\0" "5\0" "dead_reckoning\0" "9\0" "sbas_differential\0" "10\0" "beidou_differential\0"
-    "12\0" "rtk_float_alt\0" "13\0" "rtk_fixed_alt\0" "22\0" "rtk_float_dithered\0" "23\0"
-    "rtk_fixed_dithered\0";
 static const nmea_enum_code ashtech_pos_solution_codes[] = {
-    {ashtech_pos_solution_texts + 21, ashtech_pos_solution_texts + 23}, /* "0": "autonomous" */
-    {ashtech_pos_solution_texts + 34, ashtech_pos_solution_texts + 36}, /* "1": "code_differential" */
-    {ashtech_pos_solution_texts + 54, ashtech_pos_solution_texts + 56}, /* "2": "rtk_float" */
-    {ashtech_pos_solution_texts + 66, ashtech_pos_solution_texts + 68}, /* "3": "rtk_fixed" */
-    {ashtech_pos_solution_texts + 78, ashtech_pos_solution_texts + 80}, /* "5": "dead_reckoning" */
-    {ashtech_pos_solution_texts + 95, ashtech_pos_solution_texts + 97}, /* "9": "sbas_differential" */
-    {ashtech_pos_solution_texts + 115, ashtech_pos_solution_texts + 118}, /* "10": "beidou_differential" */
-    {ashtech_pos_solution_texts + 138, ashtech_pos_solution_texts + 141}, /* "12": "rtk_float_alt" */
-    {ashtech_pos_solution_texts + 155, ashtech_pos_solution_texts + 158}, /* "13": "rtk_fixed_alt" */
-    {ashtech_pos_solution_texts + 172, ashtech_pos_solution_texts + 175}, /* "22": "rtk_float_dithered" */
-    {ashtech_pos_solution_texts + 194, ashtech_pos_solution_texts + 197}, /* "23": "rtk_fixed_dithered" */
+    {enum_text_889 + 9, enum_text_491}, /* "0": "autonomous" */
+    {enum_text_100 + 1, enum_text_492}, /* "1": "code_differential" */
+    {enum_text_916 + 5, enum_text_493}, /* "2": "rtk_float" */
+    {enum_text_918 + 5, enum_text_494}, /* "3": "rtk_fixed" */
+    {enum_text_842 + 5, enum_text_1423 + 5}, /* "5": "dead_reckoning" */
+    {enum_text_839 + 5, enum_text_496}, /* "9": "sbas_differential" */
+    {enum_text_889 + 8, enum_text_497}, /* "10": "beidou_differential" */
+    {enum_text_916 + 4, enum_text_498}, /* "12": "rtk_float_alt" */
+    {enum_text_918 + 4, enum_text_499}, /* "13": "rtk_fixed_alt" */
+    {enum_text_214, enum_text_500}, /* "22": "rtk_float_dithered" */
+    {enum_text_216, enum_text_501}, /* "23": "rtk_fixed_dithered" */
 };
 const nmea_enum_def nmea_ashtech_pos_solution_def = {
-    ashtech_pos_solution_texts, ashtech_pos_solution_codes, 11, 1, 2, NMEA_CODES_DIGITS
+    enum_text_490, ashtech_pos_solution_codes, 11, 1, 2, NMEA_CODES_DIGITS
 };
 
-static const char ashtech_rt300_alignment_texts[] =
-    "ashtech_rt300_alignment\0" "0\0" "gps_only\0" "1\0" "coarse_leveling\0" "2\0" "degraded\0" "3\0"
-    "aligned\0" "4\0" "full_navigation\0";
 static const nmea_enum_code ashtech_rt300_alignment_codes[] = {
-    {ashtech_rt300_alignment_texts + 24, ashtech_rt300_alignment_texts + 26}, /* "0": "gps_only" */
-    {ashtech_rt300_alignment_texts + 35, ashtech_rt300_alignment_texts + 37}, /* "1": "coarse_leveling" */
-    {ashtech_rt300_alignment_texts + 53, ashtech_rt300_alignment_texts + 55}, /* "2": "degraded" */
-    {ashtech_rt300_alignment_texts + 64, ashtech_rt300_alignment_texts + 66}, /* "3": "aligned" */
-    {ashtech_rt300_alignment_texts + 74, ashtech_rt300_alignment_texts + 76}, /* "4": "full_navigation" */
+    {enum_text_889 + 9, enum_text_503}, /* "0": "gps_only" */
+    {enum_text_100 + 1, enum_text_504}, /* "1": "coarse_leveling" */
+    {enum_text_916 + 5, enum_text_505}, /* "2": "degraded" */
+    {enum_text_918 + 5, enum_text_506}, /* "3": "aligned" */
+    {enum_text_920 + 5, enum_text_507}, /* "4": "full_navigation" */
 };
 const nmea_enum_def nmea_ashtech_rt300_alignment_def = {
-    ashtech_rt300_alignment_texts, ashtech_rt300_alignment_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_502, ashtech_rt300_alignment_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char ashtech_rt300_quality_texts[] =
-    "ashtech_rt300_quality\0" "0\0" "no_fix\0" "1\0" "sps\0" "2\0" "dgps\0" "3\0" "pps\0" "4\0"
-    "rtk_fixed\0" "5\0" "rtk_float\0" "6\0" "dead_reckoning\0";
 static const nmea_enum_code ashtech_rt300_quality_codes[] = {
-    {ashtech_rt300_quality_texts + 22, ashtech_rt300_quality_texts + 24}, /* "0": "no_fix" */
-    {ashtech_rt300_quality_texts + 31, ashtech_rt300_quality_texts + 33}, /* "1": "sps" */
-    {ashtech_rt300_quality_texts + 37, ashtech_rt300_quality_texts + 39}, /* "2": "dgps" */
-    {ashtech_rt300_quality_texts + 44, ashtech_rt300_quality_texts + 46}, /* "3": "pps" */
-    {ashtech_rt300_quality_texts + 50, ashtech_rt300_quality_texts + 52}, /* "4": "rtk_fixed" */
-    {ashtech_rt300_quality_texts + 62, ashtech_rt300_quality_texts + 64}, /* "5": "rtk_float" */
-    {ashtech_rt300_quality_texts + 74, ashtech_rt300_quality_texts + 76}, /* "6": "dead_reckoning" */
+    {enum_text_889 + 9, enum_text_509}, /* "0": "no_fix" */
+    {enum_text_100 + 1, enum_text_510}, /* "1": "sps" */
+    {enum_text_916 + 5, enum_text_1391 + 7}, /* "2": "dgps" */
+    {enum_text_918 + 5, enum_text_512}, /* "3": "pps" */
+    {enum_text_920 + 5, enum_text_494}, /* "4": "rtk_fixed" */
+    {enum_text_842 + 5, enum_text_493}, /* "5": "rtk_float" */
+    {enum_text_202 + 1, enum_text_1423 + 5}, /* "6": "dead_reckoning" */
 };
 const nmea_enum_def nmea_ashtech_rt300_quality_def = {
-    ashtech_rt300_quality_texts, ashtech_rt300_quality_codes, 7, 1, 1, NMEA_CODES_DIGITS
+    enum_text_508, ashtech_rt300_quality_codes, 7, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char ashtech_sv_used_texts[] =
-    "ashtech_sv_used\0" "U\0" "used\0" "-\0" "not_used\0";
 static const nmea_enum_code ashtech_sv_used_codes[] = {
-    {ashtech_sv_used_texts + 16, ashtech_sv_used_texts + 18}, /* "U": "used" */
-    {ashtech_sv_used_texts + 23, ashtech_sv_used_texts + 25}, /* "-": "not_used" */
+    {enum_text_1340 + 2, enum_text_1431 + 14}, /* "U": "used" */
+    {enum_text_515, enum_text_1431 + 10}, /* "-": "not_used" */
 };
 const nmea_enum_def nmea_ashtech_sv_used_def = {
-    ashtech_sv_used_texts, ashtech_sv_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_513, ashtech_sv_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char ashtech_vector_mode_texts[] =
-    "ashtech_vector_mode\0" "0\0" "invalid\0" "1\0" "differential\0" "2\0" "rtk_float\0" "3\0"
-    "rtk_fixed\0" "5\0" "other\0";
 static const nmea_enum_code ashtech_vector_mode_codes[] = {
-    {ashtech_vector_mode_texts + 20, ashtech_vector_mode_texts + 22}, /* "0": "invalid" */
-    {ashtech_vector_mode_texts + 30, ashtech_vector_mode_texts + 32}, /* "1": "differential" */
-    {ashtech_vector_mode_texts + 45, ashtech_vector_mode_texts + 47}, /* "2": "rtk_float" */
-    {ashtech_vector_mode_texts + 57, ashtech_vector_mode_texts + 59}, /* "3": "rtk_fixed" */
-    {ashtech_vector_mode_texts + 69, ashtech_vector_mode_texts + 71}, /* "5": "other" */
+    {enum_text_889 + 9, enum_text_518}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_492 + 5}, /* "1": "differential" */
+    {enum_text_916 + 5, enum_text_493}, /* "2": "rtk_float" */
+    {enum_text_918 + 5, enum_text_494}, /* "3": "rtk_fixed" */
+    {enum_text_842 + 5, enum_text_1279 + 6}, /* "5": "other" */
 };
 const nmea_enum_def nmea_ashtech_vector_mode_def = {
-    ashtech_vector_mode_texts, ashtech_vector_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_517, ashtech_vector_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char broadcom_glor_confidence_texts[] =
-    "broadcom_glor_confidence\0" "0\0" "unknown\0" "1\0" "low\0" "2\0" "medium\0" "3\0" "high\0";
 static const nmea_enum_code broadcom_glor_confidence_codes[] = {
-    {broadcom_glor_confidence_texts + 25, broadcom_glor_confidence_texts + 27}, /* "0": "unknown" */
-    {broadcom_glor_confidence_texts + 35, broadcom_glor_confidence_texts + 37}, /* "1": "low" */
-    {broadcom_glor_confidence_texts + 41, broadcom_glor_confidence_texts + 43}, /* "2": "medium" */
-    {broadcom_glor_confidence_texts + 50, broadcom_glor_confidence_texts + 52}, /* "3": "high" */
+    {enum_text_889 + 9, enum_text_125}, /* "0": "unknown" */
+    {enum_text_100 + 1, enum_text_685 + 7}, /* "1": "low" */
+    {enum_text_916 + 5, enum_text_521}, /* "2": "medium" */
+    {enum_text_918 + 5, enum_text_356 + 8}, /* "3": "high" */
 };
 const nmea_enum_def nmea_broadcom_glor_confidence_def = {
-    broadcom_glor_confidence_texts, broadcom_glor_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_520, broadcom_glor_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char broadcom_glor_location_request_texts[] =
-    "broadcom_glor_location_request\0" "0\0" "not_needed\0" "1\0" "requested\0";
 static const nmea_enum_code broadcom_glor_location_request_codes[] = {
-    {broadcom_glor_location_request_texts + 31, broadcom_glor_location_request_texts + 33}, /* "0": "not_needed" */
-    {broadcom_glor_location_request_texts + 44, broadcom_glor_location_request_texts + 46}, /* "1": "requested" */
+    {enum_text_889 + 9, enum_text_523}, /* "0": "not_needed" */
+    {enum_text_100 + 1, enum_text_524}, /* "1": "requested" */
 };
 const nmea_enum_def nmea_broadcom_glor_location_request_def = {
-    broadcom_glor_location_request_texts, broadcom_glor_location_request_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_522, broadcom_glor_location_request_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char broadcom_glor_power_save_texts[] =
-    "broadcom_glor_power_save\0" "D\0" "disabled\0" "F\0" "full_power\0" "S\0" "power_save\0" "G\0"
-    "glonass_low_power\0" "SG\0" "power_save_glonass_low_power\0";
 static const nmea_enum_code broadcom_glor_power_save_codes[] = {
-    {broadcom_glor_power_save_texts + 25, broadcom_glor_power_save_texts + 27}, /* "D": "disabled" */
-    {broadcom_glor_power_save_texts + 36, broadcom_glor_power_save_texts + 38}, /* "F": "full_power" */
-    {broadcom_glor_power_save_texts + 49, broadcom_glor_power_save_texts + 51}, /* "S": "power_save" */
-    {broadcom_glor_power_save_texts + 62, broadcom_glor_power_save_texts + 64}, /* "G": "glonass_low_power" */
-    {broadcom_glor_power_save_texts + 82, broadcom_glor_power_save_texts + 85}, /* "SG": "power_save_glonass_low_power" */
+    {enum_text_561 + 1, enum_text_92}, /* "D": "disabled" */
+    {enum_text_715 + 1, enum_text_526}, /* "F": "full_power" */
+    {enum_text_601 + 1, enum_text_525 + 14}, /* "S": "power_save" */
+    {enum_text_530 + 1, enum_text_531 + 11}, /* "G": "glonass_low_power" */
+    {enum_text_530, enum_text_531}, /* "SG": "power_save_glonass_low_power" */
 };
 const nmea_enum_def nmea_broadcom_glor_power_save_def = {
-    broadcom_glor_power_save_texts, broadcom_glor_power_save_codes, 5, 1, 2, NMEA_CODES_LETTERS
+    enum_text_525, broadcom_glor_power_save_codes, 5, 1, 2, NMEA_CODES_LETTERS
 };
 
-static const char broadcom_glor_vel_track_quality_texts[] =
-    "broadcom_glor_vel_track_quality\0" "0\0" "poor_velocity_poor_track\0" "1\0"
-    "good_velocity_poor_track\0" "2\0" "poor_velocity_good_track\0" "3\0" "good_velocity_good_track\0";
 static const nmea_enum_code broadcom_glor_vel_track_quality_codes[] = {
-    {broadcom_glor_vel_track_quality_texts + 32, broadcom_glor_vel_track_quality_texts + 34}, /* "0": "poor_velocity_poor_track" */
-    {broadcom_glor_vel_track_quality_texts + 59, broadcom_glor_vel_track_quality_texts + 61}, /* "1": "good_velocity_poor_track" */
-    {broadcom_glor_vel_track_quality_texts + 86, broadcom_glor_vel_track_quality_texts + 88}, /* "2": "poor_velocity_good_track" */
-    {broadcom_glor_vel_track_quality_texts + 113, broadcom_glor_vel_track_quality_texts + 115}, /* "3": "good_velocity_good_track" */
+    {enum_text_889 + 9, enum_text_533}, /* "0": "poor_velocity_poor_track" */
+    {enum_text_100 + 1, enum_text_534}, /* "1": "good_velocity_poor_track" */
+    {enum_text_916 + 5, enum_text_535}, /* "2": "poor_velocity_good_track" */
+    {enum_text_918 + 5, enum_text_536}, /* "3": "good_velocity_good_track" */
 };
 const nmea_enum_def nmea_broadcom_glor_vel_track_quality_def = {
-    broadcom_glor_vel_track_quality_texts, broadcom_glor_vel_track_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_532, broadcom_glor_vel_track_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char comnav_log_message_texts[] =
-    "comnav_log_message\0" "GPGGA\0" "gpgga\0" "GPGLL\0" "gpgll\0" "GPGSA\0" "gpgsa\0" "GPGST\0"
-    "gpgst\0" "GPGSV\0" "gpgsv\0" "GPHDT\0" "gphdt\0" "GPRMC\0" "gprmc\0" "GPVTG\0" "gpvtg\0" "GPZDA\0"
-    "gpzda\0";
 static const nmea_enum_code comnav_log_message_codes[] = {
-    {comnav_log_message_texts + 19, comnav_log_message_texts + 25}, /* "GPGGA": "gpgga" */
-    {comnav_log_message_texts + 31, comnav_log_message_texts + 37}, /* "GPGLL": "gpgll" */
-    {comnav_log_message_texts + 43, comnav_log_message_texts + 49}, /* "GPGSA": "gpgsa" */
-    {comnav_log_message_texts + 55, comnav_log_message_texts + 61}, /* "GPGST": "gpgst" */
-    {comnav_log_message_texts + 67, comnav_log_message_texts + 73}, /* "GPGSV": "gpgsv" */
-    {comnav_log_message_texts + 79, comnav_log_message_texts + 85}, /* "GPHDT": "gphdt" */
-    {comnav_log_message_texts + 91, comnav_log_message_texts + 97}, /* "GPRMC": "gprmc" */
-    {comnav_log_message_texts + 103, comnav_log_message_texts + 109}, /* "GPVTG": "gpvtg" */
-    {comnav_log_message_texts + 115, comnav_log_message_texts + 121}, /* "GPZDA": "gpzda" */
+    {enum_text_538, enum_text_539}, /* "GPGGA": "gpgga" */
+    {enum_text_540, enum_text_541}, /* "GPGLL": "gpgll" */
+    {enum_text_542, enum_text_543}, /* "GPGSA": "gpgsa" */
+    {enum_text_544, enum_text_545}, /* "GPGST": "gpgst" */
+    {enum_text_546, enum_text_547}, /* "GPGSV": "gpgsv" */
+    {enum_text_548, enum_text_549}, /* "GPHDT": "gphdt" */
+    {enum_text_550, enum_text_551}, /* "GPRMC": "gprmc" */
+    {enum_text_552, enum_text_553}, /* "GPVTG": "gpvtg" */
+    {enum_text_554, enum_text_555}, /* "GPZDA": "gpzda" */
 };
 const nmea_enum_def nmea_comnav_log_message_def = {
-    comnav_log_message_texts, comnav_log_message_codes, 9, 5, 5, NMEA_CODES_LETTERS
+    enum_text_537, comnav_log_message_codes, 9, 5, 5, NMEA_CODES_LETTERS
 };
 
-static const char comnav_talker_id_texts[] =
-    "comnav_talker_id\0" "GN\0" "gn\0" "GP\0" "gp\0" "BD\0" "bd\0" "GL\0" "gl\0" "GA\0" "ga\0" "AUTO\0"
-    "auto\0";
 static const nmea_enum_code comnav_talker_id_codes[] = {
-    {comnav_talker_id_texts + 17, comnav_talker_id_texts + 20}, /* "GN": "gn" */
-    {comnav_talker_id_texts + 23, comnav_talker_id_texts + 26}, /* "GP": "gp" */
-    {comnav_talker_id_texts + 29, comnav_talker_id_texts + 32}, /* "BD": "bd" */
-    {comnav_talker_id_texts + 35, comnav_talker_id_texts + 38}, /* "GL": "gl" */
-    {comnav_talker_id_texts + 41, comnav_talker_id_texts + 44}, /* "GA": "ga" */
-    {comnav_talker_id_texts + 47, comnav_talker_id_texts + 52}, /* "AUTO": "auto" */
+    {enum_text_557, enum_text_558}, /* "GN": "gn" */
+    {enum_text_438 + 1, enum_text_439 + 1}, /* "GP": "gp" */
+    {enum_text_561, enum_text_562}, /* "BD": "bd" */
+    {enum_text_436 + 1, enum_text_437 + 1}, /* "GL": "gl" */
+    {enum_text_538 + 3, enum_text_539 + 3}, /* "GA": "ga" */
+    {enum_text_567, enum_text_568}, /* "AUTO": "auto" */
 };
 const nmea_enum_def nmea_comnav_talker_id_def = {
-    comnav_talker_id_texts, comnav_talker_id_codes, 6, 2, 4, NMEA_CODES_LETTERS
+    enum_text_556, comnav_talker_id_codes, 6, 2, 4, NMEA_CODES_LETTERS
 };
 
-static const char comnav_talker_sentence_texts[] =
-    "comnav_talker_sentence\0" "GGA\0" "gga\0" "GSA\0" "gsa\0" "GSV\0" "gsv\0" "GST\0" "gst\0" "ZDA\0"
-    "zda\0" "HDT\0" "hdt\0" "RMC\0" "rmc\0" "VTG\0" "vtg\0" "GLL\0" "gll\0" "ALL\0" "all\0";
 static const nmea_enum_code comnav_talker_sentence_codes[] = {
-    {comnav_talker_sentence_texts + 23, comnav_talker_sentence_texts + 27}, /* "GGA": "gga" */
-    {comnav_talker_sentence_texts + 31, comnav_talker_sentence_texts + 35}, /* "GSA": "gsa" */
-    {comnav_talker_sentence_texts + 39, comnav_talker_sentence_texts + 43}, /* "GSV": "gsv" */
-    {comnav_talker_sentence_texts + 47, comnav_talker_sentence_texts + 51}, /* "GST": "gst" */
-    {comnav_talker_sentence_texts + 55, comnav_talker_sentence_texts + 59}, /* "ZDA": "zda" */
-    {comnav_talker_sentence_texts + 63, comnav_talker_sentence_texts + 67}, /* "HDT": "hdt" */
-    {comnav_talker_sentence_texts + 71, comnav_talker_sentence_texts + 75}, /* "RMC": "rmc" */
-    {comnav_talker_sentence_texts + 79, comnav_talker_sentence_texts + 83}, /* "VTG": "vtg" */
-    {comnav_talker_sentence_texts + 87, comnav_talker_sentence_texts + 91}, /* "GLL": "gll" */
-    {comnav_talker_sentence_texts + 95, comnav_talker_sentence_texts + 99}, /* "ALL": "all" */
+    {enum_text_538 + 2, enum_text_539 + 2}, /* "GGA": "gga" */
+    {enum_text_542 + 2, enum_text_543 + 2}, /* "GSA": "gsa" */
+    {enum_text_546 + 2, enum_text_547 + 2}, /* "GSV": "gsv" */
+    {enum_text_544 + 2, enum_text_545 + 2}, /* "GST": "gst" */
+    {enum_text_554 + 2, enum_text_555 + 2}, /* "ZDA": "zda" */
+    {enum_text_548 + 2, enum_text_549 + 2}, /* "HDT": "hdt" */
+    {enum_text_550 + 2, enum_text_551 + 2}, /* "RMC": "rmc" */
+    {enum_text_552 + 2, enum_text_553 + 2}, /* "VTG": "vtg" */
+    {enum_text_540 + 2, enum_text_541 + 2}, /* "GLL": "gll" */
+    {enum_text_570, enum_text_812 + 7}, /* "ALL": "all" */
 };
 const nmea_enum_def nmea_comnav_talker_sentence_def = {
-    comnav_talker_sentence_texts, comnav_talker_sentence_codes, 10, 3, 3, NMEA_CODES_LETTERS
+    enum_text_569, comnav_talker_sentence_codes, 10, 3, 3, NMEA_CODES_LETTERS
 };
 
-static const char cur_direction_reference_texts[] =
-    "cur_direction_reference\0" "T\0" "true_north\0" "R\0" "relative\0";
 static const nmea_enum_code cur_direction_reference_codes[] = {
-    {cur_direction_reference_texts + 24, cur_direction_reference_texts + 26}, /* "T": "true_north" */
-    {cur_direction_reference_texts + 37, cur_direction_reference_texts + 39}, /* "R": "relative" */
+    {enum_text_599 + 1, enum_text_386}, /* "T": "true_north" */
+    {enum_text_412 + 2, enum_text_572}, /* "R": "relative" */
 };
 const nmea_enum_def nmea_cur_direction_reference_def = {
-    cur_direction_reference_texts, cur_direction_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_571, cur_direction_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char cur_heading_reference_texts[] =
-    "cur_heading_reference\0" "T\0" "true_north\0" "M\0" "magnetic\0";
 static const nmea_enum_code cur_heading_reference_codes[] = {
-    {cur_heading_reference_texts + 22, cur_heading_reference_texts + 24}, /* "T": "true_north" */
-    {cur_heading_reference_texts + 35, cur_heading_reference_texts + 37}, /* "M": "magnetic" */
+    {enum_text_599 + 1, enum_text_386}, /* "T": "true_north" */
+    {enum_text_705 + 1, enum_text_384}, /* "M": "magnetic" */
 };
 const nmea_enum_def nmea_cur_heading_reference_def = {
-    cur_heading_reference_texts, cur_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_573, cur_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char cur_speed_reference_texts[] =
-    "cur_speed_reference\0" "B\0" "bottom_track\0" "W\0" "water_track\0" "P\0" "positioning_system\0";
 static const nmea_enum_code cur_speed_reference_codes[] = {
-    {cur_speed_reference_texts + 20, cur_speed_reference_texts + 22}, /* "B": "bottom_track" */
-    {cur_speed_reference_texts + 35, cur_speed_reference_texts + 37}, /* "W": "water_track" */
-    {cur_speed_reference_texts + 49, cur_speed_reference_texts + 51}, /* "P": "positioning_system" */
+    {enum_text_23, enum_text_575}, /* "B": "bottom_track" */
+    {enum_text_369, enum_text_576}, /* "W": "water_track" */
+    {enum_text_438 + 2, enum_text_577}, /* "P": "positioning_system" */
 };
 const nmea_enum_def nmea_cur_speed_reference_def = {
-    cur_speed_reference_texts, cur_speed_reference_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_574, cur_speed_reference_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char ddc_command_mode_texts[] =
-    "ddc_command_mode\0" "O\0" "operational\0" "P\0" "preset\0";
 static const nmea_enum_code ddc_command_mode_codes[] = {
-    {ddc_command_mode_texts + 17, ddc_command_mode_texts + 19}, /* "O": "operational" */
-    {ddc_command_mode_texts + 31, ddc_command_mode_texts + 33}, /* "P": "preset" */
+    {enum_text_709 + 1, enum_text_579}, /* "O": "operational" */
+    {enum_text_438 + 2, enum_text_581 + 4}, /* "P": "preset" */
 };
 const nmea_enum_def nmea_ddc_command_mode_def = {
-    ddc_command_mode_texts, ddc_command_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_578, ddc_command_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char ddc_preset_texts[] =
-    "ddc_preset\0" "D\0" "day\0" "K\0" "dusk\0" "N\0" "night\0" "O\0" "backlight_off\0";
 static const nmea_enum_code ddc_preset_codes[] = {
-    {ddc_preset_texts + 11, ddc_preset_texts + 13}, /* "D": "day" */
-    {ddc_preset_texts + 17, ddc_preset_texts + 19}, /* "K": "dusk" */
-    {ddc_preset_texts + 24, ddc_preset_texts + 26}, /* "N": "night" */
-    {ddc_preset_texts + 32, ddc_preset_texts + 34}, /* "O": "backlight_off" */
+    {enum_text_561 + 1, enum_text_582}, /* "D": "day" */
+    {enum_text_1422 + 1, enum_text_583}, /* "K": "dusk" */
+    {enum_text_850 + 5, enum_text_584}, /* "N": "night" */
+    {enum_text_709 + 1, enum_text_585}, /* "O": "backlight_off" */
 };
 const nmea_enum_def nmea_ddc_preset_def = {
-    ddc_preset_texts, ddc_preset_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_581, ddc_preset_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char dor_message_type_texts[] =
-    "dor_message_type\0" "S\0" "section_status\0" "E\0" "single_door\0" "F\0" "system_fault\0";
 static const nmea_enum_code dor_message_type_codes[] = {
-    {dor_message_type_texts + 17, dor_message_type_texts + 19}, /* "S": "section_status" */
-    {dor_message_type_texts + 34, dor_message_type_texts + 36}, /* "E": "single_door" */
-    {dor_message_type_texts + 48, dor_message_type_texts + 50}, /* "F": "system_fault" */
+    {enum_text_601 + 1, enum_text_587}, /* "S": "section_status" */
+    {enum_text_430 + 2, enum_text_588}, /* "E": "single_door" */
+    {enum_text_715 + 1, enum_text_589}, /* "F": "system_fault" */
 };
 const nmea_enum_def nmea_dor_message_type_def = {
-    dor_message_type_texts, dor_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_586, dor_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char dor_status_texts[] =
-    "dor_status\0" "O\0" "open\0" "C\0" "closed\0" "S\0" "secured\0" "F\0" "free\0" "X\0" "fault\0";
 static const nmea_enum_code dor_status_codes[] = {
-    {dor_status_texts + 11, dor_status_texts + 13}, /* "O": "open" */
-    {dor_status_texts + 18, dor_status_texts + 20}, /* "C": "closed" */
-    {dor_status_texts + 27, dor_status_texts + 29}, /* "S": "secured" */
-    {dor_status_texts + 37, dor_status_texts + 39}, /* "F": "free" */
-    {dor_status_texts + 44, dor_status_texts + 46}, /* "X": "fault" */
+    {enum_text_709 + 1, enum_text_591}, /* "O": "open" */
+    {enum_text_550 + 4, enum_text_592}, /* "C": "closed" */
+    {enum_text_601 + 1, enum_text_593}, /* "S": "secured" */
+    {enum_text_715 + 1, enum_text_594}, /* "F": "free" */
+    {enum_text_931 + 5, enum_text_1040 + 2}, /* "X": "fault" */
 };
 const nmea_enum_def nmea_dor_status_def = {
-    dor_status_texts, dor_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_590, dor_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char dor_switch_setting_texts[] =
-    "dor_switch_setting\0" "O\0" "harbour_mode\0" "C\0" "sea_mode\0";
 static const nmea_enum_code dor_switch_setting_codes[] = {
-    {dor_switch_setting_texts + 19, dor_switch_setting_texts + 21}, /* "O": "harbour_mode" */
-    {dor_switch_setting_texts + 34, dor_switch_setting_texts + 36}, /* "C": "sea_mode" */
+    {enum_text_709 + 1, enum_text_351}, /* "O": "harbour_mode" */
+    {enum_text_550 + 4, enum_text_597}, /* "C": "sea_mode" */
 };
 const nmea_enum_def nmea_dor_switch_setting_def = {
-    dor_switch_setting_texts, dor_switch_setting_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_596, dor_switch_setting_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char dor_system_texts[] =
-    "dor_system\0" "WT\0" "watertight\0" "WS\0" "semi_watertight\0" "FD\0" "fire_door\0" "HD\0"
-    "hull_door\0" "OT\0" "other\0";
 static const nmea_enum_code dor_system_codes[] = {
-    {dor_system_texts + 11, dor_system_texts + 14}, /* "WT": "watertight" */
-    {dor_system_texts + 25, dor_system_texts + 28}, /* "WS": "semi_watertight" */
-    {dor_system_texts + 44, dor_system_texts + 47}, /* "FD": "fire_door" */
-    {dor_system_texts + 57, dor_system_texts + 60}, /* "HD": "hull_door" */
-    {dor_system_texts + 70, dor_system_texts + 73}, /* "OT": "other" */
+    {enum_text_599, enum_text_602 + 5}, /* "WT": "watertight" */
+    {enum_text_601, enum_text_602}, /* "WS": "semi_watertight" */
+    {enum_text_603, enum_text_604}, /* "FD": "fire_door" */
+    {enum_text_605, enum_text_606}, /* "HD": "hull_door" */
+    {enum_text_827 + 4, enum_text_1279 + 6}, /* "OT": "other" */
 };
 const nmea_enum_def nmea_dor_system_def = {
-    dor_system_texts, dor_system_codes, 5, 2, 2, NMEA_CODES_LETTERS
+    enum_text_598, dor_system_codes, 5, 2, 2, NMEA_CODES_LETTERS
 };
 
-static const char dsc_acknowledgement_texts[] =
-    "dsc_acknowledgement\0" "R\0" "request\0" "B\0" "acknowledgement\0" "S\0" "end_of_sequence\0";
 static const nmea_enum_code dsc_acknowledgement_codes[] = {
-    {dsc_acknowledgement_texts + 20, dsc_acknowledgement_texts + 22}, /* "R": "request" */
-    {dsc_acknowledgement_texts + 30, dsc_acknowledgement_texts + 32}, /* "B": "acknowledgement" */
-    {dsc_acknowledgement_texts + 48, dsc_acknowledgement_texts + 50}, /* "S": "end_of_sequence" */
+    {enum_text_412 + 2, enum_text_522 + 23}, /* "R": "request" */
+    {enum_text_23, enum_text_12 + 3}, /* "B": "acknowledgement" */
+    {enum_text_601 + 1, enum_text_611}, /* "S": "end_of_sequence" */
 };
 const nmea_enum_def nmea_dsc_acknowledgement_def = {
-    dsc_acknowledgement_texts, dsc_acknowledgement_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_608, dsc_acknowledgement_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char dsc_category_texts[] =
-    "dsc_category\0" "00\0" "routine\0" "08\0" "safety\0" "10\0" "urgency\0" "12\0" "distress\0";
 static const nmea_enum_code dsc_category_codes[] = {
-    {dsc_category_texts + 13, dsc_category_texts + 16}, /* "00": "routine" */
-    {dsc_category_texts + 24, dsc_category_texts + 27}, /* "08": "safety" */
-    {dsc_category_texts + 34, dsc_category_texts + 37}, /* "10": "urgency" */
-    {dsc_category_texts + 45, dsc_category_texts + 48}, /* "12": "distress" */
+    {enum_text_1059 + 1, enum_text_614}, /* "00": "routine" */
+    {enum_text_908 + 4, enum_text_616}, /* "08": "safety" */
+    {enum_text_889 + 8, enum_text_617}, /* "10": "urgency" */
+    {enum_text_916 + 4, enum_text_618}, /* "12": "distress" */
 };
 const nmea_enum_def nmea_dsc_category_def = {
-    dsc_category_texts, dsc_category_codes, 4, 2, 2, NMEA_CODES_DIGITS
+    enum_text_612, dsc_category_codes, 4, 2, 2, NMEA_CODES_DIGITS
 };
 
-static const char dsc_distress_nature_texts[] =
-    "dsc_distress_nature\0" "00\0" "fire\0" "01\0" "flooding\0" "02\0" "collision\0" "03\0"
-    "grounding\0" "04\0" "listing\0" "05\0" "sinking\0" "06\0" "adrift\0" "07\0" "undesignated\0" "08\0"
-    "abandoning_ship\0" "09\0" "piracy\0" "10\0" "man_overboard\0" "12\0" "epirb\0";
 static const nmea_enum_code dsc_distress_nature_codes[] = {
-    {dsc_distress_nature_texts + 20, dsc_distress_nature_texts + 23}, /* "00": "fire" */
-    {dsc_distress_nature_texts + 28, dsc_distress_nature_texts + 31}, /* "01": "flooding" */
-    {dsc_distress_nature_texts + 40, dsc_distress_nature_texts + 43}, /* "02": "collision" */
-    {dsc_distress_nature_texts + 53, dsc_distress_nature_texts + 56}, /* "03": "grounding" */
-    {dsc_distress_nature_texts + 66, dsc_distress_nature_texts + 69}, /* "04": "listing" */
-    {dsc_distress_nature_texts + 77, dsc_distress_nature_texts + 80}, /* "05": "sinking" */
-    {dsc_distress_nature_texts + 88, dsc_distress_nature_texts + 91}, /* "06": "adrift" */
-    {dsc_distress_nature_texts + 98, dsc_distress_nature_texts + 101}, /* "07": "undesignated" */
-    {dsc_distress_nature_texts + 114, dsc_distress_nature_texts + 117}, /* "08": "abandoning_ship" */
-    {dsc_distress_nature_texts + 133, dsc_distress_nature_texts + 136}, /* "09": "piracy" */
-    {dsc_distress_nature_texts + 143, dsc_distress_nature_texts + 146}, /* "10": "man_overboard" */
-    {dsc_distress_nature_texts + 160, dsc_distress_nature_texts + 163}, /* "12": "epirb" */
+    {enum_text_1059 + 1, enum_text_620}, /* "00": "fire" */
+    {enum_text_1060 + 1, enum_text_622}, /* "01": "flooding" */
+    {enum_text_1062 + 1, enum_text_624}, /* "02": "collision" */
+    {enum_text_1064 + 1, enum_text_626}, /* "03": "grounding" */
+    {enum_text_837 + 4, enum_text_628}, /* "04": "listing" */
+    {enum_text_894 + 4, enum_text_630}, /* "05": "sinking" */
+    {enum_text_904 + 4, enum_text_632}, /* "06": "adrift" */
+    {enum_text_906 + 4, enum_text_634}, /* "07": "undesignated" */
+    {enum_text_908 + 4, enum_text_635}, /* "08": "abandoning_ship" */
+    {enum_text_838 + 4, enum_text_1293 + 8}, /* "09": "piracy" */
+    {enum_text_889 + 8, enum_text_638}, /* "10": "man_overboard" */
+    {enum_text_916 + 4, enum_text_639}, /* "12": "epirb" */
 };
 const nmea_enum_def nmea_dsc_distress_nature_def = {
-    dsc_distress_nature_texts, dsc_distress_nature_codes, 12, 2, 2, NMEA_CODES_DIGITS
+    enum_text_619, dsc_distress_nature_codes, 12, 2, 2, NMEA_CODES_DIGITS
 };
 
-static const char dsc_format_texts[] =
-    "dsc_format\0" "02\0" "geographic_area\0" "12\0" "distress\0" "14\0" "common_interest\0" "16\0"
-    "all_ships\0" "20\0" "individual\0" "23\0" "individual_automatic\0";
 static const nmea_enum_code dsc_format_codes[] = {
-    {dsc_format_texts + 11, dsc_format_texts + 14}, /* "02": "geographic_area" */
-    {dsc_format_texts + 30, dsc_format_texts + 33}, /* "12": "distress" */
-    {dsc_format_texts + 42, dsc_format_texts + 45}, /* "14": "common_interest" */
-    {dsc_format_texts + 61, dsc_format_texts + 64}, /* "16": "all_ships" */
-    {dsc_format_texts + 74, dsc_format_texts + 77}, /* "20": "individual" */
-    {dsc_format_texts + 88, dsc_format_texts + 91}, /* "23": "individual_automatic" */
+    {enum_text_1062 + 1, enum_text_651 + 9}, /* "02": "geographic_area" */
+    {enum_text_916 + 4, enum_text_618}, /* "12": "distress" */
+    {enum_text_920 + 4, enum_text_642}, /* "14": "common_interest" */
+    {enum_text_202, enum_text_643}, /* "16": "all_ships" */
+    {enum_text_210, enum_text_644}, /* "20": "individual" */
+    {enum_text_216, enum_text_645}, /* "23": "individual_automatic" */
 };
 const nmea_enum_def nmea_dsc_format_def = {
-    dsc_format_texts, dsc_format_codes, 6, 2, 2, NMEA_CODES_DIGITS
+    enum_text_640, dsc_format_codes, 6, 2, 2, NMEA_CODES_DIGITS
 };
 
-static const char dse_code_texts[] =
-    "dse_code\0" "00\0" "enhanced_position\0" "01\0" "position_source_datum\0" "02\0" "speed\0" "03\0"
-    "course\0" "04\0" "station_id\0" "05\0" "enhanced_geographic_area\0" "06\0" "persons_on_board\0";
 static const nmea_enum_code dse_code_codes[] = {
-    {dse_code_texts + 9, dse_code_texts + 12}, /* "00": "enhanced_position" */
-    {dse_code_texts + 30, dse_code_texts + 33}, /* "01": "position_source_datum" */
-    {dse_code_texts + 55, dse_code_texts + 58}, /* "02": "speed" */
-    {dse_code_texts + 64, dse_code_texts + 67}, /* "03": "course" */
-    {dse_code_texts + 74, dse_code_texts + 77}, /* "04": "station_id" */
-    {dse_code_texts + 88, dse_code_texts + 91}, /* "05": "enhanced_geographic_area" */
-    {dse_code_texts + 116, dse_code_texts + 119}, /* "06": "persons_on_board" */
+    {enum_text_1059 + 1, enum_text_647}, /* "00": "enhanced_position" */
+    {enum_text_1060 + 1, enum_text_648}, /* "01": "position_source_datum" */
+    {enum_text_1062 + 1, enum_text_137}, /* "02": "speed" */
+    {enum_text_1064 + 1, enum_text_649}, /* "03": "course" */
+    {enum_text_837 + 4, enum_text_650}, /* "04": "station_id" */
+    {enum_text_894 + 4, enum_text_651}, /* "05": "enhanced_geographic_area" */
+    {enum_text_904 + 4, enum_text_652}, /* "06": "persons_on_board" */
 };
 const nmea_enum_def nmea_dse_code_def = {
-    dse_code_texts, dse_code_codes, 7, 2, 2, NMEA_CODES_DIGITS
+    enum_text_646, dse_code_codes, 7, 2, 2, NMEA_CODES_DIGITS
 };
 
-static const char dse_query_flag_texts[] =
-    "dse_query_flag\0" "Q\0" "query\0" "R\0" "reply\0" "A\0" "automatic\0";
 static const nmea_enum_code dse_query_flag_codes[] = {
-    {dse_query_flag_texts + 15, dse_query_flag_texts + 17}, /* "Q": "query" */
-    {dse_query_flag_texts + 23, dse_query_flag_texts + 25}, /* "R": "reply" */
-    {dse_query_flag_texts + 31, dse_query_flag_texts + 33}, /* "A": "automatic" */
+    {enum_text_55, enum_text_654}, /* "Q": "query" */
+    {enum_text_412 + 2, enum_text_655}, /* "R": "reply" */
+    {enum_text_538 + 4, enum_text_645 + 11}, /* "A": "automatic" */
 };
 const nmea_enum_def nmea_dse_query_flag_def = {
-    dse_query_flag_texts, dse_query_flag_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_653, dse_query_flag_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char dtm_datum_texts[] =
-    "dtm_datum\0" "W84\0" "wgs84\0" "W72\0" "wgs72\0" "S85\0" "sgs85\0" "P90\0" "pz90\0" "999\0"
-    "user_defined\0";
 static const nmea_enum_code dtm_datum_codes[] = {
-    {dtm_datum_texts + 10, dtm_datum_texts + 14}, /* "W84": "wgs84" */
-    {dtm_datum_texts + 20, dtm_datum_texts + 24}, /* "W72": "wgs72" */
-    {dtm_datum_texts + 30, dtm_datum_texts + 34}, /* "S85": "sgs85" */
-    {dtm_datum_texts + 40, dtm_datum_texts + 44}, /* "P90": "pz90" */
-    {dtm_datum_texts + 49, dtm_datum_texts + 53}, /* "999": "user_defined" */
+    {enum_text_926 + 3, enum_text_927 + 6}, /* "W84": "wgs84" */
+    {enum_text_660, enum_text_661}, /* "W72": "wgs72" */
+    {enum_text_662, enum_text_663}, /* "S85": "sgs85" */
+    {enum_text_924 + 3, enum_text_925 + 6}, /* "P90": "pz90" */
+    {enum_text_666, enum_text_667}, /* "999": "user_defined" */
 };
 const nmea_enum_def nmea_dtm_datum_def = {
-    dtm_datum_texts, dtm_datum_codes, 5, 3, 3, NMEA_CODES_ALNUM
+    enum_text_657, dtm_datum_codes, 5, 3, 3, NMEA_CODES_ALNUM
 };
 
-static const char dtm_lat_offset_dir_texts[] =
-    "dtm_lat_offset_dir\0" "N\0" "north\0" "S\0" "south\0";
 static const nmea_enum_code dtm_lat_offset_dir_codes[] = {
-    {dtm_lat_offset_dir_texts + 19, dtm_lat_offset_dir_texts + 21}, /* "N": "north" */
-    {dtm_lat_offset_dir_texts + 27, dtm_lat_offset_dir_texts + 29}, /* "S": "south" */
+    {enum_text_850 + 5, enum_text_386 + 5}, /* "N": "north" */
+    {enum_text_601 + 1, enum_text_1085 + 6}, /* "S": "south" */
 };
 const nmea_enum_def nmea_dtm_lat_offset_dir_def = {
-    dtm_lat_offset_dir_texts, dtm_lat_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_668, dtm_lat_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char dtm_lon_offset_dir_texts[] =
-    "dtm_lon_offset_dir\0" "E\0" "east\0" "W\0" "west\0";
 static const nmea_enum_code dtm_lon_offset_dir_codes[] = {
-    {dtm_lon_offset_dir_texts + 19, dtm_lon_offset_dir_texts + 21}, /* "E": "east" */
-    {dtm_lon_offset_dir_texts + 26, dtm_lon_offset_dir_texts + 28}, /* "W": "west" */
+    {enum_text_430 + 2, enum_text_1285 + 9}, /* "E": "east" */
+    {enum_text_369, enum_text_674 + 5}, /* "W": "west" */
 };
 const nmea_enum_def nmea_dtm_lon_offset_dir_def = {
-    dtm_lon_offset_dir_texts, dtm_lon_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_671, dtm_lon_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char east_west_texts[] =
-    "east_west\0" "E\0" "east\0" "W\0" "west\0";
 static const nmea_enum_code east_west_codes[] = {
-    {east_west_texts + 10, east_west_texts + 12}, /* "E": "east" */
-    {east_west_texts + 17, east_west_texts + 19}, /* "W": "west" */
+    {enum_text_430 + 2, enum_text_1285 + 9}, /* "E": "east" */
+    {enum_text_369, enum_text_674 + 5}, /* "W": "west" */
 };
 const nmea_enum_def nmea_east_west_def = {
-    east_west_texts, east_west_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_674, east_west_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char etl_message_type_texts[] =
-    "etl_message_type\0" "O\0" "order\0" "A\0" "answer_back\0";
 static const nmea_enum_code etl_message_type_codes[] = {
-    {etl_message_type_texts + 17, etl_message_type_texts + 19}, /* "O": "order" */
-    {etl_message_type_texts + 25, etl_message_type_texts + 27}, /* "A": "answer_back" */
+    {enum_text_709 + 1, enum_text_739 + 13}, /* "O": "order" */
+    {enum_text_538 + 4, enum_text_677}, /* "A": "answer_back" */
 };
 const nmea_enum_def nmea_etl_message_type_def = {
-    etl_message_type_texts, etl_message_type_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_675, etl_message_type_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char etl_sub_telegraph_texts[] =
-    "etl_sub_telegraph\0" "20\0" "standby\0" "30\0" "full_away\0" "40\0" "finished_with_engine\0";
 static const nmea_enum_code etl_sub_telegraph_codes[] = {
-    {etl_sub_telegraph_texts + 18, etl_sub_telegraph_texts + 21}, /* "20": "standby" */
-    {etl_sub_telegraph_texts + 29, etl_sub_telegraph_texts + 32}, /* "30": "full_away" */
-    {etl_sub_telegraph_texts + 42, etl_sub_telegraph_texts + 45}, /* "40": "finished_with_engine" */
+    {enum_text_210, enum_text_1049 + 9}, /* "20": "standby" */
+    {enum_text_843 + 4, enum_text_680}, /* "30": "full_away" */
+    {enum_text_266, enum_text_681}, /* "40": "finished_with_engine" */
 };
 const nmea_enum_def nmea_etl_sub_telegraph_def = {
-    etl_sub_telegraph_texts, etl_sub_telegraph_codes, 3, 2, 2, NMEA_CODES_DIGITS
+    enum_text_678, etl_sub_telegraph_codes, 3, 2, 2, NMEA_CODES_DIGITS
 };
 
-static const char etl_telegraph_position_texts[] =
-    "etl_telegraph_position\0" "00\0" "stop\0" "01\0" "ahead_dead_slow\0" "02\0" "ahead_slow\0" "03\0"
-    "ahead_half\0" "04\0" "ahead_full\0" "05\0" "ahead_navigation_full\0" "11\0" "astern_dead_slow\0"
-    "12\0" "astern_slow\0" "13\0" "astern_half\0" "14\0" "astern_full\0" "15\0" "crash_astern\0";
 static const nmea_enum_code etl_telegraph_position_codes[] = {
-    {etl_telegraph_position_texts + 23, etl_telegraph_position_texts + 26}, /* "00": "stop" */
-    {etl_telegraph_position_texts + 31, etl_telegraph_position_texts + 34}, /* "01": "ahead_dead_slow" */
-    {etl_telegraph_position_texts + 50, etl_telegraph_position_texts + 53}, /* "02": "ahead_slow" */
-    {etl_telegraph_position_texts + 64, etl_telegraph_position_texts + 67}, /* "03": "ahead_half" */
-    {etl_telegraph_position_texts + 78, etl_telegraph_position_texts + 81}, /* "04": "ahead_full" */
-    {etl_telegraph_position_texts + 92, etl_telegraph_position_texts + 95}, /* "05": "ahead_navigation_full" */
-    {etl_telegraph_position_texts + 117, etl_telegraph_position_texts + 120}, /* "11": "astern_dead_slow" */
-    {etl_telegraph_position_texts + 137, etl_telegraph_position_texts + 140}, /* "12": "astern_slow" */
-    {etl_telegraph_position_texts + 152, etl_telegraph_position_texts + 155}, /* "13": "astern_half" */
-    {etl_telegraph_position_texts + 167, etl_telegraph_position_texts + 170}, /* "14": "astern_full" */
-    {etl_telegraph_position_texts + 182, etl_telegraph_position_texts + 185}, /* "15": "crash_astern" */
+    {enum_text_1059 + 1, enum_text_683}, /* "00": "stop" */
+    {enum_text_1060 + 1, enum_text_684}, /* "01": "ahead_dead_slow" */
+    {enum_text_1062 + 1, enum_text_685}, /* "02": "ahead_slow" */
+    {enum_text_1064 + 1, enum_text_686}, /* "03": "ahead_half" */
+    {enum_text_837 + 4, enum_text_687}, /* "04": "ahead_full" */
+    {enum_text_894 + 4, enum_text_688}, /* "05": "ahead_navigation_full" */
+    {enum_text_914 + 4, enum_text_689}, /* "11": "astern_dead_slow" */
+    {enum_text_916 + 4, enum_text_690}, /* "12": "astern_slow" */
+    {enum_text_918 + 4, enum_text_691}, /* "13": "astern_half" */
+    {enum_text_920 + 4, enum_text_692}, /* "14": "astern_full" */
+    {enum_text_842 + 4, enum_text_693}, /* "15": "crash_astern" */
 };
 const nmea_enum_def nmea_etl_telegraph_position_def = {
-    etl_telegraph_position_texts, etl_telegraph_position_codes, 11, 2, 2, NMEA_CODES_DIGITS
+    enum_text_682, etl_telegraph_position_codes, 11, 2, 2, NMEA_CODES_DIGITS
 };
 
-static const char fir_condition_texts[] =
-    "fir_condition\0" "A\0" "activation\0" "V\0" "non_activation\0" "X\0" "fault\0";
 static const nmea_enum_code fir_condition_codes[] = {
-    {fir_condition_texts + 14, fir_condition_texts + 16}, /* "A": "activation" */
-    {fir_condition_texts + 27, fir_condition_texts + 29}, /* "V": "non_activation" */
-    {fir_condition_texts + 44, fir_condition_texts + 46}, /* "X": "fault" */
+    {enum_text_538 + 4, enum_text_696 + 4}, /* "A": "activation" */
+    {enum_text_546 + 4, enum_text_696}, /* "V": "non_activation" */
+    {enum_text_931 + 5, enum_text_1040 + 2}, /* "X": "fault" */
 };
 const nmea_enum_def nmea_fir_condition_def = {
-    fir_condition_texts, fir_condition_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_694, fir_condition_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char fir_message_type_texts[] =
-    "fir_message_type\0" "S\0" "section_status\0" "E\0" "event\0" "F\0" "fault\0" "D\0" "disabled\0";
 static const nmea_enum_code fir_message_type_codes[] = {
-    {fir_message_type_texts + 17, fir_message_type_texts + 19}, /* "S": "section_status" */
-    {fir_message_type_texts + 34, fir_message_type_texts + 36}, /* "E": "event" */
-    {fir_message_type_texts + 42, fir_message_type_texts + 44}, /* "F": "fault" */
-    {fir_message_type_texts + 50, fir_message_type_texts + 52}, /* "D": "disabled" */
+    {enum_text_601 + 1, enum_text_587}, /* "S": "section_status" */
+    {enum_text_430 + 2, enum_text_698}, /* "E": "event" */
+    {enum_text_715 + 1, enum_text_1040 + 2}, /* "F": "fault" */
+    {enum_text_561 + 1, enum_text_92}, /* "D": "disabled" */
 };
 const nmea_enum_def nmea_fir_message_type_def = {
-    fir_message_type_texts, fir_message_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_697, fir_message_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char fir_system_texts[] =
-    "fir_system\0" "FD\0" "generic_fire_detector\0" "FH\0" "heat_detector\0" "FS\0" "smoke_detector\0"
-    "FM\0" "manual_call_point\0" "GD\0" "gas_detector\0" "GO\0" "oxygen_detector\0" "GS\0"
-    "hydrogen_sulphide_detector\0" "GH\0" "hydrocarbon_detector\0" "SF\0" "sprinkler_flow_switch\0"
-    "SV\0" "sprinkler_manual_valve\0" "CO\0" "co2_manual_release\0" "OT\0" "other\0";
 static const nmea_enum_code fir_system_codes[] = {
-    {fir_system_texts + 11, fir_system_texts + 14}, /* "FD": "generic_fire_detector" */
-    {fir_system_texts + 36, fir_system_texts + 39}, /* "FH": "heat_detector" */
-    {fir_system_texts + 53, fir_system_texts + 56}, /* "FS": "smoke_detector" */
-    {fir_system_texts + 71, fir_system_texts + 74}, /* "FM": "manual_call_point" */
-    {fir_system_texts + 92, fir_system_texts + 95}, /* "GD": "gas_detector" */
-    {fir_system_texts + 108, fir_system_texts + 111}, /* "GO": "oxygen_detector" */
-    {fir_system_texts + 127, fir_system_texts + 130}, /* "GS": "hydrogen_sulphide_detector" */
-    {fir_system_texts + 157, fir_system_texts + 160}, /* "GH": "hydrocarbon_detector" */
-    {fir_system_texts + 181, fir_system_texts + 184}, /* "SF": "sprinkler_flow_switch" */
-    {fir_system_texts + 206, fir_system_texts + 209}, /* "SV": "sprinkler_manual_valve" */
-    {fir_system_texts + 232, fir_system_texts + 235}, /* "CO": "co2_manual_release" */
-    {fir_system_texts + 254, fir_system_texts + 257}, /* "OT": "other" */
+    {enum_text_603, enum_text_700}, /* "FD": "generic_fire_detector" */
+    {enum_text_701, enum_text_702}, /* "FH": "heat_detector" */
+    {enum_text_703, enum_text_704}, /* "FS": "smoke_detector" */
+    {enum_text_705, enum_text_706}, /* "FM": "manual_call_point" */
+    {enum_text_707, enum_text_708}, /* "GD": "gas_detector" */
+    {enum_text_709, enum_text_710}, /* "GO": "oxygen_detector" */
+    {enum_text_711, enum_text_712}, /* "GS": "hydrogen_sulphide_detector" */
+    {enum_text_713, enum_text_714}, /* "GH": "hydrocarbon_detector" */
+    {enum_text_715, enum_text_716}, /* "SF": "sprinkler_flow_switch" */
+    {enum_text_546 + 3, enum_text_718}, /* "SV": "sprinkler_manual_valve" */
+    {enum_text_719, enum_text_720}, /* "CO": "co2_manual_release" */
+    {enum_text_827 + 4, enum_text_1279 + 6}, /* "OT": "other" */
 };
 const nmea_enum_def nmea_fir_system_def = {
-    fir_system_texts, fir_system_codes, 12, 2, 2, NMEA_CODES_LETTERS
+    enum_text_699, fir_system_codes, 12, 2, 2, NMEA_CODES_LETTERS
 };
 
-static const char fsi_mode_texts[] =
-    "fsi_mode\0" "d\0" "f3e_g3e_simplex_telephone\0" "e\0" "f3e_g3e_duplex_telephone\0" "m\0"
-    "j3e_telephone\0" "o\0" "h3e_telephone\0" "q\0" "nbdp_fec\0" "s\0" "nbdp_arq\0" "t\0"
-    "f1b_j2b_receive_only\0" "w\0" "f1b_j2b_teleprinter_dsc\0" "x\0" "a1a_morse_recorder\0" "{\0"
-    "a1a_morse_key\0" "|\0" "facsimile\0";
 static const nmea_enum_code fsi_mode_codes[] = {
-    {fsi_mode_texts + 9, fsi_mode_texts + 11}, /* "d": "f3e_g3e_simplex_telephone" */
-    {fsi_mode_texts + 37, fsi_mode_texts + 39}, /* "e": "f3e_g3e_duplex_telephone" */
-    {fsi_mode_texts + 64, fsi_mode_texts + 66}, /* "m": "j3e_telephone" */
-    {fsi_mode_texts + 80, fsi_mode_texts + 82}, /* "o": "h3e_telephone" */
-    {fsi_mode_texts + 96, fsi_mode_texts + 98}, /* "q": "nbdp_fec" */
-    {fsi_mode_texts + 107, fsi_mode_texts + 109}, /* "s": "nbdp_arq" */
-    {fsi_mode_texts + 118, fsi_mode_texts + 120}, /* "t": "f1b_j2b_receive_only" */
-    {fsi_mode_texts + 141, fsi_mode_texts + 143}, /* "w": "f1b_j2b_teleprinter_dsc" */
-    {fsi_mode_texts + 167, fsi_mode_texts + 169}, /* "x": "a1a_morse_recorder" */
-    {fsi_mode_texts + 188, fsi_mode_texts + 190}, /* "{": "a1a_morse_key" */
-    {fsi_mode_texts + 204, fsi_mode_texts + 206}, /* "|": "facsimile" */
+    {enum_text_562 + 1, enum_text_723}, /* "d": "f3e_g3e_simplex_telephone" */
+    {enum_text_96 + 3, enum_text_725}, /* "e": "f3e_g3e_duplex_telephone" */
+    {enum_text_393 + 2, enum_text_727}, /* "m": "j3e_telephone" */
+    {enum_text_69 + 2, enum_text_729}, /* "o": "h3e_telephone" */
+    {enum_text_733 + 7, enum_text_731}, /* "q": "nbdp_fec" */
+    {enum_text_1391 + 10, enum_text_733}, /* "s": "nbdp_arq" */
+    {enum_text_545 + 4, enum_text_735}, /* "t": "f1b_j2b_receive_only" */
+    {enum_text_685 + 9, enum_text_737}, /* "w": "f1b_j2b_teleprinter_dsc" */
+    {enum_text_509 + 5, enum_text_739}, /* "x": "a1a_morse_recorder" */
+    {enum_text_740, enum_text_741}, /* "{": "a1a_morse_key" */
+    {enum_text_742, enum_text_743}, /* "|": "facsimile" */
 };
 const nmea_enum_def nmea_fsi_mode_def = {
-    fsi_mode_texts, fsi_mode_codes, 11, 1, 1, NMEA_CODES_LETTERS
+    enum_text_721, fsi_mode_codes, 11, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char fsi_sentence_status_texts[] =
-    "fsi_sentence_status\0" "R\0" "report\0" "C\0" "command\0";
 static const nmea_enum_code fsi_sentence_status_codes[] = {
-    {fsi_sentence_status_texts + 20, fsi_sentence_status_texts + 22}, /* "R": "report" */
-    {fsi_sentence_status_texts + 29, fsi_sentence_status_texts + 31}, /* "C": "command" */
+    {enum_text_412 + 2, enum_text_1292 + 4}, /* "R": "report" */
+    {enum_text_550 + 4, enum_text_40 + 8}, /* "C": "command" */
 };
 const nmea_enum_def nmea_fsi_sentence_status_def = {
-    fsi_sentence_status_texts, fsi_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_744, fsi_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char furuno_eride_freq_mode_texts[] =
-    "furuno_eride_freq_mode\0" "1\0" "warm_up\0" "2\0" "lock\0" "3\0" "hold_over\0" "4\0" "free_run\0"
-    "5\0" "coarse\0" "6\0" "fine\0" "7\0" "undocumented_7\0";
 static const nmea_enum_code furuno_eride_freq_mode_codes[] = {
-    {furuno_eride_freq_mode_texts + 23, furuno_eride_freq_mode_texts + 25}, /* "1": "warm_up" */
-    {furuno_eride_freq_mode_texts + 33, furuno_eride_freq_mode_texts + 35}, /* "2": "lock" */
-    {furuno_eride_freq_mode_texts + 40, furuno_eride_freq_mode_texts + 42}, /* "3": "hold_over" */
-    {furuno_eride_freq_mode_texts + 52, furuno_eride_freq_mode_texts + 54}, /* "4": "free_run" */
-    {furuno_eride_freq_mode_texts + 63, furuno_eride_freq_mode_texts + 65}, /* "5": "coarse" */
-    {furuno_eride_freq_mode_texts + 72, furuno_eride_freq_mode_texts + 74}, /* "6": "fine" */
-    {furuno_eride_freq_mode_texts + 79, furuno_eride_freq_mode_texts + 81}, /* "7": "undocumented_7" */
+    {enum_text_100 + 1, enum_text_748}, /* "1": "warm_up" */
+    {enum_text_916 + 5, enum_text_1394 + 19}, /* "2": "lock" */
+    {enum_text_918 + 5, enum_text_750}, /* "3": "hold_over" */
+    {enum_text_920 + 5, enum_text_751}, /* "4": "free_run" */
+    {enum_text_842 + 5, enum_text_1114 + 9}, /* "5": "coarse" */
+    {enum_text_202 + 1, enum_text_753}, /* "6": "fine" */
+    {enum_text_204 + 1, enum_text_754}, /* "7": "undocumented_7" */
 };
 const nmea_enum_def nmea_furuno_eride_freq_mode_def = {
-    furuno_eride_freq_mode_texts, furuno_eride_freq_mode_codes, 7, 1, 1, NMEA_CODES_DIGITS
+    enum_text_747, furuno_eride_freq_mode_codes, 7, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char furuno_eride_on_off_texts[] =
-    "furuno_eride_on_off\0" "0\0" "off\0" "1\0" "on\0";
 static const nmea_enum_code furuno_eride_on_off_codes[] = {
-    {furuno_eride_on_off_texts + 20, furuno_eride_on_off_texts + 22}, /* "0": "off" */
-    {furuno_eride_on_off_texts + 26, furuno_eride_on_off_texts + 28}, /* "1": "on" */
+    {enum_text_889 + 9, enum_text_857 + 4}, /* "0": "off" */
+    {enum_text_100 + 1, enum_text_182 + 3}, /* "1": "on" */
 };
 const nmea_enum_def nmea_furuno_eride_on_off_def = {
-    furuno_eride_on_off_texts, furuno_eride_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_755, furuno_eride_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char furuno_eride_polarity_texts[] =
-    "furuno_eride_polarity\0" "0\0" "rising\0" "1\0" "falling\0";
 static const nmea_enum_code furuno_eride_polarity_codes[] = {
-    {furuno_eride_polarity_texts + 22, furuno_eride_polarity_texts + 24}, /* "0": "rising" */
-    {furuno_eride_polarity_texts + 31, furuno_eride_polarity_texts + 33}, /* "1": "falling" */
+    {enum_text_889 + 9, enum_text_757}, /* "0": "rising" */
+    {enum_text_100 + 1, enum_text_758}, /* "1": "falling" */
 };
 const nmea_enum_def nmea_furuno_eride_polarity_def = {
-    furuno_eride_polarity_texts, furuno_eride_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_756, furuno_eride_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char furuno_eride_position_mode_texts[] =
-    "furuno_eride_position_mode\0" "0\0" "normal\0" "1\0" "survey_restart\0" "2\0" "survey_continue\0"
-    "3\0" "position_hold\0";
 static const nmea_enum_code furuno_eride_position_mode_codes[] = {
-    {furuno_eride_position_mode_texts + 27, furuno_eride_position_mode_texts + 29}, /* "0": "normal" */
-    {furuno_eride_position_mode_texts + 36, furuno_eride_position_mode_texts + 38}, /* "1": "survey_restart" */
-    {furuno_eride_position_mode_texts + 53, furuno_eride_position_mode_texts + 55}, /* "2": "survey_continue" */
-    {furuno_eride_position_mode_texts + 71, furuno_eride_position_mode_texts + 73}, /* "3": "position_hold" */
+    {enum_text_889 + 9, enum_text_964 + 4}, /* "0": "normal" */
+    {enum_text_100 + 1, enum_text_760}, /* "1": "survey_restart" */
+    {enum_text_916 + 5, enum_text_761}, /* "2": "survey_continue" */
+    {enum_text_918 + 5, enum_text_762}, /* "3": "position_hold" */
 };
 const nmea_enum_def nmea_furuno_eride_position_mode_def = {
-    furuno_eride_position_mode_texts, furuno_eride_position_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_759, furuno_eride_position_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char furuno_eride_pps_mode_texts[] =
-    "furuno_eride_pps_mode\0" "0\0" "always_off\0" "1\0" "always_on\0" "2\0" "when_fixed\0" "3\0"
-    "when_traim_ok\0" "4\0" "when_accurate\0";
 static const nmea_enum_code furuno_eride_pps_mode_codes[] = {
-    {furuno_eride_pps_mode_texts + 22, furuno_eride_pps_mode_texts + 24}, /* "0": "always_off" */
-    {furuno_eride_pps_mode_texts + 35, furuno_eride_pps_mode_texts + 37}, /* "1": "always_on" */
-    {furuno_eride_pps_mode_texts + 47, furuno_eride_pps_mode_texts + 49}, /* "2": "when_fixed" */
-    {furuno_eride_pps_mode_texts + 60, furuno_eride_pps_mode_texts + 62}, /* "3": "when_traim_ok" */
-    {furuno_eride_pps_mode_texts + 76, furuno_eride_pps_mode_texts + 78}, /* "4": "when_accurate" */
+    {enum_text_889 + 9, enum_text_764}, /* "0": "always_off" */
+    {enum_text_100 + 1, enum_text_765}, /* "1": "always_on" */
+    {enum_text_916 + 5, enum_text_766}, /* "2": "when_fixed" */
+    {enum_text_918 + 5, enum_text_767}, /* "3": "when_traim_ok" */
+    {enum_text_920 + 5, enum_text_768}, /* "4": "when_accurate" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_mode_def = {
-    furuno_eride_pps_mode_texts, furuno_eride_pps_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_763, furuno_eride_pps_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char furuno_eride_pps_period_texts[] =
-    "furuno_eride_pps_period\0" "0\0" "pps\0" "1\0" "pp2s\0";
 static const nmea_enum_code furuno_eride_pps_period_codes[] = {
-    {furuno_eride_pps_period_texts + 24, furuno_eride_pps_period_texts + 26}, /* "0": "pps" */
-    {furuno_eride_pps_period_texts + 30, furuno_eride_pps_period_texts + 32}, /* "1": "pp2s" */
+    {enum_text_889 + 9, enum_text_512}, /* "0": "pps" */
+    {enum_text_100 + 1, enum_text_770}, /* "1": "pp2s" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_period_def = {
-    furuno_eride_pps_period_texts, furuno_eride_pps_period_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_769, furuno_eride_pps_period_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char furuno_eride_pps_sync_texts[] =
-    "furuno_eride_pps_sync\0" "0\0" "rtc\0" "1\0" "gps\0" "2\0" "utc_usno\0" "3\0" "utc_su\0" "4\0"
-    "undocumented_4\0";
 static const nmea_enum_code furuno_eride_pps_sync_codes[] = {
-    {furuno_eride_pps_sync_texts + 22, furuno_eride_pps_sync_texts + 24}, /* "0": "rtc" */
-    {furuno_eride_pps_sync_texts + 28, furuno_eride_pps_sync_texts + 30}, /* "1": "gps" */
-    {furuno_eride_pps_sync_texts + 34, furuno_eride_pps_sync_texts + 36}, /* "2": "utc_usno" */
-    {furuno_eride_pps_sync_texts + 45, furuno_eride_pps_sync_texts + 47}, /* "3": "utc_su" */
-    {furuno_eride_pps_sync_texts + 54, furuno_eride_pps_sync_texts + 56}, /* "4": "undocumented_4" */
+    {enum_text_889 + 9, enum_text_772}, /* "0": "rtc" */
+    {enum_text_100 + 1, enum_text_1391 + 8}, /* "1": "gps" */
+    {enum_text_916 + 5, enum_text_773}, /* "2": "utc_usno" */
+    {enum_text_918 + 5, enum_text_774}, /* "3": "utc_su" */
+    {enum_text_920 + 5, enum_text_775}, /* "4": "undocumented_4" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_sync_def = {
-    furuno_eride_pps_sync_texts, furuno_eride_pps_sync_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_771, furuno_eride_pps_sync_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char furuno_eride_pps_type_texts[] =
-    "furuno_eride_pps_type\0" "0\0" "legacy\0" "1\0" "gclk\0";
 static const nmea_enum_code furuno_eride_pps_type_codes[] = {
-    {furuno_eride_pps_type_texts + 22, furuno_eride_pps_type_texts + 24}, /* "0": "legacy" */
-    {furuno_eride_pps_type_texts + 31, furuno_eride_pps_type_texts + 33}, /* "1": "gclk" */
+    {enum_text_889 + 9, enum_text_777}, /* "0": "legacy" */
+    {enum_text_100 + 1, enum_text_778}, /* "1": "gclk" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_type_def = {
-    furuno_eride_pps_type_texts, furuno_eride_pps_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_776, furuno_eride_pps_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char furuno_eride_time_status_texts[] =
-    "furuno_eride_time_status\0" "0\0" "rtc\0" "1\0" "gps\0" "2\0" "utc\0";
 static const nmea_enum_code furuno_eride_time_status_codes[] = {
-    {furuno_eride_time_status_texts + 25, furuno_eride_time_status_texts + 27}, /* "0": "rtc" */
-    {furuno_eride_time_status_texts + 31, furuno_eride_time_status_texts + 33}, /* "1": "gps" */
-    {furuno_eride_time_status_texts + 37, furuno_eride_time_status_texts + 39}, /* "2": "utc" */
+    {enum_text_889 + 9, enum_text_772}, /* "0": "rtc" */
+    {enum_text_100 + 1, enum_text_1391 + 8}, /* "1": "gps" */
+    {enum_text_916 + 5, enum_text_780}, /* "2": "utc" */
 };
 const nmea_enum_def nmea_furuno_eride_time_status_def = {
-    furuno_eride_time_status_texts, furuno_eride_time_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_779, furuno_eride_time_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char furuno_eride_traim_solution_texts[] =
-    "furuno_eride_traim_solution\0" "0\0" "ok\0" "1\0" "alarm\0" "2\0" "unknown\0";
 static const nmea_enum_code furuno_eride_traim_solution_codes[] = {
-    {furuno_eride_traim_solution_texts + 28, furuno_eride_traim_solution_texts + 30}, /* "0": "ok" */
-    {furuno_eride_traim_solution_texts + 33, furuno_eride_traim_solution_texts + 35}, /* "1": "alarm" */
-    {furuno_eride_traim_solution_texts + 41, furuno_eride_traim_solution_texts + 43}, /* "2": "unknown" */
+    {enum_text_889 + 9, enum_text_1261 + 4}, /* "0": "ok" */
+    {enum_text_100 + 1, enum_text_1363 + 4}, /* "1": "alarm" */
+    {enum_text_916 + 5, enum_text_125}, /* "2": "unknown" */
 };
 const nmea_enum_def nmea_furuno_eride_traim_solution_def = {
-    furuno_eride_traim_solution_texts, furuno_eride_traim_solution_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_781, furuno_eride_traim_solution_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char furuno_eride_traim_status_texts[] =
-    "furuno_eride_traim_status\0" "0\0" "detect_and_isolate\0" "1\0" "detect_only\0" "2\0" "none\0";
 static const nmea_enum_code furuno_eride_traim_status_codes[] = {
-    {furuno_eride_traim_status_texts + 26, furuno_eride_traim_status_texts + 28}, /* "0": "detect_and_isolate" */
-    {furuno_eride_traim_status_texts + 47, furuno_eride_traim_status_texts + 49}, /* "1": "detect_only" */
-    {furuno_eride_traim_status_texts + 61, furuno_eride_traim_status_texts + 63}, /* "2": "none" */
+    {enum_text_889 + 9, enum_text_784}, /* "0": "detect_and_isolate" */
+    {enum_text_100 + 1, enum_text_785}, /* "1": "detect_only" */
+    {enum_text_916 + 5, enum_text_96}, /* "2": "none" */
 };
 const nmea_enum_def nmea_furuno_eride_traim_status_def = {
-    furuno_eride_traim_status_texts, furuno_eride_traim_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_783, furuno_eride_traim_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char garmin_baud_texts[] =
-    "garmin_baud\0" "1\0" "baud_1200\0" "2\0" "baud_2400\0" "3\0" "baud_4800\0" "4\0" "baud_9600\0"
-    "5\0" "baud_19200\0" "6\0" "baud_300\0" "7\0" "baud_600\0" "8\0" "baud_38400\0";
 static const nmea_enum_code garmin_baud_codes[] = {
-    {garmin_baud_texts + 12, garmin_baud_texts + 14}, /* "1": "baud_1200" */
-    {garmin_baud_texts + 24, garmin_baud_texts + 26}, /* "2": "baud_2400" */
-    {garmin_baud_texts + 36, garmin_baud_texts + 38}, /* "3": "baud_4800" */
-    {garmin_baud_texts + 48, garmin_baud_texts + 50}, /* "4": "baud_9600" */
-    {garmin_baud_texts + 60, garmin_baud_texts + 62}, /* "5": "baud_19200" */
-    {garmin_baud_texts + 73, garmin_baud_texts + 75}, /* "6": "baud_300" */
-    {garmin_baud_texts + 84, garmin_baud_texts + 86}, /* "7": "baud_600" */
-    {garmin_baud_texts + 95, garmin_baud_texts + 97}, /* "8": "baud_38400" */
+    {enum_text_100 + 1, enum_text_787}, /* "1": "baud_1200" */
+    {enum_text_916 + 5, enum_text_788}, /* "2": "baud_2400" */
+    {enum_text_918 + 5, enum_text_74}, /* "3": "baud_4800" */
+    {enum_text_920 + 5, enum_text_76}, /* "4": "baud_9600" */
+    {enum_text_842 + 5, enum_text_78}, /* "5": "baud_19200" */
+    {enum_text_202 + 1, enum_text_789}, /* "6": "baud_300" */
+    {enum_text_204 + 1, enum_text_790}, /* "7": "baud_600" */
+    {enum_text_1094 + 6, enum_text_80}, /* "8": "baud_38400" */
 };
 const nmea_enum_def nmea_garmin_baud_def = {
-    garmin_baud_texts, garmin_baud_codes, 8, 1, 1, NMEA_CODES_DIGITS
+    enum_text_786, garmin_baud_codes, 8, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char garmin_config_fix_mode_texts[] =
-    "garmin_config_fix_mode\0" "A\0" "automatic\0" "2\0" "only_2d\0" "3\0" "only_3d\0";
 static const nmea_enum_code garmin_config_fix_mode_codes[] = {
-    {garmin_config_fix_mode_texts + 23, garmin_config_fix_mode_texts + 25}, /* "A": "automatic" */
-    {garmin_config_fix_mode_texts + 35, garmin_config_fix_mode_texts + 37}, /* "2": "only_2d" */
-    {garmin_config_fix_mode_texts + 45, garmin_config_fix_mode_texts + 47}, /* "3": "only_3d" */
+    {enum_text_538 + 4, enum_text_645 + 11}, /* "A": "automatic" */
+    {enum_text_916 + 5, enum_text_792}, /* "2": "only_2d" */
+    {enum_text_918 + 5, enum_text_793}, /* "3": "only_3d" */
 };
 const nmea_enum_def nmea_garmin_config_fix_mode_def = {
-    garmin_config_fix_mode_texts, garmin_config_fix_mode_codes, 3, 1, 1, NMEA_CODES_ALNUM
+    enum_text_791, garmin_config_fix_mode_codes, 3, 1, 1, NMEA_CODES_ALNUM
 };
 
-static const char garmin_data_collection_texts[] =
-    "garmin_data_collection\0" "C\0" "collecting\0";
 static const nmea_enum_code garmin_data_collection_codes[] = {
-    {garmin_data_collection_texts + 23, garmin_data_collection_texts + 25}, /* "C": "collecting" */
+    {enum_text_550 + 4, enum_text_795}, /* "C": "collecting" */
 };
 const nmea_enum_def nmea_garmin_data_collection_def = {
-    garmin_data_collection_texts, garmin_data_collection_codes, 1, 1, 1, NMEA_CODES_LETTERS
+    enum_text_794, garmin_data_collection_codes, 1, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char garmin_dgps_mode_texts[] =
-    "garmin_dgps_mode\0" "A\0" "automatic\0" "W\0" "waas_only\0" "R\0" "rtcm_only\0" "N\0" "none\0";
 static const nmea_enum_code garmin_dgps_mode_codes[] = {
-    {garmin_dgps_mode_texts + 17, garmin_dgps_mode_texts + 19}, /* "A": "automatic" */
-    {garmin_dgps_mode_texts + 29, garmin_dgps_mode_texts + 31}, /* "W": "waas_only" */
-    {garmin_dgps_mode_texts + 41, garmin_dgps_mode_texts + 43}, /* "R": "rtcm_only" */
-    {garmin_dgps_mode_texts + 53, garmin_dgps_mode_texts + 55}, /* "N": "none" */
+    {enum_text_538 + 4, enum_text_645 + 11}, /* "A": "automatic" */
+    {enum_text_369, enum_text_797}, /* "W": "waas_only" */
+    {enum_text_412 + 2, enum_text_798}, /* "R": "rtcm_only" */
+    {enum_text_850 + 5, enum_text_96}, /* "N": "none" */
 };
 const nmea_enum_def nmea_garmin_dgps_mode_def = {
-    garmin_dgps_mode_texts, garmin_dgps_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_796, garmin_dgps_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char garmin_dgps_source_texts[] =
-    "garmin_dgps_source\0" "R\0" "rtcm\0" "W\0" "waas\0" "N\0" "none\0";
 static const nmea_enum_code garmin_dgps_source_codes[] = {
-    {garmin_dgps_source_texts + 19, garmin_dgps_source_texts + 21}, /* "R": "rtcm" */
-    {garmin_dgps_source_texts + 26, garmin_dgps_source_texts + 28}, /* "W": "waas" */
-    {garmin_dgps_source_texts + 33, garmin_dgps_source_texts + 35}, /* "N": "none" */
+    {enum_text_412 + 2, enum_text_97}, /* "R": "rtcm" */
+    {enum_text_369, enum_text_800}, /* "W": "waas" */
+    {enum_text_850 + 5, enum_text_96}, /* "N": "none" */
 };
 const nmea_enum_def nmea_garmin_dgps_source_def = {
-    garmin_dgps_source_texts, garmin_dgps_source_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_799, garmin_dgps_source_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char garmin_diff_mode_texts[] =
-    "garmin_diff_mode\0" "A\0" "automatic\0" "D\0" "differential_only\0";
 static const nmea_enum_code garmin_diff_mode_codes[] = {
-    {garmin_diff_mode_texts + 17, garmin_diff_mode_texts + 19}, /* "A": "automatic" */
-    {garmin_diff_mode_texts + 29, garmin_diff_mode_texts + 31}, /* "D": "differential_only" */
+    {enum_text_538 + 4, enum_text_645 + 11}, /* "A": "automatic" */
+    {enum_text_561 + 1, enum_text_802}, /* "D": "differential_only" */
 };
 const nmea_enum_def nmea_garmin_diff_mode_def = {
-    garmin_diff_mode_texts, garmin_diff_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_801, garmin_diff_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char garmin_fix_dimension_texts[] =
-    "garmin_fix_dimension\0" "1\0" "no_fix\0" "2\0" "fix_2d\0" "3\0" "fix_3d\0";
 static const nmea_enum_code garmin_fix_dimension_codes[] = {
-    {garmin_fix_dimension_texts + 21, garmin_fix_dimension_texts + 23}, /* "1": "no_fix" */
-    {garmin_fix_dimension_texts + 30, garmin_fix_dimension_texts + 32}, /* "2": "fix_2d" */
-    {garmin_fix_dimension_texts + 39, garmin_fix_dimension_texts + 41}, /* "3": "fix_3d" */
+    {enum_text_100 + 1, enum_text_509}, /* "1": "no_fix" */
+    {enum_text_916 + 5, enum_text_804}, /* "2": "fix_2d" */
+    {enum_text_918 + 5, enum_text_173}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_garmin_fix_dimension_def = {
-    garmin_fix_dimension_texts, garmin_fix_dimension_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_803, garmin_fix_dimension_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char garmin_fix_mode_texts[] =
-    "garmin_fix_mode\0" "M\0" "manual\0" "A\0" "automatic\0";
 static const nmea_enum_code garmin_fix_mode_codes[] = {
-    {garmin_fix_mode_texts + 16, garmin_fix_mode_texts + 18}, /* "M": "manual" */
-    {garmin_fix_mode_texts + 25, garmin_fix_mode_texts + 27}, /* "A": "automatic" */
+    {enum_text_705 + 1, enum_text_1033 + 9}, /* "M": "manual" */
+    {enum_text_538 + 4, enum_text_645 + 11}, /* "A": "automatic" */
 };
 const nmea_enum_def nmea_garmin_fix_mode_def = {
-    garmin_fix_mode_texts, garmin_fix_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_805, garmin_fix_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char garmin_fix_type_texts[] =
-    "garmin_fix_type\0" "0\0" "no_fix\0" "1\0" "fix_2d\0" "2\0" "fix_3d\0";
 static const nmea_enum_code garmin_fix_type_codes[] = {
-    {garmin_fix_type_texts + 16, garmin_fix_type_texts + 18}, /* "0": "no_fix" */
-    {garmin_fix_type_texts + 25, garmin_fix_type_texts + 27}, /* "1": "fix_2d" */
-    {garmin_fix_type_texts + 34, garmin_fix_type_texts + 36}, /* "2": "fix_3d" */
+    {enum_text_889 + 9, enum_text_509}, /* "0": "no_fix" */
+    {enum_text_100 + 1, enum_text_804}, /* "1": "fix_2d" */
+    {enum_text_916 + 5, enum_text_173}, /* "2": "fix_3d" */
 };
 const nmea_enum_def nmea_garmin_fix_type_def = {
-    garmin_fix_type_texts, garmin_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_806, garmin_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char garmin_off_on_texts[] =
-    "garmin_off_on\0" "1\0" "off\0" "2\0" "on\0";
 static const nmea_enum_code garmin_off_on_codes[] = {
-    {garmin_off_on_texts + 14, garmin_off_on_texts + 16}, /* "1": "off" */
-    {garmin_off_on_texts + 20, garmin_off_on_texts + 22}, /* "2": "on" */
+    {enum_text_100 + 1, enum_text_857 + 4}, /* "1": "off" */
+    {enum_text_916 + 5, enum_text_182 + 3}, /* "2": "on" */
 };
 const nmea_enum_def nmea_garmin_off_on_def = {
-    garmin_off_on_texts, garmin_off_on_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_807, garmin_off_on_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char garmin_output_mode_texts[] =
-    "garmin_output_mode\0" "0\0" "disable\0" "1\0" "enable\0" "2\0" "disable_all\0" "3\0" "enable_all\0"
-    "4\0" "restore_defaults\0" "G\0" "garmin_binary\0";
 static const nmea_enum_code garmin_output_mode_codes[] = {
-    {garmin_output_mode_texts + 19, garmin_output_mode_texts + 21}, /* "0": "disable" */
-    {garmin_output_mode_texts + 29, garmin_output_mode_texts + 31}, /* "1": "enable" */
-    {garmin_output_mode_texts + 38, garmin_output_mode_texts + 40}, /* "2": "disable_all" */
-    {garmin_output_mode_texts + 52, garmin_output_mode_texts + 54}, /* "3": "enable_all" */
-    {garmin_output_mode_texts + 65, garmin_output_mode_texts + 67}, /* "4": "restore_defaults" */
-    {garmin_output_mode_texts + 84, garmin_output_mode_texts + 86}, /* "G": "garmin_binary" */
+    {enum_text_889 + 9, enum_text_809}, /* "0": "disable" */
+    {enum_text_100 + 1, enum_text_1044 + 4}, /* "1": "enable" */
+    {enum_text_916 + 5, enum_text_811}, /* "2": "disable_all" */
+    {enum_text_918 + 5, enum_text_812}, /* "3": "enable_all" */
+    {enum_text_920 + 5, enum_text_813}, /* "4": "restore_defaults" */
+    {enum_text_530 + 1, enum_text_814}, /* "G": "garmin_binary" */
 };
 const nmea_enum_def nmea_garmin_output_mode_def = {
-    garmin_output_mode_texts, garmin_output_mode_codes, 6, 1, 1, NMEA_CODES_ALNUM
+    enum_text_808, garmin_output_mode_codes, 6, 1, 1, NMEA_CODES_ALNUM
 };
 
-static const char garmin_pass_fail_texts[] =
-    "garmin_pass_fail\0" "P\0" "pass\0" "F\0" "fail\0";
 static const nmea_enum_code garmin_pass_fail_codes[] = {
-    {garmin_pass_fail_texts + 17, garmin_pass_fail_texts + 19}, /* "P": "pass" */
-    {garmin_pass_fail_texts + 24, garmin_pass_fail_texts + 26}, /* "F": "fail" */
+    {enum_text_438 + 2, enum_text_816}, /* "P": "pass" */
+    {enum_text_715 + 1, enum_text_815 + 12}, /* "F": "fail" */
 };
 const nmea_enum_def nmea_garmin_pass_fail_def = {
-    garmin_pass_fail_texts, garmin_pass_fail_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_815, garmin_pass_fail_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char garmin_power_mode_texts[] =
-    "garmin_power_mode\0" "P\0" "power_save\0" "N\0" "normal\0";
 static const nmea_enum_code garmin_power_mode_codes[] = {
-    {garmin_power_mode_texts + 18, garmin_power_mode_texts + 20}, /* "P": "power_save" */
-    {garmin_power_mode_texts + 31, garmin_power_mode_texts + 33}, /* "N": "normal" */
+    {enum_text_438 + 2, enum_text_525 + 14}, /* "P": "power_save" */
+    {enum_text_850 + 5, enum_text_964 + 4}, /* "N": "normal" */
 };
 const nmea_enum_def nmea_garmin_power_mode_def = {
-    garmin_power_mode_texts, garmin_power_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_818, garmin_power_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char garmin_receiver_command_texts[] =
-    "garmin_receiver_command\0" "A\0" "auto_locate\0" "R\0" "reset\0";
 static const nmea_enum_code garmin_receiver_command_codes[] = {
-    {garmin_receiver_command_texts + 24, garmin_receiver_command_texts + 26}, /* "A": "auto_locate" */
-    {garmin_receiver_command_texts + 38, garmin_receiver_command_texts + 40}, /* "R": "reset" */
+    {enum_text_538 + 4, enum_text_820}, /* "A": "auto_locate" */
+    {enum_text_412 + 2, enum_text_581 + 5}, /* "R": "reset" */
 };
 const nmea_enum_def nmea_garmin_receiver_command_def = {
-    garmin_receiver_command_texts, garmin_receiver_command_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_819, garmin_receiver_command_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char garmin_retained_lost_texts[] =
-    "garmin_retained_lost\0" "R\0" "retained\0" "L\0" "lost\0";
 static const nmea_enum_code garmin_retained_lost_codes[] = {
-    {garmin_retained_lost_texts + 21, garmin_retained_lost_texts + 23}, /* "R": "retained" */
-    {garmin_retained_lost_texts + 32, garmin_retained_lost_texts + 34}, /* "L": "lost" */
+    {enum_text_412 + 2, enum_text_823}, /* "R": "retained" */
+    {enum_text_436 + 2, enum_text_822 + 16}, /* "L": "lost" */
 };
 const nmea_enum_def nmea_garmin_retained_lost_def = {
-    garmin_retained_lost_texts, garmin_retained_lost_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_822, garmin_retained_lost_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char garmin_waas_mode_texts[] =
-    "garmin_waas_mode\0" "W\0" "enabled\0" "N\0" "disabled\0";
 static const nmea_enum_code garmin_waas_mode_codes[] = {
-    {garmin_waas_mode_texts + 17, garmin_waas_mode_texts + 19}, /* "W": "enabled" */
-    {garmin_waas_mode_texts + 27, garmin_waas_mode_texts + 29}, /* "N": "disabled" */
+    {enum_text_369, enum_text_1076 + 14}, /* "W": "enabled" */
+    {enum_text_850 + 5, enum_text_92}, /* "N": "disabled" */
 };
 const nmea_enum_def nmea_garmin_waas_mode_def = {
-    garmin_waas_mode_texts, garmin_waas_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_825, garmin_waas_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char geos5_command_word_texts[] =
-    "geos5_command_word\0" "SWPROT\0" "switch_to_binary\0" "SAVEFL\0" "save_almanacs\0" "CSTART\0"
-    "cold_start\0" "WSTART\0" "warm_start\0" "HSTART\0" "hot_start\0" "BDR004\0" "baud_4800\0"
-    "BDR009\0" "baud_9600\0" "BDR019\0" "baud_19200\0" "BDR038\0" "baud_38400\0" "BDR057\0"
-    "baud_57600\0" "BDR115\0" "baud_115200\0" "BDR230\0" "baud_230400\0" "BDR460\0" "baud_460800\0"
-    "BDR921\0" "baud_921600\0" "STOP01\0" "stop_bits_1\0" "STOP02\0" "stop_bits_2\0" "GGA ON\0"
-    "gga_gns_on\0" "GGAOFF\0" "gga_gns_off\0" "GLL ON\0" "gll_on\0" "GLLOFF\0" "gll_off\0" "GSA ON\0"
-    "gsa_on\0" "GSAOFF\0" "gsa_off\0" "GSV ON\0" "gsv_on\0" "GSVOFF\0" "gsv_off\0" "RMC ON\0" "rmc_on\0"
-    "RMCOFF\0" "rmc_off\0" "VTG ON\0" "vtg_on\0" "VTGOFF\0" "vtg_off\0" "ZDA ON\0" "zda_on\0" "ZDAOFF\0"
-    "zda_off\0" "DTM ON\0" "dtm_on\0" "DTMOFF\0" "dtm_off\0" "RLM ON\0" "rlm_on\0" "RLMOFF\0"
-    "rlm_off\0" "NMEAV2\0" "nmea_v2\0" "NMEAV4\0" "nmea_v4_10\0" "RATE01\0" "rate_1hz\0" "RATE02\0"
-    "rate_2hz\0" "RATE05\0" "rate_5hz\0" "RATE10\0" "rate_10hz\0" "PSM ON\0" "power_saving_on\0"
-    "PSMOFF\0" "power_saving_off\0" "ELEV05\0" "elevation_mask_5\0" "ELEV06\0" "elevation_mask_6\0"
-    "ELEV07\0" "elevation_mask_7\0" "ELEV08\0" "elevation_mask_8\0" "ELEV09\0" "elevation_mask_9\0"
-    "ELEV10\0" "elevation_mask_10\0" "ELEV11\0" "elevation_mask_11\0" "ELEV12\0" "elevation_mask_12\0"
-    "ELEV13\0" "elevation_mask_13\0" "ELEV14\0" "elevation_mask_14\0" "ELEV15\0" "elevation_mask_15\0"
-    "DATP90\0" "datum_pz90\0" "DATW84\0" "datum_wgs84\0" "NVSGPS\0" "gps_only\0" "NVSGLN\0"
-    "glonass_only\0" "NVSMIX\0" "glonass_gps_galileo\0";
 static const nmea_enum_code geos5_command_word_codes[] = {
-    {geos5_command_word_texts + 19, geos5_command_word_texts + 26}, /* "SWPROT": "switch_to_binary" */
-    {geos5_command_word_texts + 43, geos5_command_word_texts + 50}, /* "SAVEFL": "save_almanacs" */
-    {geos5_command_word_texts + 64, geos5_command_word_texts + 71}, /* "CSTART": "cold_start" */
-    {geos5_command_word_texts + 82, geos5_command_word_texts + 89}, /* "WSTART": "warm_start" */
-    {geos5_command_word_texts + 100, geos5_command_word_texts + 107}, /* "HSTART": "hot_start" */
-    {geos5_command_word_texts + 117, geos5_command_word_texts + 124}, /* "BDR004": "baud_4800" */
-    {geos5_command_word_texts + 134, geos5_command_word_texts + 141}, /* "BDR009": "baud_9600" */
-    {geos5_command_word_texts + 151, geos5_command_word_texts + 158}, /* "BDR019": "baud_19200" */
-    {geos5_command_word_texts + 169, geos5_command_word_texts + 176}, /* "BDR038": "baud_38400" */
-    {geos5_command_word_texts + 187, geos5_command_word_texts + 194}, /* "BDR057": "baud_57600" */
-    {geos5_command_word_texts + 205, geos5_command_word_texts + 212}, /* "BDR115": "baud_115200" */
-    {geos5_command_word_texts + 224, geos5_command_word_texts + 231}, /* "BDR230": "baud_230400" */
-    {geos5_command_word_texts + 243, geos5_command_word_texts + 250}, /* "BDR460": "baud_460800" */
-    {geos5_command_word_texts + 262, geos5_command_word_texts + 269}, /* "BDR921": "baud_921600" */
-    {geos5_command_word_texts + 281, geos5_command_word_texts + 288}, /* "STOP01": "stop_bits_1" */
-    {geos5_command_word_texts + 300, geos5_command_word_texts + 307}, /* "STOP02": "stop_bits_2" */
-    {geos5_command_word_texts + 319, geos5_command_word_texts + 326}, /* "GGA ON": "gga_gns_on" */
-    {geos5_command_word_texts + 337, geos5_command_word_texts + 344}, /* "GGAOFF": "gga_gns_off" */
-    {geos5_command_word_texts + 356, geos5_command_word_texts + 363}, /* "GLL ON": "gll_on" */
-    {geos5_command_word_texts + 370, geos5_command_word_texts + 377}, /* "GLLOFF": "gll_off" */
-    {geos5_command_word_texts + 385, geos5_command_word_texts + 392}, /* "GSA ON": "gsa_on" */
-    {geos5_command_word_texts + 399, geos5_command_word_texts + 406}, /* "GSAOFF": "gsa_off" */
-    {geos5_command_word_texts + 414, geos5_command_word_texts + 421}, /* "GSV ON": "gsv_on" */
-    {geos5_command_word_texts + 428, geos5_command_word_texts + 435}, /* "GSVOFF": "gsv_off" */
-    {geos5_command_word_texts + 443, geos5_command_word_texts + 450}, /* "RMC ON": "rmc_on" */
-    {geos5_command_word_texts + 457, geos5_command_word_texts + 464}, /* "RMCOFF": "rmc_off" */
-    {geos5_command_word_texts + 472, geos5_command_word_texts + 479}, /* "VTG ON": "vtg_on" */
-    {geos5_command_word_texts + 486, geos5_command_word_texts + 493}, /* "VTGOFF": "vtg_off" */
-    {geos5_command_word_texts + 501, geos5_command_word_texts + 508}, /* "ZDA ON": "zda_on" */
-    {geos5_command_word_texts + 515, geos5_command_word_texts + 522}, /* "ZDAOFF": "zda_off" */
-    {geos5_command_word_texts + 530, geos5_command_word_texts + 537}, /* "DTM ON": "dtm_on" */
-    {geos5_command_word_texts + 544, geos5_command_word_texts + 551}, /* "DTMOFF": "dtm_off" */
-    {geos5_command_word_texts + 559, geos5_command_word_texts + 566}, /* "RLM ON": "rlm_on" */
-    {geos5_command_word_texts + 573, geos5_command_word_texts + 580}, /* "RLMOFF": "rlm_off" */
-    {geos5_command_word_texts + 588, geos5_command_word_texts + 595}, /* "NMEAV2": "nmea_v2" */
-    {geos5_command_word_texts + 603, geos5_command_word_texts + 610}, /* "NMEAV4": "nmea_v4_10" */
-    {geos5_command_word_texts + 621, geos5_command_word_texts + 628}, /* "RATE01": "rate_1hz" */
-    {geos5_command_word_texts + 637, geos5_command_word_texts + 644}, /* "RATE02": "rate_2hz" */
-    {geos5_command_word_texts + 653, geos5_command_word_texts + 660}, /* "RATE05": "rate_5hz" */
-    {geos5_command_word_texts + 669, geos5_command_word_texts + 676}, /* "RATE10": "rate_10hz" */
-    {geos5_command_word_texts + 686, geos5_command_word_texts + 693}, /* "PSM ON": "power_saving_on" */
-    {geos5_command_word_texts + 709, geos5_command_word_texts + 716}, /* "PSMOFF": "power_saving_off" */
-    {geos5_command_word_texts + 733, geos5_command_word_texts + 740}, /* "ELEV05": "elevation_mask_5" */
-    {geos5_command_word_texts + 757, geos5_command_word_texts + 764}, /* "ELEV06": "elevation_mask_6" */
-    {geos5_command_word_texts + 781, geos5_command_word_texts + 788}, /* "ELEV07": "elevation_mask_7" */
-    {geos5_command_word_texts + 805, geos5_command_word_texts + 812}, /* "ELEV08": "elevation_mask_8" */
-    {geos5_command_word_texts + 829, geos5_command_word_texts + 836}, /* "ELEV09": "elevation_mask_9" */
-    {geos5_command_word_texts + 853, geos5_command_word_texts + 860}, /* "ELEV10": "elevation_mask_10" */
-    {geos5_command_word_texts + 878, geos5_command_word_texts + 885}, /* "ELEV11": "elevation_mask_11" */
-    {geos5_command_word_texts + 903, geos5_command_word_texts + 910}, /* "ELEV12": "elevation_mask_12" */
-    {geos5_command_word_texts + 928, geos5_command_word_texts + 935}, /* "ELEV13": "elevation_mask_13" */
-    {geos5_command_word_texts + 953, geos5_command_word_texts + 960}, /* "ELEV14": "elevation_mask_14" */
-    {geos5_command_word_texts + 978, geos5_command_word_texts + 985}, /* "ELEV15": "elevation_mask_15" */
-    {geos5_command_word_texts + 1003, geos5_command_word_texts + 1010}, /* "DATP90": "datum_pz90" */
-    {geos5_command_word_texts + 1021, geos5_command_word_texts + 1028}, /* "DATW84": "datum_wgs84" */
-    {geos5_command_word_texts + 1040, geos5_command_word_texts + 1047}, /* "NVSGPS": "gps_only" */
-    {geos5_command_word_texts + 1056, geos5_command_word_texts + 1063}, /* "NVSGLN": "glonass_only" */
-    {geos5_command_word_texts + 1076, geos5_command_word_texts + 1083}, /* "NVSMIX": "glonass_gps_galileo" */
+    {enum_text_827, enum_text_828}, /* "SWPROT": "switch_to_binary" */
+    {enum_text_829, enum_text_830}, /* "SAVEFL": "save_almanacs" */
+    {enum_text_831, enum_text_832}, /* "CSTART": "cold_start" */
+    {enum_text_833, enum_text_834}, /* "WSTART": "warm_start" */
+    {enum_text_835, enum_text_836}, /* "HSTART": "hot_start" */
+    {enum_text_837, enum_text_74}, /* "BDR004": "baud_4800" */
+    {enum_text_838, enum_text_76}, /* "BDR009": "baud_9600" */
+    {enum_text_839, enum_text_78}, /* "BDR019": "baud_19200" */
+    {enum_text_840, enum_text_80}, /* "BDR038": "baud_38400" */
+    {enum_text_841, enum_text_82}, /* "BDR057": "baud_57600" */
+    {enum_text_842, enum_text_84}, /* "BDR115": "baud_115200" */
+    {enum_text_843, enum_text_86}, /* "BDR230": "baud_230400" */
+    {enum_text_844, enum_text_88}, /* "BDR460": "baud_460800" */
+    {enum_text_845, enum_text_90}, /* "BDR921": "baud_921600" */
+    {enum_text_846, enum_text_847}, /* "STOP01": "stop_bits_1" */
+    {enum_text_848, enum_text_849}, /* "STOP02": "stop_bits_2" */
+    {enum_text_850, enum_text_851}, /* "GGA ON": "gga_gns_on" */
+    {enum_text_852, enum_text_853}, /* "GGAOFF": "gga_gns_off" */
+    {enum_text_854, enum_text_855}, /* "GLL ON": "gll_on" */
+    {enum_text_856, enum_text_857}, /* "GLLOFF": "gll_off" */
+    {enum_text_858, enum_text_859}, /* "GSA ON": "gsa_on" */
+    {enum_text_860, enum_text_861}, /* "GSAOFF": "gsa_off" */
+    {enum_text_862, enum_text_863}, /* "GSV ON": "gsv_on" */
+    {enum_text_864, enum_text_865}, /* "GSVOFF": "gsv_off" */
+    {enum_text_866, enum_text_867}, /* "RMC ON": "rmc_on" */
+    {enum_text_868, enum_text_869}, /* "RMCOFF": "rmc_off" */
+    {enum_text_870, enum_text_871}, /* "VTG ON": "vtg_on" */
+    {enum_text_872, enum_text_873}, /* "VTGOFF": "vtg_off" */
+    {enum_text_874, enum_text_875}, /* "ZDA ON": "zda_on" */
+    {enum_text_876, enum_text_877}, /* "ZDAOFF": "zda_off" */
+    {enum_text_878, enum_text_879}, /* "DTM ON": "dtm_on" */
+    {enum_text_880, enum_text_881}, /* "DTMOFF": "dtm_off" */
+    {enum_text_882, enum_text_883}, /* "RLM ON": "rlm_on" */
+    {enum_text_884, enum_text_885}, /* "RLMOFF": "rlm_off" */
+    {enum_text_886, enum_text_887}, /* "NMEAV2": "nmea_v2" */
+    {enum_text_888, enum_text_889}, /* "NMEAV4": "nmea_v4_10" */
+    {enum_text_890, enum_text_891}, /* "RATE01": "rate_1hz" */
+    {enum_text_892, enum_text_893}, /* "RATE02": "rate_2hz" */
+    {enum_text_894, enum_text_895}, /* "RATE05": "rate_5hz" */
+    {enum_text_896, enum_text_897}, /* "RATE10": "rate_10hz" */
+    {enum_text_898, enum_text_899}, /* "PSM ON": "power_saving_on" */
+    {enum_text_900, enum_text_901}, /* "PSMOFF": "power_saving_off" */
+    {enum_text_902, enum_text_903}, /* "ELEV05": "elevation_mask_5" */
+    {enum_text_904, enum_text_905}, /* "ELEV06": "elevation_mask_6" */
+    {enum_text_906, enum_text_907}, /* "ELEV07": "elevation_mask_7" */
+    {enum_text_908, enum_text_909}, /* "ELEV08": "elevation_mask_8" */
+    {enum_text_910, enum_text_911}, /* "ELEV09": "elevation_mask_9" */
+    {enum_text_912, enum_text_913}, /* "ELEV10": "elevation_mask_10" */
+    {enum_text_914, enum_text_915}, /* "ELEV11": "elevation_mask_11" */
+    {enum_text_916, enum_text_917}, /* "ELEV12": "elevation_mask_12" */
+    {enum_text_918, enum_text_919}, /* "ELEV13": "elevation_mask_13" */
+    {enum_text_920, enum_text_921}, /* "ELEV14": "elevation_mask_14" */
+    {enum_text_922, enum_text_923}, /* "ELEV15": "elevation_mask_15" */
+    {enum_text_924, enum_text_925}, /* "DATP90": "datum_pz90" */
+    {enum_text_926, enum_text_927}, /* "DATW84": "datum_wgs84" */
+    {enum_text_928, enum_text_503}, /* "NVSGPS": "gps_only" */
+    {enum_text_929, enum_text_930}, /* "NVSGLN": "glonass_only" */
+    {enum_text_931, enum_text_932}, /* "NVSMIX": "glonass_gps_galileo" */
 };
 const nmea_enum_def nmea_geos5_command_word_def = {
-    geos5_command_word_texts, geos5_command_word_codes, 58, 6, 6, NMEA_CODES_ALNUM
+    enum_text_826, geos5_command_word_codes, 58, 6, 6, NMEA_CODES_ALNUM
 };
 
-static const char geos5_message_rate_texts[] =
-    "geos5_message_rate\0" "0\0" "off\0" "1\0" "every_1s\0" "2\0" "every_2s\0" "3\0" "every_20s\0" "R\0"
-    "output_rate\0";
 static const nmea_enum_code geos5_message_rate_codes[] = {
-    {geos5_message_rate_texts + 19, geos5_message_rate_texts + 21}, /* "0": "off" */
-    {geos5_message_rate_texts + 25, geos5_message_rate_texts + 27}, /* "1": "every_1s" */
-    {geos5_message_rate_texts + 36, geos5_message_rate_texts + 38}, /* "2": "every_2s" */
-    {geos5_message_rate_texts + 47, geos5_message_rate_texts + 49}, /* "3": "every_20s" */
-    {geos5_message_rate_texts + 59, geos5_message_rate_texts + 61}, /* "R": "output_rate" */
+    {enum_text_889 + 9, enum_text_857 + 4}, /* "0": "off" */
+    {enum_text_100 + 1, enum_text_934}, /* "1": "every_1s" */
+    {enum_text_916 + 5, enum_text_935}, /* "2": "every_2s" */
+    {enum_text_918 + 5, enum_text_936}, /* "3": "every_20s" */
+    {enum_text_412 + 2, enum_text_941 + 6}, /* "R": "output_rate" */
 };
 const nmea_enum_def nmea_geos5_message_rate_def = {
-    geos5_message_rate_texts, geos5_message_rate_codes, 5, 1, 1, NMEA_CODES_ALNUM
+    enum_text_933, geos5_message_rate_codes, 5, 1, 1, NMEA_CODES_ALNUM
 };
 
-static const char geos5_nmea_version_texts[] =
-    "geos5_nmea_version\0" "2\0" "v2_x\0" "4\0" "v4_10\0";
 static const nmea_enum_code geos5_nmea_version_codes[] = {
-    {geos5_nmea_version_texts + 19, geos5_nmea_version_texts + 21}, /* "2": "v2_x" */
-    {geos5_nmea_version_texts + 26, geos5_nmea_version_texts + 28}, /* "4": "v4_10" */
+    {enum_text_916 + 5, enum_text_939}, /* "2": "v2_x" */
+    {enum_text_920 + 5, enum_text_889 + 5}, /* "4": "v4_10" */
 };
 const nmea_enum_def nmea_geos5_nmea_version_def = {
-    geos5_nmea_version_texts, geos5_nmea_version_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_938, geos5_nmea_version_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char geos5_output_rate_texts[] =
-    "geos5_output_rate\0" "0\0" "rate_10hz\0" "1\0" "rate_5hz\0" "2\0" "rate_2hz\0" "3\0" "rate_1hz\0";
 static const nmea_enum_code geos5_output_rate_codes[] = {
-    {geos5_output_rate_texts + 18, geos5_output_rate_texts + 20}, /* "0": "rate_10hz" */
-    {geos5_output_rate_texts + 30, geos5_output_rate_texts + 32}, /* "1": "rate_5hz" */
-    {geos5_output_rate_texts + 41, geos5_output_rate_texts + 43}, /* "2": "rate_2hz" */
-    {geos5_output_rate_texts + 52, geos5_output_rate_texts + 54}, /* "3": "rate_1hz" */
+    {enum_text_889 + 9, enum_text_897}, /* "0": "rate_10hz" */
+    {enum_text_100 + 1, enum_text_895}, /* "1": "rate_5hz" */
+    {enum_text_916 + 5, enum_text_893}, /* "2": "rate_2hz" */
+    {enum_text_918 + 5, enum_text_891}, /* "3": "rate_1hz" */
 };
 const nmea_enum_def nmea_geos5_output_rate_def = {
-    geos5_output_rate_texts, geos5_output_rate_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_941, geos5_output_rate_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char gfa_integrity_texts[] =
-    "gfa_integrity\0" "V\0" "not_in_use\0" "S\0" "safe\0" "C\0" "caution\0" "U\0" "unsafe\0";
 static const nmea_enum_code gfa_integrity_codes[] = {
-    {gfa_integrity_texts + 14, gfa_integrity_texts + 16}, /* "V": "not_in_use" */
-    {gfa_integrity_texts + 27, gfa_integrity_texts + 29}, /* "S": "safe" */
-    {gfa_integrity_texts + 34, gfa_integrity_texts + 36}, /* "C": "caution" */
-    {gfa_integrity_texts + 44, gfa_integrity_texts + 46}, /* "U": "unsafe" */
+    {enum_text_546 + 4, enum_text_32}, /* "V": "not_in_use" */
+    {enum_text_601 + 1, enum_text_944 + 2}, /* "S": "safe" */
+    {enum_text_550 + 4, enum_text_370}, /* "C": "caution" */
+    {enum_text_1340 + 2, enum_text_944}, /* "U": "unsafe" */
 };
 const nmea_enum_def nmea_gfa_integrity_def = {
-    gfa_integrity_texts, gfa_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_942, gfa_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char gga_quality_texts[] =
-    "gga_quality\0" "0\0" "invalid\0" "1\0" "autonomous\0" "2\0" "differential\0" "3\0" "pps\0" "4\0"
-    "rtk_fixed\0" "5\0" "rtk_float\0" "6\0" "dead_reckoning\0" "7\0" "manual_input\0" "8\0"
-    "simulator\0" "9\0" "geopath\0";
 static const nmea_enum_code gga_quality_codes[] = {
-    {gga_quality_texts + 12, gga_quality_texts + 14}, /* "0": "invalid" */
-    {gga_quality_texts + 22, gga_quality_texts + 24}, /* "1": "autonomous" */
-    {gga_quality_texts + 35, gga_quality_texts + 37}, /* "2": "differential" */
-    {gga_quality_texts + 50, gga_quality_texts + 52}, /* "3": "pps" */
-    {gga_quality_texts + 56, gga_quality_texts + 58}, /* "4": "rtk_fixed" */
-    {gga_quality_texts + 68, gga_quality_texts + 70}, /* "5": "rtk_float" */
-    {gga_quality_texts + 80, gga_quality_texts + 82}, /* "6": "dead_reckoning" */
-    {gga_quality_texts + 97, gga_quality_texts + 99}, /* "7": "manual_input" */
-    {gga_quality_texts + 112, gga_quality_texts + 114}, /* "8": "simulator" */
-    {gga_quality_texts + 124, gga_quality_texts + 126}, /* "9": "geopath" */
+    {enum_text_889 + 9, enum_text_518}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_491}, /* "1": "autonomous" */
+    {enum_text_916 + 5, enum_text_492 + 5}, /* "2": "differential" */
+    {enum_text_918 + 5, enum_text_512}, /* "3": "pps" */
+    {enum_text_920 + 5, enum_text_494}, /* "4": "rtk_fixed" */
+    {enum_text_842 + 5, enum_text_493}, /* "5": "rtk_float" */
+    {enum_text_202 + 1, enum_text_1423 + 5}, /* "6": "dead_reckoning" */
+    {enum_text_204 + 1, enum_text_946}, /* "7": "manual_input" */
+    {enum_text_1094 + 6, enum_text_947}, /* "8": "simulator" */
+    {enum_text_839 + 5, enum_text_948}, /* "9": "geopath" */
 };
 const nmea_enum_def nmea_gga_quality_def = {
-    gga_quality_texts, gga_quality_codes, 10, 1, 1, NMEA_CODES_DIGITS
+    enum_text_945, gga_quality_codes, 10, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char glc_signal_status_texts[] =
-    "glc_signal_status\0" "A\0" "valid\0" "B\0" "blink_warning\0" "C\0" "cycle_warning\0" "S\0"
-    "snr_warning\0";
 static const nmea_enum_code glc_signal_status_codes[] = {
-    {glc_signal_status_texts + 18, glc_signal_status_texts + 20}, /* "A": "valid" */
-    {glc_signal_status_texts + 26, glc_signal_status_texts + 28}, /* "B": "blink_warning" */
-    {glc_signal_status_texts + 42, glc_signal_status_texts + 44}, /* "C": "cycle_warning" */
-    {glc_signal_status_texts + 58, glc_signal_status_texts + 60}, /* "S": "snr_warning" */
+    {enum_text_538 + 4, enum_text_518 + 2}, /* "A": "valid" */
+    {enum_text_23, enum_text_951}, /* "B": "blink_warning" */
+    {enum_text_550 + 4, enum_text_952}, /* "C": "cycle_warning" */
+    {enum_text_601 + 1, enum_text_953}, /* "S": "snr_warning" */
 };
 const nmea_enum_def nmea_glc_signal_status_def = {
-    glc_signal_status_texts, glc_signal_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_949, glc_signal_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char gns_mode_texts[] =
-    "gns_mode\0" "A\0" "autonomous\0" "D\0" "differential\0" "E\0" "estimated\0" "F\0" "rtk_float\0"
-    "G\0" "geopath\0" "M\0" "manual_input\0" "N\0" "not_valid\0" "P\0" "precise\0" "R\0" "rtk_fixed\0"
-    "S\0" "simulator\0";
 static const nmea_enum_code gns_mode_codes[] = {
-    {gns_mode_texts + 9, gns_mode_texts + 11}, /* "A": "autonomous" */
-    {gns_mode_texts + 22, gns_mode_texts + 24}, /* "D": "differential" */
-    {gns_mode_texts + 37, gns_mode_texts + 39}, /* "E": "estimated" */
-    {gns_mode_texts + 49, gns_mode_texts + 51}, /* "F": "rtk_float" */
-    {gns_mode_texts + 61, gns_mode_texts + 63}, /* "G": "geopath" */
-    {gns_mode_texts + 71, gns_mode_texts + 73}, /* "M": "manual_input" */
-    {gns_mode_texts + 86, gns_mode_texts + 88}, /* "N": "not_valid" */
-    {gns_mode_texts + 98, gns_mode_texts + 100}, /* "P": "precise" */
-    {gns_mode_texts + 108, gns_mode_texts + 110}, /* "R": "rtk_fixed" */
-    {gns_mode_texts + 120, gns_mode_texts + 122}, /* "S": "simulator" */
+    {enum_text_538 + 4, enum_text_491}, /* "A": "autonomous" */
+    {enum_text_561 + 1, enum_text_492 + 5}, /* "D": "differential" */
+    {enum_text_430 + 2, enum_text_955}, /* "E": "estimated" */
+    {enum_text_715 + 1, enum_text_493}, /* "F": "rtk_float" */
+    {enum_text_530 + 1, enum_text_948}, /* "G": "geopath" */
+    {enum_text_705 + 1, enum_text_946}, /* "M": "manual_input" */
+    {enum_text_850 + 5, enum_text_956}, /* "N": "not_valid" */
+    {enum_text_438 + 2, enum_text_957}, /* "P": "precise" */
+    {enum_text_412 + 2, enum_text_494}, /* "R": "rtk_fixed" */
+    {enum_text_601 + 1, enum_text_947}, /* "S": "simulator" */
 };
 const nmea_enum_def nmea_gns_mode_def = {
-    gns_mode_texts, gns_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    enum_text_954, gns_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char grs_mode_texts[] =
-    "grs_mode\0" "0\0" "used_in_fix\0" "1\0" "recomputed\0";
 static const nmea_enum_code grs_mode_codes[] = {
-    {grs_mode_texts + 9, grs_mode_texts + 11}, /* "0": "used_in_fix" */
-    {grs_mode_texts + 23, grs_mode_texts + 25}, /* "1": "recomputed" */
+    {enum_text_889 + 9, enum_text_959}, /* "0": "used_in_fix" */
+    {enum_text_100 + 1, enum_text_960}, /* "1": "recomputed" */
 };
 const nmea_enum_def nmea_grs_mode_def = {
-    grs_mode_texts, grs_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_958, grs_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char gsa_fix_type_texts[] =
-    "gsa_fix_type\0" "1\0" "no_fix\0" "2\0" "fix_2d\0" "3\0" "fix_3d\0";
 static const nmea_enum_code gsa_fix_type_codes[] = {
-    {gsa_fix_type_texts + 13, gsa_fix_type_texts + 15}, /* "1": "no_fix" */
-    {gsa_fix_type_texts + 22, gsa_fix_type_texts + 24}, /* "2": "fix_2d" */
-    {gsa_fix_type_texts + 31, gsa_fix_type_texts + 33}, /* "3": "fix_3d" */
+    {enum_text_100 + 1, enum_text_509}, /* "1": "no_fix" */
+    {enum_text_916 + 5, enum_text_804}, /* "2": "fix_2d" */
+    {enum_text_918 + 5, enum_text_173}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_gsa_fix_type_def = {
-    gsa_fix_type_texts, gsa_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_961, gsa_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char gsa_selection_mode_texts[] =
-    "gsa_selection_mode\0" "M\0" "manual\0" "A\0" "automatic\0";
 static const nmea_enum_code gsa_selection_mode_codes[] = {
-    {gsa_selection_mode_texts + 19, gsa_selection_mode_texts + 21}, /* "M": "manual" */
-    {gsa_selection_mode_texts + 28, gsa_selection_mode_texts + 30}, /* "A": "automatic" */
+    {enum_text_705 + 1, enum_text_1033 + 9}, /* "M": "manual" */
+    {enum_text_538 + 4, enum_text_645 + 11}, /* "A": "automatic" */
 };
 const nmea_enum_def nmea_gsa_selection_mode_def = {
-    gsa_selection_mode_texts, gsa_selection_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_962, gsa_selection_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char hbt_equipment_status_texts[] =
-    "hbt_equipment_status\0" "A\0" "normal\0" "V\0" "not_normal\0";
 static const nmea_enum_code hbt_equipment_status_codes[] = {
-    {hbt_equipment_status_texts + 21, hbt_equipment_status_texts + 23}, /* "A": "normal" */
-    {hbt_equipment_status_texts + 30, hbt_equipment_status_texts + 32}, /* "V": "not_normal" */
+    {enum_text_538 + 4, enum_text_964 + 4}, /* "A": "normal" */
+    {enum_text_546 + 4, enum_text_964}, /* "V": "not_normal" */
 };
 const nmea_enum_def nmea_hbt_equipment_status_def = {
-    hbt_equipment_status_texts, hbt_equipment_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_963, hbt_equipment_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char hcr_correction_state_texts[] =
-    "hcr_correction_state\0" "A\0" "speed_latitude_and_dynamic\0" "D\0" "dynamic\0" "S\0"
-    "speed_latitude\0" "N\0" "none\0" "V\0" "unavailable\0";
 static const nmea_enum_code hcr_correction_state_codes[] = {
-    {hcr_correction_state_texts + 21, hcr_correction_state_texts + 23}, /* "A": "speed_latitude_and_dynamic" */
-    {hcr_correction_state_texts + 50, hcr_correction_state_texts + 52}, /* "D": "dynamic" */
-    {hcr_correction_state_texts + 60, hcr_correction_state_texts + 62}, /* "S": "speed_latitude" */
-    {hcr_correction_state_texts + 77, hcr_correction_state_texts + 79}, /* "N": "none" */
-    {hcr_correction_state_texts + 84, hcr_correction_state_texts + 86}, /* "V": "unavailable" */
+    {enum_text_538 + 4, enum_text_966}, /* "A": "speed_latitude_and_dynamic" */
+    {enum_text_561 + 1, enum_text_966 + 19}, /* "D": "dynamic" */
+    {enum_text_601 + 1, enum_text_968}, /* "S": "speed_latitude" */
+    {enum_text_850 + 5, enum_text_96}, /* "N": "none" */
+    {enum_text_546 + 4, enum_text_1077 + 22}, /* "V": "unavailable" */
 };
 const nmea_enum_def nmea_hcr_correction_state_def = {
-    hcr_correction_state_texts, hcr_correction_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_965, hcr_correction_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char hemisphere_heading_source_texts[] =
-    "hemisphere_heading_source\0" "N\0" "gnss\0" "G\0" "gyro\0";
 static const nmea_enum_code hemisphere_heading_source_codes[] = {
-    {hemisphere_heading_source_texts + 26, hemisphere_heading_source_texts + 28}, /* "N": "gnss" */
-    {hemisphere_heading_source_texts + 33, hemisphere_heading_source_texts + 35}, /* "G": "gyro" */
+    {enum_text_850 + 5, enum_text_1179 + 1}, /* "N": "gnss" */
+    {enum_text_530 + 1, enum_text_972}, /* "G": "gyro" */
 };
 const nmea_enum_def nmea_hemisphere_heading_source_def = {
-    hemisphere_heading_source_texts, hemisphere_heading_source_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_970, hemisphere_heading_source_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char hmr_difference_status_texts[] =
-    "hmr_difference_status\0" "A\0" "within_limit\0" "V\0" "limit_exceeded\0";
 static const nmea_enum_code hmr_difference_status_codes[] = {
-    {hmr_difference_status_texts + 22, hmr_difference_status_texts + 24}, /* "A": "within_limit" */
-    {hmr_difference_status_texts + 37, hmr_difference_status_texts + 39}, /* "V": "limit_exceeded" */
+    {enum_text_538 + 4, enum_text_974}, /* "A": "within_limit" */
+    {enum_text_546 + 4, enum_text_975}, /* "V": "limit_exceeded" */
 };
 const nmea_enum_def nmea_hmr_difference_status_def = {
-    hmr_difference_status_texts, hmr_difference_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_973, hmr_difference_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char hsc_sentence_status_texts[] =
-    "hsc_sentence_status\0" "R\0" "report\0" "C\0" "command\0";
 static const nmea_enum_code hsc_sentence_status_codes[] = {
-    {hsc_sentence_status_texts + 20, hsc_sentence_status_texts + 22}, /* "R": "report" */
-    {hsc_sentence_status_texts + 29, hsc_sentence_status_texts + 31}, /* "C": "command" */
+    {enum_text_412 + 2, enum_text_1292 + 4}, /* "R": "report" */
+    {enum_text_550 + 4, enum_text_40 + 8}, /* "C": "command" */
 };
 const nmea_enum_def nmea_hsc_sentence_status_def = {
-    hsc_sentence_status_texts, hsc_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_976, hsc_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char htc_heading_reference_texts[] =
-    "htc_heading_reference\0" "T\0" "true_north\0" "M\0" "magnetic\0";
 static const nmea_enum_code htc_heading_reference_codes[] = {
-    {htc_heading_reference_texts + 22, htc_heading_reference_texts + 24}, /* "T": "true_north" */
-    {htc_heading_reference_texts + 35, htc_heading_reference_texts + 37}, /* "M": "magnetic" */
+    {enum_text_599 + 1, enum_text_386}, /* "T": "true_north" */
+    {enum_text_705 + 1, enum_text_384}, /* "M": "magnetic" */
 };
 const nmea_enum_def nmea_htc_heading_reference_def = {
-    htc_heading_reference_texts, htc_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_977, htc_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char htc_override_texts[] =
-    "htc_override\0" "A\0" "in_use\0" "V\0" "not_in_use\0";
 static const nmea_enum_code htc_override_codes[] = {
-    {htc_override_texts + 13, htc_override_texts + 15}, /* "A": "in_use" */
-    {htc_override_texts + 22, htc_override_texts + 24}, /* "V": "not_in_use" */
+    {enum_text_538 + 4, enum_text_31 + 4}, /* "A": "in_use" */
+    {enum_text_546 + 4, enum_text_32}, /* "V": "not_in_use" */
 };
 const nmea_enum_def nmea_htc_override_def = {
-    htc_override_texts, htc_override_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_978, htc_override_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char htc_steering_mode_texts[] =
-    "htc_steering_mode\0" "M\0" "manual\0" "S\0" "stand_alone\0" "H\0" "heading_control\0" "T\0"
-    "track_control\0" "R\0" "rudder_control\0";
 static const nmea_enum_code htc_steering_mode_codes[] = {
-    {htc_steering_mode_texts + 18, htc_steering_mode_texts + 20}, /* "M": "manual" */
-    {htc_steering_mode_texts + 27, htc_steering_mode_texts + 29}, /* "S": "stand_alone" */
-    {htc_steering_mode_texts + 41, htc_steering_mode_texts + 43}, /* "H": "heading_control" */
-    {htc_steering_mode_texts + 59, htc_steering_mode_texts + 61}, /* "T": "track_control" */
-    {htc_steering_mode_texts + 75, htc_steering_mode_texts + 77}, /* "R": "rudder_control" */
+    {enum_text_705 + 1, enum_text_1033 + 9}, /* "M": "manual" */
+    {enum_text_601 + 1, enum_text_980}, /* "S": "stand_alone" */
+    {enum_text_701 + 1, enum_text_981}, /* "H": "heading_control" */
+    {enum_text_599 + 1, enum_text_982}, /* "T": "track_control" */
+    {enum_text_412 + 2, enum_text_983}, /* "R": "rudder_control" */
 };
 const nmea_enum_def nmea_htc_steering_mode_def = {
-    htc_steering_mode_texts, htc_steering_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_979, htc_steering_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char htc_turn_mode_texts[] =
-    "htc_turn_mode\0" "R\0" "radius_controlled\0" "T\0" "rate_controlled\0" "N\0" "not_controlled\0";
 static const nmea_enum_code htc_turn_mode_codes[] = {
-    {htc_turn_mode_texts + 14, htc_turn_mode_texts + 16}, /* "R": "radius_controlled" */
-    {htc_turn_mode_texts + 34, htc_turn_mode_texts + 36}, /* "T": "rate_controlled" */
-    {htc_turn_mode_texts + 52, htc_turn_mode_texts + 54}, /* "N": "not_controlled" */
+    {enum_text_412 + 2, enum_text_985}, /* "R": "radius_controlled" */
+    {enum_text_599 + 1, enum_text_986}, /* "T": "rate_controlled" */
+    {enum_text_850 + 5, enum_text_987}, /* "N": "not_controlled" */
 };
 const nmea_enum_def nmea_htc_turn_mode_def = {
-    htc_turn_mode_texts, htc_turn_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_984, htc_turn_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char htd_limit_status_texts[] =
-    "htd_limit_status\0" "A\0" "within_limits\0" "V\0" "limit_reached\0";
 static const nmea_enum_code htd_limit_status_codes[] = {
-    {htd_limit_status_texts + 17, htd_limit_status_texts + 19}, /* "A": "within_limits" */
-    {htd_limit_status_texts + 33, htd_limit_status_texts + 35}, /* "V": "limit_reached" */
+    {enum_text_538 + 4, enum_text_989}, /* "A": "within_limits" */
+    {enum_text_546 + 4, enum_text_990}, /* "V": "limit_reached" */
 };
 const nmea_enum_def nmea_htd_limit_status_def = {
-    htd_limit_status_texts, htd_limit_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_988, htd_limit_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char left_right_texts[] =
-    "left_right\0" "L\0" "left\0" "R\0" "right\0";
 static const nmea_enum_code left_right_codes[] = {
-    {left_right_texts + 11, left_right_texts + 13}, /* "L": "left" */
-    {left_right_texts + 18, left_right_texts + 20}, /* "R": "right" */
+    {enum_text_436 + 2, enum_text_992}, /* "L": "left" */
+    {enum_text_412 + 2, enum_text_991 + 5}, /* "R": "right" */
 };
 const nmea_enum_def nmea_left_right_def = {
-    left_right_texts, left_right_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_991, left_right_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char llq_quality_texts[] =
-    "llq_quality\0" "0\0" "invalid\0" "1\0" "gps_nav_fix\0" "2\0" "dgps_fix\0" "3\0" "rtk_fix\0";
 static const nmea_enum_code llq_quality_codes[] = {
-    {llq_quality_texts + 12, llq_quality_texts + 14}, /* "0": "invalid" */
-    {llq_quality_texts + 22, llq_quality_texts + 24}, /* "1": "gps_nav_fix" */
-    {llq_quality_texts + 36, llq_quality_texts + 38}, /* "2": "dgps_fix" */
-    {llq_quality_texts + 47, llq_quality_texts + 49}, /* "3": "rtk_fix" */
+    {enum_text_889 + 9, enum_text_518}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_995}, /* "1": "gps_nav_fix" */
+    {enum_text_916 + 5, enum_text_996}, /* "2": "dgps_fix" */
+    {enum_text_918 + 5, enum_text_997}, /* "3": "rtk_fix" */
 };
 const nmea_enum_def nmea_llq_quality_def = {
-    llq_quality_texts, llq_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_994, llq_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char lrf_function_texts[] =
-    "lrf_function\0" "A\0" "ship_id\0" "B\0" "date_time\0" "C\0" "position\0" "E\0" "course\0" "F\0"
-    "speed\0" "I\0" "destination\0" "O\0" "draught\0" "P\0" "cargo\0" "U\0" "dimensions\0" "W\0"
-    "persons\0";
 static const nmea_enum_code lrf_function_codes[] = {
-    {lrf_function_texts + 13, lrf_function_texts + 15}, /* "A": "ship_id" */
-    {lrf_function_texts + 23, lrf_function_texts + 25}, /* "B": "date_time" */
-    {lrf_function_texts + 35, lrf_function_texts + 37}, /* "C": "position" */
-    {lrf_function_texts + 46, lrf_function_texts + 48}, /* "E": "course" */
-    {lrf_function_texts + 55, lrf_function_texts + 57}, /* "F": "speed" */
-    {lrf_function_texts + 63, lrf_function_texts + 65}, /* "I": "destination" */
-    {lrf_function_texts + 77, lrf_function_texts + 79}, /* "O": "draught" */
-    {lrf_function_texts + 87, lrf_function_texts + 89}, /* "P": "cargo" */
-    {lrf_function_texts + 95, lrf_function_texts + 97}, /* "U": "dimensions" */
-    {lrf_function_texts + 108, lrf_function_texts + 110}, /* "W": "persons" */
+    {enum_text_538 + 4, enum_text_999}, /* "A": "ship_id" */
+    {enum_text_23, enum_text_1000}, /* "B": "date_time" */
+    {enum_text_550 + 4, enum_text_647 + 9}, /* "C": "position" */
+    {enum_text_430 + 2, enum_text_649}, /* "E": "course" */
+    {enum_text_715 + 1, enum_text_137}, /* "F": "speed" */
+    {enum_text_1457 + 1, enum_text_1002}, /* "I": "destination" */
+    {enum_text_709 + 1, enum_text_1440 + 15}, /* "O": "draught" */
+    {enum_text_438 + 2, enum_text_311}, /* "P": "cargo" */
+    {enum_text_1340 + 2, enum_text_1004}, /* "U": "dimensions" */
+    {enum_text_369, enum_text_1005}, /* "W": "persons" */
 };
 const nmea_enum_def nmea_lrf_function_def = {
-    lrf_function_texts, lrf_function_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    enum_text_998, lrf_function_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char lrf_reply_status_texts[] =
-    "lrf_reply_status\0" "2\0" "provided\0" "3\0" "not_available\0" "4\0" "restricted\0";
 static const nmea_enum_code lrf_reply_status_codes[] = {
-    {lrf_reply_status_texts + 17, lrf_reply_status_texts + 19}, /* "2": "provided" */
-    {lrf_reply_status_texts + 28, lrf_reply_status_texts + 30}, /* "3": "not_available" */
-    {lrf_reply_status_texts + 44, lrf_reply_status_texts + 46}, /* "4": "restricted" */
+    {enum_text_916 + 5, enum_text_1007}, /* "2": "provided" */
+    {enum_text_918 + 5, enum_text_246}, /* "3": "not_available" */
+    {enum_text_920 + 5, enum_text_1008}, /* "4": "restricted" */
 };
 const nmea_enum_def nmea_lrf_reply_status_def = {
-    lrf_reply_status_texts, lrf_reply_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1006, lrf_reply_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char lri_control_flag_texts[] =
-    "lri_control_flag\0" "0\0" "normal\0" "1\0" "geographic\0";
 static const nmea_enum_code lri_control_flag_codes[] = {
-    {lri_control_flag_texts + 17, lri_control_flag_texts + 19}, /* "0": "normal" */
-    {lri_control_flag_texts + 26, lri_control_flag_texts + 28}, /* "1": "geographic" */
+    {enum_text_889 + 9, enum_text_964 + 4}, /* "0": "normal" */
+    {enum_text_100 + 1, enum_text_1010}, /* "1": "geographic" */
 };
 const nmea_enum_def nmea_lri_control_flag_def = {
-    lri_control_flag_texts, lri_control_flag_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1009, lri_control_flag_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char magellan_altitude_unit_texts[] =
-    "magellan_altitude_unit\0" "F\0" "feet\0" "M\0" "meters\0";
 static const nmea_enum_code magellan_altitude_unit_codes[] = {
-    {magellan_altitude_unit_texts + 23, magellan_altitude_unit_texts + 25}, /* "F": "feet" */
-    {magellan_altitude_unit_texts + 30, magellan_altitude_unit_texts + 32}, /* "M": "meters" */
+    {enum_text_715 + 1, enum_text_1012}, /* "F": "feet" */
+    {enum_text_705 + 1, enum_text_1135 + 12}, /* "M": "meters" */
 };
 const nmea_enum_def nmea_magellan_altitude_unit_def = {
-    magellan_altitude_unit_texts, magellan_altitude_unit_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1011, magellan_altitude_unit_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char magellan_command_texts[] =
-    "magellan_command\0" "WAYPOINT\0" "waypoint\0" "ROUTE\0" "route\0" "TRACK\0" "track\0";
 static const nmea_enum_code magellan_command_codes[] = {
-    {magellan_command_texts + 17, magellan_command_texts + 26}, /* "WAYPOINT": "waypoint" */
-    {magellan_command_texts + 35, magellan_command_texts + 41}, /* "ROUTE": "route" */
-    {magellan_command_texts + 47, magellan_command_texts + 53}, /* "TRACK": "track" */
+    {enum_text_1015, enum_text_1016}, /* "WAYPOINT": "waypoint" */
+    {enum_text_1017, enum_text_1018}, /* "ROUTE": "route" */
+    {enum_text_1019, enum_text_576 + 6}, /* "TRACK": "track" */
 };
 const nmea_enum_def nmea_magellan_command_def = {
-    magellan_command_texts, magellan_command_codes, 3, 5, 8, NMEA_CODES_LETTERS
+    enum_text_1014, magellan_command_codes, 3, 5, 8, NMEA_CODES_LETTERS
 };
 
-static const char magellan_fix_flag_texts[] =
-    "magellan_fix_flag\0" "T\0" "fix\0" "F\0" "no_fix\0";
 static const nmea_enum_code magellan_fix_flag_codes[] = {
-    {magellan_fix_flag_texts + 18, magellan_fix_flag_texts + 20}, /* "T": "fix" */
-    {magellan_fix_flag_texts + 24, magellan_fix_flag_texts + 26}, /* "F": "no_fix" */
+    {enum_text_599 + 1, enum_text_509 + 3}, /* "T": "fix" */
+    {enum_text_715 + 1, enum_text_509}, /* "F": "no_fix" */
 };
 const nmea_enum_def nmea_magellan_fix_flag_def = {
-    magellan_fix_flag_texts, magellan_fix_flag_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1021, magellan_fix_flag_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char magellan_fix_mode_texts[] =
-    "magellan_fix_mode\0" "1\0" "no_fix\0" "2\0" "fix_2d\0" "3\0" "fix_3d\0";
 static const nmea_enum_code magellan_fix_mode_codes[] = {
-    {magellan_fix_mode_texts + 18, magellan_fix_mode_texts + 20}, /* "1": "no_fix" */
-    {magellan_fix_mode_texts + 27, magellan_fix_mode_texts + 29}, /* "2": "fix_2d" */
-    {magellan_fix_mode_texts + 36, magellan_fix_mode_texts + 38}, /* "3": "fix_3d" */
+    {enum_text_100 + 1, enum_text_509}, /* "1": "no_fix" */
+    {enum_text_916 + 5, enum_text_804}, /* "2": "fix_2d" */
+    {enum_text_918 + 5, enum_text_173}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_magellan_fix_mode_def = {
-    magellan_fix_mode_texts, magellan_fix_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1023, magellan_fix_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char mob_battery_texts[] =
-    "mob_battery\0" "0\0" "good\0" "1\0" "low\0" "6\0" "error\0";
 static const nmea_enum_code mob_battery_codes[] = {
-    {mob_battery_texts + 12, mob_battery_texts + 14}, /* "0": "good" */
-    {mob_battery_texts + 19, mob_battery_texts + 21}, /* "1": "low" */
-    {mob_battery_texts + 25, mob_battery_texts + 27}, /* "6": "error" */
+    {enum_text_889 + 9, enum_text_126}, /* "0": "good" */
+    {enum_text_100 + 1, enum_text_685 + 7}, /* "1": "low" */
+    {enum_text_202 + 1, enum_text_66 + 10}, /* "6": "error" */
 };
 const nmea_enum_def nmea_mob_battery_def = {
-    mob_battery_texts, mob_battery_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1024, mob_battery_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char mob_position_source_texts[] =
-    "mob_position_source\0" "0\0" "vessel_estimate\0" "1\0" "emitter_report\0" "6\0" "error\0";
 static const nmea_enum_code mob_position_source_codes[] = {
-    {mob_position_source_texts + 20, mob_position_source_texts + 22}, /* "0": "vessel_estimate" */
-    {mob_position_source_texts + 38, mob_position_source_texts + 40}, /* "1": "emitter_report" */
-    {mob_position_source_texts + 55, mob_position_source_texts + 57}, /* "6": "error" */
+    {enum_text_889 + 9, enum_text_1027}, /* "0": "vessel_estimate" */
+    {enum_text_100 + 1, enum_text_1028}, /* "1": "emitter_report" */
+    {enum_text_202 + 1, enum_text_66 + 10}, /* "6": "error" */
 };
 const nmea_enum_def nmea_mob_position_source_def = {
-    mob_position_source_texts, mob_position_source_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1026, mob_position_source_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char mob_status_texts[] =
-    "mob_status\0" "A\0" "activated\0" "T\0" "test\0" "M\0" "manual_button\0" "V\0" "not_in_use\0" "E\0"
-    "error\0";
 static const nmea_enum_code mob_status_codes[] = {
-    {mob_status_texts + 11, mob_status_texts + 13}, /* "A": "activated" */
-    {mob_status_texts + 23, mob_status_texts + 25}, /* "T": "test" */
-    {mob_status_texts + 30, mob_status_texts + 32}, /* "M": "manual_button" */
-    {mob_status_texts + 46, mob_status_texts + 48}, /* "V": "not_in_use" */
-    {mob_status_texts + 59, mob_status_texts + 61}, /* "E": "error" */
+    {enum_text_538 + 4, enum_text_1030}, /* "A": "activated" */
+    {enum_text_599 + 1, enum_text_1031}, /* "T": "test" */
+    {enum_text_705 + 1, enum_text_1032}, /* "M": "manual_button" */
+    {enum_text_546 + 4, enum_text_32}, /* "V": "not_in_use" */
+    {enum_text_430 + 2, enum_text_66 + 10}, /* "E": "error" */
 };
 const nmea_enum_def nmea_mob_status_def = {
-    mob_status_texts, mob_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1029, mob_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char msk_auto_manual_texts[] =
-    "msk_auto_manual\0" "A\0" "automatic\0" "M\0" "manual\0";
 static const nmea_enum_code msk_auto_manual_codes[] = {
-    {msk_auto_manual_texts + 16, msk_auto_manual_texts + 18}, /* "A": "automatic" */
-    {msk_auto_manual_texts + 28, msk_auto_manual_texts + 30}, /* "M": "manual" */
+    {enum_text_538 + 4, enum_text_645 + 11}, /* "A": "automatic" */
+    {enum_text_705 + 1, enum_text_1033 + 9}, /* "M": "manual" */
 };
 const nmea_enum_def nmea_msk_auto_manual_def = {
-    msk_auto_manual_texts, msk_auto_manual_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1033, msk_auto_manual_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char mtk_ack_flag_texts[] =
-    "mtk_ack_flag\0" "0\0" "invalid\0" "1\0" "unsupported\0" "2\0" "failed\0" "3\0" "success\0";
 static const nmea_enum_code mtk_ack_flag_codes[] = {
-    {mtk_ack_flag_texts + 13, mtk_ack_flag_texts + 15}, /* "0": "invalid" */
-    {mtk_ack_flag_texts + 23, mtk_ack_flag_texts + 25}, /* "1": "unsupported" */
-    {mtk_ack_flag_texts + 37, mtk_ack_flag_texts + 39}, /* "2": "failed" */
-    {mtk_ack_flag_texts + 46, mtk_ack_flag_texts + 48}, /* "3": "success" */
+    {enum_text_889 + 9, enum_text_518}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_65}, /* "1": "unsupported" */
+    {enum_text_916 + 5, enum_text_1136 + 10}, /* "2": "failed" */
+    {enum_text_918 + 5, enum_text_62}, /* "3": "success" */
 };
 const nmea_enum_def nmea_mtk_ack_flag_def = {
-    mtk_ack_flag_texts, mtk_ack_flag_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1034, mtk_ack_flag_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char mtk_antenna_status_texts[] =
-    "mtk_antenna_status\0" "1\0" "active_shorted\0" "2\0" "internal\0" "3\0" "active\0";
 static const nmea_enum_code mtk_antenna_status_codes[] = {
-    {mtk_antenna_status_texts + 19, mtk_antenna_status_texts + 21}, /* "1": "active_shorted" */
-    {mtk_antenna_status_texts + 36, mtk_antenna_status_texts + 38}, /* "2": "internal" */
-    {mtk_antenna_status_texts + 47, mtk_antenna_status_texts + 49}, /* "3": "active" */
+    {enum_text_100 + 1, enum_text_1036}, /* "1": "active_shorted" */
+    {enum_text_916 + 5, enum_text_1037}, /* "2": "internal" */
+    {enum_text_918 + 5, enum_text_1448 + 17}, /* "3": "active" */
 };
 const nmea_enum_def nmea_mtk_antenna_status_def = {
-    mtk_antenna_status_texts, mtk_antenna_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1035, mtk_antenna_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char mtk_baud_texts[] =
-    "mtk_baud\0" "0\0" "default\0" "4800\0" "baud_4800\0" "9600\0" "baud_9600\0" "14400\0"
-    "baud_14400\0" "19200\0" "baud_19200\0" "38400\0" "baud_38400\0" "57600\0" "baud_57600\0" "115200\0"
-    "baud_115200\0";
 static const nmea_enum_code mtk_baud_codes[] = {
-    {mtk_baud_texts + 9, mtk_baud_texts + 11}, /* "0": "default" */
-    {mtk_baud_texts + 19, mtk_baud_texts + 24}, /* "4800": "baud_4800" */
-    {mtk_baud_texts + 34, mtk_baud_texts + 39}, /* "9600": "baud_9600" */
-    {mtk_baud_texts + 49, mtk_baud_texts + 55}, /* "14400": "baud_14400" */
-    {mtk_baud_texts + 66, mtk_baud_texts + 72}, /* "19200": "baud_19200" */
-    {mtk_baud_texts + 83, mtk_baud_texts + 89}, /* "38400": "baud_38400" */
-    {mtk_baud_texts + 100, mtk_baud_texts + 106}, /* "57600": "baud_57600" */
-    {mtk_baud_texts + 117, mtk_baud_texts + 124}, /* "115200": "baud_115200" */
+    {enum_text_889 + 9, enum_text_1040}, /* "0": "default" */
+    {enum_text_74 + 5, enum_text_74}, /* "4800": "baud_4800" */
+    {enum_text_76 + 5, enum_text_76}, /* "9600": "baud_9600" */
+    {enum_text_1042 + 5, enum_text_1042}, /* "14400": "baud_14400" */
+    {enum_text_78 + 5, enum_text_78}, /* "19200": "baud_19200" */
+    {enum_text_80 + 5, enum_text_80}, /* "38400": "baud_38400" */
+    {enum_text_82 + 5, enum_text_82}, /* "57600": "baud_57600" */
+    {enum_text_84 + 5, enum_text_84}, /* "115200": "baud_115200" */
 };
 const nmea_enum_def nmea_mtk_baud_def = {
-    mtk_baud_texts, mtk_baud_codes, 8, 1, 6, NMEA_CODES_DIGITS
+    enum_text_1039, mtk_baud_codes, 8, 1, 6, NMEA_CODES_DIGITS
 };
 
-static const char mtk_dgps_mode_texts[] =
-    "mtk_dgps_mode\0" "0\0" "none\0" "1\0" "rtcm\0" "2\0" "sbas\0";
 static const nmea_enum_code mtk_dgps_mode_codes[] = {
-    {mtk_dgps_mode_texts + 14, mtk_dgps_mode_texts + 16}, /* "0": "none" */
-    {mtk_dgps_mode_texts + 21, mtk_dgps_mode_texts + 23}, /* "1": "rtcm" */
-    {mtk_dgps_mode_texts + 28, mtk_dgps_mode_texts + 30}, /* "2": "sbas" */
+    {enum_text_889 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_97}, /* "1": "rtcm" */
+    {enum_text_916 + 5, enum_text_98}, /* "2": "sbas" */
 };
 const nmea_enum_def nmea_mtk_dgps_mode_def = {
-    mtk_dgps_mode_texts, mtk_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1043, mtk_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char mtk_enable_texts[] =
-    "mtk_enable\0" "0\0" "disabled\0" "1\0" "enabled\0";
 static const nmea_enum_code mtk_enable_codes[] = {
-    {mtk_enable_texts + 11, mtk_enable_texts + 13}, /* "0": "disabled" */
-    {mtk_enable_texts + 22, mtk_enable_texts + 24}, /* "1": "enabled" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1076 + 14}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_mtk_enable_def = {
-    mtk_enable_texts, mtk_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1044, mtk_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char mtk_locus_logger_texts[] =
-    "mtk_locus_logger\0" "0\0" "start\0" "1\0" "stop\0";
 static const nmea_enum_code mtk_locus_logger_codes[] = {
-    {mtk_locus_logger_texts + 17, mtk_locus_logger_texts + 19}, /* "0": "start" */
-    {mtk_locus_logger_texts + 25, mtk_locus_logger_texts + 27}, /* "1": "stop" */
+    {enum_text_889 + 9, enum_text_836 + 4}, /* "0": "start" */
+    {enum_text_100 + 1, enum_text_683}, /* "1": "stop" */
 };
 const nmea_enum_def nmea_mtk_locus_logger_def = {
-    mtk_locus_logger_texts, mtk_locus_logger_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1045, mtk_locus_logger_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char mtk_periodic_mode_texts[] =
-    "mtk_periodic_mode\0" "0\0" "normal\0" "1\0" "periodic_backup\0" "2\0" "periodic_standby\0" "4\0"
-    "perpetual_backup\0" "8\0" "alwayslocate_standby\0" "9\0" "alwayslocate_backup\0";
 static const nmea_enum_code mtk_periodic_mode_codes[] = {
-    {mtk_periodic_mode_texts + 18, mtk_periodic_mode_texts + 20}, /* "0": "normal" */
-    {mtk_periodic_mode_texts + 27, mtk_periodic_mode_texts + 29}, /* "1": "periodic_backup" */
-    {mtk_periodic_mode_texts + 45, mtk_periodic_mode_texts + 47}, /* "2": "periodic_standby" */
-    {mtk_periodic_mode_texts + 64, mtk_periodic_mode_texts + 66}, /* "4": "perpetual_backup" */
-    {mtk_periodic_mode_texts + 83, mtk_periodic_mode_texts + 85}, /* "8": "alwayslocate_standby" */
-    {mtk_periodic_mode_texts + 106, mtk_periodic_mode_texts + 108}, /* "9": "alwayslocate_backup" */
+    {enum_text_889 + 9, enum_text_964 + 4}, /* "0": "normal" */
+    {enum_text_100 + 1, enum_text_1048}, /* "1": "periodic_backup" */
+    {enum_text_916 + 5, enum_text_1049}, /* "2": "periodic_standby" */
+    {enum_text_920 + 5, enum_text_1050}, /* "4": "perpetual_backup" */
+    {enum_text_1094 + 6, enum_text_1051}, /* "8": "alwayslocate_standby" */
+    {enum_text_839 + 5, enum_text_1052}, /* "9": "alwayslocate_backup" */
 };
 const nmea_enum_def nmea_mtk_periodic_mode_def = {
-    mtk_periodic_mode_texts, mtk_periodic_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1047, mtk_periodic_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char mtk_sbas_mode_texts[] =
-    "mtk_sbas_mode\0" "0\0" "testing\0" "1\0" "integrity\0";
 static const nmea_enum_code mtk_sbas_mode_codes[] = {
-    {mtk_sbas_mode_texts + 14, mtk_sbas_mode_texts + 16}, /* "0": "testing" */
-    {mtk_sbas_mode_texts + 24, mtk_sbas_mode_texts + 26}, /* "1": "integrity" */
+    {enum_text_889 + 9, enum_text_1054}, /* "0": "testing" */
+    {enum_text_100 + 1, enum_text_942 + 4}, /* "1": "integrity" */
 };
 const nmea_enum_def nmea_mtk_sbas_mode_def = {
-    mtk_sbas_mode_texts, mtk_sbas_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1053, mtk_sbas_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char mtk_standby_type_texts[] =
-    "mtk_standby_type\0" "0\0" "stop\0" "1\0" "sleep\0";
 static const nmea_enum_code mtk_standby_type_codes[] = {
-    {mtk_standby_type_texts + 17, mtk_standby_type_texts + 19}, /* "0": "stop" */
-    {mtk_standby_type_texts + 24, mtk_standby_type_texts + 26}, /* "1": "sleep" */
+    {enum_text_889 + 9, enum_text_683}, /* "0": "stop" */
+    {enum_text_100 + 1, enum_text_1057}, /* "1": "sleep" */
 };
 const nmea_enum_def nmea_mtk_standby_type_def = {
-    mtk_standby_type_texts, mtk_standby_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1056, mtk_standby_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char mtk_system_message_texts[] =
-    "mtk_system_message\0" "000\0" "unknown\0" "001\0" "startup\0" "002\0" "epo_aiding\0" "003\0"
-    "normal_mode\0";
 static const nmea_enum_code mtk_system_message_codes[] = {
-    {mtk_system_message_texts + 19, mtk_system_message_texts + 23}, /* "000": "unknown" */
-    {mtk_system_message_texts + 31, mtk_system_message_texts + 35}, /* "001": "startup" */
-    {mtk_system_message_texts + 43, mtk_system_message_texts + 47}, /* "002": "epo_aiding" */
-    {mtk_system_message_texts + 58, mtk_system_message_texts + 62}, /* "003": "normal_mode" */
+    {enum_text_1059, enum_text_125}, /* "000": "unknown" */
+    {enum_text_1060, enum_text_1061}, /* "001": "startup" */
+    {enum_text_1062, enum_text_1063}, /* "002": "epo_aiding" */
+    {enum_text_1064, enum_text_1065}, /* "003": "normal_mode" */
 };
 const nmea_enum_def nmea_mtk_system_message_def = {
-    mtk_system_message_texts, mtk_system_message_codes, 4, 3, 3, NMEA_CODES_DIGITS
+    enum_text_1058, mtk_system_message_codes, 4, 3, 3, NMEA_CODES_DIGITS
 };
 
-static const char mwv_reference_texts[] =
-    "mwv_reference\0" "R\0" "relative\0" "T\0" "theoretical\0";
 static const nmea_enum_code mwv_reference_codes[] = {
-    {mwv_reference_texts + 14, mwv_reference_texts + 16}, /* "R": "relative" */
-    {mwv_reference_texts + 25, mwv_reference_texts + 27}, /* "T": "theoretical" */
+    {enum_text_412 + 2, enum_text_572}, /* "R": "relative" */
+    {enum_text_599 + 1, enum_text_1067}, /* "T": "theoretical" */
 };
 const nmea_enum_def nmea_mwv_reference_def = {
-    mwv_reference_texts, mwv_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1066, mwv_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char mwv_speed_unit_texts[] =
-    "mwv_speed_unit\0" "K\0" "kmh\0" "M\0" "metres_per_second\0" "N\0" "knots\0" "S\0" "statute_mph\0";
 static const nmea_enum_code mwv_speed_unit_codes[] = {
-    {mwv_speed_unit_texts + 15, mwv_speed_unit_texts + 17}, /* "K": "kmh" */
-    {mwv_speed_unit_texts + 21, mwv_speed_unit_texts + 23}, /* "M": "metres_per_second" */
-    {mwv_speed_unit_texts + 41, mwv_speed_unit_texts + 43}, /* "N": "knots" */
-    {mwv_speed_unit_texts + 49, mwv_speed_unit_texts + 51}, /* "S": "statute_mph" */
+    {enum_text_1422 + 1, enum_text_1069}, /* "K": "kmh" */
+    {enum_text_705 + 1, enum_text_1070}, /* "M": "metres_per_second" */
+    {enum_text_850 + 5, enum_text_1071}, /* "N": "knots" */
+    {enum_text_601 + 1, enum_text_1072}, /* "S": "statute_mph" */
 };
 const nmea_enum_def nmea_mwv_speed_unit_def = {
-    mwv_speed_unit_texts, mwv_speed_unit_codes, 4, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1068, mwv_speed_unit_codes, 4, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char nak_reason_texts[] =
-    "nak_reason\0" "0\0" "query_not_supported\0" "1\0" "formatter_not_supported\0" "2\0"
-    "formatter_not_enabled\0" "3\0" "formatter_temporarily_unavailable\0" "4\0"
-    "query_for_formatter_not_supported\0" "5\0" "access_denied\0" "6\0" "bad_checksum\0" "7\0"
-    "listener_processing_issue\0" "10\0" "cannot_perform\0" "11\0" "bad_data_field\0" "49\0" "other\0";
 static const nmea_enum_code nak_reason_codes[] = {
-    {nak_reason_texts + 11, nak_reason_texts + 13}, /* "0": "query_not_supported" */
-    {nak_reason_texts + 33, nak_reason_texts + 35}, /* "1": "formatter_not_supported" */
-    {nak_reason_texts + 59, nak_reason_texts + 61}, /* "2": "formatter_not_enabled" */
-    {nak_reason_texts + 83, nak_reason_texts + 85}, /* "3": "formatter_temporarily_unavailable" */
-    {nak_reason_texts + 119, nak_reason_texts + 121}, /* "4": "query_for_formatter_not_supported" */
-    {nak_reason_texts + 155, nak_reason_texts + 157}, /* "5": "access_denied" */
-    {nak_reason_texts + 171, nak_reason_texts + 173}, /* "6": "bad_checksum" */
-    {nak_reason_texts + 186, nak_reason_texts + 188}, /* "7": "listener_processing_issue" */
-    {nak_reason_texts + 214, nak_reason_texts + 217}, /* "10": "cannot_perform" */
-    {nak_reason_texts + 232, nak_reason_texts + 235}, /* "11": "bad_data_field" */
-    {nak_reason_texts + 250, nak_reason_texts + 253}, /* "49": "other" */
+    {enum_text_889 + 9, enum_text_1074}, /* "0": "query_not_supported" */
+    {enum_text_100 + 1, enum_text_1078 + 10}, /* "1": "formatter_not_supported" */
+    {enum_text_916 + 5, enum_text_1076}, /* "2": "formatter_not_enabled" */
+    {enum_text_918 + 5, enum_text_1077}, /* "3": "formatter_temporarily_unavailable" */
+    {enum_text_920 + 5, enum_text_1078}, /* "4": "query_for_formatter_not_supported" */
+    {enum_text_842 + 5, enum_text_1079}, /* "5": "access_denied" */
+    {enum_text_202 + 1, enum_text_1080}, /* "6": "bad_checksum" */
+    {enum_text_204 + 1, enum_text_1081}, /* "7": "listener_processing_issue" */
+    {enum_text_889 + 8, enum_text_1082}, /* "10": "cannot_perform" */
+    {enum_text_914 + 4, enum_text_1083}, /* "11": "bad_data_field" */
+    {enum_text_276, enum_text_1279 + 6}, /* "49": "other" */
 };
 const nmea_enum_def nmea_nak_reason_def = {
-    nak_reason_texts, nak_reason_codes, 11, 1, 2, NMEA_CODES_DIGITS
+    enum_text_1073, nak_reason_codes, 11, 1, 2, NMEA_CODES_DIGITS
 };
 
-static const char nav_status_texts[] =
-    "nav_status\0" "S\0" "safe\0" "C\0" "caution\0" "U\0" "unsafe\0" "V\0" "not_valid\0";
 static const nmea_enum_code nav_status_codes[] = {
-    {nav_status_texts + 11, nav_status_texts + 13}, /* "S": "safe" */
-    {nav_status_texts + 18, nav_status_texts + 20}, /* "C": "caution" */
-    {nav_status_texts + 28, nav_status_texts + 30}, /* "U": "unsafe" */
-    {nav_status_texts + 37, nav_status_texts + 39}, /* "V": "not_valid" */
+    {enum_text_601 + 1, enum_text_944 + 2}, /* "S": "safe" */
+    {enum_text_550 + 4, enum_text_370}, /* "C": "caution" */
+    {enum_text_1340 + 2, enum_text_944}, /* "U": "unsafe" */
+    {enum_text_546 + 4, enum_text_956}, /* "V": "not_valid" */
 };
 const nmea_enum_def nmea_nav_status_def = {
-    nav_status_texts, nav_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1435 + 4, nav_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char north_south_texts[] =
-    "north_south\0" "N\0" "north\0" "S\0" "south\0";
 static const nmea_enum_code north_south_codes[] = {
-    {north_south_texts + 12, north_south_texts + 14}, /* "N": "north" */
-    {north_south_texts + 20, north_south_texts + 22}, /* "S": "south" */
+    {enum_text_850 + 5, enum_text_386 + 5}, /* "N": "north" */
+    {enum_text_601 + 1, enum_text_1085 + 6}, /* "S": "south" */
 };
 const nmea_enum_def nmea_north_south_def = {
-    north_south_texts, north_south_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1085, north_south_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char nrm_function_texts[] =
-    "nrm_function\0" "0\0" "request_messages\0" "1\0" "storage_mask\0" "2\0" "printer_mask\0" "3\0"
-    "ins_mask\0";
 static const nmea_enum_code nrm_function_codes[] = {
-    {nrm_function_texts + 13, nrm_function_texts + 15}, /* "0": "request_messages" */
-    {nrm_function_texts + 32, nrm_function_texts + 34}, /* "1": "storage_mask" */
-    {nrm_function_texts + 47, nrm_function_texts + 49}, /* "2": "printer_mask" */
-    {nrm_function_texts + 62, nrm_function_texts + 64}, /* "3": "ins_mask" */
+    {enum_text_889 + 9, enum_text_1087}, /* "0": "request_messages" */
+    {enum_text_100 + 1, enum_text_1088}, /* "1": "storage_mask" */
+    {enum_text_916 + 5, enum_text_1089}, /* "2": "printer_mask" */
+    {enum_text_918 + 5, enum_text_1090}, /* "3": "ins_mask" */
 };
 const nmea_enum_def nmea_nrm_function_def = {
-    nrm_function_texts, nrm_function_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1086, nrm_function_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char nrx_frequency_texts[] =
-    "nrx_frequency\0" "0\0" "not_over_air\0" "1\0" "khz_490\0" "2\0" "khz_518\0" "3\0" "khz_4209_5\0";
 static const nmea_enum_code nrx_frequency_codes[] = {
-    {nrx_frequency_texts + 14, nrx_frequency_texts + 16}, /* "0": "not_over_air" */
-    {nrx_frequency_texts + 29, nrx_frequency_texts + 31}, /* "1": "khz_490" */
-    {nrx_frequency_texts + 39, nrx_frequency_texts + 41}, /* "2": "khz_518" */
-    {nrx_frequency_texts + 49, nrx_frequency_texts + 51}, /* "3": "khz_4209_5" */
+    {enum_text_889 + 9, enum_text_1092}, /* "0": "not_over_air" */
+    {enum_text_100 + 1, enum_text_1093}, /* "1": "khz_490" */
+    {enum_text_916 + 5, enum_text_1094}, /* "2": "khz_518" */
+    {enum_text_918 + 5, enum_text_1095}, /* "3": "khz_4209_5" */
 };
 const nmea_enum_def nmea_nrx_frequency_def = {
-    nrx_frequency_texts, nrx_frequency_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1091, nrx_frequency_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char nsr_integrity_texts[] =
-    "nsr_integrity\0" "P\0" "passed\0" "F\0" "failed\0" "D\0" "doubtful\0" "N\0" "not_available\0";
 static const nmea_enum_code nsr_integrity_codes[] = {
-    {nsr_integrity_texts + 14, nsr_integrity_texts + 16}, /* "P": "passed" */
-    {nsr_integrity_texts + 23, nsr_integrity_texts + 25}, /* "F": "failed" */
-    {nsr_integrity_texts + 32, nsr_integrity_texts + 34}, /* "D": "doubtful" */
-    {nsr_integrity_texts + 43, nsr_integrity_texts + 45}, /* "N": "not_available" */
+    {enum_text_438 + 2, enum_text_7 + 4}, /* "P": "passed" */
+    {enum_text_715 + 1, enum_text_1136 + 10}, /* "F": "failed" */
+    {enum_text_561 + 1, enum_text_1097}, /* "D": "doubtful" */
+    {enum_text_850 + 5, enum_text_246}, /* "N": "not_available" */
 };
 const nmea_enum_def nmea_nsr_integrity_def = {
-    nsr_integrity_texts, nsr_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1096, nsr_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char nsr_plausibility_texts[] =
-    "nsr_plausibility\0" "A\0" "plausible\0" "V\0" "not_plausible\0" "N\0" "not_available\0";
 static const nmea_enum_code nsr_plausibility_codes[] = {
-    {nsr_plausibility_texts + 17, nsr_plausibility_texts + 19}, /* "A": "plausible" */
-    {nsr_plausibility_texts + 29, nsr_plausibility_texts + 31}, /* "V": "not_plausible" */
-    {nsr_plausibility_texts + 45, nsr_plausibility_texts + 47}, /* "N": "not_available" */
+    {enum_text_538 + 4, enum_text_1100 + 4}, /* "A": "plausible" */
+    {enum_text_546 + 4, enum_text_1100}, /* "V": "not_plausible" */
+    {enum_text_850 + 5, enum_text_246}, /* "N": "not_available" */
 };
 const nmea_enum_def nmea_nsr_plausibility_def = {
-    nsr_plausibility_texts, nsr_plausibility_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1098, nsr_plausibility_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char nsr_stw_mode_texts[] =
-    "nsr_stw_mode\0" "W\0" "water_referenced\0" "E\0" "estimated\0" "M\0" "manual\0" "N\0"
-    "not_available\0";
 static const nmea_enum_code nsr_stw_mode_codes[] = {
-    {nsr_stw_mode_texts + 13, nsr_stw_mode_texts + 15}, /* "W": "water_referenced" */
-    {nsr_stw_mode_texts + 32, nsr_stw_mode_texts + 34}, /* "E": "estimated" */
-    {nsr_stw_mode_texts + 44, nsr_stw_mode_texts + 46}, /* "M": "manual" */
-    {nsr_stw_mode_texts + 53, nsr_stw_mode_texts + 55}, /* "N": "not_available" */
+    {enum_text_369, enum_text_1102}, /* "W": "water_referenced" */
+    {enum_text_430 + 2, enum_text_955}, /* "E": "estimated" */
+    {enum_text_705 + 1, enum_text_1033 + 9}, /* "M": "manual" */
+    {enum_text_850 + 5, enum_text_246}, /* "N": "not_available" */
 };
 const nmea_enum_def nmea_nsr_stw_mode_def = {
-    nsr_stw_mode_texts, nsr_stw_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1101, nsr_stw_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char osd_reference_texts[] =
-    "osd_reference\0" "B\0" "bottom_track\0" "M\0" "manual\0" "W\0" "water\0" "R\0" "radar\0" "P\0"
-    "positioning\0";
 static const nmea_enum_code osd_reference_codes[] = {
-    {osd_reference_texts + 14, osd_reference_texts + 16}, /* "B": "bottom_track" */
-    {osd_reference_texts + 29, osd_reference_texts + 31}, /* "M": "manual" */
-    {osd_reference_texts + 38, osd_reference_texts + 40}, /* "W": "water" */
-    {osd_reference_texts + 46, osd_reference_texts + 48}, /* "R": "radar" */
-    {osd_reference_texts + 54, osd_reference_texts + 56}, /* "P": "positioning" */
+    {enum_text_23, enum_text_575}, /* "B": "bottom_track" */
+    {enum_text_705 + 1, enum_text_1033 + 9}, /* "M": "manual" */
+    {enum_text_369, enum_text_207 + 12}, /* "W": "water" */
+    {enum_text_412 + 2, enum_text_1105}, /* "R": "radar" */
+    {enum_text_438 + 2, enum_text_1106}, /* "P": "positioning" */
 };
 const nmea_enum_def nmea_osd_reference_def = {
-    osd_reference_texts, osd_reference_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1103, osd_reference_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char phins_pitch_sense_texts[] =
-    "phins_pitch_sense\0" "M\0" "bow_up\0" "P\0" "bow_down\0";
 static const nmea_enum_code phins_pitch_sense_codes[] = {
-    {phins_pitch_sense_texts + 18, phins_pitch_sense_texts + 20}, /* "M": "bow_up" */
-    {phins_pitch_sense_texts + 27, phins_pitch_sense_texts + 29}, /* "P": "bow_down" */
+    {enum_text_705 + 1, enum_text_1108}, /* "M": "bow_up" */
+    {enum_text_438 + 2, enum_text_1109}, /* "P": "bow_down" */
 };
 const nmea_enum_def nmea_phins_pitch_sense_def = {
-    phins_pitch_sense_texts, phins_pitch_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1107, phins_pitch_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char phins_roll_sense_texts[] =
-    "phins_roll_sense\0" "B\0" "port_down\0" "T\0" "port_up\0";
 static const nmea_enum_code phins_roll_sense_codes[] = {
-    {phins_roll_sense_texts + 17, phins_roll_sense_texts + 19}, /* "B": "port_down" */
-    {phins_roll_sense_texts + 29, phins_roll_sense_texts + 31}, /* "T": "port_up" */
+    {enum_text_23, enum_text_1111}, /* "B": "port_down" */
+    {enum_text_599 + 1, enum_text_1112}, /* "T": "port_up" */
 };
 const nmea_enum_def nmea_phins_roll_sense_def = {
-    phins_roll_sense_texts, phins_roll_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1110, phins_roll_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char pos_mode_texts[] =
-    "pos_mode\0" "A\0" "autonomous\0" "D\0" "differential\0" "E\0" "estimated\0" "F\0" "rtk_float\0"
-    "G\0" "geopath\0" "M\0" "manual_input\0" "N\0" "not_valid\0" "P\0" "precise\0" "R\0"
-    "fixed_or_coarse\0" "S\0" "simulator\0";
 static const nmea_enum_code pos_mode_codes[] = {
-    {pos_mode_texts + 9, pos_mode_texts + 11}, /* "A": "autonomous" */
-    {pos_mode_texts + 22, pos_mode_texts + 24}, /* "D": "differential" */
-    {pos_mode_texts + 37, pos_mode_texts + 39}, /* "E": "estimated" */
-    {pos_mode_texts + 49, pos_mode_texts + 51}, /* "F": "rtk_float" */
-    {pos_mode_texts + 61, pos_mode_texts + 63}, /* "G": "geopath" */
-    {pos_mode_texts + 71, pos_mode_texts + 73}, /* "M": "manual_input" */
-    {pos_mode_texts + 86, pos_mode_texts + 88}, /* "N": "not_valid" */
-    {pos_mode_texts + 98, pos_mode_texts + 100}, /* "P": "precise" */
-    {pos_mode_texts + 108, pos_mode_texts + 110}, /* "R": "fixed_or_coarse" */
-    {pos_mode_texts + 126, pos_mode_texts + 128}, /* "S": "simulator" */
+    {enum_text_538 + 4, enum_text_491}, /* "A": "autonomous" */
+    {enum_text_561 + 1, enum_text_492 + 5}, /* "D": "differential" */
+    {enum_text_430 + 2, enum_text_955}, /* "E": "estimated" */
+    {enum_text_715 + 1, enum_text_493}, /* "F": "rtk_float" */
+    {enum_text_530 + 1, enum_text_948}, /* "G": "geopath" */
+    {enum_text_705 + 1, enum_text_946}, /* "M": "manual_input" */
+    {enum_text_850 + 5, enum_text_956}, /* "N": "not_valid" */
+    {enum_text_438 + 2, enum_text_957}, /* "P": "precise" */
+    {enum_text_412 + 2, enum_text_1114}, /* "R": "fixed_or_coarse" */
+    {enum_text_601 + 1, enum_text_947}, /* "S": "simulator" */
 };
 const nmea_enum_def nmea_pos_mode_def = {
-    pos_mode_texts, pos_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1113, pos_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char pos_sentence_status_texts[] =
-    "pos_sentence_status\0" "R\0" "report\0" "C\0" "command\0";
 static const nmea_enum_code pos_sentence_status_codes[] = {
-    {pos_sentence_status_texts + 20, pos_sentence_status_texts + 22}, /* "R": "report" */
-    {pos_sentence_status_texts + 29, pos_sentence_status_texts + 31}, /* "C": "command" */
+    {enum_text_412 + 2, enum_text_1292 + 4}, /* "R": "report" */
+    {enum_text_550 + 4, enum_text_40 + 8}, /* "C": "command" */
 };
 const nmea_enum_def nmea_pos_sentence_status_def = {
-    pos_sentence_status_texts, pos_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1115, pos_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char prc_operating_location_texts[] =
-    "prc_operating_location\0" "B\0" "bridge\0" "P\0" "port_wing\0" "S\0" "starboard_wing\0" "C\0"
-    "engine_control_room\0" "E\0" "engine_side\0" "W\0" "wing\0";
 static const nmea_enum_code prc_operating_location_codes[] = {
-    {prc_operating_location_texts + 23, prc_operating_location_texts + 25}, /* "B": "bridge" */
-    {prc_operating_location_texts + 32, prc_operating_location_texts + 34}, /* "P": "port_wing" */
-    {prc_operating_location_texts + 44, prc_operating_location_texts + 46}, /* "S": "starboard_wing" */
-    {prc_operating_location_texts + 61, prc_operating_location_texts + 63}, /* "C": "engine_control_room" */
-    {prc_operating_location_texts + 83, prc_operating_location_texts + 85}, /* "E": "engine_side" */
-    {prc_operating_location_texts + 97, prc_operating_location_texts + 99}, /* "W": "wing" */
+    {enum_text_23, enum_text_1117}, /* "B": "bridge" */
+    {enum_text_438 + 2, enum_text_1118}, /* "P": "port_wing" */
+    {enum_text_601 + 1, enum_text_1119}, /* "S": "starboard_wing" */
+    {enum_text_550 + 4, enum_text_1120}, /* "C": "engine_control_room" */
+    {enum_text_430 + 2, enum_text_1121}, /* "E": "engine_side" */
+    {enum_text_369, enum_text_253 + 2}, /* "W": "wing" */
 };
 const nmea_enum_def nmea_prc_operating_location_def = {
-    prc_operating_location_texts, prc_operating_location_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1116, prc_operating_location_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char prc_pitch_mode_texts[] =
-    "prc_pitch_mode\0" "P\0" "percent\0" "D\0" "degrees\0" "V\0" "invalid\0";
 static const nmea_enum_code prc_pitch_mode_codes[] = {
-    {prc_pitch_mode_texts + 15, prc_pitch_mode_texts + 17}, /* "P": "percent" */
-    {prc_pitch_mode_texts + 25, prc_pitch_mode_texts + 27}, /* "D": "degrees" */
-    {prc_pitch_mode_texts + 35, prc_pitch_mode_texts + 37}, /* "V": "invalid" */
+    {enum_text_438 + 2, enum_text_1124}, /* "P": "percent" */
+    {enum_text_561 + 1, enum_text_1125}, /* "D": "degrees" */
+    {enum_text_546 + 4, enum_text_518}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_prc_pitch_mode_def = {
-    prc_pitch_mode_texts, prc_pitch_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1123, prc_pitch_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char prc_rpm_mode_texts[] =
-    "prc_rpm_mode\0" "P\0" "percent\0" "R\0" "rpm\0" "V\0" "invalid\0";
 static const nmea_enum_code prc_rpm_mode_codes[] = {
-    {prc_rpm_mode_texts + 13, prc_rpm_mode_texts + 15}, /* "P": "percent" */
-    {prc_rpm_mode_texts + 23, prc_rpm_mode_texts + 25}, /* "R": "rpm" */
-    {prc_rpm_mode_texts + 29, prc_rpm_mode_texts + 31}, /* "V": "invalid" */
+    {enum_text_438 + 2, enum_text_1124}, /* "P": "percent" */
+    {enum_text_412 + 2, enum_text_1127}, /* "R": "rpm" */
+    {enum_text_546 + 4, enum_text_518}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_prc_rpm_mode_def = {
-    prc_rpm_mode_texts, prc_rpm_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1126, prc_rpm_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char quectel_antenna_power_texts[] =
-    "quectel_antenna_power\0" "0\0" "off\0" "1\0" "on\0" "2\0" "unknown\0";
 static const nmea_enum_code quectel_antenna_power_codes[] = {
-    {quectel_antenna_power_texts + 22, quectel_antenna_power_texts + 24}, /* "0": "off" */
-    {quectel_antenna_power_texts + 28, quectel_antenna_power_texts + 30}, /* "1": "on" */
-    {quectel_antenna_power_texts + 33, quectel_antenna_power_texts + 35}, /* "2": "unknown" */
+    {enum_text_889 + 9, enum_text_857 + 4}, /* "0": "off" */
+    {enum_text_100 + 1, enum_text_182 + 3}, /* "1": "on" */
+    {enum_text_916 + 5, enum_text_125}, /* "2": "unknown" */
 };
 const nmea_enum_def nmea_quectel_antenna_power_def = {
-    quectel_antenna_power_texts, quectel_antenna_power_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1128, quectel_antenna_power_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_antenna_status_texts[] =
-    "quectel_antenna_status\0" "0\0" "unknown\0" "1\0" "normal\0" "2\0" "open_circuit\0" "3\0"
-    "short_circuit\0";
 static const nmea_enum_code quectel_antenna_status_codes[] = {
-    {quectel_antenna_status_texts + 23, quectel_antenna_status_texts + 25}, /* "0": "unknown" */
-    {quectel_antenna_status_texts + 33, quectel_antenna_status_texts + 35}, /* "1": "normal" */
-    {quectel_antenna_status_texts + 42, quectel_antenna_status_texts + 44}, /* "2": "open_circuit" */
-    {quectel_antenna_status_texts + 57, quectel_antenna_status_texts + 59}, /* "3": "short_circuit" */
+    {enum_text_889 + 9, enum_text_125}, /* "0": "unknown" */
+    {enum_text_100 + 1, enum_text_964 + 4}, /* "1": "normal" */
+    {enum_text_916 + 5, enum_text_1130}, /* "2": "open_circuit" */
+    {enum_text_918 + 5, enum_text_1131}, /* "3": "short_circuit" */
 };
 const nmea_enum_def nmea_quectel_antenna_status_def = {
-    quectel_antenna_status_texts, quectel_antenna_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1129, quectel_antenna_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_baud_rate_texts[] =
-    "quectel_baud_rate\0" "9600\0" "baud_9600\0" "115200\0" "baud_115200\0" "230400\0" "baud_230400\0"
-    "460800\0" "baud_460800\0" "921600\0" "baud_921600\0";
 static const nmea_enum_code quectel_baud_rate_codes[] = {
-    {quectel_baud_rate_texts + 18, quectel_baud_rate_texts + 23}, /* "9600": "baud_9600" */
-    {quectel_baud_rate_texts + 33, quectel_baud_rate_texts + 40}, /* "115200": "baud_115200" */
-    {quectel_baud_rate_texts + 52, quectel_baud_rate_texts + 59}, /* "230400": "baud_230400" */
-    {quectel_baud_rate_texts + 71, quectel_baud_rate_texts + 78}, /* "460800": "baud_460800" */
-    {quectel_baud_rate_texts + 90, quectel_baud_rate_texts + 97}, /* "921600": "baud_921600" */
+    {enum_text_76 + 5, enum_text_76}, /* "9600": "baud_9600" */
+    {enum_text_84 + 5, enum_text_84}, /* "115200": "baud_115200" */
+    {enum_text_86 + 5, enum_text_86}, /* "230400": "baud_230400" */
+    {enum_text_88 + 5, enum_text_88}, /* "460800": "baud_460800" */
+    {enum_text_90 + 5, enum_text_90}, /* "921600": "baud_921600" */
 };
 const nmea_enum_def nmea_quectel_baud_rate_def = {
-    quectel_baud_rate_texts, quectel_baud_rate_codes, 5, 4, 6, NMEA_CODES_DIGITS
+    enum_text_1132, quectel_baud_rate_codes, 5, 4, 6, NMEA_CODES_DIGITS
 };
 
-static const char quectel_enable_texts[] =
-    "quectel_enable\0" "0\0" "disabled\0" "1\0" "enabled\0";
 static const nmea_enum_code quectel_enable_codes[] = {
-    {quectel_enable_texts + 15, quectel_enable_texts + 17}, /* "0": "disabled" */
-    {quectel_enable_texts + 26, quectel_enable_texts + 28}, /* "1": "enabled" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1076 + 14}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_quectel_enable_def = {
-    quectel_enable_texts, quectel_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1133, quectel_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char quectel_error_code_texts[] =
-    "quectel_error_code\0" "1\0" "invalid_parameters\0" "2\0" "execution_failed\0" "3\0"
-    "unsupported_command\0";
 static const nmea_enum_code quectel_error_code_codes[] = {
-    {quectel_error_code_texts + 19, quectel_error_code_texts + 21}, /* "1": "invalid_parameters" */
-    {quectel_error_code_texts + 40, quectel_error_code_texts + 42}, /* "2": "execution_failed" */
-    {quectel_error_code_texts + 59, quectel_error_code_texts + 61}, /* "3": "unsupported_command" */
+    {enum_text_100 + 1, enum_text_1135}, /* "1": "invalid_parameters" */
+    {enum_text_916 + 5, enum_text_1136}, /* "2": "execution_failed" */
+    {enum_text_918 + 5, enum_text_1137}, /* "3": "unsupported_command" */
 };
 const nmea_enum_def nmea_quectel_error_code_def = {
-    quectel_error_code_texts, quectel_error_code_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1134, quectel_error_code_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_fix_type_texts[] =
-    "quectel_fix_type\0" "0\0" "no_fix\0" "1\0" "reserved\0" "2\0" "fix_2d\0" "3\0" "fix_3d\0";
 static const nmea_enum_code quectel_fix_type_codes[] = {
-    {quectel_fix_type_texts + 17, quectel_fix_type_texts + 19}, /* "0": "no_fix" */
-    {quectel_fix_type_texts + 26, quectel_fix_type_texts + 28}, /* "1": "reserved" */
-    {quectel_fix_type_texts + 37, quectel_fix_type_texts + 39}, /* "2": "fix_2d" */
-    {quectel_fix_type_texts + 46, quectel_fix_type_texts + 48}, /* "3": "fix_3d" */
+    {enum_text_889 + 9, enum_text_509}, /* "0": "no_fix" */
+    {enum_text_100 + 1, enum_text_1139}, /* "1": "reserved" */
+    {enum_text_916 + 5, enum_text_804}, /* "2": "fix_2d" */
+    {enum_text_918 + 5, enum_text_173}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_quectel_fix_type_def = {
-    quectel_fix_type_texts, quectel_fix_type_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1138, quectel_fix_type_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_flow_control_texts[] =
-    "quectel_flow_control\0" "0\0" "none\0";
 static const nmea_enum_code quectel_flow_control_codes[] = {
-    {quectel_flow_control_texts + 21, quectel_flow_control_texts + 23}, /* "0": "none" */
+    {enum_text_889 + 9, enum_text_96}, /* "0": "none" */
 };
 const nmea_enum_def nmea_quectel_flow_control_def = {
-    quectel_flow_control_texts, quectel_flow_control_codes, 1, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1140, quectel_flow_control_codes, 1, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_geofence_shape_texts[] =
-    "quectel_geofence_shape\0" "0\0" "circle_radius\0" "1\0" "circle_point\0" "2\0" "triangle\0" "3\0"
-    "quadrangle\0";
 static const nmea_enum_code quectel_geofence_shape_codes[] = {
-    {quectel_geofence_shape_texts + 23, quectel_geofence_shape_texts + 25}, /* "0": "circle_radius" */
-    {quectel_geofence_shape_texts + 39, quectel_geofence_shape_texts + 41}, /* "1": "circle_point" */
-    {quectel_geofence_shape_texts + 54, quectel_geofence_shape_texts + 56}, /* "2": "triangle" */
-    {quectel_geofence_shape_texts + 65, quectel_geofence_shape_texts + 67}, /* "3": "quadrangle" */
+    {enum_text_889 + 9, enum_text_1142}, /* "0": "circle_radius" */
+    {enum_text_100 + 1, enum_text_1143}, /* "1": "circle_point" */
+    {enum_text_916 + 5, enum_text_1144}, /* "2": "triangle" */
+    {enum_text_918 + 5, enum_text_1145}, /* "3": "quadrangle" */
 };
 const nmea_enum_def nmea_quectel_geofence_shape_def = {
-    quectel_geofence_shape_texts, quectel_geofence_shape_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1141, quectel_geofence_shape_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_geofence_state_texts[] =
-    "quectel_geofence_state\0" "0\0" "unknown\0" "1\0" "inside\0" "2\0" "outside\0";
 static const nmea_enum_code quectel_geofence_state_codes[] = {
-    {quectel_geofence_state_texts + 23, quectel_geofence_state_texts + 25}, /* "0": "unknown" */
-    {quectel_geofence_state_texts + 33, quectel_geofence_state_texts + 35}, /* "1": "inside" */
-    {quectel_geofence_state_texts + 42, quectel_geofence_state_texts + 44}, /* "2": "outside" */
+    {enum_text_889 + 9, enum_text_125}, /* "0": "unknown" */
+    {enum_text_100 + 1, enum_text_1147}, /* "1": "inside" */
+    {enum_text_916 + 5, enum_text_1148}, /* "2": "outside" */
 };
 const nmea_enum_def nmea_quectel_geofence_state_def = {
-    quectel_geofence_state_texts, quectel_geofence_state_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1146, quectel_geofence_state_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_geosep_mode_texts[] =
-    "quectel_geosep_mode\0" "0\0" "auto\0" "1\0" "manual\0";
 static const nmea_enum_code quectel_geosep_mode_codes[] = {
-    {quectel_geosep_mode_texts + 20, quectel_geosep_mode_texts + 22}, /* "0": "auto" */
-    {quectel_geosep_mode_texts + 27, quectel_geosep_mode_texts + 29}, /* "1": "manual" */
+    {enum_text_889 + 9, enum_text_568}, /* "0": "auto" */
+    {enum_text_100 + 1, enum_text_1033 + 9}, /* "1": "manual" */
 };
 const nmea_enum_def nmea_quectel_geosep_mode_def = {
-    quectel_geosep_mode_texts, quectel_geosep_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1149, quectel_geosep_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_gsv_talker_texts[] =
-    "quectel_gsv_talker\0" "0\0" "by_constellation\0" "1\0" "same_as_main\0";
 static const nmea_enum_code quectel_gsv_talker_codes[] = {
-    {quectel_gsv_talker_texts + 19, quectel_gsv_talker_texts + 21}, /* "0": "by_constellation" */
-    {quectel_gsv_talker_texts + 38, quectel_gsv_talker_texts + 40}, /* "1": "same_as_main" */
+    {enum_text_889 + 9, enum_text_1151}, /* "0": "by_constellation" */
+    {enum_text_100 + 1, enum_text_1152}, /* "1": "same_as_main" */
 };
 const nmea_enum_def nmea_quectel_gsv_talker_def = {
-    quectel_gsv_talker_texts, quectel_gsv_talker_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1150, quectel_gsv_talker_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_heading_quality_texts[] =
-    "quectel_heading_quality\0" "0\0" "invalid\0" "1\0" "autonomous\0" "2\0" "differential\0" "3\0"
-    "pps\0" "4\0" "rtk_fixed\0" "5\0" "rtk_float\0";
 static const nmea_enum_code quectel_heading_quality_codes[] = {
-    {quectel_heading_quality_texts + 24, quectel_heading_quality_texts + 26}, /* "0": "invalid" */
-    {quectel_heading_quality_texts + 34, quectel_heading_quality_texts + 36}, /* "1": "autonomous" */
-    {quectel_heading_quality_texts + 47, quectel_heading_quality_texts + 49}, /* "2": "differential" */
-    {quectel_heading_quality_texts + 62, quectel_heading_quality_texts + 64}, /* "3": "pps" */
-    {quectel_heading_quality_texts + 68, quectel_heading_quality_texts + 70}, /* "4": "rtk_fixed" */
-    {quectel_heading_quality_texts + 80, quectel_heading_quality_texts + 82}, /* "5": "rtk_float" */
+    {enum_text_889 + 9, enum_text_518}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_491}, /* "1": "autonomous" */
+    {enum_text_916 + 5, enum_text_492 + 5}, /* "2": "differential" */
+    {enum_text_918 + 5, enum_text_512}, /* "3": "pps" */
+    {enum_text_920 + 5, enum_text_494}, /* "4": "rtk_fixed" */
+    {enum_text_842 + 5, enum_text_493}, /* "5": "rtk_float" */
 };
 const nmea_enum_def nmea_quectel_heading_quality_def = {
-    quectel_heading_quality_texts, quectel_heading_quality_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1153, quectel_heading_quality_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_parity_texts[] =
-    "quectel_parity\0" "0\0" "none\0" "1\0" "odd\0" "2\0" "even\0" "3\0" "mark\0" "4\0" "space\0";
 static const nmea_enum_code quectel_parity_codes[] = {
-    {quectel_parity_texts + 15, quectel_parity_texts + 17}, /* "0": "none" */
-    {quectel_parity_texts + 22, quectel_parity_texts + 24}, /* "1": "odd" */
-    {quectel_parity_texts + 28, quectel_parity_texts + 30}, /* "2": "even" */
-    {quectel_parity_texts + 35, quectel_parity_texts + 37}, /* "3": "mark" */
-    {quectel_parity_texts + 42, quectel_parity_texts + 44}, /* "4": "space" */
+    {enum_text_889 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_1155}, /* "1": "odd" */
+    {enum_text_916 + 5, enum_text_1156}, /* "2": "even" */
+    {enum_text_918 + 5, enum_text_1157}, /* "3": "mark" */
+    {enum_text_920 + 5, enum_text_1158}, /* "4": "space" */
 };
 const nmea_enum_def nmea_quectel_parity_def = {
-    quectel_parity_texts, quectel_parity_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1154, quectel_parity_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_port_type_texts[] =
-    "quectel_port_type\0" "1\0" "uart\0";
 static const nmea_enum_code quectel_port_type_codes[] = {
-    {quectel_port_type_texts + 18, quectel_port_type_texts + 20}, /* "1": "uart" */
+    {enum_text_100 + 1, enum_text_1160}, /* "1": "uart" */
 };
 const nmea_enum_def nmea_quectel_port_type_def = {
-    quectel_port_type_texts, quectel_port_type_codes, 1, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1159, quectel_port_type_codes, 1, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_pps_mode_texts[] =
-    "quectel_pps_mode\0" "1\0" "always\0" "2\0" "fix_only\0";
 static const nmea_enum_code quectel_pps_mode_codes[] = {
-    {quectel_pps_mode_texts + 17, quectel_pps_mode_texts + 19}, /* "1": "always" */
-    {quectel_pps_mode_texts + 26, quectel_pps_mode_texts + 28}, /* "2": "fix_only" */
+    {enum_text_100 + 1, enum_text_175}, /* "1": "always" */
+    {enum_text_916 + 5, enum_text_1162}, /* "2": "fix_only" */
 };
 const nmea_enum_def nmea_quectel_pps_mode_def = {
-    quectel_pps_mode_texts, quectel_pps_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1161, quectel_pps_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_pps_polarity_texts[] =
-    "quectel_pps_polarity\0" "0\0" "low\0" "1\0" "high\0";
 static const nmea_enum_code quectel_pps_polarity_codes[] = {
-    {quectel_pps_polarity_texts + 21, quectel_pps_polarity_texts + 23}, /* "0": "low" */
-    {quectel_pps_polarity_texts + 27, quectel_pps_polarity_texts + 29}, /* "1": "high" */
+    {enum_text_889 + 9, enum_text_685 + 7}, /* "0": "low" */
+    {enum_text_100 + 1, enum_text_356 + 8}, /* "1": "high" */
 };
 const nmea_enum_def nmea_quectel_pps_polarity_def = {
-    quectel_pps_polarity_texts, quectel_pps_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1163, quectel_pps_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char quectel_receiver_mode_texts[] =
-    "quectel_receiver_mode\0" "0\0" "unknown\0" "1\0" "rover\0" "2\0" "base\0";
 static const nmea_enum_code quectel_receiver_mode_codes[] = {
-    {quectel_receiver_mode_texts + 22, quectel_receiver_mode_texts + 24}, /* "0": "unknown" */
-    {quectel_receiver_mode_texts + 32, quectel_receiver_mode_texts + 34}, /* "1": "rover" */
-    {quectel_receiver_mode_texts + 40, quectel_receiver_mode_texts + 42}, /* "2": "base" */
+    {enum_text_889 + 9, enum_text_125}, /* "0": "unknown" */
+    {enum_text_100 + 1, enum_text_1165}, /* "1": "rover" */
+    {enum_text_916 + 5, enum_text_1166}, /* "2": "base" */
 };
 const nmea_enum_def nmea_quectel_receiver_mode_def = {
-    quectel_receiver_mode_texts, quectel_receiver_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1164, quectel_receiver_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_rtcm_eph_mode_texts[] =
-    "quectel_rtcm_eph_mode\0" "0\0" "disabled\0" "1\0" "on_update\0" "2\0" "on_update_and_interval\0"
-    "3\0" "every_epoch\0";
 static const nmea_enum_code quectel_rtcm_eph_mode_codes[] = {
-    {quectel_rtcm_eph_mode_texts + 22, quectel_rtcm_eph_mode_texts + 24}, /* "0": "disabled" */
-    {quectel_rtcm_eph_mode_texts + 33, quectel_rtcm_eph_mode_texts + 35}, /* "1": "on_update" */
-    {quectel_rtcm_eph_mode_texts + 45, quectel_rtcm_eph_mode_texts + 47}, /* "2": "on_update_and_interval" */
-    {quectel_rtcm_eph_mode_texts + 70, quectel_rtcm_eph_mode_texts + 72}, /* "3": "every_epoch" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1168}, /* "1": "on_update" */
+    {enum_text_916 + 5, enum_text_1169}, /* "2": "on_update_and_interval" */
+    {enum_text_918 + 5, enum_text_1170}, /* "3": "every_epoch" */
 };
 const nmea_enum_def nmea_quectel_rtcm_eph_mode_def = {
-    quectel_rtcm_eph_mode_texts, quectel_rtcm_eph_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1167, quectel_rtcm_eph_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_rtk_diff_mode_texts[] =
-    "quectel_rtk_diff_mode\0" "0\0" "disabled\0" "1\0" "auto\0" "2\0" "rtd_only\0";
 static const nmea_enum_code quectel_rtk_diff_mode_codes[] = {
-    {quectel_rtk_diff_mode_texts + 22, quectel_rtk_diff_mode_texts + 24}, /* "0": "disabled" */
-    {quectel_rtk_diff_mode_texts + 33, quectel_rtk_diff_mode_texts + 35}, /* "1": "auto" */
-    {quectel_rtk_diff_mode_texts + 40, quectel_rtk_diff_mode_texts + 42}, /* "2": "rtd_only" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_568}, /* "1": "auto" */
+    {enum_text_916 + 5, enum_text_1172}, /* "2": "rtd_only" */
 };
 const nmea_enum_def nmea_quectel_rtk_diff_mode_def = {
-    quectel_rtk_diff_mode_texts, quectel_rtk_diff_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1171, quectel_rtk_diff_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_rtk_rel_mode_texts[] =
-    "quectel_rtk_rel_mode\0" "1\0" "absolute\0" "2\0" "relative\0";
 static const nmea_enum_code quectel_rtk_rel_mode_codes[] = {
-    {quectel_rtk_rel_mode_texts + 21, quectel_rtk_rel_mode_texts + 23}, /* "1": "absolute" */
-    {quectel_rtk_rel_mode_texts + 32, quectel_rtk_rel_mode_texts + 34}, /* "2": "relative" */
+    {enum_text_100 + 1, enum_text_1174}, /* "1": "absolute" */
+    {enum_text_916 + 5, enum_text_572}, /* "2": "relative" */
 };
 const nmea_enum_def nmea_quectel_rtk_rel_mode_def = {
-    quectel_rtk_rel_mode_texts, quectel_rtk_rel_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1173, quectel_rtk_rel_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_rtk_source_type_texts[] =
-    "quectel_rtk_source_type\0" "0\0" "auto\0" "1\0" "normal\0" "2\0" "wide_lane\0";
 static const nmea_enum_code quectel_rtk_source_type_codes[] = {
-    {quectel_rtk_source_type_texts + 24, quectel_rtk_source_type_texts + 26}, /* "0": "auto" */
-    {quectel_rtk_source_type_texts + 31, quectel_rtk_source_type_texts + 33}, /* "1": "normal" */
-    {quectel_rtk_source_type_texts + 40, quectel_rtk_source_type_texts + 42}, /* "2": "wide_lane" */
+    {enum_text_889 + 9, enum_text_568}, /* "0": "auto" */
+    {enum_text_100 + 1, enum_text_964 + 4}, /* "1": "normal" */
+    {enum_text_916 + 5, enum_text_1176}, /* "2": "wide_lane" */
 };
 const nmea_enum_def nmea_quectel_rtk_source_type_def = {
-    quectel_rtk_source_type_texts, quectel_rtk_source_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1175, quectel_rtk_source_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_solution_type_texts[] =
-    "quectel_solution_type\0" "0\0" "no_fix\0" "1\0" "single\0" "2\0" "sbas\0" "5\0" "dgnss\0" "8\0"
-    "rtk_float\0" "12\0" "rtk_fixed\0";
 static const nmea_enum_code quectel_solution_type_codes[] = {
-    {quectel_solution_type_texts + 22, quectel_solution_type_texts + 24}, /* "0": "no_fix" */
-    {quectel_solution_type_texts + 31, quectel_solution_type_texts + 33}, /* "1": "single" */
-    {quectel_solution_type_texts + 40, quectel_solution_type_texts + 42}, /* "2": "sbas" */
-    {quectel_solution_type_texts + 47, quectel_solution_type_texts + 49}, /* "5": "dgnss" */
-    {quectel_solution_type_texts + 55, quectel_solution_type_texts + 57}, /* "8": "rtk_float" */
-    {quectel_solution_type_texts + 67, quectel_solution_type_texts + 70}, /* "12": "rtk_fixed" */
+    {enum_text_889 + 9, enum_text_509}, /* "0": "no_fix" */
+    {enum_text_100 + 1, enum_text_1178}, /* "1": "single" */
+    {enum_text_916 + 5, enum_text_98}, /* "2": "sbas" */
+    {enum_text_842 + 5, enum_text_1179}, /* "5": "dgnss" */
+    {enum_text_1094 + 6, enum_text_493}, /* "8": "rtk_float" */
+    {enum_text_916 + 4, enum_text_494}, /* "12": "rtk_fixed" */
 };
 const nmea_enum_def nmea_quectel_solution_type_def = {
-    quectel_solution_type_texts, quectel_solution_type_codes, 6, 1, 2, NMEA_CODES_DIGITS
+    enum_text_1177, quectel_solution_type_codes, 6, 1, 2, NMEA_CODES_DIGITS
 };
 
-static const char quectel_stop_bits_texts[] =
-    "quectel_stop_bits\0" "1\0" "one\0" "2\0" "two\0";
 static const nmea_enum_code quectel_stop_bits_codes[] = {
-    {quectel_stop_bits_texts + 18, quectel_stop_bits_texts + 20}, /* "1": "one" */
-    {quectel_stop_bits_texts + 24, quectel_stop_bits_texts + 26}, /* "2": "two" */
+    {enum_text_100 + 1, enum_text_96 + 1}, /* "1": "one" */
+    {enum_text_916 + 5, enum_text_236}, /* "2": "two" */
 };
 const nmea_enum_def nmea_quectel_stop_bits_def = {
-    quectel_stop_bits_texts, quectel_stop_bits_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1180, quectel_stop_bits_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_svin_mode_texts[] =
-    "quectel_svin_mode\0" "0\0" "disabled\0" "1\0" "survey_in\0" "2\0" "fixed\0";
 static const nmea_enum_code quectel_svin_mode_codes[] = {
-    {quectel_svin_mode_texts + 18, quectel_svin_mode_texts + 20}, /* "0": "disabled" */
-    {quectel_svin_mode_texts + 29, quectel_svin_mode_texts + 31}, /* "1": "survey_in" */
-    {quectel_svin_mode_texts + 41, quectel_svin_mode_texts + 43}, /* "2": "fixed" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1182}, /* "1": "survey_in" */
+    {enum_text_916 + 5, enum_text_494 + 4}, /* "2": "fixed" */
 };
 const nmea_enum_def nmea_quectel_svin_mode_def = {
-    quectel_svin_mode_texts, quectel_svin_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1181, quectel_svin_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_svin_valid_texts[] =
-    "quectel_svin_valid\0" "0\0" "invalid\0" "1\0" "in_progress\0" "2\0" "valid\0";
 static const nmea_enum_code quectel_svin_valid_codes[] = {
-    {quectel_svin_valid_texts + 19, quectel_svin_valid_texts + 21}, /* "0": "invalid" */
-    {quectel_svin_valid_texts + 29, quectel_svin_valid_texts + 31}, /* "1": "in_progress" */
-    {quectel_svin_valid_texts + 43, quectel_svin_valid_texts + 45}, /* "2": "valid" */
+    {enum_text_889 + 9, enum_text_518}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_1185}, /* "1": "in_progress" */
+    {enum_text_916 + 5, enum_text_518 + 2}, /* "2": "valid" */
 };
 const nmea_enum_def nmea_quectel_svin_valid_def = {
-    quectel_svin_valid_texts, quectel_svin_valid_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1184, quectel_svin_valid_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_text_id_texts[] =
-    "quectel_text_id\0" "01\0" "notice\0" "02\0" "warning\0" "03\0" "error\0";
 static const nmea_enum_code quectel_text_id_codes[] = {
-    {quectel_text_id_texts + 16, quectel_text_id_texts + 19}, /* "01": "notice" */
-    {quectel_text_id_texts + 26, quectel_text_id_texts + 29}, /* "02": "warning" */
-    {quectel_text_id_texts + 37, quectel_text_id_texts + 40}, /* "03": "error" */
+    {enum_text_1060 + 1, enum_text_1187}, /* "01": "notice" */
+    {enum_text_1062 + 1, enum_text_953 + 4}, /* "02": "warning" */
+    {enum_text_1064 + 1, enum_text_66 + 10}, /* "03": "error" */
 };
 const nmea_enum_def nmea_quectel_text_id_def = {
-    quectel_text_id_texts, quectel_text_id_codes, 3, 2, 2, NMEA_CODES_DIGITS
+    enum_text_1186, quectel_text_id_codes, 3, 2, 2, NMEA_CODES_DIGITS
 };
 
-static const char quectel_time_reference_texts[] =
-    "quectel_time_reference\0" "1\0" "gps\0" "4\0" "reserved\0";
 static const nmea_enum_code quectel_time_reference_codes[] = {
-    {quectel_time_reference_texts + 23, quectel_time_reference_texts + 25}, /* "1": "gps" */
-    {quectel_time_reference_texts + 29, quectel_time_reference_texts + 31}, /* "4": "reserved" */
+    {enum_text_100 + 1, enum_text_1391 + 8}, /* "1": "gps" */
+    {enum_text_920 + 5, enum_text_1139}, /* "4": "reserved" */
 };
 const nmea_enum_def nmea_quectel_time_reference_def = {
-    quectel_time_reference_texts, quectel_time_reference_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1188, quectel_time_reference_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char quectel_time_status_texts[] =
-    "quectel_time_status\0" "0\0" "invalid\0" "1\0" "valid\0";
 static const nmea_enum_code quectel_time_status_codes[] = {
-    {quectel_time_status_texts + 20, quectel_time_status_texts + 22}, /* "0": "invalid" */
-    {quectel_time_status_texts + 30, quectel_time_status_texts + 32}, /* "1": "valid" */
+    {enum_text_889 + 9, enum_text_518}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_518 + 2}, /* "1": "valid" */
 };
 const nmea_enum_def nmea_quectel_time_status_def = {
-    quectel_time_status_texts, quectel_time_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1189, quectel_time_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char quectel_uart_index_texts[] =
-    "quectel_uart_index\0" "1\0" "uart1\0" "2\0" "uart2\0" "3\0" "uart3\0";
 static const nmea_enum_code quectel_uart_index_codes[] = {
-    {quectel_uart_index_texts + 19, quectel_uart_index_texts + 21}, /* "1": "uart1" */
-    {quectel_uart_index_texts + 27, quectel_uart_index_texts + 29}, /* "2": "uart2" */
-    {quectel_uart_index_texts + 35, quectel_uart_index_texts + 37}, /* "3": "uart3" */
+    {enum_text_100 + 1, enum_text_1191}, /* "1": "uart1" */
+    {enum_text_916 + 5, enum_text_1192}, /* "2": "uart2" */
+    {enum_text_918 + 5, enum_text_1193}, /* "3": "uart3" */
 };
 const nmea_enum_def nmea_quectel_uart_index_def = {
-    quectel_uart_index_texts, quectel_uart_index_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1190, quectel_uart_index_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char rlm_message_code_texts[] =
-    "rlm_message_code\0" "0\0" "reserved_0\0" "1\0" "acknowledgement\0" "2\0" "command\0" "3\0"
-    "message\0" "4\0" "reserved_4\0" "5\0" "reserved_5\0" "6\0" "reserved_6\0" "7\0" "reserved_7\0"
-    "8\0" "reserved_8\0" "9\0" "reserved_9\0" "A\0" "reserved_a\0" "B\0" "reserved_b\0" "C\0"
-    "reserved_c\0" "D\0" "reserved_d\0" "E\0" "reserved_e\0" "F\0" "test\0";
 static const nmea_enum_code rlm_message_code_codes[] = {
-    {rlm_message_code_texts + 17, rlm_message_code_texts + 19}, /* "0": "reserved_0" */
-    {rlm_message_code_texts + 30, rlm_message_code_texts + 32}, /* "1": "acknowledgement" */
-    {rlm_message_code_texts + 48, rlm_message_code_texts + 50}, /* "2": "command" */
-    {rlm_message_code_texts + 58, rlm_message_code_texts + 60}, /* "3": "message" */
-    {rlm_message_code_texts + 68, rlm_message_code_texts + 70}, /* "4": "reserved_4" */
-    {rlm_message_code_texts + 81, rlm_message_code_texts + 83}, /* "5": "reserved_5" */
-    {rlm_message_code_texts + 94, rlm_message_code_texts + 96}, /* "6": "reserved_6" */
-    {rlm_message_code_texts + 107, rlm_message_code_texts + 109}, /* "7": "reserved_7" */
-    {rlm_message_code_texts + 120, rlm_message_code_texts + 122}, /* "8": "reserved_8" */
-    {rlm_message_code_texts + 133, rlm_message_code_texts + 135}, /* "9": "reserved_9" */
-    {rlm_message_code_texts + 146, rlm_message_code_texts + 148}, /* "A": "reserved_a" */
-    {rlm_message_code_texts + 159, rlm_message_code_texts + 161}, /* "B": "reserved_b" */
-    {rlm_message_code_texts + 172, rlm_message_code_texts + 174}, /* "C": "reserved_c" */
-    {rlm_message_code_texts + 185, rlm_message_code_texts + 187}, /* "D": "reserved_d" */
-    {rlm_message_code_texts + 198, rlm_message_code_texts + 200}, /* "E": "reserved_e" */
-    {rlm_message_code_texts + 211, rlm_message_code_texts + 213}, /* "F": "test" */
+    {enum_text_889 + 9, enum_text_1195}, /* "0": "reserved_0" */
+    {enum_text_100 + 1, enum_text_12 + 3}, /* "1": "acknowledgement" */
+    {enum_text_916 + 5, enum_text_40 + 8}, /* "2": "command" */
+    {enum_text_918 + 5, enum_text_99 + 10}, /* "3": "message" */
+    {enum_text_920 + 5, enum_text_1197}, /* "4": "reserved_4" */
+    {enum_text_842 + 5, enum_text_1198}, /* "5": "reserved_5" */
+    {enum_text_202 + 1, enum_text_1199}, /* "6": "reserved_6" */
+    {enum_text_204 + 1, enum_text_1200}, /* "7": "reserved_7" */
+    {enum_text_1094 + 6, enum_text_1201}, /* "8": "reserved_8" */
+    {enum_text_839 + 5, enum_text_1202}, /* "9": "reserved_9" */
+    {enum_text_538 + 4, enum_text_1203}, /* "A": "reserved_a" */
+    {enum_text_23, enum_text_1204}, /* "B": "reserved_b" */
+    {enum_text_550 + 4, enum_text_1205}, /* "C": "reserved_c" */
+    {enum_text_561 + 1, enum_text_1206}, /* "D": "reserved_d" */
+    {enum_text_430 + 2, enum_text_1207}, /* "E": "reserved_e" */
+    {enum_text_715 + 1, enum_text_1031}, /* "F": "test" */
 };
 const nmea_enum_def nmea_rlm_message_code_def = {
-    rlm_message_code_texts, rlm_message_code_codes, 16, 1, 1, NMEA_CODES_ALNUM
+    enum_text_1194, rlm_message_code_codes, 16, 1, 1, NMEA_CODES_ALNUM
 };
 
-static const char rmb_arrival_status_texts[] =
-    "rmb_arrival_status\0" "A\0" "arrived\0" "V\0" "not_arrived\0";
 static const nmea_enum_code rmb_arrival_status_codes[] = {
-    {rmb_arrival_status_texts + 19, rmb_arrival_status_texts + 21}, /* "A": "arrived" */
-    {rmb_arrival_status_texts + 29, rmb_arrival_status_texts + 31}, /* "V": "not_arrived" */
+    {enum_text_538 + 4, enum_text_1210 + 4}, /* "A": "arrived" */
+    {enum_text_546 + 4, enum_text_1210}, /* "V": "not_arrived" */
 };
 const nmea_enum_def nmea_rmb_arrival_status_def = {
-    rmb_arrival_status_texts, rmb_arrival_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1208, rmb_arrival_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char rmc_mag_var_dir_texts[] =
-    "rmc_mag_var_dir\0" "E\0" "east\0" "W\0" "west\0";
 static const nmea_enum_code rmc_mag_var_dir_codes[] = {
-    {rmc_mag_var_dir_texts + 16, rmc_mag_var_dir_texts + 18}, /* "E": "east" */
-    {rmc_mag_var_dir_texts + 23, rmc_mag_var_dir_texts + 25}, /* "W": "west" */
+    {enum_text_430 + 2, enum_text_1285 + 9}, /* "E": "east" */
+    {enum_text_369, enum_text_674 + 5}, /* "W": "west" */
 };
 const nmea_enum_def nmea_rmc_mag_var_dir_def = {
-    rmc_mag_var_dir_texts, rmc_mag_var_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1211, rmc_mag_var_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char rpm_source_texts[] =
-    "rpm_source\0" "S\0" "shaft\0" "E\0" "engine\0";
 static const nmea_enum_code rpm_source_codes[] = {
-    {rpm_source_texts + 11, rpm_source_texts + 13}, /* "S": "shaft" */
-    {rpm_source_texts + 19, rpm_source_texts + 21}, /* "E": "engine" */
+    {enum_text_601 + 1, enum_text_1213}, /* "S": "shaft" */
+    {enum_text_430 + 2, enum_text_1436 + 10}, /* "E": "engine" */
 };
 const nmea_enum_def nmea_rpm_source_def = {
-    rpm_source_texts, rpm_source_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1212, rpm_source_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char rrt_application_status_texts[] =
-    "rrt_application_status\0" "A\0" "accepted\0" "V\0" "rejected\0" "P\0" "pending\0" "N\0"
-    "not_applicable\0";
 static const nmea_enum_code rrt_application_status_codes[] = {
-    {rrt_application_status_texts + 23, rrt_application_status_texts + 25}, /* "A": "accepted" */
-    {rrt_application_status_texts + 34, rrt_application_status_texts + 36}, /* "V": "rejected" */
-    {rrt_application_status_texts + 45, rrt_application_status_texts + 47}, /* "P": "pending" */
-    {rrt_application_status_texts + 55, rrt_application_status_texts + 57}, /* "N": "not_applicable" */
+    {enum_text_538 + 4, enum_text_1216}, /* "A": "accepted" */
+    {enum_text_546 + 4, enum_text_1217}, /* "V": "rejected" */
+    {enum_text_438 + 2, enum_text_1218}, /* "P": "pending" */
+    {enum_text_850 + 5, enum_text_1219}, /* "N": "not_applicable" */
 };
 const nmea_enum_def nmea_rrt_application_status_def = {
-    rrt_application_status_texts, rrt_application_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1215, rrt_application_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char rrt_file_status_texts[] =
-    "rrt_file_status\0" "A\0" "received\0" "E\0" "error\0";
 static const nmea_enum_code rrt_file_status_codes[] = {
-    {rrt_file_status_texts + 16, rrt_file_status_texts + 18}, /* "A": "received" */
-    {rrt_file_status_texts + 27, rrt_file_status_texts + 29}, /* "E": "error" */
+    {enum_text_538 + 4, enum_text_1310 + 5}, /* "A": "received" */
+    {enum_text_430 + 2, enum_text_66 + 10}, /* "E": "error" */
 };
 const nmea_enum_def nmea_rrt_file_status_def = {
-    rrt_file_status_texts, rrt_file_status_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1220, rrt_file_status_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char rrt_transfer_type_texts[] =
-    "rrt_transfer_type\0" "M\0" "monitored\0" "A\0" "alternate\0" "Q\0" "query\0";
 static const nmea_enum_code rrt_transfer_type_codes[] = {
-    {rrt_transfer_type_texts + 18, rrt_transfer_type_texts + 20}, /* "M": "monitored" */
-    {rrt_transfer_type_texts + 30, rrt_transfer_type_texts + 32}, /* "A": "alternate" */
-    {rrt_transfer_type_texts + 42, rrt_transfer_type_texts + 44}, /* "Q": "query" */
+    {enum_text_705 + 1, enum_text_1222}, /* "M": "monitored" */
+    {enum_text_538 + 4, enum_text_1223}, /* "A": "alternate" */
+    {enum_text_55, enum_text_654}, /* "Q": "query" */
 };
 const nmea_enum_def nmea_rrt_transfer_type_def = {
-    rrt_transfer_type_texts, rrt_transfer_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1221, rrt_transfer_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char rsd_display_rotation_texts[] =
-    "rsd_display_rotation\0" "C\0" "course_up\0" "H\0" "head_up\0" "N\0" "north_up\0";
 static const nmea_enum_code rsd_display_rotation_codes[] = {
-    {rsd_display_rotation_texts + 21, rsd_display_rotation_texts + 23}, /* "C": "course_up" */
-    {rsd_display_rotation_texts + 33, rsd_display_rotation_texts + 35}, /* "H": "head_up" */
-    {rsd_display_rotation_texts + 43, rsd_display_rotation_texts + 45}, /* "N": "north_up" */
+    {enum_text_550 + 4, enum_text_1225}, /* "C": "course_up" */
+    {enum_text_701 + 1, enum_text_1226}, /* "H": "head_up" */
+    {enum_text_850 + 5, enum_text_1227}, /* "N": "north_up" */
 };
 const nmea_enum_def nmea_rsd_display_rotation_def = {
-    rsd_display_rotation_texts, rsd_display_rotation_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1224, rsd_display_rotation_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char rte_mode_texts[] =
-    "rte_mode\0" "c\0" "complete\0" "w\0" "working\0";
 static const nmea_enum_code rte_mode_codes[] = {
-    {rte_mode_texts + 9, rte_mode_texts + 11}, /* "c": "complete" */
-    {rte_mode_texts + 20, rte_mode_texts + 22}, /* "w": "working" */
+    {enum_text_551 + 4, enum_text_1282 + 2}, /* "c": "complete" */
+    {enum_text_685 + 9, enum_text_1231}, /* "w": "working" */
 };
 const nmea_enum_def nmea_rte_mode_def = {
-    rte_mode_texts, rte_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1228, rte_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char seapath_quality_texts[] =
-    "seapath_quality\0" "0\0" "normal\0" "1\0" "reduced\0" "2\0" "invalid\0";
 static const nmea_enum_code seapath_quality_codes[] = {
-    {seapath_quality_texts + 16, seapath_quality_texts + 18}, /* "0": "normal" */
-    {seapath_quality_texts + 25, seapath_quality_texts + 27}, /* "1": "reduced" */
-    {seapath_quality_texts + 35, seapath_quality_texts + 37}, /* "2": "invalid" */
+    {enum_text_889 + 9, enum_text_964 + 4}, /* "0": "normal" */
+    {enum_text_100 + 1, enum_text_1233}, /* "1": "reduced" */
+    {enum_text_916 + 5, enum_text_518}, /* "2": "invalid" */
 };
 const nmea_enum_def nmea_seapath_quality_def = {
-    seapath_quality_texts, seapath_quality_codes, 3, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1232, seapath_quality_codes, 3, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char septentrio_base_motion_texts[] =
-    "septentrio_base_motion\0" "0\0" "static\0" "1\0" "moving\0";
 static const nmea_enum_code septentrio_base_motion_codes[] = {
-    {septentrio_base_motion_texts + 23, septentrio_base_motion_texts + 25}, /* "0": "static" */
-    {septentrio_base_motion_texts + 32, septentrio_base_motion_texts + 34}, /* "1": "moving" */
+    {enum_text_889 + 9, enum_text_1235}, /* "0": "static" */
+    {enum_text_100 + 1, enum_text_1236}, /* "1": "moving" */
 };
 const nmea_enum_def nmea_septentrio_base_motion_def = {
-    septentrio_base_motion_texts, septentrio_base_motion_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1234, septentrio_base_motion_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char septentrio_baseline_quality_texts[] =
-    "septentrio_baseline_quality\0" "0\0" "invalid\0" "2\0" "dgps\0" "4\0" "rtk_fixed\0" "5\0"
-    "rtk_float\0";
 static const nmea_enum_code septentrio_baseline_quality_codes[] = {
-    {septentrio_baseline_quality_texts + 28, septentrio_baseline_quality_texts + 30}, /* "0": "invalid" */
-    {septentrio_baseline_quality_texts + 38, septentrio_baseline_quality_texts + 40}, /* "2": "dgps" */
-    {septentrio_baseline_quality_texts + 45, septentrio_baseline_quality_texts + 47}, /* "4": "rtk_fixed" */
-    {septentrio_baseline_quality_texts + 57, septentrio_baseline_quality_texts + 59}, /* "5": "rtk_float" */
+    {enum_text_889 + 9, enum_text_518}, /* "0": "invalid" */
+    {enum_text_916 + 5, enum_text_1391 + 7}, /* "2": "dgps" */
+    {enum_text_920 + 5, enum_text_494}, /* "4": "rtk_fixed" */
+    {enum_text_842 + 5, enum_text_493}, /* "5": "rtk_float" */
 };
 const nmea_enum_def nmea_septentrio_baseline_quality_def = {
-    septentrio_baseline_quality_texts, septentrio_baseline_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1237, septentrio_baseline_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char signal_id_texts[] =
-    "signal_id\0" "0\0" "all_signals\0" "1\0" "signal_1\0" "2\0" "signal_2\0" "3\0" "signal_3\0" "4\0"
-    "signal_4\0" "5\0" "signal_5\0" "6\0" "signal_6\0" "7\0" "signal_7\0" "8\0" "signal_8\0" "9\0"
-    "signal_9\0" "A\0" "signal_a\0" "B\0" "signal_b\0" "C\0" "signal_c\0";
 static const nmea_enum_code signal_id_codes[] = {
-    {signal_id_texts + 10, signal_id_texts + 12}, /* "0": "all_signals" */
-    {signal_id_texts + 24, signal_id_texts + 26}, /* "1": "signal_1" */
-    {signal_id_texts + 35, signal_id_texts + 37}, /* "2": "signal_2" */
-    {signal_id_texts + 46, signal_id_texts + 48}, /* "3": "signal_3" */
-    {signal_id_texts + 57, signal_id_texts + 59}, /* "4": "signal_4" */
-    {signal_id_texts + 68, signal_id_texts + 70}, /* "5": "signal_5" */
-    {signal_id_texts + 79, signal_id_texts + 81}, /* "6": "signal_6" */
-    {signal_id_texts + 90, signal_id_texts + 92}, /* "7": "signal_7" */
-    {signal_id_texts + 101, signal_id_texts + 103}, /* "8": "signal_8" */
-    {signal_id_texts + 112, signal_id_texts + 114}, /* "9": "signal_9" */
-    {signal_id_texts + 123, signal_id_texts + 125}, /* "A": "signal_a" */
-    {signal_id_texts + 134, signal_id_texts + 136}, /* "B": "signal_b" */
-    {signal_id_texts + 145, signal_id_texts + 147}, /* "C": "signal_c" */
+    {enum_text_889 + 9, enum_text_1239}, /* "0": "all_signals" */
+    {enum_text_100 + 1, enum_text_1240}, /* "1": "signal_1" */
+    {enum_text_916 + 5, enum_text_1241}, /* "2": "signal_2" */
+    {enum_text_918 + 5, enum_text_1242}, /* "3": "signal_3" */
+    {enum_text_920 + 5, enum_text_1243}, /* "4": "signal_4" */
+    {enum_text_842 + 5, enum_text_1244}, /* "5": "signal_5" */
+    {enum_text_202 + 1, enum_text_1245}, /* "6": "signal_6" */
+    {enum_text_204 + 1, enum_text_1246}, /* "7": "signal_7" */
+    {enum_text_1094 + 6, enum_text_1247}, /* "8": "signal_8" */
+    {enum_text_839 + 5, enum_text_1248}, /* "9": "signal_9" */
+    {enum_text_538 + 4, enum_text_1249}, /* "A": "signal_a" */
+    {enum_text_23, enum_text_1250}, /* "B": "signal_b" */
+    {enum_text_550 + 4, enum_text_1251}, /* "C": "signal_c" */
 };
 const nmea_enum_def nmea_signal_id_def = {
-    signal_id_texts, signal_id_codes, 13, 1, 1, NMEA_CODES_ALNUM
+    enum_text_1238, signal_id_codes, 13, 1, 1, NMEA_CODES_ALNUM
 };
 
-static const char sirf_baud_texts[] =
-    "sirf_baud\0" "1200\0" "baud_1200\0" "2400\0" "baud_2400\0" "4800\0" "baud_4800\0" "9600\0"
-    "baud_9600\0" "19200\0" "baud_19200\0" "38400\0" "baud_38400\0";
 static const nmea_enum_code sirf_baud_codes[] = {
-    {sirf_baud_texts + 10, sirf_baud_texts + 15}, /* "1200": "baud_1200" */
-    {sirf_baud_texts + 25, sirf_baud_texts + 30}, /* "2400": "baud_2400" */
-    {sirf_baud_texts + 40, sirf_baud_texts + 45}, /* "4800": "baud_4800" */
-    {sirf_baud_texts + 55, sirf_baud_texts + 60}, /* "9600": "baud_9600" */
-    {sirf_baud_texts + 70, sirf_baud_texts + 76}, /* "19200": "baud_19200" */
-    {sirf_baud_texts + 87, sirf_baud_texts + 93}, /* "38400": "baud_38400" */
+    {enum_text_787 + 5, enum_text_787}, /* "1200": "baud_1200" */
+    {enum_text_788 + 5, enum_text_788}, /* "2400": "baud_2400" */
+    {enum_text_74 + 5, enum_text_74}, /* "4800": "baud_4800" */
+    {enum_text_76 + 5, enum_text_76}, /* "9600": "baud_9600" */
+    {enum_text_78 + 5, enum_text_78}, /* "19200": "baud_19200" */
+    {enum_text_80 + 5, enum_text_80}, /* "38400": "baud_38400" */
 };
 const nmea_enum_def nmea_sirf_baud_def = {
-    sirf_baud_texts, sirf_baud_codes, 6, 4, 5, NMEA_CODES_DIGITS
+    enum_text_1252, sirf_baud_codes, 6, 4, 5, NMEA_CODES_DIGITS
 };
 
-static const char sirf_checksum_enable_texts[] =
-    "sirf_checksum_enable\0" "00\0" "disabled\0" "01\0" "enabled\0";
 static const nmea_enum_code sirf_checksum_enable_codes[] = {
-    {sirf_checksum_enable_texts + 21, sirf_checksum_enable_texts + 24}, /* "00": "disabled" */
-    {sirf_checksum_enable_texts + 33, sirf_checksum_enable_texts + 36}, /* "01": "enabled" */
+    {enum_text_1059 + 1, enum_text_92}, /* "00": "disabled" */
+    {enum_text_1060 + 1, enum_text_1076 + 14}, /* "01": "enabled" */
 };
 const nmea_enum_def nmea_sirf_checksum_enable_def = {
-    sirf_checksum_enable_texts, sirf_checksum_enable_codes, 2, 2, 2, NMEA_CODES_CLOSED
+    enum_text_1255, sirf_checksum_enable_codes, 2, 2, 2, NMEA_CODES_CLOSED
 };
 
-static const char sirf_checksum_enable_digit_texts[] =
-    "sirf_checksum_enable_digit\0" "0\0" "disabled\0" "1\0" "enabled\0";
 static const nmea_enum_code sirf_checksum_enable_digit_codes[] = {
-    {sirf_checksum_enable_digit_texts + 27, sirf_checksum_enable_digit_texts + 29}, /* "0": "disabled" */
-    {sirf_checksum_enable_digit_texts + 38, sirf_checksum_enable_digit_texts + 40}, /* "1": "enabled" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1076 + 14}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_sirf_checksum_enable_digit_def = {
-    sirf_checksum_enable_digit_texts, sirf_checksum_enable_digit_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1256, sirf_checksum_enable_digit_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char sirf_debug_texts[] =
-    "sirf_debug\0" "0\0" "off\0" "1\0" "on\0";
 static const nmea_enum_code sirf_debug_codes[] = {
-    {sirf_debug_texts + 11, sirf_debug_texts + 13}, /* "0": "off" */
-    {sirf_debug_texts + 17, sirf_debug_texts + 19}, /* "1": "on" */
+    {enum_text_889 + 9, enum_text_857 + 4}, /* "0": "off" */
+    {enum_text_100 + 1, enum_text_182 + 3}, /* "1": "on" */
 };
 const nmea_enum_def nmea_sirf_debug_def = {
-    sirf_debug_texts, sirf_debug_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1257, sirf_debug_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char sirf_nmea_message_texts[] =
-    "sirf_nmea_message\0" "00\0" "gga\0" "01\0" "gll\0" "02\0" "gsa\0" "03\0" "gsv\0" "04\0" "rmc\0"
-    "05\0" "vtg\0";
 static const nmea_enum_code sirf_nmea_message_codes[] = {
-    {sirf_nmea_message_texts + 18, sirf_nmea_message_texts + 21}, /* "00": "gga" */
-    {sirf_nmea_message_texts + 25, sirf_nmea_message_texts + 28}, /* "01": "gll" */
-    {sirf_nmea_message_texts + 32, sirf_nmea_message_texts + 35}, /* "02": "gsa" */
-    {sirf_nmea_message_texts + 39, sirf_nmea_message_texts + 42}, /* "03": "gsv" */
-    {sirf_nmea_message_texts + 46, sirf_nmea_message_texts + 49}, /* "04": "rmc" */
-    {sirf_nmea_message_texts + 53, sirf_nmea_message_texts + 56}, /* "05": "vtg" */
+    {enum_text_1059 + 1, enum_text_539 + 2}, /* "00": "gga" */
+    {enum_text_1060 + 1, enum_text_541 + 2}, /* "01": "gll" */
+    {enum_text_1062 + 1, enum_text_543 + 2}, /* "02": "gsa" */
+    {enum_text_1064 + 1, enum_text_547 + 2}, /* "03": "gsv" */
+    {enum_text_837 + 4, enum_text_551 + 2}, /* "04": "rmc" */
+    {enum_text_894 + 4, enum_text_553 + 2}, /* "05": "vtg" */
 };
 const nmea_enum_def nmea_sirf_nmea_message_def = {
-    sirf_nmea_message_texts, sirf_nmea_message_codes, 6, 2, 2, NMEA_CODES_DIGITS
+    enum_text_1258, sirf_nmea_message_codes, 6, 2, 2, NMEA_CODES_DIGITS
 };
 
-static const char sirf_nmea_message_digit_texts[] =
-    "sirf_nmea_message_digit\0" "0\0" "gga\0" "1\0" "gll\0" "2\0" "gsa\0" "3\0" "gsv\0" "4\0" "rmc\0"
-    "5\0" "vtg\0";
 static const nmea_enum_code sirf_nmea_message_digit_codes[] = {
-    {sirf_nmea_message_digit_texts + 24, sirf_nmea_message_digit_texts + 26}, /* "0": "gga" */
-    {sirf_nmea_message_digit_texts + 30, sirf_nmea_message_digit_texts + 32}, /* "1": "gll" */
-    {sirf_nmea_message_digit_texts + 36, sirf_nmea_message_digit_texts + 38}, /* "2": "gsa" */
-    {sirf_nmea_message_digit_texts + 42, sirf_nmea_message_digit_texts + 44}, /* "3": "gsv" */
-    {sirf_nmea_message_digit_texts + 48, sirf_nmea_message_digit_texts + 50}, /* "4": "rmc" */
-    {sirf_nmea_message_digit_texts + 54, sirf_nmea_message_digit_texts + 56}, /* "5": "vtg" */
+    {enum_text_889 + 9, enum_text_539 + 2}, /* "0": "gga" */
+    {enum_text_100 + 1, enum_text_541 + 2}, /* "1": "gll" */
+    {enum_text_916 + 5, enum_text_543 + 2}, /* "2": "gsa" */
+    {enum_text_918 + 5, enum_text_547 + 2}, /* "3": "gsv" */
+    {enum_text_920 + 5, enum_text_551 + 2}, /* "4": "rmc" */
+    {enum_text_842 + 5, enum_text_553 + 2}, /* "5": "vtg" */
 };
 const nmea_enum_def nmea_sirf_nmea_message_digit_def = {
-    sirf_nmea_message_digit_texts, sirf_nmea_message_digit_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1259, sirf_nmea_message_digit_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char sirf_ok_to_send_texts[] =
-    "sirf_ok_to_send\0" "0\0" "not_ok\0" "1\0" "ok\0";
 static const nmea_enum_code sirf_ok_to_send_codes[] = {
-    {sirf_ok_to_send_texts + 16, sirf_ok_to_send_texts + 18}, /* "0": "not_ok" */
-    {sirf_ok_to_send_texts + 25, sirf_ok_to_send_texts + 27}, /* "1": "ok" */
+    {enum_text_889 + 9, enum_text_1261}, /* "0": "not_ok" */
+    {enum_text_100 + 1, enum_text_1261 + 4}, /* "1": "ok" */
 };
 const nmea_enum_def nmea_sirf_ok_to_send_def = {
-    sirf_ok_to_send_texts, sirf_ok_to_send_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1260, sirf_ok_to_send_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char sirf_parity_texts[] =
-    "sirf_parity\0" "0\0" "none\0" "1\0" "odd\0" "2\0" "even\0";
 static const nmea_enum_code sirf_parity_codes[] = {
-    {sirf_parity_texts + 12, sirf_parity_texts + 14}, /* "0": "none" */
-    {sirf_parity_texts + 19, sirf_parity_texts + 21}, /* "1": "odd" */
-    {sirf_parity_texts + 25, sirf_parity_texts + 27}, /* "2": "even" */
+    {enum_text_889 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_1155}, /* "1": "odd" */
+    {enum_text_916 + 5, enum_text_1156}, /* "2": "even" */
 };
 const nmea_enum_def nmea_sirf_parity_def = {
-    sirf_parity_texts, sirf_parity_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1262, sirf_parity_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char sirf_protocol_texts[] =
-    "sirf_protocol\0" "0\0" "sirf_binary\0" "1\0" "nmea\0";
 static const nmea_enum_code sirf_protocol_codes[] = {
-    {sirf_protocol_texts + 14, sirf_protocol_texts + 16}, /* "0": "sirf_binary" */
-    {sirf_protocol_texts + 28, sirf_protocol_texts + 30}, /* "1": "nmea" */
+    {enum_text_889 + 9, enum_text_1264}, /* "0": "sirf_binary" */
+    {enum_text_100 + 1, enum_text_134}, /* "1": "nmea" */
 };
 const nmea_enum_def nmea_sirf_protocol_def = {
-    sirf_protocol_texts, sirf_protocol_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1263, sirf_protocol_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char sirf_rate_mode_texts[] =
-    "sirf_rate_mode\0" "00\0" "set_rate\0" "01\0" "query\0";
 static const nmea_enum_code sirf_rate_mode_codes[] = {
-    {sirf_rate_mode_texts + 15, sirf_rate_mode_texts + 18}, /* "00": "set_rate" */
-    {sirf_rate_mode_texts + 27, sirf_rate_mode_texts + 30}, /* "01": "query" */
+    {enum_text_1059 + 1, enum_text_1266}, /* "00": "set_rate" */
+    {enum_text_1060 + 1, enum_text_654}, /* "01": "query" */
 };
 const nmea_enum_def nmea_sirf_rate_mode_def = {
-    sirf_rate_mode_texts, sirf_rate_mode_codes, 2, 2, 2, NMEA_CODES_DIGITS
+    enum_text_1265, sirf_rate_mode_codes, 2, 2, 2, NMEA_CODES_DIGITS
 };
 
-static const char sirf_rate_mode_digit_texts[] =
-    "sirf_rate_mode_digit\0" "0\0" "set_rate\0" "1\0" "query\0";
 static const nmea_enum_code sirf_rate_mode_digit_codes[] = {
-    {sirf_rate_mode_digit_texts + 21, sirf_rate_mode_digit_texts + 23}, /* "0": "set_rate" */
-    {sirf_rate_mode_digit_texts + 32, sirf_rate_mode_digit_texts + 34}, /* "1": "query" */
+    {enum_text_889 + 9, enum_text_1266}, /* "0": "set_rate" */
+    {enum_text_100 + 1, enum_text_654}, /* "1": "query" */
 };
 const nmea_enum_def nmea_sirf_rate_mode_digit_def = {
-    sirf_rate_mode_digit_texts, sirf_rate_mode_digit_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1267, sirf_rate_mode_digit_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char skytraq_availability_texts[] =
-    "skytraq_availability\0" "0\0" "not_available\0" "1\0" "available\0";
 static const nmea_enum_code skytraq_availability_codes[] = {
-    {skytraq_availability_texts + 21, skytraq_availability_texts + 23}, /* "0": "not_available" */
-    {skytraq_availability_texts + 37, skytraq_availability_texts + 39}, /* "1": "available" */
+    {enum_text_889 + 9, enum_text_246}, /* "0": "not_available" */
+    {enum_text_100 + 1, enum_text_1077 + 24}, /* "1": "available" */
 };
 const nmea_enum_def nmea_skytraq_availability_def = {
-    skytraq_availability_texts, skytraq_availability_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1268, skytraq_availability_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char skytraq_calibration_texts[] =
-    "skytraq_calibration\0" "0\0" "not_calibrated\0" "1\0" "calibrated\0";
 static const nmea_enum_code skytraq_calibration_codes[] = {
-    {skytraq_calibration_texts + 20, skytraq_calibration_texts + 22}, /* "0": "not_calibrated" */
-    {skytraq_calibration_texts + 37, skytraq_calibration_texts + 39}, /* "1": "calibrated" */
+    {enum_text_889 + 9, enum_text_1271}, /* "0": "not_calibrated" */
+    {enum_text_100 + 1, enum_text_1271 + 4}, /* "1": "calibrated" */
 };
 const nmea_enum_def nmea_skytraq_calibration_def = {
-    skytraq_calibration_texts, skytraq_calibration_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1270, skytraq_calibration_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char skytraq_direction_texts[] =
-    "skytraq_direction\0" "0\0" "forward\0" "1\0" "backward\0";
 static const nmea_enum_code skytraq_direction_codes[] = {
-    {skytraq_direction_texts + 18, skytraq_direction_texts + 20}, /* "0": "forward" */
-    {skytraq_direction_texts + 28, skytraq_direction_texts + 30}, /* "1": "backward" */
+    {enum_text_889 + 9, enum_text_1274}, /* "0": "forward" */
+    {enum_text_100 + 1, enum_text_1275}, /* "1": "backward" */
 };
 const nmea_enum_def nmea_skytraq_direction_def = {
-    skytraq_direction_texts, skytraq_direction_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1273, skytraq_direction_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char skytraq_dr_mode_texts[] =
-    "skytraq_dr_mode\0" "A\0" "gnss_fix\0" "E\0" "dead_reckoning\0" "N\0" "not_valid\0";
 static const nmea_enum_code skytraq_dr_mode_codes[] = {
-    {skytraq_dr_mode_texts + 16, skytraq_dr_mode_texts + 18}, /* "A": "gnss_fix" */
-    {skytraq_dr_mode_texts + 27, skytraq_dr_mode_texts + 29}, /* "E": "dead_reckoning" */
-    {skytraq_dr_mode_texts + 44, skytraq_dr_mode_texts + 46}, /* "N": "not_valid" */
+    {enum_text_538 + 4, enum_text_1277}, /* "A": "gnss_fix" */
+    {enum_text_430 + 2, enum_text_1423 + 5}, /* "E": "dead_reckoning" */
+    {enum_text_850 + 5, enum_text_956}, /* "N": "not_valid" */
 };
 const nmea_enum_def nmea_skytraq_dr_mode_def = {
-    skytraq_dr_mode_texts, skytraq_dr_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1276, skytraq_dr_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char skytraq_mode_texts[] =
-    "skytraq_mode\0" "A\0" "autonomous\0" "D\0" "differential\0" "E\0" "estimated\0" "F\0" "rtk_float\0"
-    "M\0" "manual_input\0" "N\0" "not_valid\0" "O\0" "float_other\0" "P\0" "precise\0" "R\0"
-    "rtk_fixed\0" "S\0" "simulator\0";
 static const nmea_enum_code skytraq_mode_codes[] = {
-    {skytraq_mode_texts + 13, skytraq_mode_texts + 15}, /* "A": "autonomous" */
-    {skytraq_mode_texts + 26, skytraq_mode_texts + 28}, /* "D": "differential" */
-    {skytraq_mode_texts + 41, skytraq_mode_texts + 43}, /* "E": "estimated" */
-    {skytraq_mode_texts + 53, skytraq_mode_texts + 55}, /* "F": "rtk_float" */
-    {skytraq_mode_texts + 65, skytraq_mode_texts + 67}, /* "M": "manual_input" */
-    {skytraq_mode_texts + 80, skytraq_mode_texts + 82}, /* "N": "not_valid" */
-    {skytraq_mode_texts + 92, skytraq_mode_texts + 94}, /* "O": "float_other" */
-    {skytraq_mode_texts + 106, skytraq_mode_texts + 108}, /* "P": "precise" */
-    {skytraq_mode_texts + 116, skytraq_mode_texts + 118}, /* "R": "rtk_fixed" */
-    {skytraq_mode_texts + 128, skytraq_mode_texts + 130}, /* "S": "simulator" */
+    {enum_text_538 + 4, enum_text_491}, /* "A": "autonomous" */
+    {enum_text_561 + 1, enum_text_492 + 5}, /* "D": "differential" */
+    {enum_text_430 + 2, enum_text_955}, /* "E": "estimated" */
+    {enum_text_715 + 1, enum_text_493}, /* "F": "rtk_float" */
+    {enum_text_705 + 1, enum_text_946}, /* "M": "manual_input" */
+    {enum_text_850 + 5, enum_text_956}, /* "N": "not_valid" */
+    {enum_text_709 + 1, enum_text_1279}, /* "O": "float_other" */
+    {enum_text_438 + 2, enum_text_957}, /* "P": "precise" */
+    {enum_text_412 + 2, enum_text_494}, /* "R": "rtk_fixed" */
+    {enum_text_601 + 1, enum_text_947}, /* "S": "simulator" */
 };
 const nmea_enum_def nmea_skytraq_mode_def = {
-    skytraq_mode_texts, skytraq_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1278, skytraq_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char skytraq_receiver_role_texts[] =
-    "skytraq_receiver_role\0" "R\0" "rover\0" "B\0" "base\0";
 static const nmea_enum_code skytraq_receiver_role_codes[] = {
-    {skytraq_receiver_role_texts + 22, skytraq_receiver_role_texts + 24}, /* "R": "rover" */
-    {skytraq_receiver_role_texts + 30, skytraq_receiver_role_texts + 32}, /* "B": "base" */
+    {enum_text_412 + 2, enum_text_1165}, /* "R": "rover" */
+    {enum_text_23, enum_text_1166}, /* "B": "base" */
 };
 const nmea_enum_def nmea_skytraq_receiver_role_def = {
-    skytraq_receiver_role_texts, skytraq_receiver_role_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1280, skytraq_receiver_role_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char sm1_msi_status_texts[] =
-    "sm1_msi_status\0" "A\0" "complete\0" "V\0" "incomplete\0";
 static const nmea_enum_code sm1_msi_status_codes[] = {
-    {sm1_msi_status_texts + 15, sm1_msi_status_texts + 17}, /* "A": "complete" */
-    {sm1_msi_status_texts + 26, sm1_msi_status_texts + 28}, /* "V": "incomplete" */
+    {enum_text_538 + 4, enum_text_1282 + 2}, /* "A": "complete" */
+    {enum_text_546 + 4, enum_text_1282}, /* "V": "incomplete" */
 };
 const nmea_enum_def nmea_sm1_msi_status_def = {
-    sm1_msi_status_texts, sm1_msi_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1281, sm1_msi_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char sm1_ocean_region_texts[] =
-    "sm1_ocean_region\0" "0\0" "atlantic_west\0" "1\0" "atlantic_east\0" "2\0" "pacific\0" "3\0"
-    "indian\0" "8\0" "unknown\0" "9\0" "all\0";
 static const nmea_enum_code sm1_ocean_region_codes[] = {
-    {sm1_ocean_region_texts + 17, sm1_ocean_region_texts + 19}, /* "0": "atlantic_west" */
-    {sm1_ocean_region_texts + 33, sm1_ocean_region_texts + 35}, /* "1": "atlantic_east" */
-    {sm1_ocean_region_texts + 49, sm1_ocean_region_texts + 51}, /* "2": "pacific" */
-    {sm1_ocean_region_texts + 59, sm1_ocean_region_texts + 61}, /* "3": "indian" */
-    {sm1_ocean_region_texts + 68, sm1_ocean_region_texts + 70}, /* "8": "unknown" */
-    {sm1_ocean_region_texts + 78, sm1_ocean_region_texts + 80}, /* "9": "all" */
+    {enum_text_889 + 9, enum_text_1284}, /* "0": "atlantic_west" */
+    {enum_text_100 + 1, enum_text_1285}, /* "1": "atlantic_east" */
+    {enum_text_916 + 5, enum_text_1286}, /* "2": "pacific" */
+    {enum_text_918 + 5, enum_text_1287}, /* "3": "indian" */
+    {enum_text_1094 + 6, enum_text_125}, /* "8": "unknown" */
+    {enum_text_839 + 5, enum_text_812 + 7}, /* "9": "all" */
 };
 const nmea_enum_def nmea_sm1_ocean_region_def = {
-    sm1_ocean_region_texts, sm1_ocean_region_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1283, sm1_ocean_region_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char sm1_priority_texts[] =
-    "sm1_priority\0" "1\0" "safety\0" "2\0" "urgency\0" "3\0" "distress\0" "9\0" "unknown\0";
 static const nmea_enum_code sm1_priority_codes[] = {
-    {sm1_priority_texts + 13, sm1_priority_texts + 15}, /* "1": "safety" */
-    {sm1_priority_texts + 22, sm1_priority_texts + 24}, /* "2": "urgency" */
-    {sm1_priority_texts + 32, sm1_priority_texts + 34}, /* "3": "distress" */
-    {sm1_priority_texts + 43, sm1_priority_texts + 45}, /* "9": "unknown" */
+    {enum_text_100 + 1, enum_text_616}, /* "1": "safety" */
+    {enum_text_916 + 5, enum_text_617}, /* "2": "urgency" */
+    {enum_text_918 + 5, enum_text_618}, /* "3": "distress" */
+    {enum_text_839 + 5, enum_text_125}, /* "9": "unknown" */
 };
 const nmea_enum_def nmea_sm1_priority_def = {
-    sm1_priority_texts, sm1_priority_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1288, sm1_priority_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char sm2_subject_texts[] =
-    "sm2_subject\0" "A\0" "navigational_warning\0" "B\0" "meteorological_warning\0" "C\0" "ice_report\0"
-    "D\0" "sar_and_piracy\0" "E\0" "meteorological_forecast\0" "F\0" "pilot_service\0" "G\0" "ais\0"
-    "H\0" "loran\0" "J\0" "satnav\0" "K\0" "other_electronic_navaid\0" "L\0"
-    "other_navigational_warning\0" "V\0" "special_service_v\0" "W\0" "special_service_w\0" "X\0"
-    "special_service_x\0" "Y\0" "special_service_y\0" "Z\0" "no_messages\0";
 static const nmea_enum_code sm2_subject_codes[] = {
-    {sm2_subject_texts + 12, sm2_subject_texts + 14}, /* "A": "navigational_warning" */
-    {sm2_subject_texts + 35, sm2_subject_texts + 37}, /* "B": "meteorological_warning" */
-    {sm2_subject_texts + 60, sm2_subject_texts + 62}, /* "C": "ice_report" */
-    {sm2_subject_texts + 73, sm2_subject_texts + 75}, /* "D": "sar_and_piracy" */
-    {sm2_subject_texts + 90, sm2_subject_texts + 92}, /* "E": "meteorological_forecast" */
-    {sm2_subject_texts + 116, sm2_subject_texts + 118}, /* "F": "pilot_service" */
-    {sm2_subject_texts + 132, sm2_subject_texts + 134}, /* "G": "ais" */
-    {sm2_subject_texts + 138, sm2_subject_texts + 140}, /* "H": "loran" */
-    {sm2_subject_texts + 146, sm2_subject_texts + 148}, /* "J": "satnav" */
-    {sm2_subject_texts + 155, sm2_subject_texts + 157}, /* "K": "other_electronic_navaid" */
-    {sm2_subject_texts + 181, sm2_subject_texts + 183}, /* "L": "other_navigational_warning" */
-    {sm2_subject_texts + 210, sm2_subject_texts + 212}, /* "V": "special_service_v" */
-    {sm2_subject_texts + 230, sm2_subject_texts + 232}, /* "W": "special_service_w" */
-    {sm2_subject_texts + 250, sm2_subject_texts + 252}, /* "X": "special_service_x" */
-    {sm2_subject_texts + 270, sm2_subject_texts + 272}, /* "Y": "special_service_y" */
-    {sm2_subject_texts + 290, sm2_subject_texts + 292}, /* "Z": "no_messages" */
+    {enum_text_538 + 4, enum_text_1300 + 6}, /* "A": "navigational_warning" */
+    {enum_text_23, enum_text_1291}, /* "B": "meteorological_warning" */
+    {enum_text_550 + 4, enum_text_1292}, /* "C": "ice_report" */
+    {enum_text_561 + 1, enum_text_1293}, /* "D": "sar_and_piracy" */
+    {enum_text_430 + 2, enum_text_1294}, /* "E": "meteorological_forecast" */
+    {enum_text_715 + 1, enum_text_1295}, /* "F": "pilot_service" */
+    {enum_text_530 + 1, enum_text_1296}, /* "G": "ais" */
+    {enum_text_701 + 1, enum_text_1297}, /* "H": "loran" */
+    {enum_text_355, enum_text_1298}, /* "J": "satnav" */
+    {enum_text_1422 + 1, enum_text_1299}, /* "K": "other_electronic_navaid" */
+    {enum_text_436 + 2, enum_text_1300}, /* "L": "other_navigational_warning" */
+    {enum_text_546 + 4, enum_text_1301}, /* "V": "special_service_v" */
+    {enum_text_369, enum_text_1302}, /* "W": "special_service_w" */
+    {enum_text_931 + 5, enum_text_1303}, /* "X": "special_service_x" */
+    {enum_text_1304, enum_text_1305}, /* "Y": "special_service_y" */
+    {enum_text_1306, enum_text_1307}, /* "Z": "no_messages" */
 };
 const nmea_enum_def nmea_sm2_subject_def = {
-    sm2_subject_texts, sm2_subject_codes, 16, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1289, sm2_subject_codes, 16, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char spectratime_gps_messages_texts[] =
-    "spectratime_gps_messages\0" "0\0" "ignored\0" "1\0" "none_received\0" "2\0" "partially_ok\0" "3\0"
-    "ok\0";
 static const nmea_enum_code spectratime_gps_messages_codes[] = {
-    {spectratime_gps_messages_texts + 25, spectratime_gps_messages_texts + 27}, /* "0": "ignored" */
-    {spectratime_gps_messages_texts + 35, spectratime_gps_messages_texts + 37}, /* "1": "none_received" */
-    {spectratime_gps_messages_texts + 51, spectratime_gps_messages_texts + 53}, /* "2": "partially_ok" */
-    {spectratime_gps_messages_texts + 66, spectratime_gps_messages_texts + 68}, /* "3": "ok" */
+    {enum_text_889 + 9, enum_text_1309}, /* "0": "ignored" */
+    {enum_text_100 + 1, enum_text_1310}, /* "1": "none_received" */
+    {enum_text_916 + 5, enum_text_1311}, /* "2": "partially_ok" */
+    {enum_text_918 + 5, enum_text_1261 + 4}, /* "3": "ok" */
 };
 const nmea_enum_def nmea_spectratime_gps_messages_def = {
-    spectratime_gps_messages_texts, spectratime_gps_messages_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1308, spectratime_gps_messages_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char spectratime_isync_status_texts[] =
-    "spectratime_isync_status\0" "0\0" "warming_up\0" "1\0" "tracking_setup\0" "2\0" "tracking\0" "3\0"
-    "synchronised\0" "4\0" "free_run_tracking_off\0" "5\0" "free_run_reference_unstable\0" "6\0"
-    "free_run_no_reference\0" "7\0" "freeze\0" "8\0" "factory\0" "9\0" "searching_rb_line\0";
 static const nmea_enum_code spectratime_isync_status_codes[] = {
-    {spectratime_isync_status_texts + 25, spectratime_isync_status_texts + 27}, /* "0": "warming_up" */
-    {spectratime_isync_status_texts + 38, spectratime_isync_status_texts + 40}, /* "1": "tracking_setup" */
-    {spectratime_isync_status_texts + 55, spectratime_isync_status_texts + 57}, /* "2": "tracking" */
-    {spectratime_isync_status_texts + 66, spectratime_isync_status_texts + 68}, /* "3": "synchronised" */
-    {spectratime_isync_status_texts + 81, spectratime_isync_status_texts + 83}, /* "4": "free_run_tracking_off" */
-    {spectratime_isync_status_texts + 105, spectratime_isync_status_texts + 107}, /* "5": "free_run_reference_unstable" */
-    {spectratime_isync_status_texts + 135, spectratime_isync_status_texts + 137}, /* "6": "free_run_no_reference" */
-    {spectratime_isync_status_texts + 159, spectratime_isync_status_texts + 161}, /* "7": "freeze" */
-    {spectratime_isync_status_texts + 168, spectratime_isync_status_texts + 170}, /* "8": "factory" */
-    {spectratime_isync_status_texts + 178, spectratime_isync_status_texts + 180}, /* "9": "searching_rb_line" */
+    {enum_text_889 + 9, enum_text_1313}, /* "0": "warming_up" */
+    {enum_text_100 + 1, enum_text_1314}, /* "1": "tracking_setup" */
+    {enum_text_916 + 5, enum_text_1377 + 11}, /* "2": "tracking" */
+    {enum_text_918 + 5, enum_text_1316}, /* "3": "synchronised" */
+    {enum_text_920 + 5, enum_text_1317}, /* "4": "free_run_tracking_off" */
+    {enum_text_842 + 5, enum_text_1318}, /* "5": "free_run_reference_unstable" */
+    {enum_text_202 + 1, enum_text_1319}, /* "6": "free_run_no_reference" */
+    {enum_text_204 + 1, enum_text_1320}, /* "7": "freeze" */
+    {enum_text_1094 + 6, enum_text_1321}, /* "8": "factory" */
+    {enum_text_839 + 5, enum_text_1322}, /* "9": "searching_rb_line" */
 };
 const nmea_enum_def nmea_spectratime_isync_status_def = {
-    spectratime_isync_status_texts, spectratime_isync_status_codes, 10, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1312, spectratime_isync_status_codes, 10, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char spectratime_osc_quality_texts[] =
-    "spectratime_osc_quality\0" "0\0" "warming_up\0" "1\0" "free_run\0" "2\0" "disciplined\0";
 static const nmea_enum_code spectratime_osc_quality_codes[] = {
-    {spectratime_osc_quality_texts + 24, spectratime_osc_quality_texts + 26}, /* "0": "warming_up" */
-    {spectratime_osc_quality_texts + 37, spectratime_osc_quality_texts + 39}, /* "1": "free_run" */
-    {spectratime_osc_quality_texts + 48, spectratime_osc_quality_texts + 50}, /* "2": "disciplined" */
+    {enum_text_889 + 9, enum_text_1313}, /* "0": "warming_up" */
+    {enum_text_100 + 1, enum_text_751}, /* "1": "free_run" */
+    {enum_text_916 + 5, enum_text_1324}, /* "2": "disciplined" */
 };
 const nmea_enum_def nmea_spectratime_osc_quality_def = {
-    spectratime_osc_quality_texts, spectratime_osc_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1323, spectratime_osc_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char spectratime_time_transfer_texts[] =
-    "spectratime_time_transfer\0" "0\0" "none\0" "1\0" "manual\0" "2\0" "gps_old\0" "3\0" "gps_fresh\0";
 static const nmea_enum_code spectratime_time_transfer_codes[] = {
-    {spectratime_time_transfer_texts + 26, spectratime_time_transfer_texts + 28}, /* "0": "none" */
-    {spectratime_time_transfer_texts + 33, spectratime_time_transfer_texts + 35}, /* "1": "manual" */
-    {spectratime_time_transfer_texts + 42, spectratime_time_transfer_texts + 44}, /* "2": "gps_old" */
-    {spectratime_time_transfer_texts + 52, spectratime_time_transfer_texts + 54}, /* "3": "gps_fresh" */
+    {enum_text_889 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_1033 + 9}, /* "1": "manual" */
+    {enum_text_916 + 5, enum_text_1326}, /* "2": "gps_old" */
+    {enum_text_918 + 5, enum_text_1327}, /* "3": "gps_fresh" */
 };
 const nmea_enum_def nmea_spectratime_time_transfer_def = {
-    spectratime_time_transfer_texts, spectratime_time_transfer_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1325, spectratime_time_transfer_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char spw_password_level_texts[] =
-    "spw_password_level\0" "1\0" "user\0" "2\0" "administrator\0";
 static const nmea_enum_code spw_password_level_codes[] = {
-    {spw_password_level_texts + 19, spw_password_level_texts + 21}, /* "1": "user" */
-    {spw_password_level_texts + 26, spw_password_level_texts + 28}, /* "2": "administrator" */
+    {enum_text_100 + 1, enum_text_1329}, /* "1": "user" */
+    {enum_text_916 + 5, enum_text_1330}, /* "2": "administrator" */
 };
 const nmea_enum_def nmea_spw_password_level_def = {
-    spw_password_level_texts, spw_password_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1328, spw_password_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char ssd_dte_texts[] =
-    "ssd_dte\0" "0\0" "available\0" "1\0" "not_available\0";
 static const nmea_enum_code ssd_dte_codes[] = {
-    {ssd_dte_texts + 8, ssd_dte_texts + 10}, /* "0": "available" */
-    {ssd_dte_texts + 20, ssd_dte_texts + 22}, /* "1": "not_available" */
+    {enum_text_889 + 9, enum_text_1077 + 24}, /* "0": "available" */
+    {enum_text_100 + 1, enum_text_246}, /* "1": "not_available" */
 };
 const nmea_enum_def nmea_ssd_dte_def = {
-    ssd_dte_texts, ssd_dte_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1331, ssd_dte_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char status_texts[] =
-    "status\0" "A\0" "valid\0" "V\0" "invalid\0";
 static const nmea_enum_code status_codes[] = {
-    {status_texts + 7, status_texts + 9}, /* "A": "valid" */
-    {status_texts + 15, status_texts + 17}, /* "V": "invalid" */
+    {enum_text_538 + 4, enum_text_518 + 2}, /* "A": "valid" */
+    {enum_text_546 + 4, enum_text_518}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_status_def = {
-    status_texts, status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_590 + 4, status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char system_id_texts[] =
-    "system_id\0" "1\0" "gps\0" "2\0" "glonass\0" "3\0" "galileo\0" "4\0" "beidou\0" "5\0" "qzss\0"
-    "6\0" "navic\0" "F\0" "geos5_qzss\0";
 static const nmea_enum_code system_id_codes[] = {
-    {system_id_texts + 10, system_id_texts + 12}, /* "1": "gps" */
-    {system_id_texts + 16, system_id_texts + 18}, /* "2": "glonass" */
-    {system_id_texts + 26, system_id_texts + 28}, /* "3": "galileo" */
-    {system_id_texts + 36, system_id_texts + 38}, /* "4": "beidou" */
-    {system_id_texts + 45, system_id_texts + 47}, /* "5": "qzss" */
-    {system_id_texts + 52, system_id_texts + 54}, /* "6": "navic" */
-    {system_id_texts + 60, system_id_texts + 62}, /* "F": "geos5_qzss" */
+    {enum_text_100 + 1, enum_text_1391 + 8}, /* "1": "gps" */
+    {enum_text_916 + 5, enum_text_239 + 4}, /* "2": "glonass" */
+    {enum_text_918 + 5, enum_text_932 + 12}, /* "3": "galileo" */
+    {enum_text_920 + 5, enum_text_122}, /* "4": "beidou" */
+    {enum_text_842 + 5, enum_text_1335 + 6}, /* "5": "qzss" */
+    {enum_text_202 + 1, enum_text_1334}, /* "6": "navic" */
+    {enum_text_715 + 1, enum_text_1335}, /* "F": "geos5_qzss" */
 };
 const nmea_enum_def nmea_system_id_def = {
-    system_id_texts, system_id_codes, 7, 1, 1, NMEA_CODES_ALNUM
+    enum_text_1333, system_id_codes, 7, 1, 1, NMEA_CODES_ALNUM
 };
 
-static const char teseo_baud_texts[] =
-    "teseo_baud\0" "0\0" "baud_300\0" "1\0" "baud_600\0" "2\0" "baud_1200\0" "3\0" "baud_2400\0" "4\0"
-    "baud_4800\0" "5\0" "baud_9600\0" "6\0" "baud_14400\0" "7\0" "baud_19200\0" "8\0" "baud_38400\0"
-    "9\0" "baud_57600\0" "A\0" "baud_115200\0" "B\0" "baud_230400\0" "C\0" "baud_460800\0" "D\0"
-    "baud_921600\0";
 static const nmea_enum_code teseo_baud_codes[] = {
-    {teseo_baud_texts + 11, teseo_baud_texts + 13}, /* "0": "baud_300" */
-    {teseo_baud_texts + 22, teseo_baud_texts + 24}, /* "1": "baud_600" */
-    {teseo_baud_texts + 33, teseo_baud_texts + 35}, /* "2": "baud_1200" */
-    {teseo_baud_texts + 45, teseo_baud_texts + 47}, /* "3": "baud_2400" */
-    {teseo_baud_texts + 57, teseo_baud_texts + 59}, /* "4": "baud_4800" */
-    {teseo_baud_texts + 69, teseo_baud_texts + 71}, /* "5": "baud_9600" */
-    {teseo_baud_texts + 81, teseo_baud_texts + 83}, /* "6": "baud_14400" */
-    {teseo_baud_texts + 94, teseo_baud_texts + 96}, /* "7": "baud_19200" */
-    {teseo_baud_texts + 107, teseo_baud_texts + 109}, /* "8": "baud_38400" */
-    {teseo_baud_texts + 120, teseo_baud_texts + 122}, /* "9": "baud_57600" */
-    {teseo_baud_texts + 133, teseo_baud_texts + 135}, /* "A": "baud_115200" */
-    {teseo_baud_texts + 147, teseo_baud_texts + 149}, /* "B": "baud_230400" */
-    {teseo_baud_texts + 161, teseo_baud_texts + 163}, /* "C": "baud_460800" */
-    {teseo_baud_texts + 175, teseo_baud_texts + 177}, /* "D": "baud_921600" */
+    {enum_text_889 + 9, enum_text_789}, /* "0": "baud_300" */
+    {enum_text_100 + 1, enum_text_790}, /* "1": "baud_600" */
+    {enum_text_916 + 5, enum_text_787}, /* "2": "baud_1200" */
+    {enum_text_918 + 5, enum_text_788}, /* "3": "baud_2400" */
+    {enum_text_920 + 5, enum_text_74}, /* "4": "baud_4800" */
+    {enum_text_842 + 5, enum_text_76}, /* "5": "baud_9600" */
+    {enum_text_202 + 1, enum_text_1042}, /* "6": "baud_14400" */
+    {enum_text_204 + 1, enum_text_78}, /* "7": "baud_19200" */
+    {enum_text_1094 + 6, enum_text_80}, /* "8": "baud_38400" */
+    {enum_text_839 + 5, enum_text_82}, /* "9": "baud_57600" */
+    {enum_text_538 + 4, enum_text_84}, /* "A": "baud_115200" */
+    {enum_text_23, enum_text_86}, /* "B": "baud_230400" */
+    {enum_text_550 + 4, enum_text_88}, /* "C": "baud_460800" */
+    {enum_text_561 + 1, enum_text_90}, /* "D": "baud_921600" */
 };
 const nmea_enum_def nmea_teseo_baud_def = {
-    teseo_baud_texts, teseo_baud_codes, 14, 1, 1, NMEA_CODES_ALNUM
+    enum_text_1336, teseo_baud_codes, 14, 1, 1, NMEA_CODES_ALNUM
 };
 
-static const char teseo_compiler_type_texts[] =
-    "teseo_compiler_type\0" "ARM\0" "arm\0" "GNU\0" "gnu\0";
 static const nmea_enum_code teseo_compiler_type_codes[] = {
-    {teseo_compiler_type_texts + 20, teseo_compiler_type_texts + 24}, /* "ARM": "arm" */
-    {teseo_compiler_type_texts + 28, teseo_compiler_type_texts + 32}, /* "GNU": "gnu" */
+    {enum_text_1338, enum_text_1363 + 6}, /* "ARM": "arm" */
+    {enum_text_1340, enum_text_1341}, /* "GNU": "gnu" */
 };
 const nmea_enum_def nmea_teseo_compiler_type_def = {
-    teseo_compiler_type_texts, teseo_compiler_type_codes, 2, 3, 3, NMEA_CODES_LETTERS
+    enum_text_1337, teseo_compiler_type_codes, 2, 3, 3, NMEA_CODES_LETTERS
 };
 
-static const char teseo_nmea_on_off_texts[] =
-    "teseo_nmea_on_off\0" "0\0" "off\0" "1\0" "on\0";
 static const nmea_enum_code teseo_nmea_on_off_codes[] = {
-    {teseo_nmea_on_off_texts + 18, teseo_nmea_on_off_texts + 20}, /* "0": "off" */
-    {teseo_nmea_on_off_texts + 24, teseo_nmea_on_off_texts + 26}, /* "1": "on" */
+    {enum_text_889 + 9, enum_text_857 + 4}, /* "0": "off" */
+    {enum_text_100 + 1, enum_text_182 + 3}, /* "1": "on" */
 };
 const nmea_enum_def nmea_teseo_nmea_on_off_def = {
-    teseo_nmea_on_off_texts, teseo_nmea_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1342, teseo_nmea_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char teseo_rtc_status_texts[] =
-    "teseo_rtc_status\0" "0\0" "invalid\0" "1\0" "stored\0" "2\0" "approximate\0";
 static const nmea_enum_code teseo_rtc_status_codes[] = {
-    {teseo_rtc_status_texts + 17, teseo_rtc_status_texts + 19}, /* "0": "invalid" */
-    {teseo_rtc_status_texts + 27, teseo_rtc_status_texts + 29}, /* "1": "stored" */
-    {teseo_rtc_status_texts + 36, teseo_rtc_status_texts + 38}, /* "2": "approximate" */
+    {enum_text_889 + 9, enum_text_518}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_1344}, /* "1": "stored" */
+    {enum_text_916 + 5, enum_text_1345}, /* "2": "approximate" */
 };
 const nmea_enum_def nmea_teseo_rtc_status_def = {
-    teseo_rtc_status_texts, teseo_rtc_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1343, teseo_rtc_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char teseo_setpar_mode_texts[] =
-    "teseo_setpar_mode\0" "0\0" "replace\0" "1\0" "set_bits\0" "2\0" "clear_bits\0";
 static const nmea_enum_code teseo_setpar_mode_codes[] = {
-    {teseo_setpar_mode_texts + 18, teseo_setpar_mode_texts + 20}, /* "0": "replace" */
-    {teseo_setpar_mode_texts + 28, teseo_setpar_mode_texts + 30}, /* "1": "set_bits" */
-    {teseo_setpar_mode_texts + 39, teseo_setpar_mode_texts + 41}, /* "2": "clear_bits" */
+    {enum_text_889 + 9, enum_text_1347}, /* "0": "replace" */
+    {enum_text_100 + 1, enum_text_1348}, /* "1": "set_bits" */
+    {enum_text_916 + 5, enum_text_1349}, /* "2": "clear_bits" */
 };
 const nmea_enum_def nmea_teseo_setpar_mode_def = {
-    teseo_setpar_mode_texts, teseo_setpar_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1346, teseo_setpar_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char teseo_time_validity_texts[] =
-    "teseo_time_validity\0" "0\0" "no_time\0" "1\0" "flash_time\0" "2\0" "user_time\0" "3\0"
-    "user_rtc_time\0" "4\0" "rtc_time\0" "5\0" "accurate_rtc_time\0" "6\0" "approximate_time\0" "7\0"
-    "position_time\0" "8\0" "ephemeris_time\0";
 static const nmea_enum_code teseo_time_validity_codes[] = {
-    {teseo_time_validity_texts + 20, teseo_time_validity_texts + 22}, /* "0": "no_time" */
-    {teseo_time_validity_texts + 30, teseo_time_validity_texts + 32}, /* "1": "flash_time" */
-    {teseo_time_validity_texts + 43, teseo_time_validity_texts + 45}, /* "2": "user_time" */
-    {teseo_time_validity_texts + 55, teseo_time_validity_texts + 57}, /* "3": "user_rtc_time" */
-    {teseo_time_validity_texts + 71, teseo_time_validity_texts + 73}, /* "4": "rtc_time" */
-    {teseo_time_validity_texts + 82, teseo_time_validity_texts + 84}, /* "5": "accurate_rtc_time" */
-    {teseo_time_validity_texts + 102, teseo_time_validity_texts + 104}, /* "6": "approximate_time" */
-    {teseo_time_validity_texts + 121, teseo_time_validity_texts + 123}, /* "7": "position_time" */
-    {teseo_time_validity_texts + 137, teseo_time_validity_texts + 139}, /* "8": "ephemeris_time" */
+    {enum_text_889 + 9, enum_text_1351}, /* "0": "no_time" */
+    {enum_text_100 + 1, enum_text_1352}, /* "1": "flash_time" */
+    {enum_text_916 + 5, enum_text_1353}, /* "2": "user_time" */
+    {enum_text_918 + 5, enum_text_1354}, /* "3": "user_rtc_time" */
+    {enum_text_920 + 5, enum_text_1354 + 5}, /* "4": "rtc_time" */
+    {enum_text_842 + 5, enum_text_1356}, /* "5": "accurate_rtc_time" */
+    {enum_text_202 + 1, enum_text_1357}, /* "6": "approximate_time" */
+    {enum_text_204 + 1, enum_text_1358}, /* "7": "position_time" */
+    {enum_text_1094 + 6, enum_text_1359}, /* "8": "ephemeris_time" */
 };
 const nmea_enum_def nmea_teseo_time_validity_def = {
-    teseo_time_validity_texts, teseo_time_validity_codes, 9, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1350, teseo_time_validity_codes, 9, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char ths_mode_texts[] =
-    "ths_mode\0" "A\0" "autonomous\0" "E\0" "estimated\0" "M\0" "manual\0" "S\0" "simulator\0" "V\0"
-    "invalid\0";
 static const nmea_enum_code ths_mode_codes[] = {
-    {ths_mode_texts + 9, ths_mode_texts + 11}, /* "A": "autonomous" */
-    {ths_mode_texts + 22, ths_mode_texts + 24}, /* "E": "estimated" */
-    {ths_mode_texts + 34, ths_mode_texts + 36}, /* "M": "manual" */
-    {ths_mode_texts + 43, ths_mode_texts + 45}, /* "S": "simulator" */
-    {ths_mode_texts + 55, ths_mode_texts + 57}, /* "V": "invalid" */
+    {enum_text_538 + 4, enum_text_491}, /* "A": "autonomous" */
+    {enum_text_430 + 2, enum_text_955}, /* "E": "estimated" */
+    {enum_text_705 + 1, enum_text_1033 + 9}, /* "M": "manual" */
+    {enum_text_601 + 1, enum_text_947}, /* "S": "simulator" */
+    {enum_text_546 + 4, enum_text_518}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_ths_mode_def = {
-    ths_mode_texts, ths_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1360, ths_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char tnt_alarm_status_texts[] =
-    "tnt_alarm_status\0" "C\0" "calibration_alarm\0" "L\0" "low_alarm\0" "M\0" "low_warning\0" "N\0"
-    "normal\0" "O\0" "high_warning\0" "P\0" "high_alarm\0" "V\0" "voltage_alarm\0";
 static const nmea_enum_code tnt_alarm_status_codes[] = {
-    {tnt_alarm_status_texts + 17, tnt_alarm_status_texts + 19}, /* "C": "calibration_alarm" */
-    {tnt_alarm_status_texts + 37, tnt_alarm_status_texts + 39}, /* "L": "low_alarm" */
-    {tnt_alarm_status_texts + 49, tnt_alarm_status_texts + 51}, /* "M": "low_warning" */
-    {tnt_alarm_status_texts + 63, tnt_alarm_status_texts + 65}, /* "N": "normal" */
-    {tnt_alarm_status_texts + 72, tnt_alarm_status_texts + 74}, /* "O": "high_warning" */
-    {tnt_alarm_status_texts + 87, tnt_alarm_status_texts + 89}, /* "P": "high_alarm" */
-    {tnt_alarm_status_texts + 100, tnt_alarm_status_texts + 102}, /* "V": "voltage_alarm" */
+    {enum_text_550 + 4, enum_text_1362}, /* "C": "calibration_alarm" */
+    {enum_text_436 + 2, enum_text_1363}, /* "L": "low_alarm" */
+    {enum_text_705 + 1, enum_text_1364}, /* "M": "low_warning" */
+    {enum_text_850 + 5, enum_text_964 + 4}, /* "N": "normal" */
+    {enum_text_709 + 1, enum_text_1365}, /* "O": "high_warning" */
+    {enum_text_438 + 2, enum_text_1366}, /* "P": "high_alarm" */
+    {enum_text_546 + 4, enum_text_1367}, /* "V": "voltage_alarm" */
 };
 const nmea_enum_def nmea_tnt_alarm_status_def = {
-    tnt_alarm_status_texts, tnt_alarm_status_codes, 7, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1361, tnt_alarm_status_codes, 7, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char trimble_antenna_status_texts[] =
-    "trimble_antenna_status\0" "0\0" "fault\0" "1\0" "ok\0";
 static const nmea_enum_code trimble_antenna_status_codes[] = {
-    {trimble_antenna_status_texts + 23, trimble_antenna_status_texts + 25}, /* "0": "fault" */
-    {trimble_antenna_status_texts + 31, trimble_antenna_status_texts + 33}, /* "1": "ok" */
+    {enum_text_889 + 9, enum_text_1040 + 2}, /* "0": "fault" */
+    {enum_text_100 + 1, enum_text_1261 + 4}, /* "1": "ok" */
 };
 const nmea_enum_def nmea_trimble_antenna_status_def = {
-    trimble_antenna_status_texts, trimble_antenna_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1368, trimble_antenna_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char trimble_bpq_quality_texts[] =
-    "trimble_bpq_quality\0" "0\0" "invalid\0" "1\0" "autonomous\0" "2\0" "sbas_or_vbs\0" "4\0"
-    "rtk_fixed\0" "5\0" "float_or_high_precision\0";
 static const nmea_enum_code trimble_bpq_quality_codes[] = {
-    {trimble_bpq_quality_texts + 20, trimble_bpq_quality_texts + 22}, /* "0": "invalid" */
-    {trimble_bpq_quality_texts + 30, trimble_bpq_quality_texts + 32}, /* "1": "autonomous" */
-    {trimble_bpq_quality_texts + 43, trimble_bpq_quality_texts + 45}, /* "2": "sbas_or_vbs" */
-    {trimble_bpq_quality_texts + 57, trimble_bpq_quality_texts + 59}, /* "4": "rtk_fixed" */
-    {trimble_bpq_quality_texts + 69, trimble_bpq_quality_texts + 71}, /* "5": "float_or_high_precision" */
+    {enum_text_889 + 9, enum_text_518}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_491}, /* "1": "autonomous" */
+    {enum_text_916 + 5, enum_text_1370}, /* "2": "sbas_or_vbs" */
+    {enum_text_920 + 5, enum_text_494}, /* "4": "rtk_fixed" */
+    {enum_text_842 + 5, enum_text_1371}, /* "5": "float_or_high_precision" */
 };
 const nmea_enum_def nmea_trimble_bpq_quality_def = {
-    trimble_bpq_quality_texts, trimble_bpq_quality_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1369, trimble_bpq_quality_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char trimble_copernicus_version_part_texts[] =
-    "trimble_copernicus_version_part\0" "S\0" "application\0" "H\0" "hardware\0" "N\0" "navigation\0";
 static const nmea_enum_code trimble_copernicus_version_part_codes[] = {
-    {trimble_copernicus_version_part_texts + 32, trimble_copernicus_version_part_texts + 34}, /* "S": "application" */
-    {trimble_copernicus_version_part_texts + 46, trimble_copernicus_version_part_texts + 48}, /* "H": "hardware" */
-    {trimble_copernicus_version_part_texts + 57, trimble_copernicus_version_part_texts + 59}, /* "N": "navigation" */
+    {enum_text_601 + 1, enum_text_1373}, /* "S": "application" */
+    {enum_text_701 + 1, enum_text_1374}, /* "H": "hardware" */
+    {enum_text_850 + 5, enum_text_507 + 5}, /* "N": "navigation" */
 };
 const nmea_enum_def nmea_trimble_copernicus_version_part_def = {
-    trimble_copernicus_version_part_texts, trimble_copernicus_version_part_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1372, trimble_copernicus_version_part_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char trimble_dg_channel_used_texts[] =
-    "trimble_dg_channel_used\0" "0\0" "not_used\0" "1\0" "used\0";
 static const nmea_enum_code trimble_dg_channel_used_codes[] = {
-    {trimble_dg_channel_used_texts + 24, trimble_dg_channel_used_texts + 26}, /* "0": "not_used" */
-    {trimble_dg_channel_used_texts + 35, trimble_dg_channel_used_texts + 37}, /* "1": "used" */
+    {enum_text_889 + 9, enum_text_1431 + 10}, /* "0": "not_used" */
+    {enum_text_100 + 1, enum_text_1431 + 14}, /* "1": "used" */
 };
 const nmea_enum_def nmea_trimble_dg_channel_used_def = {
-    trimble_dg_channel_used_texts, trimble_dg_channel_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1376, trimble_dg_channel_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char trimble_dg_tracking_texts[] =
-    "trimble_dg_tracking\0" "0\0" "idle\0" "1\0" "wideband_fft_search\0" "2\0" "searching\0" "3\0"
-    "acquired\0" "4\0" "locked\0" "5\0" "disabled\0";
 static const nmea_enum_code trimble_dg_tracking_codes[] = {
-    {trimble_dg_tracking_texts + 20, trimble_dg_tracking_texts + 22}, /* "0": "idle" */
-    {trimble_dg_tracking_texts + 27, trimble_dg_tracking_texts + 29}, /* "1": "wideband_fft_search" */
-    {trimble_dg_tracking_texts + 49, trimble_dg_tracking_texts + 51}, /* "2": "searching" */
-    {trimble_dg_tracking_texts + 61, trimble_dg_tracking_texts + 63}, /* "3": "acquired" */
-    {trimble_dg_tracking_texts + 72, trimble_dg_tracking_texts + 74}, /* "4": "locked" */
-    {trimble_dg_tracking_texts + 81, trimble_dg_tracking_texts + 83}, /* "5": "disabled" */
+    {enum_text_889 + 9, enum_text_1378}, /* "0": "idle" */
+    {enum_text_100 + 1, enum_text_1379}, /* "1": "wideband_fft_search" */
+    {enum_text_916 + 5, enum_text_1380}, /* "2": "searching" */
+    {enum_text_918 + 5, enum_text_1381}, /* "3": "acquired" */
+    {enum_text_920 + 5, enum_text_1395 + 2}, /* "4": "locked" */
+    {enum_text_842 + 5, enum_text_92}, /* "5": "disabled" */
 };
 const nmea_enum_def nmea_trimble_dg_tracking_def = {
-    trimble_dg_tracking_texts, trimble_dg_tracking_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1377, trimble_dg_tracking_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char trimble_gps_quality_texts[] =
-    "trimble_gps_quality\0" "0\0" "invalid\0" "1\0" "autonomous\0" "2\0" "rtk_float\0" "3\0"
-    "rtk_fixed\0" "4\0" "dgps\0" "5\0" "sbas\0" "6\0" "network_rtk_float_3d\0" "7\0"
-    "network_rtk_fixed_3d\0" "8\0" "network_rtk_float_2d\0" "9\0" "network_rtk_fixed_2d\0" "10\0"
-    "omnistar_hp_xp\0" "11\0" "omnistar_vbs\0" "12\0" "location_rtk\0" "13\0" "beacon_dgps\0" "14\0"
-    "centerpoint_rtx\0" "15\0" "xfill\0";
 static const nmea_enum_code trimble_gps_quality_codes[] = {
-    {trimble_gps_quality_texts + 20, trimble_gps_quality_texts + 22}, /* "0": "invalid" */
-    {trimble_gps_quality_texts + 30, trimble_gps_quality_texts + 32}, /* "1": "autonomous" */
-    {trimble_gps_quality_texts + 43, trimble_gps_quality_texts + 45}, /* "2": "rtk_float" */
-    {trimble_gps_quality_texts + 55, trimble_gps_quality_texts + 57}, /* "3": "rtk_fixed" */
-    {trimble_gps_quality_texts + 67, trimble_gps_quality_texts + 69}, /* "4": "dgps" */
-    {trimble_gps_quality_texts + 74, trimble_gps_quality_texts + 76}, /* "5": "sbas" */
-    {trimble_gps_quality_texts + 81, trimble_gps_quality_texts + 83}, /* "6": "network_rtk_float_3d" */
-    {trimble_gps_quality_texts + 104, trimble_gps_quality_texts + 106}, /* "7": "network_rtk_fixed_3d" */
-    {trimble_gps_quality_texts + 127, trimble_gps_quality_texts + 129}, /* "8": "network_rtk_float_2d" */
-    {trimble_gps_quality_texts + 150, trimble_gps_quality_texts + 152}, /* "9": "network_rtk_fixed_2d" */
-    {trimble_gps_quality_texts + 173, trimble_gps_quality_texts + 176}, /* "10": "omnistar_hp_xp" */
-    {trimble_gps_quality_texts + 191, trimble_gps_quality_texts + 194}, /* "11": "omnistar_vbs" */
-    {trimble_gps_quality_texts + 207, trimble_gps_quality_texts + 210}, /* "12": "location_rtk" */
-    {trimble_gps_quality_texts + 223, trimble_gps_quality_texts + 226}, /* "13": "beacon_dgps" */
-    {trimble_gps_quality_texts + 238, trimble_gps_quality_texts + 241}, /* "14": "centerpoint_rtx" */
-    {trimble_gps_quality_texts + 257, trimble_gps_quality_texts + 260}, /* "15": "xfill" */
+    {enum_text_889 + 9, enum_text_518}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_491}, /* "1": "autonomous" */
+    {enum_text_916 + 5, enum_text_493}, /* "2": "rtk_float" */
+    {enum_text_918 + 5, enum_text_494}, /* "3": "rtk_fixed" */
+    {enum_text_920 + 5, enum_text_1391 + 7}, /* "4": "dgps" */
+    {enum_text_842 + 5, enum_text_98}, /* "5": "sbas" */
+    {enum_text_202 + 1, enum_text_1384}, /* "6": "network_rtk_float_3d" */
+    {enum_text_204 + 1, enum_text_1385}, /* "7": "network_rtk_fixed_3d" */
+    {enum_text_1094 + 6, enum_text_1386}, /* "8": "network_rtk_float_2d" */
+    {enum_text_839 + 5, enum_text_1387}, /* "9": "network_rtk_fixed_2d" */
+    {enum_text_889 + 8, enum_text_1388}, /* "10": "omnistar_hp_xp" */
+    {enum_text_914 + 4, enum_text_1389}, /* "11": "omnistar_vbs" */
+    {enum_text_916 + 4, enum_text_1390}, /* "12": "location_rtk" */
+    {enum_text_918 + 4, enum_text_1391}, /* "13": "beacon_dgps" */
+    {enum_text_920 + 4, enum_text_1392}, /* "14": "centerpoint_rtx" */
+    {enum_text_842 + 4, enum_text_1393}, /* "15": "xfill" */
 };
 const nmea_enum_def nmea_trimble_gps_quality_def = {
-    trimble_gps_quality_texts, trimble_gps_quality_codes, 16, 1, 2, NMEA_CODES_DIGITS
+    enum_text_1383, trimble_gps_quality_codes, 16, 1, 2, NMEA_CODES_DIGITS
 };
 
-static const char trimble_oscillator_lock_texts[] =
-    "trimble_oscillator_lock\0" "0\0" "unlocked\0" "1\0" "locked\0";
 static const nmea_enum_code trimble_oscillator_lock_codes[] = {
-    {trimble_oscillator_lock_texts + 24, trimble_oscillator_lock_texts + 26}, /* "0": "unlocked" */
-    {trimble_oscillator_lock_texts + 35, trimble_oscillator_lock_texts + 37}, /* "1": "locked" */
+    {enum_text_889 + 9, enum_text_1395}, /* "0": "unlocked" */
+    {enum_text_100 + 1, enum_text_1395 + 2}, /* "1": "locked" */
 };
 const nmea_enum_def nmea_trimble_oscillator_lock_def = {
-    trimble_oscillator_lock_texts, trimble_oscillator_lock_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1394, trimble_oscillator_lock_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char trl_reason_texts[] =
-    "trl_reason\0" "1\0" "power_off\0" "2\0" "silent_mode\0" "3\0" "channel_management\0" "4\0"
-    "equipment_malfunction\0" "5\0" "invalid_configuration\0";
 static const nmea_enum_code trl_reason_codes[] = {
-    {trl_reason_texts + 11, trl_reason_texts + 13}, /* "1": "power_off" */
-    {trl_reason_texts + 23, trl_reason_texts + 25}, /* "2": "silent_mode" */
-    {trl_reason_texts + 37, trl_reason_texts + 39}, /* "3": "channel_management" */
-    {trl_reason_texts + 58, trl_reason_texts + 60}, /* "4": "equipment_malfunction" */
-    {trl_reason_texts + 82, trl_reason_texts + 84}, /* "5": "invalid_configuration" */
+    {enum_text_100 + 1, enum_text_1397}, /* "1": "power_off" */
+    {enum_text_916 + 5, enum_text_1398}, /* "2": "silent_mode" */
+    {enum_text_918 + 5, enum_text_1399}, /* "3": "channel_management" */
+    {enum_text_920 + 5, enum_text_1400}, /* "4": "equipment_malfunction" */
+    {enum_text_842 + 5, enum_text_1401}, /* "5": "invalid_configuration" */
 };
 const nmea_enum_def nmea_trl_reason_def = {
-    trl_reason_texts, trl_reason_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1396, trl_reason_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char ttm_acquisition_texts[] =
-    "ttm_acquisition\0" "A\0" "automatic\0" "M\0" "manual\0" "R\0" "reported\0";
 static const nmea_enum_code ttm_acquisition_codes[] = {
-    {ttm_acquisition_texts + 16, ttm_acquisition_texts + 18}, /* "A": "automatic" */
-    {ttm_acquisition_texts + 28, ttm_acquisition_texts + 30}, /* "M": "manual" */
-    {ttm_acquisition_texts + 37, ttm_acquisition_texts + 39}, /* "R": "reported" */
+    {enum_text_538 + 4, enum_text_645 + 11}, /* "A": "automatic" */
+    {enum_text_705 + 1, enum_text_1033 + 9}, /* "M": "manual" */
+    {enum_text_412 + 2, enum_text_1403}, /* "R": "reported" */
 };
 const nmea_enum_def nmea_ttm_acquisition_def = {
-    ttm_acquisition_texts, ttm_acquisition_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1402, ttm_acquisition_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char ttm_reference_texts[] =
-    "ttm_reference\0" "T\0" "true_north\0" "R\0" "relative\0";
 static const nmea_enum_code ttm_reference_codes[] = {
-    {ttm_reference_texts + 14, ttm_reference_texts + 16}, /* "T": "true_north" */
-    {ttm_reference_texts + 27, ttm_reference_texts + 29}, /* "R": "relative" */
+    {enum_text_599 + 1, enum_text_386}, /* "T": "true_north" */
+    {enum_text_412 + 2, enum_text_572}, /* "R": "relative" */
 };
 const nmea_enum_def nmea_ttm_reference_def = {
-    ttm_reference_texts, ttm_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1404, ttm_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char ttm_target_status_texts[] =
-    "ttm_target_status\0" "L\0" "lost\0" "Q\0" "query\0" "T\0" "tracking\0";
 static const nmea_enum_code ttm_target_status_codes[] = {
-    {ttm_target_status_texts + 18, ttm_target_status_texts + 20}, /* "L": "lost" */
-    {ttm_target_status_texts + 25, ttm_target_status_texts + 27}, /* "Q": "query" */
-    {ttm_target_status_texts + 33, ttm_target_status_texts + 35}, /* "T": "tracking" */
+    {enum_text_436 + 2, enum_text_822 + 16}, /* "L": "lost" */
+    {enum_text_55, enum_text_654}, /* "Q": "query" */
+    {enum_text_599 + 1, enum_text_1377 + 11}, /* "T": "tracking" */
 };
 const nmea_enum_def nmea_ttm_target_status_def = {
-    ttm_target_status_texts, ttm_target_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1405, ttm_target_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char ttm_units_texts[] =
-    "ttm_units\0" "K\0" "kilometres\0" "N\0" "nautical_miles\0" "S\0" "statute_miles\0";
 static const nmea_enum_code ttm_units_codes[] = {
-    {ttm_units_texts + 10, ttm_units_texts + 12}, /* "K": "kilometres" */
-    {ttm_units_texts + 23, ttm_units_texts + 25}, /* "N": "nautical_miles" */
-    {ttm_units_texts + 40, ttm_units_texts + 42}, /* "S": "statute_miles" */
+    {enum_text_1422 + 1, enum_text_1407}, /* "K": "kilometres" */
+    {enum_text_850 + 5, enum_text_1408}, /* "N": "nautical_miles" */
+    {enum_text_601 + 1, enum_text_1409}, /* "S": "statute_miles" */
 };
 const nmea_enum_def nmea_ttm_units_def = {
-    ttm_units_texts, ttm_units_codes, 3, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1406, ttm_units_codes, 3, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char ublox_autobauding_texts[] =
-    "ublox_autobauding\0" "0\0" "disabled\0" "1\0" "enabled\0";
 static const nmea_enum_code ublox_autobauding_codes[] = {
-    {ublox_autobauding_texts + 18, ublox_autobauding_texts + 20}, /* "0": "disabled" */
-    {ublox_autobauding_texts + 29, ublox_autobauding_texts + 31}, /* "1": "enabled" */
+    {enum_text_889 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1076 + 14}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_ublox_autobauding_def = {
-    ublox_autobauding_texts, ublox_autobauding_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1410, ublox_autobauding_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
-static const char ublox_nav_status_texts[] =
-    "ublox_nav_status\0" "NF\0" "no_fix\0" "DR\0" "dead_reckoning\0" "G2\0" "standalone_2d\0" "G3\0"
-    "standalone_3d\0" "D2\0" "differential_2d\0" "D3\0" "differential_3d\0" "RK\0"
-    "gnss_dead_reckoning\0" "TT\0" "time_only\0";
 static const nmea_enum_code ublox_nav_status_codes[] = {
-    {ublox_nav_status_texts + 17, ublox_nav_status_texts + 20}, /* "NF": "no_fix" */
-    {ublox_nav_status_texts + 27, ublox_nav_status_texts + 30}, /* "DR": "dead_reckoning" */
-    {ublox_nav_status_texts + 45, ublox_nav_status_texts + 48}, /* "G2": "standalone_2d" */
-    {ublox_nav_status_texts + 62, ublox_nav_status_texts + 65}, /* "G3": "standalone_3d" */
-    {ublox_nav_status_texts + 79, ublox_nav_status_texts + 82}, /* "D2": "differential_2d" */
-    {ublox_nav_status_texts + 98, ublox_nav_status_texts + 101}, /* "D3": "differential_3d" */
-    {ublox_nav_status_texts + 117, ublox_nav_status_texts + 120}, /* "RK": "gnss_dead_reckoning" */
-    {ublox_nav_status_texts + 140, ublox_nav_status_texts + 143}, /* "TT": "time_only" */
+    {enum_text_1412, enum_text_509}, /* "NF": "no_fix" */
+    {enum_text_412 + 1, enum_text_1423 + 5}, /* "DR": "dead_reckoning" */
+    {enum_text_1414, enum_text_1415}, /* "G2": "standalone_2d" */
+    {enum_text_1416, enum_text_1417}, /* "G3": "standalone_3d" */
+    {enum_text_407 + 1, enum_text_1419}, /* "D2": "differential_2d" */
+    {enum_text_1420, enum_text_1421}, /* "D3": "differential_3d" */
+    {enum_text_1422, enum_text_1423}, /* "RK": "gnss_dead_reckoning" */
+    {enum_text_414 + 1, enum_text_1425}, /* "TT": "time_only" */
 };
 const nmea_enum_def nmea_ublox_nav_status_def = {
-    ublox_nav_status_texts, ublox_nav_status_codes, 8, 2, 2, NMEA_CODES_ALNUM
+    enum_text_1411, ublox_nav_status_codes, 8, 2, 2, NMEA_CODES_ALNUM
 };
 
-static const char ublox_port_texts[] =
-    "ublox_port\0" "0\0" "ddc\0" "1\0" "uart1\0" "2\0" "uart2\0" "3\0" "usb\0" "4\0" "spi\0";
 static const nmea_enum_code ublox_port_codes[] = {
-    {ublox_port_texts + 11, ublox_port_texts + 13}, /* "0": "ddc" */
-    {ublox_port_texts + 17, ublox_port_texts + 19}, /* "1": "uart1" */
-    {ublox_port_texts + 25, ublox_port_texts + 27}, /* "2": "uart2" */
-    {ublox_port_texts + 33, ublox_port_texts + 35}, /* "3": "usb" */
-    {ublox_port_texts + 39, ublox_port_texts + 41}, /* "4": "spi" */
+    {enum_text_889 + 9, enum_text_1427}, /* "0": "ddc" */
+    {enum_text_100 + 1, enum_text_1191}, /* "1": "uart1" */
+    {enum_text_916 + 5, enum_text_1192}, /* "2": "uart2" */
+    {enum_text_918 + 5, enum_text_1428}, /* "3": "usb" */
+    {enum_text_920 + 5, enum_text_1429}, /* "4": "spi" */
 };
 const nmea_enum_def nmea_ublox_port_def = {
-    ublox_port_texts, ublox_port_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1426, ublox_port_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char ublox_sv_status_texts[] =
-    "ublox_sv_status\0" "-\0" "not_used\0" "U\0" "used\0" "e\0" "ephemeris_not_used\0";
 static const nmea_enum_code ublox_sv_status_codes[] = {
-    {ublox_sv_status_texts + 16, ublox_sv_status_texts + 18}, /* "-": "not_used" */
-    {ublox_sv_status_texts + 27, ublox_sv_status_texts + 29}, /* "U": "used" */
-    {ublox_sv_status_texts + 34, ublox_sv_status_texts + 36}, /* "e": "ephemeris_not_used" */
+    {enum_text_515, enum_text_1431 + 10}, /* "-": "not_used" */
+    {enum_text_1340 + 2, enum_text_1431 + 14}, /* "U": "used" */
+    {enum_text_96 + 3, enum_text_1431}, /* "e": "ephemeris_not_used" */
 };
 const nmea_enum_def nmea_ublox_sv_status_def = {
-    ublox_sv_status_texts, ublox_sv_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1430, ublox_sv_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char ubx_fix_type_texts[] =
-    "ubx_fix_type\0" "0\0" "no_fix\0" "1\0" "dead_reckoning\0" "2\0" "fix_2d\0" "3\0" "fix_3d\0" "4\0"
-    "gnss_dead_reckoning\0" "5\0" "time_only\0";
 static const nmea_enum_code ubx_fix_type_codes[] = {
-    {ubx_fix_type_texts + 13, ubx_fix_type_texts + 15}, /* "0": "no_fix" */
-    {ubx_fix_type_texts + 22, ubx_fix_type_texts + 24}, /* "1": "dead_reckoning" */
-    {ubx_fix_type_texts + 39, ubx_fix_type_texts + 41}, /* "2": "fix_2d" */
-    {ubx_fix_type_texts + 48, ubx_fix_type_texts + 50}, /* "3": "fix_3d" */
-    {ubx_fix_type_texts + 57, ubx_fix_type_texts + 59}, /* "4": "gnss_dead_reckoning" */
-    {ubx_fix_type_texts + 79, ubx_fix_type_texts + 81}, /* "5": "time_only" */
+    {enum_text_889 + 9, enum_text_509}, /* "0": "no_fix" */
+    {enum_text_100 + 1, enum_text_1423 + 5}, /* "1": "dead_reckoning" */
+    {enum_text_916 + 5, enum_text_804}, /* "2": "fix_2d" */
+    {enum_text_918 + 5, enum_text_173}, /* "3": "fix_3d" */
+    {enum_text_920 + 5, enum_text_1423}, /* "4": "gnss_dead_reckoning" */
+    {enum_text_842 + 5, enum_text_1425}, /* "5": "time_only" */
 };
 const nmea_enum_def nmea_ubx_fix_type_def = {
-    ubx_fix_type_texts, ubx_fix_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1432, ubx_fix_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char ubx_gnss_id_texts[] =
-    "ubx_gnss_id\0" "0\0" "gps\0" "1\0" "sbas\0" "2\0" "galileo\0" "3\0" "beidou\0" "4\0" "imes\0" "5\0"
-    "qzss\0" "6\0" "glonass\0" "7\0" "navic\0";
 static const nmea_enum_code ubx_gnss_id_codes[] = {
-    {ubx_gnss_id_texts + 12, ubx_gnss_id_texts + 14}, /* "0": "gps" */
-    {ubx_gnss_id_texts + 18, ubx_gnss_id_texts + 20}, /* "1": "sbas" */
-    {ubx_gnss_id_texts + 25, ubx_gnss_id_texts + 27}, /* "2": "galileo" */
-    {ubx_gnss_id_texts + 35, ubx_gnss_id_texts + 37}, /* "3": "beidou" */
-    {ubx_gnss_id_texts + 44, ubx_gnss_id_texts + 46}, /* "4": "imes" */
-    {ubx_gnss_id_texts + 51, ubx_gnss_id_texts + 53}, /* "5": "qzss" */
-    {ubx_gnss_id_texts + 58, ubx_gnss_id_texts + 60}, /* "6": "glonass" */
-    {ubx_gnss_id_texts + 68, ubx_gnss_id_texts + 70}, /* "7": "navic" */
+    {enum_text_889 + 9, enum_text_1391 + 8}, /* "0": "gps" */
+    {enum_text_100 + 1, enum_text_98}, /* "1": "sbas" */
+    {enum_text_916 + 5, enum_text_932 + 12}, /* "2": "galileo" */
+    {enum_text_918 + 5, enum_text_122}, /* "3": "beidou" */
+    {enum_text_920 + 5, enum_text_1434}, /* "4": "imes" */
+    {enum_text_842 + 5, enum_text_1335 + 6}, /* "5": "qzss" */
+    {enum_text_202 + 1, enum_text_239 + 4}, /* "6": "glonass" */
+    {enum_text_204 + 1, enum_text_1334}, /* "7": "navic" */
 };
 const nmea_enum_def nmea_ubx_gnss_id_def = {
-    ubx_gnss_id_texts, ubx_gnss_id_codes, 8, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1433, ubx_gnss_id_codes, 8, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char vsd_nav_status_texts[] =
-    "vsd_nav_status\0" "0\0" "under_way_engine\0" "1\0" "at_anchor\0" "2\0" "not_under_command\0" "3\0"
-    "restricted_manoeuvrability\0" "4\0" "constrained_by_draught\0" "5\0" "moored\0" "6\0" "aground\0"
-    "7\0" "fishing\0" "8\0" "under_way_sailing\0" "9\0" "reserved_hsc\0" "10\0" "reserved_wig\0" "11\0"
-    "towing_astern\0" "12\0" "pushing_ahead\0" "13\0" "reserved\0" "14\0" "emergency_beacon_active\0"
-    "15\0" "not_defined\0";
 static const nmea_enum_code vsd_nav_status_codes[] = {
-    {vsd_nav_status_texts + 15, vsd_nav_status_texts + 17}, /* "0": "under_way_engine" */
-    {vsd_nav_status_texts + 34, vsd_nav_status_texts + 36}, /* "1": "at_anchor" */
-    {vsd_nav_status_texts + 46, vsd_nav_status_texts + 48}, /* "2": "not_under_command" */
-    {vsd_nav_status_texts + 66, vsd_nav_status_texts + 68}, /* "3": "restricted_manoeuvrability" */
-    {vsd_nav_status_texts + 95, vsd_nav_status_texts + 97}, /* "4": "constrained_by_draught" */
-    {vsd_nav_status_texts + 120, vsd_nav_status_texts + 122}, /* "5": "moored" */
-    {vsd_nav_status_texts + 129, vsd_nav_status_texts + 131}, /* "6": "aground" */
-    {vsd_nav_status_texts + 139, vsd_nav_status_texts + 141}, /* "7": "fishing" */
-    {vsd_nav_status_texts + 149, vsd_nav_status_texts + 151}, /* "8": "under_way_sailing" */
-    {vsd_nav_status_texts + 169, vsd_nav_status_texts + 171}, /* "9": "reserved_hsc" */
-    {vsd_nav_status_texts + 184, vsd_nav_status_texts + 187}, /* "10": "reserved_wig" */
-    {vsd_nav_status_texts + 200, vsd_nav_status_texts + 203}, /* "11": "towing_astern" */
-    {vsd_nav_status_texts + 217, vsd_nav_status_texts + 220}, /* "12": "pushing_ahead" */
-    {vsd_nav_status_texts + 234, vsd_nav_status_texts + 237}, /* "13": "reserved" */
-    {vsd_nav_status_texts + 246, vsd_nav_status_texts + 249}, /* "14": "emergency_beacon_active" */
-    {vsd_nav_status_texts + 273, vsd_nav_status_texts + 276}, /* "15": "not_defined" */
+    {enum_text_889 + 9, enum_text_1436}, /* "0": "under_way_engine" */
+    {enum_text_100 + 1, enum_text_1437}, /* "1": "at_anchor" */
+    {enum_text_916 + 5, enum_text_1438}, /* "2": "not_under_command" */
+    {enum_text_918 + 5, enum_text_1439}, /* "3": "restricted_manoeuvrability" */
+    {enum_text_920 + 5, enum_text_1440}, /* "4": "constrained_by_draught" */
+    {enum_text_842 + 5, enum_text_1441}, /* "5": "moored" */
+    {enum_text_202 + 1, enum_text_1442}, /* "6": "aground" */
+    {enum_text_204 + 1, enum_text_252}, /* "7": "fishing" */
+    {enum_text_1094 + 6, enum_text_1443}, /* "8": "under_way_sailing" */
+    {enum_text_839 + 5, enum_text_1444}, /* "9": "reserved_hsc" */
+    {enum_text_889 + 8, enum_text_1445}, /* "10": "reserved_wig" */
+    {enum_text_914 + 4, enum_text_1446}, /* "11": "towing_astern" */
+    {enum_text_916 + 4, enum_text_1447}, /* "12": "pushing_ahead" */
+    {enum_text_918 + 4, enum_text_1139}, /* "13": "reserved" */
+    {enum_text_920 + 4, enum_text_1448}, /* "14": "emergency_beacon_active" */
+    {enum_text_842 + 4, enum_text_1449}, /* "15": "not_defined" */
 };
 const nmea_enum_def nmea_vsd_nav_status_def = {
-    vsd_nav_status_texts, vsd_nav_status_codes, 16, 1, 2, NMEA_CODES_DIGITS
+    enum_text_1435, vsd_nav_status_codes, 16, 1, 2, NMEA_CODES_DIGITS
 };
 
-static const char wat_alarm_condition_texts[] =
-    "wat_alarm_condition\0" "N\0" "normal\0" "H\0" "high\0" "J\0" "extreme_high\0" "L\0" "low\0" "K\0"
-    "extreme_low\0" "X\0" "fault\0";
 static const nmea_enum_code wat_alarm_condition_codes[] = {
-    {wat_alarm_condition_texts + 20, wat_alarm_condition_texts + 22}, /* "N": "normal" */
-    {wat_alarm_condition_texts + 29, wat_alarm_condition_texts + 31}, /* "H": "high" */
-    {wat_alarm_condition_texts + 36, wat_alarm_condition_texts + 38}, /* "J": "extreme_high" */
-    {wat_alarm_condition_texts + 51, wat_alarm_condition_texts + 53}, /* "L": "low" */
-    {wat_alarm_condition_texts + 57, wat_alarm_condition_texts + 59}, /* "K": "extreme_low" */
-    {wat_alarm_condition_texts + 71, wat_alarm_condition_texts + 73}, /* "X": "fault" */
+    {enum_text_850 + 5, enum_text_964 + 4}, /* "N": "normal" */
+    {enum_text_701 + 1, enum_text_356 + 8}, /* "H": "high" */
+    {enum_text_355, enum_text_356}, /* "J": "extreme_high" */
+    {enum_text_436 + 2, enum_text_685 + 7}, /* "L": "low" */
+    {enum_text_1422 + 1, enum_text_359}, /* "K": "extreme_low" */
+    {enum_text_931 + 5, enum_text_1040 + 2}, /* "X": "fault" */
 };
 const nmea_enum_def nmea_wat_alarm_condition_def = {
-    wat_alarm_condition_texts, wat_alarm_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1450, wat_alarm_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char wat_message_type_texts[] =
-    "wat_message_type\0" "S\0" "section_status\0" "E\0" "single_detector\0" "F\0" "system_fault\0";
 static const nmea_enum_code wat_message_type_codes[] = {
-    {wat_message_type_texts + 17, wat_message_type_texts + 19}, /* "S": "section_status" */
-    {wat_message_type_texts + 34, wat_message_type_texts + 36}, /* "E": "single_detector" */
-    {wat_message_type_texts + 52, wat_message_type_texts + 54}, /* "F": "system_fault" */
+    {enum_text_601 + 1, enum_text_587}, /* "S": "section_status" */
+    {enum_text_430 + 2, enum_text_1452}, /* "E": "single_detector" */
+    {enum_text_715 + 1, enum_text_589}, /* "F": "system_fault" */
 };
 const nmea_enum_def nmea_wat_message_type_def = {
-    wat_message_type_texts, wat_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1451, wat_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char wat_override_texts[] =
-    "wat_override\0" "O\0" "override\0" "N\0" "normal\0";
 static const nmea_enum_code wat_override_codes[] = {
-    {wat_override_texts + 13, wat_override_texts + 15}, /* "O": "override" */
-    {wat_override_texts + 24, wat_override_texts + 26}, /* "N": "normal" */
+    {enum_text_709 + 1, enum_text_978 + 4}, /* "O": "override" */
+    {enum_text_850 + 5, enum_text_964 + 4}, /* "N": "normal" */
 };
 const nmea_enum_def nmea_wat_override_def = {
-    wat_override_texts, wat_override_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1453, wat_override_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char wat_system_texts[] =
-    "wat_system\0" "WL\0" "water_level_detection\0" "BI\0" "bilge_high_level\0" "HD\0"
-    "hull_door_leakage\0" "OT\0" "other\0";
 static const nmea_enum_code wat_system_codes[] = {
-    {wat_system_texts + 11, wat_system_texts + 14}, /* "WL": "water_level_detection" */
-    {wat_system_texts + 36, wat_system_texts + 39}, /* "BI": "bilge_high_level" */
-    {wat_system_texts + 56, wat_system_texts + 59}, /* "HD": "hull_door_leakage" */
-    {wat_system_texts + 77, wat_system_texts + 80}, /* "OT": "other" */
+    {enum_text_1455, enum_text_1456}, /* "WL": "water_level_detection" */
+    {enum_text_1457, enum_text_1458}, /* "BI": "bilge_high_level" */
+    {enum_text_605, enum_text_1459}, /* "HD": "hull_door_leakage" */
+    {enum_text_827 + 4, enum_text_1279 + 6}, /* "OT": "other" */
 };
 const nmea_enum_def nmea_wat_system_def = {
-    wat_system_texts, wat_system_codes, 4, 2, 2, NMEA_CODES_LETTERS
+    enum_text_1454, wat_system_codes, 4, 2, 2, NMEA_CODES_LETTERS
 };
 
-static const char xdr_transducer_type_texts[] =
-    "xdr_transducer_type\0" "A\0" "angular_displacement\0" "C\0" "temperature\0" "D\0"
-    "linear_displacement\0" "F\0" "frequency\0" "G\0" "generic\0" "H\0" "humidity\0" "I\0" "current\0"
-    "N\0" "force\0" "P\0" "pressure\0" "R\0" "flow_rate\0" "S\0" "switch_or_valve\0" "T\0"
-    "tachometer\0" "U\0" "voltage\0" "V\0" "volume\0";
 static const nmea_enum_code xdr_transducer_type_codes[] = {
-    {xdr_transducer_type_texts + 20, xdr_transducer_type_texts + 22}, /* "A": "angular_displacement" */
-    {xdr_transducer_type_texts + 43, xdr_transducer_type_texts + 45}, /* "C": "temperature" */
-    {xdr_transducer_type_texts + 57, xdr_transducer_type_texts + 59}, /* "D": "linear_displacement" */
-    {xdr_transducer_type_texts + 79, xdr_transducer_type_texts + 81}, /* "F": "frequency" */
-    {xdr_transducer_type_texts + 91, xdr_transducer_type_texts + 93}, /* "G": "generic" */
-    {xdr_transducer_type_texts + 101, xdr_transducer_type_texts + 103}, /* "H": "humidity" */
-    {xdr_transducer_type_texts + 112, xdr_transducer_type_texts + 114}, /* "I": "current" */
-    {xdr_transducer_type_texts + 122, xdr_transducer_type_texts + 124}, /* "N": "force" */
-    {xdr_transducer_type_texts + 130, xdr_transducer_type_texts + 132}, /* "P": "pressure" */
-    {xdr_transducer_type_texts + 141, xdr_transducer_type_texts + 143}, /* "R": "flow_rate" */
-    {xdr_transducer_type_texts + 153, xdr_transducer_type_texts + 155}, /* "S": "switch_or_valve" */
-    {xdr_transducer_type_texts + 171, xdr_transducer_type_texts + 173}, /* "T": "tachometer" */
-    {xdr_transducer_type_texts + 184, xdr_transducer_type_texts + 186}, /* "U": "voltage" */
-    {xdr_transducer_type_texts + 194, xdr_transducer_type_texts + 196}, /* "V": "volume" */
+    {enum_text_538 + 4, enum_text_1461}, /* "A": "angular_displacement" */
+    {enum_text_550 + 4, enum_text_1462}, /* "C": "temperature" */
+    {enum_text_561 + 1, enum_text_1463}, /* "D": "linear_displacement" */
+    {enum_text_715 + 1, enum_text_1091 + 4}, /* "F": "frequency" */
+    {enum_text_530 + 1, enum_text_1465}, /* "G": "generic" */
+    {enum_text_701 + 1, enum_text_1466}, /* "H": "humidity" */
+    {enum_text_1457 + 1, enum_text_1467}, /* "I": "current" */
+    {enum_text_850 + 5, enum_text_1468}, /* "N": "force" */
+    {enum_text_438 + 2, enum_text_1469}, /* "P": "pressure" */
+    {enum_text_412 + 2, enum_text_1470}, /* "R": "flow_rate" */
+    {enum_text_601 + 1, enum_text_1471}, /* "S": "switch_or_valve" */
+    {enum_text_599 + 1, enum_text_1472}, /* "T": "tachometer" */
+    {enum_text_1340 + 2, enum_text_1473}, /* "U": "voltage" */
+    {enum_text_546 + 4, enum_text_1474}, /* "V": "volume" */
 };
 const nmea_enum_def nmea_xdr_transducer_type_def = {
-    xdr_transducer_type_texts, xdr_transducer_type_codes, 14, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1460, xdr_transducer_type_codes, 14, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char xdr_unit_texts[] =
-    "xdr_unit\0" "A\0" "amperes\0" "B\0" "bars_or_binary\0" "C\0" "celsius\0" "D\0" "degrees\0" "H\0"
-    "hertz\0" "I\0" "litres_per_second\0" "K\0" "kelvin_or_density\0" "M\0" "metres_or_cubic_metres\0"
-    "N\0" "newtons\0" "P\0" "percent_or_pascals\0" "R\0" "rpm\0" "S\0" "parts_per_thousand\0" "V\0"
-    "volts\0";
 static const nmea_enum_code xdr_unit_codes[] = {
-    {xdr_unit_texts + 9, xdr_unit_texts + 11}, /* "A": "amperes" */
-    {xdr_unit_texts + 19, xdr_unit_texts + 21}, /* "B": "bars_or_binary" */
-    {xdr_unit_texts + 36, xdr_unit_texts + 38}, /* "C": "celsius" */
-    {xdr_unit_texts + 46, xdr_unit_texts + 48}, /* "D": "degrees" */
-    {xdr_unit_texts + 56, xdr_unit_texts + 58}, /* "H": "hertz" */
-    {xdr_unit_texts + 64, xdr_unit_texts + 66}, /* "I": "litres_per_second" */
-    {xdr_unit_texts + 84, xdr_unit_texts + 86}, /* "K": "kelvin_or_density" */
-    {xdr_unit_texts + 104, xdr_unit_texts + 106}, /* "M": "metres_or_cubic_metres" */
-    {xdr_unit_texts + 129, xdr_unit_texts + 131}, /* "N": "newtons" */
-    {xdr_unit_texts + 139, xdr_unit_texts + 141}, /* "P": "percent_or_pascals" */
-    {xdr_unit_texts + 160, xdr_unit_texts + 162}, /* "R": "rpm" */
-    {xdr_unit_texts + 166, xdr_unit_texts + 168}, /* "S": "parts_per_thousand" */
-    {xdr_unit_texts + 187, xdr_unit_texts + 189}, /* "V": "volts" */
+    {enum_text_538 + 4, enum_text_1476}, /* "A": "amperes" */
+    {enum_text_23, enum_text_1477}, /* "B": "bars_or_binary" */
+    {enum_text_550 + 4, enum_text_1478}, /* "C": "celsius" */
+    {enum_text_561 + 1, enum_text_1125}, /* "D": "degrees" */
+    {enum_text_701 + 1, enum_text_1479}, /* "H": "hertz" */
+    {enum_text_1457 + 1, enum_text_1480}, /* "I": "litres_per_second" */
+    {enum_text_1422 + 1, enum_text_1481}, /* "K": "kelvin_or_density" */
+    {enum_text_705 + 1, enum_text_1482}, /* "M": "metres_or_cubic_metres" */
+    {enum_text_850 + 5, enum_text_1483}, /* "N": "newtons" */
+    {enum_text_438 + 2, enum_text_1484}, /* "P": "percent_or_pascals" */
+    {enum_text_412 + 2, enum_text_1127}, /* "R": "rpm" */
+    {enum_text_601 + 1, enum_text_1485}, /* "S": "parts_per_thousand" */
+    {enum_text_546 + 4, enum_text_1486}, /* "V": "volts" */
 };
 const nmea_enum_def nmea_xdr_unit_def = {
-    xdr_unit_texts, xdr_unit_codes, 13, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1475, xdr_unit_codes, 13, 1, 1, NMEA_CODES_LETTERS
 };
 
-static const char zdl_point_type_texts[] =
-    "zdl_point_type\0" "C\0" "collision\0" "T\0" "turning_point\0" "R\0" "reference\0" "W\0"
-    "wheelover\0";
 static const nmea_enum_code zdl_point_type_codes[] = {
-    {zdl_point_type_texts + 15, zdl_point_type_texts + 17}, /* "C": "collision" */
-    {zdl_point_type_texts + 27, zdl_point_type_texts + 29}, /* "T": "turning_point" */
-    {zdl_point_type_texts + 43, zdl_point_type_texts + 45}, /* "R": "reference" */
-    {zdl_point_type_texts + 55, zdl_point_type_texts + 57}, /* "W": "wheelover" */
+    {enum_text_550 + 4, enum_text_624}, /* "C": "collision" */
+    {enum_text_599 + 1, enum_text_1488}, /* "T": "turning_point" */
+    {enum_text_412 + 2, enum_text_26 + 4}, /* "R": "reference" */
+    {enum_text_369, enum_text_1490}, /* "W": "wheelover" */
 };
 const nmea_enum_def nmea_zdl_point_type_def = {
-    zdl_point_type_texts, zdl_point_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1487, zdl_point_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 /* ------------------------------------------------------------------------------------------ */

@@ -66,38 +66,48 @@ static const char *const FIELD_EXPECTED[] = {
 /* Generated from the spec */
 
 /* ------------------------------------------------------------------------------------------ */
-/* Lookup tables */
+/* Lookup tables: their texts each in an array of its own (see enum_texts in generator/emit_c.py),
+   then the tables */
 
-static const char acme_baud_texts[] =
-    "acme_baud\0" "4800\0" "baud_4800\0" "9600\0" "baud_9600\0";
+static const char enum_text_0[] = "acme_baud";
+static const char enum_text_2[] = "baud_4800";
+static const char enum_text_4[] = "baud_9600";
+static const char enum_text_5[] = "fix_quality";
+static const char enum_text_7[] = "invalid";
+static const char enum_text_8[] = "1";
+static const char enum_text_9[] = "autonomous";
+static const char enum_text_10[] = "2";
+static const char enum_text_11[] = "differential";
+static const char enum_text_12[] = "system_mode";
+static const char enum_text_13[] = "A";
+static const char enum_text_14[] = "D";
+static const char enum_text_15[] = "N";
+static const char enum_text_16[] = "not_used";
+
 static const nmea_enum_code acme_baud_codes[] = {
-    {acme_baud_texts + 10, acme_baud_texts + 15}, /* "4800": "baud_4800" */
-    {acme_baud_texts + 25, acme_baud_texts + 30}, /* "9600": "baud_9600" */
+    {enum_text_2 + 5, enum_text_2}, /* "4800": "baud_4800" */
+    {enum_text_4 + 5, enum_text_4}, /* "9600": "baud_9600" */
 };
 const nmea_enum_def nmea_acme_baud_def = {
-    acme_baud_texts, acme_baud_codes, 2, 4, 4, NMEA_CODES_CLOSED
+    enum_text_0, acme_baud_codes, 2, 4, 4, NMEA_CODES_CLOSED
 };
 
-static const char fix_quality_texts[] =
-    "fix_quality\0" "0\0" "invalid\0" "1\0" "autonomous\0" "2\0" "differential\0";
 static const nmea_enum_code fix_quality_codes[] = {
-    {fix_quality_texts + 12, fix_quality_texts + 14}, /* "0": "invalid" */
-    {fix_quality_texts + 22, fix_quality_texts + 24}, /* "1": "autonomous" */
-    {fix_quality_texts + 35, fix_quality_texts + 37}, /* "2": "differential" */
+    {enum_text_2 + 8, enum_text_7}, /* "0": "invalid" */
+    {enum_text_8, enum_text_9}, /* "1": "autonomous" */
+    {enum_text_10, enum_text_11}, /* "2": "differential" */
 };
 const nmea_enum_def nmea_fix_quality_def = {
-    fix_quality_texts, fix_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_5, fix_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
-static const char system_mode_texts[] =
-    "system_mode\0" "A\0" "autonomous\0" "D\0" "differential\0" "N\0" "not_used\0";
 static const nmea_enum_code system_mode_codes[] = {
-    {system_mode_texts + 12, system_mode_texts + 14}, /* "A": "autonomous" */
-    {system_mode_texts + 25, system_mode_texts + 27}, /* "D": "differential" */
-    {system_mode_texts + 40, system_mode_texts + 42}, /* "N": "not_used" */
+    {enum_text_13, enum_text_9}, /* "A": "autonomous" */
+    {enum_text_14, enum_text_11}, /* "D": "differential" */
+    {enum_text_15, enum_text_16}, /* "N": "not_used" */
 };
 const nmea_enum_def nmea_system_mode_def = {
-    system_mode_texts, system_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_12, system_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 
