@@ -506,18 +506,48 @@ def _read_condition(view: dict, call: str) -> str:
     return "!" + view[call]
 
 
-def enum_view(e: EnumDef) -> dict:
+def enum_texts(enums: list[EnumDef]) -> dict[str, str]:
+    """Each text of the lookup tables (their ids, codes and code ids) once, as the name of a char
+    array of its own: a firmware then links the texts of the tables it uses only (-fdata-sections
+    --gc-sections keep or drop each array), each once however many tables have it. (As string
+    literals they would share one section, which --gc-sections keeps whole with every table's
+    texts in it.)"""
+    names: dict[str, str] = {}
+    for e in enums:
+        for text in [e.id, *(text for v in e.values for text in (v.code, v.id))]:
+            names.setdefault(text, f"enum_text_{len(names)}")
+    return names
+
+
+def enum_text_refs(names: dict[str, str]) -> dict[str, str]:
+    """The C expression of each text of enum_texts: its array, or the end of a longer text's
+    ("valid" is the tail of "invalid": enum_text_7 + 2), whose array then holds both. The
+    shortest such text is taken, then its own (a firmware links few bytes for a short code)."""
+    by_length = sorted(names, key=len)
+    parent = {text: next((t for t in by_length if len(t) > len(text) and t.endswith(text)), None) for text in names}
+    refs = {}
+    for text, name in names.items():
+        root = text
+        while (up := parent[root]) is not None:
+            root = up
+        refs[text] = f"{names[root]} + {len(root.encode()) - len(text.encode())}" if root != text else name
+    return refs
+
+
+def enum_view(e: EnumDef, texts: dict[str, str]) -> dict:
     return {
         "enum": e,
         "type": enum_type(e),
         "def": enum_def(e),
         "codes": f"{e.id}_codes",
+        "name": texts[e.id],
         "doc": doc_lines(f"{e.id}: {e.name}. {e.doc}"),
         "class": f"NMEA_CODES_{e.code_class.upper()}",
         "values": [{
             "const": enum_const(e, v.id),
-            "code": c_str(v.code),
-            "id": c_str(v.id),
+            "code": texts[v.code],
+            "id": texts[v.id],
+            "comment": f"{c_str(v.code)}: {c_str(v.id)}".replace("*/", "*\\/"),  # quoted: a renamed copy keeps them
             "doc": doc_lines(f'"{v.code}": {v.doc}' + (f" (NMEA {v.since})" if v.since else ""), 88),
         } for v in e.values],
     }
@@ -698,7 +728,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     ranges = Ranges()
     args = FieldArgs(ranges)
     views = [layout_view(s, lay, args) for s in spec.sentences for lay in s.layouts]
-    enums = [enum_view(e) for e in spec.enums]
+    texts = enum_texts(spec.enums)
+    refs = enum_text_refs(texts)
+    enums = [enum_view(e, refs) for e in spec.enums]
     bitfields = [bitfield_view(b) for b in spec.bitfields]
     tables = [table_view(t) for t in spec.tables]
     dispatch = _dispatch(spec, views)
@@ -715,6 +747,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     context = {
         "shadowing_talker_like": bool(shadowing),
         "enums": enums, "layouts": views, "sentences": sentences, "ranges": ranges.all,
+        "enum_texts": [(name, c_str(text)) for text, name in texts.items() if refs[text] == name],
         "field_args": args.tables(),
         "bitfields": bitfields, "tables": tables, "dispatch": dispatch,
         "hashes": {name: perfect_hash([int(e["code"], 16) for e in dispatch[name]])

@@ -1306,11 +1306,25 @@ static const char *const FIELD_EXPECTED[] = {
 static const char HEX_UPPER[] = "0123456789ABCDEF";
 static const char HEX_LOWER[] = "0123456789abcdef";
 
-static const int64_t POW10[NMEA_MAX_DIGITS + 1] = {
+/* 10^k for k from 0 to NMEA_MAX_DIGITS: a table, or in a build for size (-Os) a loop, which
+   takes a few instructions of flash where the table takes 152 bytes. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+NMEA_INTERNAL int64_t pow10_of(unsigned k)
+{
+    int64_t p = 1;
+    while (k--)
+        p *= 10;
+    return p;
+}
+#define POW10(k) pow10_of((unsigned)(k))
+#else
+static const int64_t POW10_TABLE[NMEA_MAX_DIGITS + 1] = {
     1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000,
     10000000000, 100000000000, 1000000000000, 10000000000000, 100000000000000,
     1000000000000000, 10000000000000000, 100000000000000000, 1000000000000000000,
 };
+#define POW10(k) POW10_TABLE[k]
+#endif
 
 static bool is_digit(char c) { return c >= '0' && c <= '9'; }
 static bool is_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
@@ -2872,7 +2886,7 @@ nmea_number nmea_number_of(int64_t value, unsigned scale)
     uint64_t magnitude = value < 0 ? (uint64_t)0 - (uint64_t)value : (uint64_t)value, whole;
     if (scale > NMEA_MAX_DIGITS)
         scale = NMEA_MAX_DIGITS;
-    whole = magnitude / (uint64_t)POW10[scale];
+    whole = magnitude / (uint64_t)POW10(scale);
     n.digits = (nmea_digits)magnitude;
     n.scale = (uint8_t)scale;
     for (n.width = 1; whole >= 10; whole /= 10)
@@ -2979,7 +2993,7 @@ NMEA_HOT bool coordinate_of(uint32_t whole_value, size_t whole, uint64_t minutes
 {
     if (whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_NUMBER_DIGITS - 2)
         return false;
-    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
+    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10(frac)))
         return false;
     out->degrees = (uint16_t)(whole_value / 100); /* whole <= 5 digits: no 64-bit division */
     out->degree_digits = (uint8_t)(whole - 2);
@@ -3181,9 +3195,11 @@ static inline nmea_text next_field(nmea_reader *r)
     return t;
 }
 
-static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *pattern, size_t n, size_t m)
+/* A field count refused (too_few_fields; too_many sets its own kind after): four arguments, none
+   passed on the stack, so that read_with's frame has no room for one. */
+static bool count_error(nmea_reader *r, const char *pattern, size_t n, size_t m)
 {
-    fail(r->err, kind, pattern);
+    fail(r->err, NMEA_ERR_TOO_FEW_FIELDS, pattern);
     set_address(r->err, r->wire->address, r->wire->suffix);
     r->err->str[0] = r->sentence;
     r->err->num[0] = n;
@@ -3193,12 +3209,14 @@ static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *patter
 
 static bool too_few(nmea_reader *r, size_t need, size_t found)
 {
-    return count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s needs at least %n fields, found %n"), need, found);
+    return count_error(r, ERROR_TEXT("%s needs at least %n fields, found %n"), need, found);
 }
 
 static bool too_many(nmea_reader *r, size_t limit, size_t found)
 {
-    return count_error(r, NMEA_ERR_TOO_MANY_FIELDS, ERROR_TEXT("%s takes at most %n fields, found %n"), limit, found);
+    count_error(r, ERROR_TEXT("%s takes at most %n fields, found %n"), limit, found);
+    r->err->kind = NMEA_ERR_TOO_MANY_FIELDS;
+    return false;
 }
 
 /* A layout without a repeated group: `fixed` required fields, `max` in all. Sets `optional` to
@@ -3382,19 +3400,22 @@ NMEA_FRAME bool read_date(nmea_reader *r, nmea_date *out)
     return true;
 }
 
-/* A value field and a hemisphere field, both empty or both set. */
+/* A value field and a hemisphere field, both empty or both set. A value that does not read is
+   refused before the hemisphere is taken (the same error: the reading ends there), so that the
+   two fields' texts are not both held across the parsing: 8 bytes less of this frame on
+   nmea_parse's deepest path at -Os. */
 static bool read_coordinate(nmea_reader *r, nmea_coordinate *out, const char *hemisphere_expected, bool longitude)
 {
     const char *hemispheres = longitude ? "EW" : "NS";
-    nmea_text value = next_field(r);
-    nmea_text hemisphere = next_field(r);
+    nmea_text value = next_field(r), hemisphere;
+    if (value.len && !parse_coordinate(value, 2u + longitude, longitude ? 180 : 90, out))
+        return bad_field(r, r->index, value);
+    hemisphere = next_field(r);
     if (!value.len) {
         if (hemisphere.len)
             return bad_field(r, r->index - 1, value);
         return true;
     }
-    if (!parse_coordinate(value, 2u + longitude, longitude ? 180 : 90, out))
-        return bad_field(r, r->index - 1, value);
     if (hemisphere.len != 1 || (hemisphere.ptr[0] != hemispheres[0] && hemisphere.ptr[0] != hemispheres[1])) {
         out->present = false;
         r->expected = hemisphere_expected;
@@ -3872,7 +3893,7 @@ NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
         }
         *--p = '.';
     } else if (n->scale && n->scale <= NMEA_MAX_DIGITS) {
-        v /= (uint64_t)POW10[n->scale];
+        v /= (uint64_t)POW10(n->scale);
     }
     if (n->width)
         p = uint_text(p, v, n->width);
@@ -3885,7 +3906,7 @@ NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
 static inline unsigned digit_count(uint64_t v)
 {
     unsigned count = 1;
-    while (count <= NMEA_MAX_DIGITS && v >= (uint64_t)POW10[count])
+    while (count <= NMEA_MAX_DIGITS && v >= (uint64_t)POW10(count))
         count++;
     return count;
 }
@@ -4200,7 +4221,7 @@ NMEA_OUTLINE char *fast_any_number_text(char *p, const nmea_number *n)
     uint64_t v = (uint64_t)n->digits;
     unsigned count = (unsigned)n->width + n->scale;
     char *point, *end;
-    if (n->digits < 0 || count > NMEA_MAX_DIGITS || v >= (uint64_t)POW10[count] || (n->scale && !n->point))
+    if (n->digits < 0 || count > NMEA_MAX_DIGITS || v >= (uint64_t)POW10(count) || (n->scale && !n->point))
         return NULL;
     point = p + (n->sign != 0) + n->width;
     end = point + (n->point != 0) + n->scale;
@@ -4288,7 +4309,7 @@ NMEA_HOT bool fast_put_time(fast_writer *w, const nmea_time *t)
     if (t->point) {
         *w->p++ = '.';
         if (t->fraction_digits) {
-            if (t->fraction >= (uint64_t)POW10[t->fraction_digits])
+            if (t->fraction >= (uint64_t)POW10(t->fraction_digits))
                 return false;
             fast_copy(w, uint_text(end, t->fraction, t->fraction_digits), t->fraction_digits);
         }
@@ -4310,7 +4331,7 @@ NMEA_HOT bool fast_put_coordinate(fast_writer *w, const nmea_coordinate *c)
     if (!fast_sep(w))
         return false;
     if (c->present) {
-        if (c->degree_digits > 3 || c->degrees > 999 || (c->degree_digits && c->degrees >= POW10[c->degree_digits]))
+        if (c->degree_digits > 3 || c->degrees > 999 || (c->degree_digits && c->degrees >= POW10(c->degree_digits)))
             return false;
         if (c->degree_digits)
             fast_copy(w, uint_text(end, c->degrees, c->degree_digits), c->degree_digits);
@@ -4420,7 +4441,7 @@ NMEA_INTERNAL void json_close(nmea_writer *w, char bracket)
 static void decimal_json(nmea_writer *w, const nmea_number *n)
 {
     uint64_t digits = (uint64_t)n->digits;
-    uint64_t unit = (uint64_t)POW10[n->scale <= NMEA_MAX_DIGITS ? n->scale : 0];
+    uint64_t unit = (uint64_t)POW10(n->scale <= NMEA_MAX_DIGITS ? n->scale : 0);
     uint64_t frac = digits % unit;
     unsigned scale = n->scale;
     if (n->sign == '-' && digits)
@@ -5359,7 +5380,7 @@ size_t nmea_param_hex(const nmea_parameter *p, uint64_t value, char *buf, size_t
 static void param_number(nmea_writer *w, int64_t value, unsigned scale)
 {
     uint64_t magnitude = value < 0 ? (uint64_t)0 - (uint64_t)value : (uint64_t)value;
-    uint64_t unit = (uint64_t)POW10[scale];
+    uint64_t unit = (uint64_t)POW10(scale);
     if (value < 0)
         put_char(w, '-');
     put_uint(w, magnitude / unit, 1);
@@ -5779,7 +5800,7 @@ static bool read_group_count(nmea_reader *r, const layout *l, size_t count, size
     if (extra > l->optional_max) {
         if (*repeats == g->max)
             return too_many(r, l->fixed + g->max * width + l->optional_max, count);
-        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
+        count_error(r, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
         r->err->str[1] = g->id;
         return false;
     }
@@ -6781,7 +6802,7 @@ double nmea_to_double(const nmea_number *n)
     /* Both operands are exact doubles up to 2^53 digits (10^18 is one too), so one rounding:
        the nearest double for up to 15 significant digits. */
     int64_t digits = n->sign == '-' ? -n->digits : n->digits;
-    return (double)digits / (double)POW10[n->scale];
+    return (double)digits / (double)POW10(n->scale);
 }
 
 float nmea_to_float(const nmea_number *n) { return (float)nmea_to_double(n); }
@@ -6792,8 +6813,8 @@ int32_t nmea_coordinate_e7(const nmea_coordinate *c)
        away from zero. The minutes are at most 60 (digits <= 60 x 10^scale, scale <= 16), so
        neither branch overflows. */
     const nmea_number *m = &c->minutes;
-    int64_t e7 = m->scale <= 7 ? (m->digits * POW10[7 - m->scale] + 30) / 60
-                               : (m->digits + 30 * POW10[m->scale - 7]) / (60 * POW10[m->scale - 7]);
+    int64_t e7 = m->scale <= 7 ? (m->digits * POW10(7 - m->scale) + 30) / 60
+                               : (m->digits + 30 * POW10(m->scale - 7)) / (60 * POW10(m->scale - 7));
     e7 += (int64_t)c->degrees * 10000000;
     return (int32_t)(c->hemisphere == 'S' || c->hemisphere == 'W' ? -e7 : e7);
 }
@@ -6801,7 +6822,7 @@ int32_t nmea_coordinate_e7(const nmea_coordinate *c)
 uint32_t nmea_time_ms(const nmea_time *t)
 {
     uint32_t seconds = ((uint32_t)t->hour * 60 + t->minute) * 60 + t->second;
-    uint64_t ms = (uint64_t)t->fraction * 1000 / (uint64_t)POW10[t->fraction_digits];
+    uint64_t ms = (uint64_t)t->fraction * 1000 / (uint64_t)POW10(t->fraction_digits);
     return seconds * 1000 + (uint32_t)ms;
 }
 
@@ -8049,3063 +8070,4335 @@ size_t nmea_fix_to_json(const nmea_gnss_fix *fix, char *buf, size_t cap)
 /* Generated from the spec */
 
 /* ------------------------------------------------------------------------------------------ */
-/* Lookup tables */
+/* Lookup tables: their texts each in an array of its own (see enum_texts in generator/emit_c.py),
+   then the tables */
+
+static const char enum_text_0[] = "aam_arrival_circle";
+static const char enum_text_4[] = "not_entered";
+static const char enum_text_5[] = "aam_perpendicular";
+static const char enum_text_7[] = "not_passed";
+static const char enum_text_8[] = "abk_ack_type";
+static const char enum_text_12[] = "no_acknowledgement";
+static const char enum_text_14[] = "not_broadcast";
+static const char enum_text_16[] = "broadcast_done";
+static const char enum_text_18[] = "late_reception";
+static const char enum_text_20[] = "read_on_display";
+static const char enum_text_21[] = "abk_channel";
+static const char enum_text_23[] = "B";
+static const char enum_text_25[] = "abm_channel";
+static const char enum_text_26[] = "no_preference";
+static const char enum_text_27[] = "both";
+static const char enum_text_28[] = "aca_bandwidth";
+static const char enum_text_29[] = "by_channel_number";
+static const char enum_text_30[] = "khz_12_5";
+static const char enum_text_31[] = "aca_in_use";
+static const char enum_text_32[] = "not_in_use";
+static const char enum_text_34[] = "aca_info_source";
+static const char enum_text_35[] = "message22_addressed";
+static const char enum_text_36[] = "message22_broadcast";
+static const char enum_text_38[] = "aca_sentence";
+static const char enum_text_40[] = "dsc_telecommand";
+static const char enum_text_43[] = "aca_power_level";
+static const char enum_text_46[] = "aca_txrx_mode";
+static const char enum_text_47[] = "tx_ab_rx_ab";
+static const char enum_text_48[] = "tx_a_rx_ab";
+static const char enum_text_49[] = "tx_b_rx_ab";
+static const char enum_text_50[] = "no_tx_rx_ab";
+static const char enum_text_51[] = "no_tx_rx_a";
+static const char enum_text_52[] = "no_tx_rx_b";
+static const char enum_text_53[] = "acn_alert_command";
+static const char enum_text_54[] = "acknowledge";
+static const char enum_text_55[] = "Q";
+static const char enum_text_56[] = "request_repeat";
+static const char enum_text_58[] = "responsibility_transfer";
+static const char enum_text_60[] = "silence";
+static const char enum_text_61[] = "airoha_ack_result";
+static const char enum_text_62[] = "success";
+static const char enum_text_63[] = "processing";
+static const char enum_text_65[] = "unsupported";
+static const char enum_text_66[] = "parameter_error";
+static const char enum_text_67[] = "busy";
+static const char enum_text_68[] = "airoha_aiding_type";
+static const char enum_text_69[] = "epo";
+static const char enum_text_72[] = "airoha_baud";
+static const char enum_text_74[] = "baud_4800";
+static const char enum_text_76[] = "baud_9600";
+static const char enum_text_78[] = "baud_19200";
+static const char enum_text_80[] = "baud_38400";
+static const char enum_text_82[] = "baud_57600";
+static const char enum_text_84[] = "baud_115200";
+static const char enum_text_86[] = "baud_230400";
+static const char enum_text_88[] = "baud_460800";
+static const char enum_text_90[] = "baud_921600";
+static const char enum_text_91[] = "airoha_debug_log";
+static const char enum_text_92[] = "disabled";
+static const char enum_text_94[] = "lite";
+static const char enum_text_95[] = "airoha_dgps_mode";
+static const char enum_text_96[] = "none";
+static const char enum_text_97[] = "rtcm";
+static const char enum_text_98[] = "sbas";
+static const char enum_text_99[] = "airoha_dr_message";
+static const char enum_text_100[] = "-1";
+static const char enum_text_102[] = "pqtmvehmsg";
+static const char enum_text_103[] = "pqtmsenmsg";
+static const char enum_text_104[] = "pqtmdrcal";
+static const char enum_text_105[] = "pqtmimutype";
+static const char enum_text_106[] = "pqtmvehmot";
+static const char enum_text_107[] = "airoha_easy_status";
+static const char enum_text_108[] = "not_finished";
+static const char enum_text_109[] = "day_1";
+static const char enum_text_110[] = "day_2";
+static const char enum_text_111[] = "day_3";
+static const char enum_text_112[] = "airoha_enable";
+static const char enum_text_114[] = "airoha_geofence_confidence";
+static const char enum_text_115[] = "sigma_1";
+static const char enum_text_116[] = "sigma_2";
+static const char enum_text_117[] = "sigma_3";
+static const char enum_text_118[] = "airoha_gnss_system";
+static const char enum_text_122[] = "beidou";
+static const char enum_text_124[] = "airoha_jamming_status";
+static const char enum_text_125[] = "unknown";
+static const char enum_text_126[] = "good";
+static const char enum_text_128[] = "critical";
+static const char enum_text_129[] = "airoha_locus_clear";
+static const char enum_text_130[] = "records_and_settings";
+static const char enum_text_131[] = "records";
+static const char enum_text_133[] = "airoha_locus_format";
+static const char enum_text_134[] = "nmea";
+static const char enum_text_135[] = "pair_hex";
+static const char enum_text_136[] = "airoha_locus_threshold";
+static const char enum_text_137[] = "speed";
+static const char enum_text_138[] = "distance";
+static const char enum_text_139[] = "airoha_nav_mode";
+static const char enum_text_141[] = "fitness";
+static const char enum_text_142[] = "stationary";
+static const char enum_text_143[] = "drone";
+static const char enum_text_145[] = "swimming";
+static const char enum_text_146[] = "airoha_nmea_output_mode";
+static const char enum_text_147[] = "nmea_4_10";
+static const char enum_text_148[] = "nmea_3_01";
+static const char enum_text_149[] = "airoha_nmea_type";
+static const char enum_text_158[] = "grs";
+static const char enum_text_162[] = "gns";
+static const char enum_text_163[] = "airoha_periodic_mode";
+static const char enum_text_164[] = "smart";
+static const char enum_text_165[] = "strict";
+static const char enum_text_166[] = "airoha_pos_precision";
+static const char enum_text_167[] = "lat_lon_4_alt_1";
+static const char enum_text_168[] = "lat_lon_5_alt_2";
+static const char enum_text_169[] = "lat_lon_6_alt_3";
+static const char enum_text_170[] = "lat_lon_7_alt_3";
+static const char enum_text_171[] = "airoha_pps_type";
+static const char enum_text_172[] = "after_first_fix";
+static const char enum_text_173[] = "fix_3d";
+static const char enum_text_174[] = "fix_2d_3d";
+static const char enum_text_175[] = "always";
+static const char enum_text_176[] = "airoha_rtcm_mode";
+static const char enum_text_177[] = "msm4";
+static const char enum_text_178[] = "msm7";
+static const char enum_text_179[] = "ais_aid_type";
+static const char enum_text_180[] = "not_specified";
+static const char enum_text_181[] = "reference_point";
+static const char enum_text_182[] = "racon";
+static const char enum_text_183[] = "fixed_structure";
+static const char enum_text_184[] = "spare";
+static const char enum_text_185[] = "light";
+static const char enum_text_186[] = "light_sectors";
+static const char enum_text_187[] = "leading_light_front";
+static const char enum_text_188[] = "leading_light_rear";
+static const char enum_text_189[] = "beacon_cardinal_n";
+static const char enum_text_191[] = "beacon_cardinal_e";
+static const char enum_text_193[] = "beacon_cardinal_s";
+static const char enum_text_195[] = "beacon_cardinal_w";
+static const char enum_text_197[] = "beacon_port";
+static const char enum_text_199[] = "beacon_starboard";
+static const char enum_text_201[] = "beacon_preferred_port";
+static const char enum_text_202[] = "16";
+static const char enum_text_203[] = "beacon_preferred_starboard";
+static const char enum_text_204[] = "17";
+static const char enum_text_205[] = "beacon_isolated_danger";
+static const char enum_text_207[] = "beacon_safe_water";
+static const char enum_text_209[] = "beacon_special";
+static const char enum_text_210[] = "20";
+static const char enum_text_214[] = "22";
+static const char enum_text_216[] = "23";
+static const char enum_text_218[] = "24";
+static const char enum_text_220[] = "25";
+static const char enum_text_222[] = "26";
+static const char enum_text_224[] = "27";
+static const char enum_text_226[] = "28";
+static const char enum_text_228[] = "29";
+static const char enum_text_232[] = "31";
+static const char enum_text_233[] = "light_vessel";
+static const char enum_text_234[] = "ais_channel";
+static const char enum_text_236[] = "two";
+static const char enum_text_237[] = "ais_epfd";
+static const char enum_text_238[] = "undefined";
+static const char enum_text_239[] = "gps_glonass";
+static const char enum_text_240[] = "loran_c";
+static const char enum_text_241[] = "chayka";
+static const char enum_text_242[] = "integrated";
+static const char enum_text_243[] = "surveyed";
+static const char enum_text_244[] = "internal_gnss";
+static const char enum_text_245[] = "ais_ship_type";
+static const char enum_text_246[] = "not_available";
+static const char enum_text_248[] = "wig_hazardous_a";
+static const char enum_text_249[] = "wig_hazardous_b";
+static const char enum_text_250[] = "wig_hazardous_c";
+static const char enum_text_251[] = "wig_hazardous_d";
+static const char enum_text_252[] = "fishing";
+static const char enum_text_253[] = "towing";
+static const char enum_text_254[] = "32";
+static const char enum_text_255[] = "towing_large";
+static const char enum_text_256[] = "33";
+static const char enum_text_257[] = "dredging";
+static const char enum_text_258[] = "34";
+static const char enum_text_259[] = "diving";
+static const char enum_text_260[] = "35";
+static const char enum_text_261[] = "military";
+static const char enum_text_262[] = "36";
+static const char enum_text_264[] = "37";
+static const char enum_text_265[] = "pleasure_craft";
+static const char enum_text_266[] = "40";
+static const char enum_text_267[] = "high_speed_craft";
+static const char enum_text_268[] = "41";
+static const char enum_text_269[] = "high_speed_craft_hazardous_a";
+static const char enum_text_270[] = "42";
+static const char enum_text_271[] = "high_speed_craft_hazardous_b";
+static const char enum_text_272[] = "43";
+static const char enum_text_273[] = "high_speed_craft_hazardous_c";
+static const char enum_text_274[] = "44";
+static const char enum_text_275[] = "high_speed_craft_hazardous_d";
+static const char enum_text_276[] = "49";
+static const char enum_text_277[] = "high_speed_craft_no_info";
+static const char enum_text_278[] = "50";
+static const char enum_text_279[] = "pilot_vessel";
+static const char enum_text_280[] = "51";
+static const char enum_text_281[] = "search_and_rescue";
+static const char enum_text_282[] = "52";
+static const char enum_text_283[] = "tug";
+static const char enum_text_284[] = "53";
+static const char enum_text_285[] = "port_tender";
+static const char enum_text_286[] = "54";
+static const char enum_text_287[] = "anti_pollution";
+static const char enum_text_288[] = "55";
+static const char enum_text_289[] = "law_enforcement";
+static const char enum_text_291[] = "local_56";
+static const char enum_text_293[] = "local_57";
+static const char enum_text_294[] = "58";
+static const char enum_text_295[] = "medical_transport";
+static const char enum_text_296[] = "59";
+static const char enum_text_297[] = "noncombatant";
+static const char enum_text_299[] = "passenger";
+static const char enum_text_300[] = "61";
+static const char enum_text_301[] = "passenger_hazardous_a";
+static const char enum_text_302[] = "62";
+static const char enum_text_303[] = "passenger_hazardous_b";
+static const char enum_text_304[] = "63";
+static const char enum_text_305[] = "passenger_hazardous_c";
+static const char enum_text_306[] = "64";
+static const char enum_text_307[] = "passenger_hazardous_d";
+static const char enum_text_308[] = "69";
+static const char enum_text_309[] = "passenger_no_info";
+static const char enum_text_310[] = "70";
+static const char enum_text_311[] = "cargo";
+static const char enum_text_312[] = "71";
+static const char enum_text_313[] = "cargo_hazardous_a";
+static const char enum_text_315[] = "cargo_hazardous_b";
+static const char enum_text_316[] = "73";
+static const char enum_text_317[] = "cargo_hazardous_c";
+static const char enum_text_318[] = "74";
+static const char enum_text_319[] = "cargo_hazardous_d";
+static const char enum_text_320[] = "79";
+static const char enum_text_321[] = "cargo_no_info";
+static const char enum_text_322[] = "80";
+static const char enum_text_323[] = "tanker";
+static const char enum_text_324[] = "81";
+static const char enum_text_325[] = "tanker_hazardous_a";
+static const char enum_text_326[] = "82";
+static const char enum_text_327[] = "tanker_hazardous_b";
+static const char enum_text_328[] = "83";
+static const char enum_text_329[] = "tanker_hazardous_c";
+static const char enum_text_331[] = "tanker_hazardous_d";
+static const char enum_text_332[] = "89";
+static const char enum_text_333[] = "tanker_no_info";
+static const char enum_text_336[] = "91";
+static const char enum_text_337[] = "other_hazardous_a";
+static const char enum_text_338[] = "92";
+static const char enum_text_339[] = "other_hazardous_b";
+static const char enum_text_340[] = "93";
+static const char enum_text_341[] = "other_hazardous_c";
+static const char enum_text_342[] = "94";
+static const char enum_text_343[] = "other_hazardous_d";
+static const char enum_text_345[] = "other_no_info";
+static const char enum_text_346[] = "ala_ack_state";
+static const char enum_text_348[] = "not_acknowledged";
+static const char enum_text_351[] = "harbour_mode";
+static const char enum_text_353[] = "ala_condition";
+static const char enum_text_355[] = "J";
+static const char enum_text_356[] = "extreme_high";
+static const char enum_text_359[] = "extreme_low";
+static const char enum_text_361[] = "alf_category";
+static const char enum_text_362[] = "category_a";
+static const char enum_text_363[] = "category_b";
+static const char enum_text_364[] = "category_c";
+static const char enum_text_365[] = "alf_priority";
+static const char enum_text_367[] = "emergency_alarm";
+static const char enum_text_369[] = "W";
+static const char enum_text_370[] = "caution";
+static const char enum_text_371[] = "alf_state";
+static const char enum_text_372[] = "active_unacknowledged";
+static const char enum_text_373[] = "active_silenced";
+static const char enum_text_374[] = "active_acknowledged";
+static const char enum_text_375[] = "active_responsibility_transferred";
+static const char enum_text_377[] = "rectified_unacknowledged";
+static const char enum_text_378[] = "alr_ack_state";
+static const char enum_text_380[] = "alr_condition";
+static const char enum_text_381[] = "threshold_exceeded";
+static const char enum_text_382[] = "not_exceeded";
+static const char enum_text_383[] = "apb_bearing_ref";
+static const char enum_text_384[] = "magnetic";
+static const char enum_text_386[] = "true_north";
+static const char enum_text_387[] = "ashtech_base_kind";
+static const char enum_text_388[] = "physical";
+static const char enum_text_389[] = "virtual";
+static const char enum_text_390[] = "ashtech_base_motion";
+static const char enum_text_391[] = "static";
+static const char enum_text_392[] = "moving";
+static const char enum_text_393[] = "ashtech_hpr_mode";
+static const char enum_text_394[] = "fixed_baseline";
+static const char enum_text_395[] = "calibrating";
+static const char enum_text_396[] = "flexible_baseline";
+static const char enum_text_397[] = "ashtech_nme_message";
+static const char enum_text_398[] = "ALM";
+static const char enum_text_399[] = "alm";
+static const char enum_text_400[] = "DTM";
+static const char enum_text_401[] = "dtm";
+static const char enum_text_404[] = "GMP";
+static const char enum_text_405[] = "gmp";
+static const char enum_text_406[] = "GNS";
+static const char enum_text_407[] = "GRS";
+static const char enum_text_413[] = "HD2";
+static const char enum_text_414[] = "hd2";
+static const char enum_text_418[] = "XDR";
+static const char enum_text_419[] = "xdr";
+static const char enum_text_420[] = "ATT";
+static const char enum_text_421[] = "att";
+static const char enum_text_422[] = "AT2";
+static const char enum_text_423[] = "at2";
+static const char enum_text_424[] = "CRT";
+static const char enum_text_425[] = "crt";
+static const char enum_text_426[] = "DCR";
+static const char enum_text_427[] = "dcr";
+static const char enum_text_428[] = "DDS";
+static const char enum_text_429[] = "dds";
+static const char enum_text_430[] = "DPO";
+static const char enum_text_431[] = "dpo";
+static const char enum_text_432[] = "LTN";
+static const char enum_text_433[] = "ltn";
+static const char enum_text_434[] = "POS";
+static const char enum_text_435[] = "pos";
+static const char enum_text_436[] = "RRE";
+static const char enum_text_437[] = "rre";
+static const char enum_text_438[] = "SAT";
+static const char enum_text_439[] = "sat";
+static const char enum_text_440[] = "SGA";
+static const char enum_text_441[] = "sga";
+static const char enum_text_442[] = "SGL";
+static const char enum_text_443[] = "sgl";
+static const char enum_text_444[] = "SGP";
+static const char enum_text_445[] = "sgp";
+static const char enum_text_446[] = "USR";
+static const char enum_text_447[] = "usr";
+static const char enum_text_448[] = "VEC";
+static const char enum_text_449[] = "vec";
+static const char enum_text_450[] = "VE2";
+static const char enum_text_451[] = "ve2";
+static const char enum_text_452[] = "PTT";
+static const char enum_text_453[] = "ptt";
+static const char enum_text_454[] = "TTT";
+static const char enum_text_455[] = "ttt";
+static const char enum_text_456[] = "ashtech_on_off";
+static const char enum_text_461[] = "ashtech_port";
+static const char enum_text_462[] = "serial_a";
+static const char enum_text_463[] = "serial_b";
+static const char enum_text_465[] = "serial_f";
+static const char enum_text_466[] = "serial_d";
+static const char enum_text_467[] = "bluetooth";
+static const char enum_text_469[] = "ethernet_i";
+static const char enum_text_471[] = "ethernet_p";
+static const char enum_text_472[] = "ethernet_q";
+static const char enum_text_473[] = "I1";
+static const char enum_text_474[] = "ethernet_i1";
+static const char enum_text_475[] = "I2";
+static const char enum_text_476[] = "ethernet_i2";
+static const char enum_text_477[] = "I3";
+static const char enum_text_478[] = "ethernet_i3";
+static const char enum_text_479[] = "I4";
+static const char enum_text_480[] = "ethernet_i4";
+static const char enum_text_481[] = "I5";
+static const char enum_text_482[] = "ethernet_i5";
+static const char enum_text_483[] = "I6";
+static const char enum_text_484[] = "ethernet_i6";
+static const char enum_text_485[] = "I7";
+static const char enum_text_486[] = "ethernet_i7";
+static const char enum_text_487[] = "I8";
+static const char enum_text_488[] = "ethernet_i8";
+static const char enum_text_489[] = "I9";
+static const char enum_text_490[] = "ethernet_i9";
+static const char enum_text_491[] = "modem";
+static const char enum_text_492[] = "internal_memory";
+static const char enum_text_493[] = "usb_key";
+static const char enum_text_495[] = "recording_session";
+static const char enum_text_496[] = "ashtech_pos_solution";
+static const char enum_text_497[] = "autonomous";
+static const char enum_text_498[] = "code_differential";
+static const char enum_text_499[] = "rtk_float";
+static const char enum_text_500[] = "rtk_fixed";
+static const char enum_text_502[] = "sbas_differential";
+static const char enum_text_503[] = "beidou_differential";
+static const char enum_text_504[] = "rtk_float_alt";
+static const char enum_text_505[] = "rtk_fixed_alt";
+static const char enum_text_506[] = "rtk_float_dithered";
+static const char enum_text_507[] = "rtk_fixed_dithered";
+static const char enum_text_508[] = "ashtech_rt300_alignment";
+static const char enum_text_509[] = "gps_only";
+static const char enum_text_510[] = "coarse_leveling";
+static const char enum_text_511[] = "degraded";
+static const char enum_text_512[] = "aligned";
+static const char enum_text_513[] = "full_navigation";
+static const char enum_text_514[] = "ashtech_rt300_quality";
+static const char enum_text_515[] = "no_fix";
+static const char enum_text_516[] = "sps";
+static const char enum_text_518[] = "pps";
+static const char enum_text_519[] = "ashtech_sv_used";
+static const char enum_text_521[] = "-";
+static const char enum_text_523[] = "ashtech_vec_mode";
+static const char enum_text_525[] = "ashtech_vector_mode";
+static const char enum_text_526[] = "invalid";
+static const char enum_text_527[] = "broadcom_glor_confidence";
+static const char enum_text_528[] = "medium";
+static const char enum_text_529[] = "broadcom_glor_location_request";
+static const char enum_text_530[] = "not_needed";
+static const char enum_text_531[] = "requested";
+static const char enum_text_532[] = "broadcom_glor_power_save";
+static const char enum_text_533[] = "full_power";
+static const char enum_text_537[] = "SG";
+static const char enum_text_538[] = "power_save_glonass_low_power";
+static const char enum_text_539[] = "broadcom_glor_vel_track_quality";
+static const char enum_text_540[] = "poor_velocity_poor_track";
+static const char enum_text_541[] = "good_velocity_poor_track";
+static const char enum_text_542[] = "poor_velocity_good_track";
+static const char enum_text_543[] = "good_velocity_good_track";
+static const char enum_text_544[] = "comnav_log_message";
+static const char enum_text_545[] = "GPGGA";
+static const char enum_text_546[] = "gpgga";
+static const char enum_text_547[] = "GPGLL";
+static const char enum_text_548[] = "gpgll";
+static const char enum_text_549[] = "GPGSA";
+static const char enum_text_550[] = "gpgsa";
+static const char enum_text_551[] = "GPGST";
+static const char enum_text_552[] = "gpgst";
+static const char enum_text_553[] = "GPGSV";
+static const char enum_text_554[] = "gpgsv";
+static const char enum_text_555[] = "GPHDT";
+static const char enum_text_556[] = "gphdt";
+static const char enum_text_557[] = "GPRMC";
+static const char enum_text_558[] = "gprmc";
+static const char enum_text_559[] = "GPVTG";
+static const char enum_text_560[] = "gpvtg";
+static const char enum_text_561[] = "GPZDA";
+static const char enum_text_562[] = "gpzda";
+static const char enum_text_563[] = "comnav_talker_id";
+static const char enum_text_564[] = "GN";
+static const char enum_text_565[] = "gn";
+static const char enum_text_568[] = "BD";
+static const char enum_text_569[] = "bd";
+static const char enum_text_574[] = "AUTO";
+static const char enum_text_575[] = "auto";
+static const char enum_text_576[] = "comnav_talker_sentence";
+static const char enum_text_577[] = "ALL";
+static const char enum_text_578[] = "cur_direction_reference";
+static const char enum_text_579[] = "relative";
+static const char enum_text_580[] = "cur_heading_reference";
+static const char enum_text_581[] = "cur_speed_reference";
+static const char enum_text_582[] = "bottom_track";
+static const char enum_text_583[] = "water_track";
+static const char enum_text_584[] = "positioning_system";
+static const char enum_text_585[] = "ddc_command_mode";
+static const char enum_text_586[] = "operational";
+static const char enum_text_588[] = "ddc_preset";
+static const char enum_text_589[] = "day";
+static const char enum_text_590[] = "dusk";
+static const char enum_text_591[] = "night";
+static const char enum_text_592[] = "backlight_off";
+static const char enum_text_593[] = "dor_message_type";
+static const char enum_text_594[] = "section_status";
+static const char enum_text_595[] = "single_door";
+static const char enum_text_596[] = "system_fault";
+static const char enum_text_597[] = "dor_status";
+static const char enum_text_598[] = "open";
+static const char enum_text_599[] = "closed";
+static const char enum_text_600[] = "secured";
+static const char enum_text_601[] = "free";
+static const char enum_text_603[] = "dor_switch_setting";
+static const char enum_text_604[] = "sea_mode";
+static const char enum_text_605[] = "dor_system";
+static const char enum_text_606[] = "WT";
+static const char enum_text_608[] = "WS";
+static const char enum_text_609[] = "semi_watertight";
+static const char enum_text_610[] = "FD";
+static const char enum_text_611[] = "fire_door";
+static const char enum_text_612[] = "HD";
+static const char enum_text_613[] = "hull_door";
+static const char enum_text_615[] = "dsc_acknowledgement";
+static const char enum_text_618[] = "end_of_sequence";
+static const char enum_text_619[] = "dsc_category";
+static const char enum_text_621[] = "routine";
+static const char enum_text_623[] = "safety";
+static const char enum_text_624[] = "urgency";
+static const char enum_text_625[] = "distress";
+static const char enum_text_626[] = "dsc_distress_nature";
+static const char enum_text_627[] = "fire";
+static const char enum_text_629[] = "flooding";
+static const char enum_text_631[] = "collision";
+static const char enum_text_633[] = "grounding";
+static const char enum_text_635[] = "listing";
+static const char enum_text_637[] = "sinking";
+static const char enum_text_639[] = "adrift";
+static const char enum_text_641[] = "undesignated";
+static const char enum_text_642[] = "abandoning_ship";
+static const char enum_text_645[] = "man_overboard";
+static const char enum_text_646[] = "epirb";
+static const char enum_text_647[] = "dsc_format";
+static const char enum_text_649[] = "common_interest";
+static const char enum_text_650[] = "all_ships";
+static const char enum_text_651[] = "individual";
+static const char enum_text_652[] = "individual_automatic";
+static const char enum_text_653[] = "dse_code";
+static const char enum_text_654[] = "enhanced_position";
+static const char enum_text_655[] = "position_source_datum";
+static const char enum_text_656[] = "course";
+static const char enum_text_657[] = "station_id";
+static const char enum_text_658[] = "enhanced_geographic_area";
+static const char enum_text_659[] = "persons_on_board";
+static const char enum_text_660[] = "dse_query_flag";
+static const char enum_text_661[] = "query";
+static const char enum_text_662[] = "reply";
+static const char enum_text_664[] = "dtm_datum";
+static const char enum_text_667[] = "W72";
+static const char enum_text_668[] = "wgs72";
+static const char enum_text_669[] = "S85";
+static const char enum_text_670[] = "sgs85";
+static const char enum_text_673[] = "999";
+static const char enum_text_674[] = "user_defined";
+static const char enum_text_675[] = "dtm_lat_offset_dir";
+static const char enum_text_678[] = "dtm_lon_offset_dir";
+static const char enum_text_681[] = "east_west";
+static const char enum_text_682[] = "etl_message_type";
+static const char enum_text_684[] = "answer_back";
+static const char enum_text_685[] = "etl_sub_telegraph";
+static const char enum_text_687[] = "full_away";
+static const char enum_text_688[] = "finished_with_engine";
+static const char enum_text_689[] = "etl_telegraph_position";
+static const char enum_text_690[] = "stop";
+static const char enum_text_691[] = "ahead_dead_slow";
+static const char enum_text_692[] = "ahead_slow";
+static const char enum_text_693[] = "ahead_half";
+static const char enum_text_694[] = "ahead_full";
+static const char enum_text_695[] = "ahead_navigation_full";
+static const char enum_text_696[] = "astern_dead_slow";
+static const char enum_text_697[] = "astern_slow";
+static const char enum_text_698[] = "astern_half";
+static const char enum_text_699[] = "astern_full";
+static const char enum_text_700[] = "crash_astern";
+static const char enum_text_701[] = "fir_condition";
+static const char enum_text_703[] = "non_activation";
+static const char enum_text_704[] = "fir_message_type";
+static const char enum_text_705[] = "event";
+static const char enum_text_706[] = "fir_system";
+static const char enum_text_707[] = "generic_fire_detector";
+static const char enum_text_708[] = "FH";
+static const char enum_text_709[] = "heat_detector";
+static const char enum_text_710[] = "FS";
+static const char enum_text_711[] = "smoke_detector";
+static const char enum_text_712[] = "FM";
+static const char enum_text_713[] = "manual_call_point";
+static const char enum_text_714[] = "GD";
+static const char enum_text_715[] = "gas_detector";
+static const char enum_text_716[] = "GO";
+static const char enum_text_717[] = "oxygen_detector";
+static const char enum_text_718[] = "GS";
+static const char enum_text_719[] = "hydrogen_sulphide_detector";
+static const char enum_text_720[] = "GH";
+static const char enum_text_721[] = "hydrocarbon_detector";
+static const char enum_text_722[] = "SF";
+static const char enum_text_723[] = "sprinkler_flow_switch";
+static const char enum_text_725[] = "sprinkler_manual_valve";
+static const char enum_text_726[] = "CO";
+static const char enum_text_727[] = "co2_manual_release";
+static const char enum_text_728[] = "fsi_mode";
+static const char enum_text_730[] = "f3e_g3e_simplex_telephone";
+static const char enum_text_732[] = "f3e_g3e_duplex_telephone";
+static const char enum_text_734[] = "j3e_telephone";
+static const char enum_text_736[] = "h3e_telephone";
+static const char enum_text_738[] = "nbdp_fec";
+static const char enum_text_740[] = "nbdp_arq";
+static const char enum_text_742[] = "f1b_j2b_receive_only";
+static const char enum_text_744[] = "f1b_j2b_teleprinter_dsc";
+static const char enum_text_746[] = "a1a_morse_recorder";
+static const char enum_text_747[] = "{";
+static const char enum_text_748[] = "a1a_morse_key";
+static const char enum_text_749[] = "|";
+static const char enum_text_750[] = "facsimile";
+static const char enum_text_751[] = "fsi_sentence_status";
+static const char enum_text_754[] = "furuno_eride_freq_mode";
+static const char enum_text_755[] = "warm_up";
+static const char enum_text_757[] = "hold_over";
+static const char enum_text_758[] = "free_run";
+static const char enum_text_760[] = "fine";
+static const char enum_text_761[] = "undocumented_7";
+static const char enum_text_762[] = "furuno_eride_on_off";
+static const char enum_text_763[] = "furuno_eride_polarity";
+static const char enum_text_764[] = "rising";
+static const char enum_text_765[] = "falling";
+static const char enum_text_766[] = "furuno_eride_position_mode";
+static const char enum_text_767[] = "survey_restart";
+static const char enum_text_768[] = "survey_continue";
+static const char enum_text_769[] = "position_hold";
+static const char enum_text_770[] = "furuno_eride_pps_mode";
+static const char enum_text_771[] = "always_off";
+static const char enum_text_772[] = "always_on";
+static const char enum_text_773[] = "when_fixed";
+static const char enum_text_774[] = "when_traim_ok";
+static const char enum_text_775[] = "when_accurate";
+static const char enum_text_776[] = "furuno_eride_pps_period";
+static const char enum_text_777[] = "pp2s";
+static const char enum_text_778[] = "furuno_eride_pps_sync";
+static const char enum_text_779[] = "rtc";
+static const char enum_text_780[] = "utc_usno";
+static const char enum_text_781[] = "utc_su";
+static const char enum_text_782[] = "undocumented_4";
+static const char enum_text_783[] = "furuno_eride_pps_type";
+static const char enum_text_784[] = "legacy";
+static const char enum_text_785[] = "gclk";
+static const char enum_text_786[] = "furuno_eride_time_status";
+static const char enum_text_787[] = "utc";
+static const char enum_text_788[] = "furuno_eride_traim_solution";
+static const char enum_text_790[] = "furuno_eride_traim_status";
+static const char enum_text_791[] = "detect_and_isolate";
+static const char enum_text_792[] = "detect_only";
+static const char enum_text_793[] = "garmin_baud";
+static const char enum_text_794[] = "baud_1200";
+static const char enum_text_795[] = "baud_2400";
+static const char enum_text_796[] = "baud_300";
+static const char enum_text_797[] = "baud_600";
+static const char enum_text_798[] = "garmin_config_fix_mode";
+static const char enum_text_799[] = "only_2d";
+static const char enum_text_800[] = "only_3d";
+static const char enum_text_801[] = "garmin_data_collection";
+static const char enum_text_802[] = "collecting";
+static const char enum_text_803[] = "garmin_dgps_mode";
+static const char enum_text_804[] = "waas_only";
+static const char enum_text_805[] = "rtcm_only";
+static const char enum_text_806[] = "garmin_dgps_source";
+static const char enum_text_807[] = "waas";
+static const char enum_text_808[] = "garmin_diff_mode";
+static const char enum_text_809[] = "differential_only";
+static const char enum_text_810[] = "garmin_fix_dimension";
+static const char enum_text_811[] = "fix_2d";
+static const char enum_text_812[] = "garmin_fix_mode";
+static const char enum_text_813[] = "garmin_fix_type";
+static const char enum_text_814[] = "garmin_off_on";
+static const char enum_text_815[] = "garmin_output_mode";
+static const char enum_text_816[] = "disable";
+static const char enum_text_818[] = "disable_all";
+static const char enum_text_819[] = "enable_all";
+static const char enum_text_820[] = "restore_defaults";
+static const char enum_text_821[] = "garmin_binary";
+static const char enum_text_822[] = "garmin_pass_fail";
+static const char enum_text_823[] = "pass";
+static const char enum_text_825[] = "garmin_power_mode";
+static const char enum_text_826[] = "garmin_receiver_command";
+static const char enum_text_827[] = "auto_locate";
+static const char enum_text_829[] = "garmin_retained_lost";
+static const char enum_text_830[] = "retained";
+static const char enum_text_832[] = "garmin_waas_mode";
+static const char enum_text_833[] = "geos5_command_word";
+static const char enum_text_834[] = "SWPROT";
+static const char enum_text_835[] = "switch_to_binary";
+static const char enum_text_836[] = "SAVEFL";
+static const char enum_text_837[] = "save_almanacs";
+static const char enum_text_838[] = "CSTART";
+static const char enum_text_839[] = "cold_start";
+static const char enum_text_840[] = "WSTART";
+static const char enum_text_841[] = "warm_start";
+static const char enum_text_842[] = "HSTART";
+static const char enum_text_843[] = "hot_start";
+static const char enum_text_844[] = "BDR004";
+static const char enum_text_845[] = "BDR009";
+static const char enum_text_846[] = "BDR019";
+static const char enum_text_847[] = "BDR038";
+static const char enum_text_848[] = "BDR057";
+static const char enum_text_849[] = "BDR115";
+static const char enum_text_850[] = "BDR230";
+static const char enum_text_851[] = "BDR460";
+static const char enum_text_852[] = "BDR921";
+static const char enum_text_853[] = "STOP01";
+static const char enum_text_854[] = "stop_bits_1";
+static const char enum_text_855[] = "STOP02";
+static const char enum_text_856[] = "stop_bits_2";
+static const char enum_text_857[] = "GGA ON";
+static const char enum_text_858[] = "gga_gns_on";
+static const char enum_text_859[] = "GGAOFF";
+static const char enum_text_860[] = "gga_gns_off";
+static const char enum_text_861[] = "GLL ON";
+static const char enum_text_862[] = "gll_on";
+static const char enum_text_863[] = "GLLOFF";
+static const char enum_text_864[] = "gll_off";
+static const char enum_text_865[] = "GSA ON";
+static const char enum_text_866[] = "gsa_on";
+static const char enum_text_867[] = "GSAOFF";
+static const char enum_text_868[] = "gsa_off";
+static const char enum_text_869[] = "GSV ON";
+static const char enum_text_870[] = "gsv_on";
+static const char enum_text_871[] = "GSVOFF";
+static const char enum_text_872[] = "gsv_off";
+static const char enum_text_873[] = "RMC ON";
+static const char enum_text_874[] = "rmc_on";
+static const char enum_text_875[] = "RMCOFF";
+static const char enum_text_876[] = "rmc_off";
+static const char enum_text_877[] = "VTG ON";
+static const char enum_text_878[] = "vtg_on";
+static const char enum_text_879[] = "VTGOFF";
+static const char enum_text_880[] = "vtg_off";
+static const char enum_text_881[] = "ZDA ON";
+static const char enum_text_882[] = "zda_on";
+static const char enum_text_883[] = "ZDAOFF";
+static const char enum_text_884[] = "zda_off";
+static const char enum_text_885[] = "DTM ON";
+static const char enum_text_886[] = "dtm_on";
+static const char enum_text_887[] = "DTMOFF";
+static const char enum_text_888[] = "dtm_off";
+static const char enum_text_889[] = "RLM ON";
+static const char enum_text_890[] = "rlm_on";
+static const char enum_text_891[] = "RLMOFF";
+static const char enum_text_892[] = "rlm_off";
+static const char enum_text_893[] = "NMEAV2";
+static const char enum_text_894[] = "nmea_v2";
+static const char enum_text_895[] = "NMEAV4";
+static const char enum_text_896[] = "nmea_v4_10";
+static const char enum_text_897[] = "RATE01";
+static const char enum_text_898[] = "rate_1hz";
+static const char enum_text_899[] = "RATE02";
+static const char enum_text_900[] = "rate_2hz";
+static const char enum_text_901[] = "RATE05";
+static const char enum_text_902[] = "rate_5hz";
+static const char enum_text_903[] = "RATE10";
+static const char enum_text_904[] = "rate_10hz";
+static const char enum_text_905[] = "PSM ON";
+static const char enum_text_906[] = "power_saving_on";
+static const char enum_text_907[] = "PSMOFF";
+static const char enum_text_908[] = "power_saving_off";
+static const char enum_text_909[] = "ELEV05";
+static const char enum_text_910[] = "elevation_mask_5";
+static const char enum_text_911[] = "ELEV06";
+static const char enum_text_912[] = "elevation_mask_6";
+static const char enum_text_913[] = "ELEV07";
+static const char enum_text_914[] = "elevation_mask_7";
+static const char enum_text_915[] = "ELEV08";
+static const char enum_text_916[] = "elevation_mask_8";
+static const char enum_text_917[] = "ELEV09";
+static const char enum_text_918[] = "elevation_mask_9";
+static const char enum_text_919[] = "ELEV10";
+static const char enum_text_920[] = "elevation_mask_10";
+static const char enum_text_921[] = "ELEV11";
+static const char enum_text_922[] = "elevation_mask_11";
+static const char enum_text_923[] = "ELEV12";
+static const char enum_text_924[] = "elevation_mask_12";
+static const char enum_text_925[] = "ELEV13";
+static const char enum_text_926[] = "elevation_mask_13";
+static const char enum_text_927[] = "ELEV14";
+static const char enum_text_928[] = "elevation_mask_14";
+static const char enum_text_929[] = "ELEV15";
+static const char enum_text_930[] = "elevation_mask_15";
+static const char enum_text_931[] = "DATP90";
+static const char enum_text_932[] = "datum_pz90";
+static const char enum_text_933[] = "DATW84";
+static const char enum_text_934[] = "datum_wgs84";
+static const char enum_text_935[] = "NVSGPS";
+static const char enum_text_936[] = "NVSGLN";
+static const char enum_text_937[] = "glonass_only";
+static const char enum_text_938[] = "NVSMIX";
+static const char enum_text_939[] = "glonass_gps_galileo";
+static const char enum_text_940[] = "geos5_message_rate";
+static const char enum_text_941[] = "every_1s";
+static const char enum_text_942[] = "every_2s";
+static const char enum_text_943[] = "every_20s";
+static const char enum_text_945[] = "geos5_nmea_version";
+static const char enum_text_946[] = "v2_x";
+static const char enum_text_948[] = "geos5_output_rate";
+static const char enum_text_949[] = "gfa_integrity";
+static const char enum_text_951[] = "unsafe";
+static const char enum_text_952[] = "gga_quality";
+static const char enum_text_953[] = "manual_input";
+static const char enum_text_954[] = "simulator";
+static const char enum_text_955[] = "geopath";
+static const char enum_text_956[] = "glc_signal_status";
+static const char enum_text_958[] = "blink_warning";
+static const char enum_text_959[] = "cycle_warning";
+static const char enum_text_960[] = "snr_warning";
+static const char enum_text_961[] = "gns_mode";
+static const char enum_text_962[] = "estimated";
+static const char enum_text_963[] = "not_valid";
+static const char enum_text_964[] = "precise";
+static const char enum_text_965[] = "grs_mode";
+static const char enum_text_966[] = "used_in_fix";
+static const char enum_text_967[] = "recomputed";
+static const char enum_text_968[] = "gsa_fix_type";
+static const char enum_text_969[] = "gsa_selection_mode";
+static const char enum_text_970[] = "hbt_equipment_status";
+static const char enum_text_971[] = "not_normal";
+static const char enum_text_972[] = "hcr_correction_state";
+static const char enum_text_973[] = "speed_latitude_and_dynamic";
+static const char enum_text_975[] = "speed_latitude";
+static const char enum_text_977[] = "hemisphere_heading_source";
+static const char enum_text_979[] = "gyro";
+static const char enum_text_980[] = "hmr_difference_status";
+static const char enum_text_981[] = "within_limit";
+static const char enum_text_982[] = "limit_exceeded";
+static const char enum_text_983[] = "hsc_sentence_status";
+static const char enum_text_984[] = "htc_heading_reference";
+static const char enum_text_985[] = "htc_override";
+static const char enum_text_986[] = "htc_steering_mode";
+static const char enum_text_987[] = "stand_alone";
+static const char enum_text_988[] = "heading_control";
+static const char enum_text_989[] = "track_control";
+static const char enum_text_990[] = "rudder_control";
+static const char enum_text_991[] = "htc_turn_mode";
+static const char enum_text_992[] = "radius_controlled";
+static const char enum_text_993[] = "rate_controlled";
+static const char enum_text_994[] = "not_controlled";
+static const char enum_text_995[] = "htd_limit_status";
+static const char enum_text_996[] = "within_limits";
+static const char enum_text_997[] = "limit_reached";
+static const char enum_text_998[] = "left_right";
+static const char enum_text_999[] = "left";
+static const char enum_text_1001[] = "llq_quality";
+static const char enum_text_1002[] = "gps_nav_fix";
+static const char enum_text_1003[] = "dgps_fix";
+static const char enum_text_1004[] = "rtk_fix";
+static const char enum_text_1005[] = "lrf_function";
+static const char enum_text_1006[] = "ship_id";
+static const char enum_text_1007[] = "date_time";
+static const char enum_text_1009[] = "destination";
+static const char enum_text_1011[] = "dimensions";
+static const char enum_text_1012[] = "persons";
+static const char enum_text_1013[] = "lrf_reply_status";
+static const char enum_text_1014[] = "provided";
+static const char enum_text_1015[] = "restricted";
+static const char enum_text_1016[] = "lri_control_flag";
+static const char enum_text_1017[] = "geographic";
+static const char enum_text_1018[] = "magellan_altitude_unit";
+static const char enum_text_1019[] = "feet";
+static const char enum_text_1021[] = "magellan_command";
+static const char enum_text_1022[] = "WAYPOINT";
+static const char enum_text_1023[] = "waypoint";
+static const char enum_text_1024[] = "ROUTE";
+static const char enum_text_1025[] = "route";
+static const char enum_text_1026[] = "TRACK";
+static const char enum_text_1028[] = "magellan_fix_flag";
+static const char enum_text_1030[] = "magellan_fix_mode";
+static const char enum_text_1031[] = "mob_battery";
+static const char enum_text_1033[] = "mob_position_source";
+static const char enum_text_1034[] = "vessel_estimate";
+static const char enum_text_1035[] = "emitter_report";
+static const char enum_text_1036[] = "mob_status";
+static const char enum_text_1037[] = "activated";
+static const char enum_text_1038[] = "test";
+static const char enum_text_1039[] = "manual_button";
+static const char enum_text_1040[] = "msk_auto_manual";
+static const char enum_text_1041[] = "mtk_ack_flag";
+static const char enum_text_1042[] = "mtk_antenna_status";
+static const char enum_text_1043[] = "active_shorted";
+static const char enum_text_1044[] = "internal";
+static const char enum_text_1046[] = "mtk_baud";
+static const char enum_text_1047[] = "default";
+static const char enum_text_1049[] = "baud_14400";
+static const char enum_text_1050[] = "mtk_dgps_mode";
+static const char enum_text_1051[] = "mtk_enable";
+static const char enum_text_1052[] = "mtk_locus_logger";
+static const char enum_text_1054[] = "mtk_periodic_mode";
+static const char enum_text_1055[] = "periodic_backup";
+static const char enum_text_1056[] = "periodic_standby";
+static const char enum_text_1057[] = "perpetual_backup";
+static const char enum_text_1058[] = "alwayslocate_standby";
+static const char enum_text_1059[] = "alwayslocate_backup";
+static const char enum_text_1060[] = "mtk_sbas_mode";
+static const char enum_text_1061[] = "testing";
+static const char enum_text_1063[] = "mtk_standby_type";
+static const char enum_text_1064[] = "sleep";
+static const char enum_text_1065[] = "mtk_system_message";
+static const char enum_text_1066[] = "000";
+static const char enum_text_1067[] = "001";
+static const char enum_text_1068[] = "startup";
+static const char enum_text_1069[] = "002";
+static const char enum_text_1070[] = "epo_aiding";
+static const char enum_text_1071[] = "003";
+static const char enum_text_1072[] = "normal_mode";
+static const char enum_text_1073[] = "mwv_reference";
+static const char enum_text_1074[] = "theoretical";
+static const char enum_text_1075[] = "mwv_speed_unit";
+static const char enum_text_1076[] = "kmh";
+static const char enum_text_1077[] = "metres_per_second";
+static const char enum_text_1078[] = "knots";
+static const char enum_text_1079[] = "statute_mph";
+static const char enum_text_1080[] = "nak_reason";
+static const char enum_text_1081[] = "query_not_supported";
+static const char enum_text_1083[] = "formatter_not_enabled";
+static const char enum_text_1084[] = "formatter_temporarily_unavailable";
+static const char enum_text_1085[] = "query_for_formatter_not_supported";
+static const char enum_text_1086[] = "access_denied";
+static const char enum_text_1087[] = "bad_checksum";
+static const char enum_text_1088[] = "listener_processing_issue";
+static const char enum_text_1089[] = "cannot_perform";
+static const char enum_text_1090[] = "bad_data_field";
+static const char enum_text_1092[] = "north_south";
+static const char enum_text_1093[] = "nrm_function";
+static const char enum_text_1094[] = "request_messages";
+static const char enum_text_1095[] = "storage_mask";
+static const char enum_text_1096[] = "printer_mask";
+static const char enum_text_1097[] = "ins_mask";
+static const char enum_text_1098[] = "nrx_frequency";
+static const char enum_text_1099[] = "not_over_air";
+static const char enum_text_1100[] = "khz_490";
+static const char enum_text_1101[] = "khz_518";
+static const char enum_text_1102[] = "khz_4209_5";
+static const char enum_text_1103[] = "nsr_integrity";
+static const char enum_text_1104[] = "doubtful";
+static const char enum_text_1105[] = "nsr_plausibility";
+static const char enum_text_1107[] = "not_plausible";
+static const char enum_text_1108[] = "nsr_stw_mode";
+static const char enum_text_1109[] = "water_referenced";
+static const char enum_text_1110[] = "osd_reference";
+static const char enum_text_1112[] = "radar";
+static const char enum_text_1113[] = "positioning";
+static const char enum_text_1114[] = "phins_pitch_sense";
+static const char enum_text_1115[] = "bow_up";
+static const char enum_text_1116[] = "bow_down";
+static const char enum_text_1117[] = "phins_roll_sense";
+static const char enum_text_1118[] = "port_down";
+static const char enum_text_1119[] = "port_up";
+static const char enum_text_1120[] = "pos_mode";
+static const char enum_text_1121[] = "fixed_or_coarse";
+static const char enum_text_1122[] = "pos_sentence_status";
+static const char enum_text_1123[] = "prc_operating_location";
+static const char enum_text_1124[] = "bridge";
+static const char enum_text_1125[] = "port_wing";
+static const char enum_text_1126[] = "starboard_wing";
+static const char enum_text_1127[] = "engine_control_room";
+static const char enum_text_1128[] = "engine_side";
+static const char enum_text_1130[] = "prc_pitch_mode";
+static const char enum_text_1131[] = "percent";
+static const char enum_text_1132[] = "degrees";
+static const char enum_text_1133[] = "prc_rpm_mode";
+static const char enum_text_1134[] = "rpm";
+static const char enum_text_1135[] = "quectel_antenna_power";
+static const char enum_text_1136[] = "quectel_antenna_status";
+static const char enum_text_1137[] = "open_circuit";
+static const char enum_text_1138[] = "short_circuit";
+static const char enum_text_1139[] = "quectel_baud_rate";
+static const char enum_text_1140[] = "quectel_enable";
+static const char enum_text_1141[] = "quectel_error_code";
+static const char enum_text_1142[] = "invalid_parameters";
+static const char enum_text_1143[] = "execution_failed";
+static const char enum_text_1144[] = "unsupported_command";
+static const char enum_text_1145[] = "quectel_fix_type";
+static const char enum_text_1146[] = "reserved";
+static const char enum_text_1147[] = "quectel_flow_control";
+static const char enum_text_1148[] = "quectel_geofence_shape";
+static const char enum_text_1149[] = "circle_radius";
+static const char enum_text_1150[] = "circle_point";
+static const char enum_text_1151[] = "triangle";
+static const char enum_text_1152[] = "quadrangle";
+static const char enum_text_1153[] = "quectel_geofence_state";
+static const char enum_text_1154[] = "inside";
+static const char enum_text_1155[] = "outside";
+static const char enum_text_1156[] = "quectel_geosep_mode";
+static const char enum_text_1157[] = "quectel_gsv_talker";
+static const char enum_text_1158[] = "by_constellation";
+static const char enum_text_1159[] = "same_as_main";
+static const char enum_text_1160[] = "quectel_heading_quality";
+static const char enum_text_1161[] = "quectel_parity";
+static const char enum_text_1162[] = "odd";
+static const char enum_text_1163[] = "even";
+static const char enum_text_1164[] = "mark";
+static const char enum_text_1165[] = "space";
+static const char enum_text_1166[] = "quectel_port_type";
+static const char enum_text_1167[] = "uart";
+static const char enum_text_1168[] = "quectel_pps_mode";
+static const char enum_text_1169[] = "fix_only";
+static const char enum_text_1170[] = "quectel_pps_polarity";
+static const char enum_text_1171[] = "quectel_receiver_mode";
+static const char enum_text_1172[] = "rover";
+static const char enum_text_1173[] = "base";
+static const char enum_text_1174[] = "quectel_rtcm_eph_mode";
+static const char enum_text_1175[] = "on_update";
+static const char enum_text_1176[] = "on_update_and_interval";
+static const char enum_text_1177[] = "every_epoch";
+static const char enum_text_1178[] = "quectel_rtk_diff_mode";
+static const char enum_text_1179[] = "rtd_only";
+static const char enum_text_1180[] = "quectel_rtk_rel_mode";
+static const char enum_text_1181[] = "absolute";
+static const char enum_text_1182[] = "quectel_rtk_source_type";
+static const char enum_text_1183[] = "wide_lane";
+static const char enum_text_1184[] = "quectel_solution_type";
+static const char enum_text_1185[] = "single";
+static const char enum_text_1186[] = "dgnss";
+static const char enum_text_1187[] = "quectel_stop_bits";
+static const char enum_text_1188[] = "quectel_svin_mode";
+static const char enum_text_1189[] = "survey_in";
+static const char enum_text_1191[] = "quectel_svin_valid";
+static const char enum_text_1192[] = "in_progress";
+static const char enum_text_1193[] = "quectel_text_id";
+static const char enum_text_1194[] = "notice";
+static const char enum_text_1195[] = "quectel_time_reference";
+static const char enum_text_1196[] = "quectel_time_status";
+static const char enum_text_1197[] = "quectel_uart_index";
+static const char enum_text_1198[] = "uart1";
+static const char enum_text_1199[] = "uart2";
+static const char enum_text_1200[] = "uart3";
+static const char enum_text_1201[] = "rlm_message_code";
+static const char enum_text_1202[] = "reserved_0";
+static const char enum_text_1204[] = "reserved_4";
+static const char enum_text_1205[] = "reserved_5";
+static const char enum_text_1206[] = "reserved_6";
+static const char enum_text_1207[] = "reserved_7";
+static const char enum_text_1208[] = "reserved_8";
+static const char enum_text_1209[] = "reserved_9";
+static const char enum_text_1210[] = "reserved_a";
+static const char enum_text_1211[] = "reserved_b";
+static const char enum_text_1212[] = "reserved_c";
+static const char enum_text_1213[] = "reserved_d";
+static const char enum_text_1214[] = "reserved_e";
+static const char enum_text_1215[] = "rmb_arrival_status";
+static const char enum_text_1217[] = "not_arrived";
+static const char enum_text_1218[] = "rmc_mag_var_dir";
+static const char enum_text_1219[] = "rpm_source";
+static const char enum_text_1220[] = "shaft";
+static const char enum_text_1222[] = "rrt_application_status";
+static const char enum_text_1223[] = "accepted";
+static const char enum_text_1224[] = "rejected";
+static const char enum_text_1225[] = "pending";
+static const char enum_text_1226[] = "not_applicable";
+static const char enum_text_1227[] = "rrt_file_status";
+static const char enum_text_1228[] = "rrt_transfer_type";
+static const char enum_text_1229[] = "monitored";
+static const char enum_text_1230[] = "alternate";
+static const char enum_text_1231[] = "rsd_display_rotation";
+static const char enum_text_1232[] = "course_up";
+static const char enum_text_1233[] = "head_up";
+static const char enum_text_1234[] = "north_up";
+static const char enum_text_1235[] = "rte_mode";
+static const char enum_text_1238[] = "working";
+static const char enum_text_1239[] = "seapath_quality";
+static const char enum_text_1240[] = "reduced";
+static const char enum_text_1241[] = "septentrio_base_motion";
+static const char enum_text_1242[] = "septentrio_baseline_quality";
+static const char enum_text_1243[] = "signal_id";
+static const char enum_text_1244[] = "all_signals";
+static const char enum_text_1245[] = "signal_1";
+static const char enum_text_1246[] = "signal_2";
+static const char enum_text_1247[] = "signal_3";
+static const char enum_text_1248[] = "signal_4";
+static const char enum_text_1249[] = "signal_5";
+static const char enum_text_1250[] = "signal_6";
+static const char enum_text_1251[] = "signal_7";
+static const char enum_text_1252[] = "signal_8";
+static const char enum_text_1253[] = "signal_9";
+static const char enum_text_1254[] = "signal_a";
+static const char enum_text_1255[] = "signal_b";
+static const char enum_text_1256[] = "signal_c";
+static const char enum_text_1257[] = "sirf_baud";
+static const char enum_text_1260[] = "sirf_checksum_enable";
+static const char enum_text_1261[] = "sirf_checksum_enable_digit";
+static const char enum_text_1262[] = "sirf_debug";
+static const char enum_text_1263[] = "sirf_nmea_message";
+static const char enum_text_1264[] = "sirf_nmea_message_digit";
+static const char enum_text_1265[] = "sirf_ok_to_send";
+static const char enum_text_1266[] = "not_ok";
+static const char enum_text_1267[] = "sirf_parity";
+static const char enum_text_1268[] = "sirf_protocol";
+static const char enum_text_1269[] = "sirf_binary";
+static const char enum_text_1270[] = "sirf_rate_mode";
+static const char enum_text_1271[] = "set_rate";
+static const char enum_text_1272[] = "sirf_rate_mode_digit";
+static const char enum_text_1273[] = "skytraq_availability";
+static const char enum_text_1275[] = "skytraq_calibration";
+static const char enum_text_1276[] = "not_calibrated";
+static const char enum_text_1278[] = "skytraq_direction";
+static const char enum_text_1279[] = "forward";
+static const char enum_text_1280[] = "backward";
+static const char enum_text_1281[] = "skytraq_dr_mode";
+static const char enum_text_1282[] = "gnss_fix";
+static const char enum_text_1283[] = "skytraq_mode";
+static const char enum_text_1284[] = "float_other";
+static const char enum_text_1285[] = "skytraq_receiver_role";
+static const char enum_text_1286[] = "sm1_msi_status";
+static const char enum_text_1287[] = "incomplete";
+static const char enum_text_1288[] = "sm1_ocean_region";
+static const char enum_text_1289[] = "atlantic_west";
+static const char enum_text_1290[] = "atlantic_east";
+static const char enum_text_1291[] = "pacific";
+static const char enum_text_1292[] = "indian";
+static const char enum_text_1293[] = "sm1_priority";
+static const char enum_text_1294[] = "sm2_subject";
+static const char enum_text_1296[] = "meteorological_warning";
+static const char enum_text_1297[] = "ice_report";
+static const char enum_text_1298[] = "sar_and_piracy";
+static const char enum_text_1299[] = "meteorological_forecast";
+static const char enum_text_1300[] = "pilot_service";
+static const char enum_text_1301[] = "ais";
+static const char enum_text_1302[] = "loran";
+static const char enum_text_1303[] = "satnav";
+static const char enum_text_1304[] = "other_electronic_navaid";
+static const char enum_text_1305[] = "other_navigational_warning";
+static const char enum_text_1306[] = "special_service_v";
+static const char enum_text_1307[] = "special_service_w";
+static const char enum_text_1308[] = "special_service_x";
+static const char enum_text_1309[] = "Y";
+static const char enum_text_1310[] = "special_service_y";
+static const char enum_text_1311[] = "Z";
+static const char enum_text_1312[] = "no_messages";
+static const char enum_text_1313[] = "spectratime_gps_messages";
+static const char enum_text_1314[] = "ignored";
+static const char enum_text_1315[] = "none_received";
+static const char enum_text_1316[] = "partially_ok";
+static const char enum_text_1317[] = "spectratime_isync_status";
+static const char enum_text_1318[] = "warming_up";
+static const char enum_text_1319[] = "tracking_setup";
+static const char enum_text_1321[] = "synchronised";
+static const char enum_text_1322[] = "free_run_tracking_off";
+static const char enum_text_1323[] = "free_run_reference_unstable";
+static const char enum_text_1324[] = "free_run_no_reference";
+static const char enum_text_1325[] = "freeze";
+static const char enum_text_1326[] = "factory";
+static const char enum_text_1327[] = "searching_rb_line";
+static const char enum_text_1328[] = "spectratime_osc_quality";
+static const char enum_text_1329[] = "disciplined";
+static const char enum_text_1330[] = "spectratime_time_transfer";
+static const char enum_text_1331[] = "gps_old";
+static const char enum_text_1332[] = "gps_fresh";
+static const char enum_text_1333[] = "spw_password_level";
+static const char enum_text_1334[] = "user";
+static const char enum_text_1335[] = "administrator";
+static const char enum_text_1336[] = "ssd_dte";
+static const char enum_text_1338[] = "system_id";
+static const char enum_text_1339[] = "navic";
+static const char enum_text_1340[] = "geos5_qzss";
+static const char enum_text_1341[] = "teseo_baud";
+static const char enum_text_1342[] = "teseo_compiler_type";
+static const char enum_text_1343[] = "ARM";
+static const char enum_text_1345[] = "GNU";
+static const char enum_text_1346[] = "gnu";
+static const char enum_text_1347[] = "teseo_nmea_on_off";
+static const char enum_text_1348[] = "teseo_rtc_status";
+static const char enum_text_1349[] = "stored";
+static const char enum_text_1350[] = "approximate";
+static const char enum_text_1351[] = "teseo_setpar_mode";
+static const char enum_text_1352[] = "replace";
+static const char enum_text_1353[] = "set_bits";
+static const char enum_text_1354[] = "clear_bits";
+static const char enum_text_1355[] = "teseo_time_validity";
+static const char enum_text_1356[] = "no_time";
+static const char enum_text_1357[] = "flash_time";
+static const char enum_text_1358[] = "user_time";
+static const char enum_text_1359[] = "user_rtc_time";
+static const char enum_text_1361[] = "accurate_rtc_time";
+static const char enum_text_1362[] = "approximate_time";
+static const char enum_text_1363[] = "position_time";
+static const char enum_text_1364[] = "ephemeris_time";
+static const char enum_text_1365[] = "ths_mode";
+static const char enum_text_1366[] = "tnt_alarm_status";
+static const char enum_text_1367[] = "calibration_alarm";
+static const char enum_text_1368[] = "low_alarm";
+static const char enum_text_1369[] = "low_warning";
+static const char enum_text_1370[] = "high_warning";
+static const char enum_text_1371[] = "high_alarm";
+static const char enum_text_1372[] = "voltage_alarm";
+static const char enum_text_1373[] = "trimble_antenna_status";
+static const char enum_text_1374[] = "trimble_bpq_quality";
+static const char enum_text_1375[] = "sbas_or_vbs";
+static const char enum_text_1376[] = "float_or_high_precision";
+static const char enum_text_1377[] = "trimble_copernicus_version_part";
+static const char enum_text_1378[] = "application";
+static const char enum_text_1379[] = "hardware";
+static const char enum_text_1381[] = "trimble_dg_channel_used";
+static const char enum_text_1382[] = "trimble_dg_tracking";
+static const char enum_text_1383[] = "idle";
+static const char enum_text_1384[] = "wideband_fft_search";
+static const char enum_text_1385[] = "searching";
+static const char enum_text_1386[] = "acquired";
+static const char enum_text_1388[] = "trimble_gps_quality";
+static const char enum_text_1389[] = "network_rtk_float_3d";
+static const char enum_text_1390[] = "network_rtk_fixed_3d";
+static const char enum_text_1391[] = "network_rtk_float_2d";
+static const char enum_text_1392[] = "network_rtk_fixed_2d";
+static const char enum_text_1393[] = "omnistar_hp_xp";
+static const char enum_text_1394[] = "omnistar_vbs";
+static const char enum_text_1395[] = "location_rtk";
+static const char enum_text_1396[] = "beacon_dgps";
+static const char enum_text_1397[] = "centerpoint_rtx";
+static const char enum_text_1398[] = "xfill";
+static const char enum_text_1399[] = "trimble_oscillator_lock";
+static const char enum_text_1400[] = "unlocked";
+static const char enum_text_1401[] = "trl_reason";
+static const char enum_text_1402[] = "power_off";
+static const char enum_text_1403[] = "silent_mode";
+static const char enum_text_1404[] = "channel_management";
+static const char enum_text_1405[] = "equipment_malfunction";
+static const char enum_text_1406[] = "invalid_configuration";
+static const char enum_text_1407[] = "ttm_acquisition";
+static const char enum_text_1408[] = "reported";
+static const char enum_text_1409[] = "ttm_reference";
+static const char enum_text_1410[] = "ttm_target_status";
+static const char enum_text_1411[] = "ttm_units";
+static const char enum_text_1412[] = "kilometres";
+static const char enum_text_1413[] = "nautical_miles";
+static const char enum_text_1414[] = "statute_miles";
+static const char enum_text_1415[] = "ublox_autobauding";
+static const char enum_text_1416[] = "ublox_nav_status";
+static const char enum_text_1417[] = "NF";
+static const char enum_text_1419[] = "G2";
+static const char enum_text_1420[] = "standalone_2d";
+static const char enum_text_1421[] = "G3";
+static const char enum_text_1422[] = "standalone_3d";
+static const char enum_text_1424[] = "differential_2d";
+static const char enum_text_1425[] = "D3";
+static const char enum_text_1426[] = "differential_3d";
+static const char enum_text_1427[] = "RK";
+static const char enum_text_1428[] = "gnss_dead_reckoning";
+static const char enum_text_1430[] = "time_only";
+static const char enum_text_1431[] = "ublox_port";
+static const char enum_text_1432[] = "ddc";
+static const char enum_text_1433[] = "usb";
+static const char enum_text_1434[] = "spi";
+static const char enum_text_1435[] = "ublox_sv_status";
+static const char enum_text_1436[] = "ephemeris_not_used";
+static const char enum_text_1437[] = "ubx_fix_type";
+static const char enum_text_1438[] = "ubx_gnss_id";
+static const char enum_text_1439[] = "imes";
+static const char enum_text_1440[] = "unicore_travel_direction";
+static const char enum_text_1441[] = "vsd_nav_status";
+static const char enum_text_1442[] = "under_way_engine";
+static const char enum_text_1443[] = "at_anchor";
+static const char enum_text_1444[] = "not_under_command";
+static const char enum_text_1445[] = "restricted_manoeuvrability";
+static const char enum_text_1446[] = "constrained_by_draught";
+static const char enum_text_1447[] = "moored";
+static const char enum_text_1448[] = "aground";
+static const char enum_text_1449[] = "under_way_sailing";
+static const char enum_text_1450[] = "reserved_hsc";
+static const char enum_text_1451[] = "reserved_wig";
+static const char enum_text_1452[] = "towing_astern";
+static const char enum_text_1453[] = "pushing_ahead";
+static const char enum_text_1454[] = "emergency_beacon_active";
+static const char enum_text_1455[] = "not_defined";
+static const char enum_text_1456[] = "wat_alarm_condition";
+static const char enum_text_1457[] = "wat_message_type";
+static const char enum_text_1458[] = "single_detector";
+static const char enum_text_1459[] = "wat_override";
+static const char enum_text_1460[] = "wat_system";
+static const char enum_text_1461[] = "WL";
+static const char enum_text_1462[] = "water_level_detection";
+static const char enum_text_1463[] = "BI";
+static const char enum_text_1464[] = "bilge_high_level";
+static const char enum_text_1465[] = "hull_door_leakage";
+static const char enum_text_1466[] = "xdr_transducer_type";
+static const char enum_text_1467[] = "angular_displacement";
+static const char enum_text_1468[] = "temperature";
+static const char enum_text_1469[] = "linear_displacement";
+static const char enum_text_1471[] = "generic";
+static const char enum_text_1472[] = "humidity";
+static const char enum_text_1473[] = "current";
+static const char enum_text_1474[] = "force";
+static const char enum_text_1475[] = "pressure";
+static const char enum_text_1476[] = "flow_rate";
+static const char enum_text_1477[] = "switch_or_valve";
+static const char enum_text_1478[] = "tachometer";
+static const char enum_text_1479[] = "voltage";
+static const char enum_text_1480[] = "volume";
+static const char enum_text_1481[] = "xdr_unit";
+static const char enum_text_1482[] = "amperes";
+static const char enum_text_1483[] = "bars_or_binary";
+static const char enum_text_1484[] = "celsius";
+static const char enum_text_1485[] = "hertz";
+static const char enum_text_1486[] = "litres_per_second";
+static const char enum_text_1487[] = "kelvin_or_density";
+static const char enum_text_1488[] = "metres_or_cubic_metres";
+static const char enum_text_1489[] = "newtons";
+static const char enum_text_1490[] = "percent_or_pascals";
+static const char enum_text_1491[] = "parts_per_thousand";
+static const char enum_text_1492[] = "volts";
+static const char enum_text_1493[] = "zdl_point_type";
+static const char enum_text_1494[] = "turning_point";
+static const char enum_text_1496[] = "wheelover";
 
 static const nmea_enum_code aam_arrival_circle_codes[] = {
-    {"A", "entered"},
-    {"V", "not_entered"},
+    {enum_text_545 + 4, enum_text_4 + 4}, /* "A": "entered" */
+    {enum_text_553 + 4, enum_text_4}, /* "V": "not_entered" */
 };
 const nmea_enum_def nmea_aam_arrival_circle_def = {
-    "aam_arrival_circle", aam_arrival_circle_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_0, aam_arrival_circle_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code aam_perpendicular_codes[] = {
-    {"A", "passed"},
-    {"V", "not_passed"},
+    {enum_text_545 + 4, enum_text_7 + 4}, /* "A": "passed" */
+    {enum_text_553 + 4, enum_text_7}, /* "V": "not_passed" */
 };
 const nmea_enum_def nmea_aam_perpendicular_def = {
-    "aam_perpendicular", aam_perpendicular_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_5, aam_perpendicular_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code abk_ack_type_codes[] = {
-    {"0", "received"},
-    {"1", "no_acknowledgement"},
-    {"2", "not_broadcast"},
-    {"3", "broadcast_done"},
-    {"4", "late_reception"},
-    {"5", "read_on_display"},
+    {enum_text_896 + 9, enum_text_1315 + 5}, /* "0": "received" */
+    {enum_text_100 + 1, enum_text_12}, /* "1": "no_acknowledgement" */
+    {enum_text_923 + 5, enum_text_14}, /* "2": "not_broadcast" */
+    {enum_text_925 + 5, enum_text_16}, /* "3": "broadcast_done" */
+    {enum_text_927 + 5, enum_text_18}, /* "4": "late_reception" */
+    {enum_text_849 + 5, enum_text_20}, /* "5": "read_on_display" */
 };
 const nmea_enum_def nmea_abk_ack_type_def = {
-    "abk_ack_type", abk_ack_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_8, abk_ack_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code abk_channel_codes[] = {
-    {"A", "a"},
-    {"B", "b"},
+    {enum_text_545 + 4, enum_text_546 + 4}, /* "A": "a" */
+    {enum_text_23, enum_text_1433 + 2}, /* "B": "b" */
 };
 const nmea_enum_def nmea_abk_channel_def = {
-    "abk_channel", abk_channel_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_21, abk_channel_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code abm_channel_codes[] = {
-    {"0", "no_preference"},
-    {"1", "a"},
-    {"2", "b"},
-    {"3", "both"},
+    {enum_text_896 + 9, enum_text_26}, /* "0": "no_preference" */
+    {enum_text_100 + 1, enum_text_546 + 4}, /* "1": "a" */
+    {enum_text_923 + 5, enum_text_1433 + 2}, /* "2": "b" */
+    {enum_text_925 + 5, enum_text_27}, /* "3": "both" */
 };
 const nmea_enum_def nmea_abm_channel_def = {
-    "abm_channel", abm_channel_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_25, abm_channel_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code aca_bandwidth_codes[] = {
-    {"0", "by_channel_number"},
-    {"1", "khz_12_5"},
+    {enum_text_896 + 9, enum_text_29}, /* "0": "by_channel_number" */
+    {enum_text_100 + 1, enum_text_30}, /* "1": "khz_12_5" */
 };
 const nmea_enum_def nmea_aca_bandwidth_def = {
-    "aca_bandwidth", aca_bandwidth_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_28, aca_bandwidth_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code aca_in_use_codes[] = {
-    {"0", "not_in_use"},
-    {"1", "in_use"},
+    {enum_text_896 + 9, enum_text_32}, /* "0": "not_in_use" */
+    {enum_text_100 + 1, enum_text_31 + 4}, /* "1": "in_use" */
 };
 const nmea_enum_def nmea_aca_in_use_def = {
-    "aca_in_use", aca_in_use_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_31, aca_in_use_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code aca_info_source_codes[] = {
-    {"A", "message22_addressed"},
-    {"B", "message22_broadcast"},
-    {"C", "aca_sentence"},
-    {"D", "dsc_telecommand"},
-    {"M", "manual"},
+    {enum_text_545 + 4, enum_text_35}, /* "A": "message22_addressed" */
+    {enum_text_23, enum_text_36}, /* "B": "message22_broadcast" */
+    {enum_text_557 + 4, enum_text_38}, /* "C": "aca_sentence" */
+    {enum_text_568 + 1, enum_text_40}, /* "D": "dsc_telecommand" */
+    {enum_text_712 + 1, enum_text_1040 + 9}, /* "M": "manual" */
 };
 const nmea_enum_def nmea_aca_info_source_def = {
-    "aca_info_source", aca_info_source_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_34, aca_info_source_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code aca_power_level_codes[] = {
-    {"0", "high"},
-    {"1", "low"},
+    {enum_text_896 + 9, enum_text_356 + 8}, /* "0": "high" */
+    {enum_text_100 + 1, enum_text_692 + 7}, /* "1": "low" */
 };
 const nmea_enum_def nmea_aca_power_level_def = {
-    "aca_power_level", aca_power_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_43, aca_power_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code aca_txrx_mode_codes[] = {
-    {"0", "tx_ab_rx_ab"},
-    {"1", "tx_a_rx_ab"},
-    {"2", "tx_b_rx_ab"},
-    {"3", "no_tx_rx_ab"},
-    {"4", "no_tx_rx_a"},
-    {"5", "no_tx_rx_b"},
+    {enum_text_896 + 9, enum_text_47}, /* "0": "tx_ab_rx_ab" */
+    {enum_text_100 + 1, enum_text_48}, /* "1": "tx_a_rx_ab" */
+    {enum_text_923 + 5, enum_text_49}, /* "2": "tx_b_rx_ab" */
+    {enum_text_925 + 5, enum_text_50}, /* "3": "no_tx_rx_ab" */
+    {enum_text_927 + 5, enum_text_51}, /* "4": "no_tx_rx_a" */
+    {enum_text_849 + 5, enum_text_52}, /* "5": "no_tx_rx_b" */
 };
 const nmea_enum_def nmea_aca_txrx_mode_def = {
-    "aca_txrx_mode", aca_txrx_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_46, aca_txrx_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code acn_alert_command_codes[] = {
-    {"A", "acknowledge"},
-    {"Q", "request_repeat"},
-    {"O", "responsibility_transfer"},
-    {"S", "silence"},
+    {enum_text_545 + 4, enum_text_54}, /* "A": "acknowledge" */
+    {enum_text_55, enum_text_56}, /* "Q": "request_repeat" */
+    {enum_text_716 + 1, enum_text_58}, /* "O": "responsibility_transfer" */
+    {enum_text_608 + 1, enum_text_60}, /* "S": "silence" */
 };
 const nmea_enum_def nmea_acn_alert_command_def = {
-    "acn_alert_command", acn_alert_command_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_53, acn_alert_command_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code airoha_ack_result_codes[] = {
-    {"0", "success"},
-    {"1", "processing"},
-    {"2", "failed"},
-    {"3", "unsupported"},
-    {"4", "parameter_error"},
-    {"5", "busy"},
+    {enum_text_896 + 9, enum_text_62}, /* "0": "success" */
+    {enum_text_100 + 1, enum_text_63}, /* "1": "processing" */
+    {enum_text_923 + 5, enum_text_1143 + 10}, /* "2": "failed" */
+    {enum_text_925 + 5, enum_text_65}, /* "3": "unsupported" */
+    {enum_text_927 + 5, enum_text_66}, /* "4": "parameter_error" */
+    {enum_text_849 + 5, enum_text_67}, /* "5": "busy" */
 };
 const nmea_enum_def nmea_airoha_ack_result_def = {
-    "airoha_ack_result", airoha_ack_result_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_61, airoha_ack_result_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_aiding_type_codes[] = {
-    {"0", "epo"},
-    {"1", "time"},
-    {"2", "location"},
+    {enum_text_896 + 9, enum_text_69}, /* "0": "epo" */
+    {enum_text_100 + 1, enum_text_1356 + 3}, /* "1": "time" */
+    {enum_text_923 + 5, enum_text_1123 + 14}, /* "2": "location" */
 };
 const nmea_enum_def nmea_airoha_aiding_type_def = {
-    "airoha_aiding_type", airoha_aiding_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_68, airoha_aiding_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_baud_codes[] = {
-    {"4800", "baud_4800"},
-    {"9600", "baud_9600"},
-    {"19200", "baud_19200"},
-    {"38400", "baud_38400"},
-    {"57600", "baud_57600"},
-    {"115200", "baud_115200"},
-    {"230400", "baud_230400"},
-    {"460800", "baud_460800"},
-    {"921600", "baud_921600"},
+    {enum_text_74 + 5, enum_text_74}, /* "4800": "baud_4800" */
+    {enum_text_76 + 5, enum_text_76}, /* "9600": "baud_9600" */
+    {enum_text_78 + 5, enum_text_78}, /* "19200": "baud_19200" */
+    {enum_text_80 + 5, enum_text_80}, /* "38400": "baud_38400" */
+    {enum_text_82 + 5, enum_text_82}, /* "57600": "baud_57600" */
+    {enum_text_84 + 5, enum_text_84}, /* "115200": "baud_115200" */
+    {enum_text_86 + 5, enum_text_86}, /* "230400": "baud_230400" */
+    {enum_text_88 + 5, enum_text_88}, /* "460800": "baud_460800" */
+    {enum_text_90 + 5, enum_text_90}, /* "921600": "baud_921600" */
 };
 const nmea_enum_def nmea_airoha_baud_def = {
-    "airoha_baud", airoha_baud_codes, 9, 4, 6, NMEA_CODES_DIGITS
+    enum_text_72, airoha_baud_codes, 9, 4, 6, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_debug_log_codes[] = {
-    {"0", "disabled"},
-    {"1", "full"},
-    {"2", "lite"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_694 + 6}, /* "1": "full" */
+    {enum_text_923 + 5, enum_text_94}, /* "2": "lite" */
 };
 const nmea_enum_def nmea_airoha_debug_log_def = {
-    "airoha_debug_log", airoha_debug_log_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_91, airoha_debug_log_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_dgps_mode_codes[] = {
-    {"0", "none"},
-    {"1", "rtcm"},
-    {"2", "sbas"},
+    {enum_text_896 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_97}, /* "1": "rtcm" */
+    {enum_text_923 + 5, enum_text_98}, /* "2": "sbas" */
 };
 const nmea_enum_def nmea_airoha_dgps_mode_def = {
-    "airoha_dgps_mode", airoha_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_95, airoha_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_dr_message_codes[] = {
-    {"-1", "all"},
-    {"0", "pqtmvehmsg"},
-    {"1", "pqtmsenmsg"},
-    {"2", "pqtmdrcal"},
-    {"3", "pqtmimutype"},
-    {"4", "pqtmvehmot"},
+    {enum_text_100, enum_text_819 + 7}, /* "-1": "all" */
+    {enum_text_896 + 9, enum_text_102}, /* "0": "pqtmvehmsg" */
+    {enum_text_100 + 1, enum_text_103}, /* "1": "pqtmsenmsg" */
+    {enum_text_923 + 5, enum_text_104}, /* "2": "pqtmdrcal" */
+    {enum_text_925 + 5, enum_text_105}, /* "3": "pqtmimutype" */
+    {enum_text_927 + 5, enum_text_106}, /* "4": "pqtmvehmot" */
 };
 const nmea_enum_def nmea_airoha_dr_message_def = {
-    "airoha_dr_message", airoha_dr_message_codes, 6, 1, 2, NMEA_CODES_DIGITS
+    enum_text_99, airoha_dr_message_codes, 6, 1, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_easy_status_codes[] = {
-    {"0", "not_finished"},
-    {"1", "day_1"},
-    {"2", "day_2"},
-    {"3", "day_3"},
+    {enum_text_896 + 9, enum_text_108}, /* "0": "not_finished" */
+    {enum_text_100 + 1, enum_text_109}, /* "1": "day_1" */
+    {enum_text_923 + 5, enum_text_110}, /* "2": "day_2" */
+    {enum_text_925 + 5, enum_text_111}, /* "3": "day_3" */
 };
 const nmea_enum_def nmea_airoha_easy_status_def = {
-    "airoha_easy_status", airoha_easy_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_107, airoha_easy_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_enable_codes[] = {
-    {"0", "disabled"},
-    {"1", "enabled"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1083 + 14}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_airoha_enable_def = {
-    "airoha_enable", airoha_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_112, airoha_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code airoha_geofence_confidence_codes[] = {
-    {"0", "none"},
-    {"1", "sigma_1"},
-    {"2", "sigma_2"},
-    {"3", "sigma_3"},
+    {enum_text_896 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_115}, /* "1": "sigma_1" */
+    {enum_text_923 + 5, enum_text_116}, /* "2": "sigma_2" */
+    {enum_text_925 + 5, enum_text_117}, /* "3": "sigma_3" */
 };
 const nmea_enum_def nmea_airoha_geofence_confidence_def = {
-    "airoha_geofence_confidence", airoha_geofence_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_114, airoha_geofence_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_gnss_system_codes[] = {
-    {"0", "gps"},
-    {"1", "glonass"},
-    {"2", "galileo"},
-    {"3", "beidou"},
-    {"4", "qzss"},
+    {enum_text_896 + 9, enum_text_1396 + 8}, /* "0": "gps" */
+    {enum_text_100 + 1, enum_text_239 + 4}, /* "1": "glonass" */
+    {enum_text_923 + 5, enum_text_939 + 12}, /* "2": "galileo" */
+    {enum_text_925 + 5, enum_text_122}, /* "3": "beidou" */
+    {enum_text_927 + 5, enum_text_1340 + 6}, /* "4": "qzss" */
 };
 const nmea_enum_def nmea_airoha_gnss_system_def = {
-    "airoha_gnss_system", airoha_gnss_system_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_118, airoha_gnss_system_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_jamming_status_codes[] = {
-    {"0", "unknown"},
-    {"1", "good"},
-    {"2", "warning"},
-    {"3", "critical"},
+    {enum_text_896 + 9, enum_text_125}, /* "0": "unknown" */
+    {enum_text_100 + 1, enum_text_126}, /* "1": "good" */
+    {enum_text_923 + 5, enum_text_960 + 4}, /* "2": "warning" */
+    {enum_text_925 + 5, enum_text_128}, /* "3": "critical" */
 };
 const nmea_enum_def nmea_airoha_jamming_status_def = {
-    "airoha_jamming_status", airoha_jamming_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_124, airoha_jamming_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_locus_clear_codes[] = {
-    {"0", "records_and_settings"},
-    {"1", "records"},
-    {"2", "settings"},
+    {enum_text_896 + 9, enum_text_130}, /* "0": "records_and_settings" */
+    {enum_text_100 + 1, enum_text_131}, /* "1": "records" */
+    {enum_text_923 + 5, enum_text_130 + 12}, /* "2": "settings" */
 };
 const nmea_enum_def nmea_airoha_locus_clear_def = {
-    "airoha_locus_clear", airoha_locus_clear_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_129, airoha_locus_clear_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_locus_format_codes[] = {
-    {"0", "nmea"},
-    {"1", "pair_hex"},
+    {enum_text_896 + 9, enum_text_134}, /* "0": "nmea" */
+    {enum_text_100 + 1, enum_text_135}, /* "1": "pair_hex" */
 };
 const nmea_enum_def nmea_airoha_locus_format_def = {
-    "airoha_locus_format", airoha_locus_format_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_133, airoha_locus_format_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_locus_threshold_codes[] = {
-    {"0", "time"},
-    {"1", "speed"},
-    {"2", "distance"},
+    {enum_text_896 + 9, enum_text_1356 + 3}, /* "0": "time" */
+    {enum_text_100 + 1, enum_text_137}, /* "1": "speed" */
+    {enum_text_923 + 5, enum_text_138}, /* "2": "distance" */
 };
 const nmea_enum_def nmea_airoha_locus_threshold_def = {
-    "airoha_locus_threshold", airoha_locus_threshold_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_136, airoha_locus_threshold_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_nav_mode_codes[] = {
-    {"0", "normal"},
-    {"1", "fitness"},
-    {"4", "stationary"},
-    {"5", "drone"},
-    {"7", "swimming"},
+    {enum_text_896 + 9, enum_text_971 + 4}, /* "0": "normal" */
+    {enum_text_100 + 1, enum_text_141}, /* "1": "fitness" */
+    {enum_text_927 + 5, enum_text_142}, /* "4": "stationary" */
+    {enum_text_849 + 5, enum_text_143}, /* "5": "drone" */
+    {enum_text_204 + 1, enum_text_145}, /* "7": "swimming" */
 };
 const nmea_enum_def nmea_airoha_nav_mode_def = {
-    "airoha_nav_mode", airoha_nav_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_139, airoha_nav_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_nmea_output_mode_codes[] = {
-    {"0", "disabled"},
-    {"1", "nmea_4_10"},
-    {"2", "nmea_3_01"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_147}, /* "1": "nmea_4_10" */
+    {enum_text_923 + 5, enum_text_148}, /* "2": "nmea_3_01" */
 };
 const nmea_enum_def nmea_airoha_nmea_output_mode_def = {
-    "airoha_nmea_output_mode", airoha_nmea_output_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_146, airoha_nmea_output_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_nmea_type_codes[] = {
-    {"-1", "all"},
-    {"0", "gga"},
-    {"1", "gll"},
-    {"2", "gsa"},
-    {"3", "gsv"},
-    {"4", "rmc"},
-    {"5", "vtg"},
-    {"6", "zda"},
-    {"7", "grs"},
-    {"8", "gst"},
-    {"9", "gns"},
+    {enum_text_100, enum_text_819 + 7}, /* "-1": "all" */
+    {enum_text_896 + 9, enum_text_546 + 2}, /* "0": "gga" */
+    {enum_text_100 + 1, enum_text_548 + 2}, /* "1": "gll" */
+    {enum_text_923 + 5, enum_text_550 + 2}, /* "2": "gsa" */
+    {enum_text_925 + 5, enum_text_554 + 2}, /* "3": "gsv" */
+    {enum_text_927 + 5, enum_text_558 + 2}, /* "4": "rmc" */
+    {enum_text_849 + 5, enum_text_560 + 2}, /* "5": "vtg" */
+    {enum_text_202 + 1, enum_text_562 + 2}, /* "6": "zda" */
+    {enum_text_204 + 1, enum_text_158}, /* "7": "grs" */
+    {enum_text_1101 + 6, enum_text_552 + 2}, /* "8": "gst" */
+    {enum_text_846 + 5, enum_text_162}, /* "9": "gns" */
 };
 const nmea_enum_def nmea_airoha_nmea_type_def = {
-    "airoha_nmea_type", airoha_nmea_type_codes, 11, 1, 2, NMEA_CODES_DIGITS
+    enum_text_149, airoha_nmea_type_codes, 11, 1, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_periodic_mode_codes[] = {
-    {"0", "disabled"},
-    {"1", "smart"},
-    {"2", "strict"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_164}, /* "1": "smart" */
+    {enum_text_923 + 5, enum_text_165}, /* "2": "strict" */
 };
 const nmea_enum_def nmea_airoha_periodic_mode_def = {
-    "airoha_periodic_mode", airoha_periodic_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_163, airoha_periodic_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_pos_precision_codes[] = {
-    {"0", "lat_lon_4_alt_1"},
-    {"1", "lat_lon_5_alt_2"},
-    {"2", "lat_lon_6_alt_3"},
-    {"3", "lat_lon_7_alt_3"},
+    {enum_text_896 + 9, enum_text_167}, /* "0": "lat_lon_4_alt_1" */
+    {enum_text_100 + 1, enum_text_168}, /* "1": "lat_lon_5_alt_2" */
+    {enum_text_923 + 5, enum_text_169}, /* "2": "lat_lon_6_alt_3" */
+    {enum_text_925 + 5, enum_text_170}, /* "3": "lat_lon_7_alt_3" */
 };
 const nmea_enum_def nmea_airoha_pos_precision_def = {
-    "airoha_pos_precision", airoha_pos_precision_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_166, airoha_pos_precision_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_pps_type_codes[] = {
-    {"0", "disabled"},
-    {"1", "after_first_fix"},
-    {"2", "fix_3d"},
-    {"3", "fix_2d_3d"},
-    {"4", "always"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_172}, /* "1": "after_first_fix" */
+    {enum_text_923 + 5, enum_text_173}, /* "2": "fix_3d" */
+    {enum_text_925 + 5, enum_text_174}, /* "3": "fix_2d_3d" */
+    {enum_text_927 + 5, enum_text_175}, /* "4": "always" */
 };
 const nmea_enum_def nmea_airoha_pps_type_def = {
-    "airoha_pps_type", airoha_pps_type_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_171, airoha_pps_type_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code airoha_rtcm_mode_codes[] = {
-    {"-1", "disabled"},
-    {"0", "msm4"},
-    {"1", "msm7"},
+    {enum_text_100, enum_text_92}, /* "-1": "disabled" */
+    {enum_text_896 + 9, enum_text_177}, /* "0": "msm4" */
+    {enum_text_100 + 1, enum_text_178}, /* "1": "msm7" */
 };
 const nmea_enum_def nmea_airoha_rtcm_mode_def = {
-    "airoha_rtcm_mode", airoha_rtcm_mode_codes, 3, 1, 2, NMEA_CODES_DIGITS
+    enum_text_176, airoha_rtcm_mode_codes, 3, 1, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ais_aid_type_codes[] = {
-    {"0", "not_specified"},
-    {"1", "reference_point"},
-    {"2", "racon"},
-    {"3", "fixed_structure"},
-    {"4", "spare"},
-    {"5", "light"},
-    {"6", "light_sectors"},
-    {"7", "leading_light_front"},
-    {"8", "leading_light_rear"},
-    {"9", "beacon_cardinal_n"},
-    {"10", "beacon_cardinal_e"},
-    {"11", "beacon_cardinal_s"},
-    {"12", "beacon_cardinal_w"},
-    {"13", "beacon_port"},
-    {"14", "beacon_starboard"},
-    {"15", "beacon_preferred_port"},
-    {"16", "beacon_preferred_starboard"},
-    {"17", "beacon_isolated_danger"},
-    {"18", "beacon_safe_water"},
-    {"19", "beacon_special"},
-    {"20", "cardinal_n"},
-    {"21", "cardinal_e"},
-    {"22", "cardinal_s"},
-    {"23", "cardinal_w"},
-    {"24", "port"},
-    {"25", "starboard"},
-    {"26", "preferred_port"},
-    {"27", "preferred_starboard"},
-    {"28", "isolated_danger"},
-    {"29", "safe_water"},
-    {"30", "special"},
-    {"31", "light_vessel"},
+    {enum_text_896 + 9, enum_text_180}, /* "0": "not_specified" */
+    {enum_text_100 + 1, enum_text_181}, /* "1": "reference_point" */
+    {enum_text_923 + 5, enum_text_182}, /* "2": "racon" */
+    {enum_text_925 + 5, enum_text_183}, /* "3": "fixed_structure" */
+    {enum_text_927 + 5, enum_text_184}, /* "4": "spare" */
+    {enum_text_849 + 5, enum_text_185}, /* "5": "light" */
+    {enum_text_202 + 1, enum_text_186}, /* "6": "light_sectors" */
+    {enum_text_204 + 1, enum_text_187}, /* "7": "leading_light_front" */
+    {enum_text_1101 + 6, enum_text_188}, /* "8": "leading_light_rear" */
+    {enum_text_846 + 5, enum_text_189}, /* "9": "beacon_cardinal_n" */
+    {enum_text_896 + 8, enum_text_191}, /* "10": "beacon_cardinal_e" */
+    {enum_text_921 + 4, enum_text_193}, /* "11": "beacon_cardinal_s" */
+    {enum_text_923 + 4, enum_text_195}, /* "12": "beacon_cardinal_w" */
+    {enum_text_925 + 4, enum_text_197}, /* "13": "beacon_port" */
+    {enum_text_927 + 4, enum_text_199}, /* "14": "beacon_starboard" */
+    {enum_text_849 + 4, enum_text_201}, /* "15": "beacon_preferred_port" */
+    {enum_text_202, enum_text_203}, /* "16": "beacon_preferred_starboard" */
+    {enum_text_204, enum_text_205}, /* "17": "beacon_isolated_danger" */
+    {enum_text_1101 + 5, enum_text_207}, /* "18": "beacon_safe_water" */
+    {enum_text_846 + 4, enum_text_209}, /* "19": "beacon_special" */
+    {enum_text_210, enum_text_189 + 7}, /* "20": "cardinal_n" */
+    {enum_text_852 + 4, enum_text_191 + 7}, /* "21": "cardinal_e" */
+    {enum_text_214, enum_text_193 + 7}, /* "22": "cardinal_s" */
+    {enum_text_216, enum_text_195 + 7}, /* "23": "cardinal_w" */
+    {enum_text_218, enum_text_1297 + 6}, /* "24": "port" */
+    {enum_text_220, enum_text_199 + 7}, /* "25": "starboard" */
+    {enum_text_222, enum_text_201 + 7}, /* "26": "preferred_port" */
+    {enum_text_224, enum_text_203 + 7}, /* "27": "preferred_starboard" */
+    {enum_text_226, enum_text_205 + 7}, /* "28": "isolated_danger" */
+    {enum_text_228, enum_text_207 + 7}, /* "29": "safe_water" */
+    {enum_text_850 + 4, enum_text_209 + 7}, /* "30": "special" */
+    {enum_text_232, enum_text_233}, /* "31": "light_vessel" */
 };
 const nmea_enum_def nmea_ais_aid_type_def = {
-    "ais_aid_type", ais_aid_type_codes, 32, 1, 2, NMEA_CODES_DIGITS
+    enum_text_179, ais_aid_type_codes, 32, 1, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ais_channel_codes[] = {
-    {"A", "a"},
-    {"B", "b"},
-    {"1", "one"},
-    {"2", "two"},
+    {enum_text_545 + 4, enum_text_546 + 4}, /* "A": "a" */
+    {enum_text_23, enum_text_1433 + 2}, /* "B": "b" */
+    {enum_text_100 + 1, enum_text_96 + 1}, /* "1": "one" */
+    {enum_text_923 + 5, enum_text_236}, /* "2": "two" */
 };
 const nmea_enum_def nmea_ais_channel_def = {
-    "ais_channel", ais_channel_codes, 4, 1, 1, NMEA_CODES_CLOSED
+    enum_text_234, ais_channel_codes, 4, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code ais_epfd_codes[] = {
-    {"0", "undefined"},
-    {"1", "gps"},
-    {"2", "glonass"},
-    {"3", "gps_glonass"},
-    {"4", "loran_c"},
-    {"5", "chayka"},
-    {"6", "integrated"},
-    {"7", "surveyed"},
-    {"8", "galileo"},
-    {"15", "internal_gnss"},
+    {enum_text_896 + 9, enum_text_238}, /* "0": "undefined" */
+    {enum_text_100 + 1, enum_text_1396 + 8}, /* "1": "gps" */
+    {enum_text_923 + 5, enum_text_239 + 4}, /* "2": "glonass" */
+    {enum_text_925 + 5, enum_text_239}, /* "3": "gps_glonass" */
+    {enum_text_927 + 5, enum_text_240}, /* "4": "loran_c" */
+    {enum_text_849 + 5, enum_text_241}, /* "5": "chayka" */
+    {enum_text_202 + 1, enum_text_242}, /* "6": "integrated" */
+    {enum_text_204 + 1, enum_text_243}, /* "7": "surveyed" */
+    {enum_text_1101 + 6, enum_text_939 + 12}, /* "8": "galileo" */
+    {enum_text_849 + 4, enum_text_244}, /* "15": "internal_gnss" */
 };
 const nmea_enum_def nmea_ais_epfd_def = {
-    "ais_epfd", ais_epfd_codes, 10, 1, 2, NMEA_CODES_DIGITS
+    enum_text_237, ais_epfd_codes, 10, 1, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ais_ship_type_codes[] = {
-    {"0", "not_available"},
-    {"20", "wig"},
-    {"21", "wig_hazardous_a"},
-    {"22", "wig_hazardous_b"},
-    {"23", "wig_hazardous_c"},
-    {"24", "wig_hazardous_d"},
-    {"30", "fishing"},
-    {"31", "towing"},
-    {"32", "towing_large"},
-    {"33", "dredging"},
-    {"34", "diving"},
-    {"35", "military"},
-    {"36", "sailing"},
-    {"37", "pleasure_craft"},
-    {"40", "high_speed_craft"},
-    {"41", "high_speed_craft_hazardous_a"},
-    {"42", "high_speed_craft_hazardous_b"},
-    {"43", "high_speed_craft_hazardous_c"},
-    {"44", "high_speed_craft_hazardous_d"},
-    {"49", "high_speed_craft_no_info"},
-    {"50", "pilot_vessel"},
-    {"51", "search_and_rescue"},
-    {"52", "tug"},
-    {"53", "port_tender"},
-    {"54", "anti_pollution"},
-    {"55", "law_enforcement"},
-    {"56", "local_56"},
-    {"57", "local_57"},
-    {"58", "medical_transport"},
-    {"59", "noncombatant"},
-    {"60", "passenger"},
-    {"61", "passenger_hazardous_a"},
-    {"62", "passenger_hazardous_b"},
-    {"63", "passenger_hazardous_c"},
-    {"64", "passenger_hazardous_d"},
-    {"69", "passenger_no_info"},
-    {"70", "cargo"},
-    {"71", "cargo_hazardous_a"},
-    {"72", "cargo_hazardous_b"},
-    {"73", "cargo_hazardous_c"},
-    {"74", "cargo_hazardous_d"},
-    {"79", "cargo_no_info"},
-    {"80", "tanker"},
-    {"81", "tanker_hazardous_a"},
-    {"82", "tanker_hazardous_b"},
-    {"83", "tanker_hazardous_c"},
-    {"84", "tanker_hazardous_d"},
-    {"89", "tanker_no_info"},
-    {"90", "other"},
-    {"91", "other_hazardous_a"},
-    {"92", "other_hazardous_b"},
-    {"93", "other_hazardous_c"},
-    {"94", "other_hazardous_d"},
-    {"99", "other_no_info"},
+    {enum_text_896 + 9, enum_text_246}, /* "0": "not_available" */
+    {enum_text_210, enum_text_1451 + 9}, /* "20": "wig" */
+    {enum_text_852 + 4, enum_text_248}, /* "21": "wig_hazardous_a" */
+    {enum_text_214, enum_text_249}, /* "22": "wig_hazardous_b" */
+    {enum_text_216, enum_text_250}, /* "23": "wig_hazardous_c" */
+    {enum_text_218, enum_text_251}, /* "24": "wig_hazardous_d" */
+    {enum_text_850 + 4, enum_text_252}, /* "30": "fishing" */
+    {enum_text_232, enum_text_253}, /* "31": "towing" */
+    {enum_text_254, enum_text_255}, /* "32": "towing_large" */
+    {enum_text_256, enum_text_257}, /* "33": "dredging" */
+    {enum_text_258, enum_text_259}, /* "34": "diving" */
+    {enum_text_260, enum_text_261}, /* "35": "military" */
+    {enum_text_262, enum_text_1449 + 10}, /* "36": "sailing" */
+    {enum_text_264, enum_text_265}, /* "37": "pleasure_craft" */
+    {enum_text_266, enum_text_267}, /* "40": "high_speed_craft" */
+    {enum_text_268, enum_text_269}, /* "41": "high_speed_craft_hazardous_a" */
+    {enum_text_270, enum_text_271}, /* "42": "high_speed_craft_hazardous_b" */
+    {enum_text_272, enum_text_273}, /* "43": "high_speed_craft_hazardous_c" */
+    {enum_text_274, enum_text_275}, /* "44": "high_speed_craft_hazardous_d" */
+    {enum_text_276, enum_text_277}, /* "49": "high_speed_craft_no_info" */
+    {enum_text_278, enum_text_279}, /* "50": "pilot_vessel" */
+    {enum_text_280, enum_text_281}, /* "51": "search_and_rescue" */
+    {enum_text_282, enum_text_283}, /* "52": "tug" */
+    {enum_text_284, enum_text_285}, /* "53": "port_tender" */
+    {enum_text_286, enum_text_287}, /* "54": "anti_pollution" */
+    {enum_text_288, enum_text_289}, /* "55": "law_enforcement" */
+    {enum_text_291 + 6, enum_text_291}, /* "56": "local_56" */
+    {enum_text_848 + 4, enum_text_293}, /* "57": "local_57" */
+    {enum_text_294, enum_text_295}, /* "58": "medical_transport" */
+    {enum_text_296, enum_text_297}, /* "59": "noncombatant" */
+    {enum_text_851 + 4, enum_text_299}, /* "60": "passenger" */
+    {enum_text_300, enum_text_301}, /* "61": "passenger_hazardous_a" */
+    {enum_text_302, enum_text_303}, /* "62": "passenger_hazardous_b" */
+    {enum_text_304, enum_text_305}, /* "63": "passenger_hazardous_c" */
+    {enum_text_306, enum_text_307}, /* "64": "passenger_hazardous_d" */
+    {enum_text_308, enum_text_309}, /* "69": "passenger_no_info" */
+    {enum_text_310, enum_text_311}, /* "70": "cargo" */
+    {enum_text_312, enum_text_313}, /* "71": "cargo_hazardous_a" */
+    {enum_text_667 + 1, enum_text_315}, /* "72": "cargo_hazardous_b" */
+    {enum_text_316, enum_text_317}, /* "73": "cargo_hazardous_c" */
+    {enum_text_318, enum_text_319}, /* "74": "cargo_hazardous_d" */
+    {enum_text_320, enum_text_321}, /* "79": "cargo_no_info" */
+    {enum_text_322, enum_text_323}, /* "80": "tanker" */
+    {enum_text_324, enum_text_325}, /* "81": "tanker_hazardous_a" */
+    {enum_text_326, enum_text_327}, /* "82": "tanker_hazardous_b" */
+    {enum_text_328, enum_text_329}, /* "83": "tanker_hazardous_c" */
+    {enum_text_933 + 4, enum_text_331}, /* "84": "tanker_hazardous_d" */
+    {enum_text_332, enum_text_333}, /* "89": "tanker_no_info" */
+    {enum_text_931 + 4, enum_text_1284 + 6}, /* "90": "other" */
+    {enum_text_336, enum_text_337}, /* "91": "other_hazardous_a" */
+    {enum_text_338, enum_text_339}, /* "92": "other_hazardous_b" */
+    {enum_text_340, enum_text_341}, /* "93": "other_hazardous_c" */
+    {enum_text_342, enum_text_343}, /* "94": "other_hazardous_d" */
+    {enum_text_673 + 1, enum_text_345}, /* "99": "other_no_info" */
 };
 const nmea_enum_def nmea_ais_ship_type_def = {
-    "ais_ship_type", ais_ship_type_codes, 54, 1, 2, NMEA_CODES_DIGITS
+    enum_text_245, ais_ship_type_codes, 54, 1, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ala_ack_state_codes[] = {
-    {"A", "acknowledged"},
-    {"V", "not_acknowledged"},
-    {"B", "broadcast"},
-    {"H", "harbour_mode"},
-    {"O", "override"},
+    {enum_text_545 + 4, enum_text_372 + 9}, /* "A": "acknowledged" */
+    {enum_text_553 + 4, enum_text_348}, /* "V": "not_acknowledged" */
+    {enum_text_23, enum_text_14 + 4}, /* "B": "broadcast" */
+    {enum_text_708 + 1, enum_text_351}, /* "H": "harbour_mode" */
+    {enum_text_716 + 1, enum_text_985 + 4}, /* "O": "override" */
 };
 const nmea_enum_def nmea_ala_ack_state_def = {
-    "ala_ack_state", ala_ack_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_346, ala_ack_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code ala_condition_codes[] = {
-    {"N", "normal"},
-    {"H", "high"},
-    {"J", "extreme_high"},
-    {"L", "low"},
-    {"K", "extreme_low"},
-    {"X", "other"},
+    {enum_text_857 + 5, enum_text_971 + 4}, /* "N": "normal" */
+    {enum_text_708 + 1, enum_text_356 + 8}, /* "H": "high" */
+    {enum_text_355, enum_text_356}, /* "J": "extreme_high" */
+    {enum_text_442 + 2, enum_text_692 + 7}, /* "L": "low" */
+    {enum_text_1427 + 1, enum_text_359}, /* "K": "extreme_low" */
+    {enum_text_938 + 5, enum_text_1284 + 6}, /* "X": "other" */
 };
 const nmea_enum_def nmea_ala_condition_def = {
-    "ala_condition", ala_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    enum_text_353, ala_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code alf_category_codes[] = {
-    {"A", "category_a"},
-    {"B", "category_b"},
-    {"C", "category_c"},
+    {enum_text_545 + 4, enum_text_362}, /* "A": "category_a" */
+    {enum_text_23, enum_text_363}, /* "B": "category_b" */
+    {enum_text_557 + 4, enum_text_364}, /* "C": "category_c" */
 };
 const nmea_enum_def nmea_alf_category_def = {
-    "alf_category", alf_category_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_361, alf_category_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code alf_priority_codes[] = {
-    {"E", "emergency_alarm"},
-    {"A", "alarm"},
-    {"W", "warning"},
-    {"C", "caution"},
+    {enum_text_436 + 2, enum_text_367}, /* "E": "emergency_alarm" */
+    {enum_text_545 + 4, enum_text_1368 + 4}, /* "A": "alarm" */
+    {enum_text_369, enum_text_960 + 4}, /* "W": "warning" */
+    {enum_text_557 + 4, enum_text_370}, /* "C": "caution" */
 };
 const nmea_enum_def nmea_alf_priority_def = {
-    "alf_priority", alf_priority_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_365, alf_priority_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code alf_state_codes[] = {
-    {"V", "active_unacknowledged"},
-    {"S", "active_silenced"},
-    {"A", "active_acknowledged"},
-    {"O", "active_responsibility_transferred"},
-    {"U", "rectified_unacknowledged"},
-    {"N", "normal"},
+    {enum_text_553 + 4, enum_text_372}, /* "V": "active_unacknowledged" */
+    {enum_text_608 + 1, enum_text_373}, /* "S": "active_silenced" */
+    {enum_text_545 + 4, enum_text_374}, /* "A": "active_acknowledged" */
+    {enum_text_716 + 1, enum_text_375}, /* "O": "active_responsibility_transferred" */
+    {enum_text_1345 + 2, enum_text_377}, /* "U": "rectified_unacknowledged" */
+    {enum_text_857 + 5, enum_text_971 + 4}, /* "N": "normal" */
 };
 const nmea_enum_def nmea_alf_state_def = {
-    "alf_state", alf_state_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    enum_text_371, alf_state_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code alr_ack_state_codes[] = {
-    {"A", "acknowledged"},
-    {"V", "unacknowledged"},
+    {enum_text_545 + 4, enum_text_372 + 9}, /* "A": "acknowledged" */
+    {enum_text_553 + 4, enum_text_372 + 7}, /* "V": "unacknowledged" */
 };
 const nmea_enum_def nmea_alr_ack_state_def = {
-    "alr_ack_state", alr_ack_state_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_378, alr_ack_state_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code alr_condition_codes[] = {
-    {"A", "threshold_exceeded"},
-    {"V", "not_exceeded"},
+    {enum_text_545 + 4, enum_text_381}, /* "A": "threshold_exceeded" */
+    {enum_text_553 + 4, enum_text_382}, /* "V": "not_exceeded" */
 };
 const nmea_enum_def nmea_alr_condition_def = {
-    "alr_condition", alr_condition_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_380, alr_condition_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code apb_bearing_ref_codes[] = {
-    {"M", "magnetic"},
-    {"T", "true_north"},
+    {enum_text_712 + 1, enum_text_384}, /* "M": "magnetic" */
+    {enum_text_606 + 1, enum_text_386}, /* "T": "true_north" */
 };
 const nmea_enum_def nmea_apb_bearing_ref_def = {
-    "apb_bearing_ref", apb_bearing_ref_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_383, apb_bearing_ref_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code ashtech_base_kind_codes[] = {
-    {"0", "physical"},
-    {"1", "virtual"},
+    {enum_text_896 + 9, enum_text_388}, /* "0": "physical" */
+    {enum_text_100 + 1, enum_text_389}, /* "1": "virtual" */
 };
 const nmea_enum_def nmea_ashtech_base_kind_def = {
-    "ashtech_base_kind", ashtech_base_kind_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_387, ashtech_base_kind_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code ashtech_base_motion_codes[] = {
-    {"0", "static"},
-    {"1", "moving"},
+    {enum_text_896 + 9, enum_text_391}, /* "0": "static" */
+    {enum_text_100 + 1, enum_text_392}, /* "1": "moving" */
 };
 const nmea_enum_def nmea_ashtech_base_motion_def = {
-    "ashtech_base_motion", ashtech_base_motion_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_390, ashtech_base_motion_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code ashtech_hpr_mode_codes[] = {
-    {"0", "fixed_baseline"},
-    {"1", "calibrating"},
-    {"2", "flexible_baseline"},
+    {enum_text_896 + 9, enum_text_394}, /* "0": "fixed_baseline" */
+    {enum_text_100 + 1, enum_text_395}, /* "1": "calibrating" */
+    {enum_text_923 + 5, enum_text_396}, /* "2": "flexible_baseline" */
 };
 const nmea_enum_def nmea_ashtech_hpr_mode_def = {
-    "ashtech_hpr_mode", ashtech_hpr_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_393, ashtech_hpr_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ashtech_nme_message_codes[] = {
-    {"ALM", "alm"},
-    {"DTM", "dtm"},
-    {"GGA", "gga"},
-    {"GLL", "gll"},
-    {"GMP", "gmp"},
-    {"GNS", "gns"},
-    {"GRS", "grs"},
-    {"GSA", "gsa"},
-    {"GST", "gst"},
-    {"GSV", "gsv"},
-    {"HDT", "hdt"},
-    {"HD2", "hd2"},
-    {"RMC", "rmc"},
-    {"VTG", "vtg"},
-    {"ZDA", "zda"},
-    {"XDR", "xdr"},
-    {"ATT", "att"},
-    {"AT2", "at2"},
-    {"CRT", "crt"},
-    {"DCR", "dcr"},
-    {"DDS", "dds"},
-    {"DPO", "dpo"},
-    {"LTN", "ltn"},
-    {"POS", "pos"},
-    {"RRE", "rre"},
-    {"SAT", "sat"},
-    {"SGA", "sga"},
-    {"SGL", "sgl"},
-    {"SGP", "sgp"},
-    {"USR", "usr"},
-    {"VEC", "vec"},
-    {"VE2", "ve2"},
-    {"PTT", "ptt"},
-    {"TTT", "ttt"},
+    {enum_text_398, enum_text_399}, /* "ALM": "alm" */
+    {enum_text_400, enum_text_401}, /* "DTM": "dtm" */
+    {enum_text_545 + 2, enum_text_546 + 2}, /* "GGA": "gga" */
+    {enum_text_547 + 2, enum_text_548 + 2}, /* "GLL": "gll" */
+    {enum_text_404, enum_text_405}, /* "GMP": "gmp" */
+    {enum_text_406, enum_text_162}, /* "GNS": "gns" */
+    {enum_text_407, enum_text_158}, /* "GRS": "grs" */
+    {enum_text_549 + 2, enum_text_550 + 2}, /* "GSA": "gsa" */
+    {enum_text_551 + 2, enum_text_552 + 2}, /* "GST": "gst" */
+    {enum_text_553 + 2, enum_text_554 + 2}, /* "GSV": "gsv" */
+    {enum_text_555 + 2, enum_text_556 + 2}, /* "HDT": "hdt" */
+    {enum_text_413, enum_text_414}, /* "HD2": "hd2" */
+    {enum_text_557 + 2, enum_text_558 + 2}, /* "RMC": "rmc" */
+    {enum_text_559 + 2, enum_text_560 + 2}, /* "VTG": "vtg" */
+    {enum_text_561 + 2, enum_text_562 + 2}, /* "ZDA": "zda" */
+    {enum_text_418, enum_text_419}, /* "XDR": "xdr" */
+    {enum_text_420, enum_text_421}, /* "ATT": "att" */
+    {enum_text_422, enum_text_423}, /* "AT2": "at2" */
+    {enum_text_424, enum_text_425}, /* "CRT": "crt" */
+    {enum_text_426, enum_text_427}, /* "DCR": "dcr" */
+    {enum_text_428, enum_text_429}, /* "DDS": "dds" */
+    {enum_text_430, enum_text_431}, /* "DPO": "dpo" */
+    {enum_text_432, enum_text_433}, /* "LTN": "ltn" */
+    {enum_text_434, enum_text_435}, /* "POS": "pos" */
+    {enum_text_436, enum_text_437}, /* "RRE": "rre" */
+    {enum_text_438, enum_text_439}, /* "SAT": "sat" */
+    {enum_text_440, enum_text_441}, /* "SGA": "sga" */
+    {enum_text_442, enum_text_443}, /* "SGL": "sgl" */
+    {enum_text_444, enum_text_445}, /* "SGP": "sgp" */
+    {enum_text_446, enum_text_447}, /* "USR": "usr" */
+    {enum_text_448, enum_text_449}, /* "VEC": "vec" */
+    {enum_text_450, enum_text_451}, /* "VE2": "ve2" */
+    {enum_text_452, enum_text_453}, /* "PTT": "ptt" */
+    {enum_text_454, enum_text_455}, /* "TTT": "ttt" */
 };
 const nmea_enum_def nmea_ashtech_nme_message_def = {
-    "ashtech_nme_message", ashtech_nme_message_codes, 34, 3, 3, NMEA_CODES_ALNUM
+    enum_text_397, ashtech_nme_message_codes, 34, 3, 3, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code ashtech_on_off_codes[] = {
-    {"ON", "on"},
-    {"OFF", "off"},
+    {enum_text_857 + 4, enum_text_182 + 3}, /* "ON": "on" */
+    {enum_text_859 + 3, enum_text_864 + 4}, /* "OFF": "off" */
 };
 const nmea_enum_def nmea_ashtech_on_off_def = {
-    "ashtech_on_off", ashtech_on_off_codes, 2, 2, 3, NMEA_CODES_CLOSED
+    enum_text_456, ashtech_on_off_codes, 2, 2, 3, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code ashtech_port_codes[] = {
-    {"A", "serial_a"},
-    {"B", "serial_b"},
-    {"F", "serial_f"},
-    {"D", "serial_d"},
-    {"C", "bluetooth"},
-    {"I", "ethernet_i"},
-    {"P", "ethernet_p"},
-    {"Q", "ethernet_q"},
-    {"I1", "ethernet_i1"},
-    {"I2", "ethernet_i2"},
-    {"I3", "ethernet_i3"},
-    {"I4", "ethernet_i4"},
-    {"I5", "ethernet_i5"},
-    {"I6", "ethernet_i6"},
-    {"I7", "ethernet_i7"},
-    {"I8", "ethernet_i8"},
-    {"I9", "ethernet_i9"},
-    {"E", "modem"},
-    {"M", "internal_memory"},
-    {"U", "usb_key"},
-    {"R", "recording_session"},
+    {enum_text_545 + 4, enum_text_462}, /* "A": "serial_a" */
+    {enum_text_23, enum_text_463}, /* "B": "serial_b" */
+    {enum_text_722 + 1, enum_text_465}, /* "F": "serial_f" */
+    {enum_text_568 + 1, enum_text_466}, /* "D": "serial_d" */
+    {enum_text_557 + 4, enum_text_467}, /* "C": "bluetooth" */
+    {enum_text_1463 + 1, enum_text_469}, /* "I": "ethernet_i" */
+    {enum_text_444 + 2, enum_text_471}, /* "P": "ethernet_p" */
+    {enum_text_55, enum_text_472}, /* "Q": "ethernet_q" */
+    {enum_text_473, enum_text_474}, /* "I1": "ethernet_i1" */
+    {enum_text_475, enum_text_476}, /* "I2": "ethernet_i2" */
+    {enum_text_477, enum_text_478}, /* "I3": "ethernet_i3" */
+    {enum_text_479, enum_text_480}, /* "I4": "ethernet_i4" */
+    {enum_text_481, enum_text_482}, /* "I5": "ethernet_i5" */
+    {enum_text_483, enum_text_484}, /* "I6": "ethernet_i6" */
+    {enum_text_485, enum_text_486}, /* "I7": "ethernet_i7" */
+    {enum_text_487, enum_text_488}, /* "I8": "ethernet_i8" */
+    {enum_text_489, enum_text_490}, /* "I9": "ethernet_i9" */
+    {enum_text_436 + 2, enum_text_491}, /* "E": "modem" */
+    {enum_text_712 + 1, enum_text_492}, /* "M": "internal_memory" */
+    {enum_text_1345 + 2, enum_text_493}, /* "U": "usb_key" */
+    {enum_text_418 + 2, enum_text_495}, /* "R": "recording_session" */
 };
 const nmea_enum_def nmea_ashtech_port_def = {
-    "ashtech_port", ashtech_port_codes, 21, 1, 2, NMEA_CODES_ALNUM
+    enum_text_461, ashtech_port_codes, 21, 1, 2, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code ashtech_pos_solution_codes[] = {
-    {"0", "autonomous"},
-    {"1", "code_differential"},
-    {"2", "rtk_float"},
-    {"3", "rtk_fixed"},
-    {"5", "dead_reckoning"},
-    {"9", "sbas_differential"},
-    {"10", "beidou_differential"},
-    {"12", "rtk_float_alt"},
-    {"13", "rtk_fixed_alt"},
-    {"22", "rtk_float_dithered"},
-    {"23", "rtk_fixed_dithered"},
+    {enum_text_896 + 9, enum_text_497}, /* "0": "autonomous" */
+    {enum_text_100 + 1, enum_text_498}, /* "1": "code_differential" */
+    {enum_text_923 + 5, enum_text_499}, /* "2": "rtk_float" */
+    {enum_text_925 + 5, enum_text_500}, /* "3": "rtk_fixed" */
+    {enum_text_849 + 5, enum_text_1428 + 5}, /* "5": "dead_reckoning" */
+    {enum_text_846 + 5, enum_text_502}, /* "9": "sbas_differential" */
+    {enum_text_896 + 8, enum_text_503}, /* "10": "beidou_differential" */
+    {enum_text_923 + 4, enum_text_504}, /* "12": "rtk_float_alt" */
+    {enum_text_925 + 4, enum_text_505}, /* "13": "rtk_fixed_alt" */
+    {enum_text_214, enum_text_506}, /* "22": "rtk_float_dithered" */
+    {enum_text_216, enum_text_507}, /* "23": "rtk_fixed_dithered" */
 };
 const nmea_enum_def nmea_ashtech_pos_solution_def = {
-    "ashtech_pos_solution", ashtech_pos_solution_codes, 11, 1, 2, NMEA_CODES_DIGITS
+    enum_text_496, ashtech_pos_solution_codes, 11, 1, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ashtech_rt300_alignment_codes[] = {
-    {"0", "gps_only"},
-    {"1", "coarse_leveling"},
-    {"2", "degraded"},
-    {"3", "aligned"},
-    {"4", "full_navigation"},
+    {enum_text_896 + 9, enum_text_509}, /* "0": "gps_only" */
+    {enum_text_100 + 1, enum_text_510}, /* "1": "coarse_leveling" */
+    {enum_text_923 + 5, enum_text_511}, /* "2": "degraded" */
+    {enum_text_925 + 5, enum_text_512}, /* "3": "aligned" */
+    {enum_text_927 + 5, enum_text_513}, /* "4": "full_navigation" */
 };
 const nmea_enum_def nmea_ashtech_rt300_alignment_def = {
-    "ashtech_rt300_alignment", ashtech_rt300_alignment_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_508, ashtech_rt300_alignment_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ashtech_rt300_quality_codes[] = {
-    {"0", "no_fix"},
-    {"1", "sps"},
-    {"2", "dgps"},
-    {"3", "pps"},
-    {"4", "rtk_fixed"},
-    {"5", "rtk_float"},
-    {"6", "dead_reckoning"},
+    {enum_text_896 + 9, enum_text_515}, /* "0": "no_fix" */
+    {enum_text_100 + 1, enum_text_516}, /* "1": "sps" */
+    {enum_text_923 + 5, enum_text_1396 + 7}, /* "2": "dgps" */
+    {enum_text_925 + 5, enum_text_518}, /* "3": "pps" */
+    {enum_text_927 + 5, enum_text_500}, /* "4": "rtk_fixed" */
+    {enum_text_849 + 5, enum_text_499}, /* "5": "rtk_float" */
+    {enum_text_202 + 1, enum_text_1428 + 5}, /* "6": "dead_reckoning" */
 };
 const nmea_enum_def nmea_ashtech_rt300_quality_def = {
-    "ashtech_rt300_quality", ashtech_rt300_quality_codes, 7, 1, 1, NMEA_CODES_DIGITS
+    enum_text_514, ashtech_rt300_quality_codes, 7, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ashtech_sv_used_codes[] = {
-    {"U", "used"},
-    {"-", "not_used"},
+    {enum_text_1345 + 2, enum_text_1436 + 14}, /* "U": "used" */
+    {enum_text_521, enum_text_1436 + 10}, /* "-": "not_used" */
 };
 const nmea_enum_def nmea_ashtech_sv_used_def = {
-    "ashtech_sv_used", ashtech_sv_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_519, ashtech_sv_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code ashtech_vec_mode_codes[] = {
-    {"0", "autonomous"},
-    {"1", "differential"},
-    {"2", "rtk_float"},
-    {"3", "rtk_fixed"},
-    {"9", "sbas_differential"},
+    {enum_text_896 + 9, enum_text_497}, /* "0": "autonomous" */
+    {enum_text_100 + 1, enum_text_498 + 5}, /* "1": "differential" */
+    {enum_text_923 + 5, enum_text_499}, /* "2": "rtk_float" */
+    {enum_text_925 + 5, enum_text_500}, /* "3": "rtk_fixed" */
+    {enum_text_846 + 5, enum_text_502}, /* "9": "sbas_differential" */
 };
 const nmea_enum_def nmea_ashtech_vec_mode_def = {
-    "ashtech_vec_mode", ashtech_vec_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_523, ashtech_vec_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ashtech_vector_mode_codes[] = {
-    {"0", "invalid"},
-    {"1", "differential"},
-    {"2", "rtk_float"},
-    {"3", "rtk_fixed"},
-    {"5", "other"},
+    {enum_text_896 + 9, enum_text_526}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_498 + 5}, /* "1": "differential" */
+    {enum_text_923 + 5, enum_text_499}, /* "2": "rtk_float" */
+    {enum_text_925 + 5, enum_text_500}, /* "3": "rtk_fixed" */
+    {enum_text_849 + 5, enum_text_1284 + 6}, /* "5": "other" */
 };
 const nmea_enum_def nmea_ashtech_vector_mode_def = {
-    "ashtech_vector_mode", ashtech_vector_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_525, ashtech_vector_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code broadcom_glor_confidence_codes[] = {
-    {"0", "unknown"},
-    {"1", "low"},
-    {"2", "medium"},
-    {"3", "high"},
+    {enum_text_896 + 9, enum_text_125}, /* "0": "unknown" */
+    {enum_text_100 + 1, enum_text_692 + 7}, /* "1": "low" */
+    {enum_text_923 + 5, enum_text_528}, /* "2": "medium" */
+    {enum_text_925 + 5, enum_text_356 + 8}, /* "3": "high" */
 };
 const nmea_enum_def nmea_broadcom_glor_confidence_def = {
-    "broadcom_glor_confidence", broadcom_glor_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_527, broadcom_glor_confidence_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code broadcom_glor_location_request_codes[] = {
-    {"0", "not_needed"},
-    {"1", "requested"},
+    {enum_text_896 + 9, enum_text_530}, /* "0": "not_needed" */
+    {enum_text_100 + 1, enum_text_531}, /* "1": "requested" */
 };
 const nmea_enum_def nmea_broadcom_glor_location_request_def = {
-    "broadcom_glor_location_request", broadcom_glor_location_request_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_529, broadcom_glor_location_request_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code broadcom_glor_power_save_codes[] = {
-    {"D", "disabled"},
-    {"F", "full_power"},
-    {"S", "power_save"},
-    {"G", "glonass_low_power"},
-    {"SG", "power_save_glonass_low_power"},
+    {enum_text_568 + 1, enum_text_92}, /* "D": "disabled" */
+    {enum_text_722 + 1, enum_text_533}, /* "F": "full_power" */
+    {enum_text_608 + 1, enum_text_532 + 14}, /* "S": "power_save" */
+    {enum_text_537 + 1, enum_text_538 + 11}, /* "G": "glonass_low_power" */
+    {enum_text_537, enum_text_538}, /* "SG": "power_save_glonass_low_power" */
 };
 const nmea_enum_def nmea_broadcom_glor_power_save_def = {
-    "broadcom_glor_power_save", broadcom_glor_power_save_codes, 5, 1, 2, NMEA_CODES_LETTERS
+    enum_text_532, broadcom_glor_power_save_codes, 5, 1, 2, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code broadcom_glor_vel_track_quality_codes[] = {
-    {"0", "poor_velocity_poor_track"},
-    {"1", "good_velocity_poor_track"},
-    {"2", "poor_velocity_good_track"},
-    {"3", "good_velocity_good_track"},
+    {enum_text_896 + 9, enum_text_540}, /* "0": "poor_velocity_poor_track" */
+    {enum_text_100 + 1, enum_text_541}, /* "1": "good_velocity_poor_track" */
+    {enum_text_923 + 5, enum_text_542}, /* "2": "poor_velocity_good_track" */
+    {enum_text_925 + 5, enum_text_543}, /* "3": "good_velocity_good_track" */
 };
 const nmea_enum_def nmea_broadcom_glor_vel_track_quality_def = {
-    "broadcom_glor_vel_track_quality", broadcom_glor_vel_track_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_539, broadcom_glor_vel_track_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code comnav_log_message_codes[] = {
-    {"GPGGA", "gpgga"},
-    {"GPGLL", "gpgll"},
-    {"GPGSA", "gpgsa"},
-    {"GPGST", "gpgst"},
-    {"GPGSV", "gpgsv"},
-    {"GPHDT", "gphdt"},
-    {"GPRMC", "gprmc"},
-    {"GPVTG", "gpvtg"},
-    {"GPZDA", "gpzda"},
+    {enum_text_545, enum_text_546}, /* "GPGGA": "gpgga" */
+    {enum_text_547, enum_text_548}, /* "GPGLL": "gpgll" */
+    {enum_text_549, enum_text_550}, /* "GPGSA": "gpgsa" */
+    {enum_text_551, enum_text_552}, /* "GPGST": "gpgst" */
+    {enum_text_553, enum_text_554}, /* "GPGSV": "gpgsv" */
+    {enum_text_555, enum_text_556}, /* "GPHDT": "gphdt" */
+    {enum_text_557, enum_text_558}, /* "GPRMC": "gprmc" */
+    {enum_text_559, enum_text_560}, /* "GPVTG": "gpvtg" */
+    {enum_text_561, enum_text_562}, /* "GPZDA": "gpzda" */
 };
 const nmea_enum_def nmea_comnav_log_message_def = {
-    "comnav_log_message", comnav_log_message_codes, 9, 5, 5, NMEA_CODES_LETTERS
+    enum_text_544, comnav_log_message_codes, 9, 5, 5, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code comnav_talker_id_codes[] = {
-    {"GN", "gn"},
-    {"GP", "gp"},
-    {"BD", "bd"},
-    {"GL", "gl"},
-    {"GA", "ga"},
-    {"AUTO", "auto"},
+    {enum_text_564, enum_text_565}, /* "GN": "gn" */
+    {enum_text_444 + 1, enum_text_445 + 1}, /* "GP": "gp" */
+    {enum_text_568, enum_text_569}, /* "BD": "bd" */
+    {enum_text_442 + 1, enum_text_443 + 1}, /* "GL": "gl" */
+    {enum_text_545 + 3, enum_text_546 + 3}, /* "GA": "ga" */
+    {enum_text_574, enum_text_575}, /* "AUTO": "auto" */
 };
 const nmea_enum_def nmea_comnav_talker_id_def = {
-    "comnav_talker_id", comnav_talker_id_codes, 6, 2, 4, NMEA_CODES_LETTERS
+    enum_text_563, comnav_talker_id_codes, 6, 2, 4, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code comnav_talker_sentence_codes[] = {
-    {"GGA", "gga"},
-    {"GSA", "gsa"},
-    {"GSV", "gsv"},
-    {"GST", "gst"},
-    {"ZDA", "zda"},
-    {"HDT", "hdt"},
-    {"RMC", "rmc"},
-    {"VTG", "vtg"},
-    {"GLL", "gll"},
-    {"ALL", "all"},
+    {enum_text_545 + 2, enum_text_546 + 2}, /* "GGA": "gga" */
+    {enum_text_549 + 2, enum_text_550 + 2}, /* "GSA": "gsa" */
+    {enum_text_553 + 2, enum_text_554 + 2}, /* "GSV": "gsv" */
+    {enum_text_551 + 2, enum_text_552 + 2}, /* "GST": "gst" */
+    {enum_text_561 + 2, enum_text_562 + 2}, /* "ZDA": "zda" */
+    {enum_text_555 + 2, enum_text_556 + 2}, /* "HDT": "hdt" */
+    {enum_text_557 + 2, enum_text_558 + 2}, /* "RMC": "rmc" */
+    {enum_text_559 + 2, enum_text_560 + 2}, /* "VTG": "vtg" */
+    {enum_text_547 + 2, enum_text_548 + 2}, /* "GLL": "gll" */
+    {enum_text_577, enum_text_819 + 7}, /* "ALL": "all" */
 };
 const nmea_enum_def nmea_comnav_talker_sentence_def = {
-    "comnav_talker_sentence", comnav_talker_sentence_codes, 10, 3, 3, NMEA_CODES_LETTERS
+    enum_text_576, comnav_talker_sentence_codes, 10, 3, 3, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code cur_direction_reference_codes[] = {
-    {"T", "true_north"},
-    {"R", "relative"},
+    {enum_text_606 + 1, enum_text_386}, /* "T": "true_north" */
+    {enum_text_418 + 2, enum_text_579}, /* "R": "relative" */
 };
 const nmea_enum_def nmea_cur_direction_reference_def = {
-    "cur_direction_reference", cur_direction_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_578, cur_direction_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code cur_heading_reference_codes[] = {
-    {"T", "true_north"},
-    {"M", "magnetic"},
+    {enum_text_606 + 1, enum_text_386}, /* "T": "true_north" */
+    {enum_text_712 + 1, enum_text_384}, /* "M": "magnetic" */
 };
 const nmea_enum_def nmea_cur_heading_reference_def = {
-    "cur_heading_reference", cur_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_580, cur_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code cur_speed_reference_codes[] = {
-    {"B", "bottom_track"},
-    {"W", "water_track"},
-    {"P", "positioning_system"},
+    {enum_text_23, enum_text_582}, /* "B": "bottom_track" */
+    {enum_text_369, enum_text_583}, /* "W": "water_track" */
+    {enum_text_444 + 2, enum_text_584}, /* "P": "positioning_system" */
 };
 const nmea_enum_def nmea_cur_speed_reference_def = {
-    "cur_speed_reference", cur_speed_reference_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_581, cur_speed_reference_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code ddc_command_mode_codes[] = {
-    {"O", "operational"},
-    {"P", "preset"},
+    {enum_text_716 + 1, enum_text_586}, /* "O": "operational" */
+    {enum_text_444 + 2, enum_text_588 + 4}, /* "P": "preset" */
 };
 const nmea_enum_def nmea_ddc_command_mode_def = {
-    "ddc_command_mode", ddc_command_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_585, ddc_command_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code ddc_preset_codes[] = {
-    {"D", "day"},
-    {"K", "dusk"},
-    {"N", "night"},
-    {"O", "backlight_off"},
+    {enum_text_568 + 1, enum_text_589}, /* "D": "day" */
+    {enum_text_1427 + 1, enum_text_590}, /* "K": "dusk" */
+    {enum_text_857 + 5, enum_text_591}, /* "N": "night" */
+    {enum_text_716 + 1, enum_text_592}, /* "O": "backlight_off" */
 };
 const nmea_enum_def nmea_ddc_preset_def = {
-    "ddc_preset", ddc_preset_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_588, ddc_preset_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code dor_message_type_codes[] = {
-    {"S", "section_status"},
-    {"E", "single_door"},
-    {"F", "system_fault"},
+    {enum_text_608 + 1, enum_text_594}, /* "S": "section_status" */
+    {enum_text_436 + 2, enum_text_595}, /* "E": "single_door" */
+    {enum_text_722 + 1, enum_text_596}, /* "F": "system_fault" */
 };
 const nmea_enum_def nmea_dor_message_type_def = {
-    "dor_message_type", dor_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_593, dor_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code dor_status_codes[] = {
-    {"O", "open"},
-    {"C", "closed"},
-    {"S", "secured"},
-    {"F", "free"},
-    {"X", "fault"},
+    {enum_text_716 + 1, enum_text_598}, /* "O": "open" */
+    {enum_text_557 + 4, enum_text_599}, /* "C": "closed" */
+    {enum_text_608 + 1, enum_text_600}, /* "S": "secured" */
+    {enum_text_722 + 1, enum_text_601}, /* "F": "free" */
+    {enum_text_938 + 5, enum_text_1047 + 2}, /* "X": "fault" */
 };
 const nmea_enum_def nmea_dor_status_def = {
-    "dor_status", dor_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_597, dor_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code dor_switch_setting_codes[] = {
-    {"O", "harbour_mode"},
-    {"C", "sea_mode"},
+    {enum_text_716 + 1, enum_text_351}, /* "O": "harbour_mode" */
+    {enum_text_557 + 4, enum_text_604}, /* "C": "sea_mode" */
 };
 const nmea_enum_def nmea_dor_switch_setting_def = {
-    "dor_switch_setting", dor_switch_setting_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_603, dor_switch_setting_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code dor_system_codes[] = {
-    {"WT", "watertight"},
-    {"WS", "semi_watertight"},
-    {"FD", "fire_door"},
-    {"HD", "hull_door"},
-    {"OT", "other"},
+    {enum_text_606, enum_text_609 + 5}, /* "WT": "watertight" */
+    {enum_text_608, enum_text_609}, /* "WS": "semi_watertight" */
+    {enum_text_610, enum_text_611}, /* "FD": "fire_door" */
+    {enum_text_612, enum_text_613}, /* "HD": "hull_door" */
+    {enum_text_834 + 4, enum_text_1284 + 6}, /* "OT": "other" */
 };
 const nmea_enum_def nmea_dor_system_def = {
-    "dor_system", dor_system_codes, 5, 2, 2, NMEA_CODES_LETTERS
+    enum_text_605, dor_system_codes, 5, 2, 2, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code dsc_acknowledgement_codes[] = {
-    {"R", "request"},
-    {"B", "acknowledgement"},
-    {"S", "end_of_sequence"},
+    {enum_text_418 + 2, enum_text_529 + 23}, /* "R": "request" */
+    {enum_text_23, enum_text_12 + 3}, /* "B": "acknowledgement" */
+    {enum_text_608 + 1, enum_text_618}, /* "S": "end_of_sequence" */
 };
 const nmea_enum_def nmea_dsc_acknowledgement_def = {
-    "dsc_acknowledgement", dsc_acknowledgement_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_615, dsc_acknowledgement_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code dsc_category_codes[] = {
-    {"00", "routine"},
-    {"08", "safety"},
-    {"10", "urgency"},
-    {"12", "distress"},
+    {enum_text_1066 + 1, enum_text_621}, /* "00": "routine" */
+    {enum_text_915 + 4, enum_text_623}, /* "08": "safety" */
+    {enum_text_896 + 8, enum_text_624}, /* "10": "urgency" */
+    {enum_text_923 + 4, enum_text_625}, /* "12": "distress" */
 };
 const nmea_enum_def nmea_dsc_category_def = {
-    "dsc_category", dsc_category_codes, 4, 2, 2, NMEA_CODES_DIGITS
+    enum_text_619, dsc_category_codes, 4, 2, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code dsc_distress_nature_codes[] = {
-    {"00", "fire"},
-    {"01", "flooding"},
-    {"02", "collision"},
-    {"03", "grounding"},
-    {"04", "listing"},
-    {"05", "sinking"},
-    {"06", "adrift"},
-    {"07", "undesignated"},
-    {"08", "abandoning_ship"},
-    {"09", "piracy"},
-    {"10", "man_overboard"},
-    {"12", "epirb"},
+    {enum_text_1066 + 1, enum_text_627}, /* "00": "fire" */
+    {enum_text_1067 + 1, enum_text_629}, /* "01": "flooding" */
+    {enum_text_1069 + 1, enum_text_631}, /* "02": "collision" */
+    {enum_text_1071 + 1, enum_text_633}, /* "03": "grounding" */
+    {enum_text_844 + 4, enum_text_635}, /* "04": "listing" */
+    {enum_text_901 + 4, enum_text_637}, /* "05": "sinking" */
+    {enum_text_911 + 4, enum_text_639}, /* "06": "adrift" */
+    {enum_text_913 + 4, enum_text_641}, /* "07": "undesignated" */
+    {enum_text_915 + 4, enum_text_642}, /* "08": "abandoning_ship" */
+    {enum_text_845 + 4, enum_text_1298 + 8}, /* "09": "piracy" */
+    {enum_text_896 + 8, enum_text_645}, /* "10": "man_overboard" */
+    {enum_text_923 + 4, enum_text_646}, /* "12": "epirb" */
 };
 const nmea_enum_def nmea_dsc_distress_nature_def = {
-    "dsc_distress_nature", dsc_distress_nature_codes, 12, 2, 2, NMEA_CODES_DIGITS
+    enum_text_626, dsc_distress_nature_codes, 12, 2, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code dsc_format_codes[] = {
-    {"02", "geographic_area"},
-    {"12", "distress"},
-    {"14", "common_interest"},
-    {"16", "all_ships"},
-    {"20", "individual"},
-    {"23", "individual_automatic"},
+    {enum_text_1069 + 1, enum_text_658 + 9}, /* "02": "geographic_area" */
+    {enum_text_923 + 4, enum_text_625}, /* "12": "distress" */
+    {enum_text_927 + 4, enum_text_649}, /* "14": "common_interest" */
+    {enum_text_202, enum_text_650}, /* "16": "all_ships" */
+    {enum_text_210, enum_text_651}, /* "20": "individual" */
+    {enum_text_216, enum_text_652}, /* "23": "individual_automatic" */
 };
 const nmea_enum_def nmea_dsc_format_def = {
-    "dsc_format", dsc_format_codes, 6, 2, 2, NMEA_CODES_DIGITS
+    enum_text_647, dsc_format_codes, 6, 2, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code dse_code_codes[] = {
-    {"00", "enhanced_position"},
-    {"01", "position_source_datum"},
-    {"02", "speed"},
-    {"03", "course"},
-    {"04", "station_id"},
-    {"05", "enhanced_geographic_area"},
-    {"06", "persons_on_board"},
+    {enum_text_1066 + 1, enum_text_654}, /* "00": "enhanced_position" */
+    {enum_text_1067 + 1, enum_text_655}, /* "01": "position_source_datum" */
+    {enum_text_1069 + 1, enum_text_137}, /* "02": "speed" */
+    {enum_text_1071 + 1, enum_text_656}, /* "03": "course" */
+    {enum_text_844 + 4, enum_text_657}, /* "04": "station_id" */
+    {enum_text_901 + 4, enum_text_658}, /* "05": "enhanced_geographic_area" */
+    {enum_text_911 + 4, enum_text_659}, /* "06": "persons_on_board" */
 };
 const nmea_enum_def nmea_dse_code_def = {
-    "dse_code", dse_code_codes, 7, 2, 2, NMEA_CODES_DIGITS
+    enum_text_653, dse_code_codes, 7, 2, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code dse_query_flag_codes[] = {
-    {"Q", "query"},
-    {"R", "reply"},
-    {"A", "automatic"},
+    {enum_text_55, enum_text_661}, /* "Q": "query" */
+    {enum_text_418 + 2, enum_text_662}, /* "R": "reply" */
+    {enum_text_545 + 4, enum_text_652 + 11}, /* "A": "automatic" */
 };
 const nmea_enum_def nmea_dse_query_flag_def = {
-    "dse_query_flag", dse_query_flag_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_660, dse_query_flag_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code dtm_datum_codes[] = {
-    {"W84", "wgs84"},
-    {"W72", "wgs72"},
-    {"S85", "sgs85"},
-    {"P90", "pz90"},
-    {"999", "user_defined"},
+    {enum_text_933 + 3, enum_text_934 + 6}, /* "W84": "wgs84" */
+    {enum_text_667, enum_text_668}, /* "W72": "wgs72" */
+    {enum_text_669, enum_text_670}, /* "S85": "sgs85" */
+    {enum_text_931 + 3, enum_text_932 + 6}, /* "P90": "pz90" */
+    {enum_text_673, enum_text_674}, /* "999": "user_defined" */
 };
 const nmea_enum_def nmea_dtm_datum_def = {
-    "dtm_datum", dtm_datum_codes, 5, 3, 3, NMEA_CODES_ALNUM
+    enum_text_664, dtm_datum_codes, 5, 3, 3, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code dtm_lat_offset_dir_codes[] = {
-    {"N", "north"},
-    {"S", "south"},
+    {enum_text_857 + 5, enum_text_386 + 5}, /* "N": "north" */
+    {enum_text_608 + 1, enum_text_1092 + 6}, /* "S": "south" */
 };
 const nmea_enum_def nmea_dtm_lat_offset_dir_def = {
-    "dtm_lat_offset_dir", dtm_lat_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_675, dtm_lat_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code dtm_lon_offset_dir_codes[] = {
-    {"E", "east"},
-    {"W", "west"},
+    {enum_text_436 + 2, enum_text_1290 + 9}, /* "E": "east" */
+    {enum_text_369, enum_text_681 + 5}, /* "W": "west" */
 };
 const nmea_enum_def nmea_dtm_lon_offset_dir_def = {
-    "dtm_lon_offset_dir", dtm_lon_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_678, dtm_lon_offset_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code east_west_codes[] = {
-    {"E", "east"},
-    {"W", "west"},
+    {enum_text_436 + 2, enum_text_1290 + 9}, /* "E": "east" */
+    {enum_text_369, enum_text_681 + 5}, /* "W": "west" */
 };
 const nmea_enum_def nmea_east_west_def = {
-    "east_west", east_west_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_681, east_west_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code etl_message_type_codes[] = {
-    {"O", "order"},
-    {"A", "answer_back"},
+    {enum_text_716 + 1, enum_text_746 + 13}, /* "O": "order" */
+    {enum_text_545 + 4, enum_text_684}, /* "A": "answer_back" */
 };
 const nmea_enum_def nmea_etl_message_type_def = {
-    "etl_message_type", etl_message_type_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_682, etl_message_type_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code etl_sub_telegraph_codes[] = {
-    {"20", "standby"},
-    {"30", "full_away"},
-    {"40", "finished_with_engine"},
+    {enum_text_210, enum_text_1056 + 9}, /* "20": "standby" */
+    {enum_text_850 + 4, enum_text_687}, /* "30": "full_away" */
+    {enum_text_266, enum_text_688}, /* "40": "finished_with_engine" */
 };
 const nmea_enum_def nmea_etl_sub_telegraph_def = {
-    "etl_sub_telegraph", etl_sub_telegraph_codes, 3, 2, 2, NMEA_CODES_DIGITS
+    enum_text_685, etl_sub_telegraph_codes, 3, 2, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code etl_telegraph_position_codes[] = {
-    {"00", "stop"},
-    {"01", "ahead_dead_slow"},
-    {"02", "ahead_slow"},
-    {"03", "ahead_half"},
-    {"04", "ahead_full"},
-    {"05", "ahead_navigation_full"},
-    {"11", "astern_dead_slow"},
-    {"12", "astern_slow"},
-    {"13", "astern_half"},
-    {"14", "astern_full"},
-    {"15", "crash_astern"},
+    {enum_text_1066 + 1, enum_text_690}, /* "00": "stop" */
+    {enum_text_1067 + 1, enum_text_691}, /* "01": "ahead_dead_slow" */
+    {enum_text_1069 + 1, enum_text_692}, /* "02": "ahead_slow" */
+    {enum_text_1071 + 1, enum_text_693}, /* "03": "ahead_half" */
+    {enum_text_844 + 4, enum_text_694}, /* "04": "ahead_full" */
+    {enum_text_901 + 4, enum_text_695}, /* "05": "ahead_navigation_full" */
+    {enum_text_921 + 4, enum_text_696}, /* "11": "astern_dead_slow" */
+    {enum_text_923 + 4, enum_text_697}, /* "12": "astern_slow" */
+    {enum_text_925 + 4, enum_text_698}, /* "13": "astern_half" */
+    {enum_text_927 + 4, enum_text_699}, /* "14": "astern_full" */
+    {enum_text_849 + 4, enum_text_700}, /* "15": "crash_astern" */
 };
 const nmea_enum_def nmea_etl_telegraph_position_def = {
-    "etl_telegraph_position", etl_telegraph_position_codes, 11, 2, 2, NMEA_CODES_DIGITS
+    enum_text_689, etl_telegraph_position_codes, 11, 2, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code fir_condition_codes[] = {
-    {"A", "activation"},
-    {"V", "non_activation"},
-    {"X", "fault"},
+    {enum_text_545 + 4, enum_text_703 + 4}, /* "A": "activation" */
+    {enum_text_553 + 4, enum_text_703}, /* "V": "non_activation" */
+    {enum_text_938 + 5, enum_text_1047 + 2}, /* "X": "fault" */
 };
 const nmea_enum_def nmea_fir_condition_def = {
-    "fir_condition", fir_condition_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_701, fir_condition_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code fir_message_type_codes[] = {
-    {"S", "section_status"},
-    {"E", "event"},
-    {"F", "fault"},
-    {"D", "disabled"},
+    {enum_text_608 + 1, enum_text_594}, /* "S": "section_status" */
+    {enum_text_436 + 2, enum_text_705}, /* "E": "event" */
+    {enum_text_722 + 1, enum_text_1047 + 2}, /* "F": "fault" */
+    {enum_text_568 + 1, enum_text_92}, /* "D": "disabled" */
 };
 const nmea_enum_def nmea_fir_message_type_def = {
-    "fir_message_type", fir_message_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_704, fir_message_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code fir_system_codes[] = {
-    {"FD", "generic_fire_detector"},
-    {"FH", "heat_detector"},
-    {"FS", "smoke_detector"},
-    {"FM", "manual_call_point"},
-    {"GD", "gas_detector"},
-    {"GO", "oxygen_detector"},
-    {"GS", "hydrogen_sulphide_detector"},
-    {"GH", "hydrocarbon_detector"},
-    {"SF", "sprinkler_flow_switch"},
-    {"SV", "sprinkler_manual_valve"},
-    {"CO", "co2_manual_release"},
-    {"OT", "other"},
+    {enum_text_610, enum_text_707}, /* "FD": "generic_fire_detector" */
+    {enum_text_708, enum_text_709}, /* "FH": "heat_detector" */
+    {enum_text_710, enum_text_711}, /* "FS": "smoke_detector" */
+    {enum_text_712, enum_text_713}, /* "FM": "manual_call_point" */
+    {enum_text_714, enum_text_715}, /* "GD": "gas_detector" */
+    {enum_text_716, enum_text_717}, /* "GO": "oxygen_detector" */
+    {enum_text_718, enum_text_719}, /* "GS": "hydrogen_sulphide_detector" */
+    {enum_text_720, enum_text_721}, /* "GH": "hydrocarbon_detector" */
+    {enum_text_722, enum_text_723}, /* "SF": "sprinkler_flow_switch" */
+    {enum_text_553 + 3, enum_text_725}, /* "SV": "sprinkler_manual_valve" */
+    {enum_text_726, enum_text_727}, /* "CO": "co2_manual_release" */
+    {enum_text_834 + 4, enum_text_1284 + 6}, /* "OT": "other" */
 };
 const nmea_enum_def nmea_fir_system_def = {
-    "fir_system", fir_system_codes, 12, 2, 2, NMEA_CODES_LETTERS
+    enum_text_706, fir_system_codes, 12, 2, 2, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code fsi_mode_codes[] = {
-    {"d", "f3e_g3e_simplex_telephone"},
-    {"e", "f3e_g3e_duplex_telephone"},
-    {"m", "j3e_telephone"},
-    {"o", "h3e_telephone"},
-    {"q", "nbdp_fec"},
-    {"s", "nbdp_arq"},
-    {"t", "f1b_j2b_receive_only"},
-    {"w", "f1b_j2b_teleprinter_dsc"},
-    {"x", "a1a_morse_recorder"},
-    {"{", "a1a_morse_key"},
-    {"|", "facsimile"},
+    {enum_text_569 + 1, enum_text_730}, /* "d": "f3e_g3e_simplex_telephone" */
+    {enum_text_96 + 3, enum_text_732}, /* "e": "f3e_g3e_duplex_telephone" */
+    {enum_text_399 + 2, enum_text_734}, /* "m": "j3e_telephone" */
+    {enum_text_69 + 2, enum_text_736}, /* "o": "h3e_telephone" */
+    {enum_text_740 + 7, enum_text_738}, /* "q": "nbdp_fec" */
+    {enum_text_1396 + 10, enum_text_740}, /* "s": "nbdp_arq" */
+    {enum_text_552 + 4, enum_text_742}, /* "t": "f1b_j2b_receive_only" */
+    {enum_text_692 + 9, enum_text_744}, /* "w": "f1b_j2b_teleprinter_dsc" */
+    {enum_text_515 + 5, enum_text_746}, /* "x": "a1a_morse_recorder" */
+    {enum_text_747, enum_text_748}, /* "{": "a1a_morse_key" */
+    {enum_text_749, enum_text_750}, /* "|": "facsimile" */
 };
 const nmea_enum_def nmea_fsi_mode_def = {
-    "fsi_mode", fsi_mode_codes, 11, 1, 1, NMEA_CODES_LETTERS
+    enum_text_728, fsi_mode_codes, 11, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code fsi_sentence_status_codes[] = {
-    {"R", "report"},
-    {"C", "command"},
+    {enum_text_418 + 2, enum_text_1297 + 4}, /* "R": "report" */
+    {enum_text_557 + 4, enum_text_40 + 8}, /* "C": "command" */
 };
 const nmea_enum_def nmea_fsi_sentence_status_def = {
-    "fsi_sentence_status", fsi_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_751, fsi_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code furuno_eride_freq_mode_codes[] = {
-    {"1", "warm_up"},
-    {"2", "lock"},
-    {"3", "hold_over"},
-    {"4", "free_run"},
-    {"5", "coarse"},
-    {"6", "fine"},
-    {"7", "undocumented_7"},
+    {enum_text_100 + 1, enum_text_755}, /* "1": "warm_up" */
+    {enum_text_923 + 5, enum_text_1399 + 19}, /* "2": "lock" */
+    {enum_text_925 + 5, enum_text_757}, /* "3": "hold_over" */
+    {enum_text_927 + 5, enum_text_758}, /* "4": "free_run" */
+    {enum_text_849 + 5, enum_text_1121 + 9}, /* "5": "coarse" */
+    {enum_text_202 + 1, enum_text_760}, /* "6": "fine" */
+    {enum_text_204 + 1, enum_text_761}, /* "7": "undocumented_7" */
 };
 const nmea_enum_def nmea_furuno_eride_freq_mode_def = {
-    "furuno_eride_freq_mode", furuno_eride_freq_mode_codes, 7, 1, 1, NMEA_CODES_DIGITS
+    enum_text_754, furuno_eride_freq_mode_codes, 7, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code furuno_eride_on_off_codes[] = {
-    {"0", "off"},
-    {"1", "on"},
+    {enum_text_896 + 9, enum_text_864 + 4}, /* "0": "off" */
+    {enum_text_100 + 1, enum_text_182 + 3}, /* "1": "on" */
 };
 const nmea_enum_def nmea_furuno_eride_on_off_def = {
-    "furuno_eride_on_off", furuno_eride_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_762, furuno_eride_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code furuno_eride_polarity_codes[] = {
-    {"0", "rising"},
-    {"1", "falling"},
+    {enum_text_896 + 9, enum_text_764}, /* "0": "rising" */
+    {enum_text_100 + 1, enum_text_765}, /* "1": "falling" */
 };
 const nmea_enum_def nmea_furuno_eride_polarity_def = {
-    "furuno_eride_polarity", furuno_eride_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_763, furuno_eride_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code furuno_eride_position_mode_codes[] = {
-    {"0", "normal"},
-    {"1", "survey_restart"},
-    {"2", "survey_continue"},
-    {"3", "position_hold"},
+    {enum_text_896 + 9, enum_text_971 + 4}, /* "0": "normal" */
+    {enum_text_100 + 1, enum_text_767}, /* "1": "survey_restart" */
+    {enum_text_923 + 5, enum_text_768}, /* "2": "survey_continue" */
+    {enum_text_925 + 5, enum_text_769}, /* "3": "position_hold" */
 };
 const nmea_enum_def nmea_furuno_eride_position_mode_def = {
-    "furuno_eride_position_mode", furuno_eride_position_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_766, furuno_eride_position_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code furuno_eride_pps_mode_codes[] = {
-    {"0", "always_off"},
-    {"1", "always_on"},
-    {"2", "when_fixed"},
-    {"3", "when_traim_ok"},
-    {"4", "when_accurate"},
+    {enum_text_896 + 9, enum_text_771}, /* "0": "always_off" */
+    {enum_text_100 + 1, enum_text_772}, /* "1": "always_on" */
+    {enum_text_923 + 5, enum_text_773}, /* "2": "when_fixed" */
+    {enum_text_925 + 5, enum_text_774}, /* "3": "when_traim_ok" */
+    {enum_text_927 + 5, enum_text_775}, /* "4": "when_accurate" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_mode_def = {
-    "furuno_eride_pps_mode", furuno_eride_pps_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_770, furuno_eride_pps_mode_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code furuno_eride_pps_period_codes[] = {
-    {"0", "pps"},
-    {"1", "pp2s"},
+    {enum_text_896 + 9, enum_text_518}, /* "0": "pps" */
+    {enum_text_100 + 1, enum_text_777}, /* "1": "pp2s" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_period_def = {
-    "furuno_eride_pps_period", furuno_eride_pps_period_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_776, furuno_eride_pps_period_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code furuno_eride_pps_sync_codes[] = {
-    {"0", "rtc"},
-    {"1", "gps"},
-    {"2", "utc_usno"},
-    {"3", "utc_su"},
-    {"4", "undocumented_4"},
+    {enum_text_896 + 9, enum_text_779}, /* "0": "rtc" */
+    {enum_text_100 + 1, enum_text_1396 + 8}, /* "1": "gps" */
+    {enum_text_923 + 5, enum_text_780}, /* "2": "utc_usno" */
+    {enum_text_925 + 5, enum_text_781}, /* "3": "utc_su" */
+    {enum_text_927 + 5, enum_text_782}, /* "4": "undocumented_4" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_sync_def = {
-    "furuno_eride_pps_sync", furuno_eride_pps_sync_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_778, furuno_eride_pps_sync_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code furuno_eride_pps_type_codes[] = {
-    {"0", "legacy"},
-    {"1", "gclk"},
+    {enum_text_896 + 9, enum_text_784}, /* "0": "legacy" */
+    {enum_text_100 + 1, enum_text_785}, /* "1": "gclk" */
 };
 const nmea_enum_def nmea_furuno_eride_pps_type_def = {
-    "furuno_eride_pps_type", furuno_eride_pps_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_783, furuno_eride_pps_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code furuno_eride_time_status_codes[] = {
-    {"0", "rtc"},
-    {"1", "gps"},
-    {"2", "utc"},
+    {enum_text_896 + 9, enum_text_779}, /* "0": "rtc" */
+    {enum_text_100 + 1, enum_text_1396 + 8}, /* "1": "gps" */
+    {enum_text_923 + 5, enum_text_787}, /* "2": "utc" */
 };
 const nmea_enum_def nmea_furuno_eride_time_status_def = {
-    "furuno_eride_time_status", furuno_eride_time_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_786, furuno_eride_time_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code furuno_eride_traim_solution_codes[] = {
-    {"0", "ok"},
-    {"1", "alarm"},
-    {"2", "unknown"},
+    {enum_text_896 + 9, enum_text_1266 + 4}, /* "0": "ok" */
+    {enum_text_100 + 1, enum_text_1368 + 4}, /* "1": "alarm" */
+    {enum_text_923 + 5, enum_text_125}, /* "2": "unknown" */
 };
 const nmea_enum_def nmea_furuno_eride_traim_solution_def = {
-    "furuno_eride_traim_solution", furuno_eride_traim_solution_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_788, furuno_eride_traim_solution_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code furuno_eride_traim_status_codes[] = {
-    {"0", "detect_and_isolate"},
-    {"1", "detect_only"},
-    {"2", "none"},
+    {enum_text_896 + 9, enum_text_791}, /* "0": "detect_and_isolate" */
+    {enum_text_100 + 1, enum_text_792}, /* "1": "detect_only" */
+    {enum_text_923 + 5, enum_text_96}, /* "2": "none" */
 };
 const nmea_enum_def nmea_furuno_eride_traim_status_def = {
-    "furuno_eride_traim_status", furuno_eride_traim_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_790, furuno_eride_traim_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code garmin_baud_codes[] = {
-    {"1", "baud_1200"},
-    {"2", "baud_2400"},
-    {"3", "baud_4800"},
-    {"4", "baud_9600"},
-    {"5", "baud_19200"},
-    {"6", "baud_300"},
-    {"7", "baud_600"},
-    {"8", "baud_38400"},
+    {enum_text_100 + 1, enum_text_794}, /* "1": "baud_1200" */
+    {enum_text_923 + 5, enum_text_795}, /* "2": "baud_2400" */
+    {enum_text_925 + 5, enum_text_74}, /* "3": "baud_4800" */
+    {enum_text_927 + 5, enum_text_76}, /* "4": "baud_9600" */
+    {enum_text_849 + 5, enum_text_78}, /* "5": "baud_19200" */
+    {enum_text_202 + 1, enum_text_796}, /* "6": "baud_300" */
+    {enum_text_204 + 1, enum_text_797}, /* "7": "baud_600" */
+    {enum_text_1101 + 6, enum_text_80}, /* "8": "baud_38400" */
 };
 const nmea_enum_def nmea_garmin_baud_def = {
-    "garmin_baud", garmin_baud_codes, 8, 1, 1, NMEA_CODES_DIGITS
+    enum_text_793, garmin_baud_codes, 8, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code garmin_config_fix_mode_codes[] = {
-    {"A", "automatic"},
-    {"2", "only_2d"},
-    {"3", "only_3d"},
+    {enum_text_545 + 4, enum_text_652 + 11}, /* "A": "automatic" */
+    {enum_text_923 + 5, enum_text_799}, /* "2": "only_2d" */
+    {enum_text_925 + 5, enum_text_800}, /* "3": "only_3d" */
 };
 const nmea_enum_def nmea_garmin_config_fix_mode_def = {
-    "garmin_config_fix_mode", garmin_config_fix_mode_codes, 3, 1, 1, NMEA_CODES_ALNUM
+    enum_text_798, garmin_config_fix_mode_codes, 3, 1, 1, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code garmin_data_collection_codes[] = {
-    {"C", "collecting"},
+    {enum_text_557 + 4, enum_text_802}, /* "C": "collecting" */
 };
 const nmea_enum_def nmea_garmin_data_collection_def = {
-    "garmin_data_collection", garmin_data_collection_codes, 1, 1, 1, NMEA_CODES_LETTERS
+    enum_text_801, garmin_data_collection_codes, 1, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code garmin_dgps_mode_codes[] = {
-    {"A", "automatic"},
-    {"W", "waas_only"},
-    {"R", "rtcm_only"},
-    {"N", "none"},
+    {enum_text_545 + 4, enum_text_652 + 11}, /* "A": "automatic" */
+    {enum_text_369, enum_text_804}, /* "W": "waas_only" */
+    {enum_text_418 + 2, enum_text_805}, /* "R": "rtcm_only" */
+    {enum_text_857 + 5, enum_text_96}, /* "N": "none" */
 };
 const nmea_enum_def nmea_garmin_dgps_mode_def = {
-    "garmin_dgps_mode", garmin_dgps_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_803, garmin_dgps_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code garmin_dgps_source_codes[] = {
-    {"R", "rtcm"},
-    {"W", "waas"},
-    {"N", "none"},
+    {enum_text_418 + 2, enum_text_97}, /* "R": "rtcm" */
+    {enum_text_369, enum_text_807}, /* "W": "waas" */
+    {enum_text_857 + 5, enum_text_96}, /* "N": "none" */
 };
 const nmea_enum_def nmea_garmin_dgps_source_def = {
-    "garmin_dgps_source", garmin_dgps_source_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_806, garmin_dgps_source_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code garmin_diff_mode_codes[] = {
-    {"A", "automatic"},
-    {"D", "differential_only"},
+    {enum_text_545 + 4, enum_text_652 + 11}, /* "A": "automatic" */
+    {enum_text_568 + 1, enum_text_809}, /* "D": "differential_only" */
 };
 const nmea_enum_def nmea_garmin_diff_mode_def = {
-    "garmin_diff_mode", garmin_diff_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_808, garmin_diff_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code garmin_fix_dimension_codes[] = {
-    {"1", "no_fix"},
-    {"2", "fix_2d"},
-    {"3", "fix_3d"},
+    {enum_text_100 + 1, enum_text_515}, /* "1": "no_fix" */
+    {enum_text_923 + 5, enum_text_811}, /* "2": "fix_2d" */
+    {enum_text_925 + 5, enum_text_173}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_garmin_fix_dimension_def = {
-    "garmin_fix_dimension", garmin_fix_dimension_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_810, garmin_fix_dimension_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code garmin_fix_mode_codes[] = {
-    {"M", "manual"},
-    {"A", "automatic"},
+    {enum_text_712 + 1, enum_text_1040 + 9}, /* "M": "manual" */
+    {enum_text_545 + 4, enum_text_652 + 11}, /* "A": "automatic" */
 };
 const nmea_enum_def nmea_garmin_fix_mode_def = {
-    "garmin_fix_mode", garmin_fix_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_812, garmin_fix_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code garmin_fix_type_codes[] = {
-    {"0", "no_fix"},
-    {"1", "fix_2d"},
-    {"2", "fix_3d"},
+    {enum_text_896 + 9, enum_text_515}, /* "0": "no_fix" */
+    {enum_text_100 + 1, enum_text_811}, /* "1": "fix_2d" */
+    {enum_text_923 + 5, enum_text_173}, /* "2": "fix_3d" */
 };
 const nmea_enum_def nmea_garmin_fix_type_def = {
-    "garmin_fix_type", garmin_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_813, garmin_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code garmin_off_on_codes[] = {
-    {"1", "off"},
-    {"2", "on"},
+    {enum_text_100 + 1, enum_text_864 + 4}, /* "1": "off" */
+    {enum_text_923 + 5, enum_text_182 + 3}, /* "2": "on" */
 };
 const nmea_enum_def nmea_garmin_off_on_def = {
-    "garmin_off_on", garmin_off_on_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_814, garmin_off_on_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code garmin_output_mode_codes[] = {
-    {"0", "disable"},
-    {"1", "enable"},
-    {"2", "disable_all"},
-    {"3", "enable_all"},
-    {"4", "restore_defaults"},
-    {"G", "garmin_binary"},
+    {enum_text_896 + 9, enum_text_816}, /* "0": "disable" */
+    {enum_text_100 + 1, enum_text_1051 + 4}, /* "1": "enable" */
+    {enum_text_923 + 5, enum_text_818}, /* "2": "disable_all" */
+    {enum_text_925 + 5, enum_text_819}, /* "3": "enable_all" */
+    {enum_text_927 + 5, enum_text_820}, /* "4": "restore_defaults" */
+    {enum_text_537 + 1, enum_text_821}, /* "G": "garmin_binary" */
 };
 const nmea_enum_def nmea_garmin_output_mode_def = {
-    "garmin_output_mode", garmin_output_mode_codes, 6, 1, 1, NMEA_CODES_ALNUM
+    enum_text_815, garmin_output_mode_codes, 6, 1, 1, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code garmin_pass_fail_codes[] = {
-    {"P", "pass"},
-    {"F", "fail"},
+    {enum_text_444 + 2, enum_text_823}, /* "P": "pass" */
+    {enum_text_722 + 1, enum_text_822 + 12}, /* "F": "fail" */
 };
 const nmea_enum_def nmea_garmin_pass_fail_def = {
-    "garmin_pass_fail", garmin_pass_fail_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_822, garmin_pass_fail_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code garmin_power_mode_codes[] = {
-    {"P", "power_save"},
-    {"N", "normal"},
+    {enum_text_444 + 2, enum_text_532 + 14}, /* "P": "power_save" */
+    {enum_text_857 + 5, enum_text_971 + 4}, /* "N": "normal" */
 };
 const nmea_enum_def nmea_garmin_power_mode_def = {
-    "garmin_power_mode", garmin_power_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_825, garmin_power_mode_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code garmin_receiver_command_codes[] = {
-    {"A", "auto_locate"},
-    {"R", "reset"},
+    {enum_text_545 + 4, enum_text_827}, /* "A": "auto_locate" */
+    {enum_text_418 + 2, enum_text_588 + 5}, /* "R": "reset" */
 };
 const nmea_enum_def nmea_garmin_receiver_command_def = {
-    "garmin_receiver_command", garmin_receiver_command_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_826, garmin_receiver_command_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code garmin_retained_lost_codes[] = {
-    {"R", "retained"},
-    {"L", "lost"},
+    {enum_text_418 + 2, enum_text_830}, /* "R": "retained" */
+    {enum_text_442 + 2, enum_text_829 + 16}, /* "L": "lost" */
 };
 const nmea_enum_def nmea_garmin_retained_lost_def = {
-    "garmin_retained_lost", garmin_retained_lost_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_829, garmin_retained_lost_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code garmin_waas_mode_codes[] = {
-    {"W", "enabled"},
-    {"N", "disabled"},
+    {enum_text_369, enum_text_1083 + 14}, /* "W": "enabled" */
+    {enum_text_857 + 5, enum_text_92}, /* "N": "disabled" */
 };
 const nmea_enum_def nmea_garmin_waas_mode_def = {
-    "garmin_waas_mode", garmin_waas_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_832, garmin_waas_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code geos5_command_word_codes[] = {
-    {"SWPROT", "switch_to_binary"},
-    {"SAVEFL", "save_almanacs"},
-    {"CSTART", "cold_start"},
-    {"WSTART", "warm_start"},
-    {"HSTART", "hot_start"},
-    {"BDR004", "baud_4800"},
-    {"BDR009", "baud_9600"},
-    {"BDR019", "baud_19200"},
-    {"BDR038", "baud_38400"},
-    {"BDR057", "baud_57600"},
-    {"BDR115", "baud_115200"},
-    {"BDR230", "baud_230400"},
-    {"BDR460", "baud_460800"},
-    {"BDR921", "baud_921600"},
-    {"STOP01", "stop_bits_1"},
-    {"STOP02", "stop_bits_2"},
-    {"GGA ON", "gga_gns_on"},
-    {"GGAOFF", "gga_gns_off"},
-    {"GLL ON", "gll_on"},
-    {"GLLOFF", "gll_off"},
-    {"GSA ON", "gsa_on"},
-    {"GSAOFF", "gsa_off"},
-    {"GSV ON", "gsv_on"},
-    {"GSVOFF", "gsv_off"},
-    {"RMC ON", "rmc_on"},
-    {"RMCOFF", "rmc_off"},
-    {"VTG ON", "vtg_on"},
-    {"VTGOFF", "vtg_off"},
-    {"ZDA ON", "zda_on"},
-    {"ZDAOFF", "zda_off"},
-    {"DTM ON", "dtm_on"},
-    {"DTMOFF", "dtm_off"},
-    {"RLM ON", "rlm_on"},
-    {"RLMOFF", "rlm_off"},
-    {"NMEAV2", "nmea_v2"},
-    {"NMEAV4", "nmea_v4_10"},
-    {"RATE01", "rate_1hz"},
-    {"RATE02", "rate_2hz"},
-    {"RATE05", "rate_5hz"},
-    {"RATE10", "rate_10hz"},
-    {"PSM ON", "power_saving_on"},
-    {"PSMOFF", "power_saving_off"},
-    {"ELEV05", "elevation_mask_5"},
-    {"ELEV06", "elevation_mask_6"},
-    {"ELEV07", "elevation_mask_7"},
-    {"ELEV08", "elevation_mask_8"},
-    {"ELEV09", "elevation_mask_9"},
-    {"ELEV10", "elevation_mask_10"},
-    {"ELEV11", "elevation_mask_11"},
-    {"ELEV12", "elevation_mask_12"},
-    {"ELEV13", "elevation_mask_13"},
-    {"ELEV14", "elevation_mask_14"},
-    {"ELEV15", "elevation_mask_15"},
-    {"DATP90", "datum_pz90"},
-    {"DATW84", "datum_wgs84"},
-    {"NVSGPS", "gps_only"},
-    {"NVSGLN", "glonass_only"},
-    {"NVSMIX", "glonass_gps_galileo"},
+    {enum_text_834, enum_text_835}, /* "SWPROT": "switch_to_binary" */
+    {enum_text_836, enum_text_837}, /* "SAVEFL": "save_almanacs" */
+    {enum_text_838, enum_text_839}, /* "CSTART": "cold_start" */
+    {enum_text_840, enum_text_841}, /* "WSTART": "warm_start" */
+    {enum_text_842, enum_text_843}, /* "HSTART": "hot_start" */
+    {enum_text_844, enum_text_74}, /* "BDR004": "baud_4800" */
+    {enum_text_845, enum_text_76}, /* "BDR009": "baud_9600" */
+    {enum_text_846, enum_text_78}, /* "BDR019": "baud_19200" */
+    {enum_text_847, enum_text_80}, /* "BDR038": "baud_38400" */
+    {enum_text_848, enum_text_82}, /* "BDR057": "baud_57600" */
+    {enum_text_849, enum_text_84}, /* "BDR115": "baud_115200" */
+    {enum_text_850, enum_text_86}, /* "BDR230": "baud_230400" */
+    {enum_text_851, enum_text_88}, /* "BDR460": "baud_460800" */
+    {enum_text_852, enum_text_90}, /* "BDR921": "baud_921600" */
+    {enum_text_853, enum_text_854}, /* "STOP01": "stop_bits_1" */
+    {enum_text_855, enum_text_856}, /* "STOP02": "stop_bits_2" */
+    {enum_text_857, enum_text_858}, /* "GGA ON": "gga_gns_on" */
+    {enum_text_859, enum_text_860}, /* "GGAOFF": "gga_gns_off" */
+    {enum_text_861, enum_text_862}, /* "GLL ON": "gll_on" */
+    {enum_text_863, enum_text_864}, /* "GLLOFF": "gll_off" */
+    {enum_text_865, enum_text_866}, /* "GSA ON": "gsa_on" */
+    {enum_text_867, enum_text_868}, /* "GSAOFF": "gsa_off" */
+    {enum_text_869, enum_text_870}, /* "GSV ON": "gsv_on" */
+    {enum_text_871, enum_text_872}, /* "GSVOFF": "gsv_off" */
+    {enum_text_873, enum_text_874}, /* "RMC ON": "rmc_on" */
+    {enum_text_875, enum_text_876}, /* "RMCOFF": "rmc_off" */
+    {enum_text_877, enum_text_878}, /* "VTG ON": "vtg_on" */
+    {enum_text_879, enum_text_880}, /* "VTGOFF": "vtg_off" */
+    {enum_text_881, enum_text_882}, /* "ZDA ON": "zda_on" */
+    {enum_text_883, enum_text_884}, /* "ZDAOFF": "zda_off" */
+    {enum_text_885, enum_text_886}, /* "DTM ON": "dtm_on" */
+    {enum_text_887, enum_text_888}, /* "DTMOFF": "dtm_off" */
+    {enum_text_889, enum_text_890}, /* "RLM ON": "rlm_on" */
+    {enum_text_891, enum_text_892}, /* "RLMOFF": "rlm_off" */
+    {enum_text_893, enum_text_894}, /* "NMEAV2": "nmea_v2" */
+    {enum_text_895, enum_text_896}, /* "NMEAV4": "nmea_v4_10" */
+    {enum_text_897, enum_text_898}, /* "RATE01": "rate_1hz" */
+    {enum_text_899, enum_text_900}, /* "RATE02": "rate_2hz" */
+    {enum_text_901, enum_text_902}, /* "RATE05": "rate_5hz" */
+    {enum_text_903, enum_text_904}, /* "RATE10": "rate_10hz" */
+    {enum_text_905, enum_text_906}, /* "PSM ON": "power_saving_on" */
+    {enum_text_907, enum_text_908}, /* "PSMOFF": "power_saving_off" */
+    {enum_text_909, enum_text_910}, /* "ELEV05": "elevation_mask_5" */
+    {enum_text_911, enum_text_912}, /* "ELEV06": "elevation_mask_6" */
+    {enum_text_913, enum_text_914}, /* "ELEV07": "elevation_mask_7" */
+    {enum_text_915, enum_text_916}, /* "ELEV08": "elevation_mask_8" */
+    {enum_text_917, enum_text_918}, /* "ELEV09": "elevation_mask_9" */
+    {enum_text_919, enum_text_920}, /* "ELEV10": "elevation_mask_10" */
+    {enum_text_921, enum_text_922}, /* "ELEV11": "elevation_mask_11" */
+    {enum_text_923, enum_text_924}, /* "ELEV12": "elevation_mask_12" */
+    {enum_text_925, enum_text_926}, /* "ELEV13": "elevation_mask_13" */
+    {enum_text_927, enum_text_928}, /* "ELEV14": "elevation_mask_14" */
+    {enum_text_929, enum_text_930}, /* "ELEV15": "elevation_mask_15" */
+    {enum_text_931, enum_text_932}, /* "DATP90": "datum_pz90" */
+    {enum_text_933, enum_text_934}, /* "DATW84": "datum_wgs84" */
+    {enum_text_935, enum_text_509}, /* "NVSGPS": "gps_only" */
+    {enum_text_936, enum_text_937}, /* "NVSGLN": "glonass_only" */
+    {enum_text_938, enum_text_939}, /* "NVSMIX": "glonass_gps_galileo" */
 };
 const nmea_enum_def nmea_geos5_command_word_def = {
-    "geos5_command_word", geos5_command_word_codes, 58, 6, 6, NMEA_CODES_ALNUM
+    enum_text_833, geos5_command_word_codes, 58, 6, 6, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code geos5_message_rate_codes[] = {
-    {"0", "off"},
-    {"1", "every_1s"},
-    {"2", "every_2s"},
-    {"3", "every_20s"},
-    {"R", "output_rate"},
+    {enum_text_896 + 9, enum_text_864 + 4}, /* "0": "off" */
+    {enum_text_100 + 1, enum_text_941}, /* "1": "every_1s" */
+    {enum_text_923 + 5, enum_text_942}, /* "2": "every_2s" */
+    {enum_text_925 + 5, enum_text_943}, /* "3": "every_20s" */
+    {enum_text_418 + 2, enum_text_948 + 6}, /* "R": "output_rate" */
 };
 const nmea_enum_def nmea_geos5_message_rate_def = {
-    "geos5_message_rate", geos5_message_rate_codes, 5, 1, 1, NMEA_CODES_ALNUM
+    enum_text_940, geos5_message_rate_codes, 5, 1, 1, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code geos5_nmea_version_codes[] = {
-    {"2", "v2_x"},
-    {"4", "v4_10"},
+    {enum_text_923 + 5, enum_text_946}, /* "2": "v2_x" */
+    {enum_text_927 + 5, enum_text_896 + 5}, /* "4": "v4_10" */
 };
 const nmea_enum_def nmea_geos5_nmea_version_def = {
-    "geos5_nmea_version", geos5_nmea_version_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_945, geos5_nmea_version_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code geos5_output_rate_codes[] = {
-    {"0", "rate_10hz"},
-    {"1", "rate_5hz"},
-    {"2", "rate_2hz"},
-    {"3", "rate_1hz"},
+    {enum_text_896 + 9, enum_text_904}, /* "0": "rate_10hz" */
+    {enum_text_100 + 1, enum_text_902}, /* "1": "rate_5hz" */
+    {enum_text_923 + 5, enum_text_900}, /* "2": "rate_2hz" */
+    {enum_text_925 + 5, enum_text_898}, /* "3": "rate_1hz" */
 };
 const nmea_enum_def nmea_geos5_output_rate_def = {
-    "geos5_output_rate", geos5_output_rate_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_948, geos5_output_rate_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code gfa_integrity_codes[] = {
-    {"V", "not_in_use"},
-    {"S", "safe"},
-    {"C", "caution"},
-    {"U", "unsafe"},
+    {enum_text_553 + 4, enum_text_32}, /* "V": "not_in_use" */
+    {enum_text_608 + 1, enum_text_951 + 2}, /* "S": "safe" */
+    {enum_text_557 + 4, enum_text_370}, /* "C": "caution" */
+    {enum_text_1345 + 2, enum_text_951}, /* "U": "unsafe" */
 };
 const nmea_enum_def nmea_gfa_integrity_def = {
-    "gfa_integrity", gfa_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_949, gfa_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code gga_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "autonomous"},
-    {"2", "differential"},
-    {"3", "pps"},
-    {"4", "rtk_fixed"},
-    {"5", "rtk_float"},
-    {"6", "dead_reckoning"},
-    {"7", "manual_input"},
-    {"8", "simulator"},
-    {"9", "geopath"},
+    {enum_text_896 + 9, enum_text_526}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_497}, /* "1": "autonomous" */
+    {enum_text_923 + 5, enum_text_498 + 5}, /* "2": "differential" */
+    {enum_text_925 + 5, enum_text_518}, /* "3": "pps" */
+    {enum_text_927 + 5, enum_text_500}, /* "4": "rtk_fixed" */
+    {enum_text_849 + 5, enum_text_499}, /* "5": "rtk_float" */
+    {enum_text_202 + 1, enum_text_1428 + 5}, /* "6": "dead_reckoning" */
+    {enum_text_204 + 1, enum_text_953}, /* "7": "manual_input" */
+    {enum_text_1101 + 6, enum_text_954}, /* "8": "simulator" */
+    {enum_text_846 + 5, enum_text_955}, /* "9": "geopath" */
 };
 const nmea_enum_def nmea_gga_quality_def = {
-    "gga_quality", gga_quality_codes, 10, 1, 1, NMEA_CODES_DIGITS
+    enum_text_952, gga_quality_codes, 10, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code glc_signal_status_codes[] = {
-    {"A", "valid"},
-    {"B", "blink_warning"},
-    {"C", "cycle_warning"},
-    {"S", "snr_warning"},
+    {enum_text_545 + 4, enum_text_526 + 2}, /* "A": "valid" */
+    {enum_text_23, enum_text_958}, /* "B": "blink_warning" */
+    {enum_text_557 + 4, enum_text_959}, /* "C": "cycle_warning" */
+    {enum_text_608 + 1, enum_text_960}, /* "S": "snr_warning" */
 };
 const nmea_enum_def nmea_glc_signal_status_def = {
-    "glc_signal_status", glc_signal_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_956, glc_signal_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code gns_mode_codes[] = {
-    {"A", "autonomous"},
-    {"D", "differential"},
-    {"E", "estimated"},
-    {"F", "rtk_float"},
-    {"G", "geopath"},
-    {"M", "manual_input"},
-    {"N", "not_valid"},
-    {"P", "precise"},
-    {"R", "rtk_fixed"},
-    {"S", "simulator"},
+    {enum_text_545 + 4, enum_text_497}, /* "A": "autonomous" */
+    {enum_text_568 + 1, enum_text_498 + 5}, /* "D": "differential" */
+    {enum_text_436 + 2, enum_text_962}, /* "E": "estimated" */
+    {enum_text_722 + 1, enum_text_499}, /* "F": "rtk_float" */
+    {enum_text_537 + 1, enum_text_955}, /* "G": "geopath" */
+    {enum_text_712 + 1, enum_text_953}, /* "M": "manual_input" */
+    {enum_text_857 + 5, enum_text_963}, /* "N": "not_valid" */
+    {enum_text_444 + 2, enum_text_964}, /* "P": "precise" */
+    {enum_text_418 + 2, enum_text_500}, /* "R": "rtk_fixed" */
+    {enum_text_608 + 1, enum_text_954}, /* "S": "simulator" */
 };
 const nmea_enum_def nmea_gns_mode_def = {
-    "gns_mode", gns_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    enum_text_961, gns_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code grs_mode_codes[] = {
-    {"0", "used_in_fix"},
-    {"1", "recomputed"},
+    {enum_text_896 + 9, enum_text_966}, /* "0": "used_in_fix" */
+    {enum_text_100 + 1, enum_text_967}, /* "1": "recomputed" */
 };
 const nmea_enum_def nmea_grs_mode_def = {
-    "grs_mode", grs_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_965, grs_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code gsa_fix_type_codes[] = {
-    {"1", "no_fix"},
-    {"2", "fix_2d"},
-    {"3", "fix_3d"},
+    {enum_text_100 + 1, enum_text_515}, /* "1": "no_fix" */
+    {enum_text_923 + 5, enum_text_811}, /* "2": "fix_2d" */
+    {enum_text_925 + 5, enum_text_173}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_gsa_fix_type_def = {
-    "gsa_fix_type", gsa_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_968, gsa_fix_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code gsa_selection_mode_codes[] = {
-    {"M", "manual"},
-    {"A", "automatic"},
+    {enum_text_712 + 1, enum_text_1040 + 9}, /* "M": "manual" */
+    {enum_text_545 + 4, enum_text_652 + 11}, /* "A": "automatic" */
 };
 const nmea_enum_def nmea_gsa_selection_mode_def = {
-    "gsa_selection_mode", gsa_selection_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_969, gsa_selection_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code hbt_equipment_status_codes[] = {
-    {"A", "normal"},
-    {"V", "not_normal"},
+    {enum_text_545 + 4, enum_text_971 + 4}, /* "A": "normal" */
+    {enum_text_553 + 4, enum_text_971}, /* "V": "not_normal" */
 };
 const nmea_enum_def nmea_hbt_equipment_status_def = {
-    "hbt_equipment_status", hbt_equipment_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_970, hbt_equipment_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code hcr_correction_state_codes[] = {
-    {"A", "speed_latitude_and_dynamic"},
-    {"D", "dynamic"},
-    {"S", "speed_latitude"},
-    {"N", "none"},
-    {"V", "unavailable"},
+    {enum_text_545 + 4, enum_text_973}, /* "A": "speed_latitude_and_dynamic" */
+    {enum_text_568 + 1, enum_text_973 + 19}, /* "D": "dynamic" */
+    {enum_text_608 + 1, enum_text_975}, /* "S": "speed_latitude" */
+    {enum_text_857 + 5, enum_text_96}, /* "N": "none" */
+    {enum_text_553 + 4, enum_text_1084 + 22}, /* "V": "unavailable" */
 };
 const nmea_enum_def nmea_hcr_correction_state_def = {
-    "hcr_correction_state", hcr_correction_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_972, hcr_correction_state_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code hemisphere_heading_source_codes[] = {
-    {"N", "gnss"},
-    {"G", "gyro"},
+    {enum_text_857 + 5, enum_text_1186 + 1}, /* "N": "gnss" */
+    {enum_text_537 + 1, enum_text_979}, /* "G": "gyro" */
 };
 const nmea_enum_def nmea_hemisphere_heading_source_def = {
-    "hemisphere_heading_source", hemisphere_heading_source_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_977, hemisphere_heading_source_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code hmr_difference_status_codes[] = {
-    {"A", "within_limit"},
-    {"V", "limit_exceeded"},
+    {enum_text_545 + 4, enum_text_981}, /* "A": "within_limit" */
+    {enum_text_553 + 4, enum_text_982}, /* "V": "limit_exceeded" */
 };
 const nmea_enum_def nmea_hmr_difference_status_def = {
-    "hmr_difference_status", hmr_difference_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_980, hmr_difference_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code hsc_sentence_status_codes[] = {
-    {"R", "report"},
-    {"C", "command"},
+    {enum_text_418 + 2, enum_text_1297 + 4}, /* "R": "report" */
+    {enum_text_557 + 4, enum_text_40 + 8}, /* "C": "command" */
 };
 const nmea_enum_def nmea_hsc_sentence_status_def = {
-    "hsc_sentence_status", hsc_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_983, hsc_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code htc_heading_reference_codes[] = {
-    {"T", "true_north"},
-    {"M", "magnetic"},
+    {enum_text_606 + 1, enum_text_386}, /* "T": "true_north" */
+    {enum_text_712 + 1, enum_text_384}, /* "M": "magnetic" */
 };
 const nmea_enum_def nmea_htc_heading_reference_def = {
-    "htc_heading_reference", htc_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_984, htc_heading_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code htc_override_codes[] = {
-    {"A", "in_use"},
-    {"V", "not_in_use"},
+    {enum_text_545 + 4, enum_text_31 + 4}, /* "A": "in_use" */
+    {enum_text_553 + 4, enum_text_32}, /* "V": "not_in_use" */
 };
 const nmea_enum_def nmea_htc_override_def = {
-    "htc_override", htc_override_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_985, htc_override_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code htc_steering_mode_codes[] = {
-    {"M", "manual"},
-    {"S", "stand_alone"},
-    {"H", "heading_control"},
-    {"T", "track_control"},
-    {"R", "rudder_control"},
+    {enum_text_712 + 1, enum_text_1040 + 9}, /* "M": "manual" */
+    {enum_text_608 + 1, enum_text_987}, /* "S": "stand_alone" */
+    {enum_text_708 + 1, enum_text_988}, /* "H": "heading_control" */
+    {enum_text_606 + 1, enum_text_989}, /* "T": "track_control" */
+    {enum_text_418 + 2, enum_text_990}, /* "R": "rudder_control" */
 };
 const nmea_enum_def nmea_htc_steering_mode_def = {
-    "htc_steering_mode", htc_steering_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_986, htc_steering_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code htc_turn_mode_codes[] = {
-    {"R", "radius_controlled"},
-    {"T", "rate_controlled"},
-    {"N", "not_controlled"},
+    {enum_text_418 + 2, enum_text_992}, /* "R": "radius_controlled" */
+    {enum_text_606 + 1, enum_text_993}, /* "T": "rate_controlled" */
+    {enum_text_857 + 5, enum_text_994}, /* "N": "not_controlled" */
 };
 const nmea_enum_def nmea_htc_turn_mode_def = {
-    "htc_turn_mode", htc_turn_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_991, htc_turn_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code htd_limit_status_codes[] = {
-    {"A", "within_limits"},
-    {"V", "limit_reached"},
+    {enum_text_545 + 4, enum_text_996}, /* "A": "within_limits" */
+    {enum_text_553 + 4, enum_text_997}, /* "V": "limit_reached" */
 };
 const nmea_enum_def nmea_htd_limit_status_def = {
-    "htd_limit_status", htd_limit_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_995, htd_limit_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code left_right_codes[] = {
-    {"L", "left"},
-    {"R", "right"},
+    {enum_text_442 + 2, enum_text_999}, /* "L": "left" */
+    {enum_text_418 + 2, enum_text_998 + 5}, /* "R": "right" */
 };
 const nmea_enum_def nmea_left_right_def = {
-    "left_right", left_right_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_998, left_right_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code llq_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "gps_nav_fix"},
-    {"2", "dgps_fix"},
-    {"3", "rtk_fix"},
+    {enum_text_896 + 9, enum_text_526}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_1002}, /* "1": "gps_nav_fix" */
+    {enum_text_923 + 5, enum_text_1003}, /* "2": "dgps_fix" */
+    {enum_text_925 + 5, enum_text_1004}, /* "3": "rtk_fix" */
 };
 const nmea_enum_def nmea_llq_quality_def = {
-    "llq_quality", llq_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1001, llq_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code lrf_function_codes[] = {
-    {"A", "ship_id"},
-    {"B", "date_time"},
-    {"C", "position"},
-    {"E", "course"},
-    {"F", "speed"},
-    {"I", "destination"},
-    {"O", "draught"},
-    {"P", "cargo"},
-    {"U", "dimensions"},
-    {"W", "persons"},
+    {enum_text_545 + 4, enum_text_1006}, /* "A": "ship_id" */
+    {enum_text_23, enum_text_1007}, /* "B": "date_time" */
+    {enum_text_557 + 4, enum_text_654 + 9}, /* "C": "position" */
+    {enum_text_436 + 2, enum_text_656}, /* "E": "course" */
+    {enum_text_722 + 1, enum_text_137}, /* "F": "speed" */
+    {enum_text_1463 + 1, enum_text_1009}, /* "I": "destination" */
+    {enum_text_716 + 1, enum_text_1446 + 15}, /* "O": "draught" */
+    {enum_text_444 + 2, enum_text_311}, /* "P": "cargo" */
+    {enum_text_1345 + 2, enum_text_1011}, /* "U": "dimensions" */
+    {enum_text_369, enum_text_1012}, /* "W": "persons" */
 };
 const nmea_enum_def nmea_lrf_function_def = {
-    "lrf_function", lrf_function_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1005, lrf_function_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code lrf_reply_status_codes[] = {
-    {"2", "provided"},
-    {"3", "not_available"},
-    {"4", "restricted"},
+    {enum_text_923 + 5, enum_text_1014}, /* "2": "provided" */
+    {enum_text_925 + 5, enum_text_246}, /* "3": "not_available" */
+    {enum_text_927 + 5, enum_text_1015}, /* "4": "restricted" */
 };
 const nmea_enum_def nmea_lrf_reply_status_def = {
-    "lrf_reply_status", lrf_reply_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1013, lrf_reply_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code lri_control_flag_codes[] = {
-    {"0", "normal"},
-    {"1", "geographic"},
+    {enum_text_896 + 9, enum_text_971 + 4}, /* "0": "normal" */
+    {enum_text_100 + 1, enum_text_1017}, /* "1": "geographic" */
 };
 const nmea_enum_def nmea_lri_control_flag_def = {
-    "lri_control_flag", lri_control_flag_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1016, lri_control_flag_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code magellan_altitude_unit_codes[] = {
-    {"F", "feet"},
-    {"M", "meters"},
+    {enum_text_722 + 1, enum_text_1019}, /* "F": "feet" */
+    {enum_text_712 + 1, enum_text_1142 + 12}, /* "M": "meters" */
 };
 const nmea_enum_def nmea_magellan_altitude_unit_def = {
-    "magellan_altitude_unit", magellan_altitude_unit_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1018, magellan_altitude_unit_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code magellan_command_codes[] = {
-    {"WAYPOINT", "waypoint"},
-    {"ROUTE", "route"},
-    {"TRACK", "track"},
+    {enum_text_1022, enum_text_1023}, /* "WAYPOINT": "waypoint" */
+    {enum_text_1024, enum_text_1025}, /* "ROUTE": "route" */
+    {enum_text_1026, enum_text_583 + 6}, /* "TRACK": "track" */
 };
 const nmea_enum_def nmea_magellan_command_def = {
-    "magellan_command", magellan_command_codes, 3, 5, 8, NMEA_CODES_LETTERS
+    enum_text_1021, magellan_command_codes, 3, 5, 8, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code magellan_fix_flag_codes[] = {
-    {"T", "fix"},
-    {"F", "no_fix"},
+    {enum_text_606 + 1, enum_text_515 + 3}, /* "T": "fix" */
+    {enum_text_722 + 1, enum_text_515}, /* "F": "no_fix" */
 };
 const nmea_enum_def nmea_magellan_fix_flag_def = {
-    "magellan_fix_flag", magellan_fix_flag_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1028, magellan_fix_flag_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code magellan_fix_mode_codes[] = {
-    {"1", "no_fix"},
-    {"2", "fix_2d"},
-    {"3", "fix_3d"},
+    {enum_text_100 + 1, enum_text_515}, /* "1": "no_fix" */
+    {enum_text_923 + 5, enum_text_811}, /* "2": "fix_2d" */
+    {enum_text_925 + 5, enum_text_173}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_magellan_fix_mode_def = {
-    "magellan_fix_mode", magellan_fix_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1030, magellan_fix_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mob_battery_codes[] = {
-    {"0", "good"},
-    {"1", "low"},
-    {"6", "error"},
+    {enum_text_896 + 9, enum_text_126}, /* "0": "good" */
+    {enum_text_100 + 1, enum_text_692 + 7}, /* "1": "low" */
+    {enum_text_202 + 1, enum_text_66 + 10}, /* "6": "error" */
 };
 const nmea_enum_def nmea_mob_battery_def = {
-    "mob_battery", mob_battery_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1031, mob_battery_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mob_position_source_codes[] = {
-    {"0", "vessel_estimate"},
-    {"1", "emitter_report"},
-    {"6", "error"},
+    {enum_text_896 + 9, enum_text_1034}, /* "0": "vessel_estimate" */
+    {enum_text_100 + 1, enum_text_1035}, /* "1": "emitter_report" */
+    {enum_text_202 + 1, enum_text_66 + 10}, /* "6": "error" */
 };
 const nmea_enum_def nmea_mob_position_source_def = {
-    "mob_position_source", mob_position_source_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1033, mob_position_source_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mob_status_codes[] = {
-    {"A", "activated"},
-    {"T", "test"},
-    {"M", "manual_button"},
-    {"V", "not_in_use"},
-    {"E", "error"},
+    {enum_text_545 + 4, enum_text_1037}, /* "A": "activated" */
+    {enum_text_606 + 1, enum_text_1038}, /* "T": "test" */
+    {enum_text_712 + 1, enum_text_1039}, /* "M": "manual_button" */
+    {enum_text_553 + 4, enum_text_32}, /* "V": "not_in_use" */
+    {enum_text_436 + 2, enum_text_66 + 10}, /* "E": "error" */
 };
 const nmea_enum_def nmea_mob_status_def = {
-    "mob_status", mob_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1036, mob_status_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code msk_auto_manual_codes[] = {
-    {"A", "automatic"},
-    {"M", "manual"},
+    {enum_text_545 + 4, enum_text_652 + 11}, /* "A": "automatic" */
+    {enum_text_712 + 1, enum_text_1040 + 9}, /* "M": "manual" */
 };
 const nmea_enum_def nmea_msk_auto_manual_def = {
-    "msk_auto_manual", msk_auto_manual_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1040, msk_auto_manual_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code mtk_ack_flag_codes[] = {
-    {"0", "invalid"},
-    {"1", "unsupported"},
-    {"2", "failed"},
-    {"3", "success"},
+    {enum_text_896 + 9, enum_text_526}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_65}, /* "1": "unsupported" */
+    {enum_text_923 + 5, enum_text_1143 + 10}, /* "2": "failed" */
+    {enum_text_925 + 5, enum_text_62}, /* "3": "success" */
 };
 const nmea_enum_def nmea_mtk_ack_flag_def = {
-    "mtk_ack_flag", mtk_ack_flag_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1041, mtk_ack_flag_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mtk_antenna_status_codes[] = {
-    {"1", "active_shorted"},
-    {"2", "internal"},
-    {"3", "active"},
+    {enum_text_100 + 1, enum_text_1043}, /* "1": "active_shorted" */
+    {enum_text_923 + 5, enum_text_1044}, /* "2": "internal" */
+    {enum_text_925 + 5, enum_text_1454 + 17}, /* "3": "active" */
 };
 const nmea_enum_def nmea_mtk_antenna_status_def = {
-    "mtk_antenna_status", mtk_antenna_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1042, mtk_antenna_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mtk_baud_codes[] = {
-    {"0", "default"},
-    {"4800", "baud_4800"},
-    {"9600", "baud_9600"},
-    {"14400", "baud_14400"},
-    {"19200", "baud_19200"},
-    {"38400", "baud_38400"},
-    {"57600", "baud_57600"},
-    {"115200", "baud_115200"},
+    {enum_text_896 + 9, enum_text_1047}, /* "0": "default" */
+    {enum_text_74 + 5, enum_text_74}, /* "4800": "baud_4800" */
+    {enum_text_76 + 5, enum_text_76}, /* "9600": "baud_9600" */
+    {enum_text_1049 + 5, enum_text_1049}, /* "14400": "baud_14400" */
+    {enum_text_78 + 5, enum_text_78}, /* "19200": "baud_19200" */
+    {enum_text_80 + 5, enum_text_80}, /* "38400": "baud_38400" */
+    {enum_text_82 + 5, enum_text_82}, /* "57600": "baud_57600" */
+    {enum_text_84 + 5, enum_text_84}, /* "115200": "baud_115200" */
 };
 const nmea_enum_def nmea_mtk_baud_def = {
-    "mtk_baud", mtk_baud_codes, 8, 1, 6, NMEA_CODES_DIGITS
+    enum_text_1046, mtk_baud_codes, 8, 1, 6, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mtk_dgps_mode_codes[] = {
-    {"0", "none"},
-    {"1", "rtcm"},
-    {"2", "sbas"},
+    {enum_text_896 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_97}, /* "1": "rtcm" */
+    {enum_text_923 + 5, enum_text_98}, /* "2": "sbas" */
 };
 const nmea_enum_def nmea_mtk_dgps_mode_def = {
-    "mtk_dgps_mode", mtk_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1050, mtk_dgps_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mtk_enable_codes[] = {
-    {"0", "disabled"},
-    {"1", "enabled"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1083 + 14}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_mtk_enable_def = {
-    "mtk_enable", mtk_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1051, mtk_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code mtk_locus_logger_codes[] = {
-    {"0", "start"},
-    {"1", "stop"},
+    {enum_text_896 + 9, enum_text_843 + 4}, /* "0": "start" */
+    {enum_text_100 + 1, enum_text_690}, /* "1": "stop" */
 };
 const nmea_enum_def nmea_mtk_locus_logger_def = {
-    "mtk_locus_logger", mtk_locus_logger_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1052, mtk_locus_logger_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mtk_periodic_mode_codes[] = {
-    {"0", "normal"},
-    {"1", "periodic_backup"},
-    {"2", "periodic_standby"},
-    {"4", "perpetual_backup"},
-    {"8", "alwayslocate_standby"},
-    {"9", "alwayslocate_backup"},
+    {enum_text_896 + 9, enum_text_971 + 4}, /* "0": "normal" */
+    {enum_text_100 + 1, enum_text_1055}, /* "1": "periodic_backup" */
+    {enum_text_923 + 5, enum_text_1056}, /* "2": "periodic_standby" */
+    {enum_text_927 + 5, enum_text_1057}, /* "4": "perpetual_backup" */
+    {enum_text_1101 + 6, enum_text_1058}, /* "8": "alwayslocate_standby" */
+    {enum_text_846 + 5, enum_text_1059}, /* "9": "alwayslocate_backup" */
 };
 const nmea_enum_def nmea_mtk_periodic_mode_def = {
-    "mtk_periodic_mode", mtk_periodic_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1054, mtk_periodic_mode_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mtk_sbas_mode_codes[] = {
-    {"0", "testing"},
-    {"1", "integrity"},
+    {enum_text_896 + 9, enum_text_1061}, /* "0": "testing" */
+    {enum_text_100 + 1, enum_text_949 + 4}, /* "1": "integrity" */
 };
 const nmea_enum_def nmea_mtk_sbas_mode_def = {
-    "mtk_sbas_mode", mtk_sbas_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1060, mtk_sbas_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mtk_standby_type_codes[] = {
-    {"0", "stop"},
-    {"1", "sleep"},
+    {enum_text_896 + 9, enum_text_690}, /* "0": "stop" */
+    {enum_text_100 + 1, enum_text_1064}, /* "1": "sleep" */
 };
 const nmea_enum_def nmea_mtk_standby_type_def = {
-    "mtk_standby_type", mtk_standby_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1063, mtk_standby_type_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mtk_system_message_codes[] = {
-    {"000", "unknown"},
-    {"001", "startup"},
-    {"002", "epo_aiding"},
-    {"003", "normal_mode"},
+    {enum_text_1066, enum_text_125}, /* "000": "unknown" */
+    {enum_text_1067, enum_text_1068}, /* "001": "startup" */
+    {enum_text_1069, enum_text_1070}, /* "002": "epo_aiding" */
+    {enum_text_1071, enum_text_1072}, /* "003": "normal_mode" */
 };
 const nmea_enum_def nmea_mtk_system_message_def = {
-    "mtk_system_message", mtk_system_message_codes, 4, 3, 3, NMEA_CODES_DIGITS
+    enum_text_1065, mtk_system_message_codes, 4, 3, 3, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code mwv_reference_codes[] = {
-    {"R", "relative"},
-    {"T", "theoretical"},
+    {enum_text_418 + 2, enum_text_579}, /* "R": "relative" */
+    {enum_text_606 + 1, enum_text_1074}, /* "T": "theoretical" */
 };
 const nmea_enum_def nmea_mwv_reference_def = {
-    "mwv_reference", mwv_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1073, mwv_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code mwv_speed_unit_codes[] = {
-    {"K", "kmh"},
-    {"M", "metres_per_second"},
-    {"N", "knots"},
-    {"S", "statute_mph"},
+    {enum_text_1427 + 1, enum_text_1076}, /* "K": "kmh" */
+    {enum_text_712 + 1, enum_text_1077}, /* "M": "metres_per_second" */
+    {enum_text_857 + 5, enum_text_1078}, /* "N": "knots" */
+    {enum_text_608 + 1, enum_text_1079}, /* "S": "statute_mph" */
 };
 const nmea_enum_def nmea_mwv_speed_unit_def = {
-    "mwv_speed_unit", mwv_speed_unit_codes, 4, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1075, mwv_speed_unit_codes, 4, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code nak_reason_codes[] = {
-    {"0", "query_not_supported"},
-    {"1", "formatter_not_supported"},
-    {"2", "formatter_not_enabled"},
-    {"3", "formatter_temporarily_unavailable"},
-    {"4", "query_for_formatter_not_supported"},
-    {"5", "access_denied"},
-    {"6", "bad_checksum"},
-    {"7", "listener_processing_issue"},
-    {"10", "cannot_perform"},
-    {"11", "bad_data_field"},
-    {"49", "other"},
+    {enum_text_896 + 9, enum_text_1081}, /* "0": "query_not_supported" */
+    {enum_text_100 + 1, enum_text_1085 + 10}, /* "1": "formatter_not_supported" */
+    {enum_text_923 + 5, enum_text_1083}, /* "2": "formatter_not_enabled" */
+    {enum_text_925 + 5, enum_text_1084}, /* "3": "formatter_temporarily_unavailable" */
+    {enum_text_927 + 5, enum_text_1085}, /* "4": "query_for_formatter_not_supported" */
+    {enum_text_849 + 5, enum_text_1086}, /* "5": "access_denied" */
+    {enum_text_202 + 1, enum_text_1087}, /* "6": "bad_checksum" */
+    {enum_text_204 + 1, enum_text_1088}, /* "7": "listener_processing_issue" */
+    {enum_text_896 + 8, enum_text_1089}, /* "10": "cannot_perform" */
+    {enum_text_921 + 4, enum_text_1090}, /* "11": "bad_data_field" */
+    {enum_text_276, enum_text_1284 + 6}, /* "49": "other" */
 };
 const nmea_enum_def nmea_nak_reason_def = {
-    "nak_reason", nak_reason_codes, 11, 1, 2, NMEA_CODES_DIGITS
+    enum_text_1080, nak_reason_codes, 11, 1, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code nav_status_codes[] = {
-    {"S", "safe"},
-    {"C", "caution"},
-    {"U", "unsafe"},
-    {"V", "not_valid"},
+    {enum_text_608 + 1, enum_text_951 + 2}, /* "S": "safe" */
+    {enum_text_557 + 4, enum_text_370}, /* "C": "caution" */
+    {enum_text_1345 + 2, enum_text_951}, /* "U": "unsafe" */
+    {enum_text_553 + 4, enum_text_963}, /* "V": "not_valid" */
 };
 const nmea_enum_def nmea_nav_status_def = {
-    "nav_status", nav_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1441 + 4, nav_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code north_south_codes[] = {
-    {"N", "north"},
-    {"S", "south"},
+    {enum_text_857 + 5, enum_text_386 + 5}, /* "N": "north" */
+    {enum_text_608 + 1, enum_text_1092 + 6}, /* "S": "south" */
 };
 const nmea_enum_def nmea_north_south_def = {
-    "north_south", north_south_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1092, north_south_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code nrm_function_codes[] = {
-    {"0", "request_messages"},
-    {"1", "storage_mask"},
-    {"2", "printer_mask"},
-    {"3", "ins_mask"},
+    {enum_text_896 + 9, enum_text_1094}, /* "0": "request_messages" */
+    {enum_text_100 + 1, enum_text_1095}, /* "1": "storage_mask" */
+    {enum_text_923 + 5, enum_text_1096}, /* "2": "printer_mask" */
+    {enum_text_925 + 5, enum_text_1097}, /* "3": "ins_mask" */
 };
 const nmea_enum_def nmea_nrm_function_def = {
-    "nrm_function", nrm_function_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1093, nrm_function_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code nrx_frequency_codes[] = {
-    {"0", "not_over_air"},
-    {"1", "khz_490"},
-    {"2", "khz_518"},
-    {"3", "khz_4209_5"},
+    {enum_text_896 + 9, enum_text_1099}, /* "0": "not_over_air" */
+    {enum_text_100 + 1, enum_text_1100}, /* "1": "khz_490" */
+    {enum_text_923 + 5, enum_text_1101}, /* "2": "khz_518" */
+    {enum_text_925 + 5, enum_text_1102}, /* "3": "khz_4209_5" */
 };
 const nmea_enum_def nmea_nrx_frequency_def = {
-    "nrx_frequency", nrx_frequency_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1098, nrx_frequency_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code nsr_integrity_codes[] = {
-    {"P", "passed"},
-    {"F", "failed"},
-    {"D", "doubtful"},
-    {"N", "not_available"},
+    {enum_text_444 + 2, enum_text_7 + 4}, /* "P": "passed" */
+    {enum_text_722 + 1, enum_text_1143 + 10}, /* "F": "failed" */
+    {enum_text_568 + 1, enum_text_1104}, /* "D": "doubtful" */
+    {enum_text_857 + 5, enum_text_246}, /* "N": "not_available" */
 };
 const nmea_enum_def nmea_nsr_integrity_def = {
-    "nsr_integrity", nsr_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1103, nsr_integrity_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code nsr_plausibility_codes[] = {
-    {"A", "plausible"},
-    {"V", "not_plausible"},
-    {"N", "not_available"},
+    {enum_text_545 + 4, enum_text_1107 + 4}, /* "A": "plausible" */
+    {enum_text_553 + 4, enum_text_1107}, /* "V": "not_plausible" */
+    {enum_text_857 + 5, enum_text_246}, /* "N": "not_available" */
 };
 const nmea_enum_def nmea_nsr_plausibility_def = {
-    "nsr_plausibility", nsr_plausibility_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1105, nsr_plausibility_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code nsr_stw_mode_codes[] = {
-    {"W", "water_referenced"},
-    {"E", "estimated"},
-    {"M", "manual"},
-    {"N", "not_available"},
+    {enum_text_369, enum_text_1109}, /* "W": "water_referenced" */
+    {enum_text_436 + 2, enum_text_962}, /* "E": "estimated" */
+    {enum_text_712 + 1, enum_text_1040 + 9}, /* "M": "manual" */
+    {enum_text_857 + 5, enum_text_246}, /* "N": "not_available" */
 };
 const nmea_enum_def nmea_nsr_stw_mode_def = {
-    "nsr_stw_mode", nsr_stw_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1108, nsr_stw_mode_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code osd_reference_codes[] = {
-    {"B", "bottom_track"},
-    {"M", "manual"},
-    {"W", "water"},
-    {"R", "radar"},
-    {"P", "positioning"},
+    {enum_text_23, enum_text_582}, /* "B": "bottom_track" */
+    {enum_text_712 + 1, enum_text_1040 + 9}, /* "M": "manual" */
+    {enum_text_369, enum_text_207 + 12}, /* "W": "water" */
+    {enum_text_418 + 2, enum_text_1112}, /* "R": "radar" */
+    {enum_text_444 + 2, enum_text_1113}, /* "P": "positioning" */
 };
 const nmea_enum_def nmea_osd_reference_def = {
-    "osd_reference", osd_reference_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1110, osd_reference_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code phins_pitch_sense_codes[] = {
-    {"M", "bow_up"},
-    {"P", "bow_down"},
+    {enum_text_712 + 1, enum_text_1115}, /* "M": "bow_up" */
+    {enum_text_444 + 2, enum_text_1116}, /* "P": "bow_down" */
 };
 const nmea_enum_def nmea_phins_pitch_sense_def = {
-    "phins_pitch_sense", phins_pitch_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1114, phins_pitch_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code phins_roll_sense_codes[] = {
-    {"B", "port_down"},
-    {"T", "port_up"},
+    {enum_text_23, enum_text_1118}, /* "B": "port_down" */
+    {enum_text_606 + 1, enum_text_1119}, /* "T": "port_up" */
 };
 const nmea_enum_def nmea_phins_roll_sense_def = {
-    "phins_roll_sense", phins_roll_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1117, phins_roll_sense_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code pos_mode_codes[] = {
-    {"A", "autonomous"},
-    {"D", "differential"},
-    {"E", "estimated"},
-    {"F", "rtk_float"},
-    {"G", "geopath"},
-    {"M", "manual_input"},
-    {"N", "not_valid"},
-    {"P", "precise"},
-    {"R", "fixed_or_coarse"},
-    {"S", "simulator"},
+    {enum_text_545 + 4, enum_text_497}, /* "A": "autonomous" */
+    {enum_text_568 + 1, enum_text_498 + 5}, /* "D": "differential" */
+    {enum_text_436 + 2, enum_text_962}, /* "E": "estimated" */
+    {enum_text_722 + 1, enum_text_499}, /* "F": "rtk_float" */
+    {enum_text_537 + 1, enum_text_955}, /* "G": "geopath" */
+    {enum_text_712 + 1, enum_text_953}, /* "M": "manual_input" */
+    {enum_text_857 + 5, enum_text_963}, /* "N": "not_valid" */
+    {enum_text_444 + 2, enum_text_964}, /* "P": "precise" */
+    {enum_text_418 + 2, enum_text_1121}, /* "R": "fixed_or_coarse" */
+    {enum_text_608 + 1, enum_text_954}, /* "S": "simulator" */
 };
 const nmea_enum_def nmea_pos_mode_def = {
-    "pos_mode", pos_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1120, pos_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code pos_sentence_status_codes[] = {
-    {"R", "report"},
-    {"C", "command"},
+    {enum_text_418 + 2, enum_text_1297 + 4}, /* "R": "report" */
+    {enum_text_557 + 4, enum_text_40 + 8}, /* "C": "command" */
 };
 const nmea_enum_def nmea_pos_sentence_status_def = {
-    "pos_sentence_status", pos_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1122, pos_sentence_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code prc_operating_location_codes[] = {
-    {"B", "bridge"},
-    {"P", "port_wing"},
-    {"S", "starboard_wing"},
-    {"C", "engine_control_room"},
-    {"E", "engine_side"},
-    {"W", "wing"},
+    {enum_text_23, enum_text_1124}, /* "B": "bridge" */
+    {enum_text_444 + 2, enum_text_1125}, /* "P": "port_wing" */
+    {enum_text_608 + 1, enum_text_1126}, /* "S": "starboard_wing" */
+    {enum_text_557 + 4, enum_text_1127}, /* "C": "engine_control_room" */
+    {enum_text_436 + 2, enum_text_1128}, /* "E": "engine_side" */
+    {enum_text_369, enum_text_253 + 2}, /* "W": "wing" */
 };
 const nmea_enum_def nmea_prc_operating_location_def = {
-    "prc_operating_location", prc_operating_location_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1123, prc_operating_location_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code prc_pitch_mode_codes[] = {
-    {"P", "percent"},
-    {"D", "degrees"},
-    {"V", "invalid"},
+    {enum_text_444 + 2, enum_text_1131}, /* "P": "percent" */
+    {enum_text_568 + 1, enum_text_1132}, /* "D": "degrees" */
+    {enum_text_553 + 4, enum_text_526}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_prc_pitch_mode_def = {
-    "prc_pitch_mode", prc_pitch_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1130, prc_pitch_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code prc_rpm_mode_codes[] = {
-    {"P", "percent"},
-    {"R", "rpm"},
-    {"V", "invalid"},
+    {enum_text_444 + 2, enum_text_1131}, /* "P": "percent" */
+    {enum_text_418 + 2, enum_text_1134}, /* "R": "rpm" */
+    {enum_text_553 + 4, enum_text_526}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_prc_rpm_mode_def = {
-    "prc_rpm_mode", prc_rpm_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1133, prc_rpm_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code quectel_antenna_power_codes[] = {
-    {"0", "off"},
-    {"1", "on"},
-    {"2", "unknown"},
+    {enum_text_896 + 9, enum_text_864 + 4}, /* "0": "off" */
+    {enum_text_100 + 1, enum_text_182 + 3}, /* "1": "on" */
+    {enum_text_923 + 5, enum_text_125}, /* "2": "unknown" */
 };
 const nmea_enum_def nmea_quectel_antenna_power_def = {
-    "quectel_antenna_power", quectel_antenna_power_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1135, quectel_antenna_power_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_antenna_status_codes[] = {
-    {"0", "unknown"},
-    {"1", "normal"},
-    {"2", "open_circuit"},
-    {"3", "short_circuit"},
+    {enum_text_896 + 9, enum_text_125}, /* "0": "unknown" */
+    {enum_text_100 + 1, enum_text_971 + 4}, /* "1": "normal" */
+    {enum_text_923 + 5, enum_text_1137}, /* "2": "open_circuit" */
+    {enum_text_925 + 5, enum_text_1138}, /* "3": "short_circuit" */
 };
 const nmea_enum_def nmea_quectel_antenna_status_def = {
-    "quectel_antenna_status", quectel_antenna_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1136, quectel_antenna_status_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_baud_rate_codes[] = {
-    {"9600", "baud_9600"},
-    {"115200", "baud_115200"},
-    {"230400", "baud_230400"},
-    {"460800", "baud_460800"},
-    {"921600", "baud_921600"},
+    {enum_text_76 + 5, enum_text_76}, /* "9600": "baud_9600" */
+    {enum_text_84 + 5, enum_text_84}, /* "115200": "baud_115200" */
+    {enum_text_86 + 5, enum_text_86}, /* "230400": "baud_230400" */
+    {enum_text_88 + 5, enum_text_88}, /* "460800": "baud_460800" */
+    {enum_text_90 + 5, enum_text_90}, /* "921600": "baud_921600" */
 };
 const nmea_enum_def nmea_quectel_baud_rate_def = {
-    "quectel_baud_rate", quectel_baud_rate_codes, 5, 4, 6, NMEA_CODES_DIGITS
+    enum_text_1139, quectel_baud_rate_codes, 5, 4, 6, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_enable_codes[] = {
-    {"0", "disabled"},
-    {"1", "enabled"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1083 + 14}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_quectel_enable_def = {
-    "quectel_enable", quectel_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1140, quectel_enable_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code quectel_error_code_codes[] = {
-    {"1", "invalid_parameters"},
-    {"2", "execution_failed"},
-    {"3", "unsupported_command"},
+    {enum_text_100 + 1, enum_text_1142}, /* "1": "invalid_parameters" */
+    {enum_text_923 + 5, enum_text_1143}, /* "2": "execution_failed" */
+    {enum_text_925 + 5, enum_text_1144}, /* "3": "unsupported_command" */
 };
 const nmea_enum_def nmea_quectel_error_code_def = {
-    "quectel_error_code", quectel_error_code_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1141, quectel_error_code_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_fix_type_codes[] = {
-    {"0", "no_fix"},
-    {"1", "reserved"},
-    {"2", "fix_2d"},
-    {"3", "fix_3d"},
+    {enum_text_896 + 9, enum_text_515}, /* "0": "no_fix" */
+    {enum_text_100 + 1, enum_text_1146}, /* "1": "reserved" */
+    {enum_text_923 + 5, enum_text_811}, /* "2": "fix_2d" */
+    {enum_text_925 + 5, enum_text_173}, /* "3": "fix_3d" */
 };
 const nmea_enum_def nmea_quectel_fix_type_def = {
-    "quectel_fix_type", quectel_fix_type_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1145, quectel_fix_type_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_flow_control_codes[] = {
-    {"0", "none"},
+    {enum_text_896 + 9, enum_text_96}, /* "0": "none" */
 };
 const nmea_enum_def nmea_quectel_flow_control_def = {
-    "quectel_flow_control", quectel_flow_control_codes, 1, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1147, quectel_flow_control_codes, 1, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_geofence_shape_codes[] = {
-    {"0", "circle_radius"},
-    {"1", "circle_point"},
-    {"2", "triangle"},
-    {"3", "quadrangle"},
+    {enum_text_896 + 9, enum_text_1149}, /* "0": "circle_radius" */
+    {enum_text_100 + 1, enum_text_1150}, /* "1": "circle_point" */
+    {enum_text_923 + 5, enum_text_1151}, /* "2": "triangle" */
+    {enum_text_925 + 5, enum_text_1152}, /* "3": "quadrangle" */
 };
 const nmea_enum_def nmea_quectel_geofence_shape_def = {
-    "quectel_geofence_shape", quectel_geofence_shape_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1148, quectel_geofence_shape_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_geofence_state_codes[] = {
-    {"0", "unknown"},
-    {"1", "inside"},
-    {"2", "outside"},
+    {enum_text_896 + 9, enum_text_125}, /* "0": "unknown" */
+    {enum_text_100 + 1, enum_text_1154}, /* "1": "inside" */
+    {enum_text_923 + 5, enum_text_1155}, /* "2": "outside" */
 };
 const nmea_enum_def nmea_quectel_geofence_state_def = {
-    "quectel_geofence_state", quectel_geofence_state_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1153, quectel_geofence_state_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_geosep_mode_codes[] = {
-    {"0", "auto"},
-    {"1", "manual"},
+    {enum_text_896 + 9, enum_text_575}, /* "0": "auto" */
+    {enum_text_100 + 1, enum_text_1040 + 9}, /* "1": "manual" */
 };
 const nmea_enum_def nmea_quectel_geosep_mode_def = {
-    "quectel_geosep_mode", quectel_geosep_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1156, quectel_geosep_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_gsv_talker_codes[] = {
-    {"0", "by_constellation"},
-    {"1", "same_as_main"},
+    {enum_text_896 + 9, enum_text_1158}, /* "0": "by_constellation" */
+    {enum_text_100 + 1, enum_text_1159}, /* "1": "same_as_main" */
 };
 const nmea_enum_def nmea_quectel_gsv_talker_def = {
-    "quectel_gsv_talker", quectel_gsv_talker_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1157, quectel_gsv_talker_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_heading_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "autonomous"},
-    {"2", "differential"},
-    {"3", "pps"},
-    {"4", "rtk_fixed"},
-    {"5", "rtk_float"},
+    {enum_text_896 + 9, enum_text_526}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_497}, /* "1": "autonomous" */
+    {enum_text_923 + 5, enum_text_498 + 5}, /* "2": "differential" */
+    {enum_text_925 + 5, enum_text_518}, /* "3": "pps" */
+    {enum_text_927 + 5, enum_text_500}, /* "4": "rtk_fixed" */
+    {enum_text_849 + 5, enum_text_499}, /* "5": "rtk_float" */
 };
 const nmea_enum_def nmea_quectel_heading_quality_def = {
-    "quectel_heading_quality", quectel_heading_quality_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1160, quectel_heading_quality_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_parity_codes[] = {
-    {"0", "none"},
-    {"1", "odd"},
-    {"2", "even"},
-    {"3", "mark"},
-    {"4", "space"},
+    {enum_text_896 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_1162}, /* "1": "odd" */
+    {enum_text_923 + 5, enum_text_1163}, /* "2": "even" */
+    {enum_text_925 + 5, enum_text_1164}, /* "3": "mark" */
+    {enum_text_927 + 5, enum_text_1165}, /* "4": "space" */
 };
 const nmea_enum_def nmea_quectel_parity_def = {
-    "quectel_parity", quectel_parity_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1161, quectel_parity_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_port_type_codes[] = {
-    {"1", "uart"},
+    {enum_text_100 + 1, enum_text_1167}, /* "1": "uart" */
 };
 const nmea_enum_def nmea_quectel_port_type_def = {
-    "quectel_port_type", quectel_port_type_codes, 1, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1166, quectel_port_type_codes, 1, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_pps_mode_codes[] = {
-    {"1", "always"},
-    {"2", "fix_only"},
+    {enum_text_100 + 1, enum_text_175}, /* "1": "always" */
+    {enum_text_923 + 5, enum_text_1169}, /* "2": "fix_only" */
 };
 const nmea_enum_def nmea_quectel_pps_mode_def = {
-    "quectel_pps_mode", quectel_pps_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1168, quectel_pps_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_pps_polarity_codes[] = {
-    {"0", "low"},
-    {"1", "high"},
+    {enum_text_896 + 9, enum_text_692 + 7}, /* "0": "low" */
+    {enum_text_100 + 1, enum_text_356 + 8}, /* "1": "high" */
 };
 const nmea_enum_def nmea_quectel_pps_polarity_def = {
-    "quectel_pps_polarity", quectel_pps_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1170, quectel_pps_polarity_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code quectel_receiver_mode_codes[] = {
-    {"0", "unknown"},
-    {"1", "rover"},
-    {"2", "base"},
+    {enum_text_896 + 9, enum_text_125}, /* "0": "unknown" */
+    {enum_text_100 + 1, enum_text_1172}, /* "1": "rover" */
+    {enum_text_923 + 5, enum_text_1173}, /* "2": "base" */
 };
 const nmea_enum_def nmea_quectel_receiver_mode_def = {
-    "quectel_receiver_mode", quectel_receiver_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1171, quectel_receiver_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_rtcm_eph_mode_codes[] = {
-    {"0", "disabled"},
-    {"1", "on_update"},
-    {"2", "on_update_and_interval"},
-    {"3", "every_epoch"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1175}, /* "1": "on_update" */
+    {enum_text_923 + 5, enum_text_1176}, /* "2": "on_update_and_interval" */
+    {enum_text_925 + 5, enum_text_1177}, /* "3": "every_epoch" */
 };
 const nmea_enum_def nmea_quectel_rtcm_eph_mode_def = {
-    "quectel_rtcm_eph_mode", quectel_rtcm_eph_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1174, quectel_rtcm_eph_mode_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_rtk_diff_mode_codes[] = {
-    {"0", "disabled"},
-    {"1", "auto"},
-    {"2", "rtd_only"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_575}, /* "1": "auto" */
+    {enum_text_923 + 5, enum_text_1179}, /* "2": "rtd_only" */
 };
 const nmea_enum_def nmea_quectel_rtk_diff_mode_def = {
-    "quectel_rtk_diff_mode", quectel_rtk_diff_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1178, quectel_rtk_diff_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_rtk_rel_mode_codes[] = {
-    {"1", "absolute"},
-    {"2", "relative"},
+    {enum_text_100 + 1, enum_text_1181}, /* "1": "absolute" */
+    {enum_text_923 + 5, enum_text_579}, /* "2": "relative" */
 };
 const nmea_enum_def nmea_quectel_rtk_rel_mode_def = {
-    "quectel_rtk_rel_mode", quectel_rtk_rel_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1180, quectel_rtk_rel_mode_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_rtk_source_type_codes[] = {
-    {"0", "auto"},
-    {"1", "normal"},
-    {"2", "wide_lane"},
+    {enum_text_896 + 9, enum_text_575}, /* "0": "auto" */
+    {enum_text_100 + 1, enum_text_971 + 4}, /* "1": "normal" */
+    {enum_text_923 + 5, enum_text_1183}, /* "2": "wide_lane" */
 };
 const nmea_enum_def nmea_quectel_rtk_source_type_def = {
-    "quectel_rtk_source_type", quectel_rtk_source_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1182, quectel_rtk_source_type_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_solution_type_codes[] = {
-    {"0", "no_fix"},
-    {"1", "single"},
-    {"2", "sbas"},
-    {"5", "dgnss"},
-    {"8", "rtk_float"},
-    {"12", "rtk_fixed"},
+    {enum_text_896 + 9, enum_text_515}, /* "0": "no_fix" */
+    {enum_text_100 + 1, enum_text_1185}, /* "1": "single" */
+    {enum_text_923 + 5, enum_text_98}, /* "2": "sbas" */
+    {enum_text_849 + 5, enum_text_1186}, /* "5": "dgnss" */
+    {enum_text_1101 + 6, enum_text_499}, /* "8": "rtk_float" */
+    {enum_text_923 + 4, enum_text_500}, /* "12": "rtk_fixed" */
 };
 const nmea_enum_def nmea_quectel_solution_type_def = {
-    "quectel_solution_type", quectel_solution_type_codes, 6, 1, 2, NMEA_CODES_DIGITS
+    enum_text_1184, quectel_solution_type_codes, 6, 1, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_stop_bits_codes[] = {
-    {"1", "one"},
-    {"2", "two"},
+    {enum_text_100 + 1, enum_text_96 + 1}, /* "1": "one" */
+    {enum_text_923 + 5, enum_text_236}, /* "2": "two" */
 };
 const nmea_enum_def nmea_quectel_stop_bits_def = {
-    "quectel_stop_bits", quectel_stop_bits_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1187, quectel_stop_bits_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_svin_mode_codes[] = {
-    {"0", "disabled"},
-    {"1", "survey_in"},
-    {"2", "fixed"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1189}, /* "1": "survey_in" */
+    {enum_text_923 + 5, enum_text_500 + 4}, /* "2": "fixed" */
 };
 const nmea_enum_def nmea_quectel_svin_mode_def = {
-    "quectel_svin_mode", quectel_svin_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1188, quectel_svin_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_svin_valid_codes[] = {
-    {"0", "invalid"},
-    {"1", "in_progress"},
-    {"2", "valid"},
+    {enum_text_896 + 9, enum_text_526}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_1192}, /* "1": "in_progress" */
+    {enum_text_923 + 5, enum_text_526 + 2}, /* "2": "valid" */
 };
 const nmea_enum_def nmea_quectel_svin_valid_def = {
-    "quectel_svin_valid", quectel_svin_valid_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1191, quectel_svin_valid_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_text_id_codes[] = {
-    {"01", "notice"},
-    {"02", "warning"},
-    {"03", "error"},
+    {enum_text_1067 + 1, enum_text_1194}, /* "01": "notice" */
+    {enum_text_1069 + 1, enum_text_960 + 4}, /* "02": "warning" */
+    {enum_text_1071 + 1, enum_text_66 + 10}, /* "03": "error" */
 };
 const nmea_enum_def nmea_quectel_text_id_def = {
-    "quectel_text_id", quectel_text_id_codes, 3, 2, 2, NMEA_CODES_DIGITS
+    enum_text_1193, quectel_text_id_codes, 3, 2, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_time_reference_codes[] = {
-    {"1", "gps"},
-    {"4", "reserved"},
+    {enum_text_100 + 1, enum_text_1396 + 8}, /* "1": "gps" */
+    {enum_text_927 + 5, enum_text_1146}, /* "4": "reserved" */
 };
 const nmea_enum_def nmea_quectel_time_reference_def = {
-    "quectel_time_reference", quectel_time_reference_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1195, quectel_time_reference_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code quectel_time_status_codes[] = {
-    {"0", "invalid"},
-    {"1", "valid"},
+    {enum_text_896 + 9, enum_text_526}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_526 + 2}, /* "1": "valid" */
 };
 const nmea_enum_def nmea_quectel_time_status_def = {
-    "quectel_time_status", quectel_time_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1196, quectel_time_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code quectel_uart_index_codes[] = {
-    {"1", "uart1"},
-    {"2", "uart2"},
-    {"3", "uart3"},
+    {enum_text_100 + 1, enum_text_1198}, /* "1": "uart1" */
+    {enum_text_923 + 5, enum_text_1199}, /* "2": "uart2" */
+    {enum_text_925 + 5, enum_text_1200}, /* "3": "uart3" */
 };
 const nmea_enum_def nmea_quectel_uart_index_def = {
-    "quectel_uart_index", quectel_uart_index_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1197, quectel_uart_index_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code rlm_message_code_codes[] = {
-    {"0", "reserved_0"},
-    {"1", "acknowledgement"},
-    {"2", "command"},
-    {"3", "message"},
-    {"4", "reserved_4"},
-    {"5", "reserved_5"},
-    {"6", "reserved_6"},
-    {"7", "reserved_7"},
-    {"8", "reserved_8"},
-    {"9", "reserved_9"},
-    {"A", "reserved_a"},
-    {"B", "reserved_b"},
-    {"C", "reserved_c"},
-    {"D", "reserved_d"},
-    {"E", "reserved_e"},
-    {"F", "test"},
+    {enum_text_896 + 9, enum_text_1202}, /* "0": "reserved_0" */
+    {enum_text_100 + 1, enum_text_12 + 3}, /* "1": "acknowledgement" */
+    {enum_text_923 + 5, enum_text_40 + 8}, /* "2": "command" */
+    {enum_text_925 + 5, enum_text_99 + 10}, /* "3": "message" */
+    {enum_text_927 + 5, enum_text_1204}, /* "4": "reserved_4" */
+    {enum_text_849 + 5, enum_text_1205}, /* "5": "reserved_5" */
+    {enum_text_202 + 1, enum_text_1206}, /* "6": "reserved_6" */
+    {enum_text_204 + 1, enum_text_1207}, /* "7": "reserved_7" */
+    {enum_text_1101 + 6, enum_text_1208}, /* "8": "reserved_8" */
+    {enum_text_846 + 5, enum_text_1209}, /* "9": "reserved_9" */
+    {enum_text_545 + 4, enum_text_1210}, /* "A": "reserved_a" */
+    {enum_text_23, enum_text_1211}, /* "B": "reserved_b" */
+    {enum_text_557 + 4, enum_text_1212}, /* "C": "reserved_c" */
+    {enum_text_568 + 1, enum_text_1213}, /* "D": "reserved_d" */
+    {enum_text_436 + 2, enum_text_1214}, /* "E": "reserved_e" */
+    {enum_text_722 + 1, enum_text_1038}, /* "F": "test" */
 };
 const nmea_enum_def nmea_rlm_message_code_def = {
-    "rlm_message_code", rlm_message_code_codes, 16, 1, 1, NMEA_CODES_ALNUM
+    enum_text_1201, rlm_message_code_codes, 16, 1, 1, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code rmb_arrival_status_codes[] = {
-    {"A", "arrived"},
-    {"V", "not_arrived"},
+    {enum_text_545 + 4, enum_text_1217 + 4}, /* "A": "arrived" */
+    {enum_text_553 + 4, enum_text_1217}, /* "V": "not_arrived" */
 };
 const nmea_enum_def nmea_rmb_arrival_status_def = {
-    "rmb_arrival_status", rmb_arrival_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1215, rmb_arrival_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code rmc_mag_var_dir_codes[] = {
-    {"E", "east"},
-    {"W", "west"},
+    {enum_text_436 + 2, enum_text_1290 + 9}, /* "E": "east" */
+    {enum_text_369, enum_text_681 + 5}, /* "W": "west" */
 };
 const nmea_enum_def nmea_rmc_mag_var_dir_def = {
-    "rmc_mag_var_dir", rmc_mag_var_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1218, rmc_mag_var_dir_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code rpm_source_codes[] = {
-    {"S", "shaft"},
-    {"E", "engine"},
+    {enum_text_608 + 1, enum_text_1220}, /* "S": "shaft" */
+    {enum_text_436 + 2, enum_text_1442 + 10}, /* "E": "engine" */
 };
 const nmea_enum_def nmea_rpm_source_def = {
-    "rpm_source", rpm_source_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1219, rpm_source_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code rrt_application_status_codes[] = {
-    {"A", "accepted"},
-    {"V", "rejected"},
-    {"P", "pending"},
-    {"N", "not_applicable"},
+    {enum_text_545 + 4, enum_text_1223}, /* "A": "accepted" */
+    {enum_text_553 + 4, enum_text_1224}, /* "V": "rejected" */
+    {enum_text_444 + 2, enum_text_1225}, /* "P": "pending" */
+    {enum_text_857 + 5, enum_text_1226}, /* "N": "not_applicable" */
 };
 const nmea_enum_def nmea_rrt_application_status_def = {
-    "rrt_application_status", rrt_application_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1222, rrt_application_status_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code rrt_file_status_codes[] = {
-    {"A", "received"},
-    {"E", "error"},
+    {enum_text_545 + 4, enum_text_1315 + 5}, /* "A": "received" */
+    {enum_text_436 + 2, enum_text_66 + 10}, /* "E": "error" */
 };
 const nmea_enum_def nmea_rrt_file_status_def = {
-    "rrt_file_status", rrt_file_status_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1227, rrt_file_status_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code rrt_transfer_type_codes[] = {
-    {"M", "monitored"},
-    {"A", "alternate"},
-    {"Q", "query"},
+    {enum_text_712 + 1, enum_text_1229}, /* "M": "monitored" */
+    {enum_text_545 + 4, enum_text_1230}, /* "A": "alternate" */
+    {enum_text_55, enum_text_661}, /* "Q": "query" */
 };
 const nmea_enum_def nmea_rrt_transfer_type_def = {
-    "rrt_transfer_type", rrt_transfer_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1228, rrt_transfer_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code rsd_display_rotation_codes[] = {
-    {"C", "course_up"},
-    {"H", "head_up"},
-    {"N", "north_up"},
+    {enum_text_557 + 4, enum_text_1232}, /* "C": "course_up" */
+    {enum_text_708 + 1, enum_text_1233}, /* "H": "head_up" */
+    {enum_text_857 + 5, enum_text_1234}, /* "N": "north_up" */
 };
 const nmea_enum_def nmea_rsd_display_rotation_def = {
-    "rsd_display_rotation", rsd_display_rotation_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1231, rsd_display_rotation_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code rte_mode_codes[] = {
-    {"c", "complete"},
-    {"w", "working"},
+    {enum_text_558 + 4, enum_text_1287 + 2}, /* "c": "complete" */
+    {enum_text_692 + 9, enum_text_1238}, /* "w": "working" */
 };
 const nmea_enum_def nmea_rte_mode_def = {
-    "rte_mode", rte_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1235, rte_mode_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code seapath_quality_codes[] = {
-    {"0", "normal"},
-    {"1", "reduced"},
-    {"2", "invalid"},
+    {enum_text_896 + 9, enum_text_971 + 4}, /* "0": "normal" */
+    {enum_text_100 + 1, enum_text_1240}, /* "1": "reduced" */
+    {enum_text_923 + 5, enum_text_526}, /* "2": "invalid" */
 };
 const nmea_enum_def nmea_seapath_quality_def = {
-    "seapath_quality", seapath_quality_codes, 3, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1239, seapath_quality_codes, 3, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code septentrio_base_motion_codes[] = {
-    {"0", "static"},
-    {"1", "moving"},
+    {enum_text_896 + 9, enum_text_391}, /* "0": "static" */
+    {enum_text_100 + 1, enum_text_392}, /* "1": "moving" */
 };
 const nmea_enum_def nmea_septentrio_base_motion_def = {
-    "septentrio_base_motion", septentrio_base_motion_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1241, septentrio_base_motion_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code septentrio_baseline_quality_codes[] = {
-    {"0", "invalid"},
-    {"2", "dgps"},
-    {"4", "rtk_fixed"},
-    {"5", "rtk_float"},
+    {enum_text_896 + 9, enum_text_526}, /* "0": "invalid" */
+    {enum_text_923 + 5, enum_text_1396 + 7}, /* "2": "dgps" */
+    {enum_text_927 + 5, enum_text_500}, /* "4": "rtk_fixed" */
+    {enum_text_849 + 5, enum_text_499}, /* "5": "rtk_float" */
 };
 const nmea_enum_def nmea_septentrio_baseline_quality_def = {
-    "septentrio_baseline_quality", septentrio_baseline_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1242, septentrio_baseline_quality_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code signal_id_codes[] = {
-    {"0", "all_signals"},
-    {"1", "signal_1"},
-    {"2", "signal_2"},
-    {"3", "signal_3"},
-    {"4", "signal_4"},
-    {"5", "signal_5"},
-    {"6", "signal_6"},
-    {"7", "signal_7"},
-    {"8", "signal_8"},
-    {"9", "signal_9"},
-    {"A", "signal_a"},
-    {"B", "signal_b"},
-    {"C", "signal_c"},
+    {enum_text_896 + 9, enum_text_1244}, /* "0": "all_signals" */
+    {enum_text_100 + 1, enum_text_1245}, /* "1": "signal_1" */
+    {enum_text_923 + 5, enum_text_1246}, /* "2": "signal_2" */
+    {enum_text_925 + 5, enum_text_1247}, /* "3": "signal_3" */
+    {enum_text_927 + 5, enum_text_1248}, /* "4": "signal_4" */
+    {enum_text_849 + 5, enum_text_1249}, /* "5": "signal_5" */
+    {enum_text_202 + 1, enum_text_1250}, /* "6": "signal_6" */
+    {enum_text_204 + 1, enum_text_1251}, /* "7": "signal_7" */
+    {enum_text_1101 + 6, enum_text_1252}, /* "8": "signal_8" */
+    {enum_text_846 + 5, enum_text_1253}, /* "9": "signal_9" */
+    {enum_text_545 + 4, enum_text_1254}, /* "A": "signal_a" */
+    {enum_text_23, enum_text_1255}, /* "B": "signal_b" */
+    {enum_text_557 + 4, enum_text_1256}, /* "C": "signal_c" */
 };
 const nmea_enum_def nmea_signal_id_def = {
-    "signal_id", signal_id_codes, 13, 1, 1, NMEA_CODES_ALNUM
+    enum_text_1243, signal_id_codes, 13, 1, 1, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code sirf_baud_codes[] = {
-    {"1200", "baud_1200"},
-    {"2400", "baud_2400"},
-    {"4800", "baud_4800"},
-    {"9600", "baud_9600"},
-    {"19200", "baud_19200"},
-    {"38400", "baud_38400"},
+    {enum_text_794 + 5, enum_text_794}, /* "1200": "baud_1200" */
+    {enum_text_795 + 5, enum_text_795}, /* "2400": "baud_2400" */
+    {enum_text_74 + 5, enum_text_74}, /* "4800": "baud_4800" */
+    {enum_text_76 + 5, enum_text_76}, /* "9600": "baud_9600" */
+    {enum_text_78 + 5, enum_text_78}, /* "19200": "baud_19200" */
+    {enum_text_80 + 5, enum_text_80}, /* "38400": "baud_38400" */
 };
 const nmea_enum_def nmea_sirf_baud_def = {
-    "sirf_baud", sirf_baud_codes, 6, 4, 5, NMEA_CODES_DIGITS
+    enum_text_1257, sirf_baud_codes, 6, 4, 5, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code sirf_checksum_enable_codes[] = {
-    {"00", "disabled"},
-    {"01", "enabled"},
+    {enum_text_1066 + 1, enum_text_92}, /* "00": "disabled" */
+    {enum_text_1067 + 1, enum_text_1083 + 14}, /* "01": "enabled" */
 };
 const nmea_enum_def nmea_sirf_checksum_enable_def = {
-    "sirf_checksum_enable", sirf_checksum_enable_codes, 2, 2, 2, NMEA_CODES_CLOSED
+    enum_text_1260, sirf_checksum_enable_codes, 2, 2, 2, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code sirf_checksum_enable_digit_codes[] = {
-    {"0", "disabled"},
-    {"1", "enabled"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1083 + 14}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_sirf_checksum_enable_digit_def = {
-    "sirf_checksum_enable_digit", sirf_checksum_enable_digit_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1261, sirf_checksum_enable_digit_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code sirf_debug_codes[] = {
-    {"0", "off"},
-    {"1", "on"},
+    {enum_text_896 + 9, enum_text_864 + 4}, /* "0": "off" */
+    {enum_text_100 + 1, enum_text_182 + 3}, /* "1": "on" */
 };
 const nmea_enum_def nmea_sirf_debug_def = {
-    "sirf_debug", sirf_debug_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1262, sirf_debug_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code sirf_nmea_message_codes[] = {
-    {"00", "gga"},
-    {"01", "gll"},
-    {"02", "gsa"},
-    {"03", "gsv"},
-    {"04", "rmc"},
-    {"05", "vtg"},
+    {enum_text_1066 + 1, enum_text_546 + 2}, /* "00": "gga" */
+    {enum_text_1067 + 1, enum_text_548 + 2}, /* "01": "gll" */
+    {enum_text_1069 + 1, enum_text_550 + 2}, /* "02": "gsa" */
+    {enum_text_1071 + 1, enum_text_554 + 2}, /* "03": "gsv" */
+    {enum_text_844 + 4, enum_text_558 + 2}, /* "04": "rmc" */
+    {enum_text_901 + 4, enum_text_560 + 2}, /* "05": "vtg" */
 };
 const nmea_enum_def nmea_sirf_nmea_message_def = {
-    "sirf_nmea_message", sirf_nmea_message_codes, 6, 2, 2, NMEA_CODES_DIGITS
+    enum_text_1263, sirf_nmea_message_codes, 6, 2, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code sirf_nmea_message_digit_codes[] = {
-    {"0", "gga"},
-    {"1", "gll"},
-    {"2", "gsa"},
-    {"3", "gsv"},
-    {"4", "rmc"},
-    {"5", "vtg"},
+    {enum_text_896 + 9, enum_text_546 + 2}, /* "0": "gga" */
+    {enum_text_100 + 1, enum_text_548 + 2}, /* "1": "gll" */
+    {enum_text_923 + 5, enum_text_550 + 2}, /* "2": "gsa" */
+    {enum_text_925 + 5, enum_text_554 + 2}, /* "3": "gsv" */
+    {enum_text_927 + 5, enum_text_558 + 2}, /* "4": "rmc" */
+    {enum_text_849 + 5, enum_text_560 + 2}, /* "5": "vtg" */
 };
 const nmea_enum_def nmea_sirf_nmea_message_digit_def = {
-    "sirf_nmea_message_digit", sirf_nmea_message_digit_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1264, sirf_nmea_message_digit_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code sirf_ok_to_send_codes[] = {
-    {"0", "not_ok"},
-    {"1", "ok"},
+    {enum_text_896 + 9, enum_text_1266}, /* "0": "not_ok" */
+    {enum_text_100 + 1, enum_text_1266 + 4}, /* "1": "ok" */
 };
 const nmea_enum_def nmea_sirf_ok_to_send_def = {
-    "sirf_ok_to_send", sirf_ok_to_send_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1265, sirf_ok_to_send_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code sirf_parity_codes[] = {
-    {"0", "none"},
-    {"1", "odd"},
-    {"2", "even"},
+    {enum_text_896 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_1162}, /* "1": "odd" */
+    {enum_text_923 + 5, enum_text_1163}, /* "2": "even" */
 };
 const nmea_enum_def nmea_sirf_parity_def = {
-    "sirf_parity", sirf_parity_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1267, sirf_parity_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code sirf_protocol_codes[] = {
-    {"0", "sirf_binary"},
-    {"1", "nmea"},
+    {enum_text_896 + 9, enum_text_1269}, /* "0": "sirf_binary" */
+    {enum_text_100 + 1, enum_text_134}, /* "1": "nmea" */
 };
 const nmea_enum_def nmea_sirf_protocol_def = {
-    "sirf_protocol", sirf_protocol_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1268, sirf_protocol_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code sirf_rate_mode_codes[] = {
-    {"00", "set_rate"},
-    {"01", "query"},
+    {enum_text_1066 + 1, enum_text_1271}, /* "00": "set_rate" */
+    {enum_text_1067 + 1, enum_text_661}, /* "01": "query" */
 };
 const nmea_enum_def nmea_sirf_rate_mode_def = {
-    "sirf_rate_mode", sirf_rate_mode_codes, 2, 2, 2, NMEA_CODES_DIGITS
+    enum_text_1270, sirf_rate_mode_codes, 2, 2, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code sirf_rate_mode_digit_codes[] = {
-    {"0", "set_rate"},
-    {"1", "query"},
+    {enum_text_896 + 9, enum_text_1271}, /* "0": "set_rate" */
+    {enum_text_100 + 1, enum_text_661}, /* "1": "query" */
 };
 const nmea_enum_def nmea_sirf_rate_mode_digit_def = {
-    "sirf_rate_mode_digit", sirf_rate_mode_digit_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1272, sirf_rate_mode_digit_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code skytraq_availability_codes[] = {
-    {"0", "not_available"},
-    {"1", "available"},
+    {enum_text_896 + 9, enum_text_246}, /* "0": "not_available" */
+    {enum_text_100 + 1, enum_text_1084 + 24}, /* "1": "available" */
 };
 const nmea_enum_def nmea_skytraq_availability_def = {
-    "skytraq_availability", skytraq_availability_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1273, skytraq_availability_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code skytraq_calibration_codes[] = {
-    {"0", "not_calibrated"},
-    {"1", "calibrated"},
+    {enum_text_896 + 9, enum_text_1276}, /* "0": "not_calibrated" */
+    {enum_text_100 + 1, enum_text_1276 + 4}, /* "1": "calibrated" */
 };
 const nmea_enum_def nmea_skytraq_calibration_def = {
-    "skytraq_calibration", skytraq_calibration_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1275, skytraq_calibration_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code skytraq_direction_codes[] = {
-    {"0", "forward"},
-    {"1", "backward"},
+    {enum_text_896 + 9, enum_text_1279}, /* "0": "forward" */
+    {enum_text_100 + 1, enum_text_1280}, /* "1": "backward" */
 };
 const nmea_enum_def nmea_skytraq_direction_def = {
-    "skytraq_direction", skytraq_direction_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1278, skytraq_direction_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code skytraq_dr_mode_codes[] = {
-    {"A", "gnss_fix"},
-    {"E", "dead_reckoning"},
-    {"N", "not_valid"},
+    {enum_text_545 + 4, enum_text_1282}, /* "A": "gnss_fix" */
+    {enum_text_436 + 2, enum_text_1428 + 5}, /* "E": "dead_reckoning" */
+    {enum_text_857 + 5, enum_text_963}, /* "N": "not_valid" */
 };
 const nmea_enum_def nmea_skytraq_dr_mode_def = {
-    "skytraq_dr_mode", skytraq_dr_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1281, skytraq_dr_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code skytraq_mode_codes[] = {
-    {"A", "autonomous"},
-    {"D", "differential"},
-    {"E", "estimated"},
-    {"F", "rtk_float"},
-    {"M", "manual_input"},
-    {"N", "not_valid"},
-    {"O", "float_other"},
-    {"P", "precise"},
-    {"R", "rtk_fixed"},
-    {"S", "simulator"},
+    {enum_text_545 + 4, enum_text_497}, /* "A": "autonomous" */
+    {enum_text_568 + 1, enum_text_498 + 5}, /* "D": "differential" */
+    {enum_text_436 + 2, enum_text_962}, /* "E": "estimated" */
+    {enum_text_722 + 1, enum_text_499}, /* "F": "rtk_float" */
+    {enum_text_712 + 1, enum_text_953}, /* "M": "manual_input" */
+    {enum_text_857 + 5, enum_text_963}, /* "N": "not_valid" */
+    {enum_text_716 + 1, enum_text_1284}, /* "O": "float_other" */
+    {enum_text_444 + 2, enum_text_964}, /* "P": "precise" */
+    {enum_text_418 + 2, enum_text_500}, /* "R": "rtk_fixed" */
+    {enum_text_608 + 1, enum_text_954}, /* "S": "simulator" */
 };
 const nmea_enum_def nmea_skytraq_mode_def = {
-    "skytraq_mode", skytraq_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1283, skytraq_mode_codes, 10, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code skytraq_receiver_role_codes[] = {
-    {"R", "rover"},
-    {"B", "base"},
+    {enum_text_418 + 2, enum_text_1172}, /* "R": "rover" */
+    {enum_text_23, enum_text_1173}, /* "B": "base" */
 };
 const nmea_enum_def nmea_skytraq_receiver_role_def = {
-    "skytraq_receiver_role", skytraq_receiver_role_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1285, skytraq_receiver_role_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code sm1_msi_status_codes[] = {
-    {"A", "complete"},
-    {"V", "incomplete"},
+    {enum_text_545 + 4, enum_text_1287 + 2}, /* "A": "complete" */
+    {enum_text_553 + 4, enum_text_1287}, /* "V": "incomplete" */
 };
 const nmea_enum_def nmea_sm1_msi_status_def = {
-    "sm1_msi_status", sm1_msi_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1286, sm1_msi_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code sm1_ocean_region_codes[] = {
-    {"0", "atlantic_west"},
-    {"1", "atlantic_east"},
-    {"2", "pacific"},
-    {"3", "indian"},
-    {"8", "unknown"},
-    {"9", "all"},
+    {enum_text_896 + 9, enum_text_1289}, /* "0": "atlantic_west" */
+    {enum_text_100 + 1, enum_text_1290}, /* "1": "atlantic_east" */
+    {enum_text_923 + 5, enum_text_1291}, /* "2": "pacific" */
+    {enum_text_925 + 5, enum_text_1292}, /* "3": "indian" */
+    {enum_text_1101 + 6, enum_text_125}, /* "8": "unknown" */
+    {enum_text_846 + 5, enum_text_819 + 7}, /* "9": "all" */
 };
 const nmea_enum_def nmea_sm1_ocean_region_def = {
-    "sm1_ocean_region", sm1_ocean_region_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1288, sm1_ocean_region_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code sm1_priority_codes[] = {
-    {"1", "safety"},
-    {"2", "urgency"},
-    {"3", "distress"},
-    {"9", "unknown"},
+    {enum_text_100 + 1, enum_text_623}, /* "1": "safety" */
+    {enum_text_923 + 5, enum_text_624}, /* "2": "urgency" */
+    {enum_text_925 + 5, enum_text_625}, /* "3": "distress" */
+    {enum_text_846 + 5, enum_text_125}, /* "9": "unknown" */
 };
 const nmea_enum_def nmea_sm1_priority_def = {
-    "sm1_priority", sm1_priority_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1293, sm1_priority_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code sm2_subject_codes[] = {
-    {"A", "navigational_warning"},
-    {"B", "meteorological_warning"},
-    {"C", "ice_report"},
-    {"D", "sar_and_piracy"},
-    {"E", "meteorological_forecast"},
-    {"F", "pilot_service"},
-    {"G", "ais"},
-    {"H", "loran"},
-    {"J", "satnav"},
-    {"K", "other_electronic_navaid"},
-    {"L", "other_navigational_warning"},
-    {"V", "special_service_v"},
-    {"W", "special_service_w"},
-    {"X", "special_service_x"},
-    {"Y", "special_service_y"},
-    {"Z", "no_messages"},
+    {enum_text_545 + 4, enum_text_1305 + 6}, /* "A": "navigational_warning" */
+    {enum_text_23, enum_text_1296}, /* "B": "meteorological_warning" */
+    {enum_text_557 + 4, enum_text_1297}, /* "C": "ice_report" */
+    {enum_text_568 + 1, enum_text_1298}, /* "D": "sar_and_piracy" */
+    {enum_text_436 + 2, enum_text_1299}, /* "E": "meteorological_forecast" */
+    {enum_text_722 + 1, enum_text_1300}, /* "F": "pilot_service" */
+    {enum_text_537 + 1, enum_text_1301}, /* "G": "ais" */
+    {enum_text_708 + 1, enum_text_1302}, /* "H": "loran" */
+    {enum_text_355, enum_text_1303}, /* "J": "satnav" */
+    {enum_text_1427 + 1, enum_text_1304}, /* "K": "other_electronic_navaid" */
+    {enum_text_442 + 2, enum_text_1305}, /* "L": "other_navigational_warning" */
+    {enum_text_553 + 4, enum_text_1306}, /* "V": "special_service_v" */
+    {enum_text_369, enum_text_1307}, /* "W": "special_service_w" */
+    {enum_text_938 + 5, enum_text_1308}, /* "X": "special_service_x" */
+    {enum_text_1309, enum_text_1310}, /* "Y": "special_service_y" */
+    {enum_text_1311, enum_text_1312}, /* "Z": "no_messages" */
 };
 const nmea_enum_def nmea_sm2_subject_def = {
-    "sm2_subject", sm2_subject_codes, 16, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1294, sm2_subject_codes, 16, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code spectratime_gps_messages_codes[] = {
-    {"0", "ignored"},
-    {"1", "none_received"},
-    {"2", "partially_ok"},
-    {"3", "ok"},
+    {enum_text_896 + 9, enum_text_1314}, /* "0": "ignored" */
+    {enum_text_100 + 1, enum_text_1315}, /* "1": "none_received" */
+    {enum_text_923 + 5, enum_text_1316}, /* "2": "partially_ok" */
+    {enum_text_925 + 5, enum_text_1266 + 4}, /* "3": "ok" */
 };
 const nmea_enum_def nmea_spectratime_gps_messages_def = {
-    "spectratime_gps_messages", spectratime_gps_messages_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1313, spectratime_gps_messages_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code spectratime_isync_status_codes[] = {
-    {"0", "warming_up"},
-    {"1", "tracking_setup"},
-    {"2", "tracking"},
-    {"3", "synchronised"},
-    {"4", "free_run_tracking_off"},
-    {"5", "free_run_reference_unstable"},
-    {"6", "free_run_no_reference"},
-    {"7", "freeze"},
-    {"8", "factory"},
-    {"9", "searching_rb_line"},
+    {enum_text_896 + 9, enum_text_1318}, /* "0": "warming_up" */
+    {enum_text_100 + 1, enum_text_1319}, /* "1": "tracking_setup" */
+    {enum_text_923 + 5, enum_text_1382 + 11}, /* "2": "tracking" */
+    {enum_text_925 + 5, enum_text_1321}, /* "3": "synchronised" */
+    {enum_text_927 + 5, enum_text_1322}, /* "4": "free_run_tracking_off" */
+    {enum_text_849 + 5, enum_text_1323}, /* "5": "free_run_reference_unstable" */
+    {enum_text_202 + 1, enum_text_1324}, /* "6": "free_run_no_reference" */
+    {enum_text_204 + 1, enum_text_1325}, /* "7": "freeze" */
+    {enum_text_1101 + 6, enum_text_1326}, /* "8": "factory" */
+    {enum_text_846 + 5, enum_text_1327}, /* "9": "searching_rb_line" */
 };
 const nmea_enum_def nmea_spectratime_isync_status_def = {
-    "spectratime_isync_status", spectratime_isync_status_codes, 10, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1317, spectratime_isync_status_codes, 10, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code spectratime_osc_quality_codes[] = {
-    {"0", "warming_up"},
-    {"1", "free_run"},
-    {"2", "disciplined"},
+    {enum_text_896 + 9, enum_text_1318}, /* "0": "warming_up" */
+    {enum_text_100 + 1, enum_text_758}, /* "1": "free_run" */
+    {enum_text_923 + 5, enum_text_1329}, /* "2": "disciplined" */
 };
 const nmea_enum_def nmea_spectratime_osc_quality_def = {
-    "spectratime_osc_quality", spectratime_osc_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1328, spectratime_osc_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code spectratime_time_transfer_codes[] = {
-    {"0", "none"},
-    {"1", "manual"},
-    {"2", "gps_old"},
-    {"3", "gps_fresh"},
+    {enum_text_896 + 9, enum_text_96}, /* "0": "none" */
+    {enum_text_100 + 1, enum_text_1040 + 9}, /* "1": "manual" */
+    {enum_text_923 + 5, enum_text_1331}, /* "2": "gps_old" */
+    {enum_text_925 + 5, enum_text_1332}, /* "3": "gps_fresh" */
 };
 const nmea_enum_def nmea_spectratime_time_transfer_def = {
-    "spectratime_time_transfer", spectratime_time_transfer_codes, 4, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1330, spectratime_time_transfer_codes, 4, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code spw_password_level_codes[] = {
-    {"1", "user"},
-    {"2", "administrator"},
+    {enum_text_100 + 1, enum_text_1334}, /* "1": "user" */
+    {enum_text_923 + 5, enum_text_1335}, /* "2": "administrator" */
 };
 const nmea_enum_def nmea_spw_password_level_def = {
-    "spw_password_level", spw_password_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1333, spw_password_level_codes, 2, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ssd_dte_codes[] = {
-    {"0", "available"},
-    {"1", "not_available"},
+    {enum_text_896 + 9, enum_text_1084 + 24}, /* "0": "available" */
+    {enum_text_100 + 1, enum_text_246}, /* "1": "not_available" */
 };
 const nmea_enum_def nmea_ssd_dte_def = {
-    "ssd_dte", ssd_dte_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1336, ssd_dte_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code status_codes[] = {
-    {"A", "valid"},
-    {"V", "invalid"},
+    {enum_text_545 + 4, enum_text_526 + 2}, /* "A": "valid" */
+    {enum_text_553 + 4, enum_text_526}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_status_def = {
-    "status", status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_597 + 4, status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code system_id_codes[] = {
-    {"1", "gps"},
-    {"2", "glonass"},
-    {"3", "galileo"},
-    {"4", "beidou"},
-    {"5", "qzss"},
-    {"6", "navic"},
-    {"F", "geos5_qzss"},
+    {enum_text_100 + 1, enum_text_1396 + 8}, /* "1": "gps" */
+    {enum_text_923 + 5, enum_text_239 + 4}, /* "2": "glonass" */
+    {enum_text_925 + 5, enum_text_939 + 12}, /* "3": "galileo" */
+    {enum_text_927 + 5, enum_text_122}, /* "4": "beidou" */
+    {enum_text_849 + 5, enum_text_1340 + 6}, /* "5": "qzss" */
+    {enum_text_202 + 1, enum_text_1339}, /* "6": "navic" */
+    {enum_text_722 + 1, enum_text_1340}, /* "F": "geos5_qzss" */
 };
 const nmea_enum_def nmea_system_id_def = {
-    "system_id", system_id_codes, 7, 1, 1, NMEA_CODES_ALNUM
+    enum_text_1338, system_id_codes, 7, 1, 1, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code teseo_baud_codes[] = {
-    {"0", "baud_300"},
-    {"1", "baud_600"},
-    {"2", "baud_1200"},
-    {"3", "baud_2400"},
-    {"4", "baud_4800"},
-    {"5", "baud_9600"},
-    {"6", "baud_14400"},
-    {"7", "baud_19200"},
-    {"8", "baud_38400"},
-    {"9", "baud_57600"},
-    {"A", "baud_115200"},
-    {"B", "baud_230400"},
-    {"C", "baud_460800"},
-    {"D", "baud_921600"},
+    {enum_text_896 + 9, enum_text_796}, /* "0": "baud_300" */
+    {enum_text_100 + 1, enum_text_797}, /* "1": "baud_600" */
+    {enum_text_923 + 5, enum_text_794}, /* "2": "baud_1200" */
+    {enum_text_925 + 5, enum_text_795}, /* "3": "baud_2400" */
+    {enum_text_927 + 5, enum_text_74}, /* "4": "baud_4800" */
+    {enum_text_849 + 5, enum_text_76}, /* "5": "baud_9600" */
+    {enum_text_202 + 1, enum_text_1049}, /* "6": "baud_14400" */
+    {enum_text_204 + 1, enum_text_78}, /* "7": "baud_19200" */
+    {enum_text_1101 + 6, enum_text_80}, /* "8": "baud_38400" */
+    {enum_text_846 + 5, enum_text_82}, /* "9": "baud_57600" */
+    {enum_text_545 + 4, enum_text_84}, /* "A": "baud_115200" */
+    {enum_text_23, enum_text_86}, /* "B": "baud_230400" */
+    {enum_text_557 + 4, enum_text_88}, /* "C": "baud_460800" */
+    {enum_text_568 + 1, enum_text_90}, /* "D": "baud_921600" */
 };
 const nmea_enum_def nmea_teseo_baud_def = {
-    "teseo_baud", teseo_baud_codes, 14, 1, 1, NMEA_CODES_ALNUM
+    enum_text_1341, teseo_baud_codes, 14, 1, 1, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code teseo_compiler_type_codes[] = {
-    {"ARM", "arm"},
-    {"GNU", "gnu"},
+    {enum_text_1343, enum_text_1368 + 6}, /* "ARM": "arm" */
+    {enum_text_1345, enum_text_1346}, /* "GNU": "gnu" */
 };
 const nmea_enum_def nmea_teseo_compiler_type_def = {
-    "teseo_compiler_type", teseo_compiler_type_codes, 2, 3, 3, NMEA_CODES_LETTERS
+    enum_text_1342, teseo_compiler_type_codes, 2, 3, 3, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code teseo_nmea_on_off_codes[] = {
-    {"0", "off"},
-    {"1", "on"},
+    {enum_text_896 + 9, enum_text_864 + 4}, /* "0": "off" */
+    {enum_text_100 + 1, enum_text_182 + 3}, /* "1": "on" */
 };
 const nmea_enum_def nmea_teseo_nmea_on_off_def = {
-    "teseo_nmea_on_off", teseo_nmea_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1347, teseo_nmea_on_off_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code teseo_rtc_status_codes[] = {
-    {"0", "invalid"},
-    {"1", "stored"},
-    {"2", "approximate"},
+    {enum_text_896 + 9, enum_text_526}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_1349}, /* "1": "stored" */
+    {enum_text_923 + 5, enum_text_1350}, /* "2": "approximate" */
 };
 const nmea_enum_def nmea_teseo_rtc_status_def = {
-    "teseo_rtc_status", teseo_rtc_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1348, teseo_rtc_status_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code teseo_setpar_mode_codes[] = {
-    {"0", "replace"},
-    {"1", "set_bits"},
-    {"2", "clear_bits"},
+    {enum_text_896 + 9, enum_text_1352}, /* "0": "replace" */
+    {enum_text_100 + 1, enum_text_1353}, /* "1": "set_bits" */
+    {enum_text_923 + 5, enum_text_1354}, /* "2": "clear_bits" */
 };
 const nmea_enum_def nmea_teseo_setpar_mode_def = {
-    "teseo_setpar_mode", teseo_setpar_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1351, teseo_setpar_mode_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code teseo_time_validity_codes[] = {
-    {"0", "no_time"},
-    {"1", "flash_time"},
-    {"2", "user_time"},
-    {"3", "user_rtc_time"},
-    {"4", "rtc_time"},
-    {"5", "accurate_rtc_time"},
-    {"6", "approximate_time"},
-    {"7", "position_time"},
-    {"8", "ephemeris_time"},
+    {enum_text_896 + 9, enum_text_1356}, /* "0": "no_time" */
+    {enum_text_100 + 1, enum_text_1357}, /* "1": "flash_time" */
+    {enum_text_923 + 5, enum_text_1358}, /* "2": "user_time" */
+    {enum_text_925 + 5, enum_text_1359}, /* "3": "user_rtc_time" */
+    {enum_text_927 + 5, enum_text_1359 + 5}, /* "4": "rtc_time" */
+    {enum_text_849 + 5, enum_text_1361}, /* "5": "accurate_rtc_time" */
+    {enum_text_202 + 1, enum_text_1362}, /* "6": "approximate_time" */
+    {enum_text_204 + 1, enum_text_1363}, /* "7": "position_time" */
+    {enum_text_1101 + 6, enum_text_1364}, /* "8": "ephemeris_time" */
 };
 const nmea_enum_def nmea_teseo_time_validity_def = {
-    "teseo_time_validity", teseo_time_validity_codes, 9, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1355, teseo_time_validity_codes, 9, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ths_mode_codes[] = {
-    {"A", "autonomous"},
-    {"E", "estimated"},
-    {"M", "manual"},
-    {"S", "simulator"},
-    {"V", "invalid"},
+    {enum_text_545 + 4, enum_text_497}, /* "A": "autonomous" */
+    {enum_text_436 + 2, enum_text_962}, /* "E": "estimated" */
+    {enum_text_712 + 1, enum_text_1040 + 9}, /* "M": "manual" */
+    {enum_text_608 + 1, enum_text_954}, /* "S": "simulator" */
+    {enum_text_553 + 4, enum_text_526}, /* "V": "invalid" */
 };
 const nmea_enum_def nmea_ths_mode_def = {
-    "ths_mode", ths_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1365, ths_mode_codes, 5, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code tnt_alarm_status_codes[] = {
-    {"C", "calibration_alarm"},
-    {"L", "low_alarm"},
-    {"M", "low_warning"},
-    {"N", "normal"},
-    {"O", "high_warning"},
-    {"P", "high_alarm"},
-    {"V", "voltage_alarm"},
+    {enum_text_557 + 4, enum_text_1367}, /* "C": "calibration_alarm" */
+    {enum_text_442 + 2, enum_text_1368}, /* "L": "low_alarm" */
+    {enum_text_712 + 1, enum_text_1369}, /* "M": "low_warning" */
+    {enum_text_857 + 5, enum_text_971 + 4}, /* "N": "normal" */
+    {enum_text_716 + 1, enum_text_1370}, /* "O": "high_warning" */
+    {enum_text_444 + 2, enum_text_1371}, /* "P": "high_alarm" */
+    {enum_text_553 + 4, enum_text_1372}, /* "V": "voltage_alarm" */
 };
 const nmea_enum_def nmea_tnt_alarm_status_def = {
-    "tnt_alarm_status", tnt_alarm_status_codes, 7, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1366, tnt_alarm_status_codes, 7, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code trimble_antenna_status_codes[] = {
-    {"0", "fault"},
-    {"1", "ok"},
+    {enum_text_896 + 9, enum_text_1047 + 2}, /* "0": "fault" */
+    {enum_text_100 + 1, enum_text_1266 + 4}, /* "1": "ok" */
 };
 const nmea_enum_def nmea_trimble_antenna_status_def = {
-    "trimble_antenna_status", trimble_antenna_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1373, trimble_antenna_status_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code trimble_bpq_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "autonomous"},
-    {"2", "sbas_or_vbs"},
-    {"4", "rtk_fixed"},
-    {"5", "float_or_high_precision"},
+    {enum_text_896 + 9, enum_text_526}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_497}, /* "1": "autonomous" */
+    {enum_text_923 + 5, enum_text_1375}, /* "2": "sbas_or_vbs" */
+    {enum_text_927 + 5, enum_text_500}, /* "4": "rtk_fixed" */
+    {enum_text_849 + 5, enum_text_1376}, /* "5": "float_or_high_precision" */
 };
 const nmea_enum_def nmea_trimble_bpq_quality_def = {
-    "trimble_bpq_quality", trimble_bpq_quality_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1374, trimble_bpq_quality_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code trimble_copernicus_version_part_codes[] = {
-    {"S", "application"},
-    {"H", "hardware"},
-    {"N", "navigation"},
+    {enum_text_608 + 1, enum_text_1378}, /* "S": "application" */
+    {enum_text_708 + 1, enum_text_1379}, /* "H": "hardware" */
+    {enum_text_857 + 5, enum_text_513 + 5}, /* "N": "navigation" */
 };
 const nmea_enum_def nmea_trimble_copernicus_version_part_def = {
-    "trimble_copernicus_version_part", trimble_copernicus_version_part_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1377, trimble_copernicus_version_part_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code trimble_dg_channel_used_codes[] = {
-    {"0", "not_used"},
-    {"1", "used"},
+    {enum_text_896 + 9, enum_text_1436 + 10}, /* "0": "not_used" */
+    {enum_text_100 + 1, enum_text_1436 + 14}, /* "1": "used" */
 };
 const nmea_enum_def nmea_trimble_dg_channel_used_def = {
-    "trimble_dg_channel_used", trimble_dg_channel_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1381, trimble_dg_channel_used_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code trimble_dg_tracking_codes[] = {
-    {"0", "idle"},
-    {"1", "wideband_fft_search"},
-    {"2", "searching"},
-    {"3", "acquired"},
-    {"4", "locked"},
-    {"5", "disabled"},
+    {enum_text_896 + 9, enum_text_1383}, /* "0": "idle" */
+    {enum_text_100 + 1, enum_text_1384}, /* "1": "wideband_fft_search" */
+    {enum_text_923 + 5, enum_text_1385}, /* "2": "searching" */
+    {enum_text_925 + 5, enum_text_1386}, /* "3": "acquired" */
+    {enum_text_927 + 5, enum_text_1400 + 2}, /* "4": "locked" */
+    {enum_text_849 + 5, enum_text_92}, /* "5": "disabled" */
 };
 const nmea_enum_def nmea_trimble_dg_tracking_def = {
-    "trimble_dg_tracking", trimble_dg_tracking_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1382, trimble_dg_tracking_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code trimble_gps_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "autonomous"},
-    {"2", "rtk_float"},
-    {"3", "rtk_fixed"},
-    {"4", "dgps"},
-    {"5", "sbas"},
-    {"6", "network_rtk_float_3d"},
-    {"7", "network_rtk_fixed_3d"},
-    {"8", "network_rtk_float_2d"},
-    {"9", "network_rtk_fixed_2d"},
-    {"10", "omnistar_hp_xp"},
-    {"11", "omnistar_vbs"},
-    {"12", "location_rtk"},
-    {"13", "beacon_dgps"},
-    {"14", "centerpoint_rtx"},
-    {"15", "xfill"},
+    {enum_text_896 + 9, enum_text_526}, /* "0": "invalid" */
+    {enum_text_100 + 1, enum_text_497}, /* "1": "autonomous" */
+    {enum_text_923 + 5, enum_text_499}, /* "2": "rtk_float" */
+    {enum_text_925 + 5, enum_text_500}, /* "3": "rtk_fixed" */
+    {enum_text_927 + 5, enum_text_1396 + 7}, /* "4": "dgps" */
+    {enum_text_849 + 5, enum_text_98}, /* "5": "sbas" */
+    {enum_text_202 + 1, enum_text_1389}, /* "6": "network_rtk_float_3d" */
+    {enum_text_204 + 1, enum_text_1390}, /* "7": "network_rtk_fixed_3d" */
+    {enum_text_1101 + 6, enum_text_1391}, /* "8": "network_rtk_float_2d" */
+    {enum_text_846 + 5, enum_text_1392}, /* "9": "network_rtk_fixed_2d" */
+    {enum_text_896 + 8, enum_text_1393}, /* "10": "omnistar_hp_xp" */
+    {enum_text_921 + 4, enum_text_1394}, /* "11": "omnistar_vbs" */
+    {enum_text_923 + 4, enum_text_1395}, /* "12": "location_rtk" */
+    {enum_text_925 + 4, enum_text_1396}, /* "13": "beacon_dgps" */
+    {enum_text_927 + 4, enum_text_1397}, /* "14": "centerpoint_rtx" */
+    {enum_text_849 + 4, enum_text_1398}, /* "15": "xfill" */
 };
 const nmea_enum_def nmea_trimble_gps_quality_def = {
-    "trimble_gps_quality", trimble_gps_quality_codes, 16, 1, 2, NMEA_CODES_DIGITS
+    enum_text_1388, trimble_gps_quality_codes, 16, 1, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code trimble_oscillator_lock_codes[] = {
-    {"0", "unlocked"},
-    {"1", "locked"},
+    {enum_text_896 + 9, enum_text_1400}, /* "0": "unlocked" */
+    {enum_text_100 + 1, enum_text_1400 + 2}, /* "1": "locked" */
 };
 const nmea_enum_def nmea_trimble_oscillator_lock_def = {
-    "trimble_oscillator_lock", trimble_oscillator_lock_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1399, trimble_oscillator_lock_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code trl_reason_codes[] = {
-    {"1", "power_off"},
-    {"2", "silent_mode"},
-    {"3", "channel_management"},
-    {"4", "equipment_malfunction"},
-    {"5", "invalid_configuration"},
+    {enum_text_100 + 1, enum_text_1402}, /* "1": "power_off" */
+    {enum_text_923 + 5, enum_text_1403}, /* "2": "silent_mode" */
+    {enum_text_925 + 5, enum_text_1404}, /* "3": "channel_management" */
+    {enum_text_927 + 5, enum_text_1405}, /* "4": "equipment_malfunction" */
+    {enum_text_849 + 5, enum_text_1406}, /* "5": "invalid_configuration" */
 };
 const nmea_enum_def nmea_trl_reason_def = {
-    "trl_reason", trl_reason_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1401, trl_reason_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ttm_acquisition_codes[] = {
-    {"A", "automatic"},
-    {"M", "manual"},
-    {"R", "reported"},
+    {enum_text_545 + 4, enum_text_652 + 11}, /* "A": "automatic" */
+    {enum_text_712 + 1, enum_text_1040 + 9}, /* "M": "manual" */
+    {enum_text_418 + 2, enum_text_1408}, /* "R": "reported" */
 };
 const nmea_enum_def nmea_ttm_acquisition_def = {
-    "ttm_acquisition", ttm_acquisition_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1407, ttm_acquisition_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code ttm_reference_codes[] = {
-    {"T", "true_north"},
-    {"R", "relative"},
+    {enum_text_606 + 1, enum_text_386}, /* "T": "true_north" */
+    {enum_text_418 + 2, enum_text_579}, /* "R": "relative" */
 };
 const nmea_enum_def nmea_ttm_reference_def = {
-    "ttm_reference", ttm_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1409, ttm_reference_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code ttm_target_status_codes[] = {
-    {"L", "lost"},
-    {"Q", "query"},
-    {"T", "tracking"},
+    {enum_text_442 + 2, enum_text_829 + 16}, /* "L": "lost" */
+    {enum_text_55, enum_text_661}, /* "Q": "query" */
+    {enum_text_606 + 1, enum_text_1382 + 11}, /* "T": "tracking" */
 };
 const nmea_enum_def nmea_ttm_target_status_def = {
-    "ttm_target_status", ttm_target_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1410, ttm_target_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code ttm_units_codes[] = {
-    {"K", "kilometres"},
-    {"N", "nautical_miles"},
-    {"S", "statute_miles"},
+    {enum_text_1427 + 1, enum_text_1412}, /* "K": "kilometres" */
+    {enum_text_857 + 5, enum_text_1413}, /* "N": "nautical_miles" */
+    {enum_text_608 + 1, enum_text_1414}, /* "S": "statute_miles" */
 };
 const nmea_enum_def nmea_ttm_units_def = {
-    "ttm_units", ttm_units_codes, 3, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1411, ttm_units_codes, 3, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code ublox_autobauding_codes[] = {
-    {"0", "disabled"},
-    {"1", "enabled"},
+    {enum_text_896 + 9, enum_text_92}, /* "0": "disabled" */
+    {enum_text_100 + 1, enum_text_1083 + 14}, /* "1": "enabled" */
 };
 const nmea_enum_def nmea_ublox_autobauding_def = {
-    "ublox_autobauding", ublox_autobauding_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1415, ublox_autobauding_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code ublox_nav_status_codes[] = {
-    {"NF", "no_fix"},
-    {"DR", "dead_reckoning"},
-    {"G2", "standalone_2d"},
-    {"G3", "standalone_3d"},
-    {"D2", "differential_2d"},
-    {"D3", "differential_3d"},
-    {"RK", "gnss_dead_reckoning"},
-    {"TT", "time_only"},
+    {enum_text_1417, enum_text_515}, /* "NF": "no_fix" */
+    {enum_text_418 + 1, enum_text_1428 + 5}, /* "DR": "dead_reckoning" */
+    {enum_text_1419, enum_text_1420}, /* "G2": "standalone_2d" */
+    {enum_text_1421, enum_text_1422}, /* "G3": "standalone_3d" */
+    {enum_text_413 + 1, enum_text_1424}, /* "D2": "differential_2d" */
+    {enum_text_1425, enum_text_1426}, /* "D3": "differential_3d" */
+    {enum_text_1427, enum_text_1428}, /* "RK": "gnss_dead_reckoning" */
+    {enum_text_420 + 1, enum_text_1430}, /* "TT": "time_only" */
 };
 const nmea_enum_def nmea_ublox_nav_status_def = {
-    "ublox_nav_status", ublox_nav_status_codes, 8, 2, 2, NMEA_CODES_ALNUM
+    enum_text_1416, ublox_nav_status_codes, 8, 2, 2, NMEA_CODES_ALNUM
 };
 
 static const nmea_enum_code ublox_port_codes[] = {
-    {"0", "ddc"},
-    {"1", "uart1"},
-    {"2", "uart2"},
-    {"3", "usb"},
-    {"4", "spi"},
+    {enum_text_896 + 9, enum_text_1432}, /* "0": "ddc" */
+    {enum_text_100 + 1, enum_text_1198}, /* "1": "uart1" */
+    {enum_text_923 + 5, enum_text_1199}, /* "2": "uart2" */
+    {enum_text_925 + 5, enum_text_1433}, /* "3": "usb" */
+    {enum_text_927 + 5, enum_text_1434}, /* "4": "spi" */
 };
 const nmea_enum_def nmea_ublox_port_def = {
-    "ublox_port", ublox_port_codes, 5, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1431, ublox_port_codes, 5, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ublox_sv_status_codes[] = {
-    {"-", "not_used"},
-    {"U", "used"},
-    {"e", "ephemeris_not_used"},
+    {enum_text_521, enum_text_1436 + 10}, /* "-": "not_used" */
+    {enum_text_1345 + 2, enum_text_1436 + 14}, /* "U": "used" */
+    {enum_text_96 + 3, enum_text_1436}, /* "e": "ephemeris_not_used" */
 };
 const nmea_enum_def nmea_ublox_sv_status_def = {
-    "ublox_sv_status", ublox_sv_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1435, ublox_sv_status_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code ubx_fix_type_codes[] = {
-    {"0", "no_fix"},
-    {"1", "dead_reckoning"},
-    {"2", "fix_2d"},
-    {"3", "fix_3d"},
-    {"4", "gnss_dead_reckoning"},
-    {"5", "time_only"},
+    {enum_text_896 + 9, enum_text_515}, /* "0": "no_fix" */
+    {enum_text_100 + 1, enum_text_1428 + 5}, /* "1": "dead_reckoning" */
+    {enum_text_923 + 5, enum_text_811}, /* "2": "fix_2d" */
+    {enum_text_925 + 5, enum_text_173}, /* "3": "fix_3d" */
+    {enum_text_927 + 5, enum_text_1428}, /* "4": "gnss_dead_reckoning" */
+    {enum_text_849 + 5, enum_text_1430}, /* "5": "time_only" */
 };
 const nmea_enum_def nmea_ubx_fix_type_def = {
-    "ubx_fix_type", ubx_fix_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1437, ubx_fix_type_codes, 6, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code ubx_gnss_id_codes[] = {
-    {"0", "gps"},
-    {"1", "sbas"},
-    {"2", "galileo"},
-    {"3", "beidou"},
-    {"4", "imes"},
-    {"5", "qzss"},
-    {"6", "glonass"},
-    {"7", "navic"},
+    {enum_text_896 + 9, enum_text_1396 + 8}, /* "0": "gps" */
+    {enum_text_100 + 1, enum_text_98}, /* "1": "sbas" */
+    {enum_text_923 + 5, enum_text_939 + 12}, /* "2": "galileo" */
+    {enum_text_925 + 5, enum_text_122}, /* "3": "beidou" */
+    {enum_text_927 + 5, enum_text_1439}, /* "4": "imes" */
+    {enum_text_849 + 5, enum_text_1340 + 6}, /* "5": "qzss" */
+    {enum_text_202 + 1, enum_text_239 + 4}, /* "6": "glonass" */
+    {enum_text_204 + 1, enum_text_1339}, /* "7": "navic" */
 };
 const nmea_enum_def nmea_ubx_gnss_id_def = {
-    "ubx_gnss_id", ubx_gnss_id_codes, 8, 1, 1, NMEA_CODES_DIGITS
+    enum_text_1438, ubx_gnss_id_codes, 8, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code unicore_travel_direction_codes[] = {
-    {"0", "forward"},
-    {"1", "backward"},
+    {enum_text_896 + 9, enum_text_1279}, /* "0": "forward" */
+    {enum_text_100 + 1, enum_text_1280}, /* "1": "backward" */
 };
 const nmea_enum_def nmea_unicore_travel_direction_def = {
-    "unicore_travel_direction", unicore_travel_direction_codes, 2, 1, 1, NMEA_CODES_CLOSED
+    enum_text_1440, unicore_travel_direction_codes, 2, 1, 1, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code vsd_nav_status_codes[] = {
-    {"0", "under_way_engine"},
-    {"1", "at_anchor"},
-    {"2", "not_under_command"},
-    {"3", "restricted_manoeuvrability"},
-    {"4", "constrained_by_draught"},
-    {"5", "moored"},
-    {"6", "aground"},
-    {"7", "fishing"},
-    {"8", "under_way_sailing"},
-    {"9", "reserved_hsc"},
-    {"10", "reserved_wig"},
-    {"11", "towing_astern"},
-    {"12", "pushing_ahead"},
-    {"13", "reserved"},
-    {"14", "emergency_beacon_active"},
-    {"15", "not_defined"},
+    {enum_text_896 + 9, enum_text_1442}, /* "0": "under_way_engine" */
+    {enum_text_100 + 1, enum_text_1443}, /* "1": "at_anchor" */
+    {enum_text_923 + 5, enum_text_1444}, /* "2": "not_under_command" */
+    {enum_text_925 + 5, enum_text_1445}, /* "3": "restricted_manoeuvrability" */
+    {enum_text_927 + 5, enum_text_1446}, /* "4": "constrained_by_draught" */
+    {enum_text_849 + 5, enum_text_1447}, /* "5": "moored" */
+    {enum_text_202 + 1, enum_text_1448}, /* "6": "aground" */
+    {enum_text_204 + 1, enum_text_252}, /* "7": "fishing" */
+    {enum_text_1101 + 6, enum_text_1449}, /* "8": "under_way_sailing" */
+    {enum_text_846 + 5, enum_text_1450}, /* "9": "reserved_hsc" */
+    {enum_text_896 + 8, enum_text_1451}, /* "10": "reserved_wig" */
+    {enum_text_921 + 4, enum_text_1452}, /* "11": "towing_astern" */
+    {enum_text_923 + 4, enum_text_1453}, /* "12": "pushing_ahead" */
+    {enum_text_925 + 4, enum_text_1146}, /* "13": "reserved" */
+    {enum_text_927 + 4, enum_text_1454}, /* "14": "emergency_beacon_active" */
+    {enum_text_849 + 4, enum_text_1455}, /* "15": "not_defined" */
 };
 const nmea_enum_def nmea_vsd_nav_status_def = {
-    "vsd_nav_status", vsd_nav_status_codes, 16, 1, 2, NMEA_CODES_DIGITS
+    enum_text_1441, vsd_nav_status_codes, 16, 1, 2, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code wat_alarm_condition_codes[] = {
-    {"N", "normal"},
-    {"H", "high"},
-    {"J", "extreme_high"},
-    {"L", "low"},
-    {"K", "extreme_low"},
-    {"X", "fault"},
+    {enum_text_857 + 5, enum_text_971 + 4}, /* "N": "normal" */
+    {enum_text_708 + 1, enum_text_356 + 8}, /* "H": "high" */
+    {enum_text_355, enum_text_356}, /* "J": "extreme_high" */
+    {enum_text_442 + 2, enum_text_692 + 7}, /* "L": "low" */
+    {enum_text_1427 + 1, enum_text_359}, /* "K": "extreme_low" */
+    {enum_text_938 + 5, enum_text_1047 + 2}, /* "X": "fault" */
 };
 const nmea_enum_def nmea_wat_alarm_condition_def = {
-    "wat_alarm_condition", wat_alarm_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1456, wat_alarm_condition_codes, 6, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code wat_message_type_codes[] = {
-    {"S", "section_status"},
-    {"E", "single_detector"},
-    {"F", "system_fault"},
+    {enum_text_608 + 1, enum_text_594}, /* "S": "section_status" */
+    {enum_text_436 + 2, enum_text_1458}, /* "E": "single_detector" */
+    {enum_text_722 + 1, enum_text_596}, /* "F": "system_fault" */
 };
 const nmea_enum_def nmea_wat_message_type_def = {
-    "wat_message_type", wat_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1457, wat_message_type_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code wat_override_codes[] = {
-    {"O", "override"},
-    {"N", "normal"},
+    {enum_text_716 + 1, enum_text_985 + 4}, /* "O": "override" */
+    {enum_text_857 + 5, enum_text_971 + 4}, /* "N": "normal" */
 };
 const nmea_enum_def nmea_wat_override_def = {
-    "wat_override", wat_override_codes, 2, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1459, wat_override_codes, 2, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code wat_system_codes[] = {
-    {"WL", "water_level_detection"},
-    {"BI", "bilge_high_level"},
-    {"HD", "hull_door_leakage"},
-    {"OT", "other"},
+    {enum_text_1461, enum_text_1462}, /* "WL": "water_level_detection" */
+    {enum_text_1463, enum_text_1464}, /* "BI": "bilge_high_level" */
+    {enum_text_612, enum_text_1465}, /* "HD": "hull_door_leakage" */
+    {enum_text_834 + 4, enum_text_1284 + 6}, /* "OT": "other" */
 };
 const nmea_enum_def nmea_wat_system_def = {
-    "wat_system", wat_system_codes, 4, 2, 2, NMEA_CODES_LETTERS
+    enum_text_1460, wat_system_codes, 4, 2, 2, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code xdr_transducer_type_codes[] = {
-    {"A", "angular_displacement"},
-    {"C", "temperature"},
-    {"D", "linear_displacement"},
-    {"F", "frequency"},
-    {"G", "generic"},
-    {"H", "humidity"},
-    {"I", "current"},
-    {"N", "force"},
-    {"P", "pressure"},
-    {"R", "flow_rate"},
-    {"S", "switch_or_valve"},
-    {"T", "tachometer"},
-    {"U", "voltage"},
-    {"V", "volume"},
+    {enum_text_545 + 4, enum_text_1467}, /* "A": "angular_displacement" */
+    {enum_text_557 + 4, enum_text_1468}, /* "C": "temperature" */
+    {enum_text_568 + 1, enum_text_1469}, /* "D": "linear_displacement" */
+    {enum_text_722 + 1, enum_text_1098 + 4}, /* "F": "frequency" */
+    {enum_text_537 + 1, enum_text_1471}, /* "G": "generic" */
+    {enum_text_708 + 1, enum_text_1472}, /* "H": "humidity" */
+    {enum_text_1463 + 1, enum_text_1473}, /* "I": "current" */
+    {enum_text_857 + 5, enum_text_1474}, /* "N": "force" */
+    {enum_text_444 + 2, enum_text_1475}, /* "P": "pressure" */
+    {enum_text_418 + 2, enum_text_1476}, /* "R": "flow_rate" */
+    {enum_text_608 + 1, enum_text_1477}, /* "S": "switch_or_valve" */
+    {enum_text_606 + 1, enum_text_1478}, /* "T": "tachometer" */
+    {enum_text_1345 + 2, enum_text_1479}, /* "U": "voltage" */
+    {enum_text_553 + 4, enum_text_1480}, /* "V": "volume" */
 };
 const nmea_enum_def nmea_xdr_transducer_type_def = {
-    "xdr_transducer_type", xdr_transducer_type_codes, 14, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1466, xdr_transducer_type_codes, 14, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code xdr_unit_codes[] = {
-    {"A", "amperes"},
-    {"B", "bars_or_binary"},
-    {"C", "celsius"},
-    {"D", "degrees"},
-    {"H", "hertz"},
-    {"I", "litres_per_second"},
-    {"K", "kelvin_or_density"},
-    {"M", "metres_or_cubic_metres"},
-    {"N", "newtons"},
-    {"P", "percent_or_pascals"},
-    {"R", "rpm"},
-    {"S", "parts_per_thousand"},
-    {"V", "volts"},
+    {enum_text_545 + 4, enum_text_1482}, /* "A": "amperes" */
+    {enum_text_23, enum_text_1483}, /* "B": "bars_or_binary" */
+    {enum_text_557 + 4, enum_text_1484}, /* "C": "celsius" */
+    {enum_text_568 + 1, enum_text_1132}, /* "D": "degrees" */
+    {enum_text_708 + 1, enum_text_1485}, /* "H": "hertz" */
+    {enum_text_1463 + 1, enum_text_1486}, /* "I": "litres_per_second" */
+    {enum_text_1427 + 1, enum_text_1487}, /* "K": "kelvin_or_density" */
+    {enum_text_712 + 1, enum_text_1488}, /* "M": "metres_or_cubic_metres" */
+    {enum_text_857 + 5, enum_text_1489}, /* "N": "newtons" */
+    {enum_text_444 + 2, enum_text_1490}, /* "P": "percent_or_pascals" */
+    {enum_text_418 + 2, enum_text_1134}, /* "R": "rpm" */
+    {enum_text_608 + 1, enum_text_1491}, /* "S": "parts_per_thousand" */
+    {enum_text_553 + 4, enum_text_1492}, /* "V": "volts" */
 };
 const nmea_enum_def nmea_xdr_unit_def = {
-    "xdr_unit", xdr_unit_codes, 13, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1481, xdr_unit_codes, 13, 1, 1, NMEA_CODES_LETTERS
 };
 
 static const nmea_enum_code zdl_point_type_codes[] = {
-    {"C", "collision"},
-    {"T", "turning_point"},
-    {"R", "reference"},
-    {"W", "wheelover"},
+    {enum_text_557 + 4, enum_text_631}, /* "C": "collision" */
+    {enum_text_606 + 1, enum_text_1494}, /* "T": "turning_point" */
+    {enum_text_418 + 2, enum_text_26 + 4}, /* "R": "reference" */
+    {enum_text_369, enum_text_1496}, /* "W": "wheelover" */
 };
 const nmea_enum_def nmea_zdl_point_type_def = {
-    "zdl_point_type", zdl_point_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
+    enum_text_1493, zdl_point_type_codes, 4, 1, 1, NMEA_CODES_LETTERS
 };
 
 /* ------------------------------------------------------------------------------------------ */

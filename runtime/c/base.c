@@ -60,11 +60,25 @@
 static const char HEX_UPPER[] = "0123456789ABCDEF";
 static const char HEX_LOWER[] = "0123456789abcdef";
 
-static const int64_t POW10[NMEA_MAX_DIGITS + 1] = {
+/* 10^k for k from 0 to NMEA_MAX_DIGITS: a table, or in a build for size (-Os) a loop, which
+   takes a few instructions of flash where the table takes 152 bytes. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+NMEA_INTERNAL int64_t pow10_of(unsigned k)
+{
+    int64_t p = 1;
+    while (k--)
+        p *= 10;
+    return p;
+}
+#define POW10(k) pow10_of((unsigned)(k))
+#else
+static const int64_t POW10_TABLE[NMEA_MAX_DIGITS + 1] = {
     1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000,
     10000000000, 100000000000, 1000000000000, 10000000000000, 100000000000000,
     1000000000000000, 10000000000000000, 100000000000000000, 1000000000000000000,
 };
+#define POW10(k) POW10_TABLE[k]
+#endif
 
 static bool is_digit(char c) { return c >= '0' && c <= '9'; }
 static bool is_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }

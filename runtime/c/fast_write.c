@@ -121,7 +121,7 @@ NMEA_OUTLINE char *fast_any_number_text(char *p, const nmea_number *n)
     uint64_t v = (uint64_t)n->digits;
     unsigned count = (unsigned)n->width + n->scale;
     char *point, *end;
-    if (n->digits < 0 || count > NMEA_MAX_DIGITS || v >= (uint64_t)POW10[count] || (n->scale && !n->point))
+    if (n->digits < 0 || count > NMEA_MAX_DIGITS || v >= (uint64_t)POW10(count) || (n->scale && !n->point))
         return NULL;
     point = p + (n->sign != 0) + n->width;
     end = point + (n->point != 0) + n->scale;
@@ -209,7 +209,7 @@ NMEA_HOT bool fast_put_time(fast_writer *w, const nmea_time *t)
     if (t->point) {
         *w->p++ = '.';
         if (t->fraction_digits) {
-            if (t->fraction >= (uint64_t)POW10[t->fraction_digits])
+            if (t->fraction >= (uint64_t)POW10(t->fraction_digits))
                 return false;
             fast_copy(w, uint_text(end, t->fraction, t->fraction_digits), t->fraction_digits);
         }
@@ -231,7 +231,7 @@ NMEA_HOT bool fast_put_coordinate(fast_writer *w, const nmea_coordinate *c)
     if (!fast_sep(w))
         return false;
     if (c->present) {
-        if (c->degree_digits > 3 || c->degrees > 999 || (c->degree_digits && c->degrees >= POW10[c->degree_digits]))
+        if (c->degree_digits > 3 || c->degrees > 999 || (c->degree_digits && c->degrees >= POW10(c->degree_digits)))
             return false;
         if (c->degree_digits)
             fast_copy(w, uint_text(end, c->degrees, c->degree_digits), c->degree_digits);

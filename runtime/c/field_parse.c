@@ -102,7 +102,7 @@ nmea_number nmea_number_of(int64_t value, unsigned scale)
     uint64_t magnitude = value < 0 ? (uint64_t)0 - (uint64_t)value : (uint64_t)value, whole;
     if (scale > NMEA_MAX_DIGITS)
         scale = NMEA_MAX_DIGITS;
-    whole = magnitude / (uint64_t)POW10[scale];
+    whole = magnitude / (uint64_t)POW10(scale);
     n.digits = (nmea_digits)magnitude;
     n.scale = (uint8_t)scale;
     for (n.width = 1; whole >= 10; whole /= 10)
@@ -209,7 +209,7 @@ NMEA_HOT bool coordinate_of(uint32_t whole_value, size_t whole, uint64_t minutes
 {
     if (whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_NUMBER_DIGITS - 2)
         return false;
-    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
+    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10(frac)))
         return false;
     out->degrees = (uint16_t)(whole_value / 100); /* whole <= 5 digits: no 64-bit division */
     out->degree_digits = (uint8_t)(whole - 2);

@@ -47,7 +47,7 @@ NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
         }
         *--p = '.';
     } else if (n->scale && n->scale <= NMEA_MAX_DIGITS) {
-        v /= (uint64_t)POW10[n->scale];
+        v /= (uint64_t)POW10(n->scale);
     }
     if (n->width)
         p = uint_text(p, v, n->width);
@@ -60,7 +60,7 @@ NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
 static inline unsigned digit_count(uint64_t v)
 {
     unsigned count = 1;
-    while (count <= NMEA_MAX_DIGITS && v >= (uint64_t)POW10[count])
+    while (count <= NMEA_MAX_DIGITS && v >= (uint64_t)POW10(count))
         count++;
     return count;
 }

@@ -35,7 +35,7 @@ NMEA_INTERNAL void json_close(nmea_writer *w, char bracket)
 static void decimal_json(nmea_writer *w, const nmea_number *n)
 {
     uint64_t digits = (uint64_t)n->digits;
-    uint64_t unit = (uint64_t)POW10[n->scale <= NMEA_MAX_DIGITS ? n->scale : 0];
+    uint64_t unit = (uint64_t)POW10(n->scale <= NMEA_MAX_DIGITS ? n->scale : 0);
     uint64_t frac = digits % unit;
     unsigned scale = n->scale;
     if (n->sign == '-' && digits)

@@ -342,7 +342,7 @@ static bool read_group_count(nmea_reader *r, const layout *l, size_t count, size
     if (extra > l->optional_max) {
         if (*repeats == g->max)
             return too_many(r, l->fixed + g->max * width + l->optional_max, count);
-        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
+        count_error(r, ERROR_TEXT("%s %s entries take %n fields each, %n left over"), width, extra);
         r->err->str[1] = g->id;
         return false;
     }

@@ -100,9 +100,11 @@ static inline nmea_text next_field(nmea_reader *r)
     return t;
 }
 
-static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *pattern, size_t n, size_t m)
+/* A field count refused (too_few_fields; too_many sets its own kind after): four arguments, none
+   passed on the stack, so that read_with's frame has no room for one. */
+static bool count_error(nmea_reader *r, const char *pattern, size_t n, size_t m)
 {
-    fail(r->err, kind, pattern);
+    fail(r->err, NMEA_ERR_TOO_FEW_FIELDS, pattern);
     set_address(r->err, r->wire->address, r->wire->suffix);
     r->err->str[0] = r->sentence;
     r->err->num[0] = n;
@@ -112,12 +114,14 @@ static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *patter
 
 static bool too_few(nmea_reader *r, size_t need, size_t found)
 {
-    return count_error(r, NMEA_ERR_TOO_FEW_FIELDS, ERROR_TEXT("%s needs at least %n fields, found %n"), need, found);
+    return count_error(r, ERROR_TEXT("%s needs at least %n fields, found %n"), need, found);
 }
 
 static bool too_many(nmea_reader *r, size_t limit, size_t found)
 {
-    return count_error(r, NMEA_ERR_TOO_MANY_FIELDS, ERROR_TEXT("%s takes at most %n fields, found %n"), limit, found);
+    count_error(r, ERROR_TEXT("%s takes at most %n fields, found %n"), limit, found);
+    r->err->kind = NMEA_ERR_TOO_MANY_FIELDS;
+    return false;
 }
 
 /* A layout without a repeated group: `fixed` required fields, `max` in all. Sets `optional` to
@@ -301,19 +305,22 @@ NMEA_FRAME bool read_date(nmea_reader *r, nmea_date *out)
     return true;
 }
 
-/* A value field and a hemisphere field, both empty or both set. */
+/* A value field and a hemisphere field, both empty or both set. A value that does not read is
+   refused before the hemisphere is taken (the same error: the reading ends there), so that the
+   two fields' texts are not both held across the parsing: 8 bytes less of this frame on
+   nmea_parse's deepest path at -Os. */
 static bool read_coordinate(nmea_reader *r, nmea_coordinate *out, const char *hemisphere_expected, bool longitude)
 {
     const char *hemispheres = longitude ? "EW" : "NS";
-    nmea_text value = next_field(r);
-    nmea_text hemisphere = next_field(r);
+    nmea_text value = next_field(r), hemisphere;
+    if (value.len && !parse_coordinate(value, 2u + longitude, longitude ? 180 : 90, out))
+        return bad_field(r, r->index, value);
+    hemisphere = next_field(r);
     if (!value.len) {
         if (hemisphere.len)
             return bad_field(r, r->index - 1, value);
         return true;
     }
-    if (!parse_coordinate(value, 2u + longitude, longitude ? 180 : 90, out))
-        return bad_field(r, r->index - 1, value);
     if (hemisphere.len != 1 || (hemisphere.ptr[0] != hemispheres[0] && hemisphere.ptr[0] != hemispheres[1])) {
         out->present = false;
         r->expected = hemisphere_expected;

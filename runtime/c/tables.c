@@ -81,7 +81,7 @@ size_t nmea_param_hex(const nmea_parameter *p, uint64_t value, char *buf, size_t
 static void param_number(nmea_writer *w, int64_t value, unsigned scale)
 {
     uint64_t magnitude = value < 0 ? (uint64_t)0 - (uint64_t)value : (uint64_t)value;
-    uint64_t unit = (uint64_t)POW10[scale];
+    uint64_t unit = (uint64_t)POW10(scale);
     if (value < 0)
         put_char(w, '-');
     put_uint(w, magnitude / unit, 1);

@@ -410,12 +410,12 @@ static void test_number_digits(void)
     nmea_number n;
     memset(line + 7, '9', NMEA_NUMBER_DIGITS + 1);
     CHECK(parse_number(text_span(line + 7, line + 7 + NMEA_NUMBER_DIGITS), true, &n));
-    CHECK(n.digits == POW10[NMEA_NUMBER_DIGITS] - 1);
+    CHECK(n.digits == POW10(NMEA_NUMBER_DIGITS) - 1);
     CHECK(!parse_number(text_span(line + 7, line + 8 + NMEA_NUMBER_DIGITS), true, &n));
     memcpy(line + 8 + NMEA_NUMBER_DIGITS, ",x", 3);
     CHECK(!nmea_parse(&s, line, strlen(line), &err) && err.kind == NMEA_ERR_BAD_FIELD && !err.out_of_range);
     memmove(line + 7, line + 8, strlen(line + 8) + 1);
-    CHECK(nmea_parse(&s, line, strlen(line), &err) && s.as.tst.count.digits == POW10[NMEA_NUMBER_DIGITS] - 1);
+    CHECK(nmea_parse(&s, line, strlen(line), &err) && s.as.tst.count.digits == POW10(NMEA_NUMBER_DIGITS) - 1);
 }
 
 static void test_numbers(void)

@@ -9,7 +9,7 @@ double nmea_to_double(const nmea_number *n)
     /* Both operands are exact doubles up to 2^53 digits (10^18 is one too), so one rounding:
        the nearest double for up to 15 significant digits. */
     int64_t digits = n->sign == '-' ? -n->digits : n->digits;
-    return (double)digits / (double)POW10[n->scale];
+    return (double)digits / (double)POW10(n->scale);
 }
 
 float nmea_to_float(const nmea_number *n) { return (float)nmea_to_double(n); }
@@ -20,8 +20,8 @@ int32_t nmea_coordinate_e7(const nmea_coordinate *c)
        away from zero. The minutes are at most 60 (digits <= 60 x 10^scale, scale <= 16), so
        neither branch overflows. */
     const nmea_number *m = &c->minutes;
-    int64_t e7 = m->scale <= 7 ? (m->digits * POW10[7 - m->scale] + 30) / 60
-                               : (m->digits + 30 * POW10[m->scale - 7]) / (60 * POW10[m->scale - 7]);
+    int64_t e7 = m->scale <= 7 ? (m->digits * POW10(7 - m->scale) + 30) / 60
+                               : (m->digits + 30 * POW10(m->scale - 7)) / (60 * POW10(m->scale - 7));
     e7 += (int64_t)c->degrees * 10000000;
     return (int32_t)(c->hemisphere == 'S' || c->hemisphere == 'W' ? -e7 : e7);
 }
@@ -29,7 +29,7 @@ int32_t nmea_coordinate_e7(const nmea_coordinate *c)
 uint32_t nmea_time_ms(const nmea_time *t)
 {
     uint32_t seconds = ((uint32_t)t->hour * 60 + t->minute) * 60 + t->second;
-    uint64_t ms = (uint64_t)t->fraction * 1000 / (uint64_t)POW10[t->fraction_digits];
+    uint64_t ms = (uint64_t)t->fraction * 1000 / (uint64_t)POW10(t->fraction_digits);
     return seconds * 1000 + (uint32_t)ms;
 }
 

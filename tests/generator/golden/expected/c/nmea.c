@@ -66,32 +66,48 @@ static const char *const FIELD_EXPECTED[] = {
 /* Generated from the spec */
 
 /* ------------------------------------------------------------------------------------------ */
-/* Lookup tables */
+/* Lookup tables: their texts each in an array of its own (see enum_texts in generator/emit_c.py),
+   then the tables */
+
+static const char enum_text_0[] = "acme_baud";
+static const char enum_text_2[] = "baud_4800";
+static const char enum_text_4[] = "baud_9600";
+static const char enum_text_5[] = "fix_quality";
+static const char enum_text_7[] = "invalid";
+static const char enum_text_8[] = "1";
+static const char enum_text_9[] = "autonomous";
+static const char enum_text_10[] = "2";
+static const char enum_text_11[] = "differential";
+static const char enum_text_12[] = "system_mode";
+static const char enum_text_13[] = "A";
+static const char enum_text_14[] = "D";
+static const char enum_text_15[] = "N";
+static const char enum_text_16[] = "not_used";
 
 static const nmea_enum_code acme_baud_codes[] = {
-    {"4800", "baud_4800"},
-    {"9600", "baud_9600"},
+    {enum_text_2 + 5, enum_text_2}, /* "4800": "baud_4800" */
+    {enum_text_4 + 5, enum_text_4}, /* "9600": "baud_9600" */
 };
 const nmea_enum_def nmea_acme_baud_def = {
-    "acme_baud", acme_baud_codes, 2, 4, 4, NMEA_CODES_CLOSED
+    enum_text_0, acme_baud_codes, 2, 4, 4, NMEA_CODES_CLOSED
 };
 
 static const nmea_enum_code fix_quality_codes[] = {
-    {"0", "invalid"},
-    {"1", "autonomous"},
-    {"2", "differential"},
+    {enum_text_2 + 8, enum_text_7}, /* "0": "invalid" */
+    {enum_text_8, enum_text_9}, /* "1": "autonomous" */
+    {enum_text_10, enum_text_11}, /* "2": "differential" */
 };
 const nmea_enum_def nmea_fix_quality_def = {
-    "fix_quality", fix_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
+    enum_text_5, fix_quality_codes, 3, 1, 1, NMEA_CODES_DIGITS
 };
 
 static const nmea_enum_code system_mode_codes[] = {
-    {"A", "autonomous"},
-    {"D", "differential"},
-    {"N", "not_used"},
+    {enum_text_13, enum_text_9}, /* "A": "autonomous" */
+    {enum_text_14, enum_text_11}, /* "D": "differential" */
+    {enum_text_15, enum_text_16}, /* "N": "not_used" */
 };
 const nmea_enum_def nmea_system_mode_def = {
-    "system_mode", system_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
+    enum_text_12, system_mode_codes, 3, 1, 1, NMEA_CODES_LETTERS
 };
 
 
