@@ -87,6 +87,13 @@ def framing(p: BinaryProtocol) -> Framing:
         mask = (1 << width) - 1
     if length_size > 2:
         raise FramingError(f"{where}: a length field of {length_size} bytes (the framers take 1 or 2)")
+    # a reserved field of zeros in the length's bytes is read with it: set, it makes the frame too long
+    low, high = 8 * length_at, 8 * (length_at + length_size)
+    for g, at, width in fields:
+        if "value" in g and low <= at and at + width <= high:
+            if g["value"] != 0:
+                raise FramingError(f"{where}: a reserved field beside the length holds zeros")
+            mask |= ((1 << width) - 1) << (high - at - width)
     if len(sync) == 2:
         follow = (sync[1], 0xFF)
     else:   # fixed bits of the header's first byte

@@ -6,7 +6,10 @@
 #ifndef NMEA_NO_BINARY_FRAMES
 /* The framing of each binary protocol, by its nmea_protocol less one. */
 const nmea_framing nmea_framings[NMEA_FRAMING_COUNT] = {
-    {"rtcm3", {0xD3, 0x00}, 0xFC, 1, 1, 2, 1, 0x03FF, 3, NMEA_CHECKSUM_CRC24Q, 0, 3, {0}, 0, {{"message_number", 24, 12}}},
+    {"casic", {0xBA, 0xCE}, 0xFF, 2, 2, 2, 0, 0xFFFF, 6, NMEA_CHECKSUM_SUM32, 2, 4, {0}, 0, {{"class", 32, 8}, {"id", 40, 8}}},
+    {"rtcm3", {0xD3, 0x00}, 0xFC, 1, 1, 2, 1, 0xFFFF, 3, NMEA_CHECKSUM_CRC24Q, 0, 3, {0}, 0, {{"message_number", 24, 12}}},
+    {"sirf", {0xA0, 0xA2}, 0xFF, 2, 2, 2, 1, 0xFFFF, 4, NMEA_CHECKSUM_SUM15, 4, 2, {0xB0, 0xB3}, 2, {{"id", 32, 8}}},
+    {"skytraq", {0xA0, 0xA1}, 0xFF, 2, 2, 2, 1, 0xFFFF, 4, NMEA_CHECKSUM_XOR8, 4, 1, {0x0D, 0x0A}, 2, {{"id", 32, 8}}},
     {"ubx", {0xB5, 0x62}, 0xFF, 2, 4, 2, 0, 0xFFFF, 6, NMEA_CHECKSUM_FLETCHER8, 2, 2, {0}, 0, {{"class", 16, 8}, {"id", 24, 8}}},
 };
 #endif

@@ -380,7 +380,7 @@ extern const nmea_framing nmea_framings[NMEA_FRAMING_COUNT];
  * Cuts a byte stream into lines: CR LF, LF and a bare CR end a line, and empty lines are skipped;
  * a '$' or '!' always starts a new line, so whatever came before it (garbage, a sentence cut
  * short) is a line of its own; a line longer than NMEA_MAX_LINE is not kept, only counted.
- * Unless -DNMEA_NO_BINARY_FRAMES, it also takes the UBX and RTCM 3 frames a receiver interleaves
+ * Unless -DNMEA_NO_BINARY_FRAMES, it also takes the binary frames (nmea_framings) a receiver interleaves
  * with its sentences: outside a TAG block, a frame's sync bytes end the line before them, and the
  * frame is handed on whole once its checksum matches; a frame whose checksum fails, that the
  * stream cuts short or that is longer than NMEA_MAX_FRAME is handed on as its sync bytes with

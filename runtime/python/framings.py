@@ -29,8 +29,14 @@ class Framing(NamedTuple):
 
 
 FRAMINGS = (
-    Framing('rtcm3', b"\xd3", 0x00, 0xFC, 1, 2, True, 0x03FF, 3,
+    Framing('casic', b"\xba\xce", 0xCE, 0xFF, 2, 2, False, 0xFFFF, 6,
+            'sum32', 2, 4, b"", (('class', 32, 8), ('id', 40, 8))),
+    Framing('rtcm3', b"\xd3", 0x00, 0xFC, 1, 2, True, 0xFFFF, 3,
             'crc24q', 0, 3, b"", (('message_number', 24, 12),)),
+    Framing('sirf', b"\xa0\xa2", 0xA2, 0xFF, 2, 2, True, 0xFFFF, 4,
+            'sum15', 4, 2, b"\xb0\xb3", (('id', 32, 8),)),
+    Framing('skytraq', b"\xa0\xa1", 0xA1, 0xFF, 2, 2, True, 0xFFFF, 4,
+            'xor8', 4, 1, b"\x0d\x0a", (('id', 32, 8),)),
     Framing('ubx', b"\xb5\x62", 0x62, 0xFF, 4, 2, False, 0xFFFF, 6,
             'fletcher8', 2, 2, b"", (('class', 16, 8), ('id', 24, 8))),
 )

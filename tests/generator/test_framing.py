@@ -29,7 +29,7 @@ def test_the_table_of_ubx_and_rtcm3() -> None:
         == ("fletcher8", 2, 2, (("class", 16, 8), ("id", 24, 8)))
     # RTCM 3: one sync byte, then 6 reserved bits of zero and a 10-bit length
     assert (rtcm3.sync, rtcm3.follow, rtcm3.length_at, rtcm3.length_mask, rtcm3.header) \
-        == (b"\xd3", (0x00, 0xFC), 1, 0x3FF, 3)
+        == (b"\xd3", (0x00, 0xFC), 1, 0xFFFF, 3)  # the reserved bits read with the length (and zero)
     assert (rtcm3.checksum, rtcm3.check_from, rtcm3.identity) == ("crc24q", 0, (("message_number", 24, 12),))
 
 
@@ -53,3 +53,17 @@ def test_protocols_that_start_alike() -> None:
     SPEC2.protocols = [*SPEC.protocols, twin]
     with pytest.raises(emit_framing.FramingError, match="start alike"):
         emit_framing.framings(SPEC2)
+
+
+def test_the_table_of_skytraq_sirf_and_casic() -> None:
+    table = {f.protocol: f for f in emit_framing.framings(SPEC)}
+    sky, sirf, casic = table["skytraq"], table["sirf"], table["casic"]
+    assert (sky.sync, sky.length_at, sky.big_endian, sky.header, sky.checksum, sky.check_from, sky.end) \
+        == (b"\xa0\xa1", 2, True, 4, "xor8", 4, b"\r\n")
+    # SiRF: the reserved top bit is read with the 15-bit length (set, the frame is too long)
+    assert (sirf.sync, sirf.length_at, sirf.length_mask, sirf.checksum, sirf.check_size, sirf.end) \
+        == (b"\xa0\xa2", 2, 0xFFFF, "sum15", 2, b"\xb0\xb3")
+    assert (casic.sync, casic.length_at, casic.big_endian, casic.header, casic.checksum, casic.check_from) \
+        == (b"\xba\xce", 2, False, 6, "sum32", 2)
+    assert sky.identity == sirf.identity == (("id", 32, 8),)
+    assert casic.identity == (("class", 32, 8), ("id", 40, 8))

@@ -10,19 +10,41 @@ use super::stream::{ChecksumKind, FrameFormat};
 /// A binary protocol the framer tells from NMEA.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Protocol {
+    /// casic: sync BA CE.
+    Casic,
     /// rtcm3: sync D3.
     Rtcm3,
+    /// sirf: sync A0 A2.
+    Sirf,
+    /// skytraq: sync A0 A1.
+    Skytraq,
     /// ubx: sync B5 62.
     Ubx,
 }
 
 impl Protocol {
     /// Every protocol, in the order of [`FRAMINGS`].
-    pub const ALL: [Protocol; 2] = [Protocol::Rtcm3, Protocol::Ubx];
+    pub const ALL: [Protocol; 5] = [Protocol::Casic, Protocol::Rtcm3, Protocol::Sirf, Protocol::Skytraq, Protocol::Ubx];
 }
 
 /// The framing of each protocol, by its [`Protocol`] as an index.
-pub static FRAMINGS: [FrameFormat; 2] = [
+pub static FRAMINGS: [FrameFormat; 5] = [
+    FrameFormat {
+        name: "casic",
+        sync: [0xBA, 0xCE],
+        follow_mask: 0xFF,
+        sync_len: 2,
+        length_at: 2,
+        length_size: 2,
+        big_endian: false,
+        length_mask: 0xFFFF,
+        header: 6,
+        checksum: ChecksumKind::Sum32,
+        check_from: 2,
+        check_size: 4,
+        end: &[],
+        identity: &[("class", 32, 8), ("id", 40, 8)],
+    },
     FrameFormat {
         name: "rtcm3",
         sync: [0xD3, 0x00],
@@ -31,13 +53,45 @@ pub static FRAMINGS: [FrameFormat; 2] = [
         length_at: 1,
         length_size: 2,
         big_endian: true,
-        length_mask: 0x03FF,
+        length_mask: 0xFFFF,
         header: 3,
         checksum: ChecksumKind::Crc24q,
         check_from: 0,
         check_size: 3,
         end: &[],
         identity: &[("message_number", 24, 12)],
+    },
+    FrameFormat {
+        name: "sirf",
+        sync: [0xA0, 0xA2],
+        follow_mask: 0xFF,
+        sync_len: 2,
+        length_at: 2,
+        length_size: 2,
+        big_endian: true,
+        length_mask: 0xFFFF,
+        header: 4,
+        checksum: ChecksumKind::Sum15,
+        check_from: 4,
+        check_size: 2,
+        end: &[0xB0, 0xB3],
+        identity: &[("id", 32, 8)],
+    },
+    FrameFormat {
+        name: "skytraq",
+        sync: [0xA0, 0xA1],
+        follow_mask: 0xFF,
+        sync_len: 2,
+        length_at: 2,
+        length_size: 2,
+        big_endian: true,
+        length_mask: 0xFFFF,
+        header: 4,
+        checksum: ChecksumKind::Xor8,
+        check_from: 4,
+        check_size: 1,
+        end: &[0x0D, 0x0A],
+        identity: &[("id", 32, 8)],
     },
     FrameFormat {
         name: "ubx",
