@@ -245,7 +245,8 @@ test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_example
 	build/c/nmea-c-san stream --lenient < build/c/memory.nmea > build/c/asan-lenient.jsonl
 	LC_ALL=C sort -u build/c/asan.jsonl build/c/asan-lenient.jsonl | build/c/nmea-c-san encode > /dev/null
 	build/c/nmea-c-san stream --require-checksum < tests/agreement/stream_cases.bin > /dev/null
-	cat tests/data/ubx/*.log tests/data/rtcm3/*.log | build/c/nmea-c-san stream > /dev/null
+	cat tests/data/ubx/*.log tests/data/rtcm3/*.log tests/data/skytraq/*.log tests/data/sirf/*.log tests/data/casic/*.log \
+		| build/c/nmea-c-san stream > /dev/null
 	build/c/nmea-c-san fixes < build/c/memory.nmea > /dev/null
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_examples > /dev/null
 	$(PY) tools/distinct_lines.py 5 < build/c/asan.jsonl > build/c/valgrind.jsonl

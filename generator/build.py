@@ -348,7 +348,7 @@ def _payload_items(data: list[dict[str, Any]], file: str, where: tuple[str | int
 def _protocol(doc: Document) -> BinaryProtocol:
     d = doc.data
     return BinaryProtocol(d["protocol"], d["name"], {m["id"]: m["title"] for m in d["documents"]}, d.get("classes", {}),
-                          Origin(str(doc.path), ()))
+                          Origin(str(doc.path), ()), d["frame"], d.get("identity", []))
 
 
 def _config_database(doc: Document) -> ConfigDatabase:

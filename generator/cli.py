@@ -237,6 +237,16 @@ def _write(spec, args: argparse.Namespace) -> int:
                   "full default copy)", file=sys.stderr)
             return 2
         args.out = CHECKOUT / "generated"
+        # the framing table the runtimes hold (generator/emit_framing.py), from the checkout's spec
+        from . import emit_framing
+        if args.verb == "generate":
+            for path in emit_framing.write(spec):
+                print(f"updated {path.relative_to(CHECKOUT)}")
+        elif stale := emit_framing.stale(spec):
+            for path in stale:
+                print(f"stale: {path.relative_to(CHECKOUT)}", file=sys.stderr)
+            print("runtime/ is out of date: run `make` (python3 -m generator generate)", file=sys.stderr)
+            return 1
     try:
         check_names(args.prefix, args.namespace)
         if args.only:

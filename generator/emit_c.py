@@ -38,6 +38,13 @@ def runtime_source(name: str) -> str:
     return _PIECE.sub(lambda m: _RULE + (RUNTIME_C / m[1]).read_text(encoding="utf-8") + "\n", text)
 
 
+def runtime_header(name: str) -> str:
+    """runtime/c/<name> as nmea.h holds it: the generated framing table's header (framings.h,
+    generator/emit_framing.py) pasted in place of its #include."""
+    text = (RUNTIME_C / name).read_text(encoding="utf-8")
+    return text.replace('#include "framings.h"\n', (RUNTIME_C / "framings.h").read_text(encoding="utf-8"))
+
+
 MAX_LINE = CONTRACT["limits"]["max_line"]  # NMEA_MAX_LINE
 MAX_DIGITS = CONTRACT["limits"]["max_digits"]  # NMEA_MAX_DIGITS
 MAX_PROBLEMS = CONTRACT["limits"]["max_problems"]  # NMEA_MAX_PROBLEMS
@@ -764,7 +771,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "max_layouts": max([len(e["ids"]) for table in dispatch.values() for e in table] + [1]),
         "json_max": json_max(spec, views),
         "max_line": longest_line(spec), "contract_max_line": MAX_LINE, "ais": carries_ais(spec),
-        "runtime_h": (RUNTIME_C / "runtime.h").read_text(encoding="utf-8"),
+        "runtime_h": runtime_header("runtime.h"),
         "runtime_api_h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),
         "runtime_c": runtime_source("runtime.c"),
     }

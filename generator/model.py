@@ -854,6 +854,8 @@ class BinaryProtocol:
     documents: dict[str, str]   # id -> title
     classes: dict[str, int]     # name (nav) -> class number
     origin: Origin
+    frame: dict[str, Any] = field(default_factory=dict)       # the `frame:` of protocol.yaml
+    identity: list[dict[str, Any]] = field(default_factory=list)  # the payload's first fields that tell its message
 
 
 @dataclass

@@ -220,24 +220,71 @@ static void model_binary(nmea_protocol protocol, nmea_frame_error error, const c
     model_count++;
 }
 
-/* A UBX frame's Fletcher-8 over class to payload, or an RTCM 3 frame's CRC-24Q over the whole, of
-   the `len` bytes before its checksum. */
+/* The frames of spec/binary, written here from the protocols' facts (not from the framer's table):
+   protocol, first two bytes (the second under a mask), sync bytes, header and trailer (checksum and
+   end bytes) sizes. */
+static const struct {
+    nmea_protocol protocol;
+    unsigned char first, second, mask;
+    size_t sync, header, trailer;
+} MODELS[] = {
+    {NMEA_UBX, 0xB5, 0x62, 0xFF, 2, 6, 2},     /* B5 62 class id length(LE) payload CK_A CK_B */
+    {NMEA_RTCM3, 0xD3, 0x00, 0xFC, 1, 3, 3},   /* D3, 6 zero bits, 10-bit length, payload, CRC-24Q */
+    {NMEA_SKYTRAQ, 0xA0, 0xA1, 0xFF, 2, 4, 3}, /* A0 A1 length(BE) payload XOR 0D 0A */
+    {NMEA_SIRF, 0xA0, 0xA2, 0xFF, 2, 4, 4},    /* A0 A2 0-bit, 15-bit length(BE) payload sum15(BE) B0 B3 */
+    {NMEA_CASIC, 0xBA, 0xCE, 0xFF, 2, 6, 4},   /* BA CE length(LE) class id payload sum32(LE) */
+};
+
+/* The payload's length a frame's header gives. */
+static size_t model_payload(nmea_protocol protocol, const unsigned char *b)
+{
+    switch (protocol) {
+    case NMEA_UBX:
+    case NMEA_CASIC:
+        return (size_t)b[4 - 2 * (protocol == NMEA_CASIC)] | (size_t)b[5 - 2 * (protocol == NMEA_CASIC)] << 8;
+    case NMEA_RTCM3:
+        return (size_t)(b[1] & 3) << 8 | b[2];
+    default: /* SkyTraq, SiRF (whose top bit, reserved and zero, makes the frame too long when set) */
+        return (size_t)b[2] << 8 | b[3];
+    }
+}
+
+/* The trailer a frame of `len` bytes before it must end with, as a big-endian number. */
 static unsigned long model_checksum(nmea_protocol protocol, const unsigned char *b, size_t len)
 {
-    unsigned long a = 0, c = 0;
+    unsigned long a = 0, c = 0, word;
     size_t i;
     int bit;
-    for (i = protocol == NMEA_UBX ? 2 : 0; i < len; i++) {
-        if (protocol == NMEA_UBX) {
+    switch (protocol) {
+    case NMEA_UBX:
+        for (i = 2; i < len; i++) {
             a = (a + b[i]) % 256;
             c = (c + a) % 256;
-            continue;
         }
-        c ^= (unsigned long)b[i] << 16;
-        for (bit = 0; bit < 8; bit++)
-            c = (c << 1 ^ (c & 0x800000 ? 0x1864CFB : 0)) & 0xFFFFFF;
+        return a << 8 | c;
+    case NMEA_SKYTRAQ:
+        for (i = 4; i < len; i++)
+            c ^= b[i];
+        return c << 16 | 0x0D0A;
+    case NMEA_SIRF:
+        for (i = 4; i < len; i++)
+            c += b[i];
+        return (c & 0x7FFF) << 16 | 0xB0B3;
+    case NMEA_CASIC: /* little-endian words from the length on, sent little endian */
+        for (i = 2; i < len; i += 4) {
+            for (word = 0, bit = 3; bit >= 0; bit--)
+                word = word << 8 | (i + (size_t)bit < len ? b[i + (size_t)bit] : 0);
+            c = (c + word) & 0xFFFFFFFFUL;
+        }
+        return (c & 0xFF) << 24 | (c >> 8 & 0xFF) << 16 | (c >> 16 & 0xFF) << 8 | c >> 24;
+    default:
+        for (i = 0; i < len; i++) {
+            c ^= (unsigned long)b[i] << 16;
+            for (bit = 0; bit < 8; bit++)
+                c = (c << 1 ^ (c & 0x800000 ? 0x1864CFB : 0)) & 0xFFFFFF;
+        }
+        return c;
     }
-    return protocol == NMEA_UBX ? a << 8 | c : c;
 }
 
 /* What the framer makes of a first sync byte at data[i] (outside a TAG block): the items, and
@@ -245,12 +292,18 @@ static unsigned long model_checksum(nmea_protocol protocol, const unsigned char 
 static size_t model_sync(const char *data, size_t size, size_t i, size_t *length, size_t *start)
 {
     const unsigned char *b = (const unsigned char *)data + i;
-    nmea_protocol protocol = b[0] == 0xB5 ? NMEA_UBX : NMEA_RTCM3;
-    size_t sync = protocol == NMEA_UBX ? 2 : 1, header = protocol == NMEA_UBX ? 6 : 3, trailer = protocol == NMEA_UBX ? 2 : 3;
-    size_t left = size - i, frame, k;
+    size_t left = size - i, frame, k, m, sync, header, trailer;
+    nmea_protocol protocol;
     unsigned long sent = 0;
-    if (left < 2 || (protocol == NMEA_UBX ? b[1] != 0x62 : (b[1] & 0xFC) != 0))
+    for (m = 0; m < sizeof MODELS / sizeof MODELS[0]; m++)
+        if (left >= 2 && b[0] == MODELS[m].first && (b[1] & MODELS[m].mask) == MODELS[m].second)
+            break;
+    if (m == sizeof MODELS / sizeof MODELS[0])
         return 0;
+    protocol = MODELS[m].protocol;
+    sync = MODELS[m].sync;
+    header = MODELS[m].header;
+    trailer = MODELS[m].trailer;
     model_finish(length, start);
     if (left < header) {
         model_binary(protocol, NMEA_FRAME_CUT, data + i, sync);
@@ -262,7 +315,7 @@ static size_t model_sync(const char *data, size_t size, size_t i, size_t *length
         model_binary(protocol, NMEA_FRAME_NUL_HEADER, data + i, sync);
         return i + sync;
     }
-    frame = header + trailer + (protocol == NMEA_UBX ? (size_t)b[4] | (size_t)b[5] << 8 : (size_t)(b[1] & 3) << 8 | b[2]);
+    frame = header + trailer + model_payload(protocol, b);
     if (frame > NMEA_MAX_FRAME || frame > left) {
         model_binary(protocol, frame > NMEA_MAX_FRAME ? NMEA_FRAME_TOO_LONG : NMEA_FRAME_CUT, data + i, sync);
         return i + sync;
@@ -286,7 +339,8 @@ static void model_frame(const char *data, size_t size)
     for (i = 0; i < size; i++) {
         char c = data[i];
         size_t after;
-        if (((unsigned char)c == 0xB5 || (unsigned char)c == 0xD3) && tag == OUTSIDE
+        if (((unsigned char)c == 0xB5 || (unsigned char)c == 0xD3 || (unsigned char)c == 0xA0 || (unsigned char)c == 0xBA)
+            && tag == OUTSIDE
             && (after = model_sync(data, size, i, &length, &start)) != 0) {
             i = after - 1;
             continue;

@@ -3,14 +3,15 @@
    '\' at the start of a line opens a TAG block, which keeps its sentence: up to the block's
    closing '\' every byte but CR and LF belongs to it, and a '$', '!' or '\' right after that
    continues the line (unless -DNMEA_NO_TAG_BLOCKS: a '\' is then a byte like any other). Unless
-   -DNMEA_NO_BINARY_FRAMES, a UBX or RTCM 3 frame's first sync byte outside a TAG block starts a
-   frame, which its checksum decides (runtime.h). */
+   -DNMEA_NO_BINARY_FRAMES, the first sync byte of a binary protocol of spec/binary (the generated
+   table nmea_framings) outside a TAG block starts a frame, which the next byte names (bytes that
+   start no frame of any protocol are the line's) and its checksum decides (runtime.h). */
 
 /* The bytes that end a line (CR, LF), start a new one ('$', '!'), open or close a TAG block, or
-   may start a binary frame (UBX B5, RTCM 3 D3). */
+   may start a binary frame (the first sync byte of a protocol: 4). */
 static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2, ['\\'] = 3,
 #ifndef NMEA_NO_BINARY_FRAMES
-                                                 [0xB5] = 4, [0xD3] = 4
+                                                 NMEA_FRAME_SYNCS
 #endif
 };
 
@@ -141,58 +142,84 @@ static bool framer_line_byte(nmea_framer *f, char byte, nmea_framed *out)
 }
 
 #ifndef NMEA_NO_BINARY_FRAMES
-/* The framing of spec/binary/ubx/protocol.yaml and spec/binary/rtcm3/protocol.yaml. */
-static size_t frame_sync_len(unsigned protocol)
+/* The framing of the frame under way (spec/binary/<protocol>/protocol.yaml). */
+#define FRAMING(f) (&nmea_framings[(f)->protocol - 1])
+
+/* The protocol whose frames start with `first` then `next` (0: none). */
+static unsigned frame_protocol(unsigned char first, unsigned char next)
 {
-    return protocol == NMEA_UBX ? 2 : 1;
+    unsigned i;
+    for (i = 0; i < NMEA_FRAMING_COUNT; i++)
+        if (nmea_framings[i].sync[0] == first && (next & nmea_framings[i].follow_mask) == nmea_framings[i].sync[1])
+            return i + 1;
+    return 0;
 }
 
-/* Bytes from the sync to the end of the length field. */
-static size_t frame_header_len(unsigned protocol)
+/* The bytes after the payload: checksum and end bytes. */
+static size_t frame_trailer_len(const nmea_framing *p)
 {
-    return protocol == NMEA_UBX ? 6 : 3;
+    return (size_t)p->check_size + p->end_len;
 }
 
-static size_t frame_trailer_len(unsigned protocol)
+/* The frame's bytes, sync to end, from its header. */
+static size_t frame_size(const nmea_framing *p, const unsigned char *h)
 {
-    return protocol == NMEA_UBX ? 2 : 3;
+    size_t length = h[p->length_at];
+    if (p->length_size == 2)
+        length = p->big_endian ? length << 8 | h[p->length_at + 1] : length | (size_t)h[p->length_at + 1] << 8;
+    return p->header + (length & p->length_mask) + frame_trailer_len(p);
 }
 
-/* Whether the byte after the first sync byte may go on a frame (RTCM 3: 6 reserved bits, zero). */
-static bool frame_follows_sync(unsigned protocol, unsigned char c)
+/* The checksum of a frame's `len` bytes before its checksum, as it is sent read as a big-endian
+   number (each kind of nmea_checksum_kind that a protocol of the build uses). */
+static unsigned long frame_checksum(const nmea_framing *p, const unsigned char *frame, size_t len)
 {
-    return protocol == NMEA_UBX ? c == 0x62 : (c & 0xFC) == 0;
-}
-
-/* The frame's bytes, sync to checksum, from its header (UBX: 16-bit little-endian payload length;
-   RTCM 3: 10 bits, big endian). */
-static size_t frame_size(unsigned protocol, const unsigned char *h)
-{
-    size_t payload = protocol == NMEA_UBX ? (size_t)h[4] | (size_t)h[5] << 8 : (size_t)(h[1] & 0x03) << 8 | h[2];
-    return frame_header_len(protocol) + payload + frame_trailer_len(protocol);
-}
-
-/* The checksum of the `len` bytes before a frame's trailer: UBX's Fletcher-8 over class to
-   payload, RTCM 3's CRC-24Q (polynomial 0x1864CFB, initial value 0) over the whole. */
-static unsigned long frame_checksum(unsigned protocol, const unsigned char *frame, size_t len)
-{
-    unsigned long crc = 0;
-    size_t i;
+    unsigned long sum = 0;
+    size_t i = p->check_from;
+#ifdef NMEA_FRAMING_CRC24Q
     unsigned bit;
-    if (protocol == NMEA_UBX) {
+#endif
+    switch (p->checksum) {
+#ifdef NMEA_FRAMING_FLETCHER8
+    case NMEA_CHECKSUM_FLETCHER8: {
         unsigned a = 0, b = 0;
-        for (i = 2; i < len; i++) {
+        for (; i < len; i++) {
             a = (a + frame[i]) & 0xFF;
             b = (b + a) & 0xFF;
         }
         return (unsigned long)a << 8 | b;
     }
-    for (i = 0; i < len; i++) {
-        crc ^= (unsigned long)frame[i] << 16;
-        for (bit = 0; bit < 8; bit++)
-            crc = crc & 0x800000 ? (crc << 1) ^ 0x1864CFB : crc << 1;
+#endif
+#ifdef NMEA_FRAMING_XOR8
+    case NMEA_CHECKSUM_XOR8:
+        for (; i < len; i++)
+            sum ^= frame[i];
+        return sum;
+#endif
+#ifdef NMEA_FRAMING_SUM15
+    case NMEA_CHECKSUM_SUM15:
+        for (; i < len; i++)
+            sum += frame[i];
+        return sum & 0x7FFF;
+#endif
+#ifdef NMEA_FRAMING_SUM32
+    case NMEA_CHECKSUM_SUM32: /* little-endian words: the byte at 4k + j weighs 2^(8j) */
+        for (; i < len; i++)
+            sum = (sum + ((unsigned long)frame[i] << 8 * ((i - p->check_from) & 3))) & 0xFFFFFFFFUL;
+        return (sum & 0xFF) << 24 | (sum & 0xFF00) << 8 | (sum >> 8 & 0xFF00) | sum >> 24;
+#endif
+#ifdef NMEA_FRAMING_CRC24Q
+    case NMEA_CHECKSUM_CRC24Q: /* polynomial 0x1864CFB, initial value 0 */
+        for (; i < len; i++) {
+            sum ^= (unsigned long)frame[i] << 16;
+            for (bit = 0; bit < 8; bit++)
+                sum = sum & 0x800000 ? (sum << 1) ^ 0x1864CFB : sum << 1;
+        }
+        return sum & 0xFFFFFF;
+#endif
+    default:
+        return sum;
     }
-    return crc & 0xFFFFFF;
 }
 
 /* Hands on the frame under way as rejected for `error`: its sync bytes. The bytes after them are
@@ -200,7 +227,7 @@ static unsigned long frame_checksum(unsigned protocol, const unsigned char *fram
    found among them grows from its start and never reaches the byte being read). */
 static bool frame_reject(nmea_framer *f, nmea_frame_error error, nmea_framed *out)
 {
-    size_t sync = frame_sync_len(f->protocol), rest = f->frame_len - sync, i;
+    size_t sync = FRAMING(f)->sync_len, rest = f->frame_len - sync, i;
     unsigned char *to = f->frame + NMEA_MAX_FRAME - f->replay - rest;
     out->ptr = (const char *)f->frame;
     out->len = sync;
@@ -219,20 +246,23 @@ static bool frame_reject(nmea_framer *f, nmea_frame_error error, nmea_framed *ou
    the frame, the frame, or what rejects it). */
 static bool frame_byte(nmea_framer *f, unsigned char c, nmea_framed *out)
 {
+    const nmea_framing *p = FRAMING(f);
     bool line = f->frame_len == 1 && framer_end_line(f, out);
-    size_t body;
+    size_t body, i;
     f->frame[f->frame_len++] = c;
-    if (f->frame_len == frame_header_len(f->protocol)) {
-        f->frame_size = frame_size(f->protocol, f->frame);
-        for (body = frame_sync_len(f->protocol); body < f->frame_len && f->frame[body] == 0; body++)
+    if (f->frame_len == p->header) {
+        f->frame_size = frame_size(p, f->frame);
+        for (body = p->sync_len; body < f->frame_len && f->frame[body] == 0; body++)
             ;
         if (body == f->frame_len) /* a header of NUL bytes: what a break after a sync makes */
             return frame_reject(f, NMEA_FRAME_NUL_HEADER, out);
         if (f->frame_size > NMEA_MAX_FRAME)
             return frame_reject(f, NMEA_FRAME_TOO_LONG, out);
     } else if (f->frame_len == f->frame_size) {
-        body = f->frame_size - frame_trailer_len(f->protocol);
-        out->computed = frame_checksum(f->protocol, f->frame, body);
+        body = f->frame_size - frame_trailer_len(p);
+        out->computed = frame_checksum(p, f->frame, body);
+        for (i = 0; i < p->end_len; i++)
+            out->computed = out->computed << 8 | p->end[i];
         for (out->sent = 0; body < f->frame_size; body++)
             out->sent = out->sent << 8 | f->frame[body];
         if (out->sent != out->computed)
@@ -251,15 +281,14 @@ static bool frame_byte(nmea_framer *f, unsigned char c, nmea_framed *out)
 static bool framer_byte(nmea_framer *f, char byte, nmea_framed *out)
 {
     unsigned char c = (unsigned char)byte;
-    if (f->frame_len == 1 && !frame_follows_sync(f->protocol, c)) {
+    if (f->frame_len == 1 && (f->protocol = (unsigned char)frame_protocol(f->frame[0], c)) == 0) {
         f->frame_len = 0; /* no frame: its first byte is one of the line (and ends none) */
         (void)framer_line_byte(f, (char)f->frame[0], out);
     }
     if (f->frame_len > 0)
         return frame_byte(f, c, out);
-    if ((c == 0xB5 || c == 0xD3) && f->tag == FRAMER_OUTSIDE) {
+    if (LINE_BOUNDARY[c] == 4 && f->tag == FRAMER_OUTSIDE) {
         framer_resume(f); /* a '$' handed on last starts the line the frame may end */
-        f->protocol = c == 0xB5 ? NMEA_UBX : NMEA_RTCM3;
         f->frame[0] = c;
         f->frame_len = 1;
         return false;

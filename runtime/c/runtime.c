@@ -17,6 +17,7 @@
 #include "errors.c"
 #include "framing.c"
 #include "tag_block.c"
+#include "framings.c"
 #include "framer.c"
 #include "field_parse.c"
 #include "reader.c"

@@ -337,18 +337,50 @@ typedef struct {
     frames of a multi-band receiver (a ZED-F9P's NAV-SAT or RXM-RAWX of 40 signals: 1,200 bytes). */
 #define NMEA_MAX_FRAME 2048
 
-/** What a framed item is: a line, or a binary frame of a protocol of spec/binary/. */
-typedef enum { NMEA_LINE, NMEA_UBX, NMEA_RTCM3 } nmea_protocol;
-
 /** Why what began like a binary frame is not one (NMEA_FRAME_OK: it is one). */
 typedef enum { NMEA_FRAME_OK, NMEA_FRAME_BAD_CHECKSUM, NMEA_FRAME_TOO_LONG, NMEA_FRAME_NUL_HEADER, NMEA_FRAME_CUT } nmea_frame_error;
+
+/** The checksums of binary frames: Fletcher-8 (two 8-bit running sums), XOR-8, the 15-bit sum of
+    the bytes, the 32-bit sum of their little-endian words, CRC-24Q (spec/schema/binary_protocol). */
+typedef enum { NMEA_CHECKSUM_FLETCHER8, NMEA_CHECKSUM_XOR8, NMEA_CHECKSUM_SUM15, NMEA_CHECKSUM_SUM32, NMEA_CHECKSUM_CRC24Q } nmea_checksum_kind;
+
+/** The framing of a binary protocol (spec/binary/<protocol>/protocol.yaml): a row of nmea_framings,
+    which the generator writes (runtime/c/framings.c). Offsets count from the first sync byte. */
+typedef struct {
+    const char *name;           /* its name in the tools' JSON: "ubx" */
+    unsigned char sync[2];      /* the first sync byte; the value of the next byte's bits under follow_mask */
+    unsigned char follow_mask;
+    unsigned char sync_len;     /* its sync bytes (1 or 2): what a rejected frame is handed on as */
+    unsigned char length_at;    /* the length field, big or little endian, of 1 or 2 bytes */
+    unsigned char length_size;
+    unsigned char big_endian;
+    unsigned short length_mask; /* the field's bits that count the payload's bytes */
+    unsigned char header;       /* bytes before the payload, sync included */
+    unsigned char checksum;     /* nmea_checksum_kind, from byte check_from to the payload's end */
+    unsigned char check_from;
+    unsigned char check_size;   /* the checksum's bytes after the payload */
+    unsigned char end[2];       /* the bytes after it that end every frame (end_len of them) */
+    unsigned char end_len;
+    struct {
+        const char *name;       /* NULL: none */
+        unsigned short bit;     /* from the first sync byte, most significant bit first */
+        unsigned char bits;
+    } identity[2];              /* the fields that tell the frame's message ("class", "id") */
+} nmea_framing;
+#endif
+
+#include "framings.h"
+
+#ifndef NMEA_NO_BINARY_FRAMES
+/** The framing of each binary protocol, by its nmea_protocol less one. */
+extern const nmea_framing nmea_framings[NMEA_FRAMING_COUNT];
 #endif
 
 /**
  * Cuts a byte stream into lines: CR LF, LF and a bare CR end a line, and empty lines are skipped;
  * a '$' or '!' always starts a new line, so whatever came before it (garbage, a sentence cut
  * short) is a line of its own; a line longer than NMEA_MAX_LINE is not kept, only counted.
- * Unless -DNMEA_NO_BINARY_FRAMES, it also takes the UBX and RTCM 3 frames a receiver interleaves
+ * Unless -DNMEA_NO_BINARY_FRAMES, it also takes the binary frames (nmea_framings) a receiver interleaves
  * with its sentences: outside a TAG block, a frame's sync bytes end the line before them, and the
  * frame is handed on whole once its checksum matches; a frame whose checksum fails, that the
  * stream cuts short or that is longer than NMEA_MAX_FRAME is handed on as its sync bytes with
@@ -380,7 +412,7 @@ typedef struct {
 #ifndef NMEA_NO_BINARY_FRAMES
     nmea_protocol protocol;    /* NMEA_LINE, or a binary frame's: `ptr` holds it, sync to checksum */
     nmea_frame_error error;    /* not NMEA_FRAME_OK: no frame, `ptr` holds its sync bytes */
-    unsigned long sent, computed; /* NMEA_FRAME_BAD_CHECKSUM: the checksums, as big-endian numbers */
+    unsigned long sent, computed; /* NMEA_FRAME_BAD_CHECKSUM: the checksum and end bytes, as big-endian numbers */
     size_t size;               /* NMEA_FRAME_TOO_LONG: the length its header says */
 #endif
 } nmea_framed;

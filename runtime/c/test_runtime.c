@@ -219,10 +219,10 @@ static void test_error_kind_names(void)
 static size_t add_line(char *out, size_t used, size_t cap, nmea_framed line)
 {
 #ifndef NMEA_NO_BINARY_FRAMES
-    static const char *const protocols[] = {"", "ubx", "rtcm3"};
     static const char *const reasons[] = {"", " bad_checksum", " too_long", " nul_header", " cut"};
     if (line.protocol != NMEA_LINE)
-        return used + (size_t)snprintf(out + used, cap - used, "%s%s|", protocols[line.protocol], reasons[line.error]);
+        return used + (size_t)snprintf(out + used, cap - used, "%s%s|", nmea_framings[line.protocol - 1].name,
+                                       reasons[line.error]);
 #endif
     size_t len = line.ptr ? line.len : 0;
     if (used + len >= cap)

@@ -292,17 +292,24 @@ static void emit_frame(tool *t, const nmea_framed *item)
 {
     static const char hex[] = "0123456789abcdef", upper[] = "0123456789ABCDEF";
     const unsigned char *b = (const unsigned char *)item->ptr;
-    const char *protocol = item->protocol == NMEA_UBX ? "ubx" : "rtcm3";
+    const nmea_framing *framing = &nmea_framings[item->protocol - 1];
+    const char *protocol = framing->name;
     char *out = room(t, 160 + 2 * NMEA_MAX_FRAME);
-    size_t n, i, width = item->protocol == NMEA_UBX ? 2 : 3;
+    size_t n, i, width = (size_t)framing->check_size + framing->end_len, at;
+    unsigned long value;
+    unsigned bit;
     if (item->error == NMEA_FRAME_OK) {
         n = (size_t)sprintf(out, "{\"ok\":true,\"protocol\":\"%s\",", protocol);
-        if (item->protocol == NMEA_UBX)
-            n += (size_t)sprintf(out + n, "\"class\":%u,\"id\":%u,", b[2], b[3]);
-        else if (item->len >= 8) /* a message number: the payload's first 12 bits */
-            n += (size_t)sprintf(out + n, "\"message_number\":%u,", (unsigned)b[3] << 4 | b[4] >> 4);
-        else
-            n += (size_t)sprintf(out + n, "\"message_number\":null,");
+        for (i = 0; i < 2 && framing->identity[i].name; i++) { /* null past the payload */
+            at = framing->identity[i].bit;
+            if (at + framing->identity[i].bits > 8 * (item->len - width)) {
+                n += (size_t)sprintf(out + n, "\"%s\":null,", framing->identity[i].name);
+                continue;
+            }
+            for (value = 0, bit = 0; bit < framing->identity[i].bits; bit++, at++)
+                value = value << 1 | (unsigned long)(b[at / 8] >> (7 - at % 8) & 1);
+            n += (size_t)sprintf(out + n, "\"%s\":%lu,", framing->identity[i].name, value);
+        }
         n += (size_t)sprintf(out + n, "\"length\":%lu,\"frame\":\"", (unsigned long)item->len);
     } else {
         n = (size_t)sprintf(out, "{\"ok\":false,\"protocol\":\"%s\",\"error\":{\"kind\":\"%s\",\"message\":\"",

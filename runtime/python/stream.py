@@ -30,6 +30,7 @@ from functools import cache
 from typing import Any, BinaryIO, Literal, overload
 
 from .api import decode_json, parse
+from .framings import FRAMINGS, Framing
 from .runtime import MAX_LINE, NmeaError
 
 # The longest binary frame the framer holds: an RTCM 3 frame's 1,029 bytes, and the long UBX
@@ -56,30 +57,86 @@ def crc24q(data: bytes) -> bytes:
     return (crc & 0xFFFFFF).to_bytes(3, "big")
 
 
+def _fletcher8(data: bytes) -> bytes:
+    a = b = 0
+    for byte in data:
+        a = (a + byte) & 0xFF
+        b = (b + a) & 0xFF
+    return bytes((a, b))
+
+
+def _xor8(data: bytes) -> bytes:
+    x = 0
+    for byte in data:
+        x ^= byte
+    return bytes((x,))
+
+
+def _sum32(data: bytes) -> bytes:
+    """The sum of little-endian 32-bit words (a short last word padded with zeros), little endian."""
+    words = data + bytes(-len(data) % 4)
+    total = sum(int.from_bytes(words[i:i + 4], "little") for i in range(0, len(words), 4))
+    return (total & 0xFFFFFFFF).to_bytes(4, "little")
+
+
+# The checksums of binary frames (spec/schema/binary_protocol.schema.json): the bytes sent.
+CHECKSUMS: dict[str, Callable[[bytes], bytes]] = {
+    "fletcher8": _fletcher8,
+    "xor8": _xor8,
+    "sum15": lambda data: (sum(data) & 0x7FFF).to_bytes(2, "big"),
+    "sum32": _sum32,
+    "crc24q": crc24q,
+}
+
+
 @dataclass(frozen=True, slots=True)
 class _Framing:
-    """How a binary protocol's frame is told from noise (spec/binary/<protocol>/protocol.yaml)."""
+    """How a binary protocol's frame is told from noise (framings.Framing, generated from
+    spec/binary/<protocol>/protocol.yaml)."""
 
-    protocol: str
-    sync: bytes
-    follows_sync: Callable[[int], bool]  # whether the byte after the first sync byte may go on a frame
-    header: int  # bytes from the sync to the end of the length field
-    size: Callable[[bytearray], int]  # the frame's bytes, sync to checksum, from its header
-    trailer: int  # checksum bytes
-    checksum: Callable[[bytes], bytes]  # what the frame, less its trailer, must end with
+    spec: Framing
+    checksum: Callable[[bytes], bytes]  # the checksum of the bytes it covers
+
+    @property
+    def protocol(self) -> str:
+        return self.spec.protocol
+
+    @property
+    def sync(self) -> bytes:
+        return self.spec.sync
+
+    def follows_sync(self, byte: int) -> bool:
+        """Whether the byte after the first sync byte may go on a frame of this protocol."""
+        return byte & self.spec.follow_mask == self.spec.follow
+
+    def size(self, header: bytearray) -> int:
+        """The frame's bytes, sync to end, from its header."""
+        f = self.spec
+        length = int.from_bytes(header[f.length_at:f.length_at + f.length_size], "big" if f.big_endian else "little")
+        return f.header + (length & f.length_mask) + f.check_size + len(f.end)
+
+    def check(self, body: bytes) -> bytes:
+        """The checksum and end bytes a frame less them must end with."""
+        return self.checksum(body[self.spec.check_from:]) + self.spec.end
 
 
 @cache
-def _framings() -> dict[int, _Framing]:
-    """The protocols by their first sync byte (ubx, imported when a binary stream is read)."""
-    from . import ubx
+def _framings() -> dict[int, tuple[_Framing, ...]]:
+    """The protocols by their first sync byte."""
+    out: dict[int, tuple[_Framing, ...]] = {}
+    for spec in FRAMINGS:
+        out[spec.sync[0]] = out.get(spec.sync[0], ()) + (_Framing(spec, CHECKSUMS[spec.checksum]),)
+    return out
 
-    return {
-        0xB5: _Framing("ubx", ubx.SYNC, ubx.SYNC[1].__eq__, ubx.HEADER_SIZE, ubx.frame_size, ubx.CHECKSUM_SIZE,
-                       lambda frame: ubx.fletcher8(frame[len(ubx.SYNC):])),
-        0xD3: _Framing("rtcm3", b"\xd3", lambda byte: byte & 0xFC == 0,  # 6 reserved bits, zero
-                       3, lambda header: 3 + ((header[1] & 0x03) << 8 | header[2]) + 3, 3, crc24q),
-    }
+
+def _framing(name: str) -> _Framing:
+    return next(f for fs in _framings().values() for f in fs if f.protocol == name)
+
+
+def _bits(data: bytes, at: int, bits: int) -> int:
+    """The `bits` bits of `data` from bit `at`, most significant first."""
+    first, last = at // 8, (at + bits + 7) // 8
+    return int.from_bytes(data[first:last], "big") >> (8 * last - at - bits) & ((1 << bits) - 1)
 
 
 @dataclass(frozen=True, slots=True)
@@ -92,26 +149,28 @@ class BinaryFrame:
 
     @property
     def identity(self) -> dict[str, Any]:
-        """What the frame is: a UBX frame's class, id and message name (null where the spec does not
-        describe it), an RTCM 3 frame's message number (null when its payload is shorter)."""
+        """What the frame is: the fields of its protocol that tell its message (UBX: class and id,
+        with the message's name, null where the spec does not describe it; RTCM 3: the message
+        number, null when its payload is shorter; framings.py), each null past the payload."""
+        spec, data = _framing(self.protocol).spec, self.data
+        body = 8 * (len(data) - spec.check_size - len(spec.end))
+        out: dict[str, Any] = {name: _bits(data, at, bits) if at + bits <= body else None
+                               for name, at, bits in spec.identity}
         if self.protocol == "ubx":
             from . import ubx
             from .ubx_messages import BY_ID  # the generated layouts, imported when a frame needs them
 
             layouts = BY_ID.get((self.data[2], self.data[3]))
-            name = ubx.main_layout(layouts).ADDRESS if layouts else None
-            return {"class": self.data[2], "id": self.data[3], "name": name}
-        number = self.data[3] << 4 | self.data[4] >> 4 if len(self.data) >= 8 else None
-        return {"message_number": number}
+            out["name"] = ubx.main_layout(layouts).ADDRESS if layouts else None
+        return out
 
     def to_json(self) -> str:
         """The `stream` verb's object of the frame (json.md, "Binary frames in stream")."""
-        data = self.data
-        if self.protocol == "ubx":
-            identity = f'"class":{data[2]},"id":{data[3]}'
-        else:
-            identity = f'"message_number":{data[3] << 4 | data[4] >> 4 if len(data) >= 8 else "null"}'
-        return f'{{"ok":true,"protocol":"{self.protocol}",{identity},"length":{len(data)},"frame":"{data.hex()}"}}'
+        data, spec = self.data, _framing(self.protocol).spec
+        body = 8 * (len(data) - spec.check_size - len(spec.end))
+        identity = "".join(f'"{name}":{_bits(data, at, bits) if at + bits <= body else "null"},'
+                           for name, at, bits in spec.identity)
+        return f'{{"ok":true,"protocol":"{self.protocol}",{identity}"length":{len(data)},"frame":"{data.hex()}"}}'
 
     def message(self) -> Any:
         """A UBX frame's decoded message (nmeaspec.ubx_messages: a ubx.Message, or ubx.Unknown)."""
@@ -205,20 +264,24 @@ class Framer:
             return self._frame_byte(byte, out)
         if byte in self._syncs and self._tag == _OUTSIDE:
             self._frame.append(byte)
-            self._framing = self._syncs[byte]
             return b""
         self._line_byte(byte, out)
         return b""
 
     def _frame_byte(self, byte: int, out: list[Item]) -> bytes:
-        frame, framing = self._frame, self._framing
+        frame = self._frame
         if len(frame) == 1:
-            if not framing.follows_sync(byte):  # no frame: its first byte was one of the line
+            for framing in self._syncs[frame[0]]:  # the protocol the next byte names
+                if framing.follows_sync(byte):
+                    self._framing = framing
+                    break
+            else:  # no frame: its first byte was one of the line
                 self._line_byte(frame.pop(), out)
                 return bytes((byte,))
             self._finish(out)  # the line before the frame
+        framing = self._framing
         frame.append(byte)
-        if len(frame) == framing.header:
+        if len(frame) == framing.spec.header:
             self._size = framing.size(frame)
             if not any(frame[len(framing.sync):]):  # what a break's NUL bytes after a sync make
                 out.append(self._bad("nul_header", "the header after the sync is NUL bytes"))
@@ -227,8 +290,9 @@ class Framer:
                 out.append(self._bad("too_long", f"frame is {self._size} bytes, the limit is {self.max_frame}"))
                 return self._rest()
         elif len(frame) == self._size:
-            body, sent = bytes(frame[:-framing.trailer]), bytes(frame[-framing.trailer:])
-            computed = framing.checksum(body)
+            trailer = framing.spec.check_size + len(framing.spec.end)
+            body, sent = bytes(frame[:-trailer]), bytes(frame[-trailer:])
+            computed = framing.check(body)
             if sent != computed:
                 out.append(self._bad("bad_checksum", f"checksum {sent.hex(' ').upper()}, computed "
                                      f"{computed.hex(' ').upper()}"))

@@ -312,10 +312,14 @@ def test_stream_verb() -> None:
     agreed(["stream", "--require-checksum"], data)
 
 
-BINARY_LOGS = sorted((ROOT / "tests" / "data" / "ubx").glob("*.log")) + sorted((ROOT / "tests" / "data" / "rtcm3").glob("*.log"))
+BINARY_LOGS = [log for name in ("ubx", "rtcm3", "skytraq", "sirf", "casic")
+               for log in sorted((ROOT / "tests" / "data" / name).glob("*.log"))]
 ACK = bytes.fromhex("b562 0501 0200 0600 0e37")  # UBX ACK-ACK of CFG-PRT
 RTCM = bytes.fromhex("d3 0002 3ee0 6d7f60")  # RTCM 3, message number 0x3EE
 GGA = b"$GPGGA,1*00\r\n"
+SKY = bytes.fromhex("a0a1 0002 0201 03 0d0a")  # SkyTraq message 0x02, body 01: XOR 03
+SIRF = bytes.fromhex("a0a2 0002 8401 0085 b0b3")  # SiRF MID 132, body 01: sum 0x85
+CASIC = bytes.fromhex("bace 0000 0601 00000601")  # CASIC class 0x06, id 0x01, no payload
 # binary bytes between sentences; a '$' and a line ending in a payload; a bad checksum; frames cut
 # by a sentence and by the end; sync bytes that start no frame; a frame in a bad one; one longer
 # than the readers hold; none in a TAG block
@@ -323,14 +327,20 @@ BINARY_CASES = (GGA + ACK + GGA + RTCM + b"$GPGGA" + ACK + b",1*00\r\n"
                 + bytes.fromhex("b562 0102 0500") + b"$GP\r\n" + bytes.fromhex("4f88") + GGA
                 + ACK[:-1] + b"\x00" + GGA + ACK[:7] + GGA + RTCM[:4] + GGA
                 + b"\xb5\x00\xd3\xff" + GGA + b"\xb5\x62\x01\x02\x03\x00" + ACK + GGA
-                + b"\xb5\x62" + bytes(6) + GGA + b"\xb5\x62\x01\x02\x00\x08" + b"abc\n" * 600 + b"\\s:\xb5\x62*00\\" + GGA + ACK[:7])
+                + b"\xb5\x62" + bytes(6) + GGA + b"\xb5\x62\x01\x02\x00\x08" + b"abc\n" * 600 + b"\\s:\xb5\x62*00\\" + GGA
+                # SkyTraq, SiRF and CASIC: whole; checksum or end bytes wrong; SiRF's reserved bit
+                # set (too long); A0 starting neither
+                + SKY + GGA + SKY[:-3] + b"\x04\r\n" + GGA + SIRF + SIRF[:-1] + b"\xb4" + GGA + CASIC
+                + CASIC[:-1] + b"\x02" + GGA + b"\xa0\xa2\x80" + SIRF[3:] + GGA + b"\xa0\xa3" + GGA + ACK[:7])
 
 
 def test_binary_frames_in_stream() -> None:
-    """stream splits gpsd's logs that interleave NMEA with UBX and RTCM 3, and the binary cases,
-    byte for byte alike in the three tools: every frame's checksum right, the UBX frames those
-    ubx.split_frames finds, and the items concatenating to the input less its line endings."""
+    """stream splits gpsd's logs that interleave NMEA with UBX and RTCM 3, its SkyTraq, SiRF and
+    CASIC logs, and the binary cases, byte for byte alike in the three tools: every frame's
+    checksum right, the UBX frames those ubx.split_frames finds, and the items concatenating to the
+    input less its line endings."""
     from tests.ubx.pyubx2_oracle import ubx
+    from tests.ubx.test_binary_protocols import checked
     from nmeaspec.stream import crc24q
 
     for data in [path.read_bytes() for path in BINARY_LOGS] + [BINARY_CASES]:
@@ -342,8 +352,12 @@ def test_binary_frames_in_stream() -> None:
             assert o["length"] == len(frame)
             if o["protocol"] == "rtcm3":
                 assert crc24q(frame[:-3]) == frame[-3:] and o["message_number"] == (frame[3] << 4 | frame[4] >> 4)
-            else:
+            elif o["protocol"] == "ubx":
                 assert ubx.fletcher8(frame[2:-2]) == frame[-2:] and (o["class"], o["id"]) == (frame[2], frame[3])
+            elif o["protocol"] == "casic":
+                assert checked(frame) == "casic" and (o["class"], o["id"]) == (frame[4], frame[5])
+            else:  # SkyTraq and SiRF: the message id is the payload's first byte
+                assert checked(frame) == o["protocol"] and o["id"] == frame[4]
         # the frames and rejected sync bytes lie in the input in their order (tests/ubx holds the
         # lines between them byte-exact)
         rest = data

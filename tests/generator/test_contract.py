@@ -128,19 +128,24 @@ def test_binary_frames() -> None:
     frames, kinds = CONTRACT["frames"], CONTRACT["frame_kinds"]
     python = (RUNTIME / "python" / "stream.py").read_text(encoding="utf-8")
     rust = (RUNTIME / "rust" / "src" / "stream.rs").read_text(encoding="utf-8")
+    # the protocols are spec/binary's, in the tables generator/emit_framing.py writes
+    c_table = (RUNTIME / "c" / "framings.h").read_text(encoding="utf-8")
+    rust_table = (RUNTIME / "rust" / "src" / "framings.rs").read_text(encoding="utf-8")
+    python_table = (RUNTIME / "python" / "framings.py").read_text(encoding="utf-8")
+    assert frames["protocols"] == sorted(p.parent.name for p in (RUNTIME.parent / "spec" / "binary").glob("*/protocol.yaml"))
     assert int(one(r"#define NMEA_MAX_FRAME (\d+)", C_HEADER)) == frames["max_frame"]
     assert int(one(r"pub const MAX_FRAME: usize = (\d+);", rust)) == frames["max_frame"]
     assert int(one(r"\nMAX_FRAME = (\d+)", python)) == frames["max_frame"]
     c_enum = one(r"typedef enum \{([^}]*)\} nmea_frame_error;", C_HEADER)
     assert [k.lower() for k in re.findall(r"NMEA_FRAME_(\w+)", c_enum)] == ["ok"] + kinds
-    assert [p.lower() for p in re.findall(r"NMEA_(\w+)", one(r"typedef enum \{([^}]*)\} nmea_protocol;", C_HEADER))] \
+    assert [p.lower() for p in re.findall(r"NMEA_(\w+)", one(r"typedef enum \{([^}]*)\} nmea_protocol;", c_table))] \
         == ["line"] + frames["protocols"]
     json_md = (RUNTIME / "json.md").read_text(encoding="utf-8")
     for kind in kinds:
         assert f'"{kind}"' in rust and f'"{kind}"' in python, kind
         assert f"| `{kind}` |" in json_md, kind
     for protocol in frames["protocols"]:
-        assert f'"{protocol}"' in rust and f'"{protocol}"' in python, protocol
+        assert f'"{protocol}"' in rust_table and f"'{protocol}'" in python_table, protocol
         assert f'"protocol":"{protocol}"' in json_md, protocol
     assert f"limit is {frames['max_frame']}" in json_md
 

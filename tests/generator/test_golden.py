@@ -15,7 +15,7 @@ import shutil
 from pathlib import Path
 
 from generator.build import load_spec
-from generator.emit_c import RUNTIME_C, runtime_source
+from generator.emit_c import RUNTIME_C, runtime_header, runtime_source
 from generator.render import render_all
 
 GOLDEN = Path(__file__).with_name("golden")
@@ -23,7 +23,7 @@ EXPECTED = GOLDEN / "expected"
 
 # The C runtime is pasted into nmea.h / nmea.c: it is replaced by a line that names it.
 EMBEDDED = {"c/nmea.h": ["runtime.h", "api.h"], "c/nmea.c": ["runtime.c"]}
-RUNTIME_TEXTS = {"runtime.h": (RUNTIME_C / "runtime.h").read_text(encoding="utf-8"),
+RUNTIME_TEXTS = {"runtime.h": runtime_header("runtime.h"),
                  "api.h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),
                  "runtime.c": runtime_source("runtime.c")}
 

@@ -138,12 +138,17 @@ impl From<Item<'_>> for Owned {
 /// it takes (reading goes on after them); None when it starts no frame. The frame is read ahead
 /// in the whole input; a rejected one gives up its sync bytes only.
 fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
-    let ubx = data[0] == 0xB5;
-    let (name, sync, header, trailer) = if ubx { ("ubx", 2, 6, 2) } else { ("rtcm3", 1, 3, 3) };
+    // the frames of spec/binary, from the protocols' facts: name, first two bytes (the second
+    // under a mask), sync bytes, header and trailer (checksum and end bytes) sizes
+    const MODELS: [(&str, u8, u8, u8, usize, usize, usize); 5] = [
+        ("ubx", 0xB5, 0x62, 0xFF, 2, 6, 2),
+        ("rtcm3", 0xD3, 0x00, 0xFC, 1, 3, 3),
+        ("skytraq", 0xA0, 0xA1, 0xFF, 2, 4, 3),
+        ("sirf", 0xA0, 0xA2, 0xFF, 2, 4, 4),
+        ("casic", 0xBA, 0xCE, 0xFF, 2, 6, 4),
+    ];
     let second = *data.get(1)?;
-    if (ubx && second != 0x62) || (!ubx && second & 0xFC != 0) {
-        return None;
-    }
+    let &(name, _, _, _, sync, header, trailer) = MODELS.iter().find(|m| m.1 == data[0] && second & m.3 == m.2)?;
     let bad = |kind| Some((Owned::Bad(name, kind, data[..sync].to_vec()), sync));
     if data.len() < header {
         return bad("cut");
@@ -151,10 +156,12 @@ fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
     if data[sync..header].iter().all(|&b| b == 0) {
         return bad("nul_header");
     }
-    let payload = if ubx {
-        usize::from(data[4]) | usize::from(data[5]) << 8
-    } else {
-        usize::from(data[1] & 3) << 8 | usize::from(data[2])
+    let payload = match name {
+        "ubx" => usize::from(data[4]) | usize::from(data[5]) << 8,
+        "casic" => usize::from(data[2]) | usize::from(data[3]) << 8,
+        "rtcm3" => usize::from(data[1] & 3) << 8 | usize::from(data[2]),
+        // SkyTraq, SiRF (whose top bit, reserved and zero, makes the frame too long when set)
+        _ => usize::from(data[2]) << 8 | usize::from(data[3]),
     };
     let size = header + payload + trailer;
     if size > MAX_FRAME {
@@ -164,15 +171,29 @@ fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
         return bad("cut");
     }
     let body = &data[..size - trailer];
-    let computed = if ubx {
-        let (mut a, mut b) = (0u8, 0u8);
-        for &byte in &body[2..] {
-            a = a.wrapping_add(byte);
-            b = b.wrapping_add(a);
+    let computed = match name {
+        "ubx" => {
+            let (mut a, mut b) = (0u8, 0u8);
+            for &byte in &body[2..] {
+                a = a.wrapping_add(byte);
+                b = b.wrapping_add(a);
+            }
+            vec![a, b]
         }
-        vec![a, b]
-    } else {
-        crc24q(body).to_be_bytes()[1..].to_vec()
+        "skytraq" => vec![body[4..].iter().fold(0u8, |x, &b| x ^ b), 0x0D, 0x0A],
+        "sirf" => {
+            let sum = body[4..].iter().map(|&b| u32::from(b)).sum::<u32>() & 0x7FFF;
+            vec![(sum >> 8) as u8, sum as u8, 0xB0, 0xB3]
+        }
+        "casic" => {
+            let sum = body[2..].chunks(4).fold(0u32, |sum, word| {
+                let mut le = [0u8; 4];
+                le[..word.len()].copy_from_slice(word);
+                sum.wrapping_add(u32::from_le_bytes(le))
+            });
+            sum.to_le_bytes().to_vec()
+        }
+        _ => crc24q(body).to_be_bytes()[1..].to_vec(),
     };
     if computed != data[size - trailer..size] {
         return bad("bad_checksum");
@@ -202,7 +223,7 @@ fn model(data: &[u8]) -> Vec<Owned> {
     while at < data.len() {
         let b = data[at];
         at += 1;
-        if (b == 0xB5 || b == 0xD3) && tag == Tag::Outside {
+        if matches!(b, 0xB5 | 0xD3 | 0xA0 | 0xBA) && tag == Tag::Outside {
             if let Some((item, taken)) = model_frame(&data[at - 1..]) {
                 finish(&mut out, &mut line, &mut length);
                 out.push(item);

@@ -13,6 +13,7 @@
 mod error;
 mod fast;
 mod frame;
+mod framings;
 mod layout;
 mod parse;
 mod table;

@@ -13,7 +13,7 @@
 //! - a last line without an ending still counts ([`Framer::finish`]).
 //!
 //! [`Framer::with_binary_frames`] also takes the binary frames a receiver interleaves with its
-//! sentences (spec/binary/*/protocol.yaml: UBX, RTCM 3): outside a TAG block, a frame's sync bytes
+//! sentences (spec/binary/*/protocol.yaml, the generated [`FRAMINGS`]): outside a TAG block, a frame's sync bytes
 //! end the line before them, and the frame is handed on whole once its checksum matches. A frame
 //! whose checksum fails, that the stream cuts short or that is longer than [`MAX_FRAME`] is a
 //! [`Item::BadFrame`] of its sync bytes, and the bytes after them are read again, so that no
@@ -28,86 +28,141 @@ use super::frame::MAX_LINE;
 /// frames of a multi-band receiver (a ZED-F9P's NAV-SAT or RXM-RAWX of 40 signals: 1,200 bytes).
 pub const MAX_FRAME: usize = 2048;
 
-/// A binary protocol the framer tells from NMEA.
+pub use super::framings::{Protocol, FRAMINGS};
+
+/// The checksums of binary frames (spec/schema/binary_protocol.schema.json).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Protocol {
-    /// u-blox UBX: sync `B5 62`, class, id, a 16-bit little-endian length, Fletcher-8.
-    Ubx,
-    /// RTCM 3: preamble `D3`, 6 reserved bits and a 10-bit length, CRC-24Q.
-    Rtcm3,
+pub enum ChecksumKind {
+    /// Two 8-bit running sums (CK_A, CK_B), sent in that order.
+    Fletcher8,
+    /// The XOR of the bytes.
+    Xor8,
+    /// The sum of the bytes modulo 2^15, two bytes big endian.
+    Sum15,
+    /// The sum of the bytes as 32-bit little-endian words (a short last word padded with zeros),
+    /// four bytes little endian.
+    Sum32,
+    /// CRC-24Q, three bytes big endian.
+    Crc24q,
 }
 
-impl Protocol {
-    /// Its name in the tools' JSON: `ubx`, `rtcm3`.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Protocol::Ubx => "ubx",
-            Protocol::Rtcm3 => "rtcm3",
-        }
+/// The framing of a binary protocol (spec/binary/<protocol>/protocol.yaml): a row of the
+/// generated [`FRAMINGS`]. Offsets count from the first sync byte.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameFormat {
+    /// Its name in the tools' JSON: `ubx`.
+    pub name: &'static str,
+    /// The first sync byte; the value of the next byte's bits under `follow_mask`.
+    pub sync: [u8; 2],
+    /// The bits of the byte after the first sync byte that must hold `sync[1]`.
+    pub follow_mask: u8,
+    /// Its sync bytes (1 or 2): what a rejected frame is handed on as.
+    pub sync_len: usize,
+    /// The length field's first byte.
+    pub length_at: usize,
+    /// The length field's bytes (1 or 2).
+    pub length_size: usize,
+    /// Whether the length field is big endian.
+    pub big_endian: bool,
+    /// The field's bits that count the payload's bytes.
+    pub length_mask: u16,
+    /// Bytes before the payload, sync included.
+    pub header: usize,
+    /// The checksum, from `check_from` to the payload's end.
+    pub checksum: ChecksumKind,
+    /// The first byte the checksum covers.
+    pub check_from: usize,
+    /// The checksum's bytes after the payload.
+    pub check_size: usize,
+    /// The bytes after it that end every frame.
+    pub end: &'static [u8],
+    /// The fields that tell the frame's message: name, bit offset, bits (most significant first).
+    pub identity: &'static [(&'static str, usize, usize)],
+}
+
+impl FrameFormat {
+    /// The bytes after the payload: checksum and end bytes.
+    pub const fn trailer_len(&self) -> usize {
+        self.check_size + self.end.len()
     }
 
-    /// The protocol whose frames start with `byte`.
-    const fn starting_with(byte: u8) -> Option<Protocol> {
-        match byte {
-            0xB5 => Some(Protocol::Ubx),
-            0xD3 => Some(Protocol::Rtcm3),
-            _ => None,
-        }
-    }
-
-    /// Its sync bytes.
-    pub const fn sync_len(self) -> usize {
-        match self {
-            Protocol::Ubx => 2,
-            Protocol::Rtcm3 => 1,
-        }
-    }
-
-    /// Whether the byte after the first sync byte may go on a frame.
-    const fn follows_sync(self, byte: u8) -> bool {
-        match self {
-            Protocol::Ubx => byte == 0x62,
-            Protocol::Rtcm3 => byte & 0xFC == 0, // 6 reserved bits, zero
-        }
-    }
-
-    /// Bytes from the sync to the end of the length field.
-    const fn header_len(self) -> usize {
-        match self {
-            Protocol::Ubx => 6,
-            Protocol::Rtcm3 => 3,
-        }
-    }
-
-    /// Checksum bytes.
-    pub const fn trailer_len(self) -> usize {
-        match self {
-            Protocol::Ubx => 2,
-            Protocol::Rtcm3 => 3,
-        }
-    }
-
-    /// The frame's bytes, sync to checksum, from its header.
-    fn frame_len(self, header: &[u8]) -> usize {
-        let payload = match self {
-            Protocol::Ubx => usize::from(u16::from_le_bytes([header[4], header[5]])),
-            Protocol::Rtcm3 => usize::from(header[1] & 0x03) << 8 | usize::from(header[2]),
+    /// The frame's bytes, sync to end, from its header.
+    fn frame_len(&self, header: &[u8]) -> usize {
+        let first = usize::from(header[self.length_at]);
+        let length = match (self.length_size, self.big_endian) {
+            (2, true) => first << 8 | usize::from(header[self.length_at + 1]),
+            (2, false) => first | usize::from(header[self.length_at + 1]) << 8,
+            _ => first,
         };
-        self.header_len() + payload + self.trailer_len()
+        self.header + (length & usize::from(self.length_mask)) + self.trailer_len()
     }
 
-    /// The checksum a frame (less its trailer) must end with, as a big-endian number.
-    fn checksum(self, frame: &[u8]) -> u32 {
-        match self {
-            Protocol::Ubx => {
-                let (a, b) = frame[2..].iter().fold((0u8, 0u8), |(a, b), &byte| {
+    /// The checksum and end bytes a frame (less them) must end with, as a big-endian number.
+    fn check(&self, frame: &[u8]) -> u32 {
+        let bytes = &frame[self.check_from..];
+        let sum = match self.checksum {
+            ChecksumKind::Fletcher8 => {
+                let (a, b) = bytes.iter().fold((0u8, 0u8), |(a, b), &byte| {
                     let a = a.wrapping_add(byte);
                     (a, b.wrapping_add(a))
                 });
                 u32::from(a) << 8 | u32::from(b)
             }
-            Protocol::Rtcm3 => crc24q(frame),
-        }
+            ChecksumKind::Xor8 => u32::from(bytes.iter().fold(0u8, |x, &byte| x ^ byte)),
+            ChecksumKind::Sum15 => bytes.iter().fold(0u32, |sum, &byte| sum.wrapping_add(u32::from(byte))) & 0x7FFF,
+            ChecksumKind::Sum32 => bytes
+                .iter()
+                .enumerate()
+                .fold(0u32, |sum, (i, &byte)| sum.wrapping_add(u32::from(byte) << (8 * (i & 3))))
+                .swap_bytes(),
+            ChecksumKind::Crc24q => crc24q(bytes),
+        };
+        self.end.iter().fold(sum, |check, &byte| check << 8 | u32::from(byte))
+    }
+
+    /// Each identity field of a whole frame: its name and value (None past the payload's end).
+    pub fn identity_of<'f>(&'f self, frame: &'f [u8]) -> impl Iterator<Item = (&'static str, Option<u32>)> + 'f {
+        let body = 8 * frame.len().saturating_sub(self.trailer_len());
+        self.identity.iter().map(move |&(name, at, bits)| {
+            let value = (at + bits <= body)
+                .then(|| (at..at + bits).fold(0u32, |v, bit| v << 1 | u32::from(frame[bit / 8] >> (7 - bit % 8) & 1)));
+            (name, value)
+        })
+    }
+}
+
+impl Protocol {
+    /// Its framing.
+    pub fn framing(self) -> &'static FrameFormat {
+        &FRAMINGS[self as usize]
+    }
+
+    /// Its name in the tools' JSON: `ubx`, `rtcm3`.
+    pub fn name(self) -> &'static str {
+        self.framing().name
+    }
+
+    /// Its sync bytes.
+    pub fn sync_len(self) -> usize {
+        self.framing().sync_len
+    }
+
+    /// The bytes after the payload: checksum and end bytes.
+    pub fn trailer_len(self) -> usize {
+        self.framing().trailer_len()
+    }
+
+    /// Whether `byte` starts a frame of some protocol.
+    fn starts_frame(byte: u8) -> bool {
+        FRAMINGS.iter().any(|f| f.sync[0] == byte)
+    }
+
+    /// The protocol whose frames start with `first` then `next`.
+    fn starting_with(first: u8, next: u8) -> Option<Protocol> {
+        Protocol::ALL.into_iter().find(|p| {
+            let f = p.framing();
+            f.sync[0] == first && next & f.follow_mask == f.sync[1]
+        })
     }
 }
 
@@ -128,7 +183,7 @@ pub fn crc24q(data: &[u8]) -> u32 {
 pub enum FrameError {
     /// The checksum sent differs from the one computed.
     BadChecksum {
-        /// The frame's checksum bytes, as a big-endian number.
+        /// The frame's checksum and end bytes, as a big-endian number.
         sent: u32,
         /// What they should be.
         computed: u32,
@@ -214,7 +269,7 @@ impl Framer {
             frame: [0; MAX_FRAME],
             frame_len: 0,
             frame_size: 0,
-            protocol: Protocol::Ubx,
+            protocol: Protocol::ALL[0],
             replay: MAX_FRAME,
         }
     }
@@ -261,16 +316,18 @@ impl Framer {
 
     /// Takes one byte.
     fn step(&mut self, byte: u8, each: &mut impl FnMut(Item<'_>)) {
-        if self.frame_len == 1 && !self.protocol.follows_sync(byte) {
-            self.frame_len = 0; // no frame: its first byte was one of the line
-            self.line_byte(self.frame[0], each);
+        if self.frame_len == 1 {
+            match Protocol::starting_with(self.frame[0], byte) {
+                Some(protocol) => self.protocol = protocol,
+                None => {
+                    self.frame_len = 0; // no frame: its first byte was one of the line
+                    self.line_byte(self.frame[0], each);
+                }
+            }
         }
         if self.frame_len > 0 {
             self.frame_byte(byte, each);
-        } else if let Some(protocol) =
-            Protocol::starting_with(byte).filter(|_| self.binary && self.tag == TagState::Outside)
-        {
-            self.protocol = protocol;
+        } else if self.binary && self.tag == TagState::Outside && Protocol::starts_frame(byte) {
             self.frame[0] = byte;
             self.frame_len = 1;
         } else {
@@ -281,22 +338,23 @@ impl Framer {
     /// A byte of the frame under way, after its first.
     fn frame_byte(&mut self, byte: u8, each: &mut impl FnMut(Item<'_>)) {
         let protocol = self.protocol;
+        let framing = protocol.framing();
         if self.frame_len == 1 {
             self.end_line(each); // the line before the frame
         }
         self.frame[self.frame_len] = byte;
         self.frame_len += 1;
-        if self.frame_len == protocol.header_len() {
-            self.frame_size = protocol.frame_len(&self.frame[..self.frame_len]);
-            if self.frame[protocol.sync_len()..self.frame_len].iter().all(|&b| b == 0) {
+        if self.frame_len == framing.header {
+            self.frame_size = framing.frame_len(&self.frame[..self.frame_len]);
+            if self.frame[framing.sync_len..self.frame_len].iter().all(|&b| b == 0) {
                 self.reject(FrameError::NulHeader, each); // what a break's NUL bytes after a sync make
             } else if self.frame_size > MAX_FRAME {
                 self.reject(FrameError::TooLong(self.frame_size), each);
             }
         } else if self.frame_len == self.frame_size {
-            let body = self.frame_size - protocol.trailer_len();
+            let body = self.frame_size - framing.trailer_len();
             let sent = self.frame[body..self.frame_size].iter().fold(0u32, |sum, &b| sum << 8 | u32::from(b));
-            let computed = protocol.checksum(&self.frame[..body]);
+            let computed = framing.check(&self.frame[..body]);
             if sent == computed {
                 each(Item::Frame(protocol, &self.frame[..self.frame_size]));
                 self.frame_len = 0;

@@ -164,13 +164,11 @@ fn decode(values: bool, options: Options) -> io::Result<()> {
 /// A binary frame's JSON (docs/json.md, "Binary frames in stream").
 fn write_frame(w: &mut String, protocol: Protocol, frame: &[u8]) -> fmt::Result {
     write!(w, "{{\"ok\":true,\"protocol\":\"{}\",", protocol.name())?;
-    match protocol {
-        Protocol::Ubx => write!(w, "\"class\":{},\"id\":{},", frame[2], frame[3])?,
-        // the payload's first 12 bits
-        Protocol::Rtcm3 if frame.len() >= 8 => {
-            write!(w, "\"message_number\":{},", u16::from(frame[3]) << 4 | u16::from(frame[4] >> 4))?
+    for (name, value) in protocol.framing().identity_of(frame) {
+        match value {
+            Some(value) => write!(w, "\"{name}\":{value},")?,
+            None => write!(w, "\"{name}\":null,")?, // past the payload's end
         }
-        Protocol::Rtcm3 => w.push_str("\"message_number\":null,"),
     }
     write!(w, "\"length\":{},\"frame\":\"", frame.len())?;
     write_hex(w, frame)

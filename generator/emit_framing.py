@@ -1,0 +1,301 @@
+"""The framing table of the binary protocols (spec/binary/*/protocol.yaml) that the three stream
+framers loop over: per protocol its sync bytes, where its length field is and what it counts, its
+header, checksum (one kind of a fixed set) and end bytes, and the fields that tell its message.
+
+Each runtime compiles and is tested on its own (runtime/README.md), so the table is written into
+runtime/ (runtime/c/framings.h and framings.c, runtime/rust/src/framings.rs,
+runtime/python/framings.py) by `make generate` from the checkout's spec, and copied into
+generated/ with the rest of the runtime; tests/generator/test_framing.py holds them to the spec.
+A new protocol is a protocol.yaml."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from .emit import RUNTIME, REGENERATE
+from .model import BinaryProtocol, Spec
+from .paths import LICENSE
+
+# The checksums the runtimes compute, by the protocol.yaml name: its bytes after the payload.
+CHECKSUMS = {"fletcher8": 2, "xor8": 1, "sum15": 2, "sum32": 4, "crc24q": 3}
+# The files written, under runtime/.
+FILES = ("c/framings.h", "c/framings.c", "rust/src/framings.rs", "python/framings.py")
+
+
+class FramingError(ValueError):
+    """A protocol.yaml whose frame the framers cannot take (a generator limit, said in full)."""
+
+
+@dataclass(frozen=True)
+class Framing:
+    protocol: str               # ubx
+    sync: bytes                 # the sync bytes a rejected frame is handed on as (1 or 2)
+    follow: tuple[int, int]     # the byte after the first sync byte: (value, mask) of its bits
+    length_at: int              # the length field: its first byte, from the first sync byte
+    length_size: int            # 1 or 2 bytes
+    big_endian: bool
+    length_mask: int            # the bits of the field that are the length
+    header: int                 # bytes before the payload, sync included (the length counts the payload)
+    checksum: str               # a key of CHECKSUMS
+    check_from: int             # the first byte the checksum covers (it ends with the payload)
+    end: bytes                  # the bytes after the checksum that end a frame
+    identity: tuple[tuple[str, int, int], ...]  # (name, bit offset from the sync, bits): what tells the message
+
+    @property
+    def check_size(self) -> int:
+        return CHECKSUMS[self.checksum]
+
+
+_BITS = re.compile(r"^(u|b)(\d+)$")
+
+
+def _bits(type_: str) -> int:
+    m = _BITS.match(type_)
+    if not m:
+        raise FramingError(f"header field type {type_}")
+    return int(m[2]) * (8 if m[1] == "u" else 1)
+
+
+def framing(p: BinaryProtocol) -> Framing:
+    frame = p.frame
+    where = f"{p.origin.file}: frame"
+    sync = bytes(frame["sync"])
+    if not 1 <= len(sync) <= 2:
+        raise FramingError(f"{where}: sync of {len(sync)} bytes (the framers take 1 or 2)")
+    big = frame.get("byte_order", "little") == "big"
+    fields, bit = [], 8 * len(sync)
+    for f in frame["header"]:
+        width = _bits(f["type"])
+        fields.append((f, bit, width))
+        bit += width
+    if bit % 8:
+        raise FramingError(f"{where}: header of {bit} bits, not whole bytes")
+    header = bit // 8
+    lengths = [(f, at, width) for f, at, width in fields if f.get("counts")]
+    if len(lengths) != 1 or lengths[0][0]["counts"] != "payload":
+        raise FramingError(f"{where}: one header field counts the payload")
+    f, at, width = lengths[0]
+    if f["type"].startswith("u"):
+        length_at, length_size, mask = at // 8, width // 8, (1 << width) - 1
+    else:   # a bit field, most significant bit first, ending on a byte
+        if (at + width) % 8 or not big:
+            raise FramingError(f"{where}: a length of bits ends on a byte, big endian")
+        length_at = at // 8
+        length_size = (at + width) // 8 - length_at
+        mask = (1 << width) - 1
+    if length_size > 2:
+        raise FramingError(f"{where}: a length field of {length_size} bytes (the framers take 1 or 2)")
+    # a reserved field of zeros in the length's bytes is read with it: set, it makes the frame too long
+    low, high = 8 * length_at, 8 * (length_at + length_size)
+    for g, at, width in fields:
+        if "value" in g and low <= at and at + width <= high:
+            if g["value"] != 0:
+                raise FramingError(f"{where}: a reserved field beside the length holds zeros")
+            mask |= ((1 << width) - 1) << (high - at - width)
+    if len(sync) == 2:
+        follow = (sync[1], 0xFF)
+    else:   # fixed bits of the header's first byte
+        value = mask_bits = 0
+        for g, at, width in fields:
+            if "value" in g and at + width <= 16:
+                shift = 16 - at - width
+                mask_bits |= ((1 << width) - 1) << shift
+                value |= g["value"] << shift
+        follow = (value, mask_bits)
+    checksum = frame["checksum"]
+    if checksum["algorithm"] not in CHECKSUMS:
+        raise FramingError(f"{where}: checksum {checksum['algorithm']} (the framers compute "
+                           f"{', '.join(CHECKSUMS)})")
+    first, last = checksum["over"]
+    offsets = {"sync": 0, "payload": header} | {g["id"]: at // 8 for g, at, _ in fields}
+    if last != "payload" or first not in offsets:
+        raise FramingError(f"{where}: a checksum over [sync, header field or payload, payload]")
+    identity = [(g["id"], at, width) for g, at, width in fields if not g.get("counts") and "value" not in g]
+    at = 8 * header
+    for g in p.identity:
+        identity.append((g["id"], at, _bits(g["type"])))
+        at += _bits(g["type"])
+    if len(identity) > 2 or any(width > 16 for _, _, width in identity):
+        raise FramingError(f"{where}: at most two identity fields of 16 bits")
+    return Framing(p.id, sync, follow, length_at, length_size, big, mask, header, checksum["algorithm"],
+                   offsets[first], bytes(frame.get("end", [])), tuple(identity))
+
+
+def framings(spec: Spec) -> list[Framing]:
+    out = [framing(p) for p in sorted(spec.protocols, key=lambda p: p.id)]
+    for i, a in enumerate(out):
+        for b in out[i + 1:]:
+            if a.sync[0] == b.sync[0] and (a.follow[0] ^ b.follow[0]) & a.follow[1] & b.follow[1] == 0:
+                raise FramingError(f"protocols {a.protocol} and {b.protocol} start alike: their sync bytes "
+                                   "must differ within the first two bytes")
+    return out
+
+
+def _banner(comment: str) -> str:
+    lines = ["@generated by the NMEA spec generator from spec/binary/<protocol>/protocol.yaml (generator/emit_framing.py).",
+             "DO NOT EDIT.", f"SPDX-License-Identifier: {LICENSE}", f"Regenerate: {REGENERATE}"]
+    return "".join(f"{comment} {line}\n" for line in lines)
+
+
+def _c_banner() -> str:
+    return "/* " + "\n   ".join(line.strip() for line in _banner("").splitlines()) + " */\n"
+
+
+def _py_bytes(data: bytes) -> str:
+    return 'b"' + "".join(f"\\x{b:02x}" for b in data) + '"'
+
+
+def _hex(data: bytes | tuple[int, ...]) -> str:
+    return ", ".join(f"0x{b:02X}" for b in data)
+
+
+def c_header(table: list[Framing]) -> str:
+    consts = ", ".join(["NMEA_LINE"] + [f"NMEA_{f.protocol.upper()}" for f in table])
+    syncs = ", ".join(f"[0x{s:02X}] = 4" for s in sorted({f.sync[0] for f in table}))
+    kinds = "".join(f"#define NMEA_FRAMING_{k.upper()}\n" for k in CHECKSUMS if any(f.checksum == k for f in table))
+    return _c_banner() + f"""
+#ifndef NMEA_NO_BINARY_FRAMES
+/** What a framed item is: a line, or a binary frame of a protocol of spec/binary/. */
+typedef enum {{ {consts} }} nmea_protocol;
+
+/** The binary protocols, each an entry of nmea_framings (at its nmea_protocol less one). */
+#define NMEA_FRAMING_COUNT {len(table)}
+
+/* The first sync bytes of the protocols, as the framer's byte classes mark them. */
+#define NMEA_FRAME_SYNCS {syncs}
+
+/* The checksums the protocols use (the framer computes only those). */
+{kinds}#endif
+"""
+
+
+def c_source(table: list[Framing]) -> str:
+    rows = []
+    for f in table:
+        ids = ", ".join(f'{{"{n}", {at}, {bits}}}' for n, at, bits in f.identity) or "{0, 0, 0}"
+        rows.append(f"""    {{"{f.protocol}", {{{_hex(f.sync[:1] + bytes([f.follow[0]]))}}}, 0x{f.follow[1]:02X}, {len(f.sync)}, \
+{f.length_at}, {f.length_size}, {int(f.big_endian)}, 0x{f.length_mask:04X}, {f.header}, \
+NMEA_CHECKSUM_{f.checksum.upper()}, {f.check_from}, {f.check_size}, {{{_hex(f.end) or '0'}}}, {len(f.end)}, \
+{{{ids}}}}},""")
+    return _c_banner() + f"""
+#ifndef NMEA_NO_BINARY_FRAMES
+/* The framing of each binary protocol, by its nmea_protocol less one. */
+const nmea_framing nmea_framings[NMEA_FRAMING_COUNT] = {{
+{chr(10).join(rows)}
+}};
+#endif
+"""
+
+
+def rust_source(table: list[Framing]) -> str:
+    variants, rows = [], []
+    for f in table:
+        name = f.protocol.capitalize()
+        variants.append(f"    /// {f.protocol}: sync {' '.join(f'{b:02X}' for b in f.sync)}.\n    {name},")
+        ids = ", ".join(f'("{n}", {at}, {bits})' for n, at, bits in f.identity)
+        rows.append(f"""    FrameFormat {{
+        name: "{f.protocol}",
+        sync: [{_hex(f.sync[:1] + bytes([f.follow[0]]))}],
+        follow_mask: 0x{f.follow[1]:02X},
+        sync_len: {len(f.sync)},
+        length_at: {f.length_at},
+        length_size: {f.length_size},
+        big_endian: {'true' if f.big_endian else 'false'},
+        length_mask: 0x{f.length_mask:04X},
+        header: {f.header},
+        checksum: ChecksumKind::{''.join(w.capitalize() for w in f.checksum.split('_'))},
+        check_from: {f.check_from},
+        check_size: {f.check_size},
+        end: &[{_hex(f.end)}],
+        identity: &[{ids}],
+    }},""")
+    names = ", ".join(f"Protocol::{f.protocol.capitalize()}" for f in table)
+    return _banner("//") + f"""
+//! The framing of each binary protocol of spec/binary (see stream.rs).
+
+use super::stream::{{ChecksumKind, FrameFormat}};
+
+/// A binary protocol the framer tells from NMEA.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Protocol {{
+{chr(10).join(variants)}
+}}
+
+impl Protocol {{
+    /// Every protocol, in the order of [`FRAMINGS`].
+    pub const ALL: [Protocol; {len(table)}] = [{names}];
+}}
+
+/// The framing of each protocol, by its [`Protocol`] as an index.
+pub static FRAMINGS: [FrameFormat; {len(table)}] = [
+{chr(10).join(rows)}
+];
+"""
+
+
+def python_source(table: list[Framing]) -> str:
+    rows = []
+    for f in table:
+        rows.append(f"    Framing({f.protocol!r}, {_py_bytes(f.sync)}, 0x{f.follow[0]:02X}, 0x{f.follow[1]:02X}, "
+                    f"{f.length_at}, {f.length_size}, {f.big_endian}, 0x{f.length_mask:04X}, {f.header},\n"
+                    f"            {f.checksum!r}, {f.check_from}, {f.check_size}, {_py_bytes(f.end)}, "
+                    f"{tuple(f.identity)!r}),")
+    return _banner("#") + f'''"""The framing of each binary protocol of spec/binary (see stream.py)."""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+
+class Framing(NamedTuple):
+    """How a binary protocol's frame is told from noise."""
+
+    protocol: str  # its name in the tools' JSON
+    sync: bytes  # its sync bytes: what a rejected frame is handed on as
+    follow: int  # the byte after the first sync byte, its bits under follow_mask
+    follow_mask: int
+    length_at: int  # the length field: its first byte, from the sync
+    length_size: int  # its bytes
+    big_endian: bool
+    length_mask: int  # the bits that are the length of the payload
+    header: int  # bytes before the payload, sync included
+    checksum: str  # fletcher8, xor8, sum15, sum32, crc24q
+    check_from: int  # the first byte the checksum covers (it ends with the payload)
+    check_size: int  # the checksum's bytes after the payload
+    end: bytes  # the bytes after the checksum that end the frame
+    identity: tuple[tuple[str, int, int], ...]  # (name, bit offset from the sync, bits): what tells the message
+
+
+FRAMINGS = (
+{chr(10).join(rows)}
+)
+'''
+
+
+def render(spec: Spec) -> dict[str, str]:
+    """The table files by their path under runtime/."""
+    from .emit_rust import rustfmt
+
+    table = framings(spec)
+    rust = rustfmt({"framings.rs": rust_source(table)})["framings.rs"]
+    return {"c/framings.h": c_header(table), "c/framings.c": c_source(table), "rust/src/framings.rs": rust,
+            "python/framings.py": python_source(table)}
+
+
+def stale(spec: Spec) -> list[Path]:
+    """The table files under runtime/ that differ from the spec's (written by write)."""
+    return [RUNTIME / rel for rel, text in render(spec).items()
+            if not (RUNTIME / rel).exists() or (RUNTIME / rel).read_text(encoding="utf-8") != text]
+
+
+def write(spec: Spec) -> list[Path]:
+    files = render(spec)
+    out = []
+    for rel in FILES:
+        path = RUNTIME / rel
+        if not path.exists() or path.read_text(encoding="utf-8") != files[rel]:
+            path.write_text(files[rel], encoding="utf-8")
+            out.append(path)
+    return out

@@ -1,0 +1,69 @@
+"""The framing table of the binary protocols (generator/emit_framing.py): the runtimes' copies
+(runtime/c/framings.h and .c, runtime/rust/src/framings.rs, runtime/python/framings.py) are what
+spec/binary/*/protocol.yaml gives, and a frame the framers cannot take is refused with its reason."""
+
+from __future__ import annotations
+
+import copy
+from pathlib import Path
+
+import pytest
+
+from generator import emit_framing
+from generator.build import load_spec
+
+ROOT = Path(__file__).resolve().parents[2]
+SPEC = load_spec(ROOT / "spec")
+
+
+def test_the_runtimes_hold_the_spec_table() -> None:
+    assert emit_framing.stale(SPEC) == [], "run make generate"
+
+
+def test_the_table_of_ubx_and_rtcm3() -> None:
+    table = {f.protocol: f for f in emit_framing.framings(SPEC)}
+    ubx, rtcm3 = table["ubx"], table["rtcm3"]
+    assert (ubx.sync, ubx.follow, ubx.length_at, ubx.length_size, ubx.big_endian, ubx.header) \
+        == (b"\xb5\x62", (0x62, 0xFF), 4, 2, False, 6)
+    assert (ubx.checksum, ubx.check_from, ubx.check_size, ubx.identity) \
+        == ("fletcher8", 2, 2, (("class", 16, 8), ("id", 24, 8)))
+    # RTCM 3: one sync byte, then 6 reserved bits of zero and a 10-bit length
+    assert (rtcm3.sync, rtcm3.follow, rtcm3.length_at, rtcm3.length_mask, rtcm3.header) \
+        == (b"\xd3", (0x00, 0xFC), 1, 0xFFFF, 3)  # the reserved bits read with the length (and zero)
+    assert (rtcm3.checksum, rtcm3.check_from, rtcm3.identity) == ("crc24q", 0, (("message_number", 24, 12),))
+
+
+@pytest.mark.parametrize("change, reason", [
+    (lambda f: f.__setitem__("sync", [1, 2, 3]), "sync of 3 bytes"),
+    (lambda f: f["checksum"].__setitem__("algorithm", "crc32"), "checksum crc32"),
+    (lambda f: f["checksum"].__setitem__("over", ["payload", "class"]), "a checksum over"),
+    (lambda f: f["header"][2].pop("counts"), "one header field counts the payload"),
+])
+def test_a_frame_the_framers_cannot_take(change, reason) -> None:  # type: ignore[no-untyped-def]
+    ubx = copy.deepcopy(next(p for p in SPEC.protocols if p.id == "ubx"))
+    change(ubx.frame)
+    with pytest.raises(emit_framing.FramingError, match=reason):
+        emit_framing.framing(ubx)
+
+
+def test_protocols_that_start_alike() -> None:
+    twin = copy.deepcopy(next(p for p in SPEC.protocols if p.id == "ubx"))
+    twin.id = "twin"
+    SPEC2 = copy.copy(SPEC)
+    SPEC2.protocols = [*SPEC.protocols, twin]
+    with pytest.raises(emit_framing.FramingError, match="start alike"):
+        emit_framing.framings(SPEC2)
+
+
+def test_the_table_of_skytraq_sirf_and_casic() -> None:
+    table = {f.protocol: f for f in emit_framing.framings(SPEC)}
+    sky, sirf, casic = table["skytraq"], table["sirf"], table["casic"]
+    assert (sky.sync, sky.length_at, sky.big_endian, sky.header, sky.checksum, sky.check_from, sky.end) \
+        == (b"\xa0\xa1", 2, True, 4, "xor8", 4, b"\r\n")
+    # SiRF: the reserved top bit is read with the 15-bit length (set, the frame is too long)
+    assert (sirf.sync, sirf.length_at, sirf.length_mask, sirf.checksum, sirf.check_size, sirf.end) \
+        == (b"\xa0\xa2", 2, 0xFFFF, "sum15", 2, b"\xb0\xb3")
+    assert (casic.sync, casic.length_at, casic.big_endian, casic.header, casic.checksum, casic.check_from) \
+        == (b"\xba\xce", 2, False, 6, "sum32", 2)
+    assert sky.identity == sirf.identity == (("id", 32, 8),)
+    assert casic.identity == (("class", 32, 8), ("id", 40, 8))
