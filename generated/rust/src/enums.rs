@@ -117,7 +117,7 @@
 //   spec/enums/teseo_baud.yaml, spec/enums/teseo_compiler_type.yaml,
 //   spec/enums/teseo_nmea_on_off.yaml, spec/enums/teseo_rtc_status.yaml,
 //   spec/enums/teseo_setpar_mode.yaml, spec/enums/teseo_time_validity.yaml,
-//   spec/enums/ths_mode.yaml, spec/enums/tnt_alarm_status.yaml,
+//   spec/enums/tfi_catch_sensor.yaml, spec/enums/ths_mode.yaml, spec/enums/tnt_alarm_status.yaml,
 //   spec/enums/trimble_antenna_status.yaml, spec/enums/trimble_bpq_quality.yaml,
 //   spec/enums/trimble_copernicus_version_part.yaml, spec/enums/trimble_dg_channel_used.yaml,
 //   spec/enums/trimble_dg_tracking.yaml, spec/enums/trimble_gps_quality.yaml,
@@ -130,7 +130,7 @@
 //   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 //   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 //   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-//   (digest ccf28b4d81de5467)
+//   (digest 36daab102b03e26c)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -15855,6 +15855,55 @@ impl CodeEnum for TeseoTimeValidity {
             Self::ApproximateTime => "approximate_time",
             Self::PositionTime => "position_time",
             Self::EphemerisTime => "ephemeris_time",
+        }
+    }
+}
+
+/// Trawl catch sensor state: State of a trawl catch sensor (TFI).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum TfiCatchSensor {
+    /// Sensor off.
+    Off,
+    /// Sensor on.
+    On,
+    /// No answer from the sensor.
+    NoAnswer,
+}
+
+impl CodeEnum for TfiCatchSensor {
+    const EXPECTED: &'static str = "tfi_catch_sensor code (0 1 2)";
+    const EXPECTED_CHARS: &'static str = "tfi_catch_sensor codes (0 1 2)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::Off, Self::On, Self::NoAnswer];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Off),
+            b"1" => Some(Self::On),
+            b"2" => Some(Self::NoAnswer),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Off => "0",
+            Self::On => "1",
+            Self::NoAnswer => "2",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Off => "off",
+            Self::On => "on",
+            Self::NoAnswer => "no_answer",
         }
     }
 }
