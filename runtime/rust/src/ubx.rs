@@ -110,6 +110,19 @@ impl UbxError {
     pub fn text(&self) -> impl fmt::Display + '_ {
         Message(self)
     }
+
+    /// The error as the tools' JSON error object (the Python runtime's `error_json`): its kind,
+    /// its address (`UBX NAV-PVT`), the field at fault as its name, and its message.
+    pub fn write_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write!(w, "{{\"kind\":\"{}\",\"address\":\"{}\",\"field\":null,\"name\":", self.kind.as_str(), self.address())?;
+        match self.field {
+            Some(field) => write!(w, "\"{field}\"")?,
+            None => w.write_str("null")?,
+        }
+        w.write_str(",\"message\":")?;
+        super::write::write_json_display(w, &self.text())?;
+        w.write_char('}')
+    }
 }
 
 struct Address<'e>(&'e UbxError);
