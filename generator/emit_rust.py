@@ -914,6 +914,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/tests/tag_blocks.rs"] = runtime_file(spec, "//", "rust/crate/tests/tag_blocks.rs", blank_line=True)
     files[f"{base}/tests/ais.rs"] = runtime_file(spec, "//", "rust/crate/tests/ais.rs", blank_line=True)
     files[f"{base}/tests/assembly.rs"] = runtime_file(spec, "//", "rust/crate/tests/assembly.rs", blank_line=True)
+    if spec.binary:
+        files[f"{base}/tests/ubx.rs"] = runtime_file(spec, "//", "rust/crate/tests/ubx.rs", blank_line=True)
 
     gates = Gates(spec)
     layouts = []
@@ -1041,7 +1043,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                      *[line for lay in layouts for line in with_cfg(8, lay["cfg"], [f"        Self::{lay['name']},"])],
                      "    ];"])
     files[f"{base}/Cargo.toml"] = env.get_template("rust/Cargo.toml.j2").render(
-        header=header(spec, "#", ["templates/rust/Cargo.toml.j2"]), crate=CRATE, vendors=gates.features)
+        header=header(spec, "#", ["templates/rust/Cargo.toml.j2"]), crate=CRATE, vendors=gates.features,
+        ubx=bool(spec.binary))
     files[f"{base}/README.md"] = package_readme(spec, env, "rust/README.md.j2", crate=CRATE)
     files[f"{base}/rustfmt.toml"] = runtime_file(spec, "#", "rust/rustfmt.toml", blank_line=True)
     files[f"{base}/tests/examples.rs"] = env.get_template("rust/examples.rs.j2").render(

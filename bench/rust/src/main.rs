@@ -2,7 +2,7 @@
 //! implementation over every line and prints a JSON object.
 //!
 //! ```text
-//! bench-rs ours|nmea|nmea0183|ours-ais|nmea-parser parse|serialize|roundtrip|fixes|none CORPUS [--by-type]
+//! bench-rs ours|nmea|nmea0183|ours-ais|nmea-parser|ours-ubx parse|serialize|roundtrip|fixes|none CORPUS [--by-type]
 //! ```
 //!
 //! `ours` is `nmeaspec`: parse is `nmeaspec::parse`; serialize is `serialize_into` of each parsed
@@ -13,7 +13,10 @@
 //! feeds it to a `FixAssembler` (ok: the lines parsed). `ours-ais` (over the AIS corpus) parses
 //! each line and, when it is a whole message, decodes its AIS message, every field
 //! (`ais_messages::Message::decode`; ok: messages decoded); its peer is `nmea-parser`'s
-//! `NmeaParser::parse_sentence`, which decodes the message of a VDM/VDO line into a struct. A
+//! `NmeaParser::parse_sentence`, which decodes the message of a VDM/VDO line into a struct.
+//! `ours-ubx` (over the UBX corpus, a frame in hex per line, turned into bytes before timing)
+//! checks and decodes each frame (`ubx_messages::Message::from_frame`; ok: frames of a class and
+//! id the spec describes). A
 //! counting global allocator reports the allocations made inside every timed loop. The peers only
 //! parse: `nmea::parse_str` per line, and one `nmea0183::Parser` fed every line with its CR LF
 //! (built with the `peers` feature).
@@ -213,6 +216,36 @@ fn time_ours_ais_parse(lines: &[Line<'_>]) -> Timing {
     })
 }
 
+/// The UBX corpus's frames (one per line, in hex), as bytes: turned back before anything is timed.
+fn ubx_frames(lines: &[Line<'_>]) -> Vec<Vec<u8>> {
+    lines
+        .iter()
+        .map(|line| {
+            (0..line.text.len() / 2)
+                .map(|i| u8::from_str_radix(&line.text[2 * i..2 * i + 2], 16).expect("hex"))
+                .collect()
+        })
+        .collect()
+}
+
+/// Each frame checked (sync, length, checksum) and decoded into the struct of its layout
+/// (`ubx_messages::Message::from_frame`: every field read, a group's entries as a view read when
+/// iterated); ok: messages of a layout the spec describes.
+fn time_ours_ubx_parse(frames: &[Vec<u8>]) -> Timing {
+    timed(|| {
+        let mut ok = 0;
+        for frame in frames {
+            if let Ok(message) = &nmeaspec::ubx_messages::Message::from_frame(frame) {
+                if !matches!(message, nmeaspec::ubx_messages::Message::Unknown(_)) {
+                    ok += 1;
+                }
+                black_box(message);
+            }
+        }
+        ok
+    })
+}
+
 #[cfg(feature = "peers")]
 fn time_nmea_parser_parse(lines: &[Line<'_>]) -> Timing {
     let mut parser = nmea_parser::NmeaParser::new();
@@ -244,6 +277,7 @@ fn run(implementation: &str, op: &str, lines: &[Line<'_>]) -> Timing {
         ("ours", "roundtrip") => time_ours_roundtrip(lines),
         ("ours", "fixes") => time_ours_fixes(lines),
         ("ours-ais", "parse") => time_ours_ais_parse(lines),
+        ("ours-ubx", "parse") => time_ours_ubx_parse(&ubx_frames(lines)),
         #[cfg(feature = "peers")]
         ("nmea-parser", "parse") => time_nmea_parser_parse(lines),
         #[cfg(feature = "peers")]
@@ -303,7 +337,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() < 4 {
         eprintln!(
-            "usage: bench-rs ours|nmea|nmea0183|ours-ais|nmea-parser parse|serialize|roundtrip|fixes|none CORPUS [--by-type]"
+            "usage: bench-rs ours|nmea|nmea0183|ours-ais|nmea-parser|ours-ubx parse|serialize|roundtrip|fixes|none CORPUS [--by-type]"
         );
         std::process::exit(2);
     }

@@ -23,11 +23,11 @@ if TYPE_CHECKING:
     from ..assembly import Assembled
 
 USAGE = (
-    "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] [--strict]"
+    "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] [--strict] [--ubx]"
     " | encode | fixes | --version\n"
     "       (reads stdin, writes stdout)\n"
 )
-FLAGS = ("--values", "--lenient", "--require-checksum", "--strict")
+FLAGS = ("--values", "--lenient", "--require-checksum", "--strict", "--ubx")
 
 
 def lines(data: bytes) -> list[str]:
@@ -45,6 +45,19 @@ def with_message(text: str, assembled: Assembled) -> str:
         return f'{text[:-1]},"ais":{json.dumps(assembled.message.to_dict(), separators=(",", ":"))}}}'
     assert assembled.error is not None
     return f'{text[:-1]},"ais_error":{assembled.error.error_json()}}}'
+
+
+def with_ubx(frame: BinaryFrame) -> str:
+    """stream --ubx: a UBX frame's JSON with the message it carries: `ubx`, its decoded JSON
+    (that of generated/vectors/ubx.jsonl), or `ubx_error` when its payload does not decode."""
+    text = frame.to_json()
+    if frame.protocol != "ubx":
+        return text
+    try:
+        message = frame.message()
+    except NmeaError as err:
+        return f'{text[:-1]},"ubx_error":{err.error_json()}}}'
+    return f'{text[:-1]},"ubx":{json.dumps(message.to_dict(), separators=(",", ":"))}}}'
 
 
 def decoded(items: Iterable[str], values: bool, options: dict[str, bool]) -> Iterator[str]:
@@ -66,14 +79,18 @@ def decoded(items: Iterable[str], values: bool, options: dict[str, bool]) -> Ite
         yield text
 
 
-def streamed(items: Iterable[Item], values: bool, options: dict[str, bool]) -> Iterator[str]:
+def streamed(items: Iterable[Item], values: bool, options: dict[str, bool], ubx: bool = False) -> Iterator[str]:
     """stream: each framed line's JSON, with the AIS message it completes (of one sentence or
     joined across several); after it, an incomplete_message error for each message it gives up,
-    and at the end for those left under way; each binary frame's JSON."""
+    and at the end for those left under way; each binary frame's JSON (`ubx`: with the UBX
+    message it carries)."""
     from ..assembly import MessageAssembler
 
     assembler = MessageAssembler()
     for item in items:
+        if isinstance(item, BinaryFrame) and ubx:
+            yield with_ubx(item)
+            continue
         if isinstance(item, (BinaryFrame, BadFrame)):
             yield item.to_json()
             continue
@@ -106,13 +123,13 @@ def main(argv: list[str] | None = None) -> int:
         and all(f in FLAGS for f in flags)
         and len(set(flags)) == len(flags)
     ):
-        values, lenient, required, strict = (f in flags for f in FLAGS)
+        values, lenient, required, strict, ubx = (f in flags for f in FLAGS)
         options = {"lenient": lenient, "require_checksum": required, "strict": strict}
         out: Iterator[str]
         if verb == "decode":
             out = decoded(lines(sys.stdin.buffer.read()), values, options)
         else:
-            out = streamed(framed(sys.stdin.buffer, binary=True), values, options)
+            out = streamed(framed(sys.stdin.buffer, binary=True), values, options, ubx)
         write = sys.stdout.buffer.write
         for text in out:
             write(text.encode("latin-1") + b"\n")

@@ -29,6 +29,7 @@ mod serialize;
 pub mod ais;
 pub mod assembly;
 pub mod stream;
+pub mod ubx;
 
 #[cfg(feature = "std")]
 pub mod fixes;

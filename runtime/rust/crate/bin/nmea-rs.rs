@@ -16,10 +16,11 @@ use nmeaspec::ais_messages::Message;
 use nmeaspec::assembly::Assembler;
 use nmeaspec::json::{write_encoded, Value, SKIP_CHECK_DEPTH};
 use nmeaspec::stream::{FrameError, Framer, Item, Protocol, MAX_FRAME};
+use nmeaspec::ubx_messages;
 use nmeaspec::{parse_with, Error, Fix, FixAssembler, Options, MAX_LINE};
 
 const USAGE: &str =
-    "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] [--strict] | encode | fixes | --version\n       \
+    "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] [--strict] [--ubx] | encode | fixes | --version\n       \
      (reads stdin, writes stdout)\n";
 const BUFFER: usize = 1 << 16;
 
@@ -174,6 +175,25 @@ fn write_frame(w: &mut String, protocol: Protocol, frame: &[u8]) -> fmt::Result 
     write_hex(w, frame)
 }
 
+/// `stream --ubx`: a UBX frame's JSON with the message it carries: `ubx`, its decoded JSON (that
+/// of generated/vectors/ubx.jsonl), or `ubx_error` when its payload does not decode.
+fn write_ubx_frame(w: &mut String, frame: &[u8]) -> fmt::Result {
+    write_frame(w, Protocol::Ubx, frame)?;
+    w.pop(); // the frame's closing brace
+    match ubx_messages::Message::from_frame(frame) {
+        Ok(message) => {
+            w.push_str(",\"ubx\":");
+            message.write_json(w)?;
+        }
+        Err(err) => {
+            w.push_str(",\"ubx_error\":");
+            err.write_json(w)?;
+        }
+    }
+    w.push('}');
+    Ok(())
+}
+
 /// The JSON of what began like a binary frame and is not one: its sync bytes and the reason.
 fn write_bad_frame(w: &mut String, protocol: Protocol, error: FrameError, sync: &[u8]) -> fmt::Result {
     write!(
@@ -211,7 +231,7 @@ fn write_hex(w: &mut String, bytes: &[u8]) -> fmt::Result {
     Ok(())
 }
 
-fn stream(values: bool, options: Options) -> io::Result<()> {
+fn stream(values: bool, options: Options, ubx: bool) -> io::Result<()> {
     let mut input = io::stdin().lock();
     let mut out = Output::new(BufWriter::with_capacity(BUFFER, io::stdout().lock()));
     let mut framer = Framer::with_binary_frames();
@@ -224,6 +244,7 @@ fn stream(values: bool, options: Options) -> io::Result<()> {
                 out.line(|w| write_line(w, line, values, options, Some(&mut assembler), &mut given_up))?
             }
             Item::TooLong(length) => out.line(|w| Error::too_long(length).write_json(w))?,
+            Item::Frame(Protocol::Ubx, frame) if ubx => out.line(|w| write_ubx_frame(w, frame))?,
             Item::Frame(protocol, frame) => out.line(|w| write_frame(w, protocol, frame))?,
             Item::BadFrame(protocol, error, sync) => out.line(|w| write_bad_frame(w, protocol, error, sync))?,
         }
@@ -305,7 +326,7 @@ fn fixes() -> io::Result<()> {
 
 /// Flags of decode and stream: each known one at most once, in any order.
 fn flags_ok(flags: &[&str]) -> bool {
-    const FLAGS: [&str; 4] = ["--values", "--lenient", "--require-checksum", "--strict"];
+    const FLAGS: [&str; 5] = ["--values", "--lenient", "--require-checksum", "--strict", "--ubx"];
     flags.iter().enumerate().all(|(i, flag)| FLAGS.contains(flag) && !flags[..i].contains(flag))
 }
 
@@ -329,7 +350,7 @@ fn main() -> ExitCode {
             if *verb == "decode" {
                 decode(values, options)
             } else {
-                stream(values, options)
+                stream(values, options, flags.contains(&"--ubx"))
             }
         }
         _ => {

@@ -1,0 +1,376 @@
+"""Rust emitter of the binary messages (spec/binary/ubx): the module `ubx_messages` of the
+generated crate, a struct per layout (named as the Python classes of emit_python_ubx) with
+straight-line `read`, `write` and JSON code over the runtime's byte reader and writer
+(runtime/rust/src/ubx.rs), a struct per repeated group's entry, and the `Message` enum that picks
+a layout by class and id, then by length and version, as the Python runtime and the reference
+decoder (generator/reference_binary.py) pick it.
+
+Members follow the AIS module (emit_rust_ais.py): a number with a divisor or an enum keeps its raw
+integer (`<id>_raw`) and has an accessor giving its value; a bitfield word is a member and each
+named part an accessor (and a setter) over its bits, so that the bits no part names stay as sent;
+characters and bytes are views of the payload (`&[u8]`, ISO 8859-1 characters as sent, NUL padding
+included); a reserved field is an integer as wide as its bytes; a group is a `ubx::Group`, a view
+of its entries' bytes read entry by entry; an optional field and those after it are Options."""
+
+from __future__ import annotations
+
+import jinja2
+
+from .emit import header
+from .emit_python_ais import entry_class
+from .emit_python_ubx import title as title_of
+from .emit_rust import rust_str, rustfmt
+from .names_rust import ident
+from .model import BinaryMessage, Payload, PayloadField, PayloadGroup, Spec
+from .reference_ais import after
+
+_INTS = (8, 16, 32, 64, 128)
+
+
+def _int_type(bits: int, signed: bool = False) -> str:
+    size = next(n for n in _INTS if bits <= n)
+    return f"{'i' if signed else 'u'}{size}"
+
+
+def _check(f: PayloadField) -> None:
+    """What this emitter does not write yet fails the generation, naming the field."""
+    where = f"{f.origin.file}: {f.id}"
+    if f.special or f.base is not None:
+        raise NotImplementedError(f"{where}: special values and bases of binary fields have no Rust code yet")
+    if f.type in ("ch", "bytes") and f.bits is not None and f.bits % 8:
+        raise NotImplementedError(f"{where}: a width in bits")
+    for p in f.parts:
+        if p.divisor is not None or p.special or p.type not in ("bool", "uint", "int", "enum"):
+            raise NotImplementedError(f"{where}.{p.id}: a part of type {p.type} with a unit has no Rust code yet")
+
+
+def member_name(f: PayloadField) -> str:
+    return f"{f.id}_raw" if f.divisor is not None or f.enum is not None else ident(f.id)
+
+
+def plain_type(f: PayloadField) -> str:
+    """The Rust type of a field's member when present."""
+    t = f.type
+    if t in ("ch", "bytes"):
+        return "&'a [u8]"
+    if t == "r4":
+        return "f32"
+    if t == "r8":
+        return "f64"
+    assert f.bits is not None
+    return _int_type(f.bits, t.startswith("i"))
+
+
+def part_type(p: PayloadField) -> str:
+    if p.type == "bool":
+        return "bool"
+    return _int_type(p.bits or 1, p.type == "int")
+
+
+def _part_value(p: PayloadField, word: str, word_type: str) -> str:
+    """The expression of part `p`'s value from the expression of its word."""
+    width = p.bits or 1
+    mask = (1 << width) - 1
+    raw = f"({word} & {mask:#x})" if p.low == 0 else f"(({word} >> {p.low}) & {mask:#x})"
+    if p.type == "bool":
+        return f"{raw} != 0"
+    kind = part_type(p)
+    if p.type == "int":   # sign-extended from its top bit
+        unsigned = _int_type(width)
+        shift = int(kind[1:]) - width
+        return f"(({raw} as {unsigned} as {kind}) << {shift}) >> {shift}" if shift else f"{raw} as {kind}"
+    return raw[1:-1] if kind == word_type else f"{raw} as {kind}"
+
+
+class _Record:
+    """The code of one layout's struct or one group entry's."""
+
+    def __init__(self, name: str, items: list, address: str, entries: dict[str, str] | None = None) -> None:
+        self.name = name
+        self.entry_names = entries or {}   # a group's id -> its entry's struct
+        self.address = address
+        self.members: list[str] = []
+        self.accessors: list[str] = []
+        self.read: list[str] = []
+        self.inits: list[str] = []
+        self.write: list[str] = []
+        self.json: list[str] = []
+        self.entries: list[_Record] = []
+        self.borrows = False     # a member borrows the payload ('a)
+        self.optional = False    # an optional field came before: the rest are Options
+        self.width = 0           # an entry's bytes
+        self.values: dict[str, tuple[str, str]] = {}   # field or part id -> its value's expression and type
+        for i, item in enumerate(items):
+            if isinstance(item, PayloadGroup):
+                self._group(item, items[i + 1:])
+            elif isinstance(item, PayloadField):
+                self._field(item, items[i + 1:])
+            else:
+                raise NotImplementedError(f"{item.origin.file}: a choice in a binary layout has no Rust code yet")
+
+    def _field(self, f: PayloadField, following: list) -> None:
+        _check(f)
+        name, kind, key = member_name(f), plain_type(f), rust_str(f.id)
+        width = f.bits // 8 if f.bits is not None else None
+        self.width += width or 0
+        self.borrows = self.borrows or "'a" in kind
+        if f.optional:
+            self.optional = True
+        certain = not self.optional
+        unit = f" [{f.unit}]" if f.unit else ""
+        self.members.append(f"/// {f.name}{unit}.\npub {name}: {kind if certain else f'Option<{kind}>'},")
+        if width is None:
+            read = f"r.left({after(following) // 8})"
+        elif f.type in ("ch", "bytes"):
+            read = f"r.bytes({width}, {key})?"
+        elif width in (1, 2, 4, 8, 16):
+            read = f"{kind}::from_le_bytes(r.array({key})?)"
+        else:   # a reserved field of 3, 5, 6, 7 or 9 bytes
+            pad = int(kind[1:]) // 8 - width
+            read = f"{{ let b: [u8; {width}] = r.array({key})?; let mut le = [0u8; {pad + width}]; " \
+                   f"le[..{width}].copy_from_slice(&b); {kind}::from_le_bytes(le) }}"
+        if certain:
+            self.read.append(f"let {name} = {read};")
+        elif f.optional:
+            self.read.append(f"let {name} = if present && r.remaining() >= {width} {{ Some({read}) }} else {{ None }};")
+            if following:
+                self.read.append(f"let present = {name}.is_some();")
+        else:
+            self.read.append(f"let {name} = if present {{ Some({read}) }} else {{ None }};")
+        self.inits.append(name)
+        value = f"self.{name}" if certain else "v"
+        if f.type in ("ch", "bytes"):
+            put = f"w.put_sized({value}, {f'Some({width})' if width is not None else 'None'}, "\
+                  f"{rust_str(self.address)}, {key})?;"
+        elif width in (1, 2, 4, 8, 16):
+            put = f"w.put(&{value}.to_le_bytes());"
+        else:
+            put = f"w.put(&{value}.to_le_bytes()[..{width}]);"
+        self.write.append(put if certain else f"let Some(v) = self.{name} else {{ break 'write; }}; {put}")
+        json = self._json(f, value)
+        self.json.append(json if certain else f"if let Some(v) = self.{name} {{ {json} }}")
+        if certain:
+            self.values[f.id] = (name, kind)
+            for p in f.parts:
+                self.values[p.id] = (_part_value(p, name, kind), part_type(p))
+        self._accessors(f, kind, certain)
+
+    def _json(self, f: PayloadField, value: str) -> str:
+        key = rust_str(f.id)
+        if f.enum is not None:
+            return f"j.code({key}, ais::code::<{f.enum.camel}>(u64::from({value})).map(CodeEnum::id), u64::from({value}))?;"
+        if f.divisor is not None:
+            return f"ubx::json_float(j, {key}, {value} as f64 / {float(f.divisor)!r})?; j.int({rust_str(f.id + '_raw')}, {value})?;"
+        if f.type == "r4":
+            return f"ubx::json_float(j, {key}, f64::from({value}))?;"
+        if f.type == "r8":
+            return f"ubx::json_float(j, {key}, {value})?;"
+        if f.type == "ch":
+            return f"ubx::json_chars(j, {key}, {value})?;"
+        if f.type == "bytes":
+            return f"ubx::json_hex(j, {key}, {value})?;"
+        if plain_type(f) in ("u128", "i128"):
+            return f"write!(j.key({key})?, \"{{}}\", {value})?;"
+        lines = [f"j.int({key}, {value})?;"]
+        for p in f.parts:
+            part = _part_value(p, value, plain_type(f))
+            pkey = rust_str(p.id)
+            if p.enum is not None:
+                lines.append(f"j.code({pkey}, ais::code::<{p.enum.camel}>(u64::from({part})).map(CodeEnum::id), "
+                             f"u64::from({part}))?;")
+            elif p.type == "bool":
+                lines.append(f"j.flag({pkey}, {part})?;")
+            else:
+                lines.append(f"j.int({pkey}, {part})?;")
+        return " ".join(lines)
+
+    def _accessors(self, f: PayloadField, kind: str, certain: bool) -> None:
+        unit = f" [{f.unit}]" if f.unit else ""
+        if f.enum is not None:
+            doc = f"/// {f.name}: the enum's value of the raw code, None for a code it does not name."
+            body = f"ais::code(u64::from(self.{f.id}_raw))" if certain else \
+                f"self.{f.id}_raw.and_then(|raw| ais::code(u64::from(raw)))"
+            self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> Option<{f.enum.camel}> {{ {body} }}")
+        elif f.divisor is not None:
+            doc = f"/// {f.name}{unit}: the raw integer divided by {f.divisor}."
+            expr = f"raw as f64 / {float(f.divisor)!r}"
+            if certain:
+                self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> f64 {{ let raw = self.{f.id}_raw; {expr} }}")
+            else:
+                self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> Option<f64> {{ self.{f.id}_raw.map(|raw| {expr}) }}")
+        if not f.parts:
+            return
+        if not certain:
+            raise NotImplementedError(f"{f.origin.file}: {f.id}: an optional bitfield has no Rust code yet")
+        for p in f.parts:
+            width = p.bits or 1
+            mask = (1 << width) - 1
+            ptype = part_type(p)
+            value = _part_value(p, f"self.{f.id}", kind)
+            punit = f" [{p.unit}]" if p.unit else ""
+            if p.enum is not None:
+                self.accessors.append(
+                    f"/// {p.name} (bits of `{f.id}`): the enum's value of the raw code.\n"
+                    f"pub fn {ident(p.id)}(&self) -> Option<{p.enum.camel}> {{ ais::code(u64::from({value})) }}")
+                value_doc = "raw code"
+            else:
+                self.accessors.append(f"/// {p.name}{punit} (bit{'s' if width > 1 else ''} {p.low}"
+                                      f"{f'-{p.low + width - 1}' if width > 1 else ''} of `{f.id}`).\n"
+                                      f"pub fn {ident(p.id)}(&self) -> {ptype} {{ {value} }}")
+                value_doc = "value"
+            setter = f"set_{p.id}" if p.enum is None else f"set_{p.id}_raw"
+            arg_type = ptype if p.enum is None else _int_type(width)
+            raw = f"{kind}::from(value)" if p.type == "bool" else \
+                f"(value as {kind} & {mask:#x})" if arg_type != kind else f"(value & {mask:#x})"
+            shifted = f"{mask:#x}" if p.low == 0 else f"({mask:#x} << {p.low})"
+            raw = raw if p.low == 0 else f"({raw} << {p.low})"
+            self.accessors.append(
+                f"/// Sets {p.name.lower()} (the {value_doc} in its bits of `{f.id}`; the other bits stay).\n"
+                f"pub fn {setter}(&mut self, value: {arg_type}) {{"
+                f"self.{f.id} = (self.{f.id} & !{shifted}) | {raw}; }}")
+
+    def _group(self, g: PayloadGroup, following: list) -> None:
+        entry = _Record(self.entry_names[g.id], g.fields, self.address)
+        self.entries.append(entry)
+        key, name = rust_str(g.id), ident(g.id)
+        lifetime = "<'a>" if entry.borrows else ""
+        self.borrows = True
+        if self.optional:
+            raise NotImplementedError(f"{g.origin.file}: {g.id}: a group after an optional field has no Rust code yet")
+        self.members.append(f"/// {g.name}: {g.min} to {g.max} entries.\npub {name}: ubx::Group<'a, {entry.name}{lifetime}>,")
+        if isinstance(g.count, int):
+            count = f"Some({g.count})"
+        elif g.count is not None:
+            value, kind = self.values[g.count]
+            count = f"Some(usize::from({value}))" if kind in ("u8", "u16") else f"Some(({value}) as usize)"
+        else:
+            count = "None"
+        self.read.append(f"let {name} = r.group({count}, {g.min}, {g.max}, {after(following) // 8}, {key})?;")
+        self.inits.append(name)
+        self.write.append(f"self.{name}.write(w);")
+        self.json.append(f"self.{name}.json(j, {key})?;")
+
+
+def record_code(record: _Record, payload: Payload | None, message: BinaryMessage | None) -> str:
+    """The struct, its constants and accessors and its read/write/JSON code."""
+    entry = payload is None
+    borrows = record.borrows or not entry
+    lifetime = "<'a>" if borrows else ""
+    members = list(record.members)
+    if not entry:
+        members.append("/// Bytes after the layout's last field, as sent (a newer firmware's additions).\n"
+                       "pub trailing: &'a [u8],")
+    reads = list(record.read)
+    inits = list(record.inits)
+    if not entry:
+        reads.append("let trailing = r.rest();")
+        inits.append("trailing")
+    if record.optional:
+        reads.insert(0, "let present = true;")
+    write_body = " ".join(record.write)
+    if record.optional:
+        write_body = f"'write: {{ {write_body} }}"
+    if not entry:
+        write_body += " w.put(self.trailing);"
+    doc = f"/// One entry of {record.name}." if entry else f"/// {title_of(message, payload)}"
+    out = [doc, "#[derive(Clone, Copy, Debug, Default, PartialEq)]", f"pub struct {record.name}{lifetime} {{", *members,
+           "}", ""]
+    impl: list[str] = []
+    if not entry:
+        assert payload is not None and message is not None
+        length = f"Some({payload.fixed_width // 8})" if payload.fixed_width is not None else "None"
+        version = f"Some({payload.version})" if payload.version is not None else "None"
+        strs = lambda words: "&[" + ", ".join(rust_str(w) for w in words) + "]"  # noqa: E731
+        impl += [f"/// The spec's id of the layout.\npub const ID: &'static str = {rust_str(payload.id)};",
+                 f"/// How u-blox names the message.\npub const ADDRESS: &'static str = {rust_str(message.address)};",
+                 f"/// The message class.\npub const CLASS: u8 = {message.class_number:#04x};",
+                 f"/// The message id.\npub const MSG_ID: u8 = {message.msg_id:#04x};",
+                 f"/// The payload's bytes, when the layout fixes them.\npub const LENGTH: Option<usize> = {length};",
+                 f"/// The value of its `version` field that tells it from another layout.\npub const VERSION: Option<u8> = {version};",
+                 f"/// Who sends it: poll and input go to the receiver, output comes from it.\n"
+                 f"pub const DIRECTIONS: &'static [&'static str] = {strs(payload.directions)};",
+                 f"/// The layouts (ids) the receiver answers it with.\npub const REPLIES: &'static [&'static str] = "
+                 f"{strs(payload.replies)};"]
+    impl += record.accessors
+    init = ", ".join(inits)
+    if entry:
+        impl_head = f"impl<'a> ubx::Entry<'a> for {record.name}{lifetime} {{"
+        out += [impl_head, f"const WIDTH: usize = {record.width};",
+                f"fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {{ {' '.join(reads)} Ok(Self {{ {init} }}) }}",
+                f"fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {{ {write_body} Ok(()) }}",
+                "fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {"
+                + " ".join(record.json) + " Ok(()) }", "}", ""]
+        if record.accessors:
+            out += [f"impl{lifetime} {record.name}{lifetime} {{", *record.accessors, "}", ""]
+        return "\n".join(out)
+    assert message is not None
+    out += [f"impl<'a> {record.name}<'a> {{", *impl,
+            f"/// The message of `payload`, read as this layout (a short payload names the field it cuts).\n"
+            f"pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {{"
+            f"let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));"
+            f"{' '.join(reads)} Ok(Self {{ {init} }}) }}",
+            f"/// Writes the payload.\npub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {{ "
+            f"{write_body} Ok(()) }}",
+            "/// The whole frame, sync bytes to checksum, written into `buf`.\n"
+            "pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {"
+            "ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w)) }",
+            "/// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.\n"
+            "pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {"
+            + " ".join(record.json) + " ubx::json_hex(j, \"trailing\", self.trailing) }", "}", ""]
+    return "\n".join(out)
+
+
+def _fits(message: BinaryMessage, layout: Payload) -> str | None:
+    """The condition a payload fits `layout` under (None: any payload)."""
+    conditions = []
+    if layout.fixed_width is not None:
+        conditions.append(f"payload.len() == {layout.fixed_width // 8}" if layout.fixed_width else "payload.is_empty()")
+    if layout.version is not None:
+        version = next(f for f in layout.fields if f.id == "version")
+        assert version.offset is not None
+        at = version.offset // 8
+        conditions.append(f"payload.{'first()' if at == 0 else f'get({at})'} == Some(&{layout.version})")
+    return " && ".join(conditions) or None
+
+
+def dispatch_arm(message: BinaryMessage) -> str:
+    """The match arm of a class and id: the first layout that fits, else the main one."""
+    main = next((lay for lay in message.layouts if "output" in lay.directions), message.layouts[-1])
+    read = lambda lay: f"Message::{lay.camel}({lay.camel}::read(payload)?)"  # noqa: E731
+    tests: list[tuple[str, Payload]] = []
+    last = main   # what a payload no condition holds for is read as
+    for layout in message.layouts:
+        condition = _fits(message, layout)
+        if condition is None:
+            last = layout
+            break
+        tests.append((condition, layout))
+    while tests and tests[-1][1] is last:   # a last test that reads what the fallback reads
+        tests.pop()
+    branches = [f"if {condition} {{ {read(layout)} }}" for condition, layout in tests] + [read(last)]
+    body = branches[0] if len(branches) == 1 else " else ".join(
+        b if b.startswith("if ") else f"{{ {b} }}" for b in branches)
+    return f"({message.class_number:#04x}, {message.msg_id:#04x}) => {body},"
+
+
+def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
+    messages = [m for m in spec.binary if m.protocol == "ubx"]
+    if not messages:
+        return {}
+    blocks: list[str] = []
+    layouts: list[Payload] = []
+    for message in messages:
+        for layout in message.layouts:
+            names = {g.id: entry_class(layout, g) for g in layout.items if isinstance(g, PayloadGroup)}
+            record = _Record(layout.camel, layout.items, message.address, names)
+            for entry in record.entries:
+                blocks.append(record_code(entry, None, None))
+            blocks.append(record_code(record, layout, message))
+            layouts.append(layout)
+    fields = [p for m in messages for lay in m.layouts for f in lay.fields for p in (f, *f.parts)]
+    enums = sorted({f.enum.camel for f in fields if f.enum})
+    sources = [m.origin.file for m in messages]
+    return rustfmt({"rust/src/ubx_messages.rs": env.get_template("rust/ubx_messages.rs.j2").render(
+        header=header(spec, "//", ["templates/rust/ubx_messages.rs.j2", *sources]), blocks=blocks, enums=enums,
+        layouts=layouts, arms=[dispatch_arm(m) for m in messages],
+        example=any(lay.id == "ack_ack" for lay in layouts))})

@@ -1,0 +1,625 @@
+//! u-blox UBX frames: the framing layer (spec/binary/ubx/protocol.yaml) and what the generated
+//! messages (`nmeaspec::ubx_messages`) read and write their payloads with.
+//!
+//! The Rust side of the Python runtime's ubx.py, with its rules and error messages. A frame is the
+//! sync bytes B5 62, a class and an id byte, the payload's length (two bytes, little endian) and
+//! the payload, closed by a Fletcher-8 checksum over class to payload. Decoding reads the payload
+//! in place and allocates nothing: characters, bytes, a repeated group's entries and the bytes
+//! after a layout are views of the payload. Encoding writes the whole frame into a caller's
+//! buffer. What a decoder keeps as sent (reserved bytes, the bits of a bitfield no part names, a
+//! NaN's bits, bytes after the layout) is written back as it was. Facts from u-blox UBX-13003221
+//! (u-blox 8 / M8 Receiver description, "UBX protocol": frame structure and checksum).
+
+use core::fmt::{self, Write};
+use core::marker::PhantomData;
+
+use super::ais::JsonObject;
+
+/// The two sync bytes every frame starts with.
+pub const SYNC: [u8; 2] = [0xB5, 0x62];
+/// Sync, class, id and length.
+pub const HEADER_SIZE: usize = 6;
+/// The two checksum bytes closing a frame.
+pub const CHECKSUM_SIZE: usize = 2;
+/// The most bytes a payload holds (its length field's largest value).
+pub const MAX_PAYLOAD: usize = 0xFFFF;
+
+/// The two checksum bytes (CK_A, CK_B) of `data`: 8-bit Fletcher, both sums modulo 256.
+pub fn fletcher8(data: &[u8]) -> [u8; 2] {
+    let (mut a, mut b) = (0u8, 0u8);
+    for &byte in data {
+        a = a.wrapping_add(byte);
+        b = b.wrapping_add(a);
+    }
+    [a, b]
+}
+
+/// What is wrong with a frame, a payload or a message to encode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UbxErrorKind {
+    /// The frame does not start with B5 62.
+    BadSync,
+    /// The frame is shorter than its header or than its length field says.
+    ShortFrame,
+    /// The frame is longer than its length field says.
+    LongFrame,
+    /// The checksum bytes are not the Fletcher-8 of class to payload.
+    BadChecksum,
+    /// The payload ends before a field's last byte (or a group's last entry).
+    ShortPayload,
+    /// A value to encode its field cannot hold (characters or bytes of another size).
+    BadValue,
+    /// The payload to encode is over 65,535 bytes, or the buffer cannot hold the frame.
+    BufferTooSmall,
+}
+
+impl UbxErrorKind {
+    /// The kind as the JSON contract names it.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            UbxErrorKind::BadSync => "bad_sync",
+            UbxErrorKind::ShortFrame => "short_frame",
+            UbxErrorKind::LongFrame => "long_frame",
+            UbxErrorKind::BadChecksum => "bad_checksum",
+            UbxErrorKind::ShortPayload => "short_payload",
+            UbxErrorKind::BadValue => "bad_value",
+            UbxErrorKind::BufferTooSmall => "buffer_too_small",
+        }
+    }
+}
+
+/// The facts an error message is written from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Detail {
+    Sync([u8; 2], usize),
+    Header(usize),
+    Length { size: usize, have: usize },
+    Checksum { sent: [u8; 2], computed: [u8; 2] },
+    Short { offset: usize, width: usize, length: usize },
+    FewEntries { count: usize, at_least: bool, width: usize, left: usize },
+    Size { expected: usize, found: usize },
+    Buffer { need: usize, have: usize },
+}
+
+/// A UBX error: its kind, the message (`NAV-PVT`, or `0x01 0x07` before a layout names it) and
+/// the field it concerns when known.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct UbxError {
+    /// What is wrong.
+    pub kind: UbxErrorKind,
+    /// The message's name (`NAV-PVT`); empty before the frame's class and id are read.
+    pub message: &'static str,
+    /// The class and id of the frame, once read.
+    pub class_id: Option<(u8, u8)>,
+    /// The field being read or written.
+    pub field: Option<&'static str>,
+    detail: Detail,
+}
+
+impl UbxError {
+    fn frame(kind: UbxErrorKind, class_id: Option<(u8, u8)>, detail: Detail) -> Self {
+        UbxError { kind, message: "", class_id, field: None, detail }
+    }
+
+    /// The error's address as the Python runtime gives it: `UBX NAV-PVT`, `UBX 0x01 0x07`, `UBX`.
+    pub fn address(&self) -> impl fmt::Display + '_ {
+        Address(self)
+    }
+
+    /// The error's message alone (`"lat needs bytes 28-31, the payload has 28"`).
+    pub fn text(&self) -> impl fmt::Display + '_ {
+        Message(self)
+    }
+
+    /// The error as the tools' JSON error object (the Python runtime's `error_json`): its kind,
+    /// its address (`UBX NAV-PVT`), the field at fault as its name, and its message.
+    pub fn write_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write!(w, "{{\"kind\":\"{}\",\"address\":\"{}\",\"field\":null,\"name\":", self.kind.as_str(), self.address())?;
+        match self.field {
+            Some(field) => write!(w, "\"{field}\"")?,
+            None => w.write_str("null")?,
+        }
+        w.write_str(",\"message\":")?;
+        super::write::write_json_display(w, &self.text())?;
+        w.write_char('}')
+    }
+}
+
+struct Address<'e>(&'e UbxError);
+
+impl fmt::Display for Address<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("UBX")?;
+        match (self.0.message, self.0.class_id) {
+            ("", Some((class, id))) => write!(f, " 0x{class:02X} 0x{id:02X}"),
+            ("", None) => Ok(()),
+            (name, _) => write!(f, " {name}"),
+        }
+    }
+}
+
+struct Message<'e>(&'e UbxError);
+
+impl fmt::Display for Message<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let field = self.0.field.unwrap_or("");
+        match self.0.detail {
+            Detail::Sync([a, b], len) => {
+                f.write_str("a UBX frame starts with B5 62, not")?;
+                [a, b].iter().take(len).try_for_each(|byte| write!(f, " {byte:02X}"))
+            }
+            Detail::Header(have) => write!(f, "a UBX header needs {HEADER_SIZE} bytes, there are {have}"),
+            Detail::Length { size, have } => write!(f, "the length field says {size} bytes, the frame has {have}"),
+            Detail::Checksum { sent, computed } => {
+                write!(f, "checksum {:02X} {:02X}, computed {:02X} {:02X}", sent[0], sent[1], computed[0], computed[1])
+            }
+            Detail::Short { offset, width, length } => {
+                let (first, last) = (offset, offset + width - 1);
+                if first == last {
+                    write!(f, "{field} needs byte {first}, the payload has {length}")
+                } else {
+                    write!(f, "{field} needs bytes {first}-{last}, the payload has {length}")
+                }
+            }
+            Detail::FewEntries { count, at_least, width, left } => write!(
+                f,
+                "{field} needs {}{count} entries of {} bits, {} bits left",
+                if at_least { "at least " } else { "" },
+                8 * width,
+                8 * left
+            ),
+            Detail::Size { expected, found } => write!(f, "{field} takes {expected} bytes, not {found}"),
+            Detail::Buffer { need, have } => write!(f, "the frame takes {need} bytes, the buffer has {have}"),
+        }
+    }
+}
+
+impl fmt::Display for UbxError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}: {}", self.kind.as_str(), self.address(), self.text())
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for UbxError {}
+
+/// One whole frame, its sync bytes, length and checksum checked: its class, id and payload.
+pub fn split_frame(data: &[u8]) -> Result<(u8, u8, &[u8]), UbxError> {
+    let sync = data.len().min(2);
+    if data[..sync] != SYNC[..sync] {
+        let mut sent = [0u8; 2];
+        sent[..sync].copy_from_slice(&data[..sync]);
+        return Err(UbxError::frame(UbxErrorKind::BadSync, None, Detail::Sync(sent, sync)));
+    }
+    if data.len() < HEADER_SIZE {
+        return Err(UbxError::frame(UbxErrorKind::ShortFrame, None, Detail::Header(data.len())));
+    }
+    let class_id = Some((data[2], data[3]));
+    let size = HEADER_SIZE + usize::from(u16::from_le_bytes([data[4], data[5]])) + CHECKSUM_SIZE;
+    let detail = Detail::Length { size, have: data.len() };
+    if data.len() < size {
+        return Err(UbxError::frame(UbxErrorKind::ShortFrame, class_id, detail));
+    }
+    if data.len() > size {
+        return Err(UbxError::frame(UbxErrorKind::LongFrame, class_id, detail));
+    }
+    let computed = fletcher8(&data[2..size - CHECKSUM_SIZE]);
+    let sent = [data[size - 2], data[size - 1]];
+    if sent != computed {
+        return Err(UbxError::frame(UbxErrorKind::BadChecksum, class_id, Detail::Checksum { sent, computed }));
+    }
+    Ok((data[2], data[3], &data[HEADER_SIZE..size - CHECKSUM_SIZE]))
+}
+
+/// A payload's little-endian fields, read in order; errors name the message and the field.
+#[derive(Clone, Debug)]
+pub struct ByteReader<'a> {
+    payload: &'a [u8],
+    pos: usize,
+    message: &'static str,
+    class_id: (u8, u8),
+}
+
+impl<'a> ByteReader<'a> {
+    /// A reader at the start of `payload` of message `message` (`NAV-PVT`), class and id `class_id`.
+    pub fn new(payload: &'a [u8], message: &'static str, class_id: (u8, u8)) -> Self {
+        ByteReader { payload, pos: 0, message, class_id }
+    }
+
+    /// The bytes not read yet.
+    pub fn remaining(&self) -> usize {
+        self.payload.len() - self.pos
+    }
+
+    /// The bytes read so far.
+    pub fn position(&self) -> usize {
+        self.pos
+    }
+
+    fn error(&self, kind: UbxErrorKind, field: &'static str, detail: Detail) -> UbxError {
+        UbxError { kind, message: self.message, class_id: Some(self.class_id), field: Some(field), detail }
+    }
+
+    /// The next `width` bytes, for field `field`.
+    pub fn bytes(&mut self, width: usize, field: &'static str) -> Result<&'a [u8], UbxError> {
+        match self.payload.get(self.pos..self.pos + width) {
+            Some(bytes) => {
+                self.pos += width;
+                Ok(bytes)
+            }
+            None => Err(self.error(
+                UbxErrorKind::ShortPayload,
+                field,
+                Detail::Short { offset: self.pos, width, length: self.payload.len() },
+            )),
+        }
+    }
+
+    /// The next `N` bytes, for a number.
+    pub fn array<const N: usize>(&mut self, field: &'static str) -> Result<[u8; N], UbxError> {
+        let mut out = [0u8; N];
+        out.copy_from_slice(self.bytes(N, field)?);
+        Ok(out)
+    }
+
+    /// The bytes left after `after` bytes the layout still takes (a field of the bytes left).
+    pub fn left(&mut self, after: usize) -> &'a [u8] {
+        let width = self.remaining().saturating_sub(after);
+        let bytes = &self.payload[self.pos..self.pos + width];
+        self.pos += width;
+        bytes
+    }
+
+    /// The bytes after the layout, as sent.
+    pub fn rest(&mut self) -> &'a [u8] {
+        self.left(0)
+    }
+
+    /// A group's entries: `count` of them (None: as many as the bytes left before `after` bytes
+    /// hold, at most `max`), at least `min`.
+    pub fn group<E: Entry<'a>>(
+        &mut self,
+        count: Option<usize>,
+        min: usize,
+        max: usize,
+        after: usize,
+        field: &'static str,
+    ) -> Result<Group<'a, E>, UbxError> {
+        let left = self.remaining();
+        let at_least = count.is_none();
+        let count = count.unwrap_or_else(|| max.min(left.saturating_sub(after) / E::WIDTH));
+        if count < min || count * E::WIDTH > left {
+            // A count from the bytes left says the least a group takes (as Python says it).
+            let count = if at_least { min } else { count };
+            return Err(self.error(
+                UbxErrorKind::ShortPayload,
+                field,
+                Detail::FewEntries { count, at_least, width: E::WIDTH, left },
+            ));
+        }
+        let bytes = self.bytes(count * E::WIDTH, field)?;
+        Ok(Group { bytes, entry: PhantomData })
+    }
+}
+
+/// A payload being written into a caller's buffer, little endian.
+#[derive(Debug)]
+pub struct ByteWriter<'b> {
+    buf: &'b mut [u8],
+    len: usize,
+    overflow: usize,
+}
+
+impl<'b> ByteWriter<'b> {
+    /// A writer at the start of `buf`.
+    pub fn new(buf: &'b mut [u8]) -> Self {
+        ByteWriter { buf, len: 0, overflow: 0 }
+    }
+
+    /// The bytes written (or that would have been, past the buffer's end).
+    pub fn len(&self) -> usize {
+        self.len + self.overflow
+    }
+
+    /// Whether nothing was written.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Writes `bytes` (past the buffer's end, counts them only: `len` says what it takes).
+    pub fn put(&mut self, bytes: &[u8]) {
+        match self.buf.get_mut(self.len..self.len + bytes.len()) {
+            Some(slot) if self.overflow == 0 => {
+                slot.copy_from_slice(bytes);
+                self.len += bytes.len();
+            }
+            _ => self.overflow += bytes.len(),
+        }
+    }
+
+    /// Writes the characters or bytes of a field of `width` bytes (None: any).
+    pub fn put_sized(
+        &mut self,
+        bytes: &[u8],
+        width: Option<usize>,
+        message: &'static str,
+        field: &'static str,
+    ) -> Result<(), UbxError> {
+        match width {
+            Some(expected) if expected != bytes.len() => Err(UbxError {
+                kind: UbxErrorKind::BadValue,
+                message,
+                class_id: None,
+                field: Some(field),
+                detail: Detail::Size { expected, found: bytes.len() },
+            }),
+            _ => {
+                self.put(bytes);
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Writes the frame of class `class`, id `id` whose payload `payload` writes, into `buf`: sync,
+/// class, id, length, payload and checksum; the frame's bytes.
+pub fn encode_frame<'b>(
+    buf: &'b mut [u8],
+    class: u8,
+    id: u8,
+    message: &'static str,
+    payload: impl FnOnce(&mut ByteWriter<'_>) -> Result<(), UbxError>,
+) -> Result<&'b [u8], UbxError> {
+    let room = buf.len().saturating_sub(HEADER_SIZE + CHECKSUM_SIZE);
+    let (head, body) = buf.split_at_mut(buf.len().min(HEADER_SIZE));
+    let mut w = ByteWriter::new(&mut body[..room]);
+    payload(&mut w)?;
+    let length = w.len();
+    let need = HEADER_SIZE + length + CHECKSUM_SIZE;
+    if length > MAX_PAYLOAD || w.overflow > 0 || head.len() < HEADER_SIZE {
+        return Err(UbxError {
+            kind: UbxErrorKind::BufferTooSmall,
+            message,
+            class_id: Some((class, id)),
+            field: None,
+            detail: Detail::Buffer { need, have: buf.len() },
+        });
+    }
+    let [low, high] = (length as u16).to_le_bytes();
+    buf[..HEADER_SIZE].copy_from_slice(&[SYNC[0], SYNC[1], class, id, low, high]);
+    let sum = fletcher8(&buf[2..HEADER_SIZE + length]);
+    buf[HEADER_SIZE + length..need].copy_from_slice(&sum);
+    Ok(&buf[..need])
+}
+
+/// One entry of a repeated group (a struct generated from the spec): its fixed width, read from
+/// and written to exactly that many bytes.
+pub trait Entry<'a>: Sized {
+    /// The entry's bytes.
+    const WIDTH: usize;
+    /// The entry of `bytes` (`WIDTH` of them).
+    fn read(r: &mut ByteReader<'a>) -> Result<Self, UbxError>;
+    /// Writes the entry's fields.
+    fn write(&self, w: &mut ByteWriter<'_>) -> Result<(), UbxError>;
+    /// The members of its decoded JSON, in order.
+    fn json_members<W: Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result;
+}
+
+/// The entries of a repeated group, as sent: a view of their bytes, each entry read when asked.
+pub struct Group<'a, E> {
+    bytes: &'a [u8],
+    entry: PhantomData<E>,
+}
+
+impl<'a, E: Entry<'a>> Group<'a, E> {
+    /// The entries of `bytes`, whole entries only (None for a length that is not a whole
+    /// number of entries).
+    pub fn new(bytes: &'a [u8]) -> Option<Self> {
+        (bytes.len().checked_rem(E::WIDTH) == Some(0)).then_some(Group { bytes, entry: PhantomData })
+    }
+
+    /// The number of entries.
+    pub fn len(&self) -> usize {
+        self.bytes.len() / E::WIDTH
+    }
+
+    /// Whether there is none.
+    pub fn is_empty(&self) -> bool {
+        self.bytes.is_empty()
+    }
+
+    /// The entries' bytes, as sent.
+    pub fn bytes(&self) -> &'a [u8] {
+        self.bytes
+    }
+
+    /// The entry at `index`.
+    pub fn get(&self, index: usize) -> Option<E> {
+        let bytes = self.bytes.get(index * E::WIDTH..(index + 1) * E::WIDTH)?;
+        E::read(&mut ByteReader::new(bytes, "", (0, 0))).ok()
+    }
+
+    /// The entries, in order.
+    pub fn iter(&self) -> impl Iterator<Item = E> + 'a {
+        self.bytes.chunks_exact(E::WIDTH).filter_map(|bytes| E::read(&mut ByteReader::new(bytes, "", (0, 0))).ok())
+    }
+
+    /// Writes the entries.
+    pub fn write(&self, w: &mut ByteWriter<'_>) {
+        w.put(self.bytes);
+    }
+
+    /// The entries as a JSON array member.
+    pub fn json<W: Write>(&self, j: &mut JsonObject<'_, W>, name: &str) -> fmt::Result {
+        let out = j.key(name)?;
+        out.write_char('[')?;
+        for (i, entry) in self.iter().enumerate() {
+            if i > 0 {
+                out.write_char(',')?;
+            }
+            let mut e = JsonObject::new(&mut *out)?;
+            entry.json_members(&mut e)?;
+            e.finish()?;
+        }
+        out.write_char(']')
+    }
+}
+
+impl<E> Clone for Group<'_, E> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<E> Copy for Group<'_, E> {}
+
+impl<E> Default for Group<'_, E> {
+    fn default() -> Self {
+        Group { bytes: &[], entry: PhantomData }
+    }
+}
+
+impl<E> PartialEq for Group<'_, E> {
+    fn eq(&self, other: &Self) -> bool {
+        self.bytes == other.bytes
+    }
+}
+
+impl<'a, E: Entry<'a> + fmt::Debug> fmt::Debug for Group<'a, E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+/// A float member: a double as Python's `repr` writes it (the shortest text that reads back the
+/// same, `.0` on whole values, an exponent of two digits or more below 1e-4 and from 1e16), NaN
+/// and the infinities as the strings `"nan"`, `"inf"`, `"-inf"`.
+pub fn json_float<W: Write>(j: &mut JsonObject<'_, W>, name: &str, value: f64) -> fmt::Result {
+    let out = j.key(name)?;
+    if value.is_nan() {
+        return out.write_str("\"nan\"");
+    }
+    if value.is_infinite() {
+        return out.write_str(if value > 0.0 { "\"inf\"" } else { "\"-inf\"" });
+    }
+    let mut text = Text { buf: [0; 40], len: 0 };
+    write!(text, "{value:?}")?;
+    let text = core::str::from_utf8(&text.buf[..text.len]).map_err(|_| fmt::Error)?;
+    match text.split_once('e') {
+        Some((mantissa, exponent)) => {
+            let (sign, digits) = exponent.strip_prefix('-').map_or(("+", exponent), |digits| ("-", digits));
+            write!(out, "{mantissa}e{sign}{digits:0>2}")
+        }
+        None => out.write_str(text),
+    }
+}
+
+/// A short text on the stack.
+struct Text {
+    buf: [u8; 40],
+    len: usize,
+}
+
+impl Write for Text {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        let slot = self.buf.get_mut(self.len..self.len + s.len()).ok_or(fmt::Error)?;
+        slot.copy_from_slice(s.as_bytes());
+        self.len += s.len();
+        Ok(())
+    }
+}
+
+/// A characters member: the bytes as ISO 8859-1 text, escaped as Python's `json.dumps` escapes
+/// (ensure_ascii: `\n`, `\r`, `\t`, `\b`, `\f`, and `\u00hh` outside 0x20-0x7E).
+pub fn json_chars<W: Write>(j: &mut JsonObject<'_, W>, name: &str, value: &[u8]) -> fmt::Result {
+    let out = j.key(name)?;
+    out.write_char('"')?;
+    for &byte in value {
+        match byte {
+            b'"' => out.write_str("\\\"")?,
+            b'\\' => out.write_str("\\\\")?,
+            b'\n' => out.write_str("\\n")?,
+            b'\r' => out.write_str("\\r")?,
+            b'\t' => out.write_str("\\t")?,
+            0x08 => out.write_str("\\b")?,
+            0x0C => out.write_str("\\f")?,
+            0x20..=0x7E => out.write_char(char::from(byte))?,
+            _ => write!(out, "\\u{:04x}", byte)?,
+        }
+    }
+    out.write_char('"')
+}
+
+/// A bytes member: lower-case hex.
+pub fn json_hex<W: Write>(j: &mut JsonObject<'_, W>, name: &str, value: &[u8]) -> fmt::Result {
+    let out = j.key(name)?;
+    out.write_char('"')?;
+    value.iter().try_for_each(|byte| write!(out, "{byte:02x}"))?;
+    out.write_char('"')
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    extern crate std;
+    use std::string::{String, ToString};
+
+    const ACK: [u8; 10] = [0xB5, 0x62, 0x05, 0x01, 0x02, 0x00, 0x06, 0x00, 0x0E, 0x37];
+
+    #[test]
+    fn a_frame_splits_into_class_id_and_payload() {
+        assert_eq!(split_frame(&ACK), Ok((5, 1, &ACK[6..8])));
+        assert_eq!(fletcher8(&ACK[2..8]), [0x0E, 0x37]);
+    }
+
+    #[test]
+    fn frame_errors_say_what_is_wrong() {
+        let mut bad = ACK;
+        bad[9] = 0x38;
+        let err = split_frame(&bad).unwrap_err();
+        assert_eq!(err.to_string(), "bad_checksum: UBX 0x05 0x01: checksum 0E 38, computed 0E 37");
+        let err = split_frame(&ACK[..9]).unwrap_err();
+        assert_eq!(err.to_string(), "short_frame: UBX 0x05 0x01: the length field says 10 bytes, the frame has 9");
+        assert_eq!(
+            split_frame(&[0xB5, 0x00]).unwrap_err().text().to_string(),
+            "a UBX frame starts with B5 62, not B5 00"
+        );
+        assert_eq!(split_frame(&ACK[..4]).unwrap_err().kind, UbxErrorKind::ShortFrame);
+    }
+
+    #[test]
+    fn a_short_payload_names_field_and_bytes() {
+        let mut r = ByteReader::new(&[0; 28], "NAV-PVT", (1, 7));
+        r.bytes(28, "head").unwrap();
+        let err = r.array::<4>("lat").unwrap_err();
+        assert_eq!(err.to_string(), "short_payload: UBX NAV-PVT: lat needs bytes 28-31, the payload has 28");
+    }
+
+    #[test]
+    fn a_frame_is_written_with_length_and_checksum() {
+        let mut buf = [0u8; 16];
+        let frame = encode_frame(&mut buf, 5, 1, "ACK-ACK", |w| {
+            w.put(&[6, 0]);
+            Ok(())
+        });
+        assert_eq!(frame, Ok(&ACK[..]));
+        let mut small = [0u8; 9];
+        let err = encode_frame(&mut small, 5, 1, "ACK-ACK", |w| {
+            w.put(&[6, 0]);
+            Ok(())
+        });
+        assert_eq!(err.unwrap_err().kind, UbxErrorKind::BufferTooSmall);
+    }
+
+    #[test]
+    fn floats_are_written_as_python_writes_them() {
+        let cases = [(0.0, "0.0"), (1e-5, "1e-05"), (1.5e16, "1.5e+16"), (0.25, "0.25"), (f64::NAN, "\"nan\"")];
+        for (value, text) in cases {
+            let mut out = String::new();
+            let mut j = JsonObject::new(&mut out).unwrap();
+            json_float(&mut j, "x", value).unwrap();
+            j.finish().unwrap();
+            assert_eq!(out, std::format!("{{\"x\":{text}}}"));
+        }
+    }
+}
