@@ -138,6 +138,7 @@ def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, ais_corpus
         if peers:
             add("pyais", "python", op, [*py_driver, "pyais", op, ais_corpus_path, *py_slice], "ais")
     # UBX: a frame decoded, every field of its message.
+    add("ours-rust-ubx", "rust", "parse", [rust_bin, "ours-ubx", "parse", ubx_corpus_path], "ubx")
     add("ours-python-ubx", "python", "parse", [*py_driver, "ours-ubx", "parse", ubx_corpus_path, *py_slice], "ubx")
     if peers:
         add("pyubx2", "python", "parse", [*py_driver, "pyubx2", "parse", ubx_corpus_path, *py_slice], "ubx")
@@ -401,7 +402,8 @@ def markdown(report: dict) -> str:
             "the line written back (ours: `Message.encode` and `to_sentence`; pyais: `encode_msg`, which writes "
             "some lines otherwise, so fewer of its lines count). "
             "UBX: parse is a frame (its bytes) decoded into its message, every field, the checksum checked (ours: "
-            "`nmeaspec.ubx_messages.decode`; pyubx2: `UBXReader.parse`).", ""]
+            "`nmeaspec.ubx_messages.decode`; in Rust: `ubx_messages::Message::from_frame`; pyubx2: "
+            "`UBXReader.parse`).", ""]
     out += ["## Targets", "", "| target | measured | limit | met |", "| --- | --- | --- | --- |"]
     for check in report["targets"]:
         met = {True: "yes", False: "**no**", None: "n/a"}[check["met"]]

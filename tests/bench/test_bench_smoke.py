@@ -17,7 +17,7 @@ OURS = {"ours-c": "c", "ours-rust": "rust", "ours-python": "python"}
 OPS = ("parse", "serialize", "roundtrip")
 AIS = {"ours-c-ais": "c", "ours-rust-ais": "rust", "ours-python-ais": "python"}  # over the AIS corpus
 AIS_ROWS = {("ours-c-ais", "parse"), ("ours-rust-ais", "parse"), ("ours-python-ais", "parse"), ("ours-python-ais", "serialize")}
-UBX_ROWS = {("ours-python-ubx", "parse")}  # over the UBX corpus, a frame a line
+UBX_ROWS = {("ours-rust-ubx", "parse"), ("ours-python-ubx", "parse")}  # over the UBX corpus, a frame a line
 FIXES = set(OURS)  # each has a fix assembler: a `fixes` row (parse and assemble every line) each
 
 
@@ -38,9 +38,9 @@ def test_bench_smoke():
     assert set(rows) == expected
     for (name, op), row in rows.items():
         assert set(row) >= {"name", "lang", "op", "corpus", "ns_per_line", "ok_lines"}
-        assert row["lang"] == {**OURS, **AIS, "ours-python-ubx": "python"}.get(name, "c")
+        assert row["lang"] == {**OURS, **AIS, "ours-rust-ubx": "rust", "ours-python-ubx": "python"}.get(name, "c")
         assert row["ns_per_line"] > 0
-        assert row["corpus"] == ("ais" if name in AIS else "ubx" if name == "ours-python-ubx" else "nmea")
+        assert row["corpus"] == ("ais" if name in AIS else "ubx" if (name, op) in UBX_ROWS else "nmea")
         if name not in AIS:  # every corpus line (UBX: frame) parses and, serialized, is the input byte for byte
             assert row["ok_lines"] == LINES, (name, op)
     # Every AIS line whose message decodes is written back byte for byte (a few real payloads are
@@ -49,6 +49,7 @@ def test_bench_smoke():
     assert LINES * 0.99 < decoded == rows[("ours-python-ais", "serialize")]["ok_lines"]
     assert rows[("ours-c-ais", "parse")]["ok_lines"] == rows[("ours-rust-ais", "parse")]["ok_lines"] == decoded
     assert rows[("ours-rust-ais", "parse")]["allocations"] == 0
+    assert rows[("ours-rust-ubx", "parse")]["allocations"] == 0
     assert report["ais_corpus"]["bytes"] == (OUT / "corpus-ais.nmea").stat().st_size
     assert report["ubx_corpus"]["frames"] == LINES and report["ubx_corpus"]["distinct_frames"] > 100
     for op in OPS:
