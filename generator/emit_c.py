@@ -18,6 +18,7 @@ import jinja2
 from . import emit_vectors, pairing
 from .emit import CONTRACT, RUNTIME, char_literal, header, runtime_file
 from .emit_c_ais import carries_ais
+from .emit_c_ubx import carries_ubx
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef
 from .names_c import (bits_const, bits_function, bits_mask, entry_type, enum_const, enum_def, enum_type,
                       group_accessor, layout_const, layout_type, member, parameter_macro, table_count, table_name)
@@ -770,7 +771,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         # the most layouts one address or command word has (1: first_fit reads the one directly)
         "max_layouts": max([len(e["ids"]) for table in dispatch.values() for e in table] + [1]),
         "json_max": json_max(spec, views),
-        "max_line": longest_line(spec), "contract_max_line": MAX_LINE, "ais": carries_ais(spec),
+        "max_line": longest_line(spec), "contract_max_line": MAX_LINE, "ais": carries_ais(spec), "ubx": carries_ubx(spec),
         "runtime_h": runtime_header("runtime.h"),
         "runtime_api_h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),
         "runtime_c": runtime_source("runtime.c"),

@@ -63,6 +63,9 @@ extern "C" {
 /** The AIS pair nmea_ais.h / nmea_ais.c is generated beside this one (its sentences carry AIS). */
 #define NMEA_WITH_AIS
 
+/** The UBX pair nmea_ubx.h / nmea_ubx.c is generated beside this one (the tool decodes UBX frames). */
+#define NMEA_WITH_UBX
+
 /*
  * Runtime types (hand-written: runtime/c/runtime.h).
  *

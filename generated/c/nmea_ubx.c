@@ -36,7 +36,7 @@
 //   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
 //   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/hnr_pvt.yaml,
 //   spec/binary/ubx/messages/hnr_att.yaml, spec/binary/ubx/messages/hnr_ins.yaml,
-//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest a60d944d7760980e)
+//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest a07ea26b27bab0c6)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -143,8 +143,12 @@ typedef struct {
 
 static bool ubx_short(ubx_reader *r, const char *field, size_t need)
 {
-    snprintf(r->err->text, sizeof r->err->text, "%s needs bytes %lu-%lu, the payload has %lu", field,
-             (unsigned long)r->pos, (unsigned long)(r->pos + need - 1), (unsigned long)r->len);
+    if (need == 1)
+        snprintf(r->err->text, sizeof r->err->text, "%s needs byte %lu, the payload has %lu", field,
+                 (unsigned long)r->pos, (unsigned long)r->len);
+    else
+        snprintf(r->err->text, sizeof r->err->text, "%s needs bytes %lu-%lu, the payload has %lu", field,
+                 (unsigned long)r->pos, (unsigned long)(r->pos + need - 1), (unsigned long)r->len);
     return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, field);
 }
 
@@ -223,9 +227,11 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
         if (g->count_kind == NMEA_UBX_COUNT_LEFT && count > g->limit)
             count = g->limit;
         if (count < g->min || count * g->entry_bytes > left) {
-            snprintf(r->err->text, sizeof r->err->text, "%s needs %lu entries of %u bytes at byte %lu, the payload has %lu",
-                     it->id, (unsigned long)(count < g->min ? g->min : count), (unsigned)g->entry_bytes,
-                     (unsigned long)r->pos, (unsigned long)r->len);
+            /* as Python says it: a group of the bytes left needs at least its least */
+            bool at_least = g->count_kind == NMEA_UBX_COUNT_LEFT;
+            snprintf(r->err->text, sizeof r->err->text, "%s needs %s%lu entries of %u bits, %lu bits left", it->id,
+                     at_least ? "at least " : "", (unsigned long)(at_least ? g->min : count),
+                     8u * (unsigned)g->entry_bytes, 8ul * (unsigned long)left);
             return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, it->id);
         }
         if (count > g->max) {

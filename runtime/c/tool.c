@@ -3,8 +3,8 @@
  * stream that may hold garbage, cut lines or sentences run together (hand-written:
  * runtime/c/tool.c). Same behaviour, byte for byte, as nmea-py and nmea-rs; see docs/json.md.
  *
- *     nmea-c decode [--values] [--lenient] [--require-checksum] [--strict]   stdin: NMEA lines
- *     nmea-c stream [--values] [--lenient] [--require-checksum] [--strict]   stdin: any bytes
+ *     nmea-c decode [--values] [--lenient] [--require-checksum] [--strict] [--ubx]   stdin: NMEA lines
+ *     nmea-c stream [--values] [--lenient] [--require-checksum] [--strict] [--ubx]   stdin: any bytes
  *     nmea-c encode                                               stdin: decode's output
  *     nmea-c fixes                                                stdin: NMEA lines
  *
@@ -13,7 +13,8 @@
  * decode and stream print one JSON object per line; a line longer than NMEA_MAX_LINE is counted, not stored.
  * With the AIS pair, a line's object ends with the AIS message it carries (decode: a message of
  * one sentence; stream: also one joined across sentences, and an incomplete_message line after the
- * line that gave a message up).
+ * line that gave a message up). With the UBX pair and --ubx, a UBX frame's object of stream ends
+ * with the message it carries (or the error its payload gives).
  * encode holds one line at a time (up to ENCODE_MAX bytes).
  */
 
@@ -24,6 +25,9 @@
 #include "nmea.h"
 #ifdef NMEA_WITH_AIS
 #include "nmea_ais.h"
+#endif
+#ifdef NMEA_WITH_UBX
+#include "nmea_ubx.h"
 #endif
 
 #define CHUNK 65536
@@ -43,6 +47,7 @@ typedef struct {
     tool_verb verb;
     bool stream; /* decode joins AIS messages across lines */
     bool values;
+    bool ubx; /* stream: a UBX frame with its decoded message */
     nmea_options options;
     nmea_problems problems; /* of the line decoded last */
     size_t out_len;
@@ -274,7 +279,11 @@ static bool decode_flags(tool *t, int argc, char **argv)
         bool *flag = strcmp(argv[i], "--values") == 0 ? &t->values
             : strcmp(argv[i], "--lenient") == 0 ? &lenient
             : strcmp(argv[i], "--require-checksum") == 0 ? &required
-            : strcmp(argv[i], "--strict") == 0 ? &strict : NULL;
+            : strcmp(argv[i], "--strict") == 0 ? &strict
+#ifdef NMEA_WITH_UBX
+            : strcmp(argv[i], "--ubx") == 0 ? &t->ubx
+#endif
+            : NULL;
         if (!flag || *flag)
             return false;
         *flag = true;
@@ -286,6 +295,36 @@ static bool decode_flags(tool *t, int argc, char **argv)
     return true;
 }
 
+#ifdef NMEA_WITH_UBX
+/* stream --ubx (docs/json.md, "UBX messages in stream"): the message a UBX frame carries, decoded
+   once; ubx_member appends `,"ubx":` and its JSON, or `,"ubx_error":` and the error its payload
+   gives. */
+static nmea_ubx_message ubx_message; /* 10 kB: not on the stack */
+static nmea_ubx_error ubx_error;
+static bool ubx_decoded;
+
+/* Decodes the frame; the bytes its member takes at most. */
+static size_t ubx_decode(const unsigned char *frame, size_t len)
+{
+    ubx_decoded = nmea_ubx_decode_frame(frame, len, &ubx_message, &ubx_error);
+    return ubx_decoded ? 8 + nmea_ubx_json(&ubx_message, NULL, 0) : 200 + sizeof ubx_error.text;
+}
+
+static size_t ubx_member(char *out)
+{
+    size_t m;
+    if (ubx_decoded) {
+        m = (size_t)sprintf(out, ",\"ubx\":");
+        return m + nmea_ubx_json(&ubx_message, out + m, nmea_ubx_json(&ubx_message, NULL, 0) + 1);
+    }
+    m = (size_t)sprintf(out, ",\"ubx_error\":{\"kind\":\"%s\",\"address\":\"UBX%s%s\",\"field\":null,\"name\":",
+                        nmea_ubx_error_kind_name(ubx_error.kind), ubx_error.message ? " " : "",
+                        ubx_error.message ? ubx_error.message : "");
+    m += (size_t)(ubx_error.field ? sprintf(out + m, "\"%s\"", ubx_error.field) : sprintf(out + m, "null"));
+    return m + (size_t)sprintf(out + m, ",\"message\":\"%s\"}", ubx_error.text);
+}
+#endif
+
 /* A binary frame's JSON (docs/json.md, "Binary frames in stream"): a frame with its identity and
    bytes, or the sync bytes of what was not one with the reason. */
 static void emit_frame(tool *t, const nmea_framed *item)
@@ -294,10 +333,16 @@ static void emit_frame(tool *t, const nmea_framed *item)
     const unsigned char *b = (const unsigned char *)item->ptr;
     const nmea_framing *framing = &nmea_framings[item->protocol - 1];
     const char *protocol = framing->name;
-    char *out = room(t, 160 + 2 * NMEA_MAX_FRAME);
-    size_t n, i, width = (size_t)framing->check_size + framing->end_len, at;
+    size_t n, i, width = (size_t)framing->check_size + framing->end_len, at, extra = 0;
     unsigned long value;
     unsigned bit;
+    char *out;
+#ifdef NMEA_WITH_UBX
+    bool with_ubx = t->ubx && item->error == NMEA_FRAME_OK && item->protocol == NMEA_UBX;
+    if (with_ubx)
+        extra = ubx_decode(b, item->len); /* its JSON may be long: room for it first */
+#endif
+    out = room(t, 160 + 2 * NMEA_MAX_FRAME + extra);
     if (item->error == NMEA_FRAME_OK) {
         n = (size_t)sprintf(out, "{\"ok\":true,\"protocol\":\"%s\",", protocol);
         for (i = 0; i < 2 && framing->identity[i].name; i++) { /* null past the payload */
@@ -339,6 +384,10 @@ static void emit_frame(tool *t, const nmea_framed *item)
         out[n++] = hex[b[i] & 15];
     }
     out[n++] = '"';
+#ifdef NMEA_WITH_UBX
+    if (with_ubx)
+        n += ubx_member(out + n);
+#endif
     out[n++] = '}';
     emit(t, n);
 }
@@ -398,7 +447,11 @@ int main(int argc, char **argv)
         puts("nmea-c " NMEA_VERSION);
         return 0;
     } else {
-        fputs("usage: nmea-c decode|stream [--values] [--lenient] [--require-checksum] [--strict] | encode"
+        fputs("usage: nmea-c decode|stream [--values] [--lenient] [--require-checksum] [--strict]"
+#ifdef NMEA_WITH_UBX
+              " [--ubx]"
+#endif
+              " | encode"
               " | fixes | --version\n"
               "       (reads stdin, writes stdout)\n",
               stderr);

@@ -63,6 +63,9 @@ extern "C" {
 /** This build has no configuration parameter tables (nor the nmea_param_ functions). */
 #define NMEA_NO_TABLES
 
+/** The UBX pair nmea_ubx.h / nmea_ubx.c is generated beside this one (the tool decodes UBX frames). */
+#define NMEA_WITH_UBX
+
 /* runtime/c/runtime.h */
 
 #ifndef NMEA_NO_TAG_BLOCKS
