@@ -7,6 +7,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import re
 from functools import reduce
 from pathlib import Path
 
@@ -50,6 +51,30 @@ def test_csv(installed: Venv) -> None:
     rows = list(csv.reader(io.StringIO(out)))
     assert rows[0] == ["time", "lat", "lon", "speed", "date"]
     assert rows[1][:3] == ["19:32:21.00", "20.6287983", "-87.06808"] and len(rows) == 8
+
+
+UBX_LOG = Path(__file__).resolve().parents[1] / "data" / "ubx" / "ublox-neo-m8n.log"
+
+
+def test_binary_frames_are_shown_with_their_messages(installed: Venv) -> None:
+    """A log of NMEA and UBX: each UBX frame is a row named as u-blox names its message, with its
+    decoded values (JSON: the same values the package's decode gives), counted in the summary;
+    a damaged frame is counted as its reason."""
+    from tests.ubx.pyubx2_oracle import ubx, ubx_messages
+
+    data = UBX_LOG.read_bytes()
+    frames = [frame for _, frame in ubx.split_frames(data)]
+    result = nmea(installed, "show", "--json", "--sentences", "UBX NAV-PVT", "-", input=data)
+    rows = [json.loads(line) for line in result.stdout.decode().splitlines()]
+    pvts = [f for f in frames if (f.msg_class, f.msg_id) == (0x01, 0x07)]
+    assert len(rows) == len(pvts) > 0
+    first = json.loads(json.dumps(ubx_messages.message(pvts[0]).to_dict()))
+    assert rows[0]["sentence"] == "UBX NAV-PVT" and rows[0]["talker"] is None
+    assert rows[0]["fields"] == {k: v for k, v in first.items() if k != "message"}
+    assert re.search(rf"\n  UBX NAV-PVT +{len(pvts)}\n", result.stderr.decode())
+    damaged = data.replace(pvts[0].encode(), pvts[0].encode()[:-1] + b"\x00", 1)
+    summary = nmea(installed, "show", "--sentences", "UBX NAV-PVT", "-", input=damaged).stderr.decode()
+    assert re.search(rf"\n  UBX NAV-PVT +{len(pvts) - 1}\n", summary) and re.search(r"\n  bad_checksum +1\n", summary)
 
 
 TAG_LINES = Path(__file__).resolve().parents[1] / "data" / "tag_blocks" / "real.nmea"

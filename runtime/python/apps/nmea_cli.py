@@ -33,7 +33,7 @@ from ..fixes import Fix, fixes
 from ..network import host_port, tcp_feed, udp_feed
 from ..receiver import Receiver, ReceiverError, ReplyTimeout, check_baud
 from ..runtime import NmeaError
-from ..stream import lines, too_long
+from ..stream import BadFrame, BinaryFrame, Item, lines, too_long
 from .commands import COMMANDS, SHORTCUTS, VENDORS, Command, Shortcut
 
 SHOW_EXAMPLES = """\
@@ -245,17 +245,45 @@ def records(
     """Each sentence of a byte stream as {line, talker, sentence, fields}, counted in `summary`;
     errors are only counted. `wanted`: the sentence ids (or addresses of unknown sentences) to
     keep; `options`: parse()'s (lenient, strict)."""
-    return framed_records(lines(chunks), wanted, summary, **options)
+    return framed_records(lines(chunks, binary=True), wanted, summary, **options)
+
+
+def frame_record(frame: BinaryFrame) -> tuple[str, dict[str, Any]]:
+    """A binary frame's name and fields: a UBX frame's message as u-blox names it (`NAV-PVT`) with
+    its decoded values; another protocol's frame as its protocol and identity (`RTCM3 1005`, the
+    message number); a UBX class and id the spec does not describe as `UBX 0x01 0x07` with its
+    payload. Raises NmeaError for a UBX payload its layout does not fit."""
+    if frame.protocol == "ubx":
+        message = frame.message()
+        fields = {k: v for k, v in message.to_dict().items() if k != "message"}
+        name = getattr(message, "ADDRESS", None)
+        return (f"UBX {name}" if name else f"UBX 0x{frame.data[2]:02X} 0x{frame.data[3]:02X}"), fields
+    identity = [v for v in frame.identity.values() if v is not None]
+    return " ".join([frame.protocol.upper(), *map(str, identity)]), {}
 
 
 def framed_records(
-    items: Iterable[bytes | int], wanted: set[str] | None, summary: Summary, **options: bool
+    items: Iterable[Item], wanted: set[str] | None, summary: Summary, **options: bool
 ) -> Iterator[dict[str, Any]]:
-    """records() of lines already framed (an int: the length of an overlong line). The record of
-    the sentence that completes an AIS message (nmeaspec.assembly) has it as `ais`."""
+    """records() of lines already framed (an int: the length of an overlong line; binary frames
+    as the framer gives them: a BadFrame is counted as its reason). The record of the sentence
+    that completes an AIS message (nmeaspec.assembly) has it as `ais`."""
     assembler = MessageAssembler()
     for number, item in enumerate(items, 1):
         summary.lines += 1
+        if isinstance(item, BadFrame):
+            summary.errors[item.reason] += 1
+            continue
+        if isinstance(item, BinaryFrame):
+            try:
+                name, fields = frame_record(item)
+            except NmeaError as err:
+                summary.errors[err.kind] += 1
+                continue
+            summary.sentences[name] += 1
+            if wanted is None or name in wanted:
+                yield {"line": number, "talker": None, "sentence": name, "fields": fields}
+            continue
         try:
             if isinstance(item, int):
                 raise too_long(item)
