@@ -302,12 +302,14 @@ static bool decode_flags(tool *t, int argc, char **argv)
 static nmea_ubx_message ubx_message; /* 10 kB: not on the stack */
 static nmea_ubx_error ubx_error;
 static bool ubx_decoded;
+static size_t ubx_json_len; /* of the decoded message's JSON */
 
 /* Decodes the frame; the bytes its member takes at most. */
 static size_t ubx_decode(const unsigned char *frame, size_t len)
 {
     ubx_decoded = nmea_ubx_decode_frame(frame, len, &ubx_message, &ubx_error);
-    return ubx_decoded ? 8 + nmea_ubx_json(&ubx_message, NULL, 0) : 200 + sizeof ubx_error.text;
+    ubx_json_len = ubx_decoded ? nmea_ubx_json(&ubx_message, NULL, 0) : 0;
+    return ubx_decoded ? 8 + ubx_json_len : 200 + sizeof ubx_error.text;
 }
 
 static size_t ubx_member(char *out)
@@ -315,7 +317,7 @@ static size_t ubx_member(char *out)
     size_t m;
     if (ubx_decoded) {
         m = (size_t)sprintf(out, ",\"ubx\":");
-        return m + nmea_ubx_json(&ubx_message, out + m, nmea_ubx_json(&ubx_message, NULL, 0) + 1);
+        return m + nmea_ubx_json(&ubx_message, out + m, ubx_json_len + 1);
     }
     m = (size_t)sprintf(out, ",\"ubx_error\":{\"kind\":\"%s\",\"address\":\"UBX%s%s\",\"field\":null,\"name\":",
                         nmea_ubx_error_kind_name(ubx_error.kind), ubx_error.message ? " " : "",

@@ -312,7 +312,8 @@ def test_stream_verb() -> None:
     agreed(["stream", "--require-checksum"], data)
 
 
-BINARY_LOGS = [log for name in ("ubx", "rtcm3", "skytraq", "sirf", "casic")
+# gpsd's logs of every protocol spec/binary describes, in tests/data/<protocol>
+BINARY_LOGS = [log for name in sorted(p.parent.name for p in (ROOT / "spec" / "binary").glob("*/protocol.yaml"))
                for log in sorted((ROOT / "tests" / "data" / name).glob("*.log"))]
 ACK = bytes.fromhex("b562 0501 0200 0600 0e37")  # UBX ACK-ACK of CFG-PRT
 RTCM = bytes.fromhex("d3 0002 3ee0 6d7f60")  # RTCM 3, message number 0x3EE

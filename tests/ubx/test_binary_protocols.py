@@ -14,6 +14,7 @@ from fuzz import faults
 from tests.ubx.pyubx2_oracle import ubx  # noqa: F401 (puts generated/python on the path)
 
 from nmeaspec import stream  # isort: skip
+from tests.ubx.test_stream_frames import assert_damage_keeps_frames, split, without_line_endings  # isort: skip
 
 ROOT = Path(__file__).resolve().parents[2]
 DATA = ROOT / "tests" / "data"
@@ -60,21 +61,6 @@ def scan(data: bytes) -> list[bytes]:
         else:
             at += 1
     return found
-
-
-def split(data: bytes, chunk: int = 4096) -> list[stream.Item]:
-    framer = stream.Framer(binary=True)
-    items = [item for i in range(0, len(data), chunk) for item in framer.feed(data[i:i + chunk])]
-    return items + framer.end()
-
-
-def without_line_endings(data: bytes, items: list[stream.Item]) -> bytes:
-    out, pos = bytearray(), 0
-    for frame in (item for item in items if isinstance(item, stream.BinaryFrame)):
-        at = data.index(frame.data, pos)
-        out += data[pos:at].replace(b"\r", b"").replace(b"\n", b"") + frame.data
-        pos = at + len(frame.data)
-    return bytes(out + data[pos:].replace(b"\r", b"").replace(b"\n", b""))
 
 
 @pytest.mark.parametrize("log", LOGS, ids=lambda p: p.name)
@@ -147,29 +133,10 @@ def mixed() -> bytes:
             + logs["sirfstarv.log"][:20_000])
 
 
-def frame_spans(data: bytes) -> list[tuple[int, int]]:
-    spans, pos = [], 0
-    for frame in (item for item in split(data) if isinstance(item, stream.BinaryFrame)):
-        pos = data.index(frame.data, pos)
-        spans.append((pos, pos + len(frame.data)))
-        pos += len(frame.data)
-    return spans
-
-
 @pytest.mark.parametrize("kind", faults.KINDS)
 def test_damage_loses_no_intact_frame_and_takes_no_damaged_one(kind: str) -> None:
     """fuzz/faults.py's damage over the mixed stream (the other stream of `interleave`: gpsd's
     SkyTraq binary log): every frame a copy run holds whole is found, every frame found is one of
     the clean streams'."""
     logs = [mixed(), (DATA / "skytraq" / "skytraq-bin.log").read_bytes() * 4]
-    spans = [frame_spans(log) for log in logs]
-    damaged = faults.damage(kind, 1, logs[0], logs[1])
-    found = [item.data for item in split(damaged.data) if isinstance(item, stream.BinaryFrame)]
-    clean = {logs[s][a:b] for s in range(2) for a, b in spans[s]}
-    assert all(frame in clean for frame in found), "a damaged frame was taken"
-    whole = [logs[run.stream][a:b] for run in damaged.runs if run.stream >= 0
-             for a, b in spans[run.stream] if run.start <= a and b <= run.end]
-    assert whole and len(found) >= len(whole)
-    left = list(found)
-    for frame in whole:
-        left.remove(frame)
+    assert_damage_keeps_frames(kind, logs)

@@ -142,13 +142,9 @@ def frame_spans(data: bytes) -> list[tuple[int, int]]:
     return spans
 
 
-@pytest.mark.parametrize("kind", faults.KINDS)
-def test_damage_loses_no_intact_frame_and_takes_no_damaged_one(kind: str) -> None:
-    """fuzz/faults.py's damage over a log of UBX and NMEA (the other stream of `interleave`: one of
-    RTCM 3 and NMEA): every frame a copy run holds whole is found, every frame found is one of the
-    clean logs'."""
-    logs = [(ROOT / "tests" / "data" / "ubx" / "ublox-neo-m8l.log").read_bytes(),
-            (ROOT / "tests" / "data" / "rtcm3" / "ublox-f9p-rtcm.log").read_bytes()]
+def assert_damage_keeps_frames(kind: str, logs: list[bytes]) -> None:
+    """fuzz/faults.py's damage of `kind` over two clean streams: every frame a copy run holds whole
+    is found, every frame found is one of the clean streams'."""
     spans = [frame_spans(log) for log in logs]
     damaged = faults.damage(kind, 1, logs[0], logs[1])
     found = [item.data for item in split(damaged.data) if isinstance(item, stream.BinaryFrame)]
@@ -160,3 +156,13 @@ def test_damage_loses_no_intact_frame_and_takes_no_damaged_one(kind: str) -> Non
     left = list(found)
     for frame in whole:  # each intact frame among those found (a doubled run holds one twice)
         left.remove(frame)
+
+
+@pytest.mark.parametrize("kind", faults.KINDS)
+def test_damage_loses_no_intact_frame_and_takes_no_damaged_one(kind: str) -> None:
+    """fuzz/faults.py's damage over a log of UBX and NMEA (the other stream of `interleave`: one of
+    RTCM 3 and NMEA): every frame a copy run holds whole is found, every frame found is one of the
+    clean logs'."""
+    logs = [(ROOT / "tests" / "data" / "ubx" / "ublox-neo-m8l.log").read_bytes(),
+            (ROOT / "tests" / "data" / "rtcm3" / "ublox-f9p-rtcm.log").read_bytes()]
+    assert_damage_keeps_frames(kind, logs)
