@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -19,6 +20,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from .errors import SpecErrors
+from .migrate import upgrade_tree
 from .model import EnumDef, Field, Group, Item, Layout, Sentence, Spec, TableDef
 
 SECTIONS = {
@@ -230,6 +232,9 @@ def _enums(old: Spec, new: Spec, log: _Log) -> None:
 
 
 def _enum(a: EnumDef, b: EnumDef, log: _Log) -> None:
+    if a.closed != b.closed:  # closed: a code the enum does not list is refused, not kept
+        log("enum", a.id, f"`{a.id}`: a code it does not list is now "
+            + ("refused (codes closed)" if b.closed else "kept (codes open)"), b.closed)
     by_id_a, by_id_b = _by_id(a.values), _by_id(b.values)
     for v in a.values:
         if v.id not in by_id_b:
@@ -352,7 +357,12 @@ def resolve_tree(arg: str, tmp: Path, label: str) -> Path:
     into tmp."""
     path = Path(arg)
     if path.is_dir():
-        return path
+        if not upgrade_tree(path, write=False):
+            return path
+        copy = tmp / label  # written for an older schema: upgraded in a copy
+        shutil.copytree(path, copy)
+        upgrade_tree(copy)
+        return copy
     rev, _, sub = arg.partition(":")
     sub = sub or "spec"
     top = subprocess.run(["git", "rev-parse", "--show-toplevel"], capture_output=True, text=True)
@@ -367,6 +377,7 @@ def resolve_tree(arg: str, tmp: Path, label: str) -> Path:
     archive = subprocess.run(["git", "-C", top.stdout.strip(), "archive", "--format=tar", rev, where],
                              capture_output=True, check=True)
     subprocess.run(["tar", "-x", "-C", str(dest)], input=archive.stdout, check=True)
+    upgrade_tree(dest / where)  # an older release's spec, in today's schema
     return dest / where
 
 

@@ -228,6 +228,22 @@ def test_diff_classifies_enum_and_sentence_changes(spec) -> None:
     assert "No change to the generated API." in diff.markdown([], "a", "b")
 
 
+def test_diff_loads_a_spec_written_for_the_first_release_schema(spec, tmp_path: Path) -> None:
+    """0.1.0's spec (manuals with `vendor`, enums without `codes`) is upgraded in a copy and compared."""
+    old = tmp_path / "spec-0.1"
+    shutil.copytree(SPEC, old)
+    manuals = old / "manuals.yaml"
+    manuals.write_text(re.sub(r"(?m)^(\s+)maker:", r"\1vendor:", manuals.read_text()))
+    hemisphere = old / "enums" / "north_south.yaml"
+    hemisphere.write_text(re.sub(r"(?m)^codes: closed\n", "", hemisphere.read_text()))
+    before = (manuals.read_text(), hemisphere.read_text())
+    tree = diff.resolve_tree(str(old), tmp_path, "old")
+    assert tree != old and (manuals.read_text(), hemisphere.read_text()) == before   # the user's files untouched
+    changes = _changes(load_spec(tree), spec)
+    assert changes == {"`north_south`: a code it does not list is now refused (codes closed)": True}
+    assert diff.resolve_tree(str(SPEC), tmp_path, "new") == SPEC                    # today's: read in place
+
+
 # --- reconcile a manual's text -------------------------------------------------------------------
 
 def test_reconcile_finds_the_manuals_examples_in_the_spec(spec, tmp_path: Path) -> None:

@@ -15,7 +15,7 @@ LAYERS = [
     {"paths", "errors", "numbers", "rules", "cache"},     # rules: the checks' ids; cache: kept between runs
     {"field_types"},                                      # what differs by field type
     {"model"},                                            # the typed spec
-    {"loader", "naming", "selection"},                    # reading YAML; naming and picking sentences
+    {"loader", "migrate", "naming", "selection"},         # reading YAML (an older schema's too); naming and picking sentences
     {"names", "names_c", "names_rust", "pairing", "rust_features"},   # what the model implies, per language
     {"reference", "reference_ais", "reference_binary"},   # the reference decoders (sentences, bit payloads, frames)
     {"resolve"},
