@@ -469,6 +469,28 @@ static void merge(nmea_fix_assembler *a, const layout *l, const layout_facts *fl
 
 void nmea_fix_init(nmea_fix_assembler *a) { memset(a, 0, sizeof *a); }
 
+/* Whether a layout has a field that carries the time of day. */
+static bool carries_time(const layout_facts *fl)
+{
+    uint8_t i;
+
+    for (i = 0; i < fl->count; i++)
+        if (fl->fields[i].fact == NMEA_FACT_TIME)
+            return true;
+    return false;
+}
+
+/* Whether the fix under way came from this talker's sentence already. */
+static bool holds_source(const nmea_gnss_fix *fix, const char talker[3], const char *sentence)
+{
+    uint16_t i;
+
+    for (i = 0; i < fix->sentence_count; i++)
+        if (strcmp(fix->sentences[i].sentence, sentence) == 0 && strcmp(fix->sentences[i].talker, talker) == 0)
+            return true;
+    return false;
+}
+
 bool nmea_fix_feed(nmea_fix_assembler *a, const nmea_sentence *s, nmea_gnss_fix *out)
 {
     const layout_facts *fl = s->id == NMEA_SENTENCE_GENERIC ? NULL : &FIX.layouts[s->id];
@@ -484,8 +506,16 @@ bool nmea_fix_feed(nmea_fix_assembler *a, const nmea_sentence *s, nmea_gnss_fix 
     for (i = 0; i < fl->count; i++)
         if (!fl->fields[i].in_group)
             facts[fl->fields[i].fact] = fact_of(&fl->fields[i], const_member_at(&s->as, fl->fields[i].field->offset));
-    if (a->open && facts[NMEA_FACT_TIME].known && nmea_fix_has(&a->fix, NMEA_FACT_TIME) &&
-        a->fix.time_ms != (uint32_t)facts[NMEA_FACT_TIME].number) {
+    if (l->head != NO_MEMBER && l->kind == LAYOUT_STANDARD) {
+        const nmea_text *address = (const nmea_text *)const_member_at(&s->as, l->head);
+        copy_talker(talker, address->ptr, address->len);
+    }
+    if (a->open && (facts[NMEA_FACT_TIME].known
+                        ? nmea_fix_has(&a->fix, NMEA_FACT_TIME) &&
+                              a->fix.time_ms != (uint32_t)facts[NMEA_FACT_TIME].number
+                        /* no time of day yet: a sentence with a time field comes once an epoch */
+                        : !nmea_fix_has(&a->fix, NMEA_FACT_TIME) && carries_time(fl) &&
+                              holds_source(&a->fix, talker, l->sentence))) {
         finish_epoch(a, out);
         closed = true;
     }
@@ -496,10 +526,6 @@ bool nmea_fix_feed(nmea_fix_assembler *a, const nmea_sentence *s, nmea_gnss_fix 
     if (facts[NMEA_FACT_TIME].known) {
         a->fix.time_ms = (uint32_t)facts[NMEA_FACT_TIME].number;
         a->fix.known |= fact_bit(NMEA_FACT_TIME);
-    }
-    if (l->head != NO_MEMBER && l->kind == LAYOUT_STANDARD) {
-        const nmea_text *address = (const nmea_text *)const_member_at(&s->as, l->head);
-        copy_talker(talker, address->ptr, address->len);
     }
     if (a->fix.sentence_count == NMEA_FIX_MAX_SENTENCES) {
         a->fix.overflow++;

@@ -9,7 +9,9 @@ of the sentences' fields, generated into fix_fields.py); this module only merges
 
 - An epoch is the run of sentences with the same time of day. A sentence without time (GSA, GSV,
   VTG, PUBX,03) joins the epoch under way; a sentence with another time closes it, as does the end
-  of the stream (`FixAssembler.close`).
+  of the stream (`FixAssembler.close`). While no sentence of the epoch has given a time (a
+  receiver without a fix leaves it empty), a sentence whose layout has a time field closes it when
+  the epoch already holds one from the same talker (GGA after GGA).
 - A fix holds only what the sentences of its epoch say: a sentence sent at a lower rate leaves the
   other epochs without its facts. The one exception is the date: an epoch without one takes the
   last date seen, a day later when the time of day went back past midnight.
@@ -157,14 +159,22 @@ class FixAssembler:
         facts, groups = _facts(sentence, layout)
         closed = None
         time = facts.pop("time", None)
-        if self._fix is not None and time is not None and self._fix.time not in (None, time):
+        talker = getattr(sentence, "talker", None) or ""
+        source = talker + type(sentence).SENTENCE
+        under_way = self._fix
+        if under_way is not None and (
+            time is not None and under_way.time not in (None, time)
+            # no time of day yet (a receiver without a fix): a sentence that has a time field
+            # comes once an epoch, so its second one starts the next
+            or time is None and under_way.time is None and "time" in layout.carried
+            and source in under_way.sentences
+        ):
             closed = self._finish()
         fix = self._fix if self._fix is not None else Fix()
         self._fix = fix
         if time is not None:
             fix.time = time
-        talker = getattr(sentence, "talker", None) or ""
-        fix.sentences.append(talker + type(sentence).SENTENCE)
+        fix.sentences.append(source)
         self._merge(fix, facts, groups, layout.carried, talker)
         return closed
 

@@ -6,7 +6,9 @@ improves them).
 Where the two differ, the reason is known (measured on these logs, 2026-11):
 - epoch: gpsd reports no time in an epoch without a fix (tn200's cold start; GPSmap-76S in
   simulator mode, GGA quality 8), nor before it knows a date (the echo sounder's GLL-only log, the
-  first epochs of most logs); our epochs are every time of day the sentences give.
+  first epochs of most logs); our epochs are every time of day the sentences give, and the cycles
+  of a receiver that sends no time yet (bt451's and foretrex-201's first sentences), which no
+  report of gpsd can be matched with.
 - date: gpsd moves dates before its build's GPS week rollover window forward by 1024 weeks
   (neo-m8n's RMC says 2015, gpsd 2034; gp-320fw's cold boot, a receiver hit by the 2019 rollover,
   says 1999, gpsd 2019); ours is the date as sent.

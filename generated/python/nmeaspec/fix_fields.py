@@ -5,7 +5,7 @@
 #   spec/proprietary/pubx_position.yaml, spec/proprietary/pubx_svstatus.yaml,
 #   spec/proprietary/pubx_time.yaml, spec/standard/gga.yaml, spec/standard/gll.yaml,
 #   spec/standard/gns.yaml, spec/standard/gsa.yaml, spec/standard/gst.yaml, spec/standard/gsv.yaml,
-#   spec/standard/rmc.yaml, spec/standard/vtg.yaml, spec/standard/zda.yaml (digest 15c397a2f9a425f7)
+#   spec/standard/rmc.yaml, spec/standard/vtg.yaml, spec/standard/zda.yaml (digest edbb13a3fefff44a)
 # Regenerate: make generate (python3 -m generator generate)
 """The fields that carry the facts of a fix (spec/fix.yaml), per sentence layout: what
 fixes.py assembles a fix from, without naming a sentence itself."""

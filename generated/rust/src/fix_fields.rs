@@ -6,7 +6,7 @@
 //   spec/proprietary/pubx_time.yaml, spec/standard/gga.yaml, spec/standard/gll.yaml,
 //   spec/standard/gns.yaml, spec/standard/gsa.yaml, spec/standard/gst.yaml, spec/standard/gsv.yaml,
 //   spec/standard/rmc.yaml, spec/standard/vtg.yaml, spec/standard/zda.yaml
-//   (digest 0e74019c2717c789)
+//   (digest e7b8cdc27081b24d)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The fields that carry the facts of a fix (spec/fix.yaml), per layout: how the runtime's fix

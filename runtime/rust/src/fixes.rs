@@ -8,7 +8,9 @@
 //!
 //! - An epoch is the run of sentences with the same time of day. A sentence without time joins
 //!   the epoch under way; a sentence with another time closes it, as does the end of the stream
-//!   ([`FixAssembler::finish`]).
+//!   ([`FixAssembler::finish`]). While the epoch has no time (a receiver without a fix), a
+//!   sentence whose layout has a time field closes it when the epoch holds one from the same
+//!   talker already.
 //! - A fix holds only what the sentences of its epoch say, except the date: an epoch without one
 //!   takes the last date seen, a day later when the time of day went back past midnight.
 //! - Satellites in view come in sets (one per talker and signal); a set belongs to the epoch in
@@ -502,16 +504,22 @@ impl FixAssembler {
     pub fn feed<S: FixSource + ?Sized>(&mut self, sentence: &S) -> Option<Fix> {
         let mut facts = sentence.facts()?;
         let time = facts.time.take();
-        let under_way = self.fix.as_ref().and_then(|fix| fix.time);
-        let closed = match (under_way, time) {
-            (Some(a), Some(b)) if micros(a) != micros(b) => self.close(),
+        let source = [facts.talker, facts.sentence].concat();
+        let closed = match (&self.fix, time) {
+            (Some(Fix { time: Some(a), .. }), Some(b)) if micros(*a) != micros(b) => self.close(),
+            // No time of day yet: a sentence with a time field comes once an epoch.
+            (Some(fix), None)
+                if fix.time.is_none() && facts.carried.contains(&"time") && fix.sentences.contains(&source) =>
+            {
+                self.close()
+            }
             _ => None,
         };
         let mut fix = self.fix.take().unwrap_or_default();
         if time.is_some() {
             fix.time = time;
         }
-        fix.sentences.push([facts.talker, facts.sentence].concat());
+        fix.sentences.push(source);
         self.merge(&mut fix, &facts);
         self.fix = Some(fix);
         closed
