@@ -5,8 +5,10 @@ change that raises one, record the new figures with
 `UPDATE_TYPED_SHARE=1 .venv/bin/python -m pytest tests/shapes`.
 
 The logs: pynmeagps's test logs (tests/data/pynmeagps) and gpsd's NMEA logs that the shared corpus
-does not hold (tests/data/gpsd_logs), and marine instrument sentences from other libraries' tests and
-Java Marine API's ship capture (tests/data/marine); each directory's PROVENANCE.md names the source."""
+does not hold (tests/data/gpsd_logs), marine instrument sentences from other libraries' tests and
+Java Marine API's ship capture (tests/data/marine), the test sentences of go-nmea, AeroRust's nmea,
+minmea and lwgps with AeroRust's Quectel capture (tests/data/libraries), and two real ship captures
+from OpenCPN's test data (tests/data/opencpn); each directory's PROVENANCE.md names the source."""
 
 from __future__ import annotations
 
@@ -23,7 +25,7 @@ sys.path.insert(0, str(ROOT / "generated" / "python"))
 import nmeaspec  # noqa: E402
 
 DATA = ROOT / "tests" / "data"
-SOURCES = ("pynmeagps", "gpsd_logs", "marine")
+SOURCES = ("pynmeagps", "gpsd_logs", "marine", "libraries", "opencpn")
 MEASURED_FILE = Path(__file__).with_name("typed_share.json")
 MEASURED: dict[str, list[int]] = json.loads(MEASURED_FILE.read_text(encoding="utf-8"))
 

@@ -74,9 +74,10 @@
 //   spec/enums/mtk_periodic_mode.yaml, spec/enums/mtk_sbas_mode.yaml,
 //   spec/enums/mtk_standby_type.yaml, spec/enums/mtk_system_message.yaml,
 //   spec/enums/mwv_reference.yaml, spec/enums/mwv_speed_unit.yaml, spec/enums/nak_reason.yaml,
-//   spec/enums/nav_status.yaml, spec/enums/north_south.yaml, spec/enums/nrm_function.yaml,
-//   spec/enums/nrx_frequency.yaml, spec/enums/nsr_integrity.yaml, spec/enums/nsr_plausibility.yaml,
-//   spec/enums/nsr_stw_mode.yaml, spec/enums/osd_reference.yaml, spec/enums/phins_pitch_sense.yaml,
+//   spec/enums/nav_status.yaml, spec/enums/nortek_coordinate_system.yaml,
+//   spec/enums/north_south.yaml, spec/enums/nrm_function.yaml, spec/enums/nrx_frequency.yaml,
+//   spec/enums/nsr_integrity.yaml, spec/enums/nsr_plausibility.yaml, spec/enums/nsr_stw_mode.yaml,
+//   spec/enums/osd_reference.yaml, spec/enums/phins_pitch_sense.yaml,
 //   spec/enums/phins_roll_sense.yaml, spec/enums/pos_mode.yaml,
 //   spec/enums/pos_sentence_status.yaml, spec/enums/prc_operating_location.yaml,
 //   spec/enums/prc_pitch_mode.yaml, spec/enums/prc_rpm_mode.yaml,
@@ -130,7 +131,7 @@
 //   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 //   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 //   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-//   (digest 36daab102b03e26c)
+//   (digest 2997a43f6f819fb0)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -10691,6 +10692,57 @@ impl CodeEnum for NavStatus {
             Self::Caution => "caution",
             Self::Unsafe => "unsafe",
             Self::NotValid => "not_valid",
+        }
+    }
+}
+
+/// Nortek coordinate system: Coordinate system of a Nortek current profiler's velocities (PNORI1).
+#[cfg(feature = "nortek_signature")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum NortekCoordinateSystem {
+    /// East, north, up.
+    Enu,
+    /// The instrument's X, Y and Z axes.
+    Xyz,
+    /// Along each beam.
+    Beam,
+}
+
+#[cfg(feature = "nortek_signature")]
+impl CodeEnum for NortekCoordinateSystem {
+    const EXPECTED: &'static str = "nortek_coordinate_system code (ENU XYZ BEAM)";
+    const EXPECTED_CHARS: &'static str = "nortek_coordinate_system codes (ENU XYZ BEAM)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 3;
+    const MAX_LEN: usize = 4;
+    const ALL: &'static [Self] = &[Self::Enu, Self::Xyz, Self::Beam];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"ENU" => Some(Self::Enu),
+            b"XYZ" => Some(Self::Xyz),
+            b"BEAM" => Some(Self::Beam),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Enu => "ENU",
+            Self::Xyz => "XYZ",
+            Self::Beam => "BEAM",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Enu => "enu",
+            Self::Xyz => "xyz",
+            Self::Beam => "beam",
         }
     }
 }
