@@ -36,7 +36,7 @@
 //   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
 //   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/hnr_pvt.yaml,
 //   spec/binary/ubx/messages/hnr_att.yaml, spec/binary/ubx/messages/hnr_ins.yaml,
-//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest a07ea26b27bab0c6)
+//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest 81e79f39d8c5153f)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -239,6 +239,7 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
                      it->id, (unsigned long)count, (unsigned)g->max);
             return ubx_fail(r->err, NMEA_UBX_TOO_MANY, r->address, it->id);
         }
+        memset(m + it->offset, 0, count * g->entry_size);
         for (k = 0; k < count; k++) {
             uint64_t entry_word = 0;
             bool ignored = false;
@@ -630,7 +631,11 @@ static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, 
     return last;
 }
 
-/* Reads a payload as layout `l` into the struct at `m` (zeroed first). */
+/* Reads a payload as layout `l` into the struct at `m`: its members before `trailing` zeroed first
+   (every has_ flag false), then read; a group's entries are zeroed as they are read (the entries
+   past a group's count are not: its count says how many hold a value). Only the layout's bytes are
+   written, not the whole message's union, whose largest member (NAV-SAT's 255 satellites) is
+   kilobytes. */
 static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payload, size_t len, uint8_t *m,
                             nmea_ubx_error *err)
 {
@@ -641,6 +646,7 @@ static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payloa
     r.pos = 0;
     r.address = l->address;
     r.err = err;
+    memset(m, 0, l->trailing); /* the members come first, then trailing, then the groups' arrays */
     if (!ubx_read_items(&r, l->items, l->n_items, m))
         return false;
     trailing.ptr = payload + r.pos;
@@ -2531,7 +2537,6 @@ bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, 
     static const uint8_t none[1] = {0};
     size_t lo = 0, hi = sizeof ubx_messages / sizeof ubx_messages[0], at;
     unsigned key = (unsigned)msg_class << 8 | msg_id;
-    memset(out, 0, sizeof *out); /* every has_ flag false */
     if (!len)
         payload = none; /* a poll's payload may be NULL: its views point somewhere */
     while (lo < hi) { /* ubx_messages is sorted by class and id */
@@ -2548,6 +2553,7 @@ bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, 
             hi = mid;
     }
     out->layout = NMEA_UBX_MSG_UNKNOWN;
+    memset(&out->as.unknown, 0, sizeof out->as.unknown);
     out->as.unknown.msg_class = msg_class;
     out->as.unknown.msg_id = msg_id;
     out->as.unknown.payload.ptr = payload;

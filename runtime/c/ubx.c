@@ -196,6 +196,7 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
                      it->id, (unsigned long)count, (unsigned)g->max);
             return ubx_fail(r->err, NMEA_UBX_TOO_MANY, r->address, it->id);
         }
+        memset(m + it->offset, 0, count * g->entry_size);
         for (k = 0; k < count; k++) {
             uint64_t entry_word = 0;
             bool ignored = false;
@@ -587,7 +588,11 @@ static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, 
     return last;
 }
 
-/* Reads a payload as layout `l` into the struct at `m` (zeroed first). */
+/* Reads a payload as layout `l` into the struct at `m`: its members before `trailing` zeroed first
+   (every has_ flag false), then read; a group's entries are zeroed as they are read (the entries
+   past a group's count are not: its count says how many hold a value). Only the layout's bytes are
+   written, not the whole message's union, whose largest member (NAV-SAT's 255 satellites) is
+   kilobytes. */
 static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payload, size_t len, uint8_t *m,
                             nmea_ubx_error *err)
 {
@@ -598,6 +603,7 @@ static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payloa
     r.pos = 0;
     r.address = l->address;
     r.err = err;
+    memset(m, 0, l->trailing); /* the members come first, then trailing, then the groups' arrays */
     if (!ubx_read_items(&r, l->items, l->n_items, m))
         return false;
     trailing.ptr = payload + r.pos;
