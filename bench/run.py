@@ -383,7 +383,7 @@ def markdown(report: dict) -> str:
            f"{ubx_info['frames']:,} frames, {ubx_info['bytes']:,} bytes ({ubx_info['distinct_frames']:,} distinct "
            f"frames of gpsd's u-blox logs, repeated); mixed corpus (the rows marked MIXED, ns per item): "
            f"{mixed_info['bytes']:,} bytes (gpsd's {mixed_info['source_bytes']:,} bytes of logs interleaving NMEA, UBX "
-           f"and RTCM 3, repeated {mixed_info['repeats']} times); the Python "
+           f"and RTCM 3, whole, {mixed_info['repeats']:,}x); the Python "
            f"implementations, ours included, run over the first {report['python_lines']:,} lines of each. "
            f"Median of {report['rounds']} rounds, pinned to CPU {report['cpu']}.", "",
            "| name | lang | op | ns/line | vs ceiling-c | vs ours (same lang, op) | ok lines | byte-identical |",
