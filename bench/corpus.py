@@ -3,11 +3,13 @@ of one of the common types, repeated in order to the wanted number of lines, CR 
 
 Deterministic: the logs are read in sorted path order and the lines kept in file order.
 
-    python3 bench/corpus.py [--lines N] [--source DIR] [--out FILE] [--ais | --ubx]
+    python3 bench/corpus.py [--lines N] [--source DIR] [--out FILE] [--ais | --ubx | --mixed]
 
 --ais: the AIS corpus instead (build_ais: gpsd's single-sentence AIS lines of tests/data/ais), for the
 drivers' ours-ais and peers; --ubx: the UBX corpus (build_ubx: the frames of gpsd's u-blox logs in
-tests/data/ubx, a frame as hex digits a line), for bench/python/driver.py's ours-ubx and pyubx2.
+tests/data/ubx, a frame as hex digits a line), for bench/python/driver.py's ours-ubx and pyubx2;
+--mixed: the mixed corpus (build_mixed: gpsd's logs of NMEA with UBX and RTCM 3, repeated whole to
+at least --lines bytes), for the C driver's stream splitting (framer).
 """
 
 from __future__ import annotations
@@ -118,6 +120,25 @@ def build_ubx(frames: int, source: Path = UBX_SOURCE, out: Path = UBX_OUT) -> di
             "distinct_frames": len(set(pool)), "source_frames": len(pool)}
 
 
+MIXED_SOURCES = (ROOT / "tests" / "data" / "ubx", ROOT / "tests" / "data" / "rtcm3")
+MIXED_OUT = ROOT / "build" / "bench" / "corpus-mixed.log"
+
+
+def build_mixed(size: int, sources: tuple[Path, ...] = MIXED_SOURCES, out: Path = MIXED_OUT) -> dict:
+    """The mixed corpus: gpsd's receiver logs that interleave NMEA sentences with UBX and RTCM 3
+    frames (tests/data/ubx, tests/data/rtcm3: their bytes as the receivers sent them, the logs'
+    `#` comment lines included), one after another in sorted path order, repeated whole until the
+    corpus holds at least `size` bytes (the C driver's `framer` splits it, and the NMEA corpus, into
+    items)."""
+    pool = b"".join(path.read_bytes() for source in sources for path in sorted(source.glob("*.log")))
+    data = pool * max(1, -(-size // len(pool)))
+    out.parent.mkdir(parents=True, exist_ok=True)
+    if not out.exists() or out.read_bytes() != data:
+        out.write_bytes(data)
+    return {"bytes": len(data), "source_bytes": len(pool), "repeats": len(data) // len(pool),
+            "ubx_frames": len(ubx_frames(data))}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--lines", type=int, default=1_000_000)
@@ -125,8 +146,13 @@ def main() -> None:
     parser.add_argument("--out", type=Path)
     parser.add_argument("--ais", action="store_true", help="the AIS corpus (build_ais) from --source or tests/data/ais")
     parser.add_argument("--ubx", action="store_true", help="the UBX corpus (build_ubx) from --source or tests/data/ubx")
+    parser.add_argument("--mixed", action="store_true",
+                        help="the mixed corpus (build_mixed: --lines is its least size in bytes) from the UBX and RTCM 3 logs")
     args = parser.parse_args()
-    if args.ubx:
+    if args.mixed:
+        print(json.dumps(build_mixed(args.lines, (args.source,) if args.source else MIXED_SOURCES,
+                                     args.out or MIXED_OUT)))
+    elif args.ubx:
         print(json.dumps(build_ubx(args.lines, args.source or UBX_SOURCE, args.out or UBX_OUT)))
     elif args.ais:
         print(json.dumps(build_ais(args.lines, args.source or AIS_SOURCE, args.out or AIS_OUT)))

@@ -56,7 +56,7 @@ def build_c(out: Path, optimization: str, compiled: Path | None = None) -> Path:
     else:
         sh(["gcc", *flags, "-c", "-o", str(obj), "generated/c/nmea.c"])
     sh(["gcc", *flags, "-Igenerated/c", "-Ibench/c", "-o", str(binary), "bench/c/driver.c", "bench/c/ceiling.c",
-        "generated/c/nmea_ais.c", str(obj)])
+        "generated/c/nmea_ais.c", "generated/c/nmea_ubx.c", str(obj)])
     return binary
 
 
@@ -98,8 +98,9 @@ def python_for(out: Path, peers: bool) -> str:
 # --- the timed runs ----------------------------------------------------------------------------
 
 def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, ais_corpus_path: Path, ubx_corpus_path: Path,
-         python_lines: int, peers: bool) -> list[dict]:
-    """Every (name, lang, op) with its command line and the corpus it runs over (nmea or ais)."""
+         mixed_corpus_path: Path, python_lines: int, peers: bool) -> list[dict]:
+    """Every (name, lang, op) with its command line and the corpus it runs over (nmea, ais, ubx or
+    mixed)."""
     py_driver = [python, str(BENCH / "python" / "driver.py")]
     py_slice = ["--lines", str(python_lines)] if python_lines else []
     found = []
@@ -138,10 +139,16 @@ def jobs(c_bin: Path, rust_bin: Path, python: str, corpus_path: Path, ais_corpus
         if peers:
             add("pyais", "python", op, [*py_driver, "pyais", op, ais_corpus_path, *py_slice], "ais")
     # UBX: a frame decoded, every field of its message.
+    add("ours-c-ubx", "c", "parse", [c_bin, "ours-ubx", "parse", ubx_corpus_path], "ubx")
     add("ours-rust-ubx", "rust", "parse", [rust_bin, "ours-ubx", "parse", ubx_corpus_path], "ubx")
+    if peers:
+        add("ublox-rs", "rust", "parse", [rust_bin, "ublox", "parse", ubx_corpus_path], "ubx")
     add("ours-python-ubx", "python", "parse", [*py_driver, "ours-ubx", "parse", ubx_corpus_path, *py_slice], "ubx")
     if peers:
         add("pyubx2", "python", "parse", [*py_driver, "pyubx2", "parse", ubx_corpus_path, *py_slice], "ubx")
+    # Stream splitting: the C framer over the mixed log (NMEA, UBX, RTCM 3) and over the NMEA corpus.
+    add("ours-c-stream", "c", "frame", [c_bin, "framer", "frame", mixed_corpus_path], "mixed")
+    add("ours-c-stream-nmea", "c", "frame", [c_bin, "framer", "frame", corpus_path], "nmea")
     return found
 
 
@@ -166,6 +173,9 @@ def run_rounds(all_jobs: list[dict], rounds: int, cpu: int) -> list[dict]:
             sys.exit(f"{job['name']} {job['op']}: ok_lines differ between runs")
         if "allocations" in first:
             row["allocations"] = max(s["allocations"] for s in samples)
+        if "ns_per_byte" in first:
+            row["ns_per_byte"] = round(statistics.median(s["ns_per_byte"] for s in samples), 4)
+            row.update({key: first[key] for key in ("bytes", "text_lines", "frames", "rejected")})
         if "to_bytes_ns_per_line" in first:
             row["to_bytes_ns_per_line"] = round(statistics.median(s["to_bytes_ns_per_line"] for s in samples), 2)
             row["to_bytes_ok_lines"] = first["to_bytes_ok_lines"]
@@ -330,6 +340,11 @@ def targets(results: list[dict], heap_free: bool, counts: dict) -> list[dict]:
             0.5)
     at_most("C AIS decode / Rust AIS decode", ratio(results, "ours-c-ais", "parse", "ours-rust-ais", "parse"), 1.0)
     at_most("Python UBX decode / pyubx2 decode", ratio(results, "ours-python-ubx", "parse", "pyubx2", "parse"), 0.05)
+    at_most("Rust UBX decode / ublox decode", ratio(results, "ours-rust-ubx", "parse", "ublox-rs", "parse"), 0.5)
+    at_most("C UBX decode / Rust UBX decode", ratio(results, "ours-c-ubx", "parse", "ours-rust-ubx", "parse"), 1.0)
+    mixed, nmea_alone = row(results, "ours-c-stream", "frame"), row(results, "ours-c-stream-nmea", "frame")
+    at_most("C stream splitting, mixed log / NMEA alone (ns per byte)",
+            mixed["ns_per_byte"] / nmea_alone["ns_per_byte"] if mixed and nmea_alone else None, 2.0)
     if counts:
         at_most("C parse / ceiling-c parse (instructions)", counted("ours-c", "parse", "ceiling-c", "parse"), 2.0)
         at_most("Rust parse / nmea-rs parse (instructions)", counted("ours-rust", "parse", "nmea-rs", "parse"), 0.25)
@@ -360,23 +375,27 @@ def fmt_ratio(value: float | None) -> str:
 def markdown(report: dict) -> str:
     results = report["results"]
     corpus_info, ais_info, ubx_info = report["corpus"], report["ais_corpus"], report["ubx_corpus"]
+    mixed_info = report["mixed_corpus"]
     out = [f"Corpus: {corpus_info['lines']:,} lines, {corpus_info['bytes']:,} bytes "
            f"({corpus_info['distinct_lines']:,} distinct lines of the real logs, repeated); AIS corpus (the rows "
            f"marked AIS): {ais_info['lines']:,} lines, {ais_info['bytes']:,} bytes ({ais_info['distinct_lines']:,} "
            f"distinct real single-sentence AIS lines, repeated); UBX corpus (the rows marked UBX, ns per frame): "
            f"{ubx_info['frames']:,} frames, {ubx_info['bytes']:,} bytes ({ubx_info['distinct_frames']:,} distinct "
-           f"frames of gpsd's u-blox logs, repeated); the Python "
+           f"frames of gpsd's u-blox logs, repeated); mixed corpus (the rows marked MIXED, ns per item): "
+           f"{mixed_info['bytes']:,} bytes (gpsd's {mixed_info['source_bytes']:,} bytes of logs interleaving NMEA, UBX "
+           f"and RTCM 3, whole, {mixed_info['repeats']:,}x); the Python "
            f"implementations, ours included, run over the first {report['python_lines']:,} lines of each. "
            f"Median of {report['rounds']} rounds, pinned to CPU {report['cpu']}.", "",
            "| name | lang | op | ns/line | vs ceiling-c | vs ours (same lang, op) | ok lines | byte-identical |",
            "| --- | --- | --- | ---: | ---: | ---: | ---: | --- |"]
     ceiling = row(results, "ceiling-c", "parse")
     for r in results:
-        other = r["corpus"] if r["corpus"] in ("ais", "ubx") else ""  # not the NMEA corpus
+        other = r["corpus"] if r["corpus"] in ("ais", "ubx", "mixed") else ""  # not the NMEA corpus
         ours = row(results, f"ours-{r['lang']}" + (f"-{other}" if other else ""), r["op"])
         vs_ours = "" if ours is None or ours is r else fmt_ratio(r["ns_per_line"] / ours["ns_per_line"])
-        vs_ceiling = fmt_ratio(r["ns_per_line"] / ceiling["ns_per_line"]) if ceiling and not other else ""
-        if r["op"] in ("parse", "fixes"):
+        vs_ceiling = fmt_ratio(r["ns_per_line"] / ceiling["ns_per_line"]) if ceiling and r["op"] != "frame" \
+            and not other else ""
+        if r["op"] in ("parse", "fixes", "frame"):
             identical = ""
         else:
             parsed = row(results, r["name"], "parse")
@@ -403,7 +422,29 @@ def markdown(report: dict) -> str:
             "some lines otherwise, so fewer of its lines count). "
             "UBX: parse is a frame (its bytes) decoded into its message, every field, the checksum checked (ours: "
             "`nmeaspec.ubx_messages.decode`; in Rust: `ubx_messages::Message::from_frame`; pyubx2: "
-            "`UBXReader.parse`).", ""]
+            "`UBXReader.parse`). In C, `ours-c-ubx` is `nmea_ubx_decode_frame` (sync, length and checksum checked, "
+            "every field of the layout read into its struct, bitfields' parts and groups' entries included). "
+            "`ublox-rs` is the ublox crate (pinned in `bench/rust/Cargo.lock`, protocol 23: u-blox 8/M8, the generation "
+            "of most of the corpus's frames): one `Parser` with a fixed buffer fed each frame (`consume_ubx`), every "
+            "packet it yields read whole through its `Serialize` implementation (the crate's `serde` feature: the "
+            "getter of every field, scaled values and repeated groups' entries included) into a serializer that only "
+            "reads each value; its ok count is the packets of a message it knows read whole. Of the corpus's "
+            "messages it does not know NAV-POSECEF, NAV-SVINFO, NAV-SBAS and NAV-EELL (0x01 0x3D), which "
+            "it yields as unknown packets (read, not counted), and reading the one CFG-PRT frame (a USB port's, "
+            "mode 0) panics in its `mode` getter (caught; not counted). "
+            "Stream splitting: `ours-c-stream` is the C framer (`nmea_framer_push`, chunks of 4,096 bytes as a "
+            "serial port's reads deliver them) over the mixed corpus, cutting it into NMEA lines, UBX and RTCM 3 "
+            "frames (each checksum checked) and the logs' other bytes; `ours-c-stream-nmea` is the same over the "
+            "NMEA corpus; ok: the lines kept and the frames whose checksum holds. Their ns per byte are listed "
+            "below.", ""]
+    streams = [r for r in results if "ns_per_byte" in r]
+    if streams:
+        out += ["## Stream splitting (C framer)", "", "| name | corpus | bytes | ns/byte | lines | frames | rejected |",
+                "| --- | --- | ---: | ---: | ---: | ---: | ---: |"]
+        out += [f"| {r['name']} | {r['corpus']} | {r['bytes']:,} | {r['ns_per_byte']:.3f} | {r['text_lines']:,} "
+                f"| {r['frames']:,} | {r['rejected']:,} |" for r in streams]
+        out += ["", "(rejected: what began like a binary frame and is none, its checksum wrong or the frame cut short: "
+                "the logs hold a few.)", ""]
     out += ["## Targets", "", "| target | measured | limit | met |", "| --- | --- | --- | --- |"]
     for check in report["targets"]:
         met = {True: "yes", False: "**no**", None: "n/a"}[check["met"]]
@@ -464,7 +505,7 @@ def docs_page(report: dict, table: str) -> str:
         f"- Machine: {m['cpu']}, {m['cores']} cores, Linux {m['kernel']} (shared with other jobs: quote the ratios, "
         "not the absolute times)",
         f"- Compilers: {m['gcc']}; {m['rustc']}; Python {m['python']}",
-        f"- Peers: Rust crates `nmea`, `nmea0183` and `nmea-parser` (AIS) as pinned in `bench/rust/Cargo.lock`; Python "
+        f"- Peers: Rust crates `nmea`, `nmea0183`, `nmea-parser` (AIS) and `ublox` (UBX) as pinned in `bench/rust/Cargo.lock`; Python "
         "`pynmea2`, `pynmeagps`, `pyais` and `pyubx2` as pinned in `bench/requirements.txt`.", "",
         "## How it is measured", "",
         "The corpus is every line of `../shared/corpus/real` that is `$...*HH` with a valid checksum and one of "
@@ -514,13 +555,15 @@ def main() -> None:
     ais_info = corpus.build_ais(args.lines, out=ais_corpus_path)
     ubx_corpus_path = out / "corpus-ubx.hex"
     ubx_info = corpus.build_ubx(args.lines, out=ubx_corpus_path)
+    mixed_corpus_path = out / "corpus-mixed.log"
+    mixed_info = corpus.build_mixed(corpus_info["bytes"], out=mixed_corpus_path)
     python_lines = min(args.python_lines, args.lines) if args.python_lines else args.lines
     log(f"corpus: {corpus_info['lines']} lines, {corpus_info['bytes']} bytes")
     c_bin = build_c(out, args.c_optimization, args.c_object)
     rust_bin = build_rust(out, peers, args.cargo_profile, args.standard_only)
     python = python_for(out, peers)
 
-    all_jobs = jobs(c_bin, rust_bin, python, corpus_path, ais_corpus_path, ubx_corpus_path,
+    all_jobs = jobs(c_bin, rust_bin, python, corpus_path, ais_corpus_path, ubx_corpus_path, mixed_corpus_path,
                     python_lines if python_lines < args.lines else 0, peers)
     results = run_rounds(all_jobs, args.rounds, args.cpu)
     c_object = heap_symbols(out)
@@ -530,6 +573,7 @@ def main() -> None:
                    "distinct_lines": corpus_info["distinct_lines"], "by_type": corpus_info["by_type"]},
         "ais_corpus": ais_info,
         "ubx_corpus": ubx_info,
+        "mixed_corpus": mixed_info,
         "python_lines": python_lines,
         "rounds": args.rounds,
         "cpu": args.cpu,

@@ -2,7 +2,7 @@
  * The C benchmark driver: reads the corpus into memory once, then times one operation of one
  * implementation over every line and prints a JSON object.
  *
- *     bench-c ours|ceiling|ours-ais parse|serialize|roundtrip|fixes|none CORPUS [--by-type]
+ *     bench-c ours|ceiling|ours-ais|ours-ubx parse|serialize|roundtrip|fixes|none CORPUS [--by-type]
  *
  * parse: nmea_parse of every line (ok = lines parsed). serialize: the lines are parsed chunk by
  * chunk outside the timed region, then only nmea_serialize of the chunk is timed, the sentences
@@ -13,7 +13,17 @@
  * which bench/run.py subtracts from instruction counts). ours-ais (over the AIS corpus), parse only:
  * each line parsed and, when it is a whole message, its AIS message decoded, every field (ok =
  * messages decoded). fixes (ours): each line parsed and fed to the fix assembler, nmea_fix_feed
- * (ok = lines parsed).
+ * (ok = lines parsed). ours-ubx (over the UBX corpus, a frame as hex digits a line, turned into
+ * bytes before the timing), parse only: nmea_ubx_decode_frame of each frame, its sync, length and
+ * checksum checked and every field of its layout read into the message's struct (ok = frames of a
+ * class and id the spec describes).
+ *
+ *     bench-c framer frame LOG
+ *
+ * framer (over any byte stream: the mixed corpus of NMEA, UBX and RTCM 3, or the NMEA corpus):
+ * nmea_framer_push over the whole file in chunks of 4,096 bytes, as a serial port's reads deliver
+ * them, then nmea_framer_end; each item's kind counted (lines: ok lines are those kept, frames:
+ * ok frames are those whose checksum holds). Prints ns per item and per byte ("ns_per_byte").
  */
 #define _POSIX_C_SOURCE 199309L
 #include <stdint.h>
@@ -25,6 +35,7 @@
 #include "ceiling.h"
 #include "nmea.h"
 #include "nmea_ais.h"
+#include "nmea_ubx.h"
 
 #define CHUNK 2048
 
@@ -127,6 +138,60 @@ static timing time_ais_decode(const line_ref *lines, size_t n)
     return (timing){start, ok, n};
 }
 
+static int hex_digit(char c)
+{
+    return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+}
+
+/* The UBX corpus's frames, as bytes: `lines` of hex digits turned back into one buffer, each
+ * frame's bytes next to the previous one's (a line_ref each, into `bytes`). */
+static line_ref *ubx_frames(const line_ref *lines, size_t n, char **bytes)
+{
+    size_t total = 0, i, k, used = 0;
+    line_ref *frames = malloc((n ? n : 1) * sizeof *frames);
+    for (i = 0; i < n; i++)
+        total += lines[i].len / 2;
+    *bytes = malloc(total ? total : 1);
+    if (!frames || !*bytes) {
+        perror("malloc");
+        exit(2);
+    }
+    for (i = 0; i < n; i++) {
+        frames[i].ptr = *bytes + used;
+        frames[i].len = lines[i].len / 2;
+        for (k = 0; k < frames[i].len; k++) {
+            int high = hex_digit(lines[i].ptr[2 * k]), low = hex_digit(lines[i].ptr[2 * k + 1]);
+            if (high < 0 || low < 0) {
+                fprintf(stderr, "not hex: line %zu\n", i + 1);
+                exit(2);
+            }
+            (*bytes)[used++] = (char)(high << 4 | low);
+        }
+    }
+    return frames;
+}
+
+static timing time_ubx_decode(const line_ref *lines, size_t n)
+{
+    static nmea_ubx_message message; /* a NAV-SAT's 255 satellites and more: not on the stack */
+    nmea_ubx_error err;
+    char *bytes;
+    line_ref *frames = ubx_frames(lines, n, &bytes);
+    size_t ok = 0, i, layouts = 0;
+    double start = now();
+    for (i = 0; i < n; i++) {
+        if (nmea_ubx_decode_frame((const uint8_t *)frames[i].ptr, frames[i].len, &message, &err)) {
+            ok += message.layout != NMEA_UBX_MSG_UNKNOWN;
+            layouts += (size_t)message.layout;
+        }
+    }
+    start = now() - start;
+    sink = layouts;
+    free(frames);
+    free(bytes);
+    return (timing){start, ok, n};
+}
+
 static timing time_fixes(const line_ref *lines, size_t n)
 {
     static nmea_fix_assembler assembler; /* two fixes' worth of satellites: not on the stack */
@@ -225,6 +290,8 @@ static timing run(const char *impl, const char *op, const line_ref *lines, size_
         return time_parse(lines, n);
     if (strcmp(impl, "ours-ais") == 0 && strcmp(op, "parse") == 0)
         return time_ais_decode(lines, n);
+    if (strcmp(impl, "ours-ubx") == 0 && strcmp(op, "parse") == 0)
+        return time_ubx_decode(lines, n);
     if (strcmp(impl, "ours") == 0 && strcmp(op, "serialize") == 0)
         return time_serialize(lines, n);
     if (strcmp(impl, "ours") == 0 && strcmp(op, "roundtrip") == 0)
@@ -233,6 +300,67 @@ static timing run(const char *impl, const char *op, const line_ref *lines, size_
         return time_fixes(lines, n);
     fprintf(stderr, "unknown implementation/operation %s %s\n", impl, op);
     exit(2);
+}
+
+typedef struct {
+    double seconds;
+    size_t items, ok, lines, frames, rejected;
+} framed_counts;
+
+static void count_item(framed_counts *c, const nmea_framed *item)
+{
+    c->items++;
+    if (item->protocol == NMEA_LINE) {
+        c->lines++;
+        c->ok += item->ptr != NULL;
+    } else if (item->error == NMEA_FRAME_OK) {
+        c->frames++;
+        c->ok++;
+    } else {
+        c->rejected++;
+    }
+}
+
+/* Splits `size` bytes into items with one nmea_framer, fed `chunk` bytes at a time. */
+static framed_counts time_framer(const char *data, size_t size, size_t chunk)
+{
+    static nmea_framer framer;
+    framed_counts c = {0, 0, 0, 0, 0, 0};
+    nmea_framed item;
+    size_t done;
+    double start = now();
+    nmea_framer_init(&framer);
+    for (done = 0; done < size; done += chunk) {
+        const char *p = data + done;
+        size_t n = size - done < chunk ? size - done : chunk;
+        while (nmea_framer_push(&framer, &p, &n, &item))
+            count_item(&c, &item);
+    }
+    while (nmea_framer_end(&framer, &item))
+        count_item(&c, &item);
+    c.seconds = now() - start;
+    sink = c.ok;
+    return c;
+}
+
+static int run_framer(const char *op, const char *path)
+{
+    size_t size;
+    char *data = read_file(path, &size);
+    framed_counts c;
+    if (strcmp(op, "frame") != 0 && strcmp(op, "none") != 0) {
+        fprintf(stderr, "unknown implementation/operation framer %s\n", op);
+        return 2;
+    }
+    c = time_framer(data, size < 1000000 ? size : 1000000, 4096); /* warm the caches and branch predictors */
+    if (strcmp(op, "frame") == 0)
+        c = time_framer(data, size, 4096);
+    printf("{\"impl\": \"framer\", \"op\": \"%s\", \"lines\": %zu, \"bytes\": %zu, \"ns_per_line\": %.2f, "
+           "\"ns_per_byte\": %.4f, \"ok_lines\": %zu, \"text_lines\": %zu, \"frames\": %zu, \"rejected\": %zu}\n",
+           op, c.items, size, c.seconds * 1e9 / (double)(c.items ? c.items : 1), c.seconds * 1e9 / (double)size, c.ok,
+           c.lines, c.frames, c.rejected);
+    free(data);
+    return 0;
 }
 
 /* The sentence type of a line: the three letters after `$` and the talker. */
@@ -290,9 +418,12 @@ int main(int argc, char **argv)
     line_ref *lines;
     timing r;
     if (argc < 4) {
-        fprintf(stderr, "usage: %s ours|ceiling|ours-ais parse|serialize|roundtrip|fixes|none CORPUS [--by-type]\n", argv[0]);
+        fprintf(stderr, "usage: %s ours|ceiling|ours-ais|ours-ubx parse|serialize|roundtrip|fixes|none CORPUS [--by-type]\n"
+                        "       %s framer frame|none LOG\n", argv[0], argv[0]);
         return 2;
     }
+    if (strcmp(argv[1], "framer") == 0)
+        return run_framer(argv[2], argv[3]);
     data = read_file(argv[3], &size);
     lines = split_lines(data, size, &n);
     run(argv[1], argv[2], lines, n < 10000 ? n : 10000); /* warm the caches and branch predictors */

@@ -20,25 +20,47 @@ static bool ubx_fail(nmea_ubx_error *err, nmea_ubx_error_kind kind, const char *
     return false;
 }
 
-/* Fletcher-8 over `len` bytes (UBX-13003221, "UBX checksum"): CK_A in the low byte. */
+/* Fletcher-8 over `len` bytes (UBX-13003221, "UBX checksum"): CK_A in the low byte. The sums
+   wrap modulo a power of two at least 256 (unsigned arithmetic), so their low bytes are the sums
+   modulo 256 without a mask a byte; four bytes a step. */
 static unsigned ubx_checksum(const uint8_t *p, size_t len)
 {
     unsigned a = 0, b = 0;
-    size_t i;
-    for (i = 0; i < len; i++) {
-        a = (a + p[i]) & 0xFF;
-        b = (b + a) & 0xFF;
+    size_t i = 0;
+    for (; i + 4 <= len; i += 4) {
+        a += p[i];
+        b += a;
+        a += p[i + 1];
+        b += a;
+        a += p[i + 2];
+        b += a;
+        a += p[i + 3];
+        b += a;
     }
-    return a | b << 8;
+    for (; i < len; i++) {
+        a += p[i];
+        b += a;
+    }
+    return (a & 0xFF) | (b & 0xFF) << 8;
 }
 
-/* The `n` bytes (at most 8) at `p`, little endian. */
+/* The `n` bytes (at most 8) at `p`, little endian (the common widths spelt out: a compiler reads
+   them with one load where the host is little endian). */
 static uint64_t ubx_le(const uint8_t *p, size_t n)
 {
     uint64_t raw = 0;
-    while (n-- > 0)
-        raw = raw << 8 | p[n];
-    return raw;
+    switch (n) {
+    case 1:
+        return p[0];
+    case 2:
+        return (uint64_t)p[0] | (uint64_t)p[1] << 8;
+    case 4:
+        return (uint64_t)p[0] | (uint64_t)p[1] << 8 | (uint64_t)p[2] << 16 | (uint64_t)p[3] << 24;
+    default:
+        while (n-- > 0)
+            raw = raw << 8 | p[n];
+        return raw;
+    }
 }
 
 /* A member of `member` bytes at `m` as an integer (signed: sign-extended). */
@@ -109,22 +131,29 @@ static bool ubx_short(ubx_reader *r, const char *field, size_t need)
     return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, field);
 }
 
-/* Reads one field (not a group) into the struct at `m`; `*word` is the last bitfield word read,
-   whose parts follow it. False with the error set; `*done` set when an optional field is missing
-   (nothing after it is read). */
+/* Whether an item is a part of the bitfield word before it. */
+#define UBX_IS_PART(it) ((it)->kind >= NMEA_UBX_ITEM_PART && (it)->kind <= NMEA_UBX_ITEM_PART_FLAG)
+
+/* Reads a part of bitfield word `word` into the struct at `m` (the readers' loops call it
+   themselves: the most frequent item, read without ubx_read_field's call). */
+static void ubx_read_part(const nmea_ubx_item *it, uint8_t *m, uint64_t word)
+{
+    uint8_t *at = m + it->offset;
+    uint64_t raw = word >> it->low & (it->size < 64 ? ((uint64_t)1 << it->size) - 1 : ~(uint64_t)0);
+    if (it->kind == NMEA_UBX_ITEM_PART_FLAG)
+        *(bool *)(void *)at = raw != 0;
+    else
+        ubx_set(at, it->member, it->kind == NMEA_UBX_ITEM_PART_SIGNED ? ubx_sign(raw, it->size) : raw);
+}
+
+/* Reads one field (not a group, not a part) into the struct at `m`; `*word` is set to a number's
+   raw value (a bitfield's word, whose parts follow it). False with the error set; `*done` set when
+   an optional field is missing (nothing after it is read). */
 static bool ubx_read_field(ubx_reader *r, const nmea_ubx_item *it, uint8_t *m, uint64_t *word, bool *done)
 {
     uint8_t *at = m + it->offset;
     size_t left = r->len - r->pos;
     uint64_t raw;
-    if (it->kind >= NMEA_UBX_ITEM_PART && it->kind <= NMEA_UBX_ITEM_PART_FLAG) {
-        raw = *word >> it->low & (it->size < 64 ? ((uint64_t)1 << it->size) - 1 : ~(uint64_t)0);
-        if (it->kind == NMEA_UBX_ITEM_PART_FLAG)
-            *(bool *)(void *)at = raw != 0;
-        else
-            ubx_set(at, it->member, it->kind == NMEA_UBX_ITEM_PART_SIGNED ? ubx_sign(raw, it->size) : raw);
-        return true;
-    }
     if (it->kind == NMEA_UBX_ITEM_VIEW) {
         nmea_ubx_bytes view;
         view.ptr = r->p + r->pos;
@@ -172,6 +201,10 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
         const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
         size_t left = r->len - r->pos, count;
         uint16_t stored;
+        if (UBX_IS_PART(it)) {
+            ubx_read_part(it, m, word);
+            continue;
+        }
         if (it->kind != NMEA_UBX_ITEM_GROUP) {
             if (!ubx_read_field(r, it, m, &word, &done))
                 return false;
@@ -196,12 +229,17 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
                      it->id, (unsigned long)count, (unsigned)g->max);
             return ubx_fail(r->err, NMEA_UBX_TOO_MANY, r->address, it->id);
         }
+        memset(m + it->offset, 0, count * g->entry_size);
         for (k = 0; k < count; k++) {
             uint64_t entry_word = 0;
             bool ignored = false;
-            for (f = 0; f < g->n_items; f++)
-                if (!ubx_read_field(r, &g->items[f], m + it->offset + k * g->entry_size, &entry_word, &ignored))
+            uint8_t *entry = m + it->offset + k * g->entry_size;
+            for (f = 0; f < g->n_items; f++) {
+                if (UBX_IS_PART(&g->items[f]))
+                    ubx_read_part(&g->items[f], entry, entry_word);
+                else if (!ubx_read_field(r, &g->items[f], entry, &entry_word, &ignored))
                     return false;
+            }
         }
         stored = (uint16_t)count;
         memcpy(m + g->n_offset, &stored, sizeof stored);
@@ -587,7 +625,11 @@ static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, 
     return last;
 }
 
-/* Reads a payload as layout `l` into the struct at `m` (zeroed first). */
+/* Reads a payload as layout `l` into the struct at `m`: its members before `trailing` zeroed first
+   (every has_ flag false), then read; a group's entries are zeroed as they are read (the entries
+   past a group's count are not: its count says how many hold a value). Only the layout's bytes are
+   written, not the whole message's union, whose largest member (NAV-SAT's 255 satellites) is
+   kilobytes. */
 static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payload, size_t len, uint8_t *m,
                             nmea_ubx_error *err)
 {
@@ -598,6 +640,7 @@ static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payloa
     r.pos = 0;
     r.address = l->address;
     r.err = err;
+    memset(m, 0, l->trailing); /* the members come first, then trailing, then the groups' arrays */
     if (!ubx_read_items(&r, l->items, l->n_items, m))
         return false;
     trailing.ptr = payload + r.pos;

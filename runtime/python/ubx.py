@@ -18,8 +18,8 @@ from __future__ import annotations
 import math
 import struct
 from collections.abc import Iterator
-from dataclasses import dataclass, fields as dataclass_fields, replace
-from itertools import accumulate
+from dataclasses import MISSING, dataclass, fields as dataclass_fields, replace
+from zlib import adler32
 from typing import Any, ClassVar
 
 from .ais import (Bitfield, Code, Field, Flag, Group, Item, Signed, Spare, Special, Unsigned, _bad_value, flat_fields,
@@ -37,9 +37,37 @@ CHECKSUM_SIZE = 2
 
 def fletcher8(data: bytes) -> bytes:
     """The two checksum bytes (CK_A, CK_B) of `data`: 8-bit Fletcher, both sums modulo 256. CK_A
-    after each byte is the running sum of the bytes, CK_B the sum of those running sums: both
-    summed in C, not byte by byte."""
-    return bytes((sum(data) & 0xFF, sum(accumulate(data)) & 0xFF))
+    after each byte is the running sum of the bytes, CK_B the sum of those running sums."""
+    return bytes(_fletcher(data))
+
+
+_LOW = bytes(i & 15 for i in range(256))
+_HIGH = bytes(i >> 4 for i in range(256))
+_CHUNK = 92
+
+
+def _fletcher(data: bytes | bytearray) -> tuple[int, int]:
+    """CK_A and CK_B of `data`, summed in C rather than byte by byte: zlib's Adler-32 of a chunk
+    is 1 + its sum S and n + its sum of running sums B (n bytes), both modulo 65521. Over the low
+    and the high nibbles of the bytes apart (bytes.translate), a chunk of up to 92 bytes keeps
+    both below 65521 (15 * 92 * 93 / 2 + 92 = 64,262), so they are exact: S = S_low + 16 S_high,
+    B = B_low + 16 B_high. Chunks add up: a chunk's S counts once more for each byte after it."""
+    if not isinstance(data, (bytes, bytearray)):
+        data = bytes(data)
+    n = len(data)
+    low, high = data.translate(_LOW), data.translate(_HIGH)
+    if n <= _CHUNK:
+        a_low, a_high = adler32(low), adler32(high)
+        return ((a_low & 0xFFFF) - 1 + 16 * ((a_high & 0xFFFF) - 1)) & 0xFF, \
+            ((a_low >> 16) - n + 16 * ((a_high >> 16) - n)) & 0xFF
+    total = running = 0
+    for start in range(0, n, _CHUNK):
+        end = min(start + _CHUNK, n)
+        a_low, a_high = adler32(low[start:end]), adler32(high[start:end])
+        chunk = (a_low & 0xFFFF) - 1 + 16 * ((a_high & 0xFFFF) - 1)
+        running += (a_low >> 16) - (end - start) + 16 * ((a_high >> 16) - (end - start)) + (n - end) * chunk
+        total += chunk
+    return total & 0xFF, running & 0xFF
 
 
 @dataclass(frozen=True)
@@ -197,6 +225,8 @@ class Bytes(Field):
 
 
 _INTEGER_CODES = {8: "B", 16: "H", 32: "I", 64: "Q"}
+MEMO_PARTS = 4   # a bitfield of this many parts or more: its parts' values remembered by word
+MEMO = 4096      # words remembered per bitfield, at most
 
 
 def _struct_code(f: Field) -> str | None:
@@ -212,79 +242,153 @@ def _struct_code(f: Field) -> str | None:
 
 
 class _Compiler:
-    """Straight-line source of a layout's reader: struct.unpack_from for runs of fixed fields and
-    each group entry, the values converted inline as the field classes convert them (the generic
-    reader costs several calls a field; this one a call per run). Decoded values are exactly
-    those of read_items, which tests/ubx checks frame by frame."""
+    """Straight-line source of a layout's decoder: struct.unpack_from for each run of fixed fields
+    (into locals), a list comprehension over struct.iter_unpack for a group's entries, the values
+    converted inline as the field classes convert them and put in one dict display, which becomes
+    the message's __dict__ (the generic reader costs several calls a field; this one a call per
+    run). Decoded values are exactly those of read_items, which tests/ubx checks frame by frame."""
 
     def __init__(self) -> None:
         self.names: dict[str, Any] = {"Special": Special, "unpack_from": struct.unpack_from,
-                                      "iter_unpack": struct.iter_unpack, "from_bytes": int.from_bytes}
+                                      "iter_unpack": struct.iter_unpack, "from_bytes": int.from_bytes,
+                                      "new": object.__new__, "make": _make}
         self.lines: list[str] = []
+        self.defs: list[str] = []
+        self.locals = 0
 
     def name(self, value: Any) -> str:
         key = f"n{len(self.names)}"
         self.names[key] = value
         return key
 
-    def convert(self, f: Field, raw: str, target: str, pad: str) -> None:
-        """Lines that put field `f`'s value of raw value `raw` (an expression) into `target`."""
-        key = repr(f.id)
+    def local(self) -> str:
+        self.locals += 1
+        return f"v{self.locals}"
+
+    def parts(self, f: Bitfield, raw: str) -> str:
+        """An expression of the tuple of bitfield `f`'s part values, its word `raw` (a local):
+        a function of the word, remembered by word (the values are immutable; at most MEMO
+        words), so that the words a receiver repeats (a satellite's flags) cost a lookup."""
+        memo, function = self.name({}), f"parts{len(self.defs)}"
+        values = []
+        for low, part in f.parts:
+            shifted = f"w >> {low}" if low else "w"
+            values += [value for _, value in self.convert(part, f"({shifted} & {(1 << (part.width or 1)) - 1})")]
+        self.defs += [f"def {function}(w):", f"    p = ({', '.join(values)},)",
+                      f"    if len({memo}) < {MEMO}: {memo}[w] = p", "    return p"]
+        return f"({memo}.get({raw}) or {function}({raw}))"
+
+    def convert(self, f: Field, raw: str, statements: list[str] | None = None) -> list[tuple[str, str]]:
+        """The (key, expression) pairs of field `f` (a bitfield's word, then its parts) whose raw
+        value is `raw`, a local name or a parenthesized expression. A bitfield of MEMO_PARTS parts
+        or more takes its parts from parts(): into a local, by a line added to `statements`, or
+        (no `statements`: a group entry's arguments) as one starred pair ("*", "*(...)")."""
         if isinstance(f, Unsigned):
             number = raw
             if isinstance(f, Signed) and f.width is not None and not _struct_code(f):   # a part: sign by hand
-                number = f"(({raw}) - {1 << f.width} if ({raw}) >> {f.width - 1} else ({raw}))"
+                number = f"({raw} - {1 << f.width} if {raw} >> {f.width - 1} else {raw})"
             value = number if f.divisor == 1 else f"{number} / {f.divisor}"
             value += f" + {f.base!r}" if f.base or isinstance(f.base, float) else ""
             if f.special:
                 value = f"{self.name({sp.raw: sp for sp in f.special})}.get({number}) or {value}"
-            self.lines.append(f"{pad}{target}[{key}] = {value}")
+            pairs = [(f.id, value)]
         elif isinstance(f, Flag):
-            self.lines.append(f"{pad}{target}[{key}] = {raw} != 0")
+            pairs = [(f.id, f"{raw} != 0")]
         elif isinstance(f, Code):
-            members = self.name({m.value: m for m in f.enum})
-            self.lines.append(f"{pad}{target}[{key}] = {members}.get(str({raw}), {raw})")
+            # Code.from_raw looks str(raw) up among the values: those written in decimal, by number
+            members = {int(m.value): m for m in f.enum
+                       if isinstance(m.value, str) and m.value.isdigit() and str(int(m.value)) == m.value}
+            pairs = [(f.id, f"{self.name(members)}.get({raw}, {raw})")]
         elif isinstance(f, Chars):
-            self.lines.append(f"{pad}{target}[{key}] = {raw}.decode('latin-1')")
+            pairs = [(f.id, f"{raw}.decode('latin-1')")]
         elif isinstance(f, Float):   # read as its integer: a NaN keeps its bits
-            self.lines.append(f"{pad}{target}[{key}] = {self.name(f)}.from_raw({raw}, {f.width})")
+            pairs = [(f.id, f"{self.name(f)}.from_raw({raw}, {f.width})")]
         elif type(f) is Spare and f.width not in _INTEGER_CODES:
-            self.lines.append(f"{pad}{target}[{key}] = from_bytes({raw}, 'little')")
+            pairs = [(f.id, f"from_bytes({raw}, 'little')")]
         else:   # a whole integer, bytes
-            self.lines.append(f"{pad}{target}[{key}] = {raw}")
+            pairs = [(f.id, raw)]
+        if isinstance(f, Bitfield) and len(f.parts) >= MEMO_PARTS:
+            found = self.parts(f, raw)
+            if statements is None:
+                return [*pairs, ("*", f"*{found}")]
+            local = self.local()
+            statements.append(f"{local} = {found}")
+            return [*pairs, *((part.id, f"{local}[{i}]") for i, (_, part) in enumerate(f.parts))]
         if isinstance(f, Bitfield):
-            self.lines.append(f"{pad}word = {target}[{key}]")
             for low, part in f.parts:
-                self.convert(part, f"(word >> {low} & {(1 << (part.width or 1)) - 1})", target, pad)
+                shifted = f"{raw} >> {low}" if low else raw
+                pairs += self.convert(part, f"({shifted} & {(1 << (part.width or 1)) - 1})")
+        return pairs
 
-    def run(self, fields: list[Field], target: str, source: str, pad: str) -> str:
-        """Lines that read the fixed `fields` from `source` (a tuple's expression) into `target`;
-        the struct format they take."""
+    def run(self, fields: list[Field], statements: list[str]) -> tuple[str, list[str], list[tuple[str, str]]]:
+        """The struct format that reads the fixed `fields`, the locals it unpacks them into and
+        their (key, expression) pairs (with the lines that compute some, added to `statements`)."""
         fmt = "<" + "".join(_struct_code(f) or "" for f in fields)
-        for i, f in enumerate(fields):
-            self.convert(f, f"{source}[{i}]", target, pad)
-        return fmt
+        names = [self.local() for _ in fields]
+        pairs = [pair for f, raw in zip(fields, names) for pair in self.convert(f, raw, statements)]
+        return fmt, names, pairs
 
 
-def compile_reader(items: tuple[Item, ...]) -> Any:
-    """`read(payload, values)` of a layout: its values from `payload` and the bytes it read, or
-    None when the payload is not one it reads whole (too short, a count too large: the generic
-    reader then says where), or when a layout has what it does not compile (a choice; a group
-    of variable entries)."""
+def _display(pairs: list[tuple[str, str]]) -> str:
+    return "{" + ", ".join(f"{key!r}: {value}" for key, value in pairs) + "}"
+
+
+def _instance(c: _Compiler, cls: type[Message], pairs: list[tuple[str, str]], pos: str) -> str:
+    """An expression of the message whose members the `pairs` read (the others their defaults)
+    and whose trailing bytes start at `pos`: what cls(**values, trailing=...) makes, without the
+    call (the instance takes the dict of its members as its __dict__: those read and trailing,
+    or with some left to their defaults, every member in its fields' order, as __init__ sets
+    them)."""
+    found = dict(pairs)
+    trailing = ("trailing", f"payload[{pos}:]")
+    if found.keys() == {f.name for f in dataclass_fields(cls)} - {"trailing"}:   # every member read
+        return f"make(cls, {_display([*pairs, trailing])})"
+    members: list[tuple[str, str]] = []
+    for f in dataclass_fields(cls):
+        if f.name == "trailing":
+            members.append(trailing)
+        elif f.name in found:
+            members.append((f.name, found.pop(f.name)))
+        elif f.default is not MISSING:
+            members.append((f.name, "None" if f.default is None else c.name(f.default)))
+        elif f.default_factory is not MISSING:
+            members.append((f.name, f"{c.name(f.default_factory)}()"))
+        else:
+            found[f.name] = ""   # no value: the call says so
+    if found:   # a member the class does not have, or one without a value
+        return f"cls(**{_display(pairs)}, trailing=payload[{pos}:])"
+    return f"make(cls, {_display(members)})"
+
+
+def _make(cls: type[Message], members: dict[str, Any]) -> Message:
+    message = object.__new__(cls)
+    message.__dict__ = members
+    return message
+
+
+def compile_reader(cls: type[Message]) -> Any:
+    """`read(payload)` of a layout: the message of `payload`, or None when the payload is not one
+    it reads whole (too short, a count too large: the generic reader then says where), or when a
+    layout has what it does not compile (a choice; a group of variable entries)."""
+    items = cls.LAYOUT
     c = _Compiler()
+    c.names["cls"] = cls
     pos = "0"
     fixed: list[Field] = []
+    pairs: list[tuple[str, str]] = []
+    pad = "    "
 
     def flush() -> None:
         nonlocal pos, fixed
         if not fixed:
             return
-        start = len(c.lines)
-        fmt = c.run(fixed, "values", "t", "    ")
+        statements: list[str] = []
+        fmt, names, found = c.run(fixed, statements)
         size = struct.calcsize(fmt)
-        run = [f"    if len(payload) < {pos} + {size}: return None",
-               f"    t = unpack_from({fmt!r}, payload, {pos})"]
-        c.lines[start:start] = run
+        c.lines += [f"{pad}if len(payload) < {pos} + {size}: return None",
+                    f"{pad}{', '.join(names)}, = unpack_from({fmt!r}, payload, {pos})",
+                    *(pad + line for line in statements)]
+        pairs.extend(found)
         pos = f"{pos} + {size}" if pos != "0" else str(size)
         fixed = []
 
@@ -295,36 +399,45 @@ def compile_reader(items: tuple[Item, ...]) -> Any:
         flush()
         if isinstance(item, Field) and item.optional and _struct_code(item):
             size = (item.width or 0) // 8
-            c.lines.append(f"    if len(payload) < {pos} + {size}: return values, {pos}")
+            # without its bytes, the message of the fields before it (the others left None)
+            c.lines.append(f"{pad}if len(payload) < {pos} + {size}: return {_instance(c, cls, pairs, pos)}")
             fixed.append(item)
             flush()
         elif isinstance(item, (Chars, Bytes)) and item.width is None and index == len(items) - 1:
-            c.lines.append(f"    t = (payload[{pos}:],)")
-            c.convert(item, "t[0]", "values", "    ")
+            rest = c.local()
+            c.lines.append(f"{pad}{rest} = payload[{pos}:]")
+            pairs += c.convert(item, rest)
             pos = "len(payload)"
         elif isinstance(item, Group) and all(_struct_code(f) for f in item.fields):
             entry = c.name(item.entry)
             fmt = "<" + "".join(_struct_code(f) or "" for f in item.fields)
             size = struct.calcsize(fmt)
             if isinstance(item.count, int):
-                c.lines.append(f"    count = {item.count}")
+                count = str(item.count)
             elif item.count:
-                c.lines.append(f"    count = values[{item.count!r}]")
+                count = f"({dict(pairs)[item.count]})"
             else:
-                c.lines.append(f"    count = min({item.max}, (len(payload) - ({pos}) - {item.after // 8}) // {size})")
-            end = f"end{index}"
-            c.lines += [f"    {end} = {pos} + count * {size}",
-                        f"    if count < {item.min} or len(payload) < {end}: return None",
-                        "    entries = []",
-                        f"    for t in iter_unpack({fmt!r}, payload[{pos}:{end}]):",
-                        "        e = {}"]
-            c.run(list(item.fields), "e", "t", "        ")
-            c.lines += [f"        entries.append({entry}(*e.values()))", f"    values[{item.id!r}] = entries"]
+                count = f"min({item.max}, (len(payload) - ({pos}) - {item.after // 8}) // {size})"
+            counted, end, entries = c.local(), c.local(), c.local()
+            c.lines += [f"{pad}{counted} = {count}",
+                        f"{pad}{end} = {pos} + {counted} * {size}",
+                        f"{pad}if {counted} < {item.min} or len(payload) < {end}: return None"]
+            names = [c.local() for _ in item.fields]
+            values = [value for f, raw in zip(item.fields, names) for _, value in c.convert(f, raw)]
+            c.lines.append(f"{pad}{entries} = [{entry}({', '.join(values)}) for {', '.join(names)}, "
+                           f"in iter_unpack({fmt!r}, payload[{pos}:{end}])]")
+            pairs.append((item.id, entries))
             pos = end
         else:
             return None
     flush()
-    body = ["def read(payload):", "    values = {}", *c.lines, f"    return values, {pos}"]
+    instance = _instance(c, cls, pairs, pos)
+    if instance.startswith("make("):   # inline
+        instance = instance[len("make(cls, "):-1]
+        end_lines = ["    message = new(cls)", f"    message.__dict__ = {instance}", "    return message"]
+    else:
+        end_lines = [f"    return {instance}"]
+    body = [*c.defs, "def read(payload):", *c.lines, *end_lines]
     exec("\n".join(body), c.names)  # code built above from the generated layout, never from input
     return c.names["read"]
 
@@ -357,8 +470,6 @@ class Message:
     FIELDS: ClassVar[dict[str, Field]]
     _read: ClassVar[Any]
     """The layout's compiled reader (compile_reader), made on first use; False: none."""
-    _members: ClassVar[int]
-    """How many members a payload read whole gives (from_payload); set with _read."""
     _version_at: ClassVar[int]
     """The byte of the `version` field (fits), found on first use."""
 
@@ -386,18 +497,9 @@ class Message:
         it does not read whole) by the generic one, which names what is missing."""
         read: Any = cls.__dict__.get("_read")
         if read is None:
-            read = cls._read = compile_reader(cls.LAYOUT) or False
-            cls._members = len(dataclass_fields(cls)) - 1  # the fields of the layout, not trailing
-        found = read(payload) if read else None
-        if found is None:
-            return cls.read_generic(payload)
-        values, end = found
-        if len(values) == cls._members:  # every member read: the instance takes them as they are
-            message = object.__new__(cls)
-            values["trailing"] = payload[end:]
-            message.__dict__ = values
-            return message
-        return cls(**values, trailing=payload[end:])
+            read = cls._read = compile_reader(cls) or False
+        message: Message | None = read(payload) if read else None
+        return cls.read_generic(payload) if message is None else message
 
     @classmethod
     def read_generic(cls, payload: bytes) -> Message:
@@ -489,8 +591,10 @@ def decode(by_id: dict[tuple[int, int], tuple[type[Message], ...]], data: bytes)
             and size == HEADER_SIZE + CHECKSUM_SIZE + (data[4] | data[5] << 8)):
         body = bytes(data[2:size - CHECKSUM_SIZE])
         layouts = by_id.get((body[0], body[1]))
-        if layouts and sum(body) & 0xFF == data[size - 2] and sum(accumulate(body)) & 0xFF == data[size - 1]:
+        if layouts and _fletcher(body) == (data[size - 2], data[size - 1]):
             payload = body[4:]
+            if len(layouts) == 1:   # what fits, or else main_layout, is this one
+                return layouts[0].from_payload(payload)
             for cls in layouts:
                 if cls.fits(payload):
                     return cls.from_payload(payload)

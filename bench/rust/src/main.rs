@@ -2,7 +2,7 @@
 //! implementation over every line and prints a JSON object.
 //!
 //! ```text
-//! bench-rs ours|nmea|nmea0183|ours-ais|nmea-parser|ours-ubx parse|serialize|roundtrip|fixes|none CORPUS [--by-type]
+//! bench-rs ours|nmea|nmea0183|ours-ais|nmea-parser|ours-ubx|ublox parse|serialize|roundtrip|fixes|none CORPUS [--by-type]
 //! ```
 //!
 //! `ours` is `nmeaspec`: parse is `nmeaspec::parse`; serialize is `serialize_into` of each parsed
@@ -159,7 +159,7 @@ fn time_nmea_parse(lines: &[Line<'_>]) -> Timing {
     timed(|| {
         lines
             .iter()
-            .filter(|line| nmea::parse_str(line.text).map(|r| black_box(r)).is_ok())
+            .filter(|line| nmea::parse_str(line.text).map(black_box).is_ok())
             .count()
     })
 }
@@ -246,6 +246,203 @@ fn time_ours_ubx_parse(frames: &[Vec<u8>]) -> Timing {
     })
 }
 
+/// The ublox crate's peer of `ours-ubx`: one `ublox::Parser` (protocol 23, a fixed 2 KiB buffer:
+/// no allocation) fed each frame with `consume_ubx`, every packet it yields read whole: its
+/// `Serialize` implementation (the crate's `serde` feature) calls the getter of every field, the
+/// repeated groups' entries included, and hands each value to `Sink`, which only `black_box`es it.
+/// A getter that panics (ublox 0.10.0's CFG-PRT `mode` of a port that is no UART, whose data bits
+/// read 5: `unimplemented!`) is caught, its packet not counted. ok: packets of a message the crate
+/// knows (not `Unknown`) read whole.
+#[cfg(feature = "peers")]
+fn time_ublox_parse(frames: &[Vec<u8>]) -> Timing {
+    use serde::Serialize;
+    use std::panic::{catch_unwind, AssertUnwindSafe};
+    use ublox::{proto23::PacketRef, ParserBuilder, UbxPacket};
+    let mut parser = ParserBuilder::new()
+        .with_protocol::<ublox::proto23::Proto23>()
+        .with_fixed_buffer::<2048>();
+    std::panic::set_hook(Box::new(|_| {})); // a caught panic prints nothing
+    timed(|| {
+        let mut ok = 0;
+        for frame in frames {
+            let mut packets = parser.consume_ubx(frame);
+            while let Some(result) = packets.next() {
+                if let Ok(UbxPacket::Proto23(packet)) = result {
+                    let read = catch_unwind(AssertUnwindSafe(|| {
+                        black_box(&packet).serialize(sink::Sink).is_ok()
+                    }));
+                    if matches!(read, Ok(true)) && !matches!(packet, PacketRef::Unknown(_)) {
+                        ok += 1;
+                    }
+                }
+            }
+        }
+        ok
+    })
+}
+
+/// A serde serializer that reads every value it is given (`black_box`) and writes nothing: what
+/// touches every field of a ublox packet without the cost of a text format.
+#[cfg(feature = "peers")]
+mod sink {
+    use serde::ser::{self, Serialize};
+    use std::hint::black_box;
+
+    pub struct Sink;
+
+    #[derive(Debug)]
+    pub struct Never;
+
+    impl std::fmt::Display for Never {
+        fn fmt(&self, _: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            Ok(())
+        }
+    }
+
+    impl std::error::Error for Never {}
+
+    impl ser::Error for Never {
+        fn custom<T: std::fmt::Display>(_: T) -> Self {
+            Never
+        }
+    }
+
+    macro_rules! read {
+        ($($name:ident: $type:ty),* $(,)?) => {
+            $(fn $name(self, value: $type) -> Result<(), Never> {
+                black_box(value);
+                Ok(())
+            })*
+        };
+    }
+
+    impl ser::Serializer for Sink {
+        type Ok = ();
+        type Error = Never;
+        type SerializeSeq = Sink;
+        type SerializeTuple = Sink;
+        type SerializeTupleStruct = Sink;
+        type SerializeTupleVariant = Sink;
+        type SerializeMap = Sink;
+        type SerializeStruct = Sink;
+        type SerializeStructVariant = Sink;
+
+        read!(serialize_bool: bool, serialize_i8: i8, serialize_i16: i16, serialize_i32: i32,
+              serialize_i64: i64, serialize_u8: u8, serialize_u16: u16, serialize_u32: u32,
+              serialize_u64: u64, serialize_f32: f32, serialize_f64: f64, serialize_char: char,
+              serialize_str: &str, serialize_bytes: &[u8], serialize_unit_struct: &'static str);
+
+        fn serialize_none(self) -> Result<(), Never> {
+            Ok(())
+        }
+        fn serialize_some<T: ?Sized + Serialize>(self, value: &T) -> Result<(), Never> {
+            value.serialize(self)
+        }
+        fn serialize_unit(self) -> Result<(), Never> {
+            Ok(())
+        }
+        fn serialize_unit_variant(
+            self,
+            _: &'static str,
+            index: u32,
+            _: &'static str,
+        ) -> Result<(), Never> {
+            black_box(index);
+            Ok(())
+        }
+        fn serialize_newtype_struct<T: ?Sized + Serialize>(
+            self,
+            _: &'static str,
+            value: &T,
+        ) -> Result<(), Never> {
+            value.serialize(self)
+        }
+        fn serialize_newtype_variant<T: ?Sized + Serialize>(
+            self,
+            _: &'static str,
+            index: u32,
+            _: &'static str,
+            value: &T,
+        ) -> Result<(), Never> {
+            black_box(index);
+            value.serialize(self)
+        }
+        fn serialize_seq(self, _: Option<usize>) -> Result<Sink, Never> {
+            Ok(Sink)
+        }
+        fn serialize_tuple(self, _: usize) -> Result<Sink, Never> {
+            Ok(Sink)
+        }
+        fn serialize_tuple_struct(self, _: &'static str, _: usize) -> Result<Sink, Never> {
+            Ok(Sink)
+        }
+        fn serialize_tuple_variant(
+            self,
+            _: &'static str,
+            _: u32,
+            _: &'static str,
+            _: usize,
+        ) -> Result<Sink, Never> {
+            Ok(Sink)
+        }
+        fn serialize_map(self, _: Option<usize>) -> Result<Sink, Never> {
+            Ok(Sink)
+        }
+        fn serialize_struct(self, _: &'static str, _: usize) -> Result<Sink, Never> {
+            Ok(Sink)
+        }
+        fn serialize_struct_variant(
+            self,
+            _: &'static str,
+            _: u32,
+            _: &'static str,
+            _: usize,
+        ) -> Result<Sink, Never> {
+            Ok(Sink)
+        }
+    }
+
+    /// Every compound: each element or field value read in turn.
+    macro_rules! compound {
+        ($($trait:ident :: $method:ident $(($key:ty))?),* $(,)?) => {
+            $(impl ser::$trait for Sink {
+                type Ok = ();
+                type Error = Never;
+                fn $method<T: ?Sized + Serialize>(&mut self, $(_: $key,)? value: &T) -> Result<(), Never> {
+                    value.serialize(Sink)
+                }
+                fn end(self) -> Result<(), Never> {
+                    Ok(())
+                }
+            })*
+        };
+    }
+
+    compound!(
+        SerializeSeq::serialize_element,
+        SerializeTuple::serialize_element,
+        SerializeTupleStruct::serialize_field,
+        SerializeTupleVariant::serialize_field,
+        SerializeStruct::serialize_field(&'static str),
+        SerializeStructVariant::serialize_field(&'static str)
+    );
+
+    impl ser::SerializeMap for Sink {
+        type Ok = ();
+        type Error = Never;
+        /// The keys are the fields' names, constants: not read.
+        fn serialize_key<T: ?Sized + Serialize>(&mut self, _: &T) -> Result<(), Never> {
+            Ok(())
+        }
+        fn serialize_value<T: ?Sized + Serialize>(&mut self, value: &T) -> Result<(), Never> {
+            value.serialize(Sink)
+        }
+        fn end(self) -> Result<(), Never> {
+            Ok(())
+        }
+    }
+}
+
 #[cfg(feature = "peers")]
 fn time_nmea_parser_parse(lines: &[Line<'_>]) -> Timing {
     let mut parser = nmea_parser::NmeaParser::new();
@@ -278,6 +475,8 @@ fn run(implementation: &str, op: &str, lines: &[Line<'_>]) -> Timing {
         ("ours", "fixes") => time_ours_fixes(lines),
         ("ours-ais", "parse") => time_ours_ais_parse(lines),
         ("ours-ubx", "parse") => time_ours_ubx_parse(&ubx_frames(lines)),
+        #[cfg(feature = "peers")]
+        ("ublox", "parse") => time_ublox_parse(&ubx_frames(lines)),
         #[cfg(feature = "peers")]
         ("nmea-parser", "parse") => time_nmea_parser_parse(lines),
         #[cfg(feature = "peers")]
@@ -337,7 +536,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() < 4 {
         eprintln!(
-            "usage: bench-rs ours|nmea|nmea0183|ours-ais|nmea-parser|ours-ubx parse|serialize|roundtrip|fixes|none CORPUS [--by-type]"
+            "usage: bench-rs ours|nmea|nmea0183|ours-ais|nmea-parser|ours-ubx|ublox parse|serialize|roundtrip|fixes|none CORPUS [--by-type]"
         );
         std::process::exit(2);
     }
