@@ -6,15 +6,19 @@
 //   spec/binary/ubx/messages/nav_sol.yaml, spec/binary/ubx/messages/nav_pvt.yaml,
 //   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
 //   spec/binary/ubx/messages/nav_velecef.yaml, spec/binary/ubx/messages/nav_velned.yaml,
-//   spec/binary/ubx/messages/nav_hpposllh.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
-//   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_clock.yaml,
-//   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
-//   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timels.yaml,
-//   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_sbas.yaml,
+//   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
+//   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timeutc.yaml,
+//   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
+//   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
+//   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
+//   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
+//   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_orb.yaml,
 //   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_cov.yaml,
-//   spec/binary/ubx/messages/nav_svin.yaml, spec/binary/ubx/messages/nav_relposned.yaml,
-//   spec/binary/ubx/messages/nav_eell.yaml, spec/binary/ubx/messages/nav_sig.yaml,
-//   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
+//   spec/binary/ubx/messages/nav_geofence.yaml, spec/binary/ubx/messages/nav_svin.yaml,
+//   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_eell.yaml,
+//   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
+//   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
+//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
 //   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
 //   spec/binary/ubx/messages/inf_error.yaml, spec/binary/ubx/messages/inf_warning.yaml,
 //   spec/binary/ubx/messages/inf_notice.yaml, spec/binary/ubx/messages/inf_test.yaml,
@@ -28,15 +32,30 @@
 //   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
 //   spec/binary/ubx/messages/cfg_dgnss.yaml, spec/binary/ubx/messages/cfg_tmode3.yaml,
 //   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
-//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/mon_ver.yaml,
+//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/mon_io.yaml,
+//   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
 //   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
-//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
+//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_patch.yaml,
+//   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
+//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
 //   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
+//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
+//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
+//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
+//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
 //   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_status.yaml,
 //   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
+//   spec/binary/ubx/messages/log_erase.yaml, spec/binary/ubx/messages/log_string.yaml,
+//   spec/binary/ubx/messages/log_create.yaml, spec/binary/ubx/messages/log_info.yaml,
+//   spec/binary/ubx/messages/log_retrieve.yaml, spec/binary/ubx/messages/log_retrievepos.yaml,
+//   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_findtime.yaml,
+//   spec/binary/ubx/messages/log_retrieveposextra.yaml,
+//   spec/binary/ubx/messages/log_retrievebatch.yaml, spec/binary/ubx/messages/log_batch.yaml,
 //   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/hnr_pvt.yaml,
 //   spec/binary/ubx/messages/hnr_att.yaml, spec/binary/ubx/messages/hnr_ins.yaml,
-//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest 35d7168247a20260)
+//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest 894c51d3e4e4d75e)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -1014,6 +1033,29 @@ static const nmea_ubx_item ubx_nav_velned_items[] = {
     {"c_acc", &ubx_nav_velned_c_acc_scale, offsetof(nmea_ubx_nav_velned, c_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
 };
 
+/* NAV-HPPOSECEF: nav_hpposecef_poll */
+static const nmea_ubx_item ubx_nav_hpposecef_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-HPPOSECEF: nav_hpposecef */
+static const nmea_ubx_scale ubx_nav_hpposecef_ecef_x_hp_scale = {10.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_hpposecef_ecef_y_hp_scale = {10.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_hpposecef_ecef_z_hp_scale = {10.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_hpposecef_p_acc_scale = {10.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_nav_hpposecef_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_nav_hpposecef, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_nav_hpposecef, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"itow", NULL, offsetof(nmea_ubx_nav_hpposecef, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_x", NULL, offsetof(nmea_ubx_nav_hpposecef, ecef_x), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_y", NULL, offsetof(nmea_ubx_nav_hpposecef, ecef_y), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_z", NULL, offsetof(nmea_ubx_nav_hpposecef, ecef_z), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_x_hp", &ubx_nav_hpposecef_ecef_x_hp_scale, offsetof(nmea_ubx_nav_hpposecef, ecef_x_hp), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ecef_y_hp", &ubx_nav_hpposecef_ecef_y_hp_scale, offsetof(nmea_ubx_nav_hpposecef, ecef_y_hp), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ecef_z_hp", &ubx_nav_hpposecef_ecef_z_hp_scale, offsetof(nmea_ubx_nav_hpposecef, ecef_z_hp), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"flags", NULL, offsetof(nmea_ubx_nav_hpposecef, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"invalid_ecef", NULL, offsetof(nmea_ubx_nav_hpposecef, invalid_ecef), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"p_acc", &ubx_nav_hpposecef_p_acc_scale, offsetof(nmea_ubx_nav_hpposecef, p_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
 /* NAV-HPPOSLLH: nav_hpposllh_poll */
 static const nmea_ubx_item ubx_nav_hpposllh_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -1164,6 +1206,23 @@ static const nmea_ubx_item ubx_nav_timels_items[] = {
     {"valid_time_to_ls_event", NULL, offsetof(nmea_ubx_nav_timels, valid_time_to_ls_event), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* NAV-TIMEQZSS: nav_timeqzss_poll */
+static const nmea_ubx_item ubx_nav_timeqzss_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-TIMEQZSS: nav_timeqzss */
+static const nmea_ubx_item ubx_nav_timeqzss_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_timeqzss, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_tow", NULL, offsetof(nmea_ubx_nav_timeqzss, qzss_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"f_qzss_tow", NULL, offsetof(nmea_ubx_nav_timeqzss, f_qzss_tow), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_wno", NULL, offsetof(nmea_ubx_nav_timeqzss, qzss_wno), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s", NULL, offsetof(nmea_ubx_nav_timeqzss, leap_s), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav_timeqzss, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_tow_valid", NULL, offsetof(nmea_ubx_nav_timeqzss, qzss_tow_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_wno_valid", NULL, offsetof(nmea_ubx_nav_timeqzss, qzss_wno_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s_valid", NULL, offsetof(nmea_ubx_nav_timeqzss, leap_s_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav_timeqzss, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* NAV-SVINFO: nav_svinfo_poll */
 static const nmea_ubx_item ubx_nav_svinfo_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -1196,6 +1255,32 @@ static const nmea_ubx_item ubx_nav_svinfo_items[] = {
     {"chip_gen", NULL, offsetof(nmea_ubx_nav_svinfo, chip_gen), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved1", NULL, offsetof(nmea_ubx_nav_svinfo, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"channels", &ubx_nav_svinfo_channels_group, offsetof(nmea_ubx_nav_svinfo, channels), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV-DGPS: nav_dgps_poll */
+static const nmea_ubx_item ubx_nav_dgps_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-DGPS: nav_dgps */
+static const nmea_ubx_item ubx_nav_dgps_channel_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_nav_dgps_channel, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_nav_dgps_channel, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"channel", NULL, offsetof(nmea_ubx_nav_dgps_channel, channel), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dgps_used", NULL, offsetof(nmea_ubx_nav_dgps_channel, dgps_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"age_c", NULL, offsetof(nmea_ubx_nav_dgps_channel, age_c), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"prc", NULL, offsetof(nmea_ubx_nav_dgps_channel, prc), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"prrc", NULL, offsetof(nmea_ubx_nav_dgps_channel, prrc), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_nav_dgps_channels_group = {ubx_nav_dgps_channel_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_dgps, num_ch), 0, 0, 65535, NMEA_UBX_NAV_DGPS_CHANNELS_MAX, 12, sizeof(nmea_ubx_nav_dgps_channel), 0, offsetof(nmea_ubx_nav_dgps, channels_count)};
+static const nmea_ubx_item ubx_nav_dgps_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_dgps, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"age", NULL, offsetof(nmea_ubx_nav_dgps, age), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"base_id", NULL, offsetof(nmea_ubx_nav_dgps, base_id), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"base_health", NULL, offsetof(nmea_ubx_nav_dgps, base_health), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_ch", NULL, offsetof(nmea_ubx_nav_dgps, num_ch), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"status", NULL, offsetof(nmea_ubx_nav_dgps, status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav_dgps, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"channels", &ubx_nav_dgps_channels_group, offsetof(nmea_ubx_nav_dgps, channels), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* NAV-SBAS: nav_sbas_poll */
@@ -1231,6 +1316,36 @@ static const nmea_ubx_item ubx_nav_sbas_items[] = {
     {"integrity_used", NULL, offsetof(nmea_ubx_nav_sbas, integrity_used), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved1", NULL, offsetof(nmea_ubx_nav_sbas, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"channels", &ubx_nav_sbas_channels_group, offsetof(nmea_ubx_nav_sbas, channels), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV-ORB: nav_orb_poll */
+static const nmea_ubx_item ubx_nav_orb_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-ORB: nav_orb */
+static const nmea_ubx_item ubx_nav_orb_sv_items[] = {
+    {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_nav_orb_sv, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_nav_orb_sv, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_flag", NULL, offsetof(nmea_ubx_nav_orb_sv, sv_flag), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"health", NULL, offsetof(nmea_ubx_nav_orb_sv, health), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"visibility", NULL, offsetof(nmea_ubx_nav_orb_sv, visibility), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"eph", NULL, offsetof(nmea_ubx_nav_orb_sv, eph), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"eph_usability", NULL, offsetof(nmea_ubx_nav_orb_sv, eph_usability), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"eph_source", NULL, offsetof(nmea_ubx_nav_orb_sv, eph_source), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"alm", NULL, offsetof(nmea_ubx_nav_orb_sv, alm), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"alm_usability", NULL, offsetof(nmea_ubx_nav_orb_sv, alm_usability), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"alm_source", NULL, offsetof(nmea_ubx_nav_orb_sv, alm_source), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"other_orb", NULL, offsetof(nmea_ubx_nav_orb_sv, other_orb), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ano_aop_usability", NULL, offsetof(nmea_ubx_nav_orb_sv, ano_aop_usability), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"type", NULL, offsetof(nmea_ubx_nav_orb_sv, type), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 5, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_nav_orb_svs_group = {ubx_nav_orb_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_orb, num_sv), 0, 0, 65535, NMEA_UBX_NAV_ORB_SVS_MAX, 6, sizeof(nmea_ubx_nav_orb_sv), 0, offsetof(nmea_ubx_nav_orb, svs_count)};
+static const nmea_ubx_item ubx_nav_orb_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_orb, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav_orb, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_nav_orb, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_nav_orb, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svs", &ubx_nav_orb_svs_group, offsetof(nmea_ubx_nav_orb, svs), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* NAV-SAT: nav_sat_poll */
@@ -1296,6 +1411,25 @@ static const nmea_ubx_item ubx_nav_cov_items[] = {
     {"vel_cov_ee", NULL, offsetof(nmea_ubx_nav_cov, vel_cov_ee), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"vel_cov_ed", NULL, offsetof(nmea_ubx_nav_cov, vel_cov_ed), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"vel_cov_dd", NULL, offsetof(nmea_ubx_nav_cov, vel_cov_dd), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV-GEOFENCE: nav_geofence_poll */
+static const nmea_ubx_item ubx_nav_geofence_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-GEOFENCE: nav_geofence */
+static const nmea_ubx_item ubx_nav_geofence_fence_items[] = {
+    {"state", NULL, offsetof(nmea_ubx_nav_geofence_fence, state), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"id", NULL, offsetof(nmea_ubx_nav_geofence_fence, id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_nav_geofence_fences_group = {ubx_nav_geofence_fence_items, 2, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_geofence, num_fences), 0, 0, 65535, NMEA_UBX_NAV_GEOFENCE_FENCES_MAX, 2, sizeof(nmea_ubx_nav_geofence_fence), 0, offsetof(nmea_ubx_nav_geofence, fences_count)};
+static const nmea_ubx_item ubx_nav_geofence_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_geofence, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav_geofence, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"status", NULL, offsetof(nmea_ubx_nav_geofence, status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_fences", NULL, offsetof(nmea_ubx_nav_geofence, num_fences), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"comb_state", NULL, offsetof(nmea_ubx_nav_geofence, comb_state), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fences", &ubx_nav_geofence_fences_group, offsetof(nmea_ubx_nav_geofence, fences), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* NAV-SVIN: nav_svin_poll */
@@ -1418,6 +1552,37 @@ static const nmea_ubx_item ubx_nav_eell_items[] = {
     {"err_ellipse_minor", NULL, offsetof(nmea_ubx_nav_eell, err_ellipse_minor), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* NAV-SLAS: nav_slas_poll */
+static const nmea_ubx_item ubx_nav_slas_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-SLAS: nav_slas */
+static const nmea_ubx_item ubx_nav_slas_correction_items[] = {
+    {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_nav_slas_correction, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_nav_slas_correction, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav_slas_correction, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_nav_slas_correction, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"prc", NULL, offsetof(nmea_ubx_nav_slas_correction, prc), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_scale ubx_nav_slas_gms_lon_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_slas_gms_lat_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_group ubx_nav_slas_corrections_group = {ubx_nav_slas_correction_items, 5, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav_slas, cnt), 0, 0, 65535, NMEA_UBX_NAV_SLAS_CORRECTIONS_MAX, 8, sizeof(nmea_ubx_nav_slas_correction), 0, offsetof(nmea_ubx_nav_slas, corrections_count)};
+static const nmea_ubx_item ubx_nav_slas_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_slas, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav_slas, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_nav_slas, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gms_lon", &ubx_nav_slas_gms_lon_scale, offsetof(nmea_ubx_nav_slas, gms_lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"gms_lat", &ubx_nav_slas_gms_lat_scale, offsetof(nmea_ubx_nav_slas, gms_lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"gms_code", NULL, offsetof(nmea_ubx_nav_slas, gms_code), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_sv_id", NULL, offsetof(nmea_ubx_nav_slas, qzss_sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"service_flags", NULL, offsetof(nmea_ubx_nav_slas, service_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gms_available", NULL, offsetof(nmea_ubx_nav_slas, gms_available), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_sv_available", NULL, offsetof(nmea_ubx_nav_slas, qzss_sv_available), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"test_mode", NULL, offsetof(nmea_ubx_nav_slas, test_mode), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"cnt", NULL, offsetof(nmea_ubx_nav_slas, cnt), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"corrections", &ubx_nav_slas_corrections_group, offsetof(nmea_ubx_nav_slas, corrections), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* NAV-SIG: nav_sig_poll */
 static const nmea_ubx_item ubx_nav_sig_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -1454,9 +1619,50 @@ static const nmea_ubx_item ubx_nav_sig_items[] = {
     {"signals", &ubx_nav_sig_signals_group, offsetof(nmea_ubx_nav_sig, signals), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* NAV-AOPSTATUS: nav_aopstatus_poll */
+static const nmea_ubx_item ubx_nav_aopstatus_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-AOPSTATUS: nav_aopstatus */
+static const nmea_ubx_item ubx_nav_aopstatus_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_aopstatus, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"aop_cfg", NULL, offsetof(nmea_ubx_nav_aopstatus, aop_cfg), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"use_aop", NULL, offsetof(nmea_ubx_nav_aopstatus, use_aop), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"status", NULL, offsetof(nmea_ubx_nav_aopstatus, status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav_aopstatus, reserved1), 0, 0, NMEA_UBX_ITEM_ARRAY, 10, 10, 0, NMEA_UBX_PRINT_BIG, false}
+};
+
 /* NAV-EOE: nav_eoe */
 static const nmea_ubx_item ubx_nav_eoe_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav_eoe, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV-PL: nav_pl_poll */
+static const nmea_ubx_item ubx_nav_pl_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-PL: nav_pl */
+static const nmea_ubx_scale ubx_nav_pl_pl_pos_horiz_orient_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pl_pl_vel_horiz_orient_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_nav_pl_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_nav_pl, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tmir_coeff", NULL, offsetof(nmea_ubx_nav_pl, tmir_coeff), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tmir_exp", NULL, offsetof(nmea_ubx_nav_pl, tmir_exp), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_pos_valid", NULL, offsetof(nmea_ubx_nav_pl, pl_pos_valid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_pos_frame", NULL, offsetof(nmea_ubx_nav_pl, pl_pos_frame), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_vel_valid", NULL, offsetof(nmea_ubx_nav_pl, pl_vel_valid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_vel_frame", NULL, offsetof(nmea_ubx_nav_pl, pl_vel_frame), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_time_valid", NULL, offsetof(nmea_ubx_nav_pl, pl_time_valid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_nav_pl, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"itow", NULL, offsetof(nmea_ubx_nav_pl, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_pos1", NULL, offsetof(nmea_ubx_nav_pl, pl_pos1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_pos2", NULL, offsetof(nmea_ubx_nav_pl, pl_pos2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_pos3", NULL, offsetof(nmea_ubx_nav_pl, pl_pos3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_vel1", NULL, offsetof(nmea_ubx_nav_pl, pl_vel1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_vel2", NULL, offsetof(nmea_ubx_nav_pl, pl_vel2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_vel3", NULL, offsetof(nmea_ubx_nav_pl, pl_vel3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pl_pos_horiz_orient", &ubx_nav_pl_pl_pos_horiz_orient_scale, offsetof(nmea_ubx_nav_pl, pl_pos_horiz_orient), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"pl_vel_horiz_orient", &ubx_nav_pl_pl_vel_horiz_orient_scale, offsetof(nmea_ubx_nav_pl, pl_vel_horiz_orient), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"pl_time", NULL, offsetof(nmea_ubx_nav_pl, pl_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav_pl, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* RXM-SFRBX: rxm_sfrbx */
@@ -1960,6 +2166,27 @@ static const nmea_ubx_item ubx_cfg_valdel_items[] = {
     {"keys", &ubx_cfg_valdel_keys_group, offsetof(nmea_ubx_cfg_valdel, keys), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* MON-IO: mon_io_poll */
+static const nmea_ubx_item ubx_mon_io_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-IO: mon_io */
+static const nmea_ubx_item ubx_mon_io_port_items[] = {
+    {"rx_bytes", NULL, offsetof(nmea_ubx_mon_io_port, rx_bytes), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tx_bytes", NULL, offsetof(nmea_ubx_mon_io_port, tx_bytes), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"parity_errs", NULL, offsetof(nmea_ubx_mon_io_port, parity_errs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"framing_errs", NULL, offsetof(nmea_ubx_mon_io_port, framing_errs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"overrun_errs", NULL, offsetof(nmea_ubx_mon_io_port, overrun_errs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"break_cond", NULL, offsetof(nmea_ubx_mon_io_port, break_cond), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_busy", NULL, offsetof(nmea_ubx_mon_io_port, rx_busy), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tx_busy", NULL, offsetof(nmea_ubx_mon_io_port, tx_busy), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_io_port, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mon_io_ports_group = {ubx_mon_io_port_items, 9, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 6, NMEA_UBX_MON_IO_PORTS_MAX, 20, sizeof(nmea_ubx_mon_io_port), 0, offsetof(nmea_ubx_mon_io, ports_count)};
+static const nmea_ubx_item ubx_mon_io_items[] = {
+    {"ports", &ubx_mon_io_ports_group, offsetof(nmea_ubx_mon_io, ports), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* MON-VER: mon_ver_poll */
 static const nmea_ubx_item ubx_mon_ver_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -1973,6 +2200,55 @@ static const nmea_ubx_item ubx_mon_ver_items[] = {
     {"sw_version", NULL, offsetof(nmea_ubx_mon_ver, sw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 30, 30, 0, NMEA_UBX_PRINT_CHARS, false},
     {"hw_version", NULL, offsetof(nmea_ubx_mon_ver, hw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 10, 10, 0, NMEA_UBX_PRINT_CHARS, false},
     {"extensions", &ubx_mon_ver_extensions_group, offsetof(nmea_ubx_mon_ver, extensions), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-MSGPP: mon_msgpp_poll */
+static const nmea_ubx_item ubx_mon_msgpp_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-MSGPP: mon_msgpp */
+static const nmea_ubx_item ubx_mon_msgpp_msg1_entry_items[] = {
+    {"msg1", NULL, offsetof(nmea_ubx_mon_msgpp_msg1_entry, msg1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_item ubx_mon_msgpp_msg2_entry_items[] = {
+    {"msg2", NULL, offsetof(nmea_ubx_mon_msgpp_msg2_entry, msg2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_item ubx_mon_msgpp_msg3_entry_items[] = {
+    {"msg3", NULL, offsetof(nmea_ubx_mon_msgpp_msg3_entry, msg3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_item ubx_mon_msgpp_msg4_entry_items[] = {
+    {"msg4", NULL, offsetof(nmea_ubx_mon_msgpp_msg4_entry, msg4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_item ubx_mon_msgpp_msg5_entry_items[] = {
+    {"msg5", NULL, offsetof(nmea_ubx_mon_msgpp_msg5_entry, msg5), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_item ubx_mon_msgpp_msg6_entry_items[] = {
+    {"msg6", NULL, offsetof(nmea_ubx_mon_msgpp_msg6_entry, msg6), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_item ubx_mon_msgpp_skipped_entry_items[] = {
+    {"skipped", NULL, offsetof(nmea_ubx_mon_msgpp_skipped_entry, skipped), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mon_msgpp_msg1_group = {ubx_mon_msgpp_msg1_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG1_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg1_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg1_count)};
+static const nmea_ubx_group ubx_mon_msgpp_msg2_group = {ubx_mon_msgpp_msg2_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG2_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg2_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg2_count)};
+static const nmea_ubx_group ubx_mon_msgpp_msg3_group = {ubx_mon_msgpp_msg3_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG3_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg3_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg3_count)};
+static const nmea_ubx_group ubx_mon_msgpp_msg4_group = {ubx_mon_msgpp_msg4_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG4_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg4_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg4_count)};
+static const nmea_ubx_group ubx_mon_msgpp_msg5_group = {ubx_mon_msgpp_msg5_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG5_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg5_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg5_count)};
+static const nmea_ubx_group ubx_mon_msgpp_msg6_group = {ubx_mon_msgpp_msg6_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_MON_MSGPP_MSG6_MAX, 2, sizeof(nmea_ubx_mon_msgpp_msg6_entry), 0, offsetof(nmea_ubx_mon_msgpp, msg6_count)};
+static const nmea_ubx_group ubx_mon_msgpp_skipped_group = {ubx_mon_msgpp_skipped_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 6, 0, 65535, NMEA_UBX_MON_MSGPP_SKIPPED_MAX, 4, sizeof(nmea_ubx_mon_msgpp_skipped_entry), 0, offsetof(nmea_ubx_mon_msgpp, skipped_count)};
+static const nmea_ubx_item ubx_mon_msgpp_items[] = {
+    {"msg1", &ubx_mon_msgpp_msg1_group, offsetof(nmea_ubx_mon_msgpp, msg1), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg2", &ubx_mon_msgpp_msg2_group, offsetof(nmea_ubx_mon_msgpp, msg2), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg3", &ubx_mon_msgpp_msg3_group, offsetof(nmea_ubx_mon_msgpp, msg3), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg4", &ubx_mon_msgpp_msg4_group, offsetof(nmea_ubx_mon_msgpp, msg4), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg5", &ubx_mon_msgpp_msg5_group, offsetof(nmea_ubx_mon_msgpp, msg5), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg6", &ubx_mon_msgpp_msg6_group, offsetof(nmea_ubx_mon_msgpp, msg6), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"skipped", &ubx_mon_msgpp_skipped_group, offsetof(nmea_ubx_mon_msgpp, skipped), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* MON-RXBUF: mon_rxbuf_poll */
@@ -2065,6 +2341,175 @@ static const nmea_ubx_item ubx_mon_hw_items[] = {
     {"pull_l", NULL, offsetof(nmea_ubx_mon_hw, pull_l), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* MON-HW2: mon_hw2_poll */
+static const nmea_ubx_item ubx_mon_hw2_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-HW2: mon_hw2 */
+static const nmea_ubx_item ubx_mon_hw2_items[] = {
+    {"ofs_i", NULL, offsetof(nmea_ubx_mon_hw2, ofs_i), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mag_i", NULL, offsetof(nmea_ubx_mon_hw2, mag_i), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ofs_q", NULL, offsetof(nmea_ubx_mon_hw2, ofs_q), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mag_q", NULL, offsetof(nmea_ubx_mon_hw2, mag_q), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cfg_source", NULL, offsetof(nmea_ubx_mon_hw2, cfg_source), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mon_hw2, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"low_lev_cfg", NULL, offsetof(nmea_ubx_mon_hw2, low_lev_cfg), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_hw2, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"post_status", NULL, offsetof(nmea_ubx_mon_hw2, post_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_mon_hw2, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-RXR: mon_rxr */
+static const nmea_ubx_item ubx_mon_rxr_items[] = {
+    {"flags", NULL, offsetof(nmea_ubx_mon_rxr, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"awake", NULL, offsetof(nmea_ubx_mon_rxr, awake), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-PATCH: mon_patch_poll */
+static const nmea_ubx_item ubx_mon_patch_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-PATCH: mon_patch */
+static const nmea_ubx_item ubx_mon_patch_entrie_items[] = {
+    {"patch_info", NULL, offsetof(nmea_ubx_mon_patch_entrie, patch_info), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"activated", NULL, offsetof(nmea_ubx_mon_patch_entrie, activated), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"location", NULL, offsetof(nmea_ubx_mon_patch_entrie, location), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"comparator_number", NULL, offsetof(nmea_ubx_mon_patch_entrie, comparator_number), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"patch_address", NULL, offsetof(nmea_ubx_mon_patch_entrie, patch_address), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"patch_data", NULL, offsetof(nmea_ubx_mon_patch_entrie, patch_data), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mon_patch_entries_group = {ubx_mon_patch_entrie_items, 6, NMEA_UBX_COUNT_FIELD, 2, offsetof(nmea_ubx_mon_patch, n_entries), 0, 0, 32, NMEA_UBX_MON_PATCH_ENTRIES_MAX, 16, sizeof(nmea_ubx_mon_patch_entrie), 0, offsetof(nmea_ubx_mon_patch, entries_count)};
+static const nmea_ubx_item ubx_mon_patch_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_patch, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"n_entries", NULL, offsetof(nmea_ubx_mon_patch, n_entries), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"entries", &ubx_mon_patch_entries_group, offsetof(nmea_ubx_mon_patch, entries), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-GNSS: mon_gnss_poll */
+static const nmea_ubx_item ubx_mon_gnss_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-GNSS: mon_gnss */
+static const nmea_ubx_item ubx_mon_gnss_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_gnss, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"supported", NULL, offsetof(nmea_ubx_mon_gnss, supported), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_sup", NULL, offsetof(nmea_ubx_mon_gnss, gps_sup), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"glonass_sup", NULL, offsetof(nmea_ubx_mon_gnss, glonass_sup), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"beidou_sup", NULL, offsetof(nmea_ubx_mon_gnss, beidou_sup), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"galileo_sup", NULL, offsetof(nmea_ubx_mon_gnss, galileo_sup), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"default_gnss", NULL, offsetof(nmea_ubx_mon_gnss, default_gnss), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_def", NULL, offsetof(nmea_ubx_mon_gnss, gps_def), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"glonass_def", NULL, offsetof(nmea_ubx_mon_gnss, glonass_def), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"beidou_def", NULL, offsetof(nmea_ubx_mon_gnss, beidou_def), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"galileo_def", NULL, offsetof(nmea_ubx_mon_gnss, galileo_def), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"enabled", NULL, offsetof(nmea_ubx_mon_gnss, enabled), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_ena", NULL, offsetof(nmea_ubx_mon_gnss, gps_ena), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"glonass_ena", NULL, offsetof(nmea_ubx_mon_gnss, glonass_ena), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"beidou_ena", NULL, offsetof(nmea_ubx_mon_gnss, beidou_ena), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"galileo_ena", NULL, offsetof(nmea_ubx_mon_gnss, galileo_ena), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"simultaneous", NULL, offsetof(nmea_ubx_mon_gnss, simultaneous), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mon_gnss, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-SMGR: mon_smgr_poll */
+static const nmea_ubx_item ubx_mon_smgr_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-SMGR: mon_smgr */
+static const nmea_ubx_item ubx_mon_smgr_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_smgr, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_smgr, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"itow", NULL, offsetof(nmea_ubx_mon_smgr, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"int_osc", NULL, offsetof(nmea_ubx_mon_smgr, int_osc), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"int_osc_state", NULL, offsetof(nmea_ubx_mon_smgr, int_osc_state), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"int_osc_calib", NULL, offsetof(nmea_ubx_mon_smgr, int_osc_calib), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"int_osc_disc", NULL, offsetof(nmea_ubx_mon_smgr, int_osc_disc), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_osc", NULL, offsetof(nmea_ubx_mon_smgr, ext_osc), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_osc_state", NULL, offsetof(nmea_ubx_mon_smgr, ext_osc_state), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_osc_calib", NULL, offsetof(nmea_ubx_mon_smgr, ext_osc_calib), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_osc_disc", NULL, offsetof(nmea_ubx_mon_smgr, ext_osc_disc), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"disc_src", NULL, offsetof(nmea_ubx_mon_smgr, disc_src), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss", NULL, offsetof(nmea_ubx_mon_smgr, gnss), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_avail", NULL, offsetof(nmea_ubx_mon_smgr, gnss_avail), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_int0", NULL, offsetof(nmea_ubx_mon_smgr, ext_int0), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_int0_avail", NULL, offsetof(nmea_ubx_mon_smgr, ext_int0_avail), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_int0_type", NULL, offsetof(nmea_ubx_mon_smgr, ext_int0_type), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_int0_feed_back", NULL, offsetof(nmea_ubx_mon_smgr, ext_int0_feed_back), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_int1", NULL, offsetof(nmea_ubx_mon_smgr, ext_int1), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_int1_avail", NULL, offsetof(nmea_ubx_mon_smgr, ext_int1_avail), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_int1_type", NULL, offsetof(nmea_ubx_mon_smgr, ext_int1_type), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_int1_feed_back", NULL, offsetof(nmea_ubx_mon_smgr, ext_int1_feed_back), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-COMMS: mon_comms_poll */
+static const nmea_ubx_item ubx_mon_comms_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-COMMS: mon_comms */
+static const nmea_ubx_item ubx_mon_comms_prot_id_items[] = {
+    {"prot_ids", NULL, offsetof(nmea_ubx_mon_comms_prot_id, prot_ids), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_item ubx_mon_comms_port_items[] = {
+    {"port_id", NULL, offsetof(nmea_ubx_mon_comms_port, port_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tx_pending", NULL, offsetof(nmea_ubx_mon_comms_port, tx_pending), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tx_bytes", NULL, offsetof(nmea_ubx_mon_comms_port, tx_bytes), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tx_usage", NULL, offsetof(nmea_ubx_mon_comms_port, tx_usage), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tx_peak_usage", NULL, offsetof(nmea_ubx_mon_comms_port, tx_peak_usage), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_pending", NULL, offsetof(nmea_ubx_mon_comms_port, rx_pending), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_bytes", NULL, offsetof(nmea_ubx_mon_comms_port, rx_bytes), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_usage", NULL, offsetof(nmea_ubx_mon_comms_port, rx_usage), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_peak_usage", NULL, offsetof(nmea_ubx_mon_comms_port, rx_peak_usage), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"overrun_errs", NULL, offsetof(nmea_ubx_mon_comms_port, overrun_errs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msgs0", NULL, offsetof(nmea_ubx_mon_comms_port, msgs0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msgs1", NULL, offsetof(nmea_ubx_mon_comms_port, msgs1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msgs2", NULL, offsetof(nmea_ubx_mon_comms_port, msgs2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msgs3", NULL, offsetof(nmea_ubx_mon_comms_port, msgs3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_comms_port, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"skipped", NULL, offsetof(nmea_ubx_mon_comms_port, skipped), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mon_comms_prot_ids_group = {ubx_mon_comms_prot_id_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 4, 0, 65535, NMEA_UBX_MON_COMMS_PROT_IDS_MAX, 1, sizeof(nmea_ubx_mon_comms_prot_id), 0, offsetof(nmea_ubx_mon_comms, prot_ids_count)};
+static const nmea_ubx_group ubx_mon_comms_ports_group = {ubx_mon_comms_port_items, 16, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_comms, n_ports), 0, 0, 16, NMEA_UBX_MON_COMMS_PORTS_MAX, 40, sizeof(nmea_ubx_mon_comms_port), 0, offsetof(nmea_ubx_mon_comms, ports_count)};
+static const nmea_ubx_item ubx_mon_comms_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_comms, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"n_ports", NULL, offsetof(nmea_ubx_mon_comms, n_ports), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tx_errors", NULL, offsetof(nmea_ubx_mon_comms, tx_errors), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mem", NULL, offsetof(nmea_ubx_mon_comms, mem), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"alloc", NULL, offsetof(nmea_ubx_mon_comms, alloc), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mon_comms, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"prot_ids", &ubx_mon_comms_prot_ids_group, offsetof(nmea_ubx_mon_comms, prot_ids), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ports", &ubx_mon_comms_ports_group, offsetof(nmea_ubx_mon_comms, ports), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-HW3: mon_hw3_poll */
+static const nmea_ubx_item ubx_mon_hw3_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-HW3: mon_hw3 */
+static const nmea_ubx_item ubx_mon_hw3_pin_items[] = {
+    {"pin_id", NULL, offsetof(nmea_ubx_mon_hw3_pin, pin_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pin_mask", NULL, offsetof(nmea_ubx_mon_hw3_pin, pin_mask), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"periph_pio", NULL, offsetof(nmea_ubx_mon_hw3_pin, periph_pio), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pin_bank", NULL, offsetof(nmea_ubx_mon_hw3_pin, pin_bank), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"direction", NULL, offsetof(nmea_ubx_mon_hw3_pin, direction), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"pin_value", NULL, offsetof(nmea_ubx_mon_hw3_pin, pin_value), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"vp_manager", NULL, offsetof(nmea_ubx_mon_hw3_pin, vp_manager), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"pio_irq", NULL, offsetof(nmea_ubx_mon_hw3_pin, pio_irq), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"pio_pull_high", NULL, offsetof(nmea_ubx_mon_hw3_pin, pio_pull_high), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"pio_pull_low", NULL, offsetof(nmea_ubx_mon_hw3_pin, pio_pull_low), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 9, NMEA_UBX_PRINT_NUMBER, false},
+    {"vp", NULL, offsetof(nmea_ubx_mon_hw3_pin, vp), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_hw3_pin, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mon_hw3_pins_group = {ubx_mon_hw3_pin_items, 12, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_hw3, n_pins), 0, 0, 65535, NMEA_UBX_MON_HW3_PINS_MAX, 6, sizeof(nmea_ubx_mon_hw3_pin), 0, offsetof(nmea_ubx_mon_hw3, pins_count)};
+static const nmea_ubx_item ubx_mon_hw3_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_hw3, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"n_pins", NULL, offsetof(nmea_ubx_mon_hw3, n_pins), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_mon_hw3, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rtc_calib", NULL, offsetof(nmea_ubx_mon_hw3, rtc_calib), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"safe_boot", NULL, offsetof(nmea_ubx_mon_hw3, safe_boot), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"xtal_absent", NULL, offsetof(nmea_ubx_mon_hw3, xtal_absent), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"hw_version", NULL, offsetof(nmea_ubx_mon_hw3, hw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 10, 10, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mon_hw3, reserved0), 0, 0, NMEA_UBX_ITEM_ARRAY, 9, 9, 0, NMEA_UBX_PRINT_BIG, false},
+    {"pins", &ubx_mon_hw3_pins_group, offsetof(nmea_ubx_mon_hw3, pins), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* MON-RF: mon_rf_poll */
 static const nmea_ubx_item ubx_mon_rf_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -2093,6 +2538,27 @@ static const nmea_ubx_item ubx_mon_rf_items[] = {
     {"n_blocks", NULL, offsetof(nmea_ubx_mon_rf, n_blocks), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved0", NULL, offsetof(nmea_ubx_mon_rf, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"blocks", &ubx_mon_rf_blocks_group, offsetof(nmea_ubx_mon_rf, blocks), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-SYS: mon_sys_poll */
+static const nmea_ubx_item ubx_mon_sys_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-SYS: mon_sys */
+static const nmea_ubx_item ubx_mon_sys_items[] = {
+    {"msg_ver", NULL, offsetof(nmea_ubx_mon_sys, msg_ver), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"boot_type", NULL, offsetof(nmea_ubx_mon_sys, boot_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cpu_load", NULL, offsetof(nmea_ubx_mon_sys, cpu_load), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cpu_load_max", NULL, offsetof(nmea_ubx_mon_sys, cpu_load_max), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mem_usage", NULL, offsetof(nmea_ubx_mon_sys, mem_usage), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mem_usage_max", NULL, offsetof(nmea_ubx_mon_sys, mem_usage_max), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"io_usage", NULL, offsetof(nmea_ubx_mon_sys, io_usage), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"io_usage_max", NULL, offsetof(nmea_ubx_mon_sys, io_usage_max), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"run_time", NULL, offsetof(nmea_ubx_mon_sys, run_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"notice_count", NULL, offsetof(nmea_ubx_mon_sys, notice_count), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"warn_count", NULL, offsetof(nmea_ubx_mon_sys, warn_count), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"error_count", NULL, offsetof(nmea_ubx_mon_sys, error_count), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"temp_value", NULL, offsetof(nmea_ubx_mon_sys, temp_value), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mon_sys, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 5, 8, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* TIM-TP: tim_tp_poll */
@@ -2137,6 +2603,187 @@ static const nmea_ubx_item ubx_tim_tm2_items[] = {
     {"tow_ms_f", NULL, offsetof(nmea_ubx_tim_tm2, tow_ms_f), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"tow_sub_ms_f", NULL, offsetof(nmea_ubx_tim_tm2, tow_sub_ms_f), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"acc_est", NULL, offsetof(nmea_ubx_tim_tm2, acc_est), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* TIM-SVIN: tim_svin_poll */
+static const nmea_ubx_item ubx_tim_svin_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* TIM-SVIN: tim_svin */
+static const nmea_ubx_item ubx_tim_svin_items[] = {
+    {"dur", NULL, offsetof(nmea_ubx_tim_svin, dur), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mean_x", NULL, offsetof(nmea_ubx_tim_svin, mean_x), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mean_y", NULL, offsetof(nmea_ubx_tim_svin, mean_y), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mean_z", NULL, offsetof(nmea_ubx_tim_svin, mean_z), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mean_v", NULL, offsetof(nmea_ubx_tim_svin, mean_v), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"obs", NULL, offsetof(nmea_ubx_tim_svin, obs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_tim_svin, valid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"active", NULL, offsetof(nmea_ubx_tim_svin, active), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_tim_svin, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* TIM-VRFY: tim_vrfy_poll */
+static const nmea_ubx_item ubx_tim_vrfy_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* TIM-VRFY: tim_vrfy */
+static const nmea_ubx_item ubx_tim_vrfy_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_tim_vrfy, itow), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"frac", NULL, offsetof(nmea_ubx_tim_vrfy, frac), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"delta_ms", NULL, offsetof(nmea_ubx_tim_vrfy, delta_ms), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"delta_ns", NULL, offsetof(nmea_ubx_tim_vrfy, delta_ns), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno", NULL, offsetof(nmea_ubx_tim_vrfy, wno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_tim_vrfy, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"src", NULL, offsetof(nmea_ubx_tim_vrfy, src), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_tim_vrfy, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* TIM-DOSC: tim_dosc_poll */
+static const nmea_ubx_item ubx_tim_dosc_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* TIM-DOSC: tim_dosc */
+static const nmea_ubx_item ubx_tim_dosc_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_tim_dosc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_tim_dosc, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"value", NULL, offsetof(nmea_ubx_tim_dosc, value), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* TIM-TOS: tim_tos_poll */
+static const nmea_ubx_item ubx_tim_tos_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* TIM-TOS: tim_tos */
+static const nmea_ubx_scale ubx_tim_tos_int_osc_offset_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_tim_tos_int_osc_uncertainty_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_tim_tos_ext_osc_offset_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_tim_tos_ext_osc_uncertainty_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_tim_tos_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_tim_tos, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_tim_tos, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_tim_tos, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_tim_tos, flags), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_now", NULL, offsetof(nmea_ubx_tim_tos, leap_now), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_soon", NULL, offsetof(nmea_ubx_tim_tos, leap_soon), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_positive", NULL, offsetof(nmea_ubx_tim_tos, leap_positive), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_in_limit", NULL, offsetof(nmea_ubx_tim_tos, time_in_limit), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"int_osc_in_limit", NULL, offsetof(nmea_ubx_tim_tos, int_osc_in_limit), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_osc_in_limit", NULL, offsetof(nmea_ubx_tim_tos, ext_osc_in_limit), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_time_valid", NULL, offsetof(nmea_ubx_tim_tos, gnss_time_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_time_valid", NULL, offsetof(nmea_ubx_tim_tos, utc_time_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"disc_src", NULL, offsetof(nmea_ubx_tim_tos, disc_src), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"raim", NULL, offsetof(nmea_ubx_tim_tos, raim), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 11, NMEA_UBX_PRINT_NUMBER, false},
+    {"coh_pulse", NULL, offsetof(nmea_ubx_tim_tos, coh_pulse), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 12, NMEA_UBX_PRINT_NUMBER, false},
+    {"locked_pulse", NULL, offsetof(nmea_ubx_tim_tos, locked_pulse), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 13, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_tim_tos, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_tim_tos, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_tim_tos, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_tim_tos, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"minute", NULL, offsetof(nmea_ubx_tim_tos, minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"second", NULL, offsetof(nmea_ubx_tim_tos, second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_standard", NULL, offsetof(nmea_ubx_tim_tos, utc_standard), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_offset", NULL, offsetof(nmea_ubx_tim_tos, utc_offset), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_uncertainty", NULL, offsetof(nmea_ubx_tim_tos, utc_uncertainty), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_tim_tos, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", NULL, offsetof(nmea_ubx_tim_tos, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_offset", NULL, offsetof(nmea_ubx_tim_tos, gnss_offset), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_uncertainty", NULL, offsetof(nmea_ubx_tim_tos, gnss_uncertainty), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"int_osc_offset", &ubx_tim_tos_int_osc_offset_scale, offsetof(nmea_ubx_tim_tos, int_osc_offset), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"int_osc_uncertainty", &ubx_tim_tos_int_osc_uncertainty_scale, offsetof(nmea_ubx_tim_tos, int_osc_uncertainty), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ext_osc_offset", &ubx_tim_tos_ext_osc_offset_scale, offsetof(nmea_ubx_tim_tos, ext_osc_offset), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ext_osc_uncertainty", &ubx_tim_tos_ext_osc_uncertainty_scale, offsetof(nmea_ubx_tim_tos, ext_osc_uncertainty), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
+/* TIM-SMEAS: tim_smeas_poll */
+static const nmea_ubx_item ubx_tim_smeas_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* TIM-SMEAS: tim_smeas */
+static const nmea_ubx_scale ubx_tim_smeas_mea_phase_offset_frac_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_tim_smeas_mea_phase_unc_frac_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_tim_smeas_mea_freq_offset_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_tim_smeas_mea_freq_unc_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_tim_smeas_mea_items[] = {
+    {"source_id", NULL, offsetof(nmea_ubx_tim_smeas_mea, source_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_tim_smeas_mea, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"freq_valid", NULL, offsetof(nmea_ubx_tim_smeas_mea, freq_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"phase_valid", NULL, offsetof(nmea_ubx_tim_smeas_mea, phase_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"phase_offset_frac", &ubx_tim_smeas_mea_phase_offset_frac_scale, offsetof(nmea_ubx_tim_smeas_mea, phase_offset_frac), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"phase_unc_frac", &ubx_tim_smeas_mea_phase_unc_frac_scale, offsetof(nmea_ubx_tim_smeas_mea, phase_unc_frac), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"phase_offset", NULL, offsetof(nmea_ubx_tim_smeas_mea, phase_offset), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"phase_unc", NULL, offsetof(nmea_ubx_tim_smeas_mea, phase_unc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_tim_smeas_mea, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"freq_offset", &ubx_tim_smeas_mea_freq_offset_scale, offsetof(nmea_ubx_tim_smeas_mea, freq_offset), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"freq_unc", &ubx_tim_smeas_mea_freq_unc_scale, offsetof(nmea_ubx_tim_smeas_mea, freq_unc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
+static const nmea_ubx_group ubx_tim_smeas_meas_group = {ubx_tim_smeas_mea_items, 11, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_tim_smeas, num_meas), 0, 0, 65535, NMEA_UBX_TIM_SMEAS_MEAS_MAX, 24, sizeof(nmea_ubx_tim_smeas_mea), 0, offsetof(nmea_ubx_tim_smeas, meas_count)};
+static const nmea_ubx_item ubx_tim_smeas_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_tim_smeas, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_meas", NULL, offsetof(nmea_ubx_tim_smeas, num_meas), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_tim_smeas, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"itow", NULL, offsetof(nmea_ubx_tim_smeas, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_tim_smeas, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"meas", &ubx_tim_smeas_meas_group, offsetof(nmea_ubx_tim_smeas, meas), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* TIM-VCOCAL: tim_vcocal_poll */
+static const nmea_ubx_item ubx_tim_vcocal_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* TIM-VCOCAL: tim_vcocal_stop */
+static const nmea_ubx_item ubx_tim_vcocal_stop_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_tim_vcocal_stop, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* TIM-VCOCAL: tim_vcocal_result */
+static const nmea_ubx_scale ubx_tim_vcocal_result_gain_uncertainty_scale = {65536.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_tim_vcocal_result_gain_vco_scale = {65536.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_tim_vcocal_result_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_tim_vcocal_result, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_tim_vcocal_result, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"osc_id", NULL, offsetof(nmea_ubx_tim_vcocal_result, osc_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_tim_vcocal_result, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gain_uncertainty", &ubx_tim_vcocal_result_gain_uncertainty_scale, offsetof(nmea_ubx_tim_vcocal_result, gain_uncertainty), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"gain_vco", &ubx_tim_vcocal_result_gain_vco_scale, offsetof(nmea_ubx_tim_vcocal_result, gain_vco), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
+/* TIM-VCOCAL: tim_vcocal */
+static const nmea_ubx_item ubx_tim_vcocal_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_tim_vcocal, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_tim_vcocal, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"osc_id", NULL, offsetof(nmea_ubx_tim_vcocal, osc_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"src_id", NULL, offsetof(nmea_ubx_tim_vcocal, src_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_tim_vcocal, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"raw0", NULL, offsetof(nmea_ubx_tim_vcocal, raw0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"raw1", NULL, offsetof(nmea_ubx_tim_vcocal, raw1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"max_step_size", NULL, offsetof(nmea_ubx_tim_vcocal, max_step_size), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* TIM-FCHG: tim_fchg_poll */
+static const nmea_ubx_item ubx_tim_fchg_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* TIM-FCHG: tim_fchg */
+static const nmea_ubx_scale ubx_tim_fchg_int_delta_freq_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_tim_fchg_int_delta_freq_unc_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_tim_fchg_ext_delta_freq_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_tim_fchg_ext_delta_freq_unc_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_tim_fchg_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_tim_fchg, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_tim_fchg, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"itow", NULL, offsetof(nmea_ubx_tim_fchg, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"int_delta_freq", &ubx_tim_fchg_int_delta_freq_scale, offsetof(nmea_ubx_tim_fchg, int_delta_freq), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"int_delta_freq_unc", &ubx_tim_fchg_int_delta_freq_unc_scale, offsetof(nmea_ubx_tim_fchg, int_delta_freq_unc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"int_raw", NULL, offsetof(nmea_ubx_tim_fchg, int_raw), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_delta_freq", &ubx_tim_fchg_ext_delta_freq_scale, offsetof(nmea_ubx_tim_fchg, ext_delta_freq), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ext_delta_freq_unc", &ubx_tim_fchg_ext_delta_freq_unc_scale, offsetof(nmea_ubx_tim_fchg, ext_delta_freq_unc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ext_raw", NULL, offsetof(nmea_ubx_tim_fchg, ext_raw), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* TIM-HOC: tim_hoc */
+static const nmea_ubx_scale ubx_tim_hoc_value_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_tim_hoc_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_tim_hoc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"osc_id", NULL, offsetof(nmea_ubx_tim_hoc, osc_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_tim_hoc, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"raw", NULL, offsetof(nmea_ubx_tim_hoc, raw), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"difference", NULL, offsetof(nmea_ubx_tim_hoc, difference), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_tim_hoc, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"value", &ubx_tim_hoc_value_scale, offsetof(nmea_ubx_tim_hoc, value), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
 };
 
 /* ESF-MEAS: esf_meas */
@@ -2246,6 +2893,208 @@ static const nmea_ubx_item ubx_esf_ins_items[] = {
     {"x_accel", &ubx_esf_ins_x_accel_scale, offsetof(nmea_ubx_esf_ins, x_accel), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"y_accel", &ubx_esf_ins_y_accel_scale, offsetof(nmea_ubx_esf_ins, y_accel), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"z_accel", &ubx_esf_ins_z_accel_scale, offsetof(nmea_ubx_esf_ins, z_accel), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
+/* LOG-ERASE: log_erase */
+static const nmea_ubx_item ubx_log_erase_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* LOG-STRING: log_string */
+static const nmea_ubx_item ubx_log_string_items[] = {
+    {"bytes", NULL, offsetof(nmea_ubx_log_string, bytes), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_CHARS, false}
+};
+
+/* LOG-CREATE: log_create */
+static const nmea_ubx_item ubx_log_create_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_log_create, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"log_cfg", NULL, offsetof(nmea_ubx_log_create, log_cfg), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"circular", NULL, offsetof(nmea_ubx_log_create, circular), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_log_create, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"log_size", NULL, offsetof(nmea_ubx_log_create, log_size), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"user_defined_size", NULL, offsetof(nmea_ubx_log_create, user_defined_size), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* LOG-INFO: log_info_poll */
+static const nmea_ubx_item ubx_log_info_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* LOG-INFO: log_info */
+static const nmea_ubx_item ubx_log_info_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_log_info, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_log_info, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"filestore_capacity", NULL, offsetof(nmea_ubx_log_info, filestore_capacity), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_log_info, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"current_max_log_size", NULL, offsetof(nmea_ubx_log_info, current_max_log_size), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"current_log_size", NULL, offsetof(nmea_ubx_log_info, current_log_size), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"entry_count", NULL, offsetof(nmea_ubx_log_info, entry_count), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"oldest_year", NULL, offsetof(nmea_ubx_log_info, oldest_year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"oldest_month", NULL, offsetof(nmea_ubx_log_info, oldest_month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"oldest_day", NULL, offsetof(nmea_ubx_log_info, oldest_day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"oldest_hour", NULL, offsetof(nmea_ubx_log_info, oldest_hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"oldest_minute", NULL, offsetof(nmea_ubx_log_info, oldest_minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"oldest_second", NULL, offsetof(nmea_ubx_log_info, oldest_second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_log_info, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"newest_year", NULL, offsetof(nmea_ubx_log_info, newest_year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"newest_month", NULL, offsetof(nmea_ubx_log_info, newest_month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"newest_day", NULL, offsetof(nmea_ubx_log_info, newest_day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"newest_hour", NULL, offsetof(nmea_ubx_log_info, newest_hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"newest_minute", NULL, offsetof(nmea_ubx_log_info, newest_minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"newest_second", NULL, offsetof(nmea_ubx_log_info, newest_second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_log_info, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"status", NULL, offsetof(nmea_ubx_log_info, status), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"recording", NULL, offsetof(nmea_ubx_log_info, recording), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"inactive", NULL, offsetof(nmea_ubx_log_info, inactive), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"circular", NULL, offsetof(nmea_ubx_log_info, circular), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved4", NULL, offsetof(nmea_ubx_log_info, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* LOG-RETRIEVE: log_retrieve */
+static const nmea_ubx_item ubx_log_retrieve_items[] = {
+    {"start_number", NULL, offsetof(nmea_ubx_log_retrieve, start_number), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"entry_count", NULL, offsetof(nmea_ubx_log_retrieve, entry_count), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_log_retrieve, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_log_retrieve, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* LOG-RETRIEVEPOS: log_retrievepos */
+static const nmea_ubx_scale ubx_log_retrievepos_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_log_retrievepos_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_log_retrievepos_heading_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_log_retrievepos_items[] = {
+    {"entry_index", NULL, offsetof(nmea_ubx_log_retrievepos, entry_index), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lon", &ubx_log_retrievepos_lon_scale, offsetof(nmea_ubx_log_retrievepos, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lat", &ubx_log_retrievepos_lat_scale, offsetof(nmea_ubx_log_retrievepos, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"h_msl", NULL, offsetof(nmea_ubx_log_retrievepos, h_msl), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_acc", NULL, offsetof(nmea_ubx_log_retrievepos, h_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"g_speed", NULL, offsetof(nmea_ubx_log_retrievepos, g_speed), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading", &ubx_log_retrievepos_heading_scale, offsetof(nmea_ubx_log_retrievepos, heading), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"version", NULL, offsetof(nmea_ubx_log_retrievepos, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fix_type", &ubx_enum_ubx_fix_type, offsetof(nmea_ubx_log_retrievepos, fix_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"year", NULL, offsetof(nmea_ubx_log_retrievepos, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_log_retrievepos, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_log_retrievepos, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_log_retrievepos, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"minute", NULL, offsetof(nmea_ubx_log_retrievepos, minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"second", NULL, offsetof(nmea_ubx_log_retrievepos, second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_log_retrievepos, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_log_retrievepos, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_log_retrievepos, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* LOG-RETRIEVESTRING: log_retrievestring */
+static const nmea_ubx_item ubx_log_retrievestring_byte_items[] = {
+    {"bytes", NULL, offsetof(nmea_ubx_log_retrievestring_byte, bytes), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_log_retrievestring_bytes_group = {ubx_log_retrievestring_byte_items, 1, NMEA_UBX_COUNT_FIELD, 2, offsetof(nmea_ubx_log_retrievestring, byte_count), 0, 0, 256, NMEA_UBX_LOG_RETRIEVESTRING_BYTES_MAX, 1, sizeof(nmea_ubx_log_retrievestring_byte), 0, offsetof(nmea_ubx_log_retrievestring, bytes_count)};
+static const nmea_ubx_item ubx_log_retrievestring_items[] = {
+    {"entry_index", NULL, offsetof(nmea_ubx_log_retrievestring, entry_index), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_log_retrievestring, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_log_retrievestring, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_log_retrievestring, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_log_retrievestring, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_log_retrievestring, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_log_retrievestring, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"minute", NULL, offsetof(nmea_ubx_log_retrievestring, minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"second", NULL, offsetof(nmea_ubx_log_retrievestring, second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_log_retrievestring, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"byte_count", NULL, offsetof(nmea_ubx_log_retrievestring, byte_count), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bytes", &ubx_log_retrievestring_bytes_group, offsetof(nmea_ubx_log_retrievestring, bytes), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* LOG-FINDTIME: log_findtime */
+static const nmea_ubx_item ubx_log_findtime_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_log_findtime, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"type", NULL, offsetof(nmea_ubx_log_findtime, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_log_findtime, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_log_findtime, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_log_findtime, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_log_findtime, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"minute", NULL, offsetof(nmea_ubx_log_findtime, minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"second", NULL, offsetof(nmea_ubx_log_findtime, second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_log_findtime, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* LOG-FINDTIME: log_findtime_response */
+static const nmea_ubx_item ubx_log_findtime_response_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_log_findtime_response, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"type", NULL, offsetof(nmea_ubx_log_findtime_response, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_log_findtime_response, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"entry_number", NULL, offsetof(nmea_ubx_log_findtime_response, entry_number), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* LOG-RETRIEVEPOSEXTRA: log_retrieveposextra */
+static const nmea_ubx_item ubx_log_retrieveposextra_items[] = {
+    {"entry_index", NULL, offsetof(nmea_ubx_log_retrieveposextra, entry_index), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_log_retrieveposextra, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_log_retrieveposextra, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_log_retrieveposextra, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_log_retrieveposextra, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_log_retrieveposextra, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_log_retrieveposextra, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"minute", NULL, offsetof(nmea_ubx_log_retrieveposextra, minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"second", NULL, offsetof(nmea_ubx_log_retrieveposextra, second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_log_retrieveposextra, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"distance", NULL, offsetof(nmea_ubx_log_retrieveposextra, distance), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_log_retrieveposextra, reserved3), 0, 0, NMEA_UBX_ITEM_ARRAY, 12, 12, 0, NMEA_UBX_PRINT_BIG, false}
+};
+
+/* LOG-RETRIEVEBATCH: log_retrievebatch */
+static const nmea_ubx_item ubx_log_retrievebatch_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_log_retrievebatch, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_log_retrievebatch, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"send_mon_first", NULL, offsetof(nmea_ubx_log_retrievebatch, send_mon_first), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_log_retrievebatch, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* LOG-BATCH: log_batch */
+static const nmea_ubx_scale ubx_log_batch_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_log_batch_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_log_batch_head_mot_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_log_batch_head_acc_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_log_batch_p_dop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_log_batch_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_log_batch, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"content_valid", NULL, offsetof(nmea_ubx_log_batch, content_valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"extra_pvt", NULL, offsetof(nmea_ubx_log_batch, extra_pvt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"extra_odo", NULL, offsetof(nmea_ubx_log_batch, extra_odo), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_cnt", NULL, offsetof(nmea_ubx_log_batch, msg_cnt), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"itow", NULL, offsetof(nmea_ubx_log_batch, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_log_batch, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_log_batch, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_log_batch, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_log_batch, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min", NULL, offsetof(nmea_ubx_log_batch, min), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sec", NULL, offsetof(nmea_ubx_log_batch, sec), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_log_batch, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_date", NULL, offsetof(nmea_ubx_log_batch, valid_date), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_time", NULL, offsetof(nmea_ubx_log_batch, valid_time), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_log_batch, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"frac_sec", NULL, offsetof(nmea_ubx_log_batch, frac_sec), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fix_type", &ubx_enum_ubx_fix_type, offsetof(nmea_ubx_log_batch, fix_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"flags", NULL, offsetof(nmea_ubx_log_batch, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_fix_ok", NULL, offsetof(nmea_ubx_log_batch, gnss_fix_ok), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"diff_soln", NULL, offsetof(nmea_ubx_log_batch, diff_soln), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"psm_state", NULL, offsetof(nmea_ubx_log_batch, psm_state), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags2", NULL, offsetof(nmea_ubx_log_batch, flags2), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_log_batch, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lon", &ubx_log_batch_lon_scale, offsetof(nmea_ubx_log_batch, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lat", &ubx_log_batch_lat_scale, offsetof(nmea_ubx_log_batch, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"height", NULL, offsetof(nmea_ubx_log_batch, height), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_msl", NULL, offsetof(nmea_ubx_log_batch, h_msl), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_acc", NULL, offsetof(nmea_ubx_log_batch, h_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"v_acc", NULL, offsetof(nmea_ubx_log_batch, v_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_n", NULL, offsetof(nmea_ubx_log_batch, vel_n), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_e", NULL, offsetof(nmea_ubx_log_batch, vel_e), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_d", NULL, offsetof(nmea_ubx_log_batch, vel_d), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"g_speed", NULL, offsetof(nmea_ubx_log_batch, g_speed), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"head_mot", &ubx_log_batch_head_mot_scale, offsetof(nmea_ubx_log_batch, head_mot), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"s_acc", NULL, offsetof(nmea_ubx_log_batch, s_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"head_acc", &ubx_log_batch_head_acc_scale, offsetof(nmea_ubx_log_batch, head_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"p_dop", &ubx_log_batch_p_dop_scale, offsetof(nmea_ubx_log_batch, p_dop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_log_batch, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"distance", NULL, offsetof(nmea_ubx_log_batch, distance), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"total_distance", NULL, offsetof(nmea_ubx_log_batch, total_distance), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"distance_std", NULL, offsetof(nmea_ubx_log_batch, distance_std), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_log_batch, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* SEC-UNIQID: sec_uniqid_poll */
@@ -2377,6 +3226,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav_velecef", "NAV-VELECEF", 0x01, 0x11, true, 20, -1, 0, ubx_nav_velecef_items, 5, offsetof(nmea_ubx_nav_velecef, trailing)},
     {"nav_velned_poll", "NAV-VELNED", 0x01, 0x12, false, 0, -1, 0, ubx_nav_velned_poll_items, 0, offsetof(nmea_ubx_nav_velned_poll, trailing)},
     {"nav_velned", "NAV-VELNED", 0x01, 0x12, true, 36, -1, 0, ubx_nav_velned_items, 9, offsetof(nmea_ubx_nav_velned, trailing)},
+    {"nav_hpposecef_poll", "NAV-HPPOSECEF", 0x01, 0x13, false, 0, -1, 0, ubx_nav_hpposecef_poll_items, 0, offsetof(nmea_ubx_nav_hpposecef_poll, trailing)},
+    {"nav_hpposecef", "NAV-HPPOSECEF", 0x01, 0x13, true, 28, -1, 0, ubx_nav_hpposecef_items, 12, offsetof(nmea_ubx_nav_hpposecef, trailing)},
     {"nav_hpposllh_poll", "NAV-HPPOSLLH", 0x01, 0x14, false, 0, -1, 0, ubx_nav_hpposllh_poll_items, 0, offsetof(nmea_ubx_nav_hpposllh_poll, trailing)},
     {"nav_hpposllh", "NAV-HPPOSLLH", 0x01, 0x14, true, 36, -1, 0, ubx_nav_hpposllh_items, 15, offsetof(nmea_ubx_nav_hpposllh, trailing)},
     {"nav_timegps_poll", "NAV-TIMEGPS", 0x01, 0x20, false, 0, -1, 0, ubx_nav_timegps_poll_items, 0, offsetof(nmea_ubx_nav_timegps_poll, trailing)},
@@ -2393,14 +3244,22 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav_timegal", "NAV-TIMEGAL", 0x01, 0x25, true, 20, -1, 0, ubx_nav_timegal_items, 10, offsetof(nmea_ubx_nav_timegal, trailing)},
     {"nav_timels_poll", "NAV-TIMELS", 0x01, 0x26, false, 0, -1, 0, ubx_nav_timels_poll_items, 0, offsetof(nmea_ubx_nav_timels_poll, trailing)},
     {"nav_timels", "NAV-TIMELS", 0x01, 0x26, true, 24, -1, 0, ubx_nav_timels_items, 14, offsetof(nmea_ubx_nav_timels, trailing)},
+    {"nav_timeqzss_poll", "NAV-TIMEQZSS", 0x01, 0x27, false, 0, -1, 0, ubx_nav_timeqzss_poll_items, 0, offsetof(nmea_ubx_nav_timeqzss_poll, trailing)},
+    {"nav_timeqzss", "NAV-TIMEQZSS", 0x01, 0x27, true, 20, -1, 0, ubx_nav_timeqzss_items, 10, offsetof(nmea_ubx_nav_timeqzss, trailing)},
     {"nav_svinfo_poll", "NAV-SVINFO", 0x01, 0x30, false, 0, -1, 0, ubx_nav_svinfo_poll_items, 0, offsetof(nmea_ubx_nav_svinfo_poll, trailing)},
     {"nav_svinfo", "NAV-SVINFO", 0x01, 0x30, true, -1, -1, 0, ubx_nav_svinfo_items, 6, offsetof(nmea_ubx_nav_svinfo, trailing)},
+    {"nav_dgps_poll", "NAV-DGPS", 0x01, 0x31, false, 0, -1, 0, ubx_nav_dgps_poll_items, 0, offsetof(nmea_ubx_nav_dgps_poll, trailing)},
+    {"nav_dgps", "NAV-DGPS", 0x01, 0x31, true, -1, -1, 0, ubx_nav_dgps_items, 8, offsetof(nmea_ubx_nav_dgps, trailing)},
     {"nav_sbas_poll", "NAV-SBAS", 0x01, 0x32, false, 0, -1, 0, ubx_nav_sbas_poll_items, 0, offsetof(nmea_ubx_nav_sbas_poll, trailing)},
     {"nav_sbas", "NAV-SBAS", 0x01, 0x32, true, -1, -1, 0, ubx_nav_sbas_items, 15, offsetof(nmea_ubx_nav_sbas, trailing)},
+    {"nav_orb_poll", "NAV-ORB", 0x01, 0x34, false, 0, -1, 0, ubx_nav_orb_poll_items, 0, offsetof(nmea_ubx_nav_orb_poll, trailing)},
+    {"nav_orb", "NAV-ORB", 0x01, 0x34, true, -1, -1, 0, ubx_nav_orb_items, 5, offsetof(nmea_ubx_nav_orb, trailing)},
     {"nav_sat_poll", "NAV-SAT", 0x01, 0x35, false, 0, -1, 0, ubx_nav_sat_poll_items, 0, offsetof(nmea_ubx_nav_sat_poll, trailing)},
     {"nav_sat", "NAV-SAT", 0x01, 0x35, true, -1, -1, 0, ubx_nav_sat_items, 5, offsetof(nmea_ubx_nav_sat, trailing)},
     {"nav_cov_poll", "NAV-COV", 0x01, 0x36, false, 0, -1, 0, ubx_nav_cov_poll_items, 0, offsetof(nmea_ubx_nav_cov_poll, trailing)},
     {"nav_cov", "NAV-COV", 0x01, 0x36, true, 64, -1, 0, ubx_nav_cov_items, 17, offsetof(nmea_ubx_nav_cov, trailing)},
+    {"nav_geofence_poll", "NAV-GEOFENCE", 0x01, 0x39, false, 0, -1, 0, ubx_nav_geofence_poll_items, 0, offsetof(nmea_ubx_nav_geofence_poll, trailing)},
+    {"nav_geofence", "NAV-GEOFENCE", 0x01, 0x39, true, -1, -1, 0, ubx_nav_geofence_items, 6, offsetof(nmea_ubx_nav_geofence, trailing)},
     {"nav_svin_poll", "NAV-SVIN", 0x01, 0x3B, false, 0, -1, 0, ubx_nav_svin_poll_items, 0, offsetof(nmea_ubx_nav_svin_poll, trailing)},
     {"nav_svin", "NAV-SVIN", 0x01, 0x3B, true, 40, -1, 0, ubx_nav_svin_items, 16, offsetof(nmea_ubx_nav_svin, trailing)},
     {"nav_relposned_poll", "NAV-RELPOSNED", 0x01, 0x3C, false, 0, -1, 0, ubx_nav_relposned_poll_items, 0, offsetof(nmea_ubx_nav_relposned_poll, trailing)},
@@ -2408,9 +3267,15 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav_relposned_v0", "NAV-RELPOSNED", 0x01, 0x3C, true, 40, 0, 0, ubx_nav_relposned_v0_items, 22, offsetof(nmea_ubx_nav_relposned_v0, trailing)},
     {"nav_eell_poll", "NAV-EELL", 0x01, 0x3D, false, 0, -1, 0, ubx_nav_eell_poll_items, 0, offsetof(nmea_ubx_nav_eell_poll, trailing)},
     {"nav_eell", "NAV-EELL", 0x01, 0x3D, true, 16, -1, 0, ubx_nav_eell_items, 6, offsetof(nmea_ubx_nav_eell, trailing)},
+    {"nav_slas_poll", "NAV-SLAS", 0x01, 0x42, false, 0, -1, 0, ubx_nav_slas_poll_items, 0, offsetof(nmea_ubx_nav_slas_poll, trailing)},
+    {"nav_slas", "NAV-SLAS", 0x01, 0x42, true, -1, -1, 0, ubx_nav_slas_items, 13, offsetof(nmea_ubx_nav_slas, trailing)},
     {"nav_sig_poll", "NAV-SIG", 0x01, 0x43, false, 0, -1, 0, ubx_nav_sig_poll_items, 0, offsetof(nmea_ubx_nav_sig_poll, trailing)},
     {"nav_sig", "NAV-SIG", 0x01, 0x43, true, -1, -1, 0, ubx_nav_sig_items, 5, offsetof(nmea_ubx_nav_sig, trailing)},
+    {"nav_aopstatus_poll", "NAV-AOPSTATUS", 0x01, 0x60, false, 0, -1, 0, ubx_nav_aopstatus_poll_items, 0, offsetof(nmea_ubx_nav_aopstatus_poll, trailing)},
+    {"nav_aopstatus", "NAV-AOPSTATUS", 0x01, 0x60, true, 16, -1, 0, ubx_nav_aopstatus_items, 5, offsetof(nmea_ubx_nav_aopstatus, trailing)},
     {"nav_eoe", "NAV-EOE", 0x01, 0x61, true, 4, -1, 0, ubx_nav_eoe_items, 1, offsetof(nmea_ubx_nav_eoe, trailing)},
+    {"nav_pl_poll", "NAV-PL", 0x01, 0x62, false, 0, -1, 0, ubx_nav_pl_poll_items, 0, offsetof(nmea_ubx_nav_pl_poll, trailing)},
+    {"nav_pl", "NAV-PL", 0x01, 0x62, true, 52, -1, 0, ubx_nav_pl_items, 20, offsetof(nmea_ubx_nav_pl, trailing)},
     {"rxm_sfrbx", "RXM-SFRBX", 0x02, 0x13, true, -1, -1, 0, ubx_rxm_sfrbx_items, 9, offsetof(nmea_ubx_rxm_sfrbx, trailing)},
     {"rxm_rawx_poll", "RXM-RAWX", 0x02, 0x15, false, 0, -1, 0, ubx_rxm_rawx_poll_items, 0, offsetof(nmea_ubx_rxm_rawx_poll, trailing)},
     {"rxm_rawx", "RXM-RAWX", 0x02, 0x15, true, -1, -1, 0, ubx_rxm_rawx_items, 10, offsetof(nmea_ubx_rxm_rawx, trailing)},
@@ -2460,20 +3325,56 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_valget", "CFG-VALGET", 0x06, 0x8B, true, -1, 1, 0, ubx_cfg_valget_items, 4, offsetof(nmea_ubx_cfg_valget, trailing)},
     {"cfg_valdel_v0", "CFG-VALDEL", 0x06, 0x8C, false, -1, 0, 0, ubx_cfg_valdel_v0_items, 6, offsetof(nmea_ubx_cfg_valdel_v0, trailing)},
     {"cfg_valdel", "CFG-VALDEL", 0x06, 0x8C, false, -1, 1, 0, ubx_cfg_valdel_items, 8, offsetof(nmea_ubx_cfg_valdel, trailing)},
+    {"mon_io_poll", "MON-IO", 0x0A, 0x02, false, 0, -1, 0, ubx_mon_io_poll_items, 0, offsetof(nmea_ubx_mon_io_poll, trailing)},
+    {"mon_io", "MON-IO", 0x0A, 0x02, true, -1, -1, 0, ubx_mon_io_items, 1, offsetof(nmea_ubx_mon_io, trailing)},
     {"mon_ver_poll", "MON-VER", 0x0A, 0x04, false, 0, -1, 0, ubx_mon_ver_poll_items, 0, offsetof(nmea_ubx_mon_ver_poll, trailing)},
     {"mon_ver", "MON-VER", 0x0A, 0x04, true, -1, -1, 0, ubx_mon_ver_items, 3, offsetof(nmea_ubx_mon_ver, trailing)},
+    {"mon_msgpp_poll", "MON-MSGPP", 0x0A, 0x06, false, 0, -1, 0, ubx_mon_msgpp_poll_items, 0, offsetof(nmea_ubx_mon_msgpp_poll, trailing)},
+    {"mon_msgpp", "MON-MSGPP", 0x0A, 0x06, true, 120, -1, 0, ubx_mon_msgpp_items, 7, offsetof(nmea_ubx_mon_msgpp, trailing)},
     {"mon_rxbuf_poll", "MON-RXBUF", 0x0A, 0x07, false, 0, -1, 0, ubx_mon_rxbuf_poll_items, 0, offsetof(nmea_ubx_mon_rxbuf_poll, trailing)},
     {"mon_rxbuf", "MON-RXBUF", 0x0A, 0x07, true, 24, -1, 0, ubx_mon_rxbuf_items, 3, offsetof(nmea_ubx_mon_rxbuf, trailing)},
     {"mon_txbuf_poll", "MON-TXBUF", 0x0A, 0x08, false, 0, -1, 0, ubx_mon_txbuf_poll_items, 0, offsetof(nmea_ubx_mon_txbuf_poll, trailing)},
     {"mon_txbuf", "MON-TXBUF", 0x0A, 0x08, true, 28, -1, 0, ubx_mon_txbuf_items, 10, offsetof(nmea_ubx_mon_txbuf, trailing)},
     {"mon_hw_poll", "MON-HW", 0x0A, 0x09, false, 0, -1, 0, ubx_mon_hw_poll_items, 0, offsetof(nmea_ubx_mon_hw_poll, trailing)},
     {"mon_hw", "MON-HW", 0x0A, 0x09, true, 60, -1, 0, ubx_mon_hw_items, 21, offsetof(nmea_ubx_mon_hw, trailing)},
+    {"mon_hw2_poll", "MON-HW2", 0x0A, 0x0B, false, 0, -1, 0, ubx_mon_hw2_poll_items, 0, offsetof(nmea_ubx_mon_hw2_poll, trailing)},
+    {"mon_hw2", "MON-HW2", 0x0A, 0x0B, true, 28, -1, 0, ubx_mon_hw2_items, 10, offsetof(nmea_ubx_mon_hw2, trailing)},
+    {"mon_rxr", "MON-RXR", 0x0A, 0x21, true, 1, -1, 0, ubx_mon_rxr_items, 2, offsetof(nmea_ubx_mon_rxr, trailing)},
+    {"mon_patch_poll", "MON-PATCH", 0x0A, 0x27, false, 0, -1, 0, ubx_mon_patch_poll_items, 0, offsetof(nmea_ubx_mon_patch_poll, trailing)},
+    {"mon_patch", "MON-PATCH", 0x0A, 0x27, true, -1, -1, 0, ubx_mon_patch_items, 3, offsetof(nmea_ubx_mon_patch, trailing)},
+    {"mon_gnss_poll", "MON-GNSS", 0x0A, 0x28, false, 0, -1, 0, ubx_mon_gnss_poll_items, 0, offsetof(nmea_ubx_mon_gnss_poll, trailing)},
+    {"mon_gnss", "MON-GNSS", 0x0A, 0x28, true, 8, -1, 0, ubx_mon_gnss_items, 18, offsetof(nmea_ubx_mon_gnss, trailing)},
+    {"mon_smgr_poll", "MON-SMGR", 0x0A, 0x2E, false, 0, -1, 0, ubx_mon_smgr_poll_items, 0, offsetof(nmea_ubx_mon_smgr_poll, trailing)},
+    {"mon_smgr", "MON-SMGR", 0x0A, 0x2E, true, 16, -1, 0, ubx_mon_smgr_items, 22, offsetof(nmea_ubx_mon_smgr, trailing)},
+    {"mon_comms_poll", "MON-COMMS", 0x0A, 0x36, false, 0, -1, 0, ubx_mon_comms_poll_items, 0, offsetof(nmea_ubx_mon_comms_poll, trailing)},
+    {"mon_comms", "MON-COMMS", 0x0A, 0x36, true, -1, -1, 0, ubx_mon_comms_items, 8, offsetof(nmea_ubx_mon_comms, trailing)},
+    {"mon_hw3_poll", "MON-HW3", 0x0A, 0x37, false, 0, -1, 0, ubx_mon_hw3_poll_items, 0, offsetof(nmea_ubx_mon_hw3_poll, trailing)},
+    {"mon_hw3", "MON-HW3", 0x0A, 0x37, true, -1, -1, 0, ubx_mon_hw3_items, 9, offsetof(nmea_ubx_mon_hw3, trailing)},
     {"mon_rf_poll", "MON-RF", 0x0A, 0x38, false, 0, -1, 0, ubx_mon_rf_poll_items, 0, offsetof(nmea_ubx_mon_rf_poll, trailing)},
     {"mon_rf", "MON-RF", 0x0A, 0x38, true, -1, -1, 0, ubx_mon_rf_items, 4, offsetof(nmea_ubx_mon_rf, trailing)},
+    {"mon_sys_poll", "MON-SYS", 0x0A, 0x39, false, 0, -1, 0, ubx_mon_sys_poll_items, 0, offsetof(nmea_ubx_mon_sys_poll, trailing)},
+    {"mon_sys", "MON-SYS", 0x0A, 0x39, true, 24, -1, 0, ubx_mon_sys_items, 14, offsetof(nmea_ubx_mon_sys, trailing)},
     {"tim_tp_poll", "TIM-TP", 0x0D, 0x01, false, 0, -1, 0, ubx_tim_tp_poll_items, 0, offsetof(nmea_ubx_tim_tp_poll, trailing)},
     {"tim_tp", "TIM-TP", 0x0D, 0x01, true, 16, -1, 0, ubx_tim_tp_items, 12, offsetof(nmea_ubx_tim_tp, trailing)},
     {"tim_tm2_poll", "TIM-TM2", 0x0D, 0x03, false, 0, -1, 0, ubx_tim_tm2_poll_items, 0, offsetof(nmea_ubx_tim_tm2_poll, trailing)},
     {"tim_tm2", "TIM-TM2", 0x0D, 0x03, true, 28, -1, 0, ubx_tim_tm2_items, 17, offsetof(nmea_ubx_tim_tm2, trailing)},
+    {"tim_svin_poll", "TIM-SVIN", 0x0D, 0x04, false, 0, -1, 0, ubx_tim_svin_poll_items, 0, offsetof(nmea_ubx_tim_svin_poll, trailing)},
+    {"tim_svin", "TIM-SVIN", 0x0D, 0x04, true, 28, -1, 0, ubx_tim_svin_items, 9, offsetof(nmea_ubx_tim_svin, trailing)},
+    {"tim_vrfy_poll", "TIM-VRFY", 0x0D, 0x06, false, 0, -1, 0, ubx_tim_vrfy_poll_items, 0, offsetof(nmea_ubx_tim_vrfy_poll, trailing)},
+    {"tim_vrfy", "TIM-VRFY", 0x0D, 0x06, true, 20, -1, 0, ubx_tim_vrfy_items, 8, offsetof(nmea_ubx_tim_vrfy, trailing)},
+    {"tim_dosc_poll", "TIM-DOSC", 0x0D, 0x11, false, 0, -1, 0, ubx_tim_dosc_poll_items, 0, offsetof(nmea_ubx_tim_dosc_poll, trailing)},
+    {"tim_dosc", "TIM-DOSC", 0x0D, 0x11, true, 8, -1, 0, ubx_tim_dosc_items, 3, offsetof(nmea_ubx_tim_dosc, trailing)},
+    {"tim_tos_poll", "TIM-TOS", 0x0D, 0x12, false, 0, -1, 0, ubx_tim_tos_poll_items, 0, offsetof(nmea_ubx_tim_tos_poll, trailing)},
+    {"tim_tos", "TIM-TOS", 0x0D, 0x12, true, 56, -1, 0, ubx_tim_tos_items, 33, offsetof(nmea_ubx_tim_tos, trailing)},
+    {"tim_smeas_poll", "TIM-SMEAS", 0x0D, 0x13, false, 0, -1, 0, ubx_tim_smeas_poll_items, 0, offsetof(nmea_ubx_tim_smeas_poll, trailing)},
+    {"tim_smeas", "TIM-SMEAS", 0x0D, 0x13, true, -1, -1, 0, ubx_tim_smeas_items, 6, offsetof(nmea_ubx_tim_smeas, trailing)},
+    {"tim_vcocal_poll", "TIM-VCOCAL", 0x0D, 0x15, false, 0, -1, 0, ubx_tim_vcocal_poll_items, 0, offsetof(nmea_ubx_tim_vcocal_poll, trailing)},
+    {"tim_vcocal_stop", "TIM-VCOCAL", 0x0D, 0x15, false, 1, -1, 0, ubx_tim_vcocal_stop_items, 1, offsetof(nmea_ubx_tim_vcocal_stop, trailing)},
+    {"tim_vcocal_result", "TIM-VCOCAL", 0x0D, 0x15, true, 12, -1, 0, ubx_tim_vcocal_result_items, 6, offsetof(nmea_ubx_tim_vcocal_result, trailing)},
+    {"tim_vcocal", "TIM-VCOCAL", 0x0D, 0x15, false, 12, -1, 0, ubx_tim_vcocal_items, 8, offsetof(nmea_ubx_tim_vcocal, trailing)},
+    {"tim_fchg_poll", "TIM-FCHG", 0x0D, 0x16, false, 0, -1, 0, ubx_tim_fchg_poll_items, 0, offsetof(nmea_ubx_tim_fchg_poll, trailing)},
+    {"tim_fchg", "TIM-FCHG", 0x0D, 0x16, true, 32, -1, 0, ubx_tim_fchg_items, 9, offsetof(nmea_ubx_tim_fchg, trailing)},
+    {"tim_hoc", "TIM-HOC", 0x0D, 0x17, false, 8, -1, 0, ubx_tim_hoc_items, 7, offsetof(nmea_ubx_tim_hoc, trailing)},
     {"esf_meas", "ESF-MEAS", 0x10, 0x02, true, -1, -1, 0, ubx_esf_meas_items, 9, offsetof(nmea_ubx_esf_meas, trailing)},
     {"esf_status_poll", "ESF-STATUS", 0x10, 0x10, false, 0, -1, 0, ubx_esf_status_poll_items, 0, offsetof(nmea_ubx_esf_status_poll, trailing)},
     {"esf_status", "ESF-STATUS", 0x10, 0x10, true, -1, -1, 0, ubx_esf_status_items, 13, offsetof(nmea_ubx_esf_status, trailing)},
@@ -2481,6 +3382,19 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"esf_alg", "ESF-ALG", 0x10, 0x14, true, 16, -1, 0, ubx_esf_alg_items, 13, offsetof(nmea_ubx_esf_alg, trailing)},
     {"esf_ins_poll", "ESF-INS", 0x10, 0x15, false, 0, -1, 0, ubx_esf_ins_poll_items, 0, offsetof(nmea_ubx_esf_ins_poll, trailing)},
     {"esf_ins", "ESF-INS", 0x10, 0x15, true, 36, -1, 0, ubx_esf_ins_items, 16, offsetof(nmea_ubx_esf_ins, trailing)},
+    {"log_erase", "LOG-ERASE", 0x21, 0x03, false, 0, -1, 0, ubx_log_erase_items, 0, offsetof(nmea_ubx_log_erase, trailing)},
+    {"log_string", "LOG-STRING", 0x21, 0x04, false, -1, -1, 0, ubx_log_string_items, 1, offsetof(nmea_ubx_log_string, trailing)},
+    {"log_create", "LOG-CREATE", 0x21, 0x07, false, 8, -1, 0, ubx_log_create_items, 6, offsetof(nmea_ubx_log_create, trailing)},
+    {"log_info_poll", "LOG-INFO", 0x21, 0x08, false, 0, -1, 0, ubx_log_info_poll_items, 0, offsetof(nmea_ubx_log_info_poll, trailing)},
+    {"log_info", "LOG-INFO", 0x21, 0x08, true, 48, -1, 0, ubx_log_info_items, 26, offsetof(nmea_ubx_log_info, trailing)},
+    {"log_retrieve", "LOG-RETRIEVE", 0x21, 0x09, false, 12, -1, 0, ubx_log_retrieve_items, 4, offsetof(nmea_ubx_log_retrieve, trailing)},
+    {"log_retrievepos", "LOG-RETRIEVEPOS", 0x21, 0x0B, true, 40, -1, 0, ubx_log_retrievepos_items, 18, offsetof(nmea_ubx_log_retrievepos, trailing)},
+    {"log_retrievestring", "LOG-RETRIEVESTRING", 0x21, 0x0D, true, -1, -1, 0, ubx_log_retrievestring_items, 12, offsetof(nmea_ubx_log_retrievestring, trailing)},
+    {"log_findtime", "LOG-FINDTIME", 0x21, 0x0E, false, 10, -1, 0, ubx_log_findtime_items, 9, offsetof(nmea_ubx_log_findtime, trailing)},
+    {"log_findtime_response", "LOG-FINDTIME", 0x21, 0x0E, true, 8, -1, 0, ubx_log_findtime_response_items, 4, offsetof(nmea_ubx_log_findtime_response, trailing)},
+    {"log_retrieveposextra", "LOG-RETRIEVEPOSEXTRA", 0x21, 0x0F, true, 32, -1, 0, ubx_log_retrieveposextra_items, 12, offsetof(nmea_ubx_log_retrieveposextra, trailing)},
+    {"log_retrievebatch", "LOG-RETRIEVEBATCH", 0x21, 0x10, false, 4, -1, 0, ubx_log_retrievebatch_items, 4, offsetof(nmea_ubx_log_retrievebatch, trailing)},
+    {"log_batch", "LOG-BATCH", 0x21, 0x11, true, 100, -1, 0, ubx_log_batch_items, 43, offsetof(nmea_ubx_log_batch, trailing)},
     {"sec_uniqid_poll", "SEC-UNIQID", 0x27, 0x03, false, 0, -1, 0, ubx_sec_uniqid_poll_items, 0, offsetof(nmea_ubx_sec_uniqid_poll, trailing)},
     {"sec_uniqid", "SEC-UNIQID", 0x27, 0x03, true, 9, -1, 0, ubx_sec_uniqid_items, 3, offsetof(nmea_ubx_sec_uniqid, trailing)},
     {"hnr_pvt_poll", "HNR-PVT", 0x28, 0x00, false, 0, -1, 0, ubx_hnr_pvt_poll_items, 0, offsetof(nmea_ubx_hnr_pvt_poll, trailing)},
@@ -2506,66 +3420,103 @@ static const struct {
     {0x01, 0x10, 16, 16}, /* NAV-RESETODO */
     {0x01, 0x11, 17, 18}, /* NAV-VELECEF */
     {0x01, 0x12, 19, 20}, /* NAV-VELNED */
-    {0x01, 0x14, 21, 22}, /* NAV-HPPOSLLH */
-    {0x01, 0x20, 23, 24}, /* NAV-TIMEGPS */
-    {0x01, 0x21, 25, 26}, /* NAV-TIMEUTC */
-    {0x01, 0x22, 27, 28}, /* NAV-CLOCK */
-    {0x01, 0x23, 29, 30}, /* NAV-TIMEGLO */
-    {0x01, 0x24, 31, 32}, /* NAV-TIMEBDS */
-    {0x01, 0x25, 33, 34}, /* NAV-TIMEGAL */
-    {0x01, 0x26, 35, 36}, /* NAV-TIMELS */
-    {0x01, 0x30, 37, 38}, /* NAV-SVINFO */
-    {0x01, 0x32, 39, 40}, /* NAV-SBAS */
-    {0x01, 0x35, 41, 42}, /* NAV-SAT */
-    {0x01, 0x36, 43, 44}, /* NAV-COV */
-    {0x01, 0x3B, 45, 46}, /* NAV-SVIN */
-    {0x01, 0x3C, 47, 49}, /* NAV-RELPOSNED */
-    {0x01, 0x3D, 50, 51}, /* NAV-EELL */
-    {0x01, 0x43, 52, 53}, /* NAV-SIG */
-    {0x01, 0x61, 54, 54}, /* NAV-EOE */
-    {0x02, 0x13, 55, 55}, /* RXM-SFRBX */
-    {0x02, 0x15, 56, 57}, /* RXM-RAWX */
-    {0x02, 0x32, 58, 58}, /* RXM-RTCM */
-    {0x04, 0x00, 59, 59}, /* INF-ERROR */
-    {0x04, 0x01, 60, 60}, /* INF-WARNING */
-    {0x04, 0x02, 61, 61}, /* INF-NOTICE */
-    {0x04, 0x03, 62, 62}, /* INF-TEST */
-    {0x04, 0x04, 63, 63}, /* INF-DEBUG */
-    {0x05, 0x00, 64, 64}, /* ACK-NAK */
-    {0x05, 0x01, 65, 65}, /* ACK-ACK */
-    {0x06, 0x00, 66, 68}, /* CFG-PRT */
-    {0x06, 0x01, 69, 71}, /* CFG-MSG */
-    {0x06, 0x02, 72, 73}, /* CFG-INF */
-    {0x06, 0x04, 74, 74}, /* CFG-RST */
-    {0x06, 0x08, 75, 76}, /* CFG-RATE */
-    {0x06, 0x09, 77, 78}, /* CFG-CFG */
-    {0x06, 0x11, 79, 80}, /* CFG-RXM */
-    {0x06, 0x13, 81, 82}, /* CFG-ANT */
-    {0x06, 0x16, 83, 84}, /* CFG-SBAS */
-    {0x06, 0x24, 85, 86}, /* CFG-NAV5 */
-    {0x06, 0x31, 87, 89}, /* CFG-TP5 */
-    {0x06, 0x3E, 90, 91}, /* CFG-GNSS */
-    {0x06, 0x5C, 92, 93}, /* CFG-HNR */
-    {0x06, 0x70, 94, 95}, /* CFG-DGNSS */
-    {0x06, 0x71, 96, 97}, /* CFG-TMODE3 */
-    {0x06, 0x8A, 98, 99}, /* CFG-VALSET */
-    {0x06, 0x8B, 100, 101}, /* CFG-VALGET */
-    {0x06, 0x8C, 102, 103}, /* CFG-VALDEL */
-    {0x0A, 0x04, 104, 105}, /* MON-VER */
-    {0x0A, 0x07, 106, 107}, /* MON-RXBUF */
-    {0x0A, 0x08, 108, 109}, /* MON-TXBUF */
-    {0x0A, 0x09, 110, 111}, /* MON-HW */
-    {0x0A, 0x38, 112, 113}, /* MON-RF */
-    {0x0D, 0x01, 114, 115}, /* TIM-TP */
-    {0x0D, 0x03, 116, 117}, /* TIM-TM2 */
-    {0x10, 0x02, 118, 118}, /* ESF-MEAS */
-    {0x10, 0x10, 119, 120}, /* ESF-STATUS */
-    {0x10, 0x14, 121, 122}, /* ESF-ALG */
-    {0x10, 0x15, 123, 124}, /* ESF-INS */
-    {0x27, 0x03, 125, 126}, /* SEC-UNIQID */
-    {0x28, 0x00, 127, 128}, /* HNR-PVT */
-    {0x28, 0x01, 129, 130}, /* HNR-ATT */
-    {0x28, 0x02, 131, 132}, /* HNR-INS */
+    {0x01, 0x13, 21, 22}, /* NAV-HPPOSECEF */
+    {0x01, 0x14, 23, 24}, /* NAV-HPPOSLLH */
+    {0x01, 0x20, 25, 26}, /* NAV-TIMEGPS */
+    {0x01, 0x21, 27, 28}, /* NAV-TIMEUTC */
+    {0x01, 0x22, 29, 30}, /* NAV-CLOCK */
+    {0x01, 0x23, 31, 32}, /* NAV-TIMEGLO */
+    {0x01, 0x24, 33, 34}, /* NAV-TIMEBDS */
+    {0x01, 0x25, 35, 36}, /* NAV-TIMEGAL */
+    {0x01, 0x26, 37, 38}, /* NAV-TIMELS */
+    {0x01, 0x27, 39, 40}, /* NAV-TIMEQZSS */
+    {0x01, 0x30, 41, 42}, /* NAV-SVINFO */
+    {0x01, 0x31, 43, 44}, /* NAV-DGPS */
+    {0x01, 0x32, 45, 46}, /* NAV-SBAS */
+    {0x01, 0x34, 47, 48}, /* NAV-ORB */
+    {0x01, 0x35, 49, 50}, /* NAV-SAT */
+    {0x01, 0x36, 51, 52}, /* NAV-COV */
+    {0x01, 0x39, 53, 54}, /* NAV-GEOFENCE */
+    {0x01, 0x3B, 55, 56}, /* NAV-SVIN */
+    {0x01, 0x3C, 57, 59}, /* NAV-RELPOSNED */
+    {0x01, 0x3D, 60, 61}, /* NAV-EELL */
+    {0x01, 0x42, 62, 63}, /* NAV-SLAS */
+    {0x01, 0x43, 64, 65}, /* NAV-SIG */
+    {0x01, 0x60, 66, 67}, /* NAV-AOPSTATUS */
+    {0x01, 0x61, 68, 68}, /* NAV-EOE */
+    {0x01, 0x62, 69, 70}, /* NAV-PL */
+    {0x02, 0x13, 71, 71}, /* RXM-SFRBX */
+    {0x02, 0x15, 72, 73}, /* RXM-RAWX */
+    {0x02, 0x32, 74, 74}, /* RXM-RTCM */
+    {0x04, 0x00, 75, 75}, /* INF-ERROR */
+    {0x04, 0x01, 76, 76}, /* INF-WARNING */
+    {0x04, 0x02, 77, 77}, /* INF-NOTICE */
+    {0x04, 0x03, 78, 78}, /* INF-TEST */
+    {0x04, 0x04, 79, 79}, /* INF-DEBUG */
+    {0x05, 0x00, 80, 80}, /* ACK-NAK */
+    {0x05, 0x01, 81, 81}, /* ACK-ACK */
+    {0x06, 0x00, 82, 84}, /* CFG-PRT */
+    {0x06, 0x01, 85, 87}, /* CFG-MSG */
+    {0x06, 0x02, 88, 89}, /* CFG-INF */
+    {0x06, 0x04, 90, 90}, /* CFG-RST */
+    {0x06, 0x08, 91, 92}, /* CFG-RATE */
+    {0x06, 0x09, 93, 94}, /* CFG-CFG */
+    {0x06, 0x11, 95, 96}, /* CFG-RXM */
+    {0x06, 0x13, 97, 98}, /* CFG-ANT */
+    {0x06, 0x16, 99, 100}, /* CFG-SBAS */
+    {0x06, 0x24, 101, 102}, /* CFG-NAV5 */
+    {0x06, 0x31, 103, 105}, /* CFG-TP5 */
+    {0x06, 0x3E, 106, 107}, /* CFG-GNSS */
+    {0x06, 0x5C, 108, 109}, /* CFG-HNR */
+    {0x06, 0x70, 110, 111}, /* CFG-DGNSS */
+    {0x06, 0x71, 112, 113}, /* CFG-TMODE3 */
+    {0x06, 0x8A, 114, 115}, /* CFG-VALSET */
+    {0x06, 0x8B, 116, 117}, /* CFG-VALGET */
+    {0x06, 0x8C, 118, 119}, /* CFG-VALDEL */
+    {0x0A, 0x02, 120, 121}, /* MON-IO */
+    {0x0A, 0x04, 122, 123}, /* MON-VER */
+    {0x0A, 0x06, 124, 125}, /* MON-MSGPP */
+    {0x0A, 0x07, 126, 127}, /* MON-RXBUF */
+    {0x0A, 0x08, 128, 129}, /* MON-TXBUF */
+    {0x0A, 0x09, 130, 131}, /* MON-HW */
+    {0x0A, 0x0B, 132, 133}, /* MON-HW2 */
+    {0x0A, 0x21, 134, 134}, /* MON-RXR */
+    {0x0A, 0x27, 135, 136}, /* MON-PATCH */
+    {0x0A, 0x28, 137, 138}, /* MON-GNSS */
+    {0x0A, 0x2E, 139, 140}, /* MON-SMGR */
+    {0x0A, 0x36, 141, 142}, /* MON-COMMS */
+    {0x0A, 0x37, 143, 144}, /* MON-HW3 */
+    {0x0A, 0x38, 145, 146}, /* MON-RF */
+    {0x0A, 0x39, 147, 148}, /* MON-SYS */
+    {0x0D, 0x01, 149, 150}, /* TIM-TP */
+    {0x0D, 0x03, 151, 152}, /* TIM-TM2 */
+    {0x0D, 0x04, 153, 154}, /* TIM-SVIN */
+    {0x0D, 0x06, 155, 156}, /* TIM-VRFY */
+    {0x0D, 0x11, 157, 158}, /* TIM-DOSC */
+    {0x0D, 0x12, 159, 160}, /* TIM-TOS */
+    {0x0D, 0x13, 161, 162}, /* TIM-SMEAS */
+    {0x0D, 0x15, 163, 166}, /* TIM-VCOCAL */
+    {0x0D, 0x16, 167, 168}, /* TIM-FCHG */
+    {0x0D, 0x17, 169, 169}, /* TIM-HOC */
+    {0x10, 0x02, 170, 170}, /* ESF-MEAS */
+    {0x10, 0x10, 171, 172}, /* ESF-STATUS */
+    {0x10, 0x14, 173, 174}, /* ESF-ALG */
+    {0x10, 0x15, 175, 176}, /* ESF-INS */
+    {0x21, 0x03, 177, 177}, /* LOG-ERASE */
+    {0x21, 0x04, 178, 178}, /* LOG-STRING */
+    {0x21, 0x07, 179, 179}, /* LOG-CREATE */
+    {0x21, 0x08, 180, 181}, /* LOG-INFO */
+    {0x21, 0x09, 182, 182}, /* LOG-RETRIEVE */
+    {0x21, 0x0B, 183, 183}, /* LOG-RETRIEVEPOS */
+    {0x21, 0x0D, 184, 184}, /* LOG-RETRIEVESTRING */
+    {0x21, 0x0E, 185, 186}, /* LOG-FINDTIME */
+    {0x21, 0x0F, 187, 187}, /* LOG-RETRIEVEPOSEXTRA */
+    {0x21, 0x10, 188, 188}, /* LOG-RETRIEVEBATCH */
+    {0x21, 0x11, 189, 189}, /* LOG-BATCH */
+    {0x27, 0x03, 190, 191}, /* SEC-UNIQID */
+    {0x28, 0x00, 192, 193}, /* HNR-PVT */
+    {0x28, 0x01, 194, 195}, /* HNR-ATT */
+    {0x28, 0x02, 196, 197}, /* HNR-INS */
 };
 
 bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, size_t len, nmea_ubx_message *out,

@@ -6,15 +6,19 @@
 //   spec/binary/ubx/messages/nav_sol.yaml, spec/binary/ubx/messages/nav_pvt.yaml,
 //   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
 //   spec/binary/ubx/messages/nav_velecef.yaml, spec/binary/ubx/messages/nav_velned.yaml,
-//   spec/binary/ubx/messages/nav_hpposllh.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
-//   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_clock.yaml,
-//   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
-//   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timels.yaml,
-//   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_sbas.yaml,
+//   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
+//   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timeutc.yaml,
+//   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
+//   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
+//   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
+//   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
+//   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_orb.yaml,
 //   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_cov.yaml,
-//   spec/binary/ubx/messages/nav_svin.yaml, spec/binary/ubx/messages/nav_relposned.yaml,
-//   spec/binary/ubx/messages/nav_eell.yaml, spec/binary/ubx/messages/nav_sig.yaml,
-//   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
+//   spec/binary/ubx/messages/nav_geofence.yaml, spec/binary/ubx/messages/nav_svin.yaml,
+//   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_eell.yaml,
+//   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
+//   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
+//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
 //   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
 //   spec/binary/ubx/messages/inf_error.yaml, spec/binary/ubx/messages/inf_warning.yaml,
 //   spec/binary/ubx/messages/inf_notice.yaml, spec/binary/ubx/messages/inf_test.yaml,
@@ -28,15 +32,30 @@
 //   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
 //   spec/binary/ubx/messages/cfg_dgnss.yaml, spec/binary/ubx/messages/cfg_tmode3.yaml,
 //   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
-//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/mon_ver.yaml,
+//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/mon_io.yaml,
+//   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
 //   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
-//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
+//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_patch.yaml,
+//   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
+//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
 //   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
+//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
+//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
+//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
+//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
 //   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_status.yaml,
 //   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
+//   spec/binary/ubx/messages/log_erase.yaml, spec/binary/ubx/messages/log_string.yaml,
+//   spec/binary/ubx/messages/log_create.yaml, spec/binary/ubx/messages/log_info.yaml,
+//   spec/binary/ubx/messages/log_retrieve.yaml, spec/binary/ubx/messages/log_retrievepos.yaml,
+//   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_findtime.yaml,
+//   spec/binary/ubx/messages/log_retrieveposextra.yaml,
+//   spec/binary/ubx/messages/log_retrievebatch.yaml, spec/binary/ubx/messages/log_batch.yaml,
 //   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/hnr_pvt.yaml,
 //   spec/binary/ubx/messages/hnr_att.yaml, spec/binary/ubx/messages/hnr_ins.yaml,
-//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest 88c12463fbd128eb)
+//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest d877decaaf45397a)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx: a struct per layout, every field typed, decoded from a
@@ -201,11 +220,23 @@ typedef struct {
 #ifndef NMEA_UBX_NAV_SVINFO_CHANNELS_MAX
 #define NMEA_UBX_NAV_SVINFO_CHANNELS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_NAV_DGPS_CHANNELS_MAX
+#define NMEA_UBX_NAV_DGPS_CHANNELS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_NAV_SBAS_CHANNELS_MAX
 #define NMEA_UBX_NAV_SBAS_CHANNELS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_NAV_ORB_SVS_MAX
+#define NMEA_UBX_NAV_ORB_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_NAV_SAT_SVS_MAX
 #define NMEA_UBX_NAV_SAT_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_NAV_GEOFENCE_FENCES_MAX
+#define NMEA_UBX_NAV_GEOFENCE_FENCES_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_NAV_SLAS_CORRECTIONS_MAX
+#define NMEA_UBX_NAV_SLAS_CORRECTIONS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_NAV_SIG_SIGNALS_MAX
 #define NMEA_UBX_NAV_SIG_SIGNALS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
@@ -234,8 +265,32 @@ typedef struct {
 #ifndef NMEA_UBX_CFG_VALDEL_KEYS_MAX
 #define NMEA_UBX_CFG_VALDEL_KEYS_MAX (64 < NMEA_UBX_MAX_ENTRIES ? 64 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_MON_IO_PORTS_MAX
+#define NMEA_UBX_MON_IO_PORTS_MAX (6 < NMEA_UBX_MAX_ENTRIES ? 6 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_MON_VER_EXTENSIONS_MAX
 #define NMEA_UBX_MON_VER_EXTENSIONS_MAX (100 < NMEA_UBX_MAX_ENTRIES ? 100 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_MSGPP_MSG1_MAX
+#define NMEA_UBX_MON_MSGPP_MSG1_MAX (8 < NMEA_UBX_MAX_ENTRIES ? 8 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_MSGPP_MSG2_MAX
+#define NMEA_UBX_MON_MSGPP_MSG2_MAX (8 < NMEA_UBX_MAX_ENTRIES ? 8 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_MSGPP_MSG3_MAX
+#define NMEA_UBX_MON_MSGPP_MSG3_MAX (8 < NMEA_UBX_MAX_ENTRIES ? 8 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_MSGPP_MSG4_MAX
+#define NMEA_UBX_MON_MSGPP_MSG4_MAX (8 < NMEA_UBX_MAX_ENTRIES ? 8 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_MSGPP_MSG5_MAX
+#define NMEA_UBX_MON_MSGPP_MSG5_MAX (8 < NMEA_UBX_MAX_ENTRIES ? 8 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_MSGPP_MSG6_MAX
+#define NMEA_UBX_MON_MSGPP_MSG6_MAX (8 < NMEA_UBX_MAX_ENTRIES ? 8 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_MSGPP_SKIPPED_MAX
+#define NMEA_UBX_MON_MSGPP_SKIPPED_MAX (6 < NMEA_UBX_MAX_ENTRIES ? 6 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_MON_RXBUF_PENDING_MAX
 #define NMEA_UBX_MON_RXBUF_PENDING_MAX (6 < NMEA_UBX_MAX_ENTRIES ? 6 : NMEA_UBX_MAX_ENTRIES)
@@ -258,14 +313,32 @@ typedef struct {
 #ifndef NMEA_UBX_MON_HW_VP_MAX
 #define NMEA_UBX_MON_HW_VP_MAX (17 < NMEA_UBX_MAX_ENTRIES ? 17 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_MON_PATCH_ENTRIES_MAX
+#define NMEA_UBX_MON_PATCH_ENTRIES_MAX (32 < NMEA_UBX_MAX_ENTRIES ? 32 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_COMMS_PROT_IDS_MAX
+#define NMEA_UBX_MON_COMMS_PROT_IDS_MAX (4 < NMEA_UBX_MAX_ENTRIES ? 4 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_COMMS_PORTS_MAX
+#define NMEA_UBX_MON_COMMS_PORTS_MAX (16 < NMEA_UBX_MAX_ENTRIES ? 16 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_HW3_PINS_MAX
+#define NMEA_UBX_MON_HW3_PINS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_MON_RF_BLOCKS_MAX
 #define NMEA_UBX_MON_RF_BLOCKS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_TIM_SMEAS_MEAS_MAX
+#define NMEA_UBX_TIM_SMEAS_MEAS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_ESF_MEAS_MEASUREMENTS_MAX
 #define NMEA_UBX_ESF_MEAS_MEASUREMENTS_MAX (31 < NMEA_UBX_MAX_ENTRIES ? 31 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_ESF_STATUS_SENSORS_MAX
 #define NMEA_UBX_ESF_STATUS_SENSORS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_LOG_RETRIEVESTRING_BYTES_MAX
+#define NMEA_UBX_LOG_RETRIEVESTRING_BYTES_MAX (256 < NMEA_UBX_MAX_ENTRIES ? 256 : NMEA_UBX_MAX_ENTRIES)
 #endif
 
 /* Position solution in ECEF: UBX NAV-POSECEF (class 0x01 id 0x01), poll. */
@@ -507,6 +580,28 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_nav_velned;
 
+/* High precision position solution in ECEF: UBX NAV-HPPOSECEF (class 0x01 id 0x13), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_hpposecef_poll;
+
+/* High precision position solution in ECEF: UBX NAV-HPPOSECEF (class 0x01 id 0x13), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    int32_t ecef_x; /* ECEF X coordinate [cm] */
+    int32_t ecef_y; /* ECEF Y coordinate [cm] */
+    int32_t ecef_z; /* ECEF Z coordinate [cm] */
+    int8_t ecef_x_hp; /* High precision part of the X coordinate [mm]; raw, value = raw / 10 */
+    int8_t ecef_y_hp; /* High precision part of the Y coordinate [mm]; raw, value = raw / 10 */
+    int8_t ecef_z_hp; /* High precision part of the Z coordinate [mm]; raw, value = raw / 10 */
+    uint8_t flags; /* Flags (bitfield) */
+    bool invalid_ecef; /* The coordinates are not valid (flags bit 0) */
+    uint32_t p_acc; /* Position accuracy estimate [mm]; raw, value = raw / 10 */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_hpposecef;
+
 /* High precision geodetic position solution: UBX NAV-HPPOSLLH (class 0x01 id 0x14), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -673,6 +768,26 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_nav_timels;
 
+/* QZSS time solution: UBX NAV-TIMEQZSS (class 0x01 id 0x27), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_timeqzss_poll;
+
+/* QZSS time solution: UBX NAV-TIMEQZSS (class 0x01 id 0x27), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint32_t qzss_tow; /* QZSS time of week [ms] */
+    int32_t f_qzss_tow; /* Fraction of the QZSS time of week [ns] */
+    int16_t qzss_wno; /* QZSS week number */
+    int8_t leap_s; /* QZSS leap seconds (QZSS minus TAI) [s] */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool qzss_tow_valid; /* Valid time of week (valid bit 0) */
+    bool qzss_wno_valid; /* Valid week number (valid bit 1) */
+    bool leap_s_valid; /* Valid leap seconds (valid bit 2) */
+    uint32_t t_acc; /* Time accuracy estimate [ns] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_timeqzss;
+
 /* Space vehicle information: UBX NAV-SVINFO (class 0x01 id 0x30), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -710,6 +825,36 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
     nmea_ubx_nav_svinfo_channel channels[NMEA_UBX_NAV_SVINFO_CHANNELS_MAX]; /* Channels */
 } nmea_ubx_nav_svinfo;
+
+/* DGPS data used for the navigation solution: UBX NAV-DGPS (class 0x01 id 0x31), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_dgps_poll;
+
+/* One entry of channels (channels). */
+typedef struct {
+    uint8_t svid; /* Satellite identifier */
+    uint8_t flags; /* Channel flags (bitfield) */
+    uint8_t channel; /* GPS channel number of the satellite (flags bits 0-3) */
+    bool dgps_used; /* DGPS used for the satellite (flags bit 4) */
+    uint16_t age_c; /* Age of the latest correction [ms] */
+    float prc; /* Pseudorange correction [m] (its bits as sent) */
+    float prrc; /* Pseudorange rate correction [m/s] (its bits as sent) */
+} nmea_ubx_nav_dgps_channel;
+
+/* DGPS data used for the navigation solution: UBX NAV-DGPS (class 0x01 id 0x31), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    int32_t age; /* Age of the newest correction data [ms] */
+    int16_t base_id; /* DGPS base station identifier */
+    int16_t base_health; /* DGPS base station health */
+    uint8_t num_ch; /* Number of channels with correction data */
+    uint8_t status; /* DGPS correction type */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t channels_count; /* the entries of channels */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_nav_dgps_channel channels[NMEA_UBX_NAV_DGPS_CHANNELS_MAX]; /* Channels */
+} nmea_ubx_nav_dgps;
 
 /* SBAS status: UBX NAV-SBAS (class 0x01 id 0x32), poll. */
 typedef struct {
@@ -749,6 +894,40 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
     nmea_ubx_nav_sbas_channel channels[NMEA_UBX_NAV_SBAS_CHANNELS_MAX]; /* Satellites with corrections */
 } nmea_ubx_nav_sbas;
+
+/* GNSS orbit database information: UBX NAV-ORB (class 0x01 id 0x34), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_orb_poll;
+
+/* One entry of satellites (svs). */
+typedef struct {
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
+    uint8_t sv_id; /* Satellite identifier */
+    uint8_t sv_flag; /* Satellite state (bitfield) */
+    uint8_t health; /* Health (sv_flag bits 0-1) */
+    uint8_t visibility; /* Visibility (sv_flag bits 2-3) */
+    uint8_t eph; /* Ephemeris (bitfield) */
+    uint8_t eph_usability; /* How long the ephemeris stays usable (eph bits 0-4) */
+    uint8_t eph_source; /* Where the ephemeris came from (eph bits 5-7) */
+    uint8_t alm; /* Almanac (bitfield) */
+    uint8_t alm_usability; /* How long the almanac stays usable (alm bits 0-4) */
+    uint8_t alm_source; /* Where the almanac came from (alm bits 5-7) */
+    uint8_t other_orb; /* Other orbit data (bitfield) */
+    uint8_t ano_aop_usability; /* How long the other orbit data stays usable (other_orb bits 0-4) */
+    uint8_t type; /* Kind of the other orbit data (other_orb bits 5-7) */
+} nmea_ubx_nav_orb_sv;
+
+/* GNSS orbit database information: UBX NAV-ORB (class 0x01 id 0x34), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t version; /* Message version */
+    uint8_t num_sv; /* Number of satellites */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t svs_count; /* the entries of svs */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_nav_orb_sv svs[NMEA_UBX_NAV_ORB_SVS_MAX]; /* Satellites */
+} nmea_ubx_nav_orb;
 
 /* Satellite information: UBX NAV-SAT (class 0x01 id 0x35), poll. */
 typedef struct {
@@ -820,6 +999,29 @@ typedef struct {
     float vel_cov_dd; /* Velocity covariance down-down [m²/s²] (its bits as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_nav_cov;
+
+/* Geofencing status: UBX NAV-GEOFENCE (class 0x01 id 0x39), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_geofence_poll;
+
+/* One entry of geofences (fences). */
+typedef struct {
+    uint8_t state; /* Geofence state */
+    uint8_t id; /* Geofence identifier */
+} nmea_ubx_nav_geofence_fence;
+
+/* Geofencing status: UBX NAV-GEOFENCE (class 0x01 id 0x39), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t version; /* Message version */
+    uint8_t status; /* Geofencing status */
+    uint8_t num_fences; /* Number of geofences */
+    uint8_t comb_state; /* Combined state of all geofences */
+    uint16_t fences_count; /* the entries of fences */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_nav_geofence_fence fences[NMEA_UBX_NAV_GEOFENCE_FENCES_MAX]; /* Geofences */
+} nmea_ubx_nav_geofence;
 
 /* Survey-in data: UBX NAV-SVIN (class 0x01 id 0x3B), poll. */
 typedef struct {
@@ -930,6 +1132,39 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_nav_eell;
 
+/* QZSS L1S SLAS status: UBX NAV-SLAS (class 0x01 id 0x42), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_slas_poll;
+
+/* One entry of pseudorange corrections (corrections). */
+typedef struct {
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
+    uint8_t sv_id; /* Satellite identifier */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    int16_t prc; /* Pseudorange correction [cm] */
+} nmea_ubx_nav_slas_correction;
+
+/* QZSS L1S SLAS status: UBX NAV-SLAS (class 0x01 id 0x42), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t version; /* Message version */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    int32_t gms_lon; /* Longitude of the ground monitoring station used [deg]; raw, value = raw / 1000 */
+    int32_t gms_lat; /* Latitude of the ground monitoring station used [deg]; raw, value = raw / 1000 */
+    uint8_t gms_code; /* Code of the ground monitoring station */
+    uint8_t qzss_sv_id; /* QZSS satellite the corrections come from */
+    uint8_t service_flags; /* Service flags (bitfield) */
+    bool gms_available; /* A ground monitoring station is available (service_flags bit 0) */
+    bool qzss_sv_available; /* The QZSS satellite is available (service_flags bit 1) */
+    bool test_mode; /* The QZSS satellite is in test mode (service_flags bit 2) */
+    uint8_t cnt; /* Number of pseudorange corrections */
+    uint16_t corrections_count; /* the entries of corrections */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_nav_slas_correction corrections[NMEA_UBX_NAV_SLAS_CORRECTIONS_MAX]; /* Pseudorange corrections */
+} nmea_ubx_nav_slas;
+
 /* Signal information: UBX NAV-SIG (class 0x01 id 0x43), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -969,11 +1204,56 @@ typedef struct {
     nmea_ubx_nav_sig_signal signals[NMEA_UBX_NAV_SIG_SIGNALS_MAX]; /* Signals */
 } nmea_ubx_nav_sig;
 
+/* AssistNow Autonomous status: UBX NAV-AOPSTATUS (class 0x01 id 0x60), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_aopstatus_poll;
+
+/* AssistNow Autonomous status: UBX NAV-AOPSTATUS (class 0x01 id 0x60), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t aop_cfg; /* AssistNow Autonomous configuration (bitfield) */
+    bool use_aop; /* AssistNow Autonomous enabled (aop_cfg bit 0) */
+    uint8_t status; /* Subsystem status */
+    uint8_t reserved1[10]; /* Reserved (as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_aopstatus;
+
 /* End of epoch: UBX NAV-EOE (class 0x01 id 0x61), output. */
 typedef struct {
     uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_nav_eoe;
+
+/* Protection level information: UBX NAV-PL (class 0x01 id 0x62), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_pl_poll;
+
+/* Protection level information: UBX NAV-PL (class 0x01 id 0x62), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t tmir_coeff; /* Coefficient of the target misleading information risk */
+    int8_t tmir_exp; /* Exponent of the target misleading information risk */
+    uint8_t pl_pos_valid; /* Position protection level valid */
+    uint8_t pl_pos_frame; /* Frame of the position protection level */
+    uint8_t pl_vel_valid; /* Velocity protection level valid */
+    uint8_t pl_vel_frame; /* Frame of the velocity protection level */
+    uint8_t pl_time_valid; /* Time protection level valid */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint32_t pl_pos1; /* First axis of the position protection level [mm] */
+    uint32_t pl_pos2; /* Second axis of the position protection level [mm] */
+    uint32_t pl_pos3; /* Third axis of the position protection level [mm] */
+    uint32_t pl_vel1; /* First axis of the velocity protection level [mm/s] */
+    uint32_t pl_vel2; /* Second axis of the velocity protection level [mm/s] */
+    uint32_t pl_vel3; /* Third axis of the velocity protection level [mm/s] */
+    uint16_t pl_pos_horiz_orient; /* Orientation of the horizontal position axes [deg]; raw, value = raw / 100 */
+    uint16_t pl_vel_horiz_orient; /* Orientation of the horizontal velocity axes [deg]; raw, value = raw / 100 */
+    uint32_t pl_time; /* Time protection level [ns] */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_pl;
 
 /* One entry of data words (words). */
 typedef struct {
@@ -1539,6 +1819,31 @@ typedef struct {
     nmea_ubx_cfg_valdel_key keys[NMEA_UBX_CFG_VALDEL_KEYS_MAX]; /* Key ids */
 } nmea_ubx_cfg_valdel;
 
+/* I/O system status: UBX MON-IO (class 0x0A id 0x02), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_io_poll;
+
+/* One entry of ports (ports). */
+typedef struct {
+    uint32_t rx_bytes; /* Bytes received [byte] */
+    uint32_t tx_bytes; /* Bytes sent [byte] */
+    uint16_t parity_errs; /* Parity errors */
+    uint16_t framing_errs; /* Framing errors */
+    uint16_t overrun_errs; /* Overrun errors */
+    uint16_t break_cond; /* Break conditions */
+    uint8_t rx_busy; /* Receiver busy */
+    uint8_t tx_busy; /* Transmitter busy */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+} nmea_ubx_mon_io_port;
+
+/* I/O system status: UBX MON-IO (class 0x0A id 0x02), output. */
+typedef struct {
+    uint16_t ports_count; /* the entries of ports */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mon_io_port ports[NMEA_UBX_MON_IO_PORTS_MAX]; /* Ports */
+} nmea_ubx_mon_io;
+
 /* Receiver and software version: UBX MON-VER (class 0x0A id 0x04), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -1557,6 +1862,65 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
     nmea_ubx_mon_ver_extension extensions[NMEA_UBX_MON_VER_EXTENSIONS_MAX]; /* Extended version information */
 } nmea_ubx_mon_ver;
+
+/* Message parse and process status: UBX MON-MSGPP (class 0x0A id 0x06), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_msgpp_poll;
+
+/* One entry of messages parsed on port 0, per protocol (msg1). */
+typedef struct {
+    uint16_t msg1; /* Messages */
+} nmea_ubx_mon_msgpp_msg1_entry;
+
+/* One entry of messages parsed on port 1, per protocol (msg2). */
+typedef struct {
+    uint16_t msg2; /* Messages */
+} nmea_ubx_mon_msgpp_msg2_entry;
+
+/* One entry of messages parsed on port 2, per protocol (msg3). */
+typedef struct {
+    uint16_t msg3; /* Messages */
+} nmea_ubx_mon_msgpp_msg3_entry;
+
+/* One entry of messages parsed on port 3, per protocol (msg4). */
+typedef struct {
+    uint16_t msg4; /* Messages */
+} nmea_ubx_mon_msgpp_msg4_entry;
+
+/* One entry of messages parsed on port 4, per protocol (msg5). */
+typedef struct {
+    uint16_t msg5; /* Messages */
+} nmea_ubx_mon_msgpp_msg5_entry;
+
+/* One entry of messages parsed on port 5, per protocol (msg6). */
+typedef struct {
+    uint16_t msg6; /* Messages */
+} nmea_ubx_mon_msgpp_msg6_entry;
+
+/* One entry of bytes skipped per port (skipped). */
+typedef struct {
+    uint32_t skipped; /* Bytes skipped [byte] */
+} nmea_ubx_mon_msgpp_skipped_entry;
+
+/* Message parse and process status: UBX MON-MSGPP (class 0x0A id 0x06), output. */
+typedef struct {
+    uint16_t msg1_count; /* the entries of msg1 */
+    uint16_t msg2_count; /* the entries of msg2 */
+    uint16_t msg3_count; /* the entries of msg3 */
+    uint16_t msg4_count; /* the entries of msg4 */
+    uint16_t msg5_count; /* the entries of msg5 */
+    uint16_t msg6_count; /* the entries of msg6 */
+    uint16_t skipped_count; /* the entries of skipped */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mon_msgpp_msg1_entry msg1[NMEA_UBX_MON_MSGPP_MSG1_MAX]; /* Messages parsed on port 0, per protocol */
+    nmea_ubx_mon_msgpp_msg2_entry msg2[NMEA_UBX_MON_MSGPP_MSG2_MAX]; /* Messages parsed on port 1, per protocol */
+    nmea_ubx_mon_msgpp_msg3_entry msg3[NMEA_UBX_MON_MSGPP_MSG3_MAX]; /* Messages parsed on port 2, per protocol */
+    nmea_ubx_mon_msgpp_msg4_entry msg4[NMEA_UBX_MON_MSGPP_MSG4_MAX]; /* Messages parsed on port 3, per protocol */
+    nmea_ubx_mon_msgpp_msg5_entry msg5[NMEA_UBX_MON_MSGPP_MSG5_MAX]; /* Messages parsed on port 4, per protocol */
+    nmea_ubx_mon_msgpp_msg6_entry msg6[NMEA_UBX_MON_MSGPP_MSG6_MAX]; /* Messages parsed on port 5, per protocol */
+    nmea_ubx_mon_msgpp_skipped_entry skipped[NMEA_UBX_MON_MSGPP_SKIPPED_MAX]; /* Bytes skipped per port */
+} nmea_ubx_mon_msgpp;
 
 /* Receiver buffer status: UBX MON-RXBUF (class 0x0A id 0x07), poll. */
 typedef struct {
@@ -1664,6 +2028,198 @@ typedef struct {
     nmea_ubx_mon_hw_vp_entry vp[NMEA_UBX_MON_HW_VP_MAX]; /* Pin mappings */
 } nmea_ubx_mon_hw;
 
+/* Extended hardware status: UBX MON-HW2 (class 0x0A id 0x0B), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_hw2_poll;
+
+/* Extended hardware status: UBX MON-HW2 (class 0x0A id 0x0B), output. */
+typedef struct {
+    int8_t ofs_i; /* Imbalance of the I part of the complex signal */
+    uint8_t mag_i; /* Magnitude of the I part of the complex signal */
+    int8_t ofs_q; /* Imbalance of the Q part of the complex signal */
+    uint8_t mag_q; /* Magnitude of the Q part of the complex signal */
+    uint8_t cfg_source; /* Source of the low-level configuration */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    uint32_t low_lev_cfg; /* Low-level configuration */
+    uint64_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t post_status; /* Power-on self test status word */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_hw2;
+
+/* Receiver status: UBX MON-RXR (class 0x0A id 0x21), output. */
+typedef struct {
+    uint8_t flags; /* Receiver status flags (bitfield) */
+    bool awake; /* Not in backup mode (flags bit 0) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_rxr;
+
+/* Installed patches: UBX MON-PATCH (class 0x0A id 0x27), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_patch_poll;
+
+/* One entry of patches (entries). */
+typedef struct {
+    uint32_t patch_info; /* Patch information (bitfield) */
+    bool activated; /* The patch is active (patch_info bit 0) */
+    uint8_t location; /* Where the patch is stored (patch_info bits 1-2) */
+    uint32_t comparator_number; /* Comparator number */
+    uint32_t patch_address; /* Patched address */
+    uint32_t patch_data; /* Patch data */
+} nmea_ubx_mon_patch_entrie;
+
+/* Installed patches: UBX MON-PATCH (class 0x0A id 0x27), output. */
+typedef struct {
+    uint16_t version; /* Message version */
+    uint16_t n_entries; /* Number of patches */
+    uint16_t entries_count; /* the entries of entries */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mon_patch_entrie entries[NMEA_UBX_MON_PATCH_ENTRIES_MAX]; /* Patches */
+} nmea_ubx_mon_patch;
+
+/* GNSS system selection: UBX MON-GNSS (class 0x0A id 0x28), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_gnss_poll;
+
+/* GNSS system selection: UBX MON-GNSS (class 0x0A id 0x28), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t supported; /* Systems supported (bitfield) */
+    bool gps_sup; /* GPS (supported bit 0) */
+    bool glonass_sup; /* GLONASS (supported bit 1) */
+    bool beidou_sup; /* BeiDou (supported bit 2) */
+    bool galileo_sup; /* Galileo (supported bit 3) */
+    uint8_t default_gnss; /* Systems enabled by default (bitfield) */
+    bool gps_def; /* GPS (default_gnss bit 0) */
+    bool glonass_def; /* GLONASS (default_gnss bit 1) */
+    bool beidou_def; /* BeiDou (default_gnss bit 2) */
+    bool galileo_def; /* Galileo (default_gnss bit 3) */
+    uint8_t enabled; /* Systems enabled (bitfield) */
+    bool gps_ena; /* GPS (enabled bit 0) */
+    bool glonass_ena; /* GLONASS (enabled bit 1) */
+    bool beidou_ena; /* BeiDou (enabled bit 2) */
+    bool galileo_ena; /* Galileo (enabled bit 3) */
+    uint8_t simultaneous; /* Largest number of systems tracked at once */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_gnss;
+
+/* Synchronization manager status: UBX MON-SMGR (class 0x0A id 0x2E), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_smgr_poll;
+
+/* Synchronization manager status: UBX MON-SMGR (class 0x0A id 0x2E), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t itow; /* Time of week of the status [ms] */
+    uint16_t int_osc; /* Internal oscillator state (bitfield) */
+    uint8_t int_osc_state; /* State (int_osc bits 0-3) */
+    bool int_osc_calib; /* Calibrated (int_osc bit 4) */
+    bool int_osc_disc; /* Disciplined (int_osc bit 5) */
+    uint16_t ext_osc; /* External oscillator state (bitfield) */
+    uint8_t ext_osc_state; /* State (ext_osc bits 0-3) */
+    bool ext_osc_calib; /* Calibrated (ext_osc bit 4) */
+    bool ext_osc_disc; /* Disciplined (ext_osc bit 5) */
+    uint8_t disc_src; /* Disciplining source */
+    uint8_t gnss; /* GNSS state (bitfield) */
+    bool gnss_avail; /* GNSS time available (gnss bit 0) */
+    uint8_t ext_int0; /* EXTINT0 state (bitfield) */
+    bool ext_int0_avail; /* Signal present (ext_int0 bit 0) */
+    bool ext_int0_type; /* Frequency source (else time) (ext_int0 bit 1) */
+    bool ext_int0_feed_back; /* Fed back from the disciplined source (ext_int0 bit 2) */
+    uint8_t ext_int1; /* EXTINT1 state (bitfield) */
+    bool ext_int1_avail; /* Signal present (ext_int1 bit 0) */
+    bool ext_int1_type; /* Frequency source (else time) (ext_int1 bit 1) */
+    bool ext_int1_feed_back; /* Fed back from the disciplined source (ext_int1 bit 2) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_smgr;
+
+/* Communication port information: UBX MON-COMMS (class 0x0A id 0x36), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_comms_poll;
+
+/* One entry of protocols the message counts follow (prot_ids). */
+typedef struct {
+    uint8_t prot_ids; /* Protocol identifier */
+} nmea_ubx_mon_comms_prot_id;
+
+/* One entry of ports (ports). */
+typedef struct {
+    uint16_t port_id; /* Port identifier */
+    uint16_t tx_pending; /* Bytes waiting to be sent [byte] */
+    uint32_t tx_bytes; /* Bytes sent [byte] */
+    uint8_t tx_usage; /* Transmitter buffer use in the last period [%] */
+    uint8_t tx_peak_usage; /* Largest transmitter buffer use [%] */
+    uint16_t rx_pending; /* Bytes received and not yet read [byte] */
+    uint32_t rx_bytes; /* Bytes received [byte] */
+    uint8_t rx_usage; /* Receiver buffer use in the last period [%] */
+    uint8_t rx_peak_usage; /* Largest receiver buffer use [%] */
+    uint16_t overrun_errs; /* Overruns of the receiver buffer */
+    uint16_t msgs0; /* Messages parsed of the first protocol of prot_ids */
+    uint16_t msgs1; /* Messages parsed of the second protocol */
+    uint16_t msgs2; /* Messages parsed of the third protocol */
+    uint16_t msgs3; /* Messages parsed of the fourth protocol */
+    uint64_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t skipped; /* Bytes skipped as no protocol's [byte] */
+} nmea_ubx_mon_comms_port;
+
+/* Communication port information: UBX MON-COMMS (class 0x0A id 0x36), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t n_ports; /* Number of ports */
+    uint8_t tx_errors; /* Transmitter errors (bitfield) */
+    bool mem; /* Memory allocation error (tx_errors bit 0) */
+    bool alloc; /* Transmitter buffer allocation error (tx_errors bit 1) */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t prot_ids_count; /* the entries of prot_ids */
+    uint16_t ports_count; /* the entries of ports */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mon_comms_prot_id prot_ids[NMEA_UBX_MON_COMMS_PROT_IDS_MAX]; /* Protocols the message counts follow */
+    nmea_ubx_mon_comms_port ports[NMEA_UBX_MON_COMMS_PORTS_MAX]; /* Ports */
+} nmea_ubx_mon_comms;
+
+/* I/O pin status: UBX MON-HW3 (class 0x0A id 0x37), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_hw3_poll;
+
+/* One entry of pins (pins). */
+typedef struct {
+    uint16_t pin_id; /* Pin identifier */
+    uint16_t pin_mask; /* Pin state (bitfield) */
+    bool periph_pio; /* Used as PIO (else by a peripheral) (pin_mask bit 0) */
+    uint8_t pin_bank; /* Pin bank (pin_mask bits 1-3) */
+    bool direction; /* Output (else input) (pin_mask bit 4) */
+    bool pin_value; /* Level high (pin_mask bit 5) */
+    bool vp_manager; /* Used by the virtual pin manager (pin_mask bit 6) */
+    bool pio_irq; /* Interrupt enabled (pin_mask bit 7) */
+    bool pio_pull_high; /* Pull-up enabled (pin_mask bit 8) */
+    bool pio_pull_low; /* Pull-down enabled (pin_mask bit 9) */
+    uint8_t vp; /* Virtual pin mapped to the pin */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+} nmea_ubx_mon_hw3_pin;
+
+/* I/O pin status: UBX MON-HW3 (class 0x0A id 0x37), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t n_pins; /* Number of pins */
+    uint8_t flags; /* Flags (bitfield) */
+    bool rtc_calib; /* RTC calibrated (flags bit 0) */
+    bool safe_boot; /* Safe boot mode (flags bit 1) */
+    bool xtal_absent; /* RTC crystal absent (flags bit 2) */
+    char hw_version[10]; /* Hardware version (as sent) */
+    uint8_t reserved0[9]; /* Reserved (as sent) */
+    uint16_t pins_count; /* the entries of pins */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mon_hw3_pin pins[NMEA_UBX_MON_HW3_PINS_MAX]; /* Pins */
+} nmea_ubx_mon_hw3;
+
 /* RF information: UBX MON-RF (class 0x0A id 0x38), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -1697,6 +2253,30 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
     nmea_ubx_mon_rf_block blocks[NMEA_UBX_MON_RF_BLOCKS_MAX]; /* RF blocks */
 } nmea_ubx_mon_rf;
+
+/* System status: UBX MON-SYS (class 0x0A id 0x39), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_sys_poll;
+
+/* System status: UBX MON-SYS (class 0x0A id 0x39), output. */
+typedef struct {
+    uint8_t msg_ver; /* Message version */
+    uint8_t boot_type; /* Cause of the last boot */
+    uint8_t cpu_load; /* Processor load [%] */
+    uint8_t cpu_load_max; /* Largest processor load [%] */
+    uint8_t mem_usage; /* Memory use [%] */
+    uint8_t mem_usage_max; /* Largest memory use [%] */
+    uint8_t io_usage; /* I/O load [%] */
+    uint8_t io_usage_max; /* Largest I/O load [%] */
+    uint32_t run_time; /* Time since the last boot [s] */
+    uint16_t notice_count; /* Notices since the last boot */
+    uint16_t warn_count; /* Warnings since the last boot */
+    uint16_t error_count; /* Errors since the last boot */
+    int8_t temp_value; /* Chip temperature [degC] */
+    uint64_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_sys;
 
 /* Time pulse time data: UBX TIM-TP (class 0x0D id 0x01), poll. */
 typedef struct {
@@ -1746,6 +2326,197 @@ typedef struct {
     uint32_t acc_est; /* Accuracy estimate [ns] */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_tim_tm2;
+
+/* Time mode survey-in status: UBX TIM-SVIN (class 0x0D id 0x04), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_svin_poll;
+
+/* Time mode survey-in status: UBX TIM-SVIN (class 0x0D id 0x04), output. */
+typedef struct {
+    uint32_t dur; /* Survey-in duration so far [s] */
+    int32_t mean_x; /* Mean ECEF X of the position [cm] */
+    int32_t mean_y; /* Mean ECEF Y of the position [cm] */
+    int32_t mean_z; /* Mean ECEF Z of the position [cm] */
+    uint32_t mean_v; /* Mean variance of the position [mm^2] */
+    uint32_t obs; /* Number of position observations */
+    uint8_t valid; /* The survey-in position is valid */
+    uint8_t active; /* The survey-in is running */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_svin;
+
+/* Sourced time verification: UBX TIM-VRFY (class 0x0D id 0x06), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_vrfy_poll;
+
+/* Sourced time verification: UBX TIM-VRFY (class 0x0D id 0x06), output. */
+typedef struct {
+    int32_t itow; /* Time of week of the navigation epoch [ms] */
+    int32_t frac; /* Sub-millisecond part of the time of week [ns] */
+    int32_t delta_ms; /* Integer milliseconds of the difference (kept minus navigation time) [ms] */
+    int32_t delta_ns; /* Sub-millisecond part of the difference [ns] */
+    uint16_t wno; /* Week number */
+    uint8_t flags; /* Flags (bitfield) */
+    uint8_t src; /* Source of the time kept (flags bits 0-2) */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_vrfy;
+
+/* Disciplined oscillator control: UBX TIM-DOSC (class 0x0D id 0x11), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_dosc_poll;
+
+/* Disciplined oscillator control: UBX TIM-DOSC (class 0x0D id 0x11), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t value; /* Raw control value for the oscillator */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_dosc;
+
+/* Time pulse time and frequency data: UBX TIM-TOS (class 0x0D id 0x12), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_tos_poll;
+
+/* Time pulse time and frequency data: UBX TIM-TOS (class 0x0D id 0x12), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t gnss_id; /* GNSS of the GNSS time; a code of ubx_gnss_id (its JSON: the code's id) */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t flags; /* Flags (bitfield) */
+    bool leap_now; /* A leap second falls in the current minute (flags bit 0) */
+    bool leap_soon; /* A leap second is announced for the end of the day (flags bit 1) */
+    bool leap_positive; /* The leap second is inserted (else removed) (flags bit 2) */
+    bool time_in_limit; /* Time pulse within its tolerance (flags bit 3) */
+    bool int_osc_in_limit; /* Internal oscillator within its tolerance (flags bit 4) */
+    bool ext_osc_in_limit; /* External oscillator within its tolerance (flags bit 5) */
+    bool gnss_time_valid; /* GNSS time valid (flags bit 6) */
+    bool utc_time_valid; /* UTC time valid (flags bit 7) */
+    uint8_t disc_src; /* Disciplining source (flags bits 8-10) */
+    bool raim; /* RAIM active (flags bit 11) */
+    bool coh_pulse; /* Coherent pulse generation active (flags bit 12) */
+    bool locked_pulse; /* Time pulse locked (flags bit 13) */
+    uint16_t year; /* Year (UTC) */
+    uint8_t month; /* Month (UTC) */
+    uint8_t day; /* Day (UTC) */
+    uint8_t hour; /* Hour (UTC) */
+    uint8_t minute; /* Minute (UTC) */
+    uint8_t second; /* Second (UTC) */
+    uint8_t utc_standard; /* UTC standard */
+    int32_t utc_offset; /* Offset of the time pulse from UTC [ns] */
+    uint32_t utc_uncertainty; /* Uncertainty of the UTC offset [ns] */
+    uint32_t week; /* GNSS week number */
+    uint32_t tow; /* GNSS time of week [s] */
+    int32_t gnss_offset; /* Offset of the time pulse from GNSS time [ns] */
+    uint32_t gnss_uncertainty; /* Uncertainty of the GNSS offset [ns] */
+    int32_t int_osc_offset; /* Internal oscillator frequency offset [ppb]; raw, value = raw / 256 */
+    uint32_t int_osc_uncertainty; /* Internal oscillator frequency uncertainty [ppb]; raw, value = raw / 256 */
+    int32_t ext_osc_offset; /* External oscillator frequency offset [ppb]; raw, value = raw / 256 */
+    uint32_t ext_osc_uncertainty; /* External oscillator frequency uncertainty [ppb]; raw, value = raw / 256 */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_tos;
+
+/* Source measurement: UBX TIM-SMEAS (class 0x0D id 0x13), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_smeas_poll;
+
+/* One entry of measurements (meas). */
+typedef struct {
+    uint8_t source_id; /* Source */
+    uint8_t flags; /* Validity flags (bitfield) */
+    bool freq_valid; /* The frequency measurement is valid (flags bit 0) */
+    bool phase_valid; /* The phase measurement is valid (flags bit 1) */
+    int8_t phase_offset_frac; /* Sub-nanosecond phase offset [ns]; raw, value = raw / 256 */
+    uint8_t phase_unc_frac; /* Sub-nanosecond phase uncertainty [ns]; raw, value = raw / 256 */
+    int32_t phase_offset; /* Phase offset [ns] */
+    uint32_t phase_unc; /* Phase uncertainty [ns] */
+    uint32_t reserved3; /* Reserved (reserved, as sent) */
+    int32_t freq_offset; /* Frequency offset [ppb]; raw, value = raw / 256 */
+    uint32_t freq_unc; /* Frequency uncertainty [ppb]; raw, value = raw / 256 */
+} nmea_ubx_tim_smeas_mea;
+
+/* Source measurement: UBX TIM-SMEAS (class 0x0D id 0x13), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t num_meas; /* Number of measurements */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t itow; /* GPS time of week of the measurements [ms] */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    uint16_t meas_count; /* the entries of meas */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_tim_smeas_mea meas[NMEA_UBX_TIM_SMEAS_MEAS_MAX]; /* Measurements */
+} nmea_ubx_tim_smeas;
+
+/* VCO calibration: UBX TIM-VCOCAL (class 0x0D id 0x15), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_vcocal_poll;
+
+/* VCO calibration: UBX TIM-VCOCAL (class 0x0D id 0x15), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_vcocal_stop;
+
+/* VCO calibration: UBX TIM-VCOCAL (class 0x0D id 0x15), output. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t osc_id; /* Oscillator calibrated */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t gain_uncertainty; /* Relative uncertainty of the gain; raw, value = raw / 65536 */
+    int32_t gain_vco; /* Gain of the oscillator's control [ppb/raw]; raw, value = raw / 65536 */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_vcocal_result;
+
+/* VCO calibration: UBX TIM-VCOCAL (class 0x0D id 0x15), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t osc_id; /* Oscillator to calibrate */
+    uint8_t src_id; /* Reference source */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t raw0; /* First raw control value */
+    uint16_t raw1; /* Second raw control value */
+    uint16_t max_step_size; /* Largest step of the raw value per second */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_vcocal;
+
+/* Oscillator frequency changed: UBX TIM-FCHG (class 0x0D id 0x16), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_fchg_poll;
+
+/* Oscillator frequency changed: UBX TIM-FCHG (class 0x0D id 0x16), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    int32_t int_delta_freq; /* Frequency increment of the internal oscillator [ppb]; raw, value = raw / 256 */
+    uint32_t int_delta_freq_unc; /* Uncertainty of the internal oscillator's frequency increment [ppb]; raw, value = raw / 256 */
+    uint32_t int_raw; /* Current raw control value of the internal oscillator */
+    int32_t ext_delta_freq; /* Frequency increment of the external oscillator [ppb]; raw, value = raw / 256 */
+    uint32_t ext_delta_freq_unc; /* Uncertainty of the external oscillator's frequency increment [ppb]; raw, value = raw / 256 */
+    uint32_t ext_raw; /* Current raw control value of the external oscillator */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_fchg;
+
+/* Host oscillator control: UBX TIM-HOC (class 0x0D id 0x17), input. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t osc_id; /* Oscillator */
+    uint8_t flags; /* Flags (bitfield) */
+    bool raw; /* Value is a raw control value (else a frequency offset) (flags bit 0) */
+    bool difference; /* Value is a change of the current one (else absolute) (flags bit 1) */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    int32_t value; /* Frequency offset or raw control value [ppb]; raw, value = raw / 256 */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_tim_hoc;
 
 /* One entry of measurements (measurements). */
 typedef struct {
@@ -1859,6 +2630,216 @@ typedef struct {
     int32_t z_accel; /* Compensated Z acceleration [m/s²]; raw, value = raw / 100 */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_esf_ins;
+
+/* Erase the logged data: UBX LOG-ERASE (class 0x21 id 0x03), input. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_erase;
+
+/* Log a text: UBX LOG-STRING (class 0x21 id 0x04), input. */
+typedef struct {
+    nmea_ubx_bytes bytes; /* The text (the bytes left, ISO 8859-1) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_string;
+
+/* Create the log file: UBX LOG-CREATE (class 0x21 id 0x07), input. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t log_cfg; /* Log configuration flags (bitfield) */
+    bool circular; /* Circular log (the oldest entries are overwritten when full) (log_cfg bit 0) */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t log_size; /* Log size */
+    uint32_t user_defined_size; /* Log size when user defined [byte] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_create;
+
+/* Log information: UBX LOG-INFO (class 0x21 id 0x08), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_info_poll;
+
+/* Log information: UBX LOG-INFO (class 0x21 id 0x08), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    uint32_t filestore_capacity; /* Capacity of the file store [byte] */
+    uint64_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t current_max_log_size; /* Largest size the current log may reach [byte] */
+    uint32_t current_log_size; /* Size of the current log [byte] */
+    uint32_t entry_count; /* Number of entries in the log */
+    uint16_t oldest_year; /* Year of the oldest entry (0 none) */
+    uint8_t oldest_month; /* Month of the oldest entry */
+    uint8_t oldest_day; /* Day of the oldest entry */
+    uint8_t oldest_hour; /* Hour of the oldest entry */
+    uint8_t oldest_minute; /* Minute of the oldest entry */
+    uint8_t oldest_second; /* Second of the oldest entry */
+    uint8_t reserved2; /* Reserved (reserved, as sent) */
+    uint16_t newest_year; /* Year of the newest entry (0 none) */
+    uint8_t newest_month; /* Month of the newest entry */
+    uint8_t newest_day; /* Day of the newest entry */
+    uint8_t newest_hour; /* Hour of the newest entry */
+    uint8_t newest_minute; /* Minute of the newest entry */
+    uint8_t newest_second; /* Second of the newest entry */
+    uint8_t reserved3; /* Reserved (reserved, as sent) */
+    uint8_t status; /* Log status flags (bitfield) */
+    bool recording; /* Log entry recording is enabled (status bit 3) */
+    bool inactive; /* Logging is inactive (status bit 4) */
+    bool circular; /* The log is circular (status bit 5) */
+    uint32_t reserved4; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_info;
+
+/* Retrieve log entries: UBX LOG-RETRIEVE (class 0x21 id 0x09), input. */
+typedef struct {
+    uint32_t start_number; /* Index of the first entry to send */
+    uint32_t entry_count; /* Number of entries to send */
+    uint8_t version; /* Message version */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_retrieve;
+
+/* Position fix log entry: UBX LOG-RETRIEVEPOS (class 0x21 id 0x0B), output. */
+typedef struct {
+    uint32_t entry_index; /* Index of the entry in the log */
+    int32_t lon; /* Longitude [deg]; raw, value = raw / 10000000 */
+    int32_t lat; /* Latitude [deg]; raw, value = raw / 10000000 */
+    int32_t h_msl; /* Height above mean sea level [mm] */
+    uint32_t h_acc; /* Horizontal accuracy estimate [mm] */
+    uint32_t g_speed; /* Ground speed (2-D) [mm/s] */
+    uint32_t heading; /* Heading of motion [deg]; raw, value = raw / 100000 */
+    uint8_t version; /* Message version */
+    uint8_t fix_type; /* Fix type; a code of ubx_fix_type (its JSON: the code's id) */
+    uint16_t year; /* Year (UTC) */
+    uint8_t month; /* Month (UTC) */
+    uint8_t day; /* Day (UTC) */
+    uint8_t hour; /* Hour (UTC) */
+    uint8_t minute; /* Minute (UTC) */
+    uint8_t second; /* Second (UTC) */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t num_sv; /* Number of satellites used */
+    uint8_t reserved2; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_retrievepos;
+
+/* One entry of the text's bytes (bytes). */
+typedef struct {
+    uint8_t bytes; /* Byte */
+} nmea_ubx_log_retrievestring_byte;
+
+/* Text log entry: UBX LOG-RETRIEVESTRING (class 0x21 id 0x0D), output. */
+typedef struct {
+    uint32_t entry_index; /* Index of the entry in the log */
+    uint8_t version; /* Message version */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t year; /* Year (UTC) */
+    uint8_t month; /* Month (UTC) */
+    uint8_t day; /* Day (UTC) */
+    uint8_t hour; /* Hour (UTC) */
+    uint8_t minute; /* Minute (UTC) */
+    uint8_t second; /* Second (UTC) */
+    uint8_t reserved2; /* Reserved (reserved, as sent) */
+    uint16_t byte_count; /* Number of bytes of the text */
+    uint16_t bytes_count; /* the entries of bytes */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_log_retrievestring_byte bytes[NMEA_UBX_LOG_RETRIEVESTRING_BYTES_MAX]; /* The text's bytes */
+} nmea_ubx_log_retrievestring;
+
+/* Find the log entry of a time: UBX LOG-FINDTIME (class 0x21 id 0x0E), input. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t type; /* Message type */
+    uint16_t year; /* Year (UTC) */
+    uint8_t month; /* Month (UTC) */
+    uint8_t day; /* Day (UTC) */
+    uint8_t hour; /* Hour (UTC) */
+    uint8_t minute; /* Minute (UTC) */
+    uint8_t second; /* Second (UTC) */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_findtime;
+
+/* Find the log entry of a time: UBX LOG-FINDTIME (class 0x21 id 0x0E), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t type; /* Message type */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint32_t entry_number; /* Index of the first entry at or after the time */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_findtime_response;
+
+/* Odometer log entry: UBX LOG-RETRIEVEPOSEXTRA (class 0x21 id 0x0F), output. */
+typedef struct {
+    uint32_t entry_index; /* Index of the entry in the log */
+    uint8_t version; /* Message version */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t year; /* Year (UTC) */
+    uint8_t month; /* Month (UTC) */
+    uint8_t day; /* Day (UTC) */
+    uint8_t hour; /* Hour (UTC) */
+    uint8_t minute; /* Minute (UTC) */
+    uint8_t second; /* Second (UTC) */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    uint32_t distance; /* Odometer distance [m] */
+    uint8_t reserved3[12]; /* Reserved (as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_retrieveposextra;
+
+/* Retrieve batched data: UBX LOG-RETRIEVEBATCH (class 0x21 id 0x10), input. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t flags; /* Flags (bitfield) */
+    bool send_mon_first; /* Send a MON-BATCH before the batched data (flags bit 0) */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_retrievebatch;
+
+/* Batched navigation data: UBX LOG-BATCH (class 0x21 id 0x11), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t content_valid; /* Which optional contents are valid (bitfield) */
+    bool extra_pvt; /* The extra PVT fields are valid (content_valid bit 0) */
+    bool extra_odo; /* The odometer fields are valid (content_valid bit 1) */
+    uint16_t msg_cnt; /* Message counter */
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint16_t year; /* Year (UTC) */
+    uint8_t month; /* Month (UTC) */
+    uint8_t day; /* Day (UTC) */
+    uint8_t hour; /* Hour (UTC) */
+    uint8_t min; /* Minute (UTC) */
+    uint8_t sec; /* Second (UTC) */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool valid_date; /* Valid UTC date (valid bit 0) */
+    bool valid_time; /* Valid UTC time of day (valid bit 1) */
+    uint32_t t_acc; /* Time accuracy estimate (UTC) [ns] */
+    int32_t frac_sec; /* Fraction of second (UTC) [ns] */
+    uint8_t fix_type; /* GNSS fix type; a code of ubx_fix_type (its JSON: the code's id) */
+    uint8_t flags; /* Fix status flags (bitfield) */
+    bool gnss_fix_ok; /* Valid fix (flags bit 0) */
+    bool diff_soln; /* Differential corrections applied (flags bit 1) */
+    uint8_t psm_state; /* Power save mode state (flags bits 2-4) */
+    uint8_t flags2; /* Additional flags (bitfield) */
+    uint8_t num_sv; /* Number of satellites used */
+    int32_t lon; /* Longitude [deg]; raw, value = raw / 10000000 */
+    int32_t lat; /* Latitude [deg]; raw, value = raw / 10000000 */
+    int32_t height; /* Height above the ellipsoid [mm] */
+    int32_t h_msl; /* Height above mean sea level [mm] */
+    uint32_t h_acc; /* Horizontal accuracy estimate [mm] */
+    uint32_t v_acc; /* Vertical accuracy estimate [mm] */
+    int32_t vel_n; /* North velocity [mm/s] */
+    int32_t vel_e; /* East velocity [mm/s] */
+    int32_t vel_d; /* Down velocity [mm/s] */
+    int32_t g_speed; /* Ground speed (2-D) [mm/s] */
+    int32_t head_mot; /* Heading of motion (2-D) [deg]; raw, value = raw / 100000 */
+    uint32_t s_acc; /* Speed accuracy estimate [mm/s] */
+    uint32_t head_acc; /* Heading accuracy estimate [deg]; raw, value = raw / 100000 */
+    uint16_t p_dop; /* Position dilution of precision; raw, value = raw / 100 */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint32_t distance; /* Distance travelled since the last odometer reset [m] */
+    uint32_t total_distance; /* Distance travelled since the first odometer start [m] */
+    uint32_t distance_std; /* Standard deviation of the distance [m] */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_log_batch;
 
 /* Unique chip identifier: UBX SEC-UNIQID (class 0x27 id 0x03), poll. */
 typedef struct {
@@ -1985,6 +2966,8 @@ typedef enum {
     NMEA_UBX_MSG_NAV_VELECEF, /* NAV-VELECEF, output */
     NMEA_UBX_MSG_NAV_VELNED_POLL, /* NAV-VELNED, poll */
     NMEA_UBX_MSG_NAV_VELNED, /* NAV-VELNED, output */
+    NMEA_UBX_MSG_NAV_HPPOSECEF_POLL, /* NAV-HPPOSECEF, poll */
+    NMEA_UBX_MSG_NAV_HPPOSECEF, /* NAV-HPPOSECEF, output */
     NMEA_UBX_MSG_NAV_HPPOSLLH_POLL, /* NAV-HPPOSLLH, poll */
     NMEA_UBX_MSG_NAV_HPPOSLLH, /* NAV-HPPOSLLH, output */
     NMEA_UBX_MSG_NAV_TIMEGPS_POLL, /* NAV-TIMEGPS, poll */
@@ -2001,14 +2984,22 @@ typedef enum {
     NMEA_UBX_MSG_NAV_TIMEGAL, /* NAV-TIMEGAL, output */
     NMEA_UBX_MSG_NAV_TIMELS_POLL, /* NAV-TIMELS, poll */
     NMEA_UBX_MSG_NAV_TIMELS, /* NAV-TIMELS, output */
+    NMEA_UBX_MSG_NAV_TIMEQZSS_POLL, /* NAV-TIMEQZSS, poll */
+    NMEA_UBX_MSG_NAV_TIMEQZSS, /* NAV-TIMEQZSS, output */
     NMEA_UBX_MSG_NAV_SVINFO_POLL, /* NAV-SVINFO, poll */
     NMEA_UBX_MSG_NAV_SVINFO, /* NAV-SVINFO, output */
+    NMEA_UBX_MSG_NAV_DGPS_POLL, /* NAV-DGPS, poll */
+    NMEA_UBX_MSG_NAV_DGPS, /* NAV-DGPS, output */
     NMEA_UBX_MSG_NAV_SBAS_POLL, /* NAV-SBAS, poll */
     NMEA_UBX_MSG_NAV_SBAS, /* NAV-SBAS, output */
+    NMEA_UBX_MSG_NAV_ORB_POLL, /* NAV-ORB, poll */
+    NMEA_UBX_MSG_NAV_ORB, /* NAV-ORB, output */
     NMEA_UBX_MSG_NAV_SAT_POLL, /* NAV-SAT, poll */
     NMEA_UBX_MSG_NAV_SAT, /* NAV-SAT, output */
     NMEA_UBX_MSG_NAV_COV_POLL, /* NAV-COV, poll */
     NMEA_UBX_MSG_NAV_COV, /* NAV-COV, output */
+    NMEA_UBX_MSG_NAV_GEOFENCE_POLL, /* NAV-GEOFENCE, poll */
+    NMEA_UBX_MSG_NAV_GEOFENCE, /* NAV-GEOFENCE, output */
     NMEA_UBX_MSG_NAV_SVIN_POLL, /* NAV-SVIN, poll */
     NMEA_UBX_MSG_NAV_SVIN, /* NAV-SVIN, output */
     NMEA_UBX_MSG_NAV_RELPOSNED_POLL, /* NAV-RELPOSNED, poll */
@@ -2016,9 +3007,15 @@ typedef enum {
     NMEA_UBX_MSG_NAV_RELPOSNED_V0, /* NAV-RELPOSNED, output, version 0 */
     NMEA_UBX_MSG_NAV_EELL_POLL, /* NAV-EELL, poll */
     NMEA_UBX_MSG_NAV_EELL, /* NAV-EELL, output */
+    NMEA_UBX_MSG_NAV_SLAS_POLL, /* NAV-SLAS, poll */
+    NMEA_UBX_MSG_NAV_SLAS, /* NAV-SLAS, output */
     NMEA_UBX_MSG_NAV_SIG_POLL, /* NAV-SIG, poll */
     NMEA_UBX_MSG_NAV_SIG, /* NAV-SIG, output */
+    NMEA_UBX_MSG_NAV_AOPSTATUS_POLL, /* NAV-AOPSTATUS, poll */
+    NMEA_UBX_MSG_NAV_AOPSTATUS, /* NAV-AOPSTATUS, output */
     NMEA_UBX_MSG_NAV_EOE, /* NAV-EOE, output */
+    NMEA_UBX_MSG_NAV_PL_POLL, /* NAV-PL, poll */
+    NMEA_UBX_MSG_NAV_PL, /* NAV-PL, output */
     NMEA_UBX_MSG_RXM_SFRBX, /* RXM-SFRBX, output */
     NMEA_UBX_MSG_RXM_RAWX_POLL, /* RXM-RAWX, poll */
     NMEA_UBX_MSG_RXM_RAWX, /* RXM-RAWX, output */
@@ -2068,20 +3065,56 @@ typedef enum {
     NMEA_UBX_MSG_CFG_VALGET, /* CFG-VALGET, output, version 1 */
     NMEA_UBX_MSG_CFG_VALDEL_V0, /* CFG-VALDEL, input, version 0 */
     NMEA_UBX_MSG_CFG_VALDEL, /* CFG-VALDEL, input, version 1 */
+    NMEA_UBX_MSG_MON_IO_POLL, /* MON-IO, poll */
+    NMEA_UBX_MSG_MON_IO, /* MON-IO, output */
     NMEA_UBX_MSG_MON_VER_POLL, /* MON-VER, poll */
     NMEA_UBX_MSG_MON_VER, /* MON-VER, output */
+    NMEA_UBX_MSG_MON_MSGPP_POLL, /* MON-MSGPP, poll */
+    NMEA_UBX_MSG_MON_MSGPP, /* MON-MSGPP, output */
     NMEA_UBX_MSG_MON_RXBUF_POLL, /* MON-RXBUF, poll */
     NMEA_UBX_MSG_MON_RXBUF, /* MON-RXBUF, output */
     NMEA_UBX_MSG_MON_TXBUF_POLL, /* MON-TXBUF, poll */
     NMEA_UBX_MSG_MON_TXBUF, /* MON-TXBUF, output */
     NMEA_UBX_MSG_MON_HW_POLL, /* MON-HW, poll */
     NMEA_UBX_MSG_MON_HW, /* MON-HW, output */
+    NMEA_UBX_MSG_MON_HW2_POLL, /* MON-HW2, poll */
+    NMEA_UBX_MSG_MON_HW2, /* MON-HW2, output */
+    NMEA_UBX_MSG_MON_RXR, /* MON-RXR, output */
+    NMEA_UBX_MSG_MON_PATCH_POLL, /* MON-PATCH, poll */
+    NMEA_UBX_MSG_MON_PATCH, /* MON-PATCH, output */
+    NMEA_UBX_MSG_MON_GNSS_POLL, /* MON-GNSS, poll */
+    NMEA_UBX_MSG_MON_GNSS, /* MON-GNSS, output */
+    NMEA_UBX_MSG_MON_SMGR_POLL, /* MON-SMGR, poll */
+    NMEA_UBX_MSG_MON_SMGR, /* MON-SMGR, output */
+    NMEA_UBX_MSG_MON_COMMS_POLL, /* MON-COMMS, poll */
+    NMEA_UBX_MSG_MON_COMMS, /* MON-COMMS, output */
+    NMEA_UBX_MSG_MON_HW3_POLL, /* MON-HW3, poll */
+    NMEA_UBX_MSG_MON_HW3, /* MON-HW3, output */
     NMEA_UBX_MSG_MON_RF_POLL, /* MON-RF, poll */
     NMEA_UBX_MSG_MON_RF, /* MON-RF, output */
+    NMEA_UBX_MSG_MON_SYS_POLL, /* MON-SYS, poll */
+    NMEA_UBX_MSG_MON_SYS, /* MON-SYS, output */
     NMEA_UBX_MSG_TIM_TP_POLL, /* TIM-TP, poll */
     NMEA_UBX_MSG_TIM_TP, /* TIM-TP, output */
     NMEA_UBX_MSG_TIM_TM2_POLL, /* TIM-TM2, poll */
     NMEA_UBX_MSG_TIM_TM2, /* TIM-TM2, output */
+    NMEA_UBX_MSG_TIM_SVIN_POLL, /* TIM-SVIN, poll */
+    NMEA_UBX_MSG_TIM_SVIN, /* TIM-SVIN, output */
+    NMEA_UBX_MSG_TIM_VRFY_POLL, /* TIM-VRFY, poll */
+    NMEA_UBX_MSG_TIM_VRFY, /* TIM-VRFY, output */
+    NMEA_UBX_MSG_TIM_DOSC_POLL, /* TIM-DOSC, poll */
+    NMEA_UBX_MSG_TIM_DOSC, /* TIM-DOSC, output */
+    NMEA_UBX_MSG_TIM_TOS_POLL, /* TIM-TOS, poll */
+    NMEA_UBX_MSG_TIM_TOS, /* TIM-TOS, output */
+    NMEA_UBX_MSG_TIM_SMEAS_POLL, /* TIM-SMEAS, poll */
+    NMEA_UBX_MSG_TIM_SMEAS, /* TIM-SMEAS, input, output */
+    NMEA_UBX_MSG_TIM_VCOCAL_POLL, /* TIM-VCOCAL, poll */
+    NMEA_UBX_MSG_TIM_VCOCAL_STOP, /* TIM-VCOCAL, input */
+    NMEA_UBX_MSG_TIM_VCOCAL_RESULT, /* TIM-VCOCAL, output */
+    NMEA_UBX_MSG_TIM_VCOCAL, /* TIM-VCOCAL, input */
+    NMEA_UBX_MSG_TIM_FCHG_POLL, /* TIM-FCHG, poll */
+    NMEA_UBX_MSG_TIM_FCHG, /* TIM-FCHG, output */
+    NMEA_UBX_MSG_TIM_HOC, /* TIM-HOC, input */
     NMEA_UBX_MSG_ESF_MEAS, /* ESF-MEAS, input, output */
     NMEA_UBX_MSG_ESF_STATUS_POLL, /* ESF-STATUS, poll */
     NMEA_UBX_MSG_ESF_STATUS, /* ESF-STATUS, output */
@@ -2089,6 +3122,19 @@ typedef enum {
     NMEA_UBX_MSG_ESF_ALG, /* ESF-ALG, output */
     NMEA_UBX_MSG_ESF_INS_POLL, /* ESF-INS, poll */
     NMEA_UBX_MSG_ESF_INS, /* ESF-INS, output */
+    NMEA_UBX_MSG_LOG_ERASE, /* LOG-ERASE, input */
+    NMEA_UBX_MSG_LOG_STRING, /* LOG-STRING, input */
+    NMEA_UBX_MSG_LOG_CREATE, /* LOG-CREATE, input */
+    NMEA_UBX_MSG_LOG_INFO_POLL, /* LOG-INFO, poll */
+    NMEA_UBX_MSG_LOG_INFO, /* LOG-INFO, output */
+    NMEA_UBX_MSG_LOG_RETRIEVE, /* LOG-RETRIEVE, input */
+    NMEA_UBX_MSG_LOG_RETRIEVEPOS, /* LOG-RETRIEVEPOS, output */
+    NMEA_UBX_MSG_LOG_RETRIEVESTRING, /* LOG-RETRIEVESTRING, output */
+    NMEA_UBX_MSG_LOG_FINDTIME, /* LOG-FINDTIME, input */
+    NMEA_UBX_MSG_LOG_FINDTIME_RESPONSE, /* LOG-FINDTIME, output */
+    NMEA_UBX_MSG_LOG_RETRIEVEPOSEXTRA, /* LOG-RETRIEVEPOSEXTRA, output */
+    NMEA_UBX_MSG_LOG_RETRIEVEBATCH, /* LOG-RETRIEVEBATCH, input */
+    NMEA_UBX_MSG_LOG_BATCH, /* LOG-BATCH, output */
     NMEA_UBX_MSG_SEC_UNIQID_POLL, /* SEC-UNIQID, poll */
     NMEA_UBX_MSG_SEC_UNIQID, /* SEC-UNIQID, output */
     NMEA_UBX_MSG_HNR_PVT_POLL, /* HNR-PVT, poll */
@@ -2125,6 +3171,8 @@ typedef struct {
         nmea_ubx_nav_velecef nav_velecef;
         nmea_ubx_nav_velned_poll nav_velned_poll;
         nmea_ubx_nav_velned nav_velned;
+        nmea_ubx_nav_hpposecef_poll nav_hpposecef_poll;
+        nmea_ubx_nav_hpposecef nav_hpposecef;
         nmea_ubx_nav_hpposllh_poll nav_hpposllh_poll;
         nmea_ubx_nav_hpposllh nav_hpposllh;
         nmea_ubx_nav_timegps_poll nav_timegps_poll;
@@ -2141,14 +3189,22 @@ typedef struct {
         nmea_ubx_nav_timegal nav_timegal;
         nmea_ubx_nav_timels_poll nav_timels_poll;
         nmea_ubx_nav_timels nav_timels;
+        nmea_ubx_nav_timeqzss_poll nav_timeqzss_poll;
+        nmea_ubx_nav_timeqzss nav_timeqzss;
         nmea_ubx_nav_svinfo_poll nav_svinfo_poll;
         nmea_ubx_nav_svinfo nav_svinfo;
+        nmea_ubx_nav_dgps_poll nav_dgps_poll;
+        nmea_ubx_nav_dgps nav_dgps;
         nmea_ubx_nav_sbas_poll nav_sbas_poll;
         nmea_ubx_nav_sbas nav_sbas;
+        nmea_ubx_nav_orb_poll nav_orb_poll;
+        nmea_ubx_nav_orb nav_orb;
         nmea_ubx_nav_sat_poll nav_sat_poll;
         nmea_ubx_nav_sat nav_sat;
         nmea_ubx_nav_cov_poll nav_cov_poll;
         nmea_ubx_nav_cov nav_cov;
+        nmea_ubx_nav_geofence_poll nav_geofence_poll;
+        nmea_ubx_nav_geofence nav_geofence;
         nmea_ubx_nav_svin_poll nav_svin_poll;
         nmea_ubx_nav_svin nav_svin;
         nmea_ubx_nav_relposned_poll nav_relposned_poll;
@@ -2156,9 +3212,15 @@ typedef struct {
         nmea_ubx_nav_relposned_v0 nav_relposned_v0;
         nmea_ubx_nav_eell_poll nav_eell_poll;
         nmea_ubx_nav_eell nav_eell;
+        nmea_ubx_nav_slas_poll nav_slas_poll;
+        nmea_ubx_nav_slas nav_slas;
         nmea_ubx_nav_sig_poll nav_sig_poll;
         nmea_ubx_nav_sig nav_sig;
+        nmea_ubx_nav_aopstatus_poll nav_aopstatus_poll;
+        nmea_ubx_nav_aopstatus nav_aopstatus;
         nmea_ubx_nav_eoe nav_eoe;
+        nmea_ubx_nav_pl_poll nav_pl_poll;
+        nmea_ubx_nav_pl nav_pl;
         nmea_ubx_rxm_sfrbx rxm_sfrbx;
         nmea_ubx_rxm_rawx_poll rxm_rawx_poll;
         nmea_ubx_rxm_rawx rxm_rawx;
@@ -2208,20 +3270,56 @@ typedef struct {
         nmea_ubx_cfg_valget cfg_valget;
         nmea_ubx_cfg_valdel_v0 cfg_valdel_v0;
         nmea_ubx_cfg_valdel cfg_valdel;
+        nmea_ubx_mon_io_poll mon_io_poll;
+        nmea_ubx_mon_io mon_io;
         nmea_ubx_mon_ver_poll mon_ver_poll;
         nmea_ubx_mon_ver mon_ver;
+        nmea_ubx_mon_msgpp_poll mon_msgpp_poll;
+        nmea_ubx_mon_msgpp mon_msgpp;
         nmea_ubx_mon_rxbuf_poll mon_rxbuf_poll;
         nmea_ubx_mon_rxbuf mon_rxbuf;
         nmea_ubx_mon_txbuf_poll mon_txbuf_poll;
         nmea_ubx_mon_txbuf mon_txbuf;
         nmea_ubx_mon_hw_poll mon_hw_poll;
         nmea_ubx_mon_hw mon_hw;
+        nmea_ubx_mon_hw2_poll mon_hw2_poll;
+        nmea_ubx_mon_hw2 mon_hw2;
+        nmea_ubx_mon_rxr mon_rxr;
+        nmea_ubx_mon_patch_poll mon_patch_poll;
+        nmea_ubx_mon_patch mon_patch;
+        nmea_ubx_mon_gnss_poll mon_gnss_poll;
+        nmea_ubx_mon_gnss mon_gnss;
+        nmea_ubx_mon_smgr_poll mon_smgr_poll;
+        nmea_ubx_mon_smgr mon_smgr;
+        nmea_ubx_mon_comms_poll mon_comms_poll;
+        nmea_ubx_mon_comms mon_comms;
+        nmea_ubx_mon_hw3_poll mon_hw3_poll;
+        nmea_ubx_mon_hw3 mon_hw3;
         nmea_ubx_mon_rf_poll mon_rf_poll;
         nmea_ubx_mon_rf mon_rf;
+        nmea_ubx_mon_sys_poll mon_sys_poll;
+        nmea_ubx_mon_sys mon_sys;
         nmea_ubx_tim_tp_poll tim_tp_poll;
         nmea_ubx_tim_tp tim_tp;
         nmea_ubx_tim_tm2_poll tim_tm2_poll;
         nmea_ubx_tim_tm2 tim_tm2;
+        nmea_ubx_tim_svin_poll tim_svin_poll;
+        nmea_ubx_tim_svin tim_svin;
+        nmea_ubx_tim_vrfy_poll tim_vrfy_poll;
+        nmea_ubx_tim_vrfy tim_vrfy;
+        nmea_ubx_tim_dosc_poll tim_dosc_poll;
+        nmea_ubx_tim_dosc tim_dosc;
+        nmea_ubx_tim_tos_poll tim_tos_poll;
+        nmea_ubx_tim_tos tim_tos;
+        nmea_ubx_tim_smeas_poll tim_smeas_poll;
+        nmea_ubx_tim_smeas tim_smeas;
+        nmea_ubx_tim_vcocal_poll tim_vcocal_poll;
+        nmea_ubx_tim_vcocal_stop tim_vcocal_stop;
+        nmea_ubx_tim_vcocal_result tim_vcocal_result;
+        nmea_ubx_tim_vcocal tim_vcocal;
+        nmea_ubx_tim_fchg_poll tim_fchg_poll;
+        nmea_ubx_tim_fchg tim_fchg;
+        nmea_ubx_tim_hoc tim_hoc;
         nmea_ubx_esf_meas esf_meas;
         nmea_ubx_esf_status_poll esf_status_poll;
         nmea_ubx_esf_status esf_status;
@@ -2229,6 +3327,19 @@ typedef struct {
         nmea_ubx_esf_alg esf_alg;
         nmea_ubx_esf_ins_poll esf_ins_poll;
         nmea_ubx_esf_ins esf_ins;
+        nmea_ubx_log_erase log_erase;
+        nmea_ubx_log_string log_string;
+        nmea_ubx_log_create log_create;
+        nmea_ubx_log_info_poll log_info_poll;
+        nmea_ubx_log_info log_info;
+        nmea_ubx_log_retrieve log_retrieve;
+        nmea_ubx_log_retrievepos log_retrievepos;
+        nmea_ubx_log_retrievestring log_retrievestring;
+        nmea_ubx_log_findtime log_findtime;
+        nmea_ubx_log_findtime_response log_findtime_response;
+        nmea_ubx_log_retrieveposextra log_retrieveposextra;
+        nmea_ubx_log_retrievebatch log_retrievebatch;
+        nmea_ubx_log_batch log_batch;
         nmea_ubx_sec_uniqid_poll sec_uniqid_poll;
         nmea_ubx_sec_uniqid sec_uniqid;
         nmea_ubx_hnr_pvt_poll hnr_pvt_poll;

@@ -107,6 +107,8 @@ def same(ours: Any, theirs: Any) -> bool:
     if isinstance(theirs, bytes):   # characters or a bitfield word pyubx2 keeps as bytes
         return bool(ours.encode("latin-1") == theirs if isinstance(ours, str) else
                     ours == int.from_bytes(theirs, "little"))
+    if isinstance(theirs, list) and isinstance(ours, str):   # our bytes (hex), its list of byte values
+        return bytes.fromhex(ours) == bytes(theirs)
     if isinstance(ours, str) and isinstance(theirs, int):   # our bytes (hex), its little-endian integer
         return int.from_bytes(bytes.fromhex(ours), "little") == theirs
     if isinstance(theirs, float) or isinstance(ours, float):
@@ -127,6 +129,7 @@ class Agreement:
     only_theirs: set[str] = field(default_factory=set)
     differing: Counter[str] = field(default_factory=Counter)
     words: set[str] = field(default_factory=set)   # our bitfield words (keys)
+    whole: set[str] = field(default_factory=set)   # our parts of a word pyubx2 keeps whole (keys)
 
 
 def _compare(row: Agreement, message: ubx.Message, theirs: Any) -> None:
@@ -142,9 +145,12 @@ def _compare(row: Agreement, message: ubx.Message, theirs: Any) -> None:
         else:
             row.differing[name] += 1
     row.only_theirs |= {name for name in their_values if name not in ours}
-    row.words |= {_key(f.id) for f in message.FIELDS.values() if isinstance(f, ubx.Bitfield)}
+    words = [f for f in message.FIELDS.values() if isinstance(f, ubx.Bitfield)]
     for group in (item for item in message.LAYOUT if isinstance(item, ubx.Group)):
-        row.words |= {_key(f.id) for f in group.fields if isinstance(f, ubx.Bitfield)}
+        words += [f for f in group.fields if isinstance(f, ubx.Bitfield)]
+    row.words |= {_key(f.id) for f in words}
+    row.whole |= {_key(part.id) for f in words for _, part in f.parts
+                  if _key(f.id) in their_values or _key(f.id) + "_01" in their_values}
 
 
 def field_agreement() -> dict[str, Agreement]:
@@ -161,24 +167,52 @@ def field_agreement() -> dict[str, Agreement]:
     return out
 
 
+ENTRIES = 2   # the entries of each group of a made-up payload
+
+
+def made_up_payload(cls: type[ubx.Message], draw: random.Random) -> bytes:
+    """A payload of layout `cls` with bytes drawn from `draw`: its version set, each group given
+    ENTRIES entries (its count field or part set to say so), a text or byte field of the bytes
+    left given six letters."""
+    counts = {item.count for item in cls.LAYOUT if isinstance(item, ubx.Group) and isinstance(item.count, str)}
+    out = bytearray()
+    for item in cls.LAYOUT:
+        if isinstance(item, ubx.Group):
+            number = item.count if isinstance(item.count, int) else ENTRIES
+            out += bytes(draw.randrange(256) for _ in range(number * item.entry_width // 8))
+            continue
+        if item.width is None:
+            out += bytes(draw.choice(b"ABCDEFGHIJKLMNOPQRSTUVWXYZ") for _ in range(6))
+            continue
+        raw = draw.getrandbits(item.width)
+        if item.id == "version" and cls.VERSION is not None:
+            raw = cls.VERSION
+        if item.id in counts:
+            raw = ENTRIES
+        for low, part in getattr(item, "parts", ()):
+            if part.id in counts:
+                width = part.width or 1
+                raw = raw & ~(((1 << width) - 1) << low) | ENTRIES << low
+        out += raw.to_bytes(item.width // 8, "little")
+    return bytes(out)
+
+
 def made_up_agreement() -> dict[str, Agreement]:
-    """Per fixed layout with a payload that no log carries: how its fields agree with pyubx2's on
-    a made-up payload (bytes drawn from a generator seeded with the layout's id; its version set),
-    parsed by pyubx2 in the mode of the layout's direction."""
+    """Per layout with a payload that no log carries: how its fields agree with pyubx2's on a
+    made-up payload (made_up_payload, from a generator seeded with the layout's id), parsed by
+    pyubx2 in the mode of the layout's direction."""
     logged = {message.ID for _, _, frame in log_frames() for message in [ubx_messages.message(frame)]
               if isinstance(message, ubx.Message)}
     out: dict[str, Agreement] = {}
     for layouts in ubx_messages.BY_ID.values():
         for cls in layouts:
-            if cls.ID in logged or not cls.LENGTH:
+            if cls.ID in logged or not cls.LAYOUT:
                 continue
-            draw = random.Random(cls.ID)
-            payload = bytearray(draw.randrange(256) for _ in range(cls.LENGTH))
-            if cls.VERSION is not None:
-                payload[0] = cls.VERSION
-            frame = ubx.Frame(cls.CLASS, cls.MSG_ID, bytes(payload))
-            message = ubx_messages.message(frame)
-            assert isinstance(message, cls)
+            payload = made_up_payload(cls, random.Random(cls.ID))
+            frame = ubx.Frame(cls.CLASS, cls.MSG_ID, payload)
+            chosen = ubx_messages.message(frame)   # a layout told from it by its direction alone: the first
+            assert isinstance(chosen, cls) or not set(type(chosen).DIRECTIONS) & set(cls.DIRECTIONS), cls.ID
+            message = cls.from_payload(payload)
             mode = (pyubx2.GET if "output" in cls.DIRECTIONS else pyubx2.SET if "input" in cls.DIRECTIONS
                     else pyubx2.POLL)
             row = out.setdefault(cls.ID, Agreement())
@@ -208,6 +242,29 @@ REASONS = {
     "second": "u-blox names the second `sec`; pyubx2 `second`",
     "authtime": NEWER, "nmafixstatus": NEWER, "authstatus": NEWER, "tpnotlocked": NEWER,
     "clascorrused": NEWER, "lppcorrused": NEWER, "hascorrused": NEWER,
+    "msgsource": NEWER,
+    "sigcfgmask": "u-blox names the mask `sigCfgMask`; pyubx2 `sigCfMask`",
+    "sigcfmask": "u-blox names the mask `sigCfgMask`; pyubx2 `sigCfMask`",
+    **{name: "pyubx2 reads one protocol's block with a group of six port masks; ours a group of blocks (a protocol "
+             "and its six named port masks)"
+       for name in ("protocolid", "enableerror", "enablewarning", "enablenotice", "enabletest", "enabledebug")},
+    **{name: "pyubx2 decodes the configuration items by key (cfg_0x..., keys_NN); ours keep the key ids as a group "
+             "of u4 and the key-value pairs as cfg_data bytes (the configuration database decodes them)"
+       for name in ("key", "keys", "cfgdata")},
+    "action": "version 0 reserves the byte that version 1 gives the transaction; pyubx2 names it `action`",
+    "text": "an INF message's text: ours `text`, pyubx2 `message`",
+    "message": "an INF message's text: ours `text`, pyubx2 `message`",
+    "version": "the message version byte, which the M8 document reserves and pyubx2 counts in a reserved field",
+    **{name: "u-blox names the uncertainties `intDeltaFreqUnc`, `extDeltaFreqUnc`; pyubx2 ends them in `U`"
+       for name in ("intdeltafrequnc", "extdeltafrequnc", "intdeltafrequ", "extdeltafrequ")},
+    "bytes": "LOG-STRING's text: ours one text field, pyubx2 its bytes one by one (bytes_NN)",
+    **{name: "MON-COMMS's messages parsed per protocol: ours msgs0..msgs3 of each port, pyubx2 a nested group "
+             "(msgs_PP_NN)" for name in ("msgs0", "msgs1", "msgs2", "msgs3", "msgs01", "msgs02")},
+    "outputport": "bits of MON-COMMS txErrors that pyubx2 names and the F9 document at hand does not; kept in the word",
+    **{name: "pyubx2 reads one MON-IO port block; ours the blocks of every port (a group)"
+       for name in ("rxbytes", "txbytes", "parityerrs", "framingerrs", "overrunerrs", "breakcond", "rxbusy", "txbusy")},
+    **{name: "pyubx2 gives the raw integer (0.01 deg); ours is in degrees, its <id>_raw pyubx2's value"
+       for name in ("plposhorizorient", "plvelhorizorient")},
     "relposheadingvalid": "a bit version 1 names and version 0 reserves",
     "relposnormalized": "a bit version 1 names and version 0 reserves",
     "calibttag": "pyubx2 repeats the data entries over the whole payload: it reads our optional calib_ttag as one "
@@ -227,20 +284,25 @@ REASONS = {
        for name in ("fixedposacc", "svinacclimit", "meanxhp", "meanyhp", "meanzhp", "meanacc")},
     **{name: HIGH_PRECISION for name in ("lon", "lat", "height", "hmsl", "lonhp", "lathp", "heighthp", "hmslhp",
                                          "relposn", "relpose", "relposd", "relposlength", "relposhpn", "relposhpe",
-                                         "relposhpd", "relposhplength")},
+                                         "relposhpd", "relposhplength", "ecefx", "ecefy", "ecefz", "ecefxhp",
+                                         "ecefyhp", "ecefzhp")},
 }
 
 
-def _reason(name: str, words: set[str]) -> str:
+def _reason(name: str, words: set[str], whole: set[str] = frozenset()) -> str:
     base = re.sub(r"_\d\d$", "", name)
     if base in words:
         return "the bitfield word itself: pyubx2 gives only its parts (we keep the word for bits no part names)"
+    if base in whole:
+        return "a named part of a bitfield word pyubx2 keeps whole (the word's values agree)"
     if base in REASONS:
         return REASONS[base]
     if re.fullmatch(r"prn\d+", base):
         return "pyubx2 names each PRN bit of the SBAS scan masks; we keep the masks as words"
     if base in ("devbbr", "devflash", "deveeprom", "devspiflash"):
         return "pyubx2 reads CFG-CFG without its device mask (12 bytes) as if it had one"
+    if base.startswith("cfg0x"):
+        return REASONS["cfgdata"]
     if base.startswith("reserved"):
         return "reserved bytes, numbered as the document numbers them (from 1) and as pyubx2 does (from 0)"
     return "not described by the other side"
@@ -251,7 +313,7 @@ def differences(name: str, a: Agreement) -> list[str]:
     rows = []
     for side, names in (("ours", a.only_ours), ("pyubx2", a.only_theirs), ("differs", set(a.differing))):
         for base in sorted({re.sub(r"_\d\d$", "", n) for n in names}):
-            rows.append(f"| {name} | `{base}` | {side} | {_reason(base, a.words)} |")
+            rows.append(f"| {name} | `{base}` | {side} | {_reason(base, a.words, a.whole)} |")
     return rows
 
 

@@ -16,27 +16,46 @@
 //   spec/binary/ubx/messages/hnr_ins.yaml, spec/binary/ubx/messages/hnr_pvt.yaml,
 //   spec/binary/ubx/messages/inf_debug.yaml, spec/binary/ubx/messages/inf_error.yaml,
 //   spec/binary/ubx/messages/inf_notice.yaml, spec/binary/ubx/messages/inf_test.yaml,
-//   spec/binary/ubx/messages/inf_warning.yaml, spec/binary/ubx/messages/mon_hw.yaml,
+//   spec/binary/ubx/messages/inf_warning.yaml, spec/binary/ubx/messages/log_batch.yaml,
+//   spec/binary/ubx/messages/log_create.yaml, spec/binary/ubx/messages/log_erase.yaml,
+//   spec/binary/ubx/messages/log_findtime.yaml, spec/binary/ubx/messages/log_info.yaml,
+//   spec/binary/ubx/messages/log_retrieve.yaml, spec/binary/ubx/messages/log_retrievebatch.yaml,
+//   spec/binary/ubx/messages/log_retrievepos.yaml,
+//   spec/binary/ubx/messages/log_retrieveposextra.yaml,
+//   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_string.yaml,
+//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
+//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
+//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_io.yaml,
+//   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_patch.yaml,
 //   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
-//   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_ver.yaml,
+//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
+//   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav_aopstatus.yaml,
 //   spec/binary/ubx/messages/nav_att.yaml, spec/binary/ubx/messages/nav_clock.yaml,
-//   spec/binary/ubx/messages/nav_cov.yaml, spec/binary/ubx/messages/nav_dop.yaml,
-//   spec/binary/ubx/messages/nav_eell.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
-//   spec/binary/ubx/messages/nav_hpposllh.yaml, spec/binary/ubx/messages/nav_odo.yaml,
-//   spec/binary/ubx/messages/nav_posecef.yaml, spec/binary/ubx/messages/nav_posllh.yaml,
-//   spec/binary/ubx/messages/nav_pvt.yaml, spec/binary/ubx/messages/nav_relposned.yaml,
-//   spec/binary/ubx/messages/nav_resetodo.yaml, spec/binary/ubx/messages/nav_sat.yaml,
-//   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
+//   spec/binary/ubx/messages/nav_cov.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
+//   spec/binary/ubx/messages/nav_dop.yaml, spec/binary/ubx/messages/nav_eell.yaml,
+//   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/nav_geofence.yaml,
+//   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
+//   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_orb.yaml,
+//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/nav_posecef.yaml,
+//   spec/binary/ubx/messages/nav_posllh.yaml, spec/binary/ubx/messages/nav_pvt.yaml,
+//   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
+//   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_sbas.yaml,
+//   spec/binary/ubx/messages/nav_sig.yaml, spec/binary/ubx/messages/nav_slas.yaml,
 //   spec/binary/ubx/messages/nav_sol.yaml, spec/binary/ubx/messages/nav_status.yaml,
 //   spec/binary/ubx/messages/nav_svin.yaml, spec/binary/ubx/messages/nav_svinfo.yaml,
 //   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
 //   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
-//   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeutc.yaml,
-//   spec/binary/ubx/messages/nav_velecef.yaml, spec/binary/ubx/messages/nav_velned.yaml,
-//   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
-//   spec/binary/ubx/messages/rxm_sfrbx.yaml, spec/binary/ubx/messages/sec_uniqid.yaml,
-//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tp.yaml
-//   (digest ed6b28f78eef3f54)
+//   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
+//   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_velecef.yaml,
+//   spec/binary/ubx/messages/nav_velned.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
+//   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
+//   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
+//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
+//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_svin.yaml,
+//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tos.yaml,
+//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
+//   spec/binary/ubx/messages/tim_vrfy.yaml (digest 32cdd688c9561833)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The UBX messages of spec/binary/ubx: a struct per layout (named as the Python package's
@@ -5516,6 +5535,2066 @@ impl<'a> InfWarning<'a> {
     }
 }
 
+/// Batched navigation data: UBX LOG-BATCH (class 0x21 id 0x11), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogBatch<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Which optional contents are valid.
+    pub content_valid: u8,
+    /// Message counter.
+    pub msg_cnt: u16,
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// Year (UTC).
+    pub year: u16,
+    /// Month (UTC).
+    pub month: u8,
+    /// Day (UTC).
+    pub day: u8,
+    /// Hour (UTC).
+    pub hour: u8,
+    /// Minute (UTC).
+    pub min: u8,
+    /// Second (UTC).
+    pub sec: u8,
+    /// Validity flags.
+    pub valid: u8,
+    /// Time accuracy estimate (UTC) [ns].
+    pub t_acc: u32,
+    /// Fraction of second (UTC) [ns].
+    pub frac_sec: i32,
+    /// GNSS fix type.
+    pub fix_type_raw: u8,
+    /// Fix status flags.
+    pub flags: u8,
+    /// Additional flags.
+    pub flags2: u8,
+    /// Number of satellites used.
+    pub num_sv: u8,
+    /// Longitude [deg].
+    pub lon_raw: i32,
+    /// Latitude [deg].
+    pub lat_raw: i32,
+    /// Height above the ellipsoid [mm].
+    pub height: i32,
+    /// Height above mean sea level [mm].
+    pub h_msl: i32,
+    /// Horizontal accuracy estimate [mm].
+    pub h_acc: u32,
+    /// Vertical accuracy estimate [mm].
+    pub v_acc: u32,
+    /// North velocity [mm/s].
+    pub vel_n: i32,
+    /// East velocity [mm/s].
+    pub vel_e: i32,
+    /// Down velocity [mm/s].
+    pub vel_d: i32,
+    /// Ground speed (2-D) [mm/s].
+    pub g_speed: i32,
+    /// Heading of motion (2-D) [deg].
+    pub head_mot_raw: i32,
+    /// Speed accuracy estimate [mm/s].
+    pub s_acc: u32,
+    /// Heading accuracy estimate [deg].
+    pub head_acc_raw: u32,
+    /// Position dilution of precision.
+    pub p_dop_raw: u16,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Distance travelled since the last odometer reset [m].
+    pub distance: u32,
+    /// Distance travelled since the first odometer start [m].
+    pub total_distance: u32,
+    /// Standard deviation of the distance [m].
+    pub distance_std: u32,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogBatch<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_batch";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-BATCH";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x11;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(100);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The extra PVT fields are valid (bit 0 of `content_valid`).
+    pub fn extra_pvt(&self) -> bool {
+        (self.content_valid & 0x1) != 0
+    }
+    /// Sets the extra pvt fields are valid (the value in its bits of `content_valid`; the other bits stay).
+    pub fn set_extra_pvt(&mut self, value: bool) {
+        self.content_valid = (self.content_valid & !0x1) | u8::from(value);
+    }
+    /// The odometer fields are valid (bit 1 of `content_valid`).
+    pub fn extra_odo(&self) -> bool {
+        ((self.content_valid >> 1) & 0x1) != 0
+    }
+    /// Sets the odometer fields are valid (the value in its bits of `content_valid`; the other bits stay).
+    pub fn set_extra_odo(&mut self, value: bool) {
+        self.content_valid = (self.content_valid & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Valid UTC date (bit 0 of `valid`).
+    pub fn valid_date(&self) -> bool {
+        (self.valid & 0x1) != 0
+    }
+    /// Sets valid utc date (the value in its bits of `valid`; the other bits stay).
+    pub fn set_valid_date(&mut self, value: bool) {
+        self.valid = (self.valid & !0x1) | u8::from(value);
+    }
+    /// Valid UTC time of day (bit 1 of `valid`).
+    pub fn valid_time(&self) -> bool {
+        ((self.valid >> 1) & 0x1) != 0
+    }
+    /// Sets valid utc time of day (the value in its bits of `valid`; the other bits stay).
+    pub fn set_valid_time(&mut self, value: bool) {
+        self.valid = (self.valid & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// GNSS fix type: the enum's value of the raw code, None for a code it does not name.
+    pub fn fix_type(&self) -> Option<UbxFixType> {
+        ais::code(u64::from(self.fix_type_raw))
+    }
+    /// Valid fix (bit 0 of `flags`).
+    pub fn gnss_fix_ok(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets valid fix (the value in its bits of `flags`; the other bits stay).
+    pub fn set_gnss_fix_ok(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// Differential corrections applied (bit 1 of `flags`).
+    pub fn diff_soln(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets differential corrections applied (the value in its bits of `flags`; the other bits stay).
+    pub fn set_diff_soln(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Power save mode state (bits 2-4 of `flags`).
+    pub fn psm_state(&self) -> u8 {
+        (self.flags >> 2) & 0x7
+    }
+    /// Sets power save mode state (the value in its bits of `flags`; the other bits stay).
+    pub fn set_psm_state(&mut self, value: u8) {
+        self.flags = (self.flags & !(0x7 << 2)) | ((value & 0x7) << 2);
+    }
+    /// Longitude [deg]: the raw integer divided by 10000000.
+    pub fn lon(&self) -> f64 {
+        let raw = self.lon_raw;
+        raw as f64 / 10000000.0
+    }
+    /// Latitude [deg]: the raw integer divided by 10000000.
+    pub fn lat(&self) -> f64 {
+        let raw = self.lat_raw;
+        raw as f64 / 10000000.0
+    }
+    /// Heading of motion (2-D) [deg]: the raw integer divided by 100000.
+    pub fn head_mot(&self) -> f64 {
+        let raw = self.head_mot_raw;
+        raw as f64 / 100000.0
+    }
+    /// Heading accuracy estimate [deg]: the raw integer divided by 100000.
+    pub fn head_acc(&self) -> f64 {
+        let raw = self.head_acc_raw;
+        raw as f64 / 100000.0
+    }
+    /// Position dilution of precision: the raw integer divided by 100.
+    pub fn p_dop(&self) -> f64 {
+        let raw = self.p_dop_raw;
+        raw as f64 / 100.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let content_valid = u8::from_le_bytes(r.array("content_valid")?);
+        let msg_cnt = u16::from_le_bytes(r.array("msg_cnt")?);
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let year = u16::from_le_bytes(r.array("year")?);
+        let month = u8::from_le_bytes(r.array("month")?);
+        let day = u8::from_le_bytes(r.array("day")?);
+        let hour = u8::from_le_bytes(r.array("hour")?);
+        let min = u8::from_le_bytes(r.array("min")?);
+        let sec = u8::from_le_bytes(r.array("sec")?);
+        let valid = u8::from_le_bytes(r.array("valid")?);
+        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let frac_sec = i32::from_le_bytes(r.array("frac_sec")?);
+        let fix_type_raw = u8::from_le_bytes(r.array("fix_type")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let flags2 = u8::from_le_bytes(r.array("flags2")?);
+        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
+        let lon_raw = i32::from_le_bytes(r.array("lon")?);
+        let lat_raw = i32::from_le_bytes(r.array("lat")?);
+        let height = i32::from_le_bytes(r.array("height")?);
+        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
+        let h_acc = u32::from_le_bytes(r.array("h_acc")?);
+        let v_acc = u32::from_le_bytes(r.array("v_acc")?);
+        let vel_n = i32::from_le_bytes(r.array("vel_n")?);
+        let vel_e = i32::from_le_bytes(r.array("vel_e")?);
+        let vel_d = i32::from_le_bytes(r.array("vel_d")?);
+        let g_speed = i32::from_le_bytes(r.array("g_speed")?);
+        let head_mot_raw = i32::from_le_bytes(r.array("head_mot")?);
+        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
+        let head_acc_raw = u32::from_le_bytes(r.array("head_acc")?);
+        let p_dop_raw = u16::from_le_bytes(r.array("p_dop")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let distance = u32::from_le_bytes(r.array("distance")?);
+        let total_distance = u32::from_le_bytes(r.array("total_distance")?);
+        let distance_std = u32::from_le_bytes(r.array("distance_std")?);
+        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            content_valid,
+            msg_cnt,
+            itow,
+            year,
+            month,
+            day,
+            hour,
+            min,
+            sec,
+            valid,
+            t_acc,
+            frac_sec,
+            fix_type_raw,
+            flags,
+            flags2,
+            num_sv,
+            lon_raw,
+            lat_raw,
+            height,
+            h_msl,
+            h_acc,
+            v_acc,
+            vel_n,
+            vel_e,
+            vel_d,
+            g_speed,
+            head_mot_raw,
+            s_acc,
+            head_acc_raw,
+            p_dop_raw,
+            reserved0,
+            distance,
+            total_distance,
+            distance_std,
+            reserved1,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.content_valid.to_le_bytes());
+        w.put(&self.msg_cnt.to_le_bytes());
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.year.to_le_bytes());
+        w.put(&self.month.to_le_bytes());
+        w.put(&self.day.to_le_bytes());
+        w.put(&self.hour.to_le_bytes());
+        w.put(&self.min.to_le_bytes());
+        w.put(&self.sec.to_le_bytes());
+        w.put(&self.valid.to_le_bytes());
+        w.put(&self.t_acc.to_le_bytes());
+        w.put(&self.frac_sec.to_le_bytes());
+        w.put(&self.fix_type_raw.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.flags2.to_le_bytes());
+        w.put(&self.num_sv.to_le_bytes());
+        w.put(&self.lon_raw.to_le_bytes());
+        w.put(&self.lat_raw.to_le_bytes());
+        w.put(&self.height.to_le_bytes());
+        w.put(&self.h_msl.to_le_bytes());
+        w.put(&self.h_acc.to_le_bytes());
+        w.put(&self.v_acc.to_le_bytes());
+        w.put(&self.vel_n.to_le_bytes());
+        w.put(&self.vel_e.to_le_bytes());
+        w.put(&self.vel_d.to_le_bytes());
+        w.put(&self.g_speed.to_le_bytes());
+        w.put(&self.head_mot_raw.to_le_bytes());
+        w.put(&self.s_acc.to_le_bytes());
+        w.put(&self.head_acc_raw.to_le_bytes());
+        w.put(&self.p_dop_raw.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.distance.to_le_bytes());
+        w.put(&self.total_distance.to_le_bytes());
+        w.put(&self.distance_std.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("content_valid", self.content_valid)?;
+        j.flag("extra_pvt", (self.content_valid & 0x1) != 0)?;
+        j.flag("extra_odo", ((self.content_valid >> 1) & 0x1) != 0)?;
+        j.int("msg_cnt", self.msg_cnt)?;
+        j.int("itow", self.itow)?;
+        j.int("year", self.year)?;
+        j.int("month", self.month)?;
+        j.int("day", self.day)?;
+        j.int("hour", self.hour)?;
+        j.int("min", self.min)?;
+        j.int("sec", self.sec)?;
+        j.int("valid", self.valid)?;
+        j.flag("valid_date", (self.valid & 0x1) != 0)?;
+        j.flag("valid_time", ((self.valid >> 1) & 0x1) != 0)?;
+        j.int("t_acc", self.t_acc)?;
+        j.int("frac_sec", self.frac_sec)?;
+        j.code(
+            "fix_type",
+            ais::code::<UbxFixType>(u64::from(self.fix_type_raw)).map(CodeEnum::id),
+            u64::from(self.fix_type_raw),
+        )?;
+        j.int("flags", self.flags)?;
+        j.flag("gnss_fix_ok", (self.flags & 0x1) != 0)?;
+        j.flag("diff_soln", ((self.flags >> 1) & 0x1) != 0)?;
+        j.int("psm_state", (self.flags >> 2) & 0x7)?;
+        j.int("flags2", self.flags2)?;
+        j.int("num_sv", self.num_sv)?;
+        ubx::json_float(j, "lon", self.lon_raw as f64 / 10000000.0)?;
+        j.int("lon_raw", self.lon_raw)?;
+        ubx::json_float(j, "lat", self.lat_raw as f64 / 10000000.0)?;
+        j.int("lat_raw", self.lat_raw)?;
+        j.int("height", self.height)?;
+        j.int("h_msl", self.h_msl)?;
+        j.int("h_acc", self.h_acc)?;
+        j.int("v_acc", self.v_acc)?;
+        j.int("vel_n", self.vel_n)?;
+        j.int("vel_e", self.vel_e)?;
+        j.int("vel_d", self.vel_d)?;
+        j.int("g_speed", self.g_speed)?;
+        ubx::json_float(j, "head_mot", self.head_mot_raw as f64 / 100000.0)?;
+        j.int("head_mot_raw", self.head_mot_raw)?;
+        j.int("s_acc", self.s_acc)?;
+        ubx::json_float(j, "head_acc", self.head_acc_raw as f64 / 100000.0)?;
+        j.int("head_acc_raw", self.head_acc_raw)?;
+        ubx::json_float(j, "p_dop", self.p_dop_raw as f64 / 100.0)?;
+        j.int("p_dop_raw", self.p_dop_raw)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("distance", self.distance)?;
+        j.int("total_distance", self.total_distance)?;
+        j.int("distance_std", self.distance_std)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Create the log file: UBX LOG-CREATE (class 0x21 id 0x07), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogCreate<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Log configuration flags.
+    pub log_cfg: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Log size.
+    pub log_size: u8,
+    /// Log size when user defined [byte].
+    pub user_defined_size: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogCreate<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_create";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-CREATE";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x07;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// Circular log (the oldest entries are overwritten when full) (bit 0 of `log_cfg`).
+    pub fn circular(&self) -> bool {
+        (self.log_cfg & 0x1) != 0
+    }
+    /// Sets circular log (the oldest entries are overwritten when full) (the value in its bits of `log_cfg`; the other bits stay).
+    pub fn set_circular(&mut self, value: bool) {
+        self.log_cfg = (self.log_cfg & !0x1) | u8::from(value);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let log_cfg = u8::from_le_bytes(r.array("log_cfg")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let log_size = u8::from_le_bytes(r.array("log_size")?);
+        let user_defined_size = u32::from_le_bytes(r.array("user_defined_size")?);
+        let trailing = r.rest();
+        Ok(Self { version, log_cfg, reserved0, log_size, user_defined_size, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.log_cfg.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.log_size.to_le_bytes());
+        w.put(&self.user_defined_size.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("log_cfg", self.log_cfg)?;
+        j.flag("circular", (self.log_cfg & 0x1) != 0)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("log_size", self.log_size)?;
+        j.int("user_defined_size", self.user_defined_size)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Erase the logged data: UBX LOG-ERASE (class 0x21 id 0x03), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogErase<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogErase<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_erase";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-ERASE";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x03;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Find the log entry of a time: UBX LOG-FINDTIME (class 0x21 id 0x0E), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogFindtime<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Message type.
+    pub r#type: u8,
+    /// Year (UTC).
+    pub year: u16,
+    /// Month (UTC).
+    pub month: u8,
+    /// Day (UTC).
+    pub day: u8,
+    /// Hour (UTC).
+    pub hour: u8,
+    /// Minute (UTC).
+    pub minute: u8,
+    /// Second (UTC).
+    pub second: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogFindtime<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_findtime";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-FINDTIME";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x0e;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(10);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["log_findtime_response"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let year = u16::from_le_bytes(r.array("year")?);
+        let month = u8::from_le_bytes(r.array("month")?);
+        let day = u8::from_le_bytes(r.array("day")?);
+        let hour = u8::from_le_bytes(r.array("hour")?);
+        let minute = u8::from_le_bytes(r.array("minute")?);
+        let second = u8::from_le_bytes(r.array("second")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self { version, r#type, year, month, day, hour, minute, second, reserved1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.year.to_le_bytes());
+        w.put(&self.month.to_le_bytes());
+        w.put(&self.day.to_le_bytes());
+        w.put(&self.hour.to_le_bytes());
+        w.put(&self.minute.to_le_bytes());
+        w.put(&self.second.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("type", self.r#type)?;
+        j.int("year", self.year)?;
+        j.int("month", self.month)?;
+        j.int("day", self.day)?;
+        j.int("hour", self.hour)?;
+        j.int("minute", self.minute)?;
+        j.int("second", self.second)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Find the log entry of a time: UBX LOG-FINDTIME (class 0x21 id 0x0E), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogFindtimeResponse<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Message type.
+    pub r#type: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Index of the first entry at or after the time.
+    pub entry_number: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogFindtimeResponse<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_findtime_response";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-FINDTIME";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x0e;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let entry_number = u32::from_le_bytes(r.array("entry_number")?);
+        let trailing = r.rest();
+        Ok(Self { version, r#type, reserved0, entry_number, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.entry_number.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("type", self.r#type)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("entry_number", self.entry_number)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Log information: UBX LOG-INFO (class 0x21 id 0x08), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogInfoPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogInfoPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_info_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-INFO";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x08;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["log_info"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Log information: UBX LOG-INFO (class 0x21 id 0x08), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogInfo<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Capacity of the file store [byte].
+    pub filestore_capacity: u32,
+    /// Reserved.
+    pub reserved1: u64,
+    /// Largest size the current log may reach [byte].
+    pub current_max_log_size: u32,
+    /// Size of the current log [byte].
+    pub current_log_size: u32,
+    /// Number of entries in the log.
+    pub entry_count: u32,
+    /// Year of the oldest entry (0 none).
+    pub oldest_year: u16,
+    /// Month of the oldest entry.
+    pub oldest_month: u8,
+    /// Day of the oldest entry.
+    pub oldest_day: u8,
+    /// Hour of the oldest entry.
+    pub oldest_hour: u8,
+    /// Minute of the oldest entry.
+    pub oldest_minute: u8,
+    /// Second of the oldest entry.
+    pub oldest_second: u8,
+    /// Reserved.
+    pub reserved2: u8,
+    /// Year of the newest entry (0 none).
+    pub newest_year: u16,
+    /// Month of the newest entry.
+    pub newest_month: u8,
+    /// Day of the newest entry.
+    pub newest_day: u8,
+    /// Hour of the newest entry.
+    pub newest_hour: u8,
+    /// Minute of the newest entry.
+    pub newest_minute: u8,
+    /// Second of the newest entry.
+    pub newest_second: u8,
+    /// Reserved.
+    pub reserved3: u8,
+    /// Log status flags.
+    pub status: u8,
+    /// Reserved.
+    pub reserved4: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogInfo<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_info";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-INFO";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x08;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(48);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Log entry recording is enabled (bit 3 of `status`).
+    pub fn recording(&self) -> bool {
+        ((self.status >> 3) & 0x1) != 0
+    }
+    /// Sets log entry recording is enabled (the value in its bits of `status`; the other bits stay).
+    pub fn set_recording(&mut self, value: bool) {
+        self.status = (self.status & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Logging is inactive (bit 4 of `status`).
+    pub fn inactive(&self) -> bool {
+        ((self.status >> 4) & 0x1) != 0
+    }
+    /// Sets logging is inactive (the value in its bits of `status`; the other bits stay).
+    pub fn set_inactive(&mut self, value: bool) {
+        self.status = (self.status & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// The log is circular (bit 5 of `status`).
+    pub fn circular(&self) -> bool {
+        ((self.status >> 5) & 0x1) != 0
+    }
+    /// Sets the log is circular (the value in its bits of `status`; the other bits stay).
+    pub fn set_circular(&mut self, value: bool) {
+        self.status = (self.status & !(0x1 << 5)) | (u8::from(value) << 5);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let filestore_capacity = u32::from_le_bytes(r.array("filestore_capacity")?);
+        let reserved1 = u64::from_le_bytes(r.array("reserved1")?);
+        let current_max_log_size = u32::from_le_bytes(r.array("current_max_log_size")?);
+        let current_log_size = u32::from_le_bytes(r.array("current_log_size")?);
+        let entry_count = u32::from_le_bytes(r.array("entry_count")?);
+        let oldest_year = u16::from_le_bytes(r.array("oldest_year")?);
+        let oldest_month = u8::from_le_bytes(r.array("oldest_month")?);
+        let oldest_day = u8::from_le_bytes(r.array("oldest_day")?);
+        let oldest_hour = u8::from_le_bytes(r.array("oldest_hour")?);
+        let oldest_minute = u8::from_le_bytes(r.array("oldest_minute")?);
+        let oldest_second = u8::from_le_bytes(r.array("oldest_second")?);
+        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
+        let newest_year = u16::from_le_bytes(r.array("newest_year")?);
+        let newest_month = u8::from_le_bytes(r.array("newest_month")?);
+        let newest_day = u8::from_le_bytes(r.array("newest_day")?);
+        let newest_hour = u8::from_le_bytes(r.array("newest_hour")?);
+        let newest_minute = u8::from_le_bytes(r.array("newest_minute")?);
+        let newest_second = u8::from_le_bytes(r.array("newest_second")?);
+        let reserved3 = u8::from_le_bytes(r.array("reserved3")?);
+        let status = u8::from_le_bytes(r.array("status")?);
+        let reserved4 = {
+            let b: [u8; 3] = r.array("reserved4")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            reserved0,
+            filestore_capacity,
+            reserved1,
+            current_max_log_size,
+            current_log_size,
+            entry_count,
+            oldest_year,
+            oldest_month,
+            oldest_day,
+            oldest_hour,
+            oldest_minute,
+            oldest_second,
+            reserved2,
+            newest_year,
+            newest_month,
+            newest_day,
+            newest_hour,
+            newest_minute,
+            newest_second,
+            reserved3,
+            status,
+            reserved4,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(&self.filestore_capacity.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.current_max_log_size.to_le_bytes());
+        w.put(&self.current_log_size.to_le_bytes());
+        w.put(&self.entry_count.to_le_bytes());
+        w.put(&self.oldest_year.to_le_bytes());
+        w.put(&self.oldest_month.to_le_bytes());
+        w.put(&self.oldest_day.to_le_bytes());
+        w.put(&self.oldest_hour.to_le_bytes());
+        w.put(&self.oldest_minute.to_le_bytes());
+        w.put(&self.oldest_second.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.newest_year.to_le_bytes());
+        w.put(&self.newest_month.to_le_bytes());
+        w.put(&self.newest_day.to_le_bytes());
+        w.put(&self.newest_hour.to_le_bytes());
+        w.put(&self.newest_minute.to_le_bytes());
+        w.put(&self.newest_second.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes());
+        w.put(&self.status.to_le_bytes());
+        w.put(&self.reserved4.to_le_bytes()[..3]);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("filestore_capacity", self.filestore_capacity)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("current_max_log_size", self.current_max_log_size)?;
+        j.int("current_log_size", self.current_log_size)?;
+        j.int("entry_count", self.entry_count)?;
+        j.int("oldest_year", self.oldest_year)?;
+        j.int("oldest_month", self.oldest_month)?;
+        j.int("oldest_day", self.oldest_day)?;
+        j.int("oldest_hour", self.oldest_hour)?;
+        j.int("oldest_minute", self.oldest_minute)?;
+        j.int("oldest_second", self.oldest_second)?;
+        j.int("reserved2", self.reserved2)?;
+        j.int("newest_year", self.newest_year)?;
+        j.int("newest_month", self.newest_month)?;
+        j.int("newest_day", self.newest_day)?;
+        j.int("newest_hour", self.newest_hour)?;
+        j.int("newest_minute", self.newest_minute)?;
+        j.int("newest_second", self.newest_second)?;
+        j.int("reserved3", self.reserved3)?;
+        j.int("status", self.status)?;
+        j.flag("recording", ((self.status >> 3) & 0x1) != 0)?;
+        j.flag("inactive", ((self.status >> 4) & 0x1) != 0)?;
+        j.flag("circular", ((self.status >> 5) & 0x1) != 0)?;
+        j.int("reserved4", self.reserved4)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Retrieve log entries: UBX LOG-RETRIEVE (class 0x21 id 0x09), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogRetrieve<'a> {
+    /// Index of the first entry to send.
+    pub start_number: u32,
+    /// Number of entries to send.
+    pub entry_count: u32,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogRetrieve<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_retrieve";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-RETRIEVE";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x09;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["log_retrievepos", "log_retrievestring"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let start_number = u32::from_le_bytes(r.array("start_number")?);
+        let entry_count = u32::from_le_bytes(r.array("entry_count")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let trailing = r.rest();
+        Ok(Self { start_number, entry_count, version, reserved0, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.start_number.to_le_bytes());
+        w.put(&self.entry_count.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("start_number", self.start_number)?;
+        j.int("entry_count", self.entry_count)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Retrieve batched data: UBX LOG-RETRIEVEBATCH (class 0x21 id 0x10), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogRetrievebatch<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Flags.
+    pub flags: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogRetrievebatch<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_retrievebatch";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-RETRIEVEBATCH";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x10;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(4);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["log_batch"];
+    /// Send a MON-BATCH before the batched data (bit 0 of `flags`).
+    pub fn send_mon_first(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets send a mon-batch before the batched data (the value in its bits of `flags`; the other bits stay).
+    pub fn set_send_mon_first(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let trailing = r.rest();
+        Ok(Self { version, flags, reserved0, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("flags", self.flags)?;
+        j.flag("send_mon_first", (self.flags & 0x1) != 0)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Position fix log entry: UBX LOG-RETRIEVEPOS (class 0x21 id 0x0B), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogRetrievepos<'a> {
+    /// Index of the entry in the log.
+    pub entry_index: u32,
+    /// Longitude [deg].
+    pub lon_raw: i32,
+    /// Latitude [deg].
+    pub lat_raw: i32,
+    /// Height above mean sea level [mm].
+    pub h_msl: i32,
+    /// Horizontal accuracy estimate [mm].
+    pub h_acc: u32,
+    /// Ground speed (2-D) [mm/s].
+    pub g_speed: u32,
+    /// Heading of motion [deg].
+    pub heading_raw: u32,
+    /// Message version.
+    pub version: u8,
+    /// Fix type.
+    pub fix_type_raw: u8,
+    /// Year (UTC).
+    pub year: u16,
+    /// Month (UTC).
+    pub month: u8,
+    /// Day (UTC).
+    pub day: u8,
+    /// Hour (UTC).
+    pub hour: u8,
+    /// Minute (UTC).
+    pub minute: u8,
+    /// Second (UTC).
+    pub second: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Number of satellites used.
+    pub num_sv: u8,
+    /// Reserved.
+    pub reserved2: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogRetrievepos<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_retrievepos";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-RETRIEVEPOS";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x0b;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(40);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Longitude [deg]: the raw integer divided by 10000000.
+    pub fn lon(&self) -> f64 {
+        let raw = self.lon_raw;
+        raw as f64 / 10000000.0
+    }
+    /// Latitude [deg]: the raw integer divided by 10000000.
+    pub fn lat(&self) -> f64 {
+        let raw = self.lat_raw;
+        raw as f64 / 10000000.0
+    }
+    /// Heading of motion [deg]: the raw integer divided by 100000.
+    pub fn heading(&self) -> f64 {
+        let raw = self.heading_raw;
+        raw as f64 / 100000.0
+    }
+    /// Fix type: the enum's value of the raw code, None for a code it does not name.
+    pub fn fix_type(&self) -> Option<UbxFixType> {
+        ais::code(u64::from(self.fix_type_raw))
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let entry_index = u32::from_le_bytes(r.array("entry_index")?);
+        let lon_raw = i32::from_le_bytes(r.array("lon")?);
+        let lat_raw = i32::from_le_bytes(r.array("lat")?);
+        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
+        let h_acc = u32::from_le_bytes(r.array("h_acc")?);
+        let g_speed = u32::from_le_bytes(r.array("g_speed")?);
+        let heading_raw = u32::from_le_bytes(r.array("heading")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let fix_type_raw = u8::from_le_bytes(r.array("fix_type")?);
+        let year = u16::from_le_bytes(r.array("year")?);
+        let month = u8::from_le_bytes(r.array("month")?);
+        let day = u8::from_le_bytes(r.array("day")?);
+        let hour = u8::from_le_bytes(r.array("hour")?);
+        let minute = u8::from_le_bytes(r.array("minute")?);
+        let second = u8::from_le_bytes(r.array("second")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
+        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
+        let trailing = r.rest();
+        Ok(Self {
+            entry_index,
+            lon_raw,
+            lat_raw,
+            h_msl,
+            h_acc,
+            g_speed,
+            heading_raw,
+            version,
+            fix_type_raw,
+            year,
+            month,
+            day,
+            hour,
+            minute,
+            second,
+            reserved1,
+            num_sv,
+            reserved2,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.entry_index.to_le_bytes());
+        w.put(&self.lon_raw.to_le_bytes());
+        w.put(&self.lat_raw.to_le_bytes());
+        w.put(&self.h_msl.to_le_bytes());
+        w.put(&self.h_acc.to_le_bytes());
+        w.put(&self.g_speed.to_le_bytes());
+        w.put(&self.heading_raw.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.fix_type_raw.to_le_bytes());
+        w.put(&self.year.to_le_bytes());
+        w.put(&self.month.to_le_bytes());
+        w.put(&self.day.to_le_bytes());
+        w.put(&self.hour.to_le_bytes());
+        w.put(&self.minute.to_le_bytes());
+        w.put(&self.second.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.num_sv.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("entry_index", self.entry_index)?;
+        ubx::json_float(j, "lon", self.lon_raw as f64 / 10000000.0)?;
+        j.int("lon_raw", self.lon_raw)?;
+        ubx::json_float(j, "lat", self.lat_raw as f64 / 10000000.0)?;
+        j.int("lat_raw", self.lat_raw)?;
+        j.int("h_msl", self.h_msl)?;
+        j.int("h_acc", self.h_acc)?;
+        j.int("g_speed", self.g_speed)?;
+        ubx::json_float(j, "heading", self.heading_raw as f64 / 100000.0)?;
+        j.int("heading_raw", self.heading_raw)?;
+        j.int("version", self.version)?;
+        j.code(
+            "fix_type",
+            ais::code::<UbxFixType>(u64::from(self.fix_type_raw)).map(CodeEnum::id),
+            u64::from(self.fix_type_raw),
+        )?;
+        j.int("year", self.year)?;
+        j.int("month", self.month)?;
+        j.int("day", self.day)?;
+        j.int("hour", self.hour)?;
+        j.int("minute", self.minute)?;
+        j.int("second", self.second)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("num_sv", self.num_sv)?;
+        j.int("reserved2", self.reserved2)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Odometer log entry: UBX LOG-RETRIEVEPOSEXTRA (class 0x21 id 0x0F), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogRetrieveposextra<'a> {
+    /// Index of the entry in the log.
+    pub entry_index: u32,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Year (UTC).
+    pub year: u16,
+    /// Month (UTC).
+    pub month: u8,
+    /// Day (UTC).
+    pub day: u8,
+    /// Hour (UTC).
+    pub hour: u8,
+    /// Minute (UTC).
+    pub minute: u8,
+    /// Second (UTC).
+    pub second: u8,
+    /// Reserved.
+    pub reserved2: u32,
+    /// Odometer distance [m].
+    pub distance: u32,
+    /// Reserved.
+    pub reserved3: u128,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogRetrieveposextra<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_retrieveposextra";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-RETRIEVEPOSEXTRA";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x0f;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(32);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let entry_index = u32::from_le_bytes(r.array("entry_index")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let year = u16::from_le_bytes(r.array("year")?);
+        let month = u8::from_le_bytes(r.array("month")?);
+        let day = u8::from_le_bytes(r.array("day")?);
+        let hour = u8::from_le_bytes(r.array("hour")?);
+        let minute = u8::from_le_bytes(r.array("minute")?);
+        let second = u8::from_le_bytes(r.array("second")?);
+        let reserved2 = {
+            let b: [u8; 3] = r.array("reserved2")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let distance = u32::from_le_bytes(r.array("distance")?);
+        let reserved3 = {
+            let b: [u8; 12] = r.array("reserved3")?;
+            let mut le = [0u8; 16];
+            le[..12].copy_from_slice(&b);
+            u128::from_le_bytes(le)
+        };
+        let trailing = r.rest();
+        Ok(Self {
+            entry_index,
+            version,
+            reserved1,
+            year,
+            month,
+            day,
+            hour,
+            minute,
+            second,
+            reserved2,
+            distance,
+            reserved3,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.entry_index.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.year.to_le_bytes());
+        w.put(&self.month.to_le_bytes());
+        w.put(&self.day.to_le_bytes());
+        w.put(&self.hour.to_le_bytes());
+        w.put(&self.minute.to_le_bytes());
+        w.put(&self.second.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes()[..3]);
+        w.put(&self.distance.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes()[..12]);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("entry_index", self.entry_index)?;
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("year", self.year)?;
+        j.int("month", self.month)?;
+        j.int("day", self.day)?;
+        j.int("hour", self.hour)?;
+        j.int("minute", self.minute)?;
+        j.int("second", self.second)?;
+        j.int("reserved2", self.reserved2)?;
+        j.int("distance", self.distance)?;
+        write!(j.key("reserved3")?, "{}", self.reserved3)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of LogRetrievestringByte.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogRetrievestringByte {
+    /// Byte.
+    pub bytes: u8,
+}
+
+impl<'a> ubx::Entry<'a> for LogRetrievestringByte {
+    const WIDTH: usize = 1;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let bytes = u8::from_le_bytes(r.array("bytes")?);
+        Ok(Self { bytes })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.bytes.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("bytes", self.bytes)?;
+        Ok(())
+    }
+}
+
+/// Text log entry: UBX LOG-RETRIEVESTRING (class 0x21 id 0x0D), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogRetrievestring<'a> {
+    /// Index of the entry in the log.
+    pub entry_index: u32,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Year (UTC).
+    pub year: u16,
+    /// Month (UTC).
+    pub month: u8,
+    /// Day (UTC).
+    pub day: u8,
+    /// Hour (UTC).
+    pub hour: u8,
+    /// Minute (UTC).
+    pub minute: u8,
+    /// Second (UTC).
+    pub second: u8,
+    /// Reserved.
+    pub reserved2: u8,
+    /// Number of bytes of the text.
+    pub byte_count: u16,
+    /// The text's bytes: 0 to 256 entries.
+    pub bytes: ubx::Group<'a, LogRetrievestringByte>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogRetrievestring<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_retrievestring";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-RETRIEVESTRING";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x0d;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let entry_index = u32::from_le_bytes(r.array("entry_index")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let year = u16::from_le_bytes(r.array("year")?);
+        let month = u8::from_le_bytes(r.array("month")?);
+        let day = u8::from_le_bytes(r.array("day")?);
+        let hour = u8::from_le_bytes(r.array("hour")?);
+        let minute = u8::from_le_bytes(r.array("minute")?);
+        let second = u8::from_le_bytes(r.array("second")?);
+        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
+        let byte_count = u16::from_le_bytes(r.array("byte_count")?);
+        let bytes = r.group(Some(usize::from(byte_count)), 0, 256, 0, "bytes")?;
+        let trailing = r.rest();
+        Ok(Self {
+            entry_index,
+            version,
+            reserved1,
+            year,
+            month,
+            day,
+            hour,
+            minute,
+            second,
+            reserved2,
+            byte_count,
+            bytes,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.entry_index.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.year.to_le_bytes());
+        w.put(&self.month.to_le_bytes());
+        w.put(&self.day.to_le_bytes());
+        w.put(&self.hour.to_le_bytes());
+        w.put(&self.minute.to_le_bytes());
+        w.put(&self.second.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.byte_count.to_le_bytes());
+        self.bytes.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("entry_index", self.entry_index)?;
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("year", self.year)?;
+        j.int("month", self.month)?;
+        j.int("day", self.day)?;
+        j.int("hour", self.hour)?;
+        j.int("minute", self.minute)?;
+        j.int("second", self.second)?;
+        j.int("reserved2", self.reserved2)?;
+        j.int("byte_count", self.byte_count)?;
+        self.bytes.json(j, "bytes")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Log a text: UBX LOG-STRING (class 0x21 id 0x04), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LogString<'a> {
+    /// The text.
+    pub bytes: &'a [u8],
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> LogString<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "log_string";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "LOG-STRING";
+    /// The message class.
+    pub const CLASS: u8 = 0x21;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x04;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let bytes = r.left(0);
+        let trailing = r.rest();
+        Ok(Self { bytes, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put_sized(self.bytes, None, "LOG-STRING", "bytes")?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_chars(j, "bytes", self.bytes)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Communication port information: UBX MON-COMMS (class 0x0A id 0x36), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonCommsPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonCommsPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_comms_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-COMMS";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x36;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_comms"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of MonCommsProtId.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonCommsProtId {
+    /// Protocol identifier.
+    pub prot_ids: u8,
+}
+
+impl<'a> ubx::Entry<'a> for MonCommsProtId {
+    const WIDTH: usize = 1;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let prot_ids = u8::from_le_bytes(r.array("prot_ids")?);
+        Ok(Self { prot_ids })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.prot_ids.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("prot_ids", self.prot_ids)?;
+        Ok(())
+    }
+}
+
+/// One entry of MonCommsPort.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonCommsPort {
+    /// Port identifier.
+    pub port_id: u16,
+    /// Bytes waiting to be sent [byte].
+    pub tx_pending: u16,
+    /// Bytes sent [byte].
+    pub tx_bytes: u32,
+    /// Transmitter buffer use in the last period [%].
+    pub tx_usage: u8,
+    /// Largest transmitter buffer use [%].
+    pub tx_peak_usage: u8,
+    /// Bytes received and not yet read [byte].
+    pub rx_pending: u16,
+    /// Bytes received [byte].
+    pub rx_bytes: u32,
+    /// Receiver buffer use in the last period [%].
+    pub rx_usage: u8,
+    /// Largest receiver buffer use [%].
+    pub rx_peak_usage: u8,
+    /// Overruns of the receiver buffer.
+    pub overrun_errs: u16,
+    /// Messages parsed of the first protocol of prot_ids.
+    pub msgs0: u16,
+    /// Messages parsed of the second protocol.
+    pub msgs1: u16,
+    /// Messages parsed of the third protocol.
+    pub msgs2: u16,
+    /// Messages parsed of the fourth protocol.
+    pub msgs3: u16,
+    /// Reserved.
+    pub reserved1: u64,
+    /// Bytes skipped as no protocol's [byte].
+    pub skipped: u32,
+}
+
+impl<'a> ubx::Entry<'a> for MonCommsPort {
+    const WIDTH: usize = 40;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let port_id = u16::from_le_bytes(r.array("port_id")?);
+        let tx_pending = u16::from_le_bytes(r.array("tx_pending")?);
+        let tx_bytes = u32::from_le_bytes(r.array("tx_bytes")?);
+        let tx_usage = u8::from_le_bytes(r.array("tx_usage")?);
+        let tx_peak_usage = u8::from_le_bytes(r.array("tx_peak_usage")?);
+        let rx_pending = u16::from_le_bytes(r.array("rx_pending")?);
+        let rx_bytes = u32::from_le_bytes(r.array("rx_bytes")?);
+        let rx_usage = u8::from_le_bytes(r.array("rx_usage")?);
+        let rx_peak_usage = u8::from_le_bytes(r.array("rx_peak_usage")?);
+        let overrun_errs = u16::from_le_bytes(r.array("overrun_errs")?);
+        let msgs0 = u16::from_le_bytes(r.array("msgs0")?);
+        let msgs1 = u16::from_le_bytes(r.array("msgs1")?);
+        let msgs2 = u16::from_le_bytes(r.array("msgs2")?);
+        let msgs3 = u16::from_le_bytes(r.array("msgs3")?);
+        let reserved1 = u64::from_le_bytes(r.array("reserved1")?);
+        let skipped = u32::from_le_bytes(r.array("skipped")?);
+        Ok(Self {
+            port_id,
+            tx_pending,
+            tx_bytes,
+            tx_usage,
+            tx_peak_usage,
+            rx_pending,
+            rx_bytes,
+            rx_usage,
+            rx_peak_usage,
+            overrun_errs,
+            msgs0,
+            msgs1,
+            msgs2,
+            msgs3,
+            reserved1,
+            skipped,
+        })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.port_id.to_le_bytes());
+        w.put(&self.tx_pending.to_le_bytes());
+        w.put(&self.tx_bytes.to_le_bytes());
+        w.put(&self.tx_usage.to_le_bytes());
+        w.put(&self.tx_peak_usage.to_le_bytes());
+        w.put(&self.rx_pending.to_le_bytes());
+        w.put(&self.rx_bytes.to_le_bytes());
+        w.put(&self.rx_usage.to_le_bytes());
+        w.put(&self.rx_peak_usage.to_le_bytes());
+        w.put(&self.overrun_errs.to_le_bytes());
+        w.put(&self.msgs0.to_le_bytes());
+        w.put(&self.msgs1.to_le_bytes());
+        w.put(&self.msgs2.to_le_bytes());
+        w.put(&self.msgs3.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.skipped.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("port_id", self.port_id)?;
+        j.int("tx_pending", self.tx_pending)?;
+        j.int("tx_bytes", self.tx_bytes)?;
+        j.int("tx_usage", self.tx_usage)?;
+        j.int("tx_peak_usage", self.tx_peak_usage)?;
+        j.int("rx_pending", self.rx_pending)?;
+        j.int("rx_bytes", self.rx_bytes)?;
+        j.int("rx_usage", self.rx_usage)?;
+        j.int("rx_peak_usage", self.rx_peak_usage)?;
+        j.int("overrun_errs", self.overrun_errs)?;
+        j.int("msgs0", self.msgs0)?;
+        j.int("msgs1", self.msgs1)?;
+        j.int("msgs2", self.msgs2)?;
+        j.int("msgs3", self.msgs3)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("skipped", self.skipped)?;
+        Ok(())
+    }
+}
+
+/// Communication port information: UBX MON-COMMS (class 0x0A id 0x36), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonComms<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Number of ports.
+    pub n_ports: u8,
+    /// Transmitter errors.
+    pub tx_errors: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Protocols the message counts follow: 0 to 65535 entries.
+    pub prot_ids: ubx::Group<'a, MonCommsProtId>,
+    /// Ports: 0 to 16 entries.
+    pub ports: ubx::Group<'a, MonCommsPort>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonComms<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_comms";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-COMMS";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x36;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Memory allocation error (bit 0 of `tx_errors`).
+    pub fn mem(&self) -> bool {
+        (self.tx_errors & 0x1) != 0
+    }
+    /// Sets memory allocation error (the value in its bits of `tx_errors`; the other bits stay).
+    pub fn set_mem(&mut self, value: bool) {
+        self.tx_errors = (self.tx_errors & !0x1) | u8::from(value);
+    }
+    /// Transmitter buffer allocation error (bit 1 of `tx_errors`).
+    pub fn alloc(&self) -> bool {
+        ((self.tx_errors >> 1) & 0x1) != 0
+    }
+    /// Sets transmitter buffer allocation error (the value in its bits of `tx_errors`; the other bits stay).
+    pub fn set_alloc(&mut self, value: bool) {
+        self.tx_errors = (self.tx_errors & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let n_ports = u8::from_le_bytes(r.array("n_ports")?);
+        let tx_errors = u8::from_le_bytes(r.array("tx_errors")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let prot_ids = r.group(Some(4), 0, 65535, 0, "prot_ids")?;
+        let ports = r.group(Some(usize::from(n_ports)), 0, 16, 0, "ports")?;
+        let trailing = r.rest();
+        Ok(Self { version, n_ports, tx_errors, reserved0, prot_ids, ports, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.n_ports.to_le_bytes());
+        w.put(&self.tx_errors.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        self.prot_ids.write(w);
+        self.ports.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("n_ports", self.n_ports)?;
+        j.int("tx_errors", self.tx_errors)?;
+        j.flag("mem", (self.tx_errors & 0x1) != 0)?;
+        j.flag("alloc", ((self.tx_errors >> 1) & 0x1) != 0)?;
+        j.int("reserved0", self.reserved0)?;
+        self.prot_ids.json(j, "prot_ids")?;
+        self.ports.json(j, "ports")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// GNSS system selection: UBX MON-GNSS (class 0x0A id 0x28), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonGnssPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonGnssPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_gnss_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-GNSS";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x28;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_gnss"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// GNSS system selection: UBX MON-GNSS (class 0x0A id 0x28), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonGnss<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Systems supported.
+    pub supported: u8,
+    /// Systems enabled by default.
+    pub default_gnss: u8,
+    /// Systems enabled.
+    pub enabled: u8,
+    /// Largest number of systems tracked at once.
+    pub simultaneous: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonGnss<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_gnss";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-GNSS";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x28;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// GPS (bit 0 of `supported`).
+    pub fn gps_sup(&self) -> bool {
+        (self.supported & 0x1) != 0
+    }
+    /// Sets gps (the value in its bits of `supported`; the other bits stay).
+    pub fn set_gps_sup(&mut self, value: bool) {
+        self.supported = (self.supported & !0x1) | u8::from(value);
+    }
+    /// GLONASS (bit 1 of `supported`).
+    pub fn glonass_sup(&self) -> bool {
+        ((self.supported >> 1) & 0x1) != 0
+    }
+    /// Sets glonass (the value in its bits of `supported`; the other bits stay).
+    pub fn set_glonass_sup(&mut self, value: bool) {
+        self.supported = (self.supported & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// BeiDou (bit 2 of `supported`).
+    pub fn beidou_sup(&self) -> bool {
+        ((self.supported >> 2) & 0x1) != 0
+    }
+    /// Sets beidou (the value in its bits of `supported`; the other bits stay).
+    pub fn set_beidou_sup(&mut self, value: bool) {
+        self.supported = (self.supported & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Galileo (bit 3 of `supported`).
+    pub fn galileo_sup(&self) -> bool {
+        ((self.supported >> 3) & 0x1) != 0
+    }
+    /// Sets galileo (the value in its bits of `supported`; the other bits stay).
+    pub fn set_galileo_sup(&mut self, value: bool) {
+        self.supported = (self.supported & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// GPS (bit 0 of `default_gnss`).
+    pub fn gps_def(&self) -> bool {
+        (self.default_gnss & 0x1) != 0
+    }
+    /// Sets gps (the value in its bits of `default_gnss`; the other bits stay).
+    pub fn set_gps_def(&mut self, value: bool) {
+        self.default_gnss = (self.default_gnss & !0x1) | u8::from(value);
+    }
+    /// GLONASS (bit 1 of `default_gnss`).
+    pub fn glonass_def(&self) -> bool {
+        ((self.default_gnss >> 1) & 0x1) != 0
+    }
+    /// Sets glonass (the value in its bits of `default_gnss`; the other bits stay).
+    pub fn set_glonass_def(&mut self, value: bool) {
+        self.default_gnss = (self.default_gnss & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// BeiDou (bit 2 of `default_gnss`).
+    pub fn beidou_def(&self) -> bool {
+        ((self.default_gnss >> 2) & 0x1) != 0
+    }
+    /// Sets beidou (the value in its bits of `default_gnss`; the other bits stay).
+    pub fn set_beidou_def(&mut self, value: bool) {
+        self.default_gnss = (self.default_gnss & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Galileo (bit 3 of `default_gnss`).
+    pub fn galileo_def(&self) -> bool {
+        ((self.default_gnss >> 3) & 0x1) != 0
+    }
+    /// Sets galileo (the value in its bits of `default_gnss`; the other bits stay).
+    pub fn set_galileo_def(&mut self, value: bool) {
+        self.default_gnss = (self.default_gnss & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// GPS (bit 0 of `enabled`).
+    pub fn gps_ena(&self) -> bool {
+        (self.enabled & 0x1) != 0
+    }
+    /// Sets gps (the value in its bits of `enabled`; the other bits stay).
+    pub fn set_gps_ena(&mut self, value: bool) {
+        self.enabled = (self.enabled & !0x1) | u8::from(value);
+    }
+    /// GLONASS (bit 1 of `enabled`).
+    pub fn glonass_ena(&self) -> bool {
+        ((self.enabled >> 1) & 0x1) != 0
+    }
+    /// Sets glonass (the value in its bits of `enabled`; the other bits stay).
+    pub fn set_glonass_ena(&mut self, value: bool) {
+        self.enabled = (self.enabled & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// BeiDou (bit 2 of `enabled`).
+    pub fn beidou_ena(&self) -> bool {
+        ((self.enabled >> 2) & 0x1) != 0
+    }
+    /// Sets beidou (the value in its bits of `enabled`; the other bits stay).
+    pub fn set_beidou_ena(&mut self, value: bool) {
+        self.enabled = (self.enabled & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Galileo (bit 3 of `enabled`).
+    pub fn galileo_ena(&self) -> bool {
+        ((self.enabled >> 3) & 0x1) != 0
+    }
+    /// Sets galileo (the value in its bits of `enabled`; the other bits stay).
+    pub fn set_galileo_ena(&mut self, value: bool) {
+        self.enabled = (self.enabled & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let supported = u8::from_le_bytes(r.array("supported")?);
+        let default_gnss = u8::from_le_bytes(r.array("default_gnss")?);
+        let enabled = u8::from_le_bytes(r.array("enabled")?);
+        let simultaneous = u8::from_le_bytes(r.array("simultaneous")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let trailing = r.rest();
+        Ok(Self { version, supported, default_gnss, enabled, simultaneous, reserved0, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.supported.to_le_bytes());
+        w.put(&self.default_gnss.to_le_bytes());
+        w.put(&self.enabled.to_le_bytes());
+        w.put(&self.simultaneous.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("supported", self.supported)?;
+        j.flag("gps_sup", (self.supported & 0x1) != 0)?;
+        j.flag("glonass_sup", ((self.supported >> 1) & 0x1) != 0)?;
+        j.flag("beidou_sup", ((self.supported >> 2) & 0x1) != 0)?;
+        j.flag("galileo_sup", ((self.supported >> 3) & 0x1) != 0)?;
+        j.int("default_gnss", self.default_gnss)?;
+        j.flag("gps_def", (self.default_gnss & 0x1) != 0)?;
+        j.flag("glonass_def", ((self.default_gnss >> 1) & 0x1) != 0)?;
+        j.flag("beidou_def", ((self.default_gnss >> 2) & 0x1) != 0)?;
+        j.flag("galileo_def", ((self.default_gnss >> 3) & 0x1) != 0)?;
+        j.int("enabled", self.enabled)?;
+        j.flag("gps_ena", (self.enabled & 0x1) != 0)?;
+        j.flag("glonass_ena", ((self.enabled >> 1) & 0x1) != 0)?;
+        j.flag("beidou_ena", ((self.enabled >> 2) & 0x1) != 0)?;
+        j.flag("galileo_ena", ((self.enabled >> 3) & 0x1) != 0)?;
+        j.int("simultaneous", self.simultaneous)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Hardware status: UBX MON-HW (class 0x0A id 0x09), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MonHwPoll<'a> {
@@ -5765,6 +7844,1046 @@ impl<'a> MonHw<'a> {
         j.int("pin_irq", self.pin_irq)?;
         j.int("pull_h", self.pull_h)?;
         j.int("pull_l", self.pull_l)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Extended hardware status: UBX MON-HW2 (class 0x0A id 0x0B), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonHw2Poll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonHw2Poll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_hw2_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-HW2";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x0b;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_hw2"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Extended hardware status: UBX MON-HW2 (class 0x0A id 0x0B), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonHw2<'a> {
+    /// Imbalance of the I part of the complex signal.
+    pub ofs_i: i8,
+    /// Magnitude of the I part of the complex signal.
+    pub mag_i: u8,
+    /// Imbalance of the Q part of the complex signal.
+    pub ofs_q: i8,
+    /// Magnitude of the Q part of the complex signal.
+    pub mag_q: u8,
+    /// Source of the low-level configuration.
+    pub cfg_source: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Low-level configuration.
+    pub low_lev_cfg: u32,
+    /// Reserved.
+    pub reserved1: u64,
+    /// Power-on self test status word.
+    pub post_status: u32,
+    /// Reserved.
+    pub reserved2: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonHw2<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_hw2";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-HW2";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x0b;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(28);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let ofs_i = i8::from_le_bytes(r.array("ofs_i")?);
+        let mag_i = u8::from_le_bytes(r.array("mag_i")?);
+        let ofs_q = i8::from_le_bytes(r.array("ofs_q")?);
+        let mag_q = u8::from_le_bytes(r.array("mag_q")?);
+        let cfg_source = u8::from_le_bytes(r.array("cfg_source")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let low_lev_cfg = u32::from_le_bytes(r.array("low_lev_cfg")?);
+        let reserved1 = u64::from_le_bytes(r.array("reserved1")?);
+        let post_status = u32::from_le_bytes(r.array("post_status")?);
+        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
+        let trailing = r.rest();
+        Ok(Self {
+            ofs_i,
+            mag_i,
+            ofs_q,
+            mag_q,
+            cfg_source,
+            reserved0,
+            low_lev_cfg,
+            reserved1,
+            post_status,
+            reserved2,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.ofs_i.to_le_bytes());
+        w.put(&self.mag_i.to_le_bytes());
+        w.put(&self.ofs_q.to_le_bytes());
+        w.put(&self.mag_q.to_le_bytes());
+        w.put(&self.cfg_source.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(&self.low_lev_cfg.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.post_status.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("ofs_i", self.ofs_i)?;
+        j.int("mag_i", self.mag_i)?;
+        j.int("ofs_q", self.ofs_q)?;
+        j.int("mag_q", self.mag_q)?;
+        j.int("cfg_source", self.cfg_source)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("low_lev_cfg", self.low_lev_cfg)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("post_status", self.post_status)?;
+        j.int("reserved2", self.reserved2)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// I/O pin status: UBX MON-HW3 (class 0x0A id 0x37), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonHw3Poll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonHw3Poll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_hw3_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-HW3";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x37;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_hw3"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of MonHw3Pin.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonHw3Pin {
+    /// Pin identifier.
+    pub pin_id: u16,
+    /// Pin state.
+    pub pin_mask: u16,
+    /// Virtual pin mapped to the pin.
+    pub vp: u8,
+    /// Reserved.
+    pub reserved1: u8,
+}
+
+impl<'a> ubx::Entry<'a> for MonHw3Pin {
+    const WIDTH: usize = 6;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let pin_id = u16::from_le_bytes(r.array("pin_id")?);
+        let pin_mask = u16::from_le_bytes(r.array("pin_mask")?);
+        let vp = u8::from_le_bytes(r.array("vp")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        Ok(Self { pin_id, pin_mask, vp, reserved1 })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.pin_id.to_le_bytes());
+        w.put(&self.pin_mask.to_le_bytes());
+        w.put(&self.vp.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("pin_id", self.pin_id)?;
+        j.int("pin_mask", self.pin_mask)?;
+        j.flag("periph_pio", (self.pin_mask & 0x1) != 0)?;
+        j.int("pin_bank", ((self.pin_mask >> 1) & 0x7) as u8)?;
+        j.flag("direction", ((self.pin_mask >> 4) & 0x1) != 0)?;
+        j.flag("pin_value", ((self.pin_mask >> 5) & 0x1) != 0)?;
+        j.flag("vp_manager", ((self.pin_mask >> 6) & 0x1) != 0)?;
+        j.flag("pio_irq", ((self.pin_mask >> 7) & 0x1) != 0)?;
+        j.flag("pio_pull_high", ((self.pin_mask >> 8) & 0x1) != 0)?;
+        j.flag("pio_pull_low", ((self.pin_mask >> 9) & 0x1) != 0)?;
+        j.int("vp", self.vp)?;
+        j.int("reserved1", self.reserved1)?;
+        Ok(())
+    }
+}
+
+impl MonHw3Pin {
+    /// Used as PIO (else by a peripheral) (bit 0 of `pin_mask`).
+    pub fn periph_pio(&self) -> bool {
+        (self.pin_mask & 0x1) != 0
+    }
+    /// Sets used as pio (else by a peripheral) (the value in its bits of `pin_mask`; the other bits stay).
+    pub fn set_periph_pio(&mut self, value: bool) {
+        self.pin_mask = (self.pin_mask & !0x1) | u16::from(value);
+    }
+    /// Pin bank (bits 1-3 of `pin_mask`).
+    pub fn pin_bank(&self) -> u8 {
+        ((self.pin_mask >> 1) & 0x7) as u8
+    }
+    /// Sets pin bank (the value in its bits of `pin_mask`; the other bits stay).
+    pub fn set_pin_bank(&mut self, value: u8) {
+        self.pin_mask = (self.pin_mask & !(0x7 << 1)) | ((value as u16 & 0x7) << 1);
+    }
+    /// Output (else input) (bit 4 of `pin_mask`).
+    pub fn direction(&self) -> bool {
+        ((self.pin_mask >> 4) & 0x1) != 0
+    }
+    /// Sets output (else input) (the value in its bits of `pin_mask`; the other bits stay).
+    pub fn set_direction(&mut self, value: bool) {
+        self.pin_mask = (self.pin_mask & !(0x1 << 4)) | (u16::from(value) << 4);
+    }
+    /// Level high (bit 5 of `pin_mask`).
+    pub fn pin_value(&self) -> bool {
+        ((self.pin_mask >> 5) & 0x1) != 0
+    }
+    /// Sets level high (the value in its bits of `pin_mask`; the other bits stay).
+    pub fn set_pin_value(&mut self, value: bool) {
+        self.pin_mask = (self.pin_mask & !(0x1 << 5)) | (u16::from(value) << 5);
+    }
+    /// Used by the virtual pin manager (bit 6 of `pin_mask`).
+    pub fn vp_manager(&self) -> bool {
+        ((self.pin_mask >> 6) & 0x1) != 0
+    }
+    /// Sets used by the virtual pin manager (the value in its bits of `pin_mask`; the other bits stay).
+    pub fn set_vp_manager(&mut self, value: bool) {
+        self.pin_mask = (self.pin_mask & !(0x1 << 6)) | (u16::from(value) << 6);
+    }
+    /// Interrupt enabled (bit 7 of `pin_mask`).
+    pub fn pio_irq(&self) -> bool {
+        ((self.pin_mask >> 7) & 0x1) != 0
+    }
+    /// Sets interrupt enabled (the value in its bits of `pin_mask`; the other bits stay).
+    pub fn set_pio_irq(&mut self, value: bool) {
+        self.pin_mask = (self.pin_mask & !(0x1 << 7)) | (u16::from(value) << 7);
+    }
+    /// Pull-up enabled (bit 8 of `pin_mask`).
+    pub fn pio_pull_high(&self) -> bool {
+        ((self.pin_mask >> 8) & 0x1) != 0
+    }
+    /// Sets pull-up enabled (the value in its bits of `pin_mask`; the other bits stay).
+    pub fn set_pio_pull_high(&mut self, value: bool) {
+        self.pin_mask = (self.pin_mask & !(0x1 << 8)) | (u16::from(value) << 8);
+    }
+    /// Pull-down enabled (bit 9 of `pin_mask`).
+    pub fn pio_pull_low(&self) -> bool {
+        ((self.pin_mask >> 9) & 0x1) != 0
+    }
+    /// Sets pull-down enabled (the value in its bits of `pin_mask`; the other bits stay).
+    pub fn set_pio_pull_low(&mut self, value: bool) {
+        self.pin_mask = (self.pin_mask & !(0x1 << 9)) | (u16::from(value) << 9);
+    }
+}
+
+/// I/O pin status: UBX MON-HW3 (class 0x0A id 0x37), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonHw3<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Number of pins.
+    pub n_pins: u8,
+    /// Flags.
+    pub flags: u8,
+    /// Hardware version.
+    pub hw_version: &'a [u8],
+    /// Reserved.
+    pub reserved0: u128,
+    /// Pins: 0 to 65535 entries.
+    pub pins: ubx::Group<'a, MonHw3Pin>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonHw3<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_hw3";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-HW3";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x37;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// RTC calibrated (bit 0 of `flags`).
+    pub fn rtc_calib(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets rtc calibrated (the value in its bits of `flags`; the other bits stay).
+    pub fn set_rtc_calib(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// Safe boot mode (bit 1 of `flags`).
+    pub fn safe_boot(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets safe boot mode (the value in its bits of `flags`; the other bits stay).
+    pub fn set_safe_boot(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// RTC crystal absent (bit 2 of `flags`).
+    pub fn xtal_absent(&self) -> bool {
+        ((self.flags >> 2) & 0x1) != 0
+    }
+    /// Sets rtc crystal absent (the value in its bits of `flags`; the other bits stay).
+    pub fn set_xtal_absent(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let n_pins = u8::from_le_bytes(r.array("n_pins")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let hw_version = r.bytes(10, "hw_version")?;
+        let reserved0 = {
+            let b: [u8; 9] = r.array("reserved0")?;
+            let mut le = [0u8; 16];
+            le[..9].copy_from_slice(&b);
+            u128::from_le_bytes(le)
+        };
+        let pins = r.group(Some(usize::from(n_pins)), 0, 65535, 0, "pins")?;
+        let trailing = r.rest();
+        Ok(Self { version, n_pins, flags, hw_version, reserved0, pins, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.n_pins.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put_sized(self.hw_version, Some(10), "MON-HW3", "hw_version")?;
+        w.put(&self.reserved0.to_le_bytes()[..9]);
+        self.pins.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("n_pins", self.n_pins)?;
+        j.int("flags", self.flags)?;
+        j.flag("rtc_calib", (self.flags & 0x1) != 0)?;
+        j.flag("safe_boot", ((self.flags >> 1) & 0x1) != 0)?;
+        j.flag("xtal_absent", ((self.flags >> 2) & 0x1) != 0)?;
+        ubx::json_chars(j, "hw_version", self.hw_version)?;
+        write!(j.key("reserved0")?, "{}", self.reserved0)?;
+        self.pins.json(j, "pins")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// I/O system status: UBX MON-IO (class 0x0A id 0x02), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonIoPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonIoPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_io_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-IO";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x02;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_io"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of MonIoPort.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonIoPort {
+    /// Bytes received [byte].
+    pub rx_bytes: u32,
+    /// Bytes sent [byte].
+    pub tx_bytes: u32,
+    /// Parity errors.
+    pub parity_errs: u16,
+    /// Framing errors.
+    pub framing_errs: u16,
+    /// Overrun errors.
+    pub overrun_errs: u16,
+    /// Break conditions.
+    pub break_cond: u16,
+    /// Receiver busy.
+    pub rx_busy: u8,
+    /// Transmitter busy.
+    pub tx_busy: u8,
+    /// Reserved.
+    pub reserved1: u16,
+}
+
+impl<'a> ubx::Entry<'a> for MonIoPort {
+    const WIDTH: usize = 20;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let rx_bytes = u32::from_le_bytes(r.array("rx_bytes")?);
+        let tx_bytes = u32::from_le_bytes(r.array("tx_bytes")?);
+        let parity_errs = u16::from_le_bytes(r.array("parity_errs")?);
+        let framing_errs = u16::from_le_bytes(r.array("framing_errs")?);
+        let overrun_errs = u16::from_le_bytes(r.array("overrun_errs")?);
+        let break_cond = u16::from_le_bytes(r.array("break_cond")?);
+        let rx_busy = u8::from_le_bytes(r.array("rx_busy")?);
+        let tx_busy = u8::from_le_bytes(r.array("tx_busy")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        Ok(Self {
+            rx_bytes,
+            tx_bytes,
+            parity_errs,
+            framing_errs,
+            overrun_errs,
+            break_cond,
+            rx_busy,
+            tx_busy,
+            reserved1,
+        })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.rx_bytes.to_le_bytes());
+        w.put(&self.tx_bytes.to_le_bytes());
+        w.put(&self.parity_errs.to_le_bytes());
+        w.put(&self.framing_errs.to_le_bytes());
+        w.put(&self.overrun_errs.to_le_bytes());
+        w.put(&self.break_cond.to_le_bytes());
+        w.put(&self.rx_busy.to_le_bytes());
+        w.put(&self.tx_busy.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("rx_bytes", self.rx_bytes)?;
+        j.int("tx_bytes", self.tx_bytes)?;
+        j.int("parity_errs", self.parity_errs)?;
+        j.int("framing_errs", self.framing_errs)?;
+        j.int("overrun_errs", self.overrun_errs)?;
+        j.int("break_cond", self.break_cond)?;
+        j.int("rx_busy", self.rx_busy)?;
+        j.int("tx_busy", self.tx_busy)?;
+        j.int("reserved1", self.reserved1)?;
+        Ok(())
+    }
+}
+
+/// I/O system status: UBX MON-IO (class 0x0A id 0x02), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonIo<'a> {
+    /// Ports: 1 to 6 entries.
+    pub ports: ubx::Group<'a, MonIoPort>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonIo<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_io";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-IO";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x02;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let ports = r.group(None, 1, 6, 0, "ports")?;
+        let trailing = r.rest();
+        Ok(Self { ports, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        self.ports.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        self.ports.json(j, "ports")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Message parse and process status: UBX MON-MSGPP (class 0x0A id 0x06), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonMsgppPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonMsgppPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_msgpp_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-MSGPP";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x06;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_msgpp"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of MonMsgppMsg1Entry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonMsgppMsg1Entry {
+    /// Messages.
+    pub msg1: u16,
+}
+
+impl<'a> ubx::Entry<'a> for MonMsgppMsg1Entry {
+    const WIDTH: usize = 2;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let msg1 = u16::from_le_bytes(r.array("msg1")?);
+        Ok(Self { msg1 })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.msg1.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("msg1", self.msg1)?;
+        Ok(())
+    }
+}
+
+/// One entry of MonMsgppMsg2Entry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonMsgppMsg2Entry {
+    /// Messages.
+    pub msg2: u16,
+}
+
+impl<'a> ubx::Entry<'a> for MonMsgppMsg2Entry {
+    const WIDTH: usize = 2;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let msg2 = u16::from_le_bytes(r.array("msg2")?);
+        Ok(Self { msg2 })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.msg2.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("msg2", self.msg2)?;
+        Ok(())
+    }
+}
+
+/// One entry of MonMsgppMsg3Entry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonMsgppMsg3Entry {
+    /// Messages.
+    pub msg3: u16,
+}
+
+impl<'a> ubx::Entry<'a> for MonMsgppMsg3Entry {
+    const WIDTH: usize = 2;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let msg3 = u16::from_le_bytes(r.array("msg3")?);
+        Ok(Self { msg3 })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.msg3.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("msg3", self.msg3)?;
+        Ok(())
+    }
+}
+
+/// One entry of MonMsgppMsg4Entry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonMsgppMsg4Entry {
+    /// Messages.
+    pub msg4: u16,
+}
+
+impl<'a> ubx::Entry<'a> for MonMsgppMsg4Entry {
+    const WIDTH: usize = 2;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let msg4 = u16::from_le_bytes(r.array("msg4")?);
+        Ok(Self { msg4 })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.msg4.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("msg4", self.msg4)?;
+        Ok(())
+    }
+}
+
+/// One entry of MonMsgppMsg5Entry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonMsgppMsg5Entry {
+    /// Messages.
+    pub msg5: u16,
+}
+
+impl<'a> ubx::Entry<'a> for MonMsgppMsg5Entry {
+    const WIDTH: usize = 2;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let msg5 = u16::from_le_bytes(r.array("msg5")?);
+        Ok(Self { msg5 })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.msg5.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("msg5", self.msg5)?;
+        Ok(())
+    }
+}
+
+/// One entry of MonMsgppMsg6Entry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonMsgppMsg6Entry {
+    /// Messages.
+    pub msg6: u16,
+}
+
+impl<'a> ubx::Entry<'a> for MonMsgppMsg6Entry {
+    const WIDTH: usize = 2;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let msg6 = u16::from_le_bytes(r.array("msg6")?);
+        Ok(Self { msg6 })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.msg6.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("msg6", self.msg6)?;
+        Ok(())
+    }
+}
+
+/// One entry of MonMsgppSkippedEntry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonMsgppSkippedEntry {
+    /// Bytes skipped [byte].
+    pub skipped: u32,
+}
+
+impl<'a> ubx::Entry<'a> for MonMsgppSkippedEntry {
+    const WIDTH: usize = 4;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let skipped = u32::from_le_bytes(r.array("skipped")?);
+        Ok(Self { skipped })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.skipped.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("skipped", self.skipped)?;
+        Ok(())
+    }
+}
+
+/// Message parse and process status: UBX MON-MSGPP (class 0x0A id 0x06), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonMsgpp<'a> {
+    /// Messages parsed on port 0, per protocol: 0 to 65535 entries.
+    pub msg1: ubx::Group<'a, MonMsgppMsg1Entry>,
+    /// Messages parsed on port 1, per protocol: 0 to 65535 entries.
+    pub msg2: ubx::Group<'a, MonMsgppMsg2Entry>,
+    /// Messages parsed on port 2, per protocol: 0 to 65535 entries.
+    pub msg3: ubx::Group<'a, MonMsgppMsg3Entry>,
+    /// Messages parsed on port 3, per protocol: 0 to 65535 entries.
+    pub msg4: ubx::Group<'a, MonMsgppMsg4Entry>,
+    /// Messages parsed on port 4, per protocol: 0 to 65535 entries.
+    pub msg5: ubx::Group<'a, MonMsgppMsg5Entry>,
+    /// Messages parsed on port 5, per protocol: 0 to 65535 entries.
+    pub msg6: ubx::Group<'a, MonMsgppMsg6Entry>,
+    /// Bytes skipped per port: 0 to 65535 entries.
+    pub skipped: ubx::Group<'a, MonMsgppSkippedEntry>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonMsgpp<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_msgpp";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-MSGPP";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x06;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(120);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let msg1 = r.group(Some(8), 0, 65535, 0, "msg1")?;
+        let msg2 = r.group(Some(8), 0, 65535, 0, "msg2")?;
+        let msg3 = r.group(Some(8), 0, 65535, 0, "msg3")?;
+        let msg4 = r.group(Some(8), 0, 65535, 0, "msg4")?;
+        let msg5 = r.group(Some(8), 0, 65535, 0, "msg5")?;
+        let msg6 = r.group(Some(8), 0, 65535, 0, "msg6")?;
+        let skipped = r.group(Some(6), 0, 65535, 0, "skipped")?;
+        let trailing = r.rest();
+        Ok(Self { msg1, msg2, msg3, msg4, msg5, msg6, skipped, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        self.msg1.write(w);
+        self.msg2.write(w);
+        self.msg3.write(w);
+        self.msg4.write(w);
+        self.msg5.write(w);
+        self.msg6.write(w);
+        self.skipped.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        self.msg1.json(j, "msg1")?;
+        self.msg2.json(j, "msg2")?;
+        self.msg3.json(j, "msg3")?;
+        self.msg4.json(j, "msg4")?;
+        self.msg5.json(j, "msg5")?;
+        self.msg6.json(j, "msg6")?;
+        self.skipped.json(j, "skipped")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Installed patches: UBX MON-PATCH (class 0x0A id 0x27), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonPatchPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonPatchPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_patch_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-PATCH";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x27;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_patch"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of MonPatchEntrie.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonPatchEntrie {
+    /// Patch information.
+    pub patch_info: u32,
+    /// Comparator number.
+    pub comparator_number: u32,
+    /// Patched address.
+    pub patch_address: u32,
+    /// Patch data.
+    pub patch_data: u32,
+}
+
+impl<'a> ubx::Entry<'a> for MonPatchEntrie {
+    const WIDTH: usize = 16;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let patch_info = u32::from_le_bytes(r.array("patch_info")?);
+        let comparator_number = u32::from_le_bytes(r.array("comparator_number")?);
+        let patch_address = u32::from_le_bytes(r.array("patch_address")?);
+        let patch_data = u32::from_le_bytes(r.array("patch_data")?);
+        Ok(Self { patch_info, comparator_number, patch_address, patch_data })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.patch_info.to_le_bytes());
+        w.put(&self.comparator_number.to_le_bytes());
+        w.put(&self.patch_address.to_le_bytes());
+        w.put(&self.patch_data.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("patch_info", self.patch_info)?;
+        j.flag("activated", (self.patch_info & 0x1) != 0)?;
+        j.int("location", ((self.patch_info >> 1) & 0x3) as u8)?;
+        j.int("comparator_number", self.comparator_number)?;
+        j.int("patch_address", self.patch_address)?;
+        j.int("patch_data", self.patch_data)?;
+        Ok(())
+    }
+}
+
+impl MonPatchEntrie {
+    /// The patch is active (bit 0 of `patch_info`).
+    pub fn activated(&self) -> bool {
+        (self.patch_info & 0x1) != 0
+    }
+    /// Sets the patch is active (the value in its bits of `patch_info`; the other bits stay).
+    pub fn set_activated(&mut self, value: bool) {
+        self.patch_info = (self.patch_info & !0x1) | u32::from(value);
+    }
+    /// Where the patch is stored (bits 1-2 of `patch_info`).
+    pub fn location(&self) -> u8 {
+        ((self.patch_info >> 1) & 0x3) as u8
+    }
+    /// Sets where the patch is stored (the value in its bits of `patch_info`; the other bits stay).
+    pub fn set_location(&mut self, value: u8) {
+        self.patch_info = (self.patch_info & !(0x3 << 1)) | ((value as u32 & 0x3) << 1);
+    }
+}
+
+/// Installed patches: UBX MON-PATCH (class 0x0A id 0x27), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonPatch<'a> {
+    /// Message version.
+    pub version: u16,
+    /// Number of patches.
+    pub n_entries: u16,
+    /// Patches: 0 to 32 entries.
+    pub entries: ubx::Group<'a, MonPatchEntrie>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonPatch<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_patch";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-PATCH";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x27;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u16::from_le_bytes(r.array("version")?);
+        let n_entries = u16::from_le_bytes(r.array("n_entries")?);
+        let entries = r.group(Some(usize::from(n_entries)), 0, 32, 0, "entries")?;
+        let trailing = r.rest();
+        Ok(Self { version, n_entries, entries, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.n_entries.to_le_bytes());
+        self.entries.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("n_entries", self.n_entries)?;
+        self.entries.json(j, "entries")?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -6173,6 +9292,503 @@ impl<'a> MonRxbuf<'a> {
     }
 }
 
+/// Receiver status: UBX MON-RXR (class 0x0A id 0x21), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonRxr<'a> {
+    /// Receiver status flags.
+    pub flags: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonRxr<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_rxr";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-RXR";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x21;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(1);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Not in backup mode (bit 0 of `flags`).
+    pub fn awake(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets not in backup mode (the value in its bits of `flags`; the other bits stay).
+    pub fn set_awake(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let trailing = r.rest();
+        Ok(Self { flags, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.flags.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("flags", self.flags)?;
+        j.flag("awake", (self.flags & 0x1) != 0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Synchronization manager status: UBX MON-SMGR (class 0x0A id 0x2E), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSmgrPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonSmgrPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_smgr_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-SMGR";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x2e;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_smgr"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Synchronization manager status: UBX MON-SMGR (class 0x0A id 0x2E), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSmgr<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Time of week of the status [ms].
+    pub itow: u32,
+    /// Internal oscillator state.
+    pub int_osc: u16,
+    /// External oscillator state.
+    pub ext_osc: u16,
+    /// Disciplining source.
+    pub disc_src: u8,
+    /// GNSS state.
+    pub gnss: u8,
+    /// EXTINT0 state.
+    pub ext_int0: u8,
+    /// EXTINT1 state.
+    pub ext_int1: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonSmgr<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_smgr";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-SMGR";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x2e;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(16);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// State (bits 0-3 of `int_osc`).
+    pub fn int_osc_state(&self) -> u8 {
+        (self.int_osc & 0xf) as u8
+    }
+    /// Sets state (the value in its bits of `int_osc`; the other bits stay).
+    pub fn set_int_osc_state(&mut self, value: u8) {
+        self.int_osc = (self.int_osc & !0xf) | (value as u16 & 0xf);
+    }
+    /// Calibrated (bit 4 of `int_osc`).
+    pub fn int_osc_calib(&self) -> bool {
+        ((self.int_osc >> 4) & 0x1) != 0
+    }
+    /// Sets calibrated (the value in its bits of `int_osc`; the other bits stay).
+    pub fn set_int_osc_calib(&mut self, value: bool) {
+        self.int_osc = (self.int_osc & !(0x1 << 4)) | (u16::from(value) << 4);
+    }
+    /// Disciplined (bit 5 of `int_osc`).
+    pub fn int_osc_disc(&self) -> bool {
+        ((self.int_osc >> 5) & 0x1) != 0
+    }
+    /// Sets disciplined (the value in its bits of `int_osc`; the other bits stay).
+    pub fn set_int_osc_disc(&mut self, value: bool) {
+        self.int_osc = (self.int_osc & !(0x1 << 5)) | (u16::from(value) << 5);
+    }
+    /// State (bits 0-3 of `ext_osc`).
+    pub fn ext_osc_state(&self) -> u8 {
+        (self.ext_osc & 0xf) as u8
+    }
+    /// Sets state (the value in its bits of `ext_osc`; the other bits stay).
+    pub fn set_ext_osc_state(&mut self, value: u8) {
+        self.ext_osc = (self.ext_osc & !0xf) | (value as u16 & 0xf);
+    }
+    /// Calibrated (bit 4 of `ext_osc`).
+    pub fn ext_osc_calib(&self) -> bool {
+        ((self.ext_osc >> 4) & 0x1) != 0
+    }
+    /// Sets calibrated (the value in its bits of `ext_osc`; the other bits stay).
+    pub fn set_ext_osc_calib(&mut self, value: bool) {
+        self.ext_osc = (self.ext_osc & !(0x1 << 4)) | (u16::from(value) << 4);
+    }
+    /// Disciplined (bit 5 of `ext_osc`).
+    pub fn ext_osc_disc(&self) -> bool {
+        ((self.ext_osc >> 5) & 0x1) != 0
+    }
+    /// Sets disciplined (the value in its bits of `ext_osc`; the other bits stay).
+    pub fn set_ext_osc_disc(&mut self, value: bool) {
+        self.ext_osc = (self.ext_osc & !(0x1 << 5)) | (u16::from(value) << 5);
+    }
+    /// GNSS time available (bit 0 of `gnss`).
+    pub fn gnss_avail(&self) -> bool {
+        (self.gnss & 0x1) != 0
+    }
+    /// Sets gnss time available (the value in its bits of `gnss`; the other bits stay).
+    pub fn set_gnss_avail(&mut self, value: bool) {
+        self.gnss = (self.gnss & !0x1) | u8::from(value);
+    }
+    /// Signal present (bit 0 of `ext_int0`).
+    pub fn ext_int0_avail(&self) -> bool {
+        (self.ext_int0 & 0x1) != 0
+    }
+    /// Sets signal present (the value in its bits of `ext_int0`; the other bits stay).
+    pub fn set_ext_int0_avail(&mut self, value: bool) {
+        self.ext_int0 = (self.ext_int0 & !0x1) | u8::from(value);
+    }
+    /// Frequency source (else time) (bit 1 of `ext_int0`).
+    pub fn ext_int0_type(&self) -> bool {
+        ((self.ext_int0 >> 1) & 0x1) != 0
+    }
+    /// Sets frequency source (else time) (the value in its bits of `ext_int0`; the other bits stay).
+    pub fn set_ext_int0_type(&mut self, value: bool) {
+        self.ext_int0 = (self.ext_int0 & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Fed back from the disciplined source (bit 2 of `ext_int0`).
+    pub fn ext_int0_feed_back(&self) -> bool {
+        ((self.ext_int0 >> 2) & 0x1) != 0
+    }
+    /// Sets fed back from the disciplined source (the value in its bits of `ext_int0`; the other bits stay).
+    pub fn set_ext_int0_feed_back(&mut self, value: bool) {
+        self.ext_int0 = (self.ext_int0 & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Signal present (bit 0 of `ext_int1`).
+    pub fn ext_int1_avail(&self) -> bool {
+        (self.ext_int1 & 0x1) != 0
+    }
+    /// Sets signal present (the value in its bits of `ext_int1`; the other bits stay).
+    pub fn set_ext_int1_avail(&mut self, value: bool) {
+        self.ext_int1 = (self.ext_int1 & !0x1) | u8::from(value);
+    }
+    /// Frequency source (else time) (bit 1 of `ext_int1`).
+    pub fn ext_int1_type(&self) -> bool {
+        ((self.ext_int1 >> 1) & 0x1) != 0
+    }
+    /// Sets frequency source (else time) (the value in its bits of `ext_int1`; the other bits stay).
+    pub fn set_ext_int1_type(&mut self, value: bool) {
+        self.ext_int1 = (self.ext_int1 & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Fed back from the disciplined source (bit 2 of `ext_int1`).
+    pub fn ext_int1_feed_back(&self) -> bool {
+        ((self.ext_int1 >> 2) & 0x1) != 0
+    }
+    /// Sets fed back from the disciplined source (the value in its bits of `ext_int1`; the other bits stay).
+    pub fn set_ext_int1_feed_back(&mut self, value: bool) {
+        self.ext_int1 = (self.ext_int1 & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let int_osc = u16::from_le_bytes(r.array("int_osc")?);
+        let ext_osc = u16::from_le_bytes(r.array("ext_osc")?);
+        let disc_src = u8::from_le_bytes(r.array("disc_src")?);
+        let gnss = u8::from_le_bytes(r.array("gnss")?);
+        let ext_int0 = u8::from_le_bytes(r.array("ext_int0")?);
+        let ext_int1 = u8::from_le_bytes(r.array("ext_int1")?);
+        let trailing = r.rest();
+        Ok(Self { version, reserved1, itow, int_osc, ext_osc, disc_src, gnss, ext_int0, ext_int1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.int_osc.to_le_bytes());
+        w.put(&self.ext_osc.to_le_bytes());
+        w.put(&self.disc_src.to_le_bytes());
+        w.put(&self.gnss.to_le_bytes());
+        w.put(&self.ext_int0.to_le_bytes());
+        w.put(&self.ext_int1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("itow", self.itow)?;
+        j.int("int_osc", self.int_osc)?;
+        j.int("int_osc_state", (self.int_osc & 0xf) as u8)?;
+        j.flag("int_osc_calib", ((self.int_osc >> 4) & 0x1) != 0)?;
+        j.flag("int_osc_disc", ((self.int_osc >> 5) & 0x1) != 0)?;
+        j.int("ext_osc", self.ext_osc)?;
+        j.int("ext_osc_state", (self.ext_osc & 0xf) as u8)?;
+        j.flag("ext_osc_calib", ((self.ext_osc >> 4) & 0x1) != 0)?;
+        j.flag("ext_osc_disc", ((self.ext_osc >> 5) & 0x1) != 0)?;
+        j.int("disc_src", self.disc_src)?;
+        j.int("gnss", self.gnss)?;
+        j.flag("gnss_avail", (self.gnss & 0x1) != 0)?;
+        j.int("ext_int0", self.ext_int0)?;
+        j.flag("ext_int0_avail", (self.ext_int0 & 0x1) != 0)?;
+        j.flag("ext_int0_type", ((self.ext_int0 >> 1) & 0x1) != 0)?;
+        j.flag("ext_int0_feed_back", ((self.ext_int0 >> 2) & 0x1) != 0)?;
+        j.int("ext_int1", self.ext_int1)?;
+        j.flag("ext_int1_avail", (self.ext_int1 & 0x1) != 0)?;
+        j.flag("ext_int1_type", ((self.ext_int1 >> 1) & 0x1) != 0)?;
+        j.flag("ext_int1_feed_back", ((self.ext_int1 >> 2) & 0x1) != 0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// System status: UBX MON-SYS (class 0x0A id 0x39), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSysPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonSysPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_sys_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-SYS";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x39;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_sys"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// System status: UBX MON-SYS (class 0x0A id 0x39), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSys<'a> {
+    /// Message version.
+    pub msg_ver: u8,
+    /// Cause of the last boot.
+    pub boot_type: u8,
+    /// Processor load [%].
+    pub cpu_load: u8,
+    /// Largest processor load [%].
+    pub cpu_load_max: u8,
+    /// Memory use [%].
+    pub mem_usage: u8,
+    /// Largest memory use [%].
+    pub mem_usage_max: u8,
+    /// I/O load [%].
+    pub io_usage: u8,
+    /// Largest I/O load [%].
+    pub io_usage_max: u8,
+    /// Time since the last boot [s].
+    pub run_time: u32,
+    /// Notices since the last boot.
+    pub notice_count: u16,
+    /// Warnings since the last boot.
+    pub warn_count: u16,
+    /// Errors since the last boot.
+    pub error_count: u16,
+    /// Chip temperature [degC].
+    pub temp_value: i8,
+    /// Reserved.
+    pub reserved0: u64,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonSys<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_sys";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-SYS";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x39;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(24);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let msg_ver = u8::from_le_bytes(r.array("msg_ver")?);
+        let boot_type = u8::from_le_bytes(r.array("boot_type")?);
+        let cpu_load = u8::from_le_bytes(r.array("cpu_load")?);
+        let cpu_load_max = u8::from_le_bytes(r.array("cpu_load_max")?);
+        let mem_usage = u8::from_le_bytes(r.array("mem_usage")?);
+        let mem_usage_max = u8::from_le_bytes(r.array("mem_usage_max")?);
+        let io_usage = u8::from_le_bytes(r.array("io_usage")?);
+        let io_usage_max = u8::from_le_bytes(r.array("io_usage_max")?);
+        let run_time = u32::from_le_bytes(r.array("run_time")?);
+        let notice_count = u16::from_le_bytes(r.array("notice_count")?);
+        let warn_count = u16::from_le_bytes(r.array("warn_count")?);
+        let error_count = u16::from_le_bytes(r.array("error_count")?);
+        let temp_value = i8::from_le_bytes(r.array("temp_value")?);
+        let reserved0 = {
+            let b: [u8; 5] = r.array("reserved0")?;
+            let mut le = [0u8; 8];
+            le[..5].copy_from_slice(&b);
+            u64::from_le_bytes(le)
+        };
+        let trailing = r.rest();
+        Ok(Self {
+            msg_ver,
+            boot_type,
+            cpu_load,
+            cpu_load_max,
+            mem_usage,
+            mem_usage_max,
+            io_usage,
+            io_usage_max,
+            run_time,
+            notice_count,
+            warn_count,
+            error_count,
+            temp_value,
+            reserved0,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.msg_ver.to_le_bytes());
+        w.put(&self.boot_type.to_le_bytes());
+        w.put(&self.cpu_load.to_le_bytes());
+        w.put(&self.cpu_load_max.to_le_bytes());
+        w.put(&self.mem_usage.to_le_bytes());
+        w.put(&self.mem_usage_max.to_le_bytes());
+        w.put(&self.io_usage.to_le_bytes());
+        w.put(&self.io_usage_max.to_le_bytes());
+        w.put(&self.run_time.to_le_bytes());
+        w.put(&self.notice_count.to_le_bytes());
+        w.put(&self.warn_count.to_le_bytes());
+        w.put(&self.error_count.to_le_bytes());
+        w.put(&self.temp_value.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..5]);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("msg_ver", self.msg_ver)?;
+        j.int("boot_type", self.boot_type)?;
+        j.int("cpu_load", self.cpu_load)?;
+        j.int("cpu_load_max", self.cpu_load_max)?;
+        j.int("mem_usage", self.mem_usage)?;
+        j.int("mem_usage_max", self.mem_usage_max)?;
+        j.int("io_usage", self.io_usage)?;
+        j.int("io_usage_max", self.io_usage_max)?;
+        j.int("run_time", self.run_time)?;
+        j.int("notice_count", self.notice_count)?;
+        j.int("warn_count", self.warn_count)?;
+        j.int("error_count", self.error_count)?;
+        j.int("temp_value", self.temp_value)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Transmitter buffer status: UBX MON-TXBUF (class 0x0A id 0x08), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MonTxbufPoll<'a> {
@@ -6518,6 +10134,130 @@ impl<'a> MonVer<'a> {
         ubx::json_chars(j, "sw_version", self.sw_version)?;
         ubx::json_chars(j, "hw_version", self.hw_version)?;
         self.extensions.json(j, "extensions")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// AssistNow Autonomous status: UBX NAV-AOPSTATUS (class 0x01 id 0x60), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavAopstatusPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavAopstatusPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_aopstatus_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-AOPSTATUS";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x60;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav_aopstatus"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// AssistNow Autonomous status: UBX NAV-AOPSTATUS (class 0x01 id 0x60), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavAopstatus<'a> {
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// AssistNow Autonomous configuration.
+    pub aop_cfg: u8,
+    /// Subsystem status.
+    pub status: u8,
+    /// Reserved.
+    pub reserved1: u128,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavAopstatus<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_aopstatus";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-AOPSTATUS";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x60;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(16);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// AssistNow Autonomous enabled (bit 0 of `aop_cfg`).
+    pub fn use_aop(&self) -> bool {
+        (self.aop_cfg & 0x1) != 0
+    }
+    /// Sets assistnow autonomous enabled (the value in its bits of `aop_cfg`; the other bits stay).
+    pub fn set_use_aop(&mut self, value: bool) {
+        self.aop_cfg = (self.aop_cfg & !0x1) | u8::from(value);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let aop_cfg = u8::from_le_bytes(r.array("aop_cfg")?);
+        let status = u8::from_le_bytes(r.array("status")?);
+        let reserved1 = {
+            let b: [u8; 10] = r.array("reserved1")?;
+            let mut le = [0u8; 16];
+            le[..10].copy_from_slice(&b);
+            u128::from_le_bytes(le)
+        };
+        let trailing = r.rest();
+        Ok(Self { itow, aop_cfg, status, reserved1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.aop_cfg.to_le_bytes());
+        w.put(&self.status.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..10]);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("aop_cfg", self.aop_cfg)?;
+        j.flag("use_aop", (self.aop_cfg & 0x1) != 0)?;
+        j.int("status", self.status)?;
+        write!(j.key("reserved1")?, "{}", self.reserved1)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -7023,6 +10763,200 @@ impl<'a> NavCov<'a> {
     }
 }
 
+/// DGPS data used for the navigation solution: UBX NAV-DGPS (class 0x01 id 0x31), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavDgpsPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavDgpsPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_dgps_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-DGPS";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x31;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav_dgps"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of NavDgpsChannel.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavDgpsChannel {
+    /// Satellite identifier.
+    pub svid: u8,
+    /// Channel flags.
+    pub flags: u8,
+    /// Age of the latest correction [ms].
+    pub age_c: u16,
+    /// Pseudorange correction [m].
+    pub prc: f32,
+    /// Pseudorange rate correction [m/s].
+    pub prrc: f32,
+}
+
+impl<'a> ubx::Entry<'a> for NavDgpsChannel {
+    const WIDTH: usize = 12;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let svid = u8::from_le_bytes(r.array("svid")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let age_c = u16::from_le_bytes(r.array("age_c")?);
+        let prc = f32::from_le_bytes(r.array("prc")?);
+        let prrc = f32::from_le_bytes(r.array("prrc")?);
+        Ok(Self { svid, flags, age_c, prc, prrc })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.svid.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.age_c.to_le_bytes());
+        w.put(&self.prc.to_le_bytes());
+        w.put(&self.prrc.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("svid", self.svid)?;
+        j.int("flags", self.flags)?;
+        j.int("channel", self.flags & 0xf)?;
+        j.flag("dgps_used", ((self.flags >> 4) & 0x1) != 0)?;
+        j.int("age_c", self.age_c)?;
+        ubx::json_float(j, "prc", f64::from(self.prc))?;
+        ubx::json_float(j, "prrc", f64::from(self.prrc))?;
+        Ok(())
+    }
+}
+
+impl NavDgpsChannel {
+    /// GPS channel number of the satellite (bits 0-3 of `flags`).
+    pub fn channel(&self) -> u8 {
+        self.flags & 0xf
+    }
+    /// Sets gps channel number of the satellite (the value in its bits of `flags`; the other bits stay).
+    pub fn set_channel(&mut self, value: u8) {
+        self.flags = (self.flags & !0xf) | (value & 0xf);
+    }
+    /// DGPS used for the satellite (bit 4 of `flags`).
+    pub fn dgps_used(&self) -> bool {
+        ((self.flags >> 4) & 0x1) != 0
+    }
+    /// Sets dgps used for the satellite (the value in its bits of `flags`; the other bits stay).
+    pub fn set_dgps_used(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+}
+
+/// DGPS data used for the navigation solution: UBX NAV-DGPS (class 0x01 id 0x31), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavDgps<'a> {
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// Age of the newest correction data [ms].
+    pub age: i32,
+    /// DGPS base station identifier.
+    pub base_id: i16,
+    /// DGPS base station health.
+    pub base_health: i16,
+    /// Number of channels with correction data.
+    pub num_ch: u8,
+    /// DGPS correction type.
+    pub status: u8,
+    /// Reserved.
+    pub reserved1: u16,
+    /// Channels: 0 to 65535 entries.
+    pub channels: ubx::Group<'a, NavDgpsChannel>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavDgps<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_dgps";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-DGPS";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x31;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let age = i32::from_le_bytes(r.array("age")?);
+        let base_id = i16::from_le_bytes(r.array("base_id")?);
+        let base_health = i16::from_le_bytes(r.array("base_health")?);
+        let num_ch = u8::from_le_bytes(r.array("num_ch")?);
+        let status = u8::from_le_bytes(r.array("status")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let channels = r.group(Some(usize::from(num_ch)), 0, 65535, 0, "channels")?;
+        let trailing = r.rest();
+        Ok(Self { itow, age, base_id, base_health, num_ch, status, reserved1, channels, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.age.to_le_bytes());
+        w.put(&self.base_id.to_le_bytes());
+        w.put(&self.base_health.to_le_bytes());
+        w.put(&self.num_ch.to_le_bytes());
+        w.put(&self.status.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        self.channels.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("age", self.age)?;
+        j.int("base_id", self.base_id)?;
+        j.int("base_health", self.base_health)?;
+        j.int("num_ch", self.num_ch)?;
+        j.int("status", self.status)?;
+        j.int("reserved1", self.reserved1)?;
+        self.channels.json(j, "channels")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Dilution of precision: UBX NAV-DOP (class 0x01 id 0x04), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct NavDopPoll<'a> {
@@ -7367,6 +11301,350 @@ impl<'a> NavEoe<'a> {
     /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
     pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
         j.int("itow", self.itow)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Geofencing status: UBX NAV-GEOFENCE (class 0x01 id 0x39), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavGeofencePoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavGeofencePoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_geofence_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-GEOFENCE";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x39;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav_geofence"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of NavGeofenceFence.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavGeofenceFence {
+    /// Geofence state.
+    pub state: u8,
+    /// Geofence identifier.
+    pub id: u8,
+}
+
+impl<'a> ubx::Entry<'a> for NavGeofenceFence {
+    const WIDTH: usize = 2;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let state = u8::from_le_bytes(r.array("state")?);
+        let id = u8::from_le_bytes(r.array("id")?);
+        Ok(Self { state, id })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.state.to_le_bytes());
+        w.put(&self.id.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("state", self.state)?;
+        j.int("id", self.id)?;
+        Ok(())
+    }
+}
+
+/// Geofencing status: UBX NAV-GEOFENCE (class 0x01 id 0x39), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavGeofence<'a> {
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// Message version.
+    pub version: u8,
+    /// Geofencing status.
+    pub status: u8,
+    /// Number of geofences.
+    pub num_fences: u8,
+    /// Combined state of all geofences.
+    pub comb_state: u8,
+    /// Geofences: 0 to 65535 entries.
+    pub fences: ubx::Group<'a, NavGeofenceFence>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavGeofence<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_geofence";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-GEOFENCE";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x39;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let status = u8::from_le_bytes(r.array("status")?);
+        let num_fences = u8::from_le_bytes(r.array("num_fences")?);
+        let comb_state = u8::from_le_bytes(r.array("comb_state")?);
+        let fences = r.group(Some(usize::from(num_fences)), 0, 65535, 0, "fences")?;
+        let trailing = r.rest();
+        Ok(Self { itow, version, status, num_fences, comb_state, fences, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.status.to_le_bytes());
+        w.put(&self.num_fences.to_le_bytes());
+        w.put(&self.comb_state.to_le_bytes());
+        self.fences.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("version", self.version)?;
+        j.int("status", self.status)?;
+        j.int("num_fences", self.num_fences)?;
+        j.int("comb_state", self.comb_state)?;
+        self.fences.json(j, "fences")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// High precision position solution in ECEF: UBX NAV-HPPOSECEF (class 0x01 id 0x13), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavHpposecefPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavHpposecefPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_hpposecef_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-HPPOSECEF";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x13;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav_hpposecef"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// High precision position solution in ECEF: UBX NAV-HPPOSECEF (class 0x01 id 0x13), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavHpposecef<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// ECEF X coordinate [cm].
+    pub ecef_x: i32,
+    /// ECEF Y coordinate [cm].
+    pub ecef_y: i32,
+    /// ECEF Z coordinate [cm].
+    pub ecef_z: i32,
+    /// High precision part of the X coordinate [mm].
+    pub ecef_x_hp_raw: i8,
+    /// High precision part of the Y coordinate [mm].
+    pub ecef_y_hp_raw: i8,
+    /// High precision part of the Z coordinate [mm].
+    pub ecef_z_hp_raw: i8,
+    /// Flags.
+    pub flags: u8,
+    /// Position accuracy estimate [mm].
+    pub p_acc_raw: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavHpposecef<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_hpposecef";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-HPPOSECEF";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x13;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(28);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// High precision part of the X coordinate [mm]: the raw integer divided by 10.
+    pub fn ecef_x_hp(&self) -> f64 {
+        let raw = self.ecef_x_hp_raw;
+        raw as f64 / 10.0
+    }
+    /// High precision part of the Y coordinate [mm]: the raw integer divided by 10.
+    pub fn ecef_y_hp(&self) -> f64 {
+        let raw = self.ecef_y_hp_raw;
+        raw as f64 / 10.0
+    }
+    /// High precision part of the Z coordinate [mm]: the raw integer divided by 10.
+    pub fn ecef_z_hp(&self) -> f64 {
+        let raw = self.ecef_z_hp_raw;
+        raw as f64 / 10.0
+    }
+    /// The coordinates are not valid (bit 0 of `flags`).
+    pub fn invalid_ecef(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets the coordinates are not valid (the value in its bits of `flags`; the other bits stay).
+    pub fn set_invalid_ecef(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// Position accuracy estimate [mm]: the raw integer divided by 10.
+    pub fn p_acc(&self) -> f64 {
+        let raw = self.p_acc_raw;
+        raw as f64 / 10.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let ecef_x = i32::from_le_bytes(r.array("ecef_x")?);
+        let ecef_y = i32::from_le_bytes(r.array("ecef_y")?);
+        let ecef_z = i32::from_le_bytes(r.array("ecef_z")?);
+        let ecef_x_hp_raw = i8::from_le_bytes(r.array("ecef_x_hp")?);
+        let ecef_y_hp_raw = i8::from_le_bytes(r.array("ecef_y_hp")?);
+        let ecef_z_hp_raw = i8::from_le_bytes(r.array("ecef_z_hp")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let p_acc_raw = u32::from_le_bytes(r.array("p_acc")?);
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            reserved0,
+            itow,
+            ecef_x,
+            ecef_y,
+            ecef_z,
+            ecef_x_hp_raw,
+            ecef_y_hp_raw,
+            ecef_z_hp_raw,
+            flags,
+            p_acc_raw,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.ecef_x.to_le_bytes());
+        w.put(&self.ecef_y.to_le_bytes());
+        w.put(&self.ecef_z.to_le_bytes());
+        w.put(&self.ecef_x_hp_raw.to_le_bytes());
+        w.put(&self.ecef_y_hp_raw.to_le_bytes());
+        w.put(&self.ecef_z_hp_raw.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.p_acc_raw.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("itow", self.itow)?;
+        j.int("ecef_x", self.ecef_x)?;
+        j.int("ecef_y", self.ecef_y)?;
+        j.int("ecef_z", self.ecef_z)?;
+        ubx::json_float(j, "ecef_x_hp", self.ecef_x_hp_raw as f64 / 10.0)?;
+        j.int("ecef_x_hp_raw", self.ecef_x_hp_raw)?;
+        ubx::json_float(j, "ecef_y_hp", self.ecef_y_hp_raw as f64 / 10.0)?;
+        j.int("ecef_y_hp_raw", self.ecef_y_hp_raw)?;
+        ubx::json_float(j, "ecef_z_hp", self.ecef_z_hp_raw as f64 / 10.0)?;
+        j.int("ecef_z_hp_raw", self.ecef_z_hp_raw)?;
+        j.int("flags", self.flags)?;
+        j.flag("invalid_ecef", (self.flags & 0x1) != 0)?;
+        ubx::json_float(j, "p_acc", self.p_acc_raw as f64 / 10.0)?;
+        j.int("p_acc_raw", self.p_acc_raw)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -7725,6 +12003,476 @@ impl<'a> NavOdo<'a> {
         j.int("distance", self.distance)?;
         j.int("total_distance", self.total_distance)?;
         j.int("distance_std", self.distance_std)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// GNSS orbit database information: UBX NAV-ORB (class 0x01 id 0x34), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavOrbPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavOrbPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_orb_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-ORB";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x34;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav_orb"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of NavOrbSv.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavOrbSv {
+    /// GNSS identifier.
+    pub gnss_id_raw: u8,
+    /// Satellite identifier.
+    pub sv_id: u8,
+    /// Satellite state.
+    pub sv_flag: u8,
+    /// Ephemeris.
+    pub eph: u8,
+    /// Almanac.
+    pub alm: u8,
+    /// Other orbit data.
+    pub other_orb: u8,
+}
+
+impl<'a> ubx::Entry<'a> for NavOrbSv {
+    const WIDTH: usize = 6;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
+        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
+        let sv_flag = u8::from_le_bytes(r.array("sv_flag")?);
+        let eph = u8::from_le_bytes(r.array("eph")?);
+        let alm = u8::from_le_bytes(r.array("alm")?);
+        let other_orb = u8::from_le_bytes(r.array("other_orb")?);
+        Ok(Self { gnss_id_raw, sv_id, sv_flag, eph, alm, other_orb })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.gnss_id_raw.to_le_bytes());
+        w.put(&self.sv_id.to_le_bytes());
+        w.put(&self.sv_flag.to_le_bytes());
+        w.put(&self.eph.to_le_bytes());
+        w.put(&self.alm.to_le_bytes());
+        w.put(&self.other_orb.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.code(
+            "gnss_id",
+            ais::code::<UbxGnssId>(u64::from(self.gnss_id_raw)).map(CodeEnum::id),
+            u64::from(self.gnss_id_raw),
+        )?;
+        j.int("sv_id", self.sv_id)?;
+        j.int("sv_flag", self.sv_flag)?;
+        j.int("health", self.sv_flag & 0x3)?;
+        j.int("visibility", (self.sv_flag >> 2) & 0x3)?;
+        j.int("eph", self.eph)?;
+        j.int("eph_usability", self.eph & 0x1f)?;
+        j.int("eph_source", (self.eph >> 5) & 0x7)?;
+        j.int("alm", self.alm)?;
+        j.int("alm_usability", self.alm & 0x1f)?;
+        j.int("alm_source", (self.alm >> 5) & 0x7)?;
+        j.int("other_orb", self.other_orb)?;
+        j.int("ano_aop_usability", self.other_orb & 0x1f)?;
+        j.int("type", (self.other_orb >> 5) & 0x7)?;
+        Ok(())
+    }
+}
+
+impl NavOrbSv {
+    /// GNSS identifier: the enum's value of the raw code, None for a code it does not name.
+    pub fn gnss_id(&self) -> Option<UbxGnssId> {
+        ais::code(u64::from(self.gnss_id_raw))
+    }
+    /// Health (bits 0-1 of `sv_flag`).
+    pub fn health(&self) -> u8 {
+        self.sv_flag & 0x3
+    }
+    /// Sets health (the value in its bits of `sv_flag`; the other bits stay).
+    pub fn set_health(&mut self, value: u8) {
+        self.sv_flag = (self.sv_flag & !0x3) | (value & 0x3);
+    }
+    /// Visibility (bits 2-3 of `sv_flag`).
+    pub fn visibility(&self) -> u8 {
+        (self.sv_flag >> 2) & 0x3
+    }
+    /// Sets visibility (the value in its bits of `sv_flag`; the other bits stay).
+    pub fn set_visibility(&mut self, value: u8) {
+        self.sv_flag = (self.sv_flag & !(0x3 << 2)) | ((value & 0x3) << 2);
+    }
+    /// How long the ephemeris stays usable (bits 0-4 of `eph`).
+    pub fn eph_usability(&self) -> u8 {
+        self.eph & 0x1f
+    }
+    /// Sets how long the ephemeris stays usable (the value in its bits of `eph`; the other bits stay).
+    pub fn set_eph_usability(&mut self, value: u8) {
+        self.eph = (self.eph & !0x1f) | (value & 0x1f);
+    }
+    /// Where the ephemeris came from (bits 5-7 of `eph`).
+    pub fn eph_source(&self) -> u8 {
+        (self.eph >> 5) & 0x7
+    }
+    /// Sets where the ephemeris came from (the value in its bits of `eph`; the other bits stay).
+    pub fn set_eph_source(&mut self, value: u8) {
+        self.eph = (self.eph & !(0x7 << 5)) | ((value & 0x7) << 5);
+    }
+    /// How long the almanac stays usable (bits 0-4 of `alm`).
+    pub fn alm_usability(&self) -> u8 {
+        self.alm & 0x1f
+    }
+    /// Sets how long the almanac stays usable (the value in its bits of `alm`; the other bits stay).
+    pub fn set_alm_usability(&mut self, value: u8) {
+        self.alm = (self.alm & !0x1f) | (value & 0x1f);
+    }
+    /// Where the almanac came from (bits 5-7 of `alm`).
+    pub fn alm_source(&self) -> u8 {
+        (self.alm >> 5) & 0x7
+    }
+    /// Sets where the almanac came from (the value in its bits of `alm`; the other bits stay).
+    pub fn set_alm_source(&mut self, value: u8) {
+        self.alm = (self.alm & !(0x7 << 5)) | ((value & 0x7) << 5);
+    }
+    /// How long the other orbit data stays usable (bits 0-4 of `other_orb`).
+    pub fn ano_aop_usability(&self) -> u8 {
+        self.other_orb & 0x1f
+    }
+    /// Sets how long the other orbit data stays usable (the value in its bits of `other_orb`; the other bits stay).
+    pub fn set_ano_aop_usability(&mut self, value: u8) {
+        self.other_orb = (self.other_orb & !0x1f) | (value & 0x1f);
+    }
+    /// Kind of the other orbit data (bits 5-7 of `other_orb`).
+    pub fn r#type(&self) -> u8 {
+        (self.other_orb >> 5) & 0x7
+    }
+    /// Sets kind of the other orbit data (the value in its bits of `other_orb`; the other bits stay).
+    pub fn set_type(&mut self, value: u8) {
+        self.other_orb = (self.other_orb & !(0x7 << 5)) | ((value & 0x7) << 5);
+    }
+}
+
+/// GNSS orbit database information: UBX NAV-ORB (class 0x01 id 0x34), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavOrb<'a> {
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// Message version.
+    pub version: u8,
+    /// Number of satellites.
+    pub num_sv: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Satellites: 0 to 65535 entries.
+    pub svs: ubx::Group<'a, NavOrbSv>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavOrb<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_orb";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-ORB";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x34;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let svs = r.group(Some(usize::from(num_sv)), 0, 65535, 0, "svs")?;
+        let trailing = r.rest();
+        Ok(Self { itow, version, num_sv, reserved0, svs, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.num_sv.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        self.svs.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("version", self.version)?;
+        j.int("num_sv", self.num_sv)?;
+        j.int("reserved0", self.reserved0)?;
+        self.svs.json(j, "svs")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Protection level information: UBX NAV-PL (class 0x01 id 0x62), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavPlPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavPlPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_pl_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-PL";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x62;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav_pl"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Protection level information: UBX NAV-PL (class 0x01 id 0x62), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavPl<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Coefficient of the target misleading information risk.
+    pub tmir_coeff: u8,
+    /// Exponent of the target misleading information risk.
+    pub tmir_exp: i8,
+    /// Position protection level valid.
+    pub pl_pos_valid: u8,
+    /// Frame of the position protection level.
+    pub pl_pos_frame: u8,
+    /// Velocity protection level valid.
+    pub pl_vel_valid: u8,
+    /// Frame of the velocity protection level.
+    pub pl_vel_frame: u8,
+    /// Time protection level valid.
+    pub pl_time_valid: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// First axis of the position protection level [mm].
+    pub pl_pos1: u32,
+    /// Second axis of the position protection level [mm].
+    pub pl_pos2: u32,
+    /// Third axis of the position protection level [mm].
+    pub pl_pos3: u32,
+    /// First axis of the velocity protection level [mm/s].
+    pub pl_vel1: u32,
+    /// Second axis of the velocity protection level [mm/s].
+    pub pl_vel2: u32,
+    /// Third axis of the velocity protection level [mm/s].
+    pub pl_vel3: u32,
+    /// Orientation of the horizontal position axes [deg].
+    pub pl_pos_horiz_orient_raw: u16,
+    /// Orientation of the horizontal velocity axes [deg].
+    pub pl_vel_horiz_orient_raw: u16,
+    /// Time protection level [ns].
+    pub pl_time: u32,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavPl<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_pl";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-PL";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x62;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(52);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Orientation of the horizontal position axes [deg]: the raw integer divided by 100.
+    pub fn pl_pos_horiz_orient(&self) -> f64 {
+        let raw = self.pl_pos_horiz_orient_raw;
+        raw as f64 / 100.0
+    }
+    /// Orientation of the horizontal velocity axes [deg]: the raw integer divided by 100.
+    pub fn pl_vel_horiz_orient(&self) -> f64 {
+        let raw = self.pl_vel_horiz_orient_raw;
+        raw as f64 / 100.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let tmir_coeff = u8::from_le_bytes(r.array("tmir_coeff")?);
+        let tmir_exp = i8::from_le_bytes(r.array("tmir_exp")?);
+        let pl_pos_valid = u8::from_le_bytes(r.array("pl_pos_valid")?);
+        let pl_pos_frame = u8::from_le_bytes(r.array("pl_pos_frame")?);
+        let pl_vel_valid = u8::from_le_bytes(r.array("pl_vel_valid")?);
+        let pl_vel_frame = u8::from_le_bytes(r.array("pl_vel_frame")?);
+        let pl_time_valid = u8::from_le_bytes(r.array("pl_time_valid")?);
+        let reserved0 = u32::from_le_bytes(r.array("reserved0")?);
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let pl_pos1 = u32::from_le_bytes(r.array("pl_pos1")?);
+        let pl_pos2 = u32::from_le_bytes(r.array("pl_pos2")?);
+        let pl_pos3 = u32::from_le_bytes(r.array("pl_pos3")?);
+        let pl_vel1 = u32::from_le_bytes(r.array("pl_vel1")?);
+        let pl_vel2 = u32::from_le_bytes(r.array("pl_vel2")?);
+        let pl_vel3 = u32::from_le_bytes(r.array("pl_vel3")?);
+        let pl_pos_horiz_orient_raw = u16::from_le_bytes(r.array("pl_pos_horiz_orient")?);
+        let pl_vel_horiz_orient_raw = u16::from_le_bytes(r.array("pl_vel_horiz_orient")?);
+        let pl_time = u32::from_le_bytes(r.array("pl_time")?);
+        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            tmir_coeff,
+            tmir_exp,
+            pl_pos_valid,
+            pl_pos_frame,
+            pl_vel_valid,
+            pl_vel_frame,
+            pl_time_valid,
+            reserved0,
+            itow,
+            pl_pos1,
+            pl_pos2,
+            pl_pos3,
+            pl_vel1,
+            pl_vel2,
+            pl_vel3,
+            pl_pos_horiz_orient_raw,
+            pl_vel_horiz_orient_raw,
+            pl_time,
+            reserved1,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.tmir_coeff.to_le_bytes());
+        w.put(&self.tmir_exp.to_le_bytes());
+        w.put(&self.pl_pos_valid.to_le_bytes());
+        w.put(&self.pl_pos_frame.to_le_bytes());
+        w.put(&self.pl_vel_valid.to_le_bytes());
+        w.put(&self.pl_vel_frame.to_le_bytes());
+        w.put(&self.pl_time_valid.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.pl_pos1.to_le_bytes());
+        w.put(&self.pl_pos2.to_le_bytes());
+        w.put(&self.pl_pos3.to_le_bytes());
+        w.put(&self.pl_vel1.to_le_bytes());
+        w.put(&self.pl_vel2.to_le_bytes());
+        w.put(&self.pl_vel3.to_le_bytes());
+        w.put(&self.pl_pos_horiz_orient_raw.to_le_bytes());
+        w.put(&self.pl_vel_horiz_orient_raw.to_le_bytes());
+        w.put(&self.pl_time.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("tmir_coeff", self.tmir_coeff)?;
+        j.int("tmir_exp", self.tmir_exp)?;
+        j.int("pl_pos_valid", self.pl_pos_valid)?;
+        j.int("pl_pos_frame", self.pl_pos_frame)?;
+        j.int("pl_vel_valid", self.pl_vel_valid)?;
+        j.int("pl_vel_frame", self.pl_vel_frame)?;
+        j.int("pl_time_valid", self.pl_time_valid)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("itow", self.itow)?;
+        j.int("pl_pos1", self.pl_pos1)?;
+        j.int("pl_pos2", self.pl_pos2)?;
+        j.int("pl_pos3", self.pl_pos3)?;
+        j.int("pl_vel1", self.pl_vel1)?;
+        j.int("pl_vel2", self.pl_vel2)?;
+        j.int("pl_vel3", self.pl_vel3)?;
+        ubx::json_float(j, "pl_pos_horiz_orient", self.pl_pos_horiz_orient_raw as f64 / 100.0)?;
+        j.int("pl_pos_horiz_orient_raw", self.pl_pos_horiz_orient_raw)?;
+        ubx::json_float(j, "pl_vel_horiz_orient", self.pl_vel_horiz_orient_raw as f64 / 100.0)?;
+        j.int("pl_vel_horiz_orient_raw", self.pl_vel_horiz_orient_raw)?;
+        j.int("pl_time", self.pl_time)?;
+        j.int("reserved1", self.reserved1)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -9972,6 +14720,261 @@ impl<'a> NavSig<'a> {
     }
 }
 
+/// QZSS L1S SLAS status: UBX NAV-SLAS (class 0x01 id 0x42), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavSlasPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavSlasPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_slas_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-SLAS";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x42;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav_slas"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of NavSlasCorrection.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavSlasCorrection {
+    /// GNSS identifier.
+    pub gnss_id_raw: u8,
+    /// Satellite identifier.
+    pub sv_id: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Reserved.
+    pub reserved2: u32,
+    /// Pseudorange correction [cm].
+    pub prc: i16,
+}
+
+impl<'a> ubx::Entry<'a> for NavSlasCorrection {
+    const WIDTH: usize = 8;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
+        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let reserved2 = {
+            let b: [u8; 3] = r.array("reserved2")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let prc = i16::from_le_bytes(r.array("prc")?);
+        Ok(Self { gnss_id_raw, sv_id, reserved1, reserved2, prc })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.gnss_id_raw.to_le_bytes());
+        w.put(&self.sv_id.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes()[..3]);
+        w.put(&self.prc.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.code(
+            "gnss_id",
+            ais::code::<UbxGnssId>(u64::from(self.gnss_id_raw)).map(CodeEnum::id),
+            u64::from(self.gnss_id_raw),
+        )?;
+        j.int("sv_id", self.sv_id)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("reserved2", self.reserved2)?;
+        j.int("prc", self.prc)?;
+        Ok(())
+    }
+}
+
+impl NavSlasCorrection {
+    /// GNSS identifier: the enum's value of the raw code, None for a code it does not name.
+    pub fn gnss_id(&self) -> Option<UbxGnssId> {
+        ais::code(u64::from(self.gnss_id_raw))
+    }
+}
+
+/// QZSS L1S SLAS status: UBX NAV-SLAS (class 0x01 id 0x42), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavSlas<'a> {
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Longitude of the ground monitoring station used [deg].
+    pub gms_lon_raw: i32,
+    /// Latitude of the ground monitoring station used [deg].
+    pub gms_lat_raw: i32,
+    /// Code of the ground monitoring station.
+    pub gms_code: u8,
+    /// QZSS satellite the corrections come from.
+    pub qzss_sv_id: u8,
+    /// Service flags.
+    pub service_flags: u8,
+    /// Number of pseudorange corrections.
+    pub cnt: u8,
+    /// Pseudorange corrections: 0 to 65535 entries.
+    pub corrections: ubx::Group<'a, NavSlasCorrection>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavSlas<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_slas";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-SLAS";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x42;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Longitude of the ground monitoring station used [deg]: the raw integer divided by 1000.
+    pub fn gms_lon(&self) -> f64 {
+        let raw = self.gms_lon_raw;
+        raw as f64 / 1000.0
+    }
+    /// Latitude of the ground monitoring station used [deg]: the raw integer divided by 1000.
+    pub fn gms_lat(&self) -> f64 {
+        let raw = self.gms_lat_raw;
+        raw as f64 / 1000.0
+    }
+    /// A ground monitoring station is available (bit 0 of `service_flags`).
+    pub fn gms_available(&self) -> bool {
+        (self.service_flags & 0x1) != 0
+    }
+    /// Sets a ground monitoring station is available (the value in its bits of `service_flags`; the other bits stay).
+    pub fn set_gms_available(&mut self, value: bool) {
+        self.service_flags = (self.service_flags & !0x1) | u8::from(value);
+    }
+    /// The QZSS satellite is available (bit 1 of `service_flags`).
+    pub fn qzss_sv_available(&self) -> bool {
+        ((self.service_flags >> 1) & 0x1) != 0
+    }
+    /// Sets the qzss satellite is available (the value in its bits of `service_flags`; the other bits stay).
+    pub fn set_qzss_sv_available(&mut self, value: bool) {
+        self.service_flags = (self.service_flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// The QZSS satellite is in test mode (bit 2 of `service_flags`).
+    pub fn test_mode(&self) -> bool {
+        ((self.service_flags >> 2) & 0x1) != 0
+    }
+    /// Sets the qzss satellite is in test mode (the value in its bits of `service_flags`; the other bits stay).
+    pub fn set_test_mode(&mut self, value: bool) {
+        self.service_flags = (self.service_flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let gms_lon_raw = i32::from_le_bytes(r.array("gms_lon")?);
+        let gms_lat_raw = i32::from_le_bytes(r.array("gms_lat")?);
+        let gms_code = u8::from_le_bytes(r.array("gms_code")?);
+        let qzss_sv_id = u8::from_le_bytes(r.array("qzss_sv_id")?);
+        let service_flags = u8::from_le_bytes(r.array("service_flags")?);
+        let cnt = u8::from_le_bytes(r.array("cnt")?);
+        let corrections = r.group(Some(usize::from(cnt)), 0, 65535, 0, "corrections")?;
+        let trailing = r.rest();
+        Ok(Self {
+            itow,
+            version,
+            reserved0,
+            gms_lon_raw,
+            gms_lat_raw,
+            gms_code,
+            qzss_sv_id,
+            service_flags,
+            cnt,
+            corrections,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(&self.gms_lon_raw.to_le_bytes());
+        w.put(&self.gms_lat_raw.to_le_bytes());
+        w.put(&self.gms_code.to_le_bytes());
+        w.put(&self.qzss_sv_id.to_le_bytes());
+        w.put(&self.service_flags.to_le_bytes());
+        w.put(&self.cnt.to_le_bytes());
+        self.corrections.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_float(j, "gms_lon", self.gms_lon_raw as f64 / 1000.0)?;
+        j.int("gms_lon_raw", self.gms_lon_raw)?;
+        ubx::json_float(j, "gms_lat", self.gms_lat_raw as f64 / 1000.0)?;
+        j.int("gms_lat_raw", self.gms_lat_raw)?;
+        j.int("gms_code", self.gms_code)?;
+        j.int("qzss_sv_id", self.qzss_sv_id)?;
+        j.int("service_flags", self.service_flags)?;
+        j.flag("gms_available", (self.service_flags & 0x1) != 0)?;
+        j.flag("qzss_sv_available", ((self.service_flags >> 1) & 0x1) != 0)?;
+        j.flag("test_mode", ((self.service_flags >> 2) & 0x1) != 0)?;
+        j.int("cnt", self.cnt)?;
+        self.corrections.json(j, "corrections")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Navigation solution: UBX NAV-SOL (class 0x01 id 0x06), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct NavSolPoll<'a> {
@@ -11708,6 +16711,158 @@ impl<'a> NavTimels<'a> {
     }
 }
 
+/// QZSS time solution: UBX NAV-TIMEQZSS (class 0x01 id 0x27), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavTimeqzssPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavTimeqzssPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_timeqzss_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-TIMEQZSS";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x27;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav_timeqzss"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// QZSS time solution: UBX NAV-TIMEQZSS (class 0x01 id 0x27), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavTimeqzss<'a> {
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// QZSS time of week [ms].
+    pub qzss_tow: u32,
+    /// Fraction of the QZSS time of week [ns].
+    pub f_qzss_tow: i32,
+    /// QZSS week number.
+    pub qzss_wno: i16,
+    /// QZSS leap seconds (QZSS minus TAI) [s].
+    pub leap_s: i8,
+    /// Validity flags.
+    pub valid: u8,
+    /// Time accuracy estimate [ns].
+    pub t_acc: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavTimeqzss<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_timeqzss";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-TIMEQZSS";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x27;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(20);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Valid time of week (bit 0 of `valid`).
+    pub fn qzss_tow_valid(&self) -> bool {
+        (self.valid & 0x1) != 0
+    }
+    /// Sets valid time of week (the value in its bits of `valid`; the other bits stay).
+    pub fn set_qzss_tow_valid(&mut self, value: bool) {
+        self.valid = (self.valid & !0x1) | u8::from(value);
+    }
+    /// Valid week number (bit 1 of `valid`).
+    pub fn qzss_wno_valid(&self) -> bool {
+        ((self.valid >> 1) & 0x1) != 0
+    }
+    /// Sets valid week number (the value in its bits of `valid`; the other bits stay).
+    pub fn set_qzss_wno_valid(&mut self, value: bool) {
+        self.valid = (self.valid & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Valid leap seconds (bit 2 of `valid`).
+    pub fn leap_s_valid(&self) -> bool {
+        ((self.valid >> 2) & 0x1) != 0
+    }
+    /// Sets valid leap seconds (the value in its bits of `valid`; the other bits stay).
+    pub fn set_leap_s_valid(&mut self, value: bool) {
+        self.valid = (self.valid & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let qzss_tow = u32::from_le_bytes(r.array("qzss_tow")?);
+        let f_qzss_tow = i32::from_le_bytes(r.array("f_qzss_tow")?);
+        let qzss_wno = i16::from_le_bytes(r.array("qzss_wno")?);
+        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
+        let valid = u8::from_le_bytes(r.array("valid")?);
+        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let trailing = r.rest();
+        Ok(Self { itow, qzss_tow, f_qzss_tow, qzss_wno, leap_s, valid, t_acc, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.qzss_tow.to_le_bytes());
+        w.put(&self.f_qzss_tow.to_le_bytes());
+        w.put(&self.qzss_wno.to_le_bytes());
+        w.put(&self.leap_s.to_le_bytes());
+        w.put(&self.valid.to_le_bytes());
+        w.put(&self.t_acc.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("qzss_tow", self.qzss_tow)?;
+        j.int("f_qzss_tow", self.f_qzss_tow)?;
+        j.int("qzss_wno", self.qzss_wno)?;
+        j.int("leap_s", self.leap_s)?;
+        j.int("valid", self.valid)?;
+        j.flag("qzss_tow_valid", (self.valid & 0x1) != 0)?;
+        j.flag("qzss_wno_valid", ((self.valid >> 1) & 0x1) != 0)?;
+        j.flag("leap_s_valid", ((self.valid >> 2) & 0x1) != 0)?;
+        j.int("t_acc", self.t_acc)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// UTC time solution: UBX NAV-TIMEUTC (class 0x01 id 0x21), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct NavTimeutcPoll<'a> {
@@ -12790,6 +17945,758 @@ impl<'a> SecUniqid<'a> {
     }
 }
 
+/// Disciplined oscillator control: UBX TIM-DOSC (class 0x0D id 0x11), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimDoscPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimDoscPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_dosc_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-DOSC";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x11;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["tim_dosc"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Disciplined oscillator control: UBX TIM-DOSC (class 0x0D id 0x11), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimDosc<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Raw control value for the oscillator.
+    pub value: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimDosc<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_dosc";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-DOSC";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x11;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let value = u32::from_le_bytes(r.array("value")?);
+        let trailing = r.rest();
+        Ok(Self { version, reserved1, value, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(&self.value.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("value", self.value)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Oscillator frequency changed: UBX TIM-FCHG (class 0x0D id 0x16), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimFchgPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimFchgPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_fchg_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-FCHG";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x16;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["tim_fchg"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Oscillator frequency changed: UBX TIM-FCHG (class 0x0D id 0x16), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimFchg<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// Frequency increment of the internal oscillator [ppb].
+    pub int_delta_freq_raw: i32,
+    /// Uncertainty of the internal oscillator's frequency increment [ppb].
+    pub int_delta_freq_unc_raw: u32,
+    /// Current raw control value of the internal oscillator.
+    pub int_raw: u32,
+    /// Frequency increment of the external oscillator [ppb].
+    pub ext_delta_freq_raw: i32,
+    /// Uncertainty of the external oscillator's frequency increment [ppb].
+    pub ext_delta_freq_unc_raw: u32,
+    /// Current raw control value of the external oscillator.
+    pub ext_raw: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimFchg<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_fchg";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-FCHG";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x16;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(32);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Frequency increment of the internal oscillator [ppb]: the raw integer divided by 256.
+    pub fn int_delta_freq(&self) -> f64 {
+        let raw = self.int_delta_freq_raw;
+        raw as f64 / 256.0
+    }
+    /// Uncertainty of the internal oscillator's frequency increment [ppb]: the raw integer divided by 256.
+    pub fn int_delta_freq_unc(&self) -> f64 {
+        let raw = self.int_delta_freq_unc_raw;
+        raw as f64 / 256.0
+    }
+    /// Frequency increment of the external oscillator [ppb]: the raw integer divided by 256.
+    pub fn ext_delta_freq(&self) -> f64 {
+        let raw = self.ext_delta_freq_raw;
+        raw as f64 / 256.0
+    }
+    /// Uncertainty of the external oscillator's frequency increment [ppb]: the raw integer divided by 256.
+    pub fn ext_delta_freq_unc(&self) -> f64 {
+        let raw = self.ext_delta_freq_unc_raw;
+        raw as f64 / 256.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let int_delta_freq_raw = i32::from_le_bytes(r.array("int_delta_freq")?);
+        let int_delta_freq_unc_raw = u32::from_le_bytes(r.array("int_delta_freq_unc")?);
+        let int_raw = u32::from_le_bytes(r.array("int_raw")?);
+        let ext_delta_freq_raw = i32::from_le_bytes(r.array("ext_delta_freq")?);
+        let ext_delta_freq_unc_raw = u32::from_le_bytes(r.array("ext_delta_freq_unc")?);
+        let ext_raw = u32::from_le_bytes(r.array("ext_raw")?);
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            reserved1,
+            itow,
+            int_delta_freq_raw,
+            int_delta_freq_unc_raw,
+            int_raw,
+            ext_delta_freq_raw,
+            ext_delta_freq_unc_raw,
+            ext_raw,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.int_delta_freq_raw.to_le_bytes());
+        w.put(&self.int_delta_freq_unc_raw.to_le_bytes());
+        w.put(&self.int_raw.to_le_bytes());
+        w.put(&self.ext_delta_freq_raw.to_le_bytes());
+        w.put(&self.ext_delta_freq_unc_raw.to_le_bytes());
+        w.put(&self.ext_raw.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("itow", self.itow)?;
+        ubx::json_float(j, "int_delta_freq", self.int_delta_freq_raw as f64 / 256.0)?;
+        j.int("int_delta_freq_raw", self.int_delta_freq_raw)?;
+        ubx::json_float(j, "int_delta_freq_unc", self.int_delta_freq_unc_raw as f64 / 256.0)?;
+        j.int("int_delta_freq_unc_raw", self.int_delta_freq_unc_raw)?;
+        j.int("int_raw", self.int_raw)?;
+        ubx::json_float(j, "ext_delta_freq", self.ext_delta_freq_raw as f64 / 256.0)?;
+        j.int("ext_delta_freq_raw", self.ext_delta_freq_raw)?;
+        ubx::json_float(j, "ext_delta_freq_unc", self.ext_delta_freq_unc_raw as f64 / 256.0)?;
+        j.int("ext_delta_freq_unc_raw", self.ext_delta_freq_unc_raw)?;
+        j.int("ext_raw", self.ext_raw)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Host oscillator control: UBX TIM-HOC (class 0x0D id 0x17), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimHoc<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Oscillator.
+    pub osc_id: u8,
+    /// Flags.
+    pub flags: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Frequency offset or raw control value [ppb].
+    pub value_raw: i32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimHoc<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_hoc";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-HOC";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x17;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Value is a raw control value (else a frequency offset) (bit 0 of `flags`).
+    pub fn raw(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets value is a raw control value (else a frequency offset) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_raw(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// Value is a change of the current one (else absolute) (bit 1 of `flags`).
+    pub fn difference(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets value is a change of the current one (else absolute) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_difference(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Frequency offset or raw control value [ppb]: the raw integer divided by 256.
+    pub fn value(&self) -> f64 {
+        let raw = self.value_raw;
+        raw as f64 / 256.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let osc_id = u8::from_le_bytes(r.array("osc_id")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let value_raw = i32::from_le_bytes(r.array("value")?);
+        let trailing = r.rest();
+        Ok(Self { version, osc_id, flags, reserved1, value_raw, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.osc_id.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.value_raw.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("osc_id", self.osc_id)?;
+        j.int("flags", self.flags)?;
+        j.flag("raw", (self.flags & 0x1) != 0)?;
+        j.flag("difference", ((self.flags >> 1) & 0x1) != 0)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_float(j, "value", self.value_raw as f64 / 256.0)?;
+        j.int("value_raw", self.value_raw)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Source measurement: UBX TIM-SMEAS (class 0x0D id 0x13), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimSmeasPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimSmeasPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_smeas_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-SMEAS";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x13;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["tim_smeas"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of TimSmeasMea.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimSmeasMea {
+    /// Source.
+    pub source_id: u8,
+    /// Validity flags.
+    pub flags: u8,
+    /// Sub-nanosecond phase offset [ns].
+    pub phase_offset_frac_raw: i8,
+    /// Sub-nanosecond phase uncertainty [ns].
+    pub phase_unc_frac_raw: u8,
+    /// Phase offset [ns].
+    pub phase_offset: i32,
+    /// Phase uncertainty [ns].
+    pub phase_unc: u32,
+    /// Reserved.
+    pub reserved3: u32,
+    /// Frequency offset [ppb].
+    pub freq_offset_raw: i32,
+    /// Frequency uncertainty [ppb].
+    pub freq_unc_raw: u32,
+}
+
+impl<'a> ubx::Entry<'a> for TimSmeasMea {
+    const WIDTH: usize = 24;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let source_id = u8::from_le_bytes(r.array("source_id")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let phase_offset_frac_raw = i8::from_le_bytes(r.array("phase_offset_frac")?);
+        let phase_unc_frac_raw = u8::from_le_bytes(r.array("phase_unc_frac")?);
+        let phase_offset = i32::from_le_bytes(r.array("phase_offset")?);
+        let phase_unc = u32::from_le_bytes(r.array("phase_unc")?);
+        let reserved3 = u32::from_le_bytes(r.array("reserved3")?);
+        let freq_offset_raw = i32::from_le_bytes(r.array("freq_offset")?);
+        let freq_unc_raw = u32::from_le_bytes(r.array("freq_unc")?);
+        Ok(Self {
+            source_id,
+            flags,
+            phase_offset_frac_raw,
+            phase_unc_frac_raw,
+            phase_offset,
+            phase_unc,
+            reserved3,
+            freq_offset_raw,
+            freq_unc_raw,
+        })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.source_id.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.phase_offset_frac_raw.to_le_bytes());
+        w.put(&self.phase_unc_frac_raw.to_le_bytes());
+        w.put(&self.phase_offset.to_le_bytes());
+        w.put(&self.phase_unc.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes());
+        w.put(&self.freq_offset_raw.to_le_bytes());
+        w.put(&self.freq_unc_raw.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("source_id", self.source_id)?;
+        j.int("flags", self.flags)?;
+        j.flag("freq_valid", (self.flags & 0x1) != 0)?;
+        j.flag("phase_valid", ((self.flags >> 1) & 0x1) != 0)?;
+        ubx::json_float(j, "phase_offset_frac", self.phase_offset_frac_raw as f64 / 256.0)?;
+        j.int("phase_offset_frac_raw", self.phase_offset_frac_raw)?;
+        ubx::json_float(j, "phase_unc_frac", self.phase_unc_frac_raw as f64 / 256.0)?;
+        j.int("phase_unc_frac_raw", self.phase_unc_frac_raw)?;
+        j.int("phase_offset", self.phase_offset)?;
+        j.int("phase_unc", self.phase_unc)?;
+        j.int("reserved3", self.reserved3)?;
+        ubx::json_float(j, "freq_offset", self.freq_offset_raw as f64 / 256.0)?;
+        j.int("freq_offset_raw", self.freq_offset_raw)?;
+        ubx::json_float(j, "freq_unc", self.freq_unc_raw as f64 / 256.0)?;
+        j.int("freq_unc_raw", self.freq_unc_raw)?;
+        Ok(())
+    }
+}
+
+impl TimSmeasMea {
+    /// The frequency measurement is valid (bit 0 of `flags`).
+    pub fn freq_valid(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets the frequency measurement is valid (the value in its bits of `flags`; the other bits stay).
+    pub fn set_freq_valid(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// The phase measurement is valid (bit 1 of `flags`).
+    pub fn phase_valid(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets the phase measurement is valid (the value in its bits of `flags`; the other bits stay).
+    pub fn set_phase_valid(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Sub-nanosecond phase offset [ns]: the raw integer divided by 256.
+    pub fn phase_offset_frac(&self) -> f64 {
+        let raw = self.phase_offset_frac_raw;
+        raw as f64 / 256.0
+    }
+    /// Sub-nanosecond phase uncertainty [ns]: the raw integer divided by 256.
+    pub fn phase_unc_frac(&self) -> f64 {
+        let raw = self.phase_unc_frac_raw;
+        raw as f64 / 256.0
+    }
+    /// Frequency offset [ppb]: the raw integer divided by 256.
+    pub fn freq_offset(&self) -> f64 {
+        let raw = self.freq_offset_raw;
+        raw as f64 / 256.0
+    }
+    /// Frequency uncertainty [ppb]: the raw integer divided by 256.
+    pub fn freq_unc(&self) -> f64 {
+        let raw = self.freq_unc_raw;
+        raw as f64 / 256.0
+    }
+}
+
+/// Source measurement: UBX TIM-SMEAS (class 0x0D id 0x13), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimSmeas<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Number of measurements.
+    pub num_meas: u8,
+    /// Reserved.
+    pub reserved1: u16,
+    /// GPS time of week of the measurements [ms].
+    pub itow: u32,
+    /// Reserved.
+    pub reserved2: u32,
+    /// Measurements: 0 to 65535 entries.
+    pub meas: ubx::Group<'a, TimSmeasMea>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimSmeas<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_smeas";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-SMEAS";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x13;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let num_meas = u8::from_le_bytes(r.array("num_meas")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
+        let meas = r.group(Some(usize::from(num_meas)), 0, 65535, 0, "meas")?;
+        let trailing = r.rest();
+        Ok(Self { version, num_meas, reserved1, itow, reserved2, meas, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.num_meas.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        self.meas.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("num_meas", self.num_meas)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("itow", self.itow)?;
+        j.int("reserved2", self.reserved2)?;
+        self.meas.json(j, "meas")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Time mode survey-in status: UBX TIM-SVIN (class 0x0D id 0x04), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimSvinPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimSvinPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_svin_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-SVIN";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x04;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["tim_svin"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Time mode survey-in status: UBX TIM-SVIN (class 0x0D id 0x04), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimSvin<'a> {
+    /// Survey-in duration so far [s].
+    pub dur: u32,
+    /// Mean ECEF X of the position [cm].
+    pub mean_x: i32,
+    /// Mean ECEF Y of the position [cm].
+    pub mean_y: i32,
+    /// Mean ECEF Z of the position [cm].
+    pub mean_z: i32,
+    /// Mean variance of the position [mm^2].
+    pub mean_v: u32,
+    /// Number of position observations.
+    pub obs: u32,
+    /// The survey-in position is valid.
+    pub valid: u8,
+    /// The survey-in is running.
+    pub active: u8,
+    /// Reserved.
+    pub reserved1: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimSvin<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_svin";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-SVIN";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x04;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(28);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let dur = u32::from_le_bytes(r.array("dur")?);
+        let mean_x = i32::from_le_bytes(r.array("mean_x")?);
+        let mean_y = i32::from_le_bytes(r.array("mean_y")?);
+        let mean_z = i32::from_le_bytes(r.array("mean_z")?);
+        let mean_v = u32::from_le_bytes(r.array("mean_v")?);
+        let obs = u32::from_le_bytes(r.array("obs")?);
+        let valid = u8::from_le_bytes(r.array("valid")?);
+        let active = u8::from_le_bytes(r.array("active")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self { dur, mean_x, mean_y, mean_z, mean_v, obs, valid, active, reserved1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.dur.to_le_bytes());
+        w.put(&self.mean_x.to_le_bytes());
+        w.put(&self.mean_y.to_le_bytes());
+        w.put(&self.mean_z.to_le_bytes());
+        w.put(&self.mean_v.to_le_bytes());
+        w.put(&self.obs.to_le_bytes());
+        w.put(&self.valid.to_le_bytes());
+        w.put(&self.active.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("dur", self.dur)?;
+        j.int("mean_x", self.mean_x)?;
+        j.int("mean_y", self.mean_y)?;
+        j.int("mean_z", self.mean_z)?;
+        j.int("mean_v", self.mean_v)?;
+        j.int("obs", self.obs)?;
+        j.int("valid", self.valid)?;
+        j.int("active", self.active)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Time mark data: UBX TIM-TM2 (class 0x0D id 0x03), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct TimTm2Poll<'a> {
@@ -12993,6 +18900,364 @@ impl<'a> TimTm2<'a> {
     }
 }
 
+/// Time pulse time and frequency data: UBX TIM-TOS (class 0x0D id 0x12), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimTosPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimTosPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_tos_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-TOS";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x12;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["tim_tos"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Time pulse time and frequency data: UBX TIM-TOS (class 0x0D id 0x12), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimTos<'a> {
+    /// Message version.
+    pub version: u8,
+    /// GNSS of the GNSS time.
+    pub gnss_id_raw: u8,
+    /// Reserved.
+    pub reserved1: u16,
+    /// Flags.
+    pub flags: u32,
+    /// Year (UTC).
+    pub year: u16,
+    /// Month (UTC).
+    pub month: u8,
+    /// Day (UTC).
+    pub day: u8,
+    /// Hour (UTC).
+    pub hour: u8,
+    /// Minute (UTC).
+    pub minute: u8,
+    /// Second (UTC).
+    pub second: u8,
+    /// UTC standard.
+    pub utc_standard: u8,
+    /// Offset of the time pulse from UTC [ns].
+    pub utc_offset: i32,
+    /// Uncertainty of the UTC offset [ns].
+    pub utc_uncertainty: u32,
+    /// GNSS week number.
+    pub week: u32,
+    /// GNSS time of week [s].
+    pub tow: u32,
+    /// Offset of the time pulse from GNSS time [ns].
+    pub gnss_offset: i32,
+    /// Uncertainty of the GNSS offset [ns].
+    pub gnss_uncertainty: u32,
+    /// Internal oscillator frequency offset [ppb].
+    pub int_osc_offset_raw: i32,
+    /// Internal oscillator frequency uncertainty [ppb].
+    pub int_osc_uncertainty_raw: u32,
+    /// External oscillator frequency offset [ppb].
+    pub ext_osc_offset_raw: i32,
+    /// External oscillator frequency uncertainty [ppb].
+    pub ext_osc_uncertainty_raw: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimTos<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_tos";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-TOS";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x12;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(56);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// GNSS of the GNSS time: the enum's value of the raw code, None for a code it does not name.
+    pub fn gnss_id(&self) -> Option<UbxGnssId> {
+        ais::code(u64::from(self.gnss_id_raw))
+    }
+    /// A leap second falls in the current minute (bit 0 of `flags`).
+    pub fn leap_now(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets a leap second falls in the current minute (the value in its bits of `flags`; the other bits stay).
+    pub fn set_leap_now(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u32::from(value);
+    }
+    /// A leap second is announced for the end of the day (bit 1 of `flags`).
+    pub fn leap_soon(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets a leap second is announced for the end of the day (the value in its bits of `flags`; the other bits stay).
+    pub fn set_leap_soon(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u32::from(value) << 1);
+    }
+    /// The leap second is inserted (else removed) (bit 2 of `flags`).
+    pub fn leap_positive(&self) -> bool {
+        ((self.flags >> 2) & 0x1) != 0
+    }
+    /// Sets the leap second is inserted (else removed) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_leap_positive(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 2)) | (u32::from(value) << 2);
+    }
+    /// Time pulse within its tolerance (bit 3 of `flags`).
+    pub fn time_in_limit(&self) -> bool {
+        ((self.flags >> 3) & 0x1) != 0
+    }
+    /// Sets time pulse within its tolerance (the value in its bits of `flags`; the other bits stay).
+    pub fn set_time_in_limit(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 3)) | (u32::from(value) << 3);
+    }
+    /// Internal oscillator within its tolerance (bit 4 of `flags`).
+    pub fn int_osc_in_limit(&self) -> bool {
+        ((self.flags >> 4) & 0x1) != 0
+    }
+    /// Sets internal oscillator within its tolerance (the value in its bits of `flags`; the other bits stay).
+    pub fn set_int_osc_in_limit(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 4)) | (u32::from(value) << 4);
+    }
+    /// External oscillator within its tolerance (bit 5 of `flags`).
+    pub fn ext_osc_in_limit(&self) -> bool {
+        ((self.flags >> 5) & 0x1) != 0
+    }
+    /// Sets external oscillator within its tolerance (the value in its bits of `flags`; the other bits stay).
+    pub fn set_ext_osc_in_limit(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 5)) | (u32::from(value) << 5);
+    }
+    /// GNSS time valid (bit 6 of `flags`).
+    pub fn gnss_time_valid(&self) -> bool {
+        ((self.flags >> 6) & 0x1) != 0
+    }
+    /// Sets gnss time valid (the value in its bits of `flags`; the other bits stay).
+    pub fn set_gnss_time_valid(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 6)) | (u32::from(value) << 6);
+    }
+    /// UTC time valid (bit 7 of `flags`).
+    pub fn utc_time_valid(&self) -> bool {
+        ((self.flags >> 7) & 0x1) != 0
+    }
+    /// Sets utc time valid (the value in its bits of `flags`; the other bits stay).
+    pub fn set_utc_time_valid(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 7)) | (u32::from(value) << 7);
+    }
+    /// Disciplining source (bits 8-10 of `flags`).
+    pub fn disc_src(&self) -> u8 {
+        ((self.flags >> 8) & 0x7) as u8
+    }
+    /// Sets disciplining source (the value in its bits of `flags`; the other bits stay).
+    pub fn set_disc_src(&mut self, value: u8) {
+        self.flags = (self.flags & !(0x7 << 8)) | ((value as u32 & 0x7) << 8);
+    }
+    /// RAIM active (bit 11 of `flags`).
+    pub fn raim(&self) -> bool {
+        ((self.flags >> 11) & 0x1) != 0
+    }
+    /// Sets raim active (the value in its bits of `flags`; the other bits stay).
+    pub fn set_raim(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 11)) | (u32::from(value) << 11);
+    }
+    /// Coherent pulse generation active (bit 12 of `flags`).
+    pub fn coh_pulse(&self) -> bool {
+        ((self.flags >> 12) & 0x1) != 0
+    }
+    /// Sets coherent pulse generation active (the value in its bits of `flags`; the other bits stay).
+    pub fn set_coh_pulse(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 12)) | (u32::from(value) << 12);
+    }
+    /// Time pulse locked (bit 13 of `flags`).
+    pub fn locked_pulse(&self) -> bool {
+        ((self.flags >> 13) & 0x1) != 0
+    }
+    /// Sets time pulse locked (the value in its bits of `flags`; the other bits stay).
+    pub fn set_locked_pulse(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 13)) | (u32::from(value) << 13);
+    }
+    /// Internal oscillator frequency offset [ppb]: the raw integer divided by 256.
+    pub fn int_osc_offset(&self) -> f64 {
+        let raw = self.int_osc_offset_raw;
+        raw as f64 / 256.0
+    }
+    /// Internal oscillator frequency uncertainty [ppb]: the raw integer divided by 256.
+    pub fn int_osc_uncertainty(&self) -> f64 {
+        let raw = self.int_osc_uncertainty_raw;
+        raw as f64 / 256.0
+    }
+    /// External oscillator frequency offset [ppb]: the raw integer divided by 256.
+    pub fn ext_osc_offset(&self) -> f64 {
+        let raw = self.ext_osc_offset_raw;
+        raw as f64 / 256.0
+    }
+    /// External oscillator frequency uncertainty [ppb]: the raw integer divided by 256.
+    pub fn ext_osc_uncertainty(&self) -> f64 {
+        let raw = self.ext_osc_uncertainty_raw;
+        raw as f64 / 256.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let flags = u32::from_le_bytes(r.array("flags")?);
+        let year = u16::from_le_bytes(r.array("year")?);
+        let month = u8::from_le_bytes(r.array("month")?);
+        let day = u8::from_le_bytes(r.array("day")?);
+        let hour = u8::from_le_bytes(r.array("hour")?);
+        let minute = u8::from_le_bytes(r.array("minute")?);
+        let second = u8::from_le_bytes(r.array("second")?);
+        let utc_standard = u8::from_le_bytes(r.array("utc_standard")?);
+        let utc_offset = i32::from_le_bytes(r.array("utc_offset")?);
+        let utc_uncertainty = u32::from_le_bytes(r.array("utc_uncertainty")?);
+        let week = u32::from_le_bytes(r.array("week")?);
+        let tow = u32::from_le_bytes(r.array("tow")?);
+        let gnss_offset = i32::from_le_bytes(r.array("gnss_offset")?);
+        let gnss_uncertainty = u32::from_le_bytes(r.array("gnss_uncertainty")?);
+        let int_osc_offset_raw = i32::from_le_bytes(r.array("int_osc_offset")?);
+        let int_osc_uncertainty_raw = u32::from_le_bytes(r.array("int_osc_uncertainty")?);
+        let ext_osc_offset_raw = i32::from_le_bytes(r.array("ext_osc_offset")?);
+        let ext_osc_uncertainty_raw = u32::from_le_bytes(r.array("ext_osc_uncertainty")?);
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            gnss_id_raw,
+            reserved1,
+            flags,
+            year,
+            month,
+            day,
+            hour,
+            minute,
+            second,
+            utc_standard,
+            utc_offset,
+            utc_uncertainty,
+            week,
+            tow,
+            gnss_offset,
+            gnss_uncertainty,
+            int_osc_offset_raw,
+            int_osc_uncertainty_raw,
+            ext_osc_offset_raw,
+            ext_osc_uncertainty_raw,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.gnss_id_raw.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.year.to_le_bytes());
+        w.put(&self.month.to_le_bytes());
+        w.put(&self.day.to_le_bytes());
+        w.put(&self.hour.to_le_bytes());
+        w.put(&self.minute.to_le_bytes());
+        w.put(&self.second.to_le_bytes());
+        w.put(&self.utc_standard.to_le_bytes());
+        w.put(&self.utc_offset.to_le_bytes());
+        w.put(&self.utc_uncertainty.to_le_bytes());
+        w.put(&self.week.to_le_bytes());
+        w.put(&self.tow.to_le_bytes());
+        w.put(&self.gnss_offset.to_le_bytes());
+        w.put(&self.gnss_uncertainty.to_le_bytes());
+        w.put(&self.int_osc_offset_raw.to_le_bytes());
+        w.put(&self.int_osc_uncertainty_raw.to_le_bytes());
+        w.put(&self.ext_osc_offset_raw.to_le_bytes());
+        w.put(&self.ext_osc_uncertainty_raw.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.code(
+            "gnss_id",
+            ais::code::<UbxGnssId>(u64::from(self.gnss_id_raw)).map(CodeEnum::id),
+            u64::from(self.gnss_id_raw),
+        )?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("flags", self.flags)?;
+        j.flag("leap_now", (self.flags & 0x1) != 0)?;
+        j.flag("leap_soon", ((self.flags >> 1) & 0x1) != 0)?;
+        j.flag("leap_positive", ((self.flags >> 2) & 0x1) != 0)?;
+        j.flag("time_in_limit", ((self.flags >> 3) & 0x1) != 0)?;
+        j.flag("int_osc_in_limit", ((self.flags >> 4) & 0x1) != 0)?;
+        j.flag("ext_osc_in_limit", ((self.flags >> 5) & 0x1) != 0)?;
+        j.flag("gnss_time_valid", ((self.flags >> 6) & 0x1) != 0)?;
+        j.flag("utc_time_valid", ((self.flags >> 7) & 0x1) != 0)?;
+        j.int("disc_src", ((self.flags >> 8) & 0x7) as u8)?;
+        j.flag("raim", ((self.flags >> 11) & 0x1) != 0)?;
+        j.flag("coh_pulse", ((self.flags >> 12) & 0x1) != 0)?;
+        j.flag("locked_pulse", ((self.flags >> 13) & 0x1) != 0)?;
+        j.int("year", self.year)?;
+        j.int("month", self.month)?;
+        j.int("day", self.day)?;
+        j.int("hour", self.hour)?;
+        j.int("minute", self.minute)?;
+        j.int("second", self.second)?;
+        j.int("utc_standard", self.utc_standard)?;
+        j.int("utc_offset", self.utc_offset)?;
+        j.int("utc_uncertainty", self.utc_uncertainty)?;
+        j.int("week", self.week)?;
+        j.int("tow", self.tow)?;
+        j.int("gnss_offset", self.gnss_offset)?;
+        j.int("gnss_uncertainty", self.gnss_uncertainty)?;
+        ubx::json_float(j, "int_osc_offset", self.int_osc_offset_raw as f64 / 256.0)?;
+        j.int("int_osc_offset_raw", self.int_osc_offset_raw)?;
+        ubx::json_float(j, "int_osc_uncertainty", self.int_osc_uncertainty_raw as f64 / 256.0)?;
+        j.int("int_osc_uncertainty_raw", self.int_osc_uncertainty_raw)?;
+        ubx::json_float(j, "ext_osc_offset", self.ext_osc_offset_raw as f64 / 256.0)?;
+        j.int("ext_osc_offset_raw", self.ext_osc_offset_raw)?;
+        ubx::json_float(j, "ext_osc_uncertainty", self.ext_osc_uncertainty_raw as f64 / 256.0)?;
+        j.int("ext_osc_uncertainty_raw", self.ext_osc_uncertainty_raw)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Time pulse time data: UBX TIM-TP (class 0x0D id 0x01), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct TimTpPoll<'a> {
@@ -13173,6 +19438,412 @@ impl<'a> TimTp<'a> {
     }
 }
 
+/// VCO calibration: UBX TIM-VCOCAL (class 0x0D id 0x15), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimVcocalPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimVcocalPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_vcocal_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-VCOCAL";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x15;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["tim_vcocal"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// VCO calibration: UBX TIM-VCOCAL (class 0x0D id 0x15), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimVcocalStop<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimVcocalStop<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_vcocal_stop";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-VCOCAL";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x15;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(1);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// VCO calibration: UBX TIM-VCOCAL (class 0x0D id 0x15), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimVcocalResult<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Oscillator calibrated.
+    pub osc_id: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Relative uncertainty of the gain.
+    pub gain_uncertainty_raw: u16,
+    /// Gain of the oscillator's control [ppb/raw].
+    pub gain_vco_raw: i32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimVcocalResult<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_vcocal_result";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-VCOCAL";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x15;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Relative uncertainty of the gain: the raw integer divided by 65536.
+    pub fn gain_uncertainty(&self) -> f64 {
+        let raw = self.gain_uncertainty_raw;
+        raw as f64 / 65536.0
+    }
+    /// Gain of the oscillator's control [ppb/raw]: the raw integer divided by 65536.
+    pub fn gain_vco(&self) -> f64 {
+        let raw = self.gain_vco_raw;
+        raw as f64 / 65536.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let osc_id = u8::from_le_bytes(r.array("osc_id")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let gain_uncertainty_raw = u16::from_le_bytes(r.array("gain_uncertainty")?);
+        let gain_vco_raw = i32::from_le_bytes(r.array("gain_vco")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, osc_id, reserved1, gain_uncertainty_raw, gain_vco_raw, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.osc_id.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(&self.gain_uncertainty_raw.to_le_bytes());
+        w.put(&self.gain_vco_raw.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("osc_id", self.osc_id)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_float(j, "gain_uncertainty", self.gain_uncertainty_raw as f64 / 65536.0)?;
+        j.int("gain_uncertainty_raw", self.gain_uncertainty_raw)?;
+        ubx::json_float(j, "gain_vco", self.gain_vco_raw as f64 / 65536.0)?;
+        j.int("gain_vco_raw", self.gain_vco_raw)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// VCO calibration: UBX TIM-VCOCAL (class 0x0D id 0x15), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimVcocal<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Oscillator to calibrate.
+    pub osc_id: u8,
+    /// Reference source.
+    pub src_id: u8,
+    /// Reserved.
+    pub reserved1: u16,
+    /// First raw control value.
+    pub raw0: u16,
+    /// Second raw control value.
+    pub raw1: u16,
+    /// Largest step of the raw value per second.
+    pub max_step_size: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimVcocal<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_vcocal";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-VCOCAL";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x15;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let osc_id = u8::from_le_bytes(r.array("osc_id")?);
+        let src_id = u8::from_le_bytes(r.array("src_id")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let raw0 = u16::from_le_bytes(r.array("raw0")?);
+        let raw1 = u16::from_le_bytes(r.array("raw1")?);
+        let max_step_size = u16::from_le_bytes(r.array("max_step_size")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, osc_id, src_id, reserved1, raw0, raw1, max_step_size, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.osc_id.to_le_bytes());
+        w.put(&self.src_id.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.raw0.to_le_bytes());
+        w.put(&self.raw1.to_le_bytes());
+        w.put(&self.max_step_size.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("osc_id", self.osc_id)?;
+        j.int("src_id", self.src_id)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("raw0", self.raw0)?;
+        j.int("raw1", self.raw1)?;
+        j.int("max_step_size", self.max_step_size)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Sourced time verification: UBX TIM-VRFY (class 0x0D id 0x06), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimVrfyPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimVrfyPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_vrfy_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-VRFY";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x06;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["tim_vrfy"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Sourced time verification: UBX TIM-VRFY (class 0x0D id 0x06), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TimVrfy<'a> {
+    /// Time of week of the navigation epoch [ms].
+    pub itow: i32,
+    /// Sub-millisecond part of the time of week [ns].
+    pub frac: i32,
+    /// Integer milliseconds of the difference (kept minus navigation time) [ms].
+    pub delta_ms: i32,
+    /// Sub-millisecond part of the difference [ns].
+    pub delta_ns: i32,
+    /// Week number.
+    pub wno: u16,
+    /// Flags.
+    pub flags: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> TimVrfy<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "tim_vrfy";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "TIM-VRFY";
+    /// The message class.
+    pub const CLASS: u8 = 0x0d;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x06;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(20);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Source of the time kept (bits 0-2 of `flags`).
+    pub fn src(&self) -> u8 {
+        self.flags & 0x7
+    }
+    /// Sets source of the time kept (the value in its bits of `flags`; the other bits stay).
+    pub fn set_src(&mut self, value: u8) {
+        self.flags = (self.flags & !0x7) | (value & 0x7);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = i32::from_le_bytes(r.array("itow")?);
+        let frac = i32::from_le_bytes(r.array("frac")?);
+        let delta_ms = i32::from_le_bytes(r.array("delta_ms")?);
+        let delta_ns = i32::from_le_bytes(r.array("delta_ns")?);
+        let wno = u16::from_le_bytes(r.array("wno")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self { itow, frac, delta_ms, delta_ns, wno, flags, reserved1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.frac.to_le_bytes());
+        w.put(&self.delta_ms.to_le_bytes());
+        w.put(&self.delta_ns.to_le_bytes());
+        w.put(&self.wno.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("frac", self.frac)?;
+        j.int("delta_ms", self.delta_ms)?;
+        j.int("delta_ns", self.delta_ns)?;
+        j.int("wno", self.wno)?;
+        j.int("flags", self.flags)?;
+        j.int("src", self.flags & 0x7)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// A frame of a class and id the spec does not describe, kept with its payload.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Unknown<'a> {
@@ -13303,10 +19974,64 @@ pub enum Message<'a> {
     InfTest(InfTest<'a>),
     /// INF-WARNING (output): Warning message.
     InfWarning(InfWarning<'a>),
+    /// LOG-BATCH (output): Batched navigation data.
+    LogBatch(LogBatch<'a>),
+    /// LOG-CREATE (input): Create the log file.
+    LogCreate(LogCreate<'a>),
+    /// LOG-ERASE (input): Erase the logged data.
+    LogErase(LogErase<'a>),
+    /// LOG-FINDTIME (input): Find the log entry of a time.
+    LogFindtime(LogFindtime<'a>),
+    /// LOG-FINDTIME (output): Find the log entry of a time.
+    LogFindtimeResponse(LogFindtimeResponse<'a>),
+    /// LOG-INFO (poll): Log information.
+    LogInfoPoll(LogInfoPoll<'a>),
+    /// LOG-INFO (output): Log information.
+    LogInfo(LogInfo<'a>),
+    /// LOG-RETRIEVE (input): Retrieve log entries.
+    LogRetrieve(LogRetrieve<'a>),
+    /// LOG-RETRIEVEBATCH (input): Retrieve batched data.
+    LogRetrievebatch(LogRetrievebatch<'a>),
+    /// LOG-RETRIEVEPOS (output): Position fix log entry.
+    LogRetrievepos(LogRetrievepos<'a>),
+    /// LOG-RETRIEVEPOSEXTRA (output): Odometer log entry.
+    LogRetrieveposextra(LogRetrieveposextra<'a>),
+    /// LOG-RETRIEVESTRING (output): Text log entry.
+    LogRetrievestring(LogRetrievestring<'a>),
+    /// LOG-STRING (input): Log a text.
+    LogString(LogString<'a>),
+    /// MON-COMMS (poll): Communication port information.
+    MonCommsPoll(MonCommsPoll<'a>),
+    /// MON-COMMS (output): Communication port information.
+    MonComms(MonComms<'a>),
+    /// MON-GNSS (poll): GNSS system selection.
+    MonGnssPoll(MonGnssPoll<'a>),
+    /// MON-GNSS (output): GNSS system selection.
+    MonGnss(MonGnss<'a>),
     /// MON-HW (poll): Hardware status.
     MonHwPoll(MonHwPoll<'a>),
     /// MON-HW (output): Hardware status.
     MonHw(MonHw<'a>),
+    /// MON-HW2 (poll): Extended hardware status.
+    MonHw2Poll(MonHw2Poll<'a>),
+    /// MON-HW2 (output): Extended hardware status.
+    MonHw2(MonHw2<'a>),
+    /// MON-HW3 (poll): I/O pin status.
+    MonHw3Poll(MonHw3Poll<'a>),
+    /// MON-HW3 (output): I/O pin status.
+    MonHw3(MonHw3<'a>),
+    /// MON-IO (poll): I/O system status.
+    MonIoPoll(MonIoPoll<'a>),
+    /// MON-IO (output): I/O system status.
+    MonIo(MonIo<'a>),
+    /// MON-MSGPP (poll): Message parse and process status.
+    MonMsgppPoll(MonMsgppPoll<'a>),
+    /// MON-MSGPP (output): Message parse and process status.
+    MonMsgpp(MonMsgpp<'a>),
+    /// MON-PATCH (poll): Installed patches.
+    MonPatchPoll(MonPatchPoll<'a>),
+    /// MON-PATCH (output): Installed patches.
+    MonPatch(MonPatch<'a>),
     /// MON-RF (poll): RF information.
     MonRfPoll(MonRfPoll<'a>),
     /// MON-RF (output): RF information.
@@ -13315,6 +20040,16 @@ pub enum Message<'a> {
     MonRxbufPoll(MonRxbufPoll<'a>),
     /// MON-RXBUF (output): Receiver buffer status.
     MonRxbuf(MonRxbuf<'a>),
+    /// MON-RXR (output): Receiver status.
+    MonRxr(MonRxr<'a>),
+    /// MON-SMGR (poll): Synchronization manager status.
+    MonSmgrPoll(MonSmgrPoll<'a>),
+    /// MON-SMGR (output): Synchronization manager status.
+    MonSmgr(MonSmgr<'a>),
+    /// MON-SYS (poll): System status.
+    MonSysPoll(MonSysPoll<'a>),
+    /// MON-SYS (output): System status.
+    MonSys(MonSys<'a>),
     /// MON-TXBUF (poll): Transmitter buffer status.
     MonTxbufPoll(MonTxbufPoll<'a>),
     /// MON-TXBUF (output): Transmitter buffer status.
@@ -13323,6 +20058,10 @@ pub enum Message<'a> {
     MonVerPoll(MonVerPoll<'a>),
     /// MON-VER (output): Receiver and software version.
     MonVer(MonVer<'a>),
+    /// NAV-AOPSTATUS (poll): AssistNow Autonomous status.
+    NavAopstatusPoll(NavAopstatusPoll<'a>),
+    /// NAV-AOPSTATUS (output): AssistNow Autonomous status.
+    NavAopstatus(NavAopstatus<'a>),
     /// NAV-ATT (poll): Attitude solution.
     NavAttPoll(NavAttPoll<'a>),
     /// NAV-ATT (output): Attitude solution.
@@ -13335,6 +20074,10 @@ pub enum Message<'a> {
     NavCovPoll(NavCovPoll<'a>),
     /// NAV-COV (output): Covariance matrices.
     NavCov(NavCov<'a>),
+    /// NAV-DGPS (poll): DGPS data used for the navigation solution.
+    NavDgpsPoll(NavDgpsPoll<'a>),
+    /// NAV-DGPS (output): DGPS data used for the navigation solution.
+    NavDgps(NavDgps<'a>),
     /// NAV-DOP (poll): Dilution of precision.
     NavDopPoll(NavDopPoll<'a>),
     /// NAV-DOP (output): Dilution of precision.
@@ -13345,6 +20088,14 @@ pub enum Message<'a> {
     NavEell(NavEell<'a>),
     /// NAV-EOE (output): End of epoch.
     NavEoe(NavEoe<'a>),
+    /// NAV-GEOFENCE (poll): Geofencing status.
+    NavGeofencePoll(NavGeofencePoll<'a>),
+    /// NAV-GEOFENCE (output): Geofencing status.
+    NavGeofence(NavGeofence<'a>),
+    /// NAV-HPPOSECEF (poll): High precision position solution in ECEF.
+    NavHpposecefPoll(NavHpposecefPoll<'a>),
+    /// NAV-HPPOSECEF (output): High precision position solution in ECEF.
+    NavHpposecef(NavHpposecef<'a>),
     /// NAV-HPPOSLLH (poll): High precision geodetic position solution.
     NavHpposllhPoll(NavHpposllhPoll<'a>),
     /// NAV-HPPOSLLH (output): High precision geodetic position solution.
@@ -13353,6 +20104,14 @@ pub enum Message<'a> {
     NavOdoPoll(NavOdoPoll<'a>),
     /// NAV-ODO (output): Odometer solution.
     NavOdo(NavOdo<'a>),
+    /// NAV-ORB (poll): GNSS orbit database information.
+    NavOrbPoll(NavOrbPoll<'a>),
+    /// NAV-ORB (output): GNSS orbit database information.
+    NavOrb(NavOrb<'a>),
+    /// NAV-PL (poll): Protection level information.
+    NavPlPoll(NavPlPoll<'a>),
+    /// NAV-PL (output): Protection level information.
+    NavPl(NavPl<'a>),
     /// NAV-POSECEF (poll): Position solution in ECEF.
     NavPosecefPoll(NavPosecefPoll<'a>),
     /// NAV-POSECEF (output): Position solution in ECEF.
@@ -13385,6 +20144,10 @@ pub enum Message<'a> {
     NavSigPoll(NavSigPoll<'a>),
     /// NAV-SIG (output): Signal information.
     NavSig(NavSig<'a>),
+    /// NAV-SLAS (poll): QZSS L1S SLAS status.
+    NavSlasPoll(NavSlasPoll<'a>),
+    /// NAV-SLAS (output): QZSS L1S SLAS status.
+    NavSlas(NavSlas<'a>),
     /// NAV-SOL (poll): Navigation solution.
     NavSolPoll(NavSolPoll<'a>),
     /// NAV-SOL (output): Navigation solution.
@@ -13421,6 +20184,10 @@ pub enum Message<'a> {
     NavTimelsPoll(NavTimelsPoll<'a>),
     /// NAV-TIMELS (output): Leap second event information.
     NavTimels(NavTimels<'a>),
+    /// NAV-TIMEQZSS (poll): QZSS time solution.
+    NavTimeqzssPoll(NavTimeqzssPoll<'a>),
+    /// NAV-TIMEQZSS (output): QZSS time solution.
+    NavTimeqzss(NavTimeqzss<'a>),
     /// NAV-TIMEUTC (poll): UTC time solution.
     NavTimeutcPoll(NavTimeutcPoll<'a>),
     /// NAV-TIMEUTC (output): UTC time solution.
@@ -13445,14 +20212,48 @@ pub enum Message<'a> {
     SecUniqidPoll(SecUniqidPoll<'a>),
     /// SEC-UNIQID (output): Unique chip identifier.
     SecUniqid(SecUniqid<'a>),
+    /// TIM-DOSC (poll): Disciplined oscillator control.
+    TimDoscPoll(TimDoscPoll<'a>),
+    /// TIM-DOSC (output): Disciplined oscillator control.
+    TimDosc(TimDosc<'a>),
+    /// TIM-FCHG (poll): Oscillator frequency changed.
+    TimFchgPoll(TimFchgPoll<'a>),
+    /// TIM-FCHG (output): Oscillator frequency changed.
+    TimFchg(TimFchg<'a>),
+    /// TIM-HOC (input): Host oscillator control.
+    TimHoc(TimHoc<'a>),
+    /// TIM-SMEAS (poll): Source measurement.
+    TimSmeasPoll(TimSmeasPoll<'a>),
+    /// TIM-SMEAS (input, output): Source measurement.
+    TimSmeas(TimSmeas<'a>),
+    /// TIM-SVIN (poll): Time mode survey-in status.
+    TimSvinPoll(TimSvinPoll<'a>),
+    /// TIM-SVIN (output): Time mode survey-in status.
+    TimSvin(TimSvin<'a>),
     /// TIM-TM2 (poll): Time mark data.
     TimTm2Poll(TimTm2Poll<'a>),
     /// TIM-TM2 (output): Time mark data.
     TimTm2(TimTm2<'a>),
+    /// TIM-TOS (poll): Time pulse time and frequency data.
+    TimTosPoll(TimTosPoll<'a>),
+    /// TIM-TOS (output): Time pulse time and frequency data.
+    TimTos(TimTos<'a>),
     /// TIM-TP (poll): Time pulse time data.
     TimTpPoll(TimTpPoll<'a>),
     /// TIM-TP (output): Time pulse time data.
     TimTp(TimTp<'a>),
+    /// TIM-VCOCAL (poll): VCO calibration.
+    TimVcocalPoll(TimVcocalPoll<'a>),
+    /// TIM-VCOCAL (input): VCO calibration.
+    TimVcocalStop(TimVcocalStop<'a>),
+    /// TIM-VCOCAL (output): VCO calibration.
+    TimVcocalResult(TimVcocalResult<'a>),
+    /// TIM-VCOCAL (input): VCO calibration.
+    TimVcocal(TimVcocal<'a>),
+    /// TIM-VRFY (poll): Sourced time verification.
+    TimVrfyPoll(TimVrfyPoll<'a>),
+    /// TIM-VRFY (output): Sourced time verification.
+    TimVrfy(TimVrfy<'a>),
     /// A class and id the spec does not describe.
     Unknown(Unknown<'a>),
 }
@@ -13639,11 +20440,83 @@ impl<'a> Message<'a> {
             (0x04, 0x02) => Message::InfNotice(InfNotice::read(payload)?),
             (0x04, 0x03) => Message::InfTest(InfTest::read(payload)?),
             (0x04, 0x01) => Message::InfWarning(InfWarning::read(payload)?),
+            (0x21, 0x11) => Message::LogBatch(LogBatch::read(payload)?),
+            (0x21, 0x07) => Message::LogCreate(LogCreate::read(payload)?),
+            (0x21, 0x03) => Message::LogErase(LogErase::read(payload)?),
+            (0x21, 0x0e) => {
+                if payload.len() == 10 {
+                    Message::LogFindtime(LogFindtime::read(payload)?)
+                } else {
+                    Message::LogFindtimeResponse(LogFindtimeResponse::read(payload)?)
+                }
+            }
+            (0x21, 0x08) => {
+                if payload.is_empty() {
+                    Message::LogInfoPoll(LogInfoPoll::read(payload)?)
+                } else {
+                    Message::LogInfo(LogInfo::read(payload)?)
+                }
+            }
+            (0x21, 0x09) => Message::LogRetrieve(LogRetrieve::read(payload)?),
+            (0x21, 0x10) => Message::LogRetrievebatch(LogRetrievebatch::read(payload)?),
+            (0x21, 0x0b) => Message::LogRetrievepos(LogRetrievepos::read(payload)?),
+            (0x21, 0x0f) => Message::LogRetrieveposextra(LogRetrieveposextra::read(payload)?),
+            (0x21, 0x0d) => Message::LogRetrievestring(LogRetrievestring::read(payload)?),
+            (0x21, 0x04) => Message::LogString(LogString::read(payload)?),
+            (0x0a, 0x36) => {
+                if payload.is_empty() {
+                    Message::MonCommsPoll(MonCommsPoll::read(payload)?)
+                } else {
+                    Message::MonComms(MonComms::read(payload)?)
+                }
+            }
+            (0x0a, 0x28) => {
+                if payload.is_empty() {
+                    Message::MonGnssPoll(MonGnssPoll::read(payload)?)
+                } else {
+                    Message::MonGnss(MonGnss::read(payload)?)
+                }
+            }
             (0x0a, 0x09) => {
                 if payload.is_empty() {
                     Message::MonHwPoll(MonHwPoll::read(payload)?)
                 } else {
                     Message::MonHw(MonHw::read(payload)?)
+                }
+            }
+            (0x0a, 0x0b) => {
+                if payload.is_empty() {
+                    Message::MonHw2Poll(MonHw2Poll::read(payload)?)
+                } else {
+                    Message::MonHw2(MonHw2::read(payload)?)
+                }
+            }
+            (0x0a, 0x37) => {
+                if payload.is_empty() {
+                    Message::MonHw3Poll(MonHw3Poll::read(payload)?)
+                } else {
+                    Message::MonHw3(MonHw3::read(payload)?)
+                }
+            }
+            (0x0a, 0x02) => {
+                if payload.is_empty() {
+                    Message::MonIoPoll(MonIoPoll::read(payload)?)
+                } else {
+                    Message::MonIo(MonIo::read(payload)?)
+                }
+            }
+            (0x0a, 0x06) => {
+                if payload.is_empty() {
+                    Message::MonMsgppPoll(MonMsgppPoll::read(payload)?)
+                } else {
+                    Message::MonMsgpp(MonMsgpp::read(payload)?)
+                }
+            }
+            (0x0a, 0x27) => {
+                if payload.is_empty() {
+                    Message::MonPatchPoll(MonPatchPoll::read(payload)?)
+                } else {
+                    Message::MonPatch(MonPatch::read(payload)?)
                 }
             }
             (0x0a, 0x38) => {
@@ -13660,6 +20533,21 @@ impl<'a> Message<'a> {
                     Message::MonRxbuf(MonRxbuf::read(payload)?)
                 }
             }
+            (0x0a, 0x21) => Message::MonRxr(MonRxr::read(payload)?),
+            (0x0a, 0x2e) => {
+                if payload.is_empty() {
+                    Message::MonSmgrPoll(MonSmgrPoll::read(payload)?)
+                } else {
+                    Message::MonSmgr(MonSmgr::read(payload)?)
+                }
+            }
+            (0x0a, 0x39) => {
+                if payload.is_empty() {
+                    Message::MonSysPoll(MonSysPoll::read(payload)?)
+                } else {
+                    Message::MonSys(MonSys::read(payload)?)
+                }
+            }
             (0x0a, 0x08) => {
                 if payload.is_empty() {
                     Message::MonTxbufPoll(MonTxbufPoll::read(payload)?)
@@ -13672,6 +20560,13 @@ impl<'a> Message<'a> {
                     Message::MonVerPoll(MonVerPoll::read(payload)?)
                 } else {
                     Message::MonVer(MonVer::read(payload)?)
+                }
+            }
+            (0x01, 0x60) => {
+                if payload.is_empty() {
+                    Message::NavAopstatusPoll(NavAopstatusPoll::read(payload)?)
+                } else {
+                    Message::NavAopstatus(NavAopstatus::read(payload)?)
                 }
             }
             (0x01, 0x05) => {
@@ -13695,6 +20590,13 @@ impl<'a> Message<'a> {
                     Message::NavCov(NavCov::read(payload)?)
                 }
             }
+            (0x01, 0x31) => {
+                if payload.is_empty() {
+                    Message::NavDgpsPoll(NavDgpsPoll::read(payload)?)
+                } else {
+                    Message::NavDgps(NavDgps::read(payload)?)
+                }
+            }
             (0x01, 0x04) => {
                 if payload.is_empty() {
                     Message::NavDopPoll(NavDopPoll::read(payload)?)
@@ -13710,6 +20612,20 @@ impl<'a> Message<'a> {
                 }
             }
             (0x01, 0x61) => Message::NavEoe(NavEoe::read(payload)?),
+            (0x01, 0x39) => {
+                if payload.is_empty() {
+                    Message::NavGeofencePoll(NavGeofencePoll::read(payload)?)
+                } else {
+                    Message::NavGeofence(NavGeofence::read(payload)?)
+                }
+            }
+            (0x01, 0x13) => {
+                if payload.is_empty() {
+                    Message::NavHpposecefPoll(NavHpposecefPoll::read(payload)?)
+                } else {
+                    Message::NavHpposecef(NavHpposecef::read(payload)?)
+                }
+            }
             (0x01, 0x14) => {
                 if payload.is_empty() {
                     Message::NavHpposllhPoll(NavHpposllhPoll::read(payload)?)
@@ -13722,6 +20638,20 @@ impl<'a> Message<'a> {
                     Message::NavOdoPoll(NavOdoPoll::read(payload)?)
                 } else {
                     Message::NavOdo(NavOdo::read(payload)?)
+                }
+            }
+            (0x01, 0x34) => {
+                if payload.is_empty() {
+                    Message::NavOrbPoll(NavOrbPoll::read(payload)?)
+                } else {
+                    Message::NavOrb(NavOrb::read(payload)?)
+                }
+            }
+            (0x01, 0x62) => {
+                if payload.is_empty() {
+                    Message::NavPlPoll(NavPlPoll::read(payload)?)
+                } else {
+                    Message::NavPl(NavPl::read(payload)?)
                 }
             }
             (0x01, 0x01) => {
@@ -13776,6 +20706,13 @@ impl<'a> Message<'a> {
                     Message::NavSigPoll(NavSigPoll::read(payload)?)
                 } else {
                     Message::NavSig(NavSig::read(payload)?)
+                }
+            }
+            (0x01, 0x42) => {
+                if payload.is_empty() {
+                    Message::NavSlasPoll(NavSlasPoll::read(payload)?)
+                } else {
+                    Message::NavSlas(NavSlas::read(payload)?)
                 }
             }
             (0x01, 0x06) => {
@@ -13841,6 +20778,13 @@ impl<'a> Message<'a> {
                     Message::NavTimels(NavTimels::read(payload)?)
                 }
             }
+            (0x01, 0x27) => {
+                if payload.is_empty() {
+                    Message::NavTimeqzssPoll(NavTimeqzssPoll::read(payload)?)
+                } else {
+                    Message::NavTimeqzss(NavTimeqzss::read(payload)?)
+                }
+            }
             (0x01, 0x21) => {
                 if payload.is_empty() {
                     Message::NavTimeutcPoll(NavTimeutcPoll::read(payload)?)
@@ -13878,6 +20822,35 @@ impl<'a> Message<'a> {
                     Message::SecUniqid(SecUniqid::read(payload)?)
                 }
             }
+            (0x0d, 0x11) => {
+                if payload.is_empty() {
+                    Message::TimDoscPoll(TimDoscPoll::read(payload)?)
+                } else {
+                    Message::TimDosc(TimDosc::read(payload)?)
+                }
+            }
+            (0x0d, 0x16) => {
+                if payload.is_empty() {
+                    Message::TimFchgPoll(TimFchgPoll::read(payload)?)
+                } else {
+                    Message::TimFchg(TimFchg::read(payload)?)
+                }
+            }
+            (0x0d, 0x17) => Message::TimHoc(TimHoc::read(payload)?),
+            (0x0d, 0x13) => {
+                if payload.is_empty() {
+                    Message::TimSmeasPoll(TimSmeasPoll::read(payload)?)
+                } else {
+                    Message::TimSmeas(TimSmeas::read(payload)?)
+                }
+            }
+            (0x0d, 0x04) => {
+                if payload.is_empty() {
+                    Message::TimSvinPoll(TimSvinPoll::read(payload)?)
+                } else {
+                    Message::TimSvin(TimSvin::read(payload)?)
+                }
+            }
             (0x0d, 0x03) => {
                 if payload.is_empty() {
                     Message::TimTm2Poll(TimTm2Poll::read(payload)?)
@@ -13885,11 +20858,38 @@ impl<'a> Message<'a> {
                     Message::TimTm2(TimTm2::read(payload)?)
                 }
             }
+            (0x0d, 0x12) => {
+                if payload.is_empty() {
+                    Message::TimTosPoll(TimTosPoll::read(payload)?)
+                } else {
+                    Message::TimTos(TimTos::read(payload)?)
+                }
+            }
             (0x0d, 0x01) => {
                 if payload.is_empty() {
                     Message::TimTpPoll(TimTpPoll::read(payload)?)
                 } else {
                     Message::TimTp(TimTp::read(payload)?)
+                }
+            }
+            (0x0d, 0x15) => {
+                if payload.is_empty() {
+                    Message::TimVcocalPoll(TimVcocalPoll::read(payload)?)
+                } else if payload.len() == 1 {
+                    Message::TimVcocalStop(TimVcocalStop::read(payload)?)
+                } else if payload.len() == 12 {
+                    Message::TimVcocalResult(TimVcocalResult::read(payload)?)
+                } else if payload.len() == 12 {
+                    Message::TimVcocal(TimVcocal::read(payload)?)
+                } else {
+                    Message::TimVcocalResult(TimVcocalResult::read(payload)?)
+                }
+            }
+            (0x0d, 0x06) => {
+                if payload.is_empty() {
+                    Message::TimVrfyPoll(TimVrfyPoll::read(payload)?)
+                } else {
+                    Message::TimVrfy(TimVrfy::read(payload)?)
                 }
             }
             _ => Message::Unknown(Unknown { class, id, payload }),
@@ -13963,31 +20963,75 @@ impl<'a> Message<'a> {
             Message::InfNotice(_) => InfNotice::ID,
             Message::InfTest(_) => InfTest::ID,
             Message::InfWarning(_) => InfWarning::ID,
+            Message::LogBatch(_) => LogBatch::ID,
+            Message::LogCreate(_) => LogCreate::ID,
+            Message::LogErase(_) => LogErase::ID,
+            Message::LogFindtime(_) => LogFindtime::ID,
+            Message::LogFindtimeResponse(_) => LogFindtimeResponse::ID,
+            Message::LogInfoPoll(_) => LogInfoPoll::ID,
+            Message::LogInfo(_) => LogInfo::ID,
+            Message::LogRetrieve(_) => LogRetrieve::ID,
+            Message::LogRetrievebatch(_) => LogRetrievebatch::ID,
+            Message::LogRetrievepos(_) => LogRetrievepos::ID,
+            Message::LogRetrieveposextra(_) => LogRetrieveposextra::ID,
+            Message::LogRetrievestring(_) => LogRetrievestring::ID,
+            Message::LogString(_) => LogString::ID,
+            Message::MonCommsPoll(_) => MonCommsPoll::ID,
+            Message::MonComms(_) => MonComms::ID,
+            Message::MonGnssPoll(_) => MonGnssPoll::ID,
+            Message::MonGnss(_) => MonGnss::ID,
             Message::MonHwPoll(_) => MonHwPoll::ID,
             Message::MonHw(_) => MonHw::ID,
+            Message::MonHw2Poll(_) => MonHw2Poll::ID,
+            Message::MonHw2(_) => MonHw2::ID,
+            Message::MonHw3Poll(_) => MonHw3Poll::ID,
+            Message::MonHw3(_) => MonHw3::ID,
+            Message::MonIoPoll(_) => MonIoPoll::ID,
+            Message::MonIo(_) => MonIo::ID,
+            Message::MonMsgppPoll(_) => MonMsgppPoll::ID,
+            Message::MonMsgpp(_) => MonMsgpp::ID,
+            Message::MonPatchPoll(_) => MonPatchPoll::ID,
+            Message::MonPatch(_) => MonPatch::ID,
             Message::MonRfPoll(_) => MonRfPoll::ID,
             Message::MonRf(_) => MonRf::ID,
             Message::MonRxbufPoll(_) => MonRxbufPoll::ID,
             Message::MonRxbuf(_) => MonRxbuf::ID,
+            Message::MonRxr(_) => MonRxr::ID,
+            Message::MonSmgrPoll(_) => MonSmgrPoll::ID,
+            Message::MonSmgr(_) => MonSmgr::ID,
+            Message::MonSysPoll(_) => MonSysPoll::ID,
+            Message::MonSys(_) => MonSys::ID,
             Message::MonTxbufPoll(_) => MonTxbufPoll::ID,
             Message::MonTxbuf(_) => MonTxbuf::ID,
             Message::MonVerPoll(_) => MonVerPoll::ID,
             Message::MonVer(_) => MonVer::ID,
+            Message::NavAopstatusPoll(_) => NavAopstatusPoll::ID,
+            Message::NavAopstatus(_) => NavAopstatus::ID,
             Message::NavAttPoll(_) => NavAttPoll::ID,
             Message::NavAtt(_) => NavAtt::ID,
             Message::NavClockPoll(_) => NavClockPoll::ID,
             Message::NavClock(_) => NavClock::ID,
             Message::NavCovPoll(_) => NavCovPoll::ID,
             Message::NavCov(_) => NavCov::ID,
+            Message::NavDgpsPoll(_) => NavDgpsPoll::ID,
+            Message::NavDgps(_) => NavDgps::ID,
             Message::NavDopPoll(_) => NavDopPoll::ID,
             Message::NavDop(_) => NavDop::ID,
             Message::NavEellPoll(_) => NavEellPoll::ID,
             Message::NavEell(_) => NavEell::ID,
             Message::NavEoe(_) => NavEoe::ID,
+            Message::NavGeofencePoll(_) => NavGeofencePoll::ID,
+            Message::NavGeofence(_) => NavGeofence::ID,
+            Message::NavHpposecefPoll(_) => NavHpposecefPoll::ID,
+            Message::NavHpposecef(_) => NavHpposecef::ID,
             Message::NavHpposllhPoll(_) => NavHpposllhPoll::ID,
             Message::NavHpposllh(_) => NavHpposllh::ID,
             Message::NavOdoPoll(_) => NavOdoPoll::ID,
             Message::NavOdo(_) => NavOdo::ID,
+            Message::NavOrbPoll(_) => NavOrbPoll::ID,
+            Message::NavOrb(_) => NavOrb::ID,
+            Message::NavPlPoll(_) => NavPlPoll::ID,
+            Message::NavPl(_) => NavPl::ID,
             Message::NavPosecefPoll(_) => NavPosecefPoll::ID,
             Message::NavPosecef(_) => NavPosecef::ID,
             Message::NavPosllhPoll(_) => NavPosllhPoll::ID,
@@ -14004,6 +21048,8 @@ impl<'a> Message<'a> {
             Message::NavSbas(_) => NavSbas::ID,
             Message::NavSigPoll(_) => NavSigPoll::ID,
             Message::NavSig(_) => NavSig::ID,
+            Message::NavSlasPoll(_) => NavSlasPoll::ID,
+            Message::NavSlas(_) => NavSlas::ID,
             Message::NavSolPoll(_) => NavSolPoll::ID,
             Message::NavSol(_) => NavSol::ID,
             Message::NavStatusPoll(_) => NavStatusPoll::ID,
@@ -14022,6 +21068,8 @@ impl<'a> Message<'a> {
             Message::NavTimegps(_) => NavTimegps::ID,
             Message::NavTimelsPoll(_) => NavTimelsPoll::ID,
             Message::NavTimels(_) => NavTimels::ID,
+            Message::NavTimeqzssPoll(_) => NavTimeqzssPoll::ID,
+            Message::NavTimeqzss(_) => NavTimeqzss::ID,
             Message::NavTimeutcPoll(_) => NavTimeutcPoll::ID,
             Message::NavTimeutc(_) => NavTimeutc::ID,
             Message::NavVelecefPoll(_) => NavVelecefPoll::ID,
@@ -14034,10 +21082,27 @@ impl<'a> Message<'a> {
             Message::RxmSfrbx(_) => RxmSfrbx::ID,
             Message::SecUniqidPoll(_) => SecUniqidPoll::ID,
             Message::SecUniqid(_) => SecUniqid::ID,
+            Message::TimDoscPoll(_) => TimDoscPoll::ID,
+            Message::TimDosc(_) => TimDosc::ID,
+            Message::TimFchgPoll(_) => TimFchgPoll::ID,
+            Message::TimFchg(_) => TimFchg::ID,
+            Message::TimHoc(_) => TimHoc::ID,
+            Message::TimSmeasPoll(_) => TimSmeasPoll::ID,
+            Message::TimSmeas(_) => TimSmeas::ID,
+            Message::TimSvinPoll(_) => TimSvinPoll::ID,
+            Message::TimSvin(_) => TimSvin::ID,
             Message::TimTm2Poll(_) => TimTm2Poll::ID,
             Message::TimTm2(_) => TimTm2::ID,
+            Message::TimTosPoll(_) => TimTosPoll::ID,
+            Message::TimTos(_) => TimTos::ID,
             Message::TimTpPoll(_) => TimTpPoll::ID,
             Message::TimTp(_) => TimTp::ID,
+            Message::TimVcocalPoll(_) => TimVcocalPoll::ID,
+            Message::TimVcocalStop(_) => TimVcocalStop::ID,
+            Message::TimVcocalResult(_) => TimVcocalResult::ID,
+            Message::TimVcocal(_) => TimVcocal::ID,
+            Message::TimVrfyPoll(_) => TimVrfyPoll::ID,
+            Message::TimVrfy(_) => TimVrfy::ID,
             Message::Unknown(_) => return None,
         })
     }
@@ -14103,31 +21168,75 @@ impl<'a> Message<'a> {
             Message::InfNotice(_) => (InfNotice::CLASS, InfNotice::MSG_ID),
             Message::InfTest(_) => (InfTest::CLASS, InfTest::MSG_ID),
             Message::InfWarning(_) => (InfWarning::CLASS, InfWarning::MSG_ID),
+            Message::LogBatch(_) => (LogBatch::CLASS, LogBatch::MSG_ID),
+            Message::LogCreate(_) => (LogCreate::CLASS, LogCreate::MSG_ID),
+            Message::LogErase(_) => (LogErase::CLASS, LogErase::MSG_ID),
+            Message::LogFindtime(_) => (LogFindtime::CLASS, LogFindtime::MSG_ID),
+            Message::LogFindtimeResponse(_) => (LogFindtimeResponse::CLASS, LogFindtimeResponse::MSG_ID),
+            Message::LogInfoPoll(_) => (LogInfoPoll::CLASS, LogInfoPoll::MSG_ID),
+            Message::LogInfo(_) => (LogInfo::CLASS, LogInfo::MSG_ID),
+            Message::LogRetrieve(_) => (LogRetrieve::CLASS, LogRetrieve::MSG_ID),
+            Message::LogRetrievebatch(_) => (LogRetrievebatch::CLASS, LogRetrievebatch::MSG_ID),
+            Message::LogRetrievepos(_) => (LogRetrievepos::CLASS, LogRetrievepos::MSG_ID),
+            Message::LogRetrieveposextra(_) => (LogRetrieveposextra::CLASS, LogRetrieveposextra::MSG_ID),
+            Message::LogRetrievestring(_) => (LogRetrievestring::CLASS, LogRetrievestring::MSG_ID),
+            Message::LogString(_) => (LogString::CLASS, LogString::MSG_ID),
+            Message::MonCommsPoll(_) => (MonCommsPoll::CLASS, MonCommsPoll::MSG_ID),
+            Message::MonComms(_) => (MonComms::CLASS, MonComms::MSG_ID),
+            Message::MonGnssPoll(_) => (MonGnssPoll::CLASS, MonGnssPoll::MSG_ID),
+            Message::MonGnss(_) => (MonGnss::CLASS, MonGnss::MSG_ID),
             Message::MonHwPoll(_) => (MonHwPoll::CLASS, MonHwPoll::MSG_ID),
             Message::MonHw(_) => (MonHw::CLASS, MonHw::MSG_ID),
+            Message::MonHw2Poll(_) => (MonHw2Poll::CLASS, MonHw2Poll::MSG_ID),
+            Message::MonHw2(_) => (MonHw2::CLASS, MonHw2::MSG_ID),
+            Message::MonHw3Poll(_) => (MonHw3Poll::CLASS, MonHw3Poll::MSG_ID),
+            Message::MonHw3(_) => (MonHw3::CLASS, MonHw3::MSG_ID),
+            Message::MonIoPoll(_) => (MonIoPoll::CLASS, MonIoPoll::MSG_ID),
+            Message::MonIo(_) => (MonIo::CLASS, MonIo::MSG_ID),
+            Message::MonMsgppPoll(_) => (MonMsgppPoll::CLASS, MonMsgppPoll::MSG_ID),
+            Message::MonMsgpp(_) => (MonMsgpp::CLASS, MonMsgpp::MSG_ID),
+            Message::MonPatchPoll(_) => (MonPatchPoll::CLASS, MonPatchPoll::MSG_ID),
+            Message::MonPatch(_) => (MonPatch::CLASS, MonPatch::MSG_ID),
             Message::MonRfPoll(_) => (MonRfPoll::CLASS, MonRfPoll::MSG_ID),
             Message::MonRf(_) => (MonRf::CLASS, MonRf::MSG_ID),
             Message::MonRxbufPoll(_) => (MonRxbufPoll::CLASS, MonRxbufPoll::MSG_ID),
             Message::MonRxbuf(_) => (MonRxbuf::CLASS, MonRxbuf::MSG_ID),
+            Message::MonRxr(_) => (MonRxr::CLASS, MonRxr::MSG_ID),
+            Message::MonSmgrPoll(_) => (MonSmgrPoll::CLASS, MonSmgrPoll::MSG_ID),
+            Message::MonSmgr(_) => (MonSmgr::CLASS, MonSmgr::MSG_ID),
+            Message::MonSysPoll(_) => (MonSysPoll::CLASS, MonSysPoll::MSG_ID),
+            Message::MonSys(_) => (MonSys::CLASS, MonSys::MSG_ID),
             Message::MonTxbufPoll(_) => (MonTxbufPoll::CLASS, MonTxbufPoll::MSG_ID),
             Message::MonTxbuf(_) => (MonTxbuf::CLASS, MonTxbuf::MSG_ID),
             Message::MonVerPoll(_) => (MonVerPoll::CLASS, MonVerPoll::MSG_ID),
             Message::MonVer(_) => (MonVer::CLASS, MonVer::MSG_ID),
+            Message::NavAopstatusPoll(_) => (NavAopstatusPoll::CLASS, NavAopstatusPoll::MSG_ID),
+            Message::NavAopstatus(_) => (NavAopstatus::CLASS, NavAopstatus::MSG_ID),
             Message::NavAttPoll(_) => (NavAttPoll::CLASS, NavAttPoll::MSG_ID),
             Message::NavAtt(_) => (NavAtt::CLASS, NavAtt::MSG_ID),
             Message::NavClockPoll(_) => (NavClockPoll::CLASS, NavClockPoll::MSG_ID),
             Message::NavClock(_) => (NavClock::CLASS, NavClock::MSG_ID),
             Message::NavCovPoll(_) => (NavCovPoll::CLASS, NavCovPoll::MSG_ID),
             Message::NavCov(_) => (NavCov::CLASS, NavCov::MSG_ID),
+            Message::NavDgpsPoll(_) => (NavDgpsPoll::CLASS, NavDgpsPoll::MSG_ID),
+            Message::NavDgps(_) => (NavDgps::CLASS, NavDgps::MSG_ID),
             Message::NavDopPoll(_) => (NavDopPoll::CLASS, NavDopPoll::MSG_ID),
             Message::NavDop(_) => (NavDop::CLASS, NavDop::MSG_ID),
             Message::NavEellPoll(_) => (NavEellPoll::CLASS, NavEellPoll::MSG_ID),
             Message::NavEell(_) => (NavEell::CLASS, NavEell::MSG_ID),
             Message::NavEoe(_) => (NavEoe::CLASS, NavEoe::MSG_ID),
+            Message::NavGeofencePoll(_) => (NavGeofencePoll::CLASS, NavGeofencePoll::MSG_ID),
+            Message::NavGeofence(_) => (NavGeofence::CLASS, NavGeofence::MSG_ID),
+            Message::NavHpposecefPoll(_) => (NavHpposecefPoll::CLASS, NavHpposecefPoll::MSG_ID),
+            Message::NavHpposecef(_) => (NavHpposecef::CLASS, NavHpposecef::MSG_ID),
             Message::NavHpposllhPoll(_) => (NavHpposllhPoll::CLASS, NavHpposllhPoll::MSG_ID),
             Message::NavHpposllh(_) => (NavHpposllh::CLASS, NavHpposllh::MSG_ID),
             Message::NavOdoPoll(_) => (NavOdoPoll::CLASS, NavOdoPoll::MSG_ID),
             Message::NavOdo(_) => (NavOdo::CLASS, NavOdo::MSG_ID),
+            Message::NavOrbPoll(_) => (NavOrbPoll::CLASS, NavOrbPoll::MSG_ID),
+            Message::NavOrb(_) => (NavOrb::CLASS, NavOrb::MSG_ID),
+            Message::NavPlPoll(_) => (NavPlPoll::CLASS, NavPlPoll::MSG_ID),
+            Message::NavPl(_) => (NavPl::CLASS, NavPl::MSG_ID),
             Message::NavPosecefPoll(_) => (NavPosecefPoll::CLASS, NavPosecefPoll::MSG_ID),
             Message::NavPosecef(_) => (NavPosecef::CLASS, NavPosecef::MSG_ID),
             Message::NavPosllhPoll(_) => (NavPosllhPoll::CLASS, NavPosllhPoll::MSG_ID),
@@ -14144,6 +21253,8 @@ impl<'a> Message<'a> {
             Message::NavSbas(_) => (NavSbas::CLASS, NavSbas::MSG_ID),
             Message::NavSigPoll(_) => (NavSigPoll::CLASS, NavSigPoll::MSG_ID),
             Message::NavSig(_) => (NavSig::CLASS, NavSig::MSG_ID),
+            Message::NavSlasPoll(_) => (NavSlasPoll::CLASS, NavSlasPoll::MSG_ID),
+            Message::NavSlas(_) => (NavSlas::CLASS, NavSlas::MSG_ID),
             Message::NavSolPoll(_) => (NavSolPoll::CLASS, NavSolPoll::MSG_ID),
             Message::NavSol(_) => (NavSol::CLASS, NavSol::MSG_ID),
             Message::NavStatusPoll(_) => (NavStatusPoll::CLASS, NavStatusPoll::MSG_ID),
@@ -14162,6 +21273,8 @@ impl<'a> Message<'a> {
             Message::NavTimegps(_) => (NavTimegps::CLASS, NavTimegps::MSG_ID),
             Message::NavTimelsPoll(_) => (NavTimelsPoll::CLASS, NavTimelsPoll::MSG_ID),
             Message::NavTimels(_) => (NavTimels::CLASS, NavTimels::MSG_ID),
+            Message::NavTimeqzssPoll(_) => (NavTimeqzssPoll::CLASS, NavTimeqzssPoll::MSG_ID),
+            Message::NavTimeqzss(_) => (NavTimeqzss::CLASS, NavTimeqzss::MSG_ID),
             Message::NavTimeutcPoll(_) => (NavTimeutcPoll::CLASS, NavTimeutcPoll::MSG_ID),
             Message::NavTimeutc(_) => (NavTimeutc::CLASS, NavTimeutc::MSG_ID),
             Message::NavVelecefPoll(_) => (NavVelecefPoll::CLASS, NavVelecefPoll::MSG_ID),
@@ -14174,10 +21287,27 @@ impl<'a> Message<'a> {
             Message::RxmSfrbx(_) => (RxmSfrbx::CLASS, RxmSfrbx::MSG_ID),
             Message::SecUniqidPoll(_) => (SecUniqidPoll::CLASS, SecUniqidPoll::MSG_ID),
             Message::SecUniqid(_) => (SecUniqid::CLASS, SecUniqid::MSG_ID),
+            Message::TimDoscPoll(_) => (TimDoscPoll::CLASS, TimDoscPoll::MSG_ID),
+            Message::TimDosc(_) => (TimDosc::CLASS, TimDosc::MSG_ID),
+            Message::TimFchgPoll(_) => (TimFchgPoll::CLASS, TimFchgPoll::MSG_ID),
+            Message::TimFchg(_) => (TimFchg::CLASS, TimFchg::MSG_ID),
+            Message::TimHoc(_) => (TimHoc::CLASS, TimHoc::MSG_ID),
+            Message::TimSmeasPoll(_) => (TimSmeasPoll::CLASS, TimSmeasPoll::MSG_ID),
+            Message::TimSmeas(_) => (TimSmeas::CLASS, TimSmeas::MSG_ID),
+            Message::TimSvinPoll(_) => (TimSvinPoll::CLASS, TimSvinPoll::MSG_ID),
+            Message::TimSvin(_) => (TimSvin::CLASS, TimSvin::MSG_ID),
             Message::TimTm2Poll(_) => (TimTm2Poll::CLASS, TimTm2Poll::MSG_ID),
             Message::TimTm2(_) => (TimTm2::CLASS, TimTm2::MSG_ID),
+            Message::TimTosPoll(_) => (TimTosPoll::CLASS, TimTosPoll::MSG_ID),
+            Message::TimTos(_) => (TimTos::CLASS, TimTos::MSG_ID),
             Message::TimTpPoll(_) => (TimTpPoll::CLASS, TimTpPoll::MSG_ID),
             Message::TimTp(_) => (TimTp::CLASS, TimTp::MSG_ID),
+            Message::TimVcocalPoll(_) => (TimVcocalPoll::CLASS, TimVcocalPoll::MSG_ID),
+            Message::TimVcocalStop(_) => (TimVcocalStop::CLASS, TimVcocalStop::MSG_ID),
+            Message::TimVcocalResult(_) => (TimVcocalResult::CLASS, TimVcocalResult::MSG_ID),
+            Message::TimVcocal(_) => (TimVcocal::CLASS, TimVcocal::MSG_ID),
+            Message::TimVrfyPoll(_) => (TimVrfyPoll::CLASS, TimVrfyPoll::MSG_ID),
+            Message::TimVrfy(_) => (TimVrfy::CLASS, TimVrfy::MSG_ID),
             Message::Unknown(m) => (m.class, m.id),
         }
     }
@@ -14243,31 +21373,75 @@ impl<'a> Message<'a> {
             Message::InfNotice(m) => m.write(w),
             Message::InfTest(m) => m.write(w),
             Message::InfWarning(m) => m.write(w),
+            Message::LogBatch(m) => m.write(w),
+            Message::LogCreate(m) => m.write(w),
+            Message::LogErase(m) => m.write(w),
+            Message::LogFindtime(m) => m.write(w),
+            Message::LogFindtimeResponse(m) => m.write(w),
+            Message::LogInfoPoll(m) => m.write(w),
+            Message::LogInfo(m) => m.write(w),
+            Message::LogRetrieve(m) => m.write(w),
+            Message::LogRetrievebatch(m) => m.write(w),
+            Message::LogRetrievepos(m) => m.write(w),
+            Message::LogRetrieveposextra(m) => m.write(w),
+            Message::LogRetrievestring(m) => m.write(w),
+            Message::LogString(m) => m.write(w),
+            Message::MonCommsPoll(m) => m.write(w),
+            Message::MonComms(m) => m.write(w),
+            Message::MonGnssPoll(m) => m.write(w),
+            Message::MonGnss(m) => m.write(w),
             Message::MonHwPoll(m) => m.write(w),
             Message::MonHw(m) => m.write(w),
+            Message::MonHw2Poll(m) => m.write(w),
+            Message::MonHw2(m) => m.write(w),
+            Message::MonHw3Poll(m) => m.write(w),
+            Message::MonHw3(m) => m.write(w),
+            Message::MonIoPoll(m) => m.write(w),
+            Message::MonIo(m) => m.write(w),
+            Message::MonMsgppPoll(m) => m.write(w),
+            Message::MonMsgpp(m) => m.write(w),
+            Message::MonPatchPoll(m) => m.write(w),
+            Message::MonPatch(m) => m.write(w),
             Message::MonRfPoll(m) => m.write(w),
             Message::MonRf(m) => m.write(w),
             Message::MonRxbufPoll(m) => m.write(w),
             Message::MonRxbuf(m) => m.write(w),
+            Message::MonRxr(m) => m.write(w),
+            Message::MonSmgrPoll(m) => m.write(w),
+            Message::MonSmgr(m) => m.write(w),
+            Message::MonSysPoll(m) => m.write(w),
+            Message::MonSys(m) => m.write(w),
             Message::MonTxbufPoll(m) => m.write(w),
             Message::MonTxbuf(m) => m.write(w),
             Message::MonVerPoll(m) => m.write(w),
             Message::MonVer(m) => m.write(w),
+            Message::NavAopstatusPoll(m) => m.write(w),
+            Message::NavAopstatus(m) => m.write(w),
             Message::NavAttPoll(m) => m.write(w),
             Message::NavAtt(m) => m.write(w),
             Message::NavClockPoll(m) => m.write(w),
             Message::NavClock(m) => m.write(w),
             Message::NavCovPoll(m) => m.write(w),
             Message::NavCov(m) => m.write(w),
+            Message::NavDgpsPoll(m) => m.write(w),
+            Message::NavDgps(m) => m.write(w),
             Message::NavDopPoll(m) => m.write(w),
             Message::NavDop(m) => m.write(w),
             Message::NavEellPoll(m) => m.write(w),
             Message::NavEell(m) => m.write(w),
             Message::NavEoe(m) => m.write(w),
+            Message::NavGeofencePoll(m) => m.write(w),
+            Message::NavGeofence(m) => m.write(w),
+            Message::NavHpposecefPoll(m) => m.write(w),
+            Message::NavHpposecef(m) => m.write(w),
             Message::NavHpposllhPoll(m) => m.write(w),
             Message::NavHpposllh(m) => m.write(w),
             Message::NavOdoPoll(m) => m.write(w),
             Message::NavOdo(m) => m.write(w),
+            Message::NavOrbPoll(m) => m.write(w),
+            Message::NavOrb(m) => m.write(w),
+            Message::NavPlPoll(m) => m.write(w),
+            Message::NavPl(m) => m.write(w),
             Message::NavPosecefPoll(m) => m.write(w),
             Message::NavPosecef(m) => m.write(w),
             Message::NavPosllhPoll(m) => m.write(w),
@@ -14284,6 +21458,8 @@ impl<'a> Message<'a> {
             Message::NavSbas(m) => m.write(w),
             Message::NavSigPoll(m) => m.write(w),
             Message::NavSig(m) => m.write(w),
+            Message::NavSlasPoll(m) => m.write(w),
+            Message::NavSlas(m) => m.write(w),
             Message::NavSolPoll(m) => m.write(w),
             Message::NavSol(m) => m.write(w),
             Message::NavStatusPoll(m) => m.write(w),
@@ -14302,6 +21478,8 @@ impl<'a> Message<'a> {
             Message::NavTimegps(m) => m.write(w),
             Message::NavTimelsPoll(m) => m.write(w),
             Message::NavTimels(m) => m.write(w),
+            Message::NavTimeqzssPoll(m) => m.write(w),
+            Message::NavTimeqzss(m) => m.write(w),
             Message::NavTimeutcPoll(m) => m.write(w),
             Message::NavTimeutc(m) => m.write(w),
             Message::NavVelecefPoll(m) => m.write(w),
@@ -14314,10 +21492,27 @@ impl<'a> Message<'a> {
             Message::RxmSfrbx(m) => m.write(w),
             Message::SecUniqidPoll(m) => m.write(w),
             Message::SecUniqid(m) => m.write(w),
+            Message::TimDoscPoll(m) => m.write(w),
+            Message::TimDosc(m) => m.write(w),
+            Message::TimFchgPoll(m) => m.write(w),
+            Message::TimFchg(m) => m.write(w),
+            Message::TimHoc(m) => m.write(w),
+            Message::TimSmeasPoll(m) => m.write(w),
+            Message::TimSmeas(m) => m.write(w),
+            Message::TimSvinPoll(m) => m.write(w),
+            Message::TimSvin(m) => m.write(w),
             Message::TimTm2Poll(m) => m.write(w),
             Message::TimTm2(m) => m.write(w),
+            Message::TimTosPoll(m) => m.write(w),
+            Message::TimTos(m) => m.write(w),
             Message::TimTpPoll(m) => m.write(w),
             Message::TimTp(m) => m.write(w),
+            Message::TimVcocalPoll(m) => m.write(w),
+            Message::TimVcocalStop(m) => m.write(w),
+            Message::TimVcocalResult(m) => m.write(w),
+            Message::TimVcocal(m) => m.write(w),
+            Message::TimVrfyPoll(m) => m.write(w),
+            Message::TimVrfy(m) => m.write(w),
             Message::Unknown(m) => {
                 w.put(m.payload);
                 Ok(())
@@ -14401,31 +21596,75 @@ impl<'a> Message<'a> {
             Message::InfNotice(m) => m.json_members(&mut j)?,
             Message::InfTest(m) => m.json_members(&mut j)?,
             Message::InfWarning(m) => m.json_members(&mut j)?,
+            Message::LogBatch(m) => m.json_members(&mut j)?,
+            Message::LogCreate(m) => m.json_members(&mut j)?,
+            Message::LogErase(m) => m.json_members(&mut j)?,
+            Message::LogFindtime(m) => m.json_members(&mut j)?,
+            Message::LogFindtimeResponse(m) => m.json_members(&mut j)?,
+            Message::LogInfoPoll(m) => m.json_members(&mut j)?,
+            Message::LogInfo(m) => m.json_members(&mut j)?,
+            Message::LogRetrieve(m) => m.json_members(&mut j)?,
+            Message::LogRetrievebatch(m) => m.json_members(&mut j)?,
+            Message::LogRetrievepos(m) => m.json_members(&mut j)?,
+            Message::LogRetrieveposextra(m) => m.json_members(&mut j)?,
+            Message::LogRetrievestring(m) => m.json_members(&mut j)?,
+            Message::LogString(m) => m.json_members(&mut j)?,
+            Message::MonCommsPoll(m) => m.json_members(&mut j)?,
+            Message::MonComms(m) => m.json_members(&mut j)?,
+            Message::MonGnssPoll(m) => m.json_members(&mut j)?,
+            Message::MonGnss(m) => m.json_members(&mut j)?,
             Message::MonHwPoll(m) => m.json_members(&mut j)?,
             Message::MonHw(m) => m.json_members(&mut j)?,
+            Message::MonHw2Poll(m) => m.json_members(&mut j)?,
+            Message::MonHw2(m) => m.json_members(&mut j)?,
+            Message::MonHw3Poll(m) => m.json_members(&mut j)?,
+            Message::MonHw3(m) => m.json_members(&mut j)?,
+            Message::MonIoPoll(m) => m.json_members(&mut j)?,
+            Message::MonIo(m) => m.json_members(&mut j)?,
+            Message::MonMsgppPoll(m) => m.json_members(&mut j)?,
+            Message::MonMsgpp(m) => m.json_members(&mut j)?,
+            Message::MonPatchPoll(m) => m.json_members(&mut j)?,
+            Message::MonPatch(m) => m.json_members(&mut j)?,
             Message::MonRfPoll(m) => m.json_members(&mut j)?,
             Message::MonRf(m) => m.json_members(&mut j)?,
             Message::MonRxbufPoll(m) => m.json_members(&mut j)?,
             Message::MonRxbuf(m) => m.json_members(&mut j)?,
+            Message::MonRxr(m) => m.json_members(&mut j)?,
+            Message::MonSmgrPoll(m) => m.json_members(&mut j)?,
+            Message::MonSmgr(m) => m.json_members(&mut j)?,
+            Message::MonSysPoll(m) => m.json_members(&mut j)?,
+            Message::MonSys(m) => m.json_members(&mut j)?,
             Message::MonTxbufPoll(m) => m.json_members(&mut j)?,
             Message::MonTxbuf(m) => m.json_members(&mut j)?,
             Message::MonVerPoll(m) => m.json_members(&mut j)?,
             Message::MonVer(m) => m.json_members(&mut j)?,
+            Message::NavAopstatusPoll(m) => m.json_members(&mut j)?,
+            Message::NavAopstatus(m) => m.json_members(&mut j)?,
             Message::NavAttPoll(m) => m.json_members(&mut j)?,
             Message::NavAtt(m) => m.json_members(&mut j)?,
             Message::NavClockPoll(m) => m.json_members(&mut j)?,
             Message::NavClock(m) => m.json_members(&mut j)?,
             Message::NavCovPoll(m) => m.json_members(&mut j)?,
             Message::NavCov(m) => m.json_members(&mut j)?,
+            Message::NavDgpsPoll(m) => m.json_members(&mut j)?,
+            Message::NavDgps(m) => m.json_members(&mut j)?,
             Message::NavDopPoll(m) => m.json_members(&mut j)?,
             Message::NavDop(m) => m.json_members(&mut j)?,
             Message::NavEellPoll(m) => m.json_members(&mut j)?,
             Message::NavEell(m) => m.json_members(&mut j)?,
             Message::NavEoe(m) => m.json_members(&mut j)?,
+            Message::NavGeofencePoll(m) => m.json_members(&mut j)?,
+            Message::NavGeofence(m) => m.json_members(&mut j)?,
+            Message::NavHpposecefPoll(m) => m.json_members(&mut j)?,
+            Message::NavHpposecef(m) => m.json_members(&mut j)?,
             Message::NavHpposllhPoll(m) => m.json_members(&mut j)?,
             Message::NavHpposllh(m) => m.json_members(&mut j)?,
             Message::NavOdoPoll(m) => m.json_members(&mut j)?,
             Message::NavOdo(m) => m.json_members(&mut j)?,
+            Message::NavOrbPoll(m) => m.json_members(&mut j)?,
+            Message::NavOrb(m) => m.json_members(&mut j)?,
+            Message::NavPlPoll(m) => m.json_members(&mut j)?,
+            Message::NavPl(m) => m.json_members(&mut j)?,
             Message::NavPosecefPoll(m) => m.json_members(&mut j)?,
             Message::NavPosecef(m) => m.json_members(&mut j)?,
             Message::NavPosllhPoll(m) => m.json_members(&mut j)?,
@@ -14442,6 +21681,8 @@ impl<'a> Message<'a> {
             Message::NavSbas(m) => m.json_members(&mut j)?,
             Message::NavSigPoll(m) => m.json_members(&mut j)?,
             Message::NavSig(m) => m.json_members(&mut j)?,
+            Message::NavSlasPoll(m) => m.json_members(&mut j)?,
+            Message::NavSlas(m) => m.json_members(&mut j)?,
             Message::NavSolPoll(m) => m.json_members(&mut j)?,
             Message::NavSol(m) => m.json_members(&mut j)?,
             Message::NavStatusPoll(m) => m.json_members(&mut j)?,
@@ -14460,6 +21701,8 @@ impl<'a> Message<'a> {
             Message::NavTimegps(m) => m.json_members(&mut j)?,
             Message::NavTimelsPoll(m) => m.json_members(&mut j)?,
             Message::NavTimels(m) => m.json_members(&mut j)?,
+            Message::NavTimeqzssPoll(m) => m.json_members(&mut j)?,
+            Message::NavTimeqzss(m) => m.json_members(&mut j)?,
             Message::NavTimeutcPoll(m) => m.json_members(&mut j)?,
             Message::NavTimeutc(m) => m.json_members(&mut j)?,
             Message::NavVelecefPoll(m) => m.json_members(&mut j)?,
@@ -14472,10 +21715,27 @@ impl<'a> Message<'a> {
             Message::RxmSfrbx(m) => m.json_members(&mut j)?,
             Message::SecUniqidPoll(m) => m.json_members(&mut j)?,
             Message::SecUniqid(m) => m.json_members(&mut j)?,
+            Message::TimDoscPoll(m) => m.json_members(&mut j)?,
+            Message::TimDosc(m) => m.json_members(&mut j)?,
+            Message::TimFchgPoll(m) => m.json_members(&mut j)?,
+            Message::TimFchg(m) => m.json_members(&mut j)?,
+            Message::TimHoc(m) => m.json_members(&mut j)?,
+            Message::TimSmeasPoll(m) => m.json_members(&mut j)?,
+            Message::TimSmeas(m) => m.json_members(&mut j)?,
+            Message::TimSvinPoll(m) => m.json_members(&mut j)?,
+            Message::TimSvin(m) => m.json_members(&mut j)?,
             Message::TimTm2Poll(m) => m.json_members(&mut j)?,
             Message::TimTm2(m) => m.json_members(&mut j)?,
+            Message::TimTosPoll(m) => m.json_members(&mut j)?,
+            Message::TimTos(m) => m.json_members(&mut j)?,
             Message::TimTpPoll(m) => m.json_members(&mut j)?,
             Message::TimTp(m) => m.json_members(&mut j)?,
+            Message::TimVcocalPoll(m) => m.json_members(&mut j)?,
+            Message::TimVcocalStop(m) => m.json_members(&mut j)?,
+            Message::TimVcocalResult(m) => m.json_members(&mut j)?,
+            Message::TimVcocal(m) => m.json_members(&mut j)?,
+            Message::TimVrfyPoll(m) => m.json_members(&mut j)?,
+            Message::TimVrfy(m) => m.json_members(&mut j)?,
             Message::Unknown(m) => {
                 j.int("class", m.class)?;
                 j.int("id", m.id)?;

@@ -16,26 +16,45 @@
 #   spec/binary/ubx/messages/hnr_pvt.yaml, spec/binary/ubx/messages/inf_debug.yaml,
 #   spec/binary/ubx/messages/inf_error.yaml, spec/binary/ubx/messages/inf_notice.yaml,
 #   spec/binary/ubx/messages/inf_test.yaml, spec/binary/ubx/messages/inf_warning.yaml,
-#   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_rf.yaml,
-#   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
-#   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav_att.yaml,
-#   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_cov.yaml,
+#   spec/binary/ubx/messages/log_batch.yaml, spec/binary/ubx/messages/log_create.yaml,
+#   spec/binary/ubx/messages/log_erase.yaml, spec/binary/ubx/messages/log_findtime.yaml,
+#   spec/binary/ubx/messages/log_info.yaml, spec/binary/ubx/messages/log_retrieve.yaml,
+#   spec/binary/ubx/messages/log_retrievebatch.yaml, spec/binary/ubx/messages/log_retrievepos.yaml,
+#   spec/binary/ubx/messages/log_retrieveposextra.yaml,
+#   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_string.yaml,
+#   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
+#   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
+#   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_io.yaml,
+#   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_patch.yaml,
+#   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
+#   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+#   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
+#   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav_aopstatus.yaml,
+#   spec/binary/ubx/messages/nav_att.yaml, spec/binary/ubx/messages/nav_clock.yaml,
+#   spec/binary/ubx/messages/nav_cov.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
 #   spec/binary/ubx/messages/nav_dop.yaml, spec/binary/ubx/messages/nav_eell.yaml,
-#   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
-#   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_posecef.yaml,
+#   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/nav_geofence.yaml,
+#   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
+#   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_orb.yaml,
+#   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/nav_posecef.yaml,
 #   spec/binary/ubx/messages/nav_posllh.yaml, spec/binary/ubx/messages/nav_pvt.yaml,
 #   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
 #   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_sbas.yaml,
-#   spec/binary/ubx/messages/nav_sig.yaml, spec/binary/ubx/messages/nav_sol.yaml,
-#   spec/binary/ubx/messages/nav_status.yaml, spec/binary/ubx/messages/nav_svin.yaml,
-#   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
-#   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
-#   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timels.yaml,
+#   spec/binary/ubx/messages/nav_sig.yaml, spec/binary/ubx/messages/nav_slas.yaml,
+#   spec/binary/ubx/messages/nav_sol.yaml, spec/binary/ubx/messages/nav_status.yaml,
+#   spec/binary/ubx/messages/nav_svin.yaml, spec/binary/ubx/messages/nav_svinfo.yaml,
+#   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
+#   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
+#   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
 #   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_velecef.yaml,
 #   spec/binary/ubx/messages/nav_velned.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
 #   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
-#   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
-#   spec/binary/ubx/messages/tim_tp.yaml (digest 83e98af740b357bd)
+#   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
+#   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
+#   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_svin.yaml,
+#   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tos.yaml,
+#   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
+#   spec/binary/ubx/messages/tim_vrfy.yaml (digest 9bbe87b117203f10)
 # Regenerate: make generate (python3 -m generator generate)
 """UBX messages: a frame's payload decoded into the class of its layout (by class and id, then
 length and version) and encoded back to the same bytes; a class and id the spec does not describe
@@ -80,19 +99,46 @@ from .inf_error import InfError as InfError
 from .inf_notice import InfNotice as InfNotice
 from .inf_test import InfTest as InfTest
 from .inf_warning import InfWarning as InfWarning
+from .log_batch import LogBatch as LogBatch
+from .log_create import LogCreate as LogCreate
+from .log_erase import LogErase as LogErase
+from .log_findtime import LogFindtime as LogFindtime, LogFindtimeResponse as LogFindtimeResponse
+from .log_info import LogInfoPoll as LogInfoPoll, LogInfo as LogInfo
+from .log_retrieve import LogRetrieve as LogRetrieve
+from .log_retrievebatch import LogRetrievebatch as LogRetrievebatch
+from .log_retrievepos import LogRetrievepos as LogRetrievepos
+from .log_retrieveposextra import LogRetrieveposextra as LogRetrieveposextra
+from .log_retrievestring import LogRetrievestring as LogRetrievestring
+from .log_string import LogString as LogString
+from .mon_comms import MonCommsPoll as MonCommsPoll, MonComms as MonComms
+from .mon_gnss import MonGnssPoll as MonGnssPoll, MonGnss as MonGnss
 from .mon_hw import MonHwPoll as MonHwPoll, MonHw as MonHw
+from .mon_hw2 import MonHw2Poll as MonHw2Poll, MonHw2 as MonHw2
+from .mon_hw3 import MonHw3Poll as MonHw3Poll, MonHw3 as MonHw3
+from .mon_io import MonIoPoll as MonIoPoll, MonIo as MonIo
+from .mon_msgpp import MonMsgppPoll as MonMsgppPoll, MonMsgpp as MonMsgpp
+from .mon_patch import MonPatchPoll as MonPatchPoll, MonPatch as MonPatch
 from .mon_rf import MonRfPoll as MonRfPoll, MonRf as MonRf
 from .mon_rxbuf import MonRxbufPoll as MonRxbufPoll, MonRxbuf as MonRxbuf
+from .mon_rxr import MonRxr as MonRxr
+from .mon_smgr import MonSmgrPoll as MonSmgrPoll, MonSmgr as MonSmgr
+from .mon_sys import MonSysPoll as MonSysPoll, MonSys as MonSys
 from .mon_txbuf import MonTxbufPoll as MonTxbufPoll, MonTxbuf as MonTxbuf
 from .mon_ver import MonVerPoll as MonVerPoll, MonVer as MonVer
+from .nav_aopstatus import NavAopstatusPoll as NavAopstatusPoll, NavAopstatus as NavAopstatus
 from .nav_att import NavAttPoll as NavAttPoll, NavAtt as NavAtt
 from .nav_clock import NavClockPoll as NavClockPoll, NavClock as NavClock
 from .nav_cov import NavCovPoll as NavCovPoll, NavCov as NavCov
+from .nav_dgps import NavDgpsPoll as NavDgpsPoll, NavDgps as NavDgps
 from .nav_dop import NavDopPoll as NavDopPoll, NavDop as NavDop
 from .nav_eell import NavEellPoll as NavEellPoll, NavEell as NavEell
 from .nav_eoe import NavEoe as NavEoe
+from .nav_geofence import NavGeofencePoll as NavGeofencePoll, NavGeofence as NavGeofence
+from .nav_hpposecef import NavHpposecefPoll as NavHpposecefPoll, NavHpposecef as NavHpposecef
 from .nav_hpposllh import NavHpposllhPoll as NavHpposllhPoll, NavHpposllh as NavHpposllh
 from .nav_odo import NavOdoPoll as NavOdoPoll, NavOdo as NavOdo
+from .nav_orb import NavOrbPoll as NavOrbPoll, NavOrb as NavOrb
+from .nav_pl import NavPlPoll as NavPlPoll, NavPl as NavPl
 from .nav_posecef import NavPosecefPoll as NavPosecefPoll, NavPosecef as NavPosecef
 from .nav_posllh import NavPosllhPoll as NavPosllhPoll, NavPosllh as NavPosllh
 from .nav_pvt import NavPvtPoll as NavPvtPoll, NavPvt as NavPvt
@@ -105,6 +151,7 @@ from .nav_resetodo import NavResetodo as NavResetodo
 from .nav_sat import NavSatPoll as NavSatPoll, NavSat as NavSat
 from .nav_sbas import NavSbasPoll as NavSbasPoll, NavSbas as NavSbas
 from .nav_sig import NavSigPoll as NavSigPoll, NavSig as NavSig
+from .nav_slas import NavSlasPoll as NavSlasPoll, NavSlas as NavSlas
 from .nav_sol import NavSolPoll as NavSolPoll, NavSol as NavSol
 from .nav_status import NavStatusPoll as NavStatusPoll, NavStatus as NavStatus
 from .nav_svin import NavSvinPoll as NavSvinPoll, NavSvin as NavSvin
@@ -114,6 +161,7 @@ from .nav_timegal import NavTimegalPoll as NavTimegalPoll, NavTimegal as NavTime
 from .nav_timeglo import NavTimegloPoll as NavTimegloPoll, NavTimeglo as NavTimeglo
 from .nav_timegps import NavTimegpsPoll as NavTimegpsPoll, NavTimegps as NavTimegps
 from .nav_timels import NavTimelsPoll as NavTimelsPoll, NavTimels as NavTimels
+from .nav_timeqzss import NavTimeqzssPoll as NavTimeqzssPoll, NavTimeqzss as NavTimeqzss
 from .nav_timeutc import NavTimeutcPoll as NavTimeutcPoll, NavTimeutc as NavTimeutc
 from .nav_velecef import NavVelecefPoll as NavVelecefPoll, NavVelecef as NavVelecef
 from .nav_velned import NavVelnedPoll as NavVelnedPoll, NavVelned as NavVelned
@@ -121,8 +169,21 @@ from .rxm_rawx import RxmRawxPoll as RxmRawxPoll, RxmRawx as RxmRawx
 from .rxm_rtcm import RxmRtcm as RxmRtcm
 from .rxm_sfrbx import RxmSfrbx as RxmSfrbx
 from .sec_uniqid import SecUniqidPoll as SecUniqidPoll, SecUniqid as SecUniqid
+from .tim_dosc import TimDoscPoll as TimDoscPoll, TimDosc as TimDosc
+from .tim_fchg import TimFchgPoll as TimFchgPoll, TimFchg as TimFchg
+from .tim_hoc import TimHoc as TimHoc
+from .tim_smeas import TimSmeasPoll as TimSmeasPoll, TimSmeas as TimSmeas
+from .tim_svin import TimSvinPoll as TimSvinPoll, TimSvin as TimSvin
 from .tim_tm2 import TimTm2Poll as TimTm2Poll, TimTm2 as TimTm2
+from .tim_tos import TimTosPoll as TimTosPoll, TimTos as TimTos
 from .tim_tp import TimTpPoll as TimTpPoll, TimTp as TimTp
+from .tim_vcocal import (
+    TimVcocalPoll as TimVcocalPoll,
+    TimVcocalStop as TimVcocalStop,
+    TimVcocalResult as TimVcocalResult,
+    TimVcocal as TimVcocal,
+)
+from .tim_vrfy import TimVrfyPoll as TimVrfyPoll, TimVrfy as TimVrfy
 
 BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x01, 0x01): (NavPosecefPoll, NavPosecef),
@@ -136,6 +197,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x01, 0x10): (NavResetodo,),
     (0x01, 0x11): (NavVelecefPoll, NavVelecef),
     (0x01, 0x12): (NavVelnedPoll, NavVelned),
+    (0x01, 0x13): (NavHpposecefPoll, NavHpposecef),
     (0x01, 0x14): (NavHpposllhPoll, NavHpposllh),
     (0x01, 0x20): (NavTimegpsPoll, NavTimegps),
     (0x01, 0x21): (NavTimeutcPoll, NavTimeutc),
@@ -144,15 +206,22 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x01, 0x24): (NavTimebdsPoll, NavTimebds),
     (0x01, 0x25): (NavTimegalPoll, NavTimegal),
     (0x01, 0x26): (NavTimelsPoll, NavTimels),
+    (0x01, 0x27): (NavTimeqzssPoll, NavTimeqzss),
     (0x01, 0x30): (NavSvinfoPoll, NavSvinfo),
+    (0x01, 0x31): (NavDgpsPoll, NavDgps),
     (0x01, 0x32): (NavSbasPoll, NavSbas),
+    (0x01, 0x34): (NavOrbPoll, NavOrb),
     (0x01, 0x35): (NavSatPoll, NavSat),
     (0x01, 0x36): (NavCovPoll, NavCov),
+    (0x01, 0x39): (NavGeofencePoll, NavGeofence),
     (0x01, 0x3B): (NavSvinPoll, NavSvin),
     (0x01, 0x3C): (NavRelposnedPoll, NavRelposned, NavRelposnedV0),
     (0x01, 0x3D): (NavEellPoll, NavEell),
+    (0x01, 0x42): (NavSlasPoll, NavSlas),
     (0x01, 0x43): (NavSigPoll, NavSig),
+    (0x01, 0x60): (NavAopstatusPoll, NavAopstatus),
     (0x01, 0x61): (NavEoe,),
+    (0x01, 0x62): (NavPlPoll, NavPl),
     (0x02, 0x13): (RxmSfrbx,),
     (0x02, 0x15): (RxmRawxPoll, RxmRawx),
     (0x02, 0x32): (RxmRtcm,),
@@ -181,17 +250,46 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x06, 0x8A): (CfgValsetV0, CfgValset),
     (0x06, 0x8B): (CfgValgetPoll, CfgValget),
     (0x06, 0x8C): (CfgValdelV0, CfgValdel),
+    (0x0A, 0x02): (MonIoPoll, MonIo),
     (0x0A, 0x04): (MonVerPoll, MonVer),
+    (0x0A, 0x06): (MonMsgppPoll, MonMsgpp),
     (0x0A, 0x07): (MonRxbufPoll, MonRxbuf),
     (0x0A, 0x08): (MonTxbufPoll, MonTxbuf),
     (0x0A, 0x09): (MonHwPoll, MonHw),
+    (0x0A, 0x0B): (MonHw2Poll, MonHw2),
+    (0x0A, 0x21): (MonRxr,),
+    (0x0A, 0x27): (MonPatchPoll, MonPatch),
+    (0x0A, 0x28): (MonGnssPoll, MonGnss),
+    (0x0A, 0x2E): (MonSmgrPoll, MonSmgr),
+    (0x0A, 0x36): (MonCommsPoll, MonComms),
+    (0x0A, 0x37): (MonHw3Poll, MonHw3),
     (0x0A, 0x38): (MonRfPoll, MonRf),
+    (0x0A, 0x39): (MonSysPoll, MonSys),
     (0x0D, 0x01): (TimTpPoll, TimTp),
     (0x0D, 0x03): (TimTm2Poll, TimTm2),
+    (0x0D, 0x04): (TimSvinPoll, TimSvin),
+    (0x0D, 0x06): (TimVrfyPoll, TimVrfy),
+    (0x0D, 0x11): (TimDoscPoll, TimDosc),
+    (0x0D, 0x12): (TimTosPoll, TimTos),
+    (0x0D, 0x13): (TimSmeasPoll, TimSmeas),
+    (0x0D, 0x15): (TimVcocalPoll, TimVcocalStop, TimVcocalResult, TimVcocal),
+    (0x0D, 0x16): (TimFchgPoll, TimFchg),
+    (0x0D, 0x17): (TimHoc,),
     (0x10, 0x02): (EsfMeas,),
     (0x10, 0x10): (EsfStatusPoll, EsfStatus),
     (0x10, 0x14): (EsfAlgPoll, EsfAlg),
     (0x10, 0x15): (EsfInsPoll, EsfIns),
+    (0x21, 0x03): (LogErase,),
+    (0x21, 0x04): (LogString,),
+    (0x21, 0x07): (LogCreate,),
+    (0x21, 0x08): (LogInfoPoll, LogInfo),
+    (0x21, 0x09): (LogRetrieve,),
+    (0x21, 0x0B): (LogRetrievepos,),
+    (0x21, 0x0D): (LogRetrievestring,),
+    (0x21, 0x0E): (LogFindtime, LogFindtimeResponse),
+    (0x21, 0x0F): (LogRetrieveposextra,),
+    (0x21, 0x10): (LogRetrievebatch,),
+    (0x21, 0x11): (LogBatch,),
     (0x27, 0x03): (SecUniqidPoll, SecUniqid),
     (0x28, 0x00): (HnrPvtPoll, HnrPvt),
     (0x28, 0x01): (HnrAttPoll, HnrAtt),
