@@ -6,6 +6,7 @@ frames and types (runtime/python/rtcm3.py). The descriptors are emit_python_ais'
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import textwrap
 
@@ -73,12 +74,12 @@ def layout_lines(payload: Payload, items: list, rest: list, indent: int) -> list
 
 
 def _member(f: PayloadField) -> dict:
-    """emit_python_ais's member; a sign-magnitude number may also be the special negative_zero."""
-    found = member(f)
+    """emit_python_ais's member, its data field number after its name; a sign-magnitude number
+    may also be the special negative_zero."""
+    named = f"{f.name} ({f.ref})" if f.ref else f.name
+    found = member(dataclasses.replace(f, name=named, doc=named if f.doc == f.name else f.doc))
     if f.type == "smag" and "ais.Special" not in found["line"]:
         found["line"] = found["line"].replace(" | None = None", " | ais.Special | None = None")
-    if f.ref:
-        found["doc"] = docstring(f"{' '.join(found['doc']).strip(chr(34))} ({f.ref}).".replace("..", "."), 4)
     return found
 
 

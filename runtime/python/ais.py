@@ -476,9 +476,13 @@ def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: 
                                 name=item.id)
             if item.field_major:  # each field for every entry in turn
                 columns: list[dict[str, Any]] = [{} for _ in range(count)]
-                for f in item.fields:
+                for f in item.fields:  # fixed widths (rule A005)
+                    width = f.width or 0
                     for column in columns:
-                        read_items((f,), reader, column)
+                        raw = reader.take(width, f.id)
+                        column[f.id] = f.from_raw(raw, width)
+                        if isinstance(f, Bitfield):
+                            f.read_parts(raw, column)
                 values[item.id] = [item.entry(**column) for column in columns]
                 continue
             entries = []
@@ -671,9 +675,12 @@ def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteW
                                  f"{count_of(item.count, message)} entries, as the bits set in "
                                  f"{' and '.join(item.count)} say")
             if item.field_major:
-                for f in item.fields:
+                for f in item.fields:  # fixed widths (rule A005)
                     for entry in entries:
-                        write_items((f,), entry, writer, where)
+                        if isinstance(f, Bitfield):
+                            writer.put(f.word(entry, where), f.width or 0)
+                        else:
+                            writer.put(*f.to_raw(getattr(entry, f.id), where))
                 continue
             for entry in entries:
                 write_items(item.fields, entry, writer, where)

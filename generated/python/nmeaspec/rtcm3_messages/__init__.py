@@ -22,7 +22,7 @@
 #   spec/binary/rtcm3/messages/qzss_ephemeris.yaml,
 #   spec/binary/rtcm3/messages/receiver_antenna_descriptors.yaml,
 #   spec/binary/rtcm3/messages/station_arp.yaml, spec/binary/rtcm3/messages/system_parameters.yaml,
-#   spec/binary/rtcm3/messages/text_string.yaml (digest fab2ff1679739a95)
+#   spec/binary/rtcm3/messages/text_string.yaml (digest cdf1936fd3bc55f4)
 # Regenerate: make generate (python3 -m generator generate)
 """RTCM 3 messages: a frame (or its payload) decoded into the class of its message number, and
 encoded back to the same bytes; a number the spec does not describe stays an rtcm3.Unknown."""

@@ -33,16 +33,16 @@ class AntennaSerial(rtcm3.Message):
     )
 
     message_number: int | None = None
-    """Message Number. (DF002)."""
+    """Message Number (DF002)."""
     station_id: int | None = None
-    """Reference Station ID. (DF003)."""
+    """Reference Station ID (DF003)."""
     descriptor_length: int | None = None
-    """Antenna descriptor counter. (DF029)."""
+    """Antenna descriptor counter (DF029)."""
     descriptor: str | None = None
-    """Antenna Descriptor. (DF030)."""
+    """Antenna Descriptor (DF030)."""
     setup_id: int | None = None
-    """Antenna Setup ID. (DF031)."""
+    """Antenna Setup ID (DF031)."""
     serial_length: int | None = None
-    """Antenna serial number counter. (DF032)."""
+    """Antenna serial number counter (DF032)."""
     serial: str | None = None
-    """Antenna Serial Number. (DF033)."""
+    """Antenna Serial Number (DF033)."""

@@ -55,63 +55,63 @@ class GalileoFnavEphemeris(rtcm3.Message):
     )
 
     message_number: int | None = None
-    """Message Number. (DF002)."""
+    """Message Number (DF002)."""
     satellite_id: int | None = None
-    """Satellite ID. (DF252)."""
+    """Satellite ID (DF252)."""
     week: int | None = None
-    """Week Number. (DF289)."""
+    """Week Number (DF289)."""
     iodnav: int | None = None
-    """IODnav. (DF290)."""
+    """IODnav (DF290)."""
     sisa: int | None = None
-    """SV SISA. (DF291)."""
+    """SV SISA (DF291)."""
     idot: float | None = None
-    """Rate of Inclination (IDOT) (raw / 8796093022208). (DF292)."""
+    """Rate of Inclination (IDOT) (DF292) (raw / 8796093022208)."""
     toc: int | None = None
-    """Toc: In units of 60 (kept raw). (DF293)."""
+    """Toc (DF293): In units of 60 (kept raw)."""
     af2: float | None = None
-    """Af2 (raw / 576460752303423488). (DF294)."""
+    """Af2 (DF294) (raw / 576460752303423488)."""
     af1: float | None = None
-    """Af1 (raw / 70368744177664). (DF295)."""
+    """Af1 (DF295) (raw / 70368744177664)."""
     af0: float | None = None
-    """Af0 (raw / 17179869184). (DF296)."""
+    """Af0 (DF296) (raw / 17179869184)."""
     crs: float | None = None
-    """Crs (raw / 32). (DF297)."""
+    """Crs (DF297) (raw / 32)."""
     delta_n: float | None = None
-    """Delta n (raw / 8796093022208). (DF298)."""
+    """Delta n (DF298) (raw / 8796093022208)."""
     m0: float | None = None
-    """M0 (raw / 2147483648). (DF299)."""
+    """M0 (DF299) (raw / 2147483648)."""
     cuc: float | None = None
-    """Cuc (raw / 536870912). (DF300)."""
+    """Cuc (DF300) (raw / 536870912)."""
     eccentricity: float | None = None
-    """Eccentricity (e) (raw / 8589934592). (DF301)."""
+    """Eccentricity (e) (DF301) (raw / 8589934592)."""
     cus: float | None = None
-    """Cus (raw / 536870912). (DF302)."""
+    """Cus (DF302) (raw / 536870912)."""
     sqrt_a: float | None = None
-    """A^1/2 (raw / 524288). (DF303)."""
+    """A^1/2 (DF303) (raw / 524288)."""
     toe: int | None = None
-    """Toe: In units of 60 (kept raw). (DF304)."""
+    """Toe (DF304): In units of 60 (kept raw)."""
     cic: float | None = None
-    """Cic (raw / 536870912). (DF305)."""
+    """Cic (DF305) (raw / 536870912)."""
     omega0: float | None = None
-    """Omega0 (raw / 2147483648). (DF306)."""
+    """Omega0 (DF306) (raw / 2147483648)."""
     cis: float | None = None
-    """Cis (raw / 536870912). (DF307)."""
+    """Cis (DF307) (raw / 536870912)."""
     i0: float | None = None
-    """I0 (raw / 2147483648). (DF308)."""
+    """I0 (DF308) (raw / 2147483648)."""
     crc: float | None = None
-    """Crc (raw / 32). (DF309)."""
+    """Crc (DF309) (raw / 32)."""
     omega: float | None = None
-    """Omega (Argument of Perigee) (raw / 2147483648). (DF310)."""
+    """Omega (Argument of Perigee) (DF310) (raw / 2147483648)."""
     omega_dot: float | None = None
-    """OmegaDOT (raw / 8796093022208). (DF311)."""
+    """OmegaDOT (DF311) (raw / 8796093022208)."""
     bgd_e5a_e1: float | None = None
-    """BGD (E1/E5a) (raw / 4294967296). (DF312)."""
+    """BGD (E1/E5a) (DF312) (raw / 4294967296)."""
     e5a_health: int | None = None
-    """E5a Signal Health Status. (DF314)."""
+    """E5a Signal Health Status (DF314)."""
     e5a_validity: bool | None = None
-    """E5a Data Validity Status. (DF315)."""
+    """E5a Data Validity Status (DF315)."""
     reserved: int | None = None
-    """Reserved. (DF001_7)."""
+    """Reserved (DF001_7)."""
 
     @property
     def idot_raw(self) -> int | None:

@@ -58,29 +58,29 @@ class GlonassBiases(rtcm3.Message):
     )
 
     message_number: int | None = None
-    """Message Number. (DF002)."""
+    """Message Number (DF002)."""
     station_id: int | None = None
-    """Reference Station ID. (DF003)."""
+    """Reference Station ID (DF003)."""
     aligned: bool | None = None
-    """Code-phase bias indicator. (DF421)."""
+    """Code-phase bias indicator (DF421)."""
     reserved: int | None = None
-    """Reserved. (DF001_3)."""
+    """Reserved (DF001_3)."""
     l1ca_mask: bool | None = None
-    """L1 C/A bias present. (DF422_1)."""
+    """L1 C/A bias present (DF422_1)."""
     l1p_mask: bool | None = None
-    """L1 P bias present. (DF422_2)."""
+    """L1 P bias present (DF422_2)."""
     l2ca_mask: bool | None = None
-    """L2 C/A bias present. (DF422_3)."""
+    """L2 C/A bias present (DF422_3)."""
     l2p_mask: bool | None = None
-    """L2 P bias present. (DF422_4)."""
+    """L2 P bias present (DF422_4)."""
     l1ca_bias: float | None = None
-    """L1 C/A Code-Phase Bias [m] (raw / 50). (DF423)."""
+    """L1 C/A Code-Phase Bias (DF423) [m] (raw / 50)."""
     l1p_bias: float | None = None
-    """L1 P Code-Phase Bias [m] (raw / 50). (DF424)."""
+    """L1 P Code-Phase Bias (DF424) [m] (raw / 50)."""
     l2ca_bias: float | None = None
-    """L2 C/A Code-Phase Bias [m] (raw / 50). (DF425)."""
+    """L2 C/A Code-Phase Bias (DF425) [m] (raw / 50)."""
     l2p_bias: float | None = None
-    """L2 P Code-Phase Bias [m] (raw / 50). (DF426)."""
+    """L2 P Code-Phase Bias (DF426) [m] (raw / 50)."""
 
     @property
     def l1ca_bias_raw(self) -> int | None:

@@ -63,79 +63,79 @@ class GlonassEphemeris(rtcm3.Message):
     )
 
     message_number: int | None = None
-    """Message Number. (DF002)."""
+    """Message Number (DF002)."""
     satellite_id: int | None = None
-    """Satellite ID (Satellite Slot Number). (DF038)."""
+    """Satellite ID (Satellite Slot Number) (DF038)."""
     frequency_channel: int | None = None
-    """Satellite Frequency Channel Number. (DF040)."""
+    """Satellite Frequency Channel Number (DF040)."""
     almanac_health: bool | None = None
-    """Almanac health. (DF104)."""
+    """Almanac health (DF104)."""
     almanac_health_available: bool | None = None
-    """Almanac health availability indicator. (DF105)."""
+    """Almanac health availability indicator (DF105)."""
     p1: int | None = None
-    """P1. (DF106)."""
+    """P1 (DF106)."""
     tk: int | None = None
-    """Tk. (DF107)."""
+    """Tk (DF107)."""
     bn_msb: bool | None = None
-    """MSB of Bn word. (DF108)."""
+    """MSB of Bn word (DF108)."""
     p2: bool | None = None
-    """P2. (DF109)."""
+    """P2 (DF109)."""
     tb: int | None = None
-    """Tb. (DF110)."""
+    """Tb (DF110)."""
     x_velocity: float | ais.Special | None = None
-    """Xn(tb), first derivative [km/s] (raw / 1048576). (DF111)."""
+    """Xn(tb), first derivative (DF111) [km/s] (raw / 1048576)."""
     x: float | ais.Special | None = None
-    """Xn(tb) [km] (raw / 2048). (DF112)."""
+    """Xn(tb) (DF112) [km] (raw / 2048)."""
     x_acceleration: float | ais.Special | None = None
-    """Xn(tb), second derivative [km/s2] (raw / 1073741824). (DF113)."""
+    """Xn(tb), second derivative (DF113) [km/s2] (raw / 1073741824)."""
     y_velocity: float | ais.Special | None = None
-    """Yn(tb), first derivative [km/s] (raw / 1048576). (DF114)."""
+    """Yn(tb), first derivative (DF114) [km/s] (raw / 1048576)."""
     y: float | ais.Special | None = None
-    """Yn(tb) [km] (raw / 2048). (DF115)."""
+    """Yn(tb) (DF115) [km] (raw / 2048)."""
     y_acceleration: float | ais.Special | None = None
-    """Yn(tb), second derivative [km/s2] (raw / 1073741824). (DF116)."""
+    """Yn(tb), second derivative (DF116) [km/s2] (raw / 1073741824)."""
     z_velocity: float | ais.Special | None = None
-    """Zn(tb), first derivative [km/s] (raw / 1048576). (DF117)."""
+    """Zn(tb), first derivative (DF117) [km/s] (raw / 1048576)."""
     z: float | ais.Special | None = None
-    """Zn(tb) [km] (raw / 2048). (DF118)."""
+    """Zn(tb) (DF118) [km] (raw / 2048)."""
     z_acceleration: float | ais.Special | None = None
-    """Zn(tb), second derivative [km/s2] (raw / 1073741824). (DF119)."""
+    """Zn(tb), second derivative (DF119) [km/s2] (raw / 1073741824)."""
     p3: bool | None = None
-    """P3. (DF120)."""
+    """P3 (DF120)."""
     gamma: int | ais.Special | None = None
-    """Gamman(tb) (Relative deviation). (DF121)."""
+    """Gamman(tb) (Relative deviation) (DF121)."""
     p: int | None = None
-    """P. (DF122)."""
+    """P (DF122)."""
     ln_third: bool | None = None
-    """Ln (third string). (DF123)."""
+    """Ln (third string) (DF123)."""
     tau: int | ais.Special | None = None
-    """Taun (tb). (DF124)."""
+    """Taun (tb) (DF124)."""
     delta_tau: int | ais.Special | None = None
-    """Delta taun. (DF125)."""
+    """Delta taun (DF125)."""
     en: int | None = None
-    """En. (DF126)."""
+    """En (DF126)."""
     p4: bool | None = None
-    """P4. (DF127)."""
+    """P4 (DF127)."""
     ft: int | None = None
-    """FT. (DF128)."""
+    """FT (DF128)."""
     nt: int | None = None
-    """NT. (DF129)."""
+    """NT (DF129)."""
     m: int | None = None
-    """M. (DF130)."""
+    """M (DF130)."""
     additional_data: bool | None = None
-    """The Availability of Additional Data. (DF131)."""
+    """The Availability of Additional Data (DF131)."""
     na: int | None = None
-    """NA. (DF132)."""
+    """NA (DF132)."""
     tau_c: int | ais.Special | None = None
-    """Tauc. (DF133)."""
+    """Tauc (DF133)."""
     n4: int | None = None
-    """N4. (DF134)."""
+    """N4 (DF134)."""
     tau_gps: int | ais.Special | None = None
-    """TauGPS. (DF135)."""
+    """TauGPS (DF135)."""
     ln_fifth: bool | None = None
-    """Ln (fifth string). (DF136)."""
+    """Ln (fifth string) (DF136)."""
     reserved: int | None = None
-    """Reserved. (DF001_7)."""
+    """Reserved (DF001_7)."""
 
     @property
     def x_velocity_raw(self) -> int | None:

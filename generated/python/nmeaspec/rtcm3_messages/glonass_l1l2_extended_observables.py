@@ -18,31 +18,31 @@ class GlonassL1l2ExtendedObservablesSatellite:
     """One entry of satellites."""
 
     satellite_id: int | None = None
-    """Satellite ID (Satellite Slot Number). (DF038)."""
+    """Satellite ID (Satellite Slot Number) (DF038)."""
     l1_code: bool | None = None
-    """L1 Code Indicator. (DF039)."""
+    """L1 Code Indicator (DF039)."""
     frequency_channel: int | None = None
-    """Satellite Frequency Channel Number. (DF040)."""
+    """Satellite Frequency Channel Number (DF040)."""
     l1_pseudorange: float | None = None
-    """L1 Pseudorange [m] (raw / 50). (DF041)."""
+    """L1 Pseudorange (DF041) [m] (raw / 50)."""
     l1_phase_minus_pseudorange: float | ais.Special | None = None
-    """L1 PhaseRange - L1 Pseudorange [m] (raw / 2000). Special: invalid (-524288). (DF042)."""
+    """L1 PhaseRange - L1 Pseudorange (DF042) [m] (raw / 2000). Special: invalid (-524288)."""
     l1_lock_time: int | None = None
-    """L1 Lock Time Indicator. (DF043)."""
+    """L1 Lock Time Indicator (DF043)."""
     l1_ambiguity: int | None = None
-    """Integer L1 Pseudorange Modulus Ambiguity [ms]. (DF044)."""
+    """Integer L1 Pseudorange Modulus Ambiguity (DF044) [ms]."""
     l1_cnr: float | None = None
-    """L1 CNR [dB-Hz] (raw / 4). (DF045)."""
+    """L1 CNR (DF045) [dB-Hz] (raw / 4)."""
     l2_code: int | None = None
-    """L2 Code Indicator. (DF046)."""
+    """L2 Code Indicator (DF046)."""
     l2_minus_l1_pseudorange: float | ais.Special | None = None
-    """L2-L1 Pseudorange Difference [m] (raw / 50). Special: invalid (-8192). (DF047)."""
+    """L2-L1 Pseudorange Difference (DF047) [m] (raw / 50). Special: invalid (-8192)."""
     l2_phase_minus_l1_pseudorange: float | ais.Special | None = None
-    """L2 PhaseRange - L1 Pseudorange [m] (raw / 2000). Special: invalid (-524288). (DF048)."""
+    """L2 PhaseRange - L1 Pseudorange (DF048) [m] (raw / 2000). Special: invalid (-524288)."""
     l2_lock_time: int | None = None
-    """L2 Lock Time Indicator. (DF049)."""
+    """L2 Lock Time Indicator (DF049)."""
     l2_cnr: float | None = None
-    """L2 CNR [dB-Hz] (raw / 4). (DF050)."""
+    """L2 CNR (DF050) [dB-Hz] (raw / 4)."""
 
 
 @dataclass
@@ -96,19 +96,19 @@ class GlonassL1l2ExtendedObservables(rtcm3.Message):
     )
 
     message_number: int | None = None
-    """Message Number. (DF002)."""
+    """Message Number (DF002)."""
     station_id: int | None = None
-    """Reference Station ID. (DF003)."""
+    """Reference Station ID (DF003)."""
     epoch_time: int | None = None
-    """Epoch time (GLONASS tk) [ms]. (DF034)."""
+    """Epoch time (GLONASS tk) (DF034) [ms]."""
     synchronous: bool | None = None
-    """Synchronous GNSS Message Flag. (DF005)."""
+    """Synchronous GNSS Message Flag (DF005)."""
     satellite_count: int | None = None
-    """No. of GLONASS Satellite Signals Processed. (DF035)."""
+    """No. of GLONASS Satellite Signals Processed (DF035)."""
     smoothing: bool | None = None
-    """Divergence-free Smoothing Indicator. (DF036)."""
+    """Divergence-free Smoothing Indicator (DF036)."""
     smoothing_interval: int | None = None
-    """Smoothing Interval. (DF037)."""
+    """Smoothing Interval (DF037)."""
     satellites: list[GlonassL1l2ExtendedObservablesSatellite] = field(default_factory=list)
     """Satellites: satellite_count entries."""
 

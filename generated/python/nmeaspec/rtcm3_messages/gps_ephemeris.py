@@ -57,75 +57,75 @@ class GpsEphemeris(rtcm3.Message):
     )
 
     message_number: int | None = None
-    """Message Number. (DF002)."""
+    """Message Number (DF002)."""
     satellite_id: int | None = None
-    """Satellite ID. (DF009)."""
+    """Satellite ID (DF009)."""
     week: int | None = None
-    """Week number. (DF076)."""
+    """Week number (DF076)."""
     ura: int | None = None
-    """SV Acc. (URA). (DF077)."""
+    """SV Acc. (URA) (DF077)."""
     l2_codes: int | None = None
-    """CODE ON L2. (DF078)."""
+    """CODE ON L2 (DF078)."""
     idot: float | None = None
-    """IDOT (Issue of Data, Time) [semicircles/s] (raw / 8796093022208). (DF079)."""
+    """IDOT (Issue of Data, Time) (DF079) [semicircles/s] (raw / 8796093022208)."""
     iode: int | None = None
-    """IODE. (DF071)."""
+    """IODE (DF071)."""
     toc: int | None = None
-    """Toc (Reference Time, Clock): In units of 16 (kept raw). (DF081)."""
+    """Toc (Reference Time, Clock) (DF081): In units of 16 (kept raw)."""
     af2: float | None = None
-    """Af2 (Clock correction drift rate) [s/s2] (raw / 36028797018963968). (DF082)."""
+    """Af2 (Clock correction drift rate) (DF082) [s/s2] (raw / 36028797018963968)."""
     af1: float | None = None
-    """Af1 (Clock correction drift) [s/s] (raw / 8796093022208). (DF083)."""
+    """Af1 (Clock correction drift) (DF083) [s/s] (raw / 8796093022208)."""
     af0: float | None = None
-    """Af0 (Clock correction bias) [s] (raw / 2147483648). (DF084)."""
+    """Af0 (Clock correction bias) (DF084) [s] (raw / 2147483648)."""
     iodc: int | None = None
-    """IODC (Issue of Data, Clock). (DF085)."""
+    """IODC (Issue of Data, Clock) (DF085)."""
     crs: float | None = None
-    """Crs (Amplitude of sine harmonic correction term to the orbit, radius) [m] (raw / 32).
-    (DF086)."""
+    """Crs (Amplitude of sine harmonic correction term to the orbit, radius) (DF086) [m] (raw /
+    32)."""
     delta_n: float | None = None
-    """Delta n (Mean motion difference from computed value) [semicircles/s] (raw / 8796093022208).
-    (DF087)."""
+    """Delta n (Mean motion difference from computed value) (DF087) [semicircles/s] (raw /
+    8796093022208)."""
     m0: float | None = None
-    """M0 (Mean Anomaly) [semicircles] (raw / 2147483648). (DF088)."""
+    """M0 (Mean Anomaly) (DF088) [semicircles] (raw / 2147483648)."""
     cuc: float | None = None
-    """Cuc (Amplitude of cosine harmonic correction term to argument of latitude) [rad] (raw /
-    536870912). (DF089)."""
+    """Cuc (Amplitude of cosine harmonic correction term to argument of latitude) (DF089) [rad] (raw
+    / 536870912)."""
     eccentricity: float | None = None
-    """E (Eccentricity) (raw / 8589934592). (DF090)."""
+    """E (Eccentricity) (DF090) (raw / 8589934592)."""
     cus: float | None = None
-    """Cus (Amplitude of sine harmonic correction term to argument of latitude) [rad] (raw /
-    536870912). (DF091)."""
+    """Cus (Amplitude of sine harmonic correction term to argument of latitude) (DF091) [rad] (raw /
+    536870912)."""
     sqrt_a: float | None = None
-    """A^1/2 (Square root of Semi-major Axis) [m^0.5] (raw / 524288). (DF092)."""
+    """A^1/2 (Square root of Semi-major Axis) (DF092) [m^0.5] (raw / 524288)."""
     toe: int | None = None
-    """Toe (Reference Time, Ephemeris): In units of 16 (kept raw). (DF093)."""
+    """Toe (Reference Time, Ephemeris) (DF093): In units of 16 (kept raw)."""
     cic: float | None = None
-    """Cic (Amplitude of cosine harmonic correction term to angle of inclination) [rad] (raw /
-    536870912). (DF094)."""
+    """Cic (Amplitude of cosine harmonic correction term to angle of inclination) (DF094) [rad] (raw
+    / 536870912)."""
     omega0: float | None = None
-    """Omega0 (Longitude of Ascending Node) [semicircles] (raw / 2147483648). (DF095)."""
+    """Omega0 (Longitude of Ascending Node) (DF095) [semicircles] (raw / 2147483648)."""
     cis: float | None = None
-    """Cis (Amplitude of sine harmonic correction term to angle of inclination) [rad] (raw /
-    536870912). (DF096)."""
+    """Cis (Amplitude of sine harmonic correction term to angle of inclination) (DF096) [rad] (raw /
+    536870912)."""
     i0: float | None = None
-    """I0 (Inclination) [semicircles] (raw / 2147483648). (DF097)."""
+    """I0 (Inclination) (DF097) [semicircles] (raw / 2147483648)."""
     crc: float | None = None
-    """Crc (Amplitude of cosine harmonic correction term to orbit, radius) [m] (raw / 32).
-    (DF098)."""
+    """Crc (Amplitude of cosine harmonic correction term to orbit, radius) (DF098) [m] (raw /
+    32)."""
     omega: float | None = None
-    """Omega (Argument of Perigee) [semicircles] (raw / 2147483648). (DF099)."""
+    """Omega (Argument of Perigee) (DF099) [semicircles] (raw / 2147483648)."""
     omega_dot: float | None = None
-    """OmegaDOT (Rate of Change of Right Ascension) [semicircles/s] (raw / 8796093022208).
-    (DF100)."""
+    """OmegaDOT (Rate of Change of Right Ascension) (DF100) [semicircles/s] (raw /
+    8796093022208)."""
     tgd: float | None = None
-    """TGD [s] (raw / 2147483648). (DF101)."""
+    """TGD (DF101) [s] (raw / 2147483648)."""
     health: int | None = None
-    """SV HEALTH. (DF102)."""
+    """SV HEALTH (DF102)."""
     l2p_data: bool | None = None
-    """L2 P data flag. (DF103)."""
+    """L2 P data flag (DF103)."""
     fit_interval: bool | None = None
-    """Fit Interval. (DF137)."""
+    """Fit Interval (DF137)."""
 
     @property
     def idot_raw(self) -> int | None:

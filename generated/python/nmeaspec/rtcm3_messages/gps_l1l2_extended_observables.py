@@ -17,29 +17,29 @@ class GpsL1l2ExtendedObservablesSatellite:
     """One entry of satellites."""
 
     satellite_id: int | None = None
-    """Satellite ID. (DF009)."""
+    """Satellite ID (DF009)."""
     l1_code: bool | None = None
-    """L1 Code Indicator. (DF010)."""
+    """L1 Code Indicator (DF010)."""
     l1_pseudorange: float | None = None
-    """L1 Pseudorange [m] (raw / 50). (DF011)."""
+    """L1 Pseudorange (DF011) [m] (raw / 50)."""
     l1_phase_minus_pseudorange: float | ais.Special | None = None
-    """L1 PhaseRange - L1 Pseudorange [m] (raw / 2000). Special: invalid (-524288). (DF012)."""
+    """L1 PhaseRange - L1 Pseudorange (DF012) [m] (raw / 2000). Special: invalid (-524288)."""
     l1_lock_time: int | None = None
-    """L1 Lock Time Indicator. (DF013)."""
+    """L1 Lock Time Indicator (DF013)."""
     l1_ambiguity: int | None = None
-    """Integer L1 Pseudorange Modulus Ambiguity [ms]. (DF014)."""
+    """Integer L1 Pseudorange Modulus Ambiguity (DF014) [ms]."""
     l1_cnr: float | None = None
-    """L1 CNR [dB-Hz] (raw / 4). (DF015)."""
+    """L1 CNR (DF015) [dB-Hz] (raw / 4)."""
     l2_code: int | None = None
-    """L2 Code Indicator. (DF016)."""
+    """L2 Code Indicator (DF016)."""
     l2_minus_l1_pseudorange: float | ais.Special | None = None
-    """L2-L1 Pseudorange Difference [m] (raw / 50). Special: invalid (-8192). (DF017)."""
+    """L2-L1 Pseudorange Difference (DF017) [m] (raw / 50). Special: invalid (-8192)."""
     l2_phase_minus_l1_pseudorange: float | ais.Special | None = None
-    """L2 PhaseRange - L1 Pseudorange [m] (raw / 2000). Special: invalid (-524288). (DF018)."""
+    """L2 PhaseRange - L1 Pseudorange (DF018) [m] (raw / 2000). Special: invalid (-524288)."""
     l2_lock_time: int | None = None
-    """L2 Lock Time Indicator. (DF019)."""
+    """L2 Lock Time Indicator (DF019)."""
     l2_cnr: float | None = None
-    """L2 CNR [dB-Hz] (raw / 4). (DF020)."""
+    """L2 CNR (DF020) [dB-Hz] (raw / 4)."""
 
 
 @dataclass
@@ -92,19 +92,19 @@ class GpsL1l2ExtendedObservables(rtcm3.Message):
     )
 
     message_number: int | None = None
-    """Message Number. (DF002)."""
+    """Message Number (DF002)."""
     station_id: int | None = None
-    """Reference Station ID. (DF003)."""
+    """Reference Station ID (DF003)."""
     epoch_time: int | None = None
-    """Epoch time (GPS TOW) [ms]. (DF004)."""
+    """Epoch time (GPS TOW) (DF004) [ms]."""
     synchronous: bool | None = None
-    """Synchronous GNSS Message Flag. (DF005)."""
+    """Synchronous GNSS Message Flag (DF005)."""
     satellite_count: int | None = None
-    """No. of GPS Satellite Signals Processed. (DF006)."""
+    """No. of GPS Satellite Signals Processed (DF006)."""
     smoothing: bool | None = None
-    """Divergence-free Smoothing Indicator. (DF007)."""
+    """Divergence-free Smoothing Indicator (DF007)."""
     smoothing_interval: int | None = None
-    """Smoothing Interval. (DF008)."""
+    """Smoothing Interval (DF008)."""
     satellites: list[GpsL1l2ExtendedObservablesSatellite] = field(default_factory=list)
     """Satellites: satellite_count entries."""
 

@@ -17,10 +17,10 @@ class Msm4Satellite:
     """One entry of satellite data."""
 
     rough_range_ms: int | ais.Special | None = None
-    """The number of integer milliseconds in GNSS Satellite rough range [ms]. Special: invalid
-    (255). (DF397)."""
+    """The number of integer milliseconds in GNSS Satellite rough range (DF397) [ms]. Special:
+    invalid (255)."""
     rough_range_modulo: float | None = None
-    """GNSS Satellite rough range modulo 1 millisecond [ms] (raw / 1024). (DF398)."""
+    """GNSS Satellite rough range modulo 1 millisecond (DF398) [ms] (raw / 1024)."""
 
 
 @dataclass(slots=True)
@@ -28,16 +28,16 @@ class Msm4Cell:
     """One entry of signal data."""
 
     fine_pseudorange: float | ais.Special | None = None
-    """GNSS signal fine Pseudorange [ms] (raw / 16777216). Special: invalid (-16384). (DF400)."""
+    """GNSS signal fine Pseudorange (DF400) [ms] (raw / 16777216). Special: invalid (-16384)."""
     fine_phaserange: float | ais.Special | None = None
-    """GNSS signal fine PhaseRange data [ms] (raw / 536870912). Special: invalid (-2097152).
-    (DF401)."""
+    """GNSS signal fine PhaseRange data (DF401) [ms] (raw / 536870912). Special: invalid
+    (-2097152)."""
     lock_time: int | None = None
-    """GNSS PhaseRange Lock Time Indicator. (DF402)."""
+    """GNSS PhaseRange Lock Time Indicator (DF402)."""
     half_cycle: bool | None = None
-    """Half-cycle ambiguity indicator. (DF420)."""
+    """Half-cycle ambiguity indicator (DF420)."""
     cnr: int | None = None
-    """GNSS signal CNR [dB-Hz]. (DF403)."""
+    """GNSS signal CNR (DF403) [dB-Hz]."""
 
 
 @dataclass
@@ -99,35 +99,35 @@ class Msm4(rtcm3.Message):
     )
 
     message_number: int | None = None
-    """Message Number. (DF002)."""
+    """Message Number (DF002)."""
     station_id: int | None = None
-    """Reference Station ID. (DF003)."""
+    """Reference Station ID (DF003)."""
     glonass_day: int | None = None
-    """GLONASS day of week. (DF416)."""
+    """GLONASS day of week (DF416)."""
     glonass_epoch_time: int | None = None
-    """GLONASS epoch time (tk) [ms]. (DF034)."""
+    """GLONASS epoch time (tk) (DF034) [ms]."""
     epoch_time: int | None = None
-    """Epoch time (the system's time of week) [ms]. (DF004)."""
+    """Epoch time (the system's time of week) (DF004) [ms]."""
     multiple_message: bool | None = None
-    """MSM Multiple message bit. (DF393)."""
+    """MSM Multiple message bit (DF393)."""
     iods: int | None = None
-    """IODS - Issue Of Data Station. (DF409)."""
+    """IODS - Issue Of Data Station (DF409)."""
     reserved: int | None = None
-    """Reserved. (DF001_7)."""
+    """Reserved (DF001_7)."""
     clock_steering: int | None = None
-    """Clock Steering Indicator. (DF411)."""
+    """Clock Steering Indicator (DF411)."""
     external_clock: int | None = None
-    """External Clock Indicator. (DF412)."""
+    """External Clock Indicator (DF412)."""
     smoothing: bool | None = None
-    """GNSS Smoothing Type Indicator. (DF417)."""
+    """GNSS Smoothing Type Indicator (DF417)."""
     smoothing_interval: int | None = None
-    """GNSS Smoothing Interval. (DF418)."""
+    """GNSS Smoothing Interval (DF418)."""
     satellite_mask: int | None = None
-    """Satellite mask: Bit 63 (the first sent) is satellite 1. (DF394)."""
+    """Satellite mask (DF394): Bit 63 (the first sent) is satellite 1."""
     signal_mask: int | None = None
-    """Signal mask: Bit 31 (the first sent) is signal 1. (DF395)."""
+    """Signal mask (DF395): Bit 31 (the first sent) is signal 1."""
     cell_mask: str | None = None
-    """Cell mask: One bit per satellite and signal of the masks, satellite by satellite. (DF396)."""
+    """Cell mask (DF396): One bit per satellite and signal of the masks, satellite by satellite."""
     satellites: list[Msm4Satellite] = field(default_factory=list)
     """Satellite data: bits set in satellite_mask entries, sent field by field."""
     cells: list[Msm4Cell] = field(default_factory=list)

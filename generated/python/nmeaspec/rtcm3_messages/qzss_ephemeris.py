@@ -56,65 +56,65 @@ class QzssEphemeris(rtcm3.Message):
     )
 
     message_number: int | None = None
-    """Message Number. (DF002)."""
+    """Message Number (DF002)."""
     satellite_id: int | None = None
-    """Satellite ID. (DF429)."""
+    """Satellite ID (DF429)."""
     toc: int | None = None
-    """Toc: In units of 16 (kept raw). (DF430)."""
+    """Toc (DF430): In units of 16 (kept raw)."""
     af2: float | None = None
-    """Af2 (raw / 36028797018963968). (DF431)."""
+    """Af2 (DF431) (raw / 36028797018963968)."""
     af1: float | None = None
-    """Af1 (raw / 8796093022208). (DF432)."""
+    """Af1 (DF432) (raw / 8796093022208)."""
     af0: float | None = None
-    """Af0 (raw / 2147483648). (DF433)."""
+    """Af0 (DF433) (raw / 2147483648)."""
     iode: int | None = None
-    """IODE. (DF434)."""
+    """IODE (DF434)."""
     crs: float | None = None
-    """Crs (raw / 32). (DF435)."""
+    """Crs (DF435) (raw / 32)."""
     delta_n: float | None = None
-    """Delta n (raw / 8796093022208). (DF436)."""
+    """Delta n (DF436) (raw / 8796093022208)."""
     m0: float | None = None
-    """M0 (raw / 2147483648). (DF437)."""
+    """M0 (DF437) (raw / 2147483648)."""
     cuc: float | None = None
-    """Cuc (raw / 536870912). (DF438)."""
+    """Cuc (DF438) (raw / 536870912)."""
     eccentricity: float | None = None
-    """E (raw / 8589934592). (DF439)."""
+    """E (DF439) (raw / 8589934592)."""
     cus: float | None = None
-    """Cus (raw / 536870912). (DF440)."""
+    """Cus (DF440) (raw / 536870912)."""
     sqrt_a: float | None = None
-    """A^1/2 (raw / 524288). (DF441)."""
+    """A^1/2 (DF441) (raw / 524288)."""
     toe: int | None = None
-    """Toe: In units of 16 (kept raw). (DF442)."""
+    """Toe (DF442): In units of 16 (kept raw)."""
     cic: float | None = None
-    """Cic (raw / 536870912). (DF443)."""
+    """Cic (DF443) (raw / 536870912)."""
     omega0: float | None = None
-    """Omega0 (raw / 2147483648). (DF444)."""
+    """Omega0 (DF444) (raw / 2147483648)."""
     cis: float | None = None
-    """Cis (raw / 536870912). (DF445)."""
+    """Cis (DF445) (raw / 536870912)."""
     i0: float | None = None
-    """I0 (raw / 2147483648). (DF446)."""
+    """I0 (DF446) (raw / 2147483648)."""
     crc: float | None = None
-    """Crc (raw / 32). (DF447)."""
+    """Crc (DF447) (raw / 32)."""
     omega: float | None = None
-    """Omega (Argument of Perigee) (raw / 2147483648). (DF448)."""
+    """Omega (Argument of Perigee) (DF448) (raw / 2147483648)."""
     omega_dot: float | None = None
-    """OmegaDOT (Rate of Right Ascension) (raw / 8796093022208). (DF449)."""
+    """OmegaDOT (Rate of Right Ascension) (DF449) (raw / 8796093022208)."""
     idot: float | None = None
-    """I0-DOT (raw / 8796093022208). (DF450)."""
+    """I0-DOT (DF450) (raw / 8796093022208)."""
     l2_codes: int | None = None
-    """Codes on L2 Channel. (DF451)."""
+    """Codes on L2 Channel (DF451)."""
     week: int | None = None
-    """Week Number. (DF452)."""
+    """Week Number (DF452)."""
     ura: int | None = None
-    """URA. (DF453)."""
+    """URA (DF453)."""
     health: int | None = None
-    """SV health. (DF454)."""
+    """SV health (DF454)."""
     tgd: float | None = None
-    """TGD (raw / 2147483648). (DF455)."""
+    """TGD (DF455) (raw / 2147483648)."""
     iodc: int | None = None
-    """IODC. (DF456)."""
+    """IODC (DF456)."""
     fit_interval: bool | None = None
-    """Fit Interval. (DF457)."""
+    """Fit Interval (DF457)."""
 
     @property
     def af2_raw(self) -> int | None:

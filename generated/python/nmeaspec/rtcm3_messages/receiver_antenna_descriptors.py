@@ -39,28 +39,28 @@ class ReceiverAntennaDescriptors(rtcm3.Message):
     )
 
     message_number: int | None = None
-    """Message Number. (DF002)."""
+    """Message Number (DF002)."""
     station_id: int | None = None
-    """Reference Station ID. (DF003)."""
+    """Reference Station ID (DF003)."""
     descriptor_length: int | None = None
-    """Antenna descriptor counter. (DF029)."""
+    """Antenna descriptor counter (DF029)."""
     descriptor: str | None = None
-    """Antenna Descriptor. (DF030)."""
+    """Antenna Descriptor (DF030)."""
     setup_id: int | None = None
-    """Antenna Setup ID. (DF031)."""
+    """Antenna Setup ID (DF031)."""
     serial_length: int | None = None
-    """Antenna serial number counter. (DF032)."""
+    """Antenna serial number counter (DF032)."""
     serial: str | None = None
-    """Antenna Serial Number. (DF033)."""
+    """Antenna Serial Number (DF033)."""
     receiver_length: int | None = None
-    """Receiver type descriptor counter. (DF227)."""
+    """Receiver type descriptor counter (DF227)."""
     receiver: str | None = None
-    """Receiver Type Descriptor. (DF228)."""
+    """Receiver Type Descriptor (DF228)."""
     firmware_length: int | None = None
-    """Receiver firmware version counter. (DF229)."""
+    """Receiver firmware version counter (DF229)."""
     firmware: str | None = None
-    """Receiver Firmware Version. (DF230)."""
+    """Receiver Firmware Version (DF230)."""
     receiver_serial_length: int | None = None
-    """Receiver serial number counter. (DF231)."""
+    """Receiver serial number counter (DF231)."""
     receiver_serial: str | None = None
-    """Receiver Serial Number. (DF232)."""
+    """Receiver Serial Number (DF232)."""

@@ -33,16 +33,16 @@ class TextString(rtcm3.Message):
     )
 
     message_number: int | None = None
-    """Message Number. (DF002)."""
+    """Message Number (DF002)."""
     station_id: int | None = None
-    """Reference Station ID. (DF003)."""
+    """Reference Station ID (DF003)."""
     mjd: int | None = None
-    """Modified Julian Day (MJD) Number. (DF051)."""
+    """Modified Julian Day (MJD) Number (DF051)."""
     seconds_of_day: int | None = None
-    """Seconds of Day (UTC) [s]. (DF052)."""
+    """Seconds of Day (UTC) (DF052) [s]."""
     characters: int | None = None
-    """Number of Characters to Follow. (DF138)."""
+    """Number of Characters to Follow (DF138)."""
     code_units: int | None = None
-    """Number of UTF-8 Code Units. (DF139)."""
+    """Number of UTF-8 Code Units (DF139)."""
     text: str | None = None
-    """Text (UTF-8). (DF140)."""
+    """Text (UTF-8) (DF140)."""
