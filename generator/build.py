@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import copy
 import hashlib
-import re
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
+
+import yaml
 
 from . import checks
 from .errors import SpecError, SpecErrors
@@ -132,8 +133,9 @@ def _tree_files(tree: Path, required_manuals: bool) -> list[tuple[Path, str, str
     for protocol in sorted((tree / "binary").glob("*/protocol.yaml")):   # a binary protocol, then its messages
         files.append((protocol, "protocols", "binary_protocol.schema.json"))
         messages = sorted((protocol.parent / "messages").glob("*.yaml"))
-        # a protocol without message classes (RTCM 3) tells its messages by a number: bit layouts
-        bits = re.search(r"^classes:", protocol.read_text(encoding="utf-8"), re.M) is None
+        # a protocol whose messages are told by a bit field (RTCM 3's 12-bit number) has bit layouts
+        identity = (yaml.safe_load(protocol.read_text(encoding="utf-8")) or {}).get("identity") or []
+        bits = bool(identity) and all(str(i.get("type", "")).startswith("b") for i in identity)
         files += [(p, "bit_messages", "bit_message.schema.json") if bits else (p, "binary", "binary_message.schema.json")
                   for p in messages]
         keys = protocol.parent / "config_keys.yaml"
