@@ -108,7 +108,7 @@ test-quick: $(STAMP)
 	$(PY) -m generator check
 	$(PY) -m pytest -q -m "not slow" tests/generator
 	cd generated/python && ../../$(PY) -m pytest -q tests
-	$(PY) -m pytest -q tests/ais tests/ubx tests/shapes tests/export
+	$(PY) -m pytest -q tests/ais tests/ubx tests/rtcm3 tests/shapes tests/export
 
 # The hand-written runtimes on their own, where they live (runtime/README.md): the C runtime's unit
 # tests under the sanitizers and without JSON, the Rust runtime crate's tests, clippy and rustfmt
@@ -130,7 +130,7 @@ test-runtimes: $(STAMP)
 
 test-python: $(STAMP)
 	cd generated/python && ../../$(PY) -m pytest -q tests
-	$(PY) -m pytest -q tests/ais tests/ubx tests/shapes tests/export
+	$(PY) -m pytest -q tests/ais tests/ubx tests/rtcm3 tests/shapes tests/export
 
 # --- the test builds: each binary built once, shared by the steps that run it -----------------
 # nmea.c compiled once per set of flags: the test object (-O2, NMEA_TEST_HOOKS: the programs also

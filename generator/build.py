@@ -9,13 +9,15 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+import yaml
+
 from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
 from .field_types import BIT_TYPES
 from .model import (BinaryExample, BinaryMessage, BinaryProtocol, BitfieldDef, Bits, BitValue, ConfigDatabase,
                     ConfigEnum, ConfigGroup, ConfigKey, EnumDef, EnumValue,
-                    Example, Fact, Field, FixExample, GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
+                    Example, Fact, Ones, Field, FixExample, GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
                     PayloadChoice, PayloadExample, PayloadField, PayloadGroup, PayloadItem, ReplyRule, Sentence, Spec,
                     Special, TableDef, TagCode)
 from .resolve import resolve
@@ -46,7 +48,8 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     errors: list[SpecError] = []
     docs: dict[str, list[Document]] = {kind: [] for kind in ("manuals", "facts", "tag_block", "enums", "bitfields", "tables",
                                                              "sentences", "extensions", "payloads", "applications",
-                                                             "protocols", "binary", "config_keys")}
+                                                             "protocols", "binary", "config_keys",
+                                                             "bit_messages")}
     digest = hashlib.sha256()
     file_digests: dict[str, str] = {}
     for tree, names in [(spec_dir, spec_dir.parent), *((extra, None) for extra in extras)]:
@@ -83,12 +86,14 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
     protocols = [_protocol(d) for d in docs["protocols"]]
     binary = [_binary_message(d) for d in docs["binary"]]
     config_keys = [_config_database(d) for d in docs["config_keys"]]
+    bit_messages = [_bit_message(d) for d in docs["bit_messages"]]
     errors = _clashes(docs, bitfields, tables) + _extend(sentences, docs["extensions"]) + _alike(sentences, docs["sentences"])
     if errors:
         raise SpecErrors(errors)
     spec = Spec(manuals, enums, sentences,
                 sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences", "extensions", "payloads",
-                                                  "applications", "protocols", "binary", "config_keys")
+                                                  "applications", "protocols", "binary", "config_keys",
+                                                  "bit_messages")
                          for d in docs[kind]],
                 digest=digest.hexdigest()[:16], file_digests=file_digests,
                 bitfields=bitfields, tables=tables, generic=generic, facts=facts,
@@ -106,7 +111,7 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
                 tag_examples=[(e["where"], e["line"]) for d in docs["tag_block"] for e in d.data.get("examples", [])],
                 tag_sources=[str(d.path) for d in docs["tag_block"]],
                 payloads=payloads, applications=applications, protocols=protocols, binary=binary,
-                config_keys=config_keys)
+                config_keys=config_keys, bit_messages=bit_messages)
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
     resolve(spec)
     errors = checks.run(spec, by_file)
@@ -128,7 +133,11 @@ def _tree_files(tree: Path, required_manuals: bool) -> list[tuple[Path, str, str
     for protocol in sorted((tree / "binary").glob("*/protocol.yaml")):   # a binary protocol, then its messages
         files.append((protocol, "protocols", "binary_protocol.schema.json"))
         messages = sorted((protocol.parent / "messages").glob("*.yaml"))
-        files += [(p, "binary", "binary_message.schema.json") for p in messages]
+        # a protocol whose messages are told by a bit field (RTCM 3's 12-bit number) has bit layouts
+        identity = (yaml.safe_load(protocol.read_text(encoding="utf-8")) or {}).get("identity") or []
+        bits = bool(identity) and all(str(i.get("type", "")).startswith("b") for i in identity)
+        files += [(p, "bit_messages", "bit_message.schema.json") if bits else (p, "binary", "binary_message.schema.json")
+                  for p in messages]
         keys = protocol.parent / "config_keys.yaml"
         files += [(keys, "config_keys", "config_keys.schema.json")] if keys.exists() else []
     return files
@@ -315,7 +324,13 @@ def _payload_field(data: dict[str, Any], origin: Origin) -> PayloadField:
                         special=[Special(s["raw"], s["id"], s["doc"]) for s in data.get("special", [])],
                         dispatch=data.get("dispatch", []),
                         parts=[_part(p, Origin(origin.file, origin.path + ("parts", i)))
-                               for i, p in enumerate(data.get("parts", []))])
+                               for i, p in enumerate(data.get("parts", []))],
+                        count=_count(data.get("count")), ref=data.get("ref"))
+
+
+def _count(data: Any) -> Any:
+    """A `count`: a field's id, a number, or {ones: [mask ids]}."""
+    return Ones(tuple(data["ones"])) if isinstance(data, dict) else data
 
 
 def _part(data: dict[str, Any], origin: Origin) -> PayloadField:
@@ -334,7 +349,8 @@ def _payload_items(data: list[dict[str, Any]], file: str, where: tuple[str | int
             fields = [_payload_field(f, Origin(file, at + ("fields", j))) for j, f in enumerate(item["fields"])]
             items.append(PayloadGroup(item["group"], item["name"], item.get("doc", item["name"]),
                                       item.get("min", 0 if "count" in item else 1), item.get("max", MAX_ENTRIES),
-                                      fields, Origin(file, at), count=item.get("count")))
+                                      fields, Origin(file, at), count=_count(item.get("count")),
+                                      field_major=item.get("order") == "field_major"))
         elif "choice" in item:
             cases = [PayloadCase(c.get("when", []), tuple(c["range"]) if "range" in c else None,
                                  _payload_items(c["fields"], file, at + ("cases", k, "fields")))  # type: ignore[arg-type]
@@ -394,6 +410,19 @@ def _binary_message(doc: Document) -> BinaryMessage:
     for layout in layouts:
         layout.frame = message
     return message
+
+
+def _bit_message(doc: Document) -> Payload:
+    """A message of bit fields told by its number (spec/binary/rtcm3/messages): a Payload of its
+    protocol, its examples whole frames."""
+    d = doc.data
+    file = str(doc.path)
+    return Payload(d["message"], d["name"], d["doc"], d["numbers"], d["documents"], d.get("length"),
+                   _payload_items(d["fields"], file, ("fields",)), [], [], Origin(file, ()),
+                   protocol=doc.path.parent.parent.name,
+                   frame_examples=[BinaryExample(e["where"], bytes.fromhex(e["frame"]), e.get("expect"),
+                                                 Origin(file, ("examples", i)))
+                                   for i, e in enumerate(d.get("examples", []))])
 
 
 def _payload(doc: Document) -> Payload:

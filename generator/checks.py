@@ -8,7 +8,7 @@ import json
 import keyword
 from typing import Any
 
-from . import checks_binary, checks_payload, names, names_c, names_rust, reference
+from . import checks_binary, checks_payload, checks_rtcm3, names, names_c, names_rust, reference
 from .resolve import checksum_ok
 from .errors import SpecError
 from .loader import Document
@@ -50,10 +50,12 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
             _check_fix(sentence, layout, report)
     checks_payload.check(spec, manual_ids, report, _check_manuals)
     checks_binary.check(spec, report)
+    checks_rtcm3.check(spec, report)
     if report.errors:
         return report.errors
     checks_payload.check_examples(spec, manual_ids, report)
     checks_binary.check_examples(spec, report)
+    checks_rtcm3.check_examples(spec, report)
     _generated_names(spec, report)
     _check_generic(spec, report)
     _check_cli(spec, report)

@@ -8,7 +8,7 @@ from __future__ import annotations
 from typing import Callable
 
 from . import reference_ais
-from .model import Origin, Payload, PayloadChoice, PayloadField, PayloadGroup, Spec, flat_fields
+from .model import Ones, Origin, Payload, PayloadChoice, PayloadField, PayloadGroup, Spec, flat_fields
 
 Report = Callable[..., None]   # checks._Reporter: (origin, rule, message, *yaml path)
 
@@ -26,6 +26,11 @@ def check(spec: Spec, manual_ids: set[str], report: Report, check_manuals: Calla
             owners.setdefault(number, payload.id)
         check_manuals(payload.manuals, manual_ids, payload.origin, report, "manuals")
         check_items(payload, report)
+        for item in payload.items:   # the runtimes' AIS readers count groups by the bits left only
+            counted = item.count if isinstance(item, (PayloadField, PayloadGroup)) else None
+            if counted is not None or isinstance(item, PayloadGroup) and item.field_major:
+                report(item.origin, "A012", f"{item.id}: counts and field-major groups are for the messages of "
+                       "spec/binary (RTCM 3), not AIS payloads", "count")
     applications: dict[tuple[int, int] | None, str] = {}
     for application in spec.applications:
         stem = application.origin.file.rsplit("/", 1)[-1].removesuffix(".yaml")
@@ -129,6 +134,7 @@ def check_items(payload: Payload, report: Report) -> None:
             report(group.origin, "A005", f"group {group.id}: min {group.min} is above max {group.max}", "min")
     for choice in _choices(payload.items):
         _check_choice(choice, report)
+    _check_counts(payload, report)
     reported: set[str] = set()
     for path in _paths(payload.items):
         variable: str | None = None
@@ -144,7 +150,7 @@ def check_items(payload: Payload, report: Report) -> None:
                 report(item.origin, "A006", f"{optional} is optional: what follows it must be optional too")
                 reported.add(here)
             if isinstance(item, PayloadGroup) and item.count is None \
-                    or isinstance(item, PayloadField) and item.bits is None:
+                    or isinstance(item, PayloadField) and item.bits is None and item.count is None:
                 variable = variable or item.id
             if isinstance(item, PayloadField) and item.optional:
                 optional = optional or item.id
@@ -154,6 +160,42 @@ def check_items(payload: Payload, report: Report) -> None:
                f"{payload.length}", "length")
     elif fixed is None and payload.length is not None:
         report(payload.origin, "A001", f"message {payload.id} has no fixed length: remove `length`", "length")
+
+
+def _check_counts(payload: Payload, report: Report) -> None:
+    """A012: a counted field (characters, or data bits) or group names top-level fields before it:
+    an unsigned field for a number, unsigned or data fields for masks whose set bits count; a
+    field-major group has a count."""
+    seen: dict[str, PayloadField] = {}
+
+    def names(count: str | Ones, where: str, origin: Origin) -> None:
+        for name in count.fields if isinstance(count, Ones) else (count,):
+            f = seen.get(name)
+            wanted = ("uint", "data") if isinstance(count, Ones) else ("uint",)
+            if f is None or f.type not in wanted or f.count is not None and f.type != "data":
+                kind = "unsigned or data mask field" if isinstance(count, Ones) else "unsigned field"
+                report(origin, "A012", f"{where}: count {name} names no {kind} before it", "count")
+
+    def walk(items: list) -> None:
+        for item in items:
+            if isinstance(item, PayloadField):
+                if item.count is not None:
+                    if item.bits is not None or item.bit_type.char_bits != 8 and item.type != "data":
+                        report(item.origin, "A012", f"field {item.id}: `count` sizes characters (latin1, utf8) or "
+                               "data, without `bits`", "count")
+                    elif not isinstance(item.count, int):
+                        names(item.count, f"field {item.id}", item.origin)
+                seen[item.id] = item
+            elif isinstance(item, PayloadGroup):
+                if isinstance(item.count, Ones):
+                    names(item.count, f"group {item.id}", item.origin)
+                if item.field_major and item.count is None:
+                    report(item.origin, "A012", f"group {item.id}: a field-major group needs a `count`", "order")
+            else:
+                for case in item.cases:
+                    walk(case.items)
+
+    walk(payload.items)
 
 
 def _check_choice(choice: PayloadChoice, report: Report) -> None:

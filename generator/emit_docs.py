@@ -5,12 +5,13 @@ from __future__ import annotations
 
 import json
 from collections import Counter
+from typing import Any
 
 import jinja2
 
 from . import emit_vectors
 from .emit import RUNTIME, markdown_banner
-from .model import Field, Group, Layout, Manual, Payload, PayloadField, PayloadGroup, ReplyRule, Sentence, Spec
+from .model import Field, Group, Layout, Manual, Ones, Payload, PayloadField, PayloadGroup, ReplyRule, Sentence, Spec
 
 
 def cell(text: str | None) -> str:
@@ -182,6 +183,29 @@ def payload_rows(payload: Payload) -> list[dict]:
     return out
 
 
+def bit_message_rows(payload: Payload) -> list[dict]:
+    """payload_rows of a bit message told by a number (RTCM 3), with each field's `ref`, a counted
+    field's width and a counted group's entries."""
+    def count(c: Any) -> str:
+        return " × ".join(f"bits set in `{n}`" for n in c.fields) if isinstance(c, Ones) else f"`{c}`"
+
+    fields = {f.id: f for f in payload.fields}
+    groups = {g.id: g for g in payload.items if isinstance(g, PayloadGroup)}
+    out = payload_rows(payload)
+    for r in out:
+        group = groups.get(r["id"].split("[k].")[0]) if "[k]." in r["id"] else None
+        f = next((x for x in group.fields if f"{group.id}[k].{x.id}" == r["id"]), None) if group else fields[r["id"]]
+        assert f is not None
+        r["ref"] = f.ref or ""
+        if f.count is not None:
+            r["width"] = f"{count(f.count)}{' × 8' if f.bit_type.char_bits == 8 else ''}"
+        if group is not None and group.count is not None:
+            r["when"] = f"{count(group.count)} entries" + (", field by field" if group.field_major else "")
+            if group.field_major:
+                r["bits"] = f"after `{group.id}`'s earlier fields"
+    return out
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     env.filters["cell"] = cell
     env.globals["replied_by"] = lambda s: replied_by(spec, s)
@@ -248,6 +272,12 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                       "length": lay.fixed_width // 8 if lay.fixed_width is not None else None} for lay in m.layouts],
             examples=[{**v, "json": json.dumps(v["decode"], separators=(",", ":"))}
                       for v in ubx_vectors if v["message"] == m.id])
+    rtcm3_vectors = emit_vectors.rtcm3_vectors(spec) if spec.bit_messages else []
+    for p in spec.bit_messages:
+        files[f"docs/{p.protocol}/{p.id}.md"] = env.get_template("docs/rtcm3_message.md.j2").render(
+            banner=banner_of([p.origin.file]), p=p, documents=documents, rows=bit_message_rows(p),
+            examples=[{**v, "json": json.dumps(v["decode"], separators=(",", ":"))}
+                      for v in rtcm3_vectors if v["message"] == p.id])
     for e in spec.enums:
         files[f"docs/enums/{e.id}.md"] = env.get_template("docs/enum.md.j2").render(
             banner=banner_of([e.origin.file]), e=e, users=enum_users[e.id])

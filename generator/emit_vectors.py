@@ -13,7 +13,7 @@ from typing import Callable
 
 import jinja2
 
-from . import reference, reference_ais, reference_binary
+from . import reference, reference_ais, reference_binary, reference_rtcm3
 from .model import Spec
 
 
@@ -268,11 +268,41 @@ def ubx_vectors(spec: Spec) -> list[dict]:
     return out
 
 
+# Frames every RTCM 3 decoder must read as the reference decoder does, or refuse with the same kind
+# of error: (frame hex, what it shows).
+RTCM3_CASES = (
+    ("d3 00 04 4c e0 00 80 ed ed d7", "a 1230 frame whose checksum is off by one"),
+    ("d3 00 03 3e d0 00 7a 79 fe", "a 1005 payload cut to 3 bytes: itrf_year is cut"),
+    ("d3 00 02 fe 80 bb fe 86", "message 4072 (u-blox, not public): kept with its payload"),
+    ("d3 00 0c 4c e0 00 8f ff ff ff ff ff ff ff ff c9 2e cc", "a 1230 of four biases, each the raw -1 (0xFFFF)"),
+)
+
+
+def rtcm3_vectors(spec: Spec) -> list[dict]:
+    """The example frames of the bit messages (spec/binary/rtcm3) with the JSON each decoder must
+    make of them, and frames each must refuse with the kind of its error."""
+    out: list[dict] = []
+    for message in spec.bit_messages:
+        for e in message.frame_examples:
+            out.append({"message": message.id, "where": e.where, "frame": e.frame.hex(" "),
+                        "decode": reference_rtcm3.decode(spec, e.frame)})
+    for frame, where in RTCM3_CASES:
+        record: dict = {"message": None, "where": where, "frame": frame}
+        try:
+            record["decode"] = reference_rtcm3.decode(spec, bytes.fromhex(frame))
+        except reference_rtcm3.FrameError as err:
+            record["error"] = err.kind
+        out.append(record)
+    return out
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     def jsonl(records: list[dict]) -> str:
         return "".join(json.dumps(r, ensure_ascii=True, separators=(",", ":")) + "\n" for r in records)
 
     files = {"vectors/ubx.jsonl": jsonl(ubx_vectors(spec))} if spec.binary else {}
+    if spec.bit_messages:
+        files["vectors/rtcm3.jsonl"] = jsonl(rtcm3_vectors(spec))
     return {**files, "vectors/examples.jsonl": jsonl(example_vectors(spec)),
             "vectors/tolerance.jsonl": jsonl(tolerance_vectors(spec)),
             "vectors/values.jsonl": jsonl(value_vectors(spec)),

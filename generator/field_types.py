@@ -454,6 +454,34 @@ class BitData(BitType):
 
 
 @dataclass(frozen=True)
+class BitSignMagnitude(BitNumber):
+    """smag: a sign bit (1: negative), then the magnitude (RTCM 3's GLONASS terms). A negative
+    zero is no number: the special value negative_zero, its raw integer the bits (sign set)."""
+
+    def raw(self, bits: str) -> Any:
+        value = int(bits[1:], 2) if len(bits) > 1 else 0
+        return "negative_zero" if bits[0] == "1" and not value else -value if bits[0] == "1" else value
+
+    def json(self, f: Any, raw: Any) -> dict[str, Any]:
+        if raw == "negative_zero":
+            return {f.id: raw, f"{f.id}_raw": 1 << (f.bits - 1)}
+        return super().json(f, raw)
+
+    def raw_range(self, width: int) -> tuple[int, int]:
+        return -((1 << (width - 1)) - 1), (1 << (width - 1)) - 1
+
+
+@dataclass(frozen=True)
+class BitChars(BitType):
+    """latin1, utf8: characters of eight bits each, as sent (utf8: its code units decoded, bytes
+    that are no UTF-8 kept as surrogate escapes)."""
+
+    def raw(self, bits: str) -> Any:
+        data = int(bits, 2).to_bytes(len(bits) // 8, "big") if bits else b""
+        return data.decode("latin-1") if self.name == "latin1" else data.decode("utf-8", "surrogateescape")
+
+
+@dataclass(frozen=True)
 class ByteFloat(BitType):
     """r4, r8: an IEEE 754 float, little endian."""
 
@@ -514,6 +542,12 @@ BIT_TYPES: dict[str, BitType] = {t.name: t for t in (
     BitText("text", "six-bit text", "Text", "str", min_bits=6, max_bits=None, char_bits=6, variable=True),
     BitData("data", "binary data", "Data", "str", max_bits=None, variable=True, dispatches=True),
     BitType("spare", "spare (kept as sent)", "Spare", "int"),
+    BitSignMagnitude("smag", "signed (sign and magnitude)", "SignMagnitude", "int", min_bits=2, numeric=True,
+                     signed=True, module="rtcm3"),
+    BitChars("latin1", "characters (ISO 8859-1, kept as sent)", "Latin1", "str", min_bits=8, max_bits=None,
+             char_bits=8, variable=True, module="rtcm3"),
+    BitChars("utf8", "UTF-8 text (its code units)", "Utf8", "str", min_bits=8, max_bits=None, char_bits=8,
+             variable=True, module="rtcm3"),
     *_byte_types(),
     ByteFloat("r4", "R4 float (IEEE 754 single)", "Float", "float | ais.Special", min_bits=32, max_bits=32, numeric=True, size=4,
               order="le", module="ubx"),

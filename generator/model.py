@@ -657,6 +657,16 @@ class Special:
     doc: str
 
 
+@dataclass(frozen=True)
+class Ones:
+    """A count given by mask fields: the product of the numbers of bits set in each (RTCM 3 MSM:
+    satellites x signals)."""
+    fields: tuple[str, ...]
+
+
+Count = str | int | Ones   # a field's value (its id), a number, or the bits set in mask fields
+
+
 @dataclass
 class PayloadField:
     """One field of a bit-packed payload, most significant bit first."""
@@ -675,6 +685,8 @@ class PayloadField:
     dispatch: list[str] = field(default_factory=list)   # data: the fields that will pick an application layout
     parts: list[PayloadField] = field(default_factory=list)   # a bitfield word's named bit ranges
     low: int = 0                 # a part: its lowest bit in the word (bit 0: the least significant)
+    count: str | Ones | None = None   # a counted width: as many characters (bits for data) as this says
+    ref: str | None = None       # its name in the protocol's documents (RTCM 3: DF025)
     # Derived by resolve():
     enum: EnumDef | None = None
     offset: int | None = None    # the first bit, when no variable item comes before it
@@ -708,8 +720,9 @@ class PayloadGroup:
     max: int
     fields: list[PayloadField]
     origin: Origin
-    count: str | int | None = None
+    count: Count | None = None
     offset: int | None = None
+    field_major: bool = False    # the entries' first fields, then their second fields, ... (RTCM 3 MSM)
 
     @property
     def entry_width(self) -> int:
@@ -825,6 +838,7 @@ class Payload:
     replies: list[str] = field(default_factory=list)   # the layouts that answer this one (ids)
     acknowledges: tuple[str, str] | None = None   # an acknowledgement: its fields of the answered class and id
     frame: BinaryMessage | None = None   # a binary layout: its message (class and id)
+    frame_examples: list[BinaryExample] = field(default_factory=list)   # a bit message's (RTCM 3): whole frames
 
     @property
     def data_field(self) -> PayloadField | None:
@@ -987,6 +1001,7 @@ class Spec:
     protocols: list[BinaryProtocol] = field(default_factory=list)   # spec/binary/*/protocol.yaml
     binary: list[BinaryMessage] = field(default_factory=list)      # spec/binary/*/messages
     config_keys: list[ConfigDatabase] = field(default_factory=list)  # spec/binary/*/config_keys.yaml
+    bit_messages: list[Payload] = field(default_factory=list)  # spec/binary/<protocol>/messages of bit layouts (RTCM 3)
 
     def digest_of(self, sources: list[str]) -> str:
         """A short hash of the given spec or template files, so that a generated file's header

@@ -37,7 +37,7 @@ def resolve(spec: Spec) -> None:
                 f.enum = spec.enum_by_id.get(f.enum_id) if f.enum_id is not None else None
                 f.bitfield = bitfields.get(f.bitfield_id) if f.bitfield_id is not None else None
                 f.fact = facts.get(f.fix_id) if f.fix_id is not None else None
-    for payload in [*spec.payloads, *spec.applications]:
+    for payload in [*spec.payloads, *spec.applications, *spec.bit_messages]:
         _place_bits(payload)
         for f in payload.fields:
             f.enum = spec.enum_by_id.get(f.enum_id) if f.enum_id is not None else None

@@ -228,6 +228,12 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "The message types an application (spec/ais/applications) is carried `in` have a data field whose "
          "`dispatch` names their DAC and FI fields.",
          "Correct `in`, or add `dispatch: [dac, fid]` to the carrier's data field."),
+    Rule("A012", "a count names fields before it",
+         "A field's `count` (latin1 or utf8 characters, or data bits; no `bits`) or a group's names a top-level "
+         "unsigned field before it, or (`{ones: [...]}`) unsigned or data mask fields before it whose set bits, "
+         "multiplied, give the number; a field-major group has a `count`. AIS payloads have neither (their "
+         "readers count groups by the bits left).",
+         "Correct the field ids, move the count's fields before the item, or give the field a fixed width."),
     Rule("B001", "a binary message has one class and id",
          "A message of spec/binary/<protocol>/messages names a class of its protocol.yaml, its id starts with that "
          "class (nav_pvt), and no other message of the protocol has its class and id.",

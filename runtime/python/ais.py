@@ -160,9 +160,16 @@ class Field:
     width: int | None
     optional: bool = False
     after: int = 0
+    count: str | tuple[str, ...] | None = None
+    """A counted width (RTCM 3): as many characters (bits for data) as the member `count` says, or
+    (a tuple) as the bits set in those mask members, multiplied."""
 
     def size(self, reader: BitReader | ByteReader) -> int:
         return self.width if self.width is not None else max(reader.remaining - self.after, 0)
+
+    def counted(self, number: int) -> int:
+        """The bits of `number` units of a counted field (data: bits; characters: their bytes')."""
+        return number
 
     def from_raw(self, raw: int, width: int) -> Any:
         return raw
@@ -370,7 +377,9 @@ class Group:
     min: int
     max: int
     after: int = 0
-    count: str | int | None = None
+    count: str | int | tuple[str, ...] | None = None
+    field_major: bool = False
+    """The entries' first fields, then their second fields, and so on (RTCM 3 MSM)."""
 
     @property
     def entry_width(self) -> int:
@@ -413,6 +422,23 @@ class Choice:
 Item = Field | Group | Choice
 
 
+def count_of(count: str | int | tuple[str, ...], values: Any) -> int:
+    """How many a `count` says, from the members read or set (a dict, or a record): a number, a
+    member's value, or (a tuple) the product of the bits set in mask members (an integer, or
+    data as '0'/'1' text)."""
+    if isinstance(count, int):
+        return count
+    get = values.get if isinstance(values, dict) else lambda name: getattr(values, name)
+    if isinstance(count, str):
+        number = get(count)
+        return number if isinstance(number, int) else 0
+    total = 1
+    for name in count:
+        mask = get(name)
+        total *= mask.count("1") if isinstance(mask, str) else bin(mask).count("1") if isinstance(mask, int) else 0
+    return total
+
+
 def flat_fields(items: tuple[Item, ...]) -> tuple[Field, ...]:
     """The fields of `items` outside groups, a bitfield's parts after it."""
     return tuple(f for item in items for f in ((item, *(p for _, p in item.parts)) if isinstance(item, Bitfield) else
@@ -427,7 +453,7 @@ def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: 
         if isinstance(item, Field):
             width = item.width
             if width is None:
-                width = item.size(reader)
+                width = item.size(reader) if item.count is None else item.counted(count_of(item.count, values))
             if item.optional and reader.remaining < width:
                 return False
             raw = reader.take(width, item.id)
@@ -438,12 +464,27 @@ def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: 
             if item.count is None:
                 count = min(item.max, max(reader.remaining - item.after, 0) // item.entry_width)
             else:
-                count = item.count if isinstance(item.count, int) else values[item.count]
+                count = item.count if isinstance(item.count, int) else \
+                    values[item.count] if isinstance(item.count, str) else count_of(item.count, values)
             if count < item.min or count * item.entry_width > reader.remaining:
                 # A count from the bits left says the least a group takes (as C and Rust say it).
                 needs = f"at least {item.min}" if item.count is None else str(count)
                 raise NmeaError("short_payload", f"{item.id} needs {needs} entries of {item.entry_width} bits, "
                                 f"{reader.remaining} bits left", reader.where, name=item.id)
+            if isinstance(item.count, tuple) and count > item.max:  # masks may set more bits than a group holds
+                raise NmeaError("bad_value", f"{item.id} has {count} entries, at most {item.max}", reader.where,
+                                name=item.id)
+            if item.field_major:  # each field for every entry in turn
+                columns: list[dict[str, Any]] = [{} for _ in range(count)]
+                for f in item.fields:  # fixed widths (rule A005)
+                    width = f.width or 0
+                    for column in columns:
+                        raw = reader.take(width, f.id)
+                        column[f.id] = f.from_raw(raw, width)
+                        if isinstance(f, Bitfield):
+                            f.read_parts(raw, column)
+                values[item.id] = [item.entry(**column) for column in columns]
+                continue
             entries = []
             for _ in range(count):
                 entry: dict[str, Any] = {}
@@ -619,10 +660,29 @@ def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteW
                 value = message.application.bits(where)
             if isinstance(item, Bitfield):
                 writer.put(item.word(message, where), item.width or 0)
+            elif item.count is not None:  # as many units as the count says
+                raw, width = item.to_raw(value, where)
+                number = count_of(item.count, message)
+                if width != item.counted(number):
+                    raise _bad_value(where, item.id, value, f"{number} units, as {item.count} says")
+                writer.put(raw, width)
             else:
                 writer.put(*item.to_raw(value, where))
         elif isinstance(item, Group):
-            for entry in getattr(message, item.id):
+            entries = getattr(message, item.id)
+            if isinstance(item.count, tuple) and len(entries) != count_of(item.count, message):
+                raise _bad_value(where, item.id, f"{len(entries)} entries",
+                                 f"{count_of(item.count, message)} entries, as the bits set in "
+                                 f"{' and '.join(item.count)} say")
+            if item.field_major:
+                for f in item.fields:  # fixed widths (rule A005)
+                    for entry in entries:
+                        if isinstance(f, Bitfield):
+                            writer.put(f.word(entry, where), f.width or 0)
+                        else:
+                            writer.put(*f.to_raw(getattr(entry, f.id), where))
+                continue
+            for entry in entries:
                 write_items(item.fields, entry, writer, where)
         else:
             selector = message.field(item.by)
@@ -727,7 +787,8 @@ class Record:
         the member is None."""
         value = getattr(self, name)
         f = self.FIELDS[name]
-        return None if value is None or not isinstance(f, Unsigned) else f.raw_number(value, "")
+        raw_number = getattr(f, "raw_number", None)  # numbers (Unsigned, rtcm3.SignMagnitude)
+        return None if value is None or raw_number is None else int(raw_number(value, ""))
 
     def to_dict(self) -> dict[str, Any]:
         """The record as the decoded JSON of generated/vectors/ais.jsonl: each field present by

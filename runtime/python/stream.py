@@ -173,7 +173,12 @@ class BinaryFrame:
         return f'{{"ok":true,"protocol":"{self.protocol}",{identity}"length":{len(data)},"frame":"{data.hex()}"}}'
 
     def message(self) -> Any:
-        """A UBX frame's decoded message (nmeaspec.ubx_messages: a ubx.Message, or ubx.Unknown)."""
+        """A UBX frame's decoded message (nmeaspec.ubx_messages: a ubx.Message, or ubx.Unknown);
+        an RTCM 3 frame's (nmeaspec.rtcm3_messages: an rtcm3.Message, or rtcm3.Unknown)."""
+        if self.protocol == "rtcm3":
+            from . import rtcm3_messages
+
+            return rtcm3_messages.decode(self.data)
         if self.protocol != "ubx":
             raise ValueError(f"{self.protocol} messages are not decoded")
         from .ubx_messages import decode

@@ -251,15 +251,18 @@ def records(
 def frame_record(frame: BinaryFrame) -> tuple[str, dict[str, Any]]:
     """A binary frame's name and fields: a UBX frame's message as u-blox names it (`NAV-PVT`) with
     its decoded values; another protocol's frame as its protocol and identity (`RTCM3 1005`, the
-    message number); a UBX class and id the spec does not describe as `UBX 0x01 0x07` with its
-    payload. Raises NmeaError for a UBX payload its layout does not fit."""
-    if frame.protocol == "ubx":
+    message number), an RTCM 3 frame with its decoded values (a number the spec does not describe:
+    its payload); a UBX class and id the spec does not describe as `UBX 0x01 0x07` with its
+    payload. Raises NmeaError for a UBX or RTCM 3 payload its layout does not fit."""
+    fields: dict[str, Any] = {}
+    if frame.protocol in ("ubx", "rtcm3"):
         message = frame.message()
-        fields = {k: v for k, v in message.to_dict().items() if k != "message"}
-        name = getattr(message, "ADDRESS", None)
-        return (f"UBX {name}" if name else f"UBX 0x{frame.data[2]:02X} 0x{frame.data[3]:02X}"), fields
+        fields = {k: v for k, v in message.to_dict().items() if k not in ("message", "message_number")}
+        if frame.protocol == "ubx":
+            name = getattr(message, "ADDRESS", None)
+            return (f"UBX {name}" if name else f"UBX 0x{frame.data[2]:02X} 0x{frame.data[3]:02X}"), fields
     identity = [v for v in frame.identity.values() if v is not None]
-    return " ".join([frame.protocol.upper(), *map(str, identity)]), {}
+    return " ".join([frame.protocol.upper(), *map(str, identity)]), fields
 
 
 def framed_records(
