@@ -315,7 +315,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                        py_import=py_import, py_tuple=py_tuple)
     base = f"python/{PACKAGE}"
     files: dict[str, str] = {}
-    for module in ("runtime", "api", "stream", "receiver", "network", "fixes", "ais", "assembly", "ubx", "framings"):
+    for module in ("runtime", "api", "stream", "receiver", "network", "fixes", "ais", "assembly", "ubx", "framings",
+                   "binary"):
         files[f"{base}/{module}.py"] = runtime_file(spec, "#", f"python/{module}.py")
     files[f"{base}/py.typed"] = ""
     files[f"{base}/fix_fields.py"] = fix_fields(spec, env)

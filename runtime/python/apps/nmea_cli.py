@@ -250,15 +250,23 @@ def records(
 
 def frame_record(frame: BinaryFrame) -> tuple[str, dict[str, Any]]:
     """A binary frame's name and fields: a UBX frame's message as u-blox names it (`NAV-PVT`) with
-    its decoded values; another protocol's frame as its protocol and identity (`RTCM3 1005`, the
-    message number); a UBX class and id the spec does not describe as `UBX 0x01 0x07` with its
-    payload. Raises NmeaError for a UBX payload its layout does not fit."""
+    its decoded values, a SkyTraq, SiRF or CASIC frame's as `SKYTRAQ 0xA8`, `SIRF MID 2`,
+    `CASIC NAV-PV` with its values; another frame as its protocol and identity (`RTCM3 1005`, the
+    message number; `SIRF 51`, a MID the spec does not describe); a UBX class and id the spec does
+    not describe as `UBX 0x01 0x07` with its payload. Raises NmeaError for a payload its layout
+    does not fit."""
     if frame.protocol == "ubx":
         message = frame.message()
         fields = {k: v for k, v in message.to_dict().items() if k != "message"}
         name = getattr(message, "ADDRESS", None)
         return (f"UBX {name}" if name else f"UBX 0x{frame.data[2]:02X} 0x{frame.data[3]:02X}"), fields
     identity = [v for v in frame.identity.values() if v is not None]
+    try:
+        message = frame.message()   # SkyTraq, SiRF, CASIC: `SKYTRAQ 0xA8`, `SIRF MID 2`, `CASIC NAV-PV`
+    except ValueError:   # a protocol whose messages are not typed (RTCM 3)
+        message = None
+    if message is not None and getattr(message, "ADDRESS", None):
+        return f"{message.PROTOCOL} {message.ADDRESS}", {k: v for k, v in message.to_dict().items() if k != "message"}
     return " ".join([frame.protocol.upper(), *map(str, identity)]), {}
 
 
