@@ -73,6 +73,9 @@ def _check_binary_items(layout: Payload, report: Report) -> None:
             if not f.bit_type.in_bytes:
                 report(f.origin, "B002", f"field {f.id}: {f.type} is a type of bit payloads, not of binary frames",
                        "type")
+            if f.type in ("u8", "i8") and (f.divisor is not None or f.base is not None):
+                report(f.origin, "B002", f"field {f.id}: a 64-bit integer takes no divisor or base, as its value "
+                       "would not come back byte-exact from a float", "divisor" if f.divisor is not None else "base")
             if f.parts and not f.bit_type.has_parts:
                 report(f.origin, "B002", f"field {f.id}: only a bitfield word (x1, x2, x4) has parts", "parts")
             _check_parts(f, report)

@@ -57,24 +57,13 @@ class Rule:
     differ: str = ""         # why a tied report's other fields may differ from the message's
 
 
-def _mid67_sid1_lat(log: str) -> set[float]:
-    """The latitudes of SiRF OSP MID 67 SID 1 (not typed here), read at the offset gpsd's driver
-    reads them (bytes 54-57 from the MID, a big-endian I4 of 1e-7 degrees)."""
-    out = set()
-    with (DATA / log).open("rb") as f:
-        for item in stream.lines(f, binary=True):
-            if isinstance(item, stream.BinaryFrame) and item.data[4:6] == b"\x43\x01":
-                out.add(int.from_bytes(item.data[4 + 54:4 + 58], "big", signed=True) * 1e-7)
-    return out
-
-
 def _mid2_lat(log: str) -> set[float]:
     """The latitudes of MID 2's ECEF positions (WGS 84, Bowring's formula) and of MID 67 SID 1:
     gpsd reports a SiRFstarV's epoch from whichever of MID 2, 41 and 67 it took last."""
     a, f = 6378137.0, 1 / 298.257223563
     b = a * (1 - f)
     e2, ep2 = f * (2 - f), (a * a - b * b) / (b * b)
-    out = _mid67_sid1_lat(log)
+    out = {m.lat for m in messages(log, "MID 67 SID 1")}
     for m in messages(log, "MID 2"):
         p = math.hypot(m.x, m.y)
         theta = math.atan2(m.z * a, p * b)
@@ -124,10 +113,18 @@ RULES = (
     Rule("sirf/sirfstarv.log", "TPV", "MID 41", (
         Pair("lat", "lat", 9), Pair("lon", "lon", 9), Pair("altHAE", "alt_ellipsoid", 4),
         Pair("altMSL", "alt_msl", 4), Pair("track", "cog", 4), Pair("speed", "sog", 3), Pair("climb", "climb", 3)),
-        "hold the latitude of MID 2's ECEF position (to 1e-7 degrees) or of MID 67 SID 1 (OSP's navigation "
-        "solution, not typed here): gpsd's TPV of those messages in that epoch", _mid2_lat, 7,
+        "hold the latitude of MID 2's ECEF position (to 1e-7 degrees) or of MID 67 SID 1: gpsd's TPV of "
+        "those messages in that epoch", _mid2_lat, 7,
         "gpsd merges MID 2, 41 and 67 SID 1 of one epoch into one TPV; there its heights (to 0.1 mm, as its "
         "conversion of an ECEF position gives them) are not MID 41's, which differ by decimetres"),
+    Rule("sirf/sirfstarv.log", "TPV", "MID 67 SID 1", (
+        Pair("lat", "lat", 9), Pair("lon", "lon", 9), Pair("altHAE", "alt_ellipsoid", 4),
+        Pair("altMSL", "alt_msl", 4), Pair("track", "cog", 4), Pair("speed", "sog", 3), Pair("climb", "climb", 3),
+        Pair("epv", "evpe", 3), Pair("leapseconds", "leap_seconds", 0)),
+        "hold the latitude of MID 2's ECEF position (to 1e-7 degrees) or of MID 41: gpsd's TPV of those "
+        "messages in that epoch", lambda log: _mid2_lat(log) | {m.lat for m in messages(log, "MID 41")}, 7,
+        "gpsd merges MID 2, 41 and 67 SID 1 of one epoch into one TPV; there its heights (to 0.1 mm, as its "
+        "conversion of an ECEF position gives them) and other values are not MID 67's"),
     Rule("sirf/sirfstarv.log", "TPV", "MID 2", (
         Pair("ecefx", "x", 2), Pair("ecefy", "y", 2), Pair("ecefz", "z", 2),
         Pair("ecefvx", "vx", 2), Pair("ecefvy", "vy", 2), Pair("ecefvz", "vz", 2)),

@@ -50,7 +50,8 @@ def described(protocol: str, data: bytes) -> bool:
 # tests/ubx/test_binary_protocols.py): every one must decode.
 EXPECTED = {
     "skytraq": {"0xA8": 239, "0xDC": 2, "0xDD": 2, "0xDE": 9, "0xDF": 9, "0xE0": 2},
-    "sirf": {"MID 2": 66, "MID 4": 26, "MID 9": 7, "MID 13": 2, "MID 18": 6, "MID 41": 59, "MID 255": 8},
+    "sirf": {"MID 2": 66, "MID 4": 26, "MID 9": 7, "MID 13": 2, "MID 18": 6, "MID 41": 59, "MID 255": 8,
+             "MID 67 SID 1": 59},
     "casic": {"NAV-DOP": 130, "NAV-PV": 130, "NAV-TIMEUTC": 130, "NAV-GPSINFO": 130, "NAV-BDSINFO": 130,
               "NAV-GLNINFO": 130},
 }

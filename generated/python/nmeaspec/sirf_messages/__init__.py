@@ -3,11 +3,12 @@
 # Source: spec/binary/sirf/messages/clock_status.yaml, spec/binary/sirf/messages/command_ack.yaml,
 #   spec/binary/sirf/messages/command_nack.yaml, spec/binary/sirf/messages/cpu_throughput.yaml,
 #   spec/binary/sirf/messages/dev_data.yaml, spec/binary/sirf/messages/geodetic_nav.yaml,
-#   spec/binary/sirf/messages/measured_nav.yaml, spec/binary/sirf/messages/ok_to_send.yaml,
-#   spec/binary/sirf/messages/poll_sw_version.yaml, spec/binary/sirf/messages/pps_time.yaml,
-#   spec/binary/sirf/messages/set_protocol.yaml, spec/binary/sirf/messages/sw_version.yaml,
-#   spec/binary/sirf/messages/switch_to_nmea.yaml, spec/binary/sirf/messages/tracker_data.yaml,
-#   spec/binary/sirf/messages/visible_list.yaml (digest 81598a7da378b4a1)
+#   spec/binary/sirf/messages/gnss_nav_solution.yaml, spec/binary/sirf/messages/measured_nav.yaml,
+#   spec/binary/sirf/messages/ok_to_send.yaml, spec/binary/sirf/messages/poll_sw_version.yaml,
+#   spec/binary/sirf/messages/pps_time.yaml, spec/binary/sirf/messages/set_protocol.yaml,
+#   spec/binary/sirf/messages/sw_version.yaml, spec/binary/sirf/messages/switch_to_nmea.yaml,
+#   spec/binary/sirf/messages/tracker_data.yaml, spec/binary/sirf/messages/visible_list.yaml
+#   (digest 6d3a418a020b8944)
 # Regenerate: make generate (python3 -m generator generate)
 """SiRF binary (OSP) messages: a frame's payload decoded into the class of its layout (by its
 id, and sub-id where the message has one, then length and version) and encoded back to
@@ -22,6 +23,7 @@ from .command_nack import CommandNack as CommandNack
 from .cpu_throughput import CpuThroughput as CpuThroughput
 from .dev_data import DevData as DevData
 from .geodetic_nav import GeodeticNav as GeodeticNav
+from .gnss_nav_solution import GnssNavSolution as GnssNavSolution
 from .measured_nav import MeasuredNav as MeasuredNav
 from .ok_to_send import OkToSend as OkToSend
 from .poll_sw_version import PollSwVersion as PollSwVersion
@@ -44,6 +46,7 @@ BY_ID: dict[tuple[int, ...], tuple[type[binary.Message], ...]] = {
     (0x12,): (OkToSend,),
     (0x29,): (GeodeticNav,),
     (0x34,): (PpsTime,),
+    (0x43, 0x01,): (GnssNavSolution,),
     (0x81,): (SwitchToNmea,),
     (0x84,): (PollSwVersion,),
     (0x87,): (SetProtocol,),
