@@ -402,8 +402,8 @@ def _binary_message(doc: Document) -> BinaryMessage:
                                replies=lay.get("replies", []),
                                acknowledges=(lay["acknowledges"]["class"], lay["acknowledges"]["id"])
                                if "acknowledges" in lay else None))
-    message = BinaryMessage(d["message"], d["name"], d["doc"], protocol, d["class"], d["id"], d["documents"], layouts,
-                            Origin(file, ()),
+    message = BinaryMessage(d["message"], d["name"], d["doc"], protocol, d.get("class", ""), d["id"], d["documents"],
+                            layouts, Origin(file, ()), sub_id=d.get("sub_id"),
                             examples=[BinaryExample(e["where"], bytes.fromhex(e["frame"]), e.get("expect"),
                                                     Origin(file, ("examples", i)))
                                       for i, e in enumerate(d.get("examples", []))])

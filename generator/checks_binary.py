@@ -24,16 +24,23 @@ def check(spec: Spec, report: Report) -> None:
         if stem != message.id:
             report(message.origin, "S010", f"message {message.id} must live in {message.id}.yaml", "message")
         protocol = protocols.get(message.protocol)
-        if protocol is None or message.msg_class not in protocol.classes:
+        if protocol is not None and not protocol.classes:   # SkyTraq, SiRF: an id and perhaps a sub-id
+            if message.msg_class:
+                report(message.origin, "B001", f"protocol {message.protocol} has no classes: leave out class",
+                       "class")
+        elif protocol is None or message.msg_class not in protocol.classes:
             report(message.origin, "B001", f"class {message.msg_class} is not a class of protocol {message.protocol}",
                    "class")
         elif not message.id.startswith(message.msg_class + "_"):
             report(message.origin, "B001", f"message {message.id} of class {message.msg_class} starts with "
                    f"{message.msg_class}_", "message")
-        key = (message.protocol, message.class_number, message.msg_id)
-        if key in owners:
-            report(message.origin, "B001", f"class and id {message.msg_class} 0x{message.msg_id:02X} are also "
-                   f"described by {owners[key]}", "id")
+        elif message.sub_id is not None:
+            report(message.origin, "B001", f"a message of class {message.msg_class} has no sub_id", "sub_id")
+        key = (message.protocol, *message.key)
+        shorter = (message.protocol, message.msg_id)   # an id without sub-id takes every frame of that id
+        if key in owners or message.sub_id is not None and shorter in owners and not message.msg_class:
+            report(message.origin, "B001", f"{message.address} is also described by "
+                   f"{owners.get(key) or owners[shorter]}", "id")
         owners.setdefault(key, message.id)
         for i, document in enumerate(message.documents):
             if protocol is not None and document not in protocol.documents:
@@ -66,6 +73,9 @@ def _check_binary_items(layout: Payload, report: Report) -> None:
             if not f.bit_type.in_bytes:
                 report(f.origin, "B002", f"field {f.id}: {f.type} is a type of bit payloads, not of binary frames",
                        "type")
+            if f.type in ("u8", "i8") and (f.divisor is not None or f.base is not None):
+                report(f.origin, "B002", f"field {f.id}: a 64-bit integer takes no divisor or base, as its value "
+                       "would not come back byte-exact from a float", "divisor" if f.divisor is not None else "base")
             if f.parts and not f.bit_type.has_parts:
                 report(f.origin, "B002", f"field {f.id}: only a bitfield word (x1, x2, x4) has parts", "parts")
             _check_parts(f, report)

@@ -260,18 +260,23 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             examples=[{**v, "json": json.dumps(v["decode"], separators=(",", ":"))}
                       for v in emit_vectors.ais_vectors(spec) if v["message"] == payload.id])
     documents = {d: title for p in spec.protocols for d, title in p.documents.items()}
-    ubx_vectors = emit_vectors.ubx_vectors(spec)
+    ubx_vectors = emit_vectors.ubx_vectors(spec) + emit_vectors.binary_vectors(spec)
     for m in spec.binary:
-        link = f"[{m.address}](../ubx/{m.id}.md)"
+        link = f"[{m.address}](../{m.protocol}/{m.id}.md)"
         for f in (part for lay in m.layouts for f in lay.fields for part in (f, *f.parts)):
             if f.enum and link not in enum_users[f.enum.id]:
                 enum_users[f.enum.id].append(link)
-        files[f"docs/ubx/{m.id}.md"] = env.get_template("docs/ubx_message.md.j2").render(
-            banner=banner_of([m.origin.file]), m=m, documents=documents,
+        identity = (f"Class 0x{m.class_number:02X}, id 0x{m.msg_id:02X}" if m.msg_class
+                    else f"{'MID' if m.protocol == 'sirf' else 'Id'} 0x{m.msg_id:02X} ({m.msg_id})"
+                    + (f", {'SID' if m.protocol == 'sirf' else 'sub-id'} 0x{m.sub_id:02X} ({m.sub_id})"
+                       if m.sub_id is not None else ""))
+        prefix = "" if not m.prefix else " after the id" if m.sub_id is None else " after the id and sub-id"
+        files[f"docs/{m.protocol}/{m.id}.md"] = env.get_template("docs/ubx_message.md.j2").render(
+            banner=banner_of([m.origin.file]), m=m, documents=documents, identity=identity, prefix=prefix,
             layouts=[{"layout": lay, "rows": binary_rows(lay),
                       "length": lay.fixed_width // 8 if lay.fixed_width is not None else None} for lay in m.layouts],
             examples=[{**v, "json": json.dumps(v["decode"], separators=(",", ":"))}
-                      for v in ubx_vectors if v["message"] == m.id])
+                      for v in ubx_vectors if v["message"] == m.id and v.get("protocol", "ubx") == m.protocol])
     rtcm3_vectors = emit_vectors.rtcm3_vectors(spec) if spec.bit_messages else []
     for p in spec.bit_messages:
         files[f"docs/{p.protocol}/{p.id}.md"] = env.get_template("docs/rtcm3_message.md.j2").render(

@@ -316,7 +316,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     base = f"python/{PACKAGE}"
     files: dict[str, str] = {}
     for module in ("runtime", "api", "stream", "receiver", "network", "fixes", "ais", "assembly", "ubx", "rtcm3",
-                   "framings"):
+                   "framings", "binary"):
         files[f"{base}/{module}.py"] = runtime_file(spec, "#", f"python/{module}.py")
     files[f"{base}/py.typed"] = ""
     files[f"{base}/fix_fields.py"] = fix_fields(spec, env)

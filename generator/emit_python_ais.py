@@ -52,6 +52,8 @@ def _field_spec(f: PayloadField, following: list, indent: int) -> list[str]:
         args.append(f"enum={f.enum.camel}")
     if f.dispatch:
         args.append(f"dispatch=({', '.join(json.dumps(d) for d in f.dispatch)},)")
+    if f.byte_order == "big" and f.type in ("ch", "bytes"):   # bytes as sent from a big-endian reader
+        args.append("big=True")
     parts = [f"({p.low}, {' '.join(_field_spec(p, [], 0))[:-1]})" for p in f.parts]
     if parts:
         args.append(f"parts=({', '.join(parts)},)")

@@ -1,7 +1,9 @@
-"""Python emitter of the binary messages (spec/binary/ubx): the package `nmeaspec.ubx_messages`,
-a module per message with a dataclass per layout and its LAYOUT, the descriptor that the AIS
-payloads' one reader and one writer (runtime/python/ais.py) interpret over little-endian bytes
-(runtime/python/ubx.py). The descriptors are those of emit_python_ais: one model of payloads.
+"""Python emitter of the binary messages (spec/binary/<protocol>/messages): the packages
+`nmeaspec.ubx_messages` (and skytraq_messages, sirf_messages, casic_messages), a module per
+message with a dataclass per layout and its LAYOUT, the descriptor that the AIS payloads' one
+reader and one writer (runtime/python/ais.py) interpret over bytes in the protocol's byte order
+(runtime/python/ubx.py; the other protocols' framing: runtime/python/binary.py). The descriptors
+are those of emit_python_ais: one model of payloads.
 With a configuration database, also the runtime ubx_config.py and emit_ubx_config's files."""
 
 from __future__ import annotations
@@ -24,10 +26,19 @@ def _members(fields: list[PayloadField]) -> list[dict]:
     return [member(m) for f in fields for m in (f, *f.parts)]
 
 
+def identity(message: BinaryMessage) -> str:
+    """What tells the message in a frame besides its address: class 0x01 id 0x07 (UBX, CASIC); the
+    id (and sub-id) in the other base (SkyTraq: 168; SiRF: 0x5D 0x12)."""
+    if message.msg_class:
+        return f"class 0x{message.class_number:02X} id 0x{message.msg_id:02X}"
+    if message.protocol == "sirf":   # the address gives it in decimal, as SiRF does
+        return f"0x{message.msg_id:02X}" + (f" 0x{message.sub_id:02X}" if message.sub_id is not None else "")
+    return f"{message.msg_id}" + (f" {message.sub_id}" if message.sub_id is not None else "")
+
+
 def title(message: BinaryMessage, layout: Payload) -> str:
     directions = ", ".join(layout.directions)
-    return f"{message.name}: UBX {message.address} (class 0x{message.class_number:02X} id 0x{message.msg_id:02X}), " \
-        f"{directions}."
+    return f"{message.name}: {message.protocol.upper()} {message.address} ({identity(message)}), {directions}."
 
 
 def _tuple(words: list[str]) -> str:
@@ -64,21 +75,45 @@ def layout_view(message: BinaryMessage, layout: Payload) -> dict:
     }
 
 
-def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    base = f"python/{PACKAGE}/ubx_messages"
+def _modules(spec: Spec, env: jinja2.Environment, protocol: str, messages: list[BinaryMessage]) -> dict[str, str]:
+    """A module per message of `protocol` in nmeaspec.<protocol>_messages."""
     files: dict[str, str] = {}
-    messages = [m for m in spec.binary if m.protocol == "ubx"]
-    if not messages:
-        return {}
+    base = "ubx.Message" if protocol == "ubx" else "binary.Message"
     for message in messages:
         fields = [m for layout in message.layouts for f in layout.fields for m in (f, *f.parts)]
         enums = sorted({f.enum.camel for f in fields if f.enum})
         sources = [message.origin.file, *sorted({f.enum.origin.file for f in fields if f.enum})]
-        modules = sorted({f.bit_type.module for f in fields} | {"ais", "ubx"})
-        files[f"{base}/{message.id}.py"] = env.get_template("python/ubx_message.py.j2").render(
+        modules = sorted({f.bit_type.module for f in fields} | {"ais", "ubx"} | ({"binary"} if protocol != "ubx"
+                                                                               else set()))
+        heading = f"{message.name}: {protocol.upper()} {message.address}, {identity(message)}"
+        key = "(" + ", ".join(f"0x{k:02X}" for k in message.key) + ("," if len(message.key) == 1 else "") + ")"
+        files[f"python/{PACKAGE}/{protocol}_messages/{message.id}.py"] = env.get_template(
+            "python/ubx_message.py.j2").render(
             header=header(spec, "#", sources), message=message, enums=enums, modules=", ".join(modules),
             uses_field=any(isinstance(i, PayloadGroup) for layout in message.layouts for i in layout.items),
-            layouts=[layout_view(message, layout) for layout in message.layouts])
+            layouts=[layout_view(message, layout) for layout in message.layouts], heading=heading, base=base,
+            protocol=protocol, key=key)
+    return files
+
+
+def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
+    base = f"python/{PACKAGE}/ubx_messages"
+    files: dict[str, str] = {}
+    for protocol in sorted({m.protocol for m in spec.binary} - {"ubx"}):   # SkyTraq, SiRF, CASIC
+        others = [m for m in spec.binary if m.protocol == protocol]
+        files.update(_modules(spec, env, protocol, others))
+        name = next((p.name for p in spec.protocols if p.id == protocol), protocol)
+        rows = []
+        for m in sorted(others, key=lambda m: m.key):
+            key = ", ".join(f"0x{k:02X}" for k in m.key)
+            rows.append({"key": key, "layouts": [layout.camel for layout in m.layouts], "indent": len(key) + 9})
+        files[f"python/{PACKAGE}/{protocol}_messages/__init__.py"] = env.get_template("python/binary_init.py.j2").render(
+            header=header(spec, "#", [m.origin.file for m in others]), messages=others, rows=rows, name=name,
+            protocol=protocol, by_class=bool(others[0].msg_class))
+    messages = [m for m in spec.binary if m.protocol == "ubx"]
+    if not messages:
+        return files
+    files.update(_modules(spec, env, "ubx", messages))
     files[f"{base}/__init__.py"] = env.get_template("python/ubx_init.py.j2").render(
         header=header(spec, "#", [m.origin.file for m in messages]), messages=messages)
     if spec.config_keys:   # the configuration database: its runtime, key table and docs page

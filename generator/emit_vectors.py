@@ -255,6 +255,8 @@ def ubx_vectors(spec: Spec) -> list[dict]:
     frames each must refuse with the kind of its error."""
     out: list[dict] = []
     for message in spec.binary:
+        if message.protocol != "ubx":
+            continue
         for e in message.examples:
             out.append({"message": message.id, "where": e.where, "frame": e.frame.hex(" "),
                         "decode": reference_binary.decode(spec, e.frame)})
@@ -296,6 +298,14 @@ def rtcm3_vectors(spec: Spec) -> list[dict]:
     return out
 
 
+def binary_vectors(spec: Spec) -> list[dict]:
+    """The example frames of the other binary protocols (spec/binary/{skytraq,sirf,casic}) with
+    the JSON each decoder must make of them."""
+    return [{"protocol": message.protocol, "message": message.id, "where": e.where, "frame": e.frame.hex(" "),
+             "decode": reference_binary.decode(spec, e.frame)}
+            for message in spec.binary if message.protocol != "ubx" for e in message.examples]
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     def jsonl(records: list[dict]) -> str:
         return "".join(json.dumps(r, ensure_ascii=True, separators=(",", ":")) + "\n" for r in records)
@@ -303,6 +313,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files = {"vectors/ubx.jsonl": jsonl(ubx_vectors(spec))} if spec.binary else {}
     if spec.bit_messages:
         files["vectors/rtcm3.jsonl"] = jsonl(rtcm3_vectors(spec))
+    if any(m.protocol != "ubx" for m in spec.binary):
+        files["vectors/binary.jsonl"] = jsonl(binary_vectors(spec))
     return {**files, "vectors/examples.jsonl": jsonl(example_vectors(spec)),
             "vectors/tolerance.jsonl": jsonl(tolerance_vectors(spec)),
             "vectors/values.jsonl": jsonl(value_vectors(spec)),

@@ -687,6 +687,7 @@ class PayloadField:
     low: int = 0                 # a part: its lowest bit in the word (bit 0: the least significant)
     count: str | Ones | None = None   # a counted width: as many characters (bits for data) as this says
     ref: str | None = None       # its name in the protocol's documents (RTCM 3: DF025)
+    byte_order: str = "little"   # a binary frame's field: its protocol's (derived)
     # Derived by resolve():
     enum: EnumDef | None = None
     offset: int | None = None    # the first bit, when no variable item comes before it
@@ -871,6 +872,11 @@ class BinaryProtocol:
     frame: dict[str, Any] = field(default_factory=dict)       # the `frame:` of protocol.yaml
     identity: list[dict[str, Any]] = field(default_factory=list)  # the payload's first fields that tell its message
 
+    @property
+    def byte_order(self) -> str:
+        """Of its fields: "little" (UBX, CASIC) or "big" (SkyTraq, SiRF)."""
+        return str(self.frame.get("byte_order", "little"))
+
 
 @dataclass
 class BinaryExample:
@@ -896,11 +902,31 @@ class BinaryMessage:
     origin: Origin
     examples: list[BinaryExample] = field(default_factory=list)
     class_number: int = 0       # derived from the protocol's classes
+    sub_id: int | None = None   # a protocol without classes: the byte after the id (SkyTraq sub-id, SiRF SID)
+    byte_order: str = "little"  # derived from the protocol's frame
 
     @property
     def address(self) -> str:
-        """How documents and errors name it: NAV-PVT."""
-        return self.id.upper().replace("_", "-", 1)
+        """How documents and errors name it after the protocol: NAV-PVT (UBX, CASIC: class and
+        name), 0xA8 or 0x64 0x80 (SkyTraq: id and sub-id), MID 2 or MID 93 SID 18 (SiRF)."""
+        if self.msg_class:
+            return self.id.upper().replace("_", "-", 1)
+        if self.protocol == "sirf":
+            return f"MID {self.msg_id}" + (f" SID {self.sub_id}" if self.sub_id is not None else "")
+        return f"0x{self.msg_id:02X}" + (f" 0x{self.sub_id:02X}" if self.sub_id is not None else "")
+
+    @property
+    def key(self) -> tuple[int, ...]:
+        """The bytes that tell it in a frame: class and id, or id (and sub-id)."""
+        if self.msg_class:
+            return (self.class_number, self.msg_id)
+        return (self.msg_id,) if self.sub_id is None else (self.msg_id, self.sub_id)
+
+    @property
+    def prefix(self) -> int:
+        """The bytes of `key` that open the payload (SkyTraq, SiRF: id and sub-id); UBX and CASIC
+        carry theirs in the header."""
+        return 0 if self.msg_class else len(self.key)
 
 
 # The bytes of a configuration value by the size code of its key id (bits 28-30): 1 a bit (in a

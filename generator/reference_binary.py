@@ -1,6 +1,6 @@
 """A reference decoder of binary frames (spec/binary): the frame checked against its protocol's
-framing, the layout of its class and id picked, and its payload read by reference_ais's walker
-over little-endian bytes.
+framing, the layout of its class and id (or id and sub-id) picked, and its payload read by
+reference_ais's walker over bytes in the protocol's byte order.
 
 The checks decode every example with it and the vectors (generated/vectors/ubx.jsonl) hold what
 it decodes, which every runtime must reproduce. It shares no code with the runtimes' readers
@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .model import BinaryMessage, Payload, Spec
+from .model import BinaryMessage, BinaryProtocol, Payload, Spec
 from .reference_ais import PayloadError, _items
 
 UBX_SYNC = b"\xb5\x62"
@@ -19,12 +19,15 @@ UBX_SYNC = b"\xb5\x62"
 
 class _Bytes:
     """A cursor over a payload's bytes with _Bits' interface: widths in bits, whole bytes, each
-    field's bits those of its little-endian integer."""
+    field's bits those of its integer in the protocol's byte order (characters and bytes: of
+    their little-endian integer, as the field types read them: the bytes as sent)."""
 
-    def __init__(self, data: bytes, payload: Payload) -> None:
+    def __init__(self, data: bytes, payload: Payload, order: str = "little") -> None:
         self.data = data
         self.pos = 0   # bits
         self.payload = payload
+        self.order = order
+        self.as_sent = {f.id for f in payload.fields if f.type in ("ch", "bytes")} if order != "little" else set()
 
     @property
     def left(self) -> int:
@@ -36,7 +39,8 @@ class _Bytes:
                                f"{(self.pos + width) // 8 - 1}, the payload has {len(self.data)}")
         start = self.pos // 8
         self.pos += width
-        value = int.from_bytes(self.data[start:self.pos // 8], "little")
+        order = "little" if name in self.as_sent else self.order
+        value = int.from_bytes(self.data[start:self.pos // 8], order)  # type: ignore[arg-type]
         return format(value, f"0{width}b") if width else ""
 
 
@@ -47,6 +51,68 @@ def ubx_checksum(body: bytes) -> bytes:
         a = (a + byte) % 256
         b = (b + a) % 256
     return bytes((a, b))
+
+
+def _checksum(algorithm: str, data: bytes) -> bytes:
+    """The checksum bytes of a frame (spec/schema/binary_protocol.schema.json, `algorithm`)."""
+    if algorithm == "fletcher8":
+        return ubx_checksum(data)
+    if algorithm == "xor8":   # SkyTraq AN0028
+        x = 0
+        for byte in data:
+            x ^= byte
+        return bytes((x,))
+    if algorithm == "sum15":   # SiRF binary
+        return (sum(data) % (1 << 15)).to_bytes(2, "big")
+    if algorithm == "sum32":   # CASIC: 32-bit little-endian words, a short last one padded with zeros
+        padded = data + bytes(-len(data) % 4)
+        total = sum(int.from_bytes(padded[i:i + 4], "little") for i in range(0, len(padded), 4))
+        return (total % (1 << 32)).to_bytes(4, "little")
+    raise PayloadError("bad_frame", f"no reference checksum {algorithm}")
+
+
+_CHECK_SIZE = {"fletcher8": 2, "xor8": 1, "sum15": 2, "sum32": 4}
+
+
+def protocol_frame(spec: Spec, data: bytes) -> tuple[BinaryProtocol, dict[str, int], bytes]:
+    """The protocol of one whole frame (by its sync bytes), its header fields and its payload,
+    read from protocol.yaml's `frame` facts: the sync, the header's fields (bytes or bits, in the
+    protocol's byte order), the length, the checksum and the end bytes all checked."""
+    protocol = next((p for p in spec.protocols if p.frame.get("sync") and data.startswith(bytes(p.frame["sync"]))
+                     and p.id != "rtcm3"), None)
+    if protocol is None:
+        raise PayloadError("bad_frame", "the frame starts with no binary protocol's sync bytes")
+    frame = protocol.frame
+    order = protocol.byte_order
+    name = protocol.id.upper()
+    pos = 8 * len(frame["sync"])   # bits
+    header: dict[str, int] = {}
+    offsets: dict[str, int] = {"sync": 0}
+    for f in frame["header"]:
+        width = 8 * int(f["type"][1:]) if f["type"][0] == "u" else int(f["type"][1:])
+        if (pos + width + 7) // 8 > len(data):
+            raise PayloadError("bad_frame", f"a {name} frame is cut in its header")
+        offsets[f["id"]] = pos // 8
+        if width % 8 == 0 and pos % 8 == 0:
+            header[f["id"]] = int.from_bytes(data[pos // 8:(pos + width) // 8], order)  # type: ignore[arg-type]
+        else:   # bits of a big-endian header, most significant first
+            first, last = pos // 8, (pos + width + 7) // 8
+            word = int.from_bytes(data[first:last], "big")
+            header[f["id"]] = word >> (8 * last - pos - width) & ((1 << width) - 1)
+        pos += width
+    start = pos // 8
+    offsets["payload"] = start
+    length = next(header[f["id"]] for f in frame["header"] if f.get("counts") == "payload")
+    algorithm = frame["checksum"]["algorithm"]
+    end = bytes(frame.get("end", []))
+    size = start + length + _CHECK_SIZE[algorithm] + len(end)
+    if len(data) != size:
+        raise PayloadError("bad_frame", f"the length field says {length} payload bytes, the {name} frame has "
+                           f"{len(data) - size + length}")
+    body = data[offsets[frame["checksum"]["over"][0]]:start + length]
+    if _checksum(algorithm, body) + end != data[start + length:]:
+        raise PayloadError("bad_checksum", f"the {name} checksum or end bytes do not match")
+    return protocol, header, data[start:start + length]
 
 
 def ubx_frame(data: bytes) -> tuple[int, int, bytes]:
@@ -64,6 +130,13 @@ def ubx_frame(data: bytes) -> tuple[int, int, bytes]:
 def message_of(spec: Spec, protocol: str, msg_class: int, msg_id: int) -> BinaryMessage | None:
     return next((m for m in spec.binary
                  if m.protocol == protocol and (m.class_number, m.msg_id) == (msg_class, msg_id)), None)
+
+
+def message_by_key(spec: Spec, protocol: str, payload: bytes) -> BinaryMessage | None:
+    """A protocol without classes: the message of a payload's id and sub-id, else of its id alone."""
+    found = {m.key: m for m in spec.binary if m.protocol == protocol}
+    return found.get(tuple(payload[:2])) if len(payload) >= 2 and tuple(payload[:2]) in found \
+        else found.get(tuple(payload[:1]))
 
 
 def layout_for(message: BinaryMessage, payload: bytes) -> Payload:
@@ -85,15 +158,30 @@ def layout_for(message: BinaryMessage, payload: bytes) -> Payload:
 
 
 def decode(spec: Spec, frame: bytes) -> dict[str, Any]:
-    """The decoded JSON object of a whole UBX frame (the form of generated/vectors/ubx.jsonl):
-    the layout's id as `message`, its fields, and the bytes after its last field as hex
-    `trailing`."""
-    msg_class, msg_id, payload = ubx_frame(frame)
-    message = message_of(spec, "ubx", msg_class, msg_id)
+    """The decoded JSON object of a whole frame (the form of generated/vectors/ubx.jsonl and
+    binary.jsonl): the layout's id as `message`, its fields, and the bytes after its last field as
+    hex `trailing`."""
+    if frame[:2] == UBX_SYNC:
+        msg_class, msg_id, payload = ubx_frame(frame)
+        message = message_of(spec, "ubx", msg_class, msg_id)
+        if message is None:
+            return {"message": None, "class": msg_class, "id": msg_id, "payload": payload.hex()}
+        return _decode_payload(message, payload)
+    protocol, header, payload = protocol_frame(spec, frame)
+    if protocol.classes:
+        message = message_of(spec, protocol.id, header["class"], header["id"])
+        if message is None:
+            return {"message": None, "class": header["class"], "id": header["id"], "payload": payload.hex()}
+        return _decode_payload(message, payload)
+    message = message_by_key(spec, protocol.id, payload)
     if message is None:
-        return {"message": None, "class": msg_class, "id": msg_id, "payload": payload.hex()}
+        return {"message": None, "id": payload[0] if payload else None, "payload": payload[1:].hex()}
+    return _decode_payload(message, payload[message.prefix:])
+
+
+def _decode_payload(message: BinaryMessage, payload: bytes) -> dict[str, Any]:
     layout = layout_for(message, payload)
-    cursor = _Bytes(payload, layout)
+    cursor = _Bytes(payload, layout, message.byte_order)
     out: dict[str, Any] = {"message": layout.id}
     _items(layout.items, cursor, [], out)
     out["trailing"] = payload[cursor.pos // 8:].hex()

@@ -44,12 +44,15 @@ def resolve(spec: Spec) -> None:
     for payload in spec.payloads:
         payload.applications = [a for a in spec.applications if set(a.carriers) & set(payload.types)]
     classes = {p.id: p.classes for p in spec.protocols}
+    orders = {p.id: p.byte_order for p in spec.protocols}
     for message in spec.binary:
         message.class_number = classes.get(message.protocol, {}).get(message.msg_class, 0)
+        message.byte_order = orders.get(message.protocol, "little")
         for layout in message.layouts:
             _place_bits(layout)
             for f in layout.fields + [part for f in layout.fields for part in f.parts]:
                 f.enum = spec.enum_by_id.get(f.enum_id) if f.enum_id is not None else None
+                f.byte_order = message.byte_order
 
 
 def checksum_ok(line: str) -> bool:

@@ -236,11 +236,14 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "Correct the field ids, move the count's fields before the item, or give the field a fixed width."),
     Rule("B001", "a binary message has one class and id",
          "A message of spec/binary/<protocol>/messages names a class of its protocol.yaml, its id starts with that "
-         "class (nav_pvt), and no other message of the protocol has its class and id.",
-         "Correct `class`, `id` or `message`."),
+         "class (nav_pvt), and no other message of the protocol has its class and id; a protocol without classes "
+         "(SkyTraq, SiRF) tells a message by its id and `sub_id`, and one id without a sub-id takes every frame "
+         "of that id.",
+         "Correct `class`, `id`, `sub_id` or `message`."),
     Rule("B002", "binary fields are byte fields",
          "The fields of a binary layout have byte types (u1..u8, i1..i8, r4, r8, x1..x4, ch, bytes, reserved); "
-         "only a bitfield word (x1, x2, x4) has `parts`, each inside the word and overlapping no other.",
+         "only a bitfield word (x1, x2, x4) has `parts`, each inside the word and overlapping no other; a 64-bit "
+         "integer (u8, i8) takes no divisor or base, which a float would not give back byte-exact.",
          "Correct the type, or the part's `bit` and `width`."),
     Rule("B003", "a counted group names its count",
          "A group's `count` names an unsigned field or bitfield part that comes before the group.",

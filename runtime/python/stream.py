@@ -27,6 +27,7 @@ import re
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from functools import cache
+from importlib import import_module
 from typing import Any, BinaryIO, Literal, overload
 
 from .api import decode_json, parse
@@ -173,17 +174,19 @@ class BinaryFrame:
         return f'{{"ok":true,"protocol":"{self.protocol}",{identity}"length":{len(data)},"frame":"{data.hex()}"}}'
 
     def message(self) -> Any:
-        """A UBX frame's decoded message (nmeaspec.ubx_messages: a ubx.Message, or ubx.Unknown);
-        an RTCM 3 frame's (nmeaspec.rtcm3_messages: an rtcm3.Message, or rtcm3.Unknown)."""
-        if self.protocol == "rtcm3":
-            from . import rtcm3_messages
+        """The frame's decoded message: a UBX frame's (nmeaspec.ubx_messages: a ubx.Message, or
+        ubx.Unknown), a SkyTraq, SiRF or CASIC frame's (nmeaspec.<protocol>_messages: a
+        binary.Message, or binary.Unknown), an RTCM 3 frame's (nmeaspec.rtcm3_messages: an
+        rtcm3.Message, or rtcm3.Unknown). ValueError for a protocol whose messages are not typed."""
+        if self.protocol == "ubx":
+            from .ubx_messages import decode
 
-            return rtcm3_messages.decode(self.data)
-        if self.protocol != "ubx":
-            raise ValueError(f"{self.protocol} messages are not decoded")
-        from .ubx_messages import decode
-
-        return decode(self.data)
+            return decode(self.data)
+        try:
+            module = import_module(f"{__package__}.{self.protocol}_messages")
+        except ImportError:
+            raise ValueError(f"{self.protocol} messages are not decoded") from None
+        return module.decode(self.data)
 
 
 @dataclass(frozen=True, slots=True)

@@ -20,7 +20,7 @@ import struct
 from collections.abc import Iterator
 from dataclasses import MISSING, dataclass, fields as dataclass_fields, replace
 from zlib import adler32
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Literal
 
 from .ais import (Bitfield, Code, Field, Flag, Group, Item, Signed, Spare, Special, Unsigned, _bad_value, flat_fields,
                   items_json, read_items, write_items)
@@ -87,16 +87,18 @@ class Frame:
 
 
 class ByteReader:
-    """A payload's little-endian fields, with BitReader's interface (ais.read_items walks either):
-    offsets and widths in bits, each a whole number of bytes."""
+    """A payload's fields, little endian (UBX, CASIC) or big endian (SkyTraq, SiRF), with
+    BitReader's interface (ais.read_items walks either): offsets and widths in bits, each a whole
+    number of bytes."""
 
-    __slots__ = ("payload", "length", "pos", "where")
+    __slots__ = ("payload", "length", "pos", "where", "order")
 
-    def __init__(self, payload: bytes, where: str) -> None:
+    def __init__(self, payload: bytes, where: str, order: Literal["little", "big"] = "little") -> None:
         self.payload = payload
         self.length = 8 * len(payload)
         self.pos = 0
         self.where = where  # errors' address: "UBX NAV-PVT"
+        self.order: Literal["little", "big"] = order
 
     @property
     def remaining(self) -> int:
@@ -108,7 +110,7 @@ class ByteReader:
             where = f"byte {first}" if first == last else f"bytes {first}-{last}"
             raise NmeaError("short_payload", f"{name} needs {where}, the payload has {len(self.payload)}", self.where,
                             name=name)
-        return int.from_bytes(self.payload[first:last + 1], "little")
+        return int.from_bytes(self.payload[first:last + 1], self.order)
 
     def take(self, width: int, name: str) -> int:
         raw = self.peek(self.pos, width, name)
@@ -117,15 +119,16 @@ class ByteReader:
 
 
 class ByteWriter:
-    """A payload's fields written little endian, with BitWriter's interface (ais.write_items)."""
+    """A payload's fields written in a byte order, with BitWriter's interface (ais.write_items)."""
 
-    __slots__ = ("payload",)
+    __slots__ = ("payload", "order")
 
-    def __init__(self) -> None:
+    def __init__(self, order: Literal["little", "big"] = "little") -> None:
         self.payload = bytearray()
+        self.order: Literal["little", "big"] = order
 
     def put(self, raw: int, width: int) -> None:
-        self.payload += raw.to_bytes(width // 8, "little")
+        self.payload += raw.to_bytes(width // 8, self.order)
 
 
 def frame_size(data: bytes | bytearray | memoryview, start: int = 0) -> int:
@@ -195,30 +198,36 @@ class Float(Field):
 
 @dataclass(frozen=True, slots=True)
 class Chars(Field):
-    """ch: characters as sent, ISO 8859-1, NUL padding included; without a width, the bytes left."""
+    """ch: characters as sent, ISO 8859-1, NUL padding included; without a width, the bytes left.
+    `big`: of a big-endian protocol, whose reader gives the bytes' big-endian integer."""
+
+    big: bool = False
 
     def from_raw(self, raw: int, width: int) -> Any:
-        return raw.to_bytes(width // 8, "little").decode("latin-1")
+        return raw.to_bytes(width // 8, "big" if self.big else "little").decode("latin-1")
 
     def to_raw(self, value: Any, where: str) -> tuple[int, int]:
         data = value.encode("latin-1", "replace") if isinstance(value, str) else None
         if data is None or self.width is not None and 8 * len(data) != self.width:
             size = f"{self.width // 8} " if self.width is not None else ""
             raise _bad_value(where, self.id, value, f"a text of {size}ISO 8859-1 characters")
-        return int.from_bytes(data, "little"), 8 * len(data)
+        return int.from_bytes(data, "big" if self.big else "little"), 8 * len(data)
 
 
 @dataclass(frozen=True, slots=True)
 class Bytes(Field):
-    """bytes: binary data as sent (JSON: lower-case hex); without a width, the bytes left."""
+    """bytes: binary data as sent (JSON: lower-case hex); without a width, the bytes left.
+    `big`: as Chars."""
+
+    big: bool = False
 
     def from_raw(self, raw: int, width: int) -> Any:
-        return raw.to_bytes(width // 8, "little")
+        return raw.to_bytes(width // 8, "big" if self.big else "little")
 
     def to_raw(self, value: Any, where: str) -> tuple[int, int]:
         if not isinstance(value, bytes) or self.width is not None and 8 * len(value) != self.width:
             raise _bad_value(where, self.id, value, "bytes" if self.width is None else f"{self.width // 8} bytes")
-        return int.from_bytes(value, "little"), 8 * len(value)
+        return int.from_bytes(value, "big" if self.big else "little"), 8 * len(value)
 
     def put_json(self, out: dict[str, Any], value: Any) -> None:
         out[self.id] = value.hex()
@@ -248,13 +257,14 @@ class _Compiler:
     the message's __dict__ (the generic reader costs several calls a field; this one a call per
     run). Decoded values are exactly those of read_items, which tests/ubx checks frame by frame."""
 
-    def __init__(self) -> None:
+    def __init__(self, big: bool = False) -> None:
         self.names: dict[str, Any] = {"Special": Special, "unpack_from": struct.unpack_from,
                                       "iter_unpack": struct.iter_unpack, "from_bytes": int.from_bytes,
                                       "new": object.__new__, "make": _make}
         self.lines: list[str] = []
         self.defs: list[str] = []
         self.locals = 0
+        self.order = ">" if big else "<"  # the struct format's byte order
 
     def name(self, value: Any) -> str:
         key = f"n{len(self.names)}"
@@ -304,7 +314,7 @@ class _Compiler:
         elif isinstance(f, Float):   # read as its integer: a NaN keeps its bits
             pairs = [(f.id, f"{self.name(f)}.from_raw({raw}, {f.width})")]
         elif type(f) is Spare and f.width not in _INTEGER_CODES:
-            pairs = [(f.id, f"from_bytes({raw}, 'little')")]
+            pairs = [(f.id, f"from_bytes({raw}, '{'big' if self.order == '>' else 'little'}')")]
         else:   # a whole integer, bytes
             pairs = [(f.id, raw)]
         if isinstance(f, Bitfield) and len(f.parts) >= MEMO_PARTS:
@@ -323,7 +333,7 @@ class _Compiler:
     def run(self, fields: list[Field], statements: list[str]) -> tuple[str, list[str], list[tuple[str, str]]]:
         """The struct format that reads the fixed `fields`, the locals it unpacks them into and
         their (key, expression) pairs (with the lines that compute some, added to `statements`)."""
-        fmt = "<" + "".join(_struct_code(f) or "" for f in fields)
+        fmt = self.order + "".join(_struct_code(f) or "" for f in fields)
         names = [self.local() for _ in fields]
         pairs = [pair for f, raw in zip(fields, names) for pair in self.convert(f, raw, statements)]
         return fmt, names, pairs
@@ -371,7 +381,7 @@ def compile_reader(cls: type[Message]) -> Any:
     it reads whole (too short, a count too large: the generic reader then says where), or when a
     layout has what it does not compile (a choice; a group of variable entries)."""
     items = cls.LAYOUT
-    c = _Compiler()
+    c = _Compiler(cls.BIG)
     c.names["cls"] = cls
     pos = "0"
     fixed: list[Field] = []
@@ -410,7 +420,7 @@ def compile_reader(cls: type[Message]) -> Any:
             pos = "len(payload)"
         elif isinstance(item, Group) and all(_struct_code(f) for f in item.fields):
             entry = c.name(item.entry)
-            fmt = "<" + "".join(_struct_code(f) or "" for f in item.fields)
+            fmt = c.order + "".join(_struct_code(f) or "" for f in item.fields)
             size = struct.calcsize(fmt)
             if isinstance(item.count, int):
                 count = str(item.count)
@@ -466,6 +476,10 @@ class Message:
     """The layouts (ids) the receiver answers it with."""
     ACKNOWLEDGES: ClassVar[tuple[str, str] | None] = None
     """An acknowledgement: its members that hold the class and id of the message it answers."""
+    PROTOCOL: ClassVar[str] = "UBX"
+    """How errors and documents name its protocol (the generated classes of other protocols: SKYTRAQ, SIRF, CASIC)."""
+    BIG: ClassVar[bool] = False
+    """Whether its protocol's fields are big endian (SkyTraq, SiRF)."""
     LAYOUT: ClassVar[tuple[Item, ...]]
     FIELDS: ClassVar[dict[str, Field]]
     _read: ClassVar[Any]
@@ -504,7 +518,7 @@ class Message:
     @classmethod
     def read_generic(cls, payload: bytes) -> Message:
         """The message of `payload` read field by field by ais.read_items."""
-        reader = ByteReader(payload, f"UBX {cls.ADDRESS}")
+        reader = ByteReader(payload, f"{cls.PROTOCOL} {cls.ADDRESS}", "big" if cls.BIG else "little")
         values: dict[str, Any] = {}
         read_items(cls.LAYOUT, reader, values)
         return cls(**values, trailing=payload[reader.pos // 8:])
@@ -518,8 +532,9 @@ class Message:
         for group in self.LAYOUT:
             if isinstance(group, Group) and isinstance(group.count, str) and getattr(self, group.count) is None:
                 implied[group.count] = len(getattr(self, group.id))
-        writer = ByteWriter()
-        write_items(self.LAYOUT, replace(self, **implied) if implied else self, writer, f"UBX {self.ADDRESS}")
+        writer = ByteWriter("big" if self.BIG else "little")
+        message = replace(self, **implied) if implied else self
+        write_items(self.LAYOUT, message, writer, f"{self.PROTOCOL} {self.ADDRESS}")
         return bytes(writer.payload) + self.trailing
 
     def frame(self) -> Frame:

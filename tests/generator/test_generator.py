@@ -78,7 +78,9 @@ def test_bad_spec_is_rejected(fixture: Path, spec_copy: Path) -> None:
     text = fixture.read_text(encoding="utf-8")
     binary = "\nlayouts:" in text
     name = fixture.name if fixture.stem == "wrong_file_name" else "nav_xyz.yaml" if binary else "xyz.yaml"
-    folder = "binary/ubx/messages" if binary else "binary/rtcm3/messages" if "\nnumbers: " in text else \
+    protocol = next((line.split(":", 1)[1].strip() for line in text.splitlines()[:3] if line.startswith("# protocol:")),
+                    "ubx")
+    folder = f"binary/{protocol}/messages" if binary else "binary/rtcm3/messages" if "\nnumbers: " in text else \
         "standard" if "\nmessage: " not in text else \
         "ais/applications" if "\napplication: " in text else "ais/messages"
     if "\nconfig_keys: " in text:   # a configuration database takes the place of the protocol's

@@ -250,19 +250,27 @@ def records(
 
 def frame_record(frame: BinaryFrame) -> tuple[str, dict[str, Any]]:
     """A binary frame's name and fields: a UBX frame's message as u-blox names it (`NAV-PVT`) with
-    its decoded values; another protocol's frame as its protocol and identity (`RTCM3 1005`, the
-    message number), an RTCM 3 frame with its decoded values (a number the spec does not describe:
-    its payload); a UBX class and id the spec does not describe as `UBX 0x01 0x07` with its
-    payload. Raises NmeaError for a UBX or RTCM 3 payload its layout does not fit."""
-    fields: dict[str, Any] = {}
+    its decoded values (a class and id the spec does not describe: `UBX 0x01 0x07` with its
+    payload); an RTCM 3 frame as its protocol and message number (`RTCM3 1005`) with its decoded
+    values (a number the spec does not describe: its payload); a SkyTraq, SiRF or CASIC frame's as
+    `SKYTRAQ 0xA8`, `SIRF MID 2`, `CASIC NAV-PV` with its values; another frame as its protocol
+    and identity (`SIRF 51`, a MID the spec does not describe). Raises NmeaError for a payload its
+    layout does not fit."""
+    identity = " ".join([frame.protocol.upper(), *(str(v) for v in frame.identity.values() if v is not None)])
     if frame.protocol in ("ubx", "rtcm3"):
         message = frame.message()
         fields = {k: v for k, v in message.to_dict().items() if k not in ("message", "message_number")}
-        if frame.protocol == "ubx":
-            name = getattr(message, "ADDRESS", None)
-            return (f"UBX {name}" if name else f"UBX 0x{frame.data[2]:02X} 0x{frame.data[3]:02X}"), fields
-    identity = [v for v in frame.identity.values() if v is not None]
-    return " ".join([frame.protocol.upper(), *map(str, identity)]), fields
+        if frame.protocol == "rtcm3":
+            return identity, fields
+        name = getattr(message, "ADDRESS", None)
+        return (f"UBX {name}" if name else f"UBX 0x{frame.data[2]:02X} 0x{frame.data[3]:02X}"), fields
+    try:
+        message = frame.message()   # SkyTraq, SiRF, CASIC: `SKYTRAQ 0xA8`, `SIRF MID 2`, `CASIC NAV-PV`
+    except ValueError:   # a protocol whose messages are not typed
+        message = None
+    if message is not None and getattr(message, "ADDRESS", None):
+        return f"{message.PROTOCOL} {message.ADDRESS}", {k: v for k, v in message.to_dict().items() if k != "message"}
+    return identity, {}
 
 
 def framed_records(

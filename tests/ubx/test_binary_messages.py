@@ -1,0 +1,162 @@
+"""The typed messages of SkyTraq, SiRF and CASIC (spec/binary/{skytraq,sirf,casic}/messages,
+nmeaspec.<protocol>_messages): every frame of gpsd's logs of those receivers whose message the spec
+describes decodes into its class and encodes back byte-exact; the decoded JSON of every example is
+the reference decoder's (generated/vectors/binary.jsonl); errors name the protocol and message
+(`SKYTRAQ 0xA8`, `SIRF MID 41`, `CASIC NAV-PV`); `nmea show` gives the frames' rows their values."""
+
+from __future__ import annotations
+
+import json
+from collections import Counter
+from pathlib import Path
+
+import pytest
+
+from tests.ubx.pyubx2_oracle import ubx  # noqa: F401 (puts generated/python on the path)
+
+from nmeaspec import binary, stream  # isort: skip
+from nmeaspec.apps.nmea_cli import main  # isort: skip
+from nmeaspec.casic_messages import BY_ID as CASIC  # isort: skip
+from nmeaspec.casic_messages.nav_pv import NavPv  # isort: skip
+from nmeaspec.runtime import NmeaError  # isort: skip
+from nmeaspec.sirf_messages import BY_ID as SIRF  # isort: skip
+from nmeaspec.sirf_messages.geodetic_nav import GeodeticNav  # isort: skip
+from nmeaspec.sirf_messages.switch_to_nmea import SwitchToNmea, SwitchToNmeaSentence  # isort: skip
+from nmeaspec.skytraq_messages import BY_ID as SKYTRAQ  # isort: skip
+from nmeaspec.skytraq_messages.nav_data import NavData  # isort: skip
+
+ROOT = Path(__file__).resolve().parents[2]
+DATA = ROOT / "tests" / "data"
+TABLES = {"skytraq": SKYTRAQ, "sirf": SIRF, "casic": CASIC}
+
+
+def frames(protocol: str) -> list[bytes]:
+    out: list[bytes] = []
+    for log in sorted((DATA / protocol).glob("*.log")):
+        with log.open("rb") as f:
+            out += [item.data for item in stream.lines(f, binary=True)
+                    if isinstance(item, stream.BinaryFrame) and item.protocol == protocol]
+    return out
+
+
+def described(protocol: str, data: bytes) -> bool:
+    """Whether the spec describes the frame's message (by the key the protocol.yaml facts give)."""
+    if protocol == "casic":
+        return (data[4], data[5]) in CASIC
+    return (data[4], data[5]) in TABLES[protocol] or (data[4],) in TABLES[protocol]
+
+
+# What the logs hold of each described message (frames counted by hand from the logs' frame split,
+# tests/ubx/test_binary_protocols.py): every one must decode.
+EXPECTED = {
+    "skytraq": {"0xA8": 239, "0xDC": 2, "0xDD": 2, "0xDE": 9, "0xDF": 9, "0xE0": 2},
+    "sirf": {"MID 2": 66, "MID 4": 26, "MID 9": 7, "MID 13": 2, "MID 18": 6, "MID 41": 59, "MID 255": 8,
+             "MID 67 SID 1": 59},
+    "casic": {"NAV-DOP": 130, "NAV-PV": 130, "NAV-TIMEUTC": 130, "NAV-GPSINFO": 130, "NAV-BDSINFO": 130,
+              "NAV-GLNINFO": 130},
+}
+
+
+@pytest.mark.parametrize("protocol", sorted(EXPECTED))
+def test_every_described_frame_round_trips(protocol: str) -> None:
+    seen: Counter[str] = Counter()
+    unknown = 0
+    for data in frames(protocol):
+        message = stream.BinaryFrame(protocol, data).message()
+        assert message.encode() == data, data.hex(" ")
+        if isinstance(message, binary.Unknown):
+            assert not described(protocol, data)
+            unknown += 1
+            continue
+        assert described(protocol, data)
+        assert isinstance(message, binary.Message) and message.PROTOCOL == protocol.upper()
+        seen[message.ADDRESS] += 1
+        again = type(message).from_payload(message.payload())
+        assert again == message
+    assert dict(seen) == EXPECTED[protocol]
+    assert unknown == len(frames(protocol)) - sum(EXPECTED[protocol].values())
+
+
+def test_vectors_are_the_reference_decoders() -> None:
+    vectors = [json.loads(line) for line in (ROOT / "generated" / "vectors" / "binary.jsonl").read_text().splitlines()]
+    assert {v["protocol"] for v in vectors} == {"skytraq", "sirf", "casic"}
+    for v in vectors:
+        data = bytes.fromhex(v["frame"])
+        message = stream.BinaryFrame(v["protocol"], data).message()
+        assert message.to_dict() == v["decode"], v["where"]
+        assert message.encode() == data
+
+
+def test_values_of_a_skytraq_fix() -> None:
+    data = frames("skytraq")[2]   # skytraq-A8.log's third 0xA8: a 3D fix of 6 satellites
+    message = stream.BinaryFrame("skytraq", data).message()
+    assert isinstance(message, NavData)
+    assert (message.fix_mode, message.num_sv, message.week) == (2, 6, 2258)
+    assert message.lat == pytest.approx(38.9073528) and message.lon == pytest.approx(-77.04758, abs=1e-4)   # gpsd: TPV
+    assert message.lat_raw == round(message.lat * 10_000_000)
+
+
+def test_values_of_a_sirf_and_a_casic_fix() -> None:
+    geodetic = next(stream.BinaryFrame("sirf", d).message() for d in frames("sirf") if d[4] == 41)
+    assert isinstance(geodetic, GeodeticNav)
+    assert (geodetic.year, geodetic.month, geodetic.day) == (2019, 4, 24)
+    pv = next(stream.BinaryFrame("casic", d).message() for d in frames("casic") if d[4:6] == b"\x01\x03")
+    assert isinstance(pv, NavPv)
+    assert (pv.pos_valid, pv.num_sv, pv.gps, pv.glonass) == (7, 17, True, True)
+
+
+def test_errors_name_the_protocol_and_message() -> None:
+    data = bytearray(frames("skytraq")[0])
+    cut = bytes(data[:4 + 20])   # the payload cut to its first 20 bytes, framed again
+    frame = binary.Frame("skytraq", (0xA8,), cut[5:])
+    with pytest.raises(NmeaError) as err:
+        stream.BinaryFrame("skytraq", frame.encode()).message()
+    assert err.value.kind == "short_payload" and "SKYTRAQ 0xA8" in str(err.value)
+    damaged = bytearray(frames("sirf")[0])
+    damaged[6] ^= 1
+    with pytest.raises(NmeaError) as err:
+        binary.decode(SIRF, "sirf", bytes(damaged))
+    assert err.value.kind == "bad_checksum"
+
+
+def test_the_switch_back_to_nmea_encodes() -> None:
+    """SiRF MID 129: the input message that switches a port back from SiRF binary to NMEA."""
+    switch = SwitchToNmea(mode=2, sentences=[SwitchToNmeaSentence(rate=1 if i in (0, 4) else 0, checksum=1)
+                                            for i in range(10)], baud=9600)
+    data = switch.encode()
+    assert data[:5] == bytes((0xA0, 0xA2, 0x00, 0x18, 0x81)) and data[-2:] == b"\xb0\xb3"
+    assert data[-6:-4] == (9600).to_bytes(2, "big")
+    assert binary.decode(SIRF, "sirf", data) == switch
+
+
+def test_show_rows_carry_the_values(capsys: pytest.CaptureFixture[str]) -> None:
+    log = str(DATA / "casic" / "quectel-l76k-dual.log")
+    assert main(["show", "--json", "-q", "--sentences", "CASIC NAV-PV", log]) == 0
+    rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert len(rows) == 130 and rows[0]["sentence"] == "CASIC NAV-PV"
+    assert rows[0]["fields"]["num_sv"] == 17 and rows[0]["fields"]["pos_valid"] == 7
+    log = str(DATA / "sirf" / "sirfstarv.log")
+    assert main(["show", "--json", "-q", "--sentences", "SIRF MID 41", log]) == 0
+    rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert len(rows) == 59 and rows[0]["fields"]["year"] == 2019
+
+
+def test_gpsd_agrees() -> None:
+    """gpsd's reports for the same logs (tests/ubx/gpsd_binary_oracle.py, docs/binary-agreement.md):
+    every value of a report tied to a message agrees, but where the rule says why gpsd merged
+    another source into that report; every report tied to no message is explained."""
+    from tests.ubx import gpsd_binary_oracle as oracle
+
+    found = oracle.outcomes()
+    assert oracle.DOC.read_text() == oracle.render(found), "run .venv/bin/python -m tests.ubx.gpsd_binary_oracle"
+    results, skies = found
+    for o in results:
+        assert o.tied > 0, o.rule
+        if not o.rule.differ:
+            assert o.agree == o.compared, o.rule
+        if o.rule.explain:
+            assert o.explained == o.reports - o.tied, o.rule
+        else:
+            assert o.reports - o.tied <= 1, o.rule
+    for k in skies:
+        assert k.tied == k.reports > 0 and k.agree == k.satellites > 0, k.rule
