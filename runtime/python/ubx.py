@@ -377,12 +377,13 @@ def _make(cls: type[Message], members: dict[str, Any]) -> Message:
 
 
 def compile_reader(cls: type[Message]) -> Any:
-    """`read(payload)` of a layout: the message of `payload`, or None when the payload is not one
-    it reads whole (too short, a count too large: the generic reader then says where), or when a
-    layout has what it does not compile (a choice; a group of variable entries)."""
+    """`read(payload)` of a layout: the message of `payload`, by the generic reader when the
+    payload is not one it reads whole (too short, a count too large: the generic reader then says
+    where); None for a layout with what it does not compile (a choice; a group of variable
+    entries)."""
     items = cls.LAYOUT
     c = _Compiler(cls.BIG)
-    c.names["cls"] = cls
+    c.names["cls"], c.names["generic"] = cls, cls.read_generic
     pos = "0"
     fixed: list[Field] = []
     pairs: list[tuple[str, str]] = []
@@ -395,7 +396,7 @@ def compile_reader(cls: type[Message]) -> Any:
         statements: list[str] = []
         fmt, names, found = c.run(fixed, statements)
         size = struct.calcsize(fmt)
-        c.lines += [f"{pad}if len(payload) < {pos} + {size}: return None",
+        c.lines += [f"{pad}if len(payload) < {pos} + {size}: return generic(payload)",
                     f"{pad}{', '.join(names)}, = unpack_from({fmt!r}, payload, {pos})",
                     *(pad + line for line in statements)]
         pairs.extend(found)
@@ -431,7 +432,7 @@ def compile_reader(cls: type[Message]) -> Any:
             counted, end, entries = c.local(), c.local(), c.local()
             c.lines += [f"{pad}{counted} = {count}",
                         f"{pad}{end} = {pos} + {counted} * {size}",
-                        f"{pad}if {counted} < {item.min} or len(payload) < {end}: return None"]
+                        f"{pad}if {counted} < {item.min} or len(payload) < {end}: return generic(payload)"]
             names = [c.local() for _ in item.fields]
             values = [value for f, raw in zip(item.fields, names) for _, value in c.convert(f, raw)]
             c.lines.append(f"{pad}{entries} = [{entry}({', '.join(values)}) for {', '.join(names)}, "
@@ -512,8 +513,7 @@ class Message:
         read: Any = cls.__dict__.get("_read")
         if read is None:
             read = cls._read = compile_reader(cls) or False
-        message: Message | None = read(payload) if read else None
-        return cls.read_generic(payload) if message is None else message
+        return read(payload) if read else cls.read_generic(payload)
 
     @classmethod
     def read_generic(cls, payload: bytes) -> Message:
@@ -606,10 +606,18 @@ def decode(by_id: dict[tuple[int, int], tuple[type[Message], ...]], data: bytes)
             and size == HEADER_SIZE + CHECKSUM_SIZE + (data[4] | data[5] << 8)):
         body = bytes(data[2:size - CHECKSUM_SIZE])
         layouts = by_id.get((body[0], body[1]))
-        if layouts and _fletcher(body) == (data[size - 2], data[size - 1]):
+        n = len(body)
+        if n <= _CHUNK:   # _fletcher's one chunk, inline
+            low, high = adler32(body.translate(_LOW)), adler32(body.translate(_HIGH))
+            right = ((low & 0xFFFF) - 1 + 16 * ((high & 0xFFFF) - 1)) & 0xFF == data[size - 2] \
+                and ((low >> 16) - n + 16 * ((high >> 16) - n)) & 0xFF == data[size - 1]
+        else:
+            right = _fletcher(body) == (data[size - 2], data[size - 1])
+        if layouts and right:
             payload = body[4:]
-            if len(layouts) == 1:   # what fits, or else main_layout, is this one
-                return layouts[0].from_payload(payload)
+            if len(layouts) == 1:   # what fits, or else main_layout, is this one: from_payload's work
+                read = layouts[0].__dict__.get("_read")
+                return read(payload) if read else layouts[0].from_payload(payload)
             for cls in layouts:
                 if cls.fits(payload):
                     return cls.from_payload(payload)
