@@ -74,7 +74,8 @@
 //   spec/enums/mtk_periodic_mode.yaml, spec/enums/mtk_sbas_mode.yaml,
 //   spec/enums/mtk_standby_type.yaml, spec/enums/mtk_system_message.yaml,
 //   spec/enums/mwv_reference.yaml, spec/enums/mwv_speed_unit.yaml, spec/enums/nak_reason.yaml,
-//   spec/enums/nav_status.yaml, spec/enums/nortek_coordinate_system.yaml,
+//   spec/enums/nav_status.yaml, spec/enums/navman_log_enable.yaml,
+//   spec/enums/navman_log_trigger.yaml, spec/enums/nortek_coordinate_system.yaml,
 //   spec/enums/north_south.yaml, spec/enums/nrm_function.yaml, spec/enums/nrx_frequency.yaml,
 //   spec/enums/nsr_integrity.yaml, spec/enums/nsr_plausibility.yaml, spec/enums/nsr_stw_mode.yaml,
 //   spec/enums/osd_reference.yaml, spec/enums/phins_pitch_sense.yaml,
@@ -131,7 +132,7 @@
 //   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 //   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 //   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-//   (digest 2997a43f6f819fb0)
+//   (digest ebaa92a676e2d9bc)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -10692,6 +10693,99 @@ impl CodeEnum for NavStatus {
             Self::Caution => "caution",
             Self::Unsafe => "unsafe",
             Self::NotValid => "not_valid",
+        }
+    }
+}
+
+/// Navman log output enable: Whether a Jupiter receiver's ILOG command enables or disables the
+/// output of a sentence.
+#[cfg(feature = "navman_jupiter")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum NavmanLogEnable {
+    /// Enable the output.
+    Enable,
+    /// Disable the output.
+    Disable,
+}
+
+#[cfg(feature = "navman_jupiter")]
+impl CodeEnum for NavmanLogEnable {
+    const EXPECTED: &'static str = "navman_log_enable code (A V)";
+    const EXPECTED_CHARS: &'static str = "navman_log_enable codes (A V)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::Enable, Self::Disable];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"A" => Some(Self::Enable),
+            b"V" => Some(Self::Disable),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Enable => "A",
+            Self::Disable => "V",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Enable => "enable",
+            Self::Disable => "disable",
+        }
+    }
+}
+
+/// Navman log output trigger: When a Jupiter receiver sends a sentence its ILOG command enables.
+#[cfg(feature = "navman_jupiter")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum NavmanLogTrigger {
+    /// On time, at the interval from the offset.
+    OnTime,
+    /// On update of the data.
+    OnUpdate,
+}
+
+#[cfg(feature = "navman_jupiter")]
+impl CodeEnum for NavmanLogTrigger {
+    const EXPECTED: &'static str = "navman_log_trigger code (T U)";
+    const EXPECTED_CHARS: &'static str = "navman_log_trigger codes (T U)";
+    const CLASS: CodeClass = CodeClass::Closed;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::OnTime, Self::OnUpdate];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"T" => Some(Self::OnTime),
+            b"U" => Some(Self::OnUpdate),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::OnTime => "T",
+            Self::OnUpdate => "U",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::OnTime => "on_time",
+            Self::OnUpdate => "on_update",
         }
     }
 }
