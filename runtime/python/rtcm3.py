@@ -160,6 +160,13 @@ class Message(Record):
 
     NUMBERS: ClassVar[tuple[int, ...]]
     """The message numbers the layout describes."""
+    PROTOCOL: ClassVar[str] = "RTCM3"
+    """How `nmea show` names the protocol of its rows (`RTCM3 1005`)."""
+
+    @property
+    def ADDRESS(self) -> str:  # noqa: N802 (the name the binary messages' rows share)
+        """The message number, as `nmea show` names the row after the protocol."""
+        return str(getattr(self, "message_number"))
 
     @property
     def where(self) -> str:

@@ -69,6 +69,7 @@ def test_a_payload_decodes_as_its_frame() -> None:
     assert (message.station_id, message.ecef_x, message.ecef_x_raw, message.antenna_height) == \
         (2003, 1114104.5999, 11141045999, None)
     assert message.payload() == raw[3:-3]
+    assert f"{message.PROTOCOL} {message.ADDRESS}" == "RTCM3 1005"   # as nmea show names its row
 
 
 def test_errors_name_protocol_message_and_field() -> None:
