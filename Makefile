@@ -190,6 +190,26 @@ FIRMWARE_SUBSET := GGA,RMC,GSV,GSA,VTG
 build/c/subset/c/nmea.c: $(C_PAIR) $(STAMP)
 	$(PY) -m generator generate --quiet --only $(FIRMWARE_SUBSET) --out build/c/subset
 
+# Its small build (-DNMEA_SMALL, at -Os as a firmware builds it; renamed sml_ beside the default
+# build of the same subset, the reference) over the shared vectors' lines of the five sentences
+# (tests/c/small_lines.py), fed one byte at a time and pushed in chunks of every size
+# (tests/c/test_small.c); under the sanitizers in test-c-memory.
+build/c/subset-sml/c/sml.c: $(C_PAIR) $(STAMP)
+	$(PY) -m generator generate --quiet --only $(FIRMWARE_SUBSET) --prefix sml --out build/c/subset-sml
+
+build/c/small_lines.txt: $(C_PAIR) tests/c/small_lines.py tests/agreement/edge_cases.txt $(STAMP)
+	@mkdir -p $(@D)
+	$(PY) tests/c/small_lines.py > $@
+
+SMALL_TEST := -I build/c/subset/c -I build/c/subset-sml/c -DSML_SMALL build/c/subset-sml/c/sml.c tests/c/test_small.c
+build/c/test_small: build/c/subset/c/nmea.c build/c/subset-sml/c/sml.c tests/c/test_small.c
+	$(CC) $(CFLAGS) -c -o build/c/test_small_reference.o build/c/subset/c/nmea.c
+	$(CC) $(CFLAGS) -Os -o $@ build/c/test_small_reference.o $(SMALL_TEST)
+
+build/c/test_small_san: build/c/subset/c/nmea.c build/c/subset-sml/c/sml.c tests/c/test_small.c
+	$(CC) $(SANITIZE) -c -o build/c/test_small_reference_san.o build/c/subset/c/nmea.c
+	$(CC) $(SANITIZE) -Os -o $@ build/c/test_small_reference_san.o $(SMALL_TEST)
+
 # The AIS pair's tests, once more with the two slots of an assembly case.
 build/c/test_ais build/c/test_ais_2_slots: build/c/nmea-test.o generated/c/nmea_ais.c generated/c/nmea_ais.h \
         runtime/c/test_ais.c
@@ -218,7 +238,8 @@ build/c/test_ubx_san: build/c/nmea-san.o generated/c/nmea_ubx.c generated/c/nmea
 	$(CLANG) $(SANITIZE) -I generated/c -o $@ build/c/nmea-san.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
 
 test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o build/c/test_stream \
-        build/c/test_stream_smallest build/c/test_ais build/c/test_ais_2_slots build/c/test_ubx build/c/test_ubx_8
+        build/c/test_stream_smallest build/c/test_small build/c/small_lines.txt build/c/test_ais build/c/test_ais_2_slots \
+        build/c/test_ubx build/c/test_ubx_8
 	build/c/test_examples
 	build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS)
 	build/c/test_ubx_8 generated/vectors/ubx.jsonl $(UBX_LOGS)
@@ -227,6 +248,7 @@ test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o
 	build/c/test_examples_general
 	build/c/test_stream
 	build/c/test_stream_smallest
+	build/c/test_small build/c/small_lines.txt
 
 # The C test program and the C tool under the sanitizers over the examples, the edge cases and
 # every real log (encode, which reads each line on its own, over the distinct lines that decode and
@@ -235,8 +257,9 @@ test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o
 MEMORY_INPUTS := tests/agreement/edge_cases.txt $(sort $(wildcard ../shared/corpus/real/*/*.nmea))
 
 test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_examples $(TEST_BIN)/nmea-c $(STAMP) \
-        build/c/test_ubx_san build/c/test_ubx
+        build/c/test_ubx_san build/c/test_ubx build/c/test_small_san build/c/small_lines.txt
 	build/c/test_examples_san
+	build/c/test_small_san build/c/small_lines.txt
 	build/c/test_ubx_san generated/vectors/ubx.jsonl $(UBX_LOGS)
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS) > /dev/null
 	@cat $(MEMORY_INPUTS) > build/c/memory.nmea
@@ -326,7 +349,7 @@ bench: build
 # five-sentence firmware of issue 32 and the whole spec, on x86-64 and, when arm-none-eabi-gcc is
 # installed (apt-get install gcc-arm-none-eabi libnewlib-arm-none-eabi), Cortex-M4 (tools/footprint.py).
 footprint: $(STAMP)
-	$(PY) tools/footprint.py
+	$(PY) tools/footprint.py --symbols 30
 
 # --- fuzzing ---------------------------------------------------------------------------------
 # `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds (C, Rust, the C and Rust

@@ -12,7 +12,10 @@ generated/c) it compiles nmea.c at -Os with -DNMEA_NO_JSON, with and without -DN
   -ffunction-sections -fdata-sections -Wl,--gc-sections (newlib-nano on Cortex-M4);
 - RAM: sizeof(nmea_framer) and sizeof(nmea_sentence) as the target's compiler lays them out;
 - the options a firmware sets for flash and RAM (-DNMEA_NO_PROBLEMS, -DNMEA_TERSE_ERRORS,
-  -DNMEA_NO_TAG_BLOCKS, -DNMEA_DIGITS_32, -DNMEA_NO_BINARY_FRAMES), each measured and all together;
+  -DNMEA_NO_TAG_BLOCKS, -DNMEA_DIGITS_32, -DNMEA_NO_BINARY_FRAMES), each measured, all together and
+  as the small profile -DNMEA_SMALL (all of them at once);
+- with --symbols N: the N largest symbols the small profile's firmware links (nm --size-sort), on
+  each target;
 - stack: the worst case of each entry point over the call graph that gcc writes with
   -fcallgraph-info=su (each function's frame from -fstack-usage), without the C library's
   leaf functions (memcpy, the 64-bit division helpers ...), which are named instead. A recursive
@@ -38,7 +41,8 @@ FAST = ["-DNMEA_NO_JSON"]
 OPTIONS = [["-DNMEA_NO_PROBLEMS"], ["-DNMEA_TERSE_ERRORS"], ["-DNMEA_NO_TAG_BLOCKS"], ["-DNMEA_DIGITS_32"],
            ["-DNMEA_NO_BINARY_FRAMES"],
            ["-DNMEA_NO_PROBLEMS", "-DNMEA_TERSE_ERRORS", "-DNMEA_NO_TAG_BLOCKS", "-DNMEA_DIGITS_32",
-            "-DNMEA_NO_BINARY_FRAMES"]]
+            "-DNMEA_NO_BINARY_FRAMES"],
+           ["-DNMEA_SMALL"]]
 SECTIONS = ["-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections"]
 CROSS_PACKAGES = "apt-get install gcc-arm-none-eabi libnewlib-arm-none-eabi"
 
@@ -239,6 +243,8 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--only", default=SUBSET, help=f"the subset (default {SUBSET})")
     parser.add_argument("--subset-only", action="store_true", help="leave out the full spec's row")
+    parser.add_argument("--symbols", type=int, default=0, metavar="N",
+                        help="the N largest symbols of the small profile's firmware (-DNMEA_SMALL)")
     args = parser.parse_args()
     targets = []
     for target in TARGETS:
@@ -290,7 +296,27 @@ def main() -> int:
                 library |= stack.library | fast[name].library
                 print(f"| {name} | {shown(stack)} | {shown(fast[name])} | {path_of(stack)} |")
             print(f"\nC library functions called (not counted): {', '.join(sorted(library))}")
+        for target, source in details:
+            if args.symbols:
+                print(f"\nThe largest symbols of the firmware on {target.name}, {builds[0][0]}, -DNMEA_SMALL "
+                      "(bytes; the C library's and the program's own included):\n")
+                for size, kind, name in largest_symbols(target, source, work)[:args.symbols]:
+                    print(f"    {size:6,} {kind} {name}")
     return 0
+
+
+def largest_symbols(target: Target, source: Path, work: Path) -> list[tuple[int, str, str]]:
+    """The symbols of the small profile's firmware (-DNMEA_SMALL), largest first."""
+    (work / "firmware.c").write_text(FIRMWARE, encoding="utf-8")
+    exe = work / "firmware.elf"
+    run(*target.cc, "-std=c99", "-Os", *target.cflags, *SMALL, "-DNMEA_SMALL", "-I", str(source), *SECTIONS,
+        *target.ldflags, "-o", exe, work / "firmware.c", source / "nmea.c")
+    symbols = []
+    for line in run(f"{target.tools_prefix}nm", "--size-sort", "-S", exe).splitlines():
+        parts = line.split()
+        if len(parts) == 4:
+            symbols.append((int(parts[1], 16), parts[2], parts[3]))
+    return sorted(symbols, reverse=True)
 
 
 if __name__ == "__main__":

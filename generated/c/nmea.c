@@ -3155,7 +3155,7 @@ static int enum_find(const nmea_enum_def *def, const char *p, size_t n)
 }
 
 /* The code whose text is `t` in upper case (the words of a text command). */
-static int enum_find_upper(const nmea_enum_def *def, nmea_text t)
+NMEA_INTERNAL int enum_find_upper(const nmea_enum_def *def, nmea_text t)
 {
     int i;
     for (i = 0; i < def->count; i++)
@@ -3191,15 +3191,30 @@ const char *nmea_enum_id(const nmea_enum_def *def, const nmea_enum *e)
 /* Reading the fields of a layout: a cursor over the comma-separated fields, which knows the
    address and the field being read for the errors. */
 
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define NMEA_READER_END_OF_WIRE
+#endif
+
+/* The fields a wire may read as empty (or keep outside their range): strict reading (a build
+   without problems, -DNMEA_NO_PROBLEMS) blanks none, and its wire, on the stack under the whole
+   parse, keeps room for one only. */
+#ifdef NMEA_NO_PROBLEMS
+#define WIRE_BLANKS 1
+#else
+#define WIRE_BLANKS NMEA_MAX_PROBLEMS
+#endif
+
 /* The fields of a line (or of decode's JSON) for a layout to read, and the address its errors
    name: `address` followed by `suffix` (a standard sentence: the talker and the sentence id). */
 typedef struct {
     nmea_text address;
     const char *suffix;
     nmea_text fields;
+#ifndef NMEA_NO_COMMANDS
     nmea_text line;               /* a text command: the command as received */
-    uint16_t blank[NMEA_MAX_PROBLEMS]; /* the wire fields at fault: read as empty (lenient parsing), */
-    uint8_t blanks;                    /* or with RANGE_KEPT, numbers read without their range */
+#endif
+    uint16_t blank[WIRE_BLANKS];   /* the wire fields at fault: read as empty (lenient parsing), */
+    uint8_t blanks;               /* or with RANGE_KEPT, numbers read without their range */
     char sep;                     /* between fields: ',' or ' ' (the words of a text command) */
     bool ignore_case;             /* a text command: keywords and enum codes match ignoring case */
     uint8_t checksum;             /* nmea_checksum_style (small types: the wire is on the stack all
@@ -3218,14 +3233,17 @@ typedef struct {
    within a few hundred bytes of stack on a microcontroller. */
 typedef struct {
     const char *next;
+#ifndef NMEA_READER_END_OF_WIRE
     const char *end;
+#endif
     const nmea_wire *wire;
-    const char *sentence;
     const char *group;
     uint16_t index; /* 1-based wire index of the field read last */
     uint16_t entry;
-    const char *name;     /* the field being read: its id (NULL in a terse build), */
+#ifndef NMEA_TERSE_ERRORS /* (a terse build's errors name no field: a smaller frame of read_with) */
+    const char *name;     /* the field being read: its id, */
     const char *expected; /* and what it takes */
+#endif
     char sep;
     bool ignore_case;
     bool any_range;   /* numbers are not held to their range (a parsed sentence's entries read again) */
@@ -3233,13 +3251,26 @@ typedef struct {
     nmea_error *err;
 } nmea_reader;
 
-static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sentence, nmea_error *err)
+/* The end of the fields the reader reads. At -Os (a firmware's build) it is the wire's, read there
+   each time: the reader is on the stack all the while a layout reads the line (read_with), and a
+   member less keeps that frame smaller. */
+static inline const char *reader_end(const nmea_reader *r)
+{
+#ifdef NMEA_READER_END_OF_WIRE
+    return r->wire->fields.ptr + r->wire->fields.len;
+#else
+    return r->end;
+#endif
+}
+
+static void reader_start(nmea_reader *r, const nmea_wire *wire, nmea_error *err)
 {
     r->next = wire->fields.ptr;
+#ifndef NMEA_READER_END_OF_WIRE
     r->end = wire->fields.ptr + wire->fields.len;
+#endif
     r->index = 0;
     r->wire = wire;
-    r->sentence = sentence;
     r->group = NULL;
     r->entry = 0;
     r->sep = wire->sep;
@@ -3277,7 +3308,7 @@ NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
 
 static inline nmea_text next_field(nmea_reader *r)
 {
-    const char *p = r->next, *q = p, *end = r->end; /* (locals: the bytes read could alias r) */
+    const char *p = r->next, *q = p, *end = reader_end(r); /* (locals: the bytes read could alias r) */
     char sep = r->sep;
     nmea_text t;
     r->index++;
@@ -3291,12 +3322,13 @@ static inline nmea_text next_field(nmea_reader *r)
 }
 
 /* A field count refused (too_few_fields; too_many sets its own kind after): four arguments, none
-   passed on the stack, so that read_with's frame has no room for one. */
+   passed on the stack, so that read_with's frame has no room for one. Its sentence (the layout's
+   id, str[0]) is the layout reader's to set (read_start): the reader does not keep it, one member
+   less in read_with's frame. */
 static bool count_error(nmea_reader *r, const char *pattern, size_t n, size_t m)
 {
     fail(r->err, NMEA_ERR_TOO_FEW_FIELDS, pattern);
     set_address(r->err, r->wire->address, r->wire->suffix);
-    r->err->str[0] = r->sentence;
     r->err->num[0] = n;
     r->err->num[1] = m;
     return false;
@@ -3328,7 +3360,9 @@ static void wire_of(nmea_wire *wire, const nmea_frame *f, const char *suffix, co
     wire->sep = line ? ' ' : ',';
     wire->ignore_case = line != NULL;
     wire->checksum = (uint8_t)f->checksum;
+#ifndef NMEA_NO_COMMANDS
     wire->line = line ? text_span(line, f->fields.ptr + f->fields.len) : nmea_text_of(NULL);
+#endif
     wire->blanks = 0;
 }
 
@@ -3393,8 +3427,10 @@ NMEA_FRAME bool bad_field(nmea_reader *r, unsigned index, nmea_text text)
     err->field = index;
     err->group = r->group;
     err->entry = r->entry;
+#ifndef NMEA_TERSE_ERRORS
     err->name = r->name;
     err->str[0] = r->expected;
+#endif
     return false;
 }
 
@@ -3420,7 +3456,7 @@ NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const nmea_range *r
    in a second reading) is left to read_number: returns false without having read it. */
 NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
 {
-    const char *p = r->next, *end = r->end, *point = NULL;
+    const char *p = r->next, *end = reader_end(r), *point = NULL;
     uint64_t digits = 0; /* unsigned: a run too long for it is refused below, not undefined */
     unsigned digit;      /* unsigned: a byte below '0' wraps to a large value */
     size_t whole, count;
@@ -3513,7 +3549,11 @@ static bool read_coordinate(nmea_reader *r, nmea_coordinate *out, const char *he
     }
     if (hemisphere.len != 1 || (hemisphere.ptr[0] != hemispheres[0] && hemisphere.ptr[0] != hemispheres[1])) {
         out->present = false;
+#ifndef NMEA_TERSE_ERRORS
         r->expected = hemisphere_expected;
+#else
+        (void)hemisphere_expected;
+#endif
         return bad_field(r, r->index, hemisphere);
     }
     out->hemisphere = hemisphere.ptr[0];
@@ -3573,7 +3613,11 @@ NMEA_FRAME bool read_enum(nmea_reader *r, nmea_enum *out, const nmea_enum_def *d
     size_t i;
     if (!t.len)
         return true;
+#ifdef NMEA_NO_COMMANDS
+    out->value = enum_find(def, t.ptr, t.len);
+#else
     out->value = r->ignore_case ? enum_find_upper(def, t) : enum_find(def, t.ptr, t.len);
+#endif
     if (out->value == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr, t.len, def->min_len, def->max_len))
         return bad_field(r, r->index, t);
     for (i = 0; i < t.len; i++) /* t.len <= max_len <= NMEA_CODE_MAX; a code is a character or two */
@@ -5602,7 +5646,7 @@ typedef struct {
 #define NO_ARG 0xFFFFu
 
 /* A field's id, what it takes and what its hemisphere takes (NULL in a terse build). */
-static const char *field_id(const layout_field *f)
+NMEA_INTERNAL const char *field_id(const layout_field *f)
 {
 #ifdef NMEA_TERSE_ERRORS
     (void)f;
@@ -5612,7 +5656,7 @@ static const char *field_id(const layout_field *f)
 #endif
 }
 
-static const char *field_expected(const layout_field *f)
+NMEA_INTERNAL const char *field_expected(const layout_field *f)
 {
 #ifdef NMEA_TERSE_ERRORS
     (void)f;
@@ -5754,8 +5798,10 @@ static const nmea_entries *entries_in(const layout_group *g, const void *s)
    arguments, so that at -Os these calls are jumps (no frame of read_field under them). */
 static bool read_field(nmea_reader *r, const layout_field *f, void *out)
 {
+#ifndef NMEA_TERSE_ERRORS
     r->name = field_id(f);
     r->expected = field_expected(f);
+#endif
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
         return read_keyword(r, word_of(f));
@@ -5787,7 +5833,7 @@ static bool read_field(nmea_reader *r, const layout_field *f, void *out)
     return false;
 }
 
-static bool read_fields(nmea_reader *r, const layout_field *f, size_t n, void *entry)
+NMEA_LEAF bool read_fields(nmea_reader *r, const layout_field *f, size_t n, void *entry)
 {
     size_t i;
     for (i = 0; i < n; i++)
@@ -5874,8 +5920,8 @@ static void reread_field(entry_reader *c, const layout_field *f, void *out)
         return;
     if (size)
         memset(out, 0, size);
-    c->r.next = fields_end(next, c->r.end, c->r.sep, field_width(f));
-    c->r.next += c->r.next < c->r.end;
+    c->r.next = fields_end(next, reader_end(&c->r), c->r.sep, field_width(f));
+    c->r.next += c->r.next < reader_end(&c->r);
     c->r.index = index + (unsigned)field_width(f);
 }
 
@@ -5907,7 +5953,7 @@ static bool read_group_count(nmea_reader *r, const layout *l, size_t count, size
    its nmea_entries in `s`, a struct of the layout. Each value is read into that nmea_entries,
    which is only filled afterwards: no value on the stack (a keyword, the only field of a group
    that stores nothing, reads into nothing). */
-static bool read_entries(nmea_reader *r, const layout *l, void *s, size_t repeats)
+NMEA_LEAF bool read_entries(nmea_reader *r, const layout *l, void *s, size_t repeats)
 {
     const layout_group *g = l->group;
     const char *start = r->next;
@@ -5927,7 +5973,7 @@ static bool read_entries(nmea_reader *r, const layout *l, void *s, size_t repeat
         const nmea_wire *wire = r->wire;
         nmea_entries *e = (nmea_entries *)value;
         memset(e, 0, sizeof *e);
-        e->wire = text_span(start, repeats ? fields_end(start, r->end, r->sep, repeats * g->width) : start);
+        e->wire = text_span(start, repeats ? fields_end(start, reader_end(r), r->sep, repeats * g->width) : start);
         for (j = 0; j < wire->blanks; j++)
             if (wire->blank[j] > first && wire->blank[j] <= r->index)
                 e->blank[e->blanks++] = (uint16_t)(wire->blank[j] - first);
@@ -5941,36 +5987,48 @@ static bool read_entries(nmea_reader *r, const layout *l, void *s, size_t repeat
 /* The start of read_with: the wire's field count checked against layout `l`, `s` cleared and
    given what the wire holds besides the fields; `counts` the entries of the group and the
    optional fields on the wire. */
-static bool read_start(nmea_reader *r, const layout *l, void *s, size_t *counts)
+NMEA_LEAF bool read_start(nmea_reader *r, const layout *l, void *s, uint16_t *counts)
 {
     const nmea_wire *wire = r->wire;
-    size_t optional;
+    size_t optional, repeats = 0;
 
-    counts[0] = 0;
-    if (l->group ? !read_group_count(r, l, wire->count, &counts[0], &optional)
-                 : !read_count(r, wire->count, l->fixed, l->max_fields, &optional))
+    if (l->group ? !read_group_count(r, l, wire->count, &repeats, &optional)
+                 : !read_count(r, wire->count, l->fixed, l->max_fields, &optional)) {
+        r->err->str[0] = l->sentence; /* (see count_error) */
         return false;
+    }
+    counts[0] = (uint16_t)repeats; /* (at most a group's `max`) */
     clear_layout(s, l->size);
     if (l->head != NO_MEMBER)
+#ifdef NMEA_NO_COMMANDS
+        *(nmea_text *)member_at(s, l->head) = wire->address;
+#else
         *(nmea_text *)member_at(s, l->head) = l->kind == LAYOUT_TEXT ? wire->line : wire->address;
+#endif
     if (l->checksum != NO_MEMBER)
         *(nmea_checksum_style *)member_at(s, l->checksum) = (nmea_checksum_style)wire->checksum;
-    counts[1] = optional_present(l, optional);
+    counts[1] = (uint16_t)optional_present(l, optional);
     if (l->optional_count != NO_MEMBER)
         *(uint8_t *)member_at(s, l->optional_count) = (uint8_t)counts[1];
     return true;
 }
 
-/* Reads the wire into `s`, a struct of layout `l`. */
-NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
+/* Reads the wire into `s`, a struct of layout `l`: read_with, and at -Os nmea_parse's reading
+   of a layout, inlined there (read_layout) so that the descent saves the registers once. */
+NMEA_LEAF bool read_layout_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
 {
     nmea_reader r;
-    size_t counts[2]; /* the group's entries, the optional fields present */
+    uint16_t counts[2]; /* the group's entries, the optional fields present (small: read_with's frame) */
 
-    reader_start(&r, wire, l->sentence, err);
+    reader_start(&r, wire, err);
     return read_start(&r, l, s, counts) && read_fields(&r, l->fields, l->before, s) &&
            (!l->group || read_entries(&r, l, s, counts[0])) &&
            read_fields(&r, l->fields + l->before, l->after + counts[1], s);
+}
+
+NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
+{
+    return read_layout_with(l, s, wire, err);
 }
 
 /* Starts `c` at entry `i` of the group of layout `l` whose entries `e` holds on the wire; false
@@ -5993,9 +6051,9 @@ static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries
     if (p == NULL || (p == end && i > 0))
         return false;
     w->fields = text_span(p, end);
-    w->blanks = e->blanks < NMEA_MAX_PROBLEMS ? e->blanks : NMEA_MAX_PROBLEMS;
+    w->blanks = e->blanks < WIRE_BLANKS ? e->blanks : WIRE_BLANKS;
     memcpy(w->blank, e->blank, w->blanks * sizeof w->blank[0]);
-    reader_start(&c->r, w, l->sentence, &c->err);
+    reader_start(&c->r, w, &c->err);
     c->r.any_range = true; /* parsing has held each number to its range, or kept it outside */
     c->r.index = (unsigned)(i * l->group->width); /* the blanks count from the first entry */
     return true;
@@ -6251,7 +6309,7 @@ static void json_entries(nmea_writer *w, const layout *l, const void *s, bool va
     json_open(w, g->id, '[');
     for (i = 0; i < n; i++) {
         if (!e || !e->items)
-            on_wire = i == 0 ? e && entry_reader_at(&c, l, e, 0) : on_wire && c.r.next < c.r.end;
+            on_wire = i == 0 ? e && entry_reader_at(&c, l, e, 0) : on_wire && c.r.next < reader_end(&c.r);
         if (!g->single)
             json_open(w, NULL, '{');
         for (j = 0; j < g->field_count; j++) {
@@ -6355,8 +6413,13 @@ static fast_result fast_read_layout(nmea_sentence *out, nmea_sentence_id id, con
 
 /* nmea_parse_ex's fast path, which leaves what it is not sure of to its general path. */
 NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len);
-static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
-                          nmea_error *err);
+#if defined(NMEA_NO_TAG_BLOCKS) && defined(NMEA_NO_FAST_PATH) && defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define PARSE_GENERAL static inline __attribute__((always_inline)) /* in nmea_parse, see there */
+#else
+#define PARSE_GENERAL static
+#endif
+PARSE_GENERAL bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                                 nmea_error *err);
 
 /* nmea_serialize's fast path: the length, or 0 to leave the sentence to the general writer. */
 NMEA_INTERNAL size_t fast_write_sentence(const nmea_sentence *s, char *buf, size_t cap);
@@ -6523,7 +6586,7 @@ static bool reads_first(const layout *l, const nmea_wire *wire)
         return wire->count == 0;
     if ((!l->before && l->group) || wire->count < field_width(&l->fields[0]))
         return true;
-    reader_start(&r, wire, l->sentence, &err);
+    reader_start(&r, wire, &err);
     r.any_range = true;
     return read_field(&r, &l->fields[0], &value);
 }
@@ -6597,17 +6660,27 @@ NMEA_LEAF bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, co
        error copied per candidate would triple this frame on the deepest path of nmea_parse.
        Each is its index times two plus whether it was a bad field (-1: none yet), so that this
        loop's state takes few registers where it is inlined. */
-    int chosen = -1, fallback = -1, last = -1, i;
+    int chosen = -1, fallback = -1, last = -1, i, n = (int)layouts->count;
     const char *refused = NULL; /* the sentence of the main layout tried last, when it refused */
     unsigned refused_field = 0; /* and the field it refused */
+    bool again = false;         /* reading the layout whose error to report again */
 
-    for (i = 0; i < (int)layouts->count; i++) {
-        const layout *l = LAYOUTS[layouts->ids[i]];
+    for (i = 0;; i++) {
+        const layout *l;
         int kept;
-        if (l->variant && refused && words_equal(refused, l->sentence) && same_as_main(l, refused_field))
+        if (i == n) { /* none reads the wire */
+            i = (chosen >= 0 ? chosen : fallback) / 2;
+            if (i == last) /* reading is deterministic: the same error again */
+                return false;
+            again = true;
+        }
+        l = LAYOUTS[layouts->ids[i]];
+        if (!again && l->variant && refused && words_equal(refused, l->sentence) && same_as_main(l, refused_field))
             continue;
         if (read_layout(out, layouts->ids[i], wire, err))
-            return true;
+            return true; /* (never when again) */
+        if (again)
+            return false;
         last = i;
         kept = 2 * i + (err->kind == NMEA_ERR_BAD_FIELD);
         if (!l->variant) {
@@ -6618,18 +6691,20 @@ NMEA_LEAF bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, co
             keep_error(&chosen, kept);
         keep_error(&fallback, kept);
     }
-    i = (chosen >= 0 ? chosen : fallback) / 2;
-    if (i != last) /* reading is deterministic: the same error again */
-        read_layout(out, layouts->ids[i], wire, err);
-    return false;
 }
 
 /* first_of_many, and for the usual single layout just that layout's reader (inlined here: no
-   bookkeeping of errors to compare). */
-static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
+   bookkeeping of errors to compare; at -Os first_of_many reads a single layout too, so that the
+   reader is inlined once). */
+NMEA_LEAF bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
 {
-    if (NMEA_MAX_LAYOUTS == 1 || layouts->count == 1) /* (a spec of one layout an address has no first_of_many) */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+    if (NMEA_MAX_LAYOUTS == 1) /* (a spec of one layout an address has no first_of_many) */
         return read_layout(out, layouts->ids[0], wire, err);
+#else
+    if (NMEA_MAX_LAYOUTS == 1 || layouts->count == 1)
+        return read_layout(out, layouts->ids[0], wire, err);
+#endif
     return first_of_many(out, layouts, wire, err);
 }
 
@@ -6643,7 +6718,7 @@ NMEA_OUTLINE bool refit(nmea_wire *wire, const nmea_options *options, const nmea
     nmea_problems *keep = options->problems;
     nmea_problem_kind kind;
     /* a bad field's text is the field's text on the wire, empty once it has been left empty */
-    if (err->kind != NMEA_ERR_BAD_FIELD || !err->field || !err->text.len || *count >= NMEA_MAX_PROBLEMS)
+    if (err->kind != NMEA_ERR_BAD_FIELD || !err->field || !err->text.len || *count >= WIRE_BLANKS)
         return false;
     if (err->out_of_range && !options->strict) {
         kind = NMEA_PROBLEM_OUT_OF_RANGE;
@@ -6664,7 +6739,7 @@ NMEA_OUTLINE bool refit(nmea_wire *wire, const nmea_options *options, const nmea
    one at a time (refit) until a layout reads it, unless the options are strict and not lenient
    (then nothing is kept; nor in a build without problems). The sentence's problems are then
    kept in options->problems (NULL: not kept). */
-static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
+NMEA_LEAF bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
                        nmea_error *err)
 {
 #ifdef NMEA_NO_PROBLEMS
@@ -6699,7 +6774,13 @@ static void write_sentence(nmea_writer *w, const nmea_sentence *s)
 
 bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *err)
 {
+#if defined(NMEA_NO_TAG_BLOCKS) && defined(NMEA_NO_FAST_PATH)
+    /* A firmware's build: the general path inlined here (PARSE_GENERAL), not below nmea_parse_ex,
+       whose fifth argument would take a frame of its own on the stack. */
+    return parse_general(out, line, without_line_ending(line, len), NULL, err);
+#else
     return nmea_parse_ex(out, line, len, NULL, err);
+#endif
 }
 
 #ifndef NMEA_NO_TAG_BLOCKS
@@ -7101,7 +7182,11 @@ static bool command_line(nmea_wire *wire, nmea_text word, nmea_scratch *s, nmea_
         for (i = 0; i < wire->fields.len; i++)
             s->buf[s->len++] = wire->fields.ptr[i] == ',' ? ' ' : wire->fields.ptr[i];
     }
+#ifndef NMEA_NO_COMMANDS
     wire->line = text_span(s->buf + start, s->buf + s->len);
+#else
+    (void)start;
+#endif
     return true;
 }
 
@@ -7360,7 +7445,9 @@ static bool sentence_from_json(nmea_sentence *out, nmea_json root, nmea_scratch 
     wire.sep = ',';
     wire.ignore_case = false;
     wire.checksum = checksum;
+#ifndef NMEA_NO_COMMANDS
     wire.line = nmea_text_of(NULL);
+#endif
     wire.blanks = 0;
     if (json_member(root, "problems", &problems)) {
         wire.ignore_case = info->command != NULL;
@@ -59866,14 +59953,14 @@ nmea_reply nmea_reply_to(const nmea_sentence *s, nmea_sentence_id command)
 /* What route gives for a line that is a generic sentence. */
 static const nmea_layouts GENERIC_LINE;
 
-/* The layouts that may read the line in wire->line, its wire then framed in `*wire`: NULL when
+/* The layouts that may read the line in wire->fields, its wire then framed in `*wire`: NULL when
    the line is refused (`err`), GENERIC_LINE when it is a generic sentence (in `out`). Out of line
    and with four arguments: the frame is on the stack only while the line is framed, not under
    the layouts' reading. */
 NMEA_OUTLINE const nmea_layouts *route(nmea_sentence *out, nmea_wire *wire, bool require_checksum, nmea_error *err)
 {
-    const char *line = wire->line.ptr;
-    size_t len = wire->line.len;
+    const char *line = wire->fields.ptr;
+    size_t len = wire->fields.len;
     nmea_frame f;
     const nmea_layouts *layouts = NULL;
 
@@ -59923,8 +60010,8 @@ NMEA_OUTLINE const nmea_layouts *route(nmea_sentence *out, nmea_wire *wire, bool
 
 /* nmea_parse_ex's general path: every line, every option, every error. A text command is read
    strictly, whatever the options. */
-static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
-                          nmea_error *err)
+PARSE_GENERAL bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                                 nmea_error *err)
 {
     static const nmea_options defaults = {false, false, NULL, false};
     static const nmea_options strict = {false, false, NULL, true};
@@ -59934,8 +60021,8 @@ static bool parse_general(nmea_sentence *out, const char *line, size_t len, cons
     if (!options)
         options = &defaults;
     out->problems = NULL;
-    wire.line.ptr = line;
-    wire.line.len = len;
+    wire.fields.ptr = line; /* (route's input: no member of its own, the wire is on the stack) */
+    wire.fields.len = len;
     layouts = route(out, &wire, options->require_checksum, err);
     if (!layouts || layouts == &GENERIC_LINE)
         return layouts != NULL;

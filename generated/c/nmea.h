@@ -35,9 +35,38 @@
  * -DNMEA_NO_PROBLEMS (strict reading only) and -DNMEA_NO_TAG_BLOCKS (no TAG blocks: its receiver
  * sends none), for RAM -DNMEA_DIGITS_32 (numbers of at most 9 digits) and NMEA_MAX_LINE to the
  * longest line it expects; it feeds the framer byte by byte with nmea_framer_feed.
+ * -DNMEA_SMALL sets all of these at once.
  */
 #ifndef NMEA_H
 #define NMEA_H
+
+/** -DNMEA_SMALL: the build of a firmware short of flash and stack (issue 32), every option above
+    at once: no fast path, no JSON, terse errors (kind, sentence and wire field), strict reading
+    (no problems kept), no TAG blocks, numbers of at most 9 digits and no binary frames in the
+    framer. A line it accepts gives the same nmea_sentence as the default build. */
+#ifdef NMEA_SMALL
+#ifndef NMEA_NO_FAST_PATH
+#define NMEA_NO_FAST_PATH
+#endif
+#ifndef NMEA_NO_JSON
+#define NMEA_NO_JSON
+#endif
+#ifndef NMEA_TERSE_ERRORS
+#define NMEA_TERSE_ERRORS
+#endif
+#ifndef NMEA_NO_PROBLEMS
+#define NMEA_NO_PROBLEMS
+#endif
+#ifndef NMEA_NO_TAG_BLOCKS
+#define NMEA_NO_TAG_BLOCKS
+#endif
+#ifndef NMEA_DIGITS_32
+#define NMEA_DIGITS_32
+#endif
+#ifndef NMEA_NO_BINARY_FRAMES
+#define NMEA_NO_BINARY_FRAMES
+#endif
+#endif
 
 #include <stdbool.h>
 #include <stddef.h>

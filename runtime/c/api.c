@@ -4,7 +4,13 @@
 
 bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *err)
 {
+#if defined(NMEA_NO_TAG_BLOCKS) && defined(NMEA_NO_FAST_PATH)
+    /* A firmware's build: the general path inlined here (PARSE_GENERAL), not below nmea_parse_ex,
+       whose fifth argument would take a frame of its own on the stack. */
+    return parse_general(out, line, without_line_ending(line, len), NULL, err);
+#else
     return nmea_parse_ex(out, line, len, NULL, err);
+#endif
 }
 
 #ifndef NMEA_NO_TAG_BLOCKS

@@ -159,7 +159,7 @@ static bool reads_first(const layout *l, const nmea_wire *wire)
         return wire->count == 0;
     if ((!l->before && l->group) || wire->count < field_width(&l->fields[0]))
         return true;
-    reader_start(&r, wire, l->sentence, &err);
+    reader_start(&r, wire, &err);
     r.any_range = true;
     return read_field(&r, &l->fields[0], &value);
 }
@@ -233,17 +233,27 @@ NMEA_LEAF bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, co
        error copied per candidate would triple this frame on the deepest path of nmea_parse.
        Each is its index times two plus whether it was a bad field (-1: none yet), so that this
        loop's state takes few registers where it is inlined. */
-    int chosen = -1, fallback = -1, last = -1, i;
+    int chosen = -1, fallback = -1, last = -1, i, n = (int)layouts->count;
     const char *refused = NULL; /* the sentence of the main layout tried last, when it refused */
     unsigned refused_field = 0; /* and the field it refused */
+    bool again = false;         /* reading the layout whose error to report again */
 
-    for (i = 0; i < (int)layouts->count; i++) {
-        const layout *l = LAYOUTS[layouts->ids[i]];
+    for (i = 0;; i++) {
+        const layout *l;
         int kept;
-        if (l->variant && refused && words_equal(refused, l->sentence) && same_as_main(l, refused_field))
+        if (i == n) { /* none reads the wire */
+            i = (chosen >= 0 ? chosen : fallback) / 2;
+            if (i == last) /* reading is deterministic: the same error again */
+                return false;
+            again = true;
+        }
+        l = LAYOUTS[layouts->ids[i]];
+        if (!again && l->variant && refused && words_equal(refused, l->sentence) && same_as_main(l, refused_field))
             continue;
         if (read_layout(out, layouts->ids[i], wire, err))
-            return true;
+            return true; /* (never when again) */
+        if (again)
+            return false;
         last = i;
         kept = 2 * i + (err->kind == NMEA_ERR_BAD_FIELD);
         if (!l->variant) {
@@ -254,18 +264,20 @@ NMEA_LEAF bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, co
             keep_error(&chosen, kept);
         keep_error(&fallback, kept);
     }
-    i = (chosen >= 0 ? chosen : fallback) / 2;
-    if (i != last) /* reading is deterministic: the same error again */
-        read_layout(out, layouts->ids[i], wire, err);
-    return false;
 }
 
 /* first_of_many, and for the usual single layout just that layout's reader (inlined here: no
-   bookkeeping of errors to compare). */
-static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
+   bookkeeping of errors to compare; at -Os first_of_many reads a single layout too, so that the
+   reader is inlined once). */
+NMEA_LEAF bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
 {
-    if (NMEA_MAX_LAYOUTS == 1 || layouts->count == 1) /* (a spec of one layout an address has no first_of_many) */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+    if (NMEA_MAX_LAYOUTS == 1) /* (a spec of one layout an address has no first_of_many) */
         return read_layout(out, layouts->ids[0], wire, err);
+#else
+    if (NMEA_MAX_LAYOUTS == 1 || layouts->count == 1)
+        return read_layout(out, layouts->ids[0], wire, err);
+#endif
     return first_of_many(out, layouts, wire, err);
 }
 
@@ -279,7 +291,7 @@ NMEA_OUTLINE bool refit(nmea_wire *wire, const nmea_options *options, const nmea
     nmea_problems *keep = options->problems;
     nmea_problem_kind kind;
     /* a bad field's text is the field's text on the wire, empty once it has been left empty */
-    if (err->kind != NMEA_ERR_BAD_FIELD || !err->field || !err->text.len || *count >= NMEA_MAX_PROBLEMS)
+    if (err->kind != NMEA_ERR_BAD_FIELD || !err->field || !err->text.len || *count >= WIRE_BLANKS)
         return false;
     if (err->out_of_range && !options->strict) {
         kind = NMEA_PROBLEM_OUT_OF_RANGE;
@@ -300,7 +312,7 @@ NMEA_OUTLINE bool refit(nmea_wire *wire, const nmea_options *options, const nmea
    one at a time (refit) until a layout reads it, unless the options are strict and not lenient
    (then nothing is kept; nor in a build without problems). The sentence's problems are then
    kept in options->problems (NULL: not kept). */
-static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
+NMEA_LEAF bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
                        nmea_error *err)
 {
 #ifdef NMEA_NO_PROBLEMS

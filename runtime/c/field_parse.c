@@ -276,7 +276,7 @@ static int enum_find(const nmea_enum_def *def, const char *p, size_t n)
 }
 
 /* The code whose text is `t` in upper case (the words of a text command). */
-static int enum_find_upper(const nmea_enum_def *def, nmea_text t)
+NMEA_INTERNAL int enum_find_upper(const nmea_enum_def *def, nmea_text t)
 {
     int i;
     for (i = 0; i < def->count; i++)

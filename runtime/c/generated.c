@@ -16,8 +16,13 @@ static fast_result fast_read_layout(nmea_sentence *out, nmea_sentence_id id, con
 
 /* nmea_parse_ex's fast path, which leaves what it is not sure of to its general path. */
 NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len);
-static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
-                          nmea_error *err);
+#if defined(NMEA_NO_TAG_BLOCKS) && defined(NMEA_NO_FAST_PATH) && defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define PARSE_GENERAL static inline __attribute__((always_inline)) /* in nmea_parse, see there */
+#else
+#define PARSE_GENERAL static
+#endif
+PARSE_GENERAL bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                                 nmea_error *err);
 
 /* nmea_serialize's fast path: the length, or 0 to leave the sentence to the general writer. */
 NMEA_INTERNAL size_t fast_write_sentence(const nmea_sentence *s, char *buf, size_t cap);

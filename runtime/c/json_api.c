@@ -144,7 +144,11 @@ static bool command_line(nmea_wire *wire, nmea_text word, nmea_scratch *s, nmea_
         for (i = 0; i < wire->fields.len; i++)
             s->buf[s->len++] = wire->fields.ptr[i] == ',' ? ' ' : wire->fields.ptr[i];
     }
+#ifndef NMEA_NO_COMMANDS
     wire->line = text_span(s->buf + start, s->buf + s->len);
+#else
+    (void)start;
+#endif
     return true;
 }
 
@@ -403,7 +407,9 @@ static bool sentence_from_json(nmea_sentence *out, nmea_json root, nmea_scratch 
     wire.sep = ',';
     wire.ignore_case = false;
     wire.checksum = checksum;
+#ifndef NMEA_NO_COMMANDS
     wire.line = nmea_text_of(NULL);
+#endif
     wire.blanks = 0;
     if (json_member(root, "problems", &problems)) {
         wire.ignore_case = info->command != NULL;

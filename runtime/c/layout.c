@@ -49,7 +49,7 @@ typedef struct {
 #define NO_ARG 0xFFFFu
 
 /* A field's id, what it takes and what its hemisphere takes (NULL in a terse build). */
-static const char *field_id(const layout_field *f)
+NMEA_INTERNAL const char *field_id(const layout_field *f)
 {
 #ifdef NMEA_TERSE_ERRORS
     (void)f;
@@ -59,7 +59,7 @@ static const char *field_id(const layout_field *f)
 #endif
 }
 
-static const char *field_expected(const layout_field *f)
+NMEA_INTERNAL const char *field_expected(const layout_field *f)
 {
 #ifdef NMEA_TERSE_ERRORS
     (void)f;
@@ -201,8 +201,10 @@ static const nmea_entries *entries_in(const layout_group *g, const void *s)
    arguments, so that at -Os these calls are jumps (no frame of read_field under them). */
 static bool read_field(nmea_reader *r, const layout_field *f, void *out)
 {
+#ifndef NMEA_TERSE_ERRORS
     r->name = field_id(f);
     r->expected = field_expected(f);
+#endif
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
         return read_keyword(r, word_of(f));
@@ -234,7 +236,7 @@ static bool read_field(nmea_reader *r, const layout_field *f, void *out)
     return false;
 }
 
-static bool read_fields(nmea_reader *r, const layout_field *f, size_t n, void *entry)
+NMEA_LEAF bool read_fields(nmea_reader *r, const layout_field *f, size_t n, void *entry)
 {
     size_t i;
     for (i = 0; i < n; i++)
@@ -321,8 +323,8 @@ static void reread_field(entry_reader *c, const layout_field *f, void *out)
         return;
     if (size)
         memset(out, 0, size);
-    c->r.next = fields_end(next, c->r.end, c->r.sep, field_width(f));
-    c->r.next += c->r.next < c->r.end;
+    c->r.next = fields_end(next, reader_end(&c->r), c->r.sep, field_width(f));
+    c->r.next += c->r.next < reader_end(&c->r);
     c->r.index = index + (unsigned)field_width(f);
 }
 
@@ -354,7 +356,7 @@ static bool read_group_count(nmea_reader *r, const layout *l, size_t count, size
    its nmea_entries in `s`, a struct of the layout. Each value is read into that nmea_entries,
    which is only filled afterwards: no value on the stack (a keyword, the only field of a group
    that stores nothing, reads into nothing). */
-static bool read_entries(nmea_reader *r, const layout *l, void *s, size_t repeats)
+NMEA_LEAF bool read_entries(nmea_reader *r, const layout *l, void *s, size_t repeats)
 {
     const layout_group *g = l->group;
     const char *start = r->next;
@@ -374,7 +376,7 @@ static bool read_entries(nmea_reader *r, const layout *l, void *s, size_t repeat
         const nmea_wire *wire = r->wire;
         nmea_entries *e = (nmea_entries *)value;
         memset(e, 0, sizeof *e);
-        e->wire = text_span(start, repeats ? fields_end(start, r->end, r->sep, repeats * g->width) : start);
+        e->wire = text_span(start, repeats ? fields_end(start, reader_end(r), r->sep, repeats * g->width) : start);
         for (j = 0; j < wire->blanks; j++)
             if (wire->blank[j] > first && wire->blank[j] <= r->index)
                 e->blank[e->blanks++] = (uint16_t)(wire->blank[j] - first);
@@ -388,36 +390,48 @@ static bool read_entries(nmea_reader *r, const layout *l, void *s, size_t repeat
 /* The start of read_with: the wire's field count checked against layout `l`, `s` cleared and
    given what the wire holds besides the fields; `counts` the entries of the group and the
    optional fields on the wire. */
-static bool read_start(nmea_reader *r, const layout *l, void *s, size_t *counts)
+NMEA_LEAF bool read_start(nmea_reader *r, const layout *l, void *s, uint16_t *counts)
 {
     const nmea_wire *wire = r->wire;
-    size_t optional;
+    size_t optional, repeats = 0;
 
-    counts[0] = 0;
-    if (l->group ? !read_group_count(r, l, wire->count, &counts[0], &optional)
-                 : !read_count(r, wire->count, l->fixed, l->max_fields, &optional))
+    if (l->group ? !read_group_count(r, l, wire->count, &repeats, &optional)
+                 : !read_count(r, wire->count, l->fixed, l->max_fields, &optional)) {
+        r->err->str[0] = l->sentence; /* (see count_error) */
         return false;
+    }
+    counts[0] = (uint16_t)repeats; /* (at most a group's `max`) */
     clear_layout(s, l->size);
     if (l->head != NO_MEMBER)
+#ifdef NMEA_NO_COMMANDS
+        *(nmea_text *)member_at(s, l->head) = wire->address;
+#else
         *(nmea_text *)member_at(s, l->head) = l->kind == LAYOUT_TEXT ? wire->line : wire->address;
+#endif
     if (l->checksum != NO_MEMBER)
         *(nmea_checksum_style *)member_at(s, l->checksum) = (nmea_checksum_style)wire->checksum;
-    counts[1] = optional_present(l, optional);
+    counts[1] = (uint16_t)optional_present(l, optional);
     if (l->optional_count != NO_MEMBER)
         *(uint8_t *)member_at(s, l->optional_count) = (uint8_t)counts[1];
     return true;
 }
 
-/* Reads the wire into `s`, a struct of layout `l`. */
-NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
+/* Reads the wire into `s`, a struct of layout `l`: read_with, and at -Os nmea_parse's reading
+   of a layout, inlined there (read_layout) so that the descent saves the registers once. */
+NMEA_LEAF bool read_layout_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
 {
     nmea_reader r;
-    size_t counts[2]; /* the group's entries, the optional fields present */
+    uint16_t counts[2]; /* the group's entries, the optional fields present (small: read_with's frame) */
 
-    reader_start(&r, wire, l->sentence, err);
+    reader_start(&r, wire, err);
     return read_start(&r, l, s, counts) && read_fields(&r, l->fields, l->before, s) &&
            (!l->group || read_entries(&r, l, s, counts[0])) &&
            read_fields(&r, l->fields + l->before, l->after + counts[1], s);
+}
+
+NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
+{
+    return read_layout_with(l, s, wire, err);
 }
 
 /* Starts `c` at entry `i` of the group of layout `l` whose entries `e` holds on the wire; false
@@ -440,9 +454,9 @@ static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries
     if (p == NULL || (p == end && i > 0))
         return false;
     w->fields = text_span(p, end);
-    w->blanks = e->blanks < NMEA_MAX_PROBLEMS ? e->blanks : NMEA_MAX_PROBLEMS;
+    w->blanks = e->blanks < WIRE_BLANKS ? e->blanks : WIRE_BLANKS;
     memcpy(w->blank, e->blank, w->blanks * sizeof w->blank[0]);
-    reader_start(&c->r, w, l->sentence, &c->err);
+    reader_start(&c->r, w, &c->err);
     c->r.any_range = true; /* parsing has held each number to its range, or kept it outside */
     c->r.index = (unsigned)(i * l->group->width); /* the blanks count from the first entry */
     return true;

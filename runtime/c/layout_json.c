@@ -98,7 +98,7 @@ static void json_entries(nmea_writer *w, const layout *l, const void *s, bool va
     json_open(w, g->id, '[');
     for (i = 0; i < n; i++) {
         if (!e || !e->items)
-            on_wire = i == 0 ? e && entry_reader_at(&c, l, e, 0) : on_wire && c.r.next < c.r.end;
+            on_wire = i == 0 ? e && entry_reader_at(&c, l, e, 0) : on_wire && c.r.next < reader_end(&c.r);
         if (!g->single)
             json_open(w, NULL, '{');
         for (j = 0; j < g->field_count; j++) {

@@ -1,15 +1,30 @@
 /* Reading the fields of a layout: a cursor over the comma-separated fields, which knows the
    address and the field being read for the errors. */
 
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define NMEA_READER_END_OF_WIRE
+#endif
+
+/* The fields a wire may read as empty (or keep outside their range): strict reading (a build
+   without problems, -DNMEA_NO_PROBLEMS) blanks none, and its wire, on the stack under the whole
+   parse, keeps room for one only. */
+#ifdef NMEA_NO_PROBLEMS
+#define WIRE_BLANKS 1
+#else
+#define WIRE_BLANKS NMEA_MAX_PROBLEMS
+#endif
+
 /* The fields of a line (or of decode's JSON) for a layout to read, and the address its errors
    name: `address` followed by `suffix` (a standard sentence: the talker and the sentence id). */
 typedef struct {
     nmea_text address;
     const char *suffix;
     nmea_text fields;
+#ifndef NMEA_NO_COMMANDS
     nmea_text line;               /* a text command: the command as received */
-    uint16_t blank[NMEA_MAX_PROBLEMS]; /* the wire fields at fault: read as empty (lenient parsing), */
-    uint8_t blanks;                    /* or with RANGE_KEPT, numbers read without their range */
+#endif
+    uint16_t blank[WIRE_BLANKS];   /* the wire fields at fault: read as empty (lenient parsing), */
+    uint8_t blanks;               /* or with RANGE_KEPT, numbers read without their range */
     char sep;                     /* between fields: ',' or ' ' (the words of a text command) */
     bool ignore_case;             /* a text command: keywords and enum codes match ignoring case */
     uint8_t checksum;             /* nmea_checksum_style (small types: the wire is on the stack all
@@ -28,14 +43,17 @@ typedef struct {
    within a few hundred bytes of stack on a microcontroller. */
 typedef struct {
     const char *next;
+#ifndef NMEA_READER_END_OF_WIRE
     const char *end;
+#endif
     const nmea_wire *wire;
-    const char *sentence;
     const char *group;
     uint16_t index; /* 1-based wire index of the field read last */
     uint16_t entry;
-    const char *name;     /* the field being read: its id (NULL in a terse build), */
+#ifndef NMEA_TERSE_ERRORS /* (a terse build's errors name no field: a smaller frame of read_with) */
+    const char *name;     /* the field being read: its id, */
     const char *expected; /* and what it takes */
+#endif
     char sep;
     bool ignore_case;
     bool any_range;   /* numbers are not held to their range (a parsed sentence's entries read again) */
@@ -43,13 +61,26 @@ typedef struct {
     nmea_error *err;
 } nmea_reader;
 
-static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sentence, nmea_error *err)
+/* The end of the fields the reader reads. At -Os (a firmware's build) it is the wire's, read there
+   each time: the reader is on the stack all the while a layout reads the line (read_with), and a
+   member less keeps that frame smaller. */
+static inline const char *reader_end(const nmea_reader *r)
+{
+#ifdef NMEA_READER_END_OF_WIRE
+    return r->wire->fields.ptr + r->wire->fields.len;
+#else
+    return r->end;
+#endif
+}
+
+static void reader_start(nmea_reader *r, const nmea_wire *wire, nmea_error *err)
 {
     r->next = wire->fields.ptr;
+#ifndef NMEA_READER_END_OF_WIRE
     r->end = wire->fields.ptr + wire->fields.len;
+#endif
     r->index = 0;
     r->wire = wire;
-    r->sentence = sentence;
     r->group = NULL;
     r->entry = 0;
     r->sep = wire->sep;
@@ -87,7 +118,7 @@ NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
 
 static inline nmea_text next_field(nmea_reader *r)
 {
-    const char *p = r->next, *q = p, *end = r->end; /* (locals: the bytes read could alias r) */
+    const char *p = r->next, *q = p, *end = reader_end(r); /* (locals: the bytes read could alias r) */
     char sep = r->sep;
     nmea_text t;
     r->index++;
@@ -101,12 +132,13 @@ static inline nmea_text next_field(nmea_reader *r)
 }
 
 /* A field count refused (too_few_fields; too_many sets its own kind after): four arguments, none
-   passed on the stack, so that read_with's frame has no room for one. */
+   passed on the stack, so that read_with's frame has no room for one. Its sentence (the layout's
+   id, str[0]) is the layout reader's to set (read_start): the reader does not keep it, one member
+   less in read_with's frame. */
 static bool count_error(nmea_reader *r, const char *pattern, size_t n, size_t m)
 {
     fail(r->err, NMEA_ERR_TOO_FEW_FIELDS, pattern);
     set_address(r->err, r->wire->address, r->wire->suffix);
-    r->err->str[0] = r->sentence;
     r->err->num[0] = n;
     r->err->num[1] = m;
     return false;
@@ -138,7 +170,9 @@ static void wire_of(nmea_wire *wire, const nmea_frame *f, const char *suffix, co
     wire->sep = line ? ' ' : ',';
     wire->ignore_case = line != NULL;
     wire->checksum = (uint8_t)f->checksum;
+#ifndef NMEA_NO_COMMANDS
     wire->line = line ? text_span(line, f->fields.ptr + f->fields.len) : nmea_text_of(NULL);
+#endif
     wire->blanks = 0;
 }
 
@@ -203,8 +237,10 @@ NMEA_FRAME bool bad_field(nmea_reader *r, unsigned index, nmea_text text)
     err->field = index;
     err->group = r->group;
     err->entry = r->entry;
+#ifndef NMEA_TERSE_ERRORS
     err->name = r->name;
     err->str[0] = r->expected;
+#endif
     return false;
 }
 
@@ -230,7 +266,7 @@ NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const nmea_range *r
    in a second reading) is left to read_number: returns false without having read it. */
 NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
 {
-    const char *p = r->next, *end = r->end, *point = NULL;
+    const char *p = r->next, *end = reader_end(r), *point = NULL;
     uint64_t digits = 0; /* unsigned: a run too long for it is refused below, not undefined */
     unsigned digit;      /* unsigned: a byte below '0' wraps to a large value */
     size_t whole, count;
@@ -323,7 +359,11 @@ static bool read_coordinate(nmea_reader *r, nmea_coordinate *out, const char *he
     }
     if (hemisphere.len != 1 || (hemisphere.ptr[0] != hemispheres[0] && hemisphere.ptr[0] != hemispheres[1])) {
         out->present = false;
+#ifndef NMEA_TERSE_ERRORS
         r->expected = hemisphere_expected;
+#else
+        (void)hemisphere_expected;
+#endif
         return bad_field(r, r->index, hemisphere);
     }
     out->hemisphere = hemisphere.ptr[0];
@@ -383,7 +423,11 @@ NMEA_FRAME bool read_enum(nmea_reader *r, nmea_enum *out, const nmea_enum_def *d
     size_t i;
     if (!t.len)
         return true;
+#ifdef NMEA_NO_COMMANDS
+    out->value = enum_find(def, t.ptr, t.len);
+#else
     out->value = r->ignore_case ? enum_find_upper(def, t) : enum_find(def, t.ptr, t.len);
+#endif
     if (out->value == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr, t.len, def->min_len, def->max_len))
         return bad_field(r, r->index, t);
     for (i = 0; i < t.len; i++) /* t.len <= max_len <= NMEA_CODE_MAX; a code is a character or two */

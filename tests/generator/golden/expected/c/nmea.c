@@ -602,14 +602,14 @@ nmea_reply nmea_reply_to(const nmea_sentence *s, nmea_sentence_id command)
 /* What route gives for a line that is a generic sentence. */
 static const nmea_layouts GENERIC_LINE;
 
-/* The layouts that may read the line in wire->line, its wire then framed in `*wire`: NULL when
+/* The layouts that may read the line in wire->fields, its wire then framed in `*wire`: NULL when
    the line is refused (`err`), GENERIC_LINE when it is a generic sentence (in `out`). Out of line
    and with four arguments: the frame is on the stack only while the line is framed, not under
    the layouts' reading. */
 NMEA_OUTLINE const nmea_layouts *route(nmea_sentence *out, nmea_wire *wire, bool require_checksum, nmea_error *err)
 {
-    const char *line = wire->line.ptr;
-    size_t len = wire->line.len;
+    const char *line = wire->fields.ptr;
+    size_t len = wire->fields.len;
     nmea_frame f;
     const nmea_layouts *layouts = NULL;
 
@@ -654,8 +654,8 @@ NMEA_OUTLINE const nmea_layouts *route(nmea_sentence *out, nmea_wire *wire, bool
 
 /* nmea_parse_ex's general path: every line, every option, every error. A text command is read
    strictly, whatever the options. */
-static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
-                          nmea_error *err)
+PARSE_GENERAL bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                                 nmea_error *err)
 {
     static const nmea_options defaults = {false, false, NULL, false};
     static const nmea_options strict = {false, false, NULL, true};
@@ -665,8 +665,8 @@ static bool parse_general(nmea_sentence *out, const char *line, size_t len, cons
     if (!options)
         options = &defaults;
     out->problems = NULL;
-    wire.line.ptr = line;
-    wire.line.len = len;
+    wire.fields.ptr = line; /* (route's input: no member of its own, the wire is on the stack) */
+    wire.fields.len = len;
     layouts = route(out, &wire, options->require_checksum, err);
     if (!layouts || layouts == &GENERIC_LINE)
         return layouts != NULL;
