@@ -5341,6 +5341,17 @@ static bool json_word_member(nmea_json obj, const char *key, nmea_scratch *s, nm
     return true;
 }
 
+/* The talker of a standard sentence: two letters and digits, as decode gives it (a longer one
+   would make another address). */
+static bool json_talker_member(nmea_json obj, nmea_scratch *s, nmea_text *out, nmea_error *err)
+{
+    if (!json_word_member(obj, "talker", s, out, err))
+        return false;
+    if (out->len != 2)
+        return bad_json(err, "\"talker\" is not two letters and digits", NULL);
+    return true;
+}
+
 /* Collecting wire fields from the `fields` of decode's JSON: each text is checked and appended
    to the scratch buffer, comma separated, so that the layout's reader parses them like a line. */
 typedef struct {
@@ -7275,7 +7286,7 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
             texts[index - 1] = text;
     }
     if (!LAYOUTS[id]->address) { /* a standard sentence: the talker and the sentence id */
-        if (!json_word_member(root, "talker", s, &wire->address, err))
+        if (!json_talker_member(root, s, &wire->address, err))
             return false;
         wire->suffix = LAYOUTS[id]->sentence;
     }
@@ -7454,7 +7465,7 @@ static bool sentence_from_json(nmea_sentence *out, nmea_json root, nmea_scratch 
         return with_problems(out, id, root, problems, s, &wire, err);
     }
     if (!info->address) { /* a standard sentence: the talker and the sentence id */
-        if (!json_word_member(root, "talker", s, &wire.address, err))
+        if (!json_talker_member(root, s, &wire.address, err))
             return false;
         wire.suffix = info->sentence;
     } else if (info->command) { /* a text command: its word as written, its letter case kept */

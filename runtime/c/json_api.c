@@ -237,7 +237,7 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
             texts[index - 1] = text;
     }
     if (!LAYOUTS[id]->address) { /* a standard sentence: the talker and the sentence id */
-        if (!json_word_member(root, "talker", s, &wire->address, err))
+        if (!json_talker_member(root, s, &wire->address, err))
             return false;
         wire->suffix = LAYOUTS[id]->sentence;
     }
@@ -416,7 +416,7 @@ static bool sentence_from_json(nmea_sentence *out, nmea_json root, nmea_scratch 
         return with_problems(out, id, root, problems, s, &wire, err);
     }
     if (!info->address) { /* a standard sentence: the talker and the sentence id */
-        if (!json_word_member(root, "talker", s, &wire.address, err))
+        if (!json_talker_member(root, s, &wire.address, err))
             return false;
         wire.suffix = info->sentence;
     } else if (info->command) { /* a text command: its word as written, its letter case kept */

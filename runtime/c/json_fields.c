@@ -116,6 +116,17 @@ static bool json_word_member(nmea_json obj, const char *key, nmea_scratch *s, nm
     return true;
 }
 
+/* The talker of a standard sentence: two letters and digits, as decode gives it (a longer one
+   would make another address). */
+static bool json_talker_member(nmea_json obj, nmea_scratch *s, nmea_text *out, nmea_error *err)
+{
+    if (!json_word_member(obj, "talker", s, out, err))
+        return false;
+    if (out->len != 2)
+        return bad_json(err, "\"talker\" is not two letters and digits", NULL);
+    return true;
+}
+
 /* Collecting wire fields from the `fields` of decode's JSON: each text is checked and appended
    to the scratch buffer, comma separated, so that the layout's reader parses them like a line. */
 typedef struct {

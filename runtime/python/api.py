@@ -377,7 +377,7 @@ def from_json(obj: Any) -> Any:
 def _json_address(layout: Any, obj: dict[str, Any]) -> str:
     """The address of a `$`/`!` sentence rebuilt from JSON: its talker and sentence id, or the
     proprietary address."""
-    address: str = layout.ADDRESS or runtime.json_word(obj, "talker") + layout.SENTENCE
+    address: str = layout.ADDRESS or runtime.json_talker(obj) + layout.SENTENCE
     return address
 
 

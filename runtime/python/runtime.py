@@ -1666,6 +1666,15 @@ def json_word(obj: Any, key: str) -> str:
     return value
 
 
+def json_talker(obj: Any) -> str:
+    """The talker of a standard sentence: two letters and digits, as decode gives it (a longer
+    one would make another address)."""
+    value = json_word(obj, "talker")
+    if len(value) != 2:
+        raise bad_json('"talker" is not two letters and digits')
+    return value
+
+
 def json_str_member(obj: Any, key: str) -> str:
     value = json_member(obj, key)
     if not isinstance(value, str):

@@ -313,6 +313,15 @@ pub fn word<'v>(obj: &'v Value, key: &str) -> Result<&'v str, Error<'static>> {
     }
 }
 
+/// The talker of a standard sentence: two letters and digits, as decode gives it (a longer one
+/// would make another address).
+pub fn talker(obj: &Value) -> Result<&str, Error<'static>> {
+    match word(obj, "talker")? {
+        talker if talker.len() == 2 => Ok(talker),
+        _ => Err(Error::bad_json("\"talker\" is not two letters and digits")),
+    }
+}
+
 /// `obj[key]` as a string.
 pub fn str_member<'v>(obj: &'v Value, key: &str) -> Result<&'v str, Error<'static>> {
     match member(obj, key)? {

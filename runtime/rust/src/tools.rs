@@ -172,7 +172,7 @@ impl<L: Layouts> Rebuilt<L> {
         }
         let (address, checksum, line) = match layout.framing() {
             Framing::Standard | Framing::Encapsulated => {
-                (format!("{}{}", json::word(obj, "talker")?, layout.sentence()), checksum, None)
+                (format!("{}{}", json::talker(obj)?, layout.sentence()), checksum, None)
             }
             Framing::Proprietary(address) => (address.to_string(), checksum, None),
             Framing::Text(command) => {
@@ -215,7 +215,7 @@ impl<L: Layouts> Rebuilt<L> {
         }
         let address = match layout.framing() {
             Framing::Standard | Framing::Encapsulated => {
-                format!("{}{}", json::word(obj, "talker")?, layout.sentence())
+                format!("{}{}", json::talker(obj)?, layout.sentence())
             }
             Framing::Proprietary(address) | Framing::Text(address) => address.to_string(),
         };
