@@ -19,20 +19,29 @@
 //   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
 //   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
 //   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
-//   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
-//   spec/binary/ubx/messages/inf_error.yaml, spec/binary/ubx/messages/inf_warning.yaml,
-//   spec/binary/ubx/messages/inf_notice.yaml, spec/binary/ubx/messages/inf_test.yaml,
-//   spec/binary/ubx/messages/inf_debug.yaml, spec/binary/ubx/messages/ack_nak.yaml,
-//   spec/binary/ubx/messages/ack_ack.yaml, spec/binary/ubx/messages/cfg_prt.yaml,
-//   spec/binary/ubx/messages/cfg_msg.yaml, spec/binary/ubx/messages/cfg_inf.yaml,
-//   spec/binary/ubx/messages/cfg_rst.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
-//   spec/binary/ubx/messages/cfg_cfg.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
-//   spec/binary/ubx/messages/cfg_ant.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
+//   spec/binary/ubx/messages/rxm_measx.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
+//   spec/binary/ubx/messages/rxm_svsi.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
+//   spec/binary/ubx/messages/rxm_spartn.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
+//   spec/binary/ubx/messages/rxm_spartnkey.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
+//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/inf_error.yaml,
+//   spec/binary/ubx/messages/inf_warning.yaml, spec/binary/ubx/messages/inf_notice.yaml,
+//   spec/binary/ubx/messages/inf_test.yaml, spec/binary/ubx/messages/inf_debug.yaml,
+//   spec/binary/ubx/messages/ack_nak.yaml, spec/binary/ubx/messages/ack_ack.yaml,
+//   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
+//   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
+//   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_cfg.yaml,
+//   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_ant.yaml,
+//   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_nmea.yaml,
+//   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
 //   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
-//   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
-//   spec/binary/ubx/messages/cfg_dgnss.yaml, spec/binary/ubx/messages/cfg_tmode3.yaml,
+//   spec/binary/ubx/messages/cfg_itfm.yaml, spec/binary/ubx/messages/cfg_pm2.yaml,
+//   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_logfilter.yaml,
+//   spec/binary/ubx/messages/cfg_pwr.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
+//   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
+//   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
 //   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
-//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/mon_io.yaml,
+//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_batch.yaml,
+//   spec/binary/ubx/messages/upd_sos.yaml, spec/binary/ubx/messages/mon_io.yaml,
 //   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
 //   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
 //   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
@@ -45,17 +54,22 @@
 //   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
 //   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
 //   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
-//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_status.yaml,
-//   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
+//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
+//   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
+//   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
+//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_ano.yaml,
+//   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
 //   spec/binary/ubx/messages/log_erase.yaml, spec/binary/ubx/messages/log_string.yaml,
 //   spec/binary/ubx/messages/log_create.yaml, spec/binary/ubx/messages/log_info.yaml,
 //   spec/binary/ubx/messages/log_retrieve.yaml, spec/binary/ubx/messages/log_retrievepos.yaml,
 //   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_findtime.yaml,
 //   spec/binary/ubx/messages/log_retrieveposextra.yaml,
 //   spec/binary/ubx/messages/log_retrievebatch.yaml, spec/binary/ubx/messages/log_batch.yaml,
-//   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/hnr_pvt.yaml,
-//   spec/binary/ubx/messages/hnr_att.yaml, spec/binary/ubx/messages/hnr_ins.yaml,
-//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest 894c51d3e4e4d75e)
+//   spec/binary/ubx/messages/sec_sign.yaml, spec/binary/ubx/messages/sec_uniqid.yaml,
+//   spec/binary/ubx/messages/sec_sig.yaml, spec/binary/ubx/messages/sec_siglog.yaml,
+//   spec/binary/ubx/messages/hnr_pvt.yaml, spec/binary/ubx/messages/hnr_att.yaml,
+//   spec/binary/ubx/messages/hnr_ins.yaml, spec/enums/ubx_fix_type.yaml,
+//   spec/enums/ubx_gnss_id.yaml (digest 2665a2c7d5a5daa1)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -1683,6 +1697,53 @@ static const nmea_ubx_item ubx_rxm_sfrbx_items[] = {
     {"words", &ubx_rxm_sfrbx_words_group, offsetof(nmea_ubx_rxm_sfrbx, words), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* RXM-MEASX: rxm_measx_poll */
+static const nmea_ubx_item ubx_rxm_measx_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* RXM-MEASX: rxm_measx */
+static const nmea_ubx_scale ubx_rxm_measx_sv_doppler_ms_scale = {25.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_rxm_measx_sv_doppler_hz_scale = {5.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_rxm_measx_sv_code_phase_scale = {2097152.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_rxm_measx_sv_items[] = {
+    {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_rxm_measx_sv, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_rxm_measx_sv, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"c_no", NULL, offsetof(nmea_ubx_rxm_measx_sv, c_no), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mpath_indic", NULL, offsetof(nmea_ubx_rxm_measx_sv, mpath_indic), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"doppler_ms", &ubx_rxm_measx_sv_doppler_ms_scale, offsetof(nmea_ubx_rxm_measx_sv, doppler_ms), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"doppler_hz", &ubx_rxm_measx_sv_doppler_hz_scale, offsetof(nmea_ubx_rxm_measx_sv, doppler_hz), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"whole_chips", NULL, offsetof(nmea_ubx_rxm_measx_sv, whole_chips), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"frac_chips", NULL, offsetof(nmea_ubx_rxm_measx_sv, frac_chips), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"code_phase", &ubx_rxm_measx_sv_code_phase_scale, offsetof(nmea_ubx_rxm_measx_sv, code_phase), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"int_code_phase", NULL, offsetof(nmea_ubx_rxm_measx_sv, int_code_phase), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pseu_range_rms_err", NULL, offsetof(nmea_ubx_rxm_measx_sv, pseu_range_rms_err), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved4", NULL, offsetof(nmea_ubx_rxm_measx_sv, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_scale ubx_rxm_measx_gps_tow_acc_scale = {16.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_rxm_measx_glo_tow_acc_scale = {16.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_rxm_measx_bds_tow_acc_scale = {16.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_rxm_measx_qzss_tow_acc_scale = {16.0, 0.0, true, NULL, 0};
+static const nmea_ubx_group ubx_rxm_measx_svs_group = {ubx_rxm_measx_sv_items, 12, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_measx, num_sv), 0, 0, 65535, NMEA_UBX_RXM_MEASX_SVS_MAX, 24, sizeof(nmea_ubx_rxm_measx_sv), 0, offsetof(nmea_ubx_rxm_measx, svs_count)};
+static const nmea_ubx_item ubx_rxm_measx_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_measx, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_measx, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_tow", NULL, offsetof(nmea_ubx_rxm_measx, gps_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_tow", NULL, offsetof(nmea_ubx_rxm_measx, glo_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_tow", NULL, offsetof(nmea_ubx_rxm_measx, bds_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_rxm_measx, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_tow", NULL, offsetof(nmea_ubx_rxm_measx, qzss_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_tow_acc", &ubx_rxm_measx_gps_tow_acc_scale, offsetof(nmea_ubx_rxm_measx, gps_tow_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"glo_tow_acc", &ubx_rxm_measx_glo_tow_acc_scale, offsetof(nmea_ubx_rxm_measx, glo_tow_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"bds_tow_acc", &ubx_rxm_measx_bds_tow_acc_scale, offsetof(nmea_ubx_rxm_measx, bds_tow_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_rxm_measx, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_tow_acc", &ubx_rxm_measx_qzss_tow_acc_scale, offsetof(nmea_ubx_rxm_measx, qzss_tow_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_rxm_measx, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_rxm_measx, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow_set", NULL, offsetof(nmea_ubx_rxm_measx, tow_set), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_rxm_measx, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svs", &ubx_rxm_measx_svs_group, offsetof(nmea_ubx_rxm_measx, svs), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* RXM-RAWX: rxm_rawx_poll */
 static const nmea_ubx_item ubx_rxm_rawx_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -1725,6 +1786,34 @@ static const nmea_ubx_item ubx_rxm_rawx_items[] = {
     {"measurements", &ubx_rxm_rawx_measurements_group, offsetof(nmea_ubx_rxm_rawx, measurements), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* RXM-SVSI: rxm_svsi_poll */
+static const nmea_ubx_item ubx_rxm_svsi_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* RXM-SVSI: rxm_svsi */
+static const nmea_ubx_item ubx_rxm_svsi_sv_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_rxm_svsi_sv, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_flag", NULL, offsetof(nmea_ubx_rxm_svsi_sv, sv_flag), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ura", NULL, offsetof(nmea_ubx_rxm_svsi_sv, ura), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"healthy", NULL, offsetof(nmea_ubx_rxm_svsi_sv, healthy), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"eph_val", NULL, offsetof(nmea_ubx_rxm_svsi_sv, eph_val), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"alm_val", NULL, offsetof(nmea_ubx_rxm_svsi_sv, alm_val), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"not_avail", NULL, offsetof(nmea_ubx_rxm_svsi_sv, not_avail), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"azim", NULL, offsetof(nmea_ubx_rxm_svsi_sv, azim), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"elev", NULL, offsetof(nmea_ubx_rxm_svsi_sv, elev), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"age", NULL, offsetof(nmea_ubx_rxm_svsi_sv, age), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"alm_age", NULL, offsetof(nmea_ubx_rxm_svsi_sv, alm_age), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"eph_age", NULL, offsetof(nmea_ubx_rxm_svsi_sv, eph_age), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 4, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_rxm_svsi_svs_group = {ubx_rxm_svsi_sv_items, 12, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_svsi, num_sv), 0, 0, 65535, NMEA_UBX_RXM_SVSI_SVS_MAX, 6, sizeof(nmea_ubx_rxm_svsi_sv), 0, offsetof(nmea_ubx_rxm_svsi, svs_count)};
+static const nmea_ubx_item ubx_rxm_svsi_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_rxm_svsi, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_rxm_svsi, week), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_vis", NULL, offsetof(nmea_ubx_rxm_svsi, num_vis), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_rxm_svsi, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svs", &ubx_rxm_svsi_svs_group, offsetof(nmea_ubx_rxm_svsi, svs), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* RXM-RTCM: rxm_rtcm */
 static const nmea_ubx_item ubx_rxm_rtcm_items[] = {
     {"version", NULL, offsetof(nmea_ubx_rxm_rtcm, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -1734,6 +1823,107 @@ static const nmea_ubx_item ubx_rxm_rtcm_items[] = {
     {"sub_type", NULL, offsetof(nmea_ubx_rxm_rtcm, sub_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"ref_station", NULL, offsetof(nmea_ubx_rxm_rtcm, ref_station), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"msg_type", NULL, offsetof(nmea_ubx_rxm_rtcm, msg_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-SPARTN: rxm_spartn */
+static const nmea_ubx_item ubx_rxm_spartn_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_spartn, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_rxm_spartn, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_used", NULL, offsetof(nmea_ubx_rxm_spartn, msg_used), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"sub_type", NULL, offsetof(nmea_ubx_rxm_spartn, sub_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_spartn, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_type", NULL, offsetof(nmea_ubx_rxm_spartn, msg_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-COR: rxm_cor */
+static const nmea_ubx_scale ubx_rxm_cor_ebno_scale = {8.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_rxm_cor_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_cor, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ebno", &ubx_rxm_cor_ebno_scale, offsetof(nmea_ubx_rxm_cor, ebno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_cor, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"status_info", NULL, offsetof(nmea_ubx_rxm_cor, status_info), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"protocol", NULL, offsetof(nmea_ubx_rxm_cor, protocol), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"err_status", NULL, offsetof(nmea_ubx_rxm_cor, err_status), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_used", NULL, offsetof(nmea_ubx_rxm_cor, msg_used), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"correction_id", NULL, offsetof(nmea_ubx_rxm_cor, correction_id), 0, 0, NMEA_UBX_ITEM_PART, 16, 2, 9, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_type_valid", NULL, offsetof(nmea_ubx_rxm_cor, msg_type_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 25, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_sub_type_valid", NULL, offsetof(nmea_ubx_rxm_cor, msg_sub_type_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 26, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_input_handle", NULL, offsetof(nmea_ubx_rxm_cor, msg_input_handle), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 27, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_encrypted", NULL, offsetof(nmea_ubx_rxm_cor, msg_encrypted), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 28, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_decrypted", NULL, offsetof(nmea_ubx_rxm_cor, msg_decrypted), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 30, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_type", NULL, offsetof(nmea_ubx_rxm_cor, msg_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_sub_type", NULL, offsetof(nmea_ubx_rxm_cor, msg_sub_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-SPARTNKEY: rxm_spartnkey_poll */
+static const nmea_ubx_item ubx_rxm_spartnkey_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* RXM-SPARTNKEY: rxm_spartnkey */
+static const nmea_ubx_item ubx_rxm_spartnkey_key_info_entry_items[] = {
+    {"encrypt_algorithm", NULL, offsetof(nmea_ubx_rxm_spartnkey_key_info_entry, encrypt_algorithm), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"key_length_bytes", NULL, offsetof(nmea_ubx_rxm_spartnkey_key_info_entry, key_length_bytes), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_from_wno", NULL, offsetof(nmea_ubx_rxm_spartnkey_key_info_entry, valid_from_wno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_from_tow", NULL, offsetof(nmea_ubx_rxm_spartnkey_key_info_entry, valid_from_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_item ubx_rxm_spartnkey_key_items[] = {
+    {"key", NULL, offsetof(nmea_ubx_rxm_spartnkey_key, key), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_rxm_spartnkey_key_info_group = {ubx_rxm_spartnkey_key_info_entry_items, 4, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_spartnkey, num_keys), 0, 0, 65535, NMEA_UBX_RXM_SPARTNKEY_KEY_INFO_MAX, 8, sizeof(nmea_ubx_rxm_spartnkey_key_info_entry), 0, offsetof(nmea_ubx_rxm_spartnkey, key_info_count)};
+static const nmea_ubx_group ubx_rxm_spartnkey_keys_group = {ubx_rxm_spartnkey_key_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 64, NMEA_UBX_RXM_SPARTNKEY_KEYS_MAX, 1, sizeof(nmea_ubx_rxm_spartnkey_key), 0, offsetof(nmea_ubx_rxm_spartnkey, keys_count)};
+static const nmea_ubx_item ubx_rxm_spartnkey_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_spartnkey, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_keys", NULL, offsetof(nmea_ubx_rxm_spartnkey, num_keys), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_spartnkey, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"key_info", &ubx_rxm_spartnkey_key_info_group, offsetof(nmea_ubx_rxm_spartnkey, key_info), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"keys", &ubx_rxm_spartnkey_keys_group, offsetof(nmea_ubx_rxm_spartnkey, keys), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-PMREQ: rxm_pmreq */
+static const nmea_ubx_item ubx_rxm_pmreq_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_pmreq, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_pmreq, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"duration", NULL, offsetof(nmea_ubx_rxm_pmreq, duration), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_rxm_pmreq, flags), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"backup", NULL, offsetof(nmea_ubx_rxm_pmreq, backup), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"force", NULL, offsetof(nmea_ubx_rxm_pmreq, force), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"wakeup_sources", NULL, offsetof(nmea_ubx_rxm_pmreq, wakeup_sources), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"uartrx", NULL, offsetof(nmea_ubx_rxm_pmreq, uartrx), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"extint0", NULL, offsetof(nmea_ubx_rxm_pmreq, extint0), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"extint1", NULL, offsetof(nmea_ubx_rxm_pmreq, extint1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"spics", NULL, offsetof(nmea_ubx_rxm_pmreq, spics), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-PMREQ: rxm_pmreq_short */
+static const nmea_ubx_item ubx_rxm_pmreq_short_items[] = {
+    {"duration", NULL, offsetof(nmea_ubx_rxm_pmreq_short, duration), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_rxm_pmreq_short, flags), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"backup", NULL, offsetof(nmea_ubx_rxm_pmreq_short, backup), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-RLM: rxm_rlm */
+static const nmea_ubx_item ubx_rxm_rlm_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_rlm, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"type", NULL, offsetof(nmea_ubx_rxm_rlm, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_rxm_rlm, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_rlm, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"beacon", NULL, offsetof(nmea_ubx_rxm_rlm, beacon), 0, 0, NMEA_UBX_ITEM_ARRAY, 8, 8, 0, NMEA_UBX_PRINT_HEX, false},
+    {"message", NULL, offsetof(nmea_ubx_rxm_rlm, message), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"params", NULL, offsetof(nmea_ubx_rxm_rlm, params), 0, 0, NMEA_UBX_ITEM_ARRAY, 12, 12, 0, NMEA_UBX_PRINT_HEX, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_rxm_rlm, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-RLM: rxm_rlm_short */
+static const nmea_ubx_item ubx_rxm_rlm_short_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_rlm_short, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"type", NULL, offsetof(nmea_ubx_rxm_rlm_short, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_rxm_rlm_short, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_rlm_short, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"beacon", NULL, offsetof(nmea_ubx_rxm_rlm_short, beacon), 0, 0, NMEA_UBX_ITEM_ARRAY, 8, 8, 0, NMEA_UBX_PRINT_HEX, false},
+    {"message", NULL, offsetof(nmea_ubx_rxm_rlm_short, message), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"params", NULL, offsetof(nmea_ubx_rxm_rlm_short, params), 0, 0, NMEA_UBX_ITEM_ARRAY, 2, 2, 0, NMEA_UBX_PRINT_HEX, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_rxm_rlm_short, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* INF-ERROR: inf_error */
@@ -1951,6 +2141,151 @@ static const nmea_ubx_item ubx_cfg_sbas_items[] = {
     {"scanmode1", NULL, offsetof(nmea_ubx_cfg_sbas, scanmode1), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-NMEA: cfg_nmea_poll */
+static const nmea_ubx_item ubx_cfg_nmea_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-NMEA: cfg_nmea */
+static const nmea_ubx_item ubx_cfg_nmea_items[] = {
+    {"filter", NULL, offsetof(nmea_ubx_cfg_nmea, filter), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_filt", NULL, offsetof(nmea_ubx_cfg_nmea, pos_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msk_pos_filt", NULL, offsetof(nmea_ubx_cfg_nmea, msk_pos_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_filt", NULL, offsetof(nmea_ubx_cfg_nmea, time_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"date_filt", NULL, offsetof(nmea_ubx_cfg_nmea, date_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_only_filter", NULL, offsetof(nmea_ubx_cfg_nmea, gps_only_filter), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"track_filt", NULL, offsetof(nmea_ubx_cfg_nmea, track_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"nmea_version", NULL, offsetof(nmea_ubx_cfg_nmea, nmea_version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_cfg_nmea, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_nmea, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"compat", NULL, offsetof(nmea_ubx_cfg_nmea, compat), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"consider", NULL, offsetof(nmea_ubx_cfg_nmea, consider), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"limit82", NULL, offsetof(nmea_ubx_cfg_nmea, limit82), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"high_prec", NULL, offsetof(nmea_ubx_cfg_nmea, high_prec), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_to_filter", NULL, offsetof(nmea_ubx_cfg_nmea, gnss_to_filter), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps", NULL, offsetof(nmea_ubx_cfg_nmea, gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sbas", NULL, offsetof(nmea_ubx_cfg_nmea, sbas), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"galileo", NULL, offsetof(nmea_ubx_cfg_nmea, galileo), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss", NULL, offsetof(nmea_ubx_cfg_nmea, qzss), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"glonass", NULL, offsetof(nmea_ubx_cfg_nmea, glonass), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"beidou", NULL, offsetof(nmea_ubx_cfg_nmea, beidou), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_numbering", NULL, offsetof(nmea_ubx_cfg_nmea, sv_numbering), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"main_talker_id", NULL, offsetof(nmea_ubx_cfg_nmea, main_talker_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gsv_talker_id", NULL, offsetof(nmea_ubx_cfg_nmea, gsv_talker_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_cfg_nmea, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_talker_id", NULL, offsetof(nmea_ubx_cfg_nmea, bds_talker_id), 0, 0, NMEA_UBX_ITEM_ARRAY, 2, 2, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_nmea, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 6, 8, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-NMEA: cfg_nmea_v0 */
+static const nmea_ubx_item ubx_cfg_nmea_v0_items[] = {
+    {"filter", NULL, offsetof(nmea_ubx_cfg_nmea_v0, filter), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_filt", NULL, offsetof(nmea_ubx_cfg_nmea_v0, pos_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msk_pos_filt", NULL, offsetof(nmea_ubx_cfg_nmea_v0, msk_pos_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_filt", NULL, offsetof(nmea_ubx_cfg_nmea_v0, time_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"date_filt", NULL, offsetof(nmea_ubx_cfg_nmea_v0, date_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_only_filter", NULL, offsetof(nmea_ubx_cfg_nmea_v0, gps_only_filter), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"track_filt", NULL, offsetof(nmea_ubx_cfg_nmea_v0, track_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"nmea_version", NULL, offsetof(nmea_ubx_cfg_nmea_v0, nmea_version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_cfg_nmea_v0, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_nmea_v0, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"compat", NULL, offsetof(nmea_ubx_cfg_nmea_v0, compat), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"consider", NULL, offsetof(nmea_ubx_cfg_nmea_v0, consider), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"limit82", NULL, offsetof(nmea_ubx_cfg_nmea_v0, limit82), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"high_prec", NULL, offsetof(nmea_ubx_cfg_nmea_v0, high_prec), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_to_filter", NULL, offsetof(nmea_ubx_cfg_nmea_v0, gnss_to_filter), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps", NULL, offsetof(nmea_ubx_cfg_nmea_v0, gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sbas", NULL, offsetof(nmea_ubx_cfg_nmea_v0, sbas), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"galileo", NULL, offsetof(nmea_ubx_cfg_nmea_v0, galileo), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss", NULL, offsetof(nmea_ubx_cfg_nmea_v0, qzss), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"glonass", NULL, offsetof(nmea_ubx_cfg_nmea_v0, glonass), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"beidou", NULL, offsetof(nmea_ubx_cfg_nmea_v0, beidou), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_numbering", NULL, offsetof(nmea_ubx_cfg_nmea_v0, sv_numbering), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"main_talker_id", NULL, offsetof(nmea_ubx_cfg_nmea_v0, main_talker_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gsv_talker_id", NULL, offsetof(nmea_ubx_cfg_nmea_v0, gsv_talker_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_cfg_nmea_v0, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-NMEA: cfg_nmea_deprecated */
+static const nmea_ubx_item ubx_cfg_nmea_deprecated_items[] = {
+    {"filter", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, filter), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_filt", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, pos_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msk_pos_filt", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, msk_pos_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_filt", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, time_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"date_filt", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, date_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_only_filter", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, gps_only_filter), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"track_filt", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, track_filt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"nmea_version", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, nmea_version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"compat", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, compat), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"consider", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, consider), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"limit82", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, limit82), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"high_prec", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, high_prec), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-ODO: cfg_odo_poll */
+static const nmea_ubx_item ubx_cfg_odo_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-ODO: cfg_odo */
+static const nmea_ubx_scale ubx_cfg_odo_cog_max_speed_scale = {10.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_cfg_odo_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_odo, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_cfg_odo, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_odo, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"use_odo", NULL, offsetof(nmea_ubx_cfg_odo, use_odo), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"use_cog", NULL, offsetof(nmea_ubx_cfg_odo, use_cog), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"out_lp_vel", NULL, offsetof(nmea_ubx_cfg_odo, out_lp_vel), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"out_lp_cog", NULL, offsetof(nmea_ubx_cfg_odo, out_lp_cog), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"odo_cfg", NULL, offsetof(nmea_ubx_cfg_odo, odo_cfg), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"profile", NULL, offsetof(nmea_ubx_cfg_odo, profile), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_odo, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 6, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cog_max_speed", &ubx_cfg_odo_cog_max_speed_scale, offsetof(nmea_ubx_cfg_odo, cog_max_speed), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cog_max_pos_acc", NULL, offsetof(nmea_ubx_cfg_odo, cog_max_pos_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_cfg_odo, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_lp_gain", NULL, offsetof(nmea_ubx_cfg_odo, vel_lp_gain), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cog_lp_gain", NULL, offsetof(nmea_ubx_cfg_odo, cog_lp_gain), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_cfg_odo, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-NAVX5: cfg_navx5_poll */
+static const nmea_ubx_item ubx_cfg_navx5_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-NAVX5: cfg_navx5 */
+static const nmea_ubx_item ubx_cfg_navx5_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_navx5, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mask1", NULL, offsetof(nmea_ubx_cfg_navx5, mask1), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min_max", NULL, offsetof(nmea_ubx_cfg_navx5, min_max), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"min_cno_mask", NULL, offsetof(nmea_ubx_cfg_navx5, min_cno_mask), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"initial3dfix", NULL, offsetof(nmea_ubx_cfg_navx5, initial3dfix), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"wkn_roll", NULL, offsetof(nmea_ubx_cfg_navx5, wkn_roll), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 9, NMEA_UBX_PRINT_NUMBER, false},
+    {"ack_aid", NULL, offsetof(nmea_ubx_cfg_navx5, ack_aid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 10, NMEA_UBX_PRINT_NUMBER, false},
+    {"ppp", NULL, offsetof(nmea_ubx_cfg_navx5, ppp), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 13, NMEA_UBX_PRINT_NUMBER, false},
+    {"aop", NULL, offsetof(nmea_ubx_cfg_navx5, aop), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 14, NMEA_UBX_PRINT_NUMBER, false},
+    {"mask2", NULL, offsetof(nmea_ubx_cfg_navx5, mask2), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"adr", NULL, offsetof(nmea_ubx_cfg_navx5, adr), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_atten_comp", NULL, offsetof(nmea_ubx_cfg_navx5, sig_atten_comp), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_cfg_navx5, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min_svs", NULL, offsetof(nmea_ubx_cfg_navx5, min_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"max_svs", NULL, offsetof(nmea_ubx_cfg_navx5, max_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min_cno", NULL, offsetof(nmea_ubx_cfg_navx5, min_cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_navx5, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ini_fix3d", NULL, offsetof(nmea_ubx_cfg_navx5, ini_fix3d), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_cfg_navx5, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ack_aiding", NULL, offsetof(nmea_ubx_cfg_navx5, ack_aiding), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wkn_rollover", NULL, offsetof(nmea_ubx_cfg_navx5, wkn_rollover), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_atten_comp_mode", NULL, offsetof(nmea_ubx_cfg_navx5, sig_atten_comp_mode), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_cfg_navx5, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved4", NULL, offsetof(nmea_ubx_cfg_navx5, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved5", NULL, offsetof(nmea_ubx_cfg_navx5, reserved5), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"use_ppp", NULL, offsetof(nmea_ubx_cfg_navx5, use_ppp), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"aop_cfg", NULL, offsetof(nmea_ubx_cfg_navx5, aop_cfg), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"use_aop", NULL, offsetof(nmea_ubx_cfg_navx5, use_aop), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved6", NULL, offsetof(nmea_ubx_cfg_navx5, reserved6), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"aop_orb_max_err", NULL, offsetof(nmea_ubx_cfg_navx5, aop_orb_max_err), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved7", NULL, offsetof(nmea_ubx_cfg_navx5, reserved7), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved8", NULL, offsetof(nmea_ubx_cfg_navx5, reserved8), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"use_adr", NULL, offsetof(nmea_ubx_cfg_navx5, use_adr), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* CFG-NAV5: cfg_nav5_poll */
 static const nmea_ubx_item ubx_cfg_nav5_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -2023,6 +2358,80 @@ static const nmea_ubx_item ubx_cfg_tp5_items[] = {
     {"sync_mode", NULL, offsetof(nmea_ubx_cfg_tp5, sync_mode), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 11, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-ITFM: cfg_itfm_poll */
+static const nmea_ubx_item ubx_cfg_itfm_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-ITFM: cfg_itfm */
+static const nmea_ubx_item ubx_cfg_itfm_items[] = {
+    {"config", NULL, offsetof(nmea_ubx_cfg_itfm, config), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bb_threshold", NULL, offsetof(nmea_ubx_cfg_itfm, bb_threshold), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cw_threshold", NULL, offsetof(nmea_ubx_cfg_itfm, cw_threshold), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"algorithm_bits", NULL, offsetof(nmea_ubx_cfg_itfm, algorithm_bits), 0, 0, NMEA_UBX_ITEM_PART, 22, 4, 9, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable", NULL, offsetof(nmea_ubx_cfg_itfm, enable), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 31, NMEA_UBX_PRINT_NUMBER, false},
+    {"config2", NULL, offsetof(nmea_ubx_cfg_itfm, config2), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"general_bits", NULL, offsetof(nmea_ubx_cfg_itfm, general_bits), 0, 0, NMEA_UBX_ITEM_PART, 12, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ant_setting", NULL, offsetof(nmea_ubx_cfg_itfm, ant_setting), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 12, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable2", NULL, offsetof(nmea_ubx_cfg_itfm, enable2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 14, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-PM2: cfg_pm2_poll */
+static const nmea_ubx_item ubx_cfg_pm2_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-PM2: cfg_pm2 */
+static const nmea_ubx_item ubx_cfg_pm2_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_pm2, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_pm2, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"max_startup_state_dur", NULL, offsetof(nmea_ubx_cfg_pm2, max_startup_state_dur), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_cfg_pm2, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_pm2, flags), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"opt_target", NULL, offsetof(nmea_ubx_cfg_pm2, opt_target), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"extint_sel", NULL, offsetof(nmea_ubx_cfg_pm2, extint_sel), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"extint_wake", NULL, offsetof(nmea_ubx_cfg_pm2, extint_wake), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"extint_backup", NULL, offsetof(nmea_ubx_cfg_pm2, extint_backup), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"extint_inactive", NULL, offsetof(nmea_ubx_cfg_pm2, extint_inactive), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"limit_peak_curr", NULL, offsetof(nmea_ubx_cfg_pm2, limit_peak_curr), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"wait_time_fix", NULL, offsetof(nmea_ubx_cfg_pm2, wait_time_fix), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 10, NMEA_UBX_PRINT_NUMBER, false},
+    {"update_rtc", NULL, offsetof(nmea_ubx_cfg_pm2, update_rtc), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 11, NMEA_UBX_PRINT_NUMBER, false},
+    {"update_eph", NULL, offsetof(nmea_ubx_cfg_pm2, update_eph), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 12, NMEA_UBX_PRINT_NUMBER, false},
+    {"do_not_enter_off", NULL, offsetof(nmea_ubx_cfg_pm2, do_not_enter_off), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 16, NMEA_UBX_PRINT_NUMBER, false},
+    {"operation_mode", NULL, offsetof(nmea_ubx_cfg_pm2, operation_mode), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 17, NMEA_UBX_PRINT_NUMBER, false},
+    {"update_period", NULL, offsetof(nmea_ubx_cfg_pm2, update_period), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"search_period", NULL, offsetof(nmea_ubx_cfg_pm2, search_period), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"grid_offset", NULL, offsetof(nmea_ubx_cfg_pm2, grid_offset), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"on_time", NULL, offsetof(nmea_ubx_cfg_pm2, on_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min_acq_time", NULL, offsetof(nmea_ubx_cfg_pm2, min_acq_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_cfg_pm2, reserved3), 0, 0, NMEA_UBX_ITEM_ARRAY, 16, 16, 0, NMEA_UBX_PRINT_BIG, false},
+    {"reserved4", NULL, offsetof(nmea_ubx_cfg_pm2, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"extint_inactivity_ms", NULL, offsetof(nmea_ubx_cfg_pm2, extint_inactivity_ms), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-PM2: cfg_pm2_v1 */
+static const nmea_ubx_item ubx_cfg_pm2_v1_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_pm2_v1, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_pm2_v1, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"max_startup_state_dur", NULL, offsetof(nmea_ubx_cfg_pm2_v1, max_startup_state_dur), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_cfg_pm2_v1, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_pm2_v1, flags), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"opt_target", NULL, offsetof(nmea_ubx_cfg_pm2_v1, opt_target), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"extint_sel", NULL, offsetof(nmea_ubx_cfg_pm2_v1, extint_sel), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"extint_wake", NULL, offsetof(nmea_ubx_cfg_pm2_v1, extint_wake), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"extint_backup", NULL, offsetof(nmea_ubx_cfg_pm2_v1, extint_backup), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"extint_inactive", NULL, offsetof(nmea_ubx_cfg_pm2_v1, extint_inactive), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"limit_peak_curr", NULL, offsetof(nmea_ubx_cfg_pm2_v1, limit_peak_curr), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"wait_time_fix", NULL, offsetof(nmea_ubx_cfg_pm2_v1, wait_time_fix), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 10, NMEA_UBX_PRINT_NUMBER, false},
+    {"update_rtc", NULL, offsetof(nmea_ubx_cfg_pm2_v1, update_rtc), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 11, NMEA_UBX_PRINT_NUMBER, false},
+    {"update_eph", NULL, offsetof(nmea_ubx_cfg_pm2_v1, update_eph), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 12, NMEA_UBX_PRINT_NUMBER, false},
+    {"do_not_enter_off", NULL, offsetof(nmea_ubx_cfg_pm2_v1, do_not_enter_off), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 16, NMEA_UBX_PRINT_NUMBER, false},
+    {"operation_mode", NULL, offsetof(nmea_ubx_cfg_pm2_v1, operation_mode), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 17, NMEA_UBX_PRINT_NUMBER, false},
+    {"update_period", NULL, offsetof(nmea_ubx_cfg_pm2_v1, update_period), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"search_period", NULL, offsetof(nmea_ubx_cfg_pm2_v1, search_period), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"grid_offset", NULL, offsetof(nmea_ubx_cfg_pm2_v1, grid_offset), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"on_time", NULL, offsetof(nmea_ubx_cfg_pm2_v1, on_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min_acq_time", NULL, offsetof(nmea_ubx_cfg_pm2_v1, min_acq_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_cfg_pm2_v1, reserved3), 0, 0, NMEA_UBX_ITEM_ARRAY, 16, 16, 0, NMEA_UBX_PRINT_BIG, false},
+    {"reserved4", NULL, offsetof(nmea_ubx_cfg_pm2_v1, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* CFG-GNSS: cfg_gnss_poll */
 static const nmea_ubx_item ubx_cfg_gnss_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -2046,6 +2455,29 @@ static const nmea_ubx_item ubx_cfg_gnss_items[] = {
     {"blocks", &ubx_cfg_gnss_blocks_group, offsetof(nmea_ubx_cfg_gnss, blocks), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-LOGFILTER: cfg_logfilter_poll */
+static const nmea_ubx_item ubx_cfg_logfilter_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-LOGFILTER: cfg_logfilter */
+static const nmea_ubx_item ubx_cfg_logfilter_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_logfilter, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_logfilter, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"record_enabled", NULL, offsetof(nmea_ubx_cfg_logfilter, record_enabled), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psm_once_per_wakup_enabled", NULL, offsetof(nmea_ubx_cfg_logfilter, psm_once_per_wakup_enabled), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"apply_all_filter_settings", NULL, offsetof(nmea_ubx_cfg_logfilter, apply_all_filter_settings), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"min_interval", NULL, offsetof(nmea_ubx_cfg_logfilter, min_interval), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_threshold", NULL, offsetof(nmea_ubx_cfg_logfilter, time_threshold), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"speed_threshold", NULL, offsetof(nmea_ubx_cfg_logfilter, speed_threshold), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"position_threshold", NULL, offsetof(nmea_ubx_cfg_logfilter, position_threshold), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-PWR: cfg_pwr */
+static const nmea_ubx_item ubx_cfg_pwr_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_pwr, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_pwr, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"state", NULL, offsetof(nmea_ubx_cfg_pwr, state), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* CFG-HNR: cfg_hnr_poll */
 static const nmea_ubx_item ubx_cfg_hnr_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -2053,6 +2485,32 @@ static const nmea_ubx_item ubx_cfg_hnr_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA
 static const nmea_ubx_item ubx_cfg_hnr_items[] = {
     {"high_nav_rate", NULL, offsetof(nmea_ubx_cfg_hnr, high_nav_rate), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved1", NULL, offsetof(nmea_ubx_cfg_hnr, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-GEOFENCE: cfg_geofence_poll */
+static const nmea_ubx_item ubx_cfg_geofence_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-GEOFENCE: cfg_geofence */
+static const nmea_ubx_scale ubx_cfg_geofence_fence_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_geofence_fence_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_geofence_fence_radius_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_cfg_geofence_fence_items[] = {
+    {"lat", &ubx_cfg_geofence_fence_lat_scale, offsetof(nmea_ubx_cfg_geofence_fence, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lon", &ubx_cfg_geofence_fence_lon_scale, offsetof(nmea_ubx_cfg_geofence_fence, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"radius", &ubx_cfg_geofence_fence_radius_scale, offsetof(nmea_ubx_cfg_geofence_fence, radius), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
+static const nmea_ubx_group ubx_cfg_geofence_fences_group = {ubx_cfg_geofence_fence_items, 3, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_geofence, num_fences), 0, 0, 4, NMEA_UBX_CFG_GEOFENCE_FENCES_MAX, 12, sizeof(nmea_ubx_cfg_geofence_fence), 0, offsetof(nmea_ubx_cfg_geofence, fences_count)};
+static const nmea_ubx_item ubx_cfg_geofence_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_geofence, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_fences", NULL, offsetof(nmea_ubx_cfg_geofence, num_fences), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"conf_lvl", NULL, offsetof(nmea_ubx_cfg_geofence, conf_lvl), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_cfg_geofence, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pio_enabled", NULL, offsetof(nmea_ubx_cfg_geofence, pio_enabled), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pin_polarity", NULL, offsetof(nmea_ubx_cfg_geofence, pin_polarity), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pin", NULL, offsetof(nmea_ubx_cfg_geofence, pin), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_geofence, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fences", &ubx_cfg_geofence_fences_group, offsetof(nmea_ubx_cfg_geofence, fences), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* CFG-DGNSS: cfg_dgnss_poll */
@@ -2087,6 +2545,18 @@ static const nmea_ubx_item ubx_cfg_tmode3_items[] = {
     {"svin_min_dur", NULL, offsetof(nmea_ubx_cfg_tmode3, svin_min_dur), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"svin_acc_limit", &ubx_cfg_tmode3_svin_acc_limit_scale, offsetof(nmea_ubx_cfg_tmode3, svin_acc_limit), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"reserved3", NULL, offsetof(nmea_ubx_cfg_tmode3, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-PMS: cfg_pms_poll */
+static const nmea_ubx_item ubx_cfg_pms_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-PMS: cfg_pms */
+static const nmea_ubx_item ubx_cfg_pms_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_pms, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"power_setup_value", NULL, offsetof(nmea_ubx_cfg_pms, power_setup_value), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"period", NULL, offsetof(nmea_ubx_cfg_pms, period), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"on_time", NULL, offsetof(nmea_ubx_cfg_pms, on_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_cfg_pms, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* CFG-VALSET: cfg_valset_v0 */
@@ -2164,6 +2634,41 @@ static const nmea_ubx_item ubx_cfg_valdel_items[] = {
     {"action", NULL, offsetof(nmea_ubx_cfg_valdel, action), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved0", NULL, offsetof(nmea_ubx_cfg_valdel, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"keys", &ubx_cfg_valdel_keys_group, offsetof(nmea_ubx_cfg_valdel, keys), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-BATCH: cfg_batch_poll */
+static const nmea_ubx_item ubx_cfg_batch_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-BATCH: cfg_batch */
+static const nmea_ubx_item ubx_cfg_batch_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_batch, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_batch, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable", NULL, offsetof(nmea_ubx_cfg_batch, enable), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"extra_pvt", NULL, offsetof(nmea_ubx_cfg_batch, extra_pvt), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"extra_odo", NULL, offsetof(nmea_ubx_cfg_batch, extra_odo), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"pio_enable", NULL, offsetof(nmea_ubx_cfg_batch, pio_enable), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"pio_active_low", NULL, offsetof(nmea_ubx_cfg_batch, pio_active_low), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"buf_size", NULL, offsetof(nmea_ubx_cfg_batch, buf_size), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"notif_thrs", NULL, offsetof(nmea_ubx_cfg_batch, notif_thrs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pio_id", NULL, offsetof(nmea_ubx_cfg_batch, pio_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_cfg_batch, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* UPD-SOS: upd_sos_poll */
+static const nmea_ubx_item ubx_upd_sos_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* UPD-SOS: upd_sos_command */
+static const nmea_ubx_item ubx_upd_sos_command_items[] = {
+    {"cmd", NULL, offsetof(nmea_ubx_upd_sos_command, cmd), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_upd_sos_command, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* UPD-SOS: upd_sos */
+static const nmea_ubx_item ubx_upd_sos_items[] = {
+    {"cmd", NULL, offsetof(nmea_ubx_upd_sos, cmd), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_upd_sos, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"response", NULL, offsetof(nmea_ubx_upd_sos, response), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_upd_sos, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* MON-IO: mon_io_poll */
@@ -2806,6 +3311,20 @@ static const nmea_ubx_item ubx_esf_meas_items[] = {
     {"calib_ttag", NULL, offsetof(nmea_ubx_esf_meas, calib_ttag), offsetof(nmea_ubx_esf_meas, has_calib_ttag), 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, true}
 };
 
+/* ESF-RAW: esf_raw */
+static const nmea_ubx_item ubx_esf_raw_measurement_items[] = {
+    {"data", NULL, offsetof(nmea_ubx_esf_raw_measurement, data), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"data_field", NULL, offsetof(nmea_ubx_esf_raw_measurement, data_field), 0, 0, NMEA_UBX_ITEM_PART, 24, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"data_type", NULL, offsetof(nmea_ubx_esf_raw_measurement, data_type), 0, 0, NMEA_UBX_ITEM_PART, 8, 1, 24, NMEA_UBX_PRINT_NUMBER, false},
+    {"s_tag", NULL, offsetof(nmea_ubx_esf_raw_measurement, s_tag), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_esf_raw_measurements_group = {ubx_esf_raw_measurement_items, 4, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 255, NMEA_UBX_ESF_RAW_MEASUREMENTS_MAX, 8, sizeof(nmea_ubx_esf_raw_measurement), 0, offsetof(nmea_ubx_esf_raw, measurements_count)};
+static const nmea_ubx_item ubx_esf_raw_items[] = {
+    {"reserved1", NULL, offsetof(nmea_ubx_esf_raw, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"measurements", &ubx_esf_raw_measurements_group, offsetof(nmea_ubx_esf_raw, measurements), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* ESF-STATUS: esf_status_poll */
 static const nmea_ubx_item ubx_esf_status_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -2893,6 +3412,293 @@ static const nmea_ubx_item ubx_esf_ins_items[] = {
     {"x_accel", &ubx_esf_ins_x_accel_scale, offsetof(nmea_ubx_esf_ins, x_accel), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"y_accel", &ubx_esf_ins_y_accel_scale, offsetof(nmea_ubx_esf_ins, y_accel), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"z_accel", &ubx_esf_ins_z_accel_scale, offsetof(nmea_ubx_esf_ins, z_accel), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
+/* MGA-GPS: mga_gps_eph */
+static const nmea_ubx_scale ubx_mga_gps_eph_tgd_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_af2_scale = {3.602879701896397e+16, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_af1_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_af0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_crs_scale = {32.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_delta_n_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_m0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_cuc_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_cus_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_e_scale = {8589934592.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_sqrt_a_scale = {524288.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_cic_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_omega0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_cis_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_crc_scale = {32.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_i0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_omega_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_omega_dot_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_eph_idot_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_gps_eph_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_gps_eph, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_gps_eph, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_mga_gps_eph, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_gps_eph, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fit_interval", NULL, offsetof(nmea_ubx_mga_gps_eph, fit_interval), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ura_index", NULL, offsetof(nmea_ubx_mga_gps_eph, ura_index), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_health", NULL, offsetof(nmea_ubx_mga_gps_eph, sv_health), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tgd", &ubx_mga_gps_eph_tgd_scale, offsetof(nmea_ubx_mga_gps_eph, tgd), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"iodc", NULL, offsetof(nmea_ubx_mga_gps_eph, iodc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"toc", NULL, offsetof(nmea_ubx_mga_gps_eph, toc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_gps_eph, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"af2", &ubx_mga_gps_eph_af2_scale, offsetof(nmea_ubx_mga_gps_eph, af2), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af1", &ubx_mga_gps_eph_af1_scale, offsetof(nmea_ubx_mga_gps_eph, af1), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af0", &ubx_mga_gps_eph_af0_scale, offsetof(nmea_ubx_mga_gps_eph, af0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"crs", &ubx_mga_gps_eph_crs_scale, offsetof(nmea_ubx_mga_gps_eph, crs), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"delta_n", &ubx_mga_gps_eph_delta_n_scale, offsetof(nmea_ubx_mga_gps_eph, delta_n), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"m0", &ubx_mga_gps_eph_m0_scale, offsetof(nmea_ubx_mga_gps_eph, m0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cuc", &ubx_mga_gps_eph_cuc_scale, offsetof(nmea_ubx_mga_gps_eph, cuc), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cus", &ubx_mga_gps_eph_cus_scale, offsetof(nmea_ubx_mga_gps_eph, cus), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"e", &ubx_mga_gps_eph_e_scale, offsetof(nmea_ubx_mga_gps_eph, e), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"sqrt_a", &ubx_mga_gps_eph_sqrt_a_scale, offsetof(nmea_ubx_mga_gps_eph, sqrt_a), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"toe", NULL, offsetof(nmea_ubx_mga_gps_eph, toe), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cic", &ubx_mga_gps_eph_cic_scale, offsetof(nmea_ubx_mga_gps_eph, cic), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega0", &ubx_mga_gps_eph_omega0_scale, offsetof(nmea_ubx_mga_gps_eph, omega0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cis", &ubx_mga_gps_eph_cis_scale, offsetof(nmea_ubx_mga_gps_eph, cis), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"crc", &ubx_mga_gps_eph_crc_scale, offsetof(nmea_ubx_mga_gps_eph, crc), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"i0", &ubx_mga_gps_eph_i0_scale, offsetof(nmea_ubx_mga_gps_eph, i0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega", &ubx_mga_gps_eph_omega_scale, offsetof(nmea_ubx_mga_gps_eph, omega), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega_dot", &ubx_mga_gps_eph_omega_dot_scale, offsetof(nmea_ubx_mga_gps_eph, omega_dot), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"idot", &ubx_mga_gps_eph_idot_scale, offsetof(nmea_ubx_mga_gps_eph, idot), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_mga_gps_eph, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-GPS: mga_gps_alm */
+static const nmea_ubx_scale ubx_mga_gps_alm_e_scale = {2097152.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_alm_delta_i_scale = {524288.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_alm_omega_dot_scale = {274877906944.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_alm_sqrt_a_scale = {2048.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_alm_omega0_scale = {8388608.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_alm_omega_scale = {8388608.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_alm_m0_scale = {8388608.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_alm_af0_scale = {1048576.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_alm_af1_scale = {274877906944.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_gps_alm_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_gps_alm, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_gps_alm, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_mga_gps_alm, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_health", NULL, offsetof(nmea_ubx_mga_gps_alm, sv_health), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"e", &ubx_mga_gps_alm_e_scale, offsetof(nmea_ubx_mga_gps_alm, e), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"alm_w_na", NULL, offsetof(nmea_ubx_mga_gps_alm, alm_w_na), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"toa", NULL, offsetof(nmea_ubx_mga_gps_alm, toa), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"delta_i", &ubx_mga_gps_alm_delta_i_scale, offsetof(nmea_ubx_mga_gps_alm, delta_i), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega_dot", &ubx_mga_gps_alm_omega_dot_scale, offsetof(nmea_ubx_mga_gps_alm, omega_dot), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"sqrt_a", &ubx_mga_gps_alm_sqrt_a_scale, offsetof(nmea_ubx_mga_gps_alm, sqrt_a), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega0", &ubx_mga_gps_alm_omega0_scale, offsetof(nmea_ubx_mga_gps_alm, omega0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega", &ubx_mga_gps_alm_omega_scale, offsetof(nmea_ubx_mga_gps_alm, omega), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"m0", &ubx_mga_gps_alm_m0_scale, offsetof(nmea_ubx_mga_gps_alm, m0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af0", &ubx_mga_gps_alm_af0_scale, offsetof(nmea_ubx_mga_gps_alm, af0), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af1", &ubx_mga_gps_alm_af1_scale, offsetof(nmea_ubx_mga_gps_alm, af1), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_gps_alm, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-GPS: mga_gps_health */
+static const nmea_ubx_item ubx_mga_gps_health_health_code_entry_items[] = {
+    {"health_code", NULL, offsetof(nmea_ubx_mga_gps_health_health_code_entry, health_code), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mga_gps_health_health_code_group = {ubx_mga_gps_health_health_code_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 32, 0, 65535, NMEA_UBX_MGA_GPS_HEALTH_HEALTH_CODE_MAX, 1, sizeof(nmea_ubx_mga_gps_health_health_code_entry), 4, offsetof(nmea_ubx_mga_gps_health, health_code_count)};
+static const nmea_ubx_item ubx_mga_gps_health_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_gps_health, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_gps_health, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_gps_health, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"health_code", &ubx_mga_gps_health_health_code_group, offsetof(nmea_ubx_mga_gps_health, health_code), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_gps_health, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-GPS: mga_gps_utc */
+static const nmea_ubx_scale ubx_mga_gps_utc_utc_a0_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_utc_utc_a1_scale = {1125899906842624.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_gps_utc_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_gps_utc, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_gps_utc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_gps_utc, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_a0", &ubx_mga_gps_utc_utc_a0_scale, offsetof(nmea_ubx_mga_gps_utc, utc_a0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"utc_a1", &ubx_mga_gps_utc_utc_a1_scale, offsetof(nmea_ubx_mga_gps_utc, utc_a1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"utc_dt_ls", NULL, offsetof(nmea_ubx_mga_gps_utc, utc_dt_ls), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_tot", NULL, offsetof(nmea_ubx_mga_gps_utc, utc_tot), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_w_nt", NULL, offsetof(nmea_ubx_mga_gps_utc, utc_w_nt), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_w_nlsf", NULL, offsetof(nmea_ubx_mga_gps_utc, utc_w_nlsf), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_dn", NULL, offsetof(nmea_ubx_mga_gps_utc, utc_dn), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_dt_lsf", NULL, offsetof(nmea_ubx_mga_gps_utc, utc_dt_lsf), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_gps_utc, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-GPS: mga_gps_iono */
+static const nmea_ubx_scale ubx_mga_gps_iono_iono_alpha0_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_iono_iono_alpha1_scale = {134217728.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_iono_iono_alpha2_scale = {16777216.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gps_iono_iono_alpha3_scale = {16777216.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_gps_iono_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_gps_iono, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_gps_iono, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_gps_iono, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iono_alpha0", &ubx_mga_gps_iono_iono_alpha0_scale, offsetof(nmea_ubx_mga_gps_iono, iono_alpha0), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"iono_alpha1", &ubx_mga_gps_iono_iono_alpha1_scale, offsetof(nmea_ubx_mga_gps_iono, iono_alpha1), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"iono_alpha2", &ubx_mga_gps_iono_iono_alpha2_scale, offsetof(nmea_ubx_mga_gps_iono, iono_alpha2), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"iono_alpha3", &ubx_mga_gps_iono_iono_alpha3_scale, offsetof(nmea_ubx_mga_gps_iono, iono_alpha3), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"iono_beta0", NULL, offsetof(nmea_ubx_mga_gps_iono, iono_beta0), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iono_beta1", NULL, offsetof(nmea_ubx_mga_gps_iono, iono_beta1), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iono_beta2", NULL, offsetof(nmea_ubx_mga_gps_iono, iono_beta2), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iono_beta3", NULL, offsetof(nmea_ubx_mga_gps_iono, iono_beta3), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_gps_iono, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-GAL: mga_gal_eph */
+static const nmea_ubx_scale ubx_mga_gal_eph_delta_n_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_m0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_e_scale = {8589934592.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_sqrt_a_scale = {524288.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_omega0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_i0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_omega_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_omega_dot_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_i_dot_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_cuc_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_cus_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_crc_scale = {32.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_crs_scale = {32.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_cic_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_cis_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_af0_scale = {17179869184.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_af1_scale = {70368744177664.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_af2_scale = {5.764607523034235e+17, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_eph_bgd_e1_e5b_scale = {4294967296.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_gal_eph_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_gal_eph, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_gal_eph, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_mga_gal_eph, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_gal_eph, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iod_nav", NULL, offsetof(nmea_ubx_mga_gal_eph, iod_nav), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"delta_n", &ubx_mga_gal_eph_delta_n_scale, offsetof(nmea_ubx_mga_gal_eph, delta_n), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"m0", &ubx_mga_gal_eph_m0_scale, offsetof(nmea_ubx_mga_gal_eph, m0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"e", &ubx_mga_gal_eph_e_scale, offsetof(nmea_ubx_mga_gal_eph, e), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"sqrt_a", &ubx_mga_gal_eph_sqrt_a_scale, offsetof(nmea_ubx_mga_gal_eph, sqrt_a), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega0", &ubx_mga_gal_eph_omega0_scale, offsetof(nmea_ubx_mga_gal_eph, omega0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"i0", &ubx_mga_gal_eph_i0_scale, offsetof(nmea_ubx_mga_gal_eph, i0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega", &ubx_mga_gal_eph_omega_scale, offsetof(nmea_ubx_mga_gal_eph, omega), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega_dot", &ubx_mga_gal_eph_omega_dot_scale, offsetof(nmea_ubx_mga_gal_eph, omega_dot), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"i_dot", &ubx_mga_gal_eph_i_dot_scale, offsetof(nmea_ubx_mga_gal_eph, i_dot), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cuc", &ubx_mga_gal_eph_cuc_scale, offsetof(nmea_ubx_mga_gal_eph, cuc), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cus", &ubx_mga_gal_eph_cus_scale, offsetof(nmea_ubx_mga_gal_eph, cus), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"crc", &ubx_mga_gal_eph_crc_scale, offsetof(nmea_ubx_mga_gal_eph, crc), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"crs", &ubx_mga_gal_eph_crs_scale, offsetof(nmea_ubx_mga_gal_eph, crs), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cic", &ubx_mga_gal_eph_cic_scale, offsetof(nmea_ubx_mga_gal_eph, cic), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cis", &ubx_mga_gal_eph_cis_scale, offsetof(nmea_ubx_mga_gal_eph, cis), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"toe", NULL, offsetof(nmea_ubx_mga_gal_eph, toe), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"af0", &ubx_mga_gal_eph_af0_scale, offsetof(nmea_ubx_mga_gal_eph, af0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af1", &ubx_mga_gal_eph_af1_scale, offsetof(nmea_ubx_mga_gal_eph, af1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af2", &ubx_mga_gal_eph_af2_scale, offsetof(nmea_ubx_mga_gal_eph, af2), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"sisa_index_e1_e5b", NULL, offsetof(nmea_ubx_mga_gal_eph, sisa_index_e1_e5b), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"toc", NULL, offsetof(nmea_ubx_mga_gal_eph, toc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bgd_e1_e5b", &ubx_mga_gal_eph_bgd_e1_e5b_scale, offsetof(nmea_ubx_mga_gal_eph, bgd_e1_e5b), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_gal_eph, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"health_e1b", NULL, offsetof(nmea_ubx_mga_gal_eph, health_e1b), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"data_validity_e1b", NULL, offsetof(nmea_ubx_mga_gal_eph, data_validity_e1b), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"health_e5b", NULL, offsetof(nmea_ubx_mga_gal_eph, health_e5b), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"data_validity_e5b", NULL, offsetof(nmea_ubx_mga_gal_eph, data_validity_e5b), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_mga_gal_eph, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-GAL: mga_gal_alm */
+static const nmea_ubx_scale ubx_mga_gal_alm_delta_sqrt_a_scale = {512.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_alm_e_scale = {65536.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_alm_delta_i_scale = {16384.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_alm_omega0_scale = {32768.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_alm_omega_dot_scale = {8589934592.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_alm_omega_scale = {32768.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_alm_m0_scale = {32768.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_alm_af0_scale = {524288.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_alm_af1_scale = {274877906944.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_gal_alm_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_gal_alm, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_gal_alm, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_mga_gal_alm, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_gal_alm, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ioda", NULL, offsetof(nmea_ubx_mga_gal_alm, ioda), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"alm_w_na", NULL, offsetof(nmea_ubx_mga_gal_alm, alm_w_na), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"toa", NULL, offsetof(nmea_ubx_mga_gal_alm, toa), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"delta_sqrt_a", &ubx_mga_gal_alm_delta_sqrt_a_scale, offsetof(nmea_ubx_mga_gal_alm, delta_sqrt_a), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"e", &ubx_mga_gal_alm_e_scale, offsetof(nmea_ubx_mga_gal_alm, e), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"delta_i", &ubx_mga_gal_alm_delta_i_scale, offsetof(nmea_ubx_mga_gal_alm, delta_i), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega0", &ubx_mga_gal_alm_omega0_scale, offsetof(nmea_ubx_mga_gal_alm, omega0), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega_dot", &ubx_mga_gal_alm_omega_dot_scale, offsetof(nmea_ubx_mga_gal_alm, omega_dot), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega", &ubx_mga_gal_alm_omega_scale, offsetof(nmea_ubx_mga_gal_alm, omega), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"m0", &ubx_mga_gal_alm_m0_scale, offsetof(nmea_ubx_mga_gal_alm, m0), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af0", &ubx_mga_gal_alm_af0_scale, offsetof(nmea_ubx_mga_gal_alm, af0), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af1", &ubx_mga_gal_alm_af1_scale, offsetof(nmea_ubx_mga_gal_alm, af1), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"health_e1b", NULL, offsetof(nmea_ubx_mga_gal_alm, health_e1b), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"health_e5b", NULL, offsetof(nmea_ubx_mga_gal_alm, health_e5b), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_gal_alm, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-GAL: mga_gal_timeoffset */
+static const nmea_ubx_scale ubx_mga_gal_timeoffset_a0_g_scale = {34359738368.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_timeoffset_a1_g_scale = {2251799813685248.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_gal_timeoffset_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_gal_timeoffset, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_gal_timeoffset, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_gal_timeoffset, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"a0_g", &ubx_mga_gal_timeoffset_a0_g_scale, offsetof(nmea_ubx_mga_gal_timeoffset, a0_g), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"a1_g", &ubx_mga_gal_timeoffset_a1_g_scale, offsetof(nmea_ubx_mga_gal_timeoffset, a1_g), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"t0_g", NULL, offsetof(nmea_ubx_mga_gal_timeoffset, t0_g), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wn0_g", NULL, offsetof(nmea_ubx_mga_gal_timeoffset, wn0_g), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_gal_timeoffset, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-GAL: mga_gal_utc */
+static const nmea_ubx_scale ubx_mga_gal_utc_a0_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_gal_utc_a1_scale = {1125899906842624.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_gal_utc_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_gal_utc, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_gal_utc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_gal_utc, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"a0", &ubx_mga_gal_utc_a0_scale, offsetof(nmea_ubx_mga_gal_utc, a0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"a1", &ubx_mga_gal_utc_a1_scale, offsetof(nmea_ubx_mga_gal_utc, a1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"dt_ls", NULL, offsetof(nmea_ubx_mga_gal_utc, dt_ls), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tot", NULL, offsetof(nmea_ubx_mga_gal_utc, tot), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wnt", NULL, offsetof(nmea_ubx_mga_gal_utc, wnt), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wn_lsf", NULL, offsetof(nmea_ubx_mga_gal_utc, wn_lsf), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d_n", NULL, offsetof(nmea_ubx_mga_gal_utc, d_n), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dt_lsf", NULL, offsetof(nmea_ubx_mga_gal_utc, dt_lsf), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_gal_utc, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-ANO: mga_ano */
+static const nmea_ubx_item ubx_mga_ano_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ano, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ano, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_mga_ano, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_mga_ano, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"year", NULL, offsetof(nmea_ubx_mga_ano, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_mga_ano, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_mga_ano, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ano, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"data", NULL, offsetof(nmea_ubx_mga_ano, data), 0, 0, NMEA_UBX_ITEM_ARRAY, 64, 64, 0, NMEA_UBX_PRINT_HEX, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_ano, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-ACK: mga_ack */
+static const nmea_ubx_item ubx_mga_ack_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ack, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ack, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"info_code", NULL, offsetof(nmea_ubx_mga_ack, info_code), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_id", NULL, offsetof(nmea_ubx_mga_ack, msg_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_payload_start", NULL, offsetof(nmea_ubx_mga_ack, msg_payload_start), 0, 0, NMEA_UBX_ITEM_ARRAY, 4, 4, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+/* MGA-DBD: mga_dbd_poll */
+static const nmea_ubx_item ubx_mga_dbd_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MGA-DBD: mga_dbd */
+static const nmea_ubx_item ubx_mga_dbd_items[] = {
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_dbd, reserved1), 0, 0, NMEA_UBX_ITEM_ARRAY, 12, 12, 0, NMEA_UBX_PRINT_BIG, false},
+    {"data", NULL, offsetof(nmea_ubx_mga_dbd, data), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_HEX, false}
 };
 
 /* LOG-ERASE: log_erase */
@@ -3097,6 +3903,16 @@ static const nmea_ubx_item ubx_log_batch_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_log_batch, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* SEC-SIGN: sec_sign */
+static const nmea_ubx_item ubx_sec_sign_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_sec_sign, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_sec_sign, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"class_id", NULL, offsetof(nmea_ubx_sec_sign, class_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"message_id", NULL, offsetof(nmea_ubx_sec_sign, message_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"checksum", NULL, offsetof(nmea_ubx_sec_sign, checksum), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hash", NULL, offsetof(nmea_ubx_sec_sign, hash), 0, 0, NMEA_UBX_ITEM_ARRAY, 32, 32, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
 /* SEC-UNIQID: sec_uniqid_poll */
 static const nmea_ubx_item ubx_sec_uniqid_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -3105,6 +3921,62 @@ static const nmea_ubx_item ubx_sec_uniqid_items[] = {
     {"version", NULL, offsetof(nmea_ubx_sec_uniqid, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved0", NULL, offsetof(nmea_ubx_sec_uniqid, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"unique_id", NULL, offsetof(nmea_ubx_sec_uniqid, unique_id), 0, 0, NMEA_UBX_ITEM_ARRAY, 5, 5, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+/* SEC-SIG: sec_sig_poll */
+static const nmea_ubx_item ubx_sec_sig_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* SEC-SIG: sec_sig */
+static const nmea_ubx_item ubx_sec_sig_cent_freq_items[] = {
+    {"jam_state_cent_freq", NULL, offsetof(nmea_ubx_sec_sig_cent_freq, jam_state_cent_freq), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cent_freq", NULL, offsetof(nmea_ubx_sec_sig_cent_freq, cent_freq), 0, 0, NMEA_UBX_ITEM_PART, 24, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"jammed", NULL, offsetof(nmea_ubx_sec_sig_cent_freq, jammed), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 24, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_sec_sig_cent_freqs_group = {ubx_sec_sig_cent_freq_items, 3, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sec_sig, jam_num_cent_freqs), 0, 0, 65535, NMEA_UBX_SEC_SIG_CENT_FREQS_MAX, 4, sizeof(nmea_ubx_sec_sig_cent_freq), 0, offsetof(nmea_ubx_sec_sig, cent_freqs_count)};
+static const nmea_ubx_item ubx_sec_sig_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_sec_sig, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_sec_flags", NULL, offsetof(nmea_ubx_sec_sig, sig_sec_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"jam_det_enabled", NULL, offsetof(nmea_ubx_sec_sig, jam_det_enabled), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"jamming_state", NULL, offsetof(nmea_ubx_sec_sig, jamming_state), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"spf_det_enabled", NULL, offsetof(nmea_ubx_sec_sig, spf_det_enabled), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"spoofing_state", NULL, offsetof(nmea_ubx_sec_sig, spoofing_state), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_sec_sig, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"jam_num_cent_freqs", NULL, offsetof(nmea_ubx_sec_sig, jam_num_cent_freqs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cent_freqs", &ubx_sec_sig_cent_freqs_group, offsetof(nmea_ubx_sec_sig, cent_freqs), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SEC-SIG: sec_sig_v1 */
+static const nmea_ubx_item ubx_sec_sig_v1_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_sec_sig_v1, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_sec_sig_v1, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"jam_flags", NULL, offsetof(nmea_ubx_sec_sig_v1, jam_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"jam_det_enabled", NULL, offsetof(nmea_ubx_sec_sig_v1, jam_det_enabled), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"jamming_state", NULL, offsetof(nmea_ubx_sec_sig_v1, jamming_state), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_sec_sig_v1, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"spf_flags", NULL, offsetof(nmea_ubx_sec_sig_v1, spf_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"spf_det_enabled", NULL, offsetof(nmea_ubx_sec_sig_v1, spf_det_enabled), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"spoofing_state", NULL, offsetof(nmea_ubx_sec_sig_v1, spoofing_state), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_sec_sig_v1, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SEC-SIGLOG: sec_siglog_poll */
+static const nmea_ubx_item ubx_sec_siglog_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* SEC-SIGLOG: sec_siglog */
+static const nmea_ubx_item ubx_sec_siglog_event_items[] = {
+    {"time_elapsed", NULL, offsetof(nmea_ubx_sec_siglog_event, time_elapsed), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"detection_type", NULL, offsetof(nmea_ubx_sec_siglog_event, detection_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"event_type", NULL, offsetof(nmea_ubx_sec_siglog_event, event_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_sec_siglog_event, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_sec_siglog_events_group = {ubx_sec_siglog_event_items, 4, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sec_siglog, num_events), 0, 0, 65535, NMEA_UBX_SEC_SIGLOG_EVENTS_MAX, 8, sizeof(nmea_ubx_sec_siglog_event), 0, offsetof(nmea_ubx_sec_siglog, events_count)};
+static const nmea_ubx_item ubx_sec_siglog_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_sec_siglog, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_events", NULL, offsetof(nmea_ubx_sec_siglog, num_events), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_sec_siglog, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 6, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"events", &ubx_sec_siglog_events_group, offsetof(nmea_ubx_sec_siglog, events), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* HNR-PVT: hnr_pvt_poll */
@@ -3277,9 +4149,21 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav_pl_poll", "NAV-PL", 0x01, 0x62, false, 0, -1, 0, ubx_nav_pl_poll_items, 0, offsetof(nmea_ubx_nav_pl_poll, trailing)},
     {"nav_pl", "NAV-PL", 0x01, 0x62, true, 52, -1, 0, ubx_nav_pl_items, 20, offsetof(nmea_ubx_nav_pl, trailing)},
     {"rxm_sfrbx", "RXM-SFRBX", 0x02, 0x13, true, -1, -1, 0, ubx_rxm_sfrbx_items, 9, offsetof(nmea_ubx_rxm_sfrbx, trailing)},
+    {"rxm_measx_poll", "RXM-MEASX", 0x02, 0x14, false, 0, -1, 0, ubx_rxm_measx_poll_items, 0, offsetof(nmea_ubx_rxm_measx_poll, trailing)},
+    {"rxm_measx", "RXM-MEASX", 0x02, 0x14, true, -1, -1, 0, ubx_rxm_measx_items, 17, offsetof(nmea_ubx_rxm_measx, trailing)},
     {"rxm_rawx_poll", "RXM-RAWX", 0x02, 0x15, false, 0, -1, 0, ubx_rxm_rawx_poll_items, 0, offsetof(nmea_ubx_rxm_rawx_poll, trailing)},
     {"rxm_rawx", "RXM-RAWX", 0x02, 0x15, true, -1, -1, 0, ubx_rxm_rawx_items, 10, offsetof(nmea_ubx_rxm_rawx, trailing)},
+    {"rxm_svsi_poll", "RXM-SVSI", 0x02, 0x20, false, 0, -1, 0, ubx_rxm_svsi_poll_items, 0, offsetof(nmea_ubx_rxm_svsi_poll, trailing)},
+    {"rxm_svsi", "RXM-SVSI", 0x02, 0x20, true, -1, -1, 0, ubx_rxm_svsi_items, 5, offsetof(nmea_ubx_rxm_svsi, trailing)},
     {"rxm_rtcm", "RXM-RTCM", 0x02, 0x32, true, 8, -1, 0, ubx_rxm_rtcm_items, 7, offsetof(nmea_ubx_rxm_rtcm, trailing)},
+    {"rxm_spartn", "RXM-SPARTN", 0x02, 0x33, true, 8, -1, 0, ubx_rxm_spartn_items, 6, offsetof(nmea_ubx_rxm_spartn, trailing)},
+    {"rxm_cor", "RXM-COR", 0x02, 0x34, true, 12, -1, 0, ubx_rxm_cor_items, 15, offsetof(nmea_ubx_rxm_cor, trailing)},
+    {"rxm_spartnkey_poll", "RXM-SPARTNKEY", 0x02, 0x36, false, 0, -1, 0, ubx_rxm_spartnkey_poll_items, 0, offsetof(nmea_ubx_rxm_spartnkey_poll, trailing)},
+    {"rxm_spartnkey", "RXM-SPARTNKEY", 0x02, 0x36, true, -1, -1, 0, ubx_rxm_spartnkey_items, 5, offsetof(nmea_ubx_rxm_spartnkey, trailing)},
+    {"rxm_pmreq", "RXM-PMREQ", 0x02, 0x41, false, 16, -1, 0, ubx_rxm_pmreq_items, 11, offsetof(nmea_ubx_rxm_pmreq, trailing)},
+    {"rxm_pmreq_short", "RXM-PMREQ", 0x02, 0x41, false, 8, -1, 0, ubx_rxm_pmreq_short_items, 3, offsetof(nmea_ubx_rxm_pmreq_short, trailing)},
+    {"rxm_rlm", "RXM-RLM", 0x02, 0x59, true, 28, -1, 0, ubx_rxm_rlm_items, 8, offsetof(nmea_ubx_rxm_rlm, trailing)},
+    {"rxm_rlm_short", "RXM-RLM", 0x02, 0x59, true, 16, -1, 0, ubx_rxm_rlm_short_items, 8, offsetof(nmea_ubx_rxm_rlm_short, trailing)},
     {"inf_error", "INF-ERROR", 0x04, 0x00, true, -1, -1, 0, ubx_inf_error_items, 1, offsetof(nmea_ubx_inf_error, trailing)},
     {"inf_warning", "INF-WARNING", 0x04, 0x01, true, -1, -1, 0, ubx_inf_warning_items, 1, offsetof(nmea_ubx_inf_warning, trailing)},
     {"inf_notice", "INF-NOTICE", 0x04, 0x02, true, -1, -1, 0, ubx_inf_notice_items, 1, offsetof(nmea_ubx_inf_notice, trailing)},
@@ -3306,25 +4190,50 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_ant", "CFG-ANT", 0x06, 0x13, true, 4, -1, 0, ubx_cfg_ant_items, 11, offsetof(nmea_ubx_cfg_ant, trailing)},
     {"cfg_sbas_poll", "CFG-SBAS", 0x06, 0x16, false, 0, -1, 0, ubx_cfg_sbas_poll_items, 0, offsetof(nmea_ubx_cfg_sbas_poll, trailing)},
     {"cfg_sbas", "CFG-SBAS", 0x06, 0x16, true, 8, -1, 0, ubx_cfg_sbas_items, 10, offsetof(nmea_ubx_cfg_sbas, trailing)},
+    {"cfg_nmea_poll", "CFG-NMEA", 0x06, 0x17, false, 0, -1, 0, ubx_cfg_nmea_poll_items, 0, offsetof(nmea_ubx_cfg_nmea_poll, trailing)},
+    {"cfg_nmea", "CFG-NMEA", 0x06, 0x17, true, 20, 1, 11, ubx_cfg_nmea_items, 27, offsetof(nmea_ubx_cfg_nmea, trailing)},
+    {"cfg_nmea_v0", "CFG-NMEA", 0x06, 0x17, true, 12, 0, 11, ubx_cfg_nmea_v0_items, 25, offsetof(nmea_ubx_cfg_nmea_v0, trailing)},
+    {"cfg_nmea_deprecated", "CFG-NMEA", 0x06, 0x17, true, 4, -1, 0, ubx_cfg_nmea_deprecated_items, 14, offsetof(nmea_ubx_cfg_nmea_deprecated, trailing)},
+    {"cfg_odo_poll", "CFG-ODO", 0x06, 0x1E, false, 0, -1, 0, ubx_cfg_odo_poll_items, 0, offsetof(nmea_ubx_cfg_odo_poll, trailing)},
+    {"cfg_odo", "CFG-ODO", 0x06, 0x1E, true, 20, -1, 0, ubx_cfg_odo_items, 16, offsetof(nmea_ubx_cfg_odo, trailing)},
+    {"cfg_navx5_poll", "CFG-NAVX5", 0x06, 0x23, false, 0, -1, 0, ubx_cfg_navx5_poll_items, 0, offsetof(nmea_ubx_cfg_navx5_poll, trailing)},
+    {"cfg_navx5", "CFG-NAVX5", 0x06, 0x23, true, 40, -1, 0, ubx_cfg_navx5_items, 33, offsetof(nmea_ubx_cfg_navx5, trailing)},
     {"cfg_nav5_poll", "CFG-NAV5", 0x06, 0x24, false, 0, -1, 0, ubx_cfg_nav5_poll_items, 0, offsetof(nmea_ubx_cfg_nav5_poll, trailing)},
     {"cfg_nav5", "CFG-NAV5", 0x06, 0x24, true, 36, -1, 0, ubx_cfg_nav5_items, 29, offsetof(nmea_ubx_cfg_nav5, trailing)},
     {"cfg_tp5_poll", "CFG-TP5", 0x06, 0x31, false, 0, -1, 0, ubx_cfg_tp5_poll_items, 0, offsetof(nmea_ubx_cfg_tp5_poll, trailing)},
     {"cfg_tp5_poll_index", "CFG-TP5", 0x06, 0x31, false, 1, -1, 0, ubx_cfg_tp5_poll_index_items, 1, offsetof(nmea_ubx_cfg_tp5_poll_index, trailing)},
     {"cfg_tp5", "CFG-TP5", 0x06, 0x31, true, 32, -1, 0, ubx_cfg_tp5_items, 20, offsetof(nmea_ubx_cfg_tp5, trailing)},
+    {"cfg_itfm_poll", "CFG-ITFM", 0x06, 0x39, false, 0, -1, 0, ubx_cfg_itfm_poll_items, 0, offsetof(nmea_ubx_cfg_itfm_poll, trailing)},
+    {"cfg_itfm", "CFG-ITFM", 0x06, 0x39, true, 8, -1, 0, ubx_cfg_itfm_items, 9, offsetof(nmea_ubx_cfg_itfm, trailing)},
+    {"cfg_pm2_poll", "CFG-PM2", 0x06, 0x3B, false, 0, -1, 0, ubx_cfg_pm2_poll_items, 0, offsetof(nmea_ubx_cfg_pm2_poll, trailing)},
+    {"cfg_pm2", "CFG-PM2", 0x06, 0x3B, true, 48, 2, 0, ubx_cfg_pm2_items, 24, offsetof(nmea_ubx_cfg_pm2, trailing)},
+    {"cfg_pm2_v1", "CFG-PM2", 0x06, 0x3B, true, 44, 1, 0, ubx_cfg_pm2_v1_items, 23, offsetof(nmea_ubx_cfg_pm2_v1, trailing)},
     {"cfg_gnss_poll", "CFG-GNSS", 0x06, 0x3E, false, 0, -1, 0, ubx_cfg_gnss_poll_items, 0, offsetof(nmea_ubx_cfg_gnss_poll, trailing)},
     {"cfg_gnss", "CFG-GNSS", 0x06, 0x3E, true, -1, -1, 0, ubx_cfg_gnss_items, 5, offsetof(nmea_ubx_cfg_gnss, trailing)},
+    {"cfg_logfilter_poll", "CFG-LOGFILTER", 0x06, 0x47, false, 0, -1, 0, ubx_cfg_logfilter_poll_items, 0, offsetof(nmea_ubx_cfg_logfilter_poll, trailing)},
+    {"cfg_logfilter", "CFG-LOGFILTER", 0x06, 0x47, true, 12, -1, 0, ubx_cfg_logfilter_items, 9, offsetof(nmea_ubx_cfg_logfilter, trailing)},
+    {"cfg_pwr", "CFG-PWR", 0x06, 0x57, false, 8, -1, 0, ubx_cfg_pwr_items, 3, offsetof(nmea_ubx_cfg_pwr, trailing)},
     {"cfg_hnr_poll", "CFG-HNR", 0x06, 0x5C, false, 0, -1, 0, ubx_cfg_hnr_poll_items, 0, offsetof(nmea_ubx_cfg_hnr_poll, trailing)},
     {"cfg_hnr", "CFG-HNR", 0x06, 0x5C, true, 4, -1, 0, ubx_cfg_hnr_items, 2, offsetof(nmea_ubx_cfg_hnr, trailing)},
+    {"cfg_geofence_poll", "CFG-GEOFENCE", 0x06, 0x69, false, 0, -1, 0, ubx_cfg_geofence_poll_items, 0, offsetof(nmea_ubx_cfg_geofence_poll, trailing)},
+    {"cfg_geofence", "CFG-GEOFENCE", 0x06, 0x69, true, -1, -1, 0, ubx_cfg_geofence_items, 9, offsetof(nmea_ubx_cfg_geofence, trailing)},
     {"cfg_dgnss_poll", "CFG-DGNSS", 0x06, 0x70, false, 0, -1, 0, ubx_cfg_dgnss_poll_items, 0, offsetof(nmea_ubx_cfg_dgnss_poll, trailing)},
     {"cfg_dgnss", "CFG-DGNSS", 0x06, 0x70, true, 4, -1, 0, ubx_cfg_dgnss_items, 2, offsetof(nmea_ubx_cfg_dgnss, trailing)},
     {"cfg_tmode3_poll", "CFG-TMODE3", 0x06, 0x71, false, 0, -1, 0, ubx_cfg_tmode3_poll_items, 0, offsetof(nmea_ubx_cfg_tmode3_poll, trailing)},
     {"cfg_tmode3", "CFG-TMODE3", 0x06, 0x71, true, 40, -1, 0, ubx_cfg_tmode3_items, 16, offsetof(nmea_ubx_cfg_tmode3, trailing)},
+    {"cfg_pms_poll", "CFG-PMS", 0x06, 0x86, false, 0, -1, 0, ubx_cfg_pms_poll_items, 0, offsetof(nmea_ubx_cfg_pms_poll, trailing)},
+    {"cfg_pms", "CFG-PMS", 0x06, 0x86, true, 8, -1, 0, ubx_cfg_pms_items, 5, offsetof(nmea_ubx_cfg_pms, trailing)},
     {"cfg_valset_v0", "CFG-VALSET", 0x06, 0x8A, false, -1, 0, 0, ubx_cfg_valset_v0_items, 7, offsetof(nmea_ubx_cfg_valset_v0, trailing)},
     {"cfg_valset", "CFG-VALSET", 0x06, 0x8A, false, -1, 1, 0, ubx_cfg_valset_items, 9, offsetof(nmea_ubx_cfg_valset, trailing)},
     {"cfg_valget_poll", "CFG-VALGET", 0x06, 0x8B, false, -1, 0, 0, ubx_cfg_valget_poll_items, 4, offsetof(nmea_ubx_cfg_valget_poll, trailing)},
     {"cfg_valget", "CFG-VALGET", 0x06, 0x8B, true, -1, 1, 0, ubx_cfg_valget_items, 4, offsetof(nmea_ubx_cfg_valget, trailing)},
     {"cfg_valdel_v0", "CFG-VALDEL", 0x06, 0x8C, false, -1, 0, 0, ubx_cfg_valdel_v0_items, 6, offsetof(nmea_ubx_cfg_valdel_v0, trailing)},
     {"cfg_valdel", "CFG-VALDEL", 0x06, 0x8C, false, -1, 1, 0, ubx_cfg_valdel_items, 8, offsetof(nmea_ubx_cfg_valdel, trailing)},
+    {"cfg_batch_poll", "CFG-BATCH", 0x06, 0x93, false, 0, -1, 0, ubx_cfg_batch_poll_items, 0, offsetof(nmea_ubx_cfg_batch_poll, trailing)},
+    {"cfg_batch", "CFG-BATCH", 0x06, 0x93, true, 8, -1, 0, ubx_cfg_batch_items, 11, offsetof(nmea_ubx_cfg_batch, trailing)},
+    {"upd_sos_poll", "UPD-SOS", 0x09, 0x14, false, 0, -1, 0, ubx_upd_sos_poll_items, 0, offsetof(nmea_ubx_upd_sos_poll, trailing)},
+    {"upd_sos_command", "UPD-SOS", 0x09, 0x14, false, 4, -1, 0, ubx_upd_sos_command_items, 2, offsetof(nmea_ubx_upd_sos_command, trailing)},
+    {"upd_sos", "UPD-SOS", 0x09, 0x14, true, 8, -1, 0, ubx_upd_sos_items, 4, offsetof(nmea_ubx_upd_sos, trailing)},
     {"mon_io_poll", "MON-IO", 0x0A, 0x02, false, 0, -1, 0, ubx_mon_io_poll_items, 0, offsetof(nmea_ubx_mon_io_poll, trailing)},
     {"mon_io", "MON-IO", 0x0A, 0x02, true, -1, -1, 0, ubx_mon_io_items, 1, offsetof(nmea_ubx_mon_io, trailing)},
     {"mon_ver_poll", "MON-VER", 0x0A, 0x04, false, 0, -1, 0, ubx_mon_ver_poll_items, 0, offsetof(nmea_ubx_mon_ver_poll, trailing)},
@@ -3376,12 +4285,26 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"tim_fchg", "TIM-FCHG", 0x0D, 0x16, true, 32, -1, 0, ubx_tim_fchg_items, 9, offsetof(nmea_ubx_tim_fchg, trailing)},
     {"tim_hoc", "TIM-HOC", 0x0D, 0x17, false, 8, -1, 0, ubx_tim_hoc_items, 7, offsetof(nmea_ubx_tim_hoc, trailing)},
     {"esf_meas", "ESF-MEAS", 0x10, 0x02, true, -1, -1, 0, ubx_esf_meas_items, 9, offsetof(nmea_ubx_esf_meas, trailing)},
+    {"esf_raw", "ESF-RAW", 0x10, 0x03, true, -1, -1, 0, ubx_esf_raw_items, 2, offsetof(nmea_ubx_esf_raw, trailing)},
     {"esf_status_poll", "ESF-STATUS", 0x10, 0x10, false, 0, -1, 0, ubx_esf_status_poll_items, 0, offsetof(nmea_ubx_esf_status_poll, trailing)},
     {"esf_status", "ESF-STATUS", 0x10, 0x10, true, -1, -1, 0, ubx_esf_status_items, 13, offsetof(nmea_ubx_esf_status, trailing)},
     {"esf_alg_poll", "ESF-ALG", 0x10, 0x14, false, 0, -1, 0, ubx_esf_alg_poll_items, 0, offsetof(nmea_ubx_esf_alg_poll, trailing)},
     {"esf_alg", "ESF-ALG", 0x10, 0x14, true, 16, -1, 0, ubx_esf_alg_items, 13, offsetof(nmea_ubx_esf_alg, trailing)},
     {"esf_ins_poll", "ESF-INS", 0x10, 0x15, false, 0, -1, 0, ubx_esf_ins_poll_items, 0, offsetof(nmea_ubx_esf_ins_poll, trailing)},
     {"esf_ins", "ESF-INS", 0x10, 0x15, true, 36, -1, 0, ubx_esf_ins_items, 16, offsetof(nmea_ubx_esf_ins, trailing)},
+    {"mga_gps_eph", "MGA-GPS", 0x13, 0x00, false, 68, -1, 0, ubx_mga_gps_eph_items, 31, offsetof(nmea_ubx_mga_gps_eph, trailing)},
+    {"mga_gps_alm", "MGA-GPS", 0x13, 0x00, false, 36, -1, 0, ubx_mga_gps_alm_items, 16, offsetof(nmea_ubx_mga_gps_alm, trailing)},
+    {"mga_gps_health", "MGA-GPS", 0x13, 0x00, false, 40, -1, 0, ubx_mga_gps_health_items, 5, offsetof(nmea_ubx_mga_gps_health, trailing)},
+    {"mga_gps_utc", "MGA-GPS", 0x13, 0x00, false, 20, -1, 0, ubx_mga_gps_utc_items, 12, offsetof(nmea_ubx_mga_gps_utc, trailing)},
+    {"mga_gps_iono", "MGA-GPS", 0x13, 0x00, false, 16, -1, 0, ubx_mga_gps_iono_items, 12, offsetof(nmea_ubx_mga_gps_iono, trailing)},
+    {"mga_gal_eph", "MGA-GAL", 0x13, 0x02, false, 76, -1, 0, ubx_mga_gal_eph_items, 33, offsetof(nmea_ubx_mga_gal_eph, trailing)},
+    {"mga_gal_alm", "MGA-GAL", 0x13, 0x02, false, 32, -1, 0, ubx_mga_gal_alm_items, 19, offsetof(nmea_ubx_mga_gal_alm, trailing)},
+    {"mga_gal_timeoffset", "MGA-GAL", 0x13, 0x02, false, 12, -1, 0, ubx_mga_gal_timeoffset_items, 8, offsetof(nmea_ubx_mga_gal_timeoffset, trailing)},
+    {"mga_gal_utc", "MGA-GAL", 0x13, 0x02, false, 20, -1, 0, ubx_mga_gal_utc_items, 12, offsetof(nmea_ubx_mga_gal_utc, trailing)},
+    {"mga_ano", "MGA-ANO", 0x13, 0x20, false, 76, -1, 0, ubx_mga_ano_items, 10, offsetof(nmea_ubx_mga_ano, trailing)},
+    {"mga_ack", "MGA-ACK", 0x13, 0x60, true, 8, -1, 0, ubx_mga_ack_items, 5, offsetof(nmea_ubx_mga_ack, trailing)},
+    {"mga_dbd_poll", "MGA-DBD", 0x13, 0x80, false, 0, -1, 0, ubx_mga_dbd_poll_items, 0, offsetof(nmea_ubx_mga_dbd_poll, trailing)},
+    {"mga_dbd", "MGA-DBD", 0x13, 0x80, true, -1, -1, 0, ubx_mga_dbd_items, 2, offsetof(nmea_ubx_mga_dbd, trailing)},
     {"log_erase", "LOG-ERASE", 0x21, 0x03, false, 0, -1, 0, ubx_log_erase_items, 0, offsetof(nmea_ubx_log_erase, trailing)},
     {"log_string", "LOG-STRING", 0x21, 0x04, false, -1, -1, 0, ubx_log_string_items, 1, offsetof(nmea_ubx_log_string, trailing)},
     {"log_create", "LOG-CREATE", 0x21, 0x07, false, 8, -1, 0, ubx_log_create_items, 6, offsetof(nmea_ubx_log_create, trailing)},
@@ -3395,8 +4318,14 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"log_retrieveposextra", "LOG-RETRIEVEPOSEXTRA", 0x21, 0x0F, true, 32, -1, 0, ubx_log_retrieveposextra_items, 12, offsetof(nmea_ubx_log_retrieveposextra, trailing)},
     {"log_retrievebatch", "LOG-RETRIEVEBATCH", 0x21, 0x10, false, 4, -1, 0, ubx_log_retrievebatch_items, 4, offsetof(nmea_ubx_log_retrievebatch, trailing)},
     {"log_batch", "LOG-BATCH", 0x21, 0x11, true, 100, -1, 0, ubx_log_batch_items, 43, offsetof(nmea_ubx_log_batch, trailing)},
+    {"sec_sign", "SEC-SIGN", 0x27, 0x01, true, 40, -1, 0, ubx_sec_sign_items, 6, offsetof(nmea_ubx_sec_sign, trailing)},
     {"sec_uniqid_poll", "SEC-UNIQID", 0x27, 0x03, false, 0, -1, 0, ubx_sec_uniqid_poll_items, 0, offsetof(nmea_ubx_sec_uniqid_poll, trailing)},
     {"sec_uniqid", "SEC-UNIQID", 0x27, 0x03, true, 9, -1, 0, ubx_sec_uniqid_items, 3, offsetof(nmea_ubx_sec_uniqid, trailing)},
+    {"sec_sig_poll", "SEC-SIG", 0x27, 0x09, false, 0, -1, 0, ubx_sec_sig_poll_items, 0, offsetof(nmea_ubx_sec_sig_poll, trailing)},
+    {"sec_sig", "SEC-SIG", 0x27, 0x09, true, -1, 2, 0, ubx_sec_sig_items, 9, offsetof(nmea_ubx_sec_sig, trailing)},
+    {"sec_sig_v1", "SEC-SIG", 0x27, 0x09, true, 12, 1, 0, ubx_sec_sig_v1_items, 10, offsetof(nmea_ubx_sec_sig_v1, trailing)},
+    {"sec_siglog_poll", "SEC-SIGLOG", 0x27, 0x10, false, 0, -1, 0, ubx_sec_siglog_poll_items, 0, offsetof(nmea_ubx_sec_siglog_poll, trailing)},
+    {"sec_siglog", "SEC-SIGLOG", 0x27, 0x10, true, -1, -1, 0, ubx_sec_siglog_items, 4, offsetof(nmea_ubx_sec_siglog, trailing)},
     {"hnr_pvt_poll", "HNR-PVT", 0x28, 0x00, false, 0, -1, 0, ubx_hnr_pvt_poll_items, 0, offsetof(nmea_ubx_hnr_pvt_poll, trailing)},
     {"hnr_pvt", "HNR-PVT", 0x28, 0x00, true, 72, -1, 0, ubx_hnr_pvt_items, 33, offsetof(nmea_ubx_hnr_pvt, trailing)},
     {"hnr_att_poll", "HNR-ATT", 0x28, 0x01, false, 0, -1, 0, ubx_hnr_att_poll_items, 0, offsetof(nmea_ubx_hnr_att_poll, trailing)},
@@ -3446,77 +4375,104 @@ static const struct {
     {0x01, 0x61, 68, 68}, /* NAV-EOE */
     {0x01, 0x62, 69, 70}, /* NAV-PL */
     {0x02, 0x13, 71, 71}, /* RXM-SFRBX */
-    {0x02, 0x15, 72, 73}, /* RXM-RAWX */
-    {0x02, 0x32, 74, 74}, /* RXM-RTCM */
-    {0x04, 0x00, 75, 75}, /* INF-ERROR */
-    {0x04, 0x01, 76, 76}, /* INF-WARNING */
-    {0x04, 0x02, 77, 77}, /* INF-NOTICE */
-    {0x04, 0x03, 78, 78}, /* INF-TEST */
-    {0x04, 0x04, 79, 79}, /* INF-DEBUG */
-    {0x05, 0x00, 80, 80}, /* ACK-NAK */
-    {0x05, 0x01, 81, 81}, /* ACK-ACK */
-    {0x06, 0x00, 82, 84}, /* CFG-PRT */
-    {0x06, 0x01, 85, 87}, /* CFG-MSG */
-    {0x06, 0x02, 88, 89}, /* CFG-INF */
-    {0x06, 0x04, 90, 90}, /* CFG-RST */
-    {0x06, 0x08, 91, 92}, /* CFG-RATE */
-    {0x06, 0x09, 93, 94}, /* CFG-CFG */
-    {0x06, 0x11, 95, 96}, /* CFG-RXM */
-    {0x06, 0x13, 97, 98}, /* CFG-ANT */
-    {0x06, 0x16, 99, 100}, /* CFG-SBAS */
-    {0x06, 0x24, 101, 102}, /* CFG-NAV5 */
-    {0x06, 0x31, 103, 105}, /* CFG-TP5 */
-    {0x06, 0x3E, 106, 107}, /* CFG-GNSS */
-    {0x06, 0x5C, 108, 109}, /* CFG-HNR */
-    {0x06, 0x70, 110, 111}, /* CFG-DGNSS */
-    {0x06, 0x71, 112, 113}, /* CFG-TMODE3 */
-    {0x06, 0x8A, 114, 115}, /* CFG-VALSET */
-    {0x06, 0x8B, 116, 117}, /* CFG-VALGET */
-    {0x06, 0x8C, 118, 119}, /* CFG-VALDEL */
-    {0x0A, 0x02, 120, 121}, /* MON-IO */
-    {0x0A, 0x04, 122, 123}, /* MON-VER */
-    {0x0A, 0x06, 124, 125}, /* MON-MSGPP */
-    {0x0A, 0x07, 126, 127}, /* MON-RXBUF */
-    {0x0A, 0x08, 128, 129}, /* MON-TXBUF */
-    {0x0A, 0x09, 130, 131}, /* MON-HW */
-    {0x0A, 0x0B, 132, 133}, /* MON-HW2 */
-    {0x0A, 0x21, 134, 134}, /* MON-RXR */
-    {0x0A, 0x27, 135, 136}, /* MON-PATCH */
-    {0x0A, 0x28, 137, 138}, /* MON-GNSS */
-    {0x0A, 0x2E, 139, 140}, /* MON-SMGR */
-    {0x0A, 0x36, 141, 142}, /* MON-COMMS */
-    {0x0A, 0x37, 143, 144}, /* MON-HW3 */
-    {0x0A, 0x38, 145, 146}, /* MON-RF */
-    {0x0A, 0x39, 147, 148}, /* MON-SYS */
-    {0x0D, 0x01, 149, 150}, /* TIM-TP */
-    {0x0D, 0x03, 151, 152}, /* TIM-TM2 */
-    {0x0D, 0x04, 153, 154}, /* TIM-SVIN */
-    {0x0D, 0x06, 155, 156}, /* TIM-VRFY */
-    {0x0D, 0x11, 157, 158}, /* TIM-DOSC */
-    {0x0D, 0x12, 159, 160}, /* TIM-TOS */
-    {0x0D, 0x13, 161, 162}, /* TIM-SMEAS */
-    {0x0D, 0x15, 163, 166}, /* TIM-VCOCAL */
-    {0x0D, 0x16, 167, 168}, /* TIM-FCHG */
-    {0x0D, 0x17, 169, 169}, /* TIM-HOC */
-    {0x10, 0x02, 170, 170}, /* ESF-MEAS */
-    {0x10, 0x10, 171, 172}, /* ESF-STATUS */
-    {0x10, 0x14, 173, 174}, /* ESF-ALG */
-    {0x10, 0x15, 175, 176}, /* ESF-INS */
-    {0x21, 0x03, 177, 177}, /* LOG-ERASE */
-    {0x21, 0x04, 178, 178}, /* LOG-STRING */
-    {0x21, 0x07, 179, 179}, /* LOG-CREATE */
-    {0x21, 0x08, 180, 181}, /* LOG-INFO */
-    {0x21, 0x09, 182, 182}, /* LOG-RETRIEVE */
-    {0x21, 0x0B, 183, 183}, /* LOG-RETRIEVEPOS */
-    {0x21, 0x0D, 184, 184}, /* LOG-RETRIEVESTRING */
-    {0x21, 0x0E, 185, 186}, /* LOG-FINDTIME */
-    {0x21, 0x0F, 187, 187}, /* LOG-RETRIEVEPOSEXTRA */
-    {0x21, 0x10, 188, 188}, /* LOG-RETRIEVEBATCH */
-    {0x21, 0x11, 189, 189}, /* LOG-BATCH */
-    {0x27, 0x03, 190, 191}, /* SEC-UNIQID */
-    {0x28, 0x00, 192, 193}, /* HNR-PVT */
-    {0x28, 0x01, 194, 195}, /* HNR-ATT */
-    {0x28, 0x02, 196, 197}, /* HNR-INS */
+    {0x02, 0x14, 72, 73}, /* RXM-MEASX */
+    {0x02, 0x15, 74, 75}, /* RXM-RAWX */
+    {0x02, 0x20, 76, 77}, /* RXM-SVSI */
+    {0x02, 0x32, 78, 78}, /* RXM-RTCM */
+    {0x02, 0x33, 79, 79}, /* RXM-SPARTN */
+    {0x02, 0x34, 80, 80}, /* RXM-COR */
+    {0x02, 0x36, 81, 82}, /* RXM-SPARTNKEY */
+    {0x02, 0x41, 83, 84}, /* RXM-PMREQ */
+    {0x02, 0x59, 85, 86}, /* RXM-RLM */
+    {0x04, 0x00, 87, 87}, /* INF-ERROR */
+    {0x04, 0x01, 88, 88}, /* INF-WARNING */
+    {0x04, 0x02, 89, 89}, /* INF-NOTICE */
+    {0x04, 0x03, 90, 90}, /* INF-TEST */
+    {0x04, 0x04, 91, 91}, /* INF-DEBUG */
+    {0x05, 0x00, 92, 92}, /* ACK-NAK */
+    {0x05, 0x01, 93, 93}, /* ACK-ACK */
+    {0x06, 0x00, 94, 96}, /* CFG-PRT */
+    {0x06, 0x01, 97, 99}, /* CFG-MSG */
+    {0x06, 0x02, 100, 101}, /* CFG-INF */
+    {0x06, 0x04, 102, 102}, /* CFG-RST */
+    {0x06, 0x08, 103, 104}, /* CFG-RATE */
+    {0x06, 0x09, 105, 106}, /* CFG-CFG */
+    {0x06, 0x11, 107, 108}, /* CFG-RXM */
+    {0x06, 0x13, 109, 110}, /* CFG-ANT */
+    {0x06, 0x16, 111, 112}, /* CFG-SBAS */
+    {0x06, 0x17, 113, 116}, /* CFG-NMEA */
+    {0x06, 0x1E, 117, 118}, /* CFG-ODO */
+    {0x06, 0x23, 119, 120}, /* CFG-NAVX5 */
+    {0x06, 0x24, 121, 122}, /* CFG-NAV5 */
+    {0x06, 0x31, 123, 125}, /* CFG-TP5 */
+    {0x06, 0x39, 126, 127}, /* CFG-ITFM */
+    {0x06, 0x3B, 128, 130}, /* CFG-PM2 */
+    {0x06, 0x3E, 131, 132}, /* CFG-GNSS */
+    {0x06, 0x47, 133, 134}, /* CFG-LOGFILTER */
+    {0x06, 0x57, 135, 135}, /* CFG-PWR */
+    {0x06, 0x5C, 136, 137}, /* CFG-HNR */
+    {0x06, 0x69, 138, 139}, /* CFG-GEOFENCE */
+    {0x06, 0x70, 140, 141}, /* CFG-DGNSS */
+    {0x06, 0x71, 142, 143}, /* CFG-TMODE3 */
+    {0x06, 0x86, 144, 145}, /* CFG-PMS */
+    {0x06, 0x8A, 146, 147}, /* CFG-VALSET */
+    {0x06, 0x8B, 148, 149}, /* CFG-VALGET */
+    {0x06, 0x8C, 150, 151}, /* CFG-VALDEL */
+    {0x06, 0x93, 152, 153}, /* CFG-BATCH */
+    {0x09, 0x14, 154, 156}, /* UPD-SOS */
+    {0x0A, 0x02, 157, 158}, /* MON-IO */
+    {0x0A, 0x04, 159, 160}, /* MON-VER */
+    {0x0A, 0x06, 161, 162}, /* MON-MSGPP */
+    {0x0A, 0x07, 163, 164}, /* MON-RXBUF */
+    {0x0A, 0x08, 165, 166}, /* MON-TXBUF */
+    {0x0A, 0x09, 167, 168}, /* MON-HW */
+    {0x0A, 0x0B, 169, 170}, /* MON-HW2 */
+    {0x0A, 0x21, 171, 171}, /* MON-RXR */
+    {0x0A, 0x27, 172, 173}, /* MON-PATCH */
+    {0x0A, 0x28, 174, 175}, /* MON-GNSS */
+    {0x0A, 0x2E, 176, 177}, /* MON-SMGR */
+    {0x0A, 0x36, 178, 179}, /* MON-COMMS */
+    {0x0A, 0x37, 180, 181}, /* MON-HW3 */
+    {0x0A, 0x38, 182, 183}, /* MON-RF */
+    {0x0A, 0x39, 184, 185}, /* MON-SYS */
+    {0x0D, 0x01, 186, 187}, /* TIM-TP */
+    {0x0D, 0x03, 188, 189}, /* TIM-TM2 */
+    {0x0D, 0x04, 190, 191}, /* TIM-SVIN */
+    {0x0D, 0x06, 192, 193}, /* TIM-VRFY */
+    {0x0D, 0x11, 194, 195}, /* TIM-DOSC */
+    {0x0D, 0x12, 196, 197}, /* TIM-TOS */
+    {0x0D, 0x13, 198, 199}, /* TIM-SMEAS */
+    {0x0D, 0x15, 200, 203}, /* TIM-VCOCAL */
+    {0x0D, 0x16, 204, 205}, /* TIM-FCHG */
+    {0x0D, 0x17, 206, 206}, /* TIM-HOC */
+    {0x10, 0x02, 207, 207}, /* ESF-MEAS */
+    {0x10, 0x03, 208, 208}, /* ESF-RAW */
+    {0x10, 0x10, 209, 210}, /* ESF-STATUS */
+    {0x10, 0x14, 211, 212}, /* ESF-ALG */
+    {0x10, 0x15, 213, 214}, /* ESF-INS */
+    {0x13, 0x00, 215, 219}, /* MGA-GPS */
+    {0x13, 0x02, 220, 223}, /* MGA-GAL */
+    {0x13, 0x20, 224, 224}, /* MGA-ANO */
+    {0x13, 0x60, 225, 225}, /* MGA-ACK */
+    {0x13, 0x80, 226, 227}, /* MGA-DBD */
+    {0x21, 0x03, 228, 228}, /* LOG-ERASE */
+    {0x21, 0x04, 229, 229}, /* LOG-STRING */
+    {0x21, 0x07, 230, 230}, /* LOG-CREATE */
+    {0x21, 0x08, 231, 232}, /* LOG-INFO */
+    {0x21, 0x09, 233, 233}, /* LOG-RETRIEVE */
+    {0x21, 0x0B, 234, 234}, /* LOG-RETRIEVEPOS */
+    {0x21, 0x0D, 235, 235}, /* LOG-RETRIEVESTRING */
+    {0x21, 0x0E, 236, 237}, /* LOG-FINDTIME */
+    {0x21, 0x0F, 238, 238}, /* LOG-RETRIEVEPOSEXTRA */
+    {0x21, 0x10, 239, 239}, /* LOG-RETRIEVEBATCH */
+    {0x21, 0x11, 240, 240}, /* LOG-BATCH */
+    {0x27, 0x01, 241, 241}, /* SEC-SIGN */
+    {0x27, 0x03, 242, 243}, /* SEC-UNIQID */
+    {0x27, 0x09, 244, 246}, /* SEC-SIG */
+    {0x27, 0x10, 247, 248}, /* SEC-SIGLOG */
+    {0x28, 0x00, 249, 250}, /* HNR-PVT */
+    {0x28, 0x01, 251, 252}, /* HNR-ATT */
+    {0x28, 0x02, 253, 254}, /* HNR-INS */
 };
 
 bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, size_t len, nmea_ubx_message *out,

@@ -19,20 +19,29 @@
 //   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
 //   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
 //   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
-//   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
-//   spec/binary/ubx/messages/inf_error.yaml, spec/binary/ubx/messages/inf_warning.yaml,
-//   spec/binary/ubx/messages/inf_notice.yaml, spec/binary/ubx/messages/inf_test.yaml,
-//   spec/binary/ubx/messages/inf_debug.yaml, spec/binary/ubx/messages/ack_nak.yaml,
-//   spec/binary/ubx/messages/ack_ack.yaml, spec/binary/ubx/messages/cfg_prt.yaml,
-//   spec/binary/ubx/messages/cfg_msg.yaml, spec/binary/ubx/messages/cfg_inf.yaml,
-//   spec/binary/ubx/messages/cfg_rst.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
-//   spec/binary/ubx/messages/cfg_cfg.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
-//   spec/binary/ubx/messages/cfg_ant.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
+//   spec/binary/ubx/messages/rxm_measx.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
+//   spec/binary/ubx/messages/rxm_svsi.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
+//   spec/binary/ubx/messages/rxm_spartn.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
+//   spec/binary/ubx/messages/rxm_spartnkey.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
+//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/inf_error.yaml,
+//   spec/binary/ubx/messages/inf_warning.yaml, spec/binary/ubx/messages/inf_notice.yaml,
+//   spec/binary/ubx/messages/inf_test.yaml, spec/binary/ubx/messages/inf_debug.yaml,
+//   spec/binary/ubx/messages/ack_nak.yaml, spec/binary/ubx/messages/ack_ack.yaml,
+//   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
+//   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
+//   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_cfg.yaml,
+//   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_ant.yaml,
+//   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_nmea.yaml,
+//   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
 //   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
-//   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
-//   spec/binary/ubx/messages/cfg_dgnss.yaml, spec/binary/ubx/messages/cfg_tmode3.yaml,
+//   spec/binary/ubx/messages/cfg_itfm.yaml, spec/binary/ubx/messages/cfg_pm2.yaml,
+//   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_logfilter.yaml,
+//   spec/binary/ubx/messages/cfg_pwr.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
+//   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
+//   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
 //   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
-//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/mon_io.yaml,
+//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_batch.yaml,
+//   spec/binary/ubx/messages/upd_sos.yaml, spec/binary/ubx/messages/mon_io.yaml,
 //   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
 //   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
 //   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
@@ -45,17 +54,22 @@
 //   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
 //   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
 //   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
-//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_status.yaml,
-//   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
+//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
+//   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
+//   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
+//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_ano.yaml,
+//   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
 //   spec/binary/ubx/messages/log_erase.yaml, spec/binary/ubx/messages/log_string.yaml,
 //   spec/binary/ubx/messages/log_create.yaml, spec/binary/ubx/messages/log_info.yaml,
 //   spec/binary/ubx/messages/log_retrieve.yaml, spec/binary/ubx/messages/log_retrievepos.yaml,
 //   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_findtime.yaml,
 //   spec/binary/ubx/messages/log_retrieveposextra.yaml,
 //   spec/binary/ubx/messages/log_retrievebatch.yaml, spec/binary/ubx/messages/log_batch.yaml,
-//   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/hnr_pvt.yaml,
-//   spec/binary/ubx/messages/hnr_att.yaml, spec/binary/ubx/messages/hnr_ins.yaml,
-//   spec/enums/ubx_fix_type.yaml, spec/enums/ubx_gnss_id.yaml (digest d877decaaf45397a)
+//   spec/binary/ubx/messages/sec_sign.yaml, spec/binary/ubx/messages/sec_uniqid.yaml,
+//   spec/binary/ubx/messages/sec_sig.yaml, spec/binary/ubx/messages/sec_siglog.yaml,
+//   spec/binary/ubx/messages/hnr_pvt.yaml, spec/binary/ubx/messages/hnr_att.yaml,
+//   spec/binary/ubx/messages/hnr_ins.yaml, spec/enums/ubx_fix_type.yaml,
+//   spec/enums/ubx_gnss_id.yaml (digest a06197d722a020d3)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx: a struct per layout, every field typed, decoded from a
@@ -244,8 +258,20 @@ typedef struct {
 #ifndef NMEA_UBX_RXM_SFRBX_WORDS_MAX
 #define NMEA_UBX_RXM_SFRBX_WORDS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_RXM_MEASX_SVS_MAX
+#define NMEA_UBX_RXM_MEASX_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_RXM_RAWX_MEASUREMENTS_MAX
 #define NMEA_UBX_RXM_RAWX_MEASUREMENTS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_RXM_SVSI_SVS_MAX
+#define NMEA_UBX_RXM_SVSI_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_RXM_SPARTNKEY_KEY_INFO_MAX
+#define NMEA_UBX_RXM_SPARTNKEY_KEY_INFO_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_RXM_SPARTNKEY_KEYS_MAX
+#define NMEA_UBX_RXM_SPARTNKEY_KEYS_MAX (64 < NMEA_UBX_MAX_ENTRIES ? 64 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_CFG_MSG_RATES_MAX
 #define NMEA_UBX_CFG_MSG_RATES_MAX (6 < NMEA_UBX_MAX_ENTRIES ? 6 : NMEA_UBX_MAX_ENTRIES)
@@ -255,6 +281,9 @@ typedef struct {
 #endif
 #ifndef NMEA_UBX_CFG_GNSS_BLOCKS_MAX
 #define NMEA_UBX_CFG_GNSS_BLOCKS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_CFG_GEOFENCE_FENCES_MAX
+#define NMEA_UBX_CFG_GEOFENCE_FENCES_MAX (4 < NMEA_UBX_MAX_ENTRIES ? 4 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_CFG_VALGET_POLL_KEYS_MAX
 #define NMEA_UBX_CFG_VALGET_POLL_KEYS_MAX (64 < NMEA_UBX_MAX_ENTRIES ? 64 : NMEA_UBX_MAX_ENTRIES)
@@ -334,11 +363,23 @@ typedef struct {
 #ifndef NMEA_UBX_ESF_MEAS_MEASUREMENTS_MAX
 #define NMEA_UBX_ESF_MEAS_MEASUREMENTS_MAX (31 < NMEA_UBX_MAX_ENTRIES ? 31 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_ESF_RAW_MEASUREMENTS_MAX
+#define NMEA_UBX_ESF_RAW_MEASUREMENTS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_ESF_STATUS_SENSORS_MAX
 #define NMEA_UBX_ESF_STATUS_SENSORS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_MGA_GPS_HEALTH_HEALTH_CODE_MAX
+#define NMEA_UBX_MGA_GPS_HEALTH_HEALTH_CODE_MAX (32 < NMEA_UBX_MAX_ENTRIES ? 32 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_LOG_RETRIEVESTRING_BYTES_MAX
 #define NMEA_UBX_LOG_RETRIEVESTRING_BYTES_MAX (256 < NMEA_UBX_MAX_ENTRIES ? 256 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SEC_SIG_CENT_FREQS_MAX
+#define NMEA_UBX_SEC_SIG_CENT_FREQS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SEC_SIGLOG_EVENTS_MAX
+#define NMEA_UBX_SEC_SIGLOG_EVENTS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
 
 /* Position solution in ECEF: UBX NAV-POSECEF (class 0x01 id 0x01), poll. */
@@ -1275,6 +1316,50 @@ typedef struct {
     nmea_ubx_rxm_sfrbx_word words[NMEA_UBX_RXM_SFRBX_WORDS_MAX]; /* Data words */
 } nmea_ubx_rxm_sfrbx;
 
+/* Satellite measurements for RRLP: UBX RXM-MEASX (class 0x02 id 0x14), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_measx_poll;
+
+/* One entry of satellites (svs). */
+typedef struct {
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
+    uint8_t sv_id; /* Satellite identifier */
+    uint8_t c_no; /* Carrier to noise ratio [dBHz] */
+    uint8_t mpath_indic; /* Multipath indicator */
+    int32_t doppler_ms; /* Doppler measurement [m/s]; raw, value = raw / 25 */
+    int32_t doppler_hz; /* Doppler measurement [Hz]; raw, value = raw / 5 */
+    uint16_t whole_chips; /* Whole value of the code phase */
+    uint16_t frac_chips; /* Fractional value of the code phase */
+    uint32_t code_phase; /* Code phase [ms]; raw, value = raw / 2097152 */
+    uint8_t int_code_phase; /* Integer part of the code phase [ms] */
+    uint8_t pseu_range_rms_err; /* Pseudorange RMS error index */
+    uint16_t reserved4; /* Reserved (reserved, as sent) */
+} nmea_ubx_rxm_measx_sv;
+
+/* Satellite measurements for RRLP: UBX RXM-MEASX (class 0x02 id 0x14), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    uint32_t gps_tow; /* GPS time of week of the measurements [ms] */
+    uint32_t glo_tow; /* GLONASS time of week [ms] */
+    uint32_t bds_tow; /* BeiDou time of week [ms] */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t qzss_tow; /* QZSS time of week [ms] */
+    uint16_t gps_tow_acc; /* GPS time of week accuracy [ms]; raw, value = raw / 16 */
+    uint16_t glo_tow_acc; /* GLONASS time of week accuracy [ms]; raw, value = raw / 16 */
+    uint16_t bds_tow_acc; /* BeiDou time of week accuracy [ms]; raw, value = raw / 16 */
+    uint16_t reserved2; /* Reserved (reserved, as sent) */
+    uint16_t qzss_tow_acc; /* QZSS time of week accuracy [ms]; raw, value = raw / 16 */
+    uint8_t num_sv; /* Number of satellites */
+    uint8_t flags; /* Flags (bitfield) */
+    uint8_t tow_set; /* Times of week set (flags bits 0-1) */
+    uint64_t reserved3; /* Reserved (reserved, as sent) */
+    uint16_t svs_count; /* the entries of svs */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_rxm_measx_sv svs[NMEA_UBX_RXM_MEASX_SVS_MAX]; /* Satellites */
+} nmea_ubx_rxm_measx;
+
 /* Multi-GNSS raw measurements: UBX RXM-RAWX (class 0x02 id 0x15), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -1321,6 +1406,38 @@ typedef struct {
     nmea_ubx_rxm_rawx_measurement measurements[NMEA_UBX_RXM_RAWX_MEASUREMENTS_MAX]; /* Measurements */
 } nmea_ubx_rxm_rawx;
 
+/* Satellite status information: UBX RXM-SVSI (class 0x02 id 0x20), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_svsi_poll;
+
+/* One entry of satellites (svs). */
+typedef struct {
+    uint8_t svid; /* Satellite identifier */
+    uint8_t sv_flag; /* Satellite flags (bitfield) */
+    uint8_t ura; /* User range accuracy index (sv_flag bits 0-3) */
+    bool healthy; /* Healthy (sv_flag bit 4) */
+    bool eph_val; /* Ephemeris valid (sv_flag bit 5) */
+    bool alm_val; /* Almanac valid (sv_flag bit 6) */
+    bool not_avail; /* Not available (sv_flag bit 7) */
+    int16_t azim; /* Azimuth [deg] */
+    int8_t elev; /* Elevation [deg] */
+    uint8_t age; /* Ages of the orbit data (bitfield) */
+    uint8_t alm_age; /* Age of the almanac in days plus 4 (age bits 0-3) */
+    uint8_t eph_age; /* Age of the ephemeris in hours plus 4 (age bits 4-7) */
+} nmea_ubx_rxm_svsi_sv;
+
+/* Satellite status information: UBX RXM-SVSI (class 0x02 id 0x20), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    int16_t week; /* GPS week number */
+    uint8_t num_vis; /* Number of visible satellites */
+    uint8_t num_sv; /* Number of satellites reported */
+    uint16_t svs_count; /* the entries of svs */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_rxm_svsi_sv svs[NMEA_UBX_RXM_SVSI_SVS_MAX]; /* Satellites */
+} nmea_ubx_rxm_svsi;
+
 /* RTCM input status: UBX RXM-RTCM (class 0x02 id 0x32), output. */
 typedef struct {
     uint8_t version; /* Message version */
@@ -1332,6 +1449,117 @@ typedef struct {
     uint16_t msg_type; /* RTCM message type */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_rxm_rtcm;
+
+/* SPARTN input status: UBX RXM-SPARTN (class 0x02 id 0x33), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t flags; /* Flags (bitfield) */
+    uint8_t msg_used; /* Use (flags bits 1-2) */
+    uint16_t sub_type; /* SPARTN message subtype */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t msg_type; /* SPARTN message type */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_spartn;
+
+/* Differential correction input status: UBX RXM-COR (class 0x02 id 0x34), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t ebno; /* Energy per bit to noise ratio (L-band data) [dB]; raw, value = raw / 8 */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint32_t status_info; /* Status (bitfield) */
+    uint8_t protocol; /* Protocol (status_info bits 0-4) */
+    uint8_t err_status; /* Errors (status_info bits 5-6) */
+    uint8_t msg_used; /* Use (status_info bits 7-8) */
+    uint16_t correction_id; /* Identifier of the correction stream (status_info bits 9-24) */
+    bool msg_type_valid; /* msg_type is valid (status_info bit 25) */
+    bool msg_sub_type_valid; /* msg_sub_type is valid (status_info bit 26) */
+    bool msg_input_handle; /* Input handle (status_info bit 27) */
+    uint8_t msg_encrypted; /* Encryption (status_info bits 28-29) */
+    uint8_t msg_decrypted; /* Decryption (status_info bits 30-31) */
+    uint16_t msg_type; /* Message type */
+    uint16_t msg_sub_type; /* Message subtype */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_cor;
+
+/* SPARTN dynamic keys: UBX RXM-SPARTNKEY (class 0x02 id 0x36), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_spartnkey_poll;
+
+/* One entry of keys (key_info). */
+typedef struct {
+    uint8_t encrypt_algorithm; /* Encryption algorithm */
+    uint8_t key_length_bytes; /* Key length [byte] */
+    uint16_t valid_from_wno; /* GPS week the key is valid from */
+    uint32_t valid_from_tow; /* GPS time of week the key is valid from [s] */
+} nmea_ubx_rxm_spartnkey_key_info_entry;
+
+/* One entry of the keys' bytes, one key after the other (keys). */
+typedef struct {
+    uint8_t key; /* Byte */
+} nmea_ubx_rxm_spartnkey_key;
+
+/* SPARTN dynamic keys: UBX RXM-SPARTNKEY (class 0x02 id 0x36), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t num_keys; /* Number of keys */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t key_info_count; /* the entries of key_info */
+    uint16_t keys_count; /* the entries of keys */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_rxm_spartnkey_key_info_entry key_info[NMEA_UBX_RXM_SPARTNKEY_KEY_INFO_MAX]; /* Keys */
+    nmea_ubx_rxm_spartnkey_key keys[NMEA_UBX_RXM_SPARTNKEY_KEYS_MAX]; /* The keys' bytes, one key after the other */
+} nmea_ubx_rxm_spartnkey;
+
+/* Power management request: UBX RXM-PMREQ (class 0x02 id 0x41), input. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    uint32_t duration; /* Duration of the request [ms] */
+    uint32_t flags; /* Task flags (bitfield) */
+    bool backup; /* Enter backup mode (flags bit 1) */
+    bool force; /* Force the state change (even while the host may be sending) (flags bit 2) */
+    uint32_t wakeup_sources; /* Sources that wake the receiver (bitfield) */
+    bool uartrx; /* UART RX pin (wakeup_sources bit 3) */
+    bool extint0; /* EXTINT0 pin (wakeup_sources bit 5) */
+    bool extint1; /* EXTINT1 pin (wakeup_sources bit 6) */
+    bool spics; /* SPI chip select pin (wakeup_sources bit 7) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_pmreq;
+
+/* Power management request: UBX RXM-PMREQ (class 0x02 id 0x41), input. */
+typedef struct {
+    uint32_t duration; /* Duration of the request [ms] */
+    uint32_t flags; /* Task flags (bitfield) */
+    bool backup; /* Enter backup mode (flags bit 1) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_pmreq_short;
+
+/* Galileo SAR return link message: UBX RXM-RLM (class 0x02 id 0x59), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t type; /* Message type */
+    uint8_t sv_id; /* Galileo satellite identifier */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t beacon[8]; /* Beacon identifier (60 bits) */
+    uint8_t message; /* Message code (4 bits) */
+    uint8_t params[12]; /* Parameters (96 bits) */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_rlm;
+
+/* Galileo SAR return link message: UBX RXM-RLM (class 0x02 id 0x59), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t type; /* Message type */
+    uint8_t sv_id; /* Galileo satellite identifier */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t beacon[8]; /* Beacon identifier (60 bits) */
+    uint8_t message; /* Message code (4 bits) */
+    uint8_t params[2]; /* Parameters (16 bits) */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_rlm_short;
 
 /* Error message: UBX INF-ERROR (class 0x04 id 0x00), output. */
 typedef struct {
@@ -1581,6 +1809,161 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_sbas;
 
+/* NMEA protocol configuration: UBX CFG-NMEA (class 0x06 id 0x17), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_nmea_poll;
+
+/* NMEA protocol configuration: UBX CFG-NMEA (class 0x06 id 0x17), input, output. */
+typedef struct {
+    uint8_t filter; /* NMEA output filters (bitfield) */
+    bool pos_filt; /* Send positions even when the fix is not valid (filter bit 0) */
+    bool msk_pos_filt; /* Send positions even when masked out (filter bit 1) */
+    bool time_filt; /* Send the time even when not valid (filter bit 2) */
+    bool date_filt; /* Send the date even when not valid (filter bit 3) */
+    bool gps_only_filter; /* Restrict to GPS satellites only (filter bit 4) */
+    bool track_filt; /* Send the heading even when not valid (filter bit 5) */
+    uint8_t nmea_version; /* NMEA version */
+    uint8_t num_sv; /* Largest number of satellites reported */
+    uint8_t flags; /* Flags (bitfield) */
+    bool compat; /* Compatibility mode (fixed number of decimals) (flags bit 0) */
+    bool consider; /* Consideration mode (flags bit 1) */
+    bool limit82; /* Keep sentences within 82 characters (flags bit 2) */
+    bool high_prec; /* High precision mode (more decimals) (flags bit 3) */
+    uint32_t gnss_to_filter; /* Satellite systems not reported in GSV, GSA, GRS and GBS (bitfield) */
+    bool gps; /* GPS (gnss_to_filter bit 0) */
+    bool sbas; /* SBAS (gnss_to_filter bit 1) */
+    bool galileo; /* Galileo (gnss_to_filter bit 2) */
+    bool qzss; /* QZSS (gnss_to_filter bit 4) */
+    bool glonass; /* GLONASS (gnss_to_filter bit 5) */
+    bool beidou; /* BeiDou (gnss_to_filter bit 6) */
+    uint8_t sv_numbering; /* Numbering of satellites without an NMEA number */
+    uint8_t main_talker_id; /* Main talker id */
+    uint8_t gsv_talker_id; /* Talker id of GSV */
+    uint8_t version; /* Message version */
+    char bds_talker_id[2]; /* BeiDou talker id (as sent) */
+    uint64_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_nmea;
+
+/* NMEA protocol configuration: UBX CFG-NMEA (class 0x06 id 0x17), input, output. */
+typedef struct {
+    uint8_t filter; /* NMEA output filters (bitfield) */
+    bool pos_filt; /* Send positions even when the fix is not valid (filter bit 0) */
+    bool msk_pos_filt; /* Send positions even when masked out (filter bit 1) */
+    bool time_filt; /* Send the time even when not valid (filter bit 2) */
+    bool date_filt; /* Send the date even when not valid (filter bit 3) */
+    bool gps_only_filter; /* Restrict to GPS satellites only (filter bit 4) */
+    bool track_filt; /* Send the heading even when not valid (filter bit 5) */
+    uint8_t nmea_version; /* NMEA version */
+    uint8_t num_sv; /* Largest number of satellites reported */
+    uint8_t flags; /* Flags (bitfield) */
+    bool compat; /* Compatibility mode (fixed number of decimals) (flags bit 0) */
+    bool consider; /* Consideration mode (flags bit 1) */
+    bool limit82; /* Keep sentences within 82 characters (flags bit 2) */
+    bool high_prec; /* High precision mode (more decimals) (flags bit 3) */
+    uint32_t gnss_to_filter; /* Satellite systems not reported in GSV, GSA, GRS and GBS (bitfield) */
+    bool gps; /* GPS (gnss_to_filter bit 0) */
+    bool sbas; /* SBAS (gnss_to_filter bit 1) */
+    bool galileo; /* Galileo (gnss_to_filter bit 2) */
+    bool qzss; /* QZSS (gnss_to_filter bit 4) */
+    bool glonass; /* GLONASS (gnss_to_filter bit 5) */
+    bool beidou; /* BeiDou (gnss_to_filter bit 6) */
+    uint8_t sv_numbering; /* Numbering of satellites without an NMEA number */
+    uint8_t main_talker_id; /* Main talker id */
+    uint8_t gsv_talker_id; /* Talker id of GSV */
+    uint8_t version; /* Message version */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_nmea_v0;
+
+/* NMEA protocol configuration: UBX CFG-NMEA (class 0x06 id 0x17), input, output. */
+typedef struct {
+    uint8_t filter; /* NMEA output filters (bitfield) */
+    bool pos_filt; /* Send positions even when the fix is not valid (filter bit 0) */
+    bool msk_pos_filt; /* Send positions even when masked out (filter bit 1) */
+    bool time_filt; /* Send the time even when not valid (filter bit 2) */
+    bool date_filt; /* Send the date even when not valid (filter bit 3) */
+    bool gps_only_filter; /* Restrict to GPS satellites only (filter bit 4) */
+    bool track_filt; /* Send the heading even when not valid (filter bit 5) */
+    uint8_t nmea_version; /* NMEA version */
+    uint8_t num_sv; /* Largest number of satellites reported */
+    uint8_t flags; /* Flags (bitfield) */
+    bool compat; /* Compatibility mode (fixed number of decimals) (flags bit 0) */
+    bool consider; /* Consideration mode (flags bit 1) */
+    bool limit82; /* Keep sentences within 82 characters (flags bit 2) */
+    bool high_prec; /* High precision mode (more decimals) (flags bit 3) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_nmea_deprecated;
+
+/* Odometer and low-speed course filters: UBX CFG-ODO (class 0x06 id 0x1E), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_odo_poll;
+
+/* Odometer and low-speed course filters: UBX CFG-ODO (class 0x06 id 0x1E), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t flags; /* Flags (bitfield) */
+    bool use_odo; /* Odometer enabled (flags bit 0) */
+    bool use_cog; /* Low-speed course over ground filter enabled (flags bit 1) */
+    bool out_lp_vel; /* Output the low-pass filtered velocity (flags bit 2) */
+    bool out_lp_cog; /* Output the low-pass filtered course over ground (flags bit 3) */
+    uint8_t odo_cfg; /* Odometer profile (bitfield) */
+    uint8_t profile; /* Profile (odo_cfg bits 0-2) */
+    uint64_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t cog_max_speed; /* Speed below which the course over ground is filtered [m/s]; raw, value = raw / 10 */
+    uint8_t cog_max_pos_acc; /* Largest position accuracy for the course over ground filter [m] */
+    uint16_t reserved2; /* Reserved (reserved, as sent) */
+    uint8_t vel_lp_gain; /* Velocity low-pass filter gain */
+    uint8_t cog_lp_gain; /* Course over ground low-pass filter gain */
+    uint16_t reserved3; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_odo;
+
+/* Navigation engine expert settings: UBX CFG-NAVX5 (class 0x06 id 0x23), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_navx5_poll;
+
+/* Navigation engine expert settings: UBX CFG-NAVX5 (class 0x06 id 0x23), input, output. */
+typedef struct {
+    uint16_t version; /* Message version */
+    uint16_t mask1; /* Settings to apply (bitfield) */
+    bool min_max; /* Apply min_svs and max_svs (mask1 bit 2) */
+    bool min_cno_mask; /* Apply min_cno (mask1 bit 3) */
+    bool initial3dfix; /* Apply ini_fix3d (mask1 bit 6) */
+    bool wkn_roll; /* Apply wkn_rollover (mask1 bit 9) */
+    bool ack_aid; /* Apply ack_aiding (mask1 bit 10) */
+    bool ppp; /* Apply use_ppp (mask1 bit 13) */
+    bool aop; /* Apply aop_cfg and aop_orb_max_err (mask1 bit 14) */
+    uint32_t mask2; /* More settings to apply (bitfield) */
+    bool adr; /* Apply use_adr (mask2 bit 6) */
+    bool sig_atten_comp; /* Apply sig_atten_comp_mode (mask2 bit 7) */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t min_svs; /* Least number of satellites for navigation */
+    uint8_t max_svs; /* Largest number of satellites for navigation */
+    uint8_t min_cno; /* Least C/N0 of a satellite used [dBHz] */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t ini_fix3d; /* The initial fix must be 3D */
+    uint16_t reserved2; /* Reserved (reserved, as sent) */
+    uint8_t ack_aiding; /* Acknowledge assistance input messages */
+    uint16_t wkn_rollover; /* GPS week rollover number */
+    uint8_t sig_atten_comp_mode; /* Signal attenuation compensation */
+    uint8_t reserved3; /* Reserved (reserved, as sent) */
+    uint16_t reserved4; /* Reserved (reserved, as sent) */
+    uint16_t reserved5; /* Reserved (reserved, as sent) */
+    uint8_t use_ppp; /* Use precise point positioning */
+    uint8_t aop_cfg; /* AssistNow Autonomous configuration (bitfield) */
+    bool use_aop; /* AssistNow Autonomous enabled (aop_cfg bit 0) */
+    uint16_t reserved6; /* Reserved (reserved, as sent) */
+    uint16_t aop_orb_max_err; /* Largest acceptable orbit error of AssistNow Autonomous [m] */
+    uint32_t reserved7; /* Reserved (reserved, as sent) */
+    uint32_t reserved8; /* Reserved (reserved, as sent) */
+    uint8_t use_adr; /* Use automotive dead reckoning */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_navx5;
+
 /* Navigation engine settings: UBX CFG-NAV5 (class 0x06 id 0x24), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -1656,6 +2039,87 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_tp5;
 
+/* Jamming and interference monitor configuration: UBX CFG-ITFM (class 0x06 id 0x39), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_itfm_poll;
+
+/* Jamming and interference monitor configuration: UBX CFG-ITFM (class 0x06 id 0x39), input, output. */
+typedef struct {
+    uint32_t config; /* Interference monitor settings (bitfield) */
+    uint8_t bb_threshold; /* Broadband jamming detection threshold [dB] (config bits 0-3) */
+    uint8_t cw_threshold; /* Continuous wave jamming detection threshold [dB] (config bits 4-8) */
+    uint32_t algorithm_bits; /* Reserved algorithm settings (config bits 9-30) */
+    bool enable; /* Interference detection enabled (config bit 31) */
+    uint32_t config2; /* Further settings (bitfield) */
+    uint16_t general_bits; /* General settings (config2 bits 0-11) */
+    uint8_t ant_setting; /* Antenna kind (config2 bits 12-13) */
+    bool enable2; /* Interference detection also in the second band (config2 bit 14) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_itfm;
+
+/* Extended power management configuration: UBX CFG-PM2 (class 0x06 id 0x3B), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_pm2_poll;
+
+/* Extended power management configuration: UBX CFG-PM2 (class 0x06 id 0x3B), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t max_startup_state_dur; /* Longest time in the acquisition state [s] */
+    uint8_t reserved2; /* Reserved (reserved, as sent) */
+    uint32_t flags; /* Power save mode flags (bitfield) */
+    uint8_t opt_target; /* Optimization target (flags bits 1-3) */
+    bool extint_sel; /* EXTINT pin used (0 EXTINT0, 1 EXTINT1) (flags bit 4) */
+    bool extint_wake; /* EXTINT high keeps the receiver awake (flags bit 5) */
+    bool extint_backup; /* EXTINT low sends the receiver to backup (flags bit 6) */
+    bool extint_inactive; /* EXTINT inactivity sends the receiver to backup (flags bit 7) */
+    uint8_t limit_peak_curr; /* Peak current limit (flags bits 8-9) */
+    bool wait_time_fix; /* Wait for the time fix before on-off operation (flags bit 10) */
+    bool update_rtc; /* Update the RTC during on-off operation (flags bit 11) */
+    bool update_eph; /* Update the ephemeris during on-off operation (flags bit 12) */
+    bool do_not_enter_off; /* Never enter the inactive-for-search state (flags bit 16) */
+    uint8_t operation_mode; /* Mode of operation (flags bits 17-18) */
+    uint32_t update_period; /* Position update period [ms] */
+    uint32_t search_period; /* Acquisition retry period after a failure [ms] */
+    uint32_t grid_offset; /* Offset of the update grid in the GPS week [ms] */
+    uint16_t on_time; /* Time to stay in tracking [s] */
+    uint16_t min_acq_time; /* Least time to spend in acquisition [s] */
+    uint8_t reserved3[16]; /* Reserved (as sent) */
+    uint32_t reserved4; /* Reserved (the last 4 of 20 reserved bytes) (reserved, as sent) */
+    uint32_t extint_inactivity_ms; /* EXTINT inactivity time before backup [ms] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_pm2;
+
+/* Extended power management configuration: UBX CFG-PM2 (class 0x06 id 0x3B), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t max_startup_state_dur; /* Longest time in the acquisition state [s] */
+    uint8_t reserved2; /* Reserved (reserved, as sent) */
+    uint32_t flags; /* Power save mode flags (bitfield) */
+    uint8_t opt_target; /* Optimization target (flags bits 1-3) */
+    bool extint_sel; /* EXTINT pin used (0 EXTINT0, 1 EXTINT1) (flags bit 4) */
+    bool extint_wake; /* EXTINT high keeps the receiver awake (flags bit 5) */
+    bool extint_backup; /* EXTINT low sends the receiver to backup (flags bit 6) */
+    bool extint_inactive; /* EXTINT inactivity sends the receiver to backup (flags bit 7) */
+    uint8_t limit_peak_curr; /* Peak current limit (flags bits 8-9) */
+    bool wait_time_fix; /* Wait for the time fix before on-off operation (flags bit 10) */
+    bool update_rtc; /* Update the RTC during on-off operation (flags bit 11) */
+    bool update_eph; /* Update the ephemeris during on-off operation (flags bit 12) */
+    bool do_not_enter_off; /* Never enter the inactive-for-search state (flags bit 16) */
+    uint8_t operation_mode; /* Mode of operation (flags bits 17-18) */
+    uint32_t update_period; /* Position update period [ms] */
+    uint32_t search_period; /* Acquisition retry period after a failure [ms] */
+    uint32_t grid_offset; /* Offset of the update grid in the GPS week [ms] */
+    uint16_t on_time; /* Time to stay in tracking [s] */
+    uint16_t min_acq_time; /* Least time to spend in acquisition [s] */
+    uint8_t reserved3[16]; /* Reserved (as sent) */
+    uint32_t reserved4; /* Reserved (the last 4 of 20 reserved bytes) (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_pm2_v1;
+
 /* GNSS system configuration: UBX CFG-GNSS (class 0x06 id 0x3E), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -1683,6 +2147,33 @@ typedef struct {
     nmea_ubx_cfg_gnss_block blocks[NMEA_UBX_CFG_GNSS_BLOCKS_MAX]; /* Configuration blocks */
 } nmea_ubx_cfg_gnss;
 
+/* Data logger configuration: UBX CFG-LOGFILTER (class 0x06 id 0x47), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_logfilter_poll;
+
+/* Data logger configuration: UBX CFG-LOGFILTER (class 0x06 id 0x47), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t flags; /* Flags (bitfield) */
+    bool record_enabled; /* Recording enabled (flags bit 0) */
+    bool psm_once_per_wakup_enabled; /* Log one position per power save wake up (flags bit 1) */
+    bool apply_all_filter_settings; /* Apply all the thresholds below (else only min_interval) (flags bit 2) */
+    uint16_t min_interval; /* Least time between two entries [s] */
+    uint16_t time_threshold; /* Time after which an entry is logged [s] */
+    uint16_t speed_threshold; /* Speed above which an entry is logged [m/s] */
+    uint32_t position_threshold; /* Distance after which an entry is logged [m] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_logfilter;
+
+/* Put the receiver in a power state: UBX CFG-PWR (class 0x06 id 0x57), input. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t state; /* Power state to enter */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_pwr;
+
 /* High navigation rate settings: UBX CFG-HNR (class 0x06 id 0x5C), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -1694,6 +2185,33 @@ typedef struct {
     uint32_t reserved1; /* Reserved (reserved, as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_hnr;
+
+/* Geofencing configuration: UBX CFG-GEOFENCE (class 0x06 id 0x69), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_geofence_poll;
+
+/* One entry of geofences (fences). */
+typedef struct {
+    int32_t lat; /* Latitude of the center [deg]; raw, value = raw / 10000000 */
+    int32_t lon; /* Longitude of the center [deg]; raw, value = raw / 10000000 */
+    uint32_t radius; /* Radius [m]; raw, value = raw / 100 */
+} nmea_ubx_cfg_geofence_fence;
+
+/* Geofencing configuration: UBX CFG-GEOFENCE (class 0x06 id 0x69), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t num_fences; /* Number of geofences */
+    uint8_t conf_lvl; /* Required confidence level for the state */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t pio_enabled; /* Show the combined state on a PIO pin */
+    uint8_t pin_polarity; /* PIO pin polarity */
+    uint8_t pin; /* PIO pin number */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t fences_count; /* the entries of fences */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_cfg_geofence_fence fences[NMEA_UBX_CFG_GEOFENCE_FENCES_MAX]; /* Geofences */
+} nmea_ubx_cfg_geofence;
 
 /* DGNSS configuration: UBX CFG-DGNSS (class 0x06 id 0x70), poll. */
 typedef struct {
@@ -1732,6 +2250,21 @@ typedef struct {
     uint64_t reserved3; /* Reserved (reserved, as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_tmode3;
+
+/* Power mode setup: UBX CFG-PMS (class 0x06 id 0x86), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_pms_poll;
+
+/* Power mode setup: UBX CFG-PMS (class 0x06 id 0x86), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t power_setup_value; /* Power mode preset */
+    uint16_t period; /* Position update period of the interval mode [s] */
+    uint16_t on_time; /* On time of the interval mode [s] */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_pms;
 
 /* Set configuration item values: UBX CFG-VALSET (class 0x06 id 0x8A), input. */
 typedef struct {
@@ -1818,6 +2351,48 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
     nmea_ubx_cfg_valdel_key keys[NMEA_UBX_CFG_VALDEL_KEYS_MAX]; /* Key ids */
 } nmea_ubx_cfg_valdel;
+
+/* Data batching configuration: UBX CFG-BATCH (class 0x06 id 0x93), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_batch_poll;
+
+/* Data batching configuration: UBX CFG-BATCH (class 0x06 id 0x93), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t flags; /* Flags (bitfield) */
+    bool enable; /* Batching enabled (flags bit 0) */
+    bool extra_pvt; /* Keep the extra PVT fields (flags bit 2) */
+    bool extra_odo; /* Keep the odometer fields (flags bit 3) */
+    bool pio_enable; /* Signal a full buffer on a PIO pin (flags bit 5) */
+    bool pio_active_low; /* The PIO pin is active low (flags bit 6) */
+    uint16_t buf_size; /* Buffer size */
+    uint16_t notif_thrs; /* Fill level that triggers the PIO pin */
+    uint8_t pio_id; /* PIO pin */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_batch;
+
+/* Backup in flash (save on shutdown): UBX UPD-SOS (class 0x09 id 0x14), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_upd_sos_poll;
+
+/* Backup in flash (save on shutdown): UBX UPD-SOS (class 0x09 id 0x14), input. */
+typedef struct {
+    uint8_t cmd; /* Command */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_upd_sos_command;
+
+/* Backup in flash (save on shutdown): UBX UPD-SOS (class 0x09 id 0x14), output. */
+typedef struct {
+    uint8_t cmd; /* Command */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t response; /* Response */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_upd_sos;
 
 /* I/O system status: UBX MON-IO (class 0x0A id 0x02), poll. */
 typedef struct {
@@ -2541,6 +3116,22 @@ typedef struct {
     nmea_ubx_esf_meas_measurement measurements[NMEA_UBX_ESF_MEAS_MEASUREMENTS_MAX]; /* Measurements */
 } nmea_ubx_esf_meas;
 
+/* One entry of measurements (measurements). */
+typedef struct {
+    uint32_t data; /* Measurement (bitfield) */
+    uint32_t data_field; /* Data (data bits 0-23) */
+    uint8_t data_type; /* Data type (data bits 24-31) */
+    uint32_t s_tag; /* Sensor time tag */
+} nmea_ubx_esf_raw_measurement;
+
+/* Raw sensor measurements: UBX ESF-RAW (class 0x10 id 0x03), output. */
+typedef struct {
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t measurements_count; /* the entries of measurements */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_esf_raw_measurement measurements[NMEA_UBX_ESF_RAW_MEASUREMENTS_MAX]; /* Measurements */
+} nmea_ubx_esf_raw;
+
 /* External sensor fusion status: UBX ESF-STATUS (class 0x10 id 0x10), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -2630,6 +3221,242 @@ typedef struct {
     int32_t z_accel; /* Compensated Z acceleration [m/s²]; raw, value = raw / 100 */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_esf_ins;
+
+/* GPS assistance data: UBX MGA-GPS (class 0x13 id 0x00), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* GPS satellite identifier */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t fit_interval; /* Fit interval flag */
+    uint8_t ura_index; /* User range accuracy index */
+    uint8_t sv_health; /* Satellite health */
+    int8_t tgd; /* Group delay differential [s]; raw, value = raw / 2147483648 */
+    uint16_t iodc; /* Issue of data, clock */
+    uint16_t toc; /* Clock data reference time (in 16 s) */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    int8_t af2; /* Clock drift rate correction [s/s^2]; raw, value = raw / 36028797018963968 */
+    int16_t af1; /* Clock drift correction [s/s]; raw, value = raw / 8796093022208 */
+    int32_t af0; /* Clock bias correction [s]; raw, value = raw / 2147483648 */
+    int16_t crs; /* Sine harmonic correction of the orbit radius [m]; raw, value = raw / 32 */
+    int16_t delta_n; /* Mean motion difference [semicircle/s]; raw, value = raw / 8796093022208 */
+    int32_t m0; /* Mean anomaly at the reference time [semicircle]; raw, value = raw / 2147483648 */
+    int16_t cuc; /* Cosine harmonic correction of the argument of latitude [rad]; raw, value = raw / 536870912 */
+    int16_t cus; /* Sine harmonic correction of the argument of latitude [rad]; raw, value = raw / 536870912 */
+    uint32_t e; /* Eccentricity; raw, value = raw / 8589934592 */
+    uint32_t sqrt_a; /* Square root of the semi-major axis [m^0.5]; raw, value = raw / 524288 */
+    uint16_t toe; /* Ephemeris reference time (in 16 s) */
+    int16_t cic; /* Cosine harmonic correction of the inclination [rad]; raw, value = raw / 536870912 */
+    int32_t omega0; /* Longitude of the ascending node at the weekly epoch [semicircle]; raw, value = raw / 2147483648 */
+    int16_t cis; /* Sine harmonic correction of the inclination [rad]; raw, value = raw / 536870912 */
+    int16_t crc; /* Cosine harmonic correction of the orbit radius [m]; raw, value = raw / 32 */
+    int32_t i0; /* Inclination at the reference time [semicircle]; raw, value = raw / 2147483648 */
+    int32_t omega; /* Argument of perigee [semicircle]; raw, value = raw / 2147483648 */
+    int32_t omega_dot; /* Rate of right ascension [semicircle/s]; raw, value = raw / 8796093022208 */
+    int16_t idot; /* Rate of inclination [semicircle/s]; raw, value = raw / 8796093022208 */
+    uint16_t reserved2; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_gps_eph;
+
+/* GPS assistance data: UBX MGA-GPS (class 0x13 id 0x00), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* GPS satellite identifier */
+    uint8_t sv_health; /* Satellite health */
+    uint16_t e; /* Eccentricity; raw, value = raw / 2097152 */
+    uint8_t alm_w_na; /* Reference week of the almanac */
+    uint8_t toa; /* Almanac reference time (in 4096 s) */
+    int16_t delta_i; /* Inclination correction [semicircle]; raw, value = raw / 524288 */
+    int16_t omega_dot; /* Rate of right ascension [semicircle/s]; raw, value = raw / 274877906944 */
+    uint32_t sqrt_a; /* Square root of the semi-major axis [m^0.5]; raw, value = raw / 2048 */
+    int32_t omega0; /* Longitude of the ascending node [semicircle]; raw, value = raw / 8388608 */
+    int32_t omega; /* Argument of perigee [semicircle]; raw, value = raw / 8388608 */
+    int32_t m0; /* Mean anomaly at the reference time [semicircle]; raw, value = raw / 8388608 */
+    int16_t af0; /* Clock bias correction [s]; raw, value = raw / 1048576 */
+    int16_t af1; /* Clock drift correction [s/s]; raw, value = raw / 274877906944 */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_gps_alm;
+
+/* One entry of health code of each satellite (1 to 32) (health_code). */
+typedef struct {
+    uint8_t health_code; /* Health code */
+} nmea_ubx_mga_gps_health_health_code_entry;
+
+/* GPS assistance data: UBX MGA-GPS (class 0x13 id 0x00), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t health_code_count; /* the entries of health_code */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mga_gps_health_health_code_entry health_code[NMEA_UBX_MGA_GPS_HEALTH_HEALTH_CODE_MAX]; /* Health code of each satellite (1 to 32) */
+} nmea_ubx_mga_gps_health;
+
+/* GPS assistance data: UBX MGA-GPS (class 0x13 id 0x00), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    int32_t utc_a0; /* Constant term of the GPS-UTC polynomial [s]; raw, value = raw / 1073741824 */
+    int32_t utc_a1; /* First order term of the GPS-UTC polynomial [s/s]; raw, value = raw / 1125899906842624 */
+    int8_t utc_dt_ls; /* Leap seconds before the next leap second event [s] */
+    uint8_t utc_tot; /* Reference time of the UTC parameters (in 4096 s) */
+    uint8_t utc_w_nt; /* Reference week of the UTC parameters */
+    uint8_t utc_w_nlsf; /* Week of the next leap second event */
+    uint8_t utc_dn; /* Day of the week of the next leap second event */
+    int8_t utc_dt_lsf; /* Leap seconds after the next leap second event [s] */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_gps_utc;
+
+/* GPS assistance data: UBX MGA-GPS (class 0x13 id 0x00), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    int8_t iono_alpha0; /* Ionospheric alpha 0 [s]; raw, value = raw / 1073741824 */
+    int8_t iono_alpha1; /* Ionospheric alpha 1 [s/semicircle]; raw, value = raw / 134217728 */
+    int8_t iono_alpha2; /* Ionospheric alpha 2 [s/semicircle^2]; raw, value = raw / 16777216 */
+    int8_t iono_alpha3; /* Ionospheric alpha 3 [s/semicircle^3]; raw, value = raw / 16777216 */
+    int8_t iono_beta0; /* Ionospheric beta 0 (in 2048 s) */
+    int8_t iono_beta1; /* Ionospheric beta 1 (in 16384 s/semicircle) */
+    int8_t iono_beta2; /* Ionospheric beta 2 (in 65536 s/semicircle^2) */
+    int8_t iono_beta3; /* Ionospheric beta 3 (in 65536 s/semicircle^3) */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_gps_iono;
+
+/* Galileo assistance data: UBX MGA-GAL (class 0x13 id 0x02), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* Galileo satellite identifier */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t iod_nav; /* Issue of data of the navigation batch */
+    int16_t delta_n; /* Mean motion difference [semicircle/s]; raw, value = raw / 8796093022208 */
+    int32_t m0; /* Mean anomaly at the reference time [semicircle]; raw, value = raw / 2147483648 */
+    uint32_t e; /* Eccentricity; raw, value = raw / 8589934592 */
+    uint32_t sqrt_a; /* Square root of the semi-major axis [m^0.5]; raw, value = raw / 524288 */
+    int32_t omega0; /* Longitude of the ascending node at the weekly epoch [semicircle]; raw, value = raw / 2147483648 */
+    int32_t i0; /* Inclination at the reference time [semicircle]; raw, value = raw / 2147483648 */
+    int32_t omega; /* Argument of perigee [semicircle]; raw, value = raw / 2147483648 */
+    int32_t omega_dot; /* Rate of right ascension [semicircle/s]; raw, value = raw / 8796093022208 */
+    int16_t i_dot; /* Rate of inclination [semicircle/s]; raw, value = raw / 8796093022208 */
+    int16_t cuc; /* Cosine harmonic correction of the argument of latitude [rad]; raw, value = raw / 536870912 */
+    int16_t cus; /* Sine harmonic correction of the argument of latitude [rad]; raw, value = raw / 536870912 */
+    int16_t crc; /* Cosine harmonic correction of the orbit radius [m]; raw, value = raw / 32 */
+    int16_t crs; /* Sine harmonic correction of the orbit radius [m]; raw, value = raw / 32 */
+    int16_t cic; /* Cosine harmonic correction of the inclination [rad]; raw, value = raw / 536870912 */
+    int16_t cis; /* Sine harmonic correction of the inclination [rad]; raw, value = raw / 536870912 */
+    uint16_t toe; /* Ephemeris reference time (in 60 s) */
+    int32_t af0; /* Clock bias correction [s]; raw, value = raw / 17179869184 */
+    int32_t af1; /* Clock drift correction [s/s]; raw, value = raw / 70368744177664 */
+    int8_t af2; /* Clock drift rate correction [s/s^2]; raw, value = raw / 576460752303423488 */
+    uint8_t sisa_index_e1_e5b; /* Signal in space accuracy index (E1, E5b) */
+    uint16_t toc; /* Clock correction reference time (in 60 s) */
+    int16_t bgd_e1_e5b; /* Broadcast group delay (E1, E5b) [s]; raw, value = raw / 4294967296 */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t health_e1b; /* E1-B signal health */
+    uint8_t data_validity_e1b; /* E1-B data validity */
+    uint8_t health_e5b; /* E5b signal health */
+    uint8_t data_validity_e5b; /* E5b data validity */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_gal_eph;
+
+/* Galileo assistance data: UBX MGA-GAL (class 0x13 id 0x02), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* Galileo satellite identifier */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t ioda; /* Issue of data of the almanac */
+    uint8_t alm_w_na; /* Reference week of the almanac */
+    uint16_t toa; /* Almanac reference time (in 600 s) */
+    int16_t delta_sqrt_a; /* Difference to the nominal square root of the semi-major axis [m^0.5]; raw, value = raw / 512 */
+    uint16_t e; /* Eccentricity; raw, value = raw / 65536 */
+    int16_t delta_i; /* Inclination difference to 56 deg [semicircle]; raw, value = raw / 16384 */
+    int16_t omega0; /* Longitude of the ascending node [semicircle]; raw, value = raw / 32768 */
+    int16_t omega_dot; /* Rate of right ascension [semicircle/s]; raw, value = raw / 8589934592 */
+    int16_t omega; /* Argument of perigee [semicircle]; raw, value = raw / 32768 */
+    int16_t m0; /* Mean anomaly at the reference time [semicircle]; raw, value = raw / 32768 */
+    int16_t af0; /* Clock bias correction [s]; raw, value = raw / 524288 */
+    int16_t af1; /* Clock drift correction [s/s]; raw, value = raw / 274877906944 */
+    uint8_t health_e1b; /* E1-B signal health */
+    uint8_t health_e5b; /* E5b signal health */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_gal_alm;
+
+/* Galileo assistance data: UBX MGA-GAL (class 0x13 id 0x02), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    int16_t a0_g; /* Constant term of the GPS-Galileo offset [s]; raw, value = raw / 34359738368 */
+    int16_t a1_g; /* Rate of the GPS-Galileo offset [s/s]; raw, value = raw / 2251799813685248 */
+    uint8_t t0_g; /* Reference time of the offset (in 3600 s) */
+    uint8_t wn0_g; /* Reference week of the offset */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_gal_timeoffset;
+
+/* Galileo assistance data: UBX MGA-GAL (class 0x13 id 0x02), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    int32_t a0; /* Constant term of the Galileo-UTC polynomial [s]; raw, value = raw / 1073741824 */
+    int32_t a1; /* First order term of the Galileo-UTC polynomial [s/s]; raw, value = raw / 1125899906842624 */
+    int8_t dt_ls; /* Leap seconds before the next leap second event [s] */
+    uint8_t tot; /* Reference time of the UTC parameters (in 3600 s) */
+    uint8_t wnt; /* Reference week of the UTC parameters */
+    uint8_t wn_lsf; /* Week of the next leap second event */
+    uint8_t d_n; /* Day of the week of the next leap second event */
+    int8_t dt_lsf; /* Leap seconds after the next leap second event [s] */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_gal_utc;
+
+/* AssistNow Offline data: UBX MGA-ANO (class 0x13 id 0x20), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* Satellite identifier */
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
+    uint8_t year; /* Year of the data */
+    uint8_t month; /* Month of the data */
+    uint8_t day; /* Day of the data */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t data[64]; /* Assistance data */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_ano;
+
+/* Assistance data acknowledgement: UBX MGA-ACK (class 0x13 id 0x60), output. */
+typedef struct {
+    uint8_t type; /* Acknowledgement */
+    uint8_t version; /* Message version */
+    uint8_t info_code; /* Why it was not used */
+    uint8_t msg_id; /* Id of the MGA message acknowledged */
+    uint8_t msg_payload_start[4]; /* First 4 bytes of the acknowledged message's payload */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_ack;
+
+/* Navigation database dump: UBX MGA-DBD (class 0x13 id 0x80), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_dbd_poll;
+
+/* Navigation database dump: UBX MGA-DBD (class 0x13 id 0x80), input, output. */
+typedef struct {
+    uint8_t reserved1[12]; /* Reserved (as sent) */
+    nmea_ubx_bytes data; /* Database data (the bytes left) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_dbd;
 
 /* Erase the logged data: UBX LOG-ERASE (class 0x21 id 0x03), input. */
 typedef struct {
@@ -2841,6 +3668,17 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_log_batch;
 
+/* Signature of a previous message: UBX SEC-SIGN (class 0x27 id 0x01), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t class_id; /* Class of the signed message */
+    uint8_t message_id; /* Id of the signed message */
+    uint16_t checksum; /* Checksum of the signed message */
+    uint8_t hash[32]; /* SHA-256 hash */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sec_sign;
+
 /* Unique chip identifier: UBX SEC-UNIQID (class 0x27 id 0x03), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -2853,6 +3691,71 @@ typedef struct {
     uint8_t unique_id[5]; /* Unique chip identifier */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_sec_uniqid;
+
+/* Signal security information: UBX SEC-SIG (class 0x27 id 0x09), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sec_sig_poll;
+
+/* One entry of centre frequencies (cent_freqs). */
+typedef struct {
+    uint32_t jam_state_cent_freq; /* Jamming state of a centre frequency (bitfield) */
+    uint32_t cent_freq; /* Centre frequency [kHz] (jam_state_cent_freq bits 0-23) */
+    bool jammed; /* Jammed (jam_state_cent_freq bit 24) */
+} nmea_ubx_sec_sig_cent_freq;
+
+/* Signal security information: UBX SEC-SIG (class 0x27 id 0x09), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t sig_sec_flags; /* Signal security flags (bitfield) */
+    bool jam_det_enabled; /* Jamming detection enabled (sig_sec_flags bit 0) */
+    uint8_t jamming_state; /* Jamming state (sig_sec_flags bits 1-2) */
+    bool spf_det_enabled; /* Spoofing detection enabled (sig_sec_flags bit 3) */
+    uint8_t spoofing_state; /* Spoofing state (sig_sec_flags bits 4-6) */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t jam_num_cent_freqs; /* Number of centre frequencies */
+    uint16_t cent_freqs_count; /* the entries of cent_freqs */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sec_sig_cent_freq cent_freqs[NMEA_UBX_SEC_SIG_CENT_FREQS_MAX]; /* Centre frequencies */
+} nmea_ubx_sec_sig;
+
+/* Signal security information: UBX SEC-SIG (class 0x27 id 0x09), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t jam_flags; /* Jamming flags (bitfield) */
+    bool jam_det_enabled; /* Jamming detection enabled (jam_flags bit 0) */
+    uint8_t jamming_state; /* Jamming state (jam_flags bits 1-2) */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t spf_flags; /* Spoofing flags (bitfield) */
+    bool spf_det_enabled; /* Spoofing detection enabled (spf_flags bit 0) */
+    uint8_t spoofing_state; /* Spoofing state (spf_flags bits 1-3) */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sec_sig_v1;
+
+/* Signal security log: UBX SEC-SIGLOG (class 0x27 id 0x10), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sec_siglog_poll;
+
+/* One entry of events (events). */
+typedef struct {
+    uint32_t time_elapsed; /* Time since the event [s] */
+    uint8_t detection_type; /* How the event was detected */
+    uint8_t event_type; /* Kind of event */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+} nmea_ubx_sec_siglog_event;
+
+/* Signal security log: UBX SEC-SIGLOG (class 0x27 id 0x10), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t num_events; /* Number of events */
+    uint64_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t events_count; /* the entries of events */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sec_siglog_event events[NMEA_UBX_SEC_SIGLOG_EVENTS_MAX]; /* Events */
+} nmea_ubx_sec_siglog;
 
 /* High rate output of the PVT solution: UBX HNR-PVT (class 0x28 id 0x00), poll. */
 typedef struct {
@@ -3017,9 +3920,21 @@ typedef enum {
     NMEA_UBX_MSG_NAV_PL_POLL, /* NAV-PL, poll */
     NMEA_UBX_MSG_NAV_PL, /* NAV-PL, output */
     NMEA_UBX_MSG_RXM_SFRBX, /* RXM-SFRBX, output */
+    NMEA_UBX_MSG_RXM_MEASX_POLL, /* RXM-MEASX, poll */
+    NMEA_UBX_MSG_RXM_MEASX, /* RXM-MEASX, output */
     NMEA_UBX_MSG_RXM_RAWX_POLL, /* RXM-RAWX, poll */
     NMEA_UBX_MSG_RXM_RAWX, /* RXM-RAWX, output */
+    NMEA_UBX_MSG_RXM_SVSI_POLL, /* RXM-SVSI, poll */
+    NMEA_UBX_MSG_RXM_SVSI, /* RXM-SVSI, output */
     NMEA_UBX_MSG_RXM_RTCM, /* RXM-RTCM, output */
+    NMEA_UBX_MSG_RXM_SPARTN, /* RXM-SPARTN, output */
+    NMEA_UBX_MSG_RXM_COR, /* RXM-COR, output */
+    NMEA_UBX_MSG_RXM_SPARTNKEY_POLL, /* RXM-SPARTNKEY, poll */
+    NMEA_UBX_MSG_RXM_SPARTNKEY, /* RXM-SPARTNKEY, input, output */
+    NMEA_UBX_MSG_RXM_PMREQ, /* RXM-PMREQ, input */
+    NMEA_UBX_MSG_RXM_PMREQ_SHORT, /* RXM-PMREQ, input */
+    NMEA_UBX_MSG_RXM_RLM, /* RXM-RLM, output */
+    NMEA_UBX_MSG_RXM_RLM_SHORT, /* RXM-RLM, output */
     NMEA_UBX_MSG_INF_ERROR, /* INF-ERROR, output */
     NMEA_UBX_MSG_INF_WARNING, /* INF-WARNING, output */
     NMEA_UBX_MSG_INF_NOTICE, /* INF-NOTICE, output */
@@ -3046,25 +3961,50 @@ typedef enum {
     NMEA_UBX_MSG_CFG_ANT, /* CFG-ANT, input, output */
     NMEA_UBX_MSG_CFG_SBAS_POLL, /* CFG-SBAS, poll */
     NMEA_UBX_MSG_CFG_SBAS, /* CFG-SBAS, input, output */
+    NMEA_UBX_MSG_CFG_NMEA_POLL, /* CFG-NMEA, poll */
+    NMEA_UBX_MSG_CFG_NMEA, /* CFG-NMEA, input, output, version 1 */
+    NMEA_UBX_MSG_CFG_NMEA_V0, /* CFG-NMEA, input, output, version 0 */
+    NMEA_UBX_MSG_CFG_NMEA_DEPRECATED, /* CFG-NMEA, input, output */
+    NMEA_UBX_MSG_CFG_ODO_POLL, /* CFG-ODO, poll */
+    NMEA_UBX_MSG_CFG_ODO, /* CFG-ODO, input, output */
+    NMEA_UBX_MSG_CFG_NAVX5_POLL, /* CFG-NAVX5, poll */
+    NMEA_UBX_MSG_CFG_NAVX5, /* CFG-NAVX5, input, output */
     NMEA_UBX_MSG_CFG_NAV5_POLL, /* CFG-NAV5, poll */
     NMEA_UBX_MSG_CFG_NAV5, /* CFG-NAV5, input, output */
     NMEA_UBX_MSG_CFG_TP5_POLL, /* CFG-TP5, poll */
     NMEA_UBX_MSG_CFG_TP5_POLL_INDEX, /* CFG-TP5, poll */
     NMEA_UBX_MSG_CFG_TP5, /* CFG-TP5, input, output */
+    NMEA_UBX_MSG_CFG_ITFM_POLL, /* CFG-ITFM, poll */
+    NMEA_UBX_MSG_CFG_ITFM, /* CFG-ITFM, input, output */
+    NMEA_UBX_MSG_CFG_PM2_POLL, /* CFG-PM2, poll */
+    NMEA_UBX_MSG_CFG_PM2, /* CFG-PM2, input, output, version 2 */
+    NMEA_UBX_MSG_CFG_PM2_V1, /* CFG-PM2, input, output, version 1 */
     NMEA_UBX_MSG_CFG_GNSS_POLL, /* CFG-GNSS, poll */
     NMEA_UBX_MSG_CFG_GNSS, /* CFG-GNSS, input, output */
+    NMEA_UBX_MSG_CFG_LOGFILTER_POLL, /* CFG-LOGFILTER, poll */
+    NMEA_UBX_MSG_CFG_LOGFILTER, /* CFG-LOGFILTER, input, output */
+    NMEA_UBX_MSG_CFG_PWR, /* CFG-PWR, input */
     NMEA_UBX_MSG_CFG_HNR_POLL, /* CFG-HNR, poll */
     NMEA_UBX_MSG_CFG_HNR, /* CFG-HNR, input, output */
+    NMEA_UBX_MSG_CFG_GEOFENCE_POLL, /* CFG-GEOFENCE, poll */
+    NMEA_UBX_MSG_CFG_GEOFENCE, /* CFG-GEOFENCE, input, output */
     NMEA_UBX_MSG_CFG_DGNSS_POLL, /* CFG-DGNSS, poll */
     NMEA_UBX_MSG_CFG_DGNSS, /* CFG-DGNSS, input, output */
     NMEA_UBX_MSG_CFG_TMODE3_POLL, /* CFG-TMODE3, poll */
     NMEA_UBX_MSG_CFG_TMODE3, /* CFG-TMODE3, input, output */
+    NMEA_UBX_MSG_CFG_PMS_POLL, /* CFG-PMS, poll */
+    NMEA_UBX_MSG_CFG_PMS, /* CFG-PMS, input, output */
     NMEA_UBX_MSG_CFG_VALSET_V0, /* CFG-VALSET, input, version 0 */
     NMEA_UBX_MSG_CFG_VALSET, /* CFG-VALSET, input, version 1 */
     NMEA_UBX_MSG_CFG_VALGET_POLL, /* CFG-VALGET, poll, version 0 */
     NMEA_UBX_MSG_CFG_VALGET, /* CFG-VALGET, output, version 1 */
     NMEA_UBX_MSG_CFG_VALDEL_V0, /* CFG-VALDEL, input, version 0 */
     NMEA_UBX_MSG_CFG_VALDEL, /* CFG-VALDEL, input, version 1 */
+    NMEA_UBX_MSG_CFG_BATCH_POLL, /* CFG-BATCH, poll */
+    NMEA_UBX_MSG_CFG_BATCH, /* CFG-BATCH, input, output */
+    NMEA_UBX_MSG_UPD_SOS_POLL, /* UPD-SOS, poll */
+    NMEA_UBX_MSG_UPD_SOS_COMMAND, /* UPD-SOS, input */
+    NMEA_UBX_MSG_UPD_SOS, /* UPD-SOS, output */
     NMEA_UBX_MSG_MON_IO_POLL, /* MON-IO, poll */
     NMEA_UBX_MSG_MON_IO, /* MON-IO, output */
     NMEA_UBX_MSG_MON_VER_POLL, /* MON-VER, poll */
@@ -3116,12 +4056,26 @@ typedef enum {
     NMEA_UBX_MSG_TIM_FCHG, /* TIM-FCHG, output */
     NMEA_UBX_MSG_TIM_HOC, /* TIM-HOC, input */
     NMEA_UBX_MSG_ESF_MEAS, /* ESF-MEAS, input, output */
+    NMEA_UBX_MSG_ESF_RAW, /* ESF-RAW, output */
     NMEA_UBX_MSG_ESF_STATUS_POLL, /* ESF-STATUS, poll */
     NMEA_UBX_MSG_ESF_STATUS, /* ESF-STATUS, output */
     NMEA_UBX_MSG_ESF_ALG_POLL, /* ESF-ALG, poll */
     NMEA_UBX_MSG_ESF_ALG, /* ESF-ALG, output */
     NMEA_UBX_MSG_ESF_INS_POLL, /* ESF-INS, poll */
     NMEA_UBX_MSG_ESF_INS, /* ESF-INS, output */
+    NMEA_UBX_MSG_MGA_GPS_EPH, /* MGA-GPS, input */
+    NMEA_UBX_MSG_MGA_GPS_ALM, /* MGA-GPS, input */
+    NMEA_UBX_MSG_MGA_GPS_HEALTH, /* MGA-GPS, input */
+    NMEA_UBX_MSG_MGA_GPS_UTC, /* MGA-GPS, input */
+    NMEA_UBX_MSG_MGA_GPS_IONO, /* MGA-GPS, input */
+    NMEA_UBX_MSG_MGA_GAL_EPH, /* MGA-GAL, input */
+    NMEA_UBX_MSG_MGA_GAL_ALM, /* MGA-GAL, input */
+    NMEA_UBX_MSG_MGA_GAL_TIMEOFFSET, /* MGA-GAL, input */
+    NMEA_UBX_MSG_MGA_GAL_UTC, /* MGA-GAL, input */
+    NMEA_UBX_MSG_MGA_ANO, /* MGA-ANO, input */
+    NMEA_UBX_MSG_MGA_ACK, /* MGA-ACK, output */
+    NMEA_UBX_MSG_MGA_DBD_POLL, /* MGA-DBD, poll */
+    NMEA_UBX_MSG_MGA_DBD, /* MGA-DBD, input, output */
     NMEA_UBX_MSG_LOG_ERASE, /* LOG-ERASE, input */
     NMEA_UBX_MSG_LOG_STRING, /* LOG-STRING, input */
     NMEA_UBX_MSG_LOG_CREATE, /* LOG-CREATE, input */
@@ -3135,8 +4089,14 @@ typedef enum {
     NMEA_UBX_MSG_LOG_RETRIEVEPOSEXTRA, /* LOG-RETRIEVEPOSEXTRA, output */
     NMEA_UBX_MSG_LOG_RETRIEVEBATCH, /* LOG-RETRIEVEBATCH, input */
     NMEA_UBX_MSG_LOG_BATCH, /* LOG-BATCH, output */
+    NMEA_UBX_MSG_SEC_SIGN, /* SEC-SIGN, output */
     NMEA_UBX_MSG_SEC_UNIQID_POLL, /* SEC-UNIQID, poll */
     NMEA_UBX_MSG_SEC_UNIQID, /* SEC-UNIQID, output */
+    NMEA_UBX_MSG_SEC_SIG_POLL, /* SEC-SIG, poll */
+    NMEA_UBX_MSG_SEC_SIG, /* SEC-SIG, output, version 2 */
+    NMEA_UBX_MSG_SEC_SIG_V1, /* SEC-SIG, output, version 1 */
+    NMEA_UBX_MSG_SEC_SIGLOG_POLL, /* SEC-SIGLOG, poll */
+    NMEA_UBX_MSG_SEC_SIGLOG, /* SEC-SIGLOG, output */
     NMEA_UBX_MSG_HNR_PVT_POLL, /* HNR-PVT, poll */
     NMEA_UBX_MSG_HNR_PVT, /* HNR-PVT, output */
     NMEA_UBX_MSG_HNR_ATT_POLL, /* HNR-ATT, poll */
@@ -3222,9 +4182,21 @@ typedef struct {
         nmea_ubx_nav_pl_poll nav_pl_poll;
         nmea_ubx_nav_pl nav_pl;
         nmea_ubx_rxm_sfrbx rxm_sfrbx;
+        nmea_ubx_rxm_measx_poll rxm_measx_poll;
+        nmea_ubx_rxm_measx rxm_measx;
         nmea_ubx_rxm_rawx_poll rxm_rawx_poll;
         nmea_ubx_rxm_rawx rxm_rawx;
+        nmea_ubx_rxm_svsi_poll rxm_svsi_poll;
+        nmea_ubx_rxm_svsi rxm_svsi;
         nmea_ubx_rxm_rtcm rxm_rtcm;
+        nmea_ubx_rxm_spartn rxm_spartn;
+        nmea_ubx_rxm_cor rxm_cor;
+        nmea_ubx_rxm_spartnkey_poll rxm_spartnkey_poll;
+        nmea_ubx_rxm_spartnkey rxm_spartnkey;
+        nmea_ubx_rxm_pmreq rxm_pmreq;
+        nmea_ubx_rxm_pmreq_short rxm_pmreq_short;
+        nmea_ubx_rxm_rlm rxm_rlm;
+        nmea_ubx_rxm_rlm_short rxm_rlm_short;
         nmea_ubx_inf_error inf_error;
         nmea_ubx_inf_warning inf_warning;
         nmea_ubx_inf_notice inf_notice;
@@ -3251,25 +4223,50 @@ typedef struct {
         nmea_ubx_cfg_ant cfg_ant;
         nmea_ubx_cfg_sbas_poll cfg_sbas_poll;
         nmea_ubx_cfg_sbas cfg_sbas;
+        nmea_ubx_cfg_nmea_poll cfg_nmea_poll;
+        nmea_ubx_cfg_nmea cfg_nmea;
+        nmea_ubx_cfg_nmea_v0 cfg_nmea_v0;
+        nmea_ubx_cfg_nmea_deprecated cfg_nmea_deprecated;
+        nmea_ubx_cfg_odo_poll cfg_odo_poll;
+        nmea_ubx_cfg_odo cfg_odo;
+        nmea_ubx_cfg_navx5_poll cfg_navx5_poll;
+        nmea_ubx_cfg_navx5 cfg_navx5;
         nmea_ubx_cfg_nav5_poll cfg_nav5_poll;
         nmea_ubx_cfg_nav5 cfg_nav5;
         nmea_ubx_cfg_tp5_poll cfg_tp5_poll;
         nmea_ubx_cfg_tp5_poll_index cfg_tp5_poll_index;
         nmea_ubx_cfg_tp5 cfg_tp5;
+        nmea_ubx_cfg_itfm_poll cfg_itfm_poll;
+        nmea_ubx_cfg_itfm cfg_itfm;
+        nmea_ubx_cfg_pm2_poll cfg_pm2_poll;
+        nmea_ubx_cfg_pm2 cfg_pm2;
+        nmea_ubx_cfg_pm2_v1 cfg_pm2_v1;
         nmea_ubx_cfg_gnss_poll cfg_gnss_poll;
         nmea_ubx_cfg_gnss cfg_gnss;
+        nmea_ubx_cfg_logfilter_poll cfg_logfilter_poll;
+        nmea_ubx_cfg_logfilter cfg_logfilter;
+        nmea_ubx_cfg_pwr cfg_pwr;
         nmea_ubx_cfg_hnr_poll cfg_hnr_poll;
         nmea_ubx_cfg_hnr cfg_hnr;
+        nmea_ubx_cfg_geofence_poll cfg_geofence_poll;
+        nmea_ubx_cfg_geofence cfg_geofence;
         nmea_ubx_cfg_dgnss_poll cfg_dgnss_poll;
         nmea_ubx_cfg_dgnss cfg_dgnss;
         nmea_ubx_cfg_tmode3_poll cfg_tmode3_poll;
         nmea_ubx_cfg_tmode3 cfg_tmode3;
+        nmea_ubx_cfg_pms_poll cfg_pms_poll;
+        nmea_ubx_cfg_pms cfg_pms;
         nmea_ubx_cfg_valset_v0 cfg_valset_v0;
         nmea_ubx_cfg_valset cfg_valset;
         nmea_ubx_cfg_valget_poll cfg_valget_poll;
         nmea_ubx_cfg_valget cfg_valget;
         nmea_ubx_cfg_valdel_v0 cfg_valdel_v0;
         nmea_ubx_cfg_valdel cfg_valdel;
+        nmea_ubx_cfg_batch_poll cfg_batch_poll;
+        nmea_ubx_cfg_batch cfg_batch;
+        nmea_ubx_upd_sos_poll upd_sos_poll;
+        nmea_ubx_upd_sos_command upd_sos_command;
+        nmea_ubx_upd_sos upd_sos;
         nmea_ubx_mon_io_poll mon_io_poll;
         nmea_ubx_mon_io mon_io;
         nmea_ubx_mon_ver_poll mon_ver_poll;
@@ -3321,12 +4318,26 @@ typedef struct {
         nmea_ubx_tim_fchg tim_fchg;
         nmea_ubx_tim_hoc tim_hoc;
         nmea_ubx_esf_meas esf_meas;
+        nmea_ubx_esf_raw esf_raw;
         nmea_ubx_esf_status_poll esf_status_poll;
         nmea_ubx_esf_status esf_status;
         nmea_ubx_esf_alg_poll esf_alg_poll;
         nmea_ubx_esf_alg esf_alg;
         nmea_ubx_esf_ins_poll esf_ins_poll;
         nmea_ubx_esf_ins esf_ins;
+        nmea_ubx_mga_gps_eph mga_gps_eph;
+        nmea_ubx_mga_gps_alm mga_gps_alm;
+        nmea_ubx_mga_gps_health mga_gps_health;
+        nmea_ubx_mga_gps_utc mga_gps_utc;
+        nmea_ubx_mga_gps_iono mga_gps_iono;
+        nmea_ubx_mga_gal_eph mga_gal_eph;
+        nmea_ubx_mga_gal_alm mga_gal_alm;
+        nmea_ubx_mga_gal_timeoffset mga_gal_timeoffset;
+        nmea_ubx_mga_gal_utc mga_gal_utc;
+        nmea_ubx_mga_ano mga_ano;
+        nmea_ubx_mga_ack mga_ack;
+        nmea_ubx_mga_dbd_poll mga_dbd_poll;
+        nmea_ubx_mga_dbd mga_dbd;
         nmea_ubx_log_erase log_erase;
         nmea_ubx_log_string log_string;
         nmea_ubx_log_create log_create;
@@ -3340,8 +4351,14 @@ typedef struct {
         nmea_ubx_log_retrieveposextra log_retrieveposextra;
         nmea_ubx_log_retrievebatch log_retrievebatch;
         nmea_ubx_log_batch log_batch;
+        nmea_ubx_sec_sign sec_sign;
         nmea_ubx_sec_uniqid_poll sec_uniqid_poll;
         nmea_ubx_sec_uniqid sec_uniqid;
+        nmea_ubx_sec_sig_poll sec_sig_poll;
+        nmea_ubx_sec_sig sec_sig;
+        nmea_ubx_sec_sig_v1 sec_sig_v1;
+        nmea_ubx_sec_siglog_poll sec_siglog_poll;
+        nmea_ubx_sec_siglog sec_siglog;
         nmea_ubx_hnr_pvt_poll hnr_pvt_poll;
         nmea_ubx_hnr_pvt hnr_pvt;
         nmea_ubx_hnr_att_poll hnr_att_poll;

@@ -168,6 +168,11 @@ def field_agreement() -> dict[str, Agreement]:
 
 
 ENTRIES = 2   # the entries of each group of a made-up payload
+# The type byte of the MGA layouts one class and id holds (the spec tells them apart by length; pyubx2 by this
+# byte, which the documents give): ephemeris 1, almanac 2, time offset 3, health 4, UTC 5, ionosphere 6.
+TYPE_BYTES = {f"mga_{gnss}_{kind}": code for gnss in ("gps", "gal", "bds", "qzss", "glo")
+              for kind, code in (("eph", 1), ("alm", 2), ("timeoffset", 3), ("health", 4), ("utc", 5), ("iono", 6))}
+TYPE_BYTES.update(mga_ack=1, mga_ano=0, rxm_rlm=2, rxm_rlm_short=1)
 
 
 def made_up_payload(cls: type[ubx.Message], draw: random.Random) -> bytes:
@@ -187,6 +192,8 @@ def made_up_payload(cls: type[ubx.Message], draw: random.Random) -> bytes:
         raw = draw.getrandbits(item.width)
         if item.id == "version" and cls.VERSION is not None:
             raw = cls.VERSION
+        if item.id == "type" and cls.ID in TYPE_BYTES:
+            raw = TYPE_BYTES[cls.ID]
         if item.id in counts:
             raw = ENTRIES
         for low, part in getattr(item, "parts", ()):
@@ -218,8 +225,19 @@ def made_up_agreement() -> dict[str, Agreement]:
             row = out.setdefault(cls.ID, Agreement())
             row.frames += 1
             row.encoded += message.encode() == frame.encode()
+            if cls.ID in PYUBX2_FAILS:   # checked by the test: pyubx2 still fails on it
+                continue
             _compare(row, message, pyubx2.UBXReader.parse(frame.encode(), msgmode=mode))
     return dict(sorted(out.items()))
+
+
+# Layouts pyubx2 cannot parse, and why: the made-up agreement decodes and encodes them, compares none
+# (CFG-FIXSEED and AID-ALM wait in tests/ubx/pending).
+PYUBX2_FAILS = {
+    "cfg_fixseed": "pyubx2 1.4.0 names a field `length`, which clashes with its message's length property",
+    "aid_alm": "pyubx2 1.4.0 fails on its optional block of almanac words (optBlock) as receiver output",
+    "aid_alm_empty": "pyubx2 1.4.0 fails on its optional block of almanac words (optBlock) as receiver output",
+}
 
 
 def agreement() -> dict[str, tuple[int, int]]:
@@ -265,6 +283,20 @@ REASONS = {
        for name in ("rxbytes", "txbytes", "parityerrs", "framingerrs", "overrunerrs", "breakcond", "rxbusy", "txbusy")},
     **{name: "pyubx2 gives the raw integer (0.01 deg); ours is in degrees, its <id>_raw pyubx2's value"
        for name in ("plposhorizorient", "plvelhorizorient")},
+    "data": "MGA-DBD's database bytes: ours one bytes field, pyubx2 its bytes one by one (data_NN)",
+    "svid": "a poll of one satellite: ours its svid, pyubx2 a group of them (svid_NN)",
+    "maxdevlifetime": "u-blox names it `maxDevLifeTime`; pyubx2 `maxDevLifeTim`",
+    "maxdevlifetim": "u-blox names it `maxDevLifeTime`; pyubx2 `maxDevLifeTim`",
+    "mincnomask": "the mask bit u-blox names `minCno`, beside the field `minCNO`: pyubx2 keeps one of the two names",
+    "beidou": "version 0 of CFG-NMEA: pyubx2 names the BeiDou filter bit `bBeidou`",
+    "bbeidou": "version 0 of CFG-NMEA: pyubx2 names the BeiDou filter bit `bBeidou`",
+    "extintinactivityms": "pyubx2 knows only version 2 of CFG-PM2 (48 bytes); version 1 (44 bytes) has no EXTINT inactivity",
+    **{name: "a time or term in units of its scale (16 s, 60 s, 600 s, 3600 s, 4096 s, 15 min, 2^11 s and so on): "
+             "ours the raw count (the unit in its name), pyubx2 the count times the scale"
+       for name in ("toc", "toe", "toa", "tot", "utctot", "t0g", "tb", "beta0", "beta1", "beta2", "beta3",
+                    "ionobeta0", "ionobeta1", "ionobeta2", "ionobeta3")},
+    "bgde1e5b": "pyubx2 gives the raw integer (2^-32 s); ours is in seconds, its <id>_raw pyubx2's value",
+    "omega": "GLONASS almanac: pyubx2 gives the raw integer (2^-15 semicircle); ours in semicircles, <id>_raw pyubx2's",
     "relposheadingvalid": "a bit version 1 names and version 0 reserves",
     "relposnormalized": "a bit version 1 names and version 0 reserves",
     "calibttag": "pyubx2 repeats the data entries over the whole payload: it reads our optional calib_ttag as one "
@@ -301,6 +333,8 @@ def _reason(name: str, words: set[str], whole: set[str] = frozenset()) -> str:
         return "pyubx2 names each PRN bit of the SBAS scan masks; we keep the masks as words"
     if base in ("devbbr", "devflash", "deveeprom", "devspiflash"):
         return "pyubx2 reads CFG-CFG without its device mask (12 bytes) as if it had one"
+    if re.fullmatch(r"sf\dd\d", base):
+        return "AID-EPH's subframe words: ours fields, pyubx2 an optional group (sfNdM_01)"
     if base.startswith("cfg0x"):
         return REASONS["cfgdata"]
     if base.startswith("reserved"):
@@ -370,6 +404,9 @@ def report() -> str:
         "| --- | --- | --- | --- |",
         *(row for name, a in made_up.items() for row in differences(name, a)),
     ]
+    fails = [f"- {name}: {why}" for name, why in sorted(PYUBX2_FAILS.items()) if name in made_up]
+    if fails:
+        lines += ["", "Layouts pyubx2 cannot parse (decoded and encoded back by ours, not compared):", "", *fails]
     lines.append("")
     return "\n".join(lines)
 

@@ -2,60 +2,73 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: templates/rust/ubx_messages.rs.j2, spec/binary/ubx/messages/ack_ack.yaml,
 //   spec/binary/ubx/messages/ack_nak.yaml, spec/binary/ubx/messages/cfg_ant.yaml,
-//   spec/binary/ubx/messages/cfg_cfg.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
+//   spec/binary/ubx/messages/cfg_batch.yaml, spec/binary/ubx/messages/cfg_cfg.yaml,
+//   spec/binary/ubx/messages/cfg_dgnss.yaml, spec/binary/ubx/messages/cfg_geofence.yaml,
 //   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
-//   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
-//   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_prt.yaml,
+//   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
+//   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
+//   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
+//   spec/binary/ubx/messages/cfg_nmea.yaml, spec/binary/ubx/messages/cfg_odo.yaml,
+//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
+//   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
 //   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
 //   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
 //   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
 //   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
 //   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/esf_alg.yaml,
 //   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/esf_meas.yaml,
-//   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/hnr_att.yaml,
-//   spec/binary/ubx/messages/hnr_ins.yaml, spec/binary/ubx/messages/hnr_pvt.yaml,
-//   spec/binary/ubx/messages/inf_debug.yaml, spec/binary/ubx/messages/inf_error.yaml,
-//   spec/binary/ubx/messages/inf_notice.yaml, spec/binary/ubx/messages/inf_test.yaml,
-//   spec/binary/ubx/messages/inf_warning.yaml, spec/binary/ubx/messages/log_batch.yaml,
-//   spec/binary/ubx/messages/log_create.yaml, spec/binary/ubx/messages/log_erase.yaml,
-//   spec/binary/ubx/messages/log_findtime.yaml, spec/binary/ubx/messages/log_info.yaml,
-//   spec/binary/ubx/messages/log_retrieve.yaml, spec/binary/ubx/messages/log_retrievebatch.yaml,
-//   spec/binary/ubx/messages/log_retrievepos.yaml,
+//   spec/binary/ubx/messages/esf_raw.yaml, spec/binary/ubx/messages/esf_status.yaml,
+//   spec/binary/ubx/messages/hnr_att.yaml, spec/binary/ubx/messages/hnr_ins.yaml,
+//   spec/binary/ubx/messages/hnr_pvt.yaml, spec/binary/ubx/messages/inf_debug.yaml,
+//   spec/binary/ubx/messages/inf_error.yaml, spec/binary/ubx/messages/inf_notice.yaml,
+//   spec/binary/ubx/messages/inf_test.yaml, spec/binary/ubx/messages/inf_warning.yaml,
+//   spec/binary/ubx/messages/log_batch.yaml, spec/binary/ubx/messages/log_create.yaml,
+//   spec/binary/ubx/messages/log_erase.yaml, spec/binary/ubx/messages/log_findtime.yaml,
+//   spec/binary/ubx/messages/log_info.yaml, spec/binary/ubx/messages/log_retrieve.yaml,
+//   spec/binary/ubx/messages/log_retrievebatch.yaml, spec/binary/ubx/messages/log_retrievepos.yaml,
 //   spec/binary/ubx/messages/log_retrieveposextra.yaml,
 //   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_string.yaml,
-//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
-//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
-//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_io.yaml,
-//   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_patch.yaml,
-//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
-//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
-//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
-//   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav_aopstatus.yaml,
-//   spec/binary/ubx/messages/nav_att.yaml, spec/binary/ubx/messages/nav_clock.yaml,
-//   spec/binary/ubx/messages/nav_cov.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
-//   spec/binary/ubx/messages/nav_dop.yaml, spec/binary/ubx/messages/nav_eell.yaml,
-//   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/nav_geofence.yaml,
-//   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
-//   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_orb.yaml,
-//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/nav_posecef.yaml,
-//   spec/binary/ubx/messages/nav_posllh.yaml, spec/binary/ubx/messages/nav_pvt.yaml,
-//   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
-//   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_sbas.yaml,
-//   spec/binary/ubx/messages/nav_sig.yaml, spec/binary/ubx/messages/nav_slas.yaml,
-//   spec/binary/ubx/messages/nav_sol.yaml, spec/binary/ubx/messages/nav_status.yaml,
-//   spec/binary/ubx/messages/nav_svin.yaml, spec/binary/ubx/messages/nav_svinfo.yaml,
-//   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
-//   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
-//   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
-//   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_velecef.yaml,
-//   spec/binary/ubx/messages/nav_velned.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
-//   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
-//   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
-//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
-//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_svin.yaml,
-//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tos.yaml,
-//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
-//   spec/binary/ubx/messages/tim_vrfy.yaml (digest 32cdd688c9561833)
+//   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_ano.yaml,
+//   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/mga_gal.yaml,
+//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+//   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_hw.yaml,
+//   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
+//   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
+//   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+//   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_sys.yaml,
+//   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_ver.yaml,
+//   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_att.yaml,
+//   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_cov.yaml,
+//   spec/binary/ubx/messages/nav_dgps.yaml, spec/binary/ubx/messages/nav_dop.yaml,
+//   spec/binary/ubx/messages/nav_eell.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
+//   spec/binary/ubx/messages/nav_geofence.yaml, spec/binary/ubx/messages/nav_hpposecef.yaml,
+//   spec/binary/ubx/messages/nav_hpposllh.yaml, spec/binary/ubx/messages/nav_odo.yaml,
+//   spec/binary/ubx/messages/nav_orb.yaml, spec/binary/ubx/messages/nav_pl.yaml,
+//   spec/binary/ubx/messages/nav_posecef.yaml, spec/binary/ubx/messages/nav_posllh.yaml,
+//   spec/binary/ubx/messages/nav_pvt.yaml, spec/binary/ubx/messages/nav_relposned.yaml,
+//   spec/binary/ubx/messages/nav_resetodo.yaml, spec/binary/ubx/messages/nav_sat.yaml,
+//   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
+//   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sol.yaml,
+//   spec/binary/ubx/messages/nav_status.yaml, spec/binary/ubx/messages/nav_svin.yaml,
+//   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
+//   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
+//   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timels.yaml,
+//   spec/binary/ubx/messages/nav_timeqzss.yaml, spec/binary/ubx/messages/nav_timeutc.yaml,
+//   spec/binary/ubx/messages/nav_velecef.yaml, spec/binary/ubx/messages/nav_velned.yaml,
+//   spec/binary/ubx/messages/rxm_cor.yaml, spec/binary/ubx/messages/rxm_measx.yaml,
+//   spec/binary/ubx/messages/rxm_pmreq.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
+//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
+//   spec/binary/ubx/messages/rxm_sfrbx.yaml, spec/binary/ubx/messages/rxm_spartn.yaml,
+//   spec/binary/ubx/messages/rxm_spartnkey.yaml, spec/binary/ubx/messages/rxm_svsi.yaml,
+//   spec/binary/ubx/messages/sec_sig.yaml, spec/binary/ubx/messages/sec_siglog.yaml,
+//   spec/binary/ubx/messages/sec_sign.yaml, spec/binary/ubx/messages/sec_uniqid.yaml,
+//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
+//   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
+//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
+//   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_tp.yaml,
+//   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
+//   spec/binary/ubx/messages/upd_sos.yaml (digest 164ea259a8104e84)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The UBX messages of spec/binary/ubx: a struct per layout (named as the Python package's
@@ -376,6 +389,171 @@ impl<'a> CfgAnt<'a> {
     }
 }
 
+/// Data batching configuration: UBX CFG-BATCH (class 0x06 id 0x93), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgBatchPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgBatchPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_batch_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-BATCH";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x93;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_batch"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Data batching configuration: UBX CFG-BATCH (class 0x06 id 0x93), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgBatch<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Flags.
+    pub flags: u8,
+    /// Buffer size.
+    pub buf_size: u16,
+    /// Fill level that triggers the PIO pin.
+    pub notif_thrs: u16,
+    /// PIO pin.
+    pub pio_id: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgBatch<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_batch";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-BATCH";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x93;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// Batching enabled (bit 0 of `flags`).
+    pub fn enable(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets batching enabled (the value in its bits of `flags`; the other bits stay).
+    pub fn set_enable(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// Keep the extra PVT fields (bit 2 of `flags`).
+    pub fn extra_pvt(&self) -> bool {
+        ((self.flags >> 2) & 0x1) != 0
+    }
+    /// Sets keep the extra pvt fields (the value in its bits of `flags`; the other bits stay).
+    pub fn set_extra_pvt(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Keep the odometer fields (bit 3 of `flags`).
+    pub fn extra_odo(&self) -> bool {
+        ((self.flags >> 3) & 0x1) != 0
+    }
+    /// Sets keep the odometer fields (the value in its bits of `flags`; the other bits stay).
+    pub fn set_extra_odo(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Signal a full buffer on a PIO pin (bit 5 of `flags`).
+    pub fn pio_enable(&self) -> bool {
+        ((self.flags >> 5) & 0x1) != 0
+    }
+    /// Sets signal a full buffer on a pio pin (the value in its bits of `flags`; the other bits stay).
+    pub fn set_pio_enable(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 5)) | (u8::from(value) << 5);
+    }
+    /// The PIO pin is active low (bit 6 of `flags`).
+    pub fn pio_active_low(&self) -> bool {
+        ((self.flags >> 6) & 0x1) != 0
+    }
+    /// Sets the pio pin is active low (the value in its bits of `flags`; the other bits stay).
+    pub fn set_pio_active_low(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 6)) | (u8::from(value) << 6);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let buf_size = u16::from_le_bytes(r.array("buf_size")?);
+        let notif_thrs = u16::from_le_bytes(r.array("notif_thrs")?);
+        let pio_id = u8::from_le_bytes(r.array("pio_id")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let trailing = r.rest();
+        Ok(Self { version, flags, buf_size, notif_thrs, pio_id, reserved0, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.buf_size.to_le_bytes());
+        w.put(&self.notif_thrs.to_le_bytes());
+        w.put(&self.pio_id.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("flags", self.flags)?;
+        j.flag("enable", (self.flags & 0x1) != 0)?;
+        j.flag("extra_pvt", ((self.flags >> 2) & 0x1) != 0)?;
+        j.flag("extra_odo", ((self.flags >> 3) & 0x1) != 0)?;
+        j.flag("pio_enable", ((self.flags >> 5) & 0x1) != 0)?;
+        j.flag("pio_active_low", ((self.flags >> 6) & 0x1) != 0)?;
+        j.int("buf_size", self.buf_size)?;
+        j.int("notif_thrs", self.notif_thrs)?;
+        j.int("pio_id", self.pio_id)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Clear, save and load configurations: UBX CFG-CFG (class 0x06 id 0x09), input.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CfgCfgAllDevices<'a> {
@@ -638,6 +816,206 @@ impl<'a> CfgDgnss<'a> {
     pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
         j.int("dgnss_mode", self.dgnss_mode)?;
         j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Geofencing configuration: UBX CFG-GEOFENCE (class 0x06 id 0x69), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgGeofencePoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgGeofencePoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_geofence_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-GEOFENCE";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x69;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_geofence"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of CfgGeofenceFence.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgGeofenceFence {
+    /// Latitude of the center [deg].
+    pub lat_raw: i32,
+    /// Longitude of the center [deg].
+    pub lon_raw: i32,
+    /// Radius [m].
+    pub radius_raw: u32,
+}
+
+impl<'a> ubx::Entry<'a> for CfgGeofenceFence {
+    const WIDTH: usize = 12;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let lat_raw = i32::from_le_bytes(r.array("lat")?);
+        let lon_raw = i32::from_le_bytes(r.array("lon")?);
+        let radius_raw = u32::from_le_bytes(r.array("radius")?);
+        Ok(Self { lat_raw, lon_raw, radius_raw })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.lat_raw.to_le_bytes());
+        w.put(&self.lon_raw.to_le_bytes());
+        w.put(&self.radius_raw.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_float(j, "lat", self.lat_raw as f64 / 10000000.0)?;
+        j.int("lat_raw", self.lat_raw)?;
+        ubx::json_float(j, "lon", self.lon_raw as f64 / 10000000.0)?;
+        j.int("lon_raw", self.lon_raw)?;
+        ubx::json_float(j, "radius", self.radius_raw as f64 / 100.0)?;
+        j.int("radius_raw", self.radius_raw)?;
+        Ok(())
+    }
+}
+
+impl CfgGeofenceFence {
+    /// Latitude of the center [deg]: the raw integer divided by 10000000.
+    pub fn lat(&self) -> f64 {
+        let raw = self.lat_raw;
+        raw as f64 / 10000000.0
+    }
+    /// Longitude of the center [deg]: the raw integer divided by 10000000.
+    pub fn lon(&self) -> f64 {
+        let raw = self.lon_raw;
+        raw as f64 / 10000000.0
+    }
+    /// Radius [m]: the raw integer divided by 100.
+    pub fn radius(&self) -> f64 {
+        let raw = self.radius_raw;
+        raw as f64 / 100.0
+    }
+}
+
+/// Geofencing configuration: UBX CFG-GEOFENCE (class 0x06 id 0x69), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgGeofence<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Number of geofences.
+    pub num_fences: u8,
+    /// Required confidence level for the state.
+    pub conf_lvl: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Show the combined state on a PIO pin.
+    pub pio_enabled: u8,
+    /// PIO pin polarity.
+    pub pin_polarity: u8,
+    /// PIO pin number.
+    pub pin: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Geofences: 0 to 4 entries.
+    pub fences: ubx::Group<'a, CfgGeofenceFence>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgGeofence<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_geofence";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-GEOFENCE";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x69;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let num_fences = u8::from_le_bytes(r.array("num_fences")?);
+        let conf_lvl = u8::from_le_bytes(r.array("conf_lvl")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let pio_enabled = u8::from_le_bytes(r.array("pio_enabled")?);
+        let pin_polarity = u8::from_le_bytes(r.array("pin_polarity")?);
+        let pin = u8::from_le_bytes(r.array("pin")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let fences = r.group(Some(usize::from(num_fences)), 0, 4, 0, "fences")?;
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            num_fences,
+            conf_lvl,
+            reserved0,
+            pio_enabled,
+            pin_polarity,
+            pin,
+            reserved1,
+            fences,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.num_fences.to_le_bytes());
+        w.put(&self.conf_lvl.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.pio_enabled.to_le_bytes());
+        w.put(&self.pin_polarity.to_le_bytes());
+        w.put(&self.pin.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        self.fences.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("num_fences", self.num_fences)?;
+        j.int("conf_lvl", self.conf_lvl)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("pio_enabled", self.pio_enabled)?;
+        j.int("pin_polarity", self.pin_polarity)?;
+        j.int("pin", self.pin)?;
+        j.int("reserved1", self.reserved1)?;
+        self.fences.json(j, "fences")?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -1150,6 +1528,316 @@ impl<'a> CfgInf<'a> {
     /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
     pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
         self.blocks.json(j, "blocks")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Jamming and interference monitor configuration: UBX CFG-ITFM (class 0x06 id 0x39), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgItfmPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgItfmPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_itfm_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-ITFM";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x39;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_itfm"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Jamming and interference monitor configuration: UBX CFG-ITFM (class 0x06 id 0x39), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgItfm<'a> {
+    /// Interference monitor settings.
+    pub config: u32,
+    /// Further settings.
+    pub config2: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgItfm<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_itfm";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-ITFM";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x39;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// Broadband jamming detection threshold [dB] (bits 0-3 of `config`).
+    pub fn bb_threshold(&self) -> u8 {
+        (self.config & 0xf) as u8
+    }
+    /// Sets broadband jamming detection threshold (the value in its bits of `config`; the other bits stay).
+    pub fn set_bb_threshold(&mut self, value: u8) {
+        self.config = (self.config & !0xf) | (value as u32 & 0xf);
+    }
+    /// Continuous wave jamming detection threshold [dB] (bits 4-8 of `config`).
+    pub fn cw_threshold(&self) -> u8 {
+        ((self.config >> 4) & 0x1f) as u8
+    }
+    /// Sets continuous wave jamming detection threshold (the value in its bits of `config`; the other bits stay).
+    pub fn set_cw_threshold(&mut self, value: u8) {
+        self.config = (self.config & !(0x1f << 4)) | ((value as u32 & 0x1f) << 4);
+    }
+    /// Reserved algorithm settings (bits 9-30 of `config`).
+    pub fn algorithm_bits(&self) -> u32 {
+        (self.config >> 9) & 0x3fffff
+    }
+    /// Sets reserved algorithm settings (the value in its bits of `config`; the other bits stay).
+    pub fn set_algorithm_bits(&mut self, value: u32) {
+        self.config = (self.config & !(0x3fffff << 9)) | ((value & 0x3fffff) << 9);
+    }
+    /// Interference detection enabled (bit 31 of `config`).
+    pub fn enable(&self) -> bool {
+        ((self.config >> 31) & 0x1) != 0
+    }
+    /// Sets interference detection enabled (the value in its bits of `config`; the other bits stay).
+    pub fn set_enable(&mut self, value: bool) {
+        self.config = (self.config & !(0x1 << 31)) | (u32::from(value) << 31);
+    }
+    /// General settings (bits 0-11 of `config2`).
+    pub fn general_bits(&self) -> u16 {
+        (self.config2 & 0xfff) as u16
+    }
+    /// Sets general settings (the value in its bits of `config2`; the other bits stay).
+    pub fn set_general_bits(&mut self, value: u16) {
+        self.config2 = (self.config2 & !0xfff) | (value as u32 & 0xfff);
+    }
+    /// Antenna kind (bits 12-13 of `config2`).
+    pub fn ant_setting(&self) -> u8 {
+        ((self.config2 >> 12) & 0x3) as u8
+    }
+    /// Sets antenna kind (the value in its bits of `config2`; the other bits stay).
+    pub fn set_ant_setting(&mut self, value: u8) {
+        self.config2 = (self.config2 & !(0x3 << 12)) | ((value as u32 & 0x3) << 12);
+    }
+    /// Interference detection also in the second band (bit 14 of `config2`).
+    pub fn enable2(&self) -> bool {
+        ((self.config2 >> 14) & 0x1) != 0
+    }
+    /// Sets interference detection also in the second band (the value in its bits of `config2`; the other bits stay).
+    pub fn set_enable2(&mut self, value: bool) {
+        self.config2 = (self.config2 & !(0x1 << 14)) | (u32::from(value) << 14);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let config = u32::from_le_bytes(r.array("config")?);
+        let config2 = u32::from_le_bytes(r.array("config2")?);
+        let trailing = r.rest();
+        Ok(Self { config, config2, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.config.to_le_bytes());
+        w.put(&self.config2.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("config", self.config)?;
+        j.int("bb_threshold", (self.config & 0xf) as u8)?;
+        j.int("cw_threshold", ((self.config >> 4) & 0x1f) as u8)?;
+        j.int("algorithm_bits", (self.config >> 9) & 0x3fffff)?;
+        j.flag("enable", ((self.config >> 31) & 0x1) != 0)?;
+        j.int("config2", self.config2)?;
+        j.int("general_bits", (self.config2 & 0xfff) as u16)?;
+        j.int("ant_setting", ((self.config2 >> 12) & 0x3) as u8)?;
+        j.flag("enable2", ((self.config2 >> 14) & 0x1) != 0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Data logger configuration: UBX CFG-LOGFILTER (class 0x06 id 0x47), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgLogfilterPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgLogfilterPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_logfilter_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-LOGFILTER";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x47;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_logfilter"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Data logger configuration: UBX CFG-LOGFILTER (class 0x06 id 0x47), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgLogfilter<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Flags.
+    pub flags: u8,
+    /// Least time between two entries [s].
+    pub min_interval: u16,
+    /// Time after which an entry is logged [s].
+    pub time_threshold: u16,
+    /// Speed above which an entry is logged [m/s].
+    pub speed_threshold: u16,
+    /// Distance after which an entry is logged [m].
+    pub position_threshold: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgLogfilter<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_logfilter";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-LOGFILTER";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x47;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// Recording enabled (bit 0 of `flags`).
+    pub fn record_enabled(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets recording enabled (the value in its bits of `flags`; the other bits stay).
+    pub fn set_record_enabled(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// Log one position per power save wake up (bit 1 of `flags`).
+    pub fn psm_once_per_wakup_enabled(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets log one position per power save wake up (the value in its bits of `flags`; the other bits stay).
+    pub fn set_psm_once_per_wakup_enabled(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Apply all the thresholds below (else only min_interval) (bit 2 of `flags`).
+    pub fn apply_all_filter_settings(&self) -> bool {
+        ((self.flags >> 2) & 0x1) != 0
+    }
+    /// Sets apply all the thresholds below (else only min_interval) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_apply_all_filter_settings(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let min_interval = u16::from_le_bytes(r.array("min_interval")?);
+        let time_threshold = u16::from_le_bytes(r.array("time_threshold")?);
+        let speed_threshold = u16::from_le_bytes(r.array("speed_threshold")?);
+        let position_threshold = u32::from_le_bytes(r.array("position_threshold")?);
+        let trailing = r.rest();
+        Ok(Self { version, flags, min_interval, time_threshold, speed_threshold, position_threshold, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.min_interval.to_le_bytes());
+        w.put(&self.time_threshold.to_le_bytes());
+        w.put(&self.speed_threshold.to_le_bytes());
+        w.put(&self.position_threshold.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("flags", self.flags)?;
+        j.flag("record_enabled", (self.flags & 0x1) != 0)?;
+        j.flag("psm_once_per_wakup_enabled", ((self.flags >> 1) & 0x1) != 0)?;
+        j.flag("apply_all_filter_settings", ((self.flags >> 2) & 0x1) != 0)?;
+        j.int("min_interval", self.min_interval)?;
+        j.int("time_threshold", self.time_threshold)?;
+        j.int("speed_threshold", self.speed_threshold)?;
+        j.int("position_threshold", self.position_threshold)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -1677,6 +2365,1859 @@ impl<'a> CfgNav5<'a> {
     }
 }
 
+/// Navigation engine expert settings: UBX CFG-NAVX5 (class 0x06 id 0x23), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgNavx5Poll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgNavx5Poll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_navx5_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-NAVX5";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x23;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_navx5"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Navigation engine expert settings: UBX CFG-NAVX5 (class 0x06 id 0x23), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgNavx5<'a> {
+    /// Message version.
+    pub version: u16,
+    /// Settings to apply.
+    pub mask1: u16,
+    /// More settings to apply.
+    pub mask2: u32,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Least number of satellites for navigation.
+    pub min_svs: u8,
+    /// Largest number of satellites for navigation.
+    pub max_svs: u8,
+    /// Least C/N0 of a satellite used [dBHz].
+    pub min_cno: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// The initial fix must be 3D.
+    pub ini_fix3d: u8,
+    /// Reserved.
+    pub reserved2: u16,
+    /// Acknowledge assistance input messages.
+    pub ack_aiding: u8,
+    /// GPS week rollover number.
+    pub wkn_rollover: u16,
+    /// Signal attenuation compensation.
+    pub sig_atten_comp_mode: u8,
+    /// Reserved.
+    pub reserved3: u8,
+    /// Reserved.
+    pub reserved4: u16,
+    /// Reserved.
+    pub reserved5: u16,
+    /// Use precise point positioning.
+    pub use_ppp: u8,
+    /// AssistNow Autonomous configuration.
+    pub aop_cfg: u8,
+    /// Reserved.
+    pub reserved6: u16,
+    /// Largest acceptable orbit error of AssistNow Autonomous [m].
+    pub aop_orb_max_err: u16,
+    /// Reserved.
+    pub reserved7: u32,
+    /// Reserved.
+    pub reserved8: u32,
+    /// Use automotive dead reckoning.
+    pub use_adr: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgNavx5<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_navx5";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-NAVX5";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x23;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(40);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// Apply min_svs and max_svs (bit 2 of `mask1`).
+    pub fn min_max(&self) -> bool {
+        ((self.mask1 >> 2) & 0x1) != 0
+    }
+    /// Sets apply min_svs and max_svs (the value in its bits of `mask1`; the other bits stay).
+    pub fn set_min_max(&mut self, value: bool) {
+        self.mask1 = (self.mask1 & !(0x1 << 2)) | (u16::from(value) << 2);
+    }
+    /// Apply min_cno (bit 3 of `mask1`).
+    pub fn min_cno_mask(&self) -> bool {
+        ((self.mask1 >> 3) & 0x1) != 0
+    }
+    /// Sets apply min_cno (the value in its bits of `mask1`; the other bits stay).
+    pub fn set_min_cno_mask(&mut self, value: bool) {
+        self.mask1 = (self.mask1 & !(0x1 << 3)) | (u16::from(value) << 3);
+    }
+    /// Apply ini_fix3d (bit 6 of `mask1`).
+    pub fn initial3dfix(&self) -> bool {
+        ((self.mask1 >> 6) & 0x1) != 0
+    }
+    /// Sets apply ini_fix3d (the value in its bits of `mask1`; the other bits stay).
+    pub fn set_initial3dfix(&mut self, value: bool) {
+        self.mask1 = (self.mask1 & !(0x1 << 6)) | (u16::from(value) << 6);
+    }
+    /// Apply wkn_rollover (bit 9 of `mask1`).
+    pub fn wkn_roll(&self) -> bool {
+        ((self.mask1 >> 9) & 0x1) != 0
+    }
+    /// Sets apply wkn_rollover (the value in its bits of `mask1`; the other bits stay).
+    pub fn set_wkn_roll(&mut self, value: bool) {
+        self.mask1 = (self.mask1 & !(0x1 << 9)) | (u16::from(value) << 9);
+    }
+    /// Apply ack_aiding (bit 10 of `mask1`).
+    pub fn ack_aid(&self) -> bool {
+        ((self.mask1 >> 10) & 0x1) != 0
+    }
+    /// Sets apply ack_aiding (the value in its bits of `mask1`; the other bits stay).
+    pub fn set_ack_aid(&mut self, value: bool) {
+        self.mask1 = (self.mask1 & !(0x1 << 10)) | (u16::from(value) << 10);
+    }
+    /// Apply use_ppp (bit 13 of `mask1`).
+    pub fn ppp(&self) -> bool {
+        ((self.mask1 >> 13) & 0x1) != 0
+    }
+    /// Sets apply use_ppp (the value in its bits of `mask1`; the other bits stay).
+    pub fn set_ppp(&mut self, value: bool) {
+        self.mask1 = (self.mask1 & !(0x1 << 13)) | (u16::from(value) << 13);
+    }
+    /// Apply aop_cfg and aop_orb_max_err (bit 14 of `mask1`).
+    pub fn aop(&self) -> bool {
+        ((self.mask1 >> 14) & 0x1) != 0
+    }
+    /// Sets apply aop_cfg and aop_orb_max_err (the value in its bits of `mask1`; the other bits stay).
+    pub fn set_aop(&mut self, value: bool) {
+        self.mask1 = (self.mask1 & !(0x1 << 14)) | (u16::from(value) << 14);
+    }
+    /// Apply use_adr (bit 6 of `mask2`).
+    pub fn adr(&self) -> bool {
+        ((self.mask2 >> 6) & 0x1) != 0
+    }
+    /// Sets apply use_adr (the value in its bits of `mask2`; the other bits stay).
+    pub fn set_adr(&mut self, value: bool) {
+        self.mask2 = (self.mask2 & !(0x1 << 6)) | (u32::from(value) << 6);
+    }
+    /// Apply sig_atten_comp_mode (bit 7 of `mask2`).
+    pub fn sig_atten_comp(&self) -> bool {
+        ((self.mask2 >> 7) & 0x1) != 0
+    }
+    /// Sets apply sig_atten_comp_mode (the value in its bits of `mask2`; the other bits stay).
+    pub fn set_sig_atten_comp(&mut self, value: bool) {
+        self.mask2 = (self.mask2 & !(0x1 << 7)) | (u32::from(value) << 7);
+    }
+    /// AssistNow Autonomous enabled (bit 0 of `aop_cfg`).
+    pub fn use_aop(&self) -> bool {
+        (self.aop_cfg & 0x1) != 0
+    }
+    /// Sets assistnow autonomous enabled (the value in its bits of `aop_cfg`; the other bits stay).
+    pub fn set_use_aop(&mut self, value: bool) {
+        self.aop_cfg = (self.aop_cfg & !0x1) | u8::from(value);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u16::from_le_bytes(r.array("version")?);
+        let mask1 = u16::from_le_bytes(r.array("mask1")?);
+        let mask2 = u32::from_le_bytes(r.array("mask2")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let min_svs = u8::from_le_bytes(r.array("min_svs")?);
+        let max_svs = u8::from_le_bytes(r.array("max_svs")?);
+        let min_cno = u8::from_le_bytes(r.array("min_cno")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let ini_fix3d = u8::from_le_bytes(r.array("ini_fix3d")?);
+        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
+        let ack_aiding = u8::from_le_bytes(r.array("ack_aiding")?);
+        let wkn_rollover = u16::from_le_bytes(r.array("wkn_rollover")?);
+        let sig_atten_comp_mode = u8::from_le_bytes(r.array("sig_atten_comp_mode")?);
+        let reserved3 = u8::from_le_bytes(r.array("reserved3")?);
+        let reserved4 = u16::from_le_bytes(r.array("reserved4")?);
+        let reserved5 = u16::from_le_bytes(r.array("reserved5")?);
+        let use_ppp = u8::from_le_bytes(r.array("use_ppp")?);
+        let aop_cfg = u8::from_le_bytes(r.array("aop_cfg")?);
+        let reserved6 = u16::from_le_bytes(r.array("reserved6")?);
+        let aop_orb_max_err = u16::from_le_bytes(r.array("aop_orb_max_err")?);
+        let reserved7 = u32::from_le_bytes(r.array("reserved7")?);
+        let reserved8 = {
+            let b: [u8; 3] = r.array("reserved8")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let use_adr = u8::from_le_bytes(r.array("use_adr")?);
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            mask1,
+            mask2,
+            reserved0,
+            min_svs,
+            max_svs,
+            min_cno,
+            reserved1,
+            ini_fix3d,
+            reserved2,
+            ack_aiding,
+            wkn_rollover,
+            sig_atten_comp_mode,
+            reserved3,
+            reserved4,
+            reserved5,
+            use_ppp,
+            aop_cfg,
+            reserved6,
+            aop_orb_max_err,
+            reserved7,
+            reserved8,
+            use_adr,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.mask1.to_le_bytes());
+        w.put(&self.mask2.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.min_svs.to_le_bytes());
+        w.put(&self.max_svs.to_le_bytes());
+        w.put(&self.min_cno.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.ini_fix3d.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.ack_aiding.to_le_bytes());
+        w.put(&self.wkn_rollover.to_le_bytes());
+        w.put(&self.sig_atten_comp_mode.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes());
+        w.put(&self.reserved4.to_le_bytes());
+        w.put(&self.reserved5.to_le_bytes());
+        w.put(&self.use_ppp.to_le_bytes());
+        w.put(&self.aop_cfg.to_le_bytes());
+        w.put(&self.reserved6.to_le_bytes());
+        w.put(&self.aop_orb_max_err.to_le_bytes());
+        w.put(&self.reserved7.to_le_bytes());
+        w.put(&self.reserved8.to_le_bytes()[..3]);
+        w.put(&self.use_adr.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("mask1", self.mask1)?;
+        j.flag("min_max", ((self.mask1 >> 2) & 0x1) != 0)?;
+        j.flag("min_cno_mask", ((self.mask1 >> 3) & 0x1) != 0)?;
+        j.flag("initial3dfix", ((self.mask1 >> 6) & 0x1) != 0)?;
+        j.flag("wkn_roll", ((self.mask1 >> 9) & 0x1) != 0)?;
+        j.flag("ack_aid", ((self.mask1 >> 10) & 0x1) != 0)?;
+        j.flag("ppp", ((self.mask1 >> 13) & 0x1) != 0)?;
+        j.flag("aop", ((self.mask1 >> 14) & 0x1) != 0)?;
+        j.int("mask2", self.mask2)?;
+        j.flag("adr", ((self.mask2 >> 6) & 0x1) != 0)?;
+        j.flag("sig_atten_comp", ((self.mask2 >> 7) & 0x1) != 0)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("min_svs", self.min_svs)?;
+        j.int("max_svs", self.max_svs)?;
+        j.int("min_cno", self.min_cno)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("ini_fix3d", self.ini_fix3d)?;
+        j.int("reserved2", self.reserved2)?;
+        j.int("ack_aiding", self.ack_aiding)?;
+        j.int("wkn_rollover", self.wkn_rollover)?;
+        j.int("sig_atten_comp_mode", self.sig_atten_comp_mode)?;
+        j.int("reserved3", self.reserved3)?;
+        j.int("reserved4", self.reserved4)?;
+        j.int("reserved5", self.reserved5)?;
+        j.int("use_ppp", self.use_ppp)?;
+        j.int("aop_cfg", self.aop_cfg)?;
+        j.flag("use_aop", (self.aop_cfg & 0x1) != 0)?;
+        j.int("reserved6", self.reserved6)?;
+        j.int("aop_orb_max_err", self.aop_orb_max_err)?;
+        j.int("reserved7", self.reserved7)?;
+        j.int("reserved8", self.reserved8)?;
+        j.int("use_adr", self.use_adr)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// NMEA protocol configuration: UBX CFG-NMEA (class 0x06 id 0x17), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgNmeaPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgNmeaPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_nmea_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-NMEA";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x17;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_nmea"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// NMEA protocol configuration: UBX CFG-NMEA (class 0x06 id 0x17), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgNmea<'a> {
+    /// NMEA output filters.
+    pub filter: u8,
+    /// NMEA version.
+    pub nmea_version: u8,
+    /// Largest number of satellites reported.
+    pub num_sv: u8,
+    /// Flags.
+    pub flags: u8,
+    /// Satellite systems not reported in GSV, GSA, GRS and GBS.
+    pub gnss_to_filter: u32,
+    /// Numbering of satellites without an NMEA number.
+    pub sv_numbering: u8,
+    /// Main talker id.
+    pub main_talker_id: u8,
+    /// Talker id of GSV.
+    pub gsv_talker_id: u8,
+    /// Message version.
+    pub version: u8,
+    /// BeiDou talker id.
+    pub bds_talker_id: &'a [u8],
+    /// Reserved.
+    pub reserved1: u64,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgNmea<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_nmea";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-NMEA";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x17;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(20);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = Some(1);
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// Send positions even when the fix is not valid (bit 0 of `filter`).
+    pub fn pos_filt(&self) -> bool {
+        (self.filter & 0x1) != 0
+    }
+    /// Sets send positions even when the fix is not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_pos_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !0x1) | u8::from(value);
+    }
+    /// Send positions even when masked out (bit 1 of `filter`).
+    pub fn msk_pos_filt(&self) -> bool {
+        ((self.filter >> 1) & 0x1) != 0
+    }
+    /// Sets send positions even when masked out (the value in its bits of `filter`; the other bits stay).
+    pub fn set_msk_pos_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Send the time even when not valid (bit 2 of `filter`).
+    pub fn time_filt(&self) -> bool {
+        ((self.filter >> 2) & 0x1) != 0
+    }
+    /// Sets send the time even when not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_time_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Send the date even when not valid (bit 3 of `filter`).
+    pub fn date_filt(&self) -> bool {
+        ((self.filter >> 3) & 0x1) != 0
+    }
+    /// Sets send the date even when not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_date_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Restrict to GPS satellites only (bit 4 of `filter`).
+    pub fn gps_only_filter(&self) -> bool {
+        ((self.filter >> 4) & 0x1) != 0
+    }
+    /// Sets restrict to gps satellites only (the value in its bits of `filter`; the other bits stay).
+    pub fn set_gps_only_filter(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// Send the heading even when not valid (bit 5 of `filter`).
+    pub fn track_filt(&self) -> bool {
+        ((self.filter >> 5) & 0x1) != 0
+    }
+    /// Sets send the heading even when not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_track_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 5)) | (u8::from(value) << 5);
+    }
+    /// Compatibility mode (fixed number of decimals) (bit 0 of `flags`).
+    pub fn compat(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets compatibility mode (fixed number of decimals) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_compat(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// Consideration mode (bit 1 of `flags`).
+    pub fn consider(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets consideration mode (the value in its bits of `flags`; the other bits stay).
+    pub fn set_consider(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Keep sentences within 82 characters (bit 2 of `flags`).
+    pub fn limit82(&self) -> bool {
+        ((self.flags >> 2) & 0x1) != 0
+    }
+    /// Sets keep sentences within 82 characters (the value in its bits of `flags`; the other bits stay).
+    pub fn set_limit82(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// High precision mode (more decimals) (bit 3 of `flags`).
+    pub fn high_prec(&self) -> bool {
+        ((self.flags >> 3) & 0x1) != 0
+    }
+    /// Sets high precision mode (more decimals) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_high_prec(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// GPS (bit 0 of `gnss_to_filter`).
+    pub fn gps(&self) -> bool {
+        (self.gnss_to_filter & 0x1) != 0
+    }
+    /// Sets gps (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_gps(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !0x1) | u32::from(value);
+    }
+    /// SBAS (bit 1 of `gnss_to_filter`).
+    pub fn sbas(&self) -> bool {
+        ((self.gnss_to_filter >> 1) & 0x1) != 0
+    }
+    /// Sets sbas (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_sbas(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !(0x1 << 1)) | (u32::from(value) << 1);
+    }
+    /// Galileo (bit 2 of `gnss_to_filter`).
+    pub fn galileo(&self) -> bool {
+        ((self.gnss_to_filter >> 2) & 0x1) != 0
+    }
+    /// Sets galileo (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_galileo(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !(0x1 << 2)) | (u32::from(value) << 2);
+    }
+    /// QZSS (bit 4 of `gnss_to_filter`).
+    pub fn qzss(&self) -> bool {
+        ((self.gnss_to_filter >> 4) & 0x1) != 0
+    }
+    /// Sets qzss (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_qzss(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !(0x1 << 4)) | (u32::from(value) << 4);
+    }
+    /// GLONASS (bit 5 of `gnss_to_filter`).
+    pub fn glonass(&self) -> bool {
+        ((self.gnss_to_filter >> 5) & 0x1) != 0
+    }
+    /// Sets glonass (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_glonass(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !(0x1 << 5)) | (u32::from(value) << 5);
+    }
+    /// BeiDou (bit 6 of `gnss_to_filter`).
+    pub fn beidou(&self) -> bool {
+        ((self.gnss_to_filter >> 6) & 0x1) != 0
+    }
+    /// Sets beidou (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_beidou(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !(0x1 << 6)) | (u32::from(value) << 6);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let filter = u8::from_le_bytes(r.array("filter")?);
+        let nmea_version = u8::from_le_bytes(r.array("nmea_version")?);
+        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let gnss_to_filter = u32::from_le_bytes(r.array("gnss_to_filter")?);
+        let sv_numbering = u8::from_le_bytes(r.array("sv_numbering")?);
+        let main_talker_id = u8::from_le_bytes(r.array("main_talker_id")?);
+        let gsv_talker_id = u8::from_le_bytes(r.array("gsv_talker_id")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let bds_talker_id = r.bytes(2, "bds_talker_id")?;
+        let reserved1 = {
+            let b: [u8; 6] = r.array("reserved1")?;
+            let mut le = [0u8; 8];
+            le[..6].copy_from_slice(&b);
+            u64::from_le_bytes(le)
+        };
+        let trailing = r.rest();
+        Ok(Self {
+            filter,
+            nmea_version,
+            num_sv,
+            flags,
+            gnss_to_filter,
+            sv_numbering,
+            main_talker_id,
+            gsv_talker_id,
+            version,
+            bds_talker_id,
+            reserved1,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.filter.to_le_bytes());
+        w.put(&self.nmea_version.to_le_bytes());
+        w.put(&self.num_sv.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.gnss_to_filter.to_le_bytes());
+        w.put(&self.sv_numbering.to_le_bytes());
+        w.put(&self.main_talker_id.to_le_bytes());
+        w.put(&self.gsv_talker_id.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put_sized(self.bds_talker_id, Some(2), "CFG-NMEA", "bds_talker_id")?;
+        w.put(&self.reserved1.to_le_bytes()[..6]);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("filter", self.filter)?;
+        j.flag("pos_filt", (self.filter & 0x1) != 0)?;
+        j.flag("msk_pos_filt", ((self.filter >> 1) & 0x1) != 0)?;
+        j.flag("time_filt", ((self.filter >> 2) & 0x1) != 0)?;
+        j.flag("date_filt", ((self.filter >> 3) & 0x1) != 0)?;
+        j.flag("gps_only_filter", ((self.filter >> 4) & 0x1) != 0)?;
+        j.flag("track_filt", ((self.filter >> 5) & 0x1) != 0)?;
+        j.int("nmea_version", self.nmea_version)?;
+        j.int("num_sv", self.num_sv)?;
+        j.int("flags", self.flags)?;
+        j.flag("compat", (self.flags & 0x1) != 0)?;
+        j.flag("consider", ((self.flags >> 1) & 0x1) != 0)?;
+        j.flag("limit82", ((self.flags >> 2) & 0x1) != 0)?;
+        j.flag("high_prec", ((self.flags >> 3) & 0x1) != 0)?;
+        j.int("gnss_to_filter", self.gnss_to_filter)?;
+        j.flag("gps", (self.gnss_to_filter & 0x1) != 0)?;
+        j.flag("sbas", ((self.gnss_to_filter >> 1) & 0x1) != 0)?;
+        j.flag("galileo", ((self.gnss_to_filter >> 2) & 0x1) != 0)?;
+        j.flag("qzss", ((self.gnss_to_filter >> 4) & 0x1) != 0)?;
+        j.flag("glonass", ((self.gnss_to_filter >> 5) & 0x1) != 0)?;
+        j.flag("beidou", ((self.gnss_to_filter >> 6) & 0x1) != 0)?;
+        j.int("sv_numbering", self.sv_numbering)?;
+        j.int("main_talker_id", self.main_talker_id)?;
+        j.int("gsv_talker_id", self.gsv_talker_id)?;
+        j.int("version", self.version)?;
+        ubx::json_chars(j, "bds_talker_id", self.bds_talker_id)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// NMEA protocol configuration: UBX CFG-NMEA (class 0x06 id 0x17), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgNmeaV0<'a> {
+    /// NMEA output filters.
+    pub filter: u8,
+    /// NMEA version.
+    pub nmea_version: u8,
+    /// Largest number of satellites reported.
+    pub num_sv: u8,
+    /// Flags.
+    pub flags: u8,
+    /// Satellite systems not reported in GSV, GSA, GRS and GBS.
+    pub gnss_to_filter: u32,
+    /// Numbering of satellites without an NMEA number.
+    pub sv_numbering: u8,
+    /// Main talker id.
+    pub main_talker_id: u8,
+    /// Talker id of GSV.
+    pub gsv_talker_id: u8,
+    /// Message version.
+    pub version: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgNmeaV0<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_nmea_v0";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-NMEA";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x17;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = Some(0);
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// Send positions even when the fix is not valid (bit 0 of `filter`).
+    pub fn pos_filt(&self) -> bool {
+        (self.filter & 0x1) != 0
+    }
+    /// Sets send positions even when the fix is not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_pos_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !0x1) | u8::from(value);
+    }
+    /// Send positions even when masked out (bit 1 of `filter`).
+    pub fn msk_pos_filt(&self) -> bool {
+        ((self.filter >> 1) & 0x1) != 0
+    }
+    /// Sets send positions even when masked out (the value in its bits of `filter`; the other bits stay).
+    pub fn set_msk_pos_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Send the time even when not valid (bit 2 of `filter`).
+    pub fn time_filt(&self) -> bool {
+        ((self.filter >> 2) & 0x1) != 0
+    }
+    /// Sets send the time even when not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_time_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Send the date even when not valid (bit 3 of `filter`).
+    pub fn date_filt(&self) -> bool {
+        ((self.filter >> 3) & 0x1) != 0
+    }
+    /// Sets send the date even when not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_date_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Restrict to GPS satellites only (bit 4 of `filter`).
+    pub fn gps_only_filter(&self) -> bool {
+        ((self.filter >> 4) & 0x1) != 0
+    }
+    /// Sets restrict to gps satellites only (the value in its bits of `filter`; the other bits stay).
+    pub fn set_gps_only_filter(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// Send the heading even when not valid (bit 5 of `filter`).
+    pub fn track_filt(&self) -> bool {
+        ((self.filter >> 5) & 0x1) != 0
+    }
+    /// Sets send the heading even when not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_track_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 5)) | (u8::from(value) << 5);
+    }
+    /// Compatibility mode (fixed number of decimals) (bit 0 of `flags`).
+    pub fn compat(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets compatibility mode (fixed number of decimals) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_compat(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// Consideration mode (bit 1 of `flags`).
+    pub fn consider(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets consideration mode (the value in its bits of `flags`; the other bits stay).
+    pub fn set_consider(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Keep sentences within 82 characters (bit 2 of `flags`).
+    pub fn limit82(&self) -> bool {
+        ((self.flags >> 2) & 0x1) != 0
+    }
+    /// Sets keep sentences within 82 characters (the value in its bits of `flags`; the other bits stay).
+    pub fn set_limit82(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// High precision mode (more decimals) (bit 3 of `flags`).
+    pub fn high_prec(&self) -> bool {
+        ((self.flags >> 3) & 0x1) != 0
+    }
+    /// Sets high precision mode (more decimals) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_high_prec(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// GPS (bit 0 of `gnss_to_filter`).
+    pub fn gps(&self) -> bool {
+        (self.gnss_to_filter & 0x1) != 0
+    }
+    /// Sets gps (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_gps(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !0x1) | u32::from(value);
+    }
+    /// SBAS (bit 1 of `gnss_to_filter`).
+    pub fn sbas(&self) -> bool {
+        ((self.gnss_to_filter >> 1) & 0x1) != 0
+    }
+    /// Sets sbas (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_sbas(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !(0x1 << 1)) | (u32::from(value) << 1);
+    }
+    /// Galileo (bit 2 of `gnss_to_filter`).
+    pub fn galileo(&self) -> bool {
+        ((self.gnss_to_filter >> 2) & 0x1) != 0
+    }
+    /// Sets galileo (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_galileo(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !(0x1 << 2)) | (u32::from(value) << 2);
+    }
+    /// QZSS (bit 4 of `gnss_to_filter`).
+    pub fn qzss(&self) -> bool {
+        ((self.gnss_to_filter >> 4) & 0x1) != 0
+    }
+    /// Sets qzss (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_qzss(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !(0x1 << 4)) | (u32::from(value) << 4);
+    }
+    /// GLONASS (bit 5 of `gnss_to_filter`).
+    pub fn glonass(&self) -> bool {
+        ((self.gnss_to_filter >> 5) & 0x1) != 0
+    }
+    /// Sets glonass (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_glonass(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !(0x1 << 5)) | (u32::from(value) << 5);
+    }
+    /// BeiDou (bit 6 of `gnss_to_filter`).
+    pub fn beidou(&self) -> bool {
+        ((self.gnss_to_filter >> 6) & 0x1) != 0
+    }
+    /// Sets beidou (the value in its bits of `gnss_to_filter`; the other bits stay).
+    pub fn set_beidou(&mut self, value: bool) {
+        self.gnss_to_filter = (self.gnss_to_filter & !(0x1 << 6)) | (u32::from(value) << 6);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let filter = u8::from_le_bytes(r.array("filter")?);
+        let nmea_version = u8::from_le_bytes(r.array("nmea_version")?);
+        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let gnss_to_filter = u32::from_le_bytes(r.array("gnss_to_filter")?);
+        let sv_numbering = u8::from_le_bytes(r.array("sv_numbering")?);
+        let main_talker_id = u8::from_le_bytes(r.array("main_talker_id")?);
+        let gsv_talker_id = u8::from_le_bytes(r.array("gsv_talker_id")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let trailing = r.rest();
+        Ok(Self {
+            filter,
+            nmea_version,
+            num_sv,
+            flags,
+            gnss_to_filter,
+            sv_numbering,
+            main_talker_id,
+            gsv_talker_id,
+            version,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.filter.to_le_bytes());
+        w.put(&self.nmea_version.to_le_bytes());
+        w.put(&self.num_sv.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.gnss_to_filter.to_le_bytes());
+        w.put(&self.sv_numbering.to_le_bytes());
+        w.put(&self.main_talker_id.to_le_bytes());
+        w.put(&self.gsv_talker_id.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("filter", self.filter)?;
+        j.flag("pos_filt", (self.filter & 0x1) != 0)?;
+        j.flag("msk_pos_filt", ((self.filter >> 1) & 0x1) != 0)?;
+        j.flag("time_filt", ((self.filter >> 2) & 0x1) != 0)?;
+        j.flag("date_filt", ((self.filter >> 3) & 0x1) != 0)?;
+        j.flag("gps_only_filter", ((self.filter >> 4) & 0x1) != 0)?;
+        j.flag("track_filt", ((self.filter >> 5) & 0x1) != 0)?;
+        j.int("nmea_version", self.nmea_version)?;
+        j.int("num_sv", self.num_sv)?;
+        j.int("flags", self.flags)?;
+        j.flag("compat", (self.flags & 0x1) != 0)?;
+        j.flag("consider", ((self.flags >> 1) & 0x1) != 0)?;
+        j.flag("limit82", ((self.flags >> 2) & 0x1) != 0)?;
+        j.flag("high_prec", ((self.flags >> 3) & 0x1) != 0)?;
+        j.int("gnss_to_filter", self.gnss_to_filter)?;
+        j.flag("gps", (self.gnss_to_filter & 0x1) != 0)?;
+        j.flag("sbas", ((self.gnss_to_filter >> 1) & 0x1) != 0)?;
+        j.flag("galileo", ((self.gnss_to_filter >> 2) & 0x1) != 0)?;
+        j.flag("qzss", ((self.gnss_to_filter >> 4) & 0x1) != 0)?;
+        j.flag("glonass", ((self.gnss_to_filter >> 5) & 0x1) != 0)?;
+        j.flag("beidou", ((self.gnss_to_filter >> 6) & 0x1) != 0)?;
+        j.int("sv_numbering", self.sv_numbering)?;
+        j.int("main_talker_id", self.main_talker_id)?;
+        j.int("gsv_talker_id", self.gsv_talker_id)?;
+        j.int("version", self.version)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// NMEA protocol configuration: UBX CFG-NMEA (class 0x06 id 0x17), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgNmeaDeprecated<'a> {
+    /// NMEA output filters.
+    pub filter: u8,
+    /// NMEA version.
+    pub nmea_version: u8,
+    /// Largest number of satellites reported.
+    pub num_sv: u8,
+    /// Flags.
+    pub flags: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgNmeaDeprecated<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_nmea_deprecated";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-NMEA";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x17;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(4);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// Send positions even when the fix is not valid (bit 0 of `filter`).
+    pub fn pos_filt(&self) -> bool {
+        (self.filter & 0x1) != 0
+    }
+    /// Sets send positions even when the fix is not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_pos_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !0x1) | u8::from(value);
+    }
+    /// Send positions even when masked out (bit 1 of `filter`).
+    pub fn msk_pos_filt(&self) -> bool {
+        ((self.filter >> 1) & 0x1) != 0
+    }
+    /// Sets send positions even when masked out (the value in its bits of `filter`; the other bits stay).
+    pub fn set_msk_pos_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Send the time even when not valid (bit 2 of `filter`).
+    pub fn time_filt(&self) -> bool {
+        ((self.filter >> 2) & 0x1) != 0
+    }
+    /// Sets send the time even when not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_time_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Send the date even when not valid (bit 3 of `filter`).
+    pub fn date_filt(&self) -> bool {
+        ((self.filter >> 3) & 0x1) != 0
+    }
+    /// Sets send the date even when not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_date_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Restrict to GPS satellites only (bit 4 of `filter`).
+    pub fn gps_only_filter(&self) -> bool {
+        ((self.filter >> 4) & 0x1) != 0
+    }
+    /// Sets restrict to gps satellites only (the value in its bits of `filter`; the other bits stay).
+    pub fn set_gps_only_filter(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// Send the heading even when not valid (bit 5 of `filter`).
+    pub fn track_filt(&self) -> bool {
+        ((self.filter >> 5) & 0x1) != 0
+    }
+    /// Sets send the heading even when not valid (the value in its bits of `filter`; the other bits stay).
+    pub fn set_track_filt(&mut self, value: bool) {
+        self.filter = (self.filter & !(0x1 << 5)) | (u8::from(value) << 5);
+    }
+    /// Compatibility mode (fixed number of decimals) (bit 0 of `flags`).
+    pub fn compat(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets compatibility mode (fixed number of decimals) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_compat(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// Consideration mode (bit 1 of `flags`).
+    pub fn consider(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets consideration mode (the value in its bits of `flags`; the other bits stay).
+    pub fn set_consider(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Keep sentences within 82 characters (bit 2 of `flags`).
+    pub fn limit82(&self) -> bool {
+        ((self.flags >> 2) & 0x1) != 0
+    }
+    /// Sets keep sentences within 82 characters (the value in its bits of `flags`; the other bits stay).
+    pub fn set_limit82(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// High precision mode (more decimals) (bit 3 of `flags`).
+    pub fn high_prec(&self) -> bool {
+        ((self.flags >> 3) & 0x1) != 0
+    }
+    /// Sets high precision mode (more decimals) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_high_prec(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let filter = u8::from_le_bytes(r.array("filter")?);
+        let nmea_version = u8::from_le_bytes(r.array("nmea_version")?);
+        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let trailing = r.rest();
+        Ok(Self { filter, nmea_version, num_sv, flags, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.filter.to_le_bytes());
+        w.put(&self.nmea_version.to_le_bytes());
+        w.put(&self.num_sv.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("filter", self.filter)?;
+        j.flag("pos_filt", (self.filter & 0x1) != 0)?;
+        j.flag("msk_pos_filt", ((self.filter >> 1) & 0x1) != 0)?;
+        j.flag("time_filt", ((self.filter >> 2) & 0x1) != 0)?;
+        j.flag("date_filt", ((self.filter >> 3) & 0x1) != 0)?;
+        j.flag("gps_only_filter", ((self.filter >> 4) & 0x1) != 0)?;
+        j.flag("track_filt", ((self.filter >> 5) & 0x1) != 0)?;
+        j.int("nmea_version", self.nmea_version)?;
+        j.int("num_sv", self.num_sv)?;
+        j.int("flags", self.flags)?;
+        j.flag("compat", (self.flags & 0x1) != 0)?;
+        j.flag("consider", ((self.flags >> 1) & 0x1) != 0)?;
+        j.flag("limit82", ((self.flags >> 2) & 0x1) != 0)?;
+        j.flag("high_prec", ((self.flags >> 3) & 0x1) != 0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Odometer and low-speed course filters: UBX CFG-ODO (class 0x06 id 0x1E), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgOdoPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgOdoPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_odo_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-ODO";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x1e;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_odo"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Odometer and low-speed course filters: UBX CFG-ODO (class 0x06 id 0x1E), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgOdo<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Flags.
+    pub flags: u8,
+    /// Odometer profile.
+    pub odo_cfg: u8,
+    /// Reserved.
+    pub reserved1: u64,
+    /// Speed below which the course over ground is filtered [m/s].
+    pub cog_max_speed_raw: u8,
+    /// Largest position accuracy for the course over ground filter [m].
+    pub cog_max_pos_acc: u8,
+    /// Reserved.
+    pub reserved2: u16,
+    /// Velocity low-pass filter gain.
+    pub vel_lp_gain: u8,
+    /// Course over ground low-pass filter gain.
+    pub cog_lp_gain: u8,
+    /// Reserved.
+    pub reserved3: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgOdo<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_odo";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-ODO";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x1e;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(20);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// Odometer enabled (bit 0 of `flags`).
+    pub fn use_odo(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets odometer enabled (the value in its bits of `flags`; the other bits stay).
+    pub fn set_use_odo(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// Low-speed course over ground filter enabled (bit 1 of `flags`).
+    pub fn use_cog(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets low-speed course over ground filter enabled (the value in its bits of `flags`; the other bits stay).
+    pub fn set_use_cog(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Output the low-pass filtered velocity (bit 2 of `flags`).
+    pub fn out_lp_vel(&self) -> bool {
+        ((self.flags >> 2) & 0x1) != 0
+    }
+    /// Sets output the low-pass filtered velocity (the value in its bits of `flags`; the other bits stay).
+    pub fn set_out_lp_vel(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Output the low-pass filtered course over ground (bit 3 of `flags`).
+    pub fn out_lp_cog(&self) -> bool {
+        ((self.flags >> 3) & 0x1) != 0
+    }
+    /// Sets output the low-pass filtered course over ground (the value in its bits of `flags`; the other bits stay).
+    pub fn set_out_lp_cog(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Profile (bits 0-2 of `odo_cfg`).
+    pub fn profile(&self) -> u8 {
+        self.odo_cfg & 0x7
+    }
+    /// Sets profile (the value in its bits of `odo_cfg`; the other bits stay).
+    pub fn set_profile(&mut self, value: u8) {
+        self.odo_cfg = (self.odo_cfg & !0x7) | (value & 0x7);
+    }
+    /// Speed below which the course over ground is filtered [m/s]: the raw integer divided by 10.
+    pub fn cog_max_speed(&self) -> f64 {
+        let raw = self.cog_max_speed_raw;
+        raw as f64 / 10.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let odo_cfg = u8::from_le_bytes(r.array("odo_cfg")?);
+        let reserved1 = {
+            let b: [u8; 6] = r.array("reserved1")?;
+            let mut le = [0u8; 8];
+            le[..6].copy_from_slice(&b);
+            u64::from_le_bytes(le)
+        };
+        let cog_max_speed_raw = u8::from_le_bytes(r.array("cog_max_speed")?);
+        let cog_max_pos_acc = u8::from_le_bytes(r.array("cog_max_pos_acc")?);
+        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
+        let vel_lp_gain = u8::from_le_bytes(r.array("vel_lp_gain")?);
+        let cog_lp_gain = u8::from_le_bytes(r.array("cog_lp_gain")?);
+        let reserved3 = u16::from_le_bytes(r.array("reserved3")?);
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            reserved0,
+            flags,
+            odo_cfg,
+            reserved1,
+            cog_max_speed_raw,
+            cog_max_pos_acc,
+            reserved2,
+            vel_lp_gain,
+            cog_lp_gain,
+            reserved3,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.odo_cfg.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..6]);
+        w.put(&self.cog_max_speed_raw.to_le_bytes());
+        w.put(&self.cog_max_pos_acc.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.vel_lp_gain.to_le_bytes());
+        w.put(&self.cog_lp_gain.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("flags", self.flags)?;
+        j.flag("use_odo", (self.flags & 0x1) != 0)?;
+        j.flag("use_cog", ((self.flags >> 1) & 0x1) != 0)?;
+        j.flag("out_lp_vel", ((self.flags >> 2) & 0x1) != 0)?;
+        j.flag("out_lp_cog", ((self.flags >> 3) & 0x1) != 0)?;
+        j.int("odo_cfg", self.odo_cfg)?;
+        j.int("profile", self.odo_cfg & 0x7)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_float(j, "cog_max_speed", self.cog_max_speed_raw as f64 / 10.0)?;
+        j.int("cog_max_speed_raw", self.cog_max_speed_raw)?;
+        j.int("cog_max_pos_acc", self.cog_max_pos_acc)?;
+        j.int("reserved2", self.reserved2)?;
+        j.int("vel_lp_gain", self.vel_lp_gain)?;
+        j.int("cog_lp_gain", self.cog_lp_gain)?;
+        j.int("reserved3", self.reserved3)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Extended power management configuration: UBX CFG-PM2 (class 0x06 id 0x3B), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgPm2Poll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgPm2Poll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_pm2_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-PM2";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x3b;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_pm2"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Extended power management configuration: UBX CFG-PM2 (class 0x06 id 0x3B), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgPm2<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Longest time in the acquisition state [s].
+    pub max_startup_state_dur: u8,
+    /// Reserved.
+    pub reserved2: u8,
+    /// Power save mode flags.
+    pub flags: u32,
+    /// Position update period [ms].
+    pub update_period: u32,
+    /// Acquisition retry period after a failure [ms].
+    pub search_period: u32,
+    /// Offset of the update grid in the GPS week [ms].
+    pub grid_offset: u32,
+    /// Time to stay in tracking [s].
+    pub on_time: u16,
+    /// Least time to spend in acquisition [s].
+    pub min_acq_time: u16,
+    /// Reserved.
+    pub reserved3: u128,
+    /// Reserved (the last 4 of 20 reserved bytes).
+    pub reserved4: u32,
+    /// EXTINT inactivity time before backup [ms].
+    pub extint_inactivity_ms: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgPm2<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_pm2";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-PM2";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x3b;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(48);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = Some(2);
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// Optimization target (bits 1-3 of `flags`).
+    pub fn opt_target(&self) -> u8 {
+        ((self.flags >> 1) & 0x7) as u8
+    }
+    /// Sets optimization target (the value in its bits of `flags`; the other bits stay).
+    pub fn set_opt_target(&mut self, value: u8) {
+        self.flags = (self.flags & !(0x7 << 1)) | ((value as u32 & 0x7) << 1);
+    }
+    /// EXTINT pin used (0 EXTINT0, 1 EXTINT1) (bit 4 of `flags`).
+    pub fn extint_sel(&self) -> bool {
+        ((self.flags >> 4) & 0x1) != 0
+    }
+    /// Sets extint pin used (0 extint0, 1 extint1) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_extint_sel(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 4)) | (u32::from(value) << 4);
+    }
+    /// EXTINT high keeps the receiver awake (bit 5 of `flags`).
+    pub fn extint_wake(&self) -> bool {
+        ((self.flags >> 5) & 0x1) != 0
+    }
+    /// Sets extint high keeps the receiver awake (the value in its bits of `flags`; the other bits stay).
+    pub fn set_extint_wake(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 5)) | (u32::from(value) << 5);
+    }
+    /// EXTINT low sends the receiver to backup (bit 6 of `flags`).
+    pub fn extint_backup(&self) -> bool {
+        ((self.flags >> 6) & 0x1) != 0
+    }
+    /// Sets extint low sends the receiver to backup (the value in its bits of `flags`; the other bits stay).
+    pub fn set_extint_backup(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 6)) | (u32::from(value) << 6);
+    }
+    /// EXTINT inactivity sends the receiver to backup (bit 7 of `flags`).
+    pub fn extint_inactive(&self) -> bool {
+        ((self.flags >> 7) & 0x1) != 0
+    }
+    /// Sets extint inactivity sends the receiver to backup (the value in its bits of `flags`; the other bits stay).
+    pub fn set_extint_inactive(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 7)) | (u32::from(value) << 7);
+    }
+    /// Peak current limit (bits 8-9 of `flags`).
+    pub fn limit_peak_curr(&self) -> u8 {
+        ((self.flags >> 8) & 0x3) as u8
+    }
+    /// Sets peak current limit (the value in its bits of `flags`; the other bits stay).
+    pub fn set_limit_peak_curr(&mut self, value: u8) {
+        self.flags = (self.flags & !(0x3 << 8)) | ((value as u32 & 0x3) << 8);
+    }
+    /// Wait for the time fix before on-off operation (bit 10 of `flags`).
+    pub fn wait_time_fix(&self) -> bool {
+        ((self.flags >> 10) & 0x1) != 0
+    }
+    /// Sets wait for the time fix before on-off operation (the value in its bits of `flags`; the other bits stay).
+    pub fn set_wait_time_fix(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 10)) | (u32::from(value) << 10);
+    }
+    /// Update the RTC during on-off operation (bit 11 of `flags`).
+    pub fn update_rtc(&self) -> bool {
+        ((self.flags >> 11) & 0x1) != 0
+    }
+    /// Sets update the rtc during on-off operation (the value in its bits of `flags`; the other bits stay).
+    pub fn set_update_rtc(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 11)) | (u32::from(value) << 11);
+    }
+    /// Update the ephemeris during on-off operation (bit 12 of `flags`).
+    pub fn update_eph(&self) -> bool {
+        ((self.flags >> 12) & 0x1) != 0
+    }
+    /// Sets update the ephemeris during on-off operation (the value in its bits of `flags`; the other bits stay).
+    pub fn set_update_eph(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 12)) | (u32::from(value) << 12);
+    }
+    /// Never enter the inactive-for-search state (bit 16 of `flags`).
+    pub fn do_not_enter_off(&self) -> bool {
+        ((self.flags >> 16) & 0x1) != 0
+    }
+    /// Sets never enter the inactive-for-search state (the value in its bits of `flags`; the other bits stay).
+    pub fn set_do_not_enter_off(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 16)) | (u32::from(value) << 16);
+    }
+    /// Mode of operation (bits 17-18 of `flags`).
+    pub fn operation_mode(&self) -> u8 {
+        ((self.flags >> 17) & 0x3) as u8
+    }
+    /// Sets mode of operation (the value in its bits of `flags`; the other bits stay).
+    pub fn set_operation_mode(&mut self, value: u8) {
+        self.flags = (self.flags & !(0x3 << 17)) | ((value as u32 & 0x3) << 17);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let max_startup_state_dur = u8::from_le_bytes(r.array("max_startup_state_dur")?);
+        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
+        let flags = u32::from_le_bytes(r.array("flags")?);
+        let update_period = u32::from_le_bytes(r.array("update_period")?);
+        let search_period = u32::from_le_bytes(r.array("search_period")?);
+        let grid_offset = u32::from_le_bytes(r.array("grid_offset")?);
+        let on_time = u16::from_le_bytes(r.array("on_time")?);
+        let min_acq_time = u16::from_le_bytes(r.array("min_acq_time")?);
+        let reserved3 = u128::from_le_bytes(r.array("reserved3")?);
+        let reserved4 = u32::from_le_bytes(r.array("reserved4")?);
+        let extint_inactivity_ms = u32::from_le_bytes(r.array("extint_inactivity_ms")?);
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            reserved1,
+            max_startup_state_dur,
+            reserved2,
+            flags,
+            update_period,
+            search_period,
+            grid_offset,
+            on_time,
+            min_acq_time,
+            reserved3,
+            reserved4,
+            extint_inactivity_ms,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.max_startup_state_dur.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.update_period.to_le_bytes());
+        w.put(&self.search_period.to_le_bytes());
+        w.put(&self.grid_offset.to_le_bytes());
+        w.put(&self.on_time.to_le_bytes());
+        w.put(&self.min_acq_time.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes());
+        w.put(&self.reserved4.to_le_bytes());
+        w.put(&self.extint_inactivity_ms.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("max_startup_state_dur", self.max_startup_state_dur)?;
+        j.int("reserved2", self.reserved2)?;
+        j.int("flags", self.flags)?;
+        j.int("opt_target", ((self.flags >> 1) & 0x7) as u8)?;
+        j.flag("extint_sel", ((self.flags >> 4) & 0x1) != 0)?;
+        j.flag("extint_wake", ((self.flags >> 5) & 0x1) != 0)?;
+        j.flag("extint_backup", ((self.flags >> 6) & 0x1) != 0)?;
+        j.flag("extint_inactive", ((self.flags >> 7) & 0x1) != 0)?;
+        j.int("limit_peak_curr", ((self.flags >> 8) & 0x3) as u8)?;
+        j.flag("wait_time_fix", ((self.flags >> 10) & 0x1) != 0)?;
+        j.flag("update_rtc", ((self.flags >> 11) & 0x1) != 0)?;
+        j.flag("update_eph", ((self.flags >> 12) & 0x1) != 0)?;
+        j.flag("do_not_enter_off", ((self.flags >> 16) & 0x1) != 0)?;
+        j.int("operation_mode", ((self.flags >> 17) & 0x3) as u8)?;
+        j.int("update_period", self.update_period)?;
+        j.int("search_period", self.search_period)?;
+        j.int("grid_offset", self.grid_offset)?;
+        j.int("on_time", self.on_time)?;
+        j.int("min_acq_time", self.min_acq_time)?;
+        write!(j.key("reserved3")?, "{}", self.reserved3)?;
+        j.int("reserved4", self.reserved4)?;
+        j.int("extint_inactivity_ms", self.extint_inactivity_ms)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Extended power management configuration: UBX CFG-PM2 (class 0x06 id 0x3B), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgPm2V1<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Longest time in the acquisition state [s].
+    pub max_startup_state_dur: u8,
+    /// Reserved.
+    pub reserved2: u8,
+    /// Power save mode flags.
+    pub flags: u32,
+    /// Position update period [ms].
+    pub update_period: u32,
+    /// Acquisition retry period after a failure [ms].
+    pub search_period: u32,
+    /// Offset of the update grid in the GPS week [ms].
+    pub grid_offset: u32,
+    /// Time to stay in tracking [s].
+    pub on_time: u16,
+    /// Least time to spend in acquisition [s].
+    pub min_acq_time: u16,
+    /// Reserved.
+    pub reserved3: u128,
+    /// Reserved (the last 4 of 20 reserved bytes).
+    pub reserved4: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgPm2V1<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_pm2_v1";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-PM2";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x3b;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(44);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = Some(1);
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// Optimization target (bits 1-3 of `flags`).
+    pub fn opt_target(&self) -> u8 {
+        ((self.flags >> 1) & 0x7) as u8
+    }
+    /// Sets optimization target (the value in its bits of `flags`; the other bits stay).
+    pub fn set_opt_target(&mut self, value: u8) {
+        self.flags = (self.flags & !(0x7 << 1)) | ((value as u32 & 0x7) << 1);
+    }
+    /// EXTINT pin used (0 EXTINT0, 1 EXTINT1) (bit 4 of `flags`).
+    pub fn extint_sel(&self) -> bool {
+        ((self.flags >> 4) & 0x1) != 0
+    }
+    /// Sets extint pin used (0 extint0, 1 extint1) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_extint_sel(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 4)) | (u32::from(value) << 4);
+    }
+    /// EXTINT high keeps the receiver awake (bit 5 of `flags`).
+    pub fn extint_wake(&self) -> bool {
+        ((self.flags >> 5) & 0x1) != 0
+    }
+    /// Sets extint high keeps the receiver awake (the value in its bits of `flags`; the other bits stay).
+    pub fn set_extint_wake(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 5)) | (u32::from(value) << 5);
+    }
+    /// EXTINT low sends the receiver to backup (bit 6 of `flags`).
+    pub fn extint_backup(&self) -> bool {
+        ((self.flags >> 6) & 0x1) != 0
+    }
+    /// Sets extint low sends the receiver to backup (the value in its bits of `flags`; the other bits stay).
+    pub fn set_extint_backup(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 6)) | (u32::from(value) << 6);
+    }
+    /// EXTINT inactivity sends the receiver to backup (bit 7 of `flags`).
+    pub fn extint_inactive(&self) -> bool {
+        ((self.flags >> 7) & 0x1) != 0
+    }
+    /// Sets extint inactivity sends the receiver to backup (the value in its bits of `flags`; the other bits stay).
+    pub fn set_extint_inactive(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 7)) | (u32::from(value) << 7);
+    }
+    /// Peak current limit (bits 8-9 of `flags`).
+    pub fn limit_peak_curr(&self) -> u8 {
+        ((self.flags >> 8) & 0x3) as u8
+    }
+    /// Sets peak current limit (the value in its bits of `flags`; the other bits stay).
+    pub fn set_limit_peak_curr(&mut self, value: u8) {
+        self.flags = (self.flags & !(0x3 << 8)) | ((value as u32 & 0x3) << 8);
+    }
+    /// Wait for the time fix before on-off operation (bit 10 of `flags`).
+    pub fn wait_time_fix(&self) -> bool {
+        ((self.flags >> 10) & 0x1) != 0
+    }
+    /// Sets wait for the time fix before on-off operation (the value in its bits of `flags`; the other bits stay).
+    pub fn set_wait_time_fix(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 10)) | (u32::from(value) << 10);
+    }
+    /// Update the RTC during on-off operation (bit 11 of `flags`).
+    pub fn update_rtc(&self) -> bool {
+        ((self.flags >> 11) & 0x1) != 0
+    }
+    /// Sets update the rtc during on-off operation (the value in its bits of `flags`; the other bits stay).
+    pub fn set_update_rtc(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 11)) | (u32::from(value) << 11);
+    }
+    /// Update the ephemeris during on-off operation (bit 12 of `flags`).
+    pub fn update_eph(&self) -> bool {
+        ((self.flags >> 12) & 0x1) != 0
+    }
+    /// Sets update the ephemeris during on-off operation (the value in its bits of `flags`; the other bits stay).
+    pub fn set_update_eph(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 12)) | (u32::from(value) << 12);
+    }
+    /// Never enter the inactive-for-search state (bit 16 of `flags`).
+    pub fn do_not_enter_off(&self) -> bool {
+        ((self.flags >> 16) & 0x1) != 0
+    }
+    /// Sets never enter the inactive-for-search state (the value in its bits of `flags`; the other bits stay).
+    pub fn set_do_not_enter_off(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 16)) | (u32::from(value) << 16);
+    }
+    /// Mode of operation (bits 17-18 of `flags`).
+    pub fn operation_mode(&self) -> u8 {
+        ((self.flags >> 17) & 0x3) as u8
+    }
+    /// Sets mode of operation (the value in its bits of `flags`; the other bits stay).
+    pub fn set_operation_mode(&mut self, value: u8) {
+        self.flags = (self.flags & !(0x3 << 17)) | ((value as u32 & 0x3) << 17);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let max_startup_state_dur = u8::from_le_bytes(r.array("max_startup_state_dur")?);
+        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
+        let flags = u32::from_le_bytes(r.array("flags")?);
+        let update_period = u32::from_le_bytes(r.array("update_period")?);
+        let search_period = u32::from_le_bytes(r.array("search_period")?);
+        let grid_offset = u32::from_le_bytes(r.array("grid_offset")?);
+        let on_time = u16::from_le_bytes(r.array("on_time")?);
+        let min_acq_time = u16::from_le_bytes(r.array("min_acq_time")?);
+        let reserved3 = u128::from_le_bytes(r.array("reserved3")?);
+        let reserved4 = u32::from_le_bytes(r.array("reserved4")?);
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            reserved1,
+            max_startup_state_dur,
+            reserved2,
+            flags,
+            update_period,
+            search_period,
+            grid_offset,
+            on_time,
+            min_acq_time,
+            reserved3,
+            reserved4,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.max_startup_state_dur.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.update_period.to_le_bytes());
+        w.put(&self.search_period.to_le_bytes());
+        w.put(&self.grid_offset.to_le_bytes());
+        w.put(&self.on_time.to_le_bytes());
+        w.put(&self.min_acq_time.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes());
+        w.put(&self.reserved4.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("max_startup_state_dur", self.max_startup_state_dur)?;
+        j.int("reserved2", self.reserved2)?;
+        j.int("flags", self.flags)?;
+        j.int("opt_target", ((self.flags >> 1) & 0x7) as u8)?;
+        j.flag("extint_sel", ((self.flags >> 4) & 0x1) != 0)?;
+        j.flag("extint_wake", ((self.flags >> 5) & 0x1) != 0)?;
+        j.flag("extint_backup", ((self.flags >> 6) & 0x1) != 0)?;
+        j.flag("extint_inactive", ((self.flags >> 7) & 0x1) != 0)?;
+        j.int("limit_peak_curr", ((self.flags >> 8) & 0x3) as u8)?;
+        j.flag("wait_time_fix", ((self.flags >> 10) & 0x1) != 0)?;
+        j.flag("update_rtc", ((self.flags >> 11) & 0x1) != 0)?;
+        j.flag("update_eph", ((self.flags >> 12) & 0x1) != 0)?;
+        j.flag("do_not_enter_off", ((self.flags >> 16) & 0x1) != 0)?;
+        j.int("operation_mode", ((self.flags >> 17) & 0x3) as u8)?;
+        j.int("update_period", self.update_period)?;
+        j.int("search_period", self.search_period)?;
+        j.int("grid_offset", self.grid_offset)?;
+        j.int("on_time", self.on_time)?;
+        j.int("min_acq_time", self.min_acq_time)?;
+        write!(j.key("reserved3")?, "{}", self.reserved3)?;
+        j.int("reserved4", self.reserved4)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Power mode setup: UBX CFG-PMS (class 0x06 id 0x86), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgPmsPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgPmsPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_pms_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-PMS";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x86;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_pms"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Power mode setup: UBX CFG-PMS (class 0x06 id 0x86), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgPms<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Power mode preset.
+    pub power_setup_value: u8,
+    /// Position update period of the interval mode [s].
+    pub period: u16,
+    /// On time of the interval mode [s].
+    pub on_time: u16,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgPms<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_pms";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-PMS";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x86;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let power_setup_value = u8::from_le_bytes(r.array("power_setup_value")?);
+        let period = u16::from_le_bytes(r.array("period")?);
+        let on_time = u16::from_le_bytes(r.array("on_time")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let trailing = r.rest();
+        Ok(Self { version, power_setup_value, period, on_time, reserved0, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.power_setup_value.to_le_bytes());
+        w.put(&self.period.to_le_bytes());
+        w.put(&self.on_time.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("power_setup_value", self.power_setup_value)?;
+        j.int("period", self.period)?;
+        j.int("on_time", self.on_time)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Port configuration: UBX CFG-PRT (class 0x06 id 0x00), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CfgPrtPoll<'a> {
@@ -2004,6 +4545,71 @@ impl<'a> CfgPrt<'a> {
         j.int("flags", self.flags)?;
         j.flag("extended_tx_timeout", ((self.flags >> 1) & 0x1) != 0)?;
         j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Put the receiver in a power state: UBX CFG-PWR (class 0x06 id 0x57), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgPwr<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Power state to enter.
+    pub state: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgPwr<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_pwr";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-PWR";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x57;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let state = u32::from_le_bytes(r.array("state")?);
+        let trailing = r.rest();
+        Ok(Self { version, reserved1, state, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(&self.state.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("state", self.state)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -4188,6 +6794,110 @@ impl<'a> EsfMeas<'a> {
         if let Some(v) = self.calib_ttag {
             j.int("calib_ttag", v)?;
         }
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of EsfRawMeasurement.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EsfRawMeasurement {
+    /// Measurement.
+    pub data: u32,
+    /// Sensor time tag.
+    pub s_tag: u32,
+}
+
+impl<'a> ubx::Entry<'a> for EsfRawMeasurement {
+    const WIDTH: usize = 8;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let data = u32::from_le_bytes(r.array("data")?);
+        let s_tag = u32::from_le_bytes(r.array("s_tag")?);
+        Ok(Self { data, s_tag })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.data.to_le_bytes());
+        w.put(&self.s_tag.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("data", self.data)?;
+        j.int("data_field", self.data & 0xffffff)?;
+        j.int("data_type", ((self.data >> 24) & 0xff) as u8)?;
+        j.int("s_tag", self.s_tag)?;
+        Ok(())
+    }
+}
+
+impl EsfRawMeasurement {
+    /// Data (bits 0-23 of `data`).
+    pub fn data_field(&self) -> u32 {
+        self.data & 0xffffff
+    }
+    /// Sets data (the value in its bits of `data`; the other bits stay).
+    pub fn set_data_field(&mut self, value: u32) {
+        self.data = (self.data & !0xffffff) | (value & 0xffffff);
+    }
+    /// Data type (bits 24-31 of `data`).
+    pub fn data_type(&self) -> u8 {
+        ((self.data >> 24) & 0xff) as u8
+    }
+    /// Sets data type (the value in its bits of `data`; the other bits stay).
+    pub fn set_data_type(&mut self, value: u8) {
+        self.data = (self.data & !(0xff << 24)) | ((value as u32 & 0xff) << 24);
+    }
+}
+
+/// Raw sensor measurements: UBX ESF-RAW (class 0x10 id 0x03), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EsfRaw<'a> {
+    /// Reserved.
+    pub reserved1: u32,
+    /// Measurements: 1 to 255 entries.
+    pub measurements: ubx::Group<'a, EsfRawMeasurement>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> EsfRaw<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "esf_raw";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "ESF-RAW";
+    /// The message class.
+    pub const CLASS: u8 = 0x10;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x03;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let measurements = r.group(None, 1, 255, 0, "measurements")?;
+        let trailing = r.rest();
+        Ok(Self { reserved1, measurements, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.reserved1.to_le_bytes());
+        self.measurements.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("reserved1", self.reserved1)?;
+        self.measurements.json(j, "measurements")?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -7082,6 +9792,1997 @@ impl<'a> LogString<'a> {
     /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
     pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
         ubx::json_chars(j, "bytes", self.bytes)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Assistance data acknowledgement: UBX MGA-ACK (class 0x13 id 0x60), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaAck<'a> {
+    /// Acknowledgement.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Why it was not used.
+    pub info_code: u8,
+    /// Id of the MGA message acknowledged.
+    pub msg_id: u8,
+    /// First 4 bytes of the acknowledged message's payload.
+    pub msg_payload_start: &'a [u8],
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaAck<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_ack";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-ACK";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x60;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let info_code = u8::from_le_bytes(r.array("info_code")?);
+        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
+        let msg_payload_start = r.bytes(4, "msg_payload_start")?;
+        let trailing = r.rest();
+        Ok(Self { r#type, version, info_code, msg_id, msg_payload_start, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.info_code.to_le_bytes());
+        w.put(&self.msg_id.to_le_bytes());
+        w.put_sized(self.msg_payload_start, Some(4), "MGA-ACK", "msg_payload_start")?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("info_code", self.info_code)?;
+        j.int("msg_id", self.msg_id)?;
+        ubx::json_hex(j, "msg_payload_start", self.msg_payload_start)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// AssistNow Offline data: UBX MGA-ANO (class 0x13 id 0x20), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaAno<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Satellite identifier.
+    pub sv_id: u8,
+    /// GNSS identifier.
+    pub gnss_id_raw: u8,
+    /// Year of the data.
+    pub year: u8,
+    /// Month of the data.
+    pub month: u8,
+    /// Day of the data.
+    pub day: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Assistance data.
+    pub data: &'a [u8],
+    /// Reserved.
+    pub reserved1: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaAno<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_ano";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-ANO";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x20;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(76);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// GNSS identifier: the enum's value of the raw code, None for a code it does not name.
+    pub fn gnss_id(&self) -> Option<UbxGnssId> {
+        ais::code(u64::from(self.gnss_id_raw))
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
+        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
+        let year = u8::from_le_bytes(r.array("year")?);
+        let month = u8::from_le_bytes(r.array("month")?);
+        let day = u8::from_le_bytes(r.array("day")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let data = r.bytes(64, "data")?;
+        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, sv_id, gnss_id_raw, year, month, day, reserved0, data, reserved1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.sv_id.to_le_bytes());
+        w.put(&self.gnss_id_raw.to_le_bytes());
+        w.put(&self.year.to_le_bytes());
+        w.put(&self.month.to_le_bytes());
+        w.put(&self.day.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put_sized(self.data, Some(64), "MGA-ANO", "data")?;
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("sv_id", self.sv_id)?;
+        j.code(
+            "gnss_id",
+            ais::code::<UbxGnssId>(u64::from(self.gnss_id_raw)).map(CodeEnum::id),
+            u64::from(self.gnss_id_raw),
+        )?;
+        j.int("year", self.year)?;
+        j.int("month", self.month)?;
+        j.int("day", self.day)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "data", self.data)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Navigation database dump: UBX MGA-DBD (class 0x13 id 0x80), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaDbdPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaDbdPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_dbd_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-DBD";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x80;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mga_dbd"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Navigation database dump: UBX MGA-DBD (class 0x13 id 0x80), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaDbd<'a> {
+    /// Reserved.
+    pub reserved1: u128,
+    /// Database data.
+    pub data: &'a [u8],
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaDbd<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_dbd";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-DBD";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x80;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let reserved1 = {
+            let b: [u8; 12] = r.array("reserved1")?;
+            let mut le = [0u8; 16];
+            le[..12].copy_from_slice(&b);
+            u128::from_le_bytes(le)
+        };
+        let data = r.left(0);
+        let trailing = r.rest();
+        Ok(Self { reserved1, data, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.reserved1.to_le_bytes()[..12]);
+        w.put_sized(self.data, None, "MGA-DBD", "data")?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        write!(j.key("reserved1")?, "{}", self.reserved1)?;
+        ubx::json_hex(j, "data", self.data)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Galileo assistance data: UBX MGA-GAL (class 0x13 id 0x02), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaGalEph<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Galileo satellite identifier.
+    pub sv_id: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Issue of data of the navigation batch.
+    pub iod_nav: u16,
+    /// Mean motion difference [semicircle/s].
+    pub delta_n_raw: i16,
+    /// Mean anomaly at the reference time [semicircle].
+    pub m0_raw: i32,
+    /// Eccentricity.
+    pub e_raw: u32,
+    /// Square root of the semi-major axis [m^0.5].
+    pub sqrt_a_raw: u32,
+    /// Longitude of the ascending node at the weekly epoch [semicircle].
+    pub omega0_raw: i32,
+    /// Inclination at the reference time [semicircle].
+    pub i0_raw: i32,
+    /// Argument of perigee [semicircle].
+    pub omega_raw: i32,
+    /// Rate of right ascension [semicircle/s].
+    pub omega_dot_raw: i32,
+    /// Rate of inclination [semicircle/s].
+    pub i_dot_raw: i16,
+    /// Cosine harmonic correction of the argument of latitude [rad].
+    pub cuc_raw: i16,
+    /// Sine harmonic correction of the argument of latitude [rad].
+    pub cus_raw: i16,
+    /// Cosine harmonic correction of the orbit radius [m].
+    pub crc_raw: i16,
+    /// Sine harmonic correction of the orbit radius [m].
+    pub crs_raw: i16,
+    /// Cosine harmonic correction of the inclination [rad].
+    pub cic_raw: i16,
+    /// Sine harmonic correction of the inclination [rad].
+    pub cis_raw: i16,
+    /// Ephemeris reference time (in 60 s).
+    pub toe: u16,
+    /// Clock bias correction [s].
+    pub af0_raw: i32,
+    /// Clock drift correction [s/s].
+    pub af1_raw: i32,
+    /// Clock drift rate correction [s/s^2].
+    pub af2_raw: i8,
+    /// Signal in space accuracy index (E1, E5b).
+    pub sisa_index_e1_e5b: u8,
+    /// Clock correction reference time (in 60 s).
+    pub toc: u16,
+    /// Broadcast group delay (E1, E5b) [s].
+    pub bgd_e1_e5b_raw: i16,
+    /// Reserved.
+    pub reserved1: u16,
+    /// E1-B signal health.
+    pub health_e1b: u8,
+    /// E1-B data validity.
+    pub data_validity_e1b: u8,
+    /// E5b signal health.
+    pub health_e5b: u8,
+    /// E5b data validity.
+    pub data_validity_e5b: u8,
+    /// Reserved.
+    pub reserved2: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaGalEph<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_gal_eph";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-GAL";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x02;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(76);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Mean motion difference [semicircle/s]: the raw integer divided by 8796093022208.
+    pub fn delta_n(&self) -> f64 {
+        let raw = self.delta_n_raw;
+        raw as f64 / 8796093022208.0
+    }
+    /// Mean anomaly at the reference time [semicircle]: the raw integer divided by 2147483648.
+    pub fn m0(&self) -> f64 {
+        let raw = self.m0_raw;
+        raw as f64 / 2147483648.0
+    }
+    /// Eccentricity: the raw integer divided by 8589934592.
+    pub fn e(&self) -> f64 {
+        let raw = self.e_raw;
+        raw as f64 / 8589934592.0
+    }
+    /// Square root of the semi-major axis [m^0.5]: the raw integer divided by 524288.
+    pub fn sqrt_a(&self) -> f64 {
+        let raw = self.sqrt_a_raw;
+        raw as f64 / 524288.0
+    }
+    /// Longitude of the ascending node at the weekly epoch [semicircle]: the raw integer divided by 2147483648.
+    pub fn omega0(&self) -> f64 {
+        let raw = self.omega0_raw;
+        raw as f64 / 2147483648.0
+    }
+    /// Inclination at the reference time [semicircle]: the raw integer divided by 2147483648.
+    pub fn i0(&self) -> f64 {
+        let raw = self.i0_raw;
+        raw as f64 / 2147483648.0
+    }
+    /// Argument of perigee [semicircle]: the raw integer divided by 2147483648.
+    pub fn omega(&self) -> f64 {
+        let raw = self.omega_raw;
+        raw as f64 / 2147483648.0
+    }
+    /// Rate of right ascension [semicircle/s]: the raw integer divided by 8796093022208.
+    pub fn omega_dot(&self) -> f64 {
+        let raw = self.omega_dot_raw;
+        raw as f64 / 8796093022208.0
+    }
+    /// Rate of inclination [semicircle/s]: the raw integer divided by 8796093022208.
+    pub fn i_dot(&self) -> f64 {
+        let raw = self.i_dot_raw;
+        raw as f64 / 8796093022208.0
+    }
+    /// Cosine harmonic correction of the argument of latitude [rad]: the raw integer divided by 536870912.
+    pub fn cuc(&self) -> f64 {
+        let raw = self.cuc_raw;
+        raw as f64 / 536870912.0
+    }
+    /// Sine harmonic correction of the argument of latitude [rad]: the raw integer divided by 536870912.
+    pub fn cus(&self) -> f64 {
+        let raw = self.cus_raw;
+        raw as f64 / 536870912.0
+    }
+    /// Cosine harmonic correction of the orbit radius [m]: the raw integer divided by 32.
+    pub fn crc(&self) -> f64 {
+        let raw = self.crc_raw;
+        raw as f64 / 32.0
+    }
+    /// Sine harmonic correction of the orbit radius [m]: the raw integer divided by 32.
+    pub fn crs(&self) -> f64 {
+        let raw = self.crs_raw;
+        raw as f64 / 32.0
+    }
+    /// Cosine harmonic correction of the inclination [rad]: the raw integer divided by 536870912.
+    pub fn cic(&self) -> f64 {
+        let raw = self.cic_raw;
+        raw as f64 / 536870912.0
+    }
+    /// Sine harmonic correction of the inclination [rad]: the raw integer divided by 536870912.
+    pub fn cis(&self) -> f64 {
+        let raw = self.cis_raw;
+        raw as f64 / 536870912.0
+    }
+    /// Clock bias correction [s]: the raw integer divided by 17179869184.
+    pub fn af0(&self) -> f64 {
+        let raw = self.af0_raw;
+        raw as f64 / 17179869184.0
+    }
+    /// Clock drift correction [s/s]: the raw integer divided by 70368744177664.
+    pub fn af1(&self) -> f64 {
+        let raw = self.af1_raw;
+        raw as f64 / 70368744177664.0
+    }
+    /// Clock drift rate correction [s/s^2]: the raw integer divided by 576460752303423488.
+    pub fn af2(&self) -> f64 {
+        let raw = self.af2_raw;
+        raw as f64 / 5.764607523034235e+17
+    }
+    /// Broadcast group delay (E1, E5b) [s]: the raw integer divided by 4294967296.
+    pub fn bgd_e1_e5b(&self) -> f64 {
+        let raw = self.bgd_e1_e5b_raw;
+        raw as f64 / 4294967296.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let iod_nav = u16::from_le_bytes(r.array("iod_nav")?);
+        let delta_n_raw = i16::from_le_bytes(r.array("delta_n")?);
+        let m0_raw = i32::from_le_bytes(r.array("m0")?);
+        let e_raw = u32::from_le_bytes(r.array("e")?);
+        let sqrt_a_raw = u32::from_le_bytes(r.array("sqrt_a")?);
+        let omega0_raw = i32::from_le_bytes(r.array("omega0")?);
+        let i0_raw = i32::from_le_bytes(r.array("i0")?);
+        let omega_raw = i32::from_le_bytes(r.array("omega")?);
+        let omega_dot_raw = i32::from_le_bytes(r.array("omega_dot")?);
+        let i_dot_raw = i16::from_le_bytes(r.array("i_dot")?);
+        let cuc_raw = i16::from_le_bytes(r.array("cuc")?);
+        let cus_raw = i16::from_le_bytes(r.array("cus")?);
+        let crc_raw = i16::from_le_bytes(r.array("crc")?);
+        let crs_raw = i16::from_le_bytes(r.array("crs")?);
+        let cic_raw = i16::from_le_bytes(r.array("cic")?);
+        let cis_raw = i16::from_le_bytes(r.array("cis")?);
+        let toe = u16::from_le_bytes(r.array("toe")?);
+        let af0_raw = i32::from_le_bytes(r.array("af0")?);
+        let af1_raw = i32::from_le_bytes(r.array("af1")?);
+        let af2_raw = i8::from_le_bytes(r.array("af2")?);
+        let sisa_index_e1_e5b = u8::from_le_bytes(r.array("sisa_index_e1_e5b")?);
+        let toc = u16::from_le_bytes(r.array("toc")?);
+        let bgd_e1_e5b_raw = i16::from_le_bytes(r.array("bgd_e1_e5b")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let health_e1b = u8::from_le_bytes(r.array("health_e1b")?);
+        let data_validity_e1b = u8::from_le_bytes(r.array("data_validity_e1b")?);
+        let health_e5b = u8::from_le_bytes(r.array("health_e5b")?);
+        let data_validity_e5b = u8::from_le_bytes(r.array("data_validity_e5b")?);
+        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
+        let trailing = r.rest();
+        Ok(Self {
+            r#type,
+            version,
+            sv_id,
+            reserved0,
+            iod_nav,
+            delta_n_raw,
+            m0_raw,
+            e_raw,
+            sqrt_a_raw,
+            omega0_raw,
+            i0_raw,
+            omega_raw,
+            omega_dot_raw,
+            i_dot_raw,
+            cuc_raw,
+            cus_raw,
+            crc_raw,
+            crs_raw,
+            cic_raw,
+            cis_raw,
+            toe,
+            af0_raw,
+            af1_raw,
+            af2_raw,
+            sisa_index_e1_e5b,
+            toc,
+            bgd_e1_e5b_raw,
+            reserved1,
+            health_e1b,
+            data_validity_e1b,
+            health_e5b,
+            data_validity_e5b,
+            reserved2,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.sv_id.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.iod_nav.to_le_bytes());
+        w.put(&self.delta_n_raw.to_le_bytes());
+        w.put(&self.m0_raw.to_le_bytes());
+        w.put(&self.e_raw.to_le_bytes());
+        w.put(&self.sqrt_a_raw.to_le_bytes());
+        w.put(&self.omega0_raw.to_le_bytes());
+        w.put(&self.i0_raw.to_le_bytes());
+        w.put(&self.omega_raw.to_le_bytes());
+        w.put(&self.omega_dot_raw.to_le_bytes());
+        w.put(&self.i_dot_raw.to_le_bytes());
+        w.put(&self.cuc_raw.to_le_bytes());
+        w.put(&self.cus_raw.to_le_bytes());
+        w.put(&self.crc_raw.to_le_bytes());
+        w.put(&self.crs_raw.to_le_bytes());
+        w.put(&self.cic_raw.to_le_bytes());
+        w.put(&self.cis_raw.to_le_bytes());
+        w.put(&self.toe.to_le_bytes());
+        w.put(&self.af0_raw.to_le_bytes());
+        w.put(&self.af1_raw.to_le_bytes());
+        w.put(&self.af2_raw.to_le_bytes());
+        w.put(&self.sisa_index_e1_e5b.to_le_bytes());
+        w.put(&self.toc.to_le_bytes());
+        w.put(&self.bgd_e1_e5b_raw.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.health_e1b.to_le_bytes());
+        w.put(&self.data_validity_e1b.to_le_bytes());
+        w.put(&self.health_e5b.to_le_bytes());
+        w.put(&self.data_validity_e5b.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("sv_id", self.sv_id)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("iod_nav", self.iod_nav)?;
+        ubx::json_float(j, "delta_n", self.delta_n_raw as f64 / 8796093022208.0)?;
+        j.int("delta_n_raw", self.delta_n_raw)?;
+        ubx::json_float(j, "m0", self.m0_raw as f64 / 2147483648.0)?;
+        j.int("m0_raw", self.m0_raw)?;
+        ubx::json_float(j, "e", self.e_raw as f64 / 8589934592.0)?;
+        j.int("e_raw", self.e_raw)?;
+        ubx::json_float(j, "sqrt_a", self.sqrt_a_raw as f64 / 524288.0)?;
+        j.int("sqrt_a_raw", self.sqrt_a_raw)?;
+        ubx::json_float(j, "omega0", self.omega0_raw as f64 / 2147483648.0)?;
+        j.int("omega0_raw", self.omega0_raw)?;
+        ubx::json_float(j, "i0", self.i0_raw as f64 / 2147483648.0)?;
+        j.int("i0_raw", self.i0_raw)?;
+        ubx::json_float(j, "omega", self.omega_raw as f64 / 2147483648.0)?;
+        j.int("omega_raw", self.omega_raw)?;
+        ubx::json_float(j, "omega_dot", self.omega_dot_raw as f64 / 8796093022208.0)?;
+        j.int("omega_dot_raw", self.omega_dot_raw)?;
+        ubx::json_float(j, "i_dot", self.i_dot_raw as f64 / 8796093022208.0)?;
+        j.int("i_dot_raw", self.i_dot_raw)?;
+        ubx::json_float(j, "cuc", self.cuc_raw as f64 / 536870912.0)?;
+        j.int("cuc_raw", self.cuc_raw)?;
+        ubx::json_float(j, "cus", self.cus_raw as f64 / 536870912.0)?;
+        j.int("cus_raw", self.cus_raw)?;
+        ubx::json_float(j, "crc", self.crc_raw as f64 / 32.0)?;
+        j.int("crc_raw", self.crc_raw)?;
+        ubx::json_float(j, "crs", self.crs_raw as f64 / 32.0)?;
+        j.int("crs_raw", self.crs_raw)?;
+        ubx::json_float(j, "cic", self.cic_raw as f64 / 536870912.0)?;
+        j.int("cic_raw", self.cic_raw)?;
+        ubx::json_float(j, "cis", self.cis_raw as f64 / 536870912.0)?;
+        j.int("cis_raw", self.cis_raw)?;
+        j.int("toe", self.toe)?;
+        ubx::json_float(j, "af0", self.af0_raw as f64 / 17179869184.0)?;
+        j.int("af0_raw", self.af0_raw)?;
+        ubx::json_float(j, "af1", self.af1_raw as f64 / 70368744177664.0)?;
+        j.int("af1_raw", self.af1_raw)?;
+        ubx::json_float(j, "af2", self.af2_raw as f64 / 5.764607523034235e+17)?;
+        j.int("af2_raw", self.af2_raw)?;
+        j.int("sisa_index_e1_e5b", self.sisa_index_e1_e5b)?;
+        j.int("toc", self.toc)?;
+        ubx::json_float(j, "bgd_e1_e5b", self.bgd_e1_e5b_raw as f64 / 4294967296.0)?;
+        j.int("bgd_e1_e5b_raw", self.bgd_e1_e5b_raw)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("health_e1b", self.health_e1b)?;
+        j.int("data_validity_e1b", self.data_validity_e1b)?;
+        j.int("health_e5b", self.health_e5b)?;
+        j.int("data_validity_e5b", self.data_validity_e5b)?;
+        j.int("reserved2", self.reserved2)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Galileo assistance data: UBX MGA-GAL (class 0x13 id 0x02), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaGalAlm<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Galileo satellite identifier.
+    pub sv_id: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Issue of data of the almanac.
+    pub ioda: u8,
+    /// Reference week of the almanac.
+    pub alm_w_na: u8,
+    /// Almanac reference time (in 600 s).
+    pub toa: u16,
+    /// Difference to the nominal square root of the semi-major axis [m^0.5].
+    pub delta_sqrt_a_raw: i16,
+    /// Eccentricity.
+    pub e_raw: u16,
+    /// Inclination difference to 56 deg [semicircle].
+    pub delta_i_raw: i16,
+    /// Longitude of the ascending node [semicircle].
+    pub omega0_raw: i16,
+    /// Rate of right ascension [semicircle/s].
+    pub omega_dot_raw: i16,
+    /// Argument of perigee [semicircle].
+    pub omega_raw: i16,
+    /// Mean anomaly at the reference time [semicircle].
+    pub m0_raw: i16,
+    /// Clock bias correction [s].
+    pub af0_raw: i16,
+    /// Clock drift correction [s/s].
+    pub af1_raw: i16,
+    /// E1-B signal health.
+    pub health_e1b: u8,
+    /// E5b signal health.
+    pub health_e5b: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaGalAlm<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_gal_alm";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-GAL";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x02;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(32);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Difference to the nominal square root of the semi-major axis [m^0.5]: the raw integer divided by 512.
+    pub fn delta_sqrt_a(&self) -> f64 {
+        let raw = self.delta_sqrt_a_raw;
+        raw as f64 / 512.0
+    }
+    /// Eccentricity: the raw integer divided by 65536.
+    pub fn e(&self) -> f64 {
+        let raw = self.e_raw;
+        raw as f64 / 65536.0
+    }
+    /// Inclination difference to 56 deg [semicircle]: the raw integer divided by 16384.
+    pub fn delta_i(&self) -> f64 {
+        let raw = self.delta_i_raw;
+        raw as f64 / 16384.0
+    }
+    /// Longitude of the ascending node [semicircle]: the raw integer divided by 32768.
+    pub fn omega0(&self) -> f64 {
+        let raw = self.omega0_raw;
+        raw as f64 / 32768.0
+    }
+    /// Rate of right ascension [semicircle/s]: the raw integer divided by 8589934592.
+    pub fn omega_dot(&self) -> f64 {
+        let raw = self.omega_dot_raw;
+        raw as f64 / 8589934592.0
+    }
+    /// Argument of perigee [semicircle]: the raw integer divided by 32768.
+    pub fn omega(&self) -> f64 {
+        let raw = self.omega_raw;
+        raw as f64 / 32768.0
+    }
+    /// Mean anomaly at the reference time [semicircle]: the raw integer divided by 32768.
+    pub fn m0(&self) -> f64 {
+        let raw = self.m0_raw;
+        raw as f64 / 32768.0
+    }
+    /// Clock bias correction [s]: the raw integer divided by 524288.
+    pub fn af0(&self) -> f64 {
+        let raw = self.af0_raw;
+        raw as f64 / 524288.0
+    }
+    /// Clock drift correction [s/s]: the raw integer divided by 274877906944.
+    pub fn af1(&self) -> f64 {
+        let raw = self.af1_raw;
+        raw as f64 / 274877906944.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let ioda = u8::from_le_bytes(r.array("ioda")?);
+        let alm_w_na = u8::from_le_bytes(r.array("alm_w_na")?);
+        let toa = u16::from_le_bytes(r.array("toa")?);
+        let delta_sqrt_a_raw = i16::from_le_bytes(r.array("delta_sqrt_a")?);
+        let e_raw = u16::from_le_bytes(r.array("e")?);
+        let delta_i_raw = i16::from_le_bytes(r.array("delta_i")?);
+        let omega0_raw = i16::from_le_bytes(r.array("omega0")?);
+        let omega_dot_raw = i16::from_le_bytes(r.array("omega_dot")?);
+        let omega_raw = i16::from_le_bytes(r.array("omega")?);
+        let m0_raw = i16::from_le_bytes(r.array("m0")?);
+        let af0_raw = i16::from_le_bytes(r.array("af0")?);
+        let af1_raw = i16::from_le_bytes(r.array("af1")?);
+        let health_e1b = u8::from_le_bytes(r.array("health_e1b")?);
+        let health_e5b = u8::from_le_bytes(r.array("health_e5b")?);
+        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self {
+            r#type,
+            version,
+            sv_id,
+            reserved0,
+            ioda,
+            alm_w_na,
+            toa,
+            delta_sqrt_a_raw,
+            e_raw,
+            delta_i_raw,
+            omega0_raw,
+            omega_dot_raw,
+            omega_raw,
+            m0_raw,
+            af0_raw,
+            af1_raw,
+            health_e1b,
+            health_e5b,
+            reserved1,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.sv_id.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.ioda.to_le_bytes());
+        w.put(&self.alm_w_na.to_le_bytes());
+        w.put(&self.toa.to_le_bytes());
+        w.put(&self.delta_sqrt_a_raw.to_le_bytes());
+        w.put(&self.e_raw.to_le_bytes());
+        w.put(&self.delta_i_raw.to_le_bytes());
+        w.put(&self.omega0_raw.to_le_bytes());
+        w.put(&self.omega_dot_raw.to_le_bytes());
+        w.put(&self.omega_raw.to_le_bytes());
+        w.put(&self.m0_raw.to_le_bytes());
+        w.put(&self.af0_raw.to_le_bytes());
+        w.put(&self.af1_raw.to_le_bytes());
+        w.put(&self.health_e1b.to_le_bytes());
+        w.put(&self.health_e5b.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("sv_id", self.sv_id)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("ioda", self.ioda)?;
+        j.int("alm_w_na", self.alm_w_na)?;
+        j.int("toa", self.toa)?;
+        ubx::json_float(j, "delta_sqrt_a", self.delta_sqrt_a_raw as f64 / 512.0)?;
+        j.int("delta_sqrt_a_raw", self.delta_sqrt_a_raw)?;
+        ubx::json_float(j, "e", self.e_raw as f64 / 65536.0)?;
+        j.int("e_raw", self.e_raw)?;
+        ubx::json_float(j, "delta_i", self.delta_i_raw as f64 / 16384.0)?;
+        j.int("delta_i_raw", self.delta_i_raw)?;
+        ubx::json_float(j, "omega0", self.omega0_raw as f64 / 32768.0)?;
+        j.int("omega0_raw", self.omega0_raw)?;
+        ubx::json_float(j, "omega_dot", self.omega_dot_raw as f64 / 8589934592.0)?;
+        j.int("omega_dot_raw", self.omega_dot_raw)?;
+        ubx::json_float(j, "omega", self.omega_raw as f64 / 32768.0)?;
+        j.int("omega_raw", self.omega_raw)?;
+        ubx::json_float(j, "m0", self.m0_raw as f64 / 32768.0)?;
+        j.int("m0_raw", self.m0_raw)?;
+        ubx::json_float(j, "af0", self.af0_raw as f64 / 524288.0)?;
+        j.int("af0_raw", self.af0_raw)?;
+        ubx::json_float(j, "af1", self.af1_raw as f64 / 274877906944.0)?;
+        j.int("af1_raw", self.af1_raw)?;
+        j.int("health_e1b", self.health_e1b)?;
+        j.int("health_e5b", self.health_e5b)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Galileo assistance data: UBX MGA-GAL (class 0x13 id 0x02), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaGalTimeoffset<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Constant term of the GPS-Galileo offset [s].
+    pub a0_g_raw: i16,
+    /// Rate of the GPS-Galileo offset [s/s].
+    pub a1_g_raw: i16,
+    /// Reference time of the offset (in 3600 s).
+    pub t0_g: u8,
+    /// Reference week of the offset.
+    pub wn0_g: u8,
+    /// Reserved.
+    pub reserved1: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaGalTimeoffset<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_gal_timeoffset";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-GAL";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x02;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Constant term of the GPS-Galileo offset [s]: the raw integer divided by 34359738368.
+    pub fn a0_g(&self) -> f64 {
+        let raw = self.a0_g_raw;
+        raw as f64 / 34359738368.0
+    }
+    /// Rate of the GPS-Galileo offset [s/s]: the raw integer divided by 2251799813685248.
+    pub fn a1_g(&self) -> f64 {
+        let raw = self.a1_g_raw;
+        raw as f64 / 2251799813685248.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let a0_g_raw = i16::from_le_bytes(r.array("a0_g")?);
+        let a1_g_raw = i16::from_le_bytes(r.array("a1_g")?);
+        let t0_g = u8::from_le_bytes(r.array("t0_g")?);
+        let wn0_g = u8::from_le_bytes(r.array("wn0_g")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, reserved0, a0_g_raw, a1_g_raw, t0_g, wn0_g, reserved1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.a0_g_raw.to_le_bytes());
+        w.put(&self.a1_g_raw.to_le_bytes());
+        w.put(&self.t0_g.to_le_bytes());
+        w.put(&self.wn0_g.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_float(j, "a0_g", self.a0_g_raw as f64 / 34359738368.0)?;
+        j.int("a0_g_raw", self.a0_g_raw)?;
+        ubx::json_float(j, "a1_g", self.a1_g_raw as f64 / 2251799813685248.0)?;
+        j.int("a1_g_raw", self.a1_g_raw)?;
+        j.int("t0_g", self.t0_g)?;
+        j.int("wn0_g", self.wn0_g)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Galileo assistance data: UBX MGA-GAL (class 0x13 id 0x02), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaGalUtc<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Constant term of the Galileo-UTC polynomial [s].
+    pub a0_raw: i32,
+    /// First order term of the Galileo-UTC polynomial [s/s].
+    pub a1_raw: i32,
+    /// Leap seconds before the next leap second event [s].
+    pub dt_ls: i8,
+    /// Reference time of the UTC parameters (in 3600 s).
+    pub tot: u8,
+    /// Reference week of the UTC parameters.
+    pub wnt: u8,
+    /// Week of the next leap second event.
+    pub wn_lsf: u8,
+    /// Day of the week of the next leap second event.
+    pub d_n: u8,
+    /// Leap seconds after the next leap second event [s].
+    pub dt_lsf: i8,
+    /// Reserved.
+    pub reserved1: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaGalUtc<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_gal_utc";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-GAL";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x02;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(20);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Constant term of the Galileo-UTC polynomial [s]: the raw integer divided by 1073741824.
+    pub fn a0(&self) -> f64 {
+        let raw = self.a0_raw;
+        raw as f64 / 1073741824.0
+    }
+    /// First order term of the Galileo-UTC polynomial [s/s]: the raw integer divided by 1125899906842624.
+    pub fn a1(&self) -> f64 {
+        let raw = self.a1_raw;
+        raw as f64 / 1125899906842624.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let a0_raw = i32::from_le_bytes(r.array("a0")?);
+        let a1_raw = i32::from_le_bytes(r.array("a1")?);
+        let dt_ls = i8::from_le_bytes(r.array("dt_ls")?);
+        let tot = u8::from_le_bytes(r.array("tot")?);
+        let wnt = u8::from_le_bytes(r.array("wnt")?);
+        let wn_lsf = u8::from_le_bytes(r.array("wn_lsf")?);
+        let d_n = u8::from_le_bytes(r.array("d_n")?);
+        let dt_lsf = i8::from_le_bytes(r.array("dt_lsf")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self {
+            r#type,
+            version,
+            reserved0,
+            a0_raw,
+            a1_raw,
+            dt_ls,
+            tot,
+            wnt,
+            wn_lsf,
+            d_n,
+            dt_lsf,
+            reserved1,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.a0_raw.to_le_bytes());
+        w.put(&self.a1_raw.to_le_bytes());
+        w.put(&self.dt_ls.to_le_bytes());
+        w.put(&self.tot.to_le_bytes());
+        w.put(&self.wnt.to_le_bytes());
+        w.put(&self.wn_lsf.to_le_bytes());
+        w.put(&self.d_n.to_le_bytes());
+        w.put(&self.dt_lsf.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_float(j, "a0", self.a0_raw as f64 / 1073741824.0)?;
+        j.int("a0_raw", self.a0_raw)?;
+        ubx::json_float(j, "a1", self.a1_raw as f64 / 1125899906842624.0)?;
+        j.int("a1_raw", self.a1_raw)?;
+        j.int("dt_ls", self.dt_ls)?;
+        j.int("tot", self.tot)?;
+        j.int("wnt", self.wnt)?;
+        j.int("wn_lsf", self.wn_lsf)?;
+        j.int("d_n", self.d_n)?;
+        j.int("dt_lsf", self.dt_lsf)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// GPS assistance data: UBX MGA-GPS (class 0x13 id 0x00), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaGpsEph<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// GPS satellite identifier.
+    pub sv_id: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Fit interval flag.
+    pub fit_interval: u8,
+    /// User range accuracy index.
+    pub ura_index: u8,
+    /// Satellite health.
+    pub sv_health: u8,
+    /// Group delay differential [s].
+    pub tgd_raw: i8,
+    /// Issue of data, clock.
+    pub iodc: u16,
+    /// Clock data reference time (in 16 s).
+    pub toc: u16,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Clock drift rate correction [s/s^2].
+    pub af2_raw: i8,
+    /// Clock drift correction [s/s].
+    pub af1_raw: i16,
+    /// Clock bias correction [s].
+    pub af0_raw: i32,
+    /// Sine harmonic correction of the orbit radius [m].
+    pub crs_raw: i16,
+    /// Mean motion difference [semicircle/s].
+    pub delta_n_raw: i16,
+    /// Mean anomaly at the reference time [semicircle].
+    pub m0_raw: i32,
+    /// Cosine harmonic correction of the argument of latitude [rad].
+    pub cuc_raw: i16,
+    /// Sine harmonic correction of the argument of latitude [rad].
+    pub cus_raw: i16,
+    /// Eccentricity.
+    pub e_raw: u32,
+    /// Square root of the semi-major axis [m^0.5].
+    pub sqrt_a_raw: u32,
+    /// Ephemeris reference time (in 16 s).
+    pub toe: u16,
+    /// Cosine harmonic correction of the inclination [rad].
+    pub cic_raw: i16,
+    /// Longitude of the ascending node at the weekly epoch [semicircle].
+    pub omega0_raw: i32,
+    /// Sine harmonic correction of the inclination [rad].
+    pub cis_raw: i16,
+    /// Cosine harmonic correction of the orbit radius [m].
+    pub crc_raw: i16,
+    /// Inclination at the reference time [semicircle].
+    pub i0_raw: i32,
+    /// Argument of perigee [semicircle].
+    pub omega_raw: i32,
+    /// Rate of right ascension [semicircle/s].
+    pub omega_dot_raw: i32,
+    /// Rate of inclination [semicircle/s].
+    pub idot_raw: i16,
+    /// Reserved.
+    pub reserved2: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaGpsEph<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_gps_eph";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-GPS";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x00;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(68);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Group delay differential [s]: the raw integer divided by 2147483648.
+    pub fn tgd(&self) -> f64 {
+        let raw = self.tgd_raw;
+        raw as f64 / 2147483648.0
+    }
+    /// Clock drift rate correction [s/s^2]: the raw integer divided by 36028797018963968.
+    pub fn af2(&self) -> f64 {
+        let raw = self.af2_raw;
+        raw as f64 / 3.602879701896397e+16
+    }
+    /// Clock drift correction [s/s]: the raw integer divided by 8796093022208.
+    pub fn af1(&self) -> f64 {
+        let raw = self.af1_raw;
+        raw as f64 / 8796093022208.0
+    }
+    /// Clock bias correction [s]: the raw integer divided by 2147483648.
+    pub fn af0(&self) -> f64 {
+        let raw = self.af0_raw;
+        raw as f64 / 2147483648.0
+    }
+    /// Sine harmonic correction of the orbit radius [m]: the raw integer divided by 32.
+    pub fn crs(&self) -> f64 {
+        let raw = self.crs_raw;
+        raw as f64 / 32.0
+    }
+    /// Mean motion difference [semicircle/s]: the raw integer divided by 8796093022208.
+    pub fn delta_n(&self) -> f64 {
+        let raw = self.delta_n_raw;
+        raw as f64 / 8796093022208.0
+    }
+    /// Mean anomaly at the reference time [semicircle]: the raw integer divided by 2147483648.
+    pub fn m0(&self) -> f64 {
+        let raw = self.m0_raw;
+        raw as f64 / 2147483648.0
+    }
+    /// Cosine harmonic correction of the argument of latitude [rad]: the raw integer divided by 536870912.
+    pub fn cuc(&self) -> f64 {
+        let raw = self.cuc_raw;
+        raw as f64 / 536870912.0
+    }
+    /// Sine harmonic correction of the argument of latitude [rad]: the raw integer divided by 536870912.
+    pub fn cus(&self) -> f64 {
+        let raw = self.cus_raw;
+        raw as f64 / 536870912.0
+    }
+    /// Eccentricity: the raw integer divided by 8589934592.
+    pub fn e(&self) -> f64 {
+        let raw = self.e_raw;
+        raw as f64 / 8589934592.0
+    }
+    /// Square root of the semi-major axis [m^0.5]: the raw integer divided by 524288.
+    pub fn sqrt_a(&self) -> f64 {
+        let raw = self.sqrt_a_raw;
+        raw as f64 / 524288.0
+    }
+    /// Cosine harmonic correction of the inclination [rad]: the raw integer divided by 536870912.
+    pub fn cic(&self) -> f64 {
+        let raw = self.cic_raw;
+        raw as f64 / 536870912.0
+    }
+    /// Longitude of the ascending node at the weekly epoch [semicircle]: the raw integer divided by 2147483648.
+    pub fn omega0(&self) -> f64 {
+        let raw = self.omega0_raw;
+        raw as f64 / 2147483648.0
+    }
+    /// Sine harmonic correction of the inclination [rad]: the raw integer divided by 536870912.
+    pub fn cis(&self) -> f64 {
+        let raw = self.cis_raw;
+        raw as f64 / 536870912.0
+    }
+    /// Cosine harmonic correction of the orbit radius [m]: the raw integer divided by 32.
+    pub fn crc(&self) -> f64 {
+        let raw = self.crc_raw;
+        raw as f64 / 32.0
+    }
+    /// Inclination at the reference time [semicircle]: the raw integer divided by 2147483648.
+    pub fn i0(&self) -> f64 {
+        let raw = self.i0_raw;
+        raw as f64 / 2147483648.0
+    }
+    /// Argument of perigee [semicircle]: the raw integer divided by 2147483648.
+    pub fn omega(&self) -> f64 {
+        let raw = self.omega_raw;
+        raw as f64 / 2147483648.0
+    }
+    /// Rate of right ascension [semicircle/s]: the raw integer divided by 8796093022208.
+    pub fn omega_dot(&self) -> f64 {
+        let raw = self.omega_dot_raw;
+        raw as f64 / 8796093022208.0
+    }
+    /// Rate of inclination [semicircle/s]: the raw integer divided by 8796093022208.
+    pub fn idot(&self) -> f64 {
+        let raw = self.idot_raw;
+        raw as f64 / 8796093022208.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let fit_interval = u8::from_le_bytes(r.array("fit_interval")?);
+        let ura_index = u8::from_le_bytes(r.array("ura_index")?);
+        let sv_health = u8::from_le_bytes(r.array("sv_health")?);
+        let tgd_raw = i8::from_le_bytes(r.array("tgd")?);
+        let iodc = u16::from_le_bytes(r.array("iodc")?);
+        let toc = u16::from_le_bytes(r.array("toc")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let af2_raw = i8::from_le_bytes(r.array("af2")?);
+        let af1_raw = i16::from_le_bytes(r.array("af1")?);
+        let af0_raw = i32::from_le_bytes(r.array("af0")?);
+        let crs_raw = i16::from_le_bytes(r.array("crs")?);
+        let delta_n_raw = i16::from_le_bytes(r.array("delta_n")?);
+        let m0_raw = i32::from_le_bytes(r.array("m0")?);
+        let cuc_raw = i16::from_le_bytes(r.array("cuc")?);
+        let cus_raw = i16::from_le_bytes(r.array("cus")?);
+        let e_raw = u32::from_le_bytes(r.array("e")?);
+        let sqrt_a_raw = u32::from_le_bytes(r.array("sqrt_a")?);
+        let toe = u16::from_le_bytes(r.array("toe")?);
+        let cic_raw = i16::from_le_bytes(r.array("cic")?);
+        let omega0_raw = i32::from_le_bytes(r.array("omega0")?);
+        let cis_raw = i16::from_le_bytes(r.array("cis")?);
+        let crc_raw = i16::from_le_bytes(r.array("crc")?);
+        let i0_raw = i32::from_le_bytes(r.array("i0")?);
+        let omega_raw = i32::from_le_bytes(r.array("omega")?);
+        let omega_dot_raw = i32::from_le_bytes(r.array("omega_dot")?);
+        let idot_raw = i16::from_le_bytes(r.array("idot")?);
+        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
+        let trailing = r.rest();
+        Ok(Self {
+            r#type,
+            version,
+            sv_id,
+            reserved0,
+            fit_interval,
+            ura_index,
+            sv_health,
+            tgd_raw,
+            iodc,
+            toc,
+            reserved1,
+            af2_raw,
+            af1_raw,
+            af0_raw,
+            crs_raw,
+            delta_n_raw,
+            m0_raw,
+            cuc_raw,
+            cus_raw,
+            e_raw,
+            sqrt_a_raw,
+            toe,
+            cic_raw,
+            omega0_raw,
+            cis_raw,
+            crc_raw,
+            i0_raw,
+            omega_raw,
+            omega_dot_raw,
+            idot_raw,
+            reserved2,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.sv_id.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.fit_interval.to_le_bytes());
+        w.put(&self.ura_index.to_le_bytes());
+        w.put(&self.sv_health.to_le_bytes());
+        w.put(&self.tgd_raw.to_le_bytes());
+        w.put(&self.iodc.to_le_bytes());
+        w.put(&self.toc.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.af2_raw.to_le_bytes());
+        w.put(&self.af1_raw.to_le_bytes());
+        w.put(&self.af0_raw.to_le_bytes());
+        w.put(&self.crs_raw.to_le_bytes());
+        w.put(&self.delta_n_raw.to_le_bytes());
+        w.put(&self.m0_raw.to_le_bytes());
+        w.put(&self.cuc_raw.to_le_bytes());
+        w.put(&self.cus_raw.to_le_bytes());
+        w.put(&self.e_raw.to_le_bytes());
+        w.put(&self.sqrt_a_raw.to_le_bytes());
+        w.put(&self.toe.to_le_bytes());
+        w.put(&self.cic_raw.to_le_bytes());
+        w.put(&self.omega0_raw.to_le_bytes());
+        w.put(&self.cis_raw.to_le_bytes());
+        w.put(&self.crc_raw.to_le_bytes());
+        w.put(&self.i0_raw.to_le_bytes());
+        w.put(&self.omega_raw.to_le_bytes());
+        w.put(&self.omega_dot_raw.to_le_bytes());
+        w.put(&self.idot_raw.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("sv_id", self.sv_id)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("fit_interval", self.fit_interval)?;
+        j.int("ura_index", self.ura_index)?;
+        j.int("sv_health", self.sv_health)?;
+        ubx::json_float(j, "tgd", self.tgd_raw as f64 / 2147483648.0)?;
+        j.int("tgd_raw", self.tgd_raw)?;
+        j.int("iodc", self.iodc)?;
+        j.int("toc", self.toc)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_float(j, "af2", self.af2_raw as f64 / 3.602879701896397e+16)?;
+        j.int("af2_raw", self.af2_raw)?;
+        ubx::json_float(j, "af1", self.af1_raw as f64 / 8796093022208.0)?;
+        j.int("af1_raw", self.af1_raw)?;
+        ubx::json_float(j, "af0", self.af0_raw as f64 / 2147483648.0)?;
+        j.int("af0_raw", self.af0_raw)?;
+        ubx::json_float(j, "crs", self.crs_raw as f64 / 32.0)?;
+        j.int("crs_raw", self.crs_raw)?;
+        ubx::json_float(j, "delta_n", self.delta_n_raw as f64 / 8796093022208.0)?;
+        j.int("delta_n_raw", self.delta_n_raw)?;
+        ubx::json_float(j, "m0", self.m0_raw as f64 / 2147483648.0)?;
+        j.int("m0_raw", self.m0_raw)?;
+        ubx::json_float(j, "cuc", self.cuc_raw as f64 / 536870912.0)?;
+        j.int("cuc_raw", self.cuc_raw)?;
+        ubx::json_float(j, "cus", self.cus_raw as f64 / 536870912.0)?;
+        j.int("cus_raw", self.cus_raw)?;
+        ubx::json_float(j, "e", self.e_raw as f64 / 8589934592.0)?;
+        j.int("e_raw", self.e_raw)?;
+        ubx::json_float(j, "sqrt_a", self.sqrt_a_raw as f64 / 524288.0)?;
+        j.int("sqrt_a_raw", self.sqrt_a_raw)?;
+        j.int("toe", self.toe)?;
+        ubx::json_float(j, "cic", self.cic_raw as f64 / 536870912.0)?;
+        j.int("cic_raw", self.cic_raw)?;
+        ubx::json_float(j, "omega0", self.omega0_raw as f64 / 2147483648.0)?;
+        j.int("omega0_raw", self.omega0_raw)?;
+        ubx::json_float(j, "cis", self.cis_raw as f64 / 536870912.0)?;
+        j.int("cis_raw", self.cis_raw)?;
+        ubx::json_float(j, "crc", self.crc_raw as f64 / 32.0)?;
+        j.int("crc_raw", self.crc_raw)?;
+        ubx::json_float(j, "i0", self.i0_raw as f64 / 2147483648.0)?;
+        j.int("i0_raw", self.i0_raw)?;
+        ubx::json_float(j, "omega", self.omega_raw as f64 / 2147483648.0)?;
+        j.int("omega_raw", self.omega_raw)?;
+        ubx::json_float(j, "omega_dot", self.omega_dot_raw as f64 / 8796093022208.0)?;
+        j.int("omega_dot_raw", self.omega_dot_raw)?;
+        ubx::json_float(j, "idot", self.idot_raw as f64 / 8796093022208.0)?;
+        j.int("idot_raw", self.idot_raw)?;
+        j.int("reserved2", self.reserved2)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// GPS assistance data: UBX MGA-GPS (class 0x13 id 0x00), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaGpsAlm<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// GPS satellite identifier.
+    pub sv_id: u8,
+    /// Satellite health.
+    pub sv_health: u8,
+    /// Eccentricity.
+    pub e_raw: u16,
+    /// Reference week of the almanac.
+    pub alm_w_na: u8,
+    /// Almanac reference time (in 4096 s).
+    pub toa: u8,
+    /// Inclination correction [semicircle].
+    pub delta_i_raw: i16,
+    /// Rate of right ascension [semicircle/s].
+    pub omega_dot_raw: i16,
+    /// Square root of the semi-major axis [m^0.5].
+    pub sqrt_a_raw: u32,
+    /// Longitude of the ascending node [semicircle].
+    pub omega0_raw: i32,
+    /// Argument of perigee [semicircle].
+    pub omega_raw: i32,
+    /// Mean anomaly at the reference time [semicircle].
+    pub m0_raw: i32,
+    /// Clock bias correction [s].
+    pub af0_raw: i16,
+    /// Clock drift correction [s/s].
+    pub af1_raw: i16,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaGpsAlm<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_gps_alm";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-GPS";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x00;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(36);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Eccentricity: the raw integer divided by 2097152.
+    pub fn e(&self) -> f64 {
+        let raw = self.e_raw;
+        raw as f64 / 2097152.0
+    }
+    /// Inclination correction [semicircle]: the raw integer divided by 524288.
+    pub fn delta_i(&self) -> f64 {
+        let raw = self.delta_i_raw;
+        raw as f64 / 524288.0
+    }
+    /// Rate of right ascension [semicircle/s]: the raw integer divided by 274877906944.
+    pub fn omega_dot(&self) -> f64 {
+        let raw = self.omega_dot_raw;
+        raw as f64 / 274877906944.0
+    }
+    /// Square root of the semi-major axis [m^0.5]: the raw integer divided by 2048.
+    pub fn sqrt_a(&self) -> f64 {
+        let raw = self.sqrt_a_raw;
+        raw as f64 / 2048.0
+    }
+    /// Longitude of the ascending node [semicircle]: the raw integer divided by 8388608.
+    pub fn omega0(&self) -> f64 {
+        let raw = self.omega0_raw;
+        raw as f64 / 8388608.0
+    }
+    /// Argument of perigee [semicircle]: the raw integer divided by 8388608.
+    pub fn omega(&self) -> f64 {
+        let raw = self.omega_raw;
+        raw as f64 / 8388608.0
+    }
+    /// Mean anomaly at the reference time [semicircle]: the raw integer divided by 8388608.
+    pub fn m0(&self) -> f64 {
+        let raw = self.m0_raw;
+        raw as f64 / 8388608.0
+    }
+    /// Clock bias correction [s]: the raw integer divided by 1048576.
+    pub fn af0(&self) -> f64 {
+        let raw = self.af0_raw;
+        raw as f64 / 1048576.0
+    }
+    /// Clock drift correction [s/s]: the raw integer divided by 274877906944.
+    pub fn af1(&self) -> f64 {
+        let raw = self.af1_raw;
+        raw as f64 / 274877906944.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
+        let sv_health = u8::from_le_bytes(r.array("sv_health")?);
+        let e_raw = u16::from_le_bytes(r.array("e")?);
+        let alm_w_na = u8::from_le_bytes(r.array("alm_w_na")?);
+        let toa = u8::from_le_bytes(r.array("toa")?);
+        let delta_i_raw = i16::from_le_bytes(r.array("delta_i")?);
+        let omega_dot_raw = i16::from_le_bytes(r.array("omega_dot")?);
+        let sqrt_a_raw = u32::from_le_bytes(r.array("sqrt_a")?);
+        let omega0_raw = i32::from_le_bytes(r.array("omega0")?);
+        let omega_raw = i32::from_le_bytes(r.array("omega")?);
+        let m0_raw = i32::from_le_bytes(r.array("m0")?);
+        let af0_raw = i16::from_le_bytes(r.array("af0")?);
+        let af1_raw = i16::from_le_bytes(r.array("af1")?);
+        let reserved0 = u32::from_le_bytes(r.array("reserved0")?);
+        let trailing = r.rest();
+        Ok(Self {
+            r#type,
+            version,
+            sv_id,
+            sv_health,
+            e_raw,
+            alm_w_na,
+            toa,
+            delta_i_raw,
+            omega_dot_raw,
+            sqrt_a_raw,
+            omega0_raw,
+            omega_raw,
+            m0_raw,
+            af0_raw,
+            af1_raw,
+            reserved0,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.sv_id.to_le_bytes());
+        w.put(&self.sv_health.to_le_bytes());
+        w.put(&self.e_raw.to_le_bytes());
+        w.put(&self.alm_w_na.to_le_bytes());
+        w.put(&self.toa.to_le_bytes());
+        w.put(&self.delta_i_raw.to_le_bytes());
+        w.put(&self.omega_dot_raw.to_le_bytes());
+        w.put(&self.sqrt_a_raw.to_le_bytes());
+        w.put(&self.omega0_raw.to_le_bytes());
+        w.put(&self.omega_raw.to_le_bytes());
+        w.put(&self.m0_raw.to_le_bytes());
+        w.put(&self.af0_raw.to_le_bytes());
+        w.put(&self.af1_raw.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("sv_id", self.sv_id)?;
+        j.int("sv_health", self.sv_health)?;
+        ubx::json_float(j, "e", self.e_raw as f64 / 2097152.0)?;
+        j.int("e_raw", self.e_raw)?;
+        j.int("alm_w_na", self.alm_w_na)?;
+        j.int("toa", self.toa)?;
+        ubx::json_float(j, "delta_i", self.delta_i_raw as f64 / 524288.0)?;
+        j.int("delta_i_raw", self.delta_i_raw)?;
+        ubx::json_float(j, "omega_dot", self.omega_dot_raw as f64 / 274877906944.0)?;
+        j.int("omega_dot_raw", self.omega_dot_raw)?;
+        ubx::json_float(j, "sqrt_a", self.sqrt_a_raw as f64 / 2048.0)?;
+        j.int("sqrt_a_raw", self.sqrt_a_raw)?;
+        ubx::json_float(j, "omega0", self.omega0_raw as f64 / 8388608.0)?;
+        j.int("omega0_raw", self.omega0_raw)?;
+        ubx::json_float(j, "omega", self.omega_raw as f64 / 8388608.0)?;
+        j.int("omega_raw", self.omega_raw)?;
+        ubx::json_float(j, "m0", self.m0_raw as f64 / 8388608.0)?;
+        j.int("m0_raw", self.m0_raw)?;
+        ubx::json_float(j, "af0", self.af0_raw as f64 / 1048576.0)?;
+        j.int("af0_raw", self.af0_raw)?;
+        ubx::json_float(j, "af1", self.af1_raw as f64 / 274877906944.0)?;
+        j.int("af1_raw", self.af1_raw)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of MgaGpsHealthHealthCodeEntry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaGpsHealthHealthCodeEntry {
+    /// Health code.
+    pub health_code: u8,
+}
+
+impl<'a> ubx::Entry<'a> for MgaGpsHealthHealthCodeEntry {
+    const WIDTH: usize = 1;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let health_code = u8::from_le_bytes(r.array("health_code")?);
+        Ok(Self { health_code })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.health_code.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("health_code", self.health_code)?;
+        Ok(())
+    }
+}
+
+/// GPS assistance data: UBX MGA-GPS (class 0x13 id 0x00), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaGpsHealth<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Health code of each satellite (1 to 32): 0 to 65535 entries.
+    pub health_code: ubx::Group<'a, MgaGpsHealthHealthCodeEntry>,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaGpsHealth<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_gps_health";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-GPS";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x00;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(40);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let health_code = r.group(Some(32), 0, 65535, 4, "health_code")?;
+        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, reserved0, health_code, reserved1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        self.health_code.write(w);
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        self.health_code.json(j, "health_code")?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// GPS assistance data: UBX MGA-GPS (class 0x13 id 0x00), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaGpsUtc<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Constant term of the GPS-UTC polynomial [s].
+    pub utc_a0_raw: i32,
+    /// First order term of the GPS-UTC polynomial [s/s].
+    pub utc_a1_raw: i32,
+    /// Leap seconds before the next leap second event [s].
+    pub utc_dt_ls: i8,
+    /// Reference time of the UTC parameters (in 4096 s).
+    pub utc_tot: u8,
+    /// Reference week of the UTC parameters.
+    pub utc_w_nt: u8,
+    /// Week of the next leap second event.
+    pub utc_w_nlsf: u8,
+    /// Day of the week of the next leap second event.
+    pub utc_dn: u8,
+    /// Leap seconds after the next leap second event [s].
+    pub utc_dt_lsf: i8,
+    /// Reserved.
+    pub reserved1: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaGpsUtc<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_gps_utc";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-GPS";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x00;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(20);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Constant term of the GPS-UTC polynomial [s]: the raw integer divided by 1073741824.
+    pub fn utc_a0(&self) -> f64 {
+        let raw = self.utc_a0_raw;
+        raw as f64 / 1073741824.0
+    }
+    /// First order term of the GPS-UTC polynomial [s/s]: the raw integer divided by 1125899906842624.
+    pub fn utc_a1(&self) -> f64 {
+        let raw = self.utc_a1_raw;
+        raw as f64 / 1125899906842624.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let utc_a0_raw = i32::from_le_bytes(r.array("utc_a0")?);
+        let utc_a1_raw = i32::from_le_bytes(r.array("utc_a1")?);
+        let utc_dt_ls = i8::from_le_bytes(r.array("utc_dt_ls")?);
+        let utc_tot = u8::from_le_bytes(r.array("utc_tot")?);
+        let utc_w_nt = u8::from_le_bytes(r.array("utc_w_nt")?);
+        let utc_w_nlsf = u8::from_le_bytes(r.array("utc_w_nlsf")?);
+        let utc_dn = u8::from_le_bytes(r.array("utc_dn")?);
+        let utc_dt_lsf = i8::from_le_bytes(r.array("utc_dt_lsf")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self {
+            r#type,
+            version,
+            reserved0,
+            utc_a0_raw,
+            utc_a1_raw,
+            utc_dt_ls,
+            utc_tot,
+            utc_w_nt,
+            utc_w_nlsf,
+            utc_dn,
+            utc_dt_lsf,
+            reserved1,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.utc_a0_raw.to_le_bytes());
+        w.put(&self.utc_a1_raw.to_le_bytes());
+        w.put(&self.utc_dt_ls.to_le_bytes());
+        w.put(&self.utc_tot.to_le_bytes());
+        w.put(&self.utc_w_nt.to_le_bytes());
+        w.put(&self.utc_w_nlsf.to_le_bytes());
+        w.put(&self.utc_dn.to_le_bytes());
+        w.put(&self.utc_dt_lsf.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_float(j, "utc_a0", self.utc_a0_raw as f64 / 1073741824.0)?;
+        j.int("utc_a0_raw", self.utc_a0_raw)?;
+        ubx::json_float(j, "utc_a1", self.utc_a1_raw as f64 / 1125899906842624.0)?;
+        j.int("utc_a1_raw", self.utc_a1_raw)?;
+        j.int("utc_dt_ls", self.utc_dt_ls)?;
+        j.int("utc_tot", self.utc_tot)?;
+        j.int("utc_w_nt", self.utc_w_nt)?;
+        j.int("utc_w_nlsf", self.utc_w_nlsf)?;
+        j.int("utc_dn", self.utc_dn)?;
+        j.int("utc_dt_lsf", self.utc_dt_lsf)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// GPS assistance data: UBX MGA-GPS (class 0x13 id 0x00), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaGpsIono<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Ionospheric alpha 0 [s].
+    pub iono_alpha0_raw: i8,
+    /// Ionospheric alpha 1 [s/semicircle].
+    pub iono_alpha1_raw: i8,
+    /// Ionospheric alpha 2 [s/semicircle^2].
+    pub iono_alpha2_raw: i8,
+    /// Ionospheric alpha 3 [s/semicircle^3].
+    pub iono_alpha3_raw: i8,
+    /// Ionospheric beta 0 (in 2048 s).
+    pub iono_beta0: i8,
+    /// Ionospheric beta 1 (in 16384 s/semicircle).
+    pub iono_beta1: i8,
+    /// Ionospheric beta 2 (in 65536 s/semicircle^2).
+    pub iono_beta2: i8,
+    /// Ionospheric beta 3 (in 65536 s/semicircle^3).
+    pub iono_beta3: i8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaGpsIono<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_gps_iono";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-GPS";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x00;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(16);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Ionospheric alpha 0 [s]: the raw integer divided by 1073741824.
+    pub fn iono_alpha0(&self) -> f64 {
+        let raw = self.iono_alpha0_raw;
+        raw as f64 / 1073741824.0
+    }
+    /// Ionospheric alpha 1 [s/semicircle]: the raw integer divided by 134217728.
+    pub fn iono_alpha1(&self) -> f64 {
+        let raw = self.iono_alpha1_raw;
+        raw as f64 / 134217728.0
+    }
+    /// Ionospheric alpha 2 [s/semicircle^2]: the raw integer divided by 16777216.
+    pub fn iono_alpha2(&self) -> f64 {
+        let raw = self.iono_alpha2_raw;
+        raw as f64 / 16777216.0
+    }
+    /// Ionospheric alpha 3 [s/semicircle^3]: the raw integer divided by 16777216.
+    pub fn iono_alpha3(&self) -> f64 {
+        let raw = self.iono_alpha3_raw;
+        raw as f64 / 16777216.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let iono_alpha0_raw = i8::from_le_bytes(r.array("iono_alpha0")?);
+        let iono_alpha1_raw = i8::from_le_bytes(r.array("iono_alpha1")?);
+        let iono_alpha2_raw = i8::from_le_bytes(r.array("iono_alpha2")?);
+        let iono_alpha3_raw = i8::from_le_bytes(r.array("iono_alpha3")?);
+        let iono_beta0 = i8::from_le_bytes(r.array("iono_beta0")?);
+        let iono_beta1 = i8::from_le_bytes(r.array("iono_beta1")?);
+        let iono_beta2 = i8::from_le_bytes(r.array("iono_beta2")?);
+        let iono_beta3 = i8::from_le_bytes(r.array("iono_beta3")?);
+        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self {
+            r#type,
+            version,
+            reserved0,
+            iono_alpha0_raw,
+            iono_alpha1_raw,
+            iono_alpha2_raw,
+            iono_alpha3_raw,
+            iono_beta0,
+            iono_beta1,
+            iono_beta2,
+            iono_beta3,
+            reserved1,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.iono_alpha0_raw.to_le_bytes());
+        w.put(&self.iono_alpha1_raw.to_le_bytes());
+        w.put(&self.iono_alpha2_raw.to_le_bytes());
+        w.put(&self.iono_alpha3_raw.to_le_bytes());
+        w.put(&self.iono_beta0.to_le_bytes());
+        w.put(&self.iono_beta1.to_le_bytes());
+        w.put(&self.iono_beta2.to_le_bytes());
+        w.put(&self.iono_beta3.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_float(j, "iono_alpha0", self.iono_alpha0_raw as f64 / 1073741824.0)?;
+        j.int("iono_alpha0_raw", self.iono_alpha0_raw)?;
+        ubx::json_float(j, "iono_alpha1", self.iono_alpha1_raw as f64 / 134217728.0)?;
+        j.int("iono_alpha1_raw", self.iono_alpha1_raw)?;
+        ubx::json_float(j, "iono_alpha2", self.iono_alpha2_raw as f64 / 16777216.0)?;
+        j.int("iono_alpha2_raw", self.iono_alpha2_raw)?;
+        ubx::json_float(j, "iono_alpha3", self.iono_alpha3_raw as f64 / 16777216.0)?;
+        j.int("iono_alpha3_raw", self.iono_alpha3_raw)?;
+        j.int("iono_beta0", self.iono_beta0)?;
+        j.int("iono_beta1", self.iono_beta1)?;
+        j.int("iono_beta2", self.iono_beta2)?;
+        j.int("iono_beta3", self.iono_beta3)?;
+        j.int("reserved1", self.reserved1)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -17301,6 +22002,707 @@ impl<'a> NavVelned<'a> {
     }
 }
 
+/// Differential correction input status: UBX RXM-COR (class 0x02 id 0x34), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmCor<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Energy per bit to noise ratio (L-band data) [dB].
+    pub ebno_raw: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Status.
+    pub status_info: u32,
+    /// Message type.
+    pub msg_type: u16,
+    /// Message subtype.
+    pub msg_sub_type: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmCor<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_cor";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-COR";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x34;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Energy per bit to noise ratio (L-band data) [dB]: the raw integer divided by 8.
+    pub fn ebno(&self) -> f64 {
+        let raw = self.ebno_raw;
+        raw as f64 / 8.0
+    }
+    /// Protocol (bits 0-4 of `status_info`).
+    pub fn protocol(&self) -> u8 {
+        (self.status_info & 0x1f) as u8
+    }
+    /// Sets protocol (the value in its bits of `status_info`; the other bits stay).
+    pub fn set_protocol(&mut self, value: u8) {
+        self.status_info = (self.status_info & !0x1f) | (value as u32 & 0x1f);
+    }
+    /// Errors (bits 5-6 of `status_info`).
+    pub fn err_status(&self) -> u8 {
+        ((self.status_info >> 5) & 0x3) as u8
+    }
+    /// Sets errors (the value in its bits of `status_info`; the other bits stay).
+    pub fn set_err_status(&mut self, value: u8) {
+        self.status_info = (self.status_info & !(0x3 << 5)) | ((value as u32 & 0x3) << 5);
+    }
+    /// Use (bits 7-8 of `status_info`).
+    pub fn msg_used(&self) -> u8 {
+        ((self.status_info >> 7) & 0x3) as u8
+    }
+    /// Sets use (the value in its bits of `status_info`; the other bits stay).
+    pub fn set_msg_used(&mut self, value: u8) {
+        self.status_info = (self.status_info & !(0x3 << 7)) | ((value as u32 & 0x3) << 7);
+    }
+    /// Identifier of the correction stream (bits 9-24 of `status_info`).
+    pub fn correction_id(&self) -> u16 {
+        ((self.status_info >> 9) & 0xffff) as u16
+    }
+    /// Sets identifier of the correction stream (the value in its bits of `status_info`; the other bits stay).
+    pub fn set_correction_id(&mut self, value: u16) {
+        self.status_info = (self.status_info & !(0xffff << 9)) | ((value as u32 & 0xffff) << 9);
+    }
+    /// msg_type is valid (bit 25 of `status_info`).
+    pub fn msg_type_valid(&self) -> bool {
+        ((self.status_info >> 25) & 0x1) != 0
+    }
+    /// Sets msg_type is valid (the value in its bits of `status_info`; the other bits stay).
+    pub fn set_msg_type_valid(&mut self, value: bool) {
+        self.status_info = (self.status_info & !(0x1 << 25)) | (u32::from(value) << 25);
+    }
+    /// msg_sub_type is valid (bit 26 of `status_info`).
+    pub fn msg_sub_type_valid(&self) -> bool {
+        ((self.status_info >> 26) & 0x1) != 0
+    }
+    /// Sets msg_sub_type is valid (the value in its bits of `status_info`; the other bits stay).
+    pub fn set_msg_sub_type_valid(&mut self, value: bool) {
+        self.status_info = (self.status_info & !(0x1 << 26)) | (u32::from(value) << 26);
+    }
+    /// Input handle (bit 27 of `status_info`).
+    pub fn msg_input_handle(&self) -> bool {
+        ((self.status_info >> 27) & 0x1) != 0
+    }
+    /// Sets input handle (the value in its bits of `status_info`; the other bits stay).
+    pub fn set_msg_input_handle(&mut self, value: bool) {
+        self.status_info = (self.status_info & !(0x1 << 27)) | (u32::from(value) << 27);
+    }
+    /// Encryption (bits 28-29 of `status_info`).
+    pub fn msg_encrypted(&self) -> u8 {
+        ((self.status_info >> 28) & 0x3) as u8
+    }
+    /// Sets encryption (the value in its bits of `status_info`; the other bits stay).
+    pub fn set_msg_encrypted(&mut self, value: u8) {
+        self.status_info = (self.status_info & !(0x3 << 28)) | ((value as u32 & 0x3) << 28);
+    }
+    /// Decryption (bits 30-31 of `status_info`).
+    pub fn msg_decrypted(&self) -> u8 {
+        ((self.status_info >> 30) & 0x3) as u8
+    }
+    /// Sets decryption (the value in its bits of `status_info`; the other bits stay).
+    pub fn set_msg_decrypted(&mut self, value: u8) {
+        self.status_info = (self.status_info & !(0x3 << 30)) | ((value as u32 & 0x3) << 30);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let ebno_raw = u8::from_le_bytes(r.array("ebno")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let status_info = u32::from_le_bytes(r.array("status_info")?);
+        let msg_type = u16::from_le_bytes(r.array("msg_type")?);
+        let msg_sub_type = u16::from_le_bytes(r.array("msg_sub_type")?);
+        let trailing = r.rest();
+        Ok(Self { version, ebno_raw, reserved0, status_info, msg_type, msg_sub_type, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.ebno_raw.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.status_info.to_le_bytes());
+        w.put(&self.msg_type.to_le_bytes());
+        w.put(&self.msg_sub_type.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        ubx::json_float(j, "ebno", self.ebno_raw as f64 / 8.0)?;
+        j.int("ebno_raw", self.ebno_raw)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("status_info", self.status_info)?;
+        j.int("protocol", (self.status_info & 0x1f) as u8)?;
+        j.int("err_status", ((self.status_info >> 5) & 0x3) as u8)?;
+        j.int("msg_used", ((self.status_info >> 7) & 0x3) as u8)?;
+        j.int("correction_id", ((self.status_info >> 9) & 0xffff) as u16)?;
+        j.flag("msg_type_valid", ((self.status_info >> 25) & 0x1) != 0)?;
+        j.flag("msg_sub_type_valid", ((self.status_info >> 26) & 0x1) != 0)?;
+        j.flag("msg_input_handle", ((self.status_info >> 27) & 0x1) != 0)?;
+        j.int("msg_encrypted", ((self.status_info >> 28) & 0x3) as u8)?;
+        j.int("msg_decrypted", ((self.status_info >> 30) & 0x3) as u8)?;
+        j.int("msg_type", self.msg_type)?;
+        j.int("msg_sub_type", self.msg_sub_type)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Satellite measurements for RRLP: UBX RXM-MEASX (class 0x02 id 0x14), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmMeasxPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmMeasxPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_measx_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-MEASX";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x14;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["rxm_measx"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of RxmMeasxSv.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmMeasxSv {
+    /// GNSS identifier.
+    pub gnss_id_raw: u8,
+    /// Satellite identifier.
+    pub sv_id: u8,
+    /// Carrier to noise ratio [dBHz].
+    pub c_no: u8,
+    /// Multipath indicator.
+    pub mpath_indic: u8,
+    /// Doppler measurement [m/s].
+    pub doppler_ms_raw: i32,
+    /// Doppler measurement [Hz].
+    pub doppler_hz_raw: i32,
+    /// Whole value of the code phase.
+    pub whole_chips: u16,
+    /// Fractional value of the code phase.
+    pub frac_chips: u16,
+    /// Code phase [ms].
+    pub code_phase_raw: u32,
+    /// Integer part of the code phase [ms].
+    pub int_code_phase: u8,
+    /// Pseudorange RMS error index.
+    pub pseu_range_rms_err: u8,
+    /// Reserved.
+    pub reserved4: u16,
+}
+
+impl<'a> ubx::Entry<'a> for RxmMeasxSv {
+    const WIDTH: usize = 24;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
+        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
+        let c_no = u8::from_le_bytes(r.array("c_no")?);
+        let mpath_indic = u8::from_le_bytes(r.array("mpath_indic")?);
+        let doppler_ms_raw = i32::from_le_bytes(r.array("doppler_ms")?);
+        let doppler_hz_raw = i32::from_le_bytes(r.array("doppler_hz")?);
+        let whole_chips = u16::from_le_bytes(r.array("whole_chips")?);
+        let frac_chips = u16::from_le_bytes(r.array("frac_chips")?);
+        let code_phase_raw = u32::from_le_bytes(r.array("code_phase")?);
+        let int_code_phase = u8::from_le_bytes(r.array("int_code_phase")?);
+        let pseu_range_rms_err = u8::from_le_bytes(r.array("pseu_range_rms_err")?);
+        let reserved4 = u16::from_le_bytes(r.array("reserved4")?);
+        Ok(Self {
+            gnss_id_raw,
+            sv_id,
+            c_no,
+            mpath_indic,
+            doppler_ms_raw,
+            doppler_hz_raw,
+            whole_chips,
+            frac_chips,
+            code_phase_raw,
+            int_code_phase,
+            pseu_range_rms_err,
+            reserved4,
+        })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.gnss_id_raw.to_le_bytes());
+        w.put(&self.sv_id.to_le_bytes());
+        w.put(&self.c_no.to_le_bytes());
+        w.put(&self.mpath_indic.to_le_bytes());
+        w.put(&self.doppler_ms_raw.to_le_bytes());
+        w.put(&self.doppler_hz_raw.to_le_bytes());
+        w.put(&self.whole_chips.to_le_bytes());
+        w.put(&self.frac_chips.to_le_bytes());
+        w.put(&self.code_phase_raw.to_le_bytes());
+        w.put(&self.int_code_phase.to_le_bytes());
+        w.put(&self.pseu_range_rms_err.to_le_bytes());
+        w.put(&self.reserved4.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.code(
+            "gnss_id",
+            ais::code::<UbxGnssId>(u64::from(self.gnss_id_raw)).map(CodeEnum::id),
+            u64::from(self.gnss_id_raw),
+        )?;
+        j.int("sv_id", self.sv_id)?;
+        j.int("c_no", self.c_no)?;
+        j.int("mpath_indic", self.mpath_indic)?;
+        ubx::json_float(j, "doppler_ms", self.doppler_ms_raw as f64 / 25.0)?;
+        j.int("doppler_ms_raw", self.doppler_ms_raw)?;
+        ubx::json_float(j, "doppler_hz", self.doppler_hz_raw as f64 / 5.0)?;
+        j.int("doppler_hz_raw", self.doppler_hz_raw)?;
+        j.int("whole_chips", self.whole_chips)?;
+        j.int("frac_chips", self.frac_chips)?;
+        ubx::json_float(j, "code_phase", self.code_phase_raw as f64 / 2097152.0)?;
+        j.int("code_phase_raw", self.code_phase_raw)?;
+        j.int("int_code_phase", self.int_code_phase)?;
+        j.int("pseu_range_rms_err", self.pseu_range_rms_err)?;
+        j.int("reserved4", self.reserved4)?;
+        Ok(())
+    }
+}
+
+impl RxmMeasxSv {
+    /// GNSS identifier: the enum's value of the raw code, None for a code it does not name.
+    pub fn gnss_id(&self) -> Option<UbxGnssId> {
+        ais::code(u64::from(self.gnss_id_raw))
+    }
+    /// Doppler measurement [m/s]: the raw integer divided by 25.
+    pub fn doppler_ms(&self) -> f64 {
+        let raw = self.doppler_ms_raw;
+        raw as f64 / 25.0
+    }
+    /// Doppler measurement [Hz]: the raw integer divided by 5.
+    pub fn doppler_hz(&self) -> f64 {
+        let raw = self.doppler_hz_raw;
+        raw as f64 / 5.0
+    }
+    /// Code phase [ms]: the raw integer divided by 2097152.
+    pub fn code_phase(&self) -> f64 {
+        let raw = self.code_phase_raw;
+        raw as f64 / 2097152.0
+    }
+}
+
+/// Satellite measurements for RRLP: UBX RXM-MEASX (class 0x02 id 0x14), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmMeasx<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// GPS time of week of the measurements [ms].
+    pub gps_tow: u32,
+    /// GLONASS time of week [ms].
+    pub glo_tow: u32,
+    /// BeiDou time of week [ms].
+    pub bds_tow: u32,
+    /// Reserved.
+    pub reserved1: u32,
+    /// QZSS time of week [ms].
+    pub qzss_tow: u32,
+    /// GPS time of week accuracy [ms].
+    pub gps_tow_acc_raw: u16,
+    /// GLONASS time of week accuracy [ms].
+    pub glo_tow_acc_raw: u16,
+    /// BeiDou time of week accuracy [ms].
+    pub bds_tow_acc_raw: u16,
+    /// Reserved.
+    pub reserved2: u16,
+    /// QZSS time of week accuracy [ms].
+    pub qzss_tow_acc_raw: u16,
+    /// Number of satellites.
+    pub num_sv: u8,
+    /// Flags.
+    pub flags: u8,
+    /// Reserved.
+    pub reserved3: u64,
+    /// Satellites: 0 to 65535 entries.
+    pub svs: ubx::Group<'a, RxmMeasxSv>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmMeasx<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_measx";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-MEASX";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x14;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// GPS time of week accuracy [ms]: the raw integer divided by 16.
+    pub fn gps_tow_acc(&self) -> f64 {
+        let raw = self.gps_tow_acc_raw;
+        raw as f64 / 16.0
+    }
+    /// GLONASS time of week accuracy [ms]: the raw integer divided by 16.
+    pub fn glo_tow_acc(&self) -> f64 {
+        let raw = self.glo_tow_acc_raw;
+        raw as f64 / 16.0
+    }
+    /// BeiDou time of week accuracy [ms]: the raw integer divided by 16.
+    pub fn bds_tow_acc(&self) -> f64 {
+        let raw = self.bds_tow_acc_raw;
+        raw as f64 / 16.0
+    }
+    /// QZSS time of week accuracy [ms]: the raw integer divided by 16.
+    pub fn qzss_tow_acc(&self) -> f64 {
+        let raw = self.qzss_tow_acc_raw;
+        raw as f64 / 16.0
+    }
+    /// Times of week set (bits 0-1 of `flags`).
+    pub fn tow_set(&self) -> u8 {
+        self.flags & 0x3
+    }
+    /// Sets times of week set (the value in its bits of `flags`; the other bits stay).
+    pub fn set_tow_set(&mut self, value: u8) {
+        self.flags = (self.flags & !0x3) | (value & 0x3);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let gps_tow = u32::from_le_bytes(r.array("gps_tow")?);
+        let glo_tow = u32::from_le_bytes(r.array("glo_tow")?);
+        let bds_tow = u32::from_le_bytes(r.array("bds_tow")?);
+        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let qzss_tow = u32::from_le_bytes(r.array("qzss_tow")?);
+        let gps_tow_acc_raw = u16::from_le_bytes(r.array("gps_tow_acc")?);
+        let glo_tow_acc_raw = u16::from_le_bytes(r.array("glo_tow_acc")?);
+        let bds_tow_acc_raw = u16::from_le_bytes(r.array("bds_tow_acc")?);
+        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
+        let qzss_tow_acc_raw = u16::from_le_bytes(r.array("qzss_tow_acc")?);
+        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let reserved3 = u64::from_le_bytes(r.array("reserved3")?);
+        let svs = r.group(Some(usize::from(num_sv)), 0, 65535, 0, "svs")?;
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            reserved0,
+            gps_tow,
+            glo_tow,
+            bds_tow,
+            reserved1,
+            qzss_tow,
+            gps_tow_acc_raw,
+            glo_tow_acc_raw,
+            bds_tow_acc_raw,
+            reserved2,
+            qzss_tow_acc_raw,
+            num_sv,
+            flags,
+            reserved3,
+            svs,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(&self.gps_tow.to_le_bytes());
+        w.put(&self.glo_tow.to_le_bytes());
+        w.put(&self.bds_tow.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.qzss_tow.to_le_bytes());
+        w.put(&self.gps_tow_acc_raw.to_le_bytes());
+        w.put(&self.glo_tow_acc_raw.to_le_bytes());
+        w.put(&self.bds_tow_acc_raw.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.qzss_tow_acc_raw.to_le_bytes());
+        w.put(&self.num_sv.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes());
+        self.svs.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("gps_tow", self.gps_tow)?;
+        j.int("glo_tow", self.glo_tow)?;
+        j.int("bds_tow", self.bds_tow)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("qzss_tow", self.qzss_tow)?;
+        ubx::json_float(j, "gps_tow_acc", self.gps_tow_acc_raw as f64 / 16.0)?;
+        j.int("gps_tow_acc_raw", self.gps_tow_acc_raw)?;
+        ubx::json_float(j, "glo_tow_acc", self.glo_tow_acc_raw as f64 / 16.0)?;
+        j.int("glo_tow_acc_raw", self.glo_tow_acc_raw)?;
+        ubx::json_float(j, "bds_tow_acc", self.bds_tow_acc_raw as f64 / 16.0)?;
+        j.int("bds_tow_acc_raw", self.bds_tow_acc_raw)?;
+        j.int("reserved2", self.reserved2)?;
+        ubx::json_float(j, "qzss_tow_acc", self.qzss_tow_acc_raw as f64 / 16.0)?;
+        j.int("qzss_tow_acc_raw", self.qzss_tow_acc_raw)?;
+        j.int("num_sv", self.num_sv)?;
+        j.int("flags", self.flags)?;
+        j.int("tow_set", self.flags & 0x3)?;
+        j.int("reserved3", self.reserved3)?;
+        self.svs.json(j, "svs")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Power management request: UBX RXM-PMREQ (class 0x02 id 0x41), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmPmreq<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Duration of the request [ms].
+    pub duration: u32,
+    /// Task flags.
+    pub flags: u32,
+    /// Sources that wake the receiver.
+    pub wakeup_sources: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmPmreq<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_pmreq";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-PMREQ";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x41;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(16);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Enter backup mode (bit 1 of `flags`).
+    pub fn backup(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets enter backup mode (the value in its bits of `flags`; the other bits stay).
+    pub fn set_backup(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u32::from(value) << 1);
+    }
+    /// Force the state change (even while the host may be sending) (bit 2 of `flags`).
+    pub fn force(&self) -> bool {
+        ((self.flags >> 2) & 0x1) != 0
+    }
+    /// Sets force the state change (even while the host may be sending) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_force(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 2)) | (u32::from(value) << 2);
+    }
+    /// UART RX pin (bit 3 of `wakeup_sources`).
+    pub fn uartrx(&self) -> bool {
+        ((self.wakeup_sources >> 3) & 0x1) != 0
+    }
+    /// Sets uart rx pin (the value in its bits of `wakeup_sources`; the other bits stay).
+    pub fn set_uartrx(&mut self, value: bool) {
+        self.wakeup_sources = (self.wakeup_sources & !(0x1 << 3)) | (u32::from(value) << 3);
+    }
+    /// EXTINT0 pin (bit 5 of `wakeup_sources`).
+    pub fn extint0(&self) -> bool {
+        ((self.wakeup_sources >> 5) & 0x1) != 0
+    }
+    /// Sets extint0 pin (the value in its bits of `wakeup_sources`; the other bits stay).
+    pub fn set_extint0(&mut self, value: bool) {
+        self.wakeup_sources = (self.wakeup_sources & !(0x1 << 5)) | (u32::from(value) << 5);
+    }
+    /// EXTINT1 pin (bit 6 of `wakeup_sources`).
+    pub fn extint1(&self) -> bool {
+        ((self.wakeup_sources >> 6) & 0x1) != 0
+    }
+    /// Sets extint1 pin (the value in its bits of `wakeup_sources`; the other bits stay).
+    pub fn set_extint1(&mut self, value: bool) {
+        self.wakeup_sources = (self.wakeup_sources & !(0x1 << 6)) | (u32::from(value) << 6);
+    }
+    /// SPI chip select pin (bit 7 of `wakeup_sources`).
+    pub fn spics(&self) -> bool {
+        ((self.wakeup_sources >> 7) & 0x1) != 0
+    }
+    /// Sets spi chip select pin (the value in its bits of `wakeup_sources`; the other bits stay).
+    pub fn set_spics(&mut self, value: bool) {
+        self.wakeup_sources = (self.wakeup_sources & !(0x1 << 7)) | (u32::from(value) << 7);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let duration = u32::from_le_bytes(r.array("duration")?);
+        let flags = u32::from_le_bytes(r.array("flags")?);
+        let wakeup_sources = u32::from_le_bytes(r.array("wakeup_sources")?);
+        let trailing = r.rest();
+        Ok(Self { version, reserved0, duration, flags, wakeup_sources, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(&self.duration.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.wakeup_sources.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("duration", self.duration)?;
+        j.int("flags", self.flags)?;
+        j.flag("backup", ((self.flags >> 1) & 0x1) != 0)?;
+        j.flag("force", ((self.flags >> 2) & 0x1) != 0)?;
+        j.int("wakeup_sources", self.wakeup_sources)?;
+        j.flag("uartrx", ((self.wakeup_sources >> 3) & 0x1) != 0)?;
+        j.flag("extint0", ((self.wakeup_sources >> 5) & 0x1) != 0)?;
+        j.flag("extint1", ((self.wakeup_sources >> 6) & 0x1) != 0)?;
+        j.flag("spics", ((self.wakeup_sources >> 7) & 0x1) != 0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Power management request: UBX RXM-PMREQ (class 0x02 id 0x41), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmPmreqShort<'a> {
+    /// Duration of the request [ms].
+    pub duration: u32,
+    /// Task flags.
+    pub flags: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmPmreqShort<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_pmreq_short";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-PMREQ";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x41;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Enter backup mode (bit 1 of `flags`).
+    pub fn backup(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets enter backup mode (the value in its bits of `flags`; the other bits stay).
+    pub fn set_backup(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u32::from(value) << 1);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let duration = u32::from_le_bytes(r.array("duration")?);
+        let flags = u32::from_le_bytes(r.array("flags")?);
+        let trailing = r.rest();
+        Ok(Self { duration, flags, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.duration.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("duration", self.duration)?;
+        j.int("flags", self.flags)?;
+        j.flag("backup", ((self.flags >> 1) & 0x1) != 0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Multi-GNSS raw measurements: UBX RXM-RAWX (class 0x02 id 0x15), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RxmRawxPoll<'a> {
@@ -17626,6 +23028,181 @@ impl<'a> RxmRawx<'a> {
     }
 }
 
+/// Galileo SAR return link message: UBX RXM-RLM (class 0x02 id 0x59), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmRlm<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Message type.
+    pub r#type: u8,
+    /// Galileo satellite identifier.
+    pub sv_id: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Beacon identifier (60 bits).
+    pub beacon: &'a [u8],
+    /// Message code (4 bits).
+    pub message: u8,
+    /// Parameters (96 bits).
+    pub params: &'a [u8],
+    /// Reserved.
+    pub reserved1: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmRlm<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_rlm";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-RLM";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x59;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(28);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let beacon = r.bytes(8, "beacon")?;
+        let message = u8::from_le_bytes(r.array("message")?);
+        let params = r.bytes(12, "params")?;
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let trailing = r.rest();
+        Ok(Self { version, r#type, sv_id, reserved0, beacon, message, params, reserved1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.sv_id.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put_sized(self.beacon, Some(8), "RXM-RLM", "beacon")?;
+        w.put(&self.message.to_le_bytes());
+        w.put_sized(self.params, Some(12), "RXM-RLM", "params")?;
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("type", self.r#type)?;
+        j.int("sv_id", self.sv_id)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "beacon", self.beacon)?;
+        j.int("message", self.message)?;
+        ubx::json_hex(j, "params", self.params)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Galileo SAR return link message: UBX RXM-RLM (class 0x02 id 0x59), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmRlmShort<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Message type.
+    pub r#type: u8,
+    /// Galileo satellite identifier.
+    pub sv_id: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Beacon identifier (60 bits).
+    pub beacon: &'a [u8],
+    /// Message code (4 bits).
+    pub message: u8,
+    /// Parameters (16 bits).
+    pub params: &'a [u8],
+    /// Reserved.
+    pub reserved1: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmRlmShort<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_rlm_short";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-RLM";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x59;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(16);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let beacon = r.bytes(8, "beacon")?;
+        let message = u8::from_le_bytes(r.array("message")?);
+        let params = r.bytes(2, "params")?;
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self { version, r#type, sv_id, reserved0, beacon, message, params, reserved1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.sv_id.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put_sized(self.beacon, Some(8), "RXM-RLM", "beacon")?;
+        w.put(&self.message.to_le_bytes());
+        w.put_sized(self.params, Some(2), "RXM-RLM", "params")?;
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("type", self.r#type)?;
+        j.int("sv_id", self.sv_id)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "beacon", self.beacon)?;
+        j.int("message", self.message)?;
+        ubx::json_hex(j, "params", self.params)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// RTCM input status: UBX RXM-RTCM (class 0x02 id 0x32), output.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RxmRtcm<'a> {
@@ -17831,6 +23408,1039 @@ impl<'a> RxmSfrbx<'a> {
         j.int("version", self.version)?;
         j.int("reserved0", self.reserved0)?;
         self.words.json(j, "words")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// SPARTN input status: UBX RXM-SPARTN (class 0x02 id 0x33), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmSpartn<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Flags.
+    pub flags: u8,
+    /// SPARTN message subtype.
+    pub sub_type: u16,
+    /// Reserved.
+    pub reserved0: u16,
+    /// SPARTN message type.
+    pub msg_type: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmSpartn<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_spartn";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-SPARTN";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x33;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Use (bits 1-2 of `flags`).
+    pub fn msg_used(&self) -> u8 {
+        (self.flags >> 1) & 0x3
+    }
+    /// Sets use (the value in its bits of `flags`; the other bits stay).
+    pub fn set_msg_used(&mut self, value: u8) {
+        self.flags = (self.flags & !(0x3 << 1)) | ((value & 0x3) << 1);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let sub_type = u16::from_le_bytes(r.array("sub_type")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let msg_type = u16::from_le_bytes(r.array("msg_type")?);
+        let trailing = r.rest();
+        Ok(Self { version, flags, sub_type, reserved0, msg_type, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.sub_type.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.msg_type.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("flags", self.flags)?;
+        j.int("msg_used", (self.flags >> 1) & 0x3)?;
+        j.int("sub_type", self.sub_type)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("msg_type", self.msg_type)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// SPARTN dynamic keys: UBX RXM-SPARTNKEY (class 0x02 id 0x36), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmSpartnkeyPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmSpartnkeyPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_spartnkey_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-SPARTNKEY";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x36;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["rxm_spartnkey"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of RxmSpartnkeyKeyInfoEntry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmSpartnkeyKeyInfoEntry {
+    /// Encryption algorithm.
+    pub encrypt_algorithm: u8,
+    /// Key length [byte].
+    pub key_length_bytes: u8,
+    /// GPS week the key is valid from.
+    pub valid_from_wno: u16,
+    /// GPS time of week the key is valid from [s].
+    pub valid_from_tow: u32,
+}
+
+impl<'a> ubx::Entry<'a> for RxmSpartnkeyKeyInfoEntry {
+    const WIDTH: usize = 8;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let encrypt_algorithm = u8::from_le_bytes(r.array("encrypt_algorithm")?);
+        let key_length_bytes = u8::from_le_bytes(r.array("key_length_bytes")?);
+        let valid_from_wno = u16::from_le_bytes(r.array("valid_from_wno")?);
+        let valid_from_tow = u32::from_le_bytes(r.array("valid_from_tow")?);
+        Ok(Self { encrypt_algorithm, key_length_bytes, valid_from_wno, valid_from_tow })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.encrypt_algorithm.to_le_bytes());
+        w.put(&self.key_length_bytes.to_le_bytes());
+        w.put(&self.valid_from_wno.to_le_bytes());
+        w.put(&self.valid_from_tow.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("encrypt_algorithm", self.encrypt_algorithm)?;
+        j.int("key_length_bytes", self.key_length_bytes)?;
+        j.int("valid_from_wno", self.valid_from_wno)?;
+        j.int("valid_from_tow", self.valid_from_tow)?;
+        Ok(())
+    }
+}
+
+/// One entry of RxmSpartnkeyKey.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmSpartnkeyKey {
+    /// Byte.
+    pub key: u8,
+}
+
+impl<'a> ubx::Entry<'a> for RxmSpartnkeyKey {
+    const WIDTH: usize = 1;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let key = u8::from_le_bytes(r.array("key")?);
+        Ok(Self { key })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.key.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("key", self.key)?;
+        Ok(())
+    }
+}
+
+/// SPARTN dynamic keys: UBX RXM-SPARTNKEY (class 0x02 id 0x36), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmSpartnkey<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Number of keys.
+    pub num_keys: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Keys: 0 to 65535 entries.
+    pub key_info: ubx::Group<'a, RxmSpartnkeyKeyInfoEntry>,
+    /// The keys' bytes, one key after the other: 1 to 64 entries.
+    pub keys: ubx::Group<'a, RxmSpartnkeyKey>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmSpartnkey<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_spartnkey";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-SPARTNKEY";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x36;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let num_keys = u8::from_le_bytes(r.array("num_keys")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let key_info = r.group(Some(usize::from(num_keys)), 0, 65535, 0, "key_info")?;
+        let keys = r.group(None, 1, 64, 0, "keys")?;
+        let trailing = r.rest();
+        Ok(Self { version, num_keys, reserved0, key_info, keys, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.num_keys.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        self.key_info.write(w);
+        self.keys.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("num_keys", self.num_keys)?;
+        j.int("reserved0", self.reserved0)?;
+        self.key_info.json(j, "key_info")?;
+        self.keys.json(j, "keys")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Satellite status information: UBX RXM-SVSI (class 0x02 id 0x20), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmSvsiPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmSvsiPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_svsi_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-SVSI";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x20;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["rxm_svsi"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of RxmSvsiSv.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmSvsiSv {
+    /// Satellite identifier.
+    pub svid: u8,
+    /// Satellite flags.
+    pub sv_flag: u8,
+    /// Azimuth [deg].
+    pub azim: i16,
+    /// Elevation [deg].
+    pub elev: i8,
+    /// Ages of the orbit data.
+    pub age: u8,
+}
+
+impl<'a> ubx::Entry<'a> for RxmSvsiSv {
+    const WIDTH: usize = 6;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let svid = u8::from_le_bytes(r.array("svid")?);
+        let sv_flag = u8::from_le_bytes(r.array("sv_flag")?);
+        let azim = i16::from_le_bytes(r.array("azim")?);
+        let elev = i8::from_le_bytes(r.array("elev")?);
+        let age = u8::from_le_bytes(r.array("age")?);
+        Ok(Self { svid, sv_flag, azim, elev, age })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.svid.to_le_bytes());
+        w.put(&self.sv_flag.to_le_bytes());
+        w.put(&self.azim.to_le_bytes());
+        w.put(&self.elev.to_le_bytes());
+        w.put(&self.age.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("svid", self.svid)?;
+        j.int("sv_flag", self.sv_flag)?;
+        j.int("ura", self.sv_flag & 0xf)?;
+        j.flag("healthy", ((self.sv_flag >> 4) & 0x1) != 0)?;
+        j.flag("eph_val", ((self.sv_flag >> 5) & 0x1) != 0)?;
+        j.flag("alm_val", ((self.sv_flag >> 6) & 0x1) != 0)?;
+        j.flag("not_avail", ((self.sv_flag >> 7) & 0x1) != 0)?;
+        j.int("azim", self.azim)?;
+        j.int("elev", self.elev)?;
+        j.int("age", self.age)?;
+        j.int("alm_age", self.age & 0xf)?;
+        j.int("eph_age", (self.age >> 4) & 0xf)?;
+        Ok(())
+    }
+}
+
+impl RxmSvsiSv {
+    /// User range accuracy index (bits 0-3 of `sv_flag`).
+    pub fn ura(&self) -> u8 {
+        self.sv_flag & 0xf
+    }
+    /// Sets user range accuracy index (the value in its bits of `sv_flag`; the other bits stay).
+    pub fn set_ura(&mut self, value: u8) {
+        self.sv_flag = (self.sv_flag & !0xf) | (value & 0xf);
+    }
+    /// Healthy (bit 4 of `sv_flag`).
+    pub fn healthy(&self) -> bool {
+        ((self.sv_flag >> 4) & 0x1) != 0
+    }
+    /// Sets healthy (the value in its bits of `sv_flag`; the other bits stay).
+    pub fn set_healthy(&mut self, value: bool) {
+        self.sv_flag = (self.sv_flag & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// Ephemeris valid (bit 5 of `sv_flag`).
+    pub fn eph_val(&self) -> bool {
+        ((self.sv_flag >> 5) & 0x1) != 0
+    }
+    /// Sets ephemeris valid (the value in its bits of `sv_flag`; the other bits stay).
+    pub fn set_eph_val(&mut self, value: bool) {
+        self.sv_flag = (self.sv_flag & !(0x1 << 5)) | (u8::from(value) << 5);
+    }
+    /// Almanac valid (bit 6 of `sv_flag`).
+    pub fn alm_val(&self) -> bool {
+        ((self.sv_flag >> 6) & 0x1) != 0
+    }
+    /// Sets almanac valid (the value in its bits of `sv_flag`; the other bits stay).
+    pub fn set_alm_val(&mut self, value: bool) {
+        self.sv_flag = (self.sv_flag & !(0x1 << 6)) | (u8::from(value) << 6);
+    }
+    /// Not available (bit 7 of `sv_flag`).
+    pub fn not_avail(&self) -> bool {
+        ((self.sv_flag >> 7) & 0x1) != 0
+    }
+    /// Sets not available (the value in its bits of `sv_flag`; the other bits stay).
+    pub fn set_not_avail(&mut self, value: bool) {
+        self.sv_flag = (self.sv_flag & !(0x1 << 7)) | (u8::from(value) << 7);
+    }
+    /// Age of the almanac in days plus 4 (bits 0-3 of `age`).
+    pub fn alm_age(&self) -> u8 {
+        self.age & 0xf
+    }
+    /// Sets age of the almanac in days plus 4 (the value in its bits of `age`; the other bits stay).
+    pub fn set_alm_age(&mut self, value: u8) {
+        self.age = (self.age & !0xf) | (value & 0xf);
+    }
+    /// Age of the ephemeris in hours plus 4 (bits 4-7 of `age`).
+    pub fn eph_age(&self) -> u8 {
+        (self.age >> 4) & 0xf
+    }
+    /// Sets age of the ephemeris in hours plus 4 (the value in its bits of `age`; the other bits stay).
+    pub fn set_eph_age(&mut self, value: u8) {
+        self.age = (self.age & !(0xf << 4)) | ((value & 0xf) << 4);
+    }
+}
+
+/// Satellite status information: UBX RXM-SVSI (class 0x02 id 0x20), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmSvsi<'a> {
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// GPS week number.
+    pub week: i16,
+    /// Number of visible satellites.
+    pub num_vis: u8,
+    /// Number of satellites reported.
+    pub num_sv: u8,
+    /// Satellites: 0 to 65535 entries.
+    pub svs: ubx::Group<'a, RxmSvsiSv>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmSvsi<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_svsi";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-SVSI";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x20;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let week = i16::from_le_bytes(r.array("week")?);
+        let num_vis = u8::from_le_bytes(r.array("num_vis")?);
+        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
+        let svs = r.group(Some(usize::from(num_sv)), 0, 65535, 0, "svs")?;
+        let trailing = r.rest();
+        Ok(Self { itow, week, num_vis, num_sv, svs, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.week.to_le_bytes());
+        w.put(&self.num_vis.to_le_bytes());
+        w.put(&self.num_sv.to_le_bytes());
+        self.svs.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("week", self.week)?;
+        j.int("num_vis", self.num_vis)?;
+        j.int("num_sv", self.num_sv)?;
+        self.svs.json(j, "svs")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Signal security information: UBX SEC-SIG (class 0x27 id 0x09), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SecSigPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> SecSigPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "sec_sig_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "SEC-SIG";
+    /// The message class.
+    pub const CLASS: u8 = 0x27;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x09;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["sec_sig", "sec_sig_v1"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of SecSigCentFreq.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SecSigCentFreq {
+    /// Jamming state of a centre frequency.
+    pub jam_state_cent_freq: u32,
+}
+
+impl<'a> ubx::Entry<'a> for SecSigCentFreq {
+    const WIDTH: usize = 4;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let jam_state_cent_freq = u32::from_le_bytes(r.array("jam_state_cent_freq")?);
+        Ok(Self { jam_state_cent_freq })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.jam_state_cent_freq.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("jam_state_cent_freq", self.jam_state_cent_freq)?;
+        j.int("cent_freq", self.jam_state_cent_freq & 0xffffff)?;
+        j.flag("jammed", ((self.jam_state_cent_freq >> 24) & 0x1) != 0)?;
+        Ok(())
+    }
+}
+
+impl SecSigCentFreq {
+    /// Centre frequency [kHz] (bits 0-23 of `jam_state_cent_freq`).
+    pub fn cent_freq(&self) -> u32 {
+        self.jam_state_cent_freq & 0xffffff
+    }
+    /// Sets centre frequency (the value in its bits of `jam_state_cent_freq`; the other bits stay).
+    pub fn set_cent_freq(&mut self, value: u32) {
+        self.jam_state_cent_freq = (self.jam_state_cent_freq & !0xffffff) | (value & 0xffffff);
+    }
+    /// Jammed (bit 24 of `jam_state_cent_freq`).
+    pub fn jammed(&self) -> bool {
+        ((self.jam_state_cent_freq >> 24) & 0x1) != 0
+    }
+    /// Sets jammed (the value in its bits of `jam_state_cent_freq`; the other bits stay).
+    pub fn set_jammed(&mut self, value: bool) {
+        self.jam_state_cent_freq = (self.jam_state_cent_freq & !(0x1 << 24)) | (u32::from(value) << 24);
+    }
+}
+
+/// Signal security information: UBX SEC-SIG (class 0x27 id 0x09), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SecSig<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Signal security flags.
+    pub sig_sec_flags: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Number of centre frequencies.
+    pub jam_num_cent_freqs: u8,
+    /// Centre frequencies: 0 to 65535 entries.
+    pub cent_freqs: ubx::Group<'a, SecSigCentFreq>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> SecSig<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "sec_sig";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "SEC-SIG";
+    /// The message class.
+    pub const CLASS: u8 = 0x27;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x09;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = Some(2);
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Jamming detection enabled (bit 0 of `sig_sec_flags`).
+    pub fn jam_det_enabled(&self) -> bool {
+        (self.sig_sec_flags & 0x1) != 0
+    }
+    /// Sets jamming detection enabled (the value in its bits of `sig_sec_flags`; the other bits stay).
+    pub fn set_jam_det_enabled(&mut self, value: bool) {
+        self.sig_sec_flags = (self.sig_sec_flags & !0x1) | u8::from(value);
+    }
+    /// Jamming state (bits 1-2 of `sig_sec_flags`).
+    pub fn jamming_state(&self) -> u8 {
+        (self.sig_sec_flags >> 1) & 0x3
+    }
+    /// Sets jamming state (the value in its bits of `sig_sec_flags`; the other bits stay).
+    pub fn set_jamming_state(&mut self, value: u8) {
+        self.sig_sec_flags = (self.sig_sec_flags & !(0x3 << 1)) | ((value & 0x3) << 1);
+    }
+    /// Spoofing detection enabled (bit 3 of `sig_sec_flags`).
+    pub fn spf_det_enabled(&self) -> bool {
+        ((self.sig_sec_flags >> 3) & 0x1) != 0
+    }
+    /// Sets spoofing detection enabled (the value in its bits of `sig_sec_flags`; the other bits stay).
+    pub fn set_spf_det_enabled(&mut self, value: bool) {
+        self.sig_sec_flags = (self.sig_sec_flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Spoofing state (bits 4-6 of `sig_sec_flags`).
+    pub fn spoofing_state(&self) -> u8 {
+        (self.sig_sec_flags >> 4) & 0x7
+    }
+    /// Sets spoofing state (the value in its bits of `sig_sec_flags`; the other bits stay).
+    pub fn set_spoofing_state(&mut self, value: u8) {
+        self.sig_sec_flags = (self.sig_sec_flags & !(0x7 << 4)) | ((value & 0x7) << 4);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let sig_sec_flags = u8::from_le_bytes(r.array("sig_sec_flags")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let jam_num_cent_freqs = u8::from_le_bytes(r.array("jam_num_cent_freqs")?);
+        let cent_freqs = r.group(Some(usize::from(jam_num_cent_freqs)), 0, 65535, 0, "cent_freqs")?;
+        let trailing = r.rest();
+        Ok(Self { version, sig_sec_flags, reserved0, jam_num_cent_freqs, cent_freqs, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.sig_sec_flags.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.jam_num_cent_freqs.to_le_bytes());
+        self.cent_freqs.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("sig_sec_flags", self.sig_sec_flags)?;
+        j.flag("jam_det_enabled", (self.sig_sec_flags & 0x1) != 0)?;
+        j.int("jamming_state", (self.sig_sec_flags >> 1) & 0x3)?;
+        j.flag("spf_det_enabled", ((self.sig_sec_flags >> 3) & 0x1) != 0)?;
+        j.int("spoofing_state", (self.sig_sec_flags >> 4) & 0x7)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("jam_num_cent_freqs", self.jam_num_cent_freqs)?;
+        self.cent_freqs.json(j, "cent_freqs")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Signal security information: UBX SEC-SIG (class 0x27 id 0x09), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SecSigV1<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Jamming flags.
+    pub jam_flags: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Spoofing flags.
+    pub spf_flags: u8,
+    /// Reserved.
+    pub reserved2: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> SecSigV1<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "sec_sig_v1";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "SEC-SIG";
+    /// The message class.
+    pub const CLASS: u8 = 0x27;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x09;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = Some(1);
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Jamming detection enabled (bit 0 of `jam_flags`).
+    pub fn jam_det_enabled(&self) -> bool {
+        (self.jam_flags & 0x1) != 0
+    }
+    /// Sets jamming detection enabled (the value in its bits of `jam_flags`; the other bits stay).
+    pub fn set_jam_det_enabled(&mut self, value: bool) {
+        self.jam_flags = (self.jam_flags & !0x1) | u8::from(value);
+    }
+    /// Jamming state (bits 1-2 of `jam_flags`).
+    pub fn jamming_state(&self) -> u8 {
+        (self.jam_flags >> 1) & 0x3
+    }
+    /// Sets jamming state (the value in its bits of `jam_flags`; the other bits stay).
+    pub fn set_jamming_state(&mut self, value: u8) {
+        self.jam_flags = (self.jam_flags & !(0x3 << 1)) | ((value & 0x3) << 1);
+    }
+    /// Spoofing detection enabled (bit 0 of `spf_flags`).
+    pub fn spf_det_enabled(&self) -> bool {
+        (self.spf_flags & 0x1) != 0
+    }
+    /// Sets spoofing detection enabled (the value in its bits of `spf_flags`; the other bits stay).
+    pub fn set_spf_det_enabled(&mut self, value: bool) {
+        self.spf_flags = (self.spf_flags & !0x1) | u8::from(value);
+    }
+    /// Spoofing state (bits 1-3 of `spf_flags`).
+    pub fn spoofing_state(&self) -> u8 {
+        (self.spf_flags >> 1) & 0x7
+    }
+    /// Sets spoofing state (the value in its bits of `spf_flags`; the other bits stay).
+    pub fn set_spoofing_state(&mut self, value: u8) {
+        self.spf_flags = (self.spf_flags & !(0x7 << 1)) | ((value & 0x7) << 1);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let jam_flags = u8::from_le_bytes(r.array("jam_flags")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let spf_flags = u8::from_le_bytes(r.array("spf_flags")?);
+        let reserved2 = {
+            let b: [u8; 3] = r.array("reserved2")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let trailing = r.rest();
+        Ok(Self { version, reserved0, jam_flags, reserved1, spf_flags, reserved2, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(&self.jam_flags.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(&self.spf_flags.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes()[..3]);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("jam_flags", self.jam_flags)?;
+        j.flag("jam_det_enabled", (self.jam_flags & 0x1) != 0)?;
+        j.int("jamming_state", (self.jam_flags >> 1) & 0x3)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("spf_flags", self.spf_flags)?;
+        j.flag("spf_det_enabled", (self.spf_flags & 0x1) != 0)?;
+        j.int("spoofing_state", (self.spf_flags >> 1) & 0x7)?;
+        j.int("reserved2", self.reserved2)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Signal security log: UBX SEC-SIGLOG (class 0x27 id 0x10), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SecSiglogPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> SecSiglogPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "sec_siglog_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "SEC-SIGLOG";
+    /// The message class.
+    pub const CLASS: u8 = 0x27;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x10;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["sec_siglog"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of SecSiglogEvent.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SecSiglogEvent {
+    /// Time since the event [s].
+    pub time_elapsed: u32,
+    /// How the event was detected.
+    pub detection_type: u8,
+    /// Kind of event.
+    pub event_type: u8,
+    /// Reserved.
+    pub reserved1: u16,
+}
+
+impl<'a> ubx::Entry<'a> for SecSiglogEvent {
+    const WIDTH: usize = 8;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let time_elapsed = u32::from_le_bytes(r.array("time_elapsed")?);
+        let detection_type = u8::from_le_bytes(r.array("detection_type")?);
+        let event_type = u8::from_le_bytes(r.array("event_type")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        Ok(Self { time_elapsed, detection_type, event_type, reserved1 })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.time_elapsed.to_le_bytes());
+        w.put(&self.detection_type.to_le_bytes());
+        w.put(&self.event_type.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("time_elapsed", self.time_elapsed)?;
+        j.int("detection_type", self.detection_type)?;
+        j.int("event_type", self.event_type)?;
+        j.int("reserved1", self.reserved1)?;
+        Ok(())
+    }
+}
+
+/// Signal security log: UBX SEC-SIGLOG (class 0x27 id 0x10), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SecSiglog<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Number of events.
+    pub num_events: u8,
+    /// Reserved.
+    pub reserved0: u64,
+    /// Events: 0 to 65535 entries.
+    pub events: ubx::Group<'a, SecSiglogEvent>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> SecSiglog<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "sec_siglog";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "SEC-SIGLOG";
+    /// The message class.
+    pub const CLASS: u8 = 0x27;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x10;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let num_events = u8::from_le_bytes(r.array("num_events")?);
+        let reserved0 = {
+            let b: [u8; 6] = r.array("reserved0")?;
+            let mut le = [0u8; 8];
+            le[..6].copy_from_slice(&b);
+            u64::from_le_bytes(le)
+        };
+        let events = r.group(Some(usize::from(num_events)), 0, 65535, 0, "events")?;
+        let trailing = r.rest();
+        Ok(Self { version, num_events, reserved0, events, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.num_events.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..6]);
+        self.events.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("num_events", self.num_events)?;
+        j.int("reserved0", self.reserved0)?;
+        self.events.json(j, "events")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Signature of a previous message: UBX SEC-SIGN (class 0x27 id 0x01), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SecSign<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Class of the signed message.
+    pub class_id: u8,
+    /// Id of the signed message.
+    pub message_id: u8,
+    /// Checksum of the signed message.
+    pub checksum: u16,
+    /// SHA-256 hash.
+    pub hash: &'a [u8],
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> SecSign<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "sec_sign";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "SEC-SIGN";
+    /// The message class.
+    pub const CLASS: u8 = 0x27;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x01;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(40);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let class_id = u8::from_le_bytes(r.array("class_id")?);
+        let message_id = u8::from_le_bytes(r.array("message_id")?);
+        let checksum = u16::from_le_bytes(r.array("checksum")?);
+        let hash = r.bytes(32, "hash")?;
+        let trailing = r.rest();
+        Ok(Self { version, reserved1, class_id, message_id, checksum, hash, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(&self.class_id.to_le_bytes());
+        w.put(&self.message_id.to_le_bytes());
+        w.put(&self.checksum.to_le_bytes());
+        w.put_sized(self.hash, Some(32), "SEC-SIGN", "hash")?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("class_id", self.class_id)?;
+        j.int("message_id", self.message_id)?;
+        j.int("checksum", self.checksum)?;
+        ubx::json_hex(j, "hash", self.hash)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -19844,6 +26454,186 @@ impl<'a> TimVrfy<'a> {
     }
 }
 
+/// Backup in flash (save on shutdown): UBX UPD-SOS (class 0x09 id 0x14), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UpdSosPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> UpdSosPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "upd_sos_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "UPD-SOS";
+    /// The message class.
+    pub const CLASS: u8 = 0x09;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x14;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["upd_sos"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Backup in flash (save on shutdown): UBX UPD-SOS (class 0x09 id 0x14), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UpdSosCommand<'a> {
+    /// Command.
+    pub cmd: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> UpdSosCommand<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "upd_sos_command";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "UPD-SOS";
+    /// The message class.
+    pub const CLASS: u8 = 0x09;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x14;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(4);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["upd_sos"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let cmd = u8::from_le_bytes(r.array("cmd")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let trailing = r.rest();
+        Ok(Self { cmd, reserved0, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.cmd.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("cmd", self.cmd)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Backup in flash (save on shutdown): UBX UPD-SOS (class 0x09 id 0x14), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UpdSos<'a> {
+    /// Command.
+    pub cmd: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Response.
+    pub response: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> UpdSos<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "upd_sos";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "UPD-SOS";
+    /// The message class.
+    pub const CLASS: u8 = 0x09;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x14;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(8);
+    /// The value of its `version` field that tells it from another layout.
+    pub const VERSION: Option<u8> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let cmd = u8::from_le_bytes(r.array("cmd")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let response = u8::from_le_bytes(r.array("response")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let trailing = r.rest();
+        Ok(Self { cmd, reserved0, response, reserved1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.cmd.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(&self.response.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("cmd", self.cmd)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("response", self.response)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// A frame of a class and id the spec does not describe, kept with its payload.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Unknown<'a> {
@@ -19866,6 +26656,10 @@ pub enum Message<'a> {
     CfgAntPoll(CfgAntPoll<'a>),
     /// CFG-ANT (input, output): Antenna control settings.
     CfgAnt(CfgAnt<'a>),
+    /// CFG-BATCH (poll): Data batching configuration.
+    CfgBatchPoll(CfgBatchPoll<'a>),
+    /// CFG-BATCH (input, output): Data batching configuration.
+    CfgBatch(CfgBatch<'a>),
     /// CFG-CFG (input): Clear, save and load configurations.
     CfgCfgAllDevices(CfgCfgAllDevices<'a>),
     /// CFG-CFG (input): Clear, save and load configurations.
@@ -19874,6 +26668,10 @@ pub enum Message<'a> {
     CfgDgnssPoll(CfgDgnssPoll<'a>),
     /// CFG-DGNSS (input, output): DGNSS configuration.
     CfgDgnss(CfgDgnss<'a>),
+    /// CFG-GEOFENCE (poll): Geofencing configuration.
+    CfgGeofencePoll(CfgGeofencePoll<'a>),
+    /// CFG-GEOFENCE (input, output): Geofencing configuration.
+    CfgGeofence(CfgGeofence<'a>),
     /// CFG-GNSS (poll): GNSS system configuration.
     CfgGnssPoll(CfgGnssPoll<'a>),
     /// CFG-GNSS (input, output): GNSS system configuration.
@@ -19886,6 +26684,14 @@ pub enum Message<'a> {
     CfgInfPoll(CfgInfPoll<'a>),
     /// CFG-INF (input, output): Information message configuration.
     CfgInf(CfgInf<'a>),
+    /// CFG-ITFM (poll): Jamming and interference monitor configuration.
+    CfgItfmPoll(CfgItfmPoll<'a>),
+    /// CFG-ITFM (input, output): Jamming and interference monitor configuration.
+    CfgItfm(CfgItfm<'a>),
+    /// CFG-LOGFILTER (poll): Data logger configuration.
+    CfgLogfilterPoll(CfgLogfilterPoll<'a>),
+    /// CFG-LOGFILTER (input, output): Data logger configuration.
+    CfgLogfilter(CfgLogfilter<'a>),
     /// CFG-MSG (poll): Message rate.
     CfgMsgPoll(CfgMsgPoll<'a>),
     /// CFG-MSG (input): Message rate.
@@ -19896,12 +26702,40 @@ pub enum Message<'a> {
     CfgNav5Poll(CfgNav5Poll<'a>),
     /// CFG-NAV5 (input, output): Navigation engine settings.
     CfgNav5(CfgNav5<'a>),
+    /// CFG-NAVX5 (poll): Navigation engine expert settings.
+    CfgNavx5Poll(CfgNavx5Poll<'a>),
+    /// CFG-NAVX5 (input, output): Navigation engine expert settings.
+    CfgNavx5(CfgNavx5<'a>),
+    /// CFG-NMEA (poll): NMEA protocol configuration.
+    CfgNmeaPoll(CfgNmeaPoll<'a>),
+    /// CFG-NMEA (input, output): NMEA protocol configuration.
+    CfgNmea(CfgNmea<'a>),
+    /// CFG-NMEA (input, output): NMEA protocol configuration.
+    CfgNmeaV0(CfgNmeaV0<'a>),
+    /// CFG-NMEA (input, output): NMEA protocol configuration.
+    CfgNmeaDeprecated(CfgNmeaDeprecated<'a>),
+    /// CFG-ODO (poll): Odometer and low-speed course filters.
+    CfgOdoPoll(CfgOdoPoll<'a>),
+    /// CFG-ODO (input, output): Odometer and low-speed course filters.
+    CfgOdo(CfgOdo<'a>),
+    /// CFG-PM2 (poll): Extended power management configuration.
+    CfgPm2Poll(CfgPm2Poll<'a>),
+    /// CFG-PM2 (input, output): Extended power management configuration.
+    CfgPm2(CfgPm2<'a>),
+    /// CFG-PM2 (input, output): Extended power management configuration.
+    CfgPm2V1(CfgPm2V1<'a>),
+    /// CFG-PMS (poll): Power mode setup.
+    CfgPmsPoll(CfgPmsPoll<'a>),
+    /// CFG-PMS (input, output): Power mode setup.
+    CfgPms(CfgPms<'a>),
     /// CFG-PRT (poll): Port configuration.
     CfgPrtPoll(CfgPrtPoll<'a>),
     /// CFG-PRT (poll): Port configuration.
     CfgPrtPollPort(CfgPrtPollPort<'a>),
     /// CFG-PRT (input, output): Port configuration.
     CfgPrt(CfgPrt<'a>),
+    /// CFG-PWR (input): Put the receiver in a power state.
+    CfgPwr(CfgPwr<'a>),
     /// CFG-RATE (poll): Navigation and measurement rate.
     CfgRatePoll(CfgRatePoll<'a>),
     /// CFG-RATE (input, output): Navigation and measurement rate.
@@ -19948,6 +26782,8 @@ pub enum Message<'a> {
     EsfIns(EsfIns<'a>),
     /// ESF-MEAS (input, output): External sensor fusion measurements.
     EsfMeas(EsfMeas<'a>),
+    /// ESF-RAW (output): Raw sensor measurements.
+    EsfRaw(EsfRaw<'a>),
     /// ESF-STATUS (poll): External sensor fusion status.
     EsfStatusPoll(EsfStatusPoll<'a>),
     /// ESF-STATUS (output): External sensor fusion status.
@@ -20000,6 +26836,32 @@ pub enum Message<'a> {
     LogRetrievestring(LogRetrievestring<'a>),
     /// LOG-STRING (input): Log a text.
     LogString(LogString<'a>),
+    /// MGA-ACK (output): Assistance data acknowledgement.
+    MgaAck(MgaAck<'a>),
+    /// MGA-ANO (input): AssistNow Offline data.
+    MgaAno(MgaAno<'a>),
+    /// MGA-DBD (poll): Navigation database dump.
+    MgaDbdPoll(MgaDbdPoll<'a>),
+    /// MGA-DBD (input, output): Navigation database dump.
+    MgaDbd(MgaDbd<'a>),
+    /// MGA-GAL (input): Galileo assistance data.
+    MgaGalEph(MgaGalEph<'a>),
+    /// MGA-GAL (input): Galileo assistance data.
+    MgaGalAlm(MgaGalAlm<'a>),
+    /// MGA-GAL (input): Galileo assistance data.
+    MgaGalTimeoffset(MgaGalTimeoffset<'a>),
+    /// MGA-GAL (input): Galileo assistance data.
+    MgaGalUtc(MgaGalUtc<'a>),
+    /// MGA-GPS (input): GPS assistance data.
+    MgaGpsEph(MgaGpsEph<'a>),
+    /// MGA-GPS (input): GPS assistance data.
+    MgaGpsAlm(MgaGpsAlm<'a>),
+    /// MGA-GPS (input): GPS assistance data.
+    MgaGpsHealth(MgaGpsHealth<'a>),
+    /// MGA-GPS (input): GPS assistance data.
+    MgaGpsUtc(MgaGpsUtc<'a>),
+    /// MGA-GPS (input): GPS assistance data.
+    MgaGpsIono(MgaGpsIono<'a>),
     /// MON-COMMS (poll): Communication port information.
     MonCommsPoll(MonCommsPoll<'a>),
     /// MON-COMMS (output): Communication port information.
@@ -20200,14 +27062,50 @@ pub enum Message<'a> {
     NavVelnedPoll(NavVelnedPoll<'a>),
     /// NAV-VELNED (output): Velocity solution in NED.
     NavVelned(NavVelned<'a>),
+    /// RXM-COR (output): Differential correction input status.
+    RxmCor(RxmCor<'a>),
+    /// RXM-MEASX (poll): Satellite measurements for RRLP.
+    RxmMeasxPoll(RxmMeasxPoll<'a>),
+    /// RXM-MEASX (output): Satellite measurements for RRLP.
+    RxmMeasx(RxmMeasx<'a>),
+    /// RXM-PMREQ (input): Power management request.
+    RxmPmreq(RxmPmreq<'a>),
+    /// RXM-PMREQ (input): Power management request.
+    RxmPmreqShort(RxmPmreqShort<'a>),
     /// RXM-RAWX (poll): Multi-GNSS raw measurements.
     RxmRawxPoll(RxmRawxPoll<'a>),
     /// RXM-RAWX (output): Multi-GNSS raw measurements.
     RxmRawx(RxmRawx<'a>),
+    /// RXM-RLM (output): Galileo SAR return link message.
+    RxmRlm(RxmRlm<'a>),
+    /// RXM-RLM (output): Galileo SAR return link message.
+    RxmRlmShort(RxmRlmShort<'a>),
     /// RXM-RTCM (output): RTCM input status.
     RxmRtcm(RxmRtcm<'a>),
     /// RXM-SFRBX (output): Broadcast navigation data subframe.
     RxmSfrbx(RxmSfrbx<'a>),
+    /// RXM-SPARTN (output): SPARTN input status.
+    RxmSpartn(RxmSpartn<'a>),
+    /// RXM-SPARTNKEY (poll): SPARTN dynamic keys.
+    RxmSpartnkeyPoll(RxmSpartnkeyPoll<'a>),
+    /// RXM-SPARTNKEY (input, output): SPARTN dynamic keys.
+    RxmSpartnkey(RxmSpartnkey<'a>),
+    /// RXM-SVSI (poll): Satellite status information.
+    RxmSvsiPoll(RxmSvsiPoll<'a>),
+    /// RXM-SVSI (output): Satellite status information.
+    RxmSvsi(RxmSvsi<'a>),
+    /// SEC-SIG (poll): Signal security information.
+    SecSigPoll(SecSigPoll<'a>),
+    /// SEC-SIG (output): Signal security information.
+    SecSig(SecSig<'a>),
+    /// SEC-SIG (output): Signal security information.
+    SecSigV1(SecSigV1<'a>),
+    /// SEC-SIGLOG (poll): Signal security log.
+    SecSiglogPoll(SecSiglogPoll<'a>),
+    /// SEC-SIGLOG (output): Signal security log.
+    SecSiglog(SecSiglog<'a>),
+    /// SEC-SIGN (output): Signature of a previous message.
+    SecSign(SecSign<'a>),
     /// SEC-UNIQID (poll): Unique chip identifier.
     SecUniqidPoll(SecUniqidPoll<'a>),
     /// SEC-UNIQID (output): Unique chip identifier.
@@ -20254,6 +27152,12 @@ pub enum Message<'a> {
     TimVrfyPoll(TimVrfyPoll<'a>),
     /// TIM-VRFY (output): Sourced time verification.
     TimVrfy(TimVrfy<'a>),
+    /// UPD-SOS (poll): Backup in flash (save on shutdown).
+    UpdSosPoll(UpdSosPoll<'a>),
+    /// UPD-SOS (input): Backup in flash (save on shutdown).
+    UpdSosCommand(UpdSosCommand<'a>),
+    /// UPD-SOS (output): Backup in flash (save on shutdown).
+    UpdSos(UpdSos<'a>),
     /// A class and id the spec does not describe.
     Unknown(Unknown<'a>),
 }
@@ -20273,6 +27177,13 @@ impl<'a> Message<'a> {
                     Message::CfgAnt(CfgAnt::read(payload)?)
                 }
             }
+            (0x06, 0x93) => {
+                if payload.is_empty() {
+                    Message::CfgBatchPoll(CfgBatchPoll::read(payload)?)
+                } else {
+                    Message::CfgBatch(CfgBatch::read(payload)?)
+                }
+            }
             (0x06, 0x09) => {
                 if payload.len() == 12 {
                     Message::CfgCfgAllDevices(CfgCfgAllDevices::read(payload)?)
@@ -20285,6 +27196,13 @@ impl<'a> Message<'a> {
                     Message::CfgDgnssPoll(CfgDgnssPoll::read(payload)?)
                 } else {
                     Message::CfgDgnss(CfgDgnss::read(payload)?)
+                }
+            }
+            (0x06, 0x69) => {
+                if payload.is_empty() {
+                    Message::CfgGeofencePoll(CfgGeofencePoll::read(payload)?)
+                } else {
+                    Message::CfgGeofence(CfgGeofence::read(payload)?)
                 }
             }
             (0x06, 0x3e) => {
@@ -20308,6 +27226,20 @@ impl<'a> Message<'a> {
                     Message::CfgInf(CfgInf::read(payload)?)
                 }
             }
+            (0x06, 0x39) => {
+                if payload.is_empty() {
+                    Message::CfgItfmPoll(CfgItfmPoll::read(payload)?)
+                } else {
+                    Message::CfgItfm(CfgItfm::read(payload)?)
+                }
+            }
+            (0x06, 0x47) => {
+                if payload.is_empty() {
+                    Message::CfgLogfilterPoll(CfgLogfilterPoll::read(payload)?)
+                } else {
+                    Message::CfgLogfilter(CfgLogfilter::read(payload)?)
+                }
+            }
             (0x06, 0x01) => {
                 if payload.len() == 2 {
                     Message::CfgMsgPoll(CfgMsgPoll::read(payload)?)
@@ -20324,6 +27256,51 @@ impl<'a> Message<'a> {
                     Message::CfgNav5(CfgNav5::read(payload)?)
                 }
             }
+            (0x06, 0x23) => {
+                if payload.is_empty() {
+                    Message::CfgNavx5Poll(CfgNavx5Poll::read(payload)?)
+                } else {
+                    Message::CfgNavx5(CfgNavx5::read(payload)?)
+                }
+            }
+            (0x06, 0x17) => {
+                if payload.is_empty() {
+                    Message::CfgNmeaPoll(CfgNmeaPoll::read(payload)?)
+                } else if payload.len() == 20 && payload.get(11) == Some(&1) {
+                    Message::CfgNmea(CfgNmea::read(payload)?)
+                } else if payload.len() == 12 && payload.get(11) == Some(&0) {
+                    Message::CfgNmeaV0(CfgNmeaV0::read(payload)?)
+                } else if payload.len() == 4 {
+                    Message::CfgNmeaDeprecated(CfgNmeaDeprecated::read(payload)?)
+                } else {
+                    Message::CfgNmea(CfgNmea::read(payload)?)
+                }
+            }
+            (0x06, 0x1e) => {
+                if payload.is_empty() {
+                    Message::CfgOdoPoll(CfgOdoPoll::read(payload)?)
+                } else {
+                    Message::CfgOdo(CfgOdo::read(payload)?)
+                }
+            }
+            (0x06, 0x3b) => {
+                if payload.is_empty() {
+                    Message::CfgPm2Poll(CfgPm2Poll::read(payload)?)
+                } else if payload.len() == 48 && payload.first() == Some(&2) {
+                    Message::CfgPm2(CfgPm2::read(payload)?)
+                } else if payload.len() == 44 && payload.first() == Some(&1) {
+                    Message::CfgPm2V1(CfgPm2V1::read(payload)?)
+                } else {
+                    Message::CfgPm2(CfgPm2::read(payload)?)
+                }
+            }
+            (0x06, 0x86) => {
+                if payload.is_empty() {
+                    Message::CfgPmsPoll(CfgPmsPoll::read(payload)?)
+                } else {
+                    Message::CfgPms(CfgPms::read(payload)?)
+                }
+            }
             (0x06, 0x00) => {
                 if payload.is_empty() {
                     Message::CfgPrtPoll(CfgPrtPoll::read(payload)?)
@@ -20333,6 +27310,7 @@ impl<'a> Message<'a> {
                     Message::CfgPrt(CfgPrt::read(payload)?)
                 }
             }
+            (0x06, 0x57) => Message::CfgPwr(CfgPwr::read(payload)?),
             (0x06, 0x08) => {
                 if payload.is_empty() {
                     Message::CfgRatePoll(CfgRatePoll::read(payload)?)
@@ -20407,6 +27385,7 @@ impl<'a> Message<'a> {
                 }
             }
             (0x10, 0x02) => Message::EsfMeas(EsfMeas::read(payload)?),
+            (0x10, 0x03) => Message::EsfRaw(EsfRaw::read(payload)?),
             (0x10, 0x10) => {
                 if payload.is_empty() {
                     Message::EsfStatusPoll(EsfStatusPoll::read(payload)?)
@@ -20463,6 +27442,39 @@ impl<'a> Message<'a> {
             (0x21, 0x0f) => Message::LogRetrieveposextra(LogRetrieveposextra::read(payload)?),
             (0x21, 0x0d) => Message::LogRetrievestring(LogRetrievestring::read(payload)?),
             (0x21, 0x04) => Message::LogString(LogString::read(payload)?),
+            (0x13, 0x60) => Message::MgaAck(MgaAck::read(payload)?),
+            (0x13, 0x20) => Message::MgaAno(MgaAno::read(payload)?),
+            (0x13, 0x80) => {
+                if payload.is_empty() {
+                    Message::MgaDbdPoll(MgaDbdPoll::read(payload)?)
+                } else {
+                    Message::MgaDbd(MgaDbd::read(payload)?)
+                }
+            }
+            (0x13, 0x02) => {
+                if payload.len() == 76 {
+                    Message::MgaGalEph(MgaGalEph::read(payload)?)
+                } else if payload.len() == 32 {
+                    Message::MgaGalAlm(MgaGalAlm::read(payload)?)
+                } else if payload.len() == 12 {
+                    Message::MgaGalTimeoffset(MgaGalTimeoffset::read(payload)?)
+                } else {
+                    Message::MgaGalUtc(MgaGalUtc::read(payload)?)
+                }
+            }
+            (0x13, 0x00) => {
+                if payload.len() == 68 {
+                    Message::MgaGpsEph(MgaGpsEph::read(payload)?)
+                } else if payload.len() == 36 {
+                    Message::MgaGpsAlm(MgaGpsAlm::read(payload)?)
+                } else if payload.len() == 40 {
+                    Message::MgaGpsHealth(MgaGpsHealth::read(payload)?)
+                } else if payload.len() == 20 {
+                    Message::MgaGpsUtc(MgaGpsUtc::read(payload)?)
+                } else {
+                    Message::MgaGpsIono(MgaGpsIono::read(payload)?)
+                }
+            }
             (0x0a, 0x36) => {
                 if payload.is_empty() {
                     Message::MonCommsPoll(MonCommsPoll::read(payload)?)
@@ -20806,6 +27818,21 @@ impl<'a> Message<'a> {
                     Message::NavVelned(NavVelned::read(payload)?)
                 }
             }
+            (0x02, 0x34) => Message::RxmCor(RxmCor::read(payload)?),
+            (0x02, 0x14) => {
+                if payload.is_empty() {
+                    Message::RxmMeasxPoll(RxmMeasxPoll::read(payload)?)
+                } else {
+                    Message::RxmMeasx(RxmMeasx::read(payload)?)
+                }
+            }
+            (0x02, 0x41) => {
+                if payload.len() == 16 {
+                    Message::RxmPmreq(RxmPmreq::read(payload)?)
+                } else {
+                    Message::RxmPmreqShort(RxmPmreqShort::read(payload)?)
+                }
+            }
             (0x02, 0x15) => {
                 if payload.is_empty() {
                     Message::RxmRawxPoll(RxmRawxPoll::read(payload)?)
@@ -20813,8 +27840,51 @@ impl<'a> Message<'a> {
                     Message::RxmRawx(RxmRawx::read(payload)?)
                 }
             }
+            (0x02, 0x59) => {
+                if payload.len() == 28 {
+                    Message::RxmRlm(RxmRlm::read(payload)?)
+                } else if payload.len() == 16 {
+                    Message::RxmRlmShort(RxmRlmShort::read(payload)?)
+                } else {
+                    Message::RxmRlm(RxmRlm::read(payload)?)
+                }
+            }
             (0x02, 0x32) => Message::RxmRtcm(RxmRtcm::read(payload)?),
             (0x02, 0x13) => Message::RxmSfrbx(RxmSfrbx::read(payload)?),
+            (0x02, 0x33) => Message::RxmSpartn(RxmSpartn::read(payload)?),
+            (0x02, 0x36) => {
+                if payload.is_empty() {
+                    Message::RxmSpartnkeyPoll(RxmSpartnkeyPoll::read(payload)?)
+                } else {
+                    Message::RxmSpartnkey(RxmSpartnkey::read(payload)?)
+                }
+            }
+            (0x02, 0x20) => {
+                if payload.is_empty() {
+                    Message::RxmSvsiPoll(RxmSvsiPoll::read(payload)?)
+                } else {
+                    Message::RxmSvsi(RxmSvsi::read(payload)?)
+                }
+            }
+            (0x27, 0x09) => {
+                if payload.is_empty() {
+                    Message::SecSigPoll(SecSigPoll::read(payload)?)
+                } else if payload.first() == Some(&2) {
+                    Message::SecSig(SecSig::read(payload)?)
+                } else if payload.len() == 12 && payload.first() == Some(&1) {
+                    Message::SecSigV1(SecSigV1::read(payload)?)
+                } else {
+                    Message::SecSig(SecSig::read(payload)?)
+                }
+            }
+            (0x27, 0x10) => {
+                if payload.is_empty() {
+                    Message::SecSiglogPoll(SecSiglogPoll::read(payload)?)
+                } else {
+                    Message::SecSiglog(SecSiglog::read(payload)?)
+                }
+            }
+            (0x27, 0x01) => Message::SecSign(SecSign::read(payload)?),
             (0x27, 0x03) => {
                 if payload.is_empty() {
                     Message::SecUniqidPoll(SecUniqidPoll::read(payload)?)
@@ -20892,6 +27962,15 @@ impl<'a> Message<'a> {
                     Message::TimVrfy(TimVrfy::read(payload)?)
                 }
             }
+            (0x09, 0x14) => {
+                if payload.is_empty() {
+                    Message::UpdSosPoll(UpdSosPoll::read(payload)?)
+                } else if payload.len() == 4 {
+                    Message::UpdSosCommand(UpdSosCommand::read(payload)?)
+                } else {
+                    Message::UpdSos(UpdSos::read(payload)?)
+                }
+            }
             _ => Message::Unknown(Unknown { class, id, payload }),
         })
     }
@@ -20909,24 +27988,46 @@ impl<'a> Message<'a> {
             Message::AckNak(_) => AckNak::ID,
             Message::CfgAntPoll(_) => CfgAntPoll::ID,
             Message::CfgAnt(_) => CfgAnt::ID,
+            Message::CfgBatchPoll(_) => CfgBatchPoll::ID,
+            Message::CfgBatch(_) => CfgBatch::ID,
             Message::CfgCfgAllDevices(_) => CfgCfgAllDevices::ID,
             Message::CfgCfg(_) => CfgCfg::ID,
             Message::CfgDgnssPoll(_) => CfgDgnssPoll::ID,
             Message::CfgDgnss(_) => CfgDgnss::ID,
+            Message::CfgGeofencePoll(_) => CfgGeofencePoll::ID,
+            Message::CfgGeofence(_) => CfgGeofence::ID,
             Message::CfgGnssPoll(_) => CfgGnssPoll::ID,
             Message::CfgGnss(_) => CfgGnss::ID,
             Message::CfgHnrPoll(_) => CfgHnrPoll::ID,
             Message::CfgHnr(_) => CfgHnr::ID,
             Message::CfgInfPoll(_) => CfgInfPoll::ID,
             Message::CfgInf(_) => CfgInf::ID,
+            Message::CfgItfmPoll(_) => CfgItfmPoll::ID,
+            Message::CfgItfm(_) => CfgItfm::ID,
+            Message::CfgLogfilterPoll(_) => CfgLogfilterPoll::ID,
+            Message::CfgLogfilter(_) => CfgLogfilter::ID,
             Message::CfgMsgPoll(_) => CfgMsgPoll::ID,
             Message::CfgMsgCurrentPort(_) => CfgMsgCurrentPort::ID,
             Message::CfgMsg(_) => CfgMsg::ID,
             Message::CfgNav5Poll(_) => CfgNav5Poll::ID,
             Message::CfgNav5(_) => CfgNav5::ID,
+            Message::CfgNavx5Poll(_) => CfgNavx5Poll::ID,
+            Message::CfgNavx5(_) => CfgNavx5::ID,
+            Message::CfgNmeaPoll(_) => CfgNmeaPoll::ID,
+            Message::CfgNmea(_) => CfgNmea::ID,
+            Message::CfgNmeaV0(_) => CfgNmeaV0::ID,
+            Message::CfgNmeaDeprecated(_) => CfgNmeaDeprecated::ID,
+            Message::CfgOdoPoll(_) => CfgOdoPoll::ID,
+            Message::CfgOdo(_) => CfgOdo::ID,
+            Message::CfgPm2Poll(_) => CfgPm2Poll::ID,
+            Message::CfgPm2(_) => CfgPm2::ID,
+            Message::CfgPm2V1(_) => CfgPm2V1::ID,
+            Message::CfgPmsPoll(_) => CfgPmsPoll::ID,
+            Message::CfgPms(_) => CfgPms::ID,
             Message::CfgPrtPoll(_) => CfgPrtPoll::ID,
             Message::CfgPrtPollPort(_) => CfgPrtPollPort::ID,
             Message::CfgPrt(_) => CfgPrt::ID,
+            Message::CfgPwr(_) => CfgPwr::ID,
             Message::CfgRatePoll(_) => CfgRatePoll::ID,
             Message::CfgRate(_) => CfgRate::ID,
             Message::CfgRst(_) => CfgRst::ID,
@@ -20950,6 +28051,7 @@ impl<'a> Message<'a> {
             Message::EsfInsPoll(_) => EsfInsPoll::ID,
             Message::EsfIns(_) => EsfIns::ID,
             Message::EsfMeas(_) => EsfMeas::ID,
+            Message::EsfRaw(_) => EsfRaw::ID,
             Message::EsfStatusPoll(_) => EsfStatusPoll::ID,
             Message::EsfStatus(_) => EsfStatus::ID,
             Message::HnrAttPoll(_) => HnrAttPoll::ID,
@@ -20976,6 +28078,19 @@ impl<'a> Message<'a> {
             Message::LogRetrieveposextra(_) => LogRetrieveposextra::ID,
             Message::LogRetrievestring(_) => LogRetrievestring::ID,
             Message::LogString(_) => LogString::ID,
+            Message::MgaAck(_) => MgaAck::ID,
+            Message::MgaAno(_) => MgaAno::ID,
+            Message::MgaDbdPoll(_) => MgaDbdPoll::ID,
+            Message::MgaDbd(_) => MgaDbd::ID,
+            Message::MgaGalEph(_) => MgaGalEph::ID,
+            Message::MgaGalAlm(_) => MgaGalAlm::ID,
+            Message::MgaGalTimeoffset(_) => MgaGalTimeoffset::ID,
+            Message::MgaGalUtc(_) => MgaGalUtc::ID,
+            Message::MgaGpsEph(_) => MgaGpsEph::ID,
+            Message::MgaGpsAlm(_) => MgaGpsAlm::ID,
+            Message::MgaGpsHealth(_) => MgaGpsHealth::ID,
+            Message::MgaGpsUtc(_) => MgaGpsUtc::ID,
+            Message::MgaGpsIono(_) => MgaGpsIono::ID,
             Message::MonCommsPoll(_) => MonCommsPoll::ID,
             Message::MonComms(_) => MonComms::ID,
             Message::MonGnssPoll(_) => MonGnssPoll::ID,
@@ -21076,10 +28191,28 @@ impl<'a> Message<'a> {
             Message::NavVelecef(_) => NavVelecef::ID,
             Message::NavVelnedPoll(_) => NavVelnedPoll::ID,
             Message::NavVelned(_) => NavVelned::ID,
+            Message::RxmCor(_) => RxmCor::ID,
+            Message::RxmMeasxPoll(_) => RxmMeasxPoll::ID,
+            Message::RxmMeasx(_) => RxmMeasx::ID,
+            Message::RxmPmreq(_) => RxmPmreq::ID,
+            Message::RxmPmreqShort(_) => RxmPmreqShort::ID,
             Message::RxmRawxPoll(_) => RxmRawxPoll::ID,
             Message::RxmRawx(_) => RxmRawx::ID,
+            Message::RxmRlm(_) => RxmRlm::ID,
+            Message::RxmRlmShort(_) => RxmRlmShort::ID,
             Message::RxmRtcm(_) => RxmRtcm::ID,
             Message::RxmSfrbx(_) => RxmSfrbx::ID,
+            Message::RxmSpartn(_) => RxmSpartn::ID,
+            Message::RxmSpartnkeyPoll(_) => RxmSpartnkeyPoll::ID,
+            Message::RxmSpartnkey(_) => RxmSpartnkey::ID,
+            Message::RxmSvsiPoll(_) => RxmSvsiPoll::ID,
+            Message::RxmSvsi(_) => RxmSvsi::ID,
+            Message::SecSigPoll(_) => SecSigPoll::ID,
+            Message::SecSig(_) => SecSig::ID,
+            Message::SecSigV1(_) => SecSigV1::ID,
+            Message::SecSiglogPoll(_) => SecSiglogPoll::ID,
+            Message::SecSiglog(_) => SecSiglog::ID,
+            Message::SecSign(_) => SecSign::ID,
             Message::SecUniqidPoll(_) => SecUniqidPoll::ID,
             Message::SecUniqid(_) => SecUniqid::ID,
             Message::TimDoscPoll(_) => TimDoscPoll::ID,
@@ -21103,6 +28236,9 @@ impl<'a> Message<'a> {
             Message::TimVcocal(_) => TimVcocal::ID,
             Message::TimVrfyPoll(_) => TimVrfyPoll::ID,
             Message::TimVrfy(_) => TimVrfy::ID,
+            Message::UpdSosPoll(_) => UpdSosPoll::ID,
+            Message::UpdSosCommand(_) => UpdSosCommand::ID,
+            Message::UpdSos(_) => UpdSos::ID,
             Message::Unknown(_) => return None,
         })
     }
@@ -21114,24 +28250,46 @@ impl<'a> Message<'a> {
             Message::AckNak(_) => (AckNak::CLASS, AckNak::MSG_ID),
             Message::CfgAntPoll(_) => (CfgAntPoll::CLASS, CfgAntPoll::MSG_ID),
             Message::CfgAnt(_) => (CfgAnt::CLASS, CfgAnt::MSG_ID),
+            Message::CfgBatchPoll(_) => (CfgBatchPoll::CLASS, CfgBatchPoll::MSG_ID),
+            Message::CfgBatch(_) => (CfgBatch::CLASS, CfgBatch::MSG_ID),
             Message::CfgCfgAllDevices(_) => (CfgCfgAllDevices::CLASS, CfgCfgAllDevices::MSG_ID),
             Message::CfgCfg(_) => (CfgCfg::CLASS, CfgCfg::MSG_ID),
             Message::CfgDgnssPoll(_) => (CfgDgnssPoll::CLASS, CfgDgnssPoll::MSG_ID),
             Message::CfgDgnss(_) => (CfgDgnss::CLASS, CfgDgnss::MSG_ID),
+            Message::CfgGeofencePoll(_) => (CfgGeofencePoll::CLASS, CfgGeofencePoll::MSG_ID),
+            Message::CfgGeofence(_) => (CfgGeofence::CLASS, CfgGeofence::MSG_ID),
             Message::CfgGnssPoll(_) => (CfgGnssPoll::CLASS, CfgGnssPoll::MSG_ID),
             Message::CfgGnss(_) => (CfgGnss::CLASS, CfgGnss::MSG_ID),
             Message::CfgHnrPoll(_) => (CfgHnrPoll::CLASS, CfgHnrPoll::MSG_ID),
             Message::CfgHnr(_) => (CfgHnr::CLASS, CfgHnr::MSG_ID),
             Message::CfgInfPoll(_) => (CfgInfPoll::CLASS, CfgInfPoll::MSG_ID),
             Message::CfgInf(_) => (CfgInf::CLASS, CfgInf::MSG_ID),
+            Message::CfgItfmPoll(_) => (CfgItfmPoll::CLASS, CfgItfmPoll::MSG_ID),
+            Message::CfgItfm(_) => (CfgItfm::CLASS, CfgItfm::MSG_ID),
+            Message::CfgLogfilterPoll(_) => (CfgLogfilterPoll::CLASS, CfgLogfilterPoll::MSG_ID),
+            Message::CfgLogfilter(_) => (CfgLogfilter::CLASS, CfgLogfilter::MSG_ID),
             Message::CfgMsgPoll(_) => (CfgMsgPoll::CLASS, CfgMsgPoll::MSG_ID),
             Message::CfgMsgCurrentPort(_) => (CfgMsgCurrentPort::CLASS, CfgMsgCurrentPort::MSG_ID),
             Message::CfgMsg(_) => (CfgMsg::CLASS, CfgMsg::MSG_ID),
             Message::CfgNav5Poll(_) => (CfgNav5Poll::CLASS, CfgNav5Poll::MSG_ID),
             Message::CfgNav5(_) => (CfgNav5::CLASS, CfgNav5::MSG_ID),
+            Message::CfgNavx5Poll(_) => (CfgNavx5Poll::CLASS, CfgNavx5Poll::MSG_ID),
+            Message::CfgNavx5(_) => (CfgNavx5::CLASS, CfgNavx5::MSG_ID),
+            Message::CfgNmeaPoll(_) => (CfgNmeaPoll::CLASS, CfgNmeaPoll::MSG_ID),
+            Message::CfgNmea(_) => (CfgNmea::CLASS, CfgNmea::MSG_ID),
+            Message::CfgNmeaV0(_) => (CfgNmeaV0::CLASS, CfgNmeaV0::MSG_ID),
+            Message::CfgNmeaDeprecated(_) => (CfgNmeaDeprecated::CLASS, CfgNmeaDeprecated::MSG_ID),
+            Message::CfgOdoPoll(_) => (CfgOdoPoll::CLASS, CfgOdoPoll::MSG_ID),
+            Message::CfgOdo(_) => (CfgOdo::CLASS, CfgOdo::MSG_ID),
+            Message::CfgPm2Poll(_) => (CfgPm2Poll::CLASS, CfgPm2Poll::MSG_ID),
+            Message::CfgPm2(_) => (CfgPm2::CLASS, CfgPm2::MSG_ID),
+            Message::CfgPm2V1(_) => (CfgPm2V1::CLASS, CfgPm2V1::MSG_ID),
+            Message::CfgPmsPoll(_) => (CfgPmsPoll::CLASS, CfgPmsPoll::MSG_ID),
+            Message::CfgPms(_) => (CfgPms::CLASS, CfgPms::MSG_ID),
             Message::CfgPrtPoll(_) => (CfgPrtPoll::CLASS, CfgPrtPoll::MSG_ID),
             Message::CfgPrtPollPort(_) => (CfgPrtPollPort::CLASS, CfgPrtPollPort::MSG_ID),
             Message::CfgPrt(_) => (CfgPrt::CLASS, CfgPrt::MSG_ID),
+            Message::CfgPwr(_) => (CfgPwr::CLASS, CfgPwr::MSG_ID),
             Message::CfgRatePoll(_) => (CfgRatePoll::CLASS, CfgRatePoll::MSG_ID),
             Message::CfgRate(_) => (CfgRate::CLASS, CfgRate::MSG_ID),
             Message::CfgRst(_) => (CfgRst::CLASS, CfgRst::MSG_ID),
@@ -21155,6 +28313,7 @@ impl<'a> Message<'a> {
             Message::EsfInsPoll(_) => (EsfInsPoll::CLASS, EsfInsPoll::MSG_ID),
             Message::EsfIns(_) => (EsfIns::CLASS, EsfIns::MSG_ID),
             Message::EsfMeas(_) => (EsfMeas::CLASS, EsfMeas::MSG_ID),
+            Message::EsfRaw(_) => (EsfRaw::CLASS, EsfRaw::MSG_ID),
             Message::EsfStatusPoll(_) => (EsfStatusPoll::CLASS, EsfStatusPoll::MSG_ID),
             Message::EsfStatus(_) => (EsfStatus::CLASS, EsfStatus::MSG_ID),
             Message::HnrAttPoll(_) => (HnrAttPoll::CLASS, HnrAttPoll::MSG_ID),
@@ -21181,6 +28340,19 @@ impl<'a> Message<'a> {
             Message::LogRetrieveposextra(_) => (LogRetrieveposextra::CLASS, LogRetrieveposextra::MSG_ID),
             Message::LogRetrievestring(_) => (LogRetrievestring::CLASS, LogRetrievestring::MSG_ID),
             Message::LogString(_) => (LogString::CLASS, LogString::MSG_ID),
+            Message::MgaAck(_) => (MgaAck::CLASS, MgaAck::MSG_ID),
+            Message::MgaAno(_) => (MgaAno::CLASS, MgaAno::MSG_ID),
+            Message::MgaDbdPoll(_) => (MgaDbdPoll::CLASS, MgaDbdPoll::MSG_ID),
+            Message::MgaDbd(_) => (MgaDbd::CLASS, MgaDbd::MSG_ID),
+            Message::MgaGalEph(_) => (MgaGalEph::CLASS, MgaGalEph::MSG_ID),
+            Message::MgaGalAlm(_) => (MgaGalAlm::CLASS, MgaGalAlm::MSG_ID),
+            Message::MgaGalTimeoffset(_) => (MgaGalTimeoffset::CLASS, MgaGalTimeoffset::MSG_ID),
+            Message::MgaGalUtc(_) => (MgaGalUtc::CLASS, MgaGalUtc::MSG_ID),
+            Message::MgaGpsEph(_) => (MgaGpsEph::CLASS, MgaGpsEph::MSG_ID),
+            Message::MgaGpsAlm(_) => (MgaGpsAlm::CLASS, MgaGpsAlm::MSG_ID),
+            Message::MgaGpsHealth(_) => (MgaGpsHealth::CLASS, MgaGpsHealth::MSG_ID),
+            Message::MgaGpsUtc(_) => (MgaGpsUtc::CLASS, MgaGpsUtc::MSG_ID),
+            Message::MgaGpsIono(_) => (MgaGpsIono::CLASS, MgaGpsIono::MSG_ID),
             Message::MonCommsPoll(_) => (MonCommsPoll::CLASS, MonCommsPoll::MSG_ID),
             Message::MonComms(_) => (MonComms::CLASS, MonComms::MSG_ID),
             Message::MonGnssPoll(_) => (MonGnssPoll::CLASS, MonGnssPoll::MSG_ID),
@@ -21281,10 +28453,28 @@ impl<'a> Message<'a> {
             Message::NavVelecef(_) => (NavVelecef::CLASS, NavVelecef::MSG_ID),
             Message::NavVelnedPoll(_) => (NavVelnedPoll::CLASS, NavVelnedPoll::MSG_ID),
             Message::NavVelned(_) => (NavVelned::CLASS, NavVelned::MSG_ID),
+            Message::RxmCor(_) => (RxmCor::CLASS, RxmCor::MSG_ID),
+            Message::RxmMeasxPoll(_) => (RxmMeasxPoll::CLASS, RxmMeasxPoll::MSG_ID),
+            Message::RxmMeasx(_) => (RxmMeasx::CLASS, RxmMeasx::MSG_ID),
+            Message::RxmPmreq(_) => (RxmPmreq::CLASS, RxmPmreq::MSG_ID),
+            Message::RxmPmreqShort(_) => (RxmPmreqShort::CLASS, RxmPmreqShort::MSG_ID),
             Message::RxmRawxPoll(_) => (RxmRawxPoll::CLASS, RxmRawxPoll::MSG_ID),
             Message::RxmRawx(_) => (RxmRawx::CLASS, RxmRawx::MSG_ID),
+            Message::RxmRlm(_) => (RxmRlm::CLASS, RxmRlm::MSG_ID),
+            Message::RxmRlmShort(_) => (RxmRlmShort::CLASS, RxmRlmShort::MSG_ID),
             Message::RxmRtcm(_) => (RxmRtcm::CLASS, RxmRtcm::MSG_ID),
             Message::RxmSfrbx(_) => (RxmSfrbx::CLASS, RxmSfrbx::MSG_ID),
+            Message::RxmSpartn(_) => (RxmSpartn::CLASS, RxmSpartn::MSG_ID),
+            Message::RxmSpartnkeyPoll(_) => (RxmSpartnkeyPoll::CLASS, RxmSpartnkeyPoll::MSG_ID),
+            Message::RxmSpartnkey(_) => (RxmSpartnkey::CLASS, RxmSpartnkey::MSG_ID),
+            Message::RxmSvsiPoll(_) => (RxmSvsiPoll::CLASS, RxmSvsiPoll::MSG_ID),
+            Message::RxmSvsi(_) => (RxmSvsi::CLASS, RxmSvsi::MSG_ID),
+            Message::SecSigPoll(_) => (SecSigPoll::CLASS, SecSigPoll::MSG_ID),
+            Message::SecSig(_) => (SecSig::CLASS, SecSig::MSG_ID),
+            Message::SecSigV1(_) => (SecSigV1::CLASS, SecSigV1::MSG_ID),
+            Message::SecSiglogPoll(_) => (SecSiglogPoll::CLASS, SecSiglogPoll::MSG_ID),
+            Message::SecSiglog(_) => (SecSiglog::CLASS, SecSiglog::MSG_ID),
+            Message::SecSign(_) => (SecSign::CLASS, SecSign::MSG_ID),
             Message::SecUniqidPoll(_) => (SecUniqidPoll::CLASS, SecUniqidPoll::MSG_ID),
             Message::SecUniqid(_) => (SecUniqid::CLASS, SecUniqid::MSG_ID),
             Message::TimDoscPoll(_) => (TimDoscPoll::CLASS, TimDoscPoll::MSG_ID),
@@ -21308,6 +28498,9 @@ impl<'a> Message<'a> {
             Message::TimVcocal(_) => (TimVcocal::CLASS, TimVcocal::MSG_ID),
             Message::TimVrfyPoll(_) => (TimVrfyPoll::CLASS, TimVrfyPoll::MSG_ID),
             Message::TimVrfy(_) => (TimVrfy::CLASS, TimVrfy::MSG_ID),
+            Message::UpdSosPoll(_) => (UpdSosPoll::CLASS, UpdSosPoll::MSG_ID),
+            Message::UpdSosCommand(_) => (UpdSosCommand::CLASS, UpdSosCommand::MSG_ID),
+            Message::UpdSos(_) => (UpdSos::CLASS, UpdSos::MSG_ID),
             Message::Unknown(m) => (m.class, m.id),
         }
     }
@@ -21319,24 +28512,46 @@ impl<'a> Message<'a> {
             Message::AckNak(m) => m.write(w),
             Message::CfgAntPoll(m) => m.write(w),
             Message::CfgAnt(m) => m.write(w),
+            Message::CfgBatchPoll(m) => m.write(w),
+            Message::CfgBatch(m) => m.write(w),
             Message::CfgCfgAllDevices(m) => m.write(w),
             Message::CfgCfg(m) => m.write(w),
             Message::CfgDgnssPoll(m) => m.write(w),
             Message::CfgDgnss(m) => m.write(w),
+            Message::CfgGeofencePoll(m) => m.write(w),
+            Message::CfgGeofence(m) => m.write(w),
             Message::CfgGnssPoll(m) => m.write(w),
             Message::CfgGnss(m) => m.write(w),
             Message::CfgHnrPoll(m) => m.write(w),
             Message::CfgHnr(m) => m.write(w),
             Message::CfgInfPoll(m) => m.write(w),
             Message::CfgInf(m) => m.write(w),
+            Message::CfgItfmPoll(m) => m.write(w),
+            Message::CfgItfm(m) => m.write(w),
+            Message::CfgLogfilterPoll(m) => m.write(w),
+            Message::CfgLogfilter(m) => m.write(w),
             Message::CfgMsgPoll(m) => m.write(w),
             Message::CfgMsgCurrentPort(m) => m.write(w),
             Message::CfgMsg(m) => m.write(w),
             Message::CfgNav5Poll(m) => m.write(w),
             Message::CfgNav5(m) => m.write(w),
+            Message::CfgNavx5Poll(m) => m.write(w),
+            Message::CfgNavx5(m) => m.write(w),
+            Message::CfgNmeaPoll(m) => m.write(w),
+            Message::CfgNmea(m) => m.write(w),
+            Message::CfgNmeaV0(m) => m.write(w),
+            Message::CfgNmeaDeprecated(m) => m.write(w),
+            Message::CfgOdoPoll(m) => m.write(w),
+            Message::CfgOdo(m) => m.write(w),
+            Message::CfgPm2Poll(m) => m.write(w),
+            Message::CfgPm2(m) => m.write(w),
+            Message::CfgPm2V1(m) => m.write(w),
+            Message::CfgPmsPoll(m) => m.write(w),
+            Message::CfgPms(m) => m.write(w),
             Message::CfgPrtPoll(m) => m.write(w),
             Message::CfgPrtPollPort(m) => m.write(w),
             Message::CfgPrt(m) => m.write(w),
+            Message::CfgPwr(m) => m.write(w),
             Message::CfgRatePoll(m) => m.write(w),
             Message::CfgRate(m) => m.write(w),
             Message::CfgRst(m) => m.write(w),
@@ -21360,6 +28575,7 @@ impl<'a> Message<'a> {
             Message::EsfInsPoll(m) => m.write(w),
             Message::EsfIns(m) => m.write(w),
             Message::EsfMeas(m) => m.write(w),
+            Message::EsfRaw(m) => m.write(w),
             Message::EsfStatusPoll(m) => m.write(w),
             Message::EsfStatus(m) => m.write(w),
             Message::HnrAttPoll(m) => m.write(w),
@@ -21386,6 +28602,19 @@ impl<'a> Message<'a> {
             Message::LogRetrieveposextra(m) => m.write(w),
             Message::LogRetrievestring(m) => m.write(w),
             Message::LogString(m) => m.write(w),
+            Message::MgaAck(m) => m.write(w),
+            Message::MgaAno(m) => m.write(w),
+            Message::MgaDbdPoll(m) => m.write(w),
+            Message::MgaDbd(m) => m.write(w),
+            Message::MgaGalEph(m) => m.write(w),
+            Message::MgaGalAlm(m) => m.write(w),
+            Message::MgaGalTimeoffset(m) => m.write(w),
+            Message::MgaGalUtc(m) => m.write(w),
+            Message::MgaGpsEph(m) => m.write(w),
+            Message::MgaGpsAlm(m) => m.write(w),
+            Message::MgaGpsHealth(m) => m.write(w),
+            Message::MgaGpsUtc(m) => m.write(w),
+            Message::MgaGpsIono(m) => m.write(w),
             Message::MonCommsPoll(m) => m.write(w),
             Message::MonComms(m) => m.write(w),
             Message::MonGnssPoll(m) => m.write(w),
@@ -21486,10 +28715,28 @@ impl<'a> Message<'a> {
             Message::NavVelecef(m) => m.write(w),
             Message::NavVelnedPoll(m) => m.write(w),
             Message::NavVelned(m) => m.write(w),
+            Message::RxmCor(m) => m.write(w),
+            Message::RxmMeasxPoll(m) => m.write(w),
+            Message::RxmMeasx(m) => m.write(w),
+            Message::RxmPmreq(m) => m.write(w),
+            Message::RxmPmreqShort(m) => m.write(w),
             Message::RxmRawxPoll(m) => m.write(w),
             Message::RxmRawx(m) => m.write(w),
+            Message::RxmRlm(m) => m.write(w),
+            Message::RxmRlmShort(m) => m.write(w),
             Message::RxmRtcm(m) => m.write(w),
             Message::RxmSfrbx(m) => m.write(w),
+            Message::RxmSpartn(m) => m.write(w),
+            Message::RxmSpartnkeyPoll(m) => m.write(w),
+            Message::RxmSpartnkey(m) => m.write(w),
+            Message::RxmSvsiPoll(m) => m.write(w),
+            Message::RxmSvsi(m) => m.write(w),
+            Message::SecSigPoll(m) => m.write(w),
+            Message::SecSig(m) => m.write(w),
+            Message::SecSigV1(m) => m.write(w),
+            Message::SecSiglogPoll(m) => m.write(w),
+            Message::SecSiglog(m) => m.write(w),
+            Message::SecSign(m) => m.write(w),
             Message::SecUniqidPoll(m) => m.write(w),
             Message::SecUniqid(m) => m.write(w),
             Message::TimDoscPoll(m) => m.write(w),
@@ -21513,6 +28760,9 @@ impl<'a> Message<'a> {
             Message::TimVcocal(m) => m.write(w),
             Message::TimVrfyPoll(m) => m.write(w),
             Message::TimVrfy(m) => m.write(w),
+            Message::UpdSosPoll(m) => m.write(w),
+            Message::UpdSosCommand(m) => m.write(w),
+            Message::UpdSos(m) => m.write(w),
             Message::Unknown(m) => {
                 w.put(m.payload);
                 Ok(())
@@ -21542,24 +28792,46 @@ impl<'a> Message<'a> {
             Message::AckNak(m) => m.json_members(&mut j)?,
             Message::CfgAntPoll(m) => m.json_members(&mut j)?,
             Message::CfgAnt(m) => m.json_members(&mut j)?,
+            Message::CfgBatchPoll(m) => m.json_members(&mut j)?,
+            Message::CfgBatch(m) => m.json_members(&mut j)?,
             Message::CfgCfgAllDevices(m) => m.json_members(&mut j)?,
             Message::CfgCfg(m) => m.json_members(&mut j)?,
             Message::CfgDgnssPoll(m) => m.json_members(&mut j)?,
             Message::CfgDgnss(m) => m.json_members(&mut j)?,
+            Message::CfgGeofencePoll(m) => m.json_members(&mut j)?,
+            Message::CfgGeofence(m) => m.json_members(&mut j)?,
             Message::CfgGnssPoll(m) => m.json_members(&mut j)?,
             Message::CfgGnss(m) => m.json_members(&mut j)?,
             Message::CfgHnrPoll(m) => m.json_members(&mut j)?,
             Message::CfgHnr(m) => m.json_members(&mut j)?,
             Message::CfgInfPoll(m) => m.json_members(&mut j)?,
             Message::CfgInf(m) => m.json_members(&mut j)?,
+            Message::CfgItfmPoll(m) => m.json_members(&mut j)?,
+            Message::CfgItfm(m) => m.json_members(&mut j)?,
+            Message::CfgLogfilterPoll(m) => m.json_members(&mut j)?,
+            Message::CfgLogfilter(m) => m.json_members(&mut j)?,
             Message::CfgMsgPoll(m) => m.json_members(&mut j)?,
             Message::CfgMsgCurrentPort(m) => m.json_members(&mut j)?,
             Message::CfgMsg(m) => m.json_members(&mut j)?,
             Message::CfgNav5Poll(m) => m.json_members(&mut j)?,
             Message::CfgNav5(m) => m.json_members(&mut j)?,
+            Message::CfgNavx5Poll(m) => m.json_members(&mut j)?,
+            Message::CfgNavx5(m) => m.json_members(&mut j)?,
+            Message::CfgNmeaPoll(m) => m.json_members(&mut j)?,
+            Message::CfgNmea(m) => m.json_members(&mut j)?,
+            Message::CfgNmeaV0(m) => m.json_members(&mut j)?,
+            Message::CfgNmeaDeprecated(m) => m.json_members(&mut j)?,
+            Message::CfgOdoPoll(m) => m.json_members(&mut j)?,
+            Message::CfgOdo(m) => m.json_members(&mut j)?,
+            Message::CfgPm2Poll(m) => m.json_members(&mut j)?,
+            Message::CfgPm2(m) => m.json_members(&mut j)?,
+            Message::CfgPm2V1(m) => m.json_members(&mut j)?,
+            Message::CfgPmsPoll(m) => m.json_members(&mut j)?,
+            Message::CfgPms(m) => m.json_members(&mut j)?,
             Message::CfgPrtPoll(m) => m.json_members(&mut j)?,
             Message::CfgPrtPollPort(m) => m.json_members(&mut j)?,
             Message::CfgPrt(m) => m.json_members(&mut j)?,
+            Message::CfgPwr(m) => m.json_members(&mut j)?,
             Message::CfgRatePoll(m) => m.json_members(&mut j)?,
             Message::CfgRate(m) => m.json_members(&mut j)?,
             Message::CfgRst(m) => m.json_members(&mut j)?,
@@ -21583,6 +28855,7 @@ impl<'a> Message<'a> {
             Message::EsfInsPoll(m) => m.json_members(&mut j)?,
             Message::EsfIns(m) => m.json_members(&mut j)?,
             Message::EsfMeas(m) => m.json_members(&mut j)?,
+            Message::EsfRaw(m) => m.json_members(&mut j)?,
             Message::EsfStatusPoll(m) => m.json_members(&mut j)?,
             Message::EsfStatus(m) => m.json_members(&mut j)?,
             Message::HnrAttPoll(m) => m.json_members(&mut j)?,
@@ -21609,6 +28882,19 @@ impl<'a> Message<'a> {
             Message::LogRetrieveposextra(m) => m.json_members(&mut j)?,
             Message::LogRetrievestring(m) => m.json_members(&mut j)?,
             Message::LogString(m) => m.json_members(&mut j)?,
+            Message::MgaAck(m) => m.json_members(&mut j)?,
+            Message::MgaAno(m) => m.json_members(&mut j)?,
+            Message::MgaDbdPoll(m) => m.json_members(&mut j)?,
+            Message::MgaDbd(m) => m.json_members(&mut j)?,
+            Message::MgaGalEph(m) => m.json_members(&mut j)?,
+            Message::MgaGalAlm(m) => m.json_members(&mut j)?,
+            Message::MgaGalTimeoffset(m) => m.json_members(&mut j)?,
+            Message::MgaGalUtc(m) => m.json_members(&mut j)?,
+            Message::MgaGpsEph(m) => m.json_members(&mut j)?,
+            Message::MgaGpsAlm(m) => m.json_members(&mut j)?,
+            Message::MgaGpsHealth(m) => m.json_members(&mut j)?,
+            Message::MgaGpsUtc(m) => m.json_members(&mut j)?,
+            Message::MgaGpsIono(m) => m.json_members(&mut j)?,
             Message::MonCommsPoll(m) => m.json_members(&mut j)?,
             Message::MonComms(m) => m.json_members(&mut j)?,
             Message::MonGnssPoll(m) => m.json_members(&mut j)?,
@@ -21709,10 +28995,28 @@ impl<'a> Message<'a> {
             Message::NavVelecef(m) => m.json_members(&mut j)?,
             Message::NavVelnedPoll(m) => m.json_members(&mut j)?,
             Message::NavVelned(m) => m.json_members(&mut j)?,
+            Message::RxmCor(m) => m.json_members(&mut j)?,
+            Message::RxmMeasxPoll(m) => m.json_members(&mut j)?,
+            Message::RxmMeasx(m) => m.json_members(&mut j)?,
+            Message::RxmPmreq(m) => m.json_members(&mut j)?,
+            Message::RxmPmreqShort(m) => m.json_members(&mut j)?,
             Message::RxmRawxPoll(m) => m.json_members(&mut j)?,
             Message::RxmRawx(m) => m.json_members(&mut j)?,
+            Message::RxmRlm(m) => m.json_members(&mut j)?,
+            Message::RxmRlmShort(m) => m.json_members(&mut j)?,
             Message::RxmRtcm(m) => m.json_members(&mut j)?,
             Message::RxmSfrbx(m) => m.json_members(&mut j)?,
+            Message::RxmSpartn(m) => m.json_members(&mut j)?,
+            Message::RxmSpartnkeyPoll(m) => m.json_members(&mut j)?,
+            Message::RxmSpartnkey(m) => m.json_members(&mut j)?,
+            Message::RxmSvsiPoll(m) => m.json_members(&mut j)?,
+            Message::RxmSvsi(m) => m.json_members(&mut j)?,
+            Message::SecSigPoll(m) => m.json_members(&mut j)?,
+            Message::SecSig(m) => m.json_members(&mut j)?,
+            Message::SecSigV1(m) => m.json_members(&mut j)?,
+            Message::SecSiglogPoll(m) => m.json_members(&mut j)?,
+            Message::SecSiglog(m) => m.json_members(&mut j)?,
+            Message::SecSign(m) => m.json_members(&mut j)?,
             Message::SecUniqidPoll(m) => m.json_members(&mut j)?,
             Message::SecUniqid(m) => m.json_members(&mut j)?,
             Message::TimDoscPoll(m) => m.json_members(&mut j)?,
@@ -21736,6 +29040,9 @@ impl<'a> Message<'a> {
             Message::TimVcocal(m) => m.json_members(&mut j)?,
             Message::TimVrfyPoll(m) => m.json_members(&mut j)?,
             Message::TimVrfy(m) => m.json_members(&mut j)?,
+            Message::UpdSosPoll(m) => m.json_members(&mut j)?,
+            Message::UpdSosCommand(m) => m.json_members(&mut j)?,
+            Message::UpdSos(m) => m.json_members(&mut j)?,
             Message::Unknown(m) => {
                 j.int("class", m.class)?;
                 j.int("id", m.id)?;
