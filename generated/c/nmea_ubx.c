@@ -69,7 +69,7 @@
 //   spec/binary/ubx/messages/sec_sig.yaml, spec/binary/ubx/messages/sec_siglog.yaml,
 //   spec/binary/ubx/messages/hnr_pvt.yaml, spec/binary/ubx/messages/hnr_att.yaml,
 //   spec/binary/ubx/messages/hnr_ins.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 2665a2c7d5a5daa1)
+//   spec/enums/ubx_gnss_id.yaml (digest 6d61c03b7a2410b6)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -3285,7 +3285,7 @@ static const nmea_ubx_item ubx_tim_hoc_items[] = {
     {"version", NULL, offsetof(nmea_ubx_tim_hoc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"osc_id", NULL, offsetof(nmea_ubx_tim_hoc, osc_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"flags", NULL, offsetof(nmea_ubx_tim_hoc, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"raw", NULL, offsetof(nmea_ubx_tim_hoc, raw), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"raw_value", NULL, offsetof(nmea_ubx_tim_hoc, raw_value), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"difference", NULL, offsetof(nmea_ubx_tim_hoc, difference), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved1", NULL, offsetof(nmea_ubx_tim_hoc, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"value", &ubx_tim_hoc_value_scale, offsetof(nmea_ubx_tim_hoc, value), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}

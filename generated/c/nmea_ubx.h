@@ -69,7 +69,7 @@
 //   spec/binary/ubx/messages/sec_sig.yaml, spec/binary/ubx/messages/sec_siglog.yaml,
 //   spec/binary/ubx/messages/hnr_pvt.yaml, spec/binary/ubx/messages/hnr_att.yaml,
 //   spec/binary/ubx/messages/hnr_ins.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest a06197d722a020d3)
+//   spec/enums/ubx_gnss_id.yaml (digest 5f23469356941f40)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx: a struct per layout, every field typed, decoded from a
@@ -3086,7 +3086,7 @@ typedef struct {
     uint8_t version; /* Message version */
     uint8_t osc_id; /* Oscillator */
     uint8_t flags; /* Flags (bitfield) */
-    bool raw; /* Value is a raw control value (else a frequency offset) (flags bit 0) */
+    bool raw_value; /* Value is a raw control value (else a frequency offset) (flags bit 0) */
     bool difference; /* Value is a change of the current one (else absolute) (flags bit 1) */
     uint8_t reserved1; /* Reserved (reserved, as sent) */
     int32_t value; /* Frequency offset or raw control value [ppb]; raw, value = raw / 256 */

@@ -419,13 +419,14 @@ def compile_reader(cls: type[Message]) -> Any:
             c.lines.append(f"{pad}{rest} = payload[{pos}:]")
             pairs += c.convert(item, rest)
             pos = "len(payload)"
-        elif isinstance(item, Group) and all(_struct_code(f) for f in item.fields):
+        elif isinstance(item, Group) and not isinstance(item.count, tuple) \
+                and all(_struct_code(f) for f in item.fields):   # (a count of mask bits: RTCM 3's, read generically)
             entry = c.name(item.entry)
             fmt = c.order + "".join(_struct_code(f) or "" for f in item.fields)
             size = struct.calcsize(fmt)
             if isinstance(item.count, int):
                 count = str(item.count)
-            elif item.count:
+            elif isinstance(item.count, str):
                 count = f"({dict(pairs)[item.count]})"
             else:
                 count = f"min({item.max}, (len(payload) - ({pos}) - {item.after // 8}) // {size})"

@@ -68,7 +68,7 @@
 //   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
 //   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_tp.yaml,
 //   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
-//   spec/binary/ubx/messages/upd_sos.yaml (digest 164ea259a8104e84)
+//   spec/binary/ubx/messages/upd_sos.yaml (digest baadd2bf447f2e84)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The UBX messages of spec/binary/ubx: a struct per layout (named as the Python package's
@@ -24875,11 +24875,11 @@ impl<'a> TimHoc<'a> {
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
     /// Value is a raw control value (else a frequency offset) (bit 0 of `flags`).
-    pub fn raw(&self) -> bool {
+    pub fn raw_value(&self) -> bool {
         (self.flags & 0x1) != 0
     }
     /// Sets value is a raw control value (else a frequency offset) (the value in its bits of `flags`; the other bits stay).
-    pub fn set_raw(&mut self, value: bool) {
+    pub fn set_raw_value(&mut self, value: bool) {
         self.flags = (self.flags & !0x1) | u8::from(value);
     }
     /// Value is a change of the current one (else absolute) (bit 1 of `flags`).
@@ -24925,7 +24925,7 @@ impl<'a> TimHoc<'a> {
         j.int("version", self.version)?;
         j.int("osc_id", self.osc_id)?;
         j.int("flags", self.flags)?;
-        j.flag("raw", (self.flags & 0x1) != 0)?;
+        j.flag("raw_value", (self.flags & 0x1) != 0)?;
         j.flag("difference", ((self.flags >> 1) & 0x1) != 0)?;
         j.int("reserved1", self.reserved1)?;
         ubx::json_float(j, "value", self.value_raw as f64 / 256.0)?;

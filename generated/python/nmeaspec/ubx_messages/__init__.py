@@ -68,7 +68,7 @@
 #   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
 #   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_tp.yaml,
 #   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
-#   spec/binary/ubx/messages/upd_sos.yaml (digest f8c711f0e07f93e3)
+#   spec/binary/ubx/messages/upd_sos.yaml (digest 0c0bd02bf9b0460c)
 # Regenerate: make generate (python3 -m generator generate)
 """UBX messages: a frame's payload decoded into the class of its layout (by class and id, then
 length and version) and encoded back to the same bytes; a class and id the spec does not describe
