@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import textwrap
+from collections.abc import Callable
 
 import jinja2
 
@@ -73,28 +74,36 @@ def _field_spec(f: PayloadField, following: list, indent: int) -> list[str]:
     return lines + ["),"]
 
 
-def layout_lines(payload: Payload, items: list, rest: list, indent: int) -> list[str]:
-    """The descriptor entries of `items` (the items `rest` follow them), one or more lines each."""
+def group_extra(item: PayloadGroup, following: list) -> str:
+    """The keyword arguments of an AIS group's descriptor after its bounds."""
+    extra = f", after={after(following)}" if after(following) else ""
+    return extra + (f", count={json.dumps(item.count)}" if item.count else "")
+
+
+def layout_lines(payload: Payload, items: list, rest: list, indent: int,
+                 field_lines: Callable[[PayloadField, list, int], list[str]] = _field_spec,
+                 group_args: Callable[[PayloadGroup, list], str] = group_extra) -> list[str]:
+    """The descriptor entries of `items` (the items `rest` follow them), one or more lines each:
+    a field's by `field_lines`, a group's keyword arguments by `group_args` (another protocol's
+    bit layouts give their own)."""
     out: list[str] = []
     pad = " " * 4
     for i, item in enumerate(items):
         following = items[i + 1:] + rest
         if isinstance(item, PayloadField):
-            out += _field_spec(item, following, indent)
+            out += field_lines(item, following, indent)
         elif isinstance(item, PayloadGroup):
-            extra = f", after={after(following)}" if after(following) else ""
-            extra += f", count={json.dumps(item.count)}" if item.count else ""
             out.append(f"ais.Group({json.dumps(item.id)}, {entry_class(payload, item)}, (")
             for f in item.fields:
-                out += [pad + line for line in _field_spec(f, [], indent + 4)]
-            out.append(f"), {item.min}, {item.max}{extra}),")
+                out += [pad + line for line in field_lines(f, [], indent + 4)]
+            out.append(f"), {item.min}, {item.max}{group_args(item, following)}),")
         else:
             assert item.selector is not None and item.selector.offset is not None
             out.append(f"ais.Choice({json.dumps(item.by)}, {item.selector.offset}, {item.selector.bits}, (")
             for case in item.cases:
                 values = "frozenset({" + ", ".join(map(str, case.values)) + "})" if case.values else "frozenset()"
                 bounds = f"({case.range[0]}, {case.range[1]})" if case.range else "None"
-                inner = layout_lines(payload, case.items, following, indent + 8)
+                inner = layout_lines(payload, case.items, following, indent + 8, field_lines, group_args)
                 if not inner:
                     out.append(f"{pad}ais.Case({values}, {bounds}, ()),")
                     continue

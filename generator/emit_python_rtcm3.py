@@ -14,6 +14,7 @@ import jinja2
 
 from .emit import header
 from .emit_python import WIDTH, docstring
+from . import emit_python_ais
 from .emit_python_ais import _field_spec, entry_class, member
 from .model import Ones, Payload, PayloadField, PayloadGroup, Spec
 
@@ -41,36 +42,15 @@ def _field_lines(f: PayloadField, following: list, indent: int) -> list[str]:
     return lines[:-1] + [f"    count={_count(f.count)},", lines[-1]]
 
 
+def _group_args(item: PayloadGroup, following: list) -> str:
+    """A group's count (a field, or mask bits) and its order, after its bounds."""
+    extra = f", count={_count(item.count)}" if item.count is not None else ""
+    return extra + (", field_major=True" if item.field_major else "")
+
+
 def layout_lines(payload: Payload, items: list, rest: list, indent: int) -> list[str]:
     """The descriptor entries of `items` (the items `rest` follow them), one or more lines each."""
-    out: list[str] = []
-    pad = " " * 4
-    for i, item in enumerate(items):
-        following = items[i + 1:] + rest
-        if isinstance(item, PayloadField):
-            out += _field_lines(item, following, indent)
-        elif isinstance(item, PayloadGroup):
-            extra = f", count={_count(item.count)}" if item.count is not None else ""
-            extra += ", field_major=True" if item.field_major else ""
-            out.append(f"ais.Group({json.dumps(item.id)}, {entry_class(payload, item)}, (")
-            for f in item.fields:
-                out += [pad + line for line in _field_lines(f, [], indent + 4)]
-            out.append(f"), {item.min}, {item.max}{extra}),")
-        else:
-            assert item.selector is not None and item.selector.offset is not None
-            out.append(f"ais.Choice({json.dumps(item.by)}, {item.selector.offset}, {item.selector.bits}, (")
-            for case in item.cases:
-                values = "frozenset({" + ", ".join(map(str, case.values)) + "})" if case.values else "frozenset()"
-                bounds = f"({case.range[0]}, {case.range[1]})" if case.range else "None"
-                inner = layout_lines(payload, case.items, following, indent + 8)
-                if not inner:
-                    out.append(f"{pad}ais.Case({values}, {bounds}, ()),")
-                    continue
-                out.append(f"{pad}ais.Case({values}, {bounds}, (")
-                out += [pad * 2 + line for line in inner]
-                out.append(f"{pad})),")
-            out.append(")),")
-    return out
+    return emit_python_ais.layout_lines(payload, items, rest, indent, _field_lines, _group_args)
 
 
 def _member(f: PayloadField) -> dict:
