@@ -9,7 +9,7 @@ import json
 import struct
 from collections.abc import Iterator
 from contextlib import contextmanager
-from typing import Callable
+from typing import Any, Callable
 
 import jinja2
 
@@ -250,24 +250,28 @@ UBX_CASES = (
 )
 
 
+def _frame_vectors(examples: Iterator[tuple[str, Any]], cases: tuple[tuple[str, str], ...],
+                   decode: Callable[[bytes], dict], refused: type[Exception]) -> list[dict]:
+    """Example frames (message id and example) with the JSON `decode` makes of them, then the
+    `cases` (frame hex, what it shows): decoded, or the kind of the `refused` error they raise."""
+    out: list[dict] = [{"message": message, "where": e.where, "frame": e.frame.hex(" "), "decode": decode(e.frame)}
+                       for message, e in examples]
+    for frame, where in cases:
+        record: dict = {"message": None, "where": where, "frame": frame}
+        try:
+            record["decode"] = decode(bytes.fromhex(frame))
+        except refused as err:
+            record["error"] = getattr(err, "kind")  # both error types carry it
+        out.append(record)
+    return out
+
+
 def ubx_vectors(spec: Spec) -> list[dict]:
     """The example frames of spec/binary/ubx with the JSON each decoder must make of them, and
     frames each must refuse with the kind of its error."""
-    out: list[dict] = []
-    for message in spec.binary:
-        if message.protocol != "ubx":
-            continue
-        for e in message.examples:
-            out.append({"message": message.id, "where": e.where, "frame": e.frame.hex(" "),
-                        "decode": reference_binary.decode(spec, e.frame)})
-    for frame, where in UBX_CASES:
-        record: dict = {"message": None, "where": where, "frame": frame}
-        try:
-            record["decode"] = reference_binary.decode(spec, bytes.fromhex(frame))
-        except reference_ais.PayloadError as err:
-            record["error"] = err.kind
-        out.append(record)
-    return out
+    examples = ((m.id, e) for m in spec.binary if m.protocol == "ubx" for e in m.examples)
+    return _frame_vectors(examples, UBX_CASES, lambda frame: reference_binary.decode(spec, frame),
+                          reference_ais.PayloadError)
 
 
 # Frames every RTCM 3 decoder must read as the reference decoder does, or refuse with the same kind
@@ -283,19 +287,9 @@ RTCM3_CASES = (
 def rtcm3_vectors(spec: Spec) -> list[dict]:
     """The example frames of the bit messages (spec/binary/rtcm3) with the JSON each decoder must
     make of them, and frames each must refuse with the kind of its error."""
-    out: list[dict] = []
-    for message in spec.bit_messages:
-        for e in message.frame_examples:
-            out.append({"message": message.id, "where": e.where, "frame": e.frame.hex(" "),
-                        "decode": reference_rtcm3.decode(spec, e.frame)})
-    for frame, where in RTCM3_CASES:
-        record: dict = {"message": None, "where": where, "frame": frame}
-        try:
-            record["decode"] = reference_rtcm3.decode(spec, bytes.fromhex(frame))
-        except reference_rtcm3.FrameError as err:
-            record["error"] = err.kind
-        out.append(record)
-    return out
+    examples = ((m.id, e) for m in spec.bit_messages for e in m.frame_examples)
+    return _frame_vectors(examples, RTCM3_CASES, lambda frame: reference_rtcm3.decode(spec, frame),
+                          reference_rtcm3.FrameError)
 
 
 def binary_vectors(spec: Spec) -> list[dict]:
