@@ -1044,13 +1044,19 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                      "    ];"])
     files[f"{base}/Cargo.toml"] = env.get_template("rust/Cargo.toml.j2").render(
         header=header(spec, "#", ["templates/rust/Cargo.toml.j2"]), crate=CRATE, vendors=gates.features,
-        ubx=bool(spec.binary))
+        extras=message_features(spec), ubx=bool(spec.binary))
     files[f"{base}/README.md"] = package_readme(spec, env, "rust/README.md.j2", crate=CRATE)
     files[f"{base}/rustfmt.toml"] = runtime_file(spec, "#", "rust/rustfmt.toml", blank_line=True)
     files[f"{base}/tests/examples.rs"] = env.get_template("rust/examples.rs.j2").render(
         header=header(spec, "//"), vectors=[{"rust": example_lines(v), "cfg": gates.sentence(spec.sentence(v["sentence"]))} for v in vectors],
         crate=CRATE, reply_cases=reply_case_lines(spec, gates))
     return rustfmt(files)
+
+
+def message_features(spec: Spec) -> list[str]:
+    """The crate's features beside the receivers': the modules of messages inside a sentence's
+    payload or a binary frame, which a user who reads sentences only leaves out of the build."""
+    return [name for name, present in (("ais", spec.payloads), ("binary", spec.binary or spec.config_keys)) if present]
 
 
 # The runtime's TagType of each value type of spec/tag_block.yaml.

@@ -282,11 +282,14 @@ int main(void)
 @pytest.mark.parametrize("only", ["GGA,RMC", "GSV"])
 def test_a_subset_compiles_without_a_warning(only: str, tmp_path: Path) -> None:
     """A subset leaves runtime pieces unused (no group: nothing reads an entry); its C pair still
-    compiles under -Wall -Wextra -Werror with each build option."""
+    compiles under -Wall -Wextra -Werror with each build option. The unused-code warnings come from
+    any level; -O2 and -Os (whose code differs) add the optimizer's own, so the options alone are
+    compiled at -O0 (a fifth of -O2's time)."""
     out = tmp_path / "out"
     subprocess.run([sys.executable, "-m", "generator", "generate", "--only", only, "--out", str(out), "-q"],
                    cwd=ROOT, check=True, capture_output=True)
-    for flags in ([], ["-DNMEA_NO_JSON"], ["-DNMEA_NO_FAST_PATH"], ["-DNMEA_NO_JSON", "-DNMEA_NO_FAST_PATH"], ["-Os"]):
-        done = subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2", *flags,
+    for flags in (["-O2"], ["-Os"], ["-O0", "-DNMEA_NO_JSON"], ["-O0", "-DNMEA_NO_FAST_PATH"],
+                  ["-O0", "-DNMEA_NO_JSON", "-DNMEA_NO_FAST_PATH"]):
+        done = subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", *flags,
                                "-c", "-o", os.devnull, str(out / "c" / "nmea.c")], capture_output=True, text=True)
         assert done.returncode == 0, (flags, done.stderr[-2000:])

@@ -3,6 +3,7 @@
 //! field's value, raw integer, special value, enum id, text as sent, data and trailing bits, the
 //! fill bits' values) or fails with the same error kind, and encodes back to the same armored
 //! characters and fill bits.
+#![cfg(feature = "ais")]
 
 use std::fs;
 use std::path::Path;

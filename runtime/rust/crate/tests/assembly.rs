@@ -2,6 +2,7 @@
 //! tests/data/ais/assembly_cases.jsonl, the events Python's assembler gives of the same lines:
 //! the same messages and given-up partials, in the same order, naming the same lines, with the
 //! same payloads and fill bits, or the same error kinds.
+#![cfg(feature = "ais")]
 
 use std::fmt::Write;
 use std::fs;

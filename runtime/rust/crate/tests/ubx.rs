@@ -4,6 +4,7 @@
 //! entries, trailing bytes) or fails with the same error kind, and encodes back to the same bytes.
 //! Then every UBX frame of gpsd's logs (tests/data/ubx, tests/data/rtcm3), cut by the stream
 //! framer, decodes and encodes back byte-exact.
+#![cfg(feature = "binary")]
 
 use std::fs;
 use std::path::Path;
