@@ -85,7 +85,7 @@ def _modules(spec: Spec, env: jinja2.Environment, protocol: str, messages: list[
         sources = [message.origin.file, *sorted({f.enum.origin.file for f in fields if f.enum})]
         modules = sorted({f.bit_type.module for f in fields} | {"ais", "ubx"} | ({"binary"} if protocol != "ubx"
                                                                                else set()))
-        heading = f"{message.name}: {protocol.upper()} {message.address}, {identity(message)}"
+        heading = "\n".join(docstring(f"{message.name}: {protocol.upper()} {message.address}, {identity(message)}.", 0))
         key = "(" + ", ".join(f"0x{k:02X}" for k in message.key) + ("," if len(message.key) == 1 else "") + ")"
         files[f"python/{PACKAGE}/{protocol}_messages/{message.id}.py"] = env.get_template(
             "python/ubx_message.py.j2").render(

@@ -45,7 +45,9 @@ def _check(f: PayloadField) -> None:
 
 
 def member_name(f: PayloadField) -> str:
-    return f"{f.id}_raw" if f.divisor is not None or f.enum is not None else ident(f.id)
+    """A field's member: its id, or `<id>_raw` for a raw integer (an id that ends in `_`, as
+    MGA-GLO's `lambda_` dodges Python's keyword, without it: `lambda_raw`)."""
+    return f"{f.id.rstrip('_')}_raw" if f.divisor is not None or f.enum is not None else ident(f.id)
 
 
 def plain_type(f: PayloadField) -> str:
@@ -188,16 +190,16 @@ class _Record:
         unit = f" [{f.unit}]" if f.unit else ""
         if f.enum is not None:
             doc = f"/// {f.name}: the enum's value of the raw code, None for a code it does not name."
-            body = f"ais::code(u64::from(self.{f.id}_raw))" if certain else \
-                f"self.{f.id}_raw.and_then(|raw| ais::code(u64::from(raw)))"
+            body = f"ais::code(u64::from(self.{member_name(f)}))" if certain else \
+                f"self.{member_name(f)}.and_then(|raw| ais::code(u64::from(raw)))"
             self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> Option<{f.enum.camel}> {{ {body} }}")
         elif f.divisor is not None:
             doc = f"/// {f.name}{unit}: the raw integer divided by {f.divisor}."
             expr = f"raw as f64 / {float(f.divisor)!r}"
             if certain:
-                self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> f64 {{ let raw = self.{f.id}_raw; {expr} }}")
+                self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> f64 {{ let raw = self.{member_name(f)}; {expr} }}")
             else:
-                self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> Option<f64> {{ self.{f.id}_raw.map(|raw| {expr}) }}")
+                self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> Option<f64> {{ self.{member_name(f)}.map(|raw| {expr}) }}")
         if not f.parts:
             return
         if not certain:

@@ -29,26 +29,35 @@
 //   spec/binary/ubx/messages/ack_nak.yaml, spec/binary/ubx/messages/ack_ack.yaml,
 //   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
 //   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
-//   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_cfg.yaml,
-//   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_ant.yaml,
-//   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_nmea.yaml,
+//   spec/binary/ubx/messages/cfg_dat.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
+//   spec/binary/ubx/messages/cfg_cfg.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
+//   spec/binary/ubx/messages/cfg_ant.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
+//   spec/binary/ubx/messages/cfg_nmea.yaml, spec/binary/ubx/messages/cfg_usb.yaml,
 //   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
 //   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
-//   spec/binary/ubx/messages/cfg_itfm.yaml, spec/binary/ubx/messages/cfg_pm2.yaml,
-//   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_logfilter.yaml,
-//   spec/binary/ubx/messages/cfg_pwr.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
+//   spec/binary/ubx/messages/cfg_rinv.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
+//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
+//   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_esfa.yaml,
+//   spec/binary/ubx/messages/cfg_esfg.yaml, spec/binary/ubx/messages/cfg_txslot.yaml,
+//   spec/binary/ubx/messages/cfg_esfalg.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
+//   spec/binary/ubx/messages/cfg_hnr.yaml, spec/binary/ubx/messages/cfg_esrc.yaml,
+//   spec/binary/ubx/messages/cfg_dosc.yaml, spec/binary/ubx/messages/cfg_smgr.yaml,
 //   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
-//   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
+//   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_esfwt.yaml,
+//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
 //   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
-//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_batch.yaml,
-//   spec/binary/ubx/messages/upd_sos.yaml, spec/binary/ubx/messages/mon_io.yaml,
-//   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
-//   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
-//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
-//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_patch.yaml,
-//   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
-//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
-//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
+//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_slas.yaml,
+//   spec/binary/ubx/messages/cfg_batch.yaml, spec/binary/ubx/messages/upd_sos.yaml,
+//   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_ver.yaml,
+//   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
+//   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_hw.yaml,
+//   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
+//   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/aid_ini.yaml,
+//   spec/binary/ubx/messages/aid_hui.yaml, spec/binary/ubx/messages/aid_alm.yaml,
+//   spec/binary/ubx/messages/aid_eph.yaml, spec/binary/ubx/messages/aid_aop.yaml,
 //   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
 //   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
 //   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
@@ -57,19 +66,32 @@
 //   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
 //   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
 //   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
-//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_ano.yaml,
-//   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
-//   spec/binary/ubx/messages/log_erase.yaml, spec/binary/ubx/messages/log_string.yaml,
-//   spec/binary/ubx/messages/log_create.yaml, spec/binary/ubx/messages/log_info.yaml,
-//   spec/binary/ubx/messages/log_retrieve.yaml, spec/binary/ubx/messages/log_retrievepos.yaml,
+//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_bds.yaml,
+//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mga_glo.yaml,
+//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_ack.yaml,
+//   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/log_erase.yaml,
+//   spec/binary/ubx/messages/log_string.yaml, spec/binary/ubx/messages/log_create.yaml,
+//   spec/binary/ubx/messages/log_info.yaml, spec/binary/ubx/messages/log_retrieve.yaml,
+//   spec/binary/ubx/messages/log_retrievepos.yaml,
 //   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_findtime.yaml,
 //   spec/binary/ubx/messages/log_retrieveposextra.yaml,
 //   spec/binary/ubx/messages/log_retrievebatch.yaml, spec/binary/ubx/messages/log_batch.yaml,
 //   spec/binary/ubx/messages/sec_sign.yaml, spec/binary/ubx/messages/sec_uniqid.yaml,
 //   spec/binary/ubx/messages/sec_sig.yaml, spec/binary/ubx/messages/sec_siglog.yaml,
 //   spec/binary/ubx/messages/hnr_pvt.yaml, spec/binary/ubx/messages/hnr_att.yaml,
-//   spec/binary/ubx/messages/hnr_ins.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 6d61c03b7a2410b6)
+//   spec/binary/ubx/messages/hnr_ins.yaml, spec/binary/ubx/messages/nav2_posecef.yaml,
+//   spec/binary/ubx/messages/nav2_posllh.yaml, spec/binary/ubx/messages/nav2_status.yaml,
+//   spec/binary/ubx/messages/nav2_dop.yaml, spec/binary/ubx/messages/nav2_pvt.yaml,
+//   spec/binary/ubx/messages/nav2_odo.yaml, spec/binary/ubx/messages/nav2_velecef.yaml,
+//   spec/binary/ubx/messages/nav2_velned.yaml, spec/binary/ubx/messages/nav2_timegps.yaml,
+//   spec/binary/ubx/messages/nav2_timeutc.yaml, spec/binary/ubx/messages/nav2_clock.yaml,
+//   spec/binary/ubx/messages/nav2_timeglo.yaml, spec/binary/ubx/messages/nav2_timebds.yaml,
+//   spec/binary/ubx/messages/nav2_timegal.yaml, spec/binary/ubx/messages/nav2_timels.yaml,
+//   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_sbas.yaml,
+//   spec/binary/ubx/messages/nav2_sat.yaml, spec/binary/ubx/messages/nav2_cov.yaml,
+//   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_sig.yaml,
+//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/enums/ubx_fix_type.yaml,
+//   spec/enums/ubx_gnss_id.yaml (digest 9cec151a435c5c82)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -2068,6 +2090,37 @@ static const nmea_ubx_item ubx_cfg_rst_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_cfg_rst, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-DAT: cfg_dat_poll */
+static const nmea_ubx_item ubx_cfg_dat_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-DAT: cfg_dat_set */
+static const nmea_ubx_item ubx_cfg_dat_set_items[] = {
+    {"maj_a", NULL, offsetof(nmea_ubx_cfg_dat_set, maj_a), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flat", NULL, offsetof(nmea_ubx_cfg_dat_set, flat), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d_x", NULL, offsetof(nmea_ubx_cfg_dat_set, d_x), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d_y", NULL, offsetof(nmea_ubx_cfg_dat_set, d_y), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d_z", NULL, offsetof(nmea_ubx_cfg_dat_set, d_z), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rot_x", NULL, offsetof(nmea_ubx_cfg_dat_set, rot_x), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rot_y", NULL, offsetof(nmea_ubx_cfg_dat_set, rot_y), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rot_z", NULL, offsetof(nmea_ubx_cfg_dat_set, rot_z), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"scale", NULL, offsetof(nmea_ubx_cfg_dat_set, scale), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-DAT: cfg_dat */
+static const nmea_ubx_item ubx_cfg_dat_items[] = {
+    {"datum_num", NULL, offsetof(nmea_ubx_cfg_dat, datum_num), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"datum_name", NULL, offsetof(nmea_ubx_cfg_dat, datum_name), 0, 0, NMEA_UBX_ITEM_ARRAY, 6, 6, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"maj_a", NULL, offsetof(nmea_ubx_cfg_dat, maj_a), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flat", NULL, offsetof(nmea_ubx_cfg_dat, flat), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d_x", NULL, offsetof(nmea_ubx_cfg_dat, d_x), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d_y", NULL, offsetof(nmea_ubx_cfg_dat, d_y), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d_z", NULL, offsetof(nmea_ubx_cfg_dat, d_z), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rot_x", NULL, offsetof(nmea_ubx_cfg_dat, rot_x), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rot_y", NULL, offsetof(nmea_ubx_cfg_dat, rot_y), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rot_z", NULL, offsetof(nmea_ubx_cfg_dat, rot_z), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"scale", NULL, offsetof(nmea_ubx_cfg_dat, scale), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* CFG-RATE: cfg_rate_poll */
 static const nmea_ubx_item ubx_cfg_rate_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -2222,6 +2275,24 @@ static const nmea_ubx_item ubx_cfg_nmea_deprecated_items[] = {
     {"high_prec", NULL, offsetof(nmea_ubx_cfg_nmea_deprecated, high_prec), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-USB: cfg_usb_poll */
+static const nmea_ubx_item ubx_cfg_usb_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-USB: cfg_usb */
+static const nmea_ubx_item ubx_cfg_usb_items[] = {
+    {"vendor_id", NULL, offsetof(nmea_ubx_cfg_usb, vendor_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"product_id", NULL, offsetof(nmea_ubx_cfg_usb, product_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_cfg_usb, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_usb, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"power_consumption", NULL, offsetof(nmea_ubx_cfg_usb, power_consumption), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_usb, flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"re_enum", NULL, offsetof(nmea_ubx_cfg_usb, re_enum), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"power_mode", NULL, offsetof(nmea_ubx_cfg_usb, power_mode), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"vendor_string", NULL, offsetof(nmea_ubx_cfg_usb, vendor_string), 0, 0, NMEA_UBX_ITEM_ARRAY, 32, 32, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"product_string", NULL, offsetof(nmea_ubx_cfg_usb, product_string), 0, 0, NMEA_UBX_ITEM_ARRAY, 32, 32, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"serial_number", NULL, offsetof(nmea_ubx_cfg_usb, serial_number), 0, 0, NMEA_UBX_ITEM_ARRAY, 32, 32, 0, NMEA_UBX_PRINT_CHARS, false}
+};
+
 /* CFG-ODO: cfg_odo_poll */
 static const nmea_ubx_item ubx_cfg_odo_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -2358,6 +2429,22 @@ static const nmea_ubx_item ubx_cfg_tp5_items[] = {
     {"sync_mode", NULL, offsetof(nmea_ubx_cfg_tp5, sync_mode), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 11, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-RINV: cfg_rinv_poll */
+static const nmea_ubx_item ubx_cfg_rinv_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-RINV: cfg_rinv */
+static const nmea_ubx_item ubx_cfg_rinv_data_entry_items[] = {
+    {"data", NULL, offsetof(nmea_ubx_cfg_rinv_data_entry, data), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_cfg_rinv_data_group = {ubx_cfg_rinv_data_entry_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 1, 30, NMEA_UBX_CFG_RINV_DATA_MAX, 1, sizeof(nmea_ubx_cfg_rinv_data_entry), 0, offsetof(nmea_ubx_cfg_rinv, data_count)};
+static const nmea_ubx_item ubx_cfg_rinv_items[] = {
+    {"flags", NULL, offsetof(nmea_ubx_cfg_rinv, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dump", NULL, offsetof(nmea_ubx_cfg_rinv, dump), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"binary", NULL, offsetof(nmea_ubx_cfg_rinv, binary), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"data", &ubx_cfg_rinv_data_group, offsetof(nmea_ubx_cfg_rinv, data), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* CFG-ITFM: cfg_itfm_poll */
 static const nmea_ubx_item ubx_cfg_itfm_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -2471,6 +2558,77 @@ static const nmea_ubx_item ubx_cfg_logfilter_items[] = {
     {"position_threshold", NULL, offsetof(nmea_ubx_cfg_logfilter, position_threshold), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-ESFA: cfg_esfa_poll */
+static const nmea_ubx_item ubx_cfg_esfa_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-ESFA: cfg_esfa */
+static const nmea_ubx_scale ubx_cfg_esfa_accel_rms_thdl_scale = {64.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_esfa_accuracy_scale = {10000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_cfg_esfa_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_esfa, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_esfa, reserved1), 0, 0, NMEA_UBX_ITEM_ARRAY, 9, 9, 0, NMEA_UBX_PRINT_BIG, false},
+    {"accel_rms_thdl", &ubx_cfg_esfa_accel_rms_thdl_scale, offsetof(nmea_ubx_cfg_esfa, accel_rms_thdl), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"frequency", NULL, offsetof(nmea_ubx_cfg_esfa, frequency), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"latency", NULL, offsetof(nmea_ubx_cfg_esfa, latency), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"accuracy", &ubx_cfg_esfa_accuracy_scale, offsetof(nmea_ubx_cfg_esfa, accuracy), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_cfg_esfa, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-ESFG: cfg_esfg_poll */
+static const nmea_ubx_item ubx_cfg_esfg_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-ESFG: cfg_esfg */
+static const nmea_ubx_scale ubx_cfg_esfg_gyro_rms_thdl_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_esfg_accuracy_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_cfg_esfg_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_esfg, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_esfg, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 7, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tc_table_save_rate", NULL, offsetof(nmea_ubx_cfg_esfg, tc_table_save_rate), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gyro_rms_thdl", &ubx_cfg_esfg_gyro_rms_thdl_scale, offsetof(nmea_ubx_cfg_esfg, gyro_rms_thdl), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"frequency", NULL, offsetof(nmea_ubx_cfg_esfg, frequency), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"latency", NULL, offsetof(nmea_ubx_cfg_esfg, latency), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"accuracy", &ubx_cfg_esfg_accuracy_scale, offsetof(nmea_ubx_cfg_esfg, accuracy), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_cfg_esfg, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-TXSLOT: cfg_txslot_poll */
+static const nmea_ubx_item ubx_cfg_txslot_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-TXSLOT: cfg_txslot */
+static const nmea_ubx_item ubx_cfg_txslot_end_entry_items[] = {
+    {"end", NULL, offsetof(nmea_ubx_cfg_txslot_end_entry, end), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_cfg_txslot_end_group = {ubx_cfg_txslot_end_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 3, 0, 65535, NMEA_UBX_CFG_TXSLOT_END_MAX, 4, sizeof(nmea_ubx_cfg_txslot_end_entry), 0, offsetof(nmea_ubx_cfg_txslot, end_count)};
+static const nmea_ubx_item ubx_cfg_txslot_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_txslot, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable", NULL, offsetof(nmea_ubx_cfg_txslot, enable), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable_ddc", NULL, offsetof(nmea_ubx_cfg_txslot, enable_ddc), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable_uart1", NULL, offsetof(nmea_ubx_cfg_txslot, enable_uart1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable_uart2", NULL, offsetof(nmea_ubx_cfg_txslot, enable_uart2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable_usb", NULL, offsetof(nmea_ubx_cfg_txslot, enable_usb), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable_spi", NULL, offsetof(nmea_ubx_cfg_txslot, enable_spi), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"ref_tp", NULL, offsetof(nmea_ubx_cfg_txslot, ref_tp), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_txslot, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"end", &ubx_cfg_txslot_end_group, offsetof(nmea_ubx_cfg_txslot, end), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-ESFALG: cfg_esfalg_poll */
+static const nmea_ubx_item ubx_cfg_esfalg_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-ESFALG: cfg_esfalg */
+static const nmea_ubx_scale ubx_cfg_esfalg_yaw_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_esfalg_pitch_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_esfalg_roll_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_cfg_esfalg_items[] = {
+    {"bitfield", NULL, offsetof(nmea_ubx_cfg_esfalg, bitfield), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_cfg_esfalg, version), 0, 0, NMEA_UBX_ITEM_PART, 8, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"do_auto_mnt_alg", NULL, offsetof(nmea_ubx_cfg_esfalg, do_auto_mnt_alg), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"yaw", &ubx_cfg_esfalg_yaw_scale, offsetof(nmea_ubx_cfg_esfalg, yaw), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"pitch", &ubx_cfg_esfalg_pitch_scale, offsetof(nmea_ubx_cfg_esfalg, pitch), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"roll", &ubx_cfg_esfalg_roll_scale, offsetof(nmea_ubx_cfg_esfalg, roll), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
 /* CFG-PWR: cfg_pwr */
 static const nmea_ubx_item ubx_cfg_pwr_items[] = {
     {"version", NULL, offsetof(nmea_ubx_cfg_pwr, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2485,6 +2643,107 @@ static const nmea_ubx_item ubx_cfg_hnr_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA
 static const nmea_ubx_item ubx_cfg_hnr_items[] = {
     {"high_nav_rate", NULL, offsetof(nmea_ubx_cfg_hnr, high_nav_rate), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved1", NULL, offsetof(nmea_ubx_cfg_hnr, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-ESRC: cfg_esrc_poll */
+static const nmea_ubx_item ubx_cfg_esrc_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-ESRC: cfg_esrc */
+static const nmea_ubx_scale ubx_cfg_esrc_source_freq_scale = {4.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_esrc_source_with_temp_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_esrc_source_with_age_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_cfg_esrc_source_items[] = {
+    {"ext_int", NULL, offsetof(nmea_ubx_cfg_esrc_source, ext_int), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"source_type", NULL, offsetof(nmea_ubx_cfg_esrc_source, source_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_esrc_source, flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"polarity", NULL, offsetof(nmea_ubx_cfg_esrc_source, polarity), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_utc", NULL, offsetof(nmea_ubx_cfg_esrc_source, gnss_utc), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"freq", &ubx_cfg_esrc_source_freq_scale, offsetof(nmea_ubx_cfg_esrc_source, freq), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_cfg_esrc_source, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"with_temp", &ubx_cfg_esrc_source_with_temp_scale, offsetof(nmea_ubx_cfg_esrc_source, with_temp), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"with_age", &ubx_cfg_esrc_source_with_age_scale, offsetof(nmea_ubx_cfg_esrc_source, with_age), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"time_to_temp", NULL, offsetof(nmea_ubx_cfg_esrc_source, time_to_temp), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"max_dev_life_time", NULL, offsetof(nmea_ubx_cfg_esrc_source, max_dev_life_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"offset", NULL, offsetof(nmea_ubx_cfg_esrc_source, offset), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"offset_uncertainty", NULL, offsetof(nmea_ubx_cfg_esrc_source, offset_uncertainty), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"jitter", NULL, offsetof(nmea_ubx_cfg_esrc_source, jitter), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_cfg_esrc_sources_group = {ubx_cfg_esrc_source_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_esrc, num_sources), 0, 0, 2, NMEA_UBX_CFG_ESRC_SOURCES_MAX, 36, sizeof(nmea_ubx_cfg_esrc_source), 0, offsetof(nmea_ubx_cfg_esrc, sources_count)};
+static const nmea_ubx_item ubx_cfg_esrc_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_esrc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sources", NULL, offsetof(nmea_ubx_cfg_esrc, num_sources), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_esrc, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sources", &ubx_cfg_esrc_sources_group, offsetof(nmea_ubx_cfg_esrc, sources), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-DOSC: cfg_dosc_poll */
+static const nmea_ubx_item ubx_cfg_dosc_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-DOSC: cfg_dosc */
+static const nmea_ubx_scale ubx_cfg_dosc_oscillator_freq_scale = {4.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_dosc_oscillator_with_temp_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_dosc_oscillator_with_age_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_dosc_oscillator_gain_vco_scale = {65536.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_dosc_oscillator_gain_uncertainty_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_cfg_dosc_oscillator_items[] = {
+    {"osc_id", NULL, offsetof(nmea_ubx_cfg_dosc_oscillator, osc_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_cfg_dosc_oscillator, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_dosc_oscillator, flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"is_calibrated", NULL, offsetof(nmea_ubx_cfg_dosc_oscillator, is_calibrated), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"control_if", NULL, offsetof(nmea_ubx_cfg_dosc_oscillator, control_if), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"freq", &ubx_cfg_dosc_oscillator_freq_scale, offsetof(nmea_ubx_cfg_dosc_oscillator, freq), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"phase_offset", NULL, offsetof(nmea_ubx_cfg_dosc_oscillator, phase_offset), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"with_temp", &ubx_cfg_dosc_oscillator_with_temp_scale, offsetof(nmea_ubx_cfg_dosc_oscillator, with_temp), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"with_age", &ubx_cfg_dosc_oscillator_with_age_scale, offsetof(nmea_ubx_cfg_dosc_oscillator, with_age), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"time_to_temp", NULL, offsetof(nmea_ubx_cfg_dosc_oscillator, time_to_temp), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_cfg_dosc_oscillator, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gain_vco", &ubx_cfg_dosc_oscillator_gain_vco_scale, offsetof(nmea_ubx_cfg_dosc_oscillator, gain_vco), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"gain_uncertainty", &ubx_cfg_dosc_oscillator_gain_uncertainty_scale, offsetof(nmea_ubx_cfg_dosc_oscillator, gain_uncertainty), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved4", NULL, offsetof(nmea_ubx_cfg_dosc_oscillator, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_cfg_dosc_oscillators_group = {ubx_cfg_dosc_oscillator_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_dosc, num_osc), 0, 0, 2, NMEA_UBX_CFG_DOSC_OSCILLATORS_MAX, 32, sizeof(nmea_ubx_cfg_dosc_oscillator), 0, offsetof(nmea_ubx_cfg_dosc, oscillators_count)};
+static const nmea_ubx_item ubx_cfg_dosc_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_dosc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_osc", NULL, offsetof(nmea_ubx_cfg_dosc, num_osc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_dosc, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"oscillators", &ubx_cfg_dosc_oscillators_group, offsetof(nmea_ubx_cfg_dosc, oscillators), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-SMGR: cfg_smgr_poll */
+static const nmea_ubx_item ubx_cfg_smgr_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-SMGR: cfg_smgr */
+static const nmea_ubx_item ubx_cfg_smgr_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_smgr, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min_gnss_fix", NULL, offsetof(nmea_ubx_cfg_smgr, min_gnss_fix), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"max_freq_change", NULL, offsetof(nmea_ubx_cfg_smgr, max_freq_change), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"max_phase_corr_rate", NULL, offsetof(nmea_ubx_cfg_smgr, max_phase_corr_rate), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_smgr, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"freq_tolerance", NULL, offsetof(nmea_ubx_cfg_smgr, freq_tolerance), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_tolerance", NULL, offsetof(nmea_ubx_cfg_smgr, time_tolerance), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"message_cfg", NULL, offsetof(nmea_ubx_cfg_smgr, message_cfg), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"meas_internal", NULL, offsetof(nmea_ubx_cfg_smgr, meas_internal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"meas_gnss", NULL, offsetof(nmea_ubx_cfg_smgr, meas_gnss), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"meas_extint0", NULL, offsetof(nmea_ubx_cfg_smgr, meas_extint0), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"meas_extint1", NULL, offsetof(nmea_ubx_cfg_smgr, meas_extint1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"max_slew_rate", NULL, offsetof(nmea_ubx_cfg_smgr, max_slew_rate), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_smgr, flags), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"disable_internal", NULL, offsetof(nmea_ubx_cfg_smgr, disable_internal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"disable_external", NULL, offsetof(nmea_ubx_cfg_smgr, disable_external), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"preference_mode", NULL, offsetof(nmea_ubx_cfg_smgr, preference_mode), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable_gnss", NULL, offsetof(nmea_ubx_cfg_smgr, enable_gnss), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable_extint0", NULL, offsetof(nmea_ubx_cfg_smgr, enable_extint0), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable_extint1", NULL, offsetof(nmea_ubx_cfg_smgr, enable_extint1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable_host_meas_int", NULL, offsetof(nmea_ubx_cfg_smgr, enable_host_meas_int), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"enable_host_meas_ext", NULL, offsetof(nmea_ubx_cfg_smgr, enable_host_meas_ext), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"use_any_fix", NULL, offsetof(nmea_ubx_cfg_smgr, use_any_fix), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 10, NMEA_UBX_PRINT_NUMBER, false},
+    {"disable_max_slew_rate", NULL, offsetof(nmea_ubx_cfg_smgr, disable_max_slew_rate), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 11, NMEA_UBX_PRINT_NUMBER, false},
+    {"issue_freq_warning", NULL, offsetof(nmea_ubx_cfg_smgr, issue_freq_warning), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 12, NMEA_UBX_PRINT_NUMBER, false},
+    {"issue_time_warning", NULL, offsetof(nmea_ubx_cfg_smgr, issue_time_warning), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 13, NMEA_UBX_PRINT_NUMBER, false},
+    {"tp_coherent", NULL, offsetof(nmea_ubx_cfg_smgr, tp_coherent), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 14, NMEA_UBX_PRINT_NUMBER, false},
+    {"disable_offset", NULL, offsetof(nmea_ubx_cfg_smgr, disable_offset), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 16, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* CFG-GEOFENCE: cfg_geofence_poll */
@@ -2545,6 +2804,52 @@ static const nmea_ubx_item ubx_cfg_tmode3_items[] = {
     {"svin_min_dur", NULL, offsetof(nmea_ubx_cfg_tmode3, svin_min_dur), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"svin_acc_limit", &ubx_cfg_tmode3_svin_acc_limit_scale, offsetof(nmea_ubx_cfg_tmode3, svin_acc_limit), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"reserved3", NULL, offsetof(nmea_ubx_cfg_tmode3, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-ESFWT: cfg_esfwt_poll */
+static const nmea_ubx_item ubx_cfg_esfwt_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-ESFWT: cfg_esfwt */
+static const nmea_ubx_scale ubx_cfg_esfwt_wt_factor_scale = {1000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_cfg_esfwt_wt_quant_error_scale = {1000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_cfg_esfwt_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_esfwt, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags1", NULL, offsetof(nmea_ubx_cfg_esfwt, flags1), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"combine_ticks", NULL, offsetof(nmea_ubx_cfg_esfwt, combine_ticks), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"use_wt_speed", NULL, offsetof(nmea_ubx_cfg_esfwt, use_wt_speed), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"dir_pin_pol", NULL, offsetof(nmea_ubx_cfg_esfwt, dir_pin_pol), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"use_wt_pin", NULL, offsetof(nmea_ubx_cfg_esfwt, use_wt_pin), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags2", NULL, offsetof(nmea_ubx_cfg_esfwt, flags2), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"auto_wt_count_max_off", NULL, offsetof(nmea_ubx_cfg_esfwt, auto_wt_count_max_off), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"auto_dir_pin_pol_off", NULL, offsetof(nmea_ubx_cfg_esfwt, auto_dir_pin_pol_off), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"auto_software_wt_off", NULL, offsetof(nmea_ubx_cfg_esfwt, auto_software_wt_off), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"auto_use_wt_speed_off", NULL, offsetof(nmea_ubx_cfg_esfwt, auto_use_wt_speed_off), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_esfwt, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wt_factor", &ubx_cfg_esfwt_wt_factor_scale, offsetof(nmea_ubx_cfg_esfwt, wt_factor), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wt_quant_error", &ubx_cfg_esfwt_wt_quant_error_scale, offsetof(nmea_ubx_cfg_esfwt, wt_quant_error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wt_count_max", NULL, offsetof(nmea_ubx_cfg_esfwt, wt_count_max), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wt_latency", NULL, offsetof(nmea_ubx_cfg_esfwt, wt_latency), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wt_frequency", NULL, offsetof(nmea_ubx_cfg_esfwt, wt_frequency), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags3", NULL, offsetof(nmea_ubx_cfg_esfwt, flags3), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cnt_both_edges", NULL, offsetof(nmea_ubx_cfg_esfwt, cnt_both_edges), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"speed_dead_band", NULL, offsetof(nmea_ubx_cfg_esfwt, speed_dead_band), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_cfg_esfwt, reserved2), 0, 0, NMEA_UBX_ITEM_ARRAY, 10, 10, 0, NMEA_UBX_PRINT_BIG, false}
+};
+
+/* CFG-FIXSEED: cfg_fixseed */
+static const nmea_ubx_item ubx_cfg_fixseed_message_items[] = {
+    {"class_id", NULL, offsetof(nmea_ubx_cfg_fixseed_message, class_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_id", NULL, offsetof(nmea_ubx_cfg_fixseed_message, msg_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_cfg_fixseed_messages_group = {ubx_cfg_fixseed_message_items, 2, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_cfg_fixseed, length), 0, 0, 65535, NMEA_UBX_CFG_FIXSEED_MESSAGES_MAX, 2, sizeof(nmea_ubx_cfg_fixseed_message), 0, offsetof(nmea_ubx_cfg_fixseed, messages_count)};
+static const nmea_ubx_item ubx_cfg_fixseed_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_fixseed, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"length", NULL, offsetof(nmea_ubx_cfg_fixseed, length), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_fixseed, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"seed_hi", NULL, offsetof(nmea_ubx_cfg_fixseed, seed_hi), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"seed_lo", NULL, offsetof(nmea_ubx_cfg_fixseed, seed_lo), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"messages", &ubx_cfg_fixseed_messages_group, offsetof(nmea_ubx_cfg_fixseed, messages), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* CFG-PMS: cfg_pms_poll */
@@ -2634,6 +2939,18 @@ static const nmea_ubx_item ubx_cfg_valdel_items[] = {
     {"action", NULL, offsetof(nmea_ubx_cfg_valdel, action), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved0", NULL, offsetof(nmea_ubx_cfg_valdel, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"keys", &ubx_cfg_valdel_keys_group, offsetof(nmea_ubx_cfg_valdel, keys), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-SLAS: cfg_slas_poll */
+static const nmea_ubx_item ubx_cfg_slas_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-SLAS: cfg_slas */
+static const nmea_ubx_item ubx_cfg_slas_items[] = {
+    {"mode", NULL, offsetof(nmea_ubx_cfg_slas, mode), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"enabled", NULL, offsetof(nmea_ubx_cfg_slas, enabled), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"test", NULL, offsetof(nmea_ubx_cfg_slas, test), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"raim", NULL, offsetof(nmea_ubx_cfg_slas, raim), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_slas, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* CFG-BATCH: cfg_batch_poll */
@@ -3064,6 +3381,153 @@ static const nmea_ubx_item ubx_mon_sys_items[] = {
     {"error_count", NULL, offsetof(nmea_ubx_mon_sys, error_count), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"temp_value", NULL, offsetof(nmea_ubx_mon_sys, temp_value), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved0", NULL, offsetof(nmea_ubx_mon_sys, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 5, 8, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* AID-INI: aid_ini_poll */
+static const nmea_ubx_item ubx_aid_ini_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* AID-INI: aid_ini */
+static const nmea_ubx_item ubx_aid_ini_items[] = {
+    {"ecef_x_or_lat", NULL, offsetof(nmea_ubx_aid_ini, ecef_x_or_lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_y_or_lon", NULL, offsetof(nmea_ubx_aid_ini, ecef_y_or_lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_z_or_alt", NULL, offsetof(nmea_ubx_aid_ini, ecef_z_or_alt), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_acc", NULL, offsetof(nmea_ubx_aid_ini, pos_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tm_cfg", NULL, offsetof(nmea_ubx_aid_ini, tm_cfg), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"f_edge", NULL, offsetof(nmea_ubx_aid_ini, f_edge), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"tm1", NULL, offsetof(nmea_ubx_aid_ini, tm1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"f1", NULL, offsetof(nmea_ubx_aid_ini, f1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"wn", NULL, offsetof(nmea_ubx_aid_ini, wn), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", NULL, offsetof(nmea_ubx_aid_ini, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow_ns", NULL, offsetof(nmea_ubx_aid_ini, tow_ns), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc_ms", NULL, offsetof(nmea_ubx_aid_ini, t_acc_ms), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc_ns", NULL, offsetof(nmea_ubx_aid_ini, t_acc_ns), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clk_d_or_freq", NULL, offsetof(nmea_ubx_aid_ini, clk_d_or_freq), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clk_d_acc_or_freq_acc", NULL, offsetof(nmea_ubx_aid_ini, clk_d_acc_or_freq_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_aid_ini, flags), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos", NULL, offsetof(nmea_ubx_aid_ini, pos), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time", NULL, offsetof(nmea_ubx_aid_ini, time), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"clock_d", NULL, offsetof(nmea_ubx_aid_ini, clock_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"tp", NULL, offsetof(nmea_ubx_aid_ini, tp), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"clock_f", NULL, offsetof(nmea_ubx_aid_ini, clock_f), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"lla", NULL, offsetof(nmea_ubx_aid_ini, lla), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"alt_inv", NULL, offsetof(nmea_ubx_aid_ini, alt_inv), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"prev_tm", NULL, offsetof(nmea_ubx_aid_ini, prev_tm), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc", NULL, offsetof(nmea_ubx_aid_ini, utc), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 10, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* AID-HUI: aid_hui_poll */
+static const nmea_ubx_item ubx_aid_hui_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* AID-HUI: aid_hui */
+static const nmea_ubx_item ubx_aid_hui_items[] = {
+    {"health", NULL, offsetof(nmea_ubx_aid_hui, health), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_a0", NULL, offsetof(nmea_ubx_aid_hui, utc_a0), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_a1", NULL, offsetof(nmea_ubx_aid_hui, utc_a1), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_tow", NULL, offsetof(nmea_ubx_aid_hui, utc_tow), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_wnt", NULL, offsetof(nmea_ubx_aid_hui, utc_wnt), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_ls", NULL, offsetof(nmea_ubx_aid_hui, utc_ls), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_wnf", NULL, offsetof(nmea_ubx_aid_hui, utc_wnf), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_dns", NULL, offsetof(nmea_ubx_aid_hui, utc_dns), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_lsf", NULL, offsetof(nmea_ubx_aid_hui, utc_lsf), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_spare", NULL, offsetof(nmea_ubx_aid_hui, utc_spare), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"klob_a0", NULL, offsetof(nmea_ubx_aid_hui, klob_a0), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"klob_a1", NULL, offsetof(nmea_ubx_aid_hui, klob_a1), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"klob_a2", NULL, offsetof(nmea_ubx_aid_hui, klob_a2), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"klob_a3", NULL, offsetof(nmea_ubx_aid_hui, klob_a3), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"klob_b0", NULL, offsetof(nmea_ubx_aid_hui, klob_b0), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"klob_b1", NULL, offsetof(nmea_ubx_aid_hui, klob_b1), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"klob_b2", NULL, offsetof(nmea_ubx_aid_hui, klob_b2), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"klob_b3", NULL, offsetof(nmea_ubx_aid_hui, klob_b3), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_aid_hui, flags), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"health_valid", NULL, offsetof(nmea_ubx_aid_hui, health_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_valid", NULL, offsetof(nmea_ubx_aid_hui, utc_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"klob_valid", NULL, offsetof(nmea_ubx_aid_hui, klob_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* AID-ALM: aid_alm_poll */
+static const nmea_ubx_item ubx_aid_alm_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* AID-ALM: aid_alm_poll_sv */
+static const nmea_ubx_item ubx_aid_alm_poll_sv_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_aid_alm_poll_sv, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* AID-ALM: aid_alm */
+static const nmea_ubx_item ubx_aid_alm_dwrd_entry_items[] = {
+    {"dwrd", NULL, offsetof(nmea_ubx_aid_alm_dwrd_entry, dwrd), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_aid_alm_dwrd_group = {ubx_aid_alm_dwrd_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 8, 0, 65535, NMEA_UBX_AID_ALM_DWRD_MAX, 4, sizeof(nmea_ubx_aid_alm_dwrd_entry), 0, offsetof(nmea_ubx_aid_alm, dwrd_count)};
+static const nmea_ubx_item ubx_aid_alm_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_aid_alm, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_aid_alm, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dwrd", &ubx_aid_alm_dwrd_group, offsetof(nmea_ubx_aid_alm, dwrd), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* AID-ALM: aid_alm_empty */
+static const nmea_ubx_item ubx_aid_alm_empty_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_aid_alm_empty, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_aid_alm_empty, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* AID-EPH: aid_eph_poll */
+static const nmea_ubx_item ubx_aid_eph_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* AID-EPH: aid_eph_poll_sv */
+static const nmea_ubx_item ubx_aid_eph_poll_sv_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_aid_eph_poll_sv, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* AID-EPH: aid_eph */
+static const nmea_ubx_item ubx_aid_eph_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_aid_eph, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"how", NULL, offsetof(nmea_ubx_aid_eph, how), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf1d1", NULL, offsetof(nmea_ubx_aid_eph, sf1d1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf1d2", NULL, offsetof(nmea_ubx_aid_eph, sf1d2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf1d3", NULL, offsetof(nmea_ubx_aid_eph, sf1d3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf1d4", NULL, offsetof(nmea_ubx_aid_eph, sf1d4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf1d5", NULL, offsetof(nmea_ubx_aid_eph, sf1d5), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf1d6", NULL, offsetof(nmea_ubx_aid_eph, sf1d6), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf1d7", NULL, offsetof(nmea_ubx_aid_eph, sf1d7), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf1d8", NULL, offsetof(nmea_ubx_aid_eph, sf1d8), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf2d1", NULL, offsetof(nmea_ubx_aid_eph, sf2d1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf2d2", NULL, offsetof(nmea_ubx_aid_eph, sf2d2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf2d3", NULL, offsetof(nmea_ubx_aid_eph, sf2d3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf2d4", NULL, offsetof(nmea_ubx_aid_eph, sf2d4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf2d5", NULL, offsetof(nmea_ubx_aid_eph, sf2d5), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf2d6", NULL, offsetof(nmea_ubx_aid_eph, sf2d6), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf2d7", NULL, offsetof(nmea_ubx_aid_eph, sf2d7), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf2d8", NULL, offsetof(nmea_ubx_aid_eph, sf2d8), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf3d1", NULL, offsetof(nmea_ubx_aid_eph, sf3d1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf3d2", NULL, offsetof(nmea_ubx_aid_eph, sf3d2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf3d3", NULL, offsetof(nmea_ubx_aid_eph, sf3d3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf3d4", NULL, offsetof(nmea_ubx_aid_eph, sf3d4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf3d5", NULL, offsetof(nmea_ubx_aid_eph, sf3d5), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf3d6", NULL, offsetof(nmea_ubx_aid_eph, sf3d6), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf3d7", NULL, offsetof(nmea_ubx_aid_eph, sf3d7), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sf3d8", NULL, offsetof(nmea_ubx_aid_eph, sf3d8), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* AID-EPH: aid_eph_empty */
+static const nmea_ubx_item ubx_aid_eph_empty_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_aid_eph_empty, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"how", NULL, offsetof(nmea_ubx_aid_eph_empty, how), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* AID-AOP: aid_aop_poll */
+static const nmea_ubx_item ubx_aid_aop_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* AID-AOP: aid_aop_poll_sv */
+static const nmea_ubx_item ubx_aid_aop_poll_sv_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_aid_aop_poll_sv, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* AID-AOP: aid_aop */
+static const nmea_ubx_item ubx_aid_aop_items[] = {
+    {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_aid_aop, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_aid_aop, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_aid_aop, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"data", NULL, offsetof(nmea_ubx_aid_aop, data), 0, 0, NMEA_UBX_ITEM_ARRAY, 64, 64, 0, NMEA_UBX_PRINT_HEX, false}
 };
 
 /* TIM-TP: tim_tp_poll */
@@ -3669,6 +4133,321 @@ static const nmea_ubx_item ubx_mga_gal_utc_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_mga_gal_utc, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* MGA-BDS: mga_bds_eph */
+static const nmea_ubx_scale ubx_mga_bds_eph_a2_scale = {7.378697629483821e+19, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_a1_scale = {1125899906842624.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_a0_scale = {8589934592.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_tgd1_scale = {10.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_sqrt_a_scale = {524288.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_e_scale = {8589934592.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_omega_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_deltan_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_idot_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_m0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_omega0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_omega_dot_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_i0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_cuc_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_cus_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_crc_scale = {64.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_crs_scale = {64.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_cic_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_eph_cis_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_bds_eph_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_bds_eph, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_bds_eph, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_mga_bds_eph, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_bds_eph, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sat_h1", NULL, offsetof(nmea_ubx_mga_bds_eph, sat_h1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iodc", NULL, offsetof(nmea_ubx_mga_bds_eph, iodc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"a2", &ubx_mga_bds_eph_a2_scale, offsetof(nmea_ubx_mga_bds_eph, a2), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"a1", &ubx_mga_bds_eph_a1_scale, offsetof(nmea_ubx_mga_bds_eph, a1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"a0", &ubx_mga_bds_eph_a0_scale, offsetof(nmea_ubx_mga_bds_eph, a0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"toc", NULL, offsetof(nmea_ubx_mga_bds_eph, toc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tgd1", &ubx_mga_bds_eph_tgd1_scale, offsetof(nmea_ubx_mga_bds_eph, tgd1), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"urai", NULL, offsetof(nmea_ubx_mga_bds_eph, urai), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iode", NULL, offsetof(nmea_ubx_mga_bds_eph, iode), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"toe", NULL, offsetof(nmea_ubx_mga_bds_eph, toe), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sqrt_a", &ubx_mga_bds_eph_sqrt_a_scale, offsetof(nmea_ubx_mga_bds_eph, sqrt_a), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"e", &ubx_mga_bds_eph_e_scale, offsetof(nmea_ubx_mga_bds_eph, e), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega", &ubx_mga_bds_eph_omega_scale, offsetof(nmea_ubx_mga_bds_eph, omega), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"deltan", &ubx_mga_bds_eph_deltan_scale, offsetof(nmea_ubx_mga_bds_eph, deltan), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"idot", &ubx_mga_bds_eph_idot_scale, offsetof(nmea_ubx_mga_bds_eph, idot), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"m0", &ubx_mga_bds_eph_m0_scale, offsetof(nmea_ubx_mga_bds_eph, m0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega0", &ubx_mga_bds_eph_omega0_scale, offsetof(nmea_ubx_mga_bds_eph, omega0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega_dot", &ubx_mga_bds_eph_omega_dot_scale, offsetof(nmea_ubx_mga_bds_eph, omega_dot), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"i0", &ubx_mga_bds_eph_i0_scale, offsetof(nmea_ubx_mga_bds_eph, i0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cuc", &ubx_mga_bds_eph_cuc_scale, offsetof(nmea_ubx_mga_bds_eph, cuc), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cus", &ubx_mga_bds_eph_cus_scale, offsetof(nmea_ubx_mga_bds_eph, cus), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"crc", &ubx_mga_bds_eph_crc_scale, offsetof(nmea_ubx_mga_bds_eph, crc), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"crs", &ubx_mga_bds_eph_crs_scale, offsetof(nmea_ubx_mga_bds_eph, crs), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cic", &ubx_mga_bds_eph_cic_scale, offsetof(nmea_ubx_mga_bds_eph, cic), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cis", &ubx_mga_bds_eph_cis_scale, offsetof(nmea_ubx_mga_bds_eph, cis), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_bds_eph, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-BDS: mga_bds_alm */
+static const nmea_ubx_scale ubx_mga_bds_alm_delta_i_scale = {524288.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_alm_sqrt_a_scale = {2048.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_alm_e_scale = {2097152.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_alm_omega_scale = {8388608.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_alm_m0_scale = {8388608.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_alm_omega0_scale = {8388608.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_alm_omega_dot_scale = {274877906944.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_alm_a0_scale = {1048576.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_alm_a1_scale = {274877906944.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_bds_alm_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_bds_alm, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_bds_alm, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_mga_bds_alm, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_bds_alm, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wna", NULL, offsetof(nmea_ubx_mga_bds_alm, wna), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"toa", NULL, offsetof(nmea_ubx_mga_bds_alm, toa), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"delta_i", &ubx_mga_bds_alm_delta_i_scale, offsetof(nmea_ubx_mga_bds_alm, delta_i), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"sqrt_a", &ubx_mga_bds_alm_sqrt_a_scale, offsetof(nmea_ubx_mga_bds_alm, sqrt_a), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"e", &ubx_mga_bds_alm_e_scale, offsetof(nmea_ubx_mga_bds_alm, e), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega", &ubx_mga_bds_alm_omega_scale, offsetof(nmea_ubx_mga_bds_alm, omega), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"m0", &ubx_mga_bds_alm_m0_scale, offsetof(nmea_ubx_mga_bds_alm, m0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega0", &ubx_mga_bds_alm_omega0_scale, offsetof(nmea_ubx_mga_bds_alm, omega0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega_dot", &ubx_mga_bds_alm_omega_dot_scale, offsetof(nmea_ubx_mga_bds_alm, omega_dot), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"a0", &ubx_mga_bds_alm_a0_scale, offsetof(nmea_ubx_mga_bds_alm, a0), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"a1", &ubx_mga_bds_alm_a1_scale, offsetof(nmea_ubx_mga_bds_alm, a1), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_bds_alm, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-BDS: mga_bds_health */
+static const nmea_ubx_item ubx_mga_bds_health_health_code_entry_items[] = {
+    {"health_code", NULL, offsetof(nmea_ubx_mga_bds_health_health_code_entry, health_code), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mga_bds_health_health_code_group = {ubx_mga_bds_health_health_code_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 30, 0, 65535, NMEA_UBX_MGA_BDS_HEALTH_HEALTH_CODE_MAX, 2, sizeof(nmea_ubx_mga_bds_health_health_code_entry), 4, offsetof(nmea_ubx_mga_bds_health, health_code_count)};
+static const nmea_ubx_item ubx_mga_bds_health_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_bds_health, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_bds_health, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_bds_health, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"health_code", &ubx_mga_bds_health_health_code_group, offsetof(nmea_ubx_mga_bds_health, health_code), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_bds_health, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-BDS: mga_bds_utc */
+static const nmea_ubx_scale ubx_mga_bds_utc_a0_utc_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_utc_a1_utc_scale = {1125899906842624.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_bds_utc_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_bds_utc, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_bds_utc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_bds_utc, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"a0_utc", &ubx_mga_bds_utc_a0_utc_scale, offsetof(nmea_ubx_mga_bds_utc, a0_utc), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"a1_utc", &ubx_mga_bds_utc_a1_utc_scale, offsetof(nmea_ubx_mga_bds_utc, a1_utc), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"dt_ls", NULL, offsetof(nmea_ubx_mga_bds_utc, dt_ls), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_bds_utc, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wn_rec", NULL, offsetof(nmea_ubx_mga_bds_utc, wn_rec), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wn_lsf", NULL, offsetof(nmea_ubx_mga_bds_utc, wn_lsf), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d_n", NULL, offsetof(nmea_ubx_mga_bds_utc, d_n), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dt_lsf", NULL, offsetof(nmea_ubx_mga_bds_utc, dt_lsf), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_mga_bds_utc, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-BDS: mga_bds_iono */
+static const nmea_ubx_scale ubx_mga_bds_iono_alpha0_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_iono_alpha1_scale = {134217728.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_iono_alpha2_scale = {16777216.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_bds_iono_alpha3_scale = {16777216.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_bds_iono_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_bds_iono, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_bds_iono, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_bds_iono, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"alpha0", &ubx_mga_bds_iono_alpha0_scale, offsetof(nmea_ubx_mga_bds_iono, alpha0), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"alpha1", &ubx_mga_bds_iono_alpha1_scale, offsetof(nmea_ubx_mga_bds_iono, alpha1), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"alpha2", &ubx_mga_bds_iono_alpha2_scale, offsetof(nmea_ubx_mga_bds_iono, alpha2), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"alpha3", &ubx_mga_bds_iono_alpha3_scale, offsetof(nmea_ubx_mga_bds_iono, alpha3), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"beta0", NULL, offsetof(nmea_ubx_mga_bds_iono, beta0), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"beta1", NULL, offsetof(nmea_ubx_mga_bds_iono, beta1), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"beta2", NULL, offsetof(nmea_ubx_mga_bds_iono, beta2), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"beta3", NULL, offsetof(nmea_ubx_mga_bds_iono, beta3), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_bds_iono, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-QZSS: mga_qzss_eph */
+static const nmea_ubx_scale ubx_mga_qzss_eph_tgd_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_af2_scale = {3.602879701896397e+16, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_af1_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_af0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_crs_scale = {32.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_delta_n_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_m0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_cuc_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_cus_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_e_scale = {8589934592.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_sqrt_a_scale = {524288.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_cic_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_omega0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_cis_scale = {536870912.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_crc_scale = {32.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_i0_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_omega_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_omega_dot_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_eph_idot_scale = {8796093022208.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_qzss_eph_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_qzss_eph, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_qzss_eph, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_mga_qzss_eph, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_qzss_eph, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fit_interval", NULL, offsetof(nmea_ubx_mga_qzss_eph, fit_interval), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ura_index", NULL, offsetof(nmea_ubx_mga_qzss_eph, ura_index), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_health", NULL, offsetof(nmea_ubx_mga_qzss_eph, sv_health), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tgd", &ubx_mga_qzss_eph_tgd_scale, offsetof(nmea_ubx_mga_qzss_eph, tgd), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"iodc", NULL, offsetof(nmea_ubx_mga_qzss_eph, iodc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"toc", NULL, offsetof(nmea_ubx_mga_qzss_eph, toc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_qzss_eph, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"af2", &ubx_mga_qzss_eph_af2_scale, offsetof(nmea_ubx_mga_qzss_eph, af2), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af1", &ubx_mga_qzss_eph_af1_scale, offsetof(nmea_ubx_mga_qzss_eph, af1), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af0", &ubx_mga_qzss_eph_af0_scale, offsetof(nmea_ubx_mga_qzss_eph, af0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"crs", &ubx_mga_qzss_eph_crs_scale, offsetof(nmea_ubx_mga_qzss_eph, crs), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"delta_n", &ubx_mga_qzss_eph_delta_n_scale, offsetof(nmea_ubx_mga_qzss_eph, delta_n), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"m0", &ubx_mga_qzss_eph_m0_scale, offsetof(nmea_ubx_mga_qzss_eph, m0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cuc", &ubx_mga_qzss_eph_cuc_scale, offsetof(nmea_ubx_mga_qzss_eph, cuc), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cus", &ubx_mga_qzss_eph_cus_scale, offsetof(nmea_ubx_mga_qzss_eph, cus), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"e", &ubx_mga_qzss_eph_e_scale, offsetof(nmea_ubx_mga_qzss_eph, e), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"sqrt_a", &ubx_mga_qzss_eph_sqrt_a_scale, offsetof(nmea_ubx_mga_qzss_eph, sqrt_a), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"toe", NULL, offsetof(nmea_ubx_mga_qzss_eph, toe), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cic", &ubx_mga_qzss_eph_cic_scale, offsetof(nmea_ubx_mga_qzss_eph, cic), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega0", &ubx_mga_qzss_eph_omega0_scale, offsetof(nmea_ubx_mga_qzss_eph, omega0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cis", &ubx_mga_qzss_eph_cis_scale, offsetof(nmea_ubx_mga_qzss_eph, cis), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"crc", &ubx_mga_qzss_eph_crc_scale, offsetof(nmea_ubx_mga_qzss_eph, crc), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"i0", &ubx_mga_qzss_eph_i0_scale, offsetof(nmea_ubx_mga_qzss_eph, i0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega", &ubx_mga_qzss_eph_omega_scale, offsetof(nmea_ubx_mga_qzss_eph, omega), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega_dot", &ubx_mga_qzss_eph_omega_dot_scale, offsetof(nmea_ubx_mga_qzss_eph, omega_dot), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"idot", &ubx_mga_qzss_eph_idot_scale, offsetof(nmea_ubx_mga_qzss_eph, idot), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_mga_qzss_eph, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-QZSS: mga_qzss_alm */
+static const nmea_ubx_scale ubx_mga_qzss_alm_e_scale = {2097152.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_alm_delta_i_scale = {524288.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_alm_omega_dot_scale = {274877906944.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_alm_sqrt_a_scale = {2048.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_alm_omega0_scale = {8388608.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_alm_omega_scale = {8388608.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_alm_m0_scale = {8388608.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_alm_af0_scale = {1048576.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_qzss_alm_af1_scale = {274877906944.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_qzss_alm_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_qzss_alm, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_qzss_alm, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_mga_qzss_alm, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_health", NULL, offsetof(nmea_ubx_mga_qzss_alm, sv_health), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"e", &ubx_mga_qzss_alm_e_scale, offsetof(nmea_ubx_mga_qzss_alm, e), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"alm_w_na", NULL, offsetof(nmea_ubx_mga_qzss_alm, alm_w_na), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"toa", NULL, offsetof(nmea_ubx_mga_qzss_alm, toa), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"delta_i", &ubx_mga_qzss_alm_delta_i_scale, offsetof(nmea_ubx_mga_qzss_alm, delta_i), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega_dot", &ubx_mga_qzss_alm_omega_dot_scale, offsetof(nmea_ubx_mga_qzss_alm, omega_dot), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"sqrt_a", &ubx_mga_qzss_alm_sqrt_a_scale, offsetof(nmea_ubx_mga_qzss_alm, sqrt_a), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega0", &ubx_mga_qzss_alm_omega0_scale, offsetof(nmea_ubx_mga_qzss_alm, omega0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"omega", &ubx_mga_qzss_alm_omega_scale, offsetof(nmea_ubx_mga_qzss_alm, omega), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"m0", &ubx_mga_qzss_alm_m0_scale, offsetof(nmea_ubx_mga_qzss_alm, m0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af0", &ubx_mga_qzss_alm_af0_scale, offsetof(nmea_ubx_mga_qzss_alm, af0), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"af1", &ubx_mga_qzss_alm_af1_scale, offsetof(nmea_ubx_mga_qzss_alm, af1), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_qzss_alm, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-QZSS: mga_qzss_health */
+static const nmea_ubx_item ubx_mga_qzss_health_health_code_entry_items[] = {
+    {"health_code", NULL, offsetof(nmea_ubx_mga_qzss_health_health_code_entry, health_code), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mga_qzss_health_health_code_group = {ubx_mga_qzss_health_health_code_entry_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 5, 0, 65535, NMEA_UBX_MGA_QZSS_HEALTH_HEALTH_CODE_MAX, 1, sizeof(nmea_ubx_mga_qzss_health_health_code_entry), 3, offsetof(nmea_ubx_mga_qzss_health, health_code_count)};
+static const nmea_ubx_item ubx_mga_qzss_health_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_qzss_health, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_qzss_health, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_qzss_health, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"health_code", &ubx_mga_qzss_health_health_code_group, offsetof(nmea_ubx_mga_qzss_health, health_code), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_qzss_health, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-GLO: mga_glo_eph */
+static const nmea_ubx_scale ubx_mga_glo_eph_x_scale = {2048.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_eph_y_scale = {2048.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_eph_z_scale = {2048.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_eph_dx_scale = {1048576.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_eph_dy_scale = {1048576.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_eph_dz_scale = {1048576.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_eph_ddx_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_eph_ddy_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_eph_ddz_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_eph_gamma_scale = {1099511627776.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_eph_delta_tau_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_eph_tau_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_glo_eph_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_glo_eph, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_glo_eph, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_mga_glo_eph, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_glo_eph, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ft", NULL, offsetof(nmea_ubx_mga_glo_eph, ft), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"b", NULL, offsetof(nmea_ubx_mga_glo_eph, b), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"m", NULL, offsetof(nmea_ubx_mga_glo_eph, m), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h", NULL, offsetof(nmea_ubx_mga_glo_eph, h), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"x", &ubx_mga_glo_eph_x_scale, offsetof(nmea_ubx_mga_glo_eph, x), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"y", &ubx_mga_glo_eph_y_scale, offsetof(nmea_ubx_mga_glo_eph, y), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"z", &ubx_mga_glo_eph_z_scale, offsetof(nmea_ubx_mga_glo_eph, z), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"dx", &ubx_mga_glo_eph_dx_scale, offsetof(nmea_ubx_mga_glo_eph, dx), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"dy", &ubx_mga_glo_eph_dy_scale, offsetof(nmea_ubx_mga_glo_eph, dy), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"dz", &ubx_mga_glo_eph_dz_scale, offsetof(nmea_ubx_mga_glo_eph, dz), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ddx", &ubx_mga_glo_eph_ddx_scale, offsetof(nmea_ubx_mga_glo_eph, ddx), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ddy", &ubx_mga_glo_eph_ddy_scale, offsetof(nmea_ubx_mga_glo_eph, ddy), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ddz", &ubx_mga_glo_eph_ddz_scale, offsetof(nmea_ubx_mga_glo_eph, ddz), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"tb", NULL, offsetof(nmea_ubx_mga_glo_eph, tb), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gamma", &ubx_mga_glo_eph_gamma_scale, offsetof(nmea_ubx_mga_glo_eph, gamma), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"e", NULL, offsetof(nmea_ubx_mga_glo_eph, e), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"delta_tau", &ubx_mga_glo_eph_delta_tau_scale, offsetof(nmea_ubx_mga_glo_eph, delta_tau), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"tau", &ubx_mga_glo_eph_tau_scale, offsetof(nmea_ubx_mga_glo_eph, tau), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_glo_eph, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-GLO: mga_glo_alm */
+static const nmea_ubx_scale ubx_mga_glo_alm_tau_scale = {262144.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_alm_epsilon_scale = {1048576.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_alm_lambda__scale = {1048576.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_alm_delta_i_scale = {1048576.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_alm_t_lambda_scale = {32.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_alm_delta_t_scale = {512.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_alm_delta_dt_scale = {16384.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_alm_omega_scale = {32768.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_glo_alm_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_glo_alm, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_glo_alm, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_mga_glo_alm, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_glo_alm, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"n", NULL, offsetof(nmea_ubx_mga_glo_alm, n), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"m", NULL, offsetof(nmea_ubx_mga_glo_alm, m), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"c", NULL, offsetof(nmea_ubx_mga_glo_alm, c), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tau", &ubx_mga_glo_alm_tau_scale, offsetof(nmea_ubx_mga_glo_alm, tau), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"epsilon", &ubx_mga_glo_alm_epsilon_scale, offsetof(nmea_ubx_mga_glo_alm, epsilon), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lambda_", &ubx_mga_glo_alm_lambda__scale, offsetof(nmea_ubx_mga_glo_alm, lambda_), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"delta_i", &ubx_mga_glo_alm_delta_i_scale, offsetof(nmea_ubx_mga_glo_alm, delta_i), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"t_lambda", &ubx_mga_glo_alm_t_lambda_scale, offsetof(nmea_ubx_mga_glo_alm, t_lambda), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"delta_t", &ubx_mga_glo_alm_delta_t_scale, offsetof(nmea_ubx_mga_glo_alm, delta_t), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"delta_dt", &ubx_mga_glo_alm_delta_dt_scale, offsetof(nmea_ubx_mga_glo_alm, delta_dt), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"h", NULL, offsetof(nmea_ubx_mga_glo_alm, h), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"omega", &ubx_mga_glo_alm_omega_scale, offsetof(nmea_ubx_mga_glo_alm, omega), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_glo_alm, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-GLO: mga_glo_timeoffset */
+static const nmea_ubx_scale ubx_mga_glo_timeoffset_tau_c_scale = {134217728.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_timeoffset_tau_gps_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_timeoffset_b1_scale = {1024.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_glo_timeoffset_b2_scale = {65536.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_glo_timeoffset_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_glo_timeoffset, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_glo_timeoffset, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"n", NULL, offsetof(nmea_ubx_mga_glo_timeoffset, n), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tau_c", &ubx_mga_glo_timeoffset_tau_c_scale, offsetof(nmea_ubx_mga_glo_timeoffset, tau_c), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"tau_gps", &ubx_mga_glo_timeoffset_tau_gps_scale, offsetof(nmea_ubx_mga_glo_timeoffset, tau_gps), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"b1", &ubx_mga_glo_timeoffset_b1_scale, offsetof(nmea_ubx_mga_glo_timeoffset, b1), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"b2", &ubx_mga_glo_timeoffset_b2_scale, offsetof(nmea_ubx_mga_glo_timeoffset, b2), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_glo_timeoffset, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* MGA-ANO: mga_ano */
 static const nmea_ubx_item ubx_mga_ano_items[] = {
     {"type", NULL, offsetof(nmea_ubx_mga_ano, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -4075,6 +4854,494 @@ static const nmea_ubx_item ubx_hnr_ins_items[] = {
     {"z_accel", &ubx_hnr_ins_z_accel_scale, offsetof(nmea_ubx_hnr_ins, z_accel), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
 };
 
+/* NAV2-POSECEF: nav2_posecef_poll */
+static const nmea_ubx_item ubx_nav2_posecef_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-POSECEF: nav2_posecef */
+static const nmea_ubx_item ubx_nav2_posecef_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_posecef, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_x", NULL, offsetof(nmea_ubx_nav2_posecef, ecef_x), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_y", NULL, offsetof(nmea_ubx_nav2_posecef, ecef_y), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_z", NULL, offsetof(nmea_ubx_nav2_posecef, ecef_z), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"p_acc", NULL, offsetof(nmea_ubx_nav2_posecef, p_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-POSLLH: nav2_posllh_poll */
+static const nmea_ubx_item ubx_nav2_posllh_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-POSLLH: nav2_posllh */
+static const nmea_ubx_scale ubx_nav2_posllh_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_posllh_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_nav2_posllh_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_posllh, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lon", &ubx_nav2_posllh_lon_scale, offsetof(nmea_ubx_nav2_posllh, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lat", &ubx_nav2_posllh_lat_scale, offsetof(nmea_ubx_nav2_posllh, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"height", NULL, offsetof(nmea_ubx_nav2_posllh, height), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_msl", NULL, offsetof(nmea_ubx_nav2_posllh, h_msl), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_acc", NULL, offsetof(nmea_ubx_nav2_posllh, h_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"v_acc", NULL, offsetof(nmea_ubx_nav2_posllh, v_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-STATUS: nav2_status_poll */
+static const nmea_ubx_item ubx_nav2_status_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-STATUS: nav2_status */
+static const nmea_ubx_item ubx_nav2_status_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_status, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_fix", &ubx_enum_ubx_fix_type, offsetof(nmea_ubx_nav2_status, gps_fix), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"flags", NULL, offsetof(nmea_ubx_nav2_status, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_fix_ok", NULL, offsetof(nmea_ubx_nav2_status, gps_fix_ok), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"diff_soln", NULL, offsetof(nmea_ubx_nav2_status, diff_soln), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"wkn_set", NULL, offsetof(nmea_ubx_nav2_status, wkn_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow_set", NULL, offsetof(nmea_ubx_nav2_status, tow_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"fix_stat", NULL, offsetof(nmea_ubx_nav2_status, fix_stat), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"diff_corr", NULL, offsetof(nmea_ubx_nav2_status, diff_corr), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"carr_soln_valid", NULL, offsetof(nmea_ubx_nav2_status, carr_soln_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"map_matching", NULL, offsetof(nmea_ubx_nav2_status, map_matching), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags2", NULL, offsetof(nmea_ubx_nav2_status, flags2), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psm_state", NULL, offsetof(nmea_ubx_nav2_status, psm_state), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"spoof_det_state", NULL, offsetof(nmea_ubx_nav2_status, spoof_det_state), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"carr_soln", NULL, offsetof(nmea_ubx_nav2_status, carr_soln), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"ttff", NULL, offsetof(nmea_ubx_nav2_status, ttff), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msss", NULL, offsetof(nmea_ubx_nav2_status, msss), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-DOP: nav2_dop_poll */
+static const nmea_ubx_item ubx_nav2_dop_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-DOP: nav2_dop */
+static const nmea_ubx_scale ubx_nav2_dop_g_dop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_dop_p_dop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_dop_t_dop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_dop_v_dop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_dop_h_dop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_dop_n_dop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_dop_e_dop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_nav2_dop_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_dop, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"g_dop", &ubx_nav2_dop_g_dop_scale, offsetof(nmea_ubx_nav2_dop, g_dop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"p_dop", &ubx_nav2_dop_p_dop_scale, offsetof(nmea_ubx_nav2_dop, p_dop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"t_dop", &ubx_nav2_dop_t_dop_scale, offsetof(nmea_ubx_nav2_dop, t_dop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"v_dop", &ubx_nav2_dop_v_dop_scale, offsetof(nmea_ubx_nav2_dop, v_dop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"h_dop", &ubx_nav2_dop_h_dop_scale, offsetof(nmea_ubx_nav2_dop, h_dop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"n_dop", &ubx_nav2_dop_n_dop_scale, offsetof(nmea_ubx_nav2_dop, n_dop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"e_dop", &ubx_nav2_dop_e_dop_scale, offsetof(nmea_ubx_nav2_dop, e_dop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
+/* NAV2-PVT: nav2_pvt_poll */
+static const nmea_ubx_item ubx_nav2_pvt_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-PVT: nav2_pvt */
+static const nmea_ubx_scale ubx_nav2_pvt_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_pvt_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_pvt_head_mot_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_pvt_head_acc_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_pvt_p_dop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_pvt_head_veh_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_pvt_mag_dec_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_pvt_mag_acc_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_nav2_pvt_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_pvt, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_nav2_pvt, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_nav2_pvt, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_nav2_pvt, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_nav2_pvt, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min", NULL, offsetof(nmea_ubx_nav2_pvt, min), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sec", NULL, offsetof(nmea_ubx_nav2_pvt, sec), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav2_pvt, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_date", NULL, offsetof(nmea_ubx_nav2_pvt, valid_date), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_time", NULL, offsetof(nmea_ubx_nav2_pvt, valid_time), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"fully_resolved", NULL, offsetof(nmea_ubx_nav2_pvt, fully_resolved), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_mag", NULL, offsetof(nmea_ubx_nav2_pvt, valid_mag), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav2_pvt, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nano", NULL, offsetof(nmea_ubx_nav2_pvt, nano), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fix_type", &ubx_enum_ubx_fix_type, offsetof(nmea_ubx_nav2_pvt, fix_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"flags", NULL, offsetof(nmea_ubx_nav2_pvt, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_fix_ok", NULL, offsetof(nmea_ubx_nav2_pvt, gnss_fix_ok), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"diff_soln", NULL, offsetof(nmea_ubx_nav2_pvt, diff_soln), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"psm_state", NULL, offsetof(nmea_ubx_nav2_pvt, psm_state), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"head_veh_valid", NULL, offsetof(nmea_ubx_nav2_pvt, head_veh_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"carr_soln", NULL, offsetof(nmea_ubx_nav2_pvt, carr_soln), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags2", NULL, offsetof(nmea_ubx_nav2_pvt, flags2), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"confirmed_avai", NULL, offsetof(nmea_ubx_nav2_pvt, confirmed_avai), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"confirmed_date", NULL, offsetof(nmea_ubx_nav2_pvt, confirmed_date), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"confirmed_time", NULL, offsetof(nmea_ubx_nav2_pvt, confirmed_time), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_nav2_pvt, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lon", &ubx_nav2_pvt_lon_scale, offsetof(nmea_ubx_nav2_pvt, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lat", &ubx_nav2_pvt_lat_scale, offsetof(nmea_ubx_nav2_pvt, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"height", NULL, offsetof(nmea_ubx_nav2_pvt, height), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_msl", NULL, offsetof(nmea_ubx_nav2_pvt, h_msl), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_acc", NULL, offsetof(nmea_ubx_nav2_pvt, h_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"v_acc", NULL, offsetof(nmea_ubx_nav2_pvt, v_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_n", NULL, offsetof(nmea_ubx_nav2_pvt, vel_n), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_e", NULL, offsetof(nmea_ubx_nav2_pvt, vel_e), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_d", NULL, offsetof(nmea_ubx_nav2_pvt, vel_d), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"g_speed", NULL, offsetof(nmea_ubx_nav2_pvt, g_speed), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"head_mot", &ubx_nav2_pvt_head_mot_scale, offsetof(nmea_ubx_nav2_pvt, head_mot), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"s_acc", NULL, offsetof(nmea_ubx_nav2_pvt, s_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"head_acc", &ubx_nav2_pvt_head_acc_scale, offsetof(nmea_ubx_nav2_pvt, head_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"p_dop", &ubx_nav2_pvt_p_dop_scale, offsetof(nmea_ubx_nav2_pvt, p_dop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"flags3", NULL, offsetof(nmea_ubx_nav2_pvt, flags3), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"invalid_llh", NULL, offsetof(nmea_ubx_nav2_pvt, invalid_llh), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"last_correction_age", NULL, offsetof(nmea_ubx_nav2_pvt, last_correction_age), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_nav2_pvt, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"head_veh", &ubx_nav2_pvt_head_veh_scale, offsetof(nmea_ubx_nav2_pvt, head_veh), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mag_dec", &ubx_nav2_pvt_mag_dec_scale, offsetof(nmea_ubx_nav2_pvt, mag_dec), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mag_acc", &ubx_nav2_pvt_mag_acc_scale, offsetof(nmea_ubx_nav2_pvt, mag_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
+/* NAV2-ODO: nav2_odo_poll */
+static const nmea_ubx_item ubx_nav2_odo_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-ODO: nav2_odo */
+static const nmea_ubx_item ubx_nav2_odo_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_nav2_odo, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav2_odo, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"itow", NULL, offsetof(nmea_ubx_nav2_odo, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"distance", NULL, offsetof(nmea_ubx_nav2_odo, distance), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"total_distance", NULL, offsetof(nmea_ubx_nav2_odo, total_distance), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"distance_std", NULL, offsetof(nmea_ubx_nav2_odo, distance_std), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-VELECEF: nav2_velecef_poll */
+static const nmea_ubx_item ubx_nav2_velecef_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-VELECEF: nav2_velecef */
+static const nmea_ubx_item ubx_nav2_velecef_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_velecef, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_vx", NULL, offsetof(nmea_ubx_nav2_velecef, ecef_vx), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_vy", NULL, offsetof(nmea_ubx_nav2_velecef, ecef_vy), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_vz", NULL, offsetof(nmea_ubx_nav2_velecef, ecef_vz), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"s_acc", NULL, offsetof(nmea_ubx_nav2_velecef, s_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-VELNED: nav2_velned_poll */
+static const nmea_ubx_item ubx_nav2_velned_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-VELNED: nav2_velned */
+static const nmea_ubx_scale ubx_nav2_velned_heading_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_velned_c_acc_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_nav2_velned_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_velned, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_n", NULL, offsetof(nmea_ubx_nav2_velned, vel_n), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_e", NULL, offsetof(nmea_ubx_nav2_velned, vel_e), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_d", NULL, offsetof(nmea_ubx_nav2_velned, vel_d), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"speed", NULL, offsetof(nmea_ubx_nav2_velned, speed), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"g_speed", NULL, offsetof(nmea_ubx_nav2_velned, g_speed), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading", &ubx_nav2_velned_heading_scale, offsetof(nmea_ubx_nav2_velned, heading), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"s_acc", NULL, offsetof(nmea_ubx_nav2_velned, s_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"c_acc", &ubx_nav2_velned_c_acc_scale, offsetof(nmea_ubx_nav2_velned, c_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
+/* NAV2-TIMEGPS: nav2_timegps_poll */
+static const nmea_ubx_item ubx_nav2_timegps_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-TIMEGPS: nav2_timegps */
+static const nmea_ubx_item ubx_nav2_timegps_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_timegps, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ftow", NULL, offsetof(nmea_ubx_nav2_timegps, ftow), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_nav2_timegps, week), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s", NULL, offsetof(nmea_ubx_nav2_timegps, leap_s), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav2_timegps, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow_valid", NULL, offsetof(nmea_ubx_nav2_timegps, tow_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week_valid", NULL, offsetof(nmea_ubx_nav2_timegps, week_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s_valid", NULL, offsetof(nmea_ubx_nav2_timegps, leap_s_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav2_timegps, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-TIMEUTC: nav2_timeutc_poll */
+static const nmea_ubx_item ubx_nav2_timeutc_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-TIMEUTC: nav2_timeutc */
+static const nmea_ubx_item ubx_nav2_timeutc_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_timeutc, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav2_timeutc, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nano", NULL, offsetof(nmea_ubx_nav2_timeutc, nano), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_nav2_timeutc, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_nav2_timeutc, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_nav2_timeutc, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_nav2_timeutc, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min", NULL, offsetof(nmea_ubx_nav2_timeutc, min), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sec", NULL, offsetof(nmea_ubx_nav2_timeutc, sec), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav2_timeutc, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_tow", NULL, offsetof(nmea_ubx_nav2_timeutc, valid_tow), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_wkn", NULL, offsetof(nmea_ubx_nav2_timeutc, valid_wkn), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_utc", NULL, offsetof(nmea_ubx_nav2_timeutc, valid_utc), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_standard", NULL, offsetof(nmea_ubx_nav2_timeutc, utc_standard), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 4, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-CLOCK: nav2_clock_poll */
+static const nmea_ubx_item ubx_nav2_clock_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-CLOCK: nav2_clock */
+static const nmea_ubx_item ubx_nav2_clock_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_clock, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clk_b", NULL, offsetof(nmea_ubx_nav2_clock, clk_b), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clk_d", NULL, offsetof(nmea_ubx_nav2_clock, clk_d), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav2_clock, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"f_acc", NULL, offsetof(nmea_ubx_nav2_clock, f_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-TIMEGLO: nav2_timeglo_poll */
+static const nmea_ubx_item ubx_nav2_timeglo_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-TIMEGLO: nav2_timeglo */
+static const nmea_ubx_item ubx_nav2_timeglo_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_timeglo, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tod", NULL, offsetof(nmea_ubx_nav2_timeglo, tod), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"f_tod", NULL, offsetof(nmea_ubx_nav2_timeglo, f_tod), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nt", NULL, offsetof(nmea_ubx_nav2_timeglo, nt), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"n4", NULL, offsetof(nmea_ubx_nav2_timeglo, n4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav2_timeglo, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tod_valid", NULL, offsetof(nmea_ubx_nav2_timeglo, tod_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"date_valid", NULL, offsetof(nmea_ubx_nav2_timeglo, date_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav2_timeglo, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-TIMEBDS: nav2_timebds_poll */
+static const nmea_ubx_item ubx_nav2_timebds_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-TIMEBDS: nav2_timebds */
+static const nmea_ubx_item ubx_nav2_timebds_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_timebds, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sow", NULL, offsetof(nmea_ubx_nav2_timebds, sow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"f_sow", NULL, offsetof(nmea_ubx_nav2_timebds, f_sow), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_nav2_timebds, week), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s", NULL, offsetof(nmea_ubx_nav2_timebds, leap_s), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav2_timebds, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sow_valid", NULL, offsetof(nmea_ubx_nav2_timebds, sow_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week_valid", NULL, offsetof(nmea_ubx_nav2_timebds, week_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s_valid", NULL, offsetof(nmea_ubx_nav2_timebds, leap_s_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav2_timebds, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-TIMEGAL: nav2_timegal_poll */
+static const nmea_ubx_item ubx_nav2_timegal_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-TIMEGAL: nav2_timegal */
+static const nmea_ubx_item ubx_nav2_timegal_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_timegal, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_tow", NULL, offsetof(nmea_ubx_nav2_timegal, gal_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"f_gal_tow", NULL, offsetof(nmea_ubx_nav2_timegal, f_gal_tow), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_wno", NULL, offsetof(nmea_ubx_nav2_timegal, gal_wno), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s", NULL, offsetof(nmea_ubx_nav2_timegal, leap_s), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav2_timegal, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_tow_valid", NULL, offsetof(nmea_ubx_nav2_timegal, gal_tow_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_wno_valid", NULL, offsetof(nmea_ubx_nav2_timegal, gal_wno_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s_valid", NULL, offsetof(nmea_ubx_nav2_timegal, leap_s_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav2_timegal, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-TIMELS: nav2_timels_poll */
+static const nmea_ubx_item ubx_nav2_timels_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-TIMELS: nav2_timels */
+static const nmea_ubx_item ubx_nav2_timels_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_timels, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav2_timels, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_nav2_timels, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"src_of_curr_ls", NULL, offsetof(nmea_ubx_nav2_timels, src_of_curr_ls), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"curr_ls", NULL, offsetof(nmea_ubx_nav2_timels, curr_ls), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"src_of_ls_change", NULL, offsetof(nmea_ubx_nav2_timels, src_of_ls_change), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_change", NULL, offsetof(nmea_ubx_nav2_timels, ls_change), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_to_ls_event", NULL, offsetof(nmea_ubx_nav2_timels, time_to_ls_event), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"date_of_ls_gps_wn", NULL, offsetof(nmea_ubx_nav2_timels, date_of_ls_gps_wn), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"date_of_ls_gps_dn", NULL, offsetof(nmea_ubx_nav2_timels, date_of_ls_gps_dn), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav2_timels, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav2_timels, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_curr_ls", NULL, offsetof(nmea_ubx_nav2_timels, valid_curr_ls), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_time_to_ls_event", NULL, offsetof(nmea_ubx_nav2_timels, valid_time_to_ls_event), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-TIMEQZSS: nav2_timeqzss_poll */
+static const nmea_ubx_item ubx_nav2_timeqzss_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-TIMEQZSS: nav2_timeqzss */
+static const nmea_ubx_item ubx_nav2_timeqzss_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_timeqzss, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_tow", NULL, offsetof(nmea_ubx_nav2_timeqzss, qzss_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"f_qzss_tow", NULL, offsetof(nmea_ubx_nav2_timeqzss, f_qzss_tow), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_wno", NULL, offsetof(nmea_ubx_nav2_timeqzss, qzss_wno), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s", NULL, offsetof(nmea_ubx_nav2_timeqzss, leap_s), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav2_timeqzss, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_tow_valid", NULL, offsetof(nmea_ubx_nav2_timeqzss, qzss_tow_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_wno_valid", NULL, offsetof(nmea_ubx_nav2_timeqzss, qzss_wno_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s_valid", NULL, offsetof(nmea_ubx_nav2_timeqzss, leap_s_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav2_timeqzss, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-SBAS: nav2_sbas_poll */
+static const nmea_ubx_item ubx_nav2_sbas_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-SBAS: nav2_sbas */
+static const nmea_ubx_item ubx_nav2_sbas_channel_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_nav2_sbas_channel, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_nav2_sbas_channel, flags), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"udre", NULL, offsetof(nmea_ubx_nav2_sbas_channel, udre), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_sys", NULL, offsetof(nmea_ubx_nav2_sbas_channel, sv_sys), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_service", NULL, offsetof(nmea_ubx_nav2_sbas_channel, sv_service), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_nav2_sbas_channel, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"prc", NULL, offsetof(nmea_ubx_nav2_sbas_channel, prc), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_nav2_sbas_channel, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ic", NULL, offsetof(nmea_ubx_nav2_sbas_channel, ic), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_nav2_sbas_channels_group = {ubx_nav2_sbas_channel_items, 9, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_sbas, cnt), 0, 0, 65535, NMEA_UBX_NAV2_SBAS_CHANNELS_MAX, 12, sizeof(nmea_ubx_nav2_sbas_channel), 0, offsetof(nmea_ubx_nav2_sbas, channels_count)};
+static const nmea_ubx_item ubx_nav2_sbas_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_sbas, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"geo", NULL, offsetof(nmea_ubx_nav2_sbas, geo), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mode", NULL, offsetof(nmea_ubx_nav2_sbas, mode), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sys", NULL, offsetof(nmea_ubx_nav2_sbas, sys), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"service", NULL, offsetof(nmea_ubx_nav2_sbas, service), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ranging", NULL, offsetof(nmea_ubx_nav2_sbas, ranging), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"corrections", NULL, offsetof(nmea_ubx_nav2_sbas, corrections), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"integrity", NULL, offsetof(nmea_ubx_nav2_sbas, integrity), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"testmode", NULL, offsetof(nmea_ubx_nav2_sbas, testmode), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"bad", NULL, offsetof(nmea_ubx_nav2_sbas, bad), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"cnt", NULL, offsetof(nmea_ubx_nav2_sbas, cnt), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"status_flags", NULL, offsetof(nmea_ubx_nav2_sbas, status_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"integrity_used", NULL, offsetof(nmea_ubx_nav2_sbas, integrity_used), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav2_sbas, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"channels", &ubx_nav2_sbas_channels_group, offsetof(nmea_ubx_nav2_sbas, channels), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-SAT: nav2_sat_poll */
+static const nmea_ubx_item ubx_nav2_sat_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-SAT: nav2_sat */
+static const nmea_ubx_scale ubx_nav2_sat_sv_pr_res_scale = {10.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_nav2_sat_sv_items[] = {
+    {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_nav2_sat_sv, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_nav2_sat_sv, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno", NULL, offsetof(nmea_ubx_nav2_sat_sv, cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"elev", NULL, offsetof(nmea_ubx_nav2_sat_sv, elev), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"azim", NULL, offsetof(nmea_ubx_nav2_sat_sv, azim), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_res", &ubx_nav2_sat_sv_pr_res_scale, offsetof(nmea_ubx_nav2_sat_sv, pr_res), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"flags", NULL, offsetof(nmea_ubx_nav2_sat_sv, flags), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"quality_ind", NULL, offsetof(nmea_ubx_nav2_sat_sv, quality_ind), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_used", NULL, offsetof(nmea_ubx_nav2_sat_sv, sv_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"health", NULL, offsetof(nmea_ubx_nav2_sat_sv, health), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"diff_corr", NULL, offsetof(nmea_ubx_nav2_sat_sv, diff_corr), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"smoothed", NULL, offsetof(nmea_ubx_nav2_sat_sv, smoothed), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"orbit_source", NULL, offsetof(nmea_ubx_nav2_sat_sv, orbit_source), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"eph_avail", NULL, offsetof(nmea_ubx_nav2_sat_sv, eph_avail), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 11, NMEA_UBX_PRINT_NUMBER, false},
+    {"alm_avail", NULL, offsetof(nmea_ubx_nav2_sat_sv, alm_avail), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 12, NMEA_UBX_PRINT_NUMBER, false},
+    {"ano_avail", NULL, offsetof(nmea_ubx_nav2_sat_sv, ano_avail), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 13, NMEA_UBX_PRINT_NUMBER, false},
+    {"aop_avail", NULL, offsetof(nmea_ubx_nav2_sat_sv, aop_avail), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 14, NMEA_UBX_PRINT_NUMBER, false},
+    {"sbas_corr_used", NULL, offsetof(nmea_ubx_nav2_sat_sv, sbas_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 16, NMEA_UBX_PRINT_NUMBER, false},
+    {"rtcm_corr_used", NULL, offsetof(nmea_ubx_nav2_sat_sv, rtcm_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 17, NMEA_UBX_PRINT_NUMBER, false},
+    {"slas_corr_used", NULL, offsetof(nmea_ubx_nav2_sat_sv, slas_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 18, NMEA_UBX_PRINT_NUMBER, false},
+    {"spartn_corr_used", NULL, offsetof(nmea_ubx_nav2_sat_sv, spartn_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 19, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_corr_used", NULL, offsetof(nmea_ubx_nav2_sat_sv, pr_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 20, NMEA_UBX_PRINT_NUMBER, false},
+    {"cr_corr_used", NULL, offsetof(nmea_ubx_nav2_sat_sv, cr_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 21, NMEA_UBX_PRINT_NUMBER, false},
+    {"do_corr_used", NULL, offsetof(nmea_ubx_nav2_sat_sv, do_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 22, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_nav2_sat_svs_group = {ubx_nav2_sat_sv_items, 24, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_sat, num_svs), 0, 0, 65535, NMEA_UBX_NAV2_SAT_SVS_MAX, 12, sizeof(nmea_ubx_nav2_sat_sv), 0, offsetof(nmea_ubx_nav2_sat, svs_count)};
+static const nmea_ubx_item ubx_nav2_sat_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_sat, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav2_sat, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_svs", NULL, offsetof(nmea_ubx_nav2_sat, num_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_nav2_sat, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svs", &ubx_nav2_sat_svs_group, offsetof(nmea_ubx_nav2_sat, svs), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-COV: nav2_cov_poll */
+static const nmea_ubx_item ubx_nav2_cov_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-COV: nav2_cov */
+static const nmea_ubx_item ubx_nav2_cov_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_cov, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav2_cov, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_cov_valid", NULL, offsetof(nmea_ubx_nav2_cov, pos_cov_valid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_cov_valid", NULL, offsetof(nmea_ubx_nav2_cov, vel_cov_valid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav2_cov, reserved1), 0, 0, NMEA_UBX_ITEM_ARRAY, 9, 9, 0, NMEA_UBX_PRINT_BIG, false},
+    {"pos_cov_nn", NULL, offsetof(nmea_ubx_nav2_cov, pos_cov_nn), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_cov_ne", NULL, offsetof(nmea_ubx_nav2_cov, pos_cov_ne), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_cov_nd", NULL, offsetof(nmea_ubx_nav2_cov, pos_cov_nd), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_cov_ee", NULL, offsetof(nmea_ubx_nav2_cov, pos_cov_ee), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_cov_ed", NULL, offsetof(nmea_ubx_nav2_cov, pos_cov_ed), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_cov_dd", NULL, offsetof(nmea_ubx_nav2_cov, pos_cov_dd), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_cov_nn", NULL, offsetof(nmea_ubx_nav2_cov, vel_cov_nn), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_cov_ne", NULL, offsetof(nmea_ubx_nav2_cov, vel_cov_ne), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_cov_nd", NULL, offsetof(nmea_ubx_nav2_cov, vel_cov_nd), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_cov_ee", NULL, offsetof(nmea_ubx_nav2_cov, vel_cov_ee), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_cov_ed", NULL, offsetof(nmea_ubx_nav2_cov, vel_cov_ed), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_cov_dd", NULL, offsetof(nmea_ubx_nav2_cov, vel_cov_dd), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-SLAS: nav2_slas_poll */
+static const nmea_ubx_item ubx_nav2_slas_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-SLAS: nav2_slas */
+static const nmea_ubx_item ubx_nav2_slas_correction_items[] = {
+    {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_nav2_slas_correction, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_nav2_slas_correction, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav2_slas_correction, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_nav2_slas_correction, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"prc", NULL, offsetof(nmea_ubx_nav2_slas_correction, prc), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_scale ubx_nav2_slas_gms_lon_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav2_slas_gms_lat_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_group ubx_nav2_slas_corrections_group = {ubx_nav2_slas_correction_items, 5, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_slas, cnt), 0, 0, 65535, NMEA_UBX_NAV2_SLAS_CORRECTIONS_MAX, 8, sizeof(nmea_ubx_nav2_slas_correction), 0, offsetof(nmea_ubx_nav2_slas, corrections_count)};
+static const nmea_ubx_item ubx_nav2_slas_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_slas, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav2_slas, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_nav2_slas, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gms_lon", &ubx_nav2_slas_gms_lon_scale, offsetof(nmea_ubx_nav2_slas, gms_lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"gms_lat", &ubx_nav2_slas_gms_lat_scale, offsetof(nmea_ubx_nav2_slas, gms_lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"gms_code", NULL, offsetof(nmea_ubx_nav2_slas, gms_code), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_sv_id", NULL, offsetof(nmea_ubx_nav2_slas, qzss_sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"service_flags", NULL, offsetof(nmea_ubx_nav2_slas, service_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gms_available", NULL, offsetof(nmea_ubx_nav2_slas, gms_available), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_sv_available", NULL, offsetof(nmea_ubx_nav2_slas, qzss_sv_available), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"test_mode", NULL, offsetof(nmea_ubx_nav2_slas, test_mode), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"cnt", NULL, offsetof(nmea_ubx_nav2_slas, cnt), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"corrections", &ubx_nav2_slas_corrections_group, offsetof(nmea_ubx_nav2_slas, corrections), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-SIG: nav2_sig_poll */
+static const nmea_ubx_item ubx_nav2_sig_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-SIG: nav2_sig */
+static const nmea_ubx_scale ubx_nav2_sig_signal_pr_res_scale = {10.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_nav2_sig_signal_items[] = {
+    {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_nav2_sig_signal, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_nav2_sig_signal, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_id", NULL, offsetof(nmea_ubx_nav2_sig_signal, sig_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"freq_id", NULL, offsetof(nmea_ubx_nav2_sig_signal, freq_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_res", &ubx_nav2_sig_signal_pr_res_scale, offsetof(nmea_ubx_nav2_sig_signal, pr_res), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cno", NULL, offsetof(nmea_ubx_nav2_sig_signal, cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"quality_ind", NULL, offsetof(nmea_ubx_nav2_sig_signal, quality_ind), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_source", NULL, offsetof(nmea_ubx_nav2_sig_signal, corr_source), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iono_model", NULL, offsetof(nmea_ubx_nav2_sig_signal, iono_model), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sig_flags", NULL, offsetof(nmea_ubx_nav2_sig_signal, sig_flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"health", NULL, offsetof(nmea_ubx_nav2_sig_signal, health), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_smoothed", NULL, offsetof(nmea_ubx_nav2_sig_signal, pr_smoothed), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_used", NULL, offsetof(nmea_ubx_nav2_sig_signal, pr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"cr_used", NULL, offsetof(nmea_ubx_nav2_sig_signal, cr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"do_used", NULL, offsetof(nmea_ubx_nav2_sig_signal, do_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_corr_used", NULL, offsetof(nmea_ubx_nav2_sig_signal, pr_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"cr_corr_used", NULL, offsetof(nmea_ubx_nav2_sig_signal, cr_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"do_corr_used", NULL, offsetof(nmea_ubx_nav2_sig_signal, do_corr_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav2_sig_signal, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_nav2_sig_signals_group = {ubx_nav2_sig_signal_items, 19, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_nav2_sig, num_sigs), 0, 0, 65535, NMEA_UBX_NAV2_SIG_SIGNALS_MAX, 16, sizeof(nmea_ubx_nav2_sig_signal), 0, offsetof(nmea_ubx_nav2_sig, signals_count)};
+static const nmea_ubx_item ubx_nav2_sig_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_sig, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav2_sig, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sigs", NULL, offsetof(nmea_ubx_nav2_sig, num_sigs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_nav2_sig, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"signals", &ubx_nav2_sig_signals_group, offsetof(nmea_ubx_nav2_sig, signals), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-EOE: nav2_eoe */
+static const nmea_ubx_item ubx_nav2_eoe_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_eoe, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* Every layout, in the order of nmea_ubx_layout: by class and id, then spec order. */
 static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav_posecef_poll", "NAV-POSECEF", 0x01, 0x01, false, 0, -1, 0, ubx_nav_posecef_poll_items, 0, offsetof(nmea_ubx_nav_posecef_poll, trailing)},
@@ -4180,6 +5447,9 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_inf_poll", "CFG-INF", 0x06, 0x02, false, 1, -1, 0, ubx_cfg_inf_poll_items, 1, offsetof(nmea_ubx_cfg_inf_poll, trailing)},
     {"cfg_inf", "CFG-INF", 0x06, 0x02, true, -1, -1, 0, ubx_cfg_inf_items, 1, offsetof(nmea_ubx_cfg_inf, trailing)},
     {"cfg_rst", "CFG-RST", 0x06, 0x04, false, 4, -1, 0, ubx_cfg_rst_items, 13, offsetof(nmea_ubx_cfg_rst, trailing)},
+    {"cfg_dat_poll", "CFG-DAT", 0x06, 0x06, false, 0, -1, 0, ubx_cfg_dat_poll_items, 0, offsetof(nmea_ubx_cfg_dat_poll, trailing)},
+    {"cfg_dat_set", "CFG-DAT", 0x06, 0x06, false, 44, -1, 0, ubx_cfg_dat_set_items, 9, offsetof(nmea_ubx_cfg_dat_set, trailing)},
+    {"cfg_dat", "CFG-DAT", 0x06, 0x06, true, 52, -1, 0, ubx_cfg_dat_items, 11, offsetof(nmea_ubx_cfg_dat, trailing)},
     {"cfg_rate_poll", "CFG-RATE", 0x06, 0x08, false, 0, -1, 0, ubx_cfg_rate_poll_items, 0, offsetof(nmea_ubx_cfg_rate_poll, trailing)},
     {"cfg_rate", "CFG-RATE", 0x06, 0x08, true, 6, -1, 0, ubx_cfg_rate_items, 3, offsetof(nmea_ubx_cfg_rate, trailing)},
     {"cfg_cfg_all_devices", "CFG-CFG", 0x06, 0x09, false, 12, -1, 0, ubx_cfg_cfg_all_devices_items, 3, offsetof(nmea_ubx_cfg_cfg_all_devices, trailing)},
@@ -4194,6 +5464,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_nmea", "CFG-NMEA", 0x06, 0x17, true, 20, 1, 11, ubx_cfg_nmea_items, 27, offsetof(nmea_ubx_cfg_nmea, trailing)},
     {"cfg_nmea_v0", "CFG-NMEA", 0x06, 0x17, true, 12, 0, 11, ubx_cfg_nmea_v0_items, 25, offsetof(nmea_ubx_cfg_nmea_v0, trailing)},
     {"cfg_nmea_deprecated", "CFG-NMEA", 0x06, 0x17, true, 4, -1, 0, ubx_cfg_nmea_deprecated_items, 14, offsetof(nmea_ubx_cfg_nmea_deprecated, trailing)},
+    {"cfg_usb_poll", "CFG-USB", 0x06, 0x1B, false, 0, -1, 0, ubx_cfg_usb_poll_items, 0, offsetof(nmea_ubx_cfg_usb_poll, trailing)},
+    {"cfg_usb", "CFG-USB", 0x06, 0x1B, true, 108, -1, 0, ubx_cfg_usb_items, 11, offsetof(nmea_ubx_cfg_usb, trailing)},
     {"cfg_odo_poll", "CFG-ODO", 0x06, 0x1E, false, 0, -1, 0, ubx_cfg_odo_poll_items, 0, offsetof(nmea_ubx_cfg_odo_poll, trailing)},
     {"cfg_odo", "CFG-ODO", 0x06, 0x1E, true, 20, -1, 0, ubx_cfg_odo_items, 16, offsetof(nmea_ubx_cfg_odo, trailing)},
     {"cfg_navx5_poll", "CFG-NAVX5", 0x06, 0x23, false, 0, -1, 0, ubx_cfg_navx5_poll_items, 0, offsetof(nmea_ubx_cfg_navx5_poll, trailing)},
@@ -4203,6 +5475,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_tp5_poll", "CFG-TP5", 0x06, 0x31, false, 0, -1, 0, ubx_cfg_tp5_poll_items, 0, offsetof(nmea_ubx_cfg_tp5_poll, trailing)},
     {"cfg_tp5_poll_index", "CFG-TP5", 0x06, 0x31, false, 1, -1, 0, ubx_cfg_tp5_poll_index_items, 1, offsetof(nmea_ubx_cfg_tp5_poll_index, trailing)},
     {"cfg_tp5", "CFG-TP5", 0x06, 0x31, true, 32, -1, 0, ubx_cfg_tp5_items, 20, offsetof(nmea_ubx_cfg_tp5, trailing)},
+    {"cfg_rinv_poll", "CFG-RINV", 0x06, 0x34, false, 0, -1, 0, ubx_cfg_rinv_poll_items, 0, offsetof(nmea_ubx_cfg_rinv_poll, trailing)},
+    {"cfg_rinv", "CFG-RINV", 0x06, 0x34, true, -1, -1, 0, ubx_cfg_rinv_items, 4, offsetof(nmea_ubx_cfg_rinv, trailing)},
     {"cfg_itfm_poll", "CFG-ITFM", 0x06, 0x39, false, 0, -1, 0, ubx_cfg_itfm_poll_items, 0, offsetof(nmea_ubx_cfg_itfm_poll, trailing)},
     {"cfg_itfm", "CFG-ITFM", 0x06, 0x39, true, 8, -1, 0, ubx_cfg_itfm_items, 9, offsetof(nmea_ubx_cfg_itfm, trailing)},
     {"cfg_pm2_poll", "CFG-PM2", 0x06, 0x3B, false, 0, -1, 0, ubx_cfg_pm2_poll_items, 0, offsetof(nmea_ubx_cfg_pm2_poll, trailing)},
@@ -4212,15 +5486,32 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_gnss", "CFG-GNSS", 0x06, 0x3E, true, -1, -1, 0, ubx_cfg_gnss_items, 5, offsetof(nmea_ubx_cfg_gnss, trailing)},
     {"cfg_logfilter_poll", "CFG-LOGFILTER", 0x06, 0x47, false, 0, -1, 0, ubx_cfg_logfilter_poll_items, 0, offsetof(nmea_ubx_cfg_logfilter_poll, trailing)},
     {"cfg_logfilter", "CFG-LOGFILTER", 0x06, 0x47, true, 12, -1, 0, ubx_cfg_logfilter_items, 9, offsetof(nmea_ubx_cfg_logfilter, trailing)},
+    {"cfg_esfa_poll", "CFG-ESFA", 0x06, 0x4C, false, 0, -1, 0, ubx_cfg_esfa_poll_items, 0, offsetof(nmea_ubx_cfg_esfa_poll, trailing)},
+    {"cfg_esfa", "CFG-ESFA", 0x06, 0x4C, true, 20, -1, 0, ubx_cfg_esfa_items, 7, offsetof(nmea_ubx_cfg_esfa, trailing)},
+    {"cfg_esfg_poll", "CFG-ESFG", 0x06, 0x4D, false, 0, -1, 0, ubx_cfg_esfg_poll_items, 0, offsetof(nmea_ubx_cfg_esfg_poll, trailing)},
+    {"cfg_esfg", "CFG-ESFG", 0x06, 0x4D, true, 20, -1, 0, ubx_cfg_esfg_items, 8, offsetof(nmea_ubx_cfg_esfg, trailing)},
+    {"cfg_txslot_poll", "CFG-TXSLOT", 0x06, 0x53, false, 0, -1, 0, ubx_cfg_txslot_poll_items, 0, offsetof(nmea_ubx_cfg_txslot_poll, trailing)},
+    {"cfg_txslot", "CFG-TXSLOT", 0x06, 0x53, true, 16, -1, 0, ubx_cfg_txslot_items, 10, offsetof(nmea_ubx_cfg_txslot, trailing)},
+    {"cfg_esfalg_poll", "CFG-ESFALG", 0x06, 0x56, false, 0, -1, 0, ubx_cfg_esfalg_poll_items, 0, offsetof(nmea_ubx_cfg_esfalg_poll, trailing)},
+    {"cfg_esfalg", "CFG-ESFALG", 0x06, 0x56, true, 12, -1, 0, ubx_cfg_esfalg_items, 6, offsetof(nmea_ubx_cfg_esfalg, trailing)},
     {"cfg_pwr", "CFG-PWR", 0x06, 0x57, false, 8, -1, 0, ubx_cfg_pwr_items, 3, offsetof(nmea_ubx_cfg_pwr, trailing)},
     {"cfg_hnr_poll", "CFG-HNR", 0x06, 0x5C, false, 0, -1, 0, ubx_cfg_hnr_poll_items, 0, offsetof(nmea_ubx_cfg_hnr_poll, trailing)},
     {"cfg_hnr", "CFG-HNR", 0x06, 0x5C, true, 4, -1, 0, ubx_cfg_hnr_items, 2, offsetof(nmea_ubx_cfg_hnr, trailing)},
+    {"cfg_esrc_poll", "CFG-ESRC", 0x06, 0x60, false, 0, -1, 0, ubx_cfg_esrc_poll_items, 0, offsetof(nmea_ubx_cfg_esrc_poll, trailing)},
+    {"cfg_esrc", "CFG-ESRC", 0x06, 0x60, true, -1, -1, 0, ubx_cfg_esrc_items, 4, offsetof(nmea_ubx_cfg_esrc, trailing)},
+    {"cfg_dosc_poll", "CFG-DOSC", 0x06, 0x61, false, 0, -1, 0, ubx_cfg_dosc_poll_items, 0, offsetof(nmea_ubx_cfg_dosc_poll, trailing)},
+    {"cfg_dosc", "CFG-DOSC", 0x06, 0x61, true, -1, -1, 0, ubx_cfg_dosc_items, 4, offsetof(nmea_ubx_cfg_dosc, trailing)},
+    {"cfg_smgr_poll", "CFG-SMGR", 0x06, 0x62, false, 0, -1, 0, ubx_cfg_smgr_poll_items, 0, offsetof(nmea_ubx_cfg_smgr_poll, trailing)},
+    {"cfg_smgr", "CFG-SMGR", 0x06, 0x62, true, 20, -1, 0, ubx_cfg_smgr_items, 28, offsetof(nmea_ubx_cfg_smgr, trailing)},
     {"cfg_geofence_poll", "CFG-GEOFENCE", 0x06, 0x69, false, 0, -1, 0, ubx_cfg_geofence_poll_items, 0, offsetof(nmea_ubx_cfg_geofence_poll, trailing)},
     {"cfg_geofence", "CFG-GEOFENCE", 0x06, 0x69, true, -1, -1, 0, ubx_cfg_geofence_items, 9, offsetof(nmea_ubx_cfg_geofence, trailing)},
     {"cfg_dgnss_poll", "CFG-DGNSS", 0x06, 0x70, false, 0, -1, 0, ubx_cfg_dgnss_poll_items, 0, offsetof(nmea_ubx_cfg_dgnss_poll, trailing)},
     {"cfg_dgnss", "CFG-DGNSS", 0x06, 0x70, true, 4, -1, 0, ubx_cfg_dgnss_items, 2, offsetof(nmea_ubx_cfg_dgnss, trailing)},
     {"cfg_tmode3_poll", "CFG-TMODE3", 0x06, 0x71, false, 0, -1, 0, ubx_cfg_tmode3_poll_items, 0, offsetof(nmea_ubx_cfg_tmode3_poll, trailing)},
     {"cfg_tmode3", "CFG-TMODE3", 0x06, 0x71, true, 40, -1, 0, ubx_cfg_tmode3_items, 16, offsetof(nmea_ubx_cfg_tmode3, trailing)},
+    {"cfg_esfwt_poll", "CFG-ESFWT", 0x06, 0x82, false, 0, -1, 0, ubx_cfg_esfwt_poll_items, 0, offsetof(nmea_ubx_cfg_esfwt_poll, trailing)},
+    {"cfg_esfwt", "CFG-ESFWT", 0x06, 0x82, true, 32, -1, 0, ubx_cfg_esfwt_items, 21, offsetof(nmea_ubx_cfg_esfwt, trailing)},
+    {"cfg_fixseed", "CFG-FIXSEED", 0x06, 0x84, false, -1, -1, 0, ubx_cfg_fixseed_items, 6, offsetof(nmea_ubx_cfg_fixseed, trailing)},
     {"cfg_pms_poll", "CFG-PMS", 0x06, 0x86, false, 0, -1, 0, ubx_cfg_pms_poll_items, 0, offsetof(nmea_ubx_cfg_pms_poll, trailing)},
     {"cfg_pms", "CFG-PMS", 0x06, 0x86, true, 8, -1, 0, ubx_cfg_pms_items, 5, offsetof(nmea_ubx_cfg_pms, trailing)},
     {"cfg_valset_v0", "CFG-VALSET", 0x06, 0x8A, false, -1, 0, 0, ubx_cfg_valset_v0_items, 7, offsetof(nmea_ubx_cfg_valset_v0, trailing)},
@@ -4229,6 +5520,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_valget", "CFG-VALGET", 0x06, 0x8B, true, -1, 1, 0, ubx_cfg_valget_items, 4, offsetof(nmea_ubx_cfg_valget, trailing)},
     {"cfg_valdel_v0", "CFG-VALDEL", 0x06, 0x8C, false, -1, 0, 0, ubx_cfg_valdel_v0_items, 6, offsetof(nmea_ubx_cfg_valdel_v0, trailing)},
     {"cfg_valdel", "CFG-VALDEL", 0x06, 0x8C, false, -1, 1, 0, ubx_cfg_valdel_items, 8, offsetof(nmea_ubx_cfg_valdel, trailing)},
+    {"cfg_slas_poll", "CFG-SLAS", 0x06, 0x8D, false, 0, -1, 0, ubx_cfg_slas_poll_items, 0, offsetof(nmea_ubx_cfg_slas_poll, trailing)},
+    {"cfg_slas", "CFG-SLAS", 0x06, 0x8D, true, 4, -1, 0, ubx_cfg_slas_items, 5, offsetof(nmea_ubx_cfg_slas, trailing)},
     {"cfg_batch_poll", "CFG-BATCH", 0x06, 0x93, false, 0, -1, 0, ubx_cfg_batch_poll_items, 0, offsetof(nmea_ubx_cfg_batch_poll, trailing)},
     {"cfg_batch", "CFG-BATCH", 0x06, 0x93, true, 8, -1, 0, ubx_cfg_batch_items, 11, offsetof(nmea_ubx_cfg_batch, trailing)},
     {"upd_sos_poll", "UPD-SOS", 0x09, 0x14, false, 0, -1, 0, ubx_upd_sos_poll_items, 0, offsetof(nmea_ubx_upd_sos_poll, trailing)},
@@ -4263,6 +5556,21 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"mon_rf", "MON-RF", 0x0A, 0x38, true, -1, -1, 0, ubx_mon_rf_items, 4, offsetof(nmea_ubx_mon_rf, trailing)},
     {"mon_sys_poll", "MON-SYS", 0x0A, 0x39, false, 0, -1, 0, ubx_mon_sys_poll_items, 0, offsetof(nmea_ubx_mon_sys_poll, trailing)},
     {"mon_sys", "MON-SYS", 0x0A, 0x39, true, 24, -1, 0, ubx_mon_sys_items, 14, offsetof(nmea_ubx_mon_sys, trailing)},
+    {"aid_ini_poll", "AID-INI", 0x0B, 0x01, false, 0, -1, 0, ubx_aid_ini_poll_items, 0, offsetof(nmea_ubx_aid_ini_poll, trailing)},
+    {"aid_ini", "AID-INI", 0x0B, 0x01, true, 48, -1, 0, ubx_aid_ini_items, 25, offsetof(nmea_ubx_aid_ini, trailing)},
+    {"aid_hui_poll", "AID-HUI", 0x0B, 0x02, false, 0, -1, 0, ubx_aid_hui_poll_items, 0, offsetof(nmea_ubx_aid_hui_poll, trailing)},
+    {"aid_hui", "AID-HUI", 0x0B, 0x02, true, 72, -1, 0, ubx_aid_hui_items, 22, offsetof(nmea_ubx_aid_hui, trailing)},
+    {"aid_alm_poll", "AID-ALM", 0x0B, 0x30, false, 0, -1, 0, ubx_aid_alm_poll_items, 0, offsetof(nmea_ubx_aid_alm_poll, trailing)},
+    {"aid_alm_poll_sv", "AID-ALM", 0x0B, 0x30, false, 1, -1, 0, ubx_aid_alm_poll_sv_items, 1, offsetof(nmea_ubx_aid_alm_poll_sv, trailing)},
+    {"aid_alm", "AID-ALM", 0x0B, 0x30, true, 40, -1, 0, ubx_aid_alm_items, 3, offsetof(nmea_ubx_aid_alm, trailing)},
+    {"aid_alm_empty", "AID-ALM", 0x0B, 0x30, true, 8, -1, 0, ubx_aid_alm_empty_items, 2, offsetof(nmea_ubx_aid_alm_empty, trailing)},
+    {"aid_eph_poll", "AID-EPH", 0x0B, 0x31, false, 0, -1, 0, ubx_aid_eph_poll_items, 0, offsetof(nmea_ubx_aid_eph_poll, trailing)},
+    {"aid_eph_poll_sv", "AID-EPH", 0x0B, 0x31, false, 1, -1, 0, ubx_aid_eph_poll_sv_items, 1, offsetof(nmea_ubx_aid_eph_poll_sv, trailing)},
+    {"aid_eph", "AID-EPH", 0x0B, 0x31, true, 104, -1, 0, ubx_aid_eph_items, 26, offsetof(nmea_ubx_aid_eph, trailing)},
+    {"aid_eph_empty", "AID-EPH", 0x0B, 0x31, true, 8, -1, 0, ubx_aid_eph_empty_items, 2, offsetof(nmea_ubx_aid_eph_empty, trailing)},
+    {"aid_aop_poll", "AID-AOP", 0x0B, 0x33, false, 0, -1, 0, ubx_aid_aop_poll_items, 0, offsetof(nmea_ubx_aid_aop_poll, trailing)},
+    {"aid_aop_poll_sv", "AID-AOP", 0x0B, 0x33, false, 1, -1, 0, ubx_aid_aop_poll_sv_items, 1, offsetof(nmea_ubx_aid_aop_poll_sv, trailing)},
+    {"aid_aop", "AID-AOP", 0x0B, 0x33, true, 68, -1, 0, ubx_aid_aop_items, 4, offsetof(nmea_ubx_aid_aop, trailing)},
     {"tim_tp_poll", "TIM-TP", 0x0D, 0x01, false, 0, -1, 0, ubx_tim_tp_poll_items, 0, offsetof(nmea_ubx_tim_tp_poll, trailing)},
     {"tim_tp", "TIM-TP", 0x0D, 0x01, true, 16, -1, 0, ubx_tim_tp_items, 12, offsetof(nmea_ubx_tim_tp, trailing)},
     {"tim_tm2_poll", "TIM-TM2", 0x0D, 0x03, false, 0, -1, 0, ubx_tim_tm2_poll_items, 0, offsetof(nmea_ubx_tim_tm2_poll, trailing)},
@@ -4301,6 +5609,17 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"mga_gal_alm", "MGA-GAL", 0x13, 0x02, false, 32, -1, 0, ubx_mga_gal_alm_items, 19, offsetof(nmea_ubx_mga_gal_alm, trailing)},
     {"mga_gal_timeoffset", "MGA-GAL", 0x13, 0x02, false, 12, -1, 0, ubx_mga_gal_timeoffset_items, 8, offsetof(nmea_ubx_mga_gal_timeoffset, trailing)},
     {"mga_gal_utc", "MGA-GAL", 0x13, 0x02, false, 20, -1, 0, ubx_mga_gal_utc_items, 12, offsetof(nmea_ubx_mga_gal_utc, trailing)},
+    {"mga_bds_eph", "MGA-BDS", 0x13, 0x03, false, 88, -1, 0, ubx_mga_bds_eph_items, 30, offsetof(nmea_ubx_mga_bds_eph, trailing)},
+    {"mga_bds_alm", "MGA-BDS", 0x13, 0x03, false, 40, -1, 0, ubx_mga_bds_alm_items, 16, offsetof(nmea_ubx_mga_bds_alm, trailing)},
+    {"mga_bds_health", "MGA-BDS", 0x13, 0x03, false, 68, -1, 0, ubx_mga_bds_health_items, 5, offsetof(nmea_ubx_mga_bds_health, trailing)},
+    {"mga_bds_utc", "MGA-BDS", 0x13, 0x03, false, 20, -1, 0, ubx_mga_bds_utc_items, 12, offsetof(nmea_ubx_mga_bds_utc, trailing)},
+    {"mga_bds_iono", "MGA-BDS", 0x13, 0x03, false, 16, -1, 0, ubx_mga_bds_iono_items, 12, offsetof(nmea_ubx_mga_bds_iono, trailing)},
+    {"mga_qzss_eph", "MGA-QZSS", 0x13, 0x05, false, 68, -1, 0, ubx_mga_qzss_eph_items, 31, offsetof(nmea_ubx_mga_qzss_eph, trailing)},
+    {"mga_qzss_alm", "MGA-QZSS", 0x13, 0x05, false, 36, -1, 0, ubx_mga_qzss_alm_items, 16, offsetof(nmea_ubx_mga_qzss_alm, trailing)},
+    {"mga_qzss_health", "MGA-QZSS", 0x13, 0x05, false, 12, -1, 0, ubx_mga_qzss_health_items, 5, offsetof(nmea_ubx_mga_qzss_health, trailing)},
+    {"mga_glo_eph", "MGA-GLO", 0x13, 0x06, false, 48, -1, 0, ubx_mga_glo_eph_items, 23, offsetof(nmea_ubx_mga_glo_eph, trailing)},
+    {"mga_glo_alm", "MGA-GLO", 0x13, 0x06, false, 36, -1, 0, ubx_mga_glo_alm_items, 17, offsetof(nmea_ubx_mga_glo_alm, trailing)},
+    {"mga_glo_timeoffset", "MGA-GLO", 0x13, 0x06, false, 20, -1, 0, ubx_mga_glo_timeoffset_items, 8, offsetof(nmea_ubx_mga_glo_timeoffset, trailing)},
     {"mga_ano", "MGA-ANO", 0x13, 0x20, false, 76, -1, 0, ubx_mga_ano_items, 10, offsetof(nmea_ubx_mga_ano, trailing)},
     {"mga_ack", "MGA-ACK", 0x13, 0x60, true, 8, -1, 0, ubx_mga_ack_items, 5, offsetof(nmea_ubx_mga_ack, trailing)},
     {"mga_dbd_poll", "MGA-DBD", 0x13, 0x80, false, 0, -1, 0, ubx_mga_dbd_poll_items, 0, offsetof(nmea_ubx_mga_dbd_poll, trailing)},
@@ -4332,11 +5651,55 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"hnr_att", "HNR-ATT", 0x28, 0x01, true, 32, -1, 0, ubx_hnr_att_items, 9, offsetof(nmea_ubx_hnr_att, trailing)},
     {"hnr_ins_poll", "HNR-INS", 0x28, 0x02, false, 0, -1, 0, ubx_hnr_ins_poll_items, 0, offsetof(nmea_ubx_hnr_ins_poll, trailing)},
     {"hnr_ins", "HNR-INS", 0x28, 0x02, true, 36, -1, 0, ubx_hnr_ins_items, 16, offsetof(nmea_ubx_hnr_ins, trailing)},
+    {"nav2_posecef_poll", "NAV2-POSECEF", 0x29, 0x01, false, 0, -1, 0, ubx_nav2_posecef_poll_items, 0, offsetof(nmea_ubx_nav2_posecef_poll, trailing)},
+    {"nav2_posecef", "NAV2-POSECEF", 0x29, 0x01, true, 20, -1, 0, ubx_nav2_posecef_items, 5, offsetof(nmea_ubx_nav2_posecef, trailing)},
+    {"nav2_posllh_poll", "NAV2-POSLLH", 0x29, 0x02, false, 0, -1, 0, ubx_nav2_posllh_poll_items, 0, offsetof(nmea_ubx_nav2_posllh_poll, trailing)},
+    {"nav2_posllh", "NAV2-POSLLH", 0x29, 0x02, true, 28, -1, 0, ubx_nav2_posllh_items, 7, offsetof(nmea_ubx_nav2_posllh, trailing)},
+    {"nav2_status_poll", "NAV2-STATUS", 0x29, 0x03, false, 0, -1, 0, ubx_nav2_status_poll_items, 0, offsetof(nmea_ubx_nav2_status_poll, trailing)},
+    {"nav2_status", "NAV2-STATUS", 0x29, 0x03, true, 16, -1, 0, ubx_nav2_status_items, 17, offsetof(nmea_ubx_nav2_status, trailing)},
+    {"nav2_dop_poll", "NAV2-DOP", 0x29, 0x04, false, 0, -1, 0, ubx_nav2_dop_poll_items, 0, offsetof(nmea_ubx_nav2_dop_poll, trailing)},
+    {"nav2_dop", "NAV2-DOP", 0x29, 0x04, true, 18, -1, 0, ubx_nav2_dop_items, 8, offsetof(nmea_ubx_nav2_dop, trailing)},
+    {"nav2_pvt_poll", "NAV2-PVT", 0x29, 0x07, false, 0, -1, 0, ubx_nav2_pvt_poll_items, 0, offsetof(nmea_ubx_nav2_pvt_poll, trailing)},
+    {"nav2_pvt", "NAV2-PVT", 0x29, 0x07, true, 92, -1, 0, ubx_nav2_pvt_items, 47, offsetof(nmea_ubx_nav2_pvt, trailing)},
+    {"nav2_odo_poll", "NAV2-ODO", 0x29, 0x09, false, 0, -1, 0, ubx_nav2_odo_poll_items, 0, offsetof(nmea_ubx_nav2_odo_poll, trailing)},
+    {"nav2_odo", "NAV2-ODO", 0x29, 0x09, true, 20, -1, 0, ubx_nav2_odo_items, 6, offsetof(nmea_ubx_nav2_odo, trailing)},
+    {"nav2_velecef_poll", "NAV2-VELECEF", 0x29, 0x11, false, 0, -1, 0, ubx_nav2_velecef_poll_items, 0, offsetof(nmea_ubx_nav2_velecef_poll, trailing)},
+    {"nav2_velecef", "NAV2-VELECEF", 0x29, 0x11, true, 20, -1, 0, ubx_nav2_velecef_items, 5, offsetof(nmea_ubx_nav2_velecef, trailing)},
+    {"nav2_velned_poll", "NAV2-VELNED", 0x29, 0x12, false, 0, -1, 0, ubx_nav2_velned_poll_items, 0, offsetof(nmea_ubx_nav2_velned_poll, trailing)},
+    {"nav2_velned", "NAV2-VELNED", 0x29, 0x12, true, 36, -1, 0, ubx_nav2_velned_items, 9, offsetof(nmea_ubx_nav2_velned, trailing)},
+    {"nav2_timegps_poll", "NAV2-TIMEGPS", 0x29, 0x20, false, 0, -1, 0, ubx_nav2_timegps_poll_items, 0, offsetof(nmea_ubx_nav2_timegps_poll, trailing)},
+    {"nav2_timegps", "NAV2-TIMEGPS", 0x29, 0x20, true, 16, -1, 0, ubx_nav2_timegps_items, 9, offsetof(nmea_ubx_nav2_timegps, trailing)},
+    {"nav2_timeutc_poll", "NAV2-TIMEUTC", 0x29, 0x21, false, 0, -1, 0, ubx_nav2_timeutc_poll_items, 0, offsetof(nmea_ubx_nav2_timeutc_poll, trailing)},
+    {"nav2_timeutc", "NAV2-TIMEUTC", 0x29, 0x21, true, 20, -1, 0, ubx_nav2_timeutc_items, 14, offsetof(nmea_ubx_nav2_timeutc, trailing)},
+    {"nav2_clock_poll", "NAV2-CLOCK", 0x29, 0x22, false, 0, -1, 0, ubx_nav2_clock_poll_items, 0, offsetof(nmea_ubx_nav2_clock_poll, trailing)},
+    {"nav2_clock", "NAV2-CLOCK", 0x29, 0x22, true, 20, -1, 0, ubx_nav2_clock_items, 5, offsetof(nmea_ubx_nav2_clock, trailing)},
+    {"nav2_timeglo_poll", "NAV2-TIMEGLO", 0x29, 0x23, false, 0, -1, 0, ubx_nav2_timeglo_poll_items, 0, offsetof(nmea_ubx_nav2_timeglo_poll, trailing)},
+    {"nav2_timeglo", "NAV2-TIMEGLO", 0x29, 0x23, true, 20, -1, 0, ubx_nav2_timeglo_items, 9, offsetof(nmea_ubx_nav2_timeglo, trailing)},
+    {"nav2_timebds_poll", "NAV2-TIMEBDS", 0x29, 0x24, false, 0, -1, 0, ubx_nav2_timebds_poll_items, 0, offsetof(nmea_ubx_nav2_timebds_poll, trailing)},
+    {"nav2_timebds", "NAV2-TIMEBDS", 0x29, 0x24, true, 20, -1, 0, ubx_nav2_timebds_items, 10, offsetof(nmea_ubx_nav2_timebds, trailing)},
+    {"nav2_timegal_poll", "NAV2-TIMEGAL", 0x29, 0x25, false, 0, -1, 0, ubx_nav2_timegal_poll_items, 0, offsetof(nmea_ubx_nav2_timegal_poll, trailing)},
+    {"nav2_timegal", "NAV2-TIMEGAL", 0x29, 0x25, true, 20, -1, 0, ubx_nav2_timegal_items, 10, offsetof(nmea_ubx_nav2_timegal, trailing)},
+    {"nav2_timels_poll", "NAV2-TIMELS", 0x29, 0x26, false, 0, -1, 0, ubx_nav2_timels_poll_items, 0, offsetof(nmea_ubx_nav2_timels_poll, trailing)},
+    {"nav2_timels", "NAV2-TIMELS", 0x29, 0x26, true, 24, -1, 0, ubx_nav2_timels_items, 14, offsetof(nmea_ubx_nav2_timels, trailing)},
+    {"nav2_timeqzss_poll", "NAV2-TIMEQZSS", 0x29, 0x27, false, 0, -1, 0, ubx_nav2_timeqzss_poll_items, 0, offsetof(nmea_ubx_nav2_timeqzss_poll, trailing)},
+    {"nav2_timeqzss", "NAV2-TIMEQZSS", 0x29, 0x27, true, 20, -1, 0, ubx_nav2_timeqzss_items, 10, offsetof(nmea_ubx_nav2_timeqzss, trailing)},
+    {"nav2_sbas_poll", "NAV2-SBAS", 0x29, 0x32, false, 0, -1, 0, ubx_nav2_sbas_poll_items, 0, offsetof(nmea_ubx_nav2_sbas_poll, trailing)},
+    {"nav2_sbas", "NAV2-SBAS", 0x29, 0x32, true, -1, -1, 0, ubx_nav2_sbas_items, 15, offsetof(nmea_ubx_nav2_sbas, trailing)},
+    {"nav2_sat_poll", "NAV2-SAT", 0x29, 0x35, false, 0, -1, 0, ubx_nav2_sat_poll_items, 0, offsetof(nmea_ubx_nav2_sat_poll, trailing)},
+    {"nav2_sat", "NAV2-SAT", 0x29, 0x35, true, -1, -1, 0, ubx_nav2_sat_items, 5, offsetof(nmea_ubx_nav2_sat, trailing)},
+    {"nav2_cov_poll", "NAV2-COV", 0x29, 0x36, false, 0, -1, 0, ubx_nav2_cov_poll_items, 0, offsetof(nmea_ubx_nav2_cov_poll, trailing)},
+    {"nav2_cov", "NAV2-COV", 0x29, 0x36, true, 64, -1, 0, ubx_nav2_cov_items, 17, offsetof(nmea_ubx_nav2_cov, trailing)},
+    {"nav2_slas_poll", "NAV2-SLAS", 0x29, 0x42, false, 0, -1, 0, ubx_nav2_slas_poll_items, 0, offsetof(nmea_ubx_nav2_slas_poll, trailing)},
+    {"nav2_slas", "NAV2-SLAS", 0x29, 0x42, true, -1, -1, 0, ubx_nav2_slas_items, 13, offsetof(nmea_ubx_nav2_slas, trailing)},
+    {"nav2_sig_poll", "NAV2-SIG", 0x29, 0x43, false, 0, -1, 0, ubx_nav2_sig_poll_items, 0, offsetof(nmea_ubx_nav2_sig_poll, trailing)},
+    {"nav2_sig", "NAV2-SIG", 0x29, 0x43, true, -1, -1, 0, ubx_nav2_sig_items, 5, offsetof(nmea_ubx_nav2_sig, trailing)},
+    {"nav2_eoe", "NAV2-EOE", 0x29, 0x61, true, 4, -1, 0, ubx_nav2_eoe_items, 1, offsetof(nmea_ubx_nav2_eoe, trailing)},
 };
 
-/* The layouts of each class and id: the first and the last. */
+/* The layouts of each class and id: the first and the last (indexes of ubx_layouts). */
 static const struct {
-    uint8_t msg_class, msg_id, first, last;
+    uint8_t msg_class, msg_id;
+    uint16_t first, last;
 } ubx_messages[] = {
     {0x01, 0x01, 0, 1}, /* NAV-POSECEF */
     {0x01, 0x02, 2, 3}, /* NAV-POSLLH */
@@ -4395,84 +5758,127 @@ static const struct {
     {0x06, 0x01, 97, 99}, /* CFG-MSG */
     {0x06, 0x02, 100, 101}, /* CFG-INF */
     {0x06, 0x04, 102, 102}, /* CFG-RST */
-    {0x06, 0x08, 103, 104}, /* CFG-RATE */
-    {0x06, 0x09, 105, 106}, /* CFG-CFG */
-    {0x06, 0x11, 107, 108}, /* CFG-RXM */
-    {0x06, 0x13, 109, 110}, /* CFG-ANT */
-    {0x06, 0x16, 111, 112}, /* CFG-SBAS */
-    {0x06, 0x17, 113, 116}, /* CFG-NMEA */
-    {0x06, 0x1E, 117, 118}, /* CFG-ODO */
-    {0x06, 0x23, 119, 120}, /* CFG-NAVX5 */
-    {0x06, 0x24, 121, 122}, /* CFG-NAV5 */
-    {0x06, 0x31, 123, 125}, /* CFG-TP5 */
-    {0x06, 0x39, 126, 127}, /* CFG-ITFM */
-    {0x06, 0x3B, 128, 130}, /* CFG-PM2 */
-    {0x06, 0x3E, 131, 132}, /* CFG-GNSS */
-    {0x06, 0x47, 133, 134}, /* CFG-LOGFILTER */
-    {0x06, 0x57, 135, 135}, /* CFG-PWR */
-    {0x06, 0x5C, 136, 137}, /* CFG-HNR */
-    {0x06, 0x69, 138, 139}, /* CFG-GEOFENCE */
-    {0x06, 0x70, 140, 141}, /* CFG-DGNSS */
-    {0x06, 0x71, 142, 143}, /* CFG-TMODE3 */
-    {0x06, 0x86, 144, 145}, /* CFG-PMS */
-    {0x06, 0x8A, 146, 147}, /* CFG-VALSET */
-    {0x06, 0x8B, 148, 149}, /* CFG-VALGET */
-    {0x06, 0x8C, 150, 151}, /* CFG-VALDEL */
-    {0x06, 0x93, 152, 153}, /* CFG-BATCH */
-    {0x09, 0x14, 154, 156}, /* UPD-SOS */
-    {0x0A, 0x02, 157, 158}, /* MON-IO */
-    {0x0A, 0x04, 159, 160}, /* MON-VER */
-    {0x0A, 0x06, 161, 162}, /* MON-MSGPP */
-    {0x0A, 0x07, 163, 164}, /* MON-RXBUF */
-    {0x0A, 0x08, 165, 166}, /* MON-TXBUF */
-    {0x0A, 0x09, 167, 168}, /* MON-HW */
-    {0x0A, 0x0B, 169, 170}, /* MON-HW2 */
-    {0x0A, 0x21, 171, 171}, /* MON-RXR */
-    {0x0A, 0x27, 172, 173}, /* MON-PATCH */
-    {0x0A, 0x28, 174, 175}, /* MON-GNSS */
-    {0x0A, 0x2E, 176, 177}, /* MON-SMGR */
-    {0x0A, 0x36, 178, 179}, /* MON-COMMS */
-    {0x0A, 0x37, 180, 181}, /* MON-HW3 */
-    {0x0A, 0x38, 182, 183}, /* MON-RF */
-    {0x0A, 0x39, 184, 185}, /* MON-SYS */
-    {0x0D, 0x01, 186, 187}, /* TIM-TP */
-    {0x0D, 0x03, 188, 189}, /* TIM-TM2 */
-    {0x0D, 0x04, 190, 191}, /* TIM-SVIN */
-    {0x0D, 0x06, 192, 193}, /* TIM-VRFY */
-    {0x0D, 0x11, 194, 195}, /* TIM-DOSC */
-    {0x0D, 0x12, 196, 197}, /* TIM-TOS */
-    {0x0D, 0x13, 198, 199}, /* TIM-SMEAS */
-    {0x0D, 0x15, 200, 203}, /* TIM-VCOCAL */
-    {0x0D, 0x16, 204, 205}, /* TIM-FCHG */
-    {0x0D, 0x17, 206, 206}, /* TIM-HOC */
-    {0x10, 0x02, 207, 207}, /* ESF-MEAS */
-    {0x10, 0x03, 208, 208}, /* ESF-RAW */
-    {0x10, 0x10, 209, 210}, /* ESF-STATUS */
-    {0x10, 0x14, 211, 212}, /* ESF-ALG */
-    {0x10, 0x15, 213, 214}, /* ESF-INS */
-    {0x13, 0x00, 215, 219}, /* MGA-GPS */
-    {0x13, 0x02, 220, 223}, /* MGA-GAL */
-    {0x13, 0x20, 224, 224}, /* MGA-ANO */
-    {0x13, 0x60, 225, 225}, /* MGA-ACK */
-    {0x13, 0x80, 226, 227}, /* MGA-DBD */
-    {0x21, 0x03, 228, 228}, /* LOG-ERASE */
-    {0x21, 0x04, 229, 229}, /* LOG-STRING */
-    {0x21, 0x07, 230, 230}, /* LOG-CREATE */
-    {0x21, 0x08, 231, 232}, /* LOG-INFO */
-    {0x21, 0x09, 233, 233}, /* LOG-RETRIEVE */
-    {0x21, 0x0B, 234, 234}, /* LOG-RETRIEVEPOS */
-    {0x21, 0x0D, 235, 235}, /* LOG-RETRIEVESTRING */
-    {0x21, 0x0E, 236, 237}, /* LOG-FINDTIME */
-    {0x21, 0x0F, 238, 238}, /* LOG-RETRIEVEPOSEXTRA */
-    {0x21, 0x10, 239, 239}, /* LOG-RETRIEVEBATCH */
-    {0x21, 0x11, 240, 240}, /* LOG-BATCH */
-    {0x27, 0x01, 241, 241}, /* SEC-SIGN */
-    {0x27, 0x03, 242, 243}, /* SEC-UNIQID */
-    {0x27, 0x09, 244, 246}, /* SEC-SIG */
-    {0x27, 0x10, 247, 248}, /* SEC-SIGLOG */
-    {0x28, 0x00, 249, 250}, /* HNR-PVT */
-    {0x28, 0x01, 251, 252}, /* HNR-ATT */
-    {0x28, 0x02, 253, 254}, /* HNR-INS */
+    {0x06, 0x06, 103, 105}, /* CFG-DAT */
+    {0x06, 0x08, 106, 107}, /* CFG-RATE */
+    {0x06, 0x09, 108, 109}, /* CFG-CFG */
+    {0x06, 0x11, 110, 111}, /* CFG-RXM */
+    {0x06, 0x13, 112, 113}, /* CFG-ANT */
+    {0x06, 0x16, 114, 115}, /* CFG-SBAS */
+    {0x06, 0x17, 116, 119}, /* CFG-NMEA */
+    {0x06, 0x1B, 120, 121}, /* CFG-USB */
+    {0x06, 0x1E, 122, 123}, /* CFG-ODO */
+    {0x06, 0x23, 124, 125}, /* CFG-NAVX5 */
+    {0x06, 0x24, 126, 127}, /* CFG-NAV5 */
+    {0x06, 0x31, 128, 130}, /* CFG-TP5 */
+    {0x06, 0x34, 131, 132}, /* CFG-RINV */
+    {0x06, 0x39, 133, 134}, /* CFG-ITFM */
+    {0x06, 0x3B, 135, 137}, /* CFG-PM2 */
+    {0x06, 0x3E, 138, 139}, /* CFG-GNSS */
+    {0x06, 0x47, 140, 141}, /* CFG-LOGFILTER */
+    {0x06, 0x4C, 142, 143}, /* CFG-ESFA */
+    {0x06, 0x4D, 144, 145}, /* CFG-ESFG */
+    {0x06, 0x53, 146, 147}, /* CFG-TXSLOT */
+    {0x06, 0x56, 148, 149}, /* CFG-ESFALG */
+    {0x06, 0x57, 150, 150}, /* CFG-PWR */
+    {0x06, 0x5C, 151, 152}, /* CFG-HNR */
+    {0x06, 0x60, 153, 154}, /* CFG-ESRC */
+    {0x06, 0x61, 155, 156}, /* CFG-DOSC */
+    {0x06, 0x62, 157, 158}, /* CFG-SMGR */
+    {0x06, 0x69, 159, 160}, /* CFG-GEOFENCE */
+    {0x06, 0x70, 161, 162}, /* CFG-DGNSS */
+    {0x06, 0x71, 163, 164}, /* CFG-TMODE3 */
+    {0x06, 0x82, 165, 166}, /* CFG-ESFWT */
+    {0x06, 0x84, 167, 167}, /* CFG-FIXSEED */
+    {0x06, 0x86, 168, 169}, /* CFG-PMS */
+    {0x06, 0x8A, 170, 171}, /* CFG-VALSET */
+    {0x06, 0x8B, 172, 173}, /* CFG-VALGET */
+    {0x06, 0x8C, 174, 175}, /* CFG-VALDEL */
+    {0x06, 0x8D, 176, 177}, /* CFG-SLAS */
+    {0x06, 0x93, 178, 179}, /* CFG-BATCH */
+    {0x09, 0x14, 180, 182}, /* UPD-SOS */
+    {0x0A, 0x02, 183, 184}, /* MON-IO */
+    {0x0A, 0x04, 185, 186}, /* MON-VER */
+    {0x0A, 0x06, 187, 188}, /* MON-MSGPP */
+    {0x0A, 0x07, 189, 190}, /* MON-RXBUF */
+    {0x0A, 0x08, 191, 192}, /* MON-TXBUF */
+    {0x0A, 0x09, 193, 194}, /* MON-HW */
+    {0x0A, 0x0B, 195, 196}, /* MON-HW2 */
+    {0x0A, 0x21, 197, 197}, /* MON-RXR */
+    {0x0A, 0x27, 198, 199}, /* MON-PATCH */
+    {0x0A, 0x28, 200, 201}, /* MON-GNSS */
+    {0x0A, 0x2E, 202, 203}, /* MON-SMGR */
+    {0x0A, 0x36, 204, 205}, /* MON-COMMS */
+    {0x0A, 0x37, 206, 207}, /* MON-HW3 */
+    {0x0A, 0x38, 208, 209}, /* MON-RF */
+    {0x0A, 0x39, 210, 211}, /* MON-SYS */
+    {0x0B, 0x01, 212, 213}, /* AID-INI */
+    {0x0B, 0x02, 214, 215}, /* AID-HUI */
+    {0x0B, 0x30, 216, 219}, /* AID-ALM */
+    {0x0B, 0x31, 220, 223}, /* AID-EPH */
+    {0x0B, 0x33, 224, 226}, /* AID-AOP */
+    {0x0D, 0x01, 227, 228}, /* TIM-TP */
+    {0x0D, 0x03, 229, 230}, /* TIM-TM2 */
+    {0x0D, 0x04, 231, 232}, /* TIM-SVIN */
+    {0x0D, 0x06, 233, 234}, /* TIM-VRFY */
+    {0x0D, 0x11, 235, 236}, /* TIM-DOSC */
+    {0x0D, 0x12, 237, 238}, /* TIM-TOS */
+    {0x0D, 0x13, 239, 240}, /* TIM-SMEAS */
+    {0x0D, 0x15, 241, 244}, /* TIM-VCOCAL */
+    {0x0D, 0x16, 245, 246}, /* TIM-FCHG */
+    {0x0D, 0x17, 247, 247}, /* TIM-HOC */
+    {0x10, 0x02, 248, 248}, /* ESF-MEAS */
+    {0x10, 0x03, 249, 249}, /* ESF-RAW */
+    {0x10, 0x10, 250, 251}, /* ESF-STATUS */
+    {0x10, 0x14, 252, 253}, /* ESF-ALG */
+    {0x10, 0x15, 254, 255}, /* ESF-INS */
+    {0x13, 0x00, 256, 260}, /* MGA-GPS */
+    {0x13, 0x02, 261, 264}, /* MGA-GAL */
+    {0x13, 0x03, 265, 269}, /* MGA-BDS */
+    {0x13, 0x05, 270, 272}, /* MGA-QZSS */
+    {0x13, 0x06, 273, 275}, /* MGA-GLO */
+    {0x13, 0x20, 276, 276}, /* MGA-ANO */
+    {0x13, 0x60, 277, 277}, /* MGA-ACK */
+    {0x13, 0x80, 278, 279}, /* MGA-DBD */
+    {0x21, 0x03, 280, 280}, /* LOG-ERASE */
+    {0x21, 0x04, 281, 281}, /* LOG-STRING */
+    {0x21, 0x07, 282, 282}, /* LOG-CREATE */
+    {0x21, 0x08, 283, 284}, /* LOG-INFO */
+    {0x21, 0x09, 285, 285}, /* LOG-RETRIEVE */
+    {0x21, 0x0B, 286, 286}, /* LOG-RETRIEVEPOS */
+    {0x21, 0x0D, 287, 287}, /* LOG-RETRIEVESTRING */
+    {0x21, 0x0E, 288, 289}, /* LOG-FINDTIME */
+    {0x21, 0x0F, 290, 290}, /* LOG-RETRIEVEPOSEXTRA */
+    {0x21, 0x10, 291, 291}, /* LOG-RETRIEVEBATCH */
+    {0x21, 0x11, 292, 292}, /* LOG-BATCH */
+    {0x27, 0x01, 293, 293}, /* SEC-SIGN */
+    {0x27, 0x03, 294, 295}, /* SEC-UNIQID */
+    {0x27, 0x09, 296, 298}, /* SEC-SIG */
+    {0x27, 0x10, 299, 300}, /* SEC-SIGLOG */
+    {0x28, 0x00, 301, 302}, /* HNR-PVT */
+    {0x28, 0x01, 303, 304}, /* HNR-ATT */
+    {0x28, 0x02, 305, 306}, /* HNR-INS */
+    {0x29, 0x01, 307, 308}, /* NAV2-POSECEF */
+    {0x29, 0x02, 309, 310}, /* NAV2-POSLLH */
+    {0x29, 0x03, 311, 312}, /* NAV2-STATUS */
+    {0x29, 0x04, 313, 314}, /* NAV2-DOP */
+    {0x29, 0x07, 315, 316}, /* NAV2-PVT */
+    {0x29, 0x09, 317, 318}, /* NAV2-ODO */
+    {0x29, 0x11, 319, 320}, /* NAV2-VELECEF */
+    {0x29, 0x12, 321, 322}, /* NAV2-VELNED */
+    {0x29, 0x20, 323, 324}, /* NAV2-TIMEGPS */
+    {0x29, 0x21, 325, 326}, /* NAV2-TIMEUTC */
+    {0x29, 0x22, 327, 328}, /* NAV2-CLOCK */
+    {0x29, 0x23, 329, 330}, /* NAV2-TIMEGLO */
+    {0x29, 0x24, 331, 332}, /* NAV2-TIMEBDS */
+    {0x29, 0x25, 333, 334}, /* NAV2-TIMEGAL */
+    {0x29, 0x26, 335, 336}, /* NAV2-TIMELS */
+    {0x29, 0x27, 337, 338}, /* NAV2-TIMEQZSS */
+    {0x29, 0x32, 339, 340}, /* NAV2-SBAS */
+    {0x29, 0x35, 341, 342}, /* NAV2-SAT */
+    {0x29, 0x36, 343, 344}, /* NAV2-COV */
+    {0x29, 0x42, 345, 346}, /* NAV2-SLAS */
+    {0x29, 0x43, 347, 348}, /* NAV2-SIG */
+    {0x29, 0x61, 349, 349}, /* NAV2-EOE */
 };
 
 bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, size_t len, nmea_ubx_message *out,

@@ -29,26 +29,35 @@
 //   spec/binary/ubx/messages/ack_nak.yaml, spec/binary/ubx/messages/ack_ack.yaml,
 //   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
 //   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
-//   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_cfg.yaml,
-//   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_ant.yaml,
-//   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_nmea.yaml,
+//   spec/binary/ubx/messages/cfg_dat.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
+//   spec/binary/ubx/messages/cfg_cfg.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
+//   spec/binary/ubx/messages/cfg_ant.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
+//   spec/binary/ubx/messages/cfg_nmea.yaml, spec/binary/ubx/messages/cfg_usb.yaml,
 //   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
 //   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
-//   spec/binary/ubx/messages/cfg_itfm.yaml, spec/binary/ubx/messages/cfg_pm2.yaml,
-//   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_logfilter.yaml,
-//   spec/binary/ubx/messages/cfg_pwr.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
+//   spec/binary/ubx/messages/cfg_rinv.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
+//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
+//   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_esfa.yaml,
+//   spec/binary/ubx/messages/cfg_esfg.yaml, spec/binary/ubx/messages/cfg_txslot.yaml,
+//   spec/binary/ubx/messages/cfg_esfalg.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
+//   spec/binary/ubx/messages/cfg_hnr.yaml, spec/binary/ubx/messages/cfg_esrc.yaml,
+//   spec/binary/ubx/messages/cfg_dosc.yaml, spec/binary/ubx/messages/cfg_smgr.yaml,
 //   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
-//   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
+//   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_esfwt.yaml,
+//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
 //   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
-//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_batch.yaml,
-//   spec/binary/ubx/messages/upd_sos.yaml, spec/binary/ubx/messages/mon_io.yaml,
-//   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
-//   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
-//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
-//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_patch.yaml,
-//   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
-//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
-//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
+//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_slas.yaml,
+//   spec/binary/ubx/messages/cfg_batch.yaml, spec/binary/ubx/messages/upd_sos.yaml,
+//   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_ver.yaml,
+//   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
+//   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_hw.yaml,
+//   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
+//   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/aid_ini.yaml,
+//   spec/binary/ubx/messages/aid_hui.yaml, spec/binary/ubx/messages/aid_alm.yaml,
+//   spec/binary/ubx/messages/aid_eph.yaml, spec/binary/ubx/messages/aid_aop.yaml,
 //   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
 //   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
 //   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
@@ -57,19 +66,32 @@
 //   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
 //   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
 //   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
-//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_ano.yaml,
-//   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
-//   spec/binary/ubx/messages/log_erase.yaml, spec/binary/ubx/messages/log_string.yaml,
-//   spec/binary/ubx/messages/log_create.yaml, spec/binary/ubx/messages/log_info.yaml,
-//   spec/binary/ubx/messages/log_retrieve.yaml, spec/binary/ubx/messages/log_retrievepos.yaml,
+//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_bds.yaml,
+//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mga_glo.yaml,
+//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_ack.yaml,
+//   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/log_erase.yaml,
+//   spec/binary/ubx/messages/log_string.yaml, spec/binary/ubx/messages/log_create.yaml,
+//   spec/binary/ubx/messages/log_info.yaml, spec/binary/ubx/messages/log_retrieve.yaml,
+//   spec/binary/ubx/messages/log_retrievepos.yaml,
 //   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_findtime.yaml,
 //   spec/binary/ubx/messages/log_retrieveposextra.yaml,
 //   spec/binary/ubx/messages/log_retrievebatch.yaml, spec/binary/ubx/messages/log_batch.yaml,
 //   spec/binary/ubx/messages/sec_sign.yaml, spec/binary/ubx/messages/sec_uniqid.yaml,
 //   spec/binary/ubx/messages/sec_sig.yaml, spec/binary/ubx/messages/sec_siglog.yaml,
 //   spec/binary/ubx/messages/hnr_pvt.yaml, spec/binary/ubx/messages/hnr_att.yaml,
-//   spec/binary/ubx/messages/hnr_ins.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 5f23469356941f40)
+//   spec/binary/ubx/messages/hnr_ins.yaml, spec/binary/ubx/messages/nav2_posecef.yaml,
+//   spec/binary/ubx/messages/nav2_posllh.yaml, spec/binary/ubx/messages/nav2_status.yaml,
+//   spec/binary/ubx/messages/nav2_dop.yaml, spec/binary/ubx/messages/nav2_pvt.yaml,
+//   spec/binary/ubx/messages/nav2_odo.yaml, spec/binary/ubx/messages/nav2_velecef.yaml,
+//   spec/binary/ubx/messages/nav2_velned.yaml, spec/binary/ubx/messages/nav2_timegps.yaml,
+//   spec/binary/ubx/messages/nav2_timeutc.yaml, spec/binary/ubx/messages/nav2_clock.yaml,
+//   spec/binary/ubx/messages/nav2_timeglo.yaml, spec/binary/ubx/messages/nav2_timebds.yaml,
+//   spec/binary/ubx/messages/nav2_timegal.yaml, spec/binary/ubx/messages/nav2_timels.yaml,
+//   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_sbas.yaml,
+//   spec/binary/ubx/messages/nav2_sat.yaml, spec/binary/ubx/messages/nav2_cov.yaml,
+//   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_sig.yaml,
+//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/enums/ubx_fix_type.yaml,
+//   spec/enums/ubx_gnss_id.yaml (digest d3f26ce7cdd82721)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx: a struct per layout, every field typed, decoded from a
@@ -279,11 +301,26 @@ typedef struct {
 #ifndef NMEA_UBX_CFG_INF_BLOCKS_MAX
 #define NMEA_UBX_CFG_INF_BLOCKS_MAX (2 < NMEA_UBX_MAX_ENTRIES ? 2 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_CFG_RINV_DATA_MAX
+#define NMEA_UBX_CFG_RINV_DATA_MAX (30 < NMEA_UBX_MAX_ENTRIES ? 30 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_CFG_GNSS_BLOCKS_MAX
 #define NMEA_UBX_CFG_GNSS_BLOCKS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_CFG_TXSLOT_END_MAX
+#define NMEA_UBX_CFG_TXSLOT_END_MAX (3 < NMEA_UBX_MAX_ENTRIES ? 3 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_CFG_ESRC_SOURCES_MAX
+#define NMEA_UBX_CFG_ESRC_SOURCES_MAX (2 < NMEA_UBX_MAX_ENTRIES ? 2 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_CFG_DOSC_OSCILLATORS_MAX
+#define NMEA_UBX_CFG_DOSC_OSCILLATORS_MAX (2 < NMEA_UBX_MAX_ENTRIES ? 2 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_CFG_GEOFENCE_FENCES_MAX
 #define NMEA_UBX_CFG_GEOFENCE_FENCES_MAX (4 < NMEA_UBX_MAX_ENTRIES ? 4 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_CFG_FIXSEED_MESSAGES_MAX
+#define NMEA_UBX_CFG_FIXSEED_MESSAGES_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_CFG_VALGET_POLL_KEYS_MAX
 #define NMEA_UBX_CFG_VALGET_POLL_KEYS_MAX (64 < NMEA_UBX_MAX_ENTRIES ? 64 : NMEA_UBX_MAX_ENTRIES)
@@ -357,6 +394,9 @@ typedef struct {
 #ifndef NMEA_UBX_MON_RF_BLOCKS_MAX
 #define NMEA_UBX_MON_RF_BLOCKS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_AID_ALM_DWRD_MAX
+#define NMEA_UBX_AID_ALM_DWRD_MAX (8 < NMEA_UBX_MAX_ENTRIES ? 8 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_TIM_SMEAS_MEAS_MAX
 #define NMEA_UBX_TIM_SMEAS_MEAS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
@@ -372,6 +412,12 @@ typedef struct {
 #ifndef NMEA_UBX_MGA_GPS_HEALTH_HEALTH_CODE_MAX
 #define NMEA_UBX_MGA_GPS_HEALTH_HEALTH_CODE_MAX (32 < NMEA_UBX_MAX_ENTRIES ? 32 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_MGA_BDS_HEALTH_HEALTH_CODE_MAX
+#define NMEA_UBX_MGA_BDS_HEALTH_HEALTH_CODE_MAX (30 < NMEA_UBX_MAX_ENTRIES ? 30 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MGA_QZSS_HEALTH_HEALTH_CODE_MAX
+#define NMEA_UBX_MGA_QZSS_HEALTH_HEALTH_CODE_MAX (5 < NMEA_UBX_MAX_ENTRIES ? 5 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_LOG_RETRIEVESTRING_BYTES_MAX
 #define NMEA_UBX_LOG_RETRIEVESTRING_BYTES_MAX (256 < NMEA_UBX_MAX_ENTRIES ? 256 : NMEA_UBX_MAX_ENTRIES)
 #endif
@@ -380,6 +426,18 @@ typedef struct {
 #endif
 #ifndef NMEA_UBX_SEC_SIGLOG_EVENTS_MAX
 #define NMEA_UBX_SEC_SIGLOG_EVENTS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_NAV2_SBAS_CHANNELS_MAX
+#define NMEA_UBX_NAV2_SBAS_CHANNELS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_NAV2_SAT_SVS_MAX
+#define NMEA_UBX_NAV2_SAT_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_NAV2_SLAS_CORRECTIONS_MAX
+#define NMEA_UBX_NAV2_SLAS_CORRECTIONS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_NAV2_SIG_SIGNALS_MAX
+#define NMEA_UBX_NAV2_SIG_SIGNALS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
 
 /* Position solution in ECEF: UBX NAV-POSECEF (class 0x01 id 0x01), poll. */
@@ -1722,6 +1780,41 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_rst;
 
+/* Datum: UBX CFG-DAT (class 0x06 id 0x06), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_dat_poll;
+
+/* Datum: UBX CFG-DAT (class 0x06 id 0x06), input. */
+typedef struct {
+    double maj_a; /* Semi-major axis of the ellipsoid [m] (its bits as sent) */
+    double flat; /* Inverse flattening of the ellipsoid (its bits as sent) */
+    float d_x; /* X shift from WGS84 [m] (its bits as sent) */
+    float d_y; /* Y shift from WGS84 [m] (its bits as sent) */
+    float d_z; /* Z shift from WGS84 [m] (its bits as sent) */
+    float rot_x; /* Rotation about the X axis [arcsec] (its bits as sent) */
+    float rot_y; /* Rotation about the Y axis [arcsec] (its bits as sent) */
+    float rot_z; /* Rotation about the Z axis [arcsec] (its bits as sent) */
+    float scale; /* Scale change [ppm] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_dat_set;
+
+/* Datum: UBX CFG-DAT (class 0x06 id 0x06), output. */
+typedef struct {
+    uint16_t datum_num; /* Datum number */
+    char datum_name[6]; /* Datum name (as sent) */
+    double maj_a; /* Semi-major axis of the ellipsoid [m] (its bits as sent) */
+    double flat; /* Inverse flattening of the ellipsoid (its bits as sent) */
+    float d_x; /* X shift from WGS84 [m] (its bits as sent) */
+    float d_y; /* Y shift from WGS84 [m] (its bits as sent) */
+    float d_z; /* Z shift from WGS84 [m] (its bits as sent) */
+    float rot_x; /* Rotation about the X axis [arcsec] (its bits as sent) */
+    float rot_y; /* Rotation about the Y axis [arcsec] (its bits as sent) */
+    float rot_z; /* Rotation about the Z axis [arcsec] (its bits as sent) */
+    float scale; /* Scale change [ppm] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_dat;
+
 /* Navigation and measurement rate: UBX CFG-RATE (class 0x06 id 0x08), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -1895,6 +1988,27 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_nmea_deprecated;
 
+/* USB configuration: UBX CFG-USB (class 0x06 id 0x1B), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_usb_poll;
+
+/* USB configuration: UBX CFG-USB (class 0x06 id 0x1B), input, output. */
+typedef struct {
+    uint16_t vendor_id; /* USB vendor id */
+    uint16_t product_id; /* USB product id */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t power_consumption; /* Power drawn from the bus [mA] */
+    uint16_t flags; /* Flags (bitfield) */
+    bool re_enum; /* Re-enumerate after the change (flags bit 0) */
+    bool power_mode; /* Self powered (else bus powered) (flags bit 1) */
+    char vendor_string[32]; /* Vendor text (as sent) */
+    char product_string[32]; /* Product text (as sent) */
+    char serial_number[32]; /* Serial number (as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_usb;
+
 /* Odometer and low-speed course filters: UBX CFG-ODO (class 0x06 id 0x1E), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -2039,6 +2153,26 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_tp5;
 
+/* Remote inventory: UBX CFG-RINV (class 0x06 id 0x34), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_rinv_poll;
+
+/* One entry of the stored data (data). */
+typedef struct {
+    uint8_t data; /* Byte */
+} nmea_ubx_cfg_rinv_data_entry;
+
+/* Remote inventory: UBX CFG-RINV (class 0x06 id 0x34), input, output. */
+typedef struct {
+    uint8_t flags; /* Flags (bitfield) */
+    bool dump; /* Send the data at startup (flags bit 0) */
+    bool binary; /* The data is binary (else text) (flags bit 1) */
+    uint16_t data_count; /* the entries of data */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_cfg_rinv_data_entry data[NMEA_UBX_CFG_RINV_DATA_MAX]; /* The stored data */
+} nmea_ubx_cfg_rinv;
+
 /* Jamming and interference monitor configuration: UBX CFG-ITFM (class 0x06 id 0x39), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -2166,6 +2300,83 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_logfilter;
 
+/* Accelerometer sensor configuration: UBX CFG-ESFA (class 0x06 id 0x4C), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_esfa_poll;
+
+/* Accelerometer sensor configuration: UBX CFG-ESFA (class 0x06 id 0x4C), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t reserved1[9]; /* Reserved (as sent) */
+    uint8_t accel_rms_thdl; /* Accelerometer noise level threshold [m/s^2]; raw, value = raw / 64 */
+    uint8_t frequency; /* Nominal output frequency [Hz] */
+    uint16_t latency; /* Latency of the data [ms] */
+    uint16_t accuracy; /* Accuracy [m/s^2]; raw, value = raw / 10000 */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_esfa;
+
+/* Gyroscope sensor configuration: UBX CFG-ESFG (class 0x06 id 0x4D), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_esfg_poll;
+
+/* Gyroscope sensor configuration: UBX CFG-ESFG (class 0x06 id 0x4D), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint64_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t tc_table_save_rate; /* Period of saving the temperature compensation table [s] */
+    uint8_t gyro_rms_thdl; /* Gyroscope noise level threshold [deg/s]; raw, value = raw / 256 */
+    uint8_t frequency; /* Nominal output frequency [Hz] */
+    uint16_t latency; /* Latency of the data [ms] */
+    uint16_t accuracy; /* Accuracy [deg/s]; raw, value = raw / 1000 */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_esfg;
+
+/* TX buffer time slots configuration: UBX CFG-TXSLOT (class 0x06 id 0x53), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_txslot_poll;
+
+/* One entry of ends of the three slots after the time pulse (end). */
+typedef struct {
+    uint32_t end; /* End of the slot [ms] */
+} nmea_ubx_cfg_txslot_end_entry;
+
+/* TX buffer time slots configuration: UBX CFG-TXSLOT (class 0x06 id 0x53), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t enable; /* Ports the slots apply to (bitfield) */
+    bool enable_ddc; /* I2C (enable bit 0) */
+    bool enable_uart1; /* UART1 (enable bit 1) */
+    bool enable_uart2; /* UART2 (enable bit 2) */
+    bool enable_usb; /* USB (enable bit 3) */
+    bool enable_spi; /* SPI (enable bit 4) */
+    uint8_t ref_tp; /* Reference time pulse */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t end_count; /* the entries of end */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_cfg_txslot_end_entry end[NMEA_UBX_CFG_TXSLOT_END_MAX]; /* Ends of the three slots after the time pulse */
+} nmea_ubx_cfg_txslot;
+
+/* IMU mount alignment configuration: UBX CFG-ESFALG (class 0x06 id 0x56), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_esfalg_poll;
+
+/* IMU mount alignment configuration: UBX CFG-ESFALG (class 0x06 id 0x56), input, output. */
+typedef struct {
+    uint32_t bitfield; /* Version and flags (bitfield) */
+    uint8_t version; /* Message version (bitfield bits 0-7) */
+    bool do_auto_mnt_alg; /* Find the mount alignment automatically (bitfield bit 8) */
+    uint32_t yaw; /* Mount yaw angle [deg]; raw, value = raw / 100 */
+    int16_t pitch; /* Mount pitch angle [deg]; raw, value = raw / 100 */
+    int16_t roll; /* Mount roll angle [deg]; raw, value = raw / 100 */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_esfalg;
+
 /* Put the receiver in a power state: UBX CFG-PWR (class 0x06 id 0x57), input. */
 typedef struct {
     uint8_t version; /* Message version */
@@ -2185,6 +2396,110 @@ typedef struct {
     uint32_t reserved1; /* Reserved (reserved, as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_hnr;
+
+/* External synchronization source configuration: UBX CFG-ESRC (class 0x06 id 0x60), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_esrc_poll;
+
+/* One entry of sources (sources). */
+typedef struct {
+    uint8_t ext_int; /* EXTINT pin */
+    uint8_t source_type; /* Kind of source */
+    uint16_t flags; /* Flags (bitfield) */
+    bool polarity; /* Falling edge (else rising) (flags bit 0) */
+    bool gnss_utc; /* Aligned to UTC (else GNSS time) (flags bit 1) */
+    uint32_t freq; /* Nominal frequency [Hz]; raw, value = raw / 4 */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    uint32_t with_temp; /* Frequency stability over temperature [ppb]; raw, value = raw / 256 */
+    uint32_t with_age; /* Frequency stability over age [ppb/year]; raw, value = raw / 256 */
+    uint16_t time_to_temp; /* Time to warm up [s] */
+    uint16_t max_dev_life_time; /* Largest deviation over its lifetime [ppb] */
+    int32_t offset; /* Time offset [ns] */
+    uint32_t offset_uncertainty; /* Uncertainty of the time offset [ns] */
+    uint32_t jitter; /* Phase jitter [ns/s] */
+} nmea_ubx_cfg_esrc_source;
+
+/* External synchronization source configuration: UBX CFG-ESRC (class 0x06 id 0x60), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t num_sources; /* Number of sources */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t sources_count; /* the entries of sources */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_cfg_esrc_source sources[NMEA_UBX_CFG_ESRC_SOURCES_MAX]; /* Sources */
+} nmea_ubx_cfg_esrc;
+
+/* Disciplined oscillator configuration: UBX CFG-DOSC (class 0x06 id 0x61), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_dosc_poll;
+
+/* One entry of oscillators (oscillators). */
+typedef struct {
+    uint8_t osc_id; /* Oscillator */
+    uint8_t reserved2; /* Reserved (reserved, as sent) */
+    uint16_t flags; /* Flags (bitfield) */
+    bool is_calibrated; /* Calibrated (flags bit 0) */
+    uint8_t control_if; /* Control interface (flags bits 1-4) */
+    uint32_t freq; /* Nominal frequency [Hz]; raw, value = raw / 4 */
+    int32_t phase_offset; /* Phase offset of its time pulse to the reference [ps] */
+    uint32_t with_temp; /* Frequency stability over temperature [ppb]; raw, value = raw / 256 */
+    uint32_t with_age; /* Frequency stability over age [ppb/year]; raw, value = raw / 256 */
+    uint16_t time_to_temp; /* Time to warm up [s] */
+    uint16_t reserved3; /* Reserved (reserved, as sent) */
+    int32_t gain_vco; /* Gain of the control [ppb/raw]; raw, value = raw / 65536 */
+    uint8_t gain_uncertainty; /* Relative uncertainty of the gain; raw, value = raw / 256 */
+    uint32_t reserved4; /* Reserved (reserved, as sent) */
+} nmea_ubx_cfg_dosc_oscillator;
+
+/* Disciplined oscillator configuration: UBX CFG-DOSC (class 0x06 id 0x61), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t num_osc; /* Number of oscillators */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t oscillators_count; /* the entries of oscillators */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_cfg_dosc_oscillator oscillators[NMEA_UBX_CFG_DOSC_OSCILLATORS_MAX]; /* Oscillators */
+} nmea_ubx_cfg_dosc;
+
+/* Synchronization manager configuration: UBX CFG-SMGR (class 0x06 id 0x62), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_smgr_poll;
+
+/* Synchronization manager configuration: UBX CFG-SMGR (class 0x06 id 0x62), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t min_gnss_fix; /* Least number of GNSS fixes before a time pulse is locked */
+    uint16_t max_freq_change; /* Largest frequency change rate while disciplining [ppb/s] */
+    uint16_t max_phase_corr_rate; /* Largest phase correction rate in coherent time pulse mode [ns/s] */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t freq_tolerance; /* Frequency tolerance of a locked source [ppb] */
+    uint16_t time_tolerance; /* Time tolerance of a locked source [ns] */
+    uint16_t message_cfg; /* Sources measured in TIM-SMEAS (bitfield) */
+    bool meas_internal; /* Internal oscillator (message_cfg bit 0) */
+    bool meas_gnss; /* GNSS (message_cfg bit 1) */
+    bool meas_extint0; /* EXTINT0 (message_cfg bit 2) */
+    bool meas_extint1; /* EXTINT1 (message_cfg bit 3) */
+    uint16_t max_slew_rate; /* Largest slew rate of the time pulse [us/s] */
+    uint32_t flags; /* Flags (bitfield) */
+    bool disable_internal; /* Do not discipline the internal oscillator (flags bit 0) */
+    bool disable_external; /* Do not discipline the external oscillator (flags bit 1) */
+    bool preference_mode; /* Prefer accuracy (else stability) (flags bit 2) */
+    bool enable_gnss; /* Use GNSS as a source (flags bit 3) */
+    bool enable_extint0; /* Use EXTINT0 as a source (flags bit 4) */
+    bool enable_extint1; /* Use EXTINT1 as a source (flags bit 5) */
+    bool enable_host_meas_int; /* Use host measurements of the internal oscillator (flags bit 6) */
+    bool enable_host_meas_ext; /* Use host measurements of the external oscillator (flags bit 7) */
+    bool use_any_fix; /* Use any fix (else only over-determined ones) (flags bit 10) */
+    bool disable_max_slew_rate; /* Ignore max_slew_rate (flags bit 11) */
+    bool issue_freq_warning; /* Warn (INF) when the frequency tolerance is exceeded (flags bit 12) */
+    bool issue_time_warning; /* Warn (INF) when the time tolerance is exceeded (flags bit 13) */
+    uint8_t tp_coherent; /* Time pulse coherence (flags bits 14-15) */
+    bool disable_offset; /* Do not apply the time offset (flags bit 16) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_smgr;
 
 /* Geofencing configuration: UBX CFG-GEOFENCE (class 0x06 id 0x69), poll. */
 typedef struct {
@@ -2250,6 +2565,55 @@ typedef struct {
     uint64_t reserved3; /* Reserved (reserved, as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_tmode3;
+
+/* Wheel tick configuration: UBX CFG-ESFWT (class 0x06 id 0x82), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_esfwt_poll;
+
+/* Wheel tick configuration: UBX CFG-ESFWT (class 0x06 id 0x82), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t flags1; /* Flags (bitfield) */
+    bool combine_ticks; /* Combine the rear wheels' ticks (flags1 bit 0) */
+    bool use_wt_speed; /* Use speed measurements (else ticks) (flags1 bit 4) */
+    bool dir_pin_pol; /* Direction pin high means backwards (flags1 bit 5) */
+    bool use_wt_pin; /* Use the wheel tick pin (flags1 bit 6) */
+    uint8_t flags2; /* What the receiver finds itself (a set bit turns it off) (bitfield) */
+    bool auto_wt_count_max_off; /* Counter range (flags2 bit 0) */
+    bool auto_dir_pin_pol_off; /* Direction pin polarity (flags2 bit 1) */
+    bool auto_software_wt_off; /* Software wheel tick use (flags2 bit 2) */
+    bool auto_use_wt_speed_off; /* Speed use (flags2 bit 3) */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t wt_factor; /* Wheel tick scale factor [m]; raw, value = raw / 1000000 */
+    uint32_t wt_quant_error; /* Wheel tick quantization error [m]; raw, value = raw / 1000000 */
+    uint32_t wt_count_max; /* Largest wheel tick count before it wraps */
+    uint16_t wt_latency; /* Latency of the wheel tick data [ms] */
+    uint8_t wt_frequency; /* Nominal frequency of the wheel tick data [Hz] */
+    uint8_t flags3; /* More flags (bitfield) */
+    bool cnt_both_edges; /* Count both edges of the tick signal (flags3 bit 4) */
+    uint16_t speed_dead_band; /* Speed below which a speed measurement counts as zero [cm/s] */
+    uint8_t reserved2[10]; /* Reserved (as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_esfwt;
+
+/* One entry of messages to sign (messages). */
+typedef struct {
+    uint8_t class_id; /* Class */
+    uint8_t msg_id; /* Id */
+} nmea_ubx_cfg_fixseed_message;
+
+/* Programming the fixed seed for the host interface signature: UBX CFG-FIXSEED (class 0x06 id 0x84), input. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t length; /* Number of messages */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t seed_hi; /* High part of the seed */
+    uint32_t seed_lo; /* Low part of the seed */
+    uint16_t messages_count; /* the entries of messages */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_cfg_fixseed_message messages[NMEA_UBX_CFG_FIXSEED_MESSAGES_MAX]; /* Messages to sign */
+} nmea_ubx_cfg_fixseed;
 
 /* Power mode setup: UBX CFG-PMS (class 0x06 id 0x86), poll. */
 typedef struct {
@@ -2351,6 +2715,21 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
     nmea_ubx_cfg_valdel_key keys[NMEA_UBX_CFG_VALDEL_KEYS_MAX]; /* Key ids */
 } nmea_ubx_cfg_valdel;
+
+/* QZSS L1S SLAS configuration: UBX CFG-SLAS (class 0x06 id 0x8D), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_slas_poll;
+
+/* QZSS L1S SLAS configuration: UBX CFG-SLAS (class 0x06 id 0x8D), input, output. */
+typedef struct {
+    uint8_t mode; /* SLAS mode (bitfield) */
+    bool enabled; /* SLAS enabled (mode bit 0) */
+    bool test; /* Use SLAS test mode data (mode bit 1) */
+    bool raim; /* RAIM on SLAS corrections (mode bit 2) */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_slas;
 
 /* Data batching configuration: UBX CFG-BATCH (class 0x06 id 0x93), poll. */
 typedef struct {
@@ -2852,6 +3231,174 @@ typedef struct {
     uint64_t reserved0; /* Reserved (reserved, as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_mon_sys;
+
+/* Initial position, time and clock (deprecated): UBX AID-INI (class 0x0B id 0x01), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_ini_poll;
+
+/* Initial position, time and clock (deprecated): UBX AID-INI (class 0x0B id 0x01), input, output. */
+typedef struct {
+    int32_t ecef_x_or_lat; /* ECEF X (cm) or latitude (1e-7 deg) */
+    int32_t ecef_y_or_lon; /* ECEF Y (cm) or longitude (1e-7 deg) */
+    int32_t ecef_z_or_alt; /* ECEF Z or altitude [cm] */
+    uint32_t pos_acc; /* Position accuracy (standard deviation) [cm] */
+    uint16_t tm_cfg; /* Time mark configuration (bitfield) */
+    bool f_edge; /* Falling edge (else rising) (tm_cfg bit 1) */
+    bool tm1; /* Time mark on EXTINT1 (else EXTINT0) (tm_cfg bit 4) */
+    bool f1; /* Frequency on EXTINT1 (else EXTINT0) (tm_cfg bit 6) */
+    uint16_t wn; /* GPS week number (or UTC) */
+    uint32_t tow; /* GPS time of week (or UTC) [ms] */
+    int32_t tow_ns; /* Fraction of the time of week [ns] */
+    uint32_t t_acc_ms; /* Time accuracy, milliseconds part [ms] */
+    uint32_t t_acc_ns; /* Time accuracy, nanoseconds part [ns] */
+    int32_t clk_d_or_freq; /* Clock drift (ns/s) or frequency (1e-2 Hz) */
+    uint32_t clk_d_acc_or_freq_acc; /* Accuracy of the clock drift (ns/s) or frequency (ppb) */
+    uint32_t flags; /* What the message holds (bitfield) */
+    bool pos; /* Position valid (flags bit 0) */
+    bool time; /* Time valid (flags bit 1) */
+    bool clock_d; /* Clock drift valid (flags bit 2) */
+    bool tp; /* Time given by a time pulse (flags bit 3) */
+    bool clock_f; /* Clock frequency valid (flags bit 4) */
+    bool lla; /* Position as latitude, longitude, altitude (else ECEF) (flags bit 5) */
+    bool alt_inv; /* Altitude not valid (flags bit 6) */
+    bool prev_tm; /* Time mark before the message (else after) (flags bit 7) */
+    bool utc; /* Time is UTC (else GPS) (flags bit 10) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_ini;
+
+/* GPS health, UTC and ionosphere parameters (deprecated): UBX AID-HUI (class 0x0B id 0x02), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_hui_poll;
+
+/* GPS health, UTC and ionosphere parameters (deprecated): UBX AID-HUI (class 0x0B id 0x02), input, output. */
+typedef struct {
+    uint32_t health; /* Health of each satellite (bit n-1 set - satellite n healthy) (bitfield) */
+    double utc_a0; /* Constant term of the GPS-UTC polynomial [s] (its bits as sent) */
+    double utc_a1; /* First order term of the GPS-UTC polynomial [s/s] (its bits as sent) */
+    int32_t utc_tow; /* Reference time of week of the UTC parameters [s] */
+    int16_t utc_wnt; /* Reference week of the UTC parameters */
+    int16_t utc_ls; /* Leap seconds before the next leap second event [s] */
+    int16_t utc_wnf; /* Week of the next leap second event */
+    int16_t utc_dns; /* Day of the week of the next leap second event */
+    int16_t utc_lsf; /* Leap seconds after the next leap second event [s] */
+    int16_t utc_spare; /* Spare */
+    float klob_a0; /* Klobuchar alpha 0 [s] (its bits as sent) */
+    float klob_a1; /* Klobuchar alpha 1 [s/semicircle] (its bits as sent) */
+    float klob_a2; /* Klobuchar alpha 2 [s/semicircle^2] (its bits as sent) */
+    float klob_a3; /* Klobuchar alpha 3 [s/semicircle^3] (its bits as sent) */
+    float klob_b0; /* Klobuchar beta 0 [s] (its bits as sent) */
+    float klob_b1; /* Klobuchar beta 1 [s/semicircle] (its bits as sent) */
+    float klob_b2; /* Klobuchar beta 2 [s/semicircle^2] (its bits as sent) */
+    float klob_b3; /* Klobuchar beta 3 [s/semicircle^3] (its bits as sent) */
+    uint32_t flags; /* Which parts are valid (bitfield) */
+    bool health_valid; /* Health valid (flags bit 0) */
+    bool utc_valid; /* UTC parameters valid (flags bit 1) */
+    bool klob_valid; /* Klobuchar parameters valid (flags bit 2) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_hui;
+
+/* GPS almanac data (deprecated): UBX AID-ALM (class 0x0B id 0x30), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_alm_poll;
+
+/* GPS almanac data (deprecated): UBX AID-ALM (class 0x0B id 0x30), poll. */
+typedef struct {
+    uint8_t svid; /* GPS satellite identifier */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_alm_poll_sv;
+
+/* One entry of words 3 to 10 of the almanac subframe (the 24 data bits of each) (dwrd). */
+typedef struct {
+    uint32_t dwrd; /* Word */
+} nmea_ubx_aid_alm_dwrd_entry;
+
+/* GPS almanac data (deprecated): UBX AID-ALM (class 0x0B id 0x30), input, output. */
+typedef struct {
+    uint32_t svid; /* GPS satellite identifier */
+    uint32_t week; /* Issue date of the almanac (GPS week) */
+    uint16_t dwrd_count; /* the entries of dwrd */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_aid_alm_dwrd_entry dwrd[NMEA_UBX_AID_ALM_DWRD_MAX]; /* Words 3 to 10 of the almanac subframe (the 24 data bits of each) */
+} nmea_ubx_aid_alm;
+
+/* GPS almanac data (deprecated): UBX AID-ALM (class 0x0B id 0x30), input, output. */
+typedef struct {
+    uint32_t svid; /* GPS satellite identifier */
+    uint32_t week; /* Issue date of the almanac (0 none) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_alm_empty;
+
+/* GPS ephemeris data (deprecated): UBX AID-EPH (class 0x0B id 0x31), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_eph_poll;
+
+/* GPS ephemeris data (deprecated): UBX AID-EPH (class 0x0B id 0x31), poll. */
+typedef struct {
+    uint8_t svid; /* GPS satellite identifier */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_eph_poll_sv;
+
+/* GPS ephemeris data (deprecated): UBX AID-EPH (class 0x0B id 0x31), input, output. */
+typedef struct {
+    uint32_t svid; /* GPS satellite identifier */
+    uint32_t how; /* Hand-over word of the first subframe (0 no ephemeris) */
+    uint32_t sf1d1; /* Subframe 1 word 3 */
+    uint32_t sf1d2; /* Subframe 1 word 4 */
+    uint32_t sf1d3; /* Subframe 1 word 5 */
+    uint32_t sf1d4; /* Subframe 1 word 6 */
+    uint32_t sf1d5; /* Subframe 1 word 7 */
+    uint32_t sf1d6; /* Subframe 1 word 8 */
+    uint32_t sf1d7; /* Subframe 1 word 9 */
+    uint32_t sf1d8; /* Subframe 1 word 10 */
+    uint32_t sf2d1; /* Subframe 2 word 3 */
+    uint32_t sf2d2; /* Subframe 2 word 4 */
+    uint32_t sf2d3; /* Subframe 2 word 5 */
+    uint32_t sf2d4; /* Subframe 2 word 6 */
+    uint32_t sf2d5; /* Subframe 2 word 7 */
+    uint32_t sf2d6; /* Subframe 2 word 8 */
+    uint32_t sf2d7; /* Subframe 2 word 9 */
+    uint32_t sf2d8; /* Subframe 2 word 10 */
+    uint32_t sf3d1; /* Subframe 3 word 3 */
+    uint32_t sf3d2; /* Subframe 3 word 4 */
+    uint32_t sf3d3; /* Subframe 3 word 5 */
+    uint32_t sf3d4; /* Subframe 3 word 6 */
+    uint32_t sf3d5; /* Subframe 3 word 7 */
+    uint32_t sf3d6; /* Subframe 3 word 8 */
+    uint32_t sf3d7; /* Subframe 3 word 9 */
+    uint32_t sf3d8; /* Subframe 3 word 10 */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_eph;
+
+/* GPS ephemeris data (deprecated): UBX AID-EPH (class 0x0B id 0x31), input, output. */
+typedef struct {
+    uint32_t svid; /* GPS satellite identifier */
+    uint32_t how; /* Hand-over word (0 no ephemeris) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_eph_empty;
+
+/* AssistNow Autonomous data (deprecated): UBX AID-AOP (class 0x0B id 0x33), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_aop_poll;
+
+/* AssistNow Autonomous data (deprecated): UBX AID-AOP (class 0x0B id 0x33), poll. */
+typedef struct {
+    uint8_t svid; /* GPS satellite identifier */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_aop_poll_sv;
+
+/* AssistNow Autonomous data (deprecated): UBX AID-AOP (class 0x0B id 0x33), input, output. */
+typedef struct {
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
+    uint8_t sv_id; /* Satellite identifier */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t data[64]; /* Orbit data */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_aid_aop;
 
 /* Time pulse time data: UBX TIM-TP (class 0x0D id 0x01), poll. */
 typedef struct {
@@ -3421,6 +3968,248 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_mga_gal_utc;
 
+/* BeiDou assistance data: UBX MGA-BDS (class 0x13 id 0x03), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* BeiDou satellite identifier */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t sat_h1; /* Autonomous satellite health flag (SatH1) */
+    uint8_t iodc; /* Issue of data, clock */
+    int16_t a2; /* Clock drift rate correction [s/s^2]; raw, value = raw / 73786976294838206464 */
+    int32_t a1; /* Clock drift correction [s/s]; raw, value = raw / 1125899906842624 */
+    int32_t a0; /* Clock bias correction [s]; raw, value = raw / 8589934592 */
+    uint32_t toc; /* Clock data reference time (in 8 s) */
+    int16_t tgd1; /* Equipment group delay differential (B1) [ns]; raw, value = raw / 10 */
+    uint8_t urai; /* User range accuracy index */
+    uint8_t iode; /* Issue of data, ephemeris */
+    uint32_t toe; /* Ephemeris reference time (in 8 s) */
+    uint32_t sqrt_a; /* Square root of the semi-major axis [m^0.5]; raw, value = raw / 524288 */
+    uint32_t e; /* Eccentricity; raw, value = raw / 8589934592 */
+    int32_t omega; /* Argument of perigee [semicircle]; raw, value = raw / 2147483648 */
+    int16_t deltan; /* Mean motion difference [semicircle/s]; raw, value = raw / 8796093022208 */
+    int16_t idot; /* Rate of inclination [semicircle/s]; raw, value = raw / 8796093022208 */
+    int32_t m0; /* Mean anomaly at the reference time [semicircle]; raw, value = raw / 2147483648 */
+    int32_t omega0; /* Longitude of the ascending node at the weekly epoch [semicircle]; raw, value = raw / 2147483648 */
+    int32_t omega_dot; /* Rate of right ascension [semicircle/s]; raw, value = raw / 8796093022208 */
+    int32_t i0; /* Inclination at the reference time [semicircle]; raw, value = raw / 2147483648 */
+    int32_t cuc; /* Cosine harmonic correction of the argument of latitude [rad]; raw, value = raw / 2147483648 */
+    int32_t cus; /* Sine harmonic correction of the argument of latitude [rad]; raw, value = raw / 2147483648 */
+    int32_t crc; /* Cosine harmonic correction of the orbit radius [m]; raw, value = raw / 64 */
+    int32_t crs; /* Sine harmonic correction of the orbit radius [m]; raw, value = raw / 64 */
+    int32_t cic; /* Cosine harmonic correction of the inclination [rad]; raw, value = raw / 2147483648 */
+    int32_t cis; /* Sine harmonic correction of the inclination [rad]; raw, value = raw / 2147483648 */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_bds_eph;
+
+/* BeiDou assistance data: UBX MGA-BDS (class 0x13 id 0x03), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* BeiDou satellite identifier */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t wna; /* Reference week of the almanac */
+    uint8_t toa; /* Almanac reference time (in 4096 s) */
+    int16_t delta_i; /* Inclination correction [semicircle]; raw, value = raw / 524288 */
+    uint32_t sqrt_a; /* Square root of the semi-major axis [m^0.5]; raw, value = raw / 2048 */
+    uint32_t e; /* Eccentricity; raw, value = raw / 2097152 */
+    int32_t omega; /* Argument of perigee [semicircle]; raw, value = raw / 8388608 */
+    int32_t m0; /* Mean anomaly at the reference time [semicircle]; raw, value = raw / 8388608 */
+    int32_t omega0; /* Longitude of the ascending node [semicircle]; raw, value = raw / 8388608 */
+    int32_t omega_dot; /* Rate of right ascension [semicircle/s]; raw, value = raw / 274877906944 */
+    int16_t a0; /* Clock bias correction [s]; raw, value = raw / 1048576 */
+    int16_t a1; /* Clock drift correction [s/s]; raw, value = raw / 274877906944 */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_bds_alm;
+
+/* One entry of health code of each satellite (1 to 30) (health_code). */
+typedef struct {
+    uint16_t health_code; /* Health code (9 bits) */
+} nmea_ubx_mga_bds_health_health_code_entry;
+
+/* BeiDou assistance data: UBX MGA-BDS (class 0x13 id 0x03), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t health_code_count; /* the entries of health_code */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mga_bds_health_health_code_entry health_code[NMEA_UBX_MGA_BDS_HEALTH_HEALTH_CODE_MAX]; /* Health code of each satellite (1 to 30) */
+} nmea_ubx_mga_bds_health;
+
+/* BeiDou assistance data: UBX MGA-BDS (class 0x13 id 0x03), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    int32_t a0_utc; /* Constant term of the BeiDou-UTC polynomial [s]; raw, value = raw / 1073741824 */
+    int32_t a1_utc; /* First order term of the BeiDou-UTC polynomial [s/s]; raw, value = raw / 1125899906842624 */
+    int8_t dt_ls; /* Leap seconds before the next leap second event [s] */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t wn_rec; /* BeiDou week number of the reception */
+    uint8_t wn_lsf; /* Week of the next leap second event */
+    uint8_t d_n; /* Day of the week of the next leap second event */
+    int8_t dt_lsf; /* Leap seconds after the next leap second event [s] */
+    uint16_t reserved2; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_bds_utc;
+
+/* BeiDou assistance data: UBX MGA-BDS (class 0x13 id 0x03), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    int8_t alpha0; /* Ionospheric alpha 0 [s]; raw, value = raw / 1073741824 */
+    int8_t alpha1; /* Ionospheric alpha 1 [s/semicircle]; raw, value = raw / 134217728 */
+    int8_t alpha2; /* Ionospheric alpha 2 [s/semicircle^2]; raw, value = raw / 16777216 */
+    int8_t alpha3; /* Ionospheric alpha 3 [s/semicircle^3]; raw, value = raw / 16777216 */
+    int8_t beta0; /* Ionospheric beta 0 (in 2048 s) */
+    int8_t beta1; /* Ionospheric beta 1 (in 16384 s/semicircle) */
+    int8_t beta2; /* Ionospheric beta 2 (in 65536 s/semicircle^2) */
+    int8_t beta3; /* Ionospheric beta 3 (in 65536 s/semicircle^3) */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_bds_iono;
+
+/* QZSS assistance data: UBX MGA-QZSS (class 0x13 id 0x05), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* QZSS satellite identifier */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t fit_interval; /* Fit interval flag */
+    uint8_t ura_index; /* User range accuracy index */
+    uint8_t sv_health; /* Satellite health */
+    int8_t tgd; /* Group delay differential [s]; raw, value = raw / 2147483648 */
+    uint16_t iodc; /* Issue of data, clock */
+    uint16_t toc; /* Clock data reference time (in 16 s) */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    int8_t af2; /* Clock drift rate correction [s/s^2]; raw, value = raw / 36028797018963968 */
+    int16_t af1; /* Clock drift correction [s/s]; raw, value = raw / 8796093022208 */
+    int32_t af0; /* Clock bias correction [s]; raw, value = raw / 2147483648 */
+    int16_t crs; /* Sine harmonic correction of the orbit radius [m]; raw, value = raw / 32 */
+    int16_t delta_n; /* Mean motion difference [semicircle/s]; raw, value = raw / 8796093022208 */
+    int32_t m0; /* Mean anomaly at the reference time [semicircle]; raw, value = raw / 2147483648 */
+    int16_t cuc; /* Cosine harmonic correction of the argument of latitude [rad]; raw, value = raw / 536870912 */
+    int16_t cus; /* Sine harmonic correction of the argument of latitude [rad]; raw, value = raw / 536870912 */
+    uint32_t e; /* Eccentricity; raw, value = raw / 8589934592 */
+    uint32_t sqrt_a; /* Square root of the semi-major axis [m^0.5]; raw, value = raw / 524288 */
+    uint16_t toe; /* Ephemeris reference time (in 16 s) */
+    int16_t cic; /* Cosine harmonic correction of the inclination [rad]; raw, value = raw / 536870912 */
+    int32_t omega0; /* Longitude of the ascending node at the weekly epoch [semicircle]; raw, value = raw / 2147483648 */
+    int16_t cis; /* Sine harmonic correction of the inclination [rad]; raw, value = raw / 536870912 */
+    int16_t crc; /* Cosine harmonic correction of the orbit radius [m]; raw, value = raw / 32 */
+    int32_t i0; /* Inclination at the reference time [semicircle]; raw, value = raw / 2147483648 */
+    int32_t omega; /* Argument of perigee [semicircle]; raw, value = raw / 2147483648 */
+    int32_t omega_dot; /* Rate of right ascension [semicircle/s]; raw, value = raw / 8796093022208 */
+    int16_t idot; /* Rate of inclination [semicircle/s]; raw, value = raw / 8796093022208 */
+    uint16_t reserved2; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_qzss_eph;
+
+/* QZSS assistance data: UBX MGA-QZSS (class 0x13 id 0x05), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* QZSS satellite identifier */
+    uint8_t sv_health; /* Satellite health */
+    uint16_t e; /* Eccentricity; raw, value = raw / 2097152 */
+    uint8_t alm_w_na; /* Reference week of the almanac */
+    uint8_t toa; /* Almanac reference time (in 4096 s) */
+    int16_t delta_i; /* Inclination correction [semicircle]; raw, value = raw / 524288 */
+    int16_t omega_dot; /* Rate of right ascension [semicircle/s]; raw, value = raw / 274877906944 */
+    uint32_t sqrt_a; /* Square root of the semi-major axis [m^0.5]; raw, value = raw / 2048 */
+    int32_t omega0; /* Longitude of the ascending node [semicircle]; raw, value = raw / 8388608 */
+    int32_t omega; /* Argument of perigee [semicircle]; raw, value = raw / 8388608 */
+    int32_t m0; /* Mean anomaly at the reference time [semicircle]; raw, value = raw / 8388608 */
+    int16_t af0; /* Clock bias correction [s]; raw, value = raw / 1048576 */
+    int16_t af1; /* Clock drift correction [s/s]; raw, value = raw / 274877906944 */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_qzss_alm;
+
+/* One entry of health code of each satellite (1 to 5) (health_code). */
+typedef struct {
+    uint8_t health_code; /* Health code */
+} nmea_ubx_mga_qzss_health_health_code_entry;
+
+/* QZSS assistance data: UBX MGA-QZSS (class 0x13 id 0x05), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t health_code_count; /* the entries of health_code */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mga_qzss_health_health_code_entry health_code[NMEA_UBX_MGA_QZSS_HEALTH_HEALTH_CODE_MAX]; /* Health code of each satellite (1 to 5) */
+} nmea_ubx_mga_qzss_health;
+
+/* GLONASS assistance data: UBX MGA-GLO (class 0x13 id 0x06), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* GLONASS satellite identifier */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t ft; /* User range accuracy index (FT) */
+    uint8_t b; /* Health flag (B) */
+    uint8_t m; /* Satellite type (M) */
+    int8_t h; /* Carrier frequency number (H) */
+    int32_t x; /* X position (PZ-90) [km]; raw, value = raw / 2048 */
+    int32_t y; /* Y position (PZ-90) [km]; raw, value = raw / 2048 */
+    int32_t z; /* Z position (PZ-90) [km]; raw, value = raw / 2048 */
+    int32_t dx; /* X velocity [km/s]; raw, value = raw / 1048576 */
+    int32_t dy; /* Y velocity [km/s]; raw, value = raw / 1048576 */
+    int32_t dz; /* Z velocity [km/s]; raw, value = raw / 1048576 */
+    int8_t ddx; /* X acceleration [km/s^2]; raw, value = raw / 1073741824 */
+    int8_t ddy; /* Y acceleration [km/s^2]; raw, value = raw / 1073741824 */
+    int8_t ddz; /* Z acceleration [km/s^2]; raw, value = raw / 1073741824 */
+    uint8_t tb; /* Reference time of the ephemeris (in 15 minutes) */
+    int16_t gamma; /* Relative carrier frequency deviation; raw, value = raw / 1099511627776 */
+    uint8_t e; /* Age of the ephemeris (E) [d] */
+    int8_t delta_tau; /* Time difference between L2 and L1 [s]; raw, value = raw / 1073741824 */
+    int32_t tau; /* Satellite clock correction [s]; raw, value = raw / 1073741824 */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_glo_eph;
+
+/* GLONASS assistance data: UBX MGA-GLO (class 0x13 id 0x06), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* GLONASS satellite identifier */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t n; /* Reference day number of the almanac (N) */
+    uint8_t m; /* Satellite type (M) */
+    uint8_t c; /* Availability (C) */
+    int16_t tau; /* Coarse satellite clock correction [s]; raw, value = raw / 262144 */
+    uint16_t epsilon; /* Eccentricity; raw, value = raw / 1048576 */
+    int32_t lambda_; /* Longitude of the first ascending node [semicircle]; raw, value = raw / 1048576 */
+    int32_t delta_i; /* Inclination correction [semicircle]; raw, value = raw / 1048576 */
+    uint32_t t_lambda; /* Time of the first ascending node passage [s]; raw, value = raw / 32 */
+    int32_t delta_t; /* Correction to the mean draconian period [s/orbit]; raw, value = raw / 512 */
+    int8_t delta_dt; /* Rate of the draconian period [s/orbit^2]; raw, value = raw / 16384 */
+    int8_t h; /* Carrier frequency number (H) */
+    int16_t omega; /* Argument of perigee [semicircle]; raw, value = raw / 32768 */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_glo_alm;
+
+/* GLONASS assistance data: UBX MGA-GLO (class 0x13 id 0x06), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t n; /* Reference day number (N) */
+    int32_t tau_c; /* GLONASS to UTC(SU) offset [s]; raw, value = raw / 134217728 */
+    int32_t tau_gps; /* GLONASS to GPS offset [s]; raw, value = raw / 2147483648 */
+    int16_t b1; /* UT1 to UTC(SU) offset [s]; raw, value = raw / 1024 */
+    int16_t b2; /* Rate of the UT1 offset [s/d]; raw, value = raw / 65536 */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_glo_timeoffset;
+
 /* AssistNow Offline data: UBX MGA-ANO (class 0x13 id 0x20), input. */
 typedef struct {
     uint8_t type; /* Message type */
@@ -3845,6 +4634,539 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_hnr_ins;
 
+/* Position solution in ECEF (secondary output): UBX NAV2-POSECEF (class 0x29 id 0x01), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_posecef_poll;
+
+/* Position solution in ECEF (secondary output): UBX NAV2-POSECEF (class 0x29 id 0x01), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    int32_t ecef_x; /* ECEF X [cm] */
+    int32_t ecef_y; /* ECEF Y [cm] */
+    int32_t ecef_z; /* ECEF Z [cm] */
+    uint32_t p_acc; /* Position accuracy estimate [cm] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_posecef;
+
+/* Geodetic position solution (secondary output): UBX NAV2-POSLLH (class 0x29 id 0x02), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_posllh_poll;
+
+/* Geodetic position solution (secondary output): UBX NAV2-POSLLH (class 0x29 id 0x02), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    int32_t lon; /* Longitude [deg]; raw, value = raw / 10000000 */
+    int32_t lat; /* Latitude [deg]; raw, value = raw / 10000000 */
+    int32_t height; /* Height above the ellipsoid [mm] */
+    int32_t h_msl; /* Height above mean sea level [mm] */
+    uint32_t h_acc; /* Horizontal accuracy estimate [mm] */
+    uint32_t v_acc; /* Vertical accuracy estimate [mm] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_posllh;
+
+/* Receiver navigation status (secondary output): UBX NAV2-STATUS (class 0x29 id 0x03), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_status_poll;
+
+/* Receiver navigation status (secondary output): UBX NAV2-STATUS (class 0x29 id 0x03), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t gps_fix; /* GPS fix type; a code of ubx_fix_type (its JSON: the code's id) */
+    uint8_t flags; /* Navigation status flags (bitfield) */
+    bool gps_fix_ok; /* Fix within the navigation output limits (flags bit 0) */
+    bool diff_soln; /* Differential corrections applied (flags bit 1) */
+    bool wkn_set; /* Week number valid (flags bit 2) */
+    bool tow_set; /* Time of week valid (flags bit 3) */
+    uint8_t fix_stat; /* Fix status (bitfield) */
+    bool diff_corr; /* Differential corrections available (fix_stat bit 0) */
+    bool carr_soln_valid; /* Valid carrier solution flag (fix_stat bit 1) */
+    uint8_t map_matching; /* Map matching status (fix_stat bits 6-7) */
+    uint8_t flags2; /* Further status flags (bitfield) */
+    uint8_t psm_state; /* Power save mode state (flags2 bits 0-1) */
+    uint8_t spoof_det_state; /* Spoofing detection state (flags2 bits 3-4) */
+    uint8_t carr_soln; /* Carrier phase range solution (flags2 bits 6-7) */
+    uint32_t ttff; /* Time to first fix [ms] */
+    uint32_t msss; /* Time since startup or reset [ms] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_status;
+
+/* Dilution of precision (secondary output): UBX NAV2-DOP (class 0x29 id 0x04), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_dop_poll;
+
+/* Dilution of precision (secondary output): UBX NAV2-DOP (class 0x29 id 0x04), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint16_t g_dop; /* Geometric DOP; raw, value = raw / 100 */
+    uint16_t p_dop; /* Position DOP; raw, value = raw / 100 */
+    uint16_t t_dop; /* Time DOP; raw, value = raw / 100 */
+    uint16_t v_dop; /* Vertical DOP; raw, value = raw / 100 */
+    uint16_t h_dop; /* Horizontal DOP; raw, value = raw / 100 */
+    uint16_t n_dop; /* Northing DOP; raw, value = raw / 100 */
+    uint16_t e_dop; /* Easting DOP; raw, value = raw / 100 */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_dop;
+
+/* Navigation position velocity time solution (secondary output): UBX NAV2-PVT (class 0x29 id 0x07), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_pvt_poll;
+
+/* Navigation position velocity time solution (secondary output): UBX NAV2-PVT (class 0x29 id 0x07), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint16_t year; /* Year (UTC) */
+    uint8_t month; /* Month (UTC) */
+    uint8_t day; /* Day (UTC) */
+    uint8_t hour; /* Hour (UTC) */
+    uint8_t min; /* Minute (UTC) */
+    uint8_t sec; /* Second (UTC) */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool valid_date; /* Valid UTC date (valid bit 0) */
+    bool valid_time; /* Valid UTC time of day (valid bit 1) */
+    bool fully_resolved; /* UTC time of day fully resolved (valid bit 2) */
+    bool valid_mag; /* Valid magnetic declination (valid bit 3) */
+    uint32_t t_acc; /* Time accuracy estimate (UTC) [ns] */
+    int32_t nano; /* Fraction of second (UTC) [ns] */
+    uint8_t fix_type; /* GNSS fix type; a code of ubx_fix_type (its JSON: the code's id) */
+    uint8_t flags; /* Fix status flags (bitfield) */
+    bool gnss_fix_ok; /* Valid fix (within the DOP and accuracy masks) (flags bit 0) */
+    bool diff_soln; /* Differential corrections applied (flags bit 1) */
+    uint8_t psm_state; /* Power save mode state (flags bits 2-4) */
+    bool head_veh_valid; /* Heading of vehicle valid (flags bit 5) */
+    uint8_t carr_soln; /* Carrier phase range solution (flags bits 6-7) */
+    uint8_t flags2; /* Additional flags (bitfield) */
+    bool confirmed_avai; /* UTC date and time validity confirmation available (flags2 bit 5) */
+    bool confirmed_date; /* UTC date validity confirmed (flags2 bit 6) */
+    bool confirmed_time; /* UTC time of day validity confirmed (flags2 bit 7) */
+    uint8_t num_sv; /* Satellites used */
+    int32_t lon; /* Longitude [deg]; raw, value = raw / 10000000 */
+    int32_t lat; /* Latitude [deg]; raw, value = raw / 10000000 */
+    int32_t height; /* Height above the ellipsoid [mm] */
+    int32_t h_msl; /* Height above mean sea level [mm] */
+    uint32_t h_acc; /* Horizontal accuracy estimate [mm] */
+    uint32_t v_acc; /* Vertical accuracy estimate [mm] */
+    int32_t vel_n; /* NED north velocity [mm/s] */
+    int32_t vel_e; /* NED east velocity [mm/s] */
+    int32_t vel_d; /* NED down velocity [mm/s] */
+    int32_t g_speed; /* Ground speed (2D) [mm/s] */
+    int32_t head_mot; /* Heading of motion (2D) [deg]; raw, value = raw / 100000 */
+    uint32_t s_acc; /* Speed accuracy estimate [mm/s] */
+    uint32_t head_acc; /* Heading accuracy estimate (motion and vehicle) [deg]; raw, value = raw / 100000 */
+    uint16_t p_dop; /* Position DOP; raw, value = raw / 100 */
+    uint16_t flags3; /* Additional flags (bitfield) */
+    bool invalid_llh; /* Longitude, latitude and heights invalid (flags3 bit 0) */
+    uint8_t last_correction_age; /* Age of the most recent differential correction (coded) (flags3 bits 1-4) */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    int32_t head_veh; /* Heading of vehicle (2D) [deg]; raw, value = raw / 100000 */
+    int16_t mag_dec; /* Magnetic declination [deg]; raw, value = raw / 100 */
+    uint16_t mag_acc; /* Magnetic declination accuracy [deg]; raw, value = raw / 100 */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_pvt;
+
+/* Odometer solution (secondary output): UBX NAV2-ODO (class 0x29 id 0x09), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_odo_poll;
+
+/* Odometer solution (secondary output): UBX NAV2-ODO (class 0x29 id 0x09), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint32_t distance; /* Ground distance since the last reset [m] */
+    uint32_t total_distance; /* Total cumulative ground distance [m] */
+    uint32_t distance_std; /* Ground distance accuracy (1-sigma) [m] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_odo;
+
+/* Velocity solution in ECEF (secondary output): UBX NAV2-VELECEF (class 0x29 id 0x11), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_velecef_poll;
+
+/* Velocity solution in ECEF (secondary output): UBX NAV2-VELECEF (class 0x29 id 0x11), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    int32_t ecef_vx; /* ECEF X velocity [cm/s] */
+    int32_t ecef_vy; /* ECEF Y velocity [cm/s] */
+    int32_t ecef_vz; /* ECEF Z velocity [cm/s] */
+    uint32_t s_acc; /* Speed accuracy estimate [cm/s] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_velecef;
+
+/* Velocity solution in NED (secondary output): UBX NAV2-VELNED (class 0x29 id 0x12), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_velned_poll;
+
+/* Velocity solution in NED (secondary output): UBX NAV2-VELNED (class 0x29 id 0x12), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    int32_t vel_n; /* North velocity [cm/s] */
+    int32_t vel_e; /* East velocity [cm/s] */
+    int32_t vel_d; /* Down velocity [cm/s] */
+    uint32_t speed; /* Speed (3D) [cm/s] */
+    uint32_t g_speed; /* Ground speed (2D) [cm/s] */
+    int32_t heading; /* Heading of motion (2D) [deg]; raw, value = raw / 100000 */
+    uint32_t s_acc; /* Speed accuracy estimate [cm/s] */
+    uint32_t c_acc; /* Course and heading accuracy estimate [deg]; raw, value = raw / 100000 */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_velned;
+
+/* GPS time solution (secondary output): UBX NAV2-TIMEGPS (class 0x29 id 0x20), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timegps_poll;
+
+/* GPS time solution (secondary output): UBX NAV2-TIMEGPS (class 0x29 id 0x20), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    int32_t ftow; /* Fraction of itow [ns] */
+    int16_t week; /* GPS week number */
+    int8_t leap_s; /* GPS leap seconds (GPS - UTC) [s] */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool tow_valid; /* Valid time of week (valid bit 0) */
+    bool week_valid; /* Valid week number (valid bit 1) */
+    bool leap_s_valid; /* Valid leap seconds (valid bit 2) */
+    uint32_t t_acc; /* Time accuracy estimate [ns] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timegps;
+
+/* UTC time solution (secondary output): UBX NAV2-TIMEUTC (class 0x29 id 0x21), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timeutc_poll;
+
+/* UTC time solution (secondary output): UBX NAV2-TIMEUTC (class 0x29 id 0x21), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint32_t t_acc; /* Time accuracy estimate (UTC) [ns] */
+    int32_t nano; /* Fraction of second (UTC) [ns] */
+    uint16_t year; /* Year (UTC) */
+    uint8_t month; /* Month (UTC) */
+    uint8_t day; /* Day (UTC) */
+    uint8_t hour; /* Hour (UTC) */
+    uint8_t min; /* Minute (UTC) */
+    uint8_t sec; /* Second (UTC) */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool valid_tow; /* Valid time of week (valid bit 0) */
+    bool valid_wkn; /* Valid week number (valid bit 1) */
+    bool valid_utc; /* Valid UTC (leap seconds known) (valid bit 2) */
+    uint8_t utc_standard; /* UTC standard (valid bits 4-7) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timeutc;
+
+/* Clock solution (secondary output): UBX NAV2-CLOCK (class 0x29 id 0x22), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_clock_poll;
+
+/* Clock solution (secondary output): UBX NAV2-CLOCK (class 0x29 id 0x22), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    int32_t clk_b; /* Clock bias [ns] */
+    int32_t clk_d; /* Clock drift [ns/s] */
+    uint32_t t_acc; /* Time accuracy estimate [ns] */
+    uint32_t f_acc; /* Frequency accuracy estimate [ps/s] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_clock;
+
+/* GLONASS time solution (secondary output): UBX NAV2-TIMEGLO (class 0x29 id 0x23), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timeglo_poll;
+
+/* GLONASS time solution (secondary output): UBX NAV2-TIMEGLO (class 0x29 id 0x23), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint32_t tod; /* GLONASS time of day (rounded) [s] */
+    int32_t f_tod; /* Fraction of tod [ns] */
+    uint16_t nt; /* Day within the four-year period [days] */
+    uint8_t n4; /* Four-year period since 1996 */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool tod_valid; /* Valid time of day (valid bit 0) */
+    bool date_valid; /* Valid date (nt and n4) (valid bit 1) */
+    uint32_t t_acc; /* Time accuracy estimate [ns] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timeglo;
+
+/* BeiDou time solution (secondary output): UBX NAV2-TIMEBDS (class 0x29 id 0x24), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timebds_poll;
+
+/* BeiDou time solution (secondary output): UBX NAV2-TIMEBDS (class 0x29 id 0x24), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint32_t sow; /* BeiDou time of week (rounded) [s] */
+    int32_t f_sow; /* Fraction of sow [ns] */
+    int16_t week; /* BeiDou week number */
+    int8_t leap_s; /* BeiDou leap seconds (BeiDou - UTC) [s] */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool sow_valid; /* Valid time of week (valid bit 0) */
+    bool week_valid; /* Valid week number (valid bit 1) */
+    bool leap_s_valid; /* Valid leap seconds (valid bit 2) */
+    uint32_t t_acc; /* Time accuracy estimate [ns] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timebds;
+
+/* Galileo time solution (secondary output): UBX NAV2-TIMEGAL (class 0x29 id 0x25), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timegal_poll;
+
+/* Galileo time solution (secondary output): UBX NAV2-TIMEGAL (class 0x29 id 0x25), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint32_t gal_tow; /* Galileo time of week (rounded) [s] */
+    int32_t f_gal_tow; /* Fraction of gal_tow [ns] */
+    int16_t gal_wno; /* Galileo week number */
+    int8_t leap_s; /* Galileo leap seconds (Galileo - UTC) [s] */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool gal_tow_valid; /* Valid time of week (valid bit 0) */
+    bool gal_wno_valid; /* Valid week number (valid bit 1) */
+    bool leap_s_valid; /* Valid leap seconds (valid bit 2) */
+    uint32_t t_acc; /* Time accuracy estimate [ns] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timegal;
+
+/* Leap second event information (secondary output): UBX NAV2-TIMELS (class 0x29 id 0x26), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timels_poll;
+
+/* Leap second event information (secondary output): UBX NAV2-TIMELS (class 0x29 id 0x26), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t version; /* Message version */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t src_of_curr_ls; /* Source of the current leap seconds */
+    int8_t curr_ls; /* Current leap seconds (GPS - UTC) [s] */
+    uint8_t src_of_ls_change; /* Source of the leap second change */
+    int8_t ls_change; /* Announced change of leap seconds [s] */
+    int32_t time_to_ls_event; /* Time to the leap second event [s] */
+    uint16_t date_of_ls_gps_wn; /* GPS week of the leap second event */
+    uint16_t date_of_ls_gps_dn; /* GPS day of week of the leap second event */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool valid_curr_ls; /* Valid current leap seconds (valid bit 0) */
+    bool valid_time_to_ls_event; /* Valid time to the leap second event (valid bit 1) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timels;
+
+/* QZSS time solution (secondary output): UBX NAV2-TIMEQZSS (class 0x29 id 0x27), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timeqzss_poll;
+
+/* QZSS time solution (secondary output): UBX NAV2-TIMEQZSS (class 0x29 id 0x27), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint32_t qzss_tow; /* QZSS time of week [ms] */
+    int32_t f_qzss_tow; /* Fraction of the QZSS time of week [ns] */
+    int16_t qzss_wno; /* QZSS week number */
+    int8_t leap_s; /* QZSS leap seconds (QZSS minus TAI) [s] */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool qzss_tow_valid; /* Valid time of week (valid bit 0) */
+    bool qzss_wno_valid; /* Valid week number (valid bit 1) */
+    bool leap_s_valid; /* Valid leap seconds (valid bit 2) */
+    uint32_t t_acc; /* Time accuracy estimate [ns] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timeqzss;
+
+/* SBAS status (secondary output): UBX NAV2-SBAS (class 0x29 id 0x32), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_sbas_poll;
+
+/* One entry of satellites with corrections (channels). */
+typedef struct {
+    uint8_t svid; /* Satellite identifier */
+    uint8_t flags; /* Flags */
+    uint8_t udre; /* Monitoring status (UDRE) */
+    uint8_t sv_sys; /* System of the satellite */
+    uint8_t sv_service; /* Services of the satellite */
+    uint8_t reserved2; /* Reserved (reserved, as sent) */
+    int16_t prc; /* Pseudorange correction [cm] */
+    uint16_t reserved3; /* Reserved (reserved, as sent) */
+    int16_t ic; /* Ionosphere correction [cm] */
+} nmea_ubx_nav2_sbas_channel;
+
+/* SBAS status (secondary output): UBX NAV2-SBAS (class 0x29 id 0x32), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t geo; /* PRN of the SBAS satellite used */
+    uint8_t mode; /* SBAS mode */
+    int8_t sys; /* SBAS system */
+    uint8_t service; /* SBAS services (bitfield) */
+    bool ranging; /* Ranging (service bit 0) */
+    bool corrections; /* Corrections (service bit 1) */
+    bool integrity; /* Integrity (service bit 2) */
+    bool testmode; /* Test mode (service bit 3) */
+    bool bad; /* Bad (service bit 4) */
+    uint8_t cnt; /* Number of satellites with corrections */
+    uint8_t status_flags; /* Status flags (bitfield) */
+    uint8_t integrity_used; /* SBAS integrity used (status_flags bits 0-1) */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t channels_count; /* the entries of channels */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_nav2_sbas_channel channels[NMEA_UBX_NAV2_SBAS_CHANNELS_MAX]; /* Satellites with corrections */
+} nmea_ubx_nav2_sbas;
+
+/* Satellite information (secondary output): UBX NAV2-SAT (class 0x29 id 0x35), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_sat_poll;
+
+/* One entry of satellites (svs). */
+typedef struct {
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
+    uint8_t sv_id; /* Satellite identifier */
+    uint8_t cno; /* Carrier to noise ratio [dBHz] */
+    int8_t elev; /* Elevation [deg] */
+    int16_t azim; /* Azimuth [deg] */
+    int16_t pr_res; /* Pseudorange residual [m]; raw, value = raw / 10 */
+    uint32_t flags; /* Signal and usage flags (bitfield) */
+    uint8_t quality_ind; /* Signal quality indicator (flags bits 0-2) */
+    bool sv_used; /* Used for navigation (flags bit 3) */
+    uint8_t health; /* Signal health (flags bits 4-5) */
+    bool diff_corr; /* Differential correction data available (flags bit 6) */
+    bool smoothed; /* Carrier smoothed pseudorange used (flags bit 7) */
+    uint8_t orbit_source; /* Orbit source (flags bits 8-10) */
+    bool eph_avail; /* Ephemeris available (flags bit 11) */
+    bool alm_avail; /* Almanac available (flags bit 12) */
+    bool ano_avail; /* AssistNow Offline data available (flags bit 13) */
+    bool aop_avail; /* AssistNow Autonomous data available (flags bit 14) */
+    bool sbas_corr_used; /* SBAS corrections used (flags bit 16) */
+    bool rtcm_corr_used; /* RTCM corrections used (flags bit 17) */
+    bool slas_corr_used; /* QZSS SLAS corrections used (flags bit 18) */
+    bool spartn_corr_used; /* SPARTN corrections used (flags bit 19) */
+    bool pr_corr_used; /* Pseudorange corrections used (flags bit 20) */
+    bool cr_corr_used; /* Carrier range corrections used (flags bit 21) */
+    bool do_corr_used; /* Range rate (Doppler) corrections used (flags bit 22) */
+} nmea_ubx_nav2_sat_sv;
+
+/* Satellite information (secondary output): UBX NAV2-SAT (class 0x29 id 0x35), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t version; /* Message version */
+    uint8_t num_svs; /* Number of satellites */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t svs_count; /* the entries of svs */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_nav2_sat_sv svs[NMEA_UBX_NAV2_SAT_SVS_MAX]; /* Satellites */
+} nmea_ubx_nav2_sat;
+
+/* Covariance matrices (secondary output): UBX NAV2-COV (class 0x29 id 0x36), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_cov_poll;
+
+/* Covariance matrices (secondary output): UBX NAV2-COV (class 0x29 id 0x36), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t version; /* Message version */
+    uint8_t pos_cov_valid; /* Position covariance valid */
+    uint8_t vel_cov_valid; /* Velocity covariance valid */
+    uint8_t reserved1[9]; /* Reserved (as sent) */
+    float pos_cov_nn; /* Position covariance north-north [m²] (its bits as sent) */
+    float pos_cov_ne; /* Position covariance north-east [m²] (its bits as sent) */
+    float pos_cov_nd; /* Position covariance north-down [m²] (its bits as sent) */
+    float pos_cov_ee; /* Position covariance east-east [m²] (its bits as sent) */
+    float pos_cov_ed; /* Position covariance east-down [m²] (its bits as sent) */
+    float pos_cov_dd; /* Position covariance down-down [m²] (its bits as sent) */
+    float vel_cov_nn; /* Velocity covariance north-north [m²/s²] (its bits as sent) */
+    float vel_cov_ne; /* Velocity covariance north-east [m²/s²] (its bits as sent) */
+    float vel_cov_nd; /* Velocity covariance north-down [m²/s²] (its bits as sent) */
+    float vel_cov_ee; /* Velocity covariance east-east [m²/s²] (its bits as sent) */
+    float vel_cov_ed; /* Velocity covariance east-down [m²/s²] (its bits as sent) */
+    float vel_cov_dd; /* Velocity covariance down-down [m²/s²] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_cov;
+
+/* QZSS L1S SLAS status (secondary output): UBX NAV2-SLAS (class 0x29 id 0x42), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_slas_poll;
+
+/* One entry of pseudorange corrections (corrections). */
+typedef struct {
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
+    uint8_t sv_id; /* Satellite identifier */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    int16_t prc; /* Pseudorange correction [cm] */
+} nmea_ubx_nav2_slas_correction;
+
+/* QZSS L1S SLAS status (secondary output): UBX NAV2-SLAS (class 0x29 id 0x42), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t version; /* Message version */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    int32_t gms_lon; /* Longitude of the ground monitoring station used [deg]; raw, value = raw / 1000 */
+    int32_t gms_lat; /* Latitude of the ground monitoring station used [deg]; raw, value = raw / 1000 */
+    uint8_t gms_code; /* Code of the ground monitoring station */
+    uint8_t qzss_sv_id; /* QZSS satellite the corrections come from */
+    uint8_t service_flags; /* Service flags (bitfield) */
+    bool gms_available; /* A ground monitoring station is available (service_flags bit 0) */
+    bool qzss_sv_available; /* The QZSS satellite is available (service_flags bit 1) */
+    bool test_mode; /* The QZSS satellite is in test mode (service_flags bit 2) */
+    uint8_t cnt; /* Number of pseudorange corrections */
+    uint16_t corrections_count; /* the entries of corrections */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_nav2_slas_correction corrections[NMEA_UBX_NAV2_SLAS_CORRECTIONS_MAX]; /* Pseudorange corrections */
+} nmea_ubx_nav2_slas;
+
+/* Signal information (secondary output): UBX NAV2-SIG (class 0x29 id 0x43), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_sig_poll;
+
+/* One entry of signals (signals). */
+typedef struct {
+    uint8_t gnss_id; /* GNSS identifier; a code of ubx_gnss_id (its JSON: the code's id) */
+    uint8_t sv_id; /* Satellite identifier */
+    uint8_t sig_id; /* Signal identifier */
+    uint8_t freq_id; /* GLONASS frequency slot + 7 */
+    int16_t pr_res; /* Pseudorange residual [m]; raw, value = raw / 10 */
+    uint8_t cno; /* Carrier to noise ratio [dBHz] */
+    uint8_t quality_ind; /* Signal quality indicator */
+    uint8_t corr_source; /* Correction source */
+    uint8_t iono_model; /* Ionosphere model */
+    uint16_t sig_flags; /* Signal flags (bitfield) */
+    uint8_t health; /* Signal health (sig_flags bits 0-1) */
+    bool pr_smoothed; /* Pseudorange smoothed (sig_flags bit 2) */
+    bool pr_used; /* Pseudorange used (sig_flags bit 3) */
+    bool cr_used; /* Carrier range used (sig_flags bit 4) */
+    bool do_used; /* Range rate (Doppler) used (sig_flags bit 5) */
+    bool pr_corr_used; /* Pseudorange corrections used (sig_flags bit 6) */
+    bool cr_corr_used; /* Carrier range corrections used (sig_flags bit 7) */
+    bool do_corr_used; /* Range rate (Doppler) corrections used (sig_flags bit 8) */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+} nmea_ubx_nav2_sig_signal;
+
+/* Signal information (secondary output): UBX NAV2-SIG (class 0x29 id 0x43), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t version; /* Message version */
+    uint8_t num_sigs; /* Number of signals */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t signals_count; /* the entries of signals */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_nav2_sig_signal signals[NMEA_UBX_NAV2_SIG_SIGNALS_MAX]; /* Signals */
+} nmea_ubx_nav2_sig;
+
+/* End of epoch (secondary output): UBX NAV2-EOE (class 0x29 id 0x61), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_eoe;
+
 /* The layout of a decoded message: one per direction of a class and id, or several told apart by
    length or version (spec order within a class and id). */
 typedef enum {
@@ -3951,6 +5273,9 @@ typedef enum {
     NMEA_UBX_MSG_CFG_INF_POLL, /* CFG-INF, poll */
     NMEA_UBX_MSG_CFG_INF, /* CFG-INF, input, output */
     NMEA_UBX_MSG_CFG_RST, /* CFG-RST, input */
+    NMEA_UBX_MSG_CFG_DAT_POLL, /* CFG-DAT, poll */
+    NMEA_UBX_MSG_CFG_DAT_SET, /* CFG-DAT, input */
+    NMEA_UBX_MSG_CFG_DAT, /* CFG-DAT, output */
     NMEA_UBX_MSG_CFG_RATE_POLL, /* CFG-RATE, poll */
     NMEA_UBX_MSG_CFG_RATE, /* CFG-RATE, input, output */
     NMEA_UBX_MSG_CFG_CFG_ALL_DEVICES, /* CFG-CFG, input */
@@ -3965,6 +5290,8 @@ typedef enum {
     NMEA_UBX_MSG_CFG_NMEA, /* CFG-NMEA, input, output, version 1 */
     NMEA_UBX_MSG_CFG_NMEA_V0, /* CFG-NMEA, input, output, version 0 */
     NMEA_UBX_MSG_CFG_NMEA_DEPRECATED, /* CFG-NMEA, input, output */
+    NMEA_UBX_MSG_CFG_USB_POLL, /* CFG-USB, poll */
+    NMEA_UBX_MSG_CFG_USB, /* CFG-USB, input, output */
     NMEA_UBX_MSG_CFG_ODO_POLL, /* CFG-ODO, poll */
     NMEA_UBX_MSG_CFG_ODO, /* CFG-ODO, input, output */
     NMEA_UBX_MSG_CFG_NAVX5_POLL, /* CFG-NAVX5, poll */
@@ -3974,6 +5301,8 @@ typedef enum {
     NMEA_UBX_MSG_CFG_TP5_POLL, /* CFG-TP5, poll */
     NMEA_UBX_MSG_CFG_TP5_POLL_INDEX, /* CFG-TP5, poll */
     NMEA_UBX_MSG_CFG_TP5, /* CFG-TP5, input, output */
+    NMEA_UBX_MSG_CFG_RINV_POLL, /* CFG-RINV, poll */
+    NMEA_UBX_MSG_CFG_RINV, /* CFG-RINV, input, output */
     NMEA_UBX_MSG_CFG_ITFM_POLL, /* CFG-ITFM, poll */
     NMEA_UBX_MSG_CFG_ITFM, /* CFG-ITFM, input, output */
     NMEA_UBX_MSG_CFG_PM2_POLL, /* CFG-PM2, poll */
@@ -3983,15 +5312,32 @@ typedef enum {
     NMEA_UBX_MSG_CFG_GNSS, /* CFG-GNSS, input, output */
     NMEA_UBX_MSG_CFG_LOGFILTER_POLL, /* CFG-LOGFILTER, poll */
     NMEA_UBX_MSG_CFG_LOGFILTER, /* CFG-LOGFILTER, input, output */
+    NMEA_UBX_MSG_CFG_ESFA_POLL, /* CFG-ESFA, poll */
+    NMEA_UBX_MSG_CFG_ESFA, /* CFG-ESFA, input, output */
+    NMEA_UBX_MSG_CFG_ESFG_POLL, /* CFG-ESFG, poll */
+    NMEA_UBX_MSG_CFG_ESFG, /* CFG-ESFG, input, output */
+    NMEA_UBX_MSG_CFG_TXSLOT_POLL, /* CFG-TXSLOT, poll */
+    NMEA_UBX_MSG_CFG_TXSLOT, /* CFG-TXSLOT, input, output */
+    NMEA_UBX_MSG_CFG_ESFALG_POLL, /* CFG-ESFALG, poll */
+    NMEA_UBX_MSG_CFG_ESFALG, /* CFG-ESFALG, input, output */
     NMEA_UBX_MSG_CFG_PWR, /* CFG-PWR, input */
     NMEA_UBX_MSG_CFG_HNR_POLL, /* CFG-HNR, poll */
     NMEA_UBX_MSG_CFG_HNR, /* CFG-HNR, input, output */
+    NMEA_UBX_MSG_CFG_ESRC_POLL, /* CFG-ESRC, poll */
+    NMEA_UBX_MSG_CFG_ESRC, /* CFG-ESRC, input, output */
+    NMEA_UBX_MSG_CFG_DOSC_POLL, /* CFG-DOSC, poll */
+    NMEA_UBX_MSG_CFG_DOSC, /* CFG-DOSC, input, output */
+    NMEA_UBX_MSG_CFG_SMGR_POLL, /* CFG-SMGR, poll */
+    NMEA_UBX_MSG_CFG_SMGR, /* CFG-SMGR, input, output */
     NMEA_UBX_MSG_CFG_GEOFENCE_POLL, /* CFG-GEOFENCE, poll */
     NMEA_UBX_MSG_CFG_GEOFENCE, /* CFG-GEOFENCE, input, output */
     NMEA_UBX_MSG_CFG_DGNSS_POLL, /* CFG-DGNSS, poll */
     NMEA_UBX_MSG_CFG_DGNSS, /* CFG-DGNSS, input, output */
     NMEA_UBX_MSG_CFG_TMODE3_POLL, /* CFG-TMODE3, poll */
     NMEA_UBX_MSG_CFG_TMODE3, /* CFG-TMODE3, input, output */
+    NMEA_UBX_MSG_CFG_ESFWT_POLL, /* CFG-ESFWT, poll */
+    NMEA_UBX_MSG_CFG_ESFWT, /* CFG-ESFWT, input, output */
+    NMEA_UBX_MSG_CFG_FIXSEED, /* CFG-FIXSEED, input */
     NMEA_UBX_MSG_CFG_PMS_POLL, /* CFG-PMS, poll */
     NMEA_UBX_MSG_CFG_PMS, /* CFG-PMS, input, output */
     NMEA_UBX_MSG_CFG_VALSET_V0, /* CFG-VALSET, input, version 0 */
@@ -4000,6 +5346,8 @@ typedef enum {
     NMEA_UBX_MSG_CFG_VALGET, /* CFG-VALGET, output, version 1 */
     NMEA_UBX_MSG_CFG_VALDEL_V0, /* CFG-VALDEL, input, version 0 */
     NMEA_UBX_MSG_CFG_VALDEL, /* CFG-VALDEL, input, version 1 */
+    NMEA_UBX_MSG_CFG_SLAS_POLL, /* CFG-SLAS, poll */
+    NMEA_UBX_MSG_CFG_SLAS, /* CFG-SLAS, input, output */
     NMEA_UBX_MSG_CFG_BATCH_POLL, /* CFG-BATCH, poll */
     NMEA_UBX_MSG_CFG_BATCH, /* CFG-BATCH, input, output */
     NMEA_UBX_MSG_UPD_SOS_POLL, /* UPD-SOS, poll */
@@ -4034,6 +5382,21 @@ typedef enum {
     NMEA_UBX_MSG_MON_RF, /* MON-RF, output */
     NMEA_UBX_MSG_MON_SYS_POLL, /* MON-SYS, poll */
     NMEA_UBX_MSG_MON_SYS, /* MON-SYS, output */
+    NMEA_UBX_MSG_AID_INI_POLL, /* AID-INI, poll */
+    NMEA_UBX_MSG_AID_INI, /* AID-INI, input, output */
+    NMEA_UBX_MSG_AID_HUI_POLL, /* AID-HUI, poll */
+    NMEA_UBX_MSG_AID_HUI, /* AID-HUI, input, output */
+    NMEA_UBX_MSG_AID_ALM_POLL, /* AID-ALM, poll */
+    NMEA_UBX_MSG_AID_ALM_POLL_SV, /* AID-ALM, poll */
+    NMEA_UBX_MSG_AID_ALM, /* AID-ALM, input, output */
+    NMEA_UBX_MSG_AID_ALM_EMPTY, /* AID-ALM, input, output */
+    NMEA_UBX_MSG_AID_EPH_POLL, /* AID-EPH, poll */
+    NMEA_UBX_MSG_AID_EPH_POLL_SV, /* AID-EPH, poll */
+    NMEA_UBX_MSG_AID_EPH, /* AID-EPH, input, output */
+    NMEA_UBX_MSG_AID_EPH_EMPTY, /* AID-EPH, input, output */
+    NMEA_UBX_MSG_AID_AOP_POLL, /* AID-AOP, poll */
+    NMEA_UBX_MSG_AID_AOP_POLL_SV, /* AID-AOP, poll */
+    NMEA_UBX_MSG_AID_AOP, /* AID-AOP, input, output */
     NMEA_UBX_MSG_TIM_TP_POLL, /* TIM-TP, poll */
     NMEA_UBX_MSG_TIM_TP, /* TIM-TP, output */
     NMEA_UBX_MSG_TIM_TM2_POLL, /* TIM-TM2, poll */
@@ -4072,6 +5435,17 @@ typedef enum {
     NMEA_UBX_MSG_MGA_GAL_ALM, /* MGA-GAL, input */
     NMEA_UBX_MSG_MGA_GAL_TIMEOFFSET, /* MGA-GAL, input */
     NMEA_UBX_MSG_MGA_GAL_UTC, /* MGA-GAL, input */
+    NMEA_UBX_MSG_MGA_BDS_EPH, /* MGA-BDS, input */
+    NMEA_UBX_MSG_MGA_BDS_ALM, /* MGA-BDS, input */
+    NMEA_UBX_MSG_MGA_BDS_HEALTH, /* MGA-BDS, input */
+    NMEA_UBX_MSG_MGA_BDS_UTC, /* MGA-BDS, input */
+    NMEA_UBX_MSG_MGA_BDS_IONO, /* MGA-BDS, input */
+    NMEA_UBX_MSG_MGA_QZSS_EPH, /* MGA-QZSS, input */
+    NMEA_UBX_MSG_MGA_QZSS_ALM, /* MGA-QZSS, input */
+    NMEA_UBX_MSG_MGA_QZSS_HEALTH, /* MGA-QZSS, input */
+    NMEA_UBX_MSG_MGA_GLO_EPH, /* MGA-GLO, input */
+    NMEA_UBX_MSG_MGA_GLO_ALM, /* MGA-GLO, input */
+    NMEA_UBX_MSG_MGA_GLO_TIMEOFFSET, /* MGA-GLO, input */
     NMEA_UBX_MSG_MGA_ANO, /* MGA-ANO, input */
     NMEA_UBX_MSG_MGA_ACK, /* MGA-ACK, output */
     NMEA_UBX_MSG_MGA_DBD_POLL, /* MGA-DBD, poll */
@@ -4103,6 +5477,49 @@ typedef enum {
     NMEA_UBX_MSG_HNR_ATT, /* HNR-ATT, output */
     NMEA_UBX_MSG_HNR_INS_POLL, /* HNR-INS, poll */
     NMEA_UBX_MSG_HNR_INS, /* HNR-INS, output */
+    NMEA_UBX_MSG_NAV2_POSECEF_POLL, /* NAV2-POSECEF, poll */
+    NMEA_UBX_MSG_NAV2_POSECEF, /* NAV2-POSECEF, output */
+    NMEA_UBX_MSG_NAV2_POSLLH_POLL, /* NAV2-POSLLH, poll */
+    NMEA_UBX_MSG_NAV2_POSLLH, /* NAV2-POSLLH, output */
+    NMEA_UBX_MSG_NAV2_STATUS_POLL, /* NAV2-STATUS, poll */
+    NMEA_UBX_MSG_NAV2_STATUS, /* NAV2-STATUS, output */
+    NMEA_UBX_MSG_NAV2_DOP_POLL, /* NAV2-DOP, poll */
+    NMEA_UBX_MSG_NAV2_DOP, /* NAV2-DOP, output */
+    NMEA_UBX_MSG_NAV2_PVT_POLL, /* NAV2-PVT, poll */
+    NMEA_UBX_MSG_NAV2_PVT, /* NAV2-PVT, output */
+    NMEA_UBX_MSG_NAV2_ODO_POLL, /* NAV2-ODO, poll */
+    NMEA_UBX_MSG_NAV2_ODO, /* NAV2-ODO, output */
+    NMEA_UBX_MSG_NAV2_VELECEF_POLL, /* NAV2-VELECEF, poll */
+    NMEA_UBX_MSG_NAV2_VELECEF, /* NAV2-VELECEF, output */
+    NMEA_UBX_MSG_NAV2_VELNED_POLL, /* NAV2-VELNED, poll */
+    NMEA_UBX_MSG_NAV2_VELNED, /* NAV2-VELNED, output */
+    NMEA_UBX_MSG_NAV2_TIMEGPS_POLL, /* NAV2-TIMEGPS, poll */
+    NMEA_UBX_MSG_NAV2_TIMEGPS, /* NAV2-TIMEGPS, output */
+    NMEA_UBX_MSG_NAV2_TIMEUTC_POLL, /* NAV2-TIMEUTC, poll */
+    NMEA_UBX_MSG_NAV2_TIMEUTC, /* NAV2-TIMEUTC, output */
+    NMEA_UBX_MSG_NAV2_CLOCK_POLL, /* NAV2-CLOCK, poll */
+    NMEA_UBX_MSG_NAV2_CLOCK, /* NAV2-CLOCK, output */
+    NMEA_UBX_MSG_NAV2_TIMEGLO_POLL, /* NAV2-TIMEGLO, poll */
+    NMEA_UBX_MSG_NAV2_TIMEGLO, /* NAV2-TIMEGLO, output */
+    NMEA_UBX_MSG_NAV2_TIMEBDS_POLL, /* NAV2-TIMEBDS, poll */
+    NMEA_UBX_MSG_NAV2_TIMEBDS, /* NAV2-TIMEBDS, output */
+    NMEA_UBX_MSG_NAV2_TIMEGAL_POLL, /* NAV2-TIMEGAL, poll */
+    NMEA_UBX_MSG_NAV2_TIMEGAL, /* NAV2-TIMEGAL, output */
+    NMEA_UBX_MSG_NAV2_TIMELS_POLL, /* NAV2-TIMELS, poll */
+    NMEA_UBX_MSG_NAV2_TIMELS, /* NAV2-TIMELS, output */
+    NMEA_UBX_MSG_NAV2_TIMEQZSS_POLL, /* NAV2-TIMEQZSS, poll */
+    NMEA_UBX_MSG_NAV2_TIMEQZSS, /* NAV2-TIMEQZSS, output */
+    NMEA_UBX_MSG_NAV2_SBAS_POLL, /* NAV2-SBAS, poll */
+    NMEA_UBX_MSG_NAV2_SBAS, /* NAV2-SBAS, output */
+    NMEA_UBX_MSG_NAV2_SAT_POLL, /* NAV2-SAT, poll */
+    NMEA_UBX_MSG_NAV2_SAT, /* NAV2-SAT, output */
+    NMEA_UBX_MSG_NAV2_COV_POLL, /* NAV2-COV, poll */
+    NMEA_UBX_MSG_NAV2_COV, /* NAV2-COV, output */
+    NMEA_UBX_MSG_NAV2_SLAS_POLL, /* NAV2-SLAS, poll */
+    NMEA_UBX_MSG_NAV2_SLAS, /* NAV2-SLAS, output */
+    NMEA_UBX_MSG_NAV2_SIG_POLL, /* NAV2-SIG, poll */
+    NMEA_UBX_MSG_NAV2_SIG, /* NAV2-SIG, output */
+    NMEA_UBX_MSG_NAV2_EOE, /* NAV2-EOE, output */
     NMEA_UBX_MSG_UNKNOWN /* a class and id the spec does not describe: `unknown` */
 } nmea_ubx_layout;
 
@@ -4213,6 +5630,9 @@ typedef struct {
         nmea_ubx_cfg_inf_poll cfg_inf_poll;
         nmea_ubx_cfg_inf cfg_inf;
         nmea_ubx_cfg_rst cfg_rst;
+        nmea_ubx_cfg_dat_poll cfg_dat_poll;
+        nmea_ubx_cfg_dat_set cfg_dat_set;
+        nmea_ubx_cfg_dat cfg_dat;
         nmea_ubx_cfg_rate_poll cfg_rate_poll;
         nmea_ubx_cfg_rate cfg_rate;
         nmea_ubx_cfg_cfg_all_devices cfg_cfg_all_devices;
@@ -4227,6 +5647,8 @@ typedef struct {
         nmea_ubx_cfg_nmea cfg_nmea;
         nmea_ubx_cfg_nmea_v0 cfg_nmea_v0;
         nmea_ubx_cfg_nmea_deprecated cfg_nmea_deprecated;
+        nmea_ubx_cfg_usb_poll cfg_usb_poll;
+        nmea_ubx_cfg_usb cfg_usb;
         nmea_ubx_cfg_odo_poll cfg_odo_poll;
         nmea_ubx_cfg_odo cfg_odo;
         nmea_ubx_cfg_navx5_poll cfg_navx5_poll;
@@ -4236,6 +5658,8 @@ typedef struct {
         nmea_ubx_cfg_tp5_poll cfg_tp5_poll;
         nmea_ubx_cfg_tp5_poll_index cfg_tp5_poll_index;
         nmea_ubx_cfg_tp5 cfg_tp5;
+        nmea_ubx_cfg_rinv_poll cfg_rinv_poll;
+        nmea_ubx_cfg_rinv cfg_rinv;
         nmea_ubx_cfg_itfm_poll cfg_itfm_poll;
         nmea_ubx_cfg_itfm cfg_itfm;
         nmea_ubx_cfg_pm2_poll cfg_pm2_poll;
@@ -4245,15 +5669,32 @@ typedef struct {
         nmea_ubx_cfg_gnss cfg_gnss;
         nmea_ubx_cfg_logfilter_poll cfg_logfilter_poll;
         nmea_ubx_cfg_logfilter cfg_logfilter;
+        nmea_ubx_cfg_esfa_poll cfg_esfa_poll;
+        nmea_ubx_cfg_esfa cfg_esfa;
+        nmea_ubx_cfg_esfg_poll cfg_esfg_poll;
+        nmea_ubx_cfg_esfg cfg_esfg;
+        nmea_ubx_cfg_txslot_poll cfg_txslot_poll;
+        nmea_ubx_cfg_txslot cfg_txslot;
+        nmea_ubx_cfg_esfalg_poll cfg_esfalg_poll;
+        nmea_ubx_cfg_esfalg cfg_esfalg;
         nmea_ubx_cfg_pwr cfg_pwr;
         nmea_ubx_cfg_hnr_poll cfg_hnr_poll;
         nmea_ubx_cfg_hnr cfg_hnr;
+        nmea_ubx_cfg_esrc_poll cfg_esrc_poll;
+        nmea_ubx_cfg_esrc cfg_esrc;
+        nmea_ubx_cfg_dosc_poll cfg_dosc_poll;
+        nmea_ubx_cfg_dosc cfg_dosc;
+        nmea_ubx_cfg_smgr_poll cfg_smgr_poll;
+        nmea_ubx_cfg_smgr cfg_smgr;
         nmea_ubx_cfg_geofence_poll cfg_geofence_poll;
         nmea_ubx_cfg_geofence cfg_geofence;
         nmea_ubx_cfg_dgnss_poll cfg_dgnss_poll;
         nmea_ubx_cfg_dgnss cfg_dgnss;
         nmea_ubx_cfg_tmode3_poll cfg_tmode3_poll;
         nmea_ubx_cfg_tmode3 cfg_tmode3;
+        nmea_ubx_cfg_esfwt_poll cfg_esfwt_poll;
+        nmea_ubx_cfg_esfwt cfg_esfwt;
+        nmea_ubx_cfg_fixseed cfg_fixseed;
         nmea_ubx_cfg_pms_poll cfg_pms_poll;
         nmea_ubx_cfg_pms cfg_pms;
         nmea_ubx_cfg_valset_v0 cfg_valset_v0;
@@ -4262,6 +5703,8 @@ typedef struct {
         nmea_ubx_cfg_valget cfg_valget;
         nmea_ubx_cfg_valdel_v0 cfg_valdel_v0;
         nmea_ubx_cfg_valdel cfg_valdel;
+        nmea_ubx_cfg_slas_poll cfg_slas_poll;
+        nmea_ubx_cfg_slas cfg_slas;
         nmea_ubx_cfg_batch_poll cfg_batch_poll;
         nmea_ubx_cfg_batch cfg_batch;
         nmea_ubx_upd_sos_poll upd_sos_poll;
@@ -4296,6 +5739,21 @@ typedef struct {
         nmea_ubx_mon_rf mon_rf;
         nmea_ubx_mon_sys_poll mon_sys_poll;
         nmea_ubx_mon_sys mon_sys;
+        nmea_ubx_aid_ini_poll aid_ini_poll;
+        nmea_ubx_aid_ini aid_ini;
+        nmea_ubx_aid_hui_poll aid_hui_poll;
+        nmea_ubx_aid_hui aid_hui;
+        nmea_ubx_aid_alm_poll aid_alm_poll;
+        nmea_ubx_aid_alm_poll_sv aid_alm_poll_sv;
+        nmea_ubx_aid_alm aid_alm;
+        nmea_ubx_aid_alm_empty aid_alm_empty;
+        nmea_ubx_aid_eph_poll aid_eph_poll;
+        nmea_ubx_aid_eph_poll_sv aid_eph_poll_sv;
+        nmea_ubx_aid_eph aid_eph;
+        nmea_ubx_aid_eph_empty aid_eph_empty;
+        nmea_ubx_aid_aop_poll aid_aop_poll;
+        nmea_ubx_aid_aop_poll_sv aid_aop_poll_sv;
+        nmea_ubx_aid_aop aid_aop;
         nmea_ubx_tim_tp_poll tim_tp_poll;
         nmea_ubx_tim_tp tim_tp;
         nmea_ubx_tim_tm2_poll tim_tm2_poll;
@@ -4334,6 +5792,17 @@ typedef struct {
         nmea_ubx_mga_gal_alm mga_gal_alm;
         nmea_ubx_mga_gal_timeoffset mga_gal_timeoffset;
         nmea_ubx_mga_gal_utc mga_gal_utc;
+        nmea_ubx_mga_bds_eph mga_bds_eph;
+        nmea_ubx_mga_bds_alm mga_bds_alm;
+        nmea_ubx_mga_bds_health mga_bds_health;
+        nmea_ubx_mga_bds_utc mga_bds_utc;
+        nmea_ubx_mga_bds_iono mga_bds_iono;
+        nmea_ubx_mga_qzss_eph mga_qzss_eph;
+        nmea_ubx_mga_qzss_alm mga_qzss_alm;
+        nmea_ubx_mga_qzss_health mga_qzss_health;
+        nmea_ubx_mga_glo_eph mga_glo_eph;
+        nmea_ubx_mga_glo_alm mga_glo_alm;
+        nmea_ubx_mga_glo_timeoffset mga_glo_timeoffset;
         nmea_ubx_mga_ano mga_ano;
         nmea_ubx_mga_ack mga_ack;
         nmea_ubx_mga_dbd_poll mga_dbd_poll;
@@ -4365,6 +5834,49 @@ typedef struct {
         nmea_ubx_hnr_att hnr_att;
         nmea_ubx_hnr_ins_poll hnr_ins_poll;
         nmea_ubx_hnr_ins hnr_ins;
+        nmea_ubx_nav2_posecef_poll nav2_posecef_poll;
+        nmea_ubx_nav2_posecef nav2_posecef;
+        nmea_ubx_nav2_posllh_poll nav2_posllh_poll;
+        nmea_ubx_nav2_posllh nav2_posllh;
+        nmea_ubx_nav2_status_poll nav2_status_poll;
+        nmea_ubx_nav2_status nav2_status;
+        nmea_ubx_nav2_dop_poll nav2_dop_poll;
+        nmea_ubx_nav2_dop nav2_dop;
+        nmea_ubx_nav2_pvt_poll nav2_pvt_poll;
+        nmea_ubx_nav2_pvt nav2_pvt;
+        nmea_ubx_nav2_odo_poll nav2_odo_poll;
+        nmea_ubx_nav2_odo nav2_odo;
+        nmea_ubx_nav2_velecef_poll nav2_velecef_poll;
+        nmea_ubx_nav2_velecef nav2_velecef;
+        nmea_ubx_nav2_velned_poll nav2_velned_poll;
+        nmea_ubx_nav2_velned nav2_velned;
+        nmea_ubx_nav2_timegps_poll nav2_timegps_poll;
+        nmea_ubx_nav2_timegps nav2_timegps;
+        nmea_ubx_nav2_timeutc_poll nav2_timeutc_poll;
+        nmea_ubx_nav2_timeutc nav2_timeutc;
+        nmea_ubx_nav2_clock_poll nav2_clock_poll;
+        nmea_ubx_nav2_clock nav2_clock;
+        nmea_ubx_nav2_timeglo_poll nav2_timeglo_poll;
+        nmea_ubx_nav2_timeglo nav2_timeglo;
+        nmea_ubx_nav2_timebds_poll nav2_timebds_poll;
+        nmea_ubx_nav2_timebds nav2_timebds;
+        nmea_ubx_nav2_timegal_poll nav2_timegal_poll;
+        nmea_ubx_nav2_timegal nav2_timegal;
+        nmea_ubx_nav2_timels_poll nav2_timels_poll;
+        nmea_ubx_nav2_timels nav2_timels;
+        nmea_ubx_nav2_timeqzss_poll nav2_timeqzss_poll;
+        nmea_ubx_nav2_timeqzss nav2_timeqzss;
+        nmea_ubx_nav2_sbas_poll nav2_sbas_poll;
+        nmea_ubx_nav2_sbas nav2_sbas;
+        nmea_ubx_nav2_sat_poll nav2_sat_poll;
+        nmea_ubx_nav2_sat nav2_sat;
+        nmea_ubx_nav2_cov_poll nav2_cov_poll;
+        nmea_ubx_nav2_cov nav2_cov;
+        nmea_ubx_nav2_slas_poll nav2_slas_poll;
+        nmea_ubx_nav2_slas nav2_slas;
+        nmea_ubx_nav2_sig_poll nav2_sig_poll;
+        nmea_ubx_nav2_sig nav2_sig;
+        nmea_ubx_nav2_eoe nav2_eoe;
         nmea_ubx_unknown unknown;
     } as;
 } nmea_ubx_message;
