@@ -1056,7 +1056,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
 def message_features(spec: Spec) -> list[str]:
     """The crate's features beside the receivers': the modules of messages inside a sentence's
     payload or a binary frame, which a user who reads sentences only leaves out of the build."""
-    return [name for name, present in (("ais", spec.payloads), ("binary", spec.binary or spec.config_keys)) if present]
+    return [name for name, present in (("ais", spec.payloads), ("binary", spec.binary or spec.config_keys or spec.bit_messages)) if present]
 
 
 # The runtime's TagType of each value type of spec/tag_block.yaml.

@@ -189,7 +189,7 @@ class _Record:
         for case in sorted(c.cases, key=lambda case: case.is_default):
             pattern = " | ".join(map(str, case.values)) if case.values else \
                 f"{case.range[0]}..={case.range[1]}" if case.range else "_"
-            inner = _Record(self.name, [], self.dispatches)
+            inner = type(self)(self.name, [], self.dispatches)
             inner.certain = self.certain  # a selector may be a field before the choice
             inner._walk(case.items, following, False)
             self.optional = self.optional or inner.optional

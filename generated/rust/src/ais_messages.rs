@@ -12,7 +12,7 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/meteo_hydro.yaml (digest 71d30bf786755d8c)
+//   spec/ais/applications/meteo_hydro.yaml (digest aa7bea671767b05b)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The AIS messages of spec/ais: a struct per layout, read from and written to a payload's bits
@@ -3641,7 +3641,7 @@ impl<'a> Message<'a> {
         let payload = ais::Payload::new(armored, fill_bits)?;
         let mut r = payload.reader();
         let message_type = r.peek(0, 6, "message_type")? as u8;
-        r.set_message_type(message_type);
+        r.set_message_type(u16::from(message_type));
         Ok(match message_type {
             6 => {
                 let mut m = AddressedBinary::read(&mut r)?;

@@ -57,6 +57,8 @@ pub mod bitfields;
 pub mod enums;
 #[cfg(feature = "std")]
 mod fix_fields;
+#[cfg(feature = "binary")]
+pub mod rtcm3_messages;
 mod runtime;
 pub mod sentences;
 pub mod tables;
@@ -69,7 +71,7 @@ pub const VERSION: &str = "0.2.0";
 #[cfg(feature = "comnav")]
 use runtime::is_command_word;
 pub use runtime::{
-    ais, assembly, days_from_civil, stream, ubx, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date,
+    ais, assembly, days_from_civil, rtcm3, stream, ubx, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date,
     DateTime, Encoding, Entries, EntryIter, Error, ErrorKind, FieldProblem, Fields, Framing, Generic, Hex, Kind,
     Layout, Name, NotWhole, Number, Options, ParamValue, Parameter, ParameterError, Problem, ProblemKind, Problems,
     ReplyOutcome, Sign, Table, TagBlock, TagBlocks, TagCode, TagType, Texts, Time, BUILD_CAPACITY, MAX_LINE,

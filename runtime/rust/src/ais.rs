@@ -6,6 +6,9 @@
 //! bits, text after its `@` padding, bits after the layout, the values of the fill bits) is read
 //! as views and written back bit for bit. Facts from ITU-R M.1371-5 (armoring: annex 8, table 47)
 //! and gpsd's "AIVDM/AIVDO protocol decoding".
+//!
+//! The same reader and writer read and write RTCM 3 payloads (bytes, eight bits each: see
+//! [`Payload::bytes`], [`BitWriter::bytes`]); their errors then name `RTCM3` and the message number.
 
 use core::fmt;
 
@@ -15,6 +18,9 @@ pub const SIXBIT_TEXT: &[u8; 64] = b"@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_ !\"#$%&'(
 /// The most bits an encoded message holds: five slots of 256 bits, more than any message's data
 /// and the bits some transmitters send after it.
 pub const MAX_BITS: usize = 5 * 256;
+
+/// The armored characters an AIS payload being written holds.
+pub const MAX_CHARS: usize = MAX_BITS.div_ceil(6);
 
 /// The six bits an armored payload character carries (`0`-`W` are 0-39, `` ` ``-`w` 40-63).
 pub const fn armor_value(ch: u8) -> Option<u8> {
@@ -79,23 +85,45 @@ enum Detail {
     NotText(u8),
     TooLong,
     FewEntries { min: usize, width: usize, left: usize },
+    CountedEntries { count: usize, width: usize, left: usize },
+    TooMany { count: usize, max: usize },
+    Units { units: usize, bits: usize },
+    Said { len: usize, count: usize },
+    Missing,
 }
 
-/// An AIS payload error: its kind, the message type and field it concerns when known.
+/// An AIS payload error (or an RTCM 3 payload's): its kind, the message type (number) and field
+/// it concerns when known.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AisError {
     /// What is wrong.
     pub kind: AisErrorKind,
-    /// The message type, once read.
-    pub message_type: Option<u8>,
+    /// The message type (an RTCM 3 message number), once read.
+    pub message_type: Option<u16>,
     /// The field being read or written.
     pub field: Option<&'static str>,
     detail: Detail,
+    rtcm3: bool,
 }
 
 impl AisError {
-    fn new(kind: AisErrorKind, message_type: Option<u8>, field: Option<&'static str>, detail: Detail) -> Self {
-        AisError { kind, message_type, field, detail }
+    fn new(kind: AisErrorKind, message_type: Option<u16>, field: Option<&'static str>, detail: Detail) -> Self {
+        AisError { kind, message_type, field, detail, rtcm3: false }
+    }
+
+    fn of(mut self, rtcm3: bool) -> Self {
+        self.rtcm3 = rtcm3;
+        self
+    }
+
+    /// Writes the error's address: `AIS type 5` (`AIS` before the type is read), `RTCM3 1005`.
+    fn address<W: fmt::Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        w.write_str(if self.rtcm3 { "RTCM3" } else { "AIS" })?;
+        match self.message_type {
+            Some(t) if self.rtcm3 => write!(w, " {t}"),
+            Some(t) => write!(w, " type {t}"),
+            None => Ok(()),
+        }
     }
 }
 
@@ -108,10 +136,8 @@ impl AisError {
     /// The error as the tools' JSON error object: its kind, `AIS type N` (`AIS` before the type
     /// is read) as its address, the field as its name, and its message.
     pub fn write_json<W: fmt::Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
-        write!(w, "{{\"kind\":\"{}\",\"address\":\"AIS", self.kind.as_str())?;
-        if let Some(t) = self.message_type {
-            write!(w, " type {t}")?;
-        }
+        write!(w, "{{\"kind\":\"{}\",\"address\":\"", self.kind.as_str())?;
+        self.address(w)?;
         w.write_str("\",\"field\":null,\"name\":")?;
         match self.field {
             Some(field) => write!(w, "\"{field}\"")?,
@@ -125,10 +151,8 @@ impl AisError {
 
 impl fmt::Display for AisError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: AIS", self.kind.as_str())?;
-        if let Some(t) = self.message_type {
-            write!(f, " type {t}")?;
-        }
+        write!(f, "{}: ", self.kind.as_str())?;
+        self.address(f)?;
         write!(f, ": {}", self.message())
     }
 }
@@ -149,9 +173,19 @@ impl fmt::Display for AisMessage<'_> {
             Detail::UnknownType(t) => write!(f, "message type {t} is not one the spec describes"),
             Detail::TooWide { raw, width } => write!(f, "{field} takes a raw value of {width} bits, not {raw}"),
             Detail::NotText(ch) => write!(f, "{field} takes six-bit text characters, not '{}'", ch.escape_ascii()),
+            Detail::TooLong if self.0.rtcm3 => write!(f, "{field} does not fit in a payload of 1023 bytes"),
             Detail::TooLong => write!(f, "{field} does not fit in a message of {MAX_BITS} bits"),
             Detail::FewEntries { min, width, left } => {
                 write!(f, "{field} needs at least {min} entries of {width} bits, {left} bits left")
+            }
+            Detail::CountedEntries { count, width, left } => {
+                write!(f, "{field} needs {count} entries of {width} bits, {left} bits left")
+            }
+            Detail::TooMany { count, max } => write!(f, "{field} has {count} entries, at most {max}"),
+            Detail::Missing => write!(f, "{field} is missing: the message's case of its layout has it"),
+            Detail::Said { len, count } => write!(f, "{field} has {len} entries, its masks' bits set say {count}"),
+            Detail::Units { units, bits } => {
+                write!(f, "{field} takes {units} units, as its count says, not {bits} bits")
             }
         }
     }
@@ -165,6 +199,8 @@ impl std::error::Error for AisError {}
 pub struct Payload<'a> {
     armored: &'a [u8],
     fill_bits: u8,
+    /// The bits of a unit: 6 (an armored character), 8 (a byte of an RTCM 3 payload).
+    unit: u8,
 }
 
 impl<'a> Payload<'a> {
@@ -177,12 +213,17 @@ impl<'a> Payload<'a> {
             let ch = armored[offset];
             return Err(AisError::new(AisErrorKind::BadArmor, None, None, Detail::Character { ch, offset }));
         }
-        Ok(Payload { armored, fill_bits })
+        Ok(Payload { armored, fill_bits, unit: 6 })
+    }
+
+    /// The bits of an RTCM 3 payload: its bytes, eight bits each, most significant first.
+    pub fn bytes(data: &'a [u8]) -> Self {
+        Payload { armored: data, fill_bits: 0, unit: 8 }
     }
 
     /// The message's bits: the characters' bits but the fill bits.
     pub fn bit_len(&self) -> usize {
-        self.armored.len() * 6 - usize::from(self.fill_bits)
+        self.armored.len() * usize::from(self.unit) - usize::from(self.fill_bits)
     }
 
     /// The number of fill bits.
@@ -205,6 +246,16 @@ impl<'a> Payload<'a> {
     fn raw(&self, offset: usize, width: usize) -> u64 {
         let mut raw = 0u64;
         let (mut pos, end) = (offset, offset + width);
+        if self.unit == 8 {
+            while pos < end {
+                let in_byte = pos % 8;
+                let take = (8 - in_byte).min(end - pos);
+                let chunk = (self.armored[pos / 8] >> (8 - in_byte - take)) & ((1u16 << take) - 1) as u8;
+                raw = raw << take | u64::from(chunk);
+                pos += take;
+            }
+            return raw;
+        }
         while pos < end {
             let in_char = pos % 6;
             let take = (6 - in_char).min(end - pos);
@@ -238,6 +289,18 @@ impl<'a> Bits<'a> {
     /// Whether there are none.
     pub fn is_empty(&self) -> bool {
         self.len == 0
+    }
+
+    /// The `width` bits (at most 64) at `offset` of these bits, most significant first; the
+    /// caller keeps them inside.
+    pub fn get(&self, offset: usize, width: usize) -> u64 {
+        debug_assert!(offset + width <= self.len && width <= 64);
+        self.payload.raw(self.offset + offset, width)
+    }
+
+    /// How many of the bits are set (an RTCM 3 MSM's cells, in its cell mask).
+    pub fn count_ones(&self) -> u32 {
+        (0..self.len).step_by(64).map(|start| self.get(start, (self.len - start).min(64)).count_ones()).sum()
     }
 
     /// The bits from the first, most significant first.
@@ -309,13 +372,17 @@ pub struct BitReader<'a> {
     payload: Payload<'a>,
     pos: usize,
     end: usize,
-    message_type: Option<u8>,
+    message_type: Option<u16>,
 }
 
 impl<'a> BitReader<'a> {
-    /// The message type errors name from now on.
-    pub fn set_message_type(&mut self, message_type: u8) {
+    /// The message type (an RTCM 3 message number) errors name from now on.
+    pub fn set_message_type(&mut self, message_type: u16) {
         self.message_type = Some(message_type);
+    }
+
+    fn error(&self, kind: AisErrorKind, field: &'static str, detail: Detail) -> AisError {
+        AisError::new(kind, self.message_type, Some(field), detail).of(self.payload.unit == 8)
     }
 
     /// The bits read so far.
@@ -341,8 +408,20 @@ impl<'a> BitReader<'a> {
         let left = self.remaining();
         let count = max.min(left.saturating_sub(after) / width);
         if count < min {
-            let detail = Detail::FewEntries { min, width, left };
-            return Err(AisError::new(AisErrorKind::ShortPayload, self.message_type, Some(field), detail));
+            return Err(self.error(AisErrorKind::ShortPayload, field, Detail::FewEntries { min, width, left }));
+        }
+        Ok(count)
+    }
+
+    /// How many entries of `width` bits a group counted by a field or by mask bits holds: `count`,
+    /// when the bits left hold them (else short_payload) and `max` holds them (else bad_value).
+    pub fn counted(&self, count: usize, max: usize, width: usize, field: &'static str) -> Result<usize, AisError> {
+        let left = self.remaining();
+        if count.saturating_mul(width) > left {
+            return Err(self.error(AisErrorKind::ShortPayload, field, Detail::CountedEntries { count, width, left }));
+        }
+        if count > max {
+            return Err(self.error(AisErrorKind::BadValue, field, Detail::TooMany { count, max }));
         }
         Ok(count)
     }
@@ -357,14 +436,13 @@ impl<'a> BitReader<'a> {
     /// The error of a message type no layout describes.
     pub fn unknown_message(&self, message_type: u8) -> AisError {
         let detail = Detail::UnknownType(message_type);
-        AisError::new(AisErrorKind::UnknownMessage, Some(message_type), Some("message_type"), detail)
+        AisError::new(AisErrorKind::UnknownMessage, Some(message_type.into()), Some("message_type"), detail)
     }
 
     fn check(&self, offset: usize, width: usize, field: &'static str) -> Result<(), AisError> {
         let length = self.end;
         if offset + width > length {
-            let detail = Detail::Short { offset, width, length };
-            return Err(AisError::new(AisErrorKind::ShortPayload, self.message_type, Some(field), detail));
+            return Err(self.error(AisErrorKind::ShortPayload, field, Detail::Short { offset, width, length }));
         }
         Ok(())
     }
@@ -391,6 +469,14 @@ impl<'a> BitReader<'a> {
         Ok(((raw << unused) as i64) >> unused)
     }
 
+    /// The next `width` bits (2 to 64), sign and magnitude (RTCM 3): the number, or its negative
+    /// zero as the bits sent, `1 << (width - 1)`, a raw value no number has.
+    pub fn take_smag(&mut self, width: usize, field: &'static str) -> Result<i64, AisError> {
+        let raw = self.take(width, field)?;
+        let sign = 1u64 << (width - 1);
+        Ok(if raw & sign != 0 && raw != sign { -((raw & (sign - 1)) as i64) } else { raw as i64 })
+    }
+
     /// The next `width` bits as a view.
     pub fn take_bits(&mut self, width: usize, field: &'static str) -> Result<Bits<'a>, AisError> {
         self.check(self.pos, width, field)?;
@@ -405,29 +491,57 @@ impl<'a> BitReader<'a> {
     }
 }
 
-/// An armored payload being written: fields go in most significant bit first, [`BitWriter::finish`]
-/// pads the last character with the fill bits.
+/// A payload being written: fields go in most significant bit first. An AIS payload's
+/// ([`BitWriter::new`]) units are armored characters, and [`BitWriter::finish`] pads the last one
+/// with the fill bits; an RTCM 3 payload's ([`BitWriter::bytes`], `N` of them at most) are bytes.
 #[derive(Clone, Debug)]
-pub struct BitWriter {
-    values: [u8; MAX_BITS.div_ceil(6)],
+pub struct BitWriter<const N: usize = MAX_CHARS> {
+    values: [u8; N],
     len: usize,
-    message_type: Option<u8>,
+    message_type: Option<u16>,
+    unit: u8,
 }
 
-impl Default for BitWriter {
+impl<const N: usize> Default for BitWriter<N> {
     fn default() -> Self {
-        BitWriter { values: [0; MAX_BITS.div_ceil(6)], len: 0, message_type: None }
+        BitWriter { values: [0; N], len: 0, message_type: None, unit: 6 }
     }
 }
 
 impl BitWriter {
-    /// An empty payload whose errors name `message_type`.
+    /// An empty AIS payload whose errors name `message_type`.
     pub fn new(message_type: u8) -> Self {
-        BitWriter { message_type: Some(message_type), ..BitWriter::default() }
+        BitWriter { message_type: Some(message_type.into()), ..BitWriter::default() }
+    }
+
+    /// The armored payload: the last character padded with `padding`, the values of the fill
+    /// bits as sent (0 for a new message).
+    pub fn finish(mut self, padding: u8) -> Result<Armored, AisError> {
+        let fill_bits = ((6 - self.len % 6) % 6) as u8;
+        if u64::from(padding) >> fill_bits != 0 {
+            return Err(self.error("padding", Detail::TooWide { raw: i64::from(padding), width: fill_bits.into() }));
+        }
+        self.put_raw(u64::from(padding), fill_bits.into(), "padding")?;
+        let chars = self.len / 6;
+        self.values[..chars].iter_mut().for_each(|value| *value = armor_char(*value));
+        Ok(Armored { chars: self.values, len: chars, fill_bits })
+    }
+}
+
+impl<const N: usize> BitWriter<N> {
+    /// An empty RTCM 3 payload of at most `N` bytes whose errors name `message_number`.
+    pub fn bytes(message_number: u16) -> Self {
+        BitWriter { message_type: Some(message_number), unit: 8, ..BitWriter::default() }
     }
 
     fn error(&self, field: &'static str, detail: Detail) -> AisError {
-        AisError::new(AisErrorKind::BadValue, self.message_type, Some(field), detail)
+        AisError::new(AisErrorKind::BadValue, self.message_type, Some(field), detail).of(self.unit == 8)
+    }
+
+    /// The payload's bytes (an RTCM 3 payload's), the last one filled with zero bits.
+    pub fn written(&self) -> &[u8] {
+        let bytes = self.len.div_ceil(8);
+        &self.values[..bytes]
     }
 
     /// The bits written so far.
@@ -460,6 +574,45 @@ impl BitWriter {
         })
     }
 
+    /// `value` in `width` bits (2 to 64), sign and magnitude; `1 << (width - 1)` writes the
+    /// negative zero [`BitReader::take_smag`] reads.
+    pub fn put_smag(&mut self, value: i64, width: usize, field: &'static str) -> Result<(), AisError> {
+        let sign = 1u64 << (width - 1);
+        let magnitude = value.unsigned_abs();
+        if value as u64 == sign {
+            return self.put_raw(sign, width, field);
+        }
+        if magnitude >= sign {
+            return Err(self.error(field, Detail::TooWide { raw: value, width }));
+        }
+        self.put_raw(if value < 0 { sign | magnitude } else { magnitude }, width, field)
+    }
+
+    /// Bits of a field counted by another (RTCM 3's characters, an MSM's cell mask): as many
+    /// `units` of `unit_bits` as the count says, else bad_value.
+    pub fn put_counted(
+        &mut self,
+        bits: Bits<'_>,
+        units: usize,
+        unit_bits: usize,
+        field: &'static str,
+    ) -> Result<(), AisError> {
+        if bits.len() != units * unit_bits {
+            return Err(self.error(field, Detail::Units { units, bits: bits.len() }));
+        }
+        self.put_bits(bits, field)
+    }
+
+    /// The error of a field a case of a choice has that the message leaves out (None).
+    pub fn missing(&self, field: &'static str) -> AisError {
+        self.error(field, Detail::Missing)
+    }
+
+    /// The error of a group of `len` entries whose count (its masks' bits set) says `count`.
+    pub fn entries_error(&self, len: usize, count: usize, field: &'static str) -> AisError {
+        self.error(field, Detail::Said { len, count })
+    }
+
     /// Six-bit text, each character checked.
     pub fn put_text(&mut self, text: &str, field: &'static str) -> Result<(), AisError> {
         text.bytes().try_for_each(|ch| match text_value(ch) {
@@ -469,40 +622,29 @@ impl BitWriter {
     }
 
     fn put_raw(&mut self, raw: u64, width: usize, field: &'static str) -> Result<(), AisError> {
-        if self.len + width > MAX_BITS {
+        let unit = usize::from(self.unit);
+        if self.len + width > if unit == 6 { MAX_BITS } else { N * 8 } {
             return Err(self.error(field, Detail::TooLong));
         }
         let mut left = width;
         while left > 0 {
-            let in_char = self.len % 6;
-            let put = (6 - in_char).min(left);
-            let chunk = (raw >> (left - put)) as u8 & ((1 << put) - 1);
-            let value = &mut self.values[self.len / 6];
-            *value = *value << put | chunk;
+            let in_unit = self.len % unit;
+            let put = (unit - in_unit).min(left);
+            let chunk = (raw >> (left - put)) as u8 & ((1u16 << put) - 1) as u8;
+            let value = &mut self.values[self.len / unit];
+            // a byte's bits go in from its top: the bits not written yet stay 0
+            *value |= chunk << (unit - in_unit - put);
             self.len += put;
             left -= put;
         }
         Ok(())
-    }
-
-    /// The armored payload: the last character padded with `padding`, the values of the fill
-    /// bits as sent (0 for a new message).
-    pub fn finish(mut self, padding: u8) -> Result<Armored, AisError> {
-        let fill_bits = ((6 - self.len % 6) % 6) as u8;
-        if u64::from(padding) >> fill_bits != 0 {
-            return Err(self.error("padding", Detail::TooWide { raw: i64::from(padding), width: fill_bits.into() }));
-        }
-        self.put_raw(u64::from(padding), fill_bits.into(), "padding")?;
-        let chars = self.len / 6;
-        self.values[..chars].iter_mut().for_each(|value| *value = armor_char(*value));
-        Ok(Armored { chars: self.values, len: chars, fill_bits })
     }
 }
 
 /// An encoded payload: its armored characters and fill bits.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Armored {
-    chars: [u8; MAX_BITS.div_ceil(6)],
+    chars: [u8; MAX_CHARS],
     len: usize,
     fill_bits: u8,
 }
@@ -638,12 +780,64 @@ impl JsonNumber for i64 {
 }
 
 impl JsonNumber for f64 {
+    /// Python's `repr`: the shortest digits that read back the same (of two as close, the even
+    /// one), `.0` on whole values, an exponent of two digits or more below 1e-4 and from 1e16.
     fn write<W: fmt::Write>(self, out: &mut W) -> fmt::Result {
-        if self.abs() < 1e16 && self == (self as i64) as f64 {
-            write!(out, "{self:.1}")
-        } else {
-            write!(out, "{self}")
+        if !self.is_finite() {
+            return write!(out, "{self}");
         }
+        let mut text = Short { buf: [0; 40], len: 0 };
+        fmt::Write::write_fmt(&mut text, format_args!("{self:e}"))?;
+        let shortest = text.as_str()?;
+        let digits = shortest.split('e').next().unwrap_or("").bytes().filter(u8::is_ascii_digit).count();
+        // the shortest digits, rounded from the exact value (a tie to even, as Python does)
+        let mut even = Short { buf: [0; 40], len: 0 };
+        fmt::Write::write_fmt(&mut even, format_args!("{self:.*e}", digits.saturating_sub(1)))?;
+        let text = if even.as_str()?.parse::<f64>() == Ok(self) { even.as_str()? } else { shortest };
+        let (mantissa, exponent) = text.split_once('e').ok_or(fmt::Error)?;
+        let exponent: i32 = exponent.parse().map_err(|_| fmt::Error)?;
+        let (sign, mantissa) = mantissa.strip_prefix('-').map_or(("", mantissa), |m| ("-", m));
+        let (first, rest) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+        if !(-4..16).contains(&exponent) {
+            let point = if rest.is_empty() { "" } else { "." };
+            let esign = if exponent < 0 { "-" } else { "+" };
+            return write!(out, "{sign}{first}{point}{rest}e{esign}{:02}", exponent.unsigned_abs());
+        }
+        out.write_str(sign)?;
+        if exponent < 0 {
+            out.write_str("0.")?;
+            (1..-exponent).try_for_each(|_| out.write_char('0'))?;
+            return write!(out, "{first}{rest}");
+        }
+        let whole = exponent as usize; // digits after the first one before the point
+        out.write_str(first)?;
+        if rest.len() <= whole {
+            out.write_str(rest)?;
+            (rest.len()..whole).try_for_each(|_| out.write_char('0'))?;
+            return out.write_str(".0");
+        }
+        write!(out, "{}.{}", &rest[..whole], &rest[whole..])
+    }
+}
+
+/// A short text on the stack (a number's digits).
+struct Short {
+    buf: [u8; 40],
+    len: usize,
+}
+
+impl Short {
+    fn as_str(&self) -> Result<&str, fmt::Error> {
+        core::str::from_utf8(&self.buf[..self.len]).map_err(|_| fmt::Error)
+    }
+}
+
+impl fmt::Write for Short {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        let slot = self.buf.get_mut(self.len..self.len + s.len()).ok_or(fmt::Error)?;
+        slot.copy_from_slice(s.as_bytes());
+        self.len += s.len();
+        Ok(())
     }
 }
 
@@ -755,6 +949,28 @@ mod tests {
             out,
             r#"{"speed":12.3,"speed_raw":123,"lat":0.0,"lat_raw":0,"heading":"not_available","heading_raw":511,"name":"A\"B\\"}"#
         );
+    }
+
+    #[test]
+    fn floats_are_written_as_pythons_repr() {
+        let cases = [
+            (0.0, "0.0"),
+            (-0.16135025024414062, "-0.16135025024414062"),
+            (1e-5, "1e-05"),
+            (-1.862645149230957e-09, "-1.862645149230957e-09"),
+            (0.0001, "0.0001"),
+            (1.5e16, "1.5e+16"),
+            (1e16, "1e+16"),
+            (123456789.0, "123456789.0"),
+            (9999999999999998.0, "9999999999999998.0"),
+            (12.3, "12.3"),
+            (-4850729.7108, "-4850729.7108"),
+        ];
+        for (value, text) in cases {
+            let mut out = std::string::String::new();
+            value.write(&mut out).unwrap();
+            assert_eq!(out, text);
+        }
     }
 
     #[test]

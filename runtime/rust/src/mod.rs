@@ -28,6 +28,7 @@ mod serialize;
 
 pub mod ais;
 pub mod assembly;
+pub mod rtcm3;
 pub mod stream;
 pub mod ubx;
 

@@ -10,6 +10,9 @@ use std::path::Path;
 
 use nmeaspec::ais_messages::Message;
 
+#[cfg(feature = "binary")]
+mod rtcm3;
+
 const CRATE: &str = env!("CARGO_MANIFEST_DIR");
 
 /// The text of a member of a JSON record (a string's without its quotes; the members read here
