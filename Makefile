@@ -100,7 +100,7 @@ test-steps: test-rust test-workflows test-rust-lint test-generator fuzz-smoke te
         test-bench-smoke release-check test-runtimes test-python
 
 test-generator: $(STAMP)
-	$(PY) -m pytest -q tests/generator
+	$(PY) -m pytest -q --durations=8 tests/generator
 
 # The edit loop (under two minutes): generated/ up to date, the generator's tests and golden files
 # without the ones that build or generate whole copies, the manuals' examples and the AIS codec in Python.
@@ -310,7 +310,7 @@ test-rust-lint: $(STAMP)
 	rustfmt --edition 2021 --check fuzz/rust/build.rs fuzz/rust/src/*.rs fuzz/rust/fuzz_targets/*.rs
 
 test-tools: test-bin $(STAMP)
-	NMEA_TOOLS=$(TEST_BIN) NMEA_C_OBJECT=build/c/nmea-test.o $(PY) -m pytest -q tests/agreement tests/fixes
+	NMEA_TOOLS=$(TEST_BIN) NMEA_C_OBJECT=build/c/nmea-test.o $(PY) -m pytest -q --durations=8 tests/agreement tests/fixes
 
 # The benchmark harness for our implementations only, at a tiny size (no peers, nothing fetched).
 test-bench-smoke: build/c/nmea-test.o $(STAMP)
@@ -321,7 +321,7 @@ test-bench-smoke: build/c/nmea-test.o $(STAMP)
 # pip-installed into a new venv (mypy --strict on a user script), the `nmea` CLI, the docs' links
 # and the HTML site in headless Chromium.
 test-workflows: $(STAMP) $(DOCS_STAMP)
-	$(PY) -m pytest -q tests/workflows
+	$(PY) -m pytest -q --durations=8 tests/workflows
 
 # --- releases ---------------------------------------------------------------------------------
 # `make release-check` (part of `make test`): one version (VERSION) and one license everywhere, the
