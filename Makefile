@@ -192,7 +192,8 @@ build/c/subset/c/nmea.c: $(C_PAIR) $(STAMP)
 
 # Its small build (-DNMEA_SMALL, at -Os as a firmware builds it; renamed sml_ beside the default
 # build of the same subset, the reference) over the shared vectors' lines of the five sentences
-# (tests/c/small_lines.py), fed one byte at a time and pushed in chunks of every size
+# (tests/c/small_lines.py), fed one byte at a time and pushed in chunks of every size, and its small
+# reader (runtime/c/small.c) against its general one (SML_TEST_HOOKS) on those lines mutated
 # (tests/c/test_small.c); under the sanitizers in test-c-memory.
 build/c/subset-sml/c/sml.c: $(C_PAIR) $(STAMP)
 	$(PY) -m generator generate --quiet --only $(FIRMWARE_SUBSET) --prefix sml --out build/c/subset-sml
@@ -201,7 +202,8 @@ build/c/small_lines.txt: $(C_PAIR) tests/c/small_lines.py tests/agreement/edge_c
 	@mkdir -p $(@D)
 	$(PY) tests/c/small_lines.py > $@
 
-SMALL_TEST := -I build/c/subset/c -I build/c/subset-sml/c -DSML_SMALL build/c/subset-sml/c/sml.c tests/c/test_small.c
+SMALL_TEST := -I build/c/subset/c -I build/c/subset-sml/c -DSML_SMALL -DSML_TEST_HOOKS build/c/subset-sml/c/sml.c \
+              tests/c/test_small.c
 build/c/test_small: build/c/subset/c/nmea.c build/c/subset-sml/c/sml.c tests/c/test_small.c
 	$(CC) $(CFLAGS) -c -o build/c/test_small_reference.o build/c/subset/c/nmea.c
 	$(CC) $(CFLAGS) -Os -o $@ build/c/test_small_reference.o $(SMALL_TEST)

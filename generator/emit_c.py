@@ -728,6 +728,120 @@ def perfect_hash(codes: list[int]) -> dict:
         bits += 1
 
 
+# ------------------------------------------------------------------------------------------------
+# The small profile's reader (-DNMEA_SMALL: runtime/c/small.c)
+
+INT32_MIN, INT32_MAX = -(2**31), 2**31 - 1
+
+
+def small_view(spec: Spec, views: list[dict], dispatch: dict[str, list[dict]]) -> dict | None:
+    """The packed tables of the small reader (runtime/c/small.c), or None when the spec has what it
+    does not read (a proprietary sentence, a text command, an encapsulation sentence, a keyword
+    that picks the layout, a field type without a C small reader, more than 16 ranges, enums or
+    words, a range of more than 32 bits): a -DNMEA_SMALL build of such a spec keeps the general
+    reader. A field is two bytes: its type and the index of what it takes (a range, an enum, a
+    word; a text's longest length as a range's max) in four bits each, its member's offset."""
+    if any(table for name, table in dispatch.items() if name != "standard") or not views:
+        return None
+    if any(v["kind"] != "standard" or v["sentence"].start != "$" or v["layout"].selector is not None
+           for v in views):
+        return None
+    ranges: dict[tuple[int, int, int, int], int] = {}
+    enums: dict[str, int] = {}
+    words: dict[str, int] = {}
+    enum_defs: list[EnumDef] = []
+    descriptors: list[str] = []
+    layouts = []
+    types: set[str] = set()
+
+    def bound(value: float | None, none: int) -> tuple[int, int]:
+        if value is None:
+            return none, 0
+        return fixed_point(value)
+
+    def descriptor(f: Field, owner: str | None) -> str | None:
+        t = f.field_type
+        if t.c_small is None:
+            return None
+        arg = 0
+        if t.numeric or t.has_length:
+            low = bound(f.min, INT32_MIN) if t.numeric else (INT32_MIN, 0)
+            high = bound(f.max, INT32_MAX) if t.numeric else (f.max_length or INT32_MAX, 0)
+            if not all(INT32_MIN <= b <= INT32_MAX and s < 16 for b, s in (low, high)):
+                return None
+            arg = ranges.setdefault((low[0], low[1], high[0], high[1]), len(ranges))
+        elif t.coded:
+            assert f.enum is not None
+            if f.enum.id not in enums:
+                enums[f.enum.id] = len(enums)
+                enum_defs.append(f.enum)
+            arg = enums[f.enum.id]
+        elif "word" in t.args:
+            arg = words.setdefault(f.value or "", len(words))
+        if arg > 15:
+            return None
+        offset = f"offsetof({owner}, {member(f.id)})" if owner and t.c_type else "0"
+        types.add(t.c_small)
+        return f"SMALL_{t.c_small} | {arg} << 4, {offset}"
+
+    for v in views:
+        struct = f"nmea_{v['name']}"
+        group = v["group"]
+        rows = [descriptor(fv["field"], struct) for fv in v["fields"]]
+        entry: list[str | None] = []
+        if group is not None:
+            if not group["stored"]:
+                return None
+            owner = None if group["single"] else group["entry_type"]
+            entry = [descriptor(fv["field"], owner) for fv in group["fields"]]
+        if None in rows or None in entry:
+            return None
+        same = v["same_as_main"]
+        if any(n >= 32 for n in same):
+            return None
+        layouts.append({
+            "name": v["name"],
+            "init": ", ".join(str(x) for x in [
+                f"0x{sum(1 << n for n in same):X}u", len(descriptors), len(v["before"]), len(v["after"]),
+                len(v["optional"]), v["fixed"], v["optional_max"] if group else v["max_fields"], f"sizeof({struct})",
+                f"offsetof({struct}, checksum)",
+                f"offsetof({struct}, optional_count)" if v["optional"] else 0,
+                "SMALL_VARIANT" if v["layout"].id else 0,
+                len(entry), group["group"].width if group else 0, group["group"].min if group else 0,
+                group["group"].max if group else 0,
+                f"offsetof({struct}, {group['member']})" if group else 0,
+                f"offsetof({struct}, {group['count']})" if group and group["count"] else 0]),
+            "fields": [r for r in rows + entry if r is not None],
+        })
+        descriptors += [r for r in rows + entry if r is not None]
+    if len(descriptors) > 255:
+        return None
+    # the layouts of each standard sentence, consecutive in nmea_sentence_id's order
+    order = [v["const"] for v in views]
+    sentences = []
+    for e in dispatch["standard"]:
+        first = order.index(e["ids"][0])
+        if e["ids"] != order[first:first + len(e["ids"])]:
+            return None
+        sentences.append((e["sort"].decode(), first + 1, len(e["ids"])))
+    width = max(len(key) for key, _, _ in sentences)
+    return {
+        "layouts": layouts,
+        "structs": [f"nmea_{v['name']}" for v in views],
+        "ids": c_str("".join(key.ljust(width, "\0") for key, _, _ in sentences)),
+        "id_width": width,
+        "sentences": [(key, first, n) for key, first, n in sentences],
+        "field_bytes": 2 * len(descriptors),
+        "ranges": [f"{{{lo}, {hi}, {lo_s << 4 | hi_s}}}".replace(str(INT32_MIN), "INT32_MIN").replace(
+            str(INT32_MAX), "INT32_MAX") for lo, lo_s, hi, hi_s in ranges] or ["{0, 0, 0}"],
+        "enums": [{"id": e.id, "codes": c_str("".join(v.code.ljust(e.max_len, "\0") for v in e.values)),
+                   "init": f"{len(e.values)}, {e.max_len}, {e.min_len}, NMEA_CODES_{e.code_class.upper()}"}
+                  for e in enum_defs] or [{"id": "none", "codes": "NULL", "init": "0, 0, 0, 0"}],
+        "words": [c_str(w) for w in words] or ["NULL"],
+        "types": sorted(types),  # those the build reads: the small reader has the code of these only
+    }
+
+
 # The nmea_tag_type of each value type of spec/tag_block.yaml.
 TAG_TYPES = {"integer": "NMEA_TAG_INTEGER", "group": "NMEA_TAG_GROUP", "text": "NMEA_TAG_TEXT"}
 
@@ -771,6 +885,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         # the most layouts one address or command word has (1: first_fit reads the one directly)
         "max_layouts": max([len(e["ids"]) for table in dispatch.values() for e in table] + [1]),
         "json_max": json_max(spec, views),
+        "small": small_view(spec, views, dispatch),
         "max_line": longest_line(spec), "contract_max_line": MAX_LINE, "ais": carries_ais(spec), "ubx": carries_ubx(spec),
         "runtime_h": runtime_header("runtime.h"),
         "runtime_api_h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),

@@ -4,7 +4,10 @@
 
 bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *err)
 {
-#if defined(NMEA_NO_TAG_BLOCKS) && defined(NMEA_NO_FAST_PATH)
+#if defined(NMEA_SMALL_READER) /* -DNMEA_SMALL: the small reader (small.c) */
+    err->kind = NMEA_ERR_TOO_LONG; /* (any kind but SMALL_REQUIRE_CHECKSUM) */
+    return small_parse(out, line, len, err);
+#elif defined(NMEA_NO_TAG_BLOCKS) && defined(NMEA_NO_FAST_PATH)
     /* A firmware's build: the general path inlined here (PARSE_GENERAL), not below nmea_parse_ex,
        whose fifth argument would take a frame of its own on the stack. */
     return parse_general(out, line, without_line_ending(line, len), NULL, err);
@@ -68,7 +71,7 @@ static bool take_stray(const char **line, size_t *len, nmea_text *before, nmea_e
 /* The sentence of a line (after its TAG blocks): the fast path, which needs no options (what it
    reads has a checksum, and a line read without a problem is read the same way leniently), then
    the general path. */
-static bool parse_sentence(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+NMEA_INTERNAL bool parse_sentence(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
                            nmea_error *err)
 {
 #ifndef NMEA_NO_FAST_PATH
@@ -80,7 +83,10 @@ static bool parse_sentence(nmea_sentence *out, const char *line, size_t len, con
 
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
-#ifndef NMEA_NO_TAG_BLOCKS
+#if defined(NMEA_SMALL_READER) /* strict reading, the only one of -DNMEA_SMALL */
+    err->kind = options && options->require_checksum ? SMALL_REQUIRE_CHECKSUM : NMEA_ERR_TOO_LONG;
+    return small_parse(out, line, len, err);
+#elif !defined(NMEA_NO_TAG_BLOCKS)
     bool only = false;
     len = without_line_ending(line, len);
     out->tag_blocks = nmea_text_of(NULL); /* kept in `out` (no copy on the stack under the parsing) */

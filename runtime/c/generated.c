@@ -19,7 +19,7 @@ NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len);
 #if defined(NMEA_NO_TAG_BLOCKS) && defined(NMEA_NO_FAST_PATH) && defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
 #define PARSE_GENERAL static inline __attribute__((always_inline)) /* in nmea_parse, see there */
 #else
-#define PARSE_GENERAL static
+#define PARSE_GENERAL NMEA_INTERNAL
 #endif
 PARSE_GENERAL bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
                                  nmea_error *err);

@@ -33,6 +33,7 @@
 #include "layout_json.c"
 #include "generated.c"
 #include "dispatch.c"
+#include "small.c"
 #include "api.c"
 #include "values.c"
 #include "json_api.c"
