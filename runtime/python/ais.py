@@ -509,6 +509,44 @@ class Prefix(NamedTuple):
     put_json: Any
 
 
+def _value_expr(item: Field, name: str, raw: str, names: dict[str, Any]) -> str:
+    """The expression of `item`'s decoded value from `raw` (an expression of its raw bits,
+    evaluated once), exactly what its from_raw gives: numbers (their unit and special values
+    included), flags, codes and spare bits in line, the field's own conversion for the others
+    (text, data). `name` names the field in `names`, the compiled code's globals, where the
+    tables the expression uses are put."""
+    names[name] = item
+    width = item.width
+    assert width is not None
+    if isinstance(item, Unsigned):
+        if isinstance(item, Signed):  # two's complement: the sign bit's weight negated
+            raw = f"(({raw} ^ {1 << (width - 1)}) - {1 << (width - 1)})"
+        operand = "r" if item.special else raw
+        number = operand if item.divisor == 1 else f"{operand} / {item.divisor}"
+        number += f" + {item.base!r}" if item.base or isinstance(item.base, float) else ""
+        if not item.special:
+            return number
+        if len(item.special) == 1:
+            names[f"{name}_special"] = item.special[0]
+            return f"{name}_special if (r := {raw}) == {item.special[0].raw} else {number}"
+        names[f"{name}_special"] = {sp.raw: sp for sp in item.special}
+        return f"{name}_special[r] if (r := {raw}) in {name}_special else {number}"
+    if isinstance(item, Flag):
+        return f"{raw} != 0"
+    if isinstance(item, Code):
+        # by the raw integer of each member whose value is one written in decimal
+        members = {int(m.value): m for m in item.enum
+                   if isinstance(m.value, str) and m.value.isdigit() and str(int(m.value)) == m.value}
+        if width <= 8:  # a table of every raw value
+            names[f"{name}_members"] = tuple(members.get(code, code) for code in range(1 << width))
+            return f"{name}_members[{raw}]"
+        names[f"{name}_members"] = members
+        return f"{name}_members.get(r := {raw}, r)"
+    if type(item) in (Field, Spare):
+        return raw
+    return f"{name}.from_raw({raw}, {width})"
+
+
 def compile_prefix(items: tuple[Item, ...]) -> Prefix:
     """The Prefix of `items`: straight-line code for numbers (their unit and special values
     included), flags, codes and spare bits, the field's own conversion for the others (text,
@@ -535,17 +573,8 @@ def compile_prefix(items: tuple[Item, ...]) -> Prefix:
             raw = f"({raw}) & {(1 << width) - 1}"
         raw = f"({raw})"
         put.append(f"    value = record.{item.id}")
+        members.append(f"{key}: {_value_expr(item, name, raw, names)}")
         if isinstance(item, Unsigned):
-            if isinstance(item, Signed):
-                raw = f"(r - {1 << width} if (r := {raw}) >> {width - 1} else r)"
-            operand = "r" if item.special else raw
-            number = operand if item.divisor == 1 else f"{operand} / {item.divisor}"
-            number += f" + {item.base!r}" if item.base or isinstance(item.base, float) else ""
-            if item.special:
-                names[f"{name}_special"] = {sp.raw: sp for sp in item.special}
-                members.append(f"{key}: {name}_special.get(r := {raw}) or {number}")
-            else:
-                members.append(f"{key}: {number}")
             if item.divisor == 1 and not item.base and not item.special:
                 put.append(f"    if value is not None: out[{key}] = value")
             else:
@@ -558,23 +587,13 @@ def compile_prefix(items: tuple[Item, ...]) -> Prefix:
                 put.append(f"        out[{key}] = value")
                 put.append(f"        out[{key[:-1]}_raw'] = {back}")
                 put.append(f"    elif value is not None: {name}.put_json(out, value)")
-        elif isinstance(item, Flag):
-            members.append(f"{key}: {raw} != 0")
+        elif isinstance(item, Flag) or type(item) in (Field, Spare):
             put.append(f"    if value is not None: out[{key}] = value")
         elif isinstance(item, Code):
-            # by the raw integer of each member whose value is one written in decimal
-            names[f"{name}_members"] = {int(m.value): m for m in item.enum
-                                        if isinstance(m.value, str) and m.value.isdigit()
-                                        and str(int(m.value)) == m.value}
             names[f"{name}_enum"] = item.enum
-            members.append(f"{key}: {name}_members.get(r := {raw}, r)")
             put.append(f"    if value is not None: out[{key}] = value.name.lower() "
                        f"if isinstance(value, {name}_enum) else value")
-        elif type(item) in (Field, Spare):
-            members.append(f"{key}: {raw}")
-            put.append(f"    if value is not None: out[{key}] = value")
         else:
-            members.append(f"{key}: {name}.from_raw({raw}, {width})")
             put.append(f"    if value is not None: {name}.put_json(out, value)")
         offset += width
         count += 1
@@ -584,10 +603,142 @@ def compile_prefix(items: tuple[Item, ...]) -> Prefix:
     exec("\n".join(read + put), names)  # code built above from the spec's layout, never from input
     return Prefix(count, offset, names["read"], names["put_json"])
 
+_STRAIGHT = (Field, Spare, Unsigned, Signed, Flag, Code, Text, Data)
+"""The field classes a compiled decoder reads in line (a bitfield's parts, a counted width or
+a group take the generic reader)."""
+
+
+def compile_decoder(cls: type[Message]) -> Any:
+    """decode(value, length, padding): the message of class `cls` from its payload's bits (one
+    integer, `length` bits) and its fill bits' values, by straight-line code: every field's bits
+    taken by constant shifts and masks, a choice by its selector's raw value, the members set at
+    once. None when the payload is shorter than the fields it reads need: the generic reader
+    (Record.read) then says which field is missing, or that an optional one ends the message. A
+    group (or a field of another kind) is read from its offset on by the generic reader. The
+    members are exactly those Record.read and decode would give."""
+    names: dict[str, Any] = {"new": object.__new__, "cls": cls, "BitReader": BitReader,
+                             "read_items": read_items, "bits_text": bits_text}
+    members: dict[str, str] = {}  # each member's default, as a literal
+    for f in dataclasses.fields(cls):
+        if f.default is not dataclasses.MISSING and (f.default is None or isinstance(f.default, (str, int))):
+            members[f.name] = repr(f.default)
+        elif f.default_factory is list:
+            members[f.name] = "[]"
+        else:  # a default no literal makes
+            return None
+    if "__post_init__" in dir(cls):
+        return None
+    members["padding"] = "padding"
+    code = ["def decode(value, length, padding):"]
+    counter = [0]
+
+    def build(set_: dict[str, str], trailing: str, pad: str) -> list[str]:
+        """The lines that make the message of the members `set_` (id: local variable)."""
+        body = [f"{pad}m = new(cls)", f"{pad}m.__dict__ = {{"]
+        for member, default in members.items():
+            body.append(f"{pad}    {member!r}: {set_.get(member, trailing if member == 'trailing' else default)},")
+        return body + [f"{pad}}}", f"{pad}return m"]
+
+    def generic(items: list[Item], offset: int, set_: dict[str, str], pad: str) -> list[str]:
+        """The lines that read `items` from bit `offset` on by the generic reader."""
+        counter[0] += 1
+        rest = f"rest{counter[0]}"
+        names[rest] = tuple(items)
+        values = ", ".join(f"{member!r}: {var}" for member, var in set_.items())
+        return [f"{pad}reader = BitReader(value, length, 'AIS type ' + str(value >> (length - 6)))",
+                f"{pad}reader.pos = {offset}",
+                f"{pad}values = {{{values}}}", f"{pad}read_items({rest}, reader, values)",
+                f"{pad}left = reader.remaining",
+                f"{pad}trailing = bits_text(value & ((1 << left) - 1), left)",
+                *build({member: f"values.get({member!r}, {members[member]})" for member in members
+                        if member not in ("trailing", "padding")}, "trailing", pad)]
+
+    def walk(items: list[Item], offset: int, set_: dict[str, str], pad: str) -> list[str]:
+        """The lines that read `items` from bit `offset` on, the members `set_` read before them."""
+        out: list[str] = []
+        set_ = dict(set_)
+        i = 0
+        while i < len(items):
+            item = items[i]
+            run: list[Field] = []  # fields of fixed width read from one window of bits
+            end = offset
+            for f in items[i:]:
+                if (not isinstance(f, Field) or type(f) not in _STRAIGHT or f.width is None or f.count is not None
+                        or f.optional and run):
+                    break
+                run.append(f)
+                end += f.width
+                if f.optional:  # a run of its own: the message may end before it
+                    break
+            if run:
+                if run[0].optional:  # too few bits left for it: the message ends before it
+                    out.append(f"{pad}if length < {end}:")
+                    left = f"length - {offset}"
+                    out += build(set_, f"bits_text(value & ((1 << ({left})) - 1), {left})", pad + "    ")
+                else:
+                    out += [f"{pad}if length < {end}:", f"{pad}    return None"]
+                out.append(f"{pad}v = value >> (length - {end})")
+                at = offset
+                for f in run:
+                    assert f.width is not None
+                    shift = end - at - f.width
+                    raw = "v" if shift == 0 else f"v >> {shift}"
+                    if at:  # `v` holds the bits before the run too
+                        raw = f"({raw}) & {(1 << f.width) - 1}"
+                    counter[0] += 1
+                    var = f"x{counter[0]}"
+                    out.append(f"{pad}{var} = {_value_expr(f, f'f{counter[0]}', f'({raw})', names)}")
+                    set_[f.id] = var
+                    at += f.width
+                offset = end
+                i += len(run)
+                continue
+            if (isinstance(item, (Text, Data)) and type(item) in _STRAIGHT and item.width is None
+                    and item.count is None and not item.optional and not item.after and i == len(items) - 1):
+                # the variable field that ends the message: the bits left (text: whole characters)
+                width = f"(length - {offset}) // 6 * 6" if isinstance(item, Text) else f"length - {offset}"
+                counter[0] += 1
+                var, name = f"x{counter[0]}", f"f{counter[0]}"
+                names[name] = item
+                out += [f"{pad}width = max({width}, 0)",
+                        f"{pad}{var} = {name}.from_raw(value >> (length - {offset} - width) & ((1 << width) - 1), width)",
+                        f"{pad}left = length - {offset} - width"]
+                set_[item.id] = var
+                return out + build(set_, "bits_text(value & ((1 << left) - 1), left)", pad)
+            if isinstance(item, Choice):
+                sel_end = item.offset + item.width
+                out += [f"{pad}if length < {sel_end}:", f"{pad}    return None",
+                        f"{pad}r = value >> (length - {sel_end}) & {(1 << item.width) - 1}"]
+                default = next((c for c in item.cases if not c.values and c.range is None), None)
+                first = True
+                for case in item.cases:
+                    if case is default:
+                        continue
+                    tests = [f"r in {sorted(case.values)!r}"] if case.values else []
+                    if case.range is not None:
+                        tests.append(f"{case.range[0]} <= r <= {case.range[1]}")
+                    out.append(f"{pad}{'if' if first else 'elif'} {' or '.join(tests)}:")
+                    out += walk([*case.items, *items[i + 1:]], offset, set_, pad + "    ")
+                    first = False
+                tail = [*(default.items if default is not None else ()), *items[i + 1:]]
+                if first:
+                    return out + walk(tail, offset, set_, pad)
+                out.append(f"{pad}else:")
+                return out + walk(tail, offset, set_, pad + "    ")
+            return out + generic(items[i:], offset, set_, pad)
+        return out + build(set_, f'"" if length == {offset} else bits_text(value & ((1 << (length - {offset})) - 1), '
+                                 f'length - {offset})', pad)
+
+    code += walk(list(cls.LAYOUT), 0, {}, "    ")
+    source = "\n".join(code)
+    exec(source, names)  # code built above from the spec's layout, never from input
+    return names["decode"]
+
 
 class WritePrefix(NamedTuple):
     """A layout's leading fields of fixed width that are numbers, flags, codes, text or spare bits,
-    compiled into one function: `write(record, where)` returns their `bits` bits as one integer."""
+    compiled into one function: `write(record, where)` returns their `bits` bits as one integer
+    (`where` None: an AIS message's, made only for an error)."""
 
     items: int  # how many of the layout's items it writes
     bits: int
@@ -600,7 +751,7 @@ def compile_write_prefix(items: tuple[Item, ...]) -> WritePrefix:
     (text always), which raises the error write_items would. The first item of another kind ends
     it (a bitfield writes from its parts, a data field may be an application's)."""
     code = ["def write(record, where):", "    bits = 0"]
-    names: dict[str, Any] = {"Special": Special}
+    names: dict[str, Any] = {"Special": Special, "_where": _where}
     offset = count = 0
     for item in items:
         if (not isinstance(item, Field) or type(item) not in (Field, Spare, Unsigned, Signed, Flag, Code, Text)
@@ -609,17 +760,25 @@ def compile_write_prefix(items: tuple[Item, ...]) -> WritePrefix:
         width, name = item.width, f"f{count}"
         names[name] = item
         code.append(f"    value = record.{item.id}")
-        fallback = f"bits = bits << {width} | {name}.to_raw(value, where)[0]"
+        fallback = f"bits = bits << {width} | {name}.to_raw(value, where or _where(record))[0]"
         if isinstance(item, Unsigned):
             low, high = item.bounds(width)
-            if item.divisor == 1 and isinstance(item.base, int):  # a float: to_raw, which takes whole ones only
-                number, numeric = f"value - {item.base}", "value.__class__ is int"
+            mask = f" & {(1 << width) - 1}" if low < 0 else ""  # a negative number's two's complement
+            if item.divisor == 1 and isinstance(item.base, int) and not item.special:
+                # a whole number in range (a float: to_raw, which takes whole ones only)
+                raw = f"(raw := value - {item.base})" if item.base else "value"
+                fast = (f"value.__class__ is int and {low} <= {raw} <= {high}",
+                        f"bits = bits << {width} | {'raw' if item.base else 'value'}{mask}")
             else:
-                number = f"round((value - {item.base!r}) * {item.divisor})"
-                numeric = "value.__class__ is int or value.__class__ is float"
-            special = " else value.raw if value.__class__ is Special" if item.special else ""
-            code.append(f"    raw = {number} if {numeric}{special} else None")
-            fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw & {(1 << width) - 1}"
+                if item.divisor == 1 and isinstance(item.base, int):
+                    number, numeric = f"value - {item.base}" if item.base else "value", "value.__class__ is int"
+                else:
+                    offset_ = f"(value - {item.base!r})" if item.base or isinstance(item.base, float) else "value"
+                    number = f"round({offset_} * {item.divisor})" if item.divisor != 1 else f"round({offset_})"
+                    numeric = "value.__class__ is int or value.__class__ is float"
+                special = " else value.raw if value.__class__ is Special" if item.special else ""
+                code.append(f"    raw = {number} if {numeric}{special} else None")
+                fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw{mask}"
         elif isinstance(item, Flag):
             fast = "value is True or value is False", "bits = bits << 1 | value"
         elif isinstance(item, Text):  # text of its whole width: the field's to_raw checks it
@@ -720,7 +879,6 @@ class Record:
     FIELDS: ClassVar[dict[str, Field]]
     _prefix: ClassVar[Prefix]
     _write_prefix: ClassVar[WritePrefix]
-    _blank: ClassVar[dict[str, Any]]
     DISPATCH: ClassVar[Data | None]
     """The data field whose bits an application may carry (the one with a `dispatch`)."""
 
@@ -762,20 +920,6 @@ class Record:
             values = {}
             read_items(cls.LAYOUT, reader, values)
         return values
-
-    @classmethod
-    def blank(cls) -> dict[str, Any]:
-        """The members of an instance made with no arguments, in the order its __init__ sets them
-        (none when a default is made by a factory or __init__ does more: then it is called)."""
-        found: dict[str, Any] | None = cls.__dict__.get("_blank")
-        if found is None:
-            fields = dataclasses.fields(cls)
-            found = {}
-            if "__post_init__" not in dir(cls) and all(
-                    f.init and f.default is not dataclasses.MISSING for f in fields):
-                found = {f.name: f.default for f in fields}
-            cls._blank = found
-        return found
 
     @classmethod
     def field(cls, name: str) -> Field:
@@ -830,17 +974,45 @@ class Message(Record):
     data member is then None)."""
 
     TYPES: ClassVar[tuple[int, ...]]
+    _decoder: ClassVar[Any]
+    """decode(value, length, padding): the class's compiled decoder (compile_decoder), compiled
+    on first use (not when the package loads)."""
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "LAYOUT" in cls.__dict__:
+            def first(value: int, length: int, padding: str) -> Message | None:
+                decoder = cls._decoder = compile_decoder(cls) or _no_decoder
+                return decoder(value, length, padding)
+
+            cls._decoder = first
 
     def encode(self) -> tuple[str, int]:
         """The armored payload and its fill bits."""
-        writer = BitWriter()
-        where = f"AIS type {getattr(self, 'message_type')}"
-        self.write(writer, where)
-        fill = -writer.length % 6
-        if self.padding.strip("01") or len(self.padding) not in (0, fill):
-            raise _bad_value(where, "padding", self.padding, f"{fill} bits")
-        writer.put_bits(self.padding or "0" * fill)
-        return armor(writer.value, writer.length), fill
+        cls = type(self)
+        prefix: WritePrefix | None = cls.__dict__.get("_write_prefix")
+        if prefix is None:
+            prefix = cls._write_prefix = compile_write_prefix(cls.LAYOUT)
+        # Record.write in line (the hot path), the errors' address made only for an error
+        value, length = prefix.write(self, None), prefix.bits
+        if prefix.items < len(cls.LAYOUT):
+            writer = BitWriter()
+            writer.put(value, length)
+            write_items(cls.LAYOUT[prefix.items:], self, writer, _where(self))
+            value, length = writer.value, writer.length
+        trailing, padding = self.trailing, self.padding
+        if trailing:  # as BitWriter.put_bits
+            raw = int(trailing, 2)
+            value = value << len(trailing) | raw & ((1 << len(trailing)) - 1)
+            length += len(trailing)
+        fill = -length % 6
+        if padding == "":
+            value <<= fill
+        else:
+            if padding.strip("01") or len(padding) != fill:
+                raise _bad_value(_where(self), "padding", padding, f"{fill} bits")
+            value = value << fill | int(padding, 2)
+        return armor(value, length + fill), fill
 
     def to_dict(self) -> dict[str, Any]:
         """As Record.to_dict, the application's (when there is one) before trailing, then padding."""
@@ -850,10 +1022,27 @@ class Message(Record):
         return {**out, "trailing": self.trailing, "padding": self.padding}
 
 
+def _no_decoder(value: int, length: int, padding: str) -> None:
+    """The decoder of a class compile_decoder does not compile: the generic reader reads it."""
+    return None
+
+
+def _where(message: Any) -> str:
+    """Errors' address for a message: "AIS type 5"."""
+    return f"AIS type {getattr(message, 'message_type')}"
+
+
 def unarmor(payload: str, fill_bits: int) -> tuple[BitReader, str]:
     """The payload's message bits, and the values of its fill bits."""
     value, length, padding = _unarmor(payload, fill_bits)
     return BitReader(value, length, "AIS"), padding
+
+
+_a2b_base64 = binascii.a2b_base64
+_BASE64_PADS = (b"", b"AAA", b"AA", b"A")
+"""What a payload of n characters takes to a whole number of base64 groups, by n % 4; the
+bits they add (_BASE64_DROPS) are dropped."""
+_BASE64_DROPS = (0, 18, 12, 6)
 
 
 def _unarmor(payload: str, fill_bits: int) -> tuple[int, int, str]:
@@ -897,7 +1086,22 @@ def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int]
            payload: str, fill_bits: int) -> Message:
     """The message of an armored payload, as the class its type number names in `by_type`, with
     the application of `applications` its data bits carry."""
-    value, length, padding = _unarmor(payload, fill_bits)
+    # _unarmor in line (the hot path): base64 takes whole groups of four characters
+    try:
+        if not 0 <= fill_bits <= 5 or fill_bits and not payload:
+            raise ValueError
+        value = int.from_bytes(_a2b_base64(payload.encode("ascii").translate(_ARMOR_TO_BASE64)
+                                           + _BASE64_PADS[len(payload) & 3], strict_mode=True), "big")
+    except (ValueError, UnicodeEncodeError):  # binascii.Error is a ValueError
+        value = -1
+    if value < 0:
+        _unarmor(payload, fill_bits)  # raises bad_armor, saying why
+    value >>= _BASE64_DROPS[len(payload) & 3]
+    padding = ""
+    if fill_bits:
+        padding = format(value & ((1 << fill_bits) - 1), f"0{fill_bits}b")
+        value >>= fill_bits
+    length = len(payload) * 6 - fill_bits
     if length < 6:
         BitReader(value, length, "AIS").peek(0, 6, "message_type")  # raises short_payload
     message_type = value >> (length - 6)
@@ -905,27 +1109,12 @@ def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int]
     if cls is None:
         raise NmeaError("unknown_message", f"message type {message_type} is not one the spec describes",
                         f"AIS type {message_type}", name="message_type")
-    prefix = cls.__dict__.get("_prefix") or cls.prefix()
-    rest = length - prefix.bits
-    if rest >= 0 and prefix.items == len(cls.LAYOUT):  # every field in the compiled prefix
-        values = prefix.read(value, length)
-        trailing = format(value & ((1 << rest) - 1), f"0{rest}b") if rest else ""
-    else:
+    message: Message | None = cls._decoder(value, length, padding)
+    if message is None:  # short, or ended by an optional field: the generic reader says how
         reader = BitReader(value, length, f"AIS type {message_type}")
         values = cls.read(reader)
         trailing = bits_text(reader.value & ((1 << reader.remaining) - 1), reader.remaining)
-    blank = cls.__dict__.get("_blank")
-    if blank is None:
-        blank = cls.blank()
-    if not blank:
         message = cls(**values, trailing=trailing, padding=padding)
-    else:  # what the dataclass's __init__ would set, without its keyword arguments' cost
-        members = blank.copy()
-        members.update(values)
-        members["trailing"] = trailing
-        members["padding"] = padding
-        message = object.__new__(cls)
-        message.__dict__ = members
     if cls.DISPATCH is not None:
         message.application = _application(message, applications)
     return message

@@ -115,10 +115,19 @@ def checksum(body: str) -> int:
     """XOR of every byte between the start character and the '*': the bytes read as one integer
     and folded onto themselves in halves, far fewer Python steps than a loop over the bytes."""
     value = int.from_bytes(body.encode("latin-1"), "little")
-    shift = 8 << (len(body) - 1).bit_length()  # the smallest power-of-two width that holds it
-    while shift > 8:
-        shift >>= 1
-        value ^= value >> shift
+    if len(body) > 128:  # folded to 128 bytes first
+        shift = 8 << (len(body) - 1).bit_length()  # the smallest power-of-two width that holds it
+        while shift > 1024:
+            shift >>= 1
+            value ^= value >> shift
+    # then in line, no loop: a sentence is rarely longer
+    value ^= value >> 512
+    value ^= value >> 256
+    value ^= value >> 128
+    value ^= value >> 64
+    value ^= value >> 32
+    value ^= value >> 16
+    value ^= value >> 8
     return value & 0xFF
 
 

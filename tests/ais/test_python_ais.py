@@ -17,7 +17,7 @@ sys.path.insert(0, str(ROOT / "generated" / "python"))
 
 import nmeaspec  # noqa: E402
 from nmeaspec import ais  # noqa: E402
-from nmeaspec.ais_messages import BY_TYPE, MeteoHydro, decode_payload  # noqa: E402
+from nmeaspec.ais_messages import APPLICATIONS, BY_TYPE, MeteoHydro, decode_payload  # noqa: E402
 from nmeaspec.ais_messages.position_report import PositionReport  # noqa: E402
 from nmeaspec.ais_messages.static_voyage_data import StaticVoyageData  # noqa: E402
 from nmeaspec.enums import VsdNavStatus  # noqa: E402
@@ -167,3 +167,69 @@ def test_an_application_decodes_from_its_message_s_data_and_encodes_back() -> No
 def test_data_an_application_does_not_read_stays_data() -> None:
     message = decode_payload("85Mwp`1Kf3aCnsNvBWLi=wQuNhA5t43N`5nCuI=p<IBfVqnMgPGs", 0)  # DAC 366 FI 56
     assert message.application is None and getattr(message, "data")
+
+
+def _generic_decode(payload: str, fill_bits: int) -> ais.Message:
+    """decode_payload by the generic reader only (Record.read), never the compiled decoders."""
+    value, length, padding = ais._unarmor(payload, fill_bits)
+    if length < 6:
+        ais.BitReader(value, length, "AIS").peek(0, 6, "message_type")
+    cls = BY_TYPE[value >> (length - 6)]
+    reader = ais.BitReader(value, length, f"AIS type {value >> (length - 6)}")
+    values = cls.read(reader)
+    trailing = ais.bits_text(value & ((1 << reader.remaining) - 1), reader.remaining)
+    message = cls(**values, trailing=trailing, padding=padding)
+    if cls.DISPATCH is not None:
+        message.application = ais._application(message, APPLICATIONS)
+    return message
+
+
+def _outcome(decode: Any, payload: str, fill_bits: int) -> tuple[Any, ...]:
+    try:
+        message = decode(payload, fill_bits)
+    except NmeaError as error:
+        return "error", str(error), error.name
+    return type(message), list(vars(message).items()), message.to_dict()
+
+
+def test_the_compiled_decoders_read_what_the_generic_reader_reads() -> None:
+    """Every gpsd payload, and each message type's first payload cut at every length (with each
+    count of fill bits, a character changed): the same members in the same order, or the same
+    error (short payloads, optional fields missing, groups and choices)."""
+    payloads = [(payload, fill) for _, payload, fill in single_sentence_payloads()]
+    firsts: dict[str, str] = {}
+    for vector in VECTORS:
+        if "decode" in vector:
+            firsts.setdefault(vector["message"], vector["payload"])
+    for payload in firsts.values():
+        payloads += [(payload[:n], fill) for n in range(len(payload) + 2) for fill in (0, 1, 5)]
+        payloads += [(payload + "w0", 3), (payload[:5] + "w" + payload[6:], 0)]
+    for payload, fill in payloads:
+        assert _outcome(decode_payload, payload, fill) == _outcome(_generic_decode, payload, fill), (payload, fill)
+
+
+def test_the_ais_sentence_fast_path_reads_what_the_general_path_reads() -> None:
+    """nmeaspec.parse of an `!` line in its usual form (api._encapsulation) against the general
+    path (a line given as bytes takes it): gpsd's sentences and damaged copies of a sample."""
+    lines = []
+    for path in sorted(DATA.iterdir()):
+        lines += [line for line in path.read_text(encoding="utf-8", errors="replace").splitlines()
+                  if line.startswith("!")]
+    for line in lines[::25]:
+        fields = line.split(",")
+        lines += [line.lower(), line[:-2] + line[-2:].lower(), line[:-1], line.replace(",", ",,", 1),
+                  line.replace(",", "\t", 1), "!" + line, line + "*"]
+        for k in range(1, len(fields)):  # a field changed, the checksum made to match
+            for text in ("", "x", "10", "-1", "1.5", "C"):
+                body = ",".join(fields[:k] + [text] + fields[k + 1:]).split("*")[0]
+                lines.append(f"{body}*{nmeaspec.runtime.checksum(body[1:]):02X}")
+    assert len(lines) > 3000
+    for line in lines:
+        outcomes = []
+        for given in (line, line.encode("latin-1")):
+            try:
+                sentence = nmeaspec.parse(given)
+                outcomes.append((repr(sentence), sentence.to_sentence()))
+            except NmeaError as error:
+                outcomes.append(("error", str(error)))
+        assert outcomes[0] == outcomes[1], line
