@@ -239,10 +239,22 @@ build/c/test_ubx_8: build/c/nmea-test.o generated/c/nmea_ubx.c generated/c/nmea_
 build/c/test_ubx_san: build/c/nmea-san.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
 	$(CLANG) $(SANITIZE) -I generated/c -o $@ build/c/nmea-san.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
 
+# The RTCM 3 pair's tests (runtime/c/test_rtcm3.c): the shared vectors, then every RTCM 3 frame of the
+# logs decoded and encoded back byte for byte, the first of each number cut at every length.
+RTCM3_LOGS := $(sort $(wildcard tests/data/rtcm3/*.log)) $(sort $(wildcard tests/data/ubx/*.log))
+build/c/test_rtcm3: generated/c/nmea_rtcm3.c generated/c/nmea_rtcm3.h runtime/c/test_rtcm3.c
+	@mkdir -p build/c
+	$(CC) $(CFLAGS) -O0 -I generated/c -o $@ generated/c/nmea_rtcm3.c runtime/c/test_rtcm3.c
+
+build/c/test_rtcm3_san: generated/c/nmea_rtcm3.c generated/c/nmea_rtcm3.h runtime/c/test_rtcm3.c
+	@mkdir -p build/c
+	$(CLANG) $(SANITIZE) -I generated/c -o $@ generated/c/nmea_rtcm3.c runtime/c/test_rtcm3.c
+
 test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o build/c/test_stream \
         build/c/test_stream_smallest build/c/test_small build/c/small_lines.txt build/c/test_ais build/c/test_ais_2_slots \
-        build/c/test_ubx build/c/test_ubx_8
+        build/c/test_ubx build/c/test_ubx_8 build/c/test_rtcm3
 	build/c/test_examples
+	build/c/test_rtcm3 generated/vectors/rtcm3.jsonl $(RTCM3_LOGS)
 	build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS)
 	build/c/test_ubx_8 generated/vectors/ubx.jsonl $(UBX_LOGS)
 	build/c/test_ais generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
@@ -259,8 +271,9 @@ test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o
 MEMORY_INPUTS := tests/agreement/edge_cases.txt $(sort $(wildcard ../shared/corpus/real/*/*.nmea))
 
 test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_examples $(TEST_BIN)/nmea-c $(STAMP) \
-        build/c/test_ubx_san build/c/test_ubx build/c/test_small_san build/c/small_lines.txt
+        build/c/test_ubx_san build/c/test_ubx build/c/test_small_san build/c/small_lines.txt build/c/test_rtcm3_san
 	build/c/test_examples_san
+	build/c/test_rtcm3_san generated/vectors/rtcm3.jsonl $(RTCM3_LOGS)
 	build/c/test_small_san build/c/small_lines.txt
 	build/c/test_ubx_san generated/vectors/ubx.jsonl $(UBX_LOGS)
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS) > /dev/null

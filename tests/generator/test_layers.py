@@ -22,7 +22,7 @@ LAYERS = [
     {"checks", "checks_payload", "checks_binary", "checks_rtcm3"},
     {"build", "diff", "reconcile", "scaffold"},           # load, resolve and check a spec; compare specs; new files
     {"emit"},                                             # what the emitters share
-    {"emit_vectors", "emit_python", "emit_python_ais", "emit_python_ubx", "emit_python_rtcm3", "emit_python_apps", "emit_c", "emit_c_ais", "emit_rust",
+    {"emit_vectors", "emit_python", "emit_python_ais", "emit_python_ubx", "emit_python_rtcm3", "emit_python_apps", "emit_c", "emit_c_ais", "emit_c_rtcm3", "emit_rust",
      "emit_rust_ais", "emit_rust_rtcm3", "emit_rust_ubx", "emit_docs", "emit_ubx_config", "emit_framing",
      "emit_packaging", "emit_c_ubx"},
     {"render", "cli", "__main__", "__init__"},            # the drivers
