@@ -13,7 +13,8 @@ generated/c) it compiles nmea.c at -Os with -DNMEA_NO_JSON, with and without -DN
 - RAM: sizeof(nmea_framer) and sizeof(nmea_sentence) as the target's compiler lays them out;
 - the options a firmware sets for flash and RAM (-DNMEA_NO_PROBLEMS, -DNMEA_TERSE_ERRORS,
   -DNMEA_NO_TAG_BLOCKS, -DNMEA_DIGITS_32, -DNMEA_NO_BINARY_FRAMES), each measured, all together and
-  as the small profile -DNMEA_SMALL (all of them at once);
+  as the small profile -DNMEA_SMALL (all of them at once, and nmea_parse reading with the small
+  reader, runtime/c/small.c, when the generator wrote its tables for the subset);
 - with --symbols N: the N largest symbols the small profile's firmware links (nm --size-sort), on
   each target;
 - stack: the worst case of each entry point over the call graph that gcc writes with
@@ -285,7 +286,11 @@ def main() -> int:
                 cells.append(f"{firmware_size(target, source, [*SMALL, *option], work):,}")
                 cells.append(f"{ram_sizes(target, source, work, [*SMALL, *option])['sentence']:,}")
                 cells.append(shown(stacks(target, source, [*SMALL, *option], work)["nmea_parse"]))
-            print(f"| {' '.join(option) or '(none)'} | {' | '.join(cells)} |")
+            label = " ".join(option) or "(none)"
+            if option == ["-DNMEA_SMALL"] and "#define NMEA_SMALL_READER" in (details[0][1] / "nmea.c").read_text(
+                    encoding="utf-8"):
+                label += " (its own reader, runtime/c/small.c)"
+            print(f"| {label} | {' | '.join(cells)} |")
         for target, source in details:
             print(f"\nWorst-case stack on {target.name}, {builds[0][0]} (bytes; without the C library's leaf functions):")
             print("\n| entry point | no fast path | fast path | deepest path (no fast path) |")
