@@ -15,7 +15,7 @@ import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar, NamedTuple
 
-from .runtime import NmeaError
+from .runtime import NmeaError, Number
 
 if TYPE_CHECKING:  # binary frames read and write their payloads with the same item walkers
     from .ubx import ByteReader, ByteWriter
@@ -137,6 +137,16 @@ class Fragment(NamedTuple):
         return cls(count, number, _small(sequence),
                    None if channel is None else str(getattr(channel, "value", channel)), payload or "",
                    _small(fill_bits) or 0)
+
+
+_DIGITS = {str(digit): digit for digit in range(10)}
+
+
+def whole(number: Any) -> int:
+    """int(number) of a sentence's integer field, by one lookup for a Number of one digit as
+    received (an AIS sentence's fragment count and fill bits: its message's hot path)."""
+    found = _DIGITS.get(number.text()) if number.__class__ is Number else None
+    return int(number) if found is None else found
 
 
 def _small(number: Any) -> int | None:
@@ -632,12 +642,18 @@ def compile_decoder(cls: type[Message]) -> Any:
     code = ["def decode(value, length, padding):"]
     counter = [0]
 
+    slots = "__dict__" not in dir(cls)
+
     def build(set_: dict[str, str], trailing: str, pad: str) -> list[str]:
-        """The lines that make the message of the members `set_` (id: local variable)."""
-        body = [f"{pad}m = new(cls)", f"{pad}m.__dict__ = {{"]
-        for member, default in members.items():
-            body.append(f"{pad}    {member!r}: {set_.get(member, trailing if member == 'trailing' else default)},")
-        return body + [f"{pad}}}", f"{pad}return m"]
+        """The lines that make the message of the members `set_` (id: local variable): each slot
+        set (or the instance's dict at once)."""
+        values = {member: set_.get(member, trailing if member == "trailing" else default)
+                  for member, default in members.items()}
+        if slots:
+            return [f"{pad}m = new(cls)", *(f"{pad}m.{member} = {value}" for member, value in values.items()),
+                    f"{pad}return m"]
+        return [f"{pad}m = new(cls)", f"{pad}m.__dict__ = {{",
+                *(f"{pad}    {member!r}: {value}," for member, value in values.items()), f"{pad}}}", f"{pad}return m"]
 
     def generic(items: list[Item], offset: int, set_: dict[str, str], pad: str) -> list[str]:
         """The lines that read `items` from bit `offset` on by the generic reader."""
@@ -754,58 +770,137 @@ def compile_write_prefix(items: tuple[Item, ...]) -> WritePrefix:
     names: dict[str, Any] = {"Special": Special, "_where": _where}
     offset = count = 0
     for item in items:
-        if (not isinstance(item, Field) or type(item) not in (Field, Spare, Unsigned, Signed, Flag, Code, Text)
-                or item.width is None or item.optional):
+        if not _writes_in_line(item):
             break
-        width, name = item.width, f"f{count}"
-        names[name] = item
-        code.append(f"    value = record.{item.id}")
-        fallback = f"bits = bits << {width} | {name}.to_raw(value, where or _where(record))[0]"
-        if isinstance(item, Unsigned):
-            low, high = item.bounds(width)
-            mask = f" & {(1 << width) - 1}" if low < 0 else ""  # a negative number's two's complement
-            if item.divisor == 1 and isinstance(item.base, int) and not item.special:
-                # a whole number in range (a float: to_raw, which takes whole ones only)
-                raw = f"(raw := value - {item.base})" if item.base else "value"
-                fast = (f"value.__class__ is int and {low} <= {raw} <= {high}",
-                        f"bits = bits << {width} | {'raw' if item.base else 'value'}{mask}")
-            else:
-                if item.divisor == 1 and isinstance(item.base, int):
-                    number, numeric = f"value - {item.base}" if item.base else "value", "value.__class__ is int"
-                else:
-                    offset_ = f"(value - {item.base!r})" if item.base or isinstance(item.base, float) else "value"
-                    number = f"round({offset_} * {item.divisor})" if item.divisor != 1 else f"round({offset_})"
-                    numeric = "value.__class__ is int or value.__class__ is float"
-                special = " else value.raw if value.__class__ is Special" if item.special else ""
-                code.append(f"    raw = {number} if {numeric}{special} else None")
-                fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw{mask}"
-        elif isinstance(item, Flag):
-            fast = "value is True or value is False", "bits = bits << 1 | value"
-        elif isinstance(item, Text):  # text of its whole width: the field's to_raw checks it
-            fast = None
-        elif isinstance(item, Code):  # a member of the field's enum whose code fits; to_raw for any other
-            codes: dict[Any, int] = {}  # by each member's value
-            for member in item.enum:
-                try:
-                    code_value = int(member.value)
-                except (TypeError, ValueError):
-                    continue
-                if 0 <= code_value <= (1 << width) - 1:
-                    codes[member._value_] = code_value
-            names[f"{name}_enum"], names[f"{name}_codes"] = item.enum, codes
-            fast = (f"value.__class__ is {name}_enum and (raw := {name}_codes.get(value._value_)) is not None",
-                    f"bits = bits << {width} | raw")
-        else:
-            fast = f"value.__class__ is int and 0 <= value <= {(1 << width) - 1}", f"bits = bits << {width} | value"
-        if fast is None:
-            code.append(f"    {fallback}")
-        else:
-            code += [f"    if {fast[0]}:", f"        {fast[1]}", "    else:", f"        {fallback}"]
-        offset += width
+        assert isinstance(item, Field) and item.width is not None
+        code += _write_field(item, f"f{count}", names, "    ")
+        offset += item.width
         count += 1
     code.append("    return bits")
     exec("\n".join(code), names)  # code built above from the spec's layout, never from input
     return WritePrefix(count, offset, names["write"])
+
+
+def _writes_in_line(item: Item, optional: bool = False) -> bool:
+    """Whether _write_field writes `item`: a number, flag, code, text or spare bits of fixed width
+    (and, `optional`, one the message may end before)."""
+    return (isinstance(item, Field) and type(item) in (Field, Spare, Unsigned, Signed, Flag, Code, Text)
+            and item.width is not None and (optional or not item.optional))
+
+
+def _write_field(item: Field, name: str, names: dict[str, Any], pad: str) -> list[str]:
+    """The lines that put `item`'s bits below `bits` (`record` the message, `where` the errors'
+    address or None), `name` its name in `names`."""
+    width = item.width
+    assert width is not None
+    names[name] = item
+    code: list[str] = []
+    code.append(f"    value = record.{item.id}")
+    fallback = f"bits = bits << {width} | {name}.to_raw(value, where or _where(record))[0]"
+    if isinstance(item, Unsigned):
+        low, high = item.bounds(width)
+        mask = f" & {(1 << width) - 1}" if low < 0 else ""  # a negative number's two's complement
+        if item.divisor == 1 and isinstance(item.base, int) and not item.special:
+            # a whole number in range (a float: to_raw, which takes whole ones only)
+            raw = f"(raw := value - {item.base})" if item.base else "value"
+            fast = (f"value.__class__ is int and {low} <= {raw} <= {high}",
+                    f"bits = bits << {width} | {'raw' if item.base else 'value'}{mask}")
+        else:
+            if item.divisor == 1 and isinstance(item.base, int):
+                number, numeric = f"value - {item.base}" if item.base else "value", "value.__class__ is int"
+            else:
+                offset_ = f"(value - {item.base!r})" if item.base or isinstance(item.base, float) else "value"
+                number = f"round({offset_} * {item.divisor})" if item.divisor != 1 else f"round({offset_})"
+                numeric = "value.__class__ is int or value.__class__ is float"
+            special = " else value.raw if value.__class__ is Special" if item.special else ""
+            code.append(f"    raw = {number} if {numeric}{special} else None")
+            fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw{mask}"
+    elif isinstance(item, Flag):
+        fast = "value is True or value is False", "bits = bits << 1 | value"
+    elif isinstance(item, Text):  # text of its whole width: the field's to_raw checks it
+        fast = None
+    elif isinstance(item, Code):  # a member of the field's enum whose code fits; to_raw for any other
+        codes: dict[Any, int] = {}  # by each member's value
+        for member in item.enum:
+            try:
+                code_value = int(member.value)
+            except (TypeError, ValueError):
+                continue
+            if 0 <= code_value <= (1 << width) - 1:
+                codes[member._value_] = code_value
+        names[f"{name}_enum"], names[f"{name}_codes"] = item.enum, codes
+        fast = (f"value.__class__ is {name}_enum and (raw := {name}_codes.get(value._value_)) is not None",
+                f"bits = bits << {width} | raw")
+    else:
+        fast = f"value.__class__ is int and 0 <= value <= {(1 << width) - 1}", f"bits = bits << {width} | value"
+    if fast is None:
+        code.append(f"    {fallback}")
+    else:
+        code += [f"    if {fast[0]}:", f"        {fast[1]}", "    else:", f"        {fallback}"]
+    return [pad + line[4:] for line in code]
+
+
+def compile_encoder(items: tuple[Item, ...]) -> Any:
+    """write(record, where): the bits of a message's layout `items` and their count, as
+    write_items writes them, by straight-line code: each field in line (_write_field) or by its
+    own to_raw (a variable width, data an application carries), a choice by the raw value of its
+    selector's member, the message ending at an optional field left None; from a group on,
+    write_items. `where` None: the errors' address is made only for an error."""
+    names: dict[str, Any] = {"Special": Special, "_where": _where, "BitWriter": BitWriter,
+                             "write_items": write_items}
+    counter = [0]
+
+    def walk(items: list[Item], static: int, pad: str) -> list[str]:
+        """The lines that write `items`, `static` bits counted but not yet added to `length`."""
+        out: list[str] = []
+        for i, item in enumerate(items):
+            counter[0] += 1
+            name = f"f{counter[0]}"
+            if isinstance(item, Field) and item.optional:
+                out += [f"{pad}if record.{item.id} is None:", f"{pad}    return bits, length + {static}"]
+            if _writes_in_line(item, optional=True):
+                assert isinstance(item, Field) and item.width is not None
+                out += _write_field(item, name, names, pad)
+                static += item.width
+            elif isinstance(item, Field) and item.count is None:
+                names[name] = item
+                out.append(f"{pad}value = record.{item.id}")
+                if isinstance(item, Data):
+                    out += [f"{pad}if value is None and record.application is not None:",
+                            f"{pad}    value = record.application.bits(where or _where(record))"]
+                if isinstance(item, Bitfield):
+                    out.append(f"{pad}raw, width = {name}.word(record, where or _where(record)), {item.width or 0}")
+                else:
+                    out.append(f"{pad}raw, width = {name}.to_raw(value, where or _where(record))")
+                out += [f"{pad}bits = bits << width | raw & ((1 << width) - 1)", f"{pad}length += width"]
+            elif isinstance(item, Choice):
+                names[name] = item
+                out.append(f"{pad}r = record.field({item.by!r}).to_raw(record.{item.by}, where or _where(record))[0]")
+                default = next((c for c in item.cases if not c.values and c.range is None), None)
+                first = True
+                for case in item.cases:
+                    if case is default:
+                        continue
+                    tests = [f"r in {sorted(case.values)!r}"] if case.values else []
+                    if case.range is not None:
+                        tests.append(f"{case.range[0]} <= r <= {case.range[1]}")
+                    out.append(f"{pad}{'if' if first else 'elif'} {' or '.join(tests)}:")
+                    out += walk([*case.items, *items[i + 1:]], static, pad + "    ")
+                    first = False
+                tail = [*(default.items if default is not None else ()), *items[i + 1:]]
+                if first:
+                    return out + walk(tail, static, pad)
+                return out + [f"{pad}else:", *walk(tail, static, pad + "    ")]
+            else:  # a group, a counted field: the generic writer
+                names[name] = tuple(items[i:])
+                return out + [f"{pad}writer = BitWriter()", f"{pad}writer.put(bits, length + {static})",
+                              f"{pad}write_items({name}, record, writer, where or _where(record))",
+                              f"{pad}return writer.value, writer.length"]
+        return out + [f"{pad}return bits, length + {static}"]
+
+    code = ["def write(record, where):", "    bits = length = 0", *walk(list(items), 0, "    ")]
+    exec("\n".join(code), names)  # code built above from the spec's layout, never from input
+    return names["write"]
 
 
 def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteWriter, where: str) -> bool:
@@ -865,7 +960,7 @@ def items_json(items: tuple[Item, ...], message: Any) -> dict[str, Any]:
     return out
 
 
-@dataclass(kw_only=True)
+@dataclass(kw_only=True, slots=True)
 class Record:
     """A decoded layout (a message, or the application its data bits carry): its fields, then
     the bits after the layout's last field, as sent ('0' and '1')."""
@@ -883,7 +978,8 @@ class Record:
     """The data field whose bits an application may carry (the one with a `dispatch`)."""
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
-        super().__init_subclass__(**kwargs)
+        # super() named: a slots dataclass is a new class, which a bare super() does not know
+        super(Record, cls).__init_subclass__(**kwargs)
         if "LAYOUT" in cls.__dict__:
             cls.FIELDS = {f.id: f for f in flat_fields(cls.LAYOUT)}
             cls.DISPATCH = next((f for f in cls.FIELDS.values() if isinstance(f, Data) and f.dispatch), None)
@@ -947,7 +1043,7 @@ class Record:
         return out
 
 
-@dataclass(kw_only=True)
+@dataclass(kw_only=True, slots=True)
 class Application(Record):
     """An application message (IMO SN.1/Circ.289, regional ones): the data bits of the binary
     messages CARRIERS whose DAC and FI fields hold DAC and FID."""
@@ -963,7 +1059,7 @@ class Application(Record):
         return bits_text(writer.value, writer.length)
 
 
-@dataclass(kw_only=True)
+@dataclass(kw_only=True, slots=True)
 class Message(Record):
     """What every decoded AIS message has besides its layout's fields."""
 
@@ -974,12 +1070,14 @@ class Message(Record):
     data member is then None)."""
 
     TYPES: ClassVar[tuple[int, ...]]
+    _encoder: ClassVar[Any]
+    """The class's compiled writer (compile_encoder), compiled on first use."""
     _decoder: ClassVar[Any]
     """decode(value, length, padding): the class's compiled decoder (compile_decoder), compiled
     on first use (not when the package loads)."""
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
-        super().__init_subclass__(**kwargs)
+        super(Message, cls).__init_subclass__(**kwargs)
         if "LAYOUT" in cls.__dict__:
             def first(value: int, length: int, padding: str) -> Message | None:
                 decoder = cls._decoder = compile_decoder(cls) or _no_decoder
@@ -990,16 +1088,10 @@ class Message(Record):
     def encode(self) -> tuple[str, int]:
         """The armored payload and its fill bits."""
         cls = type(self)
-        prefix: WritePrefix | None = cls.__dict__.get("_write_prefix")
-        if prefix is None:
-            prefix = cls._write_prefix = compile_write_prefix(cls.LAYOUT)
-        # Record.write in line (the hot path), the errors' address made only for an error
-        value, length = prefix.write(self, None), prefix.bits
-        if prefix.items < len(cls.LAYOUT):
-            writer = BitWriter()
-            writer.put(value, length)
-            write_items(cls.LAYOUT[prefix.items:], self, writer, _where(self))
-            value, length = writer.value, writer.length
+        encoder = cls.__dict__.get("_encoder")
+        if encoder is None:
+            encoder = cls._encoder = compile_encoder(cls.LAYOUT)
+        value, length = encoder(self, None)  # Record.write's fields, compiled
         trailing, padding = self.trailing, self.padding
         if trailing:  # as BitWriter.put_bits
             raw = int(trailing, 2)

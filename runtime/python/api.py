@@ -134,22 +134,21 @@ def _encapsulation(line: Any) -> Any:
     ending, a checksum that does not match, a field its layout refuses): parse then reads it or
     says why not."""
     fields = line.split(",")
-    last = fields[-1]
     address = fields[0][1:]
+    cls = _ENCAPSULATION_CLASSES.get(address)
+    if cls is None:
+        cls = _encapsulation_class(address)
+        if cls is None:
+            return None
     star = len(line) - 3
+    last = fields[-1]
     if (
-        len(last) < 3
-        or last[-3] != "*"
-        or line.find("*") != star
-        or len(line) > runtime.MAX_LINE
-        or not runtime.is_standard_address("!", address)
-        or not address.isalnum()
+        line.find("*") != star
+        or last[-3:-2] != "*"
+        or star > _MAX_STAR
         or not line.isascii()
         or not line.isprintable()
     ):
-        return None
-    layouts = ENCAPSULATED.get(address[2:]) or sentences.encapsulated(address[2:])
-    if not layouts or len(layouts) != 1:
         return None
     sent = last[-2:]
     computed = runtime.checksum(line[1:star])
@@ -161,9 +160,25 @@ def _encapsulation(line: Any) -> Any:
     fields[-1] = last[:-3]
     del fields[0]
     try:
-        return layouts[0].parse_fields(address, fields, checksum, line)
+        return cls.parse_fields(address, fields, checksum, line)
     except NmeaError:
         return None
+
+
+_ENCAPSULATION_CLASSES: dict[str, Any] = {}
+"""The class of each `!` address the fast path has read (AIVDM: Vdm)."""
+_MAX_STAR = runtime.MAX_LINE - 3
+
+
+def _encapsulation_class(address: str) -> Any:
+    """The one layout of a `!` address the general path would read it with, or None."""
+    if not runtime.is_standard_address("!", address) or not address.isalnum():
+        return None
+    layouts = ENCAPSULATED.get(address[2:]) or sentences.encapsulated(address[2:])
+    if not layouts or len(layouts) != 1:
+        return None
+    _ENCAPSULATION_CLASSES[address] = layouts[0]
+    return layouts[0]
 
 
 def _read(

@@ -5,6 +5,7 @@ its errors, and the !AIVDM sentence's message."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import sys
 from pathlib import Path
@@ -189,7 +190,8 @@ def _outcome(decode: Any, payload: str, fill_bits: int) -> tuple[Any, ...]:
         message = decode(payload, fill_bits)
     except NmeaError as error:
         return "error", str(error), error.name
-    return type(message), list(vars(message).items()), message.to_dict()
+    members = [(f.name, getattr(message, f.name)) for f in dataclasses.fields(message)]
+    return type(message), members, message.to_dict()
 
 
 def test_the_compiled_decoders_read_what_the_generic_reader_reads() -> None:

@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class AddressedBinary(ais.Message):
     """Binary addressed message: AIS message type 6.
 

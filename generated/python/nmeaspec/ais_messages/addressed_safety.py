@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class AddressedSafety(ais.Message):
     """Addressed safety related message: AIS message type 12.
 

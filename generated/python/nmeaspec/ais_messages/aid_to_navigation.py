@@ -14,7 +14,7 @@ from .. import ais
 from ..enums import AisAidType, AisEpfd
 
 
-@dataclass
+@dataclass(slots=True)
 class AidToNavigation(ais.Message):
     """Aid-to-navigation report: AIS message type 21.
 

@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class AssignmentCommand(ais.Message):
     """Assigned mode command: AIS message type 16.
 

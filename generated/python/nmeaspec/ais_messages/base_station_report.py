@@ -14,7 +14,7 @@ from .. import ais
 from ..enums import AisEpfd
 
 
-@dataclass
+@dataclass(slots=True)
 class BaseStationReport(ais.Message):
     """Base station report, UTC and date response: AIS message types 4, 11.
 

@@ -22,7 +22,7 @@ class BinaryAcknowledgeAck:
     """Sequence number."""
 
 
-@dataclass
+@dataclass(slots=True)
 class BinaryAcknowledge(ais.Message):
     """Binary acknowledge, safety related acknowledge: AIS message types 7, 13.
 

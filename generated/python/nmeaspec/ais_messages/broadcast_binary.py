@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class BroadcastBinary(ais.Message):
     """Binary broadcast message: AIS message type 8.
 

@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class ChannelManagement(ais.Message):
     """Channel management: AIS message type 22.
 

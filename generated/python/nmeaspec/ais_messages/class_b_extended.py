@@ -14,7 +14,7 @@ from .. import ais
 from ..enums import AisEpfd, AisShipType
 
 
-@dataclass
+@dataclass(slots=True)
 class ClassBExtended(ais.Message):
     """Extended Class B equipment position report: AIS message type 19.
 

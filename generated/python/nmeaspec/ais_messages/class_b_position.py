@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class ClassBPosition(ais.Message):
     """Standard Class B equipment position report: AIS message type 18.
 

@@ -26,7 +26,7 @@ class DataLinkManagementReservation:
     """Increment: Slots between repeated blocks (0 once a frame)."""
 
 
-@dataclass
+@dataclass(slots=True)
 class DataLinkManagement(ais.Message):
     """Data link management message: AIS message type 20.
 

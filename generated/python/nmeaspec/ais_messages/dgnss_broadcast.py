@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class DgnssBroadcast(ais.Message):
     """GNSS broadcast binary message: AIS message type 17.
 

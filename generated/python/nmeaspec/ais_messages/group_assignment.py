@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class GroupAssignment(ais.Message):
     """Group assignment command: AIS message type 23.
 

@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class Interrogation(ais.Message):
     """Interrogation: AIS message type 15.
 

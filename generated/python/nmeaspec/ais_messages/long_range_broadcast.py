@@ -14,7 +14,7 @@ from .. import ais
 from ..enums import VsdNavStatus
 
 
-@dataclass
+@dataclass(slots=True)
 class LongRangeBroadcast(ais.Message):
     """Position report for long-range applications: AIS message type 27.
 

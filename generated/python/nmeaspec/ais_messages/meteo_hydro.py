@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class MeteoHydro(ais.Application):
     """Meteorological and hydrographic data: AIS application DAC 1 FI 31 (in type 8).
 

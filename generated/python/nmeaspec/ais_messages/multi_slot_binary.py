@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class MultiSlotBinary(ais.Message):
     """Multiple slot binary message with communication state: AIS message type 26.
 

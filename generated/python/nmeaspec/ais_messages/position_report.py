@@ -14,7 +14,7 @@ from .. import ais
 from ..enums import VsdNavStatus
 
 
-@dataclass
+@dataclass(slots=True)
 class PositionReport(ais.Message):
     """Position report (Class A): AIS message types 1, 2, 3.
 

@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class SafetyBroadcast(ais.Message):
     """Safety related broadcast message: AIS message type 14.
 

@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class SarAircraftReport(ais.Message):
     """Standard search and rescue aircraft position report: AIS message type 9.
 

@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class SingleSlotBinary(ais.Message):
     """Single slot binary message: AIS message type 25.
 

@@ -14,7 +14,7 @@ from .. import ais
 from ..enums import AisEpfd, AisShipType
 
 
-@dataclass
+@dataclass(slots=True)
 class StaticDataReport(ais.Message):
     """Static data report: AIS message type 24.
 

@@ -14,7 +14,7 @@ from .. import ais
 from ..enums import AisEpfd, AisShipType
 
 
-@dataclass
+@dataclass(slots=True)
 class StaticVoyageData(ais.Message):
     """Static and voyage related data: AIS message type 5.
 

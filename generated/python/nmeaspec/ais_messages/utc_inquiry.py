@@ -12,7 +12,7 @@ from typing import ClassVar
 from .. import ais
 
 
-@dataclass
+@dataclass(slots=True)
 class UtcInquiry(ais.Message):
     """UTC and date inquiry: AIS message type 10.
 

@@ -73,9 +73,10 @@ class Vdm(rt.Sentence):
     def message(self) -> ais.Message | None:
         """The AIS message its payload carries (nmeaspec.ais_messages); None for one sentence of
         a message of several. Raises NmeaError for a payload no message decodes from."""
-        if self.fragment_count is None or int(self.fragment_count) != 1:
+        count, fill = self.fragment_count, self.fill_bits
+        if count is None or ais.whole(count) != 1:
             return None
-        return decode_payload(self.payload or "", int(self.fill_bits or 0))
+        return decode_payload(self.payload or "", 0 if fill is None else ais.whole(fill))
 
     @property
     def fragment(self) -> ais.Fragment | None:

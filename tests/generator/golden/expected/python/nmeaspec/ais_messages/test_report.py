@@ -23,7 +23,7 @@ class TestReportReading:
     """Value."""
 
 
-@dataclass
+@dataclass(slots=True)
 class TestReport(ais.Message):
     """Test report: AIS message type 1.
 
