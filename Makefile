@@ -58,9 +58,9 @@ $(BIN)/nmea-py $(TEST_BIN)/nmea-py: $(PY_SOURCES)
 	printf '#!/bin/sh\nPYTHONPATH="%s" exec "%s" -S -m nmeaspec "$$@"\n' "$(CURDIR)/generated/python" "$(PYTHON3)" > $@
 	chmod +x $@
 
-$(BIN)/nmea-c: $(C_PAIR) $(C_AIS) generated/c/nmea_ubx.c generated/c/nmea_tool.c
+$(BIN)/nmea-c: $(C_PAIR) $(C_AIS) generated/c/nmea_ubx.c generated/c/nmea_rtcm3.c generated/c/nmea_tool.c
 	@mkdir -p $(BIN)
-	$(CC) $(CFLAGS) -o $@ generated/c/nmea.c generated/c/nmea_ais.c generated/c/nmea_ubx.c generated/c/nmea_tool.c
+	$(CC) $(CFLAGS) -o $@ generated/c/nmea.c generated/c/nmea_ais.c generated/c/nmea_ubx.c generated/c/nmea_rtcm3.c generated/c/nmea_tool.c
 
 $(BIN)/nmea-rs: $(RUST_SOURCES)
 	@mkdir -p $(BIN)
@@ -152,7 +152,7 @@ build/c/nmea-test.o: $(C_PAIR)
 build/c/test_examples: build/c/nmea-test.o generated/c/tests/test_examples.c
 	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -o $@ $^
 
-$(TEST_BIN)/nmea-c: build/c/nmea-test.o generated/c/nmea_ais.c generated/c/nmea_ubx.c generated/c/nmea_tool.c
+$(TEST_BIN)/nmea-c: build/c/nmea-test.o generated/c/nmea_ais.c generated/c/nmea_ubx.c generated/c/nmea_rtcm3.c generated/c/nmea_tool.c
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -o $@ $^
 
@@ -180,7 +180,7 @@ build/c/nmea-san.o: $(C_PAIR)
 build/c/test_examples_san: build/c/nmea-san.o generated/c/tests/test_examples.c
 	$(CLANG) $(SANITIZE) -o $@ $^
 
-build/c/nmea-c-san: build/c/nmea-san.o generated/c/nmea_ais.c generated/c/nmea_ubx.c generated/c/nmea_tool.c
+build/c/nmea-c-san: build/c/nmea-san.o generated/c/nmea_ais.c generated/c/nmea_ubx.c generated/c/nmea_rtcm3.c generated/c/nmea_tool.c
 	$(CLANG) $(SANITIZE) -o $@ $^
 
 # The five-sentence firmware of issue 32: its subset with the default NMEA_MAX_LINE (the longest

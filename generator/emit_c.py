@@ -887,6 +887,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "json_max": json_max(spec, views),
         "small": small_view(spec, views, dispatch),
         "max_line": longest_line(spec), "contract_max_line": MAX_LINE, "ais": carries_ais(spec), "ubx": carries_ubx(spec),
+        "rtcm3": bool(spec.bit_messages),
         "runtime_h": runtime_header("runtime.h"),
         "runtime_api_h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),
         "runtime_c": runtime_source("runtime.c"),

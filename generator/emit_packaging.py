@@ -17,7 +17,8 @@ from .paths import PACKAGE_FOLDERS
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files = {"c/CMakeLists.txt": env.get_template("c/CMakeLists.txt.j2").render(
         header=header(spec, "#", ["templates/c/CMakeLists.txt.j2"]), max_line=longest_line(spec),
-        contract_max_line=MAX_LINE, ais=carries_ais(spec), ubx=carries_ubx(spec))}
+        contract_max_line=MAX_LINE, ais=carries_ais(spec), ubx=carries_ubx(spec),
+        rtcm3=bool(spec.bit_messages))}
     for folder in PACKAGE_FOLDERS:
         files.update(license_texts(folder))
     return files

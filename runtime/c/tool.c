@@ -4,7 +4,7 @@
  * runtime/c/tool.c). Same behaviour, byte for byte, as nmea-py and nmea-rs; see docs/json.md.
  *
  *     nmea-c decode [--values] [--lenient] [--require-checksum] [--strict] [--ubx]   stdin: NMEA lines
- *     nmea-c stream [--values] [--lenient] [--require-checksum] [--strict] [--ubx]   stdin: any bytes
+ *     nmea-c stream [--values] [--lenient] [--require-checksum] [--strict] [--ubx] [--rtcm3]   stdin: any bytes
  *     nmea-c encode                                               stdin: decode's output
  *     nmea-c fixes                                                stdin: NMEA lines
  *
@@ -25,6 +25,9 @@
 #include "nmea.h"
 #ifdef NMEA_WITH_AIS
 #include "nmea_ais.h"
+#endif
+#ifdef NMEA_WITH_RTCM3
+#include "nmea_rtcm3.h"
 #endif
 #ifdef NMEA_WITH_UBX
 #include "nmea_ubx.h"
@@ -48,6 +51,7 @@ typedef struct {
     bool stream; /* decode joins AIS messages across lines */
     bool values;
     bool ubx; /* stream: a UBX frame with its decoded message */
+    bool rtcm3; /* stream: an RTCM 3 frame with its decoded message */
     nmea_options options;
     nmea_problems problems; /* of the line decoded last */
     size_t out_len;
@@ -283,6 +287,9 @@ static bool decode_flags(tool *t, int argc, char **argv)
 #ifdef NMEA_WITH_UBX
             : strcmp(argv[i], "--ubx") == 0 ? &t->ubx
 #endif
+#ifdef NMEA_WITH_RTCM3
+            : strcmp(argv[i], "--rtcm3") == 0 ? &t->rtcm3
+#endif
             : NULL;
         if (!flag || *flag)
             return false;
@@ -327,6 +334,35 @@ static size_t ubx_member(char *out)
 }
 #endif
 
+#ifdef NMEA_WITH_RTCM3
+/* stream --rtcm3 (docs/json.md, "RTCM 3 messages in stream"): the message an RTCM 3 frame carries
+   (the framer checked its preamble, length and CRC), decoded once; rtcm3_member appends
+   `,"rtcm3":` and its JSON, or `,"rtcm3_error":` and the error its payload gives. */
+static nmea_rtcm3_message rtcm3_message; /* about 3 kB: not on the stack */
+static nmea_rtcm3_error rtcm3_error;
+static bool rtcm3_decoded;
+static size_t rtcm3_json_len; /* of the decoded message's JSON, or of the error's */
+
+/* Decodes the frame's payload; the room its member takes. */
+static size_t rtcm3_decode(const unsigned char *frame, size_t len)
+{
+    rtcm3_decoded = len >= 6 && nmea_rtcm3_decode_payload(frame + 3, len - 6, &rtcm3_message, &rtcm3_error);
+    rtcm3_json_len = rtcm3_decoded ? nmea_rtcm3_json(&rtcm3_message, NULL, 0) : nmea_rtcm3_error_json(&rtcm3_error, NULL, 0);
+    return 16 + rtcm3_json_len;
+}
+
+static size_t rtcm3_member(char *out)
+{
+    size_t m;
+    if (rtcm3_decoded) {
+        m = (size_t)sprintf(out, ",\"rtcm3\":");
+        return m + nmea_rtcm3_json(&rtcm3_message, out + m, rtcm3_json_len + 1);
+    }
+    m = (size_t)sprintf(out, ",\"rtcm3_error\":");
+    return m + nmea_rtcm3_error_json(&rtcm3_error, out + m, rtcm3_json_len + 1);
+}
+#endif
+
 /* A binary frame's JSON (docs/json.md, "Binary frames in stream"): a frame with its identity and
    bytes, or the sync bytes of what was not one with the reason. */
 static void emit_frame(tool *t, const nmea_framed *item)
@@ -341,6 +377,13 @@ static void emit_frame(tool *t, const nmea_framed *item)
     char *out;
 #ifdef NMEA_WITH_UBX
     bool with_ubx = t->ubx && item->error == NMEA_FRAME_OK && item->protocol == NMEA_UBX;
+#endif
+#ifdef NMEA_WITH_RTCM3
+    bool with_rtcm3 = t->rtcm3 && item->error == NMEA_FRAME_OK && item->protocol == NMEA_RTCM3;
+    if (with_rtcm3)
+        extra = rtcm3_decode(b, item->len); /* its JSON may be long: room for it first */
+#endif
+#ifdef NMEA_WITH_UBX
     if (with_ubx)
         extra = ubx_decode(b, item->len); /* its JSON may be long: room for it first */
 #endif
@@ -389,6 +432,10 @@ static void emit_frame(tool *t, const nmea_framed *item)
 #ifdef NMEA_WITH_UBX
     if (with_ubx)
         n += ubx_member(out + n);
+#endif
+#ifdef NMEA_WITH_RTCM3
+    if (with_rtcm3)
+        n += rtcm3_member(out + n);
 #endif
     out[n++] = '}';
     emit(t, n);
@@ -452,6 +499,9 @@ int main(int argc, char **argv)
         fputs("usage: nmea-c decode|stream [--values] [--lenient] [--require-checksum] [--strict]"
 #ifdef NMEA_WITH_UBX
               " [--ubx]"
+#endif
+#ifdef NMEA_WITH_RTCM3
+              " [--rtcm3]"
 #endif
               " | encode"
               " | fixes | --version\n"

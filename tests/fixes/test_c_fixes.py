@@ -29,7 +29,8 @@ def c_tool(tmp_path_factory: pytest.TempPathFactory) -> Path:
     tool = tmp_path_factory.mktemp("fixes-c") / "nmea-c"
     cc = os.environ.get("CC", "cc")
     subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O0", "-o", str(tool),
-                    *(str(ROOT / "generated" / "c" / name) for name in ("nmea.c", "nmea_ais.c", "nmea_ubx.c", "nmea_tool.c"))],
+                    *(str(ROOT / "generated" / "c" / name) for name in ("nmea.c", "nmea_ais.c", "nmea_ubx.c", "nmea_rtcm3.c",
+                                                                     "nmea_tool.c"))],
                    check=True)
     return tool
 

@@ -23,11 +23,11 @@ if TYPE_CHECKING:
     from ..assembly import Assembled
 
 USAGE = (
-    "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] [--strict] [--ubx]"
+    "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] [--strict] [--ubx] [--rtcm3]"
     " | encode | fixes | --version\n"
     "       (reads stdin, writes stdout)\n"
 )
-FLAGS = ("--values", "--lenient", "--require-checksum", "--strict", "--ubx")
+FLAGS = ("--values", "--lenient", "--require-checksum", "--strict", "--ubx", "--rtcm3")
 
 
 def lines(data: bytes) -> list[str]:
@@ -60,6 +60,18 @@ def with_ubx(frame: BinaryFrame) -> str:
     return f'{text[:-1]},"ubx":{json.dumps(message.to_dict(), separators=(",", ":"))}}}'
 
 
+def with_rtcm3(frame: BinaryFrame) -> str:
+    """stream --rtcm3: an RTCM 3 frame's JSON with the message it carries: `rtcm3`, its decoded
+    JSON (that of generated/vectors/rtcm3.jsonl), or `rtcm3_error` when its payload does not
+    decode."""
+    text = frame.to_json()
+    try:
+        message = frame.message()
+    except NmeaError as err:
+        return f'{text[:-1]},"rtcm3_error":{err.error_json()}}}'
+    return f'{text[:-1]},"rtcm3":{json.dumps(message.to_dict(), separators=(",", ":"))}}}'
+
+
 def decoded(items: Iterable[str], values: bool, options: dict[str, bool]) -> Iterator[str]:
     """decode: each line's JSON, with the AIS message of a sentence that carries a whole one."""
     for line in items:
@@ -79,15 +91,19 @@ def decoded(items: Iterable[str], values: bool, options: dict[str, bool]) -> Ite
         yield text
 
 
-def streamed(items: Iterable[Item], values: bool, options: dict[str, bool], ubx: bool = False) -> Iterator[str]:
+def streamed(items: Iterable[Item], values: bool, options: dict[str, bool], ubx: bool = False,
+             rtcm3: bool = False) -> Iterator[str]:
     """stream: each framed line's JSON, with the AIS message it completes (of one sentence or
     joined across several); after it, an incomplete_message error for each message it gives up,
     and at the end for those left under way; each binary frame's JSON (`ubx`: with the UBX
-    message it carries)."""
+    message it carries; `rtcm3`: an RTCM 3 frame with its message)."""
     from ..assembly import MessageAssembler
 
     assembler = MessageAssembler()
     for item in items:
+        if isinstance(item, BinaryFrame) and rtcm3 and item.protocol == "rtcm3":
+            yield with_rtcm3(item)
+            continue
         if isinstance(item, BinaryFrame) and ubx:
             yield with_ubx(item)
             continue
@@ -123,13 +139,13 @@ def main(argv: list[str] | None = None) -> int:
         and all(f in FLAGS for f in flags)
         and len(set(flags)) == len(flags)
     ):
-        values, lenient, required, strict, ubx = (f in flags for f in FLAGS)
+        values, lenient, required, strict, ubx, rtcm3 = (f in flags for f in FLAGS)
         options = {"lenient": lenient, "require_checksum": required, "strict": strict}
         out: Iterator[str]
         if verb == "decode":
             out = decoded(lines(sys.stdin.buffer.read()), values, options)
         else:
-            out = streamed(framed(sys.stdin.buffer, binary=True), values, options, ubx)
+            out = streamed(framed(sys.stdin.buffer, binary=True), values, options, ubx, rtcm3)
         write = sys.stdout.buffer.write
         for text in out:
             write(text.encode("latin-1") + b"\n")

@@ -16,11 +16,11 @@ use nmeaspec::ais_messages::Message;
 use nmeaspec::assembly::Assembler;
 use nmeaspec::json::{write_encoded, Value, SKIP_CHECK_DEPTH};
 use nmeaspec::stream::{FrameError, Framer, Item, Protocol, MAX_FRAME};
-use nmeaspec::ubx_messages;
+use nmeaspec::{rtcm3_messages, ubx_messages};
 use nmeaspec::{parse_with, Error, Fix, FixAssembler, Options, MAX_LINE};
 
 const USAGE: &str =
-    "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] [--strict] [--ubx] | encode | fixes | --version\n       \
+    "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] [--strict] [--ubx] [--rtcm3] | encode | fixes | --version\n       \
      (reads stdin, writes stdout)\n";
 const BUFFER: usize = 1 << 16;
 
@@ -194,6 +194,26 @@ fn write_ubx_frame(w: &mut String, frame: &[u8]) -> fmt::Result {
     Ok(())
 }
 
+/// `stream --rtcm3`: an RTCM 3 frame's JSON with the message it carries: `rtcm3`, its decoded JSON
+/// (that of generated/vectors/rtcm3.jsonl), or `rtcm3_error` when its payload does not decode.
+fn write_rtcm3_frame(w: &mut String, frame: &[u8]) -> fmt::Result {
+    write_frame(w, Protocol::Rtcm3, frame)?;
+    w.pop(); // the frame's closing brace
+    // the framer checked its preamble, length and CRC: the payload lies between them
+    match rtcm3_messages::Message::from_payload(frame.get(3..frame.len().saturating_sub(3)).unwrap_or_default()) {
+        Ok(message) => {
+            w.push_str(",\"rtcm3\":");
+            message.write_json(w)?;
+        }
+        Err(err) => {
+            w.push_str(",\"rtcm3_error\":");
+            err.write_json(w)?;
+        }
+    }
+    w.push('}');
+    Ok(())
+}
+
 /// The JSON of what began like a binary frame and is not one: its sync bytes and the reason.
 fn write_bad_frame(w: &mut String, protocol: Protocol, error: FrameError, sync: &[u8]) -> fmt::Result {
     write!(
@@ -231,7 +251,7 @@ fn write_hex(w: &mut String, bytes: &[u8]) -> fmt::Result {
     Ok(())
 }
 
-fn stream(values: bool, options: Options, ubx: bool) -> io::Result<()> {
+fn stream(values: bool, options: Options, ubx: bool, rtcm3: bool) -> io::Result<()> {
     let mut input = io::stdin().lock();
     let mut out = Output::new(BufWriter::with_capacity(BUFFER, io::stdout().lock()));
     let mut framer = Framer::with_binary_frames();
@@ -245,6 +265,7 @@ fn stream(values: bool, options: Options, ubx: bool) -> io::Result<()> {
             }
             Item::TooLong(length) => out.line(|w| Error::too_long(length).write_json(w))?,
             Item::Frame(Protocol::Ubx, frame) if ubx => out.line(|w| write_ubx_frame(w, frame))?,
+            Item::Frame(Protocol::Rtcm3, frame) if rtcm3 => out.line(|w| write_rtcm3_frame(w, frame))?,
             Item::Frame(protocol, frame) => out.line(|w| write_frame(w, protocol, frame))?,
             Item::BadFrame(protocol, error, sync) => out.line(|w| write_bad_frame(w, protocol, error, sync))?,
         }
@@ -326,7 +347,7 @@ fn fixes() -> io::Result<()> {
 
 /// Flags of decode and stream: each known one at most once, in any order.
 fn flags_ok(flags: &[&str]) -> bool {
-    const FLAGS: [&str; 5] = ["--values", "--lenient", "--require-checksum", "--strict", "--ubx"];
+    const FLAGS: [&str; 6] = ["--values", "--lenient", "--require-checksum", "--strict", "--ubx", "--rtcm3"];
     flags.iter().enumerate().all(|(i, flag)| FLAGS.contains(flag) && !flags[..i].contains(flag))
 }
 
@@ -350,7 +371,7 @@ fn main() -> ExitCode {
             if *verb == "decode" {
                 decode(values, options)
             } else {
-                stream(values, options, flags.contains(&"--ubx"))
+                stream(values, options, flags.contains(&"--ubx"), flags.contains(&"--rtcm3"))
             }
         }
         _ => {
