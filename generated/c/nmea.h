@@ -94,6 +94,7 @@ extern "C" {
 
 /** The UBX pair nmea_ubx.h / nmea_ubx.c is generated beside this one (the tool decodes UBX frames). */
 #define NMEA_WITH_UBX
+
 /** The RTCM 3 pair nmea_rtcm3.h / nmea_rtcm3.c is generated beside this one (the tool decodes RTCM 3 frames). */
 #define NMEA_WITH_RTCM3
 

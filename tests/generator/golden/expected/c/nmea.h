@@ -94,6 +94,7 @@ extern "C" {
 
 /** The UBX pair nmea_ubx.h / nmea_ubx.c is generated beside this one (the tool decodes UBX frames). */
 #define NMEA_WITH_UBX
+
 /* runtime/c/runtime.h */
 
 #ifndef NMEA_NO_TAG_BLOCKS
