@@ -279,9 +279,10 @@ int main(void)
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("only", ["GGA,RMC", "GSV"])
+@pytest.mark.parametrize("only", ["GGA,RMC", "GSV", "PSRF100"])
 def test_a_subset_compiles_without_a_warning(only: str, tmp_path: Path) -> None:
-    """A subset leaves runtime pieces unused (no group: nothing reads an entry); its C pair still
+    """A subset leaves runtime pieces unused (no group: nothing reads an entry; a text command
+    only: no fast reader or writer); its C pair still
     compiles under -Wall -Wextra -Werror with each build option. The unused-code warnings come from
     any level; -O2 and -Os (whose code differs) add the optimizer's own, so the options alone are
     compiled at -O0 (a fifth of -O2's time)."""
