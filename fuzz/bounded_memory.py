@@ -2,7 +2,8 @@
 (nmea-c, nmea-rs, nmea-py), with each tool's peak resident memory.
 
 The stream is what a serial line or a log file can hold: the real logs' lines, runs of garbage
-and NULs, overlong lines (a '$' followed by megabytes without a line ending), and it ends inside
+and NULs, stretches of SBF blocks (whole, or cut short: a block's length read from the bytes after
+it), overlong lines (a '$' followed by megabytes without a line ending), and it ends inside
 such a line, which never ends. It is generated while it is written to the tool, so its size is
 not limited by this machine's memory, and the tool's output is read and thrown away.
 
@@ -45,6 +46,9 @@ def real_lines() -> list[bytes]:
     return lines
 
 
+SBF = b"".join(path.read_bytes() for path in sorted((ROOT / "tests" / "data" / "sbf").glob("*.sbf")))
+
+
 def stream(size: int, lines: list[bytes], seed: int = 1):
     """`size` bytes in chunks: mostly real lines, now and then garbage or an overlong line, and at
     the end a line that never ends."""
@@ -61,6 +65,9 @@ def stream(size: int, lines: list[bytes], seed: int = 1):
             piece = bytes(rng.getrandbits(8) for _ in range(rng.randint(1, 300)))
         elif roll < 0.012:
             piece = b"\0" * rng.randint(1, 4096)
+        elif roll < 0.014:
+            at = rng.randrange(len(SBF))
+            piece = SBF[at:at + rng.randint(8, 4096)]
         else:
             piece = lines[rng.randrange(len(lines))]
         piece = piece[:left]

@@ -28,7 +28,10 @@ see `intact`.
 Framing (the tools' `stream` verb, generated/docs/json.md): CR and LF end a line, empty lines are
 skipped, a `$` or `!` starts a new item, but for a `\` at the start of a line, which opens a TAG
 block: up to its closing `\` every byte but CR and LF belongs to it, and a `$`, `!` or `\` right
-after that continues the line; `items` is that rule as a regular expression.
+after that continues the line. Outside a TAG block, `$@` starts an SBF block (spec/binary/sbf):
+damage makes one now and then (a bit of `$A`, `$P` flipped), and, its CRC failing, the framer hands
+on its two sync bytes as an item of their own and reads the bytes after them again (the clean
+logs hold no binary frame). `items` is that rule as a regular expression.
 """
 
 from __future__ import annotations
@@ -49,9 +52,10 @@ MIX_SHARE = 1 / 5  # mix: each kind at this share of its rate
 
 # One framed item: a line that starts with TAG blocks (closed ones, then an open one up to the
 # line ending or what follows the last: a '$' or '!' and the rest up to the next CR, LF, '$' or
-# '!'); a '$' or '!' and what follows up to the next CR, LF, '$' or '!'; or a run of other bytes
-# after a line ending (or at the start). Empty lines make no item.
-_ITEM = re.compile(rb"(?=\\)(?:\\[^\r\n\\]*\\)*(?:\\[^\r\n\\]*|[$!]?[^\r\n$!]*)|[$!][^\r\n$!]*|[^\r\n$!]+")
+# '!'); the sync bytes of an SBF block that is none ("$@"); a '$' or '!' and what follows up to the
+# next CR, LF, '$' or '!'; or a run of other bytes after a line ending (or at the start). Empty
+# lines make no item.
+_ITEM = re.compile(rb"(?=\\)(?:\\[^\r\n\\]*\\)*(?:\\[^\r\n\\]*|[$!]?[^\r\n$!]*)|\$@|[$!][^\r\n$!]*|[^\r\n$!]+")
 _LINE = re.compile(rb"[^\r\n]+")
 _ENDING = re.compile(rb"\r\n|\n|\r")
 

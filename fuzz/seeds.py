@@ -72,10 +72,11 @@ def ais_seeds() -> list[bytes]:
 
 def binary_seeds() -> list[bytes]:
     """Stretches of gpsd's logs that interleave NMEA with binary frames (tests/data/ubx, rtcm3,
-    skytraq, sirf, casic), up to a fuzz input's length, for the stream framers."""
+    skytraq, sirf, casic, sbf), up to a fuzz input's length, for the stream framers."""
     out: list[bytes] = []
-    for path in [log for name in ("ubx", "rtcm3", "skytraq", "sirf", "casic")
-                 for log in sorted((ROOT / "tests" / "data" / name).glob("*.log"))]:
+    for path in [log for name in ("ubx", "rtcm3", "skytraq", "sirf", "casic", "sbf")
+                 for log in sorted((ROOT / "tests" / "data" / name).glob("*.log"))
+                 + sorted((ROOT / "tests" / "data" / name).glob("*.sbf"))]:
         data = path.read_bytes()
         step = max(1000, len(data) // PER_LOG)
         out += [data[at:at + 1000] for at in range(0, len(data), step)]

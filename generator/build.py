@@ -404,6 +404,7 @@ def _binary_message(doc: Document) -> BinaryMessage:
                                if "acknowledges" in lay else None))
     message = BinaryMessage(d["message"], d["name"], d["doc"], protocol, d.get("class", ""), d["id"], d["documents"],
                             layouts, Origin(file, ()), sub_id=d.get("sub_id"),
+                            revision=d.get("revision"),
                             examples=[BinaryExample(e["where"], bytes.fromhex(e["frame"]), e.get("expect"),
                                                     Origin(file, ("examples", i)))
                                       for i, e in enumerate(d.get("examples", []))])

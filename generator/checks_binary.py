@@ -9,9 +9,35 @@ from __future__ import annotations
 from typing import Callable
 
 from . import checks_payload, reference_binary
-from .model import CONFIG_TYPE_SIZE, BinaryMessage, ConfigDatabase, Payload, PayloadField, PayloadGroup, Spec
+from .model import (CONFIG_TYPE_SIZE, BinaryMessage, BinaryProtocol, ConfigDatabase, Payload, PayloadField, PayloadGroup,
+                    Spec)
 
 Report = Callable[..., None]   # checks._Reporter: (origin, rule, message, *yaml path)
+
+
+def _check_header_key(message: BinaryMessage, protocol: BinaryProtocol, report: Report) -> None:
+    """A protocol without classes tells its messages by the payload's first bytes (SkyTraq, SiRF:
+    an id of a byte, a sub_id), or by its header's number and revision (SBF): the message gives
+    what its protocol tells them by, each within the header field's bits."""
+    if protocol.identity:
+        if message.revision is not None:
+            report(message.origin, "B001", f"protocol {message.protocol} has no revisions: leave out revision",
+                   "revision")
+        if message.msg_id > 255:
+            report(message.origin, "B001", f"id {message.msg_id} is over a byte", "id")
+        return
+    checksum = protocol.frame.get("checksum", {}).get("at")
+    fields = [f for f in protocol.frame.get("header", [])
+              if not f.get("counts") and "value" not in f and f["id"] != checksum]
+    widths = [int(f["type"][1:]) * (8 if f["type"][0] == "u" else 1) for f in fields]
+    if message.sub_id is not None:
+        report(message.origin, "B001", f"protocol {message.protocol} has no sub-ids: leave out sub_id", "sub_id")
+    if len(widths) != 2 or message.revision is None:
+        report(message.origin, "B001", f"protocol {message.protocol} tells a message by its number and revision: "
+               "give revision", "revision")
+    elif message.msg_id >= 1 << widths[0] or message.revision >= 1 << widths[1]:
+        report(message.origin, "B001", f"id {message.msg_id} or revision {message.revision} is over its "
+               f"{widths[0]} or {widths[1]} bits", "id")
 
 
 def check(spec: Spec, report: Report) -> None:
@@ -28,14 +54,18 @@ def check(spec: Spec, report: Report) -> None:
             if message.msg_class:
                 report(message.origin, "B001", f"protocol {message.protocol} has no classes: leave out class",
                        "class")
+            _check_header_key(message, protocol, report)
         elif protocol is None or message.msg_class not in protocol.classes:
             report(message.origin, "B001", f"class {message.msg_class} is not a class of protocol {message.protocol}",
                    "class")
         elif not message.id.startswith(message.msg_class + "_"):
             report(message.origin, "B001", f"message {message.id} of class {message.msg_class} starts with "
                    f"{message.msg_class}_", "message")
-        elif message.sub_id is not None:
-            report(message.origin, "B001", f"a message of class {message.msg_class} has no sub_id", "sub_id")
+        elif message.sub_id is not None or message.revision is not None:
+            report(message.origin, "B001", f"a message of class {message.msg_class} has no sub_id or revision",
+                   "sub_id" if message.sub_id is not None else "revision")
+        if message.msg_class and message.msg_id > 255:
+            report(message.origin, "B001", f"id {message.msg_id} is over a byte", "id")
         key = (message.protocol, *message.key)
         shorter = (message.protocol, message.msg_id)   # an id without sub-id takes every frame of that id
         if key in owners or message.sub_id is not None and shorter in owners and not message.msg_class:

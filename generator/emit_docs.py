@@ -267,6 +267,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             if f.enum and link not in enum_users[f.enum.id]:
                 enum_users[f.enum.id].append(link)
         identity = (f"Class 0x{m.class_number:02X}, id 0x{m.msg_id:02X}" if m.msg_class
+                    else f"Block number {m.msg_id}, revision {m.revision}" if m.revision is not None
                     else f"{'MID' if m.protocol == 'sirf' else 'Id'} 0x{m.msg_id:02X} ({m.msg_id})"
                     + (f", {'SID' if m.protocol == 'sirf' else 'sub-id'} 0x{m.sub_id:02X} ({m.sub_id})"
                        if m.sub_id is not None else ""))

@@ -19,7 +19,10 @@ from .model import BinaryProtocol, Spec
 from .paths import LICENSE
 
 # The checksums the runtimes compute, by the protocol.yaml name: its bytes after the payload.
-CHECKSUMS = {"fletcher8": 2, "xor8": 1, "sum15": 2, "sum32": 4, "crc24q": 3}
+CHECKSUMS = {"fletcher8": 2, "xor8": 1, "sum15": 2, "sum32": 4, "crc24q": 3, "crc16_ccitt": 2}
+# Bytes that end or start a line, or open a TAG block: no sync byte but '$' (which also starts
+# a sentence: a protocol that syncs on it is told apart by its second byte, never an NMEA address's).
+_LINE_BYTES = b"\r\n!\\"
 # The files written, under runtime/.
 FILES = ("c/framings.h", "c/framings.c", "rust/src/framings.rs", "python/framings.py")
 
@@ -37,15 +40,23 @@ class Framing:
     length_size: int            # 1 or 2 bytes
     big_endian: bool
     length_mask: int            # the bits of the field that are the length
-    header: int                 # bytes before the payload, sync included (the length counts the payload)
+    header: int                 # bytes before the payload, sync included
+    length_adds: int            # the frame's bytes beyond what its length counts (0: it counts them all)
     checksum: str               # a key of CHECKSUMS
     check_from: int             # the first byte the checksum covers (it ends with the payload)
+    check_at: int               # where the checksum sits in the header; 0: after the payload
     end: bytes                  # the bytes after the checksum that end a frame
     identity: tuple[tuple[str, int, int], ...]  # (name, bit offset from the sync, bits): what tells the message
+    # (bits numbered most significant first in a big-endian frame, least significant first in a little-endian one)
 
     @property
     def check_size(self) -> int:
         return CHECKSUMS[self.checksum]
+
+    @property
+    def trailer(self) -> int:
+        """The bytes after the payload: the checksum (unless it sits in the header) and end bytes."""
+        return (0 if self.check_at else self.check_size) + len(self.end)
 
 
 _BITS = re.compile(r"^(u|b)(\d+)$")
@@ -64,6 +75,9 @@ def framing(p: BinaryProtocol) -> Framing:
     sync = bytes(frame["sync"])
     if not 1 <= len(sync) <= 2:
         raise FramingError(f"{where}: sync of {len(sync)} bytes (the framers take 1 or 2)")
+    if sync[0] in _LINE_BYTES or sync[0] == ord("$") and (len(sync) < 2 or chr(sync[1]).isalnum()):
+        raise FramingError(f"{where}: sync {sync.hex(' ')} would take a line's bytes (a '$' sync needs a "
+                           "second byte that starts no sentence)")
     big = frame.get("byte_order", "little") == "big"
     fields, bit = [], 8 * len(sync)
     for f in frame["header"]:
@@ -74,8 +88,8 @@ def framing(p: BinaryProtocol) -> Framing:
         raise FramingError(f"{where}: header of {bit} bits, not whole bytes")
     header = bit // 8
     lengths = [(f, at, width) for f, at, width in fields if f.get("counts")]
-    if len(lengths) != 1 or lengths[0][0]["counts"] != "payload":
-        raise FramingError(f"{where}: one header field counts the payload")
+    if len(lengths) != 1:
+        raise FramingError(f"{where}: one header field counts the payload or the frame")
     f, at, width = lengths[0]
     if f["type"].startswith("u"):
         length_at, length_size, mask = at // 8, width // 8, (1 << width) - 1
@@ -112,15 +126,26 @@ def framing(p: BinaryProtocol) -> Framing:
     offsets = {"sync": 0, "payload": header} | {g["id"]: at // 8 for g, at, _ in fields}
     if last != "payload" or first not in offsets:
         raise FramingError(f"{where}: a checksum over [sync, header field or payload, payload]")
-    identity = [(g["id"], at, width) for g, at, width in fields if not g.get("counts") and "value" not in g]
+    check_at = 0
+    if "at" in checksum:   # in the header, before what it covers
+        held = [(g, at, width) for g, at, width in fields if g["id"] == checksum["at"]]
+        if not held or held[0][0]["type"] != f"u{CHECKSUMS[checksum['algorithm']]}" \
+                or held[0][1] // 8 >= offsets[first]:
+            raise FramingError(f"{where}: checksum at {checksum['at']}: a header field of its bytes before "
+                               "what it covers")
+        check_at = held[0][1] // 8
+    size = CHECKSUMS[checksum["algorithm"]]
+    adds = 0 if f["counts"] == "frame" else header + (0 if check_at else size) + len(frame.get("end", []))
+    identity = [(g["id"], at, width) for g, at, width in fields
+                if not g.get("counts") and "value" not in g and g["id"] != checksum.get("at")]
     at = 8 * header
     for g in p.identity:
         identity.append((g["id"], at, _bits(g["type"])))
         at += _bits(g["type"])
     if len(identity) > 2 or any(width > 16 for _, _, width in identity):
         raise FramingError(f"{where}: at most two identity fields of 16 bits")
-    return Framing(p.id, sync, follow, length_at, length_size, big, mask, header, checksum["algorithm"],
-                   offsets[first], bytes(frame.get("end", [])), tuple(identity))
+    return Framing(p.id, sync, follow, length_at, length_size, big, mask, header, adds, checksum["algorithm"],
+                   offsets[first], check_at, bytes(frame.get("end", [])), tuple(identity))
 
 
 def framings(spec: Spec) -> list[Framing]:
@@ -153,7 +178,8 @@ def _hex(data: bytes | tuple[int, ...]) -> str:
 
 def c_header(table: list[Framing]) -> str:
     consts = ", ".join(["NMEA_LINE"] + [f"NMEA_{f.protocol.upper()}" for f in table])
-    syncs = ", ".join(f"[0x{s:02X}] = 4" for s in sorted({f.sync[0] for f in table}))
+    syncs = ", ".join(f"[0x{s:02X}] = 4" for s in sorted({f.sync[0] for f in table} - {ord("$")}))
+    dollar = 4 if any(f.sync[0] == ord("$") for f in table) else 2
     kinds = "".join(f"#define NMEA_FRAMING_{k.upper()}\n" for k in CHECKSUMS if any(f.checksum == k for f in table))
     return _c_banner() + f"""
 #ifndef NMEA_NO_BINARY_FRAMES
@@ -163,8 +189,10 @@ typedef enum {{ {consts} }} nmea_protocol;
 /** The binary protocols, each an entry of nmea_framings (at its nmea_protocol less one). */
 #define NMEA_FRAMING_COUNT {len(table)}
 
-/* The first sync bytes of the protocols, as the framer's byte classes mark them. */
+/* The first sync bytes of the protocols, as the framer's byte classes mark them ('$' apart: its
+   class, 4 when it may also start a frame, else 2: it starts a sentence). */
 #define NMEA_FRAME_SYNCS {syncs}
+#define NMEA_FRAME_DOLLAR {dollar}
 
 /* The checksums the protocols use (the framer computes only those). */
 {kinds}#endif
@@ -176,8 +204,8 @@ def c_source(table: list[Framing]) -> str:
     for f in table:
         ids = ", ".join(f'{{"{n}", {at}, {bits}}}' for n, at, bits in f.identity) or "{0, 0, 0}"
         rows.append(f"""    {{"{f.protocol}", {{{_hex(f.sync[:1] + bytes([f.follow[0]]))}}}, 0x{f.follow[1]:02X}, {len(f.sync)}, \
-{f.length_at}, {f.length_size}, {int(f.big_endian)}, 0x{f.length_mask:04X}, {f.header}, \
-NMEA_CHECKSUM_{f.checksum.upper()}, {f.check_from}, {f.check_size}, {{{_hex(f.end) or '0'}}}, {len(f.end)}, \
+{f.length_at}, {f.length_size}, {int(f.big_endian)}, 0x{f.length_mask:04X}, {f.header}, {f.length_adds}, \
+NMEA_CHECKSUM_{f.checksum.upper()}, {f.check_from}, {f.check_at}, {f.check_size}, {{{_hex(f.end) or '0'}}}, {len(f.end)}, \
 {{{ids}}}}},""")
     return _c_banner() + f"""
 #ifndef NMEA_NO_BINARY_FRAMES
@@ -205,8 +233,10 @@ def rust_source(table: list[Framing]) -> str:
         big_endian: {'true' if f.big_endian else 'false'},
         length_mask: 0x{f.length_mask:04X},
         header: {f.header},
+        length_adds: {f.length_adds},
         checksum: ChecksumKind::{''.join(w.capitalize() for w in f.checksum.split('_'))},
         check_from: {f.check_from},
+        check_at: {f.check_at},
         check_size: {f.check_size},
         end: &[{_hex(f.end)}],
         identity: &[{ids}],
@@ -239,8 +269,9 @@ def python_source(table: list[Framing]) -> str:
     rows = []
     for f in table:
         rows.append(f"    Framing({f.protocol!r}, {_py_bytes(f.sync)}, 0x{f.follow[0]:02X}, 0x{f.follow[1]:02X}, "
-                    f"{f.length_at}, {f.length_size}, {f.big_endian}, 0x{f.length_mask:04X}, {f.header},\n"
-                    f"            {f.checksum!r}, {f.check_from}, {f.check_size}, {_py_bytes(f.end)}, "
+                    f"{f.length_at}, {f.length_size}, {f.big_endian}, 0x{f.length_mask:04X}, {f.header}, "
+                    f"{f.length_adds},\n            {f.checksum!r}, {f.check_from}, {f.check_at}, {f.check_size}, "
+                    f"{_py_bytes(f.end)}, "
                     f"{tuple(f.identity)!r}),")
     return _banner("#") + f'''"""The framing of each binary protocol of spec/binary (see stream.py)."""
 
@@ -259,13 +290,22 @@ class Framing(NamedTuple):
     length_at: int  # the length field: its first byte, from the sync
     length_size: int  # its bytes
     big_endian: bool
-    length_mask: int  # the bits that are the length of the payload
+    length_mask: int  # the bits that are the length
     header: int  # bytes before the payload, sync included
-    checksum: str  # fletcher8, xor8, sum15, sum32, crc24q
+    length_adds: int  # the frame's bytes beyond what its length counts (0: the length counts them all)
+    checksum: str  # fletcher8, xor8, sum15, sum32, crc24q, crc16_ccitt
     check_from: int  # the first byte the checksum covers (it ends with the payload)
-    check_size: int  # the checksum's bytes after the payload
+    check_at: int  # where the checksum sits in the header; 0: after the payload
+    check_size: int  # the checksum's bytes
     end: bytes  # the bytes after the checksum that end the frame
-    identity: tuple[tuple[str, int, int], ...]  # (name, bit offset from the sync, bits): what tells the message
+    # (name, bit offset from the sync, bits): what tells the message; the bits numbered most
+    # significant first in a big-endian frame, least significant first in a little-endian one
+    identity: tuple[tuple[str, int, int], ...]
+
+    @property
+    def trailer(self) -> int:
+        """The bytes after the payload: the checksum (unless it sits in the header) and end bytes."""
+        return (0 if self.check_at else self.check_size) + len(self.end)
 
 
 FRAMINGS = (

@@ -31,6 +31,8 @@ def identity(message: BinaryMessage) -> str:
     id (and sub-id) in the other base (SkyTraq: 168; SiRF: 0x5D 0x12)."""
     if message.msg_class:
         return f"class 0x{message.class_number:02X} id 0x{message.msg_id:02X}"
+    if message.revision is not None:   # SBF: the header's id, revision and block number
+        return f"id 0x{message.revision << 13 | message.msg_id:04X}"
     if message.protocol == "sirf":   # the address gives it in decimal, as SiRF does
         return f"0x{message.msg_id:02X}" + (f" 0x{message.sub_id:02X}" if message.sub_id is not None else "")
     return f"{message.msg_id}" + (f" {message.sub_id}" if message.sub_id is not None else "")
@@ -109,7 +111,10 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             rows.append({"key": key, "layouts": [layout.camel for layout in m.layouts], "indent": len(key) + 9})
         files[f"python/{PACKAGE}/{protocol}_messages/__init__.py"] = env.get_template("python/binary_init.py.j2").render(
             header=header(spec, "#", [m.origin.file for m in others]), messages=others, rows=rows, name=name,
-            protocol=protocol, by_class=bool(others[0].msg_class))
+            protocol=protocol, told="class and id" if others[0].msg_class else "block number and revision"
+            if others[0].revision is not None else "id, and sub-id where the message has one",
+            told_short="class and id" if others[0].msg_class else "block number and revision"
+            if others[0].revision is not None else "id (and sub-id)")
     messages = [m for m in spec.binary if m.protocol == "ubx"]
     if not messages:
         return files

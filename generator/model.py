@@ -903,30 +903,37 @@ class BinaryMessage:
     examples: list[BinaryExample] = field(default_factory=list)
     class_number: int = 0       # derived from the protocol's classes
     sub_id: int | None = None   # a protocol without classes: the byte after the id (SkyTraq sub-id, SiRF SID)
+    revision: int | None = None  # SBF: the block's revision, told with its number in the header's id
     byte_order: str = "little"  # derived from the protocol's frame
+    header_key: bool = True     # derived: the key is in the frame's header (not the payload's first bytes)
 
     @property
     def address(self) -> str:
         """How documents and errors name it after the protocol: NAV-PVT (UBX, CASIC: class and
-        name), 0xA8 or 0x64 0x80 (SkyTraq: id and sub-id), MID 2 or MID 93 SID 18 (SiRF)."""
+        name), 0xA8 or 0x64 0x80 (SkyTraq: id and sub-id), MID 2 or MID 93 SID 18 (SiRF), 4007 rev 2
+        (SBF: block number and revision)."""
         if self.msg_class:
             return self.id.upper().replace("_", "-", 1)
+        if self.revision is not None:
+            return f"{self.msg_id} rev {self.revision}"
         if self.protocol == "sirf":
             return f"MID {self.msg_id}" + (f" SID {self.sub_id}" if self.sub_id is not None else "")
         return f"0x{self.msg_id:02X}" + (f" 0x{self.sub_id:02X}" if self.sub_id is not None else "")
 
     @property
     def key(self) -> tuple[int, ...]:
-        """The bytes that tell it in a frame: class and id, or id (and sub-id)."""
+        """What tells it in a frame: class and id, block number and revision (SBF), or id (and sub-id)."""
         if self.msg_class:
             return (self.class_number, self.msg_id)
+        if self.revision is not None:
+            return (self.msg_id, self.revision)
         return (self.msg_id,) if self.sub_id is None else (self.msg_id, self.sub_id)
 
     @property
     def prefix(self) -> int:
         """The bytes of `key` that open the payload (SkyTraq, SiRF: id and sub-id); UBX and CASIC
-        carry theirs in the header."""
-        return 0 if self.msg_class else len(self.key)
+        carry theirs in the header, SBF its block number and revision."""
+        return 0 if self.msg_class or self.header_key else len(self.key)
 
 
 # The bytes of a configuration value by the size code of its key id (bits 28-30): 1 a bit (in a

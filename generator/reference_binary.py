@@ -68,10 +68,17 @@ def _checksum(algorithm: str, data: bytes) -> bytes:
         padded = data + bytes(-len(data) % 4)
         total = sum(int.from_bytes(padded[i:i + 4], "little") for i in range(0, len(padded), 4))
         return (total % (1 << 32)).to_bytes(4, "little")
+    if algorithm == "crc16_ccitt":   # SBF: CRC-CCITT (polynomial 0x1021, initial 0), little endian
+        crc = 0
+        for byte in data:
+            crc ^= byte << 8
+            for _ in range(8):
+                crc = (crc << 1 ^ (0x1021 if crc & 0x8000 else 0)) & 0xFFFF
+        return crc.to_bytes(2, "little")
     raise PayloadError("bad_frame", f"no reference checksum {algorithm}")
 
 
-_CHECK_SIZE = {"fletcher8": 2, "xor8": 1, "sum15": 2, "sum32": 4}
+_CHECK_SIZE = {"fletcher8": 2, "xor8": 1, "sum15": 2, "sum32": 4, "crc16_ccitt": 2}
 
 
 def protocol_frame(spec: Spec, data: bytes) -> tuple[BinaryProtocol, dict[str, int], bytes]:
@@ -93,24 +100,32 @@ def protocol_frame(spec: Spec, data: bytes) -> tuple[BinaryProtocol, dict[str, i
         if (pos + width + 7) // 8 > len(data):
             raise PayloadError("bad_frame", f"a {name} frame is cut in its header")
         offsets[f["id"]] = pos // 8
+        first, last = pos // 8, (pos + width + 7) // 8
         if width % 8 == 0 and pos % 8 == 0:
-            header[f["id"]] = int.from_bytes(data[pos // 8:(pos + width) // 8], order)  # type: ignore[arg-type]
-        else:   # bits of a big-endian header, most significant first
-            first, last = pos // 8, (pos + width + 7) // 8
+            header[f["id"]] = int.from_bytes(data[first:last], order)  # type: ignore[arg-type]
+        elif order == "big":   # bits of a big-endian header, most significant first
             word = int.from_bytes(data[first:last], "big")
             header[f["id"]] = word >> (8 * last - pos - width) & ((1 << width) - 1)
+        else:   # of a little-endian one, least significant first
+            word = int.from_bytes(data[first:last], "little")
+            header[f["id"]] = word >> (pos - 8 * first) & ((1 << width) - 1)
         pos += width
     start = pos // 8
     offsets["payload"] = start
-    length = next(header[f["id"]] for f in frame["header"] if f.get("counts") == "payload")
+    counted = next(f for f in frame["header"] if f.get("counts"))
     algorithm = frame["checksum"]["algorithm"]
     end = bytes(frame.get("end", []))
-    size = start + length + _CHECK_SIZE[algorithm] + len(end)
-    if len(data) != size:
+    at = frame["checksum"].get("at")   # SBF: in the header, before what it covers
+    trailer = (0 if at else _CHECK_SIZE[algorithm]) + len(end)
+    length = header[counted["id"]] - (start + trailer if counted["counts"] == "frame" else 0)
+    size = start + length + trailer
+    if len(data) != size or length < 0:
         raise PayloadError("bad_frame", f"the length field says {length} payload bytes, the {name} frame has "
                            f"{len(data) - size + length}")
     body = data[offsets[frame["checksum"]["over"][0]]:start + length]
-    if _checksum(algorithm, body) + end != data[start + length:]:
+    sent = data[offsets[at]:offsets[at] + _CHECK_SIZE[algorithm]] + data[start + length:] if at \
+        else data[start + length:]
+    if _checksum(algorithm, body) + end != sent:
         raise PayloadError("bad_checksum", f"the {name} checksum or end bytes do not match")
     return protocol, header, data[start:start + length]
 
@@ -172,6 +187,13 @@ def decode(spec: Spec, frame: bytes) -> dict[str, Any]:
         message = message_of(spec, protocol.id, header["class"], header["id"])
         if message is None:
             return {"message": None, "class": header["class"], "id": header["id"], "payload": payload.hex()}
+        return _decode_payload(message, payload)
+    if not protocol.identity:   # SBF: the header's block number and revision tell the message
+        key = tuple(header[f["id"]] for f in protocol.frame["header"]
+                    if not f.get("counts") and "value" not in f and f["id"] != protocol.frame["checksum"].get("at"))
+        message = next((m for m in spec.binary if m.protocol == protocol.id and m.key == key), None)
+        if message is None:
+            return {"message": None, **dict(zip(("number", "revision"), key)), "payload": payload.hex()}
         return _decode_payload(message, payload)
     message = message_by_key(spec, protocol.id, payload)
     if message is None:

@@ -45,9 +45,11 @@ def resolve(spec: Spec) -> None:
         payload.applications = [a for a in spec.applications if set(a.carriers) & set(payload.types)]
     classes = {p.id: p.classes for p in spec.protocols}
     orders = {p.id: p.byte_order for p in spec.protocols}
+    in_payload = {p.id for p in spec.protocols if p.identity}   # SkyTraq, SiRF: the id opens the payload
     for message in spec.binary:
         message.class_number = classes.get(message.protocol, {}).get(message.msg_class, 0)
         message.byte_order = orders.get(message.protocol, "little")
+        message.header_key = message.protocol not in in_payload
         for layout in message.layouts:
             _place_bits(layout)
             for f in layout.fields + [part for f in layout.fields for part in f.parts]:

@@ -238,8 +238,8 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "A message of spec/binary/<protocol>/messages names a class of its protocol.yaml, its id starts with that "
          "class (nav_pvt), and no other message of the protocol has its class and id; a protocol without classes "
          "(SkyTraq, SiRF) tells a message by its id and `sub_id`, and one id without a sub-id takes every frame "
-         "of that id.",
-         "Correct `class`, `id`, `sub_id` or `message`."),
+         "of that id; SBF tells a block by its header's number and `revision`, each within its bits.",
+         "Correct `class`, `id`, `sub_id`, `revision` or `message`."),
     Rule("B002", "binary fields are byte fields",
          "The fields of a binary layout have byte types (u1..u8, i1..i8, r4, r8, x1..x4, ch, bytes, reserved); "
          "only a bitfield word (x1, x2, x4) has `parts`, each inside the word and overlapping no other; a 64-bit "

@@ -233,6 +233,7 @@ static const struct {
     {NMEA_SKYTRAQ, 0xA0, 0xA1, 0xFF, 2, 4, 3}, /* A0 A1 length(BE) payload XOR 0D 0A */
     {NMEA_SIRF, 0xA0, 0xA2, 0xFF, 2, 4, 4},    /* A0 A2 0-bit, 15-bit length(BE) payload sum15(BE) B0 B3 */
     {NMEA_CASIC, 0xBA, 0xCE, 0xFF, 2, 6, 4},   /* BA CE length(LE) class id payload sum32(LE) */
+    {NMEA_SBF, 0x24, 0x40, 0xFF, 2, 8, 0},     /* $ @ CRC(LE) id(LE) length(LE: the whole block) body */
 };
 
 /* The payload's length a frame's header gives. */
@@ -244,6 +245,8 @@ static size_t model_payload(nmea_protocol protocol, const unsigned char *b)
         return (size_t)b[4 - 2 * (protocol == NMEA_CASIC)] | (size_t)b[5 - 2 * (protocol == NMEA_CASIC)] << 8;
     case NMEA_RTCM3:
         return (size_t)(b[1] & 3) << 8 | b[2];
+    case NMEA_SBF: /* the whole block's length, less its header (wrapping when under it) */
+        return ((size_t)b[6] | (size_t)b[7] << 8) - 8;
     default: /* SkyTraq, SiRF (whose top bit, reserved and zero, makes the frame too long when set) */
         return (size_t)b[2] << 8 | b[3];
     }
@@ -277,6 +280,13 @@ static unsigned long model_checksum(nmea_protocol protocol, const unsigned char 
             c = (c + word) & 0xFFFFFFFFUL;
         }
         return (c & 0xFF) << 24 | (c >> 8 & 0xFF) << 16 | (c >> 16 & 0xFF) << 8 | c >> 24;
+    case NMEA_SBF: /* CRC-CCITT from the id on, sent little endian right after the sync */
+        for (i = 4; i < len; i++) {
+            c ^= (unsigned long)b[i] << 8;
+            for (bit = 0; bit < 8; bit++)
+                c = (c << 1 ^ (c & 0x8000 ? 0x1021 : 0)) & 0xFFFF;
+        }
+        return (c & 0xFF) << 8 | c >> 8;
     default:
         for (i = 0; i < len; i++) {
             c ^= (unsigned long)b[i] << 16;
@@ -316,12 +326,18 @@ static size_t model_sync(const char *data, size_t size, size_t i, size_t *length
         return i + sync;
     }
     frame = header + trailer + model_payload(protocol, b);
+    if (frame <= NMEA_MAX_FRAME && frame < header + trailer) { /* (SBF's length under its header's) */
+        model_binary(protocol, NMEA_FRAME_TOO_SHORT, data + i, sync);
+        return i + sync;
+    }
     if (frame > NMEA_MAX_FRAME || frame > left) {
         model_binary(protocol, frame > NMEA_MAX_FRAME ? NMEA_FRAME_TOO_LONG : NMEA_FRAME_CUT, data + i, sync);
         return i + sync;
     }
     for (k = frame - trailer; k < frame; k++)
         sent = sent << 8 | b[k];
+    if (protocol == NMEA_SBF)
+        sent = (unsigned long)b[2] << 8 | b[3];
     if (sent != model_checksum(protocol, b, frame - trailer)) {
         model_binary(protocol, NMEA_FRAME_BAD_CHECKSUM, data + i, sync);
         return i + sync;
@@ -339,7 +355,8 @@ static void model_frame(const char *data, size_t size)
     for (i = 0; i < size; i++) {
         char c = data[i];
         size_t after;
-        if (((unsigned char)c == 0xB5 || (unsigned char)c == 0xD3 || (unsigned char)c == 0xA0 || (unsigned char)c == 0xBA)
+        if (((unsigned char)c == 0xB5 || (unsigned char)c == 0xD3 || (unsigned char)c == 0xA0 || (unsigned char)c == 0xBA
+             || c == '$')
             && tag == OUTSIDE
             && (after = model_sync(data, size, i, &length, &start)) != 0) {
             i = after - 1;

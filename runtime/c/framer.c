@@ -8,10 +8,12 @@
    start no frame of any protocol are the line's) and its checksum decides (runtime.h). */
 
 /* The bytes that end a line (CR, LF), start a new one ('$', '!'), open or close a TAG block, or
-   may start a binary frame (the first sync byte of a protocol: 4). */
-static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2, ['\\'] = 3,
+   may start a binary frame (the first sync byte of a protocol: 4; '$' when it starts SBF's too). */
+static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['!'] = 2, ['\\'] = 3,
 #ifndef NMEA_NO_BINARY_FRAMES
-                                                 NMEA_FRAME_SYNCS
+                                                 ['$'] = NMEA_FRAME_DOLLAR, NMEA_FRAME_SYNCS
+#else
+                                                 ['$'] = 2
 #endif
 };
 
@@ -20,6 +22,10 @@ enum { FRAMER_OUTSIDE, FRAMER_IN_TAG, FRAMER_AFTER_TAG };
 
 /* What framer_scan stops at besides a line's end (1) and the next line's start (2). */
 enum { FRAMER_SYNC = 3 };
+
+#ifndef NMEA_NO_BINARY_FRAMES
+static unsigned frame_protocol(unsigned char first, unsigned char next);
+#endif
 
 void nmea_framer_init(nmea_framer *f)
 {
@@ -77,7 +83,10 @@ static const char *framer_scan(nmea_framer *f, const char *p, const char *end, s
             if (!LINE_BOUNDARY[(unsigned char)*q])
                 continue; /* the common byte, decided without a call */
 #ifndef NMEA_NO_BINARY_FRAMES
-            if (LINE_BOUNDARY[(unsigned char)*q] == 4) {
+            /* a first sync byte, unless the next byte, in the chunk, starts no frame with it: then
+               it is the line's ('$' starts the next one) */
+            if (LINE_BOUNDARY[(unsigned char)*q] == 4 &&
+                (q + 1 == end || frame_protocol((unsigned char)*q, (unsigned char)q[1]) != 0)) {
                 *boundary = FRAMER_SYNC;
                 return q;
             }
@@ -155,10 +164,10 @@ static unsigned frame_protocol(unsigned char first, unsigned char next)
     return 0;
 }
 
-/* The bytes after the payload: checksum and end bytes. */
+/* The bytes after the payload: the checksum (unless it sits in the header) and end bytes. */
 static size_t frame_trailer_len(const nmea_framing *p)
 {
-    return (size_t)p->check_size + p->end_len;
+    return (size_t)(p->check_at ? 0 : p->check_size) + p->end_len;
 }
 
 /* The frame's bytes, sync to end, from its header. */
@@ -167,7 +176,7 @@ static size_t frame_size(const nmea_framing *p, const unsigned char *h)
     size_t length = h[p->length_at];
     if (p->length_size == 2)
         length = p->big_endian ? length << 8 | h[p->length_at + 1] : length | (size_t)h[p->length_at + 1] << 8;
-    return p->header + (length & p->length_mask) + frame_trailer_len(p);
+    return (length & p->length_mask) + p->length_adds;
 }
 
 /* The checksum of a frame's `len` bytes before its checksum, as it is sent read as a big-endian
@@ -176,7 +185,7 @@ static unsigned long frame_checksum(const nmea_framing *p, const unsigned char *
 {
     unsigned long sum = 0;
     size_t i = p->check_from;
-#ifdef NMEA_FRAMING_CRC24Q
+#if defined(NMEA_FRAMING_CRC24Q) || defined(NMEA_FRAMING_CRC16_CCITT)
     unsigned bit;
 #endif
     switch (p->checksum) {
@@ -216,6 +225,15 @@ static unsigned long frame_checksum(const nmea_framing *p, const unsigned char *
                 sum = sum & 0x800000 ? (sum << 1) ^ 0x1864CFB : sum << 1;
         }
         return sum & 0xFFFFFF;
+#endif
+#ifdef NMEA_FRAMING_CRC16_CCITT
+    case NMEA_CHECKSUM_CRC16_CCITT: /* polynomial 0x1021, initial value 0; sent little endian */
+        for (; i < len; i++) {
+            sum ^= (unsigned long)frame[i] << 8;
+            for (bit = 0; bit < 8; bit++)
+                sum = sum & 0x8000 ? ((sum << 1) ^ 0x1021) & 0xFFFF : sum << 1 & 0xFFFF;
+        }
+        return (sum & 0xFF) << 8 | sum >> 8;
 #endif
     default:
         return sum;
@@ -258,13 +276,18 @@ static bool frame_byte(nmea_framer *f, unsigned char c, nmea_framed *out)
             return frame_reject(f, NMEA_FRAME_NUL_HEADER, out);
         if (f->frame_size > NMEA_MAX_FRAME)
             return frame_reject(f, NMEA_FRAME_TOO_LONG, out);
-    } else if (f->frame_len == f->frame_size) {
+        if (f->frame_size < p->header + frame_trailer_len(p)) /* a length that counts the whole frame */
+            return frame_reject(f, NMEA_FRAME_TOO_SHORT, out);
+    }
+    if (f->frame_len == f->frame_size) {
         body = f->frame_size - frame_trailer_len(p);
         out->computed = frame_checksum(p, f->frame, body);
         for (i = 0; i < p->end_len; i++)
             out->computed = out->computed << 8 | p->end[i];
-        for (out->sent = 0; body < f->frame_size; body++)
-            out->sent = out->sent << 8 | f->frame[body];
+        for (out->sent = 0, i = 0; i < p->check_size; i++) /* the checksum, then the end bytes */
+            out->sent = out->sent << 8 | f->frame[(p->check_at ? p->check_at : body) + i];
+        for (i = 0; i < p->end_len; i++)
+            out->sent = out->sent << 8 | f->frame[f->frame_size - p->end_len + i];
         if (out->sent != out->computed)
             return frame_reject(f, NMEA_FRAME_BAD_CHECKSUM, out);
         out->ptr = (const char *)f->frame;
@@ -272,6 +295,7 @@ static bool frame_byte(nmea_framer *f, unsigned char c, nmea_framed *out)
         out->protocol = (nmea_protocol)f->protocol;
         out->error = NMEA_FRAME_OK;
         f->frame_len = 0;
+        f->frame_size = 0; /* (a smaller frame before the next one's header is in must not end it) */
         return true;
     }
     return line;
@@ -291,7 +315,8 @@ static bool framer_byte(nmea_framer *f, char byte, nmea_framed *out)
         framer_resume(f); /* a '$' handed on last starts the line the frame may end */
         f->frame[0] = c;
         f->frame_len = 1;
-        return false;
+        /* a '$' ends the line under way whether it starts a frame or a sentence */
+        return c == '$' && framer_end_line(f, out);
     }
     return framer_line_byte(f, byte, out);
 }
@@ -361,7 +386,8 @@ bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_frame
 #ifndef NMEA_NO_BINARY_FRAMES
         if (q < end) { /* a first sync byte: the line so far is kept, the frame starts */
             (*len)--;
-            (void)framer_byte(f, *(*data)++, out);
+            if (framer_byte(f, *(*data)++, out)) /* ('$': after the line it ends) */
+                return true;
         }
     }
 #endif

@@ -338,11 +338,13 @@ typedef struct {
 #define NMEA_MAX_FRAME 2048
 
 /** Why what began like a binary frame is not one (NMEA_FRAME_OK: it is one). */
-typedef enum { NMEA_FRAME_OK, NMEA_FRAME_BAD_CHECKSUM, NMEA_FRAME_TOO_LONG, NMEA_FRAME_NUL_HEADER, NMEA_FRAME_CUT } nmea_frame_error;
+typedef enum { NMEA_FRAME_OK, NMEA_FRAME_BAD_CHECKSUM, NMEA_FRAME_TOO_LONG, NMEA_FRAME_NUL_HEADER, NMEA_FRAME_CUT,
+               NMEA_FRAME_TOO_SHORT } nmea_frame_error;
 
 /** The checksums of binary frames: Fletcher-8 (two 8-bit running sums), XOR-8, the 15-bit sum of
-    the bytes, the 32-bit sum of their little-endian words, CRC-24Q (spec/schema/binary_protocol). */
-typedef enum { NMEA_CHECKSUM_FLETCHER8, NMEA_CHECKSUM_XOR8, NMEA_CHECKSUM_SUM15, NMEA_CHECKSUM_SUM32, NMEA_CHECKSUM_CRC24Q } nmea_checksum_kind;
+    the bytes, the 32-bit sum of their little-endian words, CRC-24Q, CRC-CCITT (spec/schema/binary_protocol). */
+typedef enum { NMEA_CHECKSUM_FLETCHER8, NMEA_CHECKSUM_XOR8, NMEA_CHECKSUM_SUM15, NMEA_CHECKSUM_SUM32, NMEA_CHECKSUM_CRC24Q,
+               NMEA_CHECKSUM_CRC16_CCITT } nmea_checksum_kind;
 
 /** The framing of a binary protocol (spec/binary/<protocol>/protocol.yaml): a row of nmea_framings,
     which the generator writes (runtime/c/framings.c). Offsets count from the first sync byte. */
@@ -354,16 +356,18 @@ typedef struct {
     unsigned char length_at;    /* the length field, big or little endian, of 1 or 2 bytes */
     unsigned char length_size;
     unsigned char big_endian;
-    unsigned short length_mask; /* the field's bits that count the payload's bytes */
+    unsigned short length_mask; /* the field's bits that are the length */
     unsigned char header;       /* bytes before the payload, sync included */
+    unsigned char length_adds;  /* the frame's bytes beyond what the length counts (0: it counts them all) */
     unsigned char checksum;     /* nmea_checksum_kind, from byte check_from to the payload's end */
     unsigned char check_from;
-    unsigned char check_size;   /* the checksum's bytes after the payload */
+    unsigned char check_at;     /* where the checksum sits in the header; 0: after the payload */
+    unsigned char check_size;   /* the checksum's bytes */
     unsigned char end[2];       /* the bytes after it that end every frame (end_len of them) */
     unsigned char end_len;
     struct {
         const char *name;       /* NULL: none */
-        unsigned short bit;     /* from the first sync byte, most significant bit first */
+        unsigned short bit;     /* from the first sync byte, most significant bit first (least in a little-endian frame) */
         unsigned char bits;
     } identity[2];              /* the fields that tell the frame's message ("class", "id") */
 } nmea_framing;

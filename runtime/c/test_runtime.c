@@ -219,7 +219,7 @@ static void test_error_kind_names(void)
 static size_t add_line(char *out, size_t used, size_t cap, nmea_framed line)
 {
 #ifndef NMEA_NO_BINARY_FRAMES
-    static const char *const reasons[] = {"", " bad_checksum", " too_long", " nul_header", " cut"};
+    static const char *const reasons[] = {"", " bad_checksum", " too_long", " nul_header", " cut", " too_short"};
     if (line.protocol != NMEA_LINE)
         return used + (size_t)snprintf(out + used, cap - used, "%s%s|", nmea_framings[line.protocol - 1].name,
                                        reasons[line.error]);
@@ -298,6 +298,12 @@ static void test_framer_binary(void)
 #ifndef NMEA_NO_TAG_BLOCKS
     CHECK_BINARY("\\s:\xb5\x62*00\\$A", "\\s:\xb5\x62*00\\$A|");
 #endif
+    /* SBF (ReceiverTime): "$@" starts a block, any other '$' a sentence; its CRC wrong; a length
+       under its header's 8 bytes */
+#define SBF "$@\xbd\x13\x1a\x17\x18\x00\x70\x2f\xcb\x1c\x3f\x09\x19\x05\x17\x0e\x0b\x00\x12\x07\x00\x00"
+    CHECK_BINARY("$GPGGA,1" SBF "$GP\n" SBF, "$GPGGA,1|sbf|$GP|sbf|");
+    CHECK_BINARY("$@\xbd\x13\x1a\x17\x0c\x00" "ab$A,1\n", "sbf bad_checksum|\xbd\x13\x1a\x17\x0c\x00" "ab|$A,1|");
+    CHECK_BINARY("$@\x01\x02\x03\x04\x04\x00$A\n", "sbf too_short|\x01\x02\x03\x04\x04\x00|$A|");
     CHECK_BINARY("\xb5\x62\x01\x02\x00\x08" "ab", "ubx too_long|\x01\x02\x00\x08" "ab|"); /* 2,056 bytes */
 #undef ACK
 #undef RTCM

@@ -372,6 +372,7 @@ static void emit_frame(tool *t, const nmea_framed *item)
     const nmea_framing *framing = &nmea_framings[item->protocol - 1];
     const char *protocol = framing->name;
     size_t n, i, width = (size_t)framing->check_size + framing->end_len, at, extra = 0;
+    size_t trailer = (size_t)(framing->check_at ? 0 : framing->check_size) + framing->end_len;
     unsigned long value;
     unsigned bit;
     char *out;
@@ -392,12 +393,16 @@ static void emit_frame(tool *t, const nmea_framed *item)
         n = (size_t)sprintf(out, "{\"ok\":true,\"protocol\":\"%s\",", protocol);
         for (i = 0; i < 2 && framing->identity[i].name; i++) { /* null past the payload */
             at = framing->identity[i].bit;
-            if (at + framing->identity[i].bits > 8 * (item->len - width)) {
+            if (at + framing->identity[i].bits > 8 * (item->len - trailer)) {
                 n += (size_t)sprintf(out + n, "\"%s\":null,", framing->identity[i].name);
                 continue;
             }
-            for (value = 0, bit = 0; bit < framing->identity[i].bits; bit++, at++)
-                value = value << 1 | (unsigned long)(b[at / 8] >> (7 - at % 8) & 1);
+            if (framing->big_endian) /* bits most significant first */
+                for (value = 0, bit = 0; bit < framing->identity[i].bits; bit++, at++)
+                    value = value << 1 | (unsigned long)(b[at / 8] >> (7 - at % 8) & 1);
+            else /* least significant first */
+                for (value = 0, bit = 0; bit < framing->identity[i].bits; bit++, at++)
+                    value |= (unsigned long)(b[at / 8] >> (at % 8) & 1) << bit;
             n += (size_t)sprintf(out + n, "\"%s\":%lu,", framing->identity[i].name, value);
         }
         n += (size_t)sprintf(out + n, "\"length\":%lu,\"frame\":\"", (unsigned long)item->len);
@@ -406,6 +411,7 @@ static void emit_frame(tool *t, const nmea_framed *item)
                             protocol, item->error == NMEA_FRAME_BAD_CHECKSUM ? "bad_checksum"
                                       : item->error == NMEA_FRAME_TOO_LONG   ? "too_long"
                                       : item->error == NMEA_FRAME_NUL_HEADER ? "nul_header"
+                                      : item->error == NMEA_FRAME_TOO_SHORT  ? "too_short"
                                                                              : "cut");
         if (item->error == NMEA_FRAME_BAD_CHECKSUM) {
             n += (size_t)sprintf(out + n, "checksum");
@@ -417,6 +423,9 @@ static void emit_frame(tool *t, const nmea_framed *item)
                                      upper[item->computed >> 8 * i & 15]);
         } else if (item->error == NMEA_FRAME_TOO_LONG) {
             n += (size_t)sprintf(out + n, "frame is %lu bytes, the limit is %d", (unsigned long)item->size, NMEA_MAX_FRAME);
+        } else if (item->error == NMEA_FRAME_TOO_SHORT) {
+            n += (size_t)sprintf(out + n, "frame is %lu bytes, the least is %lu", (unsigned long)item->size,
+                                 (unsigned long)(framing->header + trailer));
         } else if (item->error == NMEA_FRAME_NUL_HEADER) {
             n += (size_t)sprintf(out + n, "the header after the sync is NUL bytes");
         } else {

@@ -1,12 +1,14 @@
 """The frames of the binary protocols besides UBX whose messages the spec types (SkyTraq, SiRF,
-CASIC: spec/binary/<protocol>/messages) and the base of their generated message classes
+CASIC, SBF: spec/binary/<protocol>/messages) and the base of their generated message classes
 (nmeaspec.<protocol>_messages).
 
 One framing for all of them, read from framings.FRAMINGS (spec/binary/<protocol>/protocol.yaml):
-the sync bytes, the header (the length field, in the protocol's byte order; CASIC's class and id),
-the payload, the checksum (stream.CHECKSUMS) and the end bytes. A message is told by its key: the
-class and id of the header (CASIC), or the payload's first byte, the message id, and for some ids a
-second, the sub-id (SkyTraq) or SID (SiRF); the layout's fields follow the key. A message is a
+the sync bytes, the header (the length field, in the protocol's byte order, counting the payload or
+the whole frame; CASIC's class and id, SBF's checksum and block number and revision), the payload,
+the checksum (stream.CHECKSUMS; after the payload, or in the header: SBF) and the end bytes. A
+message is told by its key: the class and id of the header (CASIC), the block number and revision
+of the header (SBF), or the payload's first byte, the message id, and for some ids a second, the
+sub-id (SkyTraq) or SID (SiRF); the layout's fields follow the key. A message is a
 ubx.Message (one reader and one writer of byte layouts, in the protocol's byte order) that frames
 itself with its protocol's framing.
 """
@@ -15,7 +17,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cache
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Literal
 
 from . import ubx
 from .framings import FRAMINGS, Framing
@@ -31,8 +33,32 @@ def framing(protocol: str) -> Framing:
 
 
 def _header_key(f: Framing) -> bool:
-    """Whether the header carries the message's key (CASIC: class and id) rather than the payload."""
+    """Whether the header carries the message's key (CASIC: class and id; SBF: number and revision)
+    rather than the payload."""
     return all(at // 8 < f.header for _, at, _ in f.identity)
+
+
+def _key_of(f: Framing, header: bytes) -> tuple[int, ...]:
+    """The identity fields of a header, their bits numbered in the protocol's byte order."""
+    from .stream import _bits
+
+    return tuple(_bits(header, at, bits, f.big_endian) for _, at, bits in f.identity)
+
+
+def _frame(f: Framing, header: bytearray, body: bytes) -> bytes:
+    """A whole frame of a header (sync and key in place) and the body after it: its length field
+    and checksum set, its end bytes added."""
+    from .stream import CHECKSUMS  # the checksums of every framing
+
+    size = len(header) + len(body) + f.trailer
+    out = header + body
+    out[f.length_at:f.length_at + f.length_size] = ((size - f.length_adds) & f.length_mask).to_bytes(
+        f.length_size, "big" if f.big_endian else "little")
+    checksum = CHECKSUMS[f.checksum](bytes(out[f.check_from:]))
+    if f.check_at:
+        out[f.check_at:f.check_at + f.check_size] = checksum
+        return bytes(out) + f.end
+    return bytes(out) + checksum + f.end
 
 
 @dataclass(frozen=True)
@@ -52,16 +78,15 @@ class Frame:
     def encode(self) -> bytes:
         f = framing(self.protocol)
         in_header = _header_key(f)
-        body = self.payload if in_header else bytes(self.key) + self.payload
-        out = bytearray(f.sync) + bytearray(f.header - len(f.sync)) + body
-        out[f.length_at:f.length_at + f.length_size] = (len(body) & f.length_mask).to_bytes(
-            f.length_size, "big" if f.big_endian else "little")
-        if in_header:
-            for (_, at, _), value in zip(f.identity, self.key):
-                out[at // 8] = value
-        from .stream import CHECKSUMS  # the checksums of every framing
-
-        return bytes(out) + CHECKSUMS[f.checksum](bytes(out[f.check_from:])) + f.end
+        header = bytearray(f.sync) + bytearray(f.header - len(f.sync))
+        if in_header:  # each identity field's bits, in the protocol's byte order
+            for (_, at, bits), value in zip(f.identity, self.key):
+                first, last = at // 8, (at + bits + 7) // 8
+                order: Literal["big", "little"] = "big" if f.big_endian else "little"
+                shift = 8 * last - at - bits if f.big_endian else at - 8 * first
+                word = int.from_bytes(header[first:last], order) & ~(((1 << bits) - 1) << shift)
+                header[first:last] = (word | (value & ((1 << bits) - 1)) << shift).to_bytes(last - first, order)
+        return _frame(f, header, self.payload if in_header else bytes(self.key) + self.payload)
 
 
 def decode_frame(protocol: str, data: bytes) -> tuple[bytes, bytes]:
@@ -75,19 +100,17 @@ def decode_frame(protocol: str, data: bytes) -> tuple[bytes, bytes]:
     if len(data) < f.header:
         raise NmeaError("short_frame", f"a {name} header needs {f.header} bytes, there are {len(data)}", name)
     length = int.from_bytes(data[f.length_at:f.length_at + f.length_size], "big" if f.big_endian else "little")
-    length &= f.length_mask
-    size = f.header + length + f.check_size + len(f.end)
-    if len(data) != size:
-        kind = "short_frame" if len(data) < size else "long_frame"
+    size = (length & f.length_mask) + f.length_adds
+    if len(data) != size or size < f.header + f.trailer:
+        kind = "short_frame" if len(data) < size or size < f.header + f.trailer else "long_frame"
         raise NmeaError(kind, f"the length field says {size} bytes, the frame has {len(data)}", name)
-    from .stream import CHECKSUMS
+    from .stream import _framing
 
-    body = data[:size - f.check_size - len(f.end)]
-    expected = CHECKSUMS[f.checksum](body[f.check_from:]) + f.end
-    if data[len(body):] != expected:
-        raise NmeaError("bad_checksum", f"checksum and end {data[len(body):].hex(' ').upper()}, computed "
+    sent, expected = _framing(protocol).check(data)
+    if sent != expected:
+        raise NmeaError("bad_checksum", f"checksum and end {sent.hex(' ').upper()}, computed "
                         f"{expected.hex(' ').upper()}", name)
-    return data[:f.header], data[f.header:len(body)]
+    return data[:f.header], data[f.header:size - f.trailer]
 
 
 @dataclass(kw_only=True)
@@ -119,7 +142,8 @@ class Unknown:
         return Frame(self.protocol, self.key, self.payload).encode()
 
     def to_dict(self) -> dict[str, Any]:
-        keys = ("class", "id") if len(self.key) == 2 and _header_key(framing(self.protocol)) else ("id",)
+        f = framing(self.protocol)
+        keys = tuple(name for name, _, _ in f.identity) if len(self.key) == 2 and _header_key(f) else ("id",)
         return {"message": None, **dict(zip(keys, self.key)), "payload": self.payload.hex()}
 
 
@@ -132,7 +156,7 @@ def message(by_key: ByKey, protocol: str, header: bytes, payload: bytes) -> Mess
     has, else the main one; an Unknown when the spec describes no such key."""
     f = framing(protocol)
     if _header_key(f):
-        key = tuple(header[at // 8] for _, at, _ in f.identity)
+        key = _key_of(f, header)
         rest = payload
     else:
         key = tuple(payload[:2])

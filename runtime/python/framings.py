@@ -19,24 +19,35 @@ class Framing(NamedTuple):
     length_at: int  # the length field: its first byte, from the sync
     length_size: int  # its bytes
     big_endian: bool
-    length_mask: int  # the bits that are the length of the payload
+    length_mask: int  # the bits that are the length
     header: int  # bytes before the payload, sync included
-    checksum: str  # fletcher8, xor8, sum15, sum32, crc24q
+    length_adds: int  # the frame's bytes beyond what its length counts (0: the length counts them all)
+    checksum: str  # fletcher8, xor8, sum15, sum32, crc24q, crc16_ccitt
     check_from: int  # the first byte the checksum covers (it ends with the payload)
-    check_size: int  # the checksum's bytes after the payload
+    check_at: int  # where the checksum sits in the header; 0: after the payload
+    check_size: int  # the checksum's bytes
     end: bytes  # the bytes after the checksum that end the frame
-    identity: tuple[tuple[str, int, int], ...]  # (name, bit offset from the sync, bits): what tells the message
+    # (name, bit offset from the sync, bits): what tells the message; the bits numbered most
+    # significant first in a big-endian frame, least significant first in a little-endian one
+    identity: tuple[tuple[str, int, int], ...]
+
+    @property
+    def trailer(self) -> int:
+        """The bytes after the payload: the checksum (unless it sits in the header) and end bytes."""
+        return (0 if self.check_at else self.check_size) + len(self.end)
 
 
 FRAMINGS = (
-    Framing('casic', b"\xba\xce", 0xCE, 0xFF, 2, 2, False, 0xFFFF, 6,
-            'sum32', 2, 4, b"", (('class', 32, 8), ('id', 40, 8))),
-    Framing('rtcm3', b"\xd3", 0x00, 0xFC, 1, 2, True, 0xFFFF, 3,
-            'crc24q', 0, 3, b"", (('message_number', 24, 12),)),
-    Framing('sirf', b"\xa0\xa2", 0xA2, 0xFF, 2, 2, True, 0xFFFF, 4,
-            'sum15', 4, 2, b"\xb0\xb3", (('id', 32, 8),)),
-    Framing('skytraq', b"\xa0\xa1", 0xA1, 0xFF, 2, 2, True, 0xFFFF, 4,
-            'xor8', 4, 1, b"\x0d\x0a", (('id', 32, 8),)),
-    Framing('ubx', b"\xb5\x62", 0x62, 0xFF, 4, 2, False, 0xFFFF, 6,
-            'fletcher8', 2, 2, b"", (('class', 16, 8), ('id', 24, 8))),
+    Framing('casic', b"\xba\xce", 0xCE, 0xFF, 2, 2, False, 0xFFFF, 6, 10,
+            'sum32', 2, 0, 4, b"", (('class', 32, 8), ('id', 40, 8))),
+    Framing('rtcm3', b"\xd3", 0x00, 0xFC, 1, 2, True, 0xFFFF, 3, 6,
+            'crc24q', 0, 0, 3, b"", (('message_number', 24, 12),)),
+    Framing('sbf', b"\x24\x40", 0x40, 0xFF, 6, 2, False, 0xFFFF, 8, 0,
+            'crc16_ccitt', 4, 2, 2, b"", (('number', 32, 13), ('revision', 45, 3))),
+    Framing('sirf', b"\xa0\xa2", 0xA2, 0xFF, 2, 2, True, 0xFFFF, 4, 8,
+            'sum15', 4, 0, 2, b"\xb0\xb3", (('id', 32, 8),)),
+    Framing('skytraq', b"\xa0\xa1", 0xA1, 0xFF, 2, 2, True, 0xFFFF, 4, 7,
+            'xor8', 4, 0, 1, b"\x0d\x0a", (('id', 32, 8),)),
+    Framing('ubx', b"\xb5\x62", 0x62, 0xFF, 4, 2, False, 0xFFFF, 6, 8,
+            'fletcher8', 2, 0, 2, b"", (('class', 16, 8), ('id', 24, 8))),
 )

@@ -80,6 +80,16 @@ def _sum32(data: bytes) -> bytes:
     return (total & 0xFFFFFFFF).to_bytes(4, "little")
 
 
+def _crc16_ccitt(data: bytes) -> bytes:
+    """CRC-CCITT of SBF (polynomial 0x1021, initial value 0, no reflection), little endian."""
+    crc = 0
+    for byte in data:
+        crc ^= byte << 8
+        for _ in range(8):
+            crc = (crc << 1) ^ 0x1021 if crc & 0x8000 else crc << 1
+    return (crc & 0xFFFF).to_bytes(2, "little")
+
+
 # The checksums of binary frames (spec/schema/binary_protocol.schema.json): the bytes sent.
 CHECKSUMS: dict[str, Callable[[bytes], bytes]] = {
     "fletcher8": _fletcher8,
@@ -87,6 +97,7 @@ CHECKSUMS: dict[str, Callable[[bytes], bytes]] = {
     "sum15": lambda data: (sum(data) & 0x7FFF).to_bytes(2, "big"),
     "sum32": _sum32,
     "crc24q": crc24q,
+    "crc16_ccitt": _crc16_ccitt,
 }
 
 
@@ -114,11 +125,15 @@ class _Framing:
         """The frame's bytes, sync to end, from its header."""
         f = self.spec
         length = int.from_bytes(header[f.length_at:f.length_at + f.length_size], "big" if f.big_endian else "little")
-        return f.header + (length & f.length_mask) + f.check_size + len(f.end)
+        return (length & f.length_mask) + f.length_adds
 
-    def check(self, body: bytes) -> bytes:
-        """The checksum and end bytes a frame less them must end with."""
-        return self.checksum(body[self.spec.check_from:]) + self.spec.end
+    def check(self, frame: bytes) -> tuple[bytes, bytes]:
+        """A whole frame's checksum and end bytes as sent, and as they must be."""
+        f = self.spec
+        body = len(frame) - f.trailer
+        at = f.check_at or body
+        sent = frame[at:at + f.check_size] + frame[len(frame) - len(f.end):]
+        return sent, self.checksum(frame[f.check_from:body]) + f.end
 
 
 @cache
@@ -134,9 +149,12 @@ def _framing(name: str) -> _Framing:
     return next(f for fs in _framings().values() for f in fs if f.protocol == name)
 
 
-def _bits(data: bytes, at: int, bits: int) -> int:
-    """The `bits` bits of `data` from bit `at`, most significant first."""
+def _bits(data: bytes, at: int, bits: int, big_endian: bool = True) -> int:
+    """The `bits` bits of `data` from bit `at`, numbered most significant first (big endian) or
+    least significant first (little endian)."""
     first, last = at // 8, (at + bits + 7) // 8
+    if not big_endian:
+        return int.from_bytes(data[first:last], "little") >> (at - 8 * first) & ((1 << bits) - 1)
     return int.from_bytes(data[first:last], "big") >> (8 * last - at - bits) & ((1 << bits) - 1)
 
 
@@ -154,8 +172,8 @@ class BinaryFrame:
         with the message's name, null where the spec does not describe it; RTCM 3: the message
         number, null when its payload is shorter; framings.py), each null past the payload."""
         spec, data = _framing(self.protocol).spec, self.data
-        body = 8 * (len(data) - spec.check_size - len(spec.end))
-        out: dict[str, Any] = {name: _bits(data, at, bits) if at + bits <= body else None
+        body = 8 * (len(data) - spec.trailer)
+        out: dict[str, Any] = {name: _bits(data, at, bits, spec.big_endian) if at + bits <= body else None
                                for name, at, bits in spec.identity}
         if self.protocol == "ubx":
             from . import ubx
@@ -168,8 +186,8 @@ class BinaryFrame:
     def to_json(self) -> str:
         """The `stream` verb's object of the frame (json.md, "Binary frames in stream")."""
         data, spec = self.data, _framing(self.protocol).spec
-        body = 8 * (len(data) - spec.check_size - len(spec.end))
-        identity = "".join(f'"{name}":{_bits(data, at, bits) if at + bits <= body else "null"},'
+        body = 8 * (len(data) - spec.trailer)
+        identity = "".join(f'"{name}":{_bits(data, at, bits, spec.big_endian) if at + bits <= body else "null"},'
                            for name, at, bits in spec.identity)
         return f'{{"ok":true,"protocol":"{self.protocol}",{identity}"length":{len(data)},"frame":"{data.hex()}"}}'
 
@@ -192,7 +210,8 @@ class BinaryFrame:
 @dataclass(frozen=True, slots=True)
 class BadFrame:
     """What looked like the start of a binary frame and is not one: its protocol, why (`bad_checksum`,
-    `too_long`, `nul_header`, `cut`: the stream ended inside it), a message, and its sync bytes; the
+    `too_long`, `too_short` (a length that counts the whole frame, shorter than its header),
+    `nul_header`, `cut`: the stream ended inside it), a message, and its sync bytes; the
     framer reads the bytes after them again."""
 
     protocol: str
@@ -297,10 +316,12 @@ class Framer:
             if self._size > self.max_frame:
                 out.append(self._bad("too_long", f"frame is {self._size} bytes, the limit is {self.max_frame}"))
                 return self._rest()
-        elif len(frame) == self._size:
-            trailer = framing.spec.check_size + len(framing.spec.end)
-            body, sent = bytes(frame[:-trailer]), bytes(frame[-trailer:])
-            computed = framing.check(body)
+            if self._size < framing.spec.header + framing.spec.trailer:  # a length that counts the whole frame
+                out.append(self._bad("too_short", f"frame is {self._size} bytes, the least is "
+                                     f"{framing.spec.header + framing.spec.trailer}"))
+                return self._rest()
+        if len(frame) == self._size:
+            sent, computed = framing.check(bytes(frame))
             if sent != computed:
                 out.append(self._bad("bad_checksum", f"checksum {sent.hex(' ').upper()}, computed "
                                      f"{computed.hex(' ').upper()}"))

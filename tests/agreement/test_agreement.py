@@ -312,15 +312,19 @@ def test_stream_verb() -> None:
     agreed(["stream", "--require-checksum"], data)
 
 
-# gpsd's logs of every protocol spec/binary describes, in tests/data/<protocol>
+# gpsd's logs of every protocol spec/binary describes, in tests/data/<protocol> (pysbf2's that mix
+# NMEA and RTCM 3 with SBF among them)
 BINARY_LOGS = [log for name in sorted(p.parent.name for p in (ROOT / "spec" / "binary").glob("*/protocol.yaml"))
                for log in sorted((ROOT / "tests" / "data" / name).glob("*.log"))]
+# pysbf2's logs of SBF alone, run as one input (a tool's start costs more than their bytes)
+SBF_LOGS = sorted((ROOT / "tests" / "data" / "sbf").glob("*.sbf"))
 ACK = bytes.fromhex("b562 0501 0200 0600 0e37")  # UBX ACK-ACK of CFG-PRT
 RTCM = bytes.fromhex("d3 0002 3ee0 6d7f60")  # RTCM 3, message number 0x3EE
 GGA = b"$GPGGA,1*00\r\n"
 SKY = bytes.fromhex("a0a1 0002 0201 03 0d0a")  # SkyTraq message 0x02, body 01: XOR 03
 SIRF = bytes.fromhex("a0a2 0002 8401 0085 b0b3")  # SiRF MID 132, body 01: sum 0x85
 CASIC = bytes.fromhex("bace 0000 0601 00000601")  # CASIC class 0x06, id 0x01, no payload
+SBF = bytes.fromhex("2440 bd13 1a17 1800 702fcb1c3f091905170e0b0012070000")  # SBF ReceiverTime (5914, revision 0)
 # binary bytes between sentences; a '$' and a line ending in a payload; a bad checksum; frames cut
 # by a sentence and by the end; sync bytes that start no frame; a frame in a bad one; one longer
 # than the readers hold; none in a TAG block
@@ -332,19 +336,24 @@ BINARY_CASES = (GGA + ACK + GGA + RTCM + b"$GPGGA" + ACK + b",1*00\r\n"
                 # SkyTraq, SiRF and CASIC: whole; checksum or end bytes wrong; SiRF's reserved bit
                 # set (too long); A0 starting neither
                 + SKY + GGA + SKY[:-3] + b"\x04\r\n" + GGA + SIRF + SIRF[:-1] + b"\xb4" + GGA + CASIC
-                + CASIC[:-1] + b"\x02" + GGA + b"\xa0\xa2\x80" + SIRF[3:] + GGA + b"\xa0\xa3" + GGA + ACK[:7])
+                + CASIC[:-1] + b"\x02" + GGA + b"\xa0\xa2\x80" + SIRF[3:] + GGA + b"\xa0\xa3" + GGA
+                # SBF: whole, right after a sentence's text; its CRC wrong before a sentence; a length
+                # under its header's 8 bytes; cut by a sentence; "$@" in a TAG block
+                + b"$GPGGA,2" + SBF + GGA + SBF[:2] + b"\x00" + SBF[3:] + GGA + SBF[:6] + b"\x04\x00" + GGA
+                + SBF[:12] + GGA + b"\\s:$@*00\\" + GGA + ACK[:7])
 
 
 def test_binary_frames_in_stream() -> None:
     """stream splits gpsd's logs that interleave NMEA with UBX and RTCM 3, its SkyTraq, SiRF and
-    CASIC logs, and the binary cases, byte for byte alike in the three tools: every frame's
+    CASIC logs, pysbf2's SBF logs (one with NMEA and RTCM 3), and the binary cases, byte for byte alike in the three tools: every frame's
     checksum right, the UBX frames those ubx.split_frames finds, and the items concatenating to the
     input less its line endings."""
     from tests.ubx.pyubx2_oracle import ubx
     from tests.ubx.test_binary_protocols import checked
     from nmeaspec.stream import crc24q
 
-    for data in [path.read_bytes() for path in BINARY_LOGS] + [BINARY_CASES]:
+    sbf = b"".join(path.read_bytes() for path in SBF_LOGS)
+    for data in [path.read_bytes() for path in BINARY_LOGS] + [sbf, BINARY_CASES]:
         objects = [json.loads(line) for line in agreed(["stream"], data).splitlines()]
         frames = [bytes.fromhex(o["frame"]) for o in objects if "frame" in o]
         assert [f for f, o in zip(frames, [o for o in objects if "frame" in o]) if o["protocol"] == "ubx"] == [
@@ -355,6 +364,9 @@ def test_binary_frames_in_stream() -> None:
                 assert crc24q(frame[:-3]) == frame[-3:] and o["message_number"] == (frame[3] << 4 | frame[4] >> 4)
             elif o["protocol"] == "ubx":
                 assert ubx.fletcher8(frame[2:-2]) == frame[-2:] and (o["class"], o["id"]) == (frame[2], frame[3])
+            elif o["protocol"] == "sbf":  # the id's low 13 bits and top 3, little endian
+                ident = int.from_bytes(frame[4:6], "little")
+                assert checked(frame) == "sbf" and (o["number"], o["revision"]) == (ident & 0x1FFF, ident >> 13)
             elif o["protocol"] == "casic":
                 assert checked(frame) == "casic" and (o["class"], o["id"]) == (frame[4], frame[5])
             else:  # SkyTraq and SiRF: the message id is the payload's first byte
@@ -367,7 +379,7 @@ def test_binary_frames_in_stream() -> None:
                 piece = bytes.fromhex(o.get("frame") or o["bytes"])
                 rest = rest[rest.index(piece) + len(piece):]
     kinds = {o["error"]["kind"] for o in objects if "bytes" in o}
-    assert kinds == {"bad_checksum", "too_long", "nul_header", "cut"}, kinds
+    assert kinds == {"bad_checksum", "too_long", "too_short", "nul_header", "cut"}, kinds
     agreed(["stream", "--values"], BINARY_CASES)
 
 

@@ -38,6 +38,10 @@ def test_the_table_of_ubx_and_rtcm3() -> None:
     (lambda f: f["checksum"].__setitem__("algorithm", "crc32"), "checksum crc32"),
     (lambda f: f["checksum"].__setitem__("over", ["payload", "class"]), "a checksum over"),
     (lambda f: f["header"][2].pop("counts"), "one header field counts the payload"),
+    # a '$' sync must be told from a sentence's start by its second byte; '!' starts one always
+    (lambda f: f.__setitem__("sync", [0x24, 0x47]), "would take a line's bytes"),
+    (lambda f: f.__setitem__("sync", [0x21, 0x40]), "would take a line's bytes"),
+    (lambda f: f["checksum"].__setitem__("at", "length"), "checksum at length"),
 ])
 def test_a_frame_the_framers_cannot_take(change, reason) -> None:  # type: ignore[no-untyped-def]
     ubx = copy.deepcopy(next(p for p in SPEC.protocols if p.id == "ubx"))
@@ -67,3 +71,16 @@ def test_the_table_of_skytraq_sirf_and_casic() -> None:
         == (b"\xba\xce", 2, False, 6, "sum32", 2)
     assert sky.identity == sirf.identity == (("id", 32, 8),)
     assert casic.identity == (("class", 32, 8), ("id", 40, 8))
+
+
+def test_the_table_of_sbf() -> None:
+    """SBF: the CRC in the header before what it covers (the id to the block's end), a length
+    that counts the whole block, the id's 13-bit number and 3-bit revision read least significant
+    bit first (little endian)."""
+    sbf = {f.protocol: f for f in emit_framing.framings(SPEC)}["sbf"]
+    assert (sbf.sync, sbf.follow, sbf.length_at, sbf.length_size, sbf.big_endian, sbf.header, sbf.length_adds) \
+        == (b"$@", (0x40, 0xFF), 6, 2, False, 8, 0)
+    assert (sbf.checksum, sbf.check_at, sbf.check_from, sbf.check_size, sbf.trailer) == ("crc16_ccitt", 2, 4, 2, 0)
+    assert sbf.identity == (("number", 32, 13), ("revision", 45, 3))
+    ubx = {f.protocol: f for f in emit_framing.framings(SPEC)}["ubx"]
+    assert (ubx.length_adds, ubx.check_at, ubx.trailer) == (8, 0, 2)  # header and checksum beyond the payload

@@ -1,8 +1,9 @@
-"""The typed messages of SkyTraq, SiRF and CASIC (spec/binary/{skytraq,sirf,casic}/messages,
+"""The typed messages of SkyTraq, SiRF, CASIC and SBF (spec/binary/{skytraq,sirf,casic,sbf}/messages,
 nmeaspec.<protocol>_messages): every frame of gpsd's logs of those receivers whose message the spec
 describes decodes into its class and encodes back byte-exact; the decoded JSON of every example is
 the reference decoder's (generated/vectors/binary.jsonl); errors name the protocol and message
-(`SKYTRAQ 0xA8`, `SIRF MID 41`, `CASIC NAV-PV`); `nmea show` gives the frames' rows their values."""
+(`SKYTRAQ 0xA8`, `SIRF MID 41`, `CASIC NAV-PV`, `SBF 4007 rev 2`); `nmea show` gives the frames' rows
+their values; pysbf2 agrees with the SBF blocks' values (docs/sbf-agreement.md)."""
 
 from __future__ import annotations
 
@@ -19,6 +20,8 @@ from nmeaspec.apps.nmea_cli import main  # isort: skip
 from nmeaspec.casic_messages import BY_ID as CASIC  # isort: skip
 from nmeaspec.casic_messages.nav_pv import NavPv  # isort: skip
 from nmeaspec.runtime import NmeaError  # isort: skip
+from nmeaspec.sbf_messages import BY_ID as SBF  # isort: skip
+from nmeaspec.sbf_messages.pvt_geodetic import PvtGeodetic  # isort: skip
 from nmeaspec.sirf_messages import BY_ID as SIRF  # isort: skip
 from nmeaspec.sirf_messages.geodetic_nav import GeodeticNav  # isort: skip
 from nmeaspec.sirf_messages.switch_to_nmea import SwitchToNmea, SwitchToNmeaSentence  # isort: skip
@@ -79,7 +82,7 @@ def test_every_described_frame_round_trips(protocol: str) -> None:
 
 def test_vectors_are_the_reference_decoders() -> None:
     vectors = [json.loads(line) for line in (ROOT / "generated" / "vectors" / "binary.jsonl").read_text().splitlines()]
-    assert {v["protocol"] for v in vectors} == {"skytraq", "sirf", "casic"}
+    assert {v["protocol"] for v in vectors} == {"skytraq", "sirf", "casic", "sbf"}
     for v in vectors:
         data = bytes.fromhex(v["frame"])
         message = stream.BinaryFrame(v["protocol"], data).message()
@@ -160,3 +163,84 @@ def test_gpsd_agrees() -> None:
             assert o.reports - o.tied <= 1, o.rule
     for k in skies:
         assert k.tied == k.reports > 0 and k.agree == k.satellites > 0, k.rule
+
+
+# What pysbf2's logs (tests/data/sbf) hold of each described SBF block (blocks counted from the
+# logs' frame split, tests/ubx/test_stream_frames.py); the other blocks stay binary.Unknown.
+SBF_EXPECTED = {"4006 rev 2": 58, "4007 rev 2": 2, "5905 rev 0": 58, "5906 rev 0": 1, "5907 rev 0": 58,
+                "5908 rev 0": 1, "4001 rev 0": 1, "5914 rev 0": 1}
+
+
+def sbf_frames() -> list[bytes]:
+    out: list[bytes] = []
+    for log in sorted((DATA / "sbf").glob("*.sbf")) + sorted((DATA / "sbf").glob("*.log")):
+        with log.open("rb") as f:
+            out += [item.data for item in stream.lines(f, binary=True)
+                    if isinstance(item, stream.BinaryFrame) and item.protocol == "sbf"]
+    return out
+
+
+def test_every_sbf_block_round_trips() -> None:
+    """Every block of pysbf2's logs: a described one (by the header's block number and revision)
+    decodes into its class, an other one stays Unknown with its number and revision; each encodes
+    back byte-exact, its CRC and padding as sent."""
+    seen: Counter[str] = Counter()
+    unknown = 0
+    blocks = sbf_frames()
+    for data in blocks:
+        message = stream.BinaryFrame("sbf", data).message()
+        assert message.encode() == data, data.hex(" ")
+        ident = int.from_bytes(data[4:6], "little")
+        key = (ident & 0x1FFF, ident >> 13)
+        if isinstance(message, binary.Unknown):
+            assert key not in SBF and message.key == key
+            assert message.to_dict()["number"] == key[0] and message.to_dict()["revision"] == key[1]
+            unknown += 1
+            continue
+        assert key in SBF and message.KEY == key and message.PROTOCOL == "SBF"
+        seen[message.ADDRESS] += 1
+        assert type(message).from_payload(message.payload()) == message
+    assert dict(seen) == SBF_EXPECTED
+    assert unknown == len(blocks) - sum(SBF_EXPECTED.values())
+
+
+def test_values_of_an_sbf_fix_and_its_do_not_use_values() -> None:
+    block = next(d for d in sbf_frames() if int.from_bytes(d[4:6], "little") & 0x1FFF == 4007)
+    pvt = stream.BinaryFrame("sbf", block).message()
+    assert isinstance(pvt, PvtGeodetic)
+    assert (pvt.tow, pvt.wnc, pvt.mode_type, pvt.nr_sv, pvt.reference_id) == (482847000, 2367, 6, 36, 123)
+    assert pvt.latitude == pytest.approx(0.9310293523340808) and pvt.mean_corr_age == pytest.approx(2.78)
+    assert pvt.cog == -2e10   # the float do-not-use value, kept as the number
+    # sbfdata.sbf's first epoch: a stand-alone fix, without corrections
+    cartesian = next(stream.BinaryFrame("sbf", d).message() for d in sbf_frames()
+                     if int.from_bytes(d[4:6], "little") & 0x1FFF == 4006)
+    assert cartesian.to_dict()["reference_id"] == "do_not_use" and cartesian.reference_id_raw == 65535
+    assert cartesian.to_dict()["mean_corr_age"] == "do_not_use"
+
+
+def test_sbf_errors_name_the_block() -> None:
+    block = next(d for d in sbf_frames() if int.from_bytes(d[4:6], "little") & 0x1FFF == 4007)
+    cut = binary.Frame("sbf", (4007, 2), block[8:40])   # the body cut to 32 bytes, framed again (CRC, length)
+    with pytest.raises(NmeaError) as err:
+        stream.BinaryFrame("sbf", cut.encode()).message()
+    assert err.value.kind == "short_payload" and "SBF 4007 rev 2" in str(err.value)
+    damaged = bytearray(block)
+    damaged[20] ^= 1
+    with pytest.raises(NmeaError) as err:
+        binary.decode(SBF, "sbf", bytes(damaged))
+    assert err.value.kind == "bad_checksum"
+
+
+def test_pysbf2_agrees() -> None:
+    """pysbf2's values of the same blocks (tests/ubx/pysbf2_oracle.py, docs/sbf-agreement.md): every
+    field compared agrees, but the do-not-use values, named here; pysbf2's fields left out each
+    have their reason."""
+    from tests.ubx import pysbf2_oracle as oracle
+
+    found = oracle.outcomes()
+    assert oracle.DOC.read_text() == oracle.render(found), "run .venv/bin/python -m tests.ubx.pysbf2_oracle"
+    assert [o.block for o in found] == list(oracle.TYPED)
+    for o in found:
+        assert o.round_trip == o.count > 0 and not o.differ, o.block
+        assert all(o.agree[k] + o.special[k] == n for k, n in o.fields.items()), o.block
+        assert all(name in oracle.LEFT_OUT for name in o.missing), o.block

@@ -6,6 +6,8 @@ scanning the log; A0 starts both SiRF (A0 A2) and SkyTraq (A0 A1); damage over a
 
 from __future__ import annotations
 
+import binascii
+
 from pathlib import Path
 
 import pytest
@@ -43,6 +45,9 @@ def checked(data: bytes) -> str | None:
         words = sum(int.from_bytes(body[i:i + 4], "little") for i in range(0, len(body), 4))
         if words & 0xFFFFFFFF == int.from_bytes(data[-4:], "little"):
             return "casic"
+    if data[:2] == b"$@" and len(data) == int.from_bytes(data[6:8], "little") >= 8:  # the length counts it all
+        if binascii.crc_hqx(data[4:], 0) == int.from_bytes(data[2:4], "little"):  # CRC-CCITT, before the id
+            return "sbf"
     return None
 
 
@@ -60,6 +65,20 @@ def scan(data: bytes) -> list[bytes]:
                 break
         else:
             at += 1
+    return found
+
+
+def scan_sbf(data: bytes) -> list[bytes]:
+    """Every right SBF block in `data`, found at each "$@" (blocks never overlap)."""
+    found, at = [], data.find(b"$@")
+    while 0 <= at < len(data) - 7:
+        size = int.from_bytes(data[at + 6:at + 8], "little")
+        if checked(data[at:at + size]) == "sbf":
+            found.append(data[at:at + size])
+            at += size
+        else:
+            at += 1
+        at = data.find(b"$@", at)
     return found
 
 

@@ -166,3 +166,75 @@ def test_damage_loses_no_intact_frame_and_takes_no_damaged_one(kind: str) -> Non
     logs = [(ROOT / "tests" / "data" / "ubx" / "ublox-neo-m8l.log").read_bytes(),
             (ROOT / "tests" / "data" / "rtcm3" / "ublox-f9p-rtcm.log").read_bytes()]
     assert_damage_keeps_frames(kind, logs)
+
+
+# Septentrio SBF: pysbf2's logs (tests/data/sbf), their blocks as many as pysbf2 reads in each
+# (pysbf2 1.0.7's SBFReader over the same files; the damaged block of pygpsdata_bad and the cut one
+# of pygpsdata_x5_pvttruncated it refuses too).
+SBF_DIR = ROOT / "tests" / "data" / "sbf"
+SBF_BLOCKS = {"pygpsdata_bad.sbf": 6, "pygpsdata_mixed.log": 2, "pygpsdata_x5_constellations.sbf": 21,
+              "pygpsdata_x5_measurements.sbf": 3, "pygpsdata_x5_pvtextra.sbf": 4, "pygpsdata_x5_pvttruncated.sbf": 3,
+              "pygpsdata_x5_time.sbf": 2, "pygpsdata_x5status.sbf": 39, "sbfdata.sbf": 232}
+SBF = bytes.fromhex("2440 bd13 1a17 1800 702fcb1c3f091905170e0b0012070000")  # ReceiverTime
+
+
+def test_sbf_logs_split_into_pysbf2s_blocks() -> None:
+    from tests.ubx.test_binary_protocols import checked
+
+    assert sorted(p.name for p in SBF_DIR.iterdir() if p.suffix in (".sbf", ".log")) == sorted(SBF_BLOCKS)
+    for name, count in SBF_BLOCKS.items():
+        data = (SBF_DIR / name).read_bytes()
+        items = split(data, 97)
+        assert items == split(data)
+        frames = [item for item in items if isinstance(item, stream.BinaryFrame) and item.protocol == "sbf"]
+        assert len(frames) == count, name
+        assert joined(items) == without_line_endings(data, items)
+        for frame in frames:  # the CRC (binascii's CRC-CCITT), the length and the id as the block holds them
+            ident = int.from_bytes(frame.data[4:6], "little")
+            assert checked(frame.data) == "sbf" and len(frame.data) % 4 == 0
+            assert frame.identity == {"number": ident & 0x1FFF, "revision": ident >> 13}
+    bad = [item for item in split((SBF_DIR / "pygpsdata_bad.sbf").read_bytes()) if isinstance(item, stream.BadFrame)]
+    assert [(b.reason, b.message) for b in bad] == [("too_short", "frame is 0 bytes, the least is 8")]
+    cut = [item for item in split((SBF_DIR / "pygpsdata_x5_pvttruncated.sbf").read_bytes())
+           if isinstance(item, stream.BadFrame)]
+    assert [b.reason for b in cut] == ["cut"]
+
+
+def test_a_mixed_nmea_and_sbf_stream_at_every_chunk_size() -> None:
+    """pysbf2's log of NMEA, RTCM 3 and SBF, with sentences and damaged blocks around its own."""
+    data = ((SBF_DIR / "pygpsdata_mixed.log").read_bytes() + b"$GPGGA,2" + SBF + GGA + SBF[:3] + b"\x00" + SBF[4:]
+            + GGA + SBF[:12] + GGA)
+    items = split(data)
+    assert kinds(items)[-9:] == [b"$GPGGA,2", "sbf", GGA[:-2], "sbf bad_checksum", SBF[2:3] + b"\x00" + SBF[4:],
+                                 GGA[:-2], "sbf bad_checksum", SBF[2:12], GGA[:-2]]
+    assert [i.protocol for i in items if isinstance(i, stream.BinaryFrame)] == ["rtcm3", "rtcm3", "sbf", "sbf", "sbf"]
+    for chunk in range(1, len(data) + 1, 3):
+        assert split(data, chunk) == items, chunk
+
+
+@pytest.mark.parametrize(("data", "expected"), [
+    # "$@" starts a block, any other '$' a sentence
+    (b"$GP" + SBF + b"$@" + GGA, [b"$GP", "sbf", "sbf too_long", GGA[:-2]]),
+    # a length under the header's 8 bytes; a length of more than the framer holds
+    (b"$@\x01\x02\x03\x04\x04\x00" + GGA, ["sbf too_short", b"\x01\x02\x03\x04\x04\x00", GGA[:-2]]),
+    (b"$@\x01\x02\x03\x04\x04\x09" + GGA, ["sbf too_long", b"\x01\x02\x03\x04\x04\x09", GGA[:-2]]),
+    # a break's NUL bytes after "$@"; no block in a TAG block
+    (b"$@" + bytes(6) + GGA, ["sbf nul_header", bytes(6), GGA[:-2]]),
+    (b"\\s:$@*00\\" + GGA, [b"\\s:$@*00\\" + GGA[:-2]]),
+])
+def test_sbf_damage_is_reported_and_nothing_intact_is_lost(data: bytes, expected: list[object]) -> None:
+    assert kinds(split(data)) == expected
+    assert kinds(split(data, 1)) == expected
+
+
+@pytest.mark.parametrize("kind", faults.KINDS)
+def test_damage_to_sbf_and_nmea_loses_no_intact_block(kind: str) -> None:
+    """fuzz/faults.py's damage over SBF blocks between NMEA sentences (pysbf2's sbfdata.sbf, a block
+    then a sentence of gpsd's UBX log in turn; the other stream: pysbf2's status blocks)."""
+    from tests.ubx.test_binary_protocols import scan_sbf
+
+    nmea = [line.rstrip(b"\r") + b"\r\n" for line in (ROOT / "tests" / "data" / "ubx" / "ublox-neo-m8l.log")
+            .read_bytes().split(b"\n") if line.startswith(b"$G") and line.rstrip(b"\r").isascii()]
+    blocks = scan_sbf((SBF_DIR / "sbfdata.sbf").read_bytes())[:80]
+    mixed = b"".join(block + nmea[i % len(nmea)] for i, block in enumerate(blocks))
+    assert_damage_keeps_frames(kind, [mixed, (SBF_DIR / "pygpsdata_x5status.sbf").read_bytes()])

@@ -140,12 +140,13 @@ impl From<Item<'_>> for Owned {
 fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
     // the frames of spec/binary, from the protocols' facts: name, first two bytes (the second
     // under a mask), sync bytes, header and trailer (checksum and end bytes) sizes
-    const MODELS: [(&str, u8, u8, u8, usize, usize, usize); 5] = [
+    const MODELS: [(&str, u8, u8, u8, usize, usize, usize); 6] = [
         ("ubx", 0xB5, 0x62, 0xFF, 2, 6, 2),
         ("rtcm3", 0xD3, 0x00, 0xFC, 1, 3, 3),
         ("skytraq", 0xA0, 0xA1, 0xFF, 2, 4, 3),
         ("sirf", 0xA0, 0xA2, 0xFF, 2, 4, 4),
         ("casic", 0xBA, 0xCE, 0xFF, 2, 6, 4),
+        ("sbf", b'$', b'@', 0xFF, 2, 8, 0), // $@ CRC(LE) id(LE) length(LE: the whole block) body
     ];
     let second = *data.get(1)?;
     let &(name, _, _, _, sync, header, trailer) = MODELS.iter().find(|m| m.1 == data[0] && second & m.3 == m.2)?;
@@ -157,15 +158,19 @@ fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
         return bad("nul_header");
     }
     let payload = match name {
+        "sbf" => (usize::from(data[6]) | usize::from(data[7]) << 8).wrapping_sub(header),
         "ubx" => usize::from(data[4]) | usize::from(data[5]) << 8,
         "casic" => usize::from(data[2]) | usize::from(data[3]) << 8,
         "rtcm3" => usize::from(data[1] & 3) << 8 | usize::from(data[2]),
         // SkyTraq, SiRF (whose top bit, reserved and zero, makes the frame too long when set)
         _ => usize::from(data[2]) << 8 | usize::from(data[3]),
     };
-    let size = header + payload + trailer;
+    let size = header.wrapping_add(payload).wrapping_add(trailer);
     if size > MAX_FRAME {
         return bad("too_long");
+    }
+    if size < header + trailer {
+        return bad("too_short"); // an SBF length under its header's
     }
     if size > data.len() {
         return bad("cut");
@@ -193,9 +198,16 @@ fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
             });
             sum.to_le_bytes().to_vec()
         }
+        "sbf" => {
+            let crc = body[4..].iter().fold(0u16, |crc, &byte| {
+                (0..8).fold(crc ^ u16::from(byte) << 8, |c, _| if c & 0x8000 != 0 { c << 1 ^ 0x1021 } else { c << 1 })
+            });
+            crc.to_le_bytes().to_vec()
+        }
         _ => crc24q(body).to_be_bytes()[1..].to_vec(),
     };
-    if computed != data[size - trailer..size] {
+    let sent = if name == "sbf" { &data[2..4] } else { &data[size - trailer..size] };
+    if computed != sent {
         return bad("bad_checksum");
     }
     Some((Owned::Frame(name, data[..size].to_vec()), size))
@@ -223,7 +235,7 @@ fn model(data: &[u8]) -> Vec<Owned> {
     while at < data.len() {
         let b = data[at];
         at += 1;
-        if matches!(b, 0xB5 | 0xD3 | 0xA0 | 0xBA) && tag == Tag::Outside {
+        if matches!(b, 0xB5 | 0xD3 | 0xA0 | 0xBA | b'$') && tag == Tag::Outside {
             if let Some((item, taken)) = model_frame(&data[at - 1..]) {
                 finish(&mut out, &mut line, &mut length);
                 out.push(item);

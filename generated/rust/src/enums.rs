@@ -100,7 +100,8 @@
 //   spec/enums/rmb_arrival_status.yaml, spec/enums/rmc_mag_var_dir.yaml,
 //   spec/enums/rpm_source.yaml, spec/enums/rrt_application_status.yaml,
 //   spec/enums/rrt_file_status.yaml, spec/enums/rrt_transfer_type.yaml,
-//   spec/enums/rsd_display_rotation.yaml, spec/enums/rte_mode.yaml,
+//   spec/enums/rsd_display_rotation.yaml, spec/enums/rte_mode.yaml, spec/enums/sbf_datum.yaml,
+//   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml,
 //   spec/enums/seapath_quality.yaml, spec/enums/septentrio_base_motion.yaml,
 //   spec/enums/septentrio_baseline_quality.yaml, spec/enums/signal_id.yaml,
 //   spec/enums/sirf_baud.yaml, spec/enums/sirf_checksum_enable.yaml,
@@ -132,7 +133,7 @@
 //   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 //   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 //   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-//   (digest ebaa92a676e2d9bc)
+//   (digest 9588df315e8211bc)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -13609,6 +13610,286 @@ impl CodeEnum for RteMode {
         match self {
             Self::Complete => "complete",
             Self::Working => "working",
+        }
+    }
+}
+
+/// SBF datum: The datum of the position of a Septentrio receiver's PVT blocks (their Datum field).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SbfDatum {
+    /// WGS84 / ITRS.
+    Wgs84,
+    /// The datum of the DGNSS or RTK base station.
+    BaseStation,
+    /// ETRS89 (ETRF2000 realization).
+    Etrs89,
+    /// NAD83(2011), North American Datum (2011).
+    Nad832011,
+    /// NAD83(PA11), North American Datum, Pacific plate (2011).
+    Nad83Pa11,
+    /// NAD83(MA11), North American Datum, Marianas plate (2011).
+    Nad83Ma11,
+    /// GDA94(2010), Geocentric Datum of Australia (2010).
+    Gda94,
+    /// GDA2020, Geocentric Datum of Australia 2020.
+    Gda2020,
+    /// JGD2011, Japanese Geodetic Datum 2011.
+    Jgd2011,
+    /// The first user-defined datum.
+    User1,
+    /// The second user-defined datum.
+    User2,
+    /// Not available.
+    DoNotUse,
+}
+
+impl CodeEnum for SbfDatum {
+    const EXPECTED: &'static str = "sbf_datum code (0 19 30 31 32 33 34 35 36 250 251 255)";
+    const EXPECTED_CHARS: &'static str = "sbf_datum codes (0 19 30 31 32 33 34 35 36 250 251 255)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 3;
+    const ALL: &'static [Self] = &[
+        Self::Wgs84,
+        Self::BaseStation,
+        Self::Etrs89,
+        Self::Nad832011,
+        Self::Nad83Pa11,
+        Self::Nad83Ma11,
+        Self::Gda94,
+        Self::Gda2020,
+        Self::Jgd2011,
+        Self::User1,
+        Self::User2,
+        Self::DoNotUse,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Wgs84),
+            b"19" => Some(Self::BaseStation),
+            b"30" => Some(Self::Etrs89),
+            b"31" => Some(Self::Nad832011),
+            b"32" => Some(Self::Nad83Pa11),
+            b"33" => Some(Self::Nad83Ma11),
+            b"34" => Some(Self::Gda94),
+            b"35" => Some(Self::Gda2020),
+            b"36" => Some(Self::Jgd2011),
+            b"250" => Some(Self::User1),
+            b"251" => Some(Self::User2),
+            b"255" => Some(Self::DoNotUse),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Wgs84 => "0",
+            Self::BaseStation => "19",
+            Self::Etrs89 => "30",
+            Self::Nad832011 => "31",
+            Self::Nad83Pa11 => "32",
+            Self::Nad83Ma11 => "33",
+            Self::Gda94 => "34",
+            Self::Gda2020 => "35",
+            Self::Jgd2011 => "36",
+            Self::User1 => "250",
+            Self::User2 => "251",
+            Self::DoNotUse => "255",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Wgs84 => "wgs84",
+            Self::BaseStation => "base_station",
+            Self::Etrs89 => "etrs89",
+            Self::Nad832011 => "nad83_2011",
+            Self::Nad83Pa11 => "nad83_pa11",
+            Self::Nad83Ma11 => "nad83_ma11",
+            Self::Gda94 => "gda94",
+            Self::Gda2020 => "gda2020",
+            Self::Jgd2011 => "jgd2011",
+            Self::User1 => "user_1",
+            Self::User2 => "user_2",
+            Self::DoNotUse => "do_not_use",
+        }
+    }
+}
+
+/// SBF PVT error: Why a Septentrio receiver's PVT blocks (PVTGeodetic, PVTCartesian, the covariance
+/// blocks) hold no solution (their Error field).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SbfPvtError {
+    /// No error.
+    None,
+    /// Not enough measurements.
+    NotEnoughMeasurements,
+    /// Not enough ephemerides available.
+    NotEnoughEphemerides,
+    /// DOP too large (over 15).
+    DopTooLarge,
+    /// Sum of squared residuals too large.
+    ResidualsTooLarge,
+    /// No convergence.
+    NoConvergence,
+    /// Not enough measurements after outlier rejection.
+    NotEnoughMeasurementsAfterOutliers,
+    /// Position output prohibited by export laws.
+    ExportLaws,
+    /// Not enough differential corrections available.
+    NotEnoughCorrections,
+    /// Base station coordinates unavailable.
+    NoBaseCoordinates,
+    /// Ambiguities not fixed, and only RTK-fixed positions requested.
+    AmbiguitiesNotFixed,
+}
+
+impl CodeEnum for SbfPvtError {
+    const EXPECTED: &'static str = "sbf_pvt_error code (0 1 2 3 4 5 6 7 8 9 10)";
+    const EXPECTED_CHARS: &'static str = "sbf_pvt_error codes (0 1 2 3 4 5 6 7 8 9 10)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 2;
+    const ALL: &'static [Self] = &[
+        Self::None,
+        Self::NotEnoughMeasurements,
+        Self::NotEnoughEphemerides,
+        Self::DopTooLarge,
+        Self::ResidualsTooLarge,
+        Self::NoConvergence,
+        Self::NotEnoughMeasurementsAfterOutliers,
+        Self::ExportLaws,
+        Self::NotEnoughCorrections,
+        Self::NoBaseCoordinates,
+        Self::AmbiguitiesNotFixed,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::None),
+            b"1" => Some(Self::NotEnoughMeasurements),
+            b"2" => Some(Self::NotEnoughEphemerides),
+            b"3" => Some(Self::DopTooLarge),
+            b"4" => Some(Self::ResidualsTooLarge),
+            b"5" => Some(Self::NoConvergence),
+            b"6" => Some(Self::NotEnoughMeasurementsAfterOutliers),
+            b"7" => Some(Self::ExportLaws),
+            b"8" => Some(Self::NotEnoughCorrections),
+            b"9" => Some(Self::NoBaseCoordinates),
+            b"10" => Some(Self::AmbiguitiesNotFixed),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::None => "0",
+            Self::NotEnoughMeasurements => "1",
+            Self::NotEnoughEphemerides => "2",
+            Self::DopTooLarge => "3",
+            Self::ResidualsTooLarge => "4",
+            Self::NoConvergence => "5",
+            Self::NotEnoughMeasurementsAfterOutliers => "6",
+            Self::ExportLaws => "7",
+            Self::NotEnoughCorrections => "8",
+            Self::NoBaseCoordinates => "9",
+            Self::AmbiguitiesNotFixed => "10",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::NotEnoughMeasurements => "not_enough_measurements",
+            Self::NotEnoughEphemerides => "not_enough_ephemerides",
+            Self::DopTooLarge => "dop_too_large",
+            Self::ResidualsTooLarge => "residuals_too_large",
+            Self::NoConvergence => "no_convergence",
+            Self::NotEnoughMeasurementsAfterOutliers => "not_enough_measurements_after_outliers",
+            Self::ExportLaws => "export_laws",
+            Self::NotEnoughCorrections => "not_enough_corrections",
+            Self::NoBaseCoordinates => "no_base_coordinates",
+            Self::AmbiguitiesNotFixed => "ambiguities_not_fixed",
+        }
+    }
+}
+
+/// SBF time system: The time system of a Septentrio receiver's clock bias in its PVT blocks (their
+/// TimeSystem field).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SbfTimeSystem {
+    /// GPS time.
+    Gps,
+    /// Galileo time.
+    Galileo,
+    /// GLONASS time.
+    Glonass,
+    /// BeiDou time.
+    Beidou,
+    /// QZSS time.
+    Qzss,
+    /// Fugro AtomiChron time.
+    FugroAtomichron,
+    /// Not available.
+    DoNotUse,
+}
+
+impl CodeEnum for SbfTimeSystem {
+    const EXPECTED: &'static str = "sbf_time_system code (0 1 3 4 5 100 255)";
+    const EXPECTED_CHARS: &'static str = "sbf_time_system codes (0 1 3 4 5 100 255)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 3;
+    const ALL: &'static [Self] =
+        &[Self::Gps, Self::Galileo, Self::Glonass, Self::Beidou, Self::Qzss, Self::FugroAtomichron, Self::DoNotUse];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Gps),
+            b"1" => Some(Self::Galileo),
+            b"3" => Some(Self::Glonass),
+            b"4" => Some(Self::Beidou),
+            b"5" => Some(Self::Qzss),
+            b"100" => Some(Self::FugroAtomichron),
+            b"255" => Some(Self::DoNotUse),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Gps => "0",
+            Self::Galileo => "1",
+            Self::Glonass => "3",
+            Self::Beidou => "4",
+            Self::Qzss => "5",
+            Self::FugroAtomichron => "100",
+            Self::DoNotUse => "255",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Gps => "gps",
+            Self::Galileo => "galileo",
+            Self::Glonass => "glonass",
+            Self::Beidou => "beidou",
+            Self::Qzss => "qzss",
+            Self::FugroAtomichron => "fugro_atomichron",
+            Self::DoNotUse => "do_not_use",
         }
     }
 }

@@ -14,6 +14,8 @@ pub enum Protocol {
     Casic,
     /// rtcm3: sync D3.
     Rtcm3,
+    /// sbf: sync 24 40.
+    Sbf,
     /// sirf: sync A0 A2.
     Sirf,
     /// skytraq: sync A0 A1.
@@ -24,11 +26,12 @@ pub enum Protocol {
 
 impl Protocol {
     /// Every protocol, in the order of [`FRAMINGS`].
-    pub const ALL: [Protocol; 5] = [Protocol::Casic, Protocol::Rtcm3, Protocol::Sirf, Protocol::Skytraq, Protocol::Ubx];
+    pub const ALL: [Protocol; 6] =
+        [Protocol::Casic, Protocol::Rtcm3, Protocol::Sbf, Protocol::Sirf, Protocol::Skytraq, Protocol::Ubx];
 }
 
 /// The framing of each protocol, by its [`Protocol`] as an index.
-pub static FRAMINGS: [FrameFormat; 5] = [
+pub static FRAMINGS: [FrameFormat; 6] = [
     FrameFormat {
         name: "casic",
         sync: [0xBA, 0xCE],
@@ -39,8 +42,10 @@ pub static FRAMINGS: [FrameFormat; 5] = [
         big_endian: false,
         length_mask: 0xFFFF,
         header: 6,
+        length_adds: 10,
         checksum: ChecksumKind::Sum32,
         check_from: 2,
+        check_at: 0,
         check_size: 4,
         end: &[],
         identity: &[("class", 32, 8), ("id", 40, 8)],
@@ -55,11 +60,31 @@ pub static FRAMINGS: [FrameFormat; 5] = [
         big_endian: true,
         length_mask: 0xFFFF,
         header: 3,
+        length_adds: 6,
         checksum: ChecksumKind::Crc24q,
         check_from: 0,
+        check_at: 0,
         check_size: 3,
         end: &[],
         identity: &[("message_number", 24, 12)],
+    },
+    FrameFormat {
+        name: "sbf",
+        sync: [0x24, 0x40],
+        follow_mask: 0xFF,
+        sync_len: 2,
+        length_at: 6,
+        length_size: 2,
+        big_endian: false,
+        length_mask: 0xFFFF,
+        header: 8,
+        length_adds: 0,
+        checksum: ChecksumKind::Crc16Ccitt,
+        check_from: 4,
+        check_at: 2,
+        check_size: 2,
+        end: &[],
+        identity: &[("number", 32, 13), ("revision", 45, 3)],
     },
     FrameFormat {
         name: "sirf",
@@ -71,8 +96,10 @@ pub static FRAMINGS: [FrameFormat; 5] = [
         big_endian: true,
         length_mask: 0xFFFF,
         header: 4,
+        length_adds: 8,
         checksum: ChecksumKind::Sum15,
         check_from: 4,
+        check_at: 0,
         check_size: 2,
         end: &[0xB0, 0xB3],
         identity: &[("id", 32, 8)],
@@ -87,8 +114,10 @@ pub static FRAMINGS: [FrameFormat; 5] = [
         big_endian: true,
         length_mask: 0xFFFF,
         header: 4,
+        length_adds: 7,
         checksum: ChecksumKind::Xor8,
         check_from: 4,
+        check_at: 0,
         check_size: 1,
         end: &[0x0D, 0x0A],
         identity: &[("id", 32, 8)],
@@ -103,8 +132,10 @@ pub static FRAMINGS: [FrameFormat; 5] = [
         big_endian: false,
         length_mask: 0xFFFF,
         header: 6,
+        length_adds: 8,
         checksum: ChecksumKind::Fletcher8,
         check_from: 2,
+        check_at: 0,
         check_size: 2,
         end: &[],
         identity: &[("class", 16, 8), ("id", 24, 8)],

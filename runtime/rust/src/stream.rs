@@ -44,6 +44,8 @@ pub enum ChecksumKind {
     Sum32,
     /// CRC-24Q, three bytes big endian.
     Crc24q,
+    /// CRC-CCITT (polynomial 0x1021, initial value 0), two bytes little endian.
+    Crc16Ccitt,
 }
 
 /// The framing of a binary protocol (spec/binary/<protocol>/protocol.yaml): a row of the
@@ -64,26 +66,31 @@ pub struct FrameFormat {
     pub length_size: usize,
     /// Whether the length field is big endian.
     pub big_endian: bool,
-    /// The field's bits that count the payload's bytes.
+    /// The field's bits that are the length.
     pub length_mask: u16,
     /// Bytes before the payload, sync included.
     pub header: usize,
+    /// The frame's bytes beyond what its length counts (0: the length counts them all).
+    pub length_adds: usize,
     /// The checksum, from `check_from` to the payload's end.
     pub checksum: ChecksumKind,
     /// The first byte the checksum covers.
     pub check_from: usize,
-    /// The checksum's bytes after the payload.
+    /// Where the checksum sits in the header; 0: after the payload.
+    pub check_at: usize,
+    /// The checksum's bytes.
     pub check_size: usize,
     /// The bytes after it that end every frame.
     pub end: &'static [u8],
-    /// The fields that tell the frame's message: name, bit offset, bits (most significant first).
+    /// The fields that tell the frame's message: name, bit offset, bits (numbered most
+    /// significant first in a big-endian frame, least significant first in a little-endian one).
     pub identity: &'static [(&'static str, usize, usize)],
 }
 
 impl FrameFormat {
-    /// The bytes after the payload: checksum and end bytes.
+    /// The bytes after the payload: the checksum (unless it sits in the header) and end bytes.
     pub const fn trailer_len(&self) -> usize {
-        self.check_size + self.end.len()
+        (if self.check_at == 0 { self.check_size } else { 0 }) + self.end.len()
     }
 
     /// The frame's bytes, sync to end, from its header.
@@ -94,12 +101,19 @@ impl FrameFormat {
             (2, false) => first | usize::from(header[self.length_at + 1]) << 8,
             _ => first,
         };
-        self.header + (length & usize::from(self.length_mask)) + self.trailer_len()
+        (length & usize::from(self.length_mask)) + self.length_adds
     }
 
-    /// The checksum and end bytes a frame (less them) must end with, as a big-endian number.
-    fn check(&self, frame: &[u8]) -> u32 {
-        let bytes = &frame[self.check_from..];
+    /// A whole frame's checksum and end bytes as sent, and as they must be, each as a big-endian
+    /// number.
+    fn check(&self, frame: &[u8]) -> (u32, u32) {
+        let body = frame.len() - self.trailer_len();
+        let at = if self.check_at == 0 { body } else { self.check_at };
+        let sent = frame[at..at + self.check_size]
+            .iter()
+            .chain(&frame[frame.len() - self.end.len()..])
+            .fold(0u32, |sum, &b| sum << 8 | u32::from(b));
+        let bytes = &frame[self.check_from..body];
         let sum = match self.checksum {
             ChecksumKind::Fletcher8 => {
                 let (a, b) = bytes.iter().fold((0u8, 0u8), |(a, b), &byte| {
@@ -116,16 +130,23 @@ impl FrameFormat {
                 .fold(0u32, |sum, (i, &byte)| sum.wrapping_add(u32::from(byte) << (8 * (i & 3))))
                 .swap_bytes(),
             ChecksumKind::Crc24q => crc24q(bytes),
+            ChecksumKind::Crc16Ccitt => u32::from(crc16_ccitt(bytes).swap_bytes()),
         };
-        self.end.iter().fold(sum, |check, &byte| check << 8 | u32::from(byte))
+        (sent, self.end.iter().fold(sum, |check, &byte| check << 8 | u32::from(byte)))
     }
 
     /// Each identity field of a whole frame: its name and value (None past the payload's end).
     pub fn identity_of<'f>(&'f self, frame: &'f [u8]) -> impl Iterator<Item = (&'static str, Option<u32>)> + 'f {
         let body = 8 * frame.len().saturating_sub(self.trailer_len());
+        let big = self.big_endian;
         self.identity.iter().map(move |&(name, at, bits)| {
-            let value = (at + bits <= body)
-                .then(|| (at..at + bits).fold(0u32, |v, bit| v << 1 | u32::from(frame[bit / 8] >> (7 - bit % 8) & 1)));
+            let value = (at + bits <= body).then(|| {
+                if big {
+                    (at..at + bits).fold(0u32, |v, bit| v << 1 | u32::from(frame[bit / 8] >> (7 - bit % 8) & 1))
+                } else {
+                    (at..at + bits).rev().fold(0u32, |v, bit| v << 1 | u32::from(frame[bit / 8] >> (bit % 8) & 1))
+                }
+            });
             (name, value)
         })
     }
@@ -178,6 +199,18 @@ pub fn crc24q(data: &[u8]) -> u32 {
     crc & 0xFF_FFFF
 }
 
+/// CRC-CCITT of SBF (polynomial 0x1021, initial value 0, no reflection).
+pub fn crc16_ccitt(data: &[u8]) -> u16 {
+    let mut crc = 0u16;
+    for &byte in data {
+        crc ^= u16::from(byte) << 8;
+        for _ in 0..8 {
+            crc = if crc & 0x8000 != 0 { (crc << 1) ^ 0x1021 } else { crc << 1 };
+        }
+    }
+    crc
+}
+
 /// Why what began like a binary frame is not one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FrameError {
@@ -190,6 +223,9 @@ pub enum FrameError {
     },
     /// Its length field says more bytes than [`MAX_FRAME`]: the frame's length.
     TooLong(usize),
+    /// Its length field (one that counts the whole frame) says fewer bytes than its header and
+    /// checksum hold: the frame's length.
+    TooShort(usize),
     /// Its header after the sync is NUL bytes (a UBX frame of class 0, id 0 and no payload would
     /// have a checksum of NULs too): what a break after a sync makes.
     NulHeader,
@@ -203,6 +239,7 @@ impl FrameError {
         match self {
             FrameError::BadChecksum { .. } => "bad_checksum",
             FrameError::TooLong(_) => "too_long",
+            FrameError::TooShort(_) => "too_short",
             FrameError::NulHeader => "nul_header",
             FrameError::Cut => "cut",
         }
@@ -350,11 +387,12 @@ impl Framer {
                 self.reject(FrameError::NulHeader, each); // what a break's NUL bytes after a sync make
             } else if self.frame_size > MAX_FRAME {
                 self.reject(FrameError::TooLong(self.frame_size), each);
+            } else if self.frame_size < framing.header + framing.trailer_len() {
+                self.reject(FrameError::TooShort(self.frame_size), each);
             }
-        } else if self.frame_len == self.frame_size {
-            let body = self.frame_size - framing.trailer_len();
-            let sent = self.frame[body..self.frame_size].iter().fold(0u32, |sum, &b| sum << 8 | u32::from(b));
-            let computed = framing.check(&self.frame[..body]);
+        }
+        if self.frame_len > 0 && self.frame_len == self.frame_size {
+            let (sent, computed) = framing.check(&self.frame[..self.frame_size]);
             if sent == computed {
                 each(Item::Frame(protocol, &self.frame[..self.frame_size]));
                 self.frame_len = 0;
@@ -488,6 +526,8 @@ mod tests {
 
     const ACK: &[u8] = b"\xb5\x62\x05\x01\x02\x00\x06\x00\x0e\x37"; // UBX ACK-ACK of CFG-PRT
     const RTCM: &[u8] = b"\xd3\x00\x02\x3e\xe0\x6d\x7f\x60"; // RTCM 3, message number 0x3EE
+    /// SBF ReceiverTime (block 5914, revision 0).
+    const SBF: &[u8] = b"$@\xbd\x13\x1a\x17\x18\x00\x70\x2f\xcb\x1c\x3f\x09\x19\x05\x17\x0e\x0b\x00\x12\x07\x00\x00";
 
     /// The items of `stream` fed in chunks of every size, alike, each written as text: a line or
     /// a bad frame's sync bytes in hex, a frame as its protocol, a bad frame with its kind.
@@ -505,7 +545,12 @@ mod tests {
                         Item::Line(line) => put(line),
                         Item::TooLong(_) => put(b"too long"),
                         Item::Frame(protocol, frame) => {
-                            assert_eq!(&frame[..1], if protocol == Protocol::Ubx { &ACK[..1] } else { &RTCM[..1] });
+                            let first = match protocol {
+                                Protocol::Ubx => ACK[0],
+                                Protocol::Sbf => SBF[0],
+                                _ => RTCM[0],
+                            };
+                            assert_eq!(frame[0], first);
                             put(protocol.name().as_bytes());
                         }
                         Item::BadFrame(protocol, error, sync) => {
@@ -559,6 +604,26 @@ mod tests {
         );
         // no frame inside a TAG block
         binary_items(b"\\s:\xb5\x62*00\\$A", b"\\s:\xb5\x62*00\\$A|");
+    }
+
+    #[test]
+    fn sbf_blocks_beside_sentences() {
+        // "$@" starts a block, any other '$' a sentence; its CRC wrong; a length under its header's
+        let mut stream = [0u8; 64];
+        let parts: [&[u8]; 4] = [b"$GPGGA,1", SBF, b"$GP\n", SBF];
+        let mut len = 0;
+        for part in parts {
+            stream[len..len + part.len()].copy_from_slice(part);
+            len += part.len();
+        }
+        binary_items(&stream[..len], b"$GPGGA,1|sbf|$GP|sbf|");
+        binary_items(b"$@\xbd\x13\x1a\x17\x0c\x00ab$A,1\n", b"sbf bad_checksum|\xbd\x13\x1a\x17\x0c\x00ab|$A,1|");
+        binary_items(b"$@\x01\x02\x03\x04\x04\x00$A\n", b"sbf too_short|\x01\x02\x03\x04\x04\x00|$A|");
+        assert_eq!(crc16_ccitt(&SBF[4..]), 0x13BD);
+        let framing = Protocol::Sbf.framing();
+        let mut identity = framing.identity_of(SBF);
+        assert_eq!(identity.next(), Some(("number", Some(5914))));
+        assert_eq!(identity.next(), Some(("revision", Some(0))));
     }
 
     #[test]

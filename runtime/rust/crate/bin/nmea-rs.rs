@@ -224,7 +224,7 @@ fn write_bad_frame(w: &mut String, protocol: Protocol, error: FrameError, sync: 
     )?;
     match error {
         FrameError::BadChecksum { sent, computed } => {
-            let width = protocol.trailer_len();
+            let width = protocol.framing().check_size + protocol.framing().end.len();
             w.push_str("checksum");
             for i in (0..width).rev() {
                 write!(w, " {:02X}", sent >> (8 * i) & 0xFF)?;
@@ -235,6 +235,10 @@ fn write_bad_frame(w: &mut String, protocol: Protocol, error: FrameError, sync: 
             }
         }
         FrameError::TooLong(length) => write!(w, "frame is {length} bytes, the limit is {MAX_FRAME}")?,
+        FrameError::TooShort(length) => {
+            let least = protocol.framing().header + protocol.trailer_len();
+            write!(w, "frame is {length} bytes, the least is {least}")?;
+        }
         FrameError::NulHeader => w.push_str("the header after the sync is NUL bytes"),
         FrameError::Cut => w.push_str("the stream ends inside the frame"),
     }
