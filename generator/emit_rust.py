@@ -1038,6 +1038,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         tag_codes=[f"TagCode {{ code: {rust_str(c.code)}, id: {rust_str(c.id)}, name: {rust_str(c.name)}, "
                    f"kind: TagType::{TAG_TYPES[c.type]} }}," for c in spec.tag_codes],
         runtime_uses=fmt_use("runtime", {"read_layout", "Decoded", "FastReader", "Layouts", "Outcome"}),
+        binary_protocols=sorted({m.protocol for m in spec.binary}),
         text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
         all_layouts=["    pub const ALL: &'static [Self] = &[",
                      *[line for lay in layouts for line in with_cfg(8, lay["cfg"], [f"        Self::{lay['name']},"])],

@@ -53,11 +53,14 @@ use core::fmt::{self, Write};
 
 pub mod ais_messages;
 pub mod bitfields;
+pub mod casic_messages;
 pub mod enums;
 #[cfg(feature = "std")]
 mod fix_fields;
 mod runtime;
 pub mod sentences;
+pub mod sirf_messages;
+pub mod skytraq_messages;
 pub mod tables;
 pub mod ubx_messages;
 

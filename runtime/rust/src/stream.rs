@@ -87,7 +87,7 @@ impl FrameFormat {
     }
 
     /// The frame's bytes, sync to end, from its header.
-    fn frame_len(&self, header: &[u8]) -> usize {
+    pub(crate) fn frame_len(&self, header: &[u8]) -> usize {
         let first = usize::from(header[self.length_at]);
         let length = match (self.length_size, self.big_endian) {
             (2, true) => first << 8 | usize::from(header[self.length_at + 1]),
@@ -98,7 +98,7 @@ impl FrameFormat {
     }
 
     /// The checksum and end bytes a frame (less them) must end with, as a big-endian number.
-    fn check(&self, frame: &[u8]) -> u32 {
+    pub(crate) fn check(&self, frame: &[u8]) -> u32 {
         let bytes = &frame[self.check_from..];
         let sum = match self.checksum {
             ChecksumKind::Fletcher8 => {
