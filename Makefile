@@ -228,6 +228,9 @@ build/c/test_stream_smallest: build/c/subset/c/nmea.c tests/c/test_stream.c
 # The UBX pair's tests (runtime/c/test_ubx.c): the shared vectors, then every UBX frame the framer
 # finds in gpsd's logs decoded and encoded back byte for byte.
 UBX_LOGS := $(sort $(wildcard tests/data/ubx/*.log)) $(sort $(wildcard tests/data/rtcm3/*.log))
+# The logs of the other protocols the UBX pair types (SkyTraq, SiRF, CASIC), with their vectors.
+BINARY_LOGS := generated/vectors/binary.jsonl $(sort $(wildcard tests/data/skytraq/*.log)) \
+        $(sort $(wildcard tests/data/sirf/*.log)) $(sort $(wildcard tests/data/casic/*.log))
 build/c/test_ubx: build/c/nmea-test.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
 	@mkdir -p build/c
 	$(CC) $(CFLAGS) -O0 -I generated/c -o $@ build/c/nmea-test.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
@@ -255,8 +258,8 @@ test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o
         build/c/test_ubx build/c/test_ubx_8 build/c/test_rtcm3
 	build/c/test_examples
 	build/c/test_rtcm3 generated/vectors/rtcm3.jsonl $(RTCM3_LOGS)
-	build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS)
-	build/c/test_ubx_8 generated/vectors/ubx.jsonl $(UBX_LOGS)
+	build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS) $(BINARY_LOGS)
+	build/c/test_ubx_8 generated/vectors/ubx.jsonl $(UBX_LOGS) $(BINARY_LOGS)
 	build/c/test_ais generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
 	build/c/test_ais_2_slots generated/vectors/ais.jsonl tests/data/ais/assembly_cases.jsonl
 	build/c/test_examples_general
@@ -275,7 +278,7 @@ test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_example
 	build/c/test_examples_san
 	build/c/test_rtcm3_san generated/vectors/rtcm3.jsonl $(RTCM3_LOGS)
 	build/c/test_small_san build/c/small_lines.txt
-	build/c/test_ubx_san generated/vectors/ubx.jsonl $(UBX_LOGS)
+	build/c/test_ubx_san generated/vectors/ubx.jsonl $(UBX_LOGS) $(BINARY_LOGS)
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_ubx generated/vectors/ubx.jsonl $(UBX_LOGS) > /dev/null
 	@cat $(MEMORY_INPUTS) > build/c/memory.nmea
 	build/c/nmea-c-san decode < build/c/memory.nmea > build/c/asan.jsonl

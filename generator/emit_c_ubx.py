@@ -1,9 +1,14 @@
-"""C emitter of the binary messages (spec/binary/ubx): the pair nmea_ubx.h / nmea_ubx.c, beside
+"""C emitter of the binary messages (spec/binary/ubx, and the other protocols' of
+spec/binary/<protocol>/messages: SkyTraq, SiRF, CASIC): the pair nmea_ubx.h / nmea_ubx.c, beside
 the NMEA pair and independent of it (a firmware links it only if it wants UBX). A struct per
 layout, every field typed; a descriptor per layout (its items: kind, bytes, member offset, scale,
 enum, group) that one reader, one writer and one JSON printer interpret (runtime/c/ubx.{h,c},
 pasted in), as STYLE.md's "layouts as data" says; nmea_ubx_decode / nmea_ubx_encode /
-nmea_ubx_json dispatch on the class and id, then the length and version, as Python's ubx.message.
+nmea_ubx_json dispatch on the class and id, then the length and version, as Python's ubx.message;
+nmea_ubx_decode_frame_of on another protocol's key (its header's class and id, or its payload's id
+and sub-id), as Python's binary.message, each protocol framed by its row of a framing table
+(emit_framing's facts) and read in its byte order. A layout of another protocol is named with its
+protocol (nmea_ubx_skytraq_nav_data, NMEA_UBX_MSG_SKYTRAQ_NAV_DATA).
 
 No heap, no VLA: a group is an array of a fixed maximum (what its count field, the spec's maximum
 and a 65535-byte payload allow, lowered by a firmware with NMEA_UBX_MAX_ENTRIES or the group's own
@@ -16,8 +21,9 @@ from __future__ import annotations
 import jinja2
 
 from .emit import RUNTIME, header
+from .emit_framing import framing, typed_natively
 from .emit_python_ubx import title
-from .model import EnumDef, PayloadField, PayloadGroup, Spec
+from .model import BinaryProtocol, EnumDef, PayloadField, PayloadGroup, Spec
 from .names_c import member
 from .reference_ais import after
 
@@ -50,7 +56,8 @@ def _doc(f: PayloadField) -> str:
 class _Layout:
     """The C code of one layout (or a group's entry): its struct and its descriptor rows."""
 
-    def __init__(self, struct: str, prefix: str, items: list, upper: str) -> None:
+    def __init__(self, struct: str, prefix: str, items: list, upper: str, big: bool = False) -> None:
+        self.big = big              # of a big-endian protocol
         # The bytes of each integer member a group may be counted by (a field, a bitfield's part).
         self.counters: dict[str, tuple[int, int]] = {}
         for f in items:
@@ -121,6 +128,9 @@ class _Layout:
                       after_bytes=after(following) // 8)
             return
         size = f.bits // 8
+        if t.name == "reserved" and size > 8 and self.big:
+            raise NotImplementedError(f"{f.origin.file}: {f.id}: a reserved field of {size} bytes, big endian, "
+                                      "has no C code yet (its JSON integer)")
         if t.name in ("ch", "bytes") or t.name == "reserved" and size > 8:
             c_type = "char" if t.name == "ch" else "uint8_t"
             self.members.append(f"{c_type} {name}[{size}]; /* {doc}{' (as sent)' if t.name != 'bytes' else ''} */")
@@ -155,7 +165,8 @@ class _Layout:
         # The interpreter reads an entry field by field: no group, optional field or bytes left in it.
         assert all(isinstance(f, PayloadField) and f.bits is not None and not f.optional for f in g.fields), g.id
         word = g.id[:-1] if g.id.endswith("s") else g.id + "_entry"
-        entry = _Layout(f"{self.struct}_{word}", f"{self.prefix}_{word}", list(g.fields), f"{self.upper}_{word.upper()}")
+        entry = _Layout(f"{self.struct}_{word}", f"{self.prefix}_{word}", list(g.fields), f"{self.upper}_{word.upper()}",
+                        self.big)
         assert not entry.entries, f"{self.struct}.{g.id}: a group in a group"
         entry.doc = f"One entry of {g.name.lower()} ({g.id})."
         self.entries.append(entry)
@@ -164,6 +175,9 @@ class _Layout:
         entry_bytes = g.entry_width // 8
         fixed = sum(f.bits // 8 for f in self.items if isinstance(f, PayloadField) and f.bits is not None)
         natural = min(g.max, (MAX_PAYLOAD - fixed) // entry_bytes)
+        if g.count is None and g.max >= MAX_PAYLOAD:   # the bytes left, no maximum in the spec (SiRF MID 4):
+            natural = min(natural, 255)                   # as many as a U1 count says, not 4,368
+
         count_kind, count, count_offset, count_member = "LEFT", 0, "0", 1
         if isinstance(g.count, int):
             count_kind, count, natural = "FIXED", g.count, g.count
@@ -213,21 +227,47 @@ def carries_ubx(spec: Spec) -> bool:
     return any(m.protocol == "ubx" for m in spec.binary)
 
 
+def _framing_row(p: BinaryProtocol) -> str:
+    """A protocol's row of ubx_framings (nmea_ubx_framing)."""
+    f = framing(p)
+    where = f"{p.origin.file}: frame"
+    if len(f.sync) != 2 or f.length_size != 2:
+        raise NotImplementedError(f"{where}: the UBX pair frames two sync bytes and a length of two bytes")
+    key_at = {at // 8 for _, at, _ in f.identity}
+    if not key_at <= set(range(f.header)):   # the key starts the payload: its id (and sub-id)
+        key_at = set()
+    elif len(f.identity) != 2 or len(key_at) != 2 or max(key_at) != min(key_at) + 1:
+        raise NotImplementedError(f"{where}: a key in the header is a class byte and an id byte")
+    end = list(f.end) + [0] * (2 - len(f.end))
+    return (f'{{"{p.id}", "{p.id.upper()}", {{0x{f.sync[0]:02X}, 0x{f.sync[1]:02X}}}, {f.header}, {f.length_at}, '
+            f'0x{f.length_mask:04X}, {min(key_at) if key_at else 0}, NMEA_UBX_CHECK_{f.checksum.upper()}, {f.check_from}, '
+            f'{f.check_size}, {{0x{end[0]:02X}, 0x{end[1]:02X}}}, {len(f.end)}, {"true" if f.big_endian else "false"}}}')
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     if not carries_ubx(spec):
         return {}
-    messages = sorted((m for m in spec.binary if m.protocol == "ubx"), key=lambda m: (m.class_number, m.msg_id))
+    ubx = sorted((m for m in spec.binary if m.protocol == "ubx"), key=lambda m: (m.class_number, m.msg_id))
+    # The other protocols' messages by protocol, then key (an id and sub-id before the id alone).
+    names = ["ubx", *[p for p in typed_natively(spec) if p != "ubx"]]
+    protocols = [next(p for p in spec.protocols if p.id == name) for name in names]
+    others = sorted((m for m in spec.binary if m.protocol in names[1:]),
+                    key=lambda m: (names.index(m.protocol), len(m.key) == 1, m.key))
+    messages = ubx + others
     layouts = []
     for message in messages:
         for layout in message.layouts:
-            code = _Layout(f"nmea_ubx_{layout.id}", f"ubx_{layout.id}", layout.items, layout.id.upper())
+            cid = layout.id if message.protocol == "ubx" else f"{message.protocol}_{layout.id}"
+            code = _Layout(f"nmea_ubx_{cid}", f"ubx_{cid}", layout.items, cid.upper(), message.byte_order == "big")
             version_at = 0
             if layout.version is not None:
                 version = next(f for f in layout.fields if f.id == "version")
                 assert version.offset is not None
                 version_at = version.offset // 8
+            key = list(message.key) + [0] * (2 - len(message.key))
             layouts.append(dict(
-                message=message, layout=layout, code=code,
+                message=message, layout=layout, code=code, cid=cid, key=key, protocol=message.protocol.upper(),
+                key_len=len(message.key) if not message.msg_class else 0,
                 typedefs=[e.typedef(e.doc, False) for e in code.entries] + [code.typedef(title(message, layout), True)],
                 tables="\n".join([*(e.code() for e in code.entries), code.code()]),
                 defines=[d for e in code.entries for d in e.defines] + code.defines,
@@ -237,7 +277,16 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     enums = {f.enum.id: f.enum for m in messages for lay in m.layouts for field in lay.fields
              for f in (field, *field.parts) if f.enum}
     sources = [m.origin.file for m in messages] + sorted({e.origin.file for e in enums.values()})
-    context = dict(layouts=layouts, messages=messages, enums=[enum_table(enums[key]) for key in sorted(enums)],
+    keyed, first = [], 0
+    for m in messages:   # each message's layouts: the first and the last of ubx_layouts
+        last = first + len(m.layouts) - 1
+        key = list(m.key) + [0] * (2 - len(m.key))
+        keyed.append(dict(message=m, first=first, last=last, key=key, protocol=m.protocol.upper(),
+                          key_len=len(m.key) if not m.msg_class else 0))
+        first = last + 1
+    context = dict(layouts=layouts, ubx=keyed[:len(ubx)], others=keyed[len(ubx):],
+                   protocols=[p.id.upper() for p in protocols], framings=[_framing_row(p) for p in protocols],
+                   enums=[enum_table(enums[key]) for key in sorted(enums)],
                    runtime_h=(RUNTIME / "c" / "ubx.h").read_text(encoding="utf-8"),
                    runtime_c=(RUNTIME / "c" / "ubx.c").read_text(encoding="utf-8"))
     return {

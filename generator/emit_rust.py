@@ -17,6 +17,7 @@ from pathlib import Path
 import jinja2
 
 from . import cache, emit_vectors, pairing
+from .emit_framing import typed_natively
 from .emit import RUNTIME, char_literal, header, package_readme, runtime_file
 from .field_types import codes_expected
 from .model import BitfieldDef, EnumDef, Field, FixField, Group, Layout, Sentence, Spec, TableDef, camel
@@ -1038,6 +1039,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         tag_codes=[f"TagCode {{ code: {rust_str(c.code)}, id: {rust_str(c.id)}, name: {rust_str(c.name)}, "
                    f"kind: TagType::{TAG_TYPES[c.type]} }}," for c in spec.tag_codes],
         runtime_uses=fmt_use("runtime", {"read_layout", "Decoded", "FastReader", "Layouts", "Outcome"}),
+        binary_protocols=typed_natively(spec),
         text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
         all_layouts=["    pub const ALL: &'static [Self] = &[",
                      *[line for lay in layouts for line in with_cfg(8, lay["cfg"], [f"        Self::{lay['name']},"])],

@@ -1,5 +1,6 @@
-"""Rust emitter of the binary messages (spec/binary/ubx): the module `ubx_messages` of the
-generated crate, a struct per layout (named as the Python classes of emit_python_ubx) with
+"""Rust emitter of the binary messages (spec/binary/<protocol>/messages): the module `ubx_messages`
+of the generated crate (and `skytraq_messages`, `sirf_messages`, `casic_messages`, the same code
+in their byte order and framing), a struct per layout (named as the Python classes of emit_python_ubx) with
 straight-line `read`, `write` and JSON code over the runtime's byte reader and writer
 (runtime/rust/src/ubx.rs), a struct per repeated group's entry, and the `Message` enum that picks
 a layout by class and id, then by length and version, as the Python runtime and the reference
@@ -17,8 +18,9 @@ from __future__ import annotations
 import jinja2
 
 from .emit import header
+from .emit_framing import typed_natively
 from .emit_python_ais import entry_class
-from .emit_python_ubx import title as title_of
+from .emit_python_ubx import identity, title as title_of
 from .emit_rust import rust_str, rustfmt
 from .names_rust import ident
 from .model import BinaryMessage, Payload, PayloadField, PayloadGroup, Spec
@@ -87,8 +89,10 @@ def _part_value(p: PayloadField, word: str, word_type: str) -> str:
 class _Record:
     """The code of one layout's struct or one group entry's."""
 
-    def __init__(self, name: str, items: list, address: str, entries: dict[str, str] | None = None) -> None:
+    def __init__(self, name: str, items: list, address: str, entries: dict[str, str] | None = None,
+                 order: str = "le") -> None:
         self.name = name
+        self.order = order       # le, be: the protocol's byte order
         self.entry_names = entries or {}   # a group's id -> its entry's struct
         self.address = address
         self.members: list[str] = []
@@ -126,11 +130,13 @@ class _Record:
         elif f.type in ("ch", "bytes"):
             read = f"r.bytes({width}, {key})?"
         elif width in (1, 2, 4, 8, 16):
-            read = f"{kind}::from_le_bytes(r.array({key})?)"
-        else:   # a reserved field of 3, 5, 6, 7 or 9 bytes
+            read = f"{kind}::from_{self.order}_bytes(r.array({key})?)"
+        else:   # a reserved field of 3, 5, 6, 7 or 9 bytes: its bytes at the low end of the integer
             pad = int(kind[1:]) // 8 - width
-            read = f"{{ let b: [u8; {width}] = r.array({key})?; let mut le = [0u8; {pad + width}]; " \
-                   f"le[..{width}].copy_from_slice(&b); {kind}::from_le_bytes(le) }}"
+            span = f"[..{width}]" if self.order == "le" else f"[{pad}..]"
+            o = self.order
+            read = f"{{ let b: [u8; {width}] = r.array({key})?; let mut {o} = [0u8; {pad + width}]; " \
+                   f"{o}{span}.copy_from_slice(&b); {kind}::from_{o}_bytes({o}) }}"
         if certain:
             self.read.append(f"let {name} = {read};")
         elif f.optional:
@@ -145,9 +151,10 @@ class _Record:
             put = f"w.put_sized({value}, {f'Some({width})' if width is not None else 'None'}, "\
                   f"{rust_str(self.address)}, {key})?;"
         elif width in (1, 2, 4, 8, 16):
-            put = f"w.put(&{value}.to_le_bytes());"
+            put = f"w.put(&{value}.to_{self.order}_bytes());"
         else:
-            put = f"w.put(&{value}.to_le_bytes()[..{width}]);"
+            pad = int(kind[1:]) // 8 - width
+            put = f"w.put(&{value}.to_{self.order}_bytes()[{f'..{width}' if self.order == 'le' else f'{pad}..'}]);"
         self.write.append(put if certain else f"let Some(v) = self.{name} else {{ break 'write; }}; {put}")
         json = self._json(f, value)
         self.json.append(json if certain else f"if let Some(v) = self.{name} {{ {json} }}")
@@ -232,7 +239,7 @@ class _Record:
                 f"self.{f.id} = (self.{f.id} & !{shifted}) | {raw}; }}")
 
     def _group(self, g: PayloadGroup, following: list) -> None:
-        entry = _Record(self.entry_names[g.id], g.fields, self.address)
+        entry = _Record(self.entry_names[g.id], g.fields, self.address, order=self.order)
         self.entries.append(entry)
         key, name = rust_str(g.id), ident(g.id)
         lifetime = "<'a>" if entry.borrows else ""
@@ -283,10 +290,14 @@ def record_code(record: _Record, payload: Payload | None, message: BinaryMessage
         length = f"Some({payload.fixed_width // 8})" if payload.fixed_width is not None else "None"
         version = f"Some({payload.version})" if payload.version is not None else "None"
         strs = lambda words: "&[" + ", ".join(rust_str(w) for w in words) + "]"  # noqa: E731
+        ubx = message.protocol == "ubx"
+        key = "[" + ", ".join(f"{k:#04x}" for k in message.key) + "]"
         impl += [f"/// The spec's id of the layout.\npub const ID: &'static str = {rust_str(payload.id)};",
-                 f"/// How u-blox names the message.\npub const ADDRESS: &'static str = {rust_str(message.address)};",
-                 f"/// The message class.\npub const CLASS: u8 = {message.class_number:#04x};",
-                 f"/// The message id.\npub const MSG_ID: u8 = {message.msg_id:#04x};",
+                 f"/// How {'u-blox names' if ubx else 'errors name'} the message.\n"
+                 f"pub const ADDRESS: &'static str = {rust_str(message.address)};",
+                 *([f"/// The message class.\npub const CLASS: u8 = {message.class_number:#04x};",
+                    f"/// The message id.\npub const MSG_ID: u8 = {message.msg_id:#04x};"] if ubx else
+                   [f"/// The bytes that tell the message: {identity(message)}.\npub const KEY: &'static [u8] = &{key};"]),
                  f"/// The payload's bytes, when the layout fixes them.\npub const LENGTH: Option<usize> = {length};",
                  f"/// The value of its `version` field that tells it from another layout.\npub const VERSION: Option<u8> = {version};",
                  f"/// Who sends it: poll and input go to the receiver, output comes from it.\n"
@@ -306,17 +317,26 @@ def record_code(record: _Record, payload: Payload | None, message: BinaryMessage
             out += [f"impl{lifetime} {record.name}{lifetime} {{", *record.accessors, "}", ""]
         return "\n".join(out)
     assert message is not None
+    if message.protocol == "ubx":
+        reader = "ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID))"
+        encode = "ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))"
+        what, frame, vectors = "`payload`", "sync bytes to checksum", "ubx.jsonl"
+    else:
+        reader = f"ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol({rust_str(message.protocol.upper())})"
+        encode = f"ubx::encode_frame_of(buf, Protocol::{message.protocol.capitalize()}, Self::KEY, Self::ADDRESS, |w| self.write(w))"
+        what = "`payload` (the bytes after its key)" if not message.msg_class else "`payload`"
+        frame, vectors = "sync bytes to checksum and end bytes", "binary.jsonl"
     out += [f"impl<'a> {record.name}<'a> {{", *impl,
-            f"/// The message of `payload`, read as this layout (a short payload names the field it cuts).\n"
+            f"/// The message of {what}, read as this layout (a short payload names the field it cuts).\n"
             f"pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {{"
-            f"let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));"
+            f"let r = &mut {reader};"
             f"{' '.join(reads)} Ok(Self {{ {init} }}) }}",
-            f"/// Writes the payload.\npub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {{ "
+            f"/// Writes the payload{' after its key' if not message.msg_class else ''}.\npub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {{ "
             f"{write_body} Ok(()) }}",
-            "/// The whole frame, sync bytes to checksum, written into `buf`.\n"
+            f"/// The whole frame, {frame}, written into `buf`.\n"
             "pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {"
-            "ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w)) }",
-            "/// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.\n"
+            f"{encode} }}",
+            f"/// The members of its decoded JSON (those of generated/vectors/{vectors}), in order.\n"
             "pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {"
             + " ".join(record.json) + " ubx::json_hex(j, \"trailing\", self.trailing) }", "}", ""]
     return "\n".join(out)
@@ -336,7 +356,9 @@ def _fits(message: BinaryMessage, layout: Payload) -> str | None:
 
 
 def dispatch_arm(message: BinaryMessage) -> str:
-    """The match arm of a class and id: the first layout that fits, else the main one."""
+    """The match arm of a class and id (UBX), of the header's class and id (CASIC) or of the
+    payload's first bytes, its id and sub-id (SkyTraq, SiRF: the layout reads the rest): the first
+    layout that fits, else the main one."""
     main = next((lay for lay in message.layouts if "output" in lay.directions), message.layouts[-1])
     read = lambda lay: f"Message::{lay.camel}({lay.camel}::read(payload)?)"  # noqa: E731
     tests: list[tuple[str, Payload]] = []
@@ -352,27 +374,55 @@ def dispatch_arm(message: BinaryMessage) -> str:
     branches = [f"if {condition} {{ {read(layout)} }}" for condition, layout in tests] + [read(last)]
     body = branches[0] if len(branches) == 1 else " else ".join(
         b if b.startswith("if ") else f"{{ {b} }}" for b in branches)
-    return f"({message.class_number:#04x}, {message.msg_id:#04x}) => {body},"
+    key = ", ".join(f"{k:#04x}" for k in message.key)
+    if message.protocol == "ubx":
+        return f"({key}) => {body},"
+    if message.msg_class:   # CASIC: the header's class and id
+        return f"Some([{key}]) => {body},"
+    return f"[{key}, payload @ ..] => {body},"
 
 
-def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    messages = [m for m in spec.binary if m.protocol == "ubx"]
-    if not messages:
-        return {}
+def _blocks(messages: list[BinaryMessage]) -> tuple[list[str], list[Payload]]:
+    """The code of every layout of `messages` (its entries' structs first) and the layouts."""
     blocks: list[str] = []
     layouts: list[Payload] = []
     for message in messages:
+        order = "be" if message.byte_order == "big" else "le"
         for layout in message.layouts:
             names = {g.id: entry_class(layout, g) for g in layout.items if isinstance(g, PayloadGroup)}
-            record = _Record(layout.camel, layout.items, message.address, names)
+            record = _Record(layout.camel, layout.items, message.address, names, order=order)
             for entry in record.entries:
                 blocks.append(record_code(entry, None, None))
             blocks.append(record_code(record, layout, message))
             layouts.append(layout)
+    return blocks, layouts
+
+
+def protocols(spec: Spec) -> list[str]:
+    """The binary protocols besides UBX whose messages the Rust crate types, each a module of its own."""
+    return [p for p in typed_natively(spec) if p != "ubx"]
+
+
+def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
+    files: dict[str, str] = {}
+    for protocol in protocols(spec):   # SkyTraq, SiRF, CASIC
+        others = sorted((m for m in spec.binary if m.protocol == protocol), key=lambda m: (len(m.key) == 1, m.key))
+        blocks, layouts = _blocks(others)
+        name = next((p.name for p in spec.protocols if p.id == protocol), protocol)
+        files[f"rust/src/{protocol}_messages.rs"] = env.get_template("rust/binary_messages.rs.j2").render(
+            header=header(spec, "//", ["templates/rust/binary_messages.rs.j2", *(m.origin.file for m in others)]),
+            blocks=blocks, layouts=layouts, arms=[dispatch_arm(m) for m in others], name=name,
+            protocol=protocol, variant=protocol.capitalize(),
+            in_header=bool(others[0].msg_class), order=others[0].byte_order)
+    messages = [m for m in spec.binary if m.protocol == "ubx"]
+    if not messages:
+        return rustfmt(files)
+    blocks, layouts = _blocks(messages)
     fields = [p for m in messages for lay in m.layouts for f in lay.fields for p in (f, *f.parts)]
     enums = sorted({f.enum.camel for f in fields if f.enum})
     sources = [m.origin.file for m in messages]
-    return rustfmt({"rust/src/ubx_messages.rs": env.get_template("rust/ubx_messages.rs.j2").render(
+    files["rust/src/ubx_messages.rs"] = env.get_template("rust/ubx_messages.rs.j2").render(
         header=header(spec, "//", ["templates/rust/ubx_messages.rs.j2", *sources]), blocks=blocks, enums=enums,
         layouts=layouts, arms=[dispatch_arm(m) for m in messages],
-        example=any(lay.id == "ack_ack" for lay in layouts))})
+        example=any(lay.id == "ack_ack" for lay in layouts))
+    return rustfmt(files)

@@ -90,8 +90,28 @@
 //   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_sbas.yaml,
 //   spec/binary/ubx/messages/nav2_sat.yaml, spec/binary/ubx/messages/nav2_cov.yaml,
 //   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_sig.yaml,
-//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 9cec151a435c5c82)
+//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/binary/casic/messages/nav_dop.yaml,
+//   spec/binary/casic/messages/nav_pv.yaml, spec/binary/casic/messages/nav_timeutc.yaml,
+//   spec/binary/casic/messages/nav_gpsinfo.yaml, spec/binary/casic/messages/nav_bdsinfo.yaml,
+//   spec/binary/casic/messages/nav_glninfo.yaml, spec/binary/casic/messages/ack_nak.yaml,
+//   spec/binary/casic/messages/ack_ack.yaml, spec/binary/casic/messages/cfg_prt.yaml,
+//   spec/binary/casic/messages/cfg_msg.yaml, spec/binary/casic/messages/cfg_rate.yaml,
+//   spec/binary/casic/messages/mon_ver.yaml, spec/binary/sirf/messages/gnss_nav_solution.yaml,
+//   spec/binary/sirf/messages/measured_nav.yaml, spec/binary/sirf/messages/tracker_data.yaml,
+//   spec/binary/sirf/messages/sw_version.yaml, spec/binary/sirf/messages/clock_status.yaml,
+//   spec/binary/sirf/messages/cpu_throughput.yaml, spec/binary/sirf/messages/command_ack.yaml,
+//   spec/binary/sirf/messages/command_nack.yaml, spec/binary/sirf/messages/visible_list.yaml,
+//   spec/binary/sirf/messages/ok_to_send.yaml, spec/binary/sirf/messages/geodetic_nav.yaml,
+//   spec/binary/sirf/messages/pps_time.yaml, spec/binary/sirf/messages/switch_to_nmea.yaml,
+//   spec/binary/sirf/messages/poll_sw_version.yaml, spec/binary/sirf/messages/set_protocol.yaml,
+//   spec/binary/sirf/messages/dev_data.yaml, spec/binary/skytraq/messages/query_sw_version.yaml,
+//   spec/binary/skytraq/messages/config_message_type.yaml,
+//   spec/binary/skytraq/messages/sw_version.yaml, spec/binary/skytraq/messages/msg_ack.yaml,
+//   spec/binary/skytraq/messages/msg_nack.yaml, spec/binary/skytraq/messages/nav_data.yaml,
+//   spec/binary/skytraq/messages/meas_time.yaml, spec/binary/skytraq/messages/raw_meas.yaml,
+//   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
+//   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/ubx_fix_type.yaml,
+//   spec/enums/ubx_gnss_id.yaml (digest 81313b3704da7810)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -161,6 +181,41 @@ static uint64_t ubx_le(const uint8_t *p, size_t n)
     }
 }
 
+/* The `n` bytes (at most 8) at `p`, big endian (SkyTraq, SiRF). */
+static uint64_t ubx_be(const uint8_t *p, size_t n)
+{
+    uint64_t raw = 0;
+    size_t i;
+    for (i = 0; i < n; i++)
+        raw = raw << 8 | p[i];
+    return raw;
+}
+
+/* The checksum of `len` bytes as the frame sends it, read as a big-endian number. */
+static unsigned long ubx_check(nmea_ubx_check kind, const uint8_t *p, size_t len)
+{
+    unsigned long sum = 0;
+    unsigned sums;
+    size_t i;
+    switch (kind) {
+    case NMEA_UBX_CHECK_FLETCHER8:
+        sums = ubx_checksum(p, len);
+        return (unsigned long)(sums & 0xFF) << 8 | sums >> 8;
+    case NMEA_UBX_CHECK_XOR8:
+        for (i = 0; i < len; i++)
+            sum ^= p[i];
+        return sum;
+    case NMEA_UBX_CHECK_SUM15:
+        for (i = 0; i < len; i++)
+            sum += p[i];
+        return sum & 0x7FFF;
+    default: /* SUM32: little-endian words, a short last one padded with zeros; sent little endian */
+        for (i = 0; i < len; i++)
+            sum = (sum + ((unsigned long)p[i] << 8 * (i & 3))) & 0xFFFFFFFFul;
+        return (sum & 0xFF) << 24 | (sum >> 8 & 0xFF) << 16 | (sum >> 16 & 0xFF) << 8 | sum >> 24;
+    }
+}
+
 /* A member of `member` bytes at `m` as an integer (signed: sign-extended). */
 static uint64_t ubx_get(const uint8_t *m, unsigned member, bool is_signed)
 {
@@ -216,6 +271,7 @@ typedef struct {
     size_t len, pos;
     const char *address;
     nmea_ubx_error *err;
+    bool big; /* its protocol's fields are big endian */
 } ubx_reader;
 
 static bool ubx_short(ubx_reader *r, const char *field, size_t need)
@@ -272,7 +328,7 @@ static bool ubx_read_field(ubx_reader *r, const nmea_ubx_item *it, uint8_t *m, u
     if (it->kind == NMEA_UBX_ITEM_ARRAY) {
         memcpy(at, r->p + r->pos, it->size);
     } else {
-        raw = ubx_le(r->p + r->pos, it->size);
+        raw = r->big ? ubx_be(r->p + r->pos, it->size) : ubx_le(r->p + r->pos, it->size);
         if (it->kind == NMEA_UBX_ITEM_FLOAT && it->size == 4) {
             uint32_t bits = (uint32_t)raw;
             memcpy(at, &bits, 4); /* a float's bits, as sent (a NaN's too) */
@@ -345,12 +401,13 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
     return true;
 }
 
-/* A payload being written after the frame's 6 header bytes. */
+/* A payload being written after the frame's header bytes. */
 typedef struct {
     uint8_t *buf;
     size_t cap, len;
     const char *address;
     nmea_ubx_error *err;
+    bool big; /* its protocol's fields are big endian */
 } ubx_writer;
 
 static bool ubx_put(ubx_writer *w, const uint8_t *bytes, size_t n, const char *field)
@@ -364,12 +421,13 @@ static bool ubx_put(ubx_writer *w, const uint8_t *bytes, size_t n, const char *f
     return true;
 }
 
-static bool ubx_put_le(ubx_writer *w, uint64_t value, size_t n, const char *field)
+/* A number of `n` bytes in the writer's byte order. */
+static bool ubx_put_number(ubx_writer *w, uint64_t value, size_t n, const char *field)
 {
     uint8_t bytes[8];
     size_t i;
     for (i = 0; i < n; i++)
-        bytes[i] = (uint8_t)(value >> 8 * i);
+        bytes[w->big ? n - 1 - i : i] = (uint8_t)(value >> 8 * i);
     return ubx_put(w, bytes, n, field);
 }
 
@@ -417,7 +475,7 @@ static bool ubx_write_field(ubx_writer *w, const nmea_ubx_item *items, size_t n,
         } else {
             memcpy(&value, at, 8);
         }
-        return ubx_put_le(w, value, it->size, it->id);
+        return ubx_put_number(w, value, it->size, it->id);
     case NMEA_UBX_ITEM_WORD:
         /* The word with its parts' values in their bits; bits no part names stay as they are. */
         value = ubx_get(at, it->member, false);
@@ -431,12 +489,12 @@ static bool ubx_write_field(ubx_writer *w, const nmea_ubx_item *items, size_t n,
                 return ubx_bad_value(w, part->id, part->size);
             value = (value & ~(mask << part->low)) | (bits & mask) << part->low;
         }
-        return ubx_put_le(w, value, it->size, it->id);
+        return ubx_put_number(w, value, it->size, it->id);
     default:
         value = ubx_get(at, it->member, it->kind == NMEA_UBX_ITEM_SIGNED);
         if (!ubx_fits(value, 8u * it->size, it->kind == NMEA_UBX_ITEM_SIGNED))
             return ubx_bad_value(w, it->id, 8u * it->size);
-        return ubx_put_le(w, value, it->size, it->id);
+        return ubx_put_number(w, value, it->size, it->id);
     }
 }
 
@@ -728,8 +786,8 @@ static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, 
    past a group's count are not: its count says how many hold a value). Only the layout's bytes are
    written, not the whole message's union, whose largest member (NAV-SAT's 255 satellites) is
    kilobytes. */
-static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payload, size_t len, uint8_t *m,
-                            nmea_ubx_error *err)
+static bool ubx_read_layout(const nmea_ubx_layout_info *l, const nmea_ubx_framing *f, const uint8_t *payload,
+                            size_t len, uint8_t *m, nmea_ubx_error *err)
 {
     ubx_reader r;
     nmea_ubx_bytes trailing;
@@ -738,6 +796,8 @@ static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payloa
     r.pos = 0;
     r.address = l->address;
     r.err = err;
+    r.big = f->big;
+    err->protocol = l->protocol;
     memset(m, 0, l->trailing); /* the members come first, then trailing, then the groups' arrays */
     if (!ubx_read_items(&r, l->items, l->n_items, m))
         return false;
@@ -747,26 +807,35 @@ static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payloa
     return true;
 }
 
-/* Writes the frame of class and id `l` (NULL: an unknown message's `unknown`) into `buf`: its
-   length, 0 with the error set. */
-static size_t ubx_write_frame(const nmea_ubx_layout_info *l, const uint8_t *m, const nmea_ubx_unknown *unknown,
-                              uint8_t *buf, size_t cap, nmea_ubx_error *err)
+/* Writes the frame of layout `l` of protocol `f` (NULL: an unknown message's `unknown`) into `buf`:
+   sync, header (the length, the key where the header holds it), the key where the payload starts
+   with it, the payload, checksum and end bytes. Its length, 0 with the error set. */
+static size_t ubx_write_frame(const nmea_ubx_framing *f, const nmea_ubx_layout_info *l, const uint8_t *m,
+                              const nmea_ubx_unknown *unknown, uint8_t *buf, size_t cap, nmea_ubx_error *err)
 {
     ubx_writer w;
-    size_t payload;
-    unsigned sum;
+    size_t payload, trailer = (size_t)f->check_size + f->end_len, i;
+    unsigned long sum;
+    uint8_t key[2];
+    size_t key_len = l ? (f->key_at ? 2 : l->key_len) : (f->key_at ? 2 : unknown->key_len);
+    key[0] = l ? l->msg_class : unknown->msg_class;
+    key[1] = l ? l->msg_id : unknown->msg_id;
     w.buf = buf;
     w.cap = cap;
     w.len = 0;
     w.address = l ? l->address : NULL;
     w.err = err;
-    if (cap < NMEA_UBX_OVERHEAD) {
-        snprintf(err->text, sizeof err->text, "a frame needs at least %d bytes, the buffer has %lu", NMEA_UBX_OVERHEAD,
-                 (unsigned long)cap);
+    w.big = f->big;
+    err->protocol = l ? l->protocol : unknown->protocol;
+    if (cap < f->header + trailer) {
+        snprintf(err->text, sizeof err->text, "a frame needs at least %u bytes, the buffer has %lu",
+                 (unsigned)(f->header + trailer), (unsigned long)cap);
         return (size_t)ubx_fail(err, NMEA_UBX_NO_ROOM, w.address, NULL);
     }
-    w.cap = cap - 2; /* room for the checksum */
-    w.len = 6;
+    w.cap = cap - trailer; /* room for the checksum and end bytes */
+    w.len = f->header;
+    if (!f->key_at && key_len && !ubx_put(&w, key, key_len, NULL))
+        return 0;
     if (l) {
         nmea_ubx_bytes trailing;
         memcpy(&trailing, m + l->trailing, sizeof trailing);
@@ -776,21 +845,26 @@ static size_t ubx_write_frame(const nmea_ubx_layout_info *l, const uint8_t *m, c
     } else if (unknown->payload.len && !ubx_put(&w, unknown->payload.ptr, unknown->payload.len, "payload")) {
         return 0;
     }
-    payload = w.len - 6;
-    if (payload > 0xFFFF) {
-        snprintf(err->text, sizeof err->text, "the payload is %lu bytes, a frame holds 65535", (unsigned long)payload);
+    payload = w.len - f->header;
+    if (payload > f->length_mask) {
+        snprintf(err->text, sizeof err->text, "the payload is %lu bytes, a frame holds %u", (unsigned long)payload,
+                 (unsigned)f->length_mask);
         return (size_t)ubx_fail(err, NMEA_UBX_BAD_VALUE, w.address, NULL);
     }
-    buf[0] = 0xB5;
-    buf[1] = 0x62;
-    buf[2] = l ? l->msg_class : unknown->msg_class;
-    buf[3] = l ? l->msg_id : unknown->msg_id;
-    buf[4] = (uint8_t)(payload & 0xFF);
-    buf[5] = (uint8_t)(payload >> 8);
-    sum = ubx_checksum(buf + 2, w.len - 2);
-    buf[w.len] = (uint8_t)(sum & 0xFF);
-    buf[w.len + 1] = (uint8_t)(sum >> 8);
-    return w.len + 2;
+    memset(buf, 0, f->header);
+    buf[0] = f->sync[0];
+    buf[1] = f->sync[1];
+    buf[f->length_at + (f->big ? 1 : 0)] = (uint8_t)(payload & 0xFF);
+    buf[f->length_at + (f->big ? 0 : 1)] = (uint8_t)(payload >> 8);
+    if (f->key_at) {
+        buf[f->key_at] = key[0];
+        buf[f->key_at + 1] = key[1];
+    }
+    sum = ubx_check((nmea_ubx_check)f->check, buf + f->check_from, w.len - f->check_from);
+    for (i = 0; i < f->check_size; i++)
+        buf[w.len + i] = (uint8_t)(sum >> 8 * (f->check_size - 1 - i));
+    memcpy(buf + w.len + f->check_size, f->end, f->end_len);
+    return w.len + trailer;
 }
 
 /* Checks a whole frame's sync, length and checksum: its class, id and payload. */
@@ -815,6 +889,38 @@ static bool ubx_open_frame(const uint8_t *frame, size_t len, const uint8_t **pay
         return ubx_fail(err, NMEA_UBX_BAD_CHECKSUM, NULL, NULL);
     }
     *payload = frame + 6;
+    return true;
+}
+
+/* Checks a whole frame of protocol `f` (not UBX: its own errors are ubx_open_frame's): its sync,
+   length, checksum and end bytes; its header and payload. */
+static bool ubx_open_frame_of(const nmea_ubx_framing *f, const uint8_t *frame, size_t len, const uint8_t **payload,
+                              size_t *payload_len, nmea_ubx_error *err)
+{
+    size_t trailer = (size_t)f->check_size + f->end_len, i;
+    unsigned long sum, sent = 0;
+    if (len < (size_t)f->header + trailer || frame[0] != f->sync[0] || frame[1] != f->sync[1]) {
+        snprintf(err->text, sizeof err->text, "a %s frame is %02X %02X, a header of %u bytes, payload, checksum%s",
+                 f->upper, f->sync[0], f->sync[1], (unsigned)f->header, f->end_len ? " and end bytes" : "");
+        return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
+    }
+    *payload_len = (f->big ? (size_t)frame[f->length_at] << 8 | frame[f->length_at + 1]
+                           : (size_t)frame[f->length_at] | (size_t)frame[f->length_at + 1] << 8) &
+                   f->length_mask;
+    if (len != f->header + *payload_len + trailer) {
+        snprintf(err->text, sizeof err->text, "the length field says %lu payload bytes, the frame has %lu",
+                 (unsigned long)*payload_len, (unsigned long)(len - f->header - trailer));
+        return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
+    }
+    sum = ubx_check((nmea_ubx_check)f->check, frame + f->check_from, len - trailer - f->check_from);
+    for (i = 0; i < f->check_size; i++)
+        sent = sent << 8 | frame[len - trailer + i];
+    if (sent != sum || memcmp(frame + len - f->end_len, f->end, f->end_len) != 0) {
+        snprintf(err->text, sizeof err->text, "checksum %0*lX, computed %0*lX%s", 2 * f->check_size, sent,
+                 2 * f->check_size, sum, sent == sum ? ", its end bytes are not the protocol's" : "");
+        return ubx_fail(err, NMEA_UBX_BAD_CHECKSUM, NULL, NULL);
+    }
+    *payload = frame + f->header;
     return true;
 }
 
@@ -5342,358 +5448,1084 @@ static const nmea_ubx_item ubx_nav2_eoe_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav2_eoe, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CASIC NAV-DOP: nav_dop */
+static const nmea_ubx_item ubx_casic_nav_dop_items[] = {
+    {"run_time", NULL, offsetof(nmea_ubx_casic_nav_dop, run_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pdop", NULL, offsetof(nmea_ubx_casic_nav_dop, pdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hdop", NULL, offsetof(nmea_ubx_casic_nav_dop, hdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vdop", NULL, offsetof(nmea_ubx_casic_nav_dop, vdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ndop", NULL, offsetof(nmea_ubx_casic_nav_dop, ndop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"edop", NULL, offsetof(nmea_ubx_casic_nav_dop, edop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tdop", NULL, offsetof(nmea_ubx_casic_nav_dop, tdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CASIC NAV-PV: nav_pv */
+static const nmea_ubx_item ubx_casic_nav_pv_items[] = {
+    {"run_time", NULL, offsetof(nmea_ubx_casic_nav_pv, run_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_valid", NULL, offsetof(nmea_ubx_casic_nav_pv, pos_valid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_valid", NULL, offsetof(nmea_ubx_casic_nav_pv, vel_valid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"system", NULL, offsetof(nmea_ubx_casic_nav_pv, system), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps", NULL, offsetof(nmea_ubx_casic_nav_pv, gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds", NULL, offsetof(nmea_ubx_casic_nav_pv, bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"glonass", NULL, offsetof(nmea_ubx_casic_nav_pv, glonass), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_casic_nav_pv, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv_gps", NULL, offsetof(nmea_ubx_casic_nav_pv, num_sv_gps), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv_bds", NULL, offsetof(nmea_ubx_casic_nav_pv, num_sv_bds), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv_glonass", NULL, offsetof(nmea_ubx_casic_nav_pv, num_sv_glonass), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_casic_nav_pv, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pdop", NULL, offsetof(nmea_ubx_casic_nav_pv, pdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lon", NULL, offsetof(nmea_ubx_casic_nav_pv, lon), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lat", NULL, offsetof(nmea_ubx_casic_nav_pv, lat), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"height", NULL, offsetof(nmea_ubx_casic_nav_pv, height), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sep_geoid", NULL, offsetof(nmea_ubx_casic_nav_pv, sep_geoid), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_acc", NULL, offsetof(nmea_ubx_casic_nav_pv, h_acc), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"v_acc", NULL, offsetof(nmea_ubx_casic_nav_pv, v_acc), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_n", NULL, offsetof(nmea_ubx_casic_nav_pv, vel_n), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_e", NULL, offsetof(nmea_ubx_casic_nav_pv, vel_e), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_u", NULL, offsetof(nmea_ubx_casic_nav_pv, vel_u), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"speed_3d", NULL, offsetof(nmea_ubx_casic_nav_pv, speed_3d), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"speed_2d", NULL, offsetof(nmea_ubx_casic_nav_pv, speed_2d), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading", NULL, offsetof(nmea_ubx_casic_nav_pv, heading), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"s_acc", NULL, offsetof(nmea_ubx_casic_nav_pv, s_acc), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"c_acc", NULL, offsetof(nmea_ubx_casic_nav_pv, c_acc), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CASIC NAV-TIMEUTC: nav_timeutc */
+static const nmea_ubx_item ubx_casic_nav_timeutc_items[] = {
+    {"run_time", NULL, offsetof(nmea_ubx_casic_nav_timeutc, run_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_casic_nav_timeutc, t_acc), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ms_err", NULL, offsetof(nmea_ubx_casic_nav_timeutc, ms_err), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ms", NULL, offsetof(nmea_ubx_casic_nav_timeutc, ms), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_casic_nav_timeutc, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_casic_nav_timeutc, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_casic_nav_timeutc, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_casic_nav_timeutc, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min", NULL, offsetof(nmea_ubx_casic_nav_timeutc, min), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sec", NULL, offsetof(nmea_ubx_casic_nav_timeutc, sec), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_casic_nav_timeutc, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow_valid", NULL, offsetof(nmea_ubx_casic_nav_timeutc, tow_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week_valid", NULL, offsetof(nmea_ubx_casic_nav_timeutc, week_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_valid", NULL, offsetof(nmea_ubx_casic_nav_timeutc, leap_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_src", NULL, offsetof(nmea_ubx_casic_nav_timeutc, time_src), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"date_valid", NULL, offsetof(nmea_ubx_casic_nav_timeutc, date_valid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CASIC NAV-GPSINFO: nav_gpsinfo */
+static const nmea_ubx_item ubx_casic_nav_gpsinfo_sv_items[] = {
+    {"chn", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, chn), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svid", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_valid", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, pr_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"carrier_valid", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, carrier_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"used", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"differential", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, differential), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"healthy", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, healthy), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"visible", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, visible), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"quality", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, quality), 0, 0, NMEA_UBX_ITEM_PART, 8, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"elev", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, elev), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"azim", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, azim), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_res", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo_sv, pr_res), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_casic_nav_gpsinfo_svs_group = {ubx_casic_nav_gpsinfo_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_casic_nav_gpsinfo, num_view_sv), 0, 0, 65535, NMEA_UBX_CASIC_NAV_GPSINFO_SVS_MAX, 12, sizeof(nmea_ubx_casic_nav_gpsinfo_sv), 0, offsetof(nmea_ubx_casic_nav_gpsinfo, svs_count)};
+static const nmea_ubx_item ubx_casic_nav_gpsinfo_items[] = {
+    {"run_time", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo, run_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_view_sv", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo, num_view_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_fix_sv", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo, num_fix_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"system", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo, system), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_casic_nav_gpsinfo, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svs", &ubx_casic_nav_gpsinfo_svs_group, offsetof(nmea_ubx_casic_nav_gpsinfo, svs), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CASIC NAV-BDSINFO: nav_bdsinfo */
+static const nmea_ubx_item ubx_casic_nav_bdsinfo_sv_items[] = {
+    {"chn", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, chn), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svid", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_valid", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, pr_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"carrier_valid", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, carrier_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"used", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"differential", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, differential), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"healthy", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, healthy), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"visible", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, visible), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"quality", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, quality), 0, 0, NMEA_UBX_ITEM_PART, 8, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"elev", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, elev), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"azim", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, azim), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_res", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo_sv, pr_res), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_casic_nav_bdsinfo_svs_group = {ubx_casic_nav_bdsinfo_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_casic_nav_bdsinfo, num_view_sv), 0, 0, 65535, NMEA_UBX_CASIC_NAV_BDSINFO_SVS_MAX, 12, sizeof(nmea_ubx_casic_nav_bdsinfo_sv), 0, offsetof(nmea_ubx_casic_nav_bdsinfo, svs_count)};
+static const nmea_ubx_item ubx_casic_nav_bdsinfo_items[] = {
+    {"run_time", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo, run_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_view_sv", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo, num_view_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_fix_sv", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo, num_fix_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"system", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo, system), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_casic_nav_bdsinfo, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svs", &ubx_casic_nav_bdsinfo_svs_group, offsetof(nmea_ubx_casic_nav_bdsinfo, svs), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CASIC NAV-GLNINFO: nav_glninfo */
+static const nmea_ubx_item ubx_casic_nav_glninfo_sv_items[] = {
+    {"chn", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, chn), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svid", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_valid", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, pr_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"carrier_valid", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, carrier_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"used", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"differential", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, differential), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"healthy", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, healthy), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"visible", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, visible), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"quality", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, quality), 0, 0, NMEA_UBX_ITEM_PART, 8, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"elev", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, elev), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"azim", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, azim), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_res", NULL, offsetof(nmea_ubx_casic_nav_glninfo_sv, pr_res), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_casic_nav_glninfo_svs_group = {ubx_casic_nav_glninfo_sv_items, 14, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_casic_nav_glninfo, num_view_sv), 0, 0, 65535, NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX, 12, sizeof(nmea_ubx_casic_nav_glninfo_sv), 0, offsetof(nmea_ubx_casic_nav_glninfo, svs_count)};
+static const nmea_ubx_item ubx_casic_nav_glninfo_items[] = {
+    {"run_time", NULL, offsetof(nmea_ubx_casic_nav_glninfo, run_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_view_sv", NULL, offsetof(nmea_ubx_casic_nav_glninfo, num_view_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_fix_sv", NULL, offsetof(nmea_ubx_casic_nav_glninfo, num_fix_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"system", NULL, offsetof(nmea_ubx_casic_nav_glninfo, system), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_casic_nav_glninfo, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svs", &ubx_casic_nav_glninfo_svs_group, offsetof(nmea_ubx_casic_nav_glninfo, svs), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CASIC ACK-NAK: ack_nak */
+static const nmea_ubx_item ubx_casic_ack_nak_items[] = {
+    {"cls_id", NULL, offsetof(nmea_ubx_casic_ack_nak, cls_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_id", NULL, offsetof(nmea_ubx_casic_ack_nak, msg_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_casic_ack_nak, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CASIC ACK-ACK: ack_ack */
+static const nmea_ubx_item ubx_casic_ack_ack_items[] = {
+    {"cls_id", NULL, offsetof(nmea_ubx_casic_ack_ack, cls_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_id", NULL, offsetof(nmea_ubx_casic_ack_ack, msg_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_casic_ack_ack, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CASIC CFG-PRT: cfg_prt_poll */
+static const nmea_ubx_item ubx_casic_cfg_prt_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CASIC CFG-PRT: cfg_prt */
+static const nmea_ubx_item ubx_casic_cfg_prt_items[] = {
+    {"port_id", NULL, offsetof(nmea_ubx_casic_cfg_prt, port_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"proto_mask", NULL, offsetof(nmea_ubx_casic_cfg_prt, proto_mask), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"binary_in", NULL, offsetof(nmea_ubx_casic_cfg_prt, binary_in), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"text_in", NULL, offsetof(nmea_ubx_casic_cfg_prt, text_in), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"binary_out", NULL, offsetof(nmea_ubx_casic_cfg_prt, binary_out), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"text_out", NULL, offsetof(nmea_ubx_casic_cfg_prt, text_out), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"mode", NULL, offsetof(nmea_ubx_casic_cfg_prt, mode), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"baud_rate", NULL, offsetof(nmea_ubx_casic_cfg_prt, baud_rate), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CASIC CFG-MSG: cfg_msg_poll */
+static const nmea_ubx_item ubx_casic_cfg_msg_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CASIC CFG-MSG: cfg_msg */
+static const nmea_ubx_item ubx_casic_cfg_msg_items[] = {
+    {"msg_class", NULL, offsetof(nmea_ubx_casic_cfg_msg, msg_class), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_id", NULL, offsetof(nmea_ubx_casic_cfg_msg, msg_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rate", NULL, offsetof(nmea_ubx_casic_cfg_msg, rate), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CASIC CFG-RATE: cfg_rate_poll */
+static const nmea_ubx_item ubx_casic_cfg_rate_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CASIC CFG-RATE: cfg_rate */
+static const nmea_ubx_item ubx_casic_cfg_rate_items[] = {
+    {"interval", NULL, offsetof(nmea_ubx_casic_cfg_rate, interval), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_casic_cfg_rate, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CASIC MON-VER: mon_ver_poll */
+static const nmea_ubx_item ubx_casic_mon_ver_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CASIC MON-VER: mon_ver */
+static const nmea_ubx_item ubx_casic_mon_ver_items[] = {
+    {"sw_version", NULL, offsetof(nmea_ubx_casic_mon_ver, sw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 32, 32, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"hw_version", NULL, offsetof(nmea_ubx_casic_mon_ver, hw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 32, 32, 0, NMEA_UBX_PRINT_CHARS, false}
+};
+
+/* SIRF MID 67 SID 1: gnss_nav_solution */
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_tow_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_second_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_clock_bias_error_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_clock_offset_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_clock_offset_error_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_alt_ellipsoid_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_alt_msl_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_sog_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_cog_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_climb_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_heading_rate_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_distance_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_heading_error_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_distance_error_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_ehpe_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_evpe_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_ehve_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_gdop_scale = {5.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_pdop_scale = {5.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_hdop_scale = {5.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_vdop_scale = {5.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_tdop_scale = {5.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_sirf_gnss_nav_solution_items[] = {
+    {"solution_validity", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, solution_validity), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"solution_info", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, solution_info), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", &ubx_sirf_gnss_nav_solution_tow_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"tow_sub_ms", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, tow_sub_ms), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_bias", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, time_bias), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_accuracy", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, time_accuracy), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_source", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, time_source), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"minute", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"second", &ubx_sirf_gnss_nav_solution_second_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"leap_seconds", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, leap_seconds), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"datum", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, datum), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clock_bias", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, clock_bias), 0, 0, NMEA_UBX_ITEM_SIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clock_bias_error", &ubx_sirf_gnss_nav_solution_clock_bias_error_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, clock_bias_error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"clock_offset", &ubx_sirf_gnss_nav_solution_clock_offset_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, clock_offset), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"clock_offset_error", &ubx_sirf_gnss_nav_solution_clock_offset_error_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, clock_offset_error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lat", &ubx_sirf_gnss_nav_solution_lat_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lon", &ubx_sirf_gnss_nav_solution_lon_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"alt_ellipsoid", &ubx_sirf_gnss_nav_solution_alt_ellipsoid_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, alt_ellipsoid), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"alt_msl", &ubx_sirf_gnss_nav_solution_alt_msl_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, alt_msl), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"sog", &ubx_sirf_gnss_nav_solution_sog_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, sog), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cog", &ubx_sirf_gnss_nav_solution_cog_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, cog), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"climb", &ubx_sirf_gnss_nav_solution_climb_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, climb), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"heading_rate", &ubx_sirf_gnss_nav_solution_heading_rate_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, heading_rate), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"distance", &ubx_sirf_gnss_nav_solution_distance_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, distance), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"heading_error", &ubx_sirf_gnss_nav_solution_heading_error_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, heading_error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"distance_error", &ubx_sirf_gnss_nav_solution_distance_error_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, distance_error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ehpe", &ubx_sirf_gnss_nav_solution_ehpe_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, ehpe), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"evpe", &ubx_sirf_gnss_nav_solution_evpe_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, evpe), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ehve", &ubx_sirf_gnss_nav_solution_ehve_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, ehve), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"gdop", &ubx_sirf_gnss_nav_solution_gdop_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, gdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"pdop", &ubx_sirf_gnss_nav_solution_pdop_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, pdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"hdop", &ubx_sirf_gnss_nav_solution_hdop_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, hdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"vdop", &ubx_sirf_gnss_nav_solution_vdop_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, vdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"tdop", &ubx_sirf_gnss_nav_solution_tdop_scale, offsetof(nmea_ubx_sirf_gnss_nav_solution, tdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"num_svs", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, num_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_list_1", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, sv_list_1), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_list_2", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, sv_list_2), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_list_3", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, sv_list_3), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_list_4", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, sv_list_4), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_list_5", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, sv_list_5), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"additional_info", NULL, offsetof(nmea_ubx_sirf_gnss_nav_solution, additional_info), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 2: measured_nav */
+static const nmea_ubx_item ubx_sirf_measured_nav_channel_items[] = {
+    {"prn", NULL, offsetof(nmea_ubx_sirf_measured_nav_channel, prn), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_scale ubx_sirf_measured_nav_vx_scale = {8.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_measured_nav_vy_scale = {8.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_measured_nav_vz_scale = {8.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_measured_nav_hdop_scale = {5.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_measured_nav_tow_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_group ubx_sirf_measured_nav_channels_group = {ubx_sirf_measured_nav_channel_items, 1, NMEA_UBX_COUNT_FIXED, 1, 0, 12, 0, 65535, NMEA_UBX_SIRF_MEASURED_NAV_CHANNELS_MAX, 1, sizeof(nmea_ubx_sirf_measured_nav_channel), 0, offsetof(nmea_ubx_sirf_measured_nav, channels_count)};
+static const nmea_ubx_item ubx_sirf_measured_nav_items[] = {
+    {"x", NULL, offsetof(nmea_ubx_sirf_measured_nav, x), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"y", NULL, offsetof(nmea_ubx_sirf_measured_nav, y), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"z", NULL, offsetof(nmea_ubx_sirf_measured_nav, z), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vx", &ubx_sirf_measured_nav_vx_scale, offsetof(nmea_ubx_sirf_measured_nav, vx), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"vy", &ubx_sirf_measured_nav_vy_scale, offsetof(nmea_ubx_sirf_measured_nav, vy), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"vz", &ubx_sirf_measured_nav_vz_scale, offsetof(nmea_ubx_sirf_measured_nav, vz), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mode1", NULL, offsetof(nmea_ubx_sirf_measured_nav, mode1), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pmode", NULL, offsetof(nmea_ubx_sirf_measured_nav, pmode), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tpmode", NULL, offsetof(nmea_ubx_sirf_measured_nav, tpmode), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"altmode", NULL, offsetof(nmea_ubx_sirf_measured_nav, altmode), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"dopmask", NULL, offsetof(nmea_ubx_sirf_measured_nav, dopmask), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"dgps", NULL, offsetof(nmea_ubx_sirf_measured_nav, dgps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"hdop", &ubx_sirf_measured_nav_hdop_scale, offsetof(nmea_ubx_sirf_measured_nav, hdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mode2", NULL, offsetof(nmea_ubx_sirf_measured_nav, mode2), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sensor_de", NULL, offsetof(nmea_ubx_sirf_measured_nav, sensor_de), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"validated", NULL, offsetof(nmea_ubx_sirf_measured_nav, validated), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"dr_timeout", NULL, offsetof(nmea_ubx_sirf_measured_nav, dr_timeout), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"edited", NULL, offsetof(nmea_ubx_sirf_measured_nav, edited), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"velocity_dr", NULL, offsetof(nmea_ubx_sirf_measured_nav, velocity_dr), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"almanac_fix", NULL, offsetof(nmea_ubx_sirf_measured_nav, almanac_fix), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"bad_velocity", NULL, offsetof(nmea_ubx_sirf_measured_nav, bad_velocity), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"trickle_off", NULL, offsetof(nmea_ubx_sirf_measured_nav, trickle_off), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_sirf_measured_nav, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", &ubx_sirf_measured_nav_tow_scale, offsetof(nmea_ubx_sirf_measured_nav, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"num_svs", NULL, offsetof(nmea_ubx_sirf_measured_nav, num_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"channels", &ubx_sirf_measured_nav_channels_group, offsetof(nmea_ubx_sirf_measured_nav, channels), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 4: tracker_data */
+static const nmea_ubx_scale ubx_sirf_tracker_data_channel_elevation_scale = {2.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_sirf_tracker_data_channel_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"azimuth", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, azimuth), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"elevation", &ubx_sirf_tracker_data_channel_elevation_scale, offsetof(nmea_ubx_sirf_tracker_data_channel, elevation), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"state", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, state), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"acquired", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, acquired), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"carrier_phase_valid", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, carrier_phase_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"bit_sync", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, bit_sync), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"subframe_sync", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, subframe_sync), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"carrier_pullin", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, carrier_pullin), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"code_locked", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, code_locked), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"acquisition_failed", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, acquisition_failed), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"ephemeris", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, ephemeris), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno1", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, cno1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno2", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, cno2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno3", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, cno3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno4", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, cno4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno5", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, cno5), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno6", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, cno6), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno7", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, cno7), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno8", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, cno8), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno9", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, cno9), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno10", NULL, offsetof(nmea_ubx_sirf_tracker_data_channel, cno10), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_scale ubx_sirf_tracker_data_tow_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_group ubx_sirf_tracker_data_channels_group = {ubx_sirf_tracker_data_channel_items, 22, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 0, 65535, NMEA_UBX_SIRF_TRACKER_DATA_CHANNELS_MAX, 15, sizeof(nmea_ubx_sirf_tracker_data_channel), 0, offsetof(nmea_ubx_sirf_tracker_data, channels_count)};
+static const nmea_ubx_item ubx_sirf_tracker_data_items[] = {
+    {"week", NULL, offsetof(nmea_ubx_sirf_tracker_data, week), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", &ubx_sirf_tracker_data_tow_scale, offsetof(nmea_ubx_sirf_tracker_data, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"num_channels", NULL, offsetof(nmea_ubx_sirf_tracker_data, num_channels), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"channels", &ubx_sirf_tracker_data_channels_group, offsetof(nmea_ubx_sirf_tracker_data, channels), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 6: sw_version */
+static const nmea_ubx_item ubx_sirf_sw_version_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_sirf_sw_version, version), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_CHARS, false}
+};
+
+/* SIRF MID 7: clock_status */
+static const nmea_ubx_scale ubx_sirf_clock_status_tow_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_sirf_clock_status_items[] = {
+    {"week", NULL, offsetof(nmea_ubx_sirf_clock_status, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", &ubx_sirf_clock_status_tow_scale, offsetof(nmea_ubx_sirf_clock_status, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"num_svs", NULL, offsetof(nmea_ubx_sirf_clock_status, num_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drift", NULL, offsetof(nmea_ubx_sirf_clock_status, drift), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bias", NULL, offsetof(nmea_ubx_sirf_clock_status, bias), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_time", NULL, offsetof(nmea_ubx_sirf_clock_status, gps_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 9: cpu_throughput */
+static const nmea_ubx_scale ubx_sirf_cpu_throughput_seg_stat_max_scale = {186.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_cpu_throughput_seg_stat_lat_scale = {186.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_cpu_throughput_avg_trk_time_scale = {186.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_sirf_cpu_throughput_items[] = {
+    {"seg_stat_max", &ubx_sirf_cpu_throughput_seg_stat_max_scale, offsetof(nmea_ubx_sirf_cpu_throughput, seg_stat_max), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"seg_stat_lat", &ubx_sirf_cpu_throughput_seg_stat_lat_scale, offsetof(nmea_ubx_sirf_cpu_throughput, seg_stat_lat), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"avg_trk_time", &ubx_sirf_cpu_throughput_avg_trk_time_scale, offsetof(nmea_ubx_sirf_cpu_throughput, avg_trk_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"last_ms", NULL, offsetof(nmea_ubx_sirf_cpu_throughput, last_ms), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 11: command_ack */
+static const nmea_ubx_item ubx_sirf_command_ack_items[] = {
+    {"ack_id", NULL, offsetof(nmea_ubx_sirf_command_ack, ack_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ack_sid", NULL, offsetof(nmea_ubx_sirf_command_ack, ack_sid), offsetof(nmea_ubx_sirf_command_ack, has_ack_sid), 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, true}
+};
+
+/* SIRF MID 12: command_nack */
+static const nmea_ubx_item ubx_sirf_command_nack_items[] = {
+    {"nack_id", NULL, offsetof(nmea_ubx_sirf_command_nack, nack_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nack_sid", NULL, offsetof(nmea_ubx_sirf_command_nack, nack_sid), offsetof(nmea_ubx_sirf_command_nack, has_nack_sid), 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, true}
+};
+
+/* SIRF MID 13: visible_list */
+static const nmea_ubx_item ubx_sirf_visible_list_sv_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_sirf_visible_list_sv, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"azimuth", NULL, offsetof(nmea_ubx_sirf_visible_list_sv, azimuth), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"elevation", NULL, offsetof(nmea_ubx_sirf_visible_list_sv, elevation), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_sirf_visible_list_svs_group = {ubx_sirf_visible_list_sv_items, 3, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_sirf_visible_list, num_visible), 0, 0, 65535, NMEA_UBX_SIRF_VISIBLE_LIST_SVS_MAX, 5, sizeof(nmea_ubx_sirf_visible_list_sv), 0, offsetof(nmea_ubx_sirf_visible_list, svs_count)};
+static const nmea_ubx_item ubx_sirf_visible_list_items[] = {
+    {"num_visible", NULL, offsetof(nmea_ubx_sirf_visible_list, num_visible), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svs", &ubx_sirf_visible_list_svs_group, offsetof(nmea_ubx_sirf_visible_list, svs), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 18: ok_to_send */
+static const nmea_ubx_item ubx_sirf_ok_to_send_items[] = {
+    {"ok", NULL, offsetof(nmea_ubx_sirf_ok_to_send, ok), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 41: geodetic_nav */
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_tow_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_second_scale = {1000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_alt_ellipsoid_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_alt_msl_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_sog_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_cog_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_climb_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_heading_rate_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_ehpe_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_evpe_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_ete_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_ehve_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_clock_bias_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_clock_bias_error_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_clock_drift_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_clock_drift_error_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_heading_error_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sirf_geodetic_nav_hdop_scale = {5.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_sirf_geodetic_nav_items[] = {
+    {"nav_valid", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, nav_valid), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_type", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, nav_type), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", &ubx_sirf_geodetic_nav_tow_scale, offsetof(nmea_ubx_sirf_geodetic_nav, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"year", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"minute", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"second", &ubx_sirf_geodetic_nav_second_scale, offsetof(nmea_ubx_sirf_geodetic_nav, second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"sat_id_list", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, sat_id_list), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lat", &ubx_sirf_geodetic_nav_lat_scale, offsetof(nmea_ubx_sirf_geodetic_nav, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lon", &ubx_sirf_geodetic_nav_lon_scale, offsetof(nmea_ubx_sirf_geodetic_nav, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"alt_ellipsoid", &ubx_sirf_geodetic_nav_alt_ellipsoid_scale, offsetof(nmea_ubx_sirf_geodetic_nav, alt_ellipsoid), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"alt_msl", &ubx_sirf_geodetic_nav_alt_msl_scale, offsetof(nmea_ubx_sirf_geodetic_nav, alt_msl), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"datum", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, datum), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sog", &ubx_sirf_geodetic_nav_sog_scale, offsetof(nmea_ubx_sirf_geodetic_nav, sog), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"cog", &ubx_sirf_geodetic_nav_cog_scale, offsetof(nmea_ubx_sirf_geodetic_nav, cog), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mag_var", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, mag_var), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"climb", &ubx_sirf_geodetic_nav_climb_scale, offsetof(nmea_ubx_sirf_geodetic_nav, climb), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"heading_rate", &ubx_sirf_geodetic_nav_heading_rate_scale, offsetof(nmea_ubx_sirf_geodetic_nav, heading_rate), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ehpe", &ubx_sirf_geodetic_nav_ehpe_scale, offsetof(nmea_ubx_sirf_geodetic_nav, ehpe), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"evpe", &ubx_sirf_geodetic_nav_evpe_scale, offsetof(nmea_ubx_sirf_geodetic_nav, evpe), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ete", &ubx_sirf_geodetic_nav_ete_scale, offsetof(nmea_ubx_sirf_geodetic_nav, ete), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ehve", &ubx_sirf_geodetic_nav_ehve_scale, offsetof(nmea_ubx_sirf_geodetic_nav, ehve), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"clock_bias", &ubx_sirf_geodetic_nav_clock_bias_scale, offsetof(nmea_ubx_sirf_geodetic_nav, clock_bias), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"clock_bias_error", &ubx_sirf_geodetic_nav_clock_bias_error_scale, offsetof(nmea_ubx_sirf_geodetic_nav, clock_bias_error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"clock_drift", &ubx_sirf_geodetic_nav_clock_drift_scale, offsetof(nmea_ubx_sirf_geodetic_nav, clock_drift), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"clock_drift_error", &ubx_sirf_geodetic_nav_clock_drift_error_scale, offsetof(nmea_ubx_sirf_geodetic_nav, clock_drift_error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"distance", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, distance), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"distance_error", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, distance_error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading_error", &ubx_sirf_geodetic_nav_heading_error_scale, offsetof(nmea_ubx_sirf_geodetic_nav, heading_error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"num_svs", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, num_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hdop", &ubx_sirf_geodetic_nav_hdop_scale, offsetof(nmea_ubx_sirf_geodetic_nav, hdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"additional_mode", NULL, offsetof(nmea_ubx_sirf_geodetic_nav, additional_mode), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 52: pps_time */
+static const nmea_ubx_item ubx_sirf_pps_time_items[] = {
+    {"hour", NULL, offsetof(nmea_ubx_sirf_pps_time, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"minute", NULL, offsetof(nmea_ubx_sirf_pps_time, minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"second", NULL, offsetof(nmea_ubx_sirf_pps_time, second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_sirf_pps_time, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_sirf_pps_time, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_sirf_pps_time, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_offset_int", NULL, offsetof(nmea_ubx_sirf_pps_time, utc_offset_int), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_offset_frac", NULL, offsetof(nmea_ubx_sirf_pps_time, utc_offset_frac), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"status", NULL, offsetof(nmea_ubx_sirf_pps_time, status), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_valid", NULL, offsetof(nmea_ubx_sirf_pps_time, time_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"utc_time", NULL, offsetof(nmea_ubx_sirf_pps_time, utc_time), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"offset_valid", NULL, offsetof(nmea_ubx_sirf_pps_time, offset_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_sirf_pps_time, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 129: switch_to_nmea */
+static const nmea_ubx_item ubx_sirf_switch_to_nmea_sentence_items[] = {
+    {"rate", NULL, offsetof(nmea_ubx_sirf_switch_to_nmea_sentence, rate), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"checksum", NULL, offsetof(nmea_ubx_sirf_switch_to_nmea_sentence, checksum), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_sirf_switch_to_nmea_sentences_group = {ubx_sirf_switch_to_nmea_sentence_items, 2, NMEA_UBX_COUNT_FIXED, 1, 0, 10, 0, 65535, NMEA_UBX_SIRF_SWITCH_TO_NMEA_SENTENCES_MAX, 2, sizeof(nmea_ubx_sirf_switch_to_nmea_sentence), 2, offsetof(nmea_ubx_sirf_switch_to_nmea, sentences_count)};
+static const nmea_ubx_item ubx_sirf_switch_to_nmea_items[] = {
+    {"mode", NULL, offsetof(nmea_ubx_sirf_switch_to_nmea, mode), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sentences", &ubx_sirf_switch_to_nmea_sentences_group, offsetof(nmea_ubx_sirf_switch_to_nmea, sentences), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"baud", NULL, offsetof(nmea_ubx_sirf_switch_to_nmea, baud), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 132: poll_sw_version */
+static const nmea_ubx_item ubx_sirf_poll_sw_version_items[] = {
+    {"control", NULL, offsetof(nmea_ubx_sirf_poll_sw_version, control), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 135: set_protocol */
+static const nmea_ubx_item ubx_sirf_set_protocol_items[] = {
+    {"protocol", NULL, offsetof(nmea_ubx_sirf_set_protocol, protocol), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SIRF MID 255: dev_data */
+static const nmea_ubx_item ubx_sirf_dev_data_items[] = {
+    {"text", NULL, offsetof(nmea_ubx_sirf_dev_data, text), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_CHARS, false}
+};
+
+/* SKYTRAQ 0x02: query_sw_version */
+static const nmea_ubx_item ubx_skytraq_query_sw_version_items[] = {
+    {"software_type", NULL, offsetof(nmea_ubx_skytraq_query_sw_version, software_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SKYTRAQ 0x09: config_message_type */
+static const nmea_ubx_item ubx_skytraq_config_message_type_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_skytraq_config_message_type, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"attributes", NULL, offsetof(nmea_ubx_skytraq_config_message_type, attributes), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SKYTRAQ 0x80: sw_version */
+static const nmea_ubx_item ubx_skytraq_sw_version_items[] = {
+    {"software_type", NULL, offsetof(nmea_ubx_skytraq_sw_version, software_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"kernel_x", NULL, offsetof(nmea_ubx_skytraq_sw_version, kernel_x), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"kernel_y", NULL, offsetof(nmea_ubx_skytraq_sw_version, kernel_y), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"kernel_z", NULL, offsetof(nmea_ubx_skytraq_sw_version, kernel_z), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"odm_x", NULL, offsetof(nmea_ubx_skytraq_sw_version, odm_x), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"odm_y", NULL, offsetof(nmea_ubx_skytraq_sw_version, odm_y), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"odm_z", NULL, offsetof(nmea_ubx_skytraq_sw_version, odm_z), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"revision_year", NULL, offsetof(nmea_ubx_skytraq_sw_version, revision_year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"revision_month", NULL, offsetof(nmea_ubx_skytraq_sw_version, revision_month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"revision_day", NULL, offsetof(nmea_ubx_skytraq_sw_version, revision_day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SKYTRAQ 0x83: msg_ack */
+static const nmea_ubx_item ubx_skytraq_msg_ack_items[] = {
+    {"ack_id", NULL, offsetof(nmea_ubx_skytraq_msg_ack, ack_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ack_sub_id", NULL, offsetof(nmea_ubx_skytraq_msg_ack, ack_sub_id), offsetof(nmea_ubx_skytraq_msg_ack, has_ack_sub_id), 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, true}
+};
+
+/* SKYTRAQ 0x84: msg_nack */
+static const nmea_ubx_item ubx_skytraq_msg_nack_items[] = {
+    {"nack_id", NULL, offsetof(nmea_ubx_skytraq_msg_nack, nack_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nack_sub_id", NULL, offsetof(nmea_ubx_skytraq_msg_nack, nack_sub_id), offsetof(nmea_ubx_skytraq_msg_nack, has_nack_sub_id), 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, true}
+};
+
+/* SKYTRAQ 0xA8: nav_data */
+static const nmea_ubx_scale ubx_skytraq_nav_data_tow_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_ellipsoid_alt_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_msl_alt_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_gdop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_pdop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_hdop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_vdop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_tdop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_ecef_x_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_ecef_y_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_ecef_z_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_ecef_vx_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_ecef_vy_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_skytraq_nav_data_ecef_vz_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_skytraq_nav_data_items[] = {
+    {"fix_mode", NULL, offsetof(nmea_ubx_skytraq_nav_data, fix_mode), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_skytraq_nav_data, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_skytraq_nav_data, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", &ubx_skytraq_nav_data_tow_scale, offsetof(nmea_ubx_skytraq_nav_data, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lat", &ubx_skytraq_nav_data_lat_scale, offsetof(nmea_ubx_skytraq_nav_data, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lon", &ubx_skytraq_nav_data_lon_scale, offsetof(nmea_ubx_skytraq_nav_data, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ellipsoid_alt", &ubx_skytraq_nav_data_ellipsoid_alt_scale, offsetof(nmea_ubx_skytraq_nav_data, ellipsoid_alt), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"msl_alt", &ubx_skytraq_nav_data_msl_alt_scale, offsetof(nmea_ubx_skytraq_nav_data, msl_alt), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"gdop", &ubx_skytraq_nav_data_gdop_scale, offsetof(nmea_ubx_skytraq_nav_data, gdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"pdop", &ubx_skytraq_nav_data_pdop_scale, offsetof(nmea_ubx_skytraq_nav_data, pdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"hdop", &ubx_skytraq_nav_data_hdop_scale, offsetof(nmea_ubx_skytraq_nav_data, hdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"vdop", &ubx_skytraq_nav_data_vdop_scale, offsetof(nmea_ubx_skytraq_nav_data, vdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"tdop", &ubx_skytraq_nav_data_tdop_scale, offsetof(nmea_ubx_skytraq_nav_data, tdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ecef_x", &ubx_skytraq_nav_data_ecef_x_scale, offsetof(nmea_ubx_skytraq_nav_data, ecef_x), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ecef_y", &ubx_skytraq_nav_data_ecef_y_scale, offsetof(nmea_ubx_skytraq_nav_data, ecef_y), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ecef_z", &ubx_skytraq_nav_data_ecef_z_scale, offsetof(nmea_ubx_skytraq_nav_data, ecef_z), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ecef_vx", &ubx_skytraq_nav_data_ecef_vx_scale, offsetof(nmea_ubx_skytraq_nav_data, ecef_vx), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ecef_vy", &ubx_skytraq_nav_data_ecef_vy_scale, offsetof(nmea_ubx_skytraq_nav_data, ecef_vy), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"ecef_vz", &ubx_skytraq_nav_data_ecef_vz_scale, offsetof(nmea_ubx_skytraq_nav_data, ecef_vz), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
+/* SKYTRAQ 0xDC: meas_time */
+static const nmea_ubx_item ubx_skytraq_meas_time_items[] = {
+    {"iod", NULL, offsetof(nmea_ubx_skytraq_meas_time, iod), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_skytraq_meas_time, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", NULL, offsetof(nmea_ubx_skytraq_meas_time, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"period", NULL, offsetof(nmea_ubx_skytraq_meas_time, period), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SKYTRAQ 0xDD: raw_meas */
+static const nmea_ubx_item ubx_skytraq_raw_meas_mea_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cn0", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, cn0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pseudorange", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, pseudorange), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"carrier_phase", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, carrier_phase), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"doppler", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, doppler), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"status", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, status), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pr_valid", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, pr_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"doppler_valid", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, doppler_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"phase_valid", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, phase_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"cycle_slip", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, cycle_slip), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"coherent_integration", NULL, offsetof(nmea_ubx_skytraq_raw_meas_mea, coherent_integration), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_skytraq_raw_meas_meas_group = {ubx_skytraq_raw_meas_mea_items, 11, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_skytraq_raw_meas, num_meas), 0, 0, 65535, NMEA_UBX_SKYTRAQ_RAW_MEAS_MEAS_MAX, 23, sizeof(nmea_ubx_skytraq_raw_meas_mea), 0, offsetof(nmea_ubx_skytraq_raw_meas, meas_count)};
+static const nmea_ubx_item ubx_skytraq_raw_meas_items[] = {
+    {"iod", NULL, offsetof(nmea_ubx_skytraq_raw_meas, iod), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_meas", NULL, offsetof(nmea_ubx_skytraq_raw_meas, num_meas), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"meas", &ubx_skytraq_raw_meas_meas_group, offsetof(nmea_ubx_skytraq_raw_meas, meas), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SKYTRAQ 0xDE: sv_ch_status */
+static const nmea_ubx_item ubx_skytraq_sv_ch_status_sv_items[] = {
+    {"channel", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, channel), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svid", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_status", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, sv_status), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"almanac", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, almanac), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ephemeris", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, ephemeris), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"healthy", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, healthy), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"ura", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, ura), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cn0", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, cn0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"elevation", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, elevation), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"azimuth", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, azimuth), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"channel_status", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, channel_status), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pull_in", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, pull_in), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bit_sync", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, bit_sync), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"frame_sync", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, frame_sync), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"ephemeris_ok", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, ephemeris_ok), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"normal_fix", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, normal_fix), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"differential_fix", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status_sv, differential_fix), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_skytraq_sv_ch_status_svs_group = {ubx_skytraq_sv_ch_status_sv_items, 17, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_skytraq_sv_ch_status, num_sv), 0, 0, 65535, NMEA_UBX_SKYTRAQ_SV_CH_STATUS_SVS_MAX, 10, sizeof(nmea_ubx_skytraq_sv_ch_status_sv), 0, offsetof(nmea_ubx_skytraq_sv_ch_status, svs_count)};
+static const nmea_ubx_item ubx_skytraq_sv_ch_status_items[] = {
+    {"iod", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status, iod), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_skytraq_sv_ch_status, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svs", &ubx_skytraq_sv_ch_status_svs_group, offsetof(nmea_ubx_skytraq_sv_ch_status, svs), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SKYTRAQ 0xDF: rcv_state */
+static const nmea_ubx_item ubx_skytraq_rcv_state_items[] = {
+    {"iod", NULL, offsetof(nmea_ubx_skytraq_rcv_state, iod), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_state", NULL, offsetof(nmea_ubx_skytraq_rcv_state, nav_state), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_skytraq_rcv_state, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", NULL, offsetof(nmea_ubx_skytraq_rcv_state, tow), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_x", NULL, offsetof(nmea_ubx_skytraq_rcv_state, ecef_x), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_y", NULL, offsetof(nmea_ubx_skytraq_rcv_state, ecef_y), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_z", NULL, offsetof(nmea_ubx_skytraq_rcv_state, ecef_z), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_vx", NULL, offsetof(nmea_ubx_skytraq_rcv_state, ecef_vx), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_vy", NULL, offsetof(nmea_ubx_skytraq_rcv_state, ecef_vy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_vz", NULL, offsetof(nmea_ubx_skytraq_rcv_state, ecef_vz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clock_bias", NULL, offsetof(nmea_ubx_skytraq_rcv_state, clock_bias), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clock_drift", NULL, offsetof(nmea_ubx_skytraq_rcv_state, clock_drift), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gdop", NULL, offsetof(nmea_ubx_skytraq_rcv_state, gdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pdop", NULL, offsetof(nmea_ubx_skytraq_rcv_state, pdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hdop", NULL, offsetof(nmea_ubx_skytraq_rcv_state, hdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vdop", NULL, offsetof(nmea_ubx_skytraq_rcv_state, vdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tdop", NULL, offsetof(nmea_ubx_skytraq_rcv_state, tdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SKYTRAQ 0xE0: gps_subframe */
+static const nmea_ubx_item ubx_skytraq_gps_subframe_items[] = {
+    {"svid", NULL, offsetof(nmea_ubx_skytraq_gps_subframe, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"subframe", NULL, offsetof(nmea_ubx_skytraq_gps_subframe, subframe), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"words", NULL, offsetof(nmea_ubx_skytraq_gps_subframe, words), 0, 0, NMEA_UBX_ITEM_ARRAY, 30, 30, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+/* The framing of each protocol, by its nmea_ubx_protocol (spec/binary/<protocol>/protocol.yaml). */
+static const nmea_ubx_framing ubx_framings[] = {
+    {"ubx", "UBX", {0xB5, 0x62}, 6, 4, 0xFFFF, 2, NMEA_UBX_CHECK_FLETCHER8, 2, 2, {0x00, 0x00}, 0, false},
+    {"casic", "CASIC", {0xBA, 0xCE}, 6, 2, 0xFFFF, 4, NMEA_UBX_CHECK_SUM32, 2, 4, {0x00, 0x00}, 0, false},
+    {"sirf", "SIRF", {0xA0, 0xA2}, 4, 2, 0xFFFF, 0, NMEA_UBX_CHECK_SUM15, 4, 2, {0xB0, 0xB3}, 2, true},
+    {"skytraq", "SKYTRAQ", {0xA0, 0xA1}, 4, 2, 0xFFFF, 0, NMEA_UBX_CHECK_XOR8, 4, 1, {0x0D, 0x0A}, 2, true},
+};
 /* Every layout, in the order of nmea_ubx_layout: by class and id, then spec order. */
 static const nmea_ubx_layout_info ubx_layouts[] = {
-    {"nav_posecef_poll", "NAV-POSECEF", 0x01, 0x01, false, 0, -1, 0, ubx_nav_posecef_poll_items, 0, offsetof(nmea_ubx_nav_posecef_poll, trailing)},
-    {"nav_posecef", "NAV-POSECEF", 0x01, 0x01, true, 20, -1, 0, ubx_nav_posecef_items, 5, offsetof(nmea_ubx_nav_posecef, trailing)},
-    {"nav_posllh_poll", "NAV-POSLLH", 0x01, 0x02, false, 0, -1, 0, ubx_nav_posllh_poll_items, 0, offsetof(nmea_ubx_nav_posllh_poll, trailing)},
-    {"nav_posllh", "NAV-POSLLH", 0x01, 0x02, true, 28, -1, 0, ubx_nav_posllh_items, 7, offsetof(nmea_ubx_nav_posllh, trailing)},
-    {"nav_status_poll", "NAV-STATUS", 0x01, 0x03, false, 0, -1, 0, ubx_nav_status_poll_items, 0, offsetof(nmea_ubx_nav_status_poll, trailing)},
-    {"nav_status", "NAV-STATUS", 0x01, 0x03, true, 16, -1, 0, ubx_nav_status_items, 17, offsetof(nmea_ubx_nav_status, trailing)},
-    {"nav_dop_poll", "NAV-DOP", 0x01, 0x04, false, 0, -1, 0, ubx_nav_dop_poll_items, 0, offsetof(nmea_ubx_nav_dop_poll, trailing)},
-    {"nav_dop", "NAV-DOP", 0x01, 0x04, true, 18, -1, 0, ubx_nav_dop_items, 8, offsetof(nmea_ubx_nav_dop, trailing)},
-    {"nav_att_poll", "NAV-ATT", 0x01, 0x05, false, 0, -1, 0, ubx_nav_att_poll_items, 0, offsetof(nmea_ubx_nav_att_poll, trailing)},
-    {"nav_att", "NAV-ATT", 0x01, 0x05, true, 32, -1, 0, ubx_nav_att_items, 9, offsetof(nmea_ubx_nav_att, trailing)},
-    {"nav_sol_poll", "NAV-SOL", 0x01, 0x06, false, 0, -1, 0, ubx_nav_sol_poll_items, 0, offsetof(nmea_ubx_nav_sol_poll, trailing)},
-    {"nav_sol", "NAV-SOL", 0x01, 0x06, true, 52, -1, 0, ubx_nav_sol_items, 21, offsetof(nmea_ubx_nav_sol, trailing)},
-    {"nav_pvt_poll", "NAV-PVT", 0x01, 0x07, false, 0, -1, 0, ubx_nav_pvt_poll_items, 0, offsetof(nmea_ubx_nav_pvt_poll, trailing)},
-    {"nav_pvt", "NAV-PVT", 0x01, 0x07, true, 92, -1, 0, ubx_nav_pvt_items, 47, offsetof(nmea_ubx_nav_pvt, trailing)},
-    {"nav_odo_poll", "NAV-ODO", 0x01, 0x09, false, 0, -1, 0, ubx_nav_odo_poll_items, 0, offsetof(nmea_ubx_nav_odo_poll, trailing)},
-    {"nav_odo", "NAV-ODO", 0x01, 0x09, true, 20, -1, 0, ubx_nav_odo_items, 6, offsetof(nmea_ubx_nav_odo, trailing)},
-    {"nav_resetodo", "NAV-RESETODO", 0x01, 0x10, false, 0, -1, 0, ubx_nav_resetodo_items, 0, offsetof(nmea_ubx_nav_resetodo, trailing)},
-    {"nav_velecef_poll", "NAV-VELECEF", 0x01, 0x11, false, 0, -1, 0, ubx_nav_velecef_poll_items, 0, offsetof(nmea_ubx_nav_velecef_poll, trailing)},
-    {"nav_velecef", "NAV-VELECEF", 0x01, 0x11, true, 20, -1, 0, ubx_nav_velecef_items, 5, offsetof(nmea_ubx_nav_velecef, trailing)},
-    {"nav_velned_poll", "NAV-VELNED", 0x01, 0x12, false, 0, -1, 0, ubx_nav_velned_poll_items, 0, offsetof(nmea_ubx_nav_velned_poll, trailing)},
-    {"nav_velned", "NAV-VELNED", 0x01, 0x12, true, 36, -1, 0, ubx_nav_velned_items, 9, offsetof(nmea_ubx_nav_velned, trailing)},
-    {"nav_hpposecef_poll", "NAV-HPPOSECEF", 0x01, 0x13, false, 0, -1, 0, ubx_nav_hpposecef_poll_items, 0, offsetof(nmea_ubx_nav_hpposecef_poll, trailing)},
-    {"nav_hpposecef", "NAV-HPPOSECEF", 0x01, 0x13, true, 28, -1, 0, ubx_nav_hpposecef_items, 12, offsetof(nmea_ubx_nav_hpposecef, trailing)},
-    {"nav_hpposllh_poll", "NAV-HPPOSLLH", 0x01, 0x14, false, 0, -1, 0, ubx_nav_hpposllh_poll_items, 0, offsetof(nmea_ubx_nav_hpposllh_poll, trailing)},
-    {"nav_hpposllh", "NAV-HPPOSLLH", 0x01, 0x14, true, 36, -1, 0, ubx_nav_hpposllh_items, 15, offsetof(nmea_ubx_nav_hpposllh, trailing)},
-    {"nav_timegps_poll", "NAV-TIMEGPS", 0x01, 0x20, false, 0, -1, 0, ubx_nav_timegps_poll_items, 0, offsetof(nmea_ubx_nav_timegps_poll, trailing)},
-    {"nav_timegps", "NAV-TIMEGPS", 0x01, 0x20, true, 16, -1, 0, ubx_nav_timegps_items, 9, offsetof(nmea_ubx_nav_timegps, trailing)},
-    {"nav_timeutc_poll", "NAV-TIMEUTC", 0x01, 0x21, false, 0, -1, 0, ubx_nav_timeutc_poll_items, 0, offsetof(nmea_ubx_nav_timeutc_poll, trailing)},
-    {"nav_timeutc", "NAV-TIMEUTC", 0x01, 0x21, true, 20, -1, 0, ubx_nav_timeutc_items, 14, offsetof(nmea_ubx_nav_timeutc, trailing)},
-    {"nav_clock_poll", "NAV-CLOCK", 0x01, 0x22, false, 0, -1, 0, ubx_nav_clock_poll_items, 0, offsetof(nmea_ubx_nav_clock_poll, trailing)},
-    {"nav_clock", "NAV-CLOCK", 0x01, 0x22, true, 20, -1, 0, ubx_nav_clock_items, 5, offsetof(nmea_ubx_nav_clock, trailing)},
-    {"nav_timeglo_poll", "NAV-TIMEGLO", 0x01, 0x23, false, 0, -1, 0, ubx_nav_timeglo_poll_items, 0, offsetof(nmea_ubx_nav_timeglo_poll, trailing)},
-    {"nav_timeglo", "NAV-TIMEGLO", 0x01, 0x23, true, 20, -1, 0, ubx_nav_timeglo_items, 9, offsetof(nmea_ubx_nav_timeglo, trailing)},
-    {"nav_timebds_poll", "NAV-TIMEBDS", 0x01, 0x24, false, 0, -1, 0, ubx_nav_timebds_poll_items, 0, offsetof(nmea_ubx_nav_timebds_poll, trailing)},
-    {"nav_timebds", "NAV-TIMEBDS", 0x01, 0x24, true, 20, -1, 0, ubx_nav_timebds_items, 10, offsetof(nmea_ubx_nav_timebds, trailing)},
-    {"nav_timegal_poll", "NAV-TIMEGAL", 0x01, 0x25, false, 0, -1, 0, ubx_nav_timegal_poll_items, 0, offsetof(nmea_ubx_nav_timegal_poll, trailing)},
-    {"nav_timegal", "NAV-TIMEGAL", 0x01, 0x25, true, 20, -1, 0, ubx_nav_timegal_items, 10, offsetof(nmea_ubx_nav_timegal, trailing)},
-    {"nav_timels_poll", "NAV-TIMELS", 0x01, 0x26, false, 0, -1, 0, ubx_nav_timels_poll_items, 0, offsetof(nmea_ubx_nav_timels_poll, trailing)},
-    {"nav_timels", "NAV-TIMELS", 0x01, 0x26, true, 24, -1, 0, ubx_nav_timels_items, 14, offsetof(nmea_ubx_nav_timels, trailing)},
-    {"nav_timeqzss_poll", "NAV-TIMEQZSS", 0x01, 0x27, false, 0, -1, 0, ubx_nav_timeqzss_poll_items, 0, offsetof(nmea_ubx_nav_timeqzss_poll, trailing)},
-    {"nav_timeqzss", "NAV-TIMEQZSS", 0x01, 0x27, true, 20, -1, 0, ubx_nav_timeqzss_items, 10, offsetof(nmea_ubx_nav_timeqzss, trailing)},
-    {"nav_svinfo_poll", "NAV-SVINFO", 0x01, 0x30, false, 0, -1, 0, ubx_nav_svinfo_poll_items, 0, offsetof(nmea_ubx_nav_svinfo_poll, trailing)},
-    {"nav_svinfo", "NAV-SVINFO", 0x01, 0x30, true, -1, -1, 0, ubx_nav_svinfo_items, 6, offsetof(nmea_ubx_nav_svinfo, trailing)},
-    {"nav_dgps_poll", "NAV-DGPS", 0x01, 0x31, false, 0, -1, 0, ubx_nav_dgps_poll_items, 0, offsetof(nmea_ubx_nav_dgps_poll, trailing)},
-    {"nav_dgps", "NAV-DGPS", 0x01, 0x31, true, -1, -1, 0, ubx_nav_dgps_items, 8, offsetof(nmea_ubx_nav_dgps, trailing)},
-    {"nav_sbas_poll", "NAV-SBAS", 0x01, 0x32, false, 0, -1, 0, ubx_nav_sbas_poll_items, 0, offsetof(nmea_ubx_nav_sbas_poll, trailing)},
-    {"nav_sbas", "NAV-SBAS", 0x01, 0x32, true, -1, -1, 0, ubx_nav_sbas_items, 15, offsetof(nmea_ubx_nav_sbas, trailing)},
-    {"nav_orb_poll", "NAV-ORB", 0x01, 0x34, false, 0, -1, 0, ubx_nav_orb_poll_items, 0, offsetof(nmea_ubx_nav_orb_poll, trailing)},
-    {"nav_orb", "NAV-ORB", 0x01, 0x34, true, -1, -1, 0, ubx_nav_orb_items, 5, offsetof(nmea_ubx_nav_orb, trailing)},
-    {"nav_sat_poll", "NAV-SAT", 0x01, 0x35, false, 0, -1, 0, ubx_nav_sat_poll_items, 0, offsetof(nmea_ubx_nav_sat_poll, trailing)},
-    {"nav_sat", "NAV-SAT", 0x01, 0x35, true, -1, -1, 0, ubx_nav_sat_items, 5, offsetof(nmea_ubx_nav_sat, trailing)},
-    {"nav_cov_poll", "NAV-COV", 0x01, 0x36, false, 0, -1, 0, ubx_nav_cov_poll_items, 0, offsetof(nmea_ubx_nav_cov_poll, trailing)},
-    {"nav_cov", "NAV-COV", 0x01, 0x36, true, 64, -1, 0, ubx_nav_cov_items, 17, offsetof(nmea_ubx_nav_cov, trailing)},
-    {"nav_geofence_poll", "NAV-GEOFENCE", 0x01, 0x39, false, 0, -1, 0, ubx_nav_geofence_poll_items, 0, offsetof(nmea_ubx_nav_geofence_poll, trailing)},
-    {"nav_geofence", "NAV-GEOFENCE", 0x01, 0x39, true, -1, -1, 0, ubx_nav_geofence_items, 6, offsetof(nmea_ubx_nav_geofence, trailing)},
-    {"nav_svin_poll", "NAV-SVIN", 0x01, 0x3B, false, 0, -1, 0, ubx_nav_svin_poll_items, 0, offsetof(nmea_ubx_nav_svin_poll, trailing)},
-    {"nav_svin", "NAV-SVIN", 0x01, 0x3B, true, 40, -1, 0, ubx_nav_svin_items, 16, offsetof(nmea_ubx_nav_svin, trailing)},
-    {"nav_relposned_poll", "NAV-RELPOSNED", 0x01, 0x3C, false, 0, -1, 0, ubx_nav_relposned_poll_items, 0, offsetof(nmea_ubx_nav_relposned_poll, trailing)},
-    {"nav_relposned", "NAV-RELPOSNED", 0x01, 0x3C, true, 64, 1, 0, ubx_nav_relposned_items, 30, offsetof(nmea_ubx_nav_relposned, trailing)},
-    {"nav_relposned_v0", "NAV-RELPOSNED", 0x01, 0x3C, true, 40, 0, 0, ubx_nav_relposned_v0_items, 22, offsetof(nmea_ubx_nav_relposned_v0, trailing)},
-    {"nav_eell_poll", "NAV-EELL", 0x01, 0x3D, false, 0, -1, 0, ubx_nav_eell_poll_items, 0, offsetof(nmea_ubx_nav_eell_poll, trailing)},
-    {"nav_eell", "NAV-EELL", 0x01, 0x3D, true, 16, -1, 0, ubx_nav_eell_items, 6, offsetof(nmea_ubx_nav_eell, trailing)},
-    {"nav_slas_poll", "NAV-SLAS", 0x01, 0x42, false, 0, -1, 0, ubx_nav_slas_poll_items, 0, offsetof(nmea_ubx_nav_slas_poll, trailing)},
-    {"nav_slas", "NAV-SLAS", 0x01, 0x42, true, -1, -1, 0, ubx_nav_slas_items, 13, offsetof(nmea_ubx_nav_slas, trailing)},
-    {"nav_sig_poll", "NAV-SIG", 0x01, 0x43, false, 0, -1, 0, ubx_nav_sig_poll_items, 0, offsetof(nmea_ubx_nav_sig_poll, trailing)},
-    {"nav_sig", "NAV-SIG", 0x01, 0x43, true, -1, -1, 0, ubx_nav_sig_items, 5, offsetof(nmea_ubx_nav_sig, trailing)},
-    {"nav_aopstatus_poll", "NAV-AOPSTATUS", 0x01, 0x60, false, 0, -1, 0, ubx_nav_aopstatus_poll_items, 0, offsetof(nmea_ubx_nav_aopstatus_poll, trailing)},
-    {"nav_aopstatus", "NAV-AOPSTATUS", 0x01, 0x60, true, 16, -1, 0, ubx_nav_aopstatus_items, 5, offsetof(nmea_ubx_nav_aopstatus, trailing)},
-    {"nav_eoe", "NAV-EOE", 0x01, 0x61, true, 4, -1, 0, ubx_nav_eoe_items, 1, offsetof(nmea_ubx_nav_eoe, trailing)},
-    {"nav_pl_poll", "NAV-PL", 0x01, 0x62, false, 0, -1, 0, ubx_nav_pl_poll_items, 0, offsetof(nmea_ubx_nav_pl_poll, trailing)},
-    {"nav_pl", "NAV-PL", 0x01, 0x62, true, 52, -1, 0, ubx_nav_pl_items, 20, offsetof(nmea_ubx_nav_pl, trailing)},
-    {"rxm_sfrbx", "RXM-SFRBX", 0x02, 0x13, true, -1, -1, 0, ubx_rxm_sfrbx_items, 9, offsetof(nmea_ubx_rxm_sfrbx, trailing)},
-    {"rxm_measx_poll", "RXM-MEASX", 0x02, 0x14, false, 0, -1, 0, ubx_rxm_measx_poll_items, 0, offsetof(nmea_ubx_rxm_measx_poll, trailing)},
-    {"rxm_measx", "RXM-MEASX", 0x02, 0x14, true, -1, -1, 0, ubx_rxm_measx_items, 17, offsetof(nmea_ubx_rxm_measx, trailing)},
-    {"rxm_rawx_poll", "RXM-RAWX", 0x02, 0x15, false, 0, -1, 0, ubx_rxm_rawx_poll_items, 0, offsetof(nmea_ubx_rxm_rawx_poll, trailing)},
-    {"rxm_rawx", "RXM-RAWX", 0x02, 0x15, true, -1, -1, 0, ubx_rxm_rawx_items, 10, offsetof(nmea_ubx_rxm_rawx, trailing)},
-    {"rxm_svsi_poll", "RXM-SVSI", 0x02, 0x20, false, 0, -1, 0, ubx_rxm_svsi_poll_items, 0, offsetof(nmea_ubx_rxm_svsi_poll, trailing)},
-    {"rxm_svsi", "RXM-SVSI", 0x02, 0x20, true, -1, -1, 0, ubx_rxm_svsi_items, 5, offsetof(nmea_ubx_rxm_svsi, trailing)},
-    {"rxm_rtcm", "RXM-RTCM", 0x02, 0x32, true, 8, -1, 0, ubx_rxm_rtcm_items, 7, offsetof(nmea_ubx_rxm_rtcm, trailing)},
-    {"rxm_spartn", "RXM-SPARTN", 0x02, 0x33, true, 8, -1, 0, ubx_rxm_spartn_items, 6, offsetof(nmea_ubx_rxm_spartn, trailing)},
-    {"rxm_cor", "RXM-COR", 0x02, 0x34, true, 12, -1, 0, ubx_rxm_cor_items, 15, offsetof(nmea_ubx_rxm_cor, trailing)},
-    {"rxm_spartnkey_poll", "RXM-SPARTNKEY", 0x02, 0x36, false, 0, -1, 0, ubx_rxm_spartnkey_poll_items, 0, offsetof(nmea_ubx_rxm_spartnkey_poll, trailing)},
-    {"rxm_spartnkey", "RXM-SPARTNKEY", 0x02, 0x36, true, -1, -1, 0, ubx_rxm_spartnkey_items, 5, offsetof(nmea_ubx_rxm_spartnkey, trailing)},
-    {"rxm_pmreq", "RXM-PMREQ", 0x02, 0x41, false, 16, -1, 0, ubx_rxm_pmreq_items, 11, offsetof(nmea_ubx_rxm_pmreq, trailing)},
-    {"rxm_pmreq_short", "RXM-PMREQ", 0x02, 0x41, false, 8, -1, 0, ubx_rxm_pmreq_short_items, 3, offsetof(nmea_ubx_rxm_pmreq_short, trailing)},
-    {"rxm_rlm", "RXM-RLM", 0x02, 0x59, true, 28, -1, 0, ubx_rxm_rlm_items, 8, offsetof(nmea_ubx_rxm_rlm, trailing)},
-    {"rxm_rlm_short", "RXM-RLM", 0x02, 0x59, true, 16, -1, 0, ubx_rxm_rlm_short_items, 8, offsetof(nmea_ubx_rxm_rlm_short, trailing)},
-    {"inf_error", "INF-ERROR", 0x04, 0x00, true, -1, -1, 0, ubx_inf_error_items, 1, offsetof(nmea_ubx_inf_error, trailing)},
-    {"inf_warning", "INF-WARNING", 0x04, 0x01, true, -1, -1, 0, ubx_inf_warning_items, 1, offsetof(nmea_ubx_inf_warning, trailing)},
-    {"inf_notice", "INF-NOTICE", 0x04, 0x02, true, -1, -1, 0, ubx_inf_notice_items, 1, offsetof(nmea_ubx_inf_notice, trailing)},
-    {"inf_test", "INF-TEST", 0x04, 0x03, true, -1, -1, 0, ubx_inf_test_items, 1, offsetof(nmea_ubx_inf_test, trailing)},
-    {"inf_debug", "INF-DEBUG", 0x04, 0x04, true, -1, -1, 0, ubx_inf_debug_items, 1, offsetof(nmea_ubx_inf_debug, trailing)},
-    {"ack_nak", "ACK-NAK", 0x05, 0x00, true, 2, -1, 0, ubx_ack_nak_items, 2, offsetof(nmea_ubx_ack_nak, trailing)},
-    {"ack_ack", "ACK-ACK", 0x05, 0x01, true, 2, -1, 0, ubx_ack_ack_items, 2, offsetof(nmea_ubx_ack_ack, trailing)},
-    {"cfg_prt_poll", "CFG-PRT", 0x06, 0x00, false, 0, -1, 0, ubx_cfg_prt_poll_items, 0, offsetof(nmea_ubx_cfg_prt_poll, trailing)},
-    {"cfg_prt_poll_port", "CFG-PRT", 0x06, 0x00, false, 1, -1, 0, ubx_cfg_prt_poll_port_items, 1, offsetof(nmea_ubx_cfg_prt_poll_port, trailing)},
-    {"cfg_prt", "CFG-PRT", 0x06, 0x00, true, 20, -1, 0, ubx_cfg_prt_items, 24, offsetof(nmea_ubx_cfg_prt, trailing)},
-    {"cfg_msg_poll", "CFG-MSG", 0x06, 0x01, false, 2, -1, 0, ubx_cfg_msg_poll_items, 2, offsetof(nmea_ubx_cfg_msg_poll, trailing)},
-    {"cfg_msg_current_port", "CFG-MSG", 0x06, 0x01, false, 3, -1, 0, ubx_cfg_msg_current_port_items, 3, offsetof(nmea_ubx_cfg_msg_current_port, trailing)},
-    {"cfg_msg", "CFG-MSG", 0x06, 0x01, true, 8, -1, 0, ubx_cfg_msg_items, 3, offsetof(nmea_ubx_cfg_msg, trailing)},
-    {"cfg_inf_poll", "CFG-INF", 0x06, 0x02, false, 1, -1, 0, ubx_cfg_inf_poll_items, 1, offsetof(nmea_ubx_cfg_inf_poll, trailing)},
-    {"cfg_inf", "CFG-INF", 0x06, 0x02, true, -1, -1, 0, ubx_cfg_inf_items, 1, offsetof(nmea_ubx_cfg_inf, trailing)},
-    {"cfg_rst", "CFG-RST", 0x06, 0x04, false, 4, -1, 0, ubx_cfg_rst_items, 13, offsetof(nmea_ubx_cfg_rst, trailing)},
-    {"cfg_dat_poll", "CFG-DAT", 0x06, 0x06, false, 0, -1, 0, ubx_cfg_dat_poll_items, 0, offsetof(nmea_ubx_cfg_dat_poll, trailing)},
-    {"cfg_dat_set", "CFG-DAT", 0x06, 0x06, false, 44, -1, 0, ubx_cfg_dat_set_items, 9, offsetof(nmea_ubx_cfg_dat_set, trailing)},
-    {"cfg_dat", "CFG-DAT", 0x06, 0x06, true, 52, -1, 0, ubx_cfg_dat_items, 11, offsetof(nmea_ubx_cfg_dat, trailing)},
-    {"cfg_rate_poll", "CFG-RATE", 0x06, 0x08, false, 0, -1, 0, ubx_cfg_rate_poll_items, 0, offsetof(nmea_ubx_cfg_rate_poll, trailing)},
-    {"cfg_rate", "CFG-RATE", 0x06, 0x08, true, 6, -1, 0, ubx_cfg_rate_items, 3, offsetof(nmea_ubx_cfg_rate, trailing)},
-    {"cfg_cfg_all_devices", "CFG-CFG", 0x06, 0x09, false, 12, -1, 0, ubx_cfg_cfg_all_devices_items, 3, offsetof(nmea_ubx_cfg_cfg_all_devices, trailing)},
-    {"cfg_cfg", "CFG-CFG", 0x06, 0x09, false, 13, -1, 0, ubx_cfg_cfg_items, 8, offsetof(nmea_ubx_cfg_cfg, trailing)},
-    {"cfg_rxm_poll", "CFG-RXM", 0x06, 0x11, false, 0, -1, 0, ubx_cfg_rxm_poll_items, 0, offsetof(nmea_ubx_cfg_rxm_poll, trailing)},
-    {"cfg_rxm", "CFG-RXM", 0x06, 0x11, true, 2, -1, 0, ubx_cfg_rxm_items, 2, offsetof(nmea_ubx_cfg_rxm, trailing)},
-    {"cfg_ant_poll", "CFG-ANT", 0x06, 0x13, false, 0, -1, 0, ubx_cfg_ant_poll_items, 0, offsetof(nmea_ubx_cfg_ant_poll, trailing)},
-    {"cfg_ant", "CFG-ANT", 0x06, 0x13, true, 4, -1, 0, ubx_cfg_ant_items, 11, offsetof(nmea_ubx_cfg_ant, trailing)},
-    {"cfg_sbas_poll", "CFG-SBAS", 0x06, 0x16, false, 0, -1, 0, ubx_cfg_sbas_poll_items, 0, offsetof(nmea_ubx_cfg_sbas_poll, trailing)},
-    {"cfg_sbas", "CFG-SBAS", 0x06, 0x16, true, 8, -1, 0, ubx_cfg_sbas_items, 10, offsetof(nmea_ubx_cfg_sbas, trailing)},
-    {"cfg_nmea_poll", "CFG-NMEA", 0x06, 0x17, false, 0, -1, 0, ubx_cfg_nmea_poll_items, 0, offsetof(nmea_ubx_cfg_nmea_poll, trailing)},
-    {"cfg_nmea", "CFG-NMEA", 0x06, 0x17, true, 20, 1, 11, ubx_cfg_nmea_items, 27, offsetof(nmea_ubx_cfg_nmea, trailing)},
-    {"cfg_nmea_v0", "CFG-NMEA", 0x06, 0x17, true, 12, 0, 11, ubx_cfg_nmea_v0_items, 25, offsetof(nmea_ubx_cfg_nmea_v0, trailing)},
-    {"cfg_nmea_deprecated", "CFG-NMEA", 0x06, 0x17, true, 4, -1, 0, ubx_cfg_nmea_deprecated_items, 14, offsetof(nmea_ubx_cfg_nmea_deprecated, trailing)},
-    {"cfg_usb_poll", "CFG-USB", 0x06, 0x1B, false, 0, -1, 0, ubx_cfg_usb_poll_items, 0, offsetof(nmea_ubx_cfg_usb_poll, trailing)},
-    {"cfg_usb", "CFG-USB", 0x06, 0x1B, true, 108, -1, 0, ubx_cfg_usb_items, 11, offsetof(nmea_ubx_cfg_usb, trailing)},
-    {"cfg_odo_poll", "CFG-ODO", 0x06, 0x1E, false, 0, -1, 0, ubx_cfg_odo_poll_items, 0, offsetof(nmea_ubx_cfg_odo_poll, trailing)},
-    {"cfg_odo", "CFG-ODO", 0x06, 0x1E, true, 20, -1, 0, ubx_cfg_odo_items, 16, offsetof(nmea_ubx_cfg_odo, trailing)},
-    {"cfg_navx5_poll", "CFG-NAVX5", 0x06, 0x23, false, 0, -1, 0, ubx_cfg_navx5_poll_items, 0, offsetof(nmea_ubx_cfg_navx5_poll, trailing)},
-    {"cfg_navx5", "CFG-NAVX5", 0x06, 0x23, true, 40, -1, 0, ubx_cfg_navx5_items, 33, offsetof(nmea_ubx_cfg_navx5, trailing)},
-    {"cfg_nav5_poll", "CFG-NAV5", 0x06, 0x24, false, 0, -1, 0, ubx_cfg_nav5_poll_items, 0, offsetof(nmea_ubx_cfg_nav5_poll, trailing)},
-    {"cfg_nav5", "CFG-NAV5", 0x06, 0x24, true, 36, -1, 0, ubx_cfg_nav5_items, 29, offsetof(nmea_ubx_cfg_nav5, trailing)},
-    {"cfg_tp5_poll", "CFG-TP5", 0x06, 0x31, false, 0, -1, 0, ubx_cfg_tp5_poll_items, 0, offsetof(nmea_ubx_cfg_tp5_poll, trailing)},
-    {"cfg_tp5_poll_index", "CFG-TP5", 0x06, 0x31, false, 1, -1, 0, ubx_cfg_tp5_poll_index_items, 1, offsetof(nmea_ubx_cfg_tp5_poll_index, trailing)},
-    {"cfg_tp5", "CFG-TP5", 0x06, 0x31, true, 32, -1, 0, ubx_cfg_tp5_items, 20, offsetof(nmea_ubx_cfg_tp5, trailing)},
-    {"cfg_rinv_poll", "CFG-RINV", 0x06, 0x34, false, 0, -1, 0, ubx_cfg_rinv_poll_items, 0, offsetof(nmea_ubx_cfg_rinv_poll, trailing)},
-    {"cfg_rinv", "CFG-RINV", 0x06, 0x34, true, -1, -1, 0, ubx_cfg_rinv_items, 4, offsetof(nmea_ubx_cfg_rinv, trailing)},
-    {"cfg_itfm_poll", "CFG-ITFM", 0x06, 0x39, false, 0, -1, 0, ubx_cfg_itfm_poll_items, 0, offsetof(nmea_ubx_cfg_itfm_poll, trailing)},
-    {"cfg_itfm", "CFG-ITFM", 0x06, 0x39, true, 8, -1, 0, ubx_cfg_itfm_items, 9, offsetof(nmea_ubx_cfg_itfm, trailing)},
-    {"cfg_pm2_poll", "CFG-PM2", 0x06, 0x3B, false, 0, -1, 0, ubx_cfg_pm2_poll_items, 0, offsetof(nmea_ubx_cfg_pm2_poll, trailing)},
-    {"cfg_pm2", "CFG-PM2", 0x06, 0x3B, true, 48, 2, 0, ubx_cfg_pm2_items, 24, offsetof(nmea_ubx_cfg_pm2, trailing)},
-    {"cfg_pm2_v1", "CFG-PM2", 0x06, 0x3B, true, 44, 1, 0, ubx_cfg_pm2_v1_items, 23, offsetof(nmea_ubx_cfg_pm2_v1, trailing)},
-    {"cfg_gnss_poll", "CFG-GNSS", 0x06, 0x3E, false, 0, -1, 0, ubx_cfg_gnss_poll_items, 0, offsetof(nmea_ubx_cfg_gnss_poll, trailing)},
-    {"cfg_gnss", "CFG-GNSS", 0x06, 0x3E, true, -1, -1, 0, ubx_cfg_gnss_items, 5, offsetof(nmea_ubx_cfg_gnss, trailing)},
-    {"cfg_logfilter_poll", "CFG-LOGFILTER", 0x06, 0x47, false, 0, -1, 0, ubx_cfg_logfilter_poll_items, 0, offsetof(nmea_ubx_cfg_logfilter_poll, trailing)},
-    {"cfg_logfilter", "CFG-LOGFILTER", 0x06, 0x47, true, 12, -1, 0, ubx_cfg_logfilter_items, 9, offsetof(nmea_ubx_cfg_logfilter, trailing)},
-    {"cfg_esfa_poll", "CFG-ESFA", 0x06, 0x4C, false, 0, -1, 0, ubx_cfg_esfa_poll_items, 0, offsetof(nmea_ubx_cfg_esfa_poll, trailing)},
-    {"cfg_esfa", "CFG-ESFA", 0x06, 0x4C, true, 20, -1, 0, ubx_cfg_esfa_items, 7, offsetof(nmea_ubx_cfg_esfa, trailing)},
-    {"cfg_esfg_poll", "CFG-ESFG", 0x06, 0x4D, false, 0, -1, 0, ubx_cfg_esfg_poll_items, 0, offsetof(nmea_ubx_cfg_esfg_poll, trailing)},
-    {"cfg_esfg", "CFG-ESFG", 0x06, 0x4D, true, 20, -1, 0, ubx_cfg_esfg_items, 8, offsetof(nmea_ubx_cfg_esfg, trailing)},
-    {"cfg_txslot_poll", "CFG-TXSLOT", 0x06, 0x53, false, 0, -1, 0, ubx_cfg_txslot_poll_items, 0, offsetof(nmea_ubx_cfg_txslot_poll, trailing)},
-    {"cfg_txslot", "CFG-TXSLOT", 0x06, 0x53, true, 16, -1, 0, ubx_cfg_txslot_items, 10, offsetof(nmea_ubx_cfg_txslot, trailing)},
-    {"cfg_esfalg_poll", "CFG-ESFALG", 0x06, 0x56, false, 0, -1, 0, ubx_cfg_esfalg_poll_items, 0, offsetof(nmea_ubx_cfg_esfalg_poll, trailing)},
-    {"cfg_esfalg", "CFG-ESFALG", 0x06, 0x56, true, 12, -1, 0, ubx_cfg_esfalg_items, 6, offsetof(nmea_ubx_cfg_esfalg, trailing)},
-    {"cfg_pwr", "CFG-PWR", 0x06, 0x57, false, 8, -1, 0, ubx_cfg_pwr_items, 3, offsetof(nmea_ubx_cfg_pwr, trailing)},
-    {"cfg_hnr_poll", "CFG-HNR", 0x06, 0x5C, false, 0, -1, 0, ubx_cfg_hnr_poll_items, 0, offsetof(nmea_ubx_cfg_hnr_poll, trailing)},
-    {"cfg_hnr", "CFG-HNR", 0x06, 0x5C, true, 4, -1, 0, ubx_cfg_hnr_items, 2, offsetof(nmea_ubx_cfg_hnr, trailing)},
-    {"cfg_esrc_poll", "CFG-ESRC", 0x06, 0x60, false, 0, -1, 0, ubx_cfg_esrc_poll_items, 0, offsetof(nmea_ubx_cfg_esrc_poll, trailing)},
-    {"cfg_esrc", "CFG-ESRC", 0x06, 0x60, true, -1, -1, 0, ubx_cfg_esrc_items, 4, offsetof(nmea_ubx_cfg_esrc, trailing)},
-    {"cfg_dosc_poll", "CFG-DOSC", 0x06, 0x61, false, 0, -1, 0, ubx_cfg_dosc_poll_items, 0, offsetof(nmea_ubx_cfg_dosc_poll, trailing)},
-    {"cfg_dosc", "CFG-DOSC", 0x06, 0x61, true, -1, -1, 0, ubx_cfg_dosc_items, 4, offsetof(nmea_ubx_cfg_dosc, trailing)},
-    {"cfg_smgr_poll", "CFG-SMGR", 0x06, 0x62, false, 0, -1, 0, ubx_cfg_smgr_poll_items, 0, offsetof(nmea_ubx_cfg_smgr_poll, trailing)},
-    {"cfg_smgr", "CFG-SMGR", 0x06, 0x62, true, 20, -1, 0, ubx_cfg_smgr_items, 28, offsetof(nmea_ubx_cfg_smgr, trailing)},
-    {"cfg_geofence_poll", "CFG-GEOFENCE", 0x06, 0x69, false, 0, -1, 0, ubx_cfg_geofence_poll_items, 0, offsetof(nmea_ubx_cfg_geofence_poll, trailing)},
-    {"cfg_geofence", "CFG-GEOFENCE", 0x06, 0x69, true, -1, -1, 0, ubx_cfg_geofence_items, 9, offsetof(nmea_ubx_cfg_geofence, trailing)},
-    {"cfg_dgnss_poll", "CFG-DGNSS", 0x06, 0x70, false, 0, -1, 0, ubx_cfg_dgnss_poll_items, 0, offsetof(nmea_ubx_cfg_dgnss_poll, trailing)},
-    {"cfg_dgnss", "CFG-DGNSS", 0x06, 0x70, true, 4, -1, 0, ubx_cfg_dgnss_items, 2, offsetof(nmea_ubx_cfg_dgnss, trailing)},
-    {"cfg_tmode3_poll", "CFG-TMODE3", 0x06, 0x71, false, 0, -1, 0, ubx_cfg_tmode3_poll_items, 0, offsetof(nmea_ubx_cfg_tmode3_poll, trailing)},
-    {"cfg_tmode3", "CFG-TMODE3", 0x06, 0x71, true, 40, -1, 0, ubx_cfg_tmode3_items, 16, offsetof(nmea_ubx_cfg_tmode3, trailing)},
-    {"cfg_esfwt_poll", "CFG-ESFWT", 0x06, 0x82, false, 0, -1, 0, ubx_cfg_esfwt_poll_items, 0, offsetof(nmea_ubx_cfg_esfwt_poll, trailing)},
-    {"cfg_esfwt", "CFG-ESFWT", 0x06, 0x82, true, 32, -1, 0, ubx_cfg_esfwt_items, 21, offsetof(nmea_ubx_cfg_esfwt, trailing)},
-    {"cfg_fixseed", "CFG-FIXSEED", 0x06, 0x84, false, -1, -1, 0, ubx_cfg_fixseed_items, 6, offsetof(nmea_ubx_cfg_fixseed, trailing)},
-    {"cfg_pms_poll", "CFG-PMS", 0x06, 0x86, false, 0, -1, 0, ubx_cfg_pms_poll_items, 0, offsetof(nmea_ubx_cfg_pms_poll, trailing)},
-    {"cfg_pms", "CFG-PMS", 0x06, 0x86, true, 8, -1, 0, ubx_cfg_pms_items, 5, offsetof(nmea_ubx_cfg_pms, trailing)},
-    {"cfg_valset_v0", "CFG-VALSET", 0x06, 0x8A, false, -1, 0, 0, ubx_cfg_valset_v0_items, 7, offsetof(nmea_ubx_cfg_valset_v0, trailing)},
-    {"cfg_valset", "CFG-VALSET", 0x06, 0x8A, false, -1, 1, 0, ubx_cfg_valset_items, 9, offsetof(nmea_ubx_cfg_valset, trailing)},
-    {"cfg_valget_poll", "CFG-VALGET", 0x06, 0x8B, false, -1, 0, 0, ubx_cfg_valget_poll_items, 4, offsetof(nmea_ubx_cfg_valget_poll, trailing)},
-    {"cfg_valget", "CFG-VALGET", 0x06, 0x8B, true, -1, 1, 0, ubx_cfg_valget_items, 4, offsetof(nmea_ubx_cfg_valget, trailing)},
-    {"cfg_valdel_v0", "CFG-VALDEL", 0x06, 0x8C, false, -1, 0, 0, ubx_cfg_valdel_v0_items, 6, offsetof(nmea_ubx_cfg_valdel_v0, trailing)},
-    {"cfg_valdel", "CFG-VALDEL", 0x06, 0x8C, false, -1, 1, 0, ubx_cfg_valdel_items, 8, offsetof(nmea_ubx_cfg_valdel, trailing)},
-    {"cfg_slas_poll", "CFG-SLAS", 0x06, 0x8D, false, 0, -1, 0, ubx_cfg_slas_poll_items, 0, offsetof(nmea_ubx_cfg_slas_poll, trailing)},
-    {"cfg_slas", "CFG-SLAS", 0x06, 0x8D, true, 4, -1, 0, ubx_cfg_slas_items, 5, offsetof(nmea_ubx_cfg_slas, trailing)},
-    {"cfg_batch_poll", "CFG-BATCH", 0x06, 0x93, false, 0, -1, 0, ubx_cfg_batch_poll_items, 0, offsetof(nmea_ubx_cfg_batch_poll, trailing)},
-    {"cfg_batch", "CFG-BATCH", 0x06, 0x93, true, 8, -1, 0, ubx_cfg_batch_items, 11, offsetof(nmea_ubx_cfg_batch, trailing)},
-    {"upd_sos_poll", "UPD-SOS", 0x09, 0x14, false, 0, -1, 0, ubx_upd_sos_poll_items, 0, offsetof(nmea_ubx_upd_sos_poll, trailing)},
-    {"upd_sos_command", "UPD-SOS", 0x09, 0x14, false, 4, -1, 0, ubx_upd_sos_command_items, 2, offsetof(nmea_ubx_upd_sos_command, trailing)},
-    {"upd_sos", "UPD-SOS", 0x09, 0x14, true, 8, -1, 0, ubx_upd_sos_items, 4, offsetof(nmea_ubx_upd_sos, trailing)},
-    {"mon_io_poll", "MON-IO", 0x0A, 0x02, false, 0, -1, 0, ubx_mon_io_poll_items, 0, offsetof(nmea_ubx_mon_io_poll, trailing)},
-    {"mon_io", "MON-IO", 0x0A, 0x02, true, -1, -1, 0, ubx_mon_io_items, 1, offsetof(nmea_ubx_mon_io, trailing)},
-    {"mon_ver_poll", "MON-VER", 0x0A, 0x04, false, 0, -1, 0, ubx_mon_ver_poll_items, 0, offsetof(nmea_ubx_mon_ver_poll, trailing)},
-    {"mon_ver", "MON-VER", 0x0A, 0x04, true, -1, -1, 0, ubx_mon_ver_items, 3, offsetof(nmea_ubx_mon_ver, trailing)},
-    {"mon_msgpp_poll", "MON-MSGPP", 0x0A, 0x06, false, 0, -1, 0, ubx_mon_msgpp_poll_items, 0, offsetof(nmea_ubx_mon_msgpp_poll, trailing)},
-    {"mon_msgpp", "MON-MSGPP", 0x0A, 0x06, true, 120, -1, 0, ubx_mon_msgpp_items, 7, offsetof(nmea_ubx_mon_msgpp, trailing)},
-    {"mon_rxbuf_poll", "MON-RXBUF", 0x0A, 0x07, false, 0, -1, 0, ubx_mon_rxbuf_poll_items, 0, offsetof(nmea_ubx_mon_rxbuf_poll, trailing)},
-    {"mon_rxbuf", "MON-RXBUF", 0x0A, 0x07, true, 24, -1, 0, ubx_mon_rxbuf_items, 3, offsetof(nmea_ubx_mon_rxbuf, trailing)},
-    {"mon_txbuf_poll", "MON-TXBUF", 0x0A, 0x08, false, 0, -1, 0, ubx_mon_txbuf_poll_items, 0, offsetof(nmea_ubx_mon_txbuf_poll, trailing)},
-    {"mon_txbuf", "MON-TXBUF", 0x0A, 0x08, true, 28, -1, 0, ubx_mon_txbuf_items, 10, offsetof(nmea_ubx_mon_txbuf, trailing)},
-    {"mon_hw_poll", "MON-HW", 0x0A, 0x09, false, 0, -1, 0, ubx_mon_hw_poll_items, 0, offsetof(nmea_ubx_mon_hw_poll, trailing)},
-    {"mon_hw", "MON-HW", 0x0A, 0x09, true, 60, -1, 0, ubx_mon_hw_items, 21, offsetof(nmea_ubx_mon_hw, trailing)},
-    {"mon_hw2_poll", "MON-HW2", 0x0A, 0x0B, false, 0, -1, 0, ubx_mon_hw2_poll_items, 0, offsetof(nmea_ubx_mon_hw2_poll, trailing)},
-    {"mon_hw2", "MON-HW2", 0x0A, 0x0B, true, 28, -1, 0, ubx_mon_hw2_items, 10, offsetof(nmea_ubx_mon_hw2, trailing)},
-    {"mon_rxr", "MON-RXR", 0x0A, 0x21, true, 1, -1, 0, ubx_mon_rxr_items, 2, offsetof(nmea_ubx_mon_rxr, trailing)},
-    {"mon_patch_poll", "MON-PATCH", 0x0A, 0x27, false, 0, -1, 0, ubx_mon_patch_poll_items, 0, offsetof(nmea_ubx_mon_patch_poll, trailing)},
-    {"mon_patch", "MON-PATCH", 0x0A, 0x27, true, -1, -1, 0, ubx_mon_patch_items, 3, offsetof(nmea_ubx_mon_patch, trailing)},
-    {"mon_gnss_poll", "MON-GNSS", 0x0A, 0x28, false, 0, -1, 0, ubx_mon_gnss_poll_items, 0, offsetof(nmea_ubx_mon_gnss_poll, trailing)},
-    {"mon_gnss", "MON-GNSS", 0x0A, 0x28, true, 8, -1, 0, ubx_mon_gnss_items, 18, offsetof(nmea_ubx_mon_gnss, trailing)},
-    {"mon_smgr_poll", "MON-SMGR", 0x0A, 0x2E, false, 0, -1, 0, ubx_mon_smgr_poll_items, 0, offsetof(nmea_ubx_mon_smgr_poll, trailing)},
-    {"mon_smgr", "MON-SMGR", 0x0A, 0x2E, true, 16, -1, 0, ubx_mon_smgr_items, 22, offsetof(nmea_ubx_mon_smgr, trailing)},
-    {"mon_comms_poll", "MON-COMMS", 0x0A, 0x36, false, 0, -1, 0, ubx_mon_comms_poll_items, 0, offsetof(nmea_ubx_mon_comms_poll, trailing)},
-    {"mon_comms", "MON-COMMS", 0x0A, 0x36, true, -1, -1, 0, ubx_mon_comms_items, 8, offsetof(nmea_ubx_mon_comms, trailing)},
-    {"mon_hw3_poll", "MON-HW3", 0x0A, 0x37, false, 0, -1, 0, ubx_mon_hw3_poll_items, 0, offsetof(nmea_ubx_mon_hw3_poll, trailing)},
-    {"mon_hw3", "MON-HW3", 0x0A, 0x37, true, -1, -1, 0, ubx_mon_hw3_items, 9, offsetof(nmea_ubx_mon_hw3, trailing)},
-    {"mon_rf_poll", "MON-RF", 0x0A, 0x38, false, 0, -1, 0, ubx_mon_rf_poll_items, 0, offsetof(nmea_ubx_mon_rf_poll, trailing)},
-    {"mon_rf", "MON-RF", 0x0A, 0x38, true, -1, -1, 0, ubx_mon_rf_items, 4, offsetof(nmea_ubx_mon_rf, trailing)},
-    {"mon_sys_poll", "MON-SYS", 0x0A, 0x39, false, 0, -1, 0, ubx_mon_sys_poll_items, 0, offsetof(nmea_ubx_mon_sys_poll, trailing)},
-    {"mon_sys", "MON-SYS", 0x0A, 0x39, true, 24, -1, 0, ubx_mon_sys_items, 14, offsetof(nmea_ubx_mon_sys, trailing)},
-    {"aid_ini_poll", "AID-INI", 0x0B, 0x01, false, 0, -1, 0, ubx_aid_ini_poll_items, 0, offsetof(nmea_ubx_aid_ini_poll, trailing)},
-    {"aid_ini", "AID-INI", 0x0B, 0x01, true, 48, -1, 0, ubx_aid_ini_items, 25, offsetof(nmea_ubx_aid_ini, trailing)},
-    {"aid_hui_poll", "AID-HUI", 0x0B, 0x02, false, 0, -1, 0, ubx_aid_hui_poll_items, 0, offsetof(nmea_ubx_aid_hui_poll, trailing)},
-    {"aid_hui", "AID-HUI", 0x0B, 0x02, true, 72, -1, 0, ubx_aid_hui_items, 22, offsetof(nmea_ubx_aid_hui, trailing)},
-    {"aid_alm_poll", "AID-ALM", 0x0B, 0x30, false, 0, -1, 0, ubx_aid_alm_poll_items, 0, offsetof(nmea_ubx_aid_alm_poll, trailing)},
-    {"aid_alm_poll_sv", "AID-ALM", 0x0B, 0x30, false, 1, -1, 0, ubx_aid_alm_poll_sv_items, 1, offsetof(nmea_ubx_aid_alm_poll_sv, trailing)},
-    {"aid_alm", "AID-ALM", 0x0B, 0x30, true, 40, -1, 0, ubx_aid_alm_items, 3, offsetof(nmea_ubx_aid_alm, trailing)},
-    {"aid_alm_empty", "AID-ALM", 0x0B, 0x30, true, 8, -1, 0, ubx_aid_alm_empty_items, 2, offsetof(nmea_ubx_aid_alm_empty, trailing)},
-    {"aid_eph_poll", "AID-EPH", 0x0B, 0x31, false, 0, -1, 0, ubx_aid_eph_poll_items, 0, offsetof(nmea_ubx_aid_eph_poll, trailing)},
-    {"aid_eph_poll_sv", "AID-EPH", 0x0B, 0x31, false, 1, -1, 0, ubx_aid_eph_poll_sv_items, 1, offsetof(nmea_ubx_aid_eph_poll_sv, trailing)},
-    {"aid_eph", "AID-EPH", 0x0B, 0x31, true, 104, -1, 0, ubx_aid_eph_items, 26, offsetof(nmea_ubx_aid_eph, trailing)},
-    {"aid_eph_empty", "AID-EPH", 0x0B, 0x31, true, 8, -1, 0, ubx_aid_eph_empty_items, 2, offsetof(nmea_ubx_aid_eph_empty, trailing)},
-    {"aid_aop_poll", "AID-AOP", 0x0B, 0x33, false, 0, -1, 0, ubx_aid_aop_poll_items, 0, offsetof(nmea_ubx_aid_aop_poll, trailing)},
-    {"aid_aop_poll_sv", "AID-AOP", 0x0B, 0x33, false, 1, -1, 0, ubx_aid_aop_poll_sv_items, 1, offsetof(nmea_ubx_aid_aop_poll_sv, trailing)},
-    {"aid_aop", "AID-AOP", 0x0B, 0x33, true, 68, -1, 0, ubx_aid_aop_items, 4, offsetof(nmea_ubx_aid_aop, trailing)},
-    {"tim_tp_poll", "TIM-TP", 0x0D, 0x01, false, 0, -1, 0, ubx_tim_tp_poll_items, 0, offsetof(nmea_ubx_tim_tp_poll, trailing)},
-    {"tim_tp", "TIM-TP", 0x0D, 0x01, true, 16, -1, 0, ubx_tim_tp_items, 12, offsetof(nmea_ubx_tim_tp, trailing)},
-    {"tim_tm2_poll", "TIM-TM2", 0x0D, 0x03, false, 0, -1, 0, ubx_tim_tm2_poll_items, 0, offsetof(nmea_ubx_tim_tm2_poll, trailing)},
-    {"tim_tm2", "TIM-TM2", 0x0D, 0x03, true, 28, -1, 0, ubx_tim_tm2_items, 17, offsetof(nmea_ubx_tim_tm2, trailing)},
-    {"tim_svin_poll", "TIM-SVIN", 0x0D, 0x04, false, 0, -1, 0, ubx_tim_svin_poll_items, 0, offsetof(nmea_ubx_tim_svin_poll, trailing)},
-    {"tim_svin", "TIM-SVIN", 0x0D, 0x04, true, 28, -1, 0, ubx_tim_svin_items, 9, offsetof(nmea_ubx_tim_svin, trailing)},
-    {"tim_vrfy_poll", "TIM-VRFY", 0x0D, 0x06, false, 0, -1, 0, ubx_tim_vrfy_poll_items, 0, offsetof(nmea_ubx_tim_vrfy_poll, trailing)},
-    {"tim_vrfy", "TIM-VRFY", 0x0D, 0x06, true, 20, -1, 0, ubx_tim_vrfy_items, 8, offsetof(nmea_ubx_tim_vrfy, trailing)},
-    {"tim_dosc_poll", "TIM-DOSC", 0x0D, 0x11, false, 0, -1, 0, ubx_tim_dosc_poll_items, 0, offsetof(nmea_ubx_tim_dosc_poll, trailing)},
-    {"tim_dosc", "TIM-DOSC", 0x0D, 0x11, true, 8, -1, 0, ubx_tim_dosc_items, 3, offsetof(nmea_ubx_tim_dosc, trailing)},
-    {"tim_tos_poll", "TIM-TOS", 0x0D, 0x12, false, 0, -1, 0, ubx_tim_tos_poll_items, 0, offsetof(nmea_ubx_tim_tos_poll, trailing)},
-    {"tim_tos", "TIM-TOS", 0x0D, 0x12, true, 56, -1, 0, ubx_tim_tos_items, 33, offsetof(nmea_ubx_tim_tos, trailing)},
-    {"tim_smeas_poll", "TIM-SMEAS", 0x0D, 0x13, false, 0, -1, 0, ubx_tim_smeas_poll_items, 0, offsetof(nmea_ubx_tim_smeas_poll, trailing)},
-    {"tim_smeas", "TIM-SMEAS", 0x0D, 0x13, true, -1, -1, 0, ubx_tim_smeas_items, 6, offsetof(nmea_ubx_tim_smeas, trailing)},
-    {"tim_vcocal_poll", "TIM-VCOCAL", 0x0D, 0x15, false, 0, -1, 0, ubx_tim_vcocal_poll_items, 0, offsetof(nmea_ubx_tim_vcocal_poll, trailing)},
-    {"tim_vcocal_stop", "TIM-VCOCAL", 0x0D, 0x15, false, 1, -1, 0, ubx_tim_vcocal_stop_items, 1, offsetof(nmea_ubx_tim_vcocal_stop, trailing)},
-    {"tim_vcocal_result", "TIM-VCOCAL", 0x0D, 0x15, true, 12, -1, 0, ubx_tim_vcocal_result_items, 6, offsetof(nmea_ubx_tim_vcocal_result, trailing)},
-    {"tim_vcocal", "TIM-VCOCAL", 0x0D, 0x15, false, 12, -1, 0, ubx_tim_vcocal_items, 8, offsetof(nmea_ubx_tim_vcocal, trailing)},
-    {"tim_fchg_poll", "TIM-FCHG", 0x0D, 0x16, false, 0, -1, 0, ubx_tim_fchg_poll_items, 0, offsetof(nmea_ubx_tim_fchg_poll, trailing)},
-    {"tim_fchg", "TIM-FCHG", 0x0D, 0x16, true, 32, -1, 0, ubx_tim_fchg_items, 9, offsetof(nmea_ubx_tim_fchg, trailing)},
-    {"tim_hoc", "TIM-HOC", 0x0D, 0x17, false, 8, -1, 0, ubx_tim_hoc_items, 7, offsetof(nmea_ubx_tim_hoc, trailing)},
-    {"esf_meas", "ESF-MEAS", 0x10, 0x02, true, -1, -1, 0, ubx_esf_meas_items, 9, offsetof(nmea_ubx_esf_meas, trailing)},
-    {"esf_raw", "ESF-RAW", 0x10, 0x03, true, -1, -1, 0, ubx_esf_raw_items, 2, offsetof(nmea_ubx_esf_raw, trailing)},
-    {"esf_status_poll", "ESF-STATUS", 0x10, 0x10, false, 0, -1, 0, ubx_esf_status_poll_items, 0, offsetof(nmea_ubx_esf_status_poll, trailing)},
-    {"esf_status", "ESF-STATUS", 0x10, 0x10, true, -1, -1, 0, ubx_esf_status_items, 13, offsetof(nmea_ubx_esf_status, trailing)},
-    {"esf_alg_poll", "ESF-ALG", 0x10, 0x14, false, 0, -1, 0, ubx_esf_alg_poll_items, 0, offsetof(nmea_ubx_esf_alg_poll, trailing)},
-    {"esf_alg", "ESF-ALG", 0x10, 0x14, true, 16, -1, 0, ubx_esf_alg_items, 13, offsetof(nmea_ubx_esf_alg, trailing)},
-    {"esf_ins_poll", "ESF-INS", 0x10, 0x15, false, 0, -1, 0, ubx_esf_ins_poll_items, 0, offsetof(nmea_ubx_esf_ins_poll, trailing)},
-    {"esf_ins", "ESF-INS", 0x10, 0x15, true, 36, -1, 0, ubx_esf_ins_items, 16, offsetof(nmea_ubx_esf_ins, trailing)},
-    {"mga_gps_eph", "MGA-GPS", 0x13, 0x00, false, 68, -1, 0, ubx_mga_gps_eph_items, 31, offsetof(nmea_ubx_mga_gps_eph, trailing)},
-    {"mga_gps_alm", "MGA-GPS", 0x13, 0x00, false, 36, -1, 0, ubx_mga_gps_alm_items, 16, offsetof(nmea_ubx_mga_gps_alm, trailing)},
-    {"mga_gps_health", "MGA-GPS", 0x13, 0x00, false, 40, -1, 0, ubx_mga_gps_health_items, 5, offsetof(nmea_ubx_mga_gps_health, trailing)},
-    {"mga_gps_utc", "MGA-GPS", 0x13, 0x00, false, 20, -1, 0, ubx_mga_gps_utc_items, 12, offsetof(nmea_ubx_mga_gps_utc, trailing)},
-    {"mga_gps_iono", "MGA-GPS", 0x13, 0x00, false, 16, -1, 0, ubx_mga_gps_iono_items, 12, offsetof(nmea_ubx_mga_gps_iono, trailing)},
-    {"mga_gal_eph", "MGA-GAL", 0x13, 0x02, false, 76, -1, 0, ubx_mga_gal_eph_items, 33, offsetof(nmea_ubx_mga_gal_eph, trailing)},
-    {"mga_gal_alm", "MGA-GAL", 0x13, 0x02, false, 32, -1, 0, ubx_mga_gal_alm_items, 19, offsetof(nmea_ubx_mga_gal_alm, trailing)},
-    {"mga_gal_timeoffset", "MGA-GAL", 0x13, 0x02, false, 12, -1, 0, ubx_mga_gal_timeoffset_items, 8, offsetof(nmea_ubx_mga_gal_timeoffset, trailing)},
-    {"mga_gal_utc", "MGA-GAL", 0x13, 0x02, false, 20, -1, 0, ubx_mga_gal_utc_items, 12, offsetof(nmea_ubx_mga_gal_utc, trailing)},
-    {"mga_bds_eph", "MGA-BDS", 0x13, 0x03, false, 88, -1, 0, ubx_mga_bds_eph_items, 30, offsetof(nmea_ubx_mga_bds_eph, trailing)},
-    {"mga_bds_alm", "MGA-BDS", 0x13, 0x03, false, 40, -1, 0, ubx_mga_bds_alm_items, 16, offsetof(nmea_ubx_mga_bds_alm, trailing)},
-    {"mga_bds_health", "MGA-BDS", 0x13, 0x03, false, 68, -1, 0, ubx_mga_bds_health_items, 5, offsetof(nmea_ubx_mga_bds_health, trailing)},
-    {"mga_bds_utc", "MGA-BDS", 0x13, 0x03, false, 20, -1, 0, ubx_mga_bds_utc_items, 12, offsetof(nmea_ubx_mga_bds_utc, trailing)},
-    {"mga_bds_iono", "MGA-BDS", 0x13, 0x03, false, 16, -1, 0, ubx_mga_bds_iono_items, 12, offsetof(nmea_ubx_mga_bds_iono, trailing)},
-    {"mga_qzss_eph", "MGA-QZSS", 0x13, 0x05, false, 68, -1, 0, ubx_mga_qzss_eph_items, 31, offsetof(nmea_ubx_mga_qzss_eph, trailing)},
-    {"mga_qzss_alm", "MGA-QZSS", 0x13, 0x05, false, 36, -1, 0, ubx_mga_qzss_alm_items, 16, offsetof(nmea_ubx_mga_qzss_alm, trailing)},
-    {"mga_qzss_health", "MGA-QZSS", 0x13, 0x05, false, 12, -1, 0, ubx_mga_qzss_health_items, 5, offsetof(nmea_ubx_mga_qzss_health, trailing)},
-    {"mga_glo_eph", "MGA-GLO", 0x13, 0x06, false, 48, -1, 0, ubx_mga_glo_eph_items, 23, offsetof(nmea_ubx_mga_glo_eph, trailing)},
-    {"mga_glo_alm", "MGA-GLO", 0x13, 0x06, false, 36, -1, 0, ubx_mga_glo_alm_items, 17, offsetof(nmea_ubx_mga_glo_alm, trailing)},
-    {"mga_glo_timeoffset", "MGA-GLO", 0x13, 0x06, false, 20, -1, 0, ubx_mga_glo_timeoffset_items, 8, offsetof(nmea_ubx_mga_glo_timeoffset, trailing)},
-    {"mga_ano", "MGA-ANO", 0x13, 0x20, false, 76, -1, 0, ubx_mga_ano_items, 10, offsetof(nmea_ubx_mga_ano, trailing)},
-    {"mga_ack", "MGA-ACK", 0x13, 0x60, true, 8, -1, 0, ubx_mga_ack_items, 5, offsetof(nmea_ubx_mga_ack, trailing)},
-    {"mga_dbd_poll", "MGA-DBD", 0x13, 0x80, false, 0, -1, 0, ubx_mga_dbd_poll_items, 0, offsetof(nmea_ubx_mga_dbd_poll, trailing)},
-    {"mga_dbd", "MGA-DBD", 0x13, 0x80, true, -1, -1, 0, ubx_mga_dbd_items, 2, offsetof(nmea_ubx_mga_dbd, trailing)},
-    {"log_erase", "LOG-ERASE", 0x21, 0x03, false, 0, -1, 0, ubx_log_erase_items, 0, offsetof(nmea_ubx_log_erase, trailing)},
-    {"log_string", "LOG-STRING", 0x21, 0x04, false, -1, -1, 0, ubx_log_string_items, 1, offsetof(nmea_ubx_log_string, trailing)},
-    {"log_create", "LOG-CREATE", 0x21, 0x07, false, 8, -1, 0, ubx_log_create_items, 6, offsetof(nmea_ubx_log_create, trailing)},
-    {"log_info_poll", "LOG-INFO", 0x21, 0x08, false, 0, -1, 0, ubx_log_info_poll_items, 0, offsetof(nmea_ubx_log_info_poll, trailing)},
-    {"log_info", "LOG-INFO", 0x21, 0x08, true, 48, -1, 0, ubx_log_info_items, 26, offsetof(nmea_ubx_log_info, trailing)},
-    {"log_retrieve", "LOG-RETRIEVE", 0x21, 0x09, false, 12, -1, 0, ubx_log_retrieve_items, 4, offsetof(nmea_ubx_log_retrieve, trailing)},
-    {"log_retrievepos", "LOG-RETRIEVEPOS", 0x21, 0x0B, true, 40, -1, 0, ubx_log_retrievepos_items, 18, offsetof(nmea_ubx_log_retrievepos, trailing)},
-    {"log_retrievestring", "LOG-RETRIEVESTRING", 0x21, 0x0D, true, -1, -1, 0, ubx_log_retrievestring_items, 12, offsetof(nmea_ubx_log_retrievestring, trailing)},
-    {"log_findtime", "LOG-FINDTIME", 0x21, 0x0E, false, 10, -1, 0, ubx_log_findtime_items, 9, offsetof(nmea_ubx_log_findtime, trailing)},
-    {"log_findtime_response", "LOG-FINDTIME", 0x21, 0x0E, true, 8, -1, 0, ubx_log_findtime_response_items, 4, offsetof(nmea_ubx_log_findtime_response, trailing)},
-    {"log_retrieveposextra", "LOG-RETRIEVEPOSEXTRA", 0x21, 0x0F, true, 32, -1, 0, ubx_log_retrieveposextra_items, 12, offsetof(nmea_ubx_log_retrieveposextra, trailing)},
-    {"log_retrievebatch", "LOG-RETRIEVEBATCH", 0x21, 0x10, false, 4, -1, 0, ubx_log_retrievebatch_items, 4, offsetof(nmea_ubx_log_retrievebatch, trailing)},
-    {"log_batch", "LOG-BATCH", 0x21, 0x11, true, 100, -1, 0, ubx_log_batch_items, 43, offsetof(nmea_ubx_log_batch, trailing)},
-    {"sec_sign", "SEC-SIGN", 0x27, 0x01, true, 40, -1, 0, ubx_sec_sign_items, 6, offsetof(nmea_ubx_sec_sign, trailing)},
-    {"sec_uniqid_poll", "SEC-UNIQID", 0x27, 0x03, false, 0, -1, 0, ubx_sec_uniqid_poll_items, 0, offsetof(nmea_ubx_sec_uniqid_poll, trailing)},
-    {"sec_uniqid", "SEC-UNIQID", 0x27, 0x03, true, 9, -1, 0, ubx_sec_uniqid_items, 3, offsetof(nmea_ubx_sec_uniqid, trailing)},
-    {"sec_sig_poll", "SEC-SIG", 0x27, 0x09, false, 0, -1, 0, ubx_sec_sig_poll_items, 0, offsetof(nmea_ubx_sec_sig_poll, trailing)},
-    {"sec_sig", "SEC-SIG", 0x27, 0x09, true, -1, 2, 0, ubx_sec_sig_items, 9, offsetof(nmea_ubx_sec_sig, trailing)},
-    {"sec_sig_v1", "SEC-SIG", 0x27, 0x09, true, 12, 1, 0, ubx_sec_sig_v1_items, 10, offsetof(nmea_ubx_sec_sig_v1, trailing)},
-    {"sec_siglog_poll", "SEC-SIGLOG", 0x27, 0x10, false, 0, -1, 0, ubx_sec_siglog_poll_items, 0, offsetof(nmea_ubx_sec_siglog_poll, trailing)},
-    {"sec_siglog", "SEC-SIGLOG", 0x27, 0x10, true, -1, -1, 0, ubx_sec_siglog_items, 4, offsetof(nmea_ubx_sec_siglog, trailing)},
-    {"hnr_pvt_poll", "HNR-PVT", 0x28, 0x00, false, 0, -1, 0, ubx_hnr_pvt_poll_items, 0, offsetof(nmea_ubx_hnr_pvt_poll, trailing)},
-    {"hnr_pvt", "HNR-PVT", 0x28, 0x00, true, 72, -1, 0, ubx_hnr_pvt_items, 33, offsetof(nmea_ubx_hnr_pvt, trailing)},
-    {"hnr_att_poll", "HNR-ATT", 0x28, 0x01, false, 0, -1, 0, ubx_hnr_att_poll_items, 0, offsetof(nmea_ubx_hnr_att_poll, trailing)},
-    {"hnr_att", "HNR-ATT", 0x28, 0x01, true, 32, -1, 0, ubx_hnr_att_items, 9, offsetof(nmea_ubx_hnr_att, trailing)},
-    {"hnr_ins_poll", "HNR-INS", 0x28, 0x02, false, 0, -1, 0, ubx_hnr_ins_poll_items, 0, offsetof(nmea_ubx_hnr_ins_poll, trailing)},
-    {"hnr_ins", "HNR-INS", 0x28, 0x02, true, 36, -1, 0, ubx_hnr_ins_items, 16, offsetof(nmea_ubx_hnr_ins, trailing)},
-    {"nav2_posecef_poll", "NAV2-POSECEF", 0x29, 0x01, false, 0, -1, 0, ubx_nav2_posecef_poll_items, 0, offsetof(nmea_ubx_nav2_posecef_poll, trailing)},
-    {"nav2_posecef", "NAV2-POSECEF", 0x29, 0x01, true, 20, -1, 0, ubx_nav2_posecef_items, 5, offsetof(nmea_ubx_nav2_posecef, trailing)},
-    {"nav2_posllh_poll", "NAV2-POSLLH", 0x29, 0x02, false, 0, -1, 0, ubx_nav2_posllh_poll_items, 0, offsetof(nmea_ubx_nav2_posllh_poll, trailing)},
-    {"nav2_posllh", "NAV2-POSLLH", 0x29, 0x02, true, 28, -1, 0, ubx_nav2_posllh_items, 7, offsetof(nmea_ubx_nav2_posllh, trailing)},
-    {"nav2_status_poll", "NAV2-STATUS", 0x29, 0x03, false, 0, -1, 0, ubx_nav2_status_poll_items, 0, offsetof(nmea_ubx_nav2_status_poll, trailing)},
-    {"nav2_status", "NAV2-STATUS", 0x29, 0x03, true, 16, -1, 0, ubx_nav2_status_items, 17, offsetof(nmea_ubx_nav2_status, trailing)},
-    {"nav2_dop_poll", "NAV2-DOP", 0x29, 0x04, false, 0, -1, 0, ubx_nav2_dop_poll_items, 0, offsetof(nmea_ubx_nav2_dop_poll, trailing)},
-    {"nav2_dop", "NAV2-DOP", 0x29, 0x04, true, 18, -1, 0, ubx_nav2_dop_items, 8, offsetof(nmea_ubx_nav2_dop, trailing)},
-    {"nav2_pvt_poll", "NAV2-PVT", 0x29, 0x07, false, 0, -1, 0, ubx_nav2_pvt_poll_items, 0, offsetof(nmea_ubx_nav2_pvt_poll, trailing)},
-    {"nav2_pvt", "NAV2-PVT", 0x29, 0x07, true, 92, -1, 0, ubx_nav2_pvt_items, 47, offsetof(nmea_ubx_nav2_pvt, trailing)},
-    {"nav2_odo_poll", "NAV2-ODO", 0x29, 0x09, false, 0, -1, 0, ubx_nav2_odo_poll_items, 0, offsetof(nmea_ubx_nav2_odo_poll, trailing)},
-    {"nav2_odo", "NAV2-ODO", 0x29, 0x09, true, 20, -1, 0, ubx_nav2_odo_items, 6, offsetof(nmea_ubx_nav2_odo, trailing)},
-    {"nav2_velecef_poll", "NAV2-VELECEF", 0x29, 0x11, false, 0, -1, 0, ubx_nav2_velecef_poll_items, 0, offsetof(nmea_ubx_nav2_velecef_poll, trailing)},
-    {"nav2_velecef", "NAV2-VELECEF", 0x29, 0x11, true, 20, -1, 0, ubx_nav2_velecef_items, 5, offsetof(nmea_ubx_nav2_velecef, trailing)},
-    {"nav2_velned_poll", "NAV2-VELNED", 0x29, 0x12, false, 0, -1, 0, ubx_nav2_velned_poll_items, 0, offsetof(nmea_ubx_nav2_velned_poll, trailing)},
-    {"nav2_velned", "NAV2-VELNED", 0x29, 0x12, true, 36, -1, 0, ubx_nav2_velned_items, 9, offsetof(nmea_ubx_nav2_velned, trailing)},
-    {"nav2_timegps_poll", "NAV2-TIMEGPS", 0x29, 0x20, false, 0, -1, 0, ubx_nav2_timegps_poll_items, 0, offsetof(nmea_ubx_nav2_timegps_poll, trailing)},
-    {"nav2_timegps", "NAV2-TIMEGPS", 0x29, 0x20, true, 16, -1, 0, ubx_nav2_timegps_items, 9, offsetof(nmea_ubx_nav2_timegps, trailing)},
-    {"nav2_timeutc_poll", "NAV2-TIMEUTC", 0x29, 0x21, false, 0, -1, 0, ubx_nav2_timeutc_poll_items, 0, offsetof(nmea_ubx_nav2_timeutc_poll, trailing)},
-    {"nav2_timeutc", "NAV2-TIMEUTC", 0x29, 0x21, true, 20, -1, 0, ubx_nav2_timeutc_items, 14, offsetof(nmea_ubx_nav2_timeutc, trailing)},
-    {"nav2_clock_poll", "NAV2-CLOCK", 0x29, 0x22, false, 0, -1, 0, ubx_nav2_clock_poll_items, 0, offsetof(nmea_ubx_nav2_clock_poll, trailing)},
-    {"nav2_clock", "NAV2-CLOCK", 0x29, 0x22, true, 20, -1, 0, ubx_nav2_clock_items, 5, offsetof(nmea_ubx_nav2_clock, trailing)},
-    {"nav2_timeglo_poll", "NAV2-TIMEGLO", 0x29, 0x23, false, 0, -1, 0, ubx_nav2_timeglo_poll_items, 0, offsetof(nmea_ubx_nav2_timeglo_poll, trailing)},
-    {"nav2_timeglo", "NAV2-TIMEGLO", 0x29, 0x23, true, 20, -1, 0, ubx_nav2_timeglo_items, 9, offsetof(nmea_ubx_nav2_timeglo, trailing)},
-    {"nav2_timebds_poll", "NAV2-TIMEBDS", 0x29, 0x24, false, 0, -1, 0, ubx_nav2_timebds_poll_items, 0, offsetof(nmea_ubx_nav2_timebds_poll, trailing)},
-    {"nav2_timebds", "NAV2-TIMEBDS", 0x29, 0x24, true, 20, -1, 0, ubx_nav2_timebds_items, 10, offsetof(nmea_ubx_nav2_timebds, trailing)},
-    {"nav2_timegal_poll", "NAV2-TIMEGAL", 0x29, 0x25, false, 0, -1, 0, ubx_nav2_timegal_poll_items, 0, offsetof(nmea_ubx_nav2_timegal_poll, trailing)},
-    {"nav2_timegal", "NAV2-TIMEGAL", 0x29, 0x25, true, 20, -1, 0, ubx_nav2_timegal_items, 10, offsetof(nmea_ubx_nav2_timegal, trailing)},
-    {"nav2_timels_poll", "NAV2-TIMELS", 0x29, 0x26, false, 0, -1, 0, ubx_nav2_timels_poll_items, 0, offsetof(nmea_ubx_nav2_timels_poll, trailing)},
-    {"nav2_timels", "NAV2-TIMELS", 0x29, 0x26, true, 24, -1, 0, ubx_nav2_timels_items, 14, offsetof(nmea_ubx_nav2_timels, trailing)},
-    {"nav2_timeqzss_poll", "NAV2-TIMEQZSS", 0x29, 0x27, false, 0, -1, 0, ubx_nav2_timeqzss_poll_items, 0, offsetof(nmea_ubx_nav2_timeqzss_poll, trailing)},
-    {"nav2_timeqzss", "NAV2-TIMEQZSS", 0x29, 0x27, true, 20, -1, 0, ubx_nav2_timeqzss_items, 10, offsetof(nmea_ubx_nav2_timeqzss, trailing)},
-    {"nav2_sbas_poll", "NAV2-SBAS", 0x29, 0x32, false, 0, -1, 0, ubx_nav2_sbas_poll_items, 0, offsetof(nmea_ubx_nav2_sbas_poll, trailing)},
-    {"nav2_sbas", "NAV2-SBAS", 0x29, 0x32, true, -1, -1, 0, ubx_nav2_sbas_items, 15, offsetof(nmea_ubx_nav2_sbas, trailing)},
-    {"nav2_sat_poll", "NAV2-SAT", 0x29, 0x35, false, 0, -1, 0, ubx_nav2_sat_poll_items, 0, offsetof(nmea_ubx_nav2_sat_poll, trailing)},
-    {"nav2_sat", "NAV2-SAT", 0x29, 0x35, true, -1, -1, 0, ubx_nav2_sat_items, 5, offsetof(nmea_ubx_nav2_sat, trailing)},
-    {"nav2_cov_poll", "NAV2-COV", 0x29, 0x36, false, 0, -1, 0, ubx_nav2_cov_poll_items, 0, offsetof(nmea_ubx_nav2_cov_poll, trailing)},
-    {"nav2_cov", "NAV2-COV", 0x29, 0x36, true, 64, -1, 0, ubx_nav2_cov_items, 17, offsetof(nmea_ubx_nav2_cov, trailing)},
-    {"nav2_slas_poll", "NAV2-SLAS", 0x29, 0x42, false, 0, -1, 0, ubx_nav2_slas_poll_items, 0, offsetof(nmea_ubx_nav2_slas_poll, trailing)},
-    {"nav2_slas", "NAV2-SLAS", 0x29, 0x42, true, -1, -1, 0, ubx_nav2_slas_items, 13, offsetof(nmea_ubx_nav2_slas, trailing)},
-    {"nav2_sig_poll", "NAV2-SIG", 0x29, 0x43, false, 0, -1, 0, ubx_nav2_sig_poll_items, 0, offsetof(nmea_ubx_nav2_sig_poll, trailing)},
-    {"nav2_sig", "NAV2-SIG", 0x29, 0x43, true, -1, -1, 0, ubx_nav2_sig_items, 5, offsetof(nmea_ubx_nav2_sig, trailing)},
-    {"nav2_eoe", "NAV2-EOE", 0x29, 0x61, true, 4, -1, 0, ubx_nav2_eoe_items, 1, offsetof(nmea_ubx_nav2_eoe, trailing)},
+    {"nav_posecef_poll", "NAV-POSECEF", 0x01, 0x01, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_posecef_poll_items, 0, 0, offsetof(nmea_ubx_nav_posecef_poll, trailing)},
+    {"nav_posecef", "NAV-POSECEF", 0x01, 0x01, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_posecef_items, 5, 0, offsetof(nmea_ubx_nav_posecef, trailing)},
+    {"nav_posllh_poll", "NAV-POSLLH", 0x01, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_posllh_poll_items, 0, 0, offsetof(nmea_ubx_nav_posllh_poll, trailing)},
+    {"nav_posllh", "NAV-POSLLH", 0x01, 0x02, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_nav_posllh_items, 7, 0, offsetof(nmea_ubx_nav_posllh, trailing)},
+    {"nav_status_poll", "NAV-STATUS", 0x01, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_status_poll_items, 0, 0, offsetof(nmea_ubx_nav_status_poll, trailing)},
+    {"nav_status", "NAV-STATUS", 0x01, 0x03, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_nav_status_items, 17, 0, offsetof(nmea_ubx_nav_status, trailing)},
+    {"nav_dop_poll", "NAV-DOP", 0x01, 0x04, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_dop_poll_items, 0, 0, offsetof(nmea_ubx_nav_dop_poll, trailing)},
+    {"nav_dop", "NAV-DOP", 0x01, 0x04, true, NMEA_UBX_PROTOCOL_UBX, 18, -1, 0, ubx_nav_dop_items, 8, 0, offsetof(nmea_ubx_nav_dop, trailing)},
+    {"nav_att_poll", "NAV-ATT", 0x01, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_att_poll_items, 0, 0, offsetof(nmea_ubx_nav_att_poll, trailing)},
+    {"nav_att", "NAV-ATT", 0x01, 0x05, true, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_nav_att_items, 9, 0, offsetof(nmea_ubx_nav_att, trailing)},
+    {"nav_sol_poll", "NAV-SOL", 0x01, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_sol_poll_items, 0, 0, offsetof(nmea_ubx_nav_sol_poll, trailing)},
+    {"nav_sol", "NAV-SOL", 0x01, 0x06, true, NMEA_UBX_PROTOCOL_UBX, 52, -1, 0, ubx_nav_sol_items, 21, 0, offsetof(nmea_ubx_nav_sol, trailing)},
+    {"nav_pvt_poll", "NAV-PVT", 0x01, 0x07, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_pvt_poll_items, 0, 0, offsetof(nmea_ubx_nav_pvt_poll, trailing)},
+    {"nav_pvt", "NAV-PVT", 0x01, 0x07, true, NMEA_UBX_PROTOCOL_UBX, 92, -1, 0, ubx_nav_pvt_items, 47, 0, offsetof(nmea_ubx_nav_pvt, trailing)},
+    {"nav_odo_poll", "NAV-ODO", 0x01, 0x09, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_odo_poll_items, 0, 0, offsetof(nmea_ubx_nav_odo_poll, trailing)},
+    {"nav_odo", "NAV-ODO", 0x01, 0x09, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_odo_items, 6, 0, offsetof(nmea_ubx_nav_odo, trailing)},
+    {"nav_resetodo", "NAV-RESETODO", 0x01, 0x10, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_resetodo_items, 0, 0, offsetof(nmea_ubx_nav_resetodo, trailing)},
+    {"nav_velecef_poll", "NAV-VELECEF", 0x01, 0x11, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_velecef_poll_items, 0, 0, offsetof(nmea_ubx_nav_velecef_poll, trailing)},
+    {"nav_velecef", "NAV-VELECEF", 0x01, 0x11, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_velecef_items, 5, 0, offsetof(nmea_ubx_nav_velecef, trailing)},
+    {"nav_velned_poll", "NAV-VELNED", 0x01, 0x12, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_velned_poll_items, 0, 0, offsetof(nmea_ubx_nav_velned_poll, trailing)},
+    {"nav_velned", "NAV-VELNED", 0x01, 0x12, true, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_nav_velned_items, 9, 0, offsetof(nmea_ubx_nav_velned, trailing)},
+    {"nav_hpposecef_poll", "NAV-HPPOSECEF", 0x01, 0x13, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_hpposecef_poll_items, 0, 0, offsetof(nmea_ubx_nav_hpposecef_poll, trailing)},
+    {"nav_hpposecef", "NAV-HPPOSECEF", 0x01, 0x13, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_nav_hpposecef_items, 12, 0, offsetof(nmea_ubx_nav_hpposecef, trailing)},
+    {"nav_hpposllh_poll", "NAV-HPPOSLLH", 0x01, 0x14, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_hpposllh_poll_items, 0, 0, offsetof(nmea_ubx_nav_hpposllh_poll, trailing)},
+    {"nav_hpposllh", "NAV-HPPOSLLH", 0x01, 0x14, true, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_nav_hpposllh_items, 15, 0, offsetof(nmea_ubx_nav_hpposllh, trailing)},
+    {"nav_timegps_poll", "NAV-TIMEGPS", 0x01, 0x20, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timegps_poll_items, 0, 0, offsetof(nmea_ubx_nav_timegps_poll, trailing)},
+    {"nav_timegps", "NAV-TIMEGPS", 0x01, 0x20, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_nav_timegps_items, 9, 0, offsetof(nmea_ubx_nav_timegps, trailing)},
+    {"nav_timeutc_poll", "NAV-TIMEUTC", 0x01, 0x21, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timeutc_poll_items, 0, 0, offsetof(nmea_ubx_nav_timeutc_poll, trailing)},
+    {"nav_timeutc", "NAV-TIMEUTC", 0x01, 0x21, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_timeutc_items, 14, 0, offsetof(nmea_ubx_nav_timeutc, trailing)},
+    {"nav_clock_poll", "NAV-CLOCK", 0x01, 0x22, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_clock_poll_items, 0, 0, offsetof(nmea_ubx_nav_clock_poll, trailing)},
+    {"nav_clock", "NAV-CLOCK", 0x01, 0x22, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_clock_items, 5, 0, offsetof(nmea_ubx_nav_clock, trailing)},
+    {"nav_timeglo_poll", "NAV-TIMEGLO", 0x01, 0x23, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timeglo_poll_items, 0, 0, offsetof(nmea_ubx_nav_timeglo_poll, trailing)},
+    {"nav_timeglo", "NAV-TIMEGLO", 0x01, 0x23, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_timeglo_items, 9, 0, offsetof(nmea_ubx_nav_timeglo, trailing)},
+    {"nav_timebds_poll", "NAV-TIMEBDS", 0x01, 0x24, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timebds_poll_items, 0, 0, offsetof(nmea_ubx_nav_timebds_poll, trailing)},
+    {"nav_timebds", "NAV-TIMEBDS", 0x01, 0x24, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_timebds_items, 10, 0, offsetof(nmea_ubx_nav_timebds, trailing)},
+    {"nav_timegal_poll", "NAV-TIMEGAL", 0x01, 0x25, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timegal_poll_items, 0, 0, offsetof(nmea_ubx_nav_timegal_poll, trailing)},
+    {"nav_timegal", "NAV-TIMEGAL", 0x01, 0x25, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_timegal_items, 10, 0, offsetof(nmea_ubx_nav_timegal, trailing)},
+    {"nav_timels_poll", "NAV-TIMELS", 0x01, 0x26, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timels_poll_items, 0, 0, offsetof(nmea_ubx_nav_timels_poll, trailing)},
+    {"nav_timels", "NAV-TIMELS", 0x01, 0x26, true, NMEA_UBX_PROTOCOL_UBX, 24, -1, 0, ubx_nav_timels_items, 14, 0, offsetof(nmea_ubx_nav_timels, trailing)},
+    {"nav_timeqzss_poll", "NAV-TIMEQZSS", 0x01, 0x27, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timeqzss_poll_items, 0, 0, offsetof(nmea_ubx_nav_timeqzss_poll, trailing)},
+    {"nav_timeqzss", "NAV-TIMEQZSS", 0x01, 0x27, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_timeqzss_items, 10, 0, offsetof(nmea_ubx_nav_timeqzss, trailing)},
+    {"nav_svinfo_poll", "NAV-SVINFO", 0x01, 0x30, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_svinfo_poll_items, 0, 0, offsetof(nmea_ubx_nav_svinfo_poll, trailing)},
+    {"nav_svinfo", "NAV-SVINFO", 0x01, 0x30, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav_svinfo_items, 6, 0, offsetof(nmea_ubx_nav_svinfo, trailing)},
+    {"nav_dgps_poll", "NAV-DGPS", 0x01, 0x31, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_dgps_poll_items, 0, 0, offsetof(nmea_ubx_nav_dgps_poll, trailing)},
+    {"nav_dgps", "NAV-DGPS", 0x01, 0x31, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav_dgps_items, 8, 0, offsetof(nmea_ubx_nav_dgps, trailing)},
+    {"nav_sbas_poll", "NAV-SBAS", 0x01, 0x32, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_sbas_poll_items, 0, 0, offsetof(nmea_ubx_nav_sbas_poll, trailing)},
+    {"nav_sbas", "NAV-SBAS", 0x01, 0x32, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav_sbas_items, 15, 0, offsetof(nmea_ubx_nav_sbas, trailing)},
+    {"nav_orb_poll", "NAV-ORB", 0x01, 0x34, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_orb_poll_items, 0, 0, offsetof(nmea_ubx_nav_orb_poll, trailing)},
+    {"nav_orb", "NAV-ORB", 0x01, 0x34, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav_orb_items, 5, 0, offsetof(nmea_ubx_nav_orb, trailing)},
+    {"nav_sat_poll", "NAV-SAT", 0x01, 0x35, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_sat_poll_items, 0, 0, offsetof(nmea_ubx_nav_sat_poll, trailing)},
+    {"nav_sat", "NAV-SAT", 0x01, 0x35, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav_sat_items, 5, 0, offsetof(nmea_ubx_nav_sat, trailing)},
+    {"nav_cov_poll", "NAV-COV", 0x01, 0x36, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_cov_poll_items, 0, 0, offsetof(nmea_ubx_nav_cov_poll, trailing)},
+    {"nav_cov", "NAV-COV", 0x01, 0x36, true, NMEA_UBX_PROTOCOL_UBX, 64, -1, 0, ubx_nav_cov_items, 17, 0, offsetof(nmea_ubx_nav_cov, trailing)},
+    {"nav_geofence_poll", "NAV-GEOFENCE", 0x01, 0x39, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_geofence_poll_items, 0, 0, offsetof(nmea_ubx_nav_geofence_poll, trailing)},
+    {"nav_geofence", "NAV-GEOFENCE", 0x01, 0x39, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav_geofence_items, 6, 0, offsetof(nmea_ubx_nav_geofence, trailing)},
+    {"nav_svin_poll", "NAV-SVIN", 0x01, 0x3B, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_svin_poll_items, 0, 0, offsetof(nmea_ubx_nav_svin_poll, trailing)},
+    {"nav_svin", "NAV-SVIN", 0x01, 0x3B, true, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_nav_svin_items, 16, 0, offsetof(nmea_ubx_nav_svin, trailing)},
+    {"nav_relposned_poll", "NAV-RELPOSNED", 0x01, 0x3C, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_relposned_poll_items, 0, 0, offsetof(nmea_ubx_nav_relposned_poll, trailing)},
+    {"nav_relposned", "NAV-RELPOSNED", 0x01, 0x3C, true, NMEA_UBX_PROTOCOL_UBX, 64, 1, 0, ubx_nav_relposned_items, 30, 0, offsetof(nmea_ubx_nav_relposned, trailing)},
+    {"nav_relposned_v0", "NAV-RELPOSNED", 0x01, 0x3C, true, NMEA_UBX_PROTOCOL_UBX, 40, 0, 0, ubx_nav_relposned_v0_items, 22, 0, offsetof(nmea_ubx_nav_relposned_v0, trailing)},
+    {"nav_eell_poll", "NAV-EELL", 0x01, 0x3D, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_eell_poll_items, 0, 0, offsetof(nmea_ubx_nav_eell_poll, trailing)},
+    {"nav_eell", "NAV-EELL", 0x01, 0x3D, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_nav_eell_items, 6, 0, offsetof(nmea_ubx_nav_eell, trailing)},
+    {"nav_slas_poll", "NAV-SLAS", 0x01, 0x42, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_slas_poll_items, 0, 0, offsetof(nmea_ubx_nav_slas_poll, trailing)},
+    {"nav_slas", "NAV-SLAS", 0x01, 0x42, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav_slas_items, 13, 0, offsetof(nmea_ubx_nav_slas, trailing)},
+    {"nav_sig_poll", "NAV-SIG", 0x01, 0x43, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_sig_poll_items, 0, 0, offsetof(nmea_ubx_nav_sig_poll, trailing)},
+    {"nav_sig", "NAV-SIG", 0x01, 0x43, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav_sig_items, 5, 0, offsetof(nmea_ubx_nav_sig, trailing)},
+    {"nav_aopstatus_poll", "NAV-AOPSTATUS", 0x01, 0x60, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_aopstatus_poll_items, 0, 0, offsetof(nmea_ubx_nav_aopstatus_poll, trailing)},
+    {"nav_aopstatus", "NAV-AOPSTATUS", 0x01, 0x60, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_nav_aopstatus_items, 5, 0, offsetof(nmea_ubx_nav_aopstatus, trailing)},
+    {"nav_eoe", "NAV-EOE", 0x01, 0x61, true, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_nav_eoe_items, 1, 0, offsetof(nmea_ubx_nav_eoe, trailing)},
+    {"nav_pl_poll", "NAV-PL", 0x01, 0x62, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_pl_poll_items, 0, 0, offsetof(nmea_ubx_nav_pl_poll, trailing)},
+    {"nav_pl", "NAV-PL", 0x01, 0x62, true, NMEA_UBX_PROTOCOL_UBX, 52, -1, 0, ubx_nav_pl_items, 20, 0, offsetof(nmea_ubx_nav_pl, trailing)},
+    {"rxm_sfrbx", "RXM-SFRBX", 0x02, 0x13, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_sfrbx_items, 9, 0, offsetof(nmea_ubx_rxm_sfrbx, trailing)},
+    {"rxm_measx_poll", "RXM-MEASX", 0x02, 0x14, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_rxm_measx_poll_items, 0, 0, offsetof(nmea_ubx_rxm_measx_poll, trailing)},
+    {"rxm_measx", "RXM-MEASX", 0x02, 0x14, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_measx_items, 17, 0, offsetof(nmea_ubx_rxm_measx, trailing)},
+    {"rxm_rawx_poll", "RXM-RAWX", 0x02, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_rxm_rawx_poll_items, 0, 0, offsetof(nmea_ubx_rxm_rawx_poll, trailing)},
+    {"rxm_rawx", "RXM-RAWX", 0x02, 0x15, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_rawx_items, 10, 0, offsetof(nmea_ubx_rxm_rawx, trailing)},
+    {"rxm_svsi_poll", "RXM-SVSI", 0x02, 0x20, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_rxm_svsi_poll_items, 0, 0, offsetof(nmea_ubx_rxm_svsi_poll, trailing)},
+    {"rxm_svsi", "RXM-SVSI", 0x02, 0x20, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_svsi_items, 5, 0, offsetof(nmea_ubx_rxm_svsi, trailing)},
+    {"rxm_rtcm", "RXM-RTCM", 0x02, 0x32, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_rxm_rtcm_items, 7, 0, offsetof(nmea_ubx_rxm_rtcm, trailing)},
+    {"rxm_spartn", "RXM-SPARTN", 0x02, 0x33, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_rxm_spartn_items, 6, 0, offsetof(nmea_ubx_rxm_spartn, trailing)},
+    {"rxm_cor", "RXM-COR", 0x02, 0x34, true, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_rxm_cor_items, 15, 0, offsetof(nmea_ubx_rxm_cor, trailing)},
+    {"rxm_spartnkey_poll", "RXM-SPARTNKEY", 0x02, 0x36, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_rxm_spartnkey_poll_items, 0, 0, offsetof(nmea_ubx_rxm_spartnkey_poll, trailing)},
+    {"rxm_spartnkey", "RXM-SPARTNKEY", 0x02, 0x36, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_spartnkey_items, 5, 0, offsetof(nmea_ubx_rxm_spartnkey, trailing)},
+    {"rxm_pmreq", "RXM-PMREQ", 0x02, 0x41, false, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_rxm_pmreq_items, 11, 0, offsetof(nmea_ubx_rxm_pmreq, trailing)},
+    {"rxm_pmreq_short", "RXM-PMREQ", 0x02, 0x41, false, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_rxm_pmreq_short_items, 3, 0, offsetof(nmea_ubx_rxm_pmreq_short, trailing)},
+    {"rxm_rlm", "RXM-RLM", 0x02, 0x59, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_rxm_rlm_items, 8, 0, offsetof(nmea_ubx_rxm_rlm, trailing)},
+    {"rxm_rlm_short", "RXM-RLM", 0x02, 0x59, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_rxm_rlm_short_items, 8, 0, offsetof(nmea_ubx_rxm_rlm_short, trailing)},
+    {"inf_error", "INF-ERROR", 0x04, 0x00, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_error_items, 1, 0, offsetof(nmea_ubx_inf_error, trailing)},
+    {"inf_warning", "INF-WARNING", 0x04, 0x01, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_warning_items, 1, 0, offsetof(nmea_ubx_inf_warning, trailing)},
+    {"inf_notice", "INF-NOTICE", 0x04, 0x02, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_notice_items, 1, 0, offsetof(nmea_ubx_inf_notice, trailing)},
+    {"inf_test", "INF-TEST", 0x04, 0x03, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_test_items, 1, 0, offsetof(nmea_ubx_inf_test, trailing)},
+    {"inf_debug", "INF-DEBUG", 0x04, 0x04, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_debug_items, 1, 0, offsetof(nmea_ubx_inf_debug, trailing)},
+    {"ack_nak", "ACK-NAK", 0x05, 0x00, true, NMEA_UBX_PROTOCOL_UBX, 2, -1, 0, ubx_ack_nak_items, 2, 0, offsetof(nmea_ubx_ack_nak, trailing)},
+    {"ack_ack", "ACK-ACK", 0x05, 0x01, true, NMEA_UBX_PROTOCOL_UBX, 2, -1, 0, ubx_ack_ack_items, 2, 0, offsetof(nmea_ubx_ack_ack, trailing)},
+    {"cfg_prt_poll", "CFG-PRT", 0x06, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_prt_poll_items, 0, 0, offsetof(nmea_ubx_cfg_prt_poll, trailing)},
+    {"cfg_prt_poll_port", "CFG-PRT", 0x06, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 1, -1, 0, ubx_cfg_prt_poll_port_items, 1, 0, offsetof(nmea_ubx_cfg_prt_poll_port, trailing)},
+    {"cfg_prt", "CFG-PRT", 0x06, 0x00, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_cfg_prt_items, 24, 0, offsetof(nmea_ubx_cfg_prt, trailing)},
+    {"cfg_msg_poll", "CFG-MSG", 0x06, 0x01, false, NMEA_UBX_PROTOCOL_UBX, 2, -1, 0, ubx_cfg_msg_poll_items, 2, 0, offsetof(nmea_ubx_cfg_msg_poll, trailing)},
+    {"cfg_msg_current_port", "CFG-MSG", 0x06, 0x01, false, NMEA_UBX_PROTOCOL_UBX, 3, -1, 0, ubx_cfg_msg_current_port_items, 3, 0, offsetof(nmea_ubx_cfg_msg_current_port, trailing)},
+    {"cfg_msg", "CFG-MSG", 0x06, 0x01, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_cfg_msg_items, 3, 0, offsetof(nmea_ubx_cfg_msg, trailing)},
+    {"cfg_inf_poll", "CFG-INF", 0x06, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 1, -1, 0, ubx_cfg_inf_poll_items, 1, 0, offsetof(nmea_ubx_cfg_inf_poll, trailing)},
+    {"cfg_inf", "CFG-INF", 0x06, 0x02, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_inf_items, 1, 0, offsetof(nmea_ubx_cfg_inf, trailing)},
+    {"cfg_rst", "CFG-RST", 0x06, 0x04, false, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_cfg_rst_items, 13, 0, offsetof(nmea_ubx_cfg_rst, trailing)},
+    {"cfg_dat_poll", "CFG-DAT", 0x06, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_dat_poll_items, 0, 0, offsetof(nmea_ubx_cfg_dat_poll, trailing)},
+    {"cfg_dat_set", "CFG-DAT", 0x06, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 44, -1, 0, ubx_cfg_dat_set_items, 9, 0, offsetof(nmea_ubx_cfg_dat_set, trailing)},
+    {"cfg_dat", "CFG-DAT", 0x06, 0x06, true, NMEA_UBX_PROTOCOL_UBX, 52, -1, 0, ubx_cfg_dat_items, 11, 0, offsetof(nmea_ubx_cfg_dat, trailing)},
+    {"cfg_rate_poll", "CFG-RATE", 0x06, 0x08, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_rate_poll_items, 0, 0, offsetof(nmea_ubx_cfg_rate_poll, trailing)},
+    {"cfg_rate", "CFG-RATE", 0x06, 0x08, true, NMEA_UBX_PROTOCOL_UBX, 6, -1, 0, ubx_cfg_rate_items, 3, 0, offsetof(nmea_ubx_cfg_rate, trailing)},
+    {"cfg_cfg_all_devices", "CFG-CFG", 0x06, 0x09, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_cfg_cfg_all_devices_items, 3, 0, offsetof(nmea_ubx_cfg_cfg_all_devices, trailing)},
+    {"cfg_cfg", "CFG-CFG", 0x06, 0x09, false, NMEA_UBX_PROTOCOL_UBX, 13, -1, 0, ubx_cfg_cfg_items, 8, 0, offsetof(nmea_ubx_cfg_cfg, trailing)},
+    {"cfg_rxm_poll", "CFG-RXM", 0x06, 0x11, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_rxm_poll_items, 0, 0, offsetof(nmea_ubx_cfg_rxm_poll, trailing)},
+    {"cfg_rxm", "CFG-RXM", 0x06, 0x11, true, NMEA_UBX_PROTOCOL_UBX, 2, -1, 0, ubx_cfg_rxm_items, 2, 0, offsetof(nmea_ubx_cfg_rxm, trailing)},
+    {"cfg_ant_poll", "CFG-ANT", 0x06, 0x13, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_ant_poll_items, 0, 0, offsetof(nmea_ubx_cfg_ant_poll, trailing)},
+    {"cfg_ant", "CFG-ANT", 0x06, 0x13, true, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_cfg_ant_items, 11, 0, offsetof(nmea_ubx_cfg_ant, trailing)},
+    {"cfg_sbas_poll", "CFG-SBAS", 0x06, 0x16, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_sbas_poll_items, 0, 0, offsetof(nmea_ubx_cfg_sbas_poll, trailing)},
+    {"cfg_sbas", "CFG-SBAS", 0x06, 0x16, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_cfg_sbas_items, 10, 0, offsetof(nmea_ubx_cfg_sbas, trailing)},
+    {"cfg_nmea_poll", "CFG-NMEA", 0x06, 0x17, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_nmea_poll_items, 0, 0, offsetof(nmea_ubx_cfg_nmea_poll, trailing)},
+    {"cfg_nmea", "CFG-NMEA", 0x06, 0x17, true, NMEA_UBX_PROTOCOL_UBX, 20, 1, 11, ubx_cfg_nmea_items, 27, 0, offsetof(nmea_ubx_cfg_nmea, trailing)},
+    {"cfg_nmea_v0", "CFG-NMEA", 0x06, 0x17, true, NMEA_UBX_PROTOCOL_UBX, 12, 0, 11, ubx_cfg_nmea_v0_items, 25, 0, offsetof(nmea_ubx_cfg_nmea_v0, trailing)},
+    {"cfg_nmea_deprecated", "CFG-NMEA", 0x06, 0x17, true, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_cfg_nmea_deprecated_items, 14, 0, offsetof(nmea_ubx_cfg_nmea_deprecated, trailing)},
+    {"cfg_usb_poll", "CFG-USB", 0x06, 0x1B, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_usb_poll_items, 0, 0, offsetof(nmea_ubx_cfg_usb_poll, trailing)},
+    {"cfg_usb", "CFG-USB", 0x06, 0x1B, true, NMEA_UBX_PROTOCOL_UBX, 108, -1, 0, ubx_cfg_usb_items, 11, 0, offsetof(nmea_ubx_cfg_usb, trailing)},
+    {"cfg_odo_poll", "CFG-ODO", 0x06, 0x1E, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_odo_poll_items, 0, 0, offsetof(nmea_ubx_cfg_odo_poll, trailing)},
+    {"cfg_odo", "CFG-ODO", 0x06, 0x1E, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_cfg_odo_items, 16, 0, offsetof(nmea_ubx_cfg_odo, trailing)},
+    {"cfg_navx5_poll", "CFG-NAVX5", 0x06, 0x23, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_navx5_poll_items, 0, 0, offsetof(nmea_ubx_cfg_navx5_poll, trailing)},
+    {"cfg_navx5", "CFG-NAVX5", 0x06, 0x23, true, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_cfg_navx5_items, 33, 0, offsetof(nmea_ubx_cfg_navx5, trailing)},
+    {"cfg_nav5_poll", "CFG-NAV5", 0x06, 0x24, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_nav5_poll_items, 0, 0, offsetof(nmea_ubx_cfg_nav5_poll, trailing)},
+    {"cfg_nav5", "CFG-NAV5", 0x06, 0x24, true, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_cfg_nav5_items, 29, 0, offsetof(nmea_ubx_cfg_nav5, trailing)},
+    {"cfg_tp5_poll", "CFG-TP5", 0x06, 0x31, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_tp5_poll_items, 0, 0, offsetof(nmea_ubx_cfg_tp5_poll, trailing)},
+    {"cfg_tp5_poll_index", "CFG-TP5", 0x06, 0x31, false, NMEA_UBX_PROTOCOL_UBX, 1, -1, 0, ubx_cfg_tp5_poll_index_items, 1, 0, offsetof(nmea_ubx_cfg_tp5_poll_index, trailing)},
+    {"cfg_tp5", "CFG-TP5", 0x06, 0x31, true, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_cfg_tp5_items, 20, 0, offsetof(nmea_ubx_cfg_tp5, trailing)},
+    {"cfg_rinv_poll", "CFG-RINV", 0x06, 0x34, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_rinv_poll_items, 0, 0, offsetof(nmea_ubx_cfg_rinv_poll, trailing)},
+    {"cfg_rinv", "CFG-RINV", 0x06, 0x34, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_rinv_items, 4, 0, offsetof(nmea_ubx_cfg_rinv, trailing)},
+    {"cfg_itfm_poll", "CFG-ITFM", 0x06, 0x39, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_itfm_poll_items, 0, 0, offsetof(nmea_ubx_cfg_itfm_poll, trailing)},
+    {"cfg_itfm", "CFG-ITFM", 0x06, 0x39, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_cfg_itfm_items, 9, 0, offsetof(nmea_ubx_cfg_itfm, trailing)},
+    {"cfg_pm2_poll", "CFG-PM2", 0x06, 0x3B, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_pm2_poll_items, 0, 0, offsetof(nmea_ubx_cfg_pm2_poll, trailing)},
+    {"cfg_pm2", "CFG-PM2", 0x06, 0x3B, true, NMEA_UBX_PROTOCOL_UBX, 48, 2, 0, ubx_cfg_pm2_items, 24, 0, offsetof(nmea_ubx_cfg_pm2, trailing)},
+    {"cfg_pm2_v1", "CFG-PM2", 0x06, 0x3B, true, NMEA_UBX_PROTOCOL_UBX, 44, 1, 0, ubx_cfg_pm2_v1_items, 23, 0, offsetof(nmea_ubx_cfg_pm2_v1, trailing)},
+    {"cfg_gnss_poll", "CFG-GNSS", 0x06, 0x3E, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_gnss_poll_items, 0, 0, offsetof(nmea_ubx_cfg_gnss_poll, trailing)},
+    {"cfg_gnss", "CFG-GNSS", 0x06, 0x3E, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_gnss_items, 5, 0, offsetof(nmea_ubx_cfg_gnss, trailing)},
+    {"cfg_logfilter_poll", "CFG-LOGFILTER", 0x06, 0x47, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_logfilter_poll_items, 0, 0, offsetof(nmea_ubx_cfg_logfilter_poll, trailing)},
+    {"cfg_logfilter", "CFG-LOGFILTER", 0x06, 0x47, true, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_cfg_logfilter_items, 9, 0, offsetof(nmea_ubx_cfg_logfilter, trailing)},
+    {"cfg_esfa_poll", "CFG-ESFA", 0x06, 0x4C, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_esfa_poll_items, 0, 0, offsetof(nmea_ubx_cfg_esfa_poll, trailing)},
+    {"cfg_esfa", "CFG-ESFA", 0x06, 0x4C, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_cfg_esfa_items, 7, 0, offsetof(nmea_ubx_cfg_esfa, trailing)},
+    {"cfg_esfg_poll", "CFG-ESFG", 0x06, 0x4D, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_esfg_poll_items, 0, 0, offsetof(nmea_ubx_cfg_esfg_poll, trailing)},
+    {"cfg_esfg", "CFG-ESFG", 0x06, 0x4D, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_cfg_esfg_items, 8, 0, offsetof(nmea_ubx_cfg_esfg, trailing)},
+    {"cfg_txslot_poll", "CFG-TXSLOT", 0x06, 0x53, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_txslot_poll_items, 0, 0, offsetof(nmea_ubx_cfg_txslot_poll, trailing)},
+    {"cfg_txslot", "CFG-TXSLOT", 0x06, 0x53, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_cfg_txslot_items, 10, 0, offsetof(nmea_ubx_cfg_txslot, trailing)},
+    {"cfg_esfalg_poll", "CFG-ESFALG", 0x06, 0x56, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_esfalg_poll_items, 0, 0, offsetof(nmea_ubx_cfg_esfalg_poll, trailing)},
+    {"cfg_esfalg", "CFG-ESFALG", 0x06, 0x56, true, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_cfg_esfalg_items, 6, 0, offsetof(nmea_ubx_cfg_esfalg, trailing)},
+    {"cfg_pwr", "CFG-PWR", 0x06, 0x57, false, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_cfg_pwr_items, 3, 0, offsetof(nmea_ubx_cfg_pwr, trailing)},
+    {"cfg_hnr_poll", "CFG-HNR", 0x06, 0x5C, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_hnr_poll_items, 0, 0, offsetof(nmea_ubx_cfg_hnr_poll, trailing)},
+    {"cfg_hnr", "CFG-HNR", 0x06, 0x5C, true, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_cfg_hnr_items, 2, 0, offsetof(nmea_ubx_cfg_hnr, trailing)},
+    {"cfg_esrc_poll", "CFG-ESRC", 0x06, 0x60, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_esrc_poll_items, 0, 0, offsetof(nmea_ubx_cfg_esrc_poll, trailing)},
+    {"cfg_esrc", "CFG-ESRC", 0x06, 0x60, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_esrc_items, 4, 0, offsetof(nmea_ubx_cfg_esrc, trailing)},
+    {"cfg_dosc_poll", "CFG-DOSC", 0x06, 0x61, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_dosc_poll_items, 0, 0, offsetof(nmea_ubx_cfg_dosc_poll, trailing)},
+    {"cfg_dosc", "CFG-DOSC", 0x06, 0x61, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_dosc_items, 4, 0, offsetof(nmea_ubx_cfg_dosc, trailing)},
+    {"cfg_smgr_poll", "CFG-SMGR", 0x06, 0x62, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_smgr_poll_items, 0, 0, offsetof(nmea_ubx_cfg_smgr_poll, trailing)},
+    {"cfg_smgr", "CFG-SMGR", 0x06, 0x62, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_cfg_smgr_items, 28, 0, offsetof(nmea_ubx_cfg_smgr, trailing)},
+    {"cfg_geofence_poll", "CFG-GEOFENCE", 0x06, 0x69, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_geofence_poll_items, 0, 0, offsetof(nmea_ubx_cfg_geofence_poll, trailing)},
+    {"cfg_geofence", "CFG-GEOFENCE", 0x06, 0x69, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_geofence_items, 9, 0, offsetof(nmea_ubx_cfg_geofence, trailing)},
+    {"cfg_dgnss_poll", "CFG-DGNSS", 0x06, 0x70, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_dgnss_poll_items, 0, 0, offsetof(nmea_ubx_cfg_dgnss_poll, trailing)},
+    {"cfg_dgnss", "CFG-DGNSS", 0x06, 0x70, true, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_cfg_dgnss_items, 2, 0, offsetof(nmea_ubx_cfg_dgnss, trailing)},
+    {"cfg_tmode3_poll", "CFG-TMODE3", 0x06, 0x71, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_tmode3_poll_items, 0, 0, offsetof(nmea_ubx_cfg_tmode3_poll, trailing)},
+    {"cfg_tmode3", "CFG-TMODE3", 0x06, 0x71, true, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_cfg_tmode3_items, 16, 0, offsetof(nmea_ubx_cfg_tmode3, trailing)},
+    {"cfg_esfwt_poll", "CFG-ESFWT", 0x06, 0x82, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_esfwt_poll_items, 0, 0, offsetof(nmea_ubx_cfg_esfwt_poll, trailing)},
+    {"cfg_esfwt", "CFG-ESFWT", 0x06, 0x82, true, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_cfg_esfwt_items, 21, 0, offsetof(nmea_ubx_cfg_esfwt, trailing)},
+    {"cfg_fixseed", "CFG-FIXSEED", 0x06, 0x84, false, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_fixseed_items, 6, 0, offsetof(nmea_ubx_cfg_fixseed, trailing)},
+    {"cfg_pms_poll", "CFG-PMS", 0x06, 0x86, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_pms_poll_items, 0, 0, offsetof(nmea_ubx_cfg_pms_poll, trailing)},
+    {"cfg_pms", "CFG-PMS", 0x06, 0x86, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_cfg_pms_items, 5, 0, offsetof(nmea_ubx_cfg_pms, trailing)},
+    {"cfg_valset_v0", "CFG-VALSET", 0x06, 0x8A, false, NMEA_UBX_PROTOCOL_UBX, -1, 0, 0, ubx_cfg_valset_v0_items, 7, 0, offsetof(nmea_ubx_cfg_valset_v0, trailing)},
+    {"cfg_valset", "CFG-VALSET", 0x06, 0x8A, false, NMEA_UBX_PROTOCOL_UBX, -1, 1, 0, ubx_cfg_valset_items, 9, 0, offsetof(nmea_ubx_cfg_valset, trailing)},
+    {"cfg_valget_poll", "CFG-VALGET", 0x06, 0x8B, false, NMEA_UBX_PROTOCOL_UBX, -1, 0, 0, ubx_cfg_valget_poll_items, 4, 0, offsetof(nmea_ubx_cfg_valget_poll, trailing)},
+    {"cfg_valget", "CFG-VALGET", 0x06, 0x8B, true, NMEA_UBX_PROTOCOL_UBX, -1, 1, 0, ubx_cfg_valget_items, 4, 0, offsetof(nmea_ubx_cfg_valget, trailing)},
+    {"cfg_valdel_v0", "CFG-VALDEL", 0x06, 0x8C, false, NMEA_UBX_PROTOCOL_UBX, -1, 0, 0, ubx_cfg_valdel_v0_items, 6, 0, offsetof(nmea_ubx_cfg_valdel_v0, trailing)},
+    {"cfg_valdel", "CFG-VALDEL", 0x06, 0x8C, false, NMEA_UBX_PROTOCOL_UBX, -1, 1, 0, ubx_cfg_valdel_items, 8, 0, offsetof(nmea_ubx_cfg_valdel, trailing)},
+    {"cfg_slas_poll", "CFG-SLAS", 0x06, 0x8D, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_slas_poll_items, 0, 0, offsetof(nmea_ubx_cfg_slas_poll, trailing)},
+    {"cfg_slas", "CFG-SLAS", 0x06, 0x8D, true, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_cfg_slas_items, 5, 0, offsetof(nmea_ubx_cfg_slas, trailing)},
+    {"cfg_batch_poll", "CFG-BATCH", 0x06, 0x93, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_batch_poll_items, 0, 0, offsetof(nmea_ubx_cfg_batch_poll, trailing)},
+    {"cfg_batch", "CFG-BATCH", 0x06, 0x93, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_cfg_batch_items, 11, 0, offsetof(nmea_ubx_cfg_batch, trailing)},
+    {"upd_sos_poll", "UPD-SOS", 0x09, 0x14, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_upd_sos_poll_items, 0, 0, offsetof(nmea_ubx_upd_sos_poll, trailing)},
+    {"upd_sos_command", "UPD-SOS", 0x09, 0x14, false, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_upd_sos_command_items, 2, 0, offsetof(nmea_ubx_upd_sos_command, trailing)},
+    {"upd_sos", "UPD-SOS", 0x09, 0x14, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_upd_sos_items, 4, 0, offsetof(nmea_ubx_upd_sos, trailing)},
+    {"mon_io_poll", "MON-IO", 0x0A, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_io_poll_items, 0, 0, offsetof(nmea_ubx_mon_io_poll, trailing)},
+    {"mon_io", "MON-IO", 0x0A, 0x02, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_io_items, 1, 0, offsetof(nmea_ubx_mon_io, trailing)},
+    {"mon_ver_poll", "MON-VER", 0x0A, 0x04, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_ver_poll_items, 0, 0, offsetof(nmea_ubx_mon_ver_poll, trailing)},
+    {"mon_ver", "MON-VER", 0x0A, 0x04, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_ver_items, 3, 0, offsetof(nmea_ubx_mon_ver, trailing)},
+    {"mon_msgpp_poll", "MON-MSGPP", 0x0A, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_msgpp_poll_items, 0, 0, offsetof(nmea_ubx_mon_msgpp_poll, trailing)},
+    {"mon_msgpp", "MON-MSGPP", 0x0A, 0x06, true, NMEA_UBX_PROTOCOL_UBX, 120, -1, 0, ubx_mon_msgpp_items, 7, 0, offsetof(nmea_ubx_mon_msgpp, trailing)},
+    {"mon_rxbuf_poll", "MON-RXBUF", 0x0A, 0x07, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_rxbuf_poll_items, 0, 0, offsetof(nmea_ubx_mon_rxbuf_poll, trailing)},
+    {"mon_rxbuf", "MON-RXBUF", 0x0A, 0x07, true, NMEA_UBX_PROTOCOL_UBX, 24, -1, 0, ubx_mon_rxbuf_items, 3, 0, offsetof(nmea_ubx_mon_rxbuf, trailing)},
+    {"mon_txbuf_poll", "MON-TXBUF", 0x0A, 0x08, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_txbuf_poll_items, 0, 0, offsetof(nmea_ubx_mon_txbuf_poll, trailing)},
+    {"mon_txbuf", "MON-TXBUF", 0x0A, 0x08, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_mon_txbuf_items, 10, 0, offsetof(nmea_ubx_mon_txbuf, trailing)},
+    {"mon_hw_poll", "MON-HW", 0x0A, 0x09, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_hw_poll_items, 0, 0, offsetof(nmea_ubx_mon_hw_poll, trailing)},
+    {"mon_hw", "MON-HW", 0x0A, 0x09, true, NMEA_UBX_PROTOCOL_UBX, 60, -1, 0, ubx_mon_hw_items, 21, 0, offsetof(nmea_ubx_mon_hw, trailing)},
+    {"mon_hw2_poll", "MON-HW2", 0x0A, 0x0B, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_hw2_poll_items, 0, 0, offsetof(nmea_ubx_mon_hw2_poll, trailing)},
+    {"mon_hw2", "MON-HW2", 0x0A, 0x0B, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_mon_hw2_items, 10, 0, offsetof(nmea_ubx_mon_hw2, trailing)},
+    {"mon_rxr", "MON-RXR", 0x0A, 0x21, true, NMEA_UBX_PROTOCOL_UBX, 1, -1, 0, ubx_mon_rxr_items, 2, 0, offsetof(nmea_ubx_mon_rxr, trailing)},
+    {"mon_patch_poll", "MON-PATCH", 0x0A, 0x27, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_patch_poll_items, 0, 0, offsetof(nmea_ubx_mon_patch_poll, trailing)},
+    {"mon_patch", "MON-PATCH", 0x0A, 0x27, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_patch_items, 3, 0, offsetof(nmea_ubx_mon_patch, trailing)},
+    {"mon_gnss_poll", "MON-GNSS", 0x0A, 0x28, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_gnss_poll_items, 0, 0, offsetof(nmea_ubx_mon_gnss_poll, trailing)},
+    {"mon_gnss", "MON-GNSS", 0x0A, 0x28, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_mon_gnss_items, 18, 0, offsetof(nmea_ubx_mon_gnss, trailing)},
+    {"mon_smgr_poll", "MON-SMGR", 0x0A, 0x2E, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_smgr_poll_items, 0, 0, offsetof(nmea_ubx_mon_smgr_poll, trailing)},
+    {"mon_smgr", "MON-SMGR", 0x0A, 0x2E, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_mon_smgr_items, 22, 0, offsetof(nmea_ubx_mon_smgr, trailing)},
+    {"mon_comms_poll", "MON-COMMS", 0x0A, 0x36, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_comms_poll_items, 0, 0, offsetof(nmea_ubx_mon_comms_poll, trailing)},
+    {"mon_comms", "MON-COMMS", 0x0A, 0x36, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_comms_items, 8, 0, offsetof(nmea_ubx_mon_comms, trailing)},
+    {"mon_hw3_poll", "MON-HW3", 0x0A, 0x37, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_hw3_poll_items, 0, 0, offsetof(nmea_ubx_mon_hw3_poll, trailing)},
+    {"mon_hw3", "MON-HW3", 0x0A, 0x37, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_hw3_items, 9, 0, offsetof(nmea_ubx_mon_hw3, trailing)},
+    {"mon_rf_poll", "MON-RF", 0x0A, 0x38, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_rf_poll_items, 0, 0, offsetof(nmea_ubx_mon_rf_poll, trailing)},
+    {"mon_rf", "MON-RF", 0x0A, 0x38, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_rf_items, 4, 0, offsetof(nmea_ubx_mon_rf, trailing)},
+    {"mon_sys_poll", "MON-SYS", 0x0A, 0x39, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_sys_poll_items, 0, 0, offsetof(nmea_ubx_mon_sys_poll, trailing)},
+    {"mon_sys", "MON-SYS", 0x0A, 0x39, true, NMEA_UBX_PROTOCOL_UBX, 24, -1, 0, ubx_mon_sys_items, 14, 0, offsetof(nmea_ubx_mon_sys, trailing)},
+    {"aid_ini_poll", "AID-INI", 0x0B, 0x01, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_aid_ini_poll_items, 0, 0, offsetof(nmea_ubx_aid_ini_poll, trailing)},
+    {"aid_ini", "AID-INI", 0x0B, 0x01, true, NMEA_UBX_PROTOCOL_UBX, 48, -1, 0, ubx_aid_ini_items, 25, 0, offsetof(nmea_ubx_aid_ini, trailing)},
+    {"aid_hui_poll", "AID-HUI", 0x0B, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_aid_hui_poll_items, 0, 0, offsetof(nmea_ubx_aid_hui_poll, trailing)},
+    {"aid_hui", "AID-HUI", 0x0B, 0x02, true, NMEA_UBX_PROTOCOL_UBX, 72, -1, 0, ubx_aid_hui_items, 22, 0, offsetof(nmea_ubx_aid_hui, trailing)},
+    {"aid_alm_poll", "AID-ALM", 0x0B, 0x30, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_aid_alm_poll_items, 0, 0, offsetof(nmea_ubx_aid_alm_poll, trailing)},
+    {"aid_alm_poll_sv", "AID-ALM", 0x0B, 0x30, false, NMEA_UBX_PROTOCOL_UBX, 1, -1, 0, ubx_aid_alm_poll_sv_items, 1, 0, offsetof(nmea_ubx_aid_alm_poll_sv, trailing)},
+    {"aid_alm", "AID-ALM", 0x0B, 0x30, true, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_aid_alm_items, 3, 0, offsetof(nmea_ubx_aid_alm, trailing)},
+    {"aid_alm_empty", "AID-ALM", 0x0B, 0x30, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_aid_alm_empty_items, 2, 0, offsetof(nmea_ubx_aid_alm_empty, trailing)},
+    {"aid_eph_poll", "AID-EPH", 0x0B, 0x31, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_aid_eph_poll_items, 0, 0, offsetof(nmea_ubx_aid_eph_poll, trailing)},
+    {"aid_eph_poll_sv", "AID-EPH", 0x0B, 0x31, false, NMEA_UBX_PROTOCOL_UBX, 1, -1, 0, ubx_aid_eph_poll_sv_items, 1, 0, offsetof(nmea_ubx_aid_eph_poll_sv, trailing)},
+    {"aid_eph", "AID-EPH", 0x0B, 0x31, true, NMEA_UBX_PROTOCOL_UBX, 104, -1, 0, ubx_aid_eph_items, 26, 0, offsetof(nmea_ubx_aid_eph, trailing)},
+    {"aid_eph_empty", "AID-EPH", 0x0B, 0x31, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_aid_eph_empty_items, 2, 0, offsetof(nmea_ubx_aid_eph_empty, trailing)},
+    {"aid_aop_poll", "AID-AOP", 0x0B, 0x33, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_aid_aop_poll_items, 0, 0, offsetof(nmea_ubx_aid_aop_poll, trailing)},
+    {"aid_aop_poll_sv", "AID-AOP", 0x0B, 0x33, false, NMEA_UBX_PROTOCOL_UBX, 1, -1, 0, ubx_aid_aop_poll_sv_items, 1, 0, offsetof(nmea_ubx_aid_aop_poll_sv, trailing)},
+    {"aid_aop", "AID-AOP", 0x0B, 0x33, true, NMEA_UBX_PROTOCOL_UBX, 68, -1, 0, ubx_aid_aop_items, 4, 0, offsetof(nmea_ubx_aid_aop, trailing)},
+    {"tim_tp_poll", "TIM-TP", 0x0D, 0x01, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_tp_poll_items, 0, 0, offsetof(nmea_ubx_tim_tp_poll, trailing)},
+    {"tim_tp", "TIM-TP", 0x0D, 0x01, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_tim_tp_items, 12, 0, offsetof(nmea_ubx_tim_tp, trailing)},
+    {"tim_tm2_poll", "TIM-TM2", 0x0D, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_tm2_poll_items, 0, 0, offsetof(nmea_ubx_tim_tm2_poll, trailing)},
+    {"tim_tm2", "TIM-TM2", 0x0D, 0x03, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_tim_tm2_items, 17, 0, offsetof(nmea_ubx_tim_tm2, trailing)},
+    {"tim_svin_poll", "TIM-SVIN", 0x0D, 0x04, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_svin_poll_items, 0, 0, offsetof(nmea_ubx_tim_svin_poll, trailing)},
+    {"tim_svin", "TIM-SVIN", 0x0D, 0x04, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_tim_svin_items, 9, 0, offsetof(nmea_ubx_tim_svin, trailing)},
+    {"tim_vrfy_poll", "TIM-VRFY", 0x0D, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_vrfy_poll_items, 0, 0, offsetof(nmea_ubx_tim_vrfy_poll, trailing)},
+    {"tim_vrfy", "TIM-VRFY", 0x0D, 0x06, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_tim_vrfy_items, 8, 0, offsetof(nmea_ubx_tim_vrfy, trailing)},
+    {"tim_dosc_poll", "TIM-DOSC", 0x0D, 0x11, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_dosc_poll_items, 0, 0, offsetof(nmea_ubx_tim_dosc_poll, trailing)},
+    {"tim_dosc", "TIM-DOSC", 0x0D, 0x11, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_tim_dosc_items, 3, 0, offsetof(nmea_ubx_tim_dosc, trailing)},
+    {"tim_tos_poll", "TIM-TOS", 0x0D, 0x12, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_tos_poll_items, 0, 0, offsetof(nmea_ubx_tim_tos_poll, trailing)},
+    {"tim_tos", "TIM-TOS", 0x0D, 0x12, true, NMEA_UBX_PROTOCOL_UBX, 56, -1, 0, ubx_tim_tos_items, 33, 0, offsetof(nmea_ubx_tim_tos, trailing)},
+    {"tim_smeas_poll", "TIM-SMEAS", 0x0D, 0x13, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_smeas_poll_items, 0, 0, offsetof(nmea_ubx_tim_smeas_poll, trailing)},
+    {"tim_smeas", "TIM-SMEAS", 0x0D, 0x13, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_tim_smeas_items, 6, 0, offsetof(nmea_ubx_tim_smeas, trailing)},
+    {"tim_vcocal_poll", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_vcocal_poll_items, 0, 0, offsetof(nmea_ubx_tim_vcocal_poll, trailing)},
+    {"tim_vcocal_stop", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 1, -1, 0, ubx_tim_vcocal_stop_items, 1, 0, offsetof(nmea_ubx_tim_vcocal_stop, trailing)},
+    {"tim_vcocal_result", "TIM-VCOCAL", 0x0D, 0x15, true, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_tim_vcocal_result_items, 6, 0, offsetof(nmea_ubx_tim_vcocal_result, trailing)},
+    {"tim_vcocal", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_tim_vcocal_items, 8, 0, offsetof(nmea_ubx_tim_vcocal, trailing)},
+    {"tim_fchg_poll", "TIM-FCHG", 0x0D, 0x16, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_fchg_poll_items, 0, 0, offsetof(nmea_ubx_tim_fchg_poll, trailing)},
+    {"tim_fchg", "TIM-FCHG", 0x0D, 0x16, true, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_tim_fchg_items, 9, 0, offsetof(nmea_ubx_tim_fchg, trailing)},
+    {"tim_hoc", "TIM-HOC", 0x0D, 0x17, false, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_tim_hoc_items, 7, 0, offsetof(nmea_ubx_tim_hoc, trailing)},
+    {"esf_meas", "ESF-MEAS", 0x10, 0x02, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_esf_meas_items, 9, 0, offsetof(nmea_ubx_esf_meas, trailing)},
+    {"esf_raw", "ESF-RAW", 0x10, 0x03, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_esf_raw_items, 2, 0, offsetof(nmea_ubx_esf_raw, trailing)},
+    {"esf_status_poll", "ESF-STATUS", 0x10, 0x10, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_esf_status_poll_items, 0, 0, offsetof(nmea_ubx_esf_status_poll, trailing)},
+    {"esf_status", "ESF-STATUS", 0x10, 0x10, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_esf_status_items, 13, 0, offsetof(nmea_ubx_esf_status, trailing)},
+    {"esf_alg_poll", "ESF-ALG", 0x10, 0x14, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_esf_alg_poll_items, 0, 0, offsetof(nmea_ubx_esf_alg_poll, trailing)},
+    {"esf_alg", "ESF-ALG", 0x10, 0x14, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_esf_alg_items, 13, 0, offsetof(nmea_ubx_esf_alg, trailing)},
+    {"esf_ins_poll", "ESF-INS", 0x10, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_esf_ins_poll_items, 0, 0, offsetof(nmea_ubx_esf_ins_poll, trailing)},
+    {"esf_ins", "ESF-INS", 0x10, 0x15, true, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_esf_ins_items, 16, 0, offsetof(nmea_ubx_esf_ins, trailing)},
+    {"mga_gps_eph", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 68, -1, 0, ubx_mga_gps_eph_items, 31, 0, offsetof(nmea_ubx_mga_gps_eph, trailing)},
+    {"mga_gps_alm", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_mga_gps_alm_items, 16, 0, offsetof(nmea_ubx_mga_gps_alm, trailing)},
+    {"mga_gps_health", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_mga_gps_health_items, 5, 0, offsetof(nmea_ubx_mga_gps_health, trailing)},
+    {"mga_gps_utc", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_gps_utc_items, 12, 0, offsetof(nmea_ubx_mga_gps_utc, trailing)},
+    {"mga_gps_iono", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_mga_gps_iono_items, 12, 0, offsetof(nmea_ubx_mga_gps_iono, trailing)},
+    {"mga_gal_eph", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 76, -1, 0, ubx_mga_gal_eph_items, 33, 0, offsetof(nmea_ubx_mga_gal_eph, trailing)},
+    {"mga_gal_alm", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_mga_gal_alm_items, 19, 0, offsetof(nmea_ubx_mga_gal_alm, trailing)},
+    {"mga_gal_timeoffset", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_mga_gal_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_gal_timeoffset, trailing)},
+    {"mga_gal_utc", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_gal_utc_items, 12, 0, offsetof(nmea_ubx_mga_gal_utc, trailing)},
+    {"mga_bds_eph", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 88, -1, 0, ubx_mga_bds_eph_items, 30, 0, offsetof(nmea_ubx_mga_bds_eph, trailing)},
+    {"mga_bds_alm", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_mga_bds_alm_items, 16, 0, offsetof(nmea_ubx_mga_bds_alm, trailing)},
+    {"mga_bds_health", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 68, -1, 0, ubx_mga_bds_health_items, 5, 0, offsetof(nmea_ubx_mga_bds_health, trailing)},
+    {"mga_bds_utc", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_bds_utc_items, 12, 0, offsetof(nmea_ubx_mga_bds_utc, trailing)},
+    {"mga_bds_iono", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_mga_bds_iono_items, 12, 0, offsetof(nmea_ubx_mga_bds_iono, trailing)},
+    {"mga_qzss_eph", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 68, -1, 0, ubx_mga_qzss_eph_items, 31, 0, offsetof(nmea_ubx_mga_qzss_eph, trailing)},
+    {"mga_qzss_alm", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_mga_qzss_alm_items, 16, 0, offsetof(nmea_ubx_mga_qzss_alm, trailing)},
+    {"mga_qzss_health", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_mga_qzss_health_items, 5, 0, offsetof(nmea_ubx_mga_qzss_health, trailing)},
+    {"mga_glo_eph", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 48, -1, 0, ubx_mga_glo_eph_items, 23, 0, offsetof(nmea_ubx_mga_glo_eph, trailing)},
+    {"mga_glo_alm", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_mga_glo_alm_items, 17, 0, offsetof(nmea_ubx_mga_glo_alm, trailing)},
+    {"mga_glo_timeoffset", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_glo_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_glo_timeoffset, trailing)},
+    {"mga_ano", "MGA-ANO", 0x13, 0x20, false, NMEA_UBX_PROTOCOL_UBX, 76, -1, 0, ubx_mga_ano_items, 10, 0, offsetof(nmea_ubx_mga_ano, trailing)},
+    {"mga_ack", "MGA-ACK", 0x13, 0x60, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_mga_ack_items, 5, 0, offsetof(nmea_ubx_mga_ack, trailing)},
+    {"mga_dbd_poll", "MGA-DBD", 0x13, 0x80, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mga_dbd_poll_items, 0, 0, offsetof(nmea_ubx_mga_dbd_poll, trailing)},
+    {"mga_dbd", "MGA-DBD", 0x13, 0x80, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mga_dbd_items, 2, 0, offsetof(nmea_ubx_mga_dbd, trailing)},
+    {"log_erase", "LOG-ERASE", 0x21, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_log_erase_items, 0, 0, offsetof(nmea_ubx_log_erase, trailing)},
+    {"log_string", "LOG-STRING", 0x21, 0x04, false, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_log_string_items, 1, 0, offsetof(nmea_ubx_log_string, trailing)},
+    {"log_create", "LOG-CREATE", 0x21, 0x07, false, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_log_create_items, 6, 0, offsetof(nmea_ubx_log_create, trailing)},
+    {"log_info_poll", "LOG-INFO", 0x21, 0x08, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_log_info_poll_items, 0, 0, offsetof(nmea_ubx_log_info_poll, trailing)},
+    {"log_info", "LOG-INFO", 0x21, 0x08, true, NMEA_UBX_PROTOCOL_UBX, 48, -1, 0, ubx_log_info_items, 26, 0, offsetof(nmea_ubx_log_info, trailing)},
+    {"log_retrieve", "LOG-RETRIEVE", 0x21, 0x09, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_log_retrieve_items, 4, 0, offsetof(nmea_ubx_log_retrieve, trailing)},
+    {"log_retrievepos", "LOG-RETRIEVEPOS", 0x21, 0x0B, true, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_log_retrievepos_items, 18, 0, offsetof(nmea_ubx_log_retrievepos, trailing)},
+    {"log_retrievestring", "LOG-RETRIEVESTRING", 0x21, 0x0D, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_log_retrievestring_items, 12, 0, offsetof(nmea_ubx_log_retrievestring, trailing)},
+    {"log_findtime", "LOG-FINDTIME", 0x21, 0x0E, false, NMEA_UBX_PROTOCOL_UBX, 10, -1, 0, ubx_log_findtime_items, 9, 0, offsetof(nmea_ubx_log_findtime, trailing)},
+    {"log_findtime_response", "LOG-FINDTIME", 0x21, 0x0E, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_log_findtime_response_items, 4, 0, offsetof(nmea_ubx_log_findtime_response, trailing)},
+    {"log_retrieveposextra", "LOG-RETRIEVEPOSEXTRA", 0x21, 0x0F, true, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_log_retrieveposextra_items, 12, 0, offsetof(nmea_ubx_log_retrieveposextra, trailing)},
+    {"log_retrievebatch", "LOG-RETRIEVEBATCH", 0x21, 0x10, false, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_log_retrievebatch_items, 4, 0, offsetof(nmea_ubx_log_retrievebatch, trailing)},
+    {"log_batch", "LOG-BATCH", 0x21, 0x11, true, NMEA_UBX_PROTOCOL_UBX, 100, -1, 0, ubx_log_batch_items, 43, 0, offsetof(nmea_ubx_log_batch, trailing)},
+    {"sec_sign", "SEC-SIGN", 0x27, 0x01, true, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_sec_sign_items, 6, 0, offsetof(nmea_ubx_sec_sign, trailing)},
+    {"sec_uniqid_poll", "SEC-UNIQID", 0x27, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_sec_uniqid_poll_items, 0, 0, offsetof(nmea_ubx_sec_uniqid_poll, trailing)},
+    {"sec_uniqid", "SEC-UNIQID", 0x27, 0x03, true, NMEA_UBX_PROTOCOL_UBX, 9, -1, 0, ubx_sec_uniqid_items, 3, 0, offsetof(nmea_ubx_sec_uniqid, trailing)},
+    {"sec_sig_poll", "SEC-SIG", 0x27, 0x09, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_sec_sig_poll_items, 0, 0, offsetof(nmea_ubx_sec_sig_poll, trailing)},
+    {"sec_sig", "SEC-SIG", 0x27, 0x09, true, NMEA_UBX_PROTOCOL_UBX, -1, 2, 0, ubx_sec_sig_items, 9, 0, offsetof(nmea_ubx_sec_sig, trailing)},
+    {"sec_sig_v1", "SEC-SIG", 0x27, 0x09, true, NMEA_UBX_PROTOCOL_UBX, 12, 1, 0, ubx_sec_sig_v1_items, 10, 0, offsetof(nmea_ubx_sec_sig_v1, trailing)},
+    {"sec_siglog_poll", "SEC-SIGLOG", 0x27, 0x10, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_sec_siglog_poll_items, 0, 0, offsetof(nmea_ubx_sec_siglog_poll, trailing)},
+    {"sec_siglog", "SEC-SIGLOG", 0x27, 0x10, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_sec_siglog_items, 4, 0, offsetof(nmea_ubx_sec_siglog, trailing)},
+    {"hnr_pvt_poll", "HNR-PVT", 0x28, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_hnr_pvt_poll_items, 0, 0, offsetof(nmea_ubx_hnr_pvt_poll, trailing)},
+    {"hnr_pvt", "HNR-PVT", 0x28, 0x00, true, NMEA_UBX_PROTOCOL_UBX, 72, -1, 0, ubx_hnr_pvt_items, 33, 0, offsetof(nmea_ubx_hnr_pvt, trailing)},
+    {"hnr_att_poll", "HNR-ATT", 0x28, 0x01, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_hnr_att_poll_items, 0, 0, offsetof(nmea_ubx_hnr_att_poll, trailing)},
+    {"hnr_att", "HNR-ATT", 0x28, 0x01, true, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_hnr_att_items, 9, 0, offsetof(nmea_ubx_hnr_att, trailing)},
+    {"hnr_ins_poll", "HNR-INS", 0x28, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_hnr_ins_poll_items, 0, 0, offsetof(nmea_ubx_hnr_ins_poll, trailing)},
+    {"hnr_ins", "HNR-INS", 0x28, 0x02, true, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_hnr_ins_items, 16, 0, offsetof(nmea_ubx_hnr_ins, trailing)},
+    {"nav2_posecef_poll", "NAV2-POSECEF", 0x29, 0x01, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_posecef_poll_items, 0, 0, offsetof(nmea_ubx_nav2_posecef_poll, trailing)},
+    {"nav2_posecef", "NAV2-POSECEF", 0x29, 0x01, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav2_posecef_items, 5, 0, offsetof(nmea_ubx_nav2_posecef, trailing)},
+    {"nav2_posllh_poll", "NAV2-POSLLH", 0x29, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_posllh_poll_items, 0, 0, offsetof(nmea_ubx_nav2_posllh_poll, trailing)},
+    {"nav2_posllh", "NAV2-POSLLH", 0x29, 0x02, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_nav2_posllh_items, 7, 0, offsetof(nmea_ubx_nav2_posllh, trailing)},
+    {"nav2_status_poll", "NAV2-STATUS", 0x29, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_status_poll_items, 0, 0, offsetof(nmea_ubx_nav2_status_poll, trailing)},
+    {"nav2_status", "NAV2-STATUS", 0x29, 0x03, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_nav2_status_items, 17, 0, offsetof(nmea_ubx_nav2_status, trailing)},
+    {"nav2_dop_poll", "NAV2-DOP", 0x29, 0x04, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_dop_poll_items, 0, 0, offsetof(nmea_ubx_nav2_dop_poll, trailing)},
+    {"nav2_dop", "NAV2-DOP", 0x29, 0x04, true, NMEA_UBX_PROTOCOL_UBX, 18, -1, 0, ubx_nav2_dop_items, 8, 0, offsetof(nmea_ubx_nav2_dop, trailing)},
+    {"nav2_pvt_poll", "NAV2-PVT", 0x29, 0x07, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_pvt_poll_items, 0, 0, offsetof(nmea_ubx_nav2_pvt_poll, trailing)},
+    {"nav2_pvt", "NAV2-PVT", 0x29, 0x07, true, NMEA_UBX_PROTOCOL_UBX, 92, -1, 0, ubx_nav2_pvt_items, 47, 0, offsetof(nmea_ubx_nav2_pvt, trailing)},
+    {"nav2_odo_poll", "NAV2-ODO", 0x29, 0x09, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_odo_poll_items, 0, 0, offsetof(nmea_ubx_nav2_odo_poll, trailing)},
+    {"nav2_odo", "NAV2-ODO", 0x29, 0x09, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav2_odo_items, 6, 0, offsetof(nmea_ubx_nav2_odo, trailing)},
+    {"nav2_velecef_poll", "NAV2-VELECEF", 0x29, 0x11, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_velecef_poll_items, 0, 0, offsetof(nmea_ubx_nav2_velecef_poll, trailing)},
+    {"nav2_velecef", "NAV2-VELECEF", 0x29, 0x11, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav2_velecef_items, 5, 0, offsetof(nmea_ubx_nav2_velecef, trailing)},
+    {"nav2_velned_poll", "NAV2-VELNED", 0x29, 0x12, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_velned_poll_items, 0, 0, offsetof(nmea_ubx_nav2_velned_poll, trailing)},
+    {"nav2_velned", "NAV2-VELNED", 0x29, 0x12, true, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_nav2_velned_items, 9, 0, offsetof(nmea_ubx_nav2_velned, trailing)},
+    {"nav2_timegps_poll", "NAV2-TIMEGPS", 0x29, 0x20, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_timegps_poll_items, 0, 0, offsetof(nmea_ubx_nav2_timegps_poll, trailing)},
+    {"nav2_timegps", "NAV2-TIMEGPS", 0x29, 0x20, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_nav2_timegps_items, 9, 0, offsetof(nmea_ubx_nav2_timegps, trailing)},
+    {"nav2_timeutc_poll", "NAV2-TIMEUTC", 0x29, 0x21, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_timeutc_poll_items, 0, 0, offsetof(nmea_ubx_nav2_timeutc_poll, trailing)},
+    {"nav2_timeutc", "NAV2-TIMEUTC", 0x29, 0x21, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav2_timeutc_items, 14, 0, offsetof(nmea_ubx_nav2_timeutc, trailing)},
+    {"nav2_clock_poll", "NAV2-CLOCK", 0x29, 0x22, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_clock_poll_items, 0, 0, offsetof(nmea_ubx_nav2_clock_poll, trailing)},
+    {"nav2_clock", "NAV2-CLOCK", 0x29, 0x22, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav2_clock_items, 5, 0, offsetof(nmea_ubx_nav2_clock, trailing)},
+    {"nav2_timeglo_poll", "NAV2-TIMEGLO", 0x29, 0x23, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_timeglo_poll_items, 0, 0, offsetof(nmea_ubx_nav2_timeglo_poll, trailing)},
+    {"nav2_timeglo", "NAV2-TIMEGLO", 0x29, 0x23, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav2_timeglo_items, 9, 0, offsetof(nmea_ubx_nav2_timeglo, trailing)},
+    {"nav2_timebds_poll", "NAV2-TIMEBDS", 0x29, 0x24, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_timebds_poll_items, 0, 0, offsetof(nmea_ubx_nav2_timebds_poll, trailing)},
+    {"nav2_timebds", "NAV2-TIMEBDS", 0x29, 0x24, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav2_timebds_items, 10, 0, offsetof(nmea_ubx_nav2_timebds, trailing)},
+    {"nav2_timegal_poll", "NAV2-TIMEGAL", 0x29, 0x25, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_timegal_poll_items, 0, 0, offsetof(nmea_ubx_nav2_timegal_poll, trailing)},
+    {"nav2_timegal", "NAV2-TIMEGAL", 0x29, 0x25, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav2_timegal_items, 10, 0, offsetof(nmea_ubx_nav2_timegal, trailing)},
+    {"nav2_timels_poll", "NAV2-TIMELS", 0x29, 0x26, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_timels_poll_items, 0, 0, offsetof(nmea_ubx_nav2_timels_poll, trailing)},
+    {"nav2_timels", "NAV2-TIMELS", 0x29, 0x26, true, NMEA_UBX_PROTOCOL_UBX, 24, -1, 0, ubx_nav2_timels_items, 14, 0, offsetof(nmea_ubx_nav2_timels, trailing)},
+    {"nav2_timeqzss_poll", "NAV2-TIMEQZSS", 0x29, 0x27, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_timeqzss_poll_items, 0, 0, offsetof(nmea_ubx_nav2_timeqzss_poll, trailing)},
+    {"nav2_timeqzss", "NAV2-TIMEQZSS", 0x29, 0x27, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav2_timeqzss_items, 10, 0, offsetof(nmea_ubx_nav2_timeqzss, trailing)},
+    {"nav2_sbas_poll", "NAV2-SBAS", 0x29, 0x32, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_sbas_poll_items, 0, 0, offsetof(nmea_ubx_nav2_sbas_poll, trailing)},
+    {"nav2_sbas", "NAV2-SBAS", 0x29, 0x32, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav2_sbas_items, 15, 0, offsetof(nmea_ubx_nav2_sbas, trailing)},
+    {"nav2_sat_poll", "NAV2-SAT", 0x29, 0x35, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_sat_poll_items, 0, 0, offsetof(nmea_ubx_nav2_sat_poll, trailing)},
+    {"nav2_sat", "NAV2-SAT", 0x29, 0x35, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav2_sat_items, 5, 0, offsetof(nmea_ubx_nav2_sat, trailing)},
+    {"nav2_cov_poll", "NAV2-COV", 0x29, 0x36, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_cov_poll_items, 0, 0, offsetof(nmea_ubx_nav2_cov_poll, trailing)},
+    {"nav2_cov", "NAV2-COV", 0x29, 0x36, true, NMEA_UBX_PROTOCOL_UBX, 64, -1, 0, ubx_nav2_cov_items, 17, 0, offsetof(nmea_ubx_nav2_cov, trailing)},
+    {"nav2_slas_poll", "NAV2-SLAS", 0x29, 0x42, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_slas_poll_items, 0, 0, offsetof(nmea_ubx_nav2_slas_poll, trailing)},
+    {"nav2_slas", "NAV2-SLAS", 0x29, 0x42, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav2_slas_items, 13, 0, offsetof(nmea_ubx_nav2_slas, trailing)},
+    {"nav2_sig_poll", "NAV2-SIG", 0x29, 0x43, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_sig_poll_items, 0, 0, offsetof(nmea_ubx_nav2_sig_poll, trailing)},
+    {"nav2_sig", "NAV2-SIG", 0x29, 0x43, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav2_sig_items, 5, 0, offsetof(nmea_ubx_nav2_sig, trailing)},
+    {"nav2_eoe", "NAV2-EOE", 0x29, 0x61, true, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_nav2_eoe_items, 1, 0, offsetof(nmea_ubx_nav2_eoe, trailing)},
+    {"nav_dop", "NAV-DOP", 0x01, 0x01, true, NMEA_UBX_PROTOCOL_CASIC, 28, -1, 0, ubx_casic_nav_dop_items, 7, 0, offsetof(nmea_ubx_casic_nav_dop, trailing)},
+    {"nav_pv", "NAV-PV", 0x01, 0x03, true, NMEA_UBX_PROTOCOL_CASIC, 80, -1, 0, ubx_casic_nav_pv_items, 27, 0, offsetof(nmea_ubx_casic_nav_pv, trailing)},
+    {"nav_timeutc", "NAV-TIMEUTC", 0x01, 0x10, true, NMEA_UBX_PROTOCOL_CASIC, 24, -1, 0, ubx_casic_nav_timeutc_items, 16, 0, offsetof(nmea_ubx_casic_nav_timeutc, trailing)},
+    {"nav_gpsinfo", "NAV-GPSINFO", 0x01, 0x20, true, NMEA_UBX_PROTOCOL_CASIC, -1, -1, 0, ubx_casic_nav_gpsinfo_items, 6, 0, offsetof(nmea_ubx_casic_nav_gpsinfo, trailing)},
+    {"nav_bdsinfo", "NAV-BDSINFO", 0x01, 0x21, true, NMEA_UBX_PROTOCOL_CASIC, -1, -1, 0, ubx_casic_nav_bdsinfo_items, 6, 0, offsetof(nmea_ubx_casic_nav_bdsinfo, trailing)},
+    {"nav_glninfo", "NAV-GLNINFO", 0x01, 0x22, true, NMEA_UBX_PROTOCOL_CASIC, -1, -1, 0, ubx_casic_nav_glninfo_items, 6, 0, offsetof(nmea_ubx_casic_nav_glninfo, trailing)},
+    {"ack_nak", "ACK-NAK", 0x05, 0x00, true, NMEA_UBX_PROTOCOL_CASIC, 4, -1, 0, ubx_casic_ack_nak_items, 3, 0, offsetof(nmea_ubx_casic_ack_nak, trailing)},
+    {"ack_ack", "ACK-ACK", 0x05, 0x01, true, NMEA_UBX_PROTOCOL_CASIC, 4, -1, 0, ubx_casic_ack_ack_items, 3, 0, offsetof(nmea_ubx_casic_ack_ack, trailing)},
+    {"cfg_prt_poll", "CFG-PRT", 0x06, 0x00, false, NMEA_UBX_PROTOCOL_CASIC, 0, -1, 0, ubx_casic_cfg_prt_poll_items, 0, 0, offsetof(nmea_ubx_casic_cfg_prt_poll, trailing)},
+    {"cfg_prt", "CFG-PRT", 0x06, 0x00, true, NMEA_UBX_PROTOCOL_CASIC, 8, -1, 0, ubx_casic_cfg_prt_items, 8, 0, offsetof(nmea_ubx_casic_cfg_prt, trailing)},
+    {"cfg_msg_poll", "CFG-MSG", 0x06, 0x01, false, NMEA_UBX_PROTOCOL_CASIC, 0, -1, 0, ubx_casic_cfg_msg_poll_items, 0, 0, offsetof(nmea_ubx_casic_cfg_msg_poll, trailing)},
+    {"cfg_msg", "CFG-MSG", 0x06, 0x01, true, NMEA_UBX_PROTOCOL_CASIC, 4, -1, 0, ubx_casic_cfg_msg_items, 3, 0, offsetof(nmea_ubx_casic_cfg_msg, trailing)},
+    {"cfg_rate_poll", "CFG-RATE", 0x06, 0x04, false, NMEA_UBX_PROTOCOL_CASIC, 0, -1, 0, ubx_casic_cfg_rate_poll_items, 0, 0, offsetof(nmea_ubx_casic_cfg_rate_poll, trailing)},
+    {"cfg_rate", "CFG-RATE", 0x06, 0x04, true, NMEA_UBX_PROTOCOL_CASIC, 4, -1, 0, ubx_casic_cfg_rate_items, 2, 0, offsetof(nmea_ubx_casic_cfg_rate, trailing)},
+    {"mon_ver_poll", "MON-VER", 0x0A, 0x04, false, NMEA_UBX_PROTOCOL_CASIC, 0, -1, 0, ubx_casic_mon_ver_poll_items, 0, 0, offsetof(nmea_ubx_casic_mon_ver_poll, trailing)},
+    {"mon_ver", "MON-VER", 0x0A, 0x04, true, NMEA_UBX_PROTOCOL_CASIC, 64, -1, 0, ubx_casic_mon_ver_items, 2, 0, offsetof(nmea_ubx_casic_mon_ver, trailing)},
+    {"gnss_nav_solution", "MID 67 SID 1", 0x43, 0x01, true, NMEA_UBX_PROTOCOL_SIRF, 124, -1, 0, ubx_sirf_gnss_nav_solution_items, 46, 2, offsetof(nmea_ubx_sirf_gnss_nav_solution, trailing)},
+    {"measured_nav", "MID 2", 0x02, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, 40, -1, 0, ubx_sirf_measured_nav_items, 26, 1, offsetof(nmea_ubx_sirf_measured_nav, trailing)},
+    {"tracker_data", "MID 4", 0x04, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, -1, -1, 0, ubx_sirf_tracker_data_items, 4, 1, offsetof(nmea_ubx_sirf_tracker_data, trailing)},
+    {"sw_version", "MID 6", 0x06, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, -1, -1, 0, ubx_sirf_sw_version_items, 1, 1, offsetof(nmea_ubx_sirf_sw_version, trailing)},
+    {"clock_status", "MID 7", 0x07, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, 19, -1, 0, ubx_sirf_clock_status_items, 6, 1, offsetof(nmea_ubx_sirf_clock_status, trailing)},
+    {"cpu_throughput", "MID 9", 0x09, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, 8, -1, 0, ubx_sirf_cpu_throughput_items, 4, 1, offsetof(nmea_ubx_sirf_cpu_throughput, trailing)},
+    {"command_ack", "MID 11", 0x0B, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, -1, -1, 0, ubx_sirf_command_ack_items, 2, 1, offsetof(nmea_ubx_sirf_command_ack, trailing)},
+    {"command_nack", "MID 12", 0x0C, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, -1, -1, 0, ubx_sirf_command_nack_items, 2, 1, offsetof(nmea_ubx_sirf_command_nack, trailing)},
+    {"visible_list", "MID 13", 0x0D, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, -1, -1, 0, ubx_sirf_visible_list_items, 2, 1, offsetof(nmea_ubx_sirf_visible_list, trailing)},
+    {"ok_to_send", "MID 18", 0x12, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, 1, -1, 0, ubx_sirf_ok_to_send_items, 1, 1, offsetof(nmea_ubx_sirf_ok_to_send, trailing)},
+    {"geodetic_nav", "MID 41", 0x29, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, 90, -1, 0, ubx_sirf_geodetic_nav_items, 35, 1, offsetof(nmea_ubx_sirf_geodetic_nav, trailing)},
+    {"pps_time", "MID 52", 0x34, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, 18, -1, 0, ubx_sirf_pps_time_items, 13, 1, offsetof(nmea_ubx_sirf_pps_time, trailing)},
+    {"switch_to_nmea", "MID 129", 0x81, 0x00, false, NMEA_UBX_PROTOCOL_SIRF, 23, -1, 0, ubx_sirf_switch_to_nmea_items, 3, 1, offsetof(nmea_ubx_sirf_switch_to_nmea, trailing)},
+    {"poll_sw_version", "MID 132", 0x84, 0x00, false, NMEA_UBX_PROTOCOL_SIRF, 1, -1, 0, ubx_sirf_poll_sw_version_items, 1, 1, offsetof(nmea_ubx_sirf_poll_sw_version, trailing)},
+    {"set_protocol", "MID 135", 0x87, 0x00, false, NMEA_UBX_PROTOCOL_SIRF, 1, -1, 0, ubx_sirf_set_protocol_items, 1, 1, offsetof(nmea_ubx_sirf_set_protocol, trailing)},
+    {"dev_data", "MID 255", 0xFF, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, -1, -1, 0, ubx_sirf_dev_data_items, 1, 1, offsetof(nmea_ubx_sirf_dev_data, trailing)},
+    {"query_sw_version", "0x02", 0x02, 0x00, false, NMEA_UBX_PROTOCOL_SKYTRAQ, 1, -1, 0, ubx_skytraq_query_sw_version_items, 1, 1, offsetof(nmea_ubx_skytraq_query_sw_version, trailing)},
+    {"config_message_type", "0x09", 0x09, 0x00, false, NMEA_UBX_PROTOCOL_SKYTRAQ, 2, -1, 0, ubx_skytraq_config_message_type_items, 2, 1, offsetof(nmea_ubx_skytraq_config_message_type, trailing)},
+    {"sw_version", "0x80", 0x80, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, 13, -1, 0, ubx_skytraq_sw_version_items, 10, 1, offsetof(nmea_ubx_skytraq_sw_version, trailing)},
+    {"msg_ack", "0x83", 0x83, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, -1, -1, 0, ubx_skytraq_msg_ack_items, 2, 1, offsetof(nmea_ubx_skytraq_msg_ack, trailing)},
+    {"msg_nack", "0x84", 0x84, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, -1, -1, 0, ubx_skytraq_msg_nack_items, 2, 1, offsetof(nmea_ubx_skytraq_msg_nack, trailing)},
+    {"nav_data", "0xA8", 0xA8, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, 58, -1, 0, ubx_skytraq_nav_data_items, 19, 1, offsetof(nmea_ubx_skytraq_nav_data, trailing)},
+    {"meas_time", "0xDC", 0xDC, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, 9, -1, 0, ubx_skytraq_meas_time_items, 4, 1, offsetof(nmea_ubx_skytraq_meas_time, trailing)},
+    {"raw_meas", "0xDD", 0xDD, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, -1, -1, 0, ubx_skytraq_raw_meas_items, 3, 1, offsetof(nmea_ubx_skytraq_raw_meas, trailing)},
+    {"sv_ch_status", "0xDE", 0xDE, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, -1, -1, 0, ubx_skytraq_sv_ch_status_items, 3, 1, offsetof(nmea_ubx_skytraq_sv_ch_status, trailing)},
+    {"rcv_state", "0xDF", 0xDF, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, 80, -1, 0, ubx_skytraq_rcv_state_items, 17, 1, offsetof(nmea_ubx_skytraq_rcv_state, trailing)},
+    {"gps_subframe", "0xE0", 0xE0, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, 32, -1, 0, ubx_skytraq_gps_subframe_items, 3, 1, offsetof(nmea_ubx_skytraq_gps_subframe, trailing)},
 };
 
 /* The layouts of each class and id: the first and the last (indexes of ubx_layouts). */
@@ -5881,10 +6713,58 @@ static const struct {
     {0x29, 0x61, 349, 349}, /* NAV2-EOE */
 };
 
+/* The layouts of each key of the other protocols: by protocol, then key (an id and sub-id before
+   an id alone), the first and the last. */
+static const struct {
+    uint8_t protocol, key_len, key[2];
+    uint16_t first, last;
+} ubx_keyed[] = {
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 350, 350}, /* CASIC NAV-DOP */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 351, 351}, /* CASIC NAV-PV */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 352, 352}, /* CASIC NAV-TIMEUTC */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 353, 353}, /* CASIC NAV-GPSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 354, 354}, /* CASIC NAV-BDSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 355, 355}, /* CASIC NAV-GLNINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 356, 356}, /* CASIC ACK-NAK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 357, 357}, /* CASIC ACK-ACK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 358, 359}, /* CASIC CFG-PRT */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 360, 361}, /* CASIC CFG-MSG */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 362, 363}, /* CASIC CFG-RATE */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 364, 365}, /* CASIC MON-VER */
+    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 366, 366}, /* SIRF MID 67 SID 1 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 367, 367}, /* SIRF MID 2 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 368, 368}, /* SIRF MID 4 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 369, 369}, /* SIRF MID 6 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 370, 370}, /* SIRF MID 7 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 371, 371}, /* SIRF MID 9 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 372, 372}, /* SIRF MID 11 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 373, 373}, /* SIRF MID 12 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 374, 374}, /* SIRF MID 13 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 375, 375}, /* SIRF MID 18 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 376, 376}, /* SIRF MID 41 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 377, 377}, /* SIRF MID 52 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 378, 378}, /* SIRF MID 129 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 379, 379}, /* SIRF MID 132 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 380, 380}, /* SIRF MID 135 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 381, 381}, /* SIRF MID 255 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 382, 382}, /* SKYTRAQ 0x02 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 383, 383}, /* SKYTRAQ 0x09 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 384, 384}, /* SKYTRAQ 0x80 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 385, 385}, /* SKYTRAQ 0x83 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 386, 386}, /* SKYTRAQ 0x84 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 387, 387}, /* SKYTRAQ 0xA8 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 388, 388}, /* SKYTRAQ 0xDC */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 389, 389}, /* SKYTRAQ 0xDD */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 390, 390}, /* SKYTRAQ 0xDE */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 391, 391}, /* SKYTRAQ 0xDF */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 392, 392}, /* SKYTRAQ 0xE0 */
+};
+
 bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, size_t len, nmea_ubx_message *out,
                      nmea_ubx_error *err)
 {
     static const uint8_t none[1] = {0};
+    err->protocol = NMEA_UBX_PROTOCOL_UBX;
     size_t lo = 0, hi = sizeof ubx_messages / sizeof ubx_messages[0], at;
     unsigned key = (unsigned)msg_class << 8 | msg_id;
     if (!len)
@@ -5895,7 +6775,7 @@ bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, 
         if (here == key) {
             at = ubx_layout_for(ubx_layouts, ubx_messages[mid].first, ubx_messages[mid].last, payload, len);
             out->layout = (nmea_ubx_layout)at;
-            return ubx_read_layout(&ubx_layouts[at], payload, len, (uint8_t *)&out->as, err);
+            return ubx_read_layout(&ubx_layouts[at], &ubx_framings[0], payload, len, (uint8_t *)&out->as, err);
         }
         if (here < key)
             lo = mid + 1;
@@ -5908,6 +6788,7 @@ bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, 
     out->as.unknown.msg_id = msg_id;
     out->as.unknown.payload.ptr = payload;
     out->as.unknown.payload.len = len;
+    out->as.unknown.key_len = 2;
     return true;
 }
 
@@ -5915,15 +6796,60 @@ bool nmea_ubx_decode_frame(const uint8_t *frame, size_t len, nmea_ubx_message *o
 {
     const uint8_t *payload;
     size_t payload_len;
+    err->protocol = NMEA_UBX_PROTOCOL_UBX;
     return ubx_open_frame(frame, len, &payload, &payload_len, err) &&
            nmea_ubx_decode(frame[2], frame[3], payload, payload_len, out, err);
 }
 
+bool nmea_ubx_decode_frame_of(nmea_ubx_protocol protocol, const uint8_t *frame, size_t len, nmea_ubx_message *out,
+                              nmea_ubx_error *err)
+{
+    const nmea_ubx_framing *f;
+    const uint8_t *payload, *key;
+    size_t payload_len, skip = 0, i, at;
+    if (protocol == NMEA_UBX_PROTOCOL_UBX)
+        return nmea_ubx_decode_frame(frame, len, out, err);
+    err->protocol = (uint8_t)protocol;
+    f = &ubx_framings[protocol];
+    if (!ubx_open_frame_of(f, frame, len, &payload, &payload_len, err))
+        return false;
+    key = f->key_at ? frame + f->key_at : payload;
+    for (i = 0; i < sizeof ubx_keyed / sizeof ubx_keyed[0]; i++) {
+        if (ubx_keyed[i].protocol != protocol)
+            continue;
+        skip = ubx_keyed[i].key_len; /* the key's bytes before the fields: none when the header holds it */
+        if ((f->key_at ? 2 : skip) > (f->key_at ? 2 : payload_len) || key[0] != ubx_keyed[i].key[0] ||
+            ((f->key_at || skip == 2) && key[1] != ubx_keyed[i].key[1]))
+            continue;
+        at = ubx_layout_for(ubx_layouts, ubx_keyed[i].first, ubx_keyed[i].last, payload + skip, payload_len - skip);
+        out->layout = (nmea_ubx_layout)at;
+        return ubx_read_layout(&ubx_layouts[at], f, payload + skip, payload_len - skip, (uint8_t *)&out->as, err);
+    }
+    skip = f->key_at ? 0 : payload_len ? 1 : 0; /* an undescribed id: the payload's first byte */
+    out->layout = NMEA_UBX_MSG_UNKNOWN;
+    memset(&out->as.unknown, 0, sizeof out->as.unknown);
+    out->as.unknown.protocol = (uint8_t)protocol;
+    out->as.unknown.key_len = (uint8_t)(f->key_at ? 2 : skip);
+    out->as.unknown.msg_class = out->as.unknown.key_len ? key[0] : 0;
+    out->as.unknown.msg_id = f->key_at ? key[1] : 0;
+    out->as.unknown.payload.ptr = payload + skip;
+    out->as.unknown.payload.len = payload_len - skip;
+    return true;
+}
+
 size_t nmea_ubx_encode(const nmea_ubx_message *message, uint8_t *buf, size_t cap, nmea_ubx_error *err)
 {
-    if (message->layout == NMEA_UBX_MSG_UNKNOWN)
-        return ubx_write_frame(NULL, NULL, &message->as.unknown, buf, cap, err);
-    return ubx_write_frame(&ubx_layouts[message->layout], (const uint8_t *)&message->as, NULL, buf, cap, err);
+    const nmea_ubx_layout_info *l;
+    if (message->layout == NMEA_UBX_MSG_UNKNOWN) {
+        if (message->as.unknown.protocol >= sizeof ubx_framings / sizeof ubx_framings[0]) {
+            snprintf(err->text, sizeof err->text, "no protocol %u", (unsigned)message->as.unknown.protocol);
+            return (size_t)ubx_fail(err, NMEA_UBX_BAD_VALUE, NULL, "protocol");
+        }
+        return ubx_write_frame(&ubx_framings[message->as.unknown.protocol], NULL, NULL, &message->as.unknown, buf, cap,
+                               err);
+    }
+    l = &ubx_layouts[message->layout];
+    return ubx_write_frame(&ubx_framings[l->protocol], l, (const uint8_t *)&message->as, NULL, buf, cap, err);
 }
 
 size_t nmea_ubx_json(const nmea_ubx_message *message, char *buf, size_t cap)
@@ -5935,10 +6861,18 @@ size_t nmea_ubx_json(const nmea_ubx_message *message, char *buf, size_t cap)
     ubx_json_start(&j, buf, cap);
     ubx_json_key(&j, "message");
     if (message->layout == NMEA_UBX_MSG_UNKNOWN) {
-        ubx_json_puts(&j, "null,\"class\":");
-        ubx_json_put(&j, number, (size_t)snprintf(number, sizeof number, "%u", message->as.unknown.msg_class));
-        ubx_json_puts(&j, ",\"id\":");
-        ubx_json_put(&j, number, (size_t)snprintf(number, sizeof number, "%u", message->as.unknown.msg_id));
+        const nmea_ubx_unknown *u = &message->as.unknown;
+        bool in_header = u->protocol >= sizeof ubx_framings / sizeof ubx_framings[0] || ubx_framings[u->protocol].key_at;
+        ubx_json_puts(&j, "null");
+        if (in_header) { /* UBX, CASIC: the header's class and id */
+            ubx_json_puts(&j, ",\"class\":");
+            ubx_json_put(&j, number, (size_t)snprintf(number, sizeof number, "%u", u->msg_class));
+            ubx_json_puts(&j, ",\"id\":");
+            ubx_json_put(&j, number, (size_t)snprintf(number, sizeof number, "%u", u->msg_id));
+        } else if (u->key_len) { /* SkyTraq, SiRF: the payload's first byte */
+            ubx_json_puts(&j, ",\"id\":");
+            ubx_json_put(&j, number, (size_t)snprintf(number, sizeof number, "%u", u->msg_class));
+        }
         ubx_json_puts(&j, ",\"payload\":");
         ubx_json_hex(&j, message->as.unknown.payload.ptr, message->as.unknown.payload.len);
     } else {
@@ -5963,4 +6897,15 @@ const char *nmea_ubx_layout_id(nmea_ubx_layout layout)
 const char *nmea_ubx_address(nmea_ubx_layout layout)
 {
     return layout == NMEA_UBX_MSG_UNKNOWN ? NULL : ubx_layouts[layout].address;
+}
+
+const char *nmea_ubx_protocol_name(nmea_ubx_protocol protocol)
+{
+    return (size_t)protocol < sizeof ubx_framings / sizeof ubx_framings[0] ? ubx_framings[protocol].name : NULL;
+}
+
+nmea_ubx_protocol nmea_ubx_message_protocol(const nmea_ubx_message *message)
+{
+    return (nmea_ubx_protocol)(message->layout == NMEA_UBX_MSG_UNKNOWN ? message->as.unknown.protocol
+                                                                       : ubx_layouts[message->layout].protocol);
 }

@@ -90,14 +90,34 @@
 //   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_sbas.yaml,
 //   spec/binary/ubx/messages/nav2_sat.yaml, spec/binary/ubx/messages/nav2_cov.yaml,
 //   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_sig.yaml,
-//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest d3f26ce7cdd82721)
+//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/binary/casic/messages/nav_dop.yaml,
+//   spec/binary/casic/messages/nav_pv.yaml, spec/binary/casic/messages/nav_timeutc.yaml,
+//   spec/binary/casic/messages/nav_gpsinfo.yaml, spec/binary/casic/messages/nav_bdsinfo.yaml,
+//   spec/binary/casic/messages/nav_glninfo.yaml, spec/binary/casic/messages/ack_nak.yaml,
+//   spec/binary/casic/messages/ack_ack.yaml, spec/binary/casic/messages/cfg_prt.yaml,
+//   spec/binary/casic/messages/cfg_msg.yaml, spec/binary/casic/messages/cfg_rate.yaml,
+//   spec/binary/casic/messages/mon_ver.yaml, spec/binary/sirf/messages/gnss_nav_solution.yaml,
+//   spec/binary/sirf/messages/measured_nav.yaml, spec/binary/sirf/messages/tracker_data.yaml,
+//   spec/binary/sirf/messages/sw_version.yaml, spec/binary/sirf/messages/clock_status.yaml,
+//   spec/binary/sirf/messages/cpu_throughput.yaml, spec/binary/sirf/messages/command_ack.yaml,
+//   spec/binary/sirf/messages/command_nack.yaml, spec/binary/sirf/messages/visible_list.yaml,
+//   spec/binary/sirf/messages/ok_to_send.yaml, spec/binary/sirf/messages/geodetic_nav.yaml,
+//   spec/binary/sirf/messages/pps_time.yaml, spec/binary/sirf/messages/switch_to_nmea.yaml,
+//   spec/binary/sirf/messages/poll_sw_version.yaml, spec/binary/sirf/messages/set_protocol.yaml,
+//   spec/binary/sirf/messages/dev_data.yaml, spec/binary/skytraq/messages/query_sw_version.yaml,
+//   spec/binary/skytraq/messages/config_message_type.yaml,
+//   spec/binary/skytraq/messages/sw_version.yaml, spec/binary/skytraq/messages/msg_ack.yaml,
+//   spec/binary/skytraq/messages/msg_nack.yaml, spec/binary/skytraq/messages/nav_data.yaml,
+//   spec/binary/skytraq/messages/meas_time.yaml, spec/binary/skytraq/messages/raw_meas.yaml,
+//   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
+//   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/ubx_fix_type.yaml,
+//   spec/enums/ubx_gnss_id.yaml (digest 60011d295931e3f0)
 // Regenerate: make generate (python3 -m generator generate)
 
-/* The UBX messages of spec/binary/ubx: a struct per layout, every field typed, decoded from a
-   frame's payload and encoded back to the same bytes, with no heap. Beside the NMEA pair and
-   independent of it: a firmware links nmea_ubx.c only if it wants UBX (nmea.h's framer splits the
-   frames out of a byte stream). */
+/* The UBX messages of spec/binary/ubx (and those of CASIC, SIRF, SKYTRAQ: spec/binary/<protocol>):
+   a struct per layout, every field typed, decoded from a frame's payload and encoded back to the
+   same bytes, with no heap. Beside the NMEA pair and independent of it: a firmware links
+   nmea_ubx.c only if it wants UBX (nmea.h's framer splits the frames out of a byte stream). */
 
 #ifndef NMEA_UBX_H
 #define NMEA_UBX_H
@@ -105,7 +125,9 @@
 /* UBX messages: the frame (sync B5 62, class, id, little-endian length, payload, Fletcher-8) and
    one interpreter of the generated layout descriptors that reads a payload into a layout's struct,
    writes it back byte for byte and prints its JSON, the C side of the Python runtime's ubx.py
-   (its rules and error kinds). No heap: a field of the bytes left, the trailing bytes and an
+   (its rules and error kinds). The messages of the other binary protocols the spec types
+   (SkyTraq, SiRF, CASIC: the Python runtime's binary.py) go through the same interpreter, in their
+   byte order, framed by their row of the generated framing table (sync, length, checksum, end). No heap: a field of the bytes left, the trailing bytes and an
    unknown message's payload are views of the decoded payload. Facts from u-blox UBX-13003221
    ("UBX frame structure", "UBX checksum", "Data types"). */
 
@@ -126,9 +148,11 @@ typedef enum {
     NMEA_UBX_NO_ROOM         /* the buffer to encode into is too small */
 } nmea_ubx_error_kind;
 
-/* An error: its kind, the message (`NAV-PVT`, NULL before one is known) and field, and its text. */
+/* An error: its kind, its protocol (nmea_ubx_protocol), the message (`NAV-PVT`, NULL before one is
+   known) and field, and its text. */
 typedef struct {
     nmea_ubx_error_kind kind;
+    uint8_t protocol;
     const char *message;
     const char *field;
     char text[112];
@@ -143,11 +167,41 @@ typedef struct {
     size_t len;
 } nmea_ubx_bytes;
 
-/* A frame of a class and id the spec does not describe, kept with its payload. */
+/* A frame of a class and id (a key) the spec does not describe, kept with its payload. Of another
+   protocol than UBX (`protocol`, a nmea_ubx_protocol; 0 is UBX): msg_class and msg_id hold its key,
+   `key_len` bytes of it (CASIC's class and id; SkyTraq's and SiRF's message id, the payload's
+   first byte, and `payload` the bytes after it). */
 typedef struct {
     uint8_t msg_class, msg_id;
     nmea_ubx_bytes payload;
+    uint8_t protocol, key_len;
 } nmea_ubx_unknown;
+
+/* The checksums of the binary protocols' frames. */
+typedef enum {
+    NMEA_UBX_CHECK_FLETCHER8, /* two 8-bit running sums, sent in that order */
+    NMEA_UBX_CHECK_XOR8,      /* the XOR of the bytes */
+    NMEA_UBX_CHECK_SUM15,     /* the bytes' sum modulo 2^15, two bytes big endian */
+    NMEA_UBX_CHECK_SUM32      /* the sum of the bytes as 32-bit little-endian words, sent little endian */
+} nmea_ubx_check;
+
+/* The framing of a protocol (spec/binary/<protocol>/protocol.yaml; generated, not for use by hand).
+   Offsets count from the first sync byte. */
+typedef struct {
+    const char *name;     /* as the tools' JSON names it: skytraq */
+    const char *upper;    /* as errors name it: SKYTRAQ */
+    uint8_t sync[2];
+    uint8_t header;       /* bytes before the payload, sync included */
+    uint8_t length_at;    /* the length field's first byte (two bytes, the protocol's byte order) */
+    uint16_t length_mask; /* its bits that count the payload's bytes */
+    uint8_t key_at;       /* the header's byte of the class, then the id (UBX, CASIC); 0: the key is the
+                             payload's first byte (the id; SkyTraq, SiRF) */
+    uint8_t check;        /* nmea_ubx_check */
+    uint8_t check_from;   /* the first byte the checksum covers (to the payload's end) */
+    uint8_t check_size;
+    uint8_t end[2], end_len;
+    bool big;             /* its fields are big endian */
+} nmea_ubx_framing;
 
 /* The descriptors the interpreter walks (generated per layout; not for use by hand). */
 typedef enum {
@@ -236,15 +290,25 @@ typedef struct nmea_ubx_group {
 typedef struct {
     const char *id;      /* nav_pvt */
     const char *address; /* NAV-PVT */
-    uint8_t msg_class, msg_id;
+    uint8_t msg_class, msg_id; /* its key (SkyTraq, SiRF: the id and sub-id, `key_len` of them) */
     bool output;         /* the receiver sends it */
+    uint8_t protocol;    /* nmea_ubx_protocol */
     int32_t length;      /* its fixed payload bytes, -1 for none */
     int16_t version;     /* the value of its version byte that tells it apart, -1 for none */
     uint16_t version_at; /* ... at this byte */
     const nmea_ubx_item *items;
     uint8_t n_items;
+    uint8_t key_len;     /* SkyTraq, SiRF: the bytes of the payload before its fields (id, sub-id) */
     uint16_t trailing;   /* the offset of its `trailing` member */
 } nmea_ubx_layout_info;
+
+/* The binary protocols whose messages the pair types (nmea_ubx_protocol_name: "ubx"). */
+typedef enum {
+    NMEA_UBX_PROTOCOL_UBX,
+    NMEA_UBX_PROTOCOL_CASIC,
+    NMEA_UBX_PROTOCOL_SIRF,
+    NMEA_UBX_PROTOCOL_SKYTRAQ
+} nmea_ubx_protocol;
 
 /* The most entries any group's array holds; a firmware may lower it (a group counted by a field
    holds what its count can say, 255 for a U1: NAV-SAT's 255 satellites take 5 kB). A payload with
@@ -438,6 +502,33 @@ typedef struct {
 #endif
 #ifndef NMEA_UBX_NAV2_SIG_SIGNALS_MAX
 #define NMEA_UBX_NAV2_SIG_SIGNALS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_CASIC_NAV_GPSINFO_SVS_MAX
+#define NMEA_UBX_CASIC_NAV_GPSINFO_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_CASIC_NAV_BDSINFO_SVS_MAX
+#define NMEA_UBX_CASIC_NAV_BDSINFO_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX
+#define NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SIRF_MEASURED_NAV_CHANNELS_MAX
+#define NMEA_UBX_SIRF_MEASURED_NAV_CHANNELS_MAX (12 < NMEA_UBX_MAX_ENTRIES ? 12 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SIRF_TRACKER_DATA_CHANNELS_MAX
+#define NMEA_UBX_SIRF_TRACKER_DATA_CHANNELS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SIRF_VISIBLE_LIST_SVS_MAX
+#define NMEA_UBX_SIRF_VISIBLE_LIST_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SIRF_SWITCH_TO_NMEA_SENTENCES_MAX
+#define NMEA_UBX_SIRF_SWITCH_TO_NMEA_SENTENCES_MAX (10 < NMEA_UBX_MAX_ENTRIES ? 10 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SKYTRAQ_RAW_MEAS_MEAS_MAX
+#define NMEA_UBX_SKYTRAQ_RAW_MEAS_MEAS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SKYTRAQ_SV_CH_STATUS_SVS_MAX
+#define NMEA_UBX_SKYTRAQ_SV_CH_STATUS_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
 
 /* Position solution in ECEF: UBX NAV-POSECEF (class 0x01 id 0x01), poll. */
@@ -5167,6 +5258,671 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_nav2_eoe;
 
+/* Dilutions of precision: CASIC NAV-DOP (class 0x01 id 0x01), output. */
+typedef struct {
+    uint32_t run_time; /* Time since power-on [ms] */
+    float pdop; /* Position dilution of precision (its bits as sent) */
+    float hdop; /* Horizontal dilution of precision (its bits as sent) */
+    float vdop; /* Vertical dilution of precision (its bits as sent) */
+    float ndop; /* North dilution of precision (its bits as sent) */
+    float edop; /* East dilution of precision (its bits as sent) */
+    float tdop; /* Time dilution of precision (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_nav_dop;
+
+/* Position and velocity: CASIC NAV-PV (class 0x01 id 0x03), output. */
+typedef struct {
+    uint32_t run_time; /* Time since power-on [ms] */
+    uint8_t pos_valid; /* Position validity */
+    uint8_t vel_valid; /* Velocity validity */
+    uint8_t system; /* Systems used (bitfield) */
+    bool gps; /* GPS used (system bit 0) */
+    bool bds; /* BDS used (system bit 1) */
+    bool glonass; /* GLONASS used (system bit 2) */
+    uint8_t num_sv; /* Satellites used */
+    uint8_t num_sv_gps; /* GPS satellites used */
+    uint8_t num_sv_bds; /* BDS satellites used */
+    uint8_t num_sv_glonass; /* GLONASS satellites used */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    float pdop; /* Position dilution of precision (its bits as sent) */
+    double lon; /* Longitude [deg] (its bits as sent) */
+    double lat; /* Latitude [deg] (its bits as sent) */
+    float height; /* Height above the ellipsoid [m] (its bits as sent) */
+    float sep_geoid; /* Geoid separation [m] (its bits as sent) */
+    float h_acc; /* Horizontal position variance [m^2] (its bits as sent) */
+    float v_acc; /* Vertical position variance [m^2] (its bits as sent) */
+    float vel_n; /* Velocity north [m/s] (its bits as sent) */
+    float vel_e; /* Velocity east [m/s] (its bits as sent) */
+    float vel_u; /* Velocity up [m/s] (its bits as sent) */
+    float speed_3d; /* Speed (3D) [m/s] (its bits as sent) */
+    float speed_2d; /* Ground speed [m/s] (its bits as sent) */
+    float heading; /* Heading [deg] (its bits as sent) */
+    float s_acc; /* Speed variance [m^2/s^2] (its bits as sent) */
+    float c_acc; /* Heading variance [deg^2] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_nav_pv;
+
+/* UTC time: CASIC NAV-TIMEUTC (class 0x01 id 0x10), output. */
+typedef struct {
+    uint32_t run_time; /* Time since power-on [ms] */
+    float t_acc; /* Time accuracy (variance) (its bits as sent) */
+    float ms_err; /* Rounding residual of the time [ms] (its bits as sent) */
+    uint16_t ms; /* Milliseconds of the second [ms] */
+    uint16_t year; /* Year */
+    uint8_t month; /* Month */
+    uint8_t day; /* Day */
+    uint8_t hour; /* Hour */
+    uint8_t min; /* Minute */
+    uint8_t sec; /* Second */
+    uint8_t valid; /* Time validity (bitfield) */
+    bool tow_valid; /* Time of week valid (valid bit 0) */
+    bool week_valid; /* Week number valid (valid bit 1) */
+    bool leap_valid; /* Leap seconds valid (valid bit 2) */
+    uint8_t time_src; /* Time source */
+    uint8_t date_valid; /* Date validity */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_nav_timeutc;
+
+/* One entry of satellites (svs). */
+typedef struct {
+    uint8_t chn; /* Channel (255 not tracked) */
+    uint8_t svid; /* Satellite number */
+    uint16_t flags; /* Status and quality (bitfield) */
+    bool pr_valid; /* Pseudorange valid (flags bit 0) */
+    bool carrier_valid; /* Carrier phase valid (flags bit 1) */
+    bool used; /* Used in the fix (flags bit 2) */
+    bool differential; /* Differential corrections used (flags bit 3) */
+    bool healthy; /* Healthy (flags bit 6) */
+    bool visible; /* In view (flags bit 7) */
+    uint8_t quality; /* Signal quality indicator (flags bits 8-15) */
+    uint8_t cno; /* Carrier to noise ratio [dBHz] */
+    int8_t elev; /* Elevation [deg] */
+    int16_t azim; /* Azimuth [deg] */
+    float pr_res; /* Pseudorange residual [m] (its bits as sent) */
+} nmea_ubx_casic_nav_gpsinfo_sv;
+
+/* GPS satellite information: CASIC NAV-GPSINFO (class 0x01 id 0x20), output. */
+typedef struct {
+    uint32_t run_time; /* Time since power-on [ms] */
+    uint8_t num_view_sv; /* Satellites in view */
+    uint8_t num_fix_sv; /* Satellites used */
+    uint8_t system; /* System (0 GPS, 1 BDS, 2 GLONASS) */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t svs_count; /* the entries of svs */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_casic_nav_gpsinfo_sv svs[NMEA_UBX_CASIC_NAV_GPSINFO_SVS_MAX]; /* Satellites */
+} nmea_ubx_casic_nav_gpsinfo;
+
+/* One entry of satellites (svs). */
+typedef struct {
+    uint8_t chn; /* Channel (255 not tracked) */
+    uint8_t svid; /* Satellite number */
+    uint16_t flags; /* Status and quality (bitfield) */
+    bool pr_valid; /* Pseudorange valid (flags bit 0) */
+    bool carrier_valid; /* Carrier phase valid (flags bit 1) */
+    bool used; /* Used in the fix (flags bit 2) */
+    bool differential; /* Differential corrections used (flags bit 3) */
+    bool healthy; /* Healthy (flags bit 6) */
+    bool visible; /* In view (flags bit 7) */
+    uint8_t quality; /* Signal quality indicator (flags bits 8-15) */
+    uint8_t cno; /* Carrier to noise ratio [dBHz] */
+    int8_t elev; /* Elevation [deg] */
+    int16_t azim; /* Azimuth [deg] */
+    float pr_res; /* Pseudorange residual [m] (its bits as sent) */
+} nmea_ubx_casic_nav_bdsinfo_sv;
+
+/* BDS satellite information: CASIC NAV-BDSINFO (class 0x01 id 0x21), output. */
+typedef struct {
+    uint32_t run_time; /* Time since power-on [ms] */
+    uint8_t num_view_sv; /* Satellites in view */
+    uint8_t num_fix_sv; /* Satellites used */
+    uint8_t system; /* System (0 GPS, 1 BDS, 2 GLONASS) */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t svs_count; /* the entries of svs */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_casic_nav_bdsinfo_sv svs[NMEA_UBX_CASIC_NAV_BDSINFO_SVS_MAX]; /* Satellites */
+} nmea_ubx_casic_nav_bdsinfo;
+
+/* One entry of satellites (svs). */
+typedef struct {
+    uint8_t chn; /* Channel (255 not tracked) */
+    uint8_t svid; /* Satellite number */
+    uint16_t flags; /* Status and quality (bitfield) */
+    bool pr_valid; /* Pseudorange valid (flags bit 0) */
+    bool carrier_valid; /* Carrier phase valid (flags bit 1) */
+    bool used; /* Used in the fix (flags bit 2) */
+    bool differential; /* Differential corrections used (flags bit 3) */
+    bool healthy; /* Healthy (flags bit 6) */
+    bool visible; /* In view (flags bit 7) */
+    uint8_t quality; /* Signal quality indicator (flags bits 8-15) */
+    uint8_t cno; /* Carrier to noise ratio [dBHz] */
+    int8_t elev; /* Elevation [deg] */
+    int16_t azim; /* Azimuth [deg] */
+    float pr_res; /* Pseudorange residual [m] (its bits as sent) */
+} nmea_ubx_casic_nav_glninfo_sv;
+
+/* GLONASS satellite information: CASIC NAV-GLNINFO (class 0x01 id 0x22), output. */
+typedef struct {
+    uint32_t run_time; /* Time since power-on [ms] */
+    uint8_t num_view_sv; /* Satellites in view */
+    uint8_t num_fix_sv; /* Satellites used */
+    uint8_t system; /* System (0 GPS, 1 BDS, 2 GLONASS) */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t svs_count; /* the entries of svs */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_casic_nav_glninfo_sv svs[NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX]; /* Satellites */
+} nmea_ubx_casic_nav_glninfo;
+
+/* Message not acknowledged: CASIC ACK-NAK (class 0x05 id 0x00), output. */
+typedef struct {
+    uint8_t cls_id; /* Class of the refused message */
+    uint8_t msg_id; /* Id of the refused message */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_ack_nak;
+
+/* Message acknowledged: CASIC ACK-ACK (class 0x05 id 0x01), output. */
+typedef struct {
+    uint8_t cls_id; /* Class of the acknowledged message */
+    uint8_t msg_id; /* Id of the acknowledged message */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_ack_ack;
+
+/* Port configuration: CASIC CFG-PRT (class 0x06 id 0x00), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_cfg_prt_poll;
+
+/* Port configuration: CASIC CFG-PRT (class 0x06 id 0x00), input, output. */
+typedef struct {
+    uint8_t port_id; /* Port (255 the current one) */
+    uint8_t proto_mask; /* Protocols (bitfield) */
+    bool binary_in; /* Binary input (proto_mask bit 0) */
+    bool text_in; /* Text (NMEA) input (proto_mask bit 1) */
+    bool binary_out; /* Binary output (proto_mask bit 4) */
+    bool text_out; /* Text (NMEA) output (proto_mask bit 5) */
+    uint16_t mode; /* Data bits, parity and stop bits (bitfield) */
+    uint32_t baud_rate; /* Speed [bit/s] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_cfg_prt;
+
+/* Message rate: CASIC CFG-MSG (class 0x06 id 0x01), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_cfg_msg_poll;
+
+/* Message rate: CASIC CFG-MSG (class 0x06 id 0x01), input, output. */
+typedef struct {
+    uint8_t msg_class; /* Message class */
+    uint8_t msg_id; /* Message id */
+    uint16_t rate; /* Send rate (0 never) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_cfg_msg;
+
+/* Navigation rate: CASIC CFG-RATE (class 0x06 id 0x04), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_cfg_rate_poll;
+
+/* Navigation rate: CASIC CFG-RATE (class 0x06 id 0x04), input, output. */
+typedef struct {
+    uint16_t interval; /* Interval between solutions [ms] */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_cfg_rate;
+
+/* Software and hardware version: CASIC MON-VER (class 0x0A id 0x04), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_mon_ver_poll;
+
+/* Software and hardware version: CASIC MON-VER (class 0x0A id 0x04), output. */
+typedef struct {
+    char sw_version[32]; /* Software version (as sent) */
+    char hw_version[32]; /* Hardware version (as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_casic_mon_ver;
+
+/* Multi-constellation navigation data (OSP): SIRF MID 67 SID 1 (0x43 0x01), output. */
+typedef struct {
+    uint32_t solution_validity; /* Solution validity (0 valid) (bitfield) */
+    uint32_t solution_info; /* Solution information (bitfield) */
+    uint16_t week; /* Extended GPS week number */
+    uint32_t tow; /* GPS time of week [s]; raw, value = raw / 1000 */
+    uint32_t tow_sub_ms; /* GPS time of week below the millisecond [ns] */
+    int16_t time_bias; /* Time bias */
+    uint8_t time_accuracy; /* Time accuracy (an 8-bit float code) */
+    uint8_t time_source; /* Time source */
+    uint16_t year; /* UTC year */
+    uint8_t month; /* UTC month */
+    uint8_t day; /* UTC day */
+    uint8_t hour; /* UTC hour */
+    uint8_t minute; /* UTC minute */
+    uint16_t second; /* UTC second [s]; raw, value = raw / 1000 */
+    uint8_t leap_seconds; /* GPS minus UTC leap seconds [s] */
+    uint8_t datum; /* Map datum */
+    int64_t clock_bias; /* Clock bias (hundredths) */
+    uint32_t clock_bias_error; /* Clock bias error; raw, value = raw / 100 */
+    int32_t clock_offset; /* Clock offset; raw, value = raw / 100 */
+    uint32_t clock_offset_error; /* Clock offset error; raw, value = raw / 100 */
+    int32_t lat; /* Latitude [deg]; raw, value = raw / 10000000 */
+    int32_t lon; /* Longitude [deg]; raw, value = raw / 10000000 */
+    int32_t alt_ellipsoid; /* Height above the ellipsoid [m]; raw, value = raw / 100 */
+    int32_t alt_msl; /* Height above mean sea level [m]; raw, value = raw / 100 */
+    uint16_t sog; /* Speed over ground [m/s]; raw, value = raw / 100 */
+    uint16_t cog; /* Course over ground [deg]; raw, value = raw / 100 */
+    int16_t climb; /* Climb rate [m/s]; raw, value = raw / 100 */
+    int16_t heading_rate; /* Heading rate [deg/s]; raw, value = raw / 100 */
+    uint32_t distance; /* Distance travelled [m]; raw, value = raw / 100 */
+    uint16_t heading_error; /* Heading error [deg]; raw, value = raw / 100 */
+    uint16_t distance_error; /* Distance travelled error [m]; raw, value = raw / 100 */
+    uint32_t ehpe; /* Estimated horizontal position error [m]; raw, value = raw / 100 */
+    uint32_t evpe; /* Estimated vertical position error [m]; raw, value = raw / 100 */
+    uint16_t ehve; /* Estimated horizontal velocity error [m/s]; raw, value = raw / 100 */
+    uint8_t gdop; /* Geometric dilution of precision; raw, value = raw / 5 */
+    uint8_t pdop; /* Position dilution of precision; raw, value = raw / 5 */
+    uint8_t hdop; /* Horizontal dilution of precision; raw, value = raw / 5 */
+    uint8_t vdop; /* Vertical dilution of precision; raw, value = raw / 5 */
+    uint8_t tdop; /* Time dilution of precision; raw, value = raw / 5 */
+    uint8_t num_svs; /* Satellites in the solution */
+    uint32_t sv_list_1; /* Satellites used (list 1) (bitfield) */
+    uint32_t sv_list_2; /* Satellites used (list 2) (bitfield) */
+    uint32_t sv_list_3; /* Satellites used (list 3) (bitfield) */
+    uint32_t sv_list_4; /* Satellites used (list 4) (bitfield) */
+    uint32_t sv_list_5; /* Satellites used (list 5) (bitfield) */
+    uint32_t additional_info; /* Additional information (bitfield) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_gnss_nav_solution;
+
+/* One entry of satellite of each channel (0 none) (channels). */
+typedef struct {
+    uint8_t prn; /* Satellite PRN */
+} nmea_ubx_sirf_measured_nav_channel;
+
+/* Measured navigation data: SIRF MID 2 (0x02), output. */
+typedef struct {
+    int32_t x; /* ECEF X [m] */
+    int32_t y; /* ECEF Y [m] */
+    int32_t z; /* ECEF Z [m] */
+    int16_t vx; /* ECEF X velocity [m/s]; raw, value = raw / 8 */
+    int16_t vy; /* ECEF Y velocity [m/s]; raw, value = raw / 8 */
+    int16_t vz; /* ECEF Z velocity [m/s]; raw, value = raw / 8 */
+    uint8_t mode1; /* Mode 1 (bitfield) */
+    uint8_t pmode; /* Position mode (mode1 bits 0-2) */
+    bool tpmode; /* Trickle power in use (mode1 bit 3) */
+    uint8_t altmode; /* Altitude hold (mode1 bits 4-5) */
+    bool dopmask; /* DOP mask exceeded (mode1 bit 6) */
+    bool dgps; /* DGPS corrections used (mode1 bit 7) */
+    uint8_t hdop; /* Horizontal dilution of precision; raw, value = raw / 5 */
+    uint8_t mode2; /* Mode 2 (bitfield) */
+    bool sensor_de; /* Sensor DR in use (mode2 bit 0) */
+    bool validated; /* Solution validated (mode2 bit 1) */
+    bool dr_timeout; /* Dead reckoning timed out (mode2 bit 2) */
+    bool edited; /* Solution edited by the UI (mode2 bit 3) */
+    bool velocity_dr; /* Velocity dead reckoning (mode2 bit 4) */
+    bool almanac_fix; /* Fix from almanac (mode2 bit 5) */
+    bool bad_velocity; /* Velocity invalid (mode2 bit 6) */
+    bool trickle_off; /* Trickle power off (mode2 bit 7) */
+    uint16_t week; /* GPS week number (modulo 1024) */
+    uint32_t tow; /* GPS time of week [s]; raw, value = raw / 100 */
+    uint8_t num_svs; /* Satellites in the fix */
+    uint16_t channels_count; /* the entries of channels */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sirf_measured_nav_channel channels[NMEA_UBX_SIRF_MEASURED_NAV_CHANNELS_MAX]; /* Satellite of each channel (0 none) */
+} nmea_ubx_sirf_measured_nav;
+
+/* One entry of channels (channels). */
+typedef struct {
+    uint8_t svid; /* Satellite PRN */
+    uint8_t azimuth; /* Azimuth in steps of 1.5 degrees */
+    uint8_t elevation; /* Elevation [deg]; raw, value = raw / 2 */
+    uint16_t state; /* Tracking state (bitfield) */
+    bool acquired; /* Acquisition success (state bit 0) */
+    bool carrier_phase_valid; /* Carrier phase valid (state bit 1) */
+    bool bit_sync; /* Bit synchronization done (state bit 2) */
+    bool subframe_sync; /* Subframe synchronization done (state bit 3) */
+    bool carrier_pullin; /* Carrier pull-in done (state bit 4) */
+    bool code_locked; /* Code locked (state bit 5) */
+    bool acquisition_failed; /* Satellite acquisition failed (state bit 6) */
+    bool ephemeris; /* Ephemeris available (state bit 7) */
+    uint8_t cno1; /* Carrier to noise ratio of 100 ms interval 1 [dBHz] */
+    uint8_t cno2; /* Carrier to noise ratio of 100 ms interval 2 [dBHz] */
+    uint8_t cno3; /* Carrier to noise ratio of 100 ms interval 3 [dBHz] */
+    uint8_t cno4; /* Carrier to noise ratio of 100 ms interval 4 [dBHz] */
+    uint8_t cno5; /* Carrier to noise ratio of 100 ms interval 5 [dBHz] */
+    uint8_t cno6; /* Carrier to noise ratio of 100 ms interval 6 [dBHz] */
+    uint8_t cno7; /* Carrier to noise ratio of 100 ms interval 7 [dBHz] */
+    uint8_t cno8; /* Carrier to noise ratio of 100 ms interval 8 [dBHz] */
+    uint8_t cno9; /* Carrier to noise ratio of 100 ms interval 9 [dBHz] */
+    uint8_t cno10; /* Carrier to noise ratio of 100 ms interval 10 [dBHz] */
+} nmea_ubx_sirf_tracker_data_channel;
+
+/* Measured tracker data: SIRF MID 4 (0x04), output. */
+typedef struct {
+    int16_t week; /* GPS week number */
+    uint32_t tow; /* GPS time of week [s]; raw, value = raw / 100 */
+    uint8_t num_channels; /* Number of channels */
+    uint16_t channels_count; /* the entries of channels */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sirf_tracker_data_channel channels[NMEA_UBX_SIRF_TRACKER_DATA_CHANNELS_MAX]; /* Channels */
+} nmea_ubx_sirf_tracker_data;
+
+/* Software version string: SIRF MID 6 (0x06), output. */
+typedef struct {
+    nmea_ubx_bytes version; /* Software version (characters) (the bytes left, ISO 8859-1) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_sw_version;
+
+/* Clock status data: SIRF MID 7 (0x07), output. */
+typedef struct {
+    uint16_t week; /* Extended GPS week number */
+    uint32_t tow; /* GPS time of week [s]; raw, value = raw / 100 */
+    uint8_t num_svs; /* Satellites used */
+    uint32_t drift; /* Clock drift [Hz] */
+    uint32_t bias; /* Clock bias [ns] */
+    uint32_t gps_time; /* Estimated GPS time [ms] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_clock_status;
+
+/* CPU throughput: SIRF MID 9 (0x09), output. */
+typedef struct {
+    uint16_t seg_stat_max; /* Longest segment statistic [ms]; raw, value = raw / 186 */
+    uint16_t seg_stat_lat; /* Segment latency statistic [ms]; raw, value = raw / 186 */
+    uint16_t avg_trk_time; /* Average tracking time [ms]; raw, value = raw / 186 */
+    uint16_t last_ms; /* Last millisecond processed [ms] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_cpu_throughput;
+
+/* Command acknowledgment: SIRF MID 11 (0x0B), output. */
+typedef struct {
+    uint8_t ack_id; /* MID of the acknowledged message */
+    bool has_ack_sid; /* whether the payload has ack_sid */
+    uint8_t ack_sid; /* SID of the acknowledged message */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_command_ack;
+
+/* Command negative acknowledgment: SIRF MID 12 (0x0C), output. */
+typedef struct {
+    uint8_t nack_id; /* MID of the refused message */
+    bool has_nack_sid; /* whether the payload has nack_sid */
+    uint8_t nack_sid; /* SID of the refused message */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_command_nack;
+
+/* One entry of visible satellites (svs). */
+typedef struct {
+    uint8_t svid; /* Satellite PRN */
+    int16_t azimuth; /* Azimuth [deg] */
+    int16_t elevation; /* Elevation [deg] */
+} nmea_ubx_sirf_visible_list_sv;
+
+/* Visible list: SIRF MID 13 (0x0D), output. */
+typedef struct {
+    uint8_t num_visible; /* Number of visible satellites */
+    uint16_t svs_count; /* the entries of svs */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sirf_visible_list_sv svs[NMEA_UBX_SIRF_VISIBLE_LIST_SVS_MAX]; /* Visible satellites */
+} nmea_ubx_sirf_visible_list;
+
+/* OkToSend: SIRF MID 18 (0x12), output. */
+typedef struct {
+    uint8_t ok; /* Ok to send */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_ok_to_send;
+
+/* Geodetic navigation data: SIRF MID 41 (0x29), output. */
+typedef struct {
+    uint16_t nav_valid; /* Navigation validity (0 valid) (bitfield) */
+    uint16_t nav_type; /* Navigation type (bitfield) */
+    uint16_t week; /* Extended GPS week number */
+    uint32_t tow; /* GPS time of week [s]; raw, value = raw / 1000 */
+    uint16_t year; /* UTC year */
+    uint8_t month; /* UTC month */
+    uint8_t day; /* UTC day */
+    uint8_t hour; /* UTC hour */
+    uint8_t minute; /* UTC minute */
+    uint16_t second; /* UTC second [s]; raw, value = raw / 1000 */
+    uint32_t sat_id_list; /* Satellites used (bit n-1 for PRN n) (bitfield) */
+    int32_t lat; /* Latitude [deg]; raw, value = raw / 10000000 */
+    int32_t lon; /* Longitude [deg]; raw, value = raw / 10000000 */
+    int32_t alt_ellipsoid; /* Height above the ellipsoid [m]; raw, value = raw / 100 */
+    int32_t alt_msl; /* Height above mean sea level [m]; raw, value = raw / 100 */
+    uint8_t datum; /* Map datum */
+    uint16_t sog; /* Speed over ground [m/s]; raw, value = raw / 100 */
+    uint16_t cog; /* Course over ground [deg]; raw, value = raw / 100 */
+    int16_t mag_var; /* Magnetic variation (not implemented) */
+    int16_t climb; /* Climb rate [m/s]; raw, value = raw / 100 */
+    int16_t heading_rate; /* Heading rate [deg/s]; raw, value = raw / 100 */
+    uint32_t ehpe; /* Estimated horizontal position error [m]; raw, value = raw / 100 */
+    uint32_t evpe; /* Estimated vertical position error [m]; raw, value = raw / 100 */
+    uint32_t ete; /* Estimated time error [s]; raw, value = raw / 100 */
+    uint16_t ehve; /* Estimated horizontal velocity error [m/s]; raw, value = raw / 100 */
+    int32_t clock_bias; /* Clock bias [m]; raw, value = raw / 100 */
+    uint32_t clock_bias_error; /* Clock bias error [m]; raw, value = raw / 100 */
+    int32_t clock_drift; /* Clock drift [m/s]; raw, value = raw / 100 */
+    uint32_t clock_drift_error; /* Clock drift error [m/s]; raw, value = raw / 100 */
+    uint32_t distance; /* Distance travelled since reset [m] */
+    uint16_t distance_error; /* Distance travelled error [m] */
+    uint16_t heading_error; /* Heading error [deg]; raw, value = raw / 100 */
+    uint8_t num_svs; /* Satellites in the fix */
+    uint8_t hdop; /* Horizontal dilution of precision; raw, value = raw / 5 */
+    uint8_t additional_mode; /* Additional mode information (bitfield) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_geodetic_nav;
+
+/* 1 PPS time: SIRF MID 52 (0x34), output. */
+typedef struct {
+    uint8_t hour; /* Hour */
+    uint8_t minute; /* Minute */
+    uint8_t second; /* Second */
+    uint8_t day; /* Day */
+    uint8_t month; /* Month */
+    uint16_t year; /* Year */
+    int16_t utc_offset_int; /* GPS minus UTC time (whole seconds) [s] */
+    uint32_t utc_offset_frac; /* GPS minus UTC time (fraction) [ns] */
+    uint8_t status; /* Status (bitfield) */
+    bool time_valid; /* Time valid (status bit 0) */
+    bool utc_time; /* UTC rather than GPS time (status bit 1) */
+    bool offset_valid; /* UTC offset valid (status bit 2) */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_pps_time;
+
+/* One entry of rate and checksum of gga, gll, gsa, gsv, rmc, vtg, mss, epe, zda and one unused slot (sentences). */
+typedef struct {
+    uint8_t rate; /* Send rate in seconds (0 never) [s] */
+    uint8_t checksum; /* Checksum (1 on) */
+} nmea_ubx_sirf_switch_to_nmea_sentence;
+
+/* Switch to NMEA protocol: SIRF MID 129 (0x81), input. */
+typedef struct {
+    uint8_t mode; /* Mode */
+    uint16_t sentences_count; /* the entries of sentences */
+    uint16_t baud; /* Port speed [bit/s] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sirf_switch_to_nmea_sentence sentences[NMEA_UBX_SIRF_SWITCH_TO_NMEA_SENTENCES_MAX]; /* Rate and checksum of GGA, GLL, GSA, GSV, RMC, VTG, MSS, EPE, ZDA and one unused slot */
+} nmea_ubx_sirf_switch_to_nmea;
+
+/* Poll software version: SIRF MID 132 (0x84), input. */
+typedef struct {
+    uint8_t control; /* Control (0) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_poll_sw_version;
+
+/* Set protocol: SIRF MID 135 (0x87), input. */
+typedef struct {
+    uint8_t protocol; /* Protocol */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_set_protocol;
+
+/* Development data: SIRF MID 255 (0xFF), output. */
+typedef struct {
+    nmea_ubx_bytes text; /* Text (the bytes left, ISO 8859-1) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sirf_dev_data;
+
+/* Query software version: SKYTRAQ 0x02 (2), input. */
+typedef struct {
+    uint8_t software_type; /* Software type */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_skytraq_query_sw_version;
+
+/* Configure message type: SKYTRAQ 0x09 (9), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t attributes; /* Where the setting is kept */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_skytraq_config_message_type;
+
+/* Software version: SKYTRAQ 0x80 (128), output. */
+typedef struct {
+    uint8_t software_type; /* Software type */
+    uint16_t kernel_x; /* Kernel version X */
+    uint8_t kernel_y; /* Kernel version Y */
+    uint8_t kernel_z; /* Kernel version Z */
+    uint16_t odm_x; /* ODM version X */
+    uint8_t odm_y; /* ODM version Y */
+    uint8_t odm_z; /* ODM version Z */
+    uint16_t revision_year; /* Revision year (YY) */
+    uint8_t revision_month; /* Revision month */
+    uint8_t revision_day; /* Revision day */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_skytraq_sw_version;
+
+/* Acknowledge: SKYTRAQ 0x83 (131), output. */
+typedef struct {
+    uint8_t ack_id; /* Id of the acknowledged message */
+    bool has_ack_sub_id; /* whether the payload has ack_sub_id */
+    uint8_t ack_sub_id; /* Sub-id of the acknowledged message */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_skytraq_msg_ack;
+
+/* Not acknowledge: SKYTRAQ 0x84 (132), output. */
+typedef struct {
+    uint8_t nack_id; /* Id of the refused message */
+    bool has_nack_sub_id; /* whether the payload has nack_sub_id */
+    uint8_t nack_sub_id; /* Sub-id of the refused message */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_skytraq_msg_nack;
+
+/* Navigation data: SKYTRAQ 0xA8 (168), output. */
+typedef struct {
+    uint8_t fix_mode; /* Fix mode */
+    uint8_t num_sv; /* Satellites used in the fix */
+    uint16_t week; /* GPS week number */
+    uint32_t tow; /* GPS time of week [s]; raw, value = raw / 100 */
+    int32_t lat; /* Latitude [deg]; raw, value = raw / 10000000 */
+    int32_t lon; /* Longitude [deg]; raw, value = raw / 10000000 */
+    int32_t ellipsoid_alt; /* Height above the ellipsoid [m]; raw, value = raw / 100 */
+    int32_t msl_alt; /* Height above mean sea level [m]; raw, value = raw / 100 */
+    uint16_t gdop; /* Geometric dilution of precision; raw, value = raw / 100 */
+    uint16_t pdop; /* Position dilution of precision; raw, value = raw / 100 */
+    uint16_t hdop; /* Horizontal dilution of precision; raw, value = raw / 100 */
+    uint16_t vdop; /* Vertical dilution of precision; raw, value = raw / 100 */
+    uint16_t tdop; /* Time dilution of precision; raw, value = raw / 100 */
+    int32_t ecef_x; /* ECEF X [m]; raw, value = raw / 100 */
+    int32_t ecef_y; /* ECEF Y [m]; raw, value = raw / 100 */
+    int32_t ecef_z; /* ECEF Z [m]; raw, value = raw / 100 */
+    int32_t ecef_vx; /* ECEF X velocity [m/s]; raw, value = raw / 100 */
+    int32_t ecef_vy; /* ECEF Y velocity [m/s]; raw, value = raw / 100 */
+    int32_t ecef_vz; /* ECEF Z velocity [m/s]; raw, value = raw / 100 */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_skytraq_nav_data;
+
+/* Measurement time: SKYTRAQ 0xDC (220), output. */
+typedef struct {
+    uint8_t iod; /* Issue of data */
+    uint16_t week; /* GPS week number */
+    uint32_t tow; /* Receiver time of week [ms] */
+    uint16_t period; /* Measurement period [ms] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_skytraq_meas_time;
+
+/* One entry of measurements (meas). */
+typedef struct {
+    uint8_t svid; /* Satellite PRN */
+    uint8_t cn0; /* Carrier to noise density ratio [dBHz] */
+    double pseudorange; /* Pseudorange [m] (its bits as sent) */
+    double carrier_phase; /* Accumulated carrier phase [cycles] (its bits as sent) */
+    float doppler; /* Doppler frequency [Hz] (its bits as sent) */
+    uint8_t status; /* Measurement indicator (bitfield) */
+    bool pr_valid; /* Pseudorange available (status bit 0) */
+    bool doppler_valid; /* Doppler available (status bit 1) */
+    bool phase_valid; /* Carrier phase available (status bit 2) */
+    bool cycle_slip; /* Cycle slip possible (status bit 3) */
+    bool coherent_integration; /* Coherent integration time over 10 ms (status bit 4) */
+} nmea_ubx_skytraq_raw_meas_mea;
+
+/* Raw channel measurements: SKYTRAQ 0xDD (221), output. */
+typedef struct {
+    uint8_t iod; /* Issue of data */
+    uint8_t num_meas; /* Number of measurements */
+    uint16_t meas_count; /* the entries of meas */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_skytraq_raw_meas_mea meas[NMEA_UBX_SKYTRAQ_RAW_MEAS_MEAS_MAX]; /* Measurements */
+} nmea_ubx_skytraq_raw_meas;
+
+/* One entry of satellites (svs). */
+typedef struct {
+    uint8_t channel; /* Channel */
+    uint8_t svid; /* Satellite PRN */
+    uint8_t sv_status; /* Satellite status (bitfield) */
+    bool almanac; /* Almanac received (sv_status bit 0) */
+    bool ephemeris; /* Ephemeris received (sv_status bit 1) */
+    bool healthy; /* Healthy (sv_status bit 2) */
+    uint8_t ura; /* User range accuracy index */
+    uint8_t cn0; /* Carrier to noise density ratio [dBHz] */
+    int16_t elevation; /* Elevation [deg] */
+    int16_t azimuth; /* Azimuth [deg] */
+    uint8_t channel_status; /* Channel status (bitfield) */
+    bool pull_in; /* Pull-in stage done (channel_status bit 0) */
+    bool bit_sync; /* Bit synchronization done (channel_status bit 1) */
+    bool frame_sync; /* Frame synchronization done (channel_status bit 2) */
+    bool ephemeris_ok; /* Ephemeris received (channel_status bit 3) */
+    bool normal_fix; /* Used in a normal fix (channel_status bit 4) */
+    bool differential_fix; /* Used in a differential fix (channel_status bit 5) */
+} nmea_ubx_skytraq_sv_ch_status_sv;
+
+/* Satellite and channel status: SKYTRAQ 0xDE (222), output. */
+typedef struct {
+    uint8_t iod; /* Issue of data */
+    uint8_t num_sv; /* Number of satellites */
+    uint16_t svs_count; /* the entries of svs */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_skytraq_sv_ch_status_sv svs[NMEA_UBX_SKYTRAQ_SV_CH_STATUS_SVS_MAX]; /* Satellites */
+} nmea_ubx_skytraq_sv_ch_status;
+
+/* Receiver navigation status: SKYTRAQ 0xDF (223), output. */
+typedef struct {
+    uint8_t iod; /* Issue of data */
+    uint8_t nav_state; /* Navigation state */
+    uint16_t week; /* GPS week number */
+    double tow; /* Receiver time of week [s] (its bits as sent) */
+    double ecef_x; /* ECEF X [m] (its bits as sent) */
+    double ecef_y; /* ECEF Y [m] (its bits as sent) */
+    double ecef_z; /* ECEF Z [m] (its bits as sent) */
+    float ecef_vx; /* ECEF X velocity [m/s] (its bits as sent) */
+    float ecef_vy; /* ECEF Y velocity [m/s] (its bits as sent) */
+    float ecef_vz; /* ECEF Z velocity [m/s] (its bits as sent) */
+    double clock_bias; /* Clock bias [m] (its bits as sent) */
+    float clock_drift; /* Clock drift [m/s] (its bits as sent) */
+    float gdop; /* Geometric dilution of precision (its bits as sent) */
+    float pdop; /* Position dilution of precision (its bits as sent) */
+    float hdop; /* Horizontal dilution of precision (its bits as sent) */
+    float vdop; /* Vertical dilution of precision (its bits as sent) */
+    float tdop; /* Time dilution of precision (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_skytraq_rcv_state;
+
+/* GPS subframe: SKYTRAQ 0xE0 (224), output. */
+typedef struct {
+    uint8_t svid; /* Satellite PRN */
+    uint8_t subframe; /* Subframe number */
+    uint8_t words[30]; /* Ten words of 24 data bits */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_skytraq_gps_subframe;
+
 /* The layout of a decoded message: one per direction of a class and id, or several told apart by
    length or version (spec order within a class and id). */
 typedef enum {
@@ -5520,10 +6276,53 @@ typedef enum {
     NMEA_UBX_MSG_NAV2_SIG_POLL, /* NAV2-SIG, poll */
     NMEA_UBX_MSG_NAV2_SIG, /* NAV2-SIG, output */
     NMEA_UBX_MSG_NAV2_EOE, /* NAV2-EOE, output */
-    NMEA_UBX_MSG_UNKNOWN /* a class and id the spec does not describe: `unknown` */
+    NMEA_UBX_MSG_CASIC_NAV_DOP, /* CASIC NAV-DOP, output */
+    NMEA_UBX_MSG_CASIC_NAV_PV, /* CASIC NAV-PV, output */
+    NMEA_UBX_MSG_CASIC_NAV_TIMEUTC, /* CASIC NAV-TIMEUTC, output */
+    NMEA_UBX_MSG_CASIC_NAV_GPSINFO, /* CASIC NAV-GPSINFO, output */
+    NMEA_UBX_MSG_CASIC_NAV_BDSINFO, /* CASIC NAV-BDSINFO, output */
+    NMEA_UBX_MSG_CASIC_NAV_GLNINFO, /* CASIC NAV-GLNINFO, output */
+    NMEA_UBX_MSG_CASIC_ACK_NAK, /* CASIC ACK-NAK, output */
+    NMEA_UBX_MSG_CASIC_ACK_ACK, /* CASIC ACK-ACK, output */
+    NMEA_UBX_MSG_CASIC_CFG_PRT_POLL, /* CASIC CFG-PRT, poll */
+    NMEA_UBX_MSG_CASIC_CFG_PRT, /* CASIC CFG-PRT, input, output */
+    NMEA_UBX_MSG_CASIC_CFG_MSG_POLL, /* CASIC CFG-MSG, poll */
+    NMEA_UBX_MSG_CASIC_CFG_MSG, /* CASIC CFG-MSG, input, output */
+    NMEA_UBX_MSG_CASIC_CFG_RATE_POLL, /* CASIC CFG-RATE, poll */
+    NMEA_UBX_MSG_CASIC_CFG_RATE, /* CASIC CFG-RATE, input, output */
+    NMEA_UBX_MSG_CASIC_MON_VER_POLL, /* CASIC MON-VER, poll */
+    NMEA_UBX_MSG_CASIC_MON_VER, /* CASIC MON-VER, output */
+    NMEA_UBX_MSG_SIRF_GNSS_NAV_SOLUTION, /* SIRF MID 67 SID 1, output */
+    NMEA_UBX_MSG_SIRF_MEASURED_NAV, /* SIRF MID 2, output */
+    NMEA_UBX_MSG_SIRF_TRACKER_DATA, /* SIRF MID 4, output */
+    NMEA_UBX_MSG_SIRF_SW_VERSION, /* SIRF MID 6, output */
+    NMEA_UBX_MSG_SIRF_CLOCK_STATUS, /* SIRF MID 7, output */
+    NMEA_UBX_MSG_SIRF_CPU_THROUGHPUT, /* SIRF MID 9, output */
+    NMEA_UBX_MSG_SIRF_COMMAND_ACK, /* SIRF MID 11, output */
+    NMEA_UBX_MSG_SIRF_COMMAND_NACK, /* SIRF MID 12, output */
+    NMEA_UBX_MSG_SIRF_VISIBLE_LIST, /* SIRF MID 13, output */
+    NMEA_UBX_MSG_SIRF_OK_TO_SEND, /* SIRF MID 18, output */
+    NMEA_UBX_MSG_SIRF_GEODETIC_NAV, /* SIRF MID 41, output */
+    NMEA_UBX_MSG_SIRF_PPS_TIME, /* SIRF MID 52, output */
+    NMEA_UBX_MSG_SIRF_SWITCH_TO_NMEA, /* SIRF MID 129, input */
+    NMEA_UBX_MSG_SIRF_POLL_SW_VERSION, /* SIRF MID 132, input */
+    NMEA_UBX_MSG_SIRF_SET_PROTOCOL, /* SIRF MID 135, input */
+    NMEA_UBX_MSG_SIRF_DEV_DATA, /* SIRF MID 255, output */
+    NMEA_UBX_MSG_SKYTRAQ_QUERY_SW_VERSION, /* SKYTRAQ 0x02, input */
+    NMEA_UBX_MSG_SKYTRAQ_CONFIG_MESSAGE_TYPE, /* SKYTRAQ 0x09, input */
+    NMEA_UBX_MSG_SKYTRAQ_SW_VERSION, /* SKYTRAQ 0x80, output */
+    NMEA_UBX_MSG_SKYTRAQ_MSG_ACK, /* SKYTRAQ 0x83, output */
+    NMEA_UBX_MSG_SKYTRAQ_MSG_NACK, /* SKYTRAQ 0x84, output */
+    NMEA_UBX_MSG_SKYTRAQ_NAV_DATA, /* SKYTRAQ 0xA8, output */
+    NMEA_UBX_MSG_SKYTRAQ_MEAS_TIME, /* SKYTRAQ 0xDC, output */
+    NMEA_UBX_MSG_SKYTRAQ_RAW_MEAS, /* SKYTRAQ 0xDD, output */
+    NMEA_UBX_MSG_SKYTRAQ_SV_CH_STATUS, /* SKYTRAQ 0xDE, output */
+    NMEA_UBX_MSG_SKYTRAQ_RCV_STATE, /* SKYTRAQ 0xDF, output */
+    NMEA_UBX_MSG_SKYTRAQ_GPS_SUBFRAME, /* SKYTRAQ 0xE0, output */
+    NMEA_UBX_MSG_UNKNOWN /* a class and id (a key) the spec does not describe: `unknown` */
 } nmea_ubx_layout;
 
-/* A decoded UBX message. */
+/* A decoded UBX message (or a message of another protocol the pair types). */
 typedef struct {
     nmea_ubx_layout layout;
     union {
@@ -5877,6 +6676,49 @@ typedef struct {
         nmea_ubx_nav2_sig_poll nav2_sig_poll;
         nmea_ubx_nav2_sig nav2_sig;
         nmea_ubx_nav2_eoe nav2_eoe;
+        nmea_ubx_casic_nav_dop casic_nav_dop;
+        nmea_ubx_casic_nav_pv casic_nav_pv;
+        nmea_ubx_casic_nav_timeutc casic_nav_timeutc;
+        nmea_ubx_casic_nav_gpsinfo casic_nav_gpsinfo;
+        nmea_ubx_casic_nav_bdsinfo casic_nav_bdsinfo;
+        nmea_ubx_casic_nav_glninfo casic_nav_glninfo;
+        nmea_ubx_casic_ack_nak casic_ack_nak;
+        nmea_ubx_casic_ack_ack casic_ack_ack;
+        nmea_ubx_casic_cfg_prt_poll casic_cfg_prt_poll;
+        nmea_ubx_casic_cfg_prt casic_cfg_prt;
+        nmea_ubx_casic_cfg_msg_poll casic_cfg_msg_poll;
+        nmea_ubx_casic_cfg_msg casic_cfg_msg;
+        nmea_ubx_casic_cfg_rate_poll casic_cfg_rate_poll;
+        nmea_ubx_casic_cfg_rate casic_cfg_rate;
+        nmea_ubx_casic_mon_ver_poll casic_mon_ver_poll;
+        nmea_ubx_casic_mon_ver casic_mon_ver;
+        nmea_ubx_sirf_gnss_nav_solution sirf_gnss_nav_solution;
+        nmea_ubx_sirf_measured_nav sirf_measured_nav;
+        nmea_ubx_sirf_tracker_data sirf_tracker_data;
+        nmea_ubx_sirf_sw_version sirf_sw_version;
+        nmea_ubx_sirf_clock_status sirf_clock_status;
+        nmea_ubx_sirf_cpu_throughput sirf_cpu_throughput;
+        nmea_ubx_sirf_command_ack sirf_command_ack;
+        nmea_ubx_sirf_command_nack sirf_command_nack;
+        nmea_ubx_sirf_visible_list sirf_visible_list;
+        nmea_ubx_sirf_ok_to_send sirf_ok_to_send;
+        nmea_ubx_sirf_geodetic_nav sirf_geodetic_nav;
+        nmea_ubx_sirf_pps_time sirf_pps_time;
+        nmea_ubx_sirf_switch_to_nmea sirf_switch_to_nmea;
+        nmea_ubx_sirf_poll_sw_version sirf_poll_sw_version;
+        nmea_ubx_sirf_set_protocol sirf_set_protocol;
+        nmea_ubx_sirf_dev_data sirf_dev_data;
+        nmea_ubx_skytraq_query_sw_version skytraq_query_sw_version;
+        nmea_ubx_skytraq_config_message_type skytraq_config_message_type;
+        nmea_ubx_skytraq_sw_version skytraq_sw_version;
+        nmea_ubx_skytraq_msg_ack skytraq_msg_ack;
+        nmea_ubx_skytraq_msg_nack skytraq_msg_nack;
+        nmea_ubx_skytraq_nav_data skytraq_nav_data;
+        nmea_ubx_skytraq_meas_time skytraq_meas_time;
+        nmea_ubx_skytraq_raw_meas skytraq_raw_meas;
+        nmea_ubx_skytraq_sv_ch_status skytraq_sv_ch_status;
+        nmea_ubx_skytraq_rcv_state skytraq_rcv_state;
+        nmea_ubx_skytraq_gps_subframe skytraq_gps_subframe;
         nmea_ubx_unknown unknown;
     } as;
 } nmea_ubx_message;
@@ -5891,12 +6733,20 @@ bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, 
 /* The message of one whole frame (sync to checksum), its sync, length and checksum checked. */
 bool nmea_ubx_decode_frame(const uint8_t *frame, size_t len, nmea_ubx_message *out, nmea_ubx_error *err);
 
-/* Writes the whole frame of a message (sync, class, id, length, payload, Fletcher-8) into `buf`:
+/* The message of one whole frame of `protocol` (sync to checksum and end bytes), its sync, length,
+   checksum and end bytes checked: the layout of its key (UBX, CASIC: the header's class and id;
+   SkyTraq, SiRF: the payload's id and sub-id, else its id, before the fields), chosen as
+   nmea_ubx_decode chooses; a key the spec does not describe is kept as `unknown`. */
+bool nmea_ubx_decode_frame_of(nmea_ubx_protocol protocol, const uint8_t *frame, size_t len, nmea_ubx_message *out,
+                              nmea_ubx_error *err);
+
+/* Writes the whole frame of a message (sync, class, id, length, payload, Fletcher-8; another
+   protocol's message in its framing) into `buf`:
    its length, 0 with `err` set (a buffer too small, a value its field cannot hold). A decoded
    message encodes to the frame it came from, byte for byte. */
 size_t nmea_ubx_encode(const nmea_ubx_message *message, uint8_t *buf, size_t cap, nmea_ubx_error *err);
 
-/* Its decoded JSON (that of generated/vectors/ubx.jsonl) into `buf` (NUL-terminated when `cap` >
+/* Its decoded JSON (that of generated/vectors/ubx.jsonl, binary.jsonl) into `buf` (NUL-terminated when `cap` >
    0): the length it needs, without the NUL. */
 size_t nmea_ubx_json(const nmea_ubx_message *message, char *buf, size_t cap);
 
@@ -5904,5 +6754,9 @@ size_t nmea_ubx_json(const nmea_ubx_message *message, char *buf, size_t cap);
    message ("NAV-PVT"). */
 const char *nmea_ubx_layout_id(nmea_ubx_layout layout);
 const char *nmea_ubx_address(nmea_ubx_layout layout);
+
+/* A protocol as the tools' JSON names it ("ubx", "skytraq"), and a message's. */
+const char *nmea_ubx_protocol_name(nmea_ubx_protocol protocol);
+nmea_ubx_protocol nmea_ubx_message_protocol(const nmea_ubx_message *message);
 
 #endif

@@ -1,12 +1,14 @@
 /* The UBX messages (nmea_ubx.c) against generated/vectors/ubx.jsonl, which the Python codec decodes
    and encodes too: every frame decodes to the same JSON as Python's or fails with the same error
-   kind, and encodes back to the same bytes; then every UBX frame nmea.c's framer finds in the
-   logs given (gpsd's, tests/data/ubx and tests/data/rtcm3) decodes and encodes back byte for
-   byte, and a frame cut short, a buffer too small and a count over a group's array are refused.
-   With --json, the JSON of every frame of the files given, a frame in hex a line, a line each
-   (tests/ubx/test_c_ubx.py compares it with Python's; built with -DUBX_TEST_JSON_ONLY, it needs
-   no nmea.c).
-   Usage: test_ubx path/to/ubx.jsonl log...
+   kind, and encodes back to the same bytes; the same for the other protocols' messages (SkyTraq,
+   SiRF, CASIC) against the further .jsonl files given (generated/vectors/binary.jsonl, whose
+   records name their protocol); then every UBX, SkyTraq, SiRF and CASIC frame nmea.c's framer
+   finds in the logs given (gpsd's, tests/data/{ubx,rtcm3,skytraq,sirf,casic}) decodes and encodes
+   back byte for byte, and a frame cut short, a buffer too small and a count over a group's array
+   are refused. With --json, the JSON of every frame of the files given, a frame in hex a line
+   (after its protocol's name and a space when not UBX), a line each (tests/ubx/test_c_ubx.py
+   compares it with Python's; built with -DUBX_TEST_JSON_ONLY, it needs no nmea.c).
+   Usage: test_ubx path/to/ubx.jsonl [path/to/binary.jsonl] log...
           test_ubx path/to/ubx.jsonl --json frames.hex... */
 
 #include <stdio.h>
@@ -57,7 +59,17 @@ static size_t unhex(const char *text, uint8_t *out, size_t cap)
     return n;
 }
 
-static int failed, cut_payloads, over_maximum;
+static int failed, cut_payloads, over_maximum, other_frames;
+
+/* A protocol by its name in the tools' JSON (UBX for none). */
+static nmea_ubx_protocol protocol_named(const char *name)
+{
+    int p;
+    for (p = 0; nmea_ubx_protocol_name((nmea_ubx_protocol)p); p++)
+        if (strcmp(nmea_ubx_protocol_name((nmea_ubx_protocol)p), name) == 0)
+            return (nmea_ubx_protocol)p;
+    return NMEA_UBX_PROTOCOL_UBX;
+}
 
 /* A build with NMEA_UBX_MAX_ENTRIES below what the logs' groups have (make test-c builds one with 8)
    refuses those payloads as too_many_entries, naming the group. */
@@ -71,12 +83,13 @@ static bool over_the_maximum(const nmea_ubx_error *err)
 }
 
 /* Decodes a whole frame and encodes it back: false (after saying why) when the bytes differ. */
-static bool round_trip(const uint8_t *frame, size_t len, nmea_ubx_message *message, const char *where)
+static bool round_trip(nmea_ubx_protocol protocol, const uint8_t *frame, size_t len, nmea_ubx_message *message,
+                       const char *where)
 {
     static uint8_t again[70000];
     nmea_ubx_error err;
     size_t n;
-    if (!nmea_ubx_decode_frame(frame, len, message, &err)) {
+    if (!nmea_ubx_decode_frame_of(protocol, frame, len, message, &err)) {
         if (over_the_maximum(&err))
             return false;
         printf("FAIL %s: %s %s: %s\n", where, nmea_ubx_error_kind_name(err.kind), err.message ? err.message : "", err.text);
@@ -101,7 +114,7 @@ static bool round_trip(const uint8_t *frame, size_t len, nmea_ubx_message *messa
 
 /* A frame and its JSON, or the kind of error that refuses it, as a line; a frame that decodes
    must also encode back. */
-static void print_json(const uint8_t *frame, size_t len, nmea_ubx_message *message)
+static void print_json(nmea_ubx_protocol protocol, const uint8_t *frame, size_t len, nmea_ubx_message *message)
 {
     static char text[1 << 17];
     nmea_ubx_error err;
@@ -109,13 +122,13 @@ static void print_json(const uint8_t *frame, size_t len, nmea_ubx_message *messa
     printf("{\"frame\":\"");
     for (i = 0; i < len; i++)
         printf("%02x", frame[i]);
-    if (!nmea_ubx_decode_frame(frame, len, message, &err)) {
+    if (!nmea_ubx_decode_frame_of(protocol, frame, len, message, &err)) {
         printf("\",\"error\":\"%s\",\"field\":\"%s\"}\n", nmea_ubx_error_kind_name(err.kind), err.field ? err.field : "");
         return;
     }
     nmea_ubx_json(message, text, sizeof text);
     printf("\",\"decode\":%s}\n", text);
-    round_trip(frame, len, message, "frame");
+    round_trip(protocol, frame, len, message, "frame");
 }
 
 /* Every frame of a file of frames in hex, a line each, as print_json prints them. */
@@ -132,8 +145,16 @@ static int hex_frames(const char *path)
         return 0;
     }
     while (fgets(line, sizeof line, file)) {
+        char *hex = line, *space;
+        nmea_ubx_protocol protocol = NMEA_UBX_PROTOCOL_UBX;
         line[strcspn(line, "\n")] = '\0';
-        print_json(frame, unhex(line, frame, sizeof frame), &message);
+        if ((space = strchr(line, ' ')) != NULL && space[1] != '\0' && (line[0] < '0' || line[0] > '9') &&
+            strspn(line, "abcdefghijklmnopqrstuvwxyz0123456789") == (size_t)(space - line) && space - line > 2) {
+            *space = '\0'; /* a protocol's name, then the frame */
+            protocol = protocol_named(line);
+            hex = space + 1;
+        }
+        print_json(protocol, frame, unhex(hex, frame, sizeof frame), &message);
         frames++;
     }
     fclose(file);
@@ -192,11 +213,19 @@ static int log_frames(const char *path)
         bool more;
         got = fread(chunk, 1, sizeof chunk, file);
         while ((more = got ? nmea_framer_push(&framer, &p, &got, &item) : nmea_framer_end(&framer, &item))) {
+            if ((item.protocol == NMEA_SKYTRAQ || item.protocol == NMEA_SIRF || item.protocol == NMEA_CASIC) &&
+                item.error == NMEA_FRAME_OK) {
+                nmea_ubx_protocol of = item.protocol == NMEA_SKYTRAQ ? NMEA_UBX_PROTOCOL_SKYTRAQ
+                                       : item.protocol == NMEA_SIRF  ? NMEA_UBX_PROTOCOL_SIRF
+                                                                     : NMEA_UBX_PROTOCOL_CASIC;
+                other_frames++;
+                round_trip(of, (const uint8_t *)item.ptr, item.len, &message, path);
+            }
             if (item.protocol == NMEA_UBX && item.error == NMEA_FRAME_OK) {
                 frames++;
                 const uint8_t *frame = (const uint8_t *)item.ptr;
                 unsigned key = (unsigned)frame[2] << 8 | frame[3];
-                round_trip(frame, item.len, &message, path);
+                round_trip(NMEA_UBX_PROTOCOL_UBX, frame, item.len, &message, path);
                 if (!(seen[key / 8] >> key % 8 & 1)) /* the first of each class and id of the log */
                     cuts(frame, item.len);
                 seen[key / 8] |= (uint8_t)(1u << key % 8);
@@ -289,36 +318,34 @@ static void refusals(void)
     }
 }
 
-int main(int argc, char **argv)
+/* The records of a vectors file (ubx.jsonl, binary.jsonl): each frame decoded to the JSON the
+   record gives, or refused with its error's kind, and encoded back. */
+static void vectors(FILE *file, int *decoded, int *refused)
 {
-    static char record[1 << 17], json[1 << 17], frame_text[1 << 16], error[32];
+    static char record[1 << 17], json[1 << 17], frame_text[1 << 16], error[32], protocol[16];
     static uint8_t frame[1 << 15];
     static nmea_ubx_message message;
-    int decoded = 0, refused = 0, frames = 0, i;
-    bool as_json = argc > 2 && strcmp(argv[2], "--json") == 0;
-    FILE *file = argc > 1 ? fopen(argv[1], "r") : NULL;
-    if (!file) {
-        fprintf(stderr, "usage: test_ubx ubx.jsonl [--json] log...\n");
-        return 2;
-    }
-    while (!as_json && fgets(record, sizeof record, file)) {
+    while (fgets(record, sizeof record, file)) {
         nmea_ubx_error err;
+        nmea_ubx_protocol of;
         const char *decode;
         size_t len;
         bool ok;
         record[strcspn(record, "\n")] = '\0';
         member(record, "frame", frame_text, sizeof frame_text);
         member(record, "error", error, sizeof error);
+        member(record, "protocol", protocol, sizeof protocol);
+        of = protocol_named(protocol);
         if (strstr(record, "\"decode\":")) /* its decoded fields may have an `error` */
             error[0] = '\0';
         len = unhex(frame_text, frame, sizeof frame);
-        ok = nmea_ubx_decode_frame(frame, len, &message, &err);
+        ok = nmea_ubx_decode_frame_of(of, frame, len, &message, &err);
         if (error[0]) {
             if (ok || strcmp(nmea_ubx_error_kind_name(err.kind), error) != 0) {
                 printf("FAIL error %s: %s\n", ok ? "none" : nmea_ubx_error_kind_name(err.kind), record);
                 failed++;
             }
-            refused++;
+            (*refused)++;
             continue;
         }
         if (!ok && over_the_maximum(&err))
@@ -334,23 +361,90 @@ int main(int argc, char **argv)
             printf("FAIL json\n  got  %s\n  want %.*s\n", json, (int)strlen(decode) - 1, decode);
             failed++;
         }
-        round_trip(frame, len, &message, "vector");
-        decoded++;
+        round_trip(of, frame, len, &message, "vector");
+        (*decoded)++;
     }
+}
+
+/* The other protocols' messages by hand: a SkyTraq 0xA8 cut to 20 bytes after its id (naming the
+   protocol, message and field), an id no layout describes kept with its payload, a SiRF frame whose
+   checksum is off by one. */
+static void other_protocols(void)
+{
+    static const uint8_t unknown[] = {0xA0, 0xA1, 0x00, 0x02, 0x7E, 0x01, 0x7F, 0x0D, 0x0A};
+    static const uint8_t bad[] = {0xA0, 0xA2, 0x00, 0x02, 0x12, 0x00, 0x00, 0x13, 0xB0, 0xB3};
+    static nmea_ubx_message message;
+    uint8_t frame[64];
+    char json[128];
+    nmea_ubx_error err;
+    memset(frame, 0, sizeof frame);
+    memcpy(frame, "\xA0\xA1\x00\x15\xA8", 5); /* 21 bytes: the id and 20 of zeros, their XOR 0xA8 */
+    memcpy(frame + 25, "\xA8\x0D\x0A", 3);
+    if (nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SKYTRAQ, frame, 28, &message, &err) ||
+        err.kind != NMEA_UBX_SHORT_PAYLOAD || err.protocol != NMEA_UBX_PROTOCOL_SKYTRAQ || strcmp(err.field, "msl_alt") != 0 ||
+        strcmp(err.message, "0xA8") != 0 || strcmp(err.text, "msl_alt needs bytes 20-23, the payload has 20") != 0) {
+        printf("FAIL a SkyTraq 0xA8 of 20 bytes: %s\n", err.text);
+        failed++;
+    }
+    if (!nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SKYTRAQ, unknown, sizeof unknown, &message, &err) ||
+        message.layout != NMEA_UBX_MSG_UNKNOWN || nmea_ubx_json(&message, json, sizeof json) == 0 ||
+        strcmp(json, "{\"message\":null,\"id\":126,\"payload\":\"01\"}") != 0 ||
+        nmea_ubx_encode(&message, frame, sizeof frame, &err) != sizeof unknown || memcmp(frame, unknown, sizeof unknown)) {
+        printf("FAIL a SkyTraq id no layout describes\n");
+        failed++;
+    }
+    if (nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SIRF, bad, sizeof bad, &message, &err) ||
+        err.kind != NMEA_UBX_BAD_CHECKSUM) {
+        printf("FAIL a SiRF frame whose checksum is off by one\n");
+        failed++;
+    }
+}
+
+int main(int argc, char **argv)
+{
+    int decoded = 0, refused = 0, frames = 0, logs = 0, i;
+    bool as_json = argc > 2 && strcmp(argv[2], "--json") == 0;
+    FILE *file = argc > 1 ? fopen(argv[1], "r") : NULL;
+    if (!file) {
+        fprintf(stderr, "usage: test_ubx ubx.jsonl [--json] log...\n");
+        return 2;
+    }
+    if (!as_json)
+        vectors(file, &decoded, &refused);
     fclose(file);
+    for (i = 2; !as_json && i < argc; i++) { /* the other protocols' vectors */
+        size_t n = strlen(argv[i]);
+        if (n < 6 || strcmp(argv[i] + n - 6, ".jsonl") != 0)
+            continue;
+        if (!(file = fopen(argv[i], "r"))) {
+            printf("FAIL cannot open %s\n", argv[i]);
+            failed++;
+            continue;
+        }
+        vectors(file, &decoded, &refused);
+        fclose(file);
+    }
     if (as_json) {
         for (i = 3; i < argc; i++)
             frames += hex_frames(argv[i]);
         return failed != 0;
     }
 #ifndef UBX_TEST_JSON_ONLY
-    for (i = 2; i < argc; i++)
+    for (i = 2; i < argc; i++) {
+        size_t n = strlen(argv[i]);
+        if (n >= 6 && strcmp(argv[i] + n - 6, ".jsonl") == 0)
+            continue;
         frames += log_frames(argv[i]);
+        logs++;
+    }
 #endif
     refusals();
     by_hand();
-    printf("%d decoded, %d refused, %d frames of %d logs round-tripped, %d cut payloads, %d over NMEA_UBX_MAX_ENTRIES %d, "
-           "%d failed\n", decoded, refused, frames, argc - 2, cut_payloads, over_maximum, NMEA_UBX_MAX_ENTRIES, failed);
+    other_protocols();
+    printf("%d decoded, %d refused, %d frames (and %d SkyTraq, SiRF, CASIC) of %d logs round-tripped, %d cut payloads, "
+           "%d over NMEA_UBX_MAX_ENTRIES %d, %d failed\n",
+           decoded, refused, frames, other_frames, logs, cut_payloads, over_maximum, NMEA_UBX_MAX_ENTRIES, failed);
     return failed || decoded < 20 || refused < 2 || frames < 1000 || cut_payloads < 1000 ||
+           (logs > 12 && other_frames < 1000) ||
            (NMEA_UBX_MAX_ENTRIES < 255) != (over_maximum > 0);
 }

@@ -305,29 +305,47 @@ static bool decode_flags(tool *t, int argc, char **argv)
 #ifdef NMEA_WITH_UBX
 /* stream --ubx (docs/json.md, "UBX messages in stream"): the message a UBX frame carries, decoded
    once; ubx_member appends `,"ubx":` and its JSON, or `,"ubx_error":` and the error its payload
-   gives. */
+   gives; a SkyTraq, SiRF or CASIC frame's alike, under its protocol's name. */
 static nmea_ubx_message ubx_message; /* 10 kB: not on the stack */
 static nmea_ubx_error ubx_error;
 static bool ubx_decoded;
 static size_t ubx_json_len; /* of the decoded message's JSON */
+static const char *ubx_protocol; /* its name: ubx, skytraq */
+
+/* The UBX pair's protocol of a framing's name (`name`: ubx, skytraq): false for one it does not type. */
+static bool ubx_typed(const char *name, nmea_ubx_protocol *protocol)
+{
+    int p;
+    for (p = 0; nmea_ubx_protocol_name((nmea_ubx_protocol)p); p++)
+        if (strcmp(nmea_ubx_protocol_name((nmea_ubx_protocol)p), name) == 0) {
+            *protocol = (nmea_ubx_protocol)p;
+            return true;
+        }
+    return false;
+}
 
 /* Decodes the frame; the bytes its member takes at most. */
-static size_t ubx_decode(const unsigned char *frame, size_t len)
+static size_t ubx_decode(nmea_ubx_protocol protocol, const unsigned char *frame, size_t len)
 {
-    ubx_decoded = nmea_ubx_decode_frame(frame, len, &ubx_message, &ubx_error);
+    ubx_protocol = nmea_ubx_protocol_name(protocol);
+    ubx_decoded = nmea_ubx_decode_frame_of(protocol, frame, len, &ubx_message, &ubx_error);
     ubx_json_len = ubx_decoded ? nmea_ubx_json(&ubx_message, NULL, 0) : 0;
-    return ubx_decoded ? 8 + ubx_json_len : 200 + sizeof ubx_error.text;
+    return ubx_decoded ? 16 + ubx_json_len : 220 + sizeof ubx_error.text;
 }
 
 static size_t ubx_member(char *out)
 {
-    size_t m;
+    size_t m, i;
+    char upper[16];
     if (ubx_decoded) {
-        m = (size_t)sprintf(out, ",\"ubx\":");
+        m = (size_t)sprintf(out, ",\"%s\":", ubx_protocol);
         return m + nmea_ubx_json(&ubx_message, out + m, ubx_json_len + 1);
     }
-    m = (size_t)sprintf(out, ",\"ubx_error\":{\"kind\":\"%s\",\"address\":\"UBX%s%s\",\"field\":null,\"name\":",
-                        nmea_ubx_error_kind_name(ubx_error.kind), ubx_error.message ? " " : "",
+    for (i = 0; ubx_protocol[i] && i + 1 < sizeof upper; i++) /* the errors' address: SKYTRAQ 0xA8 */
+        upper[i] = (char)(ubx_protocol[i] >= 'a' && ubx_protocol[i] <= 'z' ? ubx_protocol[i] - 'a' + 'A' : ubx_protocol[i]);
+    upper[i] = '\0';
+    m = (size_t)sprintf(out, ",\"%s_error\":{\"kind\":\"%s\",\"address\":\"%s%s%s\",\"field\":null,\"name\":",
+                        ubx_protocol, nmea_ubx_error_kind_name(ubx_error.kind), upper, ubx_error.message ? " " : "",
                         ubx_error.message ? ubx_error.message : "");
     m += (size_t)(ubx_error.field ? sprintf(out + m, "\"%s\"", ubx_error.field) : sprintf(out + m, "null"));
     return m + (size_t)sprintf(out + m, ",\"message\":\"%s\"}", ubx_error.text);
@@ -377,7 +395,8 @@ static void emit_frame(tool *t, const nmea_framed *item)
     unsigned bit;
     char *out;
 #ifdef NMEA_WITH_UBX
-    bool with_ubx = t->ubx && item->error == NMEA_FRAME_OK && item->protocol == NMEA_UBX;
+    nmea_ubx_protocol typed;
+    bool with_ubx = t->ubx && item->error == NMEA_FRAME_OK && ubx_typed(protocol, &typed);
 #endif
 #ifdef NMEA_WITH_RTCM3
     bool with_rtcm3 = t->rtcm3 && item->error == NMEA_FRAME_OK && item->protocol == NMEA_RTCM3;
@@ -386,7 +405,7 @@ static void emit_frame(tool *t, const nmea_framed *item)
 #endif
 #ifdef NMEA_WITH_UBX
     if (with_ubx)
-        extra = ubx_decode(b, item->len); /* its JSON may be long: room for it first */
+        extra = ubx_decode(typed, b, item->len); /* its JSON may be long: room for it first */
 #endif
     out = room(t, 160 + 2 * NMEA_MAX_FRAME + extra);
     if (item->error == NMEA_FRAME_OK) {

@@ -63,6 +63,41 @@ static uint64_t ubx_le(const uint8_t *p, size_t n)
     }
 }
 
+/* The `n` bytes (at most 8) at `p`, big endian (SkyTraq, SiRF). */
+static uint64_t ubx_be(const uint8_t *p, size_t n)
+{
+    uint64_t raw = 0;
+    size_t i;
+    for (i = 0; i < n; i++)
+        raw = raw << 8 | p[i];
+    return raw;
+}
+
+/* The checksum of `len` bytes as the frame sends it, read as a big-endian number. */
+static unsigned long ubx_check(nmea_ubx_check kind, const uint8_t *p, size_t len)
+{
+    unsigned long sum = 0;
+    unsigned sums;
+    size_t i;
+    switch (kind) {
+    case NMEA_UBX_CHECK_FLETCHER8:
+        sums = ubx_checksum(p, len);
+        return (unsigned long)(sums & 0xFF) << 8 | sums >> 8;
+    case NMEA_UBX_CHECK_XOR8:
+        for (i = 0; i < len; i++)
+            sum ^= p[i];
+        return sum;
+    case NMEA_UBX_CHECK_SUM15:
+        for (i = 0; i < len; i++)
+            sum += p[i];
+        return sum & 0x7FFF;
+    default: /* SUM32: little-endian words, a short last one padded with zeros; sent little endian */
+        for (i = 0; i < len; i++)
+            sum = (sum + ((unsigned long)p[i] << 8 * (i & 3))) & 0xFFFFFFFFul;
+        return (sum & 0xFF) << 24 | (sum >> 8 & 0xFF) << 16 | (sum >> 16 & 0xFF) << 8 | sum >> 24;
+    }
+}
+
 /* A member of `member` bytes at `m` as an integer (signed: sign-extended). */
 static uint64_t ubx_get(const uint8_t *m, unsigned member, bool is_signed)
 {
@@ -118,6 +153,7 @@ typedef struct {
     size_t len, pos;
     const char *address;
     nmea_ubx_error *err;
+    bool big; /* its protocol's fields are big endian */
 } ubx_reader;
 
 static bool ubx_short(ubx_reader *r, const char *field, size_t need)
@@ -174,7 +210,7 @@ static bool ubx_read_field(ubx_reader *r, const nmea_ubx_item *it, uint8_t *m, u
     if (it->kind == NMEA_UBX_ITEM_ARRAY) {
         memcpy(at, r->p + r->pos, it->size);
     } else {
-        raw = ubx_le(r->p + r->pos, it->size);
+        raw = r->big ? ubx_be(r->p + r->pos, it->size) : ubx_le(r->p + r->pos, it->size);
         if (it->kind == NMEA_UBX_ITEM_FLOAT && it->size == 4) {
             uint32_t bits = (uint32_t)raw;
             memcpy(at, &bits, 4); /* a float's bits, as sent (a NaN's too) */
@@ -247,12 +283,13 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
     return true;
 }
 
-/* A payload being written after the frame's 6 header bytes. */
+/* A payload being written after the frame's header bytes. */
 typedef struct {
     uint8_t *buf;
     size_t cap, len;
     const char *address;
     nmea_ubx_error *err;
+    bool big; /* its protocol's fields are big endian */
 } ubx_writer;
 
 static bool ubx_put(ubx_writer *w, const uint8_t *bytes, size_t n, const char *field)
@@ -266,12 +303,13 @@ static bool ubx_put(ubx_writer *w, const uint8_t *bytes, size_t n, const char *f
     return true;
 }
 
-static bool ubx_put_le(ubx_writer *w, uint64_t value, size_t n, const char *field)
+/* A number of `n` bytes in the writer's byte order. */
+static bool ubx_put_number(ubx_writer *w, uint64_t value, size_t n, const char *field)
 {
     uint8_t bytes[8];
     size_t i;
     for (i = 0; i < n; i++)
-        bytes[i] = (uint8_t)(value >> 8 * i);
+        bytes[w->big ? n - 1 - i : i] = (uint8_t)(value >> 8 * i);
     return ubx_put(w, bytes, n, field);
 }
 
@@ -319,7 +357,7 @@ static bool ubx_write_field(ubx_writer *w, const nmea_ubx_item *items, size_t n,
         } else {
             memcpy(&value, at, 8);
         }
-        return ubx_put_le(w, value, it->size, it->id);
+        return ubx_put_number(w, value, it->size, it->id);
     case NMEA_UBX_ITEM_WORD:
         /* The word with its parts' values in their bits; bits no part names stay as they are. */
         value = ubx_get(at, it->member, false);
@@ -333,12 +371,12 @@ static bool ubx_write_field(ubx_writer *w, const nmea_ubx_item *items, size_t n,
                 return ubx_bad_value(w, part->id, part->size);
             value = (value & ~(mask << part->low)) | (bits & mask) << part->low;
         }
-        return ubx_put_le(w, value, it->size, it->id);
+        return ubx_put_number(w, value, it->size, it->id);
     default:
         value = ubx_get(at, it->member, it->kind == NMEA_UBX_ITEM_SIGNED);
         if (!ubx_fits(value, 8u * it->size, it->kind == NMEA_UBX_ITEM_SIGNED))
             return ubx_bad_value(w, it->id, 8u * it->size);
-        return ubx_put_le(w, value, it->size, it->id);
+        return ubx_put_number(w, value, it->size, it->id);
     }
 }
 
@@ -630,8 +668,8 @@ static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, 
    past a group's count are not: its count says how many hold a value). Only the layout's bytes are
    written, not the whole message's union, whose largest member (NAV-SAT's 255 satellites) is
    kilobytes. */
-static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payload, size_t len, uint8_t *m,
-                            nmea_ubx_error *err)
+static bool ubx_read_layout(const nmea_ubx_layout_info *l, const nmea_ubx_framing *f, const uint8_t *payload,
+                            size_t len, uint8_t *m, nmea_ubx_error *err)
 {
     ubx_reader r;
     nmea_ubx_bytes trailing;
@@ -640,6 +678,8 @@ static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payloa
     r.pos = 0;
     r.address = l->address;
     r.err = err;
+    r.big = f->big;
+    err->protocol = l->protocol;
     memset(m, 0, l->trailing); /* the members come first, then trailing, then the groups' arrays */
     if (!ubx_read_items(&r, l->items, l->n_items, m))
         return false;
@@ -649,26 +689,35 @@ static bool ubx_read_layout(const nmea_ubx_layout_info *l, const uint8_t *payloa
     return true;
 }
 
-/* Writes the frame of class and id `l` (NULL: an unknown message's `unknown`) into `buf`: its
-   length, 0 with the error set. */
-static size_t ubx_write_frame(const nmea_ubx_layout_info *l, const uint8_t *m, const nmea_ubx_unknown *unknown,
-                              uint8_t *buf, size_t cap, nmea_ubx_error *err)
+/* Writes the frame of layout `l` of protocol `f` (NULL: an unknown message's `unknown`) into `buf`:
+   sync, header (the length, the key where the header holds it), the key where the payload starts
+   with it, the payload, checksum and end bytes. Its length, 0 with the error set. */
+static size_t ubx_write_frame(const nmea_ubx_framing *f, const nmea_ubx_layout_info *l, const uint8_t *m,
+                              const nmea_ubx_unknown *unknown, uint8_t *buf, size_t cap, nmea_ubx_error *err)
 {
     ubx_writer w;
-    size_t payload;
-    unsigned sum;
+    size_t payload, trailer = (size_t)f->check_size + f->end_len, i;
+    unsigned long sum;
+    uint8_t key[2];
+    size_t key_len = l ? (f->key_at ? 2 : l->key_len) : (f->key_at ? 2 : unknown->key_len);
+    key[0] = l ? l->msg_class : unknown->msg_class;
+    key[1] = l ? l->msg_id : unknown->msg_id;
     w.buf = buf;
     w.cap = cap;
     w.len = 0;
     w.address = l ? l->address : NULL;
     w.err = err;
-    if (cap < NMEA_UBX_OVERHEAD) {
-        snprintf(err->text, sizeof err->text, "a frame needs at least %d bytes, the buffer has %lu", NMEA_UBX_OVERHEAD,
-                 (unsigned long)cap);
+    w.big = f->big;
+    err->protocol = l ? l->protocol : unknown->protocol;
+    if (cap < f->header + trailer) {
+        snprintf(err->text, sizeof err->text, "a frame needs at least %u bytes, the buffer has %lu",
+                 (unsigned)(f->header + trailer), (unsigned long)cap);
         return (size_t)ubx_fail(err, NMEA_UBX_NO_ROOM, w.address, NULL);
     }
-    w.cap = cap - 2; /* room for the checksum */
-    w.len = 6;
+    w.cap = cap - trailer; /* room for the checksum and end bytes */
+    w.len = f->header;
+    if (!f->key_at && key_len && !ubx_put(&w, key, key_len, NULL))
+        return 0;
     if (l) {
         nmea_ubx_bytes trailing;
         memcpy(&trailing, m + l->trailing, sizeof trailing);
@@ -678,21 +727,26 @@ static size_t ubx_write_frame(const nmea_ubx_layout_info *l, const uint8_t *m, c
     } else if (unknown->payload.len && !ubx_put(&w, unknown->payload.ptr, unknown->payload.len, "payload")) {
         return 0;
     }
-    payload = w.len - 6;
-    if (payload > 0xFFFF) {
-        snprintf(err->text, sizeof err->text, "the payload is %lu bytes, a frame holds 65535", (unsigned long)payload);
+    payload = w.len - f->header;
+    if (payload > f->length_mask) {
+        snprintf(err->text, sizeof err->text, "the payload is %lu bytes, a frame holds %u", (unsigned long)payload,
+                 (unsigned)f->length_mask);
         return (size_t)ubx_fail(err, NMEA_UBX_BAD_VALUE, w.address, NULL);
     }
-    buf[0] = 0xB5;
-    buf[1] = 0x62;
-    buf[2] = l ? l->msg_class : unknown->msg_class;
-    buf[3] = l ? l->msg_id : unknown->msg_id;
-    buf[4] = (uint8_t)(payload & 0xFF);
-    buf[5] = (uint8_t)(payload >> 8);
-    sum = ubx_checksum(buf + 2, w.len - 2);
-    buf[w.len] = (uint8_t)(sum & 0xFF);
-    buf[w.len + 1] = (uint8_t)(sum >> 8);
-    return w.len + 2;
+    memset(buf, 0, f->header);
+    buf[0] = f->sync[0];
+    buf[1] = f->sync[1];
+    buf[f->length_at + (f->big ? 1 : 0)] = (uint8_t)(payload & 0xFF);
+    buf[f->length_at + (f->big ? 0 : 1)] = (uint8_t)(payload >> 8);
+    if (f->key_at) {
+        buf[f->key_at] = key[0];
+        buf[f->key_at + 1] = key[1];
+    }
+    sum = ubx_check((nmea_ubx_check)f->check, buf + f->check_from, w.len - f->check_from);
+    for (i = 0; i < f->check_size; i++)
+        buf[w.len + i] = (uint8_t)(sum >> 8 * (f->check_size - 1 - i));
+    memcpy(buf + w.len + f->check_size, f->end, f->end_len);
+    return w.len + trailer;
 }
 
 /* Checks a whole frame's sync, length and checksum: its class, id and payload. */
@@ -717,6 +771,38 @@ static bool ubx_open_frame(const uint8_t *frame, size_t len, const uint8_t **pay
         return ubx_fail(err, NMEA_UBX_BAD_CHECKSUM, NULL, NULL);
     }
     *payload = frame + 6;
+    return true;
+}
+
+/* Checks a whole frame of protocol `f` (not UBX: its own errors are ubx_open_frame's): its sync,
+   length, checksum and end bytes; its header and payload. */
+static bool ubx_open_frame_of(const nmea_ubx_framing *f, const uint8_t *frame, size_t len, const uint8_t **payload,
+                              size_t *payload_len, nmea_ubx_error *err)
+{
+    size_t trailer = (size_t)f->check_size + f->end_len, i;
+    unsigned long sum, sent = 0;
+    if (len < (size_t)f->header + trailer || frame[0] != f->sync[0] || frame[1] != f->sync[1]) {
+        snprintf(err->text, sizeof err->text, "a %s frame is %02X %02X, a header of %u bytes, payload, checksum%s",
+                 f->upper, f->sync[0], f->sync[1], (unsigned)f->header, f->end_len ? " and end bytes" : "");
+        return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
+    }
+    *payload_len = (f->big ? (size_t)frame[f->length_at] << 8 | frame[f->length_at + 1]
+                           : (size_t)frame[f->length_at] | (size_t)frame[f->length_at + 1] << 8) &
+                   f->length_mask;
+    if (len != f->header + *payload_len + trailer) {
+        snprintf(err->text, sizeof err->text, "the length field says %lu payload bytes, the frame has %lu",
+                 (unsigned long)*payload_len, (unsigned long)(len - f->header - trailer));
+        return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
+    }
+    sum = ubx_check((nmea_ubx_check)f->check, frame + f->check_from, len - trailer - f->check_from);
+    for (i = 0; i < f->check_size; i++)
+        sent = sent << 8 | frame[len - trailer + i];
+    if (sent != sum || memcmp(frame + len - f->end_len, f->end, f->end_len) != 0) {
+        snprintf(err->text, sizeof err->text, "checksum %0*lX, computed %0*lX%s", 2 * f->check_size, sent,
+                 2 * f->check_size, sum, sent == sum ? ", its end bytes are not the protocol's" : "");
+        return ubx_fail(err, NMEA_UBX_BAD_CHECKSUM, NULL, NULL);
+    }
+    *payload = frame + f->header;
     return true;
 }
 

@@ -1,7 +1,9 @@
 /* UBX messages: the frame (sync B5 62, class, id, little-endian length, payload, Fletcher-8) and
    one interpreter of the generated layout descriptors that reads a payload into a layout's struct,
    writes it back byte for byte and prints its JSON, the C side of the Python runtime's ubx.py
-   (its rules and error kinds). No heap: a field of the bytes left, the trailing bytes and an
+   (its rules and error kinds). The messages of the other binary protocols the spec types
+   (SkyTraq, SiRF, CASIC: the Python runtime's binary.py) go through the same interpreter, in their
+   byte order, framed by their row of the generated framing table (sync, length, checksum, end). No heap: a field of the bytes left, the trailing bytes and an
    unknown message's payload are views of the decoded payload. Facts from u-blox UBX-13003221
    ("UBX frame structure", "UBX checksum", "Data types"). */
 
@@ -22,9 +24,11 @@ typedef enum {
     NMEA_UBX_NO_ROOM         /* the buffer to encode into is too small */
 } nmea_ubx_error_kind;
 
-/* An error: its kind, the message (`NAV-PVT`, NULL before one is known) and field, and its text. */
+/* An error: its kind, its protocol (nmea_ubx_protocol), the message (`NAV-PVT`, NULL before one is
+   known) and field, and its text. */
 typedef struct {
     nmea_ubx_error_kind kind;
+    uint8_t protocol;
     const char *message;
     const char *field;
     char text[112];
@@ -39,11 +43,41 @@ typedef struct {
     size_t len;
 } nmea_ubx_bytes;
 
-/* A frame of a class and id the spec does not describe, kept with its payload. */
+/* A frame of a class and id (a key) the spec does not describe, kept with its payload. Of another
+   protocol than UBX (`protocol`, a nmea_ubx_protocol; 0 is UBX): msg_class and msg_id hold its key,
+   `key_len` bytes of it (CASIC's class and id; SkyTraq's and SiRF's message id, the payload's
+   first byte, and `payload` the bytes after it). */
 typedef struct {
     uint8_t msg_class, msg_id;
     nmea_ubx_bytes payload;
+    uint8_t protocol, key_len;
 } nmea_ubx_unknown;
+
+/* The checksums of the binary protocols' frames. */
+typedef enum {
+    NMEA_UBX_CHECK_FLETCHER8, /* two 8-bit running sums, sent in that order */
+    NMEA_UBX_CHECK_XOR8,      /* the XOR of the bytes */
+    NMEA_UBX_CHECK_SUM15,     /* the bytes' sum modulo 2^15, two bytes big endian */
+    NMEA_UBX_CHECK_SUM32      /* the sum of the bytes as 32-bit little-endian words, sent little endian */
+} nmea_ubx_check;
+
+/* The framing of a protocol (spec/binary/<protocol>/protocol.yaml; generated, not for use by hand).
+   Offsets count from the first sync byte. */
+typedef struct {
+    const char *name;     /* as the tools' JSON names it: skytraq */
+    const char *upper;    /* as errors name it: SKYTRAQ */
+    uint8_t sync[2];
+    uint8_t header;       /* bytes before the payload, sync included */
+    uint8_t length_at;    /* the length field's first byte (two bytes, the protocol's byte order) */
+    uint16_t length_mask; /* its bits that count the payload's bytes */
+    uint8_t key_at;       /* the header's byte of the class, then the id (UBX, CASIC); 0: the key is the
+                             payload's first byte (the id; SkyTraq, SiRF) */
+    uint8_t check;        /* nmea_ubx_check */
+    uint8_t check_from;   /* the first byte the checksum covers (to the payload's end) */
+    uint8_t check_size;
+    uint8_t end[2], end_len;
+    bool big;             /* its fields are big endian */
+} nmea_ubx_framing;
 
 /* The descriptors the interpreter walks (generated per layout; not for use by hand). */
 typedef enum {
@@ -132,12 +166,14 @@ typedef struct nmea_ubx_group {
 typedef struct {
     const char *id;      /* nav_pvt */
     const char *address; /* NAV-PVT */
-    uint8_t msg_class, msg_id;
+    uint8_t msg_class, msg_id; /* its key (SkyTraq, SiRF: the id and sub-id, `key_len` of them) */
     bool output;         /* the receiver sends it */
+    uint8_t protocol;    /* nmea_ubx_protocol */
     int32_t length;      /* its fixed payload bytes, -1 for none */
     int16_t version;     /* the value of its version byte that tells it apart, -1 for none */
     uint16_t version_at; /* ... at this byte */
     const nmea_ubx_item *items;
     uint8_t n_items;
+    uint8_t key_len;     /* SkyTraq, SiRF: the bytes of the payload before its fields (id, sub-id) */
     uint16_t trailing;   /* the offset of its `trailing` member */
 } nmea_ubx_layout_info;

@@ -4,7 +4,8 @@ Python classes (nmeaspec.ubx_messages) frame by frame: every UBX frame of gpsd's
 generator seeded with the layout's id: its fixed length, a version byte set; variable layouts at
 several lengths, some of which cut a group) decode to the same JSON, or are refused with the same
 error kind and field, and every frame that decodes encodes back byte-exact in C (the program
-fails otherwise)."""
+fails otherwise). The same for SkyTraq, SiRF and CASIC (nmeaspec.<protocol>_messages): every frame
+of their logs and made-up frames of every layout, and of an id no layout describes."""
 
 from __future__ import annotations
 
@@ -18,7 +19,8 @@ import pytest
 
 from tests.ubx.pyubx2_oracle import ubx, ubx_messages
 
-from nmeaspec import stream  # noqa: E402  (pyubx2_oracle puts generated/python on the path)
+from nmeaspec import binary, stream  # noqa: E402  (pyubx2_oracle puts generated/python on the path)
+from nmeaspec import casic_messages, sirf_messages, skytraq_messages  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 LOGS = sorted((ROOT / "tests" / "data" / "ubx").glob("*.log")) + sorted((ROOT / "tests" / "data" / "rtcm3").glob("*.log"))
@@ -65,25 +67,55 @@ def made_up_frames() -> list[bytes]:
     return out
 
 
-def python_json(frame: bytes) -> dict:
+OTHERS = {"skytraq": skytraq_messages, "sirf": sirf_messages, "casic": casic_messages}
+
+
+def other_frames() -> list[tuple[str, bytes]]:
+    """Every frame of the other protocols' logs, and made-up ones: a frame per fixed layout and
+    five per variable one (drawn as made_up_frames draws them), and one of an id no layout has."""
+    out = [(frame.protocol, frame.data) for name in OTHERS
+           for log in sorted((ROOT / "tests" / "data" / name).glob("*.log"))
+           for frame in stream.lines([log.read_bytes()], binary=True)
+           if isinstance(frame, stream.BinaryFrame) and frame.protocol == name]
+    for name, module in OTHERS.items():
+        for layouts in module.BY_ID.values():
+            for cls in layouts:
+                draw = random.Random(f"{name} {cls.ID}")
+                lengths = [cls.LENGTH] if cls.LENGTH is not None else [draw.randrange(0, 120) for _ in range(5)]
+                for length in lengths:
+                    payload = bytearray(draw.randrange(256) for _ in range(length))
+                    at = version_at(cls)
+                    if at is not None and at < length:
+                        payload[at] = cls.VERSION
+                    out.append((name, binary.Frame(name, cls.KEY, bytes(payload)).encode()))
+        key = (0x0B, 0x7F) if name == "casic" else (0x7E,)
+        out.append((name, binary.Frame(name, key, b"\x01\x02").encode()))
+    return out
+
+
+def python_json(frame: bytes, protocol: str = "ubx") -> dict:
     try:
+        if protocol != "ubx":
+            return {"decode": OTHERS[protocol].decode(frame).to_dict()}
         return {"decode": ubx_messages.decode(frame).to_dict()}
     except ubx.NmeaError as e:
         return {"error": e.kind, "field": e.name or ""}
 
 
-def compare(program: Path, frames: list[bytes], tmp_path: Path) -> int:
+def compare(program: Path, frames: list[bytes] | list[tuple[str, bytes]], tmp_path: Path) -> int:
     hex_file = tmp_path / "frames.hex"
-    hex_file.write_text("".join(frame.hex() + "\n" for frame in frames))
+    named = [f if isinstance(f, tuple) else ("ubx", f) for f in frames]
+    hex_file.write_text("".join((f"{p} " if p != "ubx" else "") + frame.hex() + "\n" for p, frame in named))
     run = subprocess.run([str(program), str(ROOT / "generated" / "vectors" / "ubx.jsonl"), "--json", str(hex_file)],
                          capture_output=True, check=False)
     lines = run.stdout.decode("latin-1").splitlines()
     failures = [line for line in lines if line.startswith("FAIL")]
     assert run.returncode == 0 and not failures, failures[:5]
-    for line in lines:
+    assert len(lines) == len(named)
+    for line, (protocol, _) in zip(lines, named):
         got = json.loads(line)
         frame = bytes.fromhex(got.pop("frame"))
-        assert got == python_json(frame), frame.hex()
+        assert got == python_json(frame, protocol), f"{protocol} {frame.hex()}"
     return len(lines)
 
 
@@ -94,3 +126,8 @@ def test_every_logged_frame_decodes_as_python_does(c_program: Path, tmp_path: Pa
 def test_made_up_frames_of_every_layout_decode_as_python_does(c_program: Path, tmp_path: Path) -> None:
     frames = made_up_frames()
     assert compare(c_program, frames, tmp_path) == len(frames) > sum(len(layouts) for layouts in ubx_messages.BY_ID.values())
+
+
+def test_other_protocols_frames_decode_as_python_does(c_program: Path, tmp_path: Path) -> None:
+    frames = other_frames()
+    assert compare(c_program, frames, tmp_path) == len(frames) > 1700

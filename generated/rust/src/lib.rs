@@ -54,6 +54,8 @@ use core::fmt::{self, Write};
 #[cfg(feature = "ais")]
 pub mod ais_messages;
 pub mod bitfields;
+#[cfg(feature = "binary")]
+pub mod casic_messages;
 pub mod enums;
 #[cfg(feature = "std")]
 mod fix_fields;
@@ -61,6 +63,10 @@ mod fix_fields;
 pub mod rtcm3_messages;
 mod runtime;
 pub mod sentences;
+#[cfg(feature = "binary")]
+pub mod sirf_messages;
+#[cfg(feature = "binary")]
+pub mod skytraq_messages;
 pub mod tables;
 #[cfg(feature = "binary")]
 pub mod ubx_messages;

@@ -47,17 +47,23 @@ def with_message(text: str, assembled: Assembled) -> str:
     return f'{text[:-1]},"ais_error":{assembled.error.error_json()}}}'
 
 
+# The protocols whose frames stream --ubx gives their messages (those the three tools type).
+TYPED = ("ubx", "skytraq", "sirf", "casic")
+
+
 def with_ubx(frame: BinaryFrame) -> str:
     """stream --ubx: a UBX frame's JSON with the message it carries: `ubx`, its decoded JSON
-    (that of generated/vectors/ubx.jsonl), or `ubx_error` when its payload does not decode."""
+    (that of generated/vectors/ubx.jsonl), or `ubx_error` when its payload does not decode; a
+    SkyTraq, SiRF or CASIC frame's alike, under its protocol's name (`sirf`, `sirf_error`: the
+    JSON of generated/vectors/binary.jsonl)."""
     text = frame.to_json()
-    if frame.protocol != "ubx":
+    if frame.protocol not in TYPED:
         return text
     try:
         message = frame.message()
     except NmeaError as err:
-        return f'{text[:-1]},"ubx_error":{err.error_json()}}}'
-    return f'{text[:-1]},"ubx":{json.dumps(message.to_dict(), separators=(",", ":"))}}}'
+        return f'{text[:-1]},"{frame.protocol}_error":{err.error_json()}}}'
+    return f'{text[:-1]},"{frame.protocol}":{json.dumps(message.to_dict(), separators=(",", ":"))}}}'
 
 
 def with_rtcm3(frame: BinaryFrame) -> str:

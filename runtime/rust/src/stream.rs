@@ -94,7 +94,7 @@ impl FrameFormat {
     }
 
     /// The frame's bytes, sync to end, from its header.
-    fn frame_len(&self, header: &[u8]) -> usize {
+    pub(crate) fn frame_len(&self, header: &[u8]) -> usize {
         let first = usize::from(header[self.length_at]);
         let length = match (self.length_size, self.big_endian) {
             (2, true) => first << 8 | usize::from(header[self.length_at + 1]),
@@ -106,7 +106,7 @@ impl FrameFormat {
 
     /// A whole frame's checksum and end bytes as sent, and as they must be, each as a big-endian
     /// number.
-    fn check(&self, frame: &[u8]) -> (u32, u32) {
+    pub(crate) fn check(&self, frame: &[u8]) -> (u32, u32) {
         let body = frame.len() - self.trailer_len();
         let at = if self.check_at == 0 { body } else { self.check_at };
         let sent = frame[at..at + self.check_size]

@@ -14,6 +14,7 @@ use core::fmt::{self, Write};
 use core::marker::PhantomData;
 
 use super::ais::JsonObject;
+use super::stream::{FrameFormat, Protocol};
 
 /// The two sync bytes every frame starts with.
 pub const SYNC: [u8; 2] = [0xB5, 0x62];
@@ -68,25 +69,30 @@ impl UbxErrorKind {
     }
 }
 
-/// The facts an error message is written from.
+/// The facts an error message is written from (`CheckEnd`: another protocol's checksum and end
+/// bytes, as big-endian numbers of `width` bytes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Detail {
-    Sync([u8; 2], usize),
-    Header(usize),
+    Sync { expected: [u8; 2], sent: [u8; 2], len: usize },
+    Header { need: usize, have: usize },
     Length { size: usize, have: usize },
     Checksum { sent: [u8; 2], computed: [u8; 2] },
+    CheckEnd { sent: u32, computed: u32, width: usize },
     Short { offset: usize, width: usize, length: usize },
     FewEntries { count: usize, at_least: bool, width: usize, left: usize },
     Size { expected: usize, found: usize },
     Buffer { need: usize, have: usize },
 }
 
-/// A UBX error: its kind, the message (`NAV-PVT`, or `0x01 0x07` before a layout names it) and
-/// the field it concerns when known.
+/// A UBX error (or one of another binary protocol whose messages the spec types: SkyTraq, SiRF,
+/// CASIC): its kind, the message (`NAV-PVT`, or `0x01 0x07` before a layout names it) and the
+/// field it concerns when known.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct UbxError {
     /// What is wrong.
     pub kind: UbxErrorKind,
+    /// The protocol as errors name it: `UBX`, `SKYTRAQ`, `SIRF`, `CASIC`.
+    pub protocol: &'static str,
     /// The message's name (`NAV-PVT`); empty before the frame's class and id are read.
     pub message: &'static str,
     /// The class and id of the frame, once read.
@@ -98,7 +104,7 @@ pub struct UbxError {
 
 impl UbxError {
     fn frame(kind: UbxErrorKind, class_id: Option<(u8, u8)>, detail: Detail) -> Self {
-        UbxError { kind, message: "", class_id, field: None, detail }
+        UbxError { kind, protocol: "UBX", message: "", class_id, field: None, detail }
     }
 
     /// The error's address as the Python runtime gives it: `UBX NAV-PVT`, `UBX 0x01 0x07`, `UBX`.
@@ -129,7 +135,7 @@ struct Address<'e>(&'e UbxError);
 
 impl fmt::Display for Address<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("UBX")?;
+        f.write_str(self.0.protocol)?;
         match (self.0.message, self.0.class_id) {
             ("", Some((class, id))) => write!(f, " 0x{class:02X} 0x{id:02X}"),
             ("", None) => Ok(()),
@@ -144,14 +150,24 @@ impl fmt::Display for Message<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let field = self.0.field.unwrap_or("");
         match self.0.detail {
-            Detail::Sync([a, b], len) => {
-                f.write_str("a UBX frame starts with B5 62, not")?;
-                [a, b].iter().take(len).try_for_each(|byte| write!(f, " {byte:02X}"))
+            Detail::Sync { expected, sent, len } => {
+                write!(f, "a {} frame starts with", self.0.protocol)?;
+                expected.iter().try_for_each(|byte| write!(f, " {byte:02X}"))?;
+                f.write_str(", not")?;
+                sent.iter().take(len).try_for_each(|byte| write!(f, " {byte:02X}"))
             }
-            Detail::Header(have) => write!(f, "a UBX header needs {HEADER_SIZE} bytes, there are {have}"),
+            Detail::Header { need, have } => {
+                write!(f, "a {} header needs {need} bytes, there are {have}", self.0.protocol)
+            }
             Detail::Length { size, have } => write!(f, "the length field says {size} bytes, the frame has {have}"),
             Detail::Checksum { sent, computed } => {
                 write!(f, "checksum {:02X} {:02X}, computed {:02X} {:02X}", sent[0], sent[1], computed[0], computed[1])
+            }
+            Detail::CheckEnd { sent, computed, width } => {
+                f.write_str("checksum and end")?;
+                (0..width).rev().try_for_each(|i| write!(f, " {:02X}", sent >> (8 * i) & 0xFF))?;
+                f.write_str(", computed")?;
+                (0..width).rev().try_for_each(|i| write!(f, " {:02X}", computed >> (8 * i) & 0xFF))
             }
             Detail::Short { offset, width, length } => {
                 let (first, last) = (offset, offset + width - 1);
@@ -189,10 +205,14 @@ pub fn split_frame(data: &[u8]) -> Result<(u8, u8, &[u8]), UbxError> {
     if data[..sync] != SYNC[..sync] {
         let mut sent = [0u8; 2];
         sent[..sync].copy_from_slice(&data[..sync]);
-        return Err(UbxError::frame(UbxErrorKind::BadSync, None, Detail::Sync(sent, sync)));
+        return Err(UbxError::frame(UbxErrorKind::BadSync, None, Detail::Sync { expected: SYNC, sent, len: sync }));
     }
     if data.len() < HEADER_SIZE {
-        return Err(UbxError::frame(UbxErrorKind::ShortFrame, None, Detail::Header(data.len())));
+        return Err(UbxError::frame(
+            UbxErrorKind::ShortFrame,
+            None,
+            Detail::Header { need: HEADER_SIZE, have: data.len() },
+        ));
     }
     let class_id = Some((data[2], data[3]));
     let size = HEADER_SIZE + usize::from(u16::from_le_bytes([data[4], data[5]])) + CHECKSUM_SIZE;
@@ -216,6 +236,7 @@ pub fn split_frame(data: &[u8]) -> Result<(u8, u8, &[u8]), UbxError> {
 pub struct ByteReader<'a> {
     payload: &'a [u8],
     pos: usize,
+    protocol: &'static str,
     message: &'static str,
     class_id: (u8, u8),
 }
@@ -223,7 +244,12 @@ pub struct ByteReader<'a> {
 impl<'a> ByteReader<'a> {
     /// A reader at the start of `payload` of message `message` (`NAV-PVT`), class and id `class_id`.
     pub fn new(payload: &'a [u8], message: &'static str, class_id: (u8, u8)) -> Self {
-        ByteReader { payload, pos: 0, message, class_id }
+        ByteReader { payload, pos: 0, protocol: "UBX", message, class_id }
+    }
+
+    /// The reader of a message of another protocol (`SKYTRAQ`, `SIRF`, `CASIC`), whose errors name it.
+    pub fn of_protocol(self, protocol: &'static str) -> Self {
+        ByteReader { protocol, ..self }
     }
 
     /// The bytes not read yet.
@@ -237,7 +263,14 @@ impl<'a> ByteReader<'a> {
     }
 
     fn error(&self, kind: UbxErrorKind, field: &'static str, detail: Detail) -> UbxError {
-        UbxError { kind, message: self.message, class_id: Some(self.class_id), field: Some(field), detail }
+        UbxError {
+            kind,
+            protocol: self.protocol,
+            message: self.message,
+            class_id: Some(self.class_id),
+            field: Some(field),
+            detail,
+        }
     }
 
     /// The next `width` bytes, for field `field`.
@@ -308,12 +341,13 @@ pub struct ByteWriter<'b> {
     buf: &'b mut [u8],
     len: usize,
     overflow: usize,
+    protocol: &'static str,
 }
 
 impl<'b> ByteWriter<'b> {
     /// A writer at the start of `buf`.
     pub fn new(buf: &'b mut [u8]) -> Self {
-        ByteWriter { buf, len: 0, overflow: 0 }
+        ByteWriter { buf, len: 0, overflow: 0, protocol: "UBX" }
     }
 
     /// The bytes written (or that would have been, past the buffer's end).
@@ -348,6 +382,7 @@ impl<'b> ByteWriter<'b> {
         match width {
             Some(expected) if expected != bytes.len() => Err(UbxError {
                 kind: UbxErrorKind::BadValue,
+                protocol: self.protocol,
                 message,
                 class_id: None,
                 field: Some(field),
@@ -379,6 +414,7 @@ pub fn encode_frame<'b>(
     if length > MAX_PAYLOAD || w.overflow > 0 || head.len() < HEADER_SIZE {
         return Err(UbxError {
             kind: UbxErrorKind::BufferTooSmall,
+            protocol: "UBX",
             message,
             class_id: Some((class, id)),
             field: None,
@@ -389,6 +425,106 @@ pub fn encode_frame<'b>(
     buf[..HEADER_SIZE].copy_from_slice(&[SYNC[0], SYNC[1], class, id, low, high]);
     let sum = fletcher8(&buf[2..HEADER_SIZE + length]);
     buf[HEADER_SIZE + length..need].copy_from_slice(&sum);
+    Ok(&buf[..need])
+}
+
+/// Whether a protocol's frames carry the message's key in their header (CASIC's class and id)
+/// rather than as the payload's first bytes (SkyTraq's and SiRF's id).
+pub fn key_in_header(f: &FrameFormat) -> bool {
+    f.identity.iter().all(|&(_, at, bits)| (at + bits).div_ceil(8) <= f.header)
+}
+
+/// The protocol's name in errors: `SKYTRAQ`.
+fn upper(f: &FrameFormat) -> &'static str {
+    match f.name {
+        "skytraq" => "SKYTRAQ",
+        "sirf" => "SIRF",
+        "casic" => "CASIC",
+        "rtcm3" => "RTCM3",
+        _ => "UBX",
+    }
+}
+
+/// The header (sync bytes to the payload) and payload of one whole frame of `protocol` (SkyTraq,
+/// SiRF, CASIC: the framing of spec/binary/<protocol>/protocol.yaml), its sync bytes, length,
+/// checksum and end bytes checked (the Python runtime's `binary.decode_frame`).
+pub fn split_frame_of(protocol: Protocol, data: &[u8]) -> Result<(&[u8], &[u8]), UbxError> {
+    let f = protocol.framing();
+    let name = upper(f);
+    let error = |kind, detail| UbxError { kind, protocol: name, message: "", class_id: None, field: None, detail };
+    let sync = data.len().min(f.sync_len);
+    if data[..sync] != f.sync[..sync] {
+        let mut sent = [0u8; 2];
+        sent[..sync].copy_from_slice(&data[..sync]);
+        return Err(error(UbxErrorKind::BadSync, Detail::Sync { expected: f.sync, sent, len: sync }));
+    }
+    if data.len() < f.header {
+        return Err(error(UbxErrorKind::ShortFrame, Detail::Header { need: f.header, have: data.len() }));
+    }
+    let size = f.frame_len(data);
+    let detail = Detail::Length { size, have: data.len() };
+    if data.len() != size {
+        let kind = if data.len() < size { UbxErrorKind::ShortFrame } else { UbxErrorKind::LongFrame };
+        return Err(error(kind, detail));
+    }
+    let body = size - f.trailer_len();
+    let (sent, computed) = f.check(data);
+    if sent != computed {
+        return Err(error(UbxErrorKind::BadChecksum, Detail::CheckEnd { sent, computed, width: f.trailer_len() }));
+    }
+    Ok((&data[..f.header], &data[f.header..body]))
+}
+
+/// Writes the frame of `protocol` (SkyTraq, SiRF, CASIC) of the message told by `key` (class and
+/// id in CASIC's header; the id, and sub-id, before the fields in SkyTraq's and SiRF's payload)
+/// whose fields `payload` writes, into `buf`: sync, header, payload, checksum and end bytes.
+pub fn encode_frame_of<'b>(
+    buf: &'b mut [u8],
+    protocol: Protocol,
+    key: &[u8],
+    message: &'static str,
+    payload: impl FnOnce(&mut ByteWriter<'_>) -> Result<(), UbxError>,
+) -> Result<&'b [u8], UbxError> {
+    let f = protocol.framing();
+    let in_header = key_in_header(f);
+    let room = buf.len().saturating_sub(f.header + f.trailer_len());
+    let (head, body) = buf.split_at_mut(buf.len().min(f.header));
+    let mut w = ByteWriter { protocol: upper(f), ..ByteWriter::new(&mut body[..room]) };
+    if !in_header {
+        w.put(key);
+    }
+    payload(&mut w)?;
+    let length = w.len();
+    let need = f.header + length + f.trailer_len();
+    if length > usize::from(f.length_mask) || w.overflow > 0 || head.len() < f.header {
+        return Err(UbxError {
+            kind: UbxErrorKind::BufferTooSmall,
+            protocol: upper(f),
+            message,
+            class_id: None,
+            field: None,
+            detail: Detail::Buffer { need, have: buf.len() },
+        });
+    }
+    buf[..f.header].fill(0);
+    buf[..f.sync_len].copy_from_slice(&f.sync[..f.sync_len]);
+    let field = &mut buf[f.length_at..f.length_at + f.length_size];
+    let length = length as u16;
+    match (f.length_size, f.big_endian) {
+        (2, true) => field.copy_from_slice(&length.to_be_bytes()),
+        (2, false) => field.copy_from_slice(&length.to_le_bytes()),
+        _ => field[0] = length as u8,
+    }
+    if in_header {
+        for (&(_, at, _), &byte) in f.identity.iter().zip(key) {
+            buf[at / 8] = byte;
+        }
+    }
+    let body = need - f.trailer_len();
+    let (_, check) = f.check(&buf[..need]); // the checksum of the bytes before the trailer
+    for (i, slot) in buf[body..need].iter_mut().rev().enumerate() {
+        *slot = (check >> (8 * i)) as u8;
+    }
     Ok(&buf[..need])
 }
 
@@ -493,7 +629,9 @@ impl<'a, E: Entry<'a> + fmt::Debug> fmt::Debug for Group<'a, E> {
 
 /// A float member: a double as Python's `repr` writes it (the shortest text that reads back the
 /// same, `.0` on whole values, an exponent of two digits or more below 1e-4 and from 1e16), NaN
-/// and the infinities as the strings `"nan"`, `"inf"`, `"-inf"`.
+/// and the infinities as the strings `"nan"`, `"inf"`, `"-inf"`. Of the shortest digits that read
+/// back, the correctly rounded ones (ties to even, as Python's): where the value lies halfway
+/// between two (a float widened to a double may), Rust's shortest form takes the upper.
 pub fn json_float<W: Write>(j: &mut JsonObject<'_, W>, name: &str, value: f64) -> fmt::Result {
     let out = j.key(name)?;
     if value.is_nan() {
@@ -502,15 +640,44 @@ pub fn json_float<W: Write>(j: &mut JsonObject<'_, W>, name: &str, value: f64) -
     if value.is_infinite() {
         return out.write_str(if value > 0.0 { "\"inf\"" } else { "\"-inf\"" });
     }
-    let mut text = Text { buf: [0; 40], len: 0 };
-    write!(text, "{value:?}")?;
-    let text = core::str::from_utf8(&text.buf[..text.len]).map_err(|_| fmt::Error)?;
-    match text.split_once('e') {
-        Some((mantissa, exponent)) => {
-            let (sign, digits) = exponent.strip_prefix('-').map_or(("+", exponent), |digits| ("-", digits));
-            write!(out, "{mantissa}e{sign}{digits:0>2}")
+    let mut shortest = Text { buf: [0; 40], len: 0 };
+    write!(shortest, "{value:e}")?;
+    let digits = shortest.as_str()?.split('e').next().unwrap_or("").bytes().filter(u8::is_ascii_digit).count();
+    let mut rounded = Text { buf: [0; 40], len: 0 };
+    write!(rounded, "{value:.*e}", digits.saturating_sub(1))?;
+    let rounded_reads_back = rounded.as_str()?.parse::<f64>().is_ok_and(|back| back == value);
+    let text = if rounded_reads_back { rounded.as_str()? } else { shortest.as_str()? };
+    let (mantissa, exponent) = text.split_once('e').ok_or(fmt::Error)?;
+    let exponent: i32 = exponent.parse().map_err(|_| fmt::Error)?;
+    let (sign, mantissa) = mantissa.strip_prefix('-').map_or(("", mantissa), |m| ("-", m));
+    let mut all = [0u8; 20];
+    let mut n = 0;
+    for byte in mantissa.bytes().filter(u8::is_ascii_digit) {
+        *all.get_mut(n).ok_or(fmt::Error)? = byte;
+        n += 1;
+    }
+    let digits = core::str::from_utf8(&all[..n]).map_err(|_| fmt::Error)?;
+    out.write_str(sign)?;
+    if !(-4..16).contains(&exponent) {
+        out.write_str(&digits[..1])?;
+        if n > 1 {
+            write!(out, ".{}", &digits[1..])?;
         }
-        None => out.write_str(text),
+        let (esign, magnitude) = if exponent < 0 { ('-', -exponent) } else { ('+', exponent) };
+        return write!(out, "e{esign}{magnitude:02}");
+    }
+    if exponent < 0 {
+        out.write_str("0.")?;
+        (0..-exponent - 1).try_for_each(|_| out.write_char('0'))?;
+        return out.write_str(digits);
+    }
+    let whole = exponent as usize + 1;
+    if n <= whole {
+        out.write_str(digits)?;
+        (n..whole).try_for_each(|_| out.write_char('0'))?;
+        out.write_str(".0")
+    } else {
+        write!(out, "{}.{}", &digits[..whole], &digits[whole..])
     }
 }
 
@@ -518,6 +685,12 @@ pub fn json_float<W: Write>(j: &mut JsonObject<'_, W>, name: &str, value: f64) -
 struct Text {
     buf: [u8; 40],
     len: usize,
+}
+
+impl Text {
+    fn as_str(&self) -> Result<&str, fmt::Error> {
+        core::str::from_utf8(&self.buf[..self.len]).map_err(|_| fmt::Error)
+    }
 }
 
 impl Write for Text {
@@ -613,7 +786,21 @@ mod tests {
 
     #[test]
     fn floats_are_written_as_python_writes_them() {
-        let cases = [(0.0, "0.0"), (1e-5, "1e-05"), (1.5e16, "1.5e+16"), (0.25, "0.25"), (f64::NAN, "\"nan\"")];
+        let cases = [
+            (0.0, "0.0"),
+            (1e-5, "1e-05"),
+            (1.5e16, "1.5e+16"),
+            (0.25, "0.25"),
+            (f64::NAN, "\"nan\""),
+            (-0.0, "-0.0"),
+            (100.0, "100.0"),
+            (1234567890123456.0, "1234567890123456.0"),
+            (0.000123, "0.000123"),
+            (-2.5e-300, "-2.5e-300"),
+            (1e22, "1e+22"),
+            // A float widened to a double, halfway between two 17-digit decimals: ties to even.
+            (f64::from(3.912_788_4_f32), "3.9127883911132812"),
+        ];
         for (value, text) in cases {
             let mut out = String::new();
             let mut j = JsonObject::new(&mut out).unwrap();

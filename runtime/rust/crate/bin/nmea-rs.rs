@@ -16,7 +16,8 @@ use nmeaspec::ais_messages::Message;
 use nmeaspec::assembly::Assembler;
 use nmeaspec::json::{write_encoded, Value, SKIP_CHECK_DEPTH};
 use nmeaspec::stream::{FrameError, Framer, Item, Protocol, MAX_FRAME};
-use nmeaspec::{rtcm3_messages, ubx_messages};
+use nmeaspec::ubx::UbxError;
+use nmeaspec::{casic_messages, rtcm3_messages, sirf_messages, skytraq_messages, ubx_messages};
 use nmeaspec::{parse_with, Error, Fix, FixAssembler, Options, MAX_LINE};
 
 const USAGE: &str =
@@ -176,17 +177,27 @@ fn write_frame(w: &mut String, protocol: Protocol, frame: &[u8]) -> fmt::Result 
 }
 
 /// `stream --ubx`: a UBX frame's JSON with the message it carries: `ubx`, its decoded JSON (that
-/// of generated/vectors/ubx.jsonl), or `ubx_error` when its payload does not decode.
-fn write_ubx_frame(w: &mut String, frame: &[u8]) -> fmt::Result {
-    write_frame(w, Protocol::Ubx, frame)?;
+/// of generated/vectors/ubx.jsonl), or `ubx_error` when its payload does not decode; a SkyTraq,
+/// SiRF or CASIC frame's alike under its protocol's name (`sirf`, `sirf_error`). Other frames as
+/// `stream` writes them.
+fn write_ubx_frame(w: &mut String, protocol: Protocol, frame: &[u8]) -> fmt::Result {
+    write_frame(w, protocol, frame)?;
+    let mut json = String::new();
+    let decoded: Result<fmt::Result, UbxError> = match protocol {
+        Protocol::Ubx => ubx_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
+        Protocol::Skytraq => skytraq_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
+        Protocol::Sirf => sirf_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
+        Protocol::Casic => casic_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
+        _ => return Ok(()),
+    };
     w.pop(); // the frame's closing brace
-    match ubx_messages::Message::from_frame(frame) {
-        Ok(message) => {
-            w.push_str(",\"ubx\":");
-            message.write_json(w)?;
+    match decoded {
+        Ok(written) => {
+            written?;
+            write!(w, ",\"{}\":{json}", protocol.name())?;
         }
         Err(err) => {
-            w.push_str(",\"ubx_error\":");
+            write!(w, ",\"{}_error\":", protocol.name())?;
             err.write_json(w)?;
         }
     }
@@ -268,8 +279,8 @@ fn stream(values: bool, options: Options, ubx: bool, rtcm3: bool) -> io::Result<
                 out.line(|w| write_line(w, line, values, options, Some(&mut assembler), &mut given_up))?
             }
             Item::TooLong(length) => out.line(|w| Error::too_long(length).write_json(w))?,
-            Item::Frame(Protocol::Ubx, frame) if ubx => out.line(|w| write_ubx_frame(w, frame))?,
             Item::Frame(Protocol::Rtcm3, frame) if rtcm3 => out.line(|w| write_rtcm3_frame(w, frame))?,
+            Item::Frame(protocol, frame) if ubx => out.line(|w| write_ubx_frame(w, protocol, frame))?,
             Item::Frame(protocol, frame) => out.line(|w| write_frame(w, protocol, frame))?,
             Item::BadFrame(protocol, error, sync) => out.line(|w| write_bad_frame(w, protocol, error, sync))?,
         }

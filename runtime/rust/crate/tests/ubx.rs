@@ -3,7 +3,9 @@
 //! (each field's value, raw integer, enum id, bitfield parts, characters and bytes as sent, group
 //! entries, trailing bytes) or fails with the same error kind, and encodes back to the same bytes.
 //! Then every UBX frame of gpsd's logs (tests/data/ubx, tests/data/rtcm3), cut by the stream
-//! framer, decodes and encodes back byte-exact.
+//! framer, decodes and encodes back byte-exact. The same for SkyTraq, SiRF and CASIC
+//! (nmeaspec::{skytraq,sirf,casic}_messages): generated/vectors/binary.jsonl, then every frame of
+//! their logs (tests/data/{skytraq,sirf,casic}), and their errors.
 #![cfg(feature = "binary")]
 
 use std::fs;
@@ -12,6 +14,7 @@ use std::path::Path;
 use nmeaspec::stream::{Framer, Item, Protocol};
 use nmeaspec::ubx::UbxErrorKind;
 use nmeaspec::ubx_messages::{AckAck, Message, NavPvt};
+use nmeaspec::{casic_messages, sirf_messages, skytraq_messages};
 
 const CRATE: &str = env!("CARGO_MANIFEST_DIR");
 
@@ -54,6 +57,11 @@ fn messages_decode_and_encode_as_the_vectors_say() {
 
 /// Every UBX frame of the logs in `dir`: its file's name, the frame.
 fn log_frames(dir: &str) -> Vec<(String, Vec<u8>)> {
+    frames_of(dir, Protocol::Ubx)
+}
+
+/// Every frame of `protocol` of the logs in `dir`: its file's name, the frame.
+fn frames_of(dir: &str, protocol: Protocol) -> Vec<(String, Vec<u8>)> {
     let mut frames = Vec::new();
     let mut paths: Vec<_> = fs::read_dir(Path::new(CRATE).join("../../tests/data").join(dir))
         .unwrap()
@@ -65,7 +73,8 @@ fn log_frames(dir: &str) -> Vec<(String, Vec<u8>)> {
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
         let mut framer = Framer::with_binary_frames();
         let mut take = |item: Item<'_>| {
-            if let Item::Frame(Protocol::Ubx, frame) = item {
+            if matches!(item, Item::Frame(p, _) if p == protocol) {
+                let Item::Frame(_, frame) = item else { unreachable!() };
                 frames.push((name.clone(), frame.to_vec()));
             }
         };
@@ -119,4 +128,92 @@ fn a_message_built_in_code_encodes_to_its_frame() {
     let mut buf = [0u8; 10];
     assert_eq!(ack.encode(&mut buf).unwrap(), [0xB5, 0x62, 0x05, 0x01, 0x02, 0x00, 0x06, 0x00, 0x0E, 0x37]);
     assert_eq!(ack.encode(&mut [0u8; 9]).unwrap_err().kind, UbxErrorKind::BufferTooSmall);
+}
+
+/// A frame of SkyTraq, SiRF or CASIC decoded by its protocol's module: its JSON and the frame it
+/// encodes back to, or its error.
+fn other_protocol(protocol: &str, frame: &[u8]) -> Result<(String, Vec<u8>), nmeaspec::ubx::UbxError> {
+    let mut json = String::new();
+    let mut buf = vec![0u8; 70_000];
+    let encoded = match protocol {
+        "skytraq" => {
+            let m = skytraq_messages::Message::from_frame(frame)?;
+            m.write_json(&mut json).unwrap();
+            m.encode(&mut buf)?.to_vec()
+        }
+        "sirf" => {
+            let m = sirf_messages::Message::from_frame(frame)?;
+            m.write_json(&mut json).unwrap();
+            m.encode(&mut buf)?.to_vec()
+        }
+        "casic" => {
+            let m = casic_messages::Message::from_frame(frame)?;
+            m.write_json(&mut json).unwrap();
+            m.encode(&mut buf)?.to_vec()
+        }
+        _ => panic!("{protocol}"),
+    };
+    Ok((json, encoded))
+}
+
+#[test]
+fn other_protocols_decode_and_encode_as_the_vectors_say() {
+    let path = Path::new(CRATE).join("../vectors/binary.jsonl");
+    let data = fs::read_to_string(&path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
+    let mut decoded = 0;
+    for record in data.lines() {
+        if member(record, "protocol") == "sbf" {
+            continue; // SBF's blocks are typed in Python only (generator/emit_framing.py's PYTHON_ONLY)
+        }
+        let frame = unhex(member(record, "frame"));
+        let (json, encoded) =
+            other_protocol(member(record, "protocol"), &frame).unwrap_or_else(|err| panic!("{err}: {record}"));
+        let expected = &record[record.find("\"decode\":").unwrap() + 9..record.len() - 1];
+        assert_eq!(json, expected, "{record}");
+        assert_eq!(encoded, frame, "{record}");
+        decoded += 1;
+    }
+    assert!(decoded >= 20, "{decoded} decoded");
+}
+
+#[test]
+fn every_logged_frame_of_other_protocols_decodes_and_encodes_back() {
+    for (dir, protocol, at_least) in
+        [("skytraq", Protocol::Skytraq, 250), ("sirf", Protocol::Sirf, 200), ("casic", Protocol::Casic, 700)]
+    {
+        let frames = frames_of(dir, protocol);
+        let mut known = 0;
+        for (file, frame) in &frames {
+            let (json, encoded) = other_protocol(dir, frame).unwrap_or_else(|err| panic!("{file}: {err}"));
+            known += usize::from(!json.starts_with("{\"message\":null"));
+            assert_eq!(&encoded, frame, "{file}: {json}");
+        }
+        assert!(known >= at_least, "{dir}: {known} of {} frames known", frames.len());
+    }
+}
+
+#[test]
+fn errors_of_other_protocols_name_protocol_message_and_field() {
+    // SkyTraq 0xA8 (navigation data) cut to 20 bytes after its id.
+    let mut payload = vec![0xA8];
+    payload.extend_from_slice(&[0; 20]);
+    let err = skytraq_messages::Message::decode(&[], &payload).unwrap_err();
+    assert_eq!((err.kind, err.field), (UbxErrorKind::ShortPayload, Some("msl_alt")), "{err}");
+    assert_eq!(err.to_string(), "short_payload: SKYTRAQ 0xA8: msl_alt needs bytes 20-23, the payload has 20");
+    let ok = [0xA0, 0xA2, 0x00, 0x02, 0x12, 0x01, 0x00, 0x13, 0xB0, 0xB3]; // SiRF MID 18, OkToSend
+    assert!(matches!(sirf_messages::Message::from_frame(&ok), Ok(sirf_messages::Message::OkToSend(_))));
+    let mut bad = ok;
+    bad[5] ^= 1;
+    let err = sirf_messages::Message::from_frame(&bad).unwrap_err();
+    assert_eq!(err.to_string(), "bad_checksum: SIRF: checksum and end 00 13 B0 B3, computed 00 12 B0 B3");
+    let err = casic_messages::Message::from_frame(&[0xBA, 0xCF]).unwrap_err();
+    assert_eq!(err.to_string(), "bad_sync: CASIC: a CASIC frame starts with BA CE, not BA CF");
+    let err = skytraq_messages::Message::from_frame(&ok[..3]).unwrap_err();
+    assert_eq!(err.to_string(), "bad_sync: SKYTRAQ: a SKYTRAQ frame starts with A0 A1, not A0 A2");
+    let unknown = [0xA0, 0xA1, 0x00, 0x02, 0x7E, 0x01, 0x7F, 0x0D, 0x0A];
+    let message = skytraq_messages::Message::from_frame(&unknown).unwrap();
+    let mut json = String::new();
+    message.write_json(&mut json).unwrap();
+    assert_eq!(json, r#"{"message":null,"id":126,"payload":"01"}"#);
+    assert_eq!(message.encode(&mut [0u8; 9]).unwrap(), &unknown[..]);
 }
