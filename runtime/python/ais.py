@@ -811,7 +811,7 @@ def _write_field(item: Field, name: str, names: dict[str, Any], pad: str) -> lis
             else:
                 offset_ = f"(value - {item.base!r})" if item.base or isinstance(item.base, float) else "value"
                 number = f"round({offset_} * {item.divisor})" if item.divisor != 1 else f"round({offset_})"
-                numeric = "value.__class__ is int or value.__class__ is float"
+                numeric = "value.__class__ is float or value.__class__ is int"  # a decoded value: a float
             special = " else value.raw if value.__class__ is Special" if item.special else ""
             code.append(f"    raw = {number} if {numeric}{special} else None")
             fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw{mask}"
