@@ -642,18 +642,14 @@ def compile_decoder(cls: type[Message]) -> Any:
     code = ["def decode(value, length, padding):"]
     counter = [0]
 
-    slots = "__dict__" not in dir(cls)
-
     def build(set_: dict[str, str], trailing: str, pad: str) -> list[str]:
-        """The lines that make the message of the members `set_` (id: local variable): each slot
-        set (or the instance's dict at once)."""
+        """The lines that make the message of the members `set_` (id: local variable), each
+        member set (slots: the generated classes'; a subclass without them keeps its own in its
+        dict)."""
         values = {member: set_.get(member, trailing if member == "trailing" else default)
                   for member, default in members.items()}
-        if slots:
-            return [f"{pad}m = new(cls)", *(f"{pad}m.{member} = {value}" for member, value in values.items()),
-                    f"{pad}return m"]
-        return [f"{pad}m = new(cls)", f"{pad}m.__dict__ = {{",
-                *(f"{pad}    {member!r}: {value}," for member, value in values.items()), f"{pad}}}", f"{pad}return m"]
+        return [f"{pad}m = new(cls)", *(f"{pad}m.{member} = {value}" for member, value in values.items()),
+                f"{pad}return m"]
 
     def generic(items: list[Item], offset: int, set_: dict[str, str], pad: str) -> list[str]:
         """The lines that read `items` from bit `offset` on by the generic reader."""
@@ -811,7 +807,7 @@ def _write_field(item: Field, name: str, names: dict[str, Any], pad: str) -> lis
             else:
                 offset_ = f"(value - {item.base!r})" if item.base or isinstance(item.base, float) else "value"
                 number = f"round({offset_} * {item.divisor})" if item.divisor != 1 else f"round({offset_})"
-                numeric = "value.__class__ is int or value.__class__ is float"
+                numeric = "value.__class__ is float or value.__class__ is int"  # a decoded value: a float
             special = " else value.raw if value.__class__ is Special" if item.special else ""
             code.append(f"    raw = {number} if {numeric}{special} else None")
             fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw{mask}"

@@ -229,8 +229,11 @@ def assemble(start: str, address: str, fields: list[str], checksum_style: str | 
         return start + body
     if checksum_style == "empty":
         return f"{start}{body}*"
-    text = f"{checksum(body):02X}"
+    text = _CHECKSUM_HEX[checksum(body)]
     return f"{start}{body}*{text.lower() if checksum_style == 'lower' else text}"
+
+
+_CHECKSUM_HEX: Final = tuple(f"{value:02X}" for value in range(256))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -510,6 +513,9 @@ class _Value:
         return f"{type(self).__name__}({parts})"
 
 
+_DIGIT_VALUES: Final = {str(digit): digit for digit in range(10)}
+
+
 class Number(_Value):
     """A fixed-point number as received: its digits as an integer, the number of decimals,
     the number of integer digits (leading zeros included) and the sign as written."""
@@ -564,6 +570,10 @@ class Number(_Value):
 
     def __int__(self) -> int:
         """The integer part (toward zero), as int() of a float."""
+        try:
+            return _DIGIT_VALUES[self._text]  # one digit as received: most counts and indexes
+        except (AttributeError, KeyError):
+            pass
         text = getattr(self, "_text", None)
         if text is not None and text.isdigit() and text.isascii():  # a whole number as received
             return int(text)
@@ -1545,7 +1555,10 @@ def text_of(value: Any) -> str:
     if value is None:
         return ""
     if isinstance(value, _Value):  # numbers, times, dates, hex values: most fields
-        return value.text()
+        try:
+            return value._text  # as received (value.text() without its call)
+        except AttributeError:
+            return value.text()
     if value.__class__ is str:
         return value
     if isinstance(value, list):
@@ -2203,7 +2216,21 @@ class Layout:
                     f"        out += [{texts(item, f's.{item.id}')}]",
                 ]
         code.append("    return out")
-        exec("\n".join(code), names)  # noqa: S102 (source made above from the layout's own items)
+        # consecutive fields' texts in one list display (most layouts: all of them, returned)
+        merged: list[str] = []
+        for line in code:
+            if (
+                merged
+                and line.startswith("    out += [")
+                and merged[-1].startswith("    out += [")
+                and " for e in " not in line + merged[-1]  # a group's comprehension
+            ):
+                merged[-1] = merged[-1][:-1] + ", " + line[len("    out += [") :]
+            else:
+                merged.append(line)
+        if merged[1:] == ["    out = []", merged[2], "    return out"] and merged[2].startswith("    out += ["):
+            merged[1:] = ["    return " + merged[2][len("    out += ") :]]
+        exec("\n".join(merged), names)  # noqa: S102 (source made above from the layout's own items)
         write: Callable[[Any], list[str]] = names["write"]
         return write
 
