@@ -71,6 +71,13 @@ static nmea_ubx_protocol protocol_named(const char *name)
     return NMEA_UBX_PROTOCOL_UBX;
 }
 
+/* Whether the pair types the protocol of that name (none: UBX); SBF's blocks are typed in Python
+   only (generator/emit_framing.py's PYTHON_ONLY), so the vectors' SBF records are not ours. */
+static bool typed_here(const char *name)
+{
+    return name[0] == '\0' || protocol_named(name) != NMEA_UBX_PROTOCOL_UBX || strcmp(name, "ubx") == 0;
+}
+
 /* A build with NMEA_UBX_MAX_ENTRIES below what the logs' groups have (make test-c builds one with 8)
    refuses those payloads as too_many_entries, naming the group. */
 static bool over_the_maximum(const nmea_ubx_error *err)
@@ -335,6 +342,8 @@ static void vectors(FILE *file, int *decoded, int *refused)
         member(record, "frame", frame_text, sizeof frame_text);
         member(record, "error", error, sizeof error);
         member(record, "protocol", protocol, sizeof protocol);
+        if (!typed_here(protocol))
+            continue;
         of = protocol_named(protocol);
         if (strstr(record, "\"decode\":")) /* its decoded fields may have an `error` */
             error[0] = '\0';
