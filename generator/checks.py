@@ -13,7 +13,7 @@ from .resolve import checksum_ok
 from .errors import SpecError
 from .loader import Document
 from .field_types import TYPES
-from .model import Example, Field, Group, Layout, Origin, Sentence, Spec
+from .model import QUERY, Example, Field, Group, Layout, Origin, Sentence, Spec
 from .numbers import fixed_point
 
 VERSION_ORDER = ["2.0", "2.1", "2.2", "2.3", "3.0", "3.01", "4.00", "4.10", "4.11"]
@@ -136,10 +136,10 @@ def _unique(spec: Spec, report: _Reporter) -> None:
 
 def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], report: _Reporter) -> None:
     if not sentence.is_proprietary:
-        if len(sentence.id) not in (3, 4) or not sentence.id.isalnum():
+        if (len(sentence.id) not in (3, 4) and sentence.id != QUERY) or not sentence.id.isalnum():
             report(sentence.origin, "S034", f"standard sentence {sentence.id}: the id is the 3-character formatter "
-                   "(or 4, a receiver's own formatter such as Unicore's GGAH); a proprietary sentence needs "
-                   "`address`", "sentence")
+                   f"(or 4, a receiver's own formatter such as Unicore's GGAH, or {QUERY}, the query, whose talker is "
+                   "two talker IDs); a proprietary sentence needs `address`", "sentence")
         for key, value in (("kind", sentence.kind != "standard"), ("vendor", sentence.vendor), ("replies", sentence.reply_rules),
                            ("framing", sentence.framing != "sentence")):
             if value:

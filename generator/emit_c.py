@@ -19,7 +19,7 @@ from . import emit_vectors, pairing
 from .emit import CONTRACT, RUNTIME, char_literal, header, runtime_file
 from .emit_c_ais import carries_ais
 from .emit_c_ubx import carries_ubx
-from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef
+from .model import QUERY, BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef
 from .names_c import (bits_const, bits_function, bits_mask, entry_type, enum_const, enum_def, enum_type,
                       group_accessor, layout_const, layout_type, member, parameter_macro, table_count, table_name)
 from .numbers import fixed_point, fmt_num
@@ -866,7 +866,11 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     # proprietary address whose last three letters name a standard sentence must be told apart.
     standard_ids = {e["sort"] for e in dispatch["standard"]}
     shadowing = [e for e in dispatch["talker_like"] if e["sort"][2:] in standard_ids]
+    # The query ($CCGPQ): its entry of the standard table, which route takes for a 5-character
+    # address that ends in Q and whose last three characters name no standard sentence.
+    query = [i for i, e in enumerate(dispatch["standard"]) if e["sort"] == QUERY.encode()]
     context = {
+        "query_index": query[0] if query else None,
         "shadowing_talker_like": bool(shadowing),
         "enums": enums, "layouts": views, "sentences": sentences, "ranges": ranges.all,
         "enum_texts": [(name, c_str(text)) for text, name in texts.items() if refs[text] == name],

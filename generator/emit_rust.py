@@ -20,7 +20,7 @@ from . import cache, emit_vectors, pairing
 from .emit_framing import typed_natively
 from .emit import RUNTIME, char_literal, header, package_readme, runtime_file
 from .field_types import codes_expected
-from .model import BitfieldDef, EnumDef, Field, FixField, Group, Layout, Sentence, Spec, TableDef, camel
+from .model import QUERY, BitfieldDef, EnumDef, Field, FixField, Group, Layout, Sentence, Spec, TableDef, camel
 from .names_rust import bits_const, entry_name, ident, parameter_const
 from .numbers import fixed_point
 from .rust_features import Gates, cfg, with_cfg
@@ -500,7 +500,8 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     title = f"{sentence.id}: {sentence.name}" if not layout.id else f"{sentence.id} ({layout.name})"
     members = [it for it in items if it["kind"] != "keyword"]
     if not sentence.is_proprietary:
-        framing_members = ["talker: fields.talker()", "checksum"]
+        talker = "fields.talker()" if sentence.talker_length == 2 else f"fields.talker_of({sentence.talker_length})"
+        framing_members = [f"talker: {talker}", "checksum"]
     elif text:
         framing_members = ["as_received: fields.line()"]
     else:
@@ -1034,6 +1035,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         unit_examples=unit_examples, proprietary_arms=proprietary_arms, standard_arms=standard_arms,
         encapsulated_arms=encapsulated_arms,
         standard_like_arms=standard_like_arms, standard_fast_arms=standard_fast_arms,
+        has_query=any(s.id == QUERY for s in spec.standard),
         proprietary_fast_arms=proprietary_fast_arms, standard_like_fast_arms=standard_like_fast_arms,
         text_commands=text_commands, reply_arms=reply_arms, outcome_arms=outcome_arms,
         tag_codes=[f"TagCode {{ code: {rust_str(c.code)}, id: {rust_str(c.id)}, name: {rust_str(c.name)}, "

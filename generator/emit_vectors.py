@@ -77,12 +77,25 @@ def _example_vectors(spec: Spec) -> list[dict]:
 
 # Lines that show how parsing treats a value outside what the manual allows, each decoded with
 # the tools' options below: a number outside its range is kept and flagged unless --strict; an
-# unknown code of a closed enum, or a line that a variant is not there for, is refused.
+# unknown code of a closed enum, or a line that a variant is not there for, is refused. A
+# checksum of one hex digit equal to the sum (OpenCPN's instrument captures) is kept as sent and
+# flagged (short_checksum) unless --strict, never when the digit differs; a decimal may end in
+# its point (Signal K's `046.`), but a point alone, two points or a sign and a point are no number.
 TOLERANCE_LINES = (
     "$PUBX,03,02,1,-,014,-1,08,000,12,U,207,-2,28,009*5C",  # u-blox: satellites below the horizon
     "$GPRMC,225446,A,4916.45,N,12311.12,W,000.5,454.7,191194,020.3,E*6C",  # course over 359.9
     "$GPRMC,225446,X,4916.45,N,12311.12,W,000.5,054.7,191194,020.3,E*71",  # status X: closed A/V
     "$GPRMC,225446,A,4916.45,Q,12311.12,W,000.5,054.7,191194,020.3,E*77",  # hemisphere Q: not `sentinel`
+    "$IIRSA,28,A,,*b",  # OpenCPN's capture: the checksum 0B sent as one digit
+    "$IIRSA,28,A,,*B",  # the same in upper case
+    "$IIRSA,28,A,,*0b",  # the same in two digits
+    "$IIRSA,28,A,,*c",  # one digit that is not the checksum: refused
+    "$PXYZ,0AW*1",  # a sentence the spec does not describe, its checksum in one digit
+    "$PUBX,03,02,1,-,014,-1,08,000,12,U,207,-2,28,AWx*b",  # one digit, then the fields' problems
+    "$GPHDT,046.,T*07",  # a decimal that ends in its point (Signal K)
+    "$GPHDT,.,T*35",  # a point alone
+    "$GPHDT,46..,T*19",  # two points
+    "$GPHDT,-.,T*18",  # a sign and a point
 )
 TOLERANCE_OPTIONS = ((), ("--strict",), ("--lenient", "--strict"))
 

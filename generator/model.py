@@ -278,6 +278,11 @@ class ReplyRule:
 
 
 # The names the derived accessors of a layout take (a layout with a field of that name has none).
+QUERY = "Q"
+"""The standard query's formatter ($CCGPQ,GGA): its address is two talker IDs, the requester's and
+the listener's, then Q; every runtime reads a standard address of 5 characters ending in Q whose
+formatter the spec does not know as the query, its talker the first four."""
+
 POSITION_NAMES = ("latitude", "longitude")
 CALENDAR_NAMES = ("datetime",)
 # The ids of the integer fields that carry a date in three parts (ZDA: day, month, four-digit year).
@@ -509,6 +514,12 @@ class Sentence:
     @property
     def is_proprietary(self) -> bool:
         return self.address is not None
+
+    @property
+    def talker_length(self) -> int:
+        """The characters of a standard sentence's talker, its address but the formatter: 2, or 4
+        for the query (the requester's and the listener's talker IDs)."""
+        return 4 if self.id == QUERY else 2
 
     @property
     def fast_path(self) -> bool:

@@ -51,12 +51,13 @@ class _EnumMember:
         self.id = value_id
 
 
-def candidates(spec: Spec, line: str) -> tuple[Any, list[tuple[Sentence, Layout]]]:
-    """The line's frame and the layouts that may parse it, in order (none: a generic sentence)."""
+def candidates(spec: Spec, line: str, strict: bool = False) -> tuple[Any, list[tuple[Sentence, Layout]]]:
+    """The line's frame and the layouts that may parse it, in order (none: a generic sentence);
+    `strict` refuses a checksum of one digit."""
     if line[:1] not in ("$", "!") and spec.text_command(rt.first_word(line)):
         frame = rt.text_frame(line)
         return frame, spec.text_command(frame.address)
-    frame = rt.frame(line)
+    frame = rt.frame(line, strict=strict)
     found = spec.by_address(frame.address) if frame.start == "$" else []
     keyed = any(layout.selector is not None for _, layout in found)
     if not any(holds_selector(layout, frame.fields) if layout.selector is not None
@@ -65,6 +66,8 @@ def candidates(spec: Spec, line: str) -> tuple[Any, list[tuple[Sentence, Layout]
         found = []  # a message of a known family the spec does not know: a generic sentence
     if not found and rt.is_standard_address(frame.start, frame.address):
         standard = spec.sentence(frame.address[2:])
+        if standard is None and rt.is_query_address(frame.start, frame.address):
+            standard = spec.sentence(rt.QUERY)
         if standard is not None and not standard.is_proprietary and standard.start == frame.start:
             found = [(standard, layout) for layout in standard.layouts]
     return frame, found
@@ -74,7 +77,7 @@ def decode(spec: Spec, line: str, lenient: bool = False, strict: bool = False) -
     """The line decoded as every runtime's parse does it with these options: a number outside its
     field's range is kept and listed as a problem unless `strict`; `lenient` leaves the other
     fields at fault empty (one at a time, each a problem)."""
-    frame, candidates_ = candidates(spec, line)
+    frame, candidates_ = candidates(spec, line, strict)
     if not candidates_:
         return Decoded(frame, None, None, [])
     try:
@@ -286,14 +289,15 @@ def to_json(decoded: Decoded, values: bool = False) -> str:
     frame = decoded.frame
     head = f'{{"ok":true,"start":{rt.json_str(frame.start)},"address":{rt.json_str(frame.address)},'
     tail = f',"checksum":{rt.json_opt(frame.checksum)}}}'
+    short = rt.short_checksum_json(frame.checksum)  # a checksum of one digit: the first problem
+    problem_items = ([short] if short else []) + [rt.problem_json(p) for p in decoded.problems]
+    problems = ',"problems":[' + ",".join(problem_items) + "]" if problem_items else ""
     if decoded.sentence is None:
         fields = "[" + ",".join(rt.json_str(f) for f in frame.fields) + "]"
-        return head + '"talker":null,"sentence":null,"variant":null,"fields":' + fields + tail
+        return head + '"talker":null,"sentence":null,"variant":null,"fields":' + fields + problems + tail
     variant = rt.json_opt(decoded.layout.id if decoded.layout else None)
-    talker = "null" if decoded.sentence.is_proprietary else rt.json_str(frame.address[:2])
-    problems = ""
-    if decoded.problems:
-        problems = ',"problems":[' + ",".join(rt.problem_json(p) for p in decoded.problems) + "]"
+    # a standard sentence's talker: the address but the formatter (a query's: two talker IDs)
+    talker = "null" if decoded.sentence.is_proprietary else rt.json_str(frame.address[:-len(decoded.sentence.id)])
     return (head + f'"talker":{talker},"sentence":{rt.json_str(decoded.sentence.id)},'
             f'"variant":{variant},"fields":{fields_json(decoded, values)}{problems}' + tail)
 

@@ -10,10 +10,10 @@ NMEA_INTERNAL bool frame_known(nmea_wire *wire, const char *line, size_t len, ch
                                nmea_error *err)
 {
     nmea_frame f;
-    if (!frame_line(&f, line, len, false, err))
+    if (!frame_line(&f, line, len, 0, err))
         return false;
-    if (!is_standard_address(&f) || f.start.ptr[0] != start ||
-        !text_is(text_span(f.address.ptr + 2, f.address.ptr + f.address.len), sentence)) {
+    if (!is_standard_address(&f) || f.start.ptr[0] != start || f.address.len != talker_length(sentence) + strlen(sentence) ||
+        !text_is(text_span(f.address.ptr + talker_length(sentence), f.address.ptr + f.address.len), sentence)) {
         fail(err, NMEA_ERR_NOT_A_SENTENCE,
              start == '!' ? ERROR_TEXT("line is not a !--%s sentence") : ERROR_TEXT("line is not a $--%s sentence"));
         set_address(err, f.address, NULL);
@@ -29,7 +29,7 @@ NMEA_INTERNAL bool frame_proprietary(nmea_wire *wire, const char *line, size_t l
                                      nmea_error *err)
 {
     nmea_frame f;
-    if (!frame_line(&f, line, len, false, err))
+    if (!frame_line(&f, line, len, 0, err))
         return false;
     if (f.start.ptr[0] != '$' || !text_is(f.address, address)) {
         fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("line is not a $%s sentence"));

@@ -88,7 +88,9 @@ NMEA_HOT size_t fast_end(fast_writer *w, nmea_checksum_style style)
     const char *hex = style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER;
     if (style != NMEA_CHECKSUM_NONE) {
         *w->p++ = '*';
-        if (style != NMEA_CHECKSUM_EMPTY) {
+        if (style >= NMEA_CHECKSUM_SHORT_UPPER) { /* one digit, kept as received (rare) */
+            w->p += checksum_digits(w->p, style, sum);
+        } else if (style != NMEA_CHECKSUM_EMPTY) {
             w->p[0] = hex[sum >> 4];
             w->p[1] = hex[sum & 15];
             w->p += 2;

@@ -43,9 +43,15 @@ static bool ends_body(unsigned char c)
     return c < 0x20 || c > 0x7E || c == '*';
 }
 
-/* One pass over the line: the printable check, the checksum and the field count; with
-   `require_checksum`, a sentence without a checksum (or with a bare '*') is refused. */
-static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require_checksum, nmea_error *err)
+/* What frame_line checks beyond the form of a line (`checks`): FRAME_REQUIRE_CHECKSUM refuses a
+   sentence without a checksum (or with a bare '*'); FRAME_STRICT refuses a one-digit checksum,
+   which is otherwise kept (NMEA_CHECKSUM_SHORT_*) when it equals the sum. */
+#define FRAME_REQUIRE_CHECKSUM 1u
+#define FRAME_STRICT 2u
+
+/* One pass over the line: the printable check, the checksum and the field count, with the
+   `checks` above. */
+static bool frame_line(nmea_frame *f, const char *line, size_t len, unsigned checks, nmea_error *err)
 {
     size_t i, star = 0, comma = 0, commas = 0, body_end;
     unsigned sum = 0;
@@ -57,6 +63,9 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
     bool named = false, lower = false, upper = false;
     nmea_text sent;
 
+#ifdef NMEA_NO_PROBLEMS /* every sentence is read strictly */
+    checks |= FRAME_STRICT;
+#endif
     if (len > NMEA_MAX_LINE) {
         nmea_error_too_long(err, len);
         return false;
@@ -132,6 +141,11 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
             low = hex_value(sent.ptr[1]);
             lower = (sent.ptr[0] >= 'a' && sent.ptr[0] <= 'f') || (sent.ptr[1] >= 'a' && sent.ptr[1] <= 'f');
             upper = (sent.ptr[0] >= 'A' && sent.ptr[0] <= 'F') || (sent.ptr[1] >= 'A' && sent.ptr[1] <= 'F');
+        } else if (sent.len == 1 && !(checks & FRAME_STRICT) && hex_value(sent.ptr[0]) == (int)sum) {
+            /* one digit that is the checksum (OpenCPN's instrument captures): kept as sent */
+            high = 0;
+            low = (int)sum;
+            lower = sent.ptr[0] >= 'a' && sent.ptr[0] <= 'f';
         }
         if (high < 0 || low < 0 || (lower && upper)) {
             fail(err, NMEA_ERR_BAD_CHECKSUM, ERROR_TEXT("checksum %q is not two hex digits of one letter case"));
@@ -148,14 +162,15 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
                 set_address(err, f->address, NULL);
             return false;
         }
-        f->checksum = lower ? NMEA_CHECKSUM_LOWER : NMEA_CHECKSUM_UPPER;
+        f->checksum = sent.len == 1 ? (lower ? NMEA_CHECKSUM_SHORT_LOWER : NMEA_CHECKSUM_SHORT_UPPER)
+                                    : (lower ? NMEA_CHECKSUM_LOWER : NMEA_CHECKSUM_UPPER);
     }
     if (!named) {
         fail(err, NMEA_ERR_NOT_A_SENTENCE, ERROR_TEXT("address %q is not letters and digits"));
         err->text = f->address;
         return false;
     }
-    if (require_checksum && (f->checksum == NMEA_CHECKSUM_NONE || f->checksum == NMEA_CHECKSUM_EMPTY)) {
+    if ((checks & FRAME_REQUIRE_CHECKSUM) && (f->checksum == NMEA_CHECKSUM_NONE || f->checksum == NMEA_CHECKSUM_EMPTY)) {
         fail(err, NMEA_ERR_MISSING_CHECKSUM, ERROR_TEXT("the sentence has no checksum"));
         set_address(err, f->address, NULL);
         return false;
@@ -163,6 +178,15 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
     f->count = commas;
     f->fields = commas ? text_span(line + comma + 1, line + body_end) : text_span(line + body_end, line + body_end);
     return true;
+}
+
+/* The standard query's formatter ($CCGPQ,GGA: CC asks GP for GGA): its talker is two talker IDs. */
+#define QUERY_FORMATTER "Q"
+
+/* How many characters the talker of standard sentence `sentence` has: 2, or 4 for the query. */
+static size_t talker_length(const char *sentence)
+{
+    return strcmp(sentence, QUERY_FORMATTER) == 0 ? 4 : 2;
 }
 
 /* A talker ID and a sentence formatter: '$' (or '!', an encapsulation sentence such as AIS VDM),
@@ -251,19 +275,40 @@ NMEA_INTERNAL void begin_sentence(nmea_writer *w, char start, nmea_text talker, 
     put_str(w, sentence);
 }
 
+/* Whether a checksum `sum` in `style` is written as one digit: a one-digit style while the sum
+   fits one (the tools' JSON then lists a short_checksum problem). */
+static bool checksum_is_short(nmea_checksum_style style, unsigned sum)
+{
+    return (style == NMEA_CHECKSUM_SHORT_UPPER || style == NMEA_CHECKSUM_SHORT_LOWER) && sum < 16;
+}
+
+/* The checksum's hex digits in `style` (upper or lower case, one digit when checksum_is_short)
+   put in `out`; returns how many. */
+static size_t checksum_digits(char *out, nmea_checksum_style style, unsigned char sum)
+{
+    const char *hex = style == NMEA_CHECKSUM_LOWER || style == NMEA_CHECKSUM_SHORT_LOWER ? HEX_LOWER : HEX_UPPER;
+    if (checksum_is_short(style, sum)) {
+        out[0] = hex[sum];
+        return 1;
+    }
+    out[0] = hex[sum >> 4];
+    out[1] = hex[sum & 15];
+    return 2;
+}
+
 static void end_sentence(nmea_writer *w, nmea_checksum_style style)
 {
-    unsigned char sum;
+    char digits[2];
+    size_t i, n;
     stop_sum(w);
-    sum = w->sum;
     w->problems = NULL;
     if (style == NMEA_CHECKSUM_NONE)
         return;
     put_char(w, '*');
     if (style == NMEA_CHECKSUM_EMPTY)
         return;
-    put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[sum >> 4]);
-    put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[sum & 15]);
+    for (i = 0, n = checksum_digits(digits, style, w->sum); i < n; i++)
+        put_char(w, digits[i]);
 }
 
 /* A text command: the command word and each field after a space (the put_ functions write

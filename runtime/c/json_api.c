@@ -229,6 +229,8 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
     while (json_next(&problems, &problem)) {
         if (!json_require(problem, "field", &v, err))
             return false;
+        if (json_is_null(v)) /* no field's: a short checksum, which "checksum" says */
+            continue;
         if (!json_index(v, n, &index))
             return bad_json(err, "a problem's \"field\" is not the index of a field", NULL);
         if (!json_require(problem, "text", &v, err) || !json_field_text(v, s, &text, err))
@@ -237,7 +239,7 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
             texts[index - 1] = text;
     }
     if (!LAYOUTS[id]->address) { /* a standard sentence: the talker and the sentence id */
-        if (!json_talker_member(root, s, &wire->address, err))
+        if (!json_talker_member(root, LAYOUTS[id]->sentence, s, &wire->address, err))
             return false;
         wire->suffix = LAYOUTS[id]->sentence;
     }
@@ -416,7 +418,7 @@ static bool sentence_from_json(nmea_sentence *out, nmea_json root, nmea_scratch 
         return with_problems(out, id, root, problems, s, &wire, err);
     }
     if (!info->address) { /* a standard sentence: the talker and the sentence id */
-        if (!json_talker_member(root, s, &wire.address, err))
+        if (!json_talker_member(root, info->sentence, s, &wire.address, err))
             return false;
         wire.suffix = info->sentence;
     } else if (info->command) { /* a text command: its word as written, its letter case kept */

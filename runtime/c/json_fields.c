@@ -74,12 +74,15 @@ static bool json_text_member(nmea_json obj, const char *key, bool nullable, nmea
 }
 
 /* How the "checksum" of decode's JSON says to write the checksum: null (none), "" (a bare '*'),
-   lower case (when the text has a letter from a to z) or upper case. */
+   lower case (when the text has a letter from a to z) or upper case, in one digit when the text
+   is one character (a short checksum as received). */
 static bool json_checksum_style(nmea_json root, nmea_checksum_style *style, nmea_error *err)
 {
     nmea_json v;
     const char *p;
     long cp;
+    size_t n = 0;
+    bool lower = false;
     if (!json_require(root, "checksum", &v, err))
         return false;
     if (json_is_null(v)) {
@@ -88,10 +91,12 @@ static bool json_checksum_style(nmea_json root, nmea_checksum_style *style, nmea
     }
     if (!json_is(v, '"'))
         return bad_json(err, "\"%s\" is not a string or null", "checksum");
-    *style = v.end - v.p == 2 ? NMEA_CHECKSUM_EMPTY : NMEA_CHECKSUM_UPPER;
-    for (p = v.p + 1; json_char_at(&p, v.end, &cp);)
-        if (cp >= 'a' && cp <= 'z')
-            *style = NMEA_CHECKSUM_LOWER;
+    for (p = v.p + 1; json_char_at(&p, v.end, &cp); n++)
+        lower = lower || (cp >= 'a' && cp <= 'z');
+    if (n == 1)
+        *style = lower ? NMEA_CHECKSUM_SHORT_LOWER : NMEA_CHECKSUM_SHORT_UPPER;
+    else
+        *style = n == 0 ? NMEA_CHECKSUM_EMPTY : lower ? NMEA_CHECKSUM_LOWER : NMEA_CHECKSUM_UPPER;
     return true;
 }
 
@@ -118,12 +123,13 @@ static bool json_word_member(nmea_json obj, const char *key, nmea_scratch *s, nm
 
 /* The talker of a standard sentence: two letters and digits, as decode gives it (a longer one
    would make another address). */
-static bool json_talker_member(nmea_json obj, nmea_scratch *s, nmea_text *out, nmea_error *err)
+static bool json_talker_member(nmea_json obj, const char *sentence, nmea_scratch *s, nmea_text *out, nmea_error *err)
 {
     if (!json_word_member(obj, "talker", s, out, err))
         return false;
-    if (out->len != 2)
-        return bad_json(err, "\"talker\" is not two letters and digits", NULL);
+    if (out->len != talker_length(sentence))
+        return bad_json(err, talker_length(sentence) == 2 ? "\"talker\" is not two letters and digits"
+                                                          : "\"talker\" is not four letters and digits", NULL);
     return true;
 }
 

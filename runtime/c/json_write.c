@@ -262,6 +262,7 @@ NMEA_INTERNAL nmea_text text_address(const nmea_writer *sentence, nmea_text as_r
 /* ,"checksum":"HH"} with the checksum `sum` the sentence is written with. */
 static void json_checksum(nmea_writer *w, unsigned char sum, nmea_checksum_style style)
 {
+    char digits[2];
     put_str(w, ",\"checksum\":");
     if (style == NMEA_CHECKSUM_NONE) {
         put_str(w, "null}");
@@ -272,21 +273,43 @@ static void json_checksum(nmea_writer *w, unsigned char sum, nmea_checksum_style
         return;
     }
     put_char(w, '"');
-    put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[sum >> 4]);
-    put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[sum & 15]);
+    put_mem(w, digits, checksum_digits(digits, style, sum));
     put_str(w, "\"}");
 }
 
-/* ,"problems":[...]: each number kept outside its range and each field lenient parsing left
-   empty, with its text and why. */
-static void json_problems(nmea_writer *w, const nmea_problems *problems)
+/* The short_checksum problem of a sentence whose checksum `sum` is written as one digit: what
+   strict parsing refuses (bad_checksum) with the digit as its text. */
+static void json_short_checksum(nmea_writer *w, unsigned char sum, nmea_checksum_style style)
+{
+    nmea_error err;
+    char digit[2];
+    fail(&err, NMEA_ERR_BAD_CHECKSUM, ERROR_TEXT("checksum %q is not two hex digits of one letter case"));
+    err.text = text_span(digit, digit + checksum_digits(digit, style, sum));
+    put_str(w, "{\"kind\":\"");
+    put_str(w, "short_checksum");
+    put_str(w, "\",\"field\":null,\"name\":null,\"text\":");
+    put_json_str(w, err.text, 0);
+    put_str(w, ",\"message\":\"");
+    put_message(w, &err, 1);
+    put_str(w, "\"}");
+}
+
+/* ,"problems":[...]: a checksum of one digit (when `style` and `sum` make one), then each number
+   kept outside its range and each field lenient parsing left empty (`problems`, NULL: none), with
+   its text and why. */
+static void json_problems(nmea_writer *w, const nmea_problems *problems, unsigned char sum, nmea_checksum_style style)
 {
     nmea_error err;
     size_t i;
+    bool first = true;
     put_str(w, ",\"problems\":[");
-    for (i = 0; i < problems->count && i < NMEA_MAX_PROBLEMS; i++) {
+    if (checksum_is_short(style, sum)) {
+        json_short_checksum(w, sum, style);
+        first = false;
+    }
+    for (i = 0; problems && i < problems->count && i < NMEA_MAX_PROBLEMS; i++, first = false) {
         problem_error(&problems->list[i], &err);
-        put_str(w, i ? ",{\"kind\":\"" : "{\"kind\":\"");
+        put_str(w, first ? "{\"kind\":\"" : ",{\"kind\":\"");
         put_str(w, problems->list[i].kind == NMEA_PROBLEM_OUT_OF_RANGE ? "out_of_range" : "left_empty");
         put_str(w, "\",\"field\":");
         put_uint(w, err.field, 1);
@@ -313,8 +336,8 @@ NMEA_INTERNAL void json_end_sentence(nmea_writer *w, const nmea_writer *sentence
                                      const nmea_problems *problems)
 {
     put_char(w, '}');
-    if (problems && problems->count)
-        json_problems(w, problems);
+    if ((problems && problems->count) || checksum_is_short(style, sentence->sum))
+        json_problems(w, problems, sentence->sum, style);
     json_checksum(w, sentence->sum, style);
 }
 
@@ -354,6 +377,8 @@ static void json_generic(nmea_writer *w, const nmea_generic *g)
         p = comma < end ? comma + 1 : end;
     }
     put_char(w, ']');
+    if (checksum_is_short(g->checksum, sum.sum))
+        json_problems(w, NULL, sum.sum, g->checksum);
     json_checksum(w, sum.sum, g->checksum);
 }
 #endif /* NMEA_NO_JSON */

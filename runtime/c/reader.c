@@ -158,12 +158,13 @@ static bool too_many(nmea_reader *r, size_t limit, size_t found)
 
 /* A layout without a repeated group: `fixed` required fields, `max` in all. Sets `optional` to
    the number of optional trailing wire fields present. */
-/* The wire of a framed line: a standard sentence's address is its 2-character talker followed
-   by `suffix` (its sentence id); a text command (`line`, as received) has words separated by
+/* The wire of a framed line: a standard sentence's address is its talker (2 characters, 4 for a
+   query) followed by `suffix` (its sentence id); a text command (`line`, as received) has words separated by
    spaces. */
 static void wire_of(nmea_wire *wire, const nmea_frame *f, const char *suffix, const char *line)
 {
-    wire->address = suffix ? text_span(f->address.ptr, f->address.ptr + 2) : f->address;
+    /* a standard sentence's talker: the address but the sentence id (two talker IDs of a query) */
+    wire->address = suffix ? text_span(f->address.ptr, f->address.ptr + f->address.len - strlen(suffix)) : f->address;
     wire->suffix = suffix;
     wire->fields = f->fields;
     wire->count = (uint16_t)f->count;
@@ -188,7 +189,7 @@ NMEA_INTERNAL bool build_wire(nmea_writer *w, bool text, nmea_wire *wire, nmea_e
         w->len = w->cap; /* nothing of it is kept */
         return false;
     }
-    if (!(text ? text_frame(&f, w->buf, w->len, err) : frame_line(&f, w->buf, w->len, false, err)))
+    if (!(text ? text_frame(&f, w->buf, w->len, err) : frame_line(&f, w->buf, w->len, 0, err)))
         return false;
     wire_of(wire, &f, NULL, text ? w->buf : NULL);
     return true;

@@ -58,7 +58,10 @@ typedef enum {
     NMEA_CHECKSUM_UPPER = 0, /* "*6A" (also the style of an all-digit checksum) */
     NMEA_CHECKSUM_LOWER,     /* "*6a" */
     NMEA_CHECKSUM_NONE,      /* no checksum at all */
-    NMEA_CHECKSUM_EMPTY      /* a bare '*': the checksum left out, as ST's manual writes commands */
+    NMEA_CHECKSUM_EMPTY,     /* a bare '*': the checksum left out, as ST's manual writes commands */
+    NMEA_CHECKSUM_SHORT_UPPER, /* "*B": one hex digit, a checksum under 16 as some instruments send it
+                                  (kept unless nmea_options.strict; two digits once the sum is 16 or more) */
+    NMEA_CHECKSUM_SHORT_LOWER  /* "*b" */
 } nmea_checksum_style;
 
 /**
@@ -249,7 +252,10 @@ void nmea_error_too_long(nmea_error *err, size_t len);
 /** What parsing did with a field at fault (the "kind" of a problem in the tools' JSON). */
 typedef enum {
     NMEA_PROBLEM_LEFT_EMPTY,  /* "left_empty": lenient parsing read it as empty */
-    NMEA_PROBLEM_OUT_OF_RANGE /* "out_of_range": a number outside its field's range, kept as sent */
+    NMEA_PROBLEM_OUT_OF_RANGE, /* "out_of_range": a number outside its field's range, kept as sent */
+    NMEA_PROBLEM_SHORT_CHECKSUM /* "short_checksum": a checksum sent as one hex digit, kept as sent; never
+                                   in nmea_problems (the sentence's NMEA_CHECKSUM_SHORT_* style says
+                                   it), listed first by the tools' JSON */
 } nmea_problem_kind;
 
 /**

@@ -132,7 +132,7 @@ static bool parse_general(nmea_sentence *out, const char *line, size_t len, cons
         nmea_error_too_long(err, len);
         return false;
     }
-    if (!frame_line(&f, line, len, options->require_checksum, err))
+    if (!frame_line(&f, line, len, (options->require_checksum ? FRAME_REQUIRE_CHECKSUM : 0u) | (options->strict ? FRAME_STRICT : 0u), err))
         return false;
     if (is_standard_address(&f) && f.start.ptr[0] == '$'
         && (layouts = find_layouts(STANDARD, 1, text_span(f.address.ptr + 2, f.address.ptr + 5))) != NULL) {
@@ -172,7 +172,7 @@ static bool message_is(const nmea_error *err, const char *expected)
 static bool frames(const char *line, nmea_frame *f, nmea_error *err)
 {
     memset(err, 0, sizeof *err);
-    return frame_line(f, line, strlen(line), false, err);
+    return frame_line(f, line, strlen(line), 0, err);
 }
 
 static void test_framing(void)
@@ -194,16 +194,21 @@ static void test_framing(void)
     CHECK(frames("$GPGLL,1*4d", &f, &err) && f.checksum == NMEA_CHECKSUM_LOWER);
     CHECK(!frames("$GPGLL,1*4D4", &f, &err) && err.kind == NMEA_ERR_BAD_CHECKSUM);
     CHECK(!frames("$GPGLL,1*6", &f, &err) && err.kind == NMEA_ERR_BAD_CHECKSUM);
+    /* one hex digit that is the checksum (0x01): kept, unless strict; never one that differs */
+    CHECK(frames("$PXYZ,0AW*1", &f, &err) && f.checksum == NMEA_CHECKSUM_SHORT_UPPER && f.count == 1);
+    CHECK(!frame_line(&f, "$PXYZ,0AW*1", 11, FRAME_STRICT, &err) && err.kind == NMEA_ERR_BAD_CHECKSUM);
+    CHECK(message_is(&err, "checksum \"1\" is not two hex digits of one letter case"));
+    CHECK(!frames("$PXYZ,0AW*2", &f, &err) && err.kind == NMEA_ERR_BAD_CHECKSUM);
     CHECK(!frames("$GP\x01GLL,1", &f, &err) && err.kind == NMEA_ERR_NOT_A_SENTENCE);
     CHECK(message_is(&err, "byte 0x01 at offset 3 is not printable ASCII"));
 
     memset(long_line, 'A', sizeof long_line);
     long_line[0] = '$';
-    CHECK(!frame_line(&f, long_line, NMEA_MAX_LINE + 1, false, &err) && err.kind == NMEA_ERR_TOO_LONG);
+    CHECK(!frame_line(&f, long_line, NMEA_MAX_LINE + 1, 0, &err) && err.kind == NMEA_ERR_TOO_LONG);
     CHECK(message_is(&err, "line is 1025 bytes, the limit is 1024"));
 
     memset(&err, 0, sizeof err);
-    CHECK(!frame_line(&f, "$GPGLL,1", 8, true, &err) && err.kind == NMEA_ERR_MISSING_CHECKSUM);
+    CHECK(!frame_line(&f, "$GPGLL,1", 8, FRAME_REQUIRE_CHECKSUM, &err) && err.kind == NMEA_ERR_MISSING_CHECKSUM);
     CHECK(message_is(&err, "the sentence has no checksum"));
 }
 

@@ -122,7 +122,7 @@ def parse(
         if layouts is not None:
             frame = runtime.text_frame(line)
             return _first_fit(layouts, frame.address, frame.fields, None, line)
-    frame = runtime.frame(line, require_checksum)
+    frame = runtime.frame(line, require_checksum, strict)
     checksum = runtime.checksum_case(frame.checksum)
     return _read(frame.start, frame.address, frame.fields, checksum, line, lenient, strict)
 
@@ -201,6 +201,8 @@ def _read(
         formatter = address[2:]
         if start == "$":
             layouts = STANDARD.get(formatter) or sentences.standard(formatter)
+            if layouts is None and runtime.is_query_address(start, address):
+                layouts = STANDARD.get(runtime.QUERY) or sentences.standard(runtime.QUERY)
         else:  # an encapsulation sentence (AIS VDM): by its formatter only
             layouts = ENCAPSULATED.get(formatter) or sentences.encapsulated(formatter)
     if layouts is None:
@@ -337,8 +339,13 @@ def to_json(sentence: Any, values: bool = False) -> str:
             return '{"ok":true,' + tail
         return to_json(sentence.sentence, values)[:-1] + "," + tail
     text = sentence.to_sentence()
+    star = text.rfind("*") if sentence.checksum is not None else -1
+    sent = text[star + 1 :] if star >= 0 else None
+    short = runtime.short_checksum_json(sent)  # a checksum of one digit, as received
     if isinstance(sentence, Generic):
         fields = "[" + ",".join(runtime.json_str(f) for f in sentence.fields) + "]"
+        if short:
+            fields += f',"problems":[{short}]'
         head = (
             f'{{"ok":true,"start":{runtime.json_str(sentence.start)},"address":{runtime.json_str(sentence.address)},'
             '"talker":null,"sentence":null,"variant":null,"fields":'
@@ -359,13 +366,11 @@ def to_json(sentence: Any, values: bool = False) -> str:
             f'"sentence":"{sentence.SENTENCE}","variant":{runtime.json_opt(sentence.VARIANT)},"fields":'
         )
         fields = sentence.fields_json(values)
-        if sentence.problems:
-            fields += (
-                ',"problems":[' + ",".join(runtime.problem_json(p) for p in sentence.problems) + "]"
-            )
-    star = text.rfind("*") if sentence.checksum is not None else -1
-    checksum = runtime.json_opt(text[star + 1 :] if star >= 0 else None)
-    return f'{head}{fields},"checksum":{checksum}}}'
+        if sentence.problems or short:
+            problems = [short] if short else []
+            problems += [runtime.problem_json(p) for p in sentence.problems]
+            fields += ',"problems":[' + ",".join(problems) + "]"
+    return f'{head}{fields},"checksum":{runtime.json_opt(sent)}}}'
 
 
 def decode_json(
@@ -433,7 +438,7 @@ def from_json(obj: Any) -> Any:
 def _json_address(layout: Any, obj: dict[str, Any]) -> str:
     """The address of a `$`/`!` sentence rebuilt from JSON: its talker and sentence id, or the
     proprietary address."""
-    address: str = layout.ADDRESS or runtime.json_talker(obj) + layout.SENTENCE
+    address: str = layout.ADDRESS or runtime.json_talker(obj, layout.SENTENCE) + layout.SENTENCE
     return address
 
 
@@ -458,6 +463,8 @@ def _with_problems(layout: Any, obj: dict[str, Any], texts: list[str], checksum:
         raise runtime.bad_json("a text command has no problems")
     for problem in runtime.json_list(obj, "problems"):
         index = runtime.json_member(problem, "field")
+        if index is None:  # no field's: a short checksum, which "checksum" says
+            continue
         if not isinstance(index, int) or isinstance(index, bool) or not 1 <= index <= len(texts):
             raise runtime.bad_json('a problem\'s "field" is not the index of a field')
         texts[index - 1] = runtime.json_text(runtime.json_member(problem, "text"))

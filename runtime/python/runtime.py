@@ -131,9 +131,10 @@ def checksum(body: str) -> int:
     return value & 0xFF
 
 
-def frame(line: str, require_checksum: bool = False) -> Frame:
+def frame(line: str, require_checksum: bool = False, strict: bool = False) -> Frame:
     """Split one line (without its line ending) into a Frame; with `require_checksum`, a sentence
-    without a checksum (or with a bare '*') is refused."""
+    without a checksum (or with a bare '*') is refused. A checksum of one hex digit that equals
+    the sum (some instruments send `*b` for `*0b`) is kept as sent, unless `strict`."""
     if len(line) > MAX_LINE:
         raise NmeaError("too_long", f"line is {len(line)} bytes, the limit is {MAX_LINE}")
     if not line:
@@ -152,17 +153,15 @@ def frame(line: str, require_checksum: bool = False) -> Frame:
         sent = line[star + 1 :]
         # A bare '*' leaves the checksum out, as ST's manual writes its commands.
         if sent:
-            if (
+            if len(sent) == 1 and not strict and sent in _HEX_DIGITS and int(sent, 16) == checksum(body):
+                pass  # one digit that is the checksum: kept as sent (short_checksum)
+            elif (
                 len(sent) != 2
                 or sent[0] not in _HEX_DIGITS
                 or sent[1] not in _HEX_DIGITS
                 or (sent != sent.upper() and sent != sent.lower())
             ):
-                raise NmeaError(
-                    "bad_checksum",
-                    f"checksum {json_str(sent)} is not two hex digits of one letter case",
-                    named,
-                )
+                raise bad_checksum(sent, named)
             computed = checksum(body)
             if int(sent, 16) != computed:
                 raise NmeaError(
@@ -173,6 +172,25 @@ def frame(line: str, require_checksum: bool = False) -> Frame:
     if require_checksum and not sent:
         raise NmeaError("missing_checksum", "the sentence has no checksum", named)
     return Frame(start, address, parts[1:], sent)
+
+
+def bad_checksum(sent: str, address: str | None) -> NmeaError:
+    """The error of a checksum that is not two hex digits of one letter case (strict parsing's of
+    a one-digit checksum, which is otherwise kept)."""
+    return NmeaError(
+        "bad_checksum", f"checksum {json_str(sent)} is not two hex digits of one letter case", address
+    )
+
+
+def short_checksum_json(sent: str | None) -> str:
+    """The tools' JSON problem of a checksum written as one hex digit (`sent`; none: ""), which
+    strict parsing refuses as bad_checksum, as the start of a `problems` array's items."""
+    if sent is None or len(sent) != 1:
+        return ""
+    return (
+        f'{{"kind":"short_checksum","field":null,"name":null,"text":{json_str(sent)},'
+        f'"message":{json_str(bad_checksum(sent, None).message)}}}'
+    )
 
 
 def check_printable(line: str) -> None:
@@ -221,16 +239,28 @@ def is_standard_address(start: str, address: str) -> bool:
     return start in ("$", "!") and (len(address) == 5 or len(address) == 6) and address[0] != "P"
 
 
+QUERY: Final = "Q"
+"""The standard query's formatter ($CCGPQ,GGA: CC asks GP for GGA)."""
+
+
+def is_query_address(start: str, address: str) -> bool:
+    """A standard query: `$`, two talker IDs (the requester's and the listener's) and `Q`, not
+    proprietary; read as one when the last three characters are no formatter the spec knows."""
+    return start == "$" and len(address) == 5 and address[4] == QUERY and address[0] != "P"
+
+
 def assemble(start: str, address: str, fields: list[str], checksum_style: str | None) -> str:
     """The sentence text: start, address, fields and the checksum written in `checksum_style`
-    ("upper", "lower", "empty" for a bare '*', or None for none)."""
+    ("upper", "lower", "empty" for a bare '*', None for none, or "short_upper", "short_lower":
+    one hex digit while the checksum is under 16, as received)."""
     body = ",".join([address, *fields])
     if checksum_style is None:
         return start + body
     if checksum_style == "empty":
         return f"{start}{body}*"
-    text = _CHECKSUM_HEX[checksum(body)]
-    return f"{start}{body}*{text.lower() if checksum_style == 'lower' else text}"
+    sum_ = checksum(body)
+    text = f"{sum_:X}" if sum_ < 16 and checksum_style.startswith("short_") else _CHECKSUM_HEX[sum_]
+    return f"{start}{body}*{text.lower() if checksum_style.endswith('lower') else text}"
 
 
 _CHECKSUM_HEX: Final = tuple(f"{value:02X}" for value in range(256))
@@ -1655,14 +1685,15 @@ def json_text(value: Any) -> str:
 
 def checksum_case(text: str | None) -> str | None:
     """How a received checksum was written: None (absent), "empty" (a bare '*'), "lower" or
-    "upper"."""
+    "upper"; "short_lower" or "short_upper" for one digit."""
     if text is None:
         return None
     if not text:
         return "empty"
+    short = "short_" if len(text) == 1 else ""
     if text.isascii():  # upper() changes exactly the letters a to z
-        return "lower" if text != text.upper() else "upper"
-    return "lower" if any("a" <= c <= "z" for c in text) else "upper"
+        return short + ("lower" if text != text.upper() else "upper")
+    return short + ("lower" if any("a" <= c <= "z" for c in text) else "upper")
 
 
 def assemble_text(address: str, fields: list[str], as_received: str | None) -> str:
@@ -1688,12 +1719,12 @@ def json_word(obj: Any, key: str) -> str:
     return value
 
 
-def json_talker(obj: Any) -> str:
-    """The talker of a standard sentence: two letters and digits, as decode gives it (a longer
-    one would make another address)."""
+def json_talker(obj: Any, sentence: str = "") -> str:
+    """The talker of standard sentence `sentence`: two letters and digits, as decode gives it (a
+    longer one would make another address); four, two talker IDs, for the query."""
     value = json_word(obj, "talker")
-    if len(value) != 2:
-        raise bad_json('"talker" is not two letters and digits')
+    if len(value) != (4 if sentence == QUERY else 2):
+        raise bad_json(f'"talker" is not {"four" if sentence == QUERY else "two"} letters and digits')
     return value
 
 
@@ -2175,7 +2206,8 @@ class Layout:
             else:
                 code.append(f"    v{n} = {read(item, str(n), place, repr(item.id))}")
             at += item.width
-        head = {"standard": ["address[:2]"], "proprietary": [], "text": ["line"]}[self.kind]
+        # a standard sentence's talker: its address but the formatter (two talker IDs of a query)
+        head = {"standard": [f"address[:{-len(self.sentence)}]"], "proprietary": [], "text": ["line"]}[self.kind]
         tail = ["[]"] if self.kind == "text" else ["[]", "checksum"]
         code.append(f"    return cls({', '.join(head + values + tail)})")
         exec("\n".join(code), names)  # noqa: S102 (source made above from the layout's own items)

@@ -142,7 +142,8 @@ def test_examples_match_the_reference() -> None:
 
 def test_tolerance_vectors() -> None:
     """A number outside its range is kept and flagged unless --strict, which refuses it as before;
-    unknown codes of closed enums are refused; each line with its options as the reference says,
+    unknown codes of closed enums are refused; a one-digit checksum is kept and flagged unless
+    --strict; each line with its options as the reference says,
     and what is kept encodes back to the line (with or without the problems of numbers kept)."""
     vectors = [json.loads(line) for line in TOLERANCE.read_text().splitlines()]
     kinds = set()
@@ -159,7 +160,7 @@ def test_tolerance_vectors() -> None:
             back = agreed(["encode"], "".join(b + "\n" for b in bare).encode()).decode().splitlines()
             assert back == [line for line, _ in kept]
         kinds |= {p["kind"] for o in out for p in json.loads(o).get("problems", [])}
-    assert kinds == {"out_of_range", "left_empty"}
+    assert kinds == {"out_of_range", "left_empty", "short_checksum"}
 
 
 def test_tag_blocks() -> None:

@@ -8,7 +8,8 @@ For every kind of damage:
     from the damage's positions, not from a reader's output) decodes to exactly its JSON in the
     clean log;
 (b) a damaged item is accepted (`"ok":true`) only when its checksum matches its damaged text (a
-    checksum collision, counted), or when it has no checksum at all (a `$`/`!` sentence without one,
+    checksum collision, counted; one hex digit matches a sum under 16, which the contract keeps
+    as sent), or when it has no checksum at all (a `$`/`!` sentence without one,
     or with a bare `*`, counted: the contract accepts it unless --require-checksum, which must
     refuse it), or as a text command (which never has one); an accepted item holds printable ASCII
     only;
@@ -256,7 +257,7 @@ def accepted(item: bytes, decoded: dict, required: bool) -> str:
     total = 0
     for byte in item[1:star]:
         total ^= byte
-    if len(digits) != 2 or any(c not in b"0123456789abcdefABCDEF" for c in digits) or int(digits, 16) != total:
+    if len(digits) not in (1, 2) or any(c not in b"0123456789abcdefABCDEF" for c in digits) or int(digits, 16) != total:
         return f"violation: its checksum {digits!r} does not match, computed {total:02X}"
     if decoded["checksum"] != digits.decode():
         return f"violation: its checksum {digits!r} is reported as {decoded['checksum']!r}"

@@ -61,6 +61,24 @@ def test_a_missing_checksum_is_refused_when_one_is_required() -> None:
     )
 
 
+def test_a_checksum_of_one_digit_is_kept_unless_strict() -> None:
+    frame = rt.frame("$PXYZ,0AW*1")  # the checksum is 0x01
+    assert rt.checksum_case(frame.checksum) == "short_upper"
+    assert rt.assemble("$", "PXYZ", ["0AW"], "short_lower") == "$PXYZ,0AW*1"
+    assert rt.assemble("$", "PXYZ", ["1"], "short_lower") == "$PXYZ,1*16"  # two digits from 16 on
+    for line, strict in (("$PXYZ,0AW*1", True), ("$PXYZ,0AW*2", False)):
+        with pytest.raises(rt.NmeaError) as caught:
+            rt.frame(line, strict=strict)
+        assert caught.value.kind == "bad_checksum"
+
+
+def test_a_query_address_is_two_talkers_and_q() -> None:
+    assert rt.is_query_address("$", "CCGPQ")
+    assert not rt.is_query_address("!", "CCGPQ")  # an encapsulation sentence is never one
+    assert not rt.is_query_address("$", "PCGPQ")  # proprietary
+    assert not rt.is_query_address("$", "CCGPQA")  # six characters: a 4-character formatter
+
+
 def test_checksum_is_the_xor_of_the_body() -> None:
     assert rt.checksum("GPGLL,1") == 0x4D
     assert rt.checksum("PSTMSAVEPAR") == 0x58

@@ -505,6 +505,10 @@ pub enum ProblemKind {
     LeftEmpty,
     /// `out_of_range`: a number outside its field's range, kept as sent.
     OutOfRange,
+    /// `short_checksum`: a checksum sent as one hex digit, kept as sent. Never among
+    /// [`Problems`]: the sentence's [`Checksum`](super::Checksum) style says it
+    /// (`ShortUpper`, `ShortLower`); the tools' JSON lists it first.
+    ShortChecksum,
 }
 
 impl ProblemKind {
@@ -513,6 +517,7 @@ impl ProblemKind {
         match self {
             Self::LeftEmpty => "left_empty",
             Self::OutOfRange => "out_of_range",
+            Self::ShortChecksum => "short_checksum",
         }
     }
 }

@@ -95,6 +95,19 @@ pub(crate) const fn xor_of_bytes(mut word: u64) -> u8 {
     word as u8
 }
 
+/// The standard query's formatter (`$CCGPQ,GGA`: CC asks GP for GGA), whose talker is two
+/// talker IDs, the requester's and the listener's.
+pub const QUERY: &str = "Q";
+
+/// How many characters the talker of standard sentence `sentence` has: 2, or 4 for the query.
+pub fn talker_length(sentence: &str) -> usize {
+    if sentence == QUERY {
+        4
+    } else {
+        2
+    }
+}
+
 /// A line split into its parts; its checksum, if any, has been verified.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Frame<'a> {
@@ -113,12 +126,14 @@ impl<'a> Frame<'a> {
     /// Checks and splits one line (without its line ending), in the order of docs/json.md:
     /// length, start, printable bytes, checksum form, checksum value, address.
     pub fn parse(line: &'a [u8]) -> Result<Self, Error<'a>> {
-        Self::parse_checked(line, false)
+        Self::parse_checked(line, false, false)
     }
 
     /// [`Frame::parse`]; with `require_checksum`, a sentence without a checksum (or with a bare
-    /// `*`) is refused as `missing_checksum`, after the address check.
-    pub fn parse_checked(line: &'a [u8], require_checksum: bool) -> Result<Self, Error<'a>> {
+    /// `*`) is refused as `missing_checksum`, after the address check. A checksum of one hex
+    /// digit that equals the sum (some instruments send `*b` for `*0b`) is kept as sent
+    /// ([`Checksum::ShortLower`], [`Checksum::ShortUpper`]), unless `strict`.
+    pub fn parse_checked(line: &'a [u8], require_checksum: bool, strict: bool) -> Result<Self, Error<'a>> {
         let not_a_sentence = |message| Error::new(None, message);
         if line.len() > MAX_LINE {
             return Err(Error::too_long(line.len()));
@@ -162,10 +177,11 @@ impl<'a> Frame<'a> {
         if let Some(sent) = sent.filter(|sent| !sent.is_empty()) {
             let b = sent.as_bytes();
             let one_case = !(b.iter().any(u8::is_ascii_uppercase) && b.iter().any(u8::is_ascii_lowercase));
-            if b.len() != 2 || !b.iter().all(u8::is_ascii_hexdigit) || !one_case {
+            let short = !strict && b.len() == 1 && b[0].is_ascii_hexdigit() && hex_value(b[0]) == sum;
+            if !short && (b.len() != 2 || !b.iter().all(u8::is_ascii_hexdigit) || !one_case) {
                 return Err(Error::new(named, Message::BadChecksum { text: sent }));
             }
-            if hex_value(b[0]) << 4 | hex_value(b[1]) != sum {
+            if !short && hex_value(b[0]) << 4 | hex_value(b[1]) != sum {
                 let message = Message::ChecksumMismatch { sent, computed: sum };
                 return Err(Error::new(named, message));
             }
@@ -383,6 +399,17 @@ impl<'a> Fields<'a> {
     /// The address of the sentence.
     pub const fn address(&self) -> &'a str {
         self.address
+    }
+
+    /// The talker of a standard sentence whose talker has `len` characters (4 for the query,
+    /// `$CCGPQ`: the requester's and the listener's talker IDs): the first `len` characters of
+    /// its address (empty for an address too short to be one).
+    pub fn talker_of(&self, len: usize) -> &'a str {
+        if self.address.len() > len {
+            self.address.get(..len).unwrap_or("")
+        } else {
+            ""
+        }
     }
 
     /// The talker ID of a standard sentence: the first 2 characters of its address (empty for
@@ -953,6 +980,8 @@ mod tests {
         assert_eq!((frame.start, frame.address, frame.fields.len()), ("$", "GPHDT", 2));
         assert!(frame.fields.iter().eq(["1.0", "T"]));
         assert_eq!(frame.fields.talker(), "GP");
+        let query = Frame::parse(b"$CCGPQ,GGA*2B").unwrap();
+        assert_eq!((query.fields.talker_of(talker_length(QUERY)), talker_length("GGA")), ("CCGP", 2));
         let err = Frame::parse(b"!AB*aB").unwrap_err();
         assert_eq!(err.message(), &Message::BadChecksum { text: "aB" });
         let err = Frame::parse(b"!AB*2a").unwrap_err();
@@ -963,6 +992,13 @@ mod tests {
         assert!(Frame::parse(b"$PSTMSAVEPAR").unwrap().fields.is_empty());
         let frame = Frame::parse(b"$PSTMSETPAR,1121,10*").unwrap();
         assert_eq!((frame.fields.len(), frame.checksum), (2, Checksum::Empty));
+        // one hex digit that is the checksum (0x01): kept, unless strict; never one that differs
+        assert_eq!(Frame::parse(b"$PXYZ,0AW*1").unwrap().checksum, Checksum::ShortUpper);
+        let err = Frame::parse_checked(b"$PXYZ,0AW*1", false, true).unwrap_err();
+        assert_eq!(err.message(), &Message::BadChecksum { text: "1" });
+        assert_eq!(Frame::parse(b"$PXYZ,0AW*2").unwrap_err().message(), &Message::BadChecksum { text: "2" });
+        assert_eq!(Checksum::ShortLower.digits(0x0b), Some(([b'b', 0], 1)));
+        assert_eq!(Checksum::ShortLower.digits(0x1b), Some(([b'1', b'b'], 2)));
     }
 
     #[test]

@@ -7,7 +7,7 @@
 use std::fmt;
 
 use super::error::Error;
-use super::frame::Fields;
+use super::frame::{talker_length, Fields};
 use super::types::Checksum;
 use super::write::write_json_str;
 
@@ -313,11 +313,12 @@ pub fn word<'v>(obj: &'v Value, key: &str) -> Result<&'v str, Error<'static>> {
     }
 }
 
-/// The talker of a standard sentence: two letters and digits, as decode gives it (a longer one
-/// would make another address).
-pub fn talker(obj: &Value) -> Result<&str, Error<'static>> {
+/// The talker of standard sentence `sentence`: two letters and digits, as decode gives it (a
+/// longer one would make another address); four, two talker IDs, for the query.
+pub fn talker<'v>(obj: &'v Value, sentence: &str) -> Result<&'v str, Error<'static>> {
     match word(obj, "talker")? {
-        talker if talker.len() == 2 => Ok(talker),
+        talker if talker.len() == talker_length(sentence) => Ok(talker),
+        _ if talker_length(sentence) == 4 => Err(Error::bad_json("\"talker\" is not four letters and digits")),
         _ => Err(Error::bad_json("\"talker\" is not two letters and digits")),
     }
 }
@@ -331,14 +332,9 @@ pub fn str_member<'v>(obj: &'v Value, key: &str) -> Result<&'v str, Error<'stati
 }
 
 /// How a received checksum was written: absent, empty (a bare `*`), or lower case when it has
-/// a letter from `a` to `z`.
+/// a letter from `a` to `z`, in one digit when it is one character ([`Checksum::of`]).
 pub fn checksum_case(text: Option<&str>) -> Checksum {
-    match text {
-        None => Checksum::None,
-        Some("") => Checksum::Empty,
-        Some(t) if t.bytes().any(|b| b.is_ascii_lowercase()) => Checksum::Lower,
-        Some(_) => Checksum::Upper,
-    }
+    Checksum::of(text)
 }
 
 struct JsonStr<'t>(&'t str);
@@ -533,7 +529,7 @@ mod tests {
             r#"bad_json: line: field text "a,b" holds ',', '*' or a byte outside printable ASCII"#
         );
         // lower case when it holds a letter from a to z, whatever else it holds
-        assert_eq!(checksum_case(Some("\u{df}")), Checksum::Upper);
+        assert_eq!(checksum_case(Some("\u{df}")), Checksum::ShortUpper);
         assert_eq!(checksum_case(Some("\u{df}x")), Checksum::Lower);
         assert_eq!(checksum_case(Some("4f")), Checksum::Lower);
         assert_eq!(checksum_case(Some("4F")), Checksum::Upper);

@@ -3,9 +3,9 @@
 
 use core::fmt::{self, Write};
 
-use super::error::{Error, Message, Problems};
+use super::error::{Error, Message, ProblemKind, Problems};
 use super::fast::{FastReader, Read, Unsure};
-use super::frame::{is_command_word, is_standard_address, Fields, Frame, Shape, MAX_LINE};
+use super::frame::{is_command_word, is_standard_address, talker_length, Fields, Frame, Shape, MAX_LINE};
 use super::types::Checksum;
 use super::write::{
     write_json_str, write_sentence, write_sentence_with, write_words_json, ByteWriter, Discard, FieldSink, JsonEscape,
@@ -186,7 +186,8 @@ pub trait Layout<'a>: Sized {
             Framing::Standard | Framing::Encapsulated => {
                 is_standard_address(frame.start, address)
                     && frame.start == Self::FRAMING.start()
-                    && &address[2..] == Self::SENTENCE
+                    && address.len() == talker_length(Self::SENTENCE) + Self::SENTENCE.len()
+                    && address.ends_with(Self::SENTENCE)
             }
             Framing::Proprietary(expected) => frame.start == "$" && address == expected,
             Framing::Text(word) => is_command_word(address.as_bytes(), word),
@@ -311,7 +312,7 @@ pub trait Layout<'a>: Sized {
             None => out.write_str("null")?,
         }
         self.write_json_fields_object(out, values)?;
-        problems.write_json(out)?;
+        write_problems_json(out, problems, self.checksum(), sum)?;
         write_checksum_json(out, self.checksum(), sum)
     }
 
@@ -363,9 +364,38 @@ fn write_sentence_json<W: Write + ?Sized>(out: &mut W, sentence: &str, variant: 
     }
 }
 
+/// Writes `,"problems":[...]` (nothing when there are none): a checksum `sum` written as one
+/// digit in style `checksum` (the short_checksum problem, what strict parsing refuses), then
+/// `problems`.
+pub(crate) fn write_problems_json<W: Write + ?Sized>(
+    out: &mut W,
+    problems: &Problems<'_>,
+    checksum: Checksum,
+    sum: u8,
+) -> fmt::Result {
+    let Some(([digit, _], 1)) = checksum.digits(sum) else {
+        return problems.write_json(out);
+    };
+    let digit = [digit];
+    let text = core::str::from_utf8(&digit).map_err(|_| fmt::Error)?;
+    out.write_str(",\"problems\":[{\"kind\":\"")?;
+    out.write_str(ProblemKind::ShortChecksum.as_str())?;
+    out.write_str("\",\"field\":null,\"name\":null,\"text\":")?;
+    write_json_str(out, text)?;
+    out.write_str(",\"message\":")?;
+    super::write::write_json_display(out, &Message::BadChecksum { text })?;
+    out.write_char('}')?;
+    for problem in problems.iter() {
+        out.write_char(',')?;
+        problem.write_json(out)?;
+    }
+    out.write_char(']')
+}
+
 fn write_checksum_json<W: Write + ?Sized>(out: &mut W, checksum: Checksum, sum: u8) -> fmt::Result {
     match checksum.digits(sum) {
-        Some([a, b]) => write!(out, ",\"checksum\":\"{}{}\"}}", char::from(a), char::from(b)),
+        Some(([a, _], 1)) => write!(out, ",\"checksum\":\"{}\"}}", char::from(a)),
+        Some(([a, b], _)) => write!(out, ",\"checksum\":\"{}{}\"}}", char::from(a), char::from(b)),
         None if checksum == Checksum::Empty => out.write_str(",\"checksum\":\"\"}"),
         None => out.write_str(",\"checksum\":null}"),
     }
@@ -499,6 +529,7 @@ impl<'a> Generic<'a> {
             write_json_str(out, field)?;
         }
         out.write_char(']')?;
+        write_problems_json(out, &Problems::new(), self.checksum, sum)?;
         write_checksum_json(out, self.checksum, sum)
     }
 }

@@ -387,7 +387,7 @@ fn general_with<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, 
     if is_text_command::<L>(line) {
         return parse_frame::<L>(Frame::parse_text(line)?).map(Parsed::from);
     }
-    let frame = Frame::parse_checked(line, options.require_checksum)?;
+    let frame = Frame::parse_checked(line, options.require_checksum, options.strict)?;
     let layouts = L::of(frame.start, frame.address.as_bytes());
     if !claimed(layouts, &frame) {
         let sentence: L::Sentence<'_> = Generic::from_frame(frame).into();
@@ -429,10 +429,7 @@ pub fn refit<'a, L: Layouts>(
         if fields.get(index).is_none_or(str::is_empty) || !problems.push(problem) {
             return Err(error);
         }
-        fields = match kind {
-            ProblemKind::OutOfRange => fields.with_range_kept(index),
-            ProblemKind::LeftEmpty => fields.with_blank(index),
-        };
+        fields = if kind == ProblemKind::OutOfRange { fields.with_range_kept(index) } else { fields.with_blank(index) };
         match first_fit(layouts, fields, checksum) {
             Ok(sentence) => return Ok(Parsed { sentence, problems, tag_blocks: TagBlocks::NONE }),
             Err(again) => error = again,

@@ -103,6 +103,8 @@ impl Serialize for Checksum {
             Self::Lower => (1, "Lower"),
             Self::Empty => (2, "Empty"),
             Self::None => (3, "None"),
+            Self::ShortUpper => (4, "ShortUpper"),
+            Self::ShortLower => (5, "ShortLower"),
         };
         serializer.serialize_unit_variant("Checksum", index, name)
     }

@@ -172,7 +172,7 @@ impl<L: Layouts> Rebuilt<L> {
         }
         let (address, checksum, line) = match layout.framing() {
             Framing::Standard | Framing::Encapsulated => {
-                (format!("{}{}", json::talker(obj)?, layout.sentence()), checksum, None)
+                (format!("{}{}", json::talker(obj, layout.sentence())?, layout.sentence()), checksum, None)
             }
             Framing::Proprietary(address) => (address.to_string(), checksum, None),
             Framing::Text(command) => {
@@ -206,6 +206,7 @@ impl<L: Layouts> Rebuilt<L> {
         for problem in json::list(obj, "problems")? {
             let index = match json::member(problem, "field")? {
                 Value::Integer(Some(index)) => usize::try_from(*index).ok().filter(|&i| i <= wire.len()),
+                Value::Null => continue, // no field's: a short checksum, which "checksum" says
                 _ => None,
             };
             let Some(index) = index else {
@@ -215,7 +216,7 @@ impl<L: Layouts> Rebuilt<L> {
         }
         let address = match layout.framing() {
             Framing::Standard | Framing::Encapsulated => {
-                format!("{}{}", json::talker(obj)?, layout.sentence())
+                format!("{}{}", json::talker(obj, layout.sentence())?, layout.sentence())
             }
             Framing::Proprietary(address) | Framing::Text(address) => address.to_string(),
         };

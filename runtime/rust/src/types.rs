@@ -52,30 +52,49 @@ pub enum Checksum {
     Empty,
     /// No checksum at all.
     None,
+    /// `*B`: one hex digit, a checksum under 16 as some instruments send it (kept unless
+    /// parsing is strict; two digits once the checksum is 16 or more).
+    ShortUpper,
+    /// `*b`: one hex digit in lower case.
+    ShortLower,
 }
 
 impl Checksum {
-    /// The style of the received text after the `*` (`None` when there was no `*`).
+    /// The style of the received text after the `*` (`None` when there was no `*`): one
+    /// character is a short checksum, a letter from `a` to `z` makes it lower case.
     pub fn of(text: Option<&str>) -> Self {
-        match text {
-            None => Self::None,
-            Some("") => Self::Empty,
-            Some(t) if t.bytes().any(|b| b.is_ascii_lowercase()) => Self::Lower,
-            Some(_) => Self::Upper,
+        let Some(text) = text else {
+            return Self::None;
+        };
+        let lower = text.bytes().any(|b| b.is_ascii_lowercase());
+        match text.chars().count() {
+            0 => Self::Empty,
+            1 if lower => Self::ShortLower,
+            1 => Self::ShortUpper,
+            _ if lower => Self::Lower,
+            _ => Self::Upper,
         }
     }
 
-    /// The two digits of `value` in this style (`None` for [`Checksum::Empty`] and
-    /// [`Checksum::None`]).
-    pub fn digits(self, value: u8) -> Option<[u8; 2]> {
+    /// Whether `value` is written as one digit in this style: a short style while it is under 16.
+    pub const fn is_short(self, value: u8) -> bool {
+        matches!(self, Self::ShortUpper | Self::ShortLower) && value < 16
+    }
+
+    /// The digits of `value` in this style and how many (two, or one when
+    /// [`is_short`](Self::is_short)); `None` for [`Checksum::Empty`] and [`Checksum::None`].
+    pub fn digits(self, value: u8) -> Option<([u8; 2], usize)> {
         const UPPER: &[u8; 16] = b"0123456789ABCDEF";
         const LOWER: &[u8; 16] = b"0123456789abcdef";
         let table = match self {
-            Self::Upper => UPPER,
-            Self::Lower => LOWER,
+            Self::Upper | Self::ShortUpper => UPPER,
+            Self::Lower | Self::ShortLower => LOWER,
             Self::Empty | Self::None => return None,
         };
-        Some([table[usize::from(value >> 4)], table[usize::from(value & 15)]])
+        if self.is_short(value) {
+            return Some(([table[usize::from(value)], 0], 1));
+        }
+        Some(([table[usize::from(value >> 4)], table[usize::from(value & 15)]], 2))
     }
 }
 

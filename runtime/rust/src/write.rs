@@ -440,9 +440,9 @@ pub fn write_sentence_with<W: Write + ?Sized>(
     fields(&mut w)?;
     let sum = w.checksum();
     w.finish()?;
-    if let Some([high, low]) = checksum.digits(sum) {
+    if let Some(([high, low], n)) = checksum.digits(sum) {
         let digits = [b'*', high, low];
-        out.write_str(core::str::from_utf8(&digits).map_err(|_| fmt::Error)?)?;
+        out.write_str(core::str::from_utf8(&digits[..=n]).map_err(|_| fmt::Error)?)?;
     } else if checksum == super::Checksum::Empty {
         out.write_char('*')?;
     }
@@ -718,7 +718,8 @@ impl<'b> ByteWriter<'b> {
     pub fn finish(mut self, checksum: Checksum) -> Option<usize> {
         let sum = frame::checksum(self.buf.get(1..self.len)?);
         match checksum.digits(sum) {
-            Some([high, low]) => self.put(&[b'*', high, low])?,
+            Some(([high, low], 2)) => self.put(&[b'*', high, low])?,
+            Some(([digit, _], _)) => self.put(&[b'*', digit])?,
             None if checksum == Checksum::Empty => self.put(b"*")?,
             None => {}
         }

@@ -608,7 +608,7 @@ static const nmea_layouts GENERIC_LINE;
    the line is refused (`err`), GENERIC_LINE when it is a generic sentence (in `out`). Out of line
    and with four arguments: the frame is on the stack only while the line is framed, not under
    the layouts' reading. */
-NMEA_OUTLINE const nmea_layouts *route(nmea_sentence *out, nmea_wire *wire, bool require_checksum, nmea_error *err)
+NMEA_OUTLINE const nmea_layouts *route(nmea_sentence *out, nmea_wire *wire, unsigned checks, nmea_error *err)
 {
     const char *line = wire->fields.ptr;
     size_t len = wire->fields.len;
@@ -626,7 +626,7 @@ NMEA_OUTLINE const nmea_layouts *route(nmea_sentence *out, nmea_wire *wire, bool
         wire_of(wire, &f, NULL, line);
         return layouts;
     }
-    if (!frame_line(&f, line, len, require_checksum, err))
+    if (!frame_line(&f, line, len, checks, err))
         return NULL;
     if (is_standard_address(&f) && f.start.ptr[0] == '$') {
         layouts = find_standard(text_span(f.address.ptr + 2, f.address.ptr + f.address.len));
@@ -669,7 +669,8 @@ PARSE_GENERAL bool parse_general(nmea_sentence *out, const char *line, size_t le
     out->problems = NULL;
     wire.fields.ptr = line; /* (route's input: no member of its own, the wire is on the stack) */
     wire.fields.len = len;
-    layouts = route(out, &wire, options->require_checksum, err);
+    layouts = route(out, &wire, (options->require_checksum ? FRAME_REQUIRE_CHECKSUM : 0u) | (options->strict ? FRAME_STRICT : 0u),
+                    err);
     if (!layouts || layouts == &GENERIC_LINE)
         return layouts != NULL;
     if (wire.ignore_case)
