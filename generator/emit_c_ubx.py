@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import jinja2
 
-from .emit import RUNTIME, header
-from .emit_framing import framing, typed_natively
+from .emit import RUNTIME, header, typed_natively
+from .emit_framing import framing
 from .emit_python_ubx import title
 from .model import BinaryProtocol, EnumDef, PayloadField, PayloadGroup, Spec
 from .names_c import member

@@ -148,16 +148,6 @@ def framing(p: BinaryProtocol) -> Framing:
                    offsets[first], check_at, bytes(frame.get("end", [])), tuple(identity))
 
 
-# Binary protocols whose messages only the Python package types so far: SBF's float special values
-# and sub-blocks sized by a header field have no Rust or C code yet (the three framers frame them).
-PYTHON_ONLY = frozenset({"sbf"})
-
-
-def typed_natively(spec: Spec) -> list[str]:
-    """The binary protocols whose messages the Rust crate and the C pair type (UBX among them)."""
-    return sorted({m.protocol for m in spec.binary} - PYTHON_ONLY)
-
-
 def framings(spec: Spec) -> list[Framing]:
     out = [framing(p) for p in sorted(spec.protocols, key=lambda p: p.id)]
     for i, a in enumerate(out):

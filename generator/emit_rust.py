@@ -17,8 +17,7 @@ from pathlib import Path
 import jinja2
 
 from . import cache, emit_vectors, pairing
-from .emit_framing import typed_natively
-from .emit import RUNTIME, char_literal, header, package_readme, runtime_file
+from .emit import RUNTIME, char_literal, header, package_readme, runtime_file, typed_natively
 from .field_types import codes_expected
 from .model import QUERY, BitfieldDef, EnumDef, Field, FixField, Group, Layout, Sentence, Spec, TableDef, camel
 from .names_rust import bits_const, entry_name, ident, parameter_const

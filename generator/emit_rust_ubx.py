@@ -17,8 +17,7 @@ from __future__ import annotations
 
 import jinja2
 
-from .emit import header
-from .emit_framing import typed_natively
+from .emit import header, typed_natively
 from .emit_python_ais import entry_class
 from .emit_python_ubx import identity, title as title_of
 from .emit_rust import rust_str, rustfmt

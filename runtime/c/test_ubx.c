@@ -72,7 +72,7 @@ static nmea_ubx_protocol protocol_named(const char *name)
 }
 
 /* Whether the pair types the protocol of that name (none: UBX); SBF's blocks are typed in Python
-   only (generator/emit_framing.py's PYTHON_ONLY), so the vectors' SBF records are not ours. */
+   only (generator/emit.py's PYTHON_ONLY), so the vectors' SBF records are not ours. */
 static bool typed_here(const char *name)
 {
     return name[0] == '\0' || protocol_named(name) != NMEA_UBX_PROTOCOL_UBX || strcmp(name, "ubx") == 0;

@@ -163,7 +163,7 @@ fn other_protocols_decode_and_encode_as_the_vectors_say() {
     let mut decoded = 0;
     for record in data.lines() {
         if member(record, "protocol") == "sbf" {
-            continue; // SBF's blocks are typed in Python only (generator/emit_framing.py's PYTHON_ONLY)
+            continue; // SBF's blocks are typed in Python only (generator/emit.py's PYTHON_ONLY)
         }
         let frame = unhex(member(record, "frame"));
         let (json, encoded) =
