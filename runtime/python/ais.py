@@ -618,6 +618,15 @@ _STRAIGHT = (Field, Spare, Unsigned, Signed, Flag, Code, Text, Data)
 a group take the generic reader)."""
 
 
+def _case_test(case: Case) -> str:
+    """The condition on `r` (the selector's raw value) under which a compiled reader or writer
+    takes `case`: its values, its range, or either."""
+    tests = [f"r in {sorted(case.values)!r}"] if case.values else []
+    if case.range is not None:
+        tests.append(f"{case.range[0]} <= r <= {case.range[1]}")
+    return " or ".join(tests)
+
+
 def compile_decoder(cls: type[Message]) -> Any:
     """decode(value, length, padding): the message of class `cls` from its payload's bits (one
     integer, `length` bits) and its fill bits' values, by straight-line code: every field's bits
@@ -726,10 +735,7 @@ def compile_decoder(cls: type[Message]) -> Any:
                 for case in item.cases:
                     if case is default:
                         continue
-                    tests = [f"r in {sorted(case.values)!r}"] if case.values else []
-                    if case.range is not None:
-                        tests.append(f"{case.range[0]} <= r <= {case.range[1]}")
-                    out.append(f"{pad}{'if' if first else 'elif'} {' or '.join(tests)}:")
+                    out.append(f"{pad}{'if' if first else 'elif'} {_case_test(case)}:")
                     out += walk([*case.items, *items[i + 1:]], offset, set_, pad + "    ")
                     first = False
                 tail = [*(default.items if default is not None else ()), *items[i + 1:]]
@@ -877,10 +883,7 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                 for case in item.cases:
                     if case is default:
                         continue
-                    tests = [f"r in {sorted(case.values)!r}"] if case.values else []
-                    if case.range is not None:
-                        tests.append(f"{case.range[0]} <= r <= {case.range[1]}")
-                    out.append(f"{pad}{'if' if first else 'elif'} {' or '.join(tests)}:")
+                    out.append(f"{pad}{'if' if first else 'elif'} {_case_test(case)}:")
                     out += walk([*case.items, *items[i + 1:]], static, pad + "    ")
                     first = False
                 tail = [*(default.items if default is not None else ()), *items[i + 1:]]
