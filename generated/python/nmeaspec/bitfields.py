@@ -3,14 +3,15 @@
 # Source: spec/bitfields/airoha_locus_mode.yaml, spec/bitfields/broadcom_glor_hula_source.yaml,
 #   spec/bitfields/broadcom_glor_sat_info.yaml, spec/bitfields/geos5_config_1.yaml,
 #   spec/bitfields/geos5_config_2.yaml, spec/bitfields/geos5_status_word.yaml,
-#   spec/bitfields/quectel_bds_signal_mask.yaml, spec/bitfields/quectel_galileo_signal_mask.yaml,
+#   spec/bitfields/pgn_attributes.yaml, spec/bitfields/quectel_bds_signal_mask.yaml,
+#   spec/bitfields/quectel_galileo_signal_mask.yaml,
 #   spec/bitfields/quectel_glonass_signal_mask.yaml, spec/bitfields/quectel_gps_signal_mask.yaml,
 #   spec/bitfields/quectel_navic_signal_mask.yaml, spec/bitfields/quectel_protocol_mask.yaml,
 #   spec/bitfields/quectel_qzss_signal_mask.yaml, spec/bitfields/quectel_sbas_mask.yaml,
 #   spec/bitfields/sirf_reset_cfg.yaml, spec/bitfields/teseo_app_on_off.yaml,
 #   spec/bitfields/teseo_cold_start_mask.yaml, spec/bitfields/teseo_nmea_msg_list.yaml,
 #   spec/bitfields/ublox_in_proto.yaml, spec/bitfields/ublox_out_proto.yaml
-#   (digest 57c687146c207a46)
+#   (digest 7512e274fa3d4ccc)
 # Regenerate: make generate (python3 -m generator generate)
 """Registers and bitmasks of the spec, named bit by bit. Wrap the number a field holds:
 
@@ -822,6 +823,48 @@ class Geos5StatusWord:
         out["rtc_test_ok"] = names.get(value, value)
         value, names = self.backup_ram_test_ok, {0: "error", 1: "normal"}
         out["backup_ram_test_ok"] = names.get(value, value)
+        return out
+
+
+@dataclass(frozen=True, slots=True)
+class PgnAttributes:
+    """NMEA 2000 frame attributes of $--PGN (16 bits): The second field of $--PGN, 16 bits as 4 hex
+    digits, most significant first: whether the frame was received from the NMEA 2000 bus or is to
+    be sent on it, its CAN priority, how many data bytes follow (the data length code) and the
+    address of the device it came from (received) or goes to (sent)."""
+
+    value: int
+
+    @property
+    def direction(self) -> int:
+        """Bit 15: Whether the frame was received from the bus or is to be sent.
+        0 = received: A frame the gateway received from the NMEA 2000 bus.
+        1 = send: A frame for the gateway to send on the NMEA 2000 bus.        """
+        return (self.value >> 15) & 0x1
+
+    @property
+    def priority(self) -> int:
+        """Bits 14:12: CAN priority of the frame, 0 (highest) to 7."""
+        return (self.value >> 12) & 0x7
+
+    @property
+    def data_length(self) -> int:
+        """Bits 11:8: Number of data bytes in the third field (the CAN data length code, 1 to 8)."""
+        return (self.value >> 8) & 0xF
+
+    @property
+    def address(self) -> int:
+        """Bits 7:0: Source address of a received frame, destination address of a frame to send."""
+        return (self.value >> 0) & 0xFF
+
+    def describe(self) -> dict[str, str | int]:
+        """Every named bit range: the id of its value where the spec names one, else the number."""
+        out: dict[str, str | int] = {}
+        value, names = self.direction, {0: "received", 1: "send"}
+        out["direction"] = names.get(value, value)
+        out["priority"] = self.priority
+        out["data_length"] = self.data_length
+        out["address"] = self.address
         return out
 
 

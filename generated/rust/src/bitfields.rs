@@ -3,14 +3,15 @@
 // Source: spec/bitfields/airoha_locus_mode.yaml, spec/bitfields/broadcom_glor_hula_source.yaml,
 //   spec/bitfields/broadcom_glor_sat_info.yaml, spec/bitfields/geos5_config_1.yaml,
 //   spec/bitfields/geos5_config_2.yaml, spec/bitfields/geos5_status_word.yaml,
-//   spec/bitfields/quectel_bds_signal_mask.yaml, spec/bitfields/quectel_galileo_signal_mask.yaml,
+//   spec/bitfields/pgn_attributes.yaml, spec/bitfields/quectel_bds_signal_mask.yaml,
+//   spec/bitfields/quectel_galileo_signal_mask.yaml,
 //   spec/bitfields/quectel_glonass_signal_mask.yaml, spec/bitfields/quectel_gps_signal_mask.yaml,
 //   spec/bitfields/quectel_navic_signal_mask.yaml, spec/bitfields/quectel_protocol_mask.yaml,
 //   spec/bitfields/quectel_qzss_signal_mask.yaml, spec/bitfields/quectel_sbas_mask.yaml,
 //   spec/bitfields/sirf_reset_cfg.yaml, spec/bitfields/teseo_app_on_off.yaml,
 //   spec/bitfields/teseo_cold_start_mask.yaml, spec/bitfields/teseo_nmea_msg_list.yaml,
 //   spec/bitfields/ublox_in_proto.yaml, spec/bitfields/ublox_out_proto.yaml
-//   (digest 57c687146c207a46)
+//   (digest 7512e274fa3d4ccc)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! Registers and bitmasks of the spec, named bit by bit. Wrap the number a field holds
@@ -18,15 +19,6 @@
 //! methods build a value to send. Bits the manuals leave unnamed are reserved: they are kept
 //! and never make a value invalid.
 
-#[cfg(any(
-    feature = "airoha_pair",
-    feature = "broadcom_glor",
-    feature = "geos5",
-    feature = "globalsat",
-    feature = "quectel_lg290p",
-    feature = "teseo",
-    feature = "ublox_m8"
-))]
 use crate::runtime::Hex;
 #[cfg(any(feature = "globalsat", feature = "teseo"))]
 use crate::runtime::Number;
@@ -1310,6 +1302,74 @@ impl From<Hex> for Geos5StatusWord {
     /// The value of a hex field (its low 32 bits).
     fn from(hex: Hex) -> Self {
         Self(hex.value as u32)
+    }
+}
+
+/// NMEA 2000 frame attributes of $--PGN (16 bits): The second field of $--PGN, 16 bits as 4 hex
+/// digits, most significant first: whether the frame was received from the NMEA 2000 bus or is to
+/// be sent on it, its CAN priority, how many data bytes follow (the data length code) and the
+/// address of the device it came from (received) or goes to (sent).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct PgnAttributes(pub u16);
+
+impl PgnAttributes {
+    /// `direction` = 0: A frame the gateway received from the NMEA 2000 bus.
+    pub const DIRECTION_RECEIVED: u16 = 0;
+    /// `direction` = 1: A frame for the gateway to send on the NMEA 2000 bus.
+    pub const DIRECTION_SEND: u16 = 1;
+
+    /// Bit 15 (`direction`): Whether the frame was received from the bus or is to be sent.
+    pub const fn direction(self) -> u16 {
+        self.0 >> 15
+    }
+
+    /// The value with bit 15 (`direction`) set to `value` (its low 1 bit).
+    #[must_use]
+    pub const fn with_direction(self, value: u16) -> Self {
+        Self((self.0 & !0x8000) | ((value & 0x1) << 15))
+    }
+
+    /// Bits 14:12 (`priority`): CAN priority of the frame, 0 (highest) to 7.
+    pub const fn priority(self) -> u16 {
+        (self.0 >> 12) & 0x7
+    }
+
+    /// The value with bits 14:12 (`priority`) set to `value` (its low 3 bits).
+    #[must_use]
+    pub const fn with_priority(self, value: u16) -> Self {
+        Self((self.0 & !0x7000) | ((value & 0x7) << 12))
+    }
+
+    /// Bits 11:8 (`data_length`): Number of data bytes in the third field (the CAN data length
+    /// code, 1 to 8).
+    pub const fn data_length(self) -> u16 {
+        (self.0 >> 8) & 0xF
+    }
+
+    /// The value with bits 11:8 (`data_length`) set to `value` (its low 4 bits).
+    #[must_use]
+    pub const fn with_data_length(self, value: u16) -> Self {
+        Self((self.0 & !0xF00) | ((value & 0xF) << 8))
+    }
+
+    /// Bits 7:0 (`address`): Source address of a received frame, destination address of a frame to
+    /// send.
+    pub const fn address(self) -> u16 {
+        self.0 & 0xFF
+    }
+
+    /// The value with bits 7:0 (`address`) set to `value` (its low 8 bits).
+    #[must_use]
+    pub const fn with_address(self, value: u16) -> Self {
+        Self((self.0 & !0xFF) | (value & 0xFF))
+    }
+}
+
+impl From<Hex> for PgnAttributes {
+    /// The value of a hex field (its low 16 bits).
+    fn from(hex: Hex) -> Self {
+        Self(hex.value as u16)
     }
 }
 
