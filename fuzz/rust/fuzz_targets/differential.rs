@@ -121,6 +121,7 @@ fn frame(data: &[u8], chunk: usize) {
                 FrameError::TooLong(_) => 2,
                 FrameError::NulHeader => 3,
                 FrameError::Cut => 4,
+                FrameError::TooShort(_) => 5,
             };
             rust.extend_from_slice(format!("B{}.{error}:{}:", protocol as u8 + 1, sync.len()).as_bytes());
             rust.extend_from_slice(sync);
