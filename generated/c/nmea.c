@@ -1294,7 +1294,8 @@ static const char *const FIELD_EXPECTED[] = {
 
 /* ------------------------------------------------------------------------------------------ */
 /* What every piece uses: the linkage macros (everything is static, and the generated code in the
-   same nmea.c is its only user: NMEA_INTERNAL for what some specs leave unused, NMEA_HOT,
+   same nmea.c is its only user: NMEA_INTERNAL for what some specs leave unused, NMEA_INLINE for
+   a small helper a subset may leave unused (clang warns of an unused static inline), NMEA_HOT,
    NMEA_RARE and NMEA_OUTLINE for the compiler's inlining, NMEA_OUTLINE also for what a subset may
    leave unused), the character classes, hex digits, powers of ten, and nmea_text with the
    comparisons of texts the pieces make. */
@@ -1304,7 +1305,8 @@ static const char *const FIELD_EXPECTED[] = {
 #if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__) /* -Os: the compiler's choices, for size */
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold))
-#define NMEA_HOT static inline
+#define NMEA_HOT static inline __attribute__((unused))
+#define NMEA_INLINE static inline __attribute__((unused))
 #define NMEA_OUTLINE static __attribute__((noinline, unused))
 #define NMEA_FRAME static __attribute__((noinline, unused))
 #define NMEA_HOT_FRAME static __attribute__((noinline, unused))
@@ -1313,7 +1315,8 @@ static const char *const FIELD_EXPECTED[] = {
 #elif defined(__GNUC__)
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
-#define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
+#define NMEA_HOT static inline __attribute__((always_inline, unused)) /* a few instructions per byte or field */
+#define NMEA_INLINE static inline __attribute__((unused))
 #define NMEA_OUTLINE static __attribute__((noinline, unused))
 #define NMEA_FRAME static __attribute__((unused))
 #define NMEA_HOT_FRAME NMEA_HOT
@@ -1323,6 +1326,7 @@ static const char *const FIELD_EXPECTED[] = {
 #define NMEA_INTERNAL static
 #define NMEA_RARE static
 #define NMEA_HOT static
+#define NMEA_INLINE static inline
 #define NMEA_OUTLINE static
 #define NMEA_FRAME static
 #define NMEA_HOT_FRAME static
@@ -1417,7 +1421,7 @@ static bool text_is(nmea_text t, const char *s)
 }
 
 /* Whether a number field holds the integer `v` (no decimals), as a reply's pairing asks. */
-static inline bool integer_is(nmea_number n, int64_t v)
+NMEA_INLINE bool integer_is(nmea_number n, int64_t v)
 {
     return n.present && n.scale == 0 && (n.sign == '-' ? -n.digits : n.digits) == v;
 }
@@ -1503,7 +1507,7 @@ static void match_char(nmea_writer *w, char c)
     w->match_pos++;
 }
 
-static inline void put_char(nmea_writer *w, char c)
+NMEA_INLINE void put_char(nmea_writer *w, char c)
 {
     if (w->len < w->cap)
         w->buf[w->len] = c;
@@ -1515,7 +1519,7 @@ static inline void put_char(nmea_writer *w, char c)
     w->last = c;
 }
 
-static inline void put_mem(nmea_writer *w, const char *s, size_t n)
+NMEA_INLINE void put_mem(nmea_writer *w, const char *s, size_t n)
 {
     size_t i;
     char *dst;
@@ -1592,7 +1596,7 @@ static const char DIGIT_PAIRS[] = "000102030405060708091011121314151617181920212
                                   "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
                                   "8081828384858687888990919293949596979899";
 
-static inline char *uint_text(char *end, uint64_t v, unsigned width)
+NMEA_INLINE char *uint_text(char *end, uint64_t v, unsigned width)
 {
     char *p = end;
     uint32_t low;
@@ -1943,14 +1947,14 @@ typedef struct {
 #define BYTES_LOW7 UINT64_C(0x7F7F7F7F7F7F7F7F)
 
 /* The zero bytes (no carry crosses a byte, so there are no false positives). */
-static inline uint64_t zero_bytes(uint64_t word)
+NMEA_INLINE uint64_t zero_bytes(uint64_t word)
 {
     return ~(((word & BYTES_LOW7) + BYTES_LOW7) | word | BYTES_LOW7);
 }
 
 /* The bytes that end the body of a sentence: '*', and whatever is not printable ASCII (below
    0x20, 0x7F and above). */
-static inline uint64_t body_end_bytes(uint64_t word)
+NMEA_INLINE uint64_t body_end_bytes(uint64_t word)
 {
     uint64_t low7 = word & BYTES_LOW7;
     return ((word | ~(low7 + 0x60 * BYTES_ONES) | (low7 + BYTES_ONES)) & BYTES_HIGH)
@@ -1958,7 +1962,7 @@ static inline uint64_t body_end_bytes(uint64_t word)
 }
 
 /* How many bytes a byte mask marks. */
-static inline size_t count_bytes(uint64_t mask)
+NMEA_INLINE size_t count_bytes(uint64_t mask)
 {
     return (size_t)(((mask >> 7) * BYTES_ONES) >> 56);
 }
@@ -3017,7 +3021,7 @@ static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
 }
 
 /* Whether `n` is within `range` (NULL: any value). */
-static inline bool in_range(const nmea_number *n, const nmea_range *range)
+NMEA_INLINE bool in_range(const nmea_number *n, const nmea_range *range)
 {
     int64_t value;
     if (!range)
@@ -3326,7 +3330,7 @@ typedef struct {
 /* The end of the fields the reader reads. At -Os (a firmware's build) it is the wire's, read there
    each time: the reader is on the stack all the while a layout reads the line (read_with), and a
    member less keeps that frame smaller. */
-static inline const char *reader_end(const nmea_reader *r)
+NMEA_INLINE const char *reader_end(const nmea_reader *r)
 {
 #ifdef NMEA_READER_END_OF_WIRE
     return r->wire->fields.ptr + r->wire->fields.len;
@@ -3378,7 +3382,7 @@ NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
     r->entry = (uint16_t)(index + 1);
 }
 
-static inline nmea_text next_field(nmea_reader *r)
+NMEA_INLINE nmea_text next_field(nmea_reader *r)
 {
     const char *p = r->next, *q = p, *end = reader_end(r); /* (locals: the bytes read could alias r) */
     char sep = r->sep;
@@ -4074,7 +4078,7 @@ NMEA_RARE bool put_problem(nmea_writer *w)
 
 /* The separator before the next wire field; true when that field is a problem, whose text as
    received has then been written in place of the field's own. */
-static inline bool put_sep(nmea_writer *w)
+NMEA_INLINE bool put_sep(nmea_writer *w)
 {
     if (w->len < w->quick_cap) { /* put_char, without the checks a full buffer or a text command needs */
         w->buf[w->len++] = w->sep;
@@ -4115,7 +4119,7 @@ NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
 }
 
 /* The number of decimal digits of v (one for 0). */
-static inline unsigned digit_count(uint64_t v)
+NMEA_INLINE unsigned digit_count(uint64_t v)
 {
     unsigned count = 1;
     while (count <= NMEA_MAX_DIGITS && v >= (uint64_t)POW10(count))
@@ -4169,7 +4173,7 @@ NMEA_OUTLINE void integer_text(nmea_writer *w, const nmea_number *n)
 
 /* integer_text, inline for the most common numbers of all: up to three digits and a width of
    at most three (satellite numbers, elevations, azimuths, signal strengths). */
-static inline void number_text(nmea_writer *w, const nmea_number *n)
+NMEA_INLINE void number_text(nmea_writer *w, const nmea_number *n)
 {
     uint64_t v = (uint64_t)n->digits; /* (a negative one is a huge value here) */
     unsigned value, size;
@@ -5865,12 +5869,12 @@ typedef struct {
     char start;                /* '$' or '!' */
 } layout;
 
-static inline void *member_at(void *s, uint16_t offset)
+NMEA_INLINE void *member_at(void *s, uint16_t offset)
 {
     return (char *)s + offset;
 }
 
-static inline const void *const_member_at(const void *s, uint16_t offset)
+NMEA_INLINE const void *const_member_at(const void *s, uint16_t offset)
 {
     return (const char *)s + offset;
 }
@@ -6974,7 +6978,9 @@ static const char SMALL_IDS[SMALL_SENTENCE_COUNT * SMALL_ID_WIDTH + 1];
 static const uint8_t SMALL_SENTENCES[SMALL_SENTENCE_COUNT][2];
 static const small_range SMALL_RANGES[SMALL_RANGE_COUNT];
 static const small_enum SMALL_ENUMS[SMALL_ENUM_COUNT];
+#if defined(SMALL_READS_LITERAL) || defined(SMALL_READS_KEYWORD) /* what literals and keywords read */
 static const char *const SMALL_WORDS[SMALL_WORD_COUNT];
+#endif
 
 /* nmea_error.kind as nmea_parse_ex hands it to small_parse: require a checksum. */
 #define SMALL_REQUIRE_CHECKSUM ((nmea_error_kind)0x7F)

@@ -1,5 +1,6 @@
 /* What every piece uses: the linkage macros (everything is static, and the generated code in the
-   same nmea.c is its only user: NMEA_INTERNAL for what some specs leave unused, NMEA_HOT,
+   same nmea.c is its only user: NMEA_INTERNAL for what some specs leave unused, NMEA_INLINE for
+   a small helper a subset may leave unused (clang warns of an unused static inline), NMEA_HOT,
    NMEA_RARE and NMEA_OUTLINE for the compiler's inlining, NMEA_OUTLINE also for what a subset may
    leave unused), the character classes, hex digits, powers of ten, and nmea_text with the
    comparisons of texts the pieces make. */
@@ -9,7 +10,8 @@
 #if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__) /* -Os: the compiler's choices, for size */
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold))
-#define NMEA_HOT static inline
+#define NMEA_HOT static inline __attribute__((unused))
+#define NMEA_INLINE static inline __attribute__((unused))
 #define NMEA_OUTLINE static __attribute__((noinline, unused))
 #define NMEA_FRAME static __attribute__((noinline, unused))
 #define NMEA_HOT_FRAME static __attribute__((noinline, unused))
@@ -18,7 +20,8 @@
 #elif defined(__GNUC__)
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
-#define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
+#define NMEA_HOT static inline __attribute__((always_inline, unused)) /* a few instructions per byte or field */
+#define NMEA_INLINE static inline __attribute__((unused))
 #define NMEA_OUTLINE static __attribute__((noinline, unused))
 #define NMEA_FRAME static __attribute__((unused))
 #define NMEA_HOT_FRAME NMEA_HOT
@@ -28,6 +31,7 @@
 #define NMEA_INTERNAL static
 #define NMEA_RARE static
 #define NMEA_HOT static
+#define NMEA_INLINE static inline
 #define NMEA_OUTLINE static
 #define NMEA_FRAME static
 #define NMEA_HOT_FRAME static
@@ -122,7 +126,7 @@ static bool text_is(nmea_text t, const char *s)
 }
 
 /* Whether a number field holds the integer `v` (no decimals), as a reply's pairing asks. */
-static inline bool integer_is(nmea_number n, int64_t v)
+NMEA_INLINE bool integer_is(nmea_number n, int64_t v)
 {
     return n.present && n.scale == 0 && (n.sign == '-' ? -n.digits : n.digits) == v;
 }

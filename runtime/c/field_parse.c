@@ -66,7 +66,7 @@ static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
 }
 
 /* Whether `n` is within `range` (NULL: any value). */
-static inline bool in_range(const nmea_number *n, const nmea_range *range)
+NMEA_INLINE bool in_range(const nmea_number *n, const nmea_range *range)
 {
     int64_t value;
     if (!range)

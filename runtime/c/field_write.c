@@ -16,7 +16,7 @@ NMEA_RARE bool put_problem(nmea_writer *w)
 
 /* The separator before the next wire field; true when that field is a problem, whose text as
    received has then been written in place of the field's own. */
-static inline bool put_sep(nmea_writer *w)
+NMEA_INLINE bool put_sep(nmea_writer *w)
 {
     if (w->len < w->quick_cap) { /* put_char, without the checks a full buffer or a text command needs */
         w->buf[w->len++] = w->sep;
@@ -57,7 +57,7 @@ NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
 }
 
 /* The number of decimal digits of v (one for 0). */
-static inline unsigned digit_count(uint64_t v)
+NMEA_INLINE unsigned digit_count(uint64_t v)
 {
     unsigned count = 1;
     while (count <= NMEA_MAX_DIGITS && v >= (uint64_t)POW10(count))
@@ -111,7 +111,7 @@ NMEA_OUTLINE void integer_text(nmea_writer *w, const nmea_number *n)
 
 /* integer_text, inline for the most common numbers of all: up to three digits and a width of
    at most three (satellite numbers, elevations, azimuths, signal strengths). */
-static inline void number_text(nmea_writer *w, const nmea_number *n)
+NMEA_INLINE void number_text(nmea_writer *w, const nmea_number *n)
 {
     uint64_t v = (uint64_t)n->digits; /* (a negative one is a huge value here) */
     unsigned value, size;

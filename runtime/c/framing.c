@@ -18,14 +18,14 @@ typedef struct {
 #define BYTES_LOW7 UINT64_C(0x7F7F7F7F7F7F7F7F)
 
 /* The zero bytes (no carry crosses a byte, so there are no false positives). */
-static inline uint64_t zero_bytes(uint64_t word)
+NMEA_INLINE uint64_t zero_bytes(uint64_t word)
 {
     return ~(((word & BYTES_LOW7) + BYTES_LOW7) | word | BYTES_LOW7);
 }
 
 /* The bytes that end the body of a sentence: '*', and whatever is not printable ASCII (below
    0x20, 0x7F and above). */
-static inline uint64_t body_end_bytes(uint64_t word)
+NMEA_INLINE uint64_t body_end_bytes(uint64_t word)
 {
     uint64_t low7 = word & BYTES_LOW7;
     return ((word | ~(low7 + 0x60 * BYTES_ONES) | (low7 + BYTES_ONES)) & BYTES_HIGH)
@@ -33,7 +33,7 @@ static inline uint64_t body_end_bytes(uint64_t word)
 }
 
 /* How many bytes a byte mask marks. */
-static inline size_t count_bytes(uint64_t mask)
+NMEA_INLINE size_t count_bytes(uint64_t mask)
 {
     return (size_t)(((mask >> 7) * BYTES_ONES) >> 56);
 }

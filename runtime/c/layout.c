@@ -151,12 +151,12 @@ typedef struct {
     char start;                /* '$' or '!' */
 } layout;
 
-static inline void *member_at(void *s, uint16_t offset)
+NMEA_INLINE void *member_at(void *s, uint16_t offset)
 {
     return (char *)s + offset;
 }
 
-static inline const void *const_member_at(const void *s, uint16_t offset)
+NMEA_INLINE const void *const_member_at(const void *s, uint16_t offset)
 {
     return (const char *)s + offset;
 }

@@ -64,7 +64,7 @@ typedef struct {
 /* The end of the fields the reader reads. At -Os (a firmware's build) it is the wire's, read there
    each time: the reader is on the stack all the while a layout reads the line (read_with), and a
    member less keeps that frame smaller. */
-static inline const char *reader_end(const nmea_reader *r)
+NMEA_INLINE const char *reader_end(const nmea_reader *r)
 {
 #ifdef NMEA_READER_END_OF_WIRE
     return r->wire->fields.ptr + r->wire->fields.len;
@@ -116,7 +116,7 @@ NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
     r->entry = (uint16_t)(index + 1);
 }
 
-static inline nmea_text next_field(nmea_reader *r)
+NMEA_INLINE nmea_text next_field(nmea_reader *r)
 {
     const char *p = r->next, *q = p, *end = reader_end(r); /* (locals: the bytes read could alias r) */
     char sep = r->sep;

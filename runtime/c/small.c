@@ -87,7 +87,9 @@ static const char SMALL_IDS[SMALL_SENTENCE_COUNT * SMALL_ID_WIDTH + 1];
 static const uint8_t SMALL_SENTENCES[SMALL_SENTENCE_COUNT][2];
 static const small_range SMALL_RANGES[SMALL_RANGE_COUNT];
 static const small_enum SMALL_ENUMS[SMALL_ENUM_COUNT];
+#if defined(SMALL_READS_LITERAL) || defined(SMALL_READS_KEYWORD) /* what literals and keywords read */
 static const char *const SMALL_WORDS[SMALL_WORD_COUNT];
+#endif
 
 /* nmea_error.kind as nmea_parse_ex hands it to small_parse: require a checksum. */
 #define SMALL_REQUIRE_CHECKSUM ((nmea_error_kind)0x7F)

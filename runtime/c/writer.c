@@ -56,7 +56,7 @@ static void match_char(nmea_writer *w, char c)
     w->match_pos++;
 }
 
-static inline void put_char(nmea_writer *w, char c)
+NMEA_INLINE void put_char(nmea_writer *w, char c)
 {
     if (w->len < w->cap)
         w->buf[w->len] = c;
@@ -68,7 +68,7 @@ static inline void put_char(nmea_writer *w, char c)
     w->last = c;
 }
 
-static inline void put_mem(nmea_writer *w, const char *s, size_t n)
+NMEA_INLINE void put_mem(nmea_writer *w, const char *s, size_t n)
 {
     size_t i;
     char *dst;
@@ -145,7 +145,7 @@ static const char DIGIT_PAIRS[] = "000102030405060708091011121314151617181920212
                                   "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
                                   "8081828384858687888990919293949596979899";
 
-static inline char *uint_text(char *end, uint64_t v, unsigned width)
+NMEA_INLINE char *uint_text(char *end, uint64_t v, unsigned width)
 {
     char *p = end;
     uint32_t low;
