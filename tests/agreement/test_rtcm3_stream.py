@@ -7,10 +7,13 @@ its bytes, and without --rtcm3 the output is the same less those members."""
 from __future__ import annotations
 
 import json
+import sys
 
 import pytest
 
-from tests.agreement.test_agreement import BINARY_LOGS, GGA, run
+from tests.agreement.test_agreement import BINARY_LOGS, GGA, ROOT, run
+
+sys.path.insert(0, str(ROOT / "generated" / "python"))  # the made-up frames below are the package's
 
 RTCM3_TOOLS = ["nmea-c", "nmea-rs", "nmea-py"]
 RTCM3_LOGS = [log for log in BINARY_LOGS if log.parent.name == "rtcm3"]
