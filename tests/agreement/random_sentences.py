@@ -103,7 +103,9 @@ def sentence_line(rng: random.Random, sentence: Sentence, layout: Layout) -> str
     if text:
         word = sentence.address or ""
         return " ".join([word.lower() if rng.random() < 0.3 else word, *fields])
-    address = sentence.address or (rng.choice(TALKERS) + sentence.id)
+    # A standard sentence's talker; the query's (Q) is two: the requester's and the listener's.
+    talker = rng.choice(TALKERS) + (rng.choice(TALKERS) if sentence.id == "Q" else "")
+    address = sentence.address or (talker + sentence.id)
     body = ",".join([address, *fields])
     start = sentence.start
     style = rng.random()
