@@ -242,12 +242,12 @@ def test_real_logs() -> None:
 
 
 def test_logs_outside_the_corpus() -> None:
-    """The logs the typed share is measured on (tests/shapes: pynmeagps's and gpsd's, with their
-    comment headers, binary frames, damaged and odd lines): the same properties, the three tools
-    agreeing on every line, and the share of lines each decodes into a sentence the spec
-    describes the same."""
-    paths = sorted((ROOT / "tests" / "data" / "pynmeagps").glob("*.log")) + \
-        sorted((ROOT / "tests" / "data" / "gpsd_logs").glob("*.log"))
+    """The logs the typed share is measured on (tests/shapes: pynmeagps's, gpsd's, the marine
+    libraries' test sentences, other libraries' and OpenCPN's captures, with their comment headers,
+    binary frames, damaged and odd lines): the same properties, the three tools agreeing on every
+    line, and the share of lines each decodes into a sentence the spec describes the same."""
+    paths = [path for source in ("pynmeagps", "gpsd_logs", "marine", "libraries", "opencpn")
+             for path in sorted((ROOT / "tests" / "data" / source).glob("*.log"))]
     parts, starts, count = [], [], 0
     for path in paths:
         data = path.read_bytes()
