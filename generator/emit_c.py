@@ -51,8 +51,13 @@ MAX_DIGITS = CONTRACT["limits"]["max_digits"]  # NMEA_MAX_DIGITS
 MAX_PROBLEMS = CONTRACT["limits"]["max_problems"]  # NMEA_MAX_PROBLEMS
 
 
+_PLAIN_C_TEXT = re.compile(r'[\x20\x21\x23-\x3E\x40-\x5B\x5D-\x7E]*')  # printable ASCII but " ? \\: as it stands
+
+
 def c_str(text: str) -> str:
     """A C string literal of `text` (UTF-8 bytes; '?' escaped so that no trigraph can form)."""
+    if _PLAIN_C_TEXT.fullmatch(text):
+        return f'"{text}"'
     out = ['"']
     for byte in text.encode("utf-8"):
         ch = chr(byte)
@@ -531,8 +536,14 @@ def enum_text_refs(names: dict[str, str]) -> dict[str, str]:
     """The C expression of each text of enum_texts: its array, or the end of a longer text's
     ("valid" is the tail of "invalid": enum_text_7 + 2), whose array then holds both. The
     shortest such text is taken, then its own (a firmware links few bytes for a short code)."""
-    by_length = sorted(names, key=len)
-    parent = {text: next((t for t in by_length if len(t) > len(text) and t.endswith(text)), None) for text in names}
+    parent: dict[str, str | None] = dict.fromkeys(names)
+    claimed: set[str] = set()
+    for longer in sorted(names, key=len):  # each text's parent: the first longer text that ends with it
+        for start in range(1, len(longer) + 1):
+            tail = longer[start:]
+            if tail in parent and tail not in claimed:
+                parent[tail] = longer
+                claimed.add(tail)
     refs = {}
     for text, name in names.items():
         root = text
