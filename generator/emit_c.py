@@ -16,28 +16,13 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import CONTRACT, RUNTIME, char_literal, header, runtime_file
+from .emit import CONTRACT, RUNTIME, RUNTIME_C, char_literal, header, runtime_file, runtime_source
 from .emit_c_ais import carries_ais
 from .emit_c_ubx import carries_ubx
 from .model import QUERY, BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef
 from .names_c import (bits_const, bits_function, bits_mask, entry_type, enum_const, enum_def, enum_type,
                       group_accessor, layout_const, layout_type, member, parameter_macro, table_count, table_name)
 from .numbers import fixed_point, fmt_num
-
-# The C runtime is pieces in runtime/c: nmea.h holds runtime.h before the sentences' types and
-# api.h after them; nmea.c holds the .c files that runtime.c lists (which, and in what order, is
-# said there and only there) before the generated code.
-RUNTIME_C = RUNTIME / "c"
-_PIECE = re.compile(r'^#include "(\w+\.c)"\n', re.M)
-_RULE = "/* " + "-" * 90 + " */\n"
-
-
-def runtime_source(name: str) -> str:
-    """runtime/c/<name> as nmea.c holds it: each piece it includes (#include "piece.c") pasted in
-    place of the #include, under a rule."""
-    text = (RUNTIME_C / name).read_text(encoding="utf-8")
-    return _PIECE.sub(lambda m: _RULE + (RUNTIME_C / m[1]).read_text(encoding="utf-8") + "\n", text)
-
 
 def runtime_header(name: str) -> str:
     """runtime/c/<name> as nmea.h holds it: the generated framing table's header (framings.h,

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import jinja2
 
-from .emit import RUNTIME, header
+from .emit import RUNTIME, header, runtime_source
 from .emit_rust_ais import member_name
 from .emit_python_ais import title as title_of
 from .model import Payload, PayloadChoice, PayloadField, PayloadGroup, Spec
@@ -300,7 +300,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                    dispatching=dispatching,
                    has=lambda p, name: "" if name in certain[p.id] else f"m->has_{name} && ",
                    runtime_h=(RUNTIME / "c" / "ais.h").read_text(encoding="utf-8"),
-                   runtime_c=(RUNTIME / "c" / "ais.c").read_text(encoding="utf-8"))
+                   runtime_c=runtime_source("ais.c"))
     return {
         "c/nmea_ais.h": env.get_template("c/nmea_ais.h.j2").render(
             header=header(spec, "//", ["templates/c/nmea_ais.h.j2", "runtime/c/ais.h", *sources]), **context),

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import jinja2
 
-from .emit import RUNTIME, header
+from .emit import RUNTIME, header, runtime_source
 from .emit_c_ais import _c_str, _if_chain, c_layout
 from .emit_python_rtcm3 import title as title_of
 from .emit_rust_ais import member_name as ais_member_name
@@ -221,7 +221,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     sources = [m.origin.file for m in messages]
     context = dict(messages=messages, typedefs=typedefs, functions=functions, specials=specials,
                    runtime_h=(RUNTIME / "c" / "rtcm3.h").read_text(encoding="utf-8"),
-                   runtime_c=(RUNTIME / "c" / "rtcm3.c").read_text(encoding="utf-8"))
+                   runtime_c=runtime_source("rtcm3.c"))
     return {
         "c/nmea_rtcm3.h": env.get_template("c/nmea_rtcm3.h.j2").render(
             header=header(spec, "//", ["templates/c/nmea_rtcm3.h.j2", "runtime/c/rtcm3.h", *sources]), **context),

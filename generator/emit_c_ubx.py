@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import jinja2
 
-from .emit import RUNTIME, header, typed_natively
+from .emit import RUNTIME, header, runtime_source, typed_natively
 from .emit_framing import framing
 from .emit_python_ubx import title
 from .model import BinaryProtocol, EnumDef, PayloadField, PayloadGroup, Spec
@@ -288,7 +288,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                    protocols=[p.id.upper() for p in protocols], framings=[_framing_row(p) for p in protocols],
                    enums=[enum_table(enums[key]) for key in sorted(enums)],
                    runtime_h=(RUNTIME / "c" / "ubx.h").read_text(encoding="utf-8"),
-                   runtime_c=(RUNTIME / "c" / "ubx.c").read_text(encoding="utf-8"))
+                   runtime_c=runtime_source("ubx.c"))
     return {
         "c/nmea_ubx.h": env.get_template("c/nmea_ubx.h.j2").render(
             header=header(spec, "//", ["templates/c/nmea_ubx.h.j2", "runtime/c/ubx.h", *sources]), **context),

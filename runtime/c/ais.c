@@ -331,21 +331,12 @@ static void ais_json_bits(nmea_ais_json_out *j, const char *name, nmea_ais_bits 
     ais_json_puts(j, "\"");
 }
 
-/* A float as Python's repr writes it: the shortest digits that read back, positionally for
-   exponents -4 to 15 (always with a fraction), else as an exponent. */
+#include "repr.c"
+
 static void ais_json_float(nmea_ais_json_out *j, double value)
 {
-    char text[48];
-    int digits, exponent;
-    for (digits = 1; digits < 17; digits++) {
-        snprintf(text, sizeof text, "%.*e", digits - 1, value);
-        if (strtod(text, NULL) == value)
-            break;
-    }
-    snprintf(text, sizeof text, "%.*e", digits - 1, value);
-    exponent = atoi(strchr(text, 'e') + 1);
-    if (exponent >= -4 && exponent < 16)
-        snprintf(text, sizeof text, "%.*f", digits - 1 - exponent > 0 ? digits - 1 - exponent : 1, value);
+    char text[NMEA_REPR_SIZE];
+    nmea_repr_double(value, text);
     ais_json_puts(j, text);
 }
 

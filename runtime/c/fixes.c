@@ -550,49 +550,12 @@ bool nmea_fix_finish(nmea_fix_assembler *a, nmea_gnss_fix *out)
 #include <stdio.h>
 #include <stdlib.h>
 
-/* A double as Python's repr: the shortest digits that read back to it, in fixed notation from
-   1e-4 to 1e16 (with ".0" when whole), else d.ddde+XX. */
+#include "repr.c"
+
 static void put_double(nmea_writer *w, double v)
 {
-    char text[32], digits[20], *p = text;
-    int precision, exponent, n, i;
-
-    for (precision = 1; precision <= 17; precision++) {
-        snprintf(text, sizeof text, "%.*e", precision - 1, v);
-        if (strtod(text, NULL) == v)
-            break;
-    }
-    if (*p == '-')
-        put_char(w, *p++);
-    for (n = 0; *p && *p != 'e'; p++)
-        if (*p != '.')
-            digits[n++] = *p;
-    exponent = atoi(p + 1);
-    while (n > 1 && digits[n - 1] == '0')
-        n--;
-    if (exponent < -4 || exponent >= 16) {
-        put_char(w, digits[0]);
-        if (n > 1) {
-            put_char(w, '.');
-            put_mem(w, digits + 1, (size_t)n - 1);
-        }
-        put_char(w, 'e');
-        put_char(w, exponent < 0 ? '-' : '+');
-        put_uint(w, (uint64_t)(exponent < 0 ? -exponent : exponent), 2);
-    } else if (exponent < 0) {
-        put_str(w, "0.");
-        for (i = -1; i > exponent; i--)
-            put_char(w, '0');
-        put_mem(w, digits, (size_t)n);
-    } else {
-        for (i = 0; i <= exponent; i++)
-            put_char(w, i < n ? digits[i] : '0');
-        put_char(w, '.');
-        if (n > exponent + 1)
-            put_mem(w, digits + exponent + 1, (size_t)(n - exponent - 1));
-        else
-            put_char(w, '0');
-    }
+    char text[NMEA_REPR_SIZE];
+    put_mem(w, text, nmea_repr_double(v, text));
 }
 
 static void put_int(nmea_writer *w, int64_t v)

@@ -444,74 +444,13 @@ static void rtcm3_json_chars(nmea_rtcm3_json_out *j, const char *name, nmea_rtcm
     rtcm3_json_puts(j, "\"");
 }
 
-/* The shortest digits of `value` that read back the same, as `%.*e` writes them into `text`
-   (Python's repr: of the texts of that many digits, the closest; when the correctly rounded one
-   does not read back, as a power of two's may not, its neighbour in the last digit may). */
-static void rtcm3_shortest(double value, char *text, size_t cap)
-{
-    int digits, k;
-    for (digits = 1; digits < 17; digits++) {
-        unsigned long long mantissa = 0, limit = 1;
-        char *e, *p, candidate[48];
-        snprintf(text, cap, "%.*e", digits - 1, value);
-        if (strtod(text, NULL) == value)
-            return;
-        e = strchr(text, 'e');
-        for (p = text; p < e; p++)
-            if (*p >= '0' && *p <= '9')
-                mantissa = mantissa * 10 + (unsigned long long)(*p - '0');
-        for (k = 1; k < digits; k++)
-            limit *= 10;
-        for (k = -1; k <= 1; k += 2) {
-            unsigned long long next = mantissa + (unsigned long long)k;
-            char number[24];
-            int n;
-            if (next < limit || next >= 10 * limit)
-                continue; /* a digit more or less: another exponent */
-            n = snprintf(number, sizeof number, "%llu", next);
-            snprintf(candidate, sizeof candidate, "%s%c%s%s%s", value < 0 ? "-" : "", number[0], n > 1 ? "." : "",
-                     number + 1, e);
-            if (strtod(candidate, NULL) == value) {
-                snprintf(text, cap, "%s", candidate);
-                return;
-            }
-        }
-    }
-    snprintf(text, cap, "%.16e", value);
-}
+#include "repr.c"
 
-/* A float as Python's repr writes it: the shortest digits that read back, positionally for
-   exponents -4 to 15 (always with a fraction), else as an exponent of two digits or more. */
 static void rtcm3_json_float(nmea_rtcm3_json_out *j, double value)
 {
-    char text[48], digits[24];
-    int exponent, n = 0, k;
-    const char *p;
-    rtcm3_shortest(value, text, sizeof text);
-    exponent = atoi(strchr(text, 'e') + 1);
-    if (exponent < -4 || exponent >= 16) {
-        rtcm3_json_puts(j, text);
-        return;
-    }
-    for (p = text; *p != 'e'; p++)
-        if (*p >= '0' && *p <= '9')
-            digits[n++] = *p;
-    if (value < 0)
-        rtcm3_json_puts(j, "-");
-    if (exponent < 0) {
-        rtcm3_json_puts(j, "0.");
-        for (k = 1; k < -exponent; k++)
-            rtcm3_json_puts(j, "0");
-        rtcm3_json_put(j, digits, (size_t)n);
-        return;
-    }
-    for (k = 0; k <= exponent; k++)
-        rtcm3_json_put(j, k < n ? &digits[k] : "0", 1);
-    rtcm3_json_puts(j, ".");
-    if (n > exponent + 1)
-        rtcm3_json_put(j, digits + exponent + 1, (size_t)(n - exponent - 1));
-    else
-        rtcm3_json_puts(j, "0");
+    char text[NMEA_REPR_SIZE];
+    nmea_repr_double(value, text);
+    rtcm3_json_puts(j, text);
 }
 
 /* The special value of `raw` among `specials`, NULL for a number. */

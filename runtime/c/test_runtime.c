@@ -603,6 +603,32 @@ static void test_json(void)
     n = nmea_decode_json_ex("$GPTST,123,abc", 14, false, &strict, json, sizeof json);
     CHECK(n == strlen(refused) && memcmp(json, refused, n) == 0 && nmea_json_is_failure(json, n));
 }
+
+#ifndef NMEA_NO_FIXES
+/* Doubles as Python's repr writes them (runtime/c/repr.c, every pair's JSON). */
+static void test_repr(void)
+{
+    static const struct {
+        double value;
+        const char *text;
+    } cases[] = {
+        {0.0, "0.0"}, {-0.0, "-0.0"}, {1e-5, "1e-05"}, {0.0001, "0.0001"}, {0.000123, "0.000123"}, {1e16, "1e+16"},
+        {1.5e16, "1.5e+16"}, {1e22, "1e+22"}, {-2.5e-300, "-2.5e-300"}, {100.0, "100.0"}, {12.3, "12.3"},
+        {1234567890123456.0, "1234567890123456.0"}, {9999999999999998.0, "9999999999999998.0"},
+        {-4850729.7108, "-4850729.7108"}, {5e-324, "5e-324"}, {1.7976931348623157e308, "1.7976931348623157e+308"},
+        /* -2^-24: its correctly rounded 16 digits read back another double; Python takes the next */
+        {-5.9604644775390625e-08, "-5.960464477539063e-08"},
+        /* a float widened to a double, halfway between two 17-digit decimals: the even one */
+        {3.91278839111328125, "3.9127883911132812"},
+    };
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[NMEA_REPR_SIZE];
+        size_t n = nmea_repr_double(cases[i].value, text);
+        CHECK(n == strlen(cases[i].text) && strcmp(text, cases[i].text) == 0);
+    }
+}
+#endif
 #endif
 
 int main(void)
@@ -626,6 +652,9 @@ int main(void)
     test_build();
 #ifndef NMEA_NO_JSON
     test_json();
+#ifndef NMEA_NO_FIXES
+    test_repr();
+#endif
 #endif
     if (failures) {
         fprintf(stderr, "%d check(s) failed\n", failures);

@@ -449,26 +449,18 @@ static void ubx_json_number(ubx_json_out *j, uint64_t value, bool is_signed)
                                     : snprintf(text, sizeof text, "%llu", (unsigned long long)value)));
 }
 
-/* A float as Python's repr writes it: the shortest digits that read back, positionally for
-   exponents -4 to 15 (always with a fraction), else as an exponent; "nan", "inf", "-inf" as the
-   strings Python's JSON of a payload gives. */
+#include "repr.c"
+
+/* A float as Python's repr writes it; "nan", "inf", "-inf" as the strings Python's JSON of a
+   payload gives. */
 static void ubx_json_float(ubx_json_out *j, double value)
 {
-    char text[48];
-    int digits, exponent;
+    char text[NMEA_REPR_SIZE];
     if (value != value || value - value != 0) {
         ubx_json_puts(j, value != value ? "\"nan\"" : value > 0 ? "\"inf\"" : "\"-inf\"");
         return;
     }
-    for (digits = 1; digits < 17; digits++) {
-        snprintf(text, sizeof text, "%.*e", digits - 1, value);
-        if (strtod(text, NULL) == value)
-            break;
-    }
-    snprintf(text, sizeof text, "%.*e", digits - 1, value);
-    exponent = atoi(strchr(text, 'e') + 1);
-    if (exponent >= -4 && exponent < 16)
-        snprintf(text, sizeof text, "%.*f", digits - 1 - exponent > 0 ? digits - 1 - exponent : 1, value);
+    nmea_repr_double(value, text);
     ubx_json_puts(j, text);
 }
 

@@ -780,64 +780,12 @@ impl JsonNumber for i64 {
 }
 
 impl JsonNumber for f64 {
-    /// Python's `repr`: the shortest digits that read back the same (of two as close, the even
-    /// one), `.0` on whole values, an exponent of two digits or more below 1e-4 and from 1e16.
+    /// Python's `repr` ([`write_repr`](super::repr::write_repr)); `inf` and `NaN` as Rust writes them.
     fn write<W: fmt::Write>(self, out: &mut W) -> fmt::Result {
         if !self.is_finite() {
             return write!(out, "{self}");
         }
-        let mut text = Short { buf: [0; 40], len: 0 };
-        fmt::Write::write_fmt(&mut text, format_args!("{self:e}"))?;
-        let shortest = text.as_str()?;
-        let digits = shortest.split('e').next().unwrap_or("").bytes().filter(u8::is_ascii_digit).count();
-        // the shortest digits, rounded from the exact value (a tie to even, as Python does)
-        let mut even = Short { buf: [0; 40], len: 0 };
-        fmt::Write::write_fmt(&mut even, format_args!("{self:.*e}", digits.saturating_sub(1)))?;
-        let text = if even.as_str()?.parse::<f64>() == Ok(self) { even.as_str()? } else { shortest };
-        let (mantissa, exponent) = text.split_once('e').ok_or(fmt::Error)?;
-        let exponent: i32 = exponent.parse().map_err(|_| fmt::Error)?;
-        let (sign, mantissa) = mantissa.strip_prefix('-').map_or(("", mantissa), |m| ("-", m));
-        let (first, rest) = mantissa.split_once('.').unwrap_or((mantissa, ""));
-        if !(-4..16).contains(&exponent) {
-            let point = if rest.is_empty() { "" } else { "." };
-            let esign = if exponent < 0 { "-" } else { "+" };
-            return write!(out, "{sign}{first}{point}{rest}e{esign}{:02}", exponent.unsigned_abs());
-        }
-        out.write_str(sign)?;
-        if exponent < 0 {
-            out.write_str("0.")?;
-            (1..-exponent).try_for_each(|_| out.write_char('0'))?;
-            return write!(out, "{first}{rest}");
-        }
-        let whole = exponent as usize; // digits after the first one before the point
-        out.write_str(first)?;
-        if rest.len() <= whole {
-            out.write_str(rest)?;
-            (rest.len()..whole).try_for_each(|_| out.write_char('0'))?;
-            return out.write_str(".0");
-        }
-        write!(out, "{}.{}", &rest[..whole], &rest[whole..])
-    }
-}
-
-/// A short text on the stack (a number's digits).
-struct Short {
-    buf: [u8; 40],
-    len: usize,
-}
-
-impl Short {
-    fn as_str(&self) -> Result<&str, fmt::Error> {
-        core::str::from_utf8(&self.buf[..self.len]).map_err(|_| fmt::Error)
-    }
-}
-
-impl fmt::Write for Short {
-    fn write_str(&mut self, s: &str) -> fmt::Result {
-        let slot = self.buf.get_mut(self.len..self.len + s.len()).ok_or(fmt::Error)?;
-        slot.copy_from_slice(s.as_bytes());
-        self.len += s.len();
-        Ok(())
+        super::repr::write_repr(out, self)
     }
 }
 

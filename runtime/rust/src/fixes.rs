@@ -338,18 +338,11 @@ fn write_iso_time<W: Write + ?Sized>(w: &mut W, time: Time) -> fmt::Result {
     }
 }
 
-/// A double as Python's `repr` (and `json`) writes it: the shortest text that reads back the
-/// same, `.0` on whole values, an exponent of at least two digits below 1e-4 and from 1e16.
+/// A double as Python's `repr` (and `json`) writes it ([`write_repr`](super::repr::write_repr)).
 fn write_real<W: Write + ?Sized>(w: &mut W, value: Option<f64>) -> fmt::Result {
-    let Some(value) = value else { return w.write_str("null") };
-    let mut text = String::new();
-    write!(text, "{value:?}")?;
-    match text.split_once('e') {
-        Some((mantissa, exponent)) => {
-            let (sign, digits) = exponent.strip_prefix('-').map_or(("+", exponent), |digits| ("-", digits));
-            write!(w, "{mantissa}e{sign}{digits:0>2}")
-        }
-        None => w.write_str(&text),
+    match value {
+        Some(value) => super::repr::write_repr(w, value),
+        None => w.write_str("null"),
     }
 }
 

@@ -16,6 +16,7 @@ mod frame;
 mod framings;
 mod layout;
 mod parse;
+mod repr;
 mod table;
 mod tag;
 mod tools;

@@ -627,11 +627,8 @@ impl<'a, E: Entry<'a> + fmt::Debug> fmt::Debug for Group<'a, E> {
     }
 }
 
-/// A float member: a double as Python's `repr` writes it (the shortest text that reads back the
-/// same, `.0` on whole values, an exponent of two digits or more below 1e-4 and from 1e16), NaN
-/// and the infinities as the strings `"nan"`, `"inf"`, `"-inf"`. Of the shortest digits that read
-/// back, the correctly rounded ones (ties to even, as Python's): where the value lies halfway
-/// between two (a float widened to a double may), Rust's shortest form takes the upper.
+/// A float member: a double as Python's `repr` writes it ([`write_repr`](super::repr::write_repr)), NaN
+/// and the infinities as the strings `"nan"`, `"inf"`, `"-inf"`.
 pub fn json_float<W: Write>(j: &mut JsonObject<'_, W>, name: &str, value: f64) -> fmt::Result {
     let out = j.key(name)?;
     if value.is_nan() {
@@ -640,66 +637,7 @@ pub fn json_float<W: Write>(j: &mut JsonObject<'_, W>, name: &str, value: f64) -
     if value.is_infinite() {
         return out.write_str(if value > 0.0 { "\"inf\"" } else { "\"-inf\"" });
     }
-    let mut shortest = Text { buf: [0; 40], len: 0 };
-    write!(shortest, "{value:e}")?;
-    let digits = shortest.as_str()?.split('e').next().unwrap_or("").bytes().filter(u8::is_ascii_digit).count();
-    let mut rounded = Text { buf: [0; 40], len: 0 };
-    write!(rounded, "{value:.*e}", digits.saturating_sub(1))?;
-    let rounded_reads_back = rounded.as_str()?.parse::<f64>().is_ok_and(|back| back == value);
-    let text = if rounded_reads_back { rounded.as_str()? } else { shortest.as_str()? };
-    let (mantissa, exponent) = text.split_once('e').ok_or(fmt::Error)?;
-    let exponent: i32 = exponent.parse().map_err(|_| fmt::Error)?;
-    let (sign, mantissa) = mantissa.strip_prefix('-').map_or(("", mantissa), |m| ("-", m));
-    let mut all = [0u8; 20];
-    let mut n = 0;
-    for byte in mantissa.bytes().filter(u8::is_ascii_digit) {
-        *all.get_mut(n).ok_or(fmt::Error)? = byte;
-        n += 1;
-    }
-    let digits = core::str::from_utf8(&all[..n]).map_err(|_| fmt::Error)?;
-    out.write_str(sign)?;
-    if !(-4..16).contains(&exponent) {
-        out.write_str(&digits[..1])?;
-        if n > 1 {
-            write!(out, ".{}", &digits[1..])?;
-        }
-        let (esign, magnitude) = if exponent < 0 { ('-', -exponent) } else { ('+', exponent) };
-        return write!(out, "e{esign}{magnitude:02}");
-    }
-    if exponent < 0 {
-        out.write_str("0.")?;
-        (0..-exponent - 1).try_for_each(|_| out.write_char('0'))?;
-        return out.write_str(digits);
-    }
-    let whole = exponent as usize + 1;
-    if n <= whole {
-        out.write_str(digits)?;
-        (n..whole).try_for_each(|_| out.write_char('0'))?;
-        out.write_str(".0")
-    } else {
-        write!(out, "{}.{}", &digits[..whole], &digits[whole..])
-    }
-}
-
-/// A short text on the stack.
-struct Text {
-    buf: [u8; 40],
-    len: usize,
-}
-
-impl Text {
-    fn as_str(&self) -> Result<&str, fmt::Error> {
-        core::str::from_utf8(&self.buf[..self.len]).map_err(|_| fmt::Error)
-    }
-}
-
-impl Write for Text {
-    fn write_str(&mut self, s: &str) -> fmt::Result {
-        let slot = self.buf.get_mut(self.len..self.len + s.len()).ok_or(fmt::Error)?;
-        slot.copy_from_slice(s.as_bytes());
-        self.len += s.len();
-        Ok(())
-    }
+    super::repr::write_repr(out, value)
 }
 
 /// A characters member: the bytes as ISO 8859-1 text, escaped as Python's `json.dumps` escapes
