@@ -88,7 +88,8 @@ class _Record:
             else:
                 width_expr = str(width)
             self.read.append(f"if (!ais_take_bits(r, {width_expr}, {key}, &m->{name})) return false;{has}")
-            put = f"if (!ais_put_bits(w, m->{name}, {key})) return false;"
+            put = f"if (!ais_put_bits(w, m->{name}, {key})) return false;" if width is None else \
+                f"if (!ais_put_fixed(w, m->{name}, {width}, {'true' if f.type == 'text' else 'false'}, {key})) return false;"
         elif f.type == "int":
             self.read.append(f"if (!ais_take_signed(r, {width}, {key}, &signed_raw)) return false; "
                              f"m->{name} = ({kind})signed_raw;{has}")

@@ -119,10 +119,11 @@ class _Record:
             read = f"r.take({width}, {key})?" + ("" if kind == "u64" else f" as {kind}")
         self.read.append(f"m.{name} = {read if certain else f'Some({read})'};")
         value = "v" if not certain else f"self.{name}"
-        if f.type in ("text",):
-            put = f"w.put_bits({value}.bits(), {key})?;"
+        if f.type == "text":
+            put = f"w.put_bits({value}.bits(), {key})?;" if width is None else \
+                f"w.put_fixed({value}.bits(), {width}, true, {key})?;"
         elif kind == "ais::Bits<'a>":
-            put = f"w.put_bits({value}, {key})?;"
+            put = f"w.put_bits({value}, {key})?;" if width is None else f"w.put_fixed({value}, {width}, false, {key})?;"
         elif f.type == "int":
             put = f"w.put_signed({value if kind == 'i64' else f'i64::from({value})'}, {width}, {key})?;"
         else:

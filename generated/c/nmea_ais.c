@@ -12,7 +12,7 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/meteo_hydro.yaml (digest 6435540947bb4f89)
+//   spec/ais/applications/meteo_hydro.yaml (digest b692f7de01352e9a)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -234,6 +234,43 @@ static bool ais_put_bits(nmea_ais_writer *w, nmea_ais_bits bits, const char *fie
         if (!ais_put_raw(w, ais_raw(bits.armored, bits.offset + start, width), width, field))
             return false;
     }
+    return true;
+}
+
+/* Bits of a field of fixed width: exactly `width` of them (a text built by a program may have
+   fewer characters than its field). */
+static bool ais_put_fixed(nmea_ais_writer *w, nmea_ais_bits bits, size_t width, bool text, const char *field)
+{
+    if (bits.len != width) {
+        if (text)
+            snprintf(w->err->message, sizeof w->err->message, "%s takes %zu six-bit text characters, not %zu", field,
+                     width / 6, bits.len / 6);
+        else
+            snprintf(w->err->message, sizeof w->err->message, "%s takes %zu bits, not %zu", field, width, bits.len);
+        return ais_fail(w->err, NMEA_AIS_BAD_VALUE, w->message_type, field);
+    }
+    return ais_put_bits(w, bits, field);
+}
+
+bool nmea_ais_text(const char *text, char *buf, size_t cap, nmea_ais_bits *out, nmea_ais_error *err)
+{
+    size_t i, len = strlen(text);
+    if (len > cap) {
+        snprintf(err->message, sizeof err->message, "text of %zu characters does not fit in %zu bytes", len, cap);
+        return ais_fail(err, NMEA_AIS_BAD_VALUE, -1, NULL);
+    }
+    for (i = 0; i < len; i++) {
+        const char *found = text[i] ? strchr(AIS_TEXT, text[i]) : NULL;
+        int value = found ? (int)(found - AIS_TEXT) : -1;
+        if (value < 0) {
+            snprintf(err->message, sizeof err->message, "text takes six-bit text characters, not '%c'", text[i]);
+            return ais_fail(err, NMEA_AIS_BAD_VALUE, -1, NULL);
+        }
+        buf[i] = (char)(value < 40 ? value + 48 : value + 56);
+    }
+    out->armored = buf;
+    out->offset = 0;
+    out->len = 6 * len;
     return true;
 }
 
@@ -1412,7 +1449,7 @@ static bool ais_write_aid_to_navigation(const nmea_ais_aid_to_navigation *m, nme
     if (!ais_put(w, m->repeat, 2, "repeat")) return false;
     if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
     if (!ais_put(w, m->aid_type_raw, 5, "aid_type")) return false;
-    if (!ais_put_bits(w, m->name, "name")) return false;
+    if (!ais_put_fixed(w, m->name, 120, true, "name")) return false;
     if (!ais_put(w, m->accuracy, 1, "accuracy")) return false;
     if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
     if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
@@ -2001,7 +2038,7 @@ static bool ais_write_class_b_extended(const nmea_ais_class_b_extended *m, nmea_
     if (!ais_put(w, m->heading_raw, 9, "heading")) return false;
     if (!ais_put(w, m->second_raw, 6, "second")) return false;
     if (!ais_put(w, m->regional, 4, "regional")) return false;
-    if (!ais_put_bits(w, m->shipname, "shipname")) return false;
+    if (!ais_put_fixed(w, m->shipname, 120, true, "shipname")) return false;
     if (!ais_put(w, m->shiptype_raw, 8, "shiptype")) return false;
     if (!ais_put(w, m->to_bow_raw, 9, "to_bow")) return false;
     if (!ais_put(w, m->to_stern_raw, 9, "to_stern")) return false;
@@ -3040,20 +3077,20 @@ static bool ais_write_static_data_report(const nmea_ais_static_data_report *m, n
         uint64_t selector = (uint64_t)m->partno;
         if (selector == 0u) {
             if (!m->has_shipname) goto done;
-            if (!ais_put_bits(w, m->shipname, "shipname")) return false;
+            if (!ais_put_fixed(w, m->shipname, 120, true, "shipname")) return false;
             if (!m->has_spare) goto done;
             if (!ais_put(w, m->spare, 8, "spare")) return false;
         } else if (selector == 1u) {
             if (!m->has_shiptype_raw) goto done;
             if (!ais_put(w, m->shiptype_raw, 8, "shiptype")) return false;
             if (!m->has_vendorid) goto done;
-            if (!ais_put_bits(w, m->vendorid, "vendorid")) return false;
+            if (!ais_put_fixed(w, m->vendorid, 18, true, "vendorid")) return false;
             if (!m->has_model) goto done;
             if (!ais_put(w, m->model, 4, "model")) return false;
             if (!m->has_serial) goto done;
             if (!ais_put(w, m->serial, 20, "serial")) return false;
             if (!m->has_callsign) goto done;
-            if (!ais_put_bits(w, m->callsign, "callsign")) return false;
+            if (!ais_put_fixed(w, m->callsign, 42, true, "callsign")) return false;
             {
                 uint64_t selector = (uint64_t)m->mmsi;
                 if ((selector >= 980000000u && selector <= 989999999u)) {
@@ -3200,8 +3237,8 @@ static bool ais_write_static_voyage_data(const nmea_ais_static_voyage_data *m, n
     if (!ais_put(w, m->mmsi, 30, "mmsi")) return false;
     if (!ais_put(w, m->ais_version, 2, "ais_version")) return false;
     if (!ais_put(w, m->imo_raw, 30, "imo")) return false;
-    if (!ais_put_bits(w, m->callsign, "callsign")) return false;
-    if (!ais_put_bits(w, m->shipname, "shipname")) return false;
+    if (!ais_put_fixed(w, m->callsign, 42, true, "callsign")) return false;
+    if (!ais_put_fixed(w, m->shipname, 120, true, "shipname")) return false;
     if (!ais_put(w, m->shiptype_raw, 8, "shiptype")) return false;
     if (!ais_put(w, m->to_bow_raw, 9, "to_bow")) return false;
     if (!ais_put(w, m->to_stern_raw, 9, "to_stern")) return false;
@@ -3213,7 +3250,7 @@ static bool ais_write_static_voyage_data(const nmea_ais_static_voyage_data *m, n
     if (!ais_put(w, m->eta_hour_raw, 5, "eta_hour")) return false;
     if (!ais_put(w, m->eta_minute_raw, 6, "eta_minute")) return false;
     if (!ais_put(w, m->draught_raw, 8, "draught")) return false;
-    if (!ais_put_bits(w, m->destination, "destination")) return false;
+    if (!ais_put_fixed(w, m->destination, 120, true, "destination")) return false;
     if (!ais_put(w, m->dte, 1, "dte")) return false;
     if (!ais_put(w, m->spare, 1, "spare")) return false;
     if (!ais_put_bits(w, m->trailing, "trailing")) return false;

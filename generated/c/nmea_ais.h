@@ -12,7 +12,7 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/meteo_hydro.yaml (digest c21e53bb124bfd6a)
+//   spec/ais/applications/meteo_hydro.yaml (digest b7d82fcc997a0dca)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
@@ -61,6 +61,12 @@ typedef struct {
     const char *armored;
     size_t offset, len;
 } nmea_ais_bits;
+
+/* Text of a message a program builds (a name, a call sign, a safety message): `text` (NUL-ended)
+   armored into `buf` (`cap` bytes, a byte a character, no NUL added) and `out` its bits. A field
+   of fixed width takes exactly its characters: pad a shorter text with '@', as transmitters do.
+   false (bad_value in `err`) for a character six-bit text cannot carry or a text longer than `cap`. */
+bool nmea_ais_text(const char *text, char *buf, size_t cap, nmea_ais_bits *out, nmea_ais_error *err);
 
 /* The bits of a payload read most significant first, up to `end`. */
 typedef struct {

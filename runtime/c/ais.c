@@ -218,6 +218,43 @@ static bool ais_put_bits(nmea_ais_writer *w, nmea_ais_bits bits, const char *fie
     return true;
 }
 
+/* Bits of a field of fixed width: exactly `width` of them (a text built by a program may have
+   fewer characters than its field). */
+static bool ais_put_fixed(nmea_ais_writer *w, nmea_ais_bits bits, size_t width, bool text, const char *field)
+{
+    if (bits.len != width) {
+        if (text)
+            snprintf(w->err->message, sizeof w->err->message, "%s takes %zu six-bit text characters, not %zu", field,
+                     width / 6, bits.len / 6);
+        else
+            snprintf(w->err->message, sizeof w->err->message, "%s takes %zu bits, not %zu", field, width, bits.len);
+        return ais_fail(w->err, NMEA_AIS_BAD_VALUE, w->message_type, field);
+    }
+    return ais_put_bits(w, bits, field);
+}
+
+bool nmea_ais_text(const char *text, char *buf, size_t cap, nmea_ais_bits *out, nmea_ais_error *err)
+{
+    size_t i, len = strlen(text);
+    if (len > cap) {
+        snprintf(err->message, sizeof err->message, "text of %zu characters does not fit in %zu bytes", len, cap);
+        return ais_fail(err, NMEA_AIS_BAD_VALUE, -1, NULL);
+    }
+    for (i = 0; i < len; i++) {
+        const char *found = text[i] ? strchr(AIS_TEXT, text[i]) : NULL;
+        int value = found ? (int)(found - AIS_TEXT) : -1;
+        if (value < 0) {
+            snprintf(err->message, sizeof err->message, "text takes six-bit text characters, not '%c'", text[i]);
+            return ais_fail(err, NMEA_AIS_BAD_VALUE, -1, NULL);
+        }
+        buf[i] = (char)(value < 40 ? value + 48 : value + 56);
+    }
+    out->armored = buf;
+    out->offset = 0;
+    out->len = 6 * len;
+    return true;
+}
+
 /* The armored payload, its last character padded with `padding` (the fill bits' values). */
 static bool ais_finish(nmea_ais_writer *w, unsigned padding, nmea_ais_armored *out)
 {

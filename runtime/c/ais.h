@@ -36,6 +36,12 @@ typedef struct {
     size_t offset, len;
 } nmea_ais_bits;
 
+/* Text of a message a program builds (a name, a call sign, a safety message): `text` (NUL-ended)
+   armored into `buf` (`cap` bytes, a byte a character, no NUL added) and `out` its bits. A field
+   of fixed width takes exactly its characters: pad a shorter text with '@', as transmitters do.
+   false (bad_value in `err`) for a character six-bit text cannot carry or a text longer than `cap`. */
+bool nmea_ais_text(const char *text, char *buf, size_t cap, nmea_ais_bits *out, nmea_ais_error *err);
+
 /* The bits of a payload read most significant first, up to `end`. */
 typedef struct {
     const char *armored;

@@ -122,6 +122,48 @@ static int assembly_case(const char *record)
     return 1;
 }
 
+/* A message a program builds with its own text: a safety broadcast (text to the end) and a static
+   data report's name (a field of 20 characters, padded with '@'); 0 when all is as said. */
+static int built_messages(void)
+{
+    char text[32], name[20], json[1024];
+    nmea_ais_message message, back;
+    nmea_ais_armored armored;
+    nmea_ais_error err;
+    int failed = 0;
+    memset(&message, 0, sizeof message);
+    message.layout = NMEA_AIS_SAFETY_BROADCAST;
+    message.as.safety_broadcast.message_type = 14;
+    message.as.safety_broadcast.mmsi = 366999999;
+    failed |= !nmea_ais_text("ALL SHIPS: BUOY ADRIFT", text, sizeof text, &message.as.safety_broadcast.text, &err);
+    failed |= !nmea_ais_encode(&message, &armored, &err) ||
+              !nmea_ais_decode(armored.chars, strlen(armored.chars), armored.fill_bits, &back, &err);
+    nmea_ais_json(&back, armored.fill_bits, json, sizeof json);
+    failed |= strstr(json, "\"text\":\"ALL SHIPS: BUOY ADRIFT\"") == NULL;
+
+    memset(&message, 0, sizeof message);
+    message.layout = NMEA_AIS_STATIC_DATA_REPORT;
+    message.as.static_data_report.message_type = 24;
+    message.as.static_data_report.mmsi = 257000000;
+    message.as.static_data_report.has_shipname = message.as.static_data_report.has_spare = true;
+    failed |= !nmea_ais_text("NORDIC STAR@@@@@@@@@", name, sizeof name, &message.as.static_data_report.shipname, &err);
+    failed |= !nmea_ais_encode(&message, &armored, &err) ||
+              !nmea_ais_decode(armored.chars, strlen(armored.chars), armored.fill_bits, &back, &err);
+    nmea_ais_json(&back, armored.fill_bits, json, sizeof json);
+    failed |= strstr(json, "\"shipname\":\"NORDIC STAR@@@@@@@@@\"") == NULL;
+    /* a name short of its field's 20 characters, a character six-bit text lacks, a buffer too short */
+    failed |= !nmea_ais_text("NORDIC STAR", name, sizeof name, &message.as.static_data_report.shipname, &err);
+    failed |= nmea_ais_encode(&message, &armored, &err) || err.kind != NMEA_AIS_BAD_VALUE ||
+              strcmp(err.message, "shipname takes 20 six-bit text characters, not 11") != 0;
+    failed |= nmea_ais_text("nordic", name, sizeof name, &message.as.static_data_report.shipname, &err) ||
+              strcmp(err.message, "text takes six-bit text characters, not 'n'") != 0;
+    failed |= nmea_ais_text("NORDIC STAR", name, 4, &message.as.static_data_report.shipname, &err) ||
+              err.kind != NMEA_AIS_BAD_VALUE;
+    if (failed)
+        printf("FAIL a message built with its own text\n");
+    return failed;
+}
+
 int main(int argc, char **argv)
 {
     static char record[8192], json[8192];
@@ -181,6 +223,7 @@ int main(int argc, char **argv)
         failed += outcome < 0;
     }
     fclose(cases);
+    failed += built_messages();
     printf("%d decoded, %d refused, %d assembly cases of %d slots, %d failed\n", decoded, refused, assembled,
            NMEA_AIS_SLOTS, failed);
     return failed || decoded != 44 || refused != 6 || !assembled;

@@ -311,7 +311,7 @@ impl<'a> AidToNavigation<'a> {
         w.put(u64::from(self.repeat), 2, "repeat")?;
         w.put(u64::from(self.mmsi), 30, "mmsi")?;
         w.put(u64::from(self.aid_type_raw), 5, "aid_type")?;
-        w.put_bits(self.name.bits(), "name")?;
+        w.put_fixed(self.name.bits(), 120, true, "name")?;
         w.put(u64::from(self.accuracy), 1, "accuracy")?;
         w.put_signed(i64::from(self.lon_raw), 28, "lon")?;
         w.put_signed(i64::from(self.lat_raw), 27, "lat")?;
@@ -1199,7 +1199,7 @@ impl<'a> ClassBExtended<'a> {
         w.put(u64::from(self.heading_raw), 9, "heading")?;
         w.put(u64::from(self.second_raw), 6, "second")?;
         w.put(u64::from(self.regional), 4, "regional")?;
-        w.put_bits(self.shipname.bits(), "shipname")?;
+        w.put_fixed(self.shipname.bits(), 120, true, "shipname")?;
         w.put(u64::from(self.shiptype_raw), 8, "shiptype")?;
         w.put(u64::from(self.to_bow_raw), 9, "to_bow")?;
         w.put(u64::from(self.to_stern_raw), 9, "to_stern")?;
@@ -2753,7 +2753,7 @@ impl<'a> StaticDataReport<'a> {
                     let Some(v) = self.shipname else {
                         break 'write;
                     };
-                    w.put_bits(v.bits(), "shipname")?;
+                    w.put_fixed(v.bits(), 120, true, "shipname")?;
                     let Some(v) = self.spare else {
                         break 'write;
                     };
@@ -2767,7 +2767,7 @@ impl<'a> StaticDataReport<'a> {
                     let Some(v) = self.vendorid else {
                         break 'write;
                     };
-                    w.put_bits(v.bits(), "vendorid")?;
+                    w.put_fixed(v.bits(), 18, true, "vendorid")?;
                     let Some(v) = self.model else {
                         break 'write;
                     };
@@ -2779,7 +2779,7 @@ impl<'a> StaticDataReport<'a> {
                     let Some(v) = self.callsign else {
                         break 'write;
                     };
-                    w.put_bits(v.bits(), "callsign")?;
+                    w.put_fixed(v.bits(), 42, true, "callsign")?;
                     match u64::from(self.mmsi) {
                         980000000..=989999999 => {
                             let Some(v) = self.mothership_mmsi else {
@@ -3030,8 +3030,8 @@ impl<'a> StaticVoyageData<'a> {
         w.put(u64::from(self.mmsi), 30, "mmsi")?;
         w.put(u64::from(self.ais_version), 2, "ais_version")?;
         w.put(u64::from(self.imo_raw), 30, "imo")?;
-        w.put_bits(self.callsign.bits(), "callsign")?;
-        w.put_bits(self.shipname.bits(), "shipname")?;
+        w.put_fixed(self.callsign.bits(), 42, true, "callsign")?;
+        w.put_fixed(self.shipname.bits(), 120, true, "shipname")?;
         w.put(u64::from(self.shiptype_raw), 8, "shiptype")?;
         w.put(u64::from(self.to_bow_raw), 9, "to_bow")?;
         w.put(u64::from(self.to_stern_raw), 9, "to_stern")?;
@@ -3043,7 +3043,7 @@ impl<'a> StaticVoyageData<'a> {
         w.put(u64::from(self.eta_hour_raw), 5, "eta_hour")?;
         w.put(u64::from(self.eta_minute_raw), 6, "eta_minute")?;
         w.put(u64::from(self.draught_raw), 8, "draught")?;
-        w.put_bits(self.destination.bits(), "destination")?;
+        w.put_fixed(self.destination.bits(), 120, true, "destination")?;
         w.put(u64::from(self.dte), 1, "dte")?;
         w.put(u64::from(self.spare), 1, "spare")?;
         w.put_bits(self.trailing, "trailing")?;

@@ -89,6 +89,7 @@ enum Detail {
     TooMany { count: usize, max: usize },
     Units { units: usize, bits: usize },
     Said { len: usize, count: usize },
+    Width { width: usize, bits: usize, text: bool },
     Missing,
 }
 
@@ -183,6 +184,10 @@ impl fmt::Display for AisMessage<'_> {
             }
             Detail::TooMany { count, max } => write!(f, "{field} has {count} entries, at most {max}"),
             Detail::Missing => write!(f, "{field} is missing: the message's case of its layout has it"),
+            Detail::Width { width, bits, text: true } => {
+                write!(f, "{field} takes {} six-bit text characters, not {}", width / 6, bits / 6)
+            }
+            Detail::Width { width, bits, text: false } => write!(f, "{field} takes {width} bits, not {bits}"),
             Detail::Said { len, count } => write!(f, "{field} has {len} entries, its masks' bits set say {count}"),
             Detail::Units { units, bits } => {
                 write!(f, "{field} takes {units} units, as its count says, not {bits} bits")
@@ -350,6 +355,21 @@ impl<'a> SixBitText<'a> {
     /// The bits it was read from.
     pub fn bits(&self) -> Bits<'a> {
         self.bits
+    }
+
+    /// Text of a message a program builds (a name, a call sign, a safety message), armored into
+    /// `buf` (a byte a character). A field of fixed width takes exactly its characters: pad a
+    /// shorter text with `@`, as transmitters do. Errors: a character six-bit text cannot carry
+    /// (lower case, outside ASCII), a `buf` shorter than the text (bad_value).
+    pub fn armor_into(text: &str, buf: &'a mut [u8]) -> Result<Self, AisError> {
+        let error = |detail| AisError::new(AisErrorKind::BadValue, None, Some("text"), detail);
+        let slots = buf.get_mut(..text.len()).ok_or(error(Detail::TooLong))?;
+        for (slot, ch) in slots.iter_mut().zip(text.bytes()) {
+            let value = text_value(ch).ok_or(error(Detail::NotText(ch)))?;
+            *slot = armor_char(value);
+        }
+        let payload = Payload { armored: &buf[..text.len()], fill_bits: 0, unit: 6 };
+        Ok(SixBitText { bits: Bits { payload, offset: 0, len: 6 * text.len() } })
     }
 }
 
@@ -572,6 +592,15 @@ impl<const N: usize> BitWriter<N> {
             let width = (bits.len - start).min(64);
             self.put_raw(bits.payload.raw(bits.offset + start, width), width, field)
         })
+    }
+
+    /// Bits of a field of fixed width: exactly `width` of them (a text built by a program may
+    /// have fewer characters than its field).
+    pub fn put_fixed(&mut self, bits: Bits<'_>, width: usize, text: bool, field: &'static str) -> Result<(), AisError> {
+        if bits.len != width {
+            return Err(self.error(field, Detail::Width { width, bits: bits.len, text }));
+        }
+        self.put_bits(bits, field)
     }
 
     /// `value` in `width` bits (2 to 64), sign and magnitude; `1 << (width - 1)` writes the

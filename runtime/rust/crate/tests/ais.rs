@@ -48,3 +48,38 @@ fn messages_decode_and_encode_as_the_vectors_say() {
     }
     assert_eq!((decoded, refused), (44, 6));
 }
+
+/// A message a program builds, with its own text: a safety broadcast (text to the end) and a
+/// static data report's name (a field of 20 characters, padded with `@`).
+#[test]
+fn messages_built_with_a_programs_text_encode() {
+    use nmeaspec::ais_messages::{SafetyBroadcast, StaticDataReport};
+    use nmeaspec::ais::SixBitText;
+
+    let mut buf = [0u8; 32];
+    let text = SixBitText::armor_into("ALL SHIPS: BUOY ADRIFT", &mut buf).unwrap();
+    let broadcast = Message::SafetyBroadcast(SafetyBroadcast { message_type: 14, mmsi: 366_999_999, text, ..Default::default() });
+    let armored = broadcast.encode().unwrap();
+    let Ok(Message::SafetyBroadcast(back)) = Message::decode(armored.as_str().as_bytes(), armored.fill_bits()) else {
+        panic!("{}", armored.as_str())
+    };
+    assert_eq!((back.mmsi, back.text.to_string()), (366_999_999, "ALL SHIPS: BUOY ADRIFT".to_string()));
+
+    let mut name = [0u8; 20];
+    let shipname = Some(SixBitText::armor_into("NORDIC STAR@@@@@@@@@", &mut name).unwrap());
+    let report = StaticDataReport { message_type: 24, mmsi: 257_000_000, shipname, spare: Some(0), ..Default::default() };
+    let armored = Message::StaticDataReport(report).encode().unwrap();
+    let Ok(Message::StaticDataReport(back)) = Message::decode(armored.as_str().as_bytes(), armored.fill_bits()) else {
+        panic!("{}", armored.as_str())
+    };
+    assert_eq!(back.shipname.unwrap().trimmed().collect::<String>(), "NORDIC STAR");
+
+    // A name short of its field's 20 characters, a character six-bit text lacks, a buffer too short.
+    let mut short = [0u8; 20];
+    let shipname = Some(SixBitText::armor_into("NORDIC STAR", &mut short).unwrap());
+    let err = Message::StaticDataReport(StaticDataReport { shipname, ..report }).encode().unwrap_err();
+    assert_eq!(err.to_string(), "bad_value: AIS type 24: shipname takes 20 six-bit text characters, not 11");
+    let err = SixBitText::armor_into("nordic", &mut short).unwrap_err();
+    assert_eq!(err.to_string(), "bad_value: AIS: text takes six-bit text characters, not 'n'");
+    assert_eq!(SixBitText::armor_into("NORDIC STAR", &mut [0u8; 4]).unwrap_err().kind.as_str(), "bad_value");
+}

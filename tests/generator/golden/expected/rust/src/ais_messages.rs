@@ -120,7 +120,7 @@ impl<'a> TestReport<'a> {
             w.put(u64::from(self.quality_raw), 4, "quality")?;
             w.put(u64::from(self.speed_raw), 10, "speed")?;
             w.put_signed(i64::from(self.lon_raw), 28, "lon")?;
-            w.put_bits(self.name.bits(), "name")?;
+            w.put_fixed(self.name.bits(), 24, true, "name")?;
             match u64::from(self.addressed) {
                 1 => {
                     let Some(v) = self.dest_mmsi else {
