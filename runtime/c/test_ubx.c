@@ -1,9 +1,9 @@
 /* The UBX messages (nmea_ubx.c) against generated/vectors/ubx.jsonl, which the Python codec decodes
    and encodes too: every frame decodes to the same JSON as Python's or fails with the same error
    kind, and encodes back to the same bytes; the same for the other protocols' messages (SkyTraq,
-   SiRF, CASIC) against the further .jsonl files given (generated/vectors/binary.jsonl, whose
-   records name their protocol); then every UBX, SkyTraq, SiRF and CASIC frame nmea.c's framer
-   finds in the logs given (gpsd's, tests/data/{ubx,rtcm3,skytraq,sirf,casic}) decodes and encodes
+   SiRF, CASIC, SBF) against the further .jsonl files given (generated/vectors/binary.jsonl, whose
+   records name their protocol); then every UBX, SkyTraq, SiRF, CASIC and SBF frame nmea.c's framer
+   finds in the logs given (gpsd's, tests/data/{ubx,rtcm3,skytraq,sirf,casic}; pysbf2's, tests/data/sbf) decodes and encodes
    back byte for byte, and a frame cut short, a buffer too small and a count over a group's array
    are refused. With --json, the JSON of every frame of the files given, a frame in hex a line
    (after its protocol's name and a space when not UBX), a line each (tests/ubx/test_c_ubx.py
@@ -71,8 +71,7 @@ static nmea_ubx_protocol protocol_named(const char *name)
     return NMEA_UBX_PROTOCOL_UBX;
 }
 
-/* Whether the pair types the protocol of that name (none: UBX); SBF's blocks are typed in Python
-   only (generator/emit.py's PYTHON_ONLY), so the vectors' SBF records are not ours. */
+/* Whether the pair types the protocol of that name (none: UBX). */
 static bool typed_here(const char *name)
 {
     return name[0] == '\0' || protocol_named(name) != NMEA_UBX_PROTOCOL_UBX || strcmp(name, "ubx") == 0;
@@ -220,10 +219,12 @@ static int log_frames(const char *path)
         bool more;
         got = fread(chunk, 1, sizeof chunk, file);
         while ((more = got ? nmea_framer_push(&framer, &p, &got, &item) : nmea_framer_end(&framer, &item))) {
-            if ((item.protocol == NMEA_SKYTRAQ || item.protocol == NMEA_SIRF || item.protocol == NMEA_CASIC) &&
+            if ((item.protocol == NMEA_SKYTRAQ || item.protocol == NMEA_SIRF || item.protocol == NMEA_CASIC ||
+                 item.protocol == NMEA_SBF) &&
                 item.error == NMEA_FRAME_OK) {
                 nmea_ubx_protocol of = item.protocol == NMEA_SKYTRAQ ? NMEA_UBX_PROTOCOL_SKYTRAQ
                                        : item.protocol == NMEA_SIRF  ? NMEA_UBX_PROTOCOL_SIRF
+                                       : item.protocol == NMEA_SBF   ? NMEA_UBX_PROTOCOL_SBF
                                                                      : NMEA_UBX_PROTOCOL_CASIC;
                 other_frames++;
                 round_trip(of, (const uint8_t *)item.ptr, item.len, &message, path);
@@ -450,7 +451,7 @@ int main(int argc, char **argv)
     refusals();
     by_hand();
     other_protocols();
-    printf("%d decoded, %d refused, %d frames (and %d SkyTraq, SiRF, CASIC) of %d logs round-tripped, %d cut payloads, "
+    printf("%d decoded, %d refused, %d frames (and %d SkyTraq, SiRF, CASIC, SBF) of %d logs round-tripped, %d cut payloads, "
            "%d over NMEA_UBX_MAX_ENTRIES %d, %d failed\n",
            decoded, refused, frames, other_frames, logs, cut_payloads, over_maximum, NMEA_UBX_MAX_ENTRIES, failed);
     return failed || decoded < 20 || refused < 2 || frames < 1000 || cut_payloads < 1000 ||

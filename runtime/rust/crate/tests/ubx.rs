@@ -14,7 +14,7 @@ use std::path::Path;
 use nmeaspec::stream::{Framer, Item, Protocol};
 use nmeaspec::ubx::UbxErrorKind;
 use nmeaspec::ubx_messages::{AckAck, Message, NavPvt};
-use nmeaspec::{casic_messages, sirf_messages, skytraq_messages};
+use nmeaspec::{casic_messages, sbf_messages, sirf_messages, skytraq_messages};
 
 const CRATE: &str = env!("CARGO_MANIFEST_DIR");
 
@@ -66,7 +66,7 @@ fn frames_of(dir: &str, protocol: Protocol) -> Vec<(String, Vec<u8>)> {
     let mut paths: Vec<_> = fs::read_dir(Path::new(CRATE).join("../../tests/data").join(dir))
         .unwrap()
         .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|ext| ext == "log"))
+        .filter(|path| path.extension().is_some_and(|ext| ext == "log" || ext == "sbf"))
         .collect();
     paths.sort();
     for path in paths {
@@ -151,6 +151,11 @@ fn other_protocol(protocol: &str, frame: &[u8]) -> Result<(String, Vec<u8>), nme
             m.write_json(&mut json).unwrap();
             m.encode(&mut buf)?.to_vec()
         }
+        "sbf" => {
+            let m = sbf_messages::Message::from_frame(frame)?;
+            m.write_json(&mut json).unwrap();
+            m.encode(&mut buf)?.to_vec()
+        }
         _ => panic!("{protocol}"),
     };
     Ok((json, encoded))
@@ -162,9 +167,6 @@ fn other_protocols_decode_and_encode_as_the_vectors_say() {
     let data = fs::read_to_string(&path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
     let mut decoded = 0;
     for record in data.lines() {
-        if member(record, "protocol") == "sbf" {
-            continue; // SBF's blocks are typed in Python only (generator/emit.py's PYTHON_ONLY)
-        }
         let frame = unhex(member(record, "frame"));
         let (json, encoded) =
             other_protocol(member(record, "protocol"), &frame).unwrap_or_else(|err| panic!("{err}: {record}"));
@@ -178,9 +180,12 @@ fn other_protocols_decode_and_encode_as_the_vectors_say() {
 
 #[test]
 fn every_logged_frame_of_other_protocols_decodes_and_encodes_back() {
-    for (dir, protocol, at_least) in
-        [("skytraq", Protocol::Skytraq, 250), ("sirf", Protocol::Sirf, 200), ("casic", Protocol::Casic, 700)]
-    {
+    for (dir, protocol, at_least) in [
+        ("skytraq", Protocol::Skytraq, 250),
+        ("sirf", Protocol::Sirf, 200),
+        ("casic", Protocol::Casic, 700),
+        ("sbf", Protocol::Sbf, 60),
+    ] {
         let frames = frames_of(dir, protocol);
         let mut known = 0;
         for (file, frame) in &frames {
