@@ -1,5 +1,5 @@
 """C emitter of the binary messages (spec/binary/ubx, and the other protocols' of
-spec/binary/<protocol>/messages: SkyTraq, SiRF, CASIC): the pair nmea_ubx.h / nmea_ubx.c, beside
+spec/binary/<protocol>/messages: SkyTraq, SiRF, CASIC, SBF): the pair nmea_ubx.h / nmea_ubx.c, beside
 the NMEA pair and independent of it (a firmware links it only if it wants UBX). A struct per
 layout, every field typed; a descriptor per layout (its items: kind, bytes, member offset, scale,
 enum, group) that one reader, one writer and one JSON printer interpret (runtime/c/ubx.{h,c},
@@ -50,6 +50,8 @@ def _doc(f: PayloadField) -> str:
     scale = f"; a code of {f.enum.id} (its JSON: the code's id)" if f.enum is not None else ""
     if f.scaled:
         scale = f"; raw, value = raw{f' / {f.divisor}' if f.divisor else ''}{f' + {f.base}' if f.base else ''}"
+        if f.special:   # its special values, which the JSON gives by id
+            scale += "; " + ", ".join(f"{s.raw}: {s.id}" for s in f.special)
     return (f.name + unit + scale).replace("*/", "* /")
 
 

@@ -1,13 +1,14 @@
 """Rust emitter of the binary messages (spec/binary/<protocol>/messages): the module `ubx_messages`
-of the generated crate (and `skytraq_messages`, `sirf_messages`, `casic_messages`, the same code
+of the generated crate (and `skytraq_messages`, `sirf_messages`, `casic_messages`, `sbf_messages`, the same code
 in their byte order and framing), a struct per layout (named as the Python classes of emit_python_ubx) with
 straight-line `read`, `write` and JSON code over the runtime's byte reader and writer
 (runtime/rust/src/ubx.rs), a struct per repeated group's entry, and the `Message` enum that picks
 a layout by class and id, then by length and version, as the Python runtime and the reference
 decoder (generator/reference_binary.py) pick it.
 
-Members follow the AIS module (emit_rust_ais.py): a number with a divisor or an enum keeps its raw
-integer (`<id>_raw`) and has an accessor giving its value; a bitfield word is a member and each
+Members follow the AIS module (emit_rust_ais.py): a number with a divisor, special values or an
+enum keeps its raw integer (`<id>_raw`) and has an accessor giving its value (an `ais::Reading`
+where special values may stand for it); a bitfield word is a member and each
 named part an accessor (and a setter) over its bits, so that the bits no part names stay as sent;
 characters and bytes are views of the payload (`&[u8]`, ISO 8859-1 characters as sent, NUL padding
 included); a reserved field is an integer as wide as its bytes; a group is a `ubx::Group`, a view
@@ -447,7 +448,7 @@ def protocols(spec: Spec) -> list[str]:
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files: dict[str, str] = {}
-    for protocol in protocols(spec):   # SkyTraq, SiRF, CASIC
+    for protocol in protocols(spec):   # SkyTraq, SiRF, CASIC, SBF
         others = sorted((m for m in spec.binary if m.protocol == protocol), key=lambda m: (len(m.key) == 1, m.key))
         blocks, layouts = _blocks(spec, others)
         name = next((p.name for p in spec.protocols if p.id == protocol), protocol)

@@ -118,7 +118,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest e9921d488b9c5886)
+//   spec/enums/ubx_gnss_id.yaml (digest 1103d0139b0fc379)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ: spec/binary/<protocol>):
@@ -133,7 +133,7 @@
    one interpreter of the generated layout descriptors that reads a payload into a layout's struct,
    writes it back byte for byte and prints its JSON, the C side of the Python runtime's ubx.py
    (its rules and error kinds). The messages of the other binary protocols the spec types
-   (SkyTraq, SiRF, CASIC: the Python runtime's binary.py) go through the same interpreter, in their
+   (SkyTraq, SiRF, CASIC, SBF: the Python runtime's binary.py) go through the same interpreter, in their
    byte order, framed by their row of the generated framing table (sync, length, checksum, end). No heap: a field of the bytes left, the trailing bytes and an
    unknown message's payload are views of the decoded payload. Facts from u-blox UBX-13003221
    ("UBX frame structure", "UBX checksum", "Data types"). */
@@ -5506,8 +5506,8 @@ typedef struct {
 
 /* Dilutions of precision (DOP): SBF 4001 rev 0 (id 0x0FA1), output. */
 typedef struct {
-    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw */
-    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw */
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
     uint8_t nr_sv; /* Satellites used */
     uint8_t reserved; /* Reserved (reserved, as sent) */
     uint16_t pdop; /* Position dilution of precision; raw, value = raw / 100 */
@@ -5521,8 +5521,8 @@ typedef struct {
 
 /* Position, velocity and time, Cartesian (PVTCartesian): SBF 4006 rev 2 (id 0x4FA6), output. */
 typedef struct {
-    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw */
-    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw */
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
     uint8_t mode; /* PVT mode (bitfield) */
     uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
@@ -5540,7 +5540,7 @@ typedef struct {
     float rx_clk_drift; /* Receiver clock drift [ppm] (its bits as sent) */
     uint8_t time_system; /* Time system of the clock bias; a code of sbf_time_system (its JSON: the code's id) */
     uint8_t datum; /* Datum of the position; a code of sbf_datum (its JSON: the code's id) */
-    uint8_t nr_sv; /* Satellites used; raw, value = raw */
+    uint8_t nr_sv; /* Satellites used; raw, value = raw; 255: do_not_use */
     uint8_t wa_corr_info; /* Corrections used (bitfield) */
     bool corr_orb_clk_used; /* Orbit and satellite clock corrections used (wa_corr_info bit 0) */
     bool corr_rng_used; /* Range corrections used (wa_corr_info bit 1) */
@@ -5548,8 +5548,8 @@ typedef struct {
     bool corr_orb_acc_used; /* Orbit accuracy information used (wa_corr_info bit 3) */
     bool corr_do229_active; /* DO-229 precision approach mode active (wa_corr_info bit 4) */
     uint8_t corr_rtk_type; /* Kind of RTK corrections (wa_corr_info bits 5-6) */
-    uint16_t reference_id; /* Reference station id of the corrections; raw, value = raw */
-    uint16_t mean_corr_age; /* Mean age of the corrections [s]; raw, value = raw / 100 */
+    uint16_t reference_id; /* Reference station id of the corrections; raw, value = raw; 65535: do_not_use */
+    uint16_t mean_corr_age; /* Mean age of the corrections [s]; raw, value = raw / 100; 65535: do_not_use */
     uint32_t signal_info; /* Signals used (a bit per signal type) */
     uint8_t alert_flag; /* Integrity flags (bitfield) */
     uint8_t raim_integrity; /* RAIM integrity (alert_flag bits 0-1) */
@@ -5559,9 +5559,9 @@ typedef struct {
     uint16_t ppp_info; /* PPP seed (bitfield) */
     uint16_t ppp_seed_age; /* Age of the PPP seed (s) (ppp_info bits 0-11) */
     uint8_t ppp_seed_type; /* Kind of PPP seed (ppp_info bits 13-15) */
-    uint16_t latency; /* Time from the epoch to the block's output [s]; raw, value = raw / 10000 */
-    uint16_t h_accuracy; /* Horizontal accuracy estimate [m]; raw, value = raw / 100 */
-    uint16_t v_accuracy; /* Vertical accuracy estimate [m]; raw, value = raw / 100 */
+    uint16_t latency; /* Time from the epoch to the block's output [s]; raw, value = raw / 10000; 65535: do_not_use */
+    uint16_t h_accuracy; /* Horizontal accuracy estimate [m]; raw, value = raw / 100; 65535: do_not_use */
+    uint16_t v_accuracy; /* Vertical accuracy estimate [m]; raw, value = raw / 100; 65535: do_not_use */
     uint8_t misc; /* Reference point (bitfield) */
     bool base_arp; /* Position of the base's antenna reference point (misc bit 0) */
     bool phase_ctr_offset; /* Phase center offset compensated (misc bit 1) */
@@ -5571,8 +5571,8 @@ typedef struct {
 
 /* Position, velocity and time, geodetic (PVTGeodetic): SBF 4007 rev 2 (id 0x4FA7), output. */
 typedef struct {
-    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw */
-    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw */
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
     uint8_t mode; /* PVT mode (bitfield) */
     uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
@@ -5590,7 +5590,7 @@ typedef struct {
     float rx_clk_drift; /* Receiver clock drift [ppm] (its bits as sent) */
     uint8_t time_system; /* Time system of the clock bias; a code of sbf_time_system (its JSON: the code's id) */
     uint8_t datum; /* Datum of the position; a code of sbf_datum (its JSON: the code's id) */
-    uint8_t nr_sv; /* Satellites used; raw, value = raw */
+    uint8_t nr_sv; /* Satellites used; raw, value = raw; 255: do_not_use */
     uint8_t wa_corr_info; /* Corrections used (bitfield) */
     bool corr_orb_clk_used; /* Orbit and satellite clock corrections used (wa_corr_info bit 0) */
     bool corr_rng_used; /* Range corrections used (wa_corr_info bit 1) */
@@ -5598,8 +5598,8 @@ typedef struct {
     bool corr_orb_acc_used; /* Orbit accuracy information used (wa_corr_info bit 3) */
     bool corr_do229_active; /* DO-229 precision approach mode active (wa_corr_info bit 4) */
     uint8_t corr_rtk_type; /* Kind of RTK corrections (wa_corr_info bits 5-6) */
-    uint16_t reference_id; /* Reference station id of the corrections; raw, value = raw */
-    uint16_t mean_corr_age; /* Mean age of the corrections [s]; raw, value = raw / 100 */
+    uint16_t reference_id; /* Reference station id of the corrections; raw, value = raw; 65535: do_not_use */
+    uint16_t mean_corr_age; /* Mean age of the corrections [s]; raw, value = raw / 100; 65535: do_not_use */
     uint32_t signal_info; /* Signals used (a bit per signal type) */
     uint8_t alert_flag; /* Integrity flags (bitfield) */
     uint8_t raim_integrity; /* RAIM integrity (alert_flag bits 0-1) */
@@ -5609,9 +5609,9 @@ typedef struct {
     uint16_t ppp_info; /* PPP seed (bitfield) */
     uint16_t ppp_seed_age; /* Age of the PPP seed (s) (ppp_info bits 0-11) */
     uint8_t ppp_seed_type; /* Kind of PPP seed (ppp_info bits 13-15) */
-    uint16_t latency; /* Time from the epoch to the block's output [s]; raw, value = raw / 10000 */
-    uint16_t h_accuracy; /* Horizontal accuracy estimate [m]; raw, value = raw / 100 */
-    uint16_t v_accuracy; /* Vertical accuracy estimate [m]; raw, value = raw / 100 */
+    uint16_t latency; /* Time from the epoch to the block's output [s]; raw, value = raw / 10000; 65535: do_not_use */
+    uint16_t h_accuracy; /* Horizontal accuracy estimate [m]; raw, value = raw / 100; 65535: do_not_use */
+    uint16_t v_accuracy; /* Vertical accuracy estimate [m]; raw, value = raw / 100; 65535: do_not_use */
     uint8_t misc; /* Reference point (bitfield) */
     bool base_arp; /* Position of the base's antenna reference point (misc bit 0) */
     bool phase_ctr_offset; /* Phase center offset compensated (misc bit 1) */
@@ -5621,8 +5621,8 @@ typedef struct {
 
 /* Position covariance, Cartesian (PosCovCartesian): SBF 5905 rev 0 (id 0x1711), output. */
 typedef struct {
-    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw */
-    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw */
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
     uint8_t mode; /* PVT mode (bitfield) */
     uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
@@ -5643,8 +5643,8 @@ typedef struct {
 
 /* Position covariance, geodetic (PosCovGeodetic): SBF 5906 rev 0 (id 0x1712), output. */
 typedef struct {
-    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw */
-    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw */
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
     uint8_t mode; /* PVT mode (bitfield) */
     uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
@@ -5665,8 +5665,8 @@ typedef struct {
 
 /* Velocity covariance, Cartesian (VelCovCartesian): SBF 5907 rev 0 (id 0x1713), output. */
 typedef struct {
-    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw */
-    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw */
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
     uint8_t mode; /* PVT mode (bitfield) */
     uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
@@ -5687,8 +5687,8 @@ typedef struct {
 
 /* Velocity covariance, geodetic (VelCovGeodetic): SBF 5908 rev 0 (id 0x1714), output. */
 typedef struct {
-    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw */
-    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw */
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
     uint8_t mode; /* PVT mode (bitfield) */
     uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
@@ -5709,15 +5709,15 @@ typedef struct {
 
 /* Receiver time (ReceiverTime): SBF 5914 rev 0 (id 0x171A), output. */
 typedef struct {
-    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw */
-    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw */
-    int8_t utc_year; /* UTC year (modulo 100); raw, value = raw */
-    int8_t utc_month; /* UTC month; raw, value = raw */
-    int8_t utc_day; /* UTC day; raw, value = raw */
-    int8_t utc_hour; /* UTC hour; raw, value = raw */
-    int8_t utc_min; /* UTC minute; raw, value = raw */
-    int8_t utc_sec; /* UTC second; raw, value = raw */
-    int8_t delta_ls; /* Leap seconds (GPS time less UTC) [s]; raw, value = raw */
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    int8_t utc_year; /* UTC year (modulo 100); raw, value = raw; -128: do_not_use */
+    int8_t utc_month; /* UTC month; raw, value = raw; -128: do_not_use */
+    int8_t utc_day; /* UTC day; raw, value = raw; -128: do_not_use */
+    int8_t utc_hour; /* UTC hour; raw, value = raw; -128: do_not_use */
+    int8_t utc_min; /* UTC minute; raw, value = raw; -128: do_not_use */
+    int8_t utc_sec; /* UTC second; raw, value = raw; -128: do_not_use */
+    int8_t delta_ls; /* Leap seconds (GPS time less UTC) [s]; raw, value = raw; -128: do_not_use */
     uint8_t sync_level; /* Synchronisation of the receiver's time (bitfield) */
     bool wn_set; /* Week number set (sync_level bit 0) */
     bool tow_set; /* Time of week set (sync_level bit 1) */

@@ -408,6 +408,33 @@ static void other_protocols(void)
         printf("FAIL a SiRF frame whose checksum is off by one\n");
         failed++;
     }
+    {   /* SBF: pysbf2's ReceiverTime (5914 rev 0; 14 bytes of fields, 2 of padding), its TOW then set
+           to the do-not-use value: written back with its length and CRC, read again */
+        static const uint8_t time[] = {0x24, 0x40, 0xBD, 0x13, 0x1A, 0x17, 0x18, 0x00, 0x70, 0x2F, 0xCB, 0x1C,
+                                       0x3F, 0x09, 0x19, 0x05, 0x17, 0x0E, 0x0B, 0x00, 0x12, 0x07, 0x00, 0x00};
+        static char text[512];
+        if (!nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SBF, time, sizeof time, &message, &err) ||
+            message.layout != NMEA_UBX_MSG_SBF_RECEIVER_TIME || message.as.sbf_receiver_time.tow != 483078000 ||
+            message.as.sbf_receiver_time.utc_year != 25 || message.as.sbf_receiver_time.trailing.len != 2 ||
+            nmea_ubx_encode(&message, frame, sizeof frame, &err) != sizeof time || memcmp(frame, time, sizeof time)) {
+            printf("FAIL an SBF ReceiverTime\n");
+            failed++;
+        }
+        message.as.sbf_receiver_time.tow = 0xFFFFFFFFu;
+        if (nmea_ubx_encode(&message, frame, sizeof frame, &err) != sizeof time ||
+            !nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SBF, frame, sizeof time, &message, &err) ||
+            nmea_ubx_json(&message, text, sizeof text) == 0 ||
+            !strstr(text, "\"tow\":\"do_not_use\",\"tow_raw\":4294967295,")) {
+            printf("FAIL an SBF ReceiverTime of a do-not-use TOW: %s\n", text);
+            failed++;
+        }
+        frame[2] ^= 1;
+        if (nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SBF, frame, sizeof time, &message, &err) ||
+            err.kind != NMEA_UBX_BAD_CHECKSUM) {
+            printf("FAIL an SBF block whose CRC is off by one\n");
+            failed++;
+        }
+    }
 }
 
 int main(int argc, char **argv)

@@ -222,3 +222,38 @@ fn errors_of_other_protocols_name_protocol_message_and_field() {
     assert_eq!(json, r#"{"message":null,"id":126,"payload":"01"}"#);
     assert_eq!(message.encode(&mut [0u8; 9]).unwrap(), &unknown[..]);
 }
+
+#[test]
+fn sbf_blocks_keep_do_not_use_values_padding_and_crc() {
+    use nmeaspec::ais::Reading;
+    // ReceiverTime (5914 rev 0) of pysbf2's pygpsdata_x5_time.sbf: 14 bytes of fields, 2 of padding.
+    let frame = unhex("24 40 bd 13 1a 17 18 00 70 2f cb 1c 3f 09 19 05 17 0e 0b 00 12 07 00 00");
+    let sbf_messages::Message::ReceiverTime(mut time) = sbf_messages::Message::from_frame(&frame).unwrap() else {
+        panic!("not a ReceiverTime");
+    };
+    assert_eq!(
+        (time.tow(), time.utc_year(), time.trailing),
+        (Reading::Value(483078000), Reading::Value(25), &[0u8, 0][..])
+    );
+    let mut buf = [0u8; 64];
+    assert_eq!(time.encode(&mut buf).unwrap(), &frame[..]);
+    // do-not-use values by their id, beside the raw integer; the CRC and length written anew
+    time.tow_raw = u32::MAX;
+    time.utc_sec_raw = -128;
+    assert_eq!((time.tow(), time.utc_sec()), (Reading::Special("do_not_use"), Reading::Special("do_not_use")));
+    let again = sbf_messages::Message::from_frame(time.encode(&mut buf).unwrap()).unwrap();
+    let mut json = String::new();
+    again.write_json(&mut json).unwrap();
+    assert!(json.contains(r#""tow":"do_not_use","tow_raw":4294967295,"#), "{json}");
+    assert!(json.contains(r#""utc_sec":"do_not_use","utc_sec_raw":-128,"#), "{json}");
+    // a block number no layout describes: its number and revision, its body as sent
+    let unknown = unhex("24 40 16 64 a0 2f 0c 00 01 02 03 04");
+    let message = sbf_messages::Message::from_frame(&unknown).unwrap();
+    json.clear();
+    message.write_json(&mut json).unwrap();
+    assert_eq!(json, r#"{"message":null,"number":4000,"revision":1,"payload":"01020304"}"#);
+    assert_eq!(message.encode(&mut buf).unwrap(), &unknown[..]);
+    let mut bad = frame.clone();
+    bad[2] ^= 1;
+    assert_eq!(sbf_messages::Message::from_frame(&bad).unwrap_err().kind, UbxErrorKind::BadChecksum);
+}
