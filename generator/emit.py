@@ -110,11 +110,6 @@ def license_texts(folder: str) -> dict[str, str]:
     return {f"{folder}/{name}": (ROOT / name).read_text(encoding="utf-8") for name in LICENSE_FILES}
 
 
-# Binary protocols whose messages only the Python package types so far: SBF's float special values
-# and sub-blocks sized by a header field have no Rust or C code yet (the three framers frame them).
-PYTHON_ONLY = frozenset({"sbf"})
-
-
 def typed_natively(spec: Spec) -> list[str]:
     """The binary protocols whose messages the Rust crate and the C pair type (UBX among them)."""
-    return sorted({m.protocol for m in spec.binary} - PYTHON_ONLY)
+    return sorted({m.protocol for m in spec.binary})

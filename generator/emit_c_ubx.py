@@ -1,5 +1,5 @@
 """C emitter of the binary messages (spec/binary/ubx, and the other protocols' of
-spec/binary/<protocol>/messages: SkyTraq, SiRF, CASIC): the pair nmea_ubx.h / nmea_ubx.c, beside
+spec/binary/<protocol>/messages: SkyTraq, SiRF, CASIC, SBF): the pair nmea_ubx.h / nmea_ubx.c, beside
 the NMEA pair and independent of it (a firmware links it only if it wants UBX). A struct per
 layout, every field typed; a descriptor per layout (its items: kind, bytes, member offset, scale,
 enum, group) that one reader, one writer and one JSON printer interpret (runtime/c/ubx.{h,c},
@@ -21,7 +21,7 @@ from __future__ import annotations
 import jinja2
 
 from .emit import RUNTIME, header, runtime_source, typed_natively
-from .emit_framing import framing
+from .emit_framing import framing, wire_key
 from .emit_python_ubx import title
 from .model import BinaryProtocol, EnumDef, PayloadField, PayloadGroup, Spec
 from .names_c import member
@@ -50,6 +50,8 @@ def _doc(f: PayloadField) -> str:
     scale = f"; a code of {f.enum.id} (its JSON: the code's id)" if f.enum is not None else ""
     if f.scaled:
         scale = f"; raw, value = raw{f' / {f.divisor}' if f.divisor else ''}{f' + {f.base}' if f.base else ''}"
+        if f.special:   # its special values, which the JSON gives by id
+            scale += "; " + ", ".join(f"{s.raw}: {s.id}" for s in f.special)
     return (f.name + unit + scale).replace("*/", "* /")
 
 
@@ -239,9 +241,15 @@ def _framing_row(p: BinaryProtocol) -> str:
     elif len(f.identity) != 2 or len(key_at) != 2 or max(key_at) != min(key_at) + 1:
         raise NotImplementedError(f"{where}: a key in the header is a class byte and an id byte")
     end = list(f.end) + [0] * (2 - len(f.end))
+    fields = "{0, 0, 0}, {0, 0, 0}"
+    if key_at:   # the key's fields in the 16-bit word of its two header bytes, in the protocol's byte order
+        first = 8 * min(key_at)
+        fields = ", ".join(f'{{"{name}", {16 - (at - first) - bits if f.big_endian else at - first}, {bits}}}'
+                           for name, at, bits in f.identity)
     return (f'{{"{p.id}", "{p.id.upper()}", {{0x{f.sync[0]:02X}, 0x{f.sync[1]:02X}}}, {f.header}, {f.length_at}, '
             f'0x{f.length_mask:04X}, {min(key_at) if key_at else 0}, NMEA_UBX_CHECK_{f.checksum.upper()}, {f.check_from}, '
-            f'{f.check_size}, {{0x{end[0]:02X}, 0x{end[1]:02X}}}, {len(f.end)}, {"true" if f.big_endian else "false"}}}')
+            f'{f.check_size}, {{0x{end[0]:02X}, 0x{end[1]:02X}}}, {len(f.end)}, {"true" if f.big_endian else "false"}, '
+            f'{f.length_adds}, {f.check_at}, {{{fields}}}}}')
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
@@ -264,10 +272,10 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                 version = next(f for f in layout.fields if f.id == "version")
                 assert version.offset is not None
                 version_at = version.offset // 8
-            key = list(message.key) + [0] * (2 - len(message.key))
+            key = list(wire_key(spec, message)) + [0] * (2 - len(message.key))
             layouts.append(dict(
                 message=message, layout=layout, code=code, cid=cid, key=key, protocol=message.protocol.upper(),
-                key_len=len(message.key) if not message.msg_class else 0,
+                key_len=0 if message.header_key else len(message.key),
                 typedefs=[e.typedef(e.doc, False) for e in code.entries] + [code.typedef(title(message, layout), True)],
                 tables="\n".join([*(e.code() for e in code.entries), code.code()]),
                 defines=[d for e in code.entries for d in e.defines] + code.defines,
@@ -280,9 +288,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     keyed, first = [], 0
     for m in messages:   # each message's layouts: the first and the last of ubx_layouts
         last = first + len(m.layouts) - 1
-        key = list(m.key) + [0] * (2 - len(m.key))
+        key = list(wire_key(spec, m)) + [0] * (2 - len(m.key))
         keyed.append(dict(message=m, first=first, last=last, key=key, protocol=m.protocol.upper(),
-                          key_len=len(m.key) if not m.msg_class else 0))
+                          key_len=0 if m.header_key else len(m.key)))
         first = last + 1
     context = dict(layouts=layouts, ubx=keyed[:len(ubx)], others=keyed[len(ubx):],
                    protocols=[p.id.upper() for p in protocols], framings=[_framing_row(p) for p in protocols],

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .emit import RUNTIME, REGENERATE
-from .model import BinaryProtocol, Spec
+from .model import BinaryMessage, BinaryProtocol, Spec
 from .paths import LICENSE
 
 # The checksums the runtimes compute, by the protocol.yaml name: its bytes after the payload.
@@ -146,6 +146,29 @@ def framing(p: BinaryProtocol) -> Framing:
         raise FramingError(f"{where}: at most two identity fields of 16 bits")
     return Framing(p.id, sync, follow, length_at, length_size, big, mask, header, adds, checksum["algorithm"],
                    offsets[first], check_at, bytes(frame.get("end", [])), tuple(identity))
+
+
+def header_key(f: Framing, values: tuple[int, ...]) -> tuple[int, ...]:
+    """The header's bytes that hold a message's key `values` (one per identity field, as the model's
+    BinaryMessage.key gives them): CASIC's class and id are two bytes as they are; SBF's block number
+    (13 bits) and revision (3 bits) share the two bytes of its id, little endian. What the Rust and C
+    framers compare and write where the header holds the key."""
+    first = min(at for _, at, _ in f.identity) // 8
+    last = (max(at + bits for _, at, bits in f.identity) + 7) // 8
+    word = 0
+    for (_, at, bits), value in zip(f.identity, values):
+        shift = 8 * last - at - bits if f.big_endian else at - 8 * first
+        word |= (value & ((1 << bits) - 1)) << shift
+    return tuple(word.to_bytes(last - first, "big" if f.big_endian else "little"))
+
+
+def wire_key(spec: Spec, message: BinaryMessage) -> tuple[int, ...]:
+    """The bytes that tell `message` in a frame: its header's key bytes (header_key) where the
+    header holds the key, else its key (the payload's first bytes: SkyTraq's, SiRF's id and sub-id)."""
+    f = framing(next(p for p in spec.protocols if p.id == message.protocol))
+    if f.identity and all(at // 8 < f.header for _, at, _ in f.identity):
+        return header_key(f, message.key)
+    return message.key
 
 
 def framings(spec: Spec) -> list[Framing]:

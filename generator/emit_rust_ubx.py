@@ -1,13 +1,14 @@
 """Rust emitter of the binary messages (spec/binary/<protocol>/messages): the module `ubx_messages`
-of the generated crate (and `skytraq_messages`, `sirf_messages`, `casic_messages`, the same code
+of the generated crate (and `skytraq_messages`, `sirf_messages`, `casic_messages`, `sbf_messages`, the same code
 in their byte order and framing), a struct per layout (named as the Python classes of emit_python_ubx) with
 straight-line `read`, `write` and JSON code over the runtime's byte reader and writer
 (runtime/rust/src/ubx.rs), a struct per repeated group's entry, and the `Message` enum that picks
 a layout by class and id, then by length and version, as the Python runtime and the reference
 decoder (generator/reference_binary.py) pick it.
 
-Members follow the AIS module (emit_rust_ais.py): a number with a divisor or an enum keeps its raw
-integer (`<id>_raw`) and has an accessor giving its value; a bitfield word is a member and each
+Members follow the AIS module (emit_rust_ais.py): a number with a divisor, special values or an
+enum keeps its raw integer (`<id>_raw`) and has an accessor giving its value (an `ais::Reading`
+where special values may stand for it); a bitfield word is a member and each
 named part an accessor (and a setter) over its bits, so that the bits no part names stay as sent;
 characters and bytes are views of the payload (`&[u8]`, ISO 8859-1 characters as sent, NUL padding
 included); a reserved field is an integer as wide as its bytes; a group is a `ubx::Group`, a view
@@ -18,6 +19,7 @@ from __future__ import annotations
 import jinja2
 
 from .emit import header, typed_natively
+from .emit_framing import framing, wire_key
 from .emit_python_ais import entry_class
 from .emit_python_ubx import identity, title as title_of
 from .emit_rust import rust_str, rustfmt
@@ -36,8 +38,10 @@ def _int_type(bits: int, signed: bool = False) -> str:
 def _check(f: PayloadField) -> None:
     """What this emitter does not write yet fails the generation, naming the field."""
     where = f"{f.origin.file}: {f.id}"
-    if f.special or f.base is not None:
-        raise NotImplementedError(f"{where}: special values and bases of binary fields have no Rust code yet")
+    if f.base is not None:
+        raise NotImplementedError(f"{where}: bases of binary fields have no Rust code yet")
+    if f.special and f.type not in ("u1", "u2", "u4", "i1", "i2", "i4"):
+        raise NotImplementedError(f"{where}: special values of a {f.type} field have no Rust code yet")
     if f.type in ("ch", "bytes") and f.bits is not None and f.bits % 8:
         raise NotImplementedError(f"{where}: a width in bits")
     for p in f.parts:
@@ -46,9 +50,24 @@ def _check(f: PayloadField) -> None:
 
 
 def member_name(f: PayloadField) -> str:
-    """A field's member: its id, or `<id>_raw` for a raw integer (an id that ends in `_`, as
-    MGA-GLO's `lambda_` dodges Python's keyword, without it: `lambda_raw`)."""
-    return f"{f.id.rstrip('_')}_raw" if f.divisor is not None or f.enum is not None else ident(f.id)
+    """A field's member: its id, or `<id>_raw` for a raw integer read through an accessor (a
+    divisor, special values, an enum; an id that ends in `_`, as MGA-GLO's `lambda_` dodges
+    Python's keyword, without it: `lambda_raw`)."""
+    return f"{f.id.rstrip('_')}_raw" if f.scaled or f.enum is not None else ident(f.id)
+
+
+def _specials(f: PayloadField) -> str:
+    """The special values of a field as the runtime's table: `&[(raw, "id"), ...]`."""
+    return "&[" + ", ".join(f"({s.raw}, {rust_str(s.id)})" for s in f.special) + "]"
+
+
+def _reading(f: PayloadField, raw: str) -> tuple[str, str]:
+    """The expression of a field with special values as an `ais::Reading` (of its value divided,
+    or of its integer) from its raw member's expression, and its type."""
+    wide = f"i64::from({raw})"
+    if f.divisor is not None:
+        return f"ais::scaled({wide}, {float(f.divisor)!r}, 0.0, {_specials(f)})", "ais::Reading<f64>"
+    return f"ais::counted({wide}, 0, {_specials(f)})", "ais::Reading<i64>"
 
 
 def plain_type(f: PayloadField) -> str:
@@ -167,6 +186,11 @@ class _Record:
         key = rust_str(f.id)
         if f.enum is not None:
             return f"j.code({key}, ais::code::<{f.enum.camel}>(u64::from({value})).map(CodeEnum::id), u64::from({value}))?;"
+        if f.special:   # the value (divided) or the special value's id, then the raw integer
+            reading, _ = _reading(f, value)
+            number = "ubx::json_float(j, " + key + ", x)?" if f.divisor is not None else f"j.int({key}, x)?"
+            return (f"match {reading} {{ ais::Reading::Value(x) => {number}, ais::Reading::Special(id) => "
+                    f"j.text({key}, id)?, }} j.int({rust_str(f.id + '_raw')}, {value})?;")
         if f.divisor is not None:
             return f"ubx::json_float(j, {key}, {value} as f64 / {float(f.divisor)!r})?; j.int({rust_str(f.id + '_raw')}, {value})?;"
         if f.type == "r4":
@@ -199,6 +223,13 @@ class _Record:
             body = f"ais::code(u64::from(self.{member_name(f)}))" if certain else \
                 f"self.{member_name(f)}.and_then(|raw| ais::code(u64::from(raw)))"
             self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> Option<{f.enum.camel}> {{ {body} }}")
+        elif f.special:
+            expr, kind_of = _reading(f, "raw")
+            doc = f"/// {f.name}{unit}{f': the raw integer divided by {f.divisor}' if f.divisor else ''}, or its special value."
+            if certain:
+                self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> {kind_of} {{ let raw = self.{member_name(f)}; {expr} }}")
+            else:
+                self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> Option<{kind_of}> {{ self.{member_name(f)}.map(|raw| {expr}) }}")
         elif f.divisor is not None:
             doc = f"/// {f.name}{unit}: the raw integer divided by {f.divisor}."
             expr = f"raw as f64 / {float(f.divisor)!r}"
@@ -259,7 +290,8 @@ class _Record:
         self.json.append(f"self.{name}.json(j, {key})?;")
 
 
-def record_code(record: _Record, payload: Payload | None, message: BinaryMessage | None) -> str:
+def record_code(record: _Record, payload: Payload | None, message: BinaryMessage | None,
+                wire: tuple[int, ...] = ()) -> str:
     """The struct, its constants and accessors and its read/write/JSON code."""
     entry = payload is None
     borrows = record.borrows or not entry
@@ -290,7 +322,7 @@ def record_code(record: _Record, payload: Payload | None, message: BinaryMessage
         version = f"Some({payload.version})" if payload.version is not None else "None"
         strs = lambda words: "&[" + ", ".join(rust_str(w) for w in words) + "]"  # noqa: E731
         ubx = message.protocol == "ubx"
-        key = "[" + ", ".join(f"{k:#04x}" for k in message.key) + "]"
+        key = "[" + ", ".join(f"{k:#04x}" for k in wire) + "]"
         impl += [f"/// The spec's id of the layout.\npub const ID: &'static str = {rust_str(payload.id)};",
                  f"/// How {'u-blox names' if ubx else 'errors name'} the message.\n"
                  f"pub const ADDRESS: &'static str = {rust_str(message.address)};",
@@ -354,7 +386,7 @@ def _fits(message: BinaryMessage, layout: Payload) -> str | None:
     return " && ".join(conditions) or None
 
 
-def dispatch_arm(message: BinaryMessage) -> str:
+def dispatch_arm(message: BinaryMessage, wire: tuple[int, ...]) -> str:
     """The match arm of a class and id (UBX), of the header's class and id (CASIC) or of the
     payload's first bytes, its id and sub-id (SkyTraq, SiRF: the layout reads the rest): the first
     layout that fits, else the main one."""
@@ -373,15 +405,15 @@ def dispatch_arm(message: BinaryMessage) -> str:
     branches = [f"if {condition} {{ {read(layout)} }}" for condition, layout in tests] + [read(last)]
     body = branches[0] if len(branches) == 1 else " else ".join(
         b if b.startswith("if ") else f"{{ {b} }}" for b in branches)
-    key = ", ".join(f"{k:#04x}" for k in message.key)
+    key = ", ".join(f"{k:#04x}" for k in wire)
     if message.protocol == "ubx":
         return f"({key}) => {body},"
-    if message.msg_class:   # CASIC: the header's class and id
+    if message.header_key:   # CASIC: the header's class and id; SBF: its id (block number, revision)
         return f"Some([{key}]) => {body},"
     return f"[{key}, payload @ ..] => {body},"
 
 
-def _blocks(messages: list[BinaryMessage]) -> tuple[list[str], list[Payload]]:
+def _blocks(spec: Spec, messages: list[BinaryMessage]) -> tuple[list[str], list[Payload]]:
     """The code of every layout of `messages` (its entries' structs first) and the layouts."""
     blocks: list[str] = []
     layouts: list[Payload] = []
@@ -392,9 +424,21 @@ def _blocks(messages: list[BinaryMessage]) -> tuple[list[str], list[Payload]]:
             record = _Record(layout.camel, layout.items, message.address, names, order=order)
             for entry in record.entries:
                 blocks.append(record_code(entry, None, None))
-            blocks.append(record_code(record, layout, message))
+            blocks.append(record_code(record, layout, message, wire_key(spec, message)))
             layouts.append(layout)
     return blocks, layouts
+
+
+def _enums(messages: list[BinaryMessage]) -> list[str]:
+    """The enums the messages' fields (and bitfields' parts) name, as Rust types."""
+    fields = [p for m in messages for lay in m.layouts for f in lay.fields for p in (f, *f.parts)]
+    return sorted({f.enum.camel for f in fields if f.enum})
+
+
+def _key_span(spec: Spec, protocol: str) -> tuple[int, int]:
+    """The header's bytes that hold a message's key (where the header holds it)."""
+    f = framing(next(p for p in spec.protocols if p.id == protocol))
+    return min(at for _, at, _ in f.identity) // 8, (max(at + bits for _, at, bits in f.identity) + 7) // 8
 
 
 def protocols(spec: Spec) -> list[str]:
@@ -404,24 +448,25 @@ def protocols(spec: Spec) -> list[str]:
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files: dict[str, str] = {}
-    for protocol in protocols(spec):   # SkyTraq, SiRF, CASIC
+    for protocol in protocols(spec):   # SkyTraq, SiRF, CASIC, SBF
         others = sorted((m for m in spec.binary if m.protocol == protocol), key=lambda m: (len(m.key) == 1, m.key))
-        blocks, layouts = _blocks(others)
+        blocks, layouts = _blocks(spec, others)
         name = next((p.name for p in spec.protocols if p.id == protocol), protocol)
         files[f"rust/src/{protocol}_messages.rs"] = env.get_template("rust/binary_messages.rs.j2").render(
             header=header(spec, "//", ["templates/rust/binary_messages.rs.j2", *(m.origin.file for m in others)]),
-            blocks=blocks, layouts=layouts, arms=[dispatch_arm(m) for m in others], name=name,
+            blocks=blocks, layouts=layouts, arms=[dispatch_arm(m, wire_key(spec, m)) for m in others], name=name,
             protocol=protocol, variant=protocol.capitalize(),
-            in_header=bool(others[0].msg_class), order=others[0].byte_order)
+            in_header=others[0].header_key, order=others[0].byte_order, enums=_enums(others),
+            told="block number and revision" if others[0].revision is not None else "class and id",
+            key_span="{}..{}".format(*_key_span(spec, protocol)))
     messages = [m for m in spec.binary if m.protocol == "ubx"]
     if not messages:
         return rustfmt(files)
-    blocks, layouts = _blocks(messages)
-    fields = [p for m in messages for lay in m.layouts for f in lay.fields for p in (f, *f.parts)]
-    enums = sorted({f.enum.camel for f in fields if f.enum})
+    blocks, layouts = _blocks(spec, messages)
+    enums = _enums(messages)
     sources = [m.origin.file for m in messages]
     files["rust/src/ubx_messages.rs"] = env.get_template("rust/ubx_messages.rs.j2").render(
         header=header(spec, "//", ["templates/rust/ubx_messages.rs.j2", *sources]), blocks=blocks, enums=enums,
-        layouts=layouts, arms=[dispatch_arm(m) for m in messages],
+        layouts=layouts, arms=[dispatch_arm(m, wire_key(spec, m)) for m in messages],
         example=any(lay.id == "ack_ack" for lay in layouts))
     return rustfmt(files)

@@ -96,22 +96,29 @@
 //   spec/binary/casic/messages/nav_glninfo.yaml, spec/binary/casic/messages/ack_nak.yaml,
 //   spec/binary/casic/messages/ack_ack.yaml, spec/binary/casic/messages/cfg_prt.yaml,
 //   spec/binary/casic/messages/cfg_msg.yaml, spec/binary/casic/messages/cfg_rate.yaml,
-//   spec/binary/casic/messages/mon_ver.yaml, spec/binary/sirf/messages/gnss_nav_solution.yaml,
-//   spec/binary/sirf/messages/measured_nav.yaml, spec/binary/sirf/messages/tracker_data.yaml,
-//   spec/binary/sirf/messages/sw_version.yaml, spec/binary/sirf/messages/clock_status.yaml,
-//   spec/binary/sirf/messages/cpu_throughput.yaml, spec/binary/sirf/messages/command_ack.yaml,
-//   spec/binary/sirf/messages/command_nack.yaml, spec/binary/sirf/messages/visible_list.yaml,
-//   spec/binary/sirf/messages/ok_to_send.yaml, spec/binary/sirf/messages/geodetic_nav.yaml,
-//   spec/binary/sirf/messages/pps_time.yaml, spec/binary/sirf/messages/switch_to_nmea.yaml,
-//   spec/binary/sirf/messages/poll_sw_version.yaml, spec/binary/sirf/messages/set_protocol.yaml,
-//   spec/binary/sirf/messages/dev_data.yaml, spec/binary/skytraq/messages/query_sw_version.yaml,
+//   spec/binary/casic/messages/mon_ver.yaml, spec/binary/sbf/messages/pvt_dop.yaml,
+//   spec/binary/sbf/messages/pvt_cartesian.yaml, spec/binary/sbf/messages/pvt_geodetic.yaml,
+//   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
+//   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
+//   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
+//   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/receiver_time.yaml,
+//   spec/binary/sirf/messages/gnss_nav_solution.yaml, spec/binary/sirf/messages/measured_nav.yaml,
+//   spec/binary/sirf/messages/tracker_data.yaml, spec/binary/sirf/messages/sw_version.yaml,
+//   spec/binary/sirf/messages/clock_status.yaml, spec/binary/sirf/messages/cpu_throughput.yaml,
+//   spec/binary/sirf/messages/command_ack.yaml, spec/binary/sirf/messages/command_nack.yaml,
+//   spec/binary/sirf/messages/visible_list.yaml, spec/binary/sirf/messages/ok_to_send.yaml,
+//   spec/binary/sirf/messages/geodetic_nav.yaml, spec/binary/sirf/messages/pps_time.yaml,
+//   spec/binary/sirf/messages/switch_to_nmea.yaml, spec/binary/sirf/messages/poll_sw_version.yaml,
+//   spec/binary/sirf/messages/set_protocol.yaml, spec/binary/sirf/messages/dev_data.yaml,
+//   spec/binary/skytraq/messages/query_sw_version.yaml,
 //   spec/binary/skytraq/messages/config_message_type.yaml,
 //   spec/binary/skytraq/messages/sw_version.yaml, spec/binary/skytraq/messages/msg_ack.yaml,
 //   spec/binary/skytraq/messages/msg_nack.yaml, spec/binary/skytraq/messages/nav_data.yaml,
 //   spec/binary/skytraq/messages/meas_time.yaml, spec/binary/skytraq/messages/raw_meas.yaml,
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
-//   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 2f36fd11ff1eb5a4)
+//   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
+//   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
+//   spec/enums/ubx_gnss_id.yaml (digest 12f70964f1c3cbab)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -209,6 +216,14 @@ static unsigned long ubx_check(nmea_ubx_check kind, const uint8_t *p, size_t len
         for (i = 0; i < len; i++)
             sum += p[i];
         return sum & 0x7FFF;
+    case NMEA_UBX_CHECK_CRC16_CCITT: /* MSB first, no reflection; sent little endian */
+        for (i = 0; i < len; i++) {
+            unsigned bit;
+            sum ^= (unsigned long)p[i] << 8;
+            for (bit = 0; bit < 8; bit++)
+                sum = (sum & 0x8000 ? sum << 1 ^ 0x1021 : sum << 1) & 0xFFFF;
+        }
+        return (sum & 0xFF) << 8 | sum >> 8;
     default: /* SUM32: little-endian words, a short last one padded with zeros; sent little endian */
         for (i = 0; i < len; i++)
             sum = (sum + ((unsigned long)p[i] << 8 * (i & 3))) & 0xFFFFFFFFul;
@@ -894,7 +909,7 @@ static size_t ubx_write_frame(const nmea_ubx_framing *f, const nmea_ubx_layout_i
                               const nmea_ubx_unknown *unknown, uint8_t *buf, size_t cap, nmea_ubx_error *err)
 {
     ubx_writer w;
-    size_t payload, trailer = (size_t)f->check_size + f->end_len, i;
+    size_t payload, trailer = (size_t)(f->check_at ? 0 : f->check_size) + f->end_len, i, length;
     unsigned long sum;
     uint8_t key[2];
     size_t key_len = l ? (f->key_at ? 2 : l->key_len) : (f->key_at ? 2 : unknown->key_len);
@@ -926,24 +941,25 @@ static size_t ubx_write_frame(const nmea_ubx_framing *f, const nmea_ubx_layout_i
         return 0;
     }
     payload = w.len - f->header;
-    if (payload > f->length_mask) {
+    length = w.len + trailer - f->length_adds; /* the payload's bytes, or the whole frame's (SBF) */
+    if (length > f->length_mask) {
         snprintf(err->text, sizeof err->text, "the payload is %lu bytes, a frame holds %u", (unsigned long)payload,
-                 (unsigned)f->length_mask);
+                 (unsigned)(f->length_mask + f->length_adds - f->header - trailer));
         return (size_t)ubx_fail(err, NMEA_UBX_BAD_VALUE, w.address, NULL);
     }
     memset(buf, 0, f->header);
     buf[0] = f->sync[0];
     buf[1] = f->sync[1];
-    buf[f->length_at + (f->big ? 1 : 0)] = (uint8_t)(payload & 0xFF);
-    buf[f->length_at + (f->big ? 0 : 1)] = (uint8_t)(payload >> 8);
+    buf[f->length_at + (f->big ? 1 : 0)] = (uint8_t)(length & 0xFF);
+    buf[f->length_at + (f->big ? 0 : 1)] = (uint8_t)(length >> 8);
     if (f->key_at) {
         buf[f->key_at] = key[0];
         buf[f->key_at + 1] = key[1];
     }
     sum = ubx_check((nmea_ubx_check)f->check, buf + f->check_from, w.len - f->check_from);
-    for (i = 0; i < f->check_size; i++)
-        buf[w.len + i] = (uint8_t)(sum >> 8 * (f->check_size - 1 - i));
-    memcpy(buf + w.len + f->check_size, f->end, f->end_len);
+    for (i = 0; i < f->check_size; i++) /* after the payload, or in the header (SBF) */
+        buf[(f->check_at ? f->check_at : w.len) + i] = (uint8_t)(sum >> 8 * (f->check_size - 1 - i));
+    memcpy(buf + w.len + (f->check_at ? 0 : f->check_size), f->end, f->end_len);
     return w.len + trailer;
 }
 
@@ -977,24 +993,26 @@ static bool ubx_open_frame(const uint8_t *frame, size_t len, const uint8_t **pay
 static bool ubx_open_frame_of(const nmea_ubx_framing *f, const uint8_t *frame, size_t len, const uint8_t **payload,
                               size_t *payload_len, nmea_ubx_error *err)
 {
-    size_t trailer = (size_t)f->check_size + f->end_len, i;
+    size_t trailer = (size_t)(f->check_at ? 0 : f->check_size) + f->end_len, i, size;
     unsigned long sum, sent = 0;
     if (len < (size_t)f->header + trailer || frame[0] != f->sync[0] || frame[1] != f->sync[1]) {
         snprintf(err->text, sizeof err->text, "a %s frame is %02X %02X, a header of %u bytes, payload, checksum%s",
                  f->upper, f->sync[0], f->sync[1], (unsigned)f->header, f->end_len ? " and end bytes" : "");
         return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
     }
-    *payload_len = (f->big ? (size_t)frame[f->length_at] << 8 | frame[f->length_at + 1]
-                           : (size_t)frame[f->length_at] | (size_t)frame[f->length_at + 1] << 8) &
-                   f->length_mask;
-    if (len != f->header + *payload_len + trailer) {
-        snprintf(err->text, sizeof err->text, "the length field says %lu payload bytes, the frame has %lu",
-                 (unsigned long)*payload_len, (unsigned long)(len - f->header - trailer));
+    size = ((f->big ? (size_t)frame[f->length_at] << 8 | frame[f->length_at + 1]
+                    : (size_t)frame[f->length_at] | (size_t)frame[f->length_at + 1] << 8) &
+            f->length_mask) +
+           f->length_adds; /* the frame's bytes */
+    if (len != size || size < (size_t)f->header + trailer) {
+        snprintf(err->text, sizeof err->text, "the length field says %lu bytes, the frame has %lu", (unsigned long)size,
+                 (unsigned long)len);
         return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
     }
+    *payload_len = len - f->header - trailer;
     sum = ubx_check((nmea_ubx_check)f->check, frame + f->check_from, len - trailer - f->check_from);
-    for (i = 0; i < f->check_size; i++)
-        sent = sent << 8 | frame[len - trailer + i];
+    for (i = 0; i < f->check_size; i++) /* after the payload, or in the header (SBF) */
+        sent = sent << 8 | frame[(f->check_at ? f->check_at : len - trailer) + i];
     if (sent != sum || memcmp(frame + len - f->end_len, f->end, f->end_len) != 0) {
         snprintf(err->text, sizeof err->text, "checksum %0*lX, computed %0*lX%s", 2 * f->check_size, sent,
                  2 * f->check_size, sum, sent == sum ? ", its end bytes are not the protocol's" : "");
@@ -1015,6 +1033,15 @@ static void ubx_json_start(ubx_json_out *j, char *buf, size_t cap)
         buf[0] = '\0';
     ubx_json_puts(j, "{");
 }
+
+static const nmea_ubx_code ubx_enum_sbf_datum_list[] = {{0, "wgs84"}, {19, "base_station"}, {30, "etrs89"}, {31, "nad83_2011"}, {32, "nad83_pa11"}, {33, "nad83_ma11"}, {34, "gda94"}, {35, "gda2020"}, {36, "jgd2011"}, {250, "user_1"}, {251, "user_2"}, {255, "do_not_use"}};
+static const nmea_ubx_codes ubx_enum_sbf_datum = {ubx_enum_sbf_datum_list, 12};
+
+static const nmea_ubx_code ubx_enum_sbf_pvt_error_list[] = {{0, "none"}, {1, "not_enough_measurements"}, {2, "not_enough_ephemerides"}, {3, "dop_too_large"}, {4, "residuals_too_large"}, {5, "no_convergence"}, {6, "not_enough_measurements_after_outliers"}, {7, "export_laws"}, {8, "not_enough_corrections"}, {9, "no_base_coordinates"}, {10, "ambiguities_not_fixed"}};
+static const nmea_ubx_codes ubx_enum_sbf_pvt_error = {ubx_enum_sbf_pvt_error_list, 11};
+
+static const nmea_ubx_code ubx_enum_sbf_time_system_list[] = {{0, "gps"}, {1, "galileo"}, {3, "glonass"}, {4, "beidou"}, {5, "qzss"}, {100, "fugro_atomichron"}, {255, "do_not_use"}};
+static const nmea_ubx_codes ubx_enum_sbf_time_system = {ubx_enum_sbf_time_system_list, 7};
 
 static const nmea_ubx_code ubx_enum_ubx_fix_type_list[] = {{0, "no_fix"}, {1, "dead_reckoning"}, {2, "fix_2d"}, {3, "fix_3d"}, {4, "gnss_dead_reckoning"}, {5, "time_only"}};
 static const nmea_ubx_codes ubx_enum_ubx_fix_type = {ubx_enum_ubx_fix_type_list, 6};
@@ -5731,6 +5758,293 @@ static const nmea_ubx_item ubx_casic_mon_ver_items[] = {
     {"hw_version", NULL, offsetof(nmea_ubx_casic_mon_ver, hw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 32, 32, 0, NMEA_UBX_PRINT_CHARS, false}
 };
 
+/* SBF 4001 rev 0: pvt_dop */
+static const nmea_ubx_special ubx_sbf_pvt_dop_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_dop_tow_scale = {1.0, 0.0, false, ubx_sbf_pvt_dop_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_dop_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_dop_wnc_scale = {1.0, 0.0, false, ubx_sbf_pvt_dop_wnc_specials, 1};
+static const nmea_ubx_scale ubx_sbf_pvt_dop_pdop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sbf_pvt_dop_tdop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sbf_pvt_dop_hdop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_sbf_pvt_dop_vdop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_sbf_pvt_dop_items[] = {
+    {"tow", &ubx_sbf_pvt_dop_tow_scale, offsetof(nmea_ubx_sbf_pvt_dop, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_pvt_dop_wnc_scale, offsetof(nmea_ubx_sbf_pvt_dop, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"nr_sv", NULL, offsetof(nmea_ubx_sbf_pvt_dop, nr_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved", NULL, offsetof(nmea_ubx_sbf_pvt_dop, reserved), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pdop", &ubx_sbf_pvt_dop_pdop_scale, offsetof(nmea_ubx_sbf_pvt_dop, pdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"tdop", &ubx_sbf_pvt_dop_tdop_scale, offsetof(nmea_ubx_sbf_pvt_dop, tdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"hdop", &ubx_sbf_pvt_dop_hdop_scale, offsetof(nmea_ubx_sbf_pvt_dop, hdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"vdop", &ubx_sbf_pvt_dop_vdop_scale, offsetof(nmea_ubx_sbf_pvt_dop, vdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"hpl", NULL, offsetof(nmea_ubx_sbf_pvt_dop, hpl), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vpl", NULL, offsetof(nmea_ubx_sbf_pvt_dop, vpl), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SBF 4006 rev 2: pvt_cartesian */
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_tow_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_wnc_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_wnc_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_nr_sv_specials[] = {{255, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_nr_sv_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_nr_sv_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_reference_id_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_reference_id_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_reference_id_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_mean_corr_age_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_mean_corr_age_scale = {100.0, 0.0, true, ubx_sbf_pvt_cartesian_mean_corr_age_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_latency_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_latency_scale = {10000.0, 0.0, true, ubx_sbf_pvt_cartesian_latency_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_h_accuracy_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_h_accuracy_scale = {100.0, 0.0, true, ubx_sbf_pvt_cartesian_h_accuracy_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_v_accuracy_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_v_accuracy_scale = {100.0, 0.0, true, ubx_sbf_pvt_cartesian_v_accuracy_specials, 1};
+static const nmea_ubx_item ubx_sbf_pvt_cartesian_items[] = {
+    {"tow", &ubx_sbf_pvt_cartesian_tow_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_pvt_cartesian_wnc_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mode", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, mode), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mode_type", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, mode_type), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"auto_set", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"two_d", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_pvt_cartesian, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"x", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, x), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"y", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, y), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"z", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, z), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"undulation", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, undulation), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vx", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, vx), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vy", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, vy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vz", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, vz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cog", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, cog), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_clk_bias", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, rx_clk_bias), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_clk_drift", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, rx_clk_drift), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_system", &ubx_enum_sbf_time_system, offsetof(nmea_ubx_sbf_pvt_cartesian, time_system), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"datum", &ubx_enum_sbf_datum, offsetof(nmea_ubx_sbf_pvt_cartesian, datum), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"nr_sv", &ubx_sbf_pvt_cartesian_nr_sv_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, nr_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wa_corr_info", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, wa_corr_info), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_orb_clk_used", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, corr_orb_clk_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_rng_used", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, corr_rng_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_iono_used", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, corr_iono_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_orb_acc_used", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, corr_orb_acc_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_do229_active", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, corr_do229_active), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_rtk_type", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, corr_rtk_type), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"reference_id", &ubx_sbf_pvt_cartesian_reference_id_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, reference_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mean_corr_age", &ubx_sbf_pvt_cartesian_mean_corr_age_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, mean_corr_age), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"signal_info", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, signal_info), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"alert_flag", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, alert_flag), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"raim_integrity", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, raim_integrity), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_hpca_fail", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, gal_hpca_fail), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_ion_storm", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, gal_ion_storm), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"nr_bases", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, nr_bases), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ppp_info", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, ppp_info), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ppp_seed_age", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, ppp_seed_age), 0, 0, NMEA_UBX_ITEM_PART, 12, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ppp_seed_type", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, ppp_seed_type), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 13, NMEA_UBX_PRINT_NUMBER, false},
+    {"latency", &ubx_sbf_pvt_cartesian_latency_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, latency), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"h_accuracy", &ubx_sbf_pvt_cartesian_h_accuracy_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, h_accuracy), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"v_accuracy", &ubx_sbf_pvt_cartesian_v_accuracy_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, v_accuracy), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"misc", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, misc), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"base_arp", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, base_arp), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"phase_ctr_offset", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, phase_ctr_offset), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"arp_offset", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, arp_offset), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 6, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SBF 4007 rev 2: pvt_geodetic */
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_tow_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_wnc_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_wnc_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_nr_sv_specials[] = {{255, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_nr_sv_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_nr_sv_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_reference_id_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_reference_id_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_reference_id_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_mean_corr_age_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_mean_corr_age_scale = {100.0, 0.0, true, ubx_sbf_pvt_geodetic_mean_corr_age_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_latency_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_latency_scale = {10000.0, 0.0, true, ubx_sbf_pvt_geodetic_latency_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_h_accuracy_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_h_accuracy_scale = {100.0, 0.0, true, ubx_sbf_pvt_geodetic_h_accuracy_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_v_accuracy_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_v_accuracy_scale = {100.0, 0.0, true, ubx_sbf_pvt_geodetic_v_accuracy_specials, 1};
+static const nmea_ubx_item ubx_sbf_pvt_geodetic_items[] = {
+    {"tow", &ubx_sbf_pvt_geodetic_tow_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_pvt_geodetic_wnc_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mode", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, mode), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mode_type", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, mode_type), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"auto_set", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"two_d", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_pvt_geodetic, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"latitude", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, latitude), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"longitude", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, longitude), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"height", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, height), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"undulation", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, undulation), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vn", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, vn), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ve", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, ve), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vu", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, vu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cog", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, cog), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_clk_bias", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, rx_clk_bias), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_clk_drift", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, rx_clk_drift), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_system", &ubx_enum_sbf_time_system, offsetof(nmea_ubx_sbf_pvt_geodetic, time_system), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"datum", &ubx_enum_sbf_datum, offsetof(nmea_ubx_sbf_pvt_geodetic, datum), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"nr_sv", &ubx_sbf_pvt_geodetic_nr_sv_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, nr_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wa_corr_info", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, wa_corr_info), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_orb_clk_used", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, corr_orb_clk_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_rng_used", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, corr_rng_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_iono_used", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, corr_iono_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_orb_acc_used", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, corr_orb_acc_used), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_do229_active", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, corr_do229_active), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"corr_rtk_type", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, corr_rtk_type), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"reference_id", &ubx_sbf_pvt_geodetic_reference_id_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, reference_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mean_corr_age", &ubx_sbf_pvt_geodetic_mean_corr_age_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, mean_corr_age), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"signal_info", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, signal_info), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"alert_flag", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, alert_flag), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"raim_integrity", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, raim_integrity), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_hpca_fail", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, gal_hpca_fail), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_ion_storm", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, gal_ion_storm), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"nr_bases", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, nr_bases), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ppp_info", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, ppp_info), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ppp_seed_age", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, ppp_seed_age), 0, 0, NMEA_UBX_ITEM_PART, 12, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ppp_seed_type", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, ppp_seed_type), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 13, NMEA_UBX_PRINT_NUMBER, false},
+    {"latency", &ubx_sbf_pvt_geodetic_latency_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, latency), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"h_accuracy", &ubx_sbf_pvt_geodetic_h_accuracy_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, h_accuracy), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"v_accuracy", &ubx_sbf_pvt_geodetic_v_accuracy_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, v_accuracy), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"misc", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, misc), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"base_arp", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, base_arp), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"phase_ctr_offset", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, phase_ctr_offset), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"arp_offset", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, arp_offset), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 6, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SBF 5905 rev 0: pos_cov_cartesian */
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_tow_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_wnc_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_wnc_specials, 1};
+static const nmea_ubx_item ubx_sbf_pos_cov_cartesian_items[] = {
+    {"tow", &ubx_sbf_pos_cov_cartesian_tow_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_pos_cov_cartesian_wnc_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mode", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, mode), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mode_type", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, mode_type), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"auto_set", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"two_d", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_pos_cov_cartesian, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"cov_xx", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xx), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_yy", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_yy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_zz", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_zz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_bb", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_bb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_xy", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_xz", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_xb", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_yz", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_yz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_yb", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_yb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_zb", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_zb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SBF 5906 rev 0: pos_cov_geodetic */
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_tow_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_wnc_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_wnc_specials, 1};
+static const nmea_ubx_item ubx_sbf_pos_cov_geodetic_items[] = {
+    {"tow", &ubx_sbf_pos_cov_geodetic_tow_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_pos_cov_geodetic_wnc_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mode", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, mode), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mode_type", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, mode_type), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"auto_set", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"two_d", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_pos_cov_geodetic, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"cov_latlat", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_latlat), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_lonlon", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lonlon), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_hgthgt", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_hgthgt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_bb", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_bb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_latlon", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_latlon), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_lathgt", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lathgt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_latb", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_latb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_lonhgt", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lonhgt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_lonb", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lonb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_hb", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_hb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SBF 5907 rev 0: vel_cov_cartesian */
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_tow_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_wnc_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_wnc_specials, 1};
+static const nmea_ubx_item ubx_sbf_vel_cov_cartesian_items[] = {
+    {"tow", &ubx_sbf_vel_cov_cartesian_tow_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_vel_cov_cartesian_wnc_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mode", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, mode), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mode_type", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, mode_type), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"auto_set", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"two_d", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_vel_cov_cartesian, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"cov_vxvx", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxvx), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vyvy", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vyvy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vzvz", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vzvz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_dtdt", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_dtdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vxvy", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxvy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vxvz", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxvz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vxdt", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vyvz", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vyvz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vydt", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vydt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vzdt", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vzdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SBF 5908 rev 0: vel_cov_geodetic */
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_tow_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_wnc_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_wnc_specials, 1};
+static const nmea_ubx_item ubx_sbf_vel_cov_geodetic_items[] = {
+    {"tow", &ubx_sbf_vel_cov_geodetic_tow_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_vel_cov_geodetic_wnc_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mode", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, mode), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"mode_type", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, mode_type), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"auto_set", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"two_d", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_vel_cov_geodetic, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"cov_vnvn", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vnvn), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_veve", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_veve), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vuvu", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vuvu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_dtdt", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_dtdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vnve", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vnve), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vnvu", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vnvu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vndt", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vndt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vevu", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vevu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vedt", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vedt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vudt", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vudt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* SBF 5914 rev 0: receiver_time */
+static const nmea_ubx_special ubx_sbf_receiver_time_tow_specials[] = {{4294967295, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_receiver_time_tow_scale = {1.0, 0.0, false, ubx_sbf_receiver_time_tow_specials, 1};
+static const nmea_ubx_special ubx_sbf_receiver_time_wnc_specials[] = {{65535, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_receiver_time_wnc_scale = {1.0, 0.0, false, ubx_sbf_receiver_time_wnc_specials, 1};
+static const nmea_ubx_special ubx_sbf_receiver_time_utc_year_specials[] = {{-128, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_receiver_time_utc_year_scale = {1.0, 0.0, false, ubx_sbf_receiver_time_utc_year_specials, 1};
+static const nmea_ubx_special ubx_sbf_receiver_time_utc_month_specials[] = {{-128, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_receiver_time_utc_month_scale = {1.0, 0.0, false, ubx_sbf_receiver_time_utc_month_specials, 1};
+static const nmea_ubx_special ubx_sbf_receiver_time_utc_day_specials[] = {{-128, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_receiver_time_utc_day_scale = {1.0, 0.0, false, ubx_sbf_receiver_time_utc_day_specials, 1};
+static const nmea_ubx_special ubx_sbf_receiver_time_utc_hour_specials[] = {{-128, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_receiver_time_utc_hour_scale = {1.0, 0.0, false, ubx_sbf_receiver_time_utc_hour_specials, 1};
+static const nmea_ubx_special ubx_sbf_receiver_time_utc_min_specials[] = {{-128, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_receiver_time_utc_min_scale = {1.0, 0.0, false, ubx_sbf_receiver_time_utc_min_specials, 1};
+static const nmea_ubx_special ubx_sbf_receiver_time_utc_sec_specials[] = {{-128, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_receiver_time_utc_sec_scale = {1.0, 0.0, false, ubx_sbf_receiver_time_utc_sec_specials, 1};
+static const nmea_ubx_special ubx_sbf_receiver_time_delta_ls_specials[] = {{-128, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_receiver_time_delta_ls_scale = {1.0, 0.0, false, ubx_sbf_receiver_time_delta_ls_specials, 1};
+static const nmea_ubx_item ubx_sbf_receiver_time_items[] = {
+    {"tow", &ubx_sbf_receiver_time_tow_scale, offsetof(nmea_ubx_sbf_receiver_time, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"wnc", &ubx_sbf_receiver_time_wnc_scale, offsetof(nmea_ubx_sbf_receiver_time, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"utc_year", &ubx_sbf_receiver_time_utc_year_scale, offsetof(nmea_ubx_sbf_receiver_time, utc_year), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"utc_month", &ubx_sbf_receiver_time_utc_month_scale, offsetof(nmea_ubx_sbf_receiver_time, utc_month), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"utc_day", &ubx_sbf_receiver_time_utc_day_scale, offsetof(nmea_ubx_sbf_receiver_time, utc_day), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"utc_hour", &ubx_sbf_receiver_time_utc_hour_scale, offsetof(nmea_ubx_sbf_receiver_time, utc_hour), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"utc_min", &ubx_sbf_receiver_time_utc_min_scale, offsetof(nmea_ubx_sbf_receiver_time, utc_min), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"utc_sec", &ubx_sbf_receiver_time_utc_sec_scale, offsetof(nmea_ubx_sbf_receiver_time, utc_sec), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"delta_ls", &ubx_sbf_receiver_time_delta_ls_scale, offsetof(nmea_ubx_sbf_receiver_time, delta_ls), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"sync_level", NULL, offsetof(nmea_ubx_sbf_receiver_time, sync_level), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wn_set", NULL, offsetof(nmea_ubx_sbf_receiver_time, wn_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow_set", NULL, offsetof(nmea_ubx_sbf_receiver_time, tow_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"fine_time", NULL, offsetof(nmea_ubx_sbf_receiver_time, fine_time), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* SIRF MID 67 SID 1: gnss_nav_solution */
 static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_tow_scale = {1000.0, 0.0, true, NULL, 0};
 static const nmea_ubx_scale ubx_sirf_gnss_nav_solution_second_scale = {1000.0, 0.0, true, NULL, 0};
@@ -6206,10 +6520,11 @@ static const nmea_ubx_item ubx_skytraq_gps_subframe_items[] = {
 
 /* The framing of each protocol, by its nmea_ubx_protocol (spec/binary/<protocol>/protocol.yaml). */
 static const nmea_ubx_framing ubx_framings[] = {
-    {"ubx", "UBX", {0xB5, 0x62}, 6, 4, 0xFFFF, 2, NMEA_UBX_CHECK_FLETCHER8, 2, 2, {0x00, 0x00}, 0, false},
-    {"casic", "CASIC", {0xBA, 0xCE}, 6, 2, 0xFFFF, 4, NMEA_UBX_CHECK_SUM32, 2, 4, {0x00, 0x00}, 0, false},
-    {"sirf", "SIRF", {0xA0, 0xA2}, 4, 2, 0xFFFF, 0, NMEA_UBX_CHECK_SUM15, 4, 2, {0xB0, 0xB3}, 2, true},
-    {"skytraq", "SKYTRAQ", {0xA0, 0xA1}, 4, 2, 0xFFFF, 0, NMEA_UBX_CHECK_XOR8, 4, 1, {0x0D, 0x0A}, 2, true},
+    {"ubx", "UBX", {0xB5, 0x62}, 6, 4, 0xFFFF, 2, NMEA_UBX_CHECK_FLETCHER8, 2, 2, {0x00, 0x00}, 0, false, 8, 0, {{"class", 0, 8}, {"id", 8, 8}}},
+    {"casic", "CASIC", {0xBA, 0xCE}, 6, 2, 0xFFFF, 4, NMEA_UBX_CHECK_SUM32, 2, 4, {0x00, 0x00}, 0, false, 10, 0, {{"class", 0, 8}, {"id", 8, 8}}},
+    {"sbf", "SBF", {0x24, 0x40}, 8, 6, 0xFFFF, 4, NMEA_UBX_CHECK_CRC16_CCITT, 4, 2, {0x00, 0x00}, 0, false, 0, 2, {{"number", 0, 13}, {"revision", 13, 3}}},
+    {"sirf", "SIRF", {0xA0, 0xA2}, 4, 2, 0xFFFF, 0, NMEA_UBX_CHECK_SUM15, 4, 2, {0xB0, 0xB3}, 2, true, 8, 0, {{0, 0, 0}, {0, 0, 0}}},
+    {"skytraq", "SKYTRAQ", {0xA0, 0xA1}, 4, 2, 0xFFFF, 0, NMEA_UBX_CHECK_XOR8, 4, 1, {0x0D, 0x0A}, 2, true, 7, 0, {{0, 0, 0}, {0, 0, 0}}},
 };
 /* Every layout, in the order of nmea_ubx_layout: by class and id, then spec order. */
 static const nmea_ubx_layout_info ubx_layouts[] = {
@@ -6579,6 +6894,14 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_rate", "CFG-RATE", 0x06, 0x04, true, NMEA_UBX_PROTOCOL_CASIC, 4, -1, 0, ubx_casic_cfg_rate_items, 2, 0, offsetof(nmea_ubx_casic_cfg_rate, trailing)},
     {"mon_ver_poll", "MON-VER", 0x0A, 0x04, false, NMEA_UBX_PROTOCOL_CASIC, 0, -1, 0, ubx_casic_mon_ver_poll_items, 0, 0, offsetof(nmea_ubx_casic_mon_ver_poll, trailing)},
     {"mon_ver", "MON-VER", 0x0A, 0x04, true, NMEA_UBX_PROTOCOL_CASIC, 64, -1, 0, ubx_casic_mon_ver_items, 2, 0, offsetof(nmea_ubx_casic_mon_ver, trailing)},
+    {"pvt_dop", "4001 rev 0", 0xA1, 0x0F, true, NMEA_UBX_PROTOCOL_SBF, 24, -1, 0, ubx_sbf_pvt_dop_items, 10, 0, offsetof(nmea_ubx_sbf_pvt_dop, trailing)},
+    {"pvt_cartesian", "4006 rev 2", 0xA6, 0x4F, true, NMEA_UBX_PROTOCOL_SBF, 87, -1, 0, ubx_sbf_pvt_cartesian_items, 45, 0, offsetof(nmea_ubx_sbf_pvt_cartesian, trailing)},
+    {"pvt_geodetic", "4007 rev 2", 0xA7, 0x4F, true, NMEA_UBX_PROTOCOL_SBF, 87, -1, 0, ubx_sbf_pvt_geodetic_items, 45, 0, offsetof(nmea_ubx_sbf_pvt_geodetic, trailing)},
+    {"pos_cov_cartesian", "5905 rev 0", 0x11, 0x17, true, NMEA_UBX_PROTOCOL_SBF, 48, -1, 0, ubx_sbf_pos_cov_cartesian_items, 17, 0, offsetof(nmea_ubx_sbf_pos_cov_cartesian, trailing)},
+    {"pos_cov_geodetic", "5906 rev 0", 0x12, 0x17, true, NMEA_UBX_PROTOCOL_SBF, 48, -1, 0, ubx_sbf_pos_cov_geodetic_items, 17, 0, offsetof(nmea_ubx_sbf_pos_cov_geodetic, trailing)},
+    {"vel_cov_cartesian", "5907 rev 0", 0x13, 0x17, true, NMEA_UBX_PROTOCOL_SBF, 48, -1, 0, ubx_sbf_vel_cov_cartesian_items, 17, 0, offsetof(nmea_ubx_sbf_vel_cov_cartesian, trailing)},
+    {"vel_cov_geodetic", "5908 rev 0", 0x14, 0x17, true, NMEA_UBX_PROTOCOL_SBF, 48, -1, 0, ubx_sbf_vel_cov_geodetic_items, 17, 0, offsetof(nmea_ubx_sbf_vel_cov_geodetic, trailing)},
+    {"receiver_time", "5914 rev 0", 0x1A, 0x17, true, NMEA_UBX_PROTOCOL_SBF, 14, -1, 0, ubx_sbf_receiver_time_items, 13, 0, offsetof(nmea_ubx_sbf_receiver_time, trailing)},
     {"gnss_nav_solution", "MID 67 SID 1", 0x43, 0x01, true, NMEA_UBX_PROTOCOL_SIRF, 124, -1, 0, ubx_sirf_gnss_nav_solution_items, 46, 2, offsetof(nmea_ubx_sirf_gnss_nav_solution, trailing)},
     {"measured_nav", "MID 2", 0x02, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, 40, -1, 0, ubx_sirf_measured_nav_items, 26, 1, offsetof(nmea_ubx_sirf_measured_nav, trailing)},
     {"tracker_data", "MID 4", 0x04, 0x00, true, NMEA_UBX_PROTOCOL_SIRF, -1, -1, 0, ubx_sirf_tracker_data_items, 4, 1, offsetof(nmea_ubx_sirf_tracker_data, trailing)},
@@ -6811,33 +7134,41 @@ static const struct {
     {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 360, 361}, /* CASIC CFG-MSG */
     {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 362, 363}, /* CASIC CFG-RATE */
     {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 364, 365}, /* CASIC MON-VER */
-    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 366, 366}, /* SIRF MID 67 SID 1 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 367, 367}, /* SIRF MID 2 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 368, 368}, /* SIRF MID 4 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 369, 369}, /* SIRF MID 6 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 370, 370}, /* SIRF MID 7 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 371, 371}, /* SIRF MID 9 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 372, 372}, /* SIRF MID 11 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 373, 373}, /* SIRF MID 12 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 374, 374}, /* SIRF MID 13 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 375, 375}, /* SIRF MID 18 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 376, 376}, /* SIRF MID 41 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 377, 377}, /* SIRF MID 52 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 378, 378}, /* SIRF MID 129 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 379, 379}, /* SIRF MID 132 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 380, 380}, /* SIRF MID 135 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 381, 381}, /* SIRF MID 255 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 382, 382}, /* SKYTRAQ 0x02 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 383, 383}, /* SKYTRAQ 0x09 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 384, 384}, /* SKYTRAQ 0x80 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 385, 385}, /* SKYTRAQ 0x83 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 386, 386}, /* SKYTRAQ 0x84 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 387, 387}, /* SKYTRAQ 0xA8 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 388, 388}, /* SKYTRAQ 0xDC */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 389, 389}, /* SKYTRAQ 0xDD */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 390, 390}, /* SKYTRAQ 0xDE */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 391, 391}, /* SKYTRAQ 0xDF */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 392, 392}, /* SKYTRAQ 0xE0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 366, 366}, /* SBF 4001 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 367, 367}, /* SBF 4006 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 368, 368}, /* SBF 4007 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 369, 369}, /* SBF 5905 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 370, 370}, /* SBF 5906 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 371, 371}, /* SBF 5907 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 372, 372}, /* SBF 5908 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 373, 373}, /* SBF 5914 rev 0 */
+    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 374, 374}, /* SIRF MID 67 SID 1 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 375, 375}, /* SIRF MID 2 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 376, 376}, /* SIRF MID 4 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 377, 377}, /* SIRF MID 6 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 378, 378}, /* SIRF MID 7 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 379, 379}, /* SIRF MID 9 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 380, 380}, /* SIRF MID 11 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 381, 381}, /* SIRF MID 12 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 382, 382}, /* SIRF MID 13 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 383, 383}, /* SIRF MID 18 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 384, 384}, /* SIRF MID 41 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 385, 385}, /* SIRF MID 52 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 386, 386}, /* SIRF MID 129 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 387, 387}, /* SIRF MID 132 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 388, 388}, /* SIRF MID 135 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 389, 389}, /* SIRF MID 255 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 390, 390}, /* SKYTRAQ 0x02 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 391, 391}, /* SKYTRAQ 0x09 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 392, 392}, /* SKYTRAQ 0x80 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 393, 393}, /* SKYTRAQ 0x83 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 394, 394}, /* SKYTRAQ 0x84 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 395, 395}, /* SKYTRAQ 0xA8 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 396, 396}, /* SKYTRAQ 0xDC */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 397, 397}, /* SKYTRAQ 0xDD */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 398, 398}, /* SKYTRAQ 0xDE */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 399, 399}, /* SKYTRAQ 0xDF */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 400, 400}, /* SKYTRAQ 0xE0 */
 };
 
 bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, size_t len, nmea_ubx_message *out,
@@ -6942,13 +7273,18 @@ size_t nmea_ubx_json(const nmea_ubx_message *message, char *buf, size_t cap)
     ubx_json_key(&j, "message");
     if (message->layout == NMEA_UBX_MSG_UNKNOWN) {
         const nmea_ubx_unknown *u = &message->as.unknown;
-        bool in_header = u->protocol >= sizeof ubx_framings / sizeof ubx_framings[0] || ubx_framings[u->protocol].key_at;
+        const nmea_ubx_framing *f = &ubx_framings[u->protocol < sizeof ubx_framings / sizeof ubx_framings[0] ? u->protocol : 0];
         ubx_json_puts(&j, "null");
-        if (in_header) { /* UBX, CASIC: the header's class and id */
-            ubx_json_puts(&j, ",\"class\":");
-            ubx_json_put(&j, number, (size_t)snprintf(number, sizeof number, "%u", u->msg_class));
-            ubx_json_puts(&j, ",\"id\":");
-            ubx_json_put(&j, number, (size_t)snprintf(number, sizeof number, "%u", u->msg_id));
+        if (f->key_at) { /* UBX, CASIC: the header's class and id; SBF: its block number and revision */
+            unsigned word = f->big ? (unsigned)u->msg_class << 8 | u->msg_id : (unsigned)u->msg_id << 8 | u->msg_class;
+            size_t k;
+            for (k = 0; k < 2; k++) {
+                ubx_json_puts(&j, ",\"");
+                ubx_json_puts(&j, f->key_fields[k].name);
+                ubx_json_puts(&j, "\":");
+                ubx_json_put(&j, number, (size_t)snprintf(number, sizeof number, "%u",
+                                                          word >> f->key_fields[k].low & ((1u << f->key_fields[k].bits) - 1)));
+            }
         } else if (u->key_len) { /* SkyTraq, SiRF: the payload's first byte */
             ubx_json_puts(&j, ",\"id\":");
             ubx_json_put(&j, number, (size_t)snprintf(number, sizeof number, "%u", u->msg_class));

@@ -96,25 +96,32 @@
 //   spec/binary/casic/messages/nav_glninfo.yaml, spec/binary/casic/messages/ack_nak.yaml,
 //   spec/binary/casic/messages/ack_ack.yaml, spec/binary/casic/messages/cfg_prt.yaml,
 //   spec/binary/casic/messages/cfg_msg.yaml, spec/binary/casic/messages/cfg_rate.yaml,
-//   spec/binary/casic/messages/mon_ver.yaml, spec/binary/sirf/messages/gnss_nav_solution.yaml,
-//   spec/binary/sirf/messages/measured_nav.yaml, spec/binary/sirf/messages/tracker_data.yaml,
-//   spec/binary/sirf/messages/sw_version.yaml, spec/binary/sirf/messages/clock_status.yaml,
-//   spec/binary/sirf/messages/cpu_throughput.yaml, spec/binary/sirf/messages/command_ack.yaml,
-//   spec/binary/sirf/messages/command_nack.yaml, spec/binary/sirf/messages/visible_list.yaml,
-//   spec/binary/sirf/messages/ok_to_send.yaml, spec/binary/sirf/messages/geodetic_nav.yaml,
-//   spec/binary/sirf/messages/pps_time.yaml, spec/binary/sirf/messages/switch_to_nmea.yaml,
-//   spec/binary/sirf/messages/poll_sw_version.yaml, spec/binary/sirf/messages/set_protocol.yaml,
-//   spec/binary/sirf/messages/dev_data.yaml, spec/binary/skytraq/messages/query_sw_version.yaml,
+//   spec/binary/casic/messages/mon_ver.yaml, spec/binary/sbf/messages/pvt_dop.yaml,
+//   spec/binary/sbf/messages/pvt_cartesian.yaml, spec/binary/sbf/messages/pvt_geodetic.yaml,
+//   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
+//   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
+//   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
+//   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/receiver_time.yaml,
+//   spec/binary/sirf/messages/gnss_nav_solution.yaml, spec/binary/sirf/messages/measured_nav.yaml,
+//   spec/binary/sirf/messages/tracker_data.yaml, spec/binary/sirf/messages/sw_version.yaml,
+//   spec/binary/sirf/messages/clock_status.yaml, spec/binary/sirf/messages/cpu_throughput.yaml,
+//   spec/binary/sirf/messages/command_ack.yaml, spec/binary/sirf/messages/command_nack.yaml,
+//   spec/binary/sirf/messages/visible_list.yaml, spec/binary/sirf/messages/ok_to_send.yaml,
+//   spec/binary/sirf/messages/geodetic_nav.yaml, spec/binary/sirf/messages/pps_time.yaml,
+//   spec/binary/sirf/messages/switch_to_nmea.yaml, spec/binary/sirf/messages/poll_sw_version.yaml,
+//   spec/binary/sirf/messages/set_protocol.yaml, spec/binary/sirf/messages/dev_data.yaml,
+//   spec/binary/skytraq/messages/query_sw_version.yaml,
 //   spec/binary/skytraq/messages/config_message_type.yaml,
 //   spec/binary/skytraq/messages/sw_version.yaml, spec/binary/skytraq/messages/msg_ack.yaml,
 //   spec/binary/skytraq/messages/msg_nack.yaml, spec/binary/skytraq/messages/nav_data.yaml,
 //   spec/binary/skytraq/messages/meas_time.yaml, spec/binary/skytraq/messages/raw_meas.yaml,
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
-//   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 60011d295931e3f0)
+//   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
+//   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
+//   spec/enums/ubx_gnss_id.yaml (digest 1103d0139b0fc379)
 // Regenerate: make generate (python3 -m generator generate)
 
-/* The UBX messages of spec/binary/ubx (and those of CASIC, SIRF, SKYTRAQ: spec/binary/<protocol>):
+/* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ: spec/binary/<protocol>):
    a struct per layout, every field typed, decoded from a frame's payload and encoded back to the
    same bytes, with no heap. Beside the NMEA pair and independent of it: a firmware links
    nmea_ubx.c only if it wants UBX (nmea.h's framer splits the frames out of a byte stream). */
@@ -126,7 +133,7 @@
    one interpreter of the generated layout descriptors that reads a payload into a layout's struct,
    writes it back byte for byte and prints its JSON, the C side of the Python runtime's ubx.py
    (its rules and error kinds). The messages of the other binary protocols the spec types
-   (SkyTraq, SiRF, CASIC: the Python runtime's binary.py) go through the same interpreter, in their
+   (SkyTraq, SiRF, CASIC, SBF: the Python runtime's binary.py) go through the same interpreter, in their
    byte order, framed by their row of the generated framing table (sync, length, checksum, end). No heap: a field of the bytes left, the trailing bytes and an
    unknown message's payload are views of the decoded payload. Facts from u-blox UBX-13003221
    ("UBX frame structure", "UBX checksum", "Data types"). */
@@ -182,8 +189,16 @@ typedef enum {
     NMEA_UBX_CHECK_FLETCHER8, /* two 8-bit running sums, sent in that order */
     NMEA_UBX_CHECK_XOR8,      /* the XOR of the bytes */
     NMEA_UBX_CHECK_SUM15,     /* the bytes' sum modulo 2^15, two bytes big endian */
-    NMEA_UBX_CHECK_SUM32      /* the sum of the bytes as 32-bit little-endian words, sent little endian */
+    NMEA_UBX_CHECK_SUM32,     /* the sum of the bytes as 32-bit little-endian words, sent little endian */
+    NMEA_UBX_CHECK_CRC16_CCITT /* CRC-CCITT (polynomial 0x1021, initial value 0), sent little endian (SBF) */
 } nmea_ubx_check;
+
+/* A field of the header that tells the message (an unknown message's JSON names it): its name, its
+   lowest bit in the 16-bit word of the key's two bytes (read in the protocol's byte order), its bits. */
+typedef struct {
+    const char *name;
+    uint8_t low, bits;
+} nmea_ubx_key_field;
 
 /* The framing of a protocol (spec/binary/<protocol>/protocol.yaml; generated, not for use by hand).
    Offsets count from the first sync byte. */
@@ -194,13 +209,17 @@ typedef struct {
     uint8_t header;       /* bytes before the payload, sync included */
     uint8_t length_at;    /* the length field's first byte (two bytes, the protocol's byte order) */
     uint16_t length_mask; /* its bits that count the payload's bytes */
-    uint8_t key_at;       /* the header's byte of the class, then the id (UBX, CASIC); 0: the key is the
-                             payload's first byte (the id; SkyTraq, SiRF) */
+    uint8_t key_at;       /* the header's byte of the class, then the id (UBX, CASIC; SBF: its two bytes of
+                             block number and revision); 0: the key is the payload's first byte (the id;
+                             SkyTraq, SiRF) */
     uint8_t check;        /* nmea_ubx_check */
     uint8_t check_from;   /* the first byte the checksum covers (to the payload's end) */
     uint8_t check_size;
     uint8_t end[2], end_len;
     bool big;             /* its fields are big endian */
+    uint8_t length_adds;  /* the frame's bytes beyond what the length counts (0: it counts the whole frame: SBF) */
+    uint8_t check_at;     /* the checksum's first byte in the header (SBF); 0: after the payload */
+    nmea_ubx_key_field key_fields[2]; /* where the header holds the key: its fields */
 } nmea_ubx_framing;
 
 /* The descriptors the interpreter walks (generated per layout; not for use by hand). */
@@ -306,6 +325,7 @@ typedef struct {
 typedef enum {
     NMEA_UBX_PROTOCOL_UBX,
     NMEA_UBX_PROTOCOL_CASIC,
+    NMEA_UBX_PROTOCOL_SBF,
     NMEA_UBX_PROTOCOL_SIRF,
     NMEA_UBX_PROTOCOL_SKYTRAQ
 } nmea_ubx_protocol;
@@ -5484,6 +5504,227 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_casic_mon_ver;
 
+/* Dilutions of precision (DOP): SBF 4001 rev 0 (id 0x0FA1), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t nr_sv; /* Satellites used */
+    uint8_t reserved; /* Reserved (reserved, as sent) */
+    uint16_t pdop; /* Position dilution of precision; raw, value = raw / 100 */
+    uint16_t tdop; /* Time dilution of precision; raw, value = raw / 100 */
+    uint16_t hdop; /* Horizontal dilution of precision; raw, value = raw / 100 */
+    uint16_t vdop; /* Vertical dilution of precision; raw, value = raw / 100 */
+    float hpl; /* Horizontal protection level [m] (its bits as sent) */
+    float vpl; /* Vertical protection level [m] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sbf_pvt_dop;
+
+/* Position, velocity and time, Cartesian (PVTCartesian): SBF 4006 rev 2 (id 0x4FA6), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t mode; /* PVT mode (bitfield) */
+    uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
+    bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
+    bool two_d; /* Height fixed (2D solution) (mode bit 7) */
+    uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
+    double x; /* ECEF X [m] (its bits as sent) */
+    double y; /* ECEF Y [m] (its bits as sent) */
+    double z; /* ECEF Z [m] (its bits as sent) */
+    float undulation; /* Geoid undulation [m] (its bits as sent) */
+    float vx; /* Velocity X [m/s] (its bits as sent) */
+    float vy; /* Velocity Y [m/s] (its bits as sent) */
+    float vz; /* Velocity Z [m/s] (its bits as sent) */
+    float cog; /* Course over ground (true north) [deg] (its bits as sent) */
+    double rx_clk_bias; /* Receiver clock bias to the time system [ms] (its bits as sent) */
+    float rx_clk_drift; /* Receiver clock drift [ppm] (its bits as sent) */
+    uint8_t time_system; /* Time system of the clock bias; a code of sbf_time_system (its JSON: the code's id) */
+    uint8_t datum; /* Datum of the position; a code of sbf_datum (its JSON: the code's id) */
+    uint8_t nr_sv; /* Satellites used; raw, value = raw; 255: do_not_use */
+    uint8_t wa_corr_info; /* Corrections used (bitfield) */
+    bool corr_orb_clk_used; /* Orbit and satellite clock corrections used (wa_corr_info bit 0) */
+    bool corr_rng_used; /* Range corrections used (wa_corr_info bit 1) */
+    bool corr_iono_used; /* Ionospheric model used (wa_corr_info bit 2) */
+    bool corr_orb_acc_used; /* Orbit accuracy information used (wa_corr_info bit 3) */
+    bool corr_do229_active; /* DO-229 precision approach mode active (wa_corr_info bit 4) */
+    uint8_t corr_rtk_type; /* Kind of RTK corrections (wa_corr_info bits 5-6) */
+    uint16_t reference_id; /* Reference station id of the corrections; raw, value = raw; 65535: do_not_use */
+    uint16_t mean_corr_age; /* Mean age of the corrections [s]; raw, value = raw / 100; 65535: do_not_use */
+    uint32_t signal_info; /* Signals used (a bit per signal type) */
+    uint8_t alert_flag; /* Integrity flags (bitfield) */
+    uint8_t raim_integrity; /* RAIM integrity (alert_flag bits 0-1) */
+    bool gal_hpca_fail; /* Galileo HPCA integrity test failed (alert_flag bit 2) */
+    bool gal_ion_storm; /* Galileo ionospheric storm flag (alert_flag bit 3) */
+    uint8_t nr_bases; /* Base stations used */
+    uint16_t ppp_info; /* PPP seed (bitfield) */
+    uint16_t ppp_seed_age; /* Age of the PPP seed (s) (ppp_info bits 0-11) */
+    uint8_t ppp_seed_type; /* Kind of PPP seed (ppp_info bits 13-15) */
+    uint16_t latency; /* Time from the epoch to the block's output [s]; raw, value = raw / 10000; 65535: do_not_use */
+    uint16_t h_accuracy; /* Horizontal accuracy estimate [m]; raw, value = raw / 100; 65535: do_not_use */
+    uint16_t v_accuracy; /* Vertical accuracy estimate [m]; raw, value = raw / 100; 65535: do_not_use */
+    uint8_t misc; /* Reference point (bitfield) */
+    bool base_arp; /* Position of the base's antenna reference point (misc bit 0) */
+    bool phase_ctr_offset; /* Phase center offset compensated (misc bit 1) */
+    uint8_t arp_offset; /* Position of the ARP (not the marker) (misc bits 6-7) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sbf_pvt_cartesian;
+
+/* Position, velocity and time, geodetic (PVTGeodetic): SBF 4007 rev 2 (id 0x4FA7), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t mode; /* PVT mode (bitfield) */
+    uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
+    bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
+    bool two_d; /* Height fixed (2D solution) (mode bit 7) */
+    uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
+    double latitude; /* Latitude [rad] (its bits as sent) */
+    double longitude; /* Longitude [rad] (its bits as sent) */
+    double height; /* Height above the ellipsoid [m] (its bits as sent) */
+    float undulation; /* Geoid undulation [m] (its bits as sent) */
+    float vn; /* Velocity north [m/s] (its bits as sent) */
+    float ve; /* Velocity east [m/s] (its bits as sent) */
+    float vu; /* Velocity up [m/s] (its bits as sent) */
+    float cog; /* Course over ground (true north) [deg] (its bits as sent) */
+    double rx_clk_bias; /* Receiver clock bias to the time system [ms] (its bits as sent) */
+    float rx_clk_drift; /* Receiver clock drift [ppm] (its bits as sent) */
+    uint8_t time_system; /* Time system of the clock bias; a code of sbf_time_system (its JSON: the code's id) */
+    uint8_t datum; /* Datum of the position; a code of sbf_datum (its JSON: the code's id) */
+    uint8_t nr_sv; /* Satellites used; raw, value = raw; 255: do_not_use */
+    uint8_t wa_corr_info; /* Corrections used (bitfield) */
+    bool corr_orb_clk_used; /* Orbit and satellite clock corrections used (wa_corr_info bit 0) */
+    bool corr_rng_used; /* Range corrections used (wa_corr_info bit 1) */
+    bool corr_iono_used; /* Ionospheric model used (wa_corr_info bit 2) */
+    bool corr_orb_acc_used; /* Orbit accuracy information used (wa_corr_info bit 3) */
+    bool corr_do229_active; /* DO-229 precision approach mode active (wa_corr_info bit 4) */
+    uint8_t corr_rtk_type; /* Kind of RTK corrections (wa_corr_info bits 5-6) */
+    uint16_t reference_id; /* Reference station id of the corrections; raw, value = raw; 65535: do_not_use */
+    uint16_t mean_corr_age; /* Mean age of the corrections [s]; raw, value = raw / 100; 65535: do_not_use */
+    uint32_t signal_info; /* Signals used (a bit per signal type) */
+    uint8_t alert_flag; /* Integrity flags (bitfield) */
+    uint8_t raim_integrity; /* RAIM integrity (alert_flag bits 0-1) */
+    bool gal_hpca_fail; /* Galileo HPCA integrity test failed (alert_flag bit 2) */
+    bool gal_ion_storm; /* Galileo ionospheric storm flag (alert_flag bit 3) */
+    uint8_t nr_bases; /* Base stations used */
+    uint16_t ppp_info; /* PPP seed (bitfield) */
+    uint16_t ppp_seed_age; /* Age of the PPP seed (s) (ppp_info bits 0-11) */
+    uint8_t ppp_seed_type; /* Kind of PPP seed (ppp_info bits 13-15) */
+    uint16_t latency; /* Time from the epoch to the block's output [s]; raw, value = raw / 10000; 65535: do_not_use */
+    uint16_t h_accuracy; /* Horizontal accuracy estimate [m]; raw, value = raw / 100; 65535: do_not_use */
+    uint16_t v_accuracy; /* Vertical accuracy estimate [m]; raw, value = raw / 100; 65535: do_not_use */
+    uint8_t misc; /* Reference point (bitfield) */
+    bool base_arp; /* Position of the base's antenna reference point (misc bit 0) */
+    bool phase_ctr_offset; /* Phase center offset compensated (misc bit 1) */
+    uint8_t arp_offset; /* Position of the ARP (not the marker) (misc bits 6-7) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sbf_pvt_geodetic;
+
+/* Position covariance, Cartesian (PosCovCartesian): SBF 5905 rev 0 (id 0x1711), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t mode; /* PVT mode (bitfield) */
+    uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
+    bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
+    bool two_d; /* Height fixed (2D solution) (mode bit 7) */
+    uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
+    float cov_xx; /* Variance of X [m^2] (its bits as sent) */
+    float cov_yy; /* Variance of Y [m^2] (its bits as sent) */
+    float cov_zz; /* Variance of Z [m^2] (its bits as sent) */
+    float cov_bb; /* Variance of the clock bias [m^2] (its bits as sent) */
+    float cov_xy; /* Covariance of X and Y [m^2] (its bits as sent) */
+    float cov_xz; /* Covariance of X and Z [m^2] (its bits as sent) */
+    float cov_xb; /* Covariance of X and the clock bias [m^2] (its bits as sent) */
+    float cov_yz; /* Covariance of Y and Z [m^2] (its bits as sent) */
+    float cov_yb; /* Covariance of Y and the clock bias [m^2] (its bits as sent) */
+    float cov_zb; /* Covariance of Z and the clock bias [m^2] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sbf_pos_cov_cartesian;
+
+/* Position covariance, geodetic (PosCovGeodetic): SBF 5906 rev 0 (id 0x1712), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t mode; /* PVT mode (bitfield) */
+    uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
+    bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
+    bool two_d; /* Height fixed (2D solution) (mode bit 7) */
+    uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
+    float cov_latlat; /* Variance of the latitude [m^2] (its bits as sent) */
+    float cov_lonlon; /* Variance of the longitude [m^2] (its bits as sent) */
+    float cov_hgthgt; /* Variance of the height [m^2] (its bits as sent) */
+    float cov_bb; /* Variance of the clock bias [m^2] (its bits as sent) */
+    float cov_latlon; /* Covariance of latitude and longitude [m^2] (its bits as sent) */
+    float cov_lathgt; /* Covariance of latitude and height [m^2] (its bits as sent) */
+    float cov_latb; /* Covariance of latitude and the clock bias [m^2] (its bits as sent) */
+    float cov_lonhgt; /* Covariance of longitude and height [m^2] (its bits as sent) */
+    float cov_lonb; /* Covariance of longitude and the clock bias [m^2] (its bits as sent) */
+    float cov_hb; /* Covariance of height and the clock bias [m^2] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sbf_pos_cov_geodetic;
+
+/* Velocity covariance, Cartesian (VelCovCartesian): SBF 5907 rev 0 (id 0x1713), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t mode; /* PVT mode (bitfield) */
+    uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
+    bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
+    bool two_d; /* Height fixed (2D solution) (mode bit 7) */
+    uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
+    float cov_vxvx; /* Variance of Vx [m^2/s^2] (its bits as sent) */
+    float cov_vyvy; /* Variance of Vy [m^2/s^2] (its bits as sent) */
+    float cov_vzvz; /* Variance of Vz [m^2/s^2] (its bits as sent) */
+    float cov_dtdt; /* Variance of the clock drift [m^2/s^2] (its bits as sent) */
+    float cov_vxvy; /* Covariance of Vx and Vy [m^2/s^2] (its bits as sent) */
+    float cov_vxvz; /* Covariance of Vx and Vz [m^2/s^2] (its bits as sent) */
+    float cov_vxdt; /* Covariance of Vx and the clock drift [m^2/s^2] (its bits as sent) */
+    float cov_vyvz; /* Covariance of Vy and Vz [m^2/s^2] (its bits as sent) */
+    float cov_vydt; /* Covariance of Vy and the clock drift [m^2/s^2] (its bits as sent) */
+    float cov_vzdt; /* Covariance of Vz and the clock drift [m^2/s^2] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sbf_vel_cov_cartesian;
+
+/* Velocity covariance, geodetic (VelCovGeodetic): SBF 5908 rev 0 (id 0x1714), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t mode; /* PVT mode (bitfield) */
+    uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
+    bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
+    bool two_d; /* Height fixed (2D solution) (mode bit 7) */
+    uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
+    float cov_vnvn; /* Variance of Vn [m^2/s^2] (its bits as sent) */
+    float cov_veve; /* Variance of Ve [m^2/s^2] (its bits as sent) */
+    float cov_vuvu; /* Variance of Vu [m^2/s^2] (its bits as sent) */
+    float cov_dtdt; /* Variance of the clock drift [m^2/s^2] (its bits as sent) */
+    float cov_vnve; /* Covariance of Vn and Ve [m^2/s^2] (its bits as sent) */
+    float cov_vnvu; /* Covariance of Vn and Vu [m^2/s^2] (its bits as sent) */
+    float cov_vndt; /* Covariance of Vn and the clock drift [m^2/s^2] (its bits as sent) */
+    float cov_vevu; /* Covariance of Ve and Vu [m^2/s^2] (its bits as sent) */
+    float cov_vedt; /* Covariance of Ve and the clock drift [m^2/s^2] (its bits as sent) */
+    float cov_vudt; /* Covariance of Vu and the clock drift [m^2/s^2] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sbf_vel_cov_geodetic;
+
+/* Receiver time (ReceiverTime): SBF 5914 rev 0 (id 0x171A), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    int8_t utc_year; /* UTC year (modulo 100); raw, value = raw; -128: do_not_use */
+    int8_t utc_month; /* UTC month; raw, value = raw; -128: do_not_use */
+    int8_t utc_day; /* UTC day; raw, value = raw; -128: do_not_use */
+    int8_t utc_hour; /* UTC hour; raw, value = raw; -128: do_not_use */
+    int8_t utc_min; /* UTC minute; raw, value = raw; -128: do_not_use */
+    int8_t utc_sec; /* UTC second; raw, value = raw; -128: do_not_use */
+    int8_t delta_ls; /* Leap seconds (GPS time less UTC) [s]; raw, value = raw; -128: do_not_use */
+    uint8_t sync_level; /* Synchronisation of the receiver's time (bitfield) */
+    bool wn_set; /* Week number set (sync_level bit 0) */
+    bool tow_set; /* Time of week set (sync_level bit 1) */
+    bool fine_time; /* Time synchronised to the GNSS time within 10 ms (sync_level bit 2) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sbf_receiver_time;
+
 /* Multi-constellation navigation data (OSP): SIRF MID 67 SID 1 (0x43 0x01), output. */
 typedef struct {
     uint32_t solution_validity; /* Solution validity (0 valid) (bitfield) */
@@ -6292,6 +6533,14 @@ typedef enum {
     NMEA_UBX_MSG_CASIC_CFG_RATE, /* CASIC CFG-RATE, input, output */
     NMEA_UBX_MSG_CASIC_MON_VER_POLL, /* CASIC MON-VER, poll */
     NMEA_UBX_MSG_CASIC_MON_VER, /* CASIC MON-VER, output */
+    NMEA_UBX_MSG_SBF_PVT_DOP, /* SBF 4001 rev 0, output */
+    NMEA_UBX_MSG_SBF_PVT_CARTESIAN, /* SBF 4006 rev 2, output */
+    NMEA_UBX_MSG_SBF_PVT_GEODETIC, /* SBF 4007 rev 2, output */
+    NMEA_UBX_MSG_SBF_POS_COV_CARTESIAN, /* SBF 5905 rev 0, output */
+    NMEA_UBX_MSG_SBF_POS_COV_GEODETIC, /* SBF 5906 rev 0, output */
+    NMEA_UBX_MSG_SBF_VEL_COV_CARTESIAN, /* SBF 5907 rev 0, output */
+    NMEA_UBX_MSG_SBF_VEL_COV_GEODETIC, /* SBF 5908 rev 0, output */
+    NMEA_UBX_MSG_SBF_RECEIVER_TIME, /* SBF 5914 rev 0, output */
     NMEA_UBX_MSG_SIRF_GNSS_NAV_SOLUTION, /* SIRF MID 67 SID 1, output */
     NMEA_UBX_MSG_SIRF_MEASURED_NAV, /* SIRF MID 2, output */
     NMEA_UBX_MSG_SIRF_TRACKER_DATA, /* SIRF MID 4, output */
@@ -6692,6 +6941,14 @@ typedef struct {
         nmea_ubx_casic_cfg_rate casic_cfg_rate;
         nmea_ubx_casic_mon_ver_poll casic_mon_ver_poll;
         nmea_ubx_casic_mon_ver casic_mon_ver;
+        nmea_ubx_sbf_pvt_dop sbf_pvt_dop;
+        nmea_ubx_sbf_pvt_cartesian sbf_pvt_cartesian;
+        nmea_ubx_sbf_pvt_geodetic sbf_pvt_geodetic;
+        nmea_ubx_sbf_pos_cov_cartesian sbf_pos_cov_cartesian;
+        nmea_ubx_sbf_pos_cov_geodetic sbf_pos_cov_geodetic;
+        nmea_ubx_sbf_vel_cov_cartesian sbf_vel_cov_cartesian;
+        nmea_ubx_sbf_vel_cov_geodetic sbf_vel_cov_geodetic;
+        nmea_ubx_sbf_receiver_time sbf_receiver_time;
         nmea_ubx_sirf_gnss_nav_solution sirf_gnss_nav_solution;
         nmea_ubx_sirf_measured_nav sirf_measured_nav;
         nmea_ubx_sirf_tracker_data sirf_tracker_data;

@@ -1,9 +1,9 @@
 /* The UBX messages (nmea_ubx.c) against generated/vectors/ubx.jsonl, which the Python codec decodes
    and encodes too: every frame decodes to the same JSON as Python's or fails with the same error
    kind, and encodes back to the same bytes; the same for the other protocols' messages (SkyTraq,
-   SiRF, CASIC) against the further .jsonl files given (generated/vectors/binary.jsonl, whose
-   records name their protocol); then every UBX, SkyTraq, SiRF and CASIC frame nmea.c's framer
-   finds in the logs given (gpsd's, tests/data/{ubx,rtcm3,skytraq,sirf,casic}) decodes and encodes
+   SiRF, CASIC, SBF) against the further .jsonl files given (generated/vectors/binary.jsonl, whose
+   records name their protocol); then every UBX, SkyTraq, SiRF, CASIC and SBF frame nmea.c's framer
+   finds in the logs given (gpsd's, tests/data/{ubx,rtcm3,skytraq,sirf,casic}; pysbf2's, tests/data/sbf) decodes and encodes
    back byte for byte, and a frame cut short, a buffer too small and a count over a group's array
    are refused. With --json, the JSON of every frame of the files given, a frame in hex a line
    (after its protocol's name and a space when not UBX), a line each (tests/ubx/test_c_ubx.py
@@ -71,8 +71,7 @@ static nmea_ubx_protocol protocol_named(const char *name)
     return NMEA_UBX_PROTOCOL_UBX;
 }
 
-/* Whether the pair types the protocol of that name (none: UBX); SBF's blocks are typed in Python
-   only (generator/emit.py's PYTHON_ONLY), so the vectors' SBF records are not ours. */
+/* Whether the pair types the protocol of that name (none: UBX). */
 static bool typed_here(const char *name)
 {
     return name[0] == '\0' || protocol_named(name) != NMEA_UBX_PROTOCOL_UBX || strcmp(name, "ubx") == 0;
@@ -220,10 +219,12 @@ static int log_frames(const char *path)
         bool more;
         got = fread(chunk, 1, sizeof chunk, file);
         while ((more = got ? nmea_framer_push(&framer, &p, &got, &item) : nmea_framer_end(&framer, &item))) {
-            if ((item.protocol == NMEA_SKYTRAQ || item.protocol == NMEA_SIRF || item.protocol == NMEA_CASIC) &&
+            if ((item.protocol == NMEA_SKYTRAQ || item.protocol == NMEA_SIRF || item.protocol == NMEA_CASIC ||
+                 item.protocol == NMEA_SBF) &&
                 item.error == NMEA_FRAME_OK) {
                 nmea_ubx_protocol of = item.protocol == NMEA_SKYTRAQ ? NMEA_UBX_PROTOCOL_SKYTRAQ
                                        : item.protocol == NMEA_SIRF  ? NMEA_UBX_PROTOCOL_SIRF
+                                       : item.protocol == NMEA_SBF   ? NMEA_UBX_PROTOCOL_SBF
                                                                      : NMEA_UBX_PROTOCOL_CASIC;
                 other_frames++;
                 round_trip(of, (const uint8_t *)item.ptr, item.len, &message, path);
@@ -407,6 +408,33 @@ static void other_protocols(void)
         printf("FAIL a SiRF frame whose checksum is off by one\n");
         failed++;
     }
+    {   /* SBF: pysbf2's ReceiverTime (5914 rev 0; 14 bytes of fields, 2 of padding), its TOW then set
+           to the do-not-use value: written back with its length and CRC, read again */
+        static const uint8_t time[] = {0x24, 0x40, 0xBD, 0x13, 0x1A, 0x17, 0x18, 0x00, 0x70, 0x2F, 0xCB, 0x1C,
+                                       0x3F, 0x09, 0x19, 0x05, 0x17, 0x0E, 0x0B, 0x00, 0x12, 0x07, 0x00, 0x00};
+        static char text[512];
+        if (!nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SBF, time, sizeof time, &message, &err) ||
+            message.layout != NMEA_UBX_MSG_SBF_RECEIVER_TIME || message.as.sbf_receiver_time.tow != 483078000 ||
+            message.as.sbf_receiver_time.utc_year != 25 || message.as.sbf_receiver_time.trailing.len != 2 ||
+            nmea_ubx_encode(&message, frame, sizeof frame, &err) != sizeof time || memcmp(frame, time, sizeof time)) {
+            printf("FAIL an SBF ReceiverTime\n");
+            failed++;
+        }
+        message.as.sbf_receiver_time.tow = 0xFFFFFFFFu;
+        if (nmea_ubx_encode(&message, frame, sizeof frame, &err) != sizeof time ||
+            !nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SBF, frame, sizeof time, &message, &err) ||
+            nmea_ubx_json(&message, text, sizeof text) == 0 ||
+            !strstr(text, "\"tow\":\"do_not_use\",\"tow_raw\":4294967295,")) {
+            printf("FAIL an SBF ReceiverTime of a do-not-use TOW: %s\n", text);
+            failed++;
+        }
+        frame[2] ^= 1;
+        if (nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SBF, frame, sizeof time, &message, &err) ||
+            err.kind != NMEA_UBX_BAD_CHECKSUM) {
+            printf("FAIL an SBF block whose CRC is off by one\n");
+            failed++;
+        }
+    }
 }
 
 int main(int argc, char **argv)
@@ -450,7 +478,7 @@ int main(int argc, char **argv)
     refusals();
     by_hand();
     other_protocols();
-    printf("%d decoded, %d refused, %d frames (and %d SkyTraq, SiRF, CASIC) of %d logs round-tripped, %d cut payloads, "
+    printf("%d decoded, %d refused, %d frames (and %d SkyTraq, SiRF, CASIC, SBF) of %d logs round-tripped, %d cut payloads, "
            "%d over NMEA_UBX_MAX_ENTRIES %d, %d failed\n",
            decoded, refused, frames, other_frames, logs, cut_payloads, over_maximum, NMEA_UBX_MAX_ENTRIES, failed);
     return failed || decoded < 20 || refused < 2 || frames < 1000 || cut_payloads < 1000 ||

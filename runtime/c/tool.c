@@ -305,7 +305,7 @@ static bool decode_flags(tool *t, int argc, char **argv)
 #ifdef NMEA_WITH_UBX
 /* stream --ubx (docs/json.md, "UBX messages in stream"): the message a UBX frame carries, decoded
    once; ubx_member appends `,"ubx":` and its JSON, or `,"ubx_error":` and the error its payload
-   gives; a SkyTraq, SiRF or CASIC frame's alike, under its protocol's name. */
+   gives; a SkyTraq, SiRF, CASIC or SBF frame's alike, under its protocol's name. */
 static nmea_ubx_message ubx_message; /* 10 kB: not on the stack */
 static nmea_ubx_error ubx_error;
 static bool ubx_decoded;

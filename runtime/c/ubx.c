@@ -91,6 +91,14 @@ static unsigned long ubx_check(nmea_ubx_check kind, const uint8_t *p, size_t len
         for (i = 0; i < len; i++)
             sum += p[i];
         return sum & 0x7FFF;
+    case NMEA_UBX_CHECK_CRC16_CCITT: /* MSB first, no reflection; sent little endian */
+        for (i = 0; i < len; i++) {
+            unsigned bit;
+            sum ^= (unsigned long)p[i] << 8;
+            for (bit = 0; bit < 8; bit++)
+                sum = (sum & 0x8000 ? sum << 1 ^ 0x1021 : sum << 1) & 0xFFFF;
+        }
+        return (sum & 0xFF) << 8 | sum >> 8;
     default: /* SUM32: little-endian words, a short last one padded with zeros; sent little endian */
         for (i = 0; i < len; i++)
             sum = (sum + ((unsigned long)p[i] << 8 * (i & 3))) & 0xFFFFFFFFul;
@@ -688,7 +696,7 @@ static size_t ubx_write_frame(const nmea_ubx_framing *f, const nmea_ubx_layout_i
                               const nmea_ubx_unknown *unknown, uint8_t *buf, size_t cap, nmea_ubx_error *err)
 {
     ubx_writer w;
-    size_t payload, trailer = (size_t)f->check_size + f->end_len, i;
+    size_t payload, trailer = (size_t)(f->check_at ? 0 : f->check_size) + f->end_len, i, length;
     unsigned long sum;
     uint8_t key[2];
     size_t key_len = l ? (f->key_at ? 2 : l->key_len) : (f->key_at ? 2 : unknown->key_len);
@@ -720,24 +728,25 @@ static size_t ubx_write_frame(const nmea_ubx_framing *f, const nmea_ubx_layout_i
         return 0;
     }
     payload = w.len - f->header;
-    if (payload > f->length_mask) {
+    length = w.len + trailer - f->length_adds; /* the payload's bytes, or the whole frame's (SBF) */
+    if (length > f->length_mask) {
         snprintf(err->text, sizeof err->text, "the payload is %lu bytes, a frame holds %u", (unsigned long)payload,
-                 (unsigned)f->length_mask);
+                 (unsigned)(f->length_mask + f->length_adds - f->header - trailer));
         return (size_t)ubx_fail(err, NMEA_UBX_BAD_VALUE, w.address, NULL);
     }
     memset(buf, 0, f->header);
     buf[0] = f->sync[0];
     buf[1] = f->sync[1];
-    buf[f->length_at + (f->big ? 1 : 0)] = (uint8_t)(payload & 0xFF);
-    buf[f->length_at + (f->big ? 0 : 1)] = (uint8_t)(payload >> 8);
+    buf[f->length_at + (f->big ? 1 : 0)] = (uint8_t)(length & 0xFF);
+    buf[f->length_at + (f->big ? 0 : 1)] = (uint8_t)(length >> 8);
     if (f->key_at) {
         buf[f->key_at] = key[0];
         buf[f->key_at + 1] = key[1];
     }
     sum = ubx_check((nmea_ubx_check)f->check, buf + f->check_from, w.len - f->check_from);
-    for (i = 0; i < f->check_size; i++)
-        buf[w.len + i] = (uint8_t)(sum >> 8 * (f->check_size - 1 - i));
-    memcpy(buf + w.len + f->check_size, f->end, f->end_len);
+    for (i = 0; i < f->check_size; i++) /* after the payload, or in the header (SBF) */
+        buf[(f->check_at ? f->check_at : w.len) + i] = (uint8_t)(sum >> 8 * (f->check_size - 1 - i));
+    memcpy(buf + w.len + (f->check_at ? 0 : f->check_size), f->end, f->end_len);
     return w.len + trailer;
 }
 
@@ -771,24 +780,26 @@ static bool ubx_open_frame(const uint8_t *frame, size_t len, const uint8_t **pay
 static bool ubx_open_frame_of(const nmea_ubx_framing *f, const uint8_t *frame, size_t len, const uint8_t **payload,
                               size_t *payload_len, nmea_ubx_error *err)
 {
-    size_t trailer = (size_t)f->check_size + f->end_len, i;
+    size_t trailer = (size_t)(f->check_at ? 0 : f->check_size) + f->end_len, i, size;
     unsigned long sum, sent = 0;
     if (len < (size_t)f->header + trailer || frame[0] != f->sync[0] || frame[1] != f->sync[1]) {
         snprintf(err->text, sizeof err->text, "a %s frame is %02X %02X, a header of %u bytes, payload, checksum%s",
                  f->upper, f->sync[0], f->sync[1], (unsigned)f->header, f->end_len ? " and end bytes" : "");
         return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
     }
-    *payload_len = (f->big ? (size_t)frame[f->length_at] << 8 | frame[f->length_at + 1]
-                           : (size_t)frame[f->length_at] | (size_t)frame[f->length_at + 1] << 8) &
-                   f->length_mask;
-    if (len != f->header + *payload_len + trailer) {
-        snprintf(err->text, sizeof err->text, "the length field says %lu payload bytes, the frame has %lu",
-                 (unsigned long)*payload_len, (unsigned long)(len - f->header - trailer));
+    size = ((f->big ? (size_t)frame[f->length_at] << 8 | frame[f->length_at + 1]
+                    : (size_t)frame[f->length_at] | (size_t)frame[f->length_at + 1] << 8) &
+            f->length_mask) +
+           f->length_adds; /* the frame's bytes */
+    if (len != size || size < (size_t)f->header + trailer) {
+        snprintf(err->text, sizeof err->text, "the length field says %lu bytes, the frame has %lu", (unsigned long)size,
+                 (unsigned long)len);
         return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
     }
+    *payload_len = len - f->header - trailer;
     sum = ubx_check((nmea_ubx_check)f->check, frame + f->check_from, len - trailer - f->check_from);
-    for (i = 0; i < f->check_size; i++)
-        sent = sent << 8 | frame[len - trailer + i];
+    for (i = 0; i < f->check_size; i++) /* after the payload, or in the header (SBF) */
+        sent = sent << 8 | frame[(f->check_at ? f->check_at : len - trailer) + i];
     if (sent != sum || memcmp(frame + len - f->end_len, f->end, f->end_len) != 0) {
         snprintf(err->text, sizeof err->text, "checksum %0*lX, computed %0*lX%s", 2 * f->check_size, sent,
                  2 * f->check_size, sum, sent == sum ? ", its end bytes are not the protocol's" : "");

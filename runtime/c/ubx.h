@@ -2,7 +2,7 @@
    one interpreter of the generated layout descriptors that reads a payload into a layout's struct,
    writes it back byte for byte and prints its JSON, the C side of the Python runtime's ubx.py
    (its rules and error kinds). The messages of the other binary protocols the spec types
-   (SkyTraq, SiRF, CASIC: the Python runtime's binary.py) go through the same interpreter, in their
+   (SkyTraq, SiRF, CASIC, SBF: the Python runtime's binary.py) go through the same interpreter, in their
    byte order, framed by their row of the generated framing table (sync, length, checksum, end). No heap: a field of the bytes left, the trailing bytes and an
    unknown message's payload are views of the decoded payload. Facts from u-blox UBX-13003221
    ("UBX frame structure", "UBX checksum", "Data types"). */
@@ -58,8 +58,16 @@ typedef enum {
     NMEA_UBX_CHECK_FLETCHER8, /* two 8-bit running sums, sent in that order */
     NMEA_UBX_CHECK_XOR8,      /* the XOR of the bytes */
     NMEA_UBX_CHECK_SUM15,     /* the bytes' sum modulo 2^15, two bytes big endian */
-    NMEA_UBX_CHECK_SUM32      /* the sum of the bytes as 32-bit little-endian words, sent little endian */
+    NMEA_UBX_CHECK_SUM32,     /* the sum of the bytes as 32-bit little-endian words, sent little endian */
+    NMEA_UBX_CHECK_CRC16_CCITT /* CRC-CCITT (polynomial 0x1021, initial value 0), sent little endian (SBF) */
 } nmea_ubx_check;
+
+/* A field of the header that tells the message (an unknown message's JSON names it): its name, its
+   lowest bit in the 16-bit word of the key's two bytes (read in the protocol's byte order), its bits. */
+typedef struct {
+    const char *name;
+    uint8_t low, bits;
+} nmea_ubx_key_field;
 
 /* The framing of a protocol (spec/binary/<protocol>/protocol.yaml; generated, not for use by hand).
    Offsets count from the first sync byte. */
@@ -70,13 +78,17 @@ typedef struct {
     uint8_t header;       /* bytes before the payload, sync included */
     uint8_t length_at;    /* the length field's first byte (two bytes, the protocol's byte order) */
     uint16_t length_mask; /* its bits that count the payload's bytes */
-    uint8_t key_at;       /* the header's byte of the class, then the id (UBX, CASIC); 0: the key is the
-                             payload's first byte (the id; SkyTraq, SiRF) */
+    uint8_t key_at;       /* the header's byte of the class, then the id (UBX, CASIC; SBF: its two bytes of
+                             block number and revision); 0: the key is the payload's first byte (the id;
+                             SkyTraq, SiRF) */
     uint8_t check;        /* nmea_ubx_check */
     uint8_t check_from;   /* the first byte the checksum covers (to the payload's end) */
     uint8_t check_size;
     uint8_t end[2], end_len;
     bool big;             /* its fields are big endian */
+    uint8_t length_adds;  /* the frame's bytes beyond what the length counts (0: it counts the whole frame: SBF) */
+    uint8_t check_at;     /* the checksum's first byte in the header (SBF); 0: after the payload */
+    nmea_ubx_key_field key_fields[2]; /* where the header holds the key: its fields */
 } nmea_ubx_framing;
 
 /* The descriptors the interpreter walks (generated per layout; not for use by hand). */

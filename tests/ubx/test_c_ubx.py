@@ -4,8 +4,9 @@ Python classes (nmeaspec.ubx_messages) frame by frame: every UBX frame of gpsd's
 generator seeded with the layout's id: its fixed length, a version byte set; variable layouts at
 several lengths, some of which cut a group) decode to the same JSON, or are refused with the same
 error kind and field, and every frame that decodes encodes back byte-exact in C (the program
-fails otherwise). The same for SkyTraq, SiRF and CASIC (nmeaspec.<protocol>_messages): every frame
-of their logs and made-up frames of every layout, and of an id no layout describes."""
+fails otherwise). The same for SkyTraq, SiRF, CASIC and SBF (nmeaspec.<protocol>_messages): every
+frame of their logs (pysbf2's for SBF) and made-up frames of every layout, and of an id no layout
+describes."""
 
 from __future__ import annotations
 
@@ -20,7 +21,7 @@ import pytest
 from tests.ubx.pyubx2_oracle import ubx, ubx_messages
 
 from nmeaspec import binary, stream  # noqa: E402  (pyubx2_oracle puts generated/python on the path)
-from nmeaspec import casic_messages, sirf_messages, skytraq_messages  # noqa: E402
+from nmeaspec import casic_messages, sbf_messages, sirf_messages, skytraq_messages  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 LOGS = sorted((ROOT / "tests" / "data" / "ubx").glob("*.log")) + sorted((ROOT / "tests" / "data" / "rtcm3").glob("*.log"))
@@ -67,14 +68,14 @@ def made_up_frames() -> list[bytes]:
     return out
 
 
-OTHERS = {"skytraq": skytraq_messages, "sirf": sirf_messages, "casic": casic_messages}
+OTHERS = {"skytraq": skytraq_messages, "sirf": sirf_messages, "casic": casic_messages, "sbf": sbf_messages}
 
 
 def other_frames() -> list[tuple[str, bytes]]:
     """Every frame of the other protocols' logs, and made-up ones: a frame per fixed layout and
     five per variable one (drawn as made_up_frames draws them), and one of an id no layout has."""
     out = [(frame.protocol, frame.data) for name in OTHERS
-           for log in sorted((ROOT / "tests" / "data" / name).glob("*.log"))
+           for log in sorted((ROOT / "tests" / "data" / name).glob("*.log")) + sorted((ROOT / "tests" / "data" / name).glob("*.sbf"))
            for frame in stream.lines([log.read_bytes()], binary=True)
            if isinstance(frame, stream.BinaryFrame) and frame.protocol == name]
     for name, module in OTHERS.items():
@@ -88,7 +89,7 @@ def other_frames() -> list[tuple[str, bytes]]:
                     if at is not None and at < length:
                         payload[at] = cls.VERSION
                     out.append((name, binary.Frame(name, cls.KEY, bytes(payload)).encode()))
-        key = (0x0B, 0x7F) if name == "casic" else (0x7E,)
+        key = (0x0B, 0x7F) if name == "casic" else (4000, 1) if name == "sbf" else (0x7E,)
         out.append((name, binary.Frame(name, key, b"\x01\x02").encode()))
     return out
 

@@ -6,7 +6,7 @@
 //   spec/binary/casic/messages/nav_glninfo.yaml, spec/binary/casic/messages/ack_nak.yaml,
 //   spec/binary/casic/messages/ack_ack.yaml, spec/binary/casic/messages/cfg_prt.yaml,
 //   spec/binary/casic/messages/cfg_msg.yaml, spec/binary/casic/messages/cfg_rate.yaml,
-//   spec/binary/casic/messages/mon_ver.yaml (digest 4f8ab00d942f4bd5)
+//   spec/binary/casic/messages/mon_ver.yaml (digest 4d2c5bec9bea19a2)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The CASIC messages of spec/binary/casic: a struct per layout (named as the Python
@@ -1598,7 +1598,7 @@ impl<'a> MonVer<'a> {
 /// A frame of a class and id the spec does not describe, kept with its payload.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Unknown<'a> {
-    /// The class and id of its header.
+    /// The header's bytes of its class and id.
     pub key: &'a [u8],
     /// The payload, as sent.
     pub payload: &'a [u8],
@@ -1718,7 +1718,7 @@ impl<'a> Message<'a> {
         })
     }
 
-    /// The bytes that tell its message: the class and id.
+    /// The bytes that tell its message: the header's bytes of its class and id.
     pub fn key(&self) -> &'a [u8] {
         match self {
             Message::NavDop(_) => NavDop::KEY,
@@ -1773,7 +1773,7 @@ impl<'a> Message<'a> {
     }
 
     /// Writes its decoded JSON (that of generated/vectors/binary.jsonl, the form of the UBX
-    /// messages'); an unknown message as `"message":null` with its class, id and payload.
+    /// messages'); an unknown message as `"message":null` with its class and id, and its payload.
     pub fn write_json<W: fmt::Write>(&self, out: &mut W) -> fmt::Result {
         let mut j = JsonObject::new(out)?;
         match self.id() {
@@ -1798,9 +1798,7 @@ impl<'a> Message<'a> {
             Message::MonVerPoll(m) => m.json_members(&mut j)?,
             Message::MonVer(m) => m.json_members(&mut j)?,
             Message::Unknown(m) => {
-                for (name, value) in ["class", "id"].into_iter().zip(m.key) {
-                    j.int(name, *value)?;
-                }
+                ubx::json_key(&mut j, Protocol::Casic, m.key)?;
                 ubx::json_hex(&mut j, "payload", m.payload)?;
             }
         }

@@ -62,6 +62,8 @@ mod fix_fields;
 #[cfg(feature = "binary")]
 pub mod rtcm3_messages;
 mod runtime;
+#[cfg(feature = "binary")]
+pub mod sbf_messages;
 pub mod sentences;
 #[cfg(feature = "binary")]
 pub mod sirf_messages;

@@ -6,7 +6,7 @@
 //   spec/binary/skytraq/messages/msg_nack.yaml, spec/binary/skytraq/messages/nav_data.yaml,
 //   spec/binary/skytraq/messages/meas_time.yaml, spec/binary/skytraq/messages/raw_meas.yaml,
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
-//   spec/binary/skytraq/messages/gps_subframe.yaml (digest 9b6a12333440d6bc)
+//   spec/binary/skytraq/messages/gps_subframe.yaml (digest 86a678c16afbdb2e)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The SkyTraq binary messages of spec/binary/skytraq: a struct per layout (named as the Python
@@ -1361,7 +1361,7 @@ impl<'a> Message<'a> {
     }
 
     /// Writes its decoded JSON (that of generated/vectors/binary.jsonl, the form of the UBX
-    /// messages'); an unknown message as `"message":null` with its id and payload.
+    /// messages'); an unknown message as `"message":null` with its id, and its payload.
     pub fn write_json<W: fmt::Write>(&self, out: &mut W) -> fmt::Result {
         let mut j = JsonObject::new(out)?;
         match self.id() {

@@ -48,13 +48,13 @@ def with_message(text: str, assembled: Assembled) -> str:
 
 
 # The protocols whose frames stream --ubx gives their messages (those the three tools type).
-TYPED = ("ubx", "skytraq", "sirf", "casic")
+TYPED = ("ubx", "skytraq", "sirf", "casic", "sbf")
 
 
 def with_ubx(frame: BinaryFrame) -> str:
     """stream --ubx: a UBX frame's JSON with the message it carries: `ubx`, its decoded JSON
     (that of generated/vectors/ubx.jsonl), or `ubx_error` when its payload does not decode; a
-    SkyTraq, SiRF or CASIC frame's alike, under its protocol's name (`sirf`, `sirf_error`: the
+    SkyTraq, SiRF, CASIC or SBF frame's alike, under its protocol's name (`sirf`, `sirf_error`: the
     JSON of generated/vectors/binary.jsonl)."""
     text = frame.to_json()
     if frame.protocol not in TYPED:

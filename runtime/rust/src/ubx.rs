@@ -475,8 +475,30 @@ pub fn split_frame_of(protocol: Protocol, data: &[u8]) -> Result<(&[u8], &[u8]),
     Ok((&data[..f.header], &data[f.header..body]))
 }
 
-/// Writes the frame of `protocol` (SkyTraq, SiRF, CASIC) of the message told by `key` (class and
-/// id in CASIC's header; the id, and sub-id, before the fields in SkyTraq's and SiRF's payload)
+/// The members of an unknown message's key, the header's bytes `key` (CASIC's class and id, SBF's
+/// id): each identity field of the protocol's framing by its name (`class`, `id`; `number`,
+/// `revision`), its bits read in the protocol's byte order.
+pub fn json_key<W: Write>(j: &mut JsonObject<'_, W>, protocol: Protocol, key: &[u8]) -> fmt::Result {
+    let f = protocol.framing();
+    let first = f.identity.iter().map(|&(_, at, _)| at).min().unwrap_or(0) / 8;
+    let word = |be: bool| {
+        key.iter()
+            .enumerate()
+            .fold(0u32, |w, (i, &b)| if be { w << 8 | u32::from(b) } else { w | u32::from(b) << (8 * i) })
+    };
+    for &(name, at, bits) in f.identity {
+        if (at + bits).div_ceil(8) - first > key.len() {
+            continue;
+        }
+        let shift = if f.big_endian { 8 * key.len() - (at - 8 * first) - bits } else { at - 8 * first };
+        j.int(name, (word(f.big_endian) >> shift) & ((1u32 << bits) - 1))?;
+    }
+    Ok(())
+}
+
+/// Writes the frame of `protocol` (SkyTraq, SiRF, CASIC, SBF) of the message told by `key` (class
+/// and id in CASIC's header, the id in SBF's; the id, and sub-id, before the fields in SkyTraq's
+/// and SiRF's payload)
 /// whose fields `payload` writes, into `buf`: sync, header, payload, checksum and end bytes.
 pub fn encode_frame_of<'b>(
     buf: &'b mut [u8],
@@ -494,8 +516,8 @@ pub fn encode_frame_of<'b>(
         w.put(key);
     }
     payload(&mut w)?;
-    let length = w.len();
-    let need = f.header + length + f.trailer_len();
+    let need = f.header + w.len() + f.trailer_len();
+    let length = need - f.length_adds; // the payload's bytes, or the whole frame's (SBF)
     if length > usize::from(f.length_mask) || w.overflow > 0 || head.len() < f.header {
         return Err(UbxError {
             kind: UbxErrorKind::BufferTooSmall,
@@ -516,13 +538,20 @@ pub fn encode_frame_of<'b>(
         _ => field[0] = length as u8,
     }
     if in_header {
-        for (&(_, at, _), &byte) in f.identity.iter().zip(key) {
-            buf[at / 8] = byte;
-        }
+        // the header's bytes of the key (class and id; SBF: the id of its block number and revision)
+        let at = f.identity.iter().map(|&(_, at, _)| at / 8).min().unwrap_or(f.header);
+        buf[at..at + key.len()].copy_from_slice(key);
     }
     let body = need - f.trailer_len();
-    let (_, check) = f.check(&buf[..need]); // the checksum of the bytes before the trailer
-    for (i, slot) in buf[body..need].iter_mut().rev().enumerate() {
+    let (_, check) = f.check(&buf[..need]); // the checksum of what it covers, and the end bytes
+    let (at, end) = if f.check_at == 0 {
+        (body, need) // checksum and end bytes after the payload
+    } else {
+        buf[body..need].copy_from_slice(f.end);
+        (f.check_at, f.check_at + f.check_size) // the checksum in the header (SBF)
+    };
+    let check = if f.check_at == 0 { check } else { check >> (8 * f.end.len()) };
+    for (i, slot) in buf[at..end].iter_mut().rev().enumerate() {
         *slot = (check >> (8 * i)) as u8;
     }
     Ok(&buf[..need])

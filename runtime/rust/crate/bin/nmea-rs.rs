@@ -17,7 +17,7 @@ use nmeaspec::assembly::Assembler;
 use nmeaspec::json::{write_encoded, Value, SKIP_CHECK_DEPTH};
 use nmeaspec::stream::{FrameError, Framer, Item, Protocol, MAX_FRAME};
 use nmeaspec::ubx::UbxError;
-use nmeaspec::{casic_messages, rtcm3_messages, sirf_messages, skytraq_messages, ubx_messages};
+use nmeaspec::{casic_messages, rtcm3_messages, sbf_messages, sirf_messages, skytraq_messages, ubx_messages};
 use nmeaspec::{parse_with, Error, Fix, FixAssembler, Options, MAX_LINE};
 
 const USAGE: &str =
@@ -178,7 +178,7 @@ fn write_frame(w: &mut String, protocol: Protocol, frame: &[u8]) -> fmt::Result 
 
 /// `stream --ubx`: a UBX frame's JSON with the message it carries: `ubx`, its decoded JSON (that
 /// of generated/vectors/ubx.jsonl), or `ubx_error` when its payload does not decode; a SkyTraq,
-/// SiRF or CASIC frame's alike under its protocol's name (`sirf`, `sirf_error`). Other frames as
+/// SiRF, CASIC or SBF frame's alike under its protocol's name (`sirf`, `sirf_error`). Other frames as
 /// `stream` writes them.
 fn write_ubx_frame(w: &mut String, protocol: Protocol, frame: &[u8]) -> fmt::Result {
     write_frame(w, protocol, frame)?;
@@ -188,6 +188,7 @@ fn write_ubx_frame(w: &mut String, protocol: Protocol, frame: &[u8]) -> fmt::Res
         Protocol::Skytraq => skytraq_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
         Protocol::Sirf => sirf_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
         Protocol::Casic => casic_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
+        Protocol::Sbf => sbf_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
         _ => return Ok(()),
     };
     w.pop(); // the frame's closing brace

@@ -14,7 +14,7 @@ use std::path::Path;
 use nmeaspec::stream::{Framer, Item, Protocol};
 use nmeaspec::ubx::UbxErrorKind;
 use nmeaspec::ubx_messages::{AckAck, Message, NavPvt};
-use nmeaspec::{casic_messages, sirf_messages, skytraq_messages};
+use nmeaspec::{casic_messages, sbf_messages, sirf_messages, skytraq_messages};
 
 const CRATE: &str = env!("CARGO_MANIFEST_DIR");
 
@@ -66,7 +66,7 @@ fn frames_of(dir: &str, protocol: Protocol) -> Vec<(String, Vec<u8>)> {
     let mut paths: Vec<_> = fs::read_dir(Path::new(CRATE).join("../../tests/data").join(dir))
         .unwrap()
         .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|ext| ext == "log"))
+        .filter(|path| path.extension().is_some_and(|ext| ext == "log" || ext == "sbf"))
         .collect();
     paths.sort();
     for path in paths {
@@ -151,6 +151,11 @@ fn other_protocol(protocol: &str, frame: &[u8]) -> Result<(String, Vec<u8>), nme
             m.write_json(&mut json).unwrap();
             m.encode(&mut buf)?.to_vec()
         }
+        "sbf" => {
+            let m = sbf_messages::Message::from_frame(frame)?;
+            m.write_json(&mut json).unwrap();
+            m.encode(&mut buf)?.to_vec()
+        }
         _ => panic!("{protocol}"),
     };
     Ok((json, encoded))
@@ -162,9 +167,6 @@ fn other_protocols_decode_and_encode_as_the_vectors_say() {
     let data = fs::read_to_string(&path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
     let mut decoded = 0;
     for record in data.lines() {
-        if member(record, "protocol") == "sbf" {
-            continue; // SBF's blocks are typed in Python only (generator/emit.py's PYTHON_ONLY)
-        }
         let frame = unhex(member(record, "frame"));
         let (json, encoded) =
             other_protocol(member(record, "protocol"), &frame).unwrap_or_else(|err| panic!("{err}: {record}"));
@@ -178,9 +180,12 @@ fn other_protocols_decode_and_encode_as_the_vectors_say() {
 
 #[test]
 fn every_logged_frame_of_other_protocols_decodes_and_encodes_back() {
-    for (dir, protocol, at_least) in
-        [("skytraq", Protocol::Skytraq, 250), ("sirf", Protocol::Sirf, 200), ("casic", Protocol::Casic, 700)]
-    {
+    for (dir, protocol, at_least) in [
+        ("skytraq", Protocol::Skytraq, 250),
+        ("sirf", Protocol::Sirf, 200),
+        ("casic", Protocol::Casic, 700),
+        ("sbf", Protocol::Sbf, 60),
+    ] {
         let frames = frames_of(dir, protocol);
         let mut known = 0;
         for (file, frame) in &frames {
@@ -216,4 +221,39 @@ fn errors_of_other_protocols_name_protocol_message_and_field() {
     message.write_json(&mut json).unwrap();
     assert_eq!(json, r#"{"message":null,"id":126,"payload":"01"}"#);
     assert_eq!(message.encode(&mut [0u8; 9]).unwrap(), &unknown[..]);
+}
+
+#[test]
+fn sbf_blocks_keep_do_not_use_values_padding_and_crc() {
+    use nmeaspec::ais::Reading;
+    // ReceiverTime (5914 rev 0) of pysbf2's pygpsdata_x5_time.sbf: 14 bytes of fields, 2 of padding.
+    let frame = unhex("24 40 bd 13 1a 17 18 00 70 2f cb 1c 3f 09 19 05 17 0e 0b 00 12 07 00 00");
+    let sbf_messages::Message::ReceiverTime(mut time) = sbf_messages::Message::from_frame(&frame).unwrap() else {
+        panic!("not a ReceiverTime");
+    };
+    assert_eq!(
+        (time.tow(), time.utc_year(), time.trailing),
+        (Reading::Value(483078000), Reading::Value(25), &[0u8, 0][..])
+    );
+    let mut buf = [0u8; 64];
+    assert_eq!(time.encode(&mut buf).unwrap(), &frame[..]);
+    // do-not-use values by their id, beside the raw integer; the CRC and length written anew
+    time.tow_raw = u32::MAX;
+    time.utc_sec_raw = -128;
+    assert_eq!((time.tow(), time.utc_sec()), (Reading::Special("do_not_use"), Reading::Special("do_not_use")));
+    let again = sbf_messages::Message::from_frame(time.encode(&mut buf).unwrap()).unwrap();
+    let mut json = String::new();
+    again.write_json(&mut json).unwrap();
+    assert!(json.contains(r#""tow":"do_not_use","tow_raw":4294967295,"#), "{json}");
+    assert!(json.contains(r#""utc_sec":"do_not_use","utc_sec_raw":-128,"#), "{json}");
+    // a block number no layout describes: its number and revision, its body as sent
+    let unknown = unhex("24 40 16 64 a0 2f 0c 00 01 02 03 04");
+    let message = sbf_messages::Message::from_frame(&unknown).unwrap();
+    json.clear();
+    message.write_json(&mut json).unwrap();
+    assert_eq!(json, r#"{"message":null,"number":4000,"revision":1,"payload":"01020304"}"#);
+    assert_eq!(message.encode(&mut buf).unwrap(), &unknown[..]);
+    let mut bad = frame.clone();
+    bad[2] ^= 1;
+    assert_eq!(sbf_messages::Message::from_frame(&bad).unwrap_err().kind, UbxErrorKind::BadChecksum);
 }
