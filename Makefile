@@ -226,7 +226,9 @@ build/c/test_stream_smallest: build/c/subset/c/nmea.c tests/c/test_stream.c
 	$(CC) $(SANITIZE) $(SMALLEST) -I build/c/subset/c -o $@ $^
 
 # The UBX pair's tests (runtime/c/test_ubx.c): the shared vectors, then every UBX frame the framer
-# finds in gpsd's logs decoded and encoded back byte for byte.
+# finds in gpsd's logs decoded and encoded back byte for byte. test_ubx decodes through the
+# generated straight-line readers; test_ubx_8 (NMEA_UBX_MAX_ENTRIES=8) without them
+# (NMEA_UBX_NO_FAST_READ), so that the interpreter reads every payload too.
 UBX_LOGS := $(sort $(wildcard tests/data/ubx/*.log)) $(sort $(wildcard tests/data/rtcm3/*.log))
 # The logs of the other protocols the UBX pair types (SkyTraq, SiRF, CASIC, SBF), with their vectors.
 BINARY_LOGS := generated/vectors/binary.jsonl $(sort $(wildcard tests/data/skytraq/*.log)) \
@@ -238,7 +240,8 @@ build/c/test_ubx: build/c/nmea-test.o generated/c/nmea_ubx.c generated/c/nmea_ub
 
 # ... and with every group's array lowered to 8 entries: what has more is refused as too_many_entries.
 build/c/test_ubx_8: build/c/nmea-test.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
-	$(CC) $(CFLAGS) -O0 -DNMEA_UBX_MAX_ENTRIES=8 -I generated/c -o $@ build/c/nmea-test.o generated/c/nmea_ubx.c runtime/c/test_ubx.c
+	$(CC) $(CFLAGS) -O0 -DNMEA_UBX_MAX_ENTRIES=8 -DNMEA_UBX_NO_FAST_READ -I generated/c -o $@ build/c/nmea-test.o \
+		generated/c/nmea_ubx.c runtime/c/test_ubx.c
 
 build/c/test_ubx_san: build/c/nmea-san.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
 	$(CLANG) $(SANITIZE) -I generated/c -o $@ build/c/nmea-san.o generated/c/nmea_ubx.c runtime/c/test_ubx.c

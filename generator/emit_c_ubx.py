@@ -3,7 +3,9 @@ spec/binary/<protocol>/messages: SkyTraq, SiRF, CASIC, SBF): the pair nmea_ubx.h
 the NMEA pair and independent of it (a firmware links it only if it wants UBX). A struct per
 layout, every field typed; a descriptor per layout (its items: kind, bytes, member offset, scale,
 enum, group) that one reader, one writer and one JSON printer interpret (runtime/c/ubx.{h,c},
-pasted in), as STYLE.md's "layouts as data" says; nmea_ubx_decode / nmea_ubx_encode /
+pasted in), as STYLE.md's "layouts as data" says, and for the layouts the receiver sends a
+straight-line reader (_FastReader: fixed offsets) that decode tries first, falling back on the
+interpreter for whatever it does not read whole (errors are the interpreter's); nmea_ubx_decode / nmea_ubx_encode /
 nmea_ubx_json dispatch on the class and id, then the length and version, as Python's ubx.message;
 nmea_ubx_decode_frame_of on another protocol's key (its header's class and id, or its payload's id
 and sub-id), as Python's binary.message, each protocol framed by its row of a framing table
@@ -69,6 +71,7 @@ class _Layout:
         self.items = items
         self.doc = ""
         self.struct = struct        # nmea_ubx_nav_pvt
+        self.cid = ""               # nav_pvt: its member of nmea_ubx_message's union (a layout's, not an entry's)
         self.prefix = prefix        # ubx_nav_pvt (of its tables)
         self.upper = upper          # NAV_PVT (of its defines)
         self.members: list[str] = []
@@ -217,6 +220,180 @@ class _Layout:
         return "\n".join([*self.tables, items, ""])
 
 
+def _load(size: int, big: bool, at: str) -> str:
+    """The C expression of the `size` bytes at `at` as an unsigned integer of the protocol's order."""
+    if size == 1:
+        base, _, offset = at.partition(" + ")
+        return f"{base}[{offset or 0}]"
+    if big:
+        return f"ubx_be({at}, {size})"
+    return {2: f"ubx_u16({at})", 4: f"ubx_u32({at})", 8: f"ubx_u64({at})"}.get(size, f"ubx_le({at}, {size})")
+
+
+class _FastReader:
+    """A layout's straight-line reader (STYLE.md: "a straight-line fast reader only where the
+    benchmark shows it pays": nmea_ubx_decode, bench ours-c-ubx): the struct the interpreter
+    (ubx_read_layout) fills from a payload it reads without an error, the same bytes; for any other
+    payload (short, a group's count out of bounds) it gives up before deciding anything, and the
+    interpreter reads the payload and names the error. Fixed offsets from `q`, which moves on after
+    a group or a field of the bytes left; `left` counts the bytes from `q` on."""
+
+    def __init__(self, layout: "_Layout") -> None:
+        self.layout = layout
+        self.big = layout.big
+        self.lines: list[str] = []
+        self.uses_word = False
+        self.uses_k = False
+        self.uses_done = False
+
+    def _value(self, f: PayloadField, at: str, target: str, indent: str) -> int:
+        """Statements reading field `f` (fixed bits, not a group) at `at` into `target` (its member,
+        `e->` or `m->`); its parts after it. Returns its bytes."""
+        t = f.bit_type
+        assert f.bits is not None
+        size = f.bits // 8
+        name = member(f.id)
+        out = self.lines
+        if t.name in ("ch", "bytes") or t.name == "reserved" and size > 8:
+            out.append(f"{indent}memcpy({target}{name}, {at}, {size});")
+            return size
+        raw = _load(size, self.big, at)
+        if t.name in ("r4", "r8"):
+            bits = "uint32_t" if size == 4 else "uint64_t"
+            out.append(f"{indent}{{ /* a float's bits, as sent */")
+            out.append(f"{indent}    {bits} bits = ({bits}){raw};")
+            out.append(f"{indent}    memcpy(&{target}{name}, &bits, {size});")
+            out.append(f"{indent}}}")
+            return size
+        width = _int_bytes(size)
+        c_type = f"{'int' if t.signed else 'uint'}{8 * width}_t"
+        if f.parts:
+            self.uses_word = True
+            out.append(f"{indent}w = {raw};")
+            out.append(f"{indent}{target}{name} = ({c_type})w;")
+            for part in f.parts:
+                pbits = part.bits or 1
+                mask = f"0x{(1 << pbits) - 1:X}u" if pbits < 64 else "~(uint64_t)0"
+                bits_of = f"(w >> {part.low} & {mask})" if part.low else f"(w & {mask})"
+                pname = member(part.id)
+                if part.type == "bool":
+                    out.append(f"{indent}{target}{pname} = {bits_of} != 0;")
+                    continue
+                ptype = f"{'int' if part.bit_type.signed else 'uint'}{8 * _part_bytes(pbits)}_t"
+                if part.bit_type.signed:
+                    out.append(f"{indent}{target}{pname} = ({ptype})(int64_t)ubx_sign({bits_of}, {pbits});")
+                else:
+                    out.append(f"{indent}{target}{pname} = ({ptype}){bits_of};")
+            return size
+        if t.signed and size != width:
+            out.append(f"{indent}{target}{name} = ({c_type})(int64_t)ubx_sign({raw}, {8 * size});")
+        elif t.signed or size != width or self.big:
+            out.append(f"{indent}{target}{name} = ({c_type}){raw};")
+        else:
+            out.append(f"{indent}{target}{name} = {raw};")
+        return size
+
+    def _flush(self, offset: int) -> None:
+        """`q` moved on past the `offset` bytes read from it."""
+        if offset:
+            self.lines.append(f"    q += {offset};")
+            self.lines.append(f"    left -= {offset};")
+
+    def code(self) -> str:
+        lay = self.layout
+        items = lay.items
+        out = self.lines
+        out.append(f"    memset(m, 0, offsetof({lay.struct}, trailing));")
+        offset = 0        # bytes read from q on, checked (`run` of them)
+        checked = 0
+        for i, item in enumerate(items):
+            following = items[i + 1:]
+            if isinstance(item, PayloadGroup):
+                self._flush(offset)
+                offset = checked = 0
+                self._group(item, following)
+                continue
+            f = item
+            name = member(f.id)
+            if f.bits is None:   # a field of the bytes left: a view
+                self._flush(offset)
+                offset = checked = 0
+                tail = after(following) // 8
+                out.append(f"    m->{name}.ptr = q;")
+                out.append(f"    m->{name}.len = left > {tail} ? left - {tail} : 0;")
+                out.append(f"    q += m->{name}.len;")
+                out.append(f"    left -= m->{name}.len;")
+                continue
+            size = f.bits // 8
+            if f.optional:
+                self._flush(offset)
+                offset = checked = 0
+                self.uses_done = True
+                out.append(f"    if (left < {size})")
+                out.append("        goto done; /* an optional field the payload has not: nothing after it */")
+                out.append(f"    m->has_{name} = true;")
+                self._value(f, "q", "m->", "    ")
+                out.append(f"    q += {size};")
+                out.append(f"    left -= {size};")
+                continue
+            if offset >= checked:   # a run of required fields of fixed offsets: their bytes checked once
+                run = 0
+                for g in items[i:]:
+                    if not isinstance(g, PayloadField) or g.bits is None or g.optional:
+                        break
+                    run += g.bits // 8
+                out.append(f"    if (left < {offset + run})")
+                out.append("        return false;")
+                checked = offset + run
+            self._value(f, f"q + {offset}" if offset else "q", "m->", "    ")
+            offset += size
+        self._flush(offset)
+        if self.uses_done:
+            out.append("done:")
+        out.append("    m->trailing.ptr = q;")
+        out.append("    m->trailing.len = left;")
+        out.append("    return true;")
+        head = [f"static bool {lay.prefix}_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)", "{",
+                f"    {lay.struct} *m = &out->as.{lay.cid};", "    const uint8_t *q = p;", "    size_t left = len;"]
+        if self.uses_word:
+            head.append("    uint64_t w;")
+        if self.uses_k:
+            head.append("    size_t k;")
+        return "\n".join([*head, *out, "}", ""])
+
+    def _group(self, g: PayloadGroup, following: list) -> None:
+        lay = self.layout
+        out = self.lines
+        name = member(g.id)
+        entry_bytes = g.entry_width // 8
+        define = f"NMEA_UBX_{lay.upper}_{g.id.upper()}_MAX"
+        self.uses_k = True
+        out.append("    {")
+        if isinstance(g.count, int):
+            out.append(f"        size_t count = {g.count};")
+        elif g.count:
+            width, _ = lay.counters[g.count]
+            out.append(f"        size_t count = (uint{8 * width}_t)m->{member(g.count)};")
+        else:
+            tail = after(following) // 8
+            out.append(f"        size_t count = left > {tail} ? (left - {tail}) / {entry_bytes} : 0;")
+            out.append(f"        if (count > {g.max})")
+            out.append(f"            count = {g.max};")
+        low = f"count < {g.min} || " if g.min else ""
+        out.append(f"        if ({low}count * {entry_bytes} > left || count > {define})")
+        out.append("            return false;")
+        out.append(f"        for (k = 0; k < count; k++, q += {entry_bytes}) {{")
+        out.append(f"            {lay.struct}_{g.id[:-1] if g.id.endswith('s') else g.id + '_entry'} *e = &m->{name}[k];")
+        offset = 0
+        out.append("            memset(e, 0, sizeof *e); /* (its padding: the stores of its fields replace the rest) */")
+        for f in g.fields:
+            offset += self._value(f, f"q + {offset}" if offset else "q", "e->", "            ")
+        out.append("        }")
+        out.append(f"        left -= count * {entry_bytes};")
+        out.append(f"        m->{name}_count = (uint16_t)count;")
+        out.append("    }")
+
+
 def enum_table(e: EnumDef) -> str:
     """An enum's codes and ids (nmea_ubx_codes), which its fields' JSON prints."""
     rows = ", ".join(f"{{{v.code}, {_c_str(v.id)}}}" for v in e.values)
@@ -267,6 +444,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         for layout in message.layouts:
             cid = layout.id if message.protocol == "ubx" else f"{message.protocol}_{layout.id}"
             code = _Layout(f"nmea_ubx_{cid}", f"ubx_{cid}", layout.items, cid.upper(), message.byte_order == "big")
+            code.cid = cid
             version_at = 0
             if layout.version is not None:
                 version = next(f for f in layout.fields if f.id == "version")
@@ -278,6 +456,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                 key_len=0 if message.header_key else len(message.key),
                 typedefs=[e.typedef(e.doc, False) for e in code.entries] + [code.typedef(title(message, layout), True)],
                 tables="\n".join([*(e.code() for e in code.entries), code.code()]),
+                # a straight-line reader for what the receiver sends (a stream's messages), not
+                # for the commands only a host writes, which the interpreter reads (flash)
+                fast=_FastReader(code).code() if "output" in layout.directions else "",
                 defines=[d for e in code.entries for d in e.defines] + code.defines,
                 length=layout.fixed_width // 8 if layout.fixed_width is not None else -1,
                 version=layout.version if layout.version is not None else -1, version_at=version_at,

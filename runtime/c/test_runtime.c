@@ -312,6 +312,17 @@ static void test_framer_binary(void)
     CHECK_BINARY("\xb5\x62\x01\x02\x00\x08" "ab", "ubx too_long|\x01\x02\x00\x08" "ab|"); /* 2,056 bytes */
 #undef ACK
 #undef RTCM
+#ifdef NMEA_FRAMING_CRC24Q
+    { /* the CRC-24Q table: each byte's CRC by its bitwise definition */
+        unsigned byte, bit;
+        for (byte = 0; byte < 256; byte++) {
+            uint32_t crc = (uint32_t)byte << 16;
+            for (bit = 0; bit < 8; bit++)
+                crc = crc & 0x800000 ? (crc << 1 ^ 0x1864CFB) & 0xFFFFFF : crc << 1;
+            CHECK(FRAME_CRC24Q[byte] == crc);
+        }
+    }
+#endif
 }
 #endif
 

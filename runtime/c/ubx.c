@@ -20,28 +20,60 @@ static bool ubx_fail(nmea_ubx_error *err, nmea_ubx_error_kind kind, const char *
     return false;
 }
 
+/* Two, four and eight bytes at `p`, little endian (the generated fast readers'; one load each
+   where the host is little endian). */
+static inline uint16_t ubx_u16(const uint8_t *p)
+{
+    return (uint16_t)(p[0] | p[1] << 8);
+}
+
+static inline uint32_t ubx_u32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static inline uint64_t ubx_u64(const uint8_t *p)
+{
+    return (uint64_t)ubx_u32(p) | (uint64_t)ubx_u32(p + 4) << 32;
+}
+
 /* Fletcher-8 over `len` bytes (UBX-13003221, "UBX checksum"): CK_A in the low byte. The sums
    wrap modulo a power of two at least 256 (unsigned arithmetic), so their low bytes are the sums
-   modulo 256 without a mask a byte; four bytes a step. */
+   modulo 256 without a mask a byte. A 64-bit host takes eight bytes a step as four 16-bit lanes
+   of even bytes and four of odd ones, each lane its own A (the sum of its bytes) and B (the sum of
+   the A of every step before), kept modulo 256 by a mask so that no lane carries into the next;
+   at the end A is the lanes' sum, and B eight times their B plus each lane's A weighted by the
+   running values of its step that a byte in its place is in (8 for the first byte of a step, 7,
+   ..., 1 for the last): weighted sums of lanes as the top lane of a multiplication. Else four bytes a step, B taking A's four running values at once. Neither
+   waits on a chain of one addition a byte. */
 static unsigned ubx_checksum(const uint8_t *p, size_t len)
 {
-    unsigned a = 0, b = 0;
     size_t i = 0;
-    for (; i + 4 <= len; i += 4) {
-        a += p[i];
-        b += a;
-        a += p[i + 1];
-        b += a;
-        a += p[i + 2];
-        b += a;
-        a += p[i + 3];
-        b += a;
+#if SIZE_MAX > 0xFFFFFFFFu
+    const uint64_t lanes = UINT64_C(0x00FF00FF00FF00FF);
+    uint64_t even = 0, odd = 0, before = 0, a, b;
+    for (; i + 8 <= len; i += 8) {
+        uint64_t w = ubx_u64(p + i);
+        before = (before + even + odd) & lanes;
+        even = (even + (w & lanes)) & lanes;
+        odd = (odd + (w >> 8 & lanes)) & lanes;
     }
+    a = (even + odd) * UINT64_C(0x0001000100010001) >> 48;
+    b = 8 * (before * UINT64_C(0x0001000100010001) >> 48) + (even * UINT64_C(0x0008000600040002) >> 48) +
+        (odd * UINT64_C(0x0007000500030001) >> 48);
+#else
+    unsigned a = 0, b = 0;
+    for (; i + 4 <= len; i += 4) {
+        unsigned x0 = p[i], x1 = p[i + 1], x2 = p[i + 2], x3 = p[i + 3];
+        b += 4 * a + 4 * x0 + 3 * x1 + 2 * x2 + x3;
+        a += x0 + x1 + x2 + x3;
+    }
+#endif
     for (; i < len; i++) {
         a += p[i];
         b += a;
     }
-    return (a & 0xFF) | (b & 0xFF) << 8;
+    return (unsigned)(a & 0xFF) | (unsigned)(b & 0xFF) << 8;
 }
 
 /* The `n` bytes (at most 8) at `p`, little endian (the common widths spelt out: a compiler reads
@@ -53,9 +85,11 @@ static uint64_t ubx_le(const uint8_t *p, size_t n)
     case 1:
         return p[0];
     case 2:
-        return (uint64_t)p[0] | (uint64_t)p[1] << 8;
+        return ubx_u16(p);
     case 4:
-        return (uint64_t)p[0] | (uint64_t)p[1] << 8 | (uint64_t)p[2] << 16 | (uint64_t)p[3] << 24;
+        return ubx_u32(p);
+    case 8:
+        return ubx_u64(p);
     default:
         while (n-- > 0)
             raw = raw << 8 | p[n];
