@@ -145,8 +145,12 @@ _DIGITS = {str(digit): digit for digit in range(10)}
 def whole(number: Any) -> int:
     """int(number) of a sentence's integer field, by one lookup for a Number of one digit as
     received (an AIS sentence's fragment count and fill bits: its message's hot path)."""
-    found = _DIGITS.get(number.text()) if number.__class__ is Number else None
-    return int(number) if found is None else found
+    if number.__class__ is Number:
+        try:
+            return _DIGITS[number._text]  # its text as received (number.text() without its call)
+        except (AttributeError, KeyError):
+            pass
+    return int(number)
 
 
 def _small(number: Any) -> int | None:
@@ -554,6 +558,14 @@ def _value_expr(item: Field, name: str, raw: str, names: dict[str, Any]) -> str:
         return f"{name}_members.get(r := {raw}, r)"
     if type(item) in (Field, Spare):
         return raw
+    if type(item) is Data:
+        return f"format({raw}, '0{width}b')"  # bits_text
+    if type(item) is Text and width % 6 == 0 and width:  # from_raw's steps, their sizes known
+        pad = -width % 24
+        names["b2a_base64"], names["BASE64_TO_TEXT"] = binascii.b2a_base64, _BASE64_TO_TEXT
+        data = f"({raw} << {pad}).to_bytes({(width + pad) // 8}, 'big')" if pad else f"{raw}.to_bytes({width // 8}, 'big')"
+        chars = f"b2a_base64({data}, newline=False)" + (f"[:{width // 6}]" if pad else "")
+        return f"{chars}.translate(BASE64_TO_TEXT).decode('ascii')"
     return f"{name}.from_raw({raw}, {width})"
 
 
@@ -1134,6 +1146,8 @@ _BASE64_PADS = (b"", b"AAA", b"AA", b"A")
 """What a payload of n characters takes to a whole number of base64 groups, by n % 4; the
 bits they add (_BASE64_DROPS) are dropped."""
 _BASE64_DROPS = (0, 18, 12, 6)
+_FILL_TEXTS = tuple(tuple(bits_text(low & ((1 << n) - 1), n) for low in range(32)) for n in range(6))
+"""The fill bits' values of n fill bits as text, by the payload's last five bits."""
 
 
 def _unarmor(payload: str, fill_bits: int) -> tuple[int, int, str]:
@@ -1150,6 +1164,15 @@ def _unarmor(payload: str, fill_bits: int) -> tuple[int, int, str]:
     if fill_bits:
         return value >> fill_bits, len(payload) * 6 - fill_bits, format(value & ((1 << fill_bits) - 1), f"0{fill_bits}b")
     return value, len(payload) * 6, ""
+
+
+def sentence_message(by_type: dict[int, type[Message]], applications: dict[tuple[int, int], type[Application]],
+                     count: Any, payload: str | None, fill_bits: Any) -> Message | None:
+    """The message of an encapsulation sentence (its fragment count, payload and fill bits, as
+    read: Numbers), as decode gives it; None for one sentence of a message of several."""
+    if count is None or whole(count) != 1:
+        return None
+    return decode(by_type, applications, payload or "", 0 if fill_bits is None else whole(fill_bits))
 
 
 def _application(message: Message, applications: dict[tuple[int, int], type[Application]]) -> Application | None:
@@ -1190,7 +1213,7 @@ def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int]
     value >>= _BASE64_DROPS[len(payload) & 3]
     padding = ""
     if fill_bits:
-        padding = format(value & ((1 << fill_bits) - 1), f"0{fill_bits}b")
+        padding = _FILL_TEXTS[fill_bits][value & 31]
         value >>= fill_bits
     length = len(payload) * 6 - fill_bits
     if length < 6:

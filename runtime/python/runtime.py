@@ -121,7 +121,8 @@ def checksum(body: str) -> int:
             shift >>= 1
             value ^= value >> shift
     # then in line, no loop: a sentence is rarely longer
-    value ^= value >> 512
+    if len(body) > 64:
+        value ^= value >> 512
     value ^= value >> 256
     value ^= value >> 128
     value ^= value >> 64
@@ -254,6 +255,8 @@ def assemble(start: str, address: str, fields: list[str], checksum_style: str | 
     ("upper", "lower", "empty" for a bare '*', None for none, or "short_upper", "short_lower":
     one hex digit while the checksum is under 16, as received)."""
     body = ",".join([address, *fields])
+    if checksum_style == "upper":  # the usual case first
+        return f"{start}{body}*{_CHECKSUM_HEX[checksum(body)]}"
     if checksum_style is None:
         return start + body
     if checksum_style == "empty":
