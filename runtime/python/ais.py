@@ -664,12 +664,13 @@ def compile_decoder(cls: type[Message]) -> Any:
     counter = [0]
 
     def build(set_: dict[str, str], trailing: str, pad: str) -> list[str]:
-        """The lines that make the message of the members `set_` (id: local variable), each
-        member set (slots: the generated classes'; a subclass without them keeps its own in its
+        """The lines that end the message `m` (made first, each field's member set as it is read)
+        of the members `set_` (id: its expression, `m.<id>` when set already): each member not yet
+        set then set (slots: the generated classes'; a subclass without them keeps its own in its
         dict)."""
         values = {member: set_.get(member, trailing if member == "trailing" else default)
                   for member, default in members.items()}
-        return [f"{pad}m = new(cls)", *(f"{pad}m.{member} = {value}" for member, value in values.items()),
+        return [*(f"{pad}m.{member} = {value}" for member, value in values.items() if value != f"m.{member}"),
                 f"{pad}return m"]
 
     def generic(items: list[Item], offset: int, set_: dict[str, str], pad: str) -> list[str]:
@@ -719,9 +720,8 @@ def compile_decoder(cls: type[Message]) -> Any:
                     if at:  # `v` holds the bits before the run too
                         raw = f"({raw}) & {(1 << f.width) - 1}"
                     counter[0] += 1
-                    var = f"x{counter[0]}"
-                    out.append(f"{pad}{var} = {_value_expr(f, f'f{counter[0]}', f'({raw})', names)}")
-                    set_[f.id] = var
+                    out.append(f"{pad}m.{f.id} = {_value_expr(f, f'f{counter[0]}', f'({raw})', names)}")
+                    set_[f.id] = f"m.{f.id}"
                     at += f.width
                 offset = end
                 i += len(run)
@@ -759,7 +759,7 @@ def compile_decoder(cls: type[Message]) -> Any:
         return out + build(set_, f'"" if length == {offset} else bits_text(value & ((1 << (length - {offset})) - 1), '
                                  f'length - {offset})', pad)
 
-    code += walk(list(cls.LAYOUT), 0, {}, "    ")
+    code += ["    m = new(cls)", *walk(list(cls.LAYOUT), 0, {}, "    ")]
     source = "\n".join(code)
     exec(source, names)  # code built above from the spec's layout, never from input
     return names["decode"]
@@ -810,15 +810,14 @@ def _write_field(item: Field, name: str, names: dict[str, Any], pad: str) -> lis
     names[name] = item
     code: list[str] = []
     code.append(f"    value = record.{item.id}")
-    fallback = f"bits = bits << {width} | {name}.to_raw(value, where or _where(record))[0]"
+    fallback = f"{name}.to_raw(value, where or _where(record))[0]"
     if isinstance(item, Unsigned):
         low, high = item.bounds(width)
         mask = f" & {(1 << width) - 1}" if low < 0 else ""  # a negative number's two's complement
         if item.divisor == 1 and isinstance(item.base, int) and not item.special:
             # a whole number in range (a float: to_raw, which takes whole ones only)
             raw = f"(raw := value - {item.base})" if item.base else "value"
-            fast = (f"value.__class__ is int and {low} <= {raw} <= {high}",
-                    f"bits = bits << {width} | {'raw' if item.base else 'value'}{mask}")
+            fast = (f"value.__class__ is int and {low} <= {raw} <= {high}", f"{'raw' if item.base else 'value'}{mask}")
         else:
             if item.divisor == 1 and isinstance(item.base, int):
                 number, numeric = f"value - {item.base}" if item.base else "value", "value.__class__ is int"
@@ -827,11 +826,19 @@ def _write_field(item: Field, name: str, names: dict[str, Any], pad: str) -> lis
                 number = f"round({offset_} * {item.divisor})" if item.divisor != 1 else f"round({offset_})"
                 numeric = "value.__class__ is float or value.__class__ is int"  # a decoded value: a float
             special = " else value.raw if value.__class__ is Special" if item.special else ""
-            code.append(f"    raw = {number} if {numeric}{special} else None")
-            fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw{mask}"
+            # any other value: a number below the range, so that to_raw says what is wrong
+            code.append(f"    raw = {number} if {numeric}{special} else {low - 1}")
+            fast = f"{low} <= raw <= {high}", f"raw{mask}"
     elif isinstance(item, Flag):
-        fast = "value is True or value is False", "bits = bits << 1 | value"
-    elif isinstance(item, Text):  # text of its whole width: the field's to_raw checks it
+        fast = "value is True or value is False", "value"
+    elif type(item) is Text and width % 6 == 0:  # six-bit text of its whole width, as to_raw reads it
+        chars, zeros = width // 6, -(width // 6) % 4
+        names["a2b_base64"], names["TEXT_TO_BASE64"], names["TEXT_CHARS"] = \
+            binascii.a2b_base64, _TEXT_TO_BASE64, _TEXT_CHARS
+        data = "value.encode('ascii').translate(TEXT_TO_BASE64)" + (f" + {b'A' * zeros!r}" if zeros else "")
+        number = f"int.from_bytes(a2b_base64({data}, strict_mode=True), 'big')" + (f" >> {6 * zeros}" if zeros else "")
+        fast = f"value.__class__ is str and len(value) == {chars} and TEXT_CHARS.issuperset(value)", number
+    elif isinstance(item, Text):  # the field's to_raw checks it
         fast = None
     elif isinstance(item, Code):  # a member of the field's enum whose code fits; to_raw for any other
         codes: dict[Any, int] = {}  # by each member's value
@@ -843,26 +850,48 @@ def _write_field(item: Field, name: str, names: dict[str, Any], pad: str) -> lis
             if 0 <= code_value <= (1 << width) - 1:
                 codes[member._value_] = code_value
         names[f"{name}_enum"], names[f"{name}_codes"] = item.enum, codes
-        fast = (f"value.__class__ is {name}_enum and (raw := {name}_codes.get(value._value_)) is not None",
-                f"bits = bits << {width} | raw")
+        fast = (f"value.__class__ is {name}_enum and (raw := {name}_codes.get(value._value_)) is not None", "raw")
     else:
-        fast = f"value.__class__ is int and 0 <= value <= {(1 << width) - 1}", f"bits = bits << {width} | value"
+        fast = f"value.__class__ is int and 0 <= value <= {(1 << width) - 1}", "value"
     if fast is None:
-        code.append(f"    {fallback}")
+        code.append(f"    bits = bits << {width} | {fallback}")
     else:
-        code += [f"    if {fast[0]}:", f"        {fast[1]}", "    else:", f"        {fallback}"]
+        code.append(f"    bits = bits << {width} | ({fast[1]} if {fast[0]} else {fallback})")
     return [pad + line[4:] for line in code]
 
 
 def compile_encoder(items: tuple[Item, ...]) -> Any:
-    """write(record, where): the bits of a message's layout `items` and their count, as
-    write_items writes them, by straight-line code: each field in line (_write_field) or by its
-    own to_raw (a variable width, data an application carries), a choice by the raw value of its
-    selector's member, the message ending at an optional field left None; from a group on,
-    write_items. `where` None: the errors' address is made only for an error."""
+    """encode(record): a message's armored payload and fill bits (Message.encode), its layout
+    `items` written as write_items writes them, by straight-line code: each field in line
+    (_write_field) or by its own to_raw (a variable width, data an application carries), a
+    choice by the raw value of its selector's member, the message ending at an optional field
+    left None; from a group on, write_items. Then its trailing bits, its fill bits (padding) and
+    the armor, in line wherever the layout ends. The errors' address is made only for an error."""
     names: dict[str, Any] = {"Special": Special, "_where": _where, "BitWriter": BitWriter,
-                             "write_items": write_items}
+                             "write_items": write_items, "_bad_value": _bad_value,
+                             "b2a_base64": binascii.b2a_base64, "BASE64_TO_ARMOR": _BASE64_TO_ARMOR}
     counter = [0]
+
+    def finish(length: str, pad: str) -> list[str]:
+        """The lines that end the message of `bits` and `length` (an expression): its trailing
+        bits and fill bits added (as BitWriter.put_bits would), its armor returned."""
+        return [f"{pad}length = {length}",
+                f"{pad}trailing = record.trailing",
+                f"{pad}if trailing:",
+                f"{pad}    bits = bits << len(trailing) | int(trailing, 2) & ((1 << len(trailing)) - 1)",
+                f"{pad}    length += len(trailing)",
+                f"{pad}fill = -length % 6",
+                f"{pad}padding = record.padding",
+                f"{pad}if padding == \"\":",
+                f"{pad}    bits <<= fill",
+                f"{pad}elif padding.strip(\"01\") or len(padding) != fill:",
+                f"{pad}    raise _bad_value(_where(record), \"padding\", padding, f\"{{fill}} bits\")",
+                f"{pad}else:",
+                f"{pad}    bits = bits << fill | int(padding, 2)",
+                f"{pad}length += fill",
+                f"{pad}zeros = -length % 24  # base64 takes whole bytes, three for four characters",
+                f"{pad}data = (bits << zeros).to_bytes((length + zeros) // 8, \"big\")",
+                f"{pad}return b2a_base64(data, newline=False)[:length // 6].translate(BASE64_TO_ARMOR).decode(\"ascii\"), fill"]
 
     def walk(items: list[Item], static: int, pad: str) -> list[str]:
         """The lines that write `items`, `static` bits counted but not yet added to `length`."""
@@ -871,7 +900,7 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
             counter[0] += 1
             name = f"f{counter[0]}"
             if isinstance(item, Field) and item.optional:
-                out += [f"{pad}if record.{item.id} is None:", f"{pad}    return bits, length + {static}"]
+                out += [f"{pad}if record.{item.id} is None:", *finish(f"length + {static}", pad + "    ")]
             if _writes_in_line(item, optional=True):
                 assert isinstance(item, Field) and item.width is not None
                 out += _write_field(item, name, names, pad)
@@ -906,12 +935,12 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                 names[name] = tuple(items[i:])
                 return out + [f"{pad}writer = BitWriter()", f"{pad}writer.put(bits, length + {static})",
                               f"{pad}write_items({name}, record, writer, where or _where(record))",
-                              f"{pad}return writer.value, writer.length"]
-        return out + [f"{pad}return bits, length + {static}"]
+                              f"{pad}bits = writer.value", *finish("writer.length", pad)]
+        return out + finish(f"length + {static}", pad)
 
-    code = ["def write(record, where):", "    bits = length = 0", *walk(list(items), 0, "    ")]
+    code = ["def encode(record):", "    bits = length = 0", "    where = None", *walk(list(items), 0, "    ")]
     exec("\n".join(code), names)  # code built above from the spec's layout, never from input
-    return names["write"]
+    return names["encode"]
 
 
 def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteWriter, where: str) -> bool:
@@ -1081,8 +1110,6 @@ class Message(Record):
     data member is then None)."""
 
     TYPES: ClassVar[tuple[int, ...]]
-    _encoder: ClassVar[Any]
-    """The class's compiled writer (compile_encoder), compiled on first use."""
     _decoder: ClassVar[Any]
     """decode(value, length, padding): the class's compiled decoder (compile_decoder), compiled
     on first use (not when the package loads)."""
@@ -1096,26 +1123,20 @@ class Message(Record):
 
             cls._decoder = first
 
+            def first_encode(self: Message) -> tuple[str, int]:
+                encode = compile_encoder(cls.LAYOUT)
+                encode.__doc__ = first_encode.__doc__
+                cls.encode = encode  # type: ignore[method-assign]
+                return encode(self)  # type: ignore[no-any-return]
+
+            first_encode.__doc__ = Message.encode.__doc__
+            cls.encode = first_encode  # type: ignore[method-assign]
+
     def encode(self) -> tuple[str, int]:
-        """The armored payload and its fill bits."""
-        cls = type(self)
-        encoder = cls.__dict__.get("_encoder")
-        if encoder is None:
-            encoder = cls._encoder = compile_encoder(cls.LAYOUT)
-        value, length = encoder(self, None)  # Record.write's fields, compiled
-        trailing, padding = self.trailing, self.padding
-        if trailing:  # as BitWriter.put_bits
-            raw = int(trailing, 2)
-            value = value << len(trailing) | raw & ((1 << len(trailing)) - 1)
-            length += len(trailing)
-        fill = -length % 6
-        if padding == "":
-            value <<= fill
-        else:
-            if padding.strip("01") or len(padding) != fill:
-                raise _bad_value(_where(self), "padding", padding, f"{fill} bits")
-            value = value << fill | int(padding, 2)
-        return armor(value, length + fill), fill
+        """The armored payload and its fill bits (each message class's own encode, compiled on
+        first use: compile_encoder)."""
+        encode = compile_encoder(type(self).LAYOUT)
+        return encode(self)  # type: ignore[no-any-return]
 
     def to_dict(self) -> dict[str, Any]:
         """As Record.to_dict, the application's (when there is one) before trailing, then padding."""

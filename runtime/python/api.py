@@ -142,7 +142,7 @@ def _encapsulation(line: Any) -> Any:
     payload = line[14 : star - 2]
     if (
         fill is None
-        or star > _MAX_STAR
+        or star > 129  # a longer line (up to runtime.MAX_LINE): the general path
         or not payload
         or "," in payload
         or "*" in payload
@@ -150,7 +150,16 @@ def _encapsulation(line: Any) -> Any:
         or not payload.isprintable()
     ):
         return _encapsulation_fields(line)
-    computed = runtime.checksum(line[1:star])
+    # runtime.checksum in line, for up to 128 bytes known to be ASCII
+    value = int.from_bytes(line[1:star].encode(), "little")
+    if star > 65:
+        value ^= value >> 512
+    value ^= value >> 256
+    value ^= value >> 128
+    value ^= value >> 64
+    value ^= value >> 32
+    value ^= value >> 16
+    computed = (value ^ value >> 8) & 0xFF
     sent = line[star + 1 :]
     checksum = (
         "upper" if sent == _UPPER_HEX[computed] else "lower" if sent == _LOWER_HEX[computed] else None

@@ -2220,51 +2220,84 @@ class Layout:
     def _compile_writer(self) -> Callable[[Any], list[str]]:
         """write(sentence): the wire text of every field after the address, optional trailing
         fields up to the last one present."""
-        names: dict[str, Any] = {"text_of": text_of, "pair": _coordinate_pair, "ABSENT": ABSENT}
+        names: dict[str, Any] = {
+            "text_of": text_of,
+            "pair": _coordinate_pair,
+            "ABSENT": ABSENT,
+            "_Value": _Value,
+        }
 
         def texts(spec: FieldSpec, value: str) -> str:
             return f"*pair({value})" if spec.width == 2 else f"text_of({value})"
 
-        code = ["def write(s):", "    out = []"]
+        def in_line(spec: FieldSpec, value: str) -> str:
+            """text_of's cases in line, but a value without its text (an AttributeError: the
+            slower list then)."""
+            if spec.width == 2:
+                return f"*pair({value})"
+            member = ""
+            enum = getattr(spec, "enum", None)
+            if enum is not None and not issubclass(enum, str) and enum.text is CodeEnum.text:
+                names[f"E_{spec.id}"] = enum  # a member's text: its code
+                member = f"v._value_ if v.__class__ is E_{spec.id} else "
+            return (
+                f'("" if (v := {value}) is None else v if v.__class__ is str '
+                f"else v._text if isinstance(v, _Value) else {member}text_of(v))"
+            )
+
+        def body(texts: Callable[[FieldSpec, str], str]) -> list[str]:
+            """The lines of write after its first, each field's text by `texts`."""
+            code = ["    out = []"]
+            for item in self.items:
+                if isinstance(item, Group):
+                    if item.entry is None:
+                        code.append(f"    out += [{texts(item.fields[0], 'e')} for e in s.{item.id}]")
+                    else:
+                        entry = ", ".join(texts(f, f"e.{f.id}") for f in item.fields)
+                        code += [f"    for e in s.{item.id}:", f"        out += [{entry}]"]
+                elif not item.optional_index:
+                    code.append(f"    out += [{texts(item, f's.{item.id}')}]")
+            if trailing:
+                for n, item in enumerate(reversed(trailing)):
+                    code += [
+                        f"    {'if' if n == 0 else 'elif'} s.{item.id} is not ABSENT:",
+                        f"        last = {item.optional_index}",
+                    ]
+                code += ["    else:", "        last = 0"]
+                for item in trailing:
+                    code += [
+                        f"    if last >= {item.optional_index}:",
+                        f"        out += [{texts(item, f's.{item.id}')}]",
+                    ]
+            code.append("    return out")
+            # consecutive fields' texts in one list display (most layouts: all of them, returned)
+            merged: list[str] = []
+            for line in code:
+                if (
+                    merged
+                    and line.startswith("    out += [")
+                    and merged[-1].startswith("    out += [")
+                    and " for e in " not in line + merged[-1]  # a group's comprehension
+                ):
+                    merged[-1] = merged[-1][:-1] + ", " + line[len("    out += [") :]
+                else:
+                    merged.append(line)
+            if merged == ["    out = []", merged[1], "    return out"] and merged[1].startswith("    out += ["):
+                merged = ["    return " + merged[1][len("    out += ") :]]
+            return merged
+
         trailing = [
             item for item in self.items if isinstance(item, FieldSpec) and item.optional_index
         ]
-        for item in self.items:
-            if isinstance(item, Group):
-                if item.entry is None:
-                    code.append(f"    out += [{texts(item.fields[0], 'e')} for e in s.{item.id}]")
-                else:
-                    entry = ", ".join(texts(f, f"e.{f.id}") for f in item.fields)
-                    code += [f"    for e in s.{item.id}:", f"        out += [{entry}]"]
-            elif not item.optional_index:
-                code.append(f"    out += [{texts(item, f's.{item.id}')}]")
-        if trailing:
-            for n, item in enumerate(reversed(trailing)):
-                code += [
-                    f"    {'if' if n == 0 else 'elif'} s.{item.id} is not ABSENT:",
-                    f"        last = {item.optional_index}",
-                ]
-            code += ["    else:", "        last = 0"]
-            for item in trailing:
-                code += [
-                    f"    if last >= {item.optional_index}:",
-                    f"        out += [{texts(item, f's.{item.id}')}]",
-                ]
-        code.append("    return out")
-        # consecutive fields' texts in one list display (most layouts: all of them, returned)
-        merged: list[str] = []
-        for line in code:
-            if (
-                merged
-                and line.startswith("    out += [")
-                and merged[-1].startswith("    out += [")
-                and " for e in " not in line + merged[-1]  # a group's comprehension
-            ):
-                merged[-1] = merged[-1][:-1] + ", " + line[len("    out += [") :]
-            else:
-                merged.append(line)
-        if merged[1:] == ["    out = []", merged[2], "    return out"] and merged[2].startswith("    out += ["):
-            merged[1:] = ["    return " + merged[2][len("    out += ") :]]
+        # the texts in line first; a value that has not worked its text out yet, by text_of
+        merged = [
+            "def write(s):",
+            "    try:",
+            *("    " + line for line in body(in_line)),
+            "    except AttributeError:",
+            "        pass",
+            *body(texts),
+        ]
         exec("\n".join(merged), names)  # noqa: S102 (source made above from the layout's own items)
         write: Callable[[Any], list[str]] = names["write"]
         return write
@@ -2278,9 +2311,13 @@ class Layout:
             return assemble_text(address, with_problems(write(s), s.problems), s.as_received)
 
         def standard(s: Any) -> str:
-            return assemble(
-                start, s.talker + suffix, with_problems(write(s), s.problems), s.checksum
-            )
+            fields = write(s)
+            if s.problems:
+                fields = with_problems(fields, s.problems)
+            if s.checksum == "upper":  # assemble's usual case in line
+                body = ",".join([s.talker + suffix, *fields])
+                return f"{start}{body}*{_CHECKSUM_HEX[checksum(body)]}"
+            return assemble(start, s.talker + suffix, fields, s.checksum)
 
         def proprietary(s: Any) -> str:
             return assemble(start, address, with_problems(write(s), s.problems), s.checksum)
