@@ -802,9 +802,10 @@ def _writes_in_line(item: Item, optional: bool = False) -> bool:
             and item.width is not None and (optional or not item.optional))
 
 
-def _write_field(item: Field, name: str, names: dict[str, Any], pad: str) -> list[str]:
+def _write_field(item: Field, name: str, names: dict[str, Any], pad: str, into: str | None = None) -> list[str]:
     """The lines that put `item`'s bits below `bits` (`record` the message, `where` the errors'
-    address or None), `name` its name in `names`."""
+    address or None), `name` its name in `names`; `into`: the lines that set that variable to
+    them instead (to_raw's raw integer)."""
     width = item.width
     assert width is not None
     names[name] = item
@@ -853,10 +854,8 @@ def _write_field(item: Field, name: str, names: dict[str, Any], pad: str) -> lis
         fast = (f"value.__class__ is {name}_enum and (raw := {name}_codes.get(value._value_)) is not None", "raw")
     else:
         fast = f"value.__class__ is int and 0 <= value <= {(1 << width) - 1}", "value"
-    if fast is None:
-        code.append(f"    bits = bits << {width} | {fallback}")
-    else:
-        code.append(f"    bits = bits << {width} | ({fast[1]} if {fast[0]} else {fallback})")
+    raw = fallback if fast is None else f"({fast[1]} if {fast[0]} else {fallback})"
+    code.append(f"    {into} = {raw}" if into else f"    bits = bits << {width} | {raw}")
     return [pad + line[4:] for line in code]
 
 
@@ -871,6 +870,7 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                              "write_items": write_items, "_bad_value": _bad_value,
                              "b2a_base64": binascii.b2a_base64, "BASE64_TO_ARMOR": _BASE64_TO_ARMOR}
     counter = [0]
+    by_id = {f.id: f for f in flat_fields(items)}  # as Record.field finds them
 
     def finish(length: str, pad: str) -> list[str]:
         """The lines that end the message of `bits` and `length` (an expression): its trailing
@@ -878,7 +878,8 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
         return [f"{pad}length = {length}",
                 f"{pad}trailing = record.trailing",
                 f"{pad}if trailing:",
-                f"{pad}    bits = bits << len(trailing) | int(trailing, 2) & ((1 << len(trailing)) - 1)",
+                f"{pad}    raw = int(trailing, 2)",
+                f"{pad}    bits = bits << len(trailing) | raw & ((1 << len(trailing)) - 1)",
                 f"{pad}    length += len(trailing)",
                 f"{pad}fill = -length % 6",
                 f"{pad}padding = record.padding",
@@ -911,14 +912,30 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                 if isinstance(item, Data):
                     out += [f"{pad}if value is None and record.application is not None:",
                             f"{pad}    value = record.application.bits(where or _where(record))"]
+                fallback = f"{name}.to_raw(value, where or _where(record))"
                 if isinstance(item, Bitfield):
                     out.append(f"{pad}raw, width = {name}.word(record, where or _where(record)), {item.width or 0}")
+                elif type(item) is Data:  # bits as text, as to_raw reads them
+                    fixed = f" and len(value) == {item.width}" if item.width is not None else ""
+                    out.append(f"{pad}raw, width = (int(value, 2) if value else 0, len(value)) "
+                               f"if value.__class__ is str and not value.strip('01'){fixed} else {fallback}")
+                elif type(item) is Text and item.width is None:  # six-bit text, as to_raw reads it
+                    names.update(a2b_base64=binascii.a2b_base64, TEXT_TO_BASE64=_TEXT_TO_BASE64,
+                                 TEXT_CHARS=_TEXT_CHARS, PADS=_BASE64_PADS, DROPS=_BASE64_DROPS)
+                    data = "value.encode('ascii').translate(TEXT_TO_BASE64) + PADS[len(value) & 3]"
+                    out.append(f"{pad}raw, width = (int.from_bytes(a2b_base64({data}, strict_mode=True), 'big') "
+                               f">> DROPS[len(value) & 3], len(value) * 6) "
+                               f"if value.__class__ is str and TEXT_CHARS.issuperset(value) else {fallback}")
                 else:
-                    out.append(f"{pad}raw, width = {name}.to_raw(value, where or _where(record))")
+                    out.append(f"{pad}raw, width = {fallback}")
                 out += [f"{pad}bits = bits << width | raw & ((1 << width) - 1)", f"{pad}length += width"]
             elif isinstance(item, Choice):
                 names[name] = item
-                out.append(f"{pad}r = record.field({item.by!r}).to_raw(record.{item.by}, where or _where(record))[0]")
+                selector = by_id[item.by]
+                if _writes_in_line(selector, optional=True):  # its raw value as _write_field writes it
+                    out += _write_field(selector, f"{name}_by", names, pad, into="r")
+                else:
+                    out.append(f"{pad}r = record.field({item.by!r}).to_raw(record.{item.by}, where or _where(record))[0]")
                 default = next((c for c in item.cases if not c.values and c.range is None), None)
                 first = True
                 for case in item.cases:
@@ -1191,9 +1208,16 @@ def sentence_message(by_type: dict[int, type[Message]], applications: dict[tuple
                      count: Any, payload: str | None, fill_bits: Any) -> Message | None:
     """The message of an encapsulation sentence (its fragment count, payload and fill bits, as
     read: Numbers), as decode gives it; None for one sentence of a message of several."""
-    if count is None or whole(count) != 1:
-        return None
-    return decode(by_type, applications, payload or "", 0 if fill_bits is None else whole(fill_bits))
+    try:  # whole() in line for the usual texts ("1", a digit)
+        fill = _DIGITS[fill_bits._text] if count._text == "1" and count.__class__ is Number \
+            and fill_bits.__class__ is Number else -1
+    except (AttributeError, KeyError):
+        fill = -1
+    if fill < 0:
+        if count is None or whole(count) != 1:
+            return None
+        fill = 0 if fill_bits is None else whole(fill_bits)
+    return decode(by_type, applications, payload or "", fill)
 
 
 def _application(message: Message, applications: dict[tuple[int, int], type[Application]]) -> Application | None:
@@ -1222,21 +1246,22 @@ def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int]
     """The message of an armored payload, as the class its type number names in `by_type`, with
     the application of `applications` its data bits carry."""
     # _unarmor in line (the hot path): base64 takes whole groups of four characters
+    size = len(payload)
     try:
-        if not 0 <= fill_bits <= 5 or fill_bits and not payload:
+        if not 0 <= fill_bits <= 5 or fill_bits and not size:
             raise ValueError
         value = int.from_bytes(_a2b_base64(payload.encode("ascii").translate(_ARMOR_TO_BASE64)
-                                           + _BASE64_PADS[len(payload) & 3], strict_mode=True), "big")
+                                           + _BASE64_PADS[size & 3], strict_mode=True), "big")
     except (ValueError, UnicodeEncodeError):  # binascii.Error is a ValueError
         value = -1
     if value < 0:
         _unarmor(payload, fill_bits)  # raises bad_armor, saying why
-    value >>= _BASE64_DROPS[len(payload) & 3]
+    value >>= _BASE64_DROPS[size & 3]
     padding = ""
     if fill_bits:
         padding = _FILL_TEXTS[fill_bits][value & 31]
         value >>= fill_bits
-    length = len(payload) * 6 - fill_bits
+    length = size * 6 - fill_bits
     if length < 6:
         BitReader(value, length, "AIS").peek(0, 6, "message_type")  # raises short_payload
     message_type = value >> (length - 6)

@@ -254,7 +254,11 @@ def assemble(start: str, address: str, fields: list[str], checksum_style: str | 
     """The sentence text: start, address, fields and the checksum written in `checksum_style`
     ("upper", "lower", "empty" for a bare '*', None for none, or "short_upper", "short_lower":
     one hex digit while the checksum is under 16, as received)."""
-    body = ",".join([address, *fields])
+    return checksummed(start, ",".join([address, *fields]), checksum_style)
+
+
+def checksummed(start: str, body: str, checksum_style: str | None) -> str:
+    """The sentence of `body` (address and fields), as assemble writes it."""
     if checksum_style == "upper":  # the usual case first
         return f"{start}{body}*{_CHECKSUM_HEX[checksum(body)]}"
     if checksum_style is None:
@@ -2080,6 +2084,23 @@ class Group:
             self.width += f.width
 
 
+def _in_line(spec: FieldSpec, value: str, names: dict[str, Any]) -> str:
+    """The expression of the wire text of `spec`'s `value` (an expression) with text_of's cases
+    in line, a value without its text raising AttributeError (the caller then calls text_of);
+    the names it uses put into `names` (text_of, _Value, the field's enum)."""
+    if spec.width == 2:
+        return f"*pair({value})"
+    member = ""
+    enum = getattr(spec, "enum", None)
+    if enum is not None and not issubclass(enum, str) and enum.text is CodeEnum.text:
+        names[f"E_{spec.id}"] = enum  # a member's text: its code
+        member = f"v._value_ if v.__class__ is E_{spec.id} else "
+    return (
+        f'("" if (v := {value}) is None else v if v.__class__ is str '
+        f"else v._text if isinstance(v, _Value) else {member}text_of(v))"
+    )
+
+
 class Layout:
     """What the generated class of a sentence layout says of its wire form: the sentence id, its
     kind ("standard", "proprietary" or "text"), its start ('$' or '!'), how many wire fields the
@@ -2102,6 +2123,7 @@ class Layout:
         "field_ids",
         "parse",
         "write",
+        "joined",
         "_json_writers",
     )
 
@@ -2128,6 +2150,7 @@ class Layout:
                     item.ignore_case = True  # a text command's words match ignoring case
         self.parse: Callable[..., Any] = self._compile()
         self.write: Callable[[Any], list[str]] = self._compile_writer()
+        self.joined: Callable[[Any, str], str] | None = self._compile_joined()
         # json(sentence, values) for the texts and the values, each compiled on first use.
         self._json_writers: list[Callable[[Any], str] | None] = [None, None]
 
@@ -2231,19 +2254,7 @@ class Layout:
             return f"*pair({value})" if spec.width == 2 else f"text_of({value})"
 
         def in_line(spec: FieldSpec, value: str) -> str:
-            """text_of's cases in line, but a value without its text (an AttributeError: the
-            slower list then)."""
-            if spec.width == 2:
-                return f"*pair({value})"
-            member = ""
-            enum = getattr(spec, "enum", None)
-            if enum is not None and not issubclass(enum, str) and enum.text is CodeEnum.text:
-                names[f"E_{spec.id}"] = enum  # a member's text: its code
-                member = f"v._value_ if v.__class__ is E_{spec.id} else "
-            return (
-                f'("" if (v := {value}) is None else v if v.__class__ is str '
-                f"else v._text if isinstance(v, _Value) else {member}text_of(v))"
-            )
+            return _in_line(spec, value, names)
 
         def body(texts: Callable[[FieldSpec, str], str]) -> list[str]:
             """The lines of write after its first, each field's text by `texts`."""
@@ -2302,22 +2313,41 @@ class Layout:
         write: Callable[[Any], list[str]] = names["write"]
         return write
 
+    def _compile_joined(self) -> Callable[[Any, str], str] | None:
+        """joined(sentence, address): the address and every field's text, joined by commas, in one
+        f-string (write's texts in line); None for a layout with a group, optional fields or a
+        field of two."""
+        fields = [item for item in self.items if isinstance(item, FieldSpec)]
+        if len(fields) != len(self.items) or any(f.optional_index or f.width != 1 for f in fields):
+            return None
+        names: dict[str, Any] = {"text_of": text_of, "_Value": _Value, "write": self.write}
+        texts = "".join(f",{{{_in_line(f, f's.{f.id}', names)}}}" for f in fields)
+        code = [
+            "def joined(s, address):",
+            "    try:",
+            f"        return f'{{address}}{texts}'",
+            "    except AttributeError:  # a value that has not worked its text out yet",
+            "        return ','.join([address, *write(s)])",
+        ]
+        exec("\n".join(code), names)  # noqa: S102 (source made above from the layout's own items)
+        joined: Callable[[Any, str], str] = names["joined"]
+        return joined
+
     def sentence_writer(self, address: str) -> Callable[[Any], str]:
         """to_sentence(sentence): its text (see Sentence.to_sentence), `address` that of a
         proprietary sentence or text command."""
-        write, start, suffix = self.write, self.start, self.sentence
+        write, joined, start, suffix = self.write, self.joined, self.start, self.sentence
 
         def text_command(s: Any) -> str:
             return assemble_text(address, with_problems(write(s), s.problems), s.as_received)
 
         def standard(s: Any) -> str:
-            fields = write(s)
-            if s.problems:
-                fields = with_problems(fields, s.problems)
-            if s.checksum == "upper":  # assemble's usual case in line
-                body = ",".join([s.talker + suffix, *fields])
+            if joined is None or s.problems:
+                return assemble(start, s.talker + suffix, with_problems(write(s), s.problems), s.checksum)
+            body = joined(s, s.talker + suffix)
+            if s.checksum == "upper":  # checksummed's usual case in line
                 return f"{start}{body}*{_CHECKSUM_HEX[checksum(body)]}"
-            return assemble(start, s.talker + suffix, fields, s.checksum)
+            return checksummed(start, body, s.checksum)
 
         def proprietary(s: Any) -> str:
             return assemble(start, address, with_problems(write(s), s.problems), s.checksum)
