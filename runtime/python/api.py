@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from dataclasses import dataclass, field
 from typing import Any
@@ -138,7 +139,7 @@ def _encapsulation(line: Any) -> Any:
     if head is None:
         return _encapsulation_fields(line)
     star = len(line) - 3
-    fill = head[6].get(line[star - 2 : star + 1])  # ",0*": a fill text read before
+    fill = head[1].get(line[star - 2 : star + 1])  # ",0*": a fill text read before
     payload = line[14 : star - 2]
     if (
         fill is None
@@ -166,7 +167,7 @@ def _encapsulation(line: Any) -> Any:
     )
     if checksum is None:
         return None
-    return head[0](head[1], head[2], head[3], head[4], head[5], payload, fill, [], checksum)
+    return head[0](payload, fill, checksum)
 
 
 def _encapsulation_fields(line: Any) -> Any:
@@ -215,6 +216,7 @@ def _learn(line: str, sentence: Any) -> None:
     cls = type(sentence)
     layout = cls.LAYOUT
     payload = layout.items[4] if len(layout.items) == 6 else None
+    members = ["talker", *layout.field_ids, "problems", "checksum"]
     if (
         layout.kind != "standard"
         or layout.group is not None
@@ -223,21 +225,30 @@ def _learn(line: str, sentence: Any) -> None:
         or type(payload) is not runtime.TextField
         or payload.max_length is not None
         or line[:14].count(",") != 5
+        or [f.name for f in dataclasses.fields(cls)] != members
+        or hasattr(cls, "__post_init__")
     ):
         return
     fills = _FILLS.setdefault(cls, {})
     star = len(line) - 3
     fills[line[star - 2 : star + 1]] = getattr(sentence, layout.field_ids[5])
-    first = tuple(getattr(sentence, name) for name in layout.field_ids[:4])
-    _HEADS[line[:14]] = (cls, sentence.talker, *first, fills)
+    # make(payload, fill_bits, checksum): the sentence as cls() makes it, its first members those
+    # read from this start
+    names = {f"v{n}": getattr(sentence, member) for n, member in enumerate(members[:5])}
+    names.update(new=object.__new__, cls=cls)
+    values = [*(f"v{n}" for n in range(5)), "payload", "fill", "[]", "checksum"]
+    code = ["def make(payload, fill, checksum):", "    s = new(cls)"]
+    code += [f"    s.{member} = {value}" for member, value in zip(members, values)]
+    exec("\n".join([*code, "    return s"]), names)  # noqa: S102 (made from the class's own members)
+    _HEADS[line[:14]] = (names["make"], fills)
 
 
 _ENCAPSULATION_CLASSES: dict[str, Any] = {}
 """The class of each `!` address the fast path has read (AIVDM: Vdm)."""
 _MAX_STAR = runtime.MAX_LINE - 3
 _HEADS: dict[str, tuple[Any, ...]] = {}
-"""The starts _encapsulation reads (`!AIVDM,1,1,,A,`): (class, talker, its first four fields' values,
-the fill bits' values by text, as `,0*`), as _learn keeps them."""
+"""The starts _encapsulation reads (`!AIVDM,1,1,,A,`): (the function that makes a sentence of
+that start, the fill bits' values by text, as `,0*`), as _learn keeps them."""
 _MAX_HEADS = 256
 _FILLS: dict[Any, dict[str, Any]] = {}
 """The fill bits' values of each class in _HEADS, by text (`,0*`)."""

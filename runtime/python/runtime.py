@@ -2293,7 +2293,8 @@ class Layout:
                     merged[-1] = merged[-1][:-1] + ", " + line[len("    out += [") :]
                 else:
                     merged.append(line)
-            if merged == ["    out = []", merged[1], "    return out"] and merged[1].startswith("    out += ["):
+            single = len(merged) == 3 and merged[0] == "    out = []" and merged[2] == "    return out"
+            if single and merged[1].startswith("    out += ["):
                 merged = ["    return " + merged[1][len("    out += ") :]]
             return merged
 
