@@ -872,10 +872,21 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
     counter = [0]
     by_id = {f.id: f for f in flat_fields(items)}  # as Record.field finds them
 
-    def finish(length: str, pad: str) -> list[str]:
-        """The lines that end the message of `bits` and `length` (an expression): its trailing
-        bits and fill bits added (as BitWriter.put_bits would), its armor returned."""
-        return [f"{pad}length = {length}",
+    def finish(length: str, pad: str, known: int | None = None) -> list[str]:
+        """The lines that end the message of `bits` and `length` (an expression; `known`: its
+        value, when the layout's path so far has fixed widths only): its trailing bits and fill
+        bits added (as BitWriter.put_bits would), its armor returned."""
+        usual: list[str] = []
+        if known is not None:  # no trailing bits, fill bits of value 0: every size a constant
+            fill = -known % 6
+            zeros = -(known + fill) % 24
+            data = f"(bits << {fill + zeros})" if fill + zeros else "bits"
+            chars = f"[:{(known + fill) // 6}]" if zeros else ""
+            usual = [f"{pad}if not record.trailing and record.padding == \"\":",
+                     f"{pad}    return b2a_base64({data}.to_bytes({(known + fill + zeros) // 8}, \"big\"), "
+                     f"newline=False){chars}.translate(BASE64_TO_ARMOR).decode(\"ascii\"), {fill}"]
+        return [*usual,
+                f"{pad}length = {length}",
                 f"{pad}trailing = record.trailing",
                 f"{pad}if trailing:",
                 f"{pad}    raw = int(trailing, 2)",
@@ -894,14 +905,16 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                 f"{pad}data = (bits << zeros).to_bytes((length + zeros) // 8, \"big\")",
                 f"{pad}return b2a_base64(data, newline=False)[:length // 6].translate(BASE64_TO_ARMOR).decode(\"ascii\"), fill"]
 
-    def walk(items: list[Item], static: int, pad: str) -> list[str]:
-        """The lines that write `items`, `static` bits counted but not yet added to `length`."""
+    def walk(items: list[Item], static: int, pad: str, fixed: bool = True) -> list[str]:
+        """The lines that write `items`, `static` bits counted but not yet added to `length`
+        (`fixed`: `length` still 0)."""
         out: list[str] = []
         for i, item in enumerate(items):
             counter[0] += 1
             name = f"f{counter[0]}"
             if isinstance(item, Field) and item.optional:
-                out += [f"{pad}if record.{item.id} is None:", *finish(f"length + {static}", pad + "    ")]
+                out += [f"{pad}if record.{item.id} is None:",
+                        *finish(f"length + {static}", pad + "    ", static if fixed else None)]
             if _writes_in_line(item, optional=True):
                 assert isinstance(item, Field) and item.width is not None
                 out += _write_field(item, name, names, pad)
@@ -916,9 +929,9 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                 if isinstance(item, Bitfield):
                     out.append(f"{pad}raw, width = {name}.word(record, where or _where(record)), {item.width or 0}")
                 elif type(item) is Data:  # bits as text, as to_raw reads them
-                    fixed = f" and len(value) == {item.width}" if item.width is not None else ""
+                    sized = f" and len(value) == {item.width}" if item.width is not None else ""
                     out.append(f"{pad}raw, width = (int(value, 2) if value else 0, len(value)) "
-                               f"if value.__class__ is str and not value.strip('01'){fixed} else {fallback}")
+                               f"if value.__class__ is str and not value.strip('01'){sized} else {fallback}")
                 elif type(item) is Text and item.width is None:  # six-bit text, as to_raw reads it
                     names.update(a2b_base64=binascii.a2b_base64, TEXT_TO_BASE64=_TEXT_TO_BASE64,
                                  TEXT_CHARS=_TEXT_CHARS, PADS=_BASE64_PADS, DROPS=_BASE64_DROPS)
@@ -929,6 +942,7 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                 else:
                     out.append(f"{pad}raw, width = {fallback}")
                 out += [f"{pad}bits = bits << width | raw & ((1 << width) - 1)", f"{pad}length += width"]
+                fixed = False
             elif isinstance(item, Choice):
                 names[name] = item
                 selector = by_id[item.by]
@@ -942,18 +956,18 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                     if case is default:
                         continue
                     out.append(f"{pad}{'if' if first else 'elif'} {_case_test(case)}:")
-                    out += walk([*case.items, *items[i + 1:]], static, pad + "    ")
+                    out += walk([*case.items, *items[i + 1:]], static, pad + "    ", fixed)
                     first = False
                 tail = [*(default.items if default is not None else ()), *items[i + 1:]]
                 if first:
-                    return out + walk(tail, static, pad)
-                return out + [f"{pad}else:", *walk(tail, static, pad + "    ")]
+                    return out + walk(tail, static, pad, fixed)
+                return out + [f"{pad}else:", *walk(tail, static, pad + "    ", fixed)]
             else:  # a group, a counted field: the generic writer
                 names[name] = tuple(items[i:])
                 return out + [f"{pad}writer = BitWriter()", f"{pad}writer.put(bits, length + {static})",
                               f"{pad}write_items({name}, record, writer, where or _where(record))",
                               f"{pad}bits = writer.value", *finish("writer.length", pad)]
-        return out + finish(f"length + {static}", pad)
+        return out + finish(f"length + {static}", pad, static if fixed else None)
 
     code = ["def encode(record):", "    bits = length = 0", "    where = None", *walk(list(items), 0, "    ")]
     exec("\n".join(code), names)  # code built above from the spec's layout, never from input
@@ -1228,7 +1242,8 @@ def _application(message: Message, applications: dict[tuple[int, int], type[Appl
     bits = getattr(message, data.id) if data is not None else None
     if data is None or bits is None:
         return None
-    dac, fid = (getattr(message, name) for name in data.dispatch)
+    first, second = data.dispatch  # the DAC's and the FI's members
+    dac, fid = getattr(message, first), getattr(message, second)
     cls = applications.get((dac, fid))
     if cls is None or getattr(message, "message_type") not in cls.CARRIERS:
         return None
