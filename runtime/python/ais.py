@@ -145,8 +145,12 @@ _DIGITS = {str(digit): digit for digit in range(10)}
 def whole(number: Any) -> int:
     """int(number) of a sentence's integer field, by one lookup for a Number of one digit as
     received (an AIS sentence's fragment count and fill bits: its message's hot path)."""
-    found = _DIGITS.get(number.text()) if number.__class__ is Number else None
-    return int(number) if found is None else found
+    if number.__class__ is Number:
+        try:
+            return _DIGITS[number._text]  # its text as received (number.text() without its call)
+        except (AttributeError, KeyError):
+            pass
+    return int(number)
 
 
 def _small(number: Any) -> int | None:
@@ -554,6 +558,14 @@ def _value_expr(item: Field, name: str, raw: str, names: dict[str, Any]) -> str:
         return f"{name}_members.get(r := {raw}, r)"
     if type(item) in (Field, Spare):
         return raw
+    if type(item) is Data:
+        return f"format({raw}, '0{width}b')"  # bits_text
+    if type(item) is Text and width % 6 == 0 and width:  # from_raw's steps, their sizes known
+        pad = -width % 24
+        names["b2a_base64"], names["BASE64_TO_TEXT"] = binascii.b2a_base64, _BASE64_TO_TEXT
+        data = f"({raw} << {pad}).to_bytes({(width + pad) // 8}, 'big')" if pad else f"{raw}.to_bytes({width // 8}, 'big')"
+        chars = f"b2a_base64({data}, newline=False)" + (f"[:{width // 6}]" if pad else "")
+        return f"{chars}.translate(BASE64_TO_TEXT).decode('ascii')"
     return f"{name}.from_raw({raw}, {width})"
 
 
@@ -652,12 +664,13 @@ def compile_decoder(cls: type[Message]) -> Any:
     counter = [0]
 
     def build(set_: dict[str, str], trailing: str, pad: str) -> list[str]:
-        """The lines that make the message of the members `set_` (id: local variable), each
-        member set (slots: the generated classes'; a subclass without them keeps its own in its
+        """The lines that end the message `m` (made first, each field's member set as it is read)
+        of the members `set_` (id: its expression, `m.<id>` when set already): each member not yet
+        set then set (slots: the generated classes'; a subclass without them keeps its own in its
         dict)."""
         values = {member: set_.get(member, trailing if member == "trailing" else default)
                   for member, default in members.items()}
-        return [f"{pad}m = new(cls)", *(f"{pad}m.{member} = {value}" for member, value in values.items()),
+        return [*(f"{pad}m.{member} = {value}" for member, value in values.items() if value != f"m.{member}"),
                 f"{pad}return m"]
 
     def generic(items: list[Item], offset: int, set_: dict[str, str], pad: str) -> list[str]:
@@ -707,9 +720,8 @@ def compile_decoder(cls: type[Message]) -> Any:
                     if at:  # `v` holds the bits before the run too
                         raw = f"({raw}) & {(1 << f.width) - 1}"
                     counter[0] += 1
-                    var = f"x{counter[0]}"
-                    out.append(f"{pad}{var} = {_value_expr(f, f'f{counter[0]}', f'({raw})', names)}")
-                    set_[f.id] = var
+                    out.append(f"{pad}m.{f.id} = {_value_expr(f, f'f{counter[0]}', f'({raw})', names)}")
+                    set_[f.id] = f"m.{f.id}"
                     at += f.width
                 offset = end
                 i += len(run)
@@ -747,7 +759,7 @@ def compile_decoder(cls: type[Message]) -> Any:
         return out + build(set_, f'"" if length == {offset} else bits_text(value & ((1 << (length - {offset})) - 1), '
                                  f'length - {offset})', pad)
 
-    code += walk(list(cls.LAYOUT), 0, {}, "    ")
+    code += ["    m = new(cls)", *walk(list(cls.LAYOUT), 0, {}, "    ")]
     source = "\n".join(code)
     exec(source, names)  # code built above from the spec's layout, never from input
     return names["decode"]
@@ -790,23 +802,23 @@ def _writes_in_line(item: Item, optional: bool = False) -> bool:
             and item.width is not None and (optional or not item.optional))
 
 
-def _write_field(item: Field, name: str, names: dict[str, Any], pad: str) -> list[str]:
+def _write_field(item: Field, name: str, names: dict[str, Any], pad: str, into: str | None = None) -> list[str]:
     """The lines that put `item`'s bits below `bits` (`record` the message, `where` the errors'
-    address or None), `name` its name in `names`."""
+    address or None), `name` its name in `names`; `into`: the lines that set that variable to
+    them instead (to_raw's raw integer)."""
     width = item.width
     assert width is not None
     names[name] = item
     code: list[str] = []
     code.append(f"    value = record.{item.id}")
-    fallback = f"bits = bits << {width} | {name}.to_raw(value, where or _where(record))[0]"
+    fallback = f"{name}.to_raw(value, where or _where(record))[0]"
     if isinstance(item, Unsigned):
         low, high = item.bounds(width)
         mask = f" & {(1 << width) - 1}" if low < 0 else ""  # a negative number's two's complement
         if item.divisor == 1 and isinstance(item.base, int) and not item.special:
             # a whole number in range (a float: to_raw, which takes whole ones only)
             raw = f"(raw := value - {item.base})" if item.base else "value"
-            fast = (f"value.__class__ is int and {low} <= {raw} <= {high}",
-                    f"bits = bits << {width} | {'raw' if item.base else 'value'}{mask}")
+            fast = (f"value.__class__ is int and {low} <= {raw} <= {high}", f"{'raw' if item.base else 'value'}{mask}")
         else:
             if item.divisor == 1 and isinstance(item.base, int):
                 number, numeric = f"value - {item.base}" if item.base else "value", "value.__class__ is int"
@@ -815,11 +827,19 @@ def _write_field(item: Field, name: str, names: dict[str, Any], pad: str) -> lis
                 number = f"round({offset_} * {item.divisor})" if item.divisor != 1 else f"round({offset_})"
                 numeric = "value.__class__ is float or value.__class__ is int"  # a decoded value: a float
             special = " else value.raw if value.__class__ is Special" if item.special else ""
-            code.append(f"    raw = {number} if {numeric}{special} else None")
-            fast = f"raw is not None and {low} <= raw <= {high}", f"bits = bits << {width} | raw{mask}"
+            # any other value: a number below the range, so that to_raw says what is wrong
+            code.append(f"    raw = {number} if {numeric}{special} else {low - 1}")
+            fast = f"{low} <= raw <= {high}", f"raw{mask}"
     elif isinstance(item, Flag):
-        fast = "value is True or value is False", "bits = bits << 1 | value"
-    elif isinstance(item, Text):  # text of its whole width: the field's to_raw checks it
+        fast = "value is True or value is False", "value"
+    elif type(item) is Text and width % 6 == 0:  # six-bit text of its whole width, as to_raw reads it
+        chars, zeros = width // 6, -(width // 6) % 4
+        names["a2b_base64"], names["TEXT_TO_BASE64"], names["TEXT_CHARS"] = \
+            binascii.a2b_base64, _TEXT_TO_BASE64, _TEXT_CHARS
+        data = "value.encode('ascii').translate(TEXT_TO_BASE64)" + (f" + {b'A' * zeros!r}" if zeros else "")
+        number = f"int.from_bytes(a2b_base64({data}, strict_mode=True), 'big')" + (f" >> {6 * zeros}" if zeros else "")
+        fast = f"value.__class__ is str and len(value) == {chars} and TEXT_CHARS.issuperset(value)", number
+    elif isinstance(item, Text):  # the field's to_raw checks it
         fast = None
     elif isinstance(item, Code):  # a member of the field's enum whose code fits; to_raw for any other
         codes: dict[Any, int] = {}  # by each member's value
@@ -831,35 +851,70 @@ def _write_field(item: Field, name: str, names: dict[str, Any], pad: str) -> lis
             if 0 <= code_value <= (1 << width) - 1:
                 codes[member._value_] = code_value
         names[f"{name}_enum"], names[f"{name}_codes"] = item.enum, codes
-        fast = (f"value.__class__ is {name}_enum and (raw := {name}_codes.get(value._value_)) is not None",
-                f"bits = bits << {width} | raw")
+        fast = (f"value.__class__ is {name}_enum and (raw := {name}_codes.get(value._value_)) is not None", "raw")
     else:
-        fast = f"value.__class__ is int and 0 <= value <= {(1 << width) - 1}", f"bits = bits << {width} | value"
-    if fast is None:
-        code.append(f"    {fallback}")
-    else:
-        code += [f"    if {fast[0]}:", f"        {fast[1]}", "    else:", f"        {fallback}"]
+        fast = f"value.__class__ is int and 0 <= value <= {(1 << width) - 1}", "value"
+    raw = fallback if fast is None else f"({fast[1]} if {fast[0]} else {fallback})"
+    code.append(f"    {into} = {raw}" if into else f"    bits = bits << {width} | {raw}")
     return [pad + line[4:] for line in code]
 
 
 def compile_encoder(items: tuple[Item, ...]) -> Any:
-    """write(record, where): the bits of a message's layout `items` and their count, as
-    write_items writes them, by straight-line code: each field in line (_write_field) or by its
-    own to_raw (a variable width, data an application carries), a choice by the raw value of its
-    selector's member, the message ending at an optional field left None; from a group on,
-    write_items. `where` None: the errors' address is made only for an error."""
+    """encode(record): a message's armored payload and fill bits (Message.encode), its layout
+    `items` written as write_items writes them, by straight-line code: each field in line
+    (_write_field) or by its own to_raw (a variable width, data an application carries), a
+    choice by the raw value of its selector's member, the message ending at an optional field
+    left None; from a group on, write_items. Then its trailing bits, its fill bits (padding) and
+    the armor, in line wherever the layout ends. The errors' address is made only for an error."""
     names: dict[str, Any] = {"Special": Special, "_where": _where, "BitWriter": BitWriter,
-                             "write_items": write_items}
+                             "write_items": write_items, "_bad_value": _bad_value,
+                             "b2a_base64": binascii.b2a_base64, "BASE64_TO_ARMOR": _BASE64_TO_ARMOR}
     counter = [0]
+    by_id = {f.id: f for f in flat_fields(items)}  # as Record.field finds them
 
-    def walk(items: list[Item], static: int, pad: str) -> list[str]:
-        """The lines that write `items`, `static` bits counted but not yet added to `length`."""
+    def finish(length: str, pad: str, known: int | None = None) -> list[str]:
+        """The lines that end the message of `bits` and `length` (an expression; `known`: its
+        value, when the layout's path so far has fixed widths only): its trailing bits and fill
+        bits added (as BitWriter.put_bits would), its armor returned."""
+        usual: list[str] = []
+        if known is not None:  # no trailing bits, fill bits of value 0: every size a constant
+            fill = -known % 6
+            zeros = -(known + fill) % 24
+            data = f"(bits << {fill + zeros})" if fill + zeros else "bits"
+            chars = f"[:{(known + fill) // 6}]" if zeros else ""
+            usual = [f"{pad}if not record.trailing and record.padding == \"\":",
+                     f"{pad}    return b2a_base64({data}.to_bytes({(known + fill + zeros) // 8}, \"big\"), "
+                     f"newline=False){chars}.translate(BASE64_TO_ARMOR).decode(\"ascii\"), {fill}"]
+        return [*usual,
+                f"{pad}length = {length}",
+                f"{pad}trailing = record.trailing",
+                f"{pad}if trailing:",
+                f"{pad}    raw = int(trailing, 2)",
+                f"{pad}    bits = bits << len(trailing) | raw & ((1 << len(trailing)) - 1)",
+                f"{pad}    length += len(trailing)",
+                f"{pad}fill = -length % 6",
+                f"{pad}padding = record.padding",
+                f"{pad}if padding == \"\":",
+                f"{pad}    bits <<= fill",
+                f"{pad}elif padding.strip(\"01\") or len(padding) != fill:",
+                f"{pad}    raise _bad_value(_where(record), \"padding\", padding, f\"{{fill}} bits\")",
+                f"{pad}else:",
+                f"{pad}    bits = bits << fill | int(padding, 2)",
+                f"{pad}length += fill",
+                f"{pad}zeros = -length % 24  # base64 takes whole bytes, three for four characters",
+                f"{pad}data = (bits << zeros).to_bytes((length + zeros) // 8, \"big\")",
+                f"{pad}return b2a_base64(data, newline=False)[:length // 6].translate(BASE64_TO_ARMOR).decode(\"ascii\"), fill"]
+
+    def walk(items: list[Item], static: int, pad: str, fixed: bool = True) -> list[str]:
+        """The lines that write `items`, `static` bits counted but not yet added to `length`
+        (`fixed`: `length` still 0)."""
         out: list[str] = []
         for i, item in enumerate(items):
             counter[0] += 1
             name = f"f{counter[0]}"
             if isinstance(item, Field) and item.optional:
-                out += [f"{pad}if record.{item.id} is None:", f"{pad}    return bits, length + {static}"]
+                out += [f"{pad}if record.{item.id} is None:",
+                        *finish(f"length + {static}", pad + "    ", static if fixed else None)]
             if _writes_in_line(item, optional=True):
                 assert isinstance(item, Field) and item.width is not None
                 out += _write_field(item, name, names, pad)
@@ -870,36 +925,53 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                 if isinstance(item, Data):
                     out += [f"{pad}if value is None and record.application is not None:",
                             f"{pad}    value = record.application.bits(where or _where(record))"]
+                fallback = f"{name}.to_raw(value, where or _where(record))"
                 if isinstance(item, Bitfield):
                     out.append(f"{pad}raw, width = {name}.word(record, where or _where(record)), {item.width or 0}")
+                elif type(item) is Data:  # bits as text, as to_raw reads them
+                    sized = f" and len(value) == {item.width}" if item.width is not None else ""
+                    out.append(f"{pad}raw, width = (int(value, 2) if value else 0, len(value)) "
+                               f"if value.__class__ is str and not value.strip('01'){sized} else {fallback}")
+                elif type(item) is Text and item.width is None:  # six-bit text, as to_raw reads it
+                    names.update(a2b_base64=binascii.a2b_base64, TEXT_TO_BASE64=_TEXT_TO_BASE64,
+                                 TEXT_CHARS=_TEXT_CHARS, PADS=_BASE64_PADS, DROPS=_BASE64_DROPS)
+                    data = "value.encode('ascii').translate(TEXT_TO_BASE64) + PADS[len(value) & 3]"
+                    out.append(f"{pad}raw, width = (int.from_bytes(a2b_base64({data}, strict_mode=True), 'big') "
+                               f">> DROPS[len(value) & 3], len(value) * 6) "
+                               f"if value.__class__ is str and TEXT_CHARS.issuperset(value) else {fallback}")
                 else:
-                    out.append(f"{pad}raw, width = {name}.to_raw(value, where or _where(record))")
+                    out.append(f"{pad}raw, width = {fallback}")
                 out += [f"{pad}bits = bits << width | raw & ((1 << width) - 1)", f"{pad}length += width"]
+                fixed = False
             elif isinstance(item, Choice):
                 names[name] = item
-                out.append(f"{pad}r = record.field({item.by!r}).to_raw(record.{item.by}, where or _where(record))[0]")
+                selector = by_id[item.by]
+                if _writes_in_line(selector, optional=True):  # its raw value as _write_field writes it
+                    out += _write_field(selector, f"{name}_by", names, pad, into="r")
+                else:
+                    out.append(f"{pad}r = record.field({item.by!r}).to_raw(record.{item.by}, where or _where(record))[0]")
                 default = next((c for c in item.cases if not c.values and c.range is None), None)
                 first = True
                 for case in item.cases:
                     if case is default:
                         continue
                     out.append(f"{pad}{'if' if first else 'elif'} {_case_test(case)}:")
-                    out += walk([*case.items, *items[i + 1:]], static, pad + "    ")
+                    out += walk([*case.items, *items[i + 1:]], static, pad + "    ", fixed)
                     first = False
                 tail = [*(default.items if default is not None else ()), *items[i + 1:]]
                 if first:
-                    return out + walk(tail, static, pad)
-                return out + [f"{pad}else:", *walk(tail, static, pad + "    ")]
+                    return out + walk(tail, static, pad, fixed)
+                return out + [f"{pad}else:", *walk(tail, static, pad + "    ", fixed)]
             else:  # a group, a counted field: the generic writer
                 names[name] = tuple(items[i:])
                 return out + [f"{pad}writer = BitWriter()", f"{pad}writer.put(bits, length + {static})",
                               f"{pad}write_items({name}, record, writer, where or _where(record))",
-                              f"{pad}return writer.value, writer.length"]
-        return out + [f"{pad}return bits, length + {static}"]
+                              f"{pad}bits = writer.value", *finish("writer.length", pad)]
+        return out + finish(f"length + {static}", pad, static if fixed else None)
 
-    code = ["def write(record, where):", "    bits = length = 0", *walk(list(items), 0, "    ")]
+    code = ["def encode(record):", "    bits = length = 0", "    where = None", *walk(list(items), 0, "    ")]
     exec("\n".join(code), names)  # code built above from the spec's layout, never from input
-    return names["write"]
+    return names["encode"]
 
 
 def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteWriter, where: str) -> bool:
@@ -1069,8 +1141,6 @@ class Message(Record):
     data member is then None)."""
 
     TYPES: ClassVar[tuple[int, ...]]
-    _encoder: ClassVar[Any]
-    """The class's compiled writer (compile_encoder), compiled on first use."""
     _decoder: ClassVar[Any]
     """decode(value, length, padding): the class's compiled decoder (compile_decoder), compiled
     on first use (not when the package loads)."""
@@ -1084,26 +1154,20 @@ class Message(Record):
 
             cls._decoder = first
 
+            def first_encode(self: Message) -> tuple[str, int]:
+                encode = compile_encoder(cls.LAYOUT)
+                encode.__doc__ = first_encode.__doc__
+                cls.encode = encode  # type: ignore[method-assign]
+                return encode(self)  # type: ignore[no-any-return]
+
+            first_encode.__doc__ = Message.encode.__doc__
+            cls.encode = first_encode  # type: ignore[method-assign]
+
     def encode(self) -> tuple[str, int]:
-        """The armored payload and its fill bits."""
-        cls = type(self)
-        encoder = cls.__dict__.get("_encoder")
-        if encoder is None:
-            encoder = cls._encoder = compile_encoder(cls.LAYOUT)
-        value, length = encoder(self, None)  # Record.write's fields, compiled
-        trailing, padding = self.trailing, self.padding
-        if trailing:  # as BitWriter.put_bits
-            raw = int(trailing, 2)
-            value = value << len(trailing) | raw & ((1 << len(trailing)) - 1)
-            length += len(trailing)
-        fill = -length % 6
-        if padding == "":
-            value <<= fill
-        else:
-            if padding.strip("01") or len(padding) != fill:
-                raise _bad_value(_where(self), "padding", padding, f"{fill} bits")
-            value = value << fill | int(padding, 2)
-        return armor(value, length + fill), fill
+        """The armored payload and its fill bits (each message class's own encode, compiled on
+        first use: compile_encoder)."""
+        encode = compile_encoder(type(self).LAYOUT)
+        return encode(self)  # type: ignore[no-any-return]
 
     def to_dict(self) -> dict[str, Any]:
         """As Record.to_dict, the application's (when there is one) before trailing, then padding."""
@@ -1134,6 +1198,8 @@ _BASE64_PADS = (b"", b"AAA", b"AA", b"A")
 """What a payload of n characters takes to a whole number of base64 groups, by n % 4; the
 bits they add (_BASE64_DROPS) are dropped."""
 _BASE64_DROPS = (0, 18, 12, 6)
+_FILL_TEXTS = tuple(tuple(bits_text(low & ((1 << n) - 1), n) for low in range(32)) for n in range(6))
+"""The fill bits' values of n fill bits as text, by the payload's last five bits."""
 
 
 def _unarmor(payload: str, fill_bits: int) -> tuple[int, int, str]:
@@ -1152,6 +1218,22 @@ def _unarmor(payload: str, fill_bits: int) -> tuple[int, int, str]:
     return value, len(payload) * 6, ""
 
 
+def sentence_message(by_type: dict[int, type[Message]], applications: dict[tuple[int, int], type[Application]],
+                     count: Any, payload: str | None, fill_bits: Any) -> Message | None:
+    """The message of an encapsulation sentence (its fragment count, payload and fill bits, as
+    read: Numbers), as decode gives it; None for one sentence of a message of several."""
+    try:  # whole() in line for the usual texts ("1", a digit)
+        fill = _DIGITS[fill_bits._text] if count._text == "1" and count.__class__ is Number \
+            and fill_bits.__class__ is Number else -1
+    except (AttributeError, KeyError):
+        fill = -1
+    if fill < 0:
+        if count is None or whole(count) != 1:
+            return None
+        fill = 0 if fill_bits is None else whole(fill_bits)
+    return decode(by_type, applications, payload or "", fill)
+
+
 def _application(message: Message, applications: dict[tuple[int, int], type[Application]]) -> Application | None:
     """What the message's data bits carry, when an application of `applications` (by DAC and FI)
     is carried by its type and reads them; its data member is then set to None. Data that the
@@ -1160,7 +1242,8 @@ def _application(message: Message, applications: dict[tuple[int, int], type[Appl
     bits = getattr(message, data.id) if data is not None else None
     if data is None or bits is None:
         return None
-    dac, fid = (getattr(message, name) for name in data.dispatch)
+    first, second = data.dispatch  # the DAC's and the FI's members
+    dac, fid = getattr(message, first), getattr(message, second)
     cls = applications.get((dac, fid))
     if cls is None or getattr(message, "message_type") not in cls.CARRIERS:
         return None
@@ -1178,21 +1261,22 @@ def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int]
     """The message of an armored payload, as the class its type number names in `by_type`, with
     the application of `applications` its data bits carry."""
     # _unarmor in line (the hot path): base64 takes whole groups of four characters
+    size = len(payload)
     try:
-        if not 0 <= fill_bits <= 5 or fill_bits and not payload:
+        if not 0 <= fill_bits <= 5 or fill_bits and not size:
             raise ValueError
         value = int.from_bytes(_a2b_base64(payload.encode("ascii").translate(_ARMOR_TO_BASE64)
-                                           + _BASE64_PADS[len(payload) & 3], strict_mode=True), "big")
+                                           + _BASE64_PADS[size & 3], strict_mode=True), "big")
     except (ValueError, UnicodeEncodeError):  # binascii.Error is a ValueError
         value = -1
     if value < 0:
         _unarmor(payload, fill_bits)  # raises bad_armor, saying why
-    value >>= _BASE64_DROPS[len(payload) & 3]
+    value >>= _BASE64_DROPS[size & 3]
     padding = ""
     if fill_bits:
-        padding = format(value & ((1 << fill_bits) - 1), f"0{fill_bits}b")
+        padding = _FILL_TEXTS[fill_bits][value & 31]
         value >>= fill_bits
-    length = len(payload) * 6 - fill_bits
+    length = size * 6 - fill_bits
     if length < 6:
         BitReader(value, length, "AIS").peek(0, 6, "message_type")  # raises short_payload
     message_type = value >> (length - 6)

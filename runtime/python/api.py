@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from dataclasses import dataclass, field
 from typing import Any
@@ -129,10 +130,49 @@ def parse(
 
 def _encapsulation(line: Any) -> Any:
     """An encapsulation sentence (`!AIVDM,1,1,,A,15RTgt0PAso;90TKcjM8h6g208CQ,0*4A`) read as the
-    general path below reads it, with fewer steps: split once, the checksum (two hex digits)
-    summed in one pass, its layout's compiled reader. None for any other line (bytes, a line
-    ending, a checksum that does not match, a field its layout refuses): parse then reads it or
-    says why not."""
+    general path reads it, with fewer steps: when its first 14 characters are a start read before
+    (`!AIVDM,1,1,,A,`: its layout and the values of its first fields, see _learn), only its
+    payload and fill bits are checked, as the general path checks them, and its checksum summed;
+    else _encapsulation_fields. None for any other line (bytes, a line ending, a checksum that
+    does not match, a field its layout refuses): parse then reads it or says why not."""
+    head = _HEADS.get(line[:14])
+    if head is None:
+        return _encapsulation_fields(line)
+    star = len(line) - 3
+    fill = head[1].get(line[star - 2 : star + 1])  # ",0*": a fill text read before
+    payload = line[14 : star - 2]
+    if (
+        fill is None
+        or star > 129  # a longer line (up to runtime.MAX_LINE): the general path
+        or not payload
+        or "," in payload
+        or "*" in payload
+        or not payload.isascii()
+        or not payload.isprintable()
+    ):
+        return _encapsulation_fields(line)
+    # runtime.checksum in line, for up to 128 bytes known to be ASCII
+    value = int.from_bytes(line[1:star].encode(), "little")
+    if star > 65:
+        value ^= value >> 512
+    value ^= value >> 256
+    value ^= value >> 128
+    value ^= value >> 64
+    value ^= value >> 32
+    value ^= value >> 16
+    computed = (value ^ value >> 8) & 0xFF
+    sent = line[star + 1 :]
+    checksum = (
+        "upper" if sent == _UPPER_HEX[computed] else "lower" if sent == _LOWER_HEX[computed] else None
+    )
+    if checksum is None:
+        return None
+    return head[0](payload, fill, checksum)
+
+
+def _encapsulation_fields(line: Any) -> Any:
+    """_encapsulation's general path: split once, the checksum (two hex digits) summed in one
+    pass, its layout's compiled reader; the line's start kept for _encapsulation (_learn)."""
     fields = line.split(",")
     address = fields[0][1:]
     cls = _ENCAPSULATION_CLASSES.get(address)
@@ -160,14 +200,58 @@ def _encapsulation(line: Any) -> Any:
     fields[-1] = last[:-3]
     del fields[0]
     try:
-        return cls.parse_fields(address, fields, checksum, line)
+        sentence = cls.parse_fields(address, fields, checksum, line)
     except NmeaError:
         return None
+    if line[13:14] == "," and len(fields) == 6 and len(fields[5]) == 1 and len(_HEADS) < _MAX_HEADS:
+        _learn(line, sentence)
+    return sentence
+
+
+def _learn(line: str, sentence: Any) -> None:
+    """Keeps the start of `line` (its first 14 characters, five fields: `!AIVDM,1,1,,A,`) and its
+    fill bits' text for _encapsulation, when its layout is an encapsulation's six fields (four, the
+    payload as text of any length, the fill bits), all required: the values the general path read
+    from them are those it reads from the same texts again."""
+    cls = type(sentence)
+    layout = cls.LAYOUT
+    payload = layout.items[4] if len(layout.items) == 6 else None
+    members = ["talker", *layout.field_ids, "problems", "checksum"]
+    if (
+        layout.kind != "standard"
+        or layout.group is not None
+        or layout.fixed != 6
+        or layout.max_fields != 6
+        or type(payload) is not runtime.TextField
+        or payload.max_length is not None
+        or line[:14].count(",") != 5
+        or [f.name for f in dataclasses.fields(cls)] != members
+        or hasattr(cls, "__post_init__")
+    ):
+        return
+    fills = _FILLS.setdefault(cls, {})
+    star = len(line) - 3
+    fills[line[star - 2 : star + 1]] = getattr(sentence, layout.field_ids[5])
+    # make(payload, fill_bits, checksum): the sentence as cls() makes it, its first members those
+    # read from this start
+    names = {f"v{n}": getattr(sentence, member) for n, member in enumerate(members[:5])}
+    names.update(new=object.__new__, cls=cls)
+    values = [*(f"v{n}" for n in range(5)), "payload", "fill", "[]", "checksum"]
+    code = ["def make(payload, fill, checksum):", "    s = new(cls)"]
+    code += [f"    s.{member} = {value}" for member, value in zip(members, values)]
+    exec("\n".join([*code, "    return s"]), names)  # noqa: S102 (made from the class's own members)
+    _HEADS[line[:14]] = (names["make"], fills)
 
 
 _ENCAPSULATION_CLASSES: dict[str, Any] = {}
 """The class of each `!` address the fast path has read (AIVDM: Vdm)."""
 _MAX_STAR = runtime.MAX_LINE - 3
+_HEADS: dict[str, tuple[Any, ...]] = {}
+"""The starts _encapsulation reads (`!AIVDM,1,1,,A,`): (the function that makes a sentence of
+that start, the fill bits' values by text, as `,0*`), as _learn keeps them."""
+_MAX_HEADS = 256
+_FILLS: dict[Any, dict[str, Any]] = {}
+"""The fill bits' values of each class in _HEADS, by text (`,0*`)."""
 
 
 def _encapsulation_class(address: str) -> Any:

@@ -121,7 +121,8 @@ def checksum(body: str) -> int:
             shift >>= 1
             value ^= value >> shift
     # then in line, no loop: a sentence is rarely longer
-    value ^= value >> 512
+    if len(body) > 64:
+        value ^= value >> 512
     value ^= value >> 256
     value ^= value >> 128
     value ^= value >> 64
@@ -253,7 +254,13 @@ def assemble(start: str, address: str, fields: list[str], checksum_style: str | 
     """The sentence text: start, address, fields and the checksum written in `checksum_style`
     ("upper", "lower", "empty" for a bare '*', None for none, or "short_upper", "short_lower":
     one hex digit while the checksum is under 16, as received)."""
-    body = ",".join([address, *fields])
+    return checksummed(start, ",".join([address, *fields]), checksum_style)
+
+
+def checksummed(start: str, body: str, checksum_style: str | None) -> str:
+    """The sentence of `body` (address and fields), as assemble writes it."""
+    if checksum_style == "upper":  # the usual case first
+        return f"{start}{body}*{_CHECKSUM_HEX[checksum(body)]}"
     if checksum_style is None:
         return start + body
     if checksum_style == "empty":
@@ -2077,6 +2084,23 @@ class Group:
             self.width += f.width
 
 
+def _in_line(spec: FieldSpec, value: str, names: dict[str, Any]) -> str:
+    """The expression of the wire text of `spec`'s `value` (an expression) with text_of's cases
+    in line, a value without its text raising AttributeError (the caller then calls text_of);
+    the names it uses put into `names` (text_of, _Value, the field's enum)."""
+    if spec.width == 2:
+        return f"*pair({value})"
+    member = ""
+    enum = getattr(spec, "enum", None)
+    if enum is not None and not issubclass(enum, str) and enum.text is CodeEnum.text:
+        names[f"E_{spec.id}"] = enum  # a member's text: its code
+        member = f"v._value_ if v.__class__ is E_{spec.id} else "
+    return (
+        f'("" if (v := {value}) is None else v if v.__class__ is str '
+        f"else v._text if isinstance(v, _Value) else {member}text_of(v))"
+    )
+
+
 class Layout:
     """What the generated class of a sentence layout says of its wire form: the sentence id, its
     kind ("standard", "proprietary" or "text"), its start ('$' or '!'), how many wire fields the
@@ -2099,6 +2123,7 @@ class Layout:
         "field_ids",
         "parse",
         "write",
+        "joined",
         "_json_writers",
     )
 
@@ -2125,6 +2150,7 @@ class Layout:
                     item.ignore_case = True  # a text command's words match ignoring case
         self.parse: Callable[..., Any] = self._compile()
         self.write: Callable[[Any], list[str]] = self._compile_writer()
+        self.joined: Callable[[Any, str], str] | None = self._compile_joined()
         # json(sentence, values) for the texts and the values, each compiled on first use.
         self._json_writers: list[Callable[[Any], str] | None] = [None, None]
 
@@ -2217,67 +2243,112 @@ class Layout:
     def _compile_writer(self) -> Callable[[Any], list[str]]:
         """write(sentence): the wire text of every field after the address, optional trailing
         fields up to the last one present."""
-        names: dict[str, Any] = {"text_of": text_of, "pair": _coordinate_pair, "ABSENT": ABSENT}
+        names: dict[str, Any] = {
+            "text_of": text_of,
+            "pair": _coordinate_pair,
+            "ABSENT": ABSENT,
+            "_Value": _Value,
+        }
 
         def texts(spec: FieldSpec, value: str) -> str:
             return f"*pair({value})" if spec.width == 2 else f"text_of({value})"
 
-        code = ["def write(s):", "    out = []"]
+        def in_line(spec: FieldSpec, value: str) -> str:
+            return _in_line(spec, value, names)
+
+        def body(texts: Callable[[FieldSpec, str], str]) -> list[str]:
+            """The lines of write after its first, each field's text by `texts`."""
+            code = ["    out = []"]
+            for item in self.items:
+                if isinstance(item, Group):
+                    if item.entry is None:
+                        code.append(f"    out += [{texts(item.fields[0], 'e')} for e in s.{item.id}]")
+                    else:
+                        entry = ", ".join(texts(f, f"e.{f.id}") for f in item.fields)
+                        code += [f"    for e in s.{item.id}:", f"        out += [{entry}]"]
+                elif not item.optional_index:
+                    code.append(f"    out += [{texts(item, f's.{item.id}')}]")
+            if trailing:
+                for n, item in enumerate(reversed(trailing)):
+                    code += [
+                        f"    {'if' if n == 0 else 'elif'} s.{item.id} is not ABSENT:",
+                        f"        last = {item.optional_index}",
+                    ]
+                code += ["    else:", "        last = 0"]
+                for item in trailing:
+                    code += [
+                        f"    if last >= {item.optional_index}:",
+                        f"        out += [{texts(item, f's.{item.id}')}]",
+                    ]
+            code.append("    return out")
+            # consecutive fields' texts in one list display (most layouts: all of them, returned)
+            merged: list[str] = []
+            for line in code:
+                if (
+                    merged
+                    and line.startswith("    out += [")
+                    and merged[-1].startswith("    out += [")
+                    and " for e in " not in line + merged[-1]  # a group's comprehension
+                ):
+                    merged[-1] = merged[-1][:-1] + ", " + line[len("    out += [") :]
+                else:
+                    merged.append(line)
+            single = len(merged) == 3 and merged[0] == "    out = []" and merged[2] == "    return out"
+            if single and merged[1].startswith("    out += ["):
+                merged = ["    return " + merged[1][len("    out += ") :]]
+            return merged
+
         trailing = [
             item for item in self.items if isinstance(item, FieldSpec) and item.optional_index
         ]
-        for item in self.items:
-            if isinstance(item, Group):
-                if item.entry is None:
-                    code.append(f"    out += [{texts(item.fields[0], 'e')} for e in s.{item.id}]")
-                else:
-                    entry = ", ".join(texts(f, f"e.{f.id}") for f in item.fields)
-                    code += [f"    for e in s.{item.id}:", f"        out += [{entry}]"]
-            elif not item.optional_index:
-                code.append(f"    out += [{texts(item, f's.{item.id}')}]")
-        if trailing:
-            for n, item in enumerate(reversed(trailing)):
-                code += [
-                    f"    {'if' if n == 0 else 'elif'} s.{item.id} is not ABSENT:",
-                    f"        last = {item.optional_index}",
-                ]
-            code += ["    else:", "        last = 0"]
-            for item in trailing:
-                code += [
-                    f"    if last >= {item.optional_index}:",
-                    f"        out += [{texts(item, f's.{item.id}')}]",
-                ]
-        code.append("    return out")
-        # consecutive fields' texts in one list display (most layouts: all of them, returned)
-        merged: list[str] = []
-        for line in code:
-            if (
-                merged
-                and line.startswith("    out += [")
-                and merged[-1].startswith("    out += [")
-                and " for e in " not in line + merged[-1]  # a group's comprehension
-            ):
-                merged[-1] = merged[-1][:-1] + ", " + line[len("    out += [") :]
-            else:
-                merged.append(line)
-        if merged[1:] == ["    out = []", merged[2], "    return out"] and merged[2].startswith("    out += ["):
-            merged[1:] = ["    return " + merged[2][len("    out += ") :]]
+        # the texts in line first; a value that has not worked its text out yet, by text_of
+        merged = [
+            "def write(s):",
+            "    try:",
+            *("    " + line for line in body(in_line)),
+            "    except AttributeError:",
+            "        pass",
+            *body(texts),
+        ]
         exec("\n".join(merged), names)  # noqa: S102 (source made above from the layout's own items)
         write: Callable[[Any], list[str]] = names["write"]
         return write
 
+    def _compile_joined(self) -> Callable[[Any, str], str] | None:
+        """joined(sentence, address): the address and every field's text, joined by commas, in one
+        f-string (write's texts in line); None for a layout with a group, optional fields or a
+        field of two."""
+        fields = [item for item in self.items if isinstance(item, FieldSpec)]
+        if len(fields) != len(self.items) or any(f.optional_index or f.width != 1 for f in fields):
+            return None
+        names: dict[str, Any] = {"text_of": text_of, "_Value": _Value, "write": self.write}
+        texts = "".join(f",{{{_in_line(f, f's.{f.id}', names)}}}" for f in fields)
+        code = [
+            "def joined(s, address):",
+            "    try:",
+            f"        return f'{{address}}{texts}'",
+            "    except AttributeError:  # a value that has not worked its text out yet",
+            "        return ','.join([address, *write(s)])",
+        ]
+        exec("\n".join(code), names)  # noqa: S102 (source made above from the layout's own items)
+        joined: Callable[[Any, str], str] = names["joined"]
+        return joined
+
     def sentence_writer(self, address: str) -> Callable[[Any], str]:
         """to_sentence(sentence): its text (see Sentence.to_sentence), `address` that of a
         proprietary sentence or text command."""
-        write, start, suffix = self.write, self.start, self.sentence
+        write, joined, start, suffix = self.write, self.joined, self.start, self.sentence
 
         def text_command(s: Any) -> str:
             return assemble_text(address, with_problems(write(s), s.problems), s.as_received)
 
         def standard(s: Any) -> str:
-            return assemble(
-                start, s.talker + suffix, with_problems(write(s), s.problems), s.checksum
-            )
+            if joined is None or s.problems:
+                return assemble(start, s.talker + suffix, with_problems(write(s), s.problems), s.checksum)
+            body = joined(s, s.talker + suffix)
+            if s.checksum == "upper":  # checksummed's usual case in line
+                return f"{start}{body}*{_CHECKSUM_HEX[checksum(body)]}"
+            return checksummed(start, body, s.checksum)
 
         def proprietary(s: Any) -> str:
             return assemble(start, address, with_problems(write(s), s.problems), s.checksum)

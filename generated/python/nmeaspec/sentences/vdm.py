@@ -15,7 +15,7 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 from .. import ais
-from ..ais_messages import decode_payload
+from ..ais_messages import APPLICATIONS, BY_TYPE
 from ..enums import AisChannel
 
 
@@ -73,10 +73,13 @@ class Vdm(rt.Sentence):
     def message(self) -> ais.Message | None:
         """The AIS message its payload carries (nmeaspec.ais_messages); None for one sentence of
         a message of several. Raises NmeaError for a payload no message decodes from."""
-        count, fill = self.fragment_count, self.fill_bits
-        if count is None or ais.whole(count) != 1:
-            return None
-        return decode_payload(self.payload or "", 0 if fill is None else ais.whole(fill))
+        return ais.sentence_message(
+            BY_TYPE,
+            APPLICATIONS,
+            self.fragment_count,
+            self.payload,
+            self.fill_bits,
+        )
 
     @property
     def fragment(self) -> ais.Fragment | None:
