@@ -250,9 +250,10 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "Correct `count`, or leave it out (the group then takes the bytes left)."),
     Rule("B004", "layouts of one message are told apart",
          "Layout ids (message id and `variant`) are unique; two layouts that share a direction differ in their "
-         "fixed length or their `version`, and a layout with a `version` has a u1 field `version` at a fixed "
-         "offset.",
-         "Give one layout a `variant`, a `version`, or correct its fields."),
+         "fixed length or in the value of their selector (`select: {type: 0x10}`; `version: N` is short for "
+         "`select: {version: N}`), layouts of one direction select by the same field, and a selector names a u1 "
+         "field at a fixed offset.",
+         "Give one layout a `variant`, a `select` (or `version`), or correct its fields."),
     Rule("B005", "binary messages name their protocol's documents",
          "Each of a message's `documents` is one of its protocol.yaml's documents.",
          "Correct the id, or add the document to protocol.yaml."),

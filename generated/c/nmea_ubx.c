@@ -68,11 +68,11 @@
 //   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
 //   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_bds.yaml,
 //   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mga_glo.yaml,
-//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_ack.yaml,
-//   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/log_erase.yaml,
-//   spec/binary/ubx/messages/log_string.yaml, spec/binary/ubx/messages/log_create.yaml,
-//   spec/binary/ubx/messages/log_info.yaml, spec/binary/ubx/messages/log_retrieve.yaml,
-//   spec/binary/ubx/messages/log_retrievepos.yaml,
+//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_ini.yaml,
+//   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
+//   spec/binary/ubx/messages/log_erase.yaml, spec/binary/ubx/messages/log_string.yaml,
+//   spec/binary/ubx/messages/log_create.yaml, spec/binary/ubx/messages/log_info.yaml,
+//   spec/binary/ubx/messages/log_retrieve.yaml, spec/binary/ubx/messages/log_retrievepos.yaml,
 //   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_findtime.yaml,
 //   spec/binary/ubx/messages/log_retrieveposextra.yaml,
 //   spec/binary/ubx/messages/log_retrievebatch.yaml, spec/binary/ubx/messages/log_batch.yaml,
@@ -111,7 +111,7 @@
 //   spec/binary/skytraq/messages/meas_time.yaml, spec/binary/skytraq/messages/raw_meas.yaml,
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 81313b3704da7810)
+//   spec/enums/ubx_gnss_id.yaml (digest 9285606cb6f20e63)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -761,8 +761,9 @@ static void ubx_json_items(ubx_json_out *j, const nmea_ubx_item *items, size_t n
 }
 
 /* The layout a payload of `len` bytes of class and id `first` to `last` (in spec order) is read
-   as: the first whose fixed length (when it has one) and version byte (when it has one) are the
-   payload's, else the first the receiver sends, else the last. */
+   as: the first whose fixed length (when it has one) and selector byte (`version`, `version_at`: a
+   type, command or version byte, when it has one) are the payload's; else the first with a
+   selector whose fixed length is the payload's; else the first the receiver sends, else the last. */
 static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, size_t last, const uint8_t *payload,
                              size_t len)
 {
@@ -775,6 +776,9 @@ static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, 
             continue;
         return i;
     }
+    for (i = first; i <= last; i++) /* a selector value no layout names: the selected layout of its length */
+        if (layouts[i].version >= 0 && layouts[i].length >= 0 && (size_t)layouts[i].length == len)
+            return i;
     for (i = first; i <= last; i++)
         if (layouts[i].output)
             return i;
@@ -4568,6 +4572,116 @@ static const nmea_ubx_item ubx_mga_ano_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_mga_ano, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* MGA-INI: mga_ini_pos_xyz */
+static const nmea_ubx_item ubx_mga_ini_pos_xyz_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_x", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, ecef_x), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_y", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, ecef_y), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_z", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, ecef_z), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_acc", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, pos_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_pos_llh */
+static const nmea_ubx_scale ubx_mga_ini_pos_llh_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_pos_llh_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_ini_pos_llh_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_pos_llh, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_pos_llh, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_pos_llh, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lat", &ubx_mga_ini_pos_llh_lat_scale, offsetof(nmea_ubx_mga_ini_pos_llh, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lon", &ubx_mga_ini_pos_llh_lon_scale, offsetof(nmea_ubx_mga_ini_pos_llh, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"alt", NULL, offsetof(nmea_ubx_mga_ini_pos_llh, alt), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_acc", NULL, offsetof(nmea_ubx_mga_ini_pos_llh, pos_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_time_utc */
+static const nmea_ubx_item ubx_mga_ini_time_utc_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_time_utc, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_time_utc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ref", NULL, offsetof(nmea_ubx_mga_ini_time_utc, ref), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"source", NULL, offsetof(nmea_ubx_mga_ini_time_utc, source), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fall", NULL, offsetof(nmea_ubx_mga_ini_time_utc, fall), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"last", NULL, offsetof(nmea_ubx_mga_ini_time_utc, last), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_secs", NULL, offsetof(nmea_ubx_mga_ini_time_utc, leap_secs), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_mga_ini_time_utc, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_mga_ini_time_utc, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_mga_ini_time_utc, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_mga_ini_time_utc, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"minute", NULL, offsetof(nmea_ubx_mga_ini_time_utc, minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"second", NULL, offsetof(nmea_ubx_mga_ini_time_utc, second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_time_utc, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ns", NULL, offsetof(nmea_ubx_mga_ini_time_utc, ns), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc_s", NULL, offsetof(nmea_ubx_mga_ini_time_utc, t_acc_s), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_ini_time_utc, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc_ns", NULL, offsetof(nmea_ubx_mga_ini_time_utc, t_acc_ns), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_time_gnss */
+static const nmea_ubx_item ubx_mga_ini_time_gnss_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ref", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, ref), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"source", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, source), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fall", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, fall), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"last", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, last), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_mga_ini_time_gnss, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ns", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, ns), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc_s", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, t_acc_s), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc_ns", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, t_acc_ns), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_clkd */
+static const nmea_ubx_item ubx_mga_ini_clkd_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_clkd, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_clkd, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_clkd, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clk_d", NULL, offsetof(nmea_ubx_mga_ini_clkd, clk_d), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clk_d_acc", NULL, offsetof(nmea_ubx_mga_ini_clkd, clk_d_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_freq */
+static const nmea_ubx_scale ubx_mga_ini_freq_freq_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_ini_freq_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_freq, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_freq, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_freq, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_mga_ini_freq, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"source", NULL, offsetof(nmea_ubx_mga_ini_freq, source), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fall", NULL, offsetof(nmea_ubx_mga_ini_freq, fall), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"freq", &ubx_mga_ini_freq_freq_scale, offsetof(nmea_ubx_mga_ini_freq, freq), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"freq_acc", NULL, offsetof(nmea_ubx_mga_ini_freq, freq_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_eop */
+static const nmea_ubx_scale ubx_mga_ini_eop_xp_p0_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_eop_xp_p1_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_eop_yp_p0_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_eop_yp_p1_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_eop_d_ut1_scale = {33554432.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_eop_dd_ut1_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_ini_eop_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_eop, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_eop, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_eop, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d2k_ref", NULL, offsetof(nmea_ubx_mga_ini_eop, d2k_ref), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d2k_max", NULL, offsetof(nmea_ubx_mga_ini_eop, d2k_max), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"xp_p0", &ubx_mga_ini_eop_xp_p0_scale, offsetof(nmea_ubx_mga_ini_eop, xp_p0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"xp_p1", &ubx_mga_ini_eop_xp_p1_scale, offsetof(nmea_ubx_mga_ini_eop, xp_p1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"yp_p0", &ubx_mga_ini_eop_yp_p0_scale, offsetof(nmea_ubx_mga_ini_eop, yp_p0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"yp_p1", &ubx_mga_ini_eop_yp_p1_scale, offsetof(nmea_ubx_mga_ini_eop, yp_p1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"d_ut1", &ubx_mga_ini_eop_d_ut1_scale, offsetof(nmea_ubx_mga_ini_eop, d_ut1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"dd_ut1", &ubx_mga_ini_eop_dd_ut1_scale, offsetof(nmea_ubx_mga_ini_eop, dd_ut1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_ini_eop, reserved1), 0, 0, NMEA_UBX_ITEM_ARRAY, 16, 16, 0, NMEA_UBX_PRINT_BIG, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_mga_ini_eop, reserved2), 0, 0, NMEA_UBX_ITEM_ARRAY, 16, 16, 0, NMEA_UBX_PRINT_BIG, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_mga_ini_eop, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* MGA-ACK: mga_ack */
 static const nmea_ubx_item ubx_mga_ack_items[] = {
     {"type", NULL, offsetof(nmea_ubx_mga_ack, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -6375,9 +6489,9 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"tim_smeas_poll", "TIM-SMEAS", 0x0D, 0x13, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_smeas_poll_items, 0, 0, offsetof(nmea_ubx_tim_smeas_poll, trailing)},
     {"tim_smeas", "TIM-SMEAS", 0x0D, 0x13, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_tim_smeas_items, 6, 0, offsetof(nmea_ubx_tim_smeas, trailing)},
     {"tim_vcocal_poll", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_vcocal_poll_items, 0, 0, offsetof(nmea_ubx_tim_vcocal_poll, trailing)},
-    {"tim_vcocal_stop", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 1, -1, 0, ubx_tim_vcocal_stop_items, 1, 0, offsetof(nmea_ubx_tim_vcocal_stop, trailing)},
-    {"tim_vcocal_result", "TIM-VCOCAL", 0x0D, 0x15, true, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_tim_vcocal_result_items, 6, 0, offsetof(nmea_ubx_tim_vcocal_result, trailing)},
-    {"tim_vcocal", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_tim_vcocal_items, 8, 0, offsetof(nmea_ubx_tim_vcocal, trailing)},
+    {"tim_vcocal_stop", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 1, 0, 0, ubx_tim_vcocal_stop_items, 1, 0, offsetof(nmea_ubx_tim_vcocal_stop, trailing)},
+    {"tim_vcocal_result", "TIM-VCOCAL", 0x0D, 0x15, true, NMEA_UBX_PROTOCOL_UBX, 12, 3, 0, ubx_tim_vcocal_result_items, 6, 0, offsetof(nmea_ubx_tim_vcocal_result, trailing)},
+    {"tim_vcocal", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 12, 2, 0, ubx_tim_vcocal_items, 8, 0, offsetof(nmea_ubx_tim_vcocal, trailing)},
     {"tim_fchg_poll", "TIM-FCHG", 0x0D, 0x16, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_fchg_poll_items, 0, 0, offsetof(nmea_ubx_tim_fchg_poll, trailing)},
     {"tim_fchg", "TIM-FCHG", 0x0D, 0x16, true, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_tim_fchg_items, 9, 0, offsetof(nmea_ubx_tim_fchg, trailing)},
     {"tim_hoc", "TIM-HOC", 0x0D, 0x17, false, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_tim_hoc_items, 7, 0, offsetof(nmea_ubx_tim_hoc, trailing)},
@@ -6389,27 +6503,34 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"esf_alg", "ESF-ALG", 0x10, 0x14, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_esf_alg_items, 13, 0, offsetof(nmea_ubx_esf_alg, trailing)},
     {"esf_ins_poll", "ESF-INS", 0x10, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_esf_ins_poll_items, 0, 0, offsetof(nmea_ubx_esf_ins_poll, trailing)},
     {"esf_ins", "ESF-INS", 0x10, 0x15, true, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_esf_ins_items, 16, 0, offsetof(nmea_ubx_esf_ins, trailing)},
-    {"mga_gps_eph", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 68, -1, 0, ubx_mga_gps_eph_items, 31, 0, offsetof(nmea_ubx_mga_gps_eph, trailing)},
-    {"mga_gps_alm", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_mga_gps_alm_items, 16, 0, offsetof(nmea_ubx_mga_gps_alm, trailing)},
-    {"mga_gps_health", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_mga_gps_health_items, 5, 0, offsetof(nmea_ubx_mga_gps_health, trailing)},
-    {"mga_gps_utc", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_gps_utc_items, 12, 0, offsetof(nmea_ubx_mga_gps_utc, trailing)},
-    {"mga_gps_iono", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_mga_gps_iono_items, 12, 0, offsetof(nmea_ubx_mga_gps_iono, trailing)},
-    {"mga_gal_eph", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 76, -1, 0, ubx_mga_gal_eph_items, 33, 0, offsetof(nmea_ubx_mga_gal_eph, trailing)},
-    {"mga_gal_alm", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_mga_gal_alm_items, 19, 0, offsetof(nmea_ubx_mga_gal_alm, trailing)},
-    {"mga_gal_timeoffset", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_mga_gal_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_gal_timeoffset, trailing)},
-    {"mga_gal_utc", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_gal_utc_items, 12, 0, offsetof(nmea_ubx_mga_gal_utc, trailing)},
-    {"mga_bds_eph", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 88, -1, 0, ubx_mga_bds_eph_items, 30, 0, offsetof(nmea_ubx_mga_bds_eph, trailing)},
-    {"mga_bds_alm", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_mga_bds_alm_items, 16, 0, offsetof(nmea_ubx_mga_bds_alm, trailing)},
-    {"mga_bds_health", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 68, -1, 0, ubx_mga_bds_health_items, 5, 0, offsetof(nmea_ubx_mga_bds_health, trailing)},
-    {"mga_bds_utc", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_bds_utc_items, 12, 0, offsetof(nmea_ubx_mga_bds_utc, trailing)},
-    {"mga_bds_iono", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_mga_bds_iono_items, 12, 0, offsetof(nmea_ubx_mga_bds_iono, trailing)},
-    {"mga_qzss_eph", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 68, -1, 0, ubx_mga_qzss_eph_items, 31, 0, offsetof(nmea_ubx_mga_qzss_eph, trailing)},
-    {"mga_qzss_alm", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_mga_qzss_alm_items, 16, 0, offsetof(nmea_ubx_mga_qzss_alm, trailing)},
-    {"mga_qzss_health", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_mga_qzss_health_items, 5, 0, offsetof(nmea_ubx_mga_qzss_health, trailing)},
-    {"mga_glo_eph", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 48, -1, 0, ubx_mga_glo_eph_items, 23, 0, offsetof(nmea_ubx_mga_glo_eph, trailing)},
-    {"mga_glo_alm", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_mga_glo_alm_items, 17, 0, offsetof(nmea_ubx_mga_glo_alm, trailing)},
-    {"mga_glo_timeoffset", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_glo_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_glo_timeoffset, trailing)},
+    {"mga_gps_eph", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 68, 1, 0, ubx_mga_gps_eph_items, 31, 0, offsetof(nmea_ubx_mga_gps_eph, trailing)},
+    {"mga_gps_alm", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 36, 2, 0, ubx_mga_gps_alm_items, 16, 0, offsetof(nmea_ubx_mga_gps_alm, trailing)},
+    {"mga_gps_health", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 40, 4, 0, ubx_mga_gps_health_items, 5, 0, offsetof(nmea_ubx_mga_gps_health, trailing)},
+    {"mga_gps_utc", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 20, 5, 0, ubx_mga_gps_utc_items, 12, 0, offsetof(nmea_ubx_mga_gps_utc, trailing)},
+    {"mga_gps_iono", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 16, 6, 0, ubx_mga_gps_iono_items, 12, 0, offsetof(nmea_ubx_mga_gps_iono, trailing)},
+    {"mga_gal_eph", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 76, 1, 0, ubx_mga_gal_eph_items, 33, 0, offsetof(nmea_ubx_mga_gal_eph, trailing)},
+    {"mga_gal_alm", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 32, 2, 0, ubx_mga_gal_alm_items, 19, 0, offsetof(nmea_ubx_mga_gal_alm, trailing)},
+    {"mga_gal_timeoffset", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 12, 3, 0, ubx_mga_gal_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_gal_timeoffset, trailing)},
+    {"mga_gal_utc", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 20, 5, 0, ubx_mga_gal_utc_items, 12, 0, offsetof(nmea_ubx_mga_gal_utc, trailing)},
+    {"mga_bds_eph", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 88, 1, 0, ubx_mga_bds_eph_items, 30, 0, offsetof(nmea_ubx_mga_bds_eph, trailing)},
+    {"mga_bds_alm", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 40, 2, 0, ubx_mga_bds_alm_items, 16, 0, offsetof(nmea_ubx_mga_bds_alm, trailing)},
+    {"mga_bds_health", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 68, 4, 0, ubx_mga_bds_health_items, 5, 0, offsetof(nmea_ubx_mga_bds_health, trailing)},
+    {"mga_bds_utc", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 20, 5, 0, ubx_mga_bds_utc_items, 12, 0, offsetof(nmea_ubx_mga_bds_utc, trailing)},
+    {"mga_bds_iono", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 16, 6, 0, ubx_mga_bds_iono_items, 12, 0, offsetof(nmea_ubx_mga_bds_iono, trailing)},
+    {"mga_qzss_eph", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 68, 1, 0, ubx_mga_qzss_eph_items, 31, 0, offsetof(nmea_ubx_mga_qzss_eph, trailing)},
+    {"mga_qzss_alm", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 36, 2, 0, ubx_mga_qzss_alm_items, 16, 0, offsetof(nmea_ubx_mga_qzss_alm, trailing)},
+    {"mga_qzss_health", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 12, 4, 0, ubx_mga_qzss_health_items, 5, 0, offsetof(nmea_ubx_mga_qzss_health, trailing)},
+    {"mga_glo_eph", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 48, 1, 0, ubx_mga_glo_eph_items, 23, 0, offsetof(nmea_ubx_mga_glo_eph, trailing)},
+    {"mga_glo_alm", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 36, 2, 0, ubx_mga_glo_alm_items, 17, 0, offsetof(nmea_ubx_mga_glo_alm, trailing)},
+    {"mga_glo_timeoffset", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 20, 3, 0, ubx_mga_glo_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_glo_timeoffset, trailing)},
     {"mga_ano", "MGA-ANO", 0x13, 0x20, false, NMEA_UBX_PROTOCOL_UBX, 76, -1, 0, ubx_mga_ano_items, 10, 0, offsetof(nmea_ubx_mga_ano, trailing)},
+    {"mga_ini_pos_xyz", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 20, 0, 0, ubx_mga_ini_pos_xyz_items, 7, 0, offsetof(nmea_ubx_mga_ini_pos_xyz, trailing)},
+    {"mga_ini_pos_llh", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 20, 1, 0, ubx_mga_ini_pos_llh_items, 7, 0, offsetof(nmea_ubx_mga_ini_pos_llh, trailing)},
+    {"mga_ini_time_utc", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 24, 16, 0, ubx_mga_ini_time_utc_items, 18, 0, offsetof(nmea_ubx_mga_ini_time_utc, trailing)},
+    {"mga_ini_time_gnss", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 24, 17, 0, ubx_mga_ini_time_gnss_items, 14, 0, offsetof(nmea_ubx_mga_ini_time_gnss, trailing)},
+    {"mga_ini_clkd", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 12, 32, 0, ubx_mga_ini_clkd_items, 5, 0, offsetof(nmea_ubx_mga_ini_clkd, trailing)},
+    {"mga_ini_freq", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 12, 33, 0, ubx_mga_ini_freq_items, 8, 0, offsetof(nmea_ubx_mga_ini_freq, trailing)},
+    {"mga_ini_eop", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 72, 48, 0, ubx_mga_ini_eop_items, 14, 0, offsetof(nmea_ubx_mga_ini_eop, trailing)},
     {"mga_ack", "MGA-ACK", 0x13, 0x60, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_mga_ack_items, 5, 0, offsetof(nmea_ubx_mga_ack, trailing)},
     {"mga_dbd_poll", "MGA-DBD", 0x13, 0x80, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mga_dbd_poll_items, 0, 0, offsetof(nmea_ubx_mga_dbd_poll, trailing)},
     {"mga_dbd", "MGA-DBD", 0x13, 0x80, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mga_dbd_items, 2, 0, offsetof(nmea_ubx_mga_dbd, trailing)},
@@ -6669,48 +6790,49 @@ static const struct {
     {0x13, 0x05, 270, 272}, /* MGA-QZSS */
     {0x13, 0x06, 273, 275}, /* MGA-GLO */
     {0x13, 0x20, 276, 276}, /* MGA-ANO */
-    {0x13, 0x60, 277, 277}, /* MGA-ACK */
-    {0x13, 0x80, 278, 279}, /* MGA-DBD */
-    {0x21, 0x03, 280, 280}, /* LOG-ERASE */
-    {0x21, 0x04, 281, 281}, /* LOG-STRING */
-    {0x21, 0x07, 282, 282}, /* LOG-CREATE */
-    {0x21, 0x08, 283, 284}, /* LOG-INFO */
-    {0x21, 0x09, 285, 285}, /* LOG-RETRIEVE */
-    {0x21, 0x0B, 286, 286}, /* LOG-RETRIEVEPOS */
-    {0x21, 0x0D, 287, 287}, /* LOG-RETRIEVESTRING */
-    {0x21, 0x0E, 288, 289}, /* LOG-FINDTIME */
-    {0x21, 0x0F, 290, 290}, /* LOG-RETRIEVEPOSEXTRA */
-    {0x21, 0x10, 291, 291}, /* LOG-RETRIEVEBATCH */
-    {0x21, 0x11, 292, 292}, /* LOG-BATCH */
-    {0x27, 0x01, 293, 293}, /* SEC-SIGN */
-    {0x27, 0x03, 294, 295}, /* SEC-UNIQID */
-    {0x27, 0x09, 296, 298}, /* SEC-SIG */
-    {0x27, 0x10, 299, 300}, /* SEC-SIGLOG */
-    {0x28, 0x00, 301, 302}, /* HNR-PVT */
-    {0x28, 0x01, 303, 304}, /* HNR-ATT */
-    {0x28, 0x02, 305, 306}, /* HNR-INS */
-    {0x29, 0x01, 307, 308}, /* NAV2-POSECEF */
-    {0x29, 0x02, 309, 310}, /* NAV2-POSLLH */
-    {0x29, 0x03, 311, 312}, /* NAV2-STATUS */
-    {0x29, 0x04, 313, 314}, /* NAV2-DOP */
-    {0x29, 0x07, 315, 316}, /* NAV2-PVT */
-    {0x29, 0x09, 317, 318}, /* NAV2-ODO */
-    {0x29, 0x11, 319, 320}, /* NAV2-VELECEF */
-    {0x29, 0x12, 321, 322}, /* NAV2-VELNED */
-    {0x29, 0x20, 323, 324}, /* NAV2-TIMEGPS */
-    {0x29, 0x21, 325, 326}, /* NAV2-TIMEUTC */
-    {0x29, 0x22, 327, 328}, /* NAV2-CLOCK */
-    {0x29, 0x23, 329, 330}, /* NAV2-TIMEGLO */
-    {0x29, 0x24, 331, 332}, /* NAV2-TIMEBDS */
-    {0x29, 0x25, 333, 334}, /* NAV2-TIMEGAL */
-    {0x29, 0x26, 335, 336}, /* NAV2-TIMELS */
-    {0x29, 0x27, 337, 338}, /* NAV2-TIMEQZSS */
-    {0x29, 0x32, 339, 340}, /* NAV2-SBAS */
-    {0x29, 0x35, 341, 342}, /* NAV2-SAT */
-    {0x29, 0x36, 343, 344}, /* NAV2-COV */
-    {0x29, 0x42, 345, 346}, /* NAV2-SLAS */
-    {0x29, 0x43, 347, 348}, /* NAV2-SIG */
-    {0x29, 0x61, 349, 349}, /* NAV2-EOE */
+    {0x13, 0x40, 277, 283}, /* MGA-INI */
+    {0x13, 0x60, 284, 284}, /* MGA-ACK */
+    {0x13, 0x80, 285, 286}, /* MGA-DBD */
+    {0x21, 0x03, 287, 287}, /* LOG-ERASE */
+    {0x21, 0x04, 288, 288}, /* LOG-STRING */
+    {0x21, 0x07, 289, 289}, /* LOG-CREATE */
+    {0x21, 0x08, 290, 291}, /* LOG-INFO */
+    {0x21, 0x09, 292, 292}, /* LOG-RETRIEVE */
+    {0x21, 0x0B, 293, 293}, /* LOG-RETRIEVEPOS */
+    {0x21, 0x0D, 294, 294}, /* LOG-RETRIEVESTRING */
+    {0x21, 0x0E, 295, 296}, /* LOG-FINDTIME */
+    {0x21, 0x0F, 297, 297}, /* LOG-RETRIEVEPOSEXTRA */
+    {0x21, 0x10, 298, 298}, /* LOG-RETRIEVEBATCH */
+    {0x21, 0x11, 299, 299}, /* LOG-BATCH */
+    {0x27, 0x01, 300, 300}, /* SEC-SIGN */
+    {0x27, 0x03, 301, 302}, /* SEC-UNIQID */
+    {0x27, 0x09, 303, 305}, /* SEC-SIG */
+    {0x27, 0x10, 306, 307}, /* SEC-SIGLOG */
+    {0x28, 0x00, 308, 309}, /* HNR-PVT */
+    {0x28, 0x01, 310, 311}, /* HNR-ATT */
+    {0x28, 0x02, 312, 313}, /* HNR-INS */
+    {0x29, 0x01, 314, 315}, /* NAV2-POSECEF */
+    {0x29, 0x02, 316, 317}, /* NAV2-POSLLH */
+    {0x29, 0x03, 318, 319}, /* NAV2-STATUS */
+    {0x29, 0x04, 320, 321}, /* NAV2-DOP */
+    {0x29, 0x07, 322, 323}, /* NAV2-PVT */
+    {0x29, 0x09, 324, 325}, /* NAV2-ODO */
+    {0x29, 0x11, 326, 327}, /* NAV2-VELECEF */
+    {0x29, 0x12, 328, 329}, /* NAV2-VELNED */
+    {0x29, 0x20, 330, 331}, /* NAV2-TIMEGPS */
+    {0x29, 0x21, 332, 333}, /* NAV2-TIMEUTC */
+    {0x29, 0x22, 334, 335}, /* NAV2-CLOCK */
+    {0x29, 0x23, 336, 337}, /* NAV2-TIMEGLO */
+    {0x29, 0x24, 338, 339}, /* NAV2-TIMEBDS */
+    {0x29, 0x25, 340, 341}, /* NAV2-TIMEGAL */
+    {0x29, 0x26, 342, 343}, /* NAV2-TIMELS */
+    {0x29, 0x27, 344, 345}, /* NAV2-TIMEQZSS */
+    {0x29, 0x32, 346, 347}, /* NAV2-SBAS */
+    {0x29, 0x35, 348, 349}, /* NAV2-SAT */
+    {0x29, 0x36, 350, 351}, /* NAV2-COV */
+    {0x29, 0x42, 352, 353}, /* NAV2-SLAS */
+    {0x29, 0x43, 354, 355}, /* NAV2-SIG */
+    {0x29, 0x61, 356, 356}, /* NAV2-EOE */
 };
 
 /* The layouts of each key of the other protocols: by protocol, then key (an id and sub-id before
@@ -6719,45 +6841,45 @@ static const struct {
     uint8_t protocol, key_len, key[2];
     uint16_t first, last;
 } ubx_keyed[] = {
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 350, 350}, /* CASIC NAV-DOP */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 351, 351}, /* CASIC NAV-PV */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 352, 352}, /* CASIC NAV-TIMEUTC */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 353, 353}, /* CASIC NAV-GPSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 354, 354}, /* CASIC NAV-BDSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 355, 355}, /* CASIC NAV-GLNINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 356, 356}, /* CASIC ACK-NAK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 357, 357}, /* CASIC ACK-ACK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 358, 359}, /* CASIC CFG-PRT */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 360, 361}, /* CASIC CFG-MSG */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 362, 363}, /* CASIC CFG-RATE */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 364, 365}, /* CASIC MON-VER */
-    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 366, 366}, /* SIRF MID 67 SID 1 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 367, 367}, /* SIRF MID 2 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 368, 368}, /* SIRF MID 4 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 369, 369}, /* SIRF MID 6 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 370, 370}, /* SIRF MID 7 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 371, 371}, /* SIRF MID 9 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 372, 372}, /* SIRF MID 11 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 373, 373}, /* SIRF MID 12 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 374, 374}, /* SIRF MID 13 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 375, 375}, /* SIRF MID 18 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 376, 376}, /* SIRF MID 41 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 377, 377}, /* SIRF MID 52 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 378, 378}, /* SIRF MID 129 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 379, 379}, /* SIRF MID 132 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 380, 380}, /* SIRF MID 135 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 381, 381}, /* SIRF MID 255 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 382, 382}, /* SKYTRAQ 0x02 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 383, 383}, /* SKYTRAQ 0x09 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 384, 384}, /* SKYTRAQ 0x80 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 385, 385}, /* SKYTRAQ 0x83 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 386, 386}, /* SKYTRAQ 0x84 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 387, 387}, /* SKYTRAQ 0xA8 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 388, 388}, /* SKYTRAQ 0xDC */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 389, 389}, /* SKYTRAQ 0xDD */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 390, 390}, /* SKYTRAQ 0xDE */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 391, 391}, /* SKYTRAQ 0xDF */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 392, 392}, /* SKYTRAQ 0xE0 */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 357, 357}, /* CASIC NAV-DOP */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 358, 358}, /* CASIC NAV-PV */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 359, 359}, /* CASIC NAV-TIMEUTC */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 360, 360}, /* CASIC NAV-GPSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 361, 361}, /* CASIC NAV-BDSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 362, 362}, /* CASIC NAV-GLNINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 363, 363}, /* CASIC ACK-NAK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 364, 364}, /* CASIC ACK-ACK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 365, 366}, /* CASIC CFG-PRT */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 367, 368}, /* CASIC CFG-MSG */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 369, 370}, /* CASIC CFG-RATE */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 371, 372}, /* CASIC MON-VER */
+    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 373, 373}, /* SIRF MID 67 SID 1 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 374, 374}, /* SIRF MID 2 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 375, 375}, /* SIRF MID 4 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 376, 376}, /* SIRF MID 6 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 377, 377}, /* SIRF MID 7 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 378, 378}, /* SIRF MID 9 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 379, 379}, /* SIRF MID 11 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 380, 380}, /* SIRF MID 12 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 381, 381}, /* SIRF MID 13 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 382, 382}, /* SIRF MID 18 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 383, 383}, /* SIRF MID 41 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 384, 384}, /* SIRF MID 52 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 385, 385}, /* SIRF MID 129 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 386, 386}, /* SIRF MID 132 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 387, 387}, /* SIRF MID 135 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 388, 388}, /* SIRF MID 255 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 389, 389}, /* SKYTRAQ 0x02 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 390, 390}, /* SKYTRAQ 0x09 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 391, 391}, /* SKYTRAQ 0x80 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 392, 392}, /* SKYTRAQ 0x83 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 393, 393}, /* SKYTRAQ 0x84 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 394, 394}, /* SKYTRAQ 0xA8 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 395, 395}, /* SKYTRAQ 0xDC */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 396, 396}, /* SKYTRAQ 0xDD */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 397, 397}, /* SKYTRAQ 0xDE */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 398, 398}, /* SKYTRAQ 0xDF */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 399, 399}, /* SKYTRAQ 0xE0 */
 };
 
 bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, size_t len, nmea_ubx_message *out,
