@@ -106,6 +106,9 @@ def _check_binary_items(layout: Payload, report: Report) -> None:
             if f.type in ("u8", "i8") and (f.divisor is not None or f.base is not None):
                 report(f.origin, "B002", f"field {f.id}: a 64-bit integer takes no divisor or base, as its value "
                        "would not come back byte-exact from a float", "divisor" if f.divisor is not None else "base")
+            if f.bits is not None and f.bits > 8 * 255 and not f.bit_type.size:
+                report(f.origin, "B002", f"field {f.id}: {f.bits // 8} bytes, a fixed text, bytes or reserved field "
+                       "has at most 255 (the C descriptor's byte): split it", "size")
             if f.parts and not f.bit_type.has_parts:
                 report(f.origin, "B002", f"field {f.id}: only a bitfield word (x1, x2, x4) has parts", "parts")
             _check_parts(f, report)

@@ -243,8 +243,9 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
     Rule("B002", "binary fields are byte fields",
          "The fields of a binary layout have byte types (u1..u8, i1..i8, r4, r8, x1..x4, ch, bytes, reserved); "
          "only a bitfield word (x1, x2, x4) has `parts`, each inside the word and overlapping no other; a 64-bit "
-         "integer (u8, i8) takes no divisor or base, which a float would not give back byte-exact.",
-         "Correct the type, or the part's `bit` and `width`."),
+         "integer (u8, i8) takes no divisor or base, which a float would not give back byte-exact; a fixed text, "
+         "bytes or reserved field has at most 255 bytes (the C descriptor's size byte).",
+         "Correct the type, or the part's `bit` and `width`; split a longer run of bytes."),
     Rule("B003", "a counted group names its count",
          "A group's `count` names an unsigned field or bitfield part that comes before the group.",
          "Correct `count`, or leave it out (the group then takes the bytes left)."),

@@ -53,26 +53,27 @@
 //   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_hw.yaml,
 //   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
 //   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
-//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_comms.yaml,
-//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_rf.yaml,
-//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/aid_ini.yaml,
-//   spec/binary/ubx/messages/aid_hui.yaml, spec/binary/ubx/messages/aid_alm.yaml,
-//   spec/binary/ubx/messages/aid_eph.yaml, spec/binary/ubx/messages/aid_aop.yaml,
-//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
-//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
-//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
-//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
-//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
-//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
-//   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
-//   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
-//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_bds.yaml,
-//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mga_glo.yaml,
-//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_ini.yaml,
-//   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
-//   spec/binary/ubx/messages/log_erase.yaml, spec/binary/ubx/messages/log_string.yaml,
-//   spec/binary/ubx/messages/log_create.yaml, spec/binary/ubx/messages/log_info.yaml,
-//   spec/binary/ubx/messages/log_retrieve.yaml, spec/binary/ubx/messages/log_retrievepos.yaml,
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
+//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
+//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
+//   spec/binary/ubx/messages/aid_ini.yaml, spec/binary/ubx/messages/aid_hui.yaml,
+//   spec/binary/ubx/messages/aid_alm.yaml, spec/binary/ubx/messages/aid_eph.yaml,
+//   spec/binary/ubx/messages/aid_aop.yaml, spec/binary/ubx/messages/tim_tp.yaml,
+//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_svin.yaml,
+//   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
+//   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
+//   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
+//   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/esf_meas.yaml,
+//   spec/binary/ubx/messages/esf_raw.yaml, spec/binary/ubx/messages/esf_status.yaml,
+//   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
+//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_gal.yaml,
+//   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
+//   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_ano.yaml,
+//   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_ack.yaml,
+//   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/log_erase.yaml,
+//   spec/binary/ubx/messages/log_string.yaml, spec/binary/ubx/messages/log_create.yaml,
+//   spec/binary/ubx/messages/log_info.yaml, spec/binary/ubx/messages/log_retrieve.yaml,
+//   spec/binary/ubx/messages/log_retrievepos.yaml,
 //   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_findtime.yaml,
 //   spec/binary/ubx/messages/log_retrieveposextra.yaml,
 //   spec/binary/ubx/messages/log_retrievebatch.yaml, spec/binary/ubx/messages/log_batch.yaml,
@@ -111,7 +112,7 @@
 //   spec/binary/skytraq/messages/meas_time.yaml, spec/binary/skytraq/messages/raw_meas.yaml,
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 9285606cb6f20e63)
+//   spec/enums/ubx_gnss_id.yaml (digest c5956aea2d235ab3)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -3370,6 +3371,28 @@ static const nmea_ubx_item ubx_mon_smgr_items[] = {
     {"ext_int1_feed_back", NULL, offsetof(nmea_ubx_mon_smgr, ext_int1_feed_back), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* MON-SPAN: mon_span_poll */
+static const nmea_ubx_item ubx_mon_span_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-SPAN: mon_span */
+static const nmea_ubx_item ubx_mon_span_rf_block_items[] = {
+    {"spectrum0", NULL, offsetof(nmea_ubx_mon_span_rf_block, spectrum0), 0, 0, NMEA_UBX_ITEM_ARRAY, 128, 128, 0, NMEA_UBX_PRINT_HEX, false},
+    {"spectrum1", NULL, offsetof(nmea_ubx_mon_span_rf_block, spectrum1), 0, 0, NMEA_UBX_ITEM_ARRAY, 128, 128, 0, NMEA_UBX_PRINT_HEX, false},
+    {"span", NULL, offsetof(nmea_ubx_mon_span_rf_block, span), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"res", NULL, offsetof(nmea_ubx_mon_span_rf_block, res), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"center", NULL, offsetof(nmea_ubx_mon_span_rf_block, center), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pga", NULL, offsetof(nmea_ubx_mon_span_rf_block, pga), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_span_rf_block, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mon_span_rf_blocks_group = {ubx_mon_span_rf_block_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_span, num_rf_blocks), 0, 0, 4, NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX, 272, sizeof(nmea_ubx_mon_span_rf_block), 0, offsetof(nmea_ubx_mon_span, rf_blocks_count)};
+static const nmea_ubx_item ubx_mon_span_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_span, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_rf_blocks", NULL, offsetof(nmea_ubx_mon_span, num_rf_blocks), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mon_span, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rf_blocks", &ubx_mon_span_rf_blocks_group, offsetof(nmea_ubx_mon_span, rf_blocks), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* MON-COMMS: mon_comms_poll */
 static const nmea_ubx_item ubx_mon_comms_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -6451,6 +6474,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"mon_gnss", "MON-GNSS", 0x0A, 0x28, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_mon_gnss_items, 18, 0, offsetof(nmea_ubx_mon_gnss, trailing)},
     {"mon_smgr_poll", "MON-SMGR", 0x0A, 0x2E, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_smgr_poll_items, 0, 0, offsetof(nmea_ubx_mon_smgr_poll, trailing)},
     {"mon_smgr", "MON-SMGR", 0x0A, 0x2E, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_mon_smgr_items, 22, 0, offsetof(nmea_ubx_mon_smgr, trailing)},
+    {"mon_span_poll", "MON-SPAN", 0x0A, 0x31, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_span_poll_items, 0, 0, offsetof(nmea_ubx_mon_span_poll, trailing)},
+    {"mon_span", "MON-SPAN", 0x0A, 0x31, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_span_items, 4, 0, offsetof(nmea_ubx_mon_span, trailing)},
     {"mon_comms_poll", "MON-COMMS", 0x0A, 0x36, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_comms_poll_items, 0, 0, offsetof(nmea_ubx_mon_comms_poll, trailing)},
     {"mon_comms", "MON-COMMS", 0x0A, 0x36, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_comms_items, 8, 0, offsetof(nmea_ubx_mon_comms, trailing)},
     {"mon_hw3_poll", "MON-HW3", 0x0A, 0x37, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_hw3_poll_items, 0, 0, offsetof(nmea_ubx_mon_hw3_poll, trailing)},
@@ -6760,79 +6785,80 @@ static const struct {
     {0x0A, 0x27, 198, 199}, /* MON-PATCH */
     {0x0A, 0x28, 200, 201}, /* MON-GNSS */
     {0x0A, 0x2E, 202, 203}, /* MON-SMGR */
-    {0x0A, 0x36, 204, 205}, /* MON-COMMS */
-    {0x0A, 0x37, 206, 207}, /* MON-HW3 */
-    {0x0A, 0x38, 208, 209}, /* MON-RF */
-    {0x0A, 0x39, 210, 211}, /* MON-SYS */
-    {0x0B, 0x01, 212, 213}, /* AID-INI */
-    {0x0B, 0x02, 214, 215}, /* AID-HUI */
-    {0x0B, 0x30, 216, 219}, /* AID-ALM */
-    {0x0B, 0x31, 220, 223}, /* AID-EPH */
-    {0x0B, 0x33, 224, 226}, /* AID-AOP */
-    {0x0D, 0x01, 227, 228}, /* TIM-TP */
-    {0x0D, 0x03, 229, 230}, /* TIM-TM2 */
-    {0x0D, 0x04, 231, 232}, /* TIM-SVIN */
-    {0x0D, 0x06, 233, 234}, /* TIM-VRFY */
-    {0x0D, 0x11, 235, 236}, /* TIM-DOSC */
-    {0x0D, 0x12, 237, 238}, /* TIM-TOS */
-    {0x0D, 0x13, 239, 240}, /* TIM-SMEAS */
-    {0x0D, 0x15, 241, 244}, /* TIM-VCOCAL */
-    {0x0D, 0x16, 245, 246}, /* TIM-FCHG */
-    {0x0D, 0x17, 247, 247}, /* TIM-HOC */
-    {0x10, 0x02, 248, 248}, /* ESF-MEAS */
-    {0x10, 0x03, 249, 249}, /* ESF-RAW */
-    {0x10, 0x10, 250, 251}, /* ESF-STATUS */
-    {0x10, 0x14, 252, 253}, /* ESF-ALG */
-    {0x10, 0x15, 254, 255}, /* ESF-INS */
-    {0x13, 0x00, 256, 260}, /* MGA-GPS */
-    {0x13, 0x02, 261, 264}, /* MGA-GAL */
-    {0x13, 0x03, 265, 269}, /* MGA-BDS */
-    {0x13, 0x05, 270, 272}, /* MGA-QZSS */
-    {0x13, 0x06, 273, 275}, /* MGA-GLO */
-    {0x13, 0x20, 276, 276}, /* MGA-ANO */
-    {0x13, 0x40, 277, 283}, /* MGA-INI */
-    {0x13, 0x60, 284, 284}, /* MGA-ACK */
-    {0x13, 0x80, 285, 286}, /* MGA-DBD */
-    {0x21, 0x03, 287, 287}, /* LOG-ERASE */
-    {0x21, 0x04, 288, 288}, /* LOG-STRING */
-    {0x21, 0x07, 289, 289}, /* LOG-CREATE */
-    {0x21, 0x08, 290, 291}, /* LOG-INFO */
-    {0x21, 0x09, 292, 292}, /* LOG-RETRIEVE */
-    {0x21, 0x0B, 293, 293}, /* LOG-RETRIEVEPOS */
-    {0x21, 0x0D, 294, 294}, /* LOG-RETRIEVESTRING */
-    {0x21, 0x0E, 295, 296}, /* LOG-FINDTIME */
-    {0x21, 0x0F, 297, 297}, /* LOG-RETRIEVEPOSEXTRA */
-    {0x21, 0x10, 298, 298}, /* LOG-RETRIEVEBATCH */
-    {0x21, 0x11, 299, 299}, /* LOG-BATCH */
-    {0x27, 0x01, 300, 300}, /* SEC-SIGN */
-    {0x27, 0x03, 301, 302}, /* SEC-UNIQID */
-    {0x27, 0x09, 303, 305}, /* SEC-SIG */
-    {0x27, 0x10, 306, 307}, /* SEC-SIGLOG */
-    {0x28, 0x00, 308, 309}, /* HNR-PVT */
-    {0x28, 0x01, 310, 311}, /* HNR-ATT */
-    {0x28, 0x02, 312, 313}, /* HNR-INS */
-    {0x29, 0x01, 314, 315}, /* NAV2-POSECEF */
-    {0x29, 0x02, 316, 317}, /* NAV2-POSLLH */
-    {0x29, 0x03, 318, 319}, /* NAV2-STATUS */
-    {0x29, 0x04, 320, 321}, /* NAV2-DOP */
-    {0x29, 0x07, 322, 323}, /* NAV2-PVT */
-    {0x29, 0x09, 324, 325}, /* NAV2-ODO */
-    {0x29, 0x11, 326, 327}, /* NAV2-VELECEF */
-    {0x29, 0x12, 328, 329}, /* NAV2-VELNED */
-    {0x29, 0x20, 330, 331}, /* NAV2-TIMEGPS */
-    {0x29, 0x21, 332, 333}, /* NAV2-TIMEUTC */
-    {0x29, 0x22, 334, 335}, /* NAV2-CLOCK */
-    {0x29, 0x23, 336, 337}, /* NAV2-TIMEGLO */
-    {0x29, 0x24, 338, 339}, /* NAV2-TIMEBDS */
-    {0x29, 0x25, 340, 341}, /* NAV2-TIMEGAL */
-    {0x29, 0x26, 342, 343}, /* NAV2-TIMELS */
-    {0x29, 0x27, 344, 345}, /* NAV2-TIMEQZSS */
-    {0x29, 0x32, 346, 347}, /* NAV2-SBAS */
-    {0x29, 0x35, 348, 349}, /* NAV2-SAT */
-    {0x29, 0x36, 350, 351}, /* NAV2-COV */
-    {0x29, 0x42, 352, 353}, /* NAV2-SLAS */
-    {0x29, 0x43, 354, 355}, /* NAV2-SIG */
-    {0x29, 0x61, 356, 356}, /* NAV2-EOE */
+    {0x0A, 0x31, 204, 205}, /* MON-SPAN */
+    {0x0A, 0x36, 206, 207}, /* MON-COMMS */
+    {0x0A, 0x37, 208, 209}, /* MON-HW3 */
+    {0x0A, 0x38, 210, 211}, /* MON-RF */
+    {0x0A, 0x39, 212, 213}, /* MON-SYS */
+    {0x0B, 0x01, 214, 215}, /* AID-INI */
+    {0x0B, 0x02, 216, 217}, /* AID-HUI */
+    {0x0B, 0x30, 218, 221}, /* AID-ALM */
+    {0x0B, 0x31, 222, 225}, /* AID-EPH */
+    {0x0B, 0x33, 226, 228}, /* AID-AOP */
+    {0x0D, 0x01, 229, 230}, /* TIM-TP */
+    {0x0D, 0x03, 231, 232}, /* TIM-TM2 */
+    {0x0D, 0x04, 233, 234}, /* TIM-SVIN */
+    {0x0D, 0x06, 235, 236}, /* TIM-VRFY */
+    {0x0D, 0x11, 237, 238}, /* TIM-DOSC */
+    {0x0D, 0x12, 239, 240}, /* TIM-TOS */
+    {0x0D, 0x13, 241, 242}, /* TIM-SMEAS */
+    {0x0D, 0x15, 243, 246}, /* TIM-VCOCAL */
+    {0x0D, 0x16, 247, 248}, /* TIM-FCHG */
+    {0x0D, 0x17, 249, 249}, /* TIM-HOC */
+    {0x10, 0x02, 250, 250}, /* ESF-MEAS */
+    {0x10, 0x03, 251, 251}, /* ESF-RAW */
+    {0x10, 0x10, 252, 253}, /* ESF-STATUS */
+    {0x10, 0x14, 254, 255}, /* ESF-ALG */
+    {0x10, 0x15, 256, 257}, /* ESF-INS */
+    {0x13, 0x00, 258, 262}, /* MGA-GPS */
+    {0x13, 0x02, 263, 266}, /* MGA-GAL */
+    {0x13, 0x03, 267, 271}, /* MGA-BDS */
+    {0x13, 0x05, 272, 274}, /* MGA-QZSS */
+    {0x13, 0x06, 275, 277}, /* MGA-GLO */
+    {0x13, 0x20, 278, 278}, /* MGA-ANO */
+    {0x13, 0x40, 279, 285}, /* MGA-INI */
+    {0x13, 0x60, 286, 286}, /* MGA-ACK */
+    {0x13, 0x80, 287, 288}, /* MGA-DBD */
+    {0x21, 0x03, 289, 289}, /* LOG-ERASE */
+    {0x21, 0x04, 290, 290}, /* LOG-STRING */
+    {0x21, 0x07, 291, 291}, /* LOG-CREATE */
+    {0x21, 0x08, 292, 293}, /* LOG-INFO */
+    {0x21, 0x09, 294, 294}, /* LOG-RETRIEVE */
+    {0x21, 0x0B, 295, 295}, /* LOG-RETRIEVEPOS */
+    {0x21, 0x0D, 296, 296}, /* LOG-RETRIEVESTRING */
+    {0x21, 0x0E, 297, 298}, /* LOG-FINDTIME */
+    {0x21, 0x0F, 299, 299}, /* LOG-RETRIEVEPOSEXTRA */
+    {0x21, 0x10, 300, 300}, /* LOG-RETRIEVEBATCH */
+    {0x21, 0x11, 301, 301}, /* LOG-BATCH */
+    {0x27, 0x01, 302, 302}, /* SEC-SIGN */
+    {0x27, 0x03, 303, 304}, /* SEC-UNIQID */
+    {0x27, 0x09, 305, 307}, /* SEC-SIG */
+    {0x27, 0x10, 308, 309}, /* SEC-SIGLOG */
+    {0x28, 0x00, 310, 311}, /* HNR-PVT */
+    {0x28, 0x01, 312, 313}, /* HNR-ATT */
+    {0x28, 0x02, 314, 315}, /* HNR-INS */
+    {0x29, 0x01, 316, 317}, /* NAV2-POSECEF */
+    {0x29, 0x02, 318, 319}, /* NAV2-POSLLH */
+    {0x29, 0x03, 320, 321}, /* NAV2-STATUS */
+    {0x29, 0x04, 322, 323}, /* NAV2-DOP */
+    {0x29, 0x07, 324, 325}, /* NAV2-PVT */
+    {0x29, 0x09, 326, 327}, /* NAV2-ODO */
+    {0x29, 0x11, 328, 329}, /* NAV2-VELECEF */
+    {0x29, 0x12, 330, 331}, /* NAV2-VELNED */
+    {0x29, 0x20, 332, 333}, /* NAV2-TIMEGPS */
+    {0x29, 0x21, 334, 335}, /* NAV2-TIMEUTC */
+    {0x29, 0x22, 336, 337}, /* NAV2-CLOCK */
+    {0x29, 0x23, 338, 339}, /* NAV2-TIMEGLO */
+    {0x29, 0x24, 340, 341}, /* NAV2-TIMEBDS */
+    {0x29, 0x25, 342, 343}, /* NAV2-TIMEGAL */
+    {0x29, 0x26, 344, 345}, /* NAV2-TIMELS */
+    {0x29, 0x27, 346, 347}, /* NAV2-TIMEQZSS */
+    {0x29, 0x32, 348, 349}, /* NAV2-SBAS */
+    {0x29, 0x35, 350, 351}, /* NAV2-SAT */
+    {0x29, 0x36, 352, 353}, /* NAV2-COV */
+    {0x29, 0x42, 354, 355}, /* NAV2-SLAS */
+    {0x29, 0x43, 356, 357}, /* NAV2-SIG */
+    {0x29, 0x61, 358, 358}, /* NAV2-EOE */
 };
 
 /* The layouts of each key of the other protocols: by protocol, then key (an id and sub-id before
@@ -6841,45 +6867,45 @@ static const struct {
     uint8_t protocol, key_len, key[2];
     uint16_t first, last;
 } ubx_keyed[] = {
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 357, 357}, /* CASIC NAV-DOP */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 358, 358}, /* CASIC NAV-PV */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 359, 359}, /* CASIC NAV-TIMEUTC */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 360, 360}, /* CASIC NAV-GPSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 361, 361}, /* CASIC NAV-BDSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 362, 362}, /* CASIC NAV-GLNINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 363, 363}, /* CASIC ACK-NAK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 364, 364}, /* CASIC ACK-ACK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 365, 366}, /* CASIC CFG-PRT */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 367, 368}, /* CASIC CFG-MSG */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 369, 370}, /* CASIC CFG-RATE */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 371, 372}, /* CASIC MON-VER */
-    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 373, 373}, /* SIRF MID 67 SID 1 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 374, 374}, /* SIRF MID 2 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 375, 375}, /* SIRF MID 4 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 376, 376}, /* SIRF MID 6 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 377, 377}, /* SIRF MID 7 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 378, 378}, /* SIRF MID 9 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 379, 379}, /* SIRF MID 11 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 380, 380}, /* SIRF MID 12 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 381, 381}, /* SIRF MID 13 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 382, 382}, /* SIRF MID 18 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 383, 383}, /* SIRF MID 41 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 384, 384}, /* SIRF MID 52 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 385, 385}, /* SIRF MID 129 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 386, 386}, /* SIRF MID 132 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 387, 387}, /* SIRF MID 135 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 388, 388}, /* SIRF MID 255 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 389, 389}, /* SKYTRAQ 0x02 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 390, 390}, /* SKYTRAQ 0x09 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 391, 391}, /* SKYTRAQ 0x80 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 392, 392}, /* SKYTRAQ 0x83 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 393, 393}, /* SKYTRAQ 0x84 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 394, 394}, /* SKYTRAQ 0xA8 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 395, 395}, /* SKYTRAQ 0xDC */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 396, 396}, /* SKYTRAQ 0xDD */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 397, 397}, /* SKYTRAQ 0xDE */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 398, 398}, /* SKYTRAQ 0xDF */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 399, 399}, /* SKYTRAQ 0xE0 */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 359, 359}, /* CASIC NAV-DOP */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 360, 360}, /* CASIC NAV-PV */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 361, 361}, /* CASIC NAV-TIMEUTC */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 362, 362}, /* CASIC NAV-GPSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 363, 363}, /* CASIC NAV-BDSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 364, 364}, /* CASIC NAV-GLNINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 365, 365}, /* CASIC ACK-NAK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 366, 366}, /* CASIC ACK-ACK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 367, 368}, /* CASIC CFG-PRT */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 369, 370}, /* CASIC CFG-MSG */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 371, 372}, /* CASIC CFG-RATE */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 373, 374}, /* CASIC MON-VER */
+    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 375, 375}, /* SIRF MID 67 SID 1 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 376, 376}, /* SIRF MID 2 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 377, 377}, /* SIRF MID 4 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 378, 378}, /* SIRF MID 6 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 379, 379}, /* SIRF MID 7 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 380, 380}, /* SIRF MID 9 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 381, 381}, /* SIRF MID 11 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 382, 382}, /* SIRF MID 12 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 383, 383}, /* SIRF MID 13 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 384, 384}, /* SIRF MID 18 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 385, 385}, /* SIRF MID 41 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 386, 386}, /* SIRF MID 52 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 387, 387}, /* SIRF MID 129 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 388, 388}, /* SIRF MID 132 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 389, 389}, /* SIRF MID 135 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 390, 390}, /* SIRF MID 255 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 391, 391}, /* SKYTRAQ 0x02 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 392, 392}, /* SKYTRAQ 0x09 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 393, 393}, /* SKYTRAQ 0x80 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 394, 394}, /* SKYTRAQ 0x83 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 395, 395}, /* SKYTRAQ 0x84 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 396, 396}, /* SKYTRAQ 0xA8 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 397, 397}, /* SKYTRAQ 0xDC */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 398, 398}, /* SKYTRAQ 0xDD */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 399, 399}, /* SKYTRAQ 0xDE */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 400, 400}, /* SKYTRAQ 0xDF */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 401, 401}, /* SKYTRAQ 0xE0 */
 };
 
 bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, size_t len, nmea_ubx_message *out,

@@ -53,26 +53,27 @@
 //   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_hw.yaml,
 //   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
 //   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
-//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_comms.yaml,
-//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_rf.yaml,
-//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/aid_ini.yaml,
-//   spec/binary/ubx/messages/aid_hui.yaml, spec/binary/ubx/messages/aid_alm.yaml,
-//   spec/binary/ubx/messages/aid_eph.yaml, spec/binary/ubx/messages/aid_aop.yaml,
-//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
-//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
-//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
-//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
-//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
-//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
-//   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
-//   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
-//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_bds.yaml,
-//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mga_glo.yaml,
-//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_ini.yaml,
-//   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
-//   spec/binary/ubx/messages/log_erase.yaml, spec/binary/ubx/messages/log_string.yaml,
-//   spec/binary/ubx/messages/log_create.yaml, spec/binary/ubx/messages/log_info.yaml,
-//   spec/binary/ubx/messages/log_retrieve.yaml, spec/binary/ubx/messages/log_retrievepos.yaml,
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
+//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
+//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
+//   spec/binary/ubx/messages/aid_ini.yaml, spec/binary/ubx/messages/aid_hui.yaml,
+//   spec/binary/ubx/messages/aid_alm.yaml, spec/binary/ubx/messages/aid_eph.yaml,
+//   spec/binary/ubx/messages/aid_aop.yaml, spec/binary/ubx/messages/tim_tp.yaml,
+//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_svin.yaml,
+//   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
+//   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
+//   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
+//   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/esf_meas.yaml,
+//   spec/binary/ubx/messages/esf_raw.yaml, spec/binary/ubx/messages/esf_status.yaml,
+//   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
+//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_gal.yaml,
+//   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
+//   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_ano.yaml,
+//   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_ack.yaml,
+//   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/log_erase.yaml,
+//   spec/binary/ubx/messages/log_string.yaml, spec/binary/ubx/messages/log_create.yaml,
+//   spec/binary/ubx/messages/log_info.yaml, spec/binary/ubx/messages/log_retrieve.yaml,
+//   spec/binary/ubx/messages/log_retrievepos.yaml,
 //   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_findtime.yaml,
 //   spec/binary/ubx/messages/log_retrieveposextra.yaml,
 //   spec/binary/ubx/messages/log_retrievebatch.yaml, spec/binary/ubx/messages/log_batch.yaml,
@@ -111,7 +112,7 @@
 //   spec/binary/skytraq/messages/meas_time.yaml, spec/binary/skytraq/messages/raw_meas.yaml,
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 91691455001bd9d2)
+//   spec/enums/ubx_gnss_id.yaml (digest b2282fbd96cc041f)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx (and those of CASIC, SIRF, SKYTRAQ: spec/binary/<protocol>):
@@ -445,6 +446,9 @@ typedef enum {
 #endif
 #ifndef NMEA_UBX_MON_PATCH_ENTRIES_MAX
 #define NMEA_UBX_MON_PATCH_ENTRIES_MAX (32 < NMEA_UBX_MAX_ENTRIES ? 32 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX
+#define NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX (4 < NMEA_UBX_MAX_ENTRIES ? 4 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_MON_COMMS_PROT_IDS_MAX
 #define NMEA_UBX_MON_COMMS_PROT_IDS_MAX (4 < NMEA_UBX_MAX_ENTRIES ? 4 : NMEA_UBX_MAX_ENTRIES)
@@ -3229,6 +3233,32 @@ typedef struct {
     bool ext_int1_feed_back; /* Fed back from the disciplined source (ext_int1 bit 2) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_mon_smgr;
+
+/* Signal characteristics (spectrum analyzer): UBX MON-SPAN (class 0x0A id 0x31), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_span_poll;
+
+/* One entry of rf blocks (rf_blocks). */
+typedef struct {
+    uint8_t spectrum0[128]; /* Spectrum bins 0 to 127 (u1 each in 0.25 dB) */
+    uint8_t spectrum1[128]; /* Spectrum bins 128 to 255 (u1 each in 0.25 dB) */
+    uint32_t span; /* Spectrum span [Hz] */
+    uint32_t res; /* Resolution of the spectrum (bin width) [Hz] */
+    uint32_t center; /* Center of the spectrum span [Hz] */
+    uint8_t pga; /* Programmable gain amplifier gain [dB] */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+} nmea_ubx_mon_span_rf_block;
+
+/* Signal characteristics (spectrum analyzer): UBX MON-SPAN (class 0x0A id 0x31), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t num_rf_blocks; /* Number of RF blocks */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t rf_blocks_count; /* the entries of rf_blocks */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mon_span_rf_block rf_blocks[NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX]; /* RF blocks */
+} nmea_ubx_mon_span;
 
 /* Communication port information: UBX MON-COMMS (class 0x0A id 0x36), poll. */
 typedef struct {
@@ -6284,6 +6314,8 @@ typedef enum {
     NMEA_UBX_MSG_MON_GNSS, /* MON-GNSS, output */
     NMEA_UBX_MSG_MON_SMGR_POLL, /* MON-SMGR, poll */
     NMEA_UBX_MSG_MON_SMGR, /* MON-SMGR, output */
+    NMEA_UBX_MSG_MON_SPAN_POLL, /* MON-SPAN, poll */
+    NMEA_UBX_MSG_MON_SPAN, /* MON-SPAN, output */
     NMEA_UBX_MSG_MON_COMMS_POLL, /* MON-COMMS, poll */
     NMEA_UBX_MSG_MON_COMMS, /* MON-COMMS, output */
     NMEA_UBX_MSG_MON_HW3_POLL, /* MON-HW3, poll */
@@ -6691,6 +6723,8 @@ typedef struct {
         nmea_ubx_mon_gnss mon_gnss;
         nmea_ubx_mon_smgr_poll mon_smgr_poll;
         nmea_ubx_mon_smgr mon_smgr;
+        nmea_ubx_mon_span_poll mon_span_poll;
+        nmea_ubx_mon_span mon_span;
         nmea_ubx_mon_comms_poll mon_comms_poll;
         nmea_ubx_mon_comms mon_comms;
         nmea_ubx_mon_hw3_poll mon_hw3_poll;

@@ -281,6 +281,8 @@ REASONS = {
        for name in ("rxbytes", "txbytes", "parityerrs", "framingerrs", "overrunerrs", "breakcond", "rxbusy", "txbusy")},
     **{name: "pyubx2 gives the raw integer (0.01 deg); ours is in degrees, its <id>_raw pyubx2's value"
        for name in ("plposhorizorient", "plvelhorizorient")},
+    **{name: "MON-SPAN's 256 spectrum bins: ours two byte fields of 128 (a fixed field holds at most 255 bytes), "
+             "pyubx2 one list" for name in ("spectrum", "spectrum0", "spectrum1")},
     "data": "MGA-DBD's database bytes: ours one bytes field, pyubx2 its bytes one by one (data_NN)",
     "svid": "a poll of one satellite: ours its svid, pyubx2 a group of them (svid_NN)",
     "maxdevlifetime": "u-blox names it `maxDevLifeTime`; pyubx2 `maxDevLifeTim`",
@@ -390,8 +392,9 @@ def report() -> str:
         "## Layouts no log carries",
         "",
         "Each fixed layout with a payload that no frame of the logs has, decoded from a made-up payload",
-        "(bytes drawn from a generator seeded with the layout's id, its version set) by our class and by",
-        "pyubx2 parsing it as the layout's direction (output, input, poll), compared as above.",
+        "(bytes drawn from a generator seeded with the layout's id, its selector set: version, type) by",
+        "our class and by pyubx2 parsing it as the layout's direction (output, input, poll), compared as",
+        "above.",
         "",
         "| layout | values compared | equal | encoded back byte-exact |",
         "| --- | ---: | ---: | ---: |",

@@ -47,50 +47,51 @@
 //   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
 //   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_rf.yaml,
 //   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
-//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_sys.yaml,
-//   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_ver.yaml,
-//   spec/binary/ubx/messages/nav2_clock.yaml, spec/binary/ubx/messages/nav2_cov.yaml,
-//   spec/binary/ubx/messages/nav2_dop.yaml, spec/binary/ubx/messages/nav2_eoe.yaml,
-//   spec/binary/ubx/messages/nav2_odo.yaml, spec/binary/ubx/messages/nav2_posecef.yaml,
-//   spec/binary/ubx/messages/nav2_posllh.yaml, spec/binary/ubx/messages/nav2_pvt.yaml,
-//   spec/binary/ubx/messages/nav2_sat.yaml, spec/binary/ubx/messages/nav2_sbas.yaml,
-//   spec/binary/ubx/messages/nav2_sig.yaml, spec/binary/ubx/messages/nav2_slas.yaml,
-//   spec/binary/ubx/messages/nav2_status.yaml, spec/binary/ubx/messages/nav2_timebds.yaml,
-//   spec/binary/ubx/messages/nav2_timegal.yaml, spec/binary/ubx/messages/nav2_timeglo.yaml,
-//   spec/binary/ubx/messages/nav2_timegps.yaml, spec/binary/ubx/messages/nav2_timels.yaml,
-//   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_timeutc.yaml,
-//   spec/binary/ubx/messages/nav2_velecef.yaml, spec/binary/ubx/messages/nav2_velned.yaml,
-//   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_att.yaml,
-//   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_cov.yaml,
-//   spec/binary/ubx/messages/nav_dgps.yaml, spec/binary/ubx/messages/nav_dop.yaml,
-//   spec/binary/ubx/messages/nav_eell.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
-//   spec/binary/ubx/messages/nav_geofence.yaml, spec/binary/ubx/messages/nav_hpposecef.yaml,
-//   spec/binary/ubx/messages/nav_hpposllh.yaml, spec/binary/ubx/messages/nav_odo.yaml,
-//   spec/binary/ubx/messages/nav_orb.yaml, spec/binary/ubx/messages/nav_pl.yaml,
-//   spec/binary/ubx/messages/nav_posecef.yaml, spec/binary/ubx/messages/nav_posllh.yaml,
-//   spec/binary/ubx/messages/nav_pvt.yaml, spec/binary/ubx/messages/nav_relposned.yaml,
-//   spec/binary/ubx/messages/nav_resetodo.yaml, spec/binary/ubx/messages/nav_sat.yaml,
-//   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
-//   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sol.yaml,
-//   spec/binary/ubx/messages/nav_status.yaml, spec/binary/ubx/messages/nav_svin.yaml,
-//   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
-//   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
-//   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timels.yaml,
-//   spec/binary/ubx/messages/nav_timeqzss.yaml, spec/binary/ubx/messages/nav_timeutc.yaml,
-//   spec/binary/ubx/messages/nav_velecef.yaml, spec/binary/ubx/messages/nav_velned.yaml,
-//   spec/binary/ubx/messages/rxm_cor.yaml, spec/binary/ubx/messages/rxm_measx.yaml,
-//   spec/binary/ubx/messages/rxm_pmreq.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
-//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
-//   spec/binary/ubx/messages/rxm_sfrbx.yaml, spec/binary/ubx/messages/rxm_spartn.yaml,
-//   spec/binary/ubx/messages/rxm_spartnkey.yaml, spec/binary/ubx/messages/rxm_svsi.yaml,
-//   spec/binary/ubx/messages/sec_sig.yaml, spec/binary/ubx/messages/sec_siglog.yaml,
-//   spec/binary/ubx/messages/sec_sign.yaml, spec/binary/ubx/messages/sec_uniqid.yaml,
-//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
-//   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
-//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
-//   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_tp.yaml,
-//   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
-//   spec/binary/ubx/messages/upd_sos.yaml (digest a120ce711c12908f)
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
+//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
+//   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav2_clock.yaml,
+//   spec/binary/ubx/messages/nav2_cov.yaml, spec/binary/ubx/messages/nav2_dop.yaml,
+//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/binary/ubx/messages/nav2_odo.yaml,
+//   spec/binary/ubx/messages/nav2_posecef.yaml, spec/binary/ubx/messages/nav2_posllh.yaml,
+//   spec/binary/ubx/messages/nav2_pvt.yaml, spec/binary/ubx/messages/nav2_sat.yaml,
+//   spec/binary/ubx/messages/nav2_sbas.yaml, spec/binary/ubx/messages/nav2_sig.yaml,
+//   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_status.yaml,
+//   spec/binary/ubx/messages/nav2_timebds.yaml, spec/binary/ubx/messages/nav2_timegal.yaml,
+//   spec/binary/ubx/messages/nav2_timeglo.yaml, spec/binary/ubx/messages/nav2_timegps.yaml,
+//   spec/binary/ubx/messages/nav2_timels.yaml, spec/binary/ubx/messages/nav2_timeqzss.yaml,
+//   spec/binary/ubx/messages/nav2_timeutc.yaml, spec/binary/ubx/messages/nav2_velecef.yaml,
+//   spec/binary/ubx/messages/nav2_velned.yaml, spec/binary/ubx/messages/nav_aopstatus.yaml,
+//   spec/binary/ubx/messages/nav_att.yaml, spec/binary/ubx/messages/nav_clock.yaml,
+//   spec/binary/ubx/messages/nav_cov.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
+//   spec/binary/ubx/messages/nav_dop.yaml, spec/binary/ubx/messages/nav_eell.yaml,
+//   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/nav_geofence.yaml,
+//   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
+//   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_orb.yaml,
+//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/nav_posecef.yaml,
+//   spec/binary/ubx/messages/nav_posllh.yaml, spec/binary/ubx/messages/nav_pvt.yaml,
+//   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
+//   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_sbas.yaml,
+//   spec/binary/ubx/messages/nav_sig.yaml, spec/binary/ubx/messages/nav_slas.yaml,
+//   spec/binary/ubx/messages/nav_sol.yaml, spec/binary/ubx/messages/nav_status.yaml,
+//   spec/binary/ubx/messages/nav_svin.yaml, spec/binary/ubx/messages/nav_svinfo.yaml,
+//   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
+//   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
+//   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
+//   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_velecef.yaml,
+//   spec/binary/ubx/messages/nav_velned.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
+//   spec/binary/ubx/messages/rxm_measx.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
+//   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_rlm.yaml,
+//   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
+//   spec/binary/ubx/messages/rxm_spartn.yaml, spec/binary/ubx/messages/rxm_spartnkey.yaml,
+//   spec/binary/ubx/messages/rxm_svsi.yaml, spec/binary/ubx/messages/sec_sig.yaml,
+//   spec/binary/ubx/messages/sec_siglog.yaml, spec/binary/ubx/messages/sec_sign.yaml,
+//   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
+//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
+//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_svin.yaml,
+//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tos.yaml,
+//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
+//   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/upd_sos.yaml
+//   (digest c10f058934b616c2)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The UBX messages of spec/binary/ubx: a struct per layout (named as the Python package's
@@ -21376,6 +21377,176 @@ impl<'a> MonSmgr<'a> {
     }
 }
 
+/// Signal characteristics (spectrum analyzer): UBX MON-SPAN (class 0x0A id 0x31), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSpanPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonSpanPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_span_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-SPAN";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x31;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_span"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of MonSpanRfBlock.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSpanRfBlock<'a> {
+    /// Spectrum bins 0 to 127 (u1 each in 0.25 dB).
+    pub spectrum0: &'a [u8],
+    /// Spectrum bins 128 to 255 (u1 each in 0.25 dB).
+    pub spectrum1: &'a [u8],
+    /// Spectrum span [Hz].
+    pub span: u32,
+    /// Resolution of the spectrum (bin width) [Hz].
+    pub res: u32,
+    /// Center of the spectrum span [Hz].
+    pub center: u32,
+    /// Programmable gain amplifier gain [dB].
+    pub pga: u8,
+    /// Reserved.
+    pub reserved1: u32,
+}
+
+impl<'a> ubx::Entry<'a> for MonSpanRfBlock<'a> {
+    const WIDTH: usize = 272;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let spectrum0 = r.bytes(128, "spectrum0")?;
+        let spectrum1 = r.bytes(128, "spectrum1")?;
+        let span = u32::from_le_bytes(r.array("span")?);
+        let res = u32::from_le_bytes(r.array("res")?);
+        let center = u32::from_le_bytes(r.array("center")?);
+        let pga = u8::from_le_bytes(r.array("pga")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        Ok(Self { spectrum0, spectrum1, span, res, center, pga, reserved1 })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put_sized(self.spectrum0, Some(128), "MON-SPAN", "spectrum0")?;
+        w.put_sized(self.spectrum1, Some(128), "MON-SPAN", "spectrum1")?;
+        w.put(&self.span.to_le_bytes());
+        w.put(&self.res.to_le_bytes());
+        w.put(&self.center.to_le_bytes());
+        w.put(&self.pga.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "spectrum0", self.spectrum0)?;
+        ubx::json_hex(j, "spectrum1", self.spectrum1)?;
+        j.int("span", self.span)?;
+        j.int("res", self.res)?;
+        j.int("center", self.center)?;
+        j.int("pga", self.pga)?;
+        j.int("reserved1", self.reserved1)?;
+        Ok(())
+    }
+}
+
+/// Signal characteristics (spectrum analyzer): UBX MON-SPAN (class 0x0A id 0x31), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSpan<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Number of RF blocks.
+    pub num_rf_blocks: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// RF blocks: 0 to 4 entries.
+    pub rf_blocks: ubx::Group<'a, MonSpanRfBlock<'a>>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonSpan<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_span";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-SPAN";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x31;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let num_rf_blocks = u8::from_le_bytes(r.array("num_rf_blocks")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let rf_blocks = r.group(Some(usize::from(num_rf_blocks)), 0, 4, 0, "rf_blocks")?;
+        let trailing = r.rest();
+        Ok(Self { version, num_rf_blocks, reserved0, rf_blocks, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.num_rf_blocks.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        self.rf_blocks.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("num_rf_blocks", self.num_rf_blocks)?;
+        j.int("reserved0", self.reserved0)?;
+        self.rf_blocks.json(j, "rf_blocks")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// System status: UBX MON-SYS (class 0x0A id 0x39), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MonSysPoll<'a> {
@@ -38414,6 +38585,10 @@ pub enum Message<'a> {
     MonSmgrPoll(MonSmgrPoll<'a>),
     /// MON-SMGR (output): Synchronization manager status.
     MonSmgr(MonSmgr<'a>),
+    /// MON-SPAN (poll): Signal characteristics (spectrum analyzer).
+    MonSpanPoll(MonSpanPoll<'a>),
+    /// MON-SPAN (output): Signal characteristics (spectrum analyzer).
+    MonSpan(MonSpan<'a>),
     /// MON-SYS (poll): System status.
     MonSysPoll(MonSysPoll<'a>),
     /// MON-SYS (output): System status.
@@ -39385,6 +39560,13 @@ impl<'a> Message<'a> {
                     Message::MonSmgr(MonSmgr::read(payload)?)
                 }
             }
+            (0x0a, 0x31) => {
+                if payload.is_empty() {
+                    Message::MonSpanPoll(MonSpanPoll::read(payload)?)
+                } else {
+                    Message::MonSpan(MonSpan::read(payload)?)
+                }
+            }
             (0x0a, 0x39) => {
                 if payload.is_empty() {
                     Message::MonSysPoll(MonSysPoll::read(payload)?)
@@ -40159,6 +40341,8 @@ impl<'a> Message<'a> {
             Message::MonRxr(_) => MonRxr::ID,
             Message::MonSmgrPoll(_) => MonSmgrPoll::ID,
             Message::MonSmgr(_) => MonSmgr::ID,
+            Message::MonSpanPoll(_) => MonSpanPoll::ID,
+            Message::MonSpan(_) => MonSpan::ID,
             Message::MonSysPoll(_) => MonSysPoll::ID,
             Message::MonSys(_) => MonSys::ID,
             Message::MonTxbufPoll(_) => MonTxbufPoll::ID,
@@ -40523,6 +40707,8 @@ impl<'a> Message<'a> {
             Message::MonRxr(_) => (MonRxr::CLASS, MonRxr::MSG_ID),
             Message::MonSmgrPoll(_) => (MonSmgrPoll::CLASS, MonSmgrPoll::MSG_ID),
             Message::MonSmgr(_) => (MonSmgr::CLASS, MonSmgr::MSG_ID),
+            Message::MonSpanPoll(_) => (MonSpanPoll::CLASS, MonSpanPoll::MSG_ID),
+            Message::MonSpan(_) => (MonSpan::CLASS, MonSpan::MSG_ID),
             Message::MonSysPoll(_) => (MonSysPoll::CLASS, MonSysPoll::MSG_ID),
             Message::MonSys(_) => (MonSys::CLASS, MonSys::MSG_ID),
             Message::MonTxbufPoll(_) => (MonTxbufPoll::CLASS, MonTxbufPoll::MSG_ID),
@@ -40887,6 +41073,8 @@ impl<'a> Message<'a> {
             Message::MonRxr(m) => m.write(w),
             Message::MonSmgrPoll(m) => m.write(w),
             Message::MonSmgr(m) => m.write(w),
+            Message::MonSpanPoll(m) => m.write(w),
+            Message::MonSpan(m) => m.write(w),
             Message::MonSysPoll(m) => m.write(w),
             Message::MonSys(m) => m.write(w),
             Message::MonTxbufPoll(m) => m.write(w),
@@ -41269,6 +41457,8 @@ impl<'a> Message<'a> {
             Message::MonRxr(m) => m.json_members(&mut j)?,
             Message::MonSmgrPoll(m) => m.json_members(&mut j)?,
             Message::MonSmgr(m) => m.json_members(&mut j)?,
+            Message::MonSpanPoll(m) => m.json_members(&mut j)?,
+            Message::MonSpan(m) => m.json_members(&mut j)?,
             Message::MonSysPoll(m) => m.json_members(&mut j)?,
             Message::MonSys(m) => m.json_members(&mut j)?,
             Message::MonTxbufPoll(m) => m.json_members(&mut j)?,
