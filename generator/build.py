@@ -385,6 +385,13 @@ def _config_database(doc: Document) -> ConfigDatabase:
     return ConfigDatabase(d["config_keys"], d["library"], d["not_found"], enums, groups, Origin(file, ()))
 
 
+def _select(layout: dict[str, Any]) -> tuple[str, int] | None:
+    """A layout's selector: `select: {type: 0x10}`, or `version: 1` (short for `select: {version: 1}`)."""
+    if "version" in layout:
+        return ("version", layout["version"])
+    return next(iter(layout["select"].items())) if "select" in layout else None
+
+
 def _binary_message(doc: Document) -> BinaryMessage:
     """A binary message and its layouts, each a Payload named by the message's id and its variant
     (a poll's default: poll)."""
@@ -398,7 +405,7 @@ def _binary_message(doc: Document) -> BinaryMessage:
         layouts.append(Payload(d["message"] + (f"_{variant}" if variant else ""), d["name"], lay.get("doc", d["doc"]),
                                [], d["documents"], 8 * lay["length"] if "length" in lay else None,
                                _payload_items(lay["fields"], file, at + ("fields",)), [], [], Origin(file, at),
-                               protocol=protocol, directions=lay["direction"], version=lay.get("version"),
+                               protocol=protocol, directions=lay["direction"], select=_select(lay),
                                replies=lay.get("replies", []),
                                acknowledges=(lay["acknowledges"]["class"], lay["acknowledges"]["id"])
                                if "acknowledges" in lay else None))

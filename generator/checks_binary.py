@@ -106,6 +106,9 @@ def _check_binary_items(layout: Payload, report: Report) -> None:
             if f.type in ("u8", "i8") and (f.divisor is not None or f.base is not None):
                 report(f.origin, "B002", f"field {f.id}: a 64-bit integer takes no divisor or base, as its value "
                        "would not come back byte-exact from a float", "divisor" if f.divisor is not None else "base")
+            if f.bits is not None and f.bits > 8 * 255 and not f.bit_type.size:
+                report(f.origin, "B002", f"field {f.id}: {f.bits // 8} bytes, a fixed text, bytes or reserved field "
+                       "has at most 255 (the C descriptor's byte): split it", "size")
             if f.parts and not f.bit_type.has_parts:
                 report(f.origin, "B002", f"field {f.id}: only a bitfield word (x1, x2, x4) has parts", "parts")
             _check_parts(f, report)
@@ -136,27 +139,33 @@ def _check_parts(f: PayloadField, report: Report) -> None:
 
 
 def _check_told_apart(message: BinaryMessage, report: Report) -> None:
-    """Two layouts of one direction differ in their fixed length or their version."""
+    """Two layouts of one direction differ in their fixed length or in their selector's value (the
+    same field, a u1 at a fixed offset: a type, command or version byte)."""
     ids: set[str] = set()
     for i, layout in enumerate(message.layouts):
         if layout.id in ids:
             report(layout.origin, "B004", f"layout id {layout.id} is used twice: give one a `variant`", "variant")
         ids.add(layout.id)
-        if layout.version is not None:
-            version = next((f for f in layout.fields if f.id == "version"), None)
-            if version is None or version.type != "u1" or version.offset is None:
-                report(layout.origin, "B004", f"layout {layout.id} has a `version` but no u1 field `version` at a "
-                       "fixed offset", "version")
+        if layout.select is not None:
+            chosen = layout.select_field
+            if chosen is None or chosen.type != "u1" or layout.select_at is None or chosen.optional:
+                report(layout.origin, "B004", f"layout {layout.id} is selected by {layout.select[0]}, which is no u1 "
+                       "field at a fixed offset (not optional)", "select" if layout.select[0] != "version" else "version")
         for other in message.layouts[:i]:
             if not set(layout.directions) & set(other.directions):
                 continue
-            if layout.version is not None and other.version is not None and layout.version != other.version:
-                continue
+            if layout.select is not None and other.select is not None:
+                if layout.select[0] != other.select[0] or layout.select_at != other.select_at:
+                    report(layout.origin, "B004", f"layouts {other.id} and {layout.id} share a direction and are "
+                           f"selected by different fields ({other.select[0]}, {layout.select[0]}) or offsets", "select")
+                    continue
+                if layout.select[1] != other.select[1]:
+                    continue
             widths = layout.fixed_width, other.fixed_width
             if None not in widths and widths[0] != widths[1]:
                 continue
             report(layout.origin, "B004", f"layouts {other.id} and {layout.id} share a direction and are not told "
-                   "apart by a fixed length or a version", "direction")
+                   "apart by a fixed length or a selector's value", "direction")
 
 
 def check_examples(spec: Spec, report: Report) -> None:

@@ -69,6 +69,7 @@ def layout_view(message: BinaryMessage, layout: Payload) -> dict:
         "directions": _tuple(layout.directions),
         "replies": _tuple(layout.replies),
         "length": str(layout.fixed_width // 8) if layout.fixed_width is not None else "None",
+        "select": f'("{layout.select[0]}", {layout.select_at}, 0x{layout.select[1]:02X})' if layout.select else "None",
         "acknowledges": "({!r}, {!r})".format(*layout.acknowledges).replace("'", '"') if layout.acknowledges
         else "None",
         "descriptor": layout_lines(layout, layout.items, [], 8),

@@ -245,7 +245,7 @@ class _Record:
             width = p.bits or 1
             mask = (1 << width) - 1
             ptype = part_type(p)
-            value = _part_value(p, f"self.{f.id}", kind)
+            value = _part_value(p, f"self.{member_name(f)}", kind)
             punit = f" [{p.unit}]" if p.unit else ""
             if p.enum is not None:
                 self.accessors.append(
@@ -266,7 +266,7 @@ class _Record:
             self.accessors.append(
                 f"/// Sets {p.name.lower()} (the {value_doc} in its bits of `{f.id}`; the other bits stay).\n"
                 f"pub fn {setter}(&mut self, value: {arg_type}) {{"
-                f"self.{f.id} = (self.{f.id} & !{shifted}) | {raw}; }}")
+                f"self.{member_name(f)} = (self.{member_name(f)} & !{shifted}) | {raw}; }}")
 
     def _group(self, g: PayloadGroup, following: list) -> None:
         entry = _Record(self.entry_names[g.id], g.fields, self.address, order=self.order)
@@ -319,7 +319,8 @@ def record_code(record: _Record, payload: Payload | None, message: BinaryMessage
     if not entry:
         assert payload is not None and message is not None
         length = f"Some({payload.fixed_width // 8})" if payload.fixed_width is not None else "None"
-        version = f"Some({payload.version})" if payload.version is not None else "None"
+        select = f"Some(({rust_str(payload.select[0])}, {payload.select_at}, {payload.select[1]:#04x}))" \
+            if payload.select is not None else "None"
         strs = lambda words: "&[" + ", ".join(rust_str(w) for w in words) + "]"  # noqa: E731
         ubx = message.protocol == "ubx"
         key = "[" + ", ".join(f"{k:#04x}" for k in wire) + "]"
@@ -330,11 +331,16 @@ def record_code(record: _Record, payload: Payload | None, message: BinaryMessage
                     f"/// The message id.\npub const MSG_ID: u8 = {message.msg_id:#04x};"] if ubx else
                    [f"/// The bytes that tell the message: {identity(message)}.\npub const KEY: &'static [u8] = &{key};"]),
                  f"/// The payload's bytes, when the layout fixes them.\npub const LENGTH: Option<usize> = {length};",
-                 f"/// The value of its `version` field that tells it from another layout.\npub const VERSION: Option<u8> = {version};",
+                 "/// The field (its name and byte) whose value tells it from another layout of its class and id, and\n"
+                 f"/// that value (a type, command or version byte).\npub const SELECT: Option<(&'static str, usize, u8)> = {select};",
                  f"/// Who sends it: poll and input go to the receiver, output comes from it.\n"
                  f"pub const DIRECTIONS: &'static [&'static str] = {strs(payload.directions)};",
                  f"/// The layouts (ids) the receiver answers it with.\npub const REPLIES: &'static [&'static str] = "
                  f"{strs(payload.replies)};"]
+    if payload is not None and payload.select is not None and payload.select_field is not None:
+        impl.append(f"/// The layout's default with its `{payload.select[0]}` set to the value that picks it.\n"
+                    f"#[must_use]\npub fn new() -> Self {{ Self {{ {member_name(payload.select_field)}: "
+                    f"{payload.select[1]:#04x}, ..Self::default() }} }}")
     impl += record.accessors
     init = ", ".join(inits)
     if entry:
@@ -378,11 +384,10 @@ def _fits(message: BinaryMessage, layout: Payload) -> str | None:
     conditions = []
     if layout.fixed_width is not None:
         conditions.append(f"payload.len() == {layout.fixed_width // 8}" if layout.fixed_width else "payload.is_empty()")
-    if layout.version is not None:
-        version = next(f for f in layout.fields if f.id == "version")
-        assert version.offset is not None
-        at = version.offset // 8
-        conditions.append(f"payload.{'first()' if at == 0 else f'get({at})'} == Some(&{layout.version})")
+    if layout.select is not None:
+        at = layout.select_at
+        assert at is not None
+        conditions.append(f"payload.{'first()' if at == 0 else f'get({at})'} == Some(&{layout.select[1]:#04x})")
     return " && ".join(conditions) or None
 
 
@@ -400,6 +405,16 @@ def dispatch_arm(message: BinaryMessage, wire: tuple[int, ...]) -> str:
             last = layout
             break
         tests.append((condition, layout))
+    else:   # a selector value no layout names: the first selected layout of the payload's length
+        lengths: set[int] = set()
+        for layout in message.layouts:
+            if layout.select is not None and layout.fixed_width is not None and layout.fixed_width not in lengths:
+                lengths.add(layout.fixed_width)
+                size = layout.fixed_width // 8
+                condition = f"payload.len() == {size}" if size else "payload.is_empty()"
+                if tests and tests[-1][1] is layout and tests[-1][0].startswith(condition + " && "):
+                    tests.pop()   # its test of length and selector: the length alone says the same
+                tests.append((condition, layout))
     while tests and tests[-1][1] is last:   # a last test that reads what the fallback reads
         tests.pop()
     branches = [f"if {condition} {{ {read(layout)} }}" for condition, layout in tests] + [read(last)]

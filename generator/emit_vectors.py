@@ -260,6 +260,12 @@ UBX_CASES = (
     ("b5 62 05 01 03 00 06 00 07 16 51", "an ACK-ACK of 3 bytes: its main layout, the third byte trailing"),
     ("b5 62 7f 7f 02 00 01 02 03 81", "class 0x7F id 0x7F, which no message describes: kept with its payload"),
     ("b5 62 05 01 02 00 06 00 0e 38", "a checksum off by one"),
+    ("b5 62 13 40 14 00 05 00 00 00 01 02 03 04 05 06 07 08 09 0a 0b 0c 0d 0e 0f 10 f4 d4",
+     "an MGA-INI of type 0x05, which no layout names: read as the first of its length (POS_XYZ), the type kept"),
+    ("b5 62 13 00 10 00 01 00 00 00 0a 0b 0c 0d 0e 0f 10 11 12 13 14 15 de d6",
+     "an MGA-GPS of 16 bytes whose type says ephemeris (1): read by its length (IONO), the type kept"),
+    ("b5 62 0d 15 0c 00 02 00 01 01 00 00 e8 03 b8 0b 32 00 12 c2",
+     "a TIM-VCOCAL of 12 bytes, type 2: the calibration's start (input), not its result (type 3)"),
 )
 
 

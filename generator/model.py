@@ -846,11 +846,23 @@ class Payload:
     carriers: list[int] = field(default_factory=list)   # ... and the message types whose data it is
     applications: list[Payload] = field(default_factory=list)   # derived: a message's applications
     directions: list[str] = field(default_factory=list)   # a binary layout: poll, input, output
-    version: int | None = None   # a binary layout told apart by the value of its `version` field
+    select: tuple[str, int] | None = None   # a binary layout told apart by a u1 field's value: (field id, value)
     replies: list[str] = field(default_factory=list)   # the layouts that answer this one (ids)
     acknowledges: tuple[str, str] | None = None   # an acknowledgement: its fields of the answered class and id
     frame: BinaryMessage | None = None   # a binary layout: its message (class and id)
     frame_examples: list[BinaryExample] = field(default_factory=list)   # a bit message's (RTCM 3): whole frames
+
+    @property
+    def select_field(self) -> PayloadField | None:
+        """The field whose value picks this layout among those of its message (`select`)."""
+        return None if self.select is None else next((f for f in self.items if isinstance(f, PayloadField)
+                                                      and f.id == self.select[0]), None)
+
+    @property
+    def select_at(self) -> int | None:
+        """The byte of the selecting field (None: no selector, or one not at a fixed offset)."""
+        f = self.select_field
+        return None if f is None or f.offset is None else f.offset // 8
 
     @property
     def data_field(self) -> PayloadField | None:
@@ -901,7 +913,8 @@ class BinaryExample:
 @dataclass
 class BinaryMessage:
     """One message of a binary protocol (a UBX class and id) and its layouts: one per direction,
-    or several of one direction told apart by length or version."""
+    or several of one direction told apart by length or by a selector (a type, command or version
+    byte: Payload.select)."""
     id: str                     # nav_pvt
     name: str
     doc: str

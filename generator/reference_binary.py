@@ -156,19 +156,23 @@ def message_by_key(spec: Spec, protocol: str, payload: bytes) -> BinaryMessage |
 
 def layout_for(message: BinaryMessage, payload: bytes) -> Payload:
     """The layout a payload is read as: the first, in spec order, whose fixed length (when it has
-    one) is the payload's and whose version (when it has one) the payload's version field holds;
-    else the message's main layout (the first output one, else the last), which then names the
-    field a short payload cuts or keeps a long one's rest as trailing."""
+    one) is the payload's and whose selector's value (when it has one: a type or version byte) the
+    payload's byte holds; else (a selector value no layout names) the first selected layout of the
+    payload's fixed length, the byte kept as sent; else the message's main layout (the first output
+    one, else the last), which then names the field a short payload cuts or keeps a long one's rest
+    as trailing."""
     for layout in message.layouts:
         fixed = layout.fixed_width
         if fixed is not None and fixed != 8 * len(payload):
             continue
-        if layout.version is not None:
-            version = next(f for f in layout.fields if f.id == "version")
-            if version.offset is None or version.offset // 8 >= len(payload) \
-                    or payload[version.offset // 8] != layout.version:
+        if layout.select is not None:
+            at = layout.select_at
+            if at is None or at >= len(payload) or payload[at] != layout.select[1]:
                 continue
         return layout
+    for layout in message.layouts:   # a selector value no layout names: the selected layout of its length
+        if layout.select is not None and layout.fixed_width == 8 * len(payload):
+            return layout
     return next((layout for layout in message.layouts if "output" in layout.directions), message.layouts[-1])
 
 

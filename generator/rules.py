@@ -243,16 +243,18 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
     Rule("B002", "binary fields are byte fields",
          "The fields of a binary layout have byte types (u1..u8, i1..i8, r4, r8, x1..x4, ch, bytes, reserved); "
          "only a bitfield word (x1, x2, x4) has `parts`, each inside the word and overlapping no other; a 64-bit "
-         "integer (u8, i8) takes no divisor or base, which a float would not give back byte-exact.",
-         "Correct the type, or the part's `bit` and `width`."),
+         "integer (u8, i8) takes no divisor or base, which a float would not give back byte-exact; a fixed text, "
+         "bytes or reserved field has at most 255 bytes (the C descriptor's size byte).",
+         "Correct the type, or the part's `bit` and `width`; split a longer run of bytes."),
     Rule("B003", "a counted group names its count",
          "A group's `count` names an unsigned field or bitfield part that comes before the group.",
          "Correct `count`, or leave it out (the group then takes the bytes left)."),
     Rule("B004", "layouts of one message are told apart",
          "Layout ids (message id and `variant`) are unique; two layouts that share a direction differ in their "
-         "fixed length or their `version`, and a layout with a `version` has a u1 field `version` at a fixed "
-         "offset.",
-         "Give one layout a `variant`, a `version`, or correct its fields."),
+         "fixed length or in the value of their selector (`select: {type: 0x10}`; `version: N` is short for "
+         "`select: {version: N}`), layouts of one direction select by the same field, and a selector names a u1 "
+         "field at a fixed offset.",
+         "Give one layout a `variant`, a `select` (or `version`), or correct its fields."),
     Rule("B005", "binary messages name their protocol's documents",
          "Each of a message's `documents` is one of its protocol.yaml's documents.",
          "Correct the id, or add the document to protocol.yaml."),

@@ -53,22 +53,23 @@
 //   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_hw.yaml,
 //   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
 //   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
-//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_comms.yaml,
-//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_rf.yaml,
-//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/aid_ini.yaml,
-//   spec/binary/ubx/messages/aid_hui.yaml, spec/binary/ubx/messages/aid_alm.yaml,
-//   spec/binary/ubx/messages/aid_eph.yaml, spec/binary/ubx/messages/aid_aop.yaml,
-//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
-//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
-//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
-//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
-//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
-//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
-//   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
-//   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
-//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_bds.yaml,
-//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mga_glo.yaml,
-//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_ack.yaml,
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
+//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
+//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
+//   spec/binary/ubx/messages/aid_ini.yaml, spec/binary/ubx/messages/aid_hui.yaml,
+//   spec/binary/ubx/messages/aid_alm.yaml, spec/binary/ubx/messages/aid_eph.yaml,
+//   spec/binary/ubx/messages/aid_aop.yaml, spec/binary/ubx/messages/tim_tp.yaml,
+//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_svin.yaml,
+//   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
+//   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
+//   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
+//   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/esf_meas.yaml,
+//   spec/binary/ubx/messages/esf_raw.yaml, spec/binary/ubx/messages/esf_status.yaml,
+//   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
+//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_gal.yaml,
+//   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
+//   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_ano.yaml,
+//   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_ack.yaml,
 //   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/log_erase.yaml,
 //   spec/binary/ubx/messages/log_string.yaml, spec/binary/ubx/messages/log_create.yaml,
 //   spec/binary/ubx/messages/log_info.yaml, spec/binary/ubx/messages/log_retrieve.yaml,
@@ -118,7 +119,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest b8a0a49fac1f4142)
+//   spec/enums/ubx_gnss_id.yaml (digest e67e71b7b83c8cff)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -890,8 +891,9 @@ static void ubx_json_items(ubx_json_out *j, const nmea_ubx_item *items, size_t n
 }
 
 /* The layout a payload of `len` bytes of class and id `first` to `last` (in spec order) is read
-   as: the first whose fixed length (when it has one) and version byte (when it has one) are the
-   payload's, else the first the receiver sends, else the last. */
+   as: the first whose fixed length (when it has one) and selector byte (`version`, `version_at`: a
+   type, command or version byte, when it has one) are the payload's; else the first with a
+   selector whose fixed length is the payload's; else the first the receiver sends, else the last. */
 static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, size_t last, const uint8_t *payload,
                              size_t len)
 {
@@ -904,6 +906,9 @@ static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, 
             continue;
         return i;
     }
+    for (i = first; i <= last; i++) /* a selector value no layout names: the selected layout of its length */
+        if (layouts[i].version >= 0 && layouts[i].length >= 0 && (size_t)layouts[i].length == len)
+            return i;
     for (i = first; i <= last; i++)
         if (layouts[i].output)
             return i;
@@ -3507,6 +3512,28 @@ static const nmea_ubx_item ubx_mon_smgr_items[] = {
     {"ext_int1_feed_back", NULL, offsetof(nmea_ubx_mon_smgr, ext_int1_feed_back), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* MON-SPAN: mon_span_poll */
+static const nmea_ubx_item ubx_mon_span_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-SPAN: mon_span */
+static const nmea_ubx_item ubx_mon_span_rf_block_items[] = {
+    {"spectrum0", NULL, offsetof(nmea_ubx_mon_span_rf_block, spectrum0), 0, 0, NMEA_UBX_ITEM_ARRAY, 128, 128, 0, NMEA_UBX_PRINT_HEX, false},
+    {"spectrum1", NULL, offsetof(nmea_ubx_mon_span_rf_block, spectrum1), 0, 0, NMEA_UBX_ITEM_ARRAY, 128, 128, 0, NMEA_UBX_PRINT_HEX, false},
+    {"span", NULL, offsetof(nmea_ubx_mon_span_rf_block, span), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"res", NULL, offsetof(nmea_ubx_mon_span_rf_block, res), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"center", NULL, offsetof(nmea_ubx_mon_span_rf_block, center), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pga", NULL, offsetof(nmea_ubx_mon_span_rf_block, pga), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_span_rf_block, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mon_span_rf_blocks_group = {ubx_mon_span_rf_block_items, 7, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_span, num_rf_blocks), 0, 0, 4, NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX, 272, sizeof(nmea_ubx_mon_span_rf_block), 0, offsetof(nmea_ubx_mon_span, rf_blocks_count)};
+static const nmea_ubx_item ubx_mon_span_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_span, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_rf_blocks", NULL, offsetof(nmea_ubx_mon_span, num_rf_blocks), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mon_span, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rf_blocks", &ubx_mon_span_rf_blocks_group, offsetof(nmea_ubx_mon_span, rf_blocks), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* MON-COMMS: mon_comms_poll */
 static const nmea_ubx_item ubx_mon_comms_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -4707,6 +4734,116 @@ static const nmea_ubx_item ubx_mga_ano_items[] = {
     {"reserved0", NULL, offsetof(nmea_ubx_mga_ano, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"data", NULL, offsetof(nmea_ubx_mga_ano, data), 0, 0, NMEA_UBX_ITEM_ARRAY, 64, 64, 0, NMEA_UBX_PRINT_HEX, false},
     {"reserved1", NULL, offsetof(nmea_ubx_mga_ano, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_pos_xyz */
+static const nmea_ubx_item ubx_mga_ini_pos_xyz_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_x", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, ecef_x), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_y", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, ecef_y), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_z", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, ecef_z), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_acc", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, pos_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_pos_llh */
+static const nmea_ubx_scale ubx_mga_ini_pos_llh_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_pos_llh_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_ini_pos_llh_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_pos_llh, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_pos_llh, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_pos_llh, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lat", &ubx_mga_ini_pos_llh_lat_scale, offsetof(nmea_ubx_mga_ini_pos_llh, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lon", &ubx_mga_ini_pos_llh_lon_scale, offsetof(nmea_ubx_mga_ini_pos_llh, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"alt", NULL, offsetof(nmea_ubx_mga_ini_pos_llh, alt), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_acc", NULL, offsetof(nmea_ubx_mga_ini_pos_llh, pos_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_time_utc */
+static const nmea_ubx_item ubx_mga_ini_time_utc_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_time_utc, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_time_utc, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ref", NULL, offsetof(nmea_ubx_mga_ini_time_utc, ref), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"source", NULL, offsetof(nmea_ubx_mga_ini_time_utc, source), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fall", NULL, offsetof(nmea_ubx_mga_ini_time_utc, fall), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"last", NULL, offsetof(nmea_ubx_mga_ini_time_utc, last), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_secs", NULL, offsetof(nmea_ubx_mga_ini_time_utc, leap_secs), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_mga_ini_time_utc, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_mga_ini_time_utc, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_mga_ini_time_utc, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_mga_ini_time_utc, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"minute", NULL, offsetof(nmea_ubx_mga_ini_time_utc, minute), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"second", NULL, offsetof(nmea_ubx_mga_ini_time_utc, second), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_time_utc, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ns", NULL, offsetof(nmea_ubx_mga_ini_time_utc, ns), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc_s", NULL, offsetof(nmea_ubx_mga_ini_time_utc, t_acc_s), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_ini_time_utc, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc_ns", NULL, offsetof(nmea_ubx_mga_ini_time_utc, t_acc_ns), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_time_gnss */
+static const nmea_ubx_item ubx_mga_ini_time_gnss_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ref", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, ref), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"source", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, source), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fall", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, fall), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"last", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, last), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_id", &ubx_enum_ubx_gnss_id, offsetof(nmea_ubx_mga_ini_time_gnss, gnss_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"week", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, week), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tow", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ns", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, ns), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc_s", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, t_acc_s), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc_ns", NULL, offsetof(nmea_ubx_mga_ini_time_gnss, t_acc_ns), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_clkd */
+static const nmea_ubx_item ubx_mga_ini_clkd_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_clkd, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_clkd, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_clkd, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clk_d", NULL, offsetof(nmea_ubx_mga_ini_clkd, clk_d), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"clk_d_acc", NULL, offsetof(nmea_ubx_mga_ini_clkd, clk_d_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_freq */
+static const nmea_ubx_scale ubx_mga_ini_freq_freq_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_ini_freq_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_freq, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_freq, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_freq, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_mga_ini_freq, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"source", NULL, offsetof(nmea_ubx_mga_ini_freq, source), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fall", NULL, offsetof(nmea_ubx_mga_ini_freq, fall), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"freq", &ubx_mga_ini_freq_freq_scale, offsetof(nmea_ubx_mga_ini_freq, freq), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"freq_acc", NULL, offsetof(nmea_ubx_mga_ini_freq, freq_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-INI: mga_ini_eop */
+static const nmea_ubx_scale ubx_mga_ini_eop_xp_p0_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_eop_xp_p1_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_eop_yp_p0_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_eop_yp_p1_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_eop_d_ut1_scale = {33554432.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_mga_ini_eop_dd_ut1_scale = {1073741824.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mga_ini_eop_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_ini_eop, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_ini_eop, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mga_ini_eop, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d2k_ref", NULL, offsetof(nmea_ubx_mga_ini_eop, d2k_ref), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"d2k_max", NULL, offsetof(nmea_ubx_mga_ini_eop, d2k_max), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"xp_p0", &ubx_mga_ini_eop_xp_p0_scale, offsetof(nmea_ubx_mga_ini_eop, xp_p0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"xp_p1", &ubx_mga_ini_eop_xp_p1_scale, offsetof(nmea_ubx_mga_ini_eop, xp_p1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"yp_p0", &ubx_mga_ini_eop_yp_p0_scale, offsetof(nmea_ubx_mga_ini_eop, yp_p0), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"yp_p1", &ubx_mga_ini_eop_yp_p1_scale, offsetof(nmea_ubx_mga_ini_eop, yp_p1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"d_ut1", &ubx_mga_ini_eop_d_ut1_scale, offsetof(nmea_ubx_mga_ini_eop, d_ut1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"dd_ut1", &ubx_mga_ini_eop_dd_ut1_scale, offsetof(nmea_ubx_mga_ini_eop, dd_ut1), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_ini_eop, reserved1), 0, 0, NMEA_UBX_ITEM_ARRAY, 16, 16, 0, NMEA_UBX_PRINT_BIG, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_mga_ini_eop, reserved2), 0, 0, NMEA_UBX_ITEM_ARRAY, 16, 16, 0, NMEA_UBX_PRINT_BIG, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_mga_ini_eop, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* MGA-ACK: mga_ack */
@@ -10073,6 +10210,43 @@ static bool ubx_mon_smgr_fast(const uint8_t *p, size_t len, nmea_ubx_message *ou
     return true;
 }
 
+static bool ubx_mon_span_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_mon_span *m = &out->as.mon_span;
+    const uint8_t *q = p;
+    size_t left = len;
+    size_t k;
+    memset(m, 0, offsetof(nmea_ubx_mon_span, trailing));
+    if (left < 4)
+        return false;
+    m->version = q[0];
+    m->num_rf_blocks = q[1];
+    m->reserved0 = ubx_u16(q + 2);
+    q += 4;
+    left -= 4;
+    {
+        size_t count = (uint8_t)m->num_rf_blocks;
+        if (count * 272 > left || count > NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX)
+            return false;
+        for (k = 0; k < count; k++, q += 272) {
+            nmea_ubx_mon_span_rf_block *e = &m->rf_blocks[k];
+            memset(e, 0, sizeof *e); /* (its padding: the stores of its fields replace the rest) */
+            memcpy(e->spectrum0, q, 128);
+            memcpy(e->spectrum1, q + 128, 128);
+            e->span = ubx_u32(q + 256);
+            e->res = ubx_u32(q + 260);
+            e->center = ubx_u32(q + 264);
+            e->pga = q[268];
+            e->reserved1 = (uint32_t)ubx_le(q + 269, 3);
+        }
+        left -= count * 272;
+        m->rf_blocks_count = (uint16_t)count;
+    }
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_mon_comms_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_mon_comms *m = &out->as.mon_comms;
@@ -14112,6 +14286,8 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     ubx_mon_smgr_fast,
     NULL,
+    ubx_mon_span_fast,
+    NULL,
     ubx_mon_comms_fast,
     NULL,
     ubx_mon_hw3_fast,
@@ -14163,6 +14339,13 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_esf_alg_fast,
     NULL,
     ubx_esf_ins_fast,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
     NULL,
     NULL,
     NULL,
@@ -14525,6 +14708,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"mon_gnss", "MON-GNSS", 0x0A, 0x28, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_mon_gnss_items, 18, 0, offsetof(nmea_ubx_mon_gnss, trailing)},
     {"mon_smgr_poll", "MON-SMGR", 0x0A, 0x2E, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_smgr_poll_items, 0, 0, offsetof(nmea_ubx_mon_smgr_poll, trailing)},
     {"mon_smgr", "MON-SMGR", 0x0A, 0x2E, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_mon_smgr_items, 22, 0, offsetof(nmea_ubx_mon_smgr, trailing)},
+    {"mon_span_poll", "MON-SPAN", 0x0A, 0x31, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_span_poll_items, 0, 0, offsetof(nmea_ubx_mon_span_poll, trailing)},
+    {"mon_span", "MON-SPAN", 0x0A, 0x31, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_span_items, 4, 0, offsetof(nmea_ubx_mon_span, trailing)},
     {"mon_comms_poll", "MON-COMMS", 0x0A, 0x36, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_comms_poll_items, 0, 0, offsetof(nmea_ubx_mon_comms_poll, trailing)},
     {"mon_comms", "MON-COMMS", 0x0A, 0x36, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_comms_items, 8, 0, offsetof(nmea_ubx_mon_comms, trailing)},
     {"mon_hw3_poll", "MON-HW3", 0x0A, 0x37, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_hw3_poll_items, 0, 0, offsetof(nmea_ubx_mon_hw3_poll, trailing)},
@@ -14563,9 +14748,9 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"tim_smeas_poll", "TIM-SMEAS", 0x0D, 0x13, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_smeas_poll_items, 0, 0, offsetof(nmea_ubx_tim_smeas_poll, trailing)},
     {"tim_smeas", "TIM-SMEAS", 0x0D, 0x13, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_tim_smeas_items, 6, 0, offsetof(nmea_ubx_tim_smeas, trailing)},
     {"tim_vcocal_poll", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_vcocal_poll_items, 0, 0, offsetof(nmea_ubx_tim_vcocal_poll, trailing)},
-    {"tim_vcocal_stop", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 1, -1, 0, ubx_tim_vcocal_stop_items, 1, 0, offsetof(nmea_ubx_tim_vcocal_stop, trailing)},
-    {"tim_vcocal_result", "TIM-VCOCAL", 0x0D, 0x15, true, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_tim_vcocal_result_items, 6, 0, offsetof(nmea_ubx_tim_vcocal_result, trailing)},
-    {"tim_vcocal", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_tim_vcocal_items, 8, 0, offsetof(nmea_ubx_tim_vcocal, trailing)},
+    {"tim_vcocal_stop", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 1, 0, 0, ubx_tim_vcocal_stop_items, 1, 0, offsetof(nmea_ubx_tim_vcocal_stop, trailing)},
+    {"tim_vcocal_result", "TIM-VCOCAL", 0x0D, 0x15, true, NMEA_UBX_PROTOCOL_UBX, 12, 3, 0, ubx_tim_vcocal_result_items, 6, 0, offsetof(nmea_ubx_tim_vcocal_result, trailing)},
+    {"tim_vcocal", "TIM-VCOCAL", 0x0D, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 12, 2, 0, ubx_tim_vcocal_items, 8, 0, offsetof(nmea_ubx_tim_vcocal, trailing)},
     {"tim_fchg_poll", "TIM-FCHG", 0x0D, 0x16, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_tim_fchg_poll_items, 0, 0, offsetof(nmea_ubx_tim_fchg_poll, trailing)},
     {"tim_fchg", "TIM-FCHG", 0x0D, 0x16, true, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_tim_fchg_items, 9, 0, offsetof(nmea_ubx_tim_fchg, trailing)},
     {"tim_hoc", "TIM-HOC", 0x0D, 0x17, false, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_tim_hoc_items, 7, 0, offsetof(nmea_ubx_tim_hoc, trailing)},
@@ -14577,27 +14762,34 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"esf_alg", "ESF-ALG", 0x10, 0x14, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_esf_alg_items, 13, 0, offsetof(nmea_ubx_esf_alg, trailing)},
     {"esf_ins_poll", "ESF-INS", 0x10, 0x15, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_esf_ins_poll_items, 0, 0, offsetof(nmea_ubx_esf_ins_poll, trailing)},
     {"esf_ins", "ESF-INS", 0x10, 0x15, true, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_esf_ins_items, 16, 0, offsetof(nmea_ubx_esf_ins, trailing)},
-    {"mga_gps_eph", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 68, -1, 0, ubx_mga_gps_eph_items, 31, 0, offsetof(nmea_ubx_mga_gps_eph, trailing)},
-    {"mga_gps_alm", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_mga_gps_alm_items, 16, 0, offsetof(nmea_ubx_mga_gps_alm, trailing)},
-    {"mga_gps_health", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_mga_gps_health_items, 5, 0, offsetof(nmea_ubx_mga_gps_health, trailing)},
-    {"mga_gps_utc", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_gps_utc_items, 12, 0, offsetof(nmea_ubx_mga_gps_utc, trailing)},
-    {"mga_gps_iono", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_mga_gps_iono_items, 12, 0, offsetof(nmea_ubx_mga_gps_iono, trailing)},
-    {"mga_gal_eph", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 76, -1, 0, ubx_mga_gal_eph_items, 33, 0, offsetof(nmea_ubx_mga_gal_eph, trailing)},
-    {"mga_gal_alm", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_mga_gal_alm_items, 19, 0, offsetof(nmea_ubx_mga_gal_alm, trailing)},
-    {"mga_gal_timeoffset", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_mga_gal_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_gal_timeoffset, trailing)},
-    {"mga_gal_utc", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_gal_utc_items, 12, 0, offsetof(nmea_ubx_mga_gal_utc, trailing)},
-    {"mga_bds_eph", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 88, -1, 0, ubx_mga_bds_eph_items, 30, 0, offsetof(nmea_ubx_mga_bds_eph, trailing)},
-    {"mga_bds_alm", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 40, -1, 0, ubx_mga_bds_alm_items, 16, 0, offsetof(nmea_ubx_mga_bds_alm, trailing)},
-    {"mga_bds_health", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 68, -1, 0, ubx_mga_bds_health_items, 5, 0, offsetof(nmea_ubx_mga_bds_health, trailing)},
-    {"mga_bds_utc", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_bds_utc_items, 12, 0, offsetof(nmea_ubx_mga_bds_utc, trailing)},
-    {"mga_bds_iono", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_mga_bds_iono_items, 12, 0, offsetof(nmea_ubx_mga_bds_iono, trailing)},
-    {"mga_qzss_eph", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 68, -1, 0, ubx_mga_qzss_eph_items, 31, 0, offsetof(nmea_ubx_mga_qzss_eph, trailing)},
-    {"mga_qzss_alm", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_mga_qzss_alm_items, 16, 0, offsetof(nmea_ubx_mga_qzss_alm, trailing)},
-    {"mga_qzss_health", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_mga_qzss_health_items, 5, 0, offsetof(nmea_ubx_mga_qzss_health, trailing)},
-    {"mga_glo_eph", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 48, -1, 0, ubx_mga_glo_eph_items, 23, 0, offsetof(nmea_ubx_mga_glo_eph, trailing)},
-    {"mga_glo_alm", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_mga_glo_alm_items, 17, 0, offsetof(nmea_ubx_mga_glo_alm, trailing)},
-    {"mga_glo_timeoffset", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_mga_glo_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_glo_timeoffset, trailing)},
+    {"mga_gps_eph", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 68, 1, 0, ubx_mga_gps_eph_items, 31, 0, offsetof(nmea_ubx_mga_gps_eph, trailing)},
+    {"mga_gps_alm", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 36, 2, 0, ubx_mga_gps_alm_items, 16, 0, offsetof(nmea_ubx_mga_gps_alm, trailing)},
+    {"mga_gps_health", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 40, 4, 0, ubx_mga_gps_health_items, 5, 0, offsetof(nmea_ubx_mga_gps_health, trailing)},
+    {"mga_gps_utc", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 20, 5, 0, ubx_mga_gps_utc_items, 12, 0, offsetof(nmea_ubx_mga_gps_utc, trailing)},
+    {"mga_gps_iono", "MGA-GPS", 0x13, 0x00, false, NMEA_UBX_PROTOCOL_UBX, 16, 6, 0, ubx_mga_gps_iono_items, 12, 0, offsetof(nmea_ubx_mga_gps_iono, trailing)},
+    {"mga_gal_eph", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 76, 1, 0, ubx_mga_gal_eph_items, 33, 0, offsetof(nmea_ubx_mga_gal_eph, trailing)},
+    {"mga_gal_alm", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 32, 2, 0, ubx_mga_gal_alm_items, 19, 0, offsetof(nmea_ubx_mga_gal_alm, trailing)},
+    {"mga_gal_timeoffset", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 12, 3, 0, ubx_mga_gal_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_gal_timeoffset, trailing)},
+    {"mga_gal_utc", "MGA-GAL", 0x13, 0x02, false, NMEA_UBX_PROTOCOL_UBX, 20, 5, 0, ubx_mga_gal_utc_items, 12, 0, offsetof(nmea_ubx_mga_gal_utc, trailing)},
+    {"mga_bds_eph", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 88, 1, 0, ubx_mga_bds_eph_items, 30, 0, offsetof(nmea_ubx_mga_bds_eph, trailing)},
+    {"mga_bds_alm", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 40, 2, 0, ubx_mga_bds_alm_items, 16, 0, offsetof(nmea_ubx_mga_bds_alm, trailing)},
+    {"mga_bds_health", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 68, 4, 0, ubx_mga_bds_health_items, 5, 0, offsetof(nmea_ubx_mga_bds_health, trailing)},
+    {"mga_bds_utc", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 20, 5, 0, ubx_mga_bds_utc_items, 12, 0, offsetof(nmea_ubx_mga_bds_utc, trailing)},
+    {"mga_bds_iono", "MGA-BDS", 0x13, 0x03, false, NMEA_UBX_PROTOCOL_UBX, 16, 6, 0, ubx_mga_bds_iono_items, 12, 0, offsetof(nmea_ubx_mga_bds_iono, trailing)},
+    {"mga_qzss_eph", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 68, 1, 0, ubx_mga_qzss_eph_items, 31, 0, offsetof(nmea_ubx_mga_qzss_eph, trailing)},
+    {"mga_qzss_alm", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 36, 2, 0, ubx_mga_qzss_alm_items, 16, 0, offsetof(nmea_ubx_mga_qzss_alm, trailing)},
+    {"mga_qzss_health", "MGA-QZSS", 0x13, 0x05, false, NMEA_UBX_PROTOCOL_UBX, 12, 4, 0, ubx_mga_qzss_health_items, 5, 0, offsetof(nmea_ubx_mga_qzss_health, trailing)},
+    {"mga_glo_eph", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 48, 1, 0, ubx_mga_glo_eph_items, 23, 0, offsetof(nmea_ubx_mga_glo_eph, trailing)},
+    {"mga_glo_alm", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 36, 2, 0, ubx_mga_glo_alm_items, 17, 0, offsetof(nmea_ubx_mga_glo_alm, trailing)},
+    {"mga_glo_timeoffset", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 20, 3, 0, ubx_mga_glo_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_glo_timeoffset, trailing)},
     {"mga_ano", "MGA-ANO", 0x13, 0x20, false, NMEA_UBX_PROTOCOL_UBX, 76, -1, 0, ubx_mga_ano_items, 10, 0, offsetof(nmea_ubx_mga_ano, trailing)},
+    {"mga_ini_pos_xyz", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 20, 0, 0, ubx_mga_ini_pos_xyz_items, 7, 0, offsetof(nmea_ubx_mga_ini_pos_xyz, trailing)},
+    {"mga_ini_pos_llh", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 20, 1, 0, ubx_mga_ini_pos_llh_items, 7, 0, offsetof(nmea_ubx_mga_ini_pos_llh, trailing)},
+    {"mga_ini_time_utc", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 24, 16, 0, ubx_mga_ini_time_utc_items, 18, 0, offsetof(nmea_ubx_mga_ini_time_utc, trailing)},
+    {"mga_ini_time_gnss", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 24, 17, 0, ubx_mga_ini_time_gnss_items, 14, 0, offsetof(nmea_ubx_mga_ini_time_gnss, trailing)},
+    {"mga_ini_clkd", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 12, 32, 0, ubx_mga_ini_clkd_items, 5, 0, offsetof(nmea_ubx_mga_ini_clkd, trailing)},
+    {"mga_ini_freq", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 12, 33, 0, ubx_mga_ini_freq_items, 8, 0, offsetof(nmea_ubx_mga_ini_freq, trailing)},
+    {"mga_ini_eop", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 72, 48, 0, ubx_mga_ini_eop_items, 14, 0, offsetof(nmea_ubx_mga_ini_eop, trailing)},
     {"mga_ack", "MGA-ACK", 0x13, 0x60, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_mga_ack_items, 5, 0, offsetof(nmea_ubx_mga_ack, trailing)},
     {"mga_dbd_poll", "MGA-DBD", 0x13, 0x80, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mga_dbd_poll_items, 0, 0, offsetof(nmea_ubx_mga_dbd_poll, trailing)},
     {"mga_dbd", "MGA-DBD", 0x13, 0x80, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mga_dbd_items, 2, 0, offsetof(nmea_ubx_mga_dbd, trailing)},
@@ -14946,150 +15138,154 @@ static uint32_t ubx_message_layouts(unsigned key)
         return (uint32_t)200 << 16 | 201;
     case 0x0A2E: /* MON-SMGR */
         return (uint32_t)202 << 16 | 203;
-    case 0x0A36: /* MON-COMMS */
+    case 0x0A31: /* MON-SPAN */
         return (uint32_t)204 << 16 | 205;
-    case 0x0A37: /* MON-HW3 */
+    case 0x0A36: /* MON-COMMS */
         return (uint32_t)206 << 16 | 207;
-    case 0x0A38: /* MON-RF */
+    case 0x0A37: /* MON-HW3 */
         return (uint32_t)208 << 16 | 209;
-    case 0x0A39: /* MON-SYS */
+    case 0x0A38: /* MON-RF */
         return (uint32_t)210 << 16 | 211;
-    case 0x0B01: /* AID-INI */
+    case 0x0A39: /* MON-SYS */
         return (uint32_t)212 << 16 | 213;
-    case 0x0B02: /* AID-HUI */
+    case 0x0B01: /* AID-INI */
         return (uint32_t)214 << 16 | 215;
+    case 0x0B02: /* AID-HUI */
+        return (uint32_t)216 << 16 | 217;
     case 0x0B30: /* AID-ALM */
-        return (uint32_t)216 << 16 | 219;
+        return (uint32_t)218 << 16 | 221;
     case 0x0B31: /* AID-EPH */
-        return (uint32_t)220 << 16 | 223;
+        return (uint32_t)222 << 16 | 225;
     case 0x0B33: /* AID-AOP */
-        return (uint32_t)224 << 16 | 226;
+        return (uint32_t)226 << 16 | 228;
     case 0x0D01: /* TIM-TP */
-        return (uint32_t)227 << 16 | 228;
-    case 0x0D03: /* TIM-TM2 */
         return (uint32_t)229 << 16 | 230;
-    case 0x0D04: /* TIM-SVIN */
+    case 0x0D03: /* TIM-TM2 */
         return (uint32_t)231 << 16 | 232;
-    case 0x0D06: /* TIM-VRFY */
+    case 0x0D04: /* TIM-SVIN */
         return (uint32_t)233 << 16 | 234;
-    case 0x0D11: /* TIM-DOSC */
+    case 0x0D06: /* TIM-VRFY */
         return (uint32_t)235 << 16 | 236;
-    case 0x0D12: /* TIM-TOS */
+    case 0x0D11: /* TIM-DOSC */
         return (uint32_t)237 << 16 | 238;
-    case 0x0D13: /* TIM-SMEAS */
+    case 0x0D12: /* TIM-TOS */
         return (uint32_t)239 << 16 | 240;
+    case 0x0D13: /* TIM-SMEAS */
+        return (uint32_t)241 << 16 | 242;
     case 0x0D15: /* TIM-VCOCAL */
-        return (uint32_t)241 << 16 | 244;
+        return (uint32_t)243 << 16 | 246;
     case 0x0D16: /* TIM-FCHG */
-        return (uint32_t)245 << 16 | 246;
+        return (uint32_t)247 << 16 | 248;
     case 0x0D17: /* TIM-HOC */
-        return (uint32_t)247 << 16 | 247;
-    case 0x1002: /* ESF-MEAS */
-        return (uint32_t)248 << 16 | 248;
-    case 0x1003: /* ESF-RAW */
         return (uint32_t)249 << 16 | 249;
+    case 0x1002: /* ESF-MEAS */
+        return (uint32_t)250 << 16 | 250;
+    case 0x1003: /* ESF-RAW */
+        return (uint32_t)251 << 16 | 251;
     case 0x1010: /* ESF-STATUS */
-        return (uint32_t)250 << 16 | 251;
-    case 0x1014: /* ESF-ALG */
         return (uint32_t)252 << 16 | 253;
-    case 0x1015: /* ESF-INS */
+    case 0x1014: /* ESF-ALG */
         return (uint32_t)254 << 16 | 255;
+    case 0x1015: /* ESF-INS */
+        return (uint32_t)256 << 16 | 257;
     case 0x1300: /* MGA-GPS */
-        return (uint32_t)256 << 16 | 260;
+        return (uint32_t)258 << 16 | 262;
     case 0x1302: /* MGA-GAL */
-        return (uint32_t)261 << 16 | 264;
+        return (uint32_t)263 << 16 | 266;
     case 0x1303: /* MGA-BDS */
-        return (uint32_t)265 << 16 | 269;
+        return (uint32_t)267 << 16 | 271;
     case 0x1305: /* MGA-QZSS */
-        return (uint32_t)270 << 16 | 272;
+        return (uint32_t)272 << 16 | 274;
     case 0x1306: /* MGA-GLO */
-        return (uint32_t)273 << 16 | 275;
+        return (uint32_t)275 << 16 | 277;
     case 0x1320: /* MGA-ANO */
-        return (uint32_t)276 << 16 | 276;
+        return (uint32_t)278 << 16 | 278;
+    case 0x1340: /* MGA-INI */
+        return (uint32_t)279 << 16 | 285;
     case 0x1360: /* MGA-ACK */
-        return (uint32_t)277 << 16 | 277;
-    case 0x1380: /* MGA-DBD */
-        return (uint32_t)278 << 16 | 279;
-    case 0x2103: /* LOG-ERASE */
-        return (uint32_t)280 << 16 | 280;
-    case 0x2104: /* LOG-STRING */
-        return (uint32_t)281 << 16 | 281;
-    case 0x2107: /* LOG-CREATE */
-        return (uint32_t)282 << 16 | 282;
-    case 0x2108: /* LOG-INFO */
-        return (uint32_t)283 << 16 | 284;
-    case 0x2109: /* LOG-RETRIEVE */
-        return (uint32_t)285 << 16 | 285;
-    case 0x210B: /* LOG-RETRIEVEPOS */
         return (uint32_t)286 << 16 | 286;
-    case 0x210D: /* LOG-RETRIEVESTRING */
-        return (uint32_t)287 << 16 | 287;
-    case 0x210E: /* LOG-FINDTIME */
-        return (uint32_t)288 << 16 | 289;
-    case 0x210F: /* LOG-RETRIEVEPOSEXTRA */
+    case 0x1380: /* MGA-DBD */
+        return (uint32_t)287 << 16 | 288;
+    case 0x2103: /* LOG-ERASE */
+        return (uint32_t)289 << 16 | 289;
+    case 0x2104: /* LOG-STRING */
         return (uint32_t)290 << 16 | 290;
-    case 0x2110: /* LOG-RETRIEVEBATCH */
+    case 0x2107: /* LOG-CREATE */
         return (uint32_t)291 << 16 | 291;
+    case 0x2108: /* LOG-INFO */
+        return (uint32_t)292 << 16 | 293;
+    case 0x2109: /* LOG-RETRIEVE */
+        return (uint32_t)294 << 16 | 294;
+    case 0x210B: /* LOG-RETRIEVEPOS */
+        return (uint32_t)295 << 16 | 295;
+    case 0x210D: /* LOG-RETRIEVESTRING */
+        return (uint32_t)296 << 16 | 296;
+    case 0x210E: /* LOG-FINDTIME */
+        return (uint32_t)297 << 16 | 298;
+    case 0x210F: /* LOG-RETRIEVEPOSEXTRA */
+        return (uint32_t)299 << 16 | 299;
+    case 0x2110: /* LOG-RETRIEVEBATCH */
+        return (uint32_t)300 << 16 | 300;
     case 0x2111: /* LOG-BATCH */
-        return (uint32_t)292 << 16 | 292;
+        return (uint32_t)301 << 16 | 301;
     case 0x2701: /* SEC-SIGN */
-        return (uint32_t)293 << 16 | 293;
+        return (uint32_t)302 << 16 | 302;
     case 0x2703: /* SEC-UNIQID */
-        return (uint32_t)294 << 16 | 295;
-    case 0x2709: /* SEC-SIG */
-        return (uint32_t)296 << 16 | 298;
-    case 0x2710: /* SEC-SIGLOG */
-        return (uint32_t)299 << 16 | 300;
-    case 0x2800: /* HNR-PVT */
-        return (uint32_t)301 << 16 | 302;
-    case 0x2801: /* HNR-ATT */
         return (uint32_t)303 << 16 | 304;
+    case 0x2709: /* SEC-SIG */
+        return (uint32_t)305 << 16 | 307;
+    case 0x2710: /* SEC-SIGLOG */
+        return (uint32_t)308 << 16 | 309;
+    case 0x2800: /* HNR-PVT */
+        return (uint32_t)310 << 16 | 311;
+    case 0x2801: /* HNR-ATT */
+        return (uint32_t)312 << 16 | 313;
     case 0x2802: /* HNR-INS */
-        return (uint32_t)305 << 16 | 306;
+        return (uint32_t)314 << 16 | 315;
     case 0x2901: /* NAV2-POSECEF */
-        return (uint32_t)307 << 16 | 308;
+        return (uint32_t)316 << 16 | 317;
     case 0x2902: /* NAV2-POSLLH */
-        return (uint32_t)309 << 16 | 310;
+        return (uint32_t)318 << 16 | 319;
     case 0x2903: /* NAV2-STATUS */
-        return (uint32_t)311 << 16 | 312;
+        return (uint32_t)320 << 16 | 321;
     case 0x2904: /* NAV2-DOP */
-        return (uint32_t)313 << 16 | 314;
+        return (uint32_t)322 << 16 | 323;
     case 0x2907: /* NAV2-PVT */
-        return (uint32_t)315 << 16 | 316;
+        return (uint32_t)324 << 16 | 325;
     case 0x2909: /* NAV2-ODO */
-        return (uint32_t)317 << 16 | 318;
+        return (uint32_t)326 << 16 | 327;
     case 0x2911: /* NAV2-VELECEF */
-        return (uint32_t)319 << 16 | 320;
+        return (uint32_t)328 << 16 | 329;
     case 0x2912: /* NAV2-VELNED */
-        return (uint32_t)321 << 16 | 322;
+        return (uint32_t)330 << 16 | 331;
     case 0x2920: /* NAV2-TIMEGPS */
-        return (uint32_t)323 << 16 | 324;
+        return (uint32_t)332 << 16 | 333;
     case 0x2921: /* NAV2-TIMEUTC */
-        return (uint32_t)325 << 16 | 326;
+        return (uint32_t)334 << 16 | 335;
     case 0x2922: /* NAV2-CLOCK */
-        return (uint32_t)327 << 16 | 328;
+        return (uint32_t)336 << 16 | 337;
     case 0x2923: /* NAV2-TIMEGLO */
-        return (uint32_t)329 << 16 | 330;
+        return (uint32_t)338 << 16 | 339;
     case 0x2924: /* NAV2-TIMEBDS */
-        return (uint32_t)331 << 16 | 332;
+        return (uint32_t)340 << 16 | 341;
     case 0x2925: /* NAV2-TIMEGAL */
-        return (uint32_t)333 << 16 | 334;
+        return (uint32_t)342 << 16 | 343;
     case 0x2926: /* NAV2-TIMELS */
-        return (uint32_t)335 << 16 | 336;
+        return (uint32_t)344 << 16 | 345;
     case 0x2927: /* NAV2-TIMEQZSS */
-        return (uint32_t)337 << 16 | 338;
+        return (uint32_t)346 << 16 | 347;
     case 0x2932: /* NAV2-SBAS */
-        return (uint32_t)339 << 16 | 340;
+        return (uint32_t)348 << 16 | 349;
     case 0x2935: /* NAV2-SAT */
-        return (uint32_t)341 << 16 | 342;
+        return (uint32_t)350 << 16 | 351;
     case 0x2936: /* NAV2-COV */
-        return (uint32_t)343 << 16 | 344;
+        return (uint32_t)352 << 16 | 353;
     case 0x2942: /* NAV2-SLAS */
-        return (uint32_t)345 << 16 | 346;
+        return (uint32_t)354 << 16 | 355;
     case 0x2943: /* NAV2-SIG */
-        return (uint32_t)347 << 16 | 348;
+        return (uint32_t)356 << 16 | 357;
     case 0x2961: /* NAV2-EOE */
-        return (uint32_t)349 << 16 | 349;
+        return (uint32_t)358 << 16 | 358;
     default:
         return UBX_NO_LAYOUTS;
     }
@@ -15206,78 +15402,80 @@ static const struct {
     {0x0A27, 198, 199}, /* MON-PATCH */
     {0x0A28, 200, 201}, /* MON-GNSS */
     {0x0A2E, 202, 203}, /* MON-SMGR */
-    {0x0A36, 204, 205}, /* MON-COMMS */
-    {0x0A37, 206, 207}, /* MON-HW3 */
-    {0x0A38, 208, 209}, /* MON-RF */
-    {0x0A39, 210, 211}, /* MON-SYS */
-    {0x0B01, 212, 213}, /* AID-INI */
-    {0x0B02, 214, 215}, /* AID-HUI */
-    {0x0B30, 216, 219}, /* AID-ALM */
-    {0x0B31, 220, 223}, /* AID-EPH */
-    {0x0B33, 224, 226}, /* AID-AOP */
-    {0x0D01, 227, 228}, /* TIM-TP */
-    {0x0D03, 229, 230}, /* TIM-TM2 */
-    {0x0D04, 231, 232}, /* TIM-SVIN */
-    {0x0D06, 233, 234}, /* TIM-VRFY */
-    {0x0D11, 235, 236}, /* TIM-DOSC */
-    {0x0D12, 237, 238}, /* TIM-TOS */
-    {0x0D13, 239, 240}, /* TIM-SMEAS */
-    {0x0D15, 241, 244}, /* TIM-VCOCAL */
-    {0x0D16, 245, 246}, /* TIM-FCHG */
-    {0x0D17, 247, 247}, /* TIM-HOC */
-    {0x1002, 248, 248}, /* ESF-MEAS */
-    {0x1003, 249, 249}, /* ESF-RAW */
-    {0x1010, 250, 251}, /* ESF-STATUS */
-    {0x1014, 252, 253}, /* ESF-ALG */
-    {0x1015, 254, 255}, /* ESF-INS */
-    {0x1300, 256, 260}, /* MGA-GPS */
-    {0x1302, 261, 264}, /* MGA-GAL */
-    {0x1303, 265, 269}, /* MGA-BDS */
-    {0x1305, 270, 272}, /* MGA-QZSS */
-    {0x1306, 273, 275}, /* MGA-GLO */
-    {0x1320, 276, 276}, /* MGA-ANO */
-    {0x1360, 277, 277}, /* MGA-ACK */
-    {0x1380, 278, 279}, /* MGA-DBD */
-    {0x2103, 280, 280}, /* LOG-ERASE */
-    {0x2104, 281, 281}, /* LOG-STRING */
-    {0x2107, 282, 282}, /* LOG-CREATE */
-    {0x2108, 283, 284}, /* LOG-INFO */
-    {0x2109, 285, 285}, /* LOG-RETRIEVE */
-    {0x210B, 286, 286}, /* LOG-RETRIEVEPOS */
-    {0x210D, 287, 287}, /* LOG-RETRIEVESTRING */
-    {0x210E, 288, 289}, /* LOG-FINDTIME */
-    {0x210F, 290, 290}, /* LOG-RETRIEVEPOSEXTRA */
-    {0x2110, 291, 291}, /* LOG-RETRIEVEBATCH */
-    {0x2111, 292, 292}, /* LOG-BATCH */
-    {0x2701, 293, 293}, /* SEC-SIGN */
-    {0x2703, 294, 295}, /* SEC-UNIQID */
-    {0x2709, 296, 298}, /* SEC-SIG */
-    {0x2710, 299, 300}, /* SEC-SIGLOG */
-    {0x2800, 301, 302}, /* HNR-PVT */
-    {0x2801, 303, 304}, /* HNR-ATT */
-    {0x2802, 305, 306}, /* HNR-INS */
-    {0x2901, 307, 308}, /* NAV2-POSECEF */
-    {0x2902, 309, 310}, /* NAV2-POSLLH */
-    {0x2903, 311, 312}, /* NAV2-STATUS */
-    {0x2904, 313, 314}, /* NAV2-DOP */
-    {0x2907, 315, 316}, /* NAV2-PVT */
-    {0x2909, 317, 318}, /* NAV2-ODO */
-    {0x2911, 319, 320}, /* NAV2-VELECEF */
-    {0x2912, 321, 322}, /* NAV2-VELNED */
-    {0x2920, 323, 324}, /* NAV2-TIMEGPS */
-    {0x2921, 325, 326}, /* NAV2-TIMEUTC */
-    {0x2922, 327, 328}, /* NAV2-CLOCK */
-    {0x2923, 329, 330}, /* NAV2-TIMEGLO */
-    {0x2924, 331, 332}, /* NAV2-TIMEBDS */
-    {0x2925, 333, 334}, /* NAV2-TIMEGAL */
-    {0x2926, 335, 336}, /* NAV2-TIMELS */
-    {0x2927, 337, 338}, /* NAV2-TIMEQZSS */
-    {0x2932, 339, 340}, /* NAV2-SBAS */
-    {0x2935, 341, 342}, /* NAV2-SAT */
-    {0x2936, 343, 344}, /* NAV2-COV */
-    {0x2942, 345, 346}, /* NAV2-SLAS */
-    {0x2943, 347, 348}, /* NAV2-SIG */
-    {0x2961, 349, 349}, /* NAV2-EOE */
+    {0x0A31, 204, 205}, /* MON-SPAN */
+    {0x0A36, 206, 207}, /* MON-COMMS */
+    {0x0A37, 208, 209}, /* MON-HW3 */
+    {0x0A38, 210, 211}, /* MON-RF */
+    {0x0A39, 212, 213}, /* MON-SYS */
+    {0x0B01, 214, 215}, /* AID-INI */
+    {0x0B02, 216, 217}, /* AID-HUI */
+    {0x0B30, 218, 221}, /* AID-ALM */
+    {0x0B31, 222, 225}, /* AID-EPH */
+    {0x0B33, 226, 228}, /* AID-AOP */
+    {0x0D01, 229, 230}, /* TIM-TP */
+    {0x0D03, 231, 232}, /* TIM-TM2 */
+    {0x0D04, 233, 234}, /* TIM-SVIN */
+    {0x0D06, 235, 236}, /* TIM-VRFY */
+    {0x0D11, 237, 238}, /* TIM-DOSC */
+    {0x0D12, 239, 240}, /* TIM-TOS */
+    {0x0D13, 241, 242}, /* TIM-SMEAS */
+    {0x0D15, 243, 246}, /* TIM-VCOCAL */
+    {0x0D16, 247, 248}, /* TIM-FCHG */
+    {0x0D17, 249, 249}, /* TIM-HOC */
+    {0x1002, 250, 250}, /* ESF-MEAS */
+    {0x1003, 251, 251}, /* ESF-RAW */
+    {0x1010, 252, 253}, /* ESF-STATUS */
+    {0x1014, 254, 255}, /* ESF-ALG */
+    {0x1015, 256, 257}, /* ESF-INS */
+    {0x1300, 258, 262}, /* MGA-GPS */
+    {0x1302, 263, 266}, /* MGA-GAL */
+    {0x1303, 267, 271}, /* MGA-BDS */
+    {0x1305, 272, 274}, /* MGA-QZSS */
+    {0x1306, 275, 277}, /* MGA-GLO */
+    {0x1320, 278, 278}, /* MGA-ANO */
+    {0x1340, 279, 285}, /* MGA-INI */
+    {0x1360, 286, 286}, /* MGA-ACK */
+    {0x1380, 287, 288}, /* MGA-DBD */
+    {0x2103, 289, 289}, /* LOG-ERASE */
+    {0x2104, 290, 290}, /* LOG-STRING */
+    {0x2107, 291, 291}, /* LOG-CREATE */
+    {0x2108, 292, 293}, /* LOG-INFO */
+    {0x2109, 294, 294}, /* LOG-RETRIEVE */
+    {0x210B, 295, 295}, /* LOG-RETRIEVEPOS */
+    {0x210D, 296, 296}, /* LOG-RETRIEVESTRING */
+    {0x210E, 297, 298}, /* LOG-FINDTIME */
+    {0x210F, 299, 299}, /* LOG-RETRIEVEPOSEXTRA */
+    {0x2110, 300, 300}, /* LOG-RETRIEVEBATCH */
+    {0x2111, 301, 301}, /* LOG-BATCH */
+    {0x2701, 302, 302}, /* SEC-SIGN */
+    {0x2703, 303, 304}, /* SEC-UNIQID */
+    {0x2709, 305, 307}, /* SEC-SIG */
+    {0x2710, 308, 309}, /* SEC-SIGLOG */
+    {0x2800, 310, 311}, /* HNR-PVT */
+    {0x2801, 312, 313}, /* HNR-ATT */
+    {0x2802, 314, 315}, /* HNR-INS */
+    {0x2901, 316, 317}, /* NAV2-POSECEF */
+    {0x2902, 318, 319}, /* NAV2-POSLLH */
+    {0x2903, 320, 321}, /* NAV2-STATUS */
+    {0x2904, 322, 323}, /* NAV2-DOP */
+    {0x2907, 324, 325}, /* NAV2-PVT */
+    {0x2909, 326, 327}, /* NAV2-ODO */
+    {0x2911, 328, 329}, /* NAV2-VELECEF */
+    {0x2912, 330, 331}, /* NAV2-VELNED */
+    {0x2920, 332, 333}, /* NAV2-TIMEGPS */
+    {0x2921, 334, 335}, /* NAV2-TIMEUTC */
+    {0x2922, 336, 337}, /* NAV2-CLOCK */
+    {0x2923, 338, 339}, /* NAV2-TIMEGLO */
+    {0x2924, 340, 341}, /* NAV2-TIMEBDS */
+    {0x2925, 342, 343}, /* NAV2-TIMEGAL */
+    {0x2926, 344, 345}, /* NAV2-TIMELS */
+    {0x2927, 346, 347}, /* NAV2-TIMEQZSS */
+    {0x2932, 348, 349}, /* NAV2-SBAS */
+    {0x2935, 350, 351}, /* NAV2-SAT */
+    {0x2936, 352, 353}, /* NAV2-COV */
+    {0x2942, 354, 355}, /* NAV2-SLAS */
+    {0x2943, 356, 357}, /* NAV2-SIG */
+    {0x2961, 358, 358}, /* NAV2-EOE */
 };
 
 static uint32_t ubx_message_layouts(unsigned key)
@@ -15302,53 +15500,53 @@ static const struct {
     uint8_t protocol, key_len, key[2];
     uint16_t first, last;
 } ubx_keyed[] = {
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 350, 350}, /* CASIC NAV-DOP */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 351, 351}, /* CASIC NAV-PV */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 352, 352}, /* CASIC NAV-TIMEUTC */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 353, 353}, /* CASIC NAV-GPSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 354, 354}, /* CASIC NAV-BDSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 355, 355}, /* CASIC NAV-GLNINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 356, 356}, /* CASIC ACK-NAK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 357, 357}, /* CASIC ACK-ACK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 358, 359}, /* CASIC CFG-PRT */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 360, 361}, /* CASIC CFG-MSG */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 362, 363}, /* CASIC CFG-RATE */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 364, 365}, /* CASIC MON-VER */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 366, 366}, /* SBF 4001 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 367, 367}, /* SBF 4006 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 368, 368}, /* SBF 4007 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 369, 369}, /* SBF 5905 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 370, 370}, /* SBF 5906 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 371, 371}, /* SBF 5907 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 372, 372}, /* SBF 5908 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 373, 373}, /* SBF 5914 rev 0 */
-    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 374, 374}, /* SIRF MID 67 SID 1 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 375, 375}, /* SIRF MID 2 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 376, 376}, /* SIRF MID 4 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 377, 377}, /* SIRF MID 6 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 378, 378}, /* SIRF MID 7 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 379, 379}, /* SIRF MID 9 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 380, 380}, /* SIRF MID 11 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 381, 381}, /* SIRF MID 12 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 382, 382}, /* SIRF MID 13 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 383, 383}, /* SIRF MID 18 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 384, 384}, /* SIRF MID 41 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 385, 385}, /* SIRF MID 52 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 386, 386}, /* SIRF MID 129 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 387, 387}, /* SIRF MID 132 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 388, 388}, /* SIRF MID 135 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 389, 389}, /* SIRF MID 255 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 390, 390}, /* SKYTRAQ 0x02 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 391, 391}, /* SKYTRAQ 0x09 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 392, 392}, /* SKYTRAQ 0x80 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 393, 393}, /* SKYTRAQ 0x83 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 394, 394}, /* SKYTRAQ 0x84 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 395, 395}, /* SKYTRAQ 0xA8 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 396, 396}, /* SKYTRAQ 0xDC */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 397, 397}, /* SKYTRAQ 0xDD */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 398, 398}, /* SKYTRAQ 0xDE */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 399, 399}, /* SKYTRAQ 0xDF */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 400, 400}, /* SKYTRAQ 0xE0 */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 359, 359}, /* CASIC NAV-DOP */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 360, 360}, /* CASIC NAV-PV */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 361, 361}, /* CASIC NAV-TIMEUTC */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 362, 362}, /* CASIC NAV-GPSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 363, 363}, /* CASIC NAV-BDSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 364, 364}, /* CASIC NAV-GLNINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 365, 365}, /* CASIC ACK-NAK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 366, 366}, /* CASIC ACK-ACK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 367, 368}, /* CASIC CFG-PRT */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 369, 370}, /* CASIC CFG-MSG */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 371, 372}, /* CASIC CFG-RATE */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 373, 374}, /* CASIC MON-VER */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 375, 375}, /* SBF 4001 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 376, 376}, /* SBF 4006 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 377, 377}, /* SBF 4007 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 378, 378}, /* SBF 5905 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 379, 379}, /* SBF 5906 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 380, 380}, /* SBF 5907 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 381, 381}, /* SBF 5908 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 382, 382}, /* SBF 5914 rev 0 */
+    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 383, 383}, /* SIRF MID 67 SID 1 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 384, 384}, /* SIRF MID 2 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 385, 385}, /* SIRF MID 4 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 386, 386}, /* SIRF MID 6 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 387, 387}, /* SIRF MID 7 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 388, 388}, /* SIRF MID 9 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 389, 389}, /* SIRF MID 11 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 390, 390}, /* SIRF MID 12 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 391, 391}, /* SIRF MID 13 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 392, 392}, /* SIRF MID 18 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 393, 393}, /* SIRF MID 41 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 394, 394}, /* SIRF MID 52 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 395, 395}, /* SIRF MID 129 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 396, 396}, /* SIRF MID 132 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 397, 397}, /* SIRF MID 135 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 398, 398}, /* SIRF MID 255 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 399, 399}, /* SKYTRAQ 0x02 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 400, 400}, /* SKYTRAQ 0x09 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 401, 401}, /* SKYTRAQ 0x80 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 402, 402}, /* SKYTRAQ 0x83 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 403, 403}, /* SKYTRAQ 0x84 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 404, 404}, /* SKYTRAQ 0xA8 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 405, 405}, /* SKYTRAQ 0xDC */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 406, 406}, /* SKYTRAQ 0xDD */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 407, 407}, /* SKYTRAQ 0xDE */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 408, 408}, /* SKYTRAQ 0xDF */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 409, 409}, /* SKYTRAQ 0xE0 */
 };
 
 /* nmea_ubx_decode, inlined into nmea_ubx_decode_frame (a call less a frame). */

@@ -53,22 +53,23 @@
 //   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_hw.yaml,
 //   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
 //   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
-//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_comms.yaml,
-//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_rf.yaml,
-//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/aid_ini.yaml,
-//   spec/binary/ubx/messages/aid_hui.yaml, spec/binary/ubx/messages/aid_alm.yaml,
-//   spec/binary/ubx/messages/aid_eph.yaml, spec/binary/ubx/messages/aid_aop.yaml,
-//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
-//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
-//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
-//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
-//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
-//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
-//   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
-//   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
-//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_bds.yaml,
-//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mga_glo.yaml,
-//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_ack.yaml,
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
+//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
+//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
+//   spec/binary/ubx/messages/aid_ini.yaml, spec/binary/ubx/messages/aid_hui.yaml,
+//   spec/binary/ubx/messages/aid_alm.yaml, spec/binary/ubx/messages/aid_eph.yaml,
+//   spec/binary/ubx/messages/aid_aop.yaml, spec/binary/ubx/messages/tim_tp.yaml,
+//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_svin.yaml,
+//   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
+//   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
+//   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
+//   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/esf_meas.yaml,
+//   spec/binary/ubx/messages/esf_raw.yaml, spec/binary/ubx/messages/esf_status.yaml,
+//   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
+//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_gal.yaml,
+//   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
+//   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_ano.yaml,
+//   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_ack.yaml,
 //   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/log_erase.yaml,
 //   spec/binary/ubx/messages/log_string.yaml, spec/binary/ubx/messages/log_create.yaml,
 //   spec/binary/ubx/messages/log_info.yaml, spec/binary/ubx/messages/log_retrieve.yaml,
@@ -118,7 +119,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 33d2b9c71f71fad3)
+//   spec/enums/ubx_gnss_id.yaml (digest a13abde8aef0f7c6)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ: spec/binary/<protocol>):
@@ -471,6 +472,9 @@ typedef enum {
 #ifndef NMEA_UBX_MON_PATCH_ENTRIES_MAX
 #define NMEA_UBX_MON_PATCH_ENTRIES_MAX (32 < NMEA_UBX_MAX_ENTRIES ? 32 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX
+#define NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX (4 < NMEA_UBX_MAX_ENTRIES ? 4 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_MON_COMMS_PROT_IDS_MAX
 #define NMEA_UBX_MON_COMMS_PROT_IDS_MAX (4 < NMEA_UBX_MAX_ENTRIES ? 4 : NMEA_UBX_MAX_ENTRIES)
 #endif
@@ -555,6 +559,52 @@ typedef enum {
 #ifndef NMEA_UBX_SKYTRAQ_SV_CH_STATUS_SVS_MAX
 #define NMEA_UBX_SKYTRAQ_SV_CH_STATUS_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
+/* The value of the field (a type, command or version byte) that picks a layout among those of its
+   class and id: set it when building such a message. */
+#define NMEA_UBX_NAV_RELPOSNED_VERSION 0x01
+#define NMEA_UBX_NAV_RELPOSNED_V0_VERSION 0x00
+#define NMEA_UBX_CFG_NMEA_VERSION 0x01
+#define NMEA_UBX_CFG_NMEA_V0_VERSION 0x00
+#define NMEA_UBX_CFG_PM2_VERSION 0x02
+#define NMEA_UBX_CFG_PM2_V1_VERSION 0x01
+#define NMEA_UBX_CFG_VALSET_V0_VERSION 0x00
+#define NMEA_UBX_CFG_VALSET_VERSION 0x01
+#define NMEA_UBX_CFG_VALGET_POLL_VERSION 0x00
+#define NMEA_UBX_CFG_VALGET_VERSION 0x01
+#define NMEA_UBX_CFG_VALDEL_V0_VERSION 0x00
+#define NMEA_UBX_CFG_VALDEL_VERSION 0x01
+#define NMEA_UBX_TIM_VCOCAL_STOP_TYPE 0x00
+#define NMEA_UBX_TIM_VCOCAL_RESULT_TYPE 0x03
+#define NMEA_UBX_TIM_VCOCAL_TYPE 0x02
+#define NMEA_UBX_MGA_GPS_EPH_TYPE 0x01
+#define NMEA_UBX_MGA_GPS_ALM_TYPE 0x02
+#define NMEA_UBX_MGA_GPS_HEALTH_TYPE 0x04
+#define NMEA_UBX_MGA_GPS_UTC_TYPE 0x05
+#define NMEA_UBX_MGA_GPS_IONO_TYPE 0x06
+#define NMEA_UBX_MGA_GAL_EPH_TYPE 0x01
+#define NMEA_UBX_MGA_GAL_ALM_TYPE 0x02
+#define NMEA_UBX_MGA_GAL_TIMEOFFSET_TYPE 0x03
+#define NMEA_UBX_MGA_GAL_UTC_TYPE 0x05
+#define NMEA_UBX_MGA_BDS_EPH_TYPE 0x01
+#define NMEA_UBX_MGA_BDS_ALM_TYPE 0x02
+#define NMEA_UBX_MGA_BDS_HEALTH_TYPE 0x04
+#define NMEA_UBX_MGA_BDS_UTC_TYPE 0x05
+#define NMEA_UBX_MGA_BDS_IONO_TYPE 0x06
+#define NMEA_UBX_MGA_QZSS_EPH_TYPE 0x01
+#define NMEA_UBX_MGA_QZSS_ALM_TYPE 0x02
+#define NMEA_UBX_MGA_QZSS_HEALTH_TYPE 0x04
+#define NMEA_UBX_MGA_GLO_EPH_TYPE 0x01
+#define NMEA_UBX_MGA_GLO_ALM_TYPE 0x02
+#define NMEA_UBX_MGA_GLO_TIMEOFFSET_TYPE 0x03
+#define NMEA_UBX_MGA_INI_POS_XYZ_TYPE 0x00
+#define NMEA_UBX_MGA_INI_POS_LLH_TYPE 0x01
+#define NMEA_UBX_MGA_INI_TIME_UTC_TYPE 0x10
+#define NMEA_UBX_MGA_INI_TIME_GNSS_TYPE 0x11
+#define NMEA_UBX_MGA_INI_CLKD_TYPE 0x20
+#define NMEA_UBX_MGA_INI_FREQ_TYPE 0x21
+#define NMEA_UBX_MGA_INI_EOP_TYPE 0x30
+#define NMEA_UBX_SEC_SIG_VERSION 0x02
+#define NMEA_UBX_SEC_SIG_V1_VERSION 0x01
 
 /* Position solution in ECEF: UBX NAV-POSECEF (class 0x01 id 0x01), poll. */
 typedef struct {
@@ -3209,6 +3259,32 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_mon_smgr;
 
+/* Signal characteristics (spectrum analyzer): UBX MON-SPAN (class 0x0A id 0x31), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_span_poll;
+
+/* One entry of rf blocks (rf_blocks). */
+typedef struct {
+    uint8_t spectrum0[128]; /* Spectrum bins 0 to 127 (u1 each in 0.25 dB) */
+    uint8_t spectrum1[128]; /* Spectrum bins 128 to 255 (u1 each in 0.25 dB) */
+    uint32_t span; /* Spectrum span [Hz] */
+    uint32_t res; /* Resolution of the spectrum (bin width) [Hz] */
+    uint32_t center; /* Center of the spectrum span [Hz] */
+    uint8_t pga; /* Programmable gain amplifier gain [dB] */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+} nmea_ubx_mon_span_rf_block;
+
+/* Signal characteristics (spectrum analyzer): UBX MON-SPAN (class 0x0A id 0x31), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t num_rf_blocks; /* Number of RF blocks */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t rf_blocks_count; /* the entries of rf_blocks */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mon_span_rf_block rf_blocks[NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX]; /* RF blocks */
+} nmea_ubx_mon_span;
+
 /* Communication port information: UBX MON-COMMS (class 0x0A id 0x36), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -4340,6 +4416,114 @@ typedef struct {
     uint32_t reserved1; /* Reserved (reserved, as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_mga_ano;
+
+/* Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    int32_t ecef_x; /* ECEF X coordinate [cm] */
+    int32_t ecef_y; /* ECEF Y coordinate [cm] */
+    int32_t ecef_z; /* ECEF Z coordinate [cm] */
+    uint32_t pos_acc; /* Position accuracy (standard deviation) [cm] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_ini_pos_xyz;
+
+/* Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    int32_t lat; /* Latitude (WGS 84) [deg]; raw, value = raw / 10000000 */
+    int32_t lon; /* Longitude (WGS 84) [deg]; raw, value = raw / 10000000 */
+    int32_t alt; /* Altitude above the WGS 84 ellipsoid [cm] */
+    uint32_t pos_acc; /* Position accuracy (standard deviation) [cm] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_ini_pos_llh;
+
+/* Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t ref; /* Reference the time is valid at (bitfield) */
+    uint8_t source; /* Time reference source (ref bits 0-3) */
+    bool fall; /* Falling edge of the pulse (not rising) (ref bit 4) */
+    bool last; /* The last pulse before the message (not the next) (ref bit 5) */
+    int8_t leap_secs; /* Leap seconds since 1980 [s] */
+    uint16_t year; /* Year */
+    uint8_t month; /* Month (1 to 12) */
+    uint8_t day; /* Day of the month (1 to 31) */
+    uint8_t hour; /* Hour (0 to 23) */
+    uint8_t minute; /* Minute (0 to 59) */
+    uint8_t second; /* Seconds (0 to 60) [s] */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint32_t ns; /* Nanoseconds (0 to 999999999) [ns] */
+    uint16_t t_acc_s; /* Time accuracy (whole seconds) [s] */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t t_acc_ns; /* Time accuracy (nanoseconds) [ns] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_ini_time_utc;
+
+/* Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t ref; /* Reference the time is valid at (bitfield) */
+    uint8_t source; /* Time reference source (ref bits 0-3) */
+    bool fall; /* Falling edge of the pulse (not rising) (ref bit 4) */
+    bool last; /* The last pulse before the message (not the next) (ref bit 5) */
+    uint8_t gnss_id; /* GNSS whose time it is; a code of ubx_gnss_id (its JSON: the code's id) */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t week; /* GNSS week number */
+    uint32_t tow; /* GNSS time of week [s] */
+    uint32_t ns; /* Nanoseconds (0 to 999999999) [ns] */
+    uint16_t t_acc_s; /* Time accuracy (whole seconds) [s] */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t t_acc_ns; /* Time accuracy (nanoseconds) [ns] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_ini_time_gnss;
+
+/* Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    int32_t clk_d; /* Clock drift [ns/s] */
+    uint32_t clk_d_acc; /* Clock drift accuracy [ns/s] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_ini_clkd;
+
+/* Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t flags; /* Frequency reference (bitfield) */
+    uint8_t source; /* Frequency reference source (flags bits 0-3) */
+    bool fall; /* Falling edge of the pulse (not rising) (flags bit 4) */
+    int32_t freq; /* Frequency [Hz]; raw, value = raw / 100 */
+    uint32_t freq_acc; /* Frequency accuracy [ppb] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_ini_freq;
+
+/* Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t d2k_ref; /* Reference day (days since 2000-01-01) [days] */
+    uint16_t d2k_max; /* Last day the parameters are valid (days since 2000-01-01) [days] */
+    int32_t xp_p0; /* Polar motion X at the reference day [arcsec]; raw, value = raw / 1073741824 */
+    int32_t xp_p1; /* Rate of polar motion X [arcsec/day]; raw, value = raw / 1073741824 */
+    int32_t yp_p0; /* Polar motion Y at the reference day [arcsec]; raw, value = raw / 1073741824 */
+    int32_t yp_p1; /* Rate of polar motion Y [arcsec/day]; raw, value = raw / 1073741824 */
+    int32_t d_ut1; /* UT1-UTC at the reference day [s]; raw, value = raw / 33554432 */
+    int32_t dd_ut1; /* Rate of UT1-UTC [s/day]; raw, value = raw / 1073741824 */
+    uint8_t reserved1[16]; /* Reserved (as sent) */
+    uint8_t reserved2[16]; /* Reserved (as sent) */
+    uint64_t reserved3; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_ini_eop;
 
 /* Assistance data acknowledgement: UBX MGA-ACK (class 0x13 id 0x60), output. */
 typedef struct {
@@ -6170,7 +6354,7 @@ typedef struct {
 } nmea_ubx_skytraq_gps_subframe;
 
 /* The layout of a decoded message: one per direction of a class and id, or several told apart by
-   length or version (spec order within a class and id). */
+   length or by the value of a selector byte (type, version; spec order within a class and id). */
 typedef enum {
     NMEA_UBX_MSG_NAV_POSECEF_POLL, /* NAV-POSECEF, poll */
     NMEA_UBX_MSG_NAV_POSECEF, /* NAV-POSECEF, output */
@@ -6230,8 +6414,8 @@ typedef enum {
     NMEA_UBX_MSG_NAV_SVIN_POLL, /* NAV-SVIN, poll */
     NMEA_UBX_MSG_NAV_SVIN, /* NAV-SVIN, output */
     NMEA_UBX_MSG_NAV_RELPOSNED_POLL, /* NAV-RELPOSNED, poll */
-    NMEA_UBX_MSG_NAV_RELPOSNED, /* NAV-RELPOSNED, output, version 1 */
-    NMEA_UBX_MSG_NAV_RELPOSNED_V0, /* NAV-RELPOSNED, output, version 0 */
+    NMEA_UBX_MSG_NAV_RELPOSNED, /* NAV-RELPOSNED, output, version 0x01 */
+    NMEA_UBX_MSG_NAV_RELPOSNED_V0, /* NAV-RELPOSNED, output, version 0x00 */
     NMEA_UBX_MSG_NAV_EELL_POLL, /* NAV-EELL, poll */
     NMEA_UBX_MSG_NAV_EELL, /* NAV-EELL, output */
     NMEA_UBX_MSG_NAV_SLAS_POLL, /* NAV-SLAS, poll */
@@ -6289,8 +6473,8 @@ typedef enum {
     NMEA_UBX_MSG_CFG_SBAS_POLL, /* CFG-SBAS, poll */
     NMEA_UBX_MSG_CFG_SBAS, /* CFG-SBAS, input, output */
     NMEA_UBX_MSG_CFG_NMEA_POLL, /* CFG-NMEA, poll */
-    NMEA_UBX_MSG_CFG_NMEA, /* CFG-NMEA, input, output, version 1 */
-    NMEA_UBX_MSG_CFG_NMEA_V0, /* CFG-NMEA, input, output, version 0 */
+    NMEA_UBX_MSG_CFG_NMEA, /* CFG-NMEA, input, output, version 0x01 */
+    NMEA_UBX_MSG_CFG_NMEA_V0, /* CFG-NMEA, input, output, version 0x00 */
     NMEA_UBX_MSG_CFG_NMEA_DEPRECATED, /* CFG-NMEA, input, output */
     NMEA_UBX_MSG_CFG_USB_POLL, /* CFG-USB, poll */
     NMEA_UBX_MSG_CFG_USB, /* CFG-USB, input, output */
@@ -6308,8 +6492,8 @@ typedef enum {
     NMEA_UBX_MSG_CFG_ITFM_POLL, /* CFG-ITFM, poll */
     NMEA_UBX_MSG_CFG_ITFM, /* CFG-ITFM, input, output */
     NMEA_UBX_MSG_CFG_PM2_POLL, /* CFG-PM2, poll */
-    NMEA_UBX_MSG_CFG_PM2, /* CFG-PM2, input, output, version 2 */
-    NMEA_UBX_MSG_CFG_PM2_V1, /* CFG-PM2, input, output, version 1 */
+    NMEA_UBX_MSG_CFG_PM2, /* CFG-PM2, input, output, version 0x02 */
+    NMEA_UBX_MSG_CFG_PM2_V1, /* CFG-PM2, input, output, version 0x01 */
     NMEA_UBX_MSG_CFG_GNSS_POLL, /* CFG-GNSS, poll */
     NMEA_UBX_MSG_CFG_GNSS, /* CFG-GNSS, input, output */
     NMEA_UBX_MSG_CFG_LOGFILTER_POLL, /* CFG-LOGFILTER, poll */
@@ -6342,12 +6526,12 @@ typedef enum {
     NMEA_UBX_MSG_CFG_FIXSEED, /* CFG-FIXSEED, input */
     NMEA_UBX_MSG_CFG_PMS_POLL, /* CFG-PMS, poll */
     NMEA_UBX_MSG_CFG_PMS, /* CFG-PMS, input, output */
-    NMEA_UBX_MSG_CFG_VALSET_V0, /* CFG-VALSET, input, version 0 */
-    NMEA_UBX_MSG_CFG_VALSET, /* CFG-VALSET, input, version 1 */
-    NMEA_UBX_MSG_CFG_VALGET_POLL, /* CFG-VALGET, poll, version 0 */
-    NMEA_UBX_MSG_CFG_VALGET, /* CFG-VALGET, output, version 1 */
-    NMEA_UBX_MSG_CFG_VALDEL_V0, /* CFG-VALDEL, input, version 0 */
-    NMEA_UBX_MSG_CFG_VALDEL, /* CFG-VALDEL, input, version 1 */
+    NMEA_UBX_MSG_CFG_VALSET_V0, /* CFG-VALSET, input, version 0x00 */
+    NMEA_UBX_MSG_CFG_VALSET, /* CFG-VALSET, input, version 0x01 */
+    NMEA_UBX_MSG_CFG_VALGET_POLL, /* CFG-VALGET, poll, version 0x00 */
+    NMEA_UBX_MSG_CFG_VALGET, /* CFG-VALGET, output, version 0x01 */
+    NMEA_UBX_MSG_CFG_VALDEL_V0, /* CFG-VALDEL, input, version 0x00 */
+    NMEA_UBX_MSG_CFG_VALDEL, /* CFG-VALDEL, input, version 0x01 */
     NMEA_UBX_MSG_CFG_SLAS_POLL, /* CFG-SLAS, poll */
     NMEA_UBX_MSG_CFG_SLAS, /* CFG-SLAS, input, output */
     NMEA_UBX_MSG_CFG_BATCH_POLL, /* CFG-BATCH, poll */
@@ -6376,6 +6560,8 @@ typedef enum {
     NMEA_UBX_MSG_MON_GNSS, /* MON-GNSS, output */
     NMEA_UBX_MSG_MON_SMGR_POLL, /* MON-SMGR, poll */
     NMEA_UBX_MSG_MON_SMGR, /* MON-SMGR, output */
+    NMEA_UBX_MSG_MON_SPAN_POLL, /* MON-SPAN, poll */
+    NMEA_UBX_MSG_MON_SPAN, /* MON-SPAN, output */
     NMEA_UBX_MSG_MON_COMMS_POLL, /* MON-COMMS, poll */
     NMEA_UBX_MSG_MON_COMMS, /* MON-COMMS, output */
     NMEA_UBX_MSG_MON_HW3_POLL, /* MON-HW3, poll */
@@ -6414,9 +6600,9 @@ typedef enum {
     NMEA_UBX_MSG_TIM_SMEAS_POLL, /* TIM-SMEAS, poll */
     NMEA_UBX_MSG_TIM_SMEAS, /* TIM-SMEAS, input, output */
     NMEA_UBX_MSG_TIM_VCOCAL_POLL, /* TIM-VCOCAL, poll */
-    NMEA_UBX_MSG_TIM_VCOCAL_STOP, /* TIM-VCOCAL, input */
-    NMEA_UBX_MSG_TIM_VCOCAL_RESULT, /* TIM-VCOCAL, output */
-    NMEA_UBX_MSG_TIM_VCOCAL, /* TIM-VCOCAL, input */
+    NMEA_UBX_MSG_TIM_VCOCAL_STOP, /* TIM-VCOCAL, input, type 0x00 */
+    NMEA_UBX_MSG_TIM_VCOCAL_RESULT, /* TIM-VCOCAL, output, type 0x03 */
+    NMEA_UBX_MSG_TIM_VCOCAL, /* TIM-VCOCAL, input, type 0x02 */
     NMEA_UBX_MSG_TIM_FCHG_POLL, /* TIM-FCHG, poll */
     NMEA_UBX_MSG_TIM_FCHG, /* TIM-FCHG, output */
     NMEA_UBX_MSG_TIM_HOC, /* TIM-HOC, input */
@@ -6428,27 +6614,34 @@ typedef enum {
     NMEA_UBX_MSG_ESF_ALG, /* ESF-ALG, output */
     NMEA_UBX_MSG_ESF_INS_POLL, /* ESF-INS, poll */
     NMEA_UBX_MSG_ESF_INS, /* ESF-INS, output */
-    NMEA_UBX_MSG_MGA_GPS_EPH, /* MGA-GPS, input */
-    NMEA_UBX_MSG_MGA_GPS_ALM, /* MGA-GPS, input */
-    NMEA_UBX_MSG_MGA_GPS_HEALTH, /* MGA-GPS, input */
-    NMEA_UBX_MSG_MGA_GPS_UTC, /* MGA-GPS, input */
-    NMEA_UBX_MSG_MGA_GPS_IONO, /* MGA-GPS, input */
-    NMEA_UBX_MSG_MGA_GAL_EPH, /* MGA-GAL, input */
-    NMEA_UBX_MSG_MGA_GAL_ALM, /* MGA-GAL, input */
-    NMEA_UBX_MSG_MGA_GAL_TIMEOFFSET, /* MGA-GAL, input */
-    NMEA_UBX_MSG_MGA_GAL_UTC, /* MGA-GAL, input */
-    NMEA_UBX_MSG_MGA_BDS_EPH, /* MGA-BDS, input */
-    NMEA_UBX_MSG_MGA_BDS_ALM, /* MGA-BDS, input */
-    NMEA_UBX_MSG_MGA_BDS_HEALTH, /* MGA-BDS, input */
-    NMEA_UBX_MSG_MGA_BDS_UTC, /* MGA-BDS, input */
-    NMEA_UBX_MSG_MGA_BDS_IONO, /* MGA-BDS, input */
-    NMEA_UBX_MSG_MGA_QZSS_EPH, /* MGA-QZSS, input */
-    NMEA_UBX_MSG_MGA_QZSS_ALM, /* MGA-QZSS, input */
-    NMEA_UBX_MSG_MGA_QZSS_HEALTH, /* MGA-QZSS, input */
-    NMEA_UBX_MSG_MGA_GLO_EPH, /* MGA-GLO, input */
-    NMEA_UBX_MSG_MGA_GLO_ALM, /* MGA-GLO, input */
-    NMEA_UBX_MSG_MGA_GLO_TIMEOFFSET, /* MGA-GLO, input */
+    NMEA_UBX_MSG_MGA_GPS_EPH, /* MGA-GPS, input, type 0x01 */
+    NMEA_UBX_MSG_MGA_GPS_ALM, /* MGA-GPS, input, type 0x02 */
+    NMEA_UBX_MSG_MGA_GPS_HEALTH, /* MGA-GPS, input, type 0x04 */
+    NMEA_UBX_MSG_MGA_GPS_UTC, /* MGA-GPS, input, type 0x05 */
+    NMEA_UBX_MSG_MGA_GPS_IONO, /* MGA-GPS, input, type 0x06 */
+    NMEA_UBX_MSG_MGA_GAL_EPH, /* MGA-GAL, input, type 0x01 */
+    NMEA_UBX_MSG_MGA_GAL_ALM, /* MGA-GAL, input, type 0x02 */
+    NMEA_UBX_MSG_MGA_GAL_TIMEOFFSET, /* MGA-GAL, input, type 0x03 */
+    NMEA_UBX_MSG_MGA_GAL_UTC, /* MGA-GAL, input, type 0x05 */
+    NMEA_UBX_MSG_MGA_BDS_EPH, /* MGA-BDS, input, type 0x01 */
+    NMEA_UBX_MSG_MGA_BDS_ALM, /* MGA-BDS, input, type 0x02 */
+    NMEA_UBX_MSG_MGA_BDS_HEALTH, /* MGA-BDS, input, type 0x04 */
+    NMEA_UBX_MSG_MGA_BDS_UTC, /* MGA-BDS, input, type 0x05 */
+    NMEA_UBX_MSG_MGA_BDS_IONO, /* MGA-BDS, input, type 0x06 */
+    NMEA_UBX_MSG_MGA_QZSS_EPH, /* MGA-QZSS, input, type 0x01 */
+    NMEA_UBX_MSG_MGA_QZSS_ALM, /* MGA-QZSS, input, type 0x02 */
+    NMEA_UBX_MSG_MGA_QZSS_HEALTH, /* MGA-QZSS, input, type 0x04 */
+    NMEA_UBX_MSG_MGA_GLO_EPH, /* MGA-GLO, input, type 0x01 */
+    NMEA_UBX_MSG_MGA_GLO_ALM, /* MGA-GLO, input, type 0x02 */
+    NMEA_UBX_MSG_MGA_GLO_TIMEOFFSET, /* MGA-GLO, input, type 0x03 */
     NMEA_UBX_MSG_MGA_ANO, /* MGA-ANO, input */
+    NMEA_UBX_MSG_MGA_INI_POS_XYZ, /* MGA-INI, input, type 0x00 */
+    NMEA_UBX_MSG_MGA_INI_POS_LLH, /* MGA-INI, input, type 0x01 */
+    NMEA_UBX_MSG_MGA_INI_TIME_UTC, /* MGA-INI, input, type 0x10 */
+    NMEA_UBX_MSG_MGA_INI_TIME_GNSS, /* MGA-INI, input, type 0x11 */
+    NMEA_UBX_MSG_MGA_INI_CLKD, /* MGA-INI, input, type 0x20 */
+    NMEA_UBX_MSG_MGA_INI_FREQ, /* MGA-INI, input, type 0x21 */
+    NMEA_UBX_MSG_MGA_INI_EOP, /* MGA-INI, input, type 0x30 */
     NMEA_UBX_MSG_MGA_ACK, /* MGA-ACK, output */
     NMEA_UBX_MSG_MGA_DBD_POLL, /* MGA-DBD, poll */
     NMEA_UBX_MSG_MGA_DBD, /* MGA-DBD, input, output */
@@ -6469,8 +6662,8 @@ typedef enum {
     NMEA_UBX_MSG_SEC_UNIQID_POLL, /* SEC-UNIQID, poll */
     NMEA_UBX_MSG_SEC_UNIQID, /* SEC-UNIQID, output */
     NMEA_UBX_MSG_SEC_SIG_POLL, /* SEC-SIG, poll */
-    NMEA_UBX_MSG_SEC_SIG, /* SEC-SIG, output, version 2 */
-    NMEA_UBX_MSG_SEC_SIG_V1, /* SEC-SIG, output, version 1 */
+    NMEA_UBX_MSG_SEC_SIG, /* SEC-SIG, output, version 0x02 */
+    NMEA_UBX_MSG_SEC_SIG_V1, /* SEC-SIG, output, version 0x01 */
     NMEA_UBX_MSG_SEC_SIGLOG_POLL, /* SEC-SIGLOG, poll */
     NMEA_UBX_MSG_SEC_SIGLOG, /* SEC-SIGLOG, output */
     NMEA_UBX_MSG_HNR_PVT_POLL, /* HNR-PVT, poll */
@@ -6784,6 +6977,8 @@ typedef struct {
         nmea_ubx_mon_gnss mon_gnss;
         nmea_ubx_mon_smgr_poll mon_smgr_poll;
         nmea_ubx_mon_smgr mon_smgr;
+        nmea_ubx_mon_span_poll mon_span_poll;
+        nmea_ubx_mon_span mon_span;
         nmea_ubx_mon_comms_poll mon_comms_poll;
         nmea_ubx_mon_comms mon_comms;
         nmea_ubx_mon_hw3_poll mon_hw3_poll;
@@ -6857,6 +7052,13 @@ typedef struct {
         nmea_ubx_mga_glo_alm mga_glo_alm;
         nmea_ubx_mga_glo_timeoffset mga_glo_timeoffset;
         nmea_ubx_mga_ano mga_ano;
+        nmea_ubx_mga_ini_pos_xyz mga_ini_pos_xyz;
+        nmea_ubx_mga_ini_pos_llh mga_ini_pos_llh;
+        nmea_ubx_mga_ini_time_utc mga_ini_time_utc;
+        nmea_ubx_mga_ini_time_gnss mga_ini_time_gnss;
+        nmea_ubx_mga_ini_clkd mga_ini_clkd;
+        nmea_ubx_mga_ini_freq mga_ini_freq;
+        nmea_ubx_mga_ini_eop mga_ini_eop;
         nmea_ubx_mga_ack mga_ack;
         nmea_ubx_mga_dbd_poll mga_dbd_poll;
         nmea_ubx_mga_dbd mga_dbd;
@@ -6986,7 +7188,8 @@ typedef struct {
 } nmea_ubx_message;
 
 /* The message of a payload of class `msg_class`, id `msg_id`: the layout of its class and id whose
-   fixed length and version byte it has, else the first the receiver sends (a short payload then
+   fixed length and selector byte (type, version) it has, else (a selector value no layout names)
+   the first selected layout of its length, else the first the receiver sends (a short payload then
    names the field it cuts, a long one keeps its rest as `trailing`); a class and id the spec does
    not describe is kept as `unknown`. Views point into `payload`. False with `err` set. */
 bool nmea_ubx_decode(uint8_t msg_class, uint8_t msg_id, const uint8_t *payload, size_t len, nmea_ubx_message *out,

@@ -152,8 +152,8 @@ ByKey = dict[tuple[int, ...], tuple[type[Message], ...]]
 
 def message(by_key: ByKey, protocol: str, header: bytes, payload: bytes) -> Message | Unknown:
     """The message of a frame's header and payload: the layouts of its key (a header's class and
-    id; the payload's id and sub-id, else its id), the one whose length and version the payload
-    has, else the main one; an Unknown when the spec describes no such key."""
+    id; the payload's id and sub-id, else its id), the one whose length and selector (type,
+    version) the payload has, else the main one; an Unknown when the spec describes no such key."""
     f = framing(protocol)
     if _header_key(f):
         key = _key_of(f, header)
@@ -166,8 +166,7 @@ def message(by_key: ByKey, protocol: str, header: bytes, payload: bytes) -> Mess
     layouts = by_key.get(key)
     if not layouts:
         return Unknown(protocol, key, rest) if key else Unknown(protocol, (), b"")
-    cls = next((c for c in layouts if c.fits(rest)), None) or ubx.main_layout(layouts)
-    found = cls.from_payload(rest)
+    found = ubx.layout_for(layouts, rest).from_payload(rest)
     assert isinstance(found, Message)
     return found
 

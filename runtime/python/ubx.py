@@ -27,8 +27,8 @@ from .ais import (Bitfield, Code, Field, Flag, Group, Item, Signed, Spare, Speci
 from .runtime import NmeaError
 
 __all__ = ["Bitfield", "Bytes", "ByteReader", "ByteWriter", "Chars", "Float", "Frame", "Group", "Message",
-           "NmeaError", "Unknown", "answers", "decode", "decode_frame", "fletcher8", "frame_size", "main_layout", "message",
-           "split_frames"]
+           "NmeaError", "Unknown", "answers", "decode", "decode_frame", "fletcher8", "frame_size", "layout_for",
+           "main_layout", "message", "split_frames"]
 
 SYNC = b"\xb5\x62"
 HEADER_SIZE = 6  # sync, class, id, length
@@ -472,8 +472,9 @@ class Message:
     """Who sends it: "poll" and "input" go to the receiver, "output" comes from it."""
     LENGTH: ClassVar[int | None]
     """The payload's bytes, when the layout fixes them."""
-    VERSION: ClassVar[int | None]
-    """The value of its `version` field that tells it from another layout of its class and id."""
+    SELECT: ClassVar[tuple[str, int, int] | None]
+    """The field (its id and byte) whose value tells it from another layout of its class and id,
+    and that value: a type, command or version byte (("type", 0, 0x10))."""
     REPLIES: ClassVar[tuple[str, ...]]
     """The layouts (ids) the receiver answers it with."""
     ACKNOWLEDGES: ClassVar[tuple[str, str] | None] = None
@@ -486,8 +487,6 @@ class Message:
     FIELDS: ClassVar[dict[str, Field]]
     _read: ClassVar[Any]
     """The layout's compiled reader (compile_reader), made on first use; False: none."""
-    _version_at: ClassVar[int]
-    """The byte of the `version` field (fits), found on first use."""
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
@@ -496,15 +495,13 @@ class Message:
 
     @classmethod
     def fits(cls, payload: bytes) -> bool:
-        """Whether `payload` has this layout's length (a fixed one) and version (when it has one)."""
+        """Whether `payload` has this layout's length (a fixed one) and its selector's value (when
+        it has one)."""
         if cls.LENGTH is not None and len(payload) != cls.LENGTH:
             return False
-        if cls.VERSION is not None:
-            offset: int | None = cls.__dict__.get("_version_at")
-            if offset is None:
-                at = next(i for i, item in enumerate(cls.LAYOUT) if isinstance(item, Field) and item.id == "version")
-                offset = cls._version_at = sum((f.width or 0) for f in cls.LAYOUT[:at] if isinstance(f, Field)) // 8
-            return offset < len(payload) and payload[offset] == cls.VERSION
+        if cls.SELECT is not None:
+            _, at, value = cls.SELECT
+            return at < len(payload) and payload[at] == value
         return True
 
     @classmethod
@@ -526,10 +523,11 @@ class Message:
 
     def payload(self) -> bytes:
         """The payload it is sent as; a count left None is written as its group's number of
-        entries, a version left None as the layout's (the message itself is left as it is)."""
+        entries, a selector (type, version) left None as the layout's value (the message itself is
+        left as it is)."""
         implied: dict[str, Any] = {}
-        if self.VERSION is not None and getattr(self, "version") is None:
-            implied["version"] = self.VERSION
+        if self.SELECT is not None and getattr(self, self.SELECT[0]) is None:
+            implied[self.SELECT[0]] = self.SELECT[2]
         for group in self.LAYOUT:
             if isinstance(group, Group) and isinstance(group.count, str) and getattr(self, group.count) is None:
                 implied[group.count] = len(getattr(self, group.id))
@@ -587,15 +585,15 @@ class Unknown:
 
 
 def message(by_id: dict[tuple[int, int], tuple[type[Message], ...]], frame: Frame) -> Message | Unknown:
-    """The message of `frame` as the layout of its class and id (in `by_id`, in spec order) whose
-    length and version the payload has, else its main layout (the first the receiver sends: a
-    short payload then names the field it cuts, a long one keeps the rest as trailing); an Unknown
-    when no layout describes the class and id."""
+    """The message of `frame` as the layout of its class and id (in `by_id`, in spec order) that
+    layout_for picks: the one whose length and selector's value (type, version) the payload has,
+    else its main layout (the first the receiver sends: a short payload then names the field it
+    cuts, a long one keeps the rest as trailing); an Unknown when no layout describes the class and
+    id."""
     layouts = by_id.get((frame.msg_class, frame.msg_id))
     if not layouts:
         return Unknown(frame.msg_class, frame.msg_id, frame.payload)
-    cls = next((c for c in layouts if c.fits(frame.payload)), None) or main_layout(layouts)
-    return cls.from_payload(frame.payload)
+    return layout_for(layouts, frame.payload).from_payload(frame.payload)
 
 
 def decode(by_id: dict[tuple[int, int], tuple[type[Message], ...]], data: bytes) -> Message | Unknown:
@@ -619,11 +617,23 @@ def decode(by_id: dict[tuple[int, int], tuple[type[Message], ...]], data: bytes)
             if len(layouts) == 1:   # what fits, or else main_layout, is this one: from_payload's work
                 read = layouts[0].__dict__.get("_read")
                 return read(payload) if read else layouts[0].from_payload(payload)
-            for cls in layouts:
-                if cls.fits(payload):
-                    return cls.from_payload(payload)
-            return main_layout(layouts).from_payload(payload)
+            return layout_for(layouts, payload).from_payload(payload)
     return message(by_id, decode_frame(data))
+
+
+def layout_for(layouts: tuple[type[Message], ...], payload: bytes) -> type[Message]:
+    """The layout (of one class and id, in spec order) `payload` is read as: the first whose length
+    and selector's value it has (Message.fits); else, a selector value no layout names (a type or
+    version byte), the first selected layout of its fixed length, the byte kept as sent; else the
+    main layout."""
+    for cls in layouts:
+        if cls.fits(payload):
+            return cls
+    size = len(payload)
+    for cls in layouts:
+        if cls.SELECT is not None and cls.LENGTH == size:
+            return cls
+    return main_layout(layouts)
 
 
 def main_layout(layouts: tuple[type[Message], ...]) -> type[Message]:

@@ -168,17 +168,15 @@ def field_agreement() -> dict[str, Agreement]:
 
 
 ENTRIES = 2   # the entries of each group of a made-up payload
-# The type byte of the MGA layouts one class and id holds (the spec tells them apart by length; pyubx2 by this
-# byte, which the documents give): ephemeris 1, almanac 2, time offset 3, health 4, UTC 5, ionosphere 6.
-TYPE_BYTES = {f"mga_{gnss}_{kind}": code for gnss in ("gps", "gal", "bds", "qzss", "glo")
-              for kind, code in (("eph", 1), ("alm", 2), ("timeoffset", 3), ("health", 4), ("utc", 5), ("iono", 6))}
-TYPE_BYTES.update(mga_ack=1, mga_ano=0, rxm_rlm=2, rxm_rlm_short=1)
+# The type byte of layouts the spec tells apart by length alone, which pyubx2 reads to pick its layout (a
+# layout with a selector, MGA-GPS's and MGA-INI's, gets its SELECT value).
+TYPE_BYTES = {"mga_ack": 1, "mga_ano": 0, "rxm_rlm": 2, "rxm_rlm_short": 1}
 
 
 def made_up_payload(cls: type[ubx.Message], draw: random.Random) -> bytes:
-    """A payload of layout `cls` with bytes drawn from `draw`: its version set, each group given
-    ENTRIES entries (its count field or part set to say so), a text or byte field of the bytes
-    left given six letters."""
+    """A payload of layout `cls` with bytes drawn from `draw`: its selector (version, type) set,
+    each group given ENTRIES entries (its count field or part set to say so), a text or byte field
+    of the bytes left given six letters."""
     counts = {item.count for item in cls.LAYOUT if isinstance(item, ubx.Group) and isinstance(item.count, str)}
     out = bytearray()
     for item in cls.LAYOUT:
@@ -190,8 +188,8 @@ def made_up_payload(cls: type[ubx.Message], draw: random.Random) -> bytes:
             out += bytes(draw.choice(b"ABCDEFGHIJKLMNOPQRSTUVWXYZ") for _ in range(6))
             continue
         raw = draw.getrandbits(item.width)
-        if item.id == "version" and cls.VERSION is not None:
-            raw = cls.VERSION
+        if cls.SELECT is not None and item.id == cls.SELECT[0]:
+            raw = cls.SELECT[2]
         if item.id == "type" and cls.ID in TYPE_BYTES:
             raw = TYPE_BYTES[cls.ID]
         if item.id in counts:
@@ -283,6 +281,8 @@ REASONS = {
        for name in ("rxbytes", "txbytes", "parityerrs", "framingerrs", "overrunerrs", "breakcond", "rxbusy", "txbusy")},
     **{name: "pyubx2 gives the raw integer (0.01 deg); ours is in degrees, its <id>_raw pyubx2's value"
        for name in ("plposhorizorient", "plvelhorizorient")},
+    **{name: "MON-SPAN's 256 spectrum bins: ours two byte fields of 128 (a fixed field holds at most 255 bytes), "
+             "pyubx2 one list" for name in ("spectrum", "spectrum0", "spectrum1")},
     "data": "MGA-DBD's database bytes: ours one bytes field, pyubx2 its bytes one by one (data_NN)",
     "svid": "a poll of one satellite: ours its svid, pyubx2 a group of them (svid_NN)",
     "maxdevlifetime": "u-blox names it `maxDevLifeTime`; pyubx2 `maxDevLifeTim`",
@@ -392,8 +392,9 @@ def report() -> str:
         "## Layouts no log carries",
         "",
         "Each fixed layout with a payload that no frame of the logs has, decoded from a made-up payload",
-        "(bytes drawn from a generator seeded with the layout's id, its version set) by our class and by",
-        "pyubx2 parsing it as the layout's direction (output, input, poll), compared as above.",
+        "(bytes drawn from a generator seeded with the layout's id, its selector set: version, type) by",
+        "our class and by pyubx2 parsing it as the layout's direction (output, input, poll), compared as",
+        "above.",
         "",
         "| layout | values compared | equal | encoded back byte-exact |",
         "| --- | ---: | ---: | ---: |",

@@ -39,11 +39,8 @@ def c_program(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 def version_at(cls: type[ubx.Message]) -> int | None:
-    """The byte of a layout's version field, when a version tells it apart."""
-    if cls.VERSION is None:
-        return None
-    widths = [item.width or 0 for item in cls.LAYOUT[:[getattr(item, "id", "") for item in cls.LAYOUT].index("version")]]
-    return sum(widths) // 8
+    """The byte of a layout's selector (a type or version byte), when one tells it apart."""
+    return None if cls.SELECT is None else cls.SELECT[1]
 
 
 def log_frames() -> list[bytes]:
@@ -63,7 +60,7 @@ def made_up_frames() -> list[bytes]:
                 payload = bytearray(draw.randrange(256) for _ in range(length))
                 at = version_at(cls)
                 if at is not None and at < length:
-                    payload[at] = cls.VERSION
+                    payload[at] = cls.SELECT[2]
                 out.append(ubx.Frame(cls.CLASS, cls.MSG_ID, bytes(payload)).encode())
     return out
 
@@ -87,7 +84,7 @@ def other_frames() -> list[tuple[str, bytes]]:
                     payload = bytearray(draw.randrange(256) for _ in range(length))
                     at = version_at(cls)
                     if at is not None and at < length:
-                        payload[at] = cls.VERSION
+                        payload[at] = cls.SELECT[2]
                     out.append((name, binary.Frame(name, cls.KEY, bytes(payload)).encode()))
         key = (0x0B, 0x7F) if name == "casic" else (4000, 1) if name == "sbf" else (0x7E,)
         out.append((name, binary.Frame(name, key, b"\x01\x02").encode()))

@@ -99,6 +99,21 @@ def test_layouts_of_one_class_and_id_are_told_apart_by_version_and_length() -> N
     assert isinstance(decoded, ubx_messages.NavRelposnedV0) and decoded.carr_soln == 2 and decoded.version == 0
 
 
+def test_layouts_of_one_length_are_told_apart_by_their_type_byte() -> None:
+    # MGA-INI's CLKD (type 0x20) and FREQ (0x21) are both 12 bytes: a type left None is written as
+    # the layout's, and the type read picks the layout back.
+    clkd = ubx_messages.MgaIniClkd(version=0, reserved0=0, clk_d=-1234, clk_d_acc=100)
+    freq = ubx_messages.MgaIniFreq(version=0, reserved0=0, flags=0, freq=1.5, freq_acc=7)
+    assert clkd.encode().hex(" ") == "b5 62 13 40 0c 00 20 00 00 00 2e fb ff ff 64 00 00 00 0a ea"
+    for built in (clkd, freq):
+        decoded = ubx_messages.decode(built.encode())
+        assert type(decoded) is type(built) and decoded.type == built.SELECT[2] and built.type is None
+    # a type no layout names (0x2F): read as the first layout of its length, the byte kept as sent
+    frame = ubx.Frame(0x13, 0x40, bytes.fromhex("2f00000001000000 02000000")).encode()
+    odd = ubx_messages.decode(frame)
+    assert isinstance(odd, ubx_messages.MgaIniClkd) and odd.type == 0x2F and odd.encode() == frame
+
+
 def test_a_reply_answers_the_request_it_names() -> None:
     rate = ubx_messages.CfgRate(meas_rate=200, nav_rate=1, time_ref=1)
     assert ubx.answers(rate, ubx_messages.AckAck(cls_id=0x06, msg_id=0x08))

@@ -54,8 +54,9 @@ impl<'a> NavDop<'a> {
     pub const KEY: &'static [u8] = &[0x01, 0x01];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(28);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -166,8 +167,9 @@ impl<'a> NavPv<'a> {
     pub const KEY: &'static [u8] = &[0x01, 0x03];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(80);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -360,8 +362,9 @@ impl<'a> NavTimeutc<'a> {
     pub const KEY: &'static [u8] = &[0x01, 0x10];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(24);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -615,8 +618,9 @@ impl<'a> NavGpsinfo<'a> {
     pub const KEY: &'static [u8] = &[0x01, 0x20];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -807,8 +811,9 @@ impl<'a> NavBdsinfo<'a> {
     pub const KEY: &'static [u8] = &[0x01, 0x21];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -999,8 +1004,9 @@ impl<'a> NavGlninfo<'a> {
     pub const KEY: &'static [u8] = &[0x01, 0x22];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1066,8 +1072,9 @@ impl<'a> AckNak<'a> {
     pub const KEY: &'static [u8] = &[0x05, 0x00];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1124,8 +1131,9 @@ impl<'a> AckAck<'a> {
     pub const KEY: &'static [u8] = &[0x05, 0x01];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1176,8 +1184,9 @@ impl<'a> CfgPrtPoll<'a> {
     pub const KEY: &'static [u8] = &[0x06, 0x00];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -1227,8 +1236,9 @@ impl<'a> CfgPrt<'a> {
     pub const KEY: &'static [u8] = &[0x06, 0x00];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1318,8 +1328,9 @@ impl<'a> CfgMsgPoll<'a> {
     pub const KEY: &'static [u8] = &[0x06, 0x01];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -1367,8 +1378,9 @@ impl<'a> CfgMsg<'a> {
     pub const KEY: &'static [u8] = &[0x06, 0x01];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1419,8 +1431,9 @@ impl<'a> CfgRatePoll<'a> {
     pub const KEY: &'static [u8] = &[0x06, 0x04];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -1466,8 +1479,9 @@ impl<'a> CfgRate<'a> {
     pub const KEY: &'static [u8] = &[0x06, 0x04];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1515,8 +1529,9 @@ impl<'a> MonVerPoll<'a> {
     pub const KEY: &'static [u8] = &[0x0a, 0x04];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -1562,8 +1577,9 @@ impl<'a> MonVer<'a> {
     pub const KEY: &'static [u8] = &[0x0a, 0x04];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(64);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.

@@ -62,8 +62,9 @@ impl<'a> PvtDop<'a> {
     pub const KEY: &'static [u8] = &[0xa1, 0x0f];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(24);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -233,8 +234,9 @@ impl<'a> PvtCartesian<'a> {
     pub const KEY: &'static [u8] = &[0xa6, 0x4f];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(87);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -691,8 +693,9 @@ impl<'a> PvtGeodetic<'a> {
     pub const KEY: &'static [u8] = &[0xa7, 0x4f];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(87);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1121,8 +1124,9 @@ impl<'a> PosCovCartesian<'a> {
     pub const KEY: &'static [u8] = &[0x11, 0x17];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(48);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1303,8 +1307,9 @@ impl<'a> PosCovGeodetic<'a> {
     pub const KEY: &'static [u8] = &[0x12, 0x17];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(48);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1485,8 +1490,9 @@ impl<'a> VelCovCartesian<'a> {
     pub const KEY: &'static [u8] = &[0x13, 0x17];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(48);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1667,8 +1673,9 @@ impl<'a> VelCovGeodetic<'a> {
     pub const KEY: &'static [u8] = &[0x14, 0x17];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(48);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1841,8 +1848,9 @@ impl<'a> ReceiverTime<'a> {
     pub const KEY: &'static [u8] = &[0x1a, 0x17];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(14);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.

@@ -134,8 +134,9 @@ impl<'a> GnssNavSolution<'a> {
     pub const KEY: &'static [u8] = &[0x43, 0x01];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(124);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -556,8 +557,9 @@ impl<'a> MeasuredNav<'a> {
     pub const KEY: &'static [u8] = &[0x02];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(40);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -962,8 +964,9 @@ impl<'a> TrackerData<'a> {
     pub const KEY: &'static [u8] = &[0x04];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1025,8 +1028,9 @@ impl<'a> SwVersion<'a> {
     pub const KEY: &'static [u8] = &[0x06];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1083,8 +1087,9 @@ impl<'a> ClockStatus<'a> {
     pub const KEY: &'static [u8] = &[0x07];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(19);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1158,8 +1163,9 @@ impl<'a> CpuThroughput<'a> {
     pub const KEY: &'static [u8] = &[0x09];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1235,8 +1241,9 @@ impl<'a> CommandAck<'a> {
     pub const KEY: &'static [u8] = &[0x0b];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1296,8 +1303,9 @@ impl<'a> CommandNack<'a> {
     pub const KEY: &'static [u8] = &[0x0c];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1390,8 +1398,9 @@ impl<'a> VisibleList<'a> {
     pub const KEY: &'static [u8] = &[0x0d];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1441,8 +1450,9 @@ impl<'a> OkToSend<'a> {
     pub const KEY: &'static [u8] = &[0x12];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1557,8 +1567,9 @@ impl<'a> GeodeticNav<'a> {
     pub const KEY: &'static [u8] = &[0x29];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(90);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1882,8 +1893,9 @@ impl<'a> PpsTime<'a> {
     pub const KEY: &'static [u8] = &[0x34];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(18);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -2028,8 +2040,9 @@ impl<'a> SwitchToNmea<'a> {
     pub const KEY: &'static [u8] = &[0x81];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(23);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -2082,8 +2095,9 @@ impl<'a> PollSwVersion<'a> {
     pub const KEY: &'static [u8] = &[0x84];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -2130,8 +2144,9 @@ impl<'a> SetProtocol<'a> {
     pub const KEY: &'static [u8] = &[0x87];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -2178,8 +2193,9 @@ impl<'a> DevData<'a> {
     pub const KEY: &'static [u8] = &[0xff];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.

@@ -42,8 +42,9 @@ impl<'a> QuerySwVersion<'a> {
     pub const KEY: &'static [u8] = &[0x02];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -92,8 +93,9 @@ impl<'a> ConfigMessageType<'a> {
     pub const KEY: &'static [u8] = &[0x09];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(2);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -161,8 +163,9 @@ impl<'a> SwVersion<'a> {
     pub const KEY: &'static [u8] = &[0x80];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(13);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -250,8 +253,9 @@ impl<'a> MsgAck<'a> {
     pub const KEY: &'static [u8] = &[0x83];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -312,8 +316,9 @@ impl<'a> MsgNack<'a> {
     pub const KEY: &'static [u8] = &[0x84];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -408,8 +413,9 @@ impl<'a> NavData<'a> {
     pub const KEY: &'static [u8] = &[0xa8];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(58);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -633,8 +639,9 @@ impl<'a> MeasTime<'a> {
     pub const KEY: &'static [u8] = &[0xdc];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(9);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -790,8 +797,9 @@ impl<'a> RawMeas<'a> {
     pub const KEY: &'static [u8] = &[0xdd];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -990,8 +998,9 @@ impl<'a> SvChStatus<'a> {
     pub const KEY: &'static [u8] = &[0xde];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1076,8 +1085,9 @@ impl<'a> RcvState<'a> {
     pub const KEY: &'static [u8] = &[0xdf];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(80);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1195,8 +1205,9 @@ impl<'a> GpsSubframe<'a> {
     pub const KEY: &'static [u8] = &[0xe0];
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(32);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.

@@ -40,13 +40,14 @@
 //   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_ano.yaml,
 //   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
 //   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_glo.yaml,
-//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
-//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
-//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
-//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_io.yaml,
-//   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_patch.yaml,
-//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
-//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_ini.yaml,
+//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+//   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_hw.yaml,
+//   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
+//   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
+//   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+//   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
 //   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
 //   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav2_clock.yaml,
 //   spec/binary/ubx/messages/nav2_cov.yaml, spec/binary/ubx/messages/nav2_dop.yaml,
@@ -90,7 +91,7 @@
 //   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tos.yaml,
 //   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
 //   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/upd_sos.yaml
-//   (digest ff23a5f0740a4914)
+//   (digest c10f058934b616c2)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The UBX messages of spec/binary/ubx: a struct per layout (named as the Python package's
@@ -142,8 +143,9 @@ impl<'a> AckAck<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(2);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -197,8 +199,9 @@ impl<'a> AckNak<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(2);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -248,8 +251,9 @@ impl<'a> AidAlmPoll<'a> {
     pub const MSG_ID: u8 = 0x30;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -295,8 +299,9 @@ impl<'a> AidAlmPollSv<'a> {
     pub const MSG_ID: u8 = 0x30;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -372,8 +377,9 @@ impl<'a> AidAlm<'a> {
     pub const MSG_ID: u8 = 0x30;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(40);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -430,8 +436,9 @@ impl<'a> AidAlmEmpty<'a> {
     pub const MSG_ID: u8 = 0x30;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -481,8 +488,9 @@ impl<'a> AidAopPoll<'a> {
     pub const MSG_ID: u8 = 0x33;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -528,8 +536,9 @@ impl<'a> AidAopPollSv<'a> {
     pub const MSG_ID: u8 = 0x33;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -584,8 +593,9 @@ impl<'a> AidAop<'a> {
     pub const MSG_ID: u8 = 0x33;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(68);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -649,8 +659,9 @@ impl<'a> AidEphPoll<'a> {
     pub const MSG_ID: u8 = 0x31;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -696,8 +707,9 @@ impl<'a> AidEphPollSv<'a> {
     pub const MSG_ID: u8 = 0x31;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -796,8 +808,9 @@ impl<'a> AidEph<'a> {
     pub const MSG_ID: u8 = 0x31;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(104);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -951,8 +964,9 @@ impl<'a> AidEphEmpty<'a> {
     pub const MSG_ID: u8 = 0x31;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1002,8 +1016,9 @@ impl<'a> AidHuiPoll<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -1085,8 +1100,9 @@ impl<'a> AidHui<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(72);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1235,8 +1251,9 @@ impl<'a> AidIniPoll<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -1306,8 +1323,9 @@ impl<'a> AidIni<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(48);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1513,8 +1531,9 @@ impl<'a> CfgAntPoll<'a> {
     pub const MSG_ID: u8 = 0x13;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -1562,8 +1581,9 @@ impl<'a> CfgAnt<'a> {
     pub const MSG_ID: u8 = 0x13;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1694,8 +1714,9 @@ impl<'a> CfgBatchPoll<'a> {
     pub const MSG_ID: u8 = 0x93;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -1751,8 +1772,9 @@ impl<'a> CfgBatch<'a> {
     pub const MSG_ID: u8 = 0x93;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -1865,8 +1887,9 @@ impl<'a> CfgCfgAllDevices<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(12);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -1927,8 +1950,9 @@ impl<'a> CfgCfg<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(13);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -2020,8 +2044,9 @@ impl<'a> CfgDatPoll<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -2083,8 +2108,9 @@ impl<'a> CfgDatSet<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(44);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -2177,8 +2203,9 @@ impl<'a> CfgDat<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(52);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -2255,8 +2282,9 @@ impl<'a> CfgDgnssPoll<'a> {
     pub const MSG_ID: u8 = 0x70;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -2304,8 +2332,9 @@ impl<'a> CfgDgnss<'a> {
     pub const MSG_ID: u8 = 0x70;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -2360,8 +2389,9 @@ impl<'a> CfgDoscPoll<'a> {
     pub const MSG_ID: u8 = 0x61;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -2560,8 +2590,9 @@ impl<'a> CfgDosc<'a> {
     pub const MSG_ID: u8 = 0x61;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -2617,8 +2648,9 @@ impl<'a> CfgEsfaPoll<'a> {
     pub const MSG_ID: u8 = 0x4c;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -2676,8 +2708,9 @@ impl<'a> CfgEsfa<'a> {
     pub const MSG_ID: u8 = 0x4c;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -2759,8 +2792,9 @@ impl<'a> CfgEsfalgPoll<'a> {
     pub const MSG_ID: u8 = 0x56;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -2812,8 +2846,9 @@ impl<'a> CfgEsfalg<'a> {
     pub const MSG_ID: u8 = 0x56;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(12);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -2905,8 +2940,9 @@ impl<'a> CfgEsfgPoll<'a> {
     pub const MSG_ID: u8 = 0x4d;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -2966,8 +3002,9 @@ impl<'a> CfgEsfg<'a> {
     pub const MSG_ID: u8 = 0x4d;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -3062,8 +3099,9 @@ impl<'a> CfgEsfwtPoll<'a> {
     pub const MSG_ID: u8 = 0x82;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -3131,8 +3169,9 @@ impl<'a> CfgEsfwt<'a> {
     pub const MSG_ID: u8 = 0x82;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(32);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -3324,8 +3363,9 @@ impl<'a> CfgEsrcPoll<'a> {
     pub const MSG_ID: u8 = 0x60;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -3507,8 +3547,9 @@ impl<'a> CfgEsrc<'a> {
     pub const MSG_ID: u8 = 0x60;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -3604,8 +3645,9 @@ impl<'a> CfgFixseed<'a> {
     pub const MSG_ID: u8 = 0x84;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -3667,8 +3709,9 @@ impl<'a> CfgGeofencePoll<'a> {
     pub const MSG_ID: u8 = 0x69;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -3784,8 +3827,9 @@ impl<'a> CfgGeofence<'a> {
     pub const MSG_ID: u8 = 0x69;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -3867,8 +3911,9 @@ impl<'a> CfgGnssPoll<'a> {
     pub const MSG_ID: u8 = 0x3e;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -3994,8 +4039,9 @@ impl<'a> CfgGnss<'a> {
     pub const MSG_ID: u8 = 0x3e;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -4054,8 +4100,9 @@ impl<'a> CfgHnrPoll<'a> {
     pub const MSG_ID: u8 = 0x5c;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -4103,8 +4150,9 @@ impl<'a> CfgHnr<'a> {
     pub const MSG_ID: u8 = 0x5c;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -4161,8 +4209,9 @@ impl<'a> CfgInfPoll<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -4331,8 +4380,9 @@ impl<'a> CfgInf<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -4379,8 +4429,9 @@ impl<'a> CfgItfmPoll<'a> {
     pub const MSG_ID: u8 = 0x39;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -4428,8 +4479,9 @@ impl<'a> CfgItfm<'a> {
     pub const MSG_ID: u8 = 0x39;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -4542,8 +4594,9 @@ impl<'a> CfgLogfilterPoll<'a> {
     pub const MSG_ID: u8 = 0x47;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -4599,8 +4652,9 @@ impl<'a> CfgLogfilter<'a> {
     pub const MSG_ID: u8 = 0x47;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(12);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -4693,8 +4747,9 @@ impl<'a> CfgMsgPoll<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(2);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -4750,8 +4805,9 @@ impl<'a> CfgMsgCurrentPort<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(3);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -4833,8 +4889,9 @@ impl<'a> CfgMsg<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -4887,8 +4944,9 @@ impl<'a> CfgNav5Poll<'a> {
     pub const MSG_ID: u8 = 0x24;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -4970,8 +5028,9 @@ impl<'a> CfgNav5<'a> {
     pub const MSG_ID: u8 = 0x24;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(36);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -5212,8 +5271,9 @@ impl<'a> CfgNavx5Poll<'a> {
     pub const MSG_ID: u8 = 0x23;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -5303,8 +5363,9 @@ impl<'a> CfgNavx5<'a> {
     pub const MSG_ID: u8 = 0x23;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(40);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -5537,8 +5598,9 @@ impl<'a> CfgNmeaPoll<'a> {
     pub const MSG_ID: u8 = 0x17;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -5604,12 +5666,18 @@ impl<'a> CfgNmea<'a> {
     pub const MSG_ID: u8 = 0x17;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(1);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 11, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x01, ..Self::default() }
+    }
     /// Send positions even when the fix is not valid (bit 0 of `filter`).
     pub fn pos_filt(&self) -> bool {
         (self.filter & 0x1) != 0
@@ -5862,12 +5930,18 @@ impl<'a> CfgNmeaV0<'a> {
     pub const MSG_ID: u8 = 0x17;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(12);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 11, 0x00));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x00, ..Self::default() }
+    }
     /// Send positions even when the fix is not valid (bit 0 of `filter`).
     pub fn pos_filt(&self) -> bool {
         (self.filter & 0x1) != 0
@@ -6097,8 +6171,9 @@ impl<'a> CfgNmeaDeprecated<'a> {
     pub const MSG_ID: u8 = 0x17;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -6244,8 +6319,9 @@ impl<'a> CfgOdoPoll<'a> {
     pub const MSG_ID: u8 = 0x1e;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -6311,8 +6387,9 @@ impl<'a> CfgOdo<'a> {
     pub const MSG_ID: u8 = 0x1e;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -6463,8 +6540,9 @@ impl<'a> CfgPm2Poll<'a> {
     pub const MSG_ID: u8 = 0x3b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -6534,12 +6612,18 @@ impl<'a> CfgPm2<'a> {
     pub const MSG_ID: u8 = 0x3b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(48);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(2);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x02));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x02, ..Self::default() }
+    }
     /// Optimization target (bits 1-3 of `flags`).
     pub fn opt_target(&self) -> u8 {
         ((self.flags >> 1) & 0x7) as u8
@@ -6756,12 +6840,18 @@ impl<'a> CfgPm2V1<'a> {
     pub const MSG_ID: u8 = 0x3b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(44);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(1);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x01, ..Self::default() }
+    }
     /// Optimization target (bits 1-3 of `flags`).
     pub fn opt_target(&self) -> u8 {
         ((self.flags >> 1) & 0x7) as u8
@@ -6950,8 +7040,9 @@ impl<'a> CfgPmsPoll<'a> {
     pub const MSG_ID: u8 = 0x86;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -7005,8 +7096,9 @@ impl<'a> CfgPms<'a> {
     pub const MSG_ID: u8 = 0x86;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -7065,8 +7157,9 @@ impl<'a> CfgPrtPoll<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -7112,8 +7205,9 @@ impl<'a> CfgPrtPollPort<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -7178,8 +7272,9 @@ impl<'a> CfgPrt<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -7402,8 +7497,9 @@ impl<'a> CfgPwr<'a> {
     pub const MSG_ID: u8 = 0x57;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -7461,8 +7557,9 @@ impl<'a> CfgRatePoll<'a> {
     pub const MSG_ID: u8 = 0x08;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -7512,8 +7609,9 @@ impl<'a> CfgRate<'a> {
     pub const MSG_ID: u8 = 0x08;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(6);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -7566,8 +7664,9 @@ impl<'a> CfgRinvPoll<'a> {
     pub const MSG_ID: u8 = 0x34;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -7638,8 +7737,9 @@ impl<'a> CfgRinv<'a> {
     pub const MSG_ID: u8 = 0x34;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -7713,8 +7813,9 @@ impl<'a> CfgRst<'a> {
     pub const MSG_ID: u8 = 0x04;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -7857,8 +7958,9 @@ impl<'a> CfgRxmPoll<'a> {
     pub const MSG_ID: u8 = 0x11;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -7906,8 +8008,9 @@ impl<'a> CfgRxm<'a> {
     pub const MSG_ID: u8 = 0x11;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(2);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -7957,8 +8060,9 @@ impl<'a> CfgSbasPoll<'a> {
     pub const MSG_ID: u8 = 0x16;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -8012,8 +8116,9 @@ impl<'a> CfgSbas<'a> {
     pub const MSG_ID: u8 = 0x16;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -8117,8 +8222,9 @@ impl<'a> CfgSlasPoll<'a> {
     pub const MSG_ID: u8 = 0x8d;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -8166,8 +8272,9 @@ impl<'a> CfgSlas<'a> {
     pub const MSG_ID: u8 = 0x8d;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -8249,8 +8356,9 @@ impl<'a> CfgSmgrPoll<'a> {
     pub const MSG_ID: u8 = 0x62;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -8314,8 +8422,9 @@ impl<'a> CfgSmgr<'a> {
     pub const MSG_ID: u8 = 0x62;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -8563,8 +8672,9 @@ impl<'a> CfgTmode3Poll<'a> {
     pub const MSG_ID: u8 = 0x71;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -8636,8 +8746,9 @@ impl<'a> CfgTmode3<'a> {
     pub const MSG_ID: u8 = 0x71;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(40);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -8769,8 +8880,9 @@ impl<'a> CfgTp5Poll<'a> {
     pub const MSG_ID: u8 = 0x31;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -8816,8 +8928,9 @@ impl<'a> CfgTp5PollIndex<'a> {
     pub const MSG_ID: u8 = 0x31;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -8886,8 +8999,9 @@ impl<'a> CfgTp5<'a> {
     pub const MSG_ID: u8 = 0x31;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(32);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -9058,8 +9172,9 @@ impl<'a> CfgTxslotPoll<'a> {
     pub const MSG_ID: u8 = 0x53;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -9136,8 +9251,9 @@ impl<'a> CfgTxslot<'a> {
     pub const MSG_ID: u8 = 0x53;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -9241,8 +9357,9 @@ impl<'a> CfgUsbPoll<'a> {
     pub const MSG_ID: u8 = 0x1b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -9304,8 +9421,9 @@ impl<'a> CfgUsb<'a> {
     pub const MSG_ID: u8 = 0x1b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(108);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -9436,12 +9554,18 @@ impl<'a> CfgValdelV0<'a> {
     pub const MSG_ID: u8 = 0x8c;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x00));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x00, ..Self::default() }
+    }
     /// Battery-backed RAM layer (bit 1 of `layers`).
     pub fn bbr(&self) -> bool {
         ((self.layers >> 1) & 0x1) != 0
@@ -9544,12 +9668,18 @@ impl<'a> CfgValdel<'a> {
     pub const MSG_ID: u8 = 0x8c;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(1);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x01, ..Self::default() }
+    }
     /// Battery-backed RAM layer (bit 1 of `layers`).
     pub fn bbr(&self) -> bool {
         ((self.layers >> 1) & 0x1) != 0
@@ -9662,12 +9792,18 @@ impl<'a> CfgValgetPoll<'a> {
     pub const MSG_ID: u8 = 0x8b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x00));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &["cfg_valget", "ack_nak"];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x00, ..Self::default() }
+    }
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
@@ -9727,12 +9863,18 @@ impl<'a> CfgValget<'a> {
     pub const MSG_ID: u8 = 0x8b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(1);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x01, ..Self::default() }
+    }
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
@@ -9792,12 +9934,18 @@ impl<'a> CfgValsetV0<'a> {
     pub const MSG_ID: u8 = 0x8a;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x00));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x00, ..Self::default() }
+    }
     /// RAM layer (bit 0 of `layers`).
     pub fn ram(&self) -> bool {
         (self.layers & 0x1) != 0
@@ -9886,12 +10034,18 @@ impl<'a> CfgValset<'a> {
     pub const MSG_ID: u8 = 0x8a;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(1);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x01, ..Self::default() }
+    }
     /// RAM layer (bit 0 of `layers`).
     pub fn ram(&self) -> bool {
         (self.layers & 0x1) != 0
@@ -9982,8 +10136,9 @@ impl<'a> EsfAlgPoll<'a> {
     pub const MSG_ID: u8 = 0x14;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -10043,8 +10198,9 @@ impl<'a> EsfAlg<'a> {
     pub const MSG_ID: u8 = 0x14;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -10175,8 +10331,9 @@ impl<'a> EsfInsPoll<'a> {
     pub const MSG_ID: u8 = 0x15;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -10238,8 +10395,9 @@ impl<'a> EsfIns<'a> {
     pub const MSG_ID: u8 = 0x15;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(36);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -10474,8 +10632,9 @@ impl<'a> EsfMeas<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -10632,8 +10791,9 @@ impl<'a> EsfRaw<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -10683,8 +10843,9 @@ impl<'a> EsfStatusPoll<'a> {
     pub const MSG_ID: u8 = 0x10;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -10868,8 +11029,9 @@ impl<'a> EsfStatus<'a> {
     pub const MSG_ID: u8 = 0x10;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -10992,8 +11154,9 @@ impl<'a> HnrAttPoll<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -11055,8 +11218,9 @@ impl<'a> HnrAtt<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(32);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -11179,8 +11343,9 @@ impl<'a> HnrInsPoll<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -11242,8 +11407,9 @@ impl<'a> HnrIns<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(36);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -11424,8 +11590,9 @@ impl<'a> HnrPvtPoll<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -11519,8 +11686,9 @@ impl<'a> HnrPvt<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(72);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -11778,8 +11946,9 @@ impl<'a> InfDebug<'a> {
     pub const MSG_ID: u8 = 0x04;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -11828,8 +11997,9 @@ impl<'a> InfError<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -11878,8 +12048,9 @@ impl<'a> InfNotice<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -11928,8 +12099,9 @@ impl<'a> InfTest<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -11978,8 +12150,9 @@ impl<'a> InfWarning<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -12098,8 +12271,9 @@ impl<'a> LogBatch<'a> {
     pub const MSG_ID: u8 = 0x11;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(100);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -12400,8 +12574,9 @@ impl<'a> LogCreate<'a> {
     pub const MSG_ID: u8 = 0x07;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -12469,8 +12644,9 @@ impl<'a> LogErase<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -12532,8 +12708,9 @@ impl<'a> LogFindtime<'a> {
     pub const MSG_ID: u8 = 0x0e;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(10);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -12612,8 +12789,9 @@ impl<'a> LogFindtimeResponse<'a> {
     pub const MSG_ID: u8 = 0x0e;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -12669,8 +12847,9 @@ impl<'a> LogInfoPoll<'a> {
     pub const MSG_ID: u8 = 0x08;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -12760,8 +12939,9 @@ impl<'a> LogInfo<'a> {
     pub const MSG_ID: u8 = 0x08;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(48);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -12944,8 +13124,9 @@ impl<'a> LogRetrieve<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(12);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -13012,8 +13193,9 @@ impl<'a> LogRetrievebatch<'a> {
     pub const MSG_ID: u8 = 0x10;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -13111,8 +13293,9 @@ impl<'a> LogRetrievepos<'a> {
     pub const MSG_ID: u8 = 0x0b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(40);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -13280,8 +13463,9 @@ impl<'a> LogRetrieveposextra<'a> {
     pub const MSG_ID: u8 = 0x0f;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(32);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -13432,8 +13616,9 @@ impl<'a> LogRetrievestring<'a> {
     pub const MSG_ID: u8 = 0x0d;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -13529,8 +13714,9 @@ impl<'a> LogString<'a> {
     pub const MSG_ID: u8 = 0x04;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -13587,8 +13773,9 @@ impl<'a> MgaAck<'a> {
     pub const MSG_ID: u8 = 0x60;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -13667,8 +13854,9 @@ impl<'a> MgaAno<'a> {
     pub const MSG_ID: u8 = 0x20;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(76);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -13810,12 +13998,18 @@ impl<'a> MgaBdsEph<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(88);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x01, ..Self::default() }
+    }
     /// Clock drift rate correction [s/s^2]: the raw integer divided by 73786976294838206464.
     pub fn a2(&self) -> f64 {
         let raw = self.a2_raw;
@@ -14123,12 +14317,18 @@ impl<'a> MgaBdsAlm<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(40);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x02));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x02, ..Self::default() }
+    }
     /// Inclination correction [semicircle]: the raw integer divided by 524288.
     pub fn delta_i(&self) -> f64 {
         let raw = self.delta_i_raw;
@@ -14321,12 +14521,18 @@ impl<'a> MgaBdsHealth<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(68);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x04));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x04, ..Self::default() }
+    }
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
@@ -14405,12 +14611,18 @@ impl<'a> MgaBdsUtc<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x05));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x05, ..Self::default() }
+    }
     /// Constant term of the BeiDou-UTC polynomial [s]: the raw integer divided by 1073741824.
     pub fn a0_utc(&self) -> f64 {
         let raw = self.a0_utc_raw;
@@ -14536,12 +14748,18 @@ impl<'a> MgaBdsIono<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x06));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x06, ..Self::default() }
+    }
     /// Ionospheric alpha 0 [s]: the raw integer divided by 1073741824.
     pub fn alpha0(&self) -> f64 {
         let raw = self.alpha0_raw;
@@ -14655,8 +14873,9 @@ impl<'a> MgaDbdPoll<'a> {
     pub const MSG_ID: u8 = 0x80;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -14704,8 +14923,9 @@ impl<'a> MgaDbd<'a> {
     pub const MSG_ID: u8 = 0x80;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -14826,12 +15046,18 @@ impl<'a> MgaGalEph<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(76);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x01, ..Self::default() }
+    }
     /// Mean motion difference [semicircle/s]: the raw integer divided by 8796093022208.
     pub fn delta_n(&self) -> f64 {
         let raw = self.delta_n_raw;
@@ -15157,12 +15383,18 @@ impl<'a> MgaGalAlm<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(32);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x02));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x02, ..Self::default() }
+    }
     /// Difference to the nominal square root of the semi-major axis [m^0.5]: the raw integer divided by 512.
     pub fn delta_sqrt_a(&self) -> f64 {
         let raw = self.delta_sqrt_a_raw;
@@ -15350,12 +15582,18 @@ impl<'a> MgaGalTimeoffset<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(12);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x03));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x03, ..Self::default() }
+    }
     /// Constant term of the GPS-Galileo offset [s]: the raw integer divided by 34359738368.
     pub fn a0_g(&self) -> f64 {
         let raw = self.a0_g_raw;
@@ -15455,12 +15693,18 @@ impl<'a> MgaGalUtc<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x05));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x05, ..Self::default() }
+    }
     /// Constant term of the Galileo-UTC polynomial [s]: the raw integer divided by 1073741824.
     pub fn a0(&self) -> f64 {
         let raw = self.a0_raw;
@@ -15608,12 +15852,18 @@ impl<'a> MgaGloEph<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(48);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x01, ..Self::default() }
+    }
     /// X position (PZ-90) [km]: the raw integer divided by 2048.
     pub fn x(&self) -> f64 {
         let raw = self.x_raw;
@@ -15853,12 +16103,18 @@ impl<'a> MgaGloAlm<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(36);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x02));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x02, ..Self::default() }
+    }
     /// Coarse satellite clock correction [s]: the raw integer divided by 262144.
     pub fn tau(&self) -> f64 {
         let raw = self.tau_raw;
@@ -16032,12 +16288,18 @@ impl<'a> MgaGloTimeoffset<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x03));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x03, ..Self::default() }
+    }
     /// GLONASS to UTC(SU) offset [s]: the raw integer divided by 134217728.
     pub fn tau_c(&self) -> f64 {
         let raw = self.tau_c_raw;
@@ -16187,12 +16449,18 @@ impl<'a> MgaGpsEph<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(68);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x01, ..Self::default() }
+    }
     /// Group delay differential [s]: the raw integer divided by 2147483648.
     pub fn tgd(&self) -> f64 {
         let raw = self.tgd_raw;
@@ -16504,12 +16772,18 @@ impl<'a> MgaGpsAlm<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(36);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x02));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x02, ..Self::default() }
+    }
     /// Eccentricity: the raw integer divided by 2097152.
     pub fn e(&self) -> f64 {
         let raw = self.e_raw;
@@ -16702,12 +16976,18 @@ impl<'a> MgaGpsHealth<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(40);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x04));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x04, ..Self::default() }
+    }
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
@@ -16786,12 +17066,18 @@ impl<'a> MgaGpsUtc<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x05));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x05, ..Self::default() }
+    }
     /// Constant term of the GPS-UTC polynomial [s]: the raw integer divided by 1073741824.
     pub fn utc_a0(&self) -> f64 {
         let raw = self.utc_a0_raw;
@@ -16917,12 +17203,18 @@ impl<'a> MgaGpsIono<'a> {
     pub const MSG_ID: u8 = 0x00;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x06));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x06, ..Self::default() }
+    }
     /// Ionospheric alpha 0 [s]: the raw integer divided by 1073741824.
     pub fn iono_alpha0(&self) -> f64 {
         let raw = self.iono_alpha0_raw;
@@ -17018,6 +17310,868 @@ impl<'a> MgaGpsIono<'a> {
     }
 }
 
+/// Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaIniPosXyz<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// ECEF X coordinate [cm].
+    pub ecef_x: i32,
+    /// ECEF Y coordinate [cm].
+    pub ecef_y: i32,
+    /// ECEF Z coordinate [cm].
+    pub ecef_z: i32,
+    /// Position accuracy (standard deviation) [cm].
+    pub pos_acc: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaIniPosXyz<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_ini_pos_xyz";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-INI";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x40;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(20);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x00));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x00, ..Self::default() }
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let ecef_x = i32::from_le_bytes(r.array("ecef_x")?);
+        let ecef_y = i32::from_le_bytes(r.array("ecef_y")?);
+        let ecef_z = i32::from_le_bytes(r.array("ecef_z")?);
+        let pos_acc = u32::from_le_bytes(r.array("pos_acc")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, reserved0, ecef_x, ecef_y, ecef_z, pos_acc, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.ecef_x.to_le_bytes());
+        w.put(&self.ecef_y.to_le_bytes());
+        w.put(&self.ecef_z.to_le_bytes());
+        w.put(&self.pos_acc.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("ecef_x", self.ecef_x)?;
+        j.int("ecef_y", self.ecef_y)?;
+        j.int("ecef_z", self.ecef_z)?;
+        j.int("pos_acc", self.pos_acc)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaIniPosLlh<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Latitude (WGS 84) [deg].
+    pub lat_raw: i32,
+    /// Longitude (WGS 84) [deg].
+    pub lon_raw: i32,
+    /// Altitude above the WGS 84 ellipsoid [cm].
+    pub alt: i32,
+    /// Position accuracy (standard deviation) [cm].
+    pub pos_acc: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaIniPosLlh<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_ini_pos_llh";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-INI";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x40;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(20);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x01));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x01, ..Self::default() }
+    }
+    /// Latitude (WGS 84) [deg]: the raw integer divided by 10000000.
+    pub fn lat(&self) -> f64 {
+        let raw = self.lat_raw;
+        raw as f64 / 10000000.0
+    }
+    /// Longitude (WGS 84) [deg]: the raw integer divided by 10000000.
+    pub fn lon(&self) -> f64 {
+        let raw = self.lon_raw;
+        raw as f64 / 10000000.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let lat_raw = i32::from_le_bytes(r.array("lat")?);
+        let lon_raw = i32::from_le_bytes(r.array("lon")?);
+        let alt = i32::from_le_bytes(r.array("alt")?);
+        let pos_acc = u32::from_le_bytes(r.array("pos_acc")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, reserved0, lat_raw, lon_raw, alt, pos_acc, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.lat_raw.to_le_bytes());
+        w.put(&self.lon_raw.to_le_bytes());
+        w.put(&self.alt.to_le_bytes());
+        w.put(&self.pos_acc.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_float(j, "lat", self.lat_raw as f64 / 10000000.0)?;
+        j.int("lat_raw", self.lat_raw)?;
+        ubx::json_float(j, "lon", self.lon_raw as f64 / 10000000.0)?;
+        j.int("lon_raw", self.lon_raw)?;
+        j.int("alt", self.alt)?;
+        j.int("pos_acc", self.pos_acc)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaIniTimeUtc<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reference the time is valid at.
+    pub r#ref: u8,
+    /// Leap seconds since 1980 [s].
+    pub leap_secs: i8,
+    /// Year.
+    pub year: u16,
+    /// Month (1 to 12).
+    pub month: u8,
+    /// Day of the month (1 to 31).
+    pub day: u8,
+    /// Hour (0 to 23).
+    pub hour: u8,
+    /// Minute (0 to 59).
+    pub minute: u8,
+    /// Seconds (0 to 60) [s].
+    pub second: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Nanoseconds (0 to 999999999) [ns].
+    pub ns: u32,
+    /// Time accuracy (whole seconds) [s].
+    pub t_acc_s: u16,
+    /// Reserved.
+    pub reserved1: u16,
+    /// Time accuracy (nanoseconds) [ns].
+    pub t_acc_ns: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaIniTimeUtc<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_ini_time_utc";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-INI";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x40;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(24);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x10));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x10, ..Self::default() }
+    }
+    /// Time reference source (bits 0-3 of `ref`).
+    pub fn source(&self) -> u8 {
+        self.r#ref & 0xf
+    }
+    /// Sets time reference source (the value in its bits of `ref`; the other bits stay).
+    pub fn set_source(&mut self, value: u8) {
+        self.r#ref = (self.r#ref & !0xf) | (value & 0xf);
+    }
+    /// Falling edge of the pulse (not rising) (bit 4 of `ref`).
+    pub fn fall(&self) -> bool {
+        ((self.r#ref >> 4) & 0x1) != 0
+    }
+    /// Sets falling edge of the pulse (not rising) (the value in its bits of `ref`; the other bits stay).
+    pub fn set_fall(&mut self, value: bool) {
+        self.r#ref = (self.r#ref & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// The last pulse before the message (not the next) (bit 5 of `ref`).
+    pub fn last(&self) -> bool {
+        ((self.r#ref >> 5) & 0x1) != 0
+    }
+    /// Sets the last pulse before the message (not the next) (the value in its bits of `ref`; the other bits stay).
+    pub fn set_last(&mut self, value: bool) {
+        self.r#ref = (self.r#ref & !(0x1 << 5)) | (u8::from(value) << 5);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let r#ref = u8::from_le_bytes(r.array("ref")?);
+        let leap_secs = i8::from_le_bytes(r.array("leap_secs")?);
+        let year = u16::from_le_bytes(r.array("year")?);
+        let month = u8::from_le_bytes(r.array("month")?);
+        let day = u8::from_le_bytes(r.array("day")?);
+        let hour = u8::from_le_bytes(r.array("hour")?);
+        let minute = u8::from_le_bytes(r.array("minute")?);
+        let second = u8::from_le_bytes(r.array("second")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let ns = u32::from_le_bytes(r.array("ns")?);
+        let t_acc_s = u16::from_le_bytes(r.array("t_acc_s")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let t_acc_ns = u32::from_le_bytes(r.array("t_acc_ns")?);
+        let trailing = r.rest();
+        Ok(Self {
+            r#type,
+            version,
+            r#ref,
+            leap_secs,
+            year,
+            month,
+            day,
+            hour,
+            minute,
+            second,
+            reserved0,
+            ns,
+            t_acc_s,
+            reserved1,
+            t_acc_ns,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.r#ref.to_le_bytes());
+        w.put(&self.leap_secs.to_le_bytes());
+        w.put(&self.year.to_le_bytes());
+        w.put(&self.month.to_le_bytes());
+        w.put(&self.day.to_le_bytes());
+        w.put(&self.hour.to_le_bytes());
+        w.put(&self.minute.to_le_bytes());
+        w.put(&self.second.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.ns.to_le_bytes());
+        w.put(&self.t_acc_s.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.t_acc_ns.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("ref", self.r#ref)?;
+        j.int("source", self.r#ref & 0xf)?;
+        j.flag("fall", ((self.r#ref >> 4) & 0x1) != 0)?;
+        j.flag("last", ((self.r#ref >> 5) & 0x1) != 0)?;
+        j.int("leap_secs", self.leap_secs)?;
+        j.int("year", self.year)?;
+        j.int("month", self.month)?;
+        j.int("day", self.day)?;
+        j.int("hour", self.hour)?;
+        j.int("minute", self.minute)?;
+        j.int("second", self.second)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("ns", self.ns)?;
+        j.int("t_acc_s", self.t_acc_s)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("t_acc_ns", self.t_acc_ns)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaIniTimeGnss<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reference the time is valid at.
+    pub r#ref: u8,
+    /// GNSS whose time it is.
+    pub gnss_id_raw: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// GNSS week number.
+    pub week: u16,
+    /// GNSS time of week [s].
+    pub tow: u32,
+    /// Nanoseconds (0 to 999999999) [ns].
+    pub ns: u32,
+    /// Time accuracy (whole seconds) [s].
+    pub t_acc_s: u16,
+    /// Reserved.
+    pub reserved1: u16,
+    /// Time accuracy (nanoseconds) [ns].
+    pub t_acc_ns: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaIniTimeGnss<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_ini_time_gnss";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-INI";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x40;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(24);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x11));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x11, ..Self::default() }
+    }
+    /// Time reference source (bits 0-3 of `ref`).
+    pub fn source(&self) -> u8 {
+        self.r#ref & 0xf
+    }
+    /// Sets time reference source (the value in its bits of `ref`; the other bits stay).
+    pub fn set_source(&mut self, value: u8) {
+        self.r#ref = (self.r#ref & !0xf) | (value & 0xf);
+    }
+    /// Falling edge of the pulse (not rising) (bit 4 of `ref`).
+    pub fn fall(&self) -> bool {
+        ((self.r#ref >> 4) & 0x1) != 0
+    }
+    /// Sets falling edge of the pulse (not rising) (the value in its bits of `ref`; the other bits stay).
+    pub fn set_fall(&mut self, value: bool) {
+        self.r#ref = (self.r#ref & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// The last pulse before the message (not the next) (bit 5 of `ref`).
+    pub fn last(&self) -> bool {
+        ((self.r#ref >> 5) & 0x1) != 0
+    }
+    /// Sets the last pulse before the message (not the next) (the value in its bits of `ref`; the other bits stay).
+    pub fn set_last(&mut self, value: bool) {
+        self.r#ref = (self.r#ref & !(0x1 << 5)) | (u8::from(value) << 5);
+    }
+    /// GNSS whose time it is: the enum's value of the raw code, None for a code it does not name.
+    pub fn gnss_id(&self) -> Option<UbxGnssId> {
+        ais::code(u64::from(self.gnss_id_raw))
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let r#ref = u8::from_le_bytes(r.array("ref")?);
+        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let week = u16::from_le_bytes(r.array("week")?);
+        let tow = u32::from_le_bytes(r.array("tow")?);
+        let ns = u32::from_le_bytes(r.array("ns")?);
+        let t_acc_s = u16::from_le_bytes(r.array("t_acc_s")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let t_acc_ns = u32::from_le_bytes(r.array("t_acc_ns")?);
+        let trailing = r.rest();
+        Ok(Self {
+            r#type,
+            version,
+            r#ref,
+            gnss_id_raw,
+            reserved0,
+            week,
+            tow,
+            ns,
+            t_acc_s,
+            reserved1,
+            t_acc_ns,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.r#ref.to_le_bytes());
+        w.put(&self.gnss_id_raw.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.week.to_le_bytes());
+        w.put(&self.tow.to_le_bytes());
+        w.put(&self.ns.to_le_bytes());
+        w.put(&self.t_acc_s.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.t_acc_ns.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("ref", self.r#ref)?;
+        j.int("source", self.r#ref & 0xf)?;
+        j.flag("fall", ((self.r#ref >> 4) & 0x1) != 0)?;
+        j.flag("last", ((self.r#ref >> 5) & 0x1) != 0)?;
+        j.code(
+            "gnss_id",
+            ais::code::<UbxGnssId>(u64::from(self.gnss_id_raw)).map(CodeEnum::id),
+            u64::from(self.gnss_id_raw),
+        )?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("week", self.week)?;
+        j.int("tow", self.tow)?;
+        j.int("ns", self.ns)?;
+        j.int("t_acc_s", self.t_acc_s)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("t_acc_ns", self.t_acc_ns)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaIniClkd<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Clock drift [ns/s].
+    pub clk_d: i32,
+    /// Clock drift accuracy [ns/s].
+    pub clk_d_acc: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaIniClkd<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_ini_clkd";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-INI";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x40;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x20));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x20, ..Self::default() }
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let clk_d = i32::from_le_bytes(r.array("clk_d")?);
+        let clk_d_acc = u32::from_le_bytes(r.array("clk_d_acc")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, reserved0, clk_d, clk_d_acc, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.clk_d.to_le_bytes());
+        w.put(&self.clk_d_acc.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("clk_d", self.clk_d)?;
+        j.int("clk_d_acc", self.clk_d_acc)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaIniFreq<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Frequency reference.
+    pub flags: u8,
+    /// Frequency [Hz].
+    pub freq_raw: i32,
+    /// Frequency accuracy [ppb].
+    pub freq_acc: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaIniFreq<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_ini_freq";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-INI";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x40;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x21));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x21, ..Self::default() }
+    }
+    /// Frequency reference source (bits 0-3 of `flags`).
+    pub fn source(&self) -> u8 {
+        self.flags & 0xf
+    }
+    /// Sets frequency reference source (the value in its bits of `flags`; the other bits stay).
+    pub fn set_source(&mut self, value: u8) {
+        self.flags = (self.flags & !0xf) | (value & 0xf);
+    }
+    /// Falling edge of the pulse (not rising) (bit 4 of `flags`).
+    pub fn fall(&self) -> bool {
+        ((self.flags >> 4) & 0x1) != 0
+    }
+    /// Sets falling edge of the pulse (not rising) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_fall(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// Frequency [Hz]: the raw integer divided by 100.
+    pub fn freq(&self) -> f64 {
+        let raw = self.freq_raw;
+        raw as f64 / 100.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let freq_raw = i32::from_le_bytes(r.array("freq")?);
+        let freq_acc = u32::from_le_bytes(r.array("freq_acc")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, reserved0, flags, freq_raw, freq_acc, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.freq_raw.to_le_bytes());
+        w.put(&self.freq_acc.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("flags", self.flags)?;
+        j.int("source", self.flags & 0xf)?;
+        j.flag("fall", ((self.flags >> 4) & 0x1) != 0)?;
+        ubx::json_float(j, "freq", self.freq_raw as f64 / 100.0)?;
+        j.int("freq_raw", self.freq_raw)?;
+        j.int("freq_acc", self.freq_acc)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaIniEop<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Reference day (days since 2000-01-01) [days].
+    pub d2k_ref: u16,
+    /// Last day the parameters are valid (days since 2000-01-01) [days].
+    pub d2k_max: u16,
+    /// Polar motion X at the reference day [arcsec].
+    pub xp_p0_raw: i32,
+    /// Rate of polar motion X [arcsec/day].
+    pub xp_p1_raw: i32,
+    /// Polar motion Y at the reference day [arcsec].
+    pub yp_p0_raw: i32,
+    /// Rate of polar motion Y [arcsec/day].
+    pub yp_p1_raw: i32,
+    /// UT1-UTC at the reference day [s].
+    pub d_ut1_raw: i32,
+    /// Rate of UT1-UTC [s/day].
+    pub dd_ut1_raw: i32,
+    /// Reserved.
+    pub reserved1: u128,
+    /// Reserved.
+    pub reserved2: u128,
+    /// Reserved.
+    pub reserved3: u64,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaIniEop<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_ini_eop";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-INI";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x40;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(72);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x30));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x30, ..Self::default() }
+    }
+    /// Polar motion X at the reference day [arcsec]: the raw integer divided by 1073741824.
+    pub fn xp_p0(&self) -> f64 {
+        let raw = self.xp_p0_raw;
+        raw as f64 / 1073741824.0
+    }
+    /// Rate of polar motion X [arcsec/day]: the raw integer divided by 1073741824.
+    pub fn xp_p1(&self) -> f64 {
+        let raw = self.xp_p1_raw;
+        raw as f64 / 1073741824.0
+    }
+    /// Polar motion Y at the reference day [arcsec]: the raw integer divided by 1073741824.
+    pub fn yp_p0(&self) -> f64 {
+        let raw = self.yp_p0_raw;
+        raw as f64 / 1073741824.0
+    }
+    /// Rate of polar motion Y [arcsec/day]: the raw integer divided by 1073741824.
+    pub fn yp_p1(&self) -> f64 {
+        let raw = self.yp_p1_raw;
+        raw as f64 / 1073741824.0
+    }
+    /// UT1-UTC at the reference day [s]: the raw integer divided by 33554432.
+    pub fn d_ut1(&self) -> f64 {
+        let raw = self.d_ut1_raw;
+        raw as f64 / 33554432.0
+    }
+    /// Rate of UT1-UTC [s/day]: the raw integer divided by 1073741824.
+    pub fn dd_ut1(&self) -> f64 {
+        let raw = self.dd_ut1_raw;
+        raw as f64 / 1073741824.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let d2k_ref = u16::from_le_bytes(r.array("d2k_ref")?);
+        let d2k_max = u16::from_le_bytes(r.array("d2k_max")?);
+        let xp_p0_raw = i32::from_le_bytes(r.array("xp_p0")?);
+        let xp_p1_raw = i32::from_le_bytes(r.array("xp_p1")?);
+        let yp_p0_raw = i32::from_le_bytes(r.array("yp_p0")?);
+        let yp_p1_raw = i32::from_le_bytes(r.array("yp_p1")?);
+        let d_ut1_raw = i32::from_le_bytes(r.array("d_ut1")?);
+        let dd_ut1_raw = i32::from_le_bytes(r.array("dd_ut1")?);
+        let reserved1 = u128::from_le_bytes(r.array("reserved1")?);
+        let reserved2 = u128::from_le_bytes(r.array("reserved2")?);
+        let reserved3 = u64::from_le_bytes(r.array("reserved3")?);
+        let trailing = r.rest();
+        Ok(Self {
+            r#type,
+            version,
+            reserved0,
+            d2k_ref,
+            d2k_max,
+            xp_p0_raw,
+            xp_p1_raw,
+            yp_p0_raw,
+            yp_p1_raw,
+            d_ut1_raw,
+            dd_ut1_raw,
+            reserved1,
+            reserved2,
+            reserved3,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.d2k_ref.to_le_bytes());
+        w.put(&self.d2k_max.to_le_bytes());
+        w.put(&self.xp_p0_raw.to_le_bytes());
+        w.put(&self.xp_p1_raw.to_le_bytes());
+        w.put(&self.yp_p0_raw.to_le_bytes());
+        w.put(&self.yp_p1_raw.to_le_bytes());
+        w.put(&self.d_ut1_raw.to_le_bytes());
+        w.put(&self.dd_ut1_raw.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("d2k_ref", self.d2k_ref)?;
+        j.int("d2k_max", self.d2k_max)?;
+        ubx::json_float(j, "xp_p0", self.xp_p0_raw as f64 / 1073741824.0)?;
+        j.int("xp_p0_raw", self.xp_p0_raw)?;
+        ubx::json_float(j, "xp_p1", self.xp_p1_raw as f64 / 1073741824.0)?;
+        j.int("xp_p1_raw", self.xp_p1_raw)?;
+        ubx::json_float(j, "yp_p0", self.yp_p0_raw as f64 / 1073741824.0)?;
+        j.int("yp_p0_raw", self.yp_p0_raw)?;
+        ubx::json_float(j, "yp_p1", self.yp_p1_raw as f64 / 1073741824.0)?;
+        j.int("yp_p1_raw", self.yp_p1_raw)?;
+        ubx::json_float(j, "d_ut1", self.d_ut1_raw as f64 / 33554432.0)?;
+        j.int("d_ut1_raw", self.d_ut1_raw)?;
+        ubx::json_float(j, "dd_ut1", self.dd_ut1_raw as f64 / 1073741824.0)?;
+        j.int("dd_ut1_raw", self.dd_ut1_raw)?;
+        write!(j.key("reserved1")?, "{}", self.reserved1)?;
+        write!(j.key("reserved2")?, "{}", self.reserved2)?;
+        j.int("reserved3", self.reserved3)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// QZSS assistance data: UBX MGA-QZSS (class 0x13 id 0x05), input.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MgaQzssEph<'a> {
@@ -17098,12 +18252,18 @@ impl<'a> MgaQzssEph<'a> {
     pub const MSG_ID: u8 = 0x05;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(68);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x01, ..Self::default() }
+    }
     /// Group delay differential [s]: the raw integer divided by 2147483648.
     pub fn tgd(&self) -> f64 {
         let raw = self.tgd_raw;
@@ -17415,12 +18575,18 @@ impl<'a> MgaQzssAlm<'a> {
     pub const MSG_ID: u8 = 0x05;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(36);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x02));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x02, ..Self::default() }
+    }
     /// Eccentricity: the raw integer divided by 2097152.
     pub fn e(&self) -> f64 {
         let raw = self.e_raw;
@@ -17613,12 +18779,18 @@ impl<'a> MgaQzssHealth<'a> {
     pub const MSG_ID: u8 = 0x05;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(12);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x04));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x04, ..Self::default() }
+    }
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
@@ -17678,8 +18850,9 @@ impl<'a> MonCommsPoll<'a> {
     pub const MSG_ID: u8 = 0x36;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -17873,8 +19046,9 @@ impl<'a> MonComms<'a> {
     pub const MSG_ID: u8 = 0x36;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -17954,8 +19128,9 @@ impl<'a> MonGnssPoll<'a> {
     pub const MSG_ID: u8 = 0x28;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -18011,8 +19186,9 @@ impl<'a> MonGnss<'a> {
     pub const MSG_ID: u8 = 0x28;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -18187,8 +19363,9 @@ impl<'a> MonHwPoll<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -18289,8 +19466,9 @@ impl<'a> MonHw<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(60);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -18440,8 +19618,9 @@ impl<'a> MonHw2Poll<'a> {
     pub const MSG_ID: u8 = 0x0b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -18505,8 +19684,9 @@ impl<'a> MonHw2<'a> {
     pub const MSG_ID: u8 = 0x0b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(28);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -18597,8 +19777,9 @@ impl<'a> MonHw3Poll<'a> {
     pub const MSG_ID: u8 = 0x37;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -18767,8 +19948,9 @@ impl<'a> MonHw3<'a> {
     pub const MSG_ID: u8 = 0x37;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -18862,8 +20044,9 @@ impl<'a> MonIoPoll<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -18982,8 +20165,9 @@ impl<'a> MonIo<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -19030,8 +20214,9 @@ impl<'a> MonMsgppPoll<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -19250,8 +20435,9 @@ impl<'a> MonMsgpp<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(120);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -19316,8 +20502,9 @@ impl<'a> MonPatchPoll<'a> {
     pub const MSG_ID: u8 = 0x27;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -19426,8 +20613,9 @@ impl<'a> MonPatch<'a> {
     pub const MSG_ID: u8 = 0x27;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -19480,8 +20668,9 @@ impl<'a> MonRfPoll<'a> {
     pub const MSG_ID: u8 = 0x38;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -19653,8 +20842,9 @@ impl<'a> MonRf<'a> {
     pub const MSG_ID: u8 = 0x38;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -19710,8 +20900,9 @@ impl<'a> MonRxbufPoll<'a> {
     pub const MSG_ID: u8 = 0x07;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -19830,8 +21021,9 @@ impl<'a> MonRxbuf<'a> {
     pub const MSG_ID: u8 = 0x07;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(24);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -19886,8 +21078,9 @@ impl<'a> MonRxr<'a> {
     pub const MSG_ID: u8 = 0x21;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -19943,8 +21136,9 @@ impl<'a> MonSmgrPoll<'a> {
     pub const MSG_ID: u8 = 0x2e;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -20006,8 +21200,9 @@ impl<'a> MonSmgr<'a> {
     pub const MSG_ID: u8 = 0x2e;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -20182,6 +21377,176 @@ impl<'a> MonSmgr<'a> {
     }
 }
 
+/// Signal characteristics (spectrum analyzer): UBX MON-SPAN (class 0x0A id 0x31), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSpanPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonSpanPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_span_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-SPAN";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x31;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_span"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of MonSpanRfBlock.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSpanRfBlock<'a> {
+    /// Spectrum bins 0 to 127 (u1 each in 0.25 dB).
+    pub spectrum0: &'a [u8],
+    /// Spectrum bins 128 to 255 (u1 each in 0.25 dB).
+    pub spectrum1: &'a [u8],
+    /// Spectrum span [Hz].
+    pub span: u32,
+    /// Resolution of the spectrum (bin width) [Hz].
+    pub res: u32,
+    /// Center of the spectrum span [Hz].
+    pub center: u32,
+    /// Programmable gain amplifier gain [dB].
+    pub pga: u8,
+    /// Reserved.
+    pub reserved1: u32,
+}
+
+impl<'a> ubx::Entry<'a> for MonSpanRfBlock<'a> {
+    const WIDTH: usize = 272;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let spectrum0 = r.bytes(128, "spectrum0")?;
+        let spectrum1 = r.bytes(128, "spectrum1")?;
+        let span = u32::from_le_bytes(r.array("span")?);
+        let res = u32::from_le_bytes(r.array("res")?);
+        let center = u32::from_le_bytes(r.array("center")?);
+        let pga = u8::from_le_bytes(r.array("pga")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        Ok(Self { spectrum0, spectrum1, span, res, center, pga, reserved1 })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put_sized(self.spectrum0, Some(128), "MON-SPAN", "spectrum0")?;
+        w.put_sized(self.spectrum1, Some(128), "MON-SPAN", "spectrum1")?;
+        w.put(&self.span.to_le_bytes());
+        w.put(&self.res.to_le_bytes());
+        w.put(&self.center.to_le_bytes());
+        w.put(&self.pga.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "spectrum0", self.spectrum0)?;
+        ubx::json_hex(j, "spectrum1", self.spectrum1)?;
+        j.int("span", self.span)?;
+        j.int("res", self.res)?;
+        j.int("center", self.center)?;
+        j.int("pga", self.pga)?;
+        j.int("reserved1", self.reserved1)?;
+        Ok(())
+    }
+}
+
+/// Signal characteristics (spectrum analyzer): UBX MON-SPAN (class 0x0A id 0x31), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSpan<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Number of RF blocks.
+    pub num_rf_blocks: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// RF blocks: 0 to 4 entries.
+    pub rf_blocks: ubx::Group<'a, MonSpanRfBlock<'a>>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonSpan<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_span";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-SPAN";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x31;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let num_rf_blocks = u8::from_le_bytes(r.array("num_rf_blocks")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let rf_blocks = r.group(Some(usize::from(num_rf_blocks)), 0, 4, 0, "rf_blocks")?;
+        let trailing = r.rest();
+        Ok(Self { version, num_rf_blocks, reserved0, rf_blocks, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.num_rf_blocks.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        self.rf_blocks.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("num_rf_blocks", self.num_rf_blocks)?;
+        j.int("reserved0", self.reserved0)?;
+        self.rf_blocks.json(j, "rf_blocks")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// System status: UBX MON-SYS (class 0x0A id 0x39), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MonSysPoll<'a> {
@@ -20200,8 +21565,9 @@ impl<'a> MonSysPoll<'a> {
     pub const MSG_ID: u8 = 0x39;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -20273,8 +21639,9 @@ impl<'a> MonSys<'a> {
     pub const MSG_ID: u8 = 0x39;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(24);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -20381,8 +21748,9 @@ impl<'a> MonTxbufPoll<'a> {
     pub const MSG_ID: u8 = 0x08;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -20509,8 +21877,9 @@ impl<'a> MonTxbuf<'a> {
     pub const MSG_ID: u8 = 0x08;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(28);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -20602,8 +21971,9 @@ impl<'a> MonVerPoll<'a> {
     pub const MSG_ID: u8 = 0x04;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -20676,8 +22046,9 @@ impl<'a> MonVer<'a> {
     pub const MSG_ID: u8 = 0x04;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -20730,8 +22101,9 @@ impl<'a> Nav2ClockPoll<'a> {
     pub const MSG_ID: u8 = 0x22;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -20785,8 +22157,9 @@ impl<'a> Nav2Clock<'a> {
     pub const MSG_ID: u8 = 0x22;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -20845,8 +22218,9 @@ impl<'a> Nav2CovPoll<'a> {
     pub const MSG_ID: u8 = 0x36;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -20924,8 +22298,9 @@ impl<'a> Nav2Cov<'a> {
     pub const MSG_ID: u8 = 0x36;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(64);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -21044,8 +22419,9 @@ impl<'a> Nav2DopPoll<'a> {
     pub const MSG_ID: u8 = 0x04;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -21105,8 +22481,9 @@ impl<'a> Nav2Dop<'a> {
     pub const MSG_ID: u8 = 0x04;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(18);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -21218,8 +22595,9 @@ impl<'a> Nav2Eoe<'a> {
     pub const MSG_ID: u8 = 0x61;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -21266,8 +22644,9 @@ impl<'a> Nav2OdoPoll<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -21323,8 +22702,9 @@ impl<'a> Nav2Odo<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -21391,8 +22771,9 @@ impl<'a> Nav2PosecefPoll<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -21446,8 +22827,9 @@ impl<'a> Nav2Posecef<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -21506,8 +22888,9 @@ impl<'a> Nav2PosllhPoll<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -21565,8 +22948,9 @@ impl<'a> Nav2Posllh<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(28);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -21643,8 +23027,9 @@ impl<'a> Nav2PvtPoll<'a> {
     pub const MSG_ID: u8 = 0x07;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -21754,8 +23139,9 @@ impl<'a> Nav2Pvt<'a> {
     pub const MSG_ID: u8 = 0x07;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(92);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -22115,8 +23501,9 @@ impl<'a> Nav2SatPoll<'a> {
     pub const MSG_ID: u8 = 0x35;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -22393,8 +23780,9 @@ impl<'a> Nav2Sat<'a> {
     pub const MSG_ID: u8 = 0x35;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -22453,8 +23841,9 @@ impl<'a> Nav2SbasPoll<'a> {
     pub const MSG_ID: u8 = 0x32;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -22579,8 +23968,9 @@ impl<'a> Nav2Sbas<'a> {
     pub const MSG_ID: u8 = 0x32;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -22705,8 +24095,9 @@ impl<'a> Nav2SigPoll<'a> {
     pub const MSG_ID: u8 = 0x43;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -22934,8 +24325,9 @@ impl<'a> Nav2Sig<'a> {
     pub const MSG_ID: u8 = 0x43;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -22994,8 +24386,9 @@ impl<'a> Nav2SlasPoll<'a> {
     pub const MSG_ID: u8 = 0x42;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -23118,8 +24511,9 @@ impl<'a> Nav2Slas<'a> {
     pub const MSG_ID: u8 = 0x42;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -23249,8 +24643,9 @@ impl<'a> Nav2StatusPoll<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -23308,8 +24703,9 @@ impl<'a> Nav2Status<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -23472,8 +24868,9 @@ impl<'a> Nav2TimebdsPoll<'a> {
     pub const MSG_ID: u8 = 0x24;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -23531,8 +24928,9 @@ impl<'a> Nav2Timebds<'a> {
     pub const MSG_ID: u8 = 0x24;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -23624,8 +25022,9 @@ impl<'a> Nav2TimegalPoll<'a> {
     pub const MSG_ID: u8 = 0x25;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -23683,8 +25082,9 @@ impl<'a> Nav2Timegal<'a> {
     pub const MSG_ID: u8 = 0x25;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -23776,8 +25176,9 @@ impl<'a> Nav2TimegloPoll<'a> {
     pub const MSG_ID: u8 = 0x23;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -23835,8 +25236,9 @@ impl<'a> Nav2Timeglo<'a> {
     pub const MSG_ID: u8 = 0x23;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -23919,8 +25321,9 @@ impl<'a> Nav2TimegpsPoll<'a> {
     pub const MSG_ID: u8 = 0x20;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -23976,8 +25379,9 @@ impl<'a> Nav2Timegps<'a> {
     pub const MSG_ID: u8 = 0x20;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -24066,8 +25470,9 @@ impl<'a> Nav2TimelsPoll<'a> {
     pub const MSG_ID: u8 = 0x26;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -24135,8 +25540,9 @@ impl<'a> Nav2Timels<'a> {
     pub const MSG_ID: u8 = 0x26;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(24);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -24258,8 +25664,9 @@ impl<'a> Nav2TimeqzssPoll<'a> {
     pub const MSG_ID: u8 = 0x27;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -24317,8 +25724,9 @@ impl<'a> Nav2Timeqzss<'a> {
     pub const MSG_ID: u8 = 0x27;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -24410,8 +25818,9 @@ impl<'a> Nav2TimeutcPoll<'a> {
     pub const MSG_ID: u8 = 0x21;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -24475,8 +25884,9 @@ impl<'a> Nav2Timeutc<'a> {
     pub const MSG_ID: u8 = 0x21;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -24586,8 +25996,9 @@ impl<'a> Nav2VelecefPoll<'a> {
     pub const MSG_ID: u8 = 0x11;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -24641,8 +26052,9 @@ impl<'a> Nav2Velecef<'a> {
     pub const MSG_ID: u8 = 0x11;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -24701,8 +26113,9 @@ impl<'a> Nav2VelnedPoll<'a> {
     pub const MSG_ID: u8 = 0x12;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -24764,8 +26177,9 @@ impl<'a> Nav2Velned<'a> {
     pub const MSG_ID: u8 = 0x12;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(36);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -24848,8 +26262,9 @@ impl<'a> NavAopstatusPoll<'a> {
     pub const MSG_ID: u8 = 0x60;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -24901,8 +26316,9 @@ impl<'a> NavAopstatus<'a> {
     pub const MSG_ID: u8 = 0x60;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -24972,8 +26388,9 @@ impl<'a> NavAttPoll<'a> {
     pub const MSG_ID: u8 = 0x05;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -25035,8 +26452,9 @@ impl<'a> NavAtt<'a> {
     pub const MSG_ID: u8 = 0x05;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(32);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -25159,8 +26577,9 @@ impl<'a> NavClockPoll<'a> {
     pub const MSG_ID: u8 = 0x22;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -25214,8 +26633,9 @@ impl<'a> NavClock<'a> {
     pub const MSG_ID: u8 = 0x22;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -25274,8 +26694,9 @@ impl<'a> NavCovPoll<'a> {
     pub const MSG_ID: u8 = 0x36;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -25353,8 +26774,9 @@ impl<'a> NavCov<'a> {
     pub const MSG_ID: u8 = 0x36;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(64);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -25473,8 +26895,9 @@ impl<'a> NavDgpsPoll<'a> {
     pub const MSG_ID: u8 = 0x31;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -25598,8 +27021,9 @@ impl<'a> NavDgps<'a> {
     pub const MSG_ID: u8 = 0x31;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -25667,8 +27091,9 @@ impl<'a> NavDopPoll<'a> {
     pub const MSG_ID: u8 = 0x04;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -25728,8 +27153,9 @@ impl<'a> NavDop<'a> {
     pub const MSG_ID: u8 = 0x04;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(18);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -25839,8 +27265,9 @@ impl<'a> NavEellPoll<'a> {
     pub const MSG_ID: u8 = 0x3d;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -25896,8 +27323,9 @@ impl<'a> NavEell<'a> {
     pub const MSG_ID: u8 = 0x3d;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -25967,8 +27395,9 @@ impl<'a> NavEoe<'a> {
     pub const MSG_ID: u8 = 0x61;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -26015,8 +27444,9 @@ impl<'a> NavGeofencePoll<'a> {
     pub const MSG_ID: u8 = 0x39;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -26100,8 +27530,9 @@ impl<'a> NavGeofence<'a> {
     pub const MSG_ID: u8 = 0x39;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -26163,8 +27594,9 @@ impl<'a> NavHpposecefPoll<'a> {
     pub const MSG_ID: u8 = 0x13;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -26230,8 +27662,9 @@ impl<'a> NavHpposecef<'a> {
     pub const MSG_ID: u8 = 0x13;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(28);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -26359,8 +27792,9 @@ impl<'a> NavHpposllhPoll<'a> {
     pub const MSG_ID: u8 = 0x14;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -26432,8 +27866,9 @@ impl<'a> NavHpposllh<'a> {
     pub const MSG_ID: u8 = 0x14;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(36);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -26592,8 +28027,9 @@ impl<'a> NavOdoPoll<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -26649,8 +28085,9 @@ impl<'a> NavOdo<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -26717,8 +28154,9 @@ impl<'a> NavOrbPoll<'a> {
     pub const MSG_ID: u8 = 0x34;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -26903,8 +28341,9 @@ impl<'a> NavOrb<'a> {
     pub const MSG_ID: u8 = 0x34;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -26963,8 +28402,9 @@ impl<'a> NavPlPoll<'a> {
     pub const MSG_ID: u8 = 0x62;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -27048,8 +28488,9 @@ impl<'a> NavPl<'a> {
     pub const MSG_ID: u8 = 0x62;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(52);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -27187,8 +28628,9 @@ impl<'a> NavPosecefPoll<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -27242,8 +28684,9 @@ impl<'a> NavPosecef<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -27302,8 +28745,9 @@ impl<'a> NavPosllhPoll<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -27361,8 +28805,9 @@ impl<'a> NavPosllh<'a> {
     pub const MSG_ID: u8 = 0x02;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(28);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -27439,8 +28884,9 @@ impl<'a> NavPvtPoll<'a> {
     pub const MSG_ID: u8 = 0x07;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -27550,8 +28996,9 @@ impl<'a> NavPvt<'a> {
     pub const MSG_ID: u8 = 0x07;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(92);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -27911,8 +29358,9 @@ impl<'a> NavRelposnedPoll<'a> {
     pub const MSG_ID: u8 = 0x3c;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -27998,12 +29446,18 @@ impl<'a> NavRelposned<'a> {
     pub const MSG_ID: u8 = 0x3c;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(64);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(1);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x01, ..Self::default() }
+    }
     /// Heading of the relative position vector [deg]: the raw integer divided by 100000.
     pub fn rel_pos_heading(&self) -> f64 {
         let raw = self.rel_pos_heading_raw;
@@ -28300,12 +29754,18 @@ impl<'a> NavRelposnedV0<'a> {
     pub const MSG_ID: u8 = 0x3c;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(40);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x00));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x00, ..Self::default() }
+    }
     /// High precision north component [mm]: the raw integer divided by 10.
     pub fn rel_pos_hpn(&self) -> f64 {
         let raw = self.rel_pos_hpn_raw;
@@ -28506,8 +29966,9 @@ impl<'a> NavResetodo<'a> {
     pub const MSG_ID: u8 = 0x10;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -28551,8 +30012,9 @@ impl<'a> NavSatPoll<'a> {
     pub const MSG_ID: u8 = 0x35;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -28829,8 +30291,9 @@ impl<'a> NavSat<'a> {
     pub const MSG_ID: u8 = 0x35;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -28889,8 +30352,9 @@ impl<'a> NavSbasPoll<'a> {
     pub const MSG_ID: u8 = 0x32;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -29015,8 +30479,9 @@ impl<'a> NavSbas<'a> {
     pub const MSG_ID: u8 = 0x32;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -29141,8 +30606,9 @@ impl<'a> NavSigPoll<'a> {
     pub const MSG_ID: u8 = 0x43;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -29370,8 +30836,9 @@ impl<'a> NavSig<'a> {
     pub const MSG_ID: u8 = 0x43;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -29430,8 +30897,9 @@ impl<'a> NavSlasPoll<'a> {
     pub const MSG_ID: u8 = 0x42;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -29554,8 +31022,9 @@ impl<'a> NavSlas<'a> {
     pub const MSG_ID: u8 = 0x42;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -29685,8 +31154,9 @@ impl<'a> NavSolPoll<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -29764,8 +31234,9 @@ impl<'a> NavSol<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(52);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -29929,8 +31400,9 @@ impl<'a> NavStatusPoll<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -29988,8 +31460,9 @@ impl<'a> NavStatus<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -30152,8 +31625,9 @@ impl<'a> NavSvinPoll<'a> {
     pub const MSG_ID: u8 = 0x3b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -30229,8 +31703,9 @@ impl<'a> NavSvin<'a> {
     pub const MSG_ID: u8 = 0x3b;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(40);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -30369,8 +31844,9 @@ impl<'a> NavSvinfoPoll<'a> {
     pub const MSG_ID: u8 = 0x30;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -30566,8 +32042,9 @@ impl<'a> NavSvinfo<'a> {
     pub const MSG_ID: u8 = 0x30;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -30635,8 +32112,9 @@ impl<'a> NavTimebdsPoll<'a> {
     pub const MSG_ID: u8 = 0x24;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -30694,8 +32172,9 @@ impl<'a> NavTimebds<'a> {
     pub const MSG_ID: u8 = 0x24;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -30787,8 +32266,9 @@ impl<'a> NavTimegalPoll<'a> {
     pub const MSG_ID: u8 = 0x25;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -30846,8 +32326,9 @@ impl<'a> NavTimegal<'a> {
     pub const MSG_ID: u8 = 0x25;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -30939,8 +32420,9 @@ impl<'a> NavTimegloPoll<'a> {
     pub const MSG_ID: u8 = 0x23;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -30998,8 +32480,9 @@ impl<'a> NavTimeglo<'a> {
     pub const MSG_ID: u8 = 0x23;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -31082,8 +32565,9 @@ impl<'a> NavTimegpsPoll<'a> {
     pub const MSG_ID: u8 = 0x20;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -31139,8 +32623,9 @@ impl<'a> NavTimegps<'a> {
     pub const MSG_ID: u8 = 0x20;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -31229,8 +32714,9 @@ impl<'a> NavTimelsPoll<'a> {
     pub const MSG_ID: u8 = 0x26;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -31298,8 +32784,9 @@ impl<'a> NavTimels<'a> {
     pub const MSG_ID: u8 = 0x26;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(24);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -31421,8 +32908,9 @@ impl<'a> NavTimeqzssPoll<'a> {
     pub const MSG_ID: u8 = 0x27;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -31480,8 +32968,9 @@ impl<'a> NavTimeqzss<'a> {
     pub const MSG_ID: u8 = 0x27;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -31573,8 +33062,9 @@ impl<'a> NavTimeutcPoll<'a> {
     pub const MSG_ID: u8 = 0x21;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -31638,8 +33128,9 @@ impl<'a> NavTimeutc<'a> {
     pub const MSG_ID: u8 = 0x21;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -31749,8 +33240,9 @@ impl<'a> NavVelecefPoll<'a> {
     pub const MSG_ID: u8 = 0x11;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -31804,8 +33296,9 @@ impl<'a> NavVelecef<'a> {
     pub const MSG_ID: u8 = 0x11;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -31864,8 +33357,9 @@ impl<'a> NavVelnedPoll<'a> {
     pub const MSG_ID: u8 = 0x12;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -31927,8 +33421,9 @@ impl<'a> NavVelned<'a> {
     pub const MSG_ID: u8 = 0x12;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(36);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -32023,8 +33518,9 @@ impl<'a> RxmCor<'a> {
     pub const MSG_ID: u8 = 0x34;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(12);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -32173,8 +33669,9 @@ impl<'a> RxmMeasxPoll<'a> {
     pub const MSG_ID: u8 = 0x14;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -32370,8 +33867,9 @@ impl<'a> RxmMeasx<'a> {
     pub const MSG_ID: u8 = 0x14;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -32529,8 +34027,9 @@ impl<'a> RxmPmreq<'a> {
     pub const MSG_ID: u8 = 0x41;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -32652,8 +34151,9 @@ impl<'a> RxmPmreqShort<'a> {
     pub const MSG_ID: u8 = 0x41;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -32712,8 +34212,9 @@ impl<'a> RxmRawxPoll<'a> {
     pub const MSG_ID: u8 = 0x15;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -32950,8 +34451,9 @@ impl<'a> RxmRawx<'a> {
     pub const MSG_ID: u8 = 0x15;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -33053,8 +34555,9 @@ impl<'a> RxmRlm<'a> {
     pub const MSG_ID: u8 = 0x59;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(28);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -33143,8 +34646,9 @@ impl<'a> RxmRlmShort<'a> {
     pub const MSG_ID: u8 = 0x59;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -33222,8 +34726,9 @@ impl<'a> RxmRtcm<'a> {
     pub const MSG_ID: u8 = 0x32;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -33341,8 +34846,9 @@ impl<'a> RxmSfrbx<'a> {
     pub const MSG_ID: u8 = 0x13;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -33431,8 +34937,9 @@ impl<'a> RxmSpartn<'a> {
     pub const MSG_ID: u8 = 0x33;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -33500,8 +35007,9 @@ impl<'a> RxmSpartnkeyPoll<'a> {
     pub const MSG_ID: u8 = 0x36;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -33616,8 +35124,9 @@ impl<'a> RxmSpartnkey<'a> {
     pub const MSG_ID: u8 = 0x36;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -33676,8 +35185,9 @@ impl<'a> RxmSvsiPoll<'a> {
     pub const MSG_ID: u8 = 0x20;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -33840,8 +35350,9 @@ impl<'a> RxmSvsi<'a> {
     pub const MSG_ID: u8 = 0x20;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -33900,8 +35411,9 @@ impl<'a> SecSigPoll<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -33999,12 +35511,18 @@ impl<'a> SecSig<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(2);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x02));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x02, ..Self::default() }
+    }
     /// Jamming detection enabled (bit 0 of `sig_sec_flags`).
     pub fn jam_det_enabled(&self) -> bool {
         (self.sig_sec_flags & 0x1) != 0
@@ -34107,12 +35625,18 @@ impl<'a> SecSigV1<'a> {
     pub const MSG_ID: u8 = 0x09;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(12);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = Some(1);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x01));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x01, ..Self::default() }
+    }
     /// Jamming detection enabled (bit 0 of `jam_flags`).
     pub fn jam_det_enabled(&self) -> bool {
         (self.jam_flags & 0x1) != 0
@@ -34221,8 +35745,9 @@ impl<'a> SecSiglogPoll<'a> {
     pub const MSG_ID: u8 = 0x10;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -34312,8 +35837,9 @@ impl<'a> SecSiglog<'a> {
     pub const MSG_ID: u8 = 0x10;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -34386,8 +35912,9 @@ impl<'a> SecSign<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(40);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -34454,8 +35981,9 @@ impl<'a> SecUniqidPoll<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -34505,8 +36033,9 @@ impl<'a> SecUniqid<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(9);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -34564,8 +36093,9 @@ impl<'a> TimDoscPoll<'a> {
     pub const MSG_ID: u8 = 0x11;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -34615,8 +36145,9 @@ impl<'a> TimDosc<'a> {
     pub const MSG_ID: u8 = 0x11;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -34674,8 +36205,9 @@ impl<'a> TimFchgPoll<'a> {
     pub const MSG_ID: u8 = 0x16;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -34737,8 +36269,9 @@ impl<'a> TimFchg<'a> {
     pub const MSG_ID: u8 = 0x16;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(32);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -34859,8 +36392,9 @@ impl<'a> TimHoc<'a> {
     pub const MSG_ID: u8 = 0x17;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -34943,8 +36477,9 @@ impl<'a> TimSmeasPoll<'a> {
     pub const MSG_ID: u8 = 0x13;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -35118,8 +36653,9 @@ impl<'a> TimSmeas<'a> {
     pub const MSG_ID: u8 = 0x13;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
     /// The layouts (ids) the receiver answers it with.
@@ -35181,8 +36717,9 @@ impl<'a> TimSvinPoll<'a> {
     pub const MSG_ID: u8 = 0x04;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -35244,8 +36781,9 @@ impl<'a> TimSvin<'a> {
     pub const MSG_ID: u8 = 0x04;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(28);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -35316,8 +36854,9 @@ impl<'a> TimTm2Poll<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -35381,8 +36920,9 @@ impl<'a> TimTm2<'a> {
     pub const MSG_ID: u8 = 0x03;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(28);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -35519,8 +37059,9 @@ impl<'a> TimTosPoll<'a> {
     pub const MSG_ID: u8 = 0x12;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -35606,8 +37147,9 @@ impl<'a> TimTos<'a> {
     pub const MSG_ID: u8 = 0x12;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(56);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -35877,8 +37419,9 @@ impl<'a> TimTpPoll<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -35934,8 +37477,9 @@ impl<'a> TimTp<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(16);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -36057,8 +37601,9 @@ impl<'a> TimVcocalPoll<'a> {
     pub const MSG_ID: u8 = 0x15;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -36104,12 +37649,18 @@ impl<'a> TimVcocalStop<'a> {
     pub const MSG_ID: u8 = 0x15;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(1);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x00));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x00, ..Self::default() }
+    }
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
@@ -36164,12 +37715,18 @@ impl<'a> TimVcocalResult<'a> {
     pub const MSG_ID: u8 = 0x15;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(12);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x03));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x03, ..Self::default() }
+    }
     /// Relative uncertainty of the gain: the raw integer divided by 65536.
     pub fn gain_uncertainty(&self) -> f64 {
         let raw = self.gain_uncertainty_raw;
@@ -36260,12 +37817,18 @@ impl<'a> TimVcocal<'a> {
     pub const MSG_ID: u8 = 0x15;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(12);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x02));
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
     pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x02, ..Self::default() }
+    }
     /// The message of `payload`, read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
@@ -36329,8 +37892,9 @@ impl<'a> TimVrfyPoll<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -36388,8 +37952,9 @@ impl<'a> TimVrfy<'a> {
     pub const MSG_ID: u8 = 0x06;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(20);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -36463,8 +38028,9 @@ impl<'a> UpdSosPoll<'a> {
     pub const MSG_ID: u8 = 0x14;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -36512,8 +38078,9 @@ impl<'a> UpdSosCommand<'a> {
     pub const MSG_ID: u8 = 0x14;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(4);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["input"];
     /// The layouts (ids) the receiver answers it with.
@@ -36576,8 +38143,9 @@ impl<'a> UpdSos<'a> {
     pub const MSG_ID: u8 = 0x14;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(8);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -36951,6 +38519,20 @@ pub enum Message<'a> {
     MgaGpsUtc(MgaGpsUtc<'a>),
     /// MGA-GPS (input): GPS assistance data.
     MgaGpsIono(MgaGpsIono<'a>),
+    /// MGA-INI (input): Initial position, time, clock and Earth orientation assistance.
+    MgaIniPosXyz(MgaIniPosXyz<'a>),
+    /// MGA-INI (input): Initial position, time, clock and Earth orientation assistance.
+    MgaIniPosLlh(MgaIniPosLlh<'a>),
+    /// MGA-INI (input): Initial position, time, clock and Earth orientation assistance.
+    MgaIniTimeUtc(MgaIniTimeUtc<'a>),
+    /// MGA-INI (input): Initial position, time, clock and Earth orientation assistance.
+    MgaIniTimeGnss(MgaIniTimeGnss<'a>),
+    /// MGA-INI (input): Initial position, time, clock and Earth orientation assistance.
+    MgaIniClkd(MgaIniClkd<'a>),
+    /// MGA-INI (input): Initial position, time, clock and Earth orientation assistance.
+    MgaIniFreq(MgaIniFreq<'a>),
+    /// MGA-INI (input): Initial position, time, clock and Earth orientation assistance.
+    MgaIniEop(MgaIniEop<'a>),
     /// MGA-QZSS (input): QZSS assistance data.
     MgaQzssEph(MgaQzssEph<'a>),
     /// MGA-QZSS (input): QZSS assistance data.
@@ -37003,6 +38585,10 @@ pub enum Message<'a> {
     MonSmgrPoll(MonSmgrPoll<'a>),
     /// MON-SMGR (output): Synchronization manager status.
     MonSmgr(MonSmgr<'a>),
+    /// MON-SPAN (poll): Signal characteristics (spectrum analyzer).
+    MonSpanPoll(MonSpanPoll<'a>),
+    /// MON-SPAN (output): Signal characteristics (spectrum analyzer).
+    MonSpan(MonSpan<'a>),
     /// MON-SYS (poll): System status.
     MonSysPoll(MonSysPoll<'a>),
     /// MON-SYS (output): System status.
@@ -37548,12 +39134,16 @@ impl<'a> Message<'a> {
             (0x06, 0x17) => {
                 if payload.is_empty() {
                     Message::CfgNmeaPoll(CfgNmeaPoll::read(payload)?)
-                } else if payload.len() == 20 && payload.get(11) == Some(&1) {
+                } else if payload.len() == 20 && payload.get(11) == Some(&0x01) {
                     Message::CfgNmea(CfgNmea::read(payload)?)
-                } else if payload.len() == 12 && payload.get(11) == Some(&0) {
+                } else if payload.len() == 12 && payload.get(11) == Some(&0x00) {
                     Message::CfgNmeaV0(CfgNmeaV0::read(payload)?)
                 } else if payload.len() == 4 {
                     Message::CfgNmeaDeprecated(CfgNmeaDeprecated::read(payload)?)
+                } else if payload.len() == 20 {
+                    Message::CfgNmea(CfgNmea::read(payload)?)
+                } else if payload.len() == 12 {
+                    Message::CfgNmeaV0(CfgNmeaV0::read(payload)?)
                 } else {
                     Message::CfgNmea(CfgNmea::read(payload)?)
                 }
@@ -37568,9 +39158,13 @@ impl<'a> Message<'a> {
             (0x06, 0x3b) => {
                 if payload.is_empty() {
                     Message::CfgPm2Poll(CfgPm2Poll::read(payload)?)
-                } else if payload.len() == 48 && payload.first() == Some(&2) {
+                } else if payload.len() == 48 && payload.first() == Some(&0x02) {
                     Message::CfgPm2(CfgPm2::read(payload)?)
-                } else if payload.len() == 44 && payload.first() == Some(&1) {
+                } else if payload.len() == 44 && payload.first() == Some(&0x01) {
+                    Message::CfgPm2V1(CfgPm2V1::read(payload)?)
+                } else if payload.len() == 48 {
+                    Message::CfgPm2(CfgPm2::read(payload)?)
+                } else if payload.len() == 44 {
                     Message::CfgPm2V1(CfgPm2V1::read(payload)?)
                 } else {
                     Message::CfgPm2(CfgPm2::read(payload)?)
@@ -37667,21 +39261,21 @@ impl<'a> Message<'a> {
                 }
             }
             (0x06, 0x8c) => {
-                if payload.first() == Some(&0) {
+                if payload.first() == Some(&0x00) {
                     Message::CfgValdelV0(CfgValdelV0::read(payload)?)
                 } else {
                     Message::CfgValdel(CfgValdel::read(payload)?)
                 }
             }
             (0x06, 0x8b) => {
-                if payload.first() == Some(&0) {
+                if payload.first() == Some(&0x00) {
                     Message::CfgValgetPoll(CfgValgetPoll::read(payload)?)
                 } else {
                     Message::CfgValget(CfgValget::read(payload)?)
                 }
             }
             (0x06, 0x8a) => {
-                if payload.first() == Some(&0) {
+                if payload.first() == Some(&0x00) {
                     Message::CfgValsetV0(CfgValsetV0::read(payload)?)
                 } else {
                     Message::CfgValset(CfgValset::read(payload)?)
@@ -37762,7 +39356,17 @@ impl<'a> Message<'a> {
             (0x13, 0x60) => Message::MgaAck(MgaAck::read(payload)?),
             (0x13, 0x20) => Message::MgaAno(MgaAno::read(payload)?),
             (0x13, 0x03) => {
-                if payload.len() == 88 {
+                if payload.len() == 88 && payload.first() == Some(&0x01) {
+                    Message::MgaBdsEph(MgaBdsEph::read(payload)?)
+                } else if payload.len() == 40 && payload.first() == Some(&0x02) {
+                    Message::MgaBdsAlm(MgaBdsAlm::read(payload)?)
+                } else if payload.len() == 68 && payload.first() == Some(&0x04) {
+                    Message::MgaBdsHealth(MgaBdsHealth::read(payload)?)
+                } else if payload.len() == 20 && payload.first() == Some(&0x05) {
+                    Message::MgaBdsUtc(MgaBdsUtc::read(payload)?)
+                } else if payload.len() == 16 && payload.first() == Some(&0x06) {
+                    Message::MgaBdsIono(MgaBdsIono::read(payload)?)
+                } else if payload.len() == 88 {
                     Message::MgaBdsEph(MgaBdsEph::read(payload)?)
                 } else if payload.len() == 40 {
                     Message::MgaBdsAlm(MgaBdsAlm::read(payload)?)
@@ -37782,7 +39386,15 @@ impl<'a> Message<'a> {
                 }
             }
             (0x13, 0x02) => {
-                if payload.len() == 76 {
+                if payload.len() == 76 && payload.first() == Some(&0x01) {
+                    Message::MgaGalEph(MgaGalEph::read(payload)?)
+                } else if payload.len() == 32 && payload.first() == Some(&0x02) {
+                    Message::MgaGalAlm(MgaGalAlm::read(payload)?)
+                } else if payload.len() == 12 && payload.first() == Some(&0x03) {
+                    Message::MgaGalTimeoffset(MgaGalTimeoffset::read(payload)?)
+                } else if payload.len() == 20 && payload.first() == Some(&0x05) {
+                    Message::MgaGalUtc(MgaGalUtc::read(payload)?)
+                } else if payload.len() == 76 {
                     Message::MgaGalEph(MgaGalEph::read(payload)?)
                 } else if payload.len() == 32 {
                     Message::MgaGalAlm(MgaGalAlm::read(payload)?)
@@ -37793,7 +39405,13 @@ impl<'a> Message<'a> {
                 }
             }
             (0x13, 0x06) => {
-                if payload.len() == 48 {
+                if payload.len() == 48 && payload.first() == Some(&0x01) {
+                    Message::MgaGloEph(MgaGloEph::read(payload)?)
+                } else if payload.len() == 36 && payload.first() == Some(&0x02) {
+                    Message::MgaGloAlm(MgaGloAlm::read(payload)?)
+                } else if payload.len() == 20 && payload.first() == Some(&0x03) {
+                    Message::MgaGloTimeoffset(MgaGloTimeoffset::read(payload)?)
+                } else if payload.len() == 48 {
                     Message::MgaGloEph(MgaGloEph::read(payload)?)
                 } else if payload.len() == 36 {
                     Message::MgaGloAlm(MgaGloAlm::read(payload)?)
@@ -37802,7 +39420,17 @@ impl<'a> Message<'a> {
                 }
             }
             (0x13, 0x00) => {
-                if payload.len() == 68 {
+                if payload.len() == 68 && payload.first() == Some(&0x01) {
+                    Message::MgaGpsEph(MgaGpsEph::read(payload)?)
+                } else if payload.len() == 36 && payload.first() == Some(&0x02) {
+                    Message::MgaGpsAlm(MgaGpsAlm::read(payload)?)
+                } else if payload.len() == 40 && payload.first() == Some(&0x04) {
+                    Message::MgaGpsHealth(MgaGpsHealth::read(payload)?)
+                } else if payload.len() == 20 && payload.first() == Some(&0x05) {
+                    Message::MgaGpsUtc(MgaGpsUtc::read(payload)?)
+                } else if payload.len() == 16 && payload.first() == Some(&0x06) {
+                    Message::MgaGpsIono(MgaGpsIono::read(payload)?)
+                } else if payload.len() == 68 {
                     Message::MgaGpsEph(MgaGpsEph::read(payload)?)
                 } else if payload.len() == 36 {
                     Message::MgaGpsAlm(MgaGpsAlm::read(payload)?)
@@ -37814,8 +39442,39 @@ impl<'a> Message<'a> {
                     Message::MgaGpsIono(MgaGpsIono::read(payload)?)
                 }
             }
+            (0x13, 0x40) => {
+                if payload.len() == 20 && payload.first() == Some(&0x00) {
+                    Message::MgaIniPosXyz(MgaIniPosXyz::read(payload)?)
+                } else if payload.len() == 20 && payload.first() == Some(&0x01) {
+                    Message::MgaIniPosLlh(MgaIniPosLlh::read(payload)?)
+                } else if payload.len() == 24 && payload.first() == Some(&0x10) {
+                    Message::MgaIniTimeUtc(MgaIniTimeUtc::read(payload)?)
+                } else if payload.len() == 24 && payload.first() == Some(&0x11) {
+                    Message::MgaIniTimeGnss(MgaIniTimeGnss::read(payload)?)
+                } else if payload.len() == 12 && payload.first() == Some(&0x20) {
+                    Message::MgaIniClkd(MgaIniClkd::read(payload)?)
+                } else if payload.len() == 12 && payload.first() == Some(&0x21) {
+                    Message::MgaIniFreq(MgaIniFreq::read(payload)?)
+                } else if payload.len() == 72 && payload.first() == Some(&0x30) {
+                    Message::MgaIniEop(MgaIniEop::read(payload)?)
+                } else if payload.len() == 20 {
+                    Message::MgaIniPosXyz(MgaIniPosXyz::read(payload)?)
+                } else if payload.len() == 24 {
+                    Message::MgaIniTimeUtc(MgaIniTimeUtc::read(payload)?)
+                } else if payload.len() == 12 {
+                    Message::MgaIniClkd(MgaIniClkd::read(payload)?)
+                } else {
+                    Message::MgaIniEop(MgaIniEop::read(payload)?)
+                }
+            }
             (0x13, 0x05) => {
-                if payload.len() == 68 {
+                if payload.len() == 68 && payload.first() == Some(&0x01) {
+                    Message::MgaQzssEph(MgaQzssEph::read(payload)?)
+                } else if payload.len() == 36 && payload.first() == Some(&0x02) {
+                    Message::MgaQzssAlm(MgaQzssAlm::read(payload)?)
+                } else if payload.len() == 12 && payload.first() == Some(&0x04) {
+                    Message::MgaQzssHealth(MgaQzssHealth::read(payload)?)
+                } else if payload.len() == 68 {
                     Message::MgaQzssEph(MgaQzssEph::read(payload)?)
                 } else if payload.len() == 36 {
                     Message::MgaQzssAlm(MgaQzssAlm::read(payload)?)
@@ -37899,6 +39558,13 @@ impl<'a> Message<'a> {
                     Message::MonSmgrPoll(MonSmgrPoll::read(payload)?)
                 } else {
                     Message::MonSmgr(MonSmgr::read(payload)?)
+                }
+            }
+            (0x0a, 0x31) => {
+                if payload.is_empty() {
+                    Message::MonSpanPoll(MonSpanPoll::read(payload)?)
+                } else {
+                    Message::MonSpan(MonSpan::read(payload)?)
                 }
             }
             (0x0a, 0x39) => {
@@ -38186,9 +39852,13 @@ impl<'a> Message<'a> {
             (0x01, 0x3c) => {
                 if payload.is_empty() {
                     Message::NavRelposnedPoll(NavRelposnedPoll::read(payload)?)
-                } else if payload.len() == 64 && payload.first() == Some(&1) {
+                } else if payload.len() == 64 && payload.first() == Some(&0x01) {
                     Message::NavRelposned(NavRelposned::read(payload)?)
-                } else if payload.len() == 40 && payload.first() == Some(&0) {
+                } else if payload.len() == 40 && payload.first() == Some(&0x00) {
+                    Message::NavRelposnedV0(NavRelposnedV0::read(payload)?)
+                } else if payload.len() == 64 {
+                    Message::NavRelposned(NavRelposned::read(payload)?)
+                } else if payload.len() == 40 {
                     Message::NavRelposnedV0(NavRelposnedV0::read(payload)?)
                 } else {
                     Message::NavRelposned(NavRelposned::read(payload)?)
@@ -38365,9 +40035,9 @@ impl<'a> Message<'a> {
             (0x27, 0x09) => {
                 if payload.is_empty() {
                     Message::SecSigPoll(SecSigPoll::read(payload)?)
-                } else if payload.first() == Some(&2) {
+                } else if payload.first() == Some(&0x02) {
                     Message::SecSig(SecSig::read(payload)?)
-                } else if payload.len() == 12 && payload.first() == Some(&1) {
+                } else if payload.len() == 12 {
                     Message::SecSigV1(SecSigV1::read(payload)?)
                 } else {
                     Message::SecSig(SecSig::read(payload)?)
@@ -38441,12 +40111,14 @@ impl<'a> Message<'a> {
             (0x0d, 0x15) => {
                 if payload.is_empty() {
                     Message::TimVcocalPoll(TimVcocalPoll::read(payload)?)
+                } else if payload.len() == 1 && payload.first() == Some(&0x00) {
+                    Message::TimVcocalStop(TimVcocalStop::read(payload)?)
+                } else if payload.len() == 12 && payload.first() == Some(&0x03) {
+                    Message::TimVcocalResult(TimVcocalResult::read(payload)?)
+                } else if payload.len() == 12 && payload.first() == Some(&0x02) {
+                    Message::TimVcocal(TimVcocal::read(payload)?)
                 } else if payload.len() == 1 {
                     Message::TimVcocalStop(TimVcocalStop::read(payload)?)
-                } else if payload.len() == 12 {
-                    Message::TimVcocalResult(TimVcocalResult::read(payload)?)
-                } else if payload.len() == 12 {
-                    Message::TimVcocal(TimVcocal::read(payload)?)
                 } else {
                     Message::TimVcocalResult(TimVcocalResult::read(payload)?)
                 }
@@ -38636,6 +40308,13 @@ impl<'a> Message<'a> {
             Message::MgaGpsHealth(_) => MgaGpsHealth::ID,
             Message::MgaGpsUtc(_) => MgaGpsUtc::ID,
             Message::MgaGpsIono(_) => MgaGpsIono::ID,
+            Message::MgaIniPosXyz(_) => MgaIniPosXyz::ID,
+            Message::MgaIniPosLlh(_) => MgaIniPosLlh::ID,
+            Message::MgaIniTimeUtc(_) => MgaIniTimeUtc::ID,
+            Message::MgaIniTimeGnss(_) => MgaIniTimeGnss::ID,
+            Message::MgaIniClkd(_) => MgaIniClkd::ID,
+            Message::MgaIniFreq(_) => MgaIniFreq::ID,
+            Message::MgaIniEop(_) => MgaIniEop::ID,
             Message::MgaQzssEph(_) => MgaQzssEph::ID,
             Message::MgaQzssAlm(_) => MgaQzssAlm::ID,
             Message::MgaQzssHealth(_) => MgaQzssHealth::ID,
@@ -38662,6 +40341,8 @@ impl<'a> Message<'a> {
             Message::MonRxr(_) => MonRxr::ID,
             Message::MonSmgrPoll(_) => MonSmgrPoll::ID,
             Message::MonSmgr(_) => MonSmgr::ID,
+            Message::MonSpanPoll(_) => MonSpanPoll::ID,
+            Message::MonSpan(_) => MonSpan::ID,
             Message::MonSysPoll(_) => MonSysPoll::ID,
             Message::MonSys(_) => MonSys::ID,
             Message::MonTxbufPoll(_) => MonTxbufPoll::ID,
@@ -38993,6 +40674,13 @@ impl<'a> Message<'a> {
             Message::MgaGpsHealth(_) => (MgaGpsHealth::CLASS, MgaGpsHealth::MSG_ID),
             Message::MgaGpsUtc(_) => (MgaGpsUtc::CLASS, MgaGpsUtc::MSG_ID),
             Message::MgaGpsIono(_) => (MgaGpsIono::CLASS, MgaGpsIono::MSG_ID),
+            Message::MgaIniPosXyz(_) => (MgaIniPosXyz::CLASS, MgaIniPosXyz::MSG_ID),
+            Message::MgaIniPosLlh(_) => (MgaIniPosLlh::CLASS, MgaIniPosLlh::MSG_ID),
+            Message::MgaIniTimeUtc(_) => (MgaIniTimeUtc::CLASS, MgaIniTimeUtc::MSG_ID),
+            Message::MgaIniTimeGnss(_) => (MgaIniTimeGnss::CLASS, MgaIniTimeGnss::MSG_ID),
+            Message::MgaIniClkd(_) => (MgaIniClkd::CLASS, MgaIniClkd::MSG_ID),
+            Message::MgaIniFreq(_) => (MgaIniFreq::CLASS, MgaIniFreq::MSG_ID),
+            Message::MgaIniEop(_) => (MgaIniEop::CLASS, MgaIniEop::MSG_ID),
             Message::MgaQzssEph(_) => (MgaQzssEph::CLASS, MgaQzssEph::MSG_ID),
             Message::MgaQzssAlm(_) => (MgaQzssAlm::CLASS, MgaQzssAlm::MSG_ID),
             Message::MgaQzssHealth(_) => (MgaQzssHealth::CLASS, MgaQzssHealth::MSG_ID),
@@ -39019,6 +40707,8 @@ impl<'a> Message<'a> {
             Message::MonRxr(_) => (MonRxr::CLASS, MonRxr::MSG_ID),
             Message::MonSmgrPoll(_) => (MonSmgrPoll::CLASS, MonSmgrPoll::MSG_ID),
             Message::MonSmgr(_) => (MonSmgr::CLASS, MonSmgr::MSG_ID),
+            Message::MonSpanPoll(_) => (MonSpanPoll::CLASS, MonSpanPoll::MSG_ID),
+            Message::MonSpan(_) => (MonSpan::CLASS, MonSpan::MSG_ID),
             Message::MonSysPoll(_) => (MonSysPoll::CLASS, MonSysPoll::MSG_ID),
             Message::MonSys(_) => (MonSys::CLASS, MonSys::MSG_ID),
             Message::MonTxbufPoll(_) => (MonTxbufPoll::CLASS, MonTxbufPoll::MSG_ID),
@@ -39350,6 +41040,13 @@ impl<'a> Message<'a> {
             Message::MgaGpsHealth(m) => m.write(w),
             Message::MgaGpsUtc(m) => m.write(w),
             Message::MgaGpsIono(m) => m.write(w),
+            Message::MgaIniPosXyz(m) => m.write(w),
+            Message::MgaIniPosLlh(m) => m.write(w),
+            Message::MgaIniTimeUtc(m) => m.write(w),
+            Message::MgaIniTimeGnss(m) => m.write(w),
+            Message::MgaIniClkd(m) => m.write(w),
+            Message::MgaIniFreq(m) => m.write(w),
+            Message::MgaIniEop(m) => m.write(w),
             Message::MgaQzssEph(m) => m.write(w),
             Message::MgaQzssAlm(m) => m.write(w),
             Message::MgaQzssHealth(m) => m.write(w),
@@ -39376,6 +41073,8 @@ impl<'a> Message<'a> {
             Message::MonRxr(m) => m.write(w),
             Message::MonSmgrPoll(m) => m.write(w),
             Message::MonSmgr(m) => m.write(w),
+            Message::MonSpanPoll(m) => m.write(w),
+            Message::MonSpan(m) => m.write(w),
             Message::MonSysPoll(m) => m.write(w),
             Message::MonSys(m) => m.write(w),
             Message::MonTxbufPoll(m) => m.write(w),
@@ -39725,6 +41424,13 @@ impl<'a> Message<'a> {
             Message::MgaGpsHealth(m) => m.json_members(&mut j)?,
             Message::MgaGpsUtc(m) => m.json_members(&mut j)?,
             Message::MgaGpsIono(m) => m.json_members(&mut j)?,
+            Message::MgaIniPosXyz(m) => m.json_members(&mut j)?,
+            Message::MgaIniPosLlh(m) => m.json_members(&mut j)?,
+            Message::MgaIniTimeUtc(m) => m.json_members(&mut j)?,
+            Message::MgaIniTimeGnss(m) => m.json_members(&mut j)?,
+            Message::MgaIniClkd(m) => m.json_members(&mut j)?,
+            Message::MgaIniFreq(m) => m.json_members(&mut j)?,
+            Message::MgaIniEop(m) => m.json_members(&mut j)?,
             Message::MgaQzssEph(m) => m.json_members(&mut j)?,
             Message::MgaQzssAlm(m) => m.json_members(&mut j)?,
             Message::MgaQzssHealth(m) => m.json_members(&mut j)?,
@@ -39751,6 +41457,8 @@ impl<'a> Message<'a> {
             Message::MonRxr(m) => m.json_members(&mut j)?,
             Message::MonSmgrPoll(m) => m.json_members(&mut j)?,
             Message::MonSmgr(m) => m.json_members(&mut j)?,
+            Message::MonSpanPoll(m) => m.json_members(&mut j)?,
+            Message::MonSpan(m) => m.json_members(&mut j)?,
             Message::MonSysPoll(m) => m.json_members(&mut j)?,
             Message::MonSys(m) => m.json_members(&mut j)?,
             Message::MonTxbufPoll(m) => m.json_members(&mut j)?,

@@ -242,8 +242,9 @@ def message_of(words: list[str]) -> Any:
         same = [c for c in layouts if c.ADDRESS == name.upper().replace("_", "-", 1)]
         wanted = ("input",) if values else ("poll", "input")
         chosen = [c for d in wanted for c in same if d in c.DIRECTIONS][:1]
-        if values and "version" in values:
-            chosen = [c for c in same if "input" in c.DIRECTIONS and c.VERSION in (None, values["version"])][:1]
+        selected = [c for c in same if "input" in c.DIRECTIONS and c.SELECT is not None and c.SELECT[0] in (values or {})]
+        if values and selected:   # the layout whose selector (type, version) has the value given
+            chosen = [c for c in selected if c.SELECT is not None and c.SELECT[2] == values[c.SELECT[0]]][:1]
         if not chosen:
             sent = sorted({c.ADDRESS for c in layouts if {"poll", "input"} & set(c.DIRECTIONS)})
             raise CliError(f"no UBX message {name!r} to send; these are sent: {', '.join(sent)}")
@@ -266,9 +267,8 @@ def _from_values(cls: type[ubx.Message], values: dict[str, Any]) -> Any:
         elif isinstance(item, Field):
             size += item.width or 0
     payload = bytearray(size // 8)
-    if cls.VERSION is not None:
-        cls.fits(bytes(payload))  # finds the version's byte
-        payload[cls._version_at] = cls.VERSION
+    if cls.SELECT is not None:
+        payload[cls.SELECT[1]] = cls.SELECT[2]
     message = cls.read_generic(bytes(payload))
     fields = {f.id: f for f in flat_fields(cls.LAYOUT)}
     groups = {g.id: g for g in cls.LAYOUT if isinstance(g, Group)}

@@ -28,7 +28,7 @@ class AckAck(binary.Message):
     MSG_ID: ClassVar[int] = 0x01
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 4
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     ACKNOWLEDGES: ClassVar[tuple[str, str] | None] = ("cls_id", "msg_id")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (

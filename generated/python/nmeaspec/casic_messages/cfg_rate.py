@@ -28,7 +28,7 @@ class CfgRatePoll(binary.Message):
     MSG_ID: ClassVar[int] = 0x04
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_rate",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -49,7 +49,7 @@ class CfgRate(binary.Message):
     MSG_ID: ClassVar[int] = 0x04
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 4
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("interval", 16),

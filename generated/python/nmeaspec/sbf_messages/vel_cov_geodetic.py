@@ -30,7 +30,7 @@ class VelCovGeodetic(binary.Message):
     MSG_ID: ClassVar[int] = 0x1714
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 48
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("tow", 32, special=(ais.Special("do_not_use", 4294967295),)),

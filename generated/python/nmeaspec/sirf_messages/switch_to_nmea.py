@@ -41,7 +41,7 @@ class SwitchToNmea(binary.Message):
     MSG_ID: ClassVar[int] = 0x81
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 23
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("mode", 8),

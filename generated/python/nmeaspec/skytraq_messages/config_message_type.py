@@ -30,7 +30,7 @@ class ConfigMessageType(binary.Message):
     MSG_ID: ClassVar[int] = 0x09
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 2
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("msg_ack", "msg_nack")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("type", 8),

@@ -31,7 +31,7 @@ class NavData(binary.Message):
     MSG_ID: ClassVar[int] = 0xA8
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 58
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("fix_mode", 8),

@@ -29,7 +29,7 @@ class QuerySwVersion(binary.Message):
     MSG_ID: ClassVar[int] = 0x02
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 1
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("sw_version", "msg_ack", "msg_nack")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("software_type", 8),

@@ -40,13 +40,14 @@
 #   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_ano.yaml,
 #   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
 #   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_glo.yaml,
-#   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
-#   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
-#   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
-#   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_io.yaml,
-#   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_patch.yaml,
-#   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
-#   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+#   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_ini.yaml,
+#   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+#   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_hw.yaml,
+#   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
+#   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
+#   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+#   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
+#   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
 #   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
 #   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav2_clock.yaml,
 #   spec/binary/ubx/messages/nav2_cov.yaml, spec/binary/ubx/messages/nav2_dop.yaml,
@@ -90,7 +91,7 @@
 #   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tos.yaml,
 #   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
 #   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/upd_sos.yaml
-#   (digest fb9ebdd116efcc2c)
+#   (digest 7aa3b9c7de8a60cb)
 # Regenerate: make generate (python3 -m generator generate)
 """UBX messages: a frame's payload decoded into the class of its layout (by class and id, then
 length and version) and encoded back to the same bytes; a class and id the spec does not describe
@@ -218,6 +219,15 @@ from .mga_gps import (
     MgaGpsUtc as MgaGpsUtc,
     MgaGpsIono as MgaGpsIono,
 )
+from .mga_ini import (
+    MgaIniPosXyz as MgaIniPosXyz,
+    MgaIniPosLlh as MgaIniPosLlh,
+    MgaIniTimeUtc as MgaIniTimeUtc,
+    MgaIniTimeGnss as MgaIniTimeGnss,
+    MgaIniClkd as MgaIniClkd,
+    MgaIniFreq as MgaIniFreq,
+    MgaIniEop as MgaIniEop,
+)
 from .mga_qzss import (
     MgaQzssEph as MgaQzssEph,
     MgaQzssAlm as MgaQzssAlm,
@@ -235,6 +245,7 @@ from .mon_rf import MonRfPoll as MonRfPoll, MonRf as MonRf
 from .mon_rxbuf import MonRxbufPoll as MonRxbufPoll, MonRxbuf as MonRxbuf
 from .mon_rxr import MonRxr as MonRxr
 from .mon_smgr import MonSmgrPoll as MonSmgrPoll, MonSmgr as MonSmgr
+from .mon_span import MonSpanPoll as MonSpanPoll, MonSpan as MonSpan
 from .mon_sys import MonSysPoll as MonSysPoll, MonSys as MonSys
 from .mon_txbuf import MonTxbufPoll as MonTxbufPoll, MonTxbuf as MonTxbuf
 from .mon_ver import MonVerPoll as MonVerPoll, MonVer as MonVer
@@ -438,6 +449,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x0A, 0x27): (MonPatchPoll, MonPatch),
     (0x0A, 0x28): (MonGnssPoll, MonGnss),
     (0x0A, 0x2E): (MonSmgrPoll, MonSmgr),
+    (0x0A, 0x31): (MonSpanPoll, MonSpan),
     (0x0A, 0x36): (MonCommsPoll, MonComms),
     (0x0A, 0x37): (MonHw3Poll, MonHw3),
     (0x0A, 0x38): (MonRfPoll, MonRf),
@@ -468,6 +480,15 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x13, 0x05): (MgaQzssEph, MgaQzssAlm, MgaQzssHealth),
     (0x13, 0x06): (MgaGloEph, MgaGloAlm, MgaGloTimeoffset),
     (0x13, 0x20): (MgaAno,),
+    (0x13, 0x40): (
+        MgaIniPosXyz,
+        MgaIniPosLlh,
+        MgaIniTimeUtc,
+        MgaIniTimeGnss,
+        MgaIniClkd,
+        MgaIniFreq,
+        MgaIniEop,
+    ),
     (0x13, 0x60): (MgaAck,),
     (0x13, 0x80): (MgaDbdPoll, MgaDbd),
     (0x21, 0x03): (LogErase,),

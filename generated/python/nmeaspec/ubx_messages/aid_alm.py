@@ -25,7 +25,7 @@ class AidAlmPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x30
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("aid_alm", "aid_alm_empty")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -43,7 +43,7 @@ class AidAlmPollSv(ubx.Message):
     MSG_ID: ClassVar[int] = 0x30
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 1
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("aid_alm", "aid_alm_empty")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("svid", 8),
@@ -74,7 +74,7 @@ class AidAlm(ubx.Message):
     MSG_ID: ClassVar[int] = 0x30
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 40
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("svid", 32),
@@ -105,7 +105,7 @@ class AidAlmEmpty(ubx.Message):
     MSG_ID: ClassVar[int] = 0x30
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 8
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("svid", 32),

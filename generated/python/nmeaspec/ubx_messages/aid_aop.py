@@ -27,7 +27,7 @@ class AidAopPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x33
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("aid_aop",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -45,7 +45,7 @@ class AidAopPollSv(ubx.Message):
     MSG_ID: ClassVar[int] = 0x33
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 1
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("aid_aop",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("svid", 8),
@@ -69,7 +69,7 @@ class AidAop(ubx.Message):
     MSG_ID: ClassVar[int] = 0x33
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 68
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Code("gnss_id", 8, enum=UbxGnssId),

@@ -25,7 +25,7 @@ class AidEphPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x31
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("aid_eph", "aid_eph_empty")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -43,7 +43,7 @@ class AidEphPollSv(ubx.Message):
     MSG_ID: ClassVar[int] = 0x31
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 1
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("aid_eph", "aid_eph_empty")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("svid", 8),
@@ -66,7 +66,7 @@ class AidEph(ubx.Message):
     MSG_ID: ClassVar[int] = 0x31
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 104
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("svid", 32),
@@ -164,7 +164,7 @@ class AidEphEmpty(ubx.Message):
     MSG_ID: ClassVar[int] = 0x31
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 8
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("svid", 32),

@@ -27,7 +27,7 @@ class AidHuiPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x02
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("aid_hui",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -47,7 +47,7 @@ class AidHui(ubx.Message):
     MSG_ID: ClassVar[int] = 0x02
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 72
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield("health", 32),

@@ -26,7 +26,7 @@ class AidIniPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x01
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("aid_ini",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -46,7 +46,7 @@ class AidIni(ubx.Message):
     MSG_ID: ClassVar[int] = 0x01
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 48
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Signed("ecef_x_or_lat", 32),

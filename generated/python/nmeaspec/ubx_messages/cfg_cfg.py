@@ -25,7 +25,7 @@ class CfgCfgAllDevices(ubx.Message):
     MSG_ID: ClassVar[int] = 0x09
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 12
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield("clear_mask", 32),
@@ -56,7 +56,7 @@ class CfgCfg(ubx.Message):
     MSG_ID: ClassVar[int] = 0x09
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 13
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield("clear_mask", 32),

@@ -26,7 +26,7 @@ class CfgDatPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x06
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_dat",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -44,7 +44,7 @@ class CfgDatSet(ubx.Message):
     MSG_ID: ClassVar[int] = 0x06
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 44
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ubx.Float("maj_a", 64),
@@ -91,7 +91,7 @@ class CfgDat(ubx.Message):
     MSG_ID: ClassVar[int] = 0x06
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 52
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("datum_num", 16),

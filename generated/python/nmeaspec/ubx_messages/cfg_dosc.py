@@ -26,7 +26,7 @@ class CfgDoscPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x61
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_dosc",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -79,7 +79,7 @@ class CfgDosc(ubx.Message):
     MSG_ID: ClassVar[int] = 0x61
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

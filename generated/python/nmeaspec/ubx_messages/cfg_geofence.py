@@ -26,7 +26,7 @@ class CfgGeofencePoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x69
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_geofence",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -57,7 +57,7 @@ class CfgGeofence(ubx.Message):
     MSG_ID: ClassVar[int] = 0x69
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

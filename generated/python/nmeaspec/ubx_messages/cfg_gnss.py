@@ -27,7 +27,7 @@ class CfgGnssPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x3E
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_gnss",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -65,7 +65,7 @@ class CfgGnss(ubx.Message):
     MSG_ID: ClassVar[int] = 0x3E
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("msg_ver", 8),

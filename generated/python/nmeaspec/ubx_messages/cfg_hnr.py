@@ -25,7 +25,7 @@ class CfgHnrPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x5C
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_hnr",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -43,7 +43,7 @@ class CfgHnr(ubx.Message):
     MSG_ID: ClassVar[int] = 0x5C
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 4
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("high_nav_rate", 8),

@@ -26,7 +26,7 @@ class CfgInfPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x02
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 1
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_inf",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("protocol_id", 8),
@@ -82,7 +82,7 @@ class CfgInf(ubx.Message):
     MSG_ID: ClassVar[int] = 0x02
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Group("blocks", CfgInfBlock, (

@@ -26,7 +26,7 @@ class CfgItfmPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x39
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_itfm",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -46,7 +46,7 @@ class CfgItfm(ubx.Message):
     MSG_ID: ClassVar[int] = 0x39
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 8
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield(

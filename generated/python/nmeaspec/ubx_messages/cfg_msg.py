@@ -25,7 +25,7 @@ class CfgMsgPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x01
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 2
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_msg",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("msg_class", 8),
@@ -51,7 +51,7 @@ class CfgMsgCurrentPort(ubx.Message):
     MSG_ID: ClassVar[int] = 0x01
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 3
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("msg_class", 8),
@@ -89,7 +89,7 @@ class CfgMsg(ubx.Message):
     MSG_ID: ClassVar[int] = 0x01
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 8
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("msg_class", 8),

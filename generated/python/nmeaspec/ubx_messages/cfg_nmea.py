@@ -26,7 +26,7 @@ class CfgNmeaPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x17
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_nmea",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -44,7 +44,7 @@ class CfgNmea(ubx.Message):
     MSG_ID: ClassVar[int] = 0x17
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 20
-    VERSION: ClassVar[int | None] = 1
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 11, 0x01)
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield(
@@ -160,7 +160,7 @@ class CfgNmeaV0(ubx.Message):
     MSG_ID: ClassVar[int] = 0x17
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 12
-    VERSION: ClassVar[int | None] = 0
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 11, 0x00)
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield(
@@ -270,7 +270,7 @@ class CfgNmeaDeprecated(ubx.Message):
     MSG_ID: ClassVar[int] = 0x17
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 4
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield(

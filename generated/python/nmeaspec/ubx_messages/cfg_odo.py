@@ -26,7 +26,7 @@ class CfgOdoPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x1E
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_odo",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -45,7 +45,7 @@ class CfgOdo(ubx.Message):
     MSG_ID: ClassVar[int] = 0x1E
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 20
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

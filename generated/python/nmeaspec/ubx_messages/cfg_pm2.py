@@ -26,7 +26,7 @@ class CfgPm2Poll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x3B
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_pm2",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -44,7 +44,7 @@ class CfgPm2(ubx.Message):
     MSG_ID: ClassVar[int] = 0x3B
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 48
-    VERSION: ClassVar[int | None] = 2
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 0, 0x02)
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),
@@ -141,7 +141,7 @@ class CfgPm2V1(ubx.Message):
     MSG_ID: ClassVar[int] = 0x3B
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 44
-    VERSION: ClassVar[int | None] = 1
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 0, 0x01)
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

@@ -26,7 +26,7 @@ class CfgRinvPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x34
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_rinv",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -53,7 +53,7 @@ class CfgRinv(ubx.Message):
     MSG_ID: ClassVar[int] = 0x34
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield("flags", 8, parts=((0, ais.Flag("dump", 1)), (1, ais.Flag("binary", 1)),)),

@@ -25,7 +25,7 @@ class CfgRxmPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x11
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_rxm",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -43,7 +43,7 @@ class CfgRxm(ubx.Message):
     MSG_ID: ClassVar[int] = 0x11
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 2
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Spare("reserved1", 8),

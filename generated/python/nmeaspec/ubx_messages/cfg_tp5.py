@@ -25,7 +25,7 @@ class CfgTp5Poll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x31
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_tp5",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -43,7 +43,7 @@ class CfgTp5PollIndex(ubx.Message):
     MSG_ID: ClassVar[int] = 0x31
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 1
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_tp5",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("tp_idx", 8),
@@ -67,7 +67,7 @@ class CfgTp5(ubx.Message):
     MSG_ID: ClassVar[int] = 0x31
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 32
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("tp_idx", 8),

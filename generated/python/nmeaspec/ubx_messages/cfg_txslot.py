@@ -26,7 +26,7 @@ class CfgTxslotPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x53
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_txslot",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -53,7 +53,7 @@ class CfgTxslot(ubx.Message):
     MSG_ID: ClassVar[int] = 0x53
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = 16
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

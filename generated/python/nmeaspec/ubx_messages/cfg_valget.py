@@ -35,7 +35,7 @@ class CfgValgetPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x8B
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = 0
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 0, 0x00)
     REPLIES: ClassVar[tuple[str, ...]] = ("cfg_valget", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),
@@ -71,7 +71,7 @@ class CfgValget(ubx.Message):
     MSG_ID: ClassVar[int] = 0x8B
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = 1
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 0, 0x01)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

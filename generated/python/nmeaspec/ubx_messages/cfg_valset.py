@@ -25,7 +25,7 @@ class CfgValsetV0(ubx.Message):
     MSG_ID: ClassVar[int] = 0x8A
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = 0
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 0, 0x00)
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),
@@ -68,7 +68,7 @@ class CfgValset(ubx.Message):
     MSG_ID: ClassVar[int] = 0x8A
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = 1
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 0, 0x01)
     REPLIES: ClassVar[tuple[str, ...]] = ("ack_ack", "ack_nak")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

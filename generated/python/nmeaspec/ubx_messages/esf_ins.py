@@ -25,7 +25,7 @@ class EsfInsPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x15
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("esf_ins",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -43,7 +43,7 @@ class EsfIns(ubx.Message):
     MSG_ID: ClassVar[int] = 0x15
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 36
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield(

@@ -26,7 +26,7 @@ class HnrInsPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x02
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("hnr_ins",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -45,7 +45,7 @@ class HnrIns(ubx.Message):
     MSG_ID: ClassVar[int] = 0x02
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 36
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield(

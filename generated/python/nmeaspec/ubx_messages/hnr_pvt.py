@@ -28,7 +28,7 @@ class HnrPvtPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x00
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("hnr_pvt",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -47,7 +47,7 @@ class HnrPvt(ubx.Message):
     MSG_ID: ClassVar[int] = 0x00
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 72
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

@@ -25,7 +25,7 @@ class LogFindtime(ubx.Message):
     MSG_ID: ClassVar[int] = 0x0E
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 10
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("log_findtime_response",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),
@@ -72,7 +72,7 @@ class LogFindtimeResponse(ubx.Message):
     MSG_ID: ClassVar[int] = 0x0E
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 8
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

@@ -26,7 +26,7 @@ class LogRetrieve(ubx.Message):
     MSG_ID: ClassVar[int] = 0x09
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 12
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("log_retrievepos", "log_retrievestring")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("start_number", 32),

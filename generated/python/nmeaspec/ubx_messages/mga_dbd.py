@@ -26,7 +26,7 @@ class MgaDbdPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x80
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("mga_dbd",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -45,7 +45,7 @@ class MgaDbd(ubx.Message):
     MSG_ID: ClassVar[int] = 0x80
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Spare("reserved1", 96),

@@ -26,7 +26,7 @@ class MonCommsPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x36
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("mon_comms",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -91,7 +91,7 @@ class MonComms(ubx.Message):
     MSG_ID: ClassVar[int] = 0x36
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

@@ -26,7 +26,7 @@ class MonHwPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x09
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("mon_hw",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -53,7 +53,7 @@ class MonHw(ubx.Message):
     MSG_ID: ClassVar[int] = 0x09
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 60
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield("pin_sel", 32),

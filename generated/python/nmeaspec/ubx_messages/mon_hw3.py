@@ -26,7 +26,7 @@ class MonHw3Poll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x37
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("mon_hw3",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -75,7 +75,7 @@ class MonHw3(ubx.Message):
     MSG_ID: ClassVar[int] = 0x37
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

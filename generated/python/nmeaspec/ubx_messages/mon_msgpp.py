@@ -26,7 +26,7 @@ class MonMsgppPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x06
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("mon_msgpp",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -101,7 +101,7 @@ class MonMsgpp(ubx.Message):
     MSG_ID: ClassVar[int] = 0x06
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 120
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Group("msg1", MonMsgppMsg1Entry, (

@@ -25,7 +25,7 @@ class MonPatchPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x27
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("mon_patch",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -61,7 +61,7 @@ class MonPatch(ubx.Message):
     MSG_ID: ClassVar[int] = 0x27
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 16),

@@ -26,7 +26,7 @@ class MonRfPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x38
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("mon_rf",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -81,7 +81,7 @@ class MonRf(ubx.Message):
     MSG_ID: ClassVar[int] = 0x38
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

@@ -26,7 +26,7 @@ class MonRxbufPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x07
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("mon_rxbuf",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -69,7 +69,7 @@ class MonRxbuf(ubx.Message):
     MSG_ID: ClassVar[int] = 0x07
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 24
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Group("pending", MonRxbufPendingEntry, (

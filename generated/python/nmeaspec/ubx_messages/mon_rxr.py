@@ -25,7 +25,7 @@ class MonRxr(ubx.Message):
     MSG_ID: ClassVar[int] = 0x21
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 1
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Bitfield("flags", 8, parts=((0, ais.Flag("awake", 1)),)),

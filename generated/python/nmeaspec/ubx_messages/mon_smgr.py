@@ -26,7 +26,7 @@ class MonSmgrPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x2E
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("mon_smgr",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -45,7 +45,7 @@ class MonSmgr(ubx.Message):
     MSG_ID: ClassVar[int] = 0x2E
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 16
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

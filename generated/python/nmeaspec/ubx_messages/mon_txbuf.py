@@ -26,7 +26,7 @@ class MonTxbufPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x08
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("mon_txbuf",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -69,7 +69,7 @@ class MonTxbuf(ubx.Message):
     MSG_ID: ClassVar[int] = 0x08
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 28
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Group("pending", MonTxbufPendingEntry, (

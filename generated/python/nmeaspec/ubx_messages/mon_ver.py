@@ -26,7 +26,7 @@ class MonVerPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x04
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("mon_ver",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -53,7 +53,7 @@ class MonVer(ubx.Message):
     MSG_ID: ClassVar[int] = 0x04
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ubx.Chars("sw_version", 240),

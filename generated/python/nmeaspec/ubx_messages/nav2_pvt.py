@@ -30,7 +30,7 @@ class Nav2PvtPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x07
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav2_pvt",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -50,7 +50,7 @@ class Nav2Pvt(ubx.Message):
     MSG_ID: ClassVar[int] = 0x07
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 92
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

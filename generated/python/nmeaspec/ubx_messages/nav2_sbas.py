@@ -26,7 +26,7 @@ class Nav2SbasPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x32
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav2_sbas",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -69,7 +69,7 @@ class Nav2Sbas(ubx.Message):
     MSG_ID: ClassVar[int] = 0x32
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

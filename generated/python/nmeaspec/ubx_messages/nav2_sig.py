@@ -28,7 +28,7 @@ class Nav2SigPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x43
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav2_sig",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -93,7 +93,7 @@ class Nav2Sig(ubx.Message):
     MSG_ID: ClassVar[int] = 0x43
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

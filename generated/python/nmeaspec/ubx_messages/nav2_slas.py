@@ -29,7 +29,7 @@ class Nav2SlasPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x42
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav2_slas",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -65,7 +65,7 @@ class Nav2Slas(ubx.Message):
     MSG_ID: ClassVar[int] = 0x42
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

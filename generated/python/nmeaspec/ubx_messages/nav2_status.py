@@ -28,7 +28,7 @@ class Nav2StatusPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x03
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav2_status",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -47,7 +47,7 @@ class Nav2Status(ubx.Message):
     MSG_ID: ClassVar[int] = 0x03
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 16
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

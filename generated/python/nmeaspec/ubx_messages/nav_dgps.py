@@ -26,7 +26,7 @@ class NavDgpsPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x31
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav_dgps",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -65,7 +65,7 @@ class NavDgps(ubx.Message):
     MSG_ID: ClassVar[int] = 0x31
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

@@ -25,7 +25,7 @@ class NavOdoPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x09
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav_odo",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -43,7 +43,7 @@ class NavOdo(ubx.Message):
     MSG_ID: ClassVar[int] = 0x09
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 20
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

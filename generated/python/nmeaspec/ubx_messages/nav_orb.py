@@ -28,7 +28,7 @@ class NavOrbPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x34
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav_orb",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -88,7 +88,7 @@ class NavOrb(ubx.Message):
     MSG_ID: ClassVar[int] = 0x34
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

@@ -28,7 +28,7 @@ class NavPvtPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x07
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav_pvt",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -47,7 +47,7 @@ class NavPvt(ubx.Message):
     MSG_ID: ClassVar[int] = 0x07
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 92
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

@@ -26,7 +26,7 @@ class NavRelposnedPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x3C
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav_relposned", "nav_relposned_v0")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -44,7 +44,7 @@ class NavRelposned(ubx.Message):
     MSG_ID: ClassVar[int] = 0x3C
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 64
-    VERSION: ClassVar[int | None] = 1
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 0, 0x01)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),
@@ -210,7 +210,7 @@ class NavRelposnedV0(ubx.Message):
     MSG_ID: ClassVar[int] = 0x3C
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 40
-    VERSION: ClassVar[int | None] = 0
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 0, 0x00)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

@@ -28,7 +28,7 @@ class NavSatPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x35
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav_sat",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -102,7 +102,7 @@ class NavSat(ubx.Message):
     MSG_ID: ClassVar[int] = 0x35
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

@@ -25,7 +25,7 @@ class NavSbasPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x32
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav_sbas",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -67,7 +67,7 @@ class NavSbas(ubx.Message):
     MSG_ID: ClassVar[int] = 0x32
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

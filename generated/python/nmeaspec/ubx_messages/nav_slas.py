@@ -28,7 +28,7 @@ class NavSlasPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x42
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav_slas",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -63,7 +63,7 @@ class NavSlas(ubx.Message):
     MSG_ID: ClassVar[int] = 0x42
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

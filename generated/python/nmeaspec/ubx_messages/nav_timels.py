@@ -26,7 +26,7 @@ class NavTimelsPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x26
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav_timels",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -45,7 +45,7 @@ class NavTimels(ubx.Message):
     MSG_ID: ClassVar[int] = 0x26
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 24
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

@@ -28,7 +28,7 @@ class RxmMeasxPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x14
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("rxm_measx",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -77,7 +77,7 @@ class RxmMeasx(ubx.Message):
     MSG_ID: ClassVar[int] = 0x14
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

@@ -25,7 +25,7 @@ class RxmPmreq(ubx.Message):
     MSG_ID: ClassVar[int] = 0x41
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 16
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),
@@ -81,7 +81,7 @@ class RxmPmreqShort(ubx.Message):
     MSG_ID: ClassVar[int] = 0x41
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 8
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("duration", 32),

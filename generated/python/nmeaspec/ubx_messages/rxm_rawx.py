@@ -28,7 +28,7 @@ class RxmRawxPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x15
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("rxm_rawx",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -95,7 +95,7 @@ class RxmRawx(ubx.Message):
     MSG_ID: ClassVar[int] = 0x15
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ubx.Float("rcv_tow", 64),

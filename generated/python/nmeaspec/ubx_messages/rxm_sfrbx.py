@@ -36,7 +36,7 @@ class RxmSfrbx(ubx.Message):
     MSG_ID: ClassVar[int] = 0x13
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Code("gnss_id", 8, enum=UbxGnssId),

@@ -26,7 +26,7 @@ class RxmSpartnkeyPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x36
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("rxm_spartnkey",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -67,7 +67,7 @@ class RxmSpartnkey(ubx.Message):
     MSG_ID: ClassVar[int] = 0x36
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

@@ -26,7 +26,7 @@ class RxmSvsiPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x20
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("rxm_svsi",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -75,7 +75,7 @@ class RxmSvsi(ubx.Message):
     MSG_ID: ClassVar[int] = 0x20
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),

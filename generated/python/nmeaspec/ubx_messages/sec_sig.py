@@ -26,7 +26,7 @@ class SecSigPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x09
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("sec_sig", "sec_sig_v1")
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -56,7 +56,7 @@ class SecSig(ubx.Message):
     MSG_ID: ClassVar[int] = 0x09
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = 2
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 0, 0x02)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),
@@ -114,7 +114,7 @@ class SecSigV1(ubx.Message):
     MSG_ID: ClassVar[int] = 0x09
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 12
-    VERSION: ClassVar[int | None] = 1
+    SELECT: ClassVar[tuple[str, int, int] | None] = ("version", 0, 0x01)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

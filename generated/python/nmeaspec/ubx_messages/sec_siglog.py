@@ -25,7 +25,7 @@ class SecSiglogPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x10
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("sec_siglog",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -57,7 +57,7 @@ class SecSiglog(ubx.Message):
     MSG_ID: ClassVar[int] = 0x10
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

@@ -26,7 +26,7 @@ class TimSmeasPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x13
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("tim_smeas",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -74,7 +74,7 @@ class TimSmeas(ubx.Message):
     MSG_ID: ClassVar[int] = 0x13
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input", "output")
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

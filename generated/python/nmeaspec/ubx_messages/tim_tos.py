@@ -28,7 +28,7 @@ class TimTosPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x12
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("tim_tos",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -47,7 +47,7 @@ class TimTos(ubx.Message):
     MSG_ID: ClassVar[int] = 0x12
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 56
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("version", 8),

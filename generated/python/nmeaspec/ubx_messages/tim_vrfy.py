@@ -26,7 +26,7 @@ class TimVrfyPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x06
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("tim_vrfy",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -45,7 +45,7 @@ class TimVrfy(ubx.Message):
     MSG_ID: ClassVar[int] = 0x06
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 20
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Signed("itow", 32),

@@ -26,7 +26,7 @@ class UpdSosPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x14
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("upd_sos",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -44,7 +44,7 @@ class UpdSosCommand(ubx.Message):
     MSG_ID: ClassVar[int] = 0x14
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("input",)
     LENGTH: ClassVar[int | None] = 4
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("upd_sos",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("cmd", 8),
@@ -71,7 +71,7 @@ class UpdSos(ubx.Message):
     MSG_ID: ClassVar[int] = 0x14
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = 8
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("cmd", 8),

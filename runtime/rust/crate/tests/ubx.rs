@@ -13,7 +13,7 @@ use std::path::Path;
 
 use nmeaspec::stream::{Framer, Item, Protocol};
 use nmeaspec::ubx::UbxErrorKind;
-use nmeaspec::ubx_messages::{AckAck, Message, NavPvt};
+use nmeaspec::ubx_messages::{AckAck, Message, MgaIniClkd, MgaIniFreq, NavPvt};
 use nmeaspec::{casic_messages, sbf_messages, sirf_messages, skytraq_messages};
 
 const CRATE: &str = env!("CARGO_MANIFEST_DIR");
@@ -128,6 +128,19 @@ fn a_message_built_in_code_encodes_to_its_frame() {
     let mut buf = [0u8; 10];
     assert_eq!(ack.encode(&mut buf).unwrap(), [0xB5, 0x62, 0x05, 0x01, 0x02, 0x00, 0x06, 0x00, 0x0E, 0x37]);
     assert_eq!(ack.encode(&mut [0u8; 9]).unwrap_err().kind, UbxErrorKind::BufferTooSmall);
+}
+
+#[test]
+fn a_layout_built_with_new_carries_its_type_byte() {
+    // MGA-INI's CLKD (type 0x20) and FREQ (0x21) share a length: new() sets the type that picks it.
+    let clkd = MgaIniClkd { clk_d: -1234, clk_d_acc: 100, ..MgaIniClkd::new() };
+    let frame = unhex("b5 62 13 40 0c 00 20 00 00 00 2e fb ff ff 64 00 00 00 0a ea");
+    assert_eq!(clkd.encode(&mut [0u8; 20]).unwrap(), &frame[..]);
+    assert_eq!(MgaIniClkd::SELECT, Some(("type", 0, 0x20)));
+    assert!(matches!(Message::from_frame(&frame), Ok(Message::MgaIniClkd(m)) if m == clkd));
+    let freq = MgaIniFreq::new();
+    let mut buf = [0u8; 20];
+    assert!(matches!(Message::from_frame(freq.encode(&mut buf).unwrap()), Ok(Message::MgaIniFreq(_))));
 }
 
 /// A frame of SkyTraq, SiRF or CASIC decoded by its protocol's module: its JSON and the frame it

@@ -51,8 +51,9 @@ impl<'a> AckAck<'a> {
     pub const MSG_ID: u8 = 0x01;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(2);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.
@@ -102,8 +103,9 @@ impl<'a> NavDemoPoll<'a> {
     pub const MSG_ID: u8 = 0x7e;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = Some(0);
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["poll"];
     /// The layouts (ids) the receiver answers it with.
@@ -189,8 +191,9 @@ impl<'a> NavDemo<'a> {
     pub const MSG_ID: u8 = 0x7e;
     /// The payload's bytes, when the layout fixes them.
     pub const LENGTH: Option<usize> = None;
-    /// The value of its `version` field that tells it from another layout.
-    pub const VERSION: Option<u8> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
     /// Who sends it: poll and input go to the receiver, output comes from it.
     pub const DIRECTIONS: &'static [&'static str] = &["output"];
     /// The layouts (ids) the receiver answers it with.

@@ -26,7 +26,7 @@ class NavDemoPoll(ubx.Message):
     MSG_ID: ClassVar[int] = 0x7E
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("poll",)
     LENGTH: ClassVar[int | None] = 0
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("nav_demo",)
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = ()
 
@@ -55,7 +55,7 @@ class NavDemo(ubx.Message):
     MSG_ID: ClassVar[int] = 0x7E
     DIRECTIONS: ClassVar[tuple[str, ...]] = ("output",)
     LENGTH: ClassVar[int | None] = None
-    VERSION: ClassVar[int | None] = None
+    SELECT: ClassVar[tuple[str, int, int] | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     LAYOUT: ClassVar[tuple[ais.Item, ...]] = (
         ais.Unsigned("itow", 32),
