@@ -14,7 +14,7 @@ import yaml
 from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
-from .field_types import BIT_TYPES
+from .field_types import BIT_TYPES, float_bits
 from .model import (BinaryExample, BinaryMessage, BinaryProtocol, BitfieldDef, Bits, BitValue, ConfigDatabase,
                     ConfigEnum, ConfigGroup, ConfigKey, EnumDef, EnumValue,
                     Example, Fact, Ones, Field, FixExample, GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, Payload, PayloadCase,
@@ -321,11 +321,20 @@ def _payload_field(data: dict[str, Any], origin: Origin) -> PayloadField:
                         doc=data.get("doc", data["name"]), origin=origin, unit=data.get("unit"),
                         divisor=data.get("divisor"), base=data.get("base"), enum_id=data.get("enum"),
                         optional=bool(data.get("optional", False)),
-                        special=[Special(s["raw"], s["id"], s["doc"]) for s in data.get("special", [])],
+                        special=[_special(s, bits) for s in data.get("special", [])],
                         dispatch=data.get("dispatch", []),
                         parts=[_part(p, Origin(origin.file, origin.path + ("parts", i)))
                                for i, p in enumerate(data.get("parts", []))],
                         count=_count(data.get("count")), ref=data.get("ref"))
+
+
+def _special(data: dict[str, Any], bits: int | None) -> Special:
+    """A special value: a raw integer, or (a float field's) the float `value`, whose raw is its
+    bit pattern in the field's width (-1 when that width has no such finite float: B002 says so)."""
+    if "value" not in data:
+        return Special(data["raw"], data["id"], data["doc"])
+    raw = float_bits(data["value"], bits or 64)
+    return Special(-1 if raw is None else raw, data["id"], data["doc"], float(data["value"]))
 
 
 def _count(data: Any) -> Any:

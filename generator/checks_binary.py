@@ -109,6 +109,7 @@ def _check_binary_items(layout: Payload, report: Report) -> None:
             if f.bits is not None and f.bits > 8 * 255 and not f.bit_type.size:
                 report(f.origin, "B002", f"field {f.id}: {f.bits // 8} bytes, a fixed text, bytes or reserved field "
                        "has at most 255 (the C descriptor's byte): split it", "size")
+            _check_float_specials(f, report)
             if f.parts and not f.bit_type.has_parts:
                 report(f.origin, "B002", f"field {f.id}: only a bitfield word (x1, x2, x4) has parts", "parts")
             _check_parts(f, report)
@@ -119,6 +120,26 @@ def _check_binary_items(layout: Payload, report: Report) -> None:
                        "before it", "count")
         if isinstance(item, PayloadField):
             seen.update({f.id: f for f in (item, *item.parts)})
+
+
+def _check_float_specials(f: PayloadField, report: Report) -> None:
+    """A003 of floats: a float field's special value is a float (`value`), a finite one in the
+    field's width (it stands for the float of that width nearest to it), and no id the runtimes
+    give a NaN or an infinity; an integer's is a raw integer."""
+    floating = f.type in ("r4", "r8")
+    for i, s in enumerate(f.special):
+        if floating and s.value is None:
+            report(f.origin, "A003", f"field {f.id}: a special value of a {f.type} field is its float (`value`), "
+                   "not a raw integer", "special", i, "raw")
+        elif not floating and s.value is not None:
+            report(f.origin, "A003", f"field {f.id}: a special value of a {f.type} field is its raw integer (`raw`), "
+                   "not a float", "special", i, "value")
+        elif floating and s.raw < 0:
+            report(f.origin, "A003", f"field {f.id}: special value {s.value!r} is no finite {f.type} float",
+                   "special", i, "value")
+        if floating and s.id in ("nan", "inf"):
+            report(f.origin, "A003", f"field {f.id}: special value id {s.id} is what a {s.id.upper()} reads as",
+                   "special", i, "id")
 
 
 def _check_parts(f: PayloadField, report: Report) -> None:

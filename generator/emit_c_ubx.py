@@ -52,8 +52,8 @@ def _doc(f: PayloadField) -> str:
     scale = f"; a code of {f.enum.id} (its JSON: the code's id)" if f.enum is not None else ""
     if f.scaled:
         scale = f"; raw, value = raw{f' / {f.divisor}' if f.divisor else ''}{f' + {f.base}' if f.base else ''}"
-        if f.special:   # its special values, which the JSON gives by id
-            scale += "; " + ", ".join(f"{s.raw}: {s.id}" for s in f.special)
+    if f.special:   # its special values, which the JSON gives by id
+        scale += "; " + ", ".join(f"{s.shown}: {s.id}" for s in f.special)
     return (f.name + unit + scale).replace("*/", "* /")
 
 
@@ -97,16 +97,19 @@ class _Layout:
         extra = "NULL"
         if f.enum is not None:   # its enum's table (enum_table), one for every field of it
             extra, print_as = f"&ubx_enum_{f.enum.id}", "CODE"
-        elif f.scaled and f.type not in ("r4", "r8"):
+        elif f.scaled or f.special:   # a float's special values: their bit patterns (raw), no scale
             specials = "NULL, 0"
             if f.special:
-                rows = ", ".join(f"{{{s.raw}, {_c_str(s.id)}}}" for s in f.special)
+                # a float's bit pattern as the int64_t of its bits (an r8's may have the top bit set)
+                rows = ", ".join(f"{{{s.raw - (1 << 64) if s.raw >= 1 << 63 else s.raw}, {_c_str(s.id)}}}"
+                                 for s in f.special)
                 self.tables.append(f"static const nmea_ubx_special {self.prefix}_{f.id}_specials[] = {{{rows}}};")
                 specials = f"{self.prefix}_{f.id}_specials, {len(f.special)}"
             real = "true" if f.divisor is not None or isinstance(f.base, float) else "false"
             self.tables.append(f"static const nmea_ubx_scale {self.prefix}_{f.id}_scale = "
                                f"{{{float(f.divisor or 1)!r}, {float(f.base or 0)!r}, {real}, {specials}}};")
-            extra, print_as = f"&{self.prefix}_{f.id}_scale", "SCALED"
+            extra = f"&{self.prefix}_{f.id}_scale"
+            print_as = "NUMBER" if f.type in ("r4", "r8") else "SCALED"
         self.rows.append(self.row(f.id, extra, f"offsetof({self.struct}, {name})", has, after_bytes, kind, size, width, low,
                                   print_as, optional))
 

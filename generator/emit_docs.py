@@ -149,7 +149,7 @@ def payload_rows(payload: Payload) -> list[dict]:
     def row(f: PayloadField, where: str, when: str, prefix: str = "") -> dict:
         t = f.bit_type
         kind = f"{t.doc_name} [{f.enum.id}](../enums/{f.enum.id}.md)" if f.enum else t.doc_name
-        special = "; ".join(f"{s.raw} `{s.id}`: {s.doc}" for s in f.special)
+        special = "; ".join(f"{s.shown} `{s.id}`: {s.doc}" for s in f.special)
         return {"bits": where, "width": str(f.bits) if f.bits else "rest", "id": prefix + f.id, "name": cell(f.name),
                 "type": kind + (" (optional)" if f.optional else ""), "when": when,
                 "scale": " ".join([f"÷ {f.divisor}"] * bool(f.divisor) + [f"+ {f.base}"] * (f.base is not None)),

@@ -24,7 +24,7 @@ def member_type(f: PayloadField) -> str:
     base = f"{f.enum.camel} | int" if f.enum else f.bit_type.python_type
     if f.bit_type.numeric and (f.divisor or isinstance(f.base, float)):
         base = "float"
-    return base + (" | ais.Special" if f.special else "") + " | None"
+    return base + (" | ais.Special" if f.special and "ais.Special" not in base else "") + " | None"
 
 
 def entry_class(payload: Payload, group: PayloadGroup) -> str:
@@ -118,7 +118,8 @@ def member(f: PayloadField) -> dict:
     unit = f" [{f.unit}]" if f.unit else ""
     scale = f" (raw / {f.divisor}{f' + {f.base}' if f.base is not None else ''})" if f.divisor else \
         f" (raw + {f.base})" if f.base is not None else ""
-    special = f" Special: {', '.join(f'{s.id} ({s.raw})' for s in f.special)}." if f.special else ""
+    special = f" Special: {', '.join(f'{s.id} ({s.shown})' for s in f.special)}." \
+        if f.special else ""
     return {"line": f"{f.id}: {member_type(f)} = None",
             "doc": docstring(f"{f.name}{unit}{scale}{'' if f.doc == f.name else ': ' + f.doc}.{special}"
                              .replace("..", "."), 4)}

@@ -40,7 +40,7 @@ def _check(f: PayloadField) -> None:
     where = f"{f.origin.file}: {f.id}"
     if f.base is not None:
         raise NotImplementedError(f"{where}: bases of binary fields have no Rust code yet")
-    if f.special and f.type not in ("u1", "u2", "u4", "i1", "i2", "i4"):
+    if f.special and f.type not in ("u1", "u2", "u4", "i1", "i2", "i4", "r4", "r8"):
         raise NotImplementedError(f"{where}: special values of a {f.type} field have no Rust code yet")
     if f.type in ("ch", "bytes") and f.bits is not None and f.bits % 8:
         raise NotImplementedError(f"{where}: a width in bits")
@@ -53,17 +53,24 @@ def member_name(f: PayloadField) -> str:
     """A field's member: its id, or `<id>_raw` for a raw integer read through an accessor (a
     divisor, special values, an enum; an id that ends in `_`, as MGA-GLO's `lambda_` dodges
     Python's keyword, without it: `lambda_raw`)."""
-    return f"{f.id.rstrip('_')}_raw" if f.scaled or f.enum is not None else ident(f.id)
+    return f"{f.id.rstrip('_')}_raw" if f.scaled or f.special or f.enum is not None else ident(f.id)
 
 
 def _specials(f: PayloadField) -> str:
-    """The special values of a field as the runtime's table: `&[(raw, "id"), ...]`."""
+    """The special values of a field as the runtime's table: `&[(raw, "id"), ...]` (a float's: its
+    bit patterns, in hex)."""
+    if f.type in ("r4", "r8"):
+        return "&[" + ", ".join(f"(0x{s.raw:X}, {rust_str(s.id)})" for s in f.special) + "]"
     return "&[" + ", ".join(f"({s.raw}, {rust_str(s.id)})" for s in f.special) + "]"
 
 
 def _reading(f: PayloadField, raw: str) -> tuple[str, str]:
     """The expression of a field with special values as an `ais::Reading` (of its value divided,
     or of its integer) from its raw member's expression, and its type."""
+    if f.type == "r4":
+        return f"ubx::float_reading(u64::from({raw}.to_bits()), f64::from({raw}), {_specials(f)})", "ais::Reading<f64>"
+    if f.type == "r8":
+        return f"ubx::float_reading({raw}.to_bits(), {raw}, {_specials(f)})", "ais::Reading<f64>"
     wide = f"i64::from({raw})"
     if f.divisor is not None:
         return f"ais::scaled({wide}, {float(f.divisor)!r}, 0.0, {_specials(f)})", "ais::Reading<f64>"
@@ -142,7 +149,8 @@ class _Record:
             self.optional = True
         certain = not self.optional
         unit = f" [{f.unit}]" if f.unit else ""
-        self.members.append(f"/// {f.name}{unit}.\npub {name}: {kind if certain else f'Option<{kind}>'},")
+        told = f", as sent (`{ident(f.id)}()`: the float or its special value)" if f.special and f.type in ("r4", "r8") else ""
+        self.members.append(f"/// {f.name}{unit}{told}.\npub {name}: {kind if certain else f'Option<{kind}>'},")
         if width is None:
             read = f"r.left({after(following) // 8})"
         elif f.type in ("ch", "bytes"):
@@ -186,6 +194,10 @@ class _Record:
         key = rust_str(f.id)
         if f.enum is not None:
             return f"j.code({key}, ais::code::<{f.enum.camel}>(u64::from({value})).map(CodeEnum::id), u64::from({value}))?;"
+        if f.special and f.type in ("r4", "r8"):   # the float or its special value's id
+            reading, _ = _reading(f, value)
+            return (f"match {reading} {{ ais::Reading::Value(x) => ubx::json_float(j, {key}, x)?, "
+                    f"ais::Reading::Special(id) => j.text({key}, id)?, }}")
         if f.special:   # the value (divided) or the special value's id, then the raw integer
             reading, _ = _reading(f, value)
             number = "ubx::json_float(j, " + key + ", x)?" if f.divisor is not None else f"j.int({key}, x)?"
@@ -226,6 +238,8 @@ class _Record:
         elif f.special:
             expr, kind_of = _reading(f, "raw")
             doc = f"/// {f.name}{unit}{f': the raw integer divided by {f.divisor}' if f.divisor else ''}, or its special value."
+            if f.type in ("r4", "r8"):
+                doc = f"/// {f.name}{unit}: the float, or the special value whose bits it holds."
             if certain:
                 self.accessors.append(f"{doc}\npub fn {ident(f.id)}(&self) -> {kind_of} {{ let raw = self.{member_name(f)}; {expr} }}")
             else:

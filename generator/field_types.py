@@ -485,13 +485,32 @@ class BitChars(BitType):
         return data.decode("latin-1") if self.name == "latin1" else data.decode("utf-8", "surrogateescape")
 
 
+def float_bits(value: float, bits: int) -> int | None:
+    """The bit pattern (unsigned) of the float of `bits` bits (32, 64) nearest to `value`; None
+    when that width has no finite float for it (a NaN, an infinity, beyond the largest single)."""
+    try:
+        packed = struct.pack("<f" if bits == 32 else "<d", value)
+    except OverflowError:
+        return None
+    raw = int.from_bytes(packed, "little")
+    unpacked = struct.unpack("<f" if bits == 32 else "<d", packed)[0]
+    return raw if math.isfinite(unpacked) else None
+
+
 @dataclass(frozen=True)
 class ByteFloat(BitType):
-    """r4, r8: an IEEE 754 float, little endian."""
+    """r4, r8: an IEEE 754 float, little endian; a special value (its bit pattern in the field's
+    width) is named, never a number."""
 
     def raw(self, bits: str) -> Any:
         value = struct.unpack("<f" if len(bits) == 32 else "<d", int(bits, 2).to_bytes(len(bits) // 8, "little"))[0]
         return value if math.isfinite(value) else str(value)   # JSON has no NaN or infinity
+
+    def json(self, f: Any, raw: Any) -> dict[str, Any]:
+        if f.special and isinstance(raw, float):
+            bits = float_bits(raw, f.bits)
+            return {f.id: next((s.id for s in f.special if s.raw == bits), raw)}
+        return {f.id: raw}
 
 
 @dataclass(frozen=True)

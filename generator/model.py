@@ -662,10 +662,19 @@ class TableDef:
 
 @dataclass
 class Special:
-    """A raw value of a bit field that is no number: `not_available`, `manual_input`, ..."""
+    """A raw value of a bit field that is no number: `not_available`, `manual_input`, ... Of a float
+    field (r4, r8), the spec writes the float (`value`) and `raw` is the bit pattern, in the field's
+    own width, of the float of that width nearest to it (field_types.float_bits): what the
+    runtimes compare (SBF's -2e10: 0xD09502F9 as an r4, 0xC212A05F20000000 as an r8)."""
     raw: int
     id: str
     doc: str
+    value: float | None = None   # a float field's special value as the spec writes it
+
+    @property
+    def shown(self) -> str:
+        """The special value in docs: its raw integer, or a float's value (-2e+10)."""
+        return str(self.raw) if self.value is None else f"{self.value:g}"
 
 
 @dataclass(frozen=True)
@@ -713,8 +722,9 @@ class PayloadField:
 
     @property
     def scaled(self) -> bool:
-        """A number that has a value in a unit besides its raw integer (a divisor or special values)."""
-        return self.divisor is not None or self.base is not None or bool(self.special)
+        """A number that has a value in a unit besides its raw integer (a divisor or special values);
+        a float's special values are its own value's bit patterns, no raw integer beside it."""
+        return self.divisor is not None or self.base is not None or bool(self.special) and self.type not in ("r4", "r8")
 
     @property
     def camel(self) -> str:

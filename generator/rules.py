@@ -195,7 +195,9 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "`dispatch` with data.",
          "Correct the width or the type, or remove the attribute."),
     Rule("A003", "special values fit their field",
-         "Each special value is a raw value the field's bits hold (two's complement for int), named once.",
+         "Each special value is a raw value the field's bits hold (two's complement for int), named once; "
+         "a float field's (r4, r8) is a float (`value`), finite in the field's width, whose nearest float of "
+         "that width the runtimes compare bit for bit, its id neither nan nor inf.",
          "Correct the raw value or the width."),
     Rule("A004", "ids are unique in a message",
          "No two fields, groups or choices of a message share an id, across the cases of its choices too; no two "

@@ -119,7 +119,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest e67e71b7b83c8cff)
+//   spec/enums/ubx_gnss_id.yaml (digest e5f1ea840bf2bc37)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -806,6 +806,24 @@ static void ubx_json_field(ubx_json_out *j, const nmea_ubx_item *it, const uint8
             ubx_json_big(j, at, it->size);
         return;
     case NMEA_UBX_ITEM_FLOAT:
+        if (it->extra) { /* a special value (its bit pattern in the field's width): its id */
+            const nmea_ubx_scale *s = (const nmea_ubx_scale *)it->extra;
+            uint64_t bits = 0;
+            if (it->size == 4) {
+                uint32_t bits32;
+                memcpy(&bits32, at, 4);
+                bits = bits32;
+            } else {
+                memcpy(&bits, at, 8);
+            }
+            for (k = 0; k < s->n_specials; k++)
+                if ((uint64_t)s->specials[k].raw == bits) {
+                    ubx_json_puts(j, "\"");
+                    ubx_json_puts(j, s->specials[k].id);
+                    ubx_json_puts(j, "\"");
+                    return;
+                }
+        }
         if (it->size == 4) {
             float f;
             memcpy(&f, at, 4);
@@ -5938,6 +5956,10 @@ static const nmea_ubx_scale ubx_sbf_pvt_dop_pdop_scale = {100.0, 0.0, true, NULL
 static const nmea_ubx_scale ubx_sbf_pvt_dop_tdop_scale = {100.0, 0.0, true, NULL, 0};
 static const nmea_ubx_scale ubx_sbf_pvt_dop_hdop_scale = {100.0, 0.0, true, NULL, 0};
 static const nmea_ubx_scale ubx_sbf_pvt_dop_vdop_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_special ubx_sbf_pvt_dop_hpl_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_dop_hpl_scale = {1.0, 0.0, false, ubx_sbf_pvt_dop_hpl_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_dop_vpl_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_dop_vpl_scale = {1.0, 0.0, false, ubx_sbf_pvt_dop_vpl_specials, 1};
 static const nmea_ubx_item ubx_sbf_pvt_dop_items[] = {
     {"tow", &ubx_sbf_pvt_dop_tow_scale, offsetof(nmea_ubx_sbf_pvt_dop, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"wnc", &ubx_sbf_pvt_dop_wnc_scale, offsetof(nmea_ubx_sbf_pvt_dop, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
@@ -5947,8 +5969,8 @@ static const nmea_ubx_item ubx_sbf_pvt_dop_items[] = {
     {"tdop", &ubx_sbf_pvt_dop_tdop_scale, offsetof(nmea_ubx_sbf_pvt_dop, tdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
     {"hdop", &ubx_sbf_pvt_dop_hdop_scale, offsetof(nmea_ubx_sbf_pvt_dop, hdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
     {"vdop", &ubx_sbf_pvt_dop_vdop_scale, offsetof(nmea_ubx_sbf_pvt_dop, vdop), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
-    {"hpl", NULL, offsetof(nmea_ubx_sbf_pvt_dop, hpl), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"vpl", NULL, offsetof(nmea_ubx_sbf_pvt_dop, vpl), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+    {"hpl", &ubx_sbf_pvt_dop_hpl_scale, offsetof(nmea_ubx_sbf_pvt_dop, hpl), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vpl", &ubx_sbf_pvt_dop_vpl_scale, offsetof(nmea_ubx_sbf_pvt_dop, vpl), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* SBF 4006 rev 2: pvt_cartesian */
@@ -5956,6 +5978,26 @@ static const nmea_ubx_special ubx_sbf_pvt_cartesian_tow_specials[] = {{429496729
 static const nmea_ubx_scale ubx_sbf_pvt_cartesian_tow_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_tow_specials, 1};
 static const nmea_ubx_special ubx_sbf_pvt_cartesian_wnc_specials[] = {{65535, "do_not_use"}};
 static const nmea_ubx_scale ubx_sbf_pvt_cartesian_wnc_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_wnc_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_x_specials[] = {{-4462327950351532032, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_x_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_x_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_y_specials[] = {{-4462327950351532032, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_y_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_y_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_z_specials[] = {{-4462327950351532032, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_z_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_z_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_undulation_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_undulation_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_undulation_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_vx_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_vx_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_vx_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_vy_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_vy_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_vy_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_vz_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_vz_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_vz_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_cog_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_cog_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_cog_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_rx_clk_bias_specials[] = {{-4462327950351532032, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_rx_clk_bias_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_rx_clk_bias_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_cartesian_rx_clk_drift_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_cartesian_rx_clk_drift_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_rx_clk_drift_specials, 1};
 static const nmea_ubx_special ubx_sbf_pvt_cartesian_nr_sv_specials[] = {{255, "do_not_use"}};
 static const nmea_ubx_scale ubx_sbf_pvt_cartesian_nr_sv_scale = {1.0, 0.0, false, ubx_sbf_pvt_cartesian_nr_sv_specials, 1};
 static const nmea_ubx_special ubx_sbf_pvt_cartesian_reference_id_specials[] = {{65535, "do_not_use"}};
@@ -5976,16 +6018,16 @@ static const nmea_ubx_item ubx_sbf_pvt_cartesian_items[] = {
     {"auto_set", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
     {"two_d", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
     {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_pvt_cartesian, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
-    {"x", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, x), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"y", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, y), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"z", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, z), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"undulation", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, undulation), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"vx", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, vx), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"vy", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, vy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"vz", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, vz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cog", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, cog), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"rx_clk_bias", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, rx_clk_bias), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"rx_clk_drift", NULL, offsetof(nmea_ubx_sbf_pvt_cartesian, rx_clk_drift), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"x", &ubx_sbf_pvt_cartesian_x_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, x), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"y", &ubx_sbf_pvt_cartesian_y_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, y), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"z", &ubx_sbf_pvt_cartesian_z_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, z), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"undulation", &ubx_sbf_pvt_cartesian_undulation_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, undulation), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vx", &ubx_sbf_pvt_cartesian_vx_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, vx), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vy", &ubx_sbf_pvt_cartesian_vy_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, vy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vz", &ubx_sbf_pvt_cartesian_vz_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, vz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cog", &ubx_sbf_pvt_cartesian_cog_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, cog), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_clk_bias", &ubx_sbf_pvt_cartesian_rx_clk_bias_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, rx_clk_bias), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_clk_drift", &ubx_sbf_pvt_cartesian_rx_clk_drift_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, rx_clk_drift), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"time_system", &ubx_enum_sbf_time_system, offsetof(nmea_ubx_sbf_pvt_cartesian, time_system), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
     {"datum", &ubx_enum_sbf_datum, offsetof(nmea_ubx_sbf_pvt_cartesian, datum), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
     {"nr_sv", &ubx_sbf_pvt_cartesian_nr_sv_scale, offsetof(nmea_ubx_sbf_pvt_cartesian, nr_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
@@ -6021,6 +6063,26 @@ static const nmea_ubx_special ubx_sbf_pvt_geodetic_tow_specials[] = {{4294967295
 static const nmea_ubx_scale ubx_sbf_pvt_geodetic_tow_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_tow_specials, 1};
 static const nmea_ubx_special ubx_sbf_pvt_geodetic_wnc_specials[] = {{65535, "do_not_use"}};
 static const nmea_ubx_scale ubx_sbf_pvt_geodetic_wnc_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_wnc_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_latitude_specials[] = {{-4462327950351532032, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_latitude_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_latitude_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_longitude_specials[] = {{-4462327950351532032, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_longitude_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_longitude_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_height_specials[] = {{-4462327950351532032, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_height_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_height_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_undulation_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_undulation_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_undulation_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_vn_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_vn_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_vn_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_ve_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_ve_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_ve_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_vu_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_vu_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_vu_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_cog_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_cog_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_cog_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_rx_clk_bias_specials[] = {{-4462327950351532032, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_rx_clk_bias_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_rx_clk_bias_specials, 1};
+static const nmea_ubx_special ubx_sbf_pvt_geodetic_rx_clk_drift_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pvt_geodetic_rx_clk_drift_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_rx_clk_drift_specials, 1};
 static const nmea_ubx_special ubx_sbf_pvt_geodetic_nr_sv_specials[] = {{255, "do_not_use"}};
 static const nmea_ubx_scale ubx_sbf_pvt_geodetic_nr_sv_scale = {1.0, 0.0, false, ubx_sbf_pvt_geodetic_nr_sv_specials, 1};
 static const nmea_ubx_special ubx_sbf_pvt_geodetic_reference_id_specials[] = {{65535, "do_not_use"}};
@@ -6041,16 +6103,16 @@ static const nmea_ubx_item ubx_sbf_pvt_geodetic_items[] = {
     {"auto_set", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
     {"two_d", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
     {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_pvt_geodetic, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
-    {"latitude", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, latitude), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"longitude", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, longitude), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"height", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, height), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"undulation", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, undulation), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"vn", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, vn), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"ve", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, ve), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"vu", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, vu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cog", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, cog), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"rx_clk_bias", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, rx_clk_bias), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"rx_clk_drift", NULL, offsetof(nmea_ubx_sbf_pvt_geodetic, rx_clk_drift), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"latitude", &ubx_sbf_pvt_geodetic_latitude_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, latitude), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"longitude", &ubx_sbf_pvt_geodetic_longitude_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, longitude), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"height", &ubx_sbf_pvt_geodetic_height_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, height), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"undulation", &ubx_sbf_pvt_geodetic_undulation_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, undulation), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vn", &ubx_sbf_pvt_geodetic_vn_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, vn), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ve", &ubx_sbf_pvt_geodetic_ve_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, ve), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vu", &ubx_sbf_pvt_geodetic_vu_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, vu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cog", &ubx_sbf_pvt_geodetic_cog_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, cog), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_clk_bias", &ubx_sbf_pvt_geodetic_rx_clk_bias_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, rx_clk_bias), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rx_clk_drift", &ubx_sbf_pvt_geodetic_rx_clk_drift_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, rx_clk_drift), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"time_system", &ubx_enum_sbf_time_system, offsetof(nmea_ubx_sbf_pvt_geodetic, time_system), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
     {"datum", &ubx_enum_sbf_datum, offsetof(nmea_ubx_sbf_pvt_geodetic, datum), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
     {"nr_sv", &ubx_sbf_pvt_geodetic_nr_sv_scale, offsetof(nmea_ubx_sbf_pvt_geodetic, nr_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
@@ -6086,6 +6148,26 @@ static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_tow_specials[] = {{42949
 static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_tow_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_tow_specials, 1};
 static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_wnc_specials[] = {{65535, "do_not_use"}};
 static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_wnc_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_wnc_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_cov_xx_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_cov_xx_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_cov_xx_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_cov_yy_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_cov_yy_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_cov_yy_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_cov_zz_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_cov_zz_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_cov_zz_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_cov_bb_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_cov_bb_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_cov_bb_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_cov_xy_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_cov_xy_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_cov_xy_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_cov_xz_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_cov_xz_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_cov_xz_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_cov_xb_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_cov_xb_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_cov_xb_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_cov_yz_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_cov_yz_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_cov_yz_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_cov_yb_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_cov_yb_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_cov_yb_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_cartesian_cov_zb_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_cartesian_cov_zb_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_cartesian_cov_zb_specials, 1};
 static const nmea_ubx_item ubx_sbf_pos_cov_cartesian_items[] = {
     {"tow", &ubx_sbf_pos_cov_cartesian_tow_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"wnc", &ubx_sbf_pos_cov_cartesian_wnc_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
@@ -6094,16 +6176,16 @@ static const nmea_ubx_item ubx_sbf_pos_cov_cartesian_items[] = {
     {"auto_set", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
     {"two_d", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
     {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_pos_cov_cartesian, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
-    {"cov_xx", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xx), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_yy", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_yy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_zz", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_zz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_bb", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_bb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_xy", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_xz", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_xb", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_yz", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_yz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_yb", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_yb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_zb", NULL, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_zb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+    {"cov_xx", &ubx_sbf_pos_cov_cartesian_cov_xx_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xx), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_yy", &ubx_sbf_pos_cov_cartesian_cov_yy_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_yy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_zz", &ubx_sbf_pos_cov_cartesian_cov_zz_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_zz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_bb", &ubx_sbf_pos_cov_cartesian_cov_bb_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_bb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_xy", &ubx_sbf_pos_cov_cartesian_cov_xy_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_xz", &ubx_sbf_pos_cov_cartesian_cov_xz_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_xb", &ubx_sbf_pos_cov_cartesian_cov_xb_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_xb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_yz", &ubx_sbf_pos_cov_cartesian_cov_yz_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_yz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_yb", &ubx_sbf_pos_cov_cartesian_cov_yb_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_yb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_zb", &ubx_sbf_pos_cov_cartesian_cov_zb_scale, offsetof(nmea_ubx_sbf_pos_cov_cartesian, cov_zb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* SBF 5906 rev 0: pos_cov_geodetic */
@@ -6111,6 +6193,26 @@ static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_tow_specials[] = {{429496
 static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_tow_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_tow_specials, 1};
 static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_wnc_specials[] = {{65535, "do_not_use"}};
 static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_wnc_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_wnc_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_cov_latlat_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_cov_latlat_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_cov_latlat_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_cov_lonlon_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_cov_lonlon_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_cov_lonlon_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_cov_hgthgt_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_cov_hgthgt_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_cov_hgthgt_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_cov_bb_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_cov_bb_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_cov_bb_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_cov_latlon_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_cov_latlon_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_cov_latlon_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_cov_lathgt_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_cov_lathgt_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_cov_lathgt_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_cov_latb_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_cov_latb_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_cov_latb_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_cov_lonhgt_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_cov_lonhgt_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_cov_lonhgt_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_cov_lonb_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_cov_lonb_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_cov_lonb_specials, 1};
+static const nmea_ubx_special ubx_sbf_pos_cov_geodetic_cov_hb_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_pos_cov_geodetic_cov_hb_scale = {1.0, 0.0, false, ubx_sbf_pos_cov_geodetic_cov_hb_specials, 1};
 static const nmea_ubx_item ubx_sbf_pos_cov_geodetic_items[] = {
     {"tow", &ubx_sbf_pos_cov_geodetic_tow_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"wnc", &ubx_sbf_pos_cov_geodetic_wnc_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
@@ -6119,16 +6221,16 @@ static const nmea_ubx_item ubx_sbf_pos_cov_geodetic_items[] = {
     {"auto_set", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
     {"two_d", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
     {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_pos_cov_geodetic, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
-    {"cov_latlat", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_latlat), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_lonlon", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lonlon), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_hgthgt", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_hgthgt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_bb", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_bb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_latlon", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_latlon), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_lathgt", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lathgt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_latb", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_latb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_lonhgt", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lonhgt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_lonb", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lonb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_hb", NULL, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_hb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+    {"cov_latlat", &ubx_sbf_pos_cov_geodetic_cov_latlat_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_latlat), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_lonlon", &ubx_sbf_pos_cov_geodetic_cov_lonlon_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lonlon), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_hgthgt", &ubx_sbf_pos_cov_geodetic_cov_hgthgt_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_hgthgt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_bb", &ubx_sbf_pos_cov_geodetic_cov_bb_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_bb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_latlon", &ubx_sbf_pos_cov_geodetic_cov_latlon_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_latlon), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_lathgt", &ubx_sbf_pos_cov_geodetic_cov_lathgt_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lathgt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_latb", &ubx_sbf_pos_cov_geodetic_cov_latb_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_latb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_lonhgt", &ubx_sbf_pos_cov_geodetic_cov_lonhgt_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lonhgt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_lonb", &ubx_sbf_pos_cov_geodetic_cov_lonb_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_lonb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_hb", &ubx_sbf_pos_cov_geodetic_cov_hb_scale, offsetof(nmea_ubx_sbf_pos_cov_geodetic, cov_hb), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* SBF 5907 rev 0: vel_cov_cartesian */
@@ -6136,6 +6238,26 @@ static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_tow_specials[] = {{42949
 static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_tow_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_tow_specials, 1};
 static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_wnc_specials[] = {{65535, "do_not_use"}};
 static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_wnc_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_wnc_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_cov_vxvx_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_cov_vxvx_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_cov_vxvx_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_cov_vyvy_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_cov_vyvy_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_cov_vyvy_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_cov_vzvz_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_cov_vzvz_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_cov_vzvz_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_cov_dtdt_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_cov_dtdt_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_cov_dtdt_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_cov_vxvy_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_cov_vxvy_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_cov_vxvy_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_cov_vxvz_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_cov_vxvz_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_cov_vxvz_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_cov_vxdt_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_cov_vxdt_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_cov_vxdt_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_cov_vyvz_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_cov_vyvz_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_cov_vyvz_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_cov_vydt_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_cov_vydt_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_cov_vydt_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_cartesian_cov_vzdt_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_cartesian_cov_vzdt_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_cartesian_cov_vzdt_specials, 1};
 static const nmea_ubx_item ubx_sbf_vel_cov_cartesian_items[] = {
     {"tow", &ubx_sbf_vel_cov_cartesian_tow_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"wnc", &ubx_sbf_vel_cov_cartesian_wnc_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
@@ -6144,16 +6266,16 @@ static const nmea_ubx_item ubx_sbf_vel_cov_cartesian_items[] = {
     {"auto_set", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
     {"two_d", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
     {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_vel_cov_cartesian, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
-    {"cov_vxvx", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxvx), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vyvy", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vyvy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vzvz", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vzvz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_dtdt", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_dtdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vxvy", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxvy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vxvz", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxvz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vxdt", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vyvz", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vyvz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vydt", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vydt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vzdt", NULL, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vzdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+    {"cov_vxvx", &ubx_sbf_vel_cov_cartesian_cov_vxvx_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxvx), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vyvy", &ubx_sbf_vel_cov_cartesian_cov_vyvy_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vyvy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vzvz", &ubx_sbf_vel_cov_cartesian_cov_vzvz_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vzvz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_dtdt", &ubx_sbf_vel_cov_cartesian_cov_dtdt_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_dtdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vxvy", &ubx_sbf_vel_cov_cartesian_cov_vxvy_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxvy), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vxvz", &ubx_sbf_vel_cov_cartesian_cov_vxvz_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxvz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vxdt", &ubx_sbf_vel_cov_cartesian_cov_vxdt_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vxdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vyvz", &ubx_sbf_vel_cov_cartesian_cov_vyvz_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vyvz), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vydt", &ubx_sbf_vel_cov_cartesian_cov_vydt_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vydt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vzdt", &ubx_sbf_vel_cov_cartesian_cov_vzdt_scale, offsetof(nmea_ubx_sbf_vel_cov_cartesian, cov_vzdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* SBF 5908 rev 0: vel_cov_geodetic */
@@ -6161,6 +6283,26 @@ static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_tow_specials[] = {{429496
 static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_tow_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_tow_specials, 1};
 static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_wnc_specials[] = {{65535, "do_not_use"}};
 static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_wnc_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_wnc_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_cov_vnvn_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_cov_vnvn_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_cov_vnvn_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_cov_veve_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_cov_veve_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_cov_veve_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_cov_vuvu_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_cov_vuvu_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_cov_vuvu_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_cov_dtdt_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_cov_dtdt_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_cov_dtdt_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_cov_vnve_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_cov_vnve_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_cov_vnve_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_cov_vnvu_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_cov_vnvu_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_cov_vnvu_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_cov_vndt_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_cov_vndt_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_cov_vndt_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_cov_vevu_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_cov_vevu_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_cov_vevu_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_cov_vedt_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_cov_vedt_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_cov_vedt_specials, 1};
+static const nmea_ubx_special ubx_sbf_vel_cov_geodetic_cov_vudt_specials[] = {{3499426553, "do_not_use"}};
+static const nmea_ubx_scale ubx_sbf_vel_cov_geodetic_cov_vudt_scale = {1.0, 0.0, false, ubx_sbf_vel_cov_geodetic_cov_vudt_specials, 1};
 static const nmea_ubx_item ubx_sbf_vel_cov_geodetic_items[] = {
     {"tow", &ubx_sbf_vel_cov_geodetic_tow_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
     {"wnc", &ubx_sbf_vel_cov_geodetic_wnc_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, wnc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
@@ -6169,16 +6311,16 @@ static const nmea_ubx_item ubx_sbf_vel_cov_geodetic_items[] = {
     {"auto_set", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, auto_set), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
     {"two_d", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, two_d), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
     {"error", &ubx_enum_sbf_pvt_error, offsetof(nmea_ubx_sbf_vel_cov_geodetic, error), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
-    {"cov_vnvn", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vnvn), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_veve", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_veve), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vuvu", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vuvu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_dtdt", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_dtdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vnve", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vnve), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vnvu", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vnvu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vndt", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vndt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vevu", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vevu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vedt", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vedt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
-    {"cov_vudt", NULL, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vudt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+    {"cov_vnvn", &ubx_sbf_vel_cov_geodetic_cov_vnvn_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vnvn), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_veve", &ubx_sbf_vel_cov_geodetic_cov_veve_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_veve), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vuvu", &ubx_sbf_vel_cov_geodetic_cov_vuvu_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vuvu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_dtdt", &ubx_sbf_vel_cov_geodetic_cov_dtdt_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_dtdt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vnve", &ubx_sbf_vel_cov_geodetic_cov_vnve_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vnve), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vnvu", &ubx_sbf_vel_cov_geodetic_cov_vnvu_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vnvu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vndt", &ubx_sbf_vel_cov_geodetic_cov_vndt_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vndt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vevu", &ubx_sbf_vel_cov_geodetic_cov_vevu_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vevu), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vedt", &ubx_sbf_vel_cov_geodetic_cov_vedt_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vedt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cov_vudt", &ubx_sbf_vel_cov_geodetic_cov_vudt_scale, offsetof(nmea_ubx_sbf_vel_cov_geodetic, cov_vudt), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* SBF 5914 rev 0: receiver_time */

@@ -119,7 +119,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest a13abde8aef0f7c6)
+//   spec/enums/ubx_gnss_id.yaml (digest ef3ac7230b1f7456)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ: spec/binary/<protocol>):
@@ -247,7 +247,8 @@ typedef enum {
     NMEA_UBX_PRINT_SCALED /* a number in a unit, beside its raw integer */
 } nmea_ubx_print;
 
-/* A raw value that is no number ("not_available", ...). */
+/* A raw value that is no number ("not_available", ...); of a float field (r4, r8), the bit
+   pattern of the float that stands for it (SBF's do-not-use -2e10), an r8's as its int64_t. */
 typedef struct {
     int64_t raw;
     const char *id;
@@ -274,7 +275,8 @@ typedef struct {
 
 typedef struct {
     const char *id;
-    const void *extra; /* a nmea_ubx_scale (PRINT_SCALED), nmea_ubx_codes (PRINT_CODE), nmea_ubx_group */
+    const void *extra; /* a nmea_ubx_scale (PRINT_SCALED; a FLOAT's special values), nmea_ubx_codes (PRINT_CODE),
+                          nmea_ubx_group */
     uint16_t offset;   /* of its member in the layout's struct */
     uint16_t has;      /* an optional field (present when the payload has its bytes): its flag's offset */
     uint16_t after;    /* a field of the bytes left: the bytes of the required fields after it */
@@ -5703,8 +5705,8 @@ typedef struct {
     uint16_t tdop; /* Time dilution of precision; raw, value = raw / 100 */
     uint16_t hdop; /* Horizontal dilution of precision; raw, value = raw / 100 */
     uint16_t vdop; /* Vertical dilution of precision; raw, value = raw / 100 */
-    float hpl; /* Horizontal protection level [m] (its bits as sent) */
-    float vpl; /* Vertical protection level [m] (its bits as sent) */
+    float hpl; /* Horizontal protection level [m]; -2e+10: do_not_use (its bits as sent) */
+    float vpl; /* Vertical protection level [m]; -2e+10: do_not_use (its bits as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_sbf_pvt_dop;
 
@@ -5717,16 +5719,16 @@ typedef struct {
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
     bool two_d; /* Height fixed (2D solution) (mode bit 7) */
     uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
-    double x; /* ECEF X [m] (its bits as sent) */
-    double y; /* ECEF Y [m] (its bits as sent) */
-    double z; /* ECEF Z [m] (its bits as sent) */
-    float undulation; /* Geoid undulation [m] (its bits as sent) */
-    float vx; /* Velocity X [m/s] (its bits as sent) */
-    float vy; /* Velocity Y [m/s] (its bits as sent) */
-    float vz; /* Velocity Z [m/s] (its bits as sent) */
-    float cog; /* Course over ground (true north) [deg] (its bits as sent) */
-    double rx_clk_bias; /* Receiver clock bias to the time system [ms] (its bits as sent) */
-    float rx_clk_drift; /* Receiver clock drift [ppm] (its bits as sent) */
+    double x; /* ECEF X [m]; -2e+10: do_not_use (its bits as sent) */
+    double y; /* ECEF Y [m]; -2e+10: do_not_use (its bits as sent) */
+    double z; /* ECEF Z [m]; -2e+10: do_not_use (its bits as sent) */
+    float undulation; /* Geoid undulation [m]; -2e+10: do_not_use (its bits as sent) */
+    float vx; /* Velocity X [m/s]; -2e+10: do_not_use (its bits as sent) */
+    float vy; /* Velocity Y [m/s]; -2e+10: do_not_use (its bits as sent) */
+    float vz; /* Velocity Z [m/s]; -2e+10: do_not_use (its bits as sent) */
+    float cog; /* Course over ground (true north) [deg]; -2e+10: do_not_use (its bits as sent) */
+    double rx_clk_bias; /* Receiver clock bias to the time system [ms]; -2e+10: do_not_use (its bits as sent) */
+    float rx_clk_drift; /* Receiver clock drift [ppm]; -2e+10: do_not_use (its bits as sent) */
     uint8_t time_system; /* Time system of the clock bias; a code of sbf_time_system (its JSON: the code's id) */
     uint8_t datum; /* Datum of the position; a code of sbf_datum (its JSON: the code's id) */
     uint8_t nr_sv; /* Satellites used; raw, value = raw; 255: do_not_use */
@@ -5767,16 +5769,16 @@ typedef struct {
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
     bool two_d; /* Height fixed (2D solution) (mode bit 7) */
     uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
-    double latitude; /* Latitude [rad] (its bits as sent) */
-    double longitude; /* Longitude [rad] (its bits as sent) */
-    double height; /* Height above the ellipsoid [m] (its bits as sent) */
-    float undulation; /* Geoid undulation [m] (its bits as sent) */
-    float vn; /* Velocity north [m/s] (its bits as sent) */
-    float ve; /* Velocity east [m/s] (its bits as sent) */
-    float vu; /* Velocity up [m/s] (its bits as sent) */
-    float cog; /* Course over ground (true north) [deg] (its bits as sent) */
-    double rx_clk_bias; /* Receiver clock bias to the time system [ms] (its bits as sent) */
-    float rx_clk_drift; /* Receiver clock drift [ppm] (its bits as sent) */
+    double latitude; /* Latitude [rad]; -2e+10: do_not_use (its bits as sent) */
+    double longitude; /* Longitude [rad]; -2e+10: do_not_use (its bits as sent) */
+    double height; /* Height above the ellipsoid [m]; -2e+10: do_not_use (its bits as sent) */
+    float undulation; /* Geoid undulation [m]; -2e+10: do_not_use (its bits as sent) */
+    float vn; /* Velocity north [m/s]; -2e+10: do_not_use (its bits as sent) */
+    float ve; /* Velocity east [m/s]; -2e+10: do_not_use (its bits as sent) */
+    float vu; /* Velocity up [m/s]; -2e+10: do_not_use (its bits as sent) */
+    float cog; /* Course over ground (true north) [deg]; -2e+10: do_not_use (its bits as sent) */
+    double rx_clk_bias; /* Receiver clock bias to the time system [ms]; -2e+10: do_not_use (its bits as sent) */
+    float rx_clk_drift; /* Receiver clock drift [ppm]; -2e+10: do_not_use (its bits as sent) */
     uint8_t time_system; /* Time system of the clock bias; a code of sbf_time_system (its JSON: the code's id) */
     uint8_t datum; /* Datum of the position; a code of sbf_datum (its JSON: the code's id) */
     uint8_t nr_sv; /* Satellites used; raw, value = raw; 255: do_not_use */
@@ -5817,16 +5819,16 @@ typedef struct {
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
     bool two_d; /* Height fixed (2D solution) (mode bit 7) */
     uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
-    float cov_xx; /* Variance of X [m^2] (its bits as sent) */
-    float cov_yy; /* Variance of Y [m^2] (its bits as sent) */
-    float cov_zz; /* Variance of Z [m^2] (its bits as sent) */
-    float cov_bb; /* Variance of the clock bias [m^2] (its bits as sent) */
-    float cov_xy; /* Covariance of X and Y [m^2] (its bits as sent) */
-    float cov_xz; /* Covariance of X and Z [m^2] (its bits as sent) */
-    float cov_xb; /* Covariance of X and the clock bias [m^2] (its bits as sent) */
-    float cov_yz; /* Covariance of Y and Z [m^2] (its bits as sent) */
-    float cov_yb; /* Covariance of Y and the clock bias [m^2] (its bits as sent) */
-    float cov_zb; /* Covariance of Z and the clock bias [m^2] (its bits as sent) */
+    float cov_xx; /* Variance of X [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_yy; /* Variance of Y [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_zz; /* Variance of Z [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_bb; /* Variance of the clock bias [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_xy; /* Covariance of X and Y [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_xz; /* Covariance of X and Z [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_xb; /* Covariance of X and the clock bias [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_yz; /* Covariance of Y and Z [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_yb; /* Covariance of Y and the clock bias [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_zb; /* Covariance of Z and the clock bias [m^2]; -2e+10: do_not_use (its bits as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_sbf_pos_cov_cartesian;
 
@@ -5839,16 +5841,16 @@ typedef struct {
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
     bool two_d; /* Height fixed (2D solution) (mode bit 7) */
     uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
-    float cov_latlat; /* Variance of the latitude [m^2] (its bits as sent) */
-    float cov_lonlon; /* Variance of the longitude [m^2] (its bits as sent) */
-    float cov_hgthgt; /* Variance of the height [m^2] (its bits as sent) */
-    float cov_bb; /* Variance of the clock bias [m^2] (its bits as sent) */
-    float cov_latlon; /* Covariance of latitude and longitude [m^2] (its bits as sent) */
-    float cov_lathgt; /* Covariance of latitude and height [m^2] (its bits as sent) */
-    float cov_latb; /* Covariance of latitude and the clock bias [m^2] (its bits as sent) */
-    float cov_lonhgt; /* Covariance of longitude and height [m^2] (its bits as sent) */
-    float cov_lonb; /* Covariance of longitude and the clock bias [m^2] (its bits as sent) */
-    float cov_hb; /* Covariance of height and the clock bias [m^2] (its bits as sent) */
+    float cov_latlat; /* Variance of the latitude [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_lonlon; /* Variance of the longitude [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_hgthgt; /* Variance of the height [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_bb; /* Variance of the clock bias [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_latlon; /* Covariance of latitude and longitude [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_lathgt; /* Covariance of latitude and height [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_latb; /* Covariance of latitude and the clock bias [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_lonhgt; /* Covariance of longitude and height [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_lonb; /* Covariance of longitude and the clock bias [m^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_hb; /* Covariance of height and the clock bias [m^2]; -2e+10: do_not_use (its bits as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_sbf_pos_cov_geodetic;
 
@@ -5861,16 +5863,16 @@ typedef struct {
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
     bool two_d; /* Height fixed (2D solution) (mode bit 7) */
     uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
-    float cov_vxvx; /* Variance of Vx [m^2/s^2] (its bits as sent) */
-    float cov_vyvy; /* Variance of Vy [m^2/s^2] (its bits as sent) */
-    float cov_vzvz; /* Variance of Vz [m^2/s^2] (its bits as sent) */
-    float cov_dtdt; /* Variance of the clock drift [m^2/s^2] (its bits as sent) */
-    float cov_vxvy; /* Covariance of Vx and Vy [m^2/s^2] (its bits as sent) */
-    float cov_vxvz; /* Covariance of Vx and Vz [m^2/s^2] (its bits as sent) */
-    float cov_vxdt; /* Covariance of Vx and the clock drift [m^2/s^2] (its bits as sent) */
-    float cov_vyvz; /* Covariance of Vy and Vz [m^2/s^2] (its bits as sent) */
-    float cov_vydt; /* Covariance of Vy and the clock drift [m^2/s^2] (its bits as sent) */
-    float cov_vzdt; /* Covariance of Vz and the clock drift [m^2/s^2] (its bits as sent) */
+    float cov_vxvx; /* Variance of Vx [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vyvy; /* Variance of Vy [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vzvz; /* Variance of Vz [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_dtdt; /* Variance of the clock drift [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vxvy; /* Covariance of Vx and Vy [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vxvz; /* Covariance of Vx and Vz [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vxdt; /* Covariance of Vx and the clock drift [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vyvz; /* Covariance of Vy and Vz [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vydt; /* Covariance of Vy and the clock drift [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vzdt; /* Covariance of Vz and the clock drift [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_sbf_vel_cov_cartesian;
 
@@ -5883,16 +5885,16 @@ typedef struct {
     bool auto_set; /* Base position set automatically (static base) (mode bit 6) */
     bool two_d; /* Height fixed (2D solution) (mode bit 7) */
     uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
-    float cov_vnvn; /* Variance of Vn [m^2/s^2] (its bits as sent) */
-    float cov_veve; /* Variance of Ve [m^2/s^2] (its bits as sent) */
-    float cov_vuvu; /* Variance of Vu [m^2/s^2] (its bits as sent) */
-    float cov_dtdt; /* Variance of the clock drift [m^2/s^2] (its bits as sent) */
-    float cov_vnve; /* Covariance of Vn and Ve [m^2/s^2] (its bits as sent) */
-    float cov_vnvu; /* Covariance of Vn and Vu [m^2/s^2] (its bits as sent) */
-    float cov_vndt; /* Covariance of Vn and the clock drift [m^2/s^2] (its bits as sent) */
-    float cov_vevu; /* Covariance of Ve and Vu [m^2/s^2] (its bits as sent) */
-    float cov_vedt; /* Covariance of Ve and the clock drift [m^2/s^2] (its bits as sent) */
-    float cov_vudt; /* Covariance of Vu and the clock drift [m^2/s^2] (its bits as sent) */
+    float cov_vnvn; /* Variance of Vn [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_veve; /* Variance of Ve [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vuvu; /* Variance of Vu [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_dtdt; /* Variance of the clock drift [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vnve; /* Covariance of Vn and Ve [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vnvu; /* Covariance of Vn and Vu [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vndt; /* Covariance of Vn and the clock drift [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vevu; /* Covariance of Ve and Vu [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vedt; /* Covariance of Ve and the clock drift [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
+    float cov_vudt; /* Covariance of Vu and the clock drift [m^2/s^2]; -2e+10: do_not_use (its bits as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_sbf_vel_cov_geodetic;
 

@@ -592,6 +592,24 @@ static void ubx_json_field(ubx_json_out *j, const nmea_ubx_item *it, const uint8
             ubx_json_big(j, at, it->size);
         return;
     case NMEA_UBX_ITEM_FLOAT:
+        if (it->extra) { /* a special value (its bit pattern in the field's width): its id */
+            const nmea_ubx_scale *s = (const nmea_ubx_scale *)it->extra;
+            uint64_t bits = 0;
+            if (it->size == 4) {
+                uint32_t bits32;
+                memcpy(&bits32, at, 4);
+                bits = bits32;
+            } else {
+                memcpy(&bits, at, 8);
+            }
+            for (k = 0; k < s->n_specials; k++)
+                if ((uint64_t)s->specials[k].raw == bits) {
+                    ubx_json_puts(j, "\"");
+                    ubx_json_puts(j, s->specials[k].id);
+                    ubx_json_puts(j, "\"");
+                    return;
+                }
+        }
         if (it->size == 4) {
             float f;
             memcpy(&f, at, 4);

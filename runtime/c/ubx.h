@@ -115,7 +115,8 @@ typedef enum {
     NMEA_UBX_PRINT_SCALED /* a number in a unit, beside its raw integer */
 } nmea_ubx_print;
 
-/* A raw value that is no number ("not_available", ...). */
+/* A raw value that is no number ("not_available", ...); of a float field (r4, r8), the bit
+   pattern of the float that stands for it (SBF's do-not-use -2e10), an r8's as its int64_t. */
 typedef struct {
     int64_t raw;
     const char *id;
@@ -142,7 +143,8 @@ typedef struct {
 
 typedef struct {
     const char *id;
-    const void *extra; /* a nmea_ubx_scale (PRINT_SCALED), nmea_ubx_codes (PRINT_CODE), nmea_ubx_group */
+    const void *extra; /* a nmea_ubx_scale (PRINT_SCALED; a FLOAT's special values), nmea_ubx_codes (PRINT_CODE),
+                          nmea_ubx_group */
     uint16_t offset;   /* of its member in the layout's struct */
     uint16_t has;      /* an optional field (present when the payload has its bytes): its flag's offset */
     uint16_t after;    /* a field of the bytes left: the bytes of the required fields after it */

@@ -178,9 +178,16 @@ def split_frames(data: bytes) -> Iterator[tuple[int, Frame]]:
 @dataclass(frozen=True, slots=True)
 class Float(Field):
     """r4, r8: an IEEE 754 float, little endian. A NaN is a Special("nan", raw) that keeps its bits
-    (a float would lose a single's payload); JSON: "nan", and the infinities "inf", "-inf"."""
+    (a float would lose a single's payload); JSON: "nan", and the infinities "inf", "-inf". The
+    field's special values (SBF's do-not-use -2e10) are Specials whose raw is the float's bit
+    pattern in the field's width, compared bit for bit; JSON: their ids."""
+
+    special: tuple[Special, ...] = ()
 
     def from_raw(self, raw: int, width: int) -> Any:
+        for s in self.special:
+            if s.raw == raw:
+                return s
         value = struct.unpack("<f" if width == 32 else "<d", raw.to_bytes(width // 8, "little"))[0]
         return value if value == value else Special("nan", raw)
 
@@ -311,8 +318,11 @@ class _Compiler:
             pairs = [(f.id, f"{self.name(members)}.get({raw}, {raw})")]
         elif isinstance(f, Chars):
             pairs = [(f.id, f"{raw}.decode('latin-1')")]
-        elif isinstance(f, Float):   # read as its integer: a NaN keeps its bits
-            pairs = [(f.id, f"{self.name(f)}.from_raw({raw}, {f.width})")]
+        elif isinstance(f, Float):   # read as its integer: a NaN keeps its bits, a special value is its bits'
+            value = f"{self.name(f)}.from_raw({raw}, {f.width})"
+            if f.special:
+                value = f"{self.name({sp.raw: sp for sp in f.special})}.get({raw}) or {value}"
+            pairs = [(f.id, value)]
         elif type(f) is Spare and f.width not in _INTEGER_CODES:
             pairs = [(f.id, f"from_bytes({raw}, '{'big' if self.order == '>' else 'little'}')")]
         else:   # a whole integer, bytes

@@ -16,6 +16,7 @@ import pytest
 from tests.ubx.pyubx2_oracle import ubx  # noqa: F401 (puts generated/python on the path)
 
 from nmeaspec import binary, stream  # isort: skip
+from nmeaspec.ais import Special  # isort: skip
 from nmeaspec.apps.nmea_cli import main  # isort: skip
 from nmeaspec.casic_messages import BY_ID as CASIC  # isort: skip
 from nmeaspec.casic_messages.nav_pv import NavPv  # isort: skip
@@ -210,7 +211,11 @@ def test_values_of_an_sbf_fix_and_its_do_not_use_values() -> None:
     assert isinstance(pvt, PvtGeodetic)
     assert (pvt.tow, pvt.wnc, pvt.mode_type, pvt.nr_sv, pvt.reference_id) == (482847000, 2367, 6, 36, 123)
     assert pvt.latitude == pytest.approx(0.9310293523340808) and pvt.mean_corr_age == pytest.approx(2.78)
-    assert pvt.cog == -2e10   # the float do-not-use value, kept as the number
+    # the float do-not-use value (-2e10): its id, its r4 bits kept; encoded back byte for byte
+    assert pvt.cog == Special("do_not_use", 0xD09502F9) and pvt.to_dict()["cog"] == "do_not_use"
+    assert pvt.encode() == block
+    pvt.height = -2e10   # an r8 holding -2e10 reads back as the special value, its r8 bits
+    assert PvtGeodetic.from_payload(pvt.payload()).height == Special("do_not_use", 0xC212A05F20000000)
     # sbfdata.sbf's first epoch: a stand-alone fix, without corrections
     cartesian = next(stream.BinaryFrame("sbf", d).message() for d in sbf_frames()
                      if int.from_bytes(d[4:6], "little") & 0x1FFF == 4006)

@@ -86,6 +86,12 @@ def other_frames() -> list[tuple[str, bytes]]:
                     if at is not None and at < length:
                         payload[at] = cls.SELECT[2]
                     out.append((name, binary.Frame(name, cls.KEY, bytes(payload)).encode()))
+                    specials = [f for f in cls.LAYOUT if isinstance(f, ubx.Float) and f.special]
+                    if specials:   # and with its floats' special values (SBF's do-not-use -2e10: r4, r8)
+                        message = cls.from_payload(bytes(payload))
+                        for f in specials:
+                            setattr(message, f.id, f.special[0])
+                        out.append((name, message.encode()))
         key = (0x0B, 0x7F) if name == "casic" else (4000, 1) if name == "sbf" else (0x7E,)
         out.append((name, binary.Frame(name, key, b"\x01\x02").encode()))
     return out

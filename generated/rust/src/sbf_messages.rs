@@ -6,7 +6,7 @@
 //   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/receiver_time.yaml
-//   (digest a14075ccd82f1ab5)
+//   (digest 393cc30af3732256)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The Septentrio SBF messages of spec/binary/sbf: a struct per layout (named as the Python
@@ -45,10 +45,10 @@ pub struct PvtDop<'a> {
     pub hdop_raw: u16,
     /// Vertical dilution of precision.
     pub vdop_raw: u16,
-    /// Horizontal protection level [m].
-    pub hpl: f32,
-    /// Vertical protection level [m].
-    pub vpl: f32,
+    /// Horizontal protection level [m], as sent (`hpl()`: the float or its special value).
+    pub hpl_raw: f32,
+    /// Vertical protection level [m], as sent (`vpl()`: the float or its special value).
+    pub vpl_raw: f32,
     /// Bytes after the layout's last field, as sent (a newer firmware's additions).
     pub trailing: &'a [u8],
 }
@@ -99,6 +99,16 @@ impl<'a> PvtDop<'a> {
         let raw = self.vdop_raw;
         raw as f64 / 100.0
     }
+    /// Horizontal protection level [m]: the float, or the special value whose bits it holds.
+    pub fn hpl(&self) -> ais::Reading<f64> {
+        let raw = self.hpl_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Vertical protection level [m]: the float, or the special value whose bits it holds.
+    pub fn vpl(&self) -> ais::Reading<f64> {
+        let raw = self.vpl_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
@@ -110,10 +120,22 @@ impl<'a> PvtDop<'a> {
         let tdop_raw = u16::from_le_bytes(r.array("tdop")?);
         let hdop_raw = u16::from_le_bytes(r.array("hdop")?);
         let vdop_raw = u16::from_le_bytes(r.array("vdop")?);
-        let hpl = f32::from_le_bytes(r.array("hpl")?);
-        let vpl = f32::from_le_bytes(r.array("vpl")?);
+        let hpl_raw = f32::from_le_bytes(r.array("hpl")?);
+        let vpl_raw = f32::from_le_bytes(r.array("vpl")?);
         let trailing = r.rest();
-        Ok(Self { tow_raw, wnc_raw, nr_sv, reserved, pdop_raw, tdop_raw, hdop_raw, vdop_raw, hpl, vpl, trailing })
+        Ok(Self {
+            tow_raw,
+            wnc_raw,
+            nr_sv,
+            reserved,
+            pdop_raw,
+            tdop_raw,
+            hdop_raw,
+            vdop_raw,
+            hpl_raw,
+            vpl_raw,
+            trailing,
+        })
     }
     /// Writes the payload after its key.
     pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -125,8 +147,8 @@ impl<'a> PvtDop<'a> {
         w.put(&self.tdop_raw.to_le_bytes());
         w.put(&self.hdop_raw.to_le_bytes());
         w.put(&self.vdop_raw.to_le_bytes());
-        w.put(&self.hpl.to_le_bytes());
-        w.put(&self.vpl.to_le_bytes());
+        w.put(&self.hpl_raw.to_le_bytes());
+        w.put(&self.vpl_raw.to_le_bytes());
         w.put(self.trailing);
         Ok(())
     }
@@ -156,8 +178,22 @@ impl<'a> PvtDop<'a> {
         j.int("hdop_raw", self.hdop_raw)?;
         ubx::json_float(j, "vdop", self.vdop_raw as f64 / 100.0)?;
         j.int("vdop_raw", self.vdop_raw)?;
-        ubx::json_float(j, "hpl", f64::from(self.hpl))?;
-        ubx::json_float(j, "vpl", f64::from(self.vpl))?;
+        match ubx::float_reading(
+            u64::from(self.hpl_raw.to_bits()),
+            f64::from(self.hpl_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "hpl", x)?,
+            ais::Reading::Special(id) => j.text("hpl", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.vpl_raw.to_bits()),
+            f64::from(self.vpl_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "vpl", x)?,
+            ais::Reading::Special(id) => j.text("vpl", id)?,
+        }
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -173,26 +209,26 @@ pub struct PvtCartesian<'a> {
     pub mode: u8,
     /// PVT error.
     pub error_raw: u8,
-    /// ECEF X [m].
-    pub x: f64,
-    /// ECEF Y [m].
-    pub y: f64,
-    /// ECEF Z [m].
-    pub z: f64,
-    /// Geoid undulation [m].
-    pub undulation: f32,
-    /// Velocity X [m/s].
-    pub vx: f32,
-    /// Velocity Y [m/s].
-    pub vy: f32,
-    /// Velocity Z [m/s].
-    pub vz: f32,
-    /// Course over ground (true north) [deg].
-    pub cog: f32,
-    /// Receiver clock bias to the time system [ms].
-    pub rx_clk_bias: f64,
-    /// Receiver clock drift [ppm].
-    pub rx_clk_drift: f32,
+    /// ECEF X [m], as sent (`x()`: the float or its special value).
+    pub x_raw: f64,
+    /// ECEF Y [m], as sent (`y()`: the float or its special value).
+    pub y_raw: f64,
+    /// ECEF Z [m], as sent (`z()`: the float or its special value).
+    pub z_raw: f64,
+    /// Geoid undulation [m], as sent (`undulation()`: the float or its special value).
+    pub undulation_raw: f32,
+    /// Velocity X [m/s], as sent (`vx()`: the float or its special value).
+    pub vx_raw: f32,
+    /// Velocity Y [m/s], as sent (`vy()`: the float or its special value).
+    pub vy_raw: f32,
+    /// Velocity Z [m/s], as sent (`vz()`: the float or its special value).
+    pub vz_raw: f32,
+    /// Course over ground (true north) [deg], as sent (`cog()`: the float or its special value).
+    pub cog_raw: f32,
+    /// Receiver clock bias to the time system [ms], as sent (`rx_clk_bias()`: the float or its special value).
+    pub rx_clk_bias_raw: f64,
+    /// Receiver clock drift [ppm], as sent (`rx_clk_drift()`: the float or its special value).
+    pub rx_clk_drift_raw: f32,
     /// Time system of the clock bias.
     pub time_system_raw: u8,
     /// Datum of the position.
@@ -279,6 +315,56 @@ impl<'a> PvtCartesian<'a> {
     pub fn error(&self) -> Option<SbfPvtError> {
         ais::code(u64::from(self.error_raw))
     }
+    /// ECEF X [m]: the float, or the special value whose bits it holds.
+    pub fn x(&self) -> ais::Reading<f64> {
+        let raw = self.x_raw;
+        ubx::float_reading(raw.to_bits(), raw, &[(0xC212A05F20000000, "do_not_use")])
+    }
+    /// ECEF Y [m]: the float, or the special value whose bits it holds.
+    pub fn y(&self) -> ais::Reading<f64> {
+        let raw = self.y_raw;
+        ubx::float_reading(raw.to_bits(), raw, &[(0xC212A05F20000000, "do_not_use")])
+    }
+    /// ECEF Z [m]: the float, or the special value whose bits it holds.
+    pub fn z(&self) -> ais::Reading<f64> {
+        let raw = self.z_raw;
+        ubx::float_reading(raw.to_bits(), raw, &[(0xC212A05F20000000, "do_not_use")])
+    }
+    /// Geoid undulation [m]: the float, or the special value whose bits it holds.
+    pub fn undulation(&self) -> ais::Reading<f64> {
+        let raw = self.undulation_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Velocity X [m/s]: the float, or the special value whose bits it holds.
+    pub fn vx(&self) -> ais::Reading<f64> {
+        let raw = self.vx_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Velocity Y [m/s]: the float, or the special value whose bits it holds.
+    pub fn vy(&self) -> ais::Reading<f64> {
+        let raw = self.vy_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Velocity Z [m/s]: the float, or the special value whose bits it holds.
+    pub fn vz(&self) -> ais::Reading<f64> {
+        let raw = self.vz_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Course over ground (true north) [deg]: the float, or the special value whose bits it holds.
+    pub fn cog(&self) -> ais::Reading<f64> {
+        let raw = self.cog_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Receiver clock bias to the time system [ms]: the float, or the special value whose bits it holds.
+    pub fn rx_clk_bias(&self) -> ais::Reading<f64> {
+        let raw = self.rx_clk_bias_raw;
+        ubx::float_reading(raw.to_bits(), raw, &[(0xC212A05F20000000, "do_not_use")])
+    }
+    /// Receiver clock drift [ppm]: the float, or the special value whose bits it holds.
+    pub fn rx_clk_drift(&self) -> ais::Reading<f64> {
+        let raw = self.rx_clk_drift_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
     /// Time system of the clock bias: the enum's value of the raw code, None for a code it does not name.
     pub fn time_system(&self) -> Option<SbfTimeSystem> {
         ais::code(u64::from(self.time_system_raw))
@@ -436,16 +522,16 @@ impl<'a> PvtCartesian<'a> {
         let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
         let mode = u8::from_le_bytes(r.array("mode")?);
         let error_raw = u8::from_le_bytes(r.array("error")?);
-        let x = f64::from_le_bytes(r.array("x")?);
-        let y = f64::from_le_bytes(r.array("y")?);
-        let z = f64::from_le_bytes(r.array("z")?);
-        let undulation = f32::from_le_bytes(r.array("undulation")?);
-        let vx = f32::from_le_bytes(r.array("vx")?);
-        let vy = f32::from_le_bytes(r.array("vy")?);
-        let vz = f32::from_le_bytes(r.array("vz")?);
-        let cog = f32::from_le_bytes(r.array("cog")?);
-        let rx_clk_bias = f64::from_le_bytes(r.array("rx_clk_bias")?);
-        let rx_clk_drift = f32::from_le_bytes(r.array("rx_clk_drift")?);
+        let x_raw = f64::from_le_bytes(r.array("x")?);
+        let y_raw = f64::from_le_bytes(r.array("y")?);
+        let z_raw = f64::from_le_bytes(r.array("z")?);
+        let undulation_raw = f32::from_le_bytes(r.array("undulation")?);
+        let vx_raw = f32::from_le_bytes(r.array("vx")?);
+        let vy_raw = f32::from_le_bytes(r.array("vy")?);
+        let vz_raw = f32::from_le_bytes(r.array("vz")?);
+        let cog_raw = f32::from_le_bytes(r.array("cog")?);
+        let rx_clk_bias_raw = f64::from_le_bytes(r.array("rx_clk_bias")?);
+        let rx_clk_drift_raw = f32::from_le_bytes(r.array("rx_clk_drift")?);
         let time_system_raw = u8::from_le_bytes(r.array("time_system")?);
         let datum_raw = u8::from_le_bytes(r.array("datum")?);
         let nr_sv_raw = u8::from_le_bytes(r.array("nr_sv")?);
@@ -466,16 +552,16 @@ impl<'a> PvtCartesian<'a> {
             wnc_raw,
             mode,
             error_raw,
-            x,
-            y,
-            z,
-            undulation,
-            vx,
-            vy,
-            vz,
-            cog,
-            rx_clk_bias,
-            rx_clk_drift,
+            x_raw,
+            y_raw,
+            z_raw,
+            undulation_raw,
+            vx_raw,
+            vy_raw,
+            vz_raw,
+            cog_raw,
+            rx_clk_bias_raw,
+            rx_clk_drift_raw,
             time_system_raw,
             datum_raw,
             nr_sv_raw,
@@ -499,16 +585,16 @@ impl<'a> PvtCartesian<'a> {
         w.put(&self.wnc_raw.to_le_bytes());
         w.put(&self.mode.to_le_bytes());
         w.put(&self.error_raw.to_le_bytes());
-        w.put(&self.x.to_le_bytes());
-        w.put(&self.y.to_le_bytes());
-        w.put(&self.z.to_le_bytes());
-        w.put(&self.undulation.to_le_bytes());
-        w.put(&self.vx.to_le_bytes());
-        w.put(&self.vy.to_le_bytes());
-        w.put(&self.vz.to_le_bytes());
-        w.put(&self.cog.to_le_bytes());
-        w.put(&self.rx_clk_bias.to_le_bytes());
-        w.put(&self.rx_clk_drift.to_le_bytes());
+        w.put(&self.x_raw.to_le_bytes());
+        w.put(&self.y_raw.to_le_bytes());
+        w.put(&self.z_raw.to_le_bytes());
+        w.put(&self.undulation_raw.to_le_bytes());
+        w.put(&self.vx_raw.to_le_bytes());
+        w.put(&self.vy_raw.to_le_bytes());
+        w.put(&self.vz_raw.to_le_bytes());
+        w.put(&self.cog_raw.to_le_bytes());
+        w.put(&self.rx_clk_bias_raw.to_le_bytes());
+        w.put(&self.rx_clk_drift_raw.to_le_bytes());
         w.put(&self.time_system_raw.to_le_bytes());
         w.put(&self.datum_raw.to_le_bytes());
         w.put(&self.nr_sv_raw.to_le_bytes());
@@ -551,16 +637,74 @@ impl<'a> PvtCartesian<'a> {
             ais::code::<SbfPvtError>(u64::from(self.error_raw)).map(CodeEnum::id),
             u64::from(self.error_raw),
         )?;
-        ubx::json_float(j, "x", self.x)?;
-        ubx::json_float(j, "y", self.y)?;
-        ubx::json_float(j, "z", self.z)?;
-        ubx::json_float(j, "undulation", f64::from(self.undulation))?;
-        ubx::json_float(j, "vx", f64::from(self.vx))?;
-        ubx::json_float(j, "vy", f64::from(self.vy))?;
-        ubx::json_float(j, "vz", f64::from(self.vz))?;
-        ubx::json_float(j, "cog", f64::from(self.cog))?;
-        ubx::json_float(j, "rx_clk_bias", self.rx_clk_bias)?;
-        ubx::json_float(j, "rx_clk_drift", f64::from(self.rx_clk_drift))?;
+        match ubx::float_reading(self.x_raw.to_bits(), self.x_raw, &[(0xC212A05F20000000, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "x", x)?,
+            ais::Reading::Special(id) => j.text("x", id)?,
+        }
+        match ubx::float_reading(self.y_raw.to_bits(), self.y_raw, &[(0xC212A05F20000000, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "y", x)?,
+            ais::Reading::Special(id) => j.text("y", id)?,
+        }
+        match ubx::float_reading(self.z_raw.to_bits(), self.z_raw, &[(0xC212A05F20000000, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "z", x)?,
+            ais::Reading::Special(id) => j.text("z", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.undulation_raw.to_bits()),
+            f64::from(self.undulation_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "undulation", x)?,
+            ais::Reading::Special(id) => j.text("undulation", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.vx_raw.to_bits()),
+            f64::from(self.vx_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "vx", x)?,
+            ais::Reading::Special(id) => j.text("vx", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.vy_raw.to_bits()),
+            f64::from(self.vy_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "vy", x)?,
+            ais::Reading::Special(id) => j.text("vy", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.vz_raw.to_bits()),
+            f64::from(self.vz_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "vz", x)?,
+            ais::Reading::Special(id) => j.text("vz", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cog_raw.to_bits()),
+            f64::from(self.cog_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cog", x)?,
+            ais::Reading::Special(id) => j.text("cog", id)?,
+        }
+        match ubx::float_reading(
+            self.rx_clk_bias_raw.to_bits(),
+            self.rx_clk_bias_raw,
+            &[(0xC212A05F20000000, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "rx_clk_bias", x)?,
+            ais::Reading::Special(id) => j.text("rx_clk_bias", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.rx_clk_drift_raw.to_bits()),
+            f64::from(self.rx_clk_drift_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "rx_clk_drift", x)?,
+            ais::Reading::Special(id) => j.text("rx_clk_drift", id)?,
+        }
         j.code(
             "time_system",
             ais::code::<SbfTimeSystem>(u64::from(self.time_system_raw)).map(CodeEnum::id),
@@ -632,26 +776,26 @@ pub struct PvtGeodetic<'a> {
     pub mode: u8,
     /// PVT error.
     pub error_raw: u8,
-    /// Latitude [rad].
-    pub latitude: f64,
-    /// Longitude [rad].
-    pub longitude: f64,
-    /// Height above the ellipsoid [m].
-    pub height: f64,
-    /// Geoid undulation [m].
-    pub undulation: f32,
-    /// Velocity north [m/s].
-    pub vn: f32,
-    /// Velocity east [m/s].
-    pub ve: f32,
-    /// Velocity up [m/s].
-    pub vu: f32,
-    /// Course over ground (true north) [deg].
-    pub cog: f32,
-    /// Receiver clock bias to the time system [ms].
-    pub rx_clk_bias: f64,
-    /// Receiver clock drift [ppm].
-    pub rx_clk_drift: f32,
+    /// Latitude [rad], as sent (`latitude()`: the float or its special value).
+    pub latitude_raw: f64,
+    /// Longitude [rad], as sent (`longitude()`: the float or its special value).
+    pub longitude_raw: f64,
+    /// Height above the ellipsoid [m], as sent (`height()`: the float or its special value).
+    pub height_raw: f64,
+    /// Geoid undulation [m], as sent (`undulation()`: the float or its special value).
+    pub undulation_raw: f32,
+    /// Velocity north [m/s], as sent (`vn()`: the float or its special value).
+    pub vn_raw: f32,
+    /// Velocity east [m/s], as sent (`ve()`: the float or its special value).
+    pub ve_raw: f32,
+    /// Velocity up [m/s], as sent (`vu()`: the float or its special value).
+    pub vu_raw: f32,
+    /// Course over ground (true north) [deg], as sent (`cog()`: the float or its special value).
+    pub cog_raw: f32,
+    /// Receiver clock bias to the time system [ms], as sent (`rx_clk_bias()`: the float or its special value).
+    pub rx_clk_bias_raw: f64,
+    /// Receiver clock drift [ppm], as sent (`rx_clk_drift()`: the float or its special value).
+    pub rx_clk_drift_raw: f32,
     /// Time system of the clock bias.
     pub time_system_raw: u8,
     /// Datum of the position.
@@ -738,6 +882,56 @@ impl<'a> PvtGeodetic<'a> {
     pub fn error(&self) -> Option<SbfPvtError> {
         ais::code(u64::from(self.error_raw))
     }
+    /// Latitude [rad]: the float, or the special value whose bits it holds.
+    pub fn latitude(&self) -> ais::Reading<f64> {
+        let raw = self.latitude_raw;
+        ubx::float_reading(raw.to_bits(), raw, &[(0xC212A05F20000000, "do_not_use")])
+    }
+    /// Longitude [rad]: the float, or the special value whose bits it holds.
+    pub fn longitude(&self) -> ais::Reading<f64> {
+        let raw = self.longitude_raw;
+        ubx::float_reading(raw.to_bits(), raw, &[(0xC212A05F20000000, "do_not_use")])
+    }
+    /// Height above the ellipsoid [m]: the float, or the special value whose bits it holds.
+    pub fn height(&self) -> ais::Reading<f64> {
+        let raw = self.height_raw;
+        ubx::float_reading(raw.to_bits(), raw, &[(0xC212A05F20000000, "do_not_use")])
+    }
+    /// Geoid undulation [m]: the float, or the special value whose bits it holds.
+    pub fn undulation(&self) -> ais::Reading<f64> {
+        let raw = self.undulation_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Velocity north [m/s]: the float, or the special value whose bits it holds.
+    pub fn vn(&self) -> ais::Reading<f64> {
+        let raw = self.vn_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Velocity east [m/s]: the float, or the special value whose bits it holds.
+    pub fn ve(&self) -> ais::Reading<f64> {
+        let raw = self.ve_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Velocity up [m/s]: the float, or the special value whose bits it holds.
+    pub fn vu(&self) -> ais::Reading<f64> {
+        let raw = self.vu_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Course over ground (true north) [deg]: the float, or the special value whose bits it holds.
+    pub fn cog(&self) -> ais::Reading<f64> {
+        let raw = self.cog_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Receiver clock bias to the time system [ms]: the float, or the special value whose bits it holds.
+    pub fn rx_clk_bias(&self) -> ais::Reading<f64> {
+        let raw = self.rx_clk_bias_raw;
+        ubx::float_reading(raw.to_bits(), raw, &[(0xC212A05F20000000, "do_not_use")])
+    }
+    /// Receiver clock drift [ppm]: the float, or the special value whose bits it holds.
+    pub fn rx_clk_drift(&self) -> ais::Reading<f64> {
+        let raw = self.rx_clk_drift_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
     /// Time system of the clock bias: the enum's value of the raw code, None for a code it does not name.
     pub fn time_system(&self) -> Option<SbfTimeSystem> {
         ais::code(u64::from(self.time_system_raw))
@@ -895,16 +1089,16 @@ impl<'a> PvtGeodetic<'a> {
         let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
         let mode = u8::from_le_bytes(r.array("mode")?);
         let error_raw = u8::from_le_bytes(r.array("error")?);
-        let latitude = f64::from_le_bytes(r.array("latitude")?);
-        let longitude = f64::from_le_bytes(r.array("longitude")?);
-        let height = f64::from_le_bytes(r.array("height")?);
-        let undulation = f32::from_le_bytes(r.array("undulation")?);
-        let vn = f32::from_le_bytes(r.array("vn")?);
-        let ve = f32::from_le_bytes(r.array("ve")?);
-        let vu = f32::from_le_bytes(r.array("vu")?);
-        let cog = f32::from_le_bytes(r.array("cog")?);
-        let rx_clk_bias = f64::from_le_bytes(r.array("rx_clk_bias")?);
-        let rx_clk_drift = f32::from_le_bytes(r.array("rx_clk_drift")?);
+        let latitude_raw = f64::from_le_bytes(r.array("latitude")?);
+        let longitude_raw = f64::from_le_bytes(r.array("longitude")?);
+        let height_raw = f64::from_le_bytes(r.array("height")?);
+        let undulation_raw = f32::from_le_bytes(r.array("undulation")?);
+        let vn_raw = f32::from_le_bytes(r.array("vn")?);
+        let ve_raw = f32::from_le_bytes(r.array("ve")?);
+        let vu_raw = f32::from_le_bytes(r.array("vu")?);
+        let cog_raw = f32::from_le_bytes(r.array("cog")?);
+        let rx_clk_bias_raw = f64::from_le_bytes(r.array("rx_clk_bias")?);
+        let rx_clk_drift_raw = f32::from_le_bytes(r.array("rx_clk_drift")?);
         let time_system_raw = u8::from_le_bytes(r.array("time_system")?);
         let datum_raw = u8::from_le_bytes(r.array("datum")?);
         let nr_sv_raw = u8::from_le_bytes(r.array("nr_sv")?);
@@ -925,16 +1119,16 @@ impl<'a> PvtGeodetic<'a> {
             wnc_raw,
             mode,
             error_raw,
-            latitude,
-            longitude,
-            height,
-            undulation,
-            vn,
-            ve,
-            vu,
-            cog,
-            rx_clk_bias,
-            rx_clk_drift,
+            latitude_raw,
+            longitude_raw,
+            height_raw,
+            undulation_raw,
+            vn_raw,
+            ve_raw,
+            vu_raw,
+            cog_raw,
+            rx_clk_bias_raw,
+            rx_clk_drift_raw,
             time_system_raw,
             datum_raw,
             nr_sv_raw,
@@ -958,16 +1152,16 @@ impl<'a> PvtGeodetic<'a> {
         w.put(&self.wnc_raw.to_le_bytes());
         w.put(&self.mode.to_le_bytes());
         w.put(&self.error_raw.to_le_bytes());
-        w.put(&self.latitude.to_le_bytes());
-        w.put(&self.longitude.to_le_bytes());
-        w.put(&self.height.to_le_bytes());
-        w.put(&self.undulation.to_le_bytes());
-        w.put(&self.vn.to_le_bytes());
-        w.put(&self.ve.to_le_bytes());
-        w.put(&self.vu.to_le_bytes());
-        w.put(&self.cog.to_le_bytes());
-        w.put(&self.rx_clk_bias.to_le_bytes());
-        w.put(&self.rx_clk_drift.to_le_bytes());
+        w.put(&self.latitude_raw.to_le_bytes());
+        w.put(&self.longitude_raw.to_le_bytes());
+        w.put(&self.height_raw.to_le_bytes());
+        w.put(&self.undulation_raw.to_le_bytes());
+        w.put(&self.vn_raw.to_le_bytes());
+        w.put(&self.ve_raw.to_le_bytes());
+        w.put(&self.vu_raw.to_le_bytes());
+        w.put(&self.cog_raw.to_le_bytes());
+        w.put(&self.rx_clk_bias_raw.to_le_bytes());
+        w.put(&self.rx_clk_drift_raw.to_le_bytes());
         w.put(&self.time_system_raw.to_le_bytes());
         w.put(&self.datum_raw.to_le_bytes());
         w.put(&self.nr_sv_raw.to_le_bytes());
@@ -1010,16 +1204,79 @@ impl<'a> PvtGeodetic<'a> {
             ais::code::<SbfPvtError>(u64::from(self.error_raw)).map(CodeEnum::id),
             u64::from(self.error_raw),
         )?;
-        ubx::json_float(j, "latitude", self.latitude)?;
-        ubx::json_float(j, "longitude", self.longitude)?;
-        ubx::json_float(j, "height", self.height)?;
-        ubx::json_float(j, "undulation", f64::from(self.undulation))?;
-        ubx::json_float(j, "vn", f64::from(self.vn))?;
-        ubx::json_float(j, "ve", f64::from(self.ve))?;
-        ubx::json_float(j, "vu", f64::from(self.vu))?;
-        ubx::json_float(j, "cog", f64::from(self.cog))?;
-        ubx::json_float(j, "rx_clk_bias", self.rx_clk_bias)?;
-        ubx::json_float(j, "rx_clk_drift", f64::from(self.rx_clk_drift))?;
+        match ubx::float_reading(self.latitude_raw.to_bits(), self.latitude_raw, &[(0xC212A05F20000000, "do_not_use")])
+        {
+            ais::Reading::Value(x) => ubx::json_float(j, "latitude", x)?,
+            ais::Reading::Special(id) => j.text("latitude", id)?,
+        }
+        match ubx::float_reading(
+            self.longitude_raw.to_bits(),
+            self.longitude_raw,
+            &[(0xC212A05F20000000, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "longitude", x)?,
+            ais::Reading::Special(id) => j.text("longitude", id)?,
+        }
+        match ubx::float_reading(self.height_raw.to_bits(), self.height_raw, &[(0xC212A05F20000000, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "height", x)?,
+            ais::Reading::Special(id) => j.text("height", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.undulation_raw.to_bits()),
+            f64::from(self.undulation_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "undulation", x)?,
+            ais::Reading::Special(id) => j.text("undulation", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.vn_raw.to_bits()),
+            f64::from(self.vn_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "vn", x)?,
+            ais::Reading::Special(id) => j.text("vn", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.ve_raw.to_bits()),
+            f64::from(self.ve_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "ve", x)?,
+            ais::Reading::Special(id) => j.text("ve", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.vu_raw.to_bits()),
+            f64::from(self.vu_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "vu", x)?,
+            ais::Reading::Special(id) => j.text("vu", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cog_raw.to_bits()),
+            f64::from(self.cog_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cog", x)?,
+            ais::Reading::Special(id) => j.text("cog", id)?,
+        }
+        match ubx::float_reading(
+            self.rx_clk_bias_raw.to_bits(),
+            self.rx_clk_bias_raw,
+            &[(0xC212A05F20000000, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "rx_clk_bias", x)?,
+            ais::Reading::Special(id) => j.text("rx_clk_bias", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.rx_clk_drift_raw.to_bits()),
+            f64::from(self.rx_clk_drift_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "rx_clk_drift", x)?,
+            ais::Reading::Special(id) => j.text("rx_clk_drift", id)?,
+        }
         j.code(
             "time_system",
             ais::code::<SbfTimeSystem>(u64::from(self.time_system_raw)).map(CodeEnum::id),
@@ -1091,26 +1348,26 @@ pub struct PosCovCartesian<'a> {
     pub mode: u8,
     /// PVT error.
     pub error_raw: u8,
-    /// Variance of X [m^2].
-    pub cov_xx: f32,
-    /// Variance of Y [m^2].
-    pub cov_yy: f32,
-    /// Variance of Z [m^2].
-    pub cov_zz: f32,
-    /// Variance of the clock bias [m^2].
-    pub cov_bb: f32,
-    /// Covariance of X and Y [m^2].
-    pub cov_xy: f32,
-    /// Covariance of X and Z [m^2].
-    pub cov_xz: f32,
-    /// Covariance of X and the clock bias [m^2].
-    pub cov_xb: f32,
-    /// Covariance of Y and Z [m^2].
-    pub cov_yz: f32,
-    /// Covariance of Y and the clock bias [m^2].
-    pub cov_yb: f32,
-    /// Covariance of Z and the clock bias [m^2].
-    pub cov_zb: f32,
+    /// Variance of X [m^2], as sent (`cov_xx()`: the float or its special value).
+    pub cov_xx_raw: f32,
+    /// Variance of Y [m^2], as sent (`cov_yy()`: the float or its special value).
+    pub cov_yy_raw: f32,
+    /// Variance of Z [m^2], as sent (`cov_zz()`: the float or its special value).
+    pub cov_zz_raw: f32,
+    /// Variance of the clock bias [m^2], as sent (`cov_bb()`: the float or its special value).
+    pub cov_bb_raw: f32,
+    /// Covariance of X and Y [m^2], as sent (`cov_xy()`: the float or its special value).
+    pub cov_xy_raw: f32,
+    /// Covariance of X and Z [m^2], as sent (`cov_xz()`: the float or its special value).
+    pub cov_xz_raw: f32,
+    /// Covariance of X and the clock bias [m^2], as sent (`cov_xb()`: the float or its special value).
+    pub cov_xb_raw: f32,
+    /// Covariance of Y and Z [m^2], as sent (`cov_yz()`: the float or its special value).
+    pub cov_yz_raw: f32,
+    /// Covariance of Y and the clock bias [m^2], as sent (`cov_yb()`: the float or its special value).
+    pub cov_yb_raw: f32,
+    /// Covariance of Z and the clock bias [m^2], as sent (`cov_zb()`: the float or its special value).
+    pub cov_zb_raw: f32,
     /// Bytes after the layout's last field, as sent (a newer firmware's additions).
     pub trailing: &'a [u8],
 }
@@ -1169,6 +1426,56 @@ impl<'a> PosCovCartesian<'a> {
     pub fn error(&self) -> Option<SbfPvtError> {
         ais::code(u64::from(self.error_raw))
     }
+    /// Variance of X [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_xx(&self) -> ais::Reading<f64> {
+        let raw = self.cov_xx_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of Y [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_yy(&self) -> ais::Reading<f64> {
+        let raw = self.cov_yy_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of Z [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_zz(&self) -> ais::Reading<f64> {
+        let raw = self.cov_zz_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of the clock bias [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_bb(&self) -> ais::Reading<f64> {
+        let raw = self.cov_bb_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of X and Y [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_xy(&self) -> ais::Reading<f64> {
+        let raw = self.cov_xy_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of X and Z [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_xz(&self) -> ais::Reading<f64> {
+        let raw = self.cov_xz_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of X and the clock bias [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_xb(&self) -> ais::Reading<f64> {
+        let raw = self.cov_xb_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Y and Z [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_yz(&self) -> ais::Reading<f64> {
+        let raw = self.cov_yz_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Y and the clock bias [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_yb(&self) -> ais::Reading<f64> {
+        let raw = self.cov_yb_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Z and the clock bias [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_zb(&self) -> ais::Reading<f64> {
+        let raw = self.cov_zb_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
@@ -1176,32 +1483,32 @@ impl<'a> PosCovCartesian<'a> {
         let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
         let mode = u8::from_le_bytes(r.array("mode")?);
         let error_raw = u8::from_le_bytes(r.array("error")?);
-        let cov_xx = f32::from_le_bytes(r.array("cov_xx")?);
-        let cov_yy = f32::from_le_bytes(r.array("cov_yy")?);
-        let cov_zz = f32::from_le_bytes(r.array("cov_zz")?);
-        let cov_bb = f32::from_le_bytes(r.array("cov_bb")?);
-        let cov_xy = f32::from_le_bytes(r.array("cov_xy")?);
-        let cov_xz = f32::from_le_bytes(r.array("cov_xz")?);
-        let cov_xb = f32::from_le_bytes(r.array("cov_xb")?);
-        let cov_yz = f32::from_le_bytes(r.array("cov_yz")?);
-        let cov_yb = f32::from_le_bytes(r.array("cov_yb")?);
-        let cov_zb = f32::from_le_bytes(r.array("cov_zb")?);
+        let cov_xx_raw = f32::from_le_bytes(r.array("cov_xx")?);
+        let cov_yy_raw = f32::from_le_bytes(r.array("cov_yy")?);
+        let cov_zz_raw = f32::from_le_bytes(r.array("cov_zz")?);
+        let cov_bb_raw = f32::from_le_bytes(r.array("cov_bb")?);
+        let cov_xy_raw = f32::from_le_bytes(r.array("cov_xy")?);
+        let cov_xz_raw = f32::from_le_bytes(r.array("cov_xz")?);
+        let cov_xb_raw = f32::from_le_bytes(r.array("cov_xb")?);
+        let cov_yz_raw = f32::from_le_bytes(r.array("cov_yz")?);
+        let cov_yb_raw = f32::from_le_bytes(r.array("cov_yb")?);
+        let cov_zb_raw = f32::from_le_bytes(r.array("cov_zb")?);
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
             wnc_raw,
             mode,
             error_raw,
-            cov_xx,
-            cov_yy,
-            cov_zz,
-            cov_bb,
-            cov_xy,
-            cov_xz,
-            cov_xb,
-            cov_yz,
-            cov_yb,
-            cov_zb,
+            cov_xx_raw,
+            cov_yy_raw,
+            cov_zz_raw,
+            cov_bb_raw,
+            cov_xy_raw,
+            cov_xz_raw,
+            cov_xb_raw,
+            cov_yz_raw,
+            cov_yb_raw,
+            cov_zb_raw,
             trailing,
         })
     }
@@ -1211,16 +1518,16 @@ impl<'a> PosCovCartesian<'a> {
         w.put(&self.wnc_raw.to_le_bytes());
         w.put(&self.mode.to_le_bytes());
         w.put(&self.error_raw.to_le_bytes());
-        w.put(&self.cov_xx.to_le_bytes());
-        w.put(&self.cov_yy.to_le_bytes());
-        w.put(&self.cov_zz.to_le_bytes());
-        w.put(&self.cov_bb.to_le_bytes());
-        w.put(&self.cov_xy.to_le_bytes());
-        w.put(&self.cov_xz.to_le_bytes());
-        w.put(&self.cov_xb.to_le_bytes());
-        w.put(&self.cov_yz.to_le_bytes());
-        w.put(&self.cov_yb.to_le_bytes());
-        w.put(&self.cov_zb.to_le_bytes());
+        w.put(&self.cov_xx_raw.to_le_bytes());
+        w.put(&self.cov_yy_raw.to_le_bytes());
+        w.put(&self.cov_zz_raw.to_le_bytes());
+        w.put(&self.cov_bb_raw.to_le_bytes());
+        w.put(&self.cov_xy_raw.to_le_bytes());
+        w.put(&self.cov_xz_raw.to_le_bytes());
+        w.put(&self.cov_xb_raw.to_le_bytes());
+        w.put(&self.cov_yz_raw.to_le_bytes());
+        w.put(&self.cov_yb_raw.to_le_bytes());
+        w.put(&self.cov_zb_raw.to_le_bytes());
         w.put(self.trailing);
         Ok(())
     }
@@ -1249,16 +1556,86 @@ impl<'a> PosCovCartesian<'a> {
             ais::code::<SbfPvtError>(u64::from(self.error_raw)).map(CodeEnum::id),
             u64::from(self.error_raw),
         )?;
-        ubx::json_float(j, "cov_xx", f64::from(self.cov_xx))?;
-        ubx::json_float(j, "cov_yy", f64::from(self.cov_yy))?;
-        ubx::json_float(j, "cov_zz", f64::from(self.cov_zz))?;
-        ubx::json_float(j, "cov_bb", f64::from(self.cov_bb))?;
-        ubx::json_float(j, "cov_xy", f64::from(self.cov_xy))?;
-        ubx::json_float(j, "cov_xz", f64::from(self.cov_xz))?;
-        ubx::json_float(j, "cov_xb", f64::from(self.cov_xb))?;
-        ubx::json_float(j, "cov_yz", f64::from(self.cov_yz))?;
-        ubx::json_float(j, "cov_yb", f64::from(self.cov_yb))?;
-        ubx::json_float(j, "cov_zb", f64::from(self.cov_zb))?;
+        match ubx::float_reading(
+            u64::from(self.cov_xx_raw.to_bits()),
+            f64::from(self.cov_xx_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_xx", x)?,
+            ais::Reading::Special(id) => j.text("cov_xx", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_yy_raw.to_bits()),
+            f64::from(self.cov_yy_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_yy", x)?,
+            ais::Reading::Special(id) => j.text("cov_yy", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_zz_raw.to_bits()),
+            f64::from(self.cov_zz_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_zz", x)?,
+            ais::Reading::Special(id) => j.text("cov_zz", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_bb_raw.to_bits()),
+            f64::from(self.cov_bb_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_bb", x)?,
+            ais::Reading::Special(id) => j.text("cov_bb", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_xy_raw.to_bits()),
+            f64::from(self.cov_xy_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_xy", x)?,
+            ais::Reading::Special(id) => j.text("cov_xy", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_xz_raw.to_bits()),
+            f64::from(self.cov_xz_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_xz", x)?,
+            ais::Reading::Special(id) => j.text("cov_xz", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_xb_raw.to_bits()),
+            f64::from(self.cov_xb_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_xb", x)?,
+            ais::Reading::Special(id) => j.text("cov_xb", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_yz_raw.to_bits()),
+            f64::from(self.cov_yz_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_yz", x)?,
+            ais::Reading::Special(id) => j.text("cov_yz", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_yb_raw.to_bits()),
+            f64::from(self.cov_yb_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_yb", x)?,
+            ais::Reading::Special(id) => j.text("cov_yb", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_zb_raw.to_bits()),
+            f64::from(self.cov_zb_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_zb", x)?,
+            ais::Reading::Special(id) => j.text("cov_zb", id)?,
+        }
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -1274,26 +1651,26 @@ pub struct PosCovGeodetic<'a> {
     pub mode: u8,
     /// PVT error.
     pub error_raw: u8,
-    /// Variance of the latitude [m^2].
-    pub cov_latlat: f32,
-    /// Variance of the longitude [m^2].
-    pub cov_lonlon: f32,
-    /// Variance of the height [m^2].
-    pub cov_hgthgt: f32,
-    /// Variance of the clock bias [m^2].
-    pub cov_bb: f32,
-    /// Covariance of latitude and longitude [m^2].
-    pub cov_latlon: f32,
-    /// Covariance of latitude and height [m^2].
-    pub cov_lathgt: f32,
-    /// Covariance of latitude and the clock bias [m^2].
-    pub cov_latb: f32,
-    /// Covariance of longitude and height [m^2].
-    pub cov_lonhgt: f32,
-    /// Covariance of longitude and the clock bias [m^2].
-    pub cov_lonb: f32,
-    /// Covariance of height and the clock bias [m^2].
-    pub cov_hb: f32,
+    /// Variance of the latitude [m^2], as sent (`cov_latlat()`: the float or its special value).
+    pub cov_latlat_raw: f32,
+    /// Variance of the longitude [m^2], as sent (`cov_lonlon()`: the float or its special value).
+    pub cov_lonlon_raw: f32,
+    /// Variance of the height [m^2], as sent (`cov_hgthgt()`: the float or its special value).
+    pub cov_hgthgt_raw: f32,
+    /// Variance of the clock bias [m^2], as sent (`cov_bb()`: the float or its special value).
+    pub cov_bb_raw: f32,
+    /// Covariance of latitude and longitude [m^2], as sent (`cov_latlon()`: the float or its special value).
+    pub cov_latlon_raw: f32,
+    /// Covariance of latitude and height [m^2], as sent (`cov_lathgt()`: the float or its special value).
+    pub cov_lathgt_raw: f32,
+    /// Covariance of latitude and the clock bias [m^2], as sent (`cov_latb()`: the float or its special value).
+    pub cov_latb_raw: f32,
+    /// Covariance of longitude and height [m^2], as sent (`cov_lonhgt()`: the float or its special value).
+    pub cov_lonhgt_raw: f32,
+    /// Covariance of longitude and the clock bias [m^2], as sent (`cov_lonb()`: the float or its special value).
+    pub cov_lonb_raw: f32,
+    /// Covariance of height and the clock bias [m^2], as sent (`cov_hb()`: the float or its special value).
+    pub cov_hb_raw: f32,
     /// Bytes after the layout's last field, as sent (a newer firmware's additions).
     pub trailing: &'a [u8],
 }
@@ -1352,6 +1729,56 @@ impl<'a> PosCovGeodetic<'a> {
     pub fn error(&self) -> Option<SbfPvtError> {
         ais::code(u64::from(self.error_raw))
     }
+    /// Variance of the latitude [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_latlat(&self) -> ais::Reading<f64> {
+        let raw = self.cov_latlat_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of the longitude [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_lonlon(&self) -> ais::Reading<f64> {
+        let raw = self.cov_lonlon_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of the height [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_hgthgt(&self) -> ais::Reading<f64> {
+        let raw = self.cov_hgthgt_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of the clock bias [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_bb(&self) -> ais::Reading<f64> {
+        let raw = self.cov_bb_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of latitude and longitude [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_latlon(&self) -> ais::Reading<f64> {
+        let raw = self.cov_latlon_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of latitude and height [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_lathgt(&self) -> ais::Reading<f64> {
+        let raw = self.cov_lathgt_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of latitude and the clock bias [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_latb(&self) -> ais::Reading<f64> {
+        let raw = self.cov_latb_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of longitude and height [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_lonhgt(&self) -> ais::Reading<f64> {
+        let raw = self.cov_lonhgt_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of longitude and the clock bias [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_lonb(&self) -> ais::Reading<f64> {
+        let raw = self.cov_lonb_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of height and the clock bias [m^2]: the float, or the special value whose bits it holds.
+    pub fn cov_hb(&self) -> ais::Reading<f64> {
+        let raw = self.cov_hb_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
@@ -1359,32 +1786,32 @@ impl<'a> PosCovGeodetic<'a> {
         let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
         let mode = u8::from_le_bytes(r.array("mode")?);
         let error_raw = u8::from_le_bytes(r.array("error")?);
-        let cov_latlat = f32::from_le_bytes(r.array("cov_latlat")?);
-        let cov_lonlon = f32::from_le_bytes(r.array("cov_lonlon")?);
-        let cov_hgthgt = f32::from_le_bytes(r.array("cov_hgthgt")?);
-        let cov_bb = f32::from_le_bytes(r.array("cov_bb")?);
-        let cov_latlon = f32::from_le_bytes(r.array("cov_latlon")?);
-        let cov_lathgt = f32::from_le_bytes(r.array("cov_lathgt")?);
-        let cov_latb = f32::from_le_bytes(r.array("cov_latb")?);
-        let cov_lonhgt = f32::from_le_bytes(r.array("cov_lonhgt")?);
-        let cov_lonb = f32::from_le_bytes(r.array("cov_lonb")?);
-        let cov_hb = f32::from_le_bytes(r.array("cov_hb")?);
+        let cov_latlat_raw = f32::from_le_bytes(r.array("cov_latlat")?);
+        let cov_lonlon_raw = f32::from_le_bytes(r.array("cov_lonlon")?);
+        let cov_hgthgt_raw = f32::from_le_bytes(r.array("cov_hgthgt")?);
+        let cov_bb_raw = f32::from_le_bytes(r.array("cov_bb")?);
+        let cov_latlon_raw = f32::from_le_bytes(r.array("cov_latlon")?);
+        let cov_lathgt_raw = f32::from_le_bytes(r.array("cov_lathgt")?);
+        let cov_latb_raw = f32::from_le_bytes(r.array("cov_latb")?);
+        let cov_lonhgt_raw = f32::from_le_bytes(r.array("cov_lonhgt")?);
+        let cov_lonb_raw = f32::from_le_bytes(r.array("cov_lonb")?);
+        let cov_hb_raw = f32::from_le_bytes(r.array("cov_hb")?);
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
             wnc_raw,
             mode,
             error_raw,
-            cov_latlat,
-            cov_lonlon,
-            cov_hgthgt,
-            cov_bb,
-            cov_latlon,
-            cov_lathgt,
-            cov_latb,
-            cov_lonhgt,
-            cov_lonb,
-            cov_hb,
+            cov_latlat_raw,
+            cov_lonlon_raw,
+            cov_hgthgt_raw,
+            cov_bb_raw,
+            cov_latlon_raw,
+            cov_lathgt_raw,
+            cov_latb_raw,
+            cov_lonhgt_raw,
+            cov_lonb_raw,
+            cov_hb_raw,
             trailing,
         })
     }
@@ -1394,16 +1821,16 @@ impl<'a> PosCovGeodetic<'a> {
         w.put(&self.wnc_raw.to_le_bytes());
         w.put(&self.mode.to_le_bytes());
         w.put(&self.error_raw.to_le_bytes());
-        w.put(&self.cov_latlat.to_le_bytes());
-        w.put(&self.cov_lonlon.to_le_bytes());
-        w.put(&self.cov_hgthgt.to_le_bytes());
-        w.put(&self.cov_bb.to_le_bytes());
-        w.put(&self.cov_latlon.to_le_bytes());
-        w.put(&self.cov_lathgt.to_le_bytes());
-        w.put(&self.cov_latb.to_le_bytes());
-        w.put(&self.cov_lonhgt.to_le_bytes());
-        w.put(&self.cov_lonb.to_le_bytes());
-        w.put(&self.cov_hb.to_le_bytes());
+        w.put(&self.cov_latlat_raw.to_le_bytes());
+        w.put(&self.cov_lonlon_raw.to_le_bytes());
+        w.put(&self.cov_hgthgt_raw.to_le_bytes());
+        w.put(&self.cov_bb_raw.to_le_bytes());
+        w.put(&self.cov_latlon_raw.to_le_bytes());
+        w.put(&self.cov_lathgt_raw.to_le_bytes());
+        w.put(&self.cov_latb_raw.to_le_bytes());
+        w.put(&self.cov_lonhgt_raw.to_le_bytes());
+        w.put(&self.cov_lonb_raw.to_le_bytes());
+        w.put(&self.cov_hb_raw.to_le_bytes());
         w.put(self.trailing);
         Ok(())
     }
@@ -1432,16 +1859,86 @@ impl<'a> PosCovGeodetic<'a> {
             ais::code::<SbfPvtError>(u64::from(self.error_raw)).map(CodeEnum::id),
             u64::from(self.error_raw),
         )?;
-        ubx::json_float(j, "cov_latlat", f64::from(self.cov_latlat))?;
-        ubx::json_float(j, "cov_lonlon", f64::from(self.cov_lonlon))?;
-        ubx::json_float(j, "cov_hgthgt", f64::from(self.cov_hgthgt))?;
-        ubx::json_float(j, "cov_bb", f64::from(self.cov_bb))?;
-        ubx::json_float(j, "cov_latlon", f64::from(self.cov_latlon))?;
-        ubx::json_float(j, "cov_lathgt", f64::from(self.cov_lathgt))?;
-        ubx::json_float(j, "cov_latb", f64::from(self.cov_latb))?;
-        ubx::json_float(j, "cov_lonhgt", f64::from(self.cov_lonhgt))?;
-        ubx::json_float(j, "cov_lonb", f64::from(self.cov_lonb))?;
-        ubx::json_float(j, "cov_hb", f64::from(self.cov_hb))?;
+        match ubx::float_reading(
+            u64::from(self.cov_latlat_raw.to_bits()),
+            f64::from(self.cov_latlat_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_latlat", x)?,
+            ais::Reading::Special(id) => j.text("cov_latlat", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_lonlon_raw.to_bits()),
+            f64::from(self.cov_lonlon_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_lonlon", x)?,
+            ais::Reading::Special(id) => j.text("cov_lonlon", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_hgthgt_raw.to_bits()),
+            f64::from(self.cov_hgthgt_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_hgthgt", x)?,
+            ais::Reading::Special(id) => j.text("cov_hgthgt", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_bb_raw.to_bits()),
+            f64::from(self.cov_bb_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_bb", x)?,
+            ais::Reading::Special(id) => j.text("cov_bb", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_latlon_raw.to_bits()),
+            f64::from(self.cov_latlon_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_latlon", x)?,
+            ais::Reading::Special(id) => j.text("cov_latlon", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_lathgt_raw.to_bits()),
+            f64::from(self.cov_lathgt_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_lathgt", x)?,
+            ais::Reading::Special(id) => j.text("cov_lathgt", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_latb_raw.to_bits()),
+            f64::from(self.cov_latb_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_latb", x)?,
+            ais::Reading::Special(id) => j.text("cov_latb", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_lonhgt_raw.to_bits()),
+            f64::from(self.cov_lonhgt_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_lonhgt", x)?,
+            ais::Reading::Special(id) => j.text("cov_lonhgt", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_lonb_raw.to_bits()),
+            f64::from(self.cov_lonb_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_lonb", x)?,
+            ais::Reading::Special(id) => j.text("cov_lonb", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_hb_raw.to_bits()),
+            f64::from(self.cov_hb_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_hb", x)?,
+            ais::Reading::Special(id) => j.text("cov_hb", id)?,
+        }
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -1457,26 +1954,26 @@ pub struct VelCovCartesian<'a> {
     pub mode: u8,
     /// PVT error.
     pub error_raw: u8,
-    /// Variance of Vx [m^2/s^2].
-    pub cov_vxvx: f32,
-    /// Variance of Vy [m^2/s^2].
-    pub cov_vyvy: f32,
-    /// Variance of Vz [m^2/s^2].
-    pub cov_vzvz: f32,
-    /// Variance of the clock drift [m^2/s^2].
-    pub cov_dtdt: f32,
-    /// Covariance of Vx and Vy [m^2/s^2].
-    pub cov_vxvy: f32,
-    /// Covariance of Vx and Vz [m^2/s^2].
-    pub cov_vxvz: f32,
-    /// Covariance of Vx and the clock drift [m^2/s^2].
-    pub cov_vxdt: f32,
-    /// Covariance of Vy and Vz [m^2/s^2].
-    pub cov_vyvz: f32,
-    /// Covariance of Vy and the clock drift [m^2/s^2].
-    pub cov_vydt: f32,
-    /// Covariance of Vz and the clock drift [m^2/s^2].
-    pub cov_vzdt: f32,
+    /// Variance of Vx [m^2/s^2], as sent (`cov_vxvx()`: the float or its special value).
+    pub cov_vxvx_raw: f32,
+    /// Variance of Vy [m^2/s^2], as sent (`cov_vyvy()`: the float or its special value).
+    pub cov_vyvy_raw: f32,
+    /// Variance of Vz [m^2/s^2], as sent (`cov_vzvz()`: the float or its special value).
+    pub cov_vzvz_raw: f32,
+    /// Variance of the clock drift [m^2/s^2], as sent (`cov_dtdt()`: the float or its special value).
+    pub cov_dtdt_raw: f32,
+    /// Covariance of Vx and Vy [m^2/s^2], as sent (`cov_vxvy()`: the float or its special value).
+    pub cov_vxvy_raw: f32,
+    /// Covariance of Vx and Vz [m^2/s^2], as sent (`cov_vxvz()`: the float or its special value).
+    pub cov_vxvz_raw: f32,
+    /// Covariance of Vx and the clock drift [m^2/s^2], as sent (`cov_vxdt()`: the float or its special value).
+    pub cov_vxdt_raw: f32,
+    /// Covariance of Vy and Vz [m^2/s^2], as sent (`cov_vyvz()`: the float or its special value).
+    pub cov_vyvz_raw: f32,
+    /// Covariance of Vy and the clock drift [m^2/s^2], as sent (`cov_vydt()`: the float or its special value).
+    pub cov_vydt_raw: f32,
+    /// Covariance of Vz and the clock drift [m^2/s^2], as sent (`cov_vzdt()`: the float or its special value).
+    pub cov_vzdt_raw: f32,
     /// Bytes after the layout's last field, as sent (a newer firmware's additions).
     pub trailing: &'a [u8],
 }
@@ -1535,6 +2032,56 @@ impl<'a> VelCovCartesian<'a> {
     pub fn error(&self) -> Option<SbfPvtError> {
         ais::code(u64::from(self.error_raw))
     }
+    /// Variance of Vx [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vxvx(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vxvx_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of Vy [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vyvy(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vyvy_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of Vz [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vzvz(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vzvz_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of the clock drift [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_dtdt(&self) -> ais::Reading<f64> {
+        let raw = self.cov_dtdt_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Vx and Vy [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vxvy(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vxvy_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Vx and Vz [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vxvz(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vxvz_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Vx and the clock drift [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vxdt(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vxdt_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Vy and Vz [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vyvz(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vyvz_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Vy and the clock drift [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vydt(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vydt_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Vz and the clock drift [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vzdt(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vzdt_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
@@ -1542,32 +2089,32 @@ impl<'a> VelCovCartesian<'a> {
         let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
         let mode = u8::from_le_bytes(r.array("mode")?);
         let error_raw = u8::from_le_bytes(r.array("error")?);
-        let cov_vxvx = f32::from_le_bytes(r.array("cov_vxvx")?);
-        let cov_vyvy = f32::from_le_bytes(r.array("cov_vyvy")?);
-        let cov_vzvz = f32::from_le_bytes(r.array("cov_vzvz")?);
-        let cov_dtdt = f32::from_le_bytes(r.array("cov_dtdt")?);
-        let cov_vxvy = f32::from_le_bytes(r.array("cov_vxvy")?);
-        let cov_vxvz = f32::from_le_bytes(r.array("cov_vxvz")?);
-        let cov_vxdt = f32::from_le_bytes(r.array("cov_vxdt")?);
-        let cov_vyvz = f32::from_le_bytes(r.array("cov_vyvz")?);
-        let cov_vydt = f32::from_le_bytes(r.array("cov_vydt")?);
-        let cov_vzdt = f32::from_le_bytes(r.array("cov_vzdt")?);
+        let cov_vxvx_raw = f32::from_le_bytes(r.array("cov_vxvx")?);
+        let cov_vyvy_raw = f32::from_le_bytes(r.array("cov_vyvy")?);
+        let cov_vzvz_raw = f32::from_le_bytes(r.array("cov_vzvz")?);
+        let cov_dtdt_raw = f32::from_le_bytes(r.array("cov_dtdt")?);
+        let cov_vxvy_raw = f32::from_le_bytes(r.array("cov_vxvy")?);
+        let cov_vxvz_raw = f32::from_le_bytes(r.array("cov_vxvz")?);
+        let cov_vxdt_raw = f32::from_le_bytes(r.array("cov_vxdt")?);
+        let cov_vyvz_raw = f32::from_le_bytes(r.array("cov_vyvz")?);
+        let cov_vydt_raw = f32::from_le_bytes(r.array("cov_vydt")?);
+        let cov_vzdt_raw = f32::from_le_bytes(r.array("cov_vzdt")?);
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
             wnc_raw,
             mode,
             error_raw,
-            cov_vxvx,
-            cov_vyvy,
-            cov_vzvz,
-            cov_dtdt,
-            cov_vxvy,
-            cov_vxvz,
-            cov_vxdt,
-            cov_vyvz,
-            cov_vydt,
-            cov_vzdt,
+            cov_vxvx_raw,
+            cov_vyvy_raw,
+            cov_vzvz_raw,
+            cov_dtdt_raw,
+            cov_vxvy_raw,
+            cov_vxvz_raw,
+            cov_vxdt_raw,
+            cov_vyvz_raw,
+            cov_vydt_raw,
+            cov_vzdt_raw,
             trailing,
         })
     }
@@ -1577,16 +2124,16 @@ impl<'a> VelCovCartesian<'a> {
         w.put(&self.wnc_raw.to_le_bytes());
         w.put(&self.mode.to_le_bytes());
         w.put(&self.error_raw.to_le_bytes());
-        w.put(&self.cov_vxvx.to_le_bytes());
-        w.put(&self.cov_vyvy.to_le_bytes());
-        w.put(&self.cov_vzvz.to_le_bytes());
-        w.put(&self.cov_dtdt.to_le_bytes());
-        w.put(&self.cov_vxvy.to_le_bytes());
-        w.put(&self.cov_vxvz.to_le_bytes());
-        w.put(&self.cov_vxdt.to_le_bytes());
-        w.put(&self.cov_vyvz.to_le_bytes());
-        w.put(&self.cov_vydt.to_le_bytes());
-        w.put(&self.cov_vzdt.to_le_bytes());
+        w.put(&self.cov_vxvx_raw.to_le_bytes());
+        w.put(&self.cov_vyvy_raw.to_le_bytes());
+        w.put(&self.cov_vzvz_raw.to_le_bytes());
+        w.put(&self.cov_dtdt_raw.to_le_bytes());
+        w.put(&self.cov_vxvy_raw.to_le_bytes());
+        w.put(&self.cov_vxvz_raw.to_le_bytes());
+        w.put(&self.cov_vxdt_raw.to_le_bytes());
+        w.put(&self.cov_vyvz_raw.to_le_bytes());
+        w.put(&self.cov_vydt_raw.to_le_bytes());
+        w.put(&self.cov_vzdt_raw.to_le_bytes());
         w.put(self.trailing);
         Ok(())
     }
@@ -1615,16 +2162,86 @@ impl<'a> VelCovCartesian<'a> {
             ais::code::<SbfPvtError>(u64::from(self.error_raw)).map(CodeEnum::id),
             u64::from(self.error_raw),
         )?;
-        ubx::json_float(j, "cov_vxvx", f64::from(self.cov_vxvx))?;
-        ubx::json_float(j, "cov_vyvy", f64::from(self.cov_vyvy))?;
-        ubx::json_float(j, "cov_vzvz", f64::from(self.cov_vzvz))?;
-        ubx::json_float(j, "cov_dtdt", f64::from(self.cov_dtdt))?;
-        ubx::json_float(j, "cov_vxvy", f64::from(self.cov_vxvy))?;
-        ubx::json_float(j, "cov_vxvz", f64::from(self.cov_vxvz))?;
-        ubx::json_float(j, "cov_vxdt", f64::from(self.cov_vxdt))?;
-        ubx::json_float(j, "cov_vyvz", f64::from(self.cov_vyvz))?;
-        ubx::json_float(j, "cov_vydt", f64::from(self.cov_vydt))?;
-        ubx::json_float(j, "cov_vzdt", f64::from(self.cov_vzdt))?;
+        match ubx::float_reading(
+            u64::from(self.cov_vxvx_raw.to_bits()),
+            f64::from(self.cov_vxvx_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vxvx", x)?,
+            ais::Reading::Special(id) => j.text("cov_vxvx", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vyvy_raw.to_bits()),
+            f64::from(self.cov_vyvy_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vyvy", x)?,
+            ais::Reading::Special(id) => j.text("cov_vyvy", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vzvz_raw.to_bits()),
+            f64::from(self.cov_vzvz_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vzvz", x)?,
+            ais::Reading::Special(id) => j.text("cov_vzvz", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_dtdt_raw.to_bits()),
+            f64::from(self.cov_dtdt_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_dtdt", x)?,
+            ais::Reading::Special(id) => j.text("cov_dtdt", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vxvy_raw.to_bits()),
+            f64::from(self.cov_vxvy_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vxvy", x)?,
+            ais::Reading::Special(id) => j.text("cov_vxvy", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vxvz_raw.to_bits()),
+            f64::from(self.cov_vxvz_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vxvz", x)?,
+            ais::Reading::Special(id) => j.text("cov_vxvz", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vxdt_raw.to_bits()),
+            f64::from(self.cov_vxdt_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vxdt", x)?,
+            ais::Reading::Special(id) => j.text("cov_vxdt", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vyvz_raw.to_bits()),
+            f64::from(self.cov_vyvz_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vyvz", x)?,
+            ais::Reading::Special(id) => j.text("cov_vyvz", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vydt_raw.to_bits()),
+            f64::from(self.cov_vydt_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vydt", x)?,
+            ais::Reading::Special(id) => j.text("cov_vydt", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vzdt_raw.to_bits()),
+            f64::from(self.cov_vzdt_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vzdt", x)?,
+            ais::Reading::Special(id) => j.text("cov_vzdt", id)?,
+        }
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -1640,26 +2257,26 @@ pub struct VelCovGeodetic<'a> {
     pub mode: u8,
     /// PVT error.
     pub error_raw: u8,
-    /// Variance of Vn [m^2/s^2].
-    pub cov_vnvn: f32,
-    /// Variance of Ve [m^2/s^2].
-    pub cov_veve: f32,
-    /// Variance of Vu [m^2/s^2].
-    pub cov_vuvu: f32,
-    /// Variance of the clock drift [m^2/s^2].
-    pub cov_dtdt: f32,
-    /// Covariance of Vn and Ve [m^2/s^2].
-    pub cov_vnve: f32,
-    /// Covariance of Vn and Vu [m^2/s^2].
-    pub cov_vnvu: f32,
-    /// Covariance of Vn and the clock drift [m^2/s^2].
-    pub cov_vndt: f32,
-    /// Covariance of Ve and Vu [m^2/s^2].
-    pub cov_vevu: f32,
-    /// Covariance of Ve and the clock drift [m^2/s^2].
-    pub cov_vedt: f32,
-    /// Covariance of Vu and the clock drift [m^2/s^2].
-    pub cov_vudt: f32,
+    /// Variance of Vn [m^2/s^2], as sent (`cov_vnvn()`: the float or its special value).
+    pub cov_vnvn_raw: f32,
+    /// Variance of Ve [m^2/s^2], as sent (`cov_veve()`: the float or its special value).
+    pub cov_veve_raw: f32,
+    /// Variance of Vu [m^2/s^2], as sent (`cov_vuvu()`: the float or its special value).
+    pub cov_vuvu_raw: f32,
+    /// Variance of the clock drift [m^2/s^2], as sent (`cov_dtdt()`: the float or its special value).
+    pub cov_dtdt_raw: f32,
+    /// Covariance of Vn and Ve [m^2/s^2], as sent (`cov_vnve()`: the float or its special value).
+    pub cov_vnve_raw: f32,
+    /// Covariance of Vn and Vu [m^2/s^2], as sent (`cov_vnvu()`: the float or its special value).
+    pub cov_vnvu_raw: f32,
+    /// Covariance of Vn and the clock drift [m^2/s^2], as sent (`cov_vndt()`: the float or its special value).
+    pub cov_vndt_raw: f32,
+    /// Covariance of Ve and Vu [m^2/s^2], as sent (`cov_vevu()`: the float or its special value).
+    pub cov_vevu_raw: f32,
+    /// Covariance of Ve and the clock drift [m^2/s^2], as sent (`cov_vedt()`: the float or its special value).
+    pub cov_vedt_raw: f32,
+    /// Covariance of Vu and the clock drift [m^2/s^2], as sent (`cov_vudt()`: the float or its special value).
+    pub cov_vudt_raw: f32,
     /// Bytes after the layout's last field, as sent (a newer firmware's additions).
     pub trailing: &'a [u8],
 }
@@ -1718,6 +2335,56 @@ impl<'a> VelCovGeodetic<'a> {
     pub fn error(&self) -> Option<SbfPvtError> {
         ais::code(u64::from(self.error_raw))
     }
+    /// Variance of Vn [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vnvn(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vnvn_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of Ve [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_veve(&self) -> ais::Reading<f64> {
+        let raw = self.cov_veve_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of Vu [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vuvu(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vuvu_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Variance of the clock drift [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_dtdt(&self) -> ais::Reading<f64> {
+        let raw = self.cov_dtdt_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Vn and Ve [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vnve(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vnve_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Vn and Vu [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vnvu(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vnvu_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Vn and the clock drift [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vndt(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vndt_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Ve and Vu [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vevu(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vevu_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Ve and the clock drift [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vedt(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vedt_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Covariance of Vu and the clock drift [m^2/s^2]: the float, or the special value whose bits it holds.
+    pub fn cov_vudt(&self) -> ais::Reading<f64> {
+        let raw = self.cov_vudt_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
     /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
     pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
         let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
@@ -1725,32 +2392,32 @@ impl<'a> VelCovGeodetic<'a> {
         let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
         let mode = u8::from_le_bytes(r.array("mode")?);
         let error_raw = u8::from_le_bytes(r.array("error")?);
-        let cov_vnvn = f32::from_le_bytes(r.array("cov_vnvn")?);
-        let cov_veve = f32::from_le_bytes(r.array("cov_veve")?);
-        let cov_vuvu = f32::from_le_bytes(r.array("cov_vuvu")?);
-        let cov_dtdt = f32::from_le_bytes(r.array("cov_dtdt")?);
-        let cov_vnve = f32::from_le_bytes(r.array("cov_vnve")?);
-        let cov_vnvu = f32::from_le_bytes(r.array("cov_vnvu")?);
-        let cov_vndt = f32::from_le_bytes(r.array("cov_vndt")?);
-        let cov_vevu = f32::from_le_bytes(r.array("cov_vevu")?);
-        let cov_vedt = f32::from_le_bytes(r.array("cov_vedt")?);
-        let cov_vudt = f32::from_le_bytes(r.array("cov_vudt")?);
+        let cov_vnvn_raw = f32::from_le_bytes(r.array("cov_vnvn")?);
+        let cov_veve_raw = f32::from_le_bytes(r.array("cov_veve")?);
+        let cov_vuvu_raw = f32::from_le_bytes(r.array("cov_vuvu")?);
+        let cov_dtdt_raw = f32::from_le_bytes(r.array("cov_dtdt")?);
+        let cov_vnve_raw = f32::from_le_bytes(r.array("cov_vnve")?);
+        let cov_vnvu_raw = f32::from_le_bytes(r.array("cov_vnvu")?);
+        let cov_vndt_raw = f32::from_le_bytes(r.array("cov_vndt")?);
+        let cov_vevu_raw = f32::from_le_bytes(r.array("cov_vevu")?);
+        let cov_vedt_raw = f32::from_le_bytes(r.array("cov_vedt")?);
+        let cov_vudt_raw = f32::from_le_bytes(r.array("cov_vudt")?);
         let trailing = r.rest();
         Ok(Self {
             tow_raw,
             wnc_raw,
             mode,
             error_raw,
-            cov_vnvn,
-            cov_veve,
-            cov_vuvu,
-            cov_dtdt,
-            cov_vnve,
-            cov_vnvu,
-            cov_vndt,
-            cov_vevu,
-            cov_vedt,
-            cov_vudt,
+            cov_vnvn_raw,
+            cov_veve_raw,
+            cov_vuvu_raw,
+            cov_dtdt_raw,
+            cov_vnve_raw,
+            cov_vnvu_raw,
+            cov_vndt_raw,
+            cov_vevu_raw,
+            cov_vedt_raw,
+            cov_vudt_raw,
             trailing,
         })
     }
@@ -1760,16 +2427,16 @@ impl<'a> VelCovGeodetic<'a> {
         w.put(&self.wnc_raw.to_le_bytes());
         w.put(&self.mode.to_le_bytes());
         w.put(&self.error_raw.to_le_bytes());
-        w.put(&self.cov_vnvn.to_le_bytes());
-        w.put(&self.cov_veve.to_le_bytes());
-        w.put(&self.cov_vuvu.to_le_bytes());
-        w.put(&self.cov_dtdt.to_le_bytes());
-        w.put(&self.cov_vnve.to_le_bytes());
-        w.put(&self.cov_vnvu.to_le_bytes());
-        w.put(&self.cov_vndt.to_le_bytes());
-        w.put(&self.cov_vevu.to_le_bytes());
-        w.put(&self.cov_vedt.to_le_bytes());
-        w.put(&self.cov_vudt.to_le_bytes());
+        w.put(&self.cov_vnvn_raw.to_le_bytes());
+        w.put(&self.cov_veve_raw.to_le_bytes());
+        w.put(&self.cov_vuvu_raw.to_le_bytes());
+        w.put(&self.cov_dtdt_raw.to_le_bytes());
+        w.put(&self.cov_vnve_raw.to_le_bytes());
+        w.put(&self.cov_vnvu_raw.to_le_bytes());
+        w.put(&self.cov_vndt_raw.to_le_bytes());
+        w.put(&self.cov_vevu_raw.to_le_bytes());
+        w.put(&self.cov_vedt_raw.to_le_bytes());
+        w.put(&self.cov_vudt_raw.to_le_bytes());
         w.put(self.trailing);
         Ok(())
     }
@@ -1798,16 +2465,86 @@ impl<'a> VelCovGeodetic<'a> {
             ais::code::<SbfPvtError>(u64::from(self.error_raw)).map(CodeEnum::id),
             u64::from(self.error_raw),
         )?;
-        ubx::json_float(j, "cov_vnvn", f64::from(self.cov_vnvn))?;
-        ubx::json_float(j, "cov_veve", f64::from(self.cov_veve))?;
-        ubx::json_float(j, "cov_vuvu", f64::from(self.cov_vuvu))?;
-        ubx::json_float(j, "cov_dtdt", f64::from(self.cov_dtdt))?;
-        ubx::json_float(j, "cov_vnve", f64::from(self.cov_vnve))?;
-        ubx::json_float(j, "cov_vnvu", f64::from(self.cov_vnvu))?;
-        ubx::json_float(j, "cov_vndt", f64::from(self.cov_vndt))?;
-        ubx::json_float(j, "cov_vevu", f64::from(self.cov_vevu))?;
-        ubx::json_float(j, "cov_vedt", f64::from(self.cov_vedt))?;
-        ubx::json_float(j, "cov_vudt", f64::from(self.cov_vudt))?;
+        match ubx::float_reading(
+            u64::from(self.cov_vnvn_raw.to_bits()),
+            f64::from(self.cov_vnvn_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vnvn", x)?,
+            ais::Reading::Special(id) => j.text("cov_vnvn", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_veve_raw.to_bits()),
+            f64::from(self.cov_veve_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_veve", x)?,
+            ais::Reading::Special(id) => j.text("cov_veve", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vuvu_raw.to_bits()),
+            f64::from(self.cov_vuvu_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vuvu", x)?,
+            ais::Reading::Special(id) => j.text("cov_vuvu", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_dtdt_raw.to_bits()),
+            f64::from(self.cov_dtdt_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_dtdt", x)?,
+            ais::Reading::Special(id) => j.text("cov_dtdt", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vnve_raw.to_bits()),
+            f64::from(self.cov_vnve_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vnve", x)?,
+            ais::Reading::Special(id) => j.text("cov_vnve", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vnvu_raw.to_bits()),
+            f64::from(self.cov_vnvu_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vnvu", x)?,
+            ais::Reading::Special(id) => j.text("cov_vnvu", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vndt_raw.to_bits()),
+            f64::from(self.cov_vndt_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vndt", x)?,
+            ais::Reading::Special(id) => j.text("cov_vndt", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vevu_raw.to_bits()),
+            f64::from(self.cov_vevu_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vevu", x)?,
+            ais::Reading::Special(id) => j.text("cov_vevu", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vedt_raw.to_bits()),
+            f64::from(self.cov_vedt_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vedt", x)?,
+            ais::Reading::Special(id) => j.text("cov_vedt", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.cov_vudt_raw.to_bits()),
+            f64::from(self.cov_vudt_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "cov_vudt", x)?,
+            ais::Reading::Special(id) => j.text("cov_vudt", id)?,
+        }
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }

@@ -656,6 +656,15 @@ impl<'a, E: Entry<'a> + fmt::Debug> fmt::Debug for Group<'a, E> {
     }
 }
 
+/// A float field with special values (SBF's do-not-use -2e10): its value, or the special value whose
+/// bit pattern (in the field's own width, widened) it holds; `specials` are (bits, id).
+pub fn float_reading(bits: u64, value: f64, specials: &[(u64, &'static str)]) -> super::ais::Reading<f64> {
+    specials
+        .iter()
+        .find(|&&(raw, _)| raw == bits)
+        .map_or(super::ais::Reading::Value(value), |&(_, id)| super::ais::Reading::Special(id))
+}
+
 /// A float member: a double as Python's `repr` writes it ([`write_repr`](super::repr::write_repr)), NaN
 /// and the infinities as the strings `"nan"`, `"inf"`, `"-inf"`.
 pub fn json_float<W: Write>(j: &mut JsonObject<'_, W>, name: &str, value: f64) -> fmt::Result {

@@ -4,7 +4,7 @@
 #   spec/binary/sbf/messages/pos_cov_geodetic.yaml, spec/binary/sbf/messages/pvt_cartesian.yaml,
 #   spec/binary/sbf/messages/pvt_dop.yaml, spec/binary/sbf/messages/pvt_geodetic.yaml,
 #   spec/binary/sbf/messages/receiver_time.yaml, spec/binary/sbf/messages/vel_cov_cartesian.yaml,
-#   spec/binary/sbf/messages/vel_cov_geodetic.yaml (digest 6ad3fa6d501f1080)
+#   spec/binary/sbf/messages/vel_cov_geodetic.yaml (digest 37bc3f7c8a1c4b2e)
 # Regenerate: make generate (python3 -m generator generate)
 """Septentrio SBF messages: a frame's payload decoded into the class of its layout (by its
 block number and revision, then length and version) and encoded back to

@@ -259,6 +259,22 @@ fn sbf_blocks_keep_do_not_use_values_padding_and_crc() {
     again.write_json(&mut json).unwrap();
     assert!(json.contains(r#""tow":"do_not_use","tow_raw":4294967295,"#), "{json}");
     assert!(json.contains(r#""utc_sec":"do_not_use","utc_sec_raw":-128,"#), "{json}");
+    // the float do-not-use value (-2e10) by its id, r4 and r8 alike, the float kept and written back as sent
+    let frame = unhex(
+        "24 40 71 0e a7 4f 60 00 18 a9 c7 1c 3f 09 06 00 91 82 7c 11 fe ca ed 3f 0d ec d5 a8 9a 13 a4 bf 0f 92 c3 6d \
+         f3 65 60 40 4f e9 41 42 5b b9 a0 3a 0b 98 50 ba 73 8e fc 39 f9 02 95 d0 d8 21 db 51 dc c3 b1 3f 7f 8b 4a 3e \
+         00 00 24 07 7b 00 16 01 01 01 22 50 01 01 00 00 37 00 66 00 8a 00 60 00",
+    );
+    let sbf_messages::Message::PvtGeodetic(mut pvt) = sbf_messages::Message::from_frame(&frame).unwrap() else {
+        panic!("not a PVTGeodetic");
+    };
+    assert_eq!((pvt.cog(), pvt.cog_raw), (Reading::Special("do_not_use"), -2e10_f32));
+    assert_eq!(pvt.encode(&mut [0u8; 128]).unwrap(), &frame[..]);
+    pvt.height_raw = -2e10;
+    assert_eq!(pvt.height(), Reading::Special("do_not_use"));
+    json.clear();
+    sbf_messages::Message::PvtGeodetic(pvt).write_json(&mut json).unwrap();
+    assert!(json.contains(r#""height":"do_not_use","#) && json.contains(r#""cog":"do_not_use","#), "{json}");
     // a block number no layout describes: its number and revision, its body as sent
     let unknown = unhex("24 40 16 64 a0 2f 0c 00 01 02 03 04");
     let message = sbf_messages::Message::from_frame(&unknown).unwrap();
