@@ -386,14 +386,14 @@ FUZZ := build/fuzz
 FUZZ_FLAGS = -max_total_time=$(FUZZ_SECONDS) -max_len=1100 -timeout=10 -print_final_stats=1
 
 # The smoke run fuzzes the C pair (whose sanitized object the other steps build anyway) and the
-# Python package for 15 seconds each, replays the seeds and every regression through the two Rust
+# Python package for 10 seconds each, replays the seeds and every regression through the two Rust
 # targets built without coverage instrumentation (fuzz-rust-replay), then through the three tools
 # (fuzz-differential). The coverage-guided Rust runs are the campaign's (`make fuzz`): their
 # instrumented build of the whole crate took more CPU than the rest of the smoke run together. What
 # the smoke shares with the other steps of `make test` is built first, by this make, so that the
 # two makes never build one file at once.
 fuzz-smoke: test-bin build/c/nmea-san.o
-	$(MAKE) --no-print-directory fuzz-c fuzz-python fuzz-rust-replay FUZZ_SECONDS=15 SEED_FLAGS=--no-corpus
+	$(MAKE) --no-print-directory fuzz-c fuzz-python fuzz-rust-replay FUZZ_SECONDS=10 SEED_FLAGS=--no-corpus
 	$(MAKE) --no-print-directory fuzz-differential
 
 # Each input a file of its own, run once by the targets built without libFuzzer (a plain program
