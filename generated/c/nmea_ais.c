@@ -12,9 +12,12 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/inland_persons_on_board.yaml,
+//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/inland_persons_on_board.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
-//   spec/ais/applications/meteo_hydro_imo236.yaml (digest 2ac20757a8cf89cf)
+//   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
+//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
+//   (digest 1fd3905f66b50686)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -1127,6 +1130,32 @@ static void ais_json_aton_monitoring(const nmea_ais_aton_monitoring *m, nmea_ais
     ais_json_bits(j, "trailing", m->trailing);
 }
 
+static bool ais_read_function_interrogation(nmea_ais_reader *r, nmea_ais_function_interrogation *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 10, "req_dac", &raw)) return false;
+    m->req_dac = (uint16_t)raw;
+    if (!ais_take(r, 6, "req_fid", &raw)) return false;
+    m->req_fid = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_function_interrogation(const nmea_ais_function_interrogation *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->req_dac, 10, "req_dac")) return false;
+    if (!ais_put(w, m->req_fid, 6, "req_fid")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_function_interrogation(const nmea_ais_function_interrogation *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "req_dac", (long long)m->req_dac);
+    ais_json_int(j, "req_fid", (long long)m->req_fid);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
 static const nmea_ais_special ais_inland_persons_on_board_crew_specials[] = {{255, "not_available"}};
 static const nmea_ais_special ais_inland_persons_on_board_passengers_specials[] = {{8191, "not_available"}};
 static const nmea_ais_special ais_inland_persons_on_board_personnel_specials[] = {{255, "not_available"}};
@@ -1662,6 +1691,88 @@ static void ais_json_meteo_hydro_imo236(const nmea_ais_meteo_hydro_imo236 *m, nm
     if (m->has_spare) {
         ais_json_int(j, "spare", (long long)m->spare);
     }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_persons_on_board_persons_specials[] = {{0, "not_available"}};
+static bool ais_read_persons_on_board(nmea_ais_reader *r, nmea_ais_persons_on_board *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 13, "persons", &raw)) return false;
+    m->persons_raw = (uint16_t)raw;
+    if (ais_remaining(r) < 3) goto done;
+    if (!ais_take(r, 3, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->has_spare = true;
+    done: m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_persons_on_board(const nmea_ais_persons_on_board *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->persons_raw, 13, "persons")) return false;
+    if (!m->has_spare) goto done;
+    if (!ais_put(w, m->spare, 3, "spare")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_persons_on_board(const nmea_ais_persons_on_board *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "persons", (int64_t)m->persons_raw, 1.0, 0.0, false, ais_persons_on_board_persons_specials, 1);
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static bool ais_read_text_addressed(nmea_ais_reader *r, nmea_ais_text_addressed *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 10, "linkage", &raw)) return false;
+    m->linkage = (uint16_t)raw;
+    if (!ais_take_bits(r, ais_remaining(r) / 6 * 6, "text", &m->text)) return false;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_text_addressed(const nmea_ais_text_addressed *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->linkage, 10, "linkage")) return false;
+    if (!ais_put_bits(w, m->text, "text")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_text_addressed(const nmea_ais_text_addressed *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "linkage", (long long)m->linkage);
+    ais_json_text(j, "text", m->text);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static bool ais_read_text_broadcast(nmea_ais_reader *r, nmea_ais_text_broadcast *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 10, "linkage", &raw)) return false;
+    m->linkage = (uint16_t)raw;
+    if (!ais_take_bits(r, ais_remaining(r) / 6 * 6, "text", &m->text)) return false;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_text_broadcast(const nmea_ais_text_broadcast *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->linkage, 10, "linkage")) return false;
+    if (!ais_put_bits(w, m->text, "text")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_text_broadcast(const nmea_ais_text_broadcast *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "linkage", (long long)m->linkage);
+    ais_json_text(j, "text", m->text);
     ais_json_bits(j, "trailing", m->trailing);
 }
 
@@ -3731,6 +3842,10 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
         app->layout = NMEA_AIS_APP_ATON_MONITORING;
         return ais_read_aton_monitoring(&r, &app->as.aton_monitoring);
     }
+    if (dac == 1u && fid == 2u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_FUNCTION_INTERROGATION;
+        return ais_read_function_interrogation(&r, &app->as.function_interrogation);
+    }
     if (dac == 200u && fid == 55u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD;
         return ais_read_inland_persons_on_board(&r, &app->as.inland_persons_on_board);
@@ -3747,6 +3862,18 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
         app->layout = NMEA_AIS_APP_METEO_HYDRO_IMO236;
         return ais_read_meteo_hydro_imo236(&r, &app->as.meteo_hydro_imo236);
     }
+    if (dac == 1u && fid == 40u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_PERSONS_ON_BOARD;
+        return ais_read_persons_on_board(&r, &app->as.persons_on_board);
+    }
+    if (dac == 1u && fid == 30u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_TEXT_ADDRESSED;
+        return ais_read_text_addressed(&r, &app->as.text_addressed);
+    }
+    if (dac == 1u && fid == 29u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_TEXT_BROADCAST;
+        return ais_read_text_broadcast(&r, &app->as.text_broadcast);
+    }
     return false;
 }
 
@@ -3755,6 +3882,8 @@ static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writ
     switch (app->layout) {
     case NMEA_AIS_APP_ATON_MONITORING:
         return ais_write_aton_monitoring(&app->as.aton_monitoring, w);
+    case NMEA_AIS_APP_FUNCTION_INTERROGATION:
+        return ais_write_function_interrogation(&app->as.function_interrogation, w);
     case NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD:
         return ais_write_inland_persons_on_board(&app->as.inland_persons_on_board, w);
     case NMEA_AIS_APP_INLAND_STATIC_VOYAGE:
@@ -3763,6 +3892,12 @@ static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writ
         return ais_write_meteo_hydro(&app->as.meteo_hydro, w);
     case NMEA_AIS_APP_METEO_HYDRO_IMO236:
         return ais_write_meteo_hydro_imo236(&app->as.meteo_hydro_imo236, w);
+    case NMEA_AIS_APP_PERSONS_ON_BOARD:
+        return ais_write_persons_on_board(&app->as.persons_on_board, w);
+    case NMEA_AIS_APP_TEXT_ADDRESSED:
+        return ais_write_text_addressed(&app->as.text_addressed, w);
+    case NMEA_AIS_APP_TEXT_BROADCAST:
+        return ais_write_text_broadcast(&app->as.text_broadcast, w);
     }
     return false;
 }
@@ -3772,6 +3907,9 @@ static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_
     switch (app->layout) {
     case NMEA_AIS_APP_ATON_MONITORING:
         ais_json_aton_monitoring(&app->as.aton_monitoring, j);
+        break;
+    case NMEA_AIS_APP_FUNCTION_INTERROGATION:
+        ais_json_function_interrogation(&app->as.function_interrogation, j);
         break;
     case NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD:
         ais_json_inland_persons_on_board(&app->as.inland_persons_on_board, j);
@@ -3784,6 +3922,15 @@ static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_
         break;
     case NMEA_AIS_APP_METEO_HYDRO_IMO236:
         ais_json_meteo_hydro_imo236(&app->as.meteo_hydro_imo236, j);
+        break;
+    case NMEA_AIS_APP_PERSONS_ON_BOARD:
+        ais_json_persons_on_board(&app->as.persons_on_board, j);
+        break;
+    case NMEA_AIS_APP_TEXT_ADDRESSED:
+        ais_json_text_addressed(&app->as.text_addressed, j);
+        break;
+    case NMEA_AIS_APP_TEXT_BROADCAST:
+        ais_json_text_broadcast(&app->as.text_broadcast, j);
         break;
     }
 }

@@ -12,9 +12,12 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/inland_persons_on_board.yaml,
+//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/inland_persons_on_board.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
-//   spec/ais/applications/meteo_hydro_imo236.yaml (digest 822d702a7477dac2)
+//   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
+//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
+//   (digest 8ebe7ac2c347f798)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
@@ -219,6 +222,13 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_aton_monitoring;
 
+/* Interrogation for a specific function message: AIS application DAC 1 FI 2 (in type 6). */
+typedef struct {
+    uint16_t req_dac; /* Requested DAC */
+    uint8_t req_fid; /* Requested FI */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_function_interrogation;
+
 /* Inland number of persons on board: AIS application DAC 200 FI 55 (in type 6). */
 typedef struct {
     uint8_t crew_raw; /* Crew members on board */
@@ -334,23 +344,53 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_meteo_hydro_imo236;
 
+/* Number of persons on board: AIS application DAC 1 FI 40 (in type 6). */
+typedef struct {
+    uint16_t persons_raw; /* Persons on board */
+    uint8_t spare; /* Spare */
+    bool has_spare;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_persons_on_board;
+
+/* Text description (addressed): AIS application DAC 1 FI 30 (in type 6). */
+typedef struct {
+    uint16_t linkage; /* Message linkage ID */
+    nmea_ais_bits text; /* Text */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_text_addressed;
+
+/* Text description (broadcast): AIS application DAC 1 FI 29 (in type 8). */
+typedef struct {
+    uint16_t linkage; /* Message linkage ID */
+    nmea_ais_bits text; /* Text */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_text_broadcast;
+
 /* An application message a binary message's data carries, by its DAC and FI. */
 typedef enum {
     NMEA_AIS_APP_ATON_MONITORING,
+    NMEA_AIS_APP_FUNCTION_INTERROGATION,
     NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD,
     NMEA_AIS_APP_INLAND_STATIC_VOYAGE,
     NMEA_AIS_APP_METEO_HYDRO,
     NMEA_AIS_APP_METEO_HYDRO_IMO236,
+    NMEA_AIS_APP_PERSONS_ON_BOARD,
+    NMEA_AIS_APP_TEXT_ADDRESSED,
+    NMEA_AIS_APP_TEXT_BROADCAST,
 } nmea_ais_application_layout;
 
 typedef struct {
     nmea_ais_application_layout layout;
     union {
         nmea_ais_aton_monitoring aton_monitoring;
+        nmea_ais_function_interrogation function_interrogation;
         nmea_ais_inland_persons_on_board inland_persons_on_board;
         nmea_ais_inland_static_voyage inland_static_voyage;
         nmea_ais_meteo_hydro meteo_hydro;
         nmea_ais_meteo_hydro_imo236 meteo_hydro_imo236;
+        nmea_ais_persons_on_board persons_on_board;
+        nmea_ais_text_addressed text_addressed;
+        nmea_ais_text_broadcast text_broadcast;
     } as;
 } nmea_ais_application;
 

@@ -97,15 +97,22 @@ def raw_value(message: ais.Record, f: ais.Field) -> Any:
     return value
 
 
+def application_in_gpsd_form(application: ais.Application) -> dict[str, Any]:
+    """An application's fields as gpsd names and writes them (raw integers), and its data bits."""
+    out = {f.id: raw_value(application, f) for f in application.FIELDS.values()
+           if getattr(application, f.id) is not None}
+    # the data bits it is sent as: what gpsd gives for an application it does not decode
+    out["data"] = data_json(application.bits("AIS application"))
+    if {"day", "hour", "minute"} <= out.keys():  # DAC 1 FI 11 and FI 31
+        out["timestamp"] = "{:02d}T{:02d}:{:02d}Z".format(*(out.pop(k) for k in ("day", "hour", "minute")))
+    return out
+
+
 def ours_in_gpsd_form(message: ais.Message) -> dict[str, Any]:
     """The message's fields, and its application's, as gpsd names and writes them (raw integers)."""
     out: dict[str, Any] = {}
-    application = message.application
-    if application is not None:
-        out.update((f.id, raw_value(application, f)) for f in application.FIELDS.values()
-                   if getattr(application, f.id) is not None)
-        if {"day", "hour", "minute"} <= out.keys():  # DAC 1 FI 11 and FI 31
-            out["timestamp"] = "{:02d}T{:02d}:{:02d}Z".format(*(out.pop(k) for k in ("day", "hour", "minute")))
+    if message.application is not None:
+        out.update(application_in_gpsd_form(message.application))
     for item in message.LAYOUT:
         if isinstance(item, ais.Group):
             for n, entry in enumerate(getattr(message, item.id), 1):
@@ -150,8 +157,7 @@ def compare(where: str, payload: str, fill_bits: int, theirs: dict[str, Any],
         carried.messages += 1
         if message.application is not None:
             carried.ours += 1
-            from_application = set(ours_in_gpsd_form(message).keys()) - {
-                GPSD_KEYS.get(f.id, f.id) for f in message.FIELDS.values()}
+            from_application = set(application_in_gpsd_form(message.application))
     clean = True
     for key, value in theirs.items():
         if key in NOT_FIELDS:

@@ -12,9 +12,12 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/inland_persons_on_board.yaml,
+//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/inland_persons_on_board.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
-//   spec/ais/applications/meteo_hydro_imo236.yaml (digest 12f1ca9ea488fbc6)
+//   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
+//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
+//   (digest 9bdfe404f75dce40)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The AIS messages of spec/ais: a struct per layout, read from and written to a payload's bits
@@ -3253,6 +3256,40 @@ impl<'a> AtonMonitoring<'a> {
     }
 }
 
+/// Interrogation for a specific function message: AIS application DAC 1 FI 2 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FunctionInterrogation<'a> {
+    /// Requested DAC.
+    pub req_dac: u16,
+    /// Requested FI.
+    pub req_fid: u8,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> FunctionInterrogation<'a> {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m =
+            Self { req_dac: r.take(10, "req_dac")? as u16, req_fid: r.take(6, "req_fid")? as u8, trailing: r.rest() };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.req_dac), 10, "req_dac")?;
+        w.put(u64::from(self.req_fid), 6, "req_fid")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("req_dac", self.req_dac)?;
+        j.int("req_fid", self.req_fid)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
 /// Inland number of persons on board: AIS application DAC 200 FI 55 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct InlandPersonsOnBoard<'a> {
@@ -4273,11 +4310,139 @@ impl<'a> MeteoHydroImo236<'a> {
     }
 }
 
+/// Number of persons on board: AIS application DAC 1 FI 40 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PersonsOnBoard<'a> {
+    /// Persons on board.
+    pub persons_raw: u16,
+    /// Spare.
+    pub spare: Option<u8>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> PersonsOnBoard<'a> {
+    /// Persons on board, or its special value.
+    pub fn persons(&self) -> ais::Reading<i64> {
+        let raw = self.persons_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { persons_raw: r.take(13, "persons")? as u16, ..Self::default() };
+        'read: {
+            if r.remaining() < 3 {
+                break 'read;
+            }
+            m.spare = Some(r.take(3, "spare")? as u8);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put(u64::from(self.persons_raw), 13, "persons")?;
+            let Some(v) = self.spare else {
+                break 'write;
+            };
+            w.put(u64::from(v), 3, "spare")?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("persons", self.persons(), "persons_raw", i64::from(self.persons_raw))?;
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Text description (addressed): AIS application DAC 1 FI 30 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TextAddressed<'a> {
+    /// Message linkage ID.
+    pub linkage: u16,
+    /// Text.
+    pub text: ais::SixBitText<'a>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> TextAddressed<'a> {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            linkage: r.take(10, "linkage")? as u16,
+            text: r.take_text(r.remaining() / 6, "text")?,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.linkage), 10, "linkage")?;
+        w.put_bits(self.text.bits(), "text")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("linkage", self.linkage)?;
+        j.text("text", self.text)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Text description (broadcast): AIS application DAC 1 FI 29 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TextBroadcast<'a> {
+    /// Message linkage ID.
+    pub linkage: u16,
+    /// Text.
+    pub text: ais::SixBitText<'a>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> TextBroadcast<'a> {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            linkage: r.take(10, "linkage")? as u16,
+            text: r.take_text(r.remaining() / 6, "text")?,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.linkage), 10, "linkage")?;
+        w.put_bits(self.text.bits(), "text")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("linkage", self.linkage)?;
+        j.text("text", self.text)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
 /// An application message that the data bits of a binary message carry, by its DAC and FI.
 #[derive(Clone, Copy, Debug)]
 pub enum Application<'a> {
     /// DAC 235 FI 10.
     AtonMonitoring(AtonMonitoring<'a>),
+    /// DAC 1 FI 2.
+    FunctionInterrogation(FunctionInterrogation<'a>),
     /// DAC 200 FI 55.
     InlandPersonsOnBoard(InlandPersonsOnBoard<'a>),
     /// DAC 200 FI 10.
@@ -4286,6 +4451,12 @@ pub enum Application<'a> {
     MeteoHydro(MeteoHydro<'a>),
     /// DAC 1 FI 11.
     MeteoHydroImo236(MeteoHydroImo236<'a>),
+    /// DAC 1 FI 40.
+    PersonsOnBoard(PersonsOnBoard<'a>),
+    /// DAC 1 FI 30.
+    TextAddressed(TextAddressed<'a>),
+    /// DAC 1 FI 29.
+    TextBroadcast(TextBroadcast<'a>),
 }
 
 impl<'a> Application<'a> {
@@ -4294,10 +4465,14 @@ impl<'a> Application<'a> {
     pub fn read(message_type: u8, dac: u64, fid: u64, data: ais::Bits<'a>) -> Option<Self> {
         match (dac, fid, message_type) {
             (235, 10, 6) => AtonMonitoring::read(&mut data.reader()).ok().map(Application::AtonMonitoring),
+            (1, 2, 6) => FunctionInterrogation::read(&mut data.reader()).ok().map(Application::FunctionInterrogation),
             (200, 55, 6) => InlandPersonsOnBoard::read(&mut data.reader()).ok().map(Application::InlandPersonsOnBoard),
             (200, 10, 8) => InlandStaticVoyage::read(&mut data.reader()).ok().map(Application::InlandStaticVoyage),
             (1, 31, 8) => MeteoHydro::read(&mut data.reader()).ok().map(Application::MeteoHydro),
             (1, 11, 8) => MeteoHydroImo236::read(&mut data.reader()).ok().map(Application::MeteoHydroImo236),
+            (1, 40, 6) => PersonsOnBoard::read(&mut data.reader()).ok().map(Application::PersonsOnBoard),
+            (1, 30, 6) => TextAddressed::read(&mut data.reader()).ok().map(Application::TextAddressed),
+            (1, 29, 8) => TextBroadcast::read(&mut data.reader()).ok().map(Application::TextBroadcast),
             _ => None,
         }
     }
@@ -4306,10 +4481,14 @@ impl<'a> Application<'a> {
     pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
         match self {
             Application::AtonMonitoring(app) => app.write(w),
+            Application::FunctionInterrogation(app) => app.write(w),
             Application::InlandPersonsOnBoard(app) => app.write(w),
             Application::InlandStaticVoyage(app) => app.write(w),
             Application::MeteoHydro(app) => app.write(w),
             Application::MeteoHydroImo236(app) => app.write(w),
+            Application::PersonsOnBoard(app) => app.write(w),
+            Application::TextAddressed(app) => app.write(w),
+            Application::TextBroadcast(app) => app.write(w),
         }
     }
 
@@ -4317,10 +4496,14 @@ impl<'a> Application<'a> {
     pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
         match self {
             Application::AtonMonitoring(app) => app.json_members(j),
+            Application::FunctionInterrogation(app) => app.json_members(j),
             Application::InlandPersonsOnBoard(app) => app.json_members(j),
             Application::InlandStaticVoyage(app) => app.json_members(j),
             Application::MeteoHydro(app) => app.json_members(j),
             Application::MeteoHydroImo236(app) => app.json_members(j),
+            Application::PersonsOnBoard(app) => app.json_members(j),
+            Application::TextAddressed(app) => app.json_members(j),
+            Application::TextBroadcast(app) => app.json_members(j),
         }
     }
 }
