@@ -17,7 +17,7 @@
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 //   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 //   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest 1fd3905f66b50686)
+//   (digest 2dde8142e8086bce)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"

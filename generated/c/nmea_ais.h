@@ -17,7 +17,7 @@
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 //   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 //   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest 8ebe7ac2c347f798)
+//   (digest a675cb198fba22bd)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
@@ -301,7 +301,7 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_meteo_hydro;
 
-/* Meteorological and hydrographic data (IMO SN/Circ.236): AIS application DAC 1 FI 11 (in type 8). */
+/* Meteorological and hydrographic data (SN/Circ.236): AIS application DAC 1 FI 11 (in type 8). */
 typedef struct {
     int32_t lat_raw; /* Latitude [degrees] */
     int32_t lon_raw; /* Longitude [degrees] */

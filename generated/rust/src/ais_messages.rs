@@ -17,7 +17,7 @@
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 //   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 //   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest 9bdfe404f75dce40)
+//   (digest 30790496d88c1172)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The AIS messages of spec/ais: a struct per layout, read from and written to a payload's bits
@@ -3905,7 +3905,7 @@ impl<'a> MeteoHydro<'a> {
     }
 }
 
-/// Meteorological and hydrographic data (IMO SN/Circ.236): AIS application DAC 1 FI 11 (in type 8).
+/// Meteorological and hydrographic data (SN/Circ.236): AIS application DAC 1 FI 11 (in type 8).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct MeteoHydroImo236<'a> {
     /// Latitude [degrees].

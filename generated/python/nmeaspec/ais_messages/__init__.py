@@ -17,7 +17,7 @@
 #   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 #   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 #   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-#   (digest 4f1384e8fb69e0b5)
+#   (digest 3e7b39937ab2fe0c)
 # Regenerate: make generate (python3 -m generator generate)
 """AIS messages: the payload of `!AIVDM`/`!AIVDO` decoded into the class of its message type,
 and encoded back to the same armored characters and fill bits."""
