@@ -12,7 +12,12 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/meteo_hydro.yaml (digest b692f7de01352e9a)
+//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/inland_persons_on_board.yaml,
+//   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
+//   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
+//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
+//   (digest 2dde8142e8086bce)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -1066,6 +1071,205 @@ static const char *ais_vsd_nav_status_id(uint64_t code)
 static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writer *w);
 static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_out *j);
 
+static bool ais_read_aton_monitoring(nmea_ais_reader *r, nmea_ais_aton_monitoring *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 10, "ana_int", &raw)) return false;
+    m->ana_int_raw = (uint16_t)raw;
+    if (!ais_take(r, 10, "ana_ext1", &raw)) return false;
+    m->ana_ext1_raw = (uint16_t)raw;
+    if (!ais_take(r, 10, "ana_ext2", &raw)) return false;
+    m->ana_ext2_raw = (uint16_t)raw;
+    if (!ais_take(r, 2, "racon", &raw)) return false;
+    m->racon = (uint8_t)raw;
+    if (!ais_take(r, 2, "light", &raw)) return false;
+    m->light = (uint8_t)raw;
+    if (!ais_take(r, 1, "alarm", &raw)) return false;
+    m->alarm = raw == 1;
+    if (!ais_take(r, 8, "stat_ext", &raw)) return false;
+    m->stat_ext = (uint8_t)raw;
+    if (!ais_take(r, 1, "off_pos", &raw)) return false;
+    m->off_pos = raw == 1;
+    if (ais_remaining(r) < 4) goto done;
+    if (!ais_take(r, 4, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->has_spare = true;
+    done: m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_aton_monitoring(const nmea_ais_aton_monitoring *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->ana_int_raw, 10, "ana_int")) return false;
+    if (!ais_put(w, m->ana_ext1_raw, 10, "ana_ext1")) return false;
+    if (!ais_put(w, m->ana_ext2_raw, 10, "ana_ext2")) return false;
+    if (!ais_put(w, m->racon, 2, "racon")) return false;
+    if (!ais_put(w, m->light, 2, "light")) return false;
+    if (!ais_put(w, m->alarm, 1, "alarm")) return false;
+    if (!ais_put(w, m->stat_ext, 8, "stat_ext")) return false;
+    if (!ais_put(w, m->off_pos, 1, "off_pos")) return false;
+    if (!m->has_spare) goto done;
+    if (!ais_put(w, m->spare, 4, "spare")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_aton_monitoring(const nmea_ais_aton_monitoring *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "ana_int", (int64_t)m->ana_int_raw, 20.0, 0.0, true, NULL, 0);
+    ais_json_reading(j, "ana_ext1", (int64_t)m->ana_ext1_raw, 20.0, 0.0, true, NULL, 0);
+    ais_json_reading(j, "ana_ext2", (int64_t)m->ana_ext2_raw, 20.0, 0.0, true, NULL, 0);
+    ais_json_int(j, "racon", (long long)m->racon);
+    ais_json_int(j, "light", (long long)m->light);
+    ais_json_flag(j, "alarm", m->alarm);
+    ais_json_int(j, "stat_ext", (long long)m->stat_ext);
+    ais_json_flag(j, "off_pos", m->off_pos);
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static bool ais_read_function_interrogation(nmea_ais_reader *r, nmea_ais_function_interrogation *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 10, "req_dac", &raw)) return false;
+    m->req_dac = (uint16_t)raw;
+    if (!ais_take(r, 6, "req_fid", &raw)) return false;
+    m->req_fid = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_function_interrogation(const nmea_ais_function_interrogation *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->req_dac, 10, "req_dac")) return false;
+    if (!ais_put(w, m->req_fid, 6, "req_fid")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_function_interrogation(const nmea_ais_function_interrogation *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "req_dac", (long long)m->req_dac);
+    ais_json_int(j, "req_fid", (long long)m->req_fid);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_inland_persons_on_board_crew_specials[] = {{255, "not_available"}};
+static const nmea_ais_special ais_inland_persons_on_board_passengers_specials[] = {{8191, "not_available"}};
+static const nmea_ais_special ais_inland_persons_on_board_personnel_specials[] = {{255, "not_available"}};
+static bool ais_read_inland_persons_on_board(nmea_ais_reader *r, nmea_ais_inland_persons_on_board *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 8, "crew", &raw)) return false;
+    m->crew_raw = (uint8_t)raw;
+    if (!ais_take(r, 13, "passengers", &raw)) return false;
+    m->passengers_raw = (uint16_t)raw;
+    if (!ais_take(r, 8, "personnel", &raw)) return false;
+    m->personnel_raw = (uint8_t)raw;
+    if (ais_remaining(r) < 51) goto done;
+    if (!ais_take(r, 51, "spare", &raw)) return false;
+    m->spare = (uint64_t)raw;
+    m->has_spare = true;
+    done: m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_inland_persons_on_board(const nmea_ais_inland_persons_on_board *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->crew_raw, 8, "crew")) return false;
+    if (!ais_put(w, m->passengers_raw, 13, "passengers")) return false;
+    if (!ais_put(w, m->personnel_raw, 8, "personnel")) return false;
+    if (!m->has_spare) goto done;
+    if (!ais_put(w, m->spare, 51, "spare")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_inland_persons_on_board(const nmea_ais_inland_persons_on_board *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "crew", (int64_t)m->crew_raw, 1.0, 0.0, false, ais_inland_persons_on_board_crew_specials, 1);
+    ais_json_reading(j, "passengers", (int64_t)m->passengers_raw, 1.0, 0.0, false, ais_inland_persons_on_board_passengers_specials, 1);
+    ais_json_reading(j, "personnel", (int64_t)m->personnel_raw, 1.0, 0.0, false, ais_inland_persons_on_board_personnel_specials, 1);
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_inland_static_voyage_length_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_static_voyage_beam_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_static_voyage_shiptype_specials[] = {{8000, "not_available"}};
+static const nmea_ais_special ais_inland_static_voyage_hazard_specials[] = {{5, "not_available"}};
+static const nmea_ais_special ais_inland_static_voyage_draught_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_static_voyage_loaded_specials[] = {{0, "not_available"}};
+static bool ais_read_inland_static_voyage(nmea_ais_reader *r, nmea_ais_inland_static_voyage *m)
+{
+    uint64_t raw;
+    if (!ais_take_bits(r, 48, "vin", &m->vin)) return false;
+    if (!ais_take(r, 13, "length", &raw)) return false;
+    m->length_raw = (uint16_t)raw;
+    if (!ais_take(r, 10, "beam", &raw)) return false;
+    m->beam_raw = (uint16_t)raw;
+    if (!ais_take(r, 14, "shiptype", &raw)) return false;
+    m->shiptype_raw = (uint16_t)raw;
+    if (!ais_take(r, 3, "hazard", &raw)) return false;
+    m->hazard_raw = (uint8_t)raw;
+    if (!ais_take(r, 11, "draught", &raw)) return false;
+    m->draught_raw = (uint16_t)raw;
+    if (!ais_take(r, 2, "loaded", &raw)) return false;
+    m->loaded_raw = (uint8_t)raw;
+    if (!ais_take(r, 1, "speed_q", &raw)) return false;
+    m->speed_q = raw == 1;
+    if (!ais_take(r, 1, "course_q", &raw)) return false;
+    m->course_q = raw == 1;
+    if (!ais_take(r, 1, "heading_q", &raw)) return false;
+    m->heading_q = raw == 1;
+    if (ais_remaining(r) < 8) goto done;
+    if (!ais_take(r, 8, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->has_spare = true;
+    done: m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_inland_static_voyage(const nmea_ais_inland_static_voyage *m, nmea_ais_writer *w)
+{
+    if (!ais_put_fixed(w, m->vin, 48, true, "vin")) return false;
+    if (!ais_put(w, m->length_raw, 13, "length")) return false;
+    if (!ais_put(w, m->beam_raw, 10, "beam")) return false;
+    if (!ais_put(w, m->shiptype_raw, 14, "shiptype")) return false;
+    if (!ais_put(w, m->hazard_raw, 3, "hazard")) return false;
+    if (!ais_put(w, m->draught_raw, 11, "draught")) return false;
+    if (!ais_put(w, m->loaded_raw, 2, "loaded")) return false;
+    if (!ais_put(w, m->speed_q, 1, "speed_q")) return false;
+    if (!ais_put(w, m->course_q, 1, "course_q")) return false;
+    if (!ais_put(w, m->heading_q, 1, "heading_q")) return false;
+    if (!m->has_spare) goto done;
+    if (!ais_put(w, m->spare, 8, "spare")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_inland_static_voyage(const nmea_ais_inland_static_voyage *m, nmea_ais_json_out *j)
+{
+    ais_json_text(j, "vin", m->vin);
+    ais_json_reading(j, "length", (int64_t)m->length_raw, 10.0, 0.0, true, ais_inland_static_voyage_length_specials, 1);
+    ais_json_reading(j, "beam", (int64_t)m->beam_raw, 10.0, 0.0, true, ais_inland_static_voyage_beam_specials, 1);
+    ais_json_reading(j, "shiptype", (int64_t)m->shiptype_raw, 1.0, 0.0, false, ais_inland_static_voyage_shiptype_specials, 1);
+    ais_json_reading(j, "hazard", (int64_t)m->hazard_raw, 1.0, 0.0, false, ais_inland_static_voyage_hazard_specials, 1);
+    ais_json_reading(j, "draught", (int64_t)m->draught_raw, 100.0, 0.0, true, ais_inland_static_voyage_draught_specials, 1);
+    ais_json_reading(j, "loaded", (int64_t)m->loaded_raw, 1.0, 0.0, false, ais_inland_static_voyage_loaded_specials, 1);
+    ais_json_flag(j, "speed_q", m->speed_q);
+    ais_json_flag(j, "course_q", m->course_q);
+    ais_json_flag(j, "heading_q", m->heading_q);
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
 static const nmea_ais_special ais_meteo_hydro_lon_specials[] = {{10860000, "not_available"}};
 static const nmea_ais_special ais_meteo_hydro_lat_specials[] = {{5460000, "not_available"}};
 static const nmea_ais_special ais_meteo_hydro_day_specials[] = {{0, "not_available"}};
@@ -1282,6 +1486,296 @@ static void ais_json_meteo_hydro(const nmea_ais_meteo_hydro *m, nmea_ais_json_ou
     ais_json_bits(j, "trailing", m->trailing);
 }
 
+static const nmea_ais_special ais_meteo_hydro_imo236_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_wspeed_specials[] = {{127, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_wgust_specials[] = {{127, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_wdir_specials[] = {{511, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_wgustdir_specials[] = {{511, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_airtemp_specials[] = {{2047, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_humidity_specials[] = {{127, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_dewpoint_specials[] = {{1023, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_pressure_specials[] = {{511, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_pressuretend_specials[] = {{3, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_visibility_specials[] = {{255, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_waterlevel_specials[] = {{511, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_leveltrend_specials[] = {{3, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_cspeed_specials[] = {{255, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_cdir_specials[] = {{511, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_cspeed2_specials[] = {{255, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_cdir2_specials[] = {{511, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_cdepth2_specials[] = {{31, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_cspeed3_specials[] = {{255, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_cdir3_specials[] = {{511, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_cdepth3_specials[] = {{31, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_waveheight_specials[] = {{255, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_waveperiod_specials[] = {{63, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_wavedir_specials[] = {{511, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_swellheight_specials[] = {{255, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_swellperiod_specials[] = {{63, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_swelldir_specials[] = {{511, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_seastate_specials[] = {{15, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_watertemp_specials[] = {{1023, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_preciptype_specials[] = {{7, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_salinity_specials[] = {{511, "not_available"}};
+static const nmea_ais_special ais_meteo_hydro_imo236_ice_specials[] = {{3, "not_available"}};
+static bool ais_read_meteo_hydro_imo236(nmea_ais_reader *r, nmea_ais_meteo_hydro_imo236 *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 7, "wspeed", &raw)) return false;
+    m->wspeed_raw = (uint8_t)raw;
+    if (!ais_take(r, 7, "wgust", &raw)) return false;
+    m->wgust_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "wdir", &raw)) return false;
+    m->wdir_raw = (uint16_t)raw;
+    if (!ais_take(r, 9, "wgustdir", &raw)) return false;
+    m->wgustdir_raw = (uint16_t)raw;
+    if (!ais_take(r, 11, "airtemp", &raw)) return false;
+    m->airtemp_raw = (uint16_t)raw;
+    if (!ais_take(r, 7, "humidity", &raw)) return false;
+    m->humidity_raw = (uint8_t)raw;
+    if (!ais_take(r, 10, "dewpoint", &raw)) return false;
+    m->dewpoint_raw = (uint16_t)raw;
+    if (!ais_take(r, 9, "pressure", &raw)) return false;
+    m->pressure_raw = (uint16_t)raw;
+    if (!ais_take(r, 2, "pressuretend", &raw)) return false;
+    m->pressuretend_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "visibility", &raw)) return false;
+    m->visibility_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "waterlevel", &raw)) return false;
+    m->waterlevel_raw = (uint16_t)raw;
+    if (!ais_take(r, 2, "leveltrend", &raw)) return false;
+    m->leveltrend_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "cspeed", &raw)) return false;
+    m->cspeed_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "cdir", &raw)) return false;
+    m->cdir_raw = (uint16_t)raw;
+    if (!ais_take(r, 8, "cspeed2", &raw)) return false;
+    m->cspeed2_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "cdir2", &raw)) return false;
+    m->cdir2_raw = (uint16_t)raw;
+    if (!ais_take(r, 5, "cdepth2", &raw)) return false;
+    m->cdepth2_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "cspeed3", &raw)) return false;
+    m->cspeed3_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "cdir3", &raw)) return false;
+    m->cdir3_raw = (uint16_t)raw;
+    if (!ais_take(r, 5, "cdepth3", &raw)) return false;
+    m->cdepth3_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "waveheight", &raw)) return false;
+    m->waveheight_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "waveperiod", &raw)) return false;
+    m->waveperiod_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "wavedir", &raw)) return false;
+    m->wavedir_raw = (uint16_t)raw;
+    if (!ais_take(r, 8, "swellheight", &raw)) return false;
+    m->swellheight_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "swellperiod", &raw)) return false;
+    m->swellperiod_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "swelldir", &raw)) return false;
+    m->swelldir_raw = (uint16_t)raw;
+    if (!ais_take(r, 4, "seastate", &raw)) return false;
+    m->seastate_raw = (uint8_t)raw;
+    if (!ais_take(r, 10, "watertemp", &raw)) return false;
+    m->watertemp_raw = (uint16_t)raw;
+    if (!ais_take(r, 3, "preciptype", &raw)) return false;
+    m->preciptype_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "salinity", &raw)) return false;
+    m->salinity_raw = (uint16_t)raw;
+    if (!ais_take(r, 2, "ice", &raw)) return false;
+    m->ice_raw = (uint8_t)raw;
+    if (ais_remaining(r) < 6) goto done;
+    if (!ais_take(r, 6, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->has_spare = true;
+    done: m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_meteo_hydro_imo236(const nmea_ais_meteo_hydro_imo236 *m, nmea_ais_writer *w)
+{
+    if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->wspeed_raw, 7, "wspeed")) return false;
+    if (!ais_put(w, m->wgust_raw, 7, "wgust")) return false;
+    if (!ais_put(w, m->wdir_raw, 9, "wdir")) return false;
+    if (!ais_put(w, m->wgustdir_raw, 9, "wgustdir")) return false;
+    if (!ais_put(w, m->airtemp_raw, 11, "airtemp")) return false;
+    if (!ais_put(w, m->humidity_raw, 7, "humidity")) return false;
+    if (!ais_put(w, m->dewpoint_raw, 10, "dewpoint")) return false;
+    if (!ais_put(w, m->pressure_raw, 9, "pressure")) return false;
+    if (!ais_put(w, m->pressuretend_raw, 2, "pressuretend")) return false;
+    if (!ais_put(w, m->visibility_raw, 8, "visibility")) return false;
+    if (!ais_put(w, m->waterlevel_raw, 9, "waterlevel")) return false;
+    if (!ais_put(w, m->leveltrend_raw, 2, "leveltrend")) return false;
+    if (!ais_put(w, m->cspeed_raw, 8, "cspeed")) return false;
+    if (!ais_put(w, m->cdir_raw, 9, "cdir")) return false;
+    if (!ais_put(w, m->cspeed2_raw, 8, "cspeed2")) return false;
+    if (!ais_put(w, m->cdir2_raw, 9, "cdir2")) return false;
+    if (!ais_put(w, m->cdepth2_raw, 5, "cdepth2")) return false;
+    if (!ais_put(w, m->cspeed3_raw, 8, "cspeed3")) return false;
+    if (!ais_put(w, m->cdir3_raw, 9, "cdir3")) return false;
+    if (!ais_put(w, m->cdepth3_raw, 5, "cdepth3")) return false;
+    if (!ais_put(w, m->waveheight_raw, 8, "waveheight")) return false;
+    if (!ais_put(w, m->waveperiod_raw, 6, "waveperiod")) return false;
+    if (!ais_put(w, m->wavedir_raw, 9, "wavedir")) return false;
+    if (!ais_put(w, m->swellheight_raw, 8, "swellheight")) return false;
+    if (!ais_put(w, m->swellperiod_raw, 6, "swellperiod")) return false;
+    if (!ais_put(w, m->swelldir_raw, 9, "swelldir")) return false;
+    if (!ais_put(w, m->seastate_raw, 4, "seastate")) return false;
+    if (!ais_put(w, m->watertemp_raw, 10, "watertemp")) return false;
+    if (!ais_put(w, m->preciptype_raw, 3, "preciptype")) return false;
+    if (!ais_put(w, m->salinity_raw, 9, "salinity")) return false;
+    if (!ais_put(w, m->ice_raw, 2, "ice")) return false;
+    if (!m->has_spare) goto done;
+    if (!ais_put(w, m->spare, 6, "spare")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_meteo_hydro_imo236(const nmea_ais_meteo_hydro_imo236 *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_meteo_hydro_imo236_lat_specials, 1);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_meteo_hydro_imo236_lon_specials, 1);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_minute_specials, 1);
+    ais_json_reading(j, "wspeed", (int64_t)m->wspeed_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_wspeed_specials, 1);
+    ais_json_reading(j, "wgust", (int64_t)m->wgust_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_wgust_specials, 1);
+    ais_json_reading(j, "wdir", (int64_t)m->wdir_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_wdir_specials, 1);
+    ais_json_reading(j, "wgustdir", (int64_t)m->wgustdir_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_wgustdir_specials, 1);
+    ais_json_reading(j, "airtemp", (int64_t)m->airtemp_raw, 10.0, -60.0, true, ais_meteo_hydro_imo236_airtemp_specials, 1);
+    ais_json_reading(j, "humidity", (int64_t)m->humidity_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_humidity_specials, 1);
+    ais_json_reading(j, "dewpoint", (int64_t)m->dewpoint_raw, 10.0, -20.0, true, ais_meteo_hydro_imo236_dewpoint_specials, 1);
+    ais_json_reading(j, "pressure", (int64_t)m->pressure_raw, 1.0, 800.0, false, ais_meteo_hydro_imo236_pressure_specials, 1);
+    ais_json_reading(j, "pressuretend", (int64_t)m->pressuretend_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_pressuretend_specials, 1);
+    ais_json_reading(j, "visibility", (int64_t)m->visibility_raw, 10.0, 0.0, true, ais_meteo_hydro_imo236_visibility_specials, 1);
+    ais_json_reading(j, "waterlevel", (int64_t)m->waterlevel_raw, 10.0, -10.0, true, ais_meteo_hydro_imo236_waterlevel_specials, 1);
+    ais_json_reading(j, "leveltrend", (int64_t)m->leveltrend_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_leveltrend_specials, 1);
+    ais_json_reading(j, "cspeed", (int64_t)m->cspeed_raw, 10.0, 0.0, true, ais_meteo_hydro_imo236_cspeed_specials, 1);
+    ais_json_reading(j, "cdir", (int64_t)m->cdir_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_cdir_specials, 1);
+    ais_json_reading(j, "cspeed2", (int64_t)m->cspeed2_raw, 10.0, 0.0, true, ais_meteo_hydro_imo236_cspeed2_specials, 1);
+    ais_json_reading(j, "cdir2", (int64_t)m->cdir2_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_cdir2_specials, 1);
+    ais_json_reading(j, "cdepth2", (int64_t)m->cdepth2_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_cdepth2_specials, 1);
+    ais_json_reading(j, "cspeed3", (int64_t)m->cspeed3_raw, 10.0, 0.0, true, ais_meteo_hydro_imo236_cspeed3_specials, 1);
+    ais_json_reading(j, "cdir3", (int64_t)m->cdir3_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_cdir3_specials, 1);
+    ais_json_reading(j, "cdepth3", (int64_t)m->cdepth3_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_cdepth3_specials, 1);
+    ais_json_reading(j, "waveheight", (int64_t)m->waveheight_raw, 10.0, 0.0, true, ais_meteo_hydro_imo236_waveheight_specials, 1);
+    ais_json_reading(j, "waveperiod", (int64_t)m->waveperiod_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_waveperiod_specials, 1);
+    ais_json_reading(j, "wavedir", (int64_t)m->wavedir_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_wavedir_specials, 1);
+    ais_json_reading(j, "swellheight", (int64_t)m->swellheight_raw, 10.0, 0.0, true, ais_meteo_hydro_imo236_swellheight_specials, 1);
+    ais_json_reading(j, "swellperiod", (int64_t)m->swellperiod_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_swellperiod_specials, 1);
+    ais_json_reading(j, "swelldir", (int64_t)m->swelldir_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_swelldir_specials, 1);
+    ais_json_reading(j, "seastate", (int64_t)m->seastate_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_seastate_specials, 1);
+    ais_json_reading(j, "watertemp", (int64_t)m->watertemp_raw, 10.0, -10.0, true, ais_meteo_hydro_imo236_watertemp_specials, 1);
+    ais_json_reading(j, "preciptype", (int64_t)m->preciptype_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_preciptype_specials, 1);
+    ais_json_reading(j, "salinity", (int64_t)m->salinity_raw, 10.0, 0.0, true, ais_meteo_hydro_imo236_salinity_specials, 1);
+    ais_json_reading(j, "ice", (int64_t)m->ice_raw, 1.0, 0.0, false, ais_meteo_hydro_imo236_ice_specials, 1);
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_persons_on_board_persons_specials[] = {{0, "not_available"}};
+static bool ais_read_persons_on_board(nmea_ais_reader *r, nmea_ais_persons_on_board *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 13, "persons", &raw)) return false;
+    m->persons_raw = (uint16_t)raw;
+    if (ais_remaining(r) < 3) goto done;
+    if (!ais_take(r, 3, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->has_spare = true;
+    done: m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_persons_on_board(const nmea_ais_persons_on_board *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->persons_raw, 13, "persons")) return false;
+    if (!m->has_spare) goto done;
+    if (!ais_put(w, m->spare, 3, "spare")) return false;
+    done: if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_persons_on_board(const nmea_ais_persons_on_board *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "persons", (int64_t)m->persons_raw, 1.0, 0.0, false, ais_persons_on_board_persons_specials, 1);
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static bool ais_read_text_addressed(nmea_ais_reader *r, nmea_ais_text_addressed *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 10, "linkage", &raw)) return false;
+    m->linkage = (uint16_t)raw;
+    if (!ais_take_bits(r, ais_remaining(r) / 6 * 6, "text", &m->text)) return false;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_text_addressed(const nmea_ais_text_addressed *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->linkage, 10, "linkage")) return false;
+    if (!ais_put_bits(w, m->text, "text")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_text_addressed(const nmea_ais_text_addressed *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "linkage", (long long)m->linkage);
+    ais_json_text(j, "text", m->text);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static bool ais_read_text_broadcast(nmea_ais_reader *r, nmea_ais_text_broadcast *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 10, "linkage", &raw)) return false;
+    m->linkage = (uint16_t)raw;
+    if (!ais_take_bits(r, ais_remaining(r) / 6 * 6, "text", &m->text)) return false;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_text_broadcast(const nmea_ais_text_broadcast *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->linkage, 10, "linkage")) return false;
+    if (!ais_put_bits(w, m->text, "text")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_text_broadcast(const nmea_ais_text_broadcast *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "linkage", (long long)m->linkage);
+    ais_json_text(j, "text", m->text);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
 static bool ais_read_addressed_binary(nmea_ais_reader *r, nmea_ais_addressed_binary *m)
 {
     uint64_t raw;
@@ -1319,7 +1813,11 @@ static bool ais_write_addressed_binary(const nmea_ais_addressed_binary *m, nmea_
     if (!ais_put(w, m->spare, 1, "spare")) return false;
     if (!ais_put(w, m->dac, 10, "dac")) return false;
     if (!ais_put(w, m->fid, 6, "fid")) return false;
-    if (!ais_put_bits(w, m->data, "data")) return false;
+    if (m->has_application) {
+        if (!ais_write_application(&m->application, w)) return false;
+    } else {
+        if (!ais_put_bits(w, m->data, "data")) return false;
+    }
     if (!ais_put_bits(w, m->trailing, "trailing")) return false;
     return true;
 }
@@ -1335,7 +1833,15 @@ static void ais_json_addressed_binary(const nmea_ais_addressed_binary *m, nmea_a
     ais_json_int(j, "spare", (long long)m->spare);
     ais_json_int(j, "dac", (long long)m->dac);
     ais_json_int(j, "fid", (long long)m->fid);
-    ais_json_bits(j, "data", m->data);
+    if (!m->has_application) {
+        ais_json_bits(j, "data", m->data);
+    }
+    if (m->has_application) {
+        ais_json_key(j, "application");
+        ais_json_open(j);
+        ais_json_application(&m->application, j);
+        ais_json_close(j);
+    }
     ais_json_bits(j, "trailing", m->trailing);
 }
 
@@ -3332,9 +3838,41 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
 {
     nmea_ais_error ignored;
     nmea_ais_reader r = ais_bits_reader(data, &ignored);
+    if (dac == 235u && fid == 10u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_ATON_MONITORING;
+        return ais_read_aton_monitoring(&r, &app->as.aton_monitoring);
+    }
+    if (dac == 1u && fid == 2u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_FUNCTION_INTERROGATION;
+        return ais_read_function_interrogation(&r, &app->as.function_interrogation);
+    }
+    if (dac == 200u && fid == 55u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD;
+        return ais_read_inland_persons_on_board(&r, &app->as.inland_persons_on_board);
+    }
+    if (dac == 200u && fid == 10u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_INLAND_STATIC_VOYAGE;
+        return ais_read_inland_static_voyage(&r, &app->as.inland_static_voyage);
+    }
     if (dac == 1u && fid == 31u && (message_type == 8u)) {
         app->layout = NMEA_AIS_APP_METEO_HYDRO;
         return ais_read_meteo_hydro(&r, &app->as.meteo_hydro);
+    }
+    if (dac == 1u && fid == 11u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_METEO_HYDRO_IMO236;
+        return ais_read_meteo_hydro_imo236(&r, &app->as.meteo_hydro_imo236);
+    }
+    if (dac == 1u && fid == 40u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_PERSONS_ON_BOARD;
+        return ais_read_persons_on_board(&r, &app->as.persons_on_board);
+    }
+    if (dac == 1u && fid == 30u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_TEXT_ADDRESSED;
+        return ais_read_text_addressed(&r, &app->as.text_addressed);
+    }
+    if (dac == 1u && fid == 29u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_TEXT_BROADCAST;
+        return ais_read_text_broadcast(&r, &app->as.text_broadcast);
     }
     return false;
 }
@@ -3342,8 +3880,24 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
 static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writer *w)
 {
     switch (app->layout) {
+    case NMEA_AIS_APP_ATON_MONITORING:
+        return ais_write_aton_monitoring(&app->as.aton_monitoring, w);
+    case NMEA_AIS_APP_FUNCTION_INTERROGATION:
+        return ais_write_function_interrogation(&app->as.function_interrogation, w);
+    case NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD:
+        return ais_write_inland_persons_on_board(&app->as.inland_persons_on_board, w);
+    case NMEA_AIS_APP_INLAND_STATIC_VOYAGE:
+        return ais_write_inland_static_voyage(&app->as.inland_static_voyage, w);
     case NMEA_AIS_APP_METEO_HYDRO:
         return ais_write_meteo_hydro(&app->as.meteo_hydro, w);
+    case NMEA_AIS_APP_METEO_HYDRO_IMO236:
+        return ais_write_meteo_hydro_imo236(&app->as.meteo_hydro_imo236, w);
+    case NMEA_AIS_APP_PERSONS_ON_BOARD:
+        return ais_write_persons_on_board(&app->as.persons_on_board, w);
+    case NMEA_AIS_APP_TEXT_ADDRESSED:
+        return ais_write_text_addressed(&app->as.text_addressed, w);
+    case NMEA_AIS_APP_TEXT_BROADCAST:
+        return ais_write_text_broadcast(&app->as.text_broadcast, w);
     }
     return false;
 }
@@ -3351,8 +3905,32 @@ static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writ
 static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_out *j)
 {
     switch (app->layout) {
+    case NMEA_AIS_APP_ATON_MONITORING:
+        ais_json_aton_monitoring(&app->as.aton_monitoring, j);
+        break;
+    case NMEA_AIS_APP_FUNCTION_INTERROGATION:
+        ais_json_function_interrogation(&app->as.function_interrogation, j);
+        break;
+    case NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD:
+        ais_json_inland_persons_on_board(&app->as.inland_persons_on_board, j);
+        break;
+    case NMEA_AIS_APP_INLAND_STATIC_VOYAGE:
+        ais_json_inland_static_voyage(&app->as.inland_static_voyage, j);
+        break;
     case NMEA_AIS_APP_METEO_HYDRO:
         ais_json_meteo_hydro(&app->as.meteo_hydro, j);
+        break;
+    case NMEA_AIS_APP_METEO_HYDRO_IMO236:
+        ais_json_meteo_hydro_imo236(&app->as.meteo_hydro_imo236, j);
+        break;
+    case NMEA_AIS_APP_PERSONS_ON_BOARD:
+        ais_json_persons_on_board(&app->as.persons_on_board, j);
+        break;
+    case NMEA_AIS_APP_TEXT_ADDRESSED:
+        ais_json_text_addressed(&app->as.text_addressed, j);
+        break;
+    case NMEA_AIS_APP_TEXT_BROADCAST:
+        ais_json_text_broadcast(&app->as.text_broadcast, j);
         break;
     }
 }
@@ -3374,6 +3952,7 @@ case 6: {
         if (!ais_read_addressed_binary(&r, m))
             return false;
         m->padding = padding;
+        m->has_application = ais_read_application((unsigned)message_type, m->dac, m->fid, m->data, &m->application);
         return true;
     }
 case 12: {

@@ -12,7 +12,12 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/meteo_hydro.yaml (digest b7d82fcc997a0dca)
+//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/inland_persons_on_board.yaml,
+//   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
+//   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
+//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
+//   (digest a675cb198fba22bd)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
@@ -202,6 +207,55 @@ void nmea_ais_assembler_finish(nmea_ais_assembler *a, nmea_ais_done *done, void 
    into `buf` (NUL-terminated when `cap` > 0): the length it needs. */
 size_t nmea_ais_incomplete_message(const nmea_ais_assembled *done, char *buf, size_t cap);
 
+/* AtoN monitoring data (UK and Ireland): AIS application DAC 235 FI 10 (in type 6). */
+typedef struct {
+    uint16_t ana_int_raw; /* Internal supply voltage [volts] */
+    uint16_t ana_ext1_raw; /* External voltage 1 [volts] */
+    uint16_t ana_ext2_raw; /* External voltage 2 [volts] */
+    uint8_t racon; /* Racon status */
+    uint8_t light; /* Light status */
+    bool alarm; /* Health alarm */
+    uint8_t stat_ext; /* External digital inputs */
+    bool off_pos; /* Off position */
+    uint8_t spare; /* Spare */
+    bool has_spare;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_aton_monitoring;
+
+/* Interrogation for a specific function message: AIS application DAC 1 FI 2 (in type 6). */
+typedef struct {
+    uint16_t req_dac; /* Requested DAC */
+    uint8_t req_fid; /* Requested FI */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_function_interrogation;
+
+/* Inland number of persons on board: AIS application DAC 200 FI 55 (in type 6). */
+typedef struct {
+    uint8_t crew_raw; /* Crew members on board */
+    uint16_t passengers_raw; /* Passengers on board */
+    uint8_t personnel_raw; /* Shipboard personnel on board */
+    uint64_t spare; /* Spare */
+    bool has_spare;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_inland_persons_on_board;
+
+/* Inland ship static and voyage related data: AIS application DAC 200 FI 10 (in type 8). */
+typedef struct {
+    nmea_ais_bits vin; /* European vessel identification number */
+    uint16_t length_raw; /* Length of ship [metres] */
+    uint16_t beam_raw; /* Beam of ship [metres] */
+    uint16_t shiptype_raw; /* Ship or combination type */
+    uint8_t hazard_raw; /* Hazardous cargo */
+    uint16_t draught_raw; /* Draught [metres] */
+    uint8_t loaded_raw; /* Loaded or unloaded */
+    bool speed_q; /* Quality of the speed information */
+    bool course_q; /* Quality of the course information */
+    bool heading_q; /* Quality of the heading information */
+    uint8_t spare; /* Spare */
+    bool has_spare;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_inland_static_voyage;
+
 /* Meteorological and hydrographic data: AIS application DAC 1 FI 31 (in type 8). */
 typedef struct {
     int32_t lon_raw; /* Longitude [degrees] */
@@ -247,15 +301,96 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_meteo_hydro;
 
+/* Meteorological and hydrographic data (SN/Circ.236): AIS application DAC 1 FI 11 (in type 8). */
+typedef struct {
+    int32_t lat_raw; /* Latitude [degrees] */
+    int32_t lon_raw; /* Longitude [degrees] */
+    uint8_t day_raw; /* Day (UTC) */
+    uint8_t hour_raw; /* Hour (UTC) */
+    uint8_t minute_raw; /* Minute (UTC) */
+    uint8_t wspeed_raw; /* Average wind speed [knots] */
+    uint8_t wgust_raw; /* Wind gust [knots] */
+    uint16_t wdir_raw; /* Wind direction [degrees] */
+    uint16_t wgustdir_raw; /* Wind gust direction [degrees] */
+    uint16_t airtemp_raw; /* Air temperature [degrees Celsius] */
+    uint8_t humidity_raw; /* Relative humidity [percent] */
+    uint16_t dewpoint_raw; /* Dew point [degrees Celsius] */
+    uint16_t pressure_raw; /* Air pressure [hPa] */
+    uint8_t pressuretend_raw; /* Air pressure tendency */
+    uint8_t visibility_raw; /* Horizontal visibility [nautical miles] */
+    uint16_t waterlevel_raw; /* Water level [metres] */
+    uint8_t leveltrend_raw; /* Water level trend */
+    uint8_t cspeed_raw; /* Surface current speed [knots] */
+    uint16_t cdir_raw; /* Surface current direction [degrees] */
+    uint8_t cspeed2_raw; /* Current speed at level 2 [knots] */
+    uint16_t cdir2_raw; /* Current direction at level 2 [degrees] */
+    uint8_t cdepth2_raw; /* Measuring level 2 [metres] */
+    uint8_t cspeed3_raw; /* Current speed at level 3 [knots] */
+    uint16_t cdir3_raw; /* Current direction at level 3 [degrees] */
+    uint8_t cdepth3_raw; /* Measuring level 3 [metres] */
+    uint8_t waveheight_raw; /* Significant wave height [metres] */
+    uint8_t waveperiod_raw; /* Wave period [seconds] */
+    uint16_t wavedir_raw; /* Wave direction [degrees] */
+    uint8_t swellheight_raw; /* Swell height [metres] */
+    uint8_t swellperiod_raw; /* Swell period [seconds] */
+    uint16_t swelldir_raw; /* Swell direction [degrees] */
+    uint8_t seastate_raw; /* Sea state */
+    uint16_t watertemp_raw; /* Water temperature [degrees Celsius] */
+    uint8_t preciptype_raw; /* Precipitation type */
+    uint16_t salinity_raw; /* Salinity [parts per thousand] */
+    uint8_t ice_raw; /* Ice */
+    uint8_t spare; /* Spare */
+    bool has_spare;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_meteo_hydro_imo236;
+
+/* Number of persons on board: AIS application DAC 1 FI 40 (in type 6). */
+typedef struct {
+    uint16_t persons_raw; /* Persons on board */
+    uint8_t spare; /* Spare */
+    bool has_spare;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_persons_on_board;
+
+/* Text description (addressed): AIS application DAC 1 FI 30 (in type 6). */
+typedef struct {
+    uint16_t linkage; /* Message linkage ID */
+    nmea_ais_bits text; /* Text */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_text_addressed;
+
+/* Text description (broadcast): AIS application DAC 1 FI 29 (in type 8). */
+typedef struct {
+    uint16_t linkage; /* Message linkage ID */
+    nmea_ais_bits text; /* Text */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_text_broadcast;
+
 /* An application message a binary message's data carries, by its DAC and FI. */
 typedef enum {
+    NMEA_AIS_APP_ATON_MONITORING,
+    NMEA_AIS_APP_FUNCTION_INTERROGATION,
+    NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD,
+    NMEA_AIS_APP_INLAND_STATIC_VOYAGE,
     NMEA_AIS_APP_METEO_HYDRO,
+    NMEA_AIS_APP_METEO_HYDRO_IMO236,
+    NMEA_AIS_APP_PERSONS_ON_BOARD,
+    NMEA_AIS_APP_TEXT_ADDRESSED,
+    NMEA_AIS_APP_TEXT_BROADCAST,
 } nmea_ais_application_layout;
 
 typedef struct {
     nmea_ais_application_layout layout;
     union {
+        nmea_ais_aton_monitoring aton_monitoring;
+        nmea_ais_function_interrogation function_interrogation;
+        nmea_ais_inland_persons_on_board inland_persons_on_board;
+        nmea_ais_inland_static_voyage inland_static_voyage;
         nmea_ais_meteo_hydro meteo_hydro;
+        nmea_ais_meteo_hydro_imo236 meteo_hydro_imo236;
+        nmea_ais_persons_on_board persons_on_board;
+        nmea_ais_text_addressed text_addressed;
+        nmea_ais_text_broadcast text_broadcast;
     } as;
 } nmea_ais_application;
 
@@ -273,6 +408,8 @@ typedef struct {
     nmea_ais_bits data; /* Application data */
     nmea_ais_bits trailing; /* bits after the layout, as sent */
     uint8_t padding; /* the fill bits' values, as sent */
+    bool has_application;
+    nmea_ais_application application;
 } nmea_ais_addressed_binary;
 
 /* Addressed safety related message: AIS message type 12. */

@@ -61,6 +61,16 @@ class TypeAgreement:
     agree: int = 0             # messages whose every compared field agrees
     fields: int = 0            # field values compared
     disagreements: list[Disagreement] = field(default_factory=list)
+    applications: dict[tuple[int, int], ApplicationAgreement] = field(default_factory=dict)
+    """Its binary messages by the DAC and FI they carry."""
+
+
+@dataclass
+class ApplicationAgreement:
+    messages: int = 0          # messages of the DAC and FI gpsd decoded
+    ours: int = 0              # those our application decodes (the rest keep their data bits)
+    fields: int = 0            # the application's field values compared
+    differences: int = 0
 
 
 def text(value: str) -> str:
@@ -87,15 +97,22 @@ def raw_value(message: ais.Record, f: ais.Field) -> Any:
     return value
 
 
+def application_in_gpsd_form(application: ais.Application) -> dict[str, Any]:
+    """An application's fields as gpsd names and writes them (raw integers), and its data bits."""
+    out = {f.id: raw_value(application, f) for f in application.FIELDS.values()
+           if getattr(application, f.id) is not None}
+    # the data bits it is sent as: what gpsd gives for an application it does not decode
+    out["data"] = data_json(application.bits("AIS application"))
+    if {"day", "hour", "minute"} <= out.keys():  # DAC 1 FI 11 and FI 31
+        out["timestamp"] = "{:02d}T{:02d}:{:02d}Z".format(*(out.pop(k) for k in ("day", "hour", "minute")))
+    return out
+
+
 def ours_in_gpsd_form(message: ais.Message) -> dict[str, Any]:
     """The message's fields, and its application's, as gpsd names and writes them (raw integers)."""
     out: dict[str, Any] = {}
-    application = message.application
-    if application is not None:
-        out.update((f.id, raw_value(application, f)) for f in application.FIELDS.values()
-                   if getattr(application, f.id) is not None)
-        if (application.DAC, application.FID) == (1, 31):
-            out["timestamp"] = "{:02d}T{:02d}:{:02d}Z".format(*(out.pop(k) for k in ("day", "hour", "minute")))
+    if message.application is not None:
+        out.update(application_in_gpsd_form(message.application))
     for item in message.LAYOUT:
         if isinstance(item, ais.Group):
             for n, entry in enumerate(getattr(message, item.id), 1):
@@ -127,11 +144,20 @@ def compare(where: str, payload: str, fill_bits: int, theirs: dict[str, Any],
     tally = agreement.setdefault(t, TypeAgreement())
     tally.messages += 1
     try:
-        ours = ours_in_gpsd_form(decode_payload(payload, fill_bits))
+        message = decode_payload(payload, fill_bits)
+        ours = ours_in_gpsd_form(message)
     except NmeaError as err:
         tally.disagreements.append(Disagreement(where, t, "message", str(err), "decoded",
                                                 known_reason(t, "message", err, theirs)))
         return
+    carried: ApplicationAgreement | None = None
+    from_application: set[str] = set()
+    if t in (6, 8) and "dac" in theirs:
+        carried = tally.applications.setdefault((theirs["dac"], theirs["fid"]), ApplicationAgreement())
+        carried.messages += 1
+        if message.application is not None:
+            carried.ours += 1
+            from_application = set(application_in_gpsd_form(message.application))
     clean = True
     for key, value in theirs.items():
         if key in NOT_FIELDS:
@@ -140,6 +166,9 @@ def compare(where: str, payload: str, fill_bits: int, theirs: dict[str, Any],
             continue  # a field we do not have here: an application's, a case not taken, one gpsd zero-fills
         tally.fields += 1
         mine = ours[key]
+        if carried is not None and key in from_application:
+            carried.fields += 1
+            carried.differences += mine != value
         if mine != value:  # gpsd writes some flags as 0 and 1: equal to False and True
             clean = False
             tally.disagreements.append(Disagreement(where, t, key, mine, value, known_reason(t, key, mine, value)))
@@ -208,6 +237,14 @@ def report(found: dict[int, TypeAgreement]) -> str:
     total = list(found.values())
     lines.append(f"| all | {sum(a.messages for a in total)} | {sum(a.agree for a in total)} "
                  f"| {sum(a.fields for a in total)} | {sum(len(a.disagreements) for a in total)} |")
+    lines += ["", "## Binary applications (types 6 and 8)", "",
+              "The DAC and FI of each binary message gpsd decoded; `ours` counts those whose data bits the",
+              "spec's application of that DAC and FI (spec/ais/applications) decodes, the rest keep them as",
+              "data (gpsd's JSON then gives either its data bits or fields of an application we lack).", "",
+              "| type | DAC | FI | messages | ours | fields compared | differences |",
+              "|---:|---:|---:|---:|---:|---:|---:|"]
+    lines += [f"| {t} | {dac} | {fid} | {c.messages} | {c.ours} | {c.fields} | {c.differences} |"
+              for t, a in found.items() for (dac, fid), c in sorted(a.applications.items())]
     lines += ["", "## Differences", ""]
     lines += [f"- `{d.where}`, type {d.message_type} `{d.key}`: ours `{d.ours!r}`, gpsd `{d.theirs!r}`. "
               f"{d.reason or 'UNEXPLAINED: a defect of ours'}." for a in total for d in a.disagreements]

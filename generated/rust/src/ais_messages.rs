@@ -12,7 +12,12 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/meteo_hydro.yaml (digest aa7bea671767b05b)
+//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/inland_persons_on_board.yaml,
+//   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
+//   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
+//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
+//   (digest 30790496d88c1172)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The AIS messages of spec/ais: a struct per layout, read from and written to a payload's bits
@@ -52,6 +57,8 @@ pub struct AddressedBinary<'a> {
     pub trailing: ais::Bits<'a>,
     /// The values of the fill bits, as sent (meant to be 0, not always).
     pub padding: u8,
+    /// What the data bits carry when the spec describes the application their DAC and FI name (`data` is then not written).
+    pub application: Option<Application<'a>>,
 }
 
 impl<'a> AddressedBinary<'a> {
@@ -84,7 +91,12 @@ impl<'a> AddressedBinary<'a> {
         w.put(u64::from(self.spare), 1, "spare")?;
         w.put(u64::from(self.dac), 10, "dac")?;
         w.put(u64::from(self.fid), 6, "fid")?;
-        w.put_bits(self.data, "data")?;
+        match &self.application {
+            Some(app) => app.write(w)?,
+            None => {
+                w.put_bits(self.data, "data")?;
+            }
+        }
         w.put_bits(self.trailing, "trailing")?;
         Ok(())
     }
@@ -99,7 +111,14 @@ impl<'a> AddressedBinary<'a> {
         j.int("spare", self.spare)?;
         j.int("dac", self.dac)?;
         j.int("fid", self.fid)?;
-        j.text("data", self.data)?;
+        if self.application.is_none() {
+            j.text("data", self.data)?;
+        }
+        if let Some(app) = &self.application {
+            let mut o = ais::JsonObject::new(j.key("application")?)?;
+            app.json_members(&mut o)?;
+            o.finish()?;
+        }
         j.text("trailing", self.trailing)?;
         Ok(())
     }
@@ -3137,6 +3156,340 @@ impl<'a> UtcInquiry<'a> {
     }
 }
 
+/// AtoN monitoring data (UK and Ireland): AIS application DAC 235 FI 10 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct AtonMonitoring<'a> {
+    /// Internal supply voltage [volts].
+    pub ana_int_raw: u16,
+    /// External voltage 1 [volts].
+    pub ana_ext1_raw: u16,
+    /// External voltage 2 [volts].
+    pub ana_ext2_raw: u16,
+    /// Racon status.
+    pub racon: u8,
+    /// Light status.
+    pub light: u8,
+    /// Health alarm.
+    pub alarm: bool,
+    /// External digital inputs.
+    pub stat_ext: u8,
+    /// Off position.
+    pub off_pos: bool,
+    /// Spare.
+    pub spare: Option<u8>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> AtonMonitoring<'a> {
+    /// Internal supply voltage [volts], or its special value.
+    pub fn ana_int(&self) -> ais::Reading<f64> {
+        let raw = self.ana_int_raw;
+        ais::scaled(i64::from(raw), 20.0, 0.0, &[])
+    }
+    /// External voltage 1 [volts], or its special value.
+    pub fn ana_ext1(&self) -> ais::Reading<f64> {
+        let raw = self.ana_ext1_raw;
+        ais::scaled(i64::from(raw), 20.0, 0.0, &[])
+    }
+    /// External voltage 2 [volts], or its special value.
+    pub fn ana_ext2(&self) -> ais::Reading<f64> {
+        let raw = self.ana_ext2_raw;
+        ais::scaled(i64::from(raw), 20.0, 0.0, &[])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self {
+            ana_int_raw: r.take(10, "ana_int")? as u16,
+            ana_ext1_raw: r.take(10, "ana_ext1")? as u16,
+            ana_ext2_raw: r.take(10, "ana_ext2")? as u16,
+            racon: r.take(2, "racon")? as u8,
+            light: r.take(2, "light")? as u8,
+            alarm: r.take(1, "alarm")? == 1,
+            stat_ext: r.take(8, "stat_ext")? as u8,
+            off_pos: r.take(1, "off_pos")? == 1,
+            ..Self::default()
+        };
+        'read: {
+            if r.remaining() < 4 {
+                break 'read;
+            }
+            m.spare = Some(r.take(4, "spare")? as u8);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put(u64::from(self.ana_int_raw), 10, "ana_int")?;
+            w.put(u64::from(self.ana_ext1_raw), 10, "ana_ext1")?;
+            w.put(u64::from(self.ana_ext2_raw), 10, "ana_ext2")?;
+            w.put(u64::from(self.racon), 2, "racon")?;
+            w.put(u64::from(self.light), 2, "light")?;
+            w.put(u64::from(self.alarm), 1, "alarm")?;
+            w.put(u64::from(self.stat_ext), 8, "stat_ext")?;
+            w.put(u64::from(self.off_pos), 1, "off_pos")?;
+            let Some(v) = self.spare else {
+                break 'write;
+            };
+            w.put(u64::from(v), 4, "spare")?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("ana_int", self.ana_int(), "ana_int_raw", i64::from(self.ana_int_raw))?;
+        j.reading("ana_ext1", self.ana_ext1(), "ana_ext1_raw", i64::from(self.ana_ext1_raw))?;
+        j.reading("ana_ext2", self.ana_ext2(), "ana_ext2_raw", i64::from(self.ana_ext2_raw))?;
+        j.int("racon", self.racon)?;
+        j.int("light", self.light)?;
+        j.flag("alarm", self.alarm)?;
+        j.int("stat_ext", self.stat_ext)?;
+        j.flag("off_pos", self.off_pos)?;
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Interrogation for a specific function message: AIS application DAC 1 FI 2 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FunctionInterrogation<'a> {
+    /// Requested DAC.
+    pub req_dac: u16,
+    /// Requested FI.
+    pub req_fid: u8,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> FunctionInterrogation<'a> {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m =
+            Self { req_dac: r.take(10, "req_dac")? as u16, req_fid: r.take(6, "req_fid")? as u8, trailing: r.rest() };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.req_dac), 10, "req_dac")?;
+        w.put(u64::from(self.req_fid), 6, "req_fid")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("req_dac", self.req_dac)?;
+        j.int("req_fid", self.req_fid)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Inland number of persons on board: AIS application DAC 200 FI 55 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct InlandPersonsOnBoard<'a> {
+    /// Crew members on board.
+    pub crew_raw: u8,
+    /// Passengers on board.
+    pub passengers_raw: u16,
+    /// Shipboard personnel on board.
+    pub personnel_raw: u8,
+    /// Spare.
+    pub spare: Option<u64>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> InlandPersonsOnBoard<'a> {
+    /// Crew members on board, or its special value.
+    pub fn crew(&self) -> ais::Reading<i64> {
+        let raw = self.crew_raw;
+        ais::counted(i64::from(raw), 0, &[(255, "not_available")])
+    }
+    /// Passengers on board, or its special value.
+    pub fn passengers(&self) -> ais::Reading<i64> {
+        let raw = self.passengers_raw;
+        ais::counted(i64::from(raw), 0, &[(8191, "not_available")])
+    }
+    /// Shipboard personnel on board, or its special value.
+    pub fn personnel(&self) -> ais::Reading<i64> {
+        let raw = self.personnel_raw;
+        ais::counted(i64::from(raw), 0, &[(255, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self {
+            crew_raw: r.take(8, "crew")? as u8,
+            passengers_raw: r.take(13, "passengers")? as u16,
+            personnel_raw: r.take(8, "personnel")? as u8,
+            ..Self::default()
+        };
+        'read: {
+            if r.remaining() < 51 {
+                break 'read;
+            }
+            m.spare = Some(r.take(51, "spare")?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put(u64::from(self.crew_raw), 8, "crew")?;
+            w.put(u64::from(self.passengers_raw), 13, "passengers")?;
+            w.put(u64::from(self.personnel_raw), 8, "personnel")?;
+            let Some(v) = self.spare else {
+                break 'write;
+            };
+            w.put(v, 51, "spare")?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("crew", self.crew(), "crew_raw", i64::from(self.crew_raw))?;
+        j.reading("passengers", self.passengers(), "passengers_raw", i64::from(self.passengers_raw))?;
+        j.reading("personnel", self.personnel(), "personnel_raw", i64::from(self.personnel_raw))?;
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Inland ship static and voyage related data: AIS application DAC 200 FI 10 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct InlandStaticVoyage<'a> {
+    /// European vessel identification number.
+    pub vin: ais::SixBitText<'a>,
+    /// Length of ship [metres].
+    pub length_raw: u16,
+    /// Beam of ship [metres].
+    pub beam_raw: u16,
+    /// Ship or combination type.
+    pub shiptype_raw: u16,
+    /// Hazardous cargo.
+    pub hazard_raw: u8,
+    /// Draught [metres].
+    pub draught_raw: u16,
+    /// Loaded or unloaded.
+    pub loaded_raw: u8,
+    /// Quality of the speed information.
+    pub speed_q: bool,
+    /// Quality of the course information.
+    pub course_q: bool,
+    /// Quality of the heading information.
+    pub heading_q: bool,
+    /// Spare.
+    pub spare: Option<u8>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> InlandStaticVoyage<'a> {
+    /// Length of ship [metres], or its special value.
+    pub fn length(&self) -> ais::Reading<f64> {
+        let raw = self.length_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(0, "not_available")])
+    }
+    /// Beam of ship [metres], or its special value.
+    pub fn beam(&self) -> ais::Reading<f64> {
+        let raw = self.beam_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(0, "not_available")])
+    }
+    /// Ship or combination type, or its special value.
+    pub fn shiptype(&self) -> ais::Reading<i64> {
+        let raw = self.shiptype_raw;
+        ais::counted(i64::from(raw), 0, &[(8000, "not_available")])
+    }
+    /// Hazardous cargo, or its special value.
+    pub fn hazard(&self) -> ais::Reading<i64> {
+        let raw = self.hazard_raw;
+        ais::counted(i64::from(raw), 0, &[(5, "not_available")])
+    }
+    /// Draught [metres], or its special value.
+    pub fn draught(&self) -> ais::Reading<f64> {
+        let raw = self.draught_raw;
+        ais::scaled(i64::from(raw), 100.0, 0.0, &[(0, "not_available")])
+    }
+    /// Loaded or unloaded, or its special value.
+    pub fn loaded(&self) -> ais::Reading<i64> {
+        let raw = self.loaded_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self {
+            vin: r.take_text(8, "vin")?,
+            length_raw: r.take(13, "length")? as u16,
+            beam_raw: r.take(10, "beam")? as u16,
+            shiptype_raw: r.take(14, "shiptype")? as u16,
+            hazard_raw: r.take(3, "hazard")? as u8,
+            draught_raw: r.take(11, "draught")? as u16,
+            loaded_raw: r.take(2, "loaded")? as u8,
+            speed_q: r.take(1, "speed_q")? == 1,
+            course_q: r.take(1, "course_q")? == 1,
+            heading_q: r.take(1, "heading_q")? == 1,
+            ..Self::default()
+        };
+        'read: {
+            if r.remaining() < 8 {
+                break 'read;
+            }
+            m.spare = Some(r.take(8, "spare")? as u8);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put_fixed(self.vin.bits(), 48, true, "vin")?;
+            w.put(u64::from(self.length_raw), 13, "length")?;
+            w.put(u64::from(self.beam_raw), 10, "beam")?;
+            w.put(u64::from(self.shiptype_raw), 14, "shiptype")?;
+            w.put(u64::from(self.hazard_raw), 3, "hazard")?;
+            w.put(u64::from(self.draught_raw), 11, "draught")?;
+            w.put(u64::from(self.loaded_raw), 2, "loaded")?;
+            w.put(u64::from(self.speed_q), 1, "speed_q")?;
+            w.put(u64::from(self.course_q), 1, "course_q")?;
+            w.put(u64::from(self.heading_q), 1, "heading_q")?;
+            let Some(v) = self.spare else {
+                break 'write;
+            };
+            w.put(u64::from(v), 8, "spare")?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.text("vin", self.vin)?;
+        j.reading("length", self.length(), "length_raw", i64::from(self.length_raw))?;
+        j.reading("beam", self.beam(), "beam_raw", i64::from(self.beam_raw))?;
+        j.reading("shiptype", self.shiptype(), "shiptype_raw", i64::from(self.shiptype_raw))?;
+        j.reading("hazard", self.hazard(), "hazard_raw", i64::from(self.hazard_raw))?;
+        j.reading("draught", self.draught(), "draught_raw", i64::from(self.draught_raw))?;
+        j.reading("loaded", self.loaded(), "loaded_raw", i64::from(self.loaded_raw))?;
+        j.flag("speed_q", self.speed_q)?;
+        j.flag("course_q", self.course_q)?;
+        j.flag("heading_q", self.heading_q)?;
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
 /// Meteorological and hydrographic data: AIS application DAC 1 FI 31 (in type 8).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct MeteoHydro<'a> {
@@ -3552,11 +3905,558 @@ impl<'a> MeteoHydro<'a> {
     }
 }
 
+/// Meteorological and hydrographic data (SN/Circ.236): AIS application DAC 1 FI 11 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MeteoHydroImo236<'a> {
+    /// Latitude [degrees].
+    pub lat_raw: i32,
+    /// Longitude [degrees].
+    pub lon_raw: i32,
+    /// Day (UTC).
+    pub day_raw: u8,
+    /// Hour (UTC).
+    pub hour_raw: u8,
+    /// Minute (UTC).
+    pub minute_raw: u8,
+    /// Average wind speed [knots].
+    pub wspeed_raw: u8,
+    /// Wind gust [knots].
+    pub wgust_raw: u8,
+    /// Wind direction [degrees].
+    pub wdir_raw: u16,
+    /// Wind gust direction [degrees].
+    pub wgustdir_raw: u16,
+    /// Air temperature [degrees Celsius].
+    pub airtemp_raw: u16,
+    /// Relative humidity [percent].
+    pub humidity_raw: u8,
+    /// Dew point [degrees Celsius].
+    pub dewpoint_raw: u16,
+    /// Air pressure [hPa].
+    pub pressure_raw: u16,
+    /// Air pressure tendency.
+    pub pressuretend_raw: u8,
+    /// Horizontal visibility [nautical miles].
+    pub visibility_raw: u8,
+    /// Water level [metres].
+    pub waterlevel_raw: u16,
+    /// Water level trend.
+    pub leveltrend_raw: u8,
+    /// Surface current speed [knots].
+    pub cspeed_raw: u8,
+    /// Surface current direction [degrees].
+    pub cdir_raw: u16,
+    /// Current speed at level 2 [knots].
+    pub cspeed2_raw: u8,
+    /// Current direction at level 2 [degrees].
+    pub cdir2_raw: u16,
+    /// Measuring level 2 [metres].
+    pub cdepth2_raw: u8,
+    /// Current speed at level 3 [knots].
+    pub cspeed3_raw: u8,
+    /// Current direction at level 3 [degrees].
+    pub cdir3_raw: u16,
+    /// Measuring level 3 [metres].
+    pub cdepth3_raw: u8,
+    /// Significant wave height [metres].
+    pub waveheight_raw: u8,
+    /// Wave period [seconds].
+    pub waveperiod_raw: u8,
+    /// Wave direction [degrees].
+    pub wavedir_raw: u16,
+    /// Swell height [metres].
+    pub swellheight_raw: u8,
+    /// Swell period [seconds].
+    pub swellperiod_raw: u8,
+    /// Swell direction [degrees].
+    pub swelldir_raw: u16,
+    /// Sea state.
+    pub seastate_raw: u8,
+    /// Water temperature [degrees Celsius].
+    pub watertemp_raw: u16,
+    /// Precipitation type.
+    pub preciptype_raw: u8,
+    /// Salinity [parts per thousand].
+    pub salinity_raw: u16,
+    /// Ice.
+    pub ice_raw: u8,
+    /// Spare.
+    pub spare: Option<u8>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> MeteoHydroImo236<'a> {
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> ais::Reading<f64> {
+        let raw = self.lat_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")])
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> ais::Reading<f64> {
+        let raw = self.lon_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")])
+    }
+    /// Day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Hour (UTC), or its special value.
+    pub fn hour(&self) -> ais::Reading<i64> {
+        let raw = self.hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Minute (UTC), or its special value.
+    pub fn minute(&self) -> ais::Reading<i64> {
+        let raw = self.minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Average wind speed [knots], or its special value.
+    pub fn wspeed(&self) -> ais::Reading<i64> {
+        let raw = self.wspeed_raw;
+        ais::counted(i64::from(raw), 0, &[(127, "not_available")])
+    }
+    /// Wind gust [knots], or its special value.
+    pub fn wgust(&self) -> ais::Reading<i64> {
+        let raw = self.wgust_raw;
+        ais::counted(i64::from(raw), 0, &[(127, "not_available")])
+    }
+    /// Wind direction [degrees], or its special value.
+    pub fn wdir(&self) -> ais::Reading<i64> {
+        let raw = self.wdir_raw;
+        ais::counted(i64::from(raw), 0, &[(511, "not_available")])
+    }
+    /// Wind gust direction [degrees], or its special value.
+    pub fn wgustdir(&self) -> ais::Reading<i64> {
+        let raw = self.wgustdir_raw;
+        ais::counted(i64::from(raw), 0, &[(511, "not_available")])
+    }
+    /// Air temperature [degrees Celsius], or its special value.
+    pub fn airtemp(&self) -> ais::Reading<f64> {
+        let raw = self.airtemp_raw;
+        ais::scaled(i64::from(raw), 10.0, -60.0, &[(2047, "not_available")])
+    }
+    /// Relative humidity [percent], or its special value.
+    pub fn humidity(&self) -> ais::Reading<i64> {
+        let raw = self.humidity_raw;
+        ais::counted(i64::from(raw), 0, &[(127, "not_available")])
+    }
+    /// Dew point [degrees Celsius], or its special value.
+    pub fn dewpoint(&self) -> ais::Reading<f64> {
+        let raw = self.dewpoint_raw;
+        ais::scaled(i64::from(raw), 10.0, -20.0, &[(1023, "not_available")])
+    }
+    /// Air pressure [hPa], or its special value.
+    pub fn pressure(&self) -> ais::Reading<i64> {
+        let raw = self.pressure_raw;
+        ais::counted(i64::from(raw), 800, &[(511, "not_available")])
+    }
+    /// Air pressure tendency, or its special value.
+    pub fn pressuretend(&self) -> ais::Reading<i64> {
+        let raw = self.pressuretend_raw;
+        ais::counted(i64::from(raw), 0, &[(3, "not_available")])
+    }
+    /// Horizontal visibility [nautical miles], or its special value.
+    pub fn visibility(&self) -> ais::Reading<f64> {
+        let raw = self.visibility_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(255, "not_available")])
+    }
+    /// Water level [metres], or its special value.
+    pub fn waterlevel(&self) -> ais::Reading<f64> {
+        let raw = self.waterlevel_raw;
+        ais::scaled(i64::from(raw), 10.0, -10.0, &[(511, "not_available")])
+    }
+    /// Water level trend, or its special value.
+    pub fn leveltrend(&self) -> ais::Reading<i64> {
+        let raw = self.leveltrend_raw;
+        ais::counted(i64::from(raw), 0, &[(3, "not_available")])
+    }
+    /// Surface current speed [knots], or its special value.
+    pub fn cspeed(&self) -> ais::Reading<f64> {
+        let raw = self.cspeed_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(255, "not_available")])
+    }
+    /// Surface current direction [degrees], or its special value.
+    pub fn cdir(&self) -> ais::Reading<i64> {
+        let raw = self.cdir_raw;
+        ais::counted(i64::from(raw), 0, &[(511, "not_available")])
+    }
+    /// Current speed at level 2 [knots], or its special value.
+    pub fn cspeed2(&self) -> ais::Reading<f64> {
+        let raw = self.cspeed2_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(255, "not_available")])
+    }
+    /// Current direction at level 2 [degrees], or its special value.
+    pub fn cdir2(&self) -> ais::Reading<i64> {
+        let raw = self.cdir2_raw;
+        ais::counted(i64::from(raw), 0, &[(511, "not_available")])
+    }
+    /// Measuring level 2 [metres], or its special value.
+    pub fn cdepth2(&self) -> ais::Reading<i64> {
+        let raw = self.cdepth2_raw;
+        ais::counted(i64::from(raw), 0, &[(31, "not_available")])
+    }
+    /// Current speed at level 3 [knots], or its special value.
+    pub fn cspeed3(&self) -> ais::Reading<f64> {
+        let raw = self.cspeed3_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(255, "not_available")])
+    }
+    /// Current direction at level 3 [degrees], or its special value.
+    pub fn cdir3(&self) -> ais::Reading<i64> {
+        let raw = self.cdir3_raw;
+        ais::counted(i64::from(raw), 0, &[(511, "not_available")])
+    }
+    /// Measuring level 3 [metres], or its special value.
+    pub fn cdepth3(&self) -> ais::Reading<i64> {
+        let raw = self.cdepth3_raw;
+        ais::counted(i64::from(raw), 0, &[(31, "not_available")])
+    }
+    /// Significant wave height [metres], or its special value.
+    pub fn waveheight(&self) -> ais::Reading<f64> {
+        let raw = self.waveheight_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(255, "not_available")])
+    }
+    /// Wave period [seconds], or its special value.
+    pub fn waveperiod(&self) -> ais::Reading<i64> {
+        let raw = self.waveperiod_raw;
+        ais::counted(i64::from(raw), 0, &[(63, "not_available")])
+    }
+    /// Wave direction [degrees], or its special value.
+    pub fn wavedir(&self) -> ais::Reading<i64> {
+        let raw = self.wavedir_raw;
+        ais::counted(i64::from(raw), 0, &[(511, "not_available")])
+    }
+    /// Swell height [metres], or its special value.
+    pub fn swellheight(&self) -> ais::Reading<f64> {
+        let raw = self.swellheight_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(255, "not_available")])
+    }
+    /// Swell period [seconds], or its special value.
+    pub fn swellperiod(&self) -> ais::Reading<i64> {
+        let raw = self.swellperiod_raw;
+        ais::counted(i64::from(raw), 0, &[(63, "not_available")])
+    }
+    /// Swell direction [degrees], or its special value.
+    pub fn swelldir(&self) -> ais::Reading<i64> {
+        let raw = self.swelldir_raw;
+        ais::counted(i64::from(raw), 0, &[(511, "not_available")])
+    }
+    /// Sea state, or its special value.
+    pub fn seastate(&self) -> ais::Reading<i64> {
+        let raw = self.seastate_raw;
+        ais::counted(i64::from(raw), 0, &[(15, "not_available")])
+    }
+    /// Water temperature [degrees Celsius], or its special value.
+    pub fn watertemp(&self) -> ais::Reading<f64> {
+        let raw = self.watertemp_raw;
+        ais::scaled(i64::from(raw), 10.0, -10.0, &[(1023, "not_available")])
+    }
+    /// Precipitation type, or its special value.
+    pub fn preciptype(&self) -> ais::Reading<i64> {
+        let raw = self.preciptype_raw;
+        ais::counted(i64::from(raw), 0, &[(7, "not_available")])
+    }
+    /// Salinity [parts per thousand], or its special value.
+    pub fn salinity(&self) -> ais::Reading<f64> {
+        let raw = self.salinity_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(511, "not_available")])
+    }
+    /// Ice, or its special value.
+    pub fn ice(&self) -> ais::Reading<i64> {
+        let raw = self.ice_raw;
+        ais::counted(i64::from(raw), 0, &[(3, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self {
+            lat_raw: r.take_signed(24, "lat")? as i32,
+            lon_raw: r.take_signed(25, "lon")? as i32,
+            day_raw: r.take(5, "day")? as u8,
+            hour_raw: r.take(5, "hour")? as u8,
+            minute_raw: r.take(6, "minute")? as u8,
+            wspeed_raw: r.take(7, "wspeed")? as u8,
+            wgust_raw: r.take(7, "wgust")? as u8,
+            wdir_raw: r.take(9, "wdir")? as u16,
+            wgustdir_raw: r.take(9, "wgustdir")? as u16,
+            airtemp_raw: r.take(11, "airtemp")? as u16,
+            humidity_raw: r.take(7, "humidity")? as u8,
+            dewpoint_raw: r.take(10, "dewpoint")? as u16,
+            pressure_raw: r.take(9, "pressure")? as u16,
+            pressuretend_raw: r.take(2, "pressuretend")? as u8,
+            visibility_raw: r.take(8, "visibility")? as u8,
+            waterlevel_raw: r.take(9, "waterlevel")? as u16,
+            leveltrend_raw: r.take(2, "leveltrend")? as u8,
+            cspeed_raw: r.take(8, "cspeed")? as u8,
+            cdir_raw: r.take(9, "cdir")? as u16,
+            cspeed2_raw: r.take(8, "cspeed2")? as u8,
+            cdir2_raw: r.take(9, "cdir2")? as u16,
+            cdepth2_raw: r.take(5, "cdepth2")? as u8,
+            cspeed3_raw: r.take(8, "cspeed3")? as u8,
+            cdir3_raw: r.take(9, "cdir3")? as u16,
+            cdepth3_raw: r.take(5, "cdepth3")? as u8,
+            waveheight_raw: r.take(8, "waveheight")? as u8,
+            waveperiod_raw: r.take(6, "waveperiod")? as u8,
+            wavedir_raw: r.take(9, "wavedir")? as u16,
+            swellheight_raw: r.take(8, "swellheight")? as u8,
+            swellperiod_raw: r.take(6, "swellperiod")? as u8,
+            swelldir_raw: r.take(9, "swelldir")? as u16,
+            seastate_raw: r.take(4, "seastate")? as u8,
+            watertemp_raw: r.take(10, "watertemp")? as u16,
+            preciptype_raw: r.take(3, "preciptype")? as u8,
+            salinity_raw: r.take(9, "salinity")? as u16,
+            ice_raw: r.take(2, "ice")? as u8,
+            ..Self::default()
+        };
+        'read: {
+            if r.remaining() < 6 {
+                break 'read;
+            }
+            m.spare = Some(r.take(6, "spare")? as u8);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put_signed(i64::from(self.lat_raw), 24, "lat")?;
+            w.put_signed(i64::from(self.lon_raw), 25, "lon")?;
+            w.put(u64::from(self.day_raw), 5, "day")?;
+            w.put(u64::from(self.hour_raw), 5, "hour")?;
+            w.put(u64::from(self.minute_raw), 6, "minute")?;
+            w.put(u64::from(self.wspeed_raw), 7, "wspeed")?;
+            w.put(u64::from(self.wgust_raw), 7, "wgust")?;
+            w.put(u64::from(self.wdir_raw), 9, "wdir")?;
+            w.put(u64::from(self.wgustdir_raw), 9, "wgustdir")?;
+            w.put(u64::from(self.airtemp_raw), 11, "airtemp")?;
+            w.put(u64::from(self.humidity_raw), 7, "humidity")?;
+            w.put(u64::from(self.dewpoint_raw), 10, "dewpoint")?;
+            w.put(u64::from(self.pressure_raw), 9, "pressure")?;
+            w.put(u64::from(self.pressuretend_raw), 2, "pressuretend")?;
+            w.put(u64::from(self.visibility_raw), 8, "visibility")?;
+            w.put(u64::from(self.waterlevel_raw), 9, "waterlevel")?;
+            w.put(u64::from(self.leveltrend_raw), 2, "leveltrend")?;
+            w.put(u64::from(self.cspeed_raw), 8, "cspeed")?;
+            w.put(u64::from(self.cdir_raw), 9, "cdir")?;
+            w.put(u64::from(self.cspeed2_raw), 8, "cspeed2")?;
+            w.put(u64::from(self.cdir2_raw), 9, "cdir2")?;
+            w.put(u64::from(self.cdepth2_raw), 5, "cdepth2")?;
+            w.put(u64::from(self.cspeed3_raw), 8, "cspeed3")?;
+            w.put(u64::from(self.cdir3_raw), 9, "cdir3")?;
+            w.put(u64::from(self.cdepth3_raw), 5, "cdepth3")?;
+            w.put(u64::from(self.waveheight_raw), 8, "waveheight")?;
+            w.put(u64::from(self.waveperiod_raw), 6, "waveperiod")?;
+            w.put(u64::from(self.wavedir_raw), 9, "wavedir")?;
+            w.put(u64::from(self.swellheight_raw), 8, "swellheight")?;
+            w.put(u64::from(self.swellperiod_raw), 6, "swellperiod")?;
+            w.put(u64::from(self.swelldir_raw), 9, "swelldir")?;
+            w.put(u64::from(self.seastate_raw), 4, "seastate")?;
+            w.put(u64::from(self.watertemp_raw), 10, "watertemp")?;
+            w.put(u64::from(self.preciptype_raw), 3, "preciptype")?;
+            w.put(u64::from(self.salinity_raw), 9, "salinity")?;
+            w.put(u64::from(self.ice_raw), 2, "ice")?;
+            let Some(v) = self.spare else {
+                break 'write;
+            };
+            w.put(u64::from(v), 6, "spare")?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
+        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        j.reading("hour", self.hour(), "hour_raw", i64::from(self.hour_raw))?;
+        j.reading("minute", self.minute(), "minute_raw", i64::from(self.minute_raw))?;
+        j.reading("wspeed", self.wspeed(), "wspeed_raw", i64::from(self.wspeed_raw))?;
+        j.reading("wgust", self.wgust(), "wgust_raw", i64::from(self.wgust_raw))?;
+        j.reading("wdir", self.wdir(), "wdir_raw", i64::from(self.wdir_raw))?;
+        j.reading("wgustdir", self.wgustdir(), "wgustdir_raw", i64::from(self.wgustdir_raw))?;
+        j.reading("airtemp", self.airtemp(), "airtemp_raw", i64::from(self.airtemp_raw))?;
+        j.reading("humidity", self.humidity(), "humidity_raw", i64::from(self.humidity_raw))?;
+        j.reading("dewpoint", self.dewpoint(), "dewpoint_raw", i64::from(self.dewpoint_raw))?;
+        j.reading("pressure", self.pressure(), "pressure_raw", i64::from(self.pressure_raw))?;
+        j.reading("pressuretend", self.pressuretend(), "pressuretend_raw", i64::from(self.pressuretend_raw))?;
+        j.reading("visibility", self.visibility(), "visibility_raw", i64::from(self.visibility_raw))?;
+        j.reading("waterlevel", self.waterlevel(), "waterlevel_raw", i64::from(self.waterlevel_raw))?;
+        j.reading("leveltrend", self.leveltrend(), "leveltrend_raw", i64::from(self.leveltrend_raw))?;
+        j.reading("cspeed", self.cspeed(), "cspeed_raw", i64::from(self.cspeed_raw))?;
+        j.reading("cdir", self.cdir(), "cdir_raw", i64::from(self.cdir_raw))?;
+        j.reading("cspeed2", self.cspeed2(), "cspeed2_raw", i64::from(self.cspeed2_raw))?;
+        j.reading("cdir2", self.cdir2(), "cdir2_raw", i64::from(self.cdir2_raw))?;
+        j.reading("cdepth2", self.cdepth2(), "cdepth2_raw", i64::from(self.cdepth2_raw))?;
+        j.reading("cspeed3", self.cspeed3(), "cspeed3_raw", i64::from(self.cspeed3_raw))?;
+        j.reading("cdir3", self.cdir3(), "cdir3_raw", i64::from(self.cdir3_raw))?;
+        j.reading("cdepth3", self.cdepth3(), "cdepth3_raw", i64::from(self.cdepth3_raw))?;
+        j.reading("waveheight", self.waveheight(), "waveheight_raw", i64::from(self.waveheight_raw))?;
+        j.reading("waveperiod", self.waveperiod(), "waveperiod_raw", i64::from(self.waveperiod_raw))?;
+        j.reading("wavedir", self.wavedir(), "wavedir_raw", i64::from(self.wavedir_raw))?;
+        j.reading("swellheight", self.swellheight(), "swellheight_raw", i64::from(self.swellheight_raw))?;
+        j.reading("swellperiod", self.swellperiod(), "swellperiod_raw", i64::from(self.swellperiod_raw))?;
+        j.reading("swelldir", self.swelldir(), "swelldir_raw", i64::from(self.swelldir_raw))?;
+        j.reading("seastate", self.seastate(), "seastate_raw", i64::from(self.seastate_raw))?;
+        j.reading("watertemp", self.watertemp(), "watertemp_raw", i64::from(self.watertemp_raw))?;
+        j.reading("preciptype", self.preciptype(), "preciptype_raw", i64::from(self.preciptype_raw))?;
+        j.reading("salinity", self.salinity(), "salinity_raw", i64::from(self.salinity_raw))?;
+        j.reading("ice", self.ice(), "ice_raw", i64::from(self.ice_raw))?;
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Number of persons on board: AIS application DAC 1 FI 40 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PersonsOnBoard<'a> {
+    /// Persons on board.
+    pub persons_raw: u16,
+    /// Spare.
+    pub spare: Option<u8>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> PersonsOnBoard<'a> {
+    /// Persons on board, or its special value.
+    pub fn persons(&self) -> ais::Reading<i64> {
+        let raw = self.persons_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { persons_raw: r.take(13, "persons")? as u16, ..Self::default() };
+        'read: {
+            if r.remaining() < 3 {
+                break 'read;
+            }
+            m.spare = Some(r.take(3, "spare")? as u8);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put(u64::from(self.persons_raw), 13, "persons")?;
+            let Some(v) = self.spare else {
+                break 'write;
+            };
+            w.put(u64::from(v), 3, "spare")?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("persons", self.persons(), "persons_raw", i64::from(self.persons_raw))?;
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Text description (addressed): AIS application DAC 1 FI 30 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TextAddressed<'a> {
+    /// Message linkage ID.
+    pub linkage: u16,
+    /// Text.
+    pub text: ais::SixBitText<'a>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> TextAddressed<'a> {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            linkage: r.take(10, "linkage")? as u16,
+            text: r.take_text(r.remaining() / 6, "text")?,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.linkage), 10, "linkage")?;
+        w.put_bits(self.text.bits(), "text")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("linkage", self.linkage)?;
+        j.text("text", self.text)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Text description (broadcast): AIS application DAC 1 FI 29 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TextBroadcast<'a> {
+    /// Message linkage ID.
+    pub linkage: u16,
+    /// Text.
+    pub text: ais::SixBitText<'a>,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> TextBroadcast<'a> {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            linkage: r.take(10, "linkage")? as u16,
+            text: r.take_text(r.remaining() / 6, "text")?,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.linkage), 10, "linkage")?;
+        w.put_bits(self.text.bits(), "text")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("linkage", self.linkage)?;
+        j.text("text", self.text)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
 /// An application message that the data bits of a binary message carry, by its DAC and FI.
 #[derive(Clone, Copy, Debug)]
 pub enum Application<'a> {
+    /// DAC 235 FI 10.
+    AtonMonitoring(AtonMonitoring<'a>),
+    /// DAC 1 FI 2.
+    FunctionInterrogation(FunctionInterrogation<'a>),
+    /// DAC 200 FI 55.
+    InlandPersonsOnBoard(InlandPersonsOnBoard<'a>),
+    /// DAC 200 FI 10.
+    InlandStaticVoyage(InlandStaticVoyage<'a>),
     /// DAC 1 FI 31.
     MeteoHydro(MeteoHydro<'a>),
+    /// DAC 1 FI 11.
+    MeteoHydroImo236(MeteoHydroImo236<'a>),
+    /// DAC 1 FI 40.
+    PersonsOnBoard(PersonsOnBoard<'a>),
+    /// DAC 1 FI 30.
+    TextAddressed(TextAddressed<'a>),
+    /// DAC 1 FI 29.
+    TextBroadcast(TextBroadcast<'a>),
 }
 
 impl<'a> Application<'a> {
@@ -3564,7 +4464,15 @@ impl<'a> Application<'a> {
     /// `message_type`, None when the spec describes none or its layout does not read the bits.
     pub fn read(message_type: u8, dac: u64, fid: u64, data: ais::Bits<'a>) -> Option<Self> {
         match (dac, fid, message_type) {
+            (235, 10, 6) => AtonMonitoring::read(&mut data.reader()).ok().map(Application::AtonMonitoring),
+            (1, 2, 6) => FunctionInterrogation::read(&mut data.reader()).ok().map(Application::FunctionInterrogation),
+            (200, 55, 6) => InlandPersonsOnBoard::read(&mut data.reader()).ok().map(Application::InlandPersonsOnBoard),
+            (200, 10, 8) => InlandStaticVoyage::read(&mut data.reader()).ok().map(Application::InlandStaticVoyage),
             (1, 31, 8) => MeteoHydro::read(&mut data.reader()).ok().map(Application::MeteoHydro),
+            (1, 11, 8) => MeteoHydroImo236::read(&mut data.reader()).ok().map(Application::MeteoHydroImo236),
+            (1, 40, 6) => PersonsOnBoard::read(&mut data.reader()).ok().map(Application::PersonsOnBoard),
+            (1, 30, 6) => TextAddressed::read(&mut data.reader()).ok().map(Application::TextAddressed),
+            (1, 29, 8) => TextBroadcast::read(&mut data.reader()).ok().map(Application::TextBroadcast),
             _ => None,
         }
     }
@@ -3572,14 +4480,30 @@ impl<'a> Application<'a> {
     /// Writes its bits (those of the data of its message).
     pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
         match self {
+            Application::AtonMonitoring(app) => app.write(w),
+            Application::FunctionInterrogation(app) => app.write(w),
+            Application::InlandPersonsOnBoard(app) => app.write(w),
+            Application::InlandStaticVoyage(app) => app.write(w),
             Application::MeteoHydro(app) => app.write(w),
+            Application::MeteoHydroImo236(app) => app.write(w),
+            Application::PersonsOnBoard(app) => app.write(w),
+            Application::TextAddressed(app) => app.write(w),
+            Application::TextBroadcast(app) => app.write(w),
         }
     }
 
     /// The members of its decoded JSON.
     pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
         match self {
+            Application::AtonMonitoring(app) => app.json_members(j),
+            Application::FunctionInterrogation(app) => app.json_members(j),
+            Application::InlandPersonsOnBoard(app) => app.json_members(j),
+            Application::InlandStaticVoyage(app) => app.json_members(j),
             Application::MeteoHydro(app) => app.json_members(j),
+            Application::MeteoHydroImo236(app) => app.json_members(j),
+            Application::PersonsOnBoard(app) => app.json_members(j),
+            Application::TextAddressed(app) => app.json_members(j),
+            Application::TextBroadcast(app) => app.json_members(j),
         }
     }
 }
@@ -3646,6 +4570,10 @@ impl<'a> Message<'a> {
             6 => {
                 let mut m = AddressedBinary::read(&mut r)?;
                 m.padding = payload.padding();
+                m.application = {
+                    let (dac, fid, data) = (m.dac, m.fid, m.data);
+                    Application::read(message_type, u64::from(dac), u64::from(fid), data)
+                };
                 Message::AddressedBinary(m)
             }
             12 => {

@@ -11,8 +11,13 @@
 #   spec/ais/messages/position_report.yaml, spec/ais/messages/safety_broadcast.yaml,
 #   spec/ais/messages/sar_aircraft_report.yaml, spec/ais/messages/single_slot_binary.yaml,
 #   spec/ais/messages/static_data_report.yaml, spec/ais/messages/static_voyage_data.yaml,
-#   spec/ais/messages/utc_inquiry.yaml, spec/ais/applications/meteo_hydro.yaml
-#   (digest 368124f4f3f9463c)
+#   spec/ais/messages/utc_inquiry.yaml, spec/ais/applications/aton_monitoring.yaml,
+#   spec/ais/applications/function_interrogation.yaml,
+#   spec/ais/applications/inland_persons_on_board.yaml,
+#   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
+#   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
+#   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
+#   (digest 3e7b39937ab2fe0c)
 # Regenerate: make generate (python3 -m generator generate)
 """AIS messages: the payload of `!AIVDM`/`!AIVDO` decoded into the class of its message type,
 and encoded back to the same armored characters and fill bits."""
@@ -43,7 +48,15 @@ from .single_slot_binary import SingleSlotBinary as SingleSlotBinary
 from .static_data_report import StaticDataReport as StaticDataReport
 from .static_voyage_data import StaticVoyageData as StaticVoyageData
 from .utc_inquiry import UtcInquiry as UtcInquiry
+from .aton_monitoring import AtonMonitoring as AtonMonitoring
+from .function_interrogation import FunctionInterrogation as FunctionInterrogation
+from .inland_persons_on_board import InlandPersonsOnBoard as InlandPersonsOnBoard
+from .inland_static_voyage import InlandStaticVoyage as InlandStaticVoyage
 from .meteo_hydro import MeteoHydro as MeteoHydro
+from .meteo_hydro_imo236 import MeteoHydroImo236 as MeteoHydroImo236
+from .persons_on_board import PersonsOnBoard as PersonsOnBoard
+from .text_addressed import TextAddressed as TextAddressed
+from .text_broadcast import TextBroadcast as TextBroadcast
 
 BY_TYPE: dict[int, type[ais.Message]] = {
     1: PositionReport,
@@ -77,7 +90,15 @@ BY_TYPE: dict[int, type[ais.Message]] = {
 """The class of each message type the spec describes."""
 
 APPLICATIONS: dict[tuple[int, int], type[ais.Application]] = {
+    (235, 10): AtonMonitoring,
+    (1, 2): FunctionInterrogation,
+    (200, 55): InlandPersonsOnBoard,
+    (200, 10): InlandStaticVoyage,
     (1, 31): MeteoHydro,
+    (1, 11): MeteoHydroImo236,
+    (1, 40): PersonsOnBoard,
+    (1, 30): TextAddressed,
+    (1, 29): TextBroadcast,
 }
 """The application messages the spec describes, by DAC and FI."""
 
