@@ -28,7 +28,7 @@ def _check_header_key(message: BinaryMessage, protocol: BinaryProtocol, report: 
         return
     checksum = protocol.frame.get("checksum", {}).get("at")
     fields = [f for f in protocol.frame.get("header", [])
-              if not f.get("counts") and "value" not in f and f["id"] != checksum]
+              if not f.get("counts") and "value" not in f and f["id"] != checksum and f.get("identity", True)]
     widths = [int(f["type"][1:]) * (8 if f["type"][0] == "u" else 1) for f in fields]
     if message.sub_id is not None:
         report(message.origin, "B001", f"protocol {message.protocol} has no sub-ids: leave out sub_id", "sub_id")

@@ -19,7 +19,7 @@ from .model import BinaryMessage, BinaryProtocol, Spec
 from .paths import LICENSE
 
 # The checksums the runtimes compute, by the protocol.yaml name: its bytes after the payload.
-CHECKSUMS = {"fletcher8": 2, "xor8": 1, "sum15": 2, "sum32": 4, "crc24q": 3, "crc16_ccitt": 2}
+CHECKSUMS = {"fletcher8": 2, "xor8": 1, "sum15": 2, "sum32": 4, "crc24q": 3, "crc16_ccitt": 2, "crc32": 4}
 # Bytes that end or start a line, or open a TAG block: no sync byte but '$' (which also starts
 # a sentence: a protocol that syncs on it is told apart by its second byte, never an NMEA address's).
 _LINE_BYTES = b"\r\n!\\"
@@ -137,7 +137,8 @@ def framing(p: BinaryProtocol) -> Framing:
     size = CHECKSUMS[checksum["algorithm"]]
     adds = 0 if f["counts"] == "frame" else header + (0 if check_at else size) + len(frame.get("end", []))
     identity = [(g["id"], at, width) for g, at, width in fields
-                if not g.get("counts") and "value" not in g and g["id"] != checksum.get("at")]
+                if not g.get("counts") and "value" not in g and g["id"] != checksum.get("at")
+                and g.get("identity", True)]
     at = 8 * header
     for g in p.identity:
         identity.append((g["id"], at, _bits(g["type"])))
@@ -316,7 +317,7 @@ class Framing(NamedTuple):
     length_mask: int  # the bits that are the length
     header: int  # bytes before the payload, sync included
     length_adds: int  # the frame's bytes beyond what its length counts (0: the length counts them all)
-    checksum: str  # fletcher8, xor8, sum15, sum32, crc24q, crc16_ccitt
+    checksum: str  # fletcher8, xor8, sum15, sum32, crc24q, crc16_ccitt, crc32
     check_from: int  # the first byte the checksum covers (it ends with the payload)
     check_at: int  # where the checksum sits in the header; 0: after the payload
     check_size: int  # the checksum's bytes

@@ -75,10 +75,17 @@ def _checksum(algorithm: str, data: bytes) -> bytes:
             for _ in range(8):
                 crc = (crc << 1 ^ (0x1021 if crc & 0x8000 else 0)) & 0xFFFF
         return crc.to_bytes(2, "little")
+    if algorithm == "crc32":   # Unicore: reflected 0xEDB88320, initial 0, no final inversion, little endian
+        crc = 0
+        for byte in data:
+            crc ^= byte
+            for _ in range(8):
+                crc = crc >> 1 ^ (0xEDB88320 if crc & 1 else 0)
+        return crc.to_bytes(4, "little")
     raise PayloadError("bad_frame", f"no reference checksum {algorithm}")
 
 
-_CHECK_SIZE = {"fletcher8": 2, "xor8": 1, "sum15": 2, "sum32": 4, "crc16_ccitt": 2}
+_CHECK_SIZE = {"fletcher8": 2, "xor8": 1, "sum15": 2, "sum32": 4, "crc16_ccitt": 2, "crc32": 4}
 
 
 def protocol_frame(spec: Spec, data: bytes) -> tuple[BinaryProtocol, dict[str, int], bytes]:
@@ -194,7 +201,8 @@ def decode(spec: Spec, frame: bytes) -> dict[str, Any]:
         return _decode_payload(message, payload)
     if not protocol.identity:   # SBF: the header's block number and revision tell the message
         key = tuple(header[f["id"]] for f in protocol.frame["header"]
-                    if not f.get("counts") and "value" not in f and f["id"] != protocol.frame["checksum"].get("at"))
+                    if not f.get("counts") and "value" not in f and f["id"] != protocol.frame["checksum"].get("at")
+                    and f.get("identity", True))
         message = next((m for m in spec.binary if m.protocol == protocol.id and m.key == key), None)
         if message is None:
             return {"message": None, **dict(zip(("number", "revision"), key)), "payload": payload.hex()}

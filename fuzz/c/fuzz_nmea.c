@@ -234,6 +234,7 @@ static const struct {
     {NMEA_SIRF, 0xA0, 0xA2, 0xFF, 2, 4, 4},    /* A0 A2 0-bit, 15-bit length(BE) payload sum15(BE) B0 B3 */
     {NMEA_CASIC, 0xBA, 0xCE, 0xFF, 2, 6, 4},   /* BA CE length(LE) class id payload sum32(LE) */
     {NMEA_SBF, 0x24, 0x40, 0xFF, 2, 8, 0},     /* $ @ CRC(LE) id(LE) length(LE: the whole block) body */
+    {NMEA_UNICORE, 0xAA, 0x44, 0xFF, 2, 24, 4}, /* AA 44 B5 cpu id(LE) length(LE) time... body CRC-32(LE) */
 };
 
 /* The payload's length a frame's header gives. */
@@ -245,6 +246,8 @@ static size_t model_payload(nmea_protocol protocol, const unsigned char *b)
         return (size_t)b[4 - 2 * (protocol == NMEA_CASIC)] | (size_t)b[5 - 2 * (protocol == NMEA_CASIC)] << 8;
     case NMEA_RTCM3:
         return (size_t)(b[1] & 3) << 8 | b[2];
+    case NMEA_UNICORE: /* the body's length, after the id */
+        return (size_t)b[6] | (size_t)b[7] << 8;
     case NMEA_SBF: /* the whole block's length, less its header (wrapping when under it) */
         return ((size_t)b[6] | (size_t)b[7] << 8) - 8;
     default: /* SkyTraq, SiRF (whose top bit, reserved and zero, makes the frame too long when set) */
@@ -287,6 +290,13 @@ static unsigned long model_checksum(nmea_protocol protocol, const unsigned char 
                 c = (c << 1 ^ (c & 0x8000 ? 0x1021 : 0)) & 0xFFFF;
         }
         return (c & 0xFF) << 8 | c >> 8;
+    case NMEA_UNICORE: /* CRC-32: reflected 0xEDB88320, initial 0, no final inversion, sent little endian */
+        for (i = 0; i < len; i++) {
+            c ^= b[i];
+            for (bit = 0; bit < 8; bit++)
+                c = c >> 1 ^ (c & 1 ? 0xEDB88320UL : 0);
+        }
+        return (c & 0xFF) << 24 | (c >> 8 & 0xFF) << 16 | (c >> 16 & 0xFF) << 8 | c >> 24;
     default:
         for (i = 0; i < len; i++) {
             c ^= (unsigned long)b[i] << 16;

@@ -12,5 +12,6 @@ const nmea_framing nmea_framings[NMEA_FRAMING_COUNT] = {
     {"sirf", {0xA0, 0xA2}, 0xFF, 2, 2, 2, 1, 0xFFFF, 4, 8, NMEA_CHECKSUM_SUM15, 4, 0, 2, {0xB0, 0xB3}, 2, {{"id", 32, 8}}},
     {"skytraq", {0xA0, 0xA1}, 0xFF, 2, 2, 2, 1, 0xFFFF, 4, 7, NMEA_CHECKSUM_XOR8, 4, 0, 1, {0x0D, 0x0A}, 2, {{"id", 32, 8}}},
     {"ubx", {0xB5, 0x62}, 0xFF, 2, 4, 2, 0, 0xFFFF, 6, 8, NMEA_CHECKSUM_FLETCHER8, 2, 0, 2, {0}, 0, {{"class", 16, 8}, {"id", 24, 8}}},
+    {"unicore", {0xAA, 0x44}, 0xFF, 2, 6, 2, 0, 0xFFFF, 24, 28, NMEA_CHECKSUM_CRC32, 0, 0, 4, {0}, 0, {{"message_id", 32, 16}}},
 };
 #endif

@@ -5,14 +5,14 @@
 
 #ifndef NMEA_NO_BINARY_FRAMES
 /** What a framed item is: a line, or a binary frame of a protocol of spec/binary/. */
-typedef enum { NMEA_LINE, NMEA_CASIC, NMEA_RTCM3, NMEA_SBF, NMEA_SIRF, NMEA_SKYTRAQ, NMEA_UBX } nmea_protocol;
+typedef enum { NMEA_LINE, NMEA_CASIC, NMEA_RTCM3, NMEA_SBF, NMEA_SIRF, NMEA_SKYTRAQ, NMEA_UBX, NMEA_UNICORE } nmea_protocol;
 
 /** The binary protocols, each an entry of nmea_framings (at its nmea_protocol less one). */
-#define NMEA_FRAMING_COUNT 6
+#define NMEA_FRAMING_COUNT 7
 
 /* The first sync bytes of the protocols, as the framer's byte classes mark them ('$' apart: its
    class, 4 when it may also start a frame, else 2: it starts a sentence). */
-#define NMEA_FRAME_SYNCS [0xA0] = 4, [0xB5] = 4, [0xBA] = 4, [0xD3] = 4
+#define NMEA_FRAME_SYNCS [0xA0] = 4, [0xAA] = 4, [0xB5] = 4, [0xBA] = 4, [0xD3] = 4
 #define NMEA_FRAME_DOLLAR 4
 
 /* The checksums the protocols use (the framer computes only those). */
@@ -22,4 +22,5 @@ typedef enum { NMEA_LINE, NMEA_CASIC, NMEA_RTCM3, NMEA_SBF, NMEA_SIRF, NMEA_SKYT
 #define NMEA_FRAMING_SUM32
 #define NMEA_FRAMING_CRC24Q
 #define NMEA_FRAMING_CRC16_CCITT
+#define NMEA_FRAMING_CRC32
 #endif

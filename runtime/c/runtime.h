@@ -348,9 +348,9 @@ typedef enum { NMEA_FRAME_OK, NMEA_FRAME_BAD_CHECKSUM, NMEA_FRAME_TOO_LONG, NMEA
                NMEA_FRAME_TOO_SHORT } nmea_frame_error;
 
 /** The checksums of binary frames: Fletcher-8 (two 8-bit running sums), XOR-8, the 15-bit sum of
-    the bytes, the 32-bit sum of their little-endian words, CRC-24Q, CRC-CCITT (spec/schema/binary_protocol). */
+    the bytes, the 32-bit sum of their little-endian words, CRC-24Q, CRC-CCITT, CRC-32 (spec/schema/binary_protocol). */
 typedef enum { NMEA_CHECKSUM_FLETCHER8, NMEA_CHECKSUM_XOR8, NMEA_CHECKSUM_SUM15, NMEA_CHECKSUM_SUM32, NMEA_CHECKSUM_CRC24Q,
-               NMEA_CHECKSUM_CRC16_CCITT } nmea_checksum_kind;
+               NMEA_CHECKSUM_CRC16_CCITT, NMEA_CHECKSUM_CRC32 } nmea_checksum_kind;
 
 /** The framing of a binary protocol (spec/binary/<protocol>/protocol.yaml): a row of nmea_framings,
     which the generator writes (runtime/c/framings.c). Offsets count from the first sync byte. */

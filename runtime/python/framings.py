@@ -22,7 +22,7 @@ class Framing(NamedTuple):
     length_mask: int  # the bits that are the length
     header: int  # bytes before the payload, sync included
     length_adds: int  # the frame's bytes beyond what its length counts (0: the length counts them all)
-    checksum: str  # fletcher8, xor8, sum15, sum32, crc24q, crc16_ccitt
+    checksum: str  # fletcher8, xor8, sum15, sum32, crc24q, crc16_ccitt, crc32
     check_from: int  # the first byte the checksum covers (it ends with the payload)
     check_at: int  # where the checksum sits in the header; 0: after the payload
     check_size: int  # the checksum's bytes
@@ -50,4 +50,6 @@ FRAMINGS = (
             'xor8', 4, 0, 1, b"\x0d\x0a", (('id', 32, 8),)),
     Framing('ubx', b"\xb5\x62", 0x62, 0xFF, 4, 2, False, 0xFFFF, 6, 8,
             'fletcher8', 2, 0, 2, b"", (('class', 16, 8), ('id', 24, 8))),
+    Framing('unicore', b"\xaa\x44", 0x44, 0xFF, 6, 2, False, 0xFFFF, 24, 28,
+            'crc32', 0, 0, 4, b"", (('message_id', 32, 16),)),
 )

@@ -24,6 +24,7 @@ reported as not_a_sentence, and a text command is recognised as such.
 from __future__ import annotations
 
 import re
+import zlib
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from functools import cache
@@ -90,6 +91,12 @@ def _crc16_ccitt(data: bytes) -> bytes:
     return (crc & 0xFFFF).to_bytes(2, "little")
 
 
+def _crc32(data: bytes) -> bytes:
+    """CRC-32 of Unicore (reflected polynomial 0xEDB88320, initial value 0, no final inversion),
+    little endian: zlib's CRC-32 started from all ones and inverted back."""
+    return (zlib.crc32(data, 0xFFFFFFFF) ^ 0xFFFFFFFF).to_bytes(4, "little")
+
+
 # The checksums of binary frames (spec/schema/binary_protocol.schema.json): the bytes sent.
 CHECKSUMS: dict[str, Callable[[bytes], bytes]] = {
     "fletcher8": _fletcher8,
@@ -98,6 +105,7 @@ CHECKSUMS: dict[str, Callable[[bytes], bytes]] = {
     "sum32": _sum32,
     "crc24q": crc24q,
     "crc16_ccitt": _crc16_ccitt,
+    "crc32": _crc32,
 }
 
 

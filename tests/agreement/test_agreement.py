@@ -326,6 +326,7 @@ SKY = bytes.fromhex("a0a1 0002 0201 03 0d0a")  # SkyTraq message 0x02, body 01: 
 SIRF = bytes.fromhex("a0a2 0002 8401 0085 b0b3")  # SiRF MID 132, body 01: sum 0x85
 CASIC = bytes.fromhex("bace 0000 0601 00000601")  # CASIC class 0x06, id 0x01, no payload
 SBF = bytes.fromhex("2440 bd13 1a17 1800 702fcb1c3f091905170e0b0012070000")  # SBF ReceiverTime (5914, revision 0)
+UNI = (ROOT / "tests" / "data" / "unicore" / "pyunigps_frames.log").read_bytes()[:33]  # Unicore, id 65512, 5 bytes
 # binary bytes between sentences; a '$' and a line ending in a payload; a bad checksum; frames cut
 # by a sentence and by the end; sync bytes that start no frame; a frame in a bad one; one longer
 # than the readers hold; none in a TAG block
@@ -341,7 +342,11 @@ BINARY_CASES = (GGA + ACK + GGA + RTCM + b"$GPGGA" + ACK + b",1*00\r\n"
                 # SBF: whole, right after a sentence's text; its CRC wrong before a sentence; a length
                 # under its header's 8 bytes; cut by a sentence; "$@" in a TAG block
                 + b"$GPGGA,2" + SBF + GGA + SBF[:2] + b"\x00" + SBF[3:] + GGA + SBF[:6] + b"\x04\x00" + GGA
-                + SBF[:12] + GGA + b"\\s:$@*00\\" + GGA + ACK[:7])
+                + SBF[:12] + GGA + b"\\s:$@*00\\" + GGA
+                # Unicore: whole after a sentence's text; its CRC wrong; NovAtel's AA 44 12 (a length
+                # over the readers' 2,048 bytes); cut by a sentence
+                + b"$GPGGA,3" + UNI + GGA + UNI[:-1] + b"\x00" + GGA + b"\xaa\x44\x12\x1c\x2a\x00\x00\x20" + bytes(range(0x30, 0x44)) + GGA
+                + UNI[:20] + GGA + ACK[:7])
 
 
 def test_binary_frames_in_stream() -> None:
@@ -368,6 +373,8 @@ def test_binary_frames_in_stream() -> None:
             elif o["protocol"] == "sbf":  # the id's low 13 bits and top 3, little endian
                 ident = int.from_bytes(frame[4:6], "little")
                 assert checked(frame) == "sbf" and (o["number"], o["revision"]) == (ident & 0x1FFF, ident >> 13)
+            elif o["protocol"] == "unicore":  # the message id, little endian, after AA 44 B5 and the CPU byte
+                assert checked(frame) == "unicore" and o["message_id"] == int.from_bytes(frame[4:6], "little")
             elif o["protocol"] == "casic":
                 assert checked(frame) == "casic" and (o["class"], o["id"]) == (frame[4], frame[5])
             else:  # SkyTraq and SiRF: the message id is the payload's first byte

@@ -71,7 +71,7 @@ def test_stream_ubx_prints_each_frames_message(name: str) -> None:
     assert [{k: v for k, v in o.items() if k not in members} for o in objects] == plain
     frames = [o for o in objects if o.get("protocol") in TYPED and o["ok"]]
     log = {p.name: p for p in BINARY_LOGS}.get(name)
-    assert frames or (log is not None and log.parent.name in ("rtcm3", "sbf")), name  # those logs may hold none
+    assert frames or (log is not None and log.parent.name in ("rtcm3", "sbf", "unicore")), name  # those logs may hold none
     from nmeaspec import stream
 
     for o in frames:

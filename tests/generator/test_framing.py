@@ -35,7 +35,7 @@ def test_the_table_of_ubx_and_rtcm3() -> None:
 
 @pytest.mark.parametrize("change, reason", [
     (lambda f: f.__setitem__("sync", [1, 2, 3]), "sync of 3 bytes"),
-    (lambda f: f["checksum"].__setitem__("algorithm", "crc32"), "checksum crc32"),
+    (lambda f: f["checksum"].__setitem__("algorithm", "crc64"), "checksum crc64"),
     (lambda f: f["checksum"].__setitem__("over", ["payload", "class"]), "a checksum over"),
     (lambda f: f["header"][2].pop("counts"), "one header field counts the payload"),
     # a '$' sync must be told from a sentence's start by its second byte; '!' starts one always
@@ -84,3 +84,14 @@ def test_the_table_of_sbf() -> None:
     assert sbf.identity == (("number", 32, 13), ("revision", 45, 3))
     ubx = {f.protocol: f for f in emit_framing.framings(SPEC)}["ubx"]
     assert (ubx.length_adds, ubx.check_at, ubx.trailer) == (8, 0, 2)  # header and checksum beyond the payload
+
+
+def test_the_table_of_unicore() -> None:
+    """Unicore: synced on AA 44 (B5 the header's first field), a 24-byte header whose length counts
+    the body alone, its message id the one field that tells the message (the header's time and
+    status fields passed over: identity: false), a CRC-32 from the sync to the body's end."""
+    uni = {f.protocol: f for f in emit_framing.framings(SPEC)}["unicore"]
+    assert (uni.sync, uni.follow, uni.length_at, uni.length_size, uni.big_endian, uni.header, uni.length_adds) \
+        == (b"\xaa\x44", (0x44, 0xFF), 6, 2, False, 24, 28)
+    assert (uni.checksum, uni.check_at, uni.check_from, uni.check_size, uni.trailer) == ("crc32", 0, 0, 4, 4)
+    assert uni.identity == (("message_id", 32, 16),)

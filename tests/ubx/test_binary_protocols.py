@@ -45,6 +45,14 @@ def checked(data: bytes) -> str | None:
         words = sum(int.from_bytes(body[i:i + 4], "little") for i in range(0, len(body), 4))
         if words & 0xFFFFFFFF == int.from_bytes(data[-4:], "little"):
             return "casic"
+    if data[:3] == b"\xaa\x44\xb5" and len(data) == 28 + int.from_bytes(data[6:8], "little"):
+        crc = 0  # CRC-32: reflected 0xEDB88320, initial value 0, no final inversion, little endian
+        for byte in data[:-4]:
+            crc ^= byte
+            for _ in range(8):
+                crc = crc >> 1 ^ (0xEDB88320 if crc & 1 else 0)
+        if crc == int.from_bytes(data[-4:], "little"):
+            return "unicore"
     if data[:2] == b"$@" and len(data) == int.from_bytes(data[6:8], "little") >= 8:  # the length counts it all
         if binascii.crc_hqx(data[4:], 0) == int.from_bytes(data[2:4], "little"):  # CRC-CCITT, before the id
             return "sbf"

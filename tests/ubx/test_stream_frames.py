@@ -238,3 +238,31 @@ def test_damage_to_sbf_and_nmea_loses_no_intact_block(kind: str) -> None:
     blocks = scan_sbf((SBF_DIR / "sbfdata.sbf").read_bytes())[:80]
     mixed = b"".join(block + nmea[i % len(nmea)] for i, block in enumerate(blocks))
     assert_damage_keeps_frames(kind, [mixed, (SBF_DIR / "pygpsdata_x5status.sbf").read_bytes()])
+
+
+# Unicore binary: the frames of pyunigps's examples (tests/data/unicore), each once.
+UNI_LOG = ROOT / "tests" / "data" / "unicore" / "pyunigps_frames.log"
+
+
+def test_unicore_frames_split_from_nmea_at_every_chunk_size() -> None:
+    """The three frames alone, then between sentences with a damaged one, one cut short (read on
+    into the sentences after it, its CRC then wrong) and NovAtel's
+    AA 44 12 (whose length, read where Unicore's is, is over the framer's bytes): every frame whole,
+    its CRC-32 and id as the frame holds them, nothing else taken for a frame."""
+    from tests.ubx.test_binary_protocols import checked
+
+    log = UNI_LOG.read_bytes()
+    frames = [item for item in split(log) if isinstance(item, stream.BinaryFrame)]
+    assert [f.data for f in frames] == [log[:33], log[33:81], log[81:]]
+    assert [f.identity for f in frames] == [{"message_id": 65512}, {"message_id": 65514}, {"message_id": 17}]
+    assert all(checked(f.data) == "unicore" for f in frames)
+    uni = log[:33]
+    novatel = b"\xaa\x44\x12\x1c\x2a\x00\x00\x20" + bytes(range(0x30, 0x44))
+    data = GGA + log[33:] + b"$GPGGA,2" + uni + GGA + uni[:-1] + b"\x00" + GGA + novatel + GGA + uni[:20] + GGA
+    items = split(data)
+    assert kinds(items) == [GGA[:-2], "unicore", "unicore", b"$GPGGA,2", "unicore", GGA[:-2], "unicore bad_checksum",
+                            uni[2:-1] + b"\x00", GGA[:-2], "unicore too_long", novatel[2:], GGA[:-2],
+                            "unicore bad_checksum", uni[2:20], GGA[:-2]]
+    assert joined(items) == without_line_endings(data, items)
+    for chunk in range(1, len(data) + 1, 7):
+        assert split(data, chunk) == items, chunk

@@ -140,13 +140,14 @@ impl From<Item<'_>> for Owned {
 fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
     // the frames of spec/binary, from the protocols' facts: name, first two bytes (the second
     // under a mask), sync bytes, header and trailer (checksum and end bytes) sizes
-    const MODELS: [(&str, u8, u8, u8, usize, usize, usize); 6] = [
+    const MODELS: [(&str, u8, u8, u8, usize, usize, usize); 7] = [
         ("ubx", 0xB5, 0x62, 0xFF, 2, 6, 2),
         ("rtcm3", 0xD3, 0x00, 0xFC, 1, 3, 3),
         ("skytraq", 0xA0, 0xA1, 0xFF, 2, 4, 3),
         ("sirf", 0xA0, 0xA2, 0xFF, 2, 4, 4),
         ("casic", 0xBA, 0xCE, 0xFF, 2, 6, 4),
         ("sbf", b'$', b'@', 0xFF, 2, 8, 0), // $@ CRC(LE) id(LE) length(LE: the whole block) body
+        ("unicore", 0xAA, 0x44, 0xFF, 2, 24, 4), // AA 44 B5 cpu id(LE) length(LE) time... body CRC-32(LE)
     ];
     let second = *data.get(1)?;
     let &(name, _, _, _, sync, header, trailer) = MODELS.iter().find(|m| m.1 == data[0] && second & m.3 == m.2)?;
@@ -160,6 +161,7 @@ fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
     let payload = match name {
         "sbf" => (usize::from(data[6]) | usize::from(data[7]) << 8).wrapping_sub(header),
         "ubx" => usize::from(data[4]) | usize::from(data[5]) << 8,
+        "unicore" => usize::from(data[6]) | usize::from(data[7]) << 8,
         "casic" => usize::from(data[2]) | usize::from(data[3]) << 8,
         "rtcm3" => usize::from(data[1] & 3) << 8 | usize::from(data[2]),
         // SkyTraq, SiRF (whose top bit, reserved and zero, makes the frame too long when set)
@@ -201,6 +203,12 @@ fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
         "sbf" => {
             let crc = body[4..].iter().fold(0u16, |crc, &byte| {
                 (0..8).fold(crc ^ u16::from(byte) << 8, |c, _| if c & 0x8000 != 0 { c << 1 ^ 0x1021 } else { c << 1 })
+            });
+            crc.to_le_bytes().to_vec()
+        }
+        "unicore" => {
+            let crc = body.iter().fold(0u32, |crc, &byte| {
+                (0..8).fold(crc ^ u32::from(byte), |c, _| if c & 1 != 0 { c >> 1 ^ 0xEDB8_8320 } else { c >> 1 })
             });
             crc.to_le_bytes().to_vec()
         }

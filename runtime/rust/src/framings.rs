@@ -22,16 +22,25 @@ pub enum Protocol {
     Skytraq,
     /// ubx: sync B5 62.
     Ubx,
+    /// unicore: sync AA 44.
+    Unicore,
 }
 
 impl Protocol {
     /// Every protocol, in the order of [`FRAMINGS`].
-    pub const ALL: [Protocol; 6] =
-        [Protocol::Casic, Protocol::Rtcm3, Protocol::Sbf, Protocol::Sirf, Protocol::Skytraq, Protocol::Ubx];
+    pub const ALL: [Protocol; 7] = [
+        Protocol::Casic,
+        Protocol::Rtcm3,
+        Protocol::Sbf,
+        Protocol::Sirf,
+        Protocol::Skytraq,
+        Protocol::Ubx,
+        Protocol::Unicore,
+    ];
 }
 
 /// The framing of each protocol, by its [`Protocol`] as an index.
-pub static FRAMINGS: [FrameFormat; 6] = [
+pub static FRAMINGS: [FrameFormat; 7] = [
     FrameFormat {
         name: "casic",
         sync: [0xBA, 0xCE],
@@ -139,5 +148,23 @@ pub static FRAMINGS: [FrameFormat; 6] = [
         check_size: 2,
         end: &[],
         identity: &[("class", 16, 8), ("id", 24, 8)],
+    },
+    FrameFormat {
+        name: "unicore",
+        sync: [0xAA, 0x44],
+        follow_mask: 0xFF,
+        sync_len: 2,
+        length_at: 6,
+        length_size: 2,
+        big_endian: false,
+        length_mask: 0xFFFF,
+        header: 24,
+        length_adds: 28,
+        checksum: ChecksumKind::Crc32,
+        check_from: 0,
+        check_at: 0,
+        check_size: 4,
+        end: &[],
+        identity: &[("message_id", 32, 16)],
     },
 ];

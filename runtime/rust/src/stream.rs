@@ -46,6 +46,9 @@ pub enum ChecksumKind {
     Crc24q,
     /// CRC-CCITT (polynomial 0x1021, initial value 0), two bytes little endian.
     Crc16Ccitt,
+    /// CRC-32 (reflected polynomial 0xEDB88320, initial value 0, no final inversion), four bytes
+    /// little endian.
+    Crc32,
 }
 
 /// The framing of a binary protocol (spec/binary/<protocol>/protocol.yaml): a row of the
@@ -131,6 +134,7 @@ impl FrameFormat {
                 .swap_bytes(),
             ChecksumKind::Crc24q => crc24q(bytes),
             ChecksumKind::Crc16Ccitt => u32::from(crc16_ccitt(bytes).swap_bytes()),
+            ChecksumKind::Crc32 => crc32(bytes).swap_bytes(),
         };
         (sent, self.end.iter().fold(sum, |check, &byte| check << 8 | u32::from(byte)))
     }
@@ -209,6 +213,29 @@ pub fn crc16_ccitt(data: &[u8]) -> u16 {
         }
     }
     crc
+}
+
+/// The CRC-32 of each byte value (reflected polynomial 0xEDB88320), computed at compile time.
+const CRC32_TABLE: [u32; 256] = {
+    let mut table = [0u32; 256];
+    let mut i = 0;
+    while i < 256 {
+        let mut crc = i as u32;
+        let mut bit = 0;
+        while bit < 8 {
+            crc = if crc & 1 != 0 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+            bit += 1;
+        }
+        table[i] = crc;
+        i += 1;
+    }
+    table
+};
+
+/// CRC-32 of Unicore's binary frames (reflected polynomial 0xEDB88320, initial value 0, no final
+/// inversion): a byte a lookup.
+pub fn crc32(data: &[u8]) -> u32 {
+    data.iter().fold(0u32, |crc, &byte| (crc >> 8) ^ CRC32_TABLE[usize::from(crc.to_le_bytes()[0] ^ byte)])
 }
 
 /// Why what began like a binary frame is not one.
@@ -548,6 +575,7 @@ mod tests {
                             let first = match protocol {
                                 Protocol::Ubx => ACK[0],
                                 Protocol::Sbf => SBF[0],
+                                Protocol::Unicore => 0xAA,
                                 _ => RTCM[0],
                             };
                             assert_eq!(frame[0], first);
@@ -582,6 +610,20 @@ mod tests {
         }
         binary_items(&stream[..len], b"$GPGGA,1|ubx|$GP|rtcm3|GGA|$A|");
         assert_eq!(crc24q(&RTCM[..5]), 0x6D_7F60);
+    }
+
+    #[test]
+    fn a_unicore_frame_between_sentences() {
+        // pyunigps's test frame (tests/data/unicore): message id 65512, a 5-byte body, CRC-32 C1 FF D2 AA
+        const UNI: &[u8] = b"\xaa\x44\xb5\x00\xe8\xff\x05\x00\x11\x22\x33\x44\x55\x66\x77\x88\x99\x00\x11\x22\x33\x44\x55\x66\x01\x02\x03\x04\x05\xc1\xff\xd2\xaa";
+        assert_eq!(crc32(&UNI[..29]), 0xAAD2_FFC1);
+        assert_eq!(crc32(b""), 0);
+        let mut stream = [0u8; 80];
+        let len = [&b"$A\n"[..], UNI, b"$B\n"].iter().fold(0, |at, part| {
+            stream[at..at + part.len()].copy_from_slice(part);
+            at + part.len()
+        });
+        binary_items(&stream[..len], b"$A|unicore|$B|");
     }
 
     #[test]
