@@ -448,7 +448,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             cid = layout.id if message.protocol == "ubx" else f"{message.protocol}_{layout.id}"
             code = _Layout(f"nmea_ubx_{cid}", f"ubx_{cid}", layout.items, cid.upper(), message.byte_order == "big")
             code.cid = cid
-            select_at = layout.select_at if layout.select is not None else 0   # (runtime: version, version_at)
+            select_at = layout.select_at if layout.select is not None else 0
             assert select_at is not None
             key = list(wire_key(spec, message)) + [0] * (2 - len(message.key))
             layouts.append(dict(
@@ -461,7 +461,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                 fast=_FastReader(code).code() if "output" in layout.directions else "",
                 defines=[d for e in code.entries for d in e.defines] + code.defines,
                 length=layout.fixed_width // 8 if layout.fixed_width is not None else -1,
-                version=layout.select[1] if layout.select is not None else -1, version_at=select_at,
+                select_value=layout.select[1] if layout.select is not None else -1, select_at=select_at,
                 n_items=len(code.rows), output="output" in layout.directions))
     enums = {f.enum.id: f.enum for m in messages for lay in m.layouts for field in lay.fields
              for f in (field, *field.parts) if f.enum}

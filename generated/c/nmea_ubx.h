@@ -119,7 +119,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest ef3ac7230b1f7456)
+//   spec/enums/ubx_gnss_id.yaml (digest d1e7a4678610523c)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ: spec/binary/<protocol>):
@@ -316,8 +316,9 @@ typedef struct {
     bool output;         /* the receiver sends it */
     uint8_t protocol;    /* nmea_ubx_protocol */
     int32_t length;      /* its fixed payload bytes, -1 for none */
-    int16_t version;     /* the value of its version byte that tells it apart, -1 for none */
-    uint16_t version_at; /* ... at this byte */
+    int16_t select_value; /* the value of its selector byte (a version, type or command) that tells it
+                             apart, -1 for none */
+    uint16_t select_at;   /* ... at this byte */
     const nmea_ubx_item *items;
     uint8_t n_items;
     uint8_t key_len;     /* SkyTraq, SiRF: the bytes of the payload before its fields (id, sub-id) */

@@ -695,7 +695,7 @@ static void ubx_json_items(ubx_json_out *j, const nmea_ubx_item *items, size_t n
 }
 
 /* The layout a payload of `len` bytes of class and id `first` to `last` (in spec order) is read
-   as: the first whose fixed length (when it has one) and selector byte (`version`, `version_at`: a
+   as: the first whose fixed length (when it has one) and selector byte (`select_value`, `select_at`: a
    type, command or version byte, when it has one) are the payload's; else the first with a
    selector whose fixed length is the payload's; else the first the receiver sends, else the last. */
 static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, size_t last, const uint8_t *payload,
@@ -706,12 +706,12 @@ static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, 
         const nmea_ubx_layout_info *l = &layouts[i];
         if (l->length >= 0 && (size_t)l->length != len)
             continue;
-        if (l->version >= 0 && (l->version_at >= len || payload[l->version_at] != l->version))
+        if (l->select_value >= 0 && (l->select_at >= len || payload[l->select_at] != l->select_value))
             continue;
         return i;
     }
     for (i = first; i <= last; i++) /* a selector value no layout names: the selected layout of its length */
-        if (layouts[i].version >= 0 && layouts[i].length >= 0 && (size_t)layouts[i].length == len)
+        if (layouts[i].select_value >= 0 && layouts[i].length >= 0 && (size_t)layouts[i].length == len)
             return i;
     for (i = first; i <= last; i++)
         if (layouts[i].output)

@@ -184,8 +184,9 @@ typedef struct {
     bool output;         /* the receiver sends it */
     uint8_t protocol;    /* nmea_ubx_protocol */
     int32_t length;      /* its fixed payload bytes, -1 for none */
-    int16_t version;     /* the value of its version byte that tells it apart, -1 for none */
-    uint16_t version_at; /* ... at this byte */
+    int16_t select_value; /* the value of its selector byte (a version, type or command) that tells it
+                             apart, -1 for none */
+    uint16_t select_at;   /* ... at this byte */
     const nmea_ubx_item *items;
     uint8_t n_items;
     uint8_t key_len;     /* SkyTraq, SiRF: the bytes of the payload before its fields (id, sub-id) */
