@@ -420,9 +420,12 @@ class BitNumber(BitType):
         if not f.scaled:
             return {f.id: raw}
         special = next((s.id for s in f.special if s.raw == raw), None)
-        value = raw / f.divisor if f.divisor else raw
-        return {f.id: special if special is not None else value + f.base if f.base is not None else value,
-                f"{f.id}_raw": raw}
+        if f.divisor and f.base:  # the base moved into the raw scale: (819 - 600) / 10 is 21.9, 819 / 10 - 60 is not
+            value = (raw + f.base * f.divisor) / f.divisor
+        else:
+            value = raw / f.divisor if f.divisor else raw
+            value = value + f.base if f.base is not None else value
+        return {f.id: special if special is not None else value, f"{f.id}_raw": raw}
 
 
 @dataclass(frozen=True)

@@ -17,7 +17,7 @@
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 //   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 //   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest 2dde8142e8086bce)
+//   (digest d433fe0b30f19d08)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -489,8 +489,9 @@ static void ais_json_float(nmea_ais_json_out *j, double value)
     ais_json_puts(j, text);
 }
 
-/* A number's members: its value (`raw / divisor + base`, a float when `real`) or special value's
-   id, then its raw integer. */
+/* A number's members: its value (`raw / divisor + base`, a float when `real`, computed as
+   `(raw + base * divisor) / divisor`: (819 - 600) / 10 is 21.9, 819 / 10 - 60 is not) or special
+   value's id, then its raw integer. */
 static void ais_json_reading(nmea_ais_json_out *j, const char *name, int64_t raw, double divisor, double base, bool real,
                              const nmea_ais_special *specials, size_t count)
 {
@@ -500,7 +501,7 @@ static void ais_json_reading(nmea_ais_json_out *j, const char *name, int64_t raw
         ais_json_string(j, name, special);
     else if (real) {
         ais_json_key(j, name);
-        ais_json_float(j, (double)raw / divisor + base);
+        ais_json_float(j, ((double)raw + base * divisor) / divisor);
     } else
         ais_json_int(j, name, (long long)(raw + (int64_t)base));
     snprintf(raw_name, sizeof raw_name, "%s_raw", name);

@@ -225,7 +225,10 @@ class Unsigned(Field):
             for s in self.special:
                 if s.raw == number:
                     return s
-        return (number / self.divisor if self.divisor != 1 else number) + self.base
+        if self.divisor == 1:
+            return number + self.base
+        # the base moved into the raw scale first: (819 - 600) / 10 is 21.9, 819 / 10 - 60 is not
+        return (number + self.base * self.divisor) / self.divisor
 
     def raw_number(self, value: Any, where: str) -> int:
         """The raw integer of a value (a Special, or a number in the field's unit)."""
@@ -536,8 +539,12 @@ def _value_expr(item: Field, name: str, raw: str, names: dict[str, Any]) -> str:
         if isinstance(item, Signed):  # two's complement: the sign bit's weight negated
             raw = f"(({raw} ^ {1 << (width - 1)}) - {1 << (width - 1)})"
         operand = "r" if item.special else raw
-        number = operand if item.divisor == 1 else f"{operand} / {item.divisor}"
-        number += f" + {item.base!r}" if item.base or isinstance(item.base, float) else ""
+        if item.divisor == 1:
+            number = operand + (f" + {item.base!r}" if item.base or isinstance(item.base, float) else "")
+        elif item.base:  # as from_raw: the base moved into the raw scale before the division
+            number = f"({operand} + {item.base * item.divisor!r}) / {item.divisor}"
+        else:
+            number = f"{operand} / {item.divisor}"
         if not item.special:
             return number
         if len(item.special) == 1:

@@ -8,6 +8,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import sys
+from decimal import Decimal
 from pathlib import Path
 from typing import Any
 
@@ -18,7 +19,7 @@ sys.path.insert(0, str(ROOT / "generated" / "python"))
 
 import nmeaspec  # noqa: E402
 from nmeaspec import ais  # noqa: E402
-from nmeaspec.ais_messages import APPLICATIONS, BY_TYPE, MeteoHydro, decode_payload  # noqa: E402
+from nmeaspec.ais_messages import APPLICATIONS, BY_TYPE, MeteoHydro, MeteoHydroImo236, decode_payload  # noqa: E402
 from nmeaspec.ais_messages.position_report import PositionReport  # noqa: E402
 from nmeaspec.ais_messages.static_voyage_data import StaticVoyageData  # noqa: E402
 from nmeaspec.enums import VsdNavStatus  # noqa: E402
@@ -163,6 +164,19 @@ def test_an_application_decodes_from_its_message_s_data_and_encodes_back() -> No
     again = decode_payload(*message.encode())
     assert isinstance(again.application, MeteoHydro)
     assert (again.application.waterlevel, again.application.waterlevel_raw) == (-9.84, 16)
+
+
+def test_a_scaled_value_with_a_base_is_the_float_nearest_its_decimal() -> None:
+    """raw / divisor + base in that order rounds twice (819 / 10 - 60 gives 21.900000000000006);
+    every raw value of IMO 236's air temperature (÷ 10, from -60) gives the float of its decimal."""
+    message = decode_payload("8@2<HV@0BkLfrhhJWJT0SQrhF;<qoweVwwwwwwwwwwwwwwwwwwwwwwwwwt0", 2)
+    meteo = message.application
+    assert isinstance(meteo, MeteoHydroImo236)
+    assert (repr(meteo.airtemp), meteo.airtemp_raw) == ("21.9", 819)
+    field = next(item for item in MeteoHydroImo236.LAYOUT if getattr(item, "id", None) == "airtemp")
+    assert isinstance(field, ais.Unsigned)
+    for raw in range(2047):   # 2047: not available
+        assert field.from_raw(raw, 11) == float(Decimal(raw) / 10 - 60), raw
 
 
 def test_data_an_application_does_not_read_stays_data() -> None:

@@ -705,9 +705,10 @@ fn special(raw: i64, specials: &[(i64, &'static str)]) -> Option<&'static str> {
     specials.iter().find(|&&(value, _)| value == raw).map(|&(_, id)| id)
 }
 
-/// A number with a divisor or a fractional base: `raw / divisor + base`, or its special value.
+/// A number with a divisor or a fractional base: `(raw + base * divisor) / divisor` (the base moved
+/// into the raw scale first: (819 - 600) / 10 is 21.9, 819 / 10 - 60 is not), or its special value.
 pub fn scaled(raw: i64, divisor: f64, base: f64, specials: &[(i64, &'static str)]) -> Reading<f64> {
-    special(raw, specials).map_or_else(|| Reading::Value(raw as f64 / divisor + base), Reading::Special)
+    special(raw, specials).map_or_else(|| Reading::Value((raw as f64 + base * divisor) / divisor), Reading::Special)
 }
 
 /// A whole number: `raw + base`, or its special value.
