@@ -66,9 +66,11 @@ def build_parser() -> argparse.ArgumentParser:
                "created, updated or removed file and a summary line.\n\n"
                "Subsets: --only takes a comma-separated list of `standard`, vendor manual ids of "
                "spec/manuals.yaml (geos5, teseo, gs501, globalsat, comnav), sentence or command ids "
-               "(GGA, GEOS5_JAMDET) and proprietary addresses (GPSGG, PSTMSETPAR). Only the enums, "
-               "bitfields and tables the subset uses come along; standard sentences keep the examples of "
-               "every manual (they are their tests).\n\n"
+               "(GGA, GEOS5_JAMDET), proprietary addresses (GPSGG, PSTMSETPAR) and binary messages "
+               "(NAV-PVT, ubx:NAV-PVT, sbf:pvt_geodetic, rtcm3:1005: a protocol keeps only the messages "
+               "named of it, with their replies such as ACK-ACK; one with none named keeps all). Only "
+               "the enums, bitfields and tables the subset uses come along; standard sentences keep the "
+               "examples of every manual (they are their tests).\n\n"
                "Renaming: --prefix P renames the C API (nmea_* -> P_*, NMEA_* -> P_*, nmea.c/nmea.h -> "
                "P.c/P.h); --namespace N renames the Rust crate and the Python package (nmeaspec -> N) "
                "and its console scripts (nmea-py -> N-py). A subset or a renamed copy needs --out.\n\n"
@@ -80,9 +82,11 @@ def build_parser() -> argparse.ArgumentParser:
                "generate is removed (build products of cargo, pip and pytest excepted).",
                f"  {PROG} generate\n"
                f"  {PROG} generate --only standard,geos5 --out /tmp/nmea-geos5\n"
-               f"  {PROG} generate --only standard,geos5 --prefix gs5 --namespace gs5nmea --out third_party/gs5\n")
+               f"  {PROG} generate --only standard,geos5 --prefix gs5 --namespace gs5nmea --out third_party/gs5\n"
+               f"  {PROG} generate --only GGA,RMC,ubx:NAV-PVT,ubx:CFG-VALSET --out firmware/nmea\n")
     gen.add_argument("--out", type=Path, help=out_help)
-    gen.add_argument("--only", metavar="SELECTOR", help="emit a subset: standard, vendors, sentence ids, addresses")
+    gen.add_argument("--only", metavar="SELECTOR",
+                     help="emit a subset: standard, vendors, sentence ids, addresses, binary messages")
     gen.add_argument("--prefix", help="C symbol and file prefix instead of nmea")
     gen.add_argument("--namespace", help="Rust crate / Python package name instead of nmeaspec")
     gen.add_argument("-q", "--quiet", action="store_true", help="print only the summary line")

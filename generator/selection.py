@@ -6,8 +6,16 @@ A selector is a comma-separated list of words, each one of:
     proprietary sentence and command of that vendor;
   - a sentence or command id (`GGA`, `GEOS5_JAMDET`, `PSTMSETPAR`, case ignored);
   - a proprietary address or text command word (`GPSGG`, `PSTMSETPAR`, `PSRF100`): every item
-    with that address.
-A command drags its replies along. The subset keeps only the enums, bitfields and parameter tables
+    with that address;
+  - a binary message by its name in its protocol's documents or its spec id (`NAV-PVT`,
+    `nav_pvt`: of every protocol that has one so named), or with its protocol (`ubx:NAV-PVT`,
+    `casic:CFG-MSG`, `sbf:pvt_geodetic`, `rtcm3:1005`: an RTCM 3 message by number or id).
+A command drags its replies along (a UBX SET its ACK-ACK and ACK-NAK, a poll the message it asks
+for). A binary protocol keeps all its messages unless a word names one of them; then it keeps
+those and their replies (never none: the crate and the tools type every protocol the spec types),
+and the configuration database stays only beside a CFG-VALSET, -VALGET or -VALDEL. A frame of a
+message left out is still split from the stream and kept as an unknown message with its payload.
+The subset keeps only the enums, bitfields and parameter tables
 its items use and the manuals it cites (a standard sentence keeps the examples of every manual:
 they are its tests), so that the code, the docs, the vectors and the tests generated from it speak
 only of the subset.
@@ -29,6 +37,38 @@ def parse_selector(text: str) -> list[str]:
     if not words:
         raise SelectionError("--only needs at least one vendor, `standard`, sentence id or address")
     return words
+
+
+def _binary_words(spec: Spec, words: list[str]) -> tuple[list[str], set[tuple[str, str]], set[str]]:
+    """The words that name no binary message, and the binary messages (protocol, id) and RTCM 3
+    messages (ids) the others name."""
+    protocols = {p.id for p in spec.protocols}
+    rest: list[str] = []
+    binary: set[tuple[str, str]] = set()
+    numbered: set[str] = set()
+    for word in words:
+        protocol, colon, name = word.lower().rpartition(":")
+        if colon and protocol not in protocols:
+            raise SelectionError(f"--only: unknown protocol {protocol!r} in {word!r} (give {', '.join(sorted(protocols))})")
+        hits = {(m.protocol, m.id) for m in spec.binary if protocol in ("", m.protocol)
+                and name in (m.id, m.address.lower())}
+        rtcm3 = {m.id for m in spec.bit_messages if protocol == m.protocol
+                 and name in (m.id, *(str(t) for t in m.types))}
+        if colon and not (hits or rtcm3):
+            raise SelectionError(f"--only: {protocol} has no message {name!r}")
+        if not (hits or rtcm3):
+            rest.append(word)
+        binary |= hits
+        numbered |= rtcm3
+    return rest, binary, numbered
+
+
+def _with_replies(spec: Spec, chosen: set[tuple[str, str]]) -> set[tuple[str, str]]:
+    """The binary messages chosen and those whose layouts answer theirs (ACK-ACK, a polled message)."""
+    owner = {(m.protocol, layout.id): (m.protocol, m.id) for m in spec.binary for layout in m.layouts}
+    replies = {owner[(m.protocol, r)] for m in spec.binary if (m.protocol, m.id) in chosen
+               for layout in m.layouts for r in layout.replies if (m.protocol, r) in owner}
+    return chosen | replies
 
 
 def selected_sentences(spec: Spec, words: list[str]) -> list[Sentence]:
@@ -67,10 +107,19 @@ def _fields(sentence: Sentence) -> list[Field]:
 
 def subset(spec: Spec, words: list[str]) -> Spec:
     """A copy of the model holding only what the words select (see the module doc)."""
-    keep_ids = {s.id for s in selected_sentences(spec, words)}
+    words, binary, numbered = _binary_words(spec, words)
+    keep_ids = {s.id for s in selected_sentences(spec, words)} if words else set()
     lowered = {w.lower() for w in words}
     model = copy.deepcopy(spec)
     sentences = [s for s in model.sentences if s.id in keep_ids]
+    if binary or numbered:
+        kept = _with_replies(model, binary)
+        named = {protocol for protocol, _ in kept} | ({"rtcm3"} if numbered else set())
+        model.binary = [m for m in model.binary if m.protocol not in named or (m.protocol, m.id) in kept]
+        model.bit_messages = [m for m in model.bit_messages if m.protocol not in named or m.id in numbered]
+        if not any(m.protocol == db.protocol and m.id in ("cfg_valset", "cfg_valget", "cfg_valdel")
+                   for db in model.config_keys for m in model.binary):
+            model.config_keys = []
 
     # Manuals: the standard, every vendor named or owning a kept item, and the manuals the kept
     # examples come from (a standard sentence keeps the examples of every manual: they are its tests).
@@ -93,6 +142,7 @@ def subset(spec: Spec, words: list[str]) -> Spec:
     enum_ids |= {f.enum.id for p in (*model.payloads, *model.applications) for f in p.fields if f.enum}
     enum_ids |= {part.enum.id for m in model.binary for layout in m.layouts for f in layout.fields
                  for part in (f, *f.parts) if part.enum}
+    enum_ids |= {f.enum.id for p in model.bit_messages for f in p.fields if f.enum}
     enum_ids |= {p.enum.id for t in tables for p in t.parameters if p.enum}
     bitfield_ids = {f.bitfield.id for s in sentences for f in _fields(s) if f.bitfield}
     bitfield_ids |= {p.bitfield.id for t in tables for p in t.parameters if p.bitfield}

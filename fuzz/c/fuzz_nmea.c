@@ -443,7 +443,7 @@ static void as_stream(const char *data, size_t size)
     frame_chunked(data, size, &whole, 1, true);
     frame_chunked(data, size, cycle, 7, false);
     for (i = 0; i < 16; i++) /* chunk sizes taken from the input */
-        sizes[i] = i < size ? (unsigned char)data[i] % 64 + 1 : 1 + i;
+        sizes[i] = i < size ? (size_t)((unsigned char)data[i] % 64 + 1) : 1 + i;
     frame_chunked(data, size, sizes, 16, false);
 }
 

@@ -25,6 +25,7 @@ import pytest
 from generator import diff, reconcile
 from generator.build import load_spec
 from generator.model import Field
+from generator.selection import SelectionError, subset
 
 ROOT = Path(__file__).resolve().parents[2]
 SPEC = ROOT / "spec"
@@ -175,6 +176,25 @@ def test_worked_example_new_manual_revision(tmp_path: Path) -> None:
 @pytest.fixture(scope="module")
 def spec():
     return load_spec(SPEC)
+
+
+def test_a_subset_of_binary_messages(spec) -> None:
+    """`--only` words naming binary messages: a named protocol keeps the named messages and their
+    replies, the others stay whole; the configuration keys only beside CFG-VALSET/GET/DEL."""
+    chosen = subset(spec, ["GGA", "ubx:NAV-PVT", "ubx:cfg_rate", "rtcm3:1005"])
+    kept = {(m.protocol, m.id) for m in chosen.binary}
+    assert {i for p, i in kept if p == "ubx"} == {"nav_pvt", "cfg_rate", "ack_ack", "ack_nak"}
+    assert {(m.protocol, m.id) for m in spec.binary if m.protocol != "ubx"} <= kept
+    assert [s.id for s in chosen.sentences] == ["GGA"] and not chosen.config_keys
+    assert [m.id for m in chosen.bit_messages] == [m.id for m in spec.bit_messages if 1005 in m.types]
+    every = [(m.protocol, m.id) for m in spec.binary]
+    assert [(m.protocol, m.id) for m in subset(spec, ["GGA"]).binary] == every   # no binary word: all
+    assert subset(spec, ["CFG-VALSET"]).config_keys and not subset(spec, ["CFG-VALSET"]).sentences
+    both = {m.protocol for m in subset(spec, ["CFG-MSG"]).binary if m.id == "cfg_msg"}
+    assert both == {"ubx", "casic"}   # a bare name: every protocol's message of that name
+    for words, error in ((["ubx:NAV-NOPE"], "ubx has no message 'nav-nope'"), (["nope:NAV-PVT"], "unknown protocol 'nope'")):
+        with pytest.raises(SelectionError, match=error):
+            subset(spec, words)
 
 
 def _changes(old, new) -> dict[str, bool]:
