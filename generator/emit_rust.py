@@ -903,6 +903,28 @@ def fix_fields(spec: Spec, env: jinja2.Environment, gates: Gates) -> str:
         combined_talker=f"Some({rust_str(spec.combined_talker)})" if spec.combined_talker else "None")
 
 
+def frame_message_arms(spec: Spec) -> list[str]:
+    """json::write_frame_message's arm per protocol whose messages the crate types: the frame
+    decoded by its module (an RTCM 3 frame's payload between its 3-byte header and its CRC), its
+    JSON or its error's under the protocol's name."""
+    def arm(protocol: str, decoded: str) -> str:
+        return (f"Protocol::{protocol.capitalize()} => match {decoded} {{ "
+                f"Ok(m) => {{ out.write_str(\"\\\"{protocol}\\\":\")?; m.write_json(out)?; }} "
+                f"Err(e) => {{ out.write_str(\"\\\"{protocol}_error\\\":\")?; e.write_json(out)?; }} }},")
+    arms = [arm(p, f"crate::{p}_messages::Message::from_frame(frame)") for p in typed_natively(spec)]
+    if spec.bit_messages:
+        arms.append(arm("rtcm3", "crate::rtcm3_messages::Message::from_payload("
+                                 "frame.get(3..frame.len().saturating_sub(3)).unwrap_or_default())"))
+    return sorted(arms)
+
+
+def untyped_protocols(spec: Spec) -> str:
+    """The framed protocols json::write_frame_message does not type, for its doc (\"\" if none)."""
+    typed = {*typed_natively(spec), *(["rtcm3"] if spec.bit_messages else [])}
+    names = [p.name for p in spec.protocols if p.id not in typed]
+    return f" ({', '.join(names)})" if names else ""
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     env.globals.update(rust_str=rust_str, rust_raw=rust_raw, one_line=one_line)
     base = "rust"
@@ -1040,7 +1062,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         tag_codes=[f"TagCode {{ code: {rust_str(c.code)}, id: {rust_str(c.id)}, name: {rust_str(c.name)}, "
                    f"kind: TagType::{TAG_TYPES[c.type]} }}," for c in spec.tag_codes],
         runtime_uses=fmt_use("runtime", {"read_layout", "Decoded", "FastReader", "Layouts", "Outcome"}),
-        binary_protocols=typed_natively(spec),
+        binary_protocols=typed_natively(spec), frame_arms=frame_message_arms(spec),
+        untyped=untyped_protocols(spec),
         text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
         all_layouts=["    pub const ALL: &'static [Self] = &[",
                      *[line for lay in layouts for line in with_cfg(8, lay["cfg"], [f"        Self::{lay['name']},"])],

@@ -7,18 +7,19 @@ A selector is a comma-separated list of words, each one of:
   - a sentence or command id (`GGA`, `GEOS5_JAMDET`, `PSTMSETPAR`, case ignored);
   - a proprietary address or text command word (`GPSGG`, `PSTMSETPAR`, `PSRF100`): every item
     with that address;
+  - a binary protocol (`ubx`, `sbf`, `skytraq`, `sirf`, `casic`, `rtcm3`): all its messages;
   - a binary message by its name in its protocol's documents or its spec id (`NAV-PVT`,
     `nav_pvt`: of every protocol that has one so named), or with its protocol (`ubx:NAV-PVT`,
     `casic:CFG-MSG`, `sbf:pvt_geodetic`, `rtcm3:1005`: an RTCM 3 message by number or id).
 A command drags its replies along (a UBX SET its ACK-ACK and ACK-NAK, a poll the message it asks
-for). A binary protocol keeps all its messages unless a word names one of them; then it keeps
-those and their replies (never none: the crate and the tools type every protocol the spec types),
-and the configuration database stays only beside a CFG-VALSET, -VALGET or -VALDEL. A frame of a
-message left out is still split from the stream and kept as an unknown message with its payload.
-The subset keeps only the enums, bitfields and parameter tables
-its items use and the manuals it cites (a standard sentence keeps the examples of every manual:
-they are its tests), so that the code, the docs, the vectors and the tests generated from it speak
-only of the subset.
+for). Binary messages are all kept unless a word names a binary message or protocol; then only
+those named and their replies are (a protocol none is named of is left out whole: the stream
+readers still split its frames, which the tools show as frames, untyped), and the configuration
+database only beside a CFG-VALSET, -VALGET or -VALDEL. A frame of a message left out is kept as
+an unknown message of its protocol, with its payload. The subset keeps only the enums, bitfields
+and parameter tables its items use and the manuals it cites (a standard sentence keeps the
+examples of every manual: they are its tests), so that the code, the docs, the vectors and the
+tests generated from it speak only of the subset.
 """
 
 from __future__ import annotations
@@ -50,12 +51,17 @@ def _binary_words(spec: Spec, words: list[str]) -> tuple[list[str], set[tuple[st
         protocol, colon, name = word.lower().rpartition(":")
         if colon and protocol not in protocols:
             raise SelectionError(f"--only: unknown protocol {protocol!r} in {word!r} (give {', '.join(sorted(protocols))})")
-        hits = {(m.protocol, m.id) for m in spec.binary if protocol in ("", m.protocol)
-                and name in (m.id, m.address.lower())}
-        rtcm3 = {m.id for m in spec.bit_messages if protocol == m.protocol
-                 and name in (m.id, *(str(t) for t in m.types))}
-        if colon and not (hits or rtcm3):
-            raise SelectionError(f"--only: {protocol} has no message {name!r}")
+        whole = not colon and name in protocols   # `ubx`: every message of the protocol
+        if whole:
+            hits = {(m.protocol, m.id) for m in spec.binary if m.protocol == name}
+            rtcm3 = {m.id for m in spec.bit_messages if m.protocol == name}
+        else:
+            hits = {(m.protocol, m.id) for m in spec.binary
+                    if protocol in ("", m.protocol) and name in (m.id, m.address.lower())}
+            rtcm3 = {m.id for m in spec.bit_messages
+                     if protocol == m.protocol and name in (m.id, *(str(t) for t in m.types))}
+        if (colon or whole) and not (hits or rtcm3):
+            raise SelectionError(f"--only: {protocol or name} has no message{f' {name!r}' if colon else 's'}")
         if not (hits or rtcm3):
             rest.append(word)
         binary |= hits
@@ -114,9 +120,8 @@ def subset(spec: Spec, words: list[str]) -> Spec:
     sentences = [s for s in model.sentences if s.id in keep_ids]
     if binary or numbered:
         kept = _with_replies(model, binary)
-        named = {protocol for protocol, _ in kept} | ({"rtcm3"} if numbered else set())
-        model.binary = [m for m in model.binary if m.protocol not in named or (m.protocol, m.id) in kept]
-        model.bit_messages = [m for m in model.bit_messages if m.protocol not in named or m.id in numbered]
+        model.binary = [m for m in model.binary if (m.protocol, m.id) in kept]
+        model.bit_messages = [m for m in model.bit_messages if m.id in numbered]
         if not any(m.protocol == db.protocol and m.id in ("cfg_valset", "cfg_valget", "cfg_valdel")
                    for db in model.config_keys for m in model.binary):
             model.config_keys = []

@@ -119,7 +119,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 665e86d5fa7bda1f)
+//   spec/enums/ubx_gnss_id.yaml (digest c886c1709745193b)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -1070,7 +1070,7 @@ static bool ubx_open_frame_of(const nmea_ubx_framing *f, const uint8_t *frame, s
     sum = ubx_check((nmea_ubx_check)f->check, frame + f->check_from, len - trailer - f->check_from);
     for (i = 0; i < f->check_size; i++) /* after the payload, or in the header (SBF) */
         sent = sent << 8 | frame[(f->check_at ? f->check_at : len - trailer) + i];
-    if (sent != sum || memcmp(frame + len - f->end_len, f->end, f->end_len) != 0) {
+    if (sent != sum || (f->end_len && memcmp(frame + len - f->end_len, f->end, f->end_len) != 0)) {
         snprintf(err->text, sizeof err->text, "checksum %0*lX, computed %0*lX%s", 2 * f->check_size, sent,
                  2 * f->check_size, sum, sent == sum ? ", its end bytes are not the protocol's" : "");
         return ubx_fail(err, NMEA_UBX_BAD_CHECKSUM, NULL, NULL);
@@ -15745,6 +15745,10 @@ bool nmea_ubx_decode_frame_of(nmea_ubx_protocol protocol, const uint8_t *frame, 
     if (protocol == NMEA_UBX_PROTOCOL_UBX)
         return nmea_ubx_decode_frame(frame, len, out, err);
     err->protocol = (uint8_t)protocol;
+    if ((size_t)protocol >= sizeof ubx_framings / sizeof ubx_framings[0]) { /* not a protocol of this build */
+        snprintf(err->text, sizeof err->text, "protocol %d is not one this build types", (int)protocol);
+        return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
+    }
     f = &ubx_framings[protocol];
     if (!ubx_open_frame_of(f, frame, len, &payload, &payload_len, err))
         return false;

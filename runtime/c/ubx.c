@@ -856,7 +856,7 @@ static bool ubx_open_frame_of(const nmea_ubx_framing *f, const uint8_t *frame, s
     sum = ubx_check((nmea_ubx_check)f->check, frame + f->check_from, len - trailer - f->check_from);
     for (i = 0; i < f->check_size; i++) /* after the payload, or in the header (SBF) */
         sent = sent << 8 | frame[(f->check_at ? f->check_at : len - trailer) + i];
-    if (sent != sum || memcmp(frame + len - f->end_len, f->end, f->end_len) != 0) {
+    if (sent != sum || (f->end_len && memcmp(frame + len - f->end_len, f->end, f->end_len) != 0)) {
         snprintf(err->text, sizeof err->text, "checksum %0*lX, computed %0*lX%s", 2 * f->check_size, sent,
                  2 * f->check_size, sum, sent == sum ? ", its end bytes are not the protocol's" : "");
         return ubx_fail(err, NMEA_UBX_BAD_CHECKSUM, NULL, NULL);

@@ -45,7 +45,7 @@ from typing import Any
 
 from .api import parse, reply_to
 from .runtime import NmeaError
-from .stream import BadFrame, BinaryFrame, Framer, Item, too_long
+from .stream import BadFrame, BinaryFrame, Framer, Item, too_long, typed
 
 # The rates a serial port is set to (pyserial's list, and 14400 and 28800 that some receivers
 # offer); anything else is a mistake.
@@ -292,7 +292,7 @@ class Receiver:
             if isinstance(item, int):
                 raise too_long(item)
             if isinstance(item, BinaryFrame):
-                return item.message() if item.protocol == "ubx" else item
+                return item.message() if item.protocol == "ubx" and typed("ubx") else item
             if isinstance(item, BadFrame):
                 raise NmeaError(item.reason, item.message, item.protocol.upper())
             return parse(item, lenient=self.lenient)

@@ -29,6 +29,7 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from functools import cache
 from importlib import import_module
+from importlib.util import find_spec
 from typing import Any, BinaryIO, Literal, overload
 
 from .api import decode_json, parse
@@ -213,6 +214,13 @@ class BinaryFrame:
         except ImportError:
             raise ValueError(f"{self.protocol} messages are not decoded") from None
         return module.decode(self.data)
+
+
+@cache
+def typed(protocol: str) -> bool:
+    """Whether the package types the messages of `protocol` (has nmeaspec.<protocol>_messages):
+    not Unicore's, nor a protocol a subset made with `generate --only` leaves out."""
+    return find_spec(f"{__package__}.{protocol}_messages") is not None
 
 
 @dataclass(frozen=True, slots=True)

@@ -179,12 +179,13 @@ def spec():
 
 
 def test_a_subset_of_binary_messages(spec) -> None:
-    """`--only` words naming binary messages: a named protocol keeps the named messages and their
-    replies, the others stay whole; the configuration keys only beside CFG-VALSET/GET/DEL."""
-    chosen = subset(spec, ["GGA", "ubx:NAV-PVT", "ubx:cfg_rate", "rtcm3:1005"])
+    """`--only` words naming binary messages or protocols: only those and their replies are kept
+    (another protocol not at all); the configuration keys only beside CFG-VALSET/GET/DEL."""
+    chosen = subset(spec, ["GGA", "ubx:NAV-PVT", "ubx:cfg_rate", "rtcm3:1005", "sirf"])
     kept = {(m.protocol, m.id) for m in chosen.binary}
     assert {i for p, i in kept if p == "ubx"} == {"nav_pvt", "cfg_rate", "ack_ack", "ack_nak"}
-    assert {(m.protocol, m.id) for m in spec.binary if m.protocol != "ubx"} <= kept
+    assert {p for p, _ in kept} == {"ubx", "sirf"}
+    assert {i for p, i in kept if p == "sirf"} == {m.id for m in spec.binary if m.protocol == "sirf"}
     assert [s.id for s in chosen.sentences] == ["GGA"] and not chosen.config_keys
     assert [m.id for m in chosen.bit_messages] == [m.id for m in spec.bit_messages if 1005 in m.types]
     every = [(m.protocol, m.id) for m in spec.binary]
@@ -192,7 +193,8 @@ def test_a_subset_of_binary_messages(spec) -> None:
     assert subset(spec, ["CFG-VALSET"]).config_keys and not subset(spec, ["CFG-VALSET"]).sentences
     both = {m.protocol for m in subset(spec, ["CFG-MSG"]).binary if m.id == "cfg_msg"}
     assert both == {"ubx", "casic"}   # a bare name: every protocol's message of that name
-    for words, error in ((["ubx:NAV-NOPE"], "ubx has no message 'nav-nope'"), (["nope:NAV-PVT"], "unknown protocol 'nope'")):
+    for words, error in ((["ubx:NAV-NOPE"], "ubx has no message 'nav-nope'"), (["nope:NAV-PVT"], "unknown protocol 'nope'"),
+                         (["unicore"], "unicore has no messages")):
         with pytest.raises(SelectionError, match=error):
             subset(spec, words)
 
@@ -308,7 +310,7 @@ def test_reconcile_reports_a_new_revision(tmp_path: Path) -> None:
 # --- vendor a renamed subset next to the default copy ----------------------------------------
 
 # Two standard sentences and a receiver's: what a firmware vendors, and quick to build beside the default copy.
-SUBSET = ("--only", "GGA,RMC,geos5", "--prefix", "gs5", "--namespace", "gs5nmea")
+SUBSET = ("--only", "GGA,RMC,geos5,ubx:NAV-PVT,ubx:CFG-RATE", "--prefix", "gs5", "--namespace", "gs5nmea")
 GEOS5 = "$GPSGG,JAMDET,*57"
 TESEO = "$PSTMSETPAROK,1121*"
 
@@ -463,3 +465,21 @@ print("both packages parse")
     assert (bin_dir / "gs5nmea-py").exists() and (bin_dir / "nmea-py").exists()
     out = subprocess.run([bin_dir / "gs5nmea-py", "decode"], input=GEOS5 + "\n", capture_output=True, text=True)
     assert '"sentence":"GEOS5_JAMDET"' in out.stdout
+
+
+@pytest.mark.slow
+def test_a_subset_s_binary_messages_in_its_c_and_python_tools(copies: Path, python_env: Path) -> None:
+    """The renamed subset names NAV-PVT and CFG-RATE: its tools type those (and ACK-ACK/NAK),
+    keep UBX frames of other messages as unknown ones and show SBF frames untyped, alike in C and
+    Python, over a UBX log and a log that mixes NMEA, RTCM 3 and SBF."""
+    pair = [str(p.relative_to(copies)) for p in sorted((copies / "gs5" / "c").glob("*.c"))]
+    run(os.environ.get("CC", "gcc"), "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O1",
+        "-o", "gs5-ubx-c", *pair, cwd=copies)
+    logs = ROOT / "tests/data/ubx/ublox-neo-m8l.log", ROOT / "tests/data/sbf/pygpsdata_mixed.log"
+    data = b"".join(log.read_bytes() for log in logs)
+    outputs = [subprocess.run([tool, "stream", "--ubx"], input=data, capture_output=True, check=True).stdout
+               for tool in (copies / "gs5-ubx-c", python_env.parent / "gs5nmea-py")]
+    assert outputs[0] == outputs[1]
+    text = outputs[0].decode()
+    assert '"ubx":{"message":"nav_pvt"' in text and '"ubx":{"message":null' in text
+    assert '"protocol":"sbf"' in text and '"sbf":' not in text and '"sbf_error":' not in text

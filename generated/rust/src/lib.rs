@@ -35909,6 +35909,85 @@ pub mod json {
     pub fn encode_json(line: &[u8]) -> String {
         runtime::encode_json::<LayoutId>(line)
     }
+
+    /// Writes what a binary frame (sync bytes to checksum, as the stream reader gives it) holds
+    /// by its protocol's messages, as `stream --ubx` and `--rtcm3` add it to the frame's JSON:
+    /// `"<protocol>":` and the message's JSON, or `"<protocol>_error":` and the error's. Writes
+    /// nothing and gives false for a protocol whose messages the crate does not type (Unicore binary).
+    #[cfg(feature = "binary")]
+    pub fn write_frame_message<W: Write>(
+        out: &mut W,
+        protocol: crate::stream::Protocol,
+        frame: &[u8],
+    ) -> Result<bool, fmt::Error> {
+        use crate::stream::Protocol;
+        match protocol {
+            Protocol::Casic => match crate::casic_messages::Message::from_frame(frame) {
+                Ok(m) => {
+                    out.write_str("\"casic\":")?;
+                    m.write_json(out)?;
+                }
+                Err(e) => {
+                    out.write_str("\"casic_error\":")?;
+                    e.write_json(out)?;
+                }
+            },
+            Protocol::Rtcm3 => match crate::rtcm3_messages::Message::from_payload(
+                frame.get(3..frame.len().saturating_sub(3)).unwrap_or_default(),
+            ) {
+                Ok(m) => {
+                    out.write_str("\"rtcm3\":")?;
+                    m.write_json(out)?;
+                }
+                Err(e) => {
+                    out.write_str("\"rtcm3_error\":")?;
+                    e.write_json(out)?;
+                }
+            },
+            Protocol::Sbf => match crate::sbf_messages::Message::from_frame(frame) {
+                Ok(m) => {
+                    out.write_str("\"sbf\":")?;
+                    m.write_json(out)?;
+                }
+                Err(e) => {
+                    out.write_str("\"sbf_error\":")?;
+                    e.write_json(out)?;
+                }
+            },
+            Protocol::Sirf => match crate::sirf_messages::Message::from_frame(frame) {
+                Ok(m) => {
+                    out.write_str("\"sirf\":")?;
+                    m.write_json(out)?;
+                }
+                Err(e) => {
+                    out.write_str("\"sirf_error\":")?;
+                    e.write_json(out)?;
+                }
+            },
+            Protocol::Skytraq => match crate::skytraq_messages::Message::from_frame(frame) {
+                Ok(m) => {
+                    out.write_str("\"skytraq\":")?;
+                    m.write_json(out)?;
+                }
+                Err(e) => {
+                    out.write_str("\"skytraq_error\":")?;
+                    e.write_json(out)?;
+                }
+            },
+            Protocol::Ubx => match crate::ubx_messages::Message::from_frame(frame) {
+                Ok(m) => {
+                    out.write_str("\"ubx\":")?;
+                    m.write_json(out)?;
+                }
+                Err(e) => {
+                    out.write_str("\"ubx_error\":")?;
+                    e.write_json(out)?;
+                }
+            },
+            _ => return Ok(false),
+        }
+        Ok(true)
+    }
 }
 
 /// The parser's two paths and the writer's byte path on their own, for the tests and fuzz

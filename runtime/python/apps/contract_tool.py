@@ -17,7 +17,7 @@ from .. import __version__
 from ..api import Tagged, encode_object, parse, read_json_line, to_json
 from ..fixes import fixes
 from ..runtime import NmeaError
-from ..stream import BadFrame, BinaryFrame, Item, lines as framed, too_long
+from ..stream import BadFrame, BinaryFrame, Item, lines as framed, too_long, typed
 
 if TYPE_CHECKING:
     from ..assembly import Assembled
@@ -47,17 +47,13 @@ def with_message(text: str, assembled: Assembled) -> str:
     return f'{text[:-1]},"ais_error":{assembled.error.error_json()}}}'
 
 
-# The protocols whose frames stream --ubx gives their messages (those the three tools type).
-TYPED = ("ubx", "skytraq", "sirf", "casic", "sbf")
-
-
 def with_ubx(frame: BinaryFrame) -> str:
     """stream --ubx: a UBX frame's JSON with the message it carries: `ubx`, its decoded JSON
     (that of generated/vectors/ubx.jsonl), or `ubx_error` when its payload does not decode; a
     SkyTraq, SiRF, CASIC or SBF frame's alike, under its protocol's name (`sirf`, `sirf_error`: the
     JSON of generated/vectors/binary.jsonl)."""
     text = frame.to_json()
-    if frame.protocol not in TYPED:
+    if not typed(frame.protocol):
         return text
     try:
         message = frame.message()
@@ -108,9 +104,9 @@ def streamed(items: Iterable[Item], values: bool, options: dict[str, bool], ubx:
     assembler = MessageAssembler()
     for item in items:
         if isinstance(item, BinaryFrame) and rtcm3 and item.protocol == "rtcm3":
-            yield with_rtcm3(item)
+            yield with_rtcm3(item) if typed("rtcm3") else item.to_json()
             continue
-        if isinstance(item, BinaryFrame) and ubx:
+        if isinstance(item, BinaryFrame) and ubx and item.protocol != "rtcm3":
             yield with_ubx(item)
             continue
         if isinstance(item, (BinaryFrame, BadFrame)):

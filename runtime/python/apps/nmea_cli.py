@@ -33,7 +33,7 @@ from ..fixes import Fix, fixes
 from ..network import host_port, tcp_feed, udp_feed
 from ..receiver import Receiver, ReceiverError, ReplyTimeout, check_baud
 from ..runtime import NmeaError
-from ..stream import BadFrame, BinaryFrame, Item, lines, too_long
+from ..stream import BadFrame, BinaryFrame, Item, lines, too_long, typed
 from .commands import COMMANDS, SHORTCUTS, VENDORS, Command, Shortcut
 
 SHOW_EXAMPLES = """\
@@ -257,7 +257,7 @@ def frame_record(frame: BinaryFrame) -> tuple[str, dict[str, Any]]:
     and identity (`SIRF 51`, a MID the spec does not describe). Raises NmeaError for a payload its
     layout does not fit."""
     identity = " ".join([frame.protocol.upper(), *(str(v) for v in frame.identity.values() if v is not None)])
-    if frame.protocol in ("ubx", "rtcm3"):
+    if frame.protocol in ("ubx", "rtcm3") and typed(frame.protocol):
         message = frame.message()
         fields = {k: v for k, v in message.to_dict().items() if k not in ("message", "message_number")}
         if frame.protocol == "rtcm3":

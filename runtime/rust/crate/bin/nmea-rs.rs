@@ -16,8 +16,6 @@ use nmeaspec::ais_messages::Message;
 use nmeaspec::assembly::Assembler;
 use nmeaspec::json::{write_encoded, Value, SKIP_CHECK_DEPTH};
 use nmeaspec::stream::{FrameError, Framer, Item, Protocol, MAX_FRAME};
-use nmeaspec::ubx::UbxError;
-use nmeaspec::{casic_messages, rtcm3_messages, sbf_messages, sirf_messages, skytraq_messages, ubx_messages};
 use nmeaspec::{parse_with, Error, Fix, FixAssembler, Options, MAX_LINE};
 
 const USAGE: &str =
@@ -178,51 +176,16 @@ fn write_frame(w: &mut String, protocol: Protocol, frame: &[u8]) -> fmt::Result 
 
 /// `stream --ubx`: a UBX frame's JSON with the message it carries: `ubx`, its decoded JSON (that
 /// of generated/vectors/ubx.jsonl), or `ubx_error` when its payload does not decode; a SkyTraq,
-/// SiRF, CASIC or SBF frame's alike under its protocol's name (`sirf`, `sirf_error`). Other frames as
-/// `stream` writes them.
-fn write_ubx_frame(w: &mut String, protocol: Protocol, frame: &[u8]) -> fmt::Result {
+/// SiRF, CASIC or SBF frame's alike under its protocol's name (`sirf`, `sirf_error`); `stream
+/// --rtcm3`: an RTCM 3 frame's alike (`rtcm3`, `rtcm3_error`). Other frames, and those of a
+/// protocol the crate does not type, as `stream` writes them.
+fn write_typed_frame(w: &mut String, protocol: Protocol, frame: &[u8]) -> fmt::Result {
     write_frame(w, protocol, frame)?;
-    let mut json = String::new();
-    let decoded: Result<fmt::Result, UbxError> = match protocol {
-        Protocol::Ubx => ubx_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
-        Protocol::Skytraq => skytraq_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
-        Protocol::Sirf => sirf_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
-        Protocol::Casic => casic_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
-        Protocol::Sbf => sbf_messages::Message::from_frame(frame).map(|m| m.write_json(&mut json)),
-        _ => return Ok(()),
-    };
-    w.pop(); // the frame's closing brace
-    match decoded {
-        Ok(written) => {
-            written?;
-            write!(w, ",\"{}\":{json}", protocol.name())?;
-        }
-        Err(err) => {
-            write!(w, ",\"{}_error\":", protocol.name())?;
-            err.write_json(w)?;
-        }
+    let mut message = String::new();
+    if nmeaspec::json::write_frame_message(&mut message, protocol, frame)? {
+        w.pop(); // the frame's closing brace
+        write!(w, ",{message}}}")?;
     }
-    w.push('}');
-    Ok(())
-}
-
-/// `stream --rtcm3`: an RTCM 3 frame's JSON with the message it carries: `rtcm3`, its decoded JSON
-/// (that of generated/vectors/rtcm3.jsonl), or `rtcm3_error` when its payload does not decode.
-fn write_rtcm3_frame(w: &mut String, frame: &[u8]) -> fmt::Result {
-    write_frame(w, Protocol::Rtcm3, frame)?;
-    w.pop(); // the frame's closing brace
-    // the framer checked its preamble, length and CRC: the payload lies between them
-    match rtcm3_messages::Message::from_payload(frame.get(3..frame.len().saturating_sub(3)).unwrap_or_default()) {
-        Ok(message) => {
-            w.push_str(",\"rtcm3\":");
-            message.write_json(w)?;
-        }
-        Err(err) => {
-            w.push_str(",\"rtcm3_error\":");
-            err.write_json(w)?;
-        }
-    }
-    w.push('}');
     Ok(())
 }
 
@@ -280,8 +243,10 @@ fn stream(values: bool, options: Options, ubx: bool, rtcm3: bool) -> io::Result<
                 out.line(|w| write_line(w, line, values, options, Some(&mut assembler), &mut given_up))?
             }
             Item::TooLong(length) => out.line(|w| Error::too_long(length).write_json(w))?,
-            Item::Frame(Protocol::Rtcm3, frame) if rtcm3 => out.line(|w| write_rtcm3_frame(w, frame))?,
-            Item::Frame(protocol, frame) if ubx => out.line(|w| write_ubx_frame(w, protocol, frame))?,
+            Item::Frame(Protocol::Rtcm3, frame) if rtcm3 => out.line(|w| write_typed_frame(w, Protocol::Rtcm3, frame))?,
+            Item::Frame(protocol, frame) if ubx && protocol != Protocol::Rtcm3 => {
+                out.line(|w| write_typed_frame(w, protocol, frame))?
+            }
             Item::Frame(protocol, frame) => out.line(|w| write_frame(w, protocol, frame))?,
             Item::BadFrame(protocol, error, sync) => out.line(|w| write_bad_frame(w, protocol, error, sync))?,
         }
