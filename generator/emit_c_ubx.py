@@ -236,8 +236,9 @@ def _load(size: int, big: bool, at: str) -> str:
 class _FastReader:
     """A layout's straight-line reader (STYLE.md: "a straight-line fast reader only where the
     benchmark shows it pays": nmea_ubx_decode, bench ours-c-ubx): the struct the interpreter
-    (ubx_read_layout) fills from a payload it reads without an error, the same bytes; for any other
-    payload (short, a group's count out of bounds) it gives up before deciding anything, and the
+    (ubx_read_layout) fills from a payload it reads without an error, the same members (not the
+    padding between them: no memset of the struct, each member stored once); for any other payload
+    (short, a group's count out of bounds) it gives up before deciding anything, and the
     interpreter reads the payload and names the error. Fixed offsets from `q`, which moves on after
     a group or a field of the bytes left; `left` counts the bytes from `q` on."""
 
@@ -306,7 +307,8 @@ class _FastReader:
         lay = self.layout
         items = lay.items
         out = self.lines
-        out.append(f"    memset(m, 0, offsetof({lay.struct}, trailing));")
+        # No memset of the struct: every member is stored below but an optional field's, whose
+        # absence zeroes its flag and what follows (the padding between members is not written).
         offset = 0        # bytes read from q on, checked (`run` of them)
         checked = 0
         for i, item in enumerate(items):
@@ -332,8 +334,11 @@ class _FastReader:
                 self._flush(offset)
                 offset = checked = 0
                 self.uses_done = True
-                out.append(f"    if (left < {size})")
-                out.append("        goto done; /* an optional field the payload has not: nothing after it */")
+                out.append(f"    if (left < {size}) {{ /* an optional field the payload has not: nothing after it */")
+                out.append(f"        memset(&m->has_{name}, 0, offsetof({lay.struct}, trailing) - "
+                           f"offsetof({lay.struct}, has_{name}));")
+                out.append("        goto done;")
+                out.append("    }")
                 out.append(f"    m->has_{name} = true;")
                 self._value(f, "q", "m->", "    ")
                 out.append(f"    q += {size};")
@@ -388,7 +393,6 @@ class _FastReader:
         out.append(f"        for (k = 0; k < count; k++, q += {entry_bytes}) {{")
         out.append(f"            {lay.struct}_{g.id[:-1] if g.id.endswith('s') else g.id + '_entry'} *e = &m->{name}[k];")
         offset = 0
-        out.append("            memset(e, 0, sizeof *e); /* (its padding: the stores of its fields replace the rest) */")
         for f in g.fields:
             offset += self._value(f, f"q + {offset}" if offset else "q", "e->", "            ")
         out.append("        }")
@@ -432,6 +436,37 @@ def _framing_row(p: BinaryProtocol) -> str:
             f'{f.length_adds}, {f.check_at}, {{{fields}}}}}')
 
 
+def _pick(layouts: list[dict], first: int) -> list[tuple[str, int]]:
+    """The layout of a message (its `layouts`, numbered from `first`) a payload is read as, as
+    ubx_layout_for chooses it, decided here from their lengths and selectors: (condition on `len`
+    and `payload`, layout) in order, the last with no condition."""
+    rows = []
+    for i, lay in enumerate(layouts, first):
+        conds = []
+        length, value, at = lay["length"], lay["select_value"], lay["select_at"]
+        if length >= 0:
+            conds.append(f"len == {length}")
+        if value >= 0:
+            if 0 <= length <= at:   # its selector beyond its length: never this one
+                continue
+            if length < 0:
+                conds.append(f"len > {at}")
+            conds.append(f"payload[{at}] == 0x{value:02X}")
+        if not conds:
+            rows.append(("", i))
+            break
+        rows.append((" && ".join(conds), i))
+    else:
+        # a selector value no layout names: the selected layout of its length; else the first the
+        # receiver sends, else the last
+        rows += [(f"len == {lay['length']}", i) for i, lay in enumerate(layouts, first)
+                 if lay["select_value"] >= 0 and lay["length"] >= 0]
+        rows.append(("", next((i for i, lay in enumerate(layouts, first) if lay["output"]), first + len(layouts) - 1)))
+    while len(rows) > 1 and rows[-2][1] == rows[-1][1]:   # a test that picks what the default picks
+        del rows[-2]
+    return rows
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     if not carries_ubx(spec):
         return {}
@@ -471,9 +506,12 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         last = first + len(m.layouts) - 1
         key = list(wire_key(spec, m)) + [0] * (2 - len(m.key))
         keyed.append(dict(message=m, first=first, last=last, key=key, protocol=m.protocol.upper(),
-                          key_len=0 if m.header_key else len(m.key)))
+                          key_len=0 if m.header_key else len(m.key), pick=_pick(layouts[first:last + 1], first)))
         first = last + 1
-    context = dict(layouts=layouts, ubx=keyed[:len(ubx)], others=keyed[len(ubx):],
+    classes: dict[int, list[dict]] = {}   # UBX's messages by class (the fast build's switch)
+    for k in keyed[:len(ubx)]:
+        classes.setdefault(k["key"][0], []).append(k)
+    context = dict(layouts=layouts, ubx=keyed[:len(ubx)], others=keyed[len(ubx):], classes=sorted(classes.items()),
                    protocols=[p.id.upper() for p in protocols], framings=[_framing_row(p) for p in protocols],
                    enums=[enum_table(enums[key]) for key in sorted(enums)],
                    runtime_h=(RUNTIME / "c" / "ubx.h").read_text(encoding="utf-8"),

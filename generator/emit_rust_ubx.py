@@ -497,5 +497,6 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files["rust/src/ubx_messages.rs"] = env.get_template("rust/ubx_messages.rs.j2").render(
         header=header(spec, "//", ["templates/rust/ubx_messages.rs.j2", *sources]), blocks=blocks, enums=enums,
         layouts=layouts, arms=[dispatch_arm(m, wire_key(spec, m)) for m in messages],
+        groups={lay.camel: [ident(g.id) for g in lay.items if isinstance(g, PayloadGroup)] for lay in layouts},
         example=any(lay.id == "ack_ack" for lay in layouts))
     return rustfmt(files)

@@ -91,7 +91,7 @@
 //   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tos.yaml,
 //   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
 //   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/upd_sos.yaml
-//   (digest c10f058934b616c2)
+//   (digest 1f6dd90336ae21f0)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The UBX messages of spec/binary/ubx: a struct per layout (named as the Python package's
@@ -40878,6 +40878,180 @@ impl<'a> Message<'a> {
             Message::UpdSosCommand(_) => (UpdSosCommand::CLASS, UpdSosCommand::MSG_ID),
             Message::UpdSos(_) => (UpdSos::CLASS, UpdSos::MSG_ID),
             Message::Unknown(m) => (m.class, m.id),
+        }
+    }
+
+    /// Reads every entry of its repeated groups (a group keeps its entries' bytes and reads an
+    /// entry when it is iterated), in order, each handed to `f`: the message read whole, as a
+    /// decoder that fills every entry's struct reads it (the bench's `ours-ubx`).
+    pub fn for_each_entry(&self, mut f: impl FnMut(&dyn fmt::Debug)) {
+        match self {
+            Message::AidAlm(m) => {
+                m.dwrd.iter().for_each(|e| f(&e));
+            }
+            Message::CfgDosc(m) => {
+                m.oscillators.iter().for_each(|e| f(&e));
+            }
+            Message::CfgEsrc(m) => {
+                m.sources.iter().for_each(|e| f(&e));
+            }
+            Message::CfgFixseed(m) => {
+                m.messages.iter().for_each(|e| f(&e));
+            }
+            Message::CfgGeofence(m) => {
+                m.fences.iter().for_each(|e| f(&e));
+            }
+            Message::CfgGnss(m) => {
+                m.blocks.iter().for_each(|e| f(&e));
+            }
+            Message::CfgInf(m) => {
+                m.blocks.iter().for_each(|e| f(&e));
+            }
+            Message::CfgMsg(m) => {
+                m.rates.iter().for_each(|e| f(&e));
+            }
+            Message::CfgRinv(m) => {
+                m.data.iter().for_each(|e| f(&e));
+            }
+            Message::CfgTxslot(m) => {
+                m.end.iter().for_each(|e| f(&e));
+            }
+            Message::CfgValdelV0(m) => {
+                m.keys.iter().for_each(|e| f(&e));
+            }
+            Message::CfgValdel(m) => {
+                m.keys.iter().for_each(|e| f(&e));
+            }
+            Message::CfgValgetPoll(m) => {
+                m.keys.iter().for_each(|e| f(&e));
+            }
+            Message::EsfMeas(m) => {
+                m.measurements.iter().for_each(|e| f(&e));
+            }
+            Message::EsfRaw(m) => {
+                m.measurements.iter().for_each(|e| f(&e));
+            }
+            Message::EsfStatus(m) => {
+                m.sensors.iter().for_each(|e| f(&e));
+            }
+            Message::LogRetrievestring(m) => {
+                m.bytes.iter().for_each(|e| f(&e));
+            }
+            Message::MgaBdsHealth(m) => {
+                m.health_code.iter().for_each(|e| f(&e));
+            }
+            Message::MgaGpsHealth(m) => {
+                m.health_code.iter().for_each(|e| f(&e));
+            }
+            Message::MgaQzssHealth(m) => {
+                m.health_code.iter().for_each(|e| f(&e));
+            }
+            Message::MonComms(m) => {
+                m.prot_ids.iter().for_each(|e| f(&e));
+                m.ports.iter().for_each(|e| f(&e));
+            }
+            Message::MonHw(m) => {
+                m.vp.iter().for_each(|e| f(&e));
+            }
+            Message::MonHw3(m) => {
+                m.pins.iter().for_each(|e| f(&e));
+            }
+            Message::MonIo(m) => {
+                m.ports.iter().for_each(|e| f(&e));
+            }
+            Message::MonMsgpp(m) => {
+                m.msg1.iter().for_each(|e| f(&e));
+                m.msg2.iter().for_each(|e| f(&e));
+                m.msg3.iter().for_each(|e| f(&e));
+                m.msg4.iter().for_each(|e| f(&e));
+                m.msg5.iter().for_each(|e| f(&e));
+                m.msg6.iter().for_each(|e| f(&e));
+                m.skipped.iter().for_each(|e| f(&e));
+            }
+            Message::MonPatch(m) => {
+                m.entries.iter().for_each(|e| f(&e));
+            }
+            Message::MonRf(m) => {
+                m.blocks.iter().for_each(|e| f(&e));
+            }
+            Message::MonRxbuf(m) => {
+                m.pending.iter().for_each(|e| f(&e));
+                m.usage.iter().for_each(|e| f(&e));
+                m.peak_usage.iter().for_each(|e| f(&e));
+            }
+            Message::MonSpan(m) => {
+                m.rf_blocks.iter().for_each(|e| f(&e));
+            }
+            Message::MonTxbuf(m) => {
+                m.pending.iter().for_each(|e| f(&e));
+                m.usage.iter().for_each(|e| f(&e));
+                m.peak_usage.iter().for_each(|e| f(&e));
+            }
+            Message::MonVer(m) => {
+                m.extensions.iter().for_each(|e| f(&e));
+            }
+            Message::Nav2Sat(m) => {
+                m.svs.iter().for_each(|e| f(&e));
+            }
+            Message::Nav2Sbas(m) => {
+                m.channels.iter().for_each(|e| f(&e));
+            }
+            Message::Nav2Sig(m) => {
+                m.signals.iter().for_each(|e| f(&e));
+            }
+            Message::Nav2Slas(m) => {
+                m.corrections.iter().for_each(|e| f(&e));
+            }
+            Message::NavDgps(m) => {
+                m.channels.iter().for_each(|e| f(&e));
+            }
+            Message::NavGeofence(m) => {
+                m.fences.iter().for_each(|e| f(&e));
+            }
+            Message::NavOrb(m) => {
+                m.svs.iter().for_each(|e| f(&e));
+            }
+            Message::NavSat(m) => {
+                m.svs.iter().for_each(|e| f(&e));
+            }
+            Message::NavSbas(m) => {
+                m.channels.iter().for_each(|e| f(&e));
+            }
+            Message::NavSig(m) => {
+                m.signals.iter().for_each(|e| f(&e));
+            }
+            Message::NavSlas(m) => {
+                m.corrections.iter().for_each(|e| f(&e));
+            }
+            Message::NavSvinfo(m) => {
+                m.channels.iter().for_each(|e| f(&e));
+            }
+            Message::RxmMeasx(m) => {
+                m.svs.iter().for_each(|e| f(&e));
+            }
+            Message::RxmRawx(m) => {
+                m.measurements.iter().for_each(|e| f(&e));
+            }
+            Message::RxmSfrbx(m) => {
+                m.words.iter().for_each(|e| f(&e));
+            }
+            Message::RxmSpartnkey(m) => {
+                m.key_info.iter().for_each(|e| f(&e));
+                m.keys.iter().for_each(|e| f(&e));
+            }
+            Message::RxmSvsi(m) => {
+                m.svs.iter().for_each(|e| f(&e));
+            }
+            Message::SecSig(m) => {
+                m.cent_freqs.iter().for_each(|e| f(&e));
+            }
+            Message::SecSiglog(m) => {
+                m.events.iter().for_each(|e| f(&e));
+            }
+            Message::TimSmeas(m) => {
+                m.meas.iter().for_each(|e| f(&e));
+            }
+            _ => {}
         }
     }
 

@@ -662,6 +662,32 @@ pub mod json {
     pub fn encode_json(line: &[u8]) -> String {
         runtime::encode_json::<LayoutId>(line)
     }
+
+    /// Writes what a binary frame (sync bytes to checksum, as the stream reader gives it) holds
+    /// by its protocol's messages, as `stream --ubx` and `--rtcm3` add it to the frame's JSON:
+    /// `"<protocol>":` and the message's JSON, or `"<protocol>_error":` and the error's. Writes
+    /// nothing and gives false for a protocol whose messages the crate does not type.
+    #[cfg(feature = "binary")]
+    pub fn write_frame_message<W: Write>(
+        out: &mut W,
+        protocol: crate::stream::Protocol,
+        frame: &[u8],
+    ) -> Result<bool, fmt::Error> {
+        use crate::stream::Protocol;
+        match protocol {
+            Protocol::Ubx => match crate::ubx_messages::Message::from_frame(frame) {
+                Ok(m) => {
+                    out.write_str("\"ubx\":")?;
+                    m.write_json(out)?;
+                }
+                Err(e) => {
+                    out.write_str("\"ubx_error\":")?;
+                    e.write_json(out)?;
+                }
+            },
+        }
+        Ok(true)
+    }
 }
 
 /// The parser's two paths and the writer's byte path on their own, for the tests and fuzz
