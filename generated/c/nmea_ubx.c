@@ -23,20 +23,21 @@
 //   spec/binary/ubx/messages/rxm_svsi.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
 //   spec/binary/ubx/messages/rxm_spartn.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
 //   spec/binary/ubx/messages/rxm_spartnkey.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
-//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/inf_error.yaml,
-//   spec/binary/ubx/messages/inf_warning.yaml, spec/binary/ubx/messages/inf_notice.yaml,
-//   spec/binary/ubx/messages/inf_test.yaml, spec/binary/ubx/messages/inf_debug.yaml,
-//   spec/binary/ubx/messages/ack_nak.yaml, spec/binary/ubx/messages/ack_ack.yaml,
-//   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
-//   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
-//   spec/binary/ubx/messages/cfg_dat.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
-//   spec/binary/ubx/messages/cfg_cfg.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
-//   spec/binary/ubx/messages/cfg_ant.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
-//   spec/binary/ubx/messages/cfg_nmea.yaml, spec/binary/ubx/messages/cfg_usb.yaml,
-//   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
-//   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
-//   spec/binary/ubx/messages/cfg_rinv.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
-//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
+//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/rxm_imes.yaml,
+//   spec/binary/ubx/messages/inf_error.yaml, spec/binary/ubx/messages/inf_warning.yaml,
+//   spec/binary/ubx/messages/inf_notice.yaml, spec/binary/ubx/messages/inf_test.yaml,
+//   spec/binary/ubx/messages/inf_debug.yaml, spec/binary/ubx/messages/ack_nak.yaml,
+//   spec/binary/ubx/messages/ack_ack.yaml, spec/binary/ubx/messages/cfg_prt.yaml,
+//   spec/binary/ubx/messages/cfg_msg.yaml, spec/binary/ubx/messages/cfg_inf.yaml,
+//   spec/binary/ubx/messages/cfg_rst.yaml, spec/binary/ubx/messages/cfg_dat.yaml,
+//   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_cfg.yaml,
+//   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_ant.yaml,
+//   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_nmea.yaml,
+//   spec/binary/ubx/messages/cfg_usb.yaml, spec/binary/ubx/messages/cfg_odo.yaml,
+//   spec/binary/ubx/messages/cfg_navx5.yaml, spec/binary/ubx/messages/cfg_nav5.yaml,
+//   spec/binary/ubx/messages/cfg_tp5.yaml, spec/binary/ubx/messages/cfg_rinv.yaml,
+//   spec/binary/ubx/messages/cfg_itfm.yaml, spec/binary/ubx/messages/cfg_pm2.yaml,
+//   spec/binary/ubx/messages/cfg_tmode2.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
 //   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_esfa.yaml,
 //   spec/binary/ubx/messages/cfg_esfg.yaml, spec/binary/ubx/messages/cfg_txslot.yaml,
 //   spec/binary/ubx/messages/cfg_esfalg.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
@@ -44,31 +45,32 @@
 //   spec/binary/ubx/messages/cfg_dosc.yaml, spec/binary/ubx/messages/cfg_smgr.yaml,
 //   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
 //   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_esfwt.yaml,
-//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
-//   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
-//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_slas.yaml,
-//   spec/binary/ubx/messages/cfg_batch.yaml, spec/binary/ubx/messages/upd_sos.yaml,
-//   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_ver.yaml,
-//   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
-//   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_hw.yaml,
-//   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
-//   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
-//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
-//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
-//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
-//   spec/binary/ubx/messages/aid_ini.yaml, spec/binary/ubx/messages/aid_hui.yaml,
-//   spec/binary/ubx/messages/aid_alm.yaml, spec/binary/ubx/messages/aid_eph.yaml,
-//   spec/binary/ubx/messages/aid_aop.yaml, spec/binary/ubx/messages/tim_tp.yaml,
-//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_svin.yaml,
-//   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
-//   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
-//   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
-//   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/esf_meas.yaml,
-//   spec/binary/ubx/messages/esf_raw.yaml, spec/binary/ubx/messages/esf_status.yaml,
-//   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
-//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_gal.yaml,
-//   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
-//   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_ano.yaml,
+//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_dynseed.yaml,
+//   spec/binary/ubx/messages/cfg_pms.yaml, spec/binary/ubx/messages/cfg_valset.yaml,
+//   spec/binary/ubx/messages/cfg_valget.yaml, spec/binary/ubx/messages/cfg_valdel.yaml,
+//   spec/binary/ubx/messages/cfg_slas.yaml, spec/binary/ubx/messages/cfg_batch.yaml,
+//   spec/binary/ubx/messages/upd_sos.yaml, spec/binary/ubx/messages/mon_io.yaml,
+//   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
+//   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
+//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
+//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_patch.yaml,
+//   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+//   spec/binary/ubx/messages/mon_span.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/aid_ini.yaml,
+//   spec/binary/ubx/messages/aid_hui.yaml, spec/binary/ubx/messages/aid_alm.yaml,
+//   spec/binary/ubx/messages/aid_eph.yaml, spec/binary/ubx/messages/aid_aop.yaml,
+//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
+//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
+//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
+//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
+//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
+//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
+//   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
+//   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
+//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_bds.yaml,
+//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mga_glo.yaml,
+//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_flash.yaml,
 //   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_ack.yaml,
 //   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/log_erase.yaml,
 //   spec/binary/ubx/messages/log_string.yaml, spec/binary/ubx/messages/log_create.yaml,
@@ -119,7 +121,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 665e86d5fa7bda1f)
+//   spec/enums/ubx_gnss_id.yaml (digest 0ac1210b84769faa)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -2218,6 +2220,52 @@ static const nmea_ubx_item ubx_rxm_rlm_short_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_rxm_rlm_short, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* RXM-IMES: rxm_imes_poll */
+static const nmea_ubx_item ubx_rxm_imes_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* RXM-IMES: rxm_imes */
+static const nmea_ubx_scale ubx_rxm_imes_transmitter_doppler_scale = {4096.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_rxm_imes_transmitter_lat_scale = {16777216.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_rxm_imes_transmitter_lon_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_rxm_imes_transmitter_items[] = {
+    {"reserved2", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tx_id", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, tx_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved4", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"doppler", &ubx_rxm_imes_transmitter_doppler_scale, offsetof(nmea_ubx_rxm_imes_transmitter, doppler), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"position1_1", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, position1_1), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos1_floor", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos1_floor), 0, 0, NMEA_UBX_ITEM_PART, 8, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos1_lat", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos1_lat), 0, 0, NMEA_UBX_ITEM_PART, 23, 4, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"position1_2", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, position1_2), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos1_lon", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos1_lon), 0, 0, NMEA_UBX_ITEM_PART, 24, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos1_valid", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos1_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 24, NMEA_UBX_PRINT_NUMBER, false},
+    {"position2_1", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, position2_1), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos2_floor", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos2_floor), 0, 0, NMEA_UBX_ITEM_PART, 8, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos2_alt", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos2_alt), 0, 0, NMEA_UBX_ITEM_PART, 12, 2, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos2_acc", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos2_acc), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 20, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos2_valid", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos2_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 22, NMEA_UBX_PRINT_NUMBER, false},
+    {"lat", &ubx_rxm_imes_transmitter_lat_scale, offsetof(nmea_ubx_rxm_imes_transmitter, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lon", &ubx_rxm_imes_transmitter_lon_scale, offsetof(nmea_ubx_rxm_imes_transmitter, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"short_id_frame", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, short_id_frame), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"short_id", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, short_id), 0, 0, NMEA_UBX_ITEM_PART, 12, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"short_valid", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, short_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 12, NMEA_UBX_PRINT_NUMBER, false},
+    {"short_boundary", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, short_boundary), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 13, NMEA_UBX_PRINT_NUMBER, false},
+    {"medium_id_lsb", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, medium_id_lsb), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"medium_id_2", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, medium_id_2), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"medium_id_msb", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, medium_id_msb), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"medium_valid", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, medium_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"medium_boundary", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, medium_boundary), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_rxm_imes_transmitters_group = {ubx_rxm_imes_transmitter_items, 28, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_imes, num_tx), 0, 0, 65535, NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX, 44, sizeof(nmea_ubx_rxm_imes_transmitter), 0, offsetof(nmea_ubx_rxm_imes, transmitters_count)};
+static const nmea_ubx_item ubx_rxm_imes_items[] = {
+    {"num_tx", NULL, offsetof(nmea_ubx_rxm_imes, num_tx), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_rxm_imes, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_rxm_imes, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"transmitters", &ubx_rxm_imes_transmitters_group, offsetof(nmea_ubx_rxm_imes, transmitters), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* INF-ERROR: inf_error */
 static const nmea_ubx_item ubx_inf_error_items[] = {
     {"text", NULL, offsetof(nmea_ubx_inf_error, text), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_CHARS, false}
@@ -2789,6 +2837,24 @@ static const nmea_ubx_item ubx_cfg_pm2_v1_items[] = {
     {"reserved4", NULL, offsetof(nmea_ubx_cfg_pm2_v1, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-TMODE2: cfg_tmode2_poll */
+static const nmea_ubx_item ubx_cfg_tmode2_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-TMODE2: cfg_tmode2 */
+static const nmea_ubx_item ubx_cfg_tmode2_items[] = {
+    {"time_mode", NULL, offsetof(nmea_ubx_cfg_tmode2, time_mode), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_tmode2, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_tmode2, flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lla", NULL, offsetof(nmea_ubx_cfg_tmode2, lla), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"alt_inv", NULL, offsetof(nmea_ubx_cfg_tmode2, alt_inv), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_x_or_lat", NULL, offsetof(nmea_ubx_cfg_tmode2, ecef_x_or_lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_y_or_lon", NULL, offsetof(nmea_ubx_cfg_tmode2, ecef_y_or_lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_z_or_alt", NULL, offsetof(nmea_ubx_cfg_tmode2, ecef_z_or_alt), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fixed_pos_acc", NULL, offsetof(nmea_ubx_cfg_tmode2, fixed_pos_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svin_min_dur", NULL, offsetof(nmea_ubx_cfg_tmode2, svin_min_dur), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svin_acc_limit", NULL, offsetof(nmea_ubx_cfg_tmode2, svin_acc_limit), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* CFG-GNSS: cfg_gnss_poll */
 static const nmea_ubx_item ubx_cfg_gnss_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -3120,6 +3186,14 @@ static const nmea_ubx_item ubx_cfg_fixseed_items[] = {
     {"seed_hi", NULL, offsetof(nmea_ubx_cfg_fixseed, seed_hi), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"seed_lo", NULL, offsetof(nmea_ubx_cfg_fixseed, seed_lo), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"messages", &ubx_cfg_fixseed_messages_group, offsetof(nmea_ubx_cfg_fixseed, messages), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-DYNSEED: cfg_dynseed */
+static const nmea_ubx_item ubx_cfg_dynseed_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_dynseed, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_dynseed, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"seed_hi", NULL, offsetof(nmea_ubx_cfg_dynseed, seed_hi), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"seed_lo", NULL, offsetof(nmea_ubx_cfg_dynseed, seed_lo), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* CFG-PMS: cfg_pms_poll */
@@ -4752,6 +4826,32 @@ static const nmea_ubx_item ubx_mga_ano_items[] = {
     {"reserved0", NULL, offsetof(nmea_ubx_mga_ano, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"data", NULL, offsetof(nmea_ubx_mga_ano, data), 0, 0, NMEA_UBX_ITEM_ARRAY, 64, 64, 0, NMEA_UBX_PRINT_HEX, false},
     {"reserved1", NULL, offsetof(nmea_ubx_mga_ano, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-FLASH: mga_flash_data */
+static const nmea_ubx_item ubx_mga_flash_data_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_flash_data, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_flash_data, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sequence", NULL, offsetof(nmea_ubx_mga_flash_data, sequence), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"size", NULL, offsetof(nmea_ubx_mga_flash_data, size), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"data", NULL, offsetof(nmea_ubx_mga_flash_data, data), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+/* MGA-FLASH: mga_flash_stop */
+static const nmea_ubx_item ubx_mga_flash_stop_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_flash_stop, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_flash_stop, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-FLASH: mga_flash_ack */
+static const nmea_ubx_special ubx_mga_flash_ack_sequence_specials[] = {{65535, "stop"}};
+static const nmea_ubx_scale ubx_mga_flash_ack_sequence_scale = {1.0, 0.0, false, ubx_mga_flash_ack_sequence_specials, 1};
+static const nmea_ubx_item ubx_mga_flash_ack_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_flash_ack, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_flash_ack, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ack", NULL, offsetof(nmea_ubx_mga_flash_ack, ack), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_flash_ack, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sequence", &ubx_mga_flash_ack_sequence_scale, offsetof(nmea_ubx_mga_flash_ack, sequence), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false}
 };
 
 /* MGA-INI: mga_ini_pos_xyz */
@@ -8468,6 +8568,70 @@ static bool ubx_rxm_rlm_short_fast(const uint8_t *p, size_t len, nmea_ubx_messag
     return true;
 }
 
+static bool ubx_rxm_imes_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_rxm_imes *m = &out->as.rxm_imes;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    size_t k;
+    memset(m, 0, offsetof(nmea_ubx_rxm_imes, trailing));
+    if (left < 4)
+        return false;
+    m->num_tx = q[0];
+    m->version = q[1];
+    m->reserved1 = ubx_u16(q + 2);
+    q += 4;
+    left -= 4;
+    {
+        size_t count = (uint8_t)m->num_tx;
+        if (count * 44 > left || count > NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX)
+            return false;
+        for (k = 0; k < count; k++, q += 44) {
+            nmea_ubx_rxm_imes_transmitter *e = &m->transmitters[k];
+            memset(e, 0, sizeof *e); /* (its padding: the stores of its fields replace the rest) */
+            e->reserved2 = q[0];
+            e->tx_id = q[1];
+            e->reserved3 = (uint32_t)ubx_le(q + 2, 3);
+            e->cno = q[5];
+            e->reserved4 = ubx_u16(q + 6);
+            e->doppler = (int32_t)ubx_u32(q + 8);
+            w = ubx_u32(q + 12);
+            e->position1_1 = (uint32_t)w;
+            e->pos1_floor = (uint8_t)(w & 0xFFu);
+            e->pos1_lat = (uint32_t)(w >> 8 & 0x7FFFFFu);
+            w = ubx_u32(q + 16);
+            e->position1_2 = (uint32_t)w;
+            e->pos1_lon = (uint32_t)(w & 0xFFFFFFu);
+            e->pos1_valid = (w >> 24 & 0x1u) != 0;
+            w = ubx_u32(q + 20);
+            e->position2_1 = (uint32_t)w;
+            e->pos2_floor = (uint8_t)(w & 0xFFu);
+            e->pos2_alt = (uint16_t)(w >> 8 & 0xFFFu);
+            e->pos2_acc = (uint8_t)(w >> 20 & 0x3u);
+            e->pos2_valid = (w >> 22 & 0x1u) != 0;
+            e->lat = (int32_t)ubx_u32(q + 24);
+            e->lon = (int32_t)ubx_u32(q + 28);
+            w = ubx_u32(q + 32);
+            e->short_id_frame = (uint32_t)w;
+            e->short_id = (uint16_t)(w & 0xFFFu);
+            e->short_valid = (w >> 12 & 0x1u) != 0;
+            e->short_boundary = (w >> 13 & 0x1u) != 0;
+            e->medium_id_lsb = ubx_u32(q + 36);
+            w = ubx_u32(q + 40);
+            e->medium_id_2 = (uint32_t)w;
+            e->medium_id_msb = (w & 0x1u) != 0;
+            e->medium_valid = (w >> 1 & 0x1u) != 0;
+            e->medium_boundary = (w >> 2 & 0x1u) != 0;
+        }
+        left -= count * 44;
+        m->transmitters_count = (uint16_t)count;
+    }
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_inf_error_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_inf_error *m = &out->as.inf_error;
@@ -9294,6 +9458,34 @@ static bool ubx_cfg_pm2_v1_fast(const uint8_t *p, size_t len, nmea_ubx_message *
     m->reserved4 = ubx_u32(q + 40);
     q += 44;
     left -= 44;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_cfg_tmode2_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_cfg_tmode2 *m = &out->as.cfg_tmode2;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    memset(m, 0, offsetof(nmea_ubx_cfg_tmode2, trailing));
+    if (left < 28)
+        return false;
+    m->time_mode = q[0];
+    m->reserved1 = q[1];
+    w = ubx_u16(q + 2);
+    m->flags = (uint16_t)w;
+    m->lla = (w & 0x1u) != 0;
+    m->alt_inv = (w >> 1 & 0x1u) != 0;
+    m->ecef_x_or_lat = (int32_t)ubx_u32(q + 4);
+    m->ecef_y_or_lon = (int32_t)ubx_u32(q + 8);
+    m->ecef_z_or_alt = (int32_t)ubx_u32(q + 12);
+    m->fixed_pos_acc = ubx_u32(q + 16);
+    m->svin_min_dur = ubx_u32(q + 20);
+    m->svin_acc_limit = ubx_u32(q + 24);
+    q += 28;
+    left -= 28;
     m->trailing.ptr = q;
     m->trailing.len = left;
     return true;
@@ -11285,6 +11477,26 @@ static bool ubx_esf_ins_fast(const uint8_t *p, size_t len, nmea_ubx_message *out
     m->z_accel = (int32_t)ubx_u32(q + 32);
     q += 36;
     left -= 36;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_mga_flash_ack_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_mga_flash_ack *m = &out->as.mga_flash_ack;
+    const uint8_t *q = p;
+    size_t left = len;
+    memset(m, 0, offsetof(nmea_ubx_mga_flash_ack, trailing));
+    if (left < 6)
+        return false;
+    m->type = q[0];
+    m->version = q[1];
+    m->ack = q[2];
+    m->reserved1 = q[3];
+    m->sequence = ubx_u16(q + 4);
+    q += 6;
+    left -= 6;
     m->trailing.ptr = q;
     m->trailing.len = left;
     return true;
@@ -14310,6 +14522,8 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     ubx_rxm_rlm_fast,
     ubx_rxm_rlm_short_fast,
+    NULL,
+    ubx_rxm_imes_fast,
     ubx_inf_error_fast,
     ubx_inf_warning_fast,
     ubx_inf_notice_fast,
@@ -14362,6 +14576,8 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_cfg_pm2_fast,
     ubx_cfg_pm2_v1_fast,
     NULL,
+    ubx_cfg_tmode2_fast,
+    NULL,
     ubx_cfg_gnss_fast,
     NULL,
     ubx_cfg_logfilter_fast,
@@ -14390,6 +14606,7 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_cfg_tmode3_fast,
     NULL,
     ubx_cfg_esfwt_fast,
+    NULL,
     NULL,
     NULL,
     ubx_cfg_pms_fast,
@@ -14502,6 +14719,9 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     NULL,
     NULL,
+    NULL,
+    NULL,
+    ubx_mga_flash_ack_fast,
     NULL,
     NULL,
     NULL,
@@ -14733,6 +14953,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"rxm_pmreq_short", "RXM-PMREQ", 0x02, 0x41, false, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_rxm_pmreq_short_items, 3, 0, offsetof(nmea_ubx_rxm_pmreq_short, trailing)},
     {"rxm_rlm", "RXM-RLM", 0x02, 0x59, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_rxm_rlm_items, 8, 0, offsetof(nmea_ubx_rxm_rlm, trailing)},
     {"rxm_rlm_short", "RXM-RLM", 0x02, 0x59, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_rxm_rlm_short_items, 8, 0, offsetof(nmea_ubx_rxm_rlm_short, trailing)},
+    {"rxm_imes_poll", "RXM-IMES", 0x02, 0x61, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_rxm_imes_poll_items, 0, 0, offsetof(nmea_ubx_rxm_imes_poll, trailing)},
+    {"rxm_imes", "RXM-IMES", 0x02, 0x61, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_imes_items, 4, 0, offsetof(nmea_ubx_rxm_imes, trailing)},
     {"inf_error", "INF-ERROR", 0x04, 0x00, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_error_items, 1, 0, offsetof(nmea_ubx_inf_error, trailing)},
     {"inf_warning", "INF-WARNING", 0x04, 0x01, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_warning_items, 1, 0, offsetof(nmea_ubx_inf_warning, trailing)},
     {"inf_notice", "INF-NOTICE", 0x04, 0x02, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_notice_items, 1, 0, offsetof(nmea_ubx_inf_notice, trailing)},
@@ -14784,6 +15006,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_pm2_poll", "CFG-PM2", 0x06, 0x3B, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_pm2_poll_items, 0, 0, offsetof(nmea_ubx_cfg_pm2_poll, trailing)},
     {"cfg_pm2", "CFG-PM2", 0x06, 0x3B, true, NMEA_UBX_PROTOCOL_UBX, 48, 2, 0, ubx_cfg_pm2_items, 24, 0, offsetof(nmea_ubx_cfg_pm2, trailing)},
     {"cfg_pm2_v1", "CFG-PM2", 0x06, 0x3B, true, NMEA_UBX_PROTOCOL_UBX, 44, 1, 0, ubx_cfg_pm2_v1_items, 23, 0, offsetof(nmea_ubx_cfg_pm2_v1, trailing)},
+    {"cfg_tmode2_poll", "CFG-TMODE2", 0x06, 0x3D, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_tmode2_poll_items, 0, 0, offsetof(nmea_ubx_cfg_tmode2_poll, trailing)},
+    {"cfg_tmode2", "CFG-TMODE2", 0x06, 0x3D, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_cfg_tmode2_items, 11, 0, offsetof(nmea_ubx_cfg_tmode2, trailing)},
     {"cfg_gnss_poll", "CFG-GNSS", 0x06, 0x3E, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_gnss_poll_items, 0, 0, offsetof(nmea_ubx_cfg_gnss_poll, trailing)},
     {"cfg_gnss", "CFG-GNSS", 0x06, 0x3E, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_gnss_items, 5, 0, offsetof(nmea_ubx_cfg_gnss, trailing)},
     {"cfg_logfilter_poll", "CFG-LOGFILTER", 0x06, 0x47, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_logfilter_poll_items, 0, 0, offsetof(nmea_ubx_cfg_logfilter_poll, trailing)},
@@ -14814,6 +15038,7 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_esfwt_poll", "CFG-ESFWT", 0x06, 0x82, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_esfwt_poll_items, 0, 0, offsetof(nmea_ubx_cfg_esfwt_poll, trailing)},
     {"cfg_esfwt", "CFG-ESFWT", 0x06, 0x82, true, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_cfg_esfwt_items, 21, 0, offsetof(nmea_ubx_cfg_esfwt, trailing)},
     {"cfg_fixseed", "CFG-FIXSEED", 0x06, 0x84, false, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_fixseed_items, 6, 0, offsetof(nmea_ubx_cfg_fixseed, trailing)},
+    {"cfg_dynseed", "CFG-DYNSEED", 0x06, 0x85, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_cfg_dynseed_items, 4, 0, offsetof(nmea_ubx_cfg_dynseed, trailing)},
     {"cfg_pms_poll", "CFG-PMS", 0x06, 0x86, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_pms_poll_items, 0, 0, offsetof(nmea_ubx_cfg_pms_poll, trailing)},
     {"cfg_pms", "CFG-PMS", 0x06, 0x86, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_cfg_pms_items, 5, 0, offsetof(nmea_ubx_cfg_pms, trailing)},
     {"cfg_valset_v0", "CFG-VALSET", 0x06, 0x8A, false, NMEA_UBX_PROTOCOL_UBX, -1, 0, 0, ubx_cfg_valset_v0_items, 7, 0, offsetof(nmea_ubx_cfg_valset_v0, trailing)},
@@ -14925,6 +15150,9 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"mga_glo_alm", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 36, 2, 0, ubx_mga_glo_alm_items, 17, 0, offsetof(nmea_ubx_mga_glo_alm, trailing)},
     {"mga_glo_timeoffset", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 20, 3, 0, ubx_mga_glo_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_glo_timeoffset, trailing)},
     {"mga_ano", "MGA-ANO", 0x13, 0x20, false, NMEA_UBX_PROTOCOL_UBX, 76, -1, 0, ubx_mga_ano_items, 10, 0, offsetof(nmea_ubx_mga_ano, trailing)},
+    {"mga_flash_data", "MGA-FLASH", 0x13, 0x21, false, NMEA_UBX_PROTOCOL_UBX, -1, 1, 0, ubx_mga_flash_data_items, 5, 0, offsetof(nmea_ubx_mga_flash_data, trailing)},
+    {"mga_flash_stop", "MGA-FLASH", 0x13, 0x21, false, NMEA_UBX_PROTOCOL_UBX, 2, 2, 0, ubx_mga_flash_stop_items, 2, 0, offsetof(nmea_ubx_mga_flash_stop, trailing)},
+    {"mga_flash_ack", "MGA-FLASH", 0x13, 0x21, true, NMEA_UBX_PROTOCOL_UBX, 6, 3, 0, ubx_mga_flash_ack_items, 5, 0, offsetof(nmea_ubx_mga_flash_ack, trailing)},
     {"mga_ini_pos_xyz", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 20, 0, 0, ubx_mga_ini_pos_xyz_items, 7, 0, offsetof(nmea_ubx_mga_ini_pos_xyz, trailing)},
     {"mga_ini_pos_llh", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 20, 1, 0, ubx_mga_ini_pos_llh_items, 7, 0, offsetof(nmea_ubx_mga_ini_pos_llh, trailing)},
     {"mga_ini_time_utc", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 24, 16, 0, ubx_mga_ini_time_utc_items, 18, 0, offsetof(nmea_ubx_mga_ini_time_utc, trailing)},
@@ -15160,274 +15388,282 @@ static uint32_t ubx_message_layouts(unsigned key)
         return (uint32_t)83 << 16 | 84;
     case 0x0259: /* RXM-RLM */
         return (uint32_t)85 << 16 | 86;
+    case 0x0261: /* RXM-IMES */
+        return (uint32_t)87 << 16 | 88;
     case 0x0400: /* INF-ERROR */
-        return (uint32_t)87 << 16 | 87;
-    case 0x0401: /* INF-WARNING */
-        return (uint32_t)88 << 16 | 88;
-    case 0x0402: /* INF-NOTICE */
         return (uint32_t)89 << 16 | 89;
-    case 0x0403: /* INF-TEST */
+    case 0x0401: /* INF-WARNING */
         return (uint32_t)90 << 16 | 90;
-    case 0x0404: /* INF-DEBUG */
+    case 0x0402: /* INF-NOTICE */
         return (uint32_t)91 << 16 | 91;
-    case 0x0500: /* ACK-NAK */
+    case 0x0403: /* INF-TEST */
         return (uint32_t)92 << 16 | 92;
-    case 0x0501: /* ACK-ACK */
+    case 0x0404: /* INF-DEBUG */
         return (uint32_t)93 << 16 | 93;
+    case 0x0500: /* ACK-NAK */
+        return (uint32_t)94 << 16 | 94;
+    case 0x0501: /* ACK-ACK */
+        return (uint32_t)95 << 16 | 95;
     case 0x0600: /* CFG-PRT */
-        return (uint32_t)94 << 16 | 96;
+        return (uint32_t)96 << 16 | 98;
     case 0x0601: /* CFG-MSG */
-        return (uint32_t)97 << 16 | 99;
+        return (uint32_t)99 << 16 | 101;
     case 0x0602: /* CFG-INF */
-        return (uint32_t)100 << 16 | 101;
+        return (uint32_t)102 << 16 | 103;
     case 0x0604: /* CFG-RST */
-        return (uint32_t)102 << 16 | 102;
+        return (uint32_t)104 << 16 | 104;
     case 0x0606: /* CFG-DAT */
-        return (uint32_t)103 << 16 | 105;
+        return (uint32_t)105 << 16 | 107;
     case 0x0608: /* CFG-RATE */
-        return (uint32_t)106 << 16 | 107;
-    case 0x0609: /* CFG-CFG */
         return (uint32_t)108 << 16 | 109;
-    case 0x0611: /* CFG-RXM */
+    case 0x0609: /* CFG-CFG */
         return (uint32_t)110 << 16 | 111;
-    case 0x0613: /* CFG-ANT */
+    case 0x0611: /* CFG-RXM */
         return (uint32_t)112 << 16 | 113;
-    case 0x0616: /* CFG-SBAS */
+    case 0x0613: /* CFG-ANT */
         return (uint32_t)114 << 16 | 115;
+    case 0x0616: /* CFG-SBAS */
+        return (uint32_t)116 << 16 | 117;
     case 0x0617: /* CFG-NMEA */
-        return (uint32_t)116 << 16 | 119;
+        return (uint32_t)118 << 16 | 121;
     case 0x061B: /* CFG-USB */
-        return (uint32_t)120 << 16 | 121;
-    case 0x061E: /* CFG-ODO */
         return (uint32_t)122 << 16 | 123;
-    case 0x0623: /* CFG-NAVX5 */
+    case 0x061E: /* CFG-ODO */
         return (uint32_t)124 << 16 | 125;
-    case 0x0624: /* CFG-NAV5 */
+    case 0x0623: /* CFG-NAVX5 */
         return (uint32_t)126 << 16 | 127;
+    case 0x0624: /* CFG-NAV5 */
+        return (uint32_t)128 << 16 | 129;
     case 0x0631: /* CFG-TP5 */
-        return (uint32_t)128 << 16 | 130;
+        return (uint32_t)130 << 16 | 132;
     case 0x0634: /* CFG-RINV */
-        return (uint32_t)131 << 16 | 132;
-    case 0x0639: /* CFG-ITFM */
         return (uint32_t)133 << 16 | 134;
+    case 0x0639: /* CFG-ITFM */
+        return (uint32_t)135 << 16 | 136;
     case 0x063B: /* CFG-PM2 */
-        return (uint32_t)135 << 16 | 137;
-    case 0x063E: /* CFG-GNSS */
-        return (uint32_t)138 << 16 | 139;
-    case 0x0647: /* CFG-LOGFILTER */
+        return (uint32_t)137 << 16 | 139;
+    case 0x063D: /* CFG-TMODE2 */
         return (uint32_t)140 << 16 | 141;
-    case 0x064C: /* CFG-ESFA */
+    case 0x063E: /* CFG-GNSS */
         return (uint32_t)142 << 16 | 143;
-    case 0x064D: /* CFG-ESFG */
+    case 0x0647: /* CFG-LOGFILTER */
         return (uint32_t)144 << 16 | 145;
-    case 0x0653: /* CFG-TXSLOT */
+    case 0x064C: /* CFG-ESFA */
         return (uint32_t)146 << 16 | 147;
-    case 0x0656: /* CFG-ESFALG */
+    case 0x064D: /* CFG-ESFG */
         return (uint32_t)148 << 16 | 149;
+    case 0x0653: /* CFG-TXSLOT */
+        return (uint32_t)150 << 16 | 151;
+    case 0x0656: /* CFG-ESFALG */
+        return (uint32_t)152 << 16 | 153;
     case 0x0657: /* CFG-PWR */
-        return (uint32_t)150 << 16 | 150;
+        return (uint32_t)154 << 16 | 154;
     case 0x065C: /* CFG-HNR */
-        return (uint32_t)151 << 16 | 152;
-    case 0x0660: /* CFG-ESRC */
-        return (uint32_t)153 << 16 | 154;
-    case 0x0661: /* CFG-DOSC */
         return (uint32_t)155 << 16 | 156;
-    case 0x0662: /* CFG-SMGR */
+    case 0x0660: /* CFG-ESRC */
         return (uint32_t)157 << 16 | 158;
-    case 0x0669: /* CFG-GEOFENCE */
+    case 0x0661: /* CFG-DOSC */
         return (uint32_t)159 << 16 | 160;
-    case 0x0670: /* CFG-DGNSS */
+    case 0x0662: /* CFG-SMGR */
         return (uint32_t)161 << 16 | 162;
-    case 0x0671: /* CFG-TMODE3 */
+    case 0x0669: /* CFG-GEOFENCE */
         return (uint32_t)163 << 16 | 164;
-    case 0x0682: /* CFG-ESFWT */
+    case 0x0670: /* CFG-DGNSS */
         return (uint32_t)165 << 16 | 166;
+    case 0x0671: /* CFG-TMODE3 */
+        return (uint32_t)167 << 16 | 168;
+    case 0x0682: /* CFG-ESFWT */
+        return (uint32_t)169 << 16 | 170;
     case 0x0684: /* CFG-FIXSEED */
-        return (uint32_t)167 << 16 | 167;
+        return (uint32_t)171 << 16 | 171;
+    case 0x0685: /* CFG-DYNSEED */
+        return (uint32_t)172 << 16 | 172;
     case 0x0686: /* CFG-PMS */
-        return (uint32_t)168 << 16 | 169;
+        return (uint32_t)173 << 16 | 174;
     case 0x068A: /* CFG-VALSET */
-        return (uint32_t)170 << 16 | 171;
+        return (uint32_t)175 << 16 | 176;
     case 0x068B: /* CFG-VALGET */
-        return (uint32_t)172 << 16 | 173;
+        return (uint32_t)177 << 16 | 178;
     case 0x068C: /* CFG-VALDEL */
-        return (uint32_t)174 << 16 | 175;
+        return (uint32_t)179 << 16 | 180;
     case 0x068D: /* CFG-SLAS */
-        return (uint32_t)176 << 16 | 177;
+        return (uint32_t)181 << 16 | 182;
     case 0x0693: /* CFG-BATCH */
-        return (uint32_t)178 << 16 | 179;
-    case 0x0914: /* UPD-SOS */
-        return (uint32_t)180 << 16 | 182;
-    case 0x0A02: /* MON-IO */
         return (uint32_t)183 << 16 | 184;
+    case 0x0914: /* UPD-SOS */
+        return (uint32_t)185 << 16 | 187;
+    case 0x0A02: /* MON-IO */
+        return (uint32_t)188 << 16 | 189;
     case 0x0A04: /* MON-VER */
-        return (uint32_t)185 << 16 | 186;
+        return (uint32_t)190 << 16 | 191;
     case 0x0A06: /* MON-MSGPP */
-        return (uint32_t)187 << 16 | 188;
+        return (uint32_t)192 << 16 | 193;
     case 0x0A07: /* MON-RXBUF */
-        return (uint32_t)189 << 16 | 190;
+        return (uint32_t)194 << 16 | 195;
     case 0x0A08: /* MON-TXBUF */
-        return (uint32_t)191 << 16 | 192;
+        return (uint32_t)196 << 16 | 197;
     case 0x0A09: /* MON-HW */
-        return (uint32_t)193 << 16 | 194;
-    case 0x0A0B: /* MON-HW2 */
-        return (uint32_t)195 << 16 | 196;
-    case 0x0A21: /* MON-RXR */
-        return (uint32_t)197 << 16 | 197;
-    case 0x0A27: /* MON-PATCH */
         return (uint32_t)198 << 16 | 199;
-    case 0x0A28: /* MON-GNSS */
+    case 0x0A0B: /* MON-HW2 */
         return (uint32_t)200 << 16 | 201;
+    case 0x0A21: /* MON-RXR */
+        return (uint32_t)202 << 16 | 202;
+    case 0x0A27: /* MON-PATCH */
+        return (uint32_t)203 << 16 | 204;
+    case 0x0A28: /* MON-GNSS */
+        return (uint32_t)205 << 16 | 206;
     case 0x0A2E: /* MON-SMGR */
-        return (uint32_t)202 << 16 | 203;
+        return (uint32_t)207 << 16 | 208;
     case 0x0A31: /* MON-SPAN */
-        return (uint32_t)204 << 16 | 205;
+        return (uint32_t)209 << 16 | 210;
     case 0x0A36: /* MON-COMMS */
-        return (uint32_t)206 << 16 | 207;
+        return (uint32_t)211 << 16 | 212;
     case 0x0A37: /* MON-HW3 */
-        return (uint32_t)208 << 16 | 209;
+        return (uint32_t)213 << 16 | 214;
     case 0x0A38: /* MON-RF */
-        return (uint32_t)210 << 16 | 211;
+        return (uint32_t)215 << 16 | 216;
     case 0x0A39: /* MON-SYS */
-        return (uint32_t)212 << 16 | 213;
+        return (uint32_t)217 << 16 | 218;
     case 0x0B01: /* AID-INI */
-        return (uint32_t)214 << 16 | 215;
+        return (uint32_t)219 << 16 | 220;
     case 0x0B02: /* AID-HUI */
-        return (uint32_t)216 << 16 | 217;
+        return (uint32_t)221 << 16 | 222;
     case 0x0B30: /* AID-ALM */
-        return (uint32_t)218 << 16 | 221;
+        return (uint32_t)223 << 16 | 226;
     case 0x0B31: /* AID-EPH */
-        return (uint32_t)222 << 16 | 225;
+        return (uint32_t)227 << 16 | 230;
     case 0x0B33: /* AID-AOP */
-        return (uint32_t)226 << 16 | 228;
+        return (uint32_t)231 << 16 | 233;
     case 0x0D01: /* TIM-TP */
-        return (uint32_t)229 << 16 | 230;
+        return (uint32_t)234 << 16 | 235;
     case 0x0D03: /* TIM-TM2 */
-        return (uint32_t)231 << 16 | 232;
+        return (uint32_t)236 << 16 | 237;
     case 0x0D04: /* TIM-SVIN */
-        return (uint32_t)233 << 16 | 234;
+        return (uint32_t)238 << 16 | 239;
     case 0x0D06: /* TIM-VRFY */
-        return (uint32_t)235 << 16 | 236;
+        return (uint32_t)240 << 16 | 241;
     case 0x0D11: /* TIM-DOSC */
-        return (uint32_t)237 << 16 | 238;
+        return (uint32_t)242 << 16 | 243;
     case 0x0D12: /* TIM-TOS */
-        return (uint32_t)239 << 16 | 240;
+        return (uint32_t)244 << 16 | 245;
     case 0x0D13: /* TIM-SMEAS */
-        return (uint32_t)241 << 16 | 242;
+        return (uint32_t)246 << 16 | 247;
     case 0x0D15: /* TIM-VCOCAL */
-        return (uint32_t)243 << 16 | 246;
+        return (uint32_t)248 << 16 | 251;
     case 0x0D16: /* TIM-FCHG */
-        return (uint32_t)247 << 16 | 248;
-    case 0x0D17: /* TIM-HOC */
-        return (uint32_t)249 << 16 | 249;
-    case 0x1002: /* ESF-MEAS */
-        return (uint32_t)250 << 16 | 250;
-    case 0x1003: /* ESF-RAW */
-        return (uint32_t)251 << 16 | 251;
-    case 0x1010: /* ESF-STATUS */
         return (uint32_t)252 << 16 | 253;
+    case 0x0D17: /* TIM-HOC */
+        return (uint32_t)254 << 16 | 254;
+    case 0x1002: /* ESF-MEAS */
+        return (uint32_t)255 << 16 | 255;
+    case 0x1003: /* ESF-RAW */
+        return (uint32_t)256 << 16 | 256;
+    case 0x1010: /* ESF-STATUS */
+        return (uint32_t)257 << 16 | 258;
     case 0x1014: /* ESF-ALG */
-        return (uint32_t)254 << 16 | 255;
+        return (uint32_t)259 << 16 | 260;
     case 0x1015: /* ESF-INS */
-        return (uint32_t)256 << 16 | 257;
+        return (uint32_t)261 << 16 | 262;
     case 0x1300: /* MGA-GPS */
-        return (uint32_t)258 << 16 | 262;
+        return (uint32_t)263 << 16 | 267;
     case 0x1302: /* MGA-GAL */
-        return (uint32_t)263 << 16 | 266;
+        return (uint32_t)268 << 16 | 271;
     case 0x1303: /* MGA-BDS */
-        return (uint32_t)267 << 16 | 271;
+        return (uint32_t)272 << 16 | 276;
     case 0x1305: /* MGA-QZSS */
-        return (uint32_t)272 << 16 | 274;
+        return (uint32_t)277 << 16 | 279;
     case 0x1306: /* MGA-GLO */
-        return (uint32_t)275 << 16 | 277;
+        return (uint32_t)280 << 16 | 282;
     case 0x1320: /* MGA-ANO */
-        return (uint32_t)278 << 16 | 278;
+        return (uint32_t)283 << 16 | 283;
+    case 0x1321: /* MGA-FLASH */
+        return (uint32_t)284 << 16 | 286;
     case 0x1340: /* MGA-INI */
-        return (uint32_t)279 << 16 | 285;
+        return (uint32_t)287 << 16 | 293;
     case 0x1360: /* MGA-ACK */
-        return (uint32_t)286 << 16 | 286;
-    case 0x1380: /* MGA-DBD */
-        return (uint32_t)287 << 16 | 288;
-    case 0x2103: /* LOG-ERASE */
-        return (uint32_t)289 << 16 | 289;
-    case 0x2104: /* LOG-STRING */
-        return (uint32_t)290 << 16 | 290;
-    case 0x2107: /* LOG-CREATE */
-        return (uint32_t)291 << 16 | 291;
-    case 0x2108: /* LOG-INFO */
-        return (uint32_t)292 << 16 | 293;
-    case 0x2109: /* LOG-RETRIEVE */
         return (uint32_t)294 << 16 | 294;
-    case 0x210B: /* LOG-RETRIEVEPOS */
-        return (uint32_t)295 << 16 | 295;
-    case 0x210D: /* LOG-RETRIEVESTRING */
-        return (uint32_t)296 << 16 | 296;
-    case 0x210E: /* LOG-FINDTIME */
-        return (uint32_t)297 << 16 | 298;
-    case 0x210F: /* LOG-RETRIEVEPOSEXTRA */
+    case 0x1380: /* MGA-DBD */
+        return (uint32_t)295 << 16 | 296;
+    case 0x2103: /* LOG-ERASE */
+        return (uint32_t)297 << 16 | 297;
+    case 0x2104: /* LOG-STRING */
+        return (uint32_t)298 << 16 | 298;
+    case 0x2107: /* LOG-CREATE */
         return (uint32_t)299 << 16 | 299;
-    case 0x2110: /* LOG-RETRIEVEBATCH */
-        return (uint32_t)300 << 16 | 300;
-    case 0x2111: /* LOG-BATCH */
-        return (uint32_t)301 << 16 | 301;
-    case 0x2701: /* SEC-SIGN */
+    case 0x2108: /* LOG-INFO */
+        return (uint32_t)300 << 16 | 301;
+    case 0x2109: /* LOG-RETRIEVE */
         return (uint32_t)302 << 16 | 302;
+    case 0x210B: /* LOG-RETRIEVEPOS */
+        return (uint32_t)303 << 16 | 303;
+    case 0x210D: /* LOG-RETRIEVESTRING */
+        return (uint32_t)304 << 16 | 304;
+    case 0x210E: /* LOG-FINDTIME */
+        return (uint32_t)305 << 16 | 306;
+    case 0x210F: /* LOG-RETRIEVEPOSEXTRA */
+        return (uint32_t)307 << 16 | 307;
+    case 0x2110: /* LOG-RETRIEVEBATCH */
+        return (uint32_t)308 << 16 | 308;
+    case 0x2111: /* LOG-BATCH */
+        return (uint32_t)309 << 16 | 309;
+    case 0x2701: /* SEC-SIGN */
+        return (uint32_t)310 << 16 | 310;
     case 0x2703: /* SEC-UNIQID */
-        return (uint32_t)303 << 16 | 304;
+        return (uint32_t)311 << 16 | 312;
     case 0x2709: /* SEC-SIG */
-        return (uint32_t)305 << 16 | 307;
+        return (uint32_t)313 << 16 | 315;
     case 0x2710: /* SEC-SIGLOG */
-        return (uint32_t)308 << 16 | 309;
-    case 0x2800: /* HNR-PVT */
-        return (uint32_t)310 << 16 | 311;
-    case 0x2801: /* HNR-ATT */
-        return (uint32_t)312 << 16 | 313;
-    case 0x2802: /* HNR-INS */
-        return (uint32_t)314 << 16 | 315;
-    case 0x2901: /* NAV2-POSECEF */
         return (uint32_t)316 << 16 | 317;
-    case 0x2902: /* NAV2-POSLLH */
+    case 0x2800: /* HNR-PVT */
         return (uint32_t)318 << 16 | 319;
-    case 0x2903: /* NAV2-STATUS */
+    case 0x2801: /* HNR-ATT */
         return (uint32_t)320 << 16 | 321;
-    case 0x2904: /* NAV2-DOP */
+    case 0x2802: /* HNR-INS */
         return (uint32_t)322 << 16 | 323;
-    case 0x2907: /* NAV2-PVT */
+    case 0x2901: /* NAV2-POSECEF */
         return (uint32_t)324 << 16 | 325;
-    case 0x2909: /* NAV2-ODO */
+    case 0x2902: /* NAV2-POSLLH */
         return (uint32_t)326 << 16 | 327;
-    case 0x2911: /* NAV2-VELECEF */
+    case 0x2903: /* NAV2-STATUS */
         return (uint32_t)328 << 16 | 329;
-    case 0x2912: /* NAV2-VELNED */
+    case 0x2904: /* NAV2-DOP */
         return (uint32_t)330 << 16 | 331;
-    case 0x2920: /* NAV2-TIMEGPS */
+    case 0x2907: /* NAV2-PVT */
         return (uint32_t)332 << 16 | 333;
-    case 0x2921: /* NAV2-TIMEUTC */
+    case 0x2909: /* NAV2-ODO */
         return (uint32_t)334 << 16 | 335;
-    case 0x2922: /* NAV2-CLOCK */
+    case 0x2911: /* NAV2-VELECEF */
         return (uint32_t)336 << 16 | 337;
-    case 0x2923: /* NAV2-TIMEGLO */
+    case 0x2912: /* NAV2-VELNED */
         return (uint32_t)338 << 16 | 339;
-    case 0x2924: /* NAV2-TIMEBDS */
+    case 0x2920: /* NAV2-TIMEGPS */
         return (uint32_t)340 << 16 | 341;
-    case 0x2925: /* NAV2-TIMEGAL */
+    case 0x2921: /* NAV2-TIMEUTC */
         return (uint32_t)342 << 16 | 343;
-    case 0x2926: /* NAV2-TIMELS */
+    case 0x2922: /* NAV2-CLOCK */
         return (uint32_t)344 << 16 | 345;
-    case 0x2927: /* NAV2-TIMEQZSS */
+    case 0x2923: /* NAV2-TIMEGLO */
         return (uint32_t)346 << 16 | 347;
-    case 0x2932: /* NAV2-SBAS */
+    case 0x2924: /* NAV2-TIMEBDS */
         return (uint32_t)348 << 16 | 349;
-    case 0x2935: /* NAV2-SAT */
+    case 0x2925: /* NAV2-TIMEGAL */
         return (uint32_t)350 << 16 | 351;
-    case 0x2936: /* NAV2-COV */
+    case 0x2926: /* NAV2-TIMELS */
         return (uint32_t)352 << 16 | 353;
-    case 0x2942: /* NAV2-SLAS */
+    case 0x2927: /* NAV2-TIMEQZSS */
         return (uint32_t)354 << 16 | 355;
-    case 0x2943: /* NAV2-SIG */
+    case 0x2932: /* NAV2-SBAS */
         return (uint32_t)356 << 16 | 357;
+    case 0x2935: /* NAV2-SAT */
+        return (uint32_t)358 << 16 | 359;
+    case 0x2936: /* NAV2-COV */
+        return (uint32_t)360 << 16 | 361;
+    case 0x2942: /* NAV2-SLAS */
+        return (uint32_t)362 << 16 | 363;
+    case 0x2943: /* NAV2-SIG */
+        return (uint32_t)364 << 16 | 365;
     case 0x2961: /* NAV2-EOE */
-        return (uint32_t)358 << 16 | 358;
+        return (uint32_t)366 << 16 | 366;
     default:
         return UBX_NO_LAYOUTS;
     }
@@ -15484,140 +15720,144 @@ static const struct {
     {0x0236, 81, 82}, /* RXM-SPARTNKEY */
     {0x0241, 83, 84}, /* RXM-PMREQ */
     {0x0259, 85, 86}, /* RXM-RLM */
-    {0x0400, 87, 87}, /* INF-ERROR */
-    {0x0401, 88, 88}, /* INF-WARNING */
-    {0x0402, 89, 89}, /* INF-NOTICE */
-    {0x0403, 90, 90}, /* INF-TEST */
-    {0x0404, 91, 91}, /* INF-DEBUG */
-    {0x0500, 92, 92}, /* ACK-NAK */
-    {0x0501, 93, 93}, /* ACK-ACK */
-    {0x0600, 94, 96}, /* CFG-PRT */
-    {0x0601, 97, 99}, /* CFG-MSG */
-    {0x0602, 100, 101}, /* CFG-INF */
-    {0x0604, 102, 102}, /* CFG-RST */
-    {0x0606, 103, 105}, /* CFG-DAT */
-    {0x0608, 106, 107}, /* CFG-RATE */
-    {0x0609, 108, 109}, /* CFG-CFG */
-    {0x0611, 110, 111}, /* CFG-RXM */
-    {0x0613, 112, 113}, /* CFG-ANT */
-    {0x0616, 114, 115}, /* CFG-SBAS */
-    {0x0617, 116, 119}, /* CFG-NMEA */
-    {0x061B, 120, 121}, /* CFG-USB */
-    {0x061E, 122, 123}, /* CFG-ODO */
-    {0x0623, 124, 125}, /* CFG-NAVX5 */
-    {0x0624, 126, 127}, /* CFG-NAV5 */
-    {0x0631, 128, 130}, /* CFG-TP5 */
-    {0x0634, 131, 132}, /* CFG-RINV */
-    {0x0639, 133, 134}, /* CFG-ITFM */
-    {0x063B, 135, 137}, /* CFG-PM2 */
-    {0x063E, 138, 139}, /* CFG-GNSS */
-    {0x0647, 140, 141}, /* CFG-LOGFILTER */
-    {0x064C, 142, 143}, /* CFG-ESFA */
-    {0x064D, 144, 145}, /* CFG-ESFG */
-    {0x0653, 146, 147}, /* CFG-TXSLOT */
-    {0x0656, 148, 149}, /* CFG-ESFALG */
-    {0x0657, 150, 150}, /* CFG-PWR */
-    {0x065C, 151, 152}, /* CFG-HNR */
-    {0x0660, 153, 154}, /* CFG-ESRC */
-    {0x0661, 155, 156}, /* CFG-DOSC */
-    {0x0662, 157, 158}, /* CFG-SMGR */
-    {0x0669, 159, 160}, /* CFG-GEOFENCE */
-    {0x0670, 161, 162}, /* CFG-DGNSS */
-    {0x0671, 163, 164}, /* CFG-TMODE3 */
-    {0x0682, 165, 166}, /* CFG-ESFWT */
-    {0x0684, 167, 167}, /* CFG-FIXSEED */
-    {0x0686, 168, 169}, /* CFG-PMS */
-    {0x068A, 170, 171}, /* CFG-VALSET */
-    {0x068B, 172, 173}, /* CFG-VALGET */
-    {0x068C, 174, 175}, /* CFG-VALDEL */
-    {0x068D, 176, 177}, /* CFG-SLAS */
-    {0x0693, 178, 179}, /* CFG-BATCH */
-    {0x0914, 180, 182}, /* UPD-SOS */
-    {0x0A02, 183, 184}, /* MON-IO */
-    {0x0A04, 185, 186}, /* MON-VER */
-    {0x0A06, 187, 188}, /* MON-MSGPP */
-    {0x0A07, 189, 190}, /* MON-RXBUF */
-    {0x0A08, 191, 192}, /* MON-TXBUF */
-    {0x0A09, 193, 194}, /* MON-HW */
-    {0x0A0B, 195, 196}, /* MON-HW2 */
-    {0x0A21, 197, 197}, /* MON-RXR */
-    {0x0A27, 198, 199}, /* MON-PATCH */
-    {0x0A28, 200, 201}, /* MON-GNSS */
-    {0x0A2E, 202, 203}, /* MON-SMGR */
-    {0x0A31, 204, 205}, /* MON-SPAN */
-    {0x0A36, 206, 207}, /* MON-COMMS */
-    {0x0A37, 208, 209}, /* MON-HW3 */
-    {0x0A38, 210, 211}, /* MON-RF */
-    {0x0A39, 212, 213}, /* MON-SYS */
-    {0x0B01, 214, 215}, /* AID-INI */
-    {0x0B02, 216, 217}, /* AID-HUI */
-    {0x0B30, 218, 221}, /* AID-ALM */
-    {0x0B31, 222, 225}, /* AID-EPH */
-    {0x0B33, 226, 228}, /* AID-AOP */
-    {0x0D01, 229, 230}, /* TIM-TP */
-    {0x0D03, 231, 232}, /* TIM-TM2 */
-    {0x0D04, 233, 234}, /* TIM-SVIN */
-    {0x0D06, 235, 236}, /* TIM-VRFY */
-    {0x0D11, 237, 238}, /* TIM-DOSC */
-    {0x0D12, 239, 240}, /* TIM-TOS */
-    {0x0D13, 241, 242}, /* TIM-SMEAS */
-    {0x0D15, 243, 246}, /* TIM-VCOCAL */
-    {0x0D16, 247, 248}, /* TIM-FCHG */
-    {0x0D17, 249, 249}, /* TIM-HOC */
-    {0x1002, 250, 250}, /* ESF-MEAS */
-    {0x1003, 251, 251}, /* ESF-RAW */
-    {0x1010, 252, 253}, /* ESF-STATUS */
-    {0x1014, 254, 255}, /* ESF-ALG */
-    {0x1015, 256, 257}, /* ESF-INS */
-    {0x1300, 258, 262}, /* MGA-GPS */
-    {0x1302, 263, 266}, /* MGA-GAL */
-    {0x1303, 267, 271}, /* MGA-BDS */
-    {0x1305, 272, 274}, /* MGA-QZSS */
-    {0x1306, 275, 277}, /* MGA-GLO */
-    {0x1320, 278, 278}, /* MGA-ANO */
-    {0x1340, 279, 285}, /* MGA-INI */
-    {0x1360, 286, 286}, /* MGA-ACK */
-    {0x1380, 287, 288}, /* MGA-DBD */
-    {0x2103, 289, 289}, /* LOG-ERASE */
-    {0x2104, 290, 290}, /* LOG-STRING */
-    {0x2107, 291, 291}, /* LOG-CREATE */
-    {0x2108, 292, 293}, /* LOG-INFO */
-    {0x2109, 294, 294}, /* LOG-RETRIEVE */
-    {0x210B, 295, 295}, /* LOG-RETRIEVEPOS */
-    {0x210D, 296, 296}, /* LOG-RETRIEVESTRING */
-    {0x210E, 297, 298}, /* LOG-FINDTIME */
-    {0x210F, 299, 299}, /* LOG-RETRIEVEPOSEXTRA */
-    {0x2110, 300, 300}, /* LOG-RETRIEVEBATCH */
-    {0x2111, 301, 301}, /* LOG-BATCH */
-    {0x2701, 302, 302}, /* SEC-SIGN */
-    {0x2703, 303, 304}, /* SEC-UNIQID */
-    {0x2709, 305, 307}, /* SEC-SIG */
-    {0x2710, 308, 309}, /* SEC-SIGLOG */
-    {0x2800, 310, 311}, /* HNR-PVT */
-    {0x2801, 312, 313}, /* HNR-ATT */
-    {0x2802, 314, 315}, /* HNR-INS */
-    {0x2901, 316, 317}, /* NAV2-POSECEF */
-    {0x2902, 318, 319}, /* NAV2-POSLLH */
-    {0x2903, 320, 321}, /* NAV2-STATUS */
-    {0x2904, 322, 323}, /* NAV2-DOP */
-    {0x2907, 324, 325}, /* NAV2-PVT */
-    {0x2909, 326, 327}, /* NAV2-ODO */
-    {0x2911, 328, 329}, /* NAV2-VELECEF */
-    {0x2912, 330, 331}, /* NAV2-VELNED */
-    {0x2920, 332, 333}, /* NAV2-TIMEGPS */
-    {0x2921, 334, 335}, /* NAV2-TIMEUTC */
-    {0x2922, 336, 337}, /* NAV2-CLOCK */
-    {0x2923, 338, 339}, /* NAV2-TIMEGLO */
-    {0x2924, 340, 341}, /* NAV2-TIMEBDS */
-    {0x2925, 342, 343}, /* NAV2-TIMEGAL */
-    {0x2926, 344, 345}, /* NAV2-TIMELS */
-    {0x2927, 346, 347}, /* NAV2-TIMEQZSS */
-    {0x2932, 348, 349}, /* NAV2-SBAS */
-    {0x2935, 350, 351}, /* NAV2-SAT */
-    {0x2936, 352, 353}, /* NAV2-COV */
-    {0x2942, 354, 355}, /* NAV2-SLAS */
-    {0x2943, 356, 357}, /* NAV2-SIG */
-    {0x2961, 358, 358}, /* NAV2-EOE */
+    {0x0261, 87, 88}, /* RXM-IMES */
+    {0x0400, 89, 89}, /* INF-ERROR */
+    {0x0401, 90, 90}, /* INF-WARNING */
+    {0x0402, 91, 91}, /* INF-NOTICE */
+    {0x0403, 92, 92}, /* INF-TEST */
+    {0x0404, 93, 93}, /* INF-DEBUG */
+    {0x0500, 94, 94}, /* ACK-NAK */
+    {0x0501, 95, 95}, /* ACK-ACK */
+    {0x0600, 96, 98}, /* CFG-PRT */
+    {0x0601, 99, 101}, /* CFG-MSG */
+    {0x0602, 102, 103}, /* CFG-INF */
+    {0x0604, 104, 104}, /* CFG-RST */
+    {0x0606, 105, 107}, /* CFG-DAT */
+    {0x0608, 108, 109}, /* CFG-RATE */
+    {0x0609, 110, 111}, /* CFG-CFG */
+    {0x0611, 112, 113}, /* CFG-RXM */
+    {0x0613, 114, 115}, /* CFG-ANT */
+    {0x0616, 116, 117}, /* CFG-SBAS */
+    {0x0617, 118, 121}, /* CFG-NMEA */
+    {0x061B, 122, 123}, /* CFG-USB */
+    {0x061E, 124, 125}, /* CFG-ODO */
+    {0x0623, 126, 127}, /* CFG-NAVX5 */
+    {0x0624, 128, 129}, /* CFG-NAV5 */
+    {0x0631, 130, 132}, /* CFG-TP5 */
+    {0x0634, 133, 134}, /* CFG-RINV */
+    {0x0639, 135, 136}, /* CFG-ITFM */
+    {0x063B, 137, 139}, /* CFG-PM2 */
+    {0x063D, 140, 141}, /* CFG-TMODE2 */
+    {0x063E, 142, 143}, /* CFG-GNSS */
+    {0x0647, 144, 145}, /* CFG-LOGFILTER */
+    {0x064C, 146, 147}, /* CFG-ESFA */
+    {0x064D, 148, 149}, /* CFG-ESFG */
+    {0x0653, 150, 151}, /* CFG-TXSLOT */
+    {0x0656, 152, 153}, /* CFG-ESFALG */
+    {0x0657, 154, 154}, /* CFG-PWR */
+    {0x065C, 155, 156}, /* CFG-HNR */
+    {0x0660, 157, 158}, /* CFG-ESRC */
+    {0x0661, 159, 160}, /* CFG-DOSC */
+    {0x0662, 161, 162}, /* CFG-SMGR */
+    {0x0669, 163, 164}, /* CFG-GEOFENCE */
+    {0x0670, 165, 166}, /* CFG-DGNSS */
+    {0x0671, 167, 168}, /* CFG-TMODE3 */
+    {0x0682, 169, 170}, /* CFG-ESFWT */
+    {0x0684, 171, 171}, /* CFG-FIXSEED */
+    {0x0685, 172, 172}, /* CFG-DYNSEED */
+    {0x0686, 173, 174}, /* CFG-PMS */
+    {0x068A, 175, 176}, /* CFG-VALSET */
+    {0x068B, 177, 178}, /* CFG-VALGET */
+    {0x068C, 179, 180}, /* CFG-VALDEL */
+    {0x068D, 181, 182}, /* CFG-SLAS */
+    {0x0693, 183, 184}, /* CFG-BATCH */
+    {0x0914, 185, 187}, /* UPD-SOS */
+    {0x0A02, 188, 189}, /* MON-IO */
+    {0x0A04, 190, 191}, /* MON-VER */
+    {0x0A06, 192, 193}, /* MON-MSGPP */
+    {0x0A07, 194, 195}, /* MON-RXBUF */
+    {0x0A08, 196, 197}, /* MON-TXBUF */
+    {0x0A09, 198, 199}, /* MON-HW */
+    {0x0A0B, 200, 201}, /* MON-HW2 */
+    {0x0A21, 202, 202}, /* MON-RXR */
+    {0x0A27, 203, 204}, /* MON-PATCH */
+    {0x0A28, 205, 206}, /* MON-GNSS */
+    {0x0A2E, 207, 208}, /* MON-SMGR */
+    {0x0A31, 209, 210}, /* MON-SPAN */
+    {0x0A36, 211, 212}, /* MON-COMMS */
+    {0x0A37, 213, 214}, /* MON-HW3 */
+    {0x0A38, 215, 216}, /* MON-RF */
+    {0x0A39, 217, 218}, /* MON-SYS */
+    {0x0B01, 219, 220}, /* AID-INI */
+    {0x0B02, 221, 222}, /* AID-HUI */
+    {0x0B30, 223, 226}, /* AID-ALM */
+    {0x0B31, 227, 230}, /* AID-EPH */
+    {0x0B33, 231, 233}, /* AID-AOP */
+    {0x0D01, 234, 235}, /* TIM-TP */
+    {0x0D03, 236, 237}, /* TIM-TM2 */
+    {0x0D04, 238, 239}, /* TIM-SVIN */
+    {0x0D06, 240, 241}, /* TIM-VRFY */
+    {0x0D11, 242, 243}, /* TIM-DOSC */
+    {0x0D12, 244, 245}, /* TIM-TOS */
+    {0x0D13, 246, 247}, /* TIM-SMEAS */
+    {0x0D15, 248, 251}, /* TIM-VCOCAL */
+    {0x0D16, 252, 253}, /* TIM-FCHG */
+    {0x0D17, 254, 254}, /* TIM-HOC */
+    {0x1002, 255, 255}, /* ESF-MEAS */
+    {0x1003, 256, 256}, /* ESF-RAW */
+    {0x1010, 257, 258}, /* ESF-STATUS */
+    {0x1014, 259, 260}, /* ESF-ALG */
+    {0x1015, 261, 262}, /* ESF-INS */
+    {0x1300, 263, 267}, /* MGA-GPS */
+    {0x1302, 268, 271}, /* MGA-GAL */
+    {0x1303, 272, 276}, /* MGA-BDS */
+    {0x1305, 277, 279}, /* MGA-QZSS */
+    {0x1306, 280, 282}, /* MGA-GLO */
+    {0x1320, 283, 283}, /* MGA-ANO */
+    {0x1321, 284, 286}, /* MGA-FLASH */
+    {0x1340, 287, 293}, /* MGA-INI */
+    {0x1360, 294, 294}, /* MGA-ACK */
+    {0x1380, 295, 296}, /* MGA-DBD */
+    {0x2103, 297, 297}, /* LOG-ERASE */
+    {0x2104, 298, 298}, /* LOG-STRING */
+    {0x2107, 299, 299}, /* LOG-CREATE */
+    {0x2108, 300, 301}, /* LOG-INFO */
+    {0x2109, 302, 302}, /* LOG-RETRIEVE */
+    {0x210B, 303, 303}, /* LOG-RETRIEVEPOS */
+    {0x210D, 304, 304}, /* LOG-RETRIEVESTRING */
+    {0x210E, 305, 306}, /* LOG-FINDTIME */
+    {0x210F, 307, 307}, /* LOG-RETRIEVEPOSEXTRA */
+    {0x2110, 308, 308}, /* LOG-RETRIEVEBATCH */
+    {0x2111, 309, 309}, /* LOG-BATCH */
+    {0x2701, 310, 310}, /* SEC-SIGN */
+    {0x2703, 311, 312}, /* SEC-UNIQID */
+    {0x2709, 313, 315}, /* SEC-SIG */
+    {0x2710, 316, 317}, /* SEC-SIGLOG */
+    {0x2800, 318, 319}, /* HNR-PVT */
+    {0x2801, 320, 321}, /* HNR-ATT */
+    {0x2802, 322, 323}, /* HNR-INS */
+    {0x2901, 324, 325}, /* NAV2-POSECEF */
+    {0x2902, 326, 327}, /* NAV2-POSLLH */
+    {0x2903, 328, 329}, /* NAV2-STATUS */
+    {0x2904, 330, 331}, /* NAV2-DOP */
+    {0x2907, 332, 333}, /* NAV2-PVT */
+    {0x2909, 334, 335}, /* NAV2-ODO */
+    {0x2911, 336, 337}, /* NAV2-VELECEF */
+    {0x2912, 338, 339}, /* NAV2-VELNED */
+    {0x2920, 340, 341}, /* NAV2-TIMEGPS */
+    {0x2921, 342, 343}, /* NAV2-TIMEUTC */
+    {0x2922, 344, 345}, /* NAV2-CLOCK */
+    {0x2923, 346, 347}, /* NAV2-TIMEGLO */
+    {0x2924, 348, 349}, /* NAV2-TIMEBDS */
+    {0x2925, 350, 351}, /* NAV2-TIMEGAL */
+    {0x2926, 352, 353}, /* NAV2-TIMELS */
+    {0x2927, 354, 355}, /* NAV2-TIMEQZSS */
+    {0x2932, 356, 357}, /* NAV2-SBAS */
+    {0x2935, 358, 359}, /* NAV2-SAT */
+    {0x2936, 360, 361}, /* NAV2-COV */
+    {0x2942, 362, 363}, /* NAV2-SLAS */
+    {0x2943, 364, 365}, /* NAV2-SIG */
+    {0x2961, 366, 366}, /* NAV2-EOE */
 };
 
 static uint32_t ubx_message_layouts(unsigned key)
@@ -15642,53 +15882,53 @@ static const struct {
     uint8_t protocol, key_len, key[2];
     uint16_t first, last;
 } ubx_keyed[] = {
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 359, 359}, /* CASIC NAV-DOP */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 360, 360}, /* CASIC NAV-PV */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 361, 361}, /* CASIC NAV-TIMEUTC */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 362, 362}, /* CASIC NAV-GPSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 363, 363}, /* CASIC NAV-BDSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 364, 364}, /* CASIC NAV-GLNINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 365, 365}, /* CASIC ACK-NAK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 366, 366}, /* CASIC ACK-ACK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 367, 368}, /* CASIC CFG-PRT */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 369, 370}, /* CASIC CFG-MSG */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 371, 372}, /* CASIC CFG-RATE */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 373, 374}, /* CASIC MON-VER */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 375, 375}, /* SBF 4001 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 376, 376}, /* SBF 4006 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 377, 377}, /* SBF 4007 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 378, 378}, /* SBF 5905 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 379, 379}, /* SBF 5906 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 380, 380}, /* SBF 5907 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 381, 381}, /* SBF 5908 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 382, 382}, /* SBF 5914 rev 0 */
-    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 383, 383}, /* SIRF MID 67 SID 1 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 384, 384}, /* SIRF MID 2 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 385, 385}, /* SIRF MID 4 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 386, 386}, /* SIRF MID 6 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 387, 387}, /* SIRF MID 7 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 388, 388}, /* SIRF MID 9 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 389, 389}, /* SIRF MID 11 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 390, 390}, /* SIRF MID 12 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 391, 391}, /* SIRF MID 13 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 392, 392}, /* SIRF MID 18 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 393, 393}, /* SIRF MID 41 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 394, 394}, /* SIRF MID 52 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 395, 395}, /* SIRF MID 129 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 396, 396}, /* SIRF MID 132 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 397, 397}, /* SIRF MID 135 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 398, 398}, /* SIRF MID 255 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 399, 399}, /* SKYTRAQ 0x02 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 400, 400}, /* SKYTRAQ 0x09 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 401, 401}, /* SKYTRAQ 0x80 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 402, 402}, /* SKYTRAQ 0x83 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 403, 403}, /* SKYTRAQ 0x84 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 404, 404}, /* SKYTRAQ 0xA8 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 405, 405}, /* SKYTRAQ 0xDC */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 406, 406}, /* SKYTRAQ 0xDD */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 407, 407}, /* SKYTRAQ 0xDE */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 408, 408}, /* SKYTRAQ 0xDF */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 409, 409}, /* SKYTRAQ 0xE0 */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 367, 367}, /* CASIC NAV-DOP */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 368, 368}, /* CASIC NAV-PV */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 369, 369}, /* CASIC NAV-TIMEUTC */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 370, 370}, /* CASIC NAV-GPSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 371, 371}, /* CASIC NAV-BDSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 372, 372}, /* CASIC NAV-GLNINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 373, 373}, /* CASIC ACK-NAK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 374, 374}, /* CASIC ACK-ACK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 375, 376}, /* CASIC CFG-PRT */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 377, 378}, /* CASIC CFG-MSG */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 379, 380}, /* CASIC CFG-RATE */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 381, 382}, /* CASIC MON-VER */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 383, 383}, /* SBF 4001 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 384, 384}, /* SBF 4006 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 385, 385}, /* SBF 4007 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 386, 386}, /* SBF 5905 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 387, 387}, /* SBF 5906 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 388, 388}, /* SBF 5907 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 389, 389}, /* SBF 5908 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 390, 390}, /* SBF 5914 rev 0 */
+    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 391, 391}, /* SIRF MID 67 SID 1 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 392, 392}, /* SIRF MID 2 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 393, 393}, /* SIRF MID 4 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 394, 394}, /* SIRF MID 6 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 395, 395}, /* SIRF MID 7 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 396, 396}, /* SIRF MID 9 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 397, 397}, /* SIRF MID 11 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 398, 398}, /* SIRF MID 12 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 399, 399}, /* SIRF MID 13 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 400, 400}, /* SIRF MID 18 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 401, 401}, /* SIRF MID 41 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 402, 402}, /* SIRF MID 52 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 403, 403}, /* SIRF MID 129 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 404, 404}, /* SIRF MID 132 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 405, 405}, /* SIRF MID 135 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 406, 406}, /* SIRF MID 255 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 407, 407}, /* SKYTRAQ 0x02 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 408, 408}, /* SKYTRAQ 0x09 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 409, 409}, /* SKYTRAQ 0x80 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 410, 410}, /* SKYTRAQ 0x83 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 411, 411}, /* SKYTRAQ 0x84 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 412, 412}, /* SKYTRAQ 0xA8 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 413, 413}, /* SKYTRAQ 0xDC */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 414, 414}, /* SKYTRAQ 0xDD */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 415, 415}, /* SKYTRAQ 0xDE */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 416, 416}, /* SKYTRAQ 0xDF */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 417, 417}, /* SKYTRAQ 0xE0 */
 };
 
 /* nmea_ubx_decode, inlined into nmea_ubx_decode_frame (a call less a frame). */

@@ -23,20 +23,21 @@
 //   spec/binary/ubx/messages/rxm_svsi.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
 //   spec/binary/ubx/messages/rxm_spartn.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
 //   spec/binary/ubx/messages/rxm_spartnkey.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
-//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/inf_error.yaml,
-//   spec/binary/ubx/messages/inf_warning.yaml, spec/binary/ubx/messages/inf_notice.yaml,
-//   spec/binary/ubx/messages/inf_test.yaml, spec/binary/ubx/messages/inf_debug.yaml,
-//   spec/binary/ubx/messages/ack_nak.yaml, spec/binary/ubx/messages/ack_ack.yaml,
-//   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
-//   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
-//   spec/binary/ubx/messages/cfg_dat.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
-//   spec/binary/ubx/messages/cfg_cfg.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
-//   spec/binary/ubx/messages/cfg_ant.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
-//   spec/binary/ubx/messages/cfg_nmea.yaml, spec/binary/ubx/messages/cfg_usb.yaml,
-//   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
-//   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
-//   spec/binary/ubx/messages/cfg_rinv.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
-//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
+//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/rxm_imes.yaml,
+//   spec/binary/ubx/messages/inf_error.yaml, spec/binary/ubx/messages/inf_warning.yaml,
+//   spec/binary/ubx/messages/inf_notice.yaml, spec/binary/ubx/messages/inf_test.yaml,
+//   spec/binary/ubx/messages/inf_debug.yaml, spec/binary/ubx/messages/ack_nak.yaml,
+//   spec/binary/ubx/messages/ack_ack.yaml, spec/binary/ubx/messages/cfg_prt.yaml,
+//   spec/binary/ubx/messages/cfg_msg.yaml, spec/binary/ubx/messages/cfg_inf.yaml,
+//   spec/binary/ubx/messages/cfg_rst.yaml, spec/binary/ubx/messages/cfg_dat.yaml,
+//   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_cfg.yaml,
+//   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_ant.yaml,
+//   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_nmea.yaml,
+//   spec/binary/ubx/messages/cfg_usb.yaml, spec/binary/ubx/messages/cfg_odo.yaml,
+//   spec/binary/ubx/messages/cfg_navx5.yaml, spec/binary/ubx/messages/cfg_nav5.yaml,
+//   spec/binary/ubx/messages/cfg_tp5.yaml, spec/binary/ubx/messages/cfg_rinv.yaml,
+//   spec/binary/ubx/messages/cfg_itfm.yaml, spec/binary/ubx/messages/cfg_pm2.yaml,
+//   spec/binary/ubx/messages/cfg_tmode2.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
 //   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_esfa.yaml,
 //   spec/binary/ubx/messages/cfg_esfg.yaml, spec/binary/ubx/messages/cfg_txslot.yaml,
 //   spec/binary/ubx/messages/cfg_esfalg.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
@@ -44,31 +45,32 @@
 //   spec/binary/ubx/messages/cfg_dosc.yaml, spec/binary/ubx/messages/cfg_smgr.yaml,
 //   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
 //   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_esfwt.yaml,
-//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
-//   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
-//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_slas.yaml,
-//   spec/binary/ubx/messages/cfg_batch.yaml, spec/binary/ubx/messages/upd_sos.yaml,
-//   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_ver.yaml,
-//   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
-//   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_hw.yaml,
-//   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
-//   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
-//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
-//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
-//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
-//   spec/binary/ubx/messages/aid_ini.yaml, spec/binary/ubx/messages/aid_hui.yaml,
-//   spec/binary/ubx/messages/aid_alm.yaml, spec/binary/ubx/messages/aid_eph.yaml,
-//   spec/binary/ubx/messages/aid_aop.yaml, spec/binary/ubx/messages/tim_tp.yaml,
-//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_svin.yaml,
-//   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
-//   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
-//   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
-//   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/esf_meas.yaml,
-//   spec/binary/ubx/messages/esf_raw.yaml, spec/binary/ubx/messages/esf_status.yaml,
-//   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
-//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_gal.yaml,
-//   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
-//   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_ano.yaml,
+//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_dynseed.yaml,
+//   spec/binary/ubx/messages/cfg_pms.yaml, spec/binary/ubx/messages/cfg_valset.yaml,
+//   spec/binary/ubx/messages/cfg_valget.yaml, spec/binary/ubx/messages/cfg_valdel.yaml,
+//   spec/binary/ubx/messages/cfg_slas.yaml, spec/binary/ubx/messages/cfg_batch.yaml,
+//   spec/binary/ubx/messages/upd_sos.yaml, spec/binary/ubx/messages/mon_io.yaml,
+//   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
+//   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
+//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
+//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_patch.yaml,
+//   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+//   spec/binary/ubx/messages/mon_span.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/aid_ini.yaml,
+//   spec/binary/ubx/messages/aid_hui.yaml, spec/binary/ubx/messages/aid_alm.yaml,
+//   spec/binary/ubx/messages/aid_eph.yaml, spec/binary/ubx/messages/aid_aop.yaml,
+//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
+//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
+//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
+//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
+//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
+//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
+//   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
+//   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
+//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_bds.yaml,
+//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mga_glo.yaml,
+//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_flash.yaml,
 //   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_ack.yaml,
 //   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/log_erase.yaml,
 //   spec/binary/ubx/messages/log_string.yaml, spec/binary/ubx/messages/log_create.yaml,
@@ -119,7 +121,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest d1e7a4678610523c)
+//   spec/enums/ubx_gnss_id.yaml (digest c59ff2eb53148fd3)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ: spec/binary/<protocol>):
@@ -388,6 +390,9 @@ typedef enum {
 #ifndef NMEA_UBX_RXM_SPARTNKEY_KEYS_MAX
 #define NMEA_UBX_RXM_SPARTNKEY_KEYS_MAX (64 < NMEA_UBX_MAX_ENTRIES ? 64 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX
+#define NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_CFG_MSG_RATES_MAX
 #define NMEA_UBX_CFG_MSG_RATES_MAX (6 < NMEA_UBX_MAX_ENTRIES ? 6 : NMEA_UBX_MAX_ENTRIES)
 #endif
@@ -599,6 +604,9 @@ typedef enum {
 #define NMEA_UBX_MGA_GLO_EPH_TYPE 0x01
 #define NMEA_UBX_MGA_GLO_ALM_TYPE 0x02
 #define NMEA_UBX_MGA_GLO_TIMEOFFSET_TYPE 0x03
+#define NMEA_UBX_MGA_FLASH_DATA_TYPE 0x01
+#define NMEA_UBX_MGA_FLASH_STOP_TYPE 0x02
+#define NMEA_UBX_MGA_FLASH_ACK_TYPE 0x03
 #define NMEA_UBX_MGA_INI_POS_XYZ_TYPE 0x00
 #define NMEA_UBX_MGA_INI_POS_LLH_TYPE 0x01
 #define NMEA_UBX_MGA_INI_TIME_UTC_TYPE 0x10
@@ -1788,6 +1796,53 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_rxm_rlm_short;
 
+/* Indoor messaging system information: UBX RXM-IMES (class 0x02 id 0x61), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_imes_poll;
+
+/* One entry of transmitters (transmitters). */
+typedef struct {
+    uint8_t reserved2; /* Reserved (reserved, as sent) */
+    uint8_t tx_id; /* Transmitter identifier */
+    uint32_t reserved3; /* Reserved (reserved, as sent) */
+    uint8_t cno; /* Carrier to noise ratio [dBHz] */
+    uint16_t reserved4; /* Reserved (reserved, as sent) */
+    int32_t doppler; /* Doppler frequency [Hz]; raw, value = raw / 4096 */
+    uint32_t position1_1; /* Position 1 frame (first word) (bitfield) */
+    uint8_t pos1_floor; /* Floor number (position1_1 bits 0-7) */
+    uint32_t pos1_lat; /* Latitude (raw) (position1_1 bits 8-30) */
+    uint32_t position1_2; /* Position 1 frame (second word) (bitfield) */
+    uint32_t pos1_lon; /* Longitude (raw) (position1_2 bits 0-23) */
+    bool pos1_valid; /* Position 1 frame valid (position1_2 bit 24) */
+    uint32_t position2_1; /* Position 2 frame (bitfield) */
+    uint8_t pos2_floor; /* Floor number (position2_1 bits 0-7) */
+    uint16_t pos2_alt; /* Altitude (raw) (position2_1 bits 8-19) */
+    uint8_t pos2_acc; /* Accuracy index (position2_1 bits 20-21) */
+    bool pos2_valid; /* Position 2 frame valid (position2_1 bit 22) */
+    int32_t lat; /* Latitude (position 2 frame) [semicircle]; raw, value = raw / 16777216 */
+    int32_t lon; /* Longitude (position 2 frame) [semicircle]; raw, value = raw / 2147483648 */
+    uint32_t short_id_frame; /* Short id frame (bitfield) */
+    uint16_t short_id; /* Short id (short_id_frame bits 0-11) */
+    bool short_valid; /* Short id valid (short_id_frame bit 12) */
+    bool short_boundary; /* Boundary bit (short_id_frame bit 13) */
+    uint32_t medium_id_lsb; /* Medium id (low 32 bits) */
+    uint32_t medium_id_2; /* Medium id frame (the rest) (bitfield) */
+    bool medium_id_msb; /* Medium id (bit 32) (medium_id_2 bit 0) */
+    bool medium_valid; /* Medium id valid (medium_id_2 bit 1) */
+    bool medium_boundary; /* Boundary bit (medium_id_2 bit 2) */
+} nmea_ubx_rxm_imes_transmitter;
+
+/* Indoor messaging system information: UBX RXM-IMES (class 0x02 id 0x61), output. */
+typedef struct {
+    uint8_t num_tx; /* Number of transmitters */
+    uint8_t version; /* Message version */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t transmitters_count; /* the entries of transmitters */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_rxm_imes_transmitter transmitters[NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX]; /* Transmitters */
+} nmea_ubx_rxm_imes;
+
 /* Error message: UBX INF-ERROR (class 0x04 id 0x00), output. */
 typedef struct {
     nmea_ubx_bytes text; /* Text (the bytes left, ISO 8859-1) */
@@ -2423,6 +2478,27 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_pm2_v1;
 
+/* Time mode settings 2 (timing receiver): UBX CFG-TMODE2 (class 0x06 id 0x3D), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_tmode2_poll;
+
+/* Time mode settings 2 (timing receiver): UBX CFG-TMODE2 (class 0x06 id 0x3D), input, output. */
+typedef struct {
+    uint8_t time_mode; /* Time transfer mode */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t flags; /* Position flags (bitfield) */
+    bool lla; /* The position is latitude, longitude and altitude (not ECEF) (flags bit 0) */
+    bool alt_inv; /* The altitude is not valid (with lla) (flags bit 1) */
+    int32_t ecef_x_or_lat; /* ECEF X (cm) or latitude (1e-7 deg) */
+    int32_t ecef_y_or_lon; /* ECEF Y (cm) or longitude (1e-7 deg) */
+    int32_t ecef_z_or_alt; /* ECEF Z or altitude (cm) */
+    uint32_t fixed_pos_acc; /* Accuracy of the fixed position [mm] */
+    uint32_t svin_min_dur; /* Survey-in minimum duration [s] */
+    uint32_t svin_acc_limit; /* Survey-in position accuracy limit [mm] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_tmode2;
+
 /* GNSS system configuration: UBX CFG-GNSS (class 0x06 id 0x3E), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -2783,6 +2859,15 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
     nmea_ubx_cfg_fixseed_message messages[NMEA_UBX_CFG_FIXSEED_MESSAGES_MAX]; /* Messages to sign */
 } nmea_ubx_cfg_fixseed;
+
+/* Programming the dynamic seed for the host interface signature: UBX CFG-DYNSEED (class 0x06 id 0x85), input. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t seed_hi; /* High part of the seed */
+    uint32_t seed_lo; /* Low part of the seed */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_dynseed;
 
 /* Power mode setup: UBX CFG-PMS (class 0x06 id 0x86), poll. */
 typedef struct {
@@ -4419,6 +4504,33 @@ typedef struct {
     uint32_t reserved1; /* Reserved (reserved, as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_mga_ano;
+
+/* AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t sequence; /* Block sequence number */
+    uint16_t size; /* Bytes of data in this block */
+    nmea_ubx_bytes data; /* Data (the bytes left) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_flash_data;
+
+/* AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_flash_stop;
+
+/* AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), output. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t ack; /* Acknowledgement */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t sequence; /* Sequence number of the DATA block acknowledged; raw, value = raw; 65535: stop */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_flash_ack;
 
 /* Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input. */
 typedef struct {
@@ -6446,6 +6558,8 @@ typedef enum {
     NMEA_UBX_MSG_RXM_PMREQ_SHORT, /* RXM-PMREQ, input */
     NMEA_UBX_MSG_RXM_RLM, /* RXM-RLM, output */
     NMEA_UBX_MSG_RXM_RLM_SHORT, /* RXM-RLM, output */
+    NMEA_UBX_MSG_RXM_IMES_POLL, /* RXM-IMES, poll */
+    NMEA_UBX_MSG_RXM_IMES, /* RXM-IMES, output */
     NMEA_UBX_MSG_INF_ERROR, /* INF-ERROR, output */
     NMEA_UBX_MSG_INF_WARNING, /* INF-WARNING, output */
     NMEA_UBX_MSG_INF_NOTICE, /* INF-NOTICE, output */
@@ -6497,6 +6611,8 @@ typedef enum {
     NMEA_UBX_MSG_CFG_PM2_POLL, /* CFG-PM2, poll */
     NMEA_UBX_MSG_CFG_PM2, /* CFG-PM2, input, output, version 0x02 */
     NMEA_UBX_MSG_CFG_PM2_V1, /* CFG-PM2, input, output, version 0x01 */
+    NMEA_UBX_MSG_CFG_TMODE2_POLL, /* CFG-TMODE2, poll */
+    NMEA_UBX_MSG_CFG_TMODE2, /* CFG-TMODE2, input, output */
     NMEA_UBX_MSG_CFG_GNSS_POLL, /* CFG-GNSS, poll */
     NMEA_UBX_MSG_CFG_GNSS, /* CFG-GNSS, input, output */
     NMEA_UBX_MSG_CFG_LOGFILTER_POLL, /* CFG-LOGFILTER, poll */
@@ -6527,6 +6643,7 @@ typedef enum {
     NMEA_UBX_MSG_CFG_ESFWT_POLL, /* CFG-ESFWT, poll */
     NMEA_UBX_MSG_CFG_ESFWT, /* CFG-ESFWT, input, output */
     NMEA_UBX_MSG_CFG_FIXSEED, /* CFG-FIXSEED, input */
+    NMEA_UBX_MSG_CFG_DYNSEED, /* CFG-DYNSEED, input */
     NMEA_UBX_MSG_CFG_PMS_POLL, /* CFG-PMS, poll */
     NMEA_UBX_MSG_CFG_PMS, /* CFG-PMS, input, output */
     NMEA_UBX_MSG_CFG_VALSET_V0, /* CFG-VALSET, input, version 0x00 */
@@ -6638,6 +6755,9 @@ typedef enum {
     NMEA_UBX_MSG_MGA_GLO_ALM, /* MGA-GLO, input, type 0x02 */
     NMEA_UBX_MSG_MGA_GLO_TIMEOFFSET, /* MGA-GLO, input, type 0x03 */
     NMEA_UBX_MSG_MGA_ANO, /* MGA-ANO, input */
+    NMEA_UBX_MSG_MGA_FLASH_DATA, /* MGA-FLASH, input, type 0x01 */
+    NMEA_UBX_MSG_MGA_FLASH_STOP, /* MGA-FLASH, input, type 0x02 */
+    NMEA_UBX_MSG_MGA_FLASH_ACK, /* MGA-FLASH, output, type 0x03 */
     NMEA_UBX_MSG_MGA_INI_POS_XYZ, /* MGA-INI, input, type 0x00 */
     NMEA_UBX_MSG_MGA_INI_POS_LLH, /* MGA-INI, input, type 0x01 */
     NMEA_UBX_MSG_MGA_INI_TIME_UTC, /* MGA-INI, input, type 0x10 */
@@ -6863,6 +6983,8 @@ typedef struct {
         nmea_ubx_rxm_pmreq_short rxm_pmreq_short;
         nmea_ubx_rxm_rlm rxm_rlm;
         nmea_ubx_rxm_rlm_short rxm_rlm_short;
+        nmea_ubx_rxm_imes_poll rxm_imes_poll;
+        nmea_ubx_rxm_imes rxm_imes;
         nmea_ubx_inf_error inf_error;
         nmea_ubx_inf_warning inf_warning;
         nmea_ubx_inf_notice inf_notice;
@@ -6914,6 +7036,8 @@ typedef struct {
         nmea_ubx_cfg_pm2_poll cfg_pm2_poll;
         nmea_ubx_cfg_pm2 cfg_pm2;
         nmea_ubx_cfg_pm2_v1 cfg_pm2_v1;
+        nmea_ubx_cfg_tmode2_poll cfg_tmode2_poll;
+        nmea_ubx_cfg_tmode2 cfg_tmode2;
         nmea_ubx_cfg_gnss_poll cfg_gnss_poll;
         nmea_ubx_cfg_gnss cfg_gnss;
         nmea_ubx_cfg_logfilter_poll cfg_logfilter_poll;
@@ -6944,6 +7068,7 @@ typedef struct {
         nmea_ubx_cfg_esfwt_poll cfg_esfwt_poll;
         nmea_ubx_cfg_esfwt cfg_esfwt;
         nmea_ubx_cfg_fixseed cfg_fixseed;
+        nmea_ubx_cfg_dynseed cfg_dynseed;
         nmea_ubx_cfg_pms_poll cfg_pms_poll;
         nmea_ubx_cfg_pms cfg_pms;
         nmea_ubx_cfg_valset_v0 cfg_valset_v0;
@@ -7055,6 +7180,9 @@ typedef struct {
         nmea_ubx_mga_glo_alm mga_glo_alm;
         nmea_ubx_mga_glo_timeoffset mga_glo_timeoffset;
         nmea_ubx_mga_ano mga_ano;
+        nmea_ubx_mga_flash_data mga_flash_data;
+        nmea_ubx_mga_flash_stop mga_flash_stop;
+        nmea_ubx_mga_flash_ack mga_flash_ack;
         nmea_ubx_mga_ini_pos_xyz mga_ini_pos_xyz;
         nmea_ubx_mga_ini_pos_llh mga_ini_pos_llh;
         nmea_ubx_mga_ini_time_utc mga_ini_time_utc;

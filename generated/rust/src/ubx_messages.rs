@@ -7,20 +7,21 @@
 //   spec/binary/ubx/messages/cfg_ant.yaml, spec/binary/ubx/messages/cfg_batch.yaml,
 //   spec/binary/ubx/messages/cfg_cfg.yaml, spec/binary/ubx/messages/cfg_dat.yaml,
 //   spec/binary/ubx/messages/cfg_dgnss.yaml, spec/binary/ubx/messages/cfg_dosc.yaml,
-//   spec/binary/ubx/messages/cfg_esfa.yaml, spec/binary/ubx/messages/cfg_esfalg.yaml,
-//   spec/binary/ubx/messages/cfg_esfg.yaml, spec/binary/ubx/messages/cfg_esfwt.yaml,
-//   spec/binary/ubx/messages/cfg_esrc.yaml, spec/binary/ubx/messages/cfg_fixseed.yaml,
-//   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
-//   spec/binary/ubx/messages/cfg_hnr.yaml, spec/binary/ubx/messages/cfg_inf.yaml,
-//   spec/binary/ubx/messages/cfg_itfm.yaml, spec/binary/ubx/messages/cfg_logfilter.yaml,
-//   spec/binary/ubx/messages/cfg_msg.yaml, spec/binary/ubx/messages/cfg_nav5.yaml,
-//   spec/binary/ubx/messages/cfg_navx5.yaml, spec/binary/ubx/messages/cfg_nmea.yaml,
-//   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_pm2.yaml,
-//   spec/binary/ubx/messages/cfg_pms.yaml, spec/binary/ubx/messages/cfg_prt.yaml,
-//   spec/binary/ubx/messages/cfg_pwr.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
-//   spec/binary/ubx/messages/cfg_rinv.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
-//   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
-//   spec/binary/ubx/messages/cfg_slas.yaml, spec/binary/ubx/messages/cfg_smgr.yaml,
+//   spec/binary/ubx/messages/cfg_dynseed.yaml, spec/binary/ubx/messages/cfg_esfa.yaml,
+//   spec/binary/ubx/messages/cfg_esfalg.yaml, spec/binary/ubx/messages/cfg_esfg.yaml,
+//   spec/binary/ubx/messages/cfg_esfwt.yaml, spec/binary/ubx/messages/cfg_esrc.yaml,
+//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_geofence.yaml,
+//   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
+//   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
+//   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
+//   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
+//   spec/binary/ubx/messages/cfg_nmea.yaml, spec/binary/ubx/messages/cfg_odo.yaml,
+//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
+//   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
+//   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_rinv.yaml,
+//   spec/binary/ubx/messages/cfg_rst.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
+//   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_slas.yaml,
+//   spec/binary/ubx/messages/cfg_smgr.yaml, spec/binary/ubx/messages/cfg_tmode2.yaml,
 //   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
 //   spec/binary/ubx/messages/cfg_txslot.yaml, spec/binary/ubx/messages/cfg_usb.yaml,
 //   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
@@ -39,46 +40,47 @@
 //   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_string.yaml,
 //   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_ano.yaml,
 //   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
-//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_glo.yaml,
-//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_ini.yaml,
-//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mon_comms.yaml,
-//   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_hw.yaml,
-//   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
-//   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
-//   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_rf.yaml,
-//   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
-//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
-//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
-//   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav2_clock.yaml,
-//   spec/binary/ubx/messages/nav2_cov.yaml, spec/binary/ubx/messages/nav2_dop.yaml,
-//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/binary/ubx/messages/nav2_odo.yaml,
-//   spec/binary/ubx/messages/nav2_posecef.yaml, spec/binary/ubx/messages/nav2_posllh.yaml,
-//   spec/binary/ubx/messages/nav2_pvt.yaml, spec/binary/ubx/messages/nav2_sat.yaml,
-//   spec/binary/ubx/messages/nav2_sbas.yaml, spec/binary/ubx/messages/nav2_sig.yaml,
-//   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_status.yaml,
-//   spec/binary/ubx/messages/nav2_timebds.yaml, spec/binary/ubx/messages/nav2_timegal.yaml,
-//   spec/binary/ubx/messages/nav2_timeglo.yaml, spec/binary/ubx/messages/nav2_timegps.yaml,
-//   spec/binary/ubx/messages/nav2_timels.yaml, spec/binary/ubx/messages/nav2_timeqzss.yaml,
-//   spec/binary/ubx/messages/nav2_timeutc.yaml, spec/binary/ubx/messages/nav2_velecef.yaml,
-//   spec/binary/ubx/messages/nav2_velned.yaml, spec/binary/ubx/messages/nav_aopstatus.yaml,
-//   spec/binary/ubx/messages/nav_att.yaml, spec/binary/ubx/messages/nav_clock.yaml,
-//   spec/binary/ubx/messages/nav_cov.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
-//   spec/binary/ubx/messages/nav_dop.yaml, spec/binary/ubx/messages/nav_eell.yaml,
-//   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/nav_geofence.yaml,
-//   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
-//   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_orb.yaml,
-//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/nav_posecef.yaml,
-//   spec/binary/ubx/messages/nav_posllh.yaml, spec/binary/ubx/messages/nav_pvt.yaml,
-//   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
-//   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_sbas.yaml,
-//   spec/binary/ubx/messages/nav_sig.yaml, spec/binary/ubx/messages/nav_slas.yaml,
-//   spec/binary/ubx/messages/nav_sol.yaml, spec/binary/ubx/messages/nav_status.yaml,
-//   spec/binary/ubx/messages/nav_svin.yaml, spec/binary/ubx/messages/nav_svinfo.yaml,
-//   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
-//   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
-//   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
-//   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_velecef.yaml,
-//   spec/binary/ubx/messages/nav_velned.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
+//   spec/binary/ubx/messages/mga_flash.yaml, spec/binary/ubx/messages/mga_gal.yaml,
+//   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_gps.yaml,
+//   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
+//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
+//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
+//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_io.yaml,
+//   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_patch.yaml,
+//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
+//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+//   spec/binary/ubx/messages/mon_span.yaml, spec/binary/ubx/messages/mon_sys.yaml,
+//   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_ver.yaml,
+//   spec/binary/ubx/messages/nav2_clock.yaml, spec/binary/ubx/messages/nav2_cov.yaml,
+//   spec/binary/ubx/messages/nav2_dop.yaml, spec/binary/ubx/messages/nav2_eoe.yaml,
+//   spec/binary/ubx/messages/nav2_odo.yaml, spec/binary/ubx/messages/nav2_posecef.yaml,
+//   spec/binary/ubx/messages/nav2_posllh.yaml, spec/binary/ubx/messages/nav2_pvt.yaml,
+//   spec/binary/ubx/messages/nav2_sat.yaml, spec/binary/ubx/messages/nav2_sbas.yaml,
+//   spec/binary/ubx/messages/nav2_sig.yaml, spec/binary/ubx/messages/nav2_slas.yaml,
+//   spec/binary/ubx/messages/nav2_status.yaml, spec/binary/ubx/messages/nav2_timebds.yaml,
+//   spec/binary/ubx/messages/nav2_timegal.yaml, spec/binary/ubx/messages/nav2_timeglo.yaml,
+//   spec/binary/ubx/messages/nav2_timegps.yaml, spec/binary/ubx/messages/nav2_timels.yaml,
+//   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_timeutc.yaml,
+//   spec/binary/ubx/messages/nav2_velecef.yaml, spec/binary/ubx/messages/nav2_velned.yaml,
+//   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_att.yaml,
+//   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_cov.yaml,
+//   spec/binary/ubx/messages/nav_dgps.yaml, spec/binary/ubx/messages/nav_dop.yaml,
+//   spec/binary/ubx/messages/nav_eell.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
+//   spec/binary/ubx/messages/nav_geofence.yaml, spec/binary/ubx/messages/nav_hpposecef.yaml,
+//   spec/binary/ubx/messages/nav_hpposllh.yaml, spec/binary/ubx/messages/nav_odo.yaml,
+//   spec/binary/ubx/messages/nav_orb.yaml, spec/binary/ubx/messages/nav_pl.yaml,
+//   spec/binary/ubx/messages/nav_posecef.yaml, spec/binary/ubx/messages/nav_posllh.yaml,
+//   spec/binary/ubx/messages/nav_pvt.yaml, spec/binary/ubx/messages/nav_relposned.yaml,
+//   spec/binary/ubx/messages/nav_resetodo.yaml, spec/binary/ubx/messages/nav_sat.yaml,
+//   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
+//   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sol.yaml,
+//   spec/binary/ubx/messages/nav_status.yaml, spec/binary/ubx/messages/nav_svin.yaml,
+//   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
+//   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
+//   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timels.yaml,
+//   spec/binary/ubx/messages/nav_timeqzss.yaml, spec/binary/ubx/messages/nav_timeutc.yaml,
+//   spec/binary/ubx/messages/nav_velecef.yaml, spec/binary/ubx/messages/nav_velned.yaml,
+//   spec/binary/ubx/messages/rxm_cor.yaml, spec/binary/ubx/messages/rxm_imes.yaml,
 //   spec/binary/ubx/messages/rxm_measx.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
 //   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_rlm.yaml,
 //   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
@@ -91,7 +93,7 @@
 //   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tos.yaml,
 //   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
 //   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/upd_sos.yaml
-//   (digest c10f058934b616c2)
+//   (digest e2b5d76912eff66d)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The UBX messages of spec/binary/ubx: a struct per layout (named as the Python package's
@@ -2626,6 +2628,77 @@ impl<'a> CfgDosc<'a> {
         j.int("num_osc", self.num_osc)?;
         j.int("reserved1", self.reserved1)?;
         self.oscillators.json(j, "oscillators")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Programming the dynamic seed for the host interface signature: UBX CFG-DYNSEED (class 0x06 id 0x85), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgDynseed<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// High part of the seed.
+    pub seed_hi: u32,
+    /// Low part of the seed.
+    pub seed_lo: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgDynseed<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_dynseed";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-DYNSEED";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x85;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let seed_hi = u32::from_le_bytes(r.array("seed_hi")?);
+        let seed_lo = u32::from_le_bytes(r.array("seed_lo")?);
+        let trailing = r.rest();
+        Ok(Self { version, reserved1, seed_hi, seed_lo, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(&self.seed_hi.to_le_bytes());
+        w.put(&self.seed_lo.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("seed_hi", self.seed_hi)?;
+        j.int("seed_lo", self.seed_lo)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -8650,6 +8723,172 @@ impl<'a> CfgSmgr<'a> {
         j.flag("issue_time_warning", ((self.flags >> 13) & 0x1) != 0)?;
         j.int("tp_coherent", ((self.flags >> 14) & 0x3) as u8)?;
         j.flag("disable_offset", ((self.flags >> 16) & 0x1) != 0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Time mode settings 2 (timing receiver): UBX CFG-TMODE2 (class 0x06 id 0x3D), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgTmode2Poll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgTmode2Poll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_tmode2_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-TMODE2";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x3d;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_tmode2"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Time mode settings 2 (timing receiver): UBX CFG-TMODE2 (class 0x06 id 0x3D), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgTmode2<'a> {
+    /// Time transfer mode.
+    pub time_mode: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Position flags.
+    pub flags: u16,
+    /// ECEF X (cm) or latitude (1e-7 deg).
+    pub ecef_x_or_lat: i32,
+    /// ECEF Y (cm) or longitude (1e-7 deg).
+    pub ecef_y_or_lon: i32,
+    /// ECEF Z or altitude (cm).
+    pub ecef_z_or_alt: i32,
+    /// Accuracy of the fixed position [mm].
+    pub fixed_pos_acc: u32,
+    /// Survey-in minimum duration [s].
+    pub svin_min_dur: u32,
+    /// Survey-in position accuracy limit [mm].
+    pub svin_acc_limit: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgTmode2<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_tmode2";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-TMODE2";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x3d;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(28);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The position is latitude, longitude and altitude (not ECEF) (bit 0 of `flags`).
+    pub fn lla(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets the position is latitude, longitude and altitude (not ecef) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_lla(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u16::from(value);
+    }
+    /// The altitude is not valid (with lla) (bit 1 of `flags`).
+    pub fn alt_inv(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets the altitude is not valid (with lla) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_alt_inv(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u16::from(value) << 1);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let time_mode = u8::from_le_bytes(r.array("time_mode")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let flags = u16::from_le_bytes(r.array("flags")?);
+        let ecef_x_or_lat = i32::from_le_bytes(r.array("ecef_x_or_lat")?);
+        let ecef_y_or_lon = i32::from_le_bytes(r.array("ecef_y_or_lon")?);
+        let ecef_z_or_alt = i32::from_le_bytes(r.array("ecef_z_or_alt")?);
+        let fixed_pos_acc = u32::from_le_bytes(r.array("fixed_pos_acc")?);
+        let svin_min_dur = u32::from_le_bytes(r.array("svin_min_dur")?);
+        let svin_acc_limit = u32::from_le_bytes(r.array("svin_acc_limit")?);
+        let trailing = r.rest();
+        Ok(Self {
+            time_mode,
+            reserved1,
+            flags,
+            ecef_x_or_lat,
+            ecef_y_or_lon,
+            ecef_z_or_alt,
+            fixed_pos_acc,
+            svin_min_dur,
+            svin_acc_limit,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.time_mode.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.ecef_x_or_lat.to_le_bytes());
+        w.put(&self.ecef_y_or_lon.to_le_bytes());
+        w.put(&self.ecef_z_or_alt.to_le_bytes());
+        w.put(&self.fixed_pos_acc.to_le_bytes());
+        w.put(&self.svin_min_dur.to_le_bytes());
+        w.put(&self.svin_acc_limit.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("time_mode", self.time_mode)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("flags", self.flags)?;
+        j.flag("lla", (self.flags & 0x1) != 0)?;
+        j.flag("alt_inv", ((self.flags >> 1) & 0x1) != 0)?;
+        j.int("ecef_x_or_lat", self.ecef_x_or_lat)?;
+        j.int("ecef_y_or_lon", self.ecef_y_or_lon)?;
+        j.int("ecef_z_or_alt", self.ecef_z_or_alt)?;
+        j.int("fixed_pos_acc", self.fixed_pos_acc)?;
+        j.int("svin_min_dur", self.svin_min_dur)?;
+        j.int("svin_acc_limit", self.svin_acc_limit)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -14958,6 +15197,228 @@ impl<'a> MgaDbd<'a> {
     pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
         write!(j.key("reserved1")?, "{}", self.reserved1)?;
         ubx::json_hex(j, "data", self.data)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaFlashData<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Block sequence number.
+    pub sequence: u16,
+    /// Bytes of data in this block.
+    pub size: u16,
+    /// Data.
+    pub data: &'a [u8],
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaFlashData<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_flash_data";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-FLASH";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x21;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x01));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mga_flash_ack"];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x01, ..Self::default() }
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let sequence = u16::from_le_bytes(r.array("sequence")?);
+        let size = u16::from_le_bytes(r.array("size")?);
+        let data = r.left(0);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, sequence, size, data, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.sequence.to_le_bytes());
+        w.put(&self.size.to_le_bytes());
+        w.put_sized(self.data, None, "MGA-FLASH", "data")?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("sequence", self.sequence)?;
+        j.int("size", self.size)?;
+        ubx::json_hex(j, "data", self.data)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaFlashStop<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaFlashStop<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_flash_stop";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-FLASH";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x21;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(2);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x02));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mga_flash_ack"];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x02, ..Self::default() }
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaFlashAck<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Acknowledgement.
+    pub ack: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Sequence number of the DATA block acknowledged.
+    pub sequence_raw: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaFlashAck<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_flash_ack";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-FLASH";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x21;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(6);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x03));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x03, ..Self::default() }
+    }
+    /// Sequence number of the DATA block acknowledged, or its special value.
+    pub fn sequence(&self) -> ais::Reading<i64> {
+        let raw = self.sequence_raw;
+        ais::counted(i64::from(raw), 0, &[(65535, "stop")])
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let ack = u8::from_le_bytes(r.array("ack")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let sequence_raw = u16::from_le_bytes(r.array("sequence")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, ack, reserved1, sequence_raw, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.ack.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.sequence_raw.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("ack", self.ack)?;
+        j.int("reserved1", self.reserved1)?;
+        match ais::counted(i64::from(self.sequence_raw), 0, &[(65535, "stop")]) {
+            ais::Reading::Value(x) => j.int("sequence", x)?,
+            ais::Reading::Special(id) => j.text("sequence", id)?,
+        }
+        j.int("sequence_raw", self.sequence_raw)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -33651,6 +34112,373 @@ impl<'a> RxmCor<'a> {
     }
 }
 
+/// Indoor messaging system information: UBX RXM-IMES (class 0x02 id 0x61), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmImesPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmImesPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_imes_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-IMES";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x61;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["rxm_imes"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of RxmImesTransmitter.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmImesTransmitter {
+    /// Reserved.
+    pub reserved2: u8,
+    /// Transmitter identifier.
+    pub tx_id: u8,
+    /// Reserved.
+    pub reserved3: u32,
+    /// Carrier to noise ratio [dBHz].
+    pub cno: u8,
+    /// Reserved.
+    pub reserved4: u16,
+    /// Doppler frequency [Hz].
+    pub doppler_raw: i32,
+    /// Position 1 frame (first word).
+    pub position1_1: u32,
+    /// Position 1 frame (second word).
+    pub position1_2: u32,
+    /// Position 2 frame.
+    pub position2_1: u32,
+    /// Latitude (position 2 frame) [semicircle].
+    pub lat_raw: i32,
+    /// Longitude (position 2 frame) [semicircle].
+    pub lon_raw: i32,
+    /// Short id frame.
+    pub short_id_frame: u32,
+    /// Medium id (low 32 bits).
+    pub medium_id_lsb: u32,
+    /// Medium id frame (the rest).
+    pub medium_id_2: u32,
+}
+
+impl<'a> ubx::Entry<'a> for RxmImesTransmitter {
+    const WIDTH: usize = 44;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
+        let tx_id = u8::from_le_bytes(r.array("tx_id")?);
+        let reserved3 = {
+            let b: [u8; 3] = r.array("reserved3")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let cno = u8::from_le_bytes(r.array("cno")?);
+        let reserved4 = u16::from_le_bytes(r.array("reserved4")?);
+        let doppler_raw = i32::from_le_bytes(r.array("doppler")?);
+        let position1_1 = u32::from_le_bytes(r.array("position1_1")?);
+        let position1_2 = u32::from_le_bytes(r.array("position1_2")?);
+        let position2_1 = u32::from_le_bytes(r.array("position2_1")?);
+        let lat_raw = i32::from_le_bytes(r.array("lat")?);
+        let lon_raw = i32::from_le_bytes(r.array("lon")?);
+        let short_id_frame = u32::from_le_bytes(r.array("short_id_frame")?);
+        let medium_id_lsb = u32::from_le_bytes(r.array("medium_id_lsb")?);
+        let medium_id_2 = u32::from_le_bytes(r.array("medium_id_2")?);
+        Ok(Self {
+            reserved2,
+            tx_id,
+            reserved3,
+            cno,
+            reserved4,
+            doppler_raw,
+            position1_1,
+            position1_2,
+            position2_1,
+            lat_raw,
+            lon_raw,
+            short_id_frame,
+            medium_id_lsb,
+            medium_id_2,
+        })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.tx_id.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes()[..3]);
+        w.put(&self.cno.to_le_bytes());
+        w.put(&self.reserved4.to_le_bytes());
+        w.put(&self.doppler_raw.to_le_bytes());
+        w.put(&self.position1_1.to_le_bytes());
+        w.put(&self.position1_2.to_le_bytes());
+        w.put(&self.position2_1.to_le_bytes());
+        w.put(&self.lat_raw.to_le_bytes());
+        w.put(&self.lon_raw.to_le_bytes());
+        w.put(&self.short_id_frame.to_le_bytes());
+        w.put(&self.medium_id_lsb.to_le_bytes());
+        w.put(&self.medium_id_2.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("reserved2", self.reserved2)?;
+        j.int("tx_id", self.tx_id)?;
+        j.int("reserved3", self.reserved3)?;
+        j.int("cno", self.cno)?;
+        j.int("reserved4", self.reserved4)?;
+        ubx::json_float(j, "doppler", self.doppler_raw as f64 / 4096.0)?;
+        j.int("doppler_raw", self.doppler_raw)?;
+        j.int("position1_1", self.position1_1)?;
+        j.int("pos1_floor", (self.position1_1 & 0xff) as u8)?;
+        j.int("pos1_lat", (self.position1_1 >> 8) & 0x7fffff)?;
+        j.int("position1_2", self.position1_2)?;
+        j.int("pos1_lon", self.position1_2 & 0xffffff)?;
+        j.flag("pos1_valid", ((self.position1_2 >> 24) & 0x1) != 0)?;
+        j.int("position2_1", self.position2_1)?;
+        j.int("pos2_floor", (self.position2_1 & 0xff) as u8)?;
+        j.int("pos2_alt", ((self.position2_1 >> 8) & 0xfff) as u16)?;
+        j.int("pos2_acc", ((self.position2_1 >> 20) & 0x3) as u8)?;
+        j.flag("pos2_valid", ((self.position2_1 >> 22) & 0x1) != 0)?;
+        ubx::json_float(j, "lat", self.lat_raw as f64 / 16777216.0)?;
+        j.int("lat_raw", self.lat_raw)?;
+        ubx::json_float(j, "lon", self.lon_raw as f64 / 2147483648.0)?;
+        j.int("lon_raw", self.lon_raw)?;
+        j.int("short_id_frame", self.short_id_frame)?;
+        j.int("short_id", (self.short_id_frame & 0xfff) as u16)?;
+        j.flag("short_valid", ((self.short_id_frame >> 12) & 0x1) != 0)?;
+        j.flag("short_boundary", ((self.short_id_frame >> 13) & 0x1) != 0)?;
+        j.int("medium_id_lsb", self.medium_id_lsb)?;
+        j.int("medium_id_2", self.medium_id_2)?;
+        j.flag("medium_id_msb", (self.medium_id_2 & 0x1) != 0)?;
+        j.flag("medium_valid", ((self.medium_id_2 >> 1) & 0x1) != 0)?;
+        j.flag("medium_boundary", ((self.medium_id_2 >> 2) & 0x1) != 0)?;
+        Ok(())
+    }
+}
+
+impl RxmImesTransmitter {
+    /// Doppler frequency [Hz]: the raw integer divided by 4096.
+    pub fn doppler(&self) -> f64 {
+        let raw = self.doppler_raw;
+        raw as f64 / 4096.0
+    }
+    /// Floor number (bits 0-7 of `position1_1`).
+    pub fn pos1_floor(&self) -> u8 {
+        (self.position1_1 & 0xff) as u8
+    }
+    /// Sets floor number (the value in its bits of `position1_1`; the other bits stay).
+    pub fn set_pos1_floor(&mut self, value: u8) {
+        self.position1_1 = (self.position1_1 & !0xff) | (value as u32 & 0xff);
+    }
+    /// Latitude (raw) (bits 8-30 of `position1_1`).
+    pub fn pos1_lat(&self) -> u32 {
+        (self.position1_1 >> 8) & 0x7fffff
+    }
+    /// Sets latitude (raw) (the value in its bits of `position1_1`; the other bits stay).
+    pub fn set_pos1_lat(&mut self, value: u32) {
+        self.position1_1 = (self.position1_1 & !(0x7fffff << 8)) | ((value & 0x7fffff) << 8);
+    }
+    /// Longitude (raw) (bits 0-23 of `position1_2`).
+    pub fn pos1_lon(&self) -> u32 {
+        self.position1_2 & 0xffffff
+    }
+    /// Sets longitude (raw) (the value in its bits of `position1_2`; the other bits stay).
+    pub fn set_pos1_lon(&mut self, value: u32) {
+        self.position1_2 = (self.position1_2 & !0xffffff) | (value & 0xffffff);
+    }
+    /// Position 1 frame valid (bit 24 of `position1_2`).
+    pub fn pos1_valid(&self) -> bool {
+        ((self.position1_2 >> 24) & 0x1) != 0
+    }
+    /// Sets position 1 frame valid (the value in its bits of `position1_2`; the other bits stay).
+    pub fn set_pos1_valid(&mut self, value: bool) {
+        self.position1_2 = (self.position1_2 & !(0x1 << 24)) | (u32::from(value) << 24);
+    }
+    /// Floor number (bits 0-7 of `position2_1`).
+    pub fn pos2_floor(&self) -> u8 {
+        (self.position2_1 & 0xff) as u8
+    }
+    /// Sets floor number (the value in its bits of `position2_1`; the other bits stay).
+    pub fn set_pos2_floor(&mut self, value: u8) {
+        self.position2_1 = (self.position2_1 & !0xff) | (value as u32 & 0xff);
+    }
+    /// Altitude (raw) (bits 8-19 of `position2_1`).
+    pub fn pos2_alt(&self) -> u16 {
+        ((self.position2_1 >> 8) & 0xfff) as u16
+    }
+    /// Sets altitude (raw) (the value in its bits of `position2_1`; the other bits stay).
+    pub fn set_pos2_alt(&mut self, value: u16) {
+        self.position2_1 = (self.position2_1 & !(0xfff << 8)) | ((value as u32 & 0xfff) << 8);
+    }
+    /// Accuracy index (bits 20-21 of `position2_1`).
+    pub fn pos2_acc(&self) -> u8 {
+        ((self.position2_1 >> 20) & 0x3) as u8
+    }
+    /// Sets accuracy index (the value in its bits of `position2_1`; the other bits stay).
+    pub fn set_pos2_acc(&mut self, value: u8) {
+        self.position2_1 = (self.position2_1 & !(0x3 << 20)) | ((value as u32 & 0x3) << 20);
+    }
+    /// Position 2 frame valid (bit 22 of `position2_1`).
+    pub fn pos2_valid(&self) -> bool {
+        ((self.position2_1 >> 22) & 0x1) != 0
+    }
+    /// Sets position 2 frame valid (the value in its bits of `position2_1`; the other bits stay).
+    pub fn set_pos2_valid(&mut self, value: bool) {
+        self.position2_1 = (self.position2_1 & !(0x1 << 22)) | (u32::from(value) << 22);
+    }
+    /// Latitude (position 2 frame) [semicircle]: the raw integer divided by 16777216.
+    pub fn lat(&self) -> f64 {
+        let raw = self.lat_raw;
+        raw as f64 / 16777216.0
+    }
+    /// Longitude (position 2 frame) [semicircle]: the raw integer divided by 2147483648.
+    pub fn lon(&self) -> f64 {
+        let raw = self.lon_raw;
+        raw as f64 / 2147483648.0
+    }
+    /// Short id (bits 0-11 of `short_id_frame`).
+    pub fn short_id(&self) -> u16 {
+        (self.short_id_frame & 0xfff) as u16
+    }
+    /// Sets short id (the value in its bits of `short_id_frame`; the other bits stay).
+    pub fn set_short_id(&mut self, value: u16) {
+        self.short_id_frame = (self.short_id_frame & !0xfff) | (value as u32 & 0xfff);
+    }
+    /// Short id valid (bit 12 of `short_id_frame`).
+    pub fn short_valid(&self) -> bool {
+        ((self.short_id_frame >> 12) & 0x1) != 0
+    }
+    /// Sets short id valid (the value in its bits of `short_id_frame`; the other bits stay).
+    pub fn set_short_valid(&mut self, value: bool) {
+        self.short_id_frame = (self.short_id_frame & !(0x1 << 12)) | (u32::from(value) << 12);
+    }
+    /// Boundary bit (bit 13 of `short_id_frame`).
+    pub fn short_boundary(&self) -> bool {
+        ((self.short_id_frame >> 13) & 0x1) != 0
+    }
+    /// Sets boundary bit (the value in its bits of `short_id_frame`; the other bits stay).
+    pub fn set_short_boundary(&mut self, value: bool) {
+        self.short_id_frame = (self.short_id_frame & !(0x1 << 13)) | (u32::from(value) << 13);
+    }
+    /// Medium id (bit 32) (bit 0 of `medium_id_2`).
+    pub fn medium_id_msb(&self) -> bool {
+        (self.medium_id_2 & 0x1) != 0
+    }
+    /// Sets medium id (bit 32) (the value in its bits of `medium_id_2`; the other bits stay).
+    pub fn set_medium_id_msb(&mut self, value: bool) {
+        self.medium_id_2 = (self.medium_id_2 & !0x1) | u32::from(value);
+    }
+    /// Medium id valid (bit 1 of `medium_id_2`).
+    pub fn medium_valid(&self) -> bool {
+        ((self.medium_id_2 >> 1) & 0x1) != 0
+    }
+    /// Sets medium id valid (the value in its bits of `medium_id_2`; the other bits stay).
+    pub fn set_medium_valid(&mut self, value: bool) {
+        self.medium_id_2 = (self.medium_id_2 & !(0x1 << 1)) | (u32::from(value) << 1);
+    }
+    /// Boundary bit (bit 2 of `medium_id_2`).
+    pub fn medium_boundary(&self) -> bool {
+        ((self.medium_id_2 >> 2) & 0x1) != 0
+    }
+    /// Sets boundary bit (the value in its bits of `medium_id_2`; the other bits stay).
+    pub fn set_medium_boundary(&mut self, value: bool) {
+        self.medium_id_2 = (self.medium_id_2 & !(0x1 << 2)) | (u32::from(value) << 2);
+    }
+}
+
+/// Indoor messaging system information: UBX RXM-IMES (class 0x02 id 0x61), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmImes<'a> {
+    /// Number of transmitters.
+    pub num_tx: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u16,
+    /// Transmitters: 0 to 65535 entries.
+    pub transmitters: ubx::Group<'a, RxmImesTransmitter>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmImes<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_imes";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-IMES";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x61;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let num_tx = u8::from_le_bytes(r.array("num_tx")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let transmitters = r.group(Some(usize::from(num_tx)), 0, 65535, 0, "transmitters")?;
+        let trailing = r.rest();
+        Ok(Self { num_tx, version, reserved1, transmitters, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.num_tx.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        self.transmitters.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("num_tx", self.num_tx)?;
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        self.transmitters.json(j, "transmitters")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Satellite measurements for RRLP: UBX RXM-MEASX (class 0x02 id 0x14), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RxmMeasxPoll<'a> {
@@ -38267,6 +39095,8 @@ pub enum Message<'a> {
     CfgDoscPoll(CfgDoscPoll<'a>),
     /// CFG-DOSC (input, output): Disciplined oscillator configuration.
     CfgDosc(CfgDosc<'a>),
+    /// CFG-DYNSEED (input): Programming the dynamic seed for the host interface signature.
+    CfgDynseed(CfgDynseed<'a>),
     /// CFG-ESFA (poll): Accelerometer sensor configuration.
     CfgEsfaPoll(CfgEsfaPoll<'a>),
     /// CFG-ESFA (input, output): Accelerometer sensor configuration.
@@ -38383,6 +39213,10 @@ pub enum Message<'a> {
     CfgSmgrPoll(CfgSmgrPoll<'a>),
     /// CFG-SMGR (input, output): Synchronization manager configuration.
     CfgSmgr(CfgSmgr<'a>),
+    /// CFG-TMODE2 (poll): Time mode settings 2 (timing receiver).
+    CfgTmode2Poll(CfgTmode2Poll<'a>),
+    /// CFG-TMODE2 (input, output): Time mode settings 2 (timing receiver).
+    CfgTmode2(CfgTmode2<'a>),
     /// CFG-TMODE3 (poll): Time mode settings (RTK base station).
     CfgTmode3Poll(CfgTmode3Poll<'a>),
     /// CFG-TMODE3 (input, output): Time mode settings (RTK base station).
@@ -38495,6 +39329,12 @@ pub enum Message<'a> {
     MgaDbdPoll(MgaDbdPoll<'a>),
     /// MGA-DBD (input, output): Navigation database dump.
     MgaDbd(MgaDbd<'a>),
+    /// MGA-FLASH (input): AssistNow Offline data written to the receiver's flash.
+    MgaFlashData(MgaFlashData<'a>),
+    /// MGA-FLASH (input): AssistNow Offline data written to the receiver's flash.
+    MgaFlashStop(MgaFlashStop<'a>),
+    /// MGA-FLASH (output): AssistNow Offline data written to the receiver's flash.
+    MgaFlashAck(MgaFlashAck<'a>),
     /// MGA-GAL (input): Galileo assistance data.
     MgaGalEph(MgaGalEph<'a>),
     /// MGA-GAL (input): Galileo assistance data.
@@ -38831,6 +39671,10 @@ pub enum Message<'a> {
     NavVelned(NavVelned<'a>),
     /// RXM-COR (output): Differential correction input status.
     RxmCor(RxmCor<'a>),
+    /// RXM-IMES (poll): Indoor messaging system information.
+    RxmImesPoll(RxmImesPoll<'a>),
+    /// RXM-IMES (output): Indoor messaging system information.
+    RxmImes(RxmImes<'a>),
     /// RXM-MEASX (poll): Satellite measurements for RRLP.
     RxmMeasxPoll(RxmMeasxPoll<'a>),
     /// RXM-MEASX (output): Satellite measurements for RRLP.
@@ -39030,6 +39874,7 @@ impl<'a> Message<'a> {
                     Message::CfgDosc(CfgDosc::read(payload)?)
                 }
             }
+            (0x06, 0x85) => Message::CfgDynseed(CfgDynseed::read(payload)?),
             (0x06, 0x4c) => {
                 if payload.is_empty() {
                     Message::CfgEsfaPoll(CfgEsfaPoll::read(payload)?)
@@ -39230,6 +40075,13 @@ impl<'a> Message<'a> {
                     Message::CfgSmgr(CfgSmgr::read(payload)?)
                 }
             }
+            (0x06, 0x3d) => {
+                if payload.is_empty() {
+                    Message::CfgTmode2Poll(CfgTmode2Poll::read(payload)?)
+                } else {
+                    Message::CfgTmode2(CfgTmode2::read(payload)?)
+                }
+            }
             (0x06, 0x71) => {
                 if payload.is_empty() {
                     Message::CfgTmode3Poll(CfgTmode3Poll::read(payload)?)
@@ -39383,6 +40235,19 @@ impl<'a> Message<'a> {
                     Message::MgaDbdPoll(MgaDbdPoll::read(payload)?)
                 } else {
                     Message::MgaDbd(MgaDbd::read(payload)?)
+                }
+            }
+            (0x13, 0x21) => {
+                if payload.first() == Some(&0x01) {
+                    Message::MgaFlashData(MgaFlashData::read(payload)?)
+                } else if payload.len() == 2 && payload.first() == Some(&0x02) {
+                    Message::MgaFlashStop(MgaFlashStop::read(payload)?)
+                } else if payload.len() == 6 && payload.first() == Some(&0x03) {
+                    Message::MgaFlashAck(MgaFlashAck::read(payload)?)
+                } else if payload.len() == 2 {
+                    Message::MgaFlashStop(MgaFlashStop::read(payload)?)
+                } else {
+                    Message::MgaFlashAck(MgaFlashAck::read(payload)?)
                 }
             }
             (0x13, 0x02) => {
@@ -39985,6 +40850,13 @@ impl<'a> Message<'a> {
                 }
             }
             (0x02, 0x34) => Message::RxmCor(RxmCor::read(payload)?),
+            (0x02, 0x61) => {
+                if payload.is_empty() {
+                    Message::RxmImesPoll(RxmImesPoll::read(payload)?)
+                } else {
+                    Message::RxmImes(RxmImes::read(payload)?)
+                }
+            }
             (0x02, 0x14) => {
                 if payload.is_empty() {
                     Message::RxmMeasxPoll(RxmMeasxPoll::read(payload)?)
@@ -40182,6 +41054,7 @@ impl<'a> Message<'a> {
             Message::CfgDgnss(_) => CfgDgnss::ID,
             Message::CfgDoscPoll(_) => CfgDoscPoll::ID,
             Message::CfgDosc(_) => CfgDosc::ID,
+            Message::CfgDynseed(_) => CfgDynseed::ID,
             Message::CfgEsfaPoll(_) => CfgEsfaPoll::ID,
             Message::CfgEsfa(_) => CfgEsfa::ID,
             Message::CfgEsfalgPoll(_) => CfgEsfalgPoll::ID,
@@ -40240,6 +41113,8 @@ impl<'a> Message<'a> {
             Message::CfgSlas(_) => CfgSlas::ID,
             Message::CfgSmgrPoll(_) => CfgSmgrPoll::ID,
             Message::CfgSmgr(_) => CfgSmgr::ID,
+            Message::CfgTmode2Poll(_) => CfgTmode2Poll::ID,
+            Message::CfgTmode2(_) => CfgTmode2::ID,
             Message::CfgTmode3Poll(_) => CfgTmode3Poll::ID,
             Message::CfgTmode3(_) => CfgTmode3::ID,
             Message::CfgTp5Poll(_) => CfgTp5Poll::ID,
@@ -40296,6 +41171,9 @@ impl<'a> Message<'a> {
             Message::MgaBdsIono(_) => MgaBdsIono::ID,
             Message::MgaDbdPoll(_) => MgaDbdPoll::ID,
             Message::MgaDbd(_) => MgaDbd::ID,
+            Message::MgaFlashData(_) => MgaFlashData::ID,
+            Message::MgaFlashStop(_) => MgaFlashStop::ID,
+            Message::MgaFlashAck(_) => MgaFlashAck::ID,
             Message::MgaGalEph(_) => MgaGalEph::ID,
             Message::MgaGalAlm(_) => MgaGalAlm::ID,
             Message::MgaGalTimeoffset(_) => MgaGalTimeoffset::ID,
@@ -40464,6 +41342,8 @@ impl<'a> Message<'a> {
             Message::NavVelnedPoll(_) => NavVelnedPoll::ID,
             Message::NavVelned(_) => NavVelned::ID,
             Message::RxmCor(_) => RxmCor::ID,
+            Message::RxmImesPoll(_) => RxmImesPoll::ID,
+            Message::RxmImes(_) => RxmImes::ID,
             Message::RxmMeasxPoll(_) => RxmMeasxPoll::ID,
             Message::RxmMeasx(_) => RxmMeasx::ID,
             Message::RxmPmreq(_) => RxmPmreq::ID,
@@ -40548,6 +41428,7 @@ impl<'a> Message<'a> {
             Message::CfgDgnss(_) => (CfgDgnss::CLASS, CfgDgnss::MSG_ID),
             Message::CfgDoscPoll(_) => (CfgDoscPoll::CLASS, CfgDoscPoll::MSG_ID),
             Message::CfgDosc(_) => (CfgDosc::CLASS, CfgDosc::MSG_ID),
+            Message::CfgDynseed(_) => (CfgDynseed::CLASS, CfgDynseed::MSG_ID),
             Message::CfgEsfaPoll(_) => (CfgEsfaPoll::CLASS, CfgEsfaPoll::MSG_ID),
             Message::CfgEsfa(_) => (CfgEsfa::CLASS, CfgEsfa::MSG_ID),
             Message::CfgEsfalgPoll(_) => (CfgEsfalgPoll::CLASS, CfgEsfalgPoll::MSG_ID),
@@ -40606,6 +41487,8 @@ impl<'a> Message<'a> {
             Message::CfgSlas(_) => (CfgSlas::CLASS, CfgSlas::MSG_ID),
             Message::CfgSmgrPoll(_) => (CfgSmgrPoll::CLASS, CfgSmgrPoll::MSG_ID),
             Message::CfgSmgr(_) => (CfgSmgr::CLASS, CfgSmgr::MSG_ID),
+            Message::CfgTmode2Poll(_) => (CfgTmode2Poll::CLASS, CfgTmode2Poll::MSG_ID),
+            Message::CfgTmode2(_) => (CfgTmode2::CLASS, CfgTmode2::MSG_ID),
             Message::CfgTmode3Poll(_) => (CfgTmode3Poll::CLASS, CfgTmode3Poll::MSG_ID),
             Message::CfgTmode3(_) => (CfgTmode3::CLASS, CfgTmode3::MSG_ID),
             Message::CfgTp5Poll(_) => (CfgTp5Poll::CLASS, CfgTp5Poll::MSG_ID),
@@ -40662,6 +41545,9 @@ impl<'a> Message<'a> {
             Message::MgaBdsIono(_) => (MgaBdsIono::CLASS, MgaBdsIono::MSG_ID),
             Message::MgaDbdPoll(_) => (MgaDbdPoll::CLASS, MgaDbdPoll::MSG_ID),
             Message::MgaDbd(_) => (MgaDbd::CLASS, MgaDbd::MSG_ID),
+            Message::MgaFlashData(_) => (MgaFlashData::CLASS, MgaFlashData::MSG_ID),
+            Message::MgaFlashStop(_) => (MgaFlashStop::CLASS, MgaFlashStop::MSG_ID),
+            Message::MgaFlashAck(_) => (MgaFlashAck::CLASS, MgaFlashAck::MSG_ID),
             Message::MgaGalEph(_) => (MgaGalEph::CLASS, MgaGalEph::MSG_ID),
             Message::MgaGalAlm(_) => (MgaGalAlm::CLASS, MgaGalAlm::MSG_ID),
             Message::MgaGalTimeoffset(_) => (MgaGalTimeoffset::CLASS, MgaGalTimeoffset::MSG_ID),
@@ -40830,6 +41716,8 @@ impl<'a> Message<'a> {
             Message::NavVelnedPoll(_) => (NavVelnedPoll::CLASS, NavVelnedPoll::MSG_ID),
             Message::NavVelned(_) => (NavVelned::CLASS, NavVelned::MSG_ID),
             Message::RxmCor(_) => (RxmCor::CLASS, RxmCor::MSG_ID),
+            Message::RxmImesPoll(_) => (RxmImesPoll::CLASS, RxmImesPoll::MSG_ID),
+            Message::RxmImes(_) => (RxmImes::CLASS, RxmImes::MSG_ID),
             Message::RxmMeasxPoll(_) => (RxmMeasxPoll::CLASS, RxmMeasxPoll::MSG_ID),
             Message::RxmMeasx(_) => (RxmMeasx::CLASS, RxmMeasx::MSG_ID),
             Message::RxmPmreq(_) => (RxmPmreq::CLASS, RxmPmreq::MSG_ID),
@@ -40914,6 +41802,7 @@ impl<'a> Message<'a> {
             Message::CfgDgnss(m) => m.write(w),
             Message::CfgDoscPoll(m) => m.write(w),
             Message::CfgDosc(m) => m.write(w),
+            Message::CfgDynseed(m) => m.write(w),
             Message::CfgEsfaPoll(m) => m.write(w),
             Message::CfgEsfa(m) => m.write(w),
             Message::CfgEsfalgPoll(m) => m.write(w),
@@ -40972,6 +41861,8 @@ impl<'a> Message<'a> {
             Message::CfgSlas(m) => m.write(w),
             Message::CfgSmgrPoll(m) => m.write(w),
             Message::CfgSmgr(m) => m.write(w),
+            Message::CfgTmode2Poll(m) => m.write(w),
+            Message::CfgTmode2(m) => m.write(w),
             Message::CfgTmode3Poll(m) => m.write(w),
             Message::CfgTmode3(m) => m.write(w),
             Message::CfgTp5Poll(m) => m.write(w),
@@ -41028,6 +41919,9 @@ impl<'a> Message<'a> {
             Message::MgaBdsIono(m) => m.write(w),
             Message::MgaDbdPoll(m) => m.write(w),
             Message::MgaDbd(m) => m.write(w),
+            Message::MgaFlashData(m) => m.write(w),
+            Message::MgaFlashStop(m) => m.write(w),
+            Message::MgaFlashAck(m) => m.write(w),
             Message::MgaGalEph(m) => m.write(w),
             Message::MgaGalAlm(m) => m.write(w),
             Message::MgaGalTimeoffset(m) => m.write(w),
@@ -41196,6 +42090,8 @@ impl<'a> Message<'a> {
             Message::NavVelnedPoll(m) => m.write(w),
             Message::NavVelned(m) => m.write(w),
             Message::RxmCor(m) => m.write(w),
+            Message::RxmImesPoll(m) => m.write(w),
+            Message::RxmImes(m) => m.write(w),
             Message::RxmMeasxPoll(m) => m.write(w),
             Message::RxmMeasx(m) => m.write(w),
             Message::RxmPmreq(m) => m.write(w),
@@ -41298,6 +42194,7 @@ impl<'a> Message<'a> {
             Message::CfgDgnss(m) => m.json_members(&mut j)?,
             Message::CfgDoscPoll(m) => m.json_members(&mut j)?,
             Message::CfgDosc(m) => m.json_members(&mut j)?,
+            Message::CfgDynseed(m) => m.json_members(&mut j)?,
             Message::CfgEsfaPoll(m) => m.json_members(&mut j)?,
             Message::CfgEsfa(m) => m.json_members(&mut j)?,
             Message::CfgEsfalgPoll(m) => m.json_members(&mut j)?,
@@ -41356,6 +42253,8 @@ impl<'a> Message<'a> {
             Message::CfgSlas(m) => m.json_members(&mut j)?,
             Message::CfgSmgrPoll(m) => m.json_members(&mut j)?,
             Message::CfgSmgr(m) => m.json_members(&mut j)?,
+            Message::CfgTmode2Poll(m) => m.json_members(&mut j)?,
+            Message::CfgTmode2(m) => m.json_members(&mut j)?,
             Message::CfgTmode3Poll(m) => m.json_members(&mut j)?,
             Message::CfgTmode3(m) => m.json_members(&mut j)?,
             Message::CfgTp5Poll(m) => m.json_members(&mut j)?,
@@ -41412,6 +42311,9 @@ impl<'a> Message<'a> {
             Message::MgaBdsIono(m) => m.json_members(&mut j)?,
             Message::MgaDbdPoll(m) => m.json_members(&mut j)?,
             Message::MgaDbd(m) => m.json_members(&mut j)?,
+            Message::MgaFlashData(m) => m.json_members(&mut j)?,
+            Message::MgaFlashStop(m) => m.json_members(&mut j)?,
+            Message::MgaFlashAck(m) => m.json_members(&mut j)?,
             Message::MgaGalEph(m) => m.json_members(&mut j)?,
             Message::MgaGalAlm(m) => m.json_members(&mut j)?,
             Message::MgaGalTimeoffset(m) => m.json_members(&mut j)?,
@@ -41580,6 +42482,8 @@ impl<'a> Message<'a> {
             Message::NavVelnedPoll(m) => m.json_members(&mut j)?,
             Message::NavVelned(m) => m.json_members(&mut j)?,
             Message::RxmCor(m) => m.json_members(&mut j)?,
+            Message::RxmImesPoll(m) => m.json_members(&mut j)?,
+            Message::RxmImes(m) => m.json_members(&mut j)?,
             Message::RxmMeasxPoll(m) => m.json_members(&mut j)?,
             Message::RxmMeasx(m) => m.json_members(&mut j)?,
             Message::RxmPmreq(m) => m.json_members(&mut j)?,

@@ -6,21 +6,22 @@
 #   spec/binary/ubx/messages/aid_ini.yaml, spec/binary/ubx/messages/cfg_ant.yaml,
 #   spec/binary/ubx/messages/cfg_batch.yaml, spec/binary/ubx/messages/cfg_cfg.yaml,
 #   spec/binary/ubx/messages/cfg_dat.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
-#   spec/binary/ubx/messages/cfg_dosc.yaml, spec/binary/ubx/messages/cfg_esfa.yaml,
-#   spec/binary/ubx/messages/cfg_esfalg.yaml, spec/binary/ubx/messages/cfg_esfg.yaml,
-#   spec/binary/ubx/messages/cfg_esfwt.yaml, spec/binary/ubx/messages/cfg_esrc.yaml,
-#   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_geofence.yaml,
-#   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
-#   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
-#   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
-#   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
-#   spec/binary/ubx/messages/cfg_nmea.yaml, spec/binary/ubx/messages/cfg_odo.yaml,
-#   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
-#   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
-#   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_rinv.yaml,
-#   spec/binary/ubx/messages/cfg_rst.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
-#   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_slas.yaml,
-#   spec/binary/ubx/messages/cfg_smgr.yaml, spec/binary/ubx/messages/cfg_tmode3.yaml,
+#   spec/binary/ubx/messages/cfg_dosc.yaml, spec/binary/ubx/messages/cfg_dynseed.yaml,
+#   spec/binary/ubx/messages/cfg_esfa.yaml, spec/binary/ubx/messages/cfg_esfalg.yaml,
+#   spec/binary/ubx/messages/cfg_esfg.yaml, spec/binary/ubx/messages/cfg_esfwt.yaml,
+#   spec/binary/ubx/messages/cfg_esrc.yaml, spec/binary/ubx/messages/cfg_fixseed.yaml,
+#   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
+#   spec/binary/ubx/messages/cfg_hnr.yaml, spec/binary/ubx/messages/cfg_inf.yaml,
+#   spec/binary/ubx/messages/cfg_itfm.yaml, spec/binary/ubx/messages/cfg_logfilter.yaml,
+#   spec/binary/ubx/messages/cfg_msg.yaml, spec/binary/ubx/messages/cfg_nav5.yaml,
+#   spec/binary/ubx/messages/cfg_navx5.yaml, spec/binary/ubx/messages/cfg_nmea.yaml,
+#   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_pm2.yaml,
+#   spec/binary/ubx/messages/cfg_pms.yaml, spec/binary/ubx/messages/cfg_prt.yaml,
+#   spec/binary/ubx/messages/cfg_pwr.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
+#   spec/binary/ubx/messages/cfg_rinv.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
+#   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
+#   spec/binary/ubx/messages/cfg_slas.yaml, spec/binary/ubx/messages/cfg_smgr.yaml,
+#   spec/binary/ubx/messages/cfg_tmode2.yaml, spec/binary/ubx/messages/cfg_tmode3.yaml,
 #   spec/binary/ubx/messages/cfg_tp5.yaml, spec/binary/ubx/messages/cfg_txslot.yaml,
 #   spec/binary/ubx/messages/cfg_usb.yaml, spec/binary/ubx/messages/cfg_valdel.yaml,
 #   spec/binary/ubx/messages/cfg_valget.yaml, spec/binary/ubx/messages/cfg_valset.yaml,
@@ -39,46 +40,47 @@
 #   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_string.yaml,
 #   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_ano.yaml,
 #   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
-#   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_glo.yaml,
-#   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_ini.yaml,
-#   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mon_comms.yaml,
-#   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_hw.yaml,
-#   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
-#   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
-#   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_rf.yaml,
-#   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
-#   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
-#   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
-#   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav2_clock.yaml,
-#   spec/binary/ubx/messages/nav2_cov.yaml, spec/binary/ubx/messages/nav2_dop.yaml,
-#   spec/binary/ubx/messages/nav2_eoe.yaml, spec/binary/ubx/messages/nav2_odo.yaml,
-#   spec/binary/ubx/messages/nav2_posecef.yaml, spec/binary/ubx/messages/nav2_posllh.yaml,
-#   spec/binary/ubx/messages/nav2_pvt.yaml, spec/binary/ubx/messages/nav2_sat.yaml,
-#   spec/binary/ubx/messages/nav2_sbas.yaml, spec/binary/ubx/messages/nav2_sig.yaml,
-#   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_status.yaml,
-#   spec/binary/ubx/messages/nav2_timebds.yaml, spec/binary/ubx/messages/nav2_timegal.yaml,
-#   spec/binary/ubx/messages/nav2_timeglo.yaml, spec/binary/ubx/messages/nav2_timegps.yaml,
-#   spec/binary/ubx/messages/nav2_timels.yaml, spec/binary/ubx/messages/nav2_timeqzss.yaml,
-#   spec/binary/ubx/messages/nav2_timeutc.yaml, spec/binary/ubx/messages/nav2_velecef.yaml,
-#   spec/binary/ubx/messages/nav2_velned.yaml, spec/binary/ubx/messages/nav_aopstatus.yaml,
-#   spec/binary/ubx/messages/nav_att.yaml, spec/binary/ubx/messages/nav_clock.yaml,
-#   spec/binary/ubx/messages/nav_cov.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
-#   spec/binary/ubx/messages/nav_dop.yaml, spec/binary/ubx/messages/nav_eell.yaml,
-#   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/nav_geofence.yaml,
-#   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
-#   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_orb.yaml,
-#   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/nav_posecef.yaml,
-#   spec/binary/ubx/messages/nav_posllh.yaml, spec/binary/ubx/messages/nav_pvt.yaml,
-#   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
-#   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_sbas.yaml,
-#   spec/binary/ubx/messages/nav_sig.yaml, spec/binary/ubx/messages/nav_slas.yaml,
-#   spec/binary/ubx/messages/nav_sol.yaml, spec/binary/ubx/messages/nav_status.yaml,
-#   spec/binary/ubx/messages/nav_svin.yaml, spec/binary/ubx/messages/nav_svinfo.yaml,
-#   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
-#   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
-#   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
-#   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_velecef.yaml,
-#   spec/binary/ubx/messages/nav_velned.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
+#   spec/binary/ubx/messages/mga_flash.yaml, spec/binary/ubx/messages/mga_gal.yaml,
+#   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_gps.yaml,
+#   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
+#   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
+#   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
+#   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_io.yaml,
+#   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_patch.yaml,
+#   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
+#   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+#   spec/binary/ubx/messages/mon_span.yaml, spec/binary/ubx/messages/mon_sys.yaml,
+#   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_ver.yaml,
+#   spec/binary/ubx/messages/nav2_clock.yaml, spec/binary/ubx/messages/nav2_cov.yaml,
+#   spec/binary/ubx/messages/nav2_dop.yaml, spec/binary/ubx/messages/nav2_eoe.yaml,
+#   spec/binary/ubx/messages/nav2_odo.yaml, spec/binary/ubx/messages/nav2_posecef.yaml,
+#   spec/binary/ubx/messages/nav2_posllh.yaml, spec/binary/ubx/messages/nav2_pvt.yaml,
+#   spec/binary/ubx/messages/nav2_sat.yaml, spec/binary/ubx/messages/nav2_sbas.yaml,
+#   spec/binary/ubx/messages/nav2_sig.yaml, spec/binary/ubx/messages/nav2_slas.yaml,
+#   spec/binary/ubx/messages/nav2_status.yaml, spec/binary/ubx/messages/nav2_timebds.yaml,
+#   spec/binary/ubx/messages/nav2_timegal.yaml, spec/binary/ubx/messages/nav2_timeglo.yaml,
+#   spec/binary/ubx/messages/nav2_timegps.yaml, spec/binary/ubx/messages/nav2_timels.yaml,
+#   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_timeutc.yaml,
+#   spec/binary/ubx/messages/nav2_velecef.yaml, spec/binary/ubx/messages/nav2_velned.yaml,
+#   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_att.yaml,
+#   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_cov.yaml,
+#   spec/binary/ubx/messages/nav_dgps.yaml, spec/binary/ubx/messages/nav_dop.yaml,
+#   spec/binary/ubx/messages/nav_eell.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
+#   spec/binary/ubx/messages/nav_geofence.yaml, spec/binary/ubx/messages/nav_hpposecef.yaml,
+#   spec/binary/ubx/messages/nav_hpposllh.yaml, spec/binary/ubx/messages/nav_odo.yaml,
+#   spec/binary/ubx/messages/nav_orb.yaml, spec/binary/ubx/messages/nav_pl.yaml,
+#   spec/binary/ubx/messages/nav_posecef.yaml, spec/binary/ubx/messages/nav_posllh.yaml,
+#   spec/binary/ubx/messages/nav_pvt.yaml, spec/binary/ubx/messages/nav_relposned.yaml,
+#   spec/binary/ubx/messages/nav_resetodo.yaml, spec/binary/ubx/messages/nav_sat.yaml,
+#   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
+#   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sol.yaml,
+#   spec/binary/ubx/messages/nav_status.yaml, spec/binary/ubx/messages/nav_svin.yaml,
+#   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
+#   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
+#   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timels.yaml,
+#   spec/binary/ubx/messages/nav_timeqzss.yaml, spec/binary/ubx/messages/nav_timeutc.yaml,
+#   spec/binary/ubx/messages/nav_velecef.yaml, spec/binary/ubx/messages/nav_velned.yaml,
+#   spec/binary/ubx/messages/rxm_cor.yaml, spec/binary/ubx/messages/rxm_imes.yaml,
 #   spec/binary/ubx/messages/rxm_measx.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
 #   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_rlm.yaml,
 #   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
@@ -91,7 +93,7 @@
 #   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tos.yaml,
 #   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
 #   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/upd_sos.yaml
-#   (digest 7aa3b9c7de8a60cb)
+#   (digest 31189e36f99fbda0)
 # Regenerate: make generate (python3 -m generator generate)
 """UBX messages: a frame's payload decoded into the class of its layout (by class and id, then
 length and version) and encoded back to the same bytes; a class and id the spec does not describe
@@ -123,6 +125,7 @@ from .cfg_cfg import CfgCfgAllDevices as CfgCfgAllDevices, CfgCfg as CfgCfg
 from .cfg_dat import CfgDatPoll as CfgDatPoll, CfgDatSet as CfgDatSet, CfgDat as CfgDat
 from .cfg_dgnss import CfgDgnssPoll as CfgDgnssPoll, CfgDgnss as CfgDgnss
 from .cfg_dosc import CfgDoscPoll as CfgDoscPoll, CfgDosc as CfgDosc
+from .cfg_dynseed import CfgDynseed as CfgDynseed
 from .cfg_esfa import CfgEsfaPoll as CfgEsfaPoll, CfgEsfa as CfgEsfa
 from .cfg_esfalg import CfgEsfalgPoll as CfgEsfalgPoll, CfgEsfalg as CfgEsfalg
 from .cfg_esfg import CfgEsfgPoll as CfgEsfgPoll, CfgEsfg as CfgEsfg
@@ -160,6 +163,7 @@ from .cfg_rxm import CfgRxmPoll as CfgRxmPoll, CfgRxm as CfgRxm
 from .cfg_sbas import CfgSbasPoll as CfgSbasPoll, CfgSbas as CfgSbas
 from .cfg_slas import CfgSlasPoll as CfgSlasPoll, CfgSlas as CfgSlas
 from .cfg_smgr import CfgSmgrPoll as CfgSmgrPoll, CfgSmgr as CfgSmgr
+from .cfg_tmode2 import CfgTmode2Poll as CfgTmode2Poll, CfgTmode2 as CfgTmode2
 from .cfg_tmode3 import CfgTmode3Poll as CfgTmode3Poll, CfgTmode3 as CfgTmode3
 from .cfg_tp5 import CfgTp5Poll as CfgTp5Poll, CfgTp5PollIndex as CfgTp5PollIndex, CfgTp5 as CfgTp5
 from .cfg_txslot import CfgTxslotPoll as CfgTxslotPoll, CfgTxslot as CfgTxslot
@@ -201,6 +205,11 @@ from .mga_bds import (
     MgaBdsIono as MgaBdsIono,
 )
 from .mga_dbd import MgaDbdPoll as MgaDbdPoll, MgaDbd as MgaDbd
+from .mga_flash import (
+    MgaFlashData as MgaFlashData,
+    MgaFlashStop as MgaFlashStop,
+    MgaFlashAck as MgaFlashAck,
+)
 from .mga_gal import (
     MgaGalEph as MgaGalEph,
     MgaGalAlm as MgaGalAlm,
@@ -312,6 +321,7 @@ from .nav_timeutc import NavTimeutcPoll as NavTimeutcPoll, NavTimeutc as NavTime
 from .nav_velecef import NavVelecefPoll as NavVelecefPoll, NavVelecef as NavVelecef
 from .nav_velned import NavVelnedPoll as NavVelnedPoll, NavVelned as NavVelned
 from .rxm_cor import RxmCor as RxmCor
+from .rxm_imes import RxmImesPoll as RxmImesPoll, RxmImes as RxmImes
 from .rxm_measx import RxmMeasxPoll as RxmMeasxPoll, RxmMeasx as RxmMeasx
 from .rxm_pmreq import RxmPmreq as RxmPmreq, RxmPmreqShort as RxmPmreqShort
 from .rxm_rawx import RxmRawxPoll as RxmRawxPoll, RxmRawx as RxmRawx
@@ -389,6 +399,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x02, 0x36): (RxmSpartnkeyPoll, RxmSpartnkey),
     (0x02, 0x41): (RxmPmreq, RxmPmreqShort),
     (0x02, 0x59): (RxmRlm, RxmRlmShort),
+    (0x02, 0x61): (RxmImesPoll, RxmImes),
     (0x04, 0x00): (InfError,),
     (0x04, 0x01): (InfWarning,),
     (0x04, 0x02): (InfNotice,),
@@ -415,6 +426,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x06, 0x34): (CfgRinvPoll, CfgRinv),
     (0x06, 0x39): (CfgItfmPoll, CfgItfm),
     (0x06, 0x3B): (CfgPm2Poll, CfgPm2, CfgPm2V1),
+    (0x06, 0x3D): (CfgTmode2Poll, CfgTmode2),
     (0x06, 0x3E): (CfgGnssPoll, CfgGnss),
     (0x06, 0x47): (CfgLogfilterPoll, CfgLogfilter),
     (0x06, 0x4C): (CfgEsfaPoll, CfgEsfa),
@@ -431,6 +443,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x06, 0x71): (CfgTmode3Poll, CfgTmode3),
     (0x06, 0x82): (CfgEsfwtPoll, CfgEsfwt),
     (0x06, 0x84): (CfgFixseed,),
+    (0x06, 0x85): (CfgDynseed,),
     (0x06, 0x86): (CfgPmsPoll, CfgPms),
     (0x06, 0x8A): (CfgValsetV0, CfgValset),
     (0x06, 0x8B): (CfgValgetPoll, CfgValget),
@@ -480,6 +493,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x13, 0x05): (MgaQzssEph, MgaQzssAlm, MgaQzssHealth),
     (0x13, 0x06): (MgaGloEph, MgaGloAlm, MgaGloTimeoffset),
     (0x13, 0x20): (MgaAno,),
+    (0x13, 0x21): (MgaFlashData, MgaFlashStop, MgaFlashAck),
     (0x13, 0x40): (
         MgaIniPosXyz,
         MgaIniPosLlh,
