@@ -7,10 +7,11 @@
 //   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
 //   spec/binary/ubx/messages/nav_velecef.yaml, spec/binary/ubx/messages/nav_velned.yaml,
 //   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
-//   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timeutc.yaml,
-//   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
-//   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
-//   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
+//   spec/binary/ubx/messages/nav_pvat.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
+//   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_clock.yaml,
+//   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
+//   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timels.yaml,
+//   spec/binary/ubx/messages/nav_timeqzss.yaml, spec/binary/ubx/messages/nav_nmi.yaml,
 //   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
 //   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_orb.yaml,
 //   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_cov.yaml,
@@ -18,44 +19,48 @@
 //   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_eell.yaml,
 //   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
 //   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
-//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
-//   spec/binary/ubx/messages/rxm_measx.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
-//   spec/binary/ubx/messages/rxm_svsi.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
-//   spec/binary/ubx/messages/rxm_spartn.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
-//   spec/binary/ubx/messages/rxm_spartnkey.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
-//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/rxm_imes.yaml,
-//   spec/binary/ubx/messages/inf_error.yaml, spec/binary/ubx/messages/inf_warning.yaml,
-//   spec/binary/ubx/messages/inf_notice.yaml, spec/binary/ubx/messages/inf_test.yaml,
-//   spec/binary/ubx/messages/inf_debug.yaml, spec/binary/ubx/messages/ack_nak.yaml,
-//   spec/binary/ubx/messages/ack_ack.yaml, spec/binary/ubx/messages/cfg_prt.yaml,
-//   spec/binary/ubx/messages/cfg_msg.yaml, spec/binary/ubx/messages/cfg_inf.yaml,
-//   spec/binary/ubx/messages/cfg_rst.yaml, spec/binary/ubx/messages/cfg_dat.yaml,
-//   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_cfg.yaml,
-//   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_ant.yaml,
-//   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_nmea.yaml,
-//   spec/binary/ubx/messages/cfg_usb.yaml, spec/binary/ubx/messages/cfg_odo.yaml,
-//   spec/binary/ubx/messages/cfg_navx5.yaml, spec/binary/ubx/messages/cfg_nav5.yaml,
-//   spec/binary/ubx/messages/cfg_tp5.yaml, spec/binary/ubx/messages/cfg_rinv.yaml,
-//   spec/binary/ubx/messages/cfg_itfm.yaml, spec/binary/ubx/messages/cfg_pm2.yaml,
-//   spec/binary/ubx/messages/cfg_tmode2.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
-//   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_esfa.yaml,
-//   spec/binary/ubx/messages/cfg_esfg.yaml, spec/binary/ubx/messages/cfg_txslot.yaml,
-//   spec/binary/ubx/messages/cfg_esfalg.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
-//   spec/binary/ubx/messages/cfg_hnr.yaml, spec/binary/ubx/messages/cfg_esrc.yaml,
-//   spec/binary/ubx/messages/cfg_dosc.yaml, spec/binary/ubx/messages/cfg_smgr.yaml,
+//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/nav_timenavic.yaml,
+//   spec/binary/ubx/messages/rxm_sfrbx.yaml, spec/binary/ubx/messages/rxm_measx.yaml,
+//   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_svsi.yaml,
+//   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_spartn.yaml,
+//   spec/binary/ubx/messages/rxm_cor.yaml, spec/binary/ubx/messages/rxm_spartnkey.yaml,
+//   spec/binary/ubx/messages/rxm_pmreq.yaml, spec/binary/ubx/messages/rxm_rlm.yaml,
+//   spec/binary/ubx/messages/rxm_imes.yaml, spec/binary/ubx/messages/rxm_pmp.yaml,
+//   spec/binary/ubx/messages/rxm_qzssl6.yaml, spec/binary/ubx/messages/inf_error.yaml,
+//   spec/binary/ubx/messages/inf_warning.yaml, spec/binary/ubx/messages/inf_notice.yaml,
+//   spec/binary/ubx/messages/inf_test.yaml, spec/binary/ubx/messages/inf_debug.yaml,
+//   spec/binary/ubx/messages/ack_nak.yaml, spec/binary/ubx/messages/ack_ack.yaml,
+//   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
+//   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
+//   spec/binary/ubx/messages/cfg_dat.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
+//   spec/binary/ubx/messages/cfg_cfg.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
+//   spec/binary/ubx/messages/cfg_ant.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
+//   spec/binary/ubx/messages/cfg_nmea.yaml, spec/binary/ubx/messages/cfg_usb.yaml,
+//   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
+//   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
+//   spec/binary/ubx/messages/cfg_rinv.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
+//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_tmode2.yaml,
+//   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_logfilter.yaml,
+//   spec/binary/ubx/messages/cfg_esfa.yaml, spec/binary/ubx/messages/cfg_esfg.yaml,
+//   spec/binary/ubx/messages/cfg_txslot.yaml, spec/binary/ubx/messages/cfg_esfalg.yaml,
+//   spec/binary/ubx/messages/cfg_pwr.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
+//   spec/binary/ubx/messages/cfg_esrc.yaml, spec/binary/ubx/messages/cfg_dosc.yaml,
+//   spec/binary/ubx/messages/cfg_smgr.yaml, spec/binary/ubx/messages/cfg_spt.yaml,
 //   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
 //   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_esfwt.yaml,
 //   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_dynseed.yaml,
-//   spec/binary/ubx/messages/cfg_pms.yaml, spec/binary/ubx/messages/cfg_valset.yaml,
-//   spec/binary/ubx/messages/cfg_valget.yaml, spec/binary/ubx/messages/cfg_valdel.yaml,
-//   spec/binary/ubx/messages/cfg_slas.yaml, spec/binary/ubx/messages/cfg_batch.yaml,
-//   spec/binary/ubx/messages/upd_sos.yaml, spec/binary/ubx/messages/mon_io.yaml,
-//   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
-//   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
-//   spec/binary/ubx/messages/mon_hw.yaml, spec/binary/ubx/messages/mon_hw2.yaml,
-//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_patch.yaml,
-//   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
-//   spec/binary/ubx/messages/mon_span.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+//   spec/binary/ubx/messages/cfg_pms.yaml, spec/binary/ubx/messages/cfg_senif.yaml,
+//   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
+//   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_slas.yaml,
+//   spec/binary/ubx/messages/cfg_batch.yaml, spec/binary/ubx/messages/upd_sos.yaml,
+//   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_ver.yaml,
+//   spec/binary/ubx/messages/mon_msgpp.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
+//   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_hw.yaml,
+//   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
+//   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_spt.yaml,
+//   spec/binary/ubx/messages/mon_span.yaml, spec/binary/ubx/messages/mon_batch.yaml,
+//   spec/binary/ubx/messages/mon_pmp.yaml, spec/binary/ubx/messages/mon_comms.yaml,
 //   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_rf.yaml,
 //   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/aid_ini.yaml,
 //   spec/binary/ubx/messages/aid_hui.yaml, spec/binary/ubx/messages/aid_alm.yaml,
@@ -93,15 +98,15 @@
 //   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_sbas.yaml,
 //   spec/binary/ubx/messages/nav2_sat.yaml, spec/binary/ubx/messages/nav2_cov.yaml,
 //   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_sig.yaml,
-//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/binary/casic/messages/nav_dop.yaml,
-//   spec/binary/casic/messages/nav_pv.yaml, spec/binary/casic/messages/nav_timeutc.yaml,
-//   spec/binary/casic/messages/nav_gpsinfo.yaml, spec/binary/casic/messages/nav_bdsinfo.yaml,
-//   spec/binary/casic/messages/nav_glninfo.yaml, spec/binary/casic/messages/ack_nak.yaml,
-//   spec/binary/casic/messages/ack_ack.yaml, spec/binary/casic/messages/cfg_prt.yaml,
-//   spec/binary/casic/messages/cfg_msg.yaml, spec/binary/casic/messages/cfg_rate.yaml,
-//   spec/binary/casic/messages/mon_ver.yaml, spec/binary/sbf/messages/pvt_dop.yaml,
-//   spec/binary/sbf/messages/pvt_cartesian.yaml, spec/binary/sbf/messages/pvt_geodetic.yaml,
-//   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
+//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/binary/ubx/messages/nav2_timenavic.yaml,
+//   spec/binary/casic/messages/nav_dop.yaml, spec/binary/casic/messages/nav_pv.yaml,
+//   spec/binary/casic/messages/nav_timeutc.yaml, spec/binary/casic/messages/nav_gpsinfo.yaml,
+//   spec/binary/casic/messages/nav_bdsinfo.yaml, spec/binary/casic/messages/nav_glninfo.yaml,
+//   spec/binary/casic/messages/ack_nak.yaml, spec/binary/casic/messages/ack_ack.yaml,
+//   spec/binary/casic/messages/cfg_prt.yaml, spec/binary/casic/messages/cfg_msg.yaml,
+//   spec/binary/casic/messages/cfg_rate.yaml, spec/binary/casic/messages/mon_ver.yaml,
+//   spec/binary/sbf/messages/pvt_dop.yaml, spec/binary/sbf/messages/pvt_cartesian.yaml,
+//   spec/binary/sbf/messages/pvt_geodetic.yaml, spec/binary/sbf/messages/pos_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/receiver_time.yaml,
@@ -121,7 +126,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 0ac1210b84769faa)
+//   spec/enums/ubx_gnss_id.yaml (digest b2beebc3c3f12e50)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -1394,6 +1399,80 @@ static const nmea_ubx_item ubx_nav_hpposllh_items[] = {
     {"v_acc", &ubx_nav_hpposllh_v_acc_scale, offsetof(nmea_ubx_nav_hpposllh, v_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
 };
 
+/* NAV-PVAT: nav_pvat_poll */
+static const nmea_ubx_item ubx_nav_pvat_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-PVAT: nav_pvat */
+static const nmea_ubx_scale ubx_nav_pvat_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_veh_roll_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_veh_pitch_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_veh_heading_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_mot_heading_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_acc_roll_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_acc_pitch_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_acc_heading_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_mag_dec_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_mag_acc_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_err_ellipse_orient_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_nav_pvat_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_pvat, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav_pvat, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav_pvat, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_date", NULL, offsetof(nmea_ubx_nav_pvat, valid_date), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_time", NULL, offsetof(nmea_ubx_nav_pvat, valid_time), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"fully_resolved", NULL, offsetof(nmea_ubx_nav_pvat, fully_resolved), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_mag", NULL, offsetof(nmea_ubx_nav_pvat, valid_mag), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_nav_pvat, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_nav_pvat, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_nav_pvat, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_nav_pvat, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min", NULL, offsetof(nmea_ubx_nav_pvat, min), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sec", NULL, offsetof(nmea_ubx_nav_pvat, sec), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_nav_pvat, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav_pvat, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav_pvat, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nano", NULL, offsetof(nmea_ubx_nav_pvat, nano), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fix_type", &ubx_enum_ubx_fix_type, offsetof(nmea_ubx_nav_pvat, fix_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"flags", NULL, offsetof(nmea_ubx_nav_pvat, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_fix_ok", NULL, offsetof(nmea_ubx_nav_pvat, gnss_fix_ok), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"diff_soln", NULL, offsetof(nmea_ubx_nav_pvat, diff_soln), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"veh_roll_valid", NULL, offsetof(nmea_ubx_nav_pvat, veh_roll_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"veh_pitch_valid", NULL, offsetof(nmea_ubx_nav_pvat, veh_pitch_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"veh_heading_valid", NULL, offsetof(nmea_ubx_nav_pvat, veh_heading_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"carr_soln", NULL, offsetof(nmea_ubx_nav_pvat, carr_soln), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags2", NULL, offsetof(nmea_ubx_nav_pvat, flags2), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"confirmed_avai", NULL, offsetof(nmea_ubx_nav_pvat, confirmed_avai), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"confirmed_date", NULL, offsetof(nmea_ubx_nav_pvat, confirmed_date), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"confirmed_time", NULL, offsetof(nmea_ubx_nav_pvat, confirmed_time), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_nav_pvat, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lon", &ubx_nav_pvat_lon_scale, offsetof(nmea_ubx_nav_pvat, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lat", &ubx_nav_pvat_lat_scale, offsetof(nmea_ubx_nav_pvat, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"height", NULL, offsetof(nmea_ubx_nav_pvat, height), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_msl", NULL, offsetof(nmea_ubx_nav_pvat, h_msl), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_acc", NULL, offsetof(nmea_ubx_nav_pvat, h_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"v_acc", NULL, offsetof(nmea_ubx_nav_pvat, v_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_n", NULL, offsetof(nmea_ubx_nav_pvat, vel_n), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_e", NULL, offsetof(nmea_ubx_nav_pvat, vel_e), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_d", NULL, offsetof(nmea_ubx_nav_pvat, vel_d), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"g_speed", NULL, offsetof(nmea_ubx_nav_pvat, g_speed), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"s_acc", NULL, offsetof(nmea_ubx_nav_pvat, s_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"veh_roll", &ubx_nav_pvat_veh_roll_scale, offsetof(nmea_ubx_nav_pvat, veh_roll), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"veh_pitch", &ubx_nav_pvat_veh_pitch_scale, offsetof(nmea_ubx_nav_pvat, veh_pitch), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"veh_heading", &ubx_nav_pvat_veh_heading_scale, offsetof(nmea_ubx_nav_pvat, veh_heading), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mot_heading", &ubx_nav_pvat_mot_heading_scale, offsetof(nmea_ubx_nav_pvat, mot_heading), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"acc_roll", &ubx_nav_pvat_acc_roll_scale, offsetof(nmea_ubx_nav_pvat, acc_roll), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"acc_pitch", &ubx_nav_pvat_acc_pitch_scale, offsetof(nmea_ubx_nav_pvat, acc_pitch), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"acc_heading", &ubx_nav_pvat_acc_heading_scale, offsetof(nmea_ubx_nav_pvat, acc_heading), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mag_dec", &ubx_nav_pvat_mag_dec_scale, offsetof(nmea_ubx_nav_pvat, mag_dec), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mag_acc", &ubx_nav_pvat_mag_acc_scale, offsetof(nmea_ubx_nav_pvat, mag_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"err_ellipse_orient", &ubx_nav_pvat_err_ellipse_orient_scale, offsetof(nmea_ubx_nav_pvat, err_ellipse_orient), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"err_ellipse_major", NULL, offsetof(nmea_ubx_nav_pvat, err_ellipse_major), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"err_ellipse_minor", NULL, offsetof(nmea_ubx_nav_pvat, err_ellipse_minor), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_nav_pvat, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_nav_pvat, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* NAV-TIMEGPS: nav_timegps_poll */
 static const nmea_ubx_item ubx_nav_timegps_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -1529,6 +1608,48 @@ static const nmea_ubx_item ubx_nav_timeqzss_items[] = {
     {"qzss_wno_valid", NULL, offsetof(nmea_ubx_nav_timeqzss, qzss_wno_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
     {"leap_s_valid", NULL, offsetof(nmea_ubx_nav_timeqzss, leap_s_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
     {"t_acc", NULL, offsetof(nmea_ubx_nav_timeqzss, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV-NMI: nav_nmi_poll */
+static const nmea_ubx_item ubx_nav_nmi_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-NMI: nav_nmi */
+static const nmea_ubx_item ubx_nav_nmi_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_nmi, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav_nmi, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav_nmi, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_nmi_flags", NULL, offsetof(nmea_ubx_nav_nmi, gps_nmi_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_checked_gps", NULL, offsetof(nmea_ubx_nav_nmi, wno_checked_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_invalid_gps", NULL, offsetof(nmea_ubx_nav_nmi, wno_invalid_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"utco_ref_checked_gps", NULL, offsetof(nmea_ubx_nav_nmi, utco_ref_checked_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"utco_ref_invalid_gps", NULL, offsetof(nmea_ubx_nav_nmi, utco_ref_invalid_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_ls_flags", NULL, offsetof(nmea_ubx_nav_nmi, gps_ls_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_val_gps", NULL, offsetof(nmea_ubx_nav_nmi, ls_val_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dn_range_gps", NULL, offsetof(nmea_ubx_nav_nmi, dn_range_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"tot_range_gps", NULL, offsetof(nmea_ubx_nav_nmi, tot_range_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_event_gps", NULL, offsetof(nmea_ubx_nav_nmi, ls_event_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"rec_now_gps", NULL, offsetof(nmea_ubx_nav_nmi, rec_now_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_nmi_flags", NULL, offsetof(nmea_ubx_nav_nmi, gal_nmi_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_checked_gal", NULL, offsetof(nmea_ubx_nav_nmi, wno_checked_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_invalid_gal", NULL, offsetof(nmea_ubx_nav_nmi, wno_invalid_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_ls_flags", NULL, offsetof(nmea_ubx_nav_nmi, gal_ls_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_val_gal", NULL, offsetof(nmea_ubx_nav_nmi, ls_val_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dn_range_gal", NULL, offsetof(nmea_ubx_nav_nmi, dn_range_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"tot_range_gal", NULL, offsetof(nmea_ubx_nav_nmi, tot_range_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_event_gal", NULL, offsetof(nmea_ubx_nav_nmi, ls_event_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"rec_now_gal", NULL, offsetof(nmea_ubx_nav_nmi, rec_now_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_nmi_flags", NULL, offsetof(nmea_ubx_nav_nmi, bds_nmi_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_checked_bds", NULL, offsetof(nmea_ubx_nav_nmi, wno_checked_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_invalid_bds", NULL, offsetof(nmea_ubx_nav_nmi, wno_invalid_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_ls_flags", NULL, offsetof(nmea_ubx_nav_nmi, bds_ls_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_val_bds", NULL, offsetof(nmea_ubx_nav_nmi, ls_val_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dn_range_bds", NULL, offsetof(nmea_ubx_nav_nmi, dn_range_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"tot_range_bds", NULL, offsetof(nmea_ubx_nav_nmi, tot_range_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_event_bds", NULL, offsetof(nmea_ubx_nav_nmi, ls_event_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"rec_now_bds", NULL, offsetof(nmea_ubx_nav_nmi, rec_now_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_nmi_flags", NULL, offsetof(nmea_ubx_nav_nmi, glo_nmi_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_checked_glo", NULL, offsetof(nmea_ubx_nav_nmi, wno_checked_glo), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_invalid_glo", NULL, offsetof(nmea_ubx_nav_nmi, wno_invalid_glo), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* NAV-SVINFO: nav_svinfo_poll */
@@ -1973,6 +2094,23 @@ static const nmea_ubx_item ubx_nav_pl_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_nav_pl, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* NAV-TIMENAVIC: nav_timenavic_poll */
+static const nmea_ubx_item ubx_nav_timenavic_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-TIMENAVIC: nav_timenavic */
+static const nmea_ubx_item ubx_nav_timenavic_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_timenavic, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_tow", NULL, offsetof(nmea_ubx_nav_timenavic, nav_ic_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"f_nav_ic_tow", NULL, offsetof(nmea_ubx_nav_timenavic, f_nav_ic_tow), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_wno", NULL, offsetof(nmea_ubx_nav_timenavic, nav_ic_wno), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s", NULL, offsetof(nmea_ubx_nav_timenavic, leap_s), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav_timenavic, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_tow_valid", NULL, offsetof(nmea_ubx_nav_timenavic, nav_ic_tow_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_wno_valid", NULL, offsetof(nmea_ubx_nav_timenavic, nav_ic_wno_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s_valid", NULL, offsetof(nmea_ubx_nav_timenavic, leap_s_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav_timenavic, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* RXM-SFRBX: rxm_sfrbx */
 static const nmea_ubx_item ubx_rxm_sfrbx_word_items[] = {
     {"dwrd", NULL, offsetof(nmea_ubx_rxm_sfrbx_word, dwrd), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
@@ -2226,7 +2364,7 @@ static const nmea_ubx_item ubx_rxm_imes_poll_items[1] = {{"", NULL, 0, 0, 0, NME
 /* RXM-IMES: rxm_imes */
 static const nmea_ubx_scale ubx_rxm_imes_transmitter_doppler_scale = {4096.0, 0.0, true, NULL, 0};
 static const nmea_ubx_scale ubx_rxm_imes_transmitter_lat_scale = {16777216.0, 0.0, true, NULL, 0};
-static const nmea_ubx_scale ubx_rxm_imes_transmitter_lon_scale = {2147483648.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_rxm_imes_transmitter_lon_scale = {16777216.0, 0.0, true, NULL, 0};
 static const nmea_ubx_item ubx_rxm_imes_transmitter_items[] = {
     {"reserved2", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"tx_id", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, tx_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -2264,6 +2402,60 @@ static const nmea_ubx_item ubx_rxm_imes_items[] = {
     {"version", NULL, offsetof(nmea_ubx_rxm_imes, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved1", NULL, offsetof(nmea_ubx_rxm_imes, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"transmitters", &ubx_rxm_imes_transmitters_group, offsetof(nmea_ubx_rxm_imes, transmitters), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-PMP: rxm_pmp */
+static const nmea_ubx_scale ubx_rxm_pmp_ebno_scale = {8.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_rxm_pmp_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_pmp, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_pmp, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_tag", NULL, offsetof(nmea_ubx_rxm_pmp, time_tag), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word1", NULL, offsetof(nmea_ubx_rxm_pmp, unique_word1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word2", NULL, offsetof(nmea_ubx_rxm_pmp, unique_word2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"service_identifier", NULL, offsetof(nmea_ubx_rxm_pmp, service_identifier), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"spare", NULL, offsetof(nmea_ubx_rxm_pmp, spare), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word_bit_errors", NULL, offsetof(nmea_ubx_rxm_pmp, unique_word_bit_errors), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"user_data0", NULL, offsetof(nmea_ubx_rxm_pmp, user_data0), 0, 0, NMEA_UBX_ITEM_ARRAY, 252, 252, 0, NMEA_UBX_PRINT_HEX, false},
+    {"user_data1", NULL, offsetof(nmea_ubx_rxm_pmp, user_data1), 0, 0, NMEA_UBX_ITEM_ARRAY, 252, 252, 0, NMEA_UBX_PRINT_HEX, false},
+    {"fec_bits", NULL, offsetof(nmea_ubx_rxm_pmp, fec_bits), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ebno", &ubx_rxm_pmp_ebno_scale, offsetof(nmea_ubx_rxm_pmp, ebno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_rxm_pmp, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-PMP: rxm_pmp_v1 */
+static const nmea_ubx_scale ubx_rxm_pmp_v1_ebno_scale = {8.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_rxm_pmp_v1_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_pmp_v1, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_pmp_v1, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_bytes_user_data", NULL, offsetof(nmea_ubx_rxm_pmp_v1, num_bytes_user_data), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_tag", NULL, offsetof(nmea_ubx_rxm_pmp_v1, time_tag), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word1", NULL, offsetof(nmea_ubx_rxm_pmp_v1, unique_word1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word2", NULL, offsetof(nmea_ubx_rxm_pmp_v1, unique_word2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"service_identifier", NULL, offsetof(nmea_ubx_rxm_pmp_v1, service_identifier), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"spare", NULL, offsetof(nmea_ubx_rxm_pmp_v1, spare), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word_bit_errors", NULL, offsetof(nmea_ubx_rxm_pmp_v1, unique_word_bit_errors), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fec_bits", NULL, offsetof(nmea_ubx_rxm_pmp_v1, fec_bits), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ebno", &ubx_rxm_pmp_v1_ebno_scale, offsetof(nmea_ubx_rxm_pmp_v1, ebno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_rxm_pmp_v1, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"user_data", NULL, offsetof(nmea_ubx_rxm_pmp_v1, user_data), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+/* RXM-QZSSL6: rxm_qzssl6 */
+static const nmea_ubx_scale ubx_rxm_qzssl6_cno_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_rxm_qzssl6_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_qzssl6, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_rxm_qzssl6, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno", &ubx_rxm_qzssl6_cno_scale, offsetof(nmea_ubx_rxm_qzssl6, cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"time_tag", NULL, offsetof(nmea_ubx_rxm_qzssl6, time_tag), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"group_delay", NULL, offsetof(nmea_ubx_rxm_qzssl6, group_delay), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bit_err_corr", NULL, offsetof(nmea_ubx_rxm_qzssl6, bit_err_corr), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ch_info", NULL, offsetof(nmea_ubx_rxm_qzssl6, ch_info), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"chn", NULL, offsetof(nmea_ubx_rxm_qzssl6, chn), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_name", NULL, offsetof(nmea_ubx_rxm_qzssl6, msg_name), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 10, NMEA_UBX_PRINT_NUMBER, false},
+    {"err_status", NULL, offsetof(nmea_ubx_rxm_qzssl6, err_status), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 12, NMEA_UBX_PRINT_NUMBER, false},
+    {"ch_name", NULL, offsetof(nmea_ubx_rxm_qzssl6, ch_name), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 14, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_qzssl6, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_bytes", NULL, offsetof(nmea_ubx_rxm_qzssl6, msg_bytes), 0, 0, NMEA_UBX_ITEM_ARRAY, 250, 250, 0, NMEA_UBX_PRINT_HEX, false}
 };
 
 /* INF-ERROR: inf_error */
@@ -3082,6 +3274,17 @@ static const nmea_ubx_item ubx_cfg_smgr_items[] = {
     {"disable_offset", NULL, offsetof(nmea_ubx_cfg_smgr, disable_offset), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 16, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-SPT: cfg_spt_poll */
+static const nmea_ubx_item ubx_cfg_spt_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-SPT: cfg_spt */
+static const nmea_ubx_item ubx_cfg_spt_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_spt, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_cfg_spt, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sensor_id", NULL, offsetof(nmea_ubx_cfg_spt, sensor_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_spt, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* CFG-GEOFENCE: cfg_geofence_poll */
 static const nmea_ubx_item ubx_cfg_geofence_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -3206,6 +3409,20 @@ static const nmea_ubx_item ubx_cfg_pms_items[] = {
     {"period", NULL, offsetof(nmea_ubx_cfg_pms, period), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"on_time", NULL, offsetof(nmea_ubx_cfg_pms, on_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved0", NULL, offsetof(nmea_ubx_cfg_pms, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-SENIF: cfg_senif_poll */
+static const nmea_ubx_item ubx_cfg_senif_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-SENIF: cfg_senif */
+static const nmea_ubx_item ubx_cfg_senif_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_cfg_senif, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_cfg_senif, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_senif, flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sen_conn", NULL, offsetof(nmea_ubx_cfg_senif, sen_conn), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pio_conf", NULL, offsetof(nmea_ubx_cfg_senif, pio_conf), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"i2c_sda_pio", NULL, offsetof(nmea_ubx_cfg_senif, i2c_sda_pio), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"i2c_scl_pio", NULL, offsetof(nmea_ubx_cfg_senif, i2c_scl_pio), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 5, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* CFG-VALSET: cfg_valset_v0 */
@@ -3604,6 +3821,38 @@ static const nmea_ubx_item ubx_mon_smgr_items[] = {
     {"ext_int1_feed_back", NULL, offsetof(nmea_ubx_mon_smgr, ext_int1_feed_back), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* MON-SPT: mon_spt_poll */
+static const nmea_ubx_item ubx_mon_spt_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-SPT: mon_spt */
+static const nmea_ubx_item ubx_mon_spt_sensor_items[] = {
+    {"sensor_id", NULL, offsetof(nmea_ubx_mon_spt_sensor, sensor_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drv_ver", NULL, offsetof(nmea_ubx_mon_spt_sensor, drv_ver), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drv_ver_min", NULL, offsetof(nmea_ubx_mon_spt_sensor, drv_ver_min), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drv_ver_maj", NULL, offsetof(nmea_ubx_mon_spt_sensor, drv_ver_maj), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"test_state", NULL, offsetof(nmea_ubx_mon_spt_sensor, test_state), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drv_file_name", NULL, offsetof(nmea_ubx_mon_spt_sensor, drv_file_name), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_item ubx_mon_spt_result_items[] = {
+    {"sensor_id_res", NULL, offsetof(nmea_ubx_mon_spt_result, sensor_id_res), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sensor_type", NULL, offsetof(nmea_ubx_mon_spt_result, sensor_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"res_type", NULL, offsetof(nmea_ubx_mon_spt_result, res_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_mon_spt_result, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"value", NULL, offsetof(nmea_ubx_mon_spt_result, value), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mon_spt_sensors_group = {ubx_mon_spt_sensor_items, 6, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_spt, num_sensor), 0, 0, 65535, NMEA_UBX_MON_SPT_SENSORS_MAX, 4, sizeof(nmea_ubx_mon_spt_sensor), 0, offsetof(nmea_ubx_mon_spt, sensors_count)};
+static const nmea_ubx_group ubx_mon_spt_results_group = {ubx_mon_spt_result_items, 5, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_spt, num_res), 0, 0, 65535, NMEA_UBX_MON_SPT_RESULTS_MAX, 12, sizeof(nmea_ubx_mon_spt_result), 0, offsetof(nmea_ubx_mon_spt, results_count)};
+static const nmea_ubx_item ubx_mon_spt_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_spt, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sensor", NULL, offsetof(nmea_ubx_mon_spt, num_sensor), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_res", NULL, offsetof(nmea_ubx_mon_spt, num_res), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_spt, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sensors", &ubx_mon_spt_sensors_group, offsetof(nmea_ubx_mon_spt, sensors), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"results", &ubx_mon_spt_results_group, offsetof(nmea_ubx_mon_spt, results), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* MON-SPAN: mon_span_poll */
 static const nmea_ubx_item ubx_mon_span_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -3624,6 +3873,43 @@ static const nmea_ubx_item ubx_mon_span_items[] = {
     {"num_rf_blocks", NULL, offsetof(nmea_ubx_mon_span, num_rf_blocks), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved0", NULL, offsetof(nmea_ubx_mon_span, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"rf_blocks", &ubx_mon_span_rf_blocks_group, offsetof(nmea_ubx_mon_span, rf_blocks), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-BATCH: mon_batch_poll */
+static const nmea_ubx_item ubx_mon_batch_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-BATCH: mon_batch */
+static const nmea_ubx_item ubx_mon_batch_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_batch, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_batch, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fill_level", NULL, offsetof(nmea_ubx_mon_batch, fill_level), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drops_all", NULL, offsetof(nmea_ubx_mon_batch, drops_all), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drops_since_mon", NULL, offsetof(nmea_ubx_mon_batch, drops_since_mon), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"next_msg_cnt", NULL, offsetof(nmea_ubx_mon_batch, next_msg_cnt), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-PMP: mon_pmp_poll */
+static const nmea_ubx_item ubx_mon_pmp_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-PMP: mon_pmp */
+static const nmea_ubx_scale ubx_mon_pmp_entrie_cno_frac_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mon_pmp_entrie_items[] = {
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_pmp_entrie, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"status", NULL, offsetof(nmea_ubx_mon_pmp_entrie, status), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"locked", NULL, offsetof(nmea_ubx_mon_pmp_entrie, locked), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"frame_sync", NULL, offsetof(nmea_ubx_mon_pmp_entrie, frame_sync), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_mon_pmp_entrie, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno", NULL, offsetof(nmea_ubx_mon_pmp_entrie, cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno_frac", &ubx_mon_pmp_entrie_cno_frac_scale, offsetof(nmea_ubx_mon_pmp_entrie, cno_frac), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_mon_pmp_entrie, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mon_pmp_entries_group = {ubx_mon_pmp_entrie_items, 8, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_pmp, n_entries), 0, 0, 65535, NMEA_UBX_MON_PMP_ENTRIES_MAX, 20, sizeof(nmea_ubx_mon_pmp_entrie), 0, offsetof(nmea_ubx_mon_pmp, entries_count)};
+static const nmea_ubx_item ubx_mon_pmp_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_pmp, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"n_entries", NULL, offsetof(nmea_ubx_mon_pmp, n_entries), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mon_pmp, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"entries", &ubx_mon_pmp_entries_group, offsetof(nmea_ubx_mon_pmp, entries), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* MON-COMMS: mon_comms_poll */
@@ -5844,6 +6130,23 @@ static const nmea_ubx_item ubx_nav2_eoe_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav2_eoe, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* NAV2-TIMENAVIC: nav2_timenavic_poll */
+static const nmea_ubx_item ubx_nav2_timenavic_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-TIMENAVIC: nav2_timenavic */
+static const nmea_ubx_item ubx_nav2_timenavic_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_timenavic, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_tow", NULL, offsetof(nmea_ubx_nav2_timenavic, nav_ic_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"f_nav_ic_tow", NULL, offsetof(nmea_ubx_nav2_timenavic, f_nav_ic_tow), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_wno", NULL, offsetof(nmea_ubx_nav2_timenavic, nav_ic_wno), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s", NULL, offsetof(nmea_ubx_nav2_timenavic, leap_s), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav2_timenavic, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_tow_valid", NULL, offsetof(nmea_ubx_nav2_timenavic, nav_ic_tow_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_wno_valid", NULL, offsetof(nmea_ubx_nav2_timenavic, nav_ic_wno_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s_valid", NULL, offsetof(nmea_ubx_nav2_timenavic, leap_s_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav2_timenavic, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* CASIC NAV-DOP: nav_dop */
 static const nmea_ubx_item ubx_casic_nav_dop_items[] = {
     {"run_time", NULL, offsetof(nmea_ubx_casic_nav_dop, run_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -7293,6 +7596,80 @@ static bool ubx_nav_hpposllh_fast(const uint8_t *p, size_t len, nmea_ubx_message
     return true;
 }
 
+static bool ubx_nav_pvat_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_nav_pvat *m = &out->as.nav_pvat;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    memset(m, 0, offsetof(nmea_ubx_nav_pvat, trailing));
+    if (left < 116)
+        return false;
+    m->itow = ubx_u32(q);
+    m->version = q[4];
+    w = q[5];
+    m->valid = (uint8_t)w;
+    m->valid_date = (w & 0x1u) != 0;
+    m->valid_time = (w >> 1 & 0x1u) != 0;
+    m->fully_resolved = (w >> 2 & 0x1u) != 0;
+    m->valid_mag = (w >> 3 & 0x1u) != 0;
+    m->year = ubx_u16(q + 6);
+    m->month = q[8];
+    m->day = q[9];
+    m->hour = q[10];
+    m->min = q[11];
+    m->sec = q[12];
+    m->reserved0 = q[13];
+    m->reserved1 = ubx_u16(q + 14);
+    m->t_acc = ubx_u32(q + 16);
+    m->nano = (int32_t)ubx_u32(q + 20);
+    m->fix_type = q[24];
+    w = q[25];
+    m->flags = (uint8_t)w;
+    m->gnss_fix_ok = (w & 0x1u) != 0;
+    m->diff_soln = (w >> 1 & 0x1u) != 0;
+    m->veh_roll_valid = (w >> 3 & 0x1u) != 0;
+    m->veh_pitch_valid = (w >> 4 & 0x1u) != 0;
+    m->veh_heading_valid = (w >> 5 & 0x1u) != 0;
+    m->carr_soln = (uint8_t)(w >> 6 & 0x3u);
+    w = q[26];
+    m->flags2 = (uint8_t)w;
+    m->confirmed_avai = (w >> 5 & 0x1u) != 0;
+    m->confirmed_date = (w >> 6 & 0x1u) != 0;
+    m->confirmed_time = (w >> 7 & 0x1u) != 0;
+    m->num_sv = q[27];
+    m->lon = (int32_t)ubx_u32(q + 28);
+    m->lat = (int32_t)ubx_u32(q + 32);
+    m->height = (int32_t)ubx_u32(q + 36);
+    m->h_msl = (int32_t)ubx_u32(q + 40);
+    m->h_acc = ubx_u32(q + 44);
+    m->v_acc = ubx_u32(q + 48);
+    m->vel_n = (int32_t)ubx_u32(q + 52);
+    m->vel_e = (int32_t)ubx_u32(q + 56);
+    m->vel_d = (int32_t)ubx_u32(q + 60);
+    m->g_speed = (int32_t)ubx_u32(q + 64);
+    m->s_acc = ubx_u32(q + 68);
+    m->veh_roll = (int32_t)ubx_u32(q + 72);
+    m->veh_pitch = (int32_t)ubx_u32(q + 76);
+    m->veh_heading = (int32_t)ubx_u32(q + 80);
+    m->mot_heading = (int32_t)ubx_u32(q + 84);
+    m->acc_roll = ubx_u16(q + 88);
+    m->acc_pitch = ubx_u16(q + 90);
+    m->acc_heading = ubx_u16(q + 92);
+    m->mag_dec = (int16_t)ubx_u16(q + 94);
+    m->mag_acc = ubx_u16(q + 96);
+    m->err_ellipse_orient = ubx_u16(q + 98);
+    m->err_ellipse_major = ubx_u32(q + 100);
+    m->err_ellipse_minor = ubx_u32(q + 104);
+    m->reserved2 = ubx_u32(q + 108);
+    m->reserved3 = ubx_u32(q + 112);
+    q += 116;
+    left -= 116;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_nav_timegps_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_nav_timegps *m = &out->as.nav_timegps;
@@ -7503,6 +7880,64 @@ static bool ubx_nav_timeqzss_fast(const uint8_t *p, size_t len, nmea_ubx_message
     m->t_acc = ubx_u32(q + 16);
     q += 20;
     left -= 20;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_nav_nmi_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_nav_nmi *m = &out->as.nav_nmi;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    memset(m, 0, offsetof(nmea_ubx_nav_nmi, trailing));
+    if (left < 16)
+        return false;
+    m->itow = ubx_u32(q);
+    m->version = q[4];
+    m->reserved1 = ubx_u32(q + 5);
+    w = q[9];
+    m->gps_nmi_flags = (uint8_t)w;
+    m->wno_checked_gps = (w & 0x1u) != 0;
+    m->wno_invalid_gps = (w >> 1 & 0x1u) != 0;
+    m->utco_ref_checked_gps = (w >> 2 & 0x1u) != 0;
+    m->utco_ref_invalid_gps = (w >> 3 & 0x1u) != 0;
+    w = q[10];
+    m->gps_ls_flags = (uint8_t)w;
+    m->ls_val_gps = (w & 0x1u) != 0;
+    m->dn_range_gps = (w >> 1 & 0x1u) != 0;
+    m->tot_range_gps = (w >> 2 & 0x1u) != 0;
+    m->ls_event_gps = (w >> 3 & 0x1u) != 0;
+    m->rec_now_gps = (w >> 4 & 0x1u) != 0;
+    w = q[11];
+    m->gal_nmi_flags = (uint8_t)w;
+    m->wno_checked_gal = (w & 0x1u) != 0;
+    m->wno_invalid_gal = (w >> 1 & 0x1u) != 0;
+    w = q[12];
+    m->gal_ls_flags = (uint8_t)w;
+    m->ls_val_gal = (w & 0x1u) != 0;
+    m->dn_range_gal = (w >> 1 & 0x1u) != 0;
+    m->tot_range_gal = (w >> 2 & 0x1u) != 0;
+    m->ls_event_gal = (w >> 3 & 0x1u) != 0;
+    m->rec_now_gal = (w >> 4 & 0x1u) != 0;
+    w = q[13];
+    m->bds_nmi_flags = (uint8_t)w;
+    m->wno_checked_bds = (w & 0x1u) != 0;
+    m->wno_invalid_bds = (w >> 1 & 0x1u) != 0;
+    w = q[14];
+    m->bds_ls_flags = (uint8_t)w;
+    m->ls_val_bds = (w & 0x1u) != 0;
+    m->dn_range_bds = (w >> 1 & 0x1u) != 0;
+    m->tot_range_bds = (w >> 2 & 0x1u) != 0;
+    m->ls_event_bds = (w >> 3 & 0x1u) != 0;
+    m->rec_now_bds = (w >> 4 & 0x1u) != 0;
+    w = q[15];
+    m->glo_nmi_flags = (uint8_t)w;
+    m->wno_checked_glo = (w & 0x1u) != 0;
+    m->wno_invalid_glo = (w >> 1 & 0x1u) != 0;
+    q += 16;
+    left -= 16;
     m->trailing.ptr = q;
     m->trailing.len = left;
     return true;
@@ -8181,6 +8616,33 @@ static bool ubx_nav_pl_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
     return true;
 }
 
+static bool ubx_nav_timenavic_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_nav_timenavic *m = &out->as.nav_timenavic;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    memset(m, 0, offsetof(nmea_ubx_nav_timenavic, trailing));
+    if (left < 20)
+        return false;
+    m->itow = ubx_u32(q);
+    m->nav_ic_tow = ubx_u32(q + 4);
+    m->f_nav_ic_tow = (int32_t)ubx_u32(q + 8);
+    m->nav_ic_wno = (int16_t)ubx_u16(q + 12);
+    m->leap_s = (int8_t)q[14];
+    w = q[15];
+    m->valid = (uint8_t)w;
+    m->nav_ic_tow_valid = (w & 0x1u) != 0;
+    m->nav_ic_wno_valid = (w >> 1 & 0x1u) != 0;
+    m->leap_s_valid = (w >> 2 & 0x1u) != 0;
+    m->t_acc = ubx_u32(q + 16);
+    q += 20;
+    left -= 20;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_rxm_sfrbx_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_rxm_sfrbx *m = &out->as.rxm_sfrbx;
@@ -8627,6 +9089,95 @@ static bool ubx_rxm_imes_fast(const uint8_t *p, size_t len, nmea_ubx_message *ou
         left -= count * 44;
         m->transmitters_count = (uint16_t)count;
     }
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_rxm_pmp_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_rxm_pmp *m = &out->as.rxm_pmp;
+    const uint8_t *q = p;
+    size_t left = len;
+    memset(m, 0, offsetof(nmea_ubx_rxm_pmp, trailing));
+    if (left < 528)
+        return false;
+    m->version = q[0];
+    m->reserved0 = (uint32_t)ubx_le(q + 1, 3);
+    m->time_tag = ubx_u32(q + 4);
+    m->unique_word1 = ubx_u32(q + 8);
+    m->unique_word2 = ubx_u32(q + 12);
+    m->service_identifier = ubx_u16(q + 16);
+    m->spare = q[18];
+    m->unique_word_bit_errors = q[19];
+    memcpy(m->user_data0, q + 20, 252);
+    memcpy(m->user_data1, q + 272, 252);
+    m->fec_bits = ubx_u16(q + 524);
+    m->ebno = q[526];
+    m->reserved1 = q[527];
+    q += 528;
+    left -= 528;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_rxm_pmp_v1_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_rxm_pmp_v1 *m = &out->as.rxm_pmp_v1;
+    const uint8_t *q = p;
+    size_t left = len;
+    memset(m, 0, offsetof(nmea_ubx_rxm_pmp_v1, trailing));
+    if (left < 24)
+        return false;
+    m->version = q[0];
+    m->reserved0 = q[1];
+    m->num_bytes_user_data = ubx_u16(q + 2);
+    m->time_tag = ubx_u32(q + 4);
+    m->unique_word1 = ubx_u32(q + 8);
+    m->unique_word2 = ubx_u32(q + 12);
+    m->service_identifier = ubx_u16(q + 16);
+    m->spare = q[18];
+    m->unique_word_bit_errors = q[19];
+    m->fec_bits = ubx_u16(q + 20);
+    m->ebno = q[22];
+    m->reserved1 = q[23];
+    q += 24;
+    left -= 24;
+    m->user_data.ptr = q;
+    m->user_data.len = left > 0 ? left - 0 : 0;
+    q += m->user_data.len;
+    left -= m->user_data.len;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_rxm_qzssl6_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_rxm_qzssl6 *m = &out->as.rxm_qzssl6;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    memset(m, 0, offsetof(nmea_ubx_rxm_qzssl6, trailing));
+    if (left < 264)
+        return false;
+    m->version = q[0];
+    m->sv_id = q[1];
+    m->cno = ubx_u16(q + 2);
+    m->time_tag = ubx_u32(q + 4);
+    m->group_delay = q[8];
+    m->bit_err_corr = q[9];
+    w = ubx_u16(q + 10);
+    m->ch_info = (uint16_t)w;
+    m->chn = (uint8_t)(w >> 8 & 0x3u);
+    m->msg_name = (w >> 10 & 0x1u) != 0;
+    m->err_status = (uint8_t)(w >> 12 & 0x3u);
+    m->ch_name = (uint8_t)(w >> 14 & 0x3u);
+    m->reserved0 = ubx_u16(q + 12);
+    memcpy(m->msg_bytes, q + 14, 250);
+    q += 264;
+    left -= 264;
     m->trailing.ptr = q;
     m->trailing.len = left;
     return true;
@@ -9819,6 +10370,25 @@ static bool ubx_cfg_smgr_fast(const uint8_t *p, size_t len, nmea_ubx_message *ou
     return true;
 }
 
+static bool ubx_cfg_spt_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_cfg_spt *m = &out->as.cfg_spt;
+    const uint8_t *q = p;
+    size_t left = len;
+    memset(m, 0, offsetof(nmea_ubx_cfg_spt, trailing));
+    if (left < 12)
+        return false;
+    m->version = q[0];
+    m->reserved0 = q[1];
+    m->sensor_id = ubx_u16(q + 2);
+    m->reserved1 = ubx_u64(q + 4);
+    q += 12;
+    left -= 12;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_cfg_geofence_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_cfg_geofence *m = &out->as.cfg_geofence;
@@ -9962,6 +10532,31 @@ static bool ubx_cfg_pms_fast(const uint8_t *p, size_t len, nmea_ubx_message *out
     m->reserved0 = ubx_u16(q + 6);
     q += 8;
     left -= 8;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_cfg_senif_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_cfg_senif *m = &out->as.cfg_senif;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    memset(m, 0, offsetof(nmea_ubx_cfg_senif, trailing));
+    if (left < 6)
+        return false;
+    m->type = q[0];
+    m->version = q[1];
+    w = ubx_u16(q + 2);
+    m->flags = (uint16_t)w;
+    m->sen_conn = (w & 0x1u) != 0;
+    w = ubx_u16(q + 4);
+    m->pio_conf = (uint16_t)w;
+    m->i2c_sda_pio = (uint8_t)(w & 0x1Fu);
+    m->i2c_scl_pio = (uint8_t)(w >> 5 & 0x1Fu);
+    q += 6;
+    left -= 6;
     m->trailing.ptr = q;
     m->trailing.len = left;
     return true;
@@ -10544,6 +11139,61 @@ static bool ubx_mon_smgr_fast(const uint8_t *p, size_t len, nmea_ubx_message *ou
     return true;
 }
 
+static bool ubx_mon_spt_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_mon_spt *m = &out->as.mon_spt;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    size_t k;
+    memset(m, 0, offsetof(nmea_ubx_mon_spt, trailing));
+    if (left < 4)
+        return false;
+    m->version = q[0];
+    m->num_sensor = q[1];
+    m->num_res = q[2];
+    m->reserved1 = q[3];
+    q += 4;
+    left -= 4;
+    {
+        size_t count = (uint8_t)m->num_sensor;
+        if (count * 4 > left || count > NMEA_UBX_MON_SPT_SENSORS_MAX)
+            return false;
+        for (k = 0; k < count; k++, q += 4) {
+            nmea_ubx_mon_spt_sensor *e = &m->sensors[k];
+            memset(e, 0, sizeof *e); /* (its padding: the stores of its fields replace the rest) */
+            e->sensor_id = q[0];
+            w = q[1];
+            e->drv_ver = (uint8_t)w;
+            e->drv_ver_min = (uint8_t)(w & 0xFu);
+            e->drv_ver_maj = (uint8_t)(w >> 4 & 0xFu);
+            e->test_state = q[2];
+            e->drv_file_name = q[3];
+        }
+        left -= count * 4;
+        m->sensors_count = (uint16_t)count;
+    }
+    {
+        size_t count = (uint8_t)m->num_res;
+        if (count * 12 > left || count > NMEA_UBX_MON_SPT_RESULTS_MAX)
+            return false;
+        for (k = 0; k < count; k++, q += 12) {
+            nmea_ubx_mon_spt_result *e = &m->results[k];
+            memset(e, 0, sizeof *e); /* (its padding: the stores of its fields replace the rest) */
+            e->sensor_id_res = ubx_u16(q);
+            e->sensor_type = ubx_u16(q + 2);
+            e->res_type = ubx_u16(q + 4);
+            e->reserved2 = ubx_u16(q + 6);
+            e->value = (int32_t)ubx_u32(q + 8);
+        }
+        left -= count * 12;
+        m->results_count = (uint16_t)count;
+    }
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_mon_span_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_mon_span *m = &out->as.mon_span;
@@ -10575,6 +11225,67 @@ static bool ubx_mon_span_fast(const uint8_t *p, size_t len, nmea_ubx_message *ou
         }
         left -= count * 272;
         m->rf_blocks_count = (uint16_t)count;
+    }
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_mon_batch_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_mon_batch *m = &out->as.mon_batch;
+    const uint8_t *q = p;
+    size_t left = len;
+    memset(m, 0, offsetof(nmea_ubx_mon_batch, trailing));
+    if (left < 12)
+        return false;
+    m->version = q[0];
+    m->reserved1 = (uint32_t)ubx_le(q + 1, 3);
+    m->fill_level = ubx_u16(q + 4);
+    m->drops_all = ubx_u16(q + 6);
+    m->drops_since_mon = ubx_u16(q + 8);
+    m->next_msg_cnt = ubx_u16(q + 10);
+    q += 12;
+    left -= 12;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_mon_pmp_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_mon_pmp *m = &out->as.mon_pmp;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    size_t k;
+    memset(m, 0, offsetof(nmea_ubx_mon_pmp, trailing));
+    if (left < 4)
+        return false;
+    m->version = q[0];
+    m->n_entries = q[1];
+    m->reserved0 = ubx_u16(q + 2);
+    q += 4;
+    left -= 4;
+    {
+        size_t count = (uint8_t)m->n_entries;
+        if (count * 20 > left || count > NMEA_UBX_MON_PMP_ENTRIES_MAX)
+            return false;
+        for (k = 0; k < count; k++, q += 20) {
+            nmea_ubx_mon_pmp_entrie *e = &m->entries[k];
+            memset(e, 0, sizeof *e); /* (its padding: the stores of its fields replace the rest) */
+            e->reserved1 = ubx_u32(q);
+            w = ubx_u32(q + 4);
+            e->status = (uint32_t)w;
+            e->locked = (w & 0x1u) != 0;
+            e->frame_sync = (w >> 1 & 0x1u) != 0;
+            e->reserved2 = ubx_u64(q + 8);
+            e->cno = q[16];
+            e->cno_frac = q[17];
+            e->reserved3 = ubx_u16(q + 18);
+        }
+        left -= count * 20;
+        m->entries_count = (uint16_t)count;
     }
     m->trailing.ptr = q;
     m->trailing.len = left;
@@ -12755,6 +13466,33 @@ static bool ubx_nav2_eoe_fast(const uint8_t *p, size_t len, nmea_ubx_message *ou
     return true;
 }
 
+static bool ubx_nav2_timenavic_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_nav2_timenavic *m = &out->as.nav2_timenavic;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    memset(m, 0, offsetof(nmea_ubx_nav2_timenavic, trailing));
+    if (left < 20)
+        return false;
+    m->itow = ubx_u32(q);
+    m->nav_ic_tow = ubx_u32(q + 4);
+    m->f_nav_ic_tow = (int32_t)ubx_u32(q + 8);
+    m->nav_ic_wno = (int16_t)ubx_u16(q + 12);
+    m->leap_s = (int8_t)q[14];
+    w = q[15];
+    m->valid = (uint8_t)w;
+    m->nav_ic_tow_valid = (w & 0x1u) != 0;
+    m->nav_ic_wno_valid = (w >> 1 & 0x1u) != 0;
+    m->leap_s_valid = (w >> 2 & 0x1u) != 0;
+    m->t_acc = ubx_u32(q + 16);
+    q += 20;
+    left -= 20;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_casic_nav_dop_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_casic_nav_dop *m = &out->as.casic_nav_dop;
@@ -14461,6 +15199,8 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     ubx_nav_hpposllh_fast,
     NULL,
+    ubx_nav_pvat_fast,
+    NULL,
     ubx_nav_timegps_fast,
     NULL,
     ubx_nav_timeutc_fast,
@@ -14476,6 +15216,8 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_nav_timels_fast,
     NULL,
     ubx_nav_timeqzss_fast,
+    NULL,
+    ubx_nav_nmi_fast,
     NULL,
     ubx_nav_svinfo_fast,
     NULL,
@@ -14506,6 +15248,8 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_nav_eoe_fast,
     NULL,
     ubx_nav_pl_fast,
+    NULL,
+    ubx_nav_timenavic_fast,
     ubx_rxm_sfrbx_fast,
     NULL,
     ubx_rxm_measx_fast,
@@ -14524,6 +15268,9 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_rxm_rlm_short_fast,
     NULL,
     ubx_rxm_imes_fast,
+    ubx_rxm_pmp_fast,
+    ubx_rxm_pmp_v1_fast,
+    ubx_rxm_qzssl6_fast,
     ubx_inf_error_fast,
     ubx_inf_warning_fast,
     ubx_inf_notice_fast,
@@ -14599,6 +15346,8 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     ubx_cfg_smgr_fast,
     NULL,
+    ubx_cfg_spt_fast,
+    NULL,
     ubx_cfg_geofence_fast,
     NULL,
     ubx_cfg_dgnss_fast,
@@ -14610,6 +15359,8 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     NULL,
     ubx_cfg_pms_fast,
+    NULL,
+    ubx_cfg_senif_fast,
     NULL,
     NULL,
     NULL,
@@ -14645,7 +15396,13 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     ubx_mon_smgr_fast,
     NULL,
+    ubx_mon_spt_fast,
+    NULL,
     ubx_mon_span_fast,
+    NULL,
+    ubx_mon_batch_fast,
+    NULL,
+    ubx_mon_pmp_fast,
     NULL,
     ubx_mon_comms_fast,
     NULL,
@@ -14802,6 +15559,8 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     ubx_nav2_sig_fast,
     ubx_nav2_eoe_fast,
+    NULL,
+    ubx_nav2_timenavic_fast,
     ubx_casic_nav_dop_fast,
     ubx_casic_nav_pv_fast,
     ubx_casic_nav_timeutc_fast,
@@ -14891,6 +15650,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav_hpposecef", "NAV-HPPOSECEF", 0x01, 0x13, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_nav_hpposecef_items, 12, 0, offsetof(nmea_ubx_nav_hpposecef, trailing)},
     {"nav_hpposllh_poll", "NAV-HPPOSLLH", 0x01, 0x14, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_hpposllh_poll_items, 0, 0, offsetof(nmea_ubx_nav_hpposllh_poll, trailing)},
     {"nav_hpposllh", "NAV-HPPOSLLH", 0x01, 0x14, true, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_nav_hpposllh_items, 15, 0, offsetof(nmea_ubx_nav_hpposllh, trailing)},
+    {"nav_pvat_poll", "NAV-PVAT", 0x01, 0x17, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_pvat_poll_items, 0, 0, offsetof(nmea_ubx_nav_pvat_poll, trailing)},
+    {"nav_pvat", "NAV-PVAT", 0x01, 0x17, true, NMEA_UBX_PROTOCOL_UBX, 116, -1, 0, ubx_nav_pvat_items, 55, 0, offsetof(nmea_ubx_nav_pvat, trailing)},
     {"nav_timegps_poll", "NAV-TIMEGPS", 0x01, 0x20, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timegps_poll_items, 0, 0, offsetof(nmea_ubx_nav_timegps_poll, trailing)},
     {"nav_timegps", "NAV-TIMEGPS", 0x01, 0x20, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_nav_timegps_items, 9, 0, offsetof(nmea_ubx_nav_timegps, trailing)},
     {"nav_timeutc_poll", "NAV-TIMEUTC", 0x01, 0x21, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timeutc_poll_items, 0, 0, offsetof(nmea_ubx_nav_timeutc_poll, trailing)},
@@ -14907,6 +15668,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav_timels", "NAV-TIMELS", 0x01, 0x26, true, NMEA_UBX_PROTOCOL_UBX, 24, -1, 0, ubx_nav_timels_items, 14, 0, offsetof(nmea_ubx_nav_timels, trailing)},
     {"nav_timeqzss_poll", "NAV-TIMEQZSS", 0x01, 0x27, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timeqzss_poll_items, 0, 0, offsetof(nmea_ubx_nav_timeqzss_poll, trailing)},
     {"nav_timeqzss", "NAV-TIMEQZSS", 0x01, 0x27, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_timeqzss_items, 10, 0, offsetof(nmea_ubx_nav_timeqzss, trailing)},
+    {"nav_nmi_poll", "NAV-NMI", 0x01, 0x28, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_nmi_poll_items, 0, 0, offsetof(nmea_ubx_nav_nmi_poll, trailing)},
+    {"nav_nmi", "NAV-NMI", 0x01, 0x28, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_nav_nmi_items, 35, 0, offsetof(nmea_ubx_nav_nmi, trailing)},
     {"nav_svinfo_poll", "NAV-SVINFO", 0x01, 0x30, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_svinfo_poll_items, 0, 0, offsetof(nmea_ubx_nav_svinfo_poll, trailing)},
     {"nav_svinfo", "NAV-SVINFO", 0x01, 0x30, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav_svinfo_items, 6, 0, offsetof(nmea_ubx_nav_svinfo, trailing)},
     {"nav_dgps_poll", "NAV-DGPS", 0x01, 0x31, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_dgps_poll_items, 0, 0, offsetof(nmea_ubx_nav_dgps_poll, trailing)},
@@ -14937,6 +15700,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav_eoe", "NAV-EOE", 0x01, 0x61, true, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_nav_eoe_items, 1, 0, offsetof(nmea_ubx_nav_eoe, trailing)},
     {"nav_pl_poll", "NAV-PL", 0x01, 0x62, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_pl_poll_items, 0, 0, offsetof(nmea_ubx_nav_pl_poll, trailing)},
     {"nav_pl", "NAV-PL", 0x01, 0x62, true, NMEA_UBX_PROTOCOL_UBX, 52, -1, 0, ubx_nav_pl_items, 20, 0, offsetof(nmea_ubx_nav_pl, trailing)},
+    {"nav_timenavic_poll", "NAV-TIMENAVIC", 0x01, 0x63, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timenavic_poll_items, 0, 0, offsetof(nmea_ubx_nav_timenavic_poll, trailing)},
+    {"nav_timenavic", "NAV-TIMENAVIC", 0x01, 0x63, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_timenavic_items, 10, 0, offsetof(nmea_ubx_nav_timenavic, trailing)},
     {"rxm_sfrbx", "RXM-SFRBX", 0x02, 0x13, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_sfrbx_items, 9, 0, offsetof(nmea_ubx_rxm_sfrbx, trailing)},
     {"rxm_measx_poll", "RXM-MEASX", 0x02, 0x14, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_rxm_measx_poll_items, 0, 0, offsetof(nmea_ubx_rxm_measx_poll, trailing)},
     {"rxm_measx", "RXM-MEASX", 0x02, 0x14, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_measx_items, 17, 0, offsetof(nmea_ubx_rxm_measx, trailing)},
@@ -14955,6 +15720,9 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"rxm_rlm_short", "RXM-RLM", 0x02, 0x59, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_rxm_rlm_short_items, 8, 0, offsetof(nmea_ubx_rxm_rlm_short, trailing)},
     {"rxm_imes_poll", "RXM-IMES", 0x02, 0x61, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_rxm_imes_poll_items, 0, 0, offsetof(nmea_ubx_rxm_imes_poll, trailing)},
     {"rxm_imes", "RXM-IMES", 0x02, 0x61, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_imes_items, 4, 0, offsetof(nmea_ubx_rxm_imes, trailing)},
+    {"rxm_pmp", "RXM-PMP", 0x02, 0x72, true, NMEA_UBX_PROTOCOL_UBX, 528, 0, 0, ubx_rxm_pmp_items, 13, 0, offsetof(nmea_ubx_rxm_pmp, trailing)},
+    {"rxm_pmp_v1", "RXM-PMP", 0x02, 0x72, true, NMEA_UBX_PROTOCOL_UBX, -1, 1, 0, ubx_rxm_pmp_v1_items, 13, 0, offsetof(nmea_ubx_rxm_pmp_v1, trailing)},
+    {"rxm_qzssl6", "RXM-QZSSL6", 0x02, 0x73, true, NMEA_UBX_PROTOCOL_UBX, 264, -1, 0, ubx_rxm_qzssl6_items, 13, 0, offsetof(nmea_ubx_rxm_qzssl6, trailing)},
     {"inf_error", "INF-ERROR", 0x04, 0x00, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_error_items, 1, 0, offsetof(nmea_ubx_inf_error, trailing)},
     {"inf_warning", "INF-WARNING", 0x04, 0x01, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_warning_items, 1, 0, offsetof(nmea_ubx_inf_warning, trailing)},
     {"inf_notice", "INF-NOTICE", 0x04, 0x02, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_notice_items, 1, 0, offsetof(nmea_ubx_inf_notice, trailing)},
@@ -15029,6 +15797,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_dosc", "CFG-DOSC", 0x06, 0x61, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_dosc_items, 4, 0, offsetof(nmea_ubx_cfg_dosc, trailing)},
     {"cfg_smgr_poll", "CFG-SMGR", 0x06, 0x62, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_smgr_poll_items, 0, 0, offsetof(nmea_ubx_cfg_smgr_poll, trailing)},
     {"cfg_smgr", "CFG-SMGR", 0x06, 0x62, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_cfg_smgr_items, 28, 0, offsetof(nmea_ubx_cfg_smgr, trailing)},
+    {"cfg_spt_poll", "CFG-SPT", 0x06, 0x64, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_spt_poll_items, 0, 0, offsetof(nmea_ubx_cfg_spt_poll, trailing)},
+    {"cfg_spt", "CFG-SPT", 0x06, 0x64, true, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_cfg_spt_items, 4, 0, offsetof(nmea_ubx_cfg_spt, trailing)},
     {"cfg_geofence_poll", "CFG-GEOFENCE", 0x06, 0x69, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_geofence_poll_items, 0, 0, offsetof(nmea_ubx_cfg_geofence_poll, trailing)},
     {"cfg_geofence", "CFG-GEOFENCE", 0x06, 0x69, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_geofence_items, 9, 0, offsetof(nmea_ubx_cfg_geofence, trailing)},
     {"cfg_dgnss_poll", "CFG-DGNSS", 0x06, 0x70, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_dgnss_poll_items, 0, 0, offsetof(nmea_ubx_cfg_dgnss_poll, trailing)},
@@ -15041,6 +15811,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_dynseed", "CFG-DYNSEED", 0x06, 0x85, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_cfg_dynseed_items, 4, 0, offsetof(nmea_ubx_cfg_dynseed, trailing)},
     {"cfg_pms_poll", "CFG-PMS", 0x06, 0x86, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_pms_poll_items, 0, 0, offsetof(nmea_ubx_cfg_pms_poll, trailing)},
     {"cfg_pms", "CFG-PMS", 0x06, 0x86, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_cfg_pms_items, 5, 0, offsetof(nmea_ubx_cfg_pms, trailing)},
+    {"cfg_senif_poll", "CFG-SENIF", 0x06, 0x88, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_senif_poll_items, 0, 0, offsetof(nmea_ubx_cfg_senif_poll, trailing)},
+    {"cfg_senif", "CFG-SENIF", 0x06, 0x88, true, NMEA_UBX_PROTOCOL_UBX, 6, -1, 0, ubx_cfg_senif_items, 7, 0, offsetof(nmea_ubx_cfg_senif, trailing)},
     {"cfg_valset_v0", "CFG-VALSET", 0x06, 0x8A, false, NMEA_UBX_PROTOCOL_UBX, -1, 0, 0, ubx_cfg_valset_v0_items, 7, 0, offsetof(nmea_ubx_cfg_valset_v0, trailing)},
     {"cfg_valset", "CFG-VALSET", 0x06, 0x8A, false, NMEA_UBX_PROTOCOL_UBX, -1, 1, 0, ubx_cfg_valset_items, 9, 0, offsetof(nmea_ubx_cfg_valset, trailing)},
     {"cfg_valget_poll", "CFG-VALGET", 0x06, 0x8B, false, NMEA_UBX_PROTOCOL_UBX, -1, 0, 0, ubx_cfg_valget_poll_items, 4, 0, offsetof(nmea_ubx_cfg_valget_poll, trailing)},
@@ -15075,8 +15847,14 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"mon_gnss", "MON-GNSS", 0x0A, 0x28, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_mon_gnss_items, 18, 0, offsetof(nmea_ubx_mon_gnss, trailing)},
     {"mon_smgr_poll", "MON-SMGR", 0x0A, 0x2E, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_smgr_poll_items, 0, 0, offsetof(nmea_ubx_mon_smgr_poll, trailing)},
     {"mon_smgr", "MON-SMGR", 0x0A, 0x2E, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_mon_smgr_items, 22, 0, offsetof(nmea_ubx_mon_smgr, trailing)},
+    {"mon_spt_poll", "MON-SPT", 0x0A, 0x2F, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_spt_poll_items, 0, 0, offsetof(nmea_ubx_mon_spt_poll, trailing)},
+    {"mon_spt", "MON-SPT", 0x0A, 0x2F, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_spt_items, 6, 0, offsetof(nmea_ubx_mon_spt, trailing)},
     {"mon_span_poll", "MON-SPAN", 0x0A, 0x31, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_span_poll_items, 0, 0, offsetof(nmea_ubx_mon_span_poll, trailing)},
     {"mon_span", "MON-SPAN", 0x0A, 0x31, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_span_items, 4, 0, offsetof(nmea_ubx_mon_span, trailing)},
+    {"mon_batch_poll", "MON-BATCH", 0x0A, 0x32, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_batch_poll_items, 0, 0, offsetof(nmea_ubx_mon_batch_poll, trailing)},
+    {"mon_batch", "MON-BATCH", 0x0A, 0x32, true, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_mon_batch_items, 6, 0, offsetof(nmea_ubx_mon_batch, trailing)},
+    {"mon_pmp_poll", "MON-PMP", 0x0A, 0x35, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_pmp_poll_items, 0, 0, offsetof(nmea_ubx_mon_pmp_poll, trailing)},
+    {"mon_pmp", "MON-PMP", 0x0A, 0x35, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_pmp_items, 4, 0, offsetof(nmea_ubx_mon_pmp, trailing)},
     {"mon_comms_poll", "MON-COMMS", 0x0A, 0x36, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_comms_poll_items, 0, 0, offsetof(nmea_ubx_mon_comms_poll, trailing)},
     {"mon_comms", "MON-COMMS", 0x0A, 0x36, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_comms_items, 8, 0, offsetof(nmea_ubx_mon_comms, trailing)},
     {"mon_hw3_poll", "MON-HW3", 0x0A, 0x37, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_hw3_poll_items, 0, 0, offsetof(nmea_ubx_mon_hw3_poll, trailing)},
@@ -15233,6 +16011,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav2_sig_poll", "NAV2-SIG", 0x29, 0x43, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_sig_poll_items, 0, 0, offsetof(nmea_ubx_nav2_sig_poll, trailing)},
     {"nav2_sig", "NAV2-SIG", 0x29, 0x43, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav2_sig_items, 5, 0, offsetof(nmea_ubx_nav2_sig, trailing)},
     {"nav2_eoe", "NAV2-EOE", 0x29, 0x61, true, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_nav2_eoe_items, 1, 0, offsetof(nmea_ubx_nav2_eoe, trailing)},
+    {"nav2_timenavic_poll", "NAV2-TIMENAVIC", 0x29, 0x63, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_timenavic_poll_items, 0, 0, offsetof(nmea_ubx_nav2_timenavic_poll, trailing)},
+    {"nav2_timenavic", "NAV2-TIMENAVIC", 0x29, 0x63, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav2_timenavic_items, 10, 0, offsetof(nmea_ubx_nav2_timenavic, trailing)},
     {"nav_dop", "NAV-DOP", 0x01, 0x01, true, NMEA_UBX_PROTOCOL_CASIC, 28, -1, 0, ubx_casic_nav_dop_items, 7, 0, offsetof(nmea_ubx_casic_nav_dop, trailing)},
     {"nav_pv", "NAV-PV", 0x01, 0x03, true, NMEA_UBX_PROTOCOL_CASIC, 80, -1, 0, ubx_casic_nav_pv_items, 27, 0, offsetof(nmea_ubx_casic_nav_pv, trailing)},
     {"nav_timeutc", "NAV-TIMEUTC", 0x01, 0x10, true, NMEA_UBX_PROTOCOL_CASIC, 24, -1, 0, ubx_casic_nav_timeutc_items, 16, 0, offsetof(nmea_ubx_casic_nav_timeutc, trailing)},
@@ -15322,348 +16102,370 @@ static uint32_t ubx_message_layouts(unsigned key)
         return (uint32_t)21 << 16 | 22;
     case 0x0114: /* NAV-HPPOSLLH */
         return (uint32_t)23 << 16 | 24;
-    case 0x0120: /* NAV-TIMEGPS */
+    case 0x0117: /* NAV-PVAT */
         return (uint32_t)25 << 16 | 26;
-    case 0x0121: /* NAV-TIMEUTC */
+    case 0x0120: /* NAV-TIMEGPS */
         return (uint32_t)27 << 16 | 28;
-    case 0x0122: /* NAV-CLOCK */
+    case 0x0121: /* NAV-TIMEUTC */
         return (uint32_t)29 << 16 | 30;
-    case 0x0123: /* NAV-TIMEGLO */
+    case 0x0122: /* NAV-CLOCK */
         return (uint32_t)31 << 16 | 32;
-    case 0x0124: /* NAV-TIMEBDS */
+    case 0x0123: /* NAV-TIMEGLO */
         return (uint32_t)33 << 16 | 34;
-    case 0x0125: /* NAV-TIMEGAL */
+    case 0x0124: /* NAV-TIMEBDS */
         return (uint32_t)35 << 16 | 36;
-    case 0x0126: /* NAV-TIMELS */
+    case 0x0125: /* NAV-TIMEGAL */
         return (uint32_t)37 << 16 | 38;
-    case 0x0127: /* NAV-TIMEQZSS */
+    case 0x0126: /* NAV-TIMELS */
         return (uint32_t)39 << 16 | 40;
-    case 0x0130: /* NAV-SVINFO */
+    case 0x0127: /* NAV-TIMEQZSS */
         return (uint32_t)41 << 16 | 42;
-    case 0x0131: /* NAV-DGPS */
+    case 0x0128: /* NAV-NMI */
         return (uint32_t)43 << 16 | 44;
-    case 0x0132: /* NAV-SBAS */
+    case 0x0130: /* NAV-SVINFO */
         return (uint32_t)45 << 16 | 46;
-    case 0x0134: /* NAV-ORB */
+    case 0x0131: /* NAV-DGPS */
         return (uint32_t)47 << 16 | 48;
-    case 0x0135: /* NAV-SAT */
+    case 0x0132: /* NAV-SBAS */
         return (uint32_t)49 << 16 | 50;
-    case 0x0136: /* NAV-COV */
+    case 0x0134: /* NAV-ORB */
         return (uint32_t)51 << 16 | 52;
-    case 0x0139: /* NAV-GEOFENCE */
+    case 0x0135: /* NAV-SAT */
         return (uint32_t)53 << 16 | 54;
-    case 0x013B: /* NAV-SVIN */
+    case 0x0136: /* NAV-COV */
         return (uint32_t)55 << 16 | 56;
+    case 0x0139: /* NAV-GEOFENCE */
+        return (uint32_t)57 << 16 | 58;
+    case 0x013B: /* NAV-SVIN */
+        return (uint32_t)59 << 16 | 60;
     case 0x013C: /* NAV-RELPOSNED */
-        return (uint32_t)57 << 16 | 59;
+        return (uint32_t)61 << 16 | 63;
     case 0x013D: /* NAV-EELL */
-        return (uint32_t)60 << 16 | 61;
-    case 0x0142: /* NAV-SLAS */
-        return (uint32_t)62 << 16 | 63;
-    case 0x0143: /* NAV-SIG */
         return (uint32_t)64 << 16 | 65;
-    case 0x0160: /* NAV-AOPSTATUS */
+    case 0x0142: /* NAV-SLAS */
         return (uint32_t)66 << 16 | 67;
+    case 0x0143: /* NAV-SIG */
+        return (uint32_t)68 << 16 | 69;
+    case 0x0160: /* NAV-AOPSTATUS */
+        return (uint32_t)70 << 16 | 71;
     case 0x0161: /* NAV-EOE */
-        return (uint32_t)68 << 16 | 68;
+        return (uint32_t)72 << 16 | 72;
     case 0x0162: /* NAV-PL */
-        return (uint32_t)69 << 16 | 70;
+        return (uint32_t)73 << 16 | 74;
+    case 0x0163: /* NAV-TIMENAVIC */
+        return (uint32_t)75 << 16 | 76;
     case 0x0213: /* RXM-SFRBX */
-        return (uint32_t)71 << 16 | 71;
+        return (uint32_t)77 << 16 | 77;
     case 0x0214: /* RXM-MEASX */
-        return (uint32_t)72 << 16 | 73;
+        return (uint32_t)78 << 16 | 79;
     case 0x0215: /* RXM-RAWX */
-        return (uint32_t)74 << 16 | 75;
+        return (uint32_t)80 << 16 | 81;
     case 0x0220: /* RXM-SVSI */
-        return (uint32_t)76 << 16 | 77;
+        return (uint32_t)82 << 16 | 83;
     case 0x0232: /* RXM-RTCM */
-        return (uint32_t)78 << 16 | 78;
+        return (uint32_t)84 << 16 | 84;
     case 0x0233: /* RXM-SPARTN */
-        return (uint32_t)79 << 16 | 79;
+        return (uint32_t)85 << 16 | 85;
     case 0x0234: /* RXM-COR */
-        return (uint32_t)80 << 16 | 80;
+        return (uint32_t)86 << 16 | 86;
     case 0x0236: /* RXM-SPARTNKEY */
-        return (uint32_t)81 << 16 | 82;
-    case 0x0241: /* RXM-PMREQ */
-        return (uint32_t)83 << 16 | 84;
-    case 0x0259: /* RXM-RLM */
-        return (uint32_t)85 << 16 | 86;
-    case 0x0261: /* RXM-IMES */
         return (uint32_t)87 << 16 | 88;
+    case 0x0241: /* RXM-PMREQ */
+        return (uint32_t)89 << 16 | 90;
+    case 0x0259: /* RXM-RLM */
+        return (uint32_t)91 << 16 | 92;
+    case 0x0261: /* RXM-IMES */
+        return (uint32_t)93 << 16 | 94;
+    case 0x0272: /* RXM-PMP */
+        return (uint32_t)95 << 16 | 96;
+    case 0x0273: /* RXM-QZSSL6 */
+        return (uint32_t)97 << 16 | 97;
     case 0x0400: /* INF-ERROR */
-        return (uint32_t)89 << 16 | 89;
+        return (uint32_t)98 << 16 | 98;
     case 0x0401: /* INF-WARNING */
-        return (uint32_t)90 << 16 | 90;
+        return (uint32_t)99 << 16 | 99;
     case 0x0402: /* INF-NOTICE */
-        return (uint32_t)91 << 16 | 91;
+        return (uint32_t)100 << 16 | 100;
     case 0x0403: /* INF-TEST */
-        return (uint32_t)92 << 16 | 92;
+        return (uint32_t)101 << 16 | 101;
     case 0x0404: /* INF-DEBUG */
-        return (uint32_t)93 << 16 | 93;
+        return (uint32_t)102 << 16 | 102;
     case 0x0500: /* ACK-NAK */
-        return (uint32_t)94 << 16 | 94;
+        return (uint32_t)103 << 16 | 103;
     case 0x0501: /* ACK-ACK */
-        return (uint32_t)95 << 16 | 95;
-    case 0x0600: /* CFG-PRT */
-        return (uint32_t)96 << 16 | 98;
-    case 0x0601: /* CFG-MSG */
-        return (uint32_t)99 << 16 | 101;
-    case 0x0602: /* CFG-INF */
-        return (uint32_t)102 << 16 | 103;
-    case 0x0604: /* CFG-RST */
         return (uint32_t)104 << 16 | 104;
-    case 0x0606: /* CFG-DAT */
+    case 0x0600: /* CFG-PRT */
         return (uint32_t)105 << 16 | 107;
+    case 0x0601: /* CFG-MSG */
+        return (uint32_t)108 << 16 | 110;
+    case 0x0602: /* CFG-INF */
+        return (uint32_t)111 << 16 | 112;
+    case 0x0604: /* CFG-RST */
+        return (uint32_t)113 << 16 | 113;
+    case 0x0606: /* CFG-DAT */
+        return (uint32_t)114 << 16 | 116;
     case 0x0608: /* CFG-RATE */
-        return (uint32_t)108 << 16 | 109;
+        return (uint32_t)117 << 16 | 118;
     case 0x0609: /* CFG-CFG */
-        return (uint32_t)110 << 16 | 111;
+        return (uint32_t)119 << 16 | 120;
     case 0x0611: /* CFG-RXM */
-        return (uint32_t)112 << 16 | 113;
+        return (uint32_t)121 << 16 | 122;
     case 0x0613: /* CFG-ANT */
-        return (uint32_t)114 << 16 | 115;
+        return (uint32_t)123 << 16 | 124;
     case 0x0616: /* CFG-SBAS */
-        return (uint32_t)116 << 16 | 117;
+        return (uint32_t)125 << 16 | 126;
     case 0x0617: /* CFG-NMEA */
-        return (uint32_t)118 << 16 | 121;
+        return (uint32_t)127 << 16 | 130;
     case 0x061B: /* CFG-USB */
-        return (uint32_t)122 << 16 | 123;
+        return (uint32_t)131 << 16 | 132;
     case 0x061E: /* CFG-ODO */
-        return (uint32_t)124 << 16 | 125;
-    case 0x0623: /* CFG-NAVX5 */
-        return (uint32_t)126 << 16 | 127;
-    case 0x0624: /* CFG-NAV5 */
-        return (uint32_t)128 << 16 | 129;
-    case 0x0631: /* CFG-TP5 */
-        return (uint32_t)130 << 16 | 132;
-    case 0x0634: /* CFG-RINV */
         return (uint32_t)133 << 16 | 134;
-    case 0x0639: /* CFG-ITFM */
+    case 0x0623: /* CFG-NAVX5 */
         return (uint32_t)135 << 16 | 136;
-    case 0x063B: /* CFG-PM2 */
-        return (uint32_t)137 << 16 | 139;
-    case 0x063D: /* CFG-TMODE2 */
-        return (uint32_t)140 << 16 | 141;
-    case 0x063E: /* CFG-GNSS */
+    case 0x0624: /* CFG-NAV5 */
+        return (uint32_t)137 << 16 | 138;
+    case 0x0631: /* CFG-TP5 */
+        return (uint32_t)139 << 16 | 141;
+    case 0x0634: /* CFG-RINV */
         return (uint32_t)142 << 16 | 143;
-    case 0x0647: /* CFG-LOGFILTER */
+    case 0x0639: /* CFG-ITFM */
         return (uint32_t)144 << 16 | 145;
+    case 0x063B: /* CFG-PM2 */
+        return (uint32_t)146 << 16 | 148;
+    case 0x063D: /* CFG-TMODE2 */
+        return (uint32_t)149 << 16 | 150;
+    case 0x063E: /* CFG-GNSS */
+        return (uint32_t)151 << 16 | 152;
+    case 0x0647: /* CFG-LOGFILTER */
+        return (uint32_t)153 << 16 | 154;
     case 0x064C: /* CFG-ESFA */
-        return (uint32_t)146 << 16 | 147;
-    case 0x064D: /* CFG-ESFG */
-        return (uint32_t)148 << 16 | 149;
-    case 0x0653: /* CFG-TXSLOT */
-        return (uint32_t)150 << 16 | 151;
-    case 0x0656: /* CFG-ESFALG */
-        return (uint32_t)152 << 16 | 153;
-    case 0x0657: /* CFG-PWR */
-        return (uint32_t)154 << 16 | 154;
-    case 0x065C: /* CFG-HNR */
         return (uint32_t)155 << 16 | 156;
-    case 0x0660: /* CFG-ESRC */
+    case 0x064D: /* CFG-ESFG */
         return (uint32_t)157 << 16 | 158;
-    case 0x0661: /* CFG-DOSC */
+    case 0x0653: /* CFG-TXSLOT */
         return (uint32_t)159 << 16 | 160;
-    case 0x0662: /* CFG-SMGR */
+    case 0x0656: /* CFG-ESFALG */
         return (uint32_t)161 << 16 | 162;
+    case 0x0657: /* CFG-PWR */
+        return (uint32_t)163 << 16 | 163;
+    case 0x065C: /* CFG-HNR */
+        return (uint32_t)164 << 16 | 165;
+    case 0x0660: /* CFG-ESRC */
+        return (uint32_t)166 << 16 | 167;
+    case 0x0661: /* CFG-DOSC */
+        return (uint32_t)168 << 16 | 169;
+    case 0x0662: /* CFG-SMGR */
+        return (uint32_t)170 << 16 | 171;
+    case 0x0664: /* CFG-SPT */
+        return (uint32_t)172 << 16 | 173;
     case 0x0669: /* CFG-GEOFENCE */
-        return (uint32_t)163 << 16 | 164;
+        return (uint32_t)174 << 16 | 175;
     case 0x0670: /* CFG-DGNSS */
-        return (uint32_t)165 << 16 | 166;
+        return (uint32_t)176 << 16 | 177;
     case 0x0671: /* CFG-TMODE3 */
-        return (uint32_t)167 << 16 | 168;
+        return (uint32_t)178 << 16 | 179;
     case 0x0682: /* CFG-ESFWT */
-        return (uint32_t)169 << 16 | 170;
+        return (uint32_t)180 << 16 | 181;
     case 0x0684: /* CFG-FIXSEED */
-        return (uint32_t)171 << 16 | 171;
+        return (uint32_t)182 << 16 | 182;
     case 0x0685: /* CFG-DYNSEED */
-        return (uint32_t)172 << 16 | 172;
+        return (uint32_t)183 << 16 | 183;
     case 0x0686: /* CFG-PMS */
-        return (uint32_t)173 << 16 | 174;
+        return (uint32_t)184 << 16 | 185;
+    case 0x0688: /* CFG-SENIF */
+        return (uint32_t)186 << 16 | 187;
     case 0x068A: /* CFG-VALSET */
-        return (uint32_t)175 << 16 | 176;
-    case 0x068B: /* CFG-VALGET */
-        return (uint32_t)177 << 16 | 178;
-    case 0x068C: /* CFG-VALDEL */
-        return (uint32_t)179 << 16 | 180;
-    case 0x068D: /* CFG-SLAS */
-        return (uint32_t)181 << 16 | 182;
-    case 0x0693: /* CFG-BATCH */
-        return (uint32_t)183 << 16 | 184;
-    case 0x0914: /* UPD-SOS */
-        return (uint32_t)185 << 16 | 187;
-    case 0x0A02: /* MON-IO */
         return (uint32_t)188 << 16 | 189;
-    case 0x0A04: /* MON-VER */
+    case 0x068B: /* CFG-VALGET */
         return (uint32_t)190 << 16 | 191;
-    case 0x0A06: /* MON-MSGPP */
+    case 0x068C: /* CFG-VALDEL */
         return (uint32_t)192 << 16 | 193;
-    case 0x0A07: /* MON-RXBUF */
+    case 0x068D: /* CFG-SLAS */
         return (uint32_t)194 << 16 | 195;
-    case 0x0A08: /* MON-TXBUF */
+    case 0x0693: /* CFG-BATCH */
         return (uint32_t)196 << 16 | 197;
-    case 0x0A09: /* MON-HW */
-        return (uint32_t)198 << 16 | 199;
-    case 0x0A0B: /* MON-HW2 */
-        return (uint32_t)200 << 16 | 201;
-    case 0x0A21: /* MON-RXR */
-        return (uint32_t)202 << 16 | 202;
-    case 0x0A27: /* MON-PATCH */
+    case 0x0914: /* UPD-SOS */
+        return (uint32_t)198 << 16 | 200;
+    case 0x0A02: /* MON-IO */
+        return (uint32_t)201 << 16 | 202;
+    case 0x0A04: /* MON-VER */
         return (uint32_t)203 << 16 | 204;
-    case 0x0A28: /* MON-GNSS */
+    case 0x0A06: /* MON-MSGPP */
         return (uint32_t)205 << 16 | 206;
-    case 0x0A2E: /* MON-SMGR */
+    case 0x0A07: /* MON-RXBUF */
         return (uint32_t)207 << 16 | 208;
-    case 0x0A31: /* MON-SPAN */
+    case 0x0A08: /* MON-TXBUF */
         return (uint32_t)209 << 16 | 210;
-    case 0x0A36: /* MON-COMMS */
+    case 0x0A09: /* MON-HW */
         return (uint32_t)211 << 16 | 212;
-    case 0x0A37: /* MON-HW3 */
+    case 0x0A0B: /* MON-HW2 */
         return (uint32_t)213 << 16 | 214;
+    case 0x0A21: /* MON-RXR */
+        return (uint32_t)215 << 16 | 215;
+    case 0x0A27: /* MON-PATCH */
+        return (uint32_t)216 << 16 | 217;
+    case 0x0A28: /* MON-GNSS */
+        return (uint32_t)218 << 16 | 219;
+    case 0x0A2E: /* MON-SMGR */
+        return (uint32_t)220 << 16 | 221;
+    case 0x0A2F: /* MON-SPT */
+        return (uint32_t)222 << 16 | 223;
+    case 0x0A31: /* MON-SPAN */
+        return (uint32_t)224 << 16 | 225;
+    case 0x0A32: /* MON-BATCH */
+        return (uint32_t)226 << 16 | 227;
+    case 0x0A35: /* MON-PMP */
+        return (uint32_t)228 << 16 | 229;
+    case 0x0A36: /* MON-COMMS */
+        return (uint32_t)230 << 16 | 231;
+    case 0x0A37: /* MON-HW3 */
+        return (uint32_t)232 << 16 | 233;
     case 0x0A38: /* MON-RF */
-        return (uint32_t)215 << 16 | 216;
-    case 0x0A39: /* MON-SYS */
-        return (uint32_t)217 << 16 | 218;
-    case 0x0B01: /* AID-INI */
-        return (uint32_t)219 << 16 | 220;
-    case 0x0B02: /* AID-HUI */
-        return (uint32_t)221 << 16 | 222;
-    case 0x0B30: /* AID-ALM */
-        return (uint32_t)223 << 16 | 226;
-    case 0x0B31: /* AID-EPH */
-        return (uint32_t)227 << 16 | 230;
-    case 0x0B33: /* AID-AOP */
-        return (uint32_t)231 << 16 | 233;
-    case 0x0D01: /* TIM-TP */
         return (uint32_t)234 << 16 | 235;
-    case 0x0D03: /* TIM-TM2 */
+    case 0x0A39: /* MON-SYS */
         return (uint32_t)236 << 16 | 237;
-    case 0x0D04: /* TIM-SVIN */
+    case 0x0B01: /* AID-INI */
         return (uint32_t)238 << 16 | 239;
-    case 0x0D06: /* TIM-VRFY */
+    case 0x0B02: /* AID-HUI */
         return (uint32_t)240 << 16 | 241;
-    case 0x0D11: /* TIM-DOSC */
-        return (uint32_t)242 << 16 | 243;
-    case 0x0D12: /* TIM-TOS */
-        return (uint32_t)244 << 16 | 245;
-    case 0x0D13: /* TIM-SMEAS */
-        return (uint32_t)246 << 16 | 247;
-    case 0x0D15: /* TIM-VCOCAL */
-        return (uint32_t)248 << 16 | 251;
-    case 0x0D16: /* TIM-FCHG */
-        return (uint32_t)252 << 16 | 253;
-    case 0x0D17: /* TIM-HOC */
-        return (uint32_t)254 << 16 | 254;
-    case 0x1002: /* ESF-MEAS */
-        return (uint32_t)255 << 16 | 255;
-    case 0x1003: /* ESF-RAW */
-        return (uint32_t)256 << 16 | 256;
-    case 0x1010: /* ESF-STATUS */
+    case 0x0B30: /* AID-ALM */
+        return (uint32_t)242 << 16 | 245;
+    case 0x0B31: /* AID-EPH */
+        return (uint32_t)246 << 16 | 249;
+    case 0x0B33: /* AID-AOP */
+        return (uint32_t)250 << 16 | 252;
+    case 0x0D01: /* TIM-TP */
+        return (uint32_t)253 << 16 | 254;
+    case 0x0D03: /* TIM-TM2 */
+        return (uint32_t)255 << 16 | 256;
+    case 0x0D04: /* TIM-SVIN */
         return (uint32_t)257 << 16 | 258;
-    case 0x1014: /* ESF-ALG */
+    case 0x0D06: /* TIM-VRFY */
         return (uint32_t)259 << 16 | 260;
-    case 0x1015: /* ESF-INS */
+    case 0x0D11: /* TIM-DOSC */
         return (uint32_t)261 << 16 | 262;
+    case 0x0D12: /* TIM-TOS */
+        return (uint32_t)263 << 16 | 264;
+    case 0x0D13: /* TIM-SMEAS */
+        return (uint32_t)265 << 16 | 266;
+    case 0x0D15: /* TIM-VCOCAL */
+        return (uint32_t)267 << 16 | 270;
+    case 0x0D16: /* TIM-FCHG */
+        return (uint32_t)271 << 16 | 272;
+    case 0x0D17: /* TIM-HOC */
+        return (uint32_t)273 << 16 | 273;
+    case 0x1002: /* ESF-MEAS */
+        return (uint32_t)274 << 16 | 274;
+    case 0x1003: /* ESF-RAW */
+        return (uint32_t)275 << 16 | 275;
+    case 0x1010: /* ESF-STATUS */
+        return (uint32_t)276 << 16 | 277;
+    case 0x1014: /* ESF-ALG */
+        return (uint32_t)278 << 16 | 279;
+    case 0x1015: /* ESF-INS */
+        return (uint32_t)280 << 16 | 281;
     case 0x1300: /* MGA-GPS */
-        return (uint32_t)263 << 16 | 267;
+        return (uint32_t)282 << 16 | 286;
     case 0x1302: /* MGA-GAL */
-        return (uint32_t)268 << 16 | 271;
+        return (uint32_t)287 << 16 | 290;
     case 0x1303: /* MGA-BDS */
-        return (uint32_t)272 << 16 | 276;
+        return (uint32_t)291 << 16 | 295;
     case 0x1305: /* MGA-QZSS */
-        return (uint32_t)277 << 16 | 279;
+        return (uint32_t)296 << 16 | 298;
     case 0x1306: /* MGA-GLO */
-        return (uint32_t)280 << 16 | 282;
+        return (uint32_t)299 << 16 | 301;
     case 0x1320: /* MGA-ANO */
-        return (uint32_t)283 << 16 | 283;
-    case 0x1321: /* MGA-FLASH */
-        return (uint32_t)284 << 16 | 286;
-    case 0x1340: /* MGA-INI */
-        return (uint32_t)287 << 16 | 293;
-    case 0x1360: /* MGA-ACK */
-        return (uint32_t)294 << 16 | 294;
-    case 0x1380: /* MGA-DBD */
-        return (uint32_t)295 << 16 | 296;
-    case 0x2103: /* LOG-ERASE */
-        return (uint32_t)297 << 16 | 297;
-    case 0x2104: /* LOG-STRING */
-        return (uint32_t)298 << 16 | 298;
-    case 0x2107: /* LOG-CREATE */
-        return (uint32_t)299 << 16 | 299;
-    case 0x2108: /* LOG-INFO */
-        return (uint32_t)300 << 16 | 301;
-    case 0x2109: /* LOG-RETRIEVE */
         return (uint32_t)302 << 16 | 302;
+    case 0x1321: /* MGA-FLASH */
+        return (uint32_t)303 << 16 | 305;
+    case 0x1340: /* MGA-INI */
+        return (uint32_t)306 << 16 | 312;
+    case 0x1360: /* MGA-ACK */
+        return (uint32_t)313 << 16 | 313;
+    case 0x1380: /* MGA-DBD */
+        return (uint32_t)314 << 16 | 315;
+    case 0x2103: /* LOG-ERASE */
+        return (uint32_t)316 << 16 | 316;
+    case 0x2104: /* LOG-STRING */
+        return (uint32_t)317 << 16 | 317;
+    case 0x2107: /* LOG-CREATE */
+        return (uint32_t)318 << 16 | 318;
+    case 0x2108: /* LOG-INFO */
+        return (uint32_t)319 << 16 | 320;
+    case 0x2109: /* LOG-RETRIEVE */
+        return (uint32_t)321 << 16 | 321;
     case 0x210B: /* LOG-RETRIEVEPOS */
-        return (uint32_t)303 << 16 | 303;
+        return (uint32_t)322 << 16 | 322;
     case 0x210D: /* LOG-RETRIEVESTRING */
-        return (uint32_t)304 << 16 | 304;
+        return (uint32_t)323 << 16 | 323;
     case 0x210E: /* LOG-FINDTIME */
-        return (uint32_t)305 << 16 | 306;
-    case 0x210F: /* LOG-RETRIEVEPOSEXTRA */
-        return (uint32_t)307 << 16 | 307;
-    case 0x2110: /* LOG-RETRIEVEBATCH */
-        return (uint32_t)308 << 16 | 308;
-    case 0x2111: /* LOG-BATCH */
-        return (uint32_t)309 << 16 | 309;
-    case 0x2701: /* SEC-SIGN */
-        return (uint32_t)310 << 16 | 310;
-    case 0x2703: /* SEC-UNIQID */
-        return (uint32_t)311 << 16 | 312;
-    case 0x2709: /* SEC-SIG */
-        return (uint32_t)313 << 16 | 315;
-    case 0x2710: /* SEC-SIGLOG */
-        return (uint32_t)316 << 16 | 317;
-    case 0x2800: /* HNR-PVT */
-        return (uint32_t)318 << 16 | 319;
-    case 0x2801: /* HNR-ATT */
-        return (uint32_t)320 << 16 | 321;
-    case 0x2802: /* HNR-INS */
-        return (uint32_t)322 << 16 | 323;
-    case 0x2901: /* NAV2-POSECEF */
         return (uint32_t)324 << 16 | 325;
-    case 0x2902: /* NAV2-POSLLH */
-        return (uint32_t)326 << 16 | 327;
-    case 0x2903: /* NAV2-STATUS */
-        return (uint32_t)328 << 16 | 329;
-    case 0x2904: /* NAV2-DOP */
+    case 0x210F: /* LOG-RETRIEVEPOSEXTRA */
+        return (uint32_t)326 << 16 | 326;
+    case 0x2110: /* LOG-RETRIEVEBATCH */
+        return (uint32_t)327 << 16 | 327;
+    case 0x2111: /* LOG-BATCH */
+        return (uint32_t)328 << 16 | 328;
+    case 0x2701: /* SEC-SIGN */
+        return (uint32_t)329 << 16 | 329;
+    case 0x2703: /* SEC-UNIQID */
         return (uint32_t)330 << 16 | 331;
+    case 0x2709: /* SEC-SIG */
+        return (uint32_t)332 << 16 | 334;
+    case 0x2710: /* SEC-SIGLOG */
+        return (uint32_t)335 << 16 | 336;
+    case 0x2800: /* HNR-PVT */
+        return (uint32_t)337 << 16 | 338;
+    case 0x2801: /* HNR-ATT */
+        return (uint32_t)339 << 16 | 340;
+    case 0x2802: /* HNR-INS */
+        return (uint32_t)341 << 16 | 342;
+    case 0x2901: /* NAV2-POSECEF */
+        return (uint32_t)343 << 16 | 344;
+    case 0x2902: /* NAV2-POSLLH */
+        return (uint32_t)345 << 16 | 346;
+    case 0x2903: /* NAV2-STATUS */
+        return (uint32_t)347 << 16 | 348;
+    case 0x2904: /* NAV2-DOP */
+        return (uint32_t)349 << 16 | 350;
     case 0x2907: /* NAV2-PVT */
-        return (uint32_t)332 << 16 | 333;
+        return (uint32_t)351 << 16 | 352;
     case 0x2909: /* NAV2-ODO */
-        return (uint32_t)334 << 16 | 335;
+        return (uint32_t)353 << 16 | 354;
     case 0x2911: /* NAV2-VELECEF */
-        return (uint32_t)336 << 16 | 337;
+        return (uint32_t)355 << 16 | 356;
     case 0x2912: /* NAV2-VELNED */
-        return (uint32_t)338 << 16 | 339;
+        return (uint32_t)357 << 16 | 358;
     case 0x2920: /* NAV2-TIMEGPS */
-        return (uint32_t)340 << 16 | 341;
+        return (uint32_t)359 << 16 | 360;
     case 0x2921: /* NAV2-TIMEUTC */
-        return (uint32_t)342 << 16 | 343;
+        return (uint32_t)361 << 16 | 362;
     case 0x2922: /* NAV2-CLOCK */
-        return (uint32_t)344 << 16 | 345;
+        return (uint32_t)363 << 16 | 364;
     case 0x2923: /* NAV2-TIMEGLO */
-        return (uint32_t)346 << 16 | 347;
+        return (uint32_t)365 << 16 | 366;
     case 0x2924: /* NAV2-TIMEBDS */
-        return (uint32_t)348 << 16 | 349;
+        return (uint32_t)367 << 16 | 368;
     case 0x2925: /* NAV2-TIMEGAL */
-        return (uint32_t)350 << 16 | 351;
+        return (uint32_t)369 << 16 | 370;
     case 0x2926: /* NAV2-TIMELS */
-        return (uint32_t)352 << 16 | 353;
+        return (uint32_t)371 << 16 | 372;
     case 0x2927: /* NAV2-TIMEQZSS */
-        return (uint32_t)354 << 16 | 355;
+        return (uint32_t)373 << 16 | 374;
     case 0x2932: /* NAV2-SBAS */
-        return (uint32_t)356 << 16 | 357;
+        return (uint32_t)375 << 16 | 376;
     case 0x2935: /* NAV2-SAT */
-        return (uint32_t)358 << 16 | 359;
+        return (uint32_t)377 << 16 | 378;
     case 0x2936: /* NAV2-COV */
-        return (uint32_t)360 << 16 | 361;
+        return (uint32_t)379 << 16 | 380;
     case 0x2942: /* NAV2-SLAS */
-        return (uint32_t)362 << 16 | 363;
+        return (uint32_t)381 << 16 | 382;
     case 0x2943: /* NAV2-SIG */
-        return (uint32_t)364 << 16 | 365;
+        return (uint32_t)383 << 16 | 384;
     case 0x2961: /* NAV2-EOE */
-        return (uint32_t)366 << 16 | 366;
+        return (uint32_t)385 << 16 | 385;
+    case 0x2963: /* NAV2-TIMENAVIC */
+        return (uint32_t)386 << 16 | 387;
     default:
         return UBX_NO_LAYOUTS;
     }
@@ -15687,177 +16489,188 @@ static const struct {
     {0x0112, 19, 20}, /* NAV-VELNED */
     {0x0113, 21, 22}, /* NAV-HPPOSECEF */
     {0x0114, 23, 24}, /* NAV-HPPOSLLH */
-    {0x0120, 25, 26}, /* NAV-TIMEGPS */
-    {0x0121, 27, 28}, /* NAV-TIMEUTC */
-    {0x0122, 29, 30}, /* NAV-CLOCK */
-    {0x0123, 31, 32}, /* NAV-TIMEGLO */
-    {0x0124, 33, 34}, /* NAV-TIMEBDS */
-    {0x0125, 35, 36}, /* NAV-TIMEGAL */
-    {0x0126, 37, 38}, /* NAV-TIMELS */
-    {0x0127, 39, 40}, /* NAV-TIMEQZSS */
-    {0x0130, 41, 42}, /* NAV-SVINFO */
-    {0x0131, 43, 44}, /* NAV-DGPS */
-    {0x0132, 45, 46}, /* NAV-SBAS */
-    {0x0134, 47, 48}, /* NAV-ORB */
-    {0x0135, 49, 50}, /* NAV-SAT */
-    {0x0136, 51, 52}, /* NAV-COV */
-    {0x0139, 53, 54}, /* NAV-GEOFENCE */
-    {0x013B, 55, 56}, /* NAV-SVIN */
-    {0x013C, 57, 59}, /* NAV-RELPOSNED */
-    {0x013D, 60, 61}, /* NAV-EELL */
-    {0x0142, 62, 63}, /* NAV-SLAS */
-    {0x0143, 64, 65}, /* NAV-SIG */
-    {0x0160, 66, 67}, /* NAV-AOPSTATUS */
-    {0x0161, 68, 68}, /* NAV-EOE */
-    {0x0162, 69, 70}, /* NAV-PL */
-    {0x0213, 71, 71}, /* RXM-SFRBX */
-    {0x0214, 72, 73}, /* RXM-MEASX */
-    {0x0215, 74, 75}, /* RXM-RAWX */
-    {0x0220, 76, 77}, /* RXM-SVSI */
-    {0x0232, 78, 78}, /* RXM-RTCM */
-    {0x0233, 79, 79}, /* RXM-SPARTN */
-    {0x0234, 80, 80}, /* RXM-COR */
-    {0x0236, 81, 82}, /* RXM-SPARTNKEY */
-    {0x0241, 83, 84}, /* RXM-PMREQ */
-    {0x0259, 85, 86}, /* RXM-RLM */
-    {0x0261, 87, 88}, /* RXM-IMES */
-    {0x0400, 89, 89}, /* INF-ERROR */
-    {0x0401, 90, 90}, /* INF-WARNING */
-    {0x0402, 91, 91}, /* INF-NOTICE */
-    {0x0403, 92, 92}, /* INF-TEST */
-    {0x0404, 93, 93}, /* INF-DEBUG */
-    {0x0500, 94, 94}, /* ACK-NAK */
-    {0x0501, 95, 95}, /* ACK-ACK */
-    {0x0600, 96, 98}, /* CFG-PRT */
-    {0x0601, 99, 101}, /* CFG-MSG */
-    {0x0602, 102, 103}, /* CFG-INF */
-    {0x0604, 104, 104}, /* CFG-RST */
-    {0x0606, 105, 107}, /* CFG-DAT */
-    {0x0608, 108, 109}, /* CFG-RATE */
-    {0x0609, 110, 111}, /* CFG-CFG */
-    {0x0611, 112, 113}, /* CFG-RXM */
-    {0x0613, 114, 115}, /* CFG-ANT */
-    {0x0616, 116, 117}, /* CFG-SBAS */
-    {0x0617, 118, 121}, /* CFG-NMEA */
-    {0x061B, 122, 123}, /* CFG-USB */
-    {0x061E, 124, 125}, /* CFG-ODO */
-    {0x0623, 126, 127}, /* CFG-NAVX5 */
-    {0x0624, 128, 129}, /* CFG-NAV5 */
-    {0x0631, 130, 132}, /* CFG-TP5 */
-    {0x0634, 133, 134}, /* CFG-RINV */
-    {0x0639, 135, 136}, /* CFG-ITFM */
-    {0x063B, 137, 139}, /* CFG-PM2 */
-    {0x063D, 140, 141}, /* CFG-TMODE2 */
-    {0x063E, 142, 143}, /* CFG-GNSS */
-    {0x0647, 144, 145}, /* CFG-LOGFILTER */
-    {0x064C, 146, 147}, /* CFG-ESFA */
-    {0x064D, 148, 149}, /* CFG-ESFG */
-    {0x0653, 150, 151}, /* CFG-TXSLOT */
-    {0x0656, 152, 153}, /* CFG-ESFALG */
-    {0x0657, 154, 154}, /* CFG-PWR */
-    {0x065C, 155, 156}, /* CFG-HNR */
-    {0x0660, 157, 158}, /* CFG-ESRC */
-    {0x0661, 159, 160}, /* CFG-DOSC */
-    {0x0662, 161, 162}, /* CFG-SMGR */
-    {0x0669, 163, 164}, /* CFG-GEOFENCE */
-    {0x0670, 165, 166}, /* CFG-DGNSS */
-    {0x0671, 167, 168}, /* CFG-TMODE3 */
-    {0x0682, 169, 170}, /* CFG-ESFWT */
-    {0x0684, 171, 171}, /* CFG-FIXSEED */
-    {0x0685, 172, 172}, /* CFG-DYNSEED */
-    {0x0686, 173, 174}, /* CFG-PMS */
-    {0x068A, 175, 176}, /* CFG-VALSET */
-    {0x068B, 177, 178}, /* CFG-VALGET */
-    {0x068C, 179, 180}, /* CFG-VALDEL */
-    {0x068D, 181, 182}, /* CFG-SLAS */
-    {0x0693, 183, 184}, /* CFG-BATCH */
-    {0x0914, 185, 187}, /* UPD-SOS */
-    {0x0A02, 188, 189}, /* MON-IO */
-    {0x0A04, 190, 191}, /* MON-VER */
-    {0x0A06, 192, 193}, /* MON-MSGPP */
-    {0x0A07, 194, 195}, /* MON-RXBUF */
-    {0x0A08, 196, 197}, /* MON-TXBUF */
-    {0x0A09, 198, 199}, /* MON-HW */
-    {0x0A0B, 200, 201}, /* MON-HW2 */
-    {0x0A21, 202, 202}, /* MON-RXR */
-    {0x0A27, 203, 204}, /* MON-PATCH */
-    {0x0A28, 205, 206}, /* MON-GNSS */
-    {0x0A2E, 207, 208}, /* MON-SMGR */
-    {0x0A31, 209, 210}, /* MON-SPAN */
-    {0x0A36, 211, 212}, /* MON-COMMS */
-    {0x0A37, 213, 214}, /* MON-HW3 */
-    {0x0A38, 215, 216}, /* MON-RF */
-    {0x0A39, 217, 218}, /* MON-SYS */
-    {0x0B01, 219, 220}, /* AID-INI */
-    {0x0B02, 221, 222}, /* AID-HUI */
-    {0x0B30, 223, 226}, /* AID-ALM */
-    {0x0B31, 227, 230}, /* AID-EPH */
-    {0x0B33, 231, 233}, /* AID-AOP */
-    {0x0D01, 234, 235}, /* TIM-TP */
-    {0x0D03, 236, 237}, /* TIM-TM2 */
-    {0x0D04, 238, 239}, /* TIM-SVIN */
-    {0x0D06, 240, 241}, /* TIM-VRFY */
-    {0x0D11, 242, 243}, /* TIM-DOSC */
-    {0x0D12, 244, 245}, /* TIM-TOS */
-    {0x0D13, 246, 247}, /* TIM-SMEAS */
-    {0x0D15, 248, 251}, /* TIM-VCOCAL */
-    {0x0D16, 252, 253}, /* TIM-FCHG */
-    {0x0D17, 254, 254}, /* TIM-HOC */
-    {0x1002, 255, 255}, /* ESF-MEAS */
-    {0x1003, 256, 256}, /* ESF-RAW */
-    {0x1010, 257, 258}, /* ESF-STATUS */
-    {0x1014, 259, 260}, /* ESF-ALG */
-    {0x1015, 261, 262}, /* ESF-INS */
-    {0x1300, 263, 267}, /* MGA-GPS */
-    {0x1302, 268, 271}, /* MGA-GAL */
-    {0x1303, 272, 276}, /* MGA-BDS */
-    {0x1305, 277, 279}, /* MGA-QZSS */
-    {0x1306, 280, 282}, /* MGA-GLO */
-    {0x1320, 283, 283}, /* MGA-ANO */
-    {0x1321, 284, 286}, /* MGA-FLASH */
-    {0x1340, 287, 293}, /* MGA-INI */
-    {0x1360, 294, 294}, /* MGA-ACK */
-    {0x1380, 295, 296}, /* MGA-DBD */
-    {0x2103, 297, 297}, /* LOG-ERASE */
-    {0x2104, 298, 298}, /* LOG-STRING */
-    {0x2107, 299, 299}, /* LOG-CREATE */
-    {0x2108, 300, 301}, /* LOG-INFO */
-    {0x2109, 302, 302}, /* LOG-RETRIEVE */
-    {0x210B, 303, 303}, /* LOG-RETRIEVEPOS */
-    {0x210D, 304, 304}, /* LOG-RETRIEVESTRING */
-    {0x210E, 305, 306}, /* LOG-FINDTIME */
-    {0x210F, 307, 307}, /* LOG-RETRIEVEPOSEXTRA */
-    {0x2110, 308, 308}, /* LOG-RETRIEVEBATCH */
-    {0x2111, 309, 309}, /* LOG-BATCH */
-    {0x2701, 310, 310}, /* SEC-SIGN */
-    {0x2703, 311, 312}, /* SEC-UNIQID */
-    {0x2709, 313, 315}, /* SEC-SIG */
-    {0x2710, 316, 317}, /* SEC-SIGLOG */
-    {0x2800, 318, 319}, /* HNR-PVT */
-    {0x2801, 320, 321}, /* HNR-ATT */
-    {0x2802, 322, 323}, /* HNR-INS */
-    {0x2901, 324, 325}, /* NAV2-POSECEF */
-    {0x2902, 326, 327}, /* NAV2-POSLLH */
-    {0x2903, 328, 329}, /* NAV2-STATUS */
-    {0x2904, 330, 331}, /* NAV2-DOP */
-    {0x2907, 332, 333}, /* NAV2-PVT */
-    {0x2909, 334, 335}, /* NAV2-ODO */
-    {0x2911, 336, 337}, /* NAV2-VELECEF */
-    {0x2912, 338, 339}, /* NAV2-VELNED */
-    {0x2920, 340, 341}, /* NAV2-TIMEGPS */
-    {0x2921, 342, 343}, /* NAV2-TIMEUTC */
-    {0x2922, 344, 345}, /* NAV2-CLOCK */
-    {0x2923, 346, 347}, /* NAV2-TIMEGLO */
-    {0x2924, 348, 349}, /* NAV2-TIMEBDS */
-    {0x2925, 350, 351}, /* NAV2-TIMEGAL */
-    {0x2926, 352, 353}, /* NAV2-TIMELS */
-    {0x2927, 354, 355}, /* NAV2-TIMEQZSS */
-    {0x2932, 356, 357}, /* NAV2-SBAS */
-    {0x2935, 358, 359}, /* NAV2-SAT */
-    {0x2936, 360, 361}, /* NAV2-COV */
-    {0x2942, 362, 363}, /* NAV2-SLAS */
-    {0x2943, 364, 365}, /* NAV2-SIG */
-    {0x2961, 366, 366}, /* NAV2-EOE */
+    {0x0117, 25, 26}, /* NAV-PVAT */
+    {0x0120, 27, 28}, /* NAV-TIMEGPS */
+    {0x0121, 29, 30}, /* NAV-TIMEUTC */
+    {0x0122, 31, 32}, /* NAV-CLOCK */
+    {0x0123, 33, 34}, /* NAV-TIMEGLO */
+    {0x0124, 35, 36}, /* NAV-TIMEBDS */
+    {0x0125, 37, 38}, /* NAV-TIMEGAL */
+    {0x0126, 39, 40}, /* NAV-TIMELS */
+    {0x0127, 41, 42}, /* NAV-TIMEQZSS */
+    {0x0128, 43, 44}, /* NAV-NMI */
+    {0x0130, 45, 46}, /* NAV-SVINFO */
+    {0x0131, 47, 48}, /* NAV-DGPS */
+    {0x0132, 49, 50}, /* NAV-SBAS */
+    {0x0134, 51, 52}, /* NAV-ORB */
+    {0x0135, 53, 54}, /* NAV-SAT */
+    {0x0136, 55, 56}, /* NAV-COV */
+    {0x0139, 57, 58}, /* NAV-GEOFENCE */
+    {0x013B, 59, 60}, /* NAV-SVIN */
+    {0x013C, 61, 63}, /* NAV-RELPOSNED */
+    {0x013D, 64, 65}, /* NAV-EELL */
+    {0x0142, 66, 67}, /* NAV-SLAS */
+    {0x0143, 68, 69}, /* NAV-SIG */
+    {0x0160, 70, 71}, /* NAV-AOPSTATUS */
+    {0x0161, 72, 72}, /* NAV-EOE */
+    {0x0162, 73, 74}, /* NAV-PL */
+    {0x0163, 75, 76}, /* NAV-TIMENAVIC */
+    {0x0213, 77, 77}, /* RXM-SFRBX */
+    {0x0214, 78, 79}, /* RXM-MEASX */
+    {0x0215, 80, 81}, /* RXM-RAWX */
+    {0x0220, 82, 83}, /* RXM-SVSI */
+    {0x0232, 84, 84}, /* RXM-RTCM */
+    {0x0233, 85, 85}, /* RXM-SPARTN */
+    {0x0234, 86, 86}, /* RXM-COR */
+    {0x0236, 87, 88}, /* RXM-SPARTNKEY */
+    {0x0241, 89, 90}, /* RXM-PMREQ */
+    {0x0259, 91, 92}, /* RXM-RLM */
+    {0x0261, 93, 94}, /* RXM-IMES */
+    {0x0272, 95, 96}, /* RXM-PMP */
+    {0x0273, 97, 97}, /* RXM-QZSSL6 */
+    {0x0400, 98, 98}, /* INF-ERROR */
+    {0x0401, 99, 99}, /* INF-WARNING */
+    {0x0402, 100, 100}, /* INF-NOTICE */
+    {0x0403, 101, 101}, /* INF-TEST */
+    {0x0404, 102, 102}, /* INF-DEBUG */
+    {0x0500, 103, 103}, /* ACK-NAK */
+    {0x0501, 104, 104}, /* ACK-ACK */
+    {0x0600, 105, 107}, /* CFG-PRT */
+    {0x0601, 108, 110}, /* CFG-MSG */
+    {0x0602, 111, 112}, /* CFG-INF */
+    {0x0604, 113, 113}, /* CFG-RST */
+    {0x0606, 114, 116}, /* CFG-DAT */
+    {0x0608, 117, 118}, /* CFG-RATE */
+    {0x0609, 119, 120}, /* CFG-CFG */
+    {0x0611, 121, 122}, /* CFG-RXM */
+    {0x0613, 123, 124}, /* CFG-ANT */
+    {0x0616, 125, 126}, /* CFG-SBAS */
+    {0x0617, 127, 130}, /* CFG-NMEA */
+    {0x061B, 131, 132}, /* CFG-USB */
+    {0x061E, 133, 134}, /* CFG-ODO */
+    {0x0623, 135, 136}, /* CFG-NAVX5 */
+    {0x0624, 137, 138}, /* CFG-NAV5 */
+    {0x0631, 139, 141}, /* CFG-TP5 */
+    {0x0634, 142, 143}, /* CFG-RINV */
+    {0x0639, 144, 145}, /* CFG-ITFM */
+    {0x063B, 146, 148}, /* CFG-PM2 */
+    {0x063D, 149, 150}, /* CFG-TMODE2 */
+    {0x063E, 151, 152}, /* CFG-GNSS */
+    {0x0647, 153, 154}, /* CFG-LOGFILTER */
+    {0x064C, 155, 156}, /* CFG-ESFA */
+    {0x064D, 157, 158}, /* CFG-ESFG */
+    {0x0653, 159, 160}, /* CFG-TXSLOT */
+    {0x0656, 161, 162}, /* CFG-ESFALG */
+    {0x0657, 163, 163}, /* CFG-PWR */
+    {0x065C, 164, 165}, /* CFG-HNR */
+    {0x0660, 166, 167}, /* CFG-ESRC */
+    {0x0661, 168, 169}, /* CFG-DOSC */
+    {0x0662, 170, 171}, /* CFG-SMGR */
+    {0x0664, 172, 173}, /* CFG-SPT */
+    {0x0669, 174, 175}, /* CFG-GEOFENCE */
+    {0x0670, 176, 177}, /* CFG-DGNSS */
+    {0x0671, 178, 179}, /* CFG-TMODE3 */
+    {0x0682, 180, 181}, /* CFG-ESFWT */
+    {0x0684, 182, 182}, /* CFG-FIXSEED */
+    {0x0685, 183, 183}, /* CFG-DYNSEED */
+    {0x0686, 184, 185}, /* CFG-PMS */
+    {0x0688, 186, 187}, /* CFG-SENIF */
+    {0x068A, 188, 189}, /* CFG-VALSET */
+    {0x068B, 190, 191}, /* CFG-VALGET */
+    {0x068C, 192, 193}, /* CFG-VALDEL */
+    {0x068D, 194, 195}, /* CFG-SLAS */
+    {0x0693, 196, 197}, /* CFG-BATCH */
+    {0x0914, 198, 200}, /* UPD-SOS */
+    {0x0A02, 201, 202}, /* MON-IO */
+    {0x0A04, 203, 204}, /* MON-VER */
+    {0x0A06, 205, 206}, /* MON-MSGPP */
+    {0x0A07, 207, 208}, /* MON-RXBUF */
+    {0x0A08, 209, 210}, /* MON-TXBUF */
+    {0x0A09, 211, 212}, /* MON-HW */
+    {0x0A0B, 213, 214}, /* MON-HW2 */
+    {0x0A21, 215, 215}, /* MON-RXR */
+    {0x0A27, 216, 217}, /* MON-PATCH */
+    {0x0A28, 218, 219}, /* MON-GNSS */
+    {0x0A2E, 220, 221}, /* MON-SMGR */
+    {0x0A2F, 222, 223}, /* MON-SPT */
+    {0x0A31, 224, 225}, /* MON-SPAN */
+    {0x0A32, 226, 227}, /* MON-BATCH */
+    {0x0A35, 228, 229}, /* MON-PMP */
+    {0x0A36, 230, 231}, /* MON-COMMS */
+    {0x0A37, 232, 233}, /* MON-HW3 */
+    {0x0A38, 234, 235}, /* MON-RF */
+    {0x0A39, 236, 237}, /* MON-SYS */
+    {0x0B01, 238, 239}, /* AID-INI */
+    {0x0B02, 240, 241}, /* AID-HUI */
+    {0x0B30, 242, 245}, /* AID-ALM */
+    {0x0B31, 246, 249}, /* AID-EPH */
+    {0x0B33, 250, 252}, /* AID-AOP */
+    {0x0D01, 253, 254}, /* TIM-TP */
+    {0x0D03, 255, 256}, /* TIM-TM2 */
+    {0x0D04, 257, 258}, /* TIM-SVIN */
+    {0x0D06, 259, 260}, /* TIM-VRFY */
+    {0x0D11, 261, 262}, /* TIM-DOSC */
+    {0x0D12, 263, 264}, /* TIM-TOS */
+    {0x0D13, 265, 266}, /* TIM-SMEAS */
+    {0x0D15, 267, 270}, /* TIM-VCOCAL */
+    {0x0D16, 271, 272}, /* TIM-FCHG */
+    {0x0D17, 273, 273}, /* TIM-HOC */
+    {0x1002, 274, 274}, /* ESF-MEAS */
+    {0x1003, 275, 275}, /* ESF-RAW */
+    {0x1010, 276, 277}, /* ESF-STATUS */
+    {0x1014, 278, 279}, /* ESF-ALG */
+    {0x1015, 280, 281}, /* ESF-INS */
+    {0x1300, 282, 286}, /* MGA-GPS */
+    {0x1302, 287, 290}, /* MGA-GAL */
+    {0x1303, 291, 295}, /* MGA-BDS */
+    {0x1305, 296, 298}, /* MGA-QZSS */
+    {0x1306, 299, 301}, /* MGA-GLO */
+    {0x1320, 302, 302}, /* MGA-ANO */
+    {0x1321, 303, 305}, /* MGA-FLASH */
+    {0x1340, 306, 312}, /* MGA-INI */
+    {0x1360, 313, 313}, /* MGA-ACK */
+    {0x1380, 314, 315}, /* MGA-DBD */
+    {0x2103, 316, 316}, /* LOG-ERASE */
+    {0x2104, 317, 317}, /* LOG-STRING */
+    {0x2107, 318, 318}, /* LOG-CREATE */
+    {0x2108, 319, 320}, /* LOG-INFO */
+    {0x2109, 321, 321}, /* LOG-RETRIEVE */
+    {0x210B, 322, 322}, /* LOG-RETRIEVEPOS */
+    {0x210D, 323, 323}, /* LOG-RETRIEVESTRING */
+    {0x210E, 324, 325}, /* LOG-FINDTIME */
+    {0x210F, 326, 326}, /* LOG-RETRIEVEPOSEXTRA */
+    {0x2110, 327, 327}, /* LOG-RETRIEVEBATCH */
+    {0x2111, 328, 328}, /* LOG-BATCH */
+    {0x2701, 329, 329}, /* SEC-SIGN */
+    {0x2703, 330, 331}, /* SEC-UNIQID */
+    {0x2709, 332, 334}, /* SEC-SIG */
+    {0x2710, 335, 336}, /* SEC-SIGLOG */
+    {0x2800, 337, 338}, /* HNR-PVT */
+    {0x2801, 339, 340}, /* HNR-ATT */
+    {0x2802, 341, 342}, /* HNR-INS */
+    {0x2901, 343, 344}, /* NAV2-POSECEF */
+    {0x2902, 345, 346}, /* NAV2-POSLLH */
+    {0x2903, 347, 348}, /* NAV2-STATUS */
+    {0x2904, 349, 350}, /* NAV2-DOP */
+    {0x2907, 351, 352}, /* NAV2-PVT */
+    {0x2909, 353, 354}, /* NAV2-ODO */
+    {0x2911, 355, 356}, /* NAV2-VELECEF */
+    {0x2912, 357, 358}, /* NAV2-VELNED */
+    {0x2920, 359, 360}, /* NAV2-TIMEGPS */
+    {0x2921, 361, 362}, /* NAV2-TIMEUTC */
+    {0x2922, 363, 364}, /* NAV2-CLOCK */
+    {0x2923, 365, 366}, /* NAV2-TIMEGLO */
+    {0x2924, 367, 368}, /* NAV2-TIMEBDS */
+    {0x2925, 369, 370}, /* NAV2-TIMEGAL */
+    {0x2926, 371, 372}, /* NAV2-TIMELS */
+    {0x2927, 373, 374}, /* NAV2-TIMEQZSS */
+    {0x2932, 375, 376}, /* NAV2-SBAS */
+    {0x2935, 377, 378}, /* NAV2-SAT */
+    {0x2936, 379, 380}, /* NAV2-COV */
+    {0x2942, 381, 382}, /* NAV2-SLAS */
+    {0x2943, 383, 384}, /* NAV2-SIG */
+    {0x2961, 385, 385}, /* NAV2-EOE */
+    {0x2963, 386, 387}, /* NAV2-TIMENAVIC */
 };
 
 static uint32_t ubx_message_layouts(unsigned key)
@@ -15882,53 +16695,53 @@ static const struct {
     uint8_t protocol, key_len, key[2];
     uint16_t first, last;
 } ubx_keyed[] = {
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 367, 367}, /* CASIC NAV-DOP */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 368, 368}, /* CASIC NAV-PV */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 369, 369}, /* CASIC NAV-TIMEUTC */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 370, 370}, /* CASIC NAV-GPSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 371, 371}, /* CASIC NAV-BDSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 372, 372}, /* CASIC NAV-GLNINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 373, 373}, /* CASIC ACK-NAK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 374, 374}, /* CASIC ACK-ACK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 375, 376}, /* CASIC CFG-PRT */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 377, 378}, /* CASIC CFG-MSG */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 379, 380}, /* CASIC CFG-RATE */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 381, 382}, /* CASIC MON-VER */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 383, 383}, /* SBF 4001 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 384, 384}, /* SBF 4006 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 385, 385}, /* SBF 4007 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 386, 386}, /* SBF 5905 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 387, 387}, /* SBF 5906 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 388, 388}, /* SBF 5907 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 389, 389}, /* SBF 5908 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 390, 390}, /* SBF 5914 rev 0 */
-    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 391, 391}, /* SIRF MID 67 SID 1 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 392, 392}, /* SIRF MID 2 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 393, 393}, /* SIRF MID 4 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 394, 394}, /* SIRF MID 6 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 395, 395}, /* SIRF MID 7 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 396, 396}, /* SIRF MID 9 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 397, 397}, /* SIRF MID 11 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 398, 398}, /* SIRF MID 12 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 399, 399}, /* SIRF MID 13 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 400, 400}, /* SIRF MID 18 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 401, 401}, /* SIRF MID 41 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 402, 402}, /* SIRF MID 52 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 403, 403}, /* SIRF MID 129 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 404, 404}, /* SIRF MID 132 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 405, 405}, /* SIRF MID 135 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 406, 406}, /* SIRF MID 255 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 407, 407}, /* SKYTRAQ 0x02 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 408, 408}, /* SKYTRAQ 0x09 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 409, 409}, /* SKYTRAQ 0x80 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 410, 410}, /* SKYTRAQ 0x83 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 411, 411}, /* SKYTRAQ 0x84 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 412, 412}, /* SKYTRAQ 0xA8 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 413, 413}, /* SKYTRAQ 0xDC */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 414, 414}, /* SKYTRAQ 0xDD */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 415, 415}, /* SKYTRAQ 0xDE */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 416, 416}, /* SKYTRAQ 0xDF */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 417, 417}, /* SKYTRAQ 0xE0 */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 388, 388}, /* CASIC NAV-DOP */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 389, 389}, /* CASIC NAV-PV */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 390, 390}, /* CASIC NAV-TIMEUTC */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 391, 391}, /* CASIC NAV-GPSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 392, 392}, /* CASIC NAV-BDSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 393, 393}, /* CASIC NAV-GLNINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 394, 394}, /* CASIC ACK-NAK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 395, 395}, /* CASIC ACK-ACK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 396, 397}, /* CASIC CFG-PRT */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 398, 399}, /* CASIC CFG-MSG */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 400, 401}, /* CASIC CFG-RATE */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 402, 403}, /* CASIC MON-VER */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 404, 404}, /* SBF 4001 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 405, 405}, /* SBF 4006 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 406, 406}, /* SBF 4007 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 407, 407}, /* SBF 5905 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 408, 408}, /* SBF 5906 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 409, 409}, /* SBF 5907 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 410, 410}, /* SBF 5908 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 411, 411}, /* SBF 5914 rev 0 */
+    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 412, 412}, /* SIRF MID 67 SID 1 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 413, 413}, /* SIRF MID 2 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 414, 414}, /* SIRF MID 4 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 415, 415}, /* SIRF MID 6 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 416, 416}, /* SIRF MID 7 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 417, 417}, /* SIRF MID 9 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 418, 418}, /* SIRF MID 11 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 419, 419}, /* SIRF MID 12 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 420, 420}, /* SIRF MID 13 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 421, 421}, /* SIRF MID 18 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 422, 422}, /* SIRF MID 41 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 423, 423}, /* SIRF MID 52 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 424, 424}, /* SIRF MID 129 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 425, 425}, /* SIRF MID 132 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 426, 426}, /* SIRF MID 135 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 427, 427}, /* SIRF MID 255 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 428, 428}, /* SKYTRAQ 0x02 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 429, 429}, /* SKYTRAQ 0x09 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 430, 430}, /* SKYTRAQ 0x80 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 431, 431}, /* SKYTRAQ 0x83 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 432, 432}, /* SKYTRAQ 0x84 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 433, 433}, /* SKYTRAQ 0xA8 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 434, 434}, /* SKYTRAQ 0xDC */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 435, 435}, /* SKYTRAQ 0xDD */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 436, 436}, /* SKYTRAQ 0xDE */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 437, 437}, /* SKYTRAQ 0xDF */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 438, 438}, /* SKYTRAQ 0xE0 */
 };
 
 /* nmea_ubx_decode, inlined into nmea_ubx_decode_frame (a call less a frame). */

@@ -173,7 +173,7 @@ ENTRIES = 2   # the entries of each group of a made-up payload
 TYPE_BYTES = {"mga_ack": 1, "mga_ano": 0, "rxm_rlm": 2, "rxm_rlm_short": 1}
 # The field that tells how many bytes the trailing bytes field holds, which pyubx2 reads as its count (the
 # spec's bytes field takes the bytes left): set to the made-up bytes' number.
-SIZE_FIELDS = {"mga_flash_data": "size"}
+SIZE_FIELDS = {"mga_flash_data": "size", "rxm_pmp_v1": "num_bytes_user_data"}
 TEXT_BYTES = 6   # the made-up bytes of a text or bytes field that takes the bytes left
 
 
@@ -330,8 +330,14 @@ REASONS = {
 
 # Why, for a field of one message or layout only (where its name means something else than in REASONS).
 REASONS_OF = {
-    **{("rxm_imes", name): "IMES latitude and longitude: ours in semicircles (2^-24 and 2^-31), pyubx2 in degrees "
-                           "(180 times ours)" for name in ("lat", "lon")},
+    **{("mon_batch", name): "pyubx2 1.4.0 has no MON-BATCH (an M8 message): it names it MON-0a32-NOMINAL, no "
+                            "fields"
+       for name in ("version", "reserved1", "filllevel", "dropsall", "dropssincemon", "nextmsgcnt")},
+    **{("rxm_pmp", name): "RXM-PMP version 0's 504 bytes of user data: ours two bytes fields of 252 (a fixed field "
+                          "holds at most 255 bytes), pyubx2 one" for name in ("userdata", "userdata0", "userdata1")},
+    ("rxm_imes", "lat"): "IMES latitude: ours in semicircles (2^-24), pyubx2 in degrees (180 times ours)",
+    ("rxm_imes", "lon"): "IMES longitude: ours in semicircles (2^-24, the M8 description's 360 * 2^-25 deg), pyubx2 "
+                         "in degrees of 180 * 2^-31 deg a step (a scale 128 times finer than the description's)",
 }
 
 
