@@ -7,10 +7,11 @@
 //   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
 //   spec/binary/ubx/messages/nav_velecef.yaml, spec/binary/ubx/messages/nav_velned.yaml,
 //   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
-//   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timeutc.yaml,
-//   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
-//   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
-//   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
+//   spec/binary/ubx/messages/nav_pvat.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
+//   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_clock.yaml,
+//   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
+//   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timels.yaml,
+//   spec/binary/ubx/messages/nav_timeqzss.yaml, spec/binary/ubx/messages/nav_nmi.yaml,
 //   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
 //   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_orb.yaml,
 //   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_cov.yaml,
@@ -18,12 +19,14 @@
 //   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_eell.yaml,
 //   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
 //   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
-//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
-//   spec/binary/ubx/messages/rxm_measx.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
-//   spec/binary/ubx/messages/rxm_svsi.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
-//   spec/binary/ubx/messages/rxm_spartn.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
-//   spec/binary/ubx/messages/rxm_spartnkey.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
-//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/inf_error.yaml,
+//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/nav_timenavic.yaml,
+//   spec/binary/ubx/messages/rxm_sfrbx.yaml, spec/binary/ubx/messages/rxm_measx.yaml,
+//   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_svsi.yaml,
+//   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_spartn.yaml,
+//   spec/binary/ubx/messages/rxm_cor.yaml, spec/binary/ubx/messages/rxm_spartnkey.yaml,
+//   spec/binary/ubx/messages/rxm_pmreq.yaml, spec/binary/ubx/messages/rxm_rlm.yaml,
+//   spec/binary/ubx/messages/rxm_imes.yaml, spec/binary/ubx/messages/rxm_pmp.yaml,
+//   spec/binary/ubx/messages/rxm_qzssl6.yaml, spec/binary/ubx/messages/inf_error.yaml,
 //   spec/binary/ubx/messages/inf_warning.yaml, spec/binary/ubx/messages/inf_notice.yaml,
 //   spec/binary/ubx/messages/inf_test.yaml, spec/binary/ubx/messages/inf_debug.yaml,
 //   spec/binary/ubx/messages/ack_nak.yaml, spec/binary/ubx/messages/ack_ack.yaml,
@@ -36,15 +39,17 @@
 //   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
 //   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
 //   spec/binary/ubx/messages/cfg_rinv.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
-//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
-//   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_esfa.yaml,
-//   spec/binary/ubx/messages/cfg_esfg.yaml, spec/binary/ubx/messages/cfg_txslot.yaml,
-//   spec/binary/ubx/messages/cfg_esfalg.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
-//   spec/binary/ubx/messages/cfg_hnr.yaml, spec/binary/ubx/messages/cfg_esrc.yaml,
-//   spec/binary/ubx/messages/cfg_dosc.yaml, spec/binary/ubx/messages/cfg_smgr.yaml,
+//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_tmode2.yaml,
+//   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_logfilter.yaml,
+//   spec/binary/ubx/messages/cfg_esfa.yaml, spec/binary/ubx/messages/cfg_esfg.yaml,
+//   spec/binary/ubx/messages/cfg_txslot.yaml, spec/binary/ubx/messages/cfg_esfalg.yaml,
+//   spec/binary/ubx/messages/cfg_pwr.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
+//   spec/binary/ubx/messages/cfg_esrc.yaml, spec/binary/ubx/messages/cfg_dosc.yaml,
+//   spec/binary/ubx/messages/cfg_smgr.yaml, spec/binary/ubx/messages/cfg_spt.yaml,
 //   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
 //   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_esfwt.yaml,
-//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
+//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_dynseed.yaml,
+//   spec/binary/ubx/messages/cfg_pms.yaml, spec/binary/ubx/messages/cfg_senif.yaml,
 //   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
 //   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_slas.yaml,
 //   spec/binary/ubx/messages/cfg_batch.yaml, spec/binary/ubx/messages/upd_sos.yaml,
@@ -53,22 +58,24 @@
 //   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_hw.yaml,
 //   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
 //   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
-//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
-//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
-//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
-//   spec/binary/ubx/messages/aid_ini.yaml, spec/binary/ubx/messages/aid_hui.yaml,
-//   spec/binary/ubx/messages/aid_alm.yaml, spec/binary/ubx/messages/aid_eph.yaml,
-//   spec/binary/ubx/messages/aid_aop.yaml, spec/binary/ubx/messages/tim_tp.yaml,
-//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_svin.yaml,
-//   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
-//   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
-//   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
-//   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/esf_meas.yaml,
-//   spec/binary/ubx/messages/esf_raw.yaml, spec/binary/ubx/messages/esf_status.yaml,
-//   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
-//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_gal.yaml,
-//   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
-//   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_ano.yaml,
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_spt.yaml,
+//   spec/binary/ubx/messages/mon_span.yaml, spec/binary/ubx/messages/mon_batch.yaml,
+//   spec/binary/ubx/messages/mon_pmp.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/aid_ini.yaml,
+//   spec/binary/ubx/messages/aid_hui.yaml, spec/binary/ubx/messages/aid_alm.yaml,
+//   spec/binary/ubx/messages/aid_eph.yaml, spec/binary/ubx/messages/aid_aop.yaml,
+//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
+//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
+//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
+//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
+//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
+//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
+//   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
+//   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
+//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_bds.yaml,
+//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mga_glo.yaml,
+//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_flash.yaml,
 //   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_ack.yaml,
 //   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/log_erase.yaml,
 //   spec/binary/ubx/messages/log_string.yaml, spec/binary/ubx/messages/log_create.yaml,
@@ -91,15 +98,15 @@
 //   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_sbas.yaml,
 //   spec/binary/ubx/messages/nav2_sat.yaml, spec/binary/ubx/messages/nav2_cov.yaml,
 //   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_sig.yaml,
-//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/binary/casic/messages/nav_dop.yaml,
-//   spec/binary/casic/messages/nav_pv.yaml, spec/binary/casic/messages/nav_timeutc.yaml,
-//   spec/binary/casic/messages/nav_gpsinfo.yaml, spec/binary/casic/messages/nav_bdsinfo.yaml,
-//   spec/binary/casic/messages/nav_glninfo.yaml, spec/binary/casic/messages/ack_nak.yaml,
-//   spec/binary/casic/messages/ack_ack.yaml, spec/binary/casic/messages/cfg_prt.yaml,
-//   spec/binary/casic/messages/cfg_msg.yaml, spec/binary/casic/messages/cfg_rate.yaml,
-//   spec/binary/casic/messages/mon_ver.yaml, spec/binary/sbf/messages/pvt_dop.yaml,
-//   spec/binary/sbf/messages/pvt_cartesian.yaml, spec/binary/sbf/messages/pvt_geodetic.yaml,
-//   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
+//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/binary/ubx/messages/nav2_timenavic.yaml,
+//   spec/binary/casic/messages/nav_dop.yaml, spec/binary/casic/messages/nav_pv.yaml,
+//   spec/binary/casic/messages/nav_timeutc.yaml, spec/binary/casic/messages/nav_gpsinfo.yaml,
+//   spec/binary/casic/messages/nav_bdsinfo.yaml, spec/binary/casic/messages/nav_glninfo.yaml,
+//   spec/binary/casic/messages/ack_nak.yaml, spec/binary/casic/messages/ack_ack.yaml,
+//   spec/binary/casic/messages/cfg_prt.yaml, spec/binary/casic/messages/cfg_msg.yaml,
+//   spec/binary/casic/messages/cfg_rate.yaml, spec/binary/casic/messages/mon_ver.yaml,
+//   spec/binary/sbf/messages/pvt_dop.yaml, spec/binary/sbf/messages/pvt_cartesian.yaml,
+//   spec/binary/sbf/messages/pvt_geodetic.yaml, spec/binary/sbf/messages/pos_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/receiver_time.yaml,
@@ -119,7 +126,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest b186b6a3a32b7a04)
+//   spec/enums/ubx_gnss_id.yaml (digest a1a7614ed87fcb53)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -1423,6 +1430,80 @@ static const nmea_ubx_item ubx_nav_hpposllh_items[] = {
     {"v_acc", &ubx_nav_hpposllh_v_acc_scale, offsetof(nmea_ubx_nav_hpposllh, v_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false}
 };
 
+/* NAV-PVAT: nav_pvat_poll */
+static const nmea_ubx_item ubx_nav_pvat_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-PVAT: nav_pvat */
+static const nmea_ubx_scale ubx_nav_pvat_lon_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_lat_scale = {10000000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_veh_roll_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_veh_pitch_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_veh_heading_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_mot_heading_scale = {100000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_acc_roll_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_acc_pitch_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_acc_heading_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_mag_dec_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_mag_acc_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_nav_pvat_err_ellipse_orient_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_nav_pvat_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_pvat, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav_pvat, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav_pvat, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_date", NULL, offsetof(nmea_ubx_nav_pvat, valid_date), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_time", NULL, offsetof(nmea_ubx_nav_pvat, valid_time), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"fully_resolved", NULL, offsetof(nmea_ubx_nav_pvat, fully_resolved), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid_mag", NULL, offsetof(nmea_ubx_nav_pvat, valid_mag), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"year", NULL, offsetof(nmea_ubx_nav_pvat, year), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"month", NULL, offsetof(nmea_ubx_nav_pvat, month), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"day", NULL, offsetof(nmea_ubx_nav_pvat, day), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hour", NULL, offsetof(nmea_ubx_nav_pvat, hour), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"min", NULL, offsetof(nmea_ubx_nav_pvat, min), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sec", NULL, offsetof(nmea_ubx_nav_pvat, sec), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_nav_pvat, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav_pvat, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav_pvat, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nano", NULL, offsetof(nmea_ubx_nav_pvat, nano), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fix_type", &ubx_enum_ubx_fix_type, offsetof(nmea_ubx_nav_pvat, fix_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_CODE, false},
+    {"flags", NULL, offsetof(nmea_ubx_nav_pvat, flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gnss_fix_ok", NULL, offsetof(nmea_ubx_nav_pvat, gnss_fix_ok), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"diff_soln", NULL, offsetof(nmea_ubx_nav_pvat, diff_soln), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"veh_roll_valid", NULL, offsetof(nmea_ubx_nav_pvat, veh_roll_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"veh_pitch_valid", NULL, offsetof(nmea_ubx_nav_pvat, veh_pitch_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"veh_heading_valid", NULL, offsetof(nmea_ubx_nav_pvat, veh_heading_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"carr_soln", NULL, offsetof(nmea_ubx_nav_pvat, carr_soln), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags2", NULL, offsetof(nmea_ubx_nav_pvat, flags2), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"confirmed_avai", NULL, offsetof(nmea_ubx_nav_pvat, confirmed_avai), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"confirmed_date", NULL, offsetof(nmea_ubx_nav_pvat, confirmed_date), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"confirmed_time", NULL, offsetof(nmea_ubx_nav_pvat, confirmed_time), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sv", NULL, offsetof(nmea_ubx_nav_pvat, num_sv), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lon", &ubx_nav_pvat_lon_scale, offsetof(nmea_ubx_nav_pvat, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lat", &ubx_nav_pvat_lat_scale, offsetof(nmea_ubx_nav_pvat, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"height", NULL, offsetof(nmea_ubx_nav_pvat, height), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_msl", NULL, offsetof(nmea_ubx_nav_pvat, h_msl), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"h_acc", NULL, offsetof(nmea_ubx_nav_pvat, h_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"v_acc", NULL, offsetof(nmea_ubx_nav_pvat, v_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_n", NULL, offsetof(nmea_ubx_nav_pvat, vel_n), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_e", NULL, offsetof(nmea_ubx_nav_pvat, vel_e), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_d", NULL, offsetof(nmea_ubx_nav_pvat, vel_d), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"g_speed", NULL, offsetof(nmea_ubx_nav_pvat, g_speed), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"s_acc", NULL, offsetof(nmea_ubx_nav_pvat, s_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"veh_roll", &ubx_nav_pvat_veh_roll_scale, offsetof(nmea_ubx_nav_pvat, veh_roll), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"veh_pitch", &ubx_nav_pvat_veh_pitch_scale, offsetof(nmea_ubx_nav_pvat, veh_pitch), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"veh_heading", &ubx_nav_pvat_veh_heading_scale, offsetof(nmea_ubx_nav_pvat, veh_heading), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mot_heading", &ubx_nav_pvat_mot_heading_scale, offsetof(nmea_ubx_nav_pvat, mot_heading), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"acc_roll", &ubx_nav_pvat_acc_roll_scale, offsetof(nmea_ubx_nav_pvat, acc_roll), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"acc_pitch", &ubx_nav_pvat_acc_pitch_scale, offsetof(nmea_ubx_nav_pvat, acc_pitch), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"acc_heading", &ubx_nav_pvat_acc_heading_scale, offsetof(nmea_ubx_nav_pvat, acc_heading), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mag_dec", &ubx_nav_pvat_mag_dec_scale, offsetof(nmea_ubx_nav_pvat, mag_dec), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"mag_acc", &ubx_nav_pvat_mag_acc_scale, offsetof(nmea_ubx_nav_pvat, mag_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"err_ellipse_orient", &ubx_nav_pvat_err_ellipse_orient_scale, offsetof(nmea_ubx_nav_pvat, err_ellipse_orient), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"err_ellipse_major", NULL, offsetof(nmea_ubx_nav_pvat, err_ellipse_major), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"err_ellipse_minor", NULL, offsetof(nmea_ubx_nav_pvat, err_ellipse_minor), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_nav_pvat, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_nav_pvat, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* NAV-TIMEGPS: nav_timegps_poll */
 static const nmea_ubx_item ubx_nav_timegps_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -1558,6 +1639,48 @@ static const nmea_ubx_item ubx_nav_timeqzss_items[] = {
     {"qzss_wno_valid", NULL, offsetof(nmea_ubx_nav_timeqzss, qzss_wno_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
     {"leap_s_valid", NULL, offsetof(nmea_ubx_nav_timeqzss, leap_s_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
     {"t_acc", NULL, offsetof(nmea_ubx_nav_timeqzss, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV-NMI: nav_nmi_poll */
+static const nmea_ubx_item ubx_nav_nmi_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-NMI: nav_nmi */
+static const nmea_ubx_item ubx_nav_nmi_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_nmi, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_nav_nmi, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_nav_nmi, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_nmi_flags", NULL, offsetof(nmea_ubx_nav_nmi, gps_nmi_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_checked_gps", NULL, offsetof(nmea_ubx_nav_nmi, wno_checked_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_invalid_gps", NULL, offsetof(nmea_ubx_nav_nmi, wno_invalid_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"utco_ref_checked_gps", NULL, offsetof(nmea_ubx_nav_nmi, utco_ref_checked_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"utco_ref_invalid_gps", NULL, offsetof(nmea_ubx_nav_nmi, utco_ref_invalid_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_ls_flags", NULL, offsetof(nmea_ubx_nav_nmi, gps_ls_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_val_gps", NULL, offsetof(nmea_ubx_nav_nmi, ls_val_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dn_range_gps", NULL, offsetof(nmea_ubx_nav_nmi, dn_range_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"tot_range_gps", NULL, offsetof(nmea_ubx_nav_nmi, tot_range_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_event_gps", NULL, offsetof(nmea_ubx_nav_nmi, ls_event_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"rec_now_gps", NULL, offsetof(nmea_ubx_nav_nmi, rec_now_gps), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_nmi_flags", NULL, offsetof(nmea_ubx_nav_nmi, gal_nmi_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_checked_gal", NULL, offsetof(nmea_ubx_nav_nmi, wno_checked_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_invalid_gal", NULL, offsetof(nmea_ubx_nav_nmi, wno_invalid_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_ls_flags", NULL, offsetof(nmea_ubx_nav_nmi, gal_ls_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_val_gal", NULL, offsetof(nmea_ubx_nav_nmi, ls_val_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dn_range_gal", NULL, offsetof(nmea_ubx_nav_nmi, dn_range_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"tot_range_gal", NULL, offsetof(nmea_ubx_nav_nmi, tot_range_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_event_gal", NULL, offsetof(nmea_ubx_nav_nmi, ls_event_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"rec_now_gal", NULL, offsetof(nmea_ubx_nav_nmi, rec_now_gal), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_nmi_flags", NULL, offsetof(nmea_ubx_nav_nmi, bds_nmi_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_checked_bds", NULL, offsetof(nmea_ubx_nav_nmi, wno_checked_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_invalid_bds", NULL, offsetof(nmea_ubx_nav_nmi, wno_invalid_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_ls_flags", NULL, offsetof(nmea_ubx_nav_nmi, bds_ls_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_val_bds", NULL, offsetof(nmea_ubx_nav_nmi, ls_val_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dn_range_bds", NULL, offsetof(nmea_ubx_nav_nmi, dn_range_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"tot_range_bds", NULL, offsetof(nmea_ubx_nav_nmi, tot_range_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"ls_event_bds", NULL, offsetof(nmea_ubx_nav_nmi, ls_event_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"rec_now_bds", NULL, offsetof(nmea_ubx_nav_nmi, rec_now_bds), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_nmi_flags", NULL, offsetof(nmea_ubx_nav_nmi, glo_nmi_flags), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_checked_glo", NULL, offsetof(nmea_ubx_nav_nmi, wno_checked_glo), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"wno_invalid_glo", NULL, offsetof(nmea_ubx_nav_nmi, wno_invalid_glo), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* NAV-SVINFO: nav_svinfo_poll */
@@ -2002,6 +2125,23 @@ static const nmea_ubx_item ubx_nav_pl_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_nav_pl, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* NAV-TIMENAVIC: nav_timenavic_poll */
+static const nmea_ubx_item ubx_nav_timenavic_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV-TIMENAVIC: nav_timenavic */
+static const nmea_ubx_item ubx_nav_timenavic_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav_timenavic, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_tow", NULL, offsetof(nmea_ubx_nav_timenavic, nav_ic_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"f_nav_ic_tow", NULL, offsetof(nmea_ubx_nav_timenavic, f_nav_ic_tow), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_wno", NULL, offsetof(nmea_ubx_nav_timenavic, nav_ic_wno), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s", NULL, offsetof(nmea_ubx_nav_timenavic, leap_s), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav_timenavic, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_tow_valid", NULL, offsetof(nmea_ubx_nav_timenavic, nav_ic_tow_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_wno_valid", NULL, offsetof(nmea_ubx_nav_timenavic, nav_ic_wno_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s_valid", NULL, offsetof(nmea_ubx_nav_timenavic, leap_s_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav_timenavic, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* RXM-SFRBX: rxm_sfrbx */
 static const nmea_ubx_item ubx_rxm_sfrbx_word_items[] = {
     {"dwrd", NULL, offsetof(nmea_ubx_rxm_sfrbx_word, dwrd), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
@@ -2247,6 +2387,106 @@ static const nmea_ubx_item ubx_rxm_rlm_short_items[] = {
     {"message", NULL, offsetof(nmea_ubx_rxm_rlm_short, message), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"params", NULL, offsetof(nmea_ubx_rxm_rlm_short, params), 0, 0, NMEA_UBX_ITEM_ARRAY, 2, 2, 0, NMEA_UBX_PRINT_HEX, false},
     {"reserved1", NULL, offsetof(nmea_ubx_rxm_rlm_short, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-IMES: rxm_imes_poll */
+static const nmea_ubx_item ubx_rxm_imes_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* RXM-IMES: rxm_imes */
+static const nmea_ubx_scale ubx_rxm_imes_transmitter_doppler_scale = {4096.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_rxm_imes_transmitter_lat_scale = {16777216.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_rxm_imes_transmitter_lon_scale = {16777216.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_rxm_imes_transmitter_items[] = {
+    {"reserved2", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tx_id", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, tx_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved4", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"doppler", &ubx_rxm_imes_transmitter_doppler_scale, offsetof(nmea_ubx_rxm_imes_transmitter, doppler), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"position1_1", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, position1_1), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos1_floor", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos1_floor), 0, 0, NMEA_UBX_ITEM_PART, 8, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos1_lat", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos1_lat), 0, 0, NMEA_UBX_ITEM_PART, 23, 4, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"position1_2", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, position1_2), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos1_lon", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos1_lon), 0, 0, NMEA_UBX_ITEM_PART, 24, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos1_valid", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos1_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 24, NMEA_UBX_PRINT_NUMBER, false},
+    {"position2_1", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, position2_1), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos2_floor", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos2_floor), 0, 0, NMEA_UBX_ITEM_PART, 8, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos2_alt", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos2_alt), 0, 0, NMEA_UBX_ITEM_PART, 12, 2, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos2_acc", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos2_acc), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 20, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos2_valid", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, pos2_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 22, NMEA_UBX_PRINT_NUMBER, false},
+    {"lat", &ubx_rxm_imes_transmitter_lat_scale, offsetof(nmea_ubx_rxm_imes_transmitter, lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"lon", &ubx_rxm_imes_transmitter_lon_scale, offsetof(nmea_ubx_rxm_imes_transmitter, lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"short_id_frame", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, short_id_frame), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"short_id", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, short_id), 0, 0, NMEA_UBX_ITEM_PART, 12, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"short_valid", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, short_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 12, NMEA_UBX_PRINT_NUMBER, false},
+    {"short_boundary", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, short_boundary), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 13, NMEA_UBX_PRINT_NUMBER, false},
+    {"medium_id_lsb", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, medium_id_lsb), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"medium_id_2", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, medium_id_2), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"medium_id_msb", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, medium_id_msb), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"medium_valid", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, medium_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"medium_boundary", NULL, offsetof(nmea_ubx_rxm_imes_transmitter, medium_boundary), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_rxm_imes_transmitters_group = {ubx_rxm_imes_transmitter_items, 28, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_rxm_imes, num_tx), 0, 0, 65535, NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX, 44, sizeof(nmea_ubx_rxm_imes_transmitter), 0, offsetof(nmea_ubx_rxm_imes, transmitters_count)};
+static const nmea_ubx_item ubx_rxm_imes_items[] = {
+    {"num_tx", NULL, offsetof(nmea_ubx_rxm_imes, num_tx), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_rxm_imes, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_rxm_imes, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"transmitters", &ubx_rxm_imes_transmitters_group, offsetof(nmea_ubx_rxm_imes, transmitters), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-PMP: rxm_pmp */
+static const nmea_ubx_scale ubx_rxm_pmp_ebno_scale = {8.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_rxm_pmp_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_pmp, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_pmp, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_tag", NULL, offsetof(nmea_ubx_rxm_pmp, time_tag), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word1", NULL, offsetof(nmea_ubx_rxm_pmp, unique_word1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word2", NULL, offsetof(nmea_ubx_rxm_pmp, unique_word2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"service_identifier", NULL, offsetof(nmea_ubx_rxm_pmp, service_identifier), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"spare", NULL, offsetof(nmea_ubx_rxm_pmp, spare), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word_bit_errors", NULL, offsetof(nmea_ubx_rxm_pmp, unique_word_bit_errors), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"user_data0", NULL, offsetof(nmea_ubx_rxm_pmp, user_data0), 0, 0, NMEA_UBX_ITEM_ARRAY, 252, 252, 0, NMEA_UBX_PRINT_HEX, false},
+    {"user_data1", NULL, offsetof(nmea_ubx_rxm_pmp, user_data1), 0, 0, NMEA_UBX_ITEM_ARRAY, 252, 252, 0, NMEA_UBX_PRINT_HEX, false},
+    {"fec_bits", NULL, offsetof(nmea_ubx_rxm_pmp, fec_bits), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ebno", &ubx_rxm_pmp_ebno_scale, offsetof(nmea_ubx_rxm_pmp, ebno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_rxm_pmp, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* RXM-PMP: rxm_pmp_v1 */
+static const nmea_ubx_scale ubx_rxm_pmp_v1_ebno_scale = {8.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_rxm_pmp_v1_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_pmp_v1, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_pmp_v1, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_bytes_user_data", NULL, offsetof(nmea_ubx_rxm_pmp_v1, num_bytes_user_data), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"time_tag", NULL, offsetof(nmea_ubx_rxm_pmp_v1, time_tag), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word1", NULL, offsetof(nmea_ubx_rxm_pmp_v1, unique_word1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word2", NULL, offsetof(nmea_ubx_rxm_pmp_v1, unique_word2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"service_identifier", NULL, offsetof(nmea_ubx_rxm_pmp_v1, service_identifier), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"spare", NULL, offsetof(nmea_ubx_rxm_pmp_v1, spare), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"unique_word_bit_errors", NULL, offsetof(nmea_ubx_rxm_pmp_v1, unique_word_bit_errors), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fec_bits", NULL, offsetof(nmea_ubx_rxm_pmp_v1, fec_bits), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ebno", &ubx_rxm_pmp_v1_ebno_scale, offsetof(nmea_ubx_rxm_pmp_v1, ebno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_rxm_pmp_v1, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"user_data", NULL, offsetof(nmea_ubx_rxm_pmp_v1, user_data), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+/* RXM-QZSSL6: rxm_qzssl6 */
+static const nmea_ubx_scale ubx_rxm_qzssl6_cno_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_rxm_qzssl6_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_rxm_qzssl6, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_id", NULL, offsetof(nmea_ubx_rxm_qzssl6, sv_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno", &ubx_rxm_qzssl6_cno_scale, offsetof(nmea_ubx_rxm_qzssl6, cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"time_tag", NULL, offsetof(nmea_ubx_rxm_qzssl6, time_tag), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"group_delay", NULL, offsetof(nmea_ubx_rxm_qzssl6, group_delay), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bit_err_corr", NULL, offsetof(nmea_ubx_rxm_qzssl6, bit_err_corr), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ch_info", NULL, offsetof(nmea_ubx_rxm_qzssl6, ch_info), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"chn", NULL, offsetof(nmea_ubx_rxm_qzssl6, chn), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 8, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_name", NULL, offsetof(nmea_ubx_rxm_qzssl6, msg_name), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 10, NMEA_UBX_PRINT_NUMBER, false},
+    {"err_status", NULL, offsetof(nmea_ubx_rxm_qzssl6, err_status), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 12, NMEA_UBX_PRINT_NUMBER, false},
+    {"ch_name", NULL, offsetof(nmea_ubx_rxm_qzssl6, ch_name), 0, 0, NMEA_UBX_ITEM_PART, 2, 1, 14, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_rxm_qzssl6, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"msg_bytes", NULL, offsetof(nmea_ubx_rxm_qzssl6, msg_bytes), 0, 0, NMEA_UBX_ITEM_ARRAY, 250, 250, 0, NMEA_UBX_PRINT_HEX, false}
 };
 
 /* INF-ERROR: inf_error */
@@ -2820,6 +3060,24 @@ static const nmea_ubx_item ubx_cfg_pm2_v1_items[] = {
     {"reserved4", NULL, offsetof(nmea_ubx_cfg_pm2_v1, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-TMODE2: cfg_tmode2_poll */
+static const nmea_ubx_item ubx_cfg_tmode2_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-TMODE2: cfg_tmode2 */
+static const nmea_ubx_item ubx_cfg_tmode2_items[] = {
+    {"time_mode", NULL, offsetof(nmea_ubx_cfg_tmode2, time_mode), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_tmode2, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_tmode2, flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lla", NULL, offsetof(nmea_ubx_cfg_tmode2, lla), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"alt_inv", NULL, offsetof(nmea_ubx_cfg_tmode2, alt_inv), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_x_or_lat", NULL, offsetof(nmea_ubx_cfg_tmode2, ecef_x_or_lat), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_y_or_lon", NULL, offsetof(nmea_ubx_cfg_tmode2, ecef_y_or_lon), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ecef_z_or_alt", NULL, offsetof(nmea_ubx_cfg_tmode2, ecef_z_or_alt), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fixed_pos_acc", NULL, offsetof(nmea_ubx_cfg_tmode2, fixed_pos_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svin_min_dur", NULL, offsetof(nmea_ubx_cfg_tmode2, svin_min_dur), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"svin_acc_limit", NULL, offsetof(nmea_ubx_cfg_tmode2, svin_acc_limit), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* CFG-GNSS: cfg_gnss_poll */
 static const nmea_ubx_item ubx_cfg_gnss_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -3047,6 +3305,17 @@ static const nmea_ubx_item ubx_cfg_smgr_items[] = {
     {"disable_offset", NULL, offsetof(nmea_ubx_cfg_smgr, disable_offset), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 16, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-SPT: cfg_spt_poll */
+static const nmea_ubx_item ubx_cfg_spt_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-SPT: cfg_spt */
+static const nmea_ubx_item ubx_cfg_spt_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_spt, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_cfg_spt, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sensor_id", NULL, offsetof(nmea_ubx_cfg_spt, sensor_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_spt, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* CFG-GEOFENCE: cfg_geofence_poll */
 static const nmea_ubx_item ubx_cfg_geofence_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -3153,6 +3422,14 @@ static const nmea_ubx_item ubx_cfg_fixseed_items[] = {
     {"messages", &ubx_cfg_fixseed_messages_group, offsetof(nmea_ubx_cfg_fixseed, messages), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* CFG-DYNSEED: cfg_dynseed */
+static const nmea_ubx_item ubx_cfg_dynseed_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_cfg_dynseed, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_cfg_dynseed, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"seed_hi", NULL, offsetof(nmea_ubx_cfg_dynseed, seed_hi), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"seed_lo", NULL, offsetof(nmea_ubx_cfg_dynseed, seed_lo), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* CFG-PMS: cfg_pms_poll */
 static const nmea_ubx_item ubx_cfg_pms_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -3163,6 +3440,20 @@ static const nmea_ubx_item ubx_cfg_pms_items[] = {
     {"period", NULL, offsetof(nmea_ubx_cfg_pms, period), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"on_time", NULL, offsetof(nmea_ubx_cfg_pms, on_time), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved0", NULL, offsetof(nmea_ubx_cfg_pms, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* CFG-SENIF: cfg_senif_poll */
+static const nmea_ubx_item ubx_cfg_senif_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* CFG-SENIF: cfg_senif */
+static const nmea_ubx_item ubx_cfg_senif_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_cfg_senif, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_cfg_senif, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"flags", NULL, offsetof(nmea_ubx_cfg_senif, flags), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sen_conn", NULL, offsetof(nmea_ubx_cfg_senif, sen_conn), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pio_conf", NULL, offsetof(nmea_ubx_cfg_senif, pio_conf), 0, 0, NMEA_UBX_ITEM_WORD, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"i2c_sda_pio", NULL, offsetof(nmea_ubx_cfg_senif, i2c_sda_pio), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"i2c_scl_pio", NULL, offsetof(nmea_ubx_cfg_senif, i2c_scl_pio), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 5, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* CFG-VALSET: cfg_valset_v0 */
@@ -3561,6 +3852,38 @@ static const nmea_ubx_item ubx_mon_smgr_items[] = {
     {"ext_int1_feed_back", NULL, offsetof(nmea_ubx_mon_smgr, ext_int1_feed_back), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* MON-SPT: mon_spt_poll */
+static const nmea_ubx_item ubx_mon_spt_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-SPT: mon_spt */
+static const nmea_ubx_item ubx_mon_spt_sensor_items[] = {
+    {"sensor_id", NULL, offsetof(nmea_ubx_mon_spt_sensor, sensor_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drv_ver", NULL, offsetof(nmea_ubx_mon_spt_sensor, drv_ver), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drv_ver_min", NULL, offsetof(nmea_ubx_mon_spt_sensor, drv_ver_min), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drv_ver_maj", NULL, offsetof(nmea_ubx_mon_spt_sensor, drv_ver_maj), 0, 0, NMEA_UBX_ITEM_PART, 4, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"test_state", NULL, offsetof(nmea_ubx_mon_spt_sensor, test_state), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drv_file_name", NULL, offsetof(nmea_ubx_mon_spt_sensor, drv_file_name), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_item ubx_mon_spt_result_items[] = {
+    {"sensor_id_res", NULL, offsetof(nmea_ubx_mon_spt_result, sensor_id_res), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sensor_type", NULL, offsetof(nmea_ubx_mon_spt_result, sensor_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"res_type", NULL, offsetof(nmea_ubx_mon_spt_result, res_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_mon_spt_result, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"value", NULL, offsetof(nmea_ubx_mon_spt_result, value), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mon_spt_sensors_group = {ubx_mon_spt_sensor_items, 6, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_spt, num_sensor), 0, 0, 65535, NMEA_UBX_MON_SPT_SENSORS_MAX, 4, sizeof(nmea_ubx_mon_spt_sensor), 0, offsetof(nmea_ubx_mon_spt, sensors_count)};
+static const nmea_ubx_group ubx_mon_spt_results_group = {ubx_mon_spt_result_items, 5, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_spt, num_res), 0, 0, 65535, NMEA_UBX_MON_SPT_RESULTS_MAX, 12, sizeof(nmea_ubx_mon_spt_result), 0, offsetof(nmea_ubx_mon_spt, results_count)};
+static const nmea_ubx_item ubx_mon_spt_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_spt, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_sensor", NULL, offsetof(nmea_ubx_mon_spt, num_sensor), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_res", NULL, offsetof(nmea_ubx_mon_spt, num_res), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_spt, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sensors", &ubx_mon_spt_sensors_group, offsetof(nmea_ubx_mon_spt, sensors), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"results", &ubx_mon_spt_results_group, offsetof(nmea_ubx_mon_spt, results), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
 /* MON-SPAN: mon_span_poll */
 static const nmea_ubx_item ubx_mon_span_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
 
@@ -3581,6 +3904,43 @@ static const nmea_ubx_item ubx_mon_span_items[] = {
     {"num_rf_blocks", NULL, offsetof(nmea_ubx_mon_span, num_rf_blocks), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"reserved0", NULL, offsetof(nmea_ubx_mon_span, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"rf_blocks", &ubx_mon_span_rf_blocks_group, offsetof(nmea_ubx_mon_span, rf_blocks), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-BATCH: mon_batch_poll */
+static const nmea_ubx_item ubx_mon_batch_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-BATCH: mon_batch */
+static const nmea_ubx_item ubx_mon_batch_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_batch, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_batch, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"fill_level", NULL, offsetof(nmea_ubx_mon_batch, fill_level), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drops_all", NULL, offsetof(nmea_ubx_mon_batch, drops_all), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"drops_since_mon", NULL, offsetof(nmea_ubx_mon_batch, drops_since_mon), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"next_msg_cnt", NULL, offsetof(nmea_ubx_mon_batch, next_msg_cnt), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MON-PMP: mon_pmp_poll */
+static const nmea_ubx_item ubx_mon_pmp_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* MON-PMP: mon_pmp */
+static const nmea_ubx_scale ubx_mon_pmp_entrie_cno_frac_scale = {256.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_mon_pmp_entrie_items[] = {
+    {"reserved1", NULL, offsetof(nmea_ubx_mon_pmp_entrie, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"status", NULL, offsetof(nmea_ubx_mon_pmp_entrie, status), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"locked", NULL, offsetof(nmea_ubx_mon_pmp_entrie, locked), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"frame_sync", NULL, offsetof(nmea_ubx_mon_pmp_entrie, frame_sync), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_mon_pmp_entrie, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno", NULL, offsetof(nmea_ubx_mon_pmp_entrie, cno), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cno_frac", &ubx_mon_pmp_entrie_cno_frac_scale, offsetof(nmea_ubx_mon_pmp_entrie, cno_frac), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_mon_pmp_entrie, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_mon_pmp_entries_group = {ubx_mon_pmp_entrie_items, 8, NMEA_UBX_COUNT_FIELD, 1, offsetof(nmea_ubx_mon_pmp, n_entries), 0, 0, 65535, NMEA_UBX_MON_PMP_ENTRIES_MAX, 20, sizeof(nmea_ubx_mon_pmp_entrie), 0, offsetof(nmea_ubx_mon_pmp, entries_count)};
+static const nmea_ubx_item ubx_mon_pmp_items[] = {
+    {"version", NULL, offsetof(nmea_ubx_mon_pmp, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"n_entries", NULL, offsetof(nmea_ubx_mon_pmp, n_entries), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved0", NULL, offsetof(nmea_ubx_mon_pmp, reserved0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"entries", &ubx_mon_pmp_entries_group, offsetof(nmea_ubx_mon_pmp, entries), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* MON-COMMS: mon_comms_poll */
@@ -4785,6 +5145,32 @@ static const nmea_ubx_item ubx_mga_ano_items[] = {
     {"reserved1", NULL, offsetof(nmea_ubx_mga_ano, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
+/* MGA-FLASH: mga_flash_data */
+static const nmea_ubx_item ubx_mga_flash_data_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_flash_data, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_flash_data, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sequence", NULL, offsetof(nmea_ubx_mga_flash_data, sequence), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"size", NULL, offsetof(nmea_ubx_mga_flash_data, size), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"data", NULL, offsetof(nmea_ubx_mga_flash_data, data), 0, 0, NMEA_UBX_ITEM_VIEW, 0, 0, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+/* MGA-FLASH: mga_flash_stop */
+static const nmea_ubx_item ubx_mga_flash_stop_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_flash_stop, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_flash_stop, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* MGA-FLASH: mga_flash_ack */
+static const nmea_ubx_special ubx_mga_flash_ack_sequence_specials[] = {{65535, "stop"}};
+static const nmea_ubx_scale ubx_mga_flash_ack_sequence_scale = {1.0, 0.0, false, ubx_mga_flash_ack_sequence_specials, 1};
+static const nmea_ubx_item ubx_mga_flash_ack_items[] = {
+    {"type", NULL, offsetof(nmea_ubx_mga_flash_ack, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"version", NULL, offsetof(nmea_ubx_mga_flash_ack, version), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ack", NULL, offsetof(nmea_ubx_mga_flash_ack, ack), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_mga_flash_ack, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sequence", &ubx_mga_flash_ack_sequence_scale, offsetof(nmea_ubx_mga_flash_ack, sequence), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false}
+};
+
 /* MGA-INI: mga_ini_pos_xyz */
 static const nmea_ubx_item ubx_mga_ini_pos_xyz_items[] = {
     {"type", NULL, offsetof(nmea_ubx_mga_ini_pos_xyz, type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
@@ -5773,6 +6159,23 @@ static const nmea_ubx_item ubx_nav2_sig_items[] = {
 /* NAV2-EOE: nav2_eoe */
 static const nmea_ubx_item ubx_nav2_eoe_items[] = {
     {"itow", NULL, offsetof(nmea_ubx_nav2_eoe, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* NAV2-TIMENAVIC: nav2_timenavic_poll */
+static const nmea_ubx_item ubx_nav2_timenavic_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
+
+/* NAV2-TIMENAVIC: nav2_timenavic */
+static const nmea_ubx_item ubx_nav2_timenavic_items[] = {
+    {"itow", NULL, offsetof(nmea_ubx_nav2_timenavic, itow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_tow", NULL, offsetof(nmea_ubx_nav2_timenavic, nav_ic_tow), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"f_nav_ic_tow", NULL, offsetof(nmea_ubx_nav2_timenavic, f_nav_ic_tow), 0, 0, NMEA_UBX_ITEM_SIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_wno", NULL, offsetof(nmea_ubx_nav2_timenavic, nav_ic_wno), 0, 0, NMEA_UBX_ITEM_SIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s", NULL, offsetof(nmea_ubx_nav2_timenavic, leap_s), 0, 0, NMEA_UBX_ITEM_SIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"valid", NULL, offsetof(nmea_ubx_nav2_timenavic, valid), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_tow_valid", NULL, offsetof(nmea_ubx_nav2_timenavic, nav_ic_tow_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"nav_ic_wno_valid", NULL, offsetof(nmea_ubx_nav2_timenavic, nav_ic_wno_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"leap_s_valid", NULL, offsetof(nmea_ubx_nav2_timenavic, leap_s_valid), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"t_acc", NULL, offsetof(nmea_ubx_nav2_timenavic, t_acc), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 /* CASIC NAV-DOP: nav_dop */
@@ -7212,6 +7615,79 @@ static bool ubx_nav_hpposllh_fast(const uint8_t *p, size_t len, nmea_ubx_message
     return true;
 }
 
+static bool ubx_nav_pvat_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_nav_pvat *m = &out->as.nav_pvat;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    if (left < 116)
+        return false;
+    m->itow = ubx_u32(q);
+    m->version = q[4];
+    w = q[5];
+    m->valid = (uint8_t)w;
+    m->valid_date = (w & 0x1u) != 0;
+    m->valid_time = (w >> 1 & 0x1u) != 0;
+    m->fully_resolved = (w >> 2 & 0x1u) != 0;
+    m->valid_mag = (w >> 3 & 0x1u) != 0;
+    m->year = ubx_u16(q + 6);
+    m->month = q[8];
+    m->day = q[9];
+    m->hour = q[10];
+    m->min = q[11];
+    m->sec = q[12];
+    m->reserved0 = q[13];
+    m->reserved1 = ubx_u16(q + 14);
+    m->t_acc = ubx_u32(q + 16);
+    m->nano = (int32_t)ubx_u32(q + 20);
+    m->fix_type = q[24];
+    w = q[25];
+    m->flags = (uint8_t)w;
+    m->gnss_fix_ok = (w & 0x1u) != 0;
+    m->diff_soln = (w >> 1 & 0x1u) != 0;
+    m->veh_roll_valid = (w >> 3 & 0x1u) != 0;
+    m->veh_pitch_valid = (w >> 4 & 0x1u) != 0;
+    m->veh_heading_valid = (w >> 5 & 0x1u) != 0;
+    m->carr_soln = (uint8_t)(w >> 6 & 0x3u);
+    w = q[26];
+    m->flags2 = (uint8_t)w;
+    m->confirmed_avai = (w >> 5 & 0x1u) != 0;
+    m->confirmed_date = (w >> 6 & 0x1u) != 0;
+    m->confirmed_time = (w >> 7 & 0x1u) != 0;
+    m->num_sv = q[27];
+    m->lon = (int32_t)ubx_u32(q + 28);
+    m->lat = (int32_t)ubx_u32(q + 32);
+    m->height = (int32_t)ubx_u32(q + 36);
+    m->h_msl = (int32_t)ubx_u32(q + 40);
+    m->h_acc = ubx_u32(q + 44);
+    m->v_acc = ubx_u32(q + 48);
+    m->vel_n = (int32_t)ubx_u32(q + 52);
+    m->vel_e = (int32_t)ubx_u32(q + 56);
+    m->vel_d = (int32_t)ubx_u32(q + 60);
+    m->g_speed = (int32_t)ubx_u32(q + 64);
+    m->s_acc = ubx_u32(q + 68);
+    m->veh_roll = (int32_t)ubx_u32(q + 72);
+    m->veh_pitch = (int32_t)ubx_u32(q + 76);
+    m->veh_heading = (int32_t)ubx_u32(q + 80);
+    m->mot_heading = (int32_t)ubx_u32(q + 84);
+    m->acc_roll = ubx_u16(q + 88);
+    m->acc_pitch = ubx_u16(q + 90);
+    m->acc_heading = ubx_u16(q + 92);
+    m->mag_dec = (int16_t)ubx_u16(q + 94);
+    m->mag_acc = ubx_u16(q + 96);
+    m->err_ellipse_orient = ubx_u16(q + 98);
+    m->err_ellipse_major = ubx_u32(q + 100);
+    m->err_ellipse_minor = ubx_u32(q + 104);
+    m->reserved2 = ubx_u32(q + 108);
+    m->reserved3 = ubx_u32(q + 112);
+    q += 116;
+    left -= 116;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_nav_timegps_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_nav_timegps *m = &out->as.nav_timegps;
@@ -7414,6 +7890,63 @@ static bool ubx_nav_timeqzss_fast(const uint8_t *p, size_t len, nmea_ubx_message
     m->t_acc = ubx_u32(q + 16);
     q += 20;
     left -= 20;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_nav_nmi_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_nav_nmi *m = &out->as.nav_nmi;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    if (left < 16)
+        return false;
+    m->itow = ubx_u32(q);
+    m->version = q[4];
+    m->reserved1 = ubx_u32(q + 5);
+    w = q[9];
+    m->gps_nmi_flags = (uint8_t)w;
+    m->wno_checked_gps = (w & 0x1u) != 0;
+    m->wno_invalid_gps = (w >> 1 & 0x1u) != 0;
+    m->utco_ref_checked_gps = (w >> 2 & 0x1u) != 0;
+    m->utco_ref_invalid_gps = (w >> 3 & 0x1u) != 0;
+    w = q[10];
+    m->gps_ls_flags = (uint8_t)w;
+    m->ls_val_gps = (w & 0x1u) != 0;
+    m->dn_range_gps = (w >> 1 & 0x1u) != 0;
+    m->tot_range_gps = (w >> 2 & 0x1u) != 0;
+    m->ls_event_gps = (w >> 3 & 0x1u) != 0;
+    m->rec_now_gps = (w >> 4 & 0x1u) != 0;
+    w = q[11];
+    m->gal_nmi_flags = (uint8_t)w;
+    m->wno_checked_gal = (w & 0x1u) != 0;
+    m->wno_invalid_gal = (w >> 1 & 0x1u) != 0;
+    w = q[12];
+    m->gal_ls_flags = (uint8_t)w;
+    m->ls_val_gal = (w & 0x1u) != 0;
+    m->dn_range_gal = (w >> 1 & 0x1u) != 0;
+    m->tot_range_gal = (w >> 2 & 0x1u) != 0;
+    m->ls_event_gal = (w >> 3 & 0x1u) != 0;
+    m->rec_now_gal = (w >> 4 & 0x1u) != 0;
+    w = q[13];
+    m->bds_nmi_flags = (uint8_t)w;
+    m->wno_checked_bds = (w & 0x1u) != 0;
+    m->wno_invalid_bds = (w >> 1 & 0x1u) != 0;
+    w = q[14];
+    m->bds_ls_flags = (uint8_t)w;
+    m->ls_val_bds = (w & 0x1u) != 0;
+    m->dn_range_bds = (w >> 1 & 0x1u) != 0;
+    m->tot_range_bds = (w >> 2 & 0x1u) != 0;
+    m->ls_event_bds = (w >> 3 & 0x1u) != 0;
+    m->rec_now_bds = (w >> 4 & 0x1u) != 0;
+    w = q[15];
+    m->glo_nmi_flags = (uint8_t)w;
+    m->wno_checked_glo = (w & 0x1u) != 0;
+    m->wno_invalid_glo = (w >> 1 & 0x1u) != 0;
+    q += 16;
+    left -= 16;
     m->trailing.ptr = q;
     m->trailing.len = left;
     return true;
@@ -8068,6 +8601,32 @@ static bool ubx_nav_pl_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
     return true;
 }
 
+static bool ubx_nav_timenavic_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_nav_timenavic *m = &out->as.nav_timenavic;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    if (left < 20)
+        return false;
+    m->itow = ubx_u32(q);
+    m->nav_ic_tow = ubx_u32(q + 4);
+    m->f_nav_ic_tow = (int32_t)ubx_u32(q + 8);
+    m->nav_ic_wno = (int16_t)ubx_u16(q + 12);
+    m->leap_s = (int8_t)q[14];
+    w = q[15];
+    m->valid = (uint8_t)w;
+    m->nav_ic_tow_valid = (w & 0x1u) != 0;
+    m->nav_ic_wno_valid = (w >> 1 & 0x1u) != 0;
+    m->leap_s_valid = (w >> 2 & 0x1u) != 0;
+    m->t_acc = ubx_u32(q + 16);
+    q += 20;
+    left -= 20;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_rxm_sfrbx_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_rxm_sfrbx *m = &out->as.rxm_sfrbx;
@@ -8434,6 +8993,154 @@ static bool ubx_rxm_rlm_short_fast(const uint8_t *p, size_t len, nmea_ubx_messag
     m->reserved1 = q[15];
     q += 16;
     left -= 16;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_rxm_imes_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_rxm_imes *m = &out->as.rxm_imes;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    size_t k;
+    if (left < 4)
+        return false;
+    m->num_tx = q[0];
+    m->version = q[1];
+    m->reserved1 = ubx_u16(q + 2);
+    q += 4;
+    left -= 4;
+    {
+        size_t count = (uint8_t)m->num_tx;
+        if (count * 44 > left || count > NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX)
+            return false;
+        for (k = 0; k < count; k++, q += 44) {
+            nmea_ubx_rxm_imes_transmitter *e = &m->transmitters[k];
+            e->reserved2 = q[0];
+            e->tx_id = q[1];
+            e->reserved3 = (uint32_t)ubx_le(q + 2, 3);
+            e->cno = q[5];
+            e->reserved4 = ubx_u16(q + 6);
+            e->doppler = (int32_t)ubx_u32(q + 8);
+            w = ubx_u32(q + 12);
+            e->position1_1 = (uint32_t)w;
+            e->pos1_floor = (uint8_t)(w & 0xFFu);
+            e->pos1_lat = (uint32_t)(w >> 8 & 0x7FFFFFu);
+            w = ubx_u32(q + 16);
+            e->position1_2 = (uint32_t)w;
+            e->pos1_lon = (uint32_t)(w & 0xFFFFFFu);
+            e->pos1_valid = (w >> 24 & 0x1u) != 0;
+            w = ubx_u32(q + 20);
+            e->position2_1 = (uint32_t)w;
+            e->pos2_floor = (uint8_t)(w & 0xFFu);
+            e->pos2_alt = (uint16_t)(w >> 8 & 0xFFFu);
+            e->pos2_acc = (uint8_t)(w >> 20 & 0x3u);
+            e->pos2_valid = (w >> 22 & 0x1u) != 0;
+            e->lat = (int32_t)ubx_u32(q + 24);
+            e->lon = (int32_t)ubx_u32(q + 28);
+            w = ubx_u32(q + 32);
+            e->short_id_frame = (uint32_t)w;
+            e->short_id = (uint16_t)(w & 0xFFFu);
+            e->short_valid = (w >> 12 & 0x1u) != 0;
+            e->short_boundary = (w >> 13 & 0x1u) != 0;
+            e->medium_id_lsb = ubx_u32(q + 36);
+            w = ubx_u32(q + 40);
+            e->medium_id_2 = (uint32_t)w;
+            e->medium_id_msb = (w & 0x1u) != 0;
+            e->medium_valid = (w >> 1 & 0x1u) != 0;
+            e->medium_boundary = (w >> 2 & 0x1u) != 0;
+        }
+        left -= count * 44;
+        m->transmitters_count = (uint16_t)count;
+    }
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_rxm_pmp_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_rxm_pmp *m = &out->as.rxm_pmp;
+    const uint8_t *q = p;
+    size_t left = len;
+    if (left < 528)
+        return false;
+    m->version = q[0];
+    m->reserved0 = (uint32_t)ubx_le(q + 1, 3);
+    m->time_tag = ubx_u32(q + 4);
+    m->unique_word1 = ubx_u32(q + 8);
+    m->unique_word2 = ubx_u32(q + 12);
+    m->service_identifier = ubx_u16(q + 16);
+    m->spare = q[18];
+    m->unique_word_bit_errors = q[19];
+    memcpy(m->user_data0, q + 20, 252);
+    memcpy(m->user_data1, q + 272, 252);
+    m->fec_bits = ubx_u16(q + 524);
+    m->ebno = q[526];
+    m->reserved1 = q[527];
+    q += 528;
+    left -= 528;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_rxm_pmp_v1_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_rxm_pmp_v1 *m = &out->as.rxm_pmp_v1;
+    const uint8_t *q = p;
+    size_t left = len;
+    if (left < 24)
+        return false;
+    m->version = q[0];
+    m->reserved0 = q[1];
+    m->num_bytes_user_data = ubx_u16(q + 2);
+    m->time_tag = ubx_u32(q + 4);
+    m->unique_word1 = ubx_u32(q + 8);
+    m->unique_word2 = ubx_u32(q + 12);
+    m->service_identifier = ubx_u16(q + 16);
+    m->spare = q[18];
+    m->unique_word_bit_errors = q[19];
+    m->fec_bits = ubx_u16(q + 20);
+    m->ebno = q[22];
+    m->reserved1 = q[23];
+    q += 24;
+    left -= 24;
+    m->user_data.ptr = q;
+    m->user_data.len = left > 0 ? left - 0 : 0;
+    q += m->user_data.len;
+    left -= m->user_data.len;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_rxm_qzssl6_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_rxm_qzssl6 *m = &out->as.rxm_qzssl6;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    if (left < 264)
+        return false;
+    m->version = q[0];
+    m->sv_id = q[1];
+    m->cno = ubx_u16(q + 2);
+    m->time_tag = ubx_u32(q + 4);
+    m->group_delay = q[8];
+    m->bit_err_corr = q[9];
+    w = ubx_u16(q + 10);
+    m->ch_info = (uint16_t)w;
+    m->chn = (uint8_t)(w >> 8 & 0x3u);
+    m->msg_name = (w >> 10 & 0x1u) != 0;
+    m->err_status = (uint8_t)(w >> 12 & 0x3u);
+    m->ch_name = (uint8_t)(w >> 14 & 0x3u);
+    m->reserved0 = ubx_u16(q + 12);
+    memcpy(m->msg_bytes, q + 14, 250);
+    q += 264;
+    left -= 264;
     m->trailing.ptr = q;
     m->trailing.len = left;
     return true;
@@ -9240,6 +9947,33 @@ static bool ubx_cfg_pm2_v1_fast(const uint8_t *p, size_t len, nmea_ubx_message *
     return true;
 }
 
+static bool ubx_cfg_tmode2_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_cfg_tmode2 *m = &out->as.cfg_tmode2;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    if (left < 28)
+        return false;
+    m->time_mode = q[0];
+    m->reserved1 = q[1];
+    w = ubx_u16(q + 2);
+    m->flags = (uint16_t)w;
+    m->lla = (w & 0x1u) != 0;
+    m->alt_inv = (w >> 1 & 0x1u) != 0;
+    m->ecef_x_or_lat = (int32_t)ubx_u32(q + 4);
+    m->ecef_y_or_lon = (int32_t)ubx_u32(q + 8);
+    m->ecef_z_or_alt = (int32_t)ubx_u32(q + 12);
+    m->fixed_pos_acc = ubx_u32(q + 16);
+    m->svin_min_dur = ubx_u32(q + 20);
+    m->svin_acc_limit = ubx_u32(q + 24);
+    q += 28;
+    left -= 28;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_cfg_gnss_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_cfg_gnss *m = &out->as.cfg_gnss;
@@ -9554,6 +10288,24 @@ static bool ubx_cfg_smgr_fast(const uint8_t *p, size_t len, nmea_ubx_message *ou
     return true;
 }
 
+static bool ubx_cfg_spt_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_cfg_spt *m = &out->as.cfg_spt;
+    const uint8_t *q = p;
+    size_t left = len;
+    if (left < 12)
+        return false;
+    m->version = q[0];
+    m->reserved0 = q[1];
+    m->sensor_id = ubx_u16(q + 2);
+    m->reserved1 = ubx_u64(q + 4);
+    q += 12;
+    left -= 12;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_cfg_geofence_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_cfg_geofence *m = &out->as.cfg_geofence;
@@ -9691,6 +10443,30 @@ static bool ubx_cfg_pms_fast(const uint8_t *p, size_t len, nmea_ubx_message *out
     m->reserved0 = ubx_u16(q + 6);
     q += 8;
     left -= 8;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_cfg_senif_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_cfg_senif *m = &out->as.cfg_senif;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    if (left < 6)
+        return false;
+    m->type = q[0];
+    m->version = q[1];
+    w = ubx_u16(q + 2);
+    m->flags = (uint16_t)w;
+    m->sen_conn = (w & 0x1u) != 0;
+    w = ubx_u16(q + 4);
+    m->pio_conf = (uint16_t)w;
+    m->i2c_sda_pio = (uint8_t)(w & 0x1Fu);
+    m->i2c_scl_pio = (uint8_t)(w >> 5 & 0x1Fu);
+    q += 6;
+    left -= 6;
     m->trailing.ptr = q;
     m->trailing.len = left;
     return true;
@@ -10241,6 +11017,58 @@ static bool ubx_mon_smgr_fast(const uint8_t *p, size_t len, nmea_ubx_message *ou
     return true;
 }
 
+static bool ubx_mon_spt_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_mon_spt *m = &out->as.mon_spt;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    size_t k;
+    if (left < 4)
+        return false;
+    m->version = q[0];
+    m->num_sensor = q[1];
+    m->num_res = q[2];
+    m->reserved1 = q[3];
+    q += 4;
+    left -= 4;
+    {
+        size_t count = (uint8_t)m->num_sensor;
+        if (count * 4 > left || count > NMEA_UBX_MON_SPT_SENSORS_MAX)
+            return false;
+        for (k = 0; k < count; k++, q += 4) {
+            nmea_ubx_mon_spt_sensor *e = &m->sensors[k];
+            e->sensor_id = q[0];
+            w = q[1];
+            e->drv_ver = (uint8_t)w;
+            e->drv_ver_min = (uint8_t)(w & 0xFu);
+            e->drv_ver_maj = (uint8_t)(w >> 4 & 0xFu);
+            e->test_state = q[2];
+            e->drv_file_name = q[3];
+        }
+        left -= count * 4;
+        m->sensors_count = (uint16_t)count;
+    }
+    {
+        size_t count = (uint8_t)m->num_res;
+        if (count * 12 > left || count > NMEA_UBX_MON_SPT_RESULTS_MAX)
+            return false;
+        for (k = 0; k < count; k++, q += 12) {
+            nmea_ubx_mon_spt_result *e = &m->results[k];
+            e->sensor_id_res = ubx_u16(q);
+            e->sensor_type = ubx_u16(q + 2);
+            e->res_type = ubx_u16(q + 4);
+            e->reserved2 = ubx_u16(q + 6);
+            e->value = (int32_t)ubx_u32(q + 8);
+        }
+        left -= count * 12;
+        m->results_count = (uint16_t)count;
+    }
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 static bool ubx_mon_span_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
 {
     nmea_ubx_mon_span *m = &out->as.mon_span;
@@ -10270,6 +11098,64 @@ static bool ubx_mon_span_fast(const uint8_t *p, size_t len, nmea_ubx_message *ou
         }
         left -= count * 272;
         m->rf_blocks_count = (uint16_t)count;
+    }
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_mon_batch_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_mon_batch *m = &out->as.mon_batch;
+    const uint8_t *q = p;
+    size_t left = len;
+    if (left < 12)
+        return false;
+    m->version = q[0];
+    m->reserved1 = (uint32_t)ubx_le(q + 1, 3);
+    m->fill_level = ubx_u16(q + 4);
+    m->drops_all = ubx_u16(q + 6);
+    m->drops_since_mon = ubx_u16(q + 8);
+    m->next_msg_cnt = ubx_u16(q + 10);
+    q += 12;
+    left -= 12;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_mon_pmp_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_mon_pmp *m = &out->as.mon_pmp;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    size_t k;
+    if (left < 4)
+        return false;
+    m->version = q[0];
+    m->n_entries = q[1];
+    m->reserved0 = ubx_u16(q + 2);
+    q += 4;
+    left -= 4;
+    {
+        size_t count = (uint8_t)m->n_entries;
+        if (count * 20 > left || count > NMEA_UBX_MON_PMP_ENTRIES_MAX)
+            return false;
+        for (k = 0; k < count; k++, q += 20) {
+            nmea_ubx_mon_pmp_entrie *e = &m->entries[k];
+            e->reserved1 = ubx_u32(q);
+            w = ubx_u32(q + 4);
+            e->status = (uint32_t)w;
+            e->locked = (w & 0x1u) != 0;
+            e->frame_sync = (w >> 1 & 0x1u) != 0;
+            e->reserved2 = ubx_u64(q + 8);
+            e->cno = q[16];
+            e->cno_frac = q[17];
+            e->reserved3 = ubx_u16(q + 18);
+        }
+        left -= count * 20;
+        m->entries_count = (uint16_t)count;
     }
     m->trailing.ptr = q;
     m->trailing.len = left;
@@ -11140,6 +12026,25 @@ static bool ubx_esf_ins_fast(const uint8_t *p, size_t len, nmea_ubx_message *out
     m->z_accel = (int32_t)ubx_u32(q + 32);
     q += 36;
     left -= 36;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_mga_flash_ack_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_mga_flash_ack *m = &out->as.mga_flash_ack;
+    const uint8_t *q = p;
+    size_t left = len;
+    if (left < 6)
+        return false;
+    m->type = q[0];
+    m->version = q[1];
+    m->ack = q[2];
+    m->reserved1 = q[3];
+    m->sequence = ubx_u16(q + 4);
+    q += 6;
+    left -= 6;
     m->trailing.ptr = q;
     m->trailing.len = left;
     return true;
@@ -12348,6 +13253,32 @@ static bool ubx_nav2_eoe_fast(const uint8_t *p, size_t len, nmea_ubx_message *ou
     m->itow = ubx_u32(q);
     q += 4;
     left -= 4;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_nav2_timenavic_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_nav2_timenavic *m = &out->as.nav2_timenavic;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    if (left < 20)
+        return false;
+    m->itow = ubx_u32(q);
+    m->nav_ic_tow = ubx_u32(q + 4);
+    m->f_nav_ic_tow = (int32_t)ubx_u32(q + 8);
+    m->nav_ic_wno = (int16_t)ubx_u16(q + 12);
+    m->leap_s = (int8_t)q[14];
+    w = q[15];
+    m->valid = (uint8_t)w;
+    m->nav_ic_tow_valid = (w & 0x1u) != 0;
+    m->nav_ic_wno_valid = (w >> 1 & 0x1u) != 0;
+    m->leap_s_valid = (w >> 2 & 0x1u) != 0;
+    m->t_acc = ubx_u32(q + 16);
+    q += 20;
+    left -= 20;
     m->trailing.ptr = q;
     m->trailing.len = left;
     return true;
@@ -14017,6 +14948,8 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     ubx_nav_hpposllh_fast,
     NULL,
+    ubx_nav_pvat_fast,
+    NULL,
     ubx_nav_timegps_fast,
     NULL,
     ubx_nav_timeutc_fast,
@@ -14032,6 +14965,8 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_nav_timels_fast,
     NULL,
     ubx_nav_timeqzss_fast,
+    NULL,
+    ubx_nav_nmi_fast,
     NULL,
     ubx_nav_svinfo_fast,
     NULL,
@@ -14062,6 +14997,8 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_nav_eoe_fast,
     NULL,
     ubx_nav_pl_fast,
+    NULL,
+    ubx_nav_timenavic_fast,
     ubx_rxm_sfrbx_fast,
     NULL,
     ubx_rxm_measx_fast,
@@ -14078,6 +15015,11 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     ubx_rxm_rlm_fast,
     ubx_rxm_rlm_short_fast,
+    NULL,
+    ubx_rxm_imes_fast,
+    ubx_rxm_pmp_fast,
+    ubx_rxm_pmp_v1_fast,
+    ubx_rxm_qzssl6_fast,
     ubx_inf_error_fast,
     ubx_inf_warning_fast,
     ubx_inf_notice_fast,
@@ -14130,6 +15072,8 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_cfg_pm2_fast,
     ubx_cfg_pm2_v1_fast,
     NULL,
+    ubx_cfg_tmode2_fast,
+    NULL,
     ubx_cfg_gnss_fast,
     NULL,
     ubx_cfg_logfilter_fast,
@@ -14151,6 +15095,8 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     ubx_cfg_smgr_fast,
     NULL,
+    ubx_cfg_spt_fast,
+    NULL,
     ubx_cfg_geofence_fast,
     NULL,
     ubx_cfg_dgnss_fast,
@@ -14160,7 +15106,10 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_cfg_esfwt_fast,
     NULL,
     NULL,
+    NULL,
     ubx_cfg_pms_fast,
+    NULL,
+    ubx_cfg_senif_fast,
     NULL,
     NULL,
     NULL,
@@ -14196,7 +15145,13 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     ubx_mon_smgr_fast,
     NULL,
+    ubx_mon_spt_fast,
+    NULL,
     ubx_mon_span_fast,
+    NULL,
+    ubx_mon_batch_fast,
+    NULL,
+    ubx_mon_pmp_fast,
     NULL,
     ubx_mon_comms_fast,
     NULL,
@@ -14270,6 +15225,9 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     NULL,
     NULL,
+    NULL,
+    NULL,
+    ubx_mga_flash_ack_fast,
     NULL,
     NULL,
     NULL,
@@ -14350,6 +15308,8 @@ static const ubx_fast_reader ubx_fast[] = {
     NULL,
     ubx_nav2_sig_fast,
     ubx_nav2_eoe_fast,
+    NULL,
+    ubx_nav2_timenavic_fast,
     ubx_casic_nav_dop_fast,
     ubx_casic_nav_pv_fast,
     ubx_casic_nav_timeutc_fast,
@@ -14439,6 +15399,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav_hpposecef", "NAV-HPPOSECEF", 0x01, 0x13, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_nav_hpposecef_items, 12, 0, offsetof(nmea_ubx_nav_hpposecef, trailing)},
     {"nav_hpposllh_poll", "NAV-HPPOSLLH", 0x01, 0x14, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_hpposllh_poll_items, 0, 0, offsetof(nmea_ubx_nav_hpposllh_poll, trailing)},
     {"nav_hpposllh", "NAV-HPPOSLLH", 0x01, 0x14, true, NMEA_UBX_PROTOCOL_UBX, 36, -1, 0, ubx_nav_hpposllh_items, 15, 0, offsetof(nmea_ubx_nav_hpposllh, trailing)},
+    {"nav_pvat_poll", "NAV-PVAT", 0x01, 0x17, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_pvat_poll_items, 0, 0, offsetof(nmea_ubx_nav_pvat_poll, trailing)},
+    {"nav_pvat", "NAV-PVAT", 0x01, 0x17, true, NMEA_UBX_PROTOCOL_UBX, 116, -1, 0, ubx_nav_pvat_items, 55, 0, offsetof(nmea_ubx_nav_pvat, trailing)},
     {"nav_timegps_poll", "NAV-TIMEGPS", 0x01, 0x20, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timegps_poll_items, 0, 0, offsetof(nmea_ubx_nav_timegps_poll, trailing)},
     {"nav_timegps", "NAV-TIMEGPS", 0x01, 0x20, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_nav_timegps_items, 9, 0, offsetof(nmea_ubx_nav_timegps, trailing)},
     {"nav_timeutc_poll", "NAV-TIMEUTC", 0x01, 0x21, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timeutc_poll_items, 0, 0, offsetof(nmea_ubx_nav_timeutc_poll, trailing)},
@@ -14455,6 +15417,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav_timels", "NAV-TIMELS", 0x01, 0x26, true, NMEA_UBX_PROTOCOL_UBX, 24, -1, 0, ubx_nav_timels_items, 14, 0, offsetof(nmea_ubx_nav_timels, trailing)},
     {"nav_timeqzss_poll", "NAV-TIMEQZSS", 0x01, 0x27, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timeqzss_poll_items, 0, 0, offsetof(nmea_ubx_nav_timeqzss_poll, trailing)},
     {"nav_timeqzss", "NAV-TIMEQZSS", 0x01, 0x27, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_timeqzss_items, 10, 0, offsetof(nmea_ubx_nav_timeqzss, trailing)},
+    {"nav_nmi_poll", "NAV-NMI", 0x01, 0x28, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_nmi_poll_items, 0, 0, offsetof(nmea_ubx_nav_nmi_poll, trailing)},
+    {"nav_nmi", "NAV-NMI", 0x01, 0x28, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_nav_nmi_items, 35, 0, offsetof(nmea_ubx_nav_nmi, trailing)},
     {"nav_svinfo_poll", "NAV-SVINFO", 0x01, 0x30, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_svinfo_poll_items, 0, 0, offsetof(nmea_ubx_nav_svinfo_poll, trailing)},
     {"nav_svinfo", "NAV-SVINFO", 0x01, 0x30, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav_svinfo_items, 6, 0, offsetof(nmea_ubx_nav_svinfo, trailing)},
     {"nav_dgps_poll", "NAV-DGPS", 0x01, 0x31, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_dgps_poll_items, 0, 0, offsetof(nmea_ubx_nav_dgps_poll, trailing)},
@@ -14485,6 +15449,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav_eoe", "NAV-EOE", 0x01, 0x61, true, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_nav_eoe_items, 1, 0, offsetof(nmea_ubx_nav_eoe, trailing)},
     {"nav_pl_poll", "NAV-PL", 0x01, 0x62, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_pl_poll_items, 0, 0, offsetof(nmea_ubx_nav_pl_poll, trailing)},
     {"nav_pl", "NAV-PL", 0x01, 0x62, true, NMEA_UBX_PROTOCOL_UBX, 52, -1, 0, ubx_nav_pl_items, 20, 0, offsetof(nmea_ubx_nav_pl, trailing)},
+    {"nav_timenavic_poll", "NAV-TIMENAVIC", 0x01, 0x63, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav_timenavic_poll_items, 0, 0, offsetof(nmea_ubx_nav_timenavic_poll, trailing)},
+    {"nav_timenavic", "NAV-TIMENAVIC", 0x01, 0x63, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav_timenavic_items, 10, 0, offsetof(nmea_ubx_nav_timenavic, trailing)},
     {"rxm_sfrbx", "RXM-SFRBX", 0x02, 0x13, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_sfrbx_items, 9, 0, offsetof(nmea_ubx_rxm_sfrbx, trailing)},
     {"rxm_measx_poll", "RXM-MEASX", 0x02, 0x14, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_rxm_measx_poll_items, 0, 0, offsetof(nmea_ubx_rxm_measx_poll, trailing)},
     {"rxm_measx", "RXM-MEASX", 0x02, 0x14, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_measx_items, 17, 0, offsetof(nmea_ubx_rxm_measx, trailing)},
@@ -14501,6 +15467,11 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"rxm_pmreq_short", "RXM-PMREQ", 0x02, 0x41, false, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_rxm_pmreq_short_items, 3, 0, offsetof(nmea_ubx_rxm_pmreq_short, trailing)},
     {"rxm_rlm", "RXM-RLM", 0x02, 0x59, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_rxm_rlm_items, 8, 0, offsetof(nmea_ubx_rxm_rlm, trailing)},
     {"rxm_rlm_short", "RXM-RLM", 0x02, 0x59, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_rxm_rlm_short_items, 8, 0, offsetof(nmea_ubx_rxm_rlm_short, trailing)},
+    {"rxm_imes_poll", "RXM-IMES", 0x02, 0x61, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_rxm_imes_poll_items, 0, 0, offsetof(nmea_ubx_rxm_imes_poll, trailing)},
+    {"rxm_imes", "RXM-IMES", 0x02, 0x61, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_rxm_imes_items, 4, 0, offsetof(nmea_ubx_rxm_imes, trailing)},
+    {"rxm_pmp", "RXM-PMP", 0x02, 0x72, true, NMEA_UBX_PROTOCOL_UBX, 528, 0, 0, ubx_rxm_pmp_items, 13, 0, offsetof(nmea_ubx_rxm_pmp, trailing)},
+    {"rxm_pmp_v1", "RXM-PMP", 0x02, 0x72, true, NMEA_UBX_PROTOCOL_UBX, -1, 1, 0, ubx_rxm_pmp_v1_items, 13, 0, offsetof(nmea_ubx_rxm_pmp_v1, trailing)},
+    {"rxm_qzssl6", "RXM-QZSSL6", 0x02, 0x73, true, NMEA_UBX_PROTOCOL_UBX, 264, -1, 0, ubx_rxm_qzssl6_items, 13, 0, offsetof(nmea_ubx_rxm_qzssl6, trailing)},
     {"inf_error", "INF-ERROR", 0x04, 0x00, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_error_items, 1, 0, offsetof(nmea_ubx_inf_error, trailing)},
     {"inf_warning", "INF-WARNING", 0x04, 0x01, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_warning_items, 1, 0, offsetof(nmea_ubx_inf_warning, trailing)},
     {"inf_notice", "INF-NOTICE", 0x04, 0x02, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_inf_notice_items, 1, 0, offsetof(nmea_ubx_inf_notice, trailing)},
@@ -14552,6 +15523,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_pm2_poll", "CFG-PM2", 0x06, 0x3B, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_pm2_poll_items, 0, 0, offsetof(nmea_ubx_cfg_pm2_poll, trailing)},
     {"cfg_pm2", "CFG-PM2", 0x06, 0x3B, true, NMEA_UBX_PROTOCOL_UBX, 48, 2, 0, ubx_cfg_pm2_items, 24, 0, offsetof(nmea_ubx_cfg_pm2, trailing)},
     {"cfg_pm2_v1", "CFG-PM2", 0x06, 0x3B, true, NMEA_UBX_PROTOCOL_UBX, 44, 1, 0, ubx_cfg_pm2_v1_items, 23, 0, offsetof(nmea_ubx_cfg_pm2_v1, trailing)},
+    {"cfg_tmode2_poll", "CFG-TMODE2", 0x06, 0x3D, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_tmode2_poll_items, 0, 0, offsetof(nmea_ubx_cfg_tmode2_poll, trailing)},
+    {"cfg_tmode2", "CFG-TMODE2", 0x06, 0x3D, true, NMEA_UBX_PROTOCOL_UBX, 28, -1, 0, ubx_cfg_tmode2_items, 11, 0, offsetof(nmea_ubx_cfg_tmode2, trailing)},
     {"cfg_gnss_poll", "CFG-GNSS", 0x06, 0x3E, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_gnss_poll_items, 0, 0, offsetof(nmea_ubx_cfg_gnss_poll, trailing)},
     {"cfg_gnss", "CFG-GNSS", 0x06, 0x3E, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_gnss_items, 5, 0, offsetof(nmea_ubx_cfg_gnss, trailing)},
     {"cfg_logfilter_poll", "CFG-LOGFILTER", 0x06, 0x47, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_logfilter_poll_items, 0, 0, offsetof(nmea_ubx_cfg_logfilter_poll, trailing)},
@@ -14573,6 +15546,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_dosc", "CFG-DOSC", 0x06, 0x61, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_dosc_items, 4, 0, offsetof(nmea_ubx_cfg_dosc, trailing)},
     {"cfg_smgr_poll", "CFG-SMGR", 0x06, 0x62, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_smgr_poll_items, 0, 0, offsetof(nmea_ubx_cfg_smgr_poll, trailing)},
     {"cfg_smgr", "CFG-SMGR", 0x06, 0x62, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_cfg_smgr_items, 28, 0, offsetof(nmea_ubx_cfg_smgr, trailing)},
+    {"cfg_spt_poll", "CFG-SPT", 0x06, 0x64, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_spt_poll_items, 0, 0, offsetof(nmea_ubx_cfg_spt_poll, trailing)},
+    {"cfg_spt", "CFG-SPT", 0x06, 0x64, true, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_cfg_spt_items, 4, 0, offsetof(nmea_ubx_cfg_spt, trailing)},
     {"cfg_geofence_poll", "CFG-GEOFENCE", 0x06, 0x69, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_geofence_poll_items, 0, 0, offsetof(nmea_ubx_cfg_geofence_poll, trailing)},
     {"cfg_geofence", "CFG-GEOFENCE", 0x06, 0x69, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_geofence_items, 9, 0, offsetof(nmea_ubx_cfg_geofence, trailing)},
     {"cfg_dgnss_poll", "CFG-DGNSS", 0x06, 0x70, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_dgnss_poll_items, 0, 0, offsetof(nmea_ubx_cfg_dgnss_poll, trailing)},
@@ -14582,8 +15557,11 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"cfg_esfwt_poll", "CFG-ESFWT", 0x06, 0x82, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_esfwt_poll_items, 0, 0, offsetof(nmea_ubx_cfg_esfwt_poll, trailing)},
     {"cfg_esfwt", "CFG-ESFWT", 0x06, 0x82, true, NMEA_UBX_PROTOCOL_UBX, 32, -1, 0, ubx_cfg_esfwt_items, 21, 0, offsetof(nmea_ubx_cfg_esfwt, trailing)},
     {"cfg_fixseed", "CFG-FIXSEED", 0x06, 0x84, false, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_cfg_fixseed_items, 6, 0, offsetof(nmea_ubx_cfg_fixseed, trailing)},
+    {"cfg_dynseed", "CFG-DYNSEED", 0x06, 0x85, false, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_cfg_dynseed_items, 4, 0, offsetof(nmea_ubx_cfg_dynseed, trailing)},
     {"cfg_pms_poll", "CFG-PMS", 0x06, 0x86, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_pms_poll_items, 0, 0, offsetof(nmea_ubx_cfg_pms_poll, trailing)},
     {"cfg_pms", "CFG-PMS", 0x06, 0x86, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_cfg_pms_items, 5, 0, offsetof(nmea_ubx_cfg_pms, trailing)},
+    {"cfg_senif_poll", "CFG-SENIF", 0x06, 0x88, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_cfg_senif_poll_items, 0, 0, offsetof(nmea_ubx_cfg_senif_poll, trailing)},
+    {"cfg_senif", "CFG-SENIF", 0x06, 0x88, true, NMEA_UBX_PROTOCOL_UBX, 6, -1, 0, ubx_cfg_senif_items, 7, 0, offsetof(nmea_ubx_cfg_senif, trailing)},
     {"cfg_valset_v0", "CFG-VALSET", 0x06, 0x8A, false, NMEA_UBX_PROTOCOL_UBX, -1, 0, 0, ubx_cfg_valset_v0_items, 7, 0, offsetof(nmea_ubx_cfg_valset_v0, trailing)},
     {"cfg_valset", "CFG-VALSET", 0x06, 0x8A, false, NMEA_UBX_PROTOCOL_UBX, -1, 1, 0, ubx_cfg_valset_items, 9, 0, offsetof(nmea_ubx_cfg_valset, trailing)},
     {"cfg_valget_poll", "CFG-VALGET", 0x06, 0x8B, false, NMEA_UBX_PROTOCOL_UBX, -1, 0, 0, ubx_cfg_valget_poll_items, 4, 0, offsetof(nmea_ubx_cfg_valget_poll, trailing)},
@@ -14618,8 +15596,14 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"mon_gnss", "MON-GNSS", 0x0A, 0x28, true, NMEA_UBX_PROTOCOL_UBX, 8, -1, 0, ubx_mon_gnss_items, 18, 0, offsetof(nmea_ubx_mon_gnss, trailing)},
     {"mon_smgr_poll", "MON-SMGR", 0x0A, 0x2E, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_smgr_poll_items, 0, 0, offsetof(nmea_ubx_mon_smgr_poll, trailing)},
     {"mon_smgr", "MON-SMGR", 0x0A, 0x2E, true, NMEA_UBX_PROTOCOL_UBX, 16, -1, 0, ubx_mon_smgr_items, 22, 0, offsetof(nmea_ubx_mon_smgr, trailing)},
+    {"mon_spt_poll", "MON-SPT", 0x0A, 0x2F, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_spt_poll_items, 0, 0, offsetof(nmea_ubx_mon_spt_poll, trailing)},
+    {"mon_spt", "MON-SPT", 0x0A, 0x2F, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_spt_items, 6, 0, offsetof(nmea_ubx_mon_spt, trailing)},
     {"mon_span_poll", "MON-SPAN", 0x0A, 0x31, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_span_poll_items, 0, 0, offsetof(nmea_ubx_mon_span_poll, trailing)},
     {"mon_span", "MON-SPAN", 0x0A, 0x31, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_span_items, 4, 0, offsetof(nmea_ubx_mon_span, trailing)},
+    {"mon_batch_poll", "MON-BATCH", 0x0A, 0x32, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_batch_poll_items, 0, 0, offsetof(nmea_ubx_mon_batch_poll, trailing)},
+    {"mon_batch", "MON-BATCH", 0x0A, 0x32, true, NMEA_UBX_PROTOCOL_UBX, 12, -1, 0, ubx_mon_batch_items, 6, 0, offsetof(nmea_ubx_mon_batch, trailing)},
+    {"mon_pmp_poll", "MON-PMP", 0x0A, 0x35, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_pmp_poll_items, 0, 0, offsetof(nmea_ubx_mon_pmp_poll, trailing)},
+    {"mon_pmp", "MON-PMP", 0x0A, 0x35, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_pmp_items, 4, 0, offsetof(nmea_ubx_mon_pmp, trailing)},
     {"mon_comms_poll", "MON-COMMS", 0x0A, 0x36, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_comms_poll_items, 0, 0, offsetof(nmea_ubx_mon_comms_poll, trailing)},
     {"mon_comms", "MON-COMMS", 0x0A, 0x36, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_mon_comms_items, 8, 0, offsetof(nmea_ubx_mon_comms, trailing)},
     {"mon_hw3_poll", "MON-HW3", 0x0A, 0x37, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_mon_hw3_poll_items, 0, 0, offsetof(nmea_ubx_mon_hw3_poll, trailing)},
@@ -14693,6 +15677,9 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"mga_glo_alm", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 36, 2, 0, ubx_mga_glo_alm_items, 17, 0, offsetof(nmea_ubx_mga_glo_alm, trailing)},
     {"mga_glo_timeoffset", "MGA-GLO", 0x13, 0x06, false, NMEA_UBX_PROTOCOL_UBX, 20, 3, 0, ubx_mga_glo_timeoffset_items, 8, 0, offsetof(nmea_ubx_mga_glo_timeoffset, trailing)},
     {"mga_ano", "MGA-ANO", 0x13, 0x20, false, NMEA_UBX_PROTOCOL_UBX, 76, -1, 0, ubx_mga_ano_items, 10, 0, offsetof(nmea_ubx_mga_ano, trailing)},
+    {"mga_flash_data", "MGA-FLASH", 0x13, 0x21, false, NMEA_UBX_PROTOCOL_UBX, -1, 1, 0, ubx_mga_flash_data_items, 5, 0, offsetof(nmea_ubx_mga_flash_data, trailing)},
+    {"mga_flash_stop", "MGA-FLASH", 0x13, 0x21, false, NMEA_UBX_PROTOCOL_UBX, 2, 2, 0, ubx_mga_flash_stop_items, 2, 0, offsetof(nmea_ubx_mga_flash_stop, trailing)},
+    {"mga_flash_ack", "MGA-FLASH", 0x13, 0x21, true, NMEA_UBX_PROTOCOL_UBX, 6, 3, 0, ubx_mga_flash_ack_items, 5, 0, offsetof(nmea_ubx_mga_flash_ack, trailing)},
     {"mga_ini_pos_xyz", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 20, 0, 0, ubx_mga_ini_pos_xyz_items, 7, 0, offsetof(nmea_ubx_mga_ini_pos_xyz, trailing)},
     {"mga_ini_pos_llh", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 20, 1, 0, ubx_mga_ini_pos_llh_items, 7, 0, offsetof(nmea_ubx_mga_ini_pos_llh, trailing)},
     {"mga_ini_time_utc", "MGA-INI", 0x13, 0x40, false, NMEA_UBX_PROTOCOL_UBX, 24, 16, 0, ubx_mga_ini_time_utc_items, 18, 0, offsetof(nmea_ubx_mga_ini_time_utc, trailing)},
@@ -14773,6 +15760,8 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"nav2_sig_poll", "NAV2-SIG", 0x29, 0x43, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_sig_poll_items, 0, 0, offsetof(nmea_ubx_nav2_sig_poll, trailing)},
     {"nav2_sig", "NAV2-SIG", 0x29, 0x43, true, NMEA_UBX_PROTOCOL_UBX, -1, -1, 0, ubx_nav2_sig_items, 5, 0, offsetof(nmea_ubx_nav2_sig, trailing)},
     {"nav2_eoe", "NAV2-EOE", 0x29, 0x61, true, NMEA_UBX_PROTOCOL_UBX, 4, -1, 0, ubx_nav2_eoe_items, 1, 0, offsetof(nmea_ubx_nav2_eoe, trailing)},
+    {"nav2_timenavic_poll", "NAV2-TIMENAVIC", 0x29, 0x63, false, NMEA_UBX_PROTOCOL_UBX, 0, -1, 0, ubx_nav2_timenavic_poll_items, 0, 0, offsetof(nmea_ubx_nav2_timenavic_poll, trailing)},
+    {"nav2_timenavic", "NAV2-TIMENAVIC", 0x29, 0x63, true, NMEA_UBX_PROTOCOL_UBX, 20, -1, 0, ubx_nav2_timenavic_items, 10, 0, offsetof(nmea_ubx_nav2_timenavic, trailing)},
     {"nav_dop", "NAV-DOP", 0x01, 0x01, true, NMEA_UBX_PROTOCOL_CASIC, 28, -1, 0, ubx_casic_nav_dop_items, 7, 0, offsetof(nmea_ubx_casic_nav_dop, trailing)},
     {"nav_pv", "NAV-PV", 0x01, 0x03, true, NMEA_UBX_PROTOCOL_CASIC, 80, -1, 0, ubx_casic_nav_pv_items, 27, 0, offsetof(nmea_ubx_casic_nav_pv, trailing)},
     {"nav_timeutc", "NAV-TIMEUTC", 0x01, 0x10, true, NMEA_UBX_PROTOCOL_CASIC, 24, -1, 0, ubx_casic_nav_timeutc_items, 16, 0, offsetof(nmea_ubx_casic_nav_timeutc, trailing)},
@@ -14891,167 +15880,191 @@ static size_t ubx_layout_of(unsigned msg_class, unsigned msg_id, const uint8_t *
             if (len == 0)
                 return 23;
             return 24;
-        case 0x20: /* NAV-TIMEGPS */
+        case 0x17: /* NAV-PVAT */
             if (len == 0)
                 return 25;
             return 26;
-        case 0x21: /* NAV-TIMEUTC */
+        case 0x20: /* NAV-TIMEGPS */
             if (len == 0)
                 return 27;
             return 28;
-        case 0x22: /* NAV-CLOCK */
+        case 0x21: /* NAV-TIMEUTC */
             if (len == 0)
                 return 29;
             return 30;
-        case 0x23: /* NAV-TIMEGLO */
+        case 0x22: /* NAV-CLOCK */
             if (len == 0)
                 return 31;
             return 32;
-        case 0x24: /* NAV-TIMEBDS */
+        case 0x23: /* NAV-TIMEGLO */
             if (len == 0)
                 return 33;
             return 34;
-        case 0x25: /* NAV-TIMEGAL */
+        case 0x24: /* NAV-TIMEBDS */
             if (len == 0)
                 return 35;
             return 36;
-        case 0x26: /* NAV-TIMELS */
+        case 0x25: /* NAV-TIMEGAL */
             if (len == 0)
                 return 37;
             return 38;
-        case 0x27: /* NAV-TIMEQZSS */
+        case 0x26: /* NAV-TIMELS */
             if (len == 0)
                 return 39;
             return 40;
-        case 0x30: /* NAV-SVINFO */
+        case 0x27: /* NAV-TIMEQZSS */
             if (len == 0)
                 return 41;
             return 42;
-        case 0x31: /* NAV-DGPS */
+        case 0x28: /* NAV-NMI */
             if (len == 0)
                 return 43;
             return 44;
-        case 0x32: /* NAV-SBAS */
+        case 0x30: /* NAV-SVINFO */
             if (len == 0)
                 return 45;
             return 46;
-        case 0x34: /* NAV-ORB */
+        case 0x31: /* NAV-DGPS */
             if (len == 0)
                 return 47;
             return 48;
-        case 0x35: /* NAV-SAT */
+        case 0x32: /* NAV-SBAS */
             if (len == 0)
                 return 49;
             return 50;
-        case 0x36: /* NAV-COV */
+        case 0x34: /* NAV-ORB */
             if (len == 0)
                 return 51;
             return 52;
-        case 0x39: /* NAV-GEOFENCE */
+        case 0x35: /* NAV-SAT */
             if (len == 0)
                 return 53;
             return 54;
-        case 0x3B: /* NAV-SVIN */
+        case 0x36: /* NAV-COV */
             if (len == 0)
                 return 55;
             return 56;
-        case 0x3C: /* NAV-RELPOSNED */
+        case 0x39: /* NAV-GEOFENCE */
             if (len == 0)
                 return 57;
-            if (len == 64 && payload[0] == 0x01)
-                return 58;
-            if (len == 40 && payload[0] == 0x00)
-                return 59;
-            if (len == 64)
-                return 58;
-            if (len == 40)
-                return 59;
             return 58;
-        case 0x3D: /* NAV-EELL */
+        case 0x3B: /* NAV-SVIN */
             if (len == 0)
-                return 60;
-            return 61;
-        case 0x42: /* NAV-SLAS */
+                return 59;
+            return 60;
+        case 0x3C: /* NAV-RELPOSNED */
             if (len == 0)
+                return 61;
+            if (len == 64 && payload[0] == 0x01)
                 return 62;
-            return 63;
-        case 0x43: /* NAV-SIG */
+            if (len == 40 && payload[0] == 0x00)
+                return 63;
+            if (len == 64)
+                return 62;
+            if (len == 40)
+                return 63;
+            return 62;
+        case 0x3D: /* NAV-EELL */
             if (len == 0)
                 return 64;
             return 65;
-        case 0x60: /* NAV-AOPSTATUS */
+        case 0x42: /* NAV-SLAS */
             if (len == 0)
                 return 66;
             return 67;
+        case 0x43: /* NAV-SIG */
+            if (len == 0)
+                return 68;
+            return 69;
+        case 0x60: /* NAV-AOPSTATUS */
+            if (len == 0)
+                return 70;
+            return 71;
         case 0x61: /* NAV-EOE */
-            return 68;
+            return 72;
         case 0x62: /* NAV-PL */
             if (len == 0)
-                return 69;
-            return 70;
+                return 73;
+            return 74;
+        case 0x63: /* NAV-TIMENAVIC */
+            if (len == 0)
+                return 75;
+            return 76;
         default:
             return UBX_NO_LAYOUT;
         }
     case 0x02:
         switch (msg_id) {
         case 0x13: /* RXM-SFRBX */
-            return 71;
+            return 77;
         case 0x14: /* RXM-MEASX */
             if (len == 0)
-                return 72;
-            return 73;
+                return 78;
+            return 79;
         case 0x15: /* RXM-RAWX */
             if (len == 0)
-                return 74;
-            return 75;
+                return 80;
+            return 81;
         case 0x20: /* RXM-SVSI */
             if (len == 0)
-                return 76;
-            return 77;
+                return 82;
+            return 83;
         case 0x32: /* RXM-RTCM */
-            return 78;
+            return 84;
         case 0x33: /* RXM-SPARTN */
-            return 79;
+            return 85;
         case 0x34: /* RXM-COR */
-            return 80;
+            return 86;
         case 0x36: /* RXM-SPARTNKEY */
             if (len == 0)
-                return 81;
-            return 82;
+                return 87;
+            return 88;
         case 0x41: /* RXM-PMREQ */
             if (len == 16)
-                return 83;
-            return 84;
+                return 89;
+            return 90;
         case 0x59: /* RXM-RLM */
             if (len == 28)
-                return 85;
+                return 91;
             if (len == 16)
-                return 86;
-            return 85;
+                return 92;
+            return 91;
+        case 0x61: /* RXM-IMES */
+            if (len == 0)
+                return 93;
+            return 94;
+        case 0x72: /* RXM-PMP */
+            if (len == 528 && payload[0] == 0x00)
+                return 95;
+            if (len > 0 && payload[0] == 0x01)
+                return 96;
+            return 95;
+        case 0x73: /* RXM-QZSSL6 */
+            return 97;
         default:
             return UBX_NO_LAYOUT;
         }
     case 0x04:
         switch (msg_id) {
         case 0x00: /* INF-ERROR */
-            return 87;
+            return 98;
         case 0x01: /* INF-WARNING */
-            return 88;
+            return 99;
         case 0x02: /* INF-NOTICE */
-            return 89;
+            return 100;
         case 0x03: /* INF-TEST */
-            return 90;
+            return 101;
         case 0x04: /* INF-DEBUG */
-            return 91;
+            return 102;
         default:
             return UBX_NO_LAYOUT;
         }
     case 0x05:
         switch (msg_id) {
         case 0x00: /* ACK-NAK */
-            return 92;
+            return 103;
         case 0x01: /* ACK-ACK */
-            return 93;
+            return 104;
         default:
             return UBX_NO_LAYOUT;
         }
@@ -15059,188 +16072,202 @@ static size_t ubx_layout_of(unsigned msg_class, unsigned msg_id, const uint8_t *
         switch (msg_id) {
         case 0x00: /* CFG-PRT */
             if (len == 0)
-                return 94;
+                return 105;
             if (len == 1)
-                return 95;
-            return 96;
-        case 0x01: /* CFG-MSG */
-            if (len == 2)
-                return 97;
-            if (len == 3)
-                return 98;
-            return 99;
-        case 0x02: /* CFG-INF */
-            if (len == 1)
-                return 100;
-            return 101;
-        case 0x04: /* CFG-RST */
-            return 102;
-        case 0x06: /* CFG-DAT */
-            if (len == 0)
-                return 103;
-            if (len == 44)
-                return 104;
-            return 105;
-        case 0x08: /* CFG-RATE */
-            if (len == 0)
                 return 106;
             return 107;
-        case 0x09: /* CFG-CFG */
-            if (len == 12)
+        case 0x01: /* CFG-MSG */
+            if (len == 2)
                 return 108;
-            return 109;
-        case 0x11: /* CFG-RXM */
-            if (len == 0)
-                return 110;
-            return 111;
-        case 0x13: /* CFG-ANT */
-            if (len == 0)
-                return 112;
+            if (len == 3)
+                return 109;
+            return 110;
+        case 0x02: /* CFG-INF */
+            if (len == 1)
+                return 111;
+            return 112;
+        case 0x04: /* CFG-RST */
             return 113;
-        case 0x16: /* CFG-SBAS */
+        case 0x06: /* CFG-DAT */
             if (len == 0)
                 return 114;
-            return 115;
+            if (len == 44)
+                return 115;
+            return 116;
+        case 0x08: /* CFG-RATE */
+            if (len == 0)
+                return 117;
+            return 118;
+        case 0x09: /* CFG-CFG */
+            if (len == 12)
+                return 119;
+            return 120;
+        case 0x11: /* CFG-RXM */
+            if (len == 0)
+                return 121;
+            return 122;
+        case 0x13: /* CFG-ANT */
+            if (len == 0)
+                return 123;
+            return 124;
+        case 0x16: /* CFG-SBAS */
+            if (len == 0)
+                return 125;
+            return 126;
         case 0x17: /* CFG-NMEA */
             if (len == 0)
-                return 116;
+                return 127;
             if (len == 20 && payload[11] == 0x01)
-                return 117;
-            if (len == 12 && payload[11] == 0x00)
-                return 118;
-            if (len == 4)
-                return 119;
-            if (len == 20)
-                return 117;
-            if (len == 12)
-                return 118;
-            return 117;
-        case 0x1B: /* CFG-USB */
-            if (len == 0)
-                return 120;
-            return 121;
-        case 0x1E: /* CFG-ODO */
-            if (len == 0)
-                return 122;
-            return 123;
-        case 0x23: /* CFG-NAVX5 */
-            if (len == 0)
-                return 124;
-            return 125;
-        case 0x24: /* CFG-NAV5 */
-            if (len == 0)
-                return 126;
-            return 127;
-        case 0x31: /* CFG-TP5 */
-            if (len == 0)
                 return 128;
-            if (len == 1)
+            if (len == 12 && payload[11] == 0x00)
                 return 129;
-            return 130;
-        case 0x34: /* CFG-RINV */
+            if (len == 4)
+                return 130;
+            if (len == 20)
+                return 128;
+            if (len == 12)
+                return 129;
+            return 128;
+        case 0x1B: /* CFG-USB */
             if (len == 0)
                 return 131;
             return 132;
-        case 0x39: /* CFG-ITFM */
+        case 0x1E: /* CFG-ODO */
             if (len == 0)
                 return 133;
             return 134;
-        case 0x3B: /* CFG-PM2 */
+        case 0x23: /* CFG-NAVX5 */
             if (len == 0)
                 return 135;
-            if (len == 48 && payload[0] == 0x02)
-                return 136;
-            if (len == 44 && payload[0] == 0x01)
-                return 137;
-            if (len == 48)
-                return 136;
-            if (len == 44)
-                return 137;
             return 136;
-        case 0x3E: /* CFG-GNSS */
+        case 0x24: /* CFG-NAV5 */
             if (len == 0)
-                return 138;
-            return 139;
-        case 0x47: /* CFG-LOGFILTER */
+                return 137;
+            return 138;
+        case 0x31: /* CFG-TP5 */
             if (len == 0)
+                return 139;
+            if (len == 1)
                 return 140;
             return 141;
-        case 0x4C: /* CFG-ESFA */
+        case 0x34: /* CFG-RINV */
             if (len == 0)
                 return 142;
             return 143;
-        case 0x4D: /* CFG-ESFG */
+        case 0x39: /* CFG-ITFM */
             if (len == 0)
                 return 144;
             return 145;
-        case 0x53: /* CFG-TXSLOT */
+        case 0x3B: /* CFG-PM2 */
             if (len == 0)
                 return 146;
-            return 147;
-        case 0x56: /* CFG-ESFALG */
-            if (len == 0)
+            if (len == 48 && payload[0] == 0x02)
+                return 147;
+            if (len == 44 && payload[0] == 0x01)
                 return 148;
-            return 149;
-        case 0x57: /* CFG-PWR */
+            if (len == 48)
+                return 147;
+            if (len == 44)
+                return 148;
+            return 147;
+        case 0x3D: /* CFG-TMODE2 */
+            if (len == 0)
+                return 149;
             return 150;
-        case 0x5C: /* CFG-HNR */
+        case 0x3E: /* CFG-GNSS */
             if (len == 0)
                 return 151;
             return 152;
-        case 0x60: /* CFG-ESRC */
+        case 0x47: /* CFG-LOGFILTER */
             if (len == 0)
                 return 153;
             return 154;
-        case 0x61: /* CFG-DOSC */
+        case 0x4C: /* CFG-ESFA */
             if (len == 0)
                 return 155;
             return 156;
-        case 0x62: /* CFG-SMGR */
+        case 0x4D: /* CFG-ESFG */
             if (len == 0)
                 return 157;
             return 158;
-        case 0x69: /* CFG-GEOFENCE */
+        case 0x53: /* CFG-TXSLOT */
             if (len == 0)
                 return 159;
             return 160;
-        case 0x70: /* CFG-DGNSS */
+        case 0x56: /* CFG-ESFALG */
             if (len == 0)
                 return 161;
             return 162;
-        case 0x71: /* CFG-TMODE3 */
+        case 0x57: /* CFG-PWR */
+            return 163;
+        case 0x5C: /* CFG-HNR */
             if (len == 0)
-                return 163;
-            return 164;
-        case 0x82: /* CFG-ESFWT */
+                return 164;
+            return 165;
+        case 0x60: /* CFG-ESRC */
             if (len == 0)
-                return 165;
-            return 166;
-        case 0x84: /* CFG-FIXSEED */
+                return 166;
             return 167;
-        case 0x86: /* CFG-PMS */
+        case 0x61: /* CFG-DOSC */
             if (len == 0)
                 return 168;
             return 169;
-        case 0x8A: /* CFG-VALSET */
-            if (len > 0 && payload[0] == 0x00)
+        case 0x62: /* CFG-SMGR */
+            if (len == 0)
                 return 170;
             return 171;
-        case 0x8B: /* CFG-VALGET */
-            if (len > 0 && payload[0] == 0x00)
+        case 0x64: /* CFG-SPT */
+            if (len == 0)
                 return 172;
             return 173;
-        case 0x8C: /* CFG-VALDEL */
-            if (len > 0 && payload[0] == 0x00)
+        case 0x69: /* CFG-GEOFENCE */
+            if (len == 0)
                 return 174;
             return 175;
-        case 0x8D: /* CFG-SLAS */
+        case 0x70: /* CFG-DGNSS */
             if (len == 0)
                 return 176;
             return 177;
-        case 0x93: /* CFG-BATCH */
+        case 0x71: /* CFG-TMODE3 */
             if (len == 0)
                 return 178;
             return 179;
+        case 0x82: /* CFG-ESFWT */
+            if (len == 0)
+                return 180;
+            return 181;
+        case 0x84: /* CFG-FIXSEED */
+            return 182;
+        case 0x85: /* CFG-DYNSEED */
+            return 183;
+        case 0x86: /* CFG-PMS */
+            if (len == 0)
+                return 184;
+            return 185;
+        case 0x88: /* CFG-SENIF */
+            if (len == 0)
+                return 186;
+            return 187;
+        case 0x8A: /* CFG-VALSET */
+            if (len > 0 && payload[0] == 0x00)
+                return 188;
+            return 189;
+        case 0x8B: /* CFG-VALGET */
+            if (len > 0 && payload[0] == 0x00)
+                return 190;
+            return 191;
+        case 0x8C: /* CFG-VALDEL */
+            if (len > 0 && payload[0] == 0x00)
+                return 192;
+            return 193;
+        case 0x8D: /* CFG-SLAS */
+            if (len == 0)
+                return 194;
+            return 195;
+        case 0x93: /* CFG-BATCH */
+            if (len == 0)
+                return 196;
+            return 197;
         default:
             return UBX_NO_LAYOUT;
         }
@@ -15248,10 +16275,10 @@ static size_t ubx_layout_of(unsigned msg_class, unsigned msg_id, const uint8_t *
         switch (msg_id) {
         case 0x14: /* UPD-SOS */
             if (len == 0)
-                return 180;
+                return 198;
             if (len == 4)
-                return 181;
-            return 182;
+                return 199;
+            return 200;
         default:
             return UBX_NO_LAYOUT;
         }
@@ -15259,66 +16286,78 @@ static size_t ubx_layout_of(unsigned msg_class, unsigned msg_id, const uint8_t *
         switch (msg_id) {
         case 0x02: /* MON-IO */
             if (len == 0)
-                return 183;
-            return 184;
+                return 201;
+            return 202;
         case 0x04: /* MON-VER */
             if (len == 0)
-                return 185;
-            return 186;
+                return 203;
+            return 204;
         case 0x06: /* MON-MSGPP */
             if (len == 0)
-                return 187;
-            return 188;
+                return 205;
+            return 206;
         case 0x07: /* MON-RXBUF */
             if (len == 0)
-                return 189;
-            return 190;
+                return 207;
+            return 208;
         case 0x08: /* MON-TXBUF */
             if (len == 0)
-                return 191;
-            return 192;
+                return 209;
+            return 210;
         case 0x09: /* MON-HW */
             if (len == 0)
-                return 193;
-            return 194;
+                return 211;
+            return 212;
         case 0x0B: /* MON-HW2 */
             if (len == 0)
-                return 195;
-            return 196;
+                return 213;
+            return 214;
         case 0x21: /* MON-RXR */
-            return 197;
+            return 215;
         case 0x27: /* MON-PATCH */
             if (len == 0)
-                return 198;
-            return 199;
+                return 216;
+            return 217;
         case 0x28: /* MON-GNSS */
             if (len == 0)
-                return 200;
-            return 201;
+                return 218;
+            return 219;
         case 0x2E: /* MON-SMGR */
             if (len == 0)
-                return 202;
-            return 203;
+                return 220;
+            return 221;
+        case 0x2F: /* MON-SPT */
+            if (len == 0)
+                return 222;
+            return 223;
         case 0x31: /* MON-SPAN */
             if (len == 0)
-                return 204;
-            return 205;
+                return 224;
+            return 225;
+        case 0x32: /* MON-BATCH */
+            if (len == 0)
+                return 226;
+            return 227;
+        case 0x35: /* MON-PMP */
+            if (len == 0)
+                return 228;
+            return 229;
         case 0x36: /* MON-COMMS */
             if (len == 0)
-                return 206;
-            return 207;
+                return 230;
+            return 231;
         case 0x37: /* MON-HW3 */
             if (len == 0)
-                return 208;
-            return 209;
+                return 232;
+            return 233;
         case 0x38: /* MON-RF */
             if (len == 0)
-                return 210;
-            return 211;
+                return 234;
+            return 235;
         case 0x39: /* MON-SYS */
             if (len == 0)
-                return 212;
-            return 213;
+                return 236;
+            return 237;
         default:
             return UBX_NO_LAYOUT;
         }
@@ -15326,38 +16365,38 @@ static size_t ubx_layout_of(unsigned msg_class, unsigned msg_id, const uint8_t *
         switch (msg_id) {
         case 0x01: /* AID-INI */
             if (len == 0)
-                return 214;
-            return 215;
+                return 238;
+            return 239;
         case 0x02: /* AID-HUI */
             if (len == 0)
-                return 216;
-            return 217;
+                return 240;
+            return 241;
         case 0x30: /* AID-ALM */
             if (len == 0)
-                return 218;
+                return 242;
             if (len == 1)
-                return 219;
+                return 243;
             if (len == 40)
-                return 220;
+                return 244;
             if (len == 8)
-                return 221;
-            return 220;
+                return 245;
+            return 244;
         case 0x31: /* AID-EPH */
             if (len == 0)
-                return 222;
+                return 246;
             if (len == 1)
-                return 223;
+                return 247;
             if (len == 104)
-                return 224;
+                return 248;
             if (len == 8)
-                return 225;
-            return 224;
+                return 249;
+            return 248;
         case 0x33: /* AID-AOP */
             if (len == 0)
-                return 226;
+                return 250;
             if (len == 1)
-                return 227;
-            return 228;
+                return 251;
+            return 252;
         default:
             return UBX_NO_LAYOUT;
         }
@@ -15365,75 +16404,75 @@ static size_t ubx_layout_of(unsigned msg_class, unsigned msg_id, const uint8_t *
         switch (msg_id) {
         case 0x01: /* TIM-TP */
             if (len == 0)
-                return 229;
-            return 230;
+                return 253;
+            return 254;
         case 0x03: /* TIM-TM2 */
             if (len == 0)
-                return 231;
-            return 232;
+                return 255;
+            return 256;
         case 0x04: /* TIM-SVIN */
             if (len == 0)
-                return 233;
-            return 234;
+                return 257;
+            return 258;
         case 0x06: /* TIM-VRFY */
             if (len == 0)
-                return 235;
-            return 236;
+                return 259;
+            return 260;
         case 0x11: /* TIM-DOSC */
             if (len == 0)
-                return 237;
-            return 238;
+                return 261;
+            return 262;
         case 0x12: /* TIM-TOS */
             if (len == 0)
-                return 239;
-            return 240;
+                return 263;
+            return 264;
         case 0x13: /* TIM-SMEAS */
             if (len == 0)
-                return 241;
-            return 242;
+                return 265;
+            return 266;
         case 0x15: /* TIM-VCOCAL */
             if (len == 0)
-                return 243;
+                return 267;
             if (len == 1 && payload[0] == 0x00)
-                return 244;
+                return 268;
             if (len == 12 && payload[0] == 0x03)
-                return 245;
+                return 269;
             if (len == 12 && payload[0] == 0x02)
-                return 246;
+                return 270;
             if (len == 1)
-                return 244;
+                return 268;
             if (len == 12)
-                return 245;
+                return 269;
             if (len == 12)
-                return 246;
-            return 245;
+                return 270;
+            return 269;
         case 0x16: /* TIM-FCHG */
             if (len == 0)
-                return 247;
-            return 248;
+                return 271;
+            return 272;
         case 0x17: /* TIM-HOC */
-            return 249;
+            return 273;
         default:
             return UBX_NO_LAYOUT;
         }
     case 0x10:
         switch (msg_id) {
         case 0x02: /* ESF-MEAS */
-            return 250;
+            return 274;
         case 0x03: /* ESF-RAW */
-            return 251;
+            return 275;
         case 0x10: /* ESF-STATUS */
             if (len == 0)
-                return 252;
-            return 253;
+                return 276;
+            return 277;
         case 0x14: /* ESF-ALG */
             if (len == 0)
-                return 254;
-            return 255;
+                return 278;
+            return 279;
         case 0x15: /* ESF-INS */
             if (len == 0)
-                return 256;
-            return 257;
+                return 280;
+            return 281;
         default:
             return UBX_NO_LAYOUT;
         }
@@ -15441,176 +16480,186 @@ static size_t ubx_layout_of(unsigned msg_class, unsigned msg_id, const uint8_t *
         switch (msg_id) {
         case 0x00: /* MGA-GPS */
             if (len == 68 && payload[0] == 0x01)
-                return 258;
+                return 282;
             if (len == 36 && payload[0] == 0x02)
-                return 259;
+                return 283;
             if (len == 40 && payload[0] == 0x04)
-                return 260;
+                return 284;
             if (len == 20 && payload[0] == 0x05)
-                return 261;
+                return 285;
             if (len == 16 && payload[0] == 0x06)
-                return 262;
+                return 286;
             if (len == 68)
-                return 258;
+                return 282;
             if (len == 36)
-                return 259;
+                return 283;
             if (len == 40)
-                return 260;
+                return 284;
             if (len == 20)
-                return 261;
-            return 262;
+                return 285;
+            return 286;
         case 0x02: /* MGA-GAL */
             if (len == 76 && payload[0] == 0x01)
-                return 263;
+                return 287;
             if (len == 32 && payload[0] == 0x02)
-                return 264;
+                return 288;
             if (len == 12 && payload[0] == 0x03)
-                return 265;
+                return 289;
             if (len == 20 && payload[0] == 0x05)
-                return 266;
+                return 290;
             if (len == 76)
-                return 263;
+                return 287;
             if (len == 32)
-                return 264;
+                return 288;
             if (len == 12)
-                return 265;
-            return 266;
+                return 289;
+            return 290;
         case 0x03: /* MGA-BDS */
             if (len == 88 && payload[0] == 0x01)
-                return 267;
+                return 291;
             if (len == 40 && payload[0] == 0x02)
-                return 268;
+                return 292;
             if (len == 68 && payload[0] == 0x04)
-                return 269;
+                return 293;
             if (len == 20 && payload[0] == 0x05)
-                return 270;
+                return 294;
             if (len == 16 && payload[0] == 0x06)
-                return 271;
+                return 295;
             if (len == 88)
-                return 267;
+                return 291;
             if (len == 40)
-                return 268;
+                return 292;
             if (len == 68)
-                return 269;
+                return 293;
             if (len == 20)
-                return 270;
-            return 271;
+                return 294;
+            return 295;
         case 0x05: /* MGA-QZSS */
             if (len == 68 && payload[0] == 0x01)
-                return 272;
+                return 296;
             if (len == 36 && payload[0] == 0x02)
-                return 273;
+                return 297;
             if (len == 12 && payload[0] == 0x04)
-                return 274;
+                return 298;
             if (len == 68)
-                return 272;
+                return 296;
             if (len == 36)
-                return 273;
-            return 274;
+                return 297;
+            return 298;
         case 0x06: /* MGA-GLO */
             if (len == 48 && payload[0] == 0x01)
-                return 275;
+                return 299;
             if (len == 36 && payload[0] == 0x02)
-                return 276;
+                return 300;
             if (len == 20 && payload[0] == 0x03)
-                return 277;
+                return 301;
             if (len == 48)
-                return 275;
+                return 299;
             if (len == 36)
-                return 276;
-            return 277;
+                return 300;
+            return 301;
         case 0x20: /* MGA-ANO */
-            return 278;
+            return 302;
+        case 0x21: /* MGA-FLASH */
+            if (len > 0 && payload[0] == 0x01)
+                return 303;
+            if (len == 2 && payload[0] == 0x02)
+                return 304;
+            if (len == 6 && payload[0] == 0x03)
+                return 305;
+            if (len == 2)
+                return 304;
+            return 305;
         case 0x40: /* MGA-INI */
             if (len == 20 && payload[0] == 0x00)
-                return 279;
+                return 306;
             if (len == 20 && payload[0] == 0x01)
-                return 280;
+                return 307;
             if (len == 24 && payload[0] == 0x10)
-                return 281;
+                return 308;
             if (len == 24 && payload[0] == 0x11)
-                return 282;
+                return 309;
             if (len == 12 && payload[0] == 0x20)
-                return 283;
+                return 310;
             if (len == 12 && payload[0] == 0x21)
-                return 284;
+                return 311;
             if (len == 72 && payload[0] == 0x30)
-                return 285;
+                return 312;
             if (len == 20)
-                return 279;
+                return 306;
             if (len == 20)
-                return 280;
+                return 307;
             if (len == 24)
-                return 281;
+                return 308;
             if (len == 24)
-                return 282;
+                return 309;
             if (len == 12)
-                return 283;
+                return 310;
             if (len == 12)
-                return 284;
-            return 285;
+                return 311;
+            return 312;
         case 0x60: /* MGA-ACK */
-            return 286;
+            return 313;
         case 0x80: /* MGA-DBD */
             if (len == 0)
-                return 287;
-            return 288;
+                return 314;
+            return 315;
         default:
             return UBX_NO_LAYOUT;
         }
     case 0x21:
         switch (msg_id) {
         case 0x03: /* LOG-ERASE */
-            return 289;
+            return 316;
         case 0x04: /* LOG-STRING */
-            return 290;
+            return 317;
         case 0x07: /* LOG-CREATE */
-            return 291;
+            return 318;
         case 0x08: /* LOG-INFO */
             if (len == 0)
-                return 292;
-            return 293;
+                return 319;
+            return 320;
         case 0x09: /* LOG-RETRIEVE */
-            return 294;
+            return 321;
         case 0x0B: /* LOG-RETRIEVEPOS */
-            return 295;
+            return 322;
         case 0x0D: /* LOG-RETRIEVESTRING */
-            return 296;
+            return 323;
         case 0x0E: /* LOG-FINDTIME */
             if (len == 10)
-                return 297;
-            return 298;
+                return 324;
+            return 325;
         case 0x0F: /* LOG-RETRIEVEPOSEXTRA */
-            return 299;
+            return 326;
         case 0x10: /* LOG-RETRIEVEBATCH */
-            return 300;
+            return 327;
         case 0x11: /* LOG-BATCH */
-            return 301;
+            return 328;
         default:
             return UBX_NO_LAYOUT;
         }
     case 0x27:
         switch (msg_id) {
         case 0x01: /* SEC-SIGN */
-            return 302;
+            return 329;
         case 0x03: /* SEC-UNIQID */
             if (len == 0)
-                return 303;
-            return 304;
+                return 330;
+            return 331;
         case 0x09: /* SEC-SIG */
             if (len == 0)
-                return 305;
+                return 332;
             if (len > 0 && payload[0] == 0x02)
-                return 306;
+                return 333;
             if (len == 12 && payload[0] == 0x01)
-                return 307;
+                return 334;
             if (len == 12)
-                return 307;
-            return 306;
+                return 334;
+            return 333;
         case 0x10: /* SEC-SIGLOG */
             if (len == 0)
-                return 308;
-            return 309;
+                return 335;
+            return 336;
         default:
             return UBX_NO_LAYOUT;
         }
@@ -15618,16 +16667,16 @@ static size_t ubx_layout_of(unsigned msg_class, unsigned msg_id, const uint8_t *
         switch (msg_id) {
         case 0x00: /* HNR-PVT */
             if (len == 0)
-                return 310;
-            return 311;
+                return 337;
+            return 338;
         case 0x01: /* HNR-ATT */
             if (len == 0)
-                return 312;
-            return 313;
+                return 339;
+            return 340;
         case 0x02: /* HNR-INS */
             if (len == 0)
-                return 314;
-            return 315;
+                return 341;
+            return 342;
         default:
             return UBX_NO_LAYOUT;
         }
@@ -15635,90 +16684,94 @@ static size_t ubx_layout_of(unsigned msg_class, unsigned msg_id, const uint8_t *
         switch (msg_id) {
         case 0x01: /* NAV2-POSECEF */
             if (len == 0)
-                return 316;
-            return 317;
+                return 343;
+            return 344;
         case 0x02: /* NAV2-POSLLH */
             if (len == 0)
-                return 318;
-            return 319;
+                return 345;
+            return 346;
         case 0x03: /* NAV2-STATUS */
             if (len == 0)
-                return 320;
-            return 321;
+                return 347;
+            return 348;
         case 0x04: /* NAV2-DOP */
             if (len == 0)
-                return 322;
-            return 323;
+                return 349;
+            return 350;
         case 0x07: /* NAV2-PVT */
             if (len == 0)
-                return 324;
-            return 325;
+                return 351;
+            return 352;
         case 0x09: /* NAV2-ODO */
             if (len == 0)
-                return 326;
-            return 327;
+                return 353;
+            return 354;
         case 0x11: /* NAV2-VELECEF */
             if (len == 0)
-                return 328;
-            return 329;
+                return 355;
+            return 356;
         case 0x12: /* NAV2-VELNED */
             if (len == 0)
-                return 330;
-            return 331;
+                return 357;
+            return 358;
         case 0x20: /* NAV2-TIMEGPS */
             if (len == 0)
-                return 332;
-            return 333;
+                return 359;
+            return 360;
         case 0x21: /* NAV2-TIMEUTC */
             if (len == 0)
-                return 334;
-            return 335;
+                return 361;
+            return 362;
         case 0x22: /* NAV2-CLOCK */
             if (len == 0)
-                return 336;
-            return 337;
+                return 363;
+            return 364;
         case 0x23: /* NAV2-TIMEGLO */
             if (len == 0)
-                return 338;
-            return 339;
+                return 365;
+            return 366;
         case 0x24: /* NAV2-TIMEBDS */
             if (len == 0)
-                return 340;
-            return 341;
+                return 367;
+            return 368;
         case 0x25: /* NAV2-TIMEGAL */
             if (len == 0)
-                return 342;
-            return 343;
+                return 369;
+            return 370;
         case 0x26: /* NAV2-TIMELS */
             if (len == 0)
-                return 344;
-            return 345;
+                return 371;
+            return 372;
         case 0x27: /* NAV2-TIMEQZSS */
             if (len == 0)
-                return 346;
-            return 347;
+                return 373;
+            return 374;
         case 0x32: /* NAV2-SBAS */
             if (len == 0)
-                return 348;
-            return 349;
+                return 375;
+            return 376;
         case 0x35: /* NAV2-SAT */
             if (len == 0)
-                return 350;
-            return 351;
+                return 377;
+            return 378;
         case 0x36: /* NAV2-COV */
             if (len == 0)
-                return 352;
-            return 353;
+                return 379;
+            return 380;
         case 0x42: /* NAV2-SLAS */
             if (len == 0)
-                return 354;
-            return 355;
+                return 381;
+            return 382;
         case 0x43: /* NAV2-SIG */
             if (len == 0)
-                return 356;
-            return 357;
+                return 383;
+            return 384;
         case 0x61: /* NAV2-EOE */
-            return 358;
+            return 385;
+        case 0x63: /* NAV2-TIMENAVIC */
+            if (len == 0)
+                return 386;
+            return 387;
         default:
             return UBX_NO_LAYOUT;
         }
@@ -15745,173 +16798,188 @@ static const struct {
     {0x0112, 19, 20}, /* NAV-VELNED */
     {0x0113, 21, 22}, /* NAV-HPPOSECEF */
     {0x0114, 23, 24}, /* NAV-HPPOSLLH */
-    {0x0120, 25, 26}, /* NAV-TIMEGPS */
-    {0x0121, 27, 28}, /* NAV-TIMEUTC */
-    {0x0122, 29, 30}, /* NAV-CLOCK */
-    {0x0123, 31, 32}, /* NAV-TIMEGLO */
-    {0x0124, 33, 34}, /* NAV-TIMEBDS */
-    {0x0125, 35, 36}, /* NAV-TIMEGAL */
-    {0x0126, 37, 38}, /* NAV-TIMELS */
-    {0x0127, 39, 40}, /* NAV-TIMEQZSS */
-    {0x0130, 41, 42}, /* NAV-SVINFO */
-    {0x0131, 43, 44}, /* NAV-DGPS */
-    {0x0132, 45, 46}, /* NAV-SBAS */
-    {0x0134, 47, 48}, /* NAV-ORB */
-    {0x0135, 49, 50}, /* NAV-SAT */
-    {0x0136, 51, 52}, /* NAV-COV */
-    {0x0139, 53, 54}, /* NAV-GEOFENCE */
-    {0x013B, 55, 56}, /* NAV-SVIN */
-    {0x013C, 57, 59}, /* NAV-RELPOSNED */
-    {0x013D, 60, 61}, /* NAV-EELL */
-    {0x0142, 62, 63}, /* NAV-SLAS */
-    {0x0143, 64, 65}, /* NAV-SIG */
-    {0x0160, 66, 67}, /* NAV-AOPSTATUS */
-    {0x0161, 68, 68}, /* NAV-EOE */
-    {0x0162, 69, 70}, /* NAV-PL */
-    {0x0213, 71, 71}, /* RXM-SFRBX */
-    {0x0214, 72, 73}, /* RXM-MEASX */
-    {0x0215, 74, 75}, /* RXM-RAWX */
-    {0x0220, 76, 77}, /* RXM-SVSI */
-    {0x0232, 78, 78}, /* RXM-RTCM */
-    {0x0233, 79, 79}, /* RXM-SPARTN */
-    {0x0234, 80, 80}, /* RXM-COR */
-    {0x0236, 81, 82}, /* RXM-SPARTNKEY */
-    {0x0241, 83, 84}, /* RXM-PMREQ */
-    {0x0259, 85, 86}, /* RXM-RLM */
-    {0x0400, 87, 87}, /* INF-ERROR */
-    {0x0401, 88, 88}, /* INF-WARNING */
-    {0x0402, 89, 89}, /* INF-NOTICE */
-    {0x0403, 90, 90}, /* INF-TEST */
-    {0x0404, 91, 91}, /* INF-DEBUG */
-    {0x0500, 92, 92}, /* ACK-NAK */
-    {0x0501, 93, 93}, /* ACK-ACK */
-    {0x0600, 94, 96}, /* CFG-PRT */
-    {0x0601, 97, 99}, /* CFG-MSG */
-    {0x0602, 100, 101}, /* CFG-INF */
-    {0x0604, 102, 102}, /* CFG-RST */
-    {0x0606, 103, 105}, /* CFG-DAT */
-    {0x0608, 106, 107}, /* CFG-RATE */
-    {0x0609, 108, 109}, /* CFG-CFG */
-    {0x0611, 110, 111}, /* CFG-RXM */
-    {0x0613, 112, 113}, /* CFG-ANT */
-    {0x0616, 114, 115}, /* CFG-SBAS */
-    {0x0617, 116, 119}, /* CFG-NMEA */
-    {0x061B, 120, 121}, /* CFG-USB */
-    {0x061E, 122, 123}, /* CFG-ODO */
-    {0x0623, 124, 125}, /* CFG-NAVX5 */
-    {0x0624, 126, 127}, /* CFG-NAV5 */
-    {0x0631, 128, 130}, /* CFG-TP5 */
-    {0x0634, 131, 132}, /* CFG-RINV */
-    {0x0639, 133, 134}, /* CFG-ITFM */
-    {0x063B, 135, 137}, /* CFG-PM2 */
-    {0x063E, 138, 139}, /* CFG-GNSS */
-    {0x0647, 140, 141}, /* CFG-LOGFILTER */
-    {0x064C, 142, 143}, /* CFG-ESFA */
-    {0x064D, 144, 145}, /* CFG-ESFG */
-    {0x0653, 146, 147}, /* CFG-TXSLOT */
-    {0x0656, 148, 149}, /* CFG-ESFALG */
-    {0x0657, 150, 150}, /* CFG-PWR */
-    {0x065C, 151, 152}, /* CFG-HNR */
-    {0x0660, 153, 154}, /* CFG-ESRC */
-    {0x0661, 155, 156}, /* CFG-DOSC */
-    {0x0662, 157, 158}, /* CFG-SMGR */
-    {0x0669, 159, 160}, /* CFG-GEOFENCE */
-    {0x0670, 161, 162}, /* CFG-DGNSS */
-    {0x0671, 163, 164}, /* CFG-TMODE3 */
-    {0x0682, 165, 166}, /* CFG-ESFWT */
-    {0x0684, 167, 167}, /* CFG-FIXSEED */
-    {0x0686, 168, 169}, /* CFG-PMS */
-    {0x068A, 170, 171}, /* CFG-VALSET */
-    {0x068B, 172, 173}, /* CFG-VALGET */
-    {0x068C, 174, 175}, /* CFG-VALDEL */
-    {0x068D, 176, 177}, /* CFG-SLAS */
-    {0x0693, 178, 179}, /* CFG-BATCH */
-    {0x0914, 180, 182}, /* UPD-SOS */
-    {0x0A02, 183, 184}, /* MON-IO */
-    {0x0A04, 185, 186}, /* MON-VER */
-    {0x0A06, 187, 188}, /* MON-MSGPP */
-    {0x0A07, 189, 190}, /* MON-RXBUF */
-    {0x0A08, 191, 192}, /* MON-TXBUF */
-    {0x0A09, 193, 194}, /* MON-HW */
-    {0x0A0B, 195, 196}, /* MON-HW2 */
-    {0x0A21, 197, 197}, /* MON-RXR */
-    {0x0A27, 198, 199}, /* MON-PATCH */
-    {0x0A28, 200, 201}, /* MON-GNSS */
-    {0x0A2E, 202, 203}, /* MON-SMGR */
-    {0x0A31, 204, 205}, /* MON-SPAN */
-    {0x0A36, 206, 207}, /* MON-COMMS */
-    {0x0A37, 208, 209}, /* MON-HW3 */
-    {0x0A38, 210, 211}, /* MON-RF */
-    {0x0A39, 212, 213}, /* MON-SYS */
-    {0x0B01, 214, 215}, /* AID-INI */
-    {0x0B02, 216, 217}, /* AID-HUI */
-    {0x0B30, 218, 221}, /* AID-ALM */
-    {0x0B31, 222, 225}, /* AID-EPH */
-    {0x0B33, 226, 228}, /* AID-AOP */
-    {0x0D01, 229, 230}, /* TIM-TP */
-    {0x0D03, 231, 232}, /* TIM-TM2 */
-    {0x0D04, 233, 234}, /* TIM-SVIN */
-    {0x0D06, 235, 236}, /* TIM-VRFY */
-    {0x0D11, 237, 238}, /* TIM-DOSC */
-    {0x0D12, 239, 240}, /* TIM-TOS */
-    {0x0D13, 241, 242}, /* TIM-SMEAS */
-    {0x0D15, 243, 246}, /* TIM-VCOCAL */
-    {0x0D16, 247, 248}, /* TIM-FCHG */
-    {0x0D17, 249, 249}, /* TIM-HOC */
-    {0x1002, 250, 250}, /* ESF-MEAS */
-    {0x1003, 251, 251}, /* ESF-RAW */
-    {0x1010, 252, 253}, /* ESF-STATUS */
-    {0x1014, 254, 255}, /* ESF-ALG */
-    {0x1015, 256, 257}, /* ESF-INS */
-    {0x1300, 258, 262}, /* MGA-GPS */
-    {0x1302, 263, 266}, /* MGA-GAL */
-    {0x1303, 267, 271}, /* MGA-BDS */
-    {0x1305, 272, 274}, /* MGA-QZSS */
-    {0x1306, 275, 277}, /* MGA-GLO */
-    {0x1320, 278, 278}, /* MGA-ANO */
-    {0x1340, 279, 285}, /* MGA-INI */
-    {0x1360, 286, 286}, /* MGA-ACK */
-    {0x1380, 287, 288}, /* MGA-DBD */
-    {0x2103, 289, 289}, /* LOG-ERASE */
-    {0x2104, 290, 290}, /* LOG-STRING */
-    {0x2107, 291, 291}, /* LOG-CREATE */
-    {0x2108, 292, 293}, /* LOG-INFO */
-    {0x2109, 294, 294}, /* LOG-RETRIEVE */
-    {0x210B, 295, 295}, /* LOG-RETRIEVEPOS */
-    {0x210D, 296, 296}, /* LOG-RETRIEVESTRING */
-    {0x210E, 297, 298}, /* LOG-FINDTIME */
-    {0x210F, 299, 299}, /* LOG-RETRIEVEPOSEXTRA */
-    {0x2110, 300, 300}, /* LOG-RETRIEVEBATCH */
-    {0x2111, 301, 301}, /* LOG-BATCH */
-    {0x2701, 302, 302}, /* SEC-SIGN */
-    {0x2703, 303, 304}, /* SEC-UNIQID */
-    {0x2709, 305, 307}, /* SEC-SIG */
-    {0x2710, 308, 309}, /* SEC-SIGLOG */
-    {0x2800, 310, 311}, /* HNR-PVT */
-    {0x2801, 312, 313}, /* HNR-ATT */
-    {0x2802, 314, 315}, /* HNR-INS */
-    {0x2901, 316, 317}, /* NAV2-POSECEF */
-    {0x2902, 318, 319}, /* NAV2-POSLLH */
-    {0x2903, 320, 321}, /* NAV2-STATUS */
-    {0x2904, 322, 323}, /* NAV2-DOP */
-    {0x2907, 324, 325}, /* NAV2-PVT */
-    {0x2909, 326, 327}, /* NAV2-ODO */
-    {0x2911, 328, 329}, /* NAV2-VELECEF */
-    {0x2912, 330, 331}, /* NAV2-VELNED */
-    {0x2920, 332, 333}, /* NAV2-TIMEGPS */
-    {0x2921, 334, 335}, /* NAV2-TIMEUTC */
-    {0x2922, 336, 337}, /* NAV2-CLOCK */
-    {0x2923, 338, 339}, /* NAV2-TIMEGLO */
-    {0x2924, 340, 341}, /* NAV2-TIMEBDS */
-    {0x2925, 342, 343}, /* NAV2-TIMEGAL */
-    {0x2926, 344, 345}, /* NAV2-TIMELS */
-    {0x2927, 346, 347}, /* NAV2-TIMEQZSS */
-    {0x2932, 348, 349}, /* NAV2-SBAS */
-    {0x2935, 350, 351}, /* NAV2-SAT */
-    {0x2936, 352, 353}, /* NAV2-COV */
-    {0x2942, 354, 355}, /* NAV2-SLAS */
-    {0x2943, 356, 357}, /* NAV2-SIG */
-    {0x2961, 358, 358}, /* NAV2-EOE */
+    {0x0117, 25, 26}, /* NAV-PVAT */
+    {0x0120, 27, 28}, /* NAV-TIMEGPS */
+    {0x0121, 29, 30}, /* NAV-TIMEUTC */
+    {0x0122, 31, 32}, /* NAV-CLOCK */
+    {0x0123, 33, 34}, /* NAV-TIMEGLO */
+    {0x0124, 35, 36}, /* NAV-TIMEBDS */
+    {0x0125, 37, 38}, /* NAV-TIMEGAL */
+    {0x0126, 39, 40}, /* NAV-TIMELS */
+    {0x0127, 41, 42}, /* NAV-TIMEQZSS */
+    {0x0128, 43, 44}, /* NAV-NMI */
+    {0x0130, 45, 46}, /* NAV-SVINFO */
+    {0x0131, 47, 48}, /* NAV-DGPS */
+    {0x0132, 49, 50}, /* NAV-SBAS */
+    {0x0134, 51, 52}, /* NAV-ORB */
+    {0x0135, 53, 54}, /* NAV-SAT */
+    {0x0136, 55, 56}, /* NAV-COV */
+    {0x0139, 57, 58}, /* NAV-GEOFENCE */
+    {0x013B, 59, 60}, /* NAV-SVIN */
+    {0x013C, 61, 63}, /* NAV-RELPOSNED */
+    {0x013D, 64, 65}, /* NAV-EELL */
+    {0x0142, 66, 67}, /* NAV-SLAS */
+    {0x0143, 68, 69}, /* NAV-SIG */
+    {0x0160, 70, 71}, /* NAV-AOPSTATUS */
+    {0x0161, 72, 72}, /* NAV-EOE */
+    {0x0162, 73, 74}, /* NAV-PL */
+    {0x0163, 75, 76}, /* NAV-TIMENAVIC */
+    {0x0213, 77, 77}, /* RXM-SFRBX */
+    {0x0214, 78, 79}, /* RXM-MEASX */
+    {0x0215, 80, 81}, /* RXM-RAWX */
+    {0x0220, 82, 83}, /* RXM-SVSI */
+    {0x0232, 84, 84}, /* RXM-RTCM */
+    {0x0233, 85, 85}, /* RXM-SPARTN */
+    {0x0234, 86, 86}, /* RXM-COR */
+    {0x0236, 87, 88}, /* RXM-SPARTNKEY */
+    {0x0241, 89, 90}, /* RXM-PMREQ */
+    {0x0259, 91, 92}, /* RXM-RLM */
+    {0x0261, 93, 94}, /* RXM-IMES */
+    {0x0272, 95, 96}, /* RXM-PMP */
+    {0x0273, 97, 97}, /* RXM-QZSSL6 */
+    {0x0400, 98, 98}, /* INF-ERROR */
+    {0x0401, 99, 99}, /* INF-WARNING */
+    {0x0402, 100, 100}, /* INF-NOTICE */
+    {0x0403, 101, 101}, /* INF-TEST */
+    {0x0404, 102, 102}, /* INF-DEBUG */
+    {0x0500, 103, 103}, /* ACK-NAK */
+    {0x0501, 104, 104}, /* ACK-ACK */
+    {0x0600, 105, 107}, /* CFG-PRT */
+    {0x0601, 108, 110}, /* CFG-MSG */
+    {0x0602, 111, 112}, /* CFG-INF */
+    {0x0604, 113, 113}, /* CFG-RST */
+    {0x0606, 114, 116}, /* CFG-DAT */
+    {0x0608, 117, 118}, /* CFG-RATE */
+    {0x0609, 119, 120}, /* CFG-CFG */
+    {0x0611, 121, 122}, /* CFG-RXM */
+    {0x0613, 123, 124}, /* CFG-ANT */
+    {0x0616, 125, 126}, /* CFG-SBAS */
+    {0x0617, 127, 130}, /* CFG-NMEA */
+    {0x061B, 131, 132}, /* CFG-USB */
+    {0x061E, 133, 134}, /* CFG-ODO */
+    {0x0623, 135, 136}, /* CFG-NAVX5 */
+    {0x0624, 137, 138}, /* CFG-NAV5 */
+    {0x0631, 139, 141}, /* CFG-TP5 */
+    {0x0634, 142, 143}, /* CFG-RINV */
+    {0x0639, 144, 145}, /* CFG-ITFM */
+    {0x063B, 146, 148}, /* CFG-PM2 */
+    {0x063D, 149, 150}, /* CFG-TMODE2 */
+    {0x063E, 151, 152}, /* CFG-GNSS */
+    {0x0647, 153, 154}, /* CFG-LOGFILTER */
+    {0x064C, 155, 156}, /* CFG-ESFA */
+    {0x064D, 157, 158}, /* CFG-ESFG */
+    {0x0653, 159, 160}, /* CFG-TXSLOT */
+    {0x0656, 161, 162}, /* CFG-ESFALG */
+    {0x0657, 163, 163}, /* CFG-PWR */
+    {0x065C, 164, 165}, /* CFG-HNR */
+    {0x0660, 166, 167}, /* CFG-ESRC */
+    {0x0661, 168, 169}, /* CFG-DOSC */
+    {0x0662, 170, 171}, /* CFG-SMGR */
+    {0x0664, 172, 173}, /* CFG-SPT */
+    {0x0669, 174, 175}, /* CFG-GEOFENCE */
+    {0x0670, 176, 177}, /* CFG-DGNSS */
+    {0x0671, 178, 179}, /* CFG-TMODE3 */
+    {0x0682, 180, 181}, /* CFG-ESFWT */
+    {0x0684, 182, 182}, /* CFG-FIXSEED */
+    {0x0685, 183, 183}, /* CFG-DYNSEED */
+    {0x0686, 184, 185}, /* CFG-PMS */
+    {0x0688, 186, 187}, /* CFG-SENIF */
+    {0x068A, 188, 189}, /* CFG-VALSET */
+    {0x068B, 190, 191}, /* CFG-VALGET */
+    {0x068C, 192, 193}, /* CFG-VALDEL */
+    {0x068D, 194, 195}, /* CFG-SLAS */
+    {0x0693, 196, 197}, /* CFG-BATCH */
+    {0x0914, 198, 200}, /* UPD-SOS */
+    {0x0A02, 201, 202}, /* MON-IO */
+    {0x0A04, 203, 204}, /* MON-VER */
+    {0x0A06, 205, 206}, /* MON-MSGPP */
+    {0x0A07, 207, 208}, /* MON-RXBUF */
+    {0x0A08, 209, 210}, /* MON-TXBUF */
+    {0x0A09, 211, 212}, /* MON-HW */
+    {0x0A0B, 213, 214}, /* MON-HW2 */
+    {0x0A21, 215, 215}, /* MON-RXR */
+    {0x0A27, 216, 217}, /* MON-PATCH */
+    {0x0A28, 218, 219}, /* MON-GNSS */
+    {0x0A2E, 220, 221}, /* MON-SMGR */
+    {0x0A2F, 222, 223}, /* MON-SPT */
+    {0x0A31, 224, 225}, /* MON-SPAN */
+    {0x0A32, 226, 227}, /* MON-BATCH */
+    {0x0A35, 228, 229}, /* MON-PMP */
+    {0x0A36, 230, 231}, /* MON-COMMS */
+    {0x0A37, 232, 233}, /* MON-HW3 */
+    {0x0A38, 234, 235}, /* MON-RF */
+    {0x0A39, 236, 237}, /* MON-SYS */
+    {0x0B01, 238, 239}, /* AID-INI */
+    {0x0B02, 240, 241}, /* AID-HUI */
+    {0x0B30, 242, 245}, /* AID-ALM */
+    {0x0B31, 246, 249}, /* AID-EPH */
+    {0x0B33, 250, 252}, /* AID-AOP */
+    {0x0D01, 253, 254}, /* TIM-TP */
+    {0x0D03, 255, 256}, /* TIM-TM2 */
+    {0x0D04, 257, 258}, /* TIM-SVIN */
+    {0x0D06, 259, 260}, /* TIM-VRFY */
+    {0x0D11, 261, 262}, /* TIM-DOSC */
+    {0x0D12, 263, 264}, /* TIM-TOS */
+    {0x0D13, 265, 266}, /* TIM-SMEAS */
+    {0x0D15, 267, 270}, /* TIM-VCOCAL */
+    {0x0D16, 271, 272}, /* TIM-FCHG */
+    {0x0D17, 273, 273}, /* TIM-HOC */
+    {0x1002, 274, 274}, /* ESF-MEAS */
+    {0x1003, 275, 275}, /* ESF-RAW */
+    {0x1010, 276, 277}, /* ESF-STATUS */
+    {0x1014, 278, 279}, /* ESF-ALG */
+    {0x1015, 280, 281}, /* ESF-INS */
+    {0x1300, 282, 286}, /* MGA-GPS */
+    {0x1302, 287, 290}, /* MGA-GAL */
+    {0x1303, 291, 295}, /* MGA-BDS */
+    {0x1305, 296, 298}, /* MGA-QZSS */
+    {0x1306, 299, 301}, /* MGA-GLO */
+    {0x1320, 302, 302}, /* MGA-ANO */
+    {0x1321, 303, 305}, /* MGA-FLASH */
+    {0x1340, 306, 312}, /* MGA-INI */
+    {0x1360, 313, 313}, /* MGA-ACK */
+    {0x1380, 314, 315}, /* MGA-DBD */
+    {0x2103, 316, 316}, /* LOG-ERASE */
+    {0x2104, 317, 317}, /* LOG-STRING */
+    {0x2107, 318, 318}, /* LOG-CREATE */
+    {0x2108, 319, 320}, /* LOG-INFO */
+    {0x2109, 321, 321}, /* LOG-RETRIEVE */
+    {0x210B, 322, 322}, /* LOG-RETRIEVEPOS */
+    {0x210D, 323, 323}, /* LOG-RETRIEVESTRING */
+    {0x210E, 324, 325}, /* LOG-FINDTIME */
+    {0x210F, 326, 326}, /* LOG-RETRIEVEPOSEXTRA */
+    {0x2110, 327, 327}, /* LOG-RETRIEVEBATCH */
+    {0x2111, 328, 328}, /* LOG-BATCH */
+    {0x2701, 329, 329}, /* SEC-SIGN */
+    {0x2703, 330, 331}, /* SEC-UNIQID */
+    {0x2709, 332, 334}, /* SEC-SIG */
+    {0x2710, 335, 336}, /* SEC-SIGLOG */
+    {0x2800, 337, 338}, /* HNR-PVT */
+    {0x2801, 339, 340}, /* HNR-ATT */
+    {0x2802, 341, 342}, /* HNR-INS */
+    {0x2901, 343, 344}, /* NAV2-POSECEF */
+    {0x2902, 345, 346}, /* NAV2-POSLLH */
+    {0x2903, 347, 348}, /* NAV2-STATUS */
+    {0x2904, 349, 350}, /* NAV2-DOP */
+    {0x2907, 351, 352}, /* NAV2-PVT */
+    {0x2909, 353, 354}, /* NAV2-ODO */
+    {0x2911, 355, 356}, /* NAV2-VELECEF */
+    {0x2912, 357, 358}, /* NAV2-VELNED */
+    {0x2920, 359, 360}, /* NAV2-TIMEGPS */
+    {0x2921, 361, 362}, /* NAV2-TIMEUTC */
+    {0x2922, 363, 364}, /* NAV2-CLOCK */
+    {0x2923, 365, 366}, /* NAV2-TIMEGLO */
+    {0x2924, 367, 368}, /* NAV2-TIMEBDS */
+    {0x2925, 369, 370}, /* NAV2-TIMEGAL */
+    {0x2926, 371, 372}, /* NAV2-TIMELS */
+    {0x2927, 373, 374}, /* NAV2-TIMEQZSS */
+    {0x2932, 375, 376}, /* NAV2-SBAS */
+    {0x2935, 377, 378}, /* NAV2-SAT */
+    {0x2936, 379, 380}, /* NAV2-COV */
+    {0x2942, 381, 382}, /* NAV2-SLAS */
+    {0x2943, 383, 384}, /* NAV2-SIG */
+    {0x2961, 385, 385}, /* NAV2-EOE */
+    {0x2963, 386, 387}, /* NAV2-TIMENAVIC */
 };
 
 static size_t ubx_layout_of(unsigned msg_class, unsigned msg_id, const uint8_t *payload, size_t len)
@@ -15939,53 +17007,53 @@ static const struct {
     uint8_t protocol, key_len, key[2];
     uint16_t first, last;
 } ubx_keyed[] = {
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 359, 359}, /* CASIC NAV-DOP */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 360, 360}, /* CASIC NAV-PV */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 361, 361}, /* CASIC NAV-TIMEUTC */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 362, 362}, /* CASIC NAV-GPSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 363, 363}, /* CASIC NAV-BDSINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 364, 364}, /* CASIC NAV-GLNINFO */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 365, 365}, /* CASIC ACK-NAK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 366, 366}, /* CASIC ACK-ACK */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 367, 368}, /* CASIC CFG-PRT */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 369, 370}, /* CASIC CFG-MSG */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 371, 372}, /* CASIC CFG-RATE */
-    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 373, 374}, /* CASIC MON-VER */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 375, 375}, /* SBF 4001 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 376, 376}, /* SBF 4006 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 377, 377}, /* SBF 4007 rev 2 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 378, 378}, /* SBF 5905 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 379, 379}, /* SBF 5906 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 380, 380}, /* SBF 5907 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 381, 381}, /* SBF 5908 rev 0 */
-    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 382, 382}, /* SBF 5914 rev 0 */
-    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 383, 383}, /* SIRF MID 67 SID 1 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 384, 384}, /* SIRF MID 2 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 385, 385}, /* SIRF MID 4 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 386, 386}, /* SIRF MID 6 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 387, 387}, /* SIRF MID 7 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 388, 388}, /* SIRF MID 9 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 389, 389}, /* SIRF MID 11 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 390, 390}, /* SIRF MID 12 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 391, 391}, /* SIRF MID 13 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 392, 392}, /* SIRF MID 18 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 393, 393}, /* SIRF MID 41 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 394, 394}, /* SIRF MID 52 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 395, 395}, /* SIRF MID 129 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 396, 396}, /* SIRF MID 132 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 397, 397}, /* SIRF MID 135 */
-    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 398, 398}, /* SIRF MID 255 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 399, 399}, /* SKYTRAQ 0x02 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 400, 400}, /* SKYTRAQ 0x09 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 401, 401}, /* SKYTRAQ 0x80 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 402, 402}, /* SKYTRAQ 0x83 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 403, 403}, /* SKYTRAQ 0x84 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 404, 404}, /* SKYTRAQ 0xA8 */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 405, 405}, /* SKYTRAQ 0xDC */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 406, 406}, /* SKYTRAQ 0xDD */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 407, 407}, /* SKYTRAQ 0xDE */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 408, 408}, /* SKYTRAQ 0xDF */
-    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 409, 409}, /* SKYTRAQ 0xE0 */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x01}, 388, 388}, /* CASIC NAV-DOP */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x03}, 389, 389}, /* CASIC NAV-PV */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x10}, 390, 390}, /* CASIC NAV-TIMEUTC */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x20}, 391, 391}, /* CASIC NAV-GPSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x21}, 392, 392}, /* CASIC NAV-BDSINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x01, 0x22}, 393, 393}, /* CASIC NAV-GLNINFO */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x00}, 394, 394}, /* CASIC ACK-NAK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x05, 0x01}, 395, 395}, /* CASIC ACK-ACK */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x00}, 396, 397}, /* CASIC CFG-PRT */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x01}, 398, 399}, /* CASIC CFG-MSG */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x06, 0x04}, 400, 401}, /* CASIC CFG-RATE */
+    {NMEA_UBX_PROTOCOL_CASIC, 0, {0x0A, 0x04}, 402, 403}, /* CASIC MON-VER */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA1, 0x0F}, 404, 404}, /* SBF 4001 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA6, 0x4F}, 405, 405}, /* SBF 4006 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0xA7, 0x4F}, 406, 406}, /* SBF 4007 rev 2 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x11, 0x17}, 407, 407}, /* SBF 5905 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x12, 0x17}, 408, 408}, /* SBF 5906 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x13, 0x17}, 409, 409}, /* SBF 5907 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x14, 0x17}, 410, 410}, /* SBF 5908 rev 0 */
+    {NMEA_UBX_PROTOCOL_SBF, 0, {0x1A, 0x17}, 411, 411}, /* SBF 5914 rev 0 */
+    {NMEA_UBX_PROTOCOL_SIRF, 2, {0x43, 0x01}, 412, 412}, /* SIRF MID 67 SID 1 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x02, 0x00}, 413, 413}, /* SIRF MID 2 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x04, 0x00}, 414, 414}, /* SIRF MID 4 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x06, 0x00}, 415, 415}, /* SIRF MID 6 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x07, 0x00}, 416, 416}, /* SIRF MID 7 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x09, 0x00}, 417, 417}, /* SIRF MID 9 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0B, 0x00}, 418, 418}, /* SIRF MID 11 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0C, 0x00}, 419, 419}, /* SIRF MID 12 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x0D, 0x00}, 420, 420}, /* SIRF MID 13 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x12, 0x00}, 421, 421}, /* SIRF MID 18 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x29, 0x00}, 422, 422}, /* SIRF MID 41 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x34, 0x00}, 423, 423}, /* SIRF MID 52 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x81, 0x00}, 424, 424}, /* SIRF MID 129 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x84, 0x00}, 425, 425}, /* SIRF MID 132 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0x87, 0x00}, 426, 426}, /* SIRF MID 135 */
+    {NMEA_UBX_PROTOCOL_SIRF, 1, {0xFF, 0x00}, 427, 427}, /* SIRF MID 255 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x02, 0x00}, 428, 428}, /* SKYTRAQ 0x02 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x09, 0x00}, 429, 429}, /* SKYTRAQ 0x09 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x80, 0x00}, 430, 430}, /* SKYTRAQ 0x80 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x83, 0x00}, 431, 431}, /* SKYTRAQ 0x83 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0x84, 0x00}, 432, 432}, /* SKYTRAQ 0x84 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xA8, 0x00}, 433, 433}, /* SKYTRAQ 0xA8 */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDC, 0x00}, 434, 434}, /* SKYTRAQ 0xDC */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDD, 0x00}, 435, 435}, /* SKYTRAQ 0xDD */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 436, 436}, /* SKYTRAQ 0xDE */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 437, 437}, /* SKYTRAQ 0xDF */
+    {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 438, 438}, /* SKYTRAQ 0xE0 */
 };
 
 /* nmea_ubx_decode, inlined into nmea_ubx_decode_frame (a call less a frame). */

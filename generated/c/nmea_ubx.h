@@ -7,10 +7,11 @@
 //   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
 //   spec/binary/ubx/messages/nav_velecef.yaml, spec/binary/ubx/messages/nav_velned.yaml,
 //   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
-//   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timeutc.yaml,
-//   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
-//   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
-//   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
+//   spec/binary/ubx/messages/nav_pvat.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
+//   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_clock.yaml,
+//   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
+//   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timels.yaml,
+//   spec/binary/ubx/messages/nav_timeqzss.yaml, spec/binary/ubx/messages/nav_nmi.yaml,
 //   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
 //   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_orb.yaml,
 //   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_cov.yaml,
@@ -18,12 +19,14 @@
 //   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_eell.yaml,
 //   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
 //   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
-//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
-//   spec/binary/ubx/messages/rxm_measx.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
-//   spec/binary/ubx/messages/rxm_svsi.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
-//   spec/binary/ubx/messages/rxm_spartn.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
-//   spec/binary/ubx/messages/rxm_spartnkey.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
-//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/inf_error.yaml,
+//   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/nav_timenavic.yaml,
+//   spec/binary/ubx/messages/rxm_sfrbx.yaml, spec/binary/ubx/messages/rxm_measx.yaml,
+//   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_svsi.yaml,
+//   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_spartn.yaml,
+//   spec/binary/ubx/messages/rxm_cor.yaml, spec/binary/ubx/messages/rxm_spartnkey.yaml,
+//   spec/binary/ubx/messages/rxm_pmreq.yaml, spec/binary/ubx/messages/rxm_rlm.yaml,
+//   spec/binary/ubx/messages/rxm_imes.yaml, spec/binary/ubx/messages/rxm_pmp.yaml,
+//   spec/binary/ubx/messages/rxm_qzssl6.yaml, spec/binary/ubx/messages/inf_error.yaml,
 //   spec/binary/ubx/messages/inf_warning.yaml, spec/binary/ubx/messages/inf_notice.yaml,
 //   spec/binary/ubx/messages/inf_test.yaml, spec/binary/ubx/messages/inf_debug.yaml,
 //   spec/binary/ubx/messages/ack_nak.yaml, spec/binary/ubx/messages/ack_ack.yaml,
@@ -36,15 +39,17 @@
 //   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
 //   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
 //   spec/binary/ubx/messages/cfg_rinv.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
-//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
-//   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_esfa.yaml,
-//   spec/binary/ubx/messages/cfg_esfg.yaml, spec/binary/ubx/messages/cfg_txslot.yaml,
-//   spec/binary/ubx/messages/cfg_esfalg.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
-//   spec/binary/ubx/messages/cfg_hnr.yaml, spec/binary/ubx/messages/cfg_esrc.yaml,
-//   spec/binary/ubx/messages/cfg_dosc.yaml, spec/binary/ubx/messages/cfg_smgr.yaml,
+//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_tmode2.yaml,
+//   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_logfilter.yaml,
+//   spec/binary/ubx/messages/cfg_esfa.yaml, spec/binary/ubx/messages/cfg_esfg.yaml,
+//   spec/binary/ubx/messages/cfg_txslot.yaml, spec/binary/ubx/messages/cfg_esfalg.yaml,
+//   spec/binary/ubx/messages/cfg_pwr.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
+//   spec/binary/ubx/messages/cfg_esrc.yaml, spec/binary/ubx/messages/cfg_dosc.yaml,
+//   spec/binary/ubx/messages/cfg_smgr.yaml, spec/binary/ubx/messages/cfg_spt.yaml,
 //   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
 //   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_esfwt.yaml,
-//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
+//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_dynseed.yaml,
+//   spec/binary/ubx/messages/cfg_pms.yaml, spec/binary/ubx/messages/cfg_senif.yaml,
 //   spec/binary/ubx/messages/cfg_valset.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
 //   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_slas.yaml,
 //   spec/binary/ubx/messages/cfg_batch.yaml, spec/binary/ubx/messages/upd_sos.yaml,
@@ -53,22 +58,24 @@
 //   spec/binary/ubx/messages/mon_txbuf.yaml, spec/binary/ubx/messages/mon_hw.yaml,
 //   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
 //   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_gnss.yaml,
-//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
-//   spec/binary/ubx/messages/mon_comms.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
-//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_sys.yaml,
-//   spec/binary/ubx/messages/aid_ini.yaml, spec/binary/ubx/messages/aid_hui.yaml,
-//   spec/binary/ubx/messages/aid_alm.yaml, spec/binary/ubx/messages/aid_eph.yaml,
-//   spec/binary/ubx/messages/aid_aop.yaml, spec/binary/ubx/messages/tim_tp.yaml,
-//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_svin.yaml,
-//   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
-//   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
-//   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
-//   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/esf_meas.yaml,
-//   spec/binary/ubx/messages/esf_raw.yaml, spec/binary/ubx/messages/esf_status.yaml,
-//   spec/binary/ubx/messages/esf_alg.yaml, spec/binary/ubx/messages/esf_ins.yaml,
-//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_gal.yaml,
-//   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
-//   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_ano.yaml,
+//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_spt.yaml,
+//   spec/binary/ubx/messages/mon_span.yaml, spec/binary/ubx/messages/mon_batch.yaml,
+//   spec/binary/ubx/messages/mon_pmp.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+//   spec/binary/ubx/messages/mon_hw3.yaml, spec/binary/ubx/messages/mon_rf.yaml,
+//   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/aid_ini.yaml,
+//   spec/binary/ubx/messages/aid_hui.yaml, spec/binary/ubx/messages/aid_alm.yaml,
+//   spec/binary/ubx/messages/aid_eph.yaml, spec/binary/ubx/messages/aid_aop.yaml,
+//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
+//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
+//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_tos.yaml,
+//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
+//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
+//   spec/binary/ubx/messages/esf_meas.yaml, spec/binary/ubx/messages/esf_raw.yaml,
+//   spec/binary/ubx/messages/esf_status.yaml, spec/binary/ubx/messages/esf_alg.yaml,
+//   spec/binary/ubx/messages/esf_ins.yaml, spec/binary/ubx/messages/mga_gps.yaml,
+//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_bds.yaml,
+//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mga_glo.yaml,
+//   spec/binary/ubx/messages/mga_ano.yaml, spec/binary/ubx/messages/mga_flash.yaml,
 //   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_ack.yaml,
 //   spec/binary/ubx/messages/mga_dbd.yaml, spec/binary/ubx/messages/log_erase.yaml,
 //   spec/binary/ubx/messages/log_string.yaml, spec/binary/ubx/messages/log_create.yaml,
@@ -91,15 +98,15 @@
 //   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_sbas.yaml,
 //   spec/binary/ubx/messages/nav2_sat.yaml, spec/binary/ubx/messages/nav2_cov.yaml,
 //   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_sig.yaml,
-//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/binary/casic/messages/nav_dop.yaml,
-//   spec/binary/casic/messages/nav_pv.yaml, spec/binary/casic/messages/nav_timeutc.yaml,
-//   spec/binary/casic/messages/nav_gpsinfo.yaml, spec/binary/casic/messages/nav_bdsinfo.yaml,
-//   spec/binary/casic/messages/nav_glninfo.yaml, spec/binary/casic/messages/ack_nak.yaml,
-//   spec/binary/casic/messages/ack_ack.yaml, spec/binary/casic/messages/cfg_prt.yaml,
-//   spec/binary/casic/messages/cfg_msg.yaml, spec/binary/casic/messages/cfg_rate.yaml,
-//   spec/binary/casic/messages/mon_ver.yaml, spec/binary/sbf/messages/pvt_dop.yaml,
-//   spec/binary/sbf/messages/pvt_cartesian.yaml, spec/binary/sbf/messages/pvt_geodetic.yaml,
-//   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
+//   spec/binary/ubx/messages/nav2_eoe.yaml, spec/binary/ubx/messages/nav2_timenavic.yaml,
+//   spec/binary/casic/messages/nav_dop.yaml, spec/binary/casic/messages/nav_pv.yaml,
+//   spec/binary/casic/messages/nav_timeutc.yaml, spec/binary/casic/messages/nav_gpsinfo.yaml,
+//   spec/binary/casic/messages/nav_bdsinfo.yaml, spec/binary/casic/messages/nav_glninfo.yaml,
+//   spec/binary/casic/messages/ack_nak.yaml, spec/binary/casic/messages/ack_ack.yaml,
+//   spec/binary/casic/messages/cfg_prt.yaml, spec/binary/casic/messages/cfg_msg.yaml,
+//   spec/binary/casic/messages/cfg_rate.yaml, spec/binary/casic/messages/mon_ver.yaml,
+//   spec/binary/sbf/messages/pvt_dop.yaml, spec/binary/sbf/messages/pvt_cartesian.yaml,
+//   spec/binary/sbf/messages/pvt_geodetic.yaml, spec/binary/sbf/messages/pos_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/receiver_time.yaml,
@@ -119,7 +126,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest d1e7a4678610523c)
+//   spec/enums/ubx_gnss_id.yaml (digest 2ca1beb04cf4f9d4)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ: spec/binary/<protocol>):
@@ -388,6 +395,9 @@ typedef enum {
 #ifndef NMEA_UBX_RXM_SPARTNKEY_KEYS_MAX
 #define NMEA_UBX_RXM_SPARTNKEY_KEYS_MAX (64 < NMEA_UBX_MAX_ENTRIES ? 64 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX
+#define NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_CFG_MSG_RATES_MAX
 #define NMEA_UBX_CFG_MSG_RATES_MAX (6 < NMEA_UBX_MAX_ENTRIES ? 6 : NMEA_UBX_MAX_ENTRIES)
 #endif
@@ -475,8 +485,17 @@ typedef enum {
 #ifndef NMEA_UBX_MON_PATCH_ENTRIES_MAX
 #define NMEA_UBX_MON_PATCH_ENTRIES_MAX (32 < NMEA_UBX_MAX_ENTRIES ? 32 : NMEA_UBX_MAX_ENTRIES)
 #endif
+#ifndef NMEA_UBX_MON_SPT_SENSORS_MAX
+#define NMEA_UBX_MON_SPT_SENSORS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_SPT_RESULTS_MAX
+#define NMEA_UBX_MON_SPT_RESULTS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
 #ifndef NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX
 #define NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX (4 < NMEA_UBX_MAX_ENTRIES ? 4 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_MON_PMP_ENTRIES_MAX
+#define NMEA_UBX_MON_PMP_ENTRIES_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_MON_COMMS_PROT_IDS_MAX
 #define NMEA_UBX_MON_COMMS_PROT_IDS_MAX (4 < NMEA_UBX_MAX_ENTRIES ? 4 : NMEA_UBX_MAX_ENTRIES)
@@ -566,6 +585,8 @@ typedef enum {
    class and id: set it when building such a message. */
 #define NMEA_UBX_NAV_RELPOSNED_VERSION 0x01
 #define NMEA_UBX_NAV_RELPOSNED_V0_VERSION 0x00
+#define NMEA_UBX_RXM_PMP_VERSION 0x00
+#define NMEA_UBX_RXM_PMP_V1_VERSION 0x01
 #define NMEA_UBX_CFG_NMEA_VERSION 0x01
 #define NMEA_UBX_CFG_NMEA_V0_VERSION 0x00
 #define NMEA_UBX_CFG_PM2_VERSION 0x02
@@ -599,6 +620,9 @@ typedef enum {
 #define NMEA_UBX_MGA_GLO_EPH_TYPE 0x01
 #define NMEA_UBX_MGA_GLO_ALM_TYPE 0x02
 #define NMEA_UBX_MGA_GLO_TIMEOFFSET_TYPE 0x03
+#define NMEA_UBX_MGA_FLASH_DATA_TYPE 0x01
+#define NMEA_UBX_MGA_FLASH_STOP_TYPE 0x02
+#define NMEA_UBX_MGA_FLASH_ACK_TYPE 0x03
 #define NMEA_UBX_MGA_INI_POS_XYZ_TYPE 0x00
 #define NMEA_UBX_MGA_INI_POS_LLH_TYPE 0x01
 #define NMEA_UBX_MGA_INI_TIME_UTC_TYPE 0x10
@@ -895,6 +919,71 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_nav_hpposllh;
 
+/* Navigation position velocity attitude time solution: UBX NAV-PVAT (class 0x01 id 0x17), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_pvat_poll;
+
+/* Navigation position velocity attitude time solution: UBX NAV-PVAT (class 0x01 id 0x17), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t version; /* Message version */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool valid_date; /* Valid UTC date (valid bit 0) */
+    bool valid_time; /* Valid UTC time of day (valid bit 1) */
+    bool fully_resolved; /* UTC time of day fully resolved (valid bit 2) */
+    bool valid_mag; /* Valid magnetic declination (valid bit 3) */
+    uint16_t year; /* Year (UTC) */
+    uint8_t month; /* Month (UTC) */
+    uint8_t day; /* Day (UTC) */
+    uint8_t hour; /* Hour (UTC) */
+    uint8_t min; /* Minute (UTC) */
+    uint8_t sec; /* Second (UTC) */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t t_acc; /* Time accuracy estimate (UTC) [ns] */
+    int32_t nano; /* Fraction of second (UTC) [ns] */
+    uint8_t fix_type; /* GNSS fix type; a code of ubx_fix_type (its JSON: the code's id) */
+    uint8_t flags; /* Fix status flags (bitfield) */
+    bool gnss_fix_ok; /* Valid fix (within the DOP and accuracy masks) (flags bit 0) */
+    bool diff_soln; /* Differential corrections applied (flags bit 1) */
+    bool veh_roll_valid; /* Vehicle roll valid (flags bit 3) */
+    bool veh_pitch_valid; /* Vehicle pitch valid (flags bit 4) */
+    bool veh_heading_valid; /* Vehicle heading valid (flags bit 5) */
+    uint8_t carr_soln; /* Carrier phase range solution (flags bits 6-7) */
+    uint8_t flags2; /* Additional flags (bitfield) */
+    bool confirmed_avai; /* Date and time validity can be confirmed (flags2 bit 5) */
+    bool confirmed_date; /* UTC date confirmed (flags2 bit 6) */
+    bool confirmed_time; /* UTC time of day confirmed (flags2 bit 7) */
+    uint8_t num_sv; /* Satellites used in the solution */
+    int32_t lon; /* Longitude [deg]; raw, value = raw / 10000000 */
+    int32_t lat; /* Latitude [deg]; raw, value = raw / 10000000 */
+    int32_t height; /* Height above the ellipsoid [mm] */
+    int32_t h_msl; /* Height above mean sea level [mm] */
+    uint32_t h_acc; /* Horizontal accuracy estimate [mm] */
+    uint32_t v_acc; /* Vertical accuracy estimate [mm] */
+    int32_t vel_n; /* NED north velocity [mm/s] */
+    int32_t vel_e; /* NED east velocity [mm/s] */
+    int32_t vel_d; /* NED down velocity [mm/s] */
+    int32_t g_speed; /* Ground speed (2D) [mm/s] */
+    uint32_t s_acc; /* Speed accuracy estimate [mm/s] */
+    int32_t veh_roll; /* Vehicle roll [deg]; raw, value = raw / 100000 */
+    int32_t veh_pitch; /* Vehicle pitch [deg]; raw, value = raw / 100000 */
+    int32_t veh_heading; /* Vehicle heading [deg]; raw, value = raw / 100000 */
+    int32_t mot_heading; /* Heading of motion [deg]; raw, value = raw / 100000 */
+    uint16_t acc_roll; /* Vehicle roll accuracy [deg]; raw, value = raw / 100 */
+    uint16_t acc_pitch; /* Vehicle pitch accuracy [deg]; raw, value = raw / 100 */
+    uint16_t acc_heading; /* Vehicle heading accuracy [deg]; raw, value = raw / 100 */
+    int16_t mag_dec; /* Magnetic declination [deg]; raw, value = raw / 100 */
+    uint16_t mag_acc; /* Magnetic declination accuracy [deg]; raw, value = raw / 100 */
+    uint16_t err_ellipse_orient; /* Orientation of the horizontal error ellipse [deg]; raw, value = raw / 100 */
+    uint32_t err_ellipse_major; /* Semi-major axis of the horizontal error ellipse [mm] */
+    uint32_t err_ellipse_minor; /* Semi-minor axis of the horizontal error ellipse [mm] */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    uint32_t reserved3; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_pvat;
+
 /* GPS time solution: UBX NAV-TIMEGPS (class 0x01 id 0x20), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -1055,6 +1144,51 @@ typedef struct {
     uint32_t t_acc; /* Time accuracy estimate [ns] */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_nav_timeqzss;
+
+/* Navigation message cross-check information: UBX NAV-NMI (class 0x01 id 0x28), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_nmi_poll;
+
+/* Navigation message cross-check information: UBX NAV-NMI (class 0x01 id 0x28), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint8_t version; /* Message version */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t gps_nmi_flags; /* GPS navigation message cross-checks (bitfield) */
+    bool wno_checked_gps; /* Week number checked (gps_nmi_flags bit 0) */
+    bool wno_invalid_gps; /* Week number invalid (gps_nmi_flags bit 1) */
+    bool utco_ref_checked_gps; /* UTC reference time checked (gps_nmi_flags bit 2) */
+    bool utco_ref_invalid_gps; /* UTC reference time invalid (gps_nmi_flags bit 3) */
+    uint8_t gps_ls_flags; /* GPS leap second cross-checks (bitfield) */
+    bool ls_val_gps; /* Leap second value out of range (gps_ls_flags bit 0) */
+    bool dn_range_gps; /* Day number out of range (gps_ls_flags bit 1) */
+    bool tot_range_gps; /* Data reference time of week out of range (gps_ls_flags bit 2) */
+    bool ls_event_gps; /* Unexpected leap second event (gps_ls_flags bit 3) */
+    bool rec_now_gps; /* Data received this epoch (gps_ls_flags bit 4) */
+    uint8_t gal_nmi_flags; /* Galileo navigation message cross-checks (bitfield) */
+    bool wno_checked_gal; /* Week number checked (gal_nmi_flags bit 0) */
+    bool wno_invalid_gal; /* Week number invalid (gal_nmi_flags bit 1) */
+    uint8_t gal_ls_flags; /* Galileo leap second cross-checks (bitfield) */
+    bool ls_val_gal; /* Leap second value out of range (gal_ls_flags bit 0) */
+    bool dn_range_gal; /* Day number out of range (gal_ls_flags bit 1) */
+    bool tot_range_gal; /* Data reference time of week out of range (gal_ls_flags bit 2) */
+    bool ls_event_gal; /* Unexpected leap second event (gal_ls_flags bit 3) */
+    bool rec_now_gal; /* Data received this epoch (gal_ls_flags bit 4) */
+    uint8_t bds_nmi_flags; /* BeiDou navigation message cross-checks (bitfield) */
+    bool wno_checked_bds; /* Week number checked (bds_nmi_flags bit 0) */
+    bool wno_invalid_bds; /* Week number invalid (bds_nmi_flags bit 1) */
+    uint8_t bds_ls_flags; /* BeiDou leap second cross-checks (bitfield) */
+    bool ls_val_bds; /* Leap second value out of range (bds_ls_flags bit 0) */
+    bool dn_range_bds; /* Day number out of range (bds_ls_flags bit 1) */
+    bool tot_range_bds; /* Data reference time of week out of range (bds_ls_flags bit 2) */
+    bool ls_event_bds; /* Unexpected leap second event (bds_ls_flags bit 3) */
+    bool rec_now_bds; /* Data received this epoch (bds_ls_flags bit 4) */
+    uint8_t glo_nmi_flags; /* GLONASS navigation message cross-checks (bitfield) */
+    bool wno_checked_glo; /* Week number checked (glo_nmi_flags bit 0) */
+    bool wno_invalid_glo; /* Week number invalid (glo_nmi_flags bit 1) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_nmi;
 
 /* Space vehicle information: UBX NAV-SVINFO (class 0x01 id 0x30), poll. */
 typedef struct {
@@ -1523,6 +1657,26 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_nav_pl;
 
+/* NavIC time solution: UBX NAV-TIMENAVIC (class 0x01 id 0x63), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_timenavic_poll;
+
+/* NavIC time solution: UBX NAV-TIMENAVIC (class 0x01 id 0x63), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint32_t nav_ic_tow; /* NavIC time of week (rounded) [s] */
+    int32_t f_nav_ic_tow; /* Fraction of nav_ic_tow [ns] */
+    int16_t nav_ic_wno; /* NavIC week number */
+    int8_t leap_s; /* NavIC leap seconds (NavIC - UTC) [s] */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool nav_ic_tow_valid; /* Valid time of week (valid bit 0) */
+    bool nav_ic_wno_valid; /* Valid week number (valid bit 1) */
+    bool leap_s_valid; /* Valid leap seconds (valid bit 2) */
+    uint32_t t_acc; /* Time accuracy estimate [ns] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav_timenavic;
+
 /* One entry of data words (words). */
 typedef struct {
     uint32_t dwrd; /* Data word */
@@ -1787,6 +1941,107 @@ typedef struct {
     uint8_t reserved1; /* Reserved (reserved, as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_rxm_rlm_short;
+
+/* Indoor messaging system information: UBX RXM-IMES (class 0x02 id 0x61), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_imes_poll;
+
+/* One entry of transmitters (transmitters). */
+typedef struct {
+    uint8_t reserved2; /* Reserved (reserved, as sent) */
+    uint8_t tx_id; /* Transmitter identifier */
+    uint32_t reserved3; /* Reserved (reserved, as sent) */
+    uint8_t cno; /* Carrier to noise ratio [dBHz] */
+    uint16_t reserved4; /* Reserved (reserved, as sent) */
+    int32_t doppler; /* Doppler frequency (against 1575.4282 MHz) [Hz]; raw, value = raw / 4096 */
+    uint32_t position1_1; /* Position 1 frame (first word) (bitfield) */
+    uint8_t pos1_floor; /* Floor number (raw) (position1_1 bits 0-7) */
+    uint32_t pos1_lat; /* Latitude (raw) (position1_1 bits 8-30) */
+    uint32_t position1_2; /* Position 1 frame (second word) (bitfield) */
+    uint32_t pos1_lon; /* Longitude (raw) (position1_2 bits 0-23) */
+    bool pos1_valid; /* Position 1 frame valid (position1_2 bit 24) */
+    uint32_t position2_1; /* Position 2 frame (bitfield) */
+    uint8_t pos2_floor; /* Floor number (raw) (position2_1 bits 0-7) */
+    uint16_t pos2_alt; /* Altitude (raw) (position2_1 bits 8-19) */
+    uint8_t pos2_acc; /* Accuracy index (position2_1 bits 20-21) */
+    bool pos2_valid; /* Position 2 frame valid (position2_1 bit 22) */
+    int32_t lat; /* Latitude (position 2 frame) [semicircle]; raw, value = raw / 16777216 */
+    int32_t lon; /* Longitude (position 2 frame) [semicircle]; raw, value = raw / 16777216 */
+    uint32_t short_id_frame; /* Short id frame (bitfield) */
+    uint16_t short_id; /* Short id (short_id_frame bits 0-11) */
+    bool short_valid; /* Short id valid (short_id_frame bit 12) */
+    bool short_boundary; /* Boundary bit (short_id_frame bit 13) */
+    uint32_t medium_id_lsb; /* Medium id (low 32 bits) */
+    uint32_t medium_id_2; /* Medium id frame (the rest) (bitfield) */
+    bool medium_id_msb; /* Medium id (bit 32) (medium_id_2 bit 0) */
+    bool medium_valid; /* Medium id valid (medium_id_2 bit 1) */
+    bool medium_boundary; /* Boundary bit (medium_id_2 bit 2) */
+} nmea_ubx_rxm_imes_transmitter;
+
+/* Indoor messaging system information: UBX RXM-IMES (class 0x02 id 0x61), output. */
+typedef struct {
+    uint8_t num_tx; /* Number of transmitters */
+    uint8_t version; /* Message version */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t transmitters_count; /* the entries of transmitters */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_rxm_imes_transmitter transmitters[NMEA_UBX_RXM_IMES_TRANSMITTERS_MAX]; /* Transmitters */
+} nmea_ubx_rxm_imes;
+
+/* PMP (L-band) correction data frame: UBX RXM-PMP (class 0x02 id 0x72), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved0; /* Reserved (reserved, as sent) */
+    uint32_t time_tag; /* Receiver time tag at the start of the frame [ms] */
+    uint32_t unique_word1; /* First unique word received */
+    uint32_t unique_word2; /* Second unique word received */
+    uint16_t service_identifier; /* Service identifier */
+    uint8_t spare; /* Spare byte of the frame */
+    uint8_t unique_word_bit_errors; /* Bit errors in both unique words */
+    uint8_t user_data0[252]; /* User data (bytes 0 to 251) */
+    uint8_t user_data1[252]; /* User data (bytes 252 to 503) */
+    uint16_t fec_bits; /* Bits the forward error correction corrected */
+    uint8_t ebno; /* Energy per bit to noise power spectral density ratio [dB]; raw, value = raw / 8 */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_pmp;
+
+/* PMP (L-band) correction data frame: UBX RXM-PMP (class 0x02 id 0x72), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t num_bytes_user_data; /* Bytes of user data */
+    uint32_t time_tag; /* Receiver time tag at the start of the frame [ms] */
+    uint32_t unique_word1; /* First unique word received */
+    uint32_t unique_word2; /* Second unique word received */
+    uint16_t service_identifier; /* Service identifier */
+    uint8_t spare; /* Spare byte of the frame */
+    uint8_t unique_word_bit_errors; /* Bit errors in both unique words */
+    uint16_t fec_bits; /* Bits the forward error correction corrected */
+    uint8_t ebno; /* Energy per bit to noise power spectral density ratio [dB]; raw, value = raw / 8 */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes user_data; /* User data (the bytes left) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_pmp_v1;
+
+/* QZSS L6 message: UBX RXM-QZSSL6 (class 0x02 id 0x73), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t sv_id; /* Satellite identifier */
+    uint16_t cno; /* Carrier to noise ratio [dBHz]; raw, value = raw / 256 */
+    uint32_t time_tag; /* Receiver time tag at the start of the message [ms] */
+    uint8_t group_delay; /* Group delay */
+    uint8_t bit_err_corr; /* Bytes the Reed-Solomon decoder corrected */
+    uint16_t ch_info; /* Channel information (bitfield) */
+    uint8_t chn; /* Receiver channel (ch_info bits 8-9) */
+    bool msg_name; /* Message name (ch_info bit 10) */
+    uint8_t err_status; /* Error status (ch_info bits 12-13) */
+    uint8_t ch_name; /* Channel name (ch_info bits 14-15) */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint8_t msg_bytes[250]; /* The L6 message */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_rxm_qzssl6;
 
 /* Error message: UBX INF-ERROR (class 0x04 id 0x00), output. */
 typedef struct {
@@ -2423,6 +2678,27 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_pm2_v1;
 
+/* Time mode settings 2 (timing receiver): UBX CFG-TMODE2 (class 0x06 id 0x3D), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_tmode2_poll;
+
+/* Time mode settings 2 (timing receiver): UBX CFG-TMODE2 (class 0x06 id 0x3D), input, output. */
+typedef struct {
+    uint8_t time_mode; /* Time transfer mode */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t flags; /* Position flags (bitfield) */
+    bool lla; /* The position is latitude, longitude and altitude (not ECEF) (flags bit 0) */
+    bool alt_inv; /* The altitude is not valid (with lla) (flags bit 1) */
+    int32_t ecef_x_or_lat; /* ECEF X (cm) or latitude (1e-7 deg) */
+    int32_t ecef_y_or_lon; /* ECEF Y (cm) or longitude (1e-7 deg) */
+    int32_t ecef_z_or_alt; /* ECEF Z or altitude (cm) */
+    uint32_t fixed_pos_acc; /* Accuracy of the fixed position [mm] */
+    uint32_t svin_min_dur; /* Survey-in minimum duration [s] */
+    uint32_t svin_acc_limit; /* Survey-in position accuracy limit [mm] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_tmode2;
+
 /* GNSS system configuration: UBX CFG-GNSS (class 0x06 id 0x3E), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -2670,6 +2946,20 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_smgr;
 
+/* Sensor production test: UBX CFG-SPT (class 0x06 id 0x64), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_spt_poll;
+
+/* Sensor production test: UBX CFG-SPT (class 0x06 id 0x64), input, output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t sensor_id; /* Sensor to test */
+    uint64_t reserved1; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_spt;
+
 /* Geofencing configuration: UBX CFG-GEOFENCE (class 0x06 id 0x69), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -2784,6 +3074,15 @@ typedef struct {
     nmea_ubx_cfg_fixseed_message messages[NMEA_UBX_CFG_FIXSEED_MESSAGES_MAX]; /* Messages to sign */
 } nmea_ubx_cfg_fixseed;
 
+/* Programming the dynamic seed for the host interface signature: UBX CFG-DYNSEED (class 0x06 id 0x85), input. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t seed_hi; /* High part of the seed */
+    uint32_t seed_lo; /* Low part of the seed */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_dynseed;
+
 /* Power mode setup: UBX CFG-PMS (class 0x06 id 0x86), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -2798,6 +3097,23 @@ typedef struct {
     uint16_t reserved0; /* Reserved (reserved, as sent) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_cfg_pms;
+
+/* I2C sensor interface configuration: UBX CFG-SENIF (class 0x06 id 0x88), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_senif_poll;
+
+/* I2C sensor interface configuration: UBX CFG-SENIF (class 0x06 id 0x88), input, output. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t flags; /* Flags (bitfield) */
+    bool sen_conn; /* A sensor is connected to the I2C interface (flags bit 0) */
+    uint16_t pio_conf; /* PIO configuration (bitfield) */
+    uint8_t i2c_sda_pio; /* PIO of the I2C SDA line (pio_conf bits 0-4) */
+    uint8_t i2c_scl_pio; /* PIO of the I2C SCL line (pio_conf bits 5-9) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_cfg_senif;
 
 /* Set configuration item values: UBX CFG-VALSET (class 0x06 id 0x8A), input. */
 typedef struct {
@@ -3262,6 +3578,43 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_mon_smgr;
 
+/* Sensor production test results: UBX MON-SPT (class 0x0A id 0x2F), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_spt_poll;
+
+/* One entry of sensors (sensors). */
+typedef struct {
+    uint8_t sensor_id; /* Sensor */
+    uint8_t drv_ver; /* Driver version (bitfield) */
+    uint8_t drv_ver_min; /* Driver minor version (drv_ver bits 0-3) */
+    uint8_t drv_ver_maj; /* Driver major version (drv_ver bits 4-7) */
+    uint8_t test_state; /* State of the test */
+    uint8_t drv_file_name; /* Driver file */
+} nmea_ubx_mon_spt_sensor;
+
+/* One entry of results (results). */
+typedef struct {
+    uint16_t sensor_id_res; /* Sensor of the result */
+    uint16_t sensor_type; /* Sensor type */
+    uint16_t res_type; /* Result type */
+    uint16_t reserved2; /* Reserved (reserved, as sent) */
+    int32_t value; /* Value of the result */
+} nmea_ubx_mon_spt_result;
+
+/* Sensor production test results: UBX MON-SPT (class 0x0A id 0x2F), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t num_sensor; /* Number of sensors */
+    uint8_t num_res; /* Number of results */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t sensors_count; /* the entries of sensors */
+    uint16_t results_count; /* the entries of results */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mon_spt_sensor sensors[NMEA_UBX_MON_SPT_SENSORS_MAX]; /* Sensors */
+    nmea_ubx_mon_spt_result results[NMEA_UBX_MON_SPT_RESULTS_MAX]; /* Results */
+} nmea_ubx_mon_spt;
+
 /* Signal characteristics (spectrum analyzer): UBX MON-SPAN (class 0x0A id 0x31), poll. */
 typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
@@ -3287,6 +3640,49 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
     nmea_ubx_mon_span_rf_block rf_blocks[NMEA_UBX_MON_SPAN_RF_BLOCKS_MAX]; /* RF blocks */
 } nmea_ubx_mon_span;
+
+/* Data batching buffer status: UBX MON-BATCH (class 0x0A id 0x32), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_batch_poll;
+
+/* Data batching buffer status: UBX MON-BATCH (class 0x0A id 0x32), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t fill_level; /* Epochs stored in the buffer */
+    uint16_t drops_all; /* Epochs dropped since startup */
+    uint16_t drops_since_mon; /* Epochs dropped since the last MON-BATCH */
+    uint16_t next_msg_cnt; /* msg_cnt of the next LOG-BATCH retrieved */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_batch;
+
+/* PMP (L-band) receiver status: UBX MON-PMP (class 0x0A id 0x35), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mon_pmp_poll;
+
+/* One entry of channels (entries). */
+typedef struct {
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t status; /* Status (bitfield) */
+    bool locked; /* Receiver locked to the signal (status bit 0) */
+    bool frame_sync; /* In frame sync (status bit 1) */
+    uint64_t reserved2; /* Reserved (reserved, as sent) */
+    uint8_t cno; /* Carrier to noise ratio (whole dBHz) [dBHz] */
+    uint8_t cno_frac; /* Fractional part of the C/N0 [dBHz]; raw, value = raw / 256 */
+    uint16_t reserved3; /* Reserved (reserved, as sent) */
+} nmea_ubx_mon_pmp_entrie;
+
+/* PMP (L-band) receiver status: UBX MON-PMP (class 0x0A id 0x35), output. */
+typedef struct {
+    uint8_t version; /* Message version */
+    uint8_t n_entries; /* Number of entries */
+    uint16_t reserved0; /* Reserved (reserved, as sent) */
+    uint16_t entries_count; /* the entries of entries */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_mon_pmp_entrie entries[NMEA_UBX_MON_PMP_ENTRIES_MAX]; /* Channels */
+} nmea_ubx_mon_pmp;
 
 /* Communication port information: UBX MON-COMMS (class 0x0A id 0x36), poll. */
 typedef struct {
@@ -4420,6 +4816,33 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_mga_ano;
 
+/* AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint16_t sequence; /* Block sequence number */
+    uint16_t size; /* Bytes of data in this block */
+    nmea_ubx_bytes data; /* Data (the bytes left) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_flash_data;
+
+/* AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), input. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_flash_stop;
+
+/* AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), output. */
+typedef struct {
+    uint8_t type; /* Message type */
+    uint8_t version; /* Message version */
+    uint8_t ack; /* Acknowledgement */
+    uint8_t reserved1; /* Reserved (reserved, as sent) */
+    uint16_t sequence; /* Sequence number of the DATA block acknowledged; raw, value = raw; 65535: stop */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_mga_flash_ack;
+
 /* Initial position, time, clock and Earth orientation assistance: UBX MGA-INI (class 0x13 id 0x40), input. */
 typedef struct {
     uint8_t type; /* Message type */
@@ -5470,6 +5893,26 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_nav2_eoe;
 
+/* NavIC time solution (secondary output): UBX NAV2-TIMENAVIC (class 0x29 id 0x63), poll. */
+typedef struct {
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timenavic_poll;
+
+/* NavIC time solution (secondary output): UBX NAV2-TIMENAVIC (class 0x29 id 0x63), output. */
+typedef struct {
+    uint32_t itow; /* GPS time of week of the navigation epoch [ms] */
+    uint32_t nav_ic_tow; /* NavIC time of week (rounded) [s] */
+    int32_t f_nav_ic_tow; /* Fraction of nav_ic_tow [ns] */
+    int16_t nav_ic_wno; /* NavIC week number */
+    int8_t leap_s; /* NavIC leap seconds (NavIC - UTC) [s] */
+    uint8_t valid; /* Validity flags (bitfield) */
+    bool nav_ic_tow_valid; /* Valid time of week (valid bit 0) */
+    bool nav_ic_wno_valid; /* Valid week number (valid bit 1) */
+    bool leap_s_valid; /* Valid leap seconds (valid bit 2) */
+    uint32_t t_acc; /* Time accuracy estimate [ns] */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_nav2_timenavic;
+
 /* Dilutions of precision: CASIC NAV-DOP (class 0x01 id 0x01), output. */
 typedef struct {
     uint32_t run_time; /* Time since power-on [ms] */
@@ -6384,6 +6827,8 @@ typedef enum {
     NMEA_UBX_MSG_NAV_HPPOSECEF, /* NAV-HPPOSECEF, output */
     NMEA_UBX_MSG_NAV_HPPOSLLH_POLL, /* NAV-HPPOSLLH, poll */
     NMEA_UBX_MSG_NAV_HPPOSLLH, /* NAV-HPPOSLLH, output */
+    NMEA_UBX_MSG_NAV_PVAT_POLL, /* NAV-PVAT, poll */
+    NMEA_UBX_MSG_NAV_PVAT, /* NAV-PVAT, output */
     NMEA_UBX_MSG_NAV_TIMEGPS_POLL, /* NAV-TIMEGPS, poll */
     NMEA_UBX_MSG_NAV_TIMEGPS, /* NAV-TIMEGPS, output */
     NMEA_UBX_MSG_NAV_TIMEUTC_POLL, /* NAV-TIMEUTC, poll */
@@ -6400,6 +6845,8 @@ typedef enum {
     NMEA_UBX_MSG_NAV_TIMELS, /* NAV-TIMELS, output */
     NMEA_UBX_MSG_NAV_TIMEQZSS_POLL, /* NAV-TIMEQZSS, poll */
     NMEA_UBX_MSG_NAV_TIMEQZSS, /* NAV-TIMEQZSS, output */
+    NMEA_UBX_MSG_NAV_NMI_POLL, /* NAV-NMI, poll */
+    NMEA_UBX_MSG_NAV_NMI, /* NAV-NMI, output */
     NMEA_UBX_MSG_NAV_SVINFO_POLL, /* NAV-SVINFO, poll */
     NMEA_UBX_MSG_NAV_SVINFO, /* NAV-SVINFO, output */
     NMEA_UBX_MSG_NAV_DGPS_POLL, /* NAV-DGPS, poll */
@@ -6430,6 +6877,8 @@ typedef enum {
     NMEA_UBX_MSG_NAV_EOE, /* NAV-EOE, output */
     NMEA_UBX_MSG_NAV_PL_POLL, /* NAV-PL, poll */
     NMEA_UBX_MSG_NAV_PL, /* NAV-PL, output */
+    NMEA_UBX_MSG_NAV_TIMENAVIC_POLL, /* NAV-TIMENAVIC, poll */
+    NMEA_UBX_MSG_NAV_TIMENAVIC, /* NAV-TIMENAVIC, output */
     NMEA_UBX_MSG_RXM_SFRBX, /* RXM-SFRBX, output */
     NMEA_UBX_MSG_RXM_MEASX_POLL, /* RXM-MEASX, poll */
     NMEA_UBX_MSG_RXM_MEASX, /* RXM-MEASX, output */
@@ -6446,6 +6895,11 @@ typedef enum {
     NMEA_UBX_MSG_RXM_PMREQ_SHORT, /* RXM-PMREQ, input */
     NMEA_UBX_MSG_RXM_RLM, /* RXM-RLM, output */
     NMEA_UBX_MSG_RXM_RLM_SHORT, /* RXM-RLM, output */
+    NMEA_UBX_MSG_RXM_IMES_POLL, /* RXM-IMES, poll */
+    NMEA_UBX_MSG_RXM_IMES, /* RXM-IMES, output */
+    NMEA_UBX_MSG_RXM_PMP, /* RXM-PMP, input, output, version 0x00 */
+    NMEA_UBX_MSG_RXM_PMP_V1, /* RXM-PMP, input, output, version 0x01 */
+    NMEA_UBX_MSG_RXM_QZSSL6, /* RXM-QZSSL6, output */
     NMEA_UBX_MSG_INF_ERROR, /* INF-ERROR, output */
     NMEA_UBX_MSG_INF_WARNING, /* INF-WARNING, output */
     NMEA_UBX_MSG_INF_NOTICE, /* INF-NOTICE, output */
@@ -6497,6 +6951,8 @@ typedef enum {
     NMEA_UBX_MSG_CFG_PM2_POLL, /* CFG-PM2, poll */
     NMEA_UBX_MSG_CFG_PM2, /* CFG-PM2, input, output, version 0x02 */
     NMEA_UBX_MSG_CFG_PM2_V1, /* CFG-PM2, input, output, version 0x01 */
+    NMEA_UBX_MSG_CFG_TMODE2_POLL, /* CFG-TMODE2, poll */
+    NMEA_UBX_MSG_CFG_TMODE2, /* CFG-TMODE2, input, output */
     NMEA_UBX_MSG_CFG_GNSS_POLL, /* CFG-GNSS, poll */
     NMEA_UBX_MSG_CFG_GNSS, /* CFG-GNSS, input, output */
     NMEA_UBX_MSG_CFG_LOGFILTER_POLL, /* CFG-LOGFILTER, poll */
@@ -6518,6 +6974,8 @@ typedef enum {
     NMEA_UBX_MSG_CFG_DOSC, /* CFG-DOSC, input, output */
     NMEA_UBX_MSG_CFG_SMGR_POLL, /* CFG-SMGR, poll */
     NMEA_UBX_MSG_CFG_SMGR, /* CFG-SMGR, input, output */
+    NMEA_UBX_MSG_CFG_SPT_POLL, /* CFG-SPT, poll */
+    NMEA_UBX_MSG_CFG_SPT, /* CFG-SPT, input, output */
     NMEA_UBX_MSG_CFG_GEOFENCE_POLL, /* CFG-GEOFENCE, poll */
     NMEA_UBX_MSG_CFG_GEOFENCE, /* CFG-GEOFENCE, input, output */
     NMEA_UBX_MSG_CFG_DGNSS_POLL, /* CFG-DGNSS, poll */
@@ -6527,8 +6985,11 @@ typedef enum {
     NMEA_UBX_MSG_CFG_ESFWT_POLL, /* CFG-ESFWT, poll */
     NMEA_UBX_MSG_CFG_ESFWT, /* CFG-ESFWT, input, output */
     NMEA_UBX_MSG_CFG_FIXSEED, /* CFG-FIXSEED, input */
+    NMEA_UBX_MSG_CFG_DYNSEED, /* CFG-DYNSEED, input */
     NMEA_UBX_MSG_CFG_PMS_POLL, /* CFG-PMS, poll */
     NMEA_UBX_MSG_CFG_PMS, /* CFG-PMS, input, output */
+    NMEA_UBX_MSG_CFG_SENIF_POLL, /* CFG-SENIF, poll */
+    NMEA_UBX_MSG_CFG_SENIF, /* CFG-SENIF, input, output */
     NMEA_UBX_MSG_CFG_VALSET_V0, /* CFG-VALSET, input, version 0x00 */
     NMEA_UBX_MSG_CFG_VALSET, /* CFG-VALSET, input, version 0x01 */
     NMEA_UBX_MSG_CFG_VALGET_POLL, /* CFG-VALGET, poll, version 0x00 */
@@ -6563,8 +7024,14 @@ typedef enum {
     NMEA_UBX_MSG_MON_GNSS, /* MON-GNSS, output */
     NMEA_UBX_MSG_MON_SMGR_POLL, /* MON-SMGR, poll */
     NMEA_UBX_MSG_MON_SMGR, /* MON-SMGR, output */
+    NMEA_UBX_MSG_MON_SPT_POLL, /* MON-SPT, poll */
+    NMEA_UBX_MSG_MON_SPT, /* MON-SPT, output */
     NMEA_UBX_MSG_MON_SPAN_POLL, /* MON-SPAN, poll */
     NMEA_UBX_MSG_MON_SPAN, /* MON-SPAN, output */
+    NMEA_UBX_MSG_MON_BATCH_POLL, /* MON-BATCH, poll */
+    NMEA_UBX_MSG_MON_BATCH, /* MON-BATCH, output */
+    NMEA_UBX_MSG_MON_PMP_POLL, /* MON-PMP, poll */
+    NMEA_UBX_MSG_MON_PMP, /* MON-PMP, output */
     NMEA_UBX_MSG_MON_COMMS_POLL, /* MON-COMMS, poll */
     NMEA_UBX_MSG_MON_COMMS, /* MON-COMMS, output */
     NMEA_UBX_MSG_MON_HW3_POLL, /* MON-HW3, poll */
@@ -6638,6 +7105,9 @@ typedef enum {
     NMEA_UBX_MSG_MGA_GLO_ALM, /* MGA-GLO, input, type 0x02 */
     NMEA_UBX_MSG_MGA_GLO_TIMEOFFSET, /* MGA-GLO, input, type 0x03 */
     NMEA_UBX_MSG_MGA_ANO, /* MGA-ANO, input */
+    NMEA_UBX_MSG_MGA_FLASH_DATA, /* MGA-FLASH, input, type 0x01 */
+    NMEA_UBX_MSG_MGA_FLASH_STOP, /* MGA-FLASH, input, type 0x02 */
+    NMEA_UBX_MSG_MGA_FLASH_ACK, /* MGA-FLASH, output, type 0x03 */
     NMEA_UBX_MSG_MGA_INI_POS_XYZ, /* MGA-INI, input, type 0x00 */
     NMEA_UBX_MSG_MGA_INI_POS_LLH, /* MGA-INI, input, type 0x01 */
     NMEA_UBX_MSG_MGA_INI_TIME_UTC, /* MGA-INI, input, type 0x10 */
@@ -6718,6 +7188,8 @@ typedef enum {
     NMEA_UBX_MSG_NAV2_SIG_POLL, /* NAV2-SIG, poll */
     NMEA_UBX_MSG_NAV2_SIG, /* NAV2-SIG, output */
     NMEA_UBX_MSG_NAV2_EOE, /* NAV2-EOE, output */
+    NMEA_UBX_MSG_NAV2_TIMENAVIC_POLL, /* NAV2-TIMENAVIC, poll */
+    NMEA_UBX_MSG_NAV2_TIMENAVIC, /* NAV2-TIMENAVIC, output */
     NMEA_UBX_MSG_CASIC_NAV_DOP, /* CASIC NAV-DOP, output */
     NMEA_UBX_MSG_CASIC_NAV_PV, /* CASIC NAV-PV, output */
     NMEA_UBX_MSG_CASIC_NAV_TIMEUTC, /* CASIC NAV-TIMEUTC, output */
@@ -6801,6 +7273,8 @@ typedef struct {
         nmea_ubx_nav_hpposecef nav_hpposecef;
         nmea_ubx_nav_hpposllh_poll nav_hpposllh_poll;
         nmea_ubx_nav_hpposllh nav_hpposllh;
+        nmea_ubx_nav_pvat_poll nav_pvat_poll;
+        nmea_ubx_nav_pvat nav_pvat;
         nmea_ubx_nav_timegps_poll nav_timegps_poll;
         nmea_ubx_nav_timegps nav_timegps;
         nmea_ubx_nav_timeutc_poll nav_timeutc_poll;
@@ -6817,6 +7291,8 @@ typedef struct {
         nmea_ubx_nav_timels nav_timels;
         nmea_ubx_nav_timeqzss_poll nav_timeqzss_poll;
         nmea_ubx_nav_timeqzss nav_timeqzss;
+        nmea_ubx_nav_nmi_poll nav_nmi_poll;
+        nmea_ubx_nav_nmi nav_nmi;
         nmea_ubx_nav_svinfo_poll nav_svinfo_poll;
         nmea_ubx_nav_svinfo nav_svinfo;
         nmea_ubx_nav_dgps_poll nav_dgps_poll;
@@ -6847,6 +7323,8 @@ typedef struct {
         nmea_ubx_nav_eoe nav_eoe;
         nmea_ubx_nav_pl_poll nav_pl_poll;
         nmea_ubx_nav_pl nav_pl;
+        nmea_ubx_nav_timenavic_poll nav_timenavic_poll;
+        nmea_ubx_nav_timenavic nav_timenavic;
         nmea_ubx_rxm_sfrbx rxm_sfrbx;
         nmea_ubx_rxm_measx_poll rxm_measx_poll;
         nmea_ubx_rxm_measx rxm_measx;
@@ -6863,6 +7341,11 @@ typedef struct {
         nmea_ubx_rxm_pmreq_short rxm_pmreq_short;
         nmea_ubx_rxm_rlm rxm_rlm;
         nmea_ubx_rxm_rlm_short rxm_rlm_short;
+        nmea_ubx_rxm_imes_poll rxm_imes_poll;
+        nmea_ubx_rxm_imes rxm_imes;
+        nmea_ubx_rxm_pmp rxm_pmp;
+        nmea_ubx_rxm_pmp_v1 rxm_pmp_v1;
+        nmea_ubx_rxm_qzssl6 rxm_qzssl6;
         nmea_ubx_inf_error inf_error;
         nmea_ubx_inf_warning inf_warning;
         nmea_ubx_inf_notice inf_notice;
@@ -6914,6 +7397,8 @@ typedef struct {
         nmea_ubx_cfg_pm2_poll cfg_pm2_poll;
         nmea_ubx_cfg_pm2 cfg_pm2;
         nmea_ubx_cfg_pm2_v1 cfg_pm2_v1;
+        nmea_ubx_cfg_tmode2_poll cfg_tmode2_poll;
+        nmea_ubx_cfg_tmode2 cfg_tmode2;
         nmea_ubx_cfg_gnss_poll cfg_gnss_poll;
         nmea_ubx_cfg_gnss cfg_gnss;
         nmea_ubx_cfg_logfilter_poll cfg_logfilter_poll;
@@ -6935,6 +7420,8 @@ typedef struct {
         nmea_ubx_cfg_dosc cfg_dosc;
         nmea_ubx_cfg_smgr_poll cfg_smgr_poll;
         nmea_ubx_cfg_smgr cfg_smgr;
+        nmea_ubx_cfg_spt_poll cfg_spt_poll;
+        nmea_ubx_cfg_spt cfg_spt;
         nmea_ubx_cfg_geofence_poll cfg_geofence_poll;
         nmea_ubx_cfg_geofence cfg_geofence;
         nmea_ubx_cfg_dgnss_poll cfg_dgnss_poll;
@@ -6944,8 +7431,11 @@ typedef struct {
         nmea_ubx_cfg_esfwt_poll cfg_esfwt_poll;
         nmea_ubx_cfg_esfwt cfg_esfwt;
         nmea_ubx_cfg_fixseed cfg_fixseed;
+        nmea_ubx_cfg_dynseed cfg_dynseed;
         nmea_ubx_cfg_pms_poll cfg_pms_poll;
         nmea_ubx_cfg_pms cfg_pms;
+        nmea_ubx_cfg_senif_poll cfg_senif_poll;
+        nmea_ubx_cfg_senif cfg_senif;
         nmea_ubx_cfg_valset_v0 cfg_valset_v0;
         nmea_ubx_cfg_valset cfg_valset;
         nmea_ubx_cfg_valget_poll cfg_valget_poll;
@@ -6980,8 +7470,14 @@ typedef struct {
         nmea_ubx_mon_gnss mon_gnss;
         nmea_ubx_mon_smgr_poll mon_smgr_poll;
         nmea_ubx_mon_smgr mon_smgr;
+        nmea_ubx_mon_spt_poll mon_spt_poll;
+        nmea_ubx_mon_spt mon_spt;
         nmea_ubx_mon_span_poll mon_span_poll;
         nmea_ubx_mon_span mon_span;
+        nmea_ubx_mon_batch_poll mon_batch_poll;
+        nmea_ubx_mon_batch mon_batch;
+        nmea_ubx_mon_pmp_poll mon_pmp_poll;
+        nmea_ubx_mon_pmp mon_pmp;
         nmea_ubx_mon_comms_poll mon_comms_poll;
         nmea_ubx_mon_comms mon_comms;
         nmea_ubx_mon_hw3_poll mon_hw3_poll;
@@ -7055,6 +7551,9 @@ typedef struct {
         nmea_ubx_mga_glo_alm mga_glo_alm;
         nmea_ubx_mga_glo_timeoffset mga_glo_timeoffset;
         nmea_ubx_mga_ano mga_ano;
+        nmea_ubx_mga_flash_data mga_flash_data;
+        nmea_ubx_mga_flash_stop mga_flash_stop;
+        nmea_ubx_mga_flash_ack mga_flash_ack;
         nmea_ubx_mga_ini_pos_xyz mga_ini_pos_xyz;
         nmea_ubx_mga_ini_pos_llh mga_ini_pos_llh;
         nmea_ubx_mga_ini_time_utc mga_ini_time_utc;
@@ -7135,6 +7634,8 @@ typedef struct {
         nmea_ubx_nav2_sig_poll nav2_sig_poll;
         nmea_ubx_nav2_sig nav2_sig;
         nmea_ubx_nav2_eoe nav2_eoe;
+        nmea_ubx_nav2_timenavic_poll nav2_timenavic_poll;
+        nmea_ubx_nav2_timenavic nav2_timenavic;
         nmea_ubx_casic_nav_dop casic_nav_dop;
         nmea_ubx_casic_nav_pv casic_nav_pv;
         nmea_ubx_casic_nav_timeutc casic_nav_timeutc;

@@ -171,6 +171,10 @@ ENTRIES = 2   # the entries of each group of a made-up payload
 # The type byte of layouts the spec tells apart by length alone, which pyubx2 reads to pick its layout (a
 # layout with a selector, MGA-GPS's and MGA-INI's, gets its SELECT value).
 TYPE_BYTES = {"mga_ack": 1, "mga_ano": 0, "rxm_rlm": 2, "rxm_rlm_short": 1}
+# The field that tells how many bytes the trailing bytes field holds, which pyubx2 reads as its count (the
+# spec's bytes field takes the bytes left): set to the made-up bytes' number.
+SIZE_FIELDS = {"mga_flash_data": "size", "rxm_pmp_v1": "num_bytes_user_data"}
+TEXT_BYTES = 6   # the made-up bytes of a text or bytes field that takes the bytes left
 
 
 def made_up_payload(cls: type[ubx.Message], draw: random.Random) -> bytes:
@@ -185,7 +189,7 @@ def made_up_payload(cls: type[ubx.Message], draw: random.Random) -> bytes:
             out += bytes(draw.randrange(256) for _ in range(number * item.entry_width // 8))
             continue
         if item.width is None:
-            out += bytes(draw.choice(b"ABCDEFGHIJKLMNOPQRSTUVWXYZ") for _ in range(6))
+            out += bytes(draw.choice(b"ABCDEFGHIJKLMNOPQRSTUVWXYZ") for _ in range(TEXT_BYTES))
             continue
         raw = draw.getrandbits(item.width)
         if cls.SELECT is not None and item.id == cls.SELECT[0]:
@@ -194,6 +198,8 @@ def made_up_payload(cls: type[ubx.Message], draw: random.Random) -> bytes:
             raw = TYPE_BYTES[cls.ID]
         if item.id in counts:
             raw = ENTRIES
+        if SIZE_FIELDS.get(cls.ID) == item.id:
+            raw = TEXT_BYTES
         for low, part in getattr(item, "parts", ()):
             if part.id in counts:
                 width = part.width or 1
@@ -283,7 +289,8 @@ REASONS = {
        for name in ("plposhorizorient", "plvelhorizorient")},
     **{name: "MON-SPAN's 256 spectrum bins: ours two byte fields of 128 (a fixed field holds at most 255 bytes), "
              "pyubx2 one list" for name in ("spectrum", "spectrum0", "spectrum1")},
-    "data": "MGA-DBD's database bytes: ours one bytes field, pyubx2 its bytes one by one (data_NN)",
+    "data": "MGA-DBD's database bytes, MGA-FLASH-DATA's data: ours one bytes field, pyubx2 its bytes one by one "
+            "(data_NN)",
     "svid": "a poll of one satellite: ours its svid, pyubx2 a group of them (svid_NN)",
     "maxdevlifetime": "u-blox names it `maxDevLifeTime`; pyubx2 `maxDevLifeTim`",
     "maxdevlifetim": "u-blox names it `maxDevLifeTime`; pyubx2 `maxDevLifeTim`",
@@ -321,8 +328,23 @@ REASONS = {
 }
 
 
-def _reason(name: str, words: set[str], whole: set[str] = frozenset()) -> str:
+# Why, for a field of one message or layout only (where its name means something else than in REASONS).
+REASONS_OF = {
+    **{("mon_batch", name): "pyubx2 1.4.0 has no MON-BATCH (an M8 message): it names it MON-0a32-NOMINAL, no "
+                            "fields"
+       for name in ("version", "reserved1", "filllevel", "dropsall", "dropssincemon", "nextmsgcnt")},
+    **{("rxm_pmp", name): "RXM-PMP version 0's 504 bytes of user data: ours two bytes fields of 252 (a fixed field "
+                          "holds at most 255 bytes), pyubx2 one" for name in ("userdata", "userdata0", "userdata1")},
+    ("rxm_imes", "lat"): "IMES latitude: ours in semicircles (2^-24), pyubx2 in degrees (180 times ours)",
+    ("rxm_imes", "lon"): "IMES longitude: ours in semicircles (2^-24, the M8 description's 360 * 2^-25 deg), pyubx2 "
+                         "in degrees of 180 * 2^-31 deg a step (a scale 128 times finer than the description's)",
+}
+
+
+def _reason(name: str, words: set[str], whole: set[str] = frozenset(), where: str = "") -> str:
     base = re.sub(r"_\d\d$", "", name)
+    if (where, base) in REASONS_OF:
+        return REASONS_OF[where, base]
     if base in words:
         return "the bitfield word itself: pyubx2 gives only its parts (we keep the word for bits no part names)"
     if base in whole:
@@ -347,7 +369,7 @@ def differences(name: str, a: Agreement) -> list[str]:
     rows = []
     for side, names in (("ours", a.only_ours), ("pyubx2", a.only_theirs), ("differs", set(a.differing))):
         for base in sorted({re.sub(r"_\d\d$", "", n) for n in names}):
-            rows.append(f"| {name} | `{base}` | {side} | {_reason(base, a.words, a.whole)} |")
+            rows.append(f"| {name} | `{base}` | {side} | {_reason(base, a.words, a.whole, name)} |")
     return rows
 
 

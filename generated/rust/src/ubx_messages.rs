@@ -7,20 +7,22 @@
 //   spec/binary/ubx/messages/cfg_ant.yaml, spec/binary/ubx/messages/cfg_batch.yaml,
 //   spec/binary/ubx/messages/cfg_cfg.yaml, spec/binary/ubx/messages/cfg_dat.yaml,
 //   spec/binary/ubx/messages/cfg_dgnss.yaml, spec/binary/ubx/messages/cfg_dosc.yaml,
-//   spec/binary/ubx/messages/cfg_esfa.yaml, spec/binary/ubx/messages/cfg_esfalg.yaml,
-//   spec/binary/ubx/messages/cfg_esfg.yaml, spec/binary/ubx/messages/cfg_esfwt.yaml,
-//   spec/binary/ubx/messages/cfg_esrc.yaml, spec/binary/ubx/messages/cfg_fixseed.yaml,
-//   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
-//   spec/binary/ubx/messages/cfg_hnr.yaml, spec/binary/ubx/messages/cfg_inf.yaml,
-//   spec/binary/ubx/messages/cfg_itfm.yaml, spec/binary/ubx/messages/cfg_logfilter.yaml,
-//   spec/binary/ubx/messages/cfg_msg.yaml, spec/binary/ubx/messages/cfg_nav5.yaml,
-//   spec/binary/ubx/messages/cfg_navx5.yaml, spec/binary/ubx/messages/cfg_nmea.yaml,
-//   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_pm2.yaml,
-//   spec/binary/ubx/messages/cfg_pms.yaml, spec/binary/ubx/messages/cfg_prt.yaml,
-//   spec/binary/ubx/messages/cfg_pwr.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
-//   spec/binary/ubx/messages/cfg_rinv.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
-//   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
+//   spec/binary/ubx/messages/cfg_dynseed.yaml, spec/binary/ubx/messages/cfg_esfa.yaml,
+//   spec/binary/ubx/messages/cfg_esfalg.yaml, spec/binary/ubx/messages/cfg_esfg.yaml,
+//   spec/binary/ubx/messages/cfg_esfwt.yaml, spec/binary/ubx/messages/cfg_esrc.yaml,
+//   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_geofence.yaml,
+//   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
+//   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
+//   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
+//   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
+//   spec/binary/ubx/messages/cfg_nmea.yaml, spec/binary/ubx/messages/cfg_odo.yaml,
+//   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
+//   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
+//   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_rinv.yaml,
+//   spec/binary/ubx/messages/cfg_rst.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
+//   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_senif.yaml,
 //   spec/binary/ubx/messages/cfg_slas.yaml, spec/binary/ubx/messages/cfg_smgr.yaml,
+//   spec/binary/ubx/messages/cfg_spt.yaml, spec/binary/ubx/messages/cfg_tmode2.yaml,
 //   spec/binary/ubx/messages/cfg_tmode3.yaml, spec/binary/ubx/messages/cfg_tp5.yaml,
 //   spec/binary/ubx/messages/cfg_txslot.yaml, spec/binary/ubx/messages/cfg_usb.yaml,
 //   spec/binary/ubx/messages/cfg_valdel.yaml, spec/binary/ubx/messages/cfg_valget.yaml,
@@ -39,15 +41,17 @@
 //   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_string.yaml,
 //   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_ano.yaml,
 //   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
-//   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_glo.yaml,
-//   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_ini.yaml,
-//   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+//   spec/binary/ubx/messages/mga_flash.yaml, spec/binary/ubx/messages/mga_gal.yaml,
+//   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_gps.yaml,
+//   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
+//   spec/binary/ubx/messages/mon_batch.yaml, spec/binary/ubx/messages/mon_comms.yaml,
 //   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_hw.yaml,
 //   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
 //   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
-//   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_rf.yaml,
-//   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
-//   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
+//   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_pmp.yaml,
+//   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
+//   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+//   spec/binary/ubx/messages/mon_span.yaml, spec/binary/ubx/messages/mon_spt.yaml,
 //   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
 //   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav2_clock.yaml,
 //   spec/binary/ubx/messages/nav2_cov.yaml, spec/binary/ubx/messages/nav2_dop.yaml,
@@ -58,40 +62,43 @@
 //   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_status.yaml,
 //   spec/binary/ubx/messages/nav2_timebds.yaml, spec/binary/ubx/messages/nav2_timegal.yaml,
 //   spec/binary/ubx/messages/nav2_timeglo.yaml, spec/binary/ubx/messages/nav2_timegps.yaml,
-//   spec/binary/ubx/messages/nav2_timels.yaml, spec/binary/ubx/messages/nav2_timeqzss.yaml,
-//   spec/binary/ubx/messages/nav2_timeutc.yaml, spec/binary/ubx/messages/nav2_velecef.yaml,
-//   spec/binary/ubx/messages/nav2_velned.yaml, spec/binary/ubx/messages/nav_aopstatus.yaml,
-//   spec/binary/ubx/messages/nav_att.yaml, spec/binary/ubx/messages/nav_clock.yaml,
-//   spec/binary/ubx/messages/nav_cov.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
-//   spec/binary/ubx/messages/nav_dop.yaml, spec/binary/ubx/messages/nav_eell.yaml,
-//   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/nav_geofence.yaml,
-//   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
+//   spec/binary/ubx/messages/nav2_timels.yaml, spec/binary/ubx/messages/nav2_timenavic.yaml,
+//   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_timeutc.yaml,
+//   spec/binary/ubx/messages/nav2_velecef.yaml, spec/binary/ubx/messages/nav2_velned.yaml,
+//   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_att.yaml,
+//   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_cov.yaml,
+//   spec/binary/ubx/messages/nav_dgps.yaml, spec/binary/ubx/messages/nav_dop.yaml,
+//   spec/binary/ubx/messages/nav_eell.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
+//   spec/binary/ubx/messages/nav_geofence.yaml, spec/binary/ubx/messages/nav_hpposecef.yaml,
+//   spec/binary/ubx/messages/nav_hpposllh.yaml, spec/binary/ubx/messages/nav_nmi.yaml,
 //   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_orb.yaml,
 //   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/nav_posecef.yaml,
-//   spec/binary/ubx/messages/nav_posllh.yaml, spec/binary/ubx/messages/nav_pvt.yaml,
-//   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
-//   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_sbas.yaml,
-//   spec/binary/ubx/messages/nav_sig.yaml, spec/binary/ubx/messages/nav_slas.yaml,
-//   spec/binary/ubx/messages/nav_sol.yaml, spec/binary/ubx/messages/nav_status.yaml,
-//   spec/binary/ubx/messages/nav_svin.yaml, spec/binary/ubx/messages/nav_svinfo.yaml,
-//   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
-//   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
-//   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
+//   spec/binary/ubx/messages/nav_posllh.yaml, spec/binary/ubx/messages/nav_pvat.yaml,
+//   spec/binary/ubx/messages/nav_pvt.yaml, spec/binary/ubx/messages/nav_relposned.yaml,
+//   spec/binary/ubx/messages/nav_resetodo.yaml, spec/binary/ubx/messages/nav_sat.yaml,
+//   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
+//   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sol.yaml,
+//   spec/binary/ubx/messages/nav_status.yaml, spec/binary/ubx/messages/nav_svin.yaml,
+//   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
+//   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
+//   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timels.yaml,
+//   spec/binary/ubx/messages/nav_timenavic.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
 //   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_velecef.yaml,
 //   spec/binary/ubx/messages/nav_velned.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
-//   spec/binary/ubx/messages/rxm_measx.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
-//   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_rlm.yaml,
-//   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
-//   spec/binary/ubx/messages/rxm_spartn.yaml, spec/binary/ubx/messages/rxm_spartnkey.yaml,
-//   spec/binary/ubx/messages/rxm_svsi.yaml, spec/binary/ubx/messages/sec_sig.yaml,
-//   spec/binary/ubx/messages/sec_siglog.yaml, spec/binary/ubx/messages/sec_sign.yaml,
-//   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
-//   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
-//   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_svin.yaml,
-//   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tos.yaml,
-//   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
-//   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/upd_sos.yaml
-//   (digest 1f6dd90336ae21f0)
+//   spec/binary/ubx/messages/rxm_imes.yaml, spec/binary/ubx/messages/rxm_measx.yaml,
+//   spec/binary/ubx/messages/rxm_pmp.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
+//   spec/binary/ubx/messages/rxm_qzssl6.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
+//   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
+//   spec/binary/ubx/messages/rxm_sfrbx.yaml, spec/binary/ubx/messages/rxm_spartn.yaml,
+//   spec/binary/ubx/messages/rxm_spartnkey.yaml, spec/binary/ubx/messages/rxm_svsi.yaml,
+//   spec/binary/ubx/messages/sec_sig.yaml, spec/binary/ubx/messages/sec_siglog.yaml,
+//   spec/binary/ubx/messages/sec_sign.yaml, spec/binary/ubx/messages/sec_uniqid.yaml,
+//   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
+//   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
+//   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
+//   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_tp.yaml,
+//   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
+//   spec/binary/ubx/messages/upd_sos.yaml (digest bae71fb0af57e0a3)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The UBX messages of spec/binary/ubx: a struct per layout (named as the Python package's
@@ -2626,6 +2633,77 @@ impl<'a> CfgDosc<'a> {
         j.int("num_osc", self.num_osc)?;
         j.int("reserved1", self.reserved1)?;
         self.oscillators.json(j, "oscillators")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Programming the dynamic seed for the host interface signature: UBX CFG-DYNSEED (class 0x06 id 0x85), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgDynseed<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// High part of the seed.
+    pub seed_hi: u32,
+    /// Low part of the seed.
+    pub seed_lo: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgDynseed<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_dynseed";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-DYNSEED";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x85;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let seed_hi = u32::from_le_bytes(r.array("seed_hi")?);
+        let seed_lo = u32::from_le_bytes(r.array("seed_lo")?);
+        let trailing = r.rest();
+        Ok(Self { version, reserved1, seed_hi, seed_lo, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(&self.seed_hi.to_le_bytes());
+        w.put(&self.seed_lo.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("seed_hi", self.seed_hi)?;
+        j.int("seed_lo", self.seed_lo)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -8204,6 +8282,145 @@ impl<'a> CfgSbas<'a> {
     }
 }
 
+/// I2C sensor interface configuration: UBX CFG-SENIF (class 0x06 id 0x88), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgSenifPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgSenifPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_senif_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-SENIF";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x88;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_senif"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// I2C sensor interface configuration: UBX CFG-SENIF (class 0x06 id 0x88), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgSenif<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Flags.
+    pub flags: u16,
+    /// PIO configuration.
+    pub pio_conf: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgSenif<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_senif";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-SENIF";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x88;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(6);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// A sensor is connected to the I2C interface (bit 0 of `flags`).
+    pub fn sen_conn(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets a sensor is connected to the i2c interface (the value in its bits of `flags`; the other bits stay).
+    pub fn set_sen_conn(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u16::from(value);
+    }
+    /// PIO of the I2C SDA line (bits 0-4 of `pio_conf`).
+    pub fn i2c_sda_pio(&self) -> u8 {
+        (self.pio_conf & 0x1f) as u8
+    }
+    /// Sets pio of the i2c sda line (the value in its bits of `pio_conf`; the other bits stay).
+    pub fn set_i2c_sda_pio(&mut self, value: u8) {
+        self.pio_conf = (self.pio_conf & !0x1f) | (value as u16 & 0x1f);
+    }
+    /// PIO of the I2C SCL line (bits 5-9 of `pio_conf`).
+    pub fn i2c_scl_pio(&self) -> u8 {
+        ((self.pio_conf >> 5) & 0x1f) as u8
+    }
+    /// Sets pio of the i2c scl line (the value in its bits of `pio_conf`; the other bits stay).
+    pub fn set_i2c_scl_pio(&mut self, value: u8) {
+        self.pio_conf = (self.pio_conf & !(0x1f << 5)) | ((value as u16 & 0x1f) << 5);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let flags = u16::from_le_bytes(r.array("flags")?);
+        let pio_conf = u16::from_le_bytes(r.array("pio_conf")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, flags, pio_conf, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.pio_conf.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("flags", self.flags)?;
+        j.flag("sen_conn", (self.flags & 0x1) != 0)?;
+        j.int("pio_conf", self.pio_conf)?;
+        j.int("i2c_sda_pio", (self.pio_conf & 0x1f) as u8)?;
+        j.int("i2c_scl_pio", ((self.pio_conf >> 5) & 0x1f) as u8)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// QZSS L1S SLAS configuration: UBX CFG-SLAS (class 0x06 id 0x8D), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CfgSlasPoll<'a> {
@@ -8650,6 +8867,284 @@ impl<'a> CfgSmgr<'a> {
         j.flag("issue_time_warning", ((self.flags >> 13) & 0x1) != 0)?;
         j.int("tp_coherent", ((self.flags >> 14) & 0x3) as u8)?;
         j.flag("disable_offset", ((self.flags >> 16) & 0x1) != 0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Sensor production test: UBX CFG-SPT (class 0x06 id 0x64), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgSptPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgSptPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_spt_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-SPT";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x64;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_spt"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Sensor production test: UBX CFG-SPT (class 0x06 id 0x64), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgSpt<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Sensor to test.
+    pub sensor_id: u16,
+    /// Reserved.
+    pub reserved1: u64,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgSpt<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_spt";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-SPT";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x64;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let sensor_id = u16::from_le_bytes(r.array("sensor_id")?);
+        let reserved1 = u64::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self { version, reserved0, sensor_id, reserved1, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.sensor_id.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("sensor_id", self.sensor_id)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Time mode settings 2 (timing receiver): UBX CFG-TMODE2 (class 0x06 id 0x3D), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgTmode2Poll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgTmode2Poll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_tmode2_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-TMODE2";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x3d;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["cfg_tmode2"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Time mode settings 2 (timing receiver): UBX CFG-TMODE2 (class 0x06 id 0x3D), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CfgTmode2<'a> {
+    /// Time transfer mode.
+    pub time_mode: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Position flags.
+    pub flags: u16,
+    /// ECEF X (cm) or latitude (1e-7 deg).
+    pub ecef_x_or_lat: i32,
+    /// ECEF Y (cm) or longitude (1e-7 deg).
+    pub ecef_y_or_lon: i32,
+    /// ECEF Z or altitude (cm).
+    pub ecef_z_or_alt: i32,
+    /// Accuracy of the fixed position [mm].
+    pub fixed_pos_acc: u32,
+    /// Survey-in minimum duration [s].
+    pub svin_min_dur: u32,
+    /// Survey-in position accuracy limit [mm].
+    pub svin_acc_limit: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> CfgTmode2<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "cfg_tmode2";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "CFG-TMODE2";
+    /// The message class.
+    pub const CLASS: u8 = 0x06;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x3d;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(28);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["ack_ack", "ack_nak"];
+    /// The position is latitude, longitude and altitude (not ECEF) (bit 0 of `flags`).
+    pub fn lla(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets the position is latitude, longitude and altitude (not ecef) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_lla(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u16::from(value);
+    }
+    /// The altitude is not valid (with lla) (bit 1 of `flags`).
+    pub fn alt_inv(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets the altitude is not valid (with lla) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_alt_inv(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u16::from(value) << 1);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let time_mode = u8::from_le_bytes(r.array("time_mode")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let flags = u16::from_le_bytes(r.array("flags")?);
+        let ecef_x_or_lat = i32::from_le_bytes(r.array("ecef_x_or_lat")?);
+        let ecef_y_or_lon = i32::from_le_bytes(r.array("ecef_y_or_lon")?);
+        let ecef_z_or_alt = i32::from_le_bytes(r.array("ecef_z_or_alt")?);
+        let fixed_pos_acc = u32::from_le_bytes(r.array("fixed_pos_acc")?);
+        let svin_min_dur = u32::from_le_bytes(r.array("svin_min_dur")?);
+        let svin_acc_limit = u32::from_le_bytes(r.array("svin_acc_limit")?);
+        let trailing = r.rest();
+        Ok(Self {
+            time_mode,
+            reserved1,
+            flags,
+            ecef_x_or_lat,
+            ecef_y_or_lon,
+            ecef_z_or_alt,
+            fixed_pos_acc,
+            svin_min_dur,
+            svin_acc_limit,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.time_mode.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.ecef_x_or_lat.to_le_bytes());
+        w.put(&self.ecef_y_or_lon.to_le_bytes());
+        w.put(&self.ecef_z_or_alt.to_le_bytes());
+        w.put(&self.fixed_pos_acc.to_le_bytes());
+        w.put(&self.svin_min_dur.to_le_bytes());
+        w.put(&self.svin_acc_limit.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("time_mode", self.time_mode)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("flags", self.flags)?;
+        j.flag("lla", (self.flags & 0x1) != 0)?;
+        j.flag("alt_inv", ((self.flags >> 1) & 0x1) != 0)?;
+        j.int("ecef_x_or_lat", self.ecef_x_or_lat)?;
+        j.int("ecef_y_or_lon", self.ecef_y_or_lon)?;
+        j.int("ecef_z_or_alt", self.ecef_z_or_alt)?;
+        j.int("fixed_pos_acc", self.fixed_pos_acc)?;
+        j.int("svin_min_dur", self.svin_min_dur)?;
+        j.int("svin_acc_limit", self.svin_acc_limit)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -14962,6 +15457,228 @@ impl<'a> MgaDbd<'a> {
     }
 }
 
+/// AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaFlashData<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Block sequence number.
+    pub sequence: u16,
+    /// Bytes of data in this block.
+    pub size: u16,
+    /// Data.
+    pub data: &'a [u8],
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaFlashData<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_flash_data";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-FLASH";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x21;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x01));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mga_flash_ack"];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x01, ..Self::default() }
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let sequence = u16::from_le_bytes(r.array("sequence")?);
+        let size = u16::from_le_bytes(r.array("size")?);
+        let data = r.left(0);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, sequence, size, data, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.sequence.to_le_bytes());
+        w.put(&self.size.to_le_bytes());
+        w.put_sized(self.data, None, "MGA-FLASH", "data")?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("sequence", self.sequence)?;
+        j.int("size", self.size)?;
+        ubx::json_hex(j, "data", self.data)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), input.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaFlashStop<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaFlashStop<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_flash_stop";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-FLASH";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x21;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(2);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x02));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mga_flash_ack"];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x02, ..Self::default() }
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// AssistNow Offline data written to the receiver's flash: UBX MGA-FLASH (class 0x13 id 0x21), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MgaFlashAck<'a> {
+    /// Message type.
+    pub r#type: u8,
+    /// Message version.
+    pub version: u8,
+    /// Acknowledgement.
+    pub ack: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Sequence number of the DATA block acknowledged.
+    pub sequence_raw: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MgaFlashAck<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mga_flash_ack";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MGA-FLASH";
+    /// The message class.
+    pub const CLASS: u8 = 0x13;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x21;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(6);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("type", 0, 0x03));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `type` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { r#type: 0x03, ..Self::default() }
+    }
+    /// Sequence number of the DATA block acknowledged, or its special value.
+    pub fn sequence(&self) -> ais::Reading<i64> {
+        let raw = self.sequence_raw;
+        ais::counted(i64::from(raw), 0, &[(65535, "stop")])
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let r#type = u8::from_le_bytes(r.array("type")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let ack = u8::from_le_bytes(r.array("ack")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let sequence_raw = u16::from_le_bytes(r.array("sequence")?);
+        let trailing = r.rest();
+        Ok(Self { r#type, version, ack, reserved1, sequence_raw, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.r#type.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.ack.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.sequence_raw.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("type", self.r#type)?;
+        j.int("version", self.version)?;
+        j.int("ack", self.ack)?;
+        j.int("reserved1", self.reserved1)?;
+        match ais::counted(i64::from(self.sequence_raw), 0, &[(65535, "stop")]) {
+            ais::Reading::Value(x) => j.int("sequence", x)?,
+            ais::Reading::Special(id) => j.text("sequence", id)?,
+        }
+        j.int("sequence_raw", self.sequence_raw)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Galileo assistance data: UBX MGA-GAL (class 0x13 id 0x02), input.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MgaGalEph<'a> {
@@ -18832,6 +19549,133 @@ impl<'a> MgaQzssHealth<'a> {
     }
 }
 
+/// Data batching buffer status: UBX MON-BATCH (class 0x0A id 0x32), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonBatchPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonBatchPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_batch_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-BATCH";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x32;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_batch"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Data batching buffer status: UBX MON-BATCH (class 0x0A id 0x32), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonBatch<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// Epochs stored in the buffer.
+    pub fill_level: u16,
+    /// Epochs dropped since startup.
+    pub drops_all: u16,
+    /// Epochs dropped since the last MON-BATCH.
+    pub drops_since_mon: u16,
+    /// msg_cnt of the next LOG-BATCH retrieved.
+    pub next_msg_cnt: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonBatch<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_batch";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-BATCH";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x32;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = {
+            let b: [u8; 3] = r.array("reserved1")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let fill_level = u16::from_le_bytes(r.array("fill_level")?);
+        let drops_all = u16::from_le_bytes(r.array("drops_all")?);
+        let drops_since_mon = u16::from_le_bytes(r.array("drops_since_mon")?);
+        let next_msg_cnt = u16::from_le_bytes(r.array("next_msg_cnt")?);
+        let trailing = r.rest();
+        Ok(Self { version, reserved1, fill_level, drops_all, drops_since_mon, next_msg_cnt, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes()[..3]);
+        w.put(&self.fill_level.to_le_bytes());
+        w.put(&self.drops_all.to_le_bytes());
+        w.put(&self.drops_since_mon.to_le_bytes());
+        w.put(&self.next_msg_cnt.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("fill_level", self.fill_level)?;
+        j.int("drops_all", self.drops_all)?;
+        j.int("drops_since_mon", self.drops_since_mon)?;
+        j.int("next_msg_cnt", self.next_msg_cnt)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Communication port information: UBX MON-COMMS (class 0x0A id 0x36), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MonCommsPoll<'a> {
@@ -20650,6 +21494,193 @@ impl<'a> MonPatch<'a> {
     }
 }
 
+/// PMP (L-band) receiver status: UBX MON-PMP (class 0x0A id 0x35), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonPmpPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonPmpPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_pmp_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-PMP";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x35;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_pmp"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of MonPmpEntrie.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonPmpEntrie {
+    /// Reserved.
+    pub reserved1: u32,
+    /// Status.
+    pub status: u32,
+    /// Reserved.
+    pub reserved2: u64,
+    /// Carrier to noise ratio (whole dBHz) [dBHz].
+    pub cno: u8,
+    /// Fractional part of the C/N0 [dBHz].
+    pub cno_frac_raw: u8,
+    /// Reserved.
+    pub reserved3: u16,
+}
+
+impl<'a> ubx::Entry<'a> for MonPmpEntrie {
+    const WIDTH: usize = 20;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let status = u32::from_le_bytes(r.array("status")?);
+        let reserved2 = u64::from_le_bytes(r.array("reserved2")?);
+        let cno = u8::from_le_bytes(r.array("cno")?);
+        let cno_frac_raw = u8::from_le_bytes(r.array("cno_frac")?);
+        let reserved3 = u16::from_le_bytes(r.array("reserved3")?);
+        Ok(Self { reserved1, status, reserved2, cno, cno_frac_raw, reserved3 })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.status.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.cno.to_le_bytes());
+        w.put(&self.cno_frac_raw.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("reserved1", self.reserved1)?;
+        j.int("status", self.status)?;
+        j.flag("locked", (self.status & 0x1) != 0)?;
+        j.flag("frame_sync", ((self.status >> 1) & 0x1) != 0)?;
+        j.int("reserved2", self.reserved2)?;
+        j.int("cno", self.cno)?;
+        ubx::json_float(j, "cno_frac", self.cno_frac_raw as f64 / 256.0)?;
+        j.int("cno_frac_raw", self.cno_frac_raw)?;
+        j.int("reserved3", self.reserved3)?;
+        Ok(())
+    }
+}
+
+impl MonPmpEntrie {
+    /// Receiver locked to the signal (bit 0 of `status`).
+    pub fn locked(&self) -> bool {
+        (self.status & 0x1) != 0
+    }
+    /// Sets receiver locked to the signal (the value in its bits of `status`; the other bits stay).
+    pub fn set_locked(&mut self, value: bool) {
+        self.status = (self.status & !0x1) | u32::from(value);
+    }
+    /// In frame sync (bit 1 of `status`).
+    pub fn frame_sync(&self) -> bool {
+        ((self.status >> 1) & 0x1) != 0
+    }
+    /// Sets in frame sync (the value in its bits of `status`; the other bits stay).
+    pub fn set_frame_sync(&mut self, value: bool) {
+        self.status = (self.status & !(0x1 << 1)) | (u32::from(value) << 1);
+    }
+    /// Fractional part of the C/N0 [dBHz]: the raw integer divided by 256.
+    pub fn cno_frac(&self) -> f64 {
+        let raw = self.cno_frac_raw;
+        raw as f64 / 256.0
+    }
+}
+
+/// PMP (L-band) receiver status: UBX MON-PMP (class 0x0A id 0x35), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonPmp<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Number of entries.
+    pub n_entries: u8,
+    /// Reserved.
+    pub reserved0: u16,
+    /// Channels: 0 to 65535 entries.
+    pub entries: ubx::Group<'a, MonPmpEntrie>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonPmp<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_pmp";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-PMP";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x35;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let n_entries = u8::from_le_bytes(r.array("n_entries")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let entries = r.group(Some(usize::from(n_entries)), 0, 65535, 0, "entries")?;
+        let trailing = r.rest();
+        Ok(Self { version, n_entries, reserved0, entries, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.n_entries.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        self.entries.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("n_entries", self.n_entries)?;
+        j.int("reserved0", self.reserved0)?;
+        self.entries.json(j, "entries")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// RF information: UBX MON-RF (class 0x0A id 0x38), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MonRfPoll<'a> {
@@ -21543,6 +22574,230 @@ impl<'a> MonSpan<'a> {
         j.int("num_rf_blocks", self.num_rf_blocks)?;
         j.int("reserved0", self.reserved0)?;
         self.rf_blocks.json(j, "rf_blocks")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Sensor production test results: UBX MON-SPT (class 0x0A id 0x2F), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSptPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonSptPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_spt_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-SPT";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x2f;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["mon_spt"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of MonSptSensor.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSptSensor {
+    /// Sensor.
+    pub sensor_id: u8,
+    /// Driver version.
+    pub drv_ver: u8,
+    /// State of the test.
+    pub test_state: u8,
+    /// Driver file.
+    pub drv_file_name: u8,
+}
+
+impl<'a> ubx::Entry<'a> for MonSptSensor {
+    const WIDTH: usize = 4;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let sensor_id = u8::from_le_bytes(r.array("sensor_id")?);
+        let drv_ver = u8::from_le_bytes(r.array("drv_ver")?);
+        let test_state = u8::from_le_bytes(r.array("test_state")?);
+        let drv_file_name = u8::from_le_bytes(r.array("drv_file_name")?);
+        Ok(Self { sensor_id, drv_ver, test_state, drv_file_name })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.sensor_id.to_le_bytes());
+        w.put(&self.drv_ver.to_le_bytes());
+        w.put(&self.test_state.to_le_bytes());
+        w.put(&self.drv_file_name.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("sensor_id", self.sensor_id)?;
+        j.int("drv_ver", self.drv_ver)?;
+        j.int("drv_ver_min", self.drv_ver & 0xf)?;
+        j.int("drv_ver_maj", (self.drv_ver >> 4) & 0xf)?;
+        j.int("test_state", self.test_state)?;
+        j.int("drv_file_name", self.drv_file_name)?;
+        Ok(())
+    }
+}
+
+impl MonSptSensor {
+    /// Driver minor version (bits 0-3 of `drv_ver`).
+    pub fn drv_ver_min(&self) -> u8 {
+        self.drv_ver & 0xf
+    }
+    /// Sets driver minor version (the value in its bits of `drv_ver`; the other bits stay).
+    pub fn set_drv_ver_min(&mut self, value: u8) {
+        self.drv_ver = (self.drv_ver & !0xf) | (value & 0xf);
+    }
+    /// Driver major version (bits 4-7 of `drv_ver`).
+    pub fn drv_ver_maj(&self) -> u8 {
+        (self.drv_ver >> 4) & 0xf
+    }
+    /// Sets driver major version (the value in its bits of `drv_ver`; the other bits stay).
+    pub fn set_drv_ver_maj(&mut self, value: u8) {
+        self.drv_ver = (self.drv_ver & !(0xf << 4)) | ((value & 0xf) << 4);
+    }
+}
+
+/// One entry of MonSptResult.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSptResult {
+    /// Sensor of the result.
+    pub sensor_id_res: u16,
+    /// Sensor type.
+    pub sensor_type: u16,
+    /// Result type.
+    pub res_type: u16,
+    /// Reserved.
+    pub reserved2: u16,
+    /// Value of the result.
+    pub value: i32,
+}
+
+impl<'a> ubx::Entry<'a> for MonSptResult {
+    const WIDTH: usize = 12;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let sensor_id_res = u16::from_le_bytes(r.array("sensor_id_res")?);
+        let sensor_type = u16::from_le_bytes(r.array("sensor_type")?);
+        let res_type = u16::from_le_bytes(r.array("res_type")?);
+        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
+        let value = i32::from_le_bytes(r.array("value")?);
+        Ok(Self { sensor_id_res, sensor_type, res_type, reserved2, value })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.sensor_id_res.to_le_bytes());
+        w.put(&self.sensor_type.to_le_bytes());
+        w.put(&self.res_type.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.value.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("sensor_id_res", self.sensor_id_res)?;
+        j.int("sensor_type", self.sensor_type)?;
+        j.int("res_type", self.res_type)?;
+        j.int("reserved2", self.reserved2)?;
+        j.int("value", self.value)?;
+        Ok(())
+    }
+}
+
+/// Sensor production test results: UBX MON-SPT (class 0x0A id 0x2F), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MonSpt<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Number of sensors.
+    pub num_sensor: u8,
+    /// Number of results.
+    pub num_res: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Sensors: 0 to 65535 entries.
+    pub sensors: ubx::Group<'a, MonSptSensor>,
+    /// Results: 0 to 65535 entries.
+    pub results: ubx::Group<'a, MonSptResult>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> MonSpt<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "mon_spt";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "MON-SPT";
+    /// The message class.
+    pub const CLASS: u8 = 0x0a;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x2f;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let num_sensor = u8::from_le_bytes(r.array("num_sensor")?);
+        let num_res = u8::from_le_bytes(r.array("num_res")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let sensors = r.group(Some(usize::from(num_sensor)), 0, 65535, 0, "sensors")?;
+        let results = r.group(Some(usize::from(num_res)), 0, 65535, 0, "results")?;
+        let trailing = r.rest();
+        Ok(Self { version, num_sensor, num_res, reserved1, sensors, results, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.num_sensor.to_le_bytes());
+        w.put(&self.num_res.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        self.sensors.write(w);
+        self.results.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("num_sensor", self.num_sensor)?;
+        j.int("num_res", self.num_res)?;
+        j.int("reserved1", self.reserved1)?;
+        self.sensors.json(j, "sensors")?;
+        self.results.json(j, "results")?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -25646,6 +26901,160 @@ impl<'a> Nav2Timels<'a> {
     }
 }
 
+/// NavIC time solution (secondary output): UBX NAV2-TIMENAVIC (class 0x29 id 0x63), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Nav2TimenavicPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> Nav2TimenavicPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav2_timenavic_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV2-TIMENAVIC";
+    /// The message class.
+    pub const CLASS: u8 = 0x29;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x63;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav2_timenavic"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// NavIC time solution (secondary output): UBX NAV2-TIMENAVIC (class 0x29 id 0x63), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Nav2Timenavic<'a> {
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// NavIC time of week (rounded) [s].
+    pub nav_ic_tow: u32,
+    /// Fraction of nav_ic_tow [ns].
+    pub f_nav_ic_tow: i32,
+    /// NavIC week number.
+    pub nav_ic_wno: i16,
+    /// NavIC leap seconds (NavIC - UTC) [s].
+    pub leap_s: i8,
+    /// Validity flags.
+    pub valid: u8,
+    /// Time accuracy estimate [ns].
+    pub t_acc: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> Nav2Timenavic<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav2_timenavic";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV2-TIMENAVIC";
+    /// The message class.
+    pub const CLASS: u8 = 0x29;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x63;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(20);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Valid time of week (bit 0 of `valid`).
+    pub fn nav_ic_tow_valid(&self) -> bool {
+        (self.valid & 0x1) != 0
+    }
+    /// Sets valid time of week (the value in its bits of `valid`; the other bits stay).
+    pub fn set_nav_ic_tow_valid(&mut self, value: bool) {
+        self.valid = (self.valid & !0x1) | u8::from(value);
+    }
+    /// Valid week number (bit 1 of `valid`).
+    pub fn nav_ic_wno_valid(&self) -> bool {
+        ((self.valid >> 1) & 0x1) != 0
+    }
+    /// Sets valid week number (the value in its bits of `valid`; the other bits stay).
+    pub fn set_nav_ic_wno_valid(&mut self, value: bool) {
+        self.valid = (self.valid & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Valid leap seconds (bit 2 of `valid`).
+    pub fn leap_s_valid(&self) -> bool {
+        ((self.valid >> 2) & 0x1) != 0
+    }
+    /// Sets valid leap seconds (the value in its bits of `valid`; the other bits stay).
+    pub fn set_leap_s_valid(&mut self, value: bool) {
+        self.valid = (self.valid & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let nav_ic_tow = u32::from_le_bytes(r.array("nav_ic_tow")?);
+        let f_nav_ic_tow = i32::from_le_bytes(r.array("f_nav_ic_tow")?);
+        let nav_ic_wno = i16::from_le_bytes(r.array("nav_ic_wno")?);
+        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
+        let valid = u8::from_le_bytes(r.array("valid")?);
+        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let trailing = r.rest();
+        Ok(Self { itow, nav_ic_tow, f_nav_ic_tow, nav_ic_wno, leap_s, valid, t_acc, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.nav_ic_tow.to_le_bytes());
+        w.put(&self.f_nav_ic_tow.to_le_bytes());
+        w.put(&self.nav_ic_wno.to_le_bytes());
+        w.put(&self.leap_s.to_le_bytes());
+        w.put(&self.valid.to_le_bytes());
+        w.put(&self.t_acc.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("nav_ic_tow", self.nav_ic_tow)?;
+        j.int("f_nav_ic_tow", self.f_nav_ic_tow)?;
+        j.int("nav_ic_wno", self.nav_ic_wno)?;
+        j.int("leap_s", self.leap_s)?;
+        j.int("valid", self.valid)?;
+        j.flag("nav_ic_tow_valid", (self.valid & 0x1) != 0)?;
+        j.flag("nav_ic_wno_valid", ((self.valid >> 1) & 0x1) != 0)?;
+        j.flag("leap_s_valid", ((self.valid >> 2) & 0x1) != 0)?;
+        j.int("t_acc", self.t_acc)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// QZSS time solution (secondary output): UBX NAV2-TIMEQZSS (class 0x29 id 0x27), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Nav2TimeqzssPoll<'a> {
@@ -28009,6 +29418,385 @@ impl<'a> NavHpposllh<'a> {
     }
 }
 
+/// Navigation message cross-check information: UBX NAV-NMI (class 0x01 id 0x28), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavNmiPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavNmiPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_nmi_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-NMI";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x28;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav_nmi"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Navigation message cross-check information: UBX NAV-NMI (class 0x01 id 0x28), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavNmi<'a> {
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u32,
+    /// GPS navigation message cross-checks.
+    pub gps_nmi_flags: u8,
+    /// GPS leap second cross-checks.
+    pub gps_ls_flags: u8,
+    /// Galileo navigation message cross-checks.
+    pub gal_nmi_flags: u8,
+    /// Galileo leap second cross-checks.
+    pub gal_ls_flags: u8,
+    /// BeiDou navigation message cross-checks.
+    pub bds_nmi_flags: u8,
+    /// BeiDou leap second cross-checks.
+    pub bds_ls_flags: u8,
+    /// GLONASS navigation message cross-checks.
+    pub glo_nmi_flags: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavNmi<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_nmi";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-NMI";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x28;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(16);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Week number checked (bit 0 of `gps_nmi_flags`).
+    pub fn wno_checked_gps(&self) -> bool {
+        (self.gps_nmi_flags & 0x1) != 0
+    }
+    /// Sets week number checked (the value in its bits of `gps_nmi_flags`; the other bits stay).
+    pub fn set_wno_checked_gps(&mut self, value: bool) {
+        self.gps_nmi_flags = (self.gps_nmi_flags & !0x1) | u8::from(value);
+    }
+    /// Week number invalid (bit 1 of `gps_nmi_flags`).
+    pub fn wno_invalid_gps(&self) -> bool {
+        ((self.gps_nmi_flags >> 1) & 0x1) != 0
+    }
+    /// Sets week number invalid (the value in its bits of `gps_nmi_flags`; the other bits stay).
+    pub fn set_wno_invalid_gps(&mut self, value: bool) {
+        self.gps_nmi_flags = (self.gps_nmi_flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// UTC reference time checked (bit 2 of `gps_nmi_flags`).
+    pub fn utco_ref_checked_gps(&self) -> bool {
+        ((self.gps_nmi_flags >> 2) & 0x1) != 0
+    }
+    /// Sets utc reference time checked (the value in its bits of `gps_nmi_flags`; the other bits stay).
+    pub fn set_utco_ref_checked_gps(&mut self, value: bool) {
+        self.gps_nmi_flags = (self.gps_nmi_flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// UTC reference time invalid (bit 3 of `gps_nmi_flags`).
+    pub fn utco_ref_invalid_gps(&self) -> bool {
+        ((self.gps_nmi_flags >> 3) & 0x1) != 0
+    }
+    /// Sets utc reference time invalid (the value in its bits of `gps_nmi_flags`; the other bits stay).
+    pub fn set_utco_ref_invalid_gps(&mut self, value: bool) {
+        self.gps_nmi_flags = (self.gps_nmi_flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Leap second value out of range (bit 0 of `gps_ls_flags`).
+    pub fn ls_val_gps(&self) -> bool {
+        (self.gps_ls_flags & 0x1) != 0
+    }
+    /// Sets leap second value out of range (the value in its bits of `gps_ls_flags`; the other bits stay).
+    pub fn set_ls_val_gps(&mut self, value: bool) {
+        self.gps_ls_flags = (self.gps_ls_flags & !0x1) | u8::from(value);
+    }
+    /// Day number out of range (bit 1 of `gps_ls_flags`).
+    pub fn dn_range_gps(&self) -> bool {
+        ((self.gps_ls_flags >> 1) & 0x1) != 0
+    }
+    /// Sets day number out of range (the value in its bits of `gps_ls_flags`; the other bits stay).
+    pub fn set_dn_range_gps(&mut self, value: bool) {
+        self.gps_ls_flags = (self.gps_ls_flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Data reference time of week out of range (bit 2 of `gps_ls_flags`).
+    pub fn tot_range_gps(&self) -> bool {
+        ((self.gps_ls_flags >> 2) & 0x1) != 0
+    }
+    /// Sets data reference time of week out of range (the value in its bits of `gps_ls_flags`; the other bits stay).
+    pub fn set_tot_range_gps(&mut self, value: bool) {
+        self.gps_ls_flags = (self.gps_ls_flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Unexpected leap second event (bit 3 of `gps_ls_flags`).
+    pub fn ls_event_gps(&self) -> bool {
+        ((self.gps_ls_flags >> 3) & 0x1) != 0
+    }
+    /// Sets unexpected leap second event (the value in its bits of `gps_ls_flags`; the other bits stay).
+    pub fn set_ls_event_gps(&mut self, value: bool) {
+        self.gps_ls_flags = (self.gps_ls_flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Data received this epoch (bit 4 of `gps_ls_flags`).
+    pub fn rec_now_gps(&self) -> bool {
+        ((self.gps_ls_flags >> 4) & 0x1) != 0
+    }
+    /// Sets data received this epoch (the value in its bits of `gps_ls_flags`; the other bits stay).
+    pub fn set_rec_now_gps(&mut self, value: bool) {
+        self.gps_ls_flags = (self.gps_ls_flags & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// Week number checked (bit 0 of `gal_nmi_flags`).
+    pub fn wno_checked_gal(&self) -> bool {
+        (self.gal_nmi_flags & 0x1) != 0
+    }
+    /// Sets week number checked (the value in its bits of `gal_nmi_flags`; the other bits stay).
+    pub fn set_wno_checked_gal(&mut self, value: bool) {
+        self.gal_nmi_flags = (self.gal_nmi_flags & !0x1) | u8::from(value);
+    }
+    /// Week number invalid (bit 1 of `gal_nmi_flags`).
+    pub fn wno_invalid_gal(&self) -> bool {
+        ((self.gal_nmi_flags >> 1) & 0x1) != 0
+    }
+    /// Sets week number invalid (the value in its bits of `gal_nmi_flags`; the other bits stay).
+    pub fn set_wno_invalid_gal(&mut self, value: bool) {
+        self.gal_nmi_flags = (self.gal_nmi_flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Leap second value out of range (bit 0 of `gal_ls_flags`).
+    pub fn ls_val_gal(&self) -> bool {
+        (self.gal_ls_flags & 0x1) != 0
+    }
+    /// Sets leap second value out of range (the value in its bits of `gal_ls_flags`; the other bits stay).
+    pub fn set_ls_val_gal(&mut self, value: bool) {
+        self.gal_ls_flags = (self.gal_ls_flags & !0x1) | u8::from(value);
+    }
+    /// Day number out of range (bit 1 of `gal_ls_flags`).
+    pub fn dn_range_gal(&self) -> bool {
+        ((self.gal_ls_flags >> 1) & 0x1) != 0
+    }
+    /// Sets day number out of range (the value in its bits of `gal_ls_flags`; the other bits stay).
+    pub fn set_dn_range_gal(&mut self, value: bool) {
+        self.gal_ls_flags = (self.gal_ls_flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Data reference time of week out of range (bit 2 of `gal_ls_flags`).
+    pub fn tot_range_gal(&self) -> bool {
+        ((self.gal_ls_flags >> 2) & 0x1) != 0
+    }
+    /// Sets data reference time of week out of range (the value in its bits of `gal_ls_flags`; the other bits stay).
+    pub fn set_tot_range_gal(&mut self, value: bool) {
+        self.gal_ls_flags = (self.gal_ls_flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Unexpected leap second event (bit 3 of `gal_ls_flags`).
+    pub fn ls_event_gal(&self) -> bool {
+        ((self.gal_ls_flags >> 3) & 0x1) != 0
+    }
+    /// Sets unexpected leap second event (the value in its bits of `gal_ls_flags`; the other bits stay).
+    pub fn set_ls_event_gal(&mut self, value: bool) {
+        self.gal_ls_flags = (self.gal_ls_flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Data received this epoch (bit 4 of `gal_ls_flags`).
+    pub fn rec_now_gal(&self) -> bool {
+        ((self.gal_ls_flags >> 4) & 0x1) != 0
+    }
+    /// Sets data received this epoch (the value in its bits of `gal_ls_flags`; the other bits stay).
+    pub fn set_rec_now_gal(&mut self, value: bool) {
+        self.gal_ls_flags = (self.gal_ls_flags & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// Week number checked (bit 0 of `bds_nmi_flags`).
+    pub fn wno_checked_bds(&self) -> bool {
+        (self.bds_nmi_flags & 0x1) != 0
+    }
+    /// Sets week number checked (the value in its bits of `bds_nmi_flags`; the other bits stay).
+    pub fn set_wno_checked_bds(&mut self, value: bool) {
+        self.bds_nmi_flags = (self.bds_nmi_flags & !0x1) | u8::from(value);
+    }
+    /// Week number invalid (bit 1 of `bds_nmi_flags`).
+    pub fn wno_invalid_bds(&self) -> bool {
+        ((self.bds_nmi_flags >> 1) & 0x1) != 0
+    }
+    /// Sets week number invalid (the value in its bits of `bds_nmi_flags`; the other bits stay).
+    pub fn set_wno_invalid_bds(&mut self, value: bool) {
+        self.bds_nmi_flags = (self.bds_nmi_flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Leap second value out of range (bit 0 of `bds_ls_flags`).
+    pub fn ls_val_bds(&self) -> bool {
+        (self.bds_ls_flags & 0x1) != 0
+    }
+    /// Sets leap second value out of range (the value in its bits of `bds_ls_flags`; the other bits stay).
+    pub fn set_ls_val_bds(&mut self, value: bool) {
+        self.bds_ls_flags = (self.bds_ls_flags & !0x1) | u8::from(value);
+    }
+    /// Day number out of range (bit 1 of `bds_ls_flags`).
+    pub fn dn_range_bds(&self) -> bool {
+        ((self.bds_ls_flags >> 1) & 0x1) != 0
+    }
+    /// Sets day number out of range (the value in its bits of `bds_ls_flags`; the other bits stay).
+    pub fn set_dn_range_bds(&mut self, value: bool) {
+        self.bds_ls_flags = (self.bds_ls_flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Data reference time of week out of range (bit 2 of `bds_ls_flags`).
+    pub fn tot_range_bds(&self) -> bool {
+        ((self.bds_ls_flags >> 2) & 0x1) != 0
+    }
+    /// Sets data reference time of week out of range (the value in its bits of `bds_ls_flags`; the other bits stay).
+    pub fn set_tot_range_bds(&mut self, value: bool) {
+        self.bds_ls_flags = (self.bds_ls_flags & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Unexpected leap second event (bit 3 of `bds_ls_flags`).
+    pub fn ls_event_bds(&self) -> bool {
+        ((self.bds_ls_flags >> 3) & 0x1) != 0
+    }
+    /// Sets unexpected leap second event (the value in its bits of `bds_ls_flags`; the other bits stay).
+    pub fn set_ls_event_bds(&mut self, value: bool) {
+        self.bds_ls_flags = (self.bds_ls_flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Data received this epoch (bit 4 of `bds_ls_flags`).
+    pub fn rec_now_bds(&self) -> bool {
+        ((self.bds_ls_flags >> 4) & 0x1) != 0
+    }
+    /// Sets data received this epoch (the value in its bits of `bds_ls_flags`; the other bits stay).
+    pub fn set_rec_now_bds(&mut self, value: bool) {
+        self.bds_ls_flags = (self.bds_ls_flags & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// Week number checked (bit 0 of `glo_nmi_flags`).
+    pub fn wno_checked_glo(&self) -> bool {
+        (self.glo_nmi_flags & 0x1) != 0
+    }
+    /// Sets week number checked (the value in its bits of `glo_nmi_flags`; the other bits stay).
+    pub fn set_wno_checked_glo(&mut self, value: bool) {
+        self.glo_nmi_flags = (self.glo_nmi_flags & !0x1) | u8::from(value);
+    }
+    /// Week number invalid (bit 1 of `glo_nmi_flags`).
+    pub fn wno_invalid_glo(&self) -> bool {
+        ((self.glo_nmi_flags >> 1) & 0x1) != 0
+    }
+    /// Sets week number invalid (the value in its bits of `glo_nmi_flags`; the other bits stay).
+    pub fn set_wno_invalid_glo(&mut self, value: bool) {
+        self.glo_nmi_flags = (self.glo_nmi_flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let gps_nmi_flags = u8::from_le_bytes(r.array("gps_nmi_flags")?);
+        let gps_ls_flags = u8::from_le_bytes(r.array("gps_ls_flags")?);
+        let gal_nmi_flags = u8::from_le_bytes(r.array("gal_nmi_flags")?);
+        let gal_ls_flags = u8::from_le_bytes(r.array("gal_ls_flags")?);
+        let bds_nmi_flags = u8::from_le_bytes(r.array("bds_nmi_flags")?);
+        let bds_ls_flags = u8::from_le_bytes(r.array("bds_ls_flags")?);
+        let glo_nmi_flags = u8::from_le_bytes(r.array("glo_nmi_flags")?);
+        let trailing = r.rest();
+        Ok(Self {
+            itow,
+            version,
+            reserved1,
+            gps_nmi_flags,
+            gps_ls_flags,
+            gal_nmi_flags,
+            gal_ls_flags,
+            bds_nmi_flags,
+            bds_ls_flags,
+            glo_nmi_flags,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.gps_nmi_flags.to_le_bytes());
+        w.put(&self.gps_ls_flags.to_le_bytes());
+        w.put(&self.gal_nmi_flags.to_le_bytes());
+        w.put(&self.gal_ls_flags.to_le_bytes());
+        w.put(&self.bds_nmi_flags.to_le_bytes());
+        w.put(&self.bds_ls_flags.to_le_bytes());
+        w.put(&self.glo_nmi_flags.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("gps_nmi_flags", self.gps_nmi_flags)?;
+        j.flag("wno_checked_gps", (self.gps_nmi_flags & 0x1) != 0)?;
+        j.flag("wno_invalid_gps", ((self.gps_nmi_flags >> 1) & 0x1) != 0)?;
+        j.flag("utco_ref_checked_gps", ((self.gps_nmi_flags >> 2) & 0x1) != 0)?;
+        j.flag("utco_ref_invalid_gps", ((self.gps_nmi_flags >> 3) & 0x1) != 0)?;
+        j.int("gps_ls_flags", self.gps_ls_flags)?;
+        j.flag("ls_val_gps", (self.gps_ls_flags & 0x1) != 0)?;
+        j.flag("dn_range_gps", ((self.gps_ls_flags >> 1) & 0x1) != 0)?;
+        j.flag("tot_range_gps", ((self.gps_ls_flags >> 2) & 0x1) != 0)?;
+        j.flag("ls_event_gps", ((self.gps_ls_flags >> 3) & 0x1) != 0)?;
+        j.flag("rec_now_gps", ((self.gps_ls_flags >> 4) & 0x1) != 0)?;
+        j.int("gal_nmi_flags", self.gal_nmi_flags)?;
+        j.flag("wno_checked_gal", (self.gal_nmi_flags & 0x1) != 0)?;
+        j.flag("wno_invalid_gal", ((self.gal_nmi_flags >> 1) & 0x1) != 0)?;
+        j.int("gal_ls_flags", self.gal_ls_flags)?;
+        j.flag("ls_val_gal", (self.gal_ls_flags & 0x1) != 0)?;
+        j.flag("dn_range_gal", ((self.gal_ls_flags >> 1) & 0x1) != 0)?;
+        j.flag("tot_range_gal", ((self.gal_ls_flags >> 2) & 0x1) != 0)?;
+        j.flag("ls_event_gal", ((self.gal_ls_flags >> 3) & 0x1) != 0)?;
+        j.flag("rec_now_gal", ((self.gal_ls_flags >> 4) & 0x1) != 0)?;
+        j.int("bds_nmi_flags", self.bds_nmi_flags)?;
+        j.flag("wno_checked_bds", (self.bds_nmi_flags & 0x1) != 0)?;
+        j.flag("wno_invalid_bds", ((self.bds_nmi_flags >> 1) & 0x1) != 0)?;
+        j.int("bds_ls_flags", self.bds_ls_flags)?;
+        j.flag("ls_val_bds", (self.bds_ls_flags & 0x1) != 0)?;
+        j.flag("dn_range_bds", ((self.bds_ls_flags >> 1) & 0x1) != 0)?;
+        j.flag("tot_range_bds", ((self.bds_ls_flags >> 2) & 0x1) != 0)?;
+        j.flag("ls_event_bds", ((self.bds_ls_flags >> 3) & 0x1) != 0)?;
+        j.flag("rec_now_bds", ((self.bds_ls_flags >> 4) & 0x1) != 0)?;
+        j.int("glo_nmi_flags", self.glo_nmi_flags)?;
+        j.flag("wno_checked_glo", (self.glo_nmi_flags & 0x1) != 0)?;
+        j.flag("wno_invalid_glo", ((self.glo_nmi_flags >> 1) & 0x1) != 0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Odometer solution: UBX NAV-ODO (class 0x01 id 0x09), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct NavOdoPoll<'a> {
@@ -28862,6 +30650,549 @@ impl<'a> NavPosllh<'a> {
         j.int("h_msl", self.h_msl)?;
         j.int("h_acc", self.h_acc)?;
         j.int("v_acc", self.v_acc)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Navigation position velocity attitude time solution: UBX NAV-PVAT (class 0x01 id 0x17), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavPvatPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavPvatPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_pvat_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-PVAT";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x17;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav_pvat"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// Navigation position velocity attitude time solution: UBX NAV-PVAT (class 0x01 id 0x17), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavPvat<'a> {
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// Message version.
+    pub version: u8,
+    /// Validity flags.
+    pub valid: u8,
+    /// Year (UTC).
+    pub year: u16,
+    /// Month (UTC).
+    pub month: u8,
+    /// Day (UTC).
+    pub day: u8,
+    /// Hour (UTC).
+    pub hour: u8,
+    /// Minute (UTC).
+    pub min: u8,
+    /// Second (UTC).
+    pub sec: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Reserved.
+    pub reserved1: u16,
+    /// Time accuracy estimate (UTC) [ns].
+    pub t_acc: u32,
+    /// Fraction of second (UTC) [ns].
+    pub nano: i32,
+    /// GNSS fix type.
+    pub fix_type_raw: u8,
+    /// Fix status flags.
+    pub flags: u8,
+    /// Additional flags.
+    pub flags2: u8,
+    /// Satellites used in the solution.
+    pub num_sv: u8,
+    /// Longitude [deg].
+    pub lon_raw: i32,
+    /// Latitude [deg].
+    pub lat_raw: i32,
+    /// Height above the ellipsoid [mm].
+    pub height: i32,
+    /// Height above mean sea level [mm].
+    pub h_msl: i32,
+    /// Horizontal accuracy estimate [mm].
+    pub h_acc: u32,
+    /// Vertical accuracy estimate [mm].
+    pub v_acc: u32,
+    /// NED north velocity [mm/s].
+    pub vel_n: i32,
+    /// NED east velocity [mm/s].
+    pub vel_e: i32,
+    /// NED down velocity [mm/s].
+    pub vel_d: i32,
+    /// Ground speed (2D) [mm/s].
+    pub g_speed: i32,
+    /// Speed accuracy estimate [mm/s].
+    pub s_acc: u32,
+    /// Vehicle roll [deg].
+    pub veh_roll_raw: i32,
+    /// Vehicle pitch [deg].
+    pub veh_pitch_raw: i32,
+    /// Vehicle heading [deg].
+    pub veh_heading_raw: i32,
+    /// Heading of motion [deg].
+    pub mot_heading_raw: i32,
+    /// Vehicle roll accuracy [deg].
+    pub acc_roll_raw: u16,
+    /// Vehicle pitch accuracy [deg].
+    pub acc_pitch_raw: u16,
+    /// Vehicle heading accuracy [deg].
+    pub acc_heading_raw: u16,
+    /// Magnetic declination [deg].
+    pub mag_dec_raw: i16,
+    /// Magnetic declination accuracy [deg].
+    pub mag_acc_raw: u16,
+    /// Orientation of the horizontal error ellipse [deg].
+    pub err_ellipse_orient_raw: u16,
+    /// Semi-major axis of the horizontal error ellipse [mm].
+    pub err_ellipse_major: u32,
+    /// Semi-minor axis of the horizontal error ellipse [mm].
+    pub err_ellipse_minor: u32,
+    /// Reserved.
+    pub reserved2: u32,
+    /// Reserved.
+    pub reserved3: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavPvat<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_pvat";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-PVAT";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x17;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(116);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Valid UTC date (bit 0 of `valid`).
+    pub fn valid_date(&self) -> bool {
+        (self.valid & 0x1) != 0
+    }
+    /// Sets valid utc date (the value in its bits of `valid`; the other bits stay).
+    pub fn set_valid_date(&mut self, value: bool) {
+        self.valid = (self.valid & !0x1) | u8::from(value);
+    }
+    /// Valid UTC time of day (bit 1 of `valid`).
+    pub fn valid_time(&self) -> bool {
+        ((self.valid >> 1) & 0x1) != 0
+    }
+    /// Sets valid utc time of day (the value in its bits of `valid`; the other bits stay).
+    pub fn set_valid_time(&mut self, value: bool) {
+        self.valid = (self.valid & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// UTC time of day fully resolved (bit 2 of `valid`).
+    pub fn fully_resolved(&self) -> bool {
+        ((self.valid >> 2) & 0x1) != 0
+    }
+    /// Sets utc time of day fully resolved (the value in its bits of `valid`; the other bits stay).
+    pub fn set_fully_resolved(&mut self, value: bool) {
+        self.valid = (self.valid & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Valid magnetic declination (bit 3 of `valid`).
+    pub fn valid_mag(&self) -> bool {
+        ((self.valid >> 3) & 0x1) != 0
+    }
+    /// Sets valid magnetic declination (the value in its bits of `valid`; the other bits stay).
+    pub fn set_valid_mag(&mut self, value: bool) {
+        self.valid = (self.valid & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// GNSS fix type: the enum's value of the raw code, None for a code it does not name.
+    pub fn fix_type(&self) -> Option<UbxFixType> {
+        ais::code(u64::from(self.fix_type_raw))
+    }
+    /// Valid fix (within the DOP and accuracy masks) (bit 0 of `flags`).
+    pub fn gnss_fix_ok(&self) -> bool {
+        (self.flags & 0x1) != 0
+    }
+    /// Sets valid fix (within the dop and accuracy masks) (the value in its bits of `flags`; the other bits stay).
+    pub fn set_gnss_fix_ok(&mut self, value: bool) {
+        self.flags = (self.flags & !0x1) | u8::from(value);
+    }
+    /// Differential corrections applied (bit 1 of `flags`).
+    pub fn diff_soln(&self) -> bool {
+        ((self.flags >> 1) & 0x1) != 0
+    }
+    /// Sets differential corrections applied (the value in its bits of `flags`; the other bits stay).
+    pub fn set_diff_soln(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Vehicle roll valid (bit 3 of `flags`).
+    pub fn veh_roll_valid(&self) -> bool {
+        ((self.flags >> 3) & 0x1) != 0
+    }
+    /// Sets vehicle roll valid (the value in its bits of `flags`; the other bits stay).
+    pub fn set_veh_roll_valid(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Vehicle pitch valid (bit 4 of `flags`).
+    pub fn veh_pitch_valid(&self) -> bool {
+        ((self.flags >> 4) & 0x1) != 0
+    }
+    /// Sets vehicle pitch valid (the value in its bits of `flags`; the other bits stay).
+    pub fn set_veh_pitch_valid(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 4)) | (u8::from(value) << 4);
+    }
+    /// Vehicle heading valid (bit 5 of `flags`).
+    pub fn veh_heading_valid(&self) -> bool {
+        ((self.flags >> 5) & 0x1) != 0
+    }
+    /// Sets vehicle heading valid (the value in its bits of `flags`; the other bits stay).
+    pub fn set_veh_heading_valid(&mut self, value: bool) {
+        self.flags = (self.flags & !(0x1 << 5)) | (u8::from(value) << 5);
+    }
+    /// Carrier phase range solution (bits 6-7 of `flags`).
+    pub fn carr_soln(&self) -> u8 {
+        (self.flags >> 6) & 0x3
+    }
+    /// Sets carrier phase range solution (the value in its bits of `flags`; the other bits stay).
+    pub fn set_carr_soln(&mut self, value: u8) {
+        self.flags = (self.flags & !(0x3 << 6)) | ((value & 0x3) << 6);
+    }
+    /// Date and time validity can be confirmed (bit 5 of `flags2`).
+    pub fn confirmed_avai(&self) -> bool {
+        ((self.flags2 >> 5) & 0x1) != 0
+    }
+    /// Sets date and time validity can be confirmed (the value in its bits of `flags2`; the other bits stay).
+    pub fn set_confirmed_avai(&mut self, value: bool) {
+        self.flags2 = (self.flags2 & !(0x1 << 5)) | (u8::from(value) << 5);
+    }
+    /// UTC date confirmed (bit 6 of `flags2`).
+    pub fn confirmed_date(&self) -> bool {
+        ((self.flags2 >> 6) & 0x1) != 0
+    }
+    /// Sets utc date confirmed (the value in its bits of `flags2`; the other bits stay).
+    pub fn set_confirmed_date(&mut self, value: bool) {
+        self.flags2 = (self.flags2 & !(0x1 << 6)) | (u8::from(value) << 6);
+    }
+    /// UTC time of day confirmed (bit 7 of `flags2`).
+    pub fn confirmed_time(&self) -> bool {
+        ((self.flags2 >> 7) & 0x1) != 0
+    }
+    /// Sets utc time of day confirmed (the value in its bits of `flags2`; the other bits stay).
+    pub fn set_confirmed_time(&mut self, value: bool) {
+        self.flags2 = (self.flags2 & !(0x1 << 7)) | (u8::from(value) << 7);
+    }
+    /// Longitude [deg]: the raw integer divided by 10000000.
+    pub fn lon(&self) -> f64 {
+        let raw = self.lon_raw;
+        raw as f64 / 10000000.0
+    }
+    /// Latitude [deg]: the raw integer divided by 10000000.
+    pub fn lat(&self) -> f64 {
+        let raw = self.lat_raw;
+        raw as f64 / 10000000.0
+    }
+    /// Vehicle roll [deg]: the raw integer divided by 100000.
+    pub fn veh_roll(&self) -> f64 {
+        let raw = self.veh_roll_raw;
+        raw as f64 / 100000.0
+    }
+    /// Vehicle pitch [deg]: the raw integer divided by 100000.
+    pub fn veh_pitch(&self) -> f64 {
+        let raw = self.veh_pitch_raw;
+        raw as f64 / 100000.0
+    }
+    /// Vehicle heading [deg]: the raw integer divided by 100000.
+    pub fn veh_heading(&self) -> f64 {
+        let raw = self.veh_heading_raw;
+        raw as f64 / 100000.0
+    }
+    /// Heading of motion [deg]: the raw integer divided by 100000.
+    pub fn mot_heading(&self) -> f64 {
+        let raw = self.mot_heading_raw;
+        raw as f64 / 100000.0
+    }
+    /// Vehicle roll accuracy [deg]: the raw integer divided by 100.
+    pub fn acc_roll(&self) -> f64 {
+        let raw = self.acc_roll_raw;
+        raw as f64 / 100.0
+    }
+    /// Vehicle pitch accuracy [deg]: the raw integer divided by 100.
+    pub fn acc_pitch(&self) -> f64 {
+        let raw = self.acc_pitch_raw;
+        raw as f64 / 100.0
+    }
+    /// Vehicle heading accuracy [deg]: the raw integer divided by 100.
+    pub fn acc_heading(&self) -> f64 {
+        let raw = self.acc_heading_raw;
+        raw as f64 / 100.0
+    }
+    /// Magnetic declination [deg]: the raw integer divided by 100.
+    pub fn mag_dec(&self) -> f64 {
+        let raw = self.mag_dec_raw;
+        raw as f64 / 100.0
+    }
+    /// Magnetic declination accuracy [deg]: the raw integer divided by 100.
+    pub fn mag_acc(&self) -> f64 {
+        let raw = self.mag_acc_raw;
+        raw as f64 / 100.0
+    }
+    /// Orientation of the horizontal error ellipse [deg]: the raw integer divided by 100.
+    pub fn err_ellipse_orient(&self) -> f64 {
+        let raw = self.err_ellipse_orient_raw;
+        raw as f64 / 100.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let valid = u8::from_le_bytes(r.array("valid")?);
+        let year = u16::from_le_bytes(r.array("year")?);
+        let month = u8::from_le_bytes(r.array("month")?);
+        let day = u8::from_le_bytes(r.array("day")?);
+        let hour = u8::from_le_bytes(r.array("hour")?);
+        let min = u8::from_le_bytes(r.array("min")?);
+        let sec = u8::from_le_bytes(r.array("sec")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let nano = i32::from_le_bytes(r.array("nano")?);
+        let fix_type_raw = u8::from_le_bytes(r.array("fix_type")?);
+        let flags = u8::from_le_bytes(r.array("flags")?);
+        let flags2 = u8::from_le_bytes(r.array("flags2")?);
+        let num_sv = u8::from_le_bytes(r.array("num_sv")?);
+        let lon_raw = i32::from_le_bytes(r.array("lon")?);
+        let lat_raw = i32::from_le_bytes(r.array("lat")?);
+        let height = i32::from_le_bytes(r.array("height")?);
+        let h_msl = i32::from_le_bytes(r.array("h_msl")?);
+        let h_acc = u32::from_le_bytes(r.array("h_acc")?);
+        let v_acc = u32::from_le_bytes(r.array("v_acc")?);
+        let vel_n = i32::from_le_bytes(r.array("vel_n")?);
+        let vel_e = i32::from_le_bytes(r.array("vel_e")?);
+        let vel_d = i32::from_le_bytes(r.array("vel_d")?);
+        let g_speed = i32::from_le_bytes(r.array("g_speed")?);
+        let s_acc = u32::from_le_bytes(r.array("s_acc")?);
+        let veh_roll_raw = i32::from_le_bytes(r.array("veh_roll")?);
+        let veh_pitch_raw = i32::from_le_bytes(r.array("veh_pitch")?);
+        let veh_heading_raw = i32::from_le_bytes(r.array("veh_heading")?);
+        let mot_heading_raw = i32::from_le_bytes(r.array("mot_heading")?);
+        let acc_roll_raw = u16::from_le_bytes(r.array("acc_roll")?);
+        let acc_pitch_raw = u16::from_le_bytes(r.array("acc_pitch")?);
+        let acc_heading_raw = u16::from_le_bytes(r.array("acc_heading")?);
+        let mag_dec_raw = i16::from_le_bytes(r.array("mag_dec")?);
+        let mag_acc_raw = u16::from_le_bytes(r.array("mag_acc")?);
+        let err_ellipse_orient_raw = u16::from_le_bytes(r.array("err_ellipse_orient")?);
+        let err_ellipse_major = u32::from_le_bytes(r.array("err_ellipse_major")?);
+        let err_ellipse_minor = u32::from_le_bytes(r.array("err_ellipse_minor")?);
+        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
+        let reserved3 = u32::from_le_bytes(r.array("reserved3")?);
+        let trailing = r.rest();
+        Ok(Self {
+            itow,
+            version,
+            valid,
+            year,
+            month,
+            day,
+            hour,
+            min,
+            sec,
+            reserved0,
+            reserved1,
+            t_acc,
+            nano,
+            fix_type_raw,
+            flags,
+            flags2,
+            num_sv,
+            lon_raw,
+            lat_raw,
+            height,
+            h_msl,
+            h_acc,
+            v_acc,
+            vel_n,
+            vel_e,
+            vel_d,
+            g_speed,
+            s_acc,
+            veh_roll_raw,
+            veh_pitch_raw,
+            veh_heading_raw,
+            mot_heading_raw,
+            acc_roll_raw,
+            acc_pitch_raw,
+            acc_heading_raw,
+            mag_dec_raw,
+            mag_acc_raw,
+            err_ellipse_orient_raw,
+            err_ellipse_major,
+            err_ellipse_minor,
+            reserved2,
+            reserved3,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.valid.to_le_bytes());
+        w.put(&self.year.to_le_bytes());
+        w.put(&self.month.to_le_bytes());
+        w.put(&self.day.to_le_bytes());
+        w.put(&self.hour.to_le_bytes());
+        w.put(&self.min.to_le_bytes());
+        w.put(&self.sec.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(&self.t_acc.to_le_bytes());
+        w.put(&self.nano.to_le_bytes());
+        w.put(&self.fix_type_raw.to_le_bytes());
+        w.put(&self.flags.to_le_bytes());
+        w.put(&self.flags2.to_le_bytes());
+        w.put(&self.num_sv.to_le_bytes());
+        w.put(&self.lon_raw.to_le_bytes());
+        w.put(&self.lat_raw.to_le_bytes());
+        w.put(&self.height.to_le_bytes());
+        w.put(&self.h_msl.to_le_bytes());
+        w.put(&self.h_acc.to_le_bytes());
+        w.put(&self.v_acc.to_le_bytes());
+        w.put(&self.vel_n.to_le_bytes());
+        w.put(&self.vel_e.to_le_bytes());
+        w.put(&self.vel_d.to_le_bytes());
+        w.put(&self.g_speed.to_le_bytes());
+        w.put(&self.s_acc.to_le_bytes());
+        w.put(&self.veh_roll_raw.to_le_bytes());
+        w.put(&self.veh_pitch_raw.to_le_bytes());
+        w.put(&self.veh_heading_raw.to_le_bytes());
+        w.put(&self.mot_heading_raw.to_le_bytes());
+        w.put(&self.acc_roll_raw.to_le_bytes());
+        w.put(&self.acc_pitch_raw.to_le_bytes());
+        w.put(&self.acc_heading_raw.to_le_bytes());
+        w.put(&self.mag_dec_raw.to_le_bytes());
+        w.put(&self.mag_acc_raw.to_le_bytes());
+        w.put(&self.err_ellipse_orient_raw.to_le_bytes());
+        w.put(&self.err_ellipse_major.to_le_bytes());
+        w.put(&self.err_ellipse_minor.to_le_bytes());
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("version", self.version)?;
+        j.int("valid", self.valid)?;
+        j.flag("valid_date", (self.valid & 0x1) != 0)?;
+        j.flag("valid_time", ((self.valid >> 1) & 0x1) != 0)?;
+        j.flag("fully_resolved", ((self.valid >> 2) & 0x1) != 0)?;
+        j.flag("valid_mag", ((self.valid >> 3) & 0x1) != 0)?;
+        j.int("year", self.year)?;
+        j.int("month", self.month)?;
+        j.int("day", self.day)?;
+        j.int("hour", self.hour)?;
+        j.int("min", self.min)?;
+        j.int("sec", self.sec)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("reserved1", self.reserved1)?;
+        j.int("t_acc", self.t_acc)?;
+        j.int("nano", self.nano)?;
+        j.code(
+            "fix_type",
+            ais::code::<UbxFixType>(u64::from(self.fix_type_raw)).map(CodeEnum::id),
+            u64::from(self.fix_type_raw),
+        )?;
+        j.int("flags", self.flags)?;
+        j.flag("gnss_fix_ok", (self.flags & 0x1) != 0)?;
+        j.flag("diff_soln", ((self.flags >> 1) & 0x1) != 0)?;
+        j.flag("veh_roll_valid", ((self.flags >> 3) & 0x1) != 0)?;
+        j.flag("veh_pitch_valid", ((self.flags >> 4) & 0x1) != 0)?;
+        j.flag("veh_heading_valid", ((self.flags >> 5) & 0x1) != 0)?;
+        j.int("carr_soln", (self.flags >> 6) & 0x3)?;
+        j.int("flags2", self.flags2)?;
+        j.flag("confirmed_avai", ((self.flags2 >> 5) & 0x1) != 0)?;
+        j.flag("confirmed_date", ((self.flags2 >> 6) & 0x1) != 0)?;
+        j.flag("confirmed_time", ((self.flags2 >> 7) & 0x1) != 0)?;
+        j.int("num_sv", self.num_sv)?;
+        ubx::json_float(j, "lon", self.lon_raw as f64 / 10000000.0)?;
+        j.int("lon_raw", self.lon_raw)?;
+        ubx::json_float(j, "lat", self.lat_raw as f64 / 10000000.0)?;
+        j.int("lat_raw", self.lat_raw)?;
+        j.int("height", self.height)?;
+        j.int("h_msl", self.h_msl)?;
+        j.int("h_acc", self.h_acc)?;
+        j.int("v_acc", self.v_acc)?;
+        j.int("vel_n", self.vel_n)?;
+        j.int("vel_e", self.vel_e)?;
+        j.int("vel_d", self.vel_d)?;
+        j.int("g_speed", self.g_speed)?;
+        j.int("s_acc", self.s_acc)?;
+        ubx::json_float(j, "veh_roll", self.veh_roll_raw as f64 / 100000.0)?;
+        j.int("veh_roll_raw", self.veh_roll_raw)?;
+        ubx::json_float(j, "veh_pitch", self.veh_pitch_raw as f64 / 100000.0)?;
+        j.int("veh_pitch_raw", self.veh_pitch_raw)?;
+        ubx::json_float(j, "veh_heading", self.veh_heading_raw as f64 / 100000.0)?;
+        j.int("veh_heading_raw", self.veh_heading_raw)?;
+        ubx::json_float(j, "mot_heading", self.mot_heading_raw as f64 / 100000.0)?;
+        j.int("mot_heading_raw", self.mot_heading_raw)?;
+        ubx::json_float(j, "acc_roll", self.acc_roll_raw as f64 / 100.0)?;
+        j.int("acc_roll_raw", self.acc_roll_raw)?;
+        ubx::json_float(j, "acc_pitch", self.acc_pitch_raw as f64 / 100.0)?;
+        j.int("acc_pitch_raw", self.acc_pitch_raw)?;
+        ubx::json_float(j, "acc_heading", self.acc_heading_raw as f64 / 100.0)?;
+        j.int("acc_heading_raw", self.acc_heading_raw)?;
+        ubx::json_float(j, "mag_dec", self.mag_dec_raw as f64 / 100.0)?;
+        j.int("mag_dec_raw", self.mag_dec_raw)?;
+        ubx::json_float(j, "mag_acc", self.mag_acc_raw as f64 / 100.0)?;
+        j.int("mag_acc_raw", self.mag_acc_raw)?;
+        ubx::json_float(j, "err_ellipse_orient", self.err_ellipse_orient_raw as f64 / 100.0)?;
+        j.int("err_ellipse_orient_raw", self.err_ellipse_orient_raw)?;
+        j.int("err_ellipse_major", self.err_ellipse_major)?;
+        j.int("err_ellipse_minor", self.err_ellipse_minor)?;
+        j.int("reserved2", self.reserved2)?;
+        j.int("reserved3", self.reserved3)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -32890,6 +35221,160 @@ impl<'a> NavTimels<'a> {
     }
 }
 
+/// NavIC time solution: UBX NAV-TIMENAVIC (class 0x01 id 0x63), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavTimenavicPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavTimenavicPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_timenavic_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-TIMENAVIC";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x63;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["nav_timenavic"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// NavIC time solution: UBX NAV-TIMENAVIC (class 0x01 id 0x63), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NavTimenavic<'a> {
+    /// GPS time of week of the navigation epoch [ms].
+    pub itow: u32,
+    /// NavIC time of week (rounded) [s].
+    pub nav_ic_tow: u32,
+    /// Fraction of nav_ic_tow [ns].
+    pub f_nav_ic_tow: i32,
+    /// NavIC week number.
+    pub nav_ic_wno: i16,
+    /// NavIC leap seconds (NavIC - UTC) [s].
+    pub leap_s: i8,
+    /// Validity flags.
+    pub valid: u8,
+    /// Time accuracy estimate [ns].
+    pub t_acc: u32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> NavTimenavic<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "nav_timenavic";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "NAV-TIMENAVIC";
+    /// The message class.
+    pub const CLASS: u8 = 0x01;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x63;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(20);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Valid time of week (bit 0 of `valid`).
+    pub fn nav_ic_tow_valid(&self) -> bool {
+        (self.valid & 0x1) != 0
+    }
+    /// Sets valid time of week (the value in its bits of `valid`; the other bits stay).
+    pub fn set_nav_ic_tow_valid(&mut self, value: bool) {
+        self.valid = (self.valid & !0x1) | u8::from(value);
+    }
+    /// Valid week number (bit 1 of `valid`).
+    pub fn nav_ic_wno_valid(&self) -> bool {
+        ((self.valid >> 1) & 0x1) != 0
+    }
+    /// Sets valid week number (the value in its bits of `valid`; the other bits stay).
+    pub fn set_nav_ic_wno_valid(&mut self, value: bool) {
+        self.valid = (self.valid & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// Valid leap seconds (bit 2 of `valid`).
+    pub fn leap_s_valid(&self) -> bool {
+        ((self.valid >> 2) & 0x1) != 0
+    }
+    /// Sets valid leap seconds (the value in its bits of `valid`; the other bits stay).
+    pub fn set_leap_s_valid(&mut self, value: bool) {
+        self.valid = (self.valid & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let itow = u32::from_le_bytes(r.array("itow")?);
+        let nav_ic_tow = u32::from_le_bytes(r.array("nav_ic_tow")?);
+        let f_nav_ic_tow = i32::from_le_bytes(r.array("f_nav_ic_tow")?);
+        let nav_ic_wno = i16::from_le_bytes(r.array("nav_ic_wno")?);
+        let leap_s = i8::from_le_bytes(r.array("leap_s")?);
+        let valid = u8::from_le_bytes(r.array("valid")?);
+        let t_acc = u32::from_le_bytes(r.array("t_acc")?);
+        let trailing = r.rest();
+        Ok(Self { itow, nav_ic_tow, f_nav_ic_tow, nav_ic_wno, leap_s, valid, t_acc, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.itow.to_le_bytes());
+        w.put(&self.nav_ic_tow.to_le_bytes());
+        w.put(&self.f_nav_ic_tow.to_le_bytes());
+        w.put(&self.nav_ic_wno.to_le_bytes());
+        w.put(&self.leap_s.to_le_bytes());
+        w.put(&self.valid.to_le_bytes());
+        w.put(&self.t_acc.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("itow", self.itow)?;
+        j.int("nav_ic_tow", self.nav_ic_tow)?;
+        j.int("f_nav_ic_tow", self.f_nav_ic_tow)?;
+        j.int("nav_ic_wno", self.nav_ic_wno)?;
+        j.int("leap_s", self.leap_s)?;
+        j.int("valid", self.valid)?;
+        j.flag("nav_ic_tow_valid", (self.valid & 0x1) != 0)?;
+        j.flag("nav_ic_wno_valid", ((self.valid >> 1) & 0x1) != 0)?;
+        j.flag("leap_s_valid", ((self.valid >> 2) & 0x1) != 0)?;
+        j.int("t_acc", self.t_acc)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// QZSS time solution: UBX NAV-TIMEQZSS (class 0x01 id 0x27), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct NavTimeqzssPoll<'a> {
@@ -33651,6 +36136,373 @@ impl<'a> RxmCor<'a> {
     }
 }
 
+/// Indoor messaging system information: UBX RXM-IMES (class 0x02 id 0x61), poll.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmImesPoll<'a> {
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmImesPoll<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_imes_poll";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-IMES";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x61;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(0);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["poll"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &["rxm_imes"];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let trailing = r.rest();
+        Ok(Self { trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of RxmImesTransmitter.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmImesTransmitter {
+    /// Reserved.
+    pub reserved2: u8,
+    /// Transmitter identifier.
+    pub tx_id: u8,
+    /// Reserved.
+    pub reserved3: u32,
+    /// Carrier to noise ratio [dBHz].
+    pub cno: u8,
+    /// Reserved.
+    pub reserved4: u16,
+    /// Doppler frequency (against 1575.4282 MHz) [Hz].
+    pub doppler_raw: i32,
+    /// Position 1 frame (first word).
+    pub position1_1: u32,
+    /// Position 1 frame (second word).
+    pub position1_2: u32,
+    /// Position 2 frame.
+    pub position2_1: u32,
+    /// Latitude (position 2 frame) [semicircle].
+    pub lat_raw: i32,
+    /// Longitude (position 2 frame) [semicircle].
+    pub lon_raw: i32,
+    /// Short id frame.
+    pub short_id_frame: u32,
+    /// Medium id (low 32 bits).
+    pub medium_id_lsb: u32,
+    /// Medium id frame (the rest).
+    pub medium_id_2: u32,
+}
+
+impl<'a> ubx::Entry<'a> for RxmImesTransmitter {
+    const WIDTH: usize = 44;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
+        let tx_id = u8::from_le_bytes(r.array("tx_id")?);
+        let reserved3 = {
+            let b: [u8; 3] = r.array("reserved3")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let cno = u8::from_le_bytes(r.array("cno")?);
+        let reserved4 = u16::from_le_bytes(r.array("reserved4")?);
+        let doppler_raw = i32::from_le_bytes(r.array("doppler")?);
+        let position1_1 = u32::from_le_bytes(r.array("position1_1")?);
+        let position1_2 = u32::from_le_bytes(r.array("position1_2")?);
+        let position2_1 = u32::from_le_bytes(r.array("position2_1")?);
+        let lat_raw = i32::from_le_bytes(r.array("lat")?);
+        let lon_raw = i32::from_le_bytes(r.array("lon")?);
+        let short_id_frame = u32::from_le_bytes(r.array("short_id_frame")?);
+        let medium_id_lsb = u32::from_le_bytes(r.array("medium_id_lsb")?);
+        let medium_id_2 = u32::from_le_bytes(r.array("medium_id_2")?);
+        Ok(Self {
+            reserved2,
+            tx_id,
+            reserved3,
+            cno,
+            reserved4,
+            doppler_raw,
+            position1_1,
+            position1_2,
+            position2_1,
+            lat_raw,
+            lon_raw,
+            short_id_frame,
+            medium_id_lsb,
+            medium_id_2,
+        })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.reserved2.to_le_bytes());
+        w.put(&self.tx_id.to_le_bytes());
+        w.put(&self.reserved3.to_le_bytes()[..3]);
+        w.put(&self.cno.to_le_bytes());
+        w.put(&self.reserved4.to_le_bytes());
+        w.put(&self.doppler_raw.to_le_bytes());
+        w.put(&self.position1_1.to_le_bytes());
+        w.put(&self.position1_2.to_le_bytes());
+        w.put(&self.position2_1.to_le_bytes());
+        w.put(&self.lat_raw.to_le_bytes());
+        w.put(&self.lon_raw.to_le_bytes());
+        w.put(&self.short_id_frame.to_le_bytes());
+        w.put(&self.medium_id_lsb.to_le_bytes());
+        w.put(&self.medium_id_2.to_le_bytes());
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("reserved2", self.reserved2)?;
+        j.int("tx_id", self.tx_id)?;
+        j.int("reserved3", self.reserved3)?;
+        j.int("cno", self.cno)?;
+        j.int("reserved4", self.reserved4)?;
+        ubx::json_float(j, "doppler", self.doppler_raw as f64 / 4096.0)?;
+        j.int("doppler_raw", self.doppler_raw)?;
+        j.int("position1_1", self.position1_1)?;
+        j.int("pos1_floor", (self.position1_1 & 0xff) as u8)?;
+        j.int("pos1_lat", (self.position1_1 >> 8) & 0x7fffff)?;
+        j.int("position1_2", self.position1_2)?;
+        j.int("pos1_lon", self.position1_2 & 0xffffff)?;
+        j.flag("pos1_valid", ((self.position1_2 >> 24) & 0x1) != 0)?;
+        j.int("position2_1", self.position2_1)?;
+        j.int("pos2_floor", (self.position2_1 & 0xff) as u8)?;
+        j.int("pos2_alt", ((self.position2_1 >> 8) & 0xfff) as u16)?;
+        j.int("pos2_acc", ((self.position2_1 >> 20) & 0x3) as u8)?;
+        j.flag("pos2_valid", ((self.position2_1 >> 22) & 0x1) != 0)?;
+        ubx::json_float(j, "lat", self.lat_raw as f64 / 16777216.0)?;
+        j.int("lat_raw", self.lat_raw)?;
+        ubx::json_float(j, "lon", self.lon_raw as f64 / 16777216.0)?;
+        j.int("lon_raw", self.lon_raw)?;
+        j.int("short_id_frame", self.short_id_frame)?;
+        j.int("short_id", (self.short_id_frame & 0xfff) as u16)?;
+        j.flag("short_valid", ((self.short_id_frame >> 12) & 0x1) != 0)?;
+        j.flag("short_boundary", ((self.short_id_frame >> 13) & 0x1) != 0)?;
+        j.int("medium_id_lsb", self.medium_id_lsb)?;
+        j.int("medium_id_2", self.medium_id_2)?;
+        j.flag("medium_id_msb", (self.medium_id_2 & 0x1) != 0)?;
+        j.flag("medium_valid", ((self.medium_id_2 >> 1) & 0x1) != 0)?;
+        j.flag("medium_boundary", ((self.medium_id_2 >> 2) & 0x1) != 0)?;
+        Ok(())
+    }
+}
+
+impl RxmImesTransmitter {
+    /// Doppler frequency (against 1575.4282 MHz) [Hz]: the raw integer divided by 4096.
+    pub fn doppler(&self) -> f64 {
+        let raw = self.doppler_raw;
+        raw as f64 / 4096.0
+    }
+    /// Floor number (raw) (bits 0-7 of `position1_1`).
+    pub fn pos1_floor(&self) -> u8 {
+        (self.position1_1 & 0xff) as u8
+    }
+    /// Sets floor number (raw) (the value in its bits of `position1_1`; the other bits stay).
+    pub fn set_pos1_floor(&mut self, value: u8) {
+        self.position1_1 = (self.position1_1 & !0xff) | (value as u32 & 0xff);
+    }
+    /// Latitude (raw) (bits 8-30 of `position1_1`).
+    pub fn pos1_lat(&self) -> u32 {
+        (self.position1_1 >> 8) & 0x7fffff
+    }
+    /// Sets latitude (raw) (the value in its bits of `position1_1`; the other bits stay).
+    pub fn set_pos1_lat(&mut self, value: u32) {
+        self.position1_1 = (self.position1_1 & !(0x7fffff << 8)) | ((value & 0x7fffff) << 8);
+    }
+    /// Longitude (raw) (bits 0-23 of `position1_2`).
+    pub fn pos1_lon(&self) -> u32 {
+        self.position1_2 & 0xffffff
+    }
+    /// Sets longitude (raw) (the value in its bits of `position1_2`; the other bits stay).
+    pub fn set_pos1_lon(&mut self, value: u32) {
+        self.position1_2 = (self.position1_2 & !0xffffff) | (value & 0xffffff);
+    }
+    /// Position 1 frame valid (bit 24 of `position1_2`).
+    pub fn pos1_valid(&self) -> bool {
+        ((self.position1_2 >> 24) & 0x1) != 0
+    }
+    /// Sets position 1 frame valid (the value in its bits of `position1_2`; the other bits stay).
+    pub fn set_pos1_valid(&mut self, value: bool) {
+        self.position1_2 = (self.position1_2 & !(0x1 << 24)) | (u32::from(value) << 24);
+    }
+    /// Floor number (raw) (bits 0-7 of `position2_1`).
+    pub fn pos2_floor(&self) -> u8 {
+        (self.position2_1 & 0xff) as u8
+    }
+    /// Sets floor number (raw) (the value in its bits of `position2_1`; the other bits stay).
+    pub fn set_pos2_floor(&mut self, value: u8) {
+        self.position2_1 = (self.position2_1 & !0xff) | (value as u32 & 0xff);
+    }
+    /// Altitude (raw) (bits 8-19 of `position2_1`).
+    pub fn pos2_alt(&self) -> u16 {
+        ((self.position2_1 >> 8) & 0xfff) as u16
+    }
+    /// Sets altitude (raw) (the value in its bits of `position2_1`; the other bits stay).
+    pub fn set_pos2_alt(&mut self, value: u16) {
+        self.position2_1 = (self.position2_1 & !(0xfff << 8)) | ((value as u32 & 0xfff) << 8);
+    }
+    /// Accuracy index (bits 20-21 of `position2_1`).
+    pub fn pos2_acc(&self) -> u8 {
+        ((self.position2_1 >> 20) & 0x3) as u8
+    }
+    /// Sets accuracy index (the value in its bits of `position2_1`; the other bits stay).
+    pub fn set_pos2_acc(&mut self, value: u8) {
+        self.position2_1 = (self.position2_1 & !(0x3 << 20)) | ((value as u32 & 0x3) << 20);
+    }
+    /// Position 2 frame valid (bit 22 of `position2_1`).
+    pub fn pos2_valid(&self) -> bool {
+        ((self.position2_1 >> 22) & 0x1) != 0
+    }
+    /// Sets position 2 frame valid (the value in its bits of `position2_1`; the other bits stay).
+    pub fn set_pos2_valid(&mut self, value: bool) {
+        self.position2_1 = (self.position2_1 & !(0x1 << 22)) | (u32::from(value) << 22);
+    }
+    /// Latitude (position 2 frame) [semicircle]: the raw integer divided by 16777216.
+    pub fn lat(&self) -> f64 {
+        let raw = self.lat_raw;
+        raw as f64 / 16777216.0
+    }
+    /// Longitude (position 2 frame) [semicircle]: the raw integer divided by 16777216.
+    pub fn lon(&self) -> f64 {
+        let raw = self.lon_raw;
+        raw as f64 / 16777216.0
+    }
+    /// Short id (bits 0-11 of `short_id_frame`).
+    pub fn short_id(&self) -> u16 {
+        (self.short_id_frame & 0xfff) as u16
+    }
+    /// Sets short id (the value in its bits of `short_id_frame`; the other bits stay).
+    pub fn set_short_id(&mut self, value: u16) {
+        self.short_id_frame = (self.short_id_frame & !0xfff) | (value as u32 & 0xfff);
+    }
+    /// Short id valid (bit 12 of `short_id_frame`).
+    pub fn short_valid(&self) -> bool {
+        ((self.short_id_frame >> 12) & 0x1) != 0
+    }
+    /// Sets short id valid (the value in its bits of `short_id_frame`; the other bits stay).
+    pub fn set_short_valid(&mut self, value: bool) {
+        self.short_id_frame = (self.short_id_frame & !(0x1 << 12)) | (u32::from(value) << 12);
+    }
+    /// Boundary bit (bit 13 of `short_id_frame`).
+    pub fn short_boundary(&self) -> bool {
+        ((self.short_id_frame >> 13) & 0x1) != 0
+    }
+    /// Sets boundary bit (the value in its bits of `short_id_frame`; the other bits stay).
+    pub fn set_short_boundary(&mut self, value: bool) {
+        self.short_id_frame = (self.short_id_frame & !(0x1 << 13)) | (u32::from(value) << 13);
+    }
+    /// Medium id (bit 32) (bit 0 of `medium_id_2`).
+    pub fn medium_id_msb(&self) -> bool {
+        (self.medium_id_2 & 0x1) != 0
+    }
+    /// Sets medium id (bit 32) (the value in its bits of `medium_id_2`; the other bits stay).
+    pub fn set_medium_id_msb(&mut self, value: bool) {
+        self.medium_id_2 = (self.medium_id_2 & !0x1) | u32::from(value);
+    }
+    /// Medium id valid (bit 1 of `medium_id_2`).
+    pub fn medium_valid(&self) -> bool {
+        ((self.medium_id_2 >> 1) & 0x1) != 0
+    }
+    /// Sets medium id valid (the value in its bits of `medium_id_2`; the other bits stay).
+    pub fn set_medium_valid(&mut self, value: bool) {
+        self.medium_id_2 = (self.medium_id_2 & !(0x1 << 1)) | (u32::from(value) << 1);
+    }
+    /// Boundary bit (bit 2 of `medium_id_2`).
+    pub fn medium_boundary(&self) -> bool {
+        ((self.medium_id_2 >> 2) & 0x1) != 0
+    }
+    /// Sets boundary bit (the value in its bits of `medium_id_2`; the other bits stay).
+    pub fn set_medium_boundary(&mut self, value: bool) {
+        self.medium_id_2 = (self.medium_id_2 & !(0x1 << 2)) | (u32::from(value) << 2);
+    }
+}
+
+/// Indoor messaging system information: UBX RXM-IMES (class 0x02 id 0x61), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmImes<'a> {
+    /// Number of transmitters.
+    pub num_tx: u8,
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved1: u16,
+    /// Transmitters: 0 to 65535 entries.
+    pub transmitters: ubx::Group<'a, RxmImesTransmitter>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmImes<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_imes";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-IMES";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x61;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let num_tx = u8::from_le_bytes(r.array("num_tx")?);
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let transmitters = r.group(Some(usize::from(num_tx)), 0, 65535, 0, "transmitters")?;
+        let trailing = r.rest();
+        Ok(Self { num_tx, version, reserved1, transmitters, trailing })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.num_tx.to_le_bytes());
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        self.transmitters.write(w);
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("num_tx", self.num_tx)?;
+        j.int("version", self.version)?;
+        j.int("reserved1", self.reserved1)?;
+        self.transmitters.json(j, "transmitters")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Satellite measurements for RRLP: UBX RXM-MEASX (class 0x02 id 0x14), poll.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RxmMeasxPoll<'a> {
@@ -33999,6 +36851,285 @@ impl<'a> RxmMeasx<'a> {
     }
 }
 
+/// PMP (L-band) correction data frame: UBX RXM-PMP (class 0x02 id 0x72), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmPmp<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u32,
+    /// Receiver time tag at the start of the frame [ms].
+    pub time_tag: u32,
+    /// First unique word received.
+    pub unique_word1: u32,
+    /// Second unique word received.
+    pub unique_word2: u32,
+    /// Service identifier.
+    pub service_identifier: u16,
+    /// Spare byte of the frame.
+    pub spare: u8,
+    /// Bit errors in both unique words.
+    pub unique_word_bit_errors: u8,
+    /// User data (bytes 0 to 251).
+    pub user_data0: &'a [u8],
+    /// User data (bytes 252 to 503).
+    pub user_data1: &'a [u8],
+    /// Bits the forward error correction corrected.
+    pub fec_bits: u16,
+    /// Energy per bit to noise power spectral density ratio [dB].
+    pub ebno_raw: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmPmp<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_pmp";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-PMP";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x72;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(528);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x00));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x00, ..Self::default() }
+    }
+    /// Energy per bit to noise power spectral density ratio [dB]: the raw integer divided by 8.
+    pub fn ebno(&self) -> f64 {
+        let raw = self.ebno_raw;
+        raw as f64 / 8.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = {
+            let b: [u8; 3] = r.array("reserved0")?;
+            let mut le = [0u8; 4];
+            le[..3].copy_from_slice(&b);
+            u32::from_le_bytes(le)
+        };
+        let time_tag = u32::from_le_bytes(r.array("time_tag")?);
+        let unique_word1 = u32::from_le_bytes(r.array("unique_word1")?);
+        let unique_word2 = u32::from_le_bytes(r.array("unique_word2")?);
+        let service_identifier = u16::from_le_bytes(r.array("service_identifier")?);
+        let spare = u8::from_le_bytes(r.array("spare")?);
+        let unique_word_bit_errors = u8::from_le_bytes(r.array("unique_word_bit_errors")?);
+        let user_data0 = r.bytes(252, "user_data0")?;
+        let user_data1 = r.bytes(252, "user_data1")?;
+        let fec_bits = u16::from_le_bytes(r.array("fec_bits")?);
+        let ebno_raw = u8::from_le_bytes(r.array("ebno")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            reserved0,
+            time_tag,
+            unique_word1,
+            unique_word2,
+            service_identifier,
+            spare,
+            unique_word_bit_errors,
+            user_data0,
+            user_data1,
+            fec_bits,
+            ebno_raw,
+            reserved1,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes()[..3]);
+        w.put(&self.time_tag.to_le_bytes());
+        w.put(&self.unique_word1.to_le_bytes());
+        w.put(&self.unique_word2.to_le_bytes());
+        w.put(&self.service_identifier.to_le_bytes());
+        w.put(&self.spare.to_le_bytes());
+        w.put(&self.unique_word_bit_errors.to_le_bytes());
+        w.put_sized(self.user_data0, Some(252), "RXM-PMP", "user_data0")?;
+        w.put_sized(self.user_data1, Some(252), "RXM-PMP", "user_data1")?;
+        w.put(&self.fec_bits.to_le_bytes());
+        w.put(&self.ebno_raw.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("time_tag", self.time_tag)?;
+        j.int("unique_word1", self.unique_word1)?;
+        j.int("unique_word2", self.unique_word2)?;
+        j.int("service_identifier", self.service_identifier)?;
+        j.int("spare", self.spare)?;
+        j.int("unique_word_bit_errors", self.unique_word_bit_errors)?;
+        ubx::json_hex(j, "user_data0", self.user_data0)?;
+        ubx::json_hex(j, "user_data1", self.user_data1)?;
+        j.int("fec_bits", self.fec_bits)?;
+        ubx::json_float(j, "ebno", self.ebno_raw as f64 / 8.0)?;
+        j.int("ebno_raw", self.ebno_raw)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// PMP (L-band) correction data frame: UBX RXM-PMP (class 0x02 id 0x72), input, output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmPmpV1<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Reserved.
+    pub reserved0: u8,
+    /// Bytes of user data.
+    pub num_bytes_user_data: u16,
+    /// Receiver time tag at the start of the frame [ms].
+    pub time_tag: u32,
+    /// First unique word received.
+    pub unique_word1: u32,
+    /// Second unique word received.
+    pub unique_word2: u32,
+    /// Service identifier.
+    pub service_identifier: u16,
+    /// Spare byte of the frame.
+    pub spare: u8,
+    /// Bit errors in both unique words.
+    pub unique_word_bit_errors: u8,
+    /// Bits the forward error correction corrected.
+    pub fec_bits: u16,
+    /// Energy per bit to noise power spectral density ratio [dB].
+    pub ebno_raw: u8,
+    /// Reserved.
+    pub reserved1: u8,
+    /// User data.
+    pub user_data: &'a [u8],
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmPmpV1<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_pmp_v1";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-PMP";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x72;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = Some(("version", 0, 0x01));
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["input", "output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// The layout's default with its `version` set to the value that picks it.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { version: 0x01, ..Self::default() }
+    }
+    /// Energy per bit to noise power spectral density ratio [dB]: the raw integer divided by 8.
+    pub fn ebno(&self) -> f64 {
+        let raw = self.ebno_raw;
+        raw as f64 / 8.0
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let reserved0 = u8::from_le_bytes(r.array("reserved0")?);
+        let num_bytes_user_data = u16::from_le_bytes(r.array("num_bytes_user_data")?);
+        let time_tag = u32::from_le_bytes(r.array("time_tag")?);
+        let unique_word1 = u32::from_le_bytes(r.array("unique_word1")?);
+        let unique_word2 = u32::from_le_bytes(r.array("unique_word2")?);
+        let service_identifier = u16::from_le_bytes(r.array("service_identifier")?);
+        let spare = u8::from_le_bytes(r.array("spare")?);
+        let unique_word_bit_errors = u8::from_le_bytes(r.array("unique_word_bit_errors")?);
+        let fec_bits = u16::from_le_bytes(r.array("fec_bits")?);
+        let ebno_raw = u8::from_le_bytes(r.array("ebno")?);
+        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let user_data = r.left(0);
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            reserved0,
+            num_bytes_user_data,
+            time_tag,
+            unique_word1,
+            unique_word2,
+            service_identifier,
+            spare,
+            unique_word_bit_errors,
+            fec_bits,
+            ebno_raw,
+            reserved1,
+            user_data,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put(&self.num_bytes_user_data.to_le_bytes());
+        w.put(&self.time_tag.to_le_bytes());
+        w.put(&self.unique_word1.to_le_bytes());
+        w.put(&self.unique_word2.to_le_bytes());
+        w.put(&self.service_identifier.to_le_bytes());
+        w.put(&self.spare.to_le_bytes());
+        w.put(&self.unique_word_bit_errors.to_le_bytes());
+        w.put(&self.fec_bits.to_le_bytes());
+        w.put(&self.ebno_raw.to_le_bytes());
+        w.put(&self.reserved1.to_le_bytes());
+        w.put_sized(self.user_data, None, "RXM-PMP", "user_data")?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("reserved0", self.reserved0)?;
+        j.int("num_bytes_user_data", self.num_bytes_user_data)?;
+        j.int("time_tag", self.time_tag)?;
+        j.int("unique_word1", self.unique_word1)?;
+        j.int("unique_word2", self.unique_word2)?;
+        j.int("service_identifier", self.service_identifier)?;
+        j.int("spare", self.spare)?;
+        j.int("unique_word_bit_errors", self.unique_word_bit_errors)?;
+        j.int("fec_bits", self.fec_bits)?;
+        ubx::json_float(j, "ebno", self.ebno_raw as f64 / 8.0)?;
+        j.int("ebno_raw", self.ebno_raw)?;
+        j.int("reserved1", self.reserved1)?;
+        ubx::json_hex(j, "user_data", self.user_data)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Power management request: UBX RXM-PMREQ (class 0x02 id 0x41), input.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RxmPmreq<'a> {
@@ -34190,6 +37321,150 @@ impl<'a> RxmPmreqShort<'a> {
         j.int("duration", self.duration)?;
         j.int("flags", self.flags)?;
         j.flag("backup", ((self.flags >> 1) & 0x1) != 0)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// QZSS L6 message: UBX RXM-QZSSL6 (class 0x02 id 0x73), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RxmQzssl6<'a> {
+    /// Message version.
+    pub version: u8,
+    /// Satellite identifier.
+    pub sv_id: u8,
+    /// Carrier to noise ratio [dBHz].
+    pub cno_raw: u16,
+    /// Receiver time tag at the start of the message [ms].
+    pub time_tag: u32,
+    /// Group delay.
+    pub group_delay: u8,
+    /// Bytes the Reed-Solomon decoder corrected.
+    pub bit_err_corr: u8,
+    /// Channel information.
+    pub ch_info: u16,
+    /// Reserved.
+    pub reserved0: u16,
+    /// The L6 message.
+    pub msg_bytes: &'a [u8],
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> RxmQzssl6<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "rxm_qzssl6";
+    /// How u-blox names the message.
+    pub const ADDRESS: &'static str = "RXM-QZSSL6";
+    /// The message class.
+    pub const CLASS: u8 = 0x02;
+    /// The message id.
+    pub const MSG_ID: u8 = 0x73;
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(264);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Carrier to noise ratio [dBHz]: the raw integer divided by 256.
+    pub fn cno(&self) -> f64 {
+        let raw = self.cno_raw;
+        raw as f64 / 256.0
+    }
+    /// Receiver channel (bits 8-9 of `ch_info`).
+    pub fn chn(&self) -> u8 {
+        ((self.ch_info >> 8) & 0x3) as u8
+    }
+    /// Sets receiver channel (the value in its bits of `ch_info`; the other bits stay).
+    pub fn set_chn(&mut self, value: u8) {
+        self.ch_info = (self.ch_info & !(0x3 << 8)) | ((value as u16 & 0x3) << 8);
+    }
+    /// Message name (bit 10 of `ch_info`).
+    pub fn msg_name(&self) -> bool {
+        ((self.ch_info >> 10) & 0x1) != 0
+    }
+    /// Sets message name (the value in its bits of `ch_info`; the other bits stay).
+    pub fn set_msg_name(&mut self, value: bool) {
+        self.ch_info = (self.ch_info & !(0x1 << 10)) | (u16::from(value) << 10);
+    }
+    /// Error status (bits 12-13 of `ch_info`).
+    pub fn err_status(&self) -> u8 {
+        ((self.ch_info >> 12) & 0x3) as u8
+    }
+    /// Sets error status (the value in its bits of `ch_info`; the other bits stay).
+    pub fn set_err_status(&mut self, value: u8) {
+        self.ch_info = (self.ch_info & !(0x3 << 12)) | ((value as u16 & 0x3) << 12);
+    }
+    /// Channel name (bits 14-15 of `ch_info`).
+    pub fn ch_name(&self) -> u8 {
+        ((self.ch_info >> 14) & 0x3) as u8
+    }
+    /// Sets channel name (the value in its bits of `ch_info`; the other bits stay).
+    pub fn set_ch_name(&mut self, value: u8) {
+        self.ch_info = (self.ch_info & !(0x3 << 14)) | ((value as u16 & 0x3) << 14);
+    }
+    /// The message of `payload`, read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (Self::CLASS, Self::MSG_ID));
+        let version = u8::from_le_bytes(r.array("version")?);
+        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
+        let cno_raw = u16::from_le_bytes(r.array("cno")?);
+        let time_tag = u32::from_le_bytes(r.array("time_tag")?);
+        let group_delay = u8::from_le_bytes(r.array("group_delay")?);
+        let bit_err_corr = u8::from_le_bytes(r.array("bit_err_corr")?);
+        let ch_info = u16::from_le_bytes(r.array("ch_info")?);
+        let reserved0 = u16::from_le_bytes(r.array("reserved0")?);
+        let msg_bytes = r.bytes(250, "msg_bytes")?;
+        let trailing = r.rest();
+        Ok(Self {
+            version,
+            sv_id,
+            cno_raw,
+            time_tag,
+            group_delay,
+            bit_err_corr,
+            ch_info,
+            reserved0,
+            msg_bytes,
+            trailing,
+        })
+    }
+    /// Writes the payload.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.version.to_le_bytes());
+        w.put(&self.sv_id.to_le_bytes());
+        w.put(&self.cno_raw.to_le_bytes());
+        w.put(&self.time_tag.to_le_bytes());
+        w.put(&self.group_delay.to_le_bytes());
+        w.put(&self.bit_err_corr.to_le_bytes());
+        w.put(&self.ch_info.to_le_bytes());
+        w.put(&self.reserved0.to_le_bytes());
+        w.put_sized(self.msg_bytes, Some(250), "RXM-QZSSL6", "msg_bytes")?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame(buf, Self::CLASS, Self::MSG_ID, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ubx.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("version", self.version)?;
+        j.int("sv_id", self.sv_id)?;
+        ubx::json_float(j, "cno", self.cno_raw as f64 / 256.0)?;
+        j.int("cno_raw", self.cno_raw)?;
+        j.int("time_tag", self.time_tag)?;
+        j.int("group_delay", self.group_delay)?;
+        j.int("bit_err_corr", self.bit_err_corr)?;
+        j.int("ch_info", self.ch_info)?;
+        j.int("chn", ((self.ch_info >> 8) & 0x3) as u8)?;
+        j.flag("msg_name", ((self.ch_info >> 10) & 0x1) != 0)?;
+        j.int("err_status", ((self.ch_info >> 12) & 0x3) as u8)?;
+        j.int("ch_name", ((self.ch_info >> 14) & 0x3) as u8)?;
+        j.int("reserved0", self.reserved0)?;
+        ubx::json_hex(j, "msg_bytes", self.msg_bytes)?;
         ubx::json_hex(j, "trailing", self.trailing)
     }
 }
@@ -38267,6 +41542,8 @@ pub enum Message<'a> {
     CfgDoscPoll(CfgDoscPoll<'a>),
     /// CFG-DOSC (input, output): Disciplined oscillator configuration.
     CfgDosc(CfgDosc<'a>),
+    /// CFG-DYNSEED (input): Programming the dynamic seed for the host interface signature.
+    CfgDynseed(CfgDynseed<'a>),
     /// CFG-ESFA (poll): Accelerometer sensor configuration.
     CfgEsfaPoll(CfgEsfaPoll<'a>),
     /// CFG-ESFA (input, output): Accelerometer sensor configuration.
@@ -38375,6 +41652,10 @@ pub enum Message<'a> {
     CfgSbasPoll(CfgSbasPoll<'a>),
     /// CFG-SBAS (input, output): SBAS configuration.
     CfgSbas(CfgSbas<'a>),
+    /// CFG-SENIF (poll): I2C sensor interface configuration.
+    CfgSenifPoll(CfgSenifPoll<'a>),
+    /// CFG-SENIF (input, output): I2C sensor interface configuration.
+    CfgSenif(CfgSenif<'a>),
     /// CFG-SLAS (poll): QZSS L1S SLAS configuration.
     CfgSlasPoll(CfgSlasPoll<'a>),
     /// CFG-SLAS (input, output): QZSS L1S SLAS configuration.
@@ -38383,6 +41664,14 @@ pub enum Message<'a> {
     CfgSmgrPoll(CfgSmgrPoll<'a>),
     /// CFG-SMGR (input, output): Synchronization manager configuration.
     CfgSmgr(CfgSmgr<'a>),
+    /// CFG-SPT (poll): Sensor production test.
+    CfgSptPoll(CfgSptPoll<'a>),
+    /// CFG-SPT (input, output): Sensor production test.
+    CfgSpt(CfgSpt<'a>),
+    /// CFG-TMODE2 (poll): Time mode settings 2 (timing receiver).
+    CfgTmode2Poll(CfgTmode2Poll<'a>),
+    /// CFG-TMODE2 (input, output): Time mode settings 2 (timing receiver).
+    CfgTmode2(CfgTmode2<'a>),
     /// CFG-TMODE3 (poll): Time mode settings (RTK base station).
     CfgTmode3Poll(CfgTmode3Poll<'a>),
     /// CFG-TMODE3 (input, output): Time mode settings (RTK base station).
@@ -38495,6 +41784,12 @@ pub enum Message<'a> {
     MgaDbdPoll(MgaDbdPoll<'a>),
     /// MGA-DBD (input, output): Navigation database dump.
     MgaDbd(MgaDbd<'a>),
+    /// MGA-FLASH (input): AssistNow Offline data written to the receiver's flash.
+    MgaFlashData(MgaFlashData<'a>),
+    /// MGA-FLASH (input): AssistNow Offline data written to the receiver's flash.
+    MgaFlashStop(MgaFlashStop<'a>),
+    /// MGA-FLASH (output): AssistNow Offline data written to the receiver's flash.
+    MgaFlashAck(MgaFlashAck<'a>),
     /// MGA-GAL (input): Galileo assistance data.
     MgaGalEph(MgaGalEph<'a>),
     /// MGA-GAL (input): Galileo assistance data.
@@ -38539,6 +41834,10 @@ pub enum Message<'a> {
     MgaQzssAlm(MgaQzssAlm<'a>),
     /// MGA-QZSS (input): QZSS assistance data.
     MgaQzssHealth(MgaQzssHealth<'a>),
+    /// MON-BATCH (poll): Data batching buffer status.
+    MonBatchPoll(MonBatchPoll<'a>),
+    /// MON-BATCH (output): Data batching buffer status.
+    MonBatch(MonBatch<'a>),
     /// MON-COMMS (poll): Communication port information.
     MonCommsPoll(MonCommsPoll<'a>),
     /// MON-COMMS (output): Communication port information.
@@ -38571,6 +41870,10 @@ pub enum Message<'a> {
     MonPatchPoll(MonPatchPoll<'a>),
     /// MON-PATCH (output): Installed patches.
     MonPatch(MonPatch<'a>),
+    /// MON-PMP (poll): PMP (L-band) receiver status.
+    MonPmpPoll(MonPmpPoll<'a>),
+    /// MON-PMP (output): PMP (L-band) receiver status.
+    MonPmp(MonPmp<'a>),
     /// MON-RF (poll): RF information.
     MonRfPoll(MonRfPoll<'a>),
     /// MON-RF (output): RF information.
@@ -38589,6 +41892,10 @@ pub enum Message<'a> {
     MonSpanPoll(MonSpanPoll<'a>),
     /// MON-SPAN (output): Signal characteristics (spectrum analyzer).
     MonSpan(MonSpan<'a>),
+    /// MON-SPT (poll): Sensor production test results.
+    MonSptPoll(MonSptPoll<'a>),
+    /// MON-SPT (output): Sensor production test results.
+    MonSpt(MonSpt<'a>),
     /// MON-SYS (poll): System status.
     MonSysPoll(MonSysPoll<'a>),
     /// MON-SYS (output): System status.
@@ -38671,6 +41978,10 @@ pub enum Message<'a> {
     Nav2TimelsPoll(Nav2TimelsPoll<'a>),
     /// NAV2-TIMELS (output): Leap second event information (secondary output).
     Nav2Timels(Nav2Timels<'a>),
+    /// NAV2-TIMENAVIC (poll): NavIC time solution (secondary output).
+    Nav2TimenavicPoll(Nav2TimenavicPoll<'a>),
+    /// NAV2-TIMENAVIC (output): NavIC time solution (secondary output).
+    Nav2Timenavic(Nav2Timenavic<'a>),
     /// NAV2-TIMEQZSS (poll): QZSS time solution (secondary output).
     Nav2TimeqzssPoll(Nav2TimeqzssPoll<'a>),
     /// NAV2-TIMEQZSS (output): QZSS time solution (secondary output).
@@ -38729,6 +42040,10 @@ pub enum Message<'a> {
     NavHpposllhPoll(NavHpposllhPoll<'a>),
     /// NAV-HPPOSLLH (output): High precision geodetic position solution.
     NavHpposllh(NavHpposllh<'a>),
+    /// NAV-NMI (poll): Navigation message cross-check information.
+    NavNmiPoll(NavNmiPoll<'a>),
+    /// NAV-NMI (output): Navigation message cross-check information.
+    NavNmi(NavNmi<'a>),
     /// NAV-ODO (poll): Odometer solution.
     NavOdoPoll(NavOdoPoll<'a>),
     /// NAV-ODO (output): Odometer solution.
@@ -38749,6 +42064,10 @@ pub enum Message<'a> {
     NavPosllhPoll(NavPosllhPoll<'a>),
     /// NAV-POSLLH (output): Geodetic position solution.
     NavPosllh(NavPosllh<'a>),
+    /// NAV-PVAT (poll): Navigation position velocity attitude time solution.
+    NavPvatPoll(NavPvatPoll<'a>),
+    /// NAV-PVAT (output): Navigation position velocity attitude time solution.
+    NavPvat(NavPvat<'a>),
     /// NAV-PVT (poll): Navigation position velocity time solution.
     NavPvtPoll(NavPvtPoll<'a>),
     /// NAV-PVT (output): Navigation position velocity time solution.
@@ -38813,6 +42132,10 @@ pub enum Message<'a> {
     NavTimelsPoll(NavTimelsPoll<'a>),
     /// NAV-TIMELS (output): Leap second event information.
     NavTimels(NavTimels<'a>),
+    /// NAV-TIMENAVIC (poll): NavIC time solution.
+    NavTimenavicPoll(NavTimenavicPoll<'a>),
+    /// NAV-TIMENAVIC (output): NavIC time solution.
+    NavTimenavic(NavTimenavic<'a>),
     /// NAV-TIMEQZSS (poll): QZSS time solution.
     NavTimeqzssPoll(NavTimeqzssPoll<'a>),
     /// NAV-TIMEQZSS (output): QZSS time solution.
@@ -38831,14 +42154,24 @@ pub enum Message<'a> {
     NavVelned(NavVelned<'a>),
     /// RXM-COR (output): Differential correction input status.
     RxmCor(RxmCor<'a>),
+    /// RXM-IMES (poll): Indoor messaging system information.
+    RxmImesPoll(RxmImesPoll<'a>),
+    /// RXM-IMES (output): Indoor messaging system information.
+    RxmImes(RxmImes<'a>),
     /// RXM-MEASX (poll): Satellite measurements for RRLP.
     RxmMeasxPoll(RxmMeasxPoll<'a>),
     /// RXM-MEASX (output): Satellite measurements for RRLP.
     RxmMeasx(RxmMeasx<'a>),
+    /// RXM-PMP (input, output): PMP (L-band) correction data frame.
+    RxmPmp(RxmPmp<'a>),
+    /// RXM-PMP (input, output): PMP (L-band) correction data frame.
+    RxmPmpV1(RxmPmpV1<'a>),
     /// RXM-PMREQ (input): Power management request.
     RxmPmreq(RxmPmreq<'a>),
     /// RXM-PMREQ (input): Power management request.
     RxmPmreqShort(RxmPmreqShort<'a>),
+    /// RXM-QZSSL6 (output): QZSS L6 message.
+    RxmQzssl6(RxmQzssl6<'a>),
     /// RXM-RAWX (poll): Multi-GNSS raw measurements.
     RxmRawxPoll(RxmRawxPoll<'a>),
     /// RXM-RAWX (output): Multi-GNSS raw measurements.
@@ -39030,6 +42363,7 @@ impl<'a> Message<'a> {
                     Message::CfgDosc(CfgDosc::read(payload)?)
                 }
             }
+            (0x06, 0x85) => Message::CfgDynseed(CfgDynseed::read(payload)?),
             (0x06, 0x4c) => {
                 if payload.is_empty() {
                     Message::CfgEsfaPoll(CfgEsfaPoll::read(payload)?)
@@ -39216,6 +42550,13 @@ impl<'a> Message<'a> {
                     Message::CfgSbas(CfgSbas::read(payload)?)
                 }
             }
+            (0x06, 0x88) => {
+                if payload.is_empty() {
+                    Message::CfgSenifPoll(CfgSenifPoll::read(payload)?)
+                } else {
+                    Message::CfgSenif(CfgSenif::read(payload)?)
+                }
+            }
             (0x06, 0x8d) => {
                 if payload.is_empty() {
                     Message::CfgSlasPoll(CfgSlasPoll::read(payload)?)
@@ -39228,6 +42569,20 @@ impl<'a> Message<'a> {
                     Message::CfgSmgrPoll(CfgSmgrPoll::read(payload)?)
                 } else {
                     Message::CfgSmgr(CfgSmgr::read(payload)?)
+                }
+            }
+            (0x06, 0x64) => {
+                if payload.is_empty() {
+                    Message::CfgSptPoll(CfgSptPoll::read(payload)?)
+                } else {
+                    Message::CfgSpt(CfgSpt::read(payload)?)
+                }
+            }
+            (0x06, 0x3d) => {
+                if payload.is_empty() {
+                    Message::CfgTmode2Poll(CfgTmode2Poll::read(payload)?)
+                } else {
+                    Message::CfgTmode2(CfgTmode2::read(payload)?)
                 }
             }
             (0x06, 0x71) => {
@@ -39385,6 +42740,19 @@ impl<'a> Message<'a> {
                     Message::MgaDbd(MgaDbd::read(payload)?)
                 }
             }
+            (0x13, 0x21) => {
+                if payload.first() == Some(&0x01) {
+                    Message::MgaFlashData(MgaFlashData::read(payload)?)
+                } else if payload.len() == 2 && payload.first() == Some(&0x02) {
+                    Message::MgaFlashStop(MgaFlashStop::read(payload)?)
+                } else if payload.len() == 6 && payload.first() == Some(&0x03) {
+                    Message::MgaFlashAck(MgaFlashAck::read(payload)?)
+                } else if payload.len() == 2 {
+                    Message::MgaFlashStop(MgaFlashStop::read(payload)?)
+                } else {
+                    Message::MgaFlashAck(MgaFlashAck::read(payload)?)
+                }
+            }
             (0x13, 0x02) => {
                 if payload.len() == 76 && payload.first() == Some(&0x01) {
                     Message::MgaGalEph(MgaGalEph::read(payload)?)
@@ -39482,6 +42850,13 @@ impl<'a> Message<'a> {
                     Message::MgaQzssHealth(MgaQzssHealth::read(payload)?)
                 }
             }
+            (0x0a, 0x32) => {
+                if payload.is_empty() {
+                    Message::MonBatchPoll(MonBatchPoll::read(payload)?)
+                } else {
+                    Message::MonBatch(MonBatch::read(payload)?)
+                }
+            }
             (0x0a, 0x36) => {
                 if payload.is_empty() {
                     Message::MonCommsPoll(MonCommsPoll::read(payload)?)
@@ -39538,6 +42913,13 @@ impl<'a> Message<'a> {
                     Message::MonPatch(MonPatch::read(payload)?)
                 }
             }
+            (0x0a, 0x35) => {
+                if payload.is_empty() {
+                    Message::MonPmpPoll(MonPmpPoll::read(payload)?)
+                } else {
+                    Message::MonPmp(MonPmp::read(payload)?)
+                }
+            }
             (0x0a, 0x38) => {
                 if payload.is_empty() {
                     Message::MonRfPoll(MonRfPoll::read(payload)?)
@@ -39565,6 +42947,13 @@ impl<'a> Message<'a> {
                     Message::MonSpanPoll(MonSpanPoll::read(payload)?)
                 } else {
                     Message::MonSpan(MonSpan::read(payload)?)
+                }
+            }
+            (0x0a, 0x2f) => {
+                if payload.is_empty() {
+                    Message::MonSptPoll(MonSptPoll::read(payload)?)
+                } else {
+                    Message::MonSpt(MonSpt::read(payload)?)
                 }
             }
             (0x0a, 0x39) => {
@@ -39708,6 +43097,13 @@ impl<'a> Message<'a> {
                     Message::Nav2Timels(Nav2Timels::read(payload)?)
                 }
             }
+            (0x29, 0x63) => {
+                if payload.is_empty() {
+                    Message::Nav2TimenavicPoll(Nav2TimenavicPoll::read(payload)?)
+                } else {
+                    Message::Nav2Timenavic(Nav2Timenavic::read(payload)?)
+                }
+            }
             (0x29, 0x27) => {
                 if payload.is_empty() {
                     Message::Nav2TimeqzssPoll(Nav2TimeqzssPoll::read(payload)?)
@@ -39807,6 +43203,13 @@ impl<'a> Message<'a> {
                     Message::NavHpposllh(NavHpposllh::read(payload)?)
                 }
             }
+            (0x01, 0x28) => {
+                if payload.is_empty() {
+                    Message::NavNmiPoll(NavNmiPoll::read(payload)?)
+                } else {
+                    Message::NavNmi(NavNmi::read(payload)?)
+                }
+            }
             (0x01, 0x09) => {
                 if payload.is_empty() {
                     Message::NavOdoPoll(NavOdoPoll::read(payload)?)
@@ -39840,6 +43243,13 @@ impl<'a> Message<'a> {
                     Message::NavPosllhPoll(NavPosllhPoll::read(payload)?)
                 } else {
                     Message::NavPosllh(NavPosllh::read(payload)?)
+                }
+            }
+            (0x01, 0x17) => {
+                if payload.is_empty() {
+                    Message::NavPvatPoll(NavPvatPoll::read(payload)?)
+                } else {
+                    Message::NavPvat(NavPvat::read(payload)?)
                 }
             }
             (0x01, 0x07) => {
@@ -39956,6 +43366,13 @@ impl<'a> Message<'a> {
                     Message::NavTimels(NavTimels::read(payload)?)
                 }
             }
+            (0x01, 0x63) => {
+                if payload.is_empty() {
+                    Message::NavTimenavicPoll(NavTimenavicPoll::read(payload)?)
+                } else {
+                    Message::NavTimenavic(NavTimenavic::read(payload)?)
+                }
+            }
             (0x01, 0x27) => {
                 if payload.is_empty() {
                     Message::NavTimeqzssPoll(NavTimeqzssPoll::read(payload)?)
@@ -39985,11 +43402,27 @@ impl<'a> Message<'a> {
                 }
             }
             (0x02, 0x34) => Message::RxmCor(RxmCor::read(payload)?),
+            (0x02, 0x61) => {
+                if payload.is_empty() {
+                    Message::RxmImesPoll(RxmImesPoll::read(payload)?)
+                } else {
+                    Message::RxmImes(RxmImes::read(payload)?)
+                }
+            }
             (0x02, 0x14) => {
                 if payload.is_empty() {
                     Message::RxmMeasxPoll(RxmMeasxPoll::read(payload)?)
                 } else {
                     Message::RxmMeasx(RxmMeasx::read(payload)?)
+                }
+            }
+            (0x02, 0x72) => {
+                if payload.len() == 528 && payload.first() == Some(&0x00) {
+                    Message::RxmPmp(RxmPmp::read(payload)?)
+                } else if payload.first() == Some(&0x01) {
+                    Message::RxmPmpV1(RxmPmpV1::read(payload)?)
+                } else {
+                    Message::RxmPmp(RxmPmp::read(payload)?)
                 }
             }
             (0x02, 0x41) => {
@@ -39999,6 +43432,7 @@ impl<'a> Message<'a> {
                     Message::RxmPmreqShort(RxmPmreqShort::read(payload)?)
                 }
             }
+            (0x02, 0x73) => Message::RxmQzssl6(RxmQzssl6::read(payload)?),
             (0x02, 0x15) => {
                 if payload.is_empty() {
                     Message::RxmRawxPoll(RxmRawxPoll::read(payload)?)
@@ -40182,6 +43616,7 @@ impl<'a> Message<'a> {
             Message::CfgDgnss(_) => CfgDgnss::ID,
             Message::CfgDoscPoll(_) => CfgDoscPoll::ID,
             Message::CfgDosc(_) => CfgDosc::ID,
+            Message::CfgDynseed(_) => CfgDynseed::ID,
             Message::CfgEsfaPoll(_) => CfgEsfaPoll::ID,
             Message::CfgEsfa(_) => CfgEsfa::ID,
             Message::CfgEsfalgPoll(_) => CfgEsfalgPoll::ID,
@@ -40236,10 +43671,16 @@ impl<'a> Message<'a> {
             Message::CfgRxm(_) => CfgRxm::ID,
             Message::CfgSbasPoll(_) => CfgSbasPoll::ID,
             Message::CfgSbas(_) => CfgSbas::ID,
+            Message::CfgSenifPoll(_) => CfgSenifPoll::ID,
+            Message::CfgSenif(_) => CfgSenif::ID,
             Message::CfgSlasPoll(_) => CfgSlasPoll::ID,
             Message::CfgSlas(_) => CfgSlas::ID,
             Message::CfgSmgrPoll(_) => CfgSmgrPoll::ID,
             Message::CfgSmgr(_) => CfgSmgr::ID,
+            Message::CfgSptPoll(_) => CfgSptPoll::ID,
+            Message::CfgSpt(_) => CfgSpt::ID,
+            Message::CfgTmode2Poll(_) => CfgTmode2Poll::ID,
+            Message::CfgTmode2(_) => CfgTmode2::ID,
             Message::CfgTmode3Poll(_) => CfgTmode3Poll::ID,
             Message::CfgTmode3(_) => CfgTmode3::ID,
             Message::CfgTp5Poll(_) => CfgTp5Poll::ID,
@@ -40296,6 +43737,9 @@ impl<'a> Message<'a> {
             Message::MgaBdsIono(_) => MgaBdsIono::ID,
             Message::MgaDbdPoll(_) => MgaDbdPoll::ID,
             Message::MgaDbd(_) => MgaDbd::ID,
+            Message::MgaFlashData(_) => MgaFlashData::ID,
+            Message::MgaFlashStop(_) => MgaFlashStop::ID,
+            Message::MgaFlashAck(_) => MgaFlashAck::ID,
             Message::MgaGalEph(_) => MgaGalEph::ID,
             Message::MgaGalAlm(_) => MgaGalAlm::ID,
             Message::MgaGalTimeoffset(_) => MgaGalTimeoffset::ID,
@@ -40318,6 +43762,8 @@ impl<'a> Message<'a> {
             Message::MgaQzssEph(_) => MgaQzssEph::ID,
             Message::MgaQzssAlm(_) => MgaQzssAlm::ID,
             Message::MgaQzssHealth(_) => MgaQzssHealth::ID,
+            Message::MonBatchPoll(_) => MonBatchPoll::ID,
+            Message::MonBatch(_) => MonBatch::ID,
             Message::MonCommsPoll(_) => MonCommsPoll::ID,
             Message::MonComms(_) => MonComms::ID,
             Message::MonGnssPoll(_) => MonGnssPoll::ID,
@@ -40334,6 +43780,8 @@ impl<'a> Message<'a> {
             Message::MonMsgpp(_) => MonMsgpp::ID,
             Message::MonPatchPoll(_) => MonPatchPoll::ID,
             Message::MonPatch(_) => MonPatch::ID,
+            Message::MonPmpPoll(_) => MonPmpPoll::ID,
+            Message::MonPmp(_) => MonPmp::ID,
             Message::MonRfPoll(_) => MonRfPoll::ID,
             Message::MonRf(_) => MonRf::ID,
             Message::MonRxbufPoll(_) => MonRxbufPoll::ID,
@@ -40343,6 +43791,8 @@ impl<'a> Message<'a> {
             Message::MonSmgr(_) => MonSmgr::ID,
             Message::MonSpanPoll(_) => MonSpanPoll::ID,
             Message::MonSpan(_) => MonSpan::ID,
+            Message::MonSptPoll(_) => MonSptPoll::ID,
+            Message::MonSpt(_) => MonSpt::ID,
             Message::MonSysPoll(_) => MonSysPoll::ID,
             Message::MonSys(_) => MonSys::ID,
             Message::MonTxbufPoll(_) => MonTxbufPoll::ID,
@@ -40384,6 +43834,8 @@ impl<'a> Message<'a> {
             Message::Nav2Timegps(_) => Nav2Timegps::ID,
             Message::Nav2TimelsPoll(_) => Nav2TimelsPoll::ID,
             Message::Nav2Timels(_) => Nav2Timels::ID,
+            Message::Nav2TimenavicPoll(_) => Nav2TimenavicPoll::ID,
+            Message::Nav2Timenavic(_) => Nav2Timenavic::ID,
             Message::Nav2TimeqzssPoll(_) => Nav2TimeqzssPoll::ID,
             Message::Nav2Timeqzss(_) => Nav2Timeqzss::ID,
             Message::Nav2TimeutcPoll(_) => Nav2TimeutcPoll::ID,
@@ -40413,6 +43865,8 @@ impl<'a> Message<'a> {
             Message::NavHpposecef(_) => NavHpposecef::ID,
             Message::NavHpposllhPoll(_) => NavHpposllhPoll::ID,
             Message::NavHpposllh(_) => NavHpposllh::ID,
+            Message::NavNmiPoll(_) => NavNmiPoll::ID,
+            Message::NavNmi(_) => NavNmi::ID,
             Message::NavOdoPoll(_) => NavOdoPoll::ID,
             Message::NavOdo(_) => NavOdo::ID,
             Message::NavOrbPoll(_) => NavOrbPoll::ID,
@@ -40423,6 +43877,8 @@ impl<'a> Message<'a> {
             Message::NavPosecef(_) => NavPosecef::ID,
             Message::NavPosllhPoll(_) => NavPosllhPoll::ID,
             Message::NavPosllh(_) => NavPosllh::ID,
+            Message::NavPvatPoll(_) => NavPvatPoll::ID,
+            Message::NavPvat(_) => NavPvat::ID,
             Message::NavPvtPoll(_) => NavPvtPoll::ID,
             Message::NavPvt(_) => NavPvt::ID,
             Message::NavRelposnedPoll(_) => NavRelposnedPoll::ID,
@@ -40455,6 +43911,8 @@ impl<'a> Message<'a> {
             Message::NavTimegps(_) => NavTimegps::ID,
             Message::NavTimelsPoll(_) => NavTimelsPoll::ID,
             Message::NavTimels(_) => NavTimels::ID,
+            Message::NavTimenavicPoll(_) => NavTimenavicPoll::ID,
+            Message::NavTimenavic(_) => NavTimenavic::ID,
             Message::NavTimeqzssPoll(_) => NavTimeqzssPoll::ID,
             Message::NavTimeqzss(_) => NavTimeqzss::ID,
             Message::NavTimeutcPoll(_) => NavTimeutcPoll::ID,
@@ -40464,10 +43922,15 @@ impl<'a> Message<'a> {
             Message::NavVelnedPoll(_) => NavVelnedPoll::ID,
             Message::NavVelned(_) => NavVelned::ID,
             Message::RxmCor(_) => RxmCor::ID,
+            Message::RxmImesPoll(_) => RxmImesPoll::ID,
+            Message::RxmImes(_) => RxmImes::ID,
             Message::RxmMeasxPoll(_) => RxmMeasxPoll::ID,
             Message::RxmMeasx(_) => RxmMeasx::ID,
+            Message::RxmPmp(_) => RxmPmp::ID,
+            Message::RxmPmpV1(_) => RxmPmpV1::ID,
             Message::RxmPmreq(_) => RxmPmreq::ID,
             Message::RxmPmreqShort(_) => RxmPmreqShort::ID,
+            Message::RxmQzssl6(_) => RxmQzssl6::ID,
             Message::RxmRawxPoll(_) => RxmRawxPoll::ID,
             Message::RxmRawx(_) => RxmRawx::ID,
             Message::RxmRlm(_) => RxmRlm::ID,
@@ -40548,6 +44011,7 @@ impl<'a> Message<'a> {
             Message::CfgDgnss(_) => (CfgDgnss::CLASS, CfgDgnss::MSG_ID),
             Message::CfgDoscPoll(_) => (CfgDoscPoll::CLASS, CfgDoscPoll::MSG_ID),
             Message::CfgDosc(_) => (CfgDosc::CLASS, CfgDosc::MSG_ID),
+            Message::CfgDynseed(_) => (CfgDynseed::CLASS, CfgDynseed::MSG_ID),
             Message::CfgEsfaPoll(_) => (CfgEsfaPoll::CLASS, CfgEsfaPoll::MSG_ID),
             Message::CfgEsfa(_) => (CfgEsfa::CLASS, CfgEsfa::MSG_ID),
             Message::CfgEsfalgPoll(_) => (CfgEsfalgPoll::CLASS, CfgEsfalgPoll::MSG_ID),
@@ -40602,10 +44066,16 @@ impl<'a> Message<'a> {
             Message::CfgRxm(_) => (CfgRxm::CLASS, CfgRxm::MSG_ID),
             Message::CfgSbasPoll(_) => (CfgSbasPoll::CLASS, CfgSbasPoll::MSG_ID),
             Message::CfgSbas(_) => (CfgSbas::CLASS, CfgSbas::MSG_ID),
+            Message::CfgSenifPoll(_) => (CfgSenifPoll::CLASS, CfgSenifPoll::MSG_ID),
+            Message::CfgSenif(_) => (CfgSenif::CLASS, CfgSenif::MSG_ID),
             Message::CfgSlasPoll(_) => (CfgSlasPoll::CLASS, CfgSlasPoll::MSG_ID),
             Message::CfgSlas(_) => (CfgSlas::CLASS, CfgSlas::MSG_ID),
             Message::CfgSmgrPoll(_) => (CfgSmgrPoll::CLASS, CfgSmgrPoll::MSG_ID),
             Message::CfgSmgr(_) => (CfgSmgr::CLASS, CfgSmgr::MSG_ID),
+            Message::CfgSptPoll(_) => (CfgSptPoll::CLASS, CfgSptPoll::MSG_ID),
+            Message::CfgSpt(_) => (CfgSpt::CLASS, CfgSpt::MSG_ID),
+            Message::CfgTmode2Poll(_) => (CfgTmode2Poll::CLASS, CfgTmode2Poll::MSG_ID),
+            Message::CfgTmode2(_) => (CfgTmode2::CLASS, CfgTmode2::MSG_ID),
             Message::CfgTmode3Poll(_) => (CfgTmode3Poll::CLASS, CfgTmode3Poll::MSG_ID),
             Message::CfgTmode3(_) => (CfgTmode3::CLASS, CfgTmode3::MSG_ID),
             Message::CfgTp5Poll(_) => (CfgTp5Poll::CLASS, CfgTp5Poll::MSG_ID),
@@ -40662,6 +44132,9 @@ impl<'a> Message<'a> {
             Message::MgaBdsIono(_) => (MgaBdsIono::CLASS, MgaBdsIono::MSG_ID),
             Message::MgaDbdPoll(_) => (MgaDbdPoll::CLASS, MgaDbdPoll::MSG_ID),
             Message::MgaDbd(_) => (MgaDbd::CLASS, MgaDbd::MSG_ID),
+            Message::MgaFlashData(_) => (MgaFlashData::CLASS, MgaFlashData::MSG_ID),
+            Message::MgaFlashStop(_) => (MgaFlashStop::CLASS, MgaFlashStop::MSG_ID),
+            Message::MgaFlashAck(_) => (MgaFlashAck::CLASS, MgaFlashAck::MSG_ID),
             Message::MgaGalEph(_) => (MgaGalEph::CLASS, MgaGalEph::MSG_ID),
             Message::MgaGalAlm(_) => (MgaGalAlm::CLASS, MgaGalAlm::MSG_ID),
             Message::MgaGalTimeoffset(_) => (MgaGalTimeoffset::CLASS, MgaGalTimeoffset::MSG_ID),
@@ -40684,6 +44157,8 @@ impl<'a> Message<'a> {
             Message::MgaQzssEph(_) => (MgaQzssEph::CLASS, MgaQzssEph::MSG_ID),
             Message::MgaQzssAlm(_) => (MgaQzssAlm::CLASS, MgaQzssAlm::MSG_ID),
             Message::MgaQzssHealth(_) => (MgaQzssHealth::CLASS, MgaQzssHealth::MSG_ID),
+            Message::MonBatchPoll(_) => (MonBatchPoll::CLASS, MonBatchPoll::MSG_ID),
+            Message::MonBatch(_) => (MonBatch::CLASS, MonBatch::MSG_ID),
             Message::MonCommsPoll(_) => (MonCommsPoll::CLASS, MonCommsPoll::MSG_ID),
             Message::MonComms(_) => (MonComms::CLASS, MonComms::MSG_ID),
             Message::MonGnssPoll(_) => (MonGnssPoll::CLASS, MonGnssPoll::MSG_ID),
@@ -40700,6 +44175,8 @@ impl<'a> Message<'a> {
             Message::MonMsgpp(_) => (MonMsgpp::CLASS, MonMsgpp::MSG_ID),
             Message::MonPatchPoll(_) => (MonPatchPoll::CLASS, MonPatchPoll::MSG_ID),
             Message::MonPatch(_) => (MonPatch::CLASS, MonPatch::MSG_ID),
+            Message::MonPmpPoll(_) => (MonPmpPoll::CLASS, MonPmpPoll::MSG_ID),
+            Message::MonPmp(_) => (MonPmp::CLASS, MonPmp::MSG_ID),
             Message::MonRfPoll(_) => (MonRfPoll::CLASS, MonRfPoll::MSG_ID),
             Message::MonRf(_) => (MonRf::CLASS, MonRf::MSG_ID),
             Message::MonRxbufPoll(_) => (MonRxbufPoll::CLASS, MonRxbufPoll::MSG_ID),
@@ -40709,6 +44186,8 @@ impl<'a> Message<'a> {
             Message::MonSmgr(_) => (MonSmgr::CLASS, MonSmgr::MSG_ID),
             Message::MonSpanPoll(_) => (MonSpanPoll::CLASS, MonSpanPoll::MSG_ID),
             Message::MonSpan(_) => (MonSpan::CLASS, MonSpan::MSG_ID),
+            Message::MonSptPoll(_) => (MonSptPoll::CLASS, MonSptPoll::MSG_ID),
+            Message::MonSpt(_) => (MonSpt::CLASS, MonSpt::MSG_ID),
             Message::MonSysPoll(_) => (MonSysPoll::CLASS, MonSysPoll::MSG_ID),
             Message::MonSys(_) => (MonSys::CLASS, MonSys::MSG_ID),
             Message::MonTxbufPoll(_) => (MonTxbufPoll::CLASS, MonTxbufPoll::MSG_ID),
@@ -40750,6 +44229,8 @@ impl<'a> Message<'a> {
             Message::Nav2Timegps(_) => (Nav2Timegps::CLASS, Nav2Timegps::MSG_ID),
             Message::Nav2TimelsPoll(_) => (Nav2TimelsPoll::CLASS, Nav2TimelsPoll::MSG_ID),
             Message::Nav2Timels(_) => (Nav2Timels::CLASS, Nav2Timels::MSG_ID),
+            Message::Nav2TimenavicPoll(_) => (Nav2TimenavicPoll::CLASS, Nav2TimenavicPoll::MSG_ID),
+            Message::Nav2Timenavic(_) => (Nav2Timenavic::CLASS, Nav2Timenavic::MSG_ID),
             Message::Nav2TimeqzssPoll(_) => (Nav2TimeqzssPoll::CLASS, Nav2TimeqzssPoll::MSG_ID),
             Message::Nav2Timeqzss(_) => (Nav2Timeqzss::CLASS, Nav2Timeqzss::MSG_ID),
             Message::Nav2TimeutcPoll(_) => (Nav2TimeutcPoll::CLASS, Nav2TimeutcPoll::MSG_ID),
@@ -40779,6 +44260,8 @@ impl<'a> Message<'a> {
             Message::NavHpposecef(_) => (NavHpposecef::CLASS, NavHpposecef::MSG_ID),
             Message::NavHpposllhPoll(_) => (NavHpposllhPoll::CLASS, NavHpposllhPoll::MSG_ID),
             Message::NavHpposllh(_) => (NavHpposllh::CLASS, NavHpposllh::MSG_ID),
+            Message::NavNmiPoll(_) => (NavNmiPoll::CLASS, NavNmiPoll::MSG_ID),
+            Message::NavNmi(_) => (NavNmi::CLASS, NavNmi::MSG_ID),
             Message::NavOdoPoll(_) => (NavOdoPoll::CLASS, NavOdoPoll::MSG_ID),
             Message::NavOdo(_) => (NavOdo::CLASS, NavOdo::MSG_ID),
             Message::NavOrbPoll(_) => (NavOrbPoll::CLASS, NavOrbPoll::MSG_ID),
@@ -40789,6 +44272,8 @@ impl<'a> Message<'a> {
             Message::NavPosecef(_) => (NavPosecef::CLASS, NavPosecef::MSG_ID),
             Message::NavPosllhPoll(_) => (NavPosllhPoll::CLASS, NavPosllhPoll::MSG_ID),
             Message::NavPosllh(_) => (NavPosllh::CLASS, NavPosllh::MSG_ID),
+            Message::NavPvatPoll(_) => (NavPvatPoll::CLASS, NavPvatPoll::MSG_ID),
+            Message::NavPvat(_) => (NavPvat::CLASS, NavPvat::MSG_ID),
             Message::NavPvtPoll(_) => (NavPvtPoll::CLASS, NavPvtPoll::MSG_ID),
             Message::NavPvt(_) => (NavPvt::CLASS, NavPvt::MSG_ID),
             Message::NavRelposnedPoll(_) => (NavRelposnedPoll::CLASS, NavRelposnedPoll::MSG_ID),
@@ -40821,6 +44306,8 @@ impl<'a> Message<'a> {
             Message::NavTimegps(_) => (NavTimegps::CLASS, NavTimegps::MSG_ID),
             Message::NavTimelsPoll(_) => (NavTimelsPoll::CLASS, NavTimelsPoll::MSG_ID),
             Message::NavTimels(_) => (NavTimels::CLASS, NavTimels::MSG_ID),
+            Message::NavTimenavicPoll(_) => (NavTimenavicPoll::CLASS, NavTimenavicPoll::MSG_ID),
+            Message::NavTimenavic(_) => (NavTimenavic::CLASS, NavTimenavic::MSG_ID),
             Message::NavTimeqzssPoll(_) => (NavTimeqzssPoll::CLASS, NavTimeqzssPoll::MSG_ID),
             Message::NavTimeqzss(_) => (NavTimeqzss::CLASS, NavTimeqzss::MSG_ID),
             Message::NavTimeutcPoll(_) => (NavTimeutcPoll::CLASS, NavTimeutcPoll::MSG_ID),
@@ -40830,10 +44317,15 @@ impl<'a> Message<'a> {
             Message::NavVelnedPoll(_) => (NavVelnedPoll::CLASS, NavVelnedPoll::MSG_ID),
             Message::NavVelned(_) => (NavVelned::CLASS, NavVelned::MSG_ID),
             Message::RxmCor(_) => (RxmCor::CLASS, RxmCor::MSG_ID),
+            Message::RxmImesPoll(_) => (RxmImesPoll::CLASS, RxmImesPoll::MSG_ID),
+            Message::RxmImes(_) => (RxmImes::CLASS, RxmImes::MSG_ID),
             Message::RxmMeasxPoll(_) => (RxmMeasxPoll::CLASS, RxmMeasxPoll::MSG_ID),
             Message::RxmMeasx(_) => (RxmMeasx::CLASS, RxmMeasx::MSG_ID),
+            Message::RxmPmp(_) => (RxmPmp::CLASS, RxmPmp::MSG_ID),
+            Message::RxmPmpV1(_) => (RxmPmpV1::CLASS, RxmPmpV1::MSG_ID),
             Message::RxmPmreq(_) => (RxmPmreq::CLASS, RxmPmreq::MSG_ID),
             Message::RxmPmreqShort(_) => (RxmPmreqShort::CLASS, RxmPmreqShort::MSG_ID),
+            Message::RxmQzssl6(_) => (RxmQzssl6::CLASS, RxmQzssl6::MSG_ID),
             Message::RxmRawxPoll(_) => (RxmRawxPoll::CLASS, RxmRawxPoll::MSG_ID),
             Message::RxmRawx(_) => (RxmRawx::CLASS, RxmRawx::MSG_ID),
             Message::RxmRlm(_) => (RxmRlm::CLASS, RxmRlm::MSG_ID),
@@ -40971,6 +44463,9 @@ impl<'a> Message<'a> {
             Message::MonPatch(m) => {
                 m.entries.iter().for_each(|e| f(&e));
             }
+            Message::MonPmp(m) => {
+                m.entries.iter().for_each(|e| f(&e));
+            }
             Message::MonRf(m) => {
                 m.blocks.iter().for_each(|e| f(&e));
             }
@@ -40981,6 +44476,10 @@ impl<'a> Message<'a> {
             }
             Message::MonSpan(m) => {
                 m.rf_blocks.iter().for_each(|e| f(&e));
+            }
+            Message::MonSpt(m) => {
+                m.sensors.iter().for_each(|e| f(&e));
+                m.results.iter().for_each(|e| f(&e));
             }
             Message::MonTxbuf(m) => {
                 m.pending.iter().for_each(|e| f(&e));
@@ -41025,6 +44524,9 @@ impl<'a> Message<'a> {
             }
             Message::NavSvinfo(m) => {
                 m.channels.iter().for_each(|e| f(&e));
+            }
+            Message::RxmImes(m) => {
+                m.transmitters.iter().for_each(|e| f(&e));
             }
             Message::RxmMeasx(m) => {
                 m.svs.iter().for_each(|e| f(&e));
@@ -41088,6 +44590,7 @@ impl<'a> Message<'a> {
             Message::CfgDgnss(m) => m.write(w),
             Message::CfgDoscPoll(m) => m.write(w),
             Message::CfgDosc(m) => m.write(w),
+            Message::CfgDynseed(m) => m.write(w),
             Message::CfgEsfaPoll(m) => m.write(w),
             Message::CfgEsfa(m) => m.write(w),
             Message::CfgEsfalgPoll(m) => m.write(w),
@@ -41142,10 +44645,16 @@ impl<'a> Message<'a> {
             Message::CfgRxm(m) => m.write(w),
             Message::CfgSbasPoll(m) => m.write(w),
             Message::CfgSbas(m) => m.write(w),
+            Message::CfgSenifPoll(m) => m.write(w),
+            Message::CfgSenif(m) => m.write(w),
             Message::CfgSlasPoll(m) => m.write(w),
             Message::CfgSlas(m) => m.write(w),
             Message::CfgSmgrPoll(m) => m.write(w),
             Message::CfgSmgr(m) => m.write(w),
+            Message::CfgSptPoll(m) => m.write(w),
+            Message::CfgSpt(m) => m.write(w),
+            Message::CfgTmode2Poll(m) => m.write(w),
+            Message::CfgTmode2(m) => m.write(w),
             Message::CfgTmode3Poll(m) => m.write(w),
             Message::CfgTmode3(m) => m.write(w),
             Message::CfgTp5Poll(m) => m.write(w),
@@ -41202,6 +44711,9 @@ impl<'a> Message<'a> {
             Message::MgaBdsIono(m) => m.write(w),
             Message::MgaDbdPoll(m) => m.write(w),
             Message::MgaDbd(m) => m.write(w),
+            Message::MgaFlashData(m) => m.write(w),
+            Message::MgaFlashStop(m) => m.write(w),
+            Message::MgaFlashAck(m) => m.write(w),
             Message::MgaGalEph(m) => m.write(w),
             Message::MgaGalAlm(m) => m.write(w),
             Message::MgaGalTimeoffset(m) => m.write(w),
@@ -41224,6 +44736,8 @@ impl<'a> Message<'a> {
             Message::MgaQzssEph(m) => m.write(w),
             Message::MgaQzssAlm(m) => m.write(w),
             Message::MgaQzssHealth(m) => m.write(w),
+            Message::MonBatchPoll(m) => m.write(w),
+            Message::MonBatch(m) => m.write(w),
             Message::MonCommsPoll(m) => m.write(w),
             Message::MonComms(m) => m.write(w),
             Message::MonGnssPoll(m) => m.write(w),
@@ -41240,6 +44754,8 @@ impl<'a> Message<'a> {
             Message::MonMsgpp(m) => m.write(w),
             Message::MonPatchPoll(m) => m.write(w),
             Message::MonPatch(m) => m.write(w),
+            Message::MonPmpPoll(m) => m.write(w),
+            Message::MonPmp(m) => m.write(w),
             Message::MonRfPoll(m) => m.write(w),
             Message::MonRf(m) => m.write(w),
             Message::MonRxbufPoll(m) => m.write(w),
@@ -41249,6 +44765,8 @@ impl<'a> Message<'a> {
             Message::MonSmgr(m) => m.write(w),
             Message::MonSpanPoll(m) => m.write(w),
             Message::MonSpan(m) => m.write(w),
+            Message::MonSptPoll(m) => m.write(w),
+            Message::MonSpt(m) => m.write(w),
             Message::MonSysPoll(m) => m.write(w),
             Message::MonSys(m) => m.write(w),
             Message::MonTxbufPoll(m) => m.write(w),
@@ -41290,6 +44808,8 @@ impl<'a> Message<'a> {
             Message::Nav2Timegps(m) => m.write(w),
             Message::Nav2TimelsPoll(m) => m.write(w),
             Message::Nav2Timels(m) => m.write(w),
+            Message::Nav2TimenavicPoll(m) => m.write(w),
+            Message::Nav2Timenavic(m) => m.write(w),
             Message::Nav2TimeqzssPoll(m) => m.write(w),
             Message::Nav2Timeqzss(m) => m.write(w),
             Message::Nav2TimeutcPoll(m) => m.write(w),
@@ -41319,6 +44839,8 @@ impl<'a> Message<'a> {
             Message::NavHpposecef(m) => m.write(w),
             Message::NavHpposllhPoll(m) => m.write(w),
             Message::NavHpposllh(m) => m.write(w),
+            Message::NavNmiPoll(m) => m.write(w),
+            Message::NavNmi(m) => m.write(w),
             Message::NavOdoPoll(m) => m.write(w),
             Message::NavOdo(m) => m.write(w),
             Message::NavOrbPoll(m) => m.write(w),
@@ -41329,6 +44851,8 @@ impl<'a> Message<'a> {
             Message::NavPosecef(m) => m.write(w),
             Message::NavPosllhPoll(m) => m.write(w),
             Message::NavPosllh(m) => m.write(w),
+            Message::NavPvatPoll(m) => m.write(w),
+            Message::NavPvat(m) => m.write(w),
             Message::NavPvtPoll(m) => m.write(w),
             Message::NavPvt(m) => m.write(w),
             Message::NavRelposnedPoll(m) => m.write(w),
@@ -41361,6 +44885,8 @@ impl<'a> Message<'a> {
             Message::NavTimegps(m) => m.write(w),
             Message::NavTimelsPoll(m) => m.write(w),
             Message::NavTimels(m) => m.write(w),
+            Message::NavTimenavicPoll(m) => m.write(w),
+            Message::NavTimenavic(m) => m.write(w),
             Message::NavTimeqzssPoll(m) => m.write(w),
             Message::NavTimeqzss(m) => m.write(w),
             Message::NavTimeutcPoll(m) => m.write(w),
@@ -41370,10 +44896,15 @@ impl<'a> Message<'a> {
             Message::NavVelnedPoll(m) => m.write(w),
             Message::NavVelned(m) => m.write(w),
             Message::RxmCor(m) => m.write(w),
+            Message::RxmImesPoll(m) => m.write(w),
+            Message::RxmImes(m) => m.write(w),
             Message::RxmMeasxPoll(m) => m.write(w),
             Message::RxmMeasx(m) => m.write(w),
+            Message::RxmPmp(m) => m.write(w),
+            Message::RxmPmpV1(m) => m.write(w),
             Message::RxmPmreq(m) => m.write(w),
             Message::RxmPmreqShort(m) => m.write(w),
+            Message::RxmQzssl6(m) => m.write(w),
             Message::RxmRawxPoll(m) => m.write(w),
             Message::RxmRawx(m) => m.write(w),
             Message::RxmRlm(m) => m.write(w),
@@ -41472,6 +45003,7 @@ impl<'a> Message<'a> {
             Message::CfgDgnss(m) => m.json_members(&mut j)?,
             Message::CfgDoscPoll(m) => m.json_members(&mut j)?,
             Message::CfgDosc(m) => m.json_members(&mut j)?,
+            Message::CfgDynseed(m) => m.json_members(&mut j)?,
             Message::CfgEsfaPoll(m) => m.json_members(&mut j)?,
             Message::CfgEsfa(m) => m.json_members(&mut j)?,
             Message::CfgEsfalgPoll(m) => m.json_members(&mut j)?,
@@ -41526,10 +45058,16 @@ impl<'a> Message<'a> {
             Message::CfgRxm(m) => m.json_members(&mut j)?,
             Message::CfgSbasPoll(m) => m.json_members(&mut j)?,
             Message::CfgSbas(m) => m.json_members(&mut j)?,
+            Message::CfgSenifPoll(m) => m.json_members(&mut j)?,
+            Message::CfgSenif(m) => m.json_members(&mut j)?,
             Message::CfgSlasPoll(m) => m.json_members(&mut j)?,
             Message::CfgSlas(m) => m.json_members(&mut j)?,
             Message::CfgSmgrPoll(m) => m.json_members(&mut j)?,
             Message::CfgSmgr(m) => m.json_members(&mut j)?,
+            Message::CfgSptPoll(m) => m.json_members(&mut j)?,
+            Message::CfgSpt(m) => m.json_members(&mut j)?,
+            Message::CfgTmode2Poll(m) => m.json_members(&mut j)?,
+            Message::CfgTmode2(m) => m.json_members(&mut j)?,
             Message::CfgTmode3Poll(m) => m.json_members(&mut j)?,
             Message::CfgTmode3(m) => m.json_members(&mut j)?,
             Message::CfgTp5Poll(m) => m.json_members(&mut j)?,
@@ -41586,6 +45124,9 @@ impl<'a> Message<'a> {
             Message::MgaBdsIono(m) => m.json_members(&mut j)?,
             Message::MgaDbdPoll(m) => m.json_members(&mut j)?,
             Message::MgaDbd(m) => m.json_members(&mut j)?,
+            Message::MgaFlashData(m) => m.json_members(&mut j)?,
+            Message::MgaFlashStop(m) => m.json_members(&mut j)?,
+            Message::MgaFlashAck(m) => m.json_members(&mut j)?,
             Message::MgaGalEph(m) => m.json_members(&mut j)?,
             Message::MgaGalAlm(m) => m.json_members(&mut j)?,
             Message::MgaGalTimeoffset(m) => m.json_members(&mut j)?,
@@ -41608,6 +45149,8 @@ impl<'a> Message<'a> {
             Message::MgaQzssEph(m) => m.json_members(&mut j)?,
             Message::MgaQzssAlm(m) => m.json_members(&mut j)?,
             Message::MgaQzssHealth(m) => m.json_members(&mut j)?,
+            Message::MonBatchPoll(m) => m.json_members(&mut j)?,
+            Message::MonBatch(m) => m.json_members(&mut j)?,
             Message::MonCommsPoll(m) => m.json_members(&mut j)?,
             Message::MonComms(m) => m.json_members(&mut j)?,
             Message::MonGnssPoll(m) => m.json_members(&mut j)?,
@@ -41624,6 +45167,8 @@ impl<'a> Message<'a> {
             Message::MonMsgpp(m) => m.json_members(&mut j)?,
             Message::MonPatchPoll(m) => m.json_members(&mut j)?,
             Message::MonPatch(m) => m.json_members(&mut j)?,
+            Message::MonPmpPoll(m) => m.json_members(&mut j)?,
+            Message::MonPmp(m) => m.json_members(&mut j)?,
             Message::MonRfPoll(m) => m.json_members(&mut j)?,
             Message::MonRf(m) => m.json_members(&mut j)?,
             Message::MonRxbufPoll(m) => m.json_members(&mut j)?,
@@ -41633,6 +45178,8 @@ impl<'a> Message<'a> {
             Message::MonSmgr(m) => m.json_members(&mut j)?,
             Message::MonSpanPoll(m) => m.json_members(&mut j)?,
             Message::MonSpan(m) => m.json_members(&mut j)?,
+            Message::MonSptPoll(m) => m.json_members(&mut j)?,
+            Message::MonSpt(m) => m.json_members(&mut j)?,
             Message::MonSysPoll(m) => m.json_members(&mut j)?,
             Message::MonSys(m) => m.json_members(&mut j)?,
             Message::MonTxbufPoll(m) => m.json_members(&mut j)?,
@@ -41674,6 +45221,8 @@ impl<'a> Message<'a> {
             Message::Nav2Timegps(m) => m.json_members(&mut j)?,
             Message::Nav2TimelsPoll(m) => m.json_members(&mut j)?,
             Message::Nav2Timels(m) => m.json_members(&mut j)?,
+            Message::Nav2TimenavicPoll(m) => m.json_members(&mut j)?,
+            Message::Nav2Timenavic(m) => m.json_members(&mut j)?,
             Message::Nav2TimeqzssPoll(m) => m.json_members(&mut j)?,
             Message::Nav2Timeqzss(m) => m.json_members(&mut j)?,
             Message::Nav2TimeutcPoll(m) => m.json_members(&mut j)?,
@@ -41703,6 +45252,8 @@ impl<'a> Message<'a> {
             Message::NavHpposecef(m) => m.json_members(&mut j)?,
             Message::NavHpposllhPoll(m) => m.json_members(&mut j)?,
             Message::NavHpposllh(m) => m.json_members(&mut j)?,
+            Message::NavNmiPoll(m) => m.json_members(&mut j)?,
+            Message::NavNmi(m) => m.json_members(&mut j)?,
             Message::NavOdoPoll(m) => m.json_members(&mut j)?,
             Message::NavOdo(m) => m.json_members(&mut j)?,
             Message::NavOrbPoll(m) => m.json_members(&mut j)?,
@@ -41713,6 +45264,8 @@ impl<'a> Message<'a> {
             Message::NavPosecef(m) => m.json_members(&mut j)?,
             Message::NavPosllhPoll(m) => m.json_members(&mut j)?,
             Message::NavPosllh(m) => m.json_members(&mut j)?,
+            Message::NavPvatPoll(m) => m.json_members(&mut j)?,
+            Message::NavPvat(m) => m.json_members(&mut j)?,
             Message::NavPvtPoll(m) => m.json_members(&mut j)?,
             Message::NavPvt(m) => m.json_members(&mut j)?,
             Message::NavRelposnedPoll(m) => m.json_members(&mut j)?,
@@ -41745,6 +45298,8 @@ impl<'a> Message<'a> {
             Message::NavTimegps(m) => m.json_members(&mut j)?,
             Message::NavTimelsPoll(m) => m.json_members(&mut j)?,
             Message::NavTimels(m) => m.json_members(&mut j)?,
+            Message::NavTimenavicPoll(m) => m.json_members(&mut j)?,
+            Message::NavTimenavic(m) => m.json_members(&mut j)?,
             Message::NavTimeqzssPoll(m) => m.json_members(&mut j)?,
             Message::NavTimeqzss(m) => m.json_members(&mut j)?,
             Message::NavTimeutcPoll(m) => m.json_members(&mut j)?,
@@ -41754,10 +45309,15 @@ impl<'a> Message<'a> {
             Message::NavVelnedPoll(m) => m.json_members(&mut j)?,
             Message::NavVelned(m) => m.json_members(&mut j)?,
             Message::RxmCor(m) => m.json_members(&mut j)?,
+            Message::RxmImesPoll(m) => m.json_members(&mut j)?,
+            Message::RxmImes(m) => m.json_members(&mut j)?,
             Message::RxmMeasxPoll(m) => m.json_members(&mut j)?,
             Message::RxmMeasx(m) => m.json_members(&mut j)?,
+            Message::RxmPmp(m) => m.json_members(&mut j)?,
+            Message::RxmPmpV1(m) => m.json_members(&mut j)?,
             Message::RxmPmreq(m) => m.json_members(&mut j)?,
             Message::RxmPmreqShort(m) => m.json_members(&mut j)?,
+            Message::RxmQzssl6(m) => m.json_members(&mut j)?,
             Message::RxmRawxPoll(m) => m.json_members(&mut j)?,
             Message::RxmRawx(m) => m.json_members(&mut j)?,
             Message::RxmRlm(m) => m.json_members(&mut j)?,

@@ -6,21 +6,23 @@
 #   spec/binary/ubx/messages/aid_ini.yaml, spec/binary/ubx/messages/cfg_ant.yaml,
 #   spec/binary/ubx/messages/cfg_batch.yaml, spec/binary/ubx/messages/cfg_cfg.yaml,
 #   spec/binary/ubx/messages/cfg_dat.yaml, spec/binary/ubx/messages/cfg_dgnss.yaml,
-#   spec/binary/ubx/messages/cfg_dosc.yaml, spec/binary/ubx/messages/cfg_esfa.yaml,
-#   spec/binary/ubx/messages/cfg_esfalg.yaml, spec/binary/ubx/messages/cfg_esfg.yaml,
-#   spec/binary/ubx/messages/cfg_esfwt.yaml, spec/binary/ubx/messages/cfg_esrc.yaml,
-#   spec/binary/ubx/messages/cfg_fixseed.yaml, spec/binary/ubx/messages/cfg_geofence.yaml,
-#   spec/binary/ubx/messages/cfg_gnss.yaml, spec/binary/ubx/messages/cfg_hnr.yaml,
-#   spec/binary/ubx/messages/cfg_inf.yaml, spec/binary/ubx/messages/cfg_itfm.yaml,
-#   spec/binary/ubx/messages/cfg_logfilter.yaml, spec/binary/ubx/messages/cfg_msg.yaml,
-#   spec/binary/ubx/messages/cfg_nav5.yaml, spec/binary/ubx/messages/cfg_navx5.yaml,
-#   spec/binary/ubx/messages/cfg_nmea.yaml, spec/binary/ubx/messages/cfg_odo.yaml,
-#   spec/binary/ubx/messages/cfg_pm2.yaml, spec/binary/ubx/messages/cfg_pms.yaml,
-#   spec/binary/ubx/messages/cfg_prt.yaml, spec/binary/ubx/messages/cfg_pwr.yaml,
-#   spec/binary/ubx/messages/cfg_rate.yaml, spec/binary/ubx/messages/cfg_rinv.yaml,
-#   spec/binary/ubx/messages/cfg_rst.yaml, spec/binary/ubx/messages/cfg_rxm.yaml,
-#   spec/binary/ubx/messages/cfg_sbas.yaml, spec/binary/ubx/messages/cfg_slas.yaml,
-#   spec/binary/ubx/messages/cfg_smgr.yaml, spec/binary/ubx/messages/cfg_tmode3.yaml,
+#   spec/binary/ubx/messages/cfg_dosc.yaml, spec/binary/ubx/messages/cfg_dynseed.yaml,
+#   spec/binary/ubx/messages/cfg_esfa.yaml, spec/binary/ubx/messages/cfg_esfalg.yaml,
+#   spec/binary/ubx/messages/cfg_esfg.yaml, spec/binary/ubx/messages/cfg_esfwt.yaml,
+#   spec/binary/ubx/messages/cfg_esrc.yaml, spec/binary/ubx/messages/cfg_fixseed.yaml,
+#   spec/binary/ubx/messages/cfg_geofence.yaml, spec/binary/ubx/messages/cfg_gnss.yaml,
+#   spec/binary/ubx/messages/cfg_hnr.yaml, spec/binary/ubx/messages/cfg_inf.yaml,
+#   spec/binary/ubx/messages/cfg_itfm.yaml, spec/binary/ubx/messages/cfg_logfilter.yaml,
+#   spec/binary/ubx/messages/cfg_msg.yaml, spec/binary/ubx/messages/cfg_nav5.yaml,
+#   spec/binary/ubx/messages/cfg_navx5.yaml, spec/binary/ubx/messages/cfg_nmea.yaml,
+#   spec/binary/ubx/messages/cfg_odo.yaml, spec/binary/ubx/messages/cfg_pm2.yaml,
+#   spec/binary/ubx/messages/cfg_pms.yaml, spec/binary/ubx/messages/cfg_prt.yaml,
+#   spec/binary/ubx/messages/cfg_pwr.yaml, spec/binary/ubx/messages/cfg_rate.yaml,
+#   spec/binary/ubx/messages/cfg_rinv.yaml, spec/binary/ubx/messages/cfg_rst.yaml,
+#   spec/binary/ubx/messages/cfg_rxm.yaml, spec/binary/ubx/messages/cfg_sbas.yaml,
+#   spec/binary/ubx/messages/cfg_senif.yaml, spec/binary/ubx/messages/cfg_slas.yaml,
+#   spec/binary/ubx/messages/cfg_smgr.yaml, spec/binary/ubx/messages/cfg_spt.yaml,
+#   spec/binary/ubx/messages/cfg_tmode2.yaml, spec/binary/ubx/messages/cfg_tmode3.yaml,
 #   spec/binary/ubx/messages/cfg_tp5.yaml, spec/binary/ubx/messages/cfg_txslot.yaml,
 #   spec/binary/ubx/messages/cfg_usb.yaml, spec/binary/ubx/messages/cfg_valdel.yaml,
 #   spec/binary/ubx/messages/cfg_valget.yaml, spec/binary/ubx/messages/cfg_valset.yaml,
@@ -39,15 +41,17 @@
 #   spec/binary/ubx/messages/log_retrievestring.yaml, spec/binary/ubx/messages/log_string.yaml,
 #   spec/binary/ubx/messages/mga_ack.yaml, spec/binary/ubx/messages/mga_ano.yaml,
 #   spec/binary/ubx/messages/mga_bds.yaml, spec/binary/ubx/messages/mga_dbd.yaml,
-#   spec/binary/ubx/messages/mga_gal.yaml, spec/binary/ubx/messages/mga_glo.yaml,
-#   spec/binary/ubx/messages/mga_gps.yaml, spec/binary/ubx/messages/mga_ini.yaml,
-#   spec/binary/ubx/messages/mga_qzss.yaml, spec/binary/ubx/messages/mon_comms.yaml,
+#   spec/binary/ubx/messages/mga_flash.yaml, spec/binary/ubx/messages/mga_gal.yaml,
+#   spec/binary/ubx/messages/mga_glo.yaml, spec/binary/ubx/messages/mga_gps.yaml,
+#   spec/binary/ubx/messages/mga_ini.yaml, spec/binary/ubx/messages/mga_qzss.yaml,
+#   spec/binary/ubx/messages/mon_batch.yaml, spec/binary/ubx/messages/mon_comms.yaml,
 #   spec/binary/ubx/messages/mon_gnss.yaml, spec/binary/ubx/messages/mon_hw.yaml,
 #   spec/binary/ubx/messages/mon_hw2.yaml, spec/binary/ubx/messages/mon_hw3.yaml,
 #   spec/binary/ubx/messages/mon_io.yaml, spec/binary/ubx/messages/mon_msgpp.yaml,
-#   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_rf.yaml,
-#   spec/binary/ubx/messages/mon_rxbuf.yaml, spec/binary/ubx/messages/mon_rxr.yaml,
-#   spec/binary/ubx/messages/mon_smgr.yaml, spec/binary/ubx/messages/mon_span.yaml,
+#   spec/binary/ubx/messages/mon_patch.yaml, spec/binary/ubx/messages/mon_pmp.yaml,
+#   spec/binary/ubx/messages/mon_rf.yaml, spec/binary/ubx/messages/mon_rxbuf.yaml,
+#   spec/binary/ubx/messages/mon_rxr.yaml, spec/binary/ubx/messages/mon_smgr.yaml,
+#   spec/binary/ubx/messages/mon_span.yaml, spec/binary/ubx/messages/mon_spt.yaml,
 #   spec/binary/ubx/messages/mon_sys.yaml, spec/binary/ubx/messages/mon_txbuf.yaml,
 #   spec/binary/ubx/messages/mon_ver.yaml, spec/binary/ubx/messages/nav2_clock.yaml,
 #   spec/binary/ubx/messages/nav2_cov.yaml, spec/binary/ubx/messages/nav2_dop.yaml,
@@ -58,40 +62,43 @@
 #   spec/binary/ubx/messages/nav2_slas.yaml, spec/binary/ubx/messages/nav2_status.yaml,
 #   spec/binary/ubx/messages/nav2_timebds.yaml, spec/binary/ubx/messages/nav2_timegal.yaml,
 #   spec/binary/ubx/messages/nav2_timeglo.yaml, spec/binary/ubx/messages/nav2_timegps.yaml,
-#   spec/binary/ubx/messages/nav2_timels.yaml, spec/binary/ubx/messages/nav2_timeqzss.yaml,
-#   spec/binary/ubx/messages/nav2_timeutc.yaml, spec/binary/ubx/messages/nav2_velecef.yaml,
-#   spec/binary/ubx/messages/nav2_velned.yaml, spec/binary/ubx/messages/nav_aopstatus.yaml,
-#   spec/binary/ubx/messages/nav_att.yaml, spec/binary/ubx/messages/nav_clock.yaml,
-#   spec/binary/ubx/messages/nav_cov.yaml, spec/binary/ubx/messages/nav_dgps.yaml,
-#   spec/binary/ubx/messages/nav_dop.yaml, spec/binary/ubx/messages/nav_eell.yaml,
-#   spec/binary/ubx/messages/nav_eoe.yaml, spec/binary/ubx/messages/nav_geofence.yaml,
-#   spec/binary/ubx/messages/nav_hpposecef.yaml, spec/binary/ubx/messages/nav_hpposllh.yaml,
+#   spec/binary/ubx/messages/nav2_timels.yaml, spec/binary/ubx/messages/nav2_timenavic.yaml,
+#   spec/binary/ubx/messages/nav2_timeqzss.yaml, spec/binary/ubx/messages/nav2_timeutc.yaml,
+#   spec/binary/ubx/messages/nav2_velecef.yaml, spec/binary/ubx/messages/nav2_velned.yaml,
+#   spec/binary/ubx/messages/nav_aopstatus.yaml, spec/binary/ubx/messages/nav_att.yaml,
+#   spec/binary/ubx/messages/nav_clock.yaml, spec/binary/ubx/messages/nav_cov.yaml,
+#   spec/binary/ubx/messages/nav_dgps.yaml, spec/binary/ubx/messages/nav_dop.yaml,
+#   spec/binary/ubx/messages/nav_eell.yaml, spec/binary/ubx/messages/nav_eoe.yaml,
+#   spec/binary/ubx/messages/nav_geofence.yaml, spec/binary/ubx/messages/nav_hpposecef.yaml,
+#   spec/binary/ubx/messages/nav_hpposllh.yaml, spec/binary/ubx/messages/nav_nmi.yaml,
 #   spec/binary/ubx/messages/nav_odo.yaml, spec/binary/ubx/messages/nav_orb.yaml,
 #   spec/binary/ubx/messages/nav_pl.yaml, spec/binary/ubx/messages/nav_posecef.yaml,
-#   spec/binary/ubx/messages/nav_posllh.yaml, spec/binary/ubx/messages/nav_pvt.yaml,
-#   spec/binary/ubx/messages/nav_relposned.yaml, spec/binary/ubx/messages/nav_resetodo.yaml,
-#   spec/binary/ubx/messages/nav_sat.yaml, spec/binary/ubx/messages/nav_sbas.yaml,
-#   spec/binary/ubx/messages/nav_sig.yaml, spec/binary/ubx/messages/nav_slas.yaml,
-#   spec/binary/ubx/messages/nav_sol.yaml, spec/binary/ubx/messages/nav_status.yaml,
-#   spec/binary/ubx/messages/nav_svin.yaml, spec/binary/ubx/messages/nav_svinfo.yaml,
-#   spec/binary/ubx/messages/nav_timebds.yaml, spec/binary/ubx/messages/nav_timegal.yaml,
-#   spec/binary/ubx/messages/nav_timeglo.yaml, spec/binary/ubx/messages/nav_timegps.yaml,
-#   spec/binary/ubx/messages/nav_timels.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
+#   spec/binary/ubx/messages/nav_posllh.yaml, spec/binary/ubx/messages/nav_pvat.yaml,
+#   spec/binary/ubx/messages/nav_pvt.yaml, spec/binary/ubx/messages/nav_relposned.yaml,
+#   spec/binary/ubx/messages/nav_resetodo.yaml, spec/binary/ubx/messages/nav_sat.yaml,
+#   spec/binary/ubx/messages/nav_sbas.yaml, spec/binary/ubx/messages/nav_sig.yaml,
+#   spec/binary/ubx/messages/nav_slas.yaml, spec/binary/ubx/messages/nav_sol.yaml,
+#   spec/binary/ubx/messages/nav_status.yaml, spec/binary/ubx/messages/nav_svin.yaml,
+#   spec/binary/ubx/messages/nav_svinfo.yaml, spec/binary/ubx/messages/nav_timebds.yaml,
+#   spec/binary/ubx/messages/nav_timegal.yaml, spec/binary/ubx/messages/nav_timeglo.yaml,
+#   spec/binary/ubx/messages/nav_timegps.yaml, spec/binary/ubx/messages/nav_timels.yaml,
+#   spec/binary/ubx/messages/nav_timenavic.yaml, spec/binary/ubx/messages/nav_timeqzss.yaml,
 #   spec/binary/ubx/messages/nav_timeutc.yaml, spec/binary/ubx/messages/nav_velecef.yaml,
 #   spec/binary/ubx/messages/nav_velned.yaml, spec/binary/ubx/messages/rxm_cor.yaml,
-#   spec/binary/ubx/messages/rxm_measx.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
-#   spec/binary/ubx/messages/rxm_rawx.yaml, spec/binary/ubx/messages/rxm_rlm.yaml,
-#   spec/binary/ubx/messages/rxm_rtcm.yaml, spec/binary/ubx/messages/rxm_sfrbx.yaml,
-#   spec/binary/ubx/messages/rxm_spartn.yaml, spec/binary/ubx/messages/rxm_spartnkey.yaml,
-#   spec/binary/ubx/messages/rxm_svsi.yaml, spec/binary/ubx/messages/sec_sig.yaml,
-#   spec/binary/ubx/messages/sec_siglog.yaml, spec/binary/ubx/messages/sec_sign.yaml,
-#   spec/binary/ubx/messages/sec_uniqid.yaml, spec/binary/ubx/messages/tim_dosc.yaml,
-#   spec/binary/ubx/messages/tim_fchg.yaml, spec/binary/ubx/messages/tim_hoc.yaml,
-#   spec/binary/ubx/messages/tim_smeas.yaml, spec/binary/ubx/messages/tim_svin.yaml,
-#   spec/binary/ubx/messages/tim_tm2.yaml, spec/binary/ubx/messages/tim_tos.yaml,
-#   spec/binary/ubx/messages/tim_tp.yaml, spec/binary/ubx/messages/tim_vcocal.yaml,
-#   spec/binary/ubx/messages/tim_vrfy.yaml, spec/binary/ubx/messages/upd_sos.yaml
-#   (digest 7aa3b9c7de8a60cb)
+#   spec/binary/ubx/messages/rxm_imes.yaml, spec/binary/ubx/messages/rxm_measx.yaml,
+#   spec/binary/ubx/messages/rxm_pmp.yaml, spec/binary/ubx/messages/rxm_pmreq.yaml,
+#   spec/binary/ubx/messages/rxm_qzssl6.yaml, spec/binary/ubx/messages/rxm_rawx.yaml,
+#   spec/binary/ubx/messages/rxm_rlm.yaml, spec/binary/ubx/messages/rxm_rtcm.yaml,
+#   spec/binary/ubx/messages/rxm_sfrbx.yaml, spec/binary/ubx/messages/rxm_spartn.yaml,
+#   spec/binary/ubx/messages/rxm_spartnkey.yaml, spec/binary/ubx/messages/rxm_svsi.yaml,
+#   spec/binary/ubx/messages/sec_sig.yaml, spec/binary/ubx/messages/sec_siglog.yaml,
+#   spec/binary/ubx/messages/sec_sign.yaml, spec/binary/ubx/messages/sec_uniqid.yaml,
+#   spec/binary/ubx/messages/tim_dosc.yaml, spec/binary/ubx/messages/tim_fchg.yaml,
+#   spec/binary/ubx/messages/tim_hoc.yaml, spec/binary/ubx/messages/tim_smeas.yaml,
+#   spec/binary/ubx/messages/tim_svin.yaml, spec/binary/ubx/messages/tim_tm2.yaml,
+#   spec/binary/ubx/messages/tim_tos.yaml, spec/binary/ubx/messages/tim_tp.yaml,
+#   spec/binary/ubx/messages/tim_vcocal.yaml, spec/binary/ubx/messages/tim_vrfy.yaml,
+#   spec/binary/ubx/messages/upd_sos.yaml (digest d582875343103bf5)
 # Regenerate: make generate (python3 -m generator generate)
 """UBX messages: a frame's payload decoded into the class of its layout (by class and id, then
 length and version) and encoded back to the same bytes; a class and id the spec does not describe
@@ -123,6 +130,7 @@ from .cfg_cfg import CfgCfgAllDevices as CfgCfgAllDevices, CfgCfg as CfgCfg
 from .cfg_dat import CfgDatPoll as CfgDatPoll, CfgDatSet as CfgDatSet, CfgDat as CfgDat
 from .cfg_dgnss import CfgDgnssPoll as CfgDgnssPoll, CfgDgnss as CfgDgnss
 from .cfg_dosc import CfgDoscPoll as CfgDoscPoll, CfgDosc as CfgDosc
+from .cfg_dynseed import CfgDynseed as CfgDynseed
 from .cfg_esfa import CfgEsfaPoll as CfgEsfaPoll, CfgEsfa as CfgEsfa
 from .cfg_esfalg import CfgEsfalgPoll as CfgEsfalgPoll, CfgEsfalg as CfgEsfalg
 from .cfg_esfg import CfgEsfgPoll as CfgEsfgPoll, CfgEsfg as CfgEsfg
@@ -158,8 +166,11 @@ from .cfg_rinv import CfgRinvPoll as CfgRinvPoll, CfgRinv as CfgRinv
 from .cfg_rst import CfgRst as CfgRst
 from .cfg_rxm import CfgRxmPoll as CfgRxmPoll, CfgRxm as CfgRxm
 from .cfg_sbas import CfgSbasPoll as CfgSbasPoll, CfgSbas as CfgSbas
+from .cfg_senif import CfgSenifPoll as CfgSenifPoll, CfgSenif as CfgSenif
 from .cfg_slas import CfgSlasPoll as CfgSlasPoll, CfgSlas as CfgSlas
 from .cfg_smgr import CfgSmgrPoll as CfgSmgrPoll, CfgSmgr as CfgSmgr
+from .cfg_spt import CfgSptPoll as CfgSptPoll, CfgSpt as CfgSpt
+from .cfg_tmode2 import CfgTmode2Poll as CfgTmode2Poll, CfgTmode2 as CfgTmode2
 from .cfg_tmode3 import CfgTmode3Poll as CfgTmode3Poll, CfgTmode3 as CfgTmode3
 from .cfg_tp5 import CfgTp5Poll as CfgTp5Poll, CfgTp5PollIndex as CfgTp5PollIndex, CfgTp5 as CfgTp5
 from .cfg_txslot import CfgTxslotPoll as CfgTxslotPoll, CfgTxslot as CfgTxslot
@@ -201,6 +212,11 @@ from .mga_bds import (
     MgaBdsIono as MgaBdsIono,
 )
 from .mga_dbd import MgaDbdPoll as MgaDbdPoll, MgaDbd as MgaDbd
+from .mga_flash import (
+    MgaFlashData as MgaFlashData,
+    MgaFlashStop as MgaFlashStop,
+    MgaFlashAck as MgaFlashAck,
+)
 from .mga_gal import (
     MgaGalEph as MgaGalEph,
     MgaGalAlm as MgaGalAlm,
@@ -233,6 +249,7 @@ from .mga_qzss import (
     MgaQzssAlm as MgaQzssAlm,
     MgaQzssHealth as MgaQzssHealth,
 )
+from .mon_batch import MonBatchPoll as MonBatchPoll, MonBatch as MonBatch
 from .mon_comms import MonCommsPoll as MonCommsPoll, MonComms as MonComms
 from .mon_gnss import MonGnssPoll as MonGnssPoll, MonGnss as MonGnss
 from .mon_hw import MonHwPoll as MonHwPoll, MonHw as MonHw
@@ -241,11 +258,13 @@ from .mon_hw3 import MonHw3Poll as MonHw3Poll, MonHw3 as MonHw3
 from .mon_io import MonIoPoll as MonIoPoll, MonIo as MonIo
 from .mon_msgpp import MonMsgppPoll as MonMsgppPoll, MonMsgpp as MonMsgpp
 from .mon_patch import MonPatchPoll as MonPatchPoll, MonPatch as MonPatch
+from .mon_pmp import MonPmpPoll as MonPmpPoll, MonPmp as MonPmp
 from .mon_rf import MonRfPoll as MonRfPoll, MonRf as MonRf
 from .mon_rxbuf import MonRxbufPoll as MonRxbufPoll, MonRxbuf as MonRxbuf
 from .mon_rxr import MonRxr as MonRxr
 from .mon_smgr import MonSmgrPoll as MonSmgrPoll, MonSmgr as MonSmgr
 from .mon_span import MonSpanPoll as MonSpanPoll, MonSpan as MonSpan
+from .mon_spt import MonSptPoll as MonSptPoll, MonSpt as MonSpt
 from .mon_sys import MonSysPoll as MonSysPoll, MonSys as MonSys
 from .mon_txbuf import MonTxbufPoll as MonTxbufPoll, MonTxbuf as MonTxbuf
 from .mon_ver import MonVerPoll as MonVerPoll, MonVer as MonVer
@@ -267,6 +286,7 @@ from .nav2_timegal import Nav2TimegalPoll as Nav2TimegalPoll, Nav2Timegal as Nav
 from .nav2_timeglo import Nav2TimegloPoll as Nav2TimegloPoll, Nav2Timeglo as Nav2Timeglo
 from .nav2_timegps import Nav2TimegpsPoll as Nav2TimegpsPoll, Nav2Timegps as Nav2Timegps
 from .nav2_timels import Nav2TimelsPoll as Nav2TimelsPoll, Nav2Timels as Nav2Timels
+from .nav2_timenavic import Nav2TimenavicPoll as Nav2TimenavicPoll, Nav2Timenavic as Nav2Timenavic
 from .nav2_timeqzss import Nav2TimeqzssPoll as Nav2TimeqzssPoll, Nav2Timeqzss as Nav2Timeqzss
 from .nav2_timeutc import Nav2TimeutcPoll as Nav2TimeutcPoll, Nav2Timeutc as Nav2Timeutc
 from .nav2_velecef import Nav2VelecefPoll as Nav2VelecefPoll, Nav2Velecef as Nav2Velecef
@@ -282,11 +302,13 @@ from .nav_eoe import NavEoe as NavEoe
 from .nav_geofence import NavGeofencePoll as NavGeofencePoll, NavGeofence as NavGeofence
 from .nav_hpposecef import NavHpposecefPoll as NavHpposecefPoll, NavHpposecef as NavHpposecef
 from .nav_hpposllh import NavHpposllhPoll as NavHpposllhPoll, NavHpposllh as NavHpposllh
+from .nav_nmi import NavNmiPoll as NavNmiPoll, NavNmi as NavNmi
 from .nav_odo import NavOdoPoll as NavOdoPoll, NavOdo as NavOdo
 from .nav_orb import NavOrbPoll as NavOrbPoll, NavOrb as NavOrb
 from .nav_pl import NavPlPoll as NavPlPoll, NavPl as NavPl
 from .nav_posecef import NavPosecefPoll as NavPosecefPoll, NavPosecef as NavPosecef
 from .nav_posllh import NavPosllhPoll as NavPosllhPoll, NavPosllh as NavPosllh
+from .nav_pvat import NavPvatPoll as NavPvatPoll, NavPvat as NavPvat
 from .nav_pvt import NavPvtPoll as NavPvtPoll, NavPvt as NavPvt
 from .nav_relposned import (
     NavRelposnedPoll as NavRelposnedPoll,
@@ -307,13 +329,17 @@ from .nav_timegal import NavTimegalPoll as NavTimegalPoll, NavTimegal as NavTime
 from .nav_timeglo import NavTimegloPoll as NavTimegloPoll, NavTimeglo as NavTimeglo
 from .nav_timegps import NavTimegpsPoll as NavTimegpsPoll, NavTimegps as NavTimegps
 from .nav_timels import NavTimelsPoll as NavTimelsPoll, NavTimels as NavTimels
+from .nav_timenavic import NavTimenavicPoll as NavTimenavicPoll, NavTimenavic as NavTimenavic
 from .nav_timeqzss import NavTimeqzssPoll as NavTimeqzssPoll, NavTimeqzss as NavTimeqzss
 from .nav_timeutc import NavTimeutcPoll as NavTimeutcPoll, NavTimeutc as NavTimeutc
 from .nav_velecef import NavVelecefPoll as NavVelecefPoll, NavVelecef as NavVelecef
 from .nav_velned import NavVelnedPoll as NavVelnedPoll, NavVelned as NavVelned
 from .rxm_cor import RxmCor as RxmCor
+from .rxm_imes import RxmImesPoll as RxmImesPoll, RxmImes as RxmImes
 from .rxm_measx import RxmMeasxPoll as RxmMeasxPoll, RxmMeasx as RxmMeasx
+from .rxm_pmp import RxmPmp as RxmPmp, RxmPmpV1 as RxmPmpV1
 from .rxm_pmreq import RxmPmreq as RxmPmreq, RxmPmreqShort as RxmPmreqShort
+from .rxm_qzssl6 import RxmQzssl6 as RxmQzssl6
 from .rxm_rawx import RxmRawxPoll as RxmRawxPoll, RxmRawx as RxmRawx
 from .rxm_rlm import RxmRlm as RxmRlm, RxmRlmShort as RxmRlmShort
 from .rxm_rtcm import RxmRtcm as RxmRtcm
@@ -356,6 +382,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x01, 0x12): (NavVelnedPoll, NavVelned),
     (0x01, 0x13): (NavHpposecefPoll, NavHpposecef),
     (0x01, 0x14): (NavHpposllhPoll, NavHpposllh),
+    (0x01, 0x17): (NavPvatPoll, NavPvat),
     (0x01, 0x20): (NavTimegpsPoll, NavTimegps),
     (0x01, 0x21): (NavTimeutcPoll, NavTimeutc),
     (0x01, 0x22): (NavClockPoll, NavClock),
@@ -364,6 +391,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x01, 0x25): (NavTimegalPoll, NavTimegal),
     (0x01, 0x26): (NavTimelsPoll, NavTimels),
     (0x01, 0x27): (NavTimeqzssPoll, NavTimeqzss),
+    (0x01, 0x28): (NavNmiPoll, NavNmi),
     (0x01, 0x30): (NavSvinfoPoll, NavSvinfo),
     (0x01, 0x31): (NavDgpsPoll, NavDgps),
     (0x01, 0x32): (NavSbasPoll, NavSbas),
@@ -379,6 +407,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x01, 0x60): (NavAopstatusPoll, NavAopstatus),
     (0x01, 0x61): (NavEoe,),
     (0x01, 0x62): (NavPlPoll, NavPl),
+    (0x01, 0x63): (NavTimenavicPoll, NavTimenavic),
     (0x02, 0x13): (RxmSfrbx,),
     (0x02, 0x14): (RxmMeasxPoll, RxmMeasx),
     (0x02, 0x15): (RxmRawxPoll, RxmRawx),
@@ -389,6 +418,9 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x02, 0x36): (RxmSpartnkeyPoll, RxmSpartnkey),
     (0x02, 0x41): (RxmPmreq, RxmPmreqShort),
     (0x02, 0x59): (RxmRlm, RxmRlmShort),
+    (0x02, 0x61): (RxmImesPoll, RxmImes),
+    (0x02, 0x72): (RxmPmp, RxmPmpV1),
+    (0x02, 0x73): (RxmQzssl6,),
     (0x04, 0x00): (InfError,),
     (0x04, 0x01): (InfWarning,),
     (0x04, 0x02): (InfNotice,),
@@ -415,6 +447,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x06, 0x34): (CfgRinvPoll, CfgRinv),
     (0x06, 0x39): (CfgItfmPoll, CfgItfm),
     (0x06, 0x3B): (CfgPm2Poll, CfgPm2, CfgPm2V1),
+    (0x06, 0x3D): (CfgTmode2Poll, CfgTmode2),
     (0x06, 0x3E): (CfgGnssPoll, CfgGnss),
     (0x06, 0x47): (CfgLogfilterPoll, CfgLogfilter),
     (0x06, 0x4C): (CfgEsfaPoll, CfgEsfa),
@@ -426,12 +459,15 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x06, 0x60): (CfgEsrcPoll, CfgEsrc),
     (0x06, 0x61): (CfgDoscPoll, CfgDosc),
     (0x06, 0x62): (CfgSmgrPoll, CfgSmgr),
+    (0x06, 0x64): (CfgSptPoll, CfgSpt),
     (0x06, 0x69): (CfgGeofencePoll, CfgGeofence),
     (0x06, 0x70): (CfgDgnssPoll, CfgDgnss),
     (0x06, 0x71): (CfgTmode3Poll, CfgTmode3),
     (0x06, 0x82): (CfgEsfwtPoll, CfgEsfwt),
     (0x06, 0x84): (CfgFixseed,),
+    (0x06, 0x85): (CfgDynseed,),
     (0x06, 0x86): (CfgPmsPoll, CfgPms),
+    (0x06, 0x88): (CfgSenifPoll, CfgSenif),
     (0x06, 0x8A): (CfgValsetV0, CfgValset),
     (0x06, 0x8B): (CfgValgetPoll, CfgValget),
     (0x06, 0x8C): (CfgValdelV0, CfgValdel),
@@ -449,7 +485,10 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x0A, 0x27): (MonPatchPoll, MonPatch),
     (0x0A, 0x28): (MonGnssPoll, MonGnss),
     (0x0A, 0x2E): (MonSmgrPoll, MonSmgr),
+    (0x0A, 0x2F): (MonSptPoll, MonSpt),
     (0x0A, 0x31): (MonSpanPoll, MonSpan),
+    (0x0A, 0x32): (MonBatchPoll, MonBatch),
+    (0x0A, 0x35): (MonPmpPoll, MonPmp),
     (0x0A, 0x36): (MonCommsPoll, MonComms),
     (0x0A, 0x37): (MonHw3Poll, MonHw3),
     (0x0A, 0x38): (MonRfPoll, MonRf),
@@ -480,6 +519,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x13, 0x05): (MgaQzssEph, MgaQzssAlm, MgaQzssHealth),
     (0x13, 0x06): (MgaGloEph, MgaGloAlm, MgaGloTimeoffset),
     (0x13, 0x20): (MgaAno,),
+    (0x13, 0x21): (MgaFlashData, MgaFlashStop, MgaFlashAck),
     (0x13, 0x40): (
         MgaIniPosXyz,
         MgaIniPosLlh,
@@ -531,6 +571,7 @@ BY_ID: dict[tuple[int, int], tuple[type[ubx.Message], ...]] = {
     (0x29, 0x42): (Nav2SlasPoll, Nav2Slas),
     (0x29, 0x43): (Nav2SigPoll, Nav2Sig),
     (0x29, 0x61): (Nav2Eoe,),
+    (0x29, 0x63): (Nav2TimenavicPoll, Nav2Timenavic),
 }
 """The layouts of each class and id the spec describes, in spec order."""
 
