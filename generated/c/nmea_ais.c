@@ -12,12 +12,13 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
+//   spec/ais/applications/function_interrogation.yaml,
 //   spec/ais/applications/inland_persons_on_board.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 //   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 //   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest 2dde8142e8086bce)
+//   (digest 47e02f989d3f259e)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -910,6 +911,203 @@ static const char *ais_ais_epfd_id(uint64_t code)
     }
 }
 
+/* The id of a code of ais_notice_description, NULL for one it does not name. */
+static const char *ais_ais_notice_description_id(uint64_t code)
+{
+    switch (code) {
+    case 0u:
+        return "caution_mammals_habitat";
+    case 1u:
+        return "caution_mammals_reduce_speed";
+    case 2u:
+        return "caution_mammals_stay_clear";
+    case 3u:
+        return "caution_mammals_report_sightings";
+    case 4u:
+        return "caution_habitat_reduce_speed";
+    case 5u:
+        return "caution_habitat_stay_clear";
+    case 6u:
+        return "caution_habitat_no_fishing";
+    case 7u:
+        return "caution_derelicts";
+    case 8u:
+        return "caution_traffic_congestion";
+    case 9u:
+        return "caution_marine_event";
+    case 10u:
+        return "caution_divers_down";
+    case 11u:
+        return "caution_swim_area";
+    case 12u:
+        return "caution_dredging";
+    case 13u:
+        return "caution_survey";
+    case 14u:
+        return "caution_underwater_operation";
+    case 15u:
+        return "caution_seaplanes";
+    case 16u:
+        return "caution_fishery_nets";
+    case 17u:
+        return "caution_fishing_vessels";
+    case 18u:
+        return "caution_fairway_closed";
+    case 19u:
+        return "caution_harbour_closed";
+    case 20u:
+        return "caution_risk";
+    case 21u:
+        return "caution_underwater_vehicle";
+    case 23u:
+        return "environment_storm_front";
+    case 24u:
+        return "environment_sea_ice";
+    case 25u:
+        return "environment_storm_warning";
+    case 26u:
+        return "environment_high_wind";
+    case 27u:
+        return "environment_high_waves";
+    case 28u:
+        return "environment_restricted_visibility";
+    case 29u:
+        return "environment_strong_currents";
+    case 30u:
+        return "environment_heavy_icing";
+    case 32u:
+        return "restricted_fishing_prohibited";
+    case 33u:
+        return "restricted_no_anchoring";
+    case 34u:
+        return "restricted_entry_approval";
+    case 35u:
+        return "restricted_entry_prohibited";
+    case 36u:
+        return "restricted_military_exercise";
+    case 37u:
+        return "restricted_firing";
+    case 38u:
+        return "restricted_drifting_mines";
+    case 40u:
+        return "anchorage_open";
+    case 41u:
+        return "anchorage_closed";
+    case 42u:
+        return "anchorage_prohibited";
+    case 43u:
+        return "anchorage_deep_draft";
+    case 44u:
+        return "anchorage_shallow_draft";
+    case 45u:
+        return "anchorage_vessel_transfer";
+    case 56u:
+        return "security_level_1";
+    case 57u:
+        return "security_level_2";
+    case 58u:
+        return "security_level_3";
+    case 64u:
+        return "distress_adrift";
+    case 65u:
+        return "distress_sinking";
+    case 66u:
+        return "distress_abandoning";
+    case 67u:
+        return "distress_medical";
+    case 68u:
+        return "distress_flooding";
+    case 69u:
+        return "distress_fire";
+    case 70u:
+        return "distress_grounding";
+    case 71u:
+        return "distress_collision";
+    case 72u:
+        return "distress_listing";
+    case 73u:
+        return "distress_assault";
+    case 74u:
+        return "distress_person_overboard";
+    case 75u:
+        return "distress_sar_area";
+    case 76u:
+        return "distress_pollution_response";
+    case 80u:
+        return "instruction_contact_vts";
+    case 81u:
+        return "instruction_contact_port";
+    case 82u:
+        return "instruction_do_not_proceed";
+    case 83u:
+        return "instruction_await_instructions";
+    case 84u:
+        return "proceed_await_instructions";
+    case 85u:
+        return "clearance_to_berth";
+    case 88u:
+        return "information_pilot_boarding";
+    case 89u:
+        return "information_icebreaker_waiting";
+    case 90u:
+        return "information_refuge";
+    case 91u:
+        return "information_icebreakers";
+    case 92u:
+        return "information_response_units";
+    case 93u:
+        return "vts_active_target";
+    case 94u:
+        return "rogue_vessel";
+    case 95u:
+        return "non_distress_assistance";
+    case 96u:
+        return "chart_sunken_vessel";
+    case 97u:
+        return "chart_submerged_object";
+    case 98u:
+        return "chart_semi_submerged_object";
+    case 99u:
+        return "chart_shoal";
+    case 100u:
+        return "chart_shoal_north";
+    case 101u:
+        return "chart_shoal_east";
+    case 102u:
+        return "chart_shoal_south";
+    case 103u:
+        return "chart_shoal_west";
+    case 104u:
+        return "chart_channel_obstruction";
+    case 105u:
+        return "chart_reduced_clearance";
+    case 106u:
+        return "chart_bridge_closed";
+    case 107u:
+        return "chart_bridge_partly_open";
+    case 108u:
+        return "chart_bridge_open";
+    case 112u:
+        return "ship_report_icing";
+    case 114u:
+        return "ship_report_other";
+    case 120u:
+        return "route_recommended";
+    case 121u:
+        return "route_alternative";
+    case 122u:
+        return "route_through_ice";
+    case 125u:
+        return "other";
+    case 126u:
+        return "cancellation";
+    case 127u:
+        return "undefined";
+    default:
+        return NULL;
+    }
+}
+
 /* The id of a code of ais_ship_type, NULL for one it does not name. */
 static const char *ais_ais_ship_type_id(uint64_t code)
 {
@@ -1027,6 +1225,27 @@ static const char *ais_ais_ship_type_id(uint64_t code)
     }
 }
 
+/* The id of a code of ais_subarea_shape, NULL for one it does not name. */
+static const char *ais_ais_subarea_shape_id(uint64_t code)
+{
+    switch (code) {
+    case 0u:
+        return "circle";
+    case 1u:
+        return "rectangle";
+    case 2u:
+        return "sector";
+    case 3u:
+        return "polyline";
+    case 4u:
+        return "polygon";
+    case 5u:
+        return "text";
+    default:
+        return NULL;
+    }
+}
+
 /* The id of a code of vsd_nav_status, NULL for one it does not name. */
 static const char *ais_vsd_nav_status_id(uint64_t code)
 {
@@ -1070,6 +1289,391 @@ static const char *ais_vsd_nav_status_id(uint64_t code)
 
 static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writer *w);
 static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_out *j);
+
+static const nmea_ais_special ais_area_notice_subarea_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_rect_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_rect_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_sector_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_sector_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_angle1_specials[] = {{720, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_angle2_specials[] = {{720, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_angle3_specials[] = {{720, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_angle4_specials[] = {{720, "not_available"}};
+static bool ais_read_area_notice_subarea(nmea_ais_reader *r, nmea_ais_area_notice_subarea *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 3, "shape", &raw)) return false;
+    m->shape_raw = (uint8_t)raw;
+    {
+        uint64_t selector = (uint64_t)m->shape_raw;
+        if (selector == 0u) {
+            if (!ais_take(r, 2, "scale", &raw)) return false;
+            m->scale = (uint8_t)raw;
+            m->has_scale = true;
+            if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
+            m->lon_raw = (int32_t)signed_raw;
+            m->has_lon_raw = true;
+            if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
+            m->lat_raw = (int32_t)signed_raw;
+            m->has_lat_raw = true;
+            if (!ais_take(r, 3, "precision", &raw)) return false;
+            m->precision = (uint8_t)raw;
+            m->has_precision = true;
+            if (!ais_take(r, 12, "radius", &raw)) return false;
+            m->radius = (uint16_t)raw;
+            m->has_radius = true;
+            if (!ais_take(r, 18, "spare", &raw)) return false;
+            m->spare = (uint32_t)raw;
+            m->has_spare = true;
+        } else if (selector == 1u) {
+            if (!ais_take(r, 2, "rect_scale", &raw)) return false;
+            m->rect_scale = (uint8_t)raw;
+            m->has_rect_scale = true;
+            if (!ais_take_signed(r, 25, "rect_lon", &signed_raw)) return false;
+            m->rect_lon_raw = (int32_t)signed_raw;
+            m->has_rect_lon_raw = true;
+            if (!ais_take_signed(r, 24, "rect_lat", &signed_raw)) return false;
+            m->rect_lat_raw = (int32_t)signed_raw;
+            m->has_rect_lat_raw = true;
+            if (!ais_take(r, 3, "rect_precision", &raw)) return false;
+            m->rect_precision = (uint8_t)raw;
+            m->has_rect_precision = true;
+            if (!ais_take(r, 8, "east", &raw)) return false;
+            m->east = (uint8_t)raw;
+            m->has_east = true;
+            if (!ais_take(r, 8, "north", &raw)) return false;
+            m->north = (uint8_t)raw;
+            m->has_north = true;
+            if (!ais_take(r, 9, "orientation", &raw)) return false;
+            m->orientation = (uint16_t)raw;
+            m->has_orientation = true;
+            if (!ais_take(r, 5, "rect_spare", &raw)) return false;
+            m->rect_spare = (uint8_t)raw;
+            m->has_rect_spare = true;
+        } else if (selector == 2u) {
+            if (!ais_take(r, 2, "sector_scale", &raw)) return false;
+            m->sector_scale = (uint8_t)raw;
+            m->has_sector_scale = true;
+            if (!ais_take_signed(r, 25, "sector_lon", &signed_raw)) return false;
+            m->sector_lon_raw = (int32_t)signed_raw;
+            m->has_sector_lon_raw = true;
+            if (!ais_take_signed(r, 24, "sector_lat", &signed_raw)) return false;
+            m->sector_lat_raw = (int32_t)signed_raw;
+            m->has_sector_lat_raw = true;
+            if (!ais_take(r, 3, "sector_precision", &raw)) return false;
+            m->sector_precision = (uint8_t)raw;
+            m->has_sector_precision = true;
+            if (!ais_take(r, 12, "sector_radius", &raw)) return false;
+            m->sector_radius = (uint16_t)raw;
+            m->has_sector_radius = true;
+            if (!ais_take(r, 9, "left", &raw)) return false;
+            m->left = (uint16_t)raw;
+            m->has_left = true;
+            if (!ais_take(r, 9, "right", &raw)) return false;
+            m->right = (uint16_t)raw;
+            m->has_right = true;
+        } else if ((selector == 3u || selector == 4u)) {
+            if (!ais_take(r, 2, "points_scale", &raw)) return false;
+            m->points_scale = (uint8_t)raw;
+            m->has_points_scale = true;
+            if (!ais_take(r, 10, "angle1", &raw)) return false;
+            m->angle1_raw = (uint16_t)raw;
+            m->has_angle1_raw = true;
+            if (!ais_take(r, 10, "distance1", &raw)) return false;
+            m->distance1 = (uint16_t)raw;
+            m->has_distance1 = true;
+            if (!ais_take(r, 10, "angle2", &raw)) return false;
+            m->angle2_raw = (uint16_t)raw;
+            m->has_angle2_raw = true;
+            if (!ais_take(r, 10, "distance2", &raw)) return false;
+            m->distance2 = (uint16_t)raw;
+            m->has_distance2 = true;
+            if (!ais_take(r, 10, "angle3", &raw)) return false;
+            m->angle3_raw = (uint16_t)raw;
+            m->has_angle3_raw = true;
+            if (!ais_take(r, 10, "distance3", &raw)) return false;
+            m->distance3 = (uint16_t)raw;
+            m->has_distance3 = true;
+            if (!ais_take(r, 10, "angle4", &raw)) return false;
+            m->angle4_raw = (uint16_t)raw;
+            m->has_angle4_raw = true;
+            if (!ais_take(r, 10, "distance4", &raw)) return false;
+            m->distance4 = (uint16_t)raw;
+            m->has_distance4 = true;
+            if (!ais_take(r, 2, "points_spare", &raw)) return false;
+            m->points_spare = (uint8_t)raw;
+            m->has_points_spare = true;
+        } else if (selector == 5u) {
+            if (!ais_take_bits(r, 84, "text", &m->text)) return false;
+            m->has_text = true;
+        } else {
+            if (!ais_take_bits(r, 84, "reserved", &m->reserved)) return false;
+            m->has_reserved = true;
+        }
+    }
+    return true;
+}
+
+static bool ais_write_area_notice_subarea(const nmea_ais_area_notice_subarea *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->shape_raw, 3, "shape")) return false;
+    {
+        uint64_t selector = (uint64_t)m->shape_raw;
+        if (selector == 0u) {
+            if (!m->has_scale) goto done;
+            if (!ais_put(w, m->scale, 2, "scale")) return false;
+            if (!m->has_lon_raw) goto done;
+            if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+            if (!m->has_lat_raw) goto done;
+            if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+            if (!m->has_precision) goto done;
+            if (!ais_put(w, m->precision, 3, "precision")) return false;
+            if (!m->has_radius) goto done;
+            if (!ais_put(w, m->radius, 12, "radius")) return false;
+            if (!m->has_spare) goto done;
+            if (!ais_put(w, m->spare, 18, "spare")) return false;
+        } else if (selector == 1u) {
+            if (!m->has_rect_scale) goto done;
+            if (!ais_put(w, m->rect_scale, 2, "rect_scale")) return false;
+            if (!m->has_rect_lon_raw) goto done;
+            if (!ais_put_signed(w, m->rect_lon_raw, 25, "rect_lon")) return false;
+            if (!m->has_rect_lat_raw) goto done;
+            if (!ais_put_signed(w, m->rect_lat_raw, 24, "rect_lat")) return false;
+            if (!m->has_rect_precision) goto done;
+            if (!ais_put(w, m->rect_precision, 3, "rect_precision")) return false;
+            if (!m->has_east) goto done;
+            if (!ais_put(w, m->east, 8, "east")) return false;
+            if (!m->has_north) goto done;
+            if (!ais_put(w, m->north, 8, "north")) return false;
+            if (!m->has_orientation) goto done;
+            if (!ais_put(w, m->orientation, 9, "orientation")) return false;
+            if (!m->has_rect_spare) goto done;
+            if (!ais_put(w, m->rect_spare, 5, "rect_spare")) return false;
+        } else if (selector == 2u) {
+            if (!m->has_sector_scale) goto done;
+            if (!ais_put(w, m->sector_scale, 2, "sector_scale")) return false;
+            if (!m->has_sector_lon_raw) goto done;
+            if (!ais_put_signed(w, m->sector_lon_raw, 25, "sector_lon")) return false;
+            if (!m->has_sector_lat_raw) goto done;
+            if (!ais_put_signed(w, m->sector_lat_raw, 24, "sector_lat")) return false;
+            if (!m->has_sector_precision) goto done;
+            if (!ais_put(w, m->sector_precision, 3, "sector_precision")) return false;
+            if (!m->has_sector_radius) goto done;
+            if (!ais_put(w, m->sector_radius, 12, "sector_radius")) return false;
+            if (!m->has_left) goto done;
+            if (!ais_put(w, m->left, 9, "left")) return false;
+            if (!m->has_right) goto done;
+            if (!ais_put(w, m->right, 9, "right")) return false;
+        } else if ((selector == 3u || selector == 4u)) {
+            if (!m->has_points_scale) goto done;
+            if (!ais_put(w, m->points_scale, 2, "points_scale")) return false;
+            if (!m->has_angle1_raw) goto done;
+            if (!ais_put(w, m->angle1_raw, 10, "angle1")) return false;
+            if (!m->has_distance1) goto done;
+            if (!ais_put(w, m->distance1, 10, "distance1")) return false;
+            if (!m->has_angle2_raw) goto done;
+            if (!ais_put(w, m->angle2_raw, 10, "angle2")) return false;
+            if (!m->has_distance2) goto done;
+            if (!ais_put(w, m->distance2, 10, "distance2")) return false;
+            if (!m->has_angle3_raw) goto done;
+            if (!ais_put(w, m->angle3_raw, 10, "angle3")) return false;
+            if (!m->has_distance3) goto done;
+            if (!ais_put(w, m->distance3, 10, "distance3")) return false;
+            if (!m->has_angle4_raw) goto done;
+            if (!ais_put(w, m->angle4_raw, 10, "angle4")) return false;
+            if (!m->has_distance4) goto done;
+            if (!ais_put(w, m->distance4, 10, "distance4")) return false;
+            if (!m->has_points_spare) goto done;
+            if (!ais_put(w, m->points_spare, 2, "points_spare")) return false;
+        } else if (selector == 5u) {
+            if (!m->has_text) goto done;
+            if (!ais_put_fixed(w, m->text, 84, true, "text")) return false;
+        } else {
+            if (!m->has_reserved) goto done;
+            if (!ais_put_fixed(w, m->reserved, 84, false, "reserved")) return false;
+        }
+    }
+    done:;
+    return true;
+}
+
+static void ais_json_area_notice_subarea(const nmea_ais_area_notice_subarea *m, nmea_ais_json_out *j)
+{
+    ais_json_code(j, "shape", ais_ais_subarea_shape_id(m->shape_raw), m->shape_raw);
+    if (m->has_scale) {
+        ais_json_int(j, "scale", (long long)m->scale);
+    }
+    if (m->has_lon_raw) {
+        ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_area_notice_subarea_lon_specials, 1);
+    }
+    if (m->has_lat_raw) {
+        ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_area_notice_subarea_lat_specials, 1);
+    }
+    if (m->has_precision) {
+        ais_json_int(j, "precision", (long long)m->precision);
+    }
+    if (m->has_radius) {
+        ais_json_int(j, "radius", (long long)m->radius);
+    }
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    if (m->has_rect_scale) {
+        ais_json_int(j, "rect_scale", (long long)m->rect_scale);
+    }
+    if (m->has_rect_lon_raw) {
+        ais_json_reading(j, "rect_lon", (int64_t)m->rect_lon_raw, 60000.0, 0.0, true, ais_area_notice_subarea_rect_lon_specials, 1);
+    }
+    if (m->has_rect_lat_raw) {
+        ais_json_reading(j, "rect_lat", (int64_t)m->rect_lat_raw, 60000.0, 0.0, true, ais_area_notice_subarea_rect_lat_specials, 1);
+    }
+    if (m->has_rect_precision) {
+        ais_json_int(j, "rect_precision", (long long)m->rect_precision);
+    }
+    if (m->has_east) {
+        ais_json_int(j, "east", (long long)m->east);
+    }
+    if (m->has_north) {
+        ais_json_int(j, "north", (long long)m->north);
+    }
+    if (m->has_orientation) {
+        ais_json_int(j, "orientation", (long long)m->orientation);
+    }
+    if (m->has_rect_spare) {
+        ais_json_int(j, "rect_spare", (long long)m->rect_spare);
+    }
+    if (m->has_sector_scale) {
+        ais_json_int(j, "sector_scale", (long long)m->sector_scale);
+    }
+    if (m->has_sector_lon_raw) {
+        ais_json_reading(j, "sector_lon", (int64_t)m->sector_lon_raw, 60000.0, 0.0, true, ais_area_notice_subarea_sector_lon_specials, 1);
+    }
+    if (m->has_sector_lat_raw) {
+        ais_json_reading(j, "sector_lat", (int64_t)m->sector_lat_raw, 60000.0, 0.0, true, ais_area_notice_subarea_sector_lat_specials, 1);
+    }
+    if (m->has_sector_precision) {
+        ais_json_int(j, "sector_precision", (long long)m->sector_precision);
+    }
+    if (m->has_sector_radius) {
+        ais_json_int(j, "sector_radius", (long long)m->sector_radius);
+    }
+    if (m->has_left) {
+        ais_json_int(j, "left", (long long)m->left);
+    }
+    if (m->has_right) {
+        ais_json_int(j, "right", (long long)m->right);
+    }
+    if (m->has_points_scale) {
+        ais_json_int(j, "points_scale", (long long)m->points_scale);
+    }
+    if (m->has_angle1_raw) {
+        ais_json_reading(j, "angle1", (int64_t)m->angle1_raw, 2.0, 0.0, true, ais_area_notice_subarea_angle1_specials, 1);
+    }
+    if (m->has_distance1) {
+        ais_json_int(j, "distance1", (long long)m->distance1);
+    }
+    if (m->has_angle2_raw) {
+        ais_json_reading(j, "angle2", (int64_t)m->angle2_raw, 2.0, 0.0, true, ais_area_notice_subarea_angle2_specials, 1);
+    }
+    if (m->has_distance2) {
+        ais_json_int(j, "distance2", (long long)m->distance2);
+    }
+    if (m->has_angle3_raw) {
+        ais_json_reading(j, "angle3", (int64_t)m->angle3_raw, 2.0, 0.0, true, ais_area_notice_subarea_angle3_specials, 1);
+    }
+    if (m->has_distance3) {
+        ais_json_int(j, "distance3", (long long)m->distance3);
+    }
+    if (m->has_angle4_raw) {
+        ais_json_reading(j, "angle4", (int64_t)m->angle4_raw, 2.0, 0.0, true, ais_area_notice_subarea_angle4_specials, 1);
+    }
+    if (m->has_distance4) {
+        ais_json_int(j, "distance4", (long long)m->distance4);
+    }
+    if (m->has_points_spare) {
+        ais_json_int(j, "points_spare", (long long)m->points_spare);
+    }
+    if (m->has_text) {
+        ais_json_text(j, "text", m->text);
+    }
+    if (m->has_reserved) {
+        ais_json_bits(j, "reserved", m->reserved);
+    }
+}
+
+static const nmea_ais_special ais_area_notice_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_area_notice_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_area_notice_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_area_notice_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_area_notice_duration_specials[] = {{262143, "not_available"}};
+static bool ais_read_area_notice(nmea_ais_reader *r, nmea_ais_area_notice *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 10, "linkage", &raw)) return false;
+    m->linkage = (uint16_t)raw;
+    if (!ais_take(r, 7, "notice", &raw)) return false;
+    m->notice_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "month", &raw)) return false;
+    m->month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 18, "duration", &raw)) return false;
+    m->duration_raw = (uint32_t)raw;
+    {
+        size_t i;
+        if (!ais_entries(r, 1, 10, 87, 0, "subareas", &m->subareas_count)) return false;
+        for (i = 0; i < m->subareas_count; i++) if (!ais_read_area_notice_subarea(r, &m->subareas[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_area_notice(const nmea_ais_area_notice *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->linkage, 10, "linkage")) return false;
+    if (!ais_put(w, m->notice_raw, 7, "notice")) return false;
+    if (!ais_put(w, m->month_raw, 4, "month")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->duration_raw, 18, "duration")) return false;
+    {
+        size_t i;
+        for (i = 0; i < m->subareas_count; i++) if (!ais_write_area_notice_subarea(&m->subareas[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_area_notice(const nmea_ais_area_notice *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "linkage", (long long)m->linkage);
+    ais_json_code(j, "notice", ais_ais_notice_description_id(m->notice_raw), m->notice_raw);
+    ais_json_reading(j, "month", (int64_t)m->month_raw, 1.0, 0.0, false, ais_area_notice_month_specials, 1);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_area_notice_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_area_notice_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_area_notice_minute_specials, 1);
+    ais_json_reading(j, "duration", (int64_t)m->duration_raw, 1.0, 0.0, false, ais_area_notice_duration_specials, 1);
+    {
+        size_t i;
+        ais_json_key(j, "subareas");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->subareas_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_area_notice_subarea(&m->subareas[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_aton_monitoring(nmea_ais_reader *r, nmea_ais_aton_monitoring *m)
 {
@@ -3838,6 +4442,10 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
 {
     nmea_ais_error ignored;
     nmea_ais_reader r = ais_bits_reader(data, &ignored);
+    if (dac == 1u && fid == 22u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_AREA_NOTICE;
+        return ais_read_area_notice(&r, &app->as.area_notice);
+    }
     if (dac == 235u && fid == 10u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_ATON_MONITORING;
         return ais_read_aton_monitoring(&r, &app->as.aton_monitoring);
@@ -3880,6 +4488,8 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
 static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writer *w)
 {
     switch (app->layout) {
+    case NMEA_AIS_APP_AREA_NOTICE:
+        return ais_write_area_notice(&app->as.area_notice, w);
     case NMEA_AIS_APP_ATON_MONITORING:
         return ais_write_aton_monitoring(&app->as.aton_monitoring, w);
     case NMEA_AIS_APP_FUNCTION_INTERROGATION:
@@ -3905,6 +4515,9 @@ static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writ
 static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_out *j)
 {
     switch (app->layout) {
+    case NMEA_AIS_APP_AREA_NOTICE:
+        ais_json_area_notice(&app->as.area_notice, j);
+        break;
     case NMEA_AIS_APP_ATON_MONITORING:
         ais_json_aton_monitoring(&app->as.aton_monitoring, j);
         break;

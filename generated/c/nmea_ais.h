@@ -12,12 +12,13 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
+//   spec/ais/applications/function_interrogation.yaml,
 //   spec/ais/applications/inland_persons_on_board.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 //   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 //   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest a675cb198fba22bd)
+//   (digest ac347000cc8f908c)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
@@ -207,6 +208,91 @@ void nmea_ais_assembler_finish(nmea_ais_assembler *a, nmea_ais_done *done, void 
    into `buf` (NUL-terminated when `cap` > 0): the length it needs. */
 size_t nmea_ais_incomplete_message(const nmea_ais_assembled *done, char *buf, size_t cap);
 
+/* One entry of area_notice_subarea. */
+typedef struct {
+    uint8_t shape_raw; /* Shape */
+    uint8_t scale; /* Scale factor */
+    bool has_scale;
+    int32_t lon_raw; /* Longitude [degrees] */
+    bool has_lon_raw;
+    int32_t lat_raw; /* Latitude [degrees] */
+    bool has_lat_raw;
+    uint8_t precision; /* Precision */
+    bool has_precision;
+    uint16_t radius; /* Radius */
+    bool has_radius;
+    uint32_t spare; /* Spare */
+    bool has_spare;
+    uint8_t rect_scale; /* Scale factor */
+    bool has_rect_scale;
+    int32_t rect_lon_raw; /* Longitude [degrees] */
+    bool has_rect_lon_raw;
+    int32_t rect_lat_raw; /* Latitude [degrees] */
+    bool has_rect_lat_raw;
+    uint8_t rect_precision; /* Precision */
+    bool has_rect_precision;
+    uint8_t east; /* East dimension */
+    bool has_east;
+    uint8_t north; /* North dimension */
+    bool has_north;
+    uint16_t orientation; /* Orientation [degrees] */
+    bool has_orientation;
+    uint8_t rect_spare; /* Spare */
+    bool has_rect_spare;
+    uint8_t sector_scale; /* Scale factor */
+    bool has_sector_scale;
+    int32_t sector_lon_raw; /* Longitude [degrees] */
+    bool has_sector_lon_raw;
+    int32_t sector_lat_raw; /* Latitude [degrees] */
+    bool has_sector_lat_raw;
+    uint8_t sector_precision; /* Precision */
+    bool has_sector_precision;
+    uint16_t sector_radius; /* Radius */
+    bool has_sector_radius;
+    uint16_t left; /* Left bound [degrees] */
+    bool has_left;
+    uint16_t right; /* Right bound [degrees] */
+    bool has_right;
+    uint8_t points_scale; /* Scale factor */
+    bool has_points_scale;
+    uint16_t angle1_raw; /* Bearing of point 1 [degrees] */
+    bool has_angle1_raw;
+    uint16_t distance1; /* Distance of point 1 */
+    bool has_distance1;
+    uint16_t angle2_raw; /* Bearing of point 2 [degrees] */
+    bool has_angle2_raw;
+    uint16_t distance2; /* Distance of point 2 */
+    bool has_distance2;
+    uint16_t angle3_raw; /* Bearing of point 3 [degrees] */
+    bool has_angle3_raw;
+    uint16_t distance3; /* Distance of point 3 */
+    bool has_distance3;
+    uint16_t angle4_raw; /* Bearing of point 4 [degrees] */
+    bool has_angle4_raw;
+    uint16_t distance4; /* Distance of point 4 */
+    bool has_distance4;
+    uint8_t points_spare; /* Spare */
+    bool has_points_spare;
+    nmea_ais_bits text; /* Text */
+    bool has_text;
+    nmea_ais_bits reserved; /* Bits of a reserved shape */
+    bool has_reserved;
+} nmea_ais_area_notice_subarea;
+
+/* Area notice (broadcast): AIS application DAC 1 FI 22 (in type 8). */
+typedef struct {
+    uint16_t linkage; /* Message linkage id */
+    uint8_t notice_raw; /* Notice description */
+    uint8_t month_raw; /* Start month (UTC) */
+    uint8_t day_raw; /* Start day (UTC) */
+    uint8_t hour_raw; /* Start hour (UTC) */
+    uint8_t minute_raw; /* Start minute (UTC) */
+    uint32_t duration_raw; /* Duration [minutes] */
+    nmea_ais_area_notice_subarea subareas[10]; /* Sub-areas */
+    size_t subareas_count;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_area_notice;
+
 /* AtoN monitoring data (UK and Ireland): AIS application DAC 235 FI 10 (in type 6). */
 typedef struct {
     uint16_t ana_int_raw; /* Internal supply voltage [volts] */
@@ -368,6 +454,7 @@ typedef struct {
 
 /* An application message a binary message's data carries, by its DAC and FI. */
 typedef enum {
+    NMEA_AIS_APP_AREA_NOTICE,
     NMEA_AIS_APP_ATON_MONITORING,
     NMEA_AIS_APP_FUNCTION_INTERROGATION,
     NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD,
@@ -382,6 +469,7 @@ typedef enum {
 typedef struct {
     nmea_ais_application_layout layout;
     union {
+        nmea_ais_area_notice area_notice;
         nmea_ais_aton_monitoring aton_monitoring;
         nmea_ais_function_interrogation function_interrogation;
         nmea_ais_inland_persons_on_board inland_persons_on_board;

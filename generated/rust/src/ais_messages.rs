@@ -12,12 +12,13 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
+//   spec/ais/applications/function_interrogation.yaml,
 //   spec/ais/applications/inland_persons_on_board.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 //   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 //   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest 30790496d88c1172)
+//   (digest faee0f15df879d95)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The AIS messages of spec/ais: a struct per layout, read from and written to a payload's bits
@@ -27,7 +28,7 @@
 use core::fmt;
 
 use crate::ais;
-use crate::enums::{AisAidType, AisEpfd, AisShipType, VsdNavStatus};
+use crate::enums::{AisAidType, AisEpfd, AisNoticeDescription, AisShipType, AisSubareaShape, VsdNavStatus};
 use crate::CodeEnum;
 
 /// Binary addressed message: AIS message type 6.
@@ -3156,6 +3157,551 @@ impl<'a> UtcInquiry<'a> {
     }
 }
 
+/// One entry of AreaNoticeSubarea.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct AreaNoticeSubarea<'a> {
+    /// Shape.
+    pub shape_raw: u8,
+    /// Scale factor.
+    pub scale: Option<u8>,
+    /// Longitude [degrees].
+    pub lon_raw: Option<i32>,
+    /// Latitude [degrees].
+    pub lat_raw: Option<i32>,
+    /// Precision.
+    pub precision: Option<u8>,
+    /// Radius.
+    pub radius: Option<u16>,
+    /// Spare.
+    pub spare: Option<u32>,
+    /// Scale factor.
+    pub rect_scale: Option<u8>,
+    /// Longitude [degrees].
+    pub rect_lon_raw: Option<i32>,
+    /// Latitude [degrees].
+    pub rect_lat_raw: Option<i32>,
+    /// Precision.
+    pub rect_precision: Option<u8>,
+    /// East dimension.
+    pub east: Option<u8>,
+    /// North dimension.
+    pub north: Option<u8>,
+    /// Orientation [degrees].
+    pub orientation: Option<u16>,
+    /// Spare.
+    pub rect_spare: Option<u8>,
+    /// Scale factor.
+    pub sector_scale: Option<u8>,
+    /// Longitude [degrees].
+    pub sector_lon_raw: Option<i32>,
+    /// Latitude [degrees].
+    pub sector_lat_raw: Option<i32>,
+    /// Precision.
+    pub sector_precision: Option<u8>,
+    /// Radius.
+    pub sector_radius: Option<u16>,
+    /// Left bound [degrees].
+    pub left: Option<u16>,
+    /// Right bound [degrees].
+    pub right: Option<u16>,
+    /// Scale factor.
+    pub points_scale: Option<u8>,
+    /// Bearing of point 1 [degrees].
+    pub angle1_raw: Option<u16>,
+    /// Distance of point 1.
+    pub distance1: Option<u16>,
+    /// Bearing of point 2 [degrees].
+    pub angle2_raw: Option<u16>,
+    /// Distance of point 2.
+    pub distance2: Option<u16>,
+    /// Bearing of point 3 [degrees].
+    pub angle3_raw: Option<u16>,
+    /// Distance of point 3.
+    pub distance3: Option<u16>,
+    /// Bearing of point 4 [degrees].
+    pub angle4_raw: Option<u16>,
+    /// Distance of point 4.
+    pub distance4: Option<u16>,
+    /// Spare.
+    pub points_spare: Option<u8>,
+    /// Text.
+    pub text: Option<ais::SixBitText<'a>>,
+    /// Bits of a reserved shape.
+    pub reserved: Option<ais::Bits<'a>>,
+}
+
+impl<'a> AreaNoticeSubarea<'a> {
+    /// Shape: the enum's value of the raw code, None for a code it does not name.
+    pub fn shape(&self) -> Option<AisSubareaShape> {
+        let raw = self.shape_raw;
+        ais::code(u64::from(raw))
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> Option<ais::Reading<f64>> {
+        self.lon_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")]))
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> Option<ais::Reading<f64>> {
+        self.lat_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")]))
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn rect_lon(&self) -> Option<ais::Reading<f64>> {
+        self.rect_lon_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")]))
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn rect_lat(&self) -> Option<ais::Reading<f64>> {
+        self.rect_lat_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")]))
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn sector_lon(&self) -> Option<ais::Reading<f64>> {
+        self.sector_lon_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")]))
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn sector_lat(&self) -> Option<ais::Reading<f64>> {
+        self.sector_lat_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")]))
+    }
+    /// Bearing of point 1 [degrees], or its special value.
+    pub fn angle1(&self) -> Option<ais::Reading<f64>> {
+        self.angle1_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[(720, "not_available")]))
+    }
+    /// Bearing of point 2 [degrees], or its special value.
+    pub fn angle2(&self) -> Option<ais::Reading<f64>> {
+        self.angle2_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[(720, "not_available")]))
+    }
+    /// Bearing of point 3 [degrees], or its special value.
+    pub fn angle3(&self) -> Option<ais::Reading<f64>> {
+        self.angle3_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[(720, "not_available")]))
+    }
+    /// Bearing of point 4 [degrees], or its special value.
+    pub fn angle4(&self) -> Option<ais::Reading<f64>> {
+        self.angle4_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[(720, "not_available")]))
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { shape_raw: r.take(3, "shape")? as u8, ..Self::default() };
+        match u64::from(m.shape_raw) {
+            0 => {
+                m.scale = Some(r.take(2, "scale")? as u8);
+                m.lon_raw = Some(r.take_signed(25, "lon")? as i32);
+                m.lat_raw = Some(r.take_signed(24, "lat")? as i32);
+                m.precision = Some(r.take(3, "precision")? as u8);
+                m.radius = Some(r.take(12, "radius")? as u16);
+                m.spare = Some(r.take(18, "spare")? as u32);
+            }
+            1 => {
+                m.rect_scale = Some(r.take(2, "rect_scale")? as u8);
+                m.rect_lon_raw = Some(r.take_signed(25, "rect_lon")? as i32);
+                m.rect_lat_raw = Some(r.take_signed(24, "rect_lat")? as i32);
+                m.rect_precision = Some(r.take(3, "rect_precision")? as u8);
+                m.east = Some(r.take(8, "east")? as u8);
+                m.north = Some(r.take(8, "north")? as u8);
+                m.orientation = Some(r.take(9, "orientation")? as u16);
+                m.rect_spare = Some(r.take(5, "rect_spare")? as u8);
+            }
+            2 => {
+                m.sector_scale = Some(r.take(2, "sector_scale")? as u8);
+                m.sector_lon_raw = Some(r.take_signed(25, "sector_lon")? as i32);
+                m.sector_lat_raw = Some(r.take_signed(24, "sector_lat")? as i32);
+                m.sector_precision = Some(r.take(3, "sector_precision")? as u8);
+                m.sector_radius = Some(r.take(12, "sector_radius")? as u16);
+                m.left = Some(r.take(9, "left")? as u16);
+                m.right = Some(r.take(9, "right")? as u16);
+            }
+            3 | 4 => {
+                m.points_scale = Some(r.take(2, "points_scale")? as u8);
+                m.angle1_raw = Some(r.take(10, "angle1")? as u16);
+                m.distance1 = Some(r.take(10, "distance1")? as u16);
+                m.angle2_raw = Some(r.take(10, "angle2")? as u16);
+                m.distance2 = Some(r.take(10, "distance2")? as u16);
+                m.angle3_raw = Some(r.take(10, "angle3")? as u16);
+                m.distance3 = Some(r.take(10, "distance3")? as u16);
+                m.angle4_raw = Some(r.take(10, "angle4")? as u16);
+                m.distance4 = Some(r.take(10, "distance4")? as u16);
+                m.points_spare = Some(r.take(2, "points_spare")? as u8);
+            }
+            5 => {
+                m.text = Some(r.take_text(14, "text")?);
+            }
+            _ => {
+                m.reserved = Some(r.take_bits(84, "reserved")?);
+            }
+        }
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put(u64::from(self.shape_raw), 3, "shape")?;
+            match u64::from(self.shape_raw) {
+                0 => {
+                    let Some(v) = self.scale else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "scale")?;
+                    let Some(v) = self.lon_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 25, "lon")?;
+                    let Some(v) = self.lat_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 24, "lat")?;
+                    let Some(v) = self.precision else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "precision")?;
+                    let Some(v) = self.radius else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 12, "radius")?;
+                    let Some(v) = self.spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 18, "spare")?;
+                }
+                1 => {
+                    let Some(v) = self.rect_scale else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "rect_scale")?;
+                    let Some(v) = self.rect_lon_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 25, "rect_lon")?;
+                    let Some(v) = self.rect_lat_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 24, "rect_lat")?;
+                    let Some(v) = self.rect_precision else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "rect_precision")?;
+                    let Some(v) = self.east else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "east")?;
+                    let Some(v) = self.north else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "north")?;
+                    let Some(v) = self.orientation else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "orientation")?;
+                    let Some(v) = self.rect_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "rect_spare")?;
+                }
+                2 => {
+                    let Some(v) = self.sector_scale else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "sector_scale")?;
+                    let Some(v) = self.sector_lon_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 25, "sector_lon")?;
+                    let Some(v) = self.sector_lat_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 24, "sector_lat")?;
+                    let Some(v) = self.sector_precision else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "sector_precision")?;
+                    let Some(v) = self.sector_radius else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 12, "sector_radius")?;
+                    let Some(v) = self.left else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "left")?;
+                    let Some(v) = self.right else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "right")?;
+                }
+                3 | 4 => {
+                    let Some(v) = self.points_scale else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "points_scale")?;
+                    let Some(v) = self.angle1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "angle1")?;
+                    let Some(v) = self.distance1 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "distance1")?;
+                    let Some(v) = self.angle2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "angle2")?;
+                    let Some(v) = self.distance2 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "distance2")?;
+                    let Some(v) = self.angle3_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "angle3")?;
+                    let Some(v) = self.distance3 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "distance3")?;
+                    let Some(v) = self.angle4_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "angle4")?;
+                    let Some(v) = self.distance4 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "distance4")?;
+                    let Some(v) = self.points_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "points_spare")?;
+                }
+                5 => {
+                    let Some(v) = self.text else {
+                        break 'write;
+                    };
+                    w.put_fixed(v.bits(), 84, true, "text")?;
+                }
+                _ => {
+                    let Some(v) = self.reserved else {
+                        break 'write;
+                    };
+                    w.put_fixed(v, 84, false, "reserved")?;
+                }
+            }
+        }
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.code("shape", self.shape().map(CodeEnum::id), u64::from(self.shape_raw))?;
+        if let Some(v) = self.scale {
+            j.int("scale", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.lon_raw, self.lon()) {
+            j.reading("lon", reading, "lon_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.lat_raw, self.lat()) {
+            j.reading("lat", reading, "lat_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.precision {
+            j.int("precision", v)?;
+        }
+        if let Some(v) = self.radius {
+            j.int("radius", v)?;
+        }
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        if let Some(v) = self.rect_scale {
+            j.int("rect_scale", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.rect_lon_raw, self.rect_lon()) {
+            j.reading("rect_lon", reading, "rect_lon_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.rect_lat_raw, self.rect_lat()) {
+            j.reading("rect_lat", reading, "rect_lat_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.rect_precision {
+            j.int("rect_precision", v)?;
+        }
+        if let Some(v) = self.east {
+            j.int("east", v)?;
+        }
+        if let Some(v) = self.north {
+            j.int("north", v)?;
+        }
+        if let Some(v) = self.orientation {
+            j.int("orientation", v)?;
+        }
+        if let Some(v) = self.rect_spare {
+            j.int("rect_spare", v)?;
+        }
+        if let Some(v) = self.sector_scale {
+            j.int("sector_scale", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.sector_lon_raw, self.sector_lon()) {
+            j.reading("sector_lon", reading, "sector_lon_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.sector_lat_raw, self.sector_lat()) {
+            j.reading("sector_lat", reading, "sector_lat_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.sector_precision {
+            j.int("sector_precision", v)?;
+        }
+        if let Some(v) = self.sector_radius {
+            j.int("sector_radius", v)?;
+        }
+        if let Some(v) = self.left {
+            j.int("left", v)?;
+        }
+        if let Some(v) = self.right {
+            j.int("right", v)?;
+        }
+        if let Some(v) = self.points_scale {
+            j.int("points_scale", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.angle1_raw, self.angle1()) {
+            j.reading("angle1", reading, "angle1_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.distance1 {
+            j.int("distance1", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.angle2_raw, self.angle2()) {
+            j.reading("angle2", reading, "angle2_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.distance2 {
+            j.int("distance2", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.angle3_raw, self.angle3()) {
+            j.reading("angle3", reading, "angle3_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.distance3 {
+            j.int("distance3", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.angle4_raw, self.angle4()) {
+            j.reading("angle4", reading, "angle4_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.distance4 {
+            j.int("distance4", v)?;
+        }
+        if let Some(v) = self.points_spare {
+            j.int("points_spare", v)?;
+        }
+        if let Some(v) = self.text {
+            j.text("text", v)?;
+        }
+        if let Some(v) = self.reserved {
+            j.text("reserved", v)?;
+        }
+        Ok(())
+    }
+}
+
+/// Area notice (broadcast): AIS application DAC 1 FI 22 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct AreaNotice<'a> {
+    /// Message linkage id.
+    pub linkage: u16,
+    /// Notice description.
+    pub notice_raw: u8,
+    /// Start month (UTC).
+    pub month_raw: u8,
+    /// Start day (UTC).
+    pub day_raw: u8,
+    /// Start hour (UTC).
+    pub hour_raw: u8,
+    /// Start minute (UTC).
+    pub minute_raw: u8,
+    /// Duration [minutes].
+    pub duration_raw: u32,
+    /// Sub-areas: 1 to 10 entries.
+    pub subareas: [Option<AreaNoticeSubarea<'a>>; 10],
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> AreaNotice<'a> {
+    /// Notice description: the enum's value of the raw code, None for a code it does not name.
+    pub fn notice(&self) -> Option<AisNoticeDescription> {
+        let raw = self.notice_raw;
+        ais::code(u64::from(raw))
+    }
+    /// Start month (UTC), or its special value.
+    pub fn month(&self) -> ais::Reading<i64> {
+        let raw = self.month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Start day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Start hour (UTC), or its special value.
+    pub fn hour(&self) -> ais::Reading<i64> {
+        let raw = self.hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Start minute (UTC), or its special value.
+    pub fn minute(&self) -> ais::Reading<i64> {
+        let raw = self.minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Duration [minutes], or its special value.
+    pub fn duration(&self) -> ais::Reading<i64> {
+        let raw = self.duration_raw;
+        ais::counted(i64::from(raw), 0, &[(262143, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self {
+            linkage: r.take(10, "linkage")? as u16,
+            notice_raw: r.take(7, "notice")? as u8,
+            month_raw: r.take(4, "month")? as u8,
+            day_raw: r.take(5, "day")? as u8,
+            hour_raw: r.take(5, "hour")? as u8,
+            minute_raw: r.take(6, "minute")? as u8,
+            duration_raw: r.take(18, "duration")? as u32,
+            ..Self::default()
+        };
+        let count = r.entries(1, 10, 87, 0, "subareas")?;
+        for slot in m.subareas.iter_mut().take(count) {
+            *slot = Some(AreaNoticeSubarea::read(r)?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.linkage), 10, "linkage")?;
+        w.put(u64::from(self.notice_raw), 7, "notice")?;
+        w.put(u64::from(self.month_raw), 4, "month")?;
+        w.put(u64::from(self.day_raw), 5, "day")?;
+        w.put(u64::from(self.hour_raw), 5, "hour")?;
+        w.put(u64::from(self.minute_raw), 6, "minute")?;
+        w.put(u64::from(self.duration_raw), 18, "duration")?;
+        for entry in self.subareas.iter().flatten() {
+            entry.write(w)?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("linkage", self.linkage)?;
+        j.code("notice", self.notice().map(CodeEnum::id), u64::from(self.notice_raw))?;
+        j.reading("month", self.month(), "month_raw", i64::from(self.month_raw))?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        j.reading("hour", self.hour(), "hour_raw", i64::from(self.hour_raw))?;
+        j.reading("minute", self.minute(), "minute_raw", i64::from(self.minute_raw))?;
+        j.reading("duration", self.duration(), "duration_raw", i64::from(self.duration_raw))?;
+        {
+            let out = j.key("subareas")?;
+            out.write_char('[')?;
+            for (i, entry) in self.subareas.iter().flatten().enumerate() {
+                if i > 0 {
+                    out.write_char(',')?;
+                }
+                let mut e = ais::JsonObject::new(out)?;
+                entry.json_members(&mut e)?;
+                e.finish()?;
+            }
+            out.write_char(']')?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
 /// AtoN monitoring data (UK and Ireland): AIS application DAC 235 FI 10 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct AtonMonitoring<'a> {
@@ -4438,7 +4984,10 @@ impl<'a> TextBroadcast<'a> {
 
 /// An application message that the data bits of a binary message carry, by its DAC and FI.
 #[derive(Clone, Copy, Debug)]
+#[allow(clippy::large_enum_variant)] // no heap: an area notice holds its ten sub-areas in place
 pub enum Application<'a> {
+    /// DAC 1 FI 22.
+    AreaNotice(AreaNotice<'a>),
     /// DAC 235 FI 10.
     AtonMonitoring(AtonMonitoring<'a>),
     /// DAC 1 FI 2.
@@ -4464,6 +5013,7 @@ impl<'a> Application<'a> {
     /// `message_type`, None when the spec describes none or its layout does not read the bits.
     pub fn read(message_type: u8, dac: u64, fid: u64, data: ais::Bits<'a>) -> Option<Self> {
         match (dac, fid, message_type) {
+            (1, 22, 8) => AreaNotice::read(&mut data.reader()).ok().map(Application::AreaNotice),
             (235, 10, 6) => AtonMonitoring::read(&mut data.reader()).ok().map(Application::AtonMonitoring),
             (1, 2, 6) => FunctionInterrogation::read(&mut data.reader()).ok().map(Application::FunctionInterrogation),
             (200, 55, 6) => InlandPersonsOnBoard::read(&mut data.reader()).ok().map(Application::InlandPersonsOnBoard),
@@ -4480,6 +5030,7 @@ impl<'a> Application<'a> {
     /// Writes its bits (those of the data of its message).
     pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
         match self {
+            Application::AreaNotice(app) => app.write(w),
             Application::AtonMonitoring(app) => app.write(w),
             Application::FunctionInterrogation(app) => app.write(w),
             Application::InlandPersonsOnBoard(app) => app.write(w),
@@ -4495,6 +5046,7 @@ impl<'a> Application<'a> {
     /// The members of its decoded JSON.
     pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
         match self {
+            Application::AreaNotice(app) => app.json_members(j),
             Application::AtonMonitoring(app) => app.json_members(j),
             Application::FunctionInterrogation(app) => app.json_members(j),
             Application::InlandPersonsOnBoard(app) => app.json_members(j),
@@ -4510,6 +5062,7 @@ impl<'a> Application<'a> {
 
 /// A decoded AIS message, by its layout.
 #[derive(Clone, Copy, Debug)]
+#[allow(clippy::large_enum_variant)] // no heap: a binary message holds its application in place
 pub enum Message<'a> {
     /// Type 6: Binary addressed message.
     AddressedBinary(AddressedBinary<'a>),
