@@ -16,7 +16,8 @@
 //   spec/enums/airoha_periodic_mode.yaml, spec/enums/airoha_pos_precision.yaml,
 //   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml,
 //   spec/enums/ais_aid_type.yaml, spec/enums/ais_channel.yaml, spec/enums/ais_epfd.yaml,
-//   spec/enums/ais_notice_description.yaml, spec/enums/ais_ship_type.yaml,
+//   spec/enums/ais_notice_description.yaml, spec/enums/ais_sensor_description.yaml,
+//   spec/enums/ais_sensor_report.yaml, spec/enums/ais_ship_type.yaml,
 //   spec/enums/ais_subarea_shape.yaml, spec/enums/ala_ack_state.yaml,
 //   spec/enums/ala_condition.yaml, spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml,
 //   spec/enums/alf_state.yaml, spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml,
@@ -135,7 +136,7 @@
 //   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 //   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 //   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-//   (digest 6701692ca9efd6f2)
+//   (digest 2a4887944ffe9284)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -2940,6 +2941,186 @@ impl CodeEnum for AisNoticeDescription {
             Self::Other => "other",
             Self::Cancellation => "cancellation",
             Self::Undefined => "undefined",
+        }
+    }
+}
+
+/// AIS environmental sensor description: How the values of a report of the environmental message
+/// (IMO SN.1/Circ.289, DAC 1 FI 26) were obtained; 6 is reserved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AisSensorDescription {
+    /// No data (default).
+    NoData,
+    /// Raw, in real time.
+    RawRealTime,
+    /// In real time, quality controlled.
+    RealTimeQualityControlled,
+    /// Predicted from historical statistics.
+    Predicted,
+    /// Forecast: predicted and refined with real-time data.
+    Forecast,
+    /// Nowcast: a continuous forecast.
+    Nowcast,
+    /// The sensor is not available.
+    NotAvailable,
+}
+
+impl CodeEnum for AisSensorDescription {
+    const EXPECTED: &'static str = "ais_sensor_description code (0 1 2 3 4 5 7)";
+    const EXPECTED_CHARS: &'static str = "ais_sensor_description codes (0 1 2 3 4 5 7)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[
+        Self::NoData,
+        Self::RawRealTime,
+        Self::RealTimeQualityControlled,
+        Self::Predicted,
+        Self::Forecast,
+        Self::Nowcast,
+        Self::NotAvailable,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::NoData),
+            b"1" => Some(Self::RawRealTime),
+            b"2" => Some(Self::RealTimeQualityControlled),
+            b"3" => Some(Self::Predicted),
+            b"4" => Some(Self::Forecast),
+            b"5" => Some(Self::Nowcast),
+            b"7" => Some(Self::NotAvailable),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::NoData => "0",
+            Self::RawRealTime => "1",
+            Self::RealTimeQualityControlled => "2",
+            Self::Predicted => "3",
+            Self::Forecast => "4",
+            Self::Nowcast => "5",
+            Self::NotAvailable => "7",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::NoData => "no_data",
+            Self::RawRealTime => "raw_real_time",
+            Self::RealTimeQualityControlled => "real_time_quality_controlled",
+            Self::Predicted => "predicted",
+            Self::Forecast => "forecast",
+            Self::Nowcast => "nowcast",
+            Self::NotAvailable => "not_available",
+        }
+    }
+}
+
+/// AIS environmental sensor report type: What a sensor report of the environmental message (IMO
+/// SN.1/Circ.289, DAC 1 FI 26) holds, which lays out its 85 bits of data; 11-15 are reserved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AisSensorReport {
+    /// Where the sensor site is: position, altitude, owner, data timeout.
+    SiteLocation,
+    /// The station's name.
+    StationId,
+    /// Wind, observed and forecast.
+    Wind,
+    /// Water level, observed and forecast.
+    WaterLevel,
+    /// Current speed and direction at three depths.
+    Current2d,
+    /// Current as north, east and up components at two depths.
+    Current3d,
+    /// Current at two points away from the sensor, by bearing and distance.
+    HorizontalCurrent,
+    /// Swell, sea state, water temperature, waves and salinity.
+    SeaState,
+    /// Water temperature, conductivity, pressure and salinity.
+    Salinity,
+    /// Air temperature, precipitation, visibility, dew point, air pressure and salinity.
+    Weather,
+    /// Air draught and air gap.
+    AirGap,
+}
+
+impl CodeEnum for AisSensorReport {
+    const EXPECTED: &'static str = "ais_sensor_report code (0 1 2 3 4 5 6 7 8 9 10)";
+    const EXPECTED_CHARS: &'static str = "ais_sensor_report codes (0 1 2 3 4 5 6 7 8 9 10)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 2;
+    const ALL: &'static [Self] = &[
+        Self::SiteLocation,
+        Self::StationId,
+        Self::Wind,
+        Self::WaterLevel,
+        Self::Current2d,
+        Self::Current3d,
+        Self::HorizontalCurrent,
+        Self::SeaState,
+        Self::Salinity,
+        Self::Weather,
+        Self::AirGap,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::SiteLocation),
+            b"1" => Some(Self::StationId),
+            b"2" => Some(Self::Wind),
+            b"3" => Some(Self::WaterLevel),
+            b"4" => Some(Self::Current2d),
+            b"5" => Some(Self::Current3d),
+            b"6" => Some(Self::HorizontalCurrent),
+            b"7" => Some(Self::SeaState),
+            b"8" => Some(Self::Salinity),
+            b"9" => Some(Self::Weather),
+            b"10" => Some(Self::AirGap),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::SiteLocation => "0",
+            Self::StationId => "1",
+            Self::Wind => "2",
+            Self::WaterLevel => "3",
+            Self::Current2d => "4",
+            Self::Current3d => "5",
+            Self::HorizontalCurrent => "6",
+            Self::SeaState => "7",
+            Self::Salinity => "8",
+            Self::Weather => "9",
+            Self::AirGap => "10",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::SiteLocation => "site_location",
+            Self::StationId => "station_id",
+            Self::Wind => "wind",
+            Self::WaterLevel => "water_level",
+            Self::Current2d => "current_2d",
+            Self::Current3d => "current_3d",
+            Self::HorizontalCurrent => "horizontal_current",
+            Self::SeaState => "sea_state",
+            Self::Salinity => "salinity",
+            Self::Weather => "weather",
+            Self::AirGap => "air_gap",
         }
     }
 }
