@@ -355,7 +355,7 @@ def _payload_items(data: list[dict[str, Any]], file: str, where: tuple[str | int
     for i, item in enumerate(data):
         at = where + (i,)
         if "group" in item:
-            fields = [_payload_field(f, Origin(file, at + ("fields", j))) for j, f in enumerate(item["fields"])]
+            fields = _payload_items(item["fields"], file, at + ("fields",))
             items.append(PayloadGroup(item["group"], item["name"], item.get("doc", item["name"]),
                                       item.get("min", 0 if "count" in item else 1), item.get("max", MAX_ENTRIES),
                                       fields, Origin(file, at), count=_count(item.get("count")),

@@ -1,7 +1,7 @@
 """Semantic checks of the bit-packed payloads (spec/ais/messages): widths fit their types and sum
 to the documented length, special values fit their fields, ids are unique, variable and optional
 items come where a reader can size them, choices can find their selector, and every example
-decodes to its `expect`. Rule ids A001-A009 (generator/rules.py)."""
+decodes to its `expect`. Rule ids A001-A013 (generator/rules.py)."""
 
 from __future__ import annotations
 
@@ -132,6 +132,7 @@ def check_items(payload: Payload, report: Report) -> None:
                 report(f.origin, "A005", f"field {f.id}: the fields of a group have fixed widths and are required", "bits")
         if group.min > group.max:
             report(group.origin, "A005", f"group {group.id}: min {group.min} is above max {group.max}", "min")
+        _check_entry_choices(payload, group, report)
     for choice in _choices(payload.items):
         _check_choice(choice, report)
     _check_counts(payload, report)
@@ -196,6 +197,35 @@ def _check_counts(payload: Payload, report: Report) -> None:
                     walk(case.items)
 
     walk(payload.items)
+
+
+def _check_entry_choices(payload: Payload, group: PayloadGroup, report: Report) -> None:
+    """A013: a choice in a group's entry picks its case by a uint or enum field of the entry before
+    it; its cases hold fields only (a default case keeps the bits of values no case names) and are
+    all as wide, so that every entry has one width; an AIS payload's group only (the runtimes of
+    spec/binary read entries of fields)."""
+    before: set[str] = set()
+    for item in group.items:
+        if isinstance(item, PayloadField):
+            before.add(item.id)
+            continue
+        where = f"group {group.id}: choice {item.id}"
+        selector = item.selector
+        if payload.protocol != "ais" or group.count is not None or group.field_major:
+            report(item.origin, "A013", f"{where}: only an AIS payload's group counted by the bits left has choices "
+                   "in its entries")
+        elif item.by not in before or selector is None or selector.bits is None or not selector.bit_type.selects \
+                or selector.type == "bool":
+            report(item.origin, "A013", f"{where}: `by` names no uint or enum field of the entry before the choice",
+                   "by")
+        else:
+            _check_choice(item, report)
+        widths = {case.width for case in item.cases}
+        if any(not isinstance(i, PayloadField) for case in item.cases for i in case.items) or None in widths \
+                or len(widths) > 1:
+            shown = ", ".join(str(case.width) for case in item.cases)
+            report(item.origin, "A013", f"{where}: every case holds required fields of fixed width and is as wide as "
+                   f"the others (widths {shown}), so that every entry takes {group.entry_width} bits", "cases")
 
 
 def _check_choice(choice: PayloadChoice, report: Report) -> None:

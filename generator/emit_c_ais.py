@@ -41,9 +41,10 @@ def struct_name(name: str) -> str:
 class _Record:
     """The C code of one layout (a message, an application, a group's entry)."""
 
-    def __init__(self, name: str, items: list, dispatches: bool = False) -> None:
+    def __init__(self, name: str, items: list, dispatches: bool = False, entry: bool = False) -> None:
         self.name = name          # snake: position_report, binary_acknowledge_ack
         self.dispatches = dispatches
+        self.entry = entry        # a group's entry: its choices' selectors are its own fields, read before them
         self.members: list[str] = []
         self.read: list[str] = []
         self.write: list[str] = []
@@ -129,7 +130,7 @@ class _Record:
         return f"ais_json_int(j, {key}, (long long){value});"
 
     def _group(self, g: PayloadGroup, following: list) -> None:
-        entry = _Record(self.name + "_" + (g.id[:-1] if g.id.endswith("s") else g.id + "_entry"), g.fields)
+        entry = _Record(self.name + "_" + (g.id[:-1] if g.id.endswith("s") else g.id + "_entry"), g.items, entry=True)
         self.entries.append(entry)
         key, struct = _c_str(g.id), struct_name(entry.name)
         self.members += [f"{struct} {g.id}[{g.max}]; /* {g.name} */", f"size_t {g.id}_count;"]
@@ -161,8 +162,11 @@ class _Record:
             writes.append((case, " ".join(inner.write)))
         selector = f"m->{member_name(by)}"
         guard = "" if member_name(by) in self.certain else f"m->has_{member_name(by)} && "
-        self.read.append(f"if (!ais_peek(r, {by.offset}, {by.bits}, {_c_str(by.id)}, &selector)) "
-                         f"return false; {_if_chain(reads, 'selector', '')}")
+        if self.entry:  # its selector, a field of the entry, is read already
+            self.read.append(f"{{ uint64_t selector = (uint64_t){selector}; {_if_chain(reads, 'selector', '')} }}")
+        else:
+            self.read.append(f"if (!ais_peek(r, {by.offset}, {by.bits}, {_c_str(by.id)}, &selector)) "
+                             f"return false; {_if_chain(reads, 'selector', '')}")
         self.write.append(f"{{ uint64_t selector = (uint64_t){selector}; {_if_chain(writes, 'selector', guard)} }}")
 
 

@@ -11,7 +11,7 @@ import jinja2
 
 from . import emit_vectors
 from .emit import RUNTIME, markdown_banner
-from .model import Field, Group, Layout, Manual, Ones, Payload, PayloadField, PayloadGroup, ReplyRule, Sentence, Spec
+from .model import Field, Group, Layout, Manual, Ones, Payload, PayloadCase, PayloadField, PayloadGroup, ReplyRule, Sentence, Spec
 
 
 def cell(text: str | None) -> str:
@@ -141,6 +141,13 @@ def binary_rows(layout: Payload) -> list[dict]:
     return out
 
 
+def _case_text(by: str, case: PayloadCase) -> str:
+    """When a case of a choice by the field `by` holds, as the docs' tables say it."""
+    values = ", ".join(map(str, case.values))
+    return (f"{by} = {values}" if len(case.values) == 1 else f"{by} in {values}" if case.values else
+            f"{by} in {case.range[0]}..{case.range[1]}" if case.range else f"{by}: otherwise")
+
+
 def payload_rows(payload: Payload) -> list[dict]:
     """The docs table of a payload: a row per field, in order, with the case of a choice it
     belongs to and, for a group's fields, where the k-th entry's is."""
@@ -163,18 +170,22 @@ def payload_rows(payload: Payload) -> list[dict]:
                 previous = item.id
             elif isinstance(item, PayloadGroup):
                 at = 0
-                for f in item.fields:
-                    where = (f"{item.offset + at} + {item.entry_width}·k" if item.offset is not None
-                             else f"after `{previous}`")
-                    out.append(row(f, where, f"{item.min} to {item.max} entries", f"{item.id}[k]."))
-                    at += f.bits or 0
+                entries = f"{item.min} to {item.max} entries"
+                for part in item.items:   # an entry's fields; a choice's, case by case from one bit
+                    cases = [(entries, [part])] if isinstance(part, PayloadField) else \
+                        [(f"{entries}; {_case_text(part.by, case)}", case.items) for case in part.cases]
+                    for when_, fields in cases:
+                        here = at
+                        for f in fields:
+                            where = (f"{item.offset + here} + {item.entry_width}·k" if item.offset is not None
+                                     else f"after `{previous}`")
+                            out.append(row(f, where, when_, f"{item.id}[k]."))
+                            here += f.bits or 0
+                    at += (part.bits or 0) if isinstance(part, PayloadField) else (part.width or 0)
                 previous = item.id
             else:
                 for case in item.cases:
-                    values = ", ".join(map(str, case.values))
-                    cond = (f"{item.by} = {values}" if len(case.values) == 1 else
-                            f"{item.by} in {values}" if case.values else
-                            f"{item.by} in {case.range[0]}..{case.range[1]}" if case.range else f"{item.by}: otherwise")
+                    cond = _case_text(item.by, case)
                     walk(case.items, f"{when}; {cond}" if when else cond, previous)
                 previous = item.id
         return previous

@@ -94,8 +94,7 @@ def layout_lines(payload: Payload, items: list, rest: list, indent: int,
             out += field_lines(item, following, indent)
         elif isinstance(item, PayloadGroup):
             out.append(f"ais.Group({json.dumps(item.id)}, {entry_class(payload, item)}, (")
-            for f in item.fields:
-                out += [pad + line for line in field_lines(f, [], indent + 4)]
+            out += [pad + line for line in layout_lines(payload, item.items, [], indent + 4, field_lines, group_args)]
             out.append(f"), {item.min}, {item.max}{group_args(item, following)}),")
         else:
             assert item.selector is not None and item.selector.offset is not None

@@ -64,9 +64,10 @@ def plain_type(f: PayloadField) -> str:
 class _Record:
     """The code of one layout's struct (a message, an application, a group's entry)."""
 
-    def __init__(self, name: str, items: list, dispatches: bool = False) -> None:
+    def __init__(self, name: str, items: list, dispatches: bool = False, entry: bool = False) -> None:
         self.name = name
         self.dispatches = dispatches  # its data field may carry an application
+        self.entry = entry  # a group's entry: its choices' selectors are its own fields, read before them
         self.items = items
         self.members: list[str] = []
         self.accessors: list[str] = []
@@ -171,10 +172,12 @@ class _Record:
         return f"{doc}\npub fn {f.id}(&self) -> Option<{result}> {{ self.{f.id}_raw.map(|raw| {body}) }}"
 
     def _group(self, g: PayloadGroup, following: list) -> None:
-        entry = _Record(self.name + camel(g.id[:-1] if g.id.endswith("s") else g.id + "_entry"), g.fields)
+        entry = _Record(self.name + camel(g.id[:-1] if g.id.endswith("s") else g.id + "_entry"), g.items, entry=True)
         self.entries.append(entry)
         key = rust_str(g.id)
-        self.members.append(f"/// {g.name}: {g.min} to {g.max} entries.\npub {g.id}: [Option<{entry.name}>; {g.max}],")
+        lifetime = "<'a>" if any("'a" in m for m in entry.members) else ""
+        self.members.append(f"/// {g.name}: {g.min} to {g.max} entries.\n"
+                            f"pub {g.id}: [Option<{entry.name}{lifetime}>; {g.max}],")
         self.read.append(f"let count = r.entries({g.min}, {g.max}, {g.entry_width}, {after(following)}, {key})?;"
                          f"for slot in m.{g.id}.iter_mut().take(count) {{ *slot = Some({entry.name}::read(r)?); }}")
         self.write.append(f"for entry in self.{g.id}.iter().flatten() {{ entry.write(w)?; }}")
@@ -204,7 +207,11 @@ class _Record:
         if not any(case.is_default for case in c.cases):
             reads.append("_ => {}")
             writes.append("_ => {}")
-        self.read.append(f"match r.peek({by.offset}, {by.bits}, {rust_str(by.id)})? {{ {' '.join(reads)} }}")
+        if self.entry:  # its selector, a field of the entry, is read already
+            raw = f"m.{member_name(by)}"
+            self.read.append(f"match {raw if plain_type(by) == 'u64' else f'u64::from({raw})'} {{ {' '.join(reads)} }}")
+        else:
+            self.read.append(f"match r.peek({by.offset}, {by.bits}, {rust_str(by.id)})? {{ {' '.join(reads)} }}")
         selector = f"self.{member_name(by)}"
         if member_name(by) in self.certain:
             selector = selector if plain_type(by) == "u64" else f"u64::from({selector})"

@@ -740,15 +740,27 @@ class PayloadGroup:
     doc: str
     min: int
     max: int
-    fields: list[PayloadField]
+    items: list[PayloadField | PayloadChoice]   # an entry's fields, and choices by a field of the entry
     origin: Origin
     count: Count | None = None
     offset: int | None = None
     field_major: bool = False    # the entries' first fields, then their second fields, ... (RTCM 3 MSM)
 
     @property
+    def fields(self) -> list[PayloadField]:
+        """An entry's fields, those of every case of its choices included, in order."""
+        return flat_fields(self.items)
+
+    @property
+    def choices(self) -> list[PayloadChoice]:
+        """The choices of an entry (each by a field of the entry before it)."""
+        return [i for i in self.items if isinstance(i, PayloadChoice)]
+
+    @property
     def entry_width(self) -> int:
-        return sum(f.bits or 0 for f in self.fields)
+        """An entry's bits: its fields' (a choice's: those of its first case; rule A013 makes every
+        case as wide)."""
+        return sum((i.bits or 0) if isinstance(i, PayloadField) else (i.cases[0].width or 0) for i in self.items)
 
     @property
     def width(self) -> int | None:

@@ -65,10 +65,11 @@ class _Bits:
         return self.bits[self.pos - width:self.pos]
 
 
-def _items(items: list, bits: Any, rest: list, out: dict[str, Any]) -> bool:
+def _items(items: list, bits: Any, rest: list, out: dict[str, Any], start: int = 0) -> bool:
     """Decode `items` (followed by the items `rest`) into `out`; False when an optional field is
     missing (nothing after it is read). `bits` is a cursor over the payload: _Bits here, or
-    reference_binary's over little-endian bytes (both give a field's bits as '0'/'1' text)."""
+    reference_binary's over little-endian bytes (both give a field's bits as '0'/'1' text).
+    `start`: the first bit of the record (a group's entry) whose bits a choice's offsets count."""
     for i, item in enumerate(items):
         following = items[i + 1:] + rest
         if isinstance(item, PayloadGroup):
@@ -80,18 +81,18 @@ def _items(items: list, bits: Any, rest: list, out: dict[str, Any]) -> bool:
             entries = []
             for _ in range(count):
                 entry: dict[str, Any] = {}
-                _items(item.fields, bits, [], entry)
+                _items(item.items, bits, [], entry, bits.pos)
                 entries.append(entry)
             out[item.id] = entries
         elif isinstance(item, PayloadChoice):
             assert item.selector is not None and item.selector.offset is not None
-            at, width = item.selector.offset, item.selector.bits or 0
+            at, width = start + item.selector.offset, item.selector.bits or 0
             if at + width > len(bits.bits):
                 raise PayloadError("short_payload", f"{bits.payload.id}: {item.by} needs bits {at}..{at + width - 1}")
             raw = int(bits.bits[at:at + width], 2)
             case = next((c for c in item.cases if c.holds(raw)), None) or \
                 next((c for c in item.cases if c.is_default), None)
-            if case is not None and not _items(case.items, bits, following, out):
+            if case is not None and not _items(case.items, bits, following, out, start):
                 return False
         else:
             t = BIT_TYPES[item.type]

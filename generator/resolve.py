@@ -10,7 +10,7 @@ then only judge: a reference left unlinked here is an error they report, with it
 from __future__ import annotations
 
 from . import reference
-from .model import Group, Layout, Payload, PayloadChoice, PayloadField, Spec
+from .model import Group, Layout, Payload, PayloadChoice, PayloadField, PayloadGroup, Spec
 
 
 def resolve(spec: Spec) -> None:
@@ -92,17 +92,31 @@ def _place(layout: Layout) -> None:
 
 def _place_bits(payload: Payload) -> None:
     """Each item's first bit while no variable item comes before it (None after one), and each
-    choice's selector (a top-level field)."""
+    choice's selector (a top-level field; a group entry's choice: a field of the entry before
+    it, its offsets counted from the entry's first bit)."""
     top = {f.id: f for f in payload.items if isinstance(f, PayloadField)}
 
-    def place(items: list, offset: int | None) -> None:
+    def place(items: list, offset: int | None, fields: dict[str, PayloadField]) -> None:
         for item in items:
             item.offset = offset
             if isinstance(item, PayloadChoice):
-                item.selector = top.get(item.by)
+                item.selector = fields.get(item.by)
                 for case in item.cases:
-                    place(case.items, offset)
+                    place(case.items, offset, fields)
+            elif isinstance(item, PayloadGroup) and item.choices:
+                entry: dict[str, PayloadField] = {}
+                at: int | None = 0
+                for part in item.items:   # an entry's selector comes before its choice (rule A013)
+                    part.offset = at
+                    if isinstance(part, PayloadChoice):
+                        part.selector = entry.get(part.by)
+                        for case in part.cases:
+                            place(case.items, at, {})
+                    else:
+                        entry[part.id] = part
+                    width = part.bits if isinstance(part, PayloadField) else part.width
+                    at = None if at is None or width is None else at + width
             width = item.width
             offset = None if offset is None or width is None else offset + width
 
-    place(payload.items, 0)
+    place(payload.items, 0, top)

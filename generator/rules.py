@@ -236,6 +236,13 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "multiplied, give the number; a field-major group has a `count`. AIS payloads have neither (their "
          "readers count groups by the bits left).",
          "Correct the field ids, move the count's fields before the item, or give the field a fixed width."),
+    Rule("A013", "a group entry's choice has cases of one width",
+         "A choice in a group's entry (an AIS payload's group counted by the bits left) names by `by` a uint or "
+         "enum field of the entry before it; its cases hold required fields of fixed width, every case as wide "
+         "as the others, so that every entry has one width (a default case keeps the bits of a value no case "
+         "names, as sent).",
+         "Move the selector before the choice, pad the shorter cases with spare bits, or give the default case "
+         "a data field of the cases' width."),
     Rule("B001", "a binary message has one class and id",
          "A message of spec/binary/<protocol>/messages names a class of its protocol.yaml, its id starts with that "
          "class (nav_pvt), and no other message of the protocol has its class and id; a protocol without classes "

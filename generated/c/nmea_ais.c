@@ -12,12 +12,13 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
+//   spec/ais/applications/environmental.yaml, spec/ais/applications/function_interrogation.yaml,
 //   spec/ais/applications/inland_persons_on_board.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 //   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 //   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest d433fe0b30f19d08)
+//   (digest 0b8c5b5c5b6a7380)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -911,6 +912,257 @@ static const char *ais_ais_epfd_id(uint64_t code)
     }
 }
 
+/* The id of a code of ais_notice_description, NULL for one it does not name. */
+static const char *ais_ais_notice_description_id(uint64_t code)
+{
+    switch (code) {
+    case 0u:
+        return "caution_mammals_habitat";
+    case 1u:
+        return "caution_mammals_reduce_speed";
+    case 2u:
+        return "caution_mammals_stay_clear";
+    case 3u:
+        return "caution_mammals_report_sightings";
+    case 4u:
+        return "caution_habitat_reduce_speed";
+    case 5u:
+        return "caution_habitat_stay_clear";
+    case 6u:
+        return "caution_habitat_no_fishing";
+    case 7u:
+        return "caution_derelicts";
+    case 8u:
+        return "caution_traffic_congestion";
+    case 9u:
+        return "caution_marine_event";
+    case 10u:
+        return "caution_divers_down";
+    case 11u:
+        return "caution_swim_area";
+    case 12u:
+        return "caution_dredging";
+    case 13u:
+        return "caution_survey";
+    case 14u:
+        return "caution_underwater_operation";
+    case 15u:
+        return "caution_seaplanes";
+    case 16u:
+        return "caution_fishery_nets";
+    case 17u:
+        return "caution_fishing_vessels";
+    case 18u:
+        return "caution_fairway_closed";
+    case 19u:
+        return "caution_harbour_closed";
+    case 20u:
+        return "caution_risk";
+    case 21u:
+        return "caution_underwater_vehicle";
+    case 23u:
+        return "environment_storm_front";
+    case 24u:
+        return "environment_sea_ice";
+    case 25u:
+        return "environment_storm_warning";
+    case 26u:
+        return "environment_high_wind";
+    case 27u:
+        return "environment_high_waves";
+    case 28u:
+        return "environment_restricted_visibility";
+    case 29u:
+        return "environment_strong_currents";
+    case 30u:
+        return "environment_heavy_icing";
+    case 32u:
+        return "restricted_fishing_prohibited";
+    case 33u:
+        return "restricted_no_anchoring";
+    case 34u:
+        return "restricted_entry_approval";
+    case 35u:
+        return "restricted_entry_prohibited";
+    case 36u:
+        return "restricted_military_exercise";
+    case 37u:
+        return "restricted_firing";
+    case 38u:
+        return "restricted_drifting_mines";
+    case 40u:
+        return "anchorage_open";
+    case 41u:
+        return "anchorage_closed";
+    case 42u:
+        return "anchorage_prohibited";
+    case 43u:
+        return "anchorage_deep_draft";
+    case 44u:
+        return "anchorage_shallow_draft";
+    case 45u:
+        return "anchorage_vessel_transfer";
+    case 56u:
+        return "security_level_1";
+    case 57u:
+        return "security_level_2";
+    case 58u:
+        return "security_level_3";
+    case 64u:
+        return "distress_adrift";
+    case 65u:
+        return "distress_sinking";
+    case 66u:
+        return "distress_abandoning";
+    case 67u:
+        return "distress_medical";
+    case 68u:
+        return "distress_flooding";
+    case 69u:
+        return "distress_fire";
+    case 70u:
+        return "distress_grounding";
+    case 71u:
+        return "distress_collision";
+    case 72u:
+        return "distress_listing";
+    case 73u:
+        return "distress_assault";
+    case 74u:
+        return "distress_person_overboard";
+    case 75u:
+        return "distress_sar_area";
+    case 76u:
+        return "distress_pollution_response";
+    case 80u:
+        return "instruction_contact_vts";
+    case 81u:
+        return "instruction_contact_port";
+    case 82u:
+        return "instruction_do_not_proceed";
+    case 83u:
+        return "instruction_await_instructions";
+    case 84u:
+        return "proceed_await_instructions";
+    case 85u:
+        return "clearance_to_berth";
+    case 88u:
+        return "information_pilot_boarding";
+    case 89u:
+        return "information_icebreaker_waiting";
+    case 90u:
+        return "information_refuge";
+    case 91u:
+        return "information_icebreakers";
+    case 92u:
+        return "information_response_units";
+    case 93u:
+        return "vts_active_target";
+    case 94u:
+        return "rogue_vessel";
+    case 95u:
+        return "non_distress_assistance";
+    case 96u:
+        return "chart_sunken_vessel";
+    case 97u:
+        return "chart_submerged_object";
+    case 98u:
+        return "chart_semi_submerged_object";
+    case 99u:
+        return "chart_shoal";
+    case 100u:
+        return "chart_shoal_north";
+    case 101u:
+        return "chart_shoal_east";
+    case 102u:
+        return "chart_shoal_south";
+    case 103u:
+        return "chart_shoal_west";
+    case 104u:
+        return "chart_channel_obstruction";
+    case 105u:
+        return "chart_reduced_clearance";
+    case 106u:
+        return "chart_bridge_closed";
+    case 107u:
+        return "chart_bridge_partly_open";
+    case 108u:
+        return "chart_bridge_open";
+    case 112u:
+        return "ship_report_icing";
+    case 114u:
+        return "ship_report_other";
+    case 120u:
+        return "route_recommended";
+    case 121u:
+        return "route_alternative";
+    case 122u:
+        return "route_through_ice";
+    case 125u:
+        return "other";
+    case 126u:
+        return "cancellation";
+    case 127u:
+        return "undefined";
+    default:
+        return NULL;
+    }
+}
+
+/* The id of a code of ais_sensor_description, NULL for one it does not name. */
+static const char *ais_ais_sensor_description_id(uint64_t code)
+{
+    switch (code) {
+    case 0u:
+        return "no_data";
+    case 1u:
+        return "raw_real_time";
+    case 2u:
+        return "real_time_quality_controlled";
+    case 3u:
+        return "predicted";
+    case 4u:
+        return "forecast";
+    case 5u:
+        return "nowcast";
+    case 7u:
+        return "not_available";
+    default:
+        return NULL;
+    }
+}
+
+/* The id of a code of ais_sensor_report, NULL for one it does not name. */
+static const char *ais_ais_sensor_report_id(uint64_t code)
+{
+    switch (code) {
+    case 0u:
+        return "site_location";
+    case 1u:
+        return "station_id";
+    case 2u:
+        return "wind";
+    case 3u:
+        return "water_level";
+    case 4u:
+        return "current_2d";
+    case 5u:
+        return "current_3d";
+    case 6u:
+        return "horizontal_current";
+    case 7u:
+        return "sea_state";
+    case 8u:
+        return "salinity";
+    case 9u:
+        return "weather";
+    case 10u:
+        return "air_gap";
+    default:
+        return NULL;
+    }
+}
+
 /* The id of a code of ais_ship_type, NULL for one it does not name. */
 static const char *ais_ais_ship_type_id(uint64_t code)
 {
@@ -1028,6 +1280,27 @@ static const char *ais_ais_ship_type_id(uint64_t code)
     }
 }
 
+/* The id of a code of ais_subarea_shape, NULL for one it does not name. */
+static const char *ais_ais_subarea_shape_id(uint64_t code)
+{
+    switch (code) {
+    case 0u:
+        return "circle";
+    case 1u:
+        return "rectangle";
+    case 2u:
+        return "sector";
+    case 3u:
+        return "polyline";
+    case 4u:
+        return "polygon";
+    case 5u:
+        return "text";
+    default:
+        return NULL;
+    }
+}
+
 /* The id of a code of vsd_nav_status, NULL for one it does not name. */
 static const char *ais_vsd_nav_status_id(uint64_t code)
 {
@@ -1071,6 +1344,391 @@ static const char *ais_vsd_nav_status_id(uint64_t code)
 
 static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writer *w);
 static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_out *j);
+
+static const nmea_ais_special ais_area_notice_subarea_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_rect_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_rect_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_sector_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_sector_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_angle1_specials[] = {{720, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_angle2_specials[] = {{720, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_angle3_specials[] = {{720, "not_available"}};
+static const nmea_ais_special ais_area_notice_subarea_angle4_specials[] = {{720, "not_available"}};
+static bool ais_read_area_notice_subarea(nmea_ais_reader *r, nmea_ais_area_notice_subarea *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 3, "shape", &raw)) return false;
+    m->shape_raw = (uint8_t)raw;
+    {
+        uint64_t selector = (uint64_t)m->shape_raw;
+        if (selector == 0u) {
+            if (!ais_take(r, 2, "scale", &raw)) return false;
+            m->scale = (uint8_t)raw;
+            m->has_scale = true;
+            if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
+            m->lon_raw = (int32_t)signed_raw;
+            m->has_lon_raw = true;
+            if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
+            m->lat_raw = (int32_t)signed_raw;
+            m->has_lat_raw = true;
+            if (!ais_take(r, 3, "precision", &raw)) return false;
+            m->precision = (uint8_t)raw;
+            m->has_precision = true;
+            if (!ais_take(r, 12, "radius", &raw)) return false;
+            m->radius = (uint16_t)raw;
+            m->has_radius = true;
+            if (!ais_take(r, 18, "spare", &raw)) return false;
+            m->spare = (uint32_t)raw;
+            m->has_spare = true;
+        } else if (selector == 1u) {
+            if (!ais_take(r, 2, "rect_scale", &raw)) return false;
+            m->rect_scale = (uint8_t)raw;
+            m->has_rect_scale = true;
+            if (!ais_take_signed(r, 25, "rect_lon", &signed_raw)) return false;
+            m->rect_lon_raw = (int32_t)signed_raw;
+            m->has_rect_lon_raw = true;
+            if (!ais_take_signed(r, 24, "rect_lat", &signed_raw)) return false;
+            m->rect_lat_raw = (int32_t)signed_raw;
+            m->has_rect_lat_raw = true;
+            if (!ais_take(r, 3, "rect_precision", &raw)) return false;
+            m->rect_precision = (uint8_t)raw;
+            m->has_rect_precision = true;
+            if (!ais_take(r, 8, "east", &raw)) return false;
+            m->east = (uint8_t)raw;
+            m->has_east = true;
+            if (!ais_take(r, 8, "north", &raw)) return false;
+            m->north = (uint8_t)raw;
+            m->has_north = true;
+            if (!ais_take(r, 9, "orientation", &raw)) return false;
+            m->orientation = (uint16_t)raw;
+            m->has_orientation = true;
+            if (!ais_take(r, 5, "rect_spare", &raw)) return false;
+            m->rect_spare = (uint8_t)raw;
+            m->has_rect_spare = true;
+        } else if (selector == 2u) {
+            if (!ais_take(r, 2, "sector_scale", &raw)) return false;
+            m->sector_scale = (uint8_t)raw;
+            m->has_sector_scale = true;
+            if (!ais_take_signed(r, 25, "sector_lon", &signed_raw)) return false;
+            m->sector_lon_raw = (int32_t)signed_raw;
+            m->has_sector_lon_raw = true;
+            if (!ais_take_signed(r, 24, "sector_lat", &signed_raw)) return false;
+            m->sector_lat_raw = (int32_t)signed_raw;
+            m->has_sector_lat_raw = true;
+            if (!ais_take(r, 3, "sector_precision", &raw)) return false;
+            m->sector_precision = (uint8_t)raw;
+            m->has_sector_precision = true;
+            if (!ais_take(r, 12, "sector_radius", &raw)) return false;
+            m->sector_radius = (uint16_t)raw;
+            m->has_sector_radius = true;
+            if (!ais_take(r, 9, "left", &raw)) return false;
+            m->left = (uint16_t)raw;
+            m->has_left = true;
+            if (!ais_take(r, 9, "right", &raw)) return false;
+            m->right = (uint16_t)raw;
+            m->has_right = true;
+        } else if ((selector == 3u || selector == 4u)) {
+            if (!ais_take(r, 2, "points_scale", &raw)) return false;
+            m->points_scale = (uint8_t)raw;
+            m->has_points_scale = true;
+            if (!ais_take(r, 10, "angle1", &raw)) return false;
+            m->angle1_raw = (uint16_t)raw;
+            m->has_angle1_raw = true;
+            if (!ais_take(r, 10, "distance1", &raw)) return false;
+            m->distance1 = (uint16_t)raw;
+            m->has_distance1 = true;
+            if (!ais_take(r, 10, "angle2", &raw)) return false;
+            m->angle2_raw = (uint16_t)raw;
+            m->has_angle2_raw = true;
+            if (!ais_take(r, 10, "distance2", &raw)) return false;
+            m->distance2 = (uint16_t)raw;
+            m->has_distance2 = true;
+            if (!ais_take(r, 10, "angle3", &raw)) return false;
+            m->angle3_raw = (uint16_t)raw;
+            m->has_angle3_raw = true;
+            if (!ais_take(r, 10, "distance3", &raw)) return false;
+            m->distance3 = (uint16_t)raw;
+            m->has_distance3 = true;
+            if (!ais_take(r, 10, "angle4", &raw)) return false;
+            m->angle4_raw = (uint16_t)raw;
+            m->has_angle4_raw = true;
+            if (!ais_take(r, 10, "distance4", &raw)) return false;
+            m->distance4 = (uint16_t)raw;
+            m->has_distance4 = true;
+            if (!ais_take(r, 2, "points_spare", &raw)) return false;
+            m->points_spare = (uint8_t)raw;
+            m->has_points_spare = true;
+        } else if (selector == 5u) {
+            if (!ais_take_bits(r, 84, "text", &m->text)) return false;
+            m->has_text = true;
+        } else {
+            if (!ais_take_bits(r, 84, "reserved", &m->reserved)) return false;
+            m->has_reserved = true;
+        }
+    }
+    return true;
+}
+
+static bool ais_write_area_notice_subarea(const nmea_ais_area_notice_subarea *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->shape_raw, 3, "shape")) return false;
+    {
+        uint64_t selector = (uint64_t)m->shape_raw;
+        if (selector == 0u) {
+            if (!m->has_scale) goto done;
+            if (!ais_put(w, m->scale, 2, "scale")) return false;
+            if (!m->has_lon_raw) goto done;
+            if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+            if (!m->has_lat_raw) goto done;
+            if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+            if (!m->has_precision) goto done;
+            if (!ais_put(w, m->precision, 3, "precision")) return false;
+            if (!m->has_radius) goto done;
+            if (!ais_put(w, m->radius, 12, "radius")) return false;
+            if (!m->has_spare) goto done;
+            if (!ais_put(w, m->spare, 18, "spare")) return false;
+        } else if (selector == 1u) {
+            if (!m->has_rect_scale) goto done;
+            if (!ais_put(w, m->rect_scale, 2, "rect_scale")) return false;
+            if (!m->has_rect_lon_raw) goto done;
+            if (!ais_put_signed(w, m->rect_lon_raw, 25, "rect_lon")) return false;
+            if (!m->has_rect_lat_raw) goto done;
+            if (!ais_put_signed(w, m->rect_lat_raw, 24, "rect_lat")) return false;
+            if (!m->has_rect_precision) goto done;
+            if (!ais_put(w, m->rect_precision, 3, "rect_precision")) return false;
+            if (!m->has_east) goto done;
+            if (!ais_put(w, m->east, 8, "east")) return false;
+            if (!m->has_north) goto done;
+            if (!ais_put(w, m->north, 8, "north")) return false;
+            if (!m->has_orientation) goto done;
+            if (!ais_put(w, m->orientation, 9, "orientation")) return false;
+            if (!m->has_rect_spare) goto done;
+            if (!ais_put(w, m->rect_spare, 5, "rect_spare")) return false;
+        } else if (selector == 2u) {
+            if (!m->has_sector_scale) goto done;
+            if (!ais_put(w, m->sector_scale, 2, "sector_scale")) return false;
+            if (!m->has_sector_lon_raw) goto done;
+            if (!ais_put_signed(w, m->sector_lon_raw, 25, "sector_lon")) return false;
+            if (!m->has_sector_lat_raw) goto done;
+            if (!ais_put_signed(w, m->sector_lat_raw, 24, "sector_lat")) return false;
+            if (!m->has_sector_precision) goto done;
+            if (!ais_put(w, m->sector_precision, 3, "sector_precision")) return false;
+            if (!m->has_sector_radius) goto done;
+            if (!ais_put(w, m->sector_radius, 12, "sector_radius")) return false;
+            if (!m->has_left) goto done;
+            if (!ais_put(w, m->left, 9, "left")) return false;
+            if (!m->has_right) goto done;
+            if (!ais_put(w, m->right, 9, "right")) return false;
+        } else if ((selector == 3u || selector == 4u)) {
+            if (!m->has_points_scale) goto done;
+            if (!ais_put(w, m->points_scale, 2, "points_scale")) return false;
+            if (!m->has_angle1_raw) goto done;
+            if (!ais_put(w, m->angle1_raw, 10, "angle1")) return false;
+            if (!m->has_distance1) goto done;
+            if (!ais_put(w, m->distance1, 10, "distance1")) return false;
+            if (!m->has_angle2_raw) goto done;
+            if (!ais_put(w, m->angle2_raw, 10, "angle2")) return false;
+            if (!m->has_distance2) goto done;
+            if (!ais_put(w, m->distance2, 10, "distance2")) return false;
+            if (!m->has_angle3_raw) goto done;
+            if (!ais_put(w, m->angle3_raw, 10, "angle3")) return false;
+            if (!m->has_distance3) goto done;
+            if (!ais_put(w, m->distance3, 10, "distance3")) return false;
+            if (!m->has_angle4_raw) goto done;
+            if (!ais_put(w, m->angle4_raw, 10, "angle4")) return false;
+            if (!m->has_distance4) goto done;
+            if (!ais_put(w, m->distance4, 10, "distance4")) return false;
+            if (!m->has_points_spare) goto done;
+            if (!ais_put(w, m->points_spare, 2, "points_spare")) return false;
+        } else if (selector == 5u) {
+            if (!m->has_text) goto done;
+            if (!ais_put_fixed(w, m->text, 84, true, "text")) return false;
+        } else {
+            if (!m->has_reserved) goto done;
+            if (!ais_put_fixed(w, m->reserved, 84, false, "reserved")) return false;
+        }
+    }
+    done:;
+    return true;
+}
+
+static void ais_json_area_notice_subarea(const nmea_ais_area_notice_subarea *m, nmea_ais_json_out *j)
+{
+    ais_json_code(j, "shape", ais_ais_subarea_shape_id(m->shape_raw), m->shape_raw);
+    if (m->has_scale) {
+        ais_json_int(j, "scale", (long long)m->scale);
+    }
+    if (m->has_lon_raw) {
+        ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_area_notice_subarea_lon_specials, 1);
+    }
+    if (m->has_lat_raw) {
+        ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_area_notice_subarea_lat_specials, 1);
+    }
+    if (m->has_precision) {
+        ais_json_int(j, "precision", (long long)m->precision);
+    }
+    if (m->has_radius) {
+        ais_json_int(j, "radius", (long long)m->radius);
+    }
+    if (m->has_spare) {
+        ais_json_int(j, "spare", (long long)m->spare);
+    }
+    if (m->has_rect_scale) {
+        ais_json_int(j, "rect_scale", (long long)m->rect_scale);
+    }
+    if (m->has_rect_lon_raw) {
+        ais_json_reading(j, "rect_lon", (int64_t)m->rect_lon_raw, 60000.0, 0.0, true, ais_area_notice_subarea_rect_lon_specials, 1);
+    }
+    if (m->has_rect_lat_raw) {
+        ais_json_reading(j, "rect_lat", (int64_t)m->rect_lat_raw, 60000.0, 0.0, true, ais_area_notice_subarea_rect_lat_specials, 1);
+    }
+    if (m->has_rect_precision) {
+        ais_json_int(j, "rect_precision", (long long)m->rect_precision);
+    }
+    if (m->has_east) {
+        ais_json_int(j, "east", (long long)m->east);
+    }
+    if (m->has_north) {
+        ais_json_int(j, "north", (long long)m->north);
+    }
+    if (m->has_orientation) {
+        ais_json_int(j, "orientation", (long long)m->orientation);
+    }
+    if (m->has_rect_spare) {
+        ais_json_int(j, "rect_spare", (long long)m->rect_spare);
+    }
+    if (m->has_sector_scale) {
+        ais_json_int(j, "sector_scale", (long long)m->sector_scale);
+    }
+    if (m->has_sector_lon_raw) {
+        ais_json_reading(j, "sector_lon", (int64_t)m->sector_lon_raw, 60000.0, 0.0, true, ais_area_notice_subarea_sector_lon_specials, 1);
+    }
+    if (m->has_sector_lat_raw) {
+        ais_json_reading(j, "sector_lat", (int64_t)m->sector_lat_raw, 60000.0, 0.0, true, ais_area_notice_subarea_sector_lat_specials, 1);
+    }
+    if (m->has_sector_precision) {
+        ais_json_int(j, "sector_precision", (long long)m->sector_precision);
+    }
+    if (m->has_sector_radius) {
+        ais_json_int(j, "sector_radius", (long long)m->sector_radius);
+    }
+    if (m->has_left) {
+        ais_json_int(j, "left", (long long)m->left);
+    }
+    if (m->has_right) {
+        ais_json_int(j, "right", (long long)m->right);
+    }
+    if (m->has_points_scale) {
+        ais_json_int(j, "points_scale", (long long)m->points_scale);
+    }
+    if (m->has_angle1_raw) {
+        ais_json_reading(j, "angle1", (int64_t)m->angle1_raw, 2.0, 0.0, true, ais_area_notice_subarea_angle1_specials, 1);
+    }
+    if (m->has_distance1) {
+        ais_json_int(j, "distance1", (long long)m->distance1);
+    }
+    if (m->has_angle2_raw) {
+        ais_json_reading(j, "angle2", (int64_t)m->angle2_raw, 2.0, 0.0, true, ais_area_notice_subarea_angle2_specials, 1);
+    }
+    if (m->has_distance2) {
+        ais_json_int(j, "distance2", (long long)m->distance2);
+    }
+    if (m->has_angle3_raw) {
+        ais_json_reading(j, "angle3", (int64_t)m->angle3_raw, 2.0, 0.0, true, ais_area_notice_subarea_angle3_specials, 1);
+    }
+    if (m->has_distance3) {
+        ais_json_int(j, "distance3", (long long)m->distance3);
+    }
+    if (m->has_angle4_raw) {
+        ais_json_reading(j, "angle4", (int64_t)m->angle4_raw, 2.0, 0.0, true, ais_area_notice_subarea_angle4_specials, 1);
+    }
+    if (m->has_distance4) {
+        ais_json_int(j, "distance4", (long long)m->distance4);
+    }
+    if (m->has_points_spare) {
+        ais_json_int(j, "points_spare", (long long)m->points_spare);
+    }
+    if (m->has_text) {
+        ais_json_text(j, "text", m->text);
+    }
+    if (m->has_reserved) {
+        ais_json_bits(j, "reserved", m->reserved);
+    }
+}
+
+static const nmea_ais_special ais_area_notice_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_area_notice_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_area_notice_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_area_notice_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_area_notice_duration_specials[] = {{262143, "not_available"}};
+static bool ais_read_area_notice(nmea_ais_reader *r, nmea_ais_area_notice *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 10, "linkage", &raw)) return false;
+    m->linkage = (uint16_t)raw;
+    if (!ais_take(r, 7, "notice", &raw)) return false;
+    m->notice_raw = (uint8_t)raw;
+    if (!ais_take(r, 4, "month", &raw)) return false;
+    m->month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 18, "duration", &raw)) return false;
+    m->duration_raw = (uint32_t)raw;
+    {
+        size_t i;
+        if (!ais_entries(r, 1, 10, 87, 0, "subareas", &m->subareas_count)) return false;
+        for (i = 0; i < m->subareas_count; i++) if (!ais_read_area_notice_subarea(r, &m->subareas[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_area_notice(const nmea_ais_area_notice *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->linkage, 10, "linkage")) return false;
+    if (!ais_put(w, m->notice_raw, 7, "notice")) return false;
+    if (!ais_put(w, m->month_raw, 4, "month")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->duration_raw, 18, "duration")) return false;
+    {
+        size_t i;
+        for (i = 0; i < m->subareas_count; i++) if (!ais_write_area_notice_subarea(&m->subareas[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_area_notice(const nmea_ais_area_notice *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "linkage", (long long)m->linkage);
+    ais_json_code(j, "notice", ais_ais_notice_description_id(m->notice_raw), m->notice_raw);
+    ais_json_reading(j, "month", (int64_t)m->month_raw, 1.0, 0.0, false, ais_area_notice_month_specials, 1);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_area_notice_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_area_notice_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_area_notice_minute_specials, 1);
+    ais_json_reading(j, "duration", (int64_t)m->duration_raw, 1.0, 0.0, false, ais_area_notice_duration_specials, 1);
+    {
+        size_t i;
+        ais_json_key(j, "subareas");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->subareas_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_area_notice_subarea(&m->subareas[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
 
 static bool ais_read_aton_monitoring(nmea_ais_reader *r, nmea_ais_aton_monitoring *m)
 {
@@ -1127,6 +1785,1030 @@ static void ais_json_aton_monitoring(const nmea_ais_aton_monitoring *m, nmea_ais
     ais_json_flag(j, "off_pos", m->off_pos);
     if (m->has_spare) {
         ais_json_int(j, "spare", (long long)m->spare);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_environmental_report_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_environmental_report_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_environmental_report_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_environmental_report_lon_specials[] = {{108600000, "not_available"}};
+static const nmea_ais_special ais_environmental_report_lat_specials[] = {{54600000, "not_available"}};
+static const nmea_ais_special ais_environmental_report_altitude_specials[] = {{2002, "not_available"}};
+static const nmea_ais_special ais_environmental_report_wspeed_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_environmental_report_wgust_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_environmental_report_wdir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_wgustdir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_fwspeed_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_environmental_report_fwgust_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_environmental_report_fwdir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_wind_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_environmental_report_wind_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_environmental_report_wind_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_environmental_report_wind_duration_specials[] = {{255, "not_available"}};
+static const nmea_ais_special ais_environmental_report_level_specials[] = {{-32768, "not_available"}};
+static const nmea_ais_special ais_environmental_report_level_trend_specials[] = {{3, "not_available"}};
+static const nmea_ais_special ais_environmental_report_datum_specials[] = {{14, "not_available"}};
+static const nmea_ais_special ais_environmental_report_forecast_level_specials[] = {{-32768, "not_available"}};
+static const nmea_ais_special ais_environmental_report_level_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_environmental_report_level_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_environmental_report_level_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_environmental_report_level_duration_specials[] = {{255, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cspeed1_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cdir1_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cdepth1_specials[] = {{362, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cspeed2_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cdir2_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cdepth2_specials[] = {{362, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cspeed3_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cdir3_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cdepth3_specials[] = {{362, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cnorth1_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_ceast1_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cup1_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_c3depth1_specials[] = {{362, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cnorth2_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_ceast2_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_cup2_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_c3depth2_specials[] = {{362, "not_available"}};
+static const nmea_ais_special ais_environmental_report_hbearing1_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_hdistance1_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_environmental_report_hspeed1_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_hdir1_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_hdepth1_specials[] = {{362, "not_available"}};
+static const nmea_ais_special ais_environmental_report_hbearing2_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_hdistance2_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_environmental_report_hspeed2_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_hdir2_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_hdepth2_specials[] = {{362, "not_available"}};
+static const nmea_ais_special ais_environmental_report_swell_height_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_swell_period_specials[] = {{61, "not_available"}};
+static const nmea_ais_special ais_environmental_report_swell_dir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_sea_state_specials[] = {{13, "not_available"}};
+static const nmea_ais_special ais_environmental_report_water_temp_specials[] = {{601, "not_available"}};
+static const nmea_ais_special ais_environmental_report_water_temp_depth_specials[] = {{122, "not_available"}};
+static const nmea_ais_special ais_environmental_report_wave_height_specials[] = {{247, "not_available"}};
+static const nmea_ais_special ais_environmental_report_wave_period_specials[] = {{61, "not_available"}};
+static const nmea_ais_special ais_environmental_report_wave_dir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_environmental_report_sea_salinity_specials[] = {{502, "not_available"}, {503, "no_sensor"}};
+static const nmea_ais_special ais_environmental_report_salinity_water_temp_specials[] = {{601, "not_available"}};
+static const nmea_ais_special ais_environmental_report_conductivity_specials[] = {{702, "not_available"}, {703, "no_sensor"}};
+static const nmea_ais_special ais_environmental_report_water_pressure_specials[] = {{60002, "not_available"}, {60003, "no_sensor"}};
+static const nmea_ais_special ais_environmental_report_salinity_specials[] = {{502, "not_available"}, {503, "no_sensor"}};
+static const nmea_ais_special ais_environmental_report_air_temp_specials[] = {{-1024, "not_available"}};
+static const nmea_ais_special ais_environmental_report_visibility_specials[] = {{242, "not_available"}, {243, "no_sensor"}};
+static const nmea_ais_special ais_environmental_report_dew_point_specials[] = {{501, "not_available"}};
+static const nmea_ais_special ais_environmental_report_air_pressure_specials[] = {{403, "not_available"}};
+static const nmea_ais_special ais_environmental_report_pressure_tendency_specials[] = {{3, "not_available"}};
+static const nmea_ais_special ais_environmental_report_weather_salinity_specials[] = {{502, "not_available"}, {503, "no_sensor"}};
+static const nmea_ais_special ais_environmental_report_air_draught_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_environmental_report_air_gap_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_environmental_report_air_gap_trend_specials[] = {{3, "not_available"}};
+static const nmea_ais_special ais_environmental_report_forecast_air_gap_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_environmental_report_air_gap_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_environmental_report_air_gap_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_environmental_report_air_gap_minute_specials[] = {{60, "not_available"}};
+static bool ais_read_environmental_report(nmea_ais_reader *r, nmea_ais_environmental_report *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 4, "report_type", &raw)) return false;
+    m->report_type_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 7, "site", &raw)) return false;
+    m->site = (uint8_t)raw;
+    {
+        uint64_t selector = (uint64_t)m->report_type_raw;
+        if (selector == 0u) {
+            if (!ais_take_signed(r, 28, "lon", &signed_raw)) return false;
+            m->lon_raw = (int32_t)signed_raw;
+            m->has_lon_raw = true;
+            if (!ais_take_signed(r, 27, "lat", &signed_raw)) return false;
+            m->lat_raw = (int32_t)signed_raw;
+            m->has_lat_raw = true;
+            if (!ais_take(r, 11, "altitude", &raw)) return false;
+            m->altitude_raw = (uint16_t)raw;
+            m->has_altitude_raw = true;
+            if (!ais_take(r, 4, "owner", &raw)) return false;
+            m->owner = (uint8_t)raw;
+            m->has_owner = true;
+            if (!ais_take(r, 3, "timeout", &raw)) return false;
+            m->timeout = (uint8_t)raw;
+            m->has_timeout = true;
+            if (!ais_take(r, 12, "location_spare", &raw)) return false;
+            m->location_spare = (uint16_t)raw;
+            m->has_location_spare = true;
+        } else if (selector == 1u) {
+            if (!ais_take_bits(r, 84, "name", &m->name)) return false;
+            m->has_name = true;
+            if (!ais_take(r, 1, "station_spare", &raw)) return false;
+            m->station_spare = (uint8_t)raw;
+            m->has_station_spare = true;
+        } else if (selector == 2u) {
+            if (!ais_take(r, 7, "wspeed", &raw)) return false;
+            m->wspeed_raw = (uint8_t)raw;
+            m->has_wspeed_raw = true;
+            if (!ais_take(r, 7, "wgust", &raw)) return false;
+            m->wgust_raw = (uint8_t)raw;
+            m->has_wgust_raw = true;
+            if (!ais_take(r, 9, "wdir", &raw)) return false;
+            m->wdir_raw = (uint16_t)raw;
+            m->has_wdir_raw = true;
+            if (!ais_take(r, 9, "wgustdir", &raw)) return false;
+            m->wgustdir_raw = (uint16_t)raw;
+            m->has_wgustdir_raw = true;
+            if (!ais_take(r, 3, "wind_sensor", &raw)) return false;
+            m->wind_sensor_raw = (uint8_t)raw;
+            m->has_wind_sensor_raw = true;
+            if (!ais_take(r, 7, "fwspeed", &raw)) return false;
+            m->fwspeed_raw = (uint8_t)raw;
+            m->has_fwspeed_raw = true;
+            if (!ais_take(r, 7, "fwgust", &raw)) return false;
+            m->fwgust_raw = (uint8_t)raw;
+            m->has_fwgust_raw = true;
+            if (!ais_take(r, 9, "fwdir", &raw)) return false;
+            m->fwdir_raw = (uint16_t)raw;
+            m->has_fwdir_raw = true;
+            if (!ais_take(r, 5, "wind_day", &raw)) return false;
+            m->wind_day_raw = (uint8_t)raw;
+            m->has_wind_day_raw = true;
+            if (!ais_take(r, 5, "wind_hour", &raw)) return false;
+            m->wind_hour_raw = (uint8_t)raw;
+            m->has_wind_hour_raw = true;
+            if (!ais_take(r, 6, "wind_minute", &raw)) return false;
+            m->wind_minute_raw = (uint8_t)raw;
+            m->has_wind_minute_raw = true;
+            if (!ais_take(r, 8, "wind_duration", &raw)) return false;
+            m->wind_duration_raw = (uint8_t)raw;
+            m->has_wind_duration_raw = true;
+            if (!ais_take(r, 3, "wind_spare", &raw)) return false;
+            m->wind_spare = (uint8_t)raw;
+            m->has_wind_spare = true;
+        } else if (selector == 3u) {
+            if (!ais_take(r, 1, "absolute", &raw)) return false;
+            m->absolute = raw == 1;
+            m->has_absolute = true;
+            if (!ais_take_signed(r, 16, "level", &signed_raw)) return false;
+            m->level_raw = (int16_t)signed_raw;
+            m->has_level_raw = true;
+            if (!ais_take(r, 2, "level_trend", &raw)) return false;
+            m->level_trend_raw = (uint8_t)raw;
+            m->has_level_trend_raw = true;
+            if (!ais_take(r, 5, "datum", &raw)) return false;
+            m->datum_raw = (uint8_t)raw;
+            m->has_datum_raw = true;
+            if (!ais_take(r, 3, "level_sensor", &raw)) return false;
+            m->level_sensor_raw = (uint8_t)raw;
+            m->has_level_sensor_raw = true;
+            if (!ais_take(r, 1, "forecast_absolute", &raw)) return false;
+            m->forecast_absolute = raw == 1;
+            m->has_forecast_absolute = true;
+            if (!ais_take_signed(r, 16, "forecast_level", &signed_raw)) return false;
+            m->forecast_level_raw = (int16_t)signed_raw;
+            m->has_forecast_level_raw = true;
+            if (!ais_take(r, 5, "level_day", &raw)) return false;
+            m->level_day_raw = (uint8_t)raw;
+            m->has_level_day_raw = true;
+            if (!ais_take(r, 5, "level_hour", &raw)) return false;
+            m->level_hour_raw = (uint8_t)raw;
+            m->has_level_hour_raw = true;
+            if (!ais_take(r, 6, "level_minute", &raw)) return false;
+            m->level_minute_raw = (uint8_t)raw;
+            m->has_level_minute_raw = true;
+            if (!ais_take(r, 8, "level_duration", &raw)) return false;
+            m->level_duration_raw = (uint8_t)raw;
+            m->has_level_duration_raw = true;
+            if (!ais_take(r, 17, "level_spare", &raw)) return false;
+            m->level_spare = (uint32_t)raw;
+            m->has_level_spare = true;
+        } else if (selector == 4u) {
+            if (!ais_take(r, 8, "cspeed1", &raw)) return false;
+            m->cspeed1_raw = (uint8_t)raw;
+            m->has_cspeed1_raw = true;
+            if (!ais_take(r, 9, "cdir1", &raw)) return false;
+            m->cdir1_raw = (uint16_t)raw;
+            m->has_cdir1_raw = true;
+            if (!ais_take(r, 9, "cdepth1", &raw)) return false;
+            m->cdepth1_raw = (uint16_t)raw;
+            m->has_cdepth1_raw = true;
+            if (!ais_take(r, 8, "cspeed2", &raw)) return false;
+            m->cspeed2_raw = (uint8_t)raw;
+            m->has_cspeed2_raw = true;
+            if (!ais_take(r, 9, "cdir2", &raw)) return false;
+            m->cdir2_raw = (uint16_t)raw;
+            m->has_cdir2_raw = true;
+            if (!ais_take(r, 9, "cdepth2", &raw)) return false;
+            m->cdepth2_raw = (uint16_t)raw;
+            m->has_cdepth2_raw = true;
+            if (!ais_take(r, 8, "cspeed3", &raw)) return false;
+            m->cspeed3_raw = (uint8_t)raw;
+            m->has_cspeed3_raw = true;
+            if (!ais_take(r, 9, "cdir3", &raw)) return false;
+            m->cdir3_raw = (uint16_t)raw;
+            m->has_cdir3_raw = true;
+            if (!ais_take(r, 9, "cdepth3", &raw)) return false;
+            m->cdepth3_raw = (uint16_t)raw;
+            m->has_cdepth3_raw = true;
+            if (!ais_take(r, 3, "current_sensor", &raw)) return false;
+            m->current_sensor_raw = (uint8_t)raw;
+            m->has_current_sensor_raw = true;
+            if (!ais_take(r, 4, "current_spare", &raw)) return false;
+            m->current_spare = (uint8_t)raw;
+            m->has_current_spare = true;
+        } else if (selector == 5u) {
+            if (!ais_take(r, 8, "cnorth1", &raw)) return false;
+            m->cnorth1_raw = (uint8_t)raw;
+            m->has_cnorth1_raw = true;
+            if (!ais_take(r, 8, "ceast1", &raw)) return false;
+            m->ceast1_raw = (uint8_t)raw;
+            m->has_ceast1_raw = true;
+            if (!ais_take(r, 8, "cup1", &raw)) return false;
+            m->cup1_raw = (uint8_t)raw;
+            m->has_cup1_raw = true;
+            if (!ais_take(r, 9, "c3depth1", &raw)) return false;
+            m->c3depth1_raw = (uint16_t)raw;
+            m->has_c3depth1_raw = true;
+            if (!ais_take(r, 8, "cnorth2", &raw)) return false;
+            m->cnorth2_raw = (uint8_t)raw;
+            m->has_cnorth2_raw = true;
+            if (!ais_take(r, 8, "ceast2", &raw)) return false;
+            m->ceast2_raw = (uint8_t)raw;
+            m->has_ceast2_raw = true;
+            if (!ais_take(r, 8, "cup2", &raw)) return false;
+            m->cup2_raw = (uint8_t)raw;
+            m->has_cup2_raw = true;
+            if (!ais_take(r, 9, "c3depth2", &raw)) return false;
+            m->c3depth2_raw = (uint16_t)raw;
+            m->has_c3depth2_raw = true;
+            if (!ais_take(r, 3, "current3d_sensor", &raw)) return false;
+            m->current3d_sensor_raw = (uint8_t)raw;
+            m->has_current3d_sensor_raw = true;
+            if (!ais_take(r, 16, "current3d_spare", &raw)) return false;
+            m->current3d_spare = (uint16_t)raw;
+            m->has_current3d_spare = true;
+        } else if (selector == 6u) {
+            if (!ais_take(r, 9, "hbearing1", &raw)) return false;
+            m->hbearing1_raw = (uint16_t)raw;
+            m->has_hbearing1_raw = true;
+            if (!ais_take(r, 7, "hdistance1", &raw)) return false;
+            m->hdistance1_raw = (uint8_t)raw;
+            m->has_hdistance1_raw = true;
+            if (!ais_take(r, 8, "hspeed1", &raw)) return false;
+            m->hspeed1_raw = (uint8_t)raw;
+            m->has_hspeed1_raw = true;
+            if (!ais_take(r, 9, "hdir1", &raw)) return false;
+            m->hdir1_raw = (uint16_t)raw;
+            m->has_hdir1_raw = true;
+            if (!ais_take(r, 9, "hdepth1", &raw)) return false;
+            m->hdepth1_raw = (uint16_t)raw;
+            m->has_hdepth1_raw = true;
+            if (!ais_take(r, 9, "hbearing2", &raw)) return false;
+            m->hbearing2_raw = (uint16_t)raw;
+            m->has_hbearing2_raw = true;
+            if (!ais_take(r, 7, "hdistance2", &raw)) return false;
+            m->hdistance2_raw = (uint8_t)raw;
+            m->has_hdistance2_raw = true;
+            if (!ais_take(r, 8, "hspeed2", &raw)) return false;
+            m->hspeed2_raw = (uint8_t)raw;
+            m->has_hspeed2_raw = true;
+            if (!ais_take(r, 9, "hdir2", &raw)) return false;
+            m->hdir2_raw = (uint16_t)raw;
+            m->has_hdir2_raw = true;
+            if (!ais_take(r, 9, "hdepth2", &raw)) return false;
+            m->hdepth2_raw = (uint16_t)raw;
+            m->has_hdepth2_raw = true;
+            if (!ais_take(r, 1, "horizontal_spare", &raw)) return false;
+            m->horizontal_spare = (uint8_t)raw;
+            m->has_horizontal_spare = true;
+        } else if (selector == 7u) {
+            if (!ais_take(r, 8, "swell_height", &raw)) return false;
+            m->swell_height_raw = (uint8_t)raw;
+            m->has_swell_height_raw = true;
+            if (!ais_take(r, 6, "swell_period", &raw)) return false;
+            m->swell_period_raw = (uint8_t)raw;
+            m->has_swell_period_raw = true;
+            if (!ais_take(r, 9, "swell_dir", &raw)) return false;
+            m->swell_dir_raw = (uint16_t)raw;
+            m->has_swell_dir_raw = true;
+            if (!ais_take(r, 4, "sea_state", &raw)) return false;
+            m->sea_state_raw = (uint8_t)raw;
+            m->has_sea_state_raw = true;
+            if (!ais_take(r, 3, "swell_sensor", &raw)) return false;
+            m->swell_sensor_raw = (uint8_t)raw;
+            m->has_swell_sensor_raw = true;
+            if (!ais_take(r, 10, "water_temp", &raw)) return false;
+            m->water_temp_raw = (uint16_t)raw;
+            m->has_water_temp_raw = true;
+            if (!ais_take(r, 7, "water_temp_depth", &raw)) return false;
+            m->water_temp_depth_raw = (uint8_t)raw;
+            m->has_water_temp_depth_raw = true;
+            if (!ais_take(r, 3, "water_sensor", &raw)) return false;
+            m->water_sensor_raw = (uint8_t)raw;
+            m->has_water_sensor_raw = true;
+            if (!ais_take(r, 8, "wave_height", &raw)) return false;
+            m->wave_height_raw = (uint8_t)raw;
+            m->has_wave_height_raw = true;
+            if (!ais_take(r, 6, "wave_period", &raw)) return false;
+            m->wave_period_raw = (uint8_t)raw;
+            m->has_wave_period_raw = true;
+            if (!ais_take(r, 9, "wave_dir", &raw)) return false;
+            m->wave_dir_raw = (uint16_t)raw;
+            m->has_wave_dir_raw = true;
+            if (!ais_take(r, 3, "wave_sensor", &raw)) return false;
+            m->wave_sensor_raw = (uint8_t)raw;
+            m->has_wave_sensor_raw = true;
+            if (!ais_take(r, 9, "sea_salinity", &raw)) return false;
+            m->sea_salinity_raw = (uint16_t)raw;
+            m->has_sea_salinity_raw = true;
+        } else if (selector == 8u) {
+            if (!ais_take(r, 10, "salinity_water_temp", &raw)) return false;
+            m->salinity_water_temp_raw = (uint16_t)raw;
+            m->has_salinity_water_temp_raw = true;
+            if (!ais_take(r, 10, "conductivity", &raw)) return false;
+            m->conductivity_raw = (uint16_t)raw;
+            m->has_conductivity_raw = true;
+            if (!ais_take(r, 16, "water_pressure", &raw)) return false;
+            m->water_pressure_raw = (uint16_t)raw;
+            m->has_water_pressure_raw = true;
+            if (!ais_take(r, 9, "salinity", &raw)) return false;
+            m->salinity_raw = (uint16_t)raw;
+            m->has_salinity_raw = true;
+            if (!ais_take(r, 2, "salinity_type", &raw)) return false;
+            m->salinity_type = (uint8_t)raw;
+            m->has_salinity_type = true;
+            if (!ais_take(r, 3, "salinity_sensor", &raw)) return false;
+            m->salinity_sensor_raw = (uint8_t)raw;
+            m->has_salinity_sensor_raw = true;
+            if (!ais_take(r, 35, "salinity_spare", &raw)) return false;
+            m->salinity_spare = (uint64_t)raw;
+            m->has_salinity_spare = true;
+        } else if (selector == 9u) {
+            if (!ais_take_signed(r, 11, "air_temp", &signed_raw)) return false;
+            m->air_temp_raw = (int16_t)signed_raw;
+            m->has_air_temp_raw = true;
+            if (!ais_take(r, 3, "air_temp_sensor", &raw)) return false;
+            m->air_temp_sensor_raw = (uint8_t)raw;
+            m->has_air_temp_sensor_raw = true;
+            if (!ais_take(r, 2, "precipitation", &raw)) return false;
+            m->precipitation = (uint8_t)raw;
+            m->has_precipitation = true;
+            if (!ais_take(r, 8, "visibility", &raw)) return false;
+            m->visibility_raw = (uint8_t)raw;
+            m->has_visibility_raw = true;
+            if (!ais_take_signed(r, 10, "dew_point", &signed_raw)) return false;
+            m->dew_point_raw = (int16_t)signed_raw;
+            m->has_dew_point_raw = true;
+            if (!ais_take(r, 3, "dew_point_sensor", &raw)) return false;
+            m->dew_point_sensor_raw = (uint8_t)raw;
+            m->has_dew_point_sensor_raw = true;
+            if (!ais_take(r, 9, "air_pressure", &raw)) return false;
+            m->air_pressure_raw = (uint16_t)raw;
+            m->has_air_pressure_raw = true;
+            if (!ais_take(r, 2, "pressure_tendency", &raw)) return false;
+            m->pressure_tendency_raw = (uint8_t)raw;
+            m->has_pressure_tendency_raw = true;
+            if (!ais_take(r, 3, "pressure_sensor", &raw)) return false;
+            m->pressure_sensor_raw = (uint8_t)raw;
+            m->has_pressure_sensor_raw = true;
+            if (!ais_take(r, 9, "weather_salinity", &raw)) return false;
+            m->weather_salinity_raw = (uint16_t)raw;
+            m->has_weather_salinity_raw = true;
+            if (!ais_take(r, 25, "weather_spare", &raw)) return false;
+            m->weather_spare = (uint32_t)raw;
+            m->has_weather_spare = true;
+        } else if (selector == 10u) {
+            if (!ais_take(r, 13, "air_draught", &raw)) return false;
+            m->air_draught_raw = (uint16_t)raw;
+            m->has_air_draught_raw = true;
+            if (!ais_take(r, 13, "air_gap", &raw)) return false;
+            m->air_gap_raw = (uint16_t)raw;
+            m->has_air_gap_raw = true;
+            if (!ais_take(r, 2, "air_gap_trend", &raw)) return false;
+            m->air_gap_trend_raw = (uint8_t)raw;
+            m->has_air_gap_trend_raw = true;
+            if (!ais_take(r, 13, "forecast_air_gap", &raw)) return false;
+            m->forecast_air_gap_raw = (uint16_t)raw;
+            m->has_forecast_air_gap_raw = true;
+            if (!ais_take(r, 5, "air_gap_day", &raw)) return false;
+            m->air_gap_day_raw = (uint8_t)raw;
+            m->has_air_gap_day_raw = true;
+            if (!ais_take(r, 5, "air_gap_hour", &raw)) return false;
+            m->air_gap_hour_raw = (uint8_t)raw;
+            m->has_air_gap_hour_raw = true;
+            if (!ais_take(r, 6, "air_gap_minute", &raw)) return false;
+            m->air_gap_minute_raw = (uint8_t)raw;
+            m->has_air_gap_minute_raw = true;
+            if (!ais_take(r, 28, "air_gap_spare", &raw)) return false;
+            m->air_gap_spare = (uint32_t)raw;
+            m->has_air_gap_spare = true;
+        } else {
+            if (!ais_take_bits(r, 85, "reserved", &m->reserved)) return false;
+            m->has_reserved = true;
+        }
+    }
+    return true;
+}
+
+static bool ais_write_environmental_report(const nmea_ais_environmental_report *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->report_type_raw, 4, "report_type")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->site, 7, "site")) return false;
+    {
+        uint64_t selector = (uint64_t)m->report_type_raw;
+        if (selector == 0u) {
+            if (!m->has_lon_raw) goto done;
+            if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
+            if (!m->has_lat_raw) goto done;
+            if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
+            if (!m->has_altitude_raw) goto done;
+            if (!ais_put(w, m->altitude_raw, 11, "altitude")) return false;
+            if (!m->has_owner) goto done;
+            if (!ais_put(w, m->owner, 4, "owner")) return false;
+            if (!m->has_timeout) goto done;
+            if (!ais_put(w, m->timeout, 3, "timeout")) return false;
+            if (!m->has_location_spare) goto done;
+            if (!ais_put(w, m->location_spare, 12, "location_spare")) return false;
+        } else if (selector == 1u) {
+            if (!m->has_name) goto done;
+            if (!ais_put_fixed(w, m->name, 84, true, "name")) return false;
+            if (!m->has_station_spare) goto done;
+            if (!ais_put(w, m->station_spare, 1, "station_spare")) return false;
+        } else if (selector == 2u) {
+            if (!m->has_wspeed_raw) goto done;
+            if (!ais_put(w, m->wspeed_raw, 7, "wspeed")) return false;
+            if (!m->has_wgust_raw) goto done;
+            if (!ais_put(w, m->wgust_raw, 7, "wgust")) return false;
+            if (!m->has_wdir_raw) goto done;
+            if (!ais_put(w, m->wdir_raw, 9, "wdir")) return false;
+            if (!m->has_wgustdir_raw) goto done;
+            if (!ais_put(w, m->wgustdir_raw, 9, "wgustdir")) return false;
+            if (!m->has_wind_sensor_raw) goto done;
+            if (!ais_put(w, m->wind_sensor_raw, 3, "wind_sensor")) return false;
+            if (!m->has_fwspeed_raw) goto done;
+            if (!ais_put(w, m->fwspeed_raw, 7, "fwspeed")) return false;
+            if (!m->has_fwgust_raw) goto done;
+            if (!ais_put(w, m->fwgust_raw, 7, "fwgust")) return false;
+            if (!m->has_fwdir_raw) goto done;
+            if (!ais_put(w, m->fwdir_raw, 9, "fwdir")) return false;
+            if (!m->has_wind_day_raw) goto done;
+            if (!ais_put(w, m->wind_day_raw, 5, "wind_day")) return false;
+            if (!m->has_wind_hour_raw) goto done;
+            if (!ais_put(w, m->wind_hour_raw, 5, "wind_hour")) return false;
+            if (!m->has_wind_minute_raw) goto done;
+            if (!ais_put(w, m->wind_minute_raw, 6, "wind_minute")) return false;
+            if (!m->has_wind_duration_raw) goto done;
+            if (!ais_put(w, m->wind_duration_raw, 8, "wind_duration")) return false;
+            if (!m->has_wind_spare) goto done;
+            if (!ais_put(w, m->wind_spare, 3, "wind_spare")) return false;
+        } else if (selector == 3u) {
+            if (!m->has_absolute) goto done;
+            if (!ais_put(w, m->absolute, 1, "absolute")) return false;
+            if (!m->has_level_raw) goto done;
+            if (!ais_put_signed(w, m->level_raw, 16, "level")) return false;
+            if (!m->has_level_trend_raw) goto done;
+            if (!ais_put(w, m->level_trend_raw, 2, "level_trend")) return false;
+            if (!m->has_datum_raw) goto done;
+            if (!ais_put(w, m->datum_raw, 5, "datum")) return false;
+            if (!m->has_level_sensor_raw) goto done;
+            if (!ais_put(w, m->level_sensor_raw, 3, "level_sensor")) return false;
+            if (!m->has_forecast_absolute) goto done;
+            if (!ais_put(w, m->forecast_absolute, 1, "forecast_absolute")) return false;
+            if (!m->has_forecast_level_raw) goto done;
+            if (!ais_put_signed(w, m->forecast_level_raw, 16, "forecast_level")) return false;
+            if (!m->has_level_day_raw) goto done;
+            if (!ais_put(w, m->level_day_raw, 5, "level_day")) return false;
+            if (!m->has_level_hour_raw) goto done;
+            if (!ais_put(w, m->level_hour_raw, 5, "level_hour")) return false;
+            if (!m->has_level_minute_raw) goto done;
+            if (!ais_put(w, m->level_minute_raw, 6, "level_minute")) return false;
+            if (!m->has_level_duration_raw) goto done;
+            if (!ais_put(w, m->level_duration_raw, 8, "level_duration")) return false;
+            if (!m->has_level_spare) goto done;
+            if (!ais_put(w, m->level_spare, 17, "level_spare")) return false;
+        } else if (selector == 4u) {
+            if (!m->has_cspeed1_raw) goto done;
+            if (!ais_put(w, m->cspeed1_raw, 8, "cspeed1")) return false;
+            if (!m->has_cdir1_raw) goto done;
+            if (!ais_put(w, m->cdir1_raw, 9, "cdir1")) return false;
+            if (!m->has_cdepth1_raw) goto done;
+            if (!ais_put(w, m->cdepth1_raw, 9, "cdepth1")) return false;
+            if (!m->has_cspeed2_raw) goto done;
+            if (!ais_put(w, m->cspeed2_raw, 8, "cspeed2")) return false;
+            if (!m->has_cdir2_raw) goto done;
+            if (!ais_put(w, m->cdir2_raw, 9, "cdir2")) return false;
+            if (!m->has_cdepth2_raw) goto done;
+            if (!ais_put(w, m->cdepth2_raw, 9, "cdepth2")) return false;
+            if (!m->has_cspeed3_raw) goto done;
+            if (!ais_put(w, m->cspeed3_raw, 8, "cspeed3")) return false;
+            if (!m->has_cdir3_raw) goto done;
+            if (!ais_put(w, m->cdir3_raw, 9, "cdir3")) return false;
+            if (!m->has_cdepth3_raw) goto done;
+            if (!ais_put(w, m->cdepth3_raw, 9, "cdepth3")) return false;
+            if (!m->has_current_sensor_raw) goto done;
+            if (!ais_put(w, m->current_sensor_raw, 3, "current_sensor")) return false;
+            if (!m->has_current_spare) goto done;
+            if (!ais_put(w, m->current_spare, 4, "current_spare")) return false;
+        } else if (selector == 5u) {
+            if (!m->has_cnorth1_raw) goto done;
+            if (!ais_put(w, m->cnorth1_raw, 8, "cnorth1")) return false;
+            if (!m->has_ceast1_raw) goto done;
+            if (!ais_put(w, m->ceast1_raw, 8, "ceast1")) return false;
+            if (!m->has_cup1_raw) goto done;
+            if (!ais_put(w, m->cup1_raw, 8, "cup1")) return false;
+            if (!m->has_c3depth1_raw) goto done;
+            if (!ais_put(w, m->c3depth1_raw, 9, "c3depth1")) return false;
+            if (!m->has_cnorth2_raw) goto done;
+            if (!ais_put(w, m->cnorth2_raw, 8, "cnorth2")) return false;
+            if (!m->has_ceast2_raw) goto done;
+            if (!ais_put(w, m->ceast2_raw, 8, "ceast2")) return false;
+            if (!m->has_cup2_raw) goto done;
+            if (!ais_put(w, m->cup2_raw, 8, "cup2")) return false;
+            if (!m->has_c3depth2_raw) goto done;
+            if (!ais_put(w, m->c3depth2_raw, 9, "c3depth2")) return false;
+            if (!m->has_current3d_sensor_raw) goto done;
+            if (!ais_put(w, m->current3d_sensor_raw, 3, "current3d_sensor")) return false;
+            if (!m->has_current3d_spare) goto done;
+            if (!ais_put(w, m->current3d_spare, 16, "current3d_spare")) return false;
+        } else if (selector == 6u) {
+            if (!m->has_hbearing1_raw) goto done;
+            if (!ais_put(w, m->hbearing1_raw, 9, "hbearing1")) return false;
+            if (!m->has_hdistance1_raw) goto done;
+            if (!ais_put(w, m->hdistance1_raw, 7, "hdistance1")) return false;
+            if (!m->has_hspeed1_raw) goto done;
+            if (!ais_put(w, m->hspeed1_raw, 8, "hspeed1")) return false;
+            if (!m->has_hdir1_raw) goto done;
+            if (!ais_put(w, m->hdir1_raw, 9, "hdir1")) return false;
+            if (!m->has_hdepth1_raw) goto done;
+            if (!ais_put(w, m->hdepth1_raw, 9, "hdepth1")) return false;
+            if (!m->has_hbearing2_raw) goto done;
+            if (!ais_put(w, m->hbearing2_raw, 9, "hbearing2")) return false;
+            if (!m->has_hdistance2_raw) goto done;
+            if (!ais_put(w, m->hdistance2_raw, 7, "hdistance2")) return false;
+            if (!m->has_hspeed2_raw) goto done;
+            if (!ais_put(w, m->hspeed2_raw, 8, "hspeed2")) return false;
+            if (!m->has_hdir2_raw) goto done;
+            if (!ais_put(w, m->hdir2_raw, 9, "hdir2")) return false;
+            if (!m->has_hdepth2_raw) goto done;
+            if (!ais_put(w, m->hdepth2_raw, 9, "hdepth2")) return false;
+            if (!m->has_horizontal_spare) goto done;
+            if (!ais_put(w, m->horizontal_spare, 1, "horizontal_spare")) return false;
+        } else if (selector == 7u) {
+            if (!m->has_swell_height_raw) goto done;
+            if (!ais_put(w, m->swell_height_raw, 8, "swell_height")) return false;
+            if (!m->has_swell_period_raw) goto done;
+            if (!ais_put(w, m->swell_period_raw, 6, "swell_period")) return false;
+            if (!m->has_swell_dir_raw) goto done;
+            if (!ais_put(w, m->swell_dir_raw, 9, "swell_dir")) return false;
+            if (!m->has_sea_state_raw) goto done;
+            if (!ais_put(w, m->sea_state_raw, 4, "sea_state")) return false;
+            if (!m->has_swell_sensor_raw) goto done;
+            if (!ais_put(w, m->swell_sensor_raw, 3, "swell_sensor")) return false;
+            if (!m->has_water_temp_raw) goto done;
+            if (!ais_put(w, m->water_temp_raw, 10, "water_temp")) return false;
+            if (!m->has_water_temp_depth_raw) goto done;
+            if (!ais_put(w, m->water_temp_depth_raw, 7, "water_temp_depth")) return false;
+            if (!m->has_water_sensor_raw) goto done;
+            if (!ais_put(w, m->water_sensor_raw, 3, "water_sensor")) return false;
+            if (!m->has_wave_height_raw) goto done;
+            if (!ais_put(w, m->wave_height_raw, 8, "wave_height")) return false;
+            if (!m->has_wave_period_raw) goto done;
+            if (!ais_put(w, m->wave_period_raw, 6, "wave_period")) return false;
+            if (!m->has_wave_dir_raw) goto done;
+            if (!ais_put(w, m->wave_dir_raw, 9, "wave_dir")) return false;
+            if (!m->has_wave_sensor_raw) goto done;
+            if (!ais_put(w, m->wave_sensor_raw, 3, "wave_sensor")) return false;
+            if (!m->has_sea_salinity_raw) goto done;
+            if (!ais_put(w, m->sea_salinity_raw, 9, "sea_salinity")) return false;
+        } else if (selector == 8u) {
+            if (!m->has_salinity_water_temp_raw) goto done;
+            if (!ais_put(w, m->salinity_water_temp_raw, 10, "salinity_water_temp")) return false;
+            if (!m->has_conductivity_raw) goto done;
+            if (!ais_put(w, m->conductivity_raw, 10, "conductivity")) return false;
+            if (!m->has_water_pressure_raw) goto done;
+            if (!ais_put(w, m->water_pressure_raw, 16, "water_pressure")) return false;
+            if (!m->has_salinity_raw) goto done;
+            if (!ais_put(w, m->salinity_raw, 9, "salinity")) return false;
+            if (!m->has_salinity_type) goto done;
+            if (!ais_put(w, m->salinity_type, 2, "salinity_type")) return false;
+            if (!m->has_salinity_sensor_raw) goto done;
+            if (!ais_put(w, m->salinity_sensor_raw, 3, "salinity_sensor")) return false;
+            if (!m->has_salinity_spare) goto done;
+            if (!ais_put(w, m->salinity_spare, 35, "salinity_spare")) return false;
+        } else if (selector == 9u) {
+            if (!m->has_air_temp_raw) goto done;
+            if (!ais_put_signed(w, m->air_temp_raw, 11, "air_temp")) return false;
+            if (!m->has_air_temp_sensor_raw) goto done;
+            if (!ais_put(w, m->air_temp_sensor_raw, 3, "air_temp_sensor")) return false;
+            if (!m->has_precipitation) goto done;
+            if (!ais_put(w, m->precipitation, 2, "precipitation")) return false;
+            if (!m->has_visibility_raw) goto done;
+            if (!ais_put(w, m->visibility_raw, 8, "visibility")) return false;
+            if (!m->has_dew_point_raw) goto done;
+            if (!ais_put_signed(w, m->dew_point_raw, 10, "dew_point")) return false;
+            if (!m->has_dew_point_sensor_raw) goto done;
+            if (!ais_put(w, m->dew_point_sensor_raw, 3, "dew_point_sensor")) return false;
+            if (!m->has_air_pressure_raw) goto done;
+            if (!ais_put(w, m->air_pressure_raw, 9, "air_pressure")) return false;
+            if (!m->has_pressure_tendency_raw) goto done;
+            if (!ais_put(w, m->pressure_tendency_raw, 2, "pressure_tendency")) return false;
+            if (!m->has_pressure_sensor_raw) goto done;
+            if (!ais_put(w, m->pressure_sensor_raw, 3, "pressure_sensor")) return false;
+            if (!m->has_weather_salinity_raw) goto done;
+            if (!ais_put(w, m->weather_salinity_raw, 9, "weather_salinity")) return false;
+            if (!m->has_weather_spare) goto done;
+            if (!ais_put(w, m->weather_spare, 25, "weather_spare")) return false;
+        } else if (selector == 10u) {
+            if (!m->has_air_draught_raw) goto done;
+            if (!ais_put(w, m->air_draught_raw, 13, "air_draught")) return false;
+            if (!m->has_air_gap_raw) goto done;
+            if (!ais_put(w, m->air_gap_raw, 13, "air_gap")) return false;
+            if (!m->has_air_gap_trend_raw) goto done;
+            if (!ais_put(w, m->air_gap_trend_raw, 2, "air_gap_trend")) return false;
+            if (!m->has_forecast_air_gap_raw) goto done;
+            if (!ais_put(w, m->forecast_air_gap_raw, 13, "forecast_air_gap")) return false;
+            if (!m->has_air_gap_day_raw) goto done;
+            if (!ais_put(w, m->air_gap_day_raw, 5, "air_gap_day")) return false;
+            if (!m->has_air_gap_hour_raw) goto done;
+            if (!ais_put(w, m->air_gap_hour_raw, 5, "air_gap_hour")) return false;
+            if (!m->has_air_gap_minute_raw) goto done;
+            if (!ais_put(w, m->air_gap_minute_raw, 6, "air_gap_minute")) return false;
+            if (!m->has_air_gap_spare) goto done;
+            if (!ais_put(w, m->air_gap_spare, 28, "air_gap_spare")) return false;
+        } else {
+            if (!m->has_reserved) goto done;
+            if (!ais_put_fixed(w, m->reserved, 85, false, "reserved")) return false;
+        }
+    }
+    done:;
+    return true;
+}
+
+static void ais_json_environmental_report(const nmea_ais_environmental_report *m, nmea_ais_json_out *j)
+{
+    ais_json_code(j, "report_type", ais_ais_sensor_report_id(m->report_type_raw), m->report_type_raw);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_environmental_report_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_environmental_report_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_environmental_report_minute_specials, 1);
+    ais_json_int(j, "site", (long long)m->site);
+    if (m->has_lon_raw) {
+        ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_environmental_report_lon_specials, 1);
+    }
+    if (m->has_lat_raw) {
+        ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_environmental_report_lat_specials, 1);
+    }
+    if (m->has_altitude_raw) {
+        ais_json_reading(j, "altitude", (int64_t)m->altitude_raw, 10.0, 0.0, true, ais_environmental_report_altitude_specials, 1);
+    }
+    if (m->has_owner) {
+        ais_json_int(j, "owner", (long long)m->owner);
+    }
+    if (m->has_timeout) {
+        ais_json_int(j, "timeout", (long long)m->timeout);
+    }
+    if (m->has_location_spare) {
+        ais_json_int(j, "location_spare", (long long)m->location_spare);
+    }
+    if (m->has_name) {
+        ais_json_text(j, "name", m->name);
+    }
+    if (m->has_station_spare) {
+        ais_json_int(j, "station_spare", (long long)m->station_spare);
+    }
+    if (m->has_wspeed_raw) {
+        ais_json_reading(j, "wspeed", (int64_t)m->wspeed_raw, 1.0, 0.0, false, ais_environmental_report_wspeed_specials, 1);
+    }
+    if (m->has_wgust_raw) {
+        ais_json_reading(j, "wgust", (int64_t)m->wgust_raw, 1.0, 0.0, false, ais_environmental_report_wgust_specials, 1);
+    }
+    if (m->has_wdir_raw) {
+        ais_json_reading(j, "wdir", (int64_t)m->wdir_raw, 1.0, 0.0, false, ais_environmental_report_wdir_specials, 1);
+    }
+    if (m->has_wgustdir_raw) {
+        ais_json_reading(j, "wgustdir", (int64_t)m->wgustdir_raw, 1.0, 0.0, false, ais_environmental_report_wgustdir_specials, 1);
+    }
+    if (m->has_wind_sensor_raw) {
+        ais_json_code(j, "wind_sensor", ais_ais_sensor_description_id(m->wind_sensor_raw), m->wind_sensor_raw);
+    }
+    if (m->has_fwspeed_raw) {
+        ais_json_reading(j, "fwspeed", (int64_t)m->fwspeed_raw, 1.0, 0.0, false, ais_environmental_report_fwspeed_specials, 1);
+    }
+    if (m->has_fwgust_raw) {
+        ais_json_reading(j, "fwgust", (int64_t)m->fwgust_raw, 1.0, 0.0, false, ais_environmental_report_fwgust_specials, 1);
+    }
+    if (m->has_fwdir_raw) {
+        ais_json_reading(j, "fwdir", (int64_t)m->fwdir_raw, 1.0, 0.0, false, ais_environmental_report_fwdir_specials, 1);
+    }
+    if (m->has_wind_day_raw) {
+        ais_json_reading(j, "wind_day", (int64_t)m->wind_day_raw, 1.0, 0.0, false, ais_environmental_report_wind_day_specials, 1);
+    }
+    if (m->has_wind_hour_raw) {
+        ais_json_reading(j, "wind_hour", (int64_t)m->wind_hour_raw, 1.0, 0.0, false, ais_environmental_report_wind_hour_specials, 1);
+    }
+    if (m->has_wind_minute_raw) {
+        ais_json_reading(j, "wind_minute", (int64_t)m->wind_minute_raw, 1.0, 0.0, false, ais_environmental_report_wind_minute_specials, 1);
+    }
+    if (m->has_wind_duration_raw) {
+        ais_json_reading(j, "wind_duration", (int64_t)m->wind_duration_raw, 1.0, 0.0, false, ais_environmental_report_wind_duration_specials, 1);
+    }
+    if (m->has_wind_spare) {
+        ais_json_int(j, "wind_spare", (long long)m->wind_spare);
+    }
+    if (m->has_absolute) {
+        ais_json_flag(j, "absolute", m->absolute);
+    }
+    if (m->has_level_raw) {
+        ais_json_reading(j, "level", (int64_t)m->level_raw, 100.0, 0.0, true, ais_environmental_report_level_specials, 1);
+    }
+    if (m->has_level_trend_raw) {
+        ais_json_reading(j, "level_trend", (int64_t)m->level_trend_raw, 1.0, 0.0, false, ais_environmental_report_level_trend_specials, 1);
+    }
+    if (m->has_datum_raw) {
+        ais_json_reading(j, "datum", (int64_t)m->datum_raw, 1.0, 0.0, false, ais_environmental_report_datum_specials, 1);
+    }
+    if (m->has_level_sensor_raw) {
+        ais_json_code(j, "level_sensor", ais_ais_sensor_description_id(m->level_sensor_raw), m->level_sensor_raw);
+    }
+    if (m->has_forecast_absolute) {
+        ais_json_flag(j, "forecast_absolute", m->forecast_absolute);
+    }
+    if (m->has_forecast_level_raw) {
+        ais_json_reading(j, "forecast_level", (int64_t)m->forecast_level_raw, 100.0, 0.0, true, ais_environmental_report_forecast_level_specials, 1);
+    }
+    if (m->has_level_day_raw) {
+        ais_json_reading(j, "level_day", (int64_t)m->level_day_raw, 1.0, 0.0, false, ais_environmental_report_level_day_specials, 1);
+    }
+    if (m->has_level_hour_raw) {
+        ais_json_reading(j, "level_hour", (int64_t)m->level_hour_raw, 1.0, 0.0, false, ais_environmental_report_level_hour_specials, 1);
+    }
+    if (m->has_level_minute_raw) {
+        ais_json_reading(j, "level_minute", (int64_t)m->level_minute_raw, 1.0, 0.0, false, ais_environmental_report_level_minute_specials, 1);
+    }
+    if (m->has_level_duration_raw) {
+        ais_json_reading(j, "level_duration", (int64_t)m->level_duration_raw, 1.0, 0.0, false, ais_environmental_report_level_duration_specials, 1);
+    }
+    if (m->has_level_spare) {
+        ais_json_int(j, "level_spare", (long long)m->level_spare);
+    }
+    if (m->has_cspeed1_raw) {
+        ais_json_reading(j, "cspeed1", (int64_t)m->cspeed1_raw, 10.0, 0.0, true, ais_environmental_report_cspeed1_specials, 1);
+    }
+    if (m->has_cdir1_raw) {
+        ais_json_reading(j, "cdir1", (int64_t)m->cdir1_raw, 1.0, 0.0, false, ais_environmental_report_cdir1_specials, 1);
+    }
+    if (m->has_cdepth1_raw) {
+        ais_json_reading(j, "cdepth1", (int64_t)m->cdepth1_raw, 1.0, 0.0, false, ais_environmental_report_cdepth1_specials, 1);
+    }
+    if (m->has_cspeed2_raw) {
+        ais_json_reading(j, "cspeed2", (int64_t)m->cspeed2_raw, 10.0, 0.0, true, ais_environmental_report_cspeed2_specials, 1);
+    }
+    if (m->has_cdir2_raw) {
+        ais_json_reading(j, "cdir2", (int64_t)m->cdir2_raw, 1.0, 0.0, false, ais_environmental_report_cdir2_specials, 1);
+    }
+    if (m->has_cdepth2_raw) {
+        ais_json_reading(j, "cdepth2", (int64_t)m->cdepth2_raw, 1.0, 0.0, false, ais_environmental_report_cdepth2_specials, 1);
+    }
+    if (m->has_cspeed3_raw) {
+        ais_json_reading(j, "cspeed3", (int64_t)m->cspeed3_raw, 10.0, 0.0, true, ais_environmental_report_cspeed3_specials, 1);
+    }
+    if (m->has_cdir3_raw) {
+        ais_json_reading(j, "cdir3", (int64_t)m->cdir3_raw, 1.0, 0.0, false, ais_environmental_report_cdir3_specials, 1);
+    }
+    if (m->has_cdepth3_raw) {
+        ais_json_reading(j, "cdepth3", (int64_t)m->cdepth3_raw, 1.0, 0.0, false, ais_environmental_report_cdepth3_specials, 1);
+    }
+    if (m->has_current_sensor_raw) {
+        ais_json_code(j, "current_sensor", ais_ais_sensor_description_id(m->current_sensor_raw), m->current_sensor_raw);
+    }
+    if (m->has_current_spare) {
+        ais_json_int(j, "current_spare", (long long)m->current_spare);
+    }
+    if (m->has_cnorth1_raw) {
+        ais_json_reading(j, "cnorth1", (int64_t)m->cnorth1_raw, 10.0, 0.0, true, ais_environmental_report_cnorth1_specials, 1);
+    }
+    if (m->has_ceast1_raw) {
+        ais_json_reading(j, "ceast1", (int64_t)m->ceast1_raw, 10.0, 0.0, true, ais_environmental_report_ceast1_specials, 1);
+    }
+    if (m->has_cup1_raw) {
+        ais_json_reading(j, "cup1", (int64_t)m->cup1_raw, 10.0, 0.0, true, ais_environmental_report_cup1_specials, 1);
+    }
+    if (m->has_c3depth1_raw) {
+        ais_json_reading(j, "c3depth1", (int64_t)m->c3depth1_raw, 1.0, 0.0, false, ais_environmental_report_c3depth1_specials, 1);
+    }
+    if (m->has_cnorth2_raw) {
+        ais_json_reading(j, "cnorth2", (int64_t)m->cnorth2_raw, 10.0, 0.0, true, ais_environmental_report_cnorth2_specials, 1);
+    }
+    if (m->has_ceast2_raw) {
+        ais_json_reading(j, "ceast2", (int64_t)m->ceast2_raw, 10.0, 0.0, true, ais_environmental_report_ceast2_specials, 1);
+    }
+    if (m->has_cup2_raw) {
+        ais_json_reading(j, "cup2", (int64_t)m->cup2_raw, 10.0, 0.0, true, ais_environmental_report_cup2_specials, 1);
+    }
+    if (m->has_c3depth2_raw) {
+        ais_json_reading(j, "c3depth2", (int64_t)m->c3depth2_raw, 1.0, 0.0, false, ais_environmental_report_c3depth2_specials, 1);
+    }
+    if (m->has_current3d_sensor_raw) {
+        ais_json_code(j, "current3d_sensor", ais_ais_sensor_description_id(m->current3d_sensor_raw), m->current3d_sensor_raw);
+    }
+    if (m->has_current3d_spare) {
+        ais_json_int(j, "current3d_spare", (long long)m->current3d_spare);
+    }
+    if (m->has_hbearing1_raw) {
+        ais_json_reading(j, "hbearing1", (int64_t)m->hbearing1_raw, 1.0, 0.0, false, ais_environmental_report_hbearing1_specials, 1);
+    }
+    if (m->has_hdistance1_raw) {
+        ais_json_reading(j, "hdistance1", (int64_t)m->hdistance1_raw, 1.0, 0.0, false, ais_environmental_report_hdistance1_specials, 1);
+    }
+    if (m->has_hspeed1_raw) {
+        ais_json_reading(j, "hspeed1", (int64_t)m->hspeed1_raw, 10.0, 0.0, true, ais_environmental_report_hspeed1_specials, 1);
+    }
+    if (m->has_hdir1_raw) {
+        ais_json_reading(j, "hdir1", (int64_t)m->hdir1_raw, 1.0, 0.0, false, ais_environmental_report_hdir1_specials, 1);
+    }
+    if (m->has_hdepth1_raw) {
+        ais_json_reading(j, "hdepth1", (int64_t)m->hdepth1_raw, 1.0, 0.0, false, ais_environmental_report_hdepth1_specials, 1);
+    }
+    if (m->has_hbearing2_raw) {
+        ais_json_reading(j, "hbearing2", (int64_t)m->hbearing2_raw, 1.0, 0.0, false, ais_environmental_report_hbearing2_specials, 1);
+    }
+    if (m->has_hdistance2_raw) {
+        ais_json_reading(j, "hdistance2", (int64_t)m->hdistance2_raw, 1.0, 0.0, false, ais_environmental_report_hdistance2_specials, 1);
+    }
+    if (m->has_hspeed2_raw) {
+        ais_json_reading(j, "hspeed2", (int64_t)m->hspeed2_raw, 10.0, 0.0, true, ais_environmental_report_hspeed2_specials, 1);
+    }
+    if (m->has_hdir2_raw) {
+        ais_json_reading(j, "hdir2", (int64_t)m->hdir2_raw, 1.0, 0.0, false, ais_environmental_report_hdir2_specials, 1);
+    }
+    if (m->has_hdepth2_raw) {
+        ais_json_reading(j, "hdepth2", (int64_t)m->hdepth2_raw, 1.0, 0.0, false, ais_environmental_report_hdepth2_specials, 1);
+    }
+    if (m->has_horizontal_spare) {
+        ais_json_int(j, "horizontal_spare", (long long)m->horizontal_spare);
+    }
+    if (m->has_swell_height_raw) {
+        ais_json_reading(j, "swell_height", (int64_t)m->swell_height_raw, 10.0, 0.0, true, ais_environmental_report_swell_height_specials, 1);
+    }
+    if (m->has_swell_period_raw) {
+        ais_json_reading(j, "swell_period", (int64_t)m->swell_period_raw, 1.0, 0.0, false, ais_environmental_report_swell_period_specials, 1);
+    }
+    if (m->has_swell_dir_raw) {
+        ais_json_reading(j, "swell_dir", (int64_t)m->swell_dir_raw, 1.0, 0.0, false, ais_environmental_report_swell_dir_specials, 1);
+    }
+    if (m->has_sea_state_raw) {
+        ais_json_reading(j, "sea_state", (int64_t)m->sea_state_raw, 1.0, 0.0, false, ais_environmental_report_sea_state_specials, 1);
+    }
+    if (m->has_swell_sensor_raw) {
+        ais_json_code(j, "swell_sensor", ais_ais_sensor_description_id(m->swell_sensor_raw), m->swell_sensor_raw);
+    }
+    if (m->has_water_temp_raw) {
+        ais_json_reading(j, "water_temp", (int64_t)m->water_temp_raw, 10.0, -10.0, true, ais_environmental_report_water_temp_specials, 1);
+    }
+    if (m->has_water_temp_depth_raw) {
+        ais_json_reading(j, "water_temp_depth", (int64_t)m->water_temp_depth_raw, 10.0, 0.0, true, ais_environmental_report_water_temp_depth_specials, 1);
+    }
+    if (m->has_water_sensor_raw) {
+        ais_json_code(j, "water_sensor", ais_ais_sensor_description_id(m->water_sensor_raw), m->water_sensor_raw);
+    }
+    if (m->has_wave_height_raw) {
+        ais_json_reading(j, "wave_height", (int64_t)m->wave_height_raw, 10.0, 0.0, true, ais_environmental_report_wave_height_specials, 1);
+    }
+    if (m->has_wave_period_raw) {
+        ais_json_reading(j, "wave_period", (int64_t)m->wave_period_raw, 1.0, 0.0, false, ais_environmental_report_wave_period_specials, 1);
+    }
+    if (m->has_wave_dir_raw) {
+        ais_json_reading(j, "wave_dir", (int64_t)m->wave_dir_raw, 1.0, 0.0, false, ais_environmental_report_wave_dir_specials, 1);
+    }
+    if (m->has_wave_sensor_raw) {
+        ais_json_code(j, "wave_sensor", ais_ais_sensor_description_id(m->wave_sensor_raw), m->wave_sensor_raw);
+    }
+    if (m->has_sea_salinity_raw) {
+        ais_json_reading(j, "sea_salinity", (int64_t)m->sea_salinity_raw, 10.0, 0.0, true, ais_environmental_report_sea_salinity_specials, 2);
+    }
+    if (m->has_salinity_water_temp_raw) {
+        ais_json_reading(j, "salinity_water_temp", (int64_t)m->salinity_water_temp_raw, 10.0, -10.0, true, ais_environmental_report_salinity_water_temp_specials, 1);
+    }
+    if (m->has_conductivity_raw) {
+        ais_json_reading(j, "conductivity", (int64_t)m->conductivity_raw, 100.0, 0.0, true, ais_environmental_report_conductivity_specials, 2);
+    }
+    if (m->has_water_pressure_raw) {
+        ais_json_reading(j, "water_pressure", (int64_t)m->water_pressure_raw, 10.0, 0.0, true, ais_environmental_report_water_pressure_specials, 2);
+    }
+    if (m->has_salinity_raw) {
+        ais_json_reading(j, "salinity", (int64_t)m->salinity_raw, 10.0, 0.0, true, ais_environmental_report_salinity_specials, 2);
+    }
+    if (m->has_salinity_type) {
+        ais_json_int(j, "salinity_type", (long long)m->salinity_type);
+    }
+    if (m->has_salinity_sensor_raw) {
+        ais_json_code(j, "salinity_sensor", ais_ais_sensor_description_id(m->salinity_sensor_raw), m->salinity_sensor_raw);
+    }
+    if (m->has_salinity_spare) {
+        ais_json_int(j, "salinity_spare", (long long)m->salinity_spare);
+    }
+    if (m->has_air_temp_raw) {
+        ais_json_reading(j, "air_temp", (int64_t)m->air_temp_raw, 10.0, 0.0, true, ais_environmental_report_air_temp_specials, 1);
+    }
+    if (m->has_air_temp_sensor_raw) {
+        ais_json_code(j, "air_temp_sensor", ais_ais_sensor_description_id(m->air_temp_sensor_raw), m->air_temp_sensor_raw);
+    }
+    if (m->has_precipitation) {
+        ais_json_int(j, "precipitation", (long long)m->precipitation);
+    }
+    if (m->has_visibility_raw) {
+        ais_json_reading(j, "visibility", (int64_t)m->visibility_raw, 10.0, 0.0, true, ais_environmental_report_visibility_specials, 2);
+    }
+    if (m->has_dew_point_raw) {
+        ais_json_reading(j, "dew_point", (int64_t)m->dew_point_raw, 10.0, 0.0, true, ais_environmental_report_dew_point_specials, 1);
+    }
+    if (m->has_dew_point_sensor_raw) {
+        ais_json_code(j, "dew_point_sensor", ais_ais_sensor_description_id(m->dew_point_sensor_raw), m->dew_point_sensor_raw);
+    }
+    if (m->has_air_pressure_raw) {
+        ais_json_reading(j, "air_pressure", (int64_t)m->air_pressure_raw, 1.0, 799.0, false, ais_environmental_report_air_pressure_specials, 1);
+    }
+    if (m->has_pressure_tendency_raw) {
+        ais_json_reading(j, "pressure_tendency", (int64_t)m->pressure_tendency_raw, 1.0, 0.0, false, ais_environmental_report_pressure_tendency_specials, 1);
+    }
+    if (m->has_pressure_sensor_raw) {
+        ais_json_code(j, "pressure_sensor", ais_ais_sensor_description_id(m->pressure_sensor_raw), m->pressure_sensor_raw);
+    }
+    if (m->has_weather_salinity_raw) {
+        ais_json_reading(j, "weather_salinity", (int64_t)m->weather_salinity_raw, 10.0, 0.0, true, ais_environmental_report_weather_salinity_specials, 2);
+    }
+    if (m->has_weather_spare) {
+        ais_json_int(j, "weather_spare", (long long)m->weather_spare);
+    }
+    if (m->has_air_draught_raw) {
+        ais_json_reading(j, "air_draught", (int64_t)m->air_draught_raw, 100.0, 0.0, true, ais_environmental_report_air_draught_specials, 1);
+    }
+    if (m->has_air_gap_raw) {
+        ais_json_reading(j, "air_gap", (int64_t)m->air_gap_raw, 100.0, 0.0, true, ais_environmental_report_air_gap_specials, 1);
+    }
+    if (m->has_air_gap_trend_raw) {
+        ais_json_reading(j, "air_gap_trend", (int64_t)m->air_gap_trend_raw, 1.0, 0.0, false, ais_environmental_report_air_gap_trend_specials, 1);
+    }
+    if (m->has_forecast_air_gap_raw) {
+        ais_json_reading(j, "forecast_air_gap", (int64_t)m->forecast_air_gap_raw, 100.0, 0.0, true, ais_environmental_report_forecast_air_gap_specials, 1);
+    }
+    if (m->has_air_gap_day_raw) {
+        ais_json_reading(j, "air_gap_day", (int64_t)m->air_gap_day_raw, 1.0, 0.0, false, ais_environmental_report_air_gap_day_specials, 1);
+    }
+    if (m->has_air_gap_hour_raw) {
+        ais_json_reading(j, "air_gap_hour", (int64_t)m->air_gap_hour_raw, 1.0, 0.0, false, ais_environmental_report_air_gap_hour_specials, 1);
+    }
+    if (m->has_air_gap_minute_raw) {
+        ais_json_reading(j, "air_gap_minute", (int64_t)m->air_gap_minute_raw, 1.0, 0.0, false, ais_environmental_report_air_gap_minute_specials, 1);
+    }
+    if (m->has_air_gap_spare) {
+        ais_json_int(j, "air_gap_spare", (long long)m->air_gap_spare);
+    }
+    if (m->has_reserved) {
+        ais_json_bits(j, "reserved", m->reserved);
+    }
+}
+
+static bool ais_read_environmental(nmea_ais_reader *r, nmea_ais_environmental *m)
+{
+    {
+        size_t i;
+        if (!ais_entries(r, 1, 8, 112, 0, "reports", &m->reports_count)) return false;
+        for (i = 0; i < m->reports_count; i++) if (!ais_read_environmental_report(r, &m->reports[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_environmental(const nmea_ais_environmental *m, nmea_ais_writer *w)
+{
+    {
+        size_t i;
+        for (i = 0; i < m->reports_count; i++) if (!ais_write_environmental_report(&m->reports[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_environmental(const nmea_ais_environmental *m, nmea_ais_json_out *j)
+{
+    {
+        size_t i;
+        ais_json_key(j, "reports");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->reports_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_environmental_report(&m->reports[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
     }
     ais_json_bits(j, "trailing", m->trailing);
 }
@@ -3839,9 +5521,17 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
 {
     nmea_ais_error ignored;
     nmea_ais_reader r = ais_bits_reader(data, &ignored);
+    if (dac == 1u && fid == 22u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_AREA_NOTICE;
+        return ais_read_area_notice(&r, &app->as.area_notice);
+    }
     if (dac == 235u && fid == 10u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_ATON_MONITORING;
         return ais_read_aton_monitoring(&r, &app->as.aton_monitoring);
+    }
+    if (dac == 1u && fid == 26u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_ENVIRONMENTAL;
+        return ais_read_environmental(&r, &app->as.environmental);
     }
     if (dac == 1u && fid == 2u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_FUNCTION_INTERROGATION;
@@ -3881,8 +5571,12 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
 static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writer *w)
 {
     switch (app->layout) {
+    case NMEA_AIS_APP_AREA_NOTICE:
+        return ais_write_area_notice(&app->as.area_notice, w);
     case NMEA_AIS_APP_ATON_MONITORING:
         return ais_write_aton_monitoring(&app->as.aton_monitoring, w);
+    case NMEA_AIS_APP_ENVIRONMENTAL:
+        return ais_write_environmental(&app->as.environmental, w);
     case NMEA_AIS_APP_FUNCTION_INTERROGATION:
         return ais_write_function_interrogation(&app->as.function_interrogation, w);
     case NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD:
@@ -3906,8 +5600,14 @@ static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writ
 static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_out *j)
 {
     switch (app->layout) {
+    case NMEA_AIS_APP_AREA_NOTICE:
+        ais_json_area_notice(&app->as.area_notice, j);
+        break;
     case NMEA_AIS_APP_ATON_MONITORING:
         ais_json_aton_monitoring(&app->as.aton_monitoring, j);
+        break;
+    case NMEA_AIS_APP_ENVIRONMENTAL:
+        ais_json_environmental(&app->as.environmental, j);
         break;
     case NMEA_AIS_APP_FUNCTION_INTERROGATION:
         ais_json_function_interrogation(&app->as.function_interrogation, j);

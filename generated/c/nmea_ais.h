@@ -12,12 +12,13 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
+//   spec/ais/applications/environmental.yaml, spec/ais/applications/function_interrogation.yaml,
 //   spec/ais/applications/inland_persons_on_board.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 //   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 //   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest a675cb198fba22bd)
+//   (digest 6e911df94d5df6a6)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
@@ -207,6 +208,91 @@ void nmea_ais_assembler_finish(nmea_ais_assembler *a, nmea_ais_done *done, void 
    into `buf` (NUL-terminated when `cap` > 0): the length it needs. */
 size_t nmea_ais_incomplete_message(const nmea_ais_assembled *done, char *buf, size_t cap);
 
+/* One entry of area_notice_subarea. */
+typedef struct {
+    uint8_t shape_raw; /* Shape */
+    uint8_t scale; /* Scale factor */
+    bool has_scale;
+    int32_t lon_raw; /* Longitude [degrees] */
+    bool has_lon_raw;
+    int32_t lat_raw; /* Latitude [degrees] */
+    bool has_lat_raw;
+    uint8_t precision; /* Precision */
+    bool has_precision;
+    uint16_t radius; /* Radius */
+    bool has_radius;
+    uint32_t spare; /* Spare */
+    bool has_spare;
+    uint8_t rect_scale; /* Scale factor */
+    bool has_rect_scale;
+    int32_t rect_lon_raw; /* Longitude [degrees] */
+    bool has_rect_lon_raw;
+    int32_t rect_lat_raw; /* Latitude [degrees] */
+    bool has_rect_lat_raw;
+    uint8_t rect_precision; /* Precision */
+    bool has_rect_precision;
+    uint8_t east; /* East dimension */
+    bool has_east;
+    uint8_t north; /* North dimension */
+    bool has_north;
+    uint16_t orientation; /* Orientation [degrees] */
+    bool has_orientation;
+    uint8_t rect_spare; /* Spare */
+    bool has_rect_spare;
+    uint8_t sector_scale; /* Scale factor */
+    bool has_sector_scale;
+    int32_t sector_lon_raw; /* Longitude [degrees] */
+    bool has_sector_lon_raw;
+    int32_t sector_lat_raw; /* Latitude [degrees] */
+    bool has_sector_lat_raw;
+    uint8_t sector_precision; /* Precision */
+    bool has_sector_precision;
+    uint16_t sector_radius; /* Radius */
+    bool has_sector_radius;
+    uint16_t left; /* Left bound [degrees] */
+    bool has_left;
+    uint16_t right; /* Right bound [degrees] */
+    bool has_right;
+    uint8_t points_scale; /* Scale factor */
+    bool has_points_scale;
+    uint16_t angle1_raw; /* Bearing of point 1 [degrees] */
+    bool has_angle1_raw;
+    uint16_t distance1; /* Distance of point 1 */
+    bool has_distance1;
+    uint16_t angle2_raw; /* Bearing of point 2 [degrees] */
+    bool has_angle2_raw;
+    uint16_t distance2; /* Distance of point 2 */
+    bool has_distance2;
+    uint16_t angle3_raw; /* Bearing of point 3 [degrees] */
+    bool has_angle3_raw;
+    uint16_t distance3; /* Distance of point 3 */
+    bool has_distance3;
+    uint16_t angle4_raw; /* Bearing of point 4 [degrees] */
+    bool has_angle4_raw;
+    uint16_t distance4; /* Distance of point 4 */
+    bool has_distance4;
+    uint8_t points_spare; /* Spare */
+    bool has_points_spare;
+    nmea_ais_bits text; /* Text */
+    bool has_text;
+    nmea_ais_bits reserved; /* Bits of a reserved shape */
+    bool has_reserved;
+} nmea_ais_area_notice_subarea;
+
+/* Area notice (broadcast): AIS application DAC 1 FI 22 (in type 8). */
+typedef struct {
+    uint16_t linkage; /* Message linkage id */
+    uint8_t notice_raw; /* Notice description */
+    uint8_t month_raw; /* Start month (UTC) */
+    uint8_t day_raw; /* Start day (UTC) */
+    uint8_t hour_raw; /* Start hour (UTC) */
+    uint8_t minute_raw; /* Start minute (UTC) */
+    uint32_t duration_raw; /* Duration [minutes] */
+    nmea_ais_area_notice_subarea subareas[10]; /* Sub-areas */
+    size_t subareas_count;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_area_notice;
+
 /* AtoN monitoring data (UK and Ireland): AIS application DAC 235 FI 10 (in type 6). */
 typedef struct {
     uint16_t ana_int_raw; /* Internal supply voltage [volts] */
@@ -221,6 +307,232 @@ typedef struct {
     bool has_spare;
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_aton_monitoring;
+
+/* One entry of environmental_report. */
+typedef struct {
+    uint8_t report_type_raw; /* Report type */
+    uint8_t day_raw; /* Day (UTC) */
+    uint8_t hour_raw; /* Hour (UTC) */
+    uint8_t minute_raw; /* Minute (UTC) */
+    uint8_t site; /* Site id */
+    int32_t lon_raw; /* Longitude [degrees] */
+    bool has_lon_raw;
+    int32_t lat_raw; /* Latitude [degrees] */
+    bool has_lat_raw;
+    uint16_t altitude_raw; /* Altitude [metres] */
+    bool has_altitude_raw;
+    uint8_t owner; /* Sensor owner */
+    bool has_owner;
+    uint8_t timeout; /* Data timeout */
+    bool has_timeout;
+    uint16_t location_spare; /* Spare */
+    bool has_location_spare;
+    nmea_ais_bits name; /* Station name */
+    bool has_name;
+    uint8_t station_spare; /* Spare */
+    bool has_station_spare;
+    uint8_t wspeed_raw; /* Average wind speed [knots] */
+    bool has_wspeed_raw;
+    uint8_t wgust_raw; /* Wind gust [knots] */
+    bool has_wgust_raw;
+    uint16_t wdir_raw; /* Wind direction [degrees] */
+    bool has_wdir_raw;
+    uint16_t wgustdir_raw; /* Wind gust direction [degrees] */
+    bool has_wgustdir_raw;
+    uint8_t wind_sensor_raw; /* Wind sensor */
+    bool has_wind_sensor_raw;
+    uint8_t fwspeed_raw; /* Forecast wind speed [knots] */
+    bool has_fwspeed_raw;
+    uint8_t fwgust_raw; /* Forecast wind gust [knots] */
+    bool has_fwgust_raw;
+    uint16_t fwdir_raw; /* Forecast wind direction [degrees] */
+    bool has_fwdir_raw;
+    uint8_t wind_day_raw; /* Forecast day (UTC) */
+    bool has_wind_day_raw;
+    uint8_t wind_hour_raw; /* Forecast hour (UTC) */
+    bool has_wind_hour_raw;
+    uint8_t wind_minute_raw; /* Forecast minute (UTC) */
+    bool has_wind_minute_raw;
+    uint8_t wind_duration_raw; /* Forecast duration [minutes] */
+    bool has_wind_duration_raw;
+    uint8_t wind_spare; /* Spare */
+    bool has_wind_spare;
+    bool absolute; /* Water level type */
+    bool has_absolute;
+    int16_t level_raw; /* Water level [metres] */
+    bool has_level_raw;
+    uint8_t level_trend_raw; /* Water level trend */
+    bool has_level_trend_raw;
+    uint8_t datum_raw; /* Vertical reference datum */
+    bool has_datum_raw;
+    uint8_t level_sensor_raw; /* Water level sensor */
+    bool has_level_sensor_raw;
+    bool forecast_absolute; /* Forecast water level type */
+    bool has_forecast_absolute;
+    int16_t forecast_level_raw; /* Forecast water level [metres] */
+    bool has_forecast_level_raw;
+    uint8_t level_day_raw; /* Forecast day (UTC) */
+    bool has_level_day_raw;
+    uint8_t level_hour_raw; /* Forecast hour (UTC) */
+    bool has_level_hour_raw;
+    uint8_t level_minute_raw; /* Forecast minute (UTC) */
+    bool has_level_minute_raw;
+    uint8_t level_duration_raw; /* Forecast duration [minutes] */
+    bool has_level_duration_raw;
+    uint32_t level_spare; /* Spare */
+    bool has_level_spare;
+    uint8_t cspeed1_raw; /* Current speed at depth 1 [knots] */
+    bool has_cspeed1_raw;
+    uint16_t cdir1_raw; /* Current direction at depth 1 [degrees] */
+    bool has_cdir1_raw;
+    uint16_t cdepth1_raw; /* Depth 1 [metres] */
+    bool has_cdepth1_raw;
+    uint8_t cspeed2_raw; /* Current speed at depth 2 [knots] */
+    bool has_cspeed2_raw;
+    uint16_t cdir2_raw; /* Current direction at depth 2 [degrees] */
+    bool has_cdir2_raw;
+    uint16_t cdepth2_raw; /* Depth 2 [metres] */
+    bool has_cdepth2_raw;
+    uint8_t cspeed3_raw; /* Current speed at depth 3 [knots] */
+    bool has_cspeed3_raw;
+    uint16_t cdir3_raw; /* Current direction at depth 3 [degrees] */
+    bool has_cdir3_raw;
+    uint16_t cdepth3_raw; /* Depth 3 [metres] */
+    bool has_cdepth3_raw;
+    uint8_t current_sensor_raw; /* Current sensor */
+    bool has_current_sensor_raw;
+    uint8_t current_spare; /* Spare */
+    bool has_current_spare;
+    uint8_t cnorth1_raw; /* North component at depth 1 [knots] */
+    bool has_cnorth1_raw;
+    uint8_t ceast1_raw; /* East component at depth 1 [knots] */
+    bool has_ceast1_raw;
+    uint8_t cup1_raw; /* Up component at depth 1 [knots] */
+    bool has_cup1_raw;
+    uint16_t c3depth1_raw; /* Depth 1 [metres] */
+    bool has_c3depth1_raw;
+    uint8_t cnorth2_raw; /* North component at depth 2 [knots] */
+    bool has_cnorth2_raw;
+    uint8_t ceast2_raw; /* East component at depth 2 [knots] */
+    bool has_ceast2_raw;
+    uint8_t cup2_raw; /* Up component at depth 2 [knots] */
+    bool has_cup2_raw;
+    uint16_t c3depth2_raw; /* Depth 2 [metres] */
+    bool has_c3depth2_raw;
+    uint8_t current3d_sensor_raw; /* Current sensor */
+    bool has_current3d_sensor_raw;
+    uint16_t current3d_spare; /* Spare */
+    bool has_current3d_spare;
+    uint16_t hbearing1_raw; /* Bearing of point 1 [degrees] */
+    bool has_hbearing1_raw;
+    uint8_t hdistance1_raw; /* Distance of point 1 [metres] */
+    bool has_hdistance1_raw;
+    uint8_t hspeed1_raw; /* Current speed at point 1 [knots] */
+    bool has_hspeed1_raw;
+    uint16_t hdir1_raw; /* Current direction at point 1 [degrees] */
+    bool has_hdir1_raw;
+    uint16_t hdepth1_raw; /* Depth at point 1 [metres] */
+    bool has_hdepth1_raw;
+    uint16_t hbearing2_raw; /* Bearing of point 2 [degrees] */
+    bool has_hbearing2_raw;
+    uint8_t hdistance2_raw; /* Distance of point 2 [metres] */
+    bool has_hdistance2_raw;
+    uint8_t hspeed2_raw; /* Current speed at point 2 [knots] */
+    bool has_hspeed2_raw;
+    uint16_t hdir2_raw; /* Current direction at point 2 [degrees] */
+    bool has_hdir2_raw;
+    uint16_t hdepth2_raw; /* Depth at point 2 [metres] */
+    bool has_hdepth2_raw;
+    uint8_t horizontal_spare; /* Spare */
+    bool has_horizontal_spare;
+    uint8_t swell_height_raw; /* Swell height [metres] */
+    bool has_swell_height_raw;
+    uint8_t swell_period_raw; /* Swell period [seconds] */
+    bool has_swell_period_raw;
+    uint16_t swell_dir_raw; /* Swell direction [degrees] */
+    bool has_swell_dir_raw;
+    uint8_t sea_state_raw; /* Sea state */
+    bool has_sea_state_raw;
+    uint8_t swell_sensor_raw; /* Swell sensor */
+    bool has_swell_sensor_raw;
+    uint16_t water_temp_raw; /* Water temperature [degrees Celsius] */
+    bool has_water_temp_raw;
+    uint8_t water_temp_depth_raw; /* Water temperature depth [metres] */
+    bool has_water_temp_depth_raw;
+    uint8_t water_sensor_raw; /* Water temperature sensor */
+    bool has_water_sensor_raw;
+    uint8_t wave_height_raw; /* Wave height [metres] */
+    bool has_wave_height_raw;
+    uint8_t wave_period_raw; /* Wave period [seconds] */
+    bool has_wave_period_raw;
+    uint16_t wave_dir_raw; /* Wave direction [degrees] */
+    bool has_wave_dir_raw;
+    uint8_t wave_sensor_raw; /* Wave sensor */
+    bool has_wave_sensor_raw;
+    uint16_t sea_salinity_raw; /* Salinity [percent] */
+    bool has_sea_salinity_raw;
+    uint16_t salinity_water_temp_raw; /* Water temperature [degrees Celsius] */
+    bool has_salinity_water_temp_raw;
+    uint16_t conductivity_raw; /* Conductivity [siemens per metre] */
+    bool has_conductivity_raw;
+    uint16_t water_pressure_raw; /* Water pressure [decibar] */
+    bool has_water_pressure_raw;
+    uint16_t salinity_raw; /* Salinity [percent] */
+    bool has_salinity_raw;
+    uint8_t salinity_type; /* Salinity type */
+    bool has_salinity_type;
+    uint8_t salinity_sensor_raw; /* Salinity sensor */
+    bool has_salinity_sensor_raw;
+    uint64_t salinity_spare; /* Spare */
+    bool has_salinity_spare;
+    int16_t air_temp_raw; /* Air temperature [degrees Celsius] */
+    bool has_air_temp_raw;
+    uint8_t air_temp_sensor_raw; /* Air temperature sensor */
+    bool has_air_temp_sensor_raw;
+    uint8_t precipitation; /* Precipitation type */
+    bool has_precipitation;
+    uint8_t visibility_raw; /* Horizontal visibility [nautical miles] */
+    bool has_visibility_raw;
+    int16_t dew_point_raw; /* Dew point [degrees Celsius] */
+    bool has_dew_point_raw;
+    uint8_t dew_point_sensor_raw; /* Dew point sensor */
+    bool has_dew_point_sensor_raw;
+    uint16_t air_pressure_raw; /* Air pressure [hPa] */
+    bool has_air_pressure_raw;
+    uint8_t pressure_tendency_raw; /* Air pressure tendency */
+    bool has_pressure_tendency_raw;
+    uint8_t pressure_sensor_raw; /* Air pressure sensor */
+    bool has_pressure_sensor_raw;
+    uint16_t weather_salinity_raw; /* Salinity [percent] */
+    bool has_weather_salinity_raw;
+    uint32_t weather_spare; /* Spare */
+    bool has_weather_spare;
+    uint16_t air_draught_raw; /* Air draught [metres] */
+    bool has_air_draught_raw;
+    uint16_t air_gap_raw; /* Air gap [metres] */
+    bool has_air_gap_raw;
+    uint8_t air_gap_trend_raw; /* Air gap trend */
+    bool has_air_gap_trend_raw;
+    uint16_t forecast_air_gap_raw; /* Forecast air gap [metres] */
+    bool has_forecast_air_gap_raw;
+    uint8_t air_gap_day_raw; /* Forecast day (UTC) */
+    bool has_air_gap_day_raw;
+    uint8_t air_gap_hour_raw; /* Forecast hour (UTC) */
+    bool has_air_gap_hour_raw;
+    uint8_t air_gap_minute_raw; /* Forecast minute (UTC) */
+    bool has_air_gap_minute_raw;
+    uint32_t air_gap_spare; /* Spare */
+    bool has_air_gap_spare;
+    nmea_ais_bits reserved; /* Bits of a reserved report type */
+    bool has_reserved;
+} nmea_ais_environmental_report;
+
+/* Environmental: AIS application DAC 1 FI 26 (in type 8). */
+typedef struct {
+    nmea_ais_environmental_report reports[8]; /* Sensor reports */
+    size_t reports_count;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_environmental;
 
 /* Interrogation for a specific function message: AIS application DAC 1 FI 2 (in type 6). */
 typedef struct {
@@ -368,7 +680,9 @@ typedef struct {
 
 /* An application message a binary message's data carries, by its DAC and FI. */
 typedef enum {
+    NMEA_AIS_APP_AREA_NOTICE,
     NMEA_AIS_APP_ATON_MONITORING,
+    NMEA_AIS_APP_ENVIRONMENTAL,
     NMEA_AIS_APP_FUNCTION_INTERROGATION,
     NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD,
     NMEA_AIS_APP_INLAND_STATIC_VOYAGE,
@@ -382,7 +696,9 @@ typedef enum {
 typedef struct {
     nmea_ais_application_layout layout;
     union {
+        nmea_ais_area_notice area_notice;
         nmea_ais_aton_monitoring aton_monitoring;
+        nmea_ais_environmental environmental;
         nmea_ais_function_interrogation function_interrogation;
         nmea_ais_inland_persons_on_board inland_persons_on_board;
         nmea_ais_inland_static_voyage inland_static_voyage;

@@ -226,5 +226,5 @@ int main(int argc, char **argv)
     failed += built_messages();
     printf("%d decoded, %d refused, %d assembly cases of %d slots, %d failed\n", decoded, refused, assembled,
            NMEA_AIS_SLOTS, failed);
-    return failed || decoded != 51 || refused != 6 || !assembled;
+    return failed || decoded != 54 || refused != 6 || !assembled;
 }

@@ -390,7 +390,8 @@ class Group:
 
     id: str
     entry: type
-    fields: tuple[Field, ...]
+    fields: tuple[Field | Choice, ...]
+    """An entry's fields, and choices by a field of the entry before them (every case as wide)."""
     min: int
     max: int
     after: int = 0
@@ -400,7 +401,7 @@ class Group:
 
     @property
     def entry_width(self) -> int:
-        return sum(f.width or 0 for f in self.fields)
+        return sum((f.width or 0) if isinstance(f, Field) else _case_width(f.cases[0]) for f in self.fields)
 
 
 @dataclass(frozen=True, slots=True)
@@ -419,7 +420,8 @@ class Case:
 @dataclass(frozen=True, slots=True)
 class Choice:
     """Bits laid out as the case that holds the raw value of the field `by` (at bits `offset`..,
-    `width` wide: it may come after the choice)."""
+    `width` wide: it may come after the choice; in a group's entry, counted from the entry's first
+    bit, and before the choice)."""
 
     by: str
     offset: int
@@ -463,9 +465,16 @@ def flat_fields(items: tuple[Item, ...]) -> tuple[Field, ...]:
                                                item.fields if isinstance(item, Choice) else ()))
 
 
-def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: dict[str, Any]) -> bool:
+def _case_width(case: Case) -> int:
+    """The bits of a case of a group entry's choice (fields of fixed width only)."""
+    return sum(f.width or 0 for f in case.items if isinstance(f, Field))
+
+
+def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: dict[str, Any],
+               start: int = 0) -> bool:
     """Read `items` into `values`; False once an optional field finds too few bits (it and what
-    follows stay None)."""
+    follows stay None). `start`: the first bit of the record (a group's entry) whose bits a
+    choice's offset counts."""
     for item in items:
         if isinstance(item, Field):
             width = item.width
@@ -493,7 +502,7 @@ def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: 
                                 name=item.id)
             if item.field_major:  # each field for every entry in turn
                 columns: list[dict[str, Any]] = [{} for _ in range(count)]
-                for f in item.fields:  # fixed widths (rule A005)
+                for f in flat_fields(item.fields):  # fixed widths (rule A005), no choices (A013)
                     width = f.width or 0
                     for column in columns:
                         raw = reader.take(width, f.id)
@@ -505,12 +514,12 @@ def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: 
             entries = []
             for _ in range(count):
                 entry: dict[str, Any] = {}
-                read_items(item.fields, reader, entry)
+                read_items(item.fields, reader, entry, reader.pos)
                 entries.append(item.entry(**entry))
             values[item.id] = entries
         else:
-            case = item.case(reader.peek(item.offset, item.width, item.by))
-            if case is not None and not read_items(case.items, reader, values):
+            case = item.case(reader.peek(start + item.offset, item.width, item.by))
+            if case is not None and not read_items(case.items, reader, values, start):
                 return False
     return True
 
@@ -1007,7 +1016,7 @@ def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteW
                                  f"{count_of(item.count, message)} entries, as the bits set in "
                                  f"{' and '.join(item.count)} say")
             if item.field_major:
-                for f in item.fields:  # fixed widths (rule A005)
+                for f in flat_fields(item.fields):  # fixed widths (rule A005), no choices (A013)
                     for entry in entries:
                         if isinstance(f, Bitfield):
                             writer.put(f.word(entry, where), f.width or 0)
@@ -1016,8 +1025,9 @@ def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteW
                 continue
             for entry in entries:
                 write_items(item.fields, entry, writer, where)
-        else:
-            selector = message.field(item.by)
+        else:  # the selector: a field of the entry before the choice, or of the message
+            selector = next((f for f in items if isinstance(f, Field) and f.id == item.by), None) or \
+                message.field(item.by)
             case = item.case(selector.to_raw(getattr(message, item.by), where)[0])
             if case is not None and not write_items(case.items, message, writer, where):
                 return False

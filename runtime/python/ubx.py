@@ -430,9 +430,10 @@ def compile_reader(cls: type[Message]) -> Any:
             pairs += c.convert(item, rest)
             pos = "len(payload)"
         elif isinstance(item, Group) and not isinstance(item.count, tuple) \
-                and all(_struct_code(f) for f in item.fields):   # (a count of mask bits: RTCM 3's, read generically)
+                and len(fields := [f for f in item.fields if isinstance(f, Field)]) == len(item.fields) \
+                and all(_struct_code(f) for f in fields):   # (a count of mask bits: RTCM 3's, read generically)
             entry = c.name(item.entry)
-            fmt = c.order + "".join(_struct_code(f) or "" for f in item.fields)
+            fmt = c.order + "".join(_struct_code(f) or "" for f in fields)
             size = struct.calcsize(fmt)
             if isinstance(item.count, int):
                 count = str(item.count)
@@ -444,8 +445,8 @@ def compile_reader(cls: type[Message]) -> Any:
             c.lines += [f"{pad}{counted} = {count}",
                         f"{pad}{end} = {pos} + {counted} * {size}",
                         f"{pad}if {counted} < {item.min} or len(payload) < {end}: return generic(payload)"]
-            names = [c.local() for _ in item.fields]
-            values = [value for f, raw in zip(item.fields, names) for _, value in c.convert(f, raw)]
+            names = [c.local() for _ in fields]
+            values = [value for f, raw in zip(fields, names) for _, value in c.convert(f, raw)]
             c.lines.append(f"{pad}{entries} = [{entry}({', '.join(values)}) for {', '.join(names)}, "
                            f"in iter_unpack({fmt!r}, payload[{pos}:{end}])]")
             pairs.append((item.id, entries))

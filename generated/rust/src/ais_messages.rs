@@ -12,12 +12,13 @@
 //   spec/ais/messages/safety_broadcast.yaml, spec/ais/messages/sar_aircraft_report.yaml,
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
-//   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/function_interrogation.yaml,
+//   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
+//   spec/ais/applications/environmental.yaml, spec/ais/applications/function_interrogation.yaml,
 //   spec/ais/applications/inland_persons_on_board.yaml,
 //   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 //   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 //   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest 30790496d88c1172)
+//   (digest 8450fc4a327c1e33)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The AIS messages of spec/ais: a struct per layout, read from and written to a payload's bits
@@ -27,7 +28,10 @@
 use core::fmt;
 
 use crate::ais;
-use crate::enums::{AisAidType, AisEpfd, AisShipType, VsdNavStatus};
+use crate::enums::{
+    AisAidType, AisEpfd, AisNoticeDescription, AisSensorDescription, AisSensorReport, AisShipType, AisSubareaShape,
+    VsdNavStatus,
+};
 use crate::CodeEnum;
 
 /// Binary addressed message: AIS message type 6.
@@ -3156,6 +3160,551 @@ impl<'a> UtcInquiry<'a> {
     }
 }
 
+/// One entry of AreaNoticeSubarea.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct AreaNoticeSubarea<'a> {
+    /// Shape.
+    pub shape_raw: u8,
+    /// Scale factor.
+    pub scale: Option<u8>,
+    /// Longitude [degrees].
+    pub lon_raw: Option<i32>,
+    /// Latitude [degrees].
+    pub lat_raw: Option<i32>,
+    /// Precision.
+    pub precision: Option<u8>,
+    /// Radius.
+    pub radius: Option<u16>,
+    /// Spare.
+    pub spare: Option<u32>,
+    /// Scale factor.
+    pub rect_scale: Option<u8>,
+    /// Longitude [degrees].
+    pub rect_lon_raw: Option<i32>,
+    /// Latitude [degrees].
+    pub rect_lat_raw: Option<i32>,
+    /// Precision.
+    pub rect_precision: Option<u8>,
+    /// East dimension.
+    pub east: Option<u8>,
+    /// North dimension.
+    pub north: Option<u8>,
+    /// Orientation [degrees].
+    pub orientation: Option<u16>,
+    /// Spare.
+    pub rect_spare: Option<u8>,
+    /// Scale factor.
+    pub sector_scale: Option<u8>,
+    /// Longitude [degrees].
+    pub sector_lon_raw: Option<i32>,
+    /// Latitude [degrees].
+    pub sector_lat_raw: Option<i32>,
+    /// Precision.
+    pub sector_precision: Option<u8>,
+    /// Radius.
+    pub sector_radius: Option<u16>,
+    /// Left bound [degrees].
+    pub left: Option<u16>,
+    /// Right bound [degrees].
+    pub right: Option<u16>,
+    /// Scale factor.
+    pub points_scale: Option<u8>,
+    /// Bearing of point 1 [degrees].
+    pub angle1_raw: Option<u16>,
+    /// Distance of point 1.
+    pub distance1: Option<u16>,
+    /// Bearing of point 2 [degrees].
+    pub angle2_raw: Option<u16>,
+    /// Distance of point 2.
+    pub distance2: Option<u16>,
+    /// Bearing of point 3 [degrees].
+    pub angle3_raw: Option<u16>,
+    /// Distance of point 3.
+    pub distance3: Option<u16>,
+    /// Bearing of point 4 [degrees].
+    pub angle4_raw: Option<u16>,
+    /// Distance of point 4.
+    pub distance4: Option<u16>,
+    /// Spare.
+    pub points_spare: Option<u8>,
+    /// Text.
+    pub text: Option<ais::SixBitText<'a>>,
+    /// Bits of a reserved shape.
+    pub reserved: Option<ais::Bits<'a>>,
+}
+
+impl<'a> AreaNoticeSubarea<'a> {
+    /// Shape: the enum's value of the raw code, None for a code it does not name.
+    pub fn shape(&self) -> Option<AisSubareaShape> {
+        let raw = self.shape_raw;
+        ais::code(u64::from(raw))
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> Option<ais::Reading<f64>> {
+        self.lon_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")]))
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> Option<ais::Reading<f64>> {
+        self.lat_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")]))
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn rect_lon(&self) -> Option<ais::Reading<f64>> {
+        self.rect_lon_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")]))
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn rect_lat(&self) -> Option<ais::Reading<f64>> {
+        self.rect_lat_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")]))
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn sector_lon(&self) -> Option<ais::Reading<f64>> {
+        self.sector_lon_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")]))
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn sector_lat(&self) -> Option<ais::Reading<f64>> {
+        self.sector_lat_raw.map(|raw| ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")]))
+    }
+    /// Bearing of point 1 [degrees], or its special value.
+    pub fn angle1(&self) -> Option<ais::Reading<f64>> {
+        self.angle1_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[(720, "not_available")]))
+    }
+    /// Bearing of point 2 [degrees], or its special value.
+    pub fn angle2(&self) -> Option<ais::Reading<f64>> {
+        self.angle2_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[(720, "not_available")]))
+    }
+    /// Bearing of point 3 [degrees], or its special value.
+    pub fn angle3(&self) -> Option<ais::Reading<f64>> {
+        self.angle3_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[(720, "not_available")]))
+    }
+    /// Bearing of point 4 [degrees], or its special value.
+    pub fn angle4(&self) -> Option<ais::Reading<f64>> {
+        self.angle4_raw.map(|raw| ais::scaled(i64::from(raw), 2.0, 0.0, &[(720, "not_available")]))
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { shape_raw: r.take(3, "shape")? as u8, ..Self::default() };
+        match u64::from(m.shape_raw) {
+            0 => {
+                m.scale = Some(r.take(2, "scale")? as u8);
+                m.lon_raw = Some(r.take_signed(25, "lon")? as i32);
+                m.lat_raw = Some(r.take_signed(24, "lat")? as i32);
+                m.precision = Some(r.take(3, "precision")? as u8);
+                m.radius = Some(r.take(12, "radius")? as u16);
+                m.spare = Some(r.take(18, "spare")? as u32);
+            }
+            1 => {
+                m.rect_scale = Some(r.take(2, "rect_scale")? as u8);
+                m.rect_lon_raw = Some(r.take_signed(25, "rect_lon")? as i32);
+                m.rect_lat_raw = Some(r.take_signed(24, "rect_lat")? as i32);
+                m.rect_precision = Some(r.take(3, "rect_precision")? as u8);
+                m.east = Some(r.take(8, "east")? as u8);
+                m.north = Some(r.take(8, "north")? as u8);
+                m.orientation = Some(r.take(9, "orientation")? as u16);
+                m.rect_spare = Some(r.take(5, "rect_spare")? as u8);
+            }
+            2 => {
+                m.sector_scale = Some(r.take(2, "sector_scale")? as u8);
+                m.sector_lon_raw = Some(r.take_signed(25, "sector_lon")? as i32);
+                m.sector_lat_raw = Some(r.take_signed(24, "sector_lat")? as i32);
+                m.sector_precision = Some(r.take(3, "sector_precision")? as u8);
+                m.sector_radius = Some(r.take(12, "sector_radius")? as u16);
+                m.left = Some(r.take(9, "left")? as u16);
+                m.right = Some(r.take(9, "right")? as u16);
+            }
+            3 | 4 => {
+                m.points_scale = Some(r.take(2, "points_scale")? as u8);
+                m.angle1_raw = Some(r.take(10, "angle1")? as u16);
+                m.distance1 = Some(r.take(10, "distance1")? as u16);
+                m.angle2_raw = Some(r.take(10, "angle2")? as u16);
+                m.distance2 = Some(r.take(10, "distance2")? as u16);
+                m.angle3_raw = Some(r.take(10, "angle3")? as u16);
+                m.distance3 = Some(r.take(10, "distance3")? as u16);
+                m.angle4_raw = Some(r.take(10, "angle4")? as u16);
+                m.distance4 = Some(r.take(10, "distance4")? as u16);
+                m.points_spare = Some(r.take(2, "points_spare")? as u8);
+            }
+            5 => {
+                m.text = Some(r.take_text(14, "text")?);
+            }
+            _ => {
+                m.reserved = Some(r.take_bits(84, "reserved")?);
+            }
+        }
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put(u64::from(self.shape_raw), 3, "shape")?;
+            match u64::from(self.shape_raw) {
+                0 => {
+                    let Some(v) = self.scale else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "scale")?;
+                    let Some(v) = self.lon_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 25, "lon")?;
+                    let Some(v) = self.lat_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 24, "lat")?;
+                    let Some(v) = self.precision else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "precision")?;
+                    let Some(v) = self.radius else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 12, "radius")?;
+                    let Some(v) = self.spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 18, "spare")?;
+                }
+                1 => {
+                    let Some(v) = self.rect_scale else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "rect_scale")?;
+                    let Some(v) = self.rect_lon_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 25, "rect_lon")?;
+                    let Some(v) = self.rect_lat_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 24, "rect_lat")?;
+                    let Some(v) = self.rect_precision else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "rect_precision")?;
+                    let Some(v) = self.east else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "east")?;
+                    let Some(v) = self.north else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "north")?;
+                    let Some(v) = self.orientation else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "orientation")?;
+                    let Some(v) = self.rect_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "rect_spare")?;
+                }
+                2 => {
+                    let Some(v) = self.sector_scale else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "sector_scale")?;
+                    let Some(v) = self.sector_lon_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 25, "sector_lon")?;
+                    let Some(v) = self.sector_lat_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 24, "sector_lat")?;
+                    let Some(v) = self.sector_precision else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "sector_precision")?;
+                    let Some(v) = self.sector_radius else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 12, "sector_radius")?;
+                    let Some(v) = self.left else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "left")?;
+                    let Some(v) = self.right else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "right")?;
+                }
+                3 | 4 => {
+                    let Some(v) = self.points_scale else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "points_scale")?;
+                    let Some(v) = self.angle1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "angle1")?;
+                    let Some(v) = self.distance1 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "distance1")?;
+                    let Some(v) = self.angle2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "angle2")?;
+                    let Some(v) = self.distance2 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "distance2")?;
+                    let Some(v) = self.angle3_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "angle3")?;
+                    let Some(v) = self.distance3 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "distance3")?;
+                    let Some(v) = self.angle4_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "angle4")?;
+                    let Some(v) = self.distance4 else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "distance4")?;
+                    let Some(v) = self.points_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "points_spare")?;
+                }
+                5 => {
+                    let Some(v) = self.text else {
+                        break 'write;
+                    };
+                    w.put_fixed(v.bits(), 84, true, "text")?;
+                }
+                _ => {
+                    let Some(v) = self.reserved else {
+                        break 'write;
+                    };
+                    w.put_fixed(v, 84, false, "reserved")?;
+                }
+            }
+        }
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.code("shape", self.shape().map(CodeEnum::id), u64::from(self.shape_raw))?;
+        if let Some(v) = self.scale {
+            j.int("scale", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.lon_raw, self.lon()) {
+            j.reading("lon", reading, "lon_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.lat_raw, self.lat()) {
+            j.reading("lat", reading, "lat_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.precision {
+            j.int("precision", v)?;
+        }
+        if let Some(v) = self.radius {
+            j.int("radius", v)?;
+        }
+        if let Some(v) = self.spare {
+            j.int("spare", v)?;
+        }
+        if let Some(v) = self.rect_scale {
+            j.int("rect_scale", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.rect_lon_raw, self.rect_lon()) {
+            j.reading("rect_lon", reading, "rect_lon_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.rect_lat_raw, self.rect_lat()) {
+            j.reading("rect_lat", reading, "rect_lat_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.rect_precision {
+            j.int("rect_precision", v)?;
+        }
+        if let Some(v) = self.east {
+            j.int("east", v)?;
+        }
+        if let Some(v) = self.north {
+            j.int("north", v)?;
+        }
+        if let Some(v) = self.orientation {
+            j.int("orientation", v)?;
+        }
+        if let Some(v) = self.rect_spare {
+            j.int("rect_spare", v)?;
+        }
+        if let Some(v) = self.sector_scale {
+            j.int("sector_scale", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.sector_lon_raw, self.sector_lon()) {
+            j.reading("sector_lon", reading, "sector_lon_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.sector_lat_raw, self.sector_lat()) {
+            j.reading("sector_lat", reading, "sector_lat_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.sector_precision {
+            j.int("sector_precision", v)?;
+        }
+        if let Some(v) = self.sector_radius {
+            j.int("sector_radius", v)?;
+        }
+        if let Some(v) = self.left {
+            j.int("left", v)?;
+        }
+        if let Some(v) = self.right {
+            j.int("right", v)?;
+        }
+        if let Some(v) = self.points_scale {
+            j.int("points_scale", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.angle1_raw, self.angle1()) {
+            j.reading("angle1", reading, "angle1_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.distance1 {
+            j.int("distance1", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.angle2_raw, self.angle2()) {
+            j.reading("angle2", reading, "angle2_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.distance2 {
+            j.int("distance2", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.angle3_raw, self.angle3()) {
+            j.reading("angle3", reading, "angle3_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.distance3 {
+            j.int("distance3", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.angle4_raw, self.angle4()) {
+            j.reading("angle4", reading, "angle4_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.distance4 {
+            j.int("distance4", v)?;
+        }
+        if let Some(v) = self.points_spare {
+            j.int("points_spare", v)?;
+        }
+        if let Some(v) = self.text {
+            j.text("text", v)?;
+        }
+        if let Some(v) = self.reserved {
+            j.text("reserved", v)?;
+        }
+        Ok(())
+    }
+}
+
+/// Area notice (broadcast): AIS application DAC 1 FI 22 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct AreaNotice<'a> {
+    /// Message linkage id.
+    pub linkage: u16,
+    /// Notice description.
+    pub notice_raw: u8,
+    /// Start month (UTC).
+    pub month_raw: u8,
+    /// Start day (UTC).
+    pub day_raw: u8,
+    /// Start hour (UTC).
+    pub hour_raw: u8,
+    /// Start minute (UTC).
+    pub minute_raw: u8,
+    /// Duration [minutes].
+    pub duration_raw: u32,
+    /// Sub-areas: 1 to 10 entries.
+    pub subareas: [Option<AreaNoticeSubarea<'a>>; 10],
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> AreaNotice<'a> {
+    /// Notice description: the enum's value of the raw code, None for a code it does not name.
+    pub fn notice(&self) -> Option<AisNoticeDescription> {
+        let raw = self.notice_raw;
+        ais::code(u64::from(raw))
+    }
+    /// Start month (UTC), or its special value.
+    pub fn month(&self) -> ais::Reading<i64> {
+        let raw = self.month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Start day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Start hour (UTC), or its special value.
+    pub fn hour(&self) -> ais::Reading<i64> {
+        let raw = self.hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Start minute (UTC), or its special value.
+    pub fn minute(&self) -> ais::Reading<i64> {
+        let raw = self.minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Duration [minutes], or its special value.
+    pub fn duration(&self) -> ais::Reading<i64> {
+        let raw = self.duration_raw;
+        ais::counted(i64::from(raw), 0, &[(262143, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self {
+            linkage: r.take(10, "linkage")? as u16,
+            notice_raw: r.take(7, "notice")? as u8,
+            month_raw: r.take(4, "month")? as u8,
+            day_raw: r.take(5, "day")? as u8,
+            hour_raw: r.take(5, "hour")? as u8,
+            minute_raw: r.take(6, "minute")? as u8,
+            duration_raw: r.take(18, "duration")? as u32,
+            ..Self::default()
+        };
+        let count = r.entries(1, 10, 87, 0, "subareas")?;
+        for slot in m.subareas.iter_mut().take(count) {
+            *slot = Some(AreaNoticeSubarea::read(r)?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.linkage), 10, "linkage")?;
+        w.put(u64::from(self.notice_raw), 7, "notice")?;
+        w.put(u64::from(self.month_raw), 4, "month")?;
+        w.put(u64::from(self.day_raw), 5, "day")?;
+        w.put(u64::from(self.hour_raw), 5, "hour")?;
+        w.put(u64::from(self.minute_raw), 6, "minute")?;
+        w.put(u64::from(self.duration_raw), 18, "duration")?;
+        for entry in self.subareas.iter().flatten() {
+            entry.write(w)?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("linkage", self.linkage)?;
+        j.code("notice", self.notice().map(CodeEnum::id), u64::from(self.notice_raw))?;
+        j.reading("month", self.month(), "month_raw", i64::from(self.month_raw))?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        j.reading("hour", self.hour(), "hour_raw", i64::from(self.hour_raw))?;
+        j.reading("minute", self.minute(), "minute_raw", i64::from(self.minute_raw))?;
+        j.reading("duration", self.duration(), "duration_raw", i64::from(self.duration_raw))?;
+        {
+            let out = j.key("subareas")?;
+            out.write_char('[')?;
+            for (i, entry) in self.subareas.iter().flatten().enumerate() {
+                if i > 0 {
+                    out.write_char(',')?;
+                }
+                let mut e = ais::JsonObject::new(out)?;
+                entry.json_members(&mut e)?;
+                e.finish()?;
+            }
+            out.write_char(']')?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
 /// AtoN monitoring data (UK and Ireland): AIS application DAC 235 FI 10 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct AtonMonitoring<'a> {
@@ -3250,6 +3799,1580 @@ impl<'a> AtonMonitoring<'a> {
         j.flag("off_pos", self.off_pos)?;
         if let Some(v) = self.spare {
             j.int("spare", v)?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// One entry of EnvironmentalReport.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct EnvironmentalReport<'a> {
+    /// Report type.
+    pub report_type_raw: u8,
+    /// Day (UTC).
+    pub day_raw: u8,
+    /// Hour (UTC).
+    pub hour_raw: u8,
+    /// Minute (UTC).
+    pub minute_raw: u8,
+    /// Site id.
+    pub site: u8,
+    /// Longitude [degrees].
+    pub lon_raw: Option<i32>,
+    /// Latitude [degrees].
+    pub lat_raw: Option<i32>,
+    /// Altitude [metres].
+    pub altitude_raw: Option<u16>,
+    /// Sensor owner.
+    pub owner: Option<u8>,
+    /// Data timeout.
+    pub timeout: Option<u8>,
+    /// Spare.
+    pub location_spare: Option<u16>,
+    /// Station name.
+    pub name: Option<ais::SixBitText<'a>>,
+    /// Spare.
+    pub station_spare: Option<u8>,
+    /// Average wind speed [knots].
+    pub wspeed_raw: Option<u8>,
+    /// Wind gust [knots].
+    pub wgust_raw: Option<u8>,
+    /// Wind direction [degrees].
+    pub wdir_raw: Option<u16>,
+    /// Wind gust direction [degrees].
+    pub wgustdir_raw: Option<u16>,
+    /// Wind sensor.
+    pub wind_sensor_raw: Option<u8>,
+    /// Forecast wind speed [knots].
+    pub fwspeed_raw: Option<u8>,
+    /// Forecast wind gust [knots].
+    pub fwgust_raw: Option<u8>,
+    /// Forecast wind direction [degrees].
+    pub fwdir_raw: Option<u16>,
+    /// Forecast day (UTC).
+    pub wind_day_raw: Option<u8>,
+    /// Forecast hour (UTC).
+    pub wind_hour_raw: Option<u8>,
+    /// Forecast minute (UTC).
+    pub wind_minute_raw: Option<u8>,
+    /// Forecast duration [minutes].
+    pub wind_duration_raw: Option<u8>,
+    /// Spare.
+    pub wind_spare: Option<u8>,
+    /// Water level type.
+    pub absolute: Option<bool>,
+    /// Water level [metres].
+    pub level_raw: Option<i16>,
+    /// Water level trend.
+    pub level_trend_raw: Option<u8>,
+    /// Vertical reference datum.
+    pub datum_raw: Option<u8>,
+    /// Water level sensor.
+    pub level_sensor_raw: Option<u8>,
+    /// Forecast water level type.
+    pub forecast_absolute: Option<bool>,
+    /// Forecast water level [metres].
+    pub forecast_level_raw: Option<i16>,
+    /// Forecast day (UTC).
+    pub level_day_raw: Option<u8>,
+    /// Forecast hour (UTC).
+    pub level_hour_raw: Option<u8>,
+    /// Forecast minute (UTC).
+    pub level_minute_raw: Option<u8>,
+    /// Forecast duration [minutes].
+    pub level_duration_raw: Option<u8>,
+    /// Spare.
+    pub level_spare: Option<u32>,
+    /// Current speed at depth 1 [knots].
+    pub cspeed1_raw: Option<u8>,
+    /// Current direction at depth 1 [degrees].
+    pub cdir1_raw: Option<u16>,
+    /// Depth 1 [metres].
+    pub cdepth1_raw: Option<u16>,
+    /// Current speed at depth 2 [knots].
+    pub cspeed2_raw: Option<u8>,
+    /// Current direction at depth 2 [degrees].
+    pub cdir2_raw: Option<u16>,
+    /// Depth 2 [metres].
+    pub cdepth2_raw: Option<u16>,
+    /// Current speed at depth 3 [knots].
+    pub cspeed3_raw: Option<u8>,
+    /// Current direction at depth 3 [degrees].
+    pub cdir3_raw: Option<u16>,
+    /// Depth 3 [metres].
+    pub cdepth3_raw: Option<u16>,
+    /// Current sensor.
+    pub current_sensor_raw: Option<u8>,
+    /// Spare.
+    pub current_spare: Option<u8>,
+    /// North component at depth 1 [knots].
+    pub cnorth1_raw: Option<u8>,
+    /// East component at depth 1 [knots].
+    pub ceast1_raw: Option<u8>,
+    /// Up component at depth 1 [knots].
+    pub cup1_raw: Option<u8>,
+    /// Depth 1 [metres].
+    pub c3depth1_raw: Option<u16>,
+    /// North component at depth 2 [knots].
+    pub cnorth2_raw: Option<u8>,
+    /// East component at depth 2 [knots].
+    pub ceast2_raw: Option<u8>,
+    /// Up component at depth 2 [knots].
+    pub cup2_raw: Option<u8>,
+    /// Depth 2 [metres].
+    pub c3depth2_raw: Option<u16>,
+    /// Current sensor.
+    pub current3d_sensor_raw: Option<u8>,
+    /// Spare.
+    pub current3d_spare: Option<u16>,
+    /// Bearing of point 1 [degrees].
+    pub hbearing1_raw: Option<u16>,
+    /// Distance of point 1 [metres].
+    pub hdistance1_raw: Option<u8>,
+    /// Current speed at point 1 [knots].
+    pub hspeed1_raw: Option<u8>,
+    /// Current direction at point 1 [degrees].
+    pub hdir1_raw: Option<u16>,
+    /// Depth at point 1 [metres].
+    pub hdepth1_raw: Option<u16>,
+    /// Bearing of point 2 [degrees].
+    pub hbearing2_raw: Option<u16>,
+    /// Distance of point 2 [metres].
+    pub hdistance2_raw: Option<u8>,
+    /// Current speed at point 2 [knots].
+    pub hspeed2_raw: Option<u8>,
+    /// Current direction at point 2 [degrees].
+    pub hdir2_raw: Option<u16>,
+    /// Depth at point 2 [metres].
+    pub hdepth2_raw: Option<u16>,
+    /// Spare.
+    pub horizontal_spare: Option<u8>,
+    /// Swell height [metres].
+    pub swell_height_raw: Option<u8>,
+    /// Swell period [seconds].
+    pub swell_period_raw: Option<u8>,
+    /// Swell direction [degrees].
+    pub swell_dir_raw: Option<u16>,
+    /// Sea state.
+    pub sea_state_raw: Option<u8>,
+    /// Swell sensor.
+    pub swell_sensor_raw: Option<u8>,
+    /// Water temperature [degrees Celsius].
+    pub water_temp_raw: Option<u16>,
+    /// Water temperature depth [metres].
+    pub water_temp_depth_raw: Option<u8>,
+    /// Water temperature sensor.
+    pub water_sensor_raw: Option<u8>,
+    /// Wave height [metres].
+    pub wave_height_raw: Option<u8>,
+    /// Wave period [seconds].
+    pub wave_period_raw: Option<u8>,
+    /// Wave direction [degrees].
+    pub wave_dir_raw: Option<u16>,
+    /// Wave sensor.
+    pub wave_sensor_raw: Option<u8>,
+    /// Salinity [percent].
+    pub sea_salinity_raw: Option<u16>,
+    /// Water temperature [degrees Celsius].
+    pub salinity_water_temp_raw: Option<u16>,
+    /// Conductivity [siemens per metre].
+    pub conductivity_raw: Option<u16>,
+    /// Water pressure [decibar].
+    pub water_pressure_raw: Option<u16>,
+    /// Salinity [percent].
+    pub salinity_raw: Option<u16>,
+    /// Salinity type.
+    pub salinity_type: Option<u8>,
+    /// Salinity sensor.
+    pub salinity_sensor_raw: Option<u8>,
+    /// Spare.
+    pub salinity_spare: Option<u64>,
+    /// Air temperature [degrees Celsius].
+    pub air_temp_raw: Option<i16>,
+    /// Air temperature sensor.
+    pub air_temp_sensor_raw: Option<u8>,
+    /// Precipitation type.
+    pub precipitation: Option<u8>,
+    /// Horizontal visibility [nautical miles].
+    pub visibility_raw: Option<u8>,
+    /// Dew point [degrees Celsius].
+    pub dew_point_raw: Option<i16>,
+    /// Dew point sensor.
+    pub dew_point_sensor_raw: Option<u8>,
+    /// Air pressure [hPa].
+    pub air_pressure_raw: Option<u16>,
+    /// Air pressure tendency.
+    pub pressure_tendency_raw: Option<u8>,
+    /// Air pressure sensor.
+    pub pressure_sensor_raw: Option<u8>,
+    /// Salinity [percent].
+    pub weather_salinity_raw: Option<u16>,
+    /// Spare.
+    pub weather_spare: Option<u32>,
+    /// Air draught [metres].
+    pub air_draught_raw: Option<u16>,
+    /// Air gap [metres].
+    pub air_gap_raw: Option<u16>,
+    /// Air gap trend.
+    pub air_gap_trend_raw: Option<u8>,
+    /// Forecast air gap [metres].
+    pub forecast_air_gap_raw: Option<u16>,
+    /// Forecast day (UTC).
+    pub air_gap_day_raw: Option<u8>,
+    /// Forecast hour (UTC).
+    pub air_gap_hour_raw: Option<u8>,
+    /// Forecast minute (UTC).
+    pub air_gap_minute_raw: Option<u8>,
+    /// Spare.
+    pub air_gap_spare: Option<u32>,
+    /// Bits of a reserved report type.
+    pub reserved: Option<ais::Bits<'a>>,
+}
+
+impl<'a> EnvironmentalReport<'a> {
+    /// Report type: the enum's value of the raw code, None for a code it does not name.
+    pub fn report_type(&self) -> Option<AisSensorReport> {
+        let raw = self.report_type_raw;
+        ais::code(u64::from(raw))
+    }
+    /// Day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Hour (UTC), or its special value.
+    pub fn hour(&self) -> ais::Reading<i64> {
+        let raw = self.hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Minute (UTC), or its special value.
+    pub fn minute(&self) -> ais::Reading<i64> {
+        let raw = self.minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> Option<ais::Reading<f64>> {
+        self.lon_raw.map(|raw| ais::scaled(i64::from(raw), 600000.0, 0.0, &[(108600000, "not_available")]))
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> Option<ais::Reading<f64>> {
+        self.lat_raw.map(|raw| ais::scaled(i64::from(raw), 600000.0, 0.0, &[(54600000, "not_available")]))
+    }
+    /// Altitude [metres], or its special value.
+    pub fn altitude(&self) -> Option<ais::Reading<f64>> {
+        self.altitude_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(2002, "not_available")]))
+    }
+    /// Average wind speed [knots], or its special value.
+    pub fn wspeed(&self) -> Option<ais::Reading<i64>> {
+        self.wspeed_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Wind gust [knots], or its special value.
+    pub fn wgust(&self) -> Option<ais::Reading<i64>> {
+        self.wgust_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Wind direction [degrees], or its special value.
+    pub fn wdir(&self) -> Option<ais::Reading<i64>> {
+        self.wdir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Wind gust direction [degrees], or its special value.
+    pub fn wgustdir(&self) -> Option<ais::Reading<i64>> {
+        self.wgustdir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Wind sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn wind_sensor(&self) -> Option<AisSensorDescription> {
+        self.wind_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Forecast wind speed [knots], or its special value.
+    pub fn fwspeed(&self) -> Option<ais::Reading<i64>> {
+        self.fwspeed_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Forecast wind gust [knots], or its special value.
+    pub fn fwgust(&self) -> Option<ais::Reading<i64>> {
+        self.fwgust_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Forecast wind direction [degrees], or its special value.
+    pub fn fwdir(&self) -> Option<ais::Reading<i64>> {
+        self.fwdir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Forecast day (UTC), or its special value.
+    pub fn wind_day(&self) -> Option<ais::Reading<i64>> {
+        self.wind_day_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// Forecast hour (UTC), or its special value.
+    pub fn wind_hour(&self) -> Option<ais::Reading<i64>> {
+        self.wind_hour_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(24, "not_available")]))
+    }
+    /// Forecast minute (UTC), or its special value.
+    pub fn wind_minute(&self) -> Option<ais::Reading<i64>> {
+        self.wind_minute_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(60, "not_available")]))
+    }
+    /// Forecast duration [minutes], or its special value.
+    pub fn wind_duration(&self) -> Option<ais::Reading<i64>> {
+        self.wind_duration_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(255, "not_available")]))
+    }
+    /// Water level [metres], or its special value.
+    pub fn level(&self) -> Option<ais::Reading<f64>> {
+        self.level_raw.map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(-32768, "not_available")]))
+    }
+    /// Water level trend, or its special value.
+    pub fn level_trend(&self) -> Option<ais::Reading<i64>> {
+        self.level_trend_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(3, "not_available")]))
+    }
+    /// Vertical reference datum, or its special value.
+    pub fn datum(&self) -> Option<ais::Reading<i64>> {
+        self.datum_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(14, "not_available")]))
+    }
+    /// Water level sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn level_sensor(&self) -> Option<AisSensorDescription> {
+        self.level_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Forecast water level [metres], or its special value.
+    pub fn forecast_level(&self) -> Option<ais::Reading<f64>> {
+        self.forecast_level_raw.map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(-32768, "not_available")]))
+    }
+    /// Forecast day (UTC), or its special value.
+    pub fn level_day(&self) -> Option<ais::Reading<i64>> {
+        self.level_day_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// Forecast hour (UTC), or its special value.
+    pub fn level_hour(&self) -> Option<ais::Reading<i64>> {
+        self.level_hour_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(24, "not_available")]))
+    }
+    /// Forecast minute (UTC), or its special value.
+    pub fn level_minute(&self) -> Option<ais::Reading<i64>> {
+        self.level_minute_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(60, "not_available")]))
+    }
+    /// Forecast duration [minutes], or its special value.
+    pub fn level_duration(&self) -> Option<ais::Reading<i64>> {
+        self.level_duration_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(255, "not_available")]))
+    }
+    /// Current speed at depth 1 [knots], or its special value.
+    pub fn cspeed1(&self) -> Option<ais::Reading<f64>> {
+        self.cspeed1_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Current direction at depth 1 [degrees], or its special value.
+    pub fn cdir1(&self) -> Option<ais::Reading<i64>> {
+        self.cdir1_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Depth 1 [metres], or its special value.
+    pub fn cdepth1(&self) -> Option<ais::Reading<i64>> {
+        self.cdepth1_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(362, "not_available")]))
+    }
+    /// Current speed at depth 2 [knots], or its special value.
+    pub fn cspeed2(&self) -> Option<ais::Reading<f64>> {
+        self.cspeed2_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Current direction at depth 2 [degrees], or its special value.
+    pub fn cdir2(&self) -> Option<ais::Reading<i64>> {
+        self.cdir2_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Depth 2 [metres], or its special value.
+    pub fn cdepth2(&self) -> Option<ais::Reading<i64>> {
+        self.cdepth2_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(362, "not_available")]))
+    }
+    /// Current speed at depth 3 [knots], or its special value.
+    pub fn cspeed3(&self) -> Option<ais::Reading<f64>> {
+        self.cspeed3_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Current direction at depth 3 [degrees], or its special value.
+    pub fn cdir3(&self) -> Option<ais::Reading<i64>> {
+        self.cdir3_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Depth 3 [metres], or its special value.
+    pub fn cdepth3(&self) -> Option<ais::Reading<i64>> {
+        self.cdepth3_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(362, "not_available")]))
+    }
+    /// Current sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn current_sensor(&self) -> Option<AisSensorDescription> {
+        self.current_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// North component at depth 1 [knots], or its special value.
+    pub fn cnorth1(&self) -> Option<ais::Reading<f64>> {
+        self.cnorth1_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// East component at depth 1 [knots], or its special value.
+    pub fn ceast1(&self) -> Option<ais::Reading<f64>> {
+        self.ceast1_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Up component at depth 1 [knots], or its special value.
+    pub fn cup1(&self) -> Option<ais::Reading<f64>> {
+        self.cup1_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Depth 1 [metres], or its special value.
+    pub fn c3depth1(&self) -> Option<ais::Reading<i64>> {
+        self.c3depth1_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(362, "not_available")]))
+    }
+    /// North component at depth 2 [knots], or its special value.
+    pub fn cnorth2(&self) -> Option<ais::Reading<f64>> {
+        self.cnorth2_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// East component at depth 2 [knots], or its special value.
+    pub fn ceast2(&self) -> Option<ais::Reading<f64>> {
+        self.ceast2_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Up component at depth 2 [knots], or its special value.
+    pub fn cup2(&self) -> Option<ais::Reading<f64>> {
+        self.cup2_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Depth 2 [metres], or its special value.
+    pub fn c3depth2(&self) -> Option<ais::Reading<i64>> {
+        self.c3depth2_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(362, "not_available")]))
+    }
+    /// Current sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn current3d_sensor(&self) -> Option<AisSensorDescription> {
+        self.current3d_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Bearing of point 1 [degrees], or its special value.
+    pub fn hbearing1(&self) -> Option<ais::Reading<i64>> {
+        self.hbearing1_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Distance of point 1 [metres], or its special value.
+    pub fn hdistance1(&self) -> Option<ais::Reading<i64>> {
+        self.hdistance1_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Current speed at point 1 [knots], or its special value.
+    pub fn hspeed1(&self) -> Option<ais::Reading<f64>> {
+        self.hspeed1_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Current direction at point 1 [degrees], or its special value.
+    pub fn hdir1(&self) -> Option<ais::Reading<i64>> {
+        self.hdir1_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Depth at point 1 [metres], or its special value.
+    pub fn hdepth1(&self) -> Option<ais::Reading<i64>> {
+        self.hdepth1_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(362, "not_available")]))
+    }
+    /// Bearing of point 2 [degrees], or its special value.
+    pub fn hbearing2(&self) -> Option<ais::Reading<i64>> {
+        self.hbearing2_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Distance of point 2 [metres], or its special value.
+    pub fn hdistance2(&self) -> Option<ais::Reading<i64>> {
+        self.hdistance2_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(122, "not_available")]))
+    }
+    /// Current speed at point 2 [knots], or its special value.
+    pub fn hspeed2(&self) -> Option<ais::Reading<f64>> {
+        self.hspeed2_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Current direction at point 2 [degrees], or its special value.
+    pub fn hdir2(&self) -> Option<ais::Reading<i64>> {
+        self.hdir2_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Depth at point 2 [metres], or its special value.
+    pub fn hdepth2(&self) -> Option<ais::Reading<i64>> {
+        self.hdepth2_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(362, "not_available")]))
+    }
+    /// Swell height [metres], or its special value.
+    pub fn swell_height(&self) -> Option<ais::Reading<f64>> {
+        self.swell_height_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Swell period [seconds], or its special value.
+    pub fn swell_period(&self) -> Option<ais::Reading<i64>> {
+        self.swell_period_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(61, "not_available")]))
+    }
+    /// Swell direction [degrees], or its special value.
+    pub fn swell_dir(&self) -> Option<ais::Reading<i64>> {
+        self.swell_dir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Sea state, or its special value.
+    pub fn sea_state(&self) -> Option<ais::Reading<i64>> {
+        self.sea_state_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(13, "not_available")]))
+    }
+    /// Swell sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn swell_sensor(&self) -> Option<AisSensorDescription> {
+        self.swell_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Water temperature [degrees Celsius], or its special value.
+    pub fn water_temp(&self) -> Option<ais::Reading<f64>> {
+        self.water_temp_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, -10.0, &[(601, "not_available")]))
+    }
+    /// Water temperature depth [metres], or its special value.
+    pub fn water_temp_depth(&self) -> Option<ais::Reading<f64>> {
+        self.water_temp_depth_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(122, "not_available")]))
+    }
+    /// Water temperature sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn water_sensor(&self) -> Option<AisSensorDescription> {
+        self.water_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Wave height [metres], or its special value.
+    pub fn wave_height(&self) -> Option<ais::Reading<f64>> {
+        self.wave_height_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(247, "not_available")]))
+    }
+    /// Wave period [seconds], or its special value.
+    pub fn wave_period(&self) -> Option<ais::Reading<i64>> {
+        self.wave_period_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(61, "not_available")]))
+    }
+    /// Wave direction [degrees], or its special value.
+    pub fn wave_dir(&self) -> Option<ais::Reading<i64>> {
+        self.wave_dir_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(360, "not_available")]))
+    }
+    /// Wave sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn wave_sensor(&self) -> Option<AisSensorDescription> {
+        self.wave_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Salinity [percent], or its special value.
+    pub fn sea_salinity(&self) -> Option<ais::Reading<f64>> {
+        self.sea_salinity_raw
+            .map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(502, "not_available"), (503, "no_sensor")]))
+    }
+    /// Water temperature [degrees Celsius], or its special value.
+    pub fn salinity_water_temp(&self) -> Option<ais::Reading<f64>> {
+        self.salinity_water_temp_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, -10.0, &[(601, "not_available")]))
+    }
+    /// Conductivity [siemens per metre], or its special value.
+    pub fn conductivity(&self) -> Option<ais::Reading<f64>> {
+        self.conductivity_raw
+            .map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(702, "not_available"), (703, "no_sensor")]))
+    }
+    /// Water pressure [decibar], or its special value.
+    pub fn water_pressure(&self) -> Option<ais::Reading<f64>> {
+        self.water_pressure_raw
+            .map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(60002, "not_available"), (60003, "no_sensor")]))
+    }
+    /// Salinity [percent], or its special value.
+    pub fn salinity(&self) -> Option<ais::Reading<f64>> {
+        self.salinity_raw
+            .map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(502, "not_available"), (503, "no_sensor")]))
+    }
+    /// Salinity sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn salinity_sensor(&self) -> Option<AisSensorDescription> {
+        self.salinity_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Air temperature [degrees Celsius], or its special value.
+    pub fn air_temp(&self) -> Option<ais::Reading<f64>> {
+        self.air_temp_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(-1024, "not_available")]))
+    }
+    /// Air temperature sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn air_temp_sensor(&self) -> Option<AisSensorDescription> {
+        self.air_temp_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Horizontal visibility [nautical miles], or its special value.
+    pub fn visibility(&self) -> Option<ais::Reading<f64>> {
+        self.visibility_raw
+            .map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(242, "not_available"), (243, "no_sensor")]))
+    }
+    /// Dew point [degrees Celsius], or its special value.
+    pub fn dew_point(&self) -> Option<ais::Reading<f64>> {
+        self.dew_point_raw.map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(501, "not_available")]))
+    }
+    /// Dew point sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn dew_point_sensor(&self) -> Option<AisSensorDescription> {
+        self.dew_point_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Air pressure [hPa], or its special value.
+    pub fn air_pressure(&self) -> Option<ais::Reading<i64>> {
+        self.air_pressure_raw.map(|raw| ais::counted(i64::from(raw), 799, &[(403, "not_available")]))
+    }
+    /// Air pressure tendency, or its special value.
+    pub fn pressure_tendency(&self) -> Option<ais::Reading<i64>> {
+        self.pressure_tendency_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(3, "not_available")]))
+    }
+    /// Air pressure sensor: the enum's value of the raw code, None for a code it does not name.
+    pub fn pressure_sensor(&self) -> Option<AisSensorDescription> {
+        self.pressure_sensor_raw.and_then(|raw| ais::code(u64::from(raw)))
+    }
+    /// Salinity [percent], or its special value.
+    pub fn weather_salinity(&self) -> Option<ais::Reading<f64>> {
+        self.weather_salinity_raw
+            .map(|raw| ais::scaled(i64::from(raw), 10.0, 0.0, &[(502, "not_available"), (503, "no_sensor")]))
+    }
+    /// Air draught [metres], or its special value.
+    pub fn air_draught(&self) -> Option<ais::Reading<f64>> {
+        self.air_draught_raw.map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(0, "not_available")]))
+    }
+    /// Air gap [metres], or its special value.
+    pub fn air_gap(&self) -> Option<ais::Reading<f64>> {
+        self.air_gap_raw.map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(0, "not_available")]))
+    }
+    /// Air gap trend, or its special value.
+    pub fn air_gap_trend(&self) -> Option<ais::Reading<i64>> {
+        self.air_gap_trend_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(3, "not_available")]))
+    }
+    /// Forecast air gap [metres], or its special value.
+    pub fn forecast_air_gap(&self) -> Option<ais::Reading<f64>> {
+        self.forecast_air_gap_raw.map(|raw| ais::scaled(i64::from(raw), 100.0, 0.0, &[(0, "not_available")]))
+    }
+    /// Forecast day (UTC), or its special value.
+    pub fn air_gap_day(&self) -> Option<ais::Reading<i64>> {
+        self.air_gap_day_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(0, "not_available")]))
+    }
+    /// Forecast hour (UTC), or its special value.
+    pub fn air_gap_hour(&self) -> Option<ais::Reading<i64>> {
+        self.air_gap_hour_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(24, "not_available")]))
+    }
+    /// Forecast minute (UTC), or its special value.
+    pub fn air_gap_minute(&self) -> Option<ais::Reading<i64>> {
+        self.air_gap_minute_raw.map(|raw| ais::counted(i64::from(raw), 0, &[(60, "not_available")]))
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self {
+            report_type_raw: r.take(4, "report_type")? as u8,
+            day_raw: r.take(5, "day")? as u8,
+            hour_raw: r.take(5, "hour")? as u8,
+            minute_raw: r.take(6, "minute")? as u8,
+            site: r.take(7, "site")? as u8,
+            ..Self::default()
+        };
+        match u64::from(m.report_type_raw) {
+            0 => {
+                m.lon_raw = Some(r.take_signed(28, "lon")? as i32);
+                m.lat_raw = Some(r.take_signed(27, "lat")? as i32);
+                m.altitude_raw = Some(r.take(11, "altitude")? as u16);
+                m.owner = Some(r.take(4, "owner")? as u8);
+                m.timeout = Some(r.take(3, "timeout")? as u8);
+                m.location_spare = Some(r.take(12, "location_spare")? as u16);
+            }
+            1 => {
+                m.name = Some(r.take_text(14, "name")?);
+                m.station_spare = Some(r.take(1, "station_spare")? as u8);
+            }
+            2 => {
+                m.wspeed_raw = Some(r.take(7, "wspeed")? as u8);
+                m.wgust_raw = Some(r.take(7, "wgust")? as u8);
+                m.wdir_raw = Some(r.take(9, "wdir")? as u16);
+                m.wgustdir_raw = Some(r.take(9, "wgustdir")? as u16);
+                m.wind_sensor_raw = Some(r.take(3, "wind_sensor")? as u8);
+                m.fwspeed_raw = Some(r.take(7, "fwspeed")? as u8);
+                m.fwgust_raw = Some(r.take(7, "fwgust")? as u8);
+                m.fwdir_raw = Some(r.take(9, "fwdir")? as u16);
+                m.wind_day_raw = Some(r.take(5, "wind_day")? as u8);
+                m.wind_hour_raw = Some(r.take(5, "wind_hour")? as u8);
+                m.wind_minute_raw = Some(r.take(6, "wind_minute")? as u8);
+                m.wind_duration_raw = Some(r.take(8, "wind_duration")? as u8);
+                m.wind_spare = Some(r.take(3, "wind_spare")? as u8);
+            }
+            3 => {
+                m.absolute = Some(r.take(1, "absolute")? == 1);
+                m.level_raw = Some(r.take_signed(16, "level")? as i16);
+                m.level_trend_raw = Some(r.take(2, "level_trend")? as u8);
+                m.datum_raw = Some(r.take(5, "datum")? as u8);
+                m.level_sensor_raw = Some(r.take(3, "level_sensor")? as u8);
+                m.forecast_absolute = Some(r.take(1, "forecast_absolute")? == 1);
+                m.forecast_level_raw = Some(r.take_signed(16, "forecast_level")? as i16);
+                m.level_day_raw = Some(r.take(5, "level_day")? as u8);
+                m.level_hour_raw = Some(r.take(5, "level_hour")? as u8);
+                m.level_minute_raw = Some(r.take(6, "level_minute")? as u8);
+                m.level_duration_raw = Some(r.take(8, "level_duration")? as u8);
+                m.level_spare = Some(r.take(17, "level_spare")? as u32);
+            }
+            4 => {
+                m.cspeed1_raw = Some(r.take(8, "cspeed1")? as u8);
+                m.cdir1_raw = Some(r.take(9, "cdir1")? as u16);
+                m.cdepth1_raw = Some(r.take(9, "cdepth1")? as u16);
+                m.cspeed2_raw = Some(r.take(8, "cspeed2")? as u8);
+                m.cdir2_raw = Some(r.take(9, "cdir2")? as u16);
+                m.cdepth2_raw = Some(r.take(9, "cdepth2")? as u16);
+                m.cspeed3_raw = Some(r.take(8, "cspeed3")? as u8);
+                m.cdir3_raw = Some(r.take(9, "cdir3")? as u16);
+                m.cdepth3_raw = Some(r.take(9, "cdepth3")? as u16);
+                m.current_sensor_raw = Some(r.take(3, "current_sensor")? as u8);
+                m.current_spare = Some(r.take(4, "current_spare")? as u8);
+            }
+            5 => {
+                m.cnorth1_raw = Some(r.take(8, "cnorth1")? as u8);
+                m.ceast1_raw = Some(r.take(8, "ceast1")? as u8);
+                m.cup1_raw = Some(r.take(8, "cup1")? as u8);
+                m.c3depth1_raw = Some(r.take(9, "c3depth1")? as u16);
+                m.cnorth2_raw = Some(r.take(8, "cnorth2")? as u8);
+                m.ceast2_raw = Some(r.take(8, "ceast2")? as u8);
+                m.cup2_raw = Some(r.take(8, "cup2")? as u8);
+                m.c3depth2_raw = Some(r.take(9, "c3depth2")? as u16);
+                m.current3d_sensor_raw = Some(r.take(3, "current3d_sensor")? as u8);
+                m.current3d_spare = Some(r.take(16, "current3d_spare")? as u16);
+            }
+            6 => {
+                m.hbearing1_raw = Some(r.take(9, "hbearing1")? as u16);
+                m.hdistance1_raw = Some(r.take(7, "hdistance1")? as u8);
+                m.hspeed1_raw = Some(r.take(8, "hspeed1")? as u8);
+                m.hdir1_raw = Some(r.take(9, "hdir1")? as u16);
+                m.hdepth1_raw = Some(r.take(9, "hdepth1")? as u16);
+                m.hbearing2_raw = Some(r.take(9, "hbearing2")? as u16);
+                m.hdistance2_raw = Some(r.take(7, "hdistance2")? as u8);
+                m.hspeed2_raw = Some(r.take(8, "hspeed2")? as u8);
+                m.hdir2_raw = Some(r.take(9, "hdir2")? as u16);
+                m.hdepth2_raw = Some(r.take(9, "hdepth2")? as u16);
+                m.horizontal_spare = Some(r.take(1, "horizontal_spare")? as u8);
+            }
+            7 => {
+                m.swell_height_raw = Some(r.take(8, "swell_height")? as u8);
+                m.swell_period_raw = Some(r.take(6, "swell_period")? as u8);
+                m.swell_dir_raw = Some(r.take(9, "swell_dir")? as u16);
+                m.sea_state_raw = Some(r.take(4, "sea_state")? as u8);
+                m.swell_sensor_raw = Some(r.take(3, "swell_sensor")? as u8);
+                m.water_temp_raw = Some(r.take(10, "water_temp")? as u16);
+                m.water_temp_depth_raw = Some(r.take(7, "water_temp_depth")? as u8);
+                m.water_sensor_raw = Some(r.take(3, "water_sensor")? as u8);
+                m.wave_height_raw = Some(r.take(8, "wave_height")? as u8);
+                m.wave_period_raw = Some(r.take(6, "wave_period")? as u8);
+                m.wave_dir_raw = Some(r.take(9, "wave_dir")? as u16);
+                m.wave_sensor_raw = Some(r.take(3, "wave_sensor")? as u8);
+                m.sea_salinity_raw = Some(r.take(9, "sea_salinity")? as u16);
+            }
+            8 => {
+                m.salinity_water_temp_raw = Some(r.take(10, "salinity_water_temp")? as u16);
+                m.conductivity_raw = Some(r.take(10, "conductivity")? as u16);
+                m.water_pressure_raw = Some(r.take(16, "water_pressure")? as u16);
+                m.salinity_raw = Some(r.take(9, "salinity")? as u16);
+                m.salinity_type = Some(r.take(2, "salinity_type")? as u8);
+                m.salinity_sensor_raw = Some(r.take(3, "salinity_sensor")? as u8);
+                m.salinity_spare = Some(r.take(35, "salinity_spare")?);
+            }
+            9 => {
+                m.air_temp_raw = Some(r.take_signed(11, "air_temp")? as i16);
+                m.air_temp_sensor_raw = Some(r.take(3, "air_temp_sensor")? as u8);
+                m.precipitation = Some(r.take(2, "precipitation")? as u8);
+                m.visibility_raw = Some(r.take(8, "visibility")? as u8);
+                m.dew_point_raw = Some(r.take_signed(10, "dew_point")? as i16);
+                m.dew_point_sensor_raw = Some(r.take(3, "dew_point_sensor")? as u8);
+                m.air_pressure_raw = Some(r.take(9, "air_pressure")? as u16);
+                m.pressure_tendency_raw = Some(r.take(2, "pressure_tendency")? as u8);
+                m.pressure_sensor_raw = Some(r.take(3, "pressure_sensor")? as u8);
+                m.weather_salinity_raw = Some(r.take(9, "weather_salinity")? as u16);
+                m.weather_spare = Some(r.take(25, "weather_spare")? as u32);
+            }
+            10 => {
+                m.air_draught_raw = Some(r.take(13, "air_draught")? as u16);
+                m.air_gap_raw = Some(r.take(13, "air_gap")? as u16);
+                m.air_gap_trend_raw = Some(r.take(2, "air_gap_trend")? as u8);
+                m.forecast_air_gap_raw = Some(r.take(13, "forecast_air_gap")? as u16);
+                m.air_gap_day_raw = Some(r.take(5, "air_gap_day")? as u8);
+                m.air_gap_hour_raw = Some(r.take(5, "air_gap_hour")? as u8);
+                m.air_gap_minute_raw = Some(r.take(6, "air_gap_minute")? as u8);
+                m.air_gap_spare = Some(r.take(28, "air_gap_spare")? as u32);
+            }
+            _ => {
+                m.reserved = Some(r.take_bits(85, "reserved")?);
+            }
+        }
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        'write: {
+            w.put(u64::from(self.report_type_raw), 4, "report_type")?;
+            w.put(u64::from(self.day_raw), 5, "day")?;
+            w.put(u64::from(self.hour_raw), 5, "hour")?;
+            w.put(u64::from(self.minute_raw), 6, "minute")?;
+            w.put(u64::from(self.site), 7, "site")?;
+            match u64::from(self.report_type_raw) {
+                0 => {
+                    let Some(v) = self.lon_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 28, "lon")?;
+                    let Some(v) = self.lat_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 27, "lat")?;
+                    let Some(v) = self.altitude_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 11, "altitude")?;
+                    let Some(v) = self.owner else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "owner")?;
+                    let Some(v) = self.timeout else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "timeout")?;
+                    let Some(v) = self.location_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 12, "location_spare")?;
+                }
+                1 => {
+                    let Some(v) = self.name else {
+                        break 'write;
+                    };
+                    w.put_fixed(v.bits(), 84, true, "name")?;
+                    let Some(v) = self.station_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 1, "station_spare")?;
+                }
+                2 => {
+                    let Some(v) = self.wspeed_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "wspeed")?;
+                    let Some(v) = self.wgust_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "wgust")?;
+                    let Some(v) = self.wdir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "wdir")?;
+                    let Some(v) = self.wgustdir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "wgustdir")?;
+                    let Some(v) = self.wind_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "wind_sensor")?;
+                    let Some(v) = self.fwspeed_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "fwspeed")?;
+                    let Some(v) = self.fwgust_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "fwgust")?;
+                    let Some(v) = self.fwdir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "fwdir")?;
+                    let Some(v) = self.wind_day_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "wind_day")?;
+                    let Some(v) = self.wind_hour_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "wind_hour")?;
+                    let Some(v) = self.wind_minute_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "wind_minute")?;
+                    let Some(v) = self.wind_duration_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "wind_duration")?;
+                    let Some(v) = self.wind_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "wind_spare")?;
+                }
+                3 => {
+                    let Some(v) = self.absolute else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 1, "absolute")?;
+                    let Some(v) = self.level_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 16, "level")?;
+                    let Some(v) = self.level_trend_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "level_trend")?;
+                    let Some(v) = self.datum_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "datum")?;
+                    let Some(v) = self.level_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "level_sensor")?;
+                    let Some(v) = self.forecast_absolute else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 1, "forecast_absolute")?;
+                    let Some(v) = self.forecast_level_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 16, "forecast_level")?;
+                    let Some(v) = self.level_day_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "level_day")?;
+                    let Some(v) = self.level_hour_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "level_hour")?;
+                    let Some(v) = self.level_minute_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "level_minute")?;
+                    let Some(v) = self.level_duration_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "level_duration")?;
+                    let Some(v) = self.level_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 17, "level_spare")?;
+                }
+                4 => {
+                    let Some(v) = self.cspeed1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "cspeed1")?;
+                    let Some(v) = self.cdir1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdir1")?;
+                    let Some(v) = self.cdepth1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdepth1")?;
+                    let Some(v) = self.cspeed2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "cspeed2")?;
+                    let Some(v) = self.cdir2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdir2")?;
+                    let Some(v) = self.cdepth2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdepth2")?;
+                    let Some(v) = self.cspeed3_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "cspeed3")?;
+                    let Some(v) = self.cdir3_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdir3")?;
+                    let Some(v) = self.cdepth3_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "cdepth3")?;
+                    let Some(v) = self.current_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "current_sensor")?;
+                    let Some(v) = self.current_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "current_spare")?;
+                }
+                5 => {
+                    let Some(v) = self.cnorth1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "cnorth1")?;
+                    let Some(v) = self.ceast1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "ceast1")?;
+                    let Some(v) = self.cup1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "cup1")?;
+                    let Some(v) = self.c3depth1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "c3depth1")?;
+                    let Some(v) = self.cnorth2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "cnorth2")?;
+                    let Some(v) = self.ceast2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "ceast2")?;
+                    let Some(v) = self.cup2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "cup2")?;
+                    let Some(v) = self.c3depth2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "c3depth2")?;
+                    let Some(v) = self.current3d_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "current3d_sensor")?;
+                    let Some(v) = self.current3d_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 16, "current3d_spare")?;
+                }
+                6 => {
+                    let Some(v) = self.hbearing1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hbearing1")?;
+                    let Some(v) = self.hdistance1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "hdistance1")?;
+                    let Some(v) = self.hspeed1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "hspeed1")?;
+                    let Some(v) = self.hdir1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hdir1")?;
+                    let Some(v) = self.hdepth1_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hdepth1")?;
+                    let Some(v) = self.hbearing2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hbearing2")?;
+                    let Some(v) = self.hdistance2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "hdistance2")?;
+                    let Some(v) = self.hspeed2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "hspeed2")?;
+                    let Some(v) = self.hdir2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hdir2")?;
+                    let Some(v) = self.hdepth2_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "hdepth2")?;
+                    let Some(v) = self.horizontal_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 1, "horizontal_spare")?;
+                }
+                7 => {
+                    let Some(v) = self.swell_height_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "swell_height")?;
+                    let Some(v) = self.swell_period_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "swell_period")?;
+                    let Some(v) = self.swell_dir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "swell_dir")?;
+                    let Some(v) = self.sea_state_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 4, "sea_state")?;
+                    let Some(v) = self.swell_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "swell_sensor")?;
+                    let Some(v) = self.water_temp_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "water_temp")?;
+                    let Some(v) = self.water_temp_depth_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 7, "water_temp_depth")?;
+                    let Some(v) = self.water_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "water_sensor")?;
+                    let Some(v) = self.wave_height_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "wave_height")?;
+                    let Some(v) = self.wave_period_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "wave_period")?;
+                    let Some(v) = self.wave_dir_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "wave_dir")?;
+                    let Some(v) = self.wave_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "wave_sensor")?;
+                    let Some(v) = self.sea_salinity_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "sea_salinity")?;
+                }
+                8 => {
+                    let Some(v) = self.salinity_water_temp_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "salinity_water_temp")?;
+                    let Some(v) = self.conductivity_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 10, "conductivity")?;
+                    let Some(v) = self.water_pressure_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 16, "water_pressure")?;
+                    let Some(v) = self.salinity_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "salinity")?;
+                    let Some(v) = self.salinity_type else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "salinity_type")?;
+                    let Some(v) = self.salinity_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "salinity_sensor")?;
+                    let Some(v) = self.salinity_spare else {
+                        break 'write;
+                    };
+                    w.put(v, 35, "salinity_spare")?;
+                }
+                9 => {
+                    let Some(v) = self.air_temp_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 11, "air_temp")?;
+                    let Some(v) = self.air_temp_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "air_temp_sensor")?;
+                    let Some(v) = self.precipitation else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "precipitation")?;
+                    let Some(v) = self.visibility_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 8, "visibility")?;
+                    let Some(v) = self.dew_point_raw else {
+                        break 'write;
+                    };
+                    w.put_signed(i64::from(v), 10, "dew_point")?;
+                    let Some(v) = self.dew_point_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "dew_point_sensor")?;
+                    let Some(v) = self.air_pressure_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "air_pressure")?;
+                    let Some(v) = self.pressure_tendency_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "pressure_tendency")?;
+                    let Some(v) = self.pressure_sensor_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 3, "pressure_sensor")?;
+                    let Some(v) = self.weather_salinity_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 9, "weather_salinity")?;
+                    let Some(v) = self.weather_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 25, "weather_spare")?;
+                }
+                10 => {
+                    let Some(v) = self.air_draught_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 13, "air_draught")?;
+                    let Some(v) = self.air_gap_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 13, "air_gap")?;
+                    let Some(v) = self.air_gap_trend_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 2, "air_gap_trend")?;
+                    let Some(v) = self.forecast_air_gap_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 13, "forecast_air_gap")?;
+                    let Some(v) = self.air_gap_day_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "air_gap_day")?;
+                    let Some(v) = self.air_gap_hour_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 5, "air_gap_hour")?;
+                    let Some(v) = self.air_gap_minute_raw else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 6, "air_gap_minute")?;
+                    let Some(v) = self.air_gap_spare else {
+                        break 'write;
+                    };
+                    w.put(u64::from(v), 28, "air_gap_spare")?;
+                }
+                _ => {
+                    let Some(v) = self.reserved else {
+                        break 'write;
+                    };
+                    w.put_fixed(v, 85, false, "reserved")?;
+                }
+            }
+        }
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.code("report_type", self.report_type().map(CodeEnum::id), u64::from(self.report_type_raw))?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        j.reading("hour", self.hour(), "hour_raw", i64::from(self.hour_raw))?;
+        j.reading("minute", self.minute(), "minute_raw", i64::from(self.minute_raw))?;
+        j.int("site", self.site)?;
+        if let (Some(v), Some(reading)) = (self.lon_raw, self.lon()) {
+            j.reading("lon", reading, "lon_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.lat_raw, self.lat()) {
+            j.reading("lat", reading, "lat_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.altitude_raw, self.altitude()) {
+            j.reading("altitude", reading, "altitude_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.owner {
+            j.int("owner", v)?;
+        }
+        if let Some(v) = self.timeout {
+            j.int("timeout", v)?;
+        }
+        if let Some(v) = self.location_spare {
+            j.int("location_spare", v)?;
+        }
+        if let Some(v) = self.name {
+            j.text("name", v)?;
+        }
+        if let Some(v) = self.station_spare {
+            j.int("station_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.wspeed_raw, self.wspeed()) {
+            j.reading("wspeed", reading, "wspeed_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wgust_raw, self.wgust()) {
+            j.reading("wgust", reading, "wgust_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wdir_raw, self.wdir()) {
+            j.reading("wdir", reading, "wdir_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wgustdir_raw, self.wgustdir()) {
+            j.reading("wgustdir", reading, "wgustdir_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wind_sensor_raw {
+            j.code("wind_sensor", self.wind_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.fwspeed_raw, self.fwspeed()) {
+            j.reading("fwspeed", reading, "fwspeed_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.fwgust_raw, self.fwgust()) {
+            j.reading("fwgust", reading, "fwgust_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.fwdir_raw, self.fwdir()) {
+            j.reading("fwdir", reading, "fwdir_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind_day_raw, self.wind_day()) {
+            j.reading("wind_day", reading, "wind_day_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind_hour_raw, self.wind_hour()) {
+            j.reading("wind_hour", reading, "wind_hour_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind_minute_raw, self.wind_minute()) {
+            j.reading("wind_minute", reading, "wind_minute_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wind_duration_raw, self.wind_duration()) {
+            j.reading("wind_duration", reading, "wind_duration_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wind_spare {
+            j.int("wind_spare", v)?;
+        }
+        if let Some(v) = self.absolute {
+            j.flag("absolute", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_raw, self.level()) {
+            j.reading("level", reading, "level_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_trend_raw, self.level_trend()) {
+            j.reading("level_trend", reading, "level_trend_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.datum_raw, self.datum()) {
+            j.reading("datum", reading, "datum_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.level_sensor_raw {
+            j.code("level_sensor", self.level_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.forecast_absolute {
+            j.flag("forecast_absolute", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.forecast_level_raw, self.forecast_level()) {
+            j.reading("forecast_level", reading, "forecast_level_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_day_raw, self.level_day()) {
+            j.reading("level_day", reading, "level_day_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_hour_raw, self.level_hour()) {
+            j.reading("level_hour", reading, "level_hour_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_minute_raw, self.level_minute()) {
+            j.reading("level_minute", reading, "level_minute_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.level_duration_raw, self.level_duration()) {
+            j.reading("level_duration", reading, "level_duration_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.level_spare {
+            j.int("level_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.cspeed1_raw, self.cspeed1()) {
+            j.reading("cspeed1", reading, "cspeed1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdir1_raw, self.cdir1()) {
+            j.reading("cdir1", reading, "cdir1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdepth1_raw, self.cdepth1()) {
+            j.reading("cdepth1", reading, "cdepth1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cspeed2_raw, self.cspeed2()) {
+            j.reading("cspeed2", reading, "cspeed2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdir2_raw, self.cdir2()) {
+            j.reading("cdir2", reading, "cdir2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdepth2_raw, self.cdepth2()) {
+            j.reading("cdepth2", reading, "cdepth2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cspeed3_raw, self.cspeed3()) {
+            j.reading("cspeed3", reading, "cspeed3_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdir3_raw, self.cdir3()) {
+            j.reading("cdir3", reading, "cdir3_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cdepth3_raw, self.cdepth3()) {
+            j.reading("cdepth3", reading, "cdepth3_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.current_sensor_raw {
+            j.code("current_sensor", self.current_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.current_spare {
+            j.int("current_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.cnorth1_raw, self.cnorth1()) {
+            j.reading("cnorth1", reading, "cnorth1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.ceast1_raw, self.ceast1()) {
+            j.reading("ceast1", reading, "ceast1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cup1_raw, self.cup1()) {
+            j.reading("cup1", reading, "cup1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.c3depth1_raw, self.c3depth1()) {
+            j.reading("c3depth1", reading, "c3depth1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cnorth2_raw, self.cnorth2()) {
+            j.reading("cnorth2", reading, "cnorth2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.ceast2_raw, self.ceast2()) {
+            j.reading("ceast2", reading, "ceast2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.cup2_raw, self.cup2()) {
+            j.reading("cup2", reading, "cup2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.c3depth2_raw, self.c3depth2()) {
+            j.reading("c3depth2", reading, "c3depth2_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.current3d_sensor_raw {
+            j.code("current3d_sensor", self.current3d_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.current3d_spare {
+            j.int("current3d_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.hbearing1_raw, self.hbearing1()) {
+            j.reading("hbearing1", reading, "hbearing1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.hdistance1_raw, self.hdistance1()) {
+            j.reading("hdistance1", reading, "hdistance1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.hspeed1_raw, self.hspeed1()) {
+            j.reading("hspeed1", reading, "hspeed1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.hdir1_raw, self.hdir1()) {
+            j.reading("hdir1", reading, "hdir1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.hdepth1_raw, self.hdepth1()) {
+            j.reading("hdepth1", reading, "hdepth1_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.hbearing2_raw, self.hbearing2()) {
+            j.reading("hbearing2", reading, "hbearing2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.hdistance2_raw, self.hdistance2()) {
+            j.reading("hdistance2", reading, "hdistance2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.hspeed2_raw, self.hspeed2()) {
+            j.reading("hspeed2", reading, "hspeed2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.hdir2_raw, self.hdir2()) {
+            j.reading("hdir2", reading, "hdir2_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.hdepth2_raw, self.hdepth2()) {
+            j.reading("hdepth2", reading, "hdepth2_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.horizontal_spare {
+            j.int("horizontal_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.swell_height_raw, self.swell_height()) {
+            j.reading("swell_height", reading, "swell_height_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.swell_period_raw, self.swell_period()) {
+            j.reading("swell_period", reading, "swell_period_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.swell_dir_raw, self.swell_dir()) {
+            j.reading("swell_dir", reading, "swell_dir_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.sea_state_raw, self.sea_state()) {
+            j.reading("sea_state", reading, "sea_state_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.swell_sensor_raw {
+            j.code("swell_sensor", self.swell_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.water_temp_raw, self.water_temp()) {
+            j.reading("water_temp", reading, "water_temp_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.water_temp_depth_raw, self.water_temp_depth()) {
+            j.reading("water_temp_depth", reading, "water_temp_depth_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.water_sensor_raw {
+            j.code("water_sensor", self.water_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wave_height_raw, self.wave_height()) {
+            j.reading("wave_height", reading, "wave_height_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wave_period_raw, self.wave_period()) {
+            j.reading("wave_period", reading, "wave_period_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.wave_dir_raw, self.wave_dir()) {
+            j.reading("wave_dir", reading, "wave_dir_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.wave_sensor_raw {
+            j.code("wave_sensor", self.wave_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.sea_salinity_raw, self.sea_salinity()) {
+            j.reading("sea_salinity", reading, "sea_salinity_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.salinity_water_temp_raw, self.salinity_water_temp()) {
+            j.reading("salinity_water_temp", reading, "salinity_water_temp_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.conductivity_raw, self.conductivity()) {
+            j.reading("conductivity", reading, "conductivity_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.water_pressure_raw, self.water_pressure()) {
+            j.reading("water_pressure", reading, "water_pressure_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.salinity_raw, self.salinity()) {
+            j.reading("salinity", reading, "salinity_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.salinity_type {
+            j.int("salinity_type", v)?;
+        }
+        if let Some(v) = self.salinity_sensor_raw {
+            j.code("salinity_sensor", self.salinity_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.salinity_spare {
+            j.int("salinity_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_temp_raw, self.air_temp()) {
+            j.reading("air_temp", reading, "air_temp_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.air_temp_sensor_raw {
+            j.code("air_temp_sensor", self.air_temp_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let Some(v) = self.precipitation {
+            j.int("precipitation", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.visibility_raw, self.visibility()) {
+            j.reading("visibility", reading, "visibility_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.dew_point_raw, self.dew_point()) {
+            j.reading("dew_point", reading, "dew_point_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.dew_point_sensor_raw {
+            j.code("dew_point_sensor", self.dew_point_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_pressure_raw, self.air_pressure()) {
+            j.reading("air_pressure", reading, "air_pressure_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.pressure_tendency_raw, self.pressure_tendency()) {
+            j.reading("pressure_tendency", reading, "pressure_tendency_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.pressure_sensor_raw {
+            j.code("pressure_sensor", self.pressure_sensor().map(CodeEnum::id), u64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.weather_salinity_raw, self.weather_salinity()) {
+            j.reading("weather_salinity", reading, "weather_salinity_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.weather_spare {
+            j.int("weather_spare", v)?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_draught_raw, self.air_draught()) {
+            j.reading("air_draught", reading, "air_draught_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_gap_raw, self.air_gap()) {
+            j.reading("air_gap", reading, "air_gap_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_gap_trend_raw, self.air_gap_trend()) {
+            j.reading("air_gap_trend", reading, "air_gap_trend_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.forecast_air_gap_raw, self.forecast_air_gap()) {
+            j.reading("forecast_air_gap", reading, "forecast_air_gap_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_gap_day_raw, self.air_gap_day()) {
+            j.reading("air_gap_day", reading, "air_gap_day_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_gap_hour_raw, self.air_gap_hour()) {
+            j.reading("air_gap_hour", reading, "air_gap_hour_raw", i64::from(v))?;
+        }
+        if let (Some(v), Some(reading)) = (self.air_gap_minute_raw, self.air_gap_minute()) {
+            j.reading("air_gap_minute", reading, "air_gap_minute_raw", i64::from(v))?;
+        }
+        if let Some(v) = self.air_gap_spare {
+            j.int("air_gap_spare", v)?;
+        }
+        if let Some(v) = self.reserved {
+            j.text("reserved", v)?;
+        }
+        Ok(())
+    }
+}
+
+/// Environmental: AIS application DAC 1 FI 26 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Environmental<'a> {
+    /// Sensor reports: 1 to 8 entries.
+    pub reports: [Option<EnvironmentalReport<'a>>; 8],
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> Environmental<'a> {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { ..Self::default() };
+        let count = r.entries(1, 8, 112, 0, "reports")?;
+        for slot in m.reports.iter_mut().take(count) {
+            *slot = Some(EnvironmentalReport::read(r)?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        for entry in self.reports.iter().flatten() {
+            entry.write(w)?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        {
+            let out = j.key("reports")?;
+            out.write_char('[')?;
+            for (i, entry) in self.reports.iter().flatten().enumerate() {
+                if i > 0 {
+                    out.write_char(',')?;
+                }
+                let mut e = ais::JsonObject::new(out)?;
+                entry.json_members(&mut e)?;
+                e.finish()?;
+            }
+            out.write_char(']')?;
         }
         j.text("trailing", self.trailing)?;
         Ok(())
@@ -4438,9 +6561,14 @@ impl<'a> TextBroadcast<'a> {
 
 /// An application message that the data bits of a binary message carry, by its DAC and FI.
 #[derive(Clone, Copy, Debug)]
+#[allow(clippy::large_enum_variant)] // no heap: an area notice holds its ten sub-areas in place
 pub enum Application<'a> {
+    /// DAC 1 FI 22.
+    AreaNotice(AreaNotice<'a>),
     /// DAC 235 FI 10.
     AtonMonitoring(AtonMonitoring<'a>),
+    /// DAC 1 FI 26.
+    Environmental(Environmental<'a>),
     /// DAC 1 FI 2.
     FunctionInterrogation(FunctionInterrogation<'a>),
     /// DAC 200 FI 55.
@@ -4464,7 +6592,9 @@ impl<'a> Application<'a> {
     /// `message_type`, None when the spec describes none or its layout does not read the bits.
     pub fn read(message_type: u8, dac: u64, fid: u64, data: ais::Bits<'a>) -> Option<Self> {
         match (dac, fid, message_type) {
+            (1, 22, 8) => AreaNotice::read(&mut data.reader()).ok().map(Application::AreaNotice),
             (235, 10, 6) => AtonMonitoring::read(&mut data.reader()).ok().map(Application::AtonMonitoring),
+            (1, 26, 8) => Environmental::read(&mut data.reader()).ok().map(Application::Environmental),
             (1, 2, 6) => FunctionInterrogation::read(&mut data.reader()).ok().map(Application::FunctionInterrogation),
             (200, 55, 6) => InlandPersonsOnBoard::read(&mut data.reader()).ok().map(Application::InlandPersonsOnBoard),
             (200, 10, 8) => InlandStaticVoyage::read(&mut data.reader()).ok().map(Application::InlandStaticVoyage),
@@ -4480,7 +6610,9 @@ impl<'a> Application<'a> {
     /// Writes its bits (those of the data of its message).
     pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
         match self {
+            Application::AreaNotice(app) => app.write(w),
             Application::AtonMonitoring(app) => app.write(w),
+            Application::Environmental(app) => app.write(w),
             Application::FunctionInterrogation(app) => app.write(w),
             Application::InlandPersonsOnBoard(app) => app.write(w),
             Application::InlandStaticVoyage(app) => app.write(w),
@@ -4495,7 +6627,9 @@ impl<'a> Application<'a> {
     /// The members of its decoded JSON.
     pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
         match self {
+            Application::AreaNotice(app) => app.json_members(j),
             Application::AtonMonitoring(app) => app.json_members(j),
+            Application::Environmental(app) => app.json_members(j),
             Application::FunctionInterrogation(app) => app.json_members(j),
             Application::InlandPersonsOnBoard(app) => app.json_members(j),
             Application::InlandStaticVoyage(app) => app.json_members(j),
@@ -4510,6 +6644,7 @@ impl<'a> Application<'a> {
 
 /// A decoded AIS message, by its layout.
 #[derive(Clone, Copy, Debug)]
+#[allow(clippy::large_enum_variant)] // no heap: a binary message holds its application in place
 pub enum Message<'a> {
     /// Type 6: Binary addressed message.
     AddressedBinary(AddressedBinary<'a>),

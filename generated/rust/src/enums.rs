@@ -16,22 +16,25 @@
 //   spec/enums/airoha_periodic_mode.yaml, spec/enums/airoha_pos_precision.yaml,
 //   spec/enums/airoha_pps_type.yaml, spec/enums/airoha_rtcm_mode.yaml,
 //   spec/enums/ais_aid_type.yaml, spec/enums/ais_channel.yaml, spec/enums/ais_epfd.yaml,
-//   spec/enums/ais_ship_type.yaml, spec/enums/ala_ack_state.yaml, spec/enums/ala_condition.yaml,
-//   spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml, spec/enums/alf_state.yaml,
-//   spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml, spec/enums/apb_bearing_ref.yaml,
-//   spec/enums/ashtech_base_kind.yaml, spec/enums/ashtech_base_motion.yaml,
-//   spec/enums/ashtech_hpr_mode.yaml, spec/enums/ashtech_nme_message.yaml,
-//   spec/enums/ashtech_on_off.yaml, spec/enums/ashtech_port.yaml,
-//   spec/enums/ashtech_pos_solution.yaml, spec/enums/ashtech_rt300_alignment.yaml,
-//   spec/enums/ashtech_rt300_quality.yaml, spec/enums/ashtech_sv_used.yaml,
-//   spec/enums/ashtech_vec_mode.yaml, spec/enums/ashtech_vector_mode.yaml,
-//   spec/enums/broadcom_glor_confidence.yaml, spec/enums/broadcom_glor_location_request.yaml,
-//   spec/enums/broadcom_glor_power_save.yaml, spec/enums/broadcom_glor_vel_track_quality.yaml,
-//   spec/enums/comnav_log_message.yaml, spec/enums/comnav_talker_id.yaml,
-//   spec/enums/comnav_talker_sentence.yaml, spec/enums/cur_direction_reference.yaml,
-//   spec/enums/cur_heading_reference.yaml, spec/enums/cur_speed_reference.yaml,
-//   spec/enums/ddc_command_mode.yaml, spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml,
-//   spec/enums/dor_status.yaml, spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
+//   spec/enums/ais_notice_description.yaml, spec/enums/ais_sensor_description.yaml,
+//   spec/enums/ais_sensor_report.yaml, spec/enums/ais_ship_type.yaml,
+//   spec/enums/ais_subarea_shape.yaml, spec/enums/ala_ack_state.yaml,
+//   spec/enums/ala_condition.yaml, spec/enums/alf_category.yaml, spec/enums/alf_priority.yaml,
+//   spec/enums/alf_state.yaml, spec/enums/alr_ack_state.yaml, spec/enums/alr_condition.yaml,
+//   spec/enums/apb_bearing_ref.yaml, spec/enums/ashtech_base_kind.yaml,
+//   spec/enums/ashtech_base_motion.yaml, spec/enums/ashtech_hpr_mode.yaml,
+//   spec/enums/ashtech_nme_message.yaml, spec/enums/ashtech_on_off.yaml,
+//   spec/enums/ashtech_port.yaml, spec/enums/ashtech_pos_solution.yaml,
+//   spec/enums/ashtech_rt300_alignment.yaml, spec/enums/ashtech_rt300_quality.yaml,
+//   spec/enums/ashtech_sv_used.yaml, spec/enums/ashtech_vec_mode.yaml,
+//   spec/enums/ashtech_vector_mode.yaml, spec/enums/broadcom_glor_confidence.yaml,
+//   spec/enums/broadcom_glor_location_request.yaml, spec/enums/broadcom_glor_power_save.yaml,
+//   spec/enums/broadcom_glor_vel_track_quality.yaml, spec/enums/comnav_log_message.yaml,
+//   spec/enums/comnav_talker_id.yaml, spec/enums/comnav_talker_sentence.yaml,
+//   spec/enums/cur_direction_reference.yaml, spec/enums/cur_heading_reference.yaml,
+//   spec/enums/cur_speed_reference.yaml, spec/enums/ddc_command_mode.yaml,
+//   spec/enums/ddc_preset.yaml, spec/enums/dor_message_type.yaml, spec/enums/dor_status.yaml,
+//   spec/enums/dor_switch_setting.yaml, spec/enums/dor_system.yaml,
 //   spec/enums/dsc_acknowledgement.yaml, spec/enums/dsc_category.yaml,
 //   spec/enums/dsc_distress_nature.yaml, spec/enums/dsc_format.yaml, spec/enums/dse_code.yaml,
 //   spec/enums/dse_query_flag.yaml, spec/enums/dtm_datum.yaml, spec/enums/dtm_lat_offset_dir.yaml,
@@ -133,7 +136,7 @@
 //   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 //   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 //   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-//   (digest 9588df315e8211bc)
+//   (digest 2a4887944ffe9284)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -2340,6 +2343,788 @@ impl CodeEnum for AisEpfd {
     }
 }
 
+/// AIS area notice description: What an area notice (IMO SN.1/Circ.289, DAC 1 FI 22 and 23) tells
+/// of its areas: cautions, environmental cautions, restrictions, anchorages, security alerts,
+/// distress, instructions, information, chart features, reports from ships and routes. The codes
+/// left out are reserved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AisNoticeDescription {
+    /// Caution area: habitat of marine mammals.
+    CautionMammalsHabitat,
+    /// Caution area: marine mammals in the area, speed to be reduced.
+    CautionMammalsReduceSpeed,
+    /// Caution area: marine mammals in the area, to be kept clear of.
+    CautionMammalsStayClear,
+    /// Caution area: marine mammals in the area, sightings to be reported.
+    CautionMammalsReportSightings,
+    /// Caution area: protected habitat, speed to be reduced.
+    CautionHabitatReduceSpeed,
+    /// Caution area: protected habitat, to be kept clear of.
+    CautionHabitatStayClear,
+    /// Caution area: protected habitat, no fishing or anchoring.
+    CautionHabitatNoFishing,
+    /// Caution area: derelicts, drifting objects.
+    CautionDerelicts,
+    /// Caution area: congested traffic.
+    CautionTrafficCongestion,
+    /// Caution area: a marine event.
+    CautionMarineEvent,
+    /// Caution area: divers down.
+    CautionDiversDown,
+    /// Caution area: swimmers.
+    CautionSwimArea,
+    /// Caution area: dredging.
+    CautionDredging,
+    /// Caution area: surveying.
+    CautionSurvey,
+    /// Caution area: work under water.
+    CautionUnderwaterOperation,
+    /// Caution area: seaplanes operating.
+    CautionSeaplanes,
+    /// Caution area: fishing nets in the water.
+    CautionFisheryNets,
+    /// Caution area: a cluster of fishing vessels.
+    CautionFishingVessels,
+    /// Caution area: the fairway is closed.
+    CautionFairwayClosed,
+    /// Caution area: the harbour is closed.
+    CautionHarbourClosed,
+    /// Caution area: a risk the associated text names.
+    CautionRisk,
+    /// Caution area: an underwater vehicle operating.
+    CautionUnderwaterVehicle,
+    /// Environmental caution area: a storm front (line squall).
+    EnvironmentStormFront,
+    /// Environmental caution area: hazardous sea ice.
+    EnvironmentSeaIce,
+    /// Environmental caution area: a storm warning (a storm cell or a line of storms).
+    EnvironmentStormWarning,
+    /// Environmental caution area: high wind.
+    EnvironmentHighWind,
+    /// Environmental caution area: high waves.
+    EnvironmentHighWaves,
+    /// Environmental caution area: visibility restricted (fog, rain).
+    EnvironmentRestrictedVisibility,
+    /// Environmental caution area: strong currents.
+    EnvironmentStrongCurrents,
+    /// Environmental caution area: heavy icing.
+    EnvironmentHeavyIcing,
+    /// Restricted area: no fishing.
+    RestrictedFishingProhibited,
+    /// Restricted area: no anchoring.
+    RestrictedNoAnchoring,
+    /// Restricted area: approval needed before entering.
+    RestrictedEntryApproval,
+    /// Restricted area: no entry.
+    RestrictedEntryProhibited,
+    /// Restricted area: a military exercise area in use.
+    RestrictedMilitaryExercise,
+    /// Restricted area: firing, danger.
+    RestrictedFiring,
+    /// Restricted area: drifting mines.
+    RestrictedDriftingMines,
+    /// Anchorage area: open.
+    AnchorageOpen,
+    /// Anchorage area: closed.
+    AnchorageClosed,
+    /// Anchorage area: anchoring prohibited.
+    AnchorageProhibited,
+    /// Anchorage area: for deep-draft vessels.
+    AnchorageDeepDraft,
+    /// Anchorage area: for shallow-draft vessels.
+    AnchorageShallowDraft,
+    /// Anchorage area: transfer between vessels.
+    AnchorageVesselTransfer,
+    /// Security alert, level 1.
+    SecurityLevel1,
+    /// Security alert, level 2.
+    SecurityLevel2,
+    /// Security alert, level 3.
+    SecurityLevel3,
+    /// Distress area: a vessel disabled and adrift.
+    DistressAdrift,
+    /// Distress area: a vessel sinking.
+    DistressSinking,
+    /// Distress area: a vessel being abandoned.
+    DistressAbandoning,
+    /// Distress area: a vessel asking for medical help.
+    DistressMedical,
+    /// Distress area: a vessel flooding.
+    DistressFlooding,
+    /// Distress area: a vessel on fire or exploded.
+    DistressFire,
+    /// Distress area: a vessel aground.
+    DistressGrounding,
+    /// Distress area: a collision.
+    DistressCollision,
+    /// Distress area: a vessel listing or capsizing.
+    DistressListing,
+    /// Distress area: a vessel under attack.
+    DistressAssault,
+    /// Distress area: a person overboard.
+    DistressPersonOverboard,
+    /// Distress area: a search and rescue area.
+    DistressSarArea,
+    /// Distress area: a pollution response area.
+    DistressPollutionResponse,
+    /// Instruction: call the VTS at this point.
+    InstructionContactVts,
+    /// Instruction: call the port administration at this point.
+    InstructionContactPort,
+    /// Instruction: do not go beyond this point.
+    InstructionDoNotProceed,
+    /// Instruction: wait for instructions before going beyond this point.
+    InstructionAwaitInstructions,
+    /// Go to this position and wait for instructions.
+    ProceedAwaitInstructions,
+    /// Cleared to go to the berth.
+    ClearanceToBerth,
+    /// Information: pilot boarding position.
+    InformationPilotBoarding,
+    /// Information: waiting area for an icebreaker.
+    InformationIcebreakerWaiting,
+    /// Information: places of refuge.
+    InformationRefuge,
+    /// Information: where icebreakers are.
+    InformationIcebreakers,
+    /// Information: where response units are.
+    InformationResponseUnits,
+    /// A target the VTS is tracking.
+    VtsActiveTarget,
+    /// A rogue or suspicious vessel.
+    RogueVessel,
+    /// A vessel asking for assistance, not in distress.
+    NonDistressAssistance,
+    /// Chart feature: a sunken vessel.
+    ChartSunkenVessel,
+    /// Chart feature: a submerged object.
+    ChartSubmergedObject,
+    /// Chart feature: a semi-submerged object.
+    ChartSemiSubmergedObject,
+    /// Chart feature: a shoal.
+    ChartShoal,
+    /// Chart feature: a shoal due north.
+    ChartShoalNorth,
+    /// Chart feature: a shoal due east.
+    ChartShoalEast,
+    /// Chart feature: a shoal due south.
+    ChartShoalSouth,
+    /// Chart feature: a shoal due west.
+    ChartShoalWest,
+    /// Chart feature: the channel is obstructed.
+    ChartChannelObstruction,
+    /// Chart feature: less vertical clearance.
+    ChartReducedClearance,
+    /// Chart feature: a bridge closed.
+    ChartBridgeClosed,
+    /// Chart feature: a bridge partly open.
+    ChartBridgePartlyOpen,
+    /// Chart feature: a bridge fully open.
+    ChartBridgeOpen,
+    /// Report from a ship: icing.
+    ShipReportIcing,
+    /// Report from a ship: other information, in the associated text.
+    ShipReportOther,
+    /// Route: recommended.
+    RouteRecommended,
+    /// Route: an alternative.
+    RouteAlternative,
+    /// Route: recommended through ice.
+    RouteThroughIce,
+    /// Other: defined in the associated text.
+    Other,
+    /// Cancels the area the message linkage id names.
+    Cancellation,
+    /// Undefined (default).
+    Undefined,
+}
+
+impl CodeEnum for AisNoticeDescription {
+    const EXPECTED: &'static str = "ais_notice_description code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 23 24 25 26 27 28 29 30 32 33 34 35 36 37 38 40 41 42 43 44 45 56 57 58 64 65 66 67 68 69 70 71 72 73 74 75 76 80 81 82 83 84 85 88 89 90 91 92 93 94 95 96 97 98 99 100 101 102 103 104 105 106 107 108 112 114 120 121 122 125 126 127)";
+    const EXPECTED_CHARS: &'static str = "ais_notice_description codes (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 23 24 25 26 27 28 29 30 32 33 34 35 36 37 38 40 41 42 43 44 45 56 57 58 64 65 66 67 68 69 70 71 72 73 74 75 76 80 81 82 83 84 85 88 89 90 91 92 93 94 95 96 97 98 99 100 101 102 103 104 105 106 107 108 112 114 120 121 122 125 126 127)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 3;
+    const ALL: &'static [Self] = &[
+        Self::CautionMammalsHabitat,
+        Self::CautionMammalsReduceSpeed,
+        Self::CautionMammalsStayClear,
+        Self::CautionMammalsReportSightings,
+        Self::CautionHabitatReduceSpeed,
+        Self::CautionHabitatStayClear,
+        Self::CautionHabitatNoFishing,
+        Self::CautionDerelicts,
+        Self::CautionTrafficCongestion,
+        Self::CautionMarineEvent,
+        Self::CautionDiversDown,
+        Self::CautionSwimArea,
+        Self::CautionDredging,
+        Self::CautionSurvey,
+        Self::CautionUnderwaterOperation,
+        Self::CautionSeaplanes,
+        Self::CautionFisheryNets,
+        Self::CautionFishingVessels,
+        Self::CautionFairwayClosed,
+        Self::CautionHarbourClosed,
+        Self::CautionRisk,
+        Self::CautionUnderwaterVehicle,
+        Self::EnvironmentStormFront,
+        Self::EnvironmentSeaIce,
+        Self::EnvironmentStormWarning,
+        Self::EnvironmentHighWind,
+        Self::EnvironmentHighWaves,
+        Self::EnvironmentRestrictedVisibility,
+        Self::EnvironmentStrongCurrents,
+        Self::EnvironmentHeavyIcing,
+        Self::RestrictedFishingProhibited,
+        Self::RestrictedNoAnchoring,
+        Self::RestrictedEntryApproval,
+        Self::RestrictedEntryProhibited,
+        Self::RestrictedMilitaryExercise,
+        Self::RestrictedFiring,
+        Self::RestrictedDriftingMines,
+        Self::AnchorageOpen,
+        Self::AnchorageClosed,
+        Self::AnchorageProhibited,
+        Self::AnchorageDeepDraft,
+        Self::AnchorageShallowDraft,
+        Self::AnchorageVesselTransfer,
+        Self::SecurityLevel1,
+        Self::SecurityLevel2,
+        Self::SecurityLevel3,
+        Self::DistressAdrift,
+        Self::DistressSinking,
+        Self::DistressAbandoning,
+        Self::DistressMedical,
+        Self::DistressFlooding,
+        Self::DistressFire,
+        Self::DistressGrounding,
+        Self::DistressCollision,
+        Self::DistressListing,
+        Self::DistressAssault,
+        Self::DistressPersonOverboard,
+        Self::DistressSarArea,
+        Self::DistressPollutionResponse,
+        Self::InstructionContactVts,
+        Self::InstructionContactPort,
+        Self::InstructionDoNotProceed,
+        Self::InstructionAwaitInstructions,
+        Self::ProceedAwaitInstructions,
+        Self::ClearanceToBerth,
+        Self::InformationPilotBoarding,
+        Self::InformationIcebreakerWaiting,
+        Self::InformationRefuge,
+        Self::InformationIcebreakers,
+        Self::InformationResponseUnits,
+        Self::VtsActiveTarget,
+        Self::RogueVessel,
+        Self::NonDistressAssistance,
+        Self::ChartSunkenVessel,
+        Self::ChartSubmergedObject,
+        Self::ChartSemiSubmergedObject,
+        Self::ChartShoal,
+        Self::ChartShoalNorth,
+        Self::ChartShoalEast,
+        Self::ChartShoalSouth,
+        Self::ChartShoalWest,
+        Self::ChartChannelObstruction,
+        Self::ChartReducedClearance,
+        Self::ChartBridgeClosed,
+        Self::ChartBridgePartlyOpen,
+        Self::ChartBridgeOpen,
+        Self::ShipReportIcing,
+        Self::ShipReportOther,
+        Self::RouteRecommended,
+        Self::RouteAlternative,
+        Self::RouteThroughIce,
+        Self::Other,
+        Self::Cancellation,
+        Self::Undefined,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::CautionMammalsHabitat),
+            b"1" => Some(Self::CautionMammalsReduceSpeed),
+            b"2" => Some(Self::CautionMammalsStayClear),
+            b"3" => Some(Self::CautionMammalsReportSightings),
+            b"4" => Some(Self::CautionHabitatReduceSpeed),
+            b"5" => Some(Self::CautionHabitatStayClear),
+            b"6" => Some(Self::CautionHabitatNoFishing),
+            b"7" => Some(Self::CautionDerelicts),
+            b"8" => Some(Self::CautionTrafficCongestion),
+            b"9" => Some(Self::CautionMarineEvent),
+            b"10" => Some(Self::CautionDiversDown),
+            b"11" => Some(Self::CautionSwimArea),
+            b"12" => Some(Self::CautionDredging),
+            b"13" => Some(Self::CautionSurvey),
+            b"14" => Some(Self::CautionUnderwaterOperation),
+            b"15" => Some(Self::CautionSeaplanes),
+            b"16" => Some(Self::CautionFisheryNets),
+            b"17" => Some(Self::CautionFishingVessels),
+            b"18" => Some(Self::CautionFairwayClosed),
+            b"19" => Some(Self::CautionHarbourClosed),
+            b"20" => Some(Self::CautionRisk),
+            b"21" => Some(Self::CautionUnderwaterVehicle),
+            b"23" => Some(Self::EnvironmentStormFront),
+            b"24" => Some(Self::EnvironmentSeaIce),
+            b"25" => Some(Self::EnvironmentStormWarning),
+            b"26" => Some(Self::EnvironmentHighWind),
+            b"27" => Some(Self::EnvironmentHighWaves),
+            b"28" => Some(Self::EnvironmentRestrictedVisibility),
+            b"29" => Some(Self::EnvironmentStrongCurrents),
+            b"30" => Some(Self::EnvironmentHeavyIcing),
+            b"32" => Some(Self::RestrictedFishingProhibited),
+            b"33" => Some(Self::RestrictedNoAnchoring),
+            b"34" => Some(Self::RestrictedEntryApproval),
+            b"35" => Some(Self::RestrictedEntryProhibited),
+            b"36" => Some(Self::RestrictedMilitaryExercise),
+            b"37" => Some(Self::RestrictedFiring),
+            b"38" => Some(Self::RestrictedDriftingMines),
+            b"40" => Some(Self::AnchorageOpen),
+            b"41" => Some(Self::AnchorageClosed),
+            b"42" => Some(Self::AnchorageProhibited),
+            b"43" => Some(Self::AnchorageDeepDraft),
+            b"44" => Some(Self::AnchorageShallowDraft),
+            b"45" => Some(Self::AnchorageVesselTransfer),
+            b"56" => Some(Self::SecurityLevel1),
+            b"57" => Some(Self::SecurityLevel2),
+            b"58" => Some(Self::SecurityLevel3),
+            b"64" => Some(Self::DistressAdrift),
+            b"65" => Some(Self::DistressSinking),
+            b"66" => Some(Self::DistressAbandoning),
+            b"67" => Some(Self::DistressMedical),
+            b"68" => Some(Self::DistressFlooding),
+            b"69" => Some(Self::DistressFire),
+            b"70" => Some(Self::DistressGrounding),
+            b"71" => Some(Self::DistressCollision),
+            b"72" => Some(Self::DistressListing),
+            b"73" => Some(Self::DistressAssault),
+            b"74" => Some(Self::DistressPersonOverboard),
+            b"75" => Some(Self::DistressSarArea),
+            b"76" => Some(Self::DistressPollutionResponse),
+            b"80" => Some(Self::InstructionContactVts),
+            b"81" => Some(Self::InstructionContactPort),
+            b"82" => Some(Self::InstructionDoNotProceed),
+            b"83" => Some(Self::InstructionAwaitInstructions),
+            b"84" => Some(Self::ProceedAwaitInstructions),
+            b"85" => Some(Self::ClearanceToBerth),
+            b"88" => Some(Self::InformationPilotBoarding),
+            b"89" => Some(Self::InformationIcebreakerWaiting),
+            b"90" => Some(Self::InformationRefuge),
+            b"91" => Some(Self::InformationIcebreakers),
+            b"92" => Some(Self::InformationResponseUnits),
+            b"93" => Some(Self::VtsActiveTarget),
+            b"94" => Some(Self::RogueVessel),
+            b"95" => Some(Self::NonDistressAssistance),
+            b"96" => Some(Self::ChartSunkenVessel),
+            b"97" => Some(Self::ChartSubmergedObject),
+            b"98" => Some(Self::ChartSemiSubmergedObject),
+            b"99" => Some(Self::ChartShoal),
+            b"100" => Some(Self::ChartShoalNorth),
+            b"101" => Some(Self::ChartShoalEast),
+            b"102" => Some(Self::ChartShoalSouth),
+            b"103" => Some(Self::ChartShoalWest),
+            b"104" => Some(Self::ChartChannelObstruction),
+            b"105" => Some(Self::ChartReducedClearance),
+            b"106" => Some(Self::ChartBridgeClosed),
+            b"107" => Some(Self::ChartBridgePartlyOpen),
+            b"108" => Some(Self::ChartBridgeOpen),
+            b"112" => Some(Self::ShipReportIcing),
+            b"114" => Some(Self::ShipReportOther),
+            b"120" => Some(Self::RouteRecommended),
+            b"121" => Some(Self::RouteAlternative),
+            b"122" => Some(Self::RouteThroughIce),
+            b"125" => Some(Self::Other),
+            b"126" => Some(Self::Cancellation),
+            b"127" => Some(Self::Undefined),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::CautionMammalsHabitat => "0",
+            Self::CautionMammalsReduceSpeed => "1",
+            Self::CautionMammalsStayClear => "2",
+            Self::CautionMammalsReportSightings => "3",
+            Self::CautionHabitatReduceSpeed => "4",
+            Self::CautionHabitatStayClear => "5",
+            Self::CautionHabitatNoFishing => "6",
+            Self::CautionDerelicts => "7",
+            Self::CautionTrafficCongestion => "8",
+            Self::CautionMarineEvent => "9",
+            Self::CautionDiversDown => "10",
+            Self::CautionSwimArea => "11",
+            Self::CautionDredging => "12",
+            Self::CautionSurvey => "13",
+            Self::CautionUnderwaterOperation => "14",
+            Self::CautionSeaplanes => "15",
+            Self::CautionFisheryNets => "16",
+            Self::CautionFishingVessels => "17",
+            Self::CautionFairwayClosed => "18",
+            Self::CautionHarbourClosed => "19",
+            Self::CautionRisk => "20",
+            Self::CautionUnderwaterVehicle => "21",
+            Self::EnvironmentStormFront => "23",
+            Self::EnvironmentSeaIce => "24",
+            Self::EnvironmentStormWarning => "25",
+            Self::EnvironmentHighWind => "26",
+            Self::EnvironmentHighWaves => "27",
+            Self::EnvironmentRestrictedVisibility => "28",
+            Self::EnvironmentStrongCurrents => "29",
+            Self::EnvironmentHeavyIcing => "30",
+            Self::RestrictedFishingProhibited => "32",
+            Self::RestrictedNoAnchoring => "33",
+            Self::RestrictedEntryApproval => "34",
+            Self::RestrictedEntryProhibited => "35",
+            Self::RestrictedMilitaryExercise => "36",
+            Self::RestrictedFiring => "37",
+            Self::RestrictedDriftingMines => "38",
+            Self::AnchorageOpen => "40",
+            Self::AnchorageClosed => "41",
+            Self::AnchorageProhibited => "42",
+            Self::AnchorageDeepDraft => "43",
+            Self::AnchorageShallowDraft => "44",
+            Self::AnchorageVesselTransfer => "45",
+            Self::SecurityLevel1 => "56",
+            Self::SecurityLevel2 => "57",
+            Self::SecurityLevel3 => "58",
+            Self::DistressAdrift => "64",
+            Self::DistressSinking => "65",
+            Self::DistressAbandoning => "66",
+            Self::DistressMedical => "67",
+            Self::DistressFlooding => "68",
+            Self::DistressFire => "69",
+            Self::DistressGrounding => "70",
+            Self::DistressCollision => "71",
+            Self::DistressListing => "72",
+            Self::DistressAssault => "73",
+            Self::DistressPersonOverboard => "74",
+            Self::DistressSarArea => "75",
+            Self::DistressPollutionResponse => "76",
+            Self::InstructionContactVts => "80",
+            Self::InstructionContactPort => "81",
+            Self::InstructionDoNotProceed => "82",
+            Self::InstructionAwaitInstructions => "83",
+            Self::ProceedAwaitInstructions => "84",
+            Self::ClearanceToBerth => "85",
+            Self::InformationPilotBoarding => "88",
+            Self::InformationIcebreakerWaiting => "89",
+            Self::InformationRefuge => "90",
+            Self::InformationIcebreakers => "91",
+            Self::InformationResponseUnits => "92",
+            Self::VtsActiveTarget => "93",
+            Self::RogueVessel => "94",
+            Self::NonDistressAssistance => "95",
+            Self::ChartSunkenVessel => "96",
+            Self::ChartSubmergedObject => "97",
+            Self::ChartSemiSubmergedObject => "98",
+            Self::ChartShoal => "99",
+            Self::ChartShoalNorth => "100",
+            Self::ChartShoalEast => "101",
+            Self::ChartShoalSouth => "102",
+            Self::ChartShoalWest => "103",
+            Self::ChartChannelObstruction => "104",
+            Self::ChartReducedClearance => "105",
+            Self::ChartBridgeClosed => "106",
+            Self::ChartBridgePartlyOpen => "107",
+            Self::ChartBridgeOpen => "108",
+            Self::ShipReportIcing => "112",
+            Self::ShipReportOther => "114",
+            Self::RouteRecommended => "120",
+            Self::RouteAlternative => "121",
+            Self::RouteThroughIce => "122",
+            Self::Other => "125",
+            Self::Cancellation => "126",
+            Self::Undefined => "127",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::CautionMammalsHabitat => "caution_mammals_habitat",
+            Self::CautionMammalsReduceSpeed => "caution_mammals_reduce_speed",
+            Self::CautionMammalsStayClear => "caution_mammals_stay_clear",
+            Self::CautionMammalsReportSightings => "caution_mammals_report_sightings",
+            Self::CautionHabitatReduceSpeed => "caution_habitat_reduce_speed",
+            Self::CautionHabitatStayClear => "caution_habitat_stay_clear",
+            Self::CautionHabitatNoFishing => "caution_habitat_no_fishing",
+            Self::CautionDerelicts => "caution_derelicts",
+            Self::CautionTrafficCongestion => "caution_traffic_congestion",
+            Self::CautionMarineEvent => "caution_marine_event",
+            Self::CautionDiversDown => "caution_divers_down",
+            Self::CautionSwimArea => "caution_swim_area",
+            Self::CautionDredging => "caution_dredging",
+            Self::CautionSurvey => "caution_survey",
+            Self::CautionUnderwaterOperation => "caution_underwater_operation",
+            Self::CautionSeaplanes => "caution_seaplanes",
+            Self::CautionFisheryNets => "caution_fishery_nets",
+            Self::CautionFishingVessels => "caution_fishing_vessels",
+            Self::CautionFairwayClosed => "caution_fairway_closed",
+            Self::CautionHarbourClosed => "caution_harbour_closed",
+            Self::CautionRisk => "caution_risk",
+            Self::CautionUnderwaterVehicle => "caution_underwater_vehicle",
+            Self::EnvironmentStormFront => "environment_storm_front",
+            Self::EnvironmentSeaIce => "environment_sea_ice",
+            Self::EnvironmentStormWarning => "environment_storm_warning",
+            Self::EnvironmentHighWind => "environment_high_wind",
+            Self::EnvironmentHighWaves => "environment_high_waves",
+            Self::EnvironmentRestrictedVisibility => "environment_restricted_visibility",
+            Self::EnvironmentStrongCurrents => "environment_strong_currents",
+            Self::EnvironmentHeavyIcing => "environment_heavy_icing",
+            Self::RestrictedFishingProhibited => "restricted_fishing_prohibited",
+            Self::RestrictedNoAnchoring => "restricted_no_anchoring",
+            Self::RestrictedEntryApproval => "restricted_entry_approval",
+            Self::RestrictedEntryProhibited => "restricted_entry_prohibited",
+            Self::RestrictedMilitaryExercise => "restricted_military_exercise",
+            Self::RestrictedFiring => "restricted_firing",
+            Self::RestrictedDriftingMines => "restricted_drifting_mines",
+            Self::AnchorageOpen => "anchorage_open",
+            Self::AnchorageClosed => "anchorage_closed",
+            Self::AnchorageProhibited => "anchorage_prohibited",
+            Self::AnchorageDeepDraft => "anchorage_deep_draft",
+            Self::AnchorageShallowDraft => "anchorage_shallow_draft",
+            Self::AnchorageVesselTransfer => "anchorage_vessel_transfer",
+            Self::SecurityLevel1 => "security_level_1",
+            Self::SecurityLevel2 => "security_level_2",
+            Self::SecurityLevel3 => "security_level_3",
+            Self::DistressAdrift => "distress_adrift",
+            Self::DistressSinking => "distress_sinking",
+            Self::DistressAbandoning => "distress_abandoning",
+            Self::DistressMedical => "distress_medical",
+            Self::DistressFlooding => "distress_flooding",
+            Self::DistressFire => "distress_fire",
+            Self::DistressGrounding => "distress_grounding",
+            Self::DistressCollision => "distress_collision",
+            Self::DistressListing => "distress_listing",
+            Self::DistressAssault => "distress_assault",
+            Self::DistressPersonOverboard => "distress_person_overboard",
+            Self::DistressSarArea => "distress_sar_area",
+            Self::DistressPollutionResponse => "distress_pollution_response",
+            Self::InstructionContactVts => "instruction_contact_vts",
+            Self::InstructionContactPort => "instruction_contact_port",
+            Self::InstructionDoNotProceed => "instruction_do_not_proceed",
+            Self::InstructionAwaitInstructions => "instruction_await_instructions",
+            Self::ProceedAwaitInstructions => "proceed_await_instructions",
+            Self::ClearanceToBerth => "clearance_to_berth",
+            Self::InformationPilotBoarding => "information_pilot_boarding",
+            Self::InformationIcebreakerWaiting => "information_icebreaker_waiting",
+            Self::InformationRefuge => "information_refuge",
+            Self::InformationIcebreakers => "information_icebreakers",
+            Self::InformationResponseUnits => "information_response_units",
+            Self::VtsActiveTarget => "vts_active_target",
+            Self::RogueVessel => "rogue_vessel",
+            Self::NonDistressAssistance => "non_distress_assistance",
+            Self::ChartSunkenVessel => "chart_sunken_vessel",
+            Self::ChartSubmergedObject => "chart_submerged_object",
+            Self::ChartSemiSubmergedObject => "chart_semi_submerged_object",
+            Self::ChartShoal => "chart_shoal",
+            Self::ChartShoalNorth => "chart_shoal_north",
+            Self::ChartShoalEast => "chart_shoal_east",
+            Self::ChartShoalSouth => "chart_shoal_south",
+            Self::ChartShoalWest => "chart_shoal_west",
+            Self::ChartChannelObstruction => "chart_channel_obstruction",
+            Self::ChartReducedClearance => "chart_reduced_clearance",
+            Self::ChartBridgeClosed => "chart_bridge_closed",
+            Self::ChartBridgePartlyOpen => "chart_bridge_partly_open",
+            Self::ChartBridgeOpen => "chart_bridge_open",
+            Self::ShipReportIcing => "ship_report_icing",
+            Self::ShipReportOther => "ship_report_other",
+            Self::RouteRecommended => "route_recommended",
+            Self::RouteAlternative => "route_alternative",
+            Self::RouteThroughIce => "route_through_ice",
+            Self::Other => "other",
+            Self::Cancellation => "cancellation",
+            Self::Undefined => "undefined",
+        }
+    }
+}
+
+/// AIS environmental sensor description: How the values of a report of the environmental message
+/// (IMO SN.1/Circ.289, DAC 1 FI 26) were obtained; 6 is reserved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AisSensorDescription {
+    /// No data (default).
+    NoData,
+    /// Raw, in real time.
+    RawRealTime,
+    /// In real time, quality controlled.
+    RealTimeQualityControlled,
+    /// Predicted from historical statistics.
+    Predicted,
+    /// Forecast: predicted and refined with real-time data.
+    Forecast,
+    /// Nowcast: a continuous forecast.
+    Nowcast,
+    /// The sensor is not available.
+    NotAvailable,
+}
+
+impl CodeEnum for AisSensorDescription {
+    const EXPECTED: &'static str = "ais_sensor_description code (0 1 2 3 4 5 7)";
+    const EXPECTED_CHARS: &'static str = "ais_sensor_description codes (0 1 2 3 4 5 7)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[
+        Self::NoData,
+        Self::RawRealTime,
+        Self::RealTimeQualityControlled,
+        Self::Predicted,
+        Self::Forecast,
+        Self::Nowcast,
+        Self::NotAvailable,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::NoData),
+            b"1" => Some(Self::RawRealTime),
+            b"2" => Some(Self::RealTimeQualityControlled),
+            b"3" => Some(Self::Predicted),
+            b"4" => Some(Self::Forecast),
+            b"5" => Some(Self::Nowcast),
+            b"7" => Some(Self::NotAvailable),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::NoData => "0",
+            Self::RawRealTime => "1",
+            Self::RealTimeQualityControlled => "2",
+            Self::Predicted => "3",
+            Self::Forecast => "4",
+            Self::Nowcast => "5",
+            Self::NotAvailable => "7",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::NoData => "no_data",
+            Self::RawRealTime => "raw_real_time",
+            Self::RealTimeQualityControlled => "real_time_quality_controlled",
+            Self::Predicted => "predicted",
+            Self::Forecast => "forecast",
+            Self::Nowcast => "nowcast",
+            Self::NotAvailable => "not_available",
+        }
+    }
+}
+
+/// AIS environmental sensor report type: What a sensor report of the environmental message (IMO
+/// SN.1/Circ.289, DAC 1 FI 26) holds, which lays out its 85 bits of data; 11-15 are reserved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AisSensorReport {
+    /// Where the sensor site is: position, altitude, owner, data timeout.
+    SiteLocation,
+    /// The station's name.
+    StationId,
+    /// Wind, observed and forecast.
+    Wind,
+    /// Water level, observed and forecast.
+    WaterLevel,
+    /// Current speed and direction at three depths.
+    Current2d,
+    /// Current as north, east and up components at two depths.
+    Current3d,
+    /// Current at two points away from the sensor, by bearing and distance.
+    HorizontalCurrent,
+    /// Swell, sea state, water temperature, waves and salinity.
+    SeaState,
+    /// Water temperature, conductivity, pressure and salinity.
+    Salinity,
+    /// Air temperature, precipitation, visibility, dew point, air pressure and salinity.
+    Weather,
+    /// Air draught and air gap.
+    AirGap,
+}
+
+impl CodeEnum for AisSensorReport {
+    const EXPECTED: &'static str = "ais_sensor_report code (0 1 2 3 4 5 6 7 8 9 10)";
+    const EXPECTED_CHARS: &'static str = "ais_sensor_report codes (0 1 2 3 4 5 6 7 8 9 10)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 2;
+    const ALL: &'static [Self] = &[
+        Self::SiteLocation,
+        Self::StationId,
+        Self::Wind,
+        Self::WaterLevel,
+        Self::Current2d,
+        Self::Current3d,
+        Self::HorizontalCurrent,
+        Self::SeaState,
+        Self::Salinity,
+        Self::Weather,
+        Self::AirGap,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::SiteLocation),
+            b"1" => Some(Self::StationId),
+            b"2" => Some(Self::Wind),
+            b"3" => Some(Self::WaterLevel),
+            b"4" => Some(Self::Current2d),
+            b"5" => Some(Self::Current3d),
+            b"6" => Some(Self::HorizontalCurrent),
+            b"7" => Some(Self::SeaState),
+            b"8" => Some(Self::Salinity),
+            b"9" => Some(Self::Weather),
+            b"10" => Some(Self::AirGap),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::SiteLocation => "0",
+            Self::StationId => "1",
+            Self::Wind => "2",
+            Self::WaterLevel => "3",
+            Self::Current2d => "4",
+            Self::Current3d => "5",
+            Self::HorizontalCurrent => "6",
+            Self::SeaState => "7",
+            Self::Salinity => "8",
+            Self::Weather => "9",
+            Self::AirGap => "10",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::SiteLocation => "site_location",
+            Self::StationId => "station_id",
+            Self::Wind => "wind",
+            Self::WaterLevel => "water_level",
+            Self::Current2d => "current_2d",
+            Self::Current3d => "current_3d",
+            Self::HorizontalCurrent => "horizontal_current",
+            Self::SeaState => "sea_state",
+            Self::Salinity => "salinity",
+            Self::Weather => "weather",
+            Self::AirGap => "air_gap",
+        }
+    }
+}
+
 /// AIS type of ship and cargo: The kind of ship (first digit) and its cargo (second digit), as AIS
 /// static data gives it (ITU-R M.1371-5, annex 8, table 53). The codes left out (1-19, 25-29,
 /// 38-39, 45-48, 65-68, ...) are reserved for future use and kept as their number.
@@ -2697,6 +3482,72 @@ impl CodeEnum for AisShipType {
             Self::OtherHazardousC => "other_hazardous_c",
             Self::OtherHazardousD => "other_hazardous_d",
             Self::OtherNoInfo => "other_no_info",
+        }
+    }
+}
+
+/// AIS area notice sub-area shape: The shape of a sub-area of an area notice (IMO SN.1/Circ.289,
+/// DAC 1 FI 22 and 23), which lays out its other 84 bits; 6 and 7 are reserved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AisSubareaShape {
+    /// A circle around a point, or the point itself (radius 0).
+    Circle,
+    /// A rectangle from its south-west corner.
+    Rectangle,
+    /// A sector of a circle between two bearings.
+    Sector,
+    /// A line of up to four more points, each by bearing and distance from the one before.
+    Polyline,
+    /// A polygon of up to four more points, each by bearing and distance from the one before.
+    Polygon,
+    /// Text about the notice.
+    Text,
+}
+
+impl CodeEnum for AisSubareaShape {
+    const EXPECTED: &'static str = "ais_subarea_shape code (0 1 2 3 4 5)";
+    const EXPECTED_CHARS: &'static str = "ais_subarea_shape codes (0 1 2 3 4 5)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] =
+        &[Self::Circle, Self::Rectangle, Self::Sector, Self::Polyline, Self::Polygon, Self::Text];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::Circle),
+            b"1" => Some(Self::Rectangle),
+            b"2" => Some(Self::Sector),
+            b"3" => Some(Self::Polyline),
+            b"4" => Some(Self::Polygon),
+            b"5" => Some(Self::Text),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Circle => "0",
+            Self::Rectangle => "1",
+            Self::Sector => "2",
+            Self::Polyline => "3",
+            Self::Polygon => "4",
+            Self::Text => "5",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Circle => "circle",
+            Self::Rectangle => "rectangle",
+            Self::Sector => "sector",
+            Self::Polyline => "polyline",
+            Self::Polygon => "polygon",
+            Self::Text => "text",
         }
     }
 }

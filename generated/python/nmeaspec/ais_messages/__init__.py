@@ -11,13 +11,14 @@
 #   spec/ais/messages/position_report.yaml, spec/ais/messages/safety_broadcast.yaml,
 #   spec/ais/messages/sar_aircraft_report.yaml, spec/ais/messages/single_slot_binary.yaml,
 #   spec/ais/messages/static_data_report.yaml, spec/ais/messages/static_voyage_data.yaml,
-#   spec/ais/messages/utc_inquiry.yaml, spec/ais/applications/aton_monitoring.yaml,
+#   spec/ais/messages/utc_inquiry.yaml, spec/ais/applications/area_notice.yaml,
+#   spec/ais/applications/aton_monitoring.yaml, spec/ais/applications/environmental.yaml,
 #   spec/ais/applications/function_interrogation.yaml,
 #   spec/ais/applications/inland_persons_on_board.yaml,
 #   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
 #   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
 #   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-#   (digest 3e7b39937ab2fe0c)
+#   (digest 48b7510be6189b64)
 # Regenerate: make generate (python3 -m generator generate)
 """AIS messages: the payload of `!AIVDM`/`!AIVDO` decoded into the class of its message type,
 and encoded back to the same armored characters and fill bits."""
@@ -48,7 +49,9 @@ from .single_slot_binary import SingleSlotBinary as SingleSlotBinary
 from .static_data_report import StaticDataReport as StaticDataReport
 from .static_voyage_data import StaticVoyageData as StaticVoyageData
 from .utc_inquiry import UtcInquiry as UtcInquiry
+from .area_notice import AreaNotice as AreaNotice
 from .aton_monitoring import AtonMonitoring as AtonMonitoring
+from .environmental import Environmental as Environmental
 from .function_interrogation import FunctionInterrogation as FunctionInterrogation
 from .inland_persons_on_board import InlandPersonsOnBoard as InlandPersonsOnBoard
 from .inland_static_voyage import InlandStaticVoyage as InlandStaticVoyage
@@ -90,7 +93,9 @@ BY_TYPE: dict[int, type[ais.Message]] = {
 """The class of each message type the spec describes."""
 
 APPLICATIONS: dict[tuple[int, int], type[ais.Application]] = {
+    (1, 22): AreaNotice,
     (235, 10): AtonMonitoring,
+    (1, 26): Environmental,
     (1, 2): FunctionInterrogation,
     (200, 55): InlandPersonsOnBoard,
     (200, 10): InlandStaticVoyage,
