@@ -745,14 +745,18 @@ class PayloadGroup:
     count: Count | None = None
     offset: int | None = None
     field_major: bool = False    # the entries' first fields, then their second fields, ... (RTCM 3 MSM)
+    stride: str | None = None    # the field that holds each entry's bytes (SBF's SBLength): the fields are
+                                 # read from each entry's start, the bytes after them are its last field,
+                                 # `trailing` (bytes, as sent: a newer firmware's additions)
 
     @property
     def entry_width(self) -> int:
+        """The bits of an entry's fields (a stride's entry: the least it takes, its trailing bytes left out)."""
         return sum(f.bits or 0 for f in self.fields)
 
     @property
     def width(self) -> int | None:
-        return self.entry_width * self.count if isinstance(self.count, int) else None
+        return self.entry_width * self.count if isinstance(self.count, int) and self.stride is None else None
 
     @property
     def camel(self) -> str:

@@ -181,6 +181,12 @@ fn other_protocols_decode_and_encode_as_the_vectors_say() {
     let mut decoded = 0;
     for record in data.lines() {
         let frame = unhex(member(record, "frame"));
+        if !record.contains("\"decode\":") {
+            // a frame every decoder refuses, with this kind of error
+            let err = other_protocol(member(record, "protocol"), &frame).expect_err(record);
+            assert_eq!(err.kind.as_str(), member(record, "error"), "{err}: {record}");
+            continue;
+        }
         let (json, encoded) =
             other_protocol(member(record, "protocol"), &frame).unwrap_or_else(|err| panic!("{err}: {record}"));
         let expected = &record[record.find("\"decode\":").unwrap() + 9..record.len() - 1];
