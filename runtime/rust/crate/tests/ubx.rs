@@ -243,6 +243,29 @@ fn errors_of_other_protocols_name_protocol_message_and_field() {
 }
 
 #[test]
+fn sbf_sub_blocks_are_sblength_bytes() {
+    // SatVisibility of two SatInfo sub-blocks of 10 bytes (SBLength): the 2 after the fields kept
+    let frame = unhex(
+        "24 40 15 cd ac 0f 24 00 e0 52 c9 1c 3f 09 02 0a 03 00 29 1a 96 21 00 02 aa bb 04 00 ab 43 c6 0c 01 01 cc dd",
+    );
+    let sbf_messages::Message::SatVisibility(mut sky) = sbf_messages::Message::from_frame(&frame).unwrap() else {
+        panic!("not a SatVisibility");
+    };
+    let second = sky.sat_info.get(1).unwrap();
+    assert_eq!((sky.sat_info.len(), sky.sat_info.stride(), second.svid, second.trailing), (2, 10, 4, &[0xcc, 0xdd][..]));
+    let mut buf = [0u8; 64];
+    assert_eq!(sky.encode(&mut buf).unwrap(), &frame[..]);
+    sky.sb_length = 8; // the sub-blocks' bytes are 10: not encoded
+    let err = sky.encode(&mut buf).unwrap_err();
+    assert_eq!((err.kind, err.field), (UbxErrorKind::BadValue, Some("sb_length")), "{err}");
+    assert!(err.to_string().ends_with("sb_length takes the bytes of each entry of sat_info (10), not 8"), "{err}");
+    let mut short = frame.clone(); // SBLength 4, shorter than a SatInfo's 8 bytes of fields
+    short[15] = 4;
+    let err = sbf_messages::Message::decode(&short[..8], &short[8..]).unwrap_err();
+    assert_eq!(err.to_string(), "bad_value: SBF 4012 rev 0: sb_length is 4, an entry of sat_info takes at least 8 bytes");
+}
+
+#[test]
 fn sbf_blocks_keep_do_not_use_values_padding_and_crc() {
     use nmeaspec::ais::Reading;
     // ReceiverTime (5914 rev 0) of pysbf2's pygpsdata_x5_time.sbf: 14 bytes of fields, 2 of padding.
