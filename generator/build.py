@@ -23,6 +23,7 @@ from .model import (BinaryExample, BinaryMessage, BinaryProtocol, BitfieldDef, B
 from .resolve import resolve
 
 MAX_ENTRIES = 65535   # a group with no `max`: as many entries as a frame's length allows
+STRIDE_TRAILING = "trailing"   # the last field of a stride's entry: its bytes after the fields
 
 
 # The folders of a spec tree, each with the kind of its files and their schema. An overlay
@@ -356,10 +357,14 @@ def _payload_items(data: list[dict[str, Any]], file: str, where: tuple[str | int
         at = where + (i,)
         if "group" in item:
             fields = _payload_items(item["fields"], file, at + ("fields",))
+            if "stride" in item:   # an entry of the stride's bytes: the bytes after its fields, as sent
+                fields.append(PayloadField(id=STRIDE_TRAILING, name="Bytes after the entry's fields, as sent", type="bytes",
+                                           bits=None, doc="The entry's bytes after its fields, as sent (a newer "
+                                           "firmware's additions, the stride's padding)", origin=Origin(file, at + ("stride",))))
             items.append(PayloadGroup(item["group"], item["name"], item.get("doc", item["name"]),
                                       item.get("min", 0 if "count" in item else 1), item.get("max", MAX_ENTRIES),
                                       fields, Origin(file, at), count=_count(item.get("count")),
-                                      field_major=item.get("order") == "field_major"))
+                                      field_major=item.get("order") == "field_major", stride=item.get("stride")))
         elif "choice" in item:
             cases = [PayloadCase(c.get("when", []), tuple(c["range"]) if "range" in c else None,
                                  _payload_items(c["fields"], file, at + ("cases", k, "fields")))  # type: ignore[arg-type]

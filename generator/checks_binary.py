@@ -118,6 +118,16 @@ def _check_binary_items(layout: Payload, report: Report) -> None:
             if count is None or count.bit_type.name not in ("u1", "u2", "u4", "uint"):
                 report(item.origin, "B003", f"group {item.id}: count {item.count} names no unsigned field or part "
                        "before it", "count")
+        if isinstance(item, PayloadGroup) and item.stride is not None:
+            stride = seen.get(item.stride)
+            if stride is None or stride.bit_type.name not in ("u1", "u2", "u4"):
+                report(item.origin, "B003", f"group {item.id}: stride {item.stride} names no unsigned field (u1, u2, "
+                       "u4) before it", "stride")
+            if item.field_major:
+                report(item.origin, "B003", f"group {item.id}: a stride's entries are read one after the other, "
+                       "not field by field", "order")
+            if len(item.fields) < 2:
+                report(item.origin, "B003", f"group {item.id}: a stride's entry has at least one field", "fields")
         if isinstance(item, PayloadField):
             seen.update({f.id: f for f in (item, *item.parts)})
 

@@ -128,7 +128,7 @@ def check_items(payload: Payload, report: Report) -> None:
             if f.id in entry_ids:
                 report(f.origin, "A004", f"id {f.id} appears twice in group {group.id}", "id")
             entry_ids.add(f.id)
-            if f.bits is None or f.optional:
+            if (f.bits is None or f.optional) and not (group.stride is not None and f is group.fields[-1]):
                 report(f.origin, "A005", f"field {f.id}: the fields of a group have fixed widths and are required", "bits")
         if group.min > group.max:
             report(group.origin, "A005", f"group {group.id}: min {group.min} is above max {group.max}", "min")

@@ -170,8 +170,10 @@ class _Layout:
             self._row(part, pname, "PART_SIGNED" if psigned else "PART", bits, pwidth, low=part.low)
 
     def _group(self, g: PayloadGroup, following: list) -> None:
-        # The interpreter reads an entry field by field: no group, optional field or bytes left in it.
-        assert all(isinstance(f, PayloadField) and f.bits is not None and not f.optional for f in g.fields), g.id
+        # The interpreter reads an entry field by field: no group, optional field or bytes left in it
+        # (but a stride's trailing bytes, its last field: a view of the entry's bytes after its fields).
+        fixed_fields = g.fields[:-1] if g.stride is not None else g.fields
+        assert all(isinstance(f, PayloadField) and f.bits is not None and not f.optional for f in fixed_fields), g.id
         word = g.id[:-1] if g.id.endswith("s") else g.id + "_entry"
         entry = _Layout(f"{self.struct}_{word}", f"{self.prefix}_{word}", list(g.fields), f"{self.upper}_{word.upper()}",
                         self.big)
@@ -203,7 +205,9 @@ class _Layout:
         self.tables.append(
             f"static const nmea_ubx_group {table} = {{{entry.prefix}_items, {len(entry.rows)}, NMEA_UBX_COUNT_{count_kind}, "
             f"{count_member}, {count_offset}, {count}, {g.min}, {g.max}, {define}, {entry_bytes}, sizeof({entry.struct}), "
-            f"{after(following) // 8}, offsetof({self.struct}, {count_name})}};")
+            f"{after(following) // 8}, offsetof({self.struct}, {count_name}), "
+            + (f"{self.counters[g.stride][0]}, offsetof({self.struct}, {member(g.stride)}), {_c_str(g.stride)}}};"
+               if g.stride else "0, 0, NULL};"))
         self.rows.append(self.row(g.id, f"&{table}", f"offsetof({self.struct}, {name})", "0", 0, "GROUP", 0, 0, 0,
                                   "NUMBER", False))
 
@@ -493,7 +497,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                 tables="\n".join([*(e.code() for e in code.entries), code.code()]),
                 # a straight-line reader for what the receiver sends (a stream's messages), not
                 # for the commands only a host writes, which the interpreter reads (flash)
-                fast=_FastReader(code).code() if "output" in layout.directions else "",
+                # (none for a layout of a stride's group, whose entries' bytes the interpreter bounds)
+                fast=_FastReader(code).code() if "output" in layout.directions
+                and not any(isinstance(g, PayloadGroup) and g.stride for g in layout.items) else "",
                 defines=[d for e in code.entries for d in e.defines] + code.defines,
                 length=layout.fixed_width // 8 if layout.fixed_width is not None else -1,
                 select_value=layout.select[1] if layout.select is not None else -1, select_at=select_at,

@@ -136,7 +136,9 @@ def binary_rows(layout: Payload) -> list[dict]:
             at = 0
             for f in item.fields:
                 start = f"{item.offset // 8} + " if item.offset is not None else ""
-                row(f, f"{start}{at // 8} + {item.entry_width // 8}·k", f"{item.id}[k].")
+                # a stride's entries: as many bytes as its field says (the fields' and the entry's trailing bytes)
+                step = f"`{item.stride}`" if item.stride is not None else str(item.entry_width // 8)
+                row(f, f"{start}{at // 8} + {step}·k", f"{item.id}[k].")
                 at += f.bits or 0
     return out
 

@@ -77,6 +77,7 @@ def _field_spec(f: PayloadField, following: list, indent: int) -> list[str]:
 def group_extra(item: PayloadGroup, following: list) -> str:
     """The keyword arguments of an AIS group's descriptor after its bounds."""
     extra = f", after={after(following)}" if after(following) else ""
+    extra += f", stride={json.dumps(item.stride)}" if item.stride else ""
     return extra + (f", count={json.dumps(item.count)}" if item.count else "")
 
 

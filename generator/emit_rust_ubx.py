@@ -298,9 +298,17 @@ class _Record:
             count = f"Some(usize::from({value}))" if kind in ("u8", "u16") else f"Some(({value}) as usize)"
         else:
             count = "None"
-        self.read.append(f"let {name} = r.group({count}, {g.min}, {g.max}, {after(following) // 8}, {key})?;")
+        if g.stride is not None:   # entries of as many bytes as the stride's field says
+            stride, kind = self.values[g.stride]
+            stride = f"usize::from({stride})" if kind in ("u8", "u16") else f"({stride}) as usize"
+            self.read.append(f"let {name} = r.group_strided({count}, {stride}, {g.min}, {g.max}, {after(following) // 8}, "
+                             f"{key}, {rust_str(g.stride)})?;")
+            self.write.append(f"self.{name}.write_strided(w, {stride.replace(self.values[g.stride][0], 'self.' + self.values[g.stride][0])}, "
+                              f"{rust_str(self.address)}, {rust_str(g.stride)}, {key})?;")
+        else:
+            self.read.append(f"let {name} = r.group({count}, {g.min}, {g.max}, {after(following) // 8}, {key})?;")
+            self.write.append(f"self.{name}.write(w);")
         self.inits.append(name)
-        self.write.append(f"self.{name}.write(w);")
         self.json.append(f"self.{name}.json(j, {key})?;")
 
 

@@ -311,12 +311,35 @@ def rtcm3_vectors(spec: Spec) -> list[dict]:
                           reference_rtcm3.FrameError)
 
 
+# Frames of the other protocols every decoder must read as the reference decoder does, or refuse
+# with the same kind of error: (protocol, frame hex, what it shows). SBF's sub-blocks, whose bytes
+# (SBLength) a newer firmware may make longer than the layout's fields.
+BINARY_CASES = (
+    ("sbf", "24 40 15 cd ac 0f 24 00 e0 52 c9 1c 3f 09 02 0a 03 00 29 1a 96 21 00 02 aa bb 04 00 ab 43 c6 0c 01 01 cc dd",
+     "a SatVisibility of two SatInfo sub-blocks of 10 bytes: the 2 after the fields kept as each one's trailing"),
+    ("sbf", "24 40 cb aa ac 0f 14 00 e0 52 c9 1c 3f 09 01 04 03 00 29 1a",
+     "a SatVisibility whose SBLength (4) is shorter than a SatInfo's fields (8): refused"),
+    ("sbf", "24 40 31 f0 ac 0f 20 00 e0 52 c9 1c 3f 09 03 08 03 00 29 1a 96 21 00 02 04 00 ab 43 c6 0c 01 01",
+     "a SatVisibility whose N says 3 sub-blocks of 8 bytes, the block holding 2"),
+    ("sbf", "24 40 b4 f2 ac 0f 14 00 e0 52 c9 1c 3f 09 00 00 00 00 00 00",
+     "a SatVisibility of no sub-block and an SBLength of 0 (the stride of no entry says nothing), padding kept"),
+)
+
+
 def binary_vectors(spec: Spec) -> list[dict]:
-    """The example frames of the other binary protocols (spec/binary/{skytraq,sirf,casic}) with
-    the JSON each decoder must make of them."""
-    return [{"protocol": message.protocol, "message": message.id, "where": e.where, "frame": e.frame.hex(" "),
-             "decode": reference_binary.decode(spec, e.frame)}
-            for message in spec.binary if message.protocol != "ubx" for e in message.examples]
+    """The example frames of the other binary protocols (spec/binary/{skytraq,sirf,casic,sbf}) with
+    the JSON each decoder must make of them, then the BINARY_CASES of the protocols the spec types:
+    decoded, or the kind of the error they raise."""
+    out = [{"protocol": message.protocol, "message": message.id, "where": e.where, "frame": e.frame.hex(" "),
+            "decode": reference_binary.decode(spec, e.frame)}
+           for message in spec.binary if message.protocol != "ubx" for e in message.examples]
+    typed = {m.protocol for m in spec.binary}
+    for protocol, frame, where in BINARY_CASES:
+        if protocol in typed:
+            cases = _frame_vectors(iter(()), ((frame, where),), lambda data: reference_binary.decode(spec, data),
+                                   reference_ais.PayloadError)
+            out += [{"protocol": protocol, **record} for record in cases]
+    return out
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:

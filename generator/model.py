@@ -745,6 +745,9 @@ class PayloadGroup:
     count: Count | None = None
     offset: int | None = None
     field_major: bool = False    # the entries' first fields, then their second fields, ... (RTCM 3 MSM)
+    stride: str | None = None    # the field that holds each entry's bytes (SBF's SBLength): the fields are
+                                 # read from each entry's start, the bytes after them are its last field,
+                                 # `trailing` (bytes, as sent: a newer firmware's additions)
 
     @property
     def fields(self) -> list[PayloadField]:
@@ -759,12 +762,12 @@ class PayloadGroup:
     @property
     def entry_width(self) -> int:
         """An entry's bits: its fields' (a choice's: those of its first case; rule A013 makes every
-        case as wide)."""
+        case as wide; a stride's entry: the least it takes, its trailing bytes left out)."""
         return sum((i.bits or 0) if isinstance(i, PayloadField) else (i.cases[0].width or 0) for i in self.items)
 
     @property
     def width(self) -> int | None:
-        return self.entry_width * self.count if isinstance(self.count, int) else None
+        return self.entry_width * self.count if isinstance(self.count, int) and self.stride is None else None
 
     @property
     def camel(self) -> str:

@@ -72,7 +72,9 @@ def _items(items: list, bits: Any, rest: list, out: dict[str, Any], start: int =
     `start`: the first bit of the record (a group's entry) whose bits a choice's offsets count."""
     for i, item in enumerate(items):
         following = items[i + 1:] + rest
-        if isinstance(item, PayloadGroup):
+        if isinstance(item, PayloadGroup) and item.stride is not None:
+            _strided(item, bits, following, out)
+        elif isinstance(item, PayloadGroup):
             count = item.count if isinstance(item.count, int) else out[item.count] if item.count else \
                 min(item.max, max(bits.left - after(following), 0) // item.entry_width)
             if count < item.min or count * item.entry_width > bits.left:
@@ -104,6 +106,26 @@ def _items(items: list, bits: Any, rest: list, out: dict[str, Any], start: int =
                 return False
             out.update(t.json(item, t.raw(bits.take(width, item.id))))
     return True
+
+
+def _strided(item: PayloadGroup, bits: Any, following: list, out: dict[str, Any]) -> None:
+    """A group whose entries are as many bytes as its `stride` field says: each entry's fields
+    read from a cursor over its own bytes (the last, `trailing`, takes what they leave)."""
+    stride = out[str(item.stride)]
+    count = 1 if item.count is None else item.count if isinstance(item.count, int) else out[str(item.count)]
+    if count and 8 * stride < item.entry_width:
+        raise PayloadError("bad_value", f"{bits.payload.id}: {item.stride} {stride} is less than the "
+                           f"{item.entry_width // 8} bytes of {item.id}'s fields")
+    if item.count is None:
+        count = min(item.max, max(bits.left - after(following), 0) // (8 * stride))
+    if count < item.min or 8 * count * stride > bits.left:
+        raise PayloadError("short_payload", f"{bits.payload.id}: {item.id} needs {max(count, item.min)} entries")
+    entries = []
+    for _ in range(count):
+        entry: dict[str, Any] = {}
+        _items(item.fields, bits.within(8 * stride), [], entry)
+        entries.append(entry)
+    out[item.id] = entries
 
 
 def decode(spec: Spec, payload: str, fill_bits: int) -> dict[str, Any]:

@@ -44,6 +44,14 @@ class _Bytes:
         return format(value, f"0{width}b") if width else ""
 
 
+    def within(self, width: int) -> _Bytes:
+        """A cursor over the next `width` bits alone (an entry of a stride), this one moved past them."""
+        start = self.pos // 8
+        self.pos += width
+        inner = _Bytes(self.data[start:self.pos // 8], self.payload, self.order)
+        return inner
+
+
 def ubx_checksum(body: bytes) -> bytes:
     """Fletcher-8 over class, id, length and payload (UBX-13003221, "UBX checksum")."""
     a = b = 0

@@ -256,8 +256,10 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "bytes or reserved field has at most 255 bytes (the C descriptor's size byte).",
          "Correct the type, or the part's `bit` and `width`; split a longer run of bytes."),
     Rule("B003", "a counted group names its count",
-         "A group's `count` names an unsigned field or bitfield part that comes before the group.",
-         "Correct `count`, or leave it out (the group then takes the bytes left)."),
+         "A group's `count` names an unsigned field or bitfield part that comes before the group; its `stride` "
+         "(the bytes of each entry: SBF's SBLength) names a u1, u2 or u4 field before it, of a group read entry "
+         "by entry that has fields.",
+         "Correct `count` or `stride`, or leave `count` out (the group then takes the bytes left)."),
     Rule("B004", "layouts of one message are told apart",
          "Layout ids (message id and `variant`) are unique; two layouts that share a direction differ in their "
          "fixed length or in the value of their selector (`select: {type: 0x10}`; `version: N` is short for "

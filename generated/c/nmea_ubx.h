@@ -106,10 +106,13 @@
 //   spec/binary/casic/messages/cfg_prt.yaml, spec/binary/casic/messages/cfg_msg.yaml,
 //   spec/binary/casic/messages/cfg_rate.yaml, spec/binary/casic/messages/mon_ver.yaml,
 //   spec/binary/sbf/messages/pvt_dop.yaml, spec/binary/sbf/messages/pvt_cartesian.yaml,
-//   spec/binary/sbf/messages/pvt_geodetic.yaml, spec/binary/sbf/messages/pos_cov_cartesian.yaml,
+//   spec/binary/sbf/messages/pvt_geodetic.yaml, spec/binary/sbf/messages/sat_visibility.yaml,
+//   spec/binary/sbf/messages/receiver_status.yaml, spec/binary/sbf/messages/base_vector_cart.yaml,
+//   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
-//   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/receiver_time.yaml,
+//   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/xpps_offset.yaml,
+//   spec/binary/sbf/messages/receiver_time.yaml, spec/binary/sbf/messages/end_of_pvt.yaml,
 //   spec/binary/sirf/messages/gnss_nav_solution.yaml, spec/binary/sirf/messages/measured_nav.yaml,
 //   spec/binary/sirf/messages/tracker_data.yaml, spec/binary/sirf/messages/sw_version.yaml,
 //   spec/binary/sirf/messages/clock_status.yaml, spec/binary/sirf/messages/cpu_throughput.yaml,
@@ -126,7 +129,7 @@
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
 //   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 2ca1beb04cf4f9d4)
+//   spec/enums/ubx_gnss_id.yaml (digest 6020995ad4707a35)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ: spec/binary/<protocol>):
@@ -314,6 +317,10 @@ typedef struct nmea_ubx_group {
     uint16_t entry_size;    /* sizeof an entry's struct */
     uint16_t after;         /* bytes of the required fields after the group */
     uint16_t n_offset;      /* of the member that says how many entries the array holds (uint16_t) */
+    uint8_t stride_member;  /* a stride's (SBF's SBLength: the bytes of each entry, its last item a view of
+                               those after its fields): bytes of its member; 0: entries of entry_bytes */
+    uint16_t stride_offset; /* of the stride's member */
+    const char *stride_id;  /* the stride's field (errors name it) */
 } nmea_ubx_group;
 
 typedef struct {
@@ -562,6 +569,15 @@ typedef enum {
 #endif
 #ifndef NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX
 #define NMEA_UBX_CASIC_NAV_GLNINFO_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SBF_SAT_VISIBILITY_SAT_INFO_MAX
+#define NMEA_UBX_SBF_SAT_VISIBILITY_SAT_INFO_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SBF_RECEIVER_STATUS_AGC_STATE_MAX
+#define NMEA_UBX_SBF_RECEIVER_STATUS_AGC_STATE_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_SBF_BASE_VECTOR_CART_VECTOR_INFO_MAX
+#define NMEA_UBX_SBF_BASE_VECTOR_CART_VECTOR_INFO_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
 #ifndef NMEA_UBX_SIRF_MEASURED_NAV_CHANNELS_MAX
 #define NMEA_UBX_SIRF_MEASURED_NAV_CHANNELS_MAX (12 < NMEA_UBX_MAX_ENTRIES ? 12 : NMEA_UBX_MAX_ENTRIES)
@@ -6254,6 +6270,122 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_sbf_pvt_geodetic;
 
+/* One entry of satellites (satinfo sub-blocks) (sat_info). */
+typedef struct {
+    uint8_t svid; /* Satellite (SBF satellite number) */
+    uint8_t freq_nr; /* GLONASS frequency number plus 8 (1 to 21; reserved for other signals); raw, value = raw; 0: do_not_use */
+    uint16_t azimuth; /* Azimuth (0 north, increasing towards east) [deg]; raw, value = raw / 100; 65535: do_not_use */
+    int16_t elevation; /* Elevation above the local horizontal plane [deg]; raw, value = raw / 100; -32768: do_not_use */
+    uint8_t rise_set; /* Rising (1) or setting (0); raw, value = raw; 255: unknown */
+    uint8_t satellite_info; /* Visibility computed from the almanac (1) or the ephemeris (2); raw, value = raw; 255: unknown */
+    nmea_ubx_bytes trailing; /* Bytes after the entry's fields, as sent (the bytes left) */
+} nmea_ubx_sbf_sat_visibility_sat_info_entry;
+
+/* Satellites above the horizon (SatVisibility): SBF 4012 rev 0 (id 0x0FAC), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t n; /* SatInfo sub-blocks */
+    uint8_t sb_length; /* Bytes of a SatInfo sub-block [byte] */
+    uint16_t sat_info_count; /* the entries of sat_info */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sbf_sat_visibility_sat_info_entry sat_info[NMEA_UBX_SBF_SAT_VISIBILITY_SAT_INFO_MAX]; /* Satellites (SatInfo sub-blocks) */
+} nmea_ubx_sbf_sat_visibility;
+
+/* One entry of front ends' gain control (agcstate sub-blocks) (agc_state). */
+typedef struct {
+    uint8_t front_end_id; /* Front end and antenna (bitfield) */
+    uint8_t front_end_code; /* Front end (0 GPS L1/E1; 1 GLONASS L1; 2 E6; 3 GPS L2; 4 GLONASS L2; 5 L5/E5a; 6 E5b/B2I; 7 E5(a+b); 8 combined GPS/Galileo/GLONASS L1; more in the reference guide) (front_end_id bits 0-4) */
+    uint8_t antenna_id; /* Antenna (0 main) (front_end_id bits 5-7) */
+    int8_t gain; /* Gain of the front end's AGC [dB]; raw, value = raw; -128: do_not_use */
+    uint8_t sample_var; /* Variance of the digitized samples (normalized) */
+    uint8_t blanking_stat; /* Samples blanked by the pulse blanking [%] */
+    nmea_ubx_bytes trailing; /* Bytes after the entry's fields, as sent (the bytes left) */
+} nmea_ubx_sbf_receiver_status_agc_state_entry;
+
+/* Receiver status (ReceiverStatus): SBF 4014 rev 1 (id 0x2FAE), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t cpu_load; /* Load of the receiver's CPU [%]; raw, value = raw; 255: do_not_use */
+    uint8_t ext_error; /* Errors detected in external data (each set for a second) (bitfield) */
+    bool sis_error; /* Signal-in-space error of a satellite reported healthy (ext_error bit 0) */
+    bool diff_corr_error; /* Incoming differential corrections not decoded (ext_error bit 1) */
+    bool ext_sensor_error; /* External sensor malfunction (ext_error bit 2) */
+    bool setup_error; /* Configuration or setup error (ext_error bit 3) */
+    uint32_t up_time; /* Time since start-up or the last reset [s] */
+    uint32_t rx_state; /* Receiver state (bitfield) */
+    bool active_antenna; /* Active antenna powered (rx_state bit 1) */
+    bool ext_freq; /* External frequency reference used (rx_state bit 2) */
+    bool ext_time; /* External time reference used (rx_state bit 3) */
+    bool wn_set; /* Week number set (rx_state bit 4) */
+    bool tow_set; /* Time of week set (rx_state bit 5) */
+    bool fine_time; /* Time within 10 ms of GPS time (rx_state bit 6) */
+    bool internal_disk_activity; /* Internal disk being written (rx_state bit 7) */
+    bool internal_disk_full; /* Internal disk full (rx_state bit 8) */
+    bool internal_disk_mounted; /* Internal disk mounted (rx_state bit 9) */
+    bool int_ant; /* Internal antenna used (rx_state bit 10) */
+    bool refout_locked; /* Reference output locked (rx_state bit 11) */
+    bool external_disk_activity; /* External disk being written (rx_state bit 13) */
+    bool external_disk_full; /* External disk full (rx_state bit 14) */
+    bool external_disk_mounted; /* External disk mounted (rx_state bit 15) */
+    bool pps_in_cal; /* PPS input calibration running (rx_state bit 16) */
+    bool diff_corr_in; /* Differential corrections coming in (rx_state bit 17) */
+    bool internet; /* Internet reachable (rx_state bit 18) */
+    uint32_t rx_error; /* Errors since power-on (some reset by a command) (bitfield) */
+    bool software_error; /* Software warning or error (rx_error bit 3) */
+    bool watchdog_error; /* Watchdog expired (rx_error bit 4) */
+    bool antenna_error; /* Antenna overcurrent (rx_error bit 5) */
+    bool congestion_error; /* Output congestion on a port in the last second (rx_error bit 6) */
+    bool missed_event_error; /* External event congestion in the last second (rx_error bit 8) */
+    bool cpu_overload_error; /* CPU load above 90% (rx_error bit 9) */
+    bool invalid_config_error; /* A configuration file invalid or absent (rx_error bit 10) */
+    bool out_of_geofence_error; /* Outside the permitted region (rx_error bit 11) */
+    uint8_t n; /* AGCState sub-blocks */
+    uint8_t sb_length; /* Bytes of an AGCState sub-block [byte] */
+    uint8_t cmd_count; /* Configuration commands counter (1 to 255); raw, value = raw; 0: do_not_use */
+    uint8_t temperature; /* Receiver temperature plus 100 (degrees Celsius); raw, value = raw; 0: do_not_use */
+    uint16_t agc_state_count; /* the entries of agc_state */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sbf_receiver_status_agc_state_entry agc_state[NMEA_UBX_SBF_RECEIVER_STATUS_AGC_STATE_MAX]; /* Front ends' gain control (AGCState sub-blocks) */
+} nmea_ubx_sbf_receiver_status;
+
+/* One entry of baselines (vectorinfocart sub-blocks) (vector_info). */
+typedef struct {
+    uint8_t nr_sv; /* Satellites with corrections of this base; raw, value = raw; 255: do_not_use */
+    uint8_t error; /* PVT error; a code of sbf_pvt_error (its JSON: the code's id) */
+    uint8_t mode; /* PVT mode (bitfield) */
+    uint8_t mode_type; /* Kind of solution (mode bits 0-3) */
+    bool auto_set; /* Base position still being set automatically (mode bit 6) */
+    bool two_d; /* Height fixed (2D solution) (mode bit 7) */
+    uint8_t misc; /* Reference points (bitfield) */
+    bool base_arp; /* The baseline points to the base's antenna reference point (misc bit 0) */
+    bool phase_ctr_offset; /* The rover's phase center offset compensated (misc bit 1) */
+    double delta_x; /* X of the baseline (rover to base) [m]; -2e+10: do_not_use (its bits as sent) */
+    double delta_y; /* Y of the baseline (rover to base) [m]; -2e+10: do_not_use (its bits as sent) */
+    double delta_z; /* Z of the baseline (rover to base) [m]; -2e+10: do_not_use (its bits as sent) */
+    float delta_vx; /* X velocity of the baseline [m/s]; -2e+10: do_not_use (its bits as sent) */
+    float delta_vy; /* Y velocity of the baseline [m/s]; -2e+10: do_not_use (its bits as sent) */
+    float delta_vz; /* Z velocity of the baseline [m/s]; -2e+10: do_not_use (its bits as sent) */
+    uint16_t azimuth; /* Azimuth of the baseline (0 north, increasing towards east) [deg]; raw, value = raw / 100; 65535: do_not_use */
+    int16_t elevation; /* Elevation of the baseline [deg]; raw, value = raw / 100; -32768: do_not_use */
+    uint16_t reference_id; /* Base station id; raw, value = raw; 65535: do_not_use */
+    uint16_t corr_age; /* Age of the corrections [s]; raw, value = raw / 100; 65535: do_not_use */
+    uint32_t signal_info; /* Signals of the base used (a bit per signal type) */
+    nmea_ubx_bytes trailing; /* Bytes after the entry's fields, as sent (the bytes left) */
+} nmea_ubx_sbf_base_vector_cart_vector_info_entry;
+
+/* Baselines to the base stations, Cartesian (BaseVectorCart): SBF 4043 rev 0 (id 0x0FCB), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t n; /* VectorInfoCart sub-blocks (baselines) */
+    uint8_t sb_length; /* Bytes of a VectorInfoCart sub-block [byte] */
+    uint16_t vector_info_count; /* the entries of vector_info */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_sbf_base_vector_cart_vector_info_entry vector_info[NMEA_UBX_SBF_BASE_VECTOR_CART_VECTOR_INFO_MAX]; /* Baselines (VectorInfoCart sub-blocks) */
+} nmea_ubx_sbf_base_vector_cart;
+
 /* Position covariance, Cartesian (PosCovCartesian): SBF 5905 rev 0 (id 0x1711), output. */
 typedef struct {
     uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
@@ -6342,6 +6474,16 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_sbf_vel_cov_geodetic;
 
+/* Offset of the xPPS pulse (xPPSOffset): SBF 5911 rev 0 (id 0x1717), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    uint8_t sync_age; /* Time since the pulse was last synchronized to the time scale (at most 255) [s] */
+    uint8_t time_scale; /* Time scale of the pulse (1 GPS time, 3 receiver time, 4 GLONASS time, 5 Galileo time, 6 BeiDou time; 2 another, as the pps command sets) */
+    float offset; /* Offset of the pulse put out from its true position (negative when early) [ns] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sbf_xpps_offset;
+
 /* Receiver time (ReceiverTime): SBF 5914 rev 0 (id 0x171A), output. */
 typedef struct {
     uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
@@ -6359,6 +6501,13 @@ typedef struct {
     bool fine_time; /* Time synchronised to the GNSS time within 10 ms (sync_level bit 2) */
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_sbf_receiver_time;
+
+/* End of the PVT blocks of an epoch (EndOfPVT): SBF 5921 rev 0 (id 0x1721), output. */
+typedef struct {
+    uint32_t tow; /* Time of week (GPS time) [ms]; raw, value = raw; 4294967295: do_not_use */
+    uint16_t wnc; /* Week number (GPS time; continuous; 0 in January 1980) [week]; raw, value = raw; 65535: do_not_use */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_sbf_end_of_pvt;
 
 /* Multi-constellation navigation data (OSP): SIRF MID 67 SID 1 (0x43 0x01), output. */
 typedef struct {
@@ -7209,11 +7358,16 @@ typedef enum {
     NMEA_UBX_MSG_SBF_PVT_DOP, /* SBF 4001 rev 0, output */
     NMEA_UBX_MSG_SBF_PVT_CARTESIAN, /* SBF 4006 rev 2, output */
     NMEA_UBX_MSG_SBF_PVT_GEODETIC, /* SBF 4007 rev 2, output */
+    NMEA_UBX_MSG_SBF_SAT_VISIBILITY, /* SBF 4012 rev 0, output */
+    NMEA_UBX_MSG_SBF_RECEIVER_STATUS, /* SBF 4014 rev 1, output */
+    NMEA_UBX_MSG_SBF_BASE_VECTOR_CART, /* SBF 4043 rev 0, output */
     NMEA_UBX_MSG_SBF_POS_COV_CARTESIAN, /* SBF 5905 rev 0, output */
     NMEA_UBX_MSG_SBF_POS_COV_GEODETIC, /* SBF 5906 rev 0, output */
     NMEA_UBX_MSG_SBF_VEL_COV_CARTESIAN, /* SBF 5907 rev 0, output */
     NMEA_UBX_MSG_SBF_VEL_COV_GEODETIC, /* SBF 5908 rev 0, output */
+    NMEA_UBX_MSG_SBF_XPPS_OFFSET, /* SBF 5911 rev 0, output */
     NMEA_UBX_MSG_SBF_RECEIVER_TIME, /* SBF 5914 rev 0, output */
+    NMEA_UBX_MSG_SBF_END_OF_PVT, /* SBF 5921 rev 0, output */
     NMEA_UBX_MSG_SIRF_GNSS_NAV_SOLUTION, /* SIRF MID 67 SID 1, output */
     NMEA_UBX_MSG_SIRF_MEASURED_NAV, /* SIRF MID 2, output */
     NMEA_UBX_MSG_SIRF_TRACKER_DATA, /* SIRF MID 4, output */
@@ -7655,11 +7809,16 @@ typedef struct {
         nmea_ubx_sbf_pvt_dop sbf_pvt_dop;
         nmea_ubx_sbf_pvt_cartesian sbf_pvt_cartesian;
         nmea_ubx_sbf_pvt_geodetic sbf_pvt_geodetic;
+        nmea_ubx_sbf_sat_visibility sbf_sat_visibility;
+        nmea_ubx_sbf_receiver_status sbf_receiver_status;
+        nmea_ubx_sbf_base_vector_cart sbf_base_vector_cart;
         nmea_ubx_sbf_pos_cov_cartesian sbf_pos_cov_cartesian;
         nmea_ubx_sbf_pos_cov_geodetic sbf_pos_cov_geodetic;
         nmea_ubx_sbf_vel_cov_cartesian sbf_vel_cov_cartesian;
         nmea_ubx_sbf_vel_cov_geodetic sbf_vel_cov_geodetic;
+        nmea_ubx_sbf_xpps_offset sbf_xpps_offset;
         nmea_ubx_sbf_receiver_time sbf_receiver_time;
+        nmea_ubx_sbf_end_of_pvt sbf_end_of_pvt;
         nmea_ubx_sirf_gnss_nav_solution sirf_gnss_nav_solution;
         nmea_ubx_sirf_measured_nav sirf_measured_nav;
         nmea_ubx_sirf_tracker_data sirf_tracker_data;

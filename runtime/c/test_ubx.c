@@ -435,6 +435,27 @@ static void other_protocols(void)
             failed++;
         }
     }
+    {   /* SBF sub-blocks of their SBLength: a SatVisibility of two SatInfo of 10 bytes, the 2 after the
+           fields kept as each one's trailing; an SBLength other than theirs not encoded, naming sb_length */
+        static const uint8_t sky[] = {0x24, 0x40, 0x15, 0xCD, 0xAC, 0x0F, 0x24, 0x00, 0xE0, 0x52, 0xC9, 0x1C,
+                                      0x3F, 0x09, 0x02, 0x0A, 0x03, 0x00, 0x29, 0x1A, 0x96, 0x21, 0x00, 0x02,
+                                      0xAA, 0xBB, 0x04, 0x00, 0xAB, 0x43, 0xC6, 0x0C, 0x01, 0x01, 0xCC, 0xDD};
+        if (!nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SBF, sky, sizeof sky, &message, &err) ||
+            message.layout != NMEA_UBX_MSG_SBF_SAT_VISIBILITY || message.as.sbf_sat_visibility.sat_info_count != 2 ||
+            message.as.sbf_sat_visibility.sat_info[1].svid != 4 || message.as.sbf_sat_visibility.sat_info[1].trailing.len != 2 ||
+            message.as.sbf_sat_visibility.sat_info[1].trailing.ptr[0] != 0xCC ||
+            nmea_ubx_encode(&message, frame, sizeof frame, &err) != sizeof sky || memcmp(frame, sky, sizeof sky)) {
+            printf("FAIL an SBF SatVisibility of sub-blocks of 10 bytes\n");
+            failed++;
+        }
+        message.as.sbf_sat_visibility.sb_length = 8;
+        if (nmea_ubx_encode(&message, frame, sizeof frame, &err) || err.kind != NMEA_UBX_BAD_VALUE ||
+            strcmp(err.field, "sb_length") != 0 ||
+            strcmp(err.text, "sb_length takes the bytes of each entry of sat_info (10), not 8") != 0) {
+            printf("FAIL an SBF SatVisibility whose SBLength is not its sub-blocks': %s\n", err.text);
+            failed++;
+        }
+    }
 }
 
 int main(int argc, char **argv)

@@ -308,7 +308,7 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
     for (i = 0; i < n && !done; i++) {
         const nmea_ubx_item *it = &items[i];
         const nmea_ubx_group *g = (const nmea_ubx_group *)it->extra;
-        size_t left = r->len - r->pos, count;
+        size_t left = r->len - r->pos, count, stride, len = r->len;
         uint16_t stored;
         if (UBX_IS_PART(it)) {
             ubx_read_part(it, m, word);
@@ -319,18 +319,27 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
                 return false;
             continue;
         }
+        /* a stride (SBF's SBLength): each entry is that many bytes, at least its fields' */
+        stride = g->stride_member ? (size_t)ubx_get(m + g->stride_offset, g->stride_member, false) : g->entry_bytes;
         count = g->count_kind == NMEA_UBX_COUNT_FIXED   ? g->count
                 : g->count_kind == NMEA_UBX_COUNT_FIELD ? (size_t)ubx_get(m + g->count_offset, g->count_member, false)
-                : left > g->after                       ? (left - g->after) / g->entry_bytes
-                                                        : 0;
-        if (g->count_kind == NMEA_UBX_COUNT_LEFT && count > g->limit)
-            count = g->limit;
-        if (count < g->min || count * g->entry_bytes > left) {
+                                                        : 1; /* counted below, the stride checked first */
+        if (count && stride < g->entry_bytes) { /* (the stride of no entry says nothing) */
+            snprintf(r->err->text, sizeof r->err->text, "%s is %lu, an entry of %s takes at least %u bytes",
+                     g->stride_id, (unsigned long)stride, it->id, (unsigned)g->entry_bytes);
+            return ubx_fail(r->err, NMEA_UBX_BAD_VALUE, r->address, g->stride_id);
+        }
+        if (g->count_kind == NMEA_UBX_COUNT_LEFT) {
+            count = left > g->after ? (left - g->after) / stride : 0;
+            if (count > g->limit)
+                count = g->limit;
+        }
+        if (count < g->min || count * stride > left) {
             /* as Python says it: a group of the bytes left needs at least its least */
             bool at_least = g->count_kind == NMEA_UBX_COUNT_LEFT;
-            snprintf(r->err->text, sizeof r->err->text, "%s needs %s%lu entries of %u bits, %lu bits left", it->id,
+            snprintf(r->err->text, sizeof r->err->text, "%s needs %s%lu entries of %lu bits, %lu bits left", it->id,
                      at_least ? "at least " : "", (unsigned long)(at_least ? g->min : count),
-                     8u * (unsigned)g->entry_bytes, 8ul * (unsigned long)left);
+                     8ul * (unsigned long)stride, 8ul * (unsigned long)left);
             return ubx_fail(r->err, NMEA_UBX_SHORT_PAYLOAD, r->address, it->id);
         }
         if (count > g->max) {
@@ -343,12 +352,18 @@ static bool ubx_read_items(ubx_reader *r, const nmea_ubx_item *items, size_t n, 
             uint64_t entry_word = 0;
             bool ignored = false;
             uint8_t *entry = m + it->offset + k * g->entry_size;
+            size_t end = r->pos + stride;
+            r->len = end; /* the entry's bytes: a stride's last item, a view, takes those after its fields */
             for (f = 0; f < g->n_items; f++) {
                 if (UBX_IS_PART(&g->items[f]))
                     ubx_read_part(&g->items[f], entry, entry_word);
-                else if (!ubx_read_field(r, &g->items[f], entry, &entry_word, &ignored))
+                else if (!ubx_read_field(r, &g->items[f], entry, &entry_word, &ignored)) {
+                    r->len = len;
                     return false;
+                }
             }
+            r->len = len;
+            r->pos = end;
         }
         stored = (uint16_t)count;
         memcpy(m + g->n_offset, &stored, sizeof stored);
@@ -475,10 +490,20 @@ static bool ubx_write_items(ubx_writer *w, const nmea_ubx_item *items, size_t n,
                      (unsigned)g->max);
             return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, it->id);
         }
-        for (k = 0; k < count; k++)
+        for (k = 0; k < count; k++) {
+            size_t start = w->len;
             for (f = 0; f < g->n_items; f++)
                 if (!ubx_write_field(w, g->items, g->n_items, f, m + it->offset + k * g->entry_size))
                     return false;
+            if (g->stride_member) { /* an entry of as many bytes as its stride says */
+                uint64_t stride = ubx_get(m + g->stride_offset, g->stride_member, false);
+                if (w->len - start != stride) {
+                    snprintf(w->err->text, sizeof w->err->text, "%s takes the bytes of each entry of %s (%lu), not %lu",
+                             g->stride_id, it->id, (unsigned long)(w->len - start), (unsigned long)stride);
+                    return ubx_fail(w->err, NMEA_UBX_BAD_VALUE, w->address, g->stride_id);
+                }
+            }
+        }
     }
     return true;
 }

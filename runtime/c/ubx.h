@@ -175,6 +175,10 @@ typedef struct nmea_ubx_group {
     uint16_t entry_size;    /* sizeof an entry's struct */
     uint16_t after;         /* bytes of the required fields after the group */
     uint16_t n_offset;      /* of the member that says how many entries the array holds (uint16_t) */
+    uint8_t stride_member;  /* a stride's (SBF's SBLength: the bytes of each entry, its last item a view of
+                               those after its fields): bytes of its member; 0: entries of entry_bytes */
+    uint16_t stride_offset; /* of the stride's member */
+    const char *stride_id;  /* the stride's field (errors name it) */
 } nmea_ubx_group;
 
 typedef struct {

@@ -398,6 +398,9 @@ class Group:
     count: str | int | tuple[str, ...] | None = None
     field_major: bool = False
     """The entries' first fields, then their second fields, and so on (RTCM 3 MSM)."""
+    stride: str | None = None
+    """The member that holds each entry's bytes (SBF's SBLength): an entry's fields are read from
+    its start, its last field (`trailing`, the bytes left) keeps the bytes after them as sent."""
 
     @property
     def entry_width(self) -> int:
@@ -486,6 +489,8 @@ def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: 
             values[item.id] = item.from_raw(raw, width)
             if isinstance(item, Bitfield):
                 item.read_parts(raw, values)
+        elif isinstance(item, Group) and item.stride is not None:
+            _read_strided(item, reader, values)
         elif isinstance(item, Group):
             if item.count is None:
                 count = min(item.max, max(reader.remaining - item.after, 0) // item.entry_width)
@@ -522,6 +527,35 @@ def read_items(items: tuple[Item, ...], reader: BitReader | ByteReader, values: 
             if case is not None and not read_items(case.items, reader, values, start):
                 return False
     return True
+
+
+def _read_strided(item: Group, reader: BitReader | ByteReader, values: dict[str, Any]) -> None:
+    """A group whose entries are as many bytes as the member `item.stride` says (at least their
+    fields'): each entry read from its start, within its bytes (its last field takes the rest)."""
+    assert item.stride is not None
+    stride = 8 * values[item.stride]
+    count = 1 if item.count is None else item.count if isinstance(item.count, int) else \
+        values[item.count] if isinstance(item.count, str) else count_of(item.count, values)
+    if count and stride < item.entry_width:   # (the stride of no entry says nothing)
+        raise NmeaError("bad_value", f"{item.stride} is {stride // 8}, an entry of {item.id} takes at least "
+                        f"{item.entry_width // 8} bytes", reader.where, name=item.stride)
+    if item.count is None:
+        count = min(item.max, max(reader.remaining - item.after, 0) // stride)
+    if count < item.min or count * stride > reader.remaining:
+        needs = f"at least {item.min}" if item.count is None else str(count)
+        raise NmeaError("short_payload", f"{item.id} needs {needs} entries of {stride} bits, "
+                        f"{reader.remaining} bits left", reader.where, name=item.id)
+    length = reader.length
+    entries = []
+    try:
+        for _ in range(count):
+            reader.length = reader.pos + stride   # the entry's bytes: its last field reads to their end
+            entry: dict[str, Any] = {}
+            read_items(item.fields, reader, entry)
+            entries.append(item.entry(**entry))
+    finally:
+        reader.length = length
+    values[item.id] = entries
 
 
 class Prefix(NamedTuple):
@@ -990,6 +1024,11 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
     return names["encode"]
 
 
+def _written(writer: BitWriter | ByteWriter) -> int:
+    """The bytes written so far."""
+    return writer.length // 8 if isinstance(writer, BitWriter) else len(writer.payload)
+
+
 def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteWriter, where: str) -> bool:
     """Write the values of `items` from `message`'s members; False at an optional field left None."""
     for item in items:
@@ -1023,8 +1062,13 @@ def write_items(items: tuple[Item, ...], message: Any, writer: BitWriter | ByteW
                         else:
                             writer.put(*f.to_raw(getattr(entry, f.id), where))
                 continue
+            stride = getattr(message, item.stride) if item.stride is not None else None
             for entry in entries:
+                start = _written(writer)
                 write_items(item.fields, entry, writer, where)
+                if item.stride is not None and _written(writer) - start != stride:
+                    raise _bad_value(where, item.stride, stride, f"the bytes of each entry of {item.id} "
+                                     f"({_written(writer) - start})")
         else:  # the selector: a field of the entry before the choice, or of the message
             selector = next((f for f in items if isinstance(f, Field) and f.id == item.by), None) or \
                 message.field(item.by)

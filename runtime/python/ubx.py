@@ -535,13 +535,16 @@ class Message:
     def payload(self) -> bytes:
         """The payload it is sent as; a count left None is written as its group's number of
         entries, a selector (type, version) left None as the layout's value (the message itself is
-        left as it is)."""
+        left as it is); a stride (SBF's SBLength) left None as the bytes of the first entry."""
         implied: dict[str, Any] = {}
         if self.SELECT is not None and getattr(self, self.SELECT[0]) is None:
             implied[self.SELECT[0]] = self.SELECT[2]
         for group in self.LAYOUT:
             if isinstance(group, Group) and isinstance(group.count, str) and getattr(self, group.count) is None:
                 implied[group.count] = len(getattr(self, group.id))
+            if isinstance(group, Group) and group.stride is not None and getattr(self, group.stride) is None:
+                entries = getattr(self, group.id)   # a stride left None: the first entry's bytes
+                implied[group.stride] = group.entry_width // 8 + (len(entries[0].trailing or b"") if entries else 0)
         writer = ByteWriter("big" if self.BIG else "little")
         message = replace(self, **implied) if implied else self
         write_items(self.LAYOUT, message, writer, f"{self.PROTOCOL} {self.ADDRESS}")

@@ -29,7 +29,8 @@ DOC = ROOT / "docs" / "sbf-agreement.md"
 LOGS = sorted(DATA.glob("*.sbf")) + sorted(DATA.glob("*.log"))
 # The blocks the spec types, by pysbf2's name.
 TYPED = {"PVTGeodetic": 4007, "PVTCartesian": 4006, "PosCovCartesian": 5905, "PosCovGeodetic": 5906,
-         "VelCovCartesian": 5907, "VelCovGeodetic": 5908, "DOP": 4001, "ReceiverTime": 5914}
+         "VelCovCartesian": 5907, "VelCovGeodetic": 5908, "DOP": 4001, "ReceiverTime": 5914, "SatVisibility": 4012,
+         "ReceiverStatus": 4014, "BaseVectorCart": 4043, "EndOfPVT": 5921, "xPPSOffset": 5911}
 # pysbf2's names that snake case does not make ours; its reserved bits, which we keep unnamed.
 NAMES = {"WNc": "wnc", "TOW": "tow", "2D": "two_d", "Type": "mode_type", "NrSV": "nr_sv", "Corr_DO229Active":
          "corr_do229_active", "RAIMIntegrity": "raim_integrity", "GalHPCAFail": "gal_hpca_fail",
@@ -39,11 +40,21 @@ NAMES = {"WNc": "wnc", "TOW": "tow", "2D": "two_d", "Type": "mode_type", "NrSV":
          "UTCDay": "utc_day", "UTCHour": "utc_hour", "SyncLevel": "sync_level", "PDOP": "pdop", "TDOP": "tdop",
          "HDOP": "hdop", "VDOP": "vdop", "HPL": "hpl", "VPL": "vpl", "Vn": "vn", "Ve": "ve", "Vu": "vu",
          "Vx": "vx", "Vy": "vy", "Vz": "vz", "X": "x", "Y": "y", "Z": "z", "COG": "cog",
-         "Corr_RTKType": "corr_rtk_type"}
+         "Corr_RTKType": "corr_rtk_type", "SBLength": "sb_length", "CPULoad": "cpu_load", "SISError": "sis_error",
+         "CPUOverloadError": "cpu_overload_error", "MissEventError": "missed_event_error", "WnSer": "wn_set",
+         "SVID": "svid"}
 RESERVED = re.compile(r"^Reserved\d*$")
 # pysbf2's fields we leave out, and why.
 LEFT_OUT = {"SigAuth": "a bit of AlertFlag that revision 3 adds (the logs' blocks are revision 2: reserved there)",
-            "NavMsgAuth": "a bit of AlertFlag that revision 3 adds (the logs' blocks are revision 2: reserved there)"}
+            "NavMsgAuth": "a bit of AlertFlag that revision 3 adds (the logs' blocks are revision 2: reserved there)",
+            "SVIDFull": "pysbf2's own addition to each SatInfo sub-block, no field of Septentrio's layout"}
+# A sub-block's fields: pysbf2 names the k-th entry's <Name>_<k> (two digits, from 01); ours are the
+# entries of the layout's one group, <group>.<field> here.
+ENTRY = re.compile(r"^(.+)_(\d{2})$")
+# Fields whose unit pysbf2 converts (block, our field): the factor from ours to its, the relative
+# tolerance of the comparison and why. Each such value is counted as agreeing once converted.
+CONVERTED = {("xPPSOffset", "offset"): (1e-9, 1e-3, "pysbf2 gives the offset in seconds, rounded to 4 significant "
+                                                    "digits (5.406e-09); ours is the r4 as sent, in ns (5.40565...)")}
 
 
 def snake(name: str) -> str:
@@ -94,6 +105,7 @@ class Outcome:
     missing: set[str] = field(default_factory=set)   # pysbf2's fields we have no field of
     differ: list[str] = field(default_factory=list)
     round_trip: int = 0
+    converted: set[str] = field(default_factory=set)   # fields compared in pysbf2's unit (CONVERTED)
 
 
 def _equal(ours: Any, theirs: Any) -> bool:
@@ -116,7 +128,7 @@ def _special_agrees(f: Any, value: Any, theirs: Any) -> bool:
 def outcomes() -> list[Outcome]:
     sys.path.insert(0, str(ROOT / "generated" / "python"))
     from nmeaspec import sbf_messages
-    from nmeaspec.ais import Special
+    from nmeaspec.ais import Group, Special
 
     recorded = [json.loads(line) for line in RECORD.read_text().splitlines()[1:]]
     blocks = {log.name: sbf_blocks(log.read_bytes()) for log in LOGS}
@@ -128,17 +140,29 @@ def outcomes() -> list[Outcome]:
         message = sbf_messages.decode(data)
         o.round_trip += message.encode() == data
         ours = message.to_dict()
+        groups = [g for g in type(message).LAYOUT if isinstance(g, Group)]
         for name, theirs in r["values"].items():
             if RESERVED.match(name):
                 continue
-            key = snake(name)
-            if key not in ours:
-                o.missing.add(name)
-                continue
+            entry = ENTRY.match(name)
+            if entry and groups:   # the k-th sub-block's field
+                base, index = snake(entry.group(1)), int(entry.group(2)) - 1
+                group = groups[0]
+                if base not in {f.id for f in group.fields}:
+                    o.missing.add(entry.group(1))
+                    continue
+                key, owner, spec = f"{group.id}.{base}", getattr(message, group.id)[index], \
+                    next(f for f in group.fields if f.id == base)
+            else:
+                key = snake(name)
+                if key not in ours:
+                    o.missing.add(name)
+                    continue
+                owner, spec, base = message, message.FIELDS.get(key), key
             o.fields[key] += 1
-            value = getattr(message, key)
+            value = getattr(owner, base)
             if isinstance(value, Special):   # a do-not-use value, by its id: pysbf2's number is its raw value
-                if _special_agrees(message.FIELDS[key], value, theirs):
+                if _special_agrees(spec, value, theirs):
                     o.special[key] += 1
                 elif len(o.differ) < 5:
                     o.differ.append(f"{r['log']} block {r['index']} {key}: ours {value.id} (raw {value.raw}), "
@@ -146,7 +170,11 @@ def outcomes() -> list[Outcome]:
                 continue
             if isinstance(value, Enum):   # an enum's code
                 value = int(value.value)
-            if _equal(value, theirs):
+            converted = CONVERTED.get((r["block"], key))
+            if converted is not None and math.isclose(value * converted[0], theirs, rel_tol=converted[1]):
+                o.agree[key] += 1
+                o.converted.add(key)
+            elif _equal(value, theirs):
                 o.agree[key] += 1
             elif len(o.differ) < 5:
                 o.differ.append(f"{r['log']} block {r['index']} {key}: ours {value!r}, pysbf2 {theirs!r}")
@@ -164,7 +192,8 @@ def render(found: list[Outcome]) -> str:
              "relative). A do-not-use value is a named special value here (`do_not_use`) and a number in",
              "pysbf2 (655.35 s for a mean age of corrections of raw 65535; -2e10 for a float, whose bits",
              "are the float do-not-use value's): counted apart when pysbf2's number is that raw value, a",
-             "difference otherwise. Round trip: the decoded block encodes back to its bytes.", "",
+             "difference otherwise. A sub-block's field (pysbf2's <Name>_<k>) is counted as",
+             "<group>.<field> over every sub-block. Round trip: the decoded block encodes back to its bytes.", "",
              "| block | blocks | round trip | fields agreeing / compared | do-not-use values |",
              "| --- | ---: | ---: | --- | --- |"]
     for o in found:
@@ -174,6 +203,8 @@ def render(found: list[Outcome]) -> str:
     lines += ["", "## Differences", ""]
     notes = [f"- {o.block}: pysbf2's {name}, not typed here: {LEFT_OUT.get(name, 'no reason known')}."
              for o in found for name in sorted(o.missing)]
+    notes += [f"- {o.block}: {name} compared in pysbf2's unit: {CONVERTED[(o.block, name)][2]}."
+              for o in found for name in sorted(o.converted)]
     notes += [f"- {o.block}: {d}" for o in found for d in o.differ]
     lines += notes or ["None."]
     return "\n".join(lines) + "\n"

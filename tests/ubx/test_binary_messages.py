@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 from collections import Counter
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -23,6 +24,7 @@ from nmeaspec.casic_messages.nav_pv import NavPv  # isort: skip
 from nmeaspec.runtime import NmeaError  # isort: skip
 from nmeaspec.sbf_messages import BY_ID as SBF  # isort: skip
 from nmeaspec.sbf_messages.pvt_geodetic import PvtGeodetic  # isort: skip
+from nmeaspec.sbf_messages.sat_visibility import SatVisibility  # isort: skip
 from nmeaspec.sirf_messages import BY_ID as SIRF  # isort: skip
 from nmeaspec.sirf_messages.geodetic_nav import GeodeticNav  # isort: skip
 from nmeaspec.sirf_messages.switch_to_nmea import SwitchToNmea, SwitchToNmeaSentence  # isort: skip
@@ -86,6 +88,11 @@ def test_vectors_are_the_reference_decoders() -> None:
     assert {v["protocol"] for v in vectors} == {"skytraq", "sirf", "casic", "sbf"}
     for v in vectors:
         data = bytes.fromhex(v["frame"])
+        if "error" in v:   # a frame every decoder refuses, with this kind of error
+            with pytest.raises(NmeaError) as err:
+                stream.BinaryFrame(v["protocol"], data).message()
+            assert err.value.kind == v["error"], v["where"]
+            continue
         message = stream.BinaryFrame(v["protocol"], data).message()
         assert message.to_dict() == v["decode"], v["where"]
         assert message.encode() == data
@@ -169,7 +176,8 @@ def test_gpsd_agrees() -> None:
 # What pysbf2's logs (tests/data/sbf) hold of each described SBF block (blocks counted from the
 # logs' frame split, tests/ubx/test_stream_frames.py); the other blocks stay binary.Unknown.
 SBF_EXPECTED = {"4006 rev 2": 58, "4007 rev 2": 2, "5905 rev 0": 58, "5906 rev 0": 1, "5907 rev 0": 58,
-                "5908 rev 0": 1, "4001 rev 0": 1, "5914 rev 0": 1}
+                "5908 rev 0": 1, "4001 rev 0": 1, "5914 rev 0": 1, "4012 rev 0": 3, "4014 rev 1": 3,
+                "4043 rev 0": 58, "5911 rev 0": 1, "5921 rev 0": 1}
 
 
 def sbf_frames() -> list[bytes]:
@@ -234,6 +242,32 @@ def test_sbf_errors_name_the_block() -> None:
     with pytest.raises(NmeaError) as err:
         binary.decode(SBF, "sbf", bytes(damaged))
     assert err.value.kind == "bad_checksum"
+
+
+def test_sbf_sub_blocks_of_their_sblength() -> None:
+    """A sub-block is SBLength bytes: its fields from its start, the bytes after them kept as its
+    trailing (a newer firmware's); an SBLength shorter than the fields is refused naming the block
+    and the field; an entry of another size than SBLength is not encoded."""
+    sky = next(stream.BinaryFrame("sbf", d).message() for d in sbf_frames()
+               if int.from_bytes(d[4:6], "little") & 0x1FFF == 4012)
+    assert isinstance(sky, SatVisibility) and (sky.n, sky.sb_length, len(sky.sat_info)) == (47, 8, 47)
+    first = sky.sat_info[0]
+    assert (first.svid, first.azimuth, first.elevation, first.trailing) == (3, 66.97, 85.98, b"")
+    longer = SatVisibility(tow=sky.tow, wnc=sky.wnc, n=2, sb_length=None,
+                           sat_info=[replace(e, trailing=b"\xaa\xbb") for e in sky.sat_info[:2]])
+    again = SatVisibility.from_payload(longer.payload())
+    assert again.sb_length == 10 and again.sat_info == longer.sat_info and again.payload() == longer.payload()
+    longer.sat_info[1].trailing = b"\xaa"
+    with pytest.raises(NmeaError) as err:
+        longer.payload()
+    assert err.value.kind == "bad_value" and err.value.name == "sb_length"
+    short = bytearray(sky.payload())
+    short[7] = 4   # SBLength 4: a SatInfo's fields take 8
+    with pytest.raises(NmeaError) as err:
+        SatVisibility.from_payload(bytes(short))
+    assert (err.value.kind, err.value.name) == ("bad_value", "sb_length")
+    assert str(err.value).endswith("SBF 4012 rev 0: sb_length is 4, an entry of sat_info takes at least 8 bytes"), \
+        str(err.value)
 
 
 def test_pysbf2_agrees() -> None:

@@ -2,11 +2,14 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: templates/rust/binary_messages.rs.j2, spec/binary/sbf/messages/pvt_dop.yaml,
 //   spec/binary/sbf/messages/pvt_cartesian.yaml, spec/binary/sbf/messages/pvt_geodetic.yaml,
+//   spec/binary/sbf/messages/sat_visibility.yaml, spec/binary/sbf/messages/receiver_status.yaml,
+//   spec/binary/sbf/messages/base_vector_cart.yaml,
 //   spec/binary/sbf/messages/pos_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/pos_cov_geodetic.yaml,
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
-//   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/receiver_time.yaml
-//   (digest 393cc30af3732256)
+//   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/xpps_offset.yaml,
+//   spec/binary/sbf/messages/receiver_time.yaml, spec/binary/sbf/messages/end_of_pvt.yaml
+//   (digest e25e67b6e1ba6a54)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The Septentrio SBF messages of spec/binary/sbf: a struct per layout (named as the Python
@@ -1337,6 +1340,1057 @@ impl<'a> PvtGeodetic<'a> {
     }
 }
 
+/// One entry of SatVisibilitySatInfoEntry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SatVisibilitySatInfoEntry<'a> {
+    /// Satellite (SBF satellite number).
+    pub svid: u8,
+    /// GLONASS frequency number plus 8 (1 to 21; reserved for other signals).
+    pub freq_nr_raw: u8,
+    /// Azimuth (0 north, increasing towards east) [deg].
+    pub azimuth_raw: u16,
+    /// Elevation above the local horizontal plane [deg].
+    pub elevation_raw: i16,
+    /// Rising (1) or setting (0).
+    pub rise_set_raw: u8,
+    /// Visibility computed from the almanac (1) or the ephemeris (2).
+    pub satellite_info_raw: u8,
+    /// Bytes after the entry's fields, as sent.
+    pub trailing: &'a [u8],
+}
+
+impl<'a> ubx::Entry<'a> for SatVisibilitySatInfoEntry<'a> {
+    const WIDTH: usize = 8;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let svid = u8::from_le_bytes(r.array("svid")?);
+        let freq_nr_raw = u8::from_le_bytes(r.array("freq_nr")?);
+        let azimuth_raw = u16::from_le_bytes(r.array("azimuth")?);
+        let elevation_raw = i16::from_le_bytes(r.array("elevation")?);
+        let rise_set_raw = u8::from_le_bytes(r.array("rise_set")?);
+        let satellite_info_raw = u8::from_le_bytes(r.array("satellite_info")?);
+        let trailing = r.left(0);
+        Ok(Self { svid, freq_nr_raw, azimuth_raw, elevation_raw, rise_set_raw, satellite_info_raw, trailing })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.svid.to_le_bytes());
+        w.put(&self.freq_nr_raw.to_le_bytes());
+        w.put(&self.azimuth_raw.to_le_bytes());
+        w.put(&self.elevation_raw.to_le_bytes());
+        w.put(&self.rise_set_raw.to_le_bytes());
+        w.put(&self.satellite_info_raw.to_le_bytes());
+        w.put_sized(self.trailing, None, "4012 rev 0", "trailing")?;
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("svid", self.svid)?;
+        match ais::counted(i64::from(self.freq_nr_raw), 0, &[(0, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("freq_nr", x)?,
+            ais::Reading::Special(id) => j.text("freq_nr", id)?,
+        }
+        j.int("freq_nr_raw", self.freq_nr_raw)?;
+        match ais::scaled(i64::from(self.azimuth_raw), 100.0, 0.0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "azimuth", x)?,
+            ais::Reading::Special(id) => j.text("azimuth", id)?,
+        }
+        j.int("azimuth_raw", self.azimuth_raw)?;
+        match ais::scaled(i64::from(self.elevation_raw), 100.0, 0.0, &[(-32768, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "elevation", x)?,
+            ais::Reading::Special(id) => j.text("elevation", id)?,
+        }
+        j.int("elevation_raw", self.elevation_raw)?;
+        match ais::counted(i64::from(self.rise_set_raw), 0, &[(255, "unknown")]) {
+            ais::Reading::Value(x) => j.int("rise_set", x)?,
+            ais::Reading::Special(id) => j.text("rise_set", id)?,
+        }
+        j.int("rise_set_raw", self.rise_set_raw)?;
+        match ais::counted(i64::from(self.satellite_info_raw), 0, &[(255, "unknown")]) {
+            ais::Reading::Value(x) => j.int("satellite_info", x)?,
+            ais::Reading::Special(id) => j.text("satellite_info", id)?,
+        }
+        j.int("satellite_info_raw", self.satellite_info_raw)?;
+        ubx::json_hex(j, "trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+impl<'a> SatVisibilitySatInfoEntry<'a> {
+    /// GLONASS frequency number plus 8 (1 to 21; reserved for other signals), or its special value.
+    pub fn freq_nr(&self) -> ais::Reading<i64> {
+        let raw = self.freq_nr_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "do_not_use")])
+    }
+    /// Azimuth (0 north, increasing towards east) [deg]: the raw integer divided by 100, or its special value.
+    pub fn azimuth(&self) -> ais::Reading<f64> {
+        let raw = self.azimuth_raw;
+        ais::scaled(i64::from(raw), 100.0, 0.0, &[(65535, "do_not_use")])
+    }
+    /// Elevation above the local horizontal plane [deg]: the raw integer divided by 100, or its special value.
+    pub fn elevation(&self) -> ais::Reading<f64> {
+        let raw = self.elevation_raw;
+        ais::scaled(i64::from(raw), 100.0, 0.0, &[(-32768, "do_not_use")])
+    }
+    /// Rising (1) or setting (0), or its special value.
+    pub fn rise_set(&self) -> ais::Reading<i64> {
+        let raw = self.rise_set_raw;
+        ais::counted(i64::from(raw), 0, &[(255, "unknown")])
+    }
+    /// Visibility computed from the almanac (1) or the ephemeris (2), or its special value.
+    pub fn satellite_info(&self) -> ais::Reading<i64> {
+        let raw = self.satellite_info_raw;
+        ais::counted(i64::from(raw), 0, &[(255, "unknown")])
+    }
+}
+
+/// Satellites above the horizon (SatVisibility): SBF 4012 rev 0 (id 0x0FAC), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SatVisibility<'a> {
+    /// Time of week (GPS time) [ms].
+    pub tow_raw: u32,
+    /// Week number (GPS time; continuous; 0 in January 1980) [week].
+    pub wnc_raw: u16,
+    /// SatInfo sub-blocks.
+    pub n: u8,
+    /// Bytes of a SatInfo sub-block [byte].
+    pub sb_length: u8,
+    /// Satellites (SatInfo sub-blocks): 0 to 65535 entries.
+    pub sat_info: ubx::Group<'a, SatVisibilitySatInfoEntry<'a>>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> SatVisibility<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "sat_visibility";
+    /// How errors name the message.
+    pub const ADDRESS: &'static str = "4012 rev 0";
+    /// The bytes that tell the message: id 0x0FAC.
+    pub const KEY: &'static [u8] = &[0xac, 0x0f];
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Time of week (GPS time) [ms], or its special value.
+    pub fn tow(&self) -> ais::Reading<i64> {
+        let raw = self.tow_raw;
+        ais::counted(i64::from(raw), 0, &[(4294967295, "do_not_use")])
+    }
+    /// Week number (GPS time; continuous; 0 in January 1980) [week], or its special value.
+    pub fn wnc(&self) -> ais::Reading<i64> {
+        let raw = self.wnc_raw;
+        ais::counted(i64::from(raw), 0, &[(65535, "do_not_use")])
+    }
+    /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
+        let tow_raw = u32::from_le_bytes(r.array("tow")?);
+        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
+        let n = u8::from_le_bytes(r.array("n")?);
+        let sb_length = u8::from_le_bytes(r.array("sb_length")?);
+        let sat_info =
+            r.group_strided(Some(usize::from(n)), usize::from(sb_length), 0, 65535, 0, "sat_info", "sb_length")?;
+        let trailing = r.rest();
+        Ok(Self { tow_raw, wnc_raw, n, sb_length, sat_info, trailing })
+    }
+    /// Writes the payload after its key.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.tow_raw.to_le_bytes());
+        w.put(&self.wnc_raw.to_le_bytes());
+        w.put(&self.n.to_le_bytes());
+        w.put(&self.sb_length.to_le_bytes());
+        self.sat_info.write_strided(w, usize::from(self.sb_length), "4012 rev 0", "sb_length", "sat_info")?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum and end bytes, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame_of(buf, Protocol::Sbf, Self::KEY, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/binary.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        match ais::counted(i64::from(self.tow_raw), 0, &[(4294967295, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("tow", x)?,
+            ais::Reading::Special(id) => j.text("tow", id)?,
+        }
+        j.int("tow_raw", self.tow_raw)?;
+        match ais::counted(i64::from(self.wnc_raw), 0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("wnc", x)?,
+            ais::Reading::Special(id) => j.text("wnc", id)?,
+        }
+        j.int("wnc_raw", self.wnc_raw)?;
+        j.int("n", self.n)?;
+        j.int("sb_length", self.sb_length)?;
+        self.sat_info.json(j, "sat_info")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of ReceiverStatusAgcStateEntry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ReceiverStatusAgcStateEntry<'a> {
+    /// Front end and antenna.
+    pub front_end_id: u8,
+    /// Gain of the front end's AGC [dB].
+    pub gain_raw: i8,
+    /// Variance of the digitized samples (normalized).
+    pub sample_var: u8,
+    /// Samples blanked by the pulse blanking [%].
+    pub blanking_stat: u8,
+    /// Bytes after the entry's fields, as sent.
+    pub trailing: &'a [u8],
+}
+
+impl<'a> ubx::Entry<'a> for ReceiverStatusAgcStateEntry<'a> {
+    const WIDTH: usize = 4;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let front_end_id = u8::from_le_bytes(r.array("front_end_id")?);
+        let gain_raw = i8::from_le_bytes(r.array("gain")?);
+        let sample_var = u8::from_le_bytes(r.array("sample_var")?);
+        let blanking_stat = u8::from_le_bytes(r.array("blanking_stat")?);
+        let trailing = r.left(0);
+        Ok(Self { front_end_id, gain_raw, sample_var, blanking_stat, trailing })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.front_end_id.to_le_bytes());
+        w.put(&self.gain_raw.to_le_bytes());
+        w.put(&self.sample_var.to_le_bytes());
+        w.put(&self.blanking_stat.to_le_bytes());
+        w.put_sized(self.trailing, None, "4014 rev 1", "trailing")?;
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        j.int("front_end_id", self.front_end_id)?;
+        j.int("front_end_code", self.front_end_id & 0x1f)?;
+        j.int("antenna_id", (self.front_end_id >> 5) & 0x7)?;
+        match ais::counted(i64::from(self.gain_raw), 0, &[(-128, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("gain", x)?,
+            ais::Reading::Special(id) => j.text("gain", id)?,
+        }
+        j.int("gain_raw", self.gain_raw)?;
+        j.int("sample_var", self.sample_var)?;
+        j.int("blanking_stat", self.blanking_stat)?;
+        ubx::json_hex(j, "trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+impl<'a> ReceiverStatusAgcStateEntry<'a> {
+    /// Front end (0 GPS L1/E1; 1 GLONASS L1; 2 E6; 3 GPS L2; 4 GLONASS L2; 5 L5/E5a; 6 E5b/B2I; 7 E5(a+b); 8 combined GPS/Galileo/GLONASS L1; more in the reference guide) (bits 0-4 of `front_end_id`).
+    pub fn front_end_code(&self) -> u8 {
+        self.front_end_id & 0x1f
+    }
+    /// Sets front end (0 gps l1/e1; 1 glonass l1; 2 e6; 3 gps l2; 4 glonass l2; 5 l5/e5a; 6 e5b/b2i; 7 e5(a+b); 8 combined gps/galileo/glonass l1; more in the reference guide) (the value in its bits of `front_end_id`; the other bits stay).
+    pub fn set_front_end_code(&mut self, value: u8) {
+        self.front_end_id = (self.front_end_id & !0x1f) | (value & 0x1f);
+    }
+    /// Antenna (0 main) (bits 5-7 of `front_end_id`).
+    pub fn antenna_id(&self) -> u8 {
+        (self.front_end_id >> 5) & 0x7
+    }
+    /// Sets antenna (0 main) (the value in its bits of `front_end_id`; the other bits stay).
+    pub fn set_antenna_id(&mut self, value: u8) {
+        self.front_end_id = (self.front_end_id & !(0x7 << 5)) | ((value & 0x7) << 5);
+    }
+    /// Gain of the front end's AGC [dB], or its special value.
+    pub fn gain(&self) -> ais::Reading<i64> {
+        let raw = self.gain_raw;
+        ais::counted(i64::from(raw), 0, &[(-128, "do_not_use")])
+    }
+}
+
+/// Receiver status (ReceiverStatus): SBF 4014 rev 1 (id 0x2FAE), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ReceiverStatus<'a> {
+    /// Time of week (GPS time) [ms].
+    pub tow_raw: u32,
+    /// Week number (GPS time; continuous; 0 in January 1980) [week].
+    pub wnc_raw: u16,
+    /// Load of the receiver's CPU [%].
+    pub cpu_load_raw: u8,
+    /// Errors detected in external data (each set for a second).
+    pub ext_error: u8,
+    /// Time since start-up or the last reset [s].
+    pub up_time: u32,
+    /// Receiver state.
+    pub rx_state: u32,
+    /// Errors since power-on (some reset by a command).
+    pub rx_error: u32,
+    /// AGCState sub-blocks.
+    pub n: u8,
+    /// Bytes of an AGCState sub-block [byte].
+    pub sb_length: u8,
+    /// Configuration commands counter (1 to 255).
+    pub cmd_count_raw: u8,
+    /// Receiver temperature plus 100 (degrees Celsius).
+    pub temperature_raw: u8,
+    /// Front ends' gain control (AGCState sub-blocks): 0 to 65535 entries.
+    pub agc_state: ubx::Group<'a, ReceiverStatusAgcStateEntry<'a>>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> ReceiverStatus<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "receiver_status";
+    /// How errors name the message.
+    pub const ADDRESS: &'static str = "4014 rev 1";
+    /// The bytes that tell the message: id 0x2FAE.
+    pub const KEY: &'static [u8] = &[0xae, 0x2f];
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Time of week (GPS time) [ms], or its special value.
+    pub fn tow(&self) -> ais::Reading<i64> {
+        let raw = self.tow_raw;
+        ais::counted(i64::from(raw), 0, &[(4294967295, "do_not_use")])
+    }
+    /// Week number (GPS time; continuous; 0 in January 1980) [week], or its special value.
+    pub fn wnc(&self) -> ais::Reading<i64> {
+        let raw = self.wnc_raw;
+        ais::counted(i64::from(raw), 0, &[(65535, "do_not_use")])
+    }
+    /// Load of the receiver's CPU [%], or its special value.
+    pub fn cpu_load(&self) -> ais::Reading<i64> {
+        let raw = self.cpu_load_raw;
+        ais::counted(i64::from(raw), 0, &[(255, "do_not_use")])
+    }
+    /// Signal-in-space error of a satellite reported healthy (bit 0 of `ext_error`).
+    pub fn sis_error(&self) -> bool {
+        (self.ext_error & 0x1) != 0
+    }
+    /// Sets signal-in-space error of a satellite reported healthy (the value in its bits of `ext_error`; the other bits stay).
+    pub fn set_sis_error(&mut self, value: bool) {
+        self.ext_error = (self.ext_error & !0x1) | u8::from(value);
+    }
+    /// Incoming differential corrections not decoded (bit 1 of `ext_error`).
+    pub fn diff_corr_error(&self) -> bool {
+        ((self.ext_error >> 1) & 0x1) != 0
+    }
+    /// Sets incoming differential corrections not decoded (the value in its bits of `ext_error`; the other bits stay).
+    pub fn set_diff_corr_error(&mut self, value: bool) {
+        self.ext_error = (self.ext_error & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// External sensor malfunction (bit 2 of `ext_error`).
+    pub fn ext_sensor_error(&self) -> bool {
+        ((self.ext_error >> 2) & 0x1) != 0
+    }
+    /// Sets external sensor malfunction (the value in its bits of `ext_error`; the other bits stay).
+    pub fn set_ext_sensor_error(&mut self, value: bool) {
+        self.ext_error = (self.ext_error & !(0x1 << 2)) | (u8::from(value) << 2);
+    }
+    /// Configuration or setup error (bit 3 of `ext_error`).
+    pub fn setup_error(&self) -> bool {
+        ((self.ext_error >> 3) & 0x1) != 0
+    }
+    /// Sets configuration or setup error (the value in its bits of `ext_error`; the other bits stay).
+    pub fn set_setup_error(&mut self, value: bool) {
+        self.ext_error = (self.ext_error & !(0x1 << 3)) | (u8::from(value) << 3);
+    }
+    /// Active antenna powered (bit 1 of `rx_state`).
+    pub fn active_antenna(&self) -> bool {
+        ((self.rx_state >> 1) & 0x1) != 0
+    }
+    /// Sets active antenna powered (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_active_antenna(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 1)) | (u32::from(value) << 1);
+    }
+    /// External frequency reference used (bit 2 of `rx_state`).
+    pub fn ext_freq(&self) -> bool {
+        ((self.rx_state >> 2) & 0x1) != 0
+    }
+    /// Sets external frequency reference used (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_ext_freq(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 2)) | (u32::from(value) << 2);
+    }
+    /// External time reference used (bit 3 of `rx_state`).
+    pub fn ext_time(&self) -> bool {
+        ((self.rx_state >> 3) & 0x1) != 0
+    }
+    /// Sets external time reference used (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_ext_time(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 3)) | (u32::from(value) << 3);
+    }
+    /// Week number set (bit 4 of `rx_state`).
+    pub fn wn_set(&self) -> bool {
+        ((self.rx_state >> 4) & 0x1) != 0
+    }
+    /// Sets week number set (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_wn_set(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 4)) | (u32::from(value) << 4);
+    }
+    /// Time of week set (bit 5 of `rx_state`).
+    pub fn tow_set(&self) -> bool {
+        ((self.rx_state >> 5) & 0x1) != 0
+    }
+    /// Sets time of week set (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_tow_set(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 5)) | (u32::from(value) << 5);
+    }
+    /// Time within 10 ms of GPS time (bit 6 of `rx_state`).
+    pub fn fine_time(&self) -> bool {
+        ((self.rx_state >> 6) & 0x1) != 0
+    }
+    /// Sets time within 10 ms of gps time (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_fine_time(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 6)) | (u32::from(value) << 6);
+    }
+    /// Internal disk being written (bit 7 of `rx_state`).
+    pub fn internal_disk_activity(&self) -> bool {
+        ((self.rx_state >> 7) & 0x1) != 0
+    }
+    /// Sets internal disk being written (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_internal_disk_activity(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 7)) | (u32::from(value) << 7);
+    }
+    /// Internal disk full (bit 8 of `rx_state`).
+    pub fn internal_disk_full(&self) -> bool {
+        ((self.rx_state >> 8) & 0x1) != 0
+    }
+    /// Sets internal disk full (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_internal_disk_full(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 8)) | (u32::from(value) << 8);
+    }
+    /// Internal disk mounted (bit 9 of `rx_state`).
+    pub fn internal_disk_mounted(&self) -> bool {
+        ((self.rx_state >> 9) & 0x1) != 0
+    }
+    /// Sets internal disk mounted (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_internal_disk_mounted(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 9)) | (u32::from(value) << 9);
+    }
+    /// Internal antenna used (bit 10 of `rx_state`).
+    pub fn int_ant(&self) -> bool {
+        ((self.rx_state >> 10) & 0x1) != 0
+    }
+    /// Sets internal antenna used (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_int_ant(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 10)) | (u32::from(value) << 10);
+    }
+    /// Reference output locked (bit 11 of `rx_state`).
+    pub fn refout_locked(&self) -> bool {
+        ((self.rx_state >> 11) & 0x1) != 0
+    }
+    /// Sets reference output locked (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_refout_locked(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 11)) | (u32::from(value) << 11);
+    }
+    /// External disk being written (bit 13 of `rx_state`).
+    pub fn external_disk_activity(&self) -> bool {
+        ((self.rx_state >> 13) & 0x1) != 0
+    }
+    /// Sets external disk being written (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_external_disk_activity(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 13)) | (u32::from(value) << 13);
+    }
+    /// External disk full (bit 14 of `rx_state`).
+    pub fn external_disk_full(&self) -> bool {
+        ((self.rx_state >> 14) & 0x1) != 0
+    }
+    /// Sets external disk full (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_external_disk_full(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 14)) | (u32::from(value) << 14);
+    }
+    /// External disk mounted (bit 15 of `rx_state`).
+    pub fn external_disk_mounted(&self) -> bool {
+        ((self.rx_state >> 15) & 0x1) != 0
+    }
+    /// Sets external disk mounted (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_external_disk_mounted(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 15)) | (u32::from(value) << 15);
+    }
+    /// PPS input calibration running (bit 16 of `rx_state`).
+    pub fn pps_in_cal(&self) -> bool {
+        ((self.rx_state >> 16) & 0x1) != 0
+    }
+    /// Sets pps input calibration running (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_pps_in_cal(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 16)) | (u32::from(value) << 16);
+    }
+    /// Differential corrections coming in (bit 17 of `rx_state`).
+    pub fn diff_corr_in(&self) -> bool {
+        ((self.rx_state >> 17) & 0x1) != 0
+    }
+    /// Sets differential corrections coming in (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_diff_corr_in(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 17)) | (u32::from(value) << 17);
+    }
+    /// Internet reachable (bit 18 of `rx_state`).
+    pub fn internet(&self) -> bool {
+        ((self.rx_state >> 18) & 0x1) != 0
+    }
+    /// Sets internet reachable (the value in its bits of `rx_state`; the other bits stay).
+    pub fn set_internet(&mut self, value: bool) {
+        self.rx_state = (self.rx_state & !(0x1 << 18)) | (u32::from(value) << 18);
+    }
+    /// Software warning or error (bit 3 of `rx_error`).
+    pub fn software_error(&self) -> bool {
+        ((self.rx_error >> 3) & 0x1) != 0
+    }
+    /// Sets software warning or error (the value in its bits of `rx_error`; the other bits stay).
+    pub fn set_software_error(&mut self, value: bool) {
+        self.rx_error = (self.rx_error & !(0x1 << 3)) | (u32::from(value) << 3);
+    }
+    /// Watchdog expired (bit 4 of `rx_error`).
+    pub fn watchdog_error(&self) -> bool {
+        ((self.rx_error >> 4) & 0x1) != 0
+    }
+    /// Sets watchdog expired (the value in its bits of `rx_error`; the other bits stay).
+    pub fn set_watchdog_error(&mut self, value: bool) {
+        self.rx_error = (self.rx_error & !(0x1 << 4)) | (u32::from(value) << 4);
+    }
+    /// Antenna overcurrent (bit 5 of `rx_error`).
+    pub fn antenna_error(&self) -> bool {
+        ((self.rx_error >> 5) & 0x1) != 0
+    }
+    /// Sets antenna overcurrent (the value in its bits of `rx_error`; the other bits stay).
+    pub fn set_antenna_error(&mut self, value: bool) {
+        self.rx_error = (self.rx_error & !(0x1 << 5)) | (u32::from(value) << 5);
+    }
+    /// Output congestion on a port in the last second (bit 6 of `rx_error`).
+    pub fn congestion_error(&self) -> bool {
+        ((self.rx_error >> 6) & 0x1) != 0
+    }
+    /// Sets output congestion on a port in the last second (the value in its bits of `rx_error`; the other bits stay).
+    pub fn set_congestion_error(&mut self, value: bool) {
+        self.rx_error = (self.rx_error & !(0x1 << 6)) | (u32::from(value) << 6);
+    }
+    /// External event congestion in the last second (bit 8 of `rx_error`).
+    pub fn missed_event_error(&self) -> bool {
+        ((self.rx_error >> 8) & 0x1) != 0
+    }
+    /// Sets external event congestion in the last second (the value in its bits of `rx_error`; the other bits stay).
+    pub fn set_missed_event_error(&mut self, value: bool) {
+        self.rx_error = (self.rx_error & !(0x1 << 8)) | (u32::from(value) << 8);
+    }
+    /// CPU load above 90% (bit 9 of `rx_error`).
+    pub fn cpu_overload_error(&self) -> bool {
+        ((self.rx_error >> 9) & 0x1) != 0
+    }
+    /// Sets cpu load above 90% (the value in its bits of `rx_error`; the other bits stay).
+    pub fn set_cpu_overload_error(&mut self, value: bool) {
+        self.rx_error = (self.rx_error & !(0x1 << 9)) | (u32::from(value) << 9);
+    }
+    /// A configuration file invalid or absent (bit 10 of `rx_error`).
+    pub fn invalid_config_error(&self) -> bool {
+        ((self.rx_error >> 10) & 0x1) != 0
+    }
+    /// Sets a configuration file invalid or absent (the value in its bits of `rx_error`; the other bits stay).
+    pub fn set_invalid_config_error(&mut self, value: bool) {
+        self.rx_error = (self.rx_error & !(0x1 << 10)) | (u32::from(value) << 10);
+    }
+    /// Outside the permitted region (bit 11 of `rx_error`).
+    pub fn out_of_geofence_error(&self) -> bool {
+        ((self.rx_error >> 11) & 0x1) != 0
+    }
+    /// Sets outside the permitted region (the value in its bits of `rx_error`; the other bits stay).
+    pub fn set_out_of_geofence_error(&mut self, value: bool) {
+        self.rx_error = (self.rx_error & !(0x1 << 11)) | (u32::from(value) << 11);
+    }
+    /// Configuration commands counter (1 to 255), or its special value.
+    pub fn cmd_count(&self) -> ais::Reading<i64> {
+        let raw = self.cmd_count_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "do_not_use")])
+    }
+    /// Receiver temperature plus 100 (degrees Celsius), or its special value.
+    pub fn temperature(&self) -> ais::Reading<i64> {
+        let raw = self.temperature_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "do_not_use")])
+    }
+    /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
+        let tow_raw = u32::from_le_bytes(r.array("tow")?);
+        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
+        let cpu_load_raw = u8::from_le_bytes(r.array("cpu_load")?);
+        let ext_error = u8::from_le_bytes(r.array("ext_error")?);
+        let up_time = u32::from_le_bytes(r.array("up_time")?);
+        let rx_state = u32::from_le_bytes(r.array("rx_state")?);
+        let rx_error = u32::from_le_bytes(r.array("rx_error")?);
+        let n = u8::from_le_bytes(r.array("n")?);
+        let sb_length = u8::from_le_bytes(r.array("sb_length")?);
+        let cmd_count_raw = u8::from_le_bytes(r.array("cmd_count")?);
+        let temperature_raw = u8::from_le_bytes(r.array("temperature")?);
+        let agc_state =
+            r.group_strided(Some(usize::from(n)), usize::from(sb_length), 0, 65535, 0, "agc_state", "sb_length")?;
+        let trailing = r.rest();
+        Ok(Self {
+            tow_raw,
+            wnc_raw,
+            cpu_load_raw,
+            ext_error,
+            up_time,
+            rx_state,
+            rx_error,
+            n,
+            sb_length,
+            cmd_count_raw,
+            temperature_raw,
+            agc_state,
+            trailing,
+        })
+    }
+    /// Writes the payload after its key.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.tow_raw.to_le_bytes());
+        w.put(&self.wnc_raw.to_le_bytes());
+        w.put(&self.cpu_load_raw.to_le_bytes());
+        w.put(&self.ext_error.to_le_bytes());
+        w.put(&self.up_time.to_le_bytes());
+        w.put(&self.rx_state.to_le_bytes());
+        w.put(&self.rx_error.to_le_bytes());
+        w.put(&self.n.to_le_bytes());
+        w.put(&self.sb_length.to_le_bytes());
+        w.put(&self.cmd_count_raw.to_le_bytes());
+        w.put(&self.temperature_raw.to_le_bytes());
+        self.agc_state.write_strided(w, usize::from(self.sb_length), "4014 rev 1", "sb_length", "agc_state")?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum and end bytes, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame_of(buf, Protocol::Sbf, Self::KEY, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/binary.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        match ais::counted(i64::from(self.tow_raw), 0, &[(4294967295, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("tow", x)?,
+            ais::Reading::Special(id) => j.text("tow", id)?,
+        }
+        j.int("tow_raw", self.tow_raw)?;
+        match ais::counted(i64::from(self.wnc_raw), 0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("wnc", x)?,
+            ais::Reading::Special(id) => j.text("wnc", id)?,
+        }
+        j.int("wnc_raw", self.wnc_raw)?;
+        match ais::counted(i64::from(self.cpu_load_raw), 0, &[(255, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("cpu_load", x)?,
+            ais::Reading::Special(id) => j.text("cpu_load", id)?,
+        }
+        j.int("cpu_load_raw", self.cpu_load_raw)?;
+        j.int("ext_error", self.ext_error)?;
+        j.flag("sis_error", (self.ext_error & 0x1) != 0)?;
+        j.flag("diff_corr_error", ((self.ext_error >> 1) & 0x1) != 0)?;
+        j.flag("ext_sensor_error", ((self.ext_error >> 2) & 0x1) != 0)?;
+        j.flag("setup_error", ((self.ext_error >> 3) & 0x1) != 0)?;
+        j.int("up_time", self.up_time)?;
+        j.int("rx_state", self.rx_state)?;
+        j.flag("active_antenna", ((self.rx_state >> 1) & 0x1) != 0)?;
+        j.flag("ext_freq", ((self.rx_state >> 2) & 0x1) != 0)?;
+        j.flag("ext_time", ((self.rx_state >> 3) & 0x1) != 0)?;
+        j.flag("wn_set", ((self.rx_state >> 4) & 0x1) != 0)?;
+        j.flag("tow_set", ((self.rx_state >> 5) & 0x1) != 0)?;
+        j.flag("fine_time", ((self.rx_state >> 6) & 0x1) != 0)?;
+        j.flag("internal_disk_activity", ((self.rx_state >> 7) & 0x1) != 0)?;
+        j.flag("internal_disk_full", ((self.rx_state >> 8) & 0x1) != 0)?;
+        j.flag("internal_disk_mounted", ((self.rx_state >> 9) & 0x1) != 0)?;
+        j.flag("int_ant", ((self.rx_state >> 10) & 0x1) != 0)?;
+        j.flag("refout_locked", ((self.rx_state >> 11) & 0x1) != 0)?;
+        j.flag("external_disk_activity", ((self.rx_state >> 13) & 0x1) != 0)?;
+        j.flag("external_disk_full", ((self.rx_state >> 14) & 0x1) != 0)?;
+        j.flag("external_disk_mounted", ((self.rx_state >> 15) & 0x1) != 0)?;
+        j.flag("pps_in_cal", ((self.rx_state >> 16) & 0x1) != 0)?;
+        j.flag("diff_corr_in", ((self.rx_state >> 17) & 0x1) != 0)?;
+        j.flag("internet", ((self.rx_state >> 18) & 0x1) != 0)?;
+        j.int("rx_error", self.rx_error)?;
+        j.flag("software_error", ((self.rx_error >> 3) & 0x1) != 0)?;
+        j.flag("watchdog_error", ((self.rx_error >> 4) & 0x1) != 0)?;
+        j.flag("antenna_error", ((self.rx_error >> 5) & 0x1) != 0)?;
+        j.flag("congestion_error", ((self.rx_error >> 6) & 0x1) != 0)?;
+        j.flag("missed_event_error", ((self.rx_error >> 8) & 0x1) != 0)?;
+        j.flag("cpu_overload_error", ((self.rx_error >> 9) & 0x1) != 0)?;
+        j.flag("invalid_config_error", ((self.rx_error >> 10) & 0x1) != 0)?;
+        j.flag("out_of_geofence_error", ((self.rx_error >> 11) & 0x1) != 0)?;
+        j.int("n", self.n)?;
+        j.int("sb_length", self.sb_length)?;
+        match ais::counted(i64::from(self.cmd_count_raw), 0, &[(0, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("cmd_count", x)?,
+            ais::Reading::Special(id) => j.text("cmd_count", id)?,
+        }
+        j.int("cmd_count_raw", self.cmd_count_raw)?;
+        match ais::counted(i64::from(self.temperature_raw), 0, &[(0, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("temperature", x)?,
+            ais::Reading::Special(id) => j.text("temperature", id)?,
+        }
+        j.int("temperature_raw", self.temperature_raw)?;
+        self.agc_state.json(j, "agc_state")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
+/// One entry of BaseVectorCartVectorInfoEntry.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BaseVectorCartVectorInfoEntry<'a> {
+    /// Satellites with corrections of this base.
+    pub nr_sv_raw: u8,
+    /// PVT error.
+    pub error_raw: u8,
+    /// PVT mode.
+    pub mode: u8,
+    /// Reference points.
+    pub misc: u8,
+    /// X of the baseline (rover to base) [m], as sent (`delta_x()`: the float or its special value).
+    pub delta_x_raw: f64,
+    /// Y of the baseline (rover to base) [m], as sent (`delta_y()`: the float or its special value).
+    pub delta_y_raw: f64,
+    /// Z of the baseline (rover to base) [m], as sent (`delta_z()`: the float or its special value).
+    pub delta_z_raw: f64,
+    /// X velocity of the baseline [m/s], as sent (`delta_vx()`: the float or its special value).
+    pub delta_vx_raw: f32,
+    /// Y velocity of the baseline [m/s], as sent (`delta_vy()`: the float or its special value).
+    pub delta_vy_raw: f32,
+    /// Z velocity of the baseline [m/s], as sent (`delta_vz()`: the float or its special value).
+    pub delta_vz_raw: f32,
+    /// Azimuth of the baseline (0 north, increasing towards east) [deg].
+    pub azimuth_raw: u16,
+    /// Elevation of the baseline [deg].
+    pub elevation_raw: i16,
+    /// Base station id.
+    pub reference_id_raw: u16,
+    /// Age of the corrections [s].
+    pub corr_age_raw: u16,
+    /// Signals of the base used (a bit per signal type).
+    pub signal_info: u32,
+    /// Bytes after the entry's fields, as sent.
+    pub trailing: &'a [u8],
+}
+
+impl<'a> ubx::Entry<'a> for BaseVectorCartVectorInfoEntry<'a> {
+    const WIDTH: usize = 52;
+    fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
+        let nr_sv_raw = u8::from_le_bytes(r.array("nr_sv")?);
+        let error_raw = u8::from_le_bytes(r.array("error")?);
+        let mode = u8::from_le_bytes(r.array("mode")?);
+        let misc = u8::from_le_bytes(r.array("misc")?);
+        let delta_x_raw = f64::from_le_bytes(r.array("delta_x")?);
+        let delta_y_raw = f64::from_le_bytes(r.array("delta_y")?);
+        let delta_z_raw = f64::from_le_bytes(r.array("delta_z")?);
+        let delta_vx_raw = f32::from_le_bytes(r.array("delta_vx")?);
+        let delta_vy_raw = f32::from_le_bytes(r.array("delta_vy")?);
+        let delta_vz_raw = f32::from_le_bytes(r.array("delta_vz")?);
+        let azimuth_raw = u16::from_le_bytes(r.array("azimuth")?);
+        let elevation_raw = i16::from_le_bytes(r.array("elevation")?);
+        let reference_id_raw = u16::from_le_bytes(r.array("reference_id")?);
+        let corr_age_raw = u16::from_le_bytes(r.array("corr_age")?);
+        let signal_info = u32::from_le_bytes(r.array("signal_info")?);
+        let trailing = r.left(0);
+        Ok(Self {
+            nr_sv_raw,
+            error_raw,
+            mode,
+            misc,
+            delta_x_raw,
+            delta_y_raw,
+            delta_z_raw,
+            delta_vx_raw,
+            delta_vy_raw,
+            delta_vz_raw,
+            azimuth_raw,
+            elevation_raw,
+            reference_id_raw,
+            corr_age_raw,
+            signal_info,
+            trailing,
+        })
+    }
+    fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.nr_sv_raw.to_le_bytes());
+        w.put(&self.error_raw.to_le_bytes());
+        w.put(&self.mode.to_le_bytes());
+        w.put(&self.misc.to_le_bytes());
+        w.put(&self.delta_x_raw.to_le_bytes());
+        w.put(&self.delta_y_raw.to_le_bytes());
+        w.put(&self.delta_z_raw.to_le_bytes());
+        w.put(&self.delta_vx_raw.to_le_bytes());
+        w.put(&self.delta_vy_raw.to_le_bytes());
+        w.put(&self.delta_vz_raw.to_le_bytes());
+        w.put(&self.azimuth_raw.to_le_bytes());
+        w.put(&self.elevation_raw.to_le_bytes());
+        w.put(&self.reference_id_raw.to_le_bytes());
+        w.put(&self.corr_age_raw.to_le_bytes());
+        w.put(&self.signal_info.to_le_bytes());
+        w.put_sized(self.trailing, None, "4043 rev 0", "trailing")?;
+        Ok(())
+    }
+    fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        match ais::counted(i64::from(self.nr_sv_raw), 0, &[(255, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("nr_sv", x)?,
+            ais::Reading::Special(id) => j.text("nr_sv", id)?,
+        }
+        j.int("nr_sv_raw", self.nr_sv_raw)?;
+        j.code(
+            "error",
+            ais::code::<SbfPvtError>(u64::from(self.error_raw)).map(CodeEnum::id),
+            u64::from(self.error_raw),
+        )?;
+        j.int("mode", self.mode)?;
+        j.int("mode_type", self.mode & 0xf)?;
+        j.flag("auto_set", ((self.mode >> 6) & 0x1) != 0)?;
+        j.flag("two_d", ((self.mode >> 7) & 0x1) != 0)?;
+        j.int("misc", self.misc)?;
+        j.flag("base_arp", (self.misc & 0x1) != 0)?;
+        j.flag("phase_ctr_offset", ((self.misc >> 1) & 0x1) != 0)?;
+        match ubx::float_reading(self.delta_x_raw.to_bits(), self.delta_x_raw, &[(0xC212A05F20000000, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "delta_x", x)?,
+            ais::Reading::Special(id) => j.text("delta_x", id)?,
+        }
+        match ubx::float_reading(self.delta_y_raw.to_bits(), self.delta_y_raw, &[(0xC212A05F20000000, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "delta_y", x)?,
+            ais::Reading::Special(id) => j.text("delta_y", id)?,
+        }
+        match ubx::float_reading(self.delta_z_raw.to_bits(), self.delta_z_raw, &[(0xC212A05F20000000, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "delta_z", x)?,
+            ais::Reading::Special(id) => j.text("delta_z", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.delta_vx_raw.to_bits()),
+            f64::from(self.delta_vx_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "delta_vx", x)?,
+            ais::Reading::Special(id) => j.text("delta_vx", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.delta_vy_raw.to_bits()),
+            f64::from(self.delta_vy_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "delta_vy", x)?,
+            ais::Reading::Special(id) => j.text("delta_vy", id)?,
+        }
+        match ubx::float_reading(
+            u64::from(self.delta_vz_raw.to_bits()),
+            f64::from(self.delta_vz_raw),
+            &[(0xD09502F9, "do_not_use")],
+        ) {
+            ais::Reading::Value(x) => ubx::json_float(j, "delta_vz", x)?,
+            ais::Reading::Special(id) => j.text("delta_vz", id)?,
+        }
+        match ais::scaled(i64::from(self.azimuth_raw), 100.0, 0.0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "azimuth", x)?,
+            ais::Reading::Special(id) => j.text("azimuth", id)?,
+        }
+        j.int("azimuth_raw", self.azimuth_raw)?;
+        match ais::scaled(i64::from(self.elevation_raw), 100.0, 0.0, &[(-32768, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "elevation", x)?,
+            ais::Reading::Special(id) => j.text("elevation", id)?,
+        }
+        j.int("elevation_raw", self.elevation_raw)?;
+        match ais::counted(i64::from(self.reference_id_raw), 0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("reference_id", x)?,
+            ais::Reading::Special(id) => j.text("reference_id", id)?,
+        }
+        j.int("reference_id_raw", self.reference_id_raw)?;
+        match ais::scaled(i64::from(self.corr_age_raw), 100.0, 0.0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => ubx::json_float(j, "corr_age", x)?,
+            ais::Reading::Special(id) => j.text("corr_age", id)?,
+        }
+        j.int("corr_age_raw", self.corr_age_raw)?;
+        j.int("signal_info", self.signal_info)?;
+        ubx::json_hex(j, "trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+impl<'a> BaseVectorCartVectorInfoEntry<'a> {
+    /// Satellites with corrections of this base, or its special value.
+    pub fn nr_sv(&self) -> ais::Reading<i64> {
+        let raw = self.nr_sv_raw;
+        ais::counted(i64::from(raw), 0, &[(255, "do_not_use")])
+    }
+    /// PVT error: the enum's value of the raw code, None for a code it does not name.
+    pub fn error(&self) -> Option<SbfPvtError> {
+        ais::code(u64::from(self.error_raw))
+    }
+    /// Kind of solution (bits 0-3 of `mode`).
+    pub fn mode_type(&self) -> u8 {
+        self.mode & 0xf
+    }
+    /// Sets kind of solution (the value in its bits of `mode`; the other bits stay).
+    pub fn set_mode_type(&mut self, value: u8) {
+        self.mode = (self.mode & !0xf) | (value & 0xf);
+    }
+    /// Base position still being set automatically (bit 6 of `mode`).
+    pub fn auto_set(&self) -> bool {
+        ((self.mode >> 6) & 0x1) != 0
+    }
+    /// Sets base position still being set automatically (the value in its bits of `mode`; the other bits stay).
+    pub fn set_auto_set(&mut self, value: bool) {
+        self.mode = (self.mode & !(0x1 << 6)) | (u8::from(value) << 6);
+    }
+    /// Height fixed (2D solution) (bit 7 of `mode`).
+    pub fn two_d(&self) -> bool {
+        ((self.mode >> 7) & 0x1) != 0
+    }
+    /// Sets height fixed (2d solution) (the value in its bits of `mode`; the other bits stay).
+    pub fn set_two_d(&mut self, value: bool) {
+        self.mode = (self.mode & !(0x1 << 7)) | (u8::from(value) << 7);
+    }
+    /// The baseline points to the base's antenna reference point (bit 0 of `misc`).
+    pub fn base_arp(&self) -> bool {
+        (self.misc & 0x1) != 0
+    }
+    /// Sets the baseline points to the base's antenna reference point (the value in its bits of `misc`; the other bits stay).
+    pub fn set_base_arp(&mut self, value: bool) {
+        self.misc = (self.misc & !0x1) | u8::from(value);
+    }
+    /// The rover's phase center offset compensated (bit 1 of `misc`).
+    pub fn phase_ctr_offset(&self) -> bool {
+        ((self.misc >> 1) & 0x1) != 0
+    }
+    /// Sets the rover's phase center offset compensated (the value in its bits of `misc`; the other bits stay).
+    pub fn set_phase_ctr_offset(&mut self, value: bool) {
+        self.misc = (self.misc & !(0x1 << 1)) | (u8::from(value) << 1);
+    }
+    /// X of the baseline (rover to base) [m]: the float, or the special value whose bits it holds.
+    pub fn delta_x(&self) -> ais::Reading<f64> {
+        let raw = self.delta_x_raw;
+        ubx::float_reading(raw.to_bits(), raw, &[(0xC212A05F20000000, "do_not_use")])
+    }
+    /// Y of the baseline (rover to base) [m]: the float, or the special value whose bits it holds.
+    pub fn delta_y(&self) -> ais::Reading<f64> {
+        let raw = self.delta_y_raw;
+        ubx::float_reading(raw.to_bits(), raw, &[(0xC212A05F20000000, "do_not_use")])
+    }
+    /// Z of the baseline (rover to base) [m]: the float, or the special value whose bits it holds.
+    pub fn delta_z(&self) -> ais::Reading<f64> {
+        let raw = self.delta_z_raw;
+        ubx::float_reading(raw.to_bits(), raw, &[(0xC212A05F20000000, "do_not_use")])
+    }
+    /// X velocity of the baseline [m/s]: the float, or the special value whose bits it holds.
+    pub fn delta_vx(&self) -> ais::Reading<f64> {
+        let raw = self.delta_vx_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Y velocity of the baseline [m/s]: the float, or the special value whose bits it holds.
+    pub fn delta_vy(&self) -> ais::Reading<f64> {
+        let raw = self.delta_vy_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Z velocity of the baseline [m/s]: the float, or the special value whose bits it holds.
+    pub fn delta_vz(&self) -> ais::Reading<f64> {
+        let raw = self.delta_vz_raw;
+        ubx::float_reading(u64::from(raw.to_bits()), f64::from(raw), &[(0xD09502F9, "do_not_use")])
+    }
+    /// Azimuth of the baseline (0 north, increasing towards east) [deg]: the raw integer divided by 100, or its special value.
+    pub fn azimuth(&self) -> ais::Reading<f64> {
+        let raw = self.azimuth_raw;
+        ais::scaled(i64::from(raw), 100.0, 0.0, &[(65535, "do_not_use")])
+    }
+    /// Elevation of the baseline [deg]: the raw integer divided by 100, or its special value.
+    pub fn elevation(&self) -> ais::Reading<f64> {
+        let raw = self.elevation_raw;
+        ais::scaled(i64::from(raw), 100.0, 0.0, &[(-32768, "do_not_use")])
+    }
+    /// Base station id, or its special value.
+    pub fn reference_id(&self) -> ais::Reading<i64> {
+        let raw = self.reference_id_raw;
+        ais::counted(i64::from(raw), 0, &[(65535, "do_not_use")])
+    }
+    /// Age of the corrections [s]: the raw integer divided by 100, or its special value.
+    pub fn corr_age(&self) -> ais::Reading<f64> {
+        let raw = self.corr_age_raw;
+        ais::scaled(i64::from(raw), 100.0, 0.0, &[(65535, "do_not_use")])
+    }
+}
+
+/// Baselines to the base stations, Cartesian (BaseVectorCart): SBF 4043 rev 0 (id 0x0FCB), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BaseVectorCart<'a> {
+    /// Time of week (GPS time) [ms].
+    pub tow_raw: u32,
+    /// Week number (GPS time; continuous; 0 in January 1980) [week].
+    pub wnc_raw: u16,
+    /// VectorInfoCart sub-blocks (baselines).
+    pub n: u8,
+    /// Bytes of a VectorInfoCart sub-block [byte].
+    pub sb_length: u8,
+    /// Baselines (VectorInfoCart sub-blocks): 0 to 65535 entries.
+    pub vector_info: ubx::Group<'a, BaseVectorCartVectorInfoEntry<'a>>,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> BaseVectorCart<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "base_vector_cart";
+    /// How errors name the message.
+    pub const ADDRESS: &'static str = "4043 rev 0";
+    /// The bytes that tell the message: id 0x0FCB.
+    pub const KEY: &'static [u8] = &[0xcb, 0x0f];
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = None;
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Time of week (GPS time) [ms], or its special value.
+    pub fn tow(&self) -> ais::Reading<i64> {
+        let raw = self.tow_raw;
+        ais::counted(i64::from(raw), 0, &[(4294967295, "do_not_use")])
+    }
+    /// Week number (GPS time; continuous; 0 in January 1980) [week], or its special value.
+    pub fn wnc(&self) -> ais::Reading<i64> {
+        let raw = self.wnc_raw;
+        ais::counted(i64::from(raw), 0, &[(65535, "do_not_use")])
+    }
+    /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
+        let tow_raw = u32::from_le_bytes(r.array("tow")?);
+        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
+        let n = u8::from_le_bytes(r.array("n")?);
+        let sb_length = u8::from_le_bytes(r.array("sb_length")?);
+        let vector_info =
+            r.group_strided(Some(usize::from(n)), usize::from(sb_length), 0, 65535, 0, "vector_info", "sb_length")?;
+        let trailing = r.rest();
+        Ok(Self { tow_raw, wnc_raw, n, sb_length, vector_info, trailing })
+    }
+    /// Writes the payload after its key.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.tow_raw.to_le_bytes());
+        w.put(&self.wnc_raw.to_le_bytes());
+        w.put(&self.n.to_le_bytes());
+        w.put(&self.sb_length.to_le_bytes());
+        self.vector_info.write_strided(w, usize::from(self.sb_length), "4043 rev 0", "sb_length", "vector_info")?;
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum and end bytes, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame_of(buf, Protocol::Sbf, Self::KEY, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/binary.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        match ais::counted(i64::from(self.tow_raw), 0, &[(4294967295, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("tow", x)?,
+            ais::Reading::Special(id) => j.text("tow", id)?,
+        }
+        j.int("tow_raw", self.tow_raw)?;
+        match ais::counted(i64::from(self.wnc_raw), 0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("wnc", x)?,
+            ais::Reading::Special(id) => j.text("wnc", id)?,
+        }
+        j.int("wnc_raw", self.wnc_raw)?;
+        j.int("n", self.n)?;
+        j.int("sb_length", self.sb_length)?;
+        self.vector_info.json(j, "vector_info")?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Position covariance, Cartesian (PosCovCartesian): SBF 5905 rev 0 (id 0x1711), output.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PosCovCartesian<'a> {
@@ -2549,6 +3603,93 @@ impl<'a> VelCovGeodetic<'a> {
     }
 }
 
+/// Offset of the xPPS pulse (xPPSOffset): SBF 5911 rev 0 (id 0x1717), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct XppsOffset<'a> {
+    /// Time of week (GPS time) [ms].
+    pub tow_raw: u32,
+    /// Week number (GPS time; continuous; 0 in January 1980) [week].
+    pub wnc_raw: u16,
+    /// Time since the pulse was last synchronized to the time scale (at most 255) [s].
+    pub sync_age: u8,
+    /// Time scale of the pulse (1 GPS time, 3 receiver time, 4 GLONASS time, 5 Galileo time, 6 BeiDou time; 2 another, as the pps command sets).
+    pub time_scale: u8,
+    /// Offset of the pulse put out from its true position (negative when early) [ns].
+    pub offset: f32,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> XppsOffset<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "xpps_offset";
+    /// How errors name the message.
+    pub const ADDRESS: &'static str = "5911 rev 0";
+    /// The bytes that tell the message: id 0x1717.
+    pub const KEY: &'static [u8] = &[0x17, 0x17];
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(12);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Time of week (GPS time) [ms], or its special value.
+    pub fn tow(&self) -> ais::Reading<i64> {
+        let raw = self.tow_raw;
+        ais::counted(i64::from(raw), 0, &[(4294967295, "do_not_use")])
+    }
+    /// Week number (GPS time; continuous; 0 in January 1980) [week], or its special value.
+    pub fn wnc(&self) -> ais::Reading<i64> {
+        let raw = self.wnc_raw;
+        ais::counted(i64::from(raw), 0, &[(65535, "do_not_use")])
+    }
+    /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
+        let tow_raw = u32::from_le_bytes(r.array("tow")?);
+        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
+        let sync_age = u8::from_le_bytes(r.array("sync_age")?);
+        let time_scale = u8::from_le_bytes(r.array("time_scale")?);
+        let offset = f32::from_le_bytes(r.array("offset")?);
+        let trailing = r.rest();
+        Ok(Self { tow_raw, wnc_raw, sync_age, time_scale, offset, trailing })
+    }
+    /// Writes the payload after its key.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.tow_raw.to_le_bytes());
+        w.put(&self.wnc_raw.to_le_bytes());
+        w.put(&self.sync_age.to_le_bytes());
+        w.put(&self.time_scale.to_le_bytes());
+        w.put(&self.offset.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum and end bytes, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame_of(buf, Protocol::Sbf, Self::KEY, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/binary.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        match ais::counted(i64::from(self.tow_raw), 0, &[(4294967295, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("tow", x)?,
+            ais::Reading::Special(id) => j.text("tow", id)?,
+        }
+        j.int("tow_raw", self.tow_raw)?;
+        match ais::counted(i64::from(self.wnc_raw), 0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("wnc", x)?,
+            ais::Reading::Special(id) => j.text("wnc", id)?,
+        }
+        j.int("wnc_raw", self.wnc_raw)?;
+        j.int("sync_age", self.sync_age)?;
+        j.int("time_scale", self.time_scale)?;
+        ubx::json_float(j, "offset", f64::from(self.offset))?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// Receiver time (ReceiverTime): SBF 5914 rev 0 (id 0x171A), output.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ReceiverTime<'a> {
@@ -2763,6 +3904,78 @@ impl<'a> ReceiverTime<'a> {
     }
 }
 
+/// End of the PVT blocks of an epoch (EndOfPVT): SBF 5921 rev 0 (id 0x1721), output.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EndOfPvt<'a> {
+    /// Time of week (GPS time) [ms].
+    pub tow_raw: u32,
+    /// Week number (GPS time; continuous; 0 in January 1980) [week].
+    pub wnc_raw: u16,
+    /// Bytes after the layout's last field, as sent (a newer firmware's additions).
+    pub trailing: &'a [u8],
+}
+
+impl<'a> EndOfPvt<'a> {
+    /// The spec's id of the layout.
+    pub const ID: &'static str = "end_of_pvt";
+    /// How errors name the message.
+    pub const ADDRESS: &'static str = "5921 rev 0";
+    /// The bytes that tell the message: id 0x1721.
+    pub const KEY: &'static [u8] = &[0x21, 0x17];
+    /// The payload's bytes, when the layout fixes them.
+    pub const LENGTH: Option<usize> = Some(6);
+    /// The field (its name and byte) whose value tells it from another layout of its class and id, and
+    /// that value (a type, command or version byte).
+    pub const SELECT: Option<(&'static str, usize, u8)> = None;
+    /// Who sends it: poll and input go to the receiver, output comes from it.
+    pub const DIRECTIONS: &'static [&'static str] = &["output"];
+    /// The layouts (ids) the receiver answers it with.
+    pub const REPLIES: &'static [&'static str] = &[];
+    /// Time of week (GPS time) [ms], or its special value.
+    pub fn tow(&self) -> ais::Reading<i64> {
+        let raw = self.tow_raw;
+        ais::counted(i64::from(raw), 0, &[(4294967295, "do_not_use")])
+    }
+    /// Week number (GPS time; continuous; 0 in January 1980) [week], or its special value.
+    pub fn wnc(&self) -> ais::Reading<i64> {
+        let raw = self.wnc_raw;
+        ais::counted(i64::from(raw), 0, &[(65535, "do_not_use")])
+    }
+    /// The message of `payload` (the bytes after its key), read as this layout (a short payload names the field it cuts).
+    pub fn read(payload: &'a [u8]) -> Result<Self, UbxError> {
+        let r = &mut ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol("SBF");
+        let tow_raw = u32::from_le_bytes(r.array("tow")?);
+        let wnc_raw = u16::from_le_bytes(r.array("wnc")?);
+        let trailing = r.rest();
+        Ok(Self { tow_raw, wnc_raw, trailing })
+    }
+    /// Writes the payload after its key.
+    pub fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
+        w.put(&self.tow_raw.to_le_bytes());
+        w.put(&self.wnc_raw.to_le_bytes());
+        w.put(self.trailing);
+        Ok(())
+    }
+    /// The whole frame, sync bytes to checksum and end bytes, written into `buf`.
+    pub fn encode<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], UbxError> {
+        ubx::encode_frame_of(buf, Protocol::Sbf, Self::KEY, Self::ADDRESS, |w| self.write(w))
+    }
+    /// The members of its decoded JSON (those of generated/vectors/binary.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {
+        match ais::counted(i64::from(self.tow_raw), 0, &[(4294967295, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("tow", x)?,
+            ais::Reading::Special(id) => j.text("tow", id)?,
+        }
+        j.int("tow_raw", self.tow_raw)?;
+        match ais::counted(i64::from(self.wnc_raw), 0, &[(65535, "do_not_use")]) {
+            ais::Reading::Value(x) => j.int("wnc", x)?,
+            ais::Reading::Special(id) => j.text("wnc", id)?,
+        }
+        j.int("wnc_raw", self.wnc_raw)?;
+        ubx::json_hex(j, "trailing", self.trailing)
+    }
+}
+
 /// A frame of a block number and revision the spec does not describe, kept with its payload.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Unknown<'a> {
@@ -2781,6 +3994,12 @@ pub enum Message<'a> {
     PvtCartesian(PvtCartesian<'a>),
     /// 4007 rev 2 (output): Position, velocity and time, geodetic (PVTGeodetic).
     PvtGeodetic(PvtGeodetic<'a>),
+    /// 4012 rev 0 (output): Satellites above the horizon (SatVisibility).
+    SatVisibility(SatVisibility<'a>),
+    /// 4014 rev 1 (output): Receiver status (ReceiverStatus).
+    ReceiverStatus(ReceiverStatus<'a>),
+    /// 4043 rev 0 (output): Baselines to the base stations, Cartesian (BaseVectorCart).
+    BaseVectorCart(BaseVectorCart<'a>),
     /// 5905 rev 0 (output): Position covariance, Cartesian (PosCovCartesian).
     PosCovCartesian(PosCovCartesian<'a>),
     /// 5906 rev 0 (output): Position covariance, geodetic (PosCovGeodetic).
@@ -2789,8 +4008,12 @@ pub enum Message<'a> {
     VelCovCartesian(VelCovCartesian<'a>),
     /// 5908 rev 0 (output): Velocity covariance, geodetic (VelCovGeodetic).
     VelCovGeodetic(VelCovGeodetic<'a>),
+    /// 5911 rev 0 (output): Offset of the xPPS pulse (xPPSOffset).
+    XppsOffset(XppsOffset<'a>),
     /// 5914 rev 0 (output): Receiver time (ReceiverTime).
     ReceiverTime(ReceiverTime<'a>),
+    /// 5921 rev 0 (output): End of the PVT blocks of an epoch (EndOfPVT).
+    EndOfPvt(EndOfPvt<'a>),
     /// A block number and revision the spec does not describe.
     Unknown(Unknown<'a>),
 }
@@ -2804,11 +4027,16 @@ impl<'a> Message<'a> {
             Some([0xa1, 0x0f]) => Message::PvtDop(PvtDop::read(payload)?),
             Some([0xa6, 0x4f]) => Message::PvtCartesian(PvtCartesian::read(payload)?),
             Some([0xa7, 0x4f]) => Message::PvtGeodetic(PvtGeodetic::read(payload)?),
+            Some([0xac, 0x0f]) => Message::SatVisibility(SatVisibility::read(payload)?),
+            Some([0xae, 0x2f]) => Message::ReceiverStatus(ReceiverStatus::read(payload)?),
+            Some([0xcb, 0x0f]) => Message::BaseVectorCart(BaseVectorCart::read(payload)?),
             Some([0x11, 0x17]) => Message::PosCovCartesian(PosCovCartesian::read(payload)?),
             Some([0x12, 0x17]) => Message::PosCovGeodetic(PosCovGeodetic::read(payload)?),
             Some([0x13, 0x17]) => Message::VelCovCartesian(VelCovCartesian::read(payload)?),
             Some([0x14, 0x17]) => Message::VelCovGeodetic(VelCovGeodetic::read(payload)?),
+            Some([0x17, 0x17]) => Message::XppsOffset(XppsOffset::read(payload)?),
             Some([0x1a, 0x17]) => Message::ReceiverTime(ReceiverTime::read(payload)?),
+            Some([0x21, 0x17]) => Message::EndOfPvt(EndOfPvt::read(payload)?),
             key => Message::Unknown(Unknown { key: key.unwrap_or(&[]), payload }),
         })
     }
@@ -2825,11 +4053,16 @@ impl<'a> Message<'a> {
             Message::PvtDop(_) => PvtDop::ID,
             Message::PvtCartesian(_) => PvtCartesian::ID,
             Message::PvtGeodetic(_) => PvtGeodetic::ID,
+            Message::SatVisibility(_) => SatVisibility::ID,
+            Message::ReceiverStatus(_) => ReceiverStatus::ID,
+            Message::BaseVectorCart(_) => BaseVectorCart::ID,
             Message::PosCovCartesian(_) => PosCovCartesian::ID,
             Message::PosCovGeodetic(_) => PosCovGeodetic::ID,
             Message::VelCovCartesian(_) => VelCovCartesian::ID,
             Message::VelCovGeodetic(_) => VelCovGeodetic::ID,
+            Message::XppsOffset(_) => XppsOffset::ID,
             Message::ReceiverTime(_) => ReceiverTime::ID,
+            Message::EndOfPvt(_) => EndOfPvt::ID,
             Message::Unknown(_) => return None,
         })
     }
@@ -2840,11 +4073,16 @@ impl<'a> Message<'a> {
             Message::PvtDop(_) => PvtDop::KEY,
             Message::PvtCartesian(_) => PvtCartesian::KEY,
             Message::PvtGeodetic(_) => PvtGeodetic::KEY,
+            Message::SatVisibility(_) => SatVisibility::KEY,
+            Message::ReceiverStatus(_) => ReceiverStatus::KEY,
+            Message::BaseVectorCart(_) => BaseVectorCart::KEY,
             Message::PosCovCartesian(_) => PosCovCartesian::KEY,
             Message::PosCovGeodetic(_) => PosCovGeodetic::KEY,
             Message::VelCovCartesian(_) => VelCovCartesian::KEY,
             Message::VelCovGeodetic(_) => VelCovGeodetic::KEY,
+            Message::XppsOffset(_) => XppsOffset::KEY,
             Message::ReceiverTime(_) => ReceiverTime::KEY,
+            Message::EndOfPvt(_) => EndOfPvt::KEY,
             Message::Unknown(m) => m.key,
         }
     }
@@ -2855,11 +4093,16 @@ impl<'a> Message<'a> {
             Message::PvtDop(m) => m.write(w),
             Message::PvtCartesian(m) => m.write(w),
             Message::PvtGeodetic(m) => m.write(w),
+            Message::SatVisibility(m) => m.write(w),
+            Message::ReceiverStatus(m) => m.write(w),
+            Message::BaseVectorCart(m) => m.write(w),
             Message::PosCovCartesian(m) => m.write(w),
             Message::PosCovGeodetic(m) => m.write(w),
             Message::VelCovCartesian(m) => m.write(w),
             Message::VelCovGeodetic(m) => m.write(w),
+            Message::XppsOffset(m) => m.write(w),
             Message::ReceiverTime(m) => m.write(w),
+            Message::EndOfPvt(m) => m.write(w),
             Message::Unknown(m) => {
                 w.put(m.payload);
                 Ok(())
@@ -2884,11 +4127,16 @@ impl<'a> Message<'a> {
             Message::PvtDop(m) => m.json_members(&mut j)?,
             Message::PvtCartesian(m) => m.json_members(&mut j)?,
             Message::PvtGeodetic(m) => m.json_members(&mut j)?,
+            Message::SatVisibility(m) => m.json_members(&mut j)?,
+            Message::ReceiverStatus(m) => m.json_members(&mut j)?,
+            Message::BaseVectorCart(m) => m.json_members(&mut j)?,
             Message::PosCovCartesian(m) => m.json_members(&mut j)?,
             Message::PosCovGeodetic(m) => m.json_members(&mut j)?,
             Message::VelCovCartesian(m) => m.json_members(&mut j)?,
             Message::VelCovGeodetic(m) => m.json_members(&mut j)?,
+            Message::XppsOffset(m) => m.json_members(&mut j)?,
             Message::ReceiverTime(m) => m.json_members(&mut j)?,
+            Message::EndOfPvt(m) => m.json_members(&mut j)?,
             Message::Unknown(m) => {
                 ubx::json_key(&mut j, Protocol::Sbf, m.key)?;
                 ubx::json_hex(&mut j, "payload", m.payload)?;

@@ -80,6 +80,8 @@ enum Detail {
     CheckEnd { sent: u32, computed: u32, width: usize },
     Short { offset: usize, width: usize, length: usize },
     FewEntries { count: usize, at_least: bool, width: usize, left: usize },
+    Stride { stride: usize, group: &'static str, width: usize },
+    StrideWritten { written: usize, group: &'static str, stride: usize },
     Size { expected: usize, found: usize },
     Buffer { need: usize, have: usize },
 }
@@ -184,6 +186,12 @@ impl fmt::Display for Message<'_> {
                 8 * width,
                 8 * left
             ),
+            Detail::Stride { stride, group, width } => {
+                write!(f, "{field} is {stride}, an entry of {group} takes at least {width} bytes")
+            }
+            Detail::StrideWritten { written, group, stride } => {
+                write!(f, "{field} takes the bytes of each entry of {group} ({written}), not {stride}")
+            }
             Detail::Size { expected, found } => write!(f, "{field} takes {expected} bytes, not {found}"),
             Detail::Buffer { need, have } => write!(f, "the frame takes {need} bytes, the buffer has {have}"),
         }
@@ -331,7 +339,41 @@ impl<'a> ByteReader<'a> {
             ));
         }
         let bytes = self.bytes(count * E::WIDTH, field)?;
-        Ok(Group { bytes, entry: PhantomData })
+        Ok(Group { bytes, stride: 0, entry: PhantomData })
+    }
+
+    /// A group's entries of `stride` bytes each (SBF's SBLength: at least the entry's fields,
+    /// whose last, its trailing bytes, takes the rest; the field `stride_field` holds it): `count` of
+    /// them (None: as many as the bytes left before `after` bytes hold, at most `max`), at least `min`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn group_strided<E: Entry<'a>>(
+        &mut self,
+        count: Option<usize>,
+        stride: usize,
+        min: usize,
+        max: usize,
+        after: usize,
+        field: &'static str,
+        stride_field: &'static str,
+    ) -> Result<Group<'a, E>, UbxError> {
+        if count != Some(0) && stride < E::WIDTH {
+            // (the stride of no entry says nothing)
+            let detail = Detail::Stride { stride, group: field, width: E::WIDTH };
+            return Err(self.error(UbxErrorKind::BadValue, stride_field, detail));
+        }
+        let left = self.remaining();
+        let at_least = count.is_none();
+        let count = count.unwrap_or_else(|| max.min(left.saturating_sub(after) / stride));
+        if count < min || count * stride > left {
+            let count = if at_least { min } else { count };
+            return Err(self.error(
+                UbxErrorKind::ShortPayload,
+                field,
+                Detail::FewEntries { count, at_least, width: stride, left },
+            ));
+        }
+        let bytes = self.bytes(count * stride, field)?;
+        Ok(Group { bytes, stride, entry: PhantomData })
     }
 }
 
@@ -570,9 +612,12 @@ pub trait Entry<'a>: Sized {
     fn json_members<W: Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result;
 }
 
-/// The entries of a repeated group, as sent: a view of their bytes, each entry read when asked.
+/// The entries of a repeated group, as sent: a view of their bytes, each entry read when asked
+/// (from its `stride` bytes: 0 for the entry's width; SBF's SBLength, the entry's fields then its
+/// trailing bytes).
 pub struct Group<'a, E> {
     bytes: &'a [u8],
+    stride: usize,
     entry: PhantomData<E>,
 }
 
@@ -580,12 +625,31 @@ impl<'a, E: Entry<'a>> Group<'a, E> {
     /// The entries of `bytes`, whole entries only (None for a length that is not a whole
     /// number of entries).
     pub fn new(bytes: &'a [u8]) -> Option<Self> {
-        (bytes.len().checked_rem(E::WIDTH) == Some(0)).then_some(Group { bytes, entry: PhantomData })
+        (bytes.len().checked_rem(E::WIDTH) == Some(0)).then_some(Group { bytes, stride: 0, entry: PhantomData })
+    }
+
+    /// The entries of `bytes`, `stride` bytes each, at least an entry's fields (None for a stride
+    /// shorter, or a length that is not a whole number of entries).
+    pub fn with_stride(bytes: &'a [u8], stride: usize) -> Option<Self> {
+        (stride >= E::WIDTH.max(1) && bytes.len().checked_rem(stride) == Some(0)).then_some(Group {
+            bytes,
+            stride,
+            entry: PhantomData,
+        })
+    }
+
+    /// The bytes of an entry.
+    pub fn stride(&self) -> usize {
+        if self.stride == 0 {
+            E::WIDTH.max(1)
+        } else {
+            self.stride
+        }
     }
 
     /// The number of entries.
     pub fn len(&self) -> usize {
-        self.bytes.len() / E::WIDTH
+        self.bytes.len() / self.stride()
     }
 
     /// Whether there is none.
@@ -600,18 +664,43 @@ impl<'a, E: Entry<'a>> Group<'a, E> {
 
     /// The entry at `index`.
     pub fn get(&self, index: usize) -> Option<E> {
-        let bytes = self.bytes.get(index * E::WIDTH..(index + 1) * E::WIDTH)?;
+        let stride = self.stride();
+        let bytes = self.bytes.get(index * stride..(index + 1) * stride)?;
         E::read(&mut ByteReader::new(bytes, "", (0, 0))).ok()
     }
 
     /// The entries, in order.
     pub fn iter(&self) -> impl Iterator<Item = E> + 'a {
-        self.bytes.chunks_exact(E::WIDTH).filter_map(|bytes| E::read(&mut ByteReader::new(bytes, "", (0, 0))).ok())
+        self.bytes.chunks_exact(self.stride()).filter_map(|bytes| E::read(&mut ByteReader::new(bytes, "", (0, 0))).ok())
     }
 
     /// Writes the entries.
     pub fn write(&self, w: &mut ByteWriter<'_>) {
         w.put(self.bytes);
+    }
+
+    /// Writes the entries of a stride whose field (`stride_field`) says `stride` bytes: an error
+    /// when the entries are of another size.
+    pub fn write_strided(
+        &self,
+        w: &mut ByteWriter<'_>,
+        stride: usize,
+        message: &'static str,
+        stride_field: &'static str,
+        field: &'static str,
+    ) -> Result<(), UbxError> {
+        if !self.is_empty() && self.stride() != stride {
+            return Err(UbxError {
+                kind: UbxErrorKind::BadValue,
+                protocol: w.protocol,
+                message,
+                class_id: None,
+                field: Some(stride_field),
+                detail: Detail::StrideWritten { written: self.stride(), group: field, stride },
+            });
+        }
+        w.put(self.bytes);
+        Ok(())
     }
 
     /// The entries as a JSON array member.
@@ -640,13 +729,13 @@ impl<E> Copy for Group<'_, E> {}
 
 impl<E> Default for Group<'_, E> {
     fn default() -> Self {
-        Group { bytes: &[], entry: PhantomData }
+        Group { bytes: &[], stride: 0, entry: PhantomData }
     }
 }
 
 impl<E> PartialEq for Group<'_, E> {
     fn eq(&self, other: &Self) -> bool {
-        self.bytes == other.bytes
+        self.bytes == other.bytes && self.stride == other.stride
     }
 }
 

@@ -181,6 +181,12 @@ fn other_protocols_decode_and_encode_as_the_vectors_say() {
     let mut decoded = 0;
     for record in data.lines() {
         let frame = unhex(member(record, "frame"));
+        if !record.contains("\"decode\":") {
+            // a frame every decoder refuses, with this kind of error
+            let err = other_protocol(member(record, "protocol"), &frame).expect_err(record);
+            assert_eq!(err.kind.as_str(), member(record, "error"), "{err}: {record}");
+            continue;
+        }
         let (json, encoded) =
             other_protocol(member(record, "protocol"), &frame).unwrap_or_else(|err| panic!("{err}: {record}"));
         let expected = &record[record.find("\"decode\":").unwrap() + 9..record.len() - 1];
@@ -234,6 +240,29 @@ fn errors_of_other_protocols_name_protocol_message_and_field() {
     message.write_json(&mut json).unwrap();
     assert_eq!(json, r#"{"message":null,"id":126,"payload":"01"}"#);
     assert_eq!(message.encode(&mut [0u8; 9]).unwrap(), &unknown[..]);
+}
+
+#[test]
+fn sbf_sub_blocks_are_sblength_bytes() {
+    // SatVisibility of two SatInfo sub-blocks of 10 bytes (SBLength): the 2 after the fields kept
+    let frame = unhex(
+        "24 40 15 cd ac 0f 24 00 e0 52 c9 1c 3f 09 02 0a 03 00 29 1a 96 21 00 02 aa bb 04 00 ab 43 c6 0c 01 01 cc dd",
+    );
+    let sbf_messages::Message::SatVisibility(mut sky) = sbf_messages::Message::from_frame(&frame).unwrap() else {
+        panic!("not a SatVisibility");
+    };
+    let second = sky.sat_info.get(1).unwrap();
+    assert_eq!((sky.sat_info.len(), sky.sat_info.stride(), second.svid, second.trailing), (2, 10, 4, &[0xcc, 0xdd][..]));
+    let mut buf = [0u8; 64];
+    assert_eq!(sky.encode(&mut buf).unwrap(), &frame[..]);
+    sky.sb_length = 8; // the sub-blocks' bytes are 10: not encoded
+    let err = sky.encode(&mut buf).unwrap_err();
+    assert_eq!((err.kind, err.field), (UbxErrorKind::BadValue, Some("sb_length")), "{err}");
+    assert!(err.to_string().ends_with("sb_length takes the bytes of each entry of sat_info (10), not 8"), "{err}");
+    let mut short = frame.clone(); // SBLength 4, shorter than a SatInfo's 8 bytes of fields
+    short[15] = 4;
+    let err = sbf_messages::Message::decode(&short[..8], &short[8..]).unwrap_err();
+    assert_eq!(err.to_string(), "bad_value: SBF 4012 rev 0: sb_length is 4, an entry of sat_info takes at least 8 bytes");
 }
 
 #[test]
