@@ -244,11 +244,11 @@ def _pattern_bits(seed: str) -> Iterator[str]:
         block += 1
 
 
-def built_application(spec: Spec, application: Payload) -> tuple[str, int]:
-    """A payload built from an application's layout (armored text, fill bits), for an application
-    no public capture shows: the first message type that carries it, its DAC and FI, every field's
-    bits drawn from a fixed sequence seeded by the application's id (an enum's: its first code;
-    spare bits: 0; a field of the bits left: 48 of them), every group full."""
+def built_application(spec: Spec, application: Payload, dac_value: int) -> tuple[str, int]:
+    """A payload built from an application's layout (armored text, fill bits), for a DAC of it no
+    public capture shows: the first message type that carries it, DAC `dac_value` and its FI, every
+    field's bits drawn from a fixed sequence seeded by the application's id (an enum's: its first
+    code; spare bits: 0; a field of the bits left: 48 of them), every group full."""
     draw = _pattern_bits(application.id)
 
     def bits_of(f: PayloadField) -> str:
@@ -270,7 +270,7 @@ def built_application(spec: Spec, application: Payload) -> tuple[str, int]:
     carrier = reference_ais.payload_of(spec, application.carriers[0])
     assert carrier is not None and carrier.data_field is not None
     dac, fid = carrier.data_field.dispatch
-    fixed = {"message_type": application.carriers[0], dac: application.application[0], fid: application.application[1]}
+    fixed = {"message_type": application.carriers[0], dac: dac_value, fid: application.application[1]}
     bits = ""
     for item in carrier.items:
         assert isinstance(item, PayloadField) and item.bits is not None or item is carrier.data_field
@@ -295,12 +295,13 @@ def ais_vectors(spec: Spec) -> list[dict]:
         for e in payload.examples:
             out.append({"message": payload.id, "where": e.where, "payload": e.payload, "fill_bits": e.fill_bits,
                         "decode": reference_ais.decode(spec, e.payload, e.fill_bits)})
-        if payload.application is not None and not payload.examples:
-            text, fill_bits = built_application(spec, payload)
+        shown = {(out[-1 - i]["decode"].get("dac"), out[-1 - i]["decode"].get("fid")) for i in range(len(payload.examples))}
+        for dac, fid in (k for k in payload.keys if k not in shown):   # a DAC no example shows
+            text, fill_bits = built_application(spec, payload, dac)
             decoded = reference_ais.decode(spec, text, fill_bits)
             assert decoded.get("application", {}).get("trailing") == "", f"{payload.id}: the built payload is not it"
-            out.append({"message": payload.id, "where": f"built from the layout of {payload.id} (no public capture): "
-                        "fields from a fixed pseudo-random sequence, groups full", "payload": text,
+            out.append({"message": payload.id, "where": f"built from the layout of {payload.id}, DAC {dac} FI {fid} "
+                        "(no public capture): fields from a fixed pseudo-random sequence, groups full", "payload": text,
                         "fill_bits": fill_bits, "decode": decoded})
     for text, fill_bits, where in AIS_ERROR_PAYLOADS:
         record: dict = {"message": None, "where": where, "payload": text, "fill_bits": fill_bits}

@@ -22,7 +22,7 @@
 //   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/text_addressed.yaml,
 //   spec/ais/applications/text_broadcast.yaml, spec/ais/applications/tidal_window.yaml,
 //   spec/ais/applications/tidal_window_imo236.yaml, spec/ais/applications/vts_targets.yaml,
-//   spec/ais/applications/vts_targets_imo289.yaml (digest 3ad22e550f5aabd1)
+//   spec/ais/applications/vts_targets_imo289.yaml (digest 09eaae952b8fff0d)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -4633,7 +4633,7 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
 {
     nmea_ais_error ignored;
     nmea_ais_reader r = ais_bits_reader(data, &ignored);
-    if (dac == 235u && fid == 10u && (message_type == 6u)) {
+    if ((dac == 235u || dac == 250u) && fid == 10u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_ATON_MONITORING;
         return ais_read_aton_monitoring(&r, &app->as.aton_monitoring);
     }

@@ -22,7 +22,7 @@
 //   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/text_addressed.yaml,
 //   spec/ais/applications/text_broadcast.yaml, spec/ais/applications/tidal_window.yaml,
 //   spec/ais/applications/tidal_window_imo236.yaml, spec/ais/applications/vts_targets.yaml,
-//   spec/ais/applications/vts_targets_imo289.yaml (digest df9a9c385e8aeef9)
+//   spec/ais/applications/vts_targets_imo289.yaml (digest 356d4fd2c7cf9482)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
@@ -212,7 +212,7 @@ void nmea_ais_assembler_finish(nmea_ais_assembler *a, nmea_ais_done *done, void 
    into `buf` (NUL-terminated when `cap` > 0): the length it needs. */
 size_t nmea_ais_incomplete_message(const nmea_ais_assembled *done, char *buf, size_t cap);
 
-/* AtoN monitoring data (UK and Ireland): AIS application DAC 235 FI 10 (in type 6). */
+/* AtoN monitoring data (UK and Ireland): AIS application DAC 235 or 250 FI 10 (in type 6). */
 typedef struct {
     uint16_t ana_int_raw; /* Internal supply voltage [volts] */
     uint16_t ana_ext1_raw; /* External voltage 1 [volts] */

@@ -22,7 +22,7 @@
 //   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/text_addressed.yaml,
 //   spec/ais/applications/text_broadcast.yaml, spec/ais/applications/tidal_window.yaml,
 //   spec/ais/applications/tidal_window_imo236.yaml, spec/ais/applications/vts_targets.yaml,
-//   spec/ais/applications/vts_targets_imo289.yaml (digest 2f5fbe5af42080ea)
+//   spec/ais/applications/vts_targets_imo289.yaml (digest 3f0a841ee86a7400)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The AIS messages of spec/ais: a struct per layout, read from and written to a payload's bits
@@ -3161,7 +3161,7 @@ impl<'a> UtcInquiry<'a> {
     }
 }
 
-/// AtoN monitoring data (UK and Ireland): AIS application DAC 235 FI 10 (in type 6).
+/// AtoN monitoring data (UK and Ireland): AIS application DAC 235 or 250 FI 10 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct AtonMonitoring<'a> {
     /// Internal supply voltage [volts].
@@ -5716,7 +5716,7 @@ impl<'a> VtsTargetsImo289<'a> {
 /// An application message that the data bits of a binary message carry, by its DAC and FI.
 #[derive(Clone, Copy, Debug)]
 pub enum Application<'a> {
-    /// DAC 235 FI 10.
+    /// DAC 235 or 250 FI 10.
     AtonMonitoring(AtonMonitoring<'a>),
     /// DAC 1 FI 18.
     ClearanceTime(ClearanceTime<'a>),
@@ -5761,7 +5761,7 @@ impl<'a> Application<'a> {
     /// `message_type`, None when the spec describes none or its layout does not read the bits.
     pub fn read(message_type: u8, dac: u64, fid: u64, data: ais::Bits<'a>) -> Option<Self> {
         match (dac, fid, message_type) {
-            (235, 10, 6) => AtonMonitoring::read(&mut data.reader()).ok().map(Application::AtonMonitoring),
+            (235 | 250, 10, 6) => AtonMonitoring::read(&mut data.reader()).ok().map(Application::AtonMonitoring),
             (1, 18, 6) => ClearanceTime::read(&mut data.reader()).ok().map(Application::ClearanceTime),
             (1, 12, 6) => DangerousCargoImo236::read(&mut data.reader()).ok().map(Application::DangerousCargoImo236),
             (1, 2, 6) => FunctionInterrogation::read(&mut data.reader()).ok().map(Application::FunctionInterrogation),

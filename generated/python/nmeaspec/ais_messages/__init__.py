@@ -21,7 +21,7 @@
 #   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/text_addressed.yaml,
 #   spec/ais/applications/text_broadcast.yaml, spec/ais/applications/tidal_window.yaml,
 #   spec/ais/applications/tidal_window_imo236.yaml, spec/ais/applications/vts_targets.yaml,
-#   spec/ais/applications/vts_targets_imo289.yaml (digest 89312555f6a03516)
+#   spec/ais/applications/vts_targets_imo289.yaml (digest 25157d8695800206)
 # Regenerate: make generate (python3 -m generator generate)
 """AIS messages: the payload of `!AIVDM`/`!AIVDO` decoded into the class of its message type,
 and encoded back to the same armored characters and fill bits."""
@@ -105,6 +105,7 @@ BY_TYPE: dict[int, type[ais.Message]] = {
 
 APPLICATIONS: dict[tuple[int, int], type[ais.Application]] = {
     (235, 10): AtonMonitoring,
+    (250, 10): AtonMonitoring,
     (1, 18): ClearanceTime,
     (1, 12): DangerousCargoImo236,
     (1, 2): FunctionInterrogation,
