@@ -453,7 +453,8 @@ def _payload(doc: Document) -> Payload:
     examples = [PayloadExample(e["manual"], e["where"], e["payload"], e["fill_bits"], e.get("expect"),
                                Origin(file, ("examples", i))) for i, e in enumerate(d.get("examples", []))]
     application = d.get("application")
+    dacs = [] if not application else application["dac"] if isinstance(application["dac"], list) else [application["dac"]]
     return Payload(d["message"], d["name"], d["doc"], d.get("types", []), d["manuals"], d.get("length"),
                    _payload_items(d["fields"], file, ("fields",)), _notes(d), examples, Origin(file, ()),
-                   application=(application["dac"], application["fid"]) if application else None,
+                   application=(dacs[0], application["fid"]) if application else None, dacs=dacs,
                    carriers=application["in"] if application else [])

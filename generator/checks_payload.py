@@ -36,10 +36,11 @@ def check(spec: Spec, manual_ids: set[str], report: Report, check_manuals: Calla
         stem = application.origin.file.rsplit("/", 1)[-1].removesuffix(".yaml")
         if stem != application.id:
             report(application.origin, "S010", f"message {application.id} must live in {application.id}.yaml", "message")
-        if application.application in applications:
-            report(application.origin, "A008", f"DAC and FI {application.application} are also described by "
-                   f"{applications[application.application]}", "application")
-        applications.setdefault(application.application, application.id)
+        for key in application.keys:
+            if key in applications:
+                report(application.origin, "A008", f"DAC and FI {key} are also described by {applications[key]}",
+                       "application")
+            applications.setdefault(key, application.id)
         for i, number in enumerate(application.carriers):
             carrier = owners.get(number)
             message = next((p for p in spec.payloads if p.id == carrier), None)

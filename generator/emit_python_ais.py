@@ -128,8 +128,8 @@ def member(f: PayloadField) -> dict:
 def title(payload: Payload) -> str:
     """What a message is: its name and its type numbers, or (an application) its DAC and FI."""
     if payload.application is not None:
-        dac, fid = payload.application
-        return f"{payload.name}: AIS application DAC {dac} FI {fid} (in type {', '.join(map(str, payload.carriers))})."
+        fid = payload.application[1]
+        return f"{payload.name}: AIS application DAC {payload.dac_text} FI {fid} (in type {', '.join(map(str, payload.carriers))})."
     numbers = ", ".join(map(str, payload.types))
     return f"{payload.name}: AIS message type{'s' if len(payload.types) > 1 else ''} {numbers}."
 

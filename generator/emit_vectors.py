@@ -5,6 +5,7 @@ fixes an assembler makes of the streams of spec/fix.yaml."""
 from __future__ import annotations
 
 import datetime
+import hashlib
 import json
 import struct
 from collections.abc import Iterator
@@ -14,7 +15,7 @@ from typing import Any, Callable
 import jinja2
 
 from . import reference, reference_ais, reference_binary, reference_rtcm3
-from .model import Spec
+from .model import Payload, PayloadCase, PayloadChoice, PayloadField, PayloadGroup, Spec
 
 
 # One render pass decodes every example once: each emitter that shows the examples asks for them,
@@ -234,14 +235,92 @@ AIS_ERROR_PAYLOADS = (
 )
 
 
+def _pattern_bits(seed: str) -> Iterator[str]:
+    """An endless, fixed sequence of '0' and '1' drawn from `seed` (SHA-256 in counter mode)."""
+    block = 0
+    while True:
+        digest = hashlib.sha256(f"{seed}:{block}".encode()).digest()
+        yield from "".join(f"{byte:08b}" for byte in digest)
+        block += 1
+
+
+def built_application(spec: Spec, application: Payload, dac_value: int) -> tuple[str, int]:
+    """A payload built from an application's layout (armored text, fill bits), for a DAC of it no
+    public capture shows: the first message type that carries it, DAC `dac_value` and its FI, every
+    field's bits drawn from a fixed sequence seeded by the application's id (an enum's: its first
+    code; spare bits: 0; a field of the bits left: 48 of them), every group full."""
+    draw = _pattern_bits(application.id)
+
+    def bits_of(f: PayloadField) -> str:
+        width = 48 if f.bits is None else f.bits   # 48: whole six-bit characters and bytes
+        if f.type == "spare":
+            return "0" * width
+        if f.enum is not None:
+            return f"{int(f.enum.values[0].code):0{width}b}"
+        return "".join(next(draw) for _ in range(width))
+
+    def entry_bits(group: PayloadGroup, k: int) -> str:
+        """Entry k of a group: a choice of the entry takes its k-th named case in turn, its
+        selector that case's first value."""
+        cases: dict[str, tuple[PayloadCase, int]] = {}
+        for choice in group.choices:
+            named = [c for c in choice.cases if not c.is_default]
+            case = named[k % len(named)]
+            cases[choice.by] = case, case.values[0] if case.values else case.range[0]  # type: ignore[index]
+        bits = ""
+        for part in group.items:
+            if isinstance(part, PayloadChoice):
+                bits += "".join(bits_of(f) for f in cases[part.by][0].fields)
+            elif part.id in cases:
+                bits += f"{cases[part.id][1]:0{part.bits}b}"
+            else:
+                bits += bits_of(part)
+        return bits
+
+    data = ""
+    for item in application.items:
+        if isinstance(item, PayloadGroup):
+            data += "".join(entry_bits(item, k) for k in range(item.max))
+        else:
+            assert isinstance(item, PayloadField), f"{application.id}: a built payload has no choices"
+            data += bits_of(item)
+    assert application.application is not None
+    carrier = reference_ais.payload_of(spec, application.carriers[0])
+    assert carrier is not None and carrier.data_field is not None
+    dac, fid = carrier.data_field.dispatch
+    fixed = {"message_type": application.carriers[0], dac: dac_value, fid: application.application[1]}
+    bits = ""
+    for item in carrier.items:
+        assert isinstance(item, PayloadField) and item.bits is not None or item is carrier.data_field
+        if item is carrier.data_field:
+            bits += data
+        elif item.id in fixed:
+            bits += f"{fixed[item.id]:0{item.bits}b}"
+        else:
+            bits += bits_of(item)
+    fill_bits = -len(bits) % 6
+    bits += "0" * fill_bits
+    armored = "".join(chr(v + 48 + (8 if v > 39 else 0)) for v in (int(bits[i:i + 6], 2) for i in range(0, len(bits), 6)))
+    return armored, fill_bits
+
+
 def ais_vectors(spec: Spec) -> list[dict]:
     """The payload examples of spec/ais (messages, and messages that carry an application) with the
-    JSON each decoder must make of them, and payloads each must refuse with the kind of its error."""
+    JSON each decoder must make of them, a payload built from the layout of each application that
+    has no example, and payloads each must refuse with the kind of its error."""
     out: list[dict] = []
     for payload in [*spec.payloads, *spec.applications]:
         for e in payload.examples:
             out.append({"message": payload.id, "where": e.where, "payload": e.payload, "fill_bits": e.fill_bits,
                         "decode": reference_ais.decode(spec, e.payload, e.fill_bits)})
+        shown = {(out[-1 - i]["decode"].get("dac"), out[-1 - i]["decode"].get("fid")) for i in range(len(payload.examples))}
+        for dac, fid in (k for k in payload.keys if k not in shown):   # a DAC no example shows
+            text, fill_bits = built_application(spec, payload, dac)
+            decoded = reference_ais.decode(spec, text, fill_bits)
+            assert decoded.get("application", {}).get("trailing") == "", f"{payload.id}: the built payload is not it"
+            out.append({"message": payload.id, "where": f"built from the layout of {payload.id}, DAC {dac} FI {fid} "
+                        "(no public capture): fields from a fixed pseudo-random sequence, groups full", "payload": text,
+                        "fill_bits": fill_bits, "decode": decoded})
     for text, fill_bits, where in AIS_ERROR_PAYLOADS:
         record: dict = {"message": None, "where": where, "payload": text, "fill_bits": fill_bits}
         try:

@@ -867,7 +867,8 @@ class Payload:
     examples: list[PayloadExample]
     origin: Origin
     protocol: str = "ais"
-    application: tuple[int, int] | None = None   # an application message: its DAC and FI
+    application: tuple[int, int] | None = None   # an application message: its (first) DAC and FI
+    dacs: list[int] = field(default_factory=list)   # ... every DAC it is sent under (a layout several share)
     carriers: list[int] = field(default_factory=list)   # ... and the message types whose data it is
     applications: list[Payload] = field(default_factory=list)   # derived: a message's applications
     directions: list[str] = field(default_factory=list)   # a binary layout: poll, input, output
@@ -888,6 +889,16 @@ class Payload:
         """The byte of the selecting field (None: no selector, or one not at a fixed offset)."""
         f = self.select_field
         return None if f is None or f.offset is None else f.offset // 8
+
+    @property
+    def keys(self) -> list[tuple[int, int]]:
+        """An application's (DAC, FI) pairs: one per DAC it is sent under."""
+        return [] if self.application is None else [(dac, self.application[1]) for dac in self.dacs]
+
+    @property
+    def dac_text(self) -> str:
+        """An application's DACs as the docs name them: "235" or "235 or 250"."""
+        return " or ".join(map(str, self.dacs))
 
     @property
     def data_field(self) -> PayloadField | None:

@@ -13,12 +13,16 @@
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
 //   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
+//   spec/ais/applications/clearance_time.yaml, spec/ais/applications/dangerous_cargo_imo236.yaml,
 //   spec/ais/applications/environmental.yaml, spec/ais/applications/function_interrogation.yaml,
-//   spec/ais/applications/inland_persons_on_board.yaml,
-//   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
-//   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
-//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest 0b8c5b5c5b6a7380)
+//   spec/ais/applications/inland_eta.yaml, spec/ais/applications/inland_persons_on_board.yaml,
+//   spec/ais/applications/inland_rta.yaml, spec/ais/applications/inland_signal_status.yaml,
+//   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/inland_water_level.yaml,
+//   spec/ais/applications/meteo_hydro.yaml, spec/ais/applications/meteo_hydro_imo236.yaml,
+//   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/text_addressed.yaml,
+//   spec/ais/applications/text_broadcast.yaml, spec/ais/applications/tidal_window.yaml,
+//   spec/ais/applications/tidal_window_imo236.yaml, spec/ais/applications/vts_targets.yaml,
+//   spec/ais/applications/vts_targets_imo289.yaml (digest 6165804f4832f212)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ais.h"
@@ -1789,6 +1793,159 @@ static void ais_json_aton_monitoring(const nmea_ais_aton_monitoring *m, nmea_ais
     ais_json_bits(j, "trailing", m->trailing);
 }
 
+static const nmea_ais_special ais_clearance_time_linkage_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_clearance_time_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_clearance_time_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_clearance_time_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_clearance_time_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_clearance_time_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_clearance_time_lat_specials[] = {{5460000, "not_available"}};
+static bool ais_read_clearance_time(nmea_ais_reader *r, nmea_ais_clearance_time *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 10, "linkage", &raw)) return false;
+    m->linkage_raw = (uint16_t)raw;
+    if (!ais_take(r, 4, "month", &raw)) return false;
+    m->month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take_bits(r, 120, "portname", &m->portname)) return false;
+    if (!ais_take_bits(r, 30, "destination", &m->destination)) return false;
+    if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 43, "spare", &raw)) return false;
+    m->spare = (uint64_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_clearance_time(const nmea_ais_clearance_time *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->linkage_raw, 10, "linkage")) return false;
+    if (!ais_put(w, m->month_raw, 4, "month")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put_fixed(w, m->portname, 120, true, "portname")) return false;
+    if (!ais_put_fixed(w, m->destination, 30, true, "destination")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+    if (!ais_put(w, m->spare, 43, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_clearance_time(const nmea_ais_clearance_time *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "linkage", (int64_t)m->linkage_raw, 1.0, 0.0, false, ais_clearance_time_linkage_specials, 1);
+    ais_json_reading(j, "month", (int64_t)m->month_raw, 1.0, 0.0, false, ais_clearance_time_month_specials, 1);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_clearance_time_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_clearance_time_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_clearance_time_minute_specials, 1);
+    ais_json_text(j, "portname", m->portname);
+    ais_json_text(j, "destination", m->destination);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_clearance_time_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_clearance_time_lat_specials, 1);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_dangerous_cargo_imo236_lmonth_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_imo236_lday_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_imo236_lhour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_imo236_lminute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_imo236_nmonth_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_imo236_nday_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_imo236_nhour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_imo236_nminute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_imo236_unid_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_imo236_amount_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_dangerous_cargo_imo236_unit_specials[] = {{0, "not_available"}};
+static bool ais_read_dangerous_cargo_imo236(nmea_ais_reader *r, nmea_ais_dangerous_cargo_imo236 *m)
+{
+    uint64_t raw;
+    if (!ais_take_bits(r, 30, "lastport", &m->lastport)) return false;
+    if (!ais_take(r, 4, "lmonth", &raw)) return false;
+    m->lmonth_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "lday", &raw)) return false;
+    m->lday_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "lhour", &raw)) return false;
+    m->lhour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "lminute", &raw)) return false;
+    m->lminute_raw = (uint8_t)raw;
+    if (!ais_take_bits(r, 30, "nextport", &m->nextport)) return false;
+    if (!ais_take(r, 4, "nmonth", &raw)) return false;
+    m->nmonth_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "nday", &raw)) return false;
+    m->nday_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "nhour", &raw)) return false;
+    m->nhour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "nminute", &raw)) return false;
+    m->nminute_raw = (uint8_t)raw;
+    if (!ais_take_bits(r, 120, "dangerous", &m->dangerous)) return false;
+    if (!ais_take_bits(r, 24, "imdcat", &m->imdcat)) return false;
+    if (!ais_take(r, 13, "unid", &raw)) return false;
+    m->unid_raw = (uint16_t)raw;
+    if (!ais_take(r, 10, "amount", &raw)) return false;
+    m->amount_raw = (uint16_t)raw;
+    if (!ais_take(r, 2, "unit", &raw)) return false;
+    m->unit_raw = (uint8_t)raw;
+    if (!ais_take(r, 3, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_dangerous_cargo_imo236(const nmea_ais_dangerous_cargo_imo236 *m, nmea_ais_writer *w)
+{
+    if (!ais_put_fixed(w, m->lastport, 30, true, "lastport")) return false;
+    if (!ais_put(w, m->lmonth_raw, 4, "lmonth")) return false;
+    if (!ais_put(w, m->lday_raw, 5, "lday")) return false;
+    if (!ais_put(w, m->lhour_raw, 5, "lhour")) return false;
+    if (!ais_put(w, m->lminute_raw, 6, "lminute")) return false;
+    if (!ais_put_fixed(w, m->nextport, 30, true, "nextport")) return false;
+    if (!ais_put(w, m->nmonth_raw, 4, "nmonth")) return false;
+    if (!ais_put(w, m->nday_raw, 5, "nday")) return false;
+    if (!ais_put(w, m->nhour_raw, 5, "nhour")) return false;
+    if (!ais_put(w, m->nminute_raw, 6, "nminute")) return false;
+    if (!ais_put_fixed(w, m->dangerous, 120, true, "dangerous")) return false;
+    if (!ais_put_fixed(w, m->imdcat, 24, true, "imdcat")) return false;
+    if (!ais_put(w, m->unid_raw, 13, "unid")) return false;
+    if (!ais_put(w, m->amount_raw, 10, "amount")) return false;
+    if (!ais_put(w, m->unit_raw, 2, "unit")) return false;
+    if (!ais_put(w, m->spare, 3, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_dangerous_cargo_imo236(const nmea_ais_dangerous_cargo_imo236 *m, nmea_ais_json_out *j)
+{
+    ais_json_text(j, "lastport", m->lastport);
+    ais_json_reading(j, "lmonth", (int64_t)m->lmonth_raw, 1.0, 0.0, false, ais_dangerous_cargo_imo236_lmonth_specials, 1);
+    ais_json_reading(j, "lday", (int64_t)m->lday_raw, 1.0, 0.0, false, ais_dangerous_cargo_imo236_lday_specials, 1);
+    ais_json_reading(j, "lhour", (int64_t)m->lhour_raw, 1.0, 0.0, false, ais_dangerous_cargo_imo236_lhour_specials, 1);
+    ais_json_reading(j, "lminute", (int64_t)m->lminute_raw, 1.0, 0.0, false, ais_dangerous_cargo_imo236_lminute_specials, 1);
+    ais_json_text(j, "nextport", m->nextport);
+    ais_json_reading(j, "nmonth", (int64_t)m->nmonth_raw, 1.0, 0.0, false, ais_dangerous_cargo_imo236_nmonth_specials, 1);
+    ais_json_reading(j, "nday", (int64_t)m->nday_raw, 1.0, 0.0, false, ais_dangerous_cargo_imo236_nday_specials, 1);
+    ais_json_reading(j, "nhour", (int64_t)m->nhour_raw, 1.0, 0.0, false, ais_dangerous_cargo_imo236_nhour_specials, 1);
+    ais_json_reading(j, "nminute", (int64_t)m->nminute_raw, 1.0, 0.0, false, ais_dangerous_cargo_imo236_nminute_specials, 1);
+    ais_json_text(j, "dangerous", m->dangerous);
+    ais_json_text(j, "imdcat", m->imdcat);
+    ais_json_reading(j, "unid", (int64_t)m->unid_raw, 1.0, 0.0, false, ais_dangerous_cargo_imo236_unid_specials, 1);
+    ais_json_reading(j, "amount", (int64_t)m->amount_raw, 1.0, 0.0, false, ais_dangerous_cargo_imo236_amount_specials, 1);
+    ais_json_reading(j, "unit", (int64_t)m->unit_raw, 1.0, 0.0, false, ais_dangerous_cargo_imo236_unit_specials, 1);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
 static const nmea_ais_special ais_environmental_report_day_specials[] = {{0, "not_available"}};
 static const nmea_ais_special ais_environmental_report_hour_specials[] = {{24, "not_available"}};
 static const nmea_ais_special ais_environmental_report_minute_specials[] = {{60, "not_available"}};
@@ -2839,6 +2996,73 @@ static void ais_json_function_interrogation(const nmea_ais_function_interrogatio
     ais_json_bits(j, "trailing", m->trailing);
 }
 
+static const nmea_ais_special ais_inland_eta_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_eta_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_eta_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_inland_eta_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_inland_eta_tugs_specials[] = {{7, "not_available"}};
+static const nmea_ais_special ais_inland_eta_airdraught_specials[] = {{0, "not_available"}};
+static bool ais_read_inland_eta(nmea_ais_reader *r, nmea_ais_inland_eta *m)
+{
+    uint64_t raw;
+    if (!ais_take_bits(r, 12, "country", &m->country)) return false;
+    if (!ais_take_bits(r, 18, "locode", &m->locode)) return false;
+    if (!ais_take_bits(r, 30, "section", &m->section)) return false;
+    if (!ais_take_bits(r, 30, "terminal", &m->terminal)) return false;
+    if (!ais_take_bits(r, 30, "hectometre", &m->hectometre)) return false;
+    if (!ais_take(r, 4, "month", &raw)) return false;
+    m->month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 3, "tugs", &raw)) return false;
+    m->tugs_raw = (uint8_t)raw;
+    if (!ais_take(r, 12, "airdraught", &raw)) return false;
+    m->airdraught_raw = (uint16_t)raw;
+    if (!ais_take(r, 5, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_inland_eta(const nmea_ais_inland_eta *m, nmea_ais_writer *w)
+{
+    if (!ais_put_fixed(w, m->country, 12, true, "country")) return false;
+    if (!ais_put_fixed(w, m->locode, 18, true, "locode")) return false;
+    if (!ais_put_fixed(w, m->section, 30, true, "section")) return false;
+    if (!ais_put_fixed(w, m->terminal, 30, true, "terminal")) return false;
+    if (!ais_put_fixed(w, m->hectometre, 30, true, "hectometre")) return false;
+    if (!ais_put(w, m->month_raw, 4, "month")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->tugs_raw, 3, "tugs")) return false;
+    if (!ais_put(w, m->airdraught_raw, 12, "airdraught")) return false;
+    if (!ais_put(w, m->spare, 5, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_inland_eta(const nmea_ais_inland_eta *m, nmea_ais_json_out *j)
+{
+    ais_json_text(j, "country", m->country);
+    ais_json_text(j, "locode", m->locode);
+    ais_json_text(j, "section", m->section);
+    ais_json_text(j, "terminal", m->terminal);
+    ais_json_text(j, "hectometre", m->hectometre);
+    ais_json_reading(j, "month", (int64_t)m->month_raw, 1.0, 0.0, false, ais_inland_eta_month_specials, 1);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_inland_eta_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_inland_eta_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_inland_eta_minute_specials, 1);
+    ais_json_reading(j, "tugs", (int64_t)m->tugs_raw, 1.0, 0.0, false, ais_inland_eta_tugs_specials, 1);
+    ais_json_reading(j, "airdraught", (int64_t)m->airdraught_raw, 100.0, 0.0, true, ais_inland_eta_airdraught_specials, 1);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
 static const nmea_ais_special ais_inland_persons_on_board_crew_specials[] = {{255, "not_available"}};
 static const nmea_ais_special ais_inland_persons_on_board_passengers_specials[] = {{8191, "not_available"}};
 static const nmea_ais_special ais_inland_persons_on_board_personnel_specials[] = {{255, "not_available"}};
@@ -2878,6 +3102,120 @@ static void ais_json_inland_persons_on_board(const nmea_ais_inland_persons_on_bo
     if (m->has_spare) {
         ais_json_int(j, "spare", (long long)m->spare);
     }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_inland_rta_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_rta_day_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_inland_rta_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_inland_rta_minute_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_inland_rta_status_specials[] = {{3, "not_available"}};
+static bool ais_read_inland_rta(nmea_ais_reader *r, nmea_ais_inland_rta *m)
+{
+    uint64_t raw;
+    if (!ais_take_bits(r, 12, "country", &m->country)) return false;
+    if (!ais_take_bits(r, 18, "locode", &m->locode)) return false;
+    if (!ais_take_bits(r, 30, "section", &m->section)) return false;
+    if (!ais_take_bits(r, 30, "terminal", &m->terminal)) return false;
+    if (!ais_take_bits(r, 30, "hectometre", &m->hectometre)) return false;
+    if (!ais_take(r, 4, "month", &raw)) return false;
+    m->month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "hour", &raw)) return false;
+    m->hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "minute", &raw)) return false;
+    m->minute_raw = (uint8_t)raw;
+    if (!ais_take(r, 2, "status", &raw)) return false;
+    m->status_raw = (uint8_t)raw;
+    if (!ais_take(r, 2, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_inland_rta(const nmea_ais_inland_rta *m, nmea_ais_writer *w)
+{
+    if (!ais_put_fixed(w, m->country, 12, true, "country")) return false;
+    if (!ais_put_fixed(w, m->locode, 18, true, "locode")) return false;
+    if (!ais_put_fixed(w, m->section, 30, true, "section")) return false;
+    if (!ais_put_fixed(w, m->terminal, 30, true, "terminal")) return false;
+    if (!ais_put_fixed(w, m->hectometre, 30, true, "hectometre")) return false;
+    if (!ais_put(w, m->month_raw, 4, "month")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    if (!ais_put(w, m->hour_raw, 5, "hour")) return false;
+    if (!ais_put(w, m->minute_raw, 6, "minute")) return false;
+    if (!ais_put(w, m->status_raw, 2, "status")) return false;
+    if (!ais_put(w, m->spare, 2, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_inland_rta(const nmea_ais_inland_rta *m, nmea_ais_json_out *j)
+{
+    ais_json_text(j, "country", m->country);
+    ais_json_text(j, "locode", m->locode);
+    ais_json_text(j, "section", m->section);
+    ais_json_text(j, "terminal", m->terminal);
+    ais_json_text(j, "hectometre", m->hectometre);
+    ais_json_reading(j, "month", (int64_t)m->month_raw, 1.0, 0.0, false, ais_inland_rta_month_specials, 1);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_inland_rta_day_specials, 1);
+    ais_json_reading(j, "hour", (int64_t)m->hour_raw, 1.0, 0.0, false, ais_inland_rta_hour_specials, 1);
+    ais_json_reading(j, "minute", (int64_t)m->minute_raw, 1.0, 0.0, false, ais_inland_rta_minute_specials, 1);
+    ais_json_reading(j, "status", (int64_t)m->status_raw, 1.0, 0.0, false, ais_inland_rta_status_specials, 1);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_inland_signal_status_lon_specials[] = {{108600000, "not_available"}};
+static const nmea_ais_special ais_inland_signal_status_lat_specials[] = {{54600000, "not_available"}};
+static const nmea_ais_special ais_inland_signal_status_form_specials[] = {{0, "not_available"}, {15, "unknown"}};
+static const nmea_ais_special ais_inland_signal_status_orientation_specials[] = {{511, "not_available"}};
+static const nmea_ais_special ais_inland_signal_status_direction_specials[] = {{0, "not_available"}};
+static bool ais_read_inland_signal_status(nmea_ais_reader *r, nmea_ais_inland_signal_status *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take_signed(r, 28, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 27, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 4, "form", &raw)) return false;
+    m->form_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "orientation", &raw)) return false;
+    m->orientation_raw = (uint16_t)raw;
+    if (!ais_take(r, 3, "direction", &raw)) return false;
+    m->direction_raw = (uint8_t)raw;
+    if (!ais_take(r, 30, "status", &raw)) return false;
+    m->status = (uint32_t)raw;
+    if (!ais_take(r, 11, "spare", &raw)) return false;
+    m->spare = (uint16_t)raw;
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_inland_signal_status(const nmea_ais_inland_signal_status *m, nmea_ais_writer *w)
+{
+    if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
+    if (!ais_put(w, m->form_raw, 4, "form")) return false;
+    if (!ais_put(w, m->orientation_raw, 9, "orientation")) return false;
+    if (!ais_put(w, m->direction_raw, 3, "direction")) return false;
+    if (!ais_put(w, m->status, 30, "status")) return false;
+    if (!ais_put(w, m->spare, 11, "spare")) return false;
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_inland_signal_status(const nmea_ais_inland_signal_status *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_inland_signal_status_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_inland_signal_status_lat_specials, 1);
+    ais_json_reading(j, "form", (int64_t)m->form_raw, 1.0, 0.0, false, ais_inland_signal_status_form_specials, 2);
+    ais_json_reading(j, "orientation", (int64_t)m->orientation_raw, 1.0, 0.0, false, ais_inland_signal_status_orientation_specials, 1);
+    ais_json_reading(j, "direction", (int64_t)m->direction_raw, 1.0, 0.0, false, ais_inland_signal_status_direction_specials, 1);
+    ais_json_int(j, "status", (long long)m->status);
+    ais_json_int(j, "spare", (long long)m->spare);
     ais_json_bits(j, "trailing", m->trailing);
 }
 
@@ -2949,6 +3287,70 @@ static void ais_json_inland_static_voyage(const nmea_ais_inland_static_voyage *m
     ais_json_flag(j, "heading_q", m->heading_q);
     if (m->has_spare) {
         ais_json_int(j, "spare", (long long)m->spare);
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static bool ais_read_inland_water_level_gauge(nmea_ais_reader *r, nmea_ais_inland_water_level_gauge *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 11, "gaugeid", &raw)) return false;
+    m->gaugeid = (uint16_t)raw;
+    if (!ais_take(r, 14, "level", &raw)) return false;
+    m->level = (uint16_t)raw;
+    return true;
+}
+
+static bool ais_write_inland_water_level_gauge(const nmea_ais_inland_water_level_gauge *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->gaugeid, 11, "gaugeid")) return false;
+    if (!ais_put(w, m->level, 14, "level")) return false;
+    return true;
+}
+
+static void ais_json_inland_water_level_gauge(const nmea_ais_inland_water_level_gauge *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "gaugeid", (long long)m->gaugeid);
+    ais_json_int(j, "level", (long long)m->level);
+}
+
+static bool ais_read_inland_water_level(nmea_ais_reader *r, nmea_ais_inland_water_level *m)
+{
+    if (!ais_take_bits(r, 12, "country", &m->country)) return false;
+    {
+        size_t i;
+        if (!ais_entries(r, 1, 4, 25, 0, "gauges", &m->gauges_count)) return false;
+        for (i = 0; i < m->gauges_count; i++) if (!ais_read_inland_water_level_gauge(r, &m->gauges[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_inland_water_level(const nmea_ais_inland_water_level *m, nmea_ais_writer *w)
+{
+    if (!ais_put_fixed(w, m->country, 12, true, "country")) return false;
+    {
+        size_t i;
+        for (i = 0; i < m->gauges_count; i++) if (!ais_write_inland_water_level_gauge(&m->gauges[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_inland_water_level(const nmea_ais_inland_water_level *m, nmea_ais_json_out *j)
+{
+    ais_json_text(j, "country", m->country);
+    {
+        size_t i;
+        ais_json_key(j, "gauges");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->gauges_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_inland_water_level_gauge(&m->gauges[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
     }
     ais_json_bits(j, "trailing", m->trailing);
 }
@@ -3456,6 +3858,398 @@ static void ais_json_text_broadcast(const nmea_ais_text_broadcast *m, nmea_ais_j
 {
     ais_json_int(j, "linkage", (long long)m->linkage);
     ais_json_text(j, "text", m->text);
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_tidal_window_tidal_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_tidal_window_tidal_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_tidal_window_tidal_from_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_tidal_window_tidal_from_min_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_tidal_window_tidal_to_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_tidal_window_tidal_to_min_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_tidal_window_tidal_cdir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_tidal_window_tidal_cspeed_specials[] = {{255, "not_available"}};
+static bool ais_read_tidal_window_tidal(nmea_ais_reader *r, nmea_ais_tidal_window_tidal *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 5, "from_hour", &raw)) return false;
+    m->from_hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "from_min", &raw)) return false;
+    m->from_min_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "to_hour", &raw)) return false;
+    m->to_hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "to_min", &raw)) return false;
+    m->to_min_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "cdir", &raw)) return false;
+    m->cdir_raw = (uint16_t)raw;
+    if (!ais_take(r, 8, "cspeed", &raw)) return false;
+    m->cspeed_raw = (uint8_t)raw;
+    return true;
+}
+
+static bool ais_write_tidal_window_tidal(const nmea_ais_tidal_window_tidal *m, nmea_ais_writer *w)
+{
+    if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+    if (!ais_put(w, m->from_hour_raw, 5, "from_hour")) return false;
+    if (!ais_put(w, m->from_min_raw, 6, "from_min")) return false;
+    if (!ais_put(w, m->to_hour_raw, 5, "to_hour")) return false;
+    if (!ais_put(w, m->to_min_raw, 6, "to_min")) return false;
+    if (!ais_put(w, m->cdir_raw, 9, "cdir")) return false;
+    if (!ais_put(w, m->cspeed_raw, 8, "cspeed")) return false;
+    return true;
+}
+
+static void ais_json_tidal_window_tidal(const nmea_ais_tidal_window_tidal *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_tidal_window_tidal_lon_specials, 1);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_tidal_window_tidal_lat_specials, 1);
+    ais_json_reading(j, "from_hour", (int64_t)m->from_hour_raw, 1.0, 0.0, false, ais_tidal_window_tidal_from_hour_specials, 1);
+    ais_json_reading(j, "from_min", (int64_t)m->from_min_raw, 1.0, 0.0, false, ais_tidal_window_tidal_from_min_specials, 1);
+    ais_json_reading(j, "to_hour", (int64_t)m->to_hour_raw, 1.0, 0.0, false, ais_tidal_window_tidal_to_hour_specials, 1);
+    ais_json_reading(j, "to_min", (int64_t)m->to_min_raw, 1.0, 0.0, false, ais_tidal_window_tidal_to_min_specials, 1);
+    ais_json_reading(j, "cdir", (int64_t)m->cdir_raw, 1.0, 0.0, false, ais_tidal_window_tidal_cdir_specials, 1);
+    ais_json_reading(j, "cspeed", (int64_t)m->cspeed_raw, 10.0, 0.0, true, ais_tidal_window_tidal_cspeed_specials, 1);
+}
+
+static const nmea_ais_special ais_tidal_window_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_tidal_window_day_specials[] = {{0, "not_available"}};
+static bool ais_read_tidal_window(nmea_ais_reader *r, nmea_ais_tidal_window *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 4, "month", &raw)) return false;
+    m->month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    {
+        size_t i;
+        if (!ais_entries(r, 1, 3, 88, 0, "tidals", &m->tidals_count)) return false;
+        for (i = 0; i < m->tidals_count; i++) if (!ais_read_tidal_window_tidal(r, &m->tidals[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_tidal_window(const nmea_ais_tidal_window *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->month_raw, 4, "month")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    {
+        size_t i;
+        for (i = 0; i < m->tidals_count; i++) if (!ais_write_tidal_window_tidal(&m->tidals[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_tidal_window(const nmea_ais_tidal_window *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "month", (int64_t)m->month_raw, 1.0, 0.0, false, ais_tidal_window_month_specials, 1);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_tidal_window_day_specials, 1);
+    {
+        size_t i;
+        ais_json_key(j, "tidals");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->tidals_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_tidal_window_tidal(&m->tidals[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_tidal_window_imo236_tidal_lat_specials[] = {{54600000, "not_available"}};
+static const nmea_ais_special ais_tidal_window_imo236_tidal_lon_specials[] = {{108600000, "not_available"}};
+static const nmea_ais_special ais_tidal_window_imo236_tidal_from_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_tidal_window_imo236_tidal_from_min_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_tidal_window_imo236_tidal_to_hour_specials[] = {{24, "not_available"}};
+static const nmea_ais_special ais_tidal_window_imo236_tidal_to_min_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_tidal_window_imo236_tidal_cdir_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_tidal_window_imo236_tidal_cspeed_specials[] = {{127, "not_available"}};
+static bool ais_read_tidal_window_imo236_tidal(nmea_ais_reader *r, nmea_ais_tidal_window_imo236_tidal *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take_signed(r, 27, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 28, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 5, "from_hour", &raw)) return false;
+    m->from_hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "from_min", &raw)) return false;
+    m->from_min_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "to_hour", &raw)) return false;
+    m->to_hour_raw = (uint8_t)raw;
+    if (!ais_take(r, 6, "to_min", &raw)) return false;
+    m->to_min_raw = (uint8_t)raw;
+    if (!ais_take(r, 9, "cdir", &raw)) return false;
+    m->cdir_raw = (uint16_t)raw;
+    if (!ais_take(r, 7, "cspeed", &raw)) return false;
+    m->cspeed_raw = (uint8_t)raw;
+    return true;
+}
+
+static bool ais_write_tidal_window_imo236_tidal(const nmea_ais_tidal_window_imo236_tidal *m, nmea_ais_writer *w)
+{
+    if (!ais_put_signed(w, m->lat_raw, 27, "lat")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 28, "lon")) return false;
+    if (!ais_put(w, m->from_hour_raw, 5, "from_hour")) return false;
+    if (!ais_put(w, m->from_min_raw, 6, "from_min")) return false;
+    if (!ais_put(w, m->to_hour_raw, 5, "to_hour")) return false;
+    if (!ais_put(w, m->to_min_raw, 6, "to_min")) return false;
+    if (!ais_put(w, m->cdir_raw, 9, "cdir")) return false;
+    if (!ais_put(w, m->cspeed_raw, 7, "cspeed")) return false;
+    return true;
+}
+
+static void ais_json_tidal_window_imo236_tidal(const nmea_ais_tidal_window_imo236_tidal *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 600000.0, 0.0, true, ais_tidal_window_imo236_tidal_lat_specials, 1);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 600000.0, 0.0, true, ais_tidal_window_imo236_tidal_lon_specials, 1);
+    ais_json_reading(j, "from_hour", (int64_t)m->from_hour_raw, 1.0, 0.0, false, ais_tidal_window_imo236_tidal_from_hour_specials, 1);
+    ais_json_reading(j, "from_min", (int64_t)m->from_min_raw, 1.0, 0.0, false, ais_tidal_window_imo236_tidal_from_min_specials, 1);
+    ais_json_reading(j, "to_hour", (int64_t)m->to_hour_raw, 1.0, 0.0, false, ais_tidal_window_imo236_tidal_to_hour_specials, 1);
+    ais_json_reading(j, "to_min", (int64_t)m->to_min_raw, 1.0, 0.0, false, ais_tidal_window_imo236_tidal_to_min_specials, 1);
+    ais_json_reading(j, "cdir", (int64_t)m->cdir_raw, 1.0, 0.0, false, ais_tidal_window_imo236_tidal_cdir_specials, 1);
+    ais_json_reading(j, "cspeed", (int64_t)m->cspeed_raw, 10.0, 0.0, true, ais_tidal_window_imo236_tidal_cspeed_specials, 1);
+}
+
+static const nmea_ais_special ais_tidal_window_imo236_month_specials[] = {{0, "not_available"}};
+static const nmea_ais_special ais_tidal_window_imo236_day_specials[] = {{0, "not_available"}};
+static bool ais_read_tidal_window_imo236(nmea_ais_reader *r, nmea_ais_tidal_window_imo236 *m)
+{
+    uint64_t raw;
+    if (!ais_take(r, 4, "month", &raw)) return false;
+    m->month_raw = (uint8_t)raw;
+    if (!ais_take(r, 5, "day", &raw)) return false;
+    m->day_raw = (uint8_t)raw;
+    {
+        size_t i;
+        if (!ais_entries(r, 1, 3, 93, 0, "tidals", &m->tidals_count)) return false;
+        for (i = 0; i < m->tidals_count; i++) if (!ais_read_tidal_window_imo236_tidal(r, &m->tidals[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_tidal_window_imo236(const nmea_ais_tidal_window_imo236 *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->month_raw, 4, "month")) return false;
+    if (!ais_put(w, m->day_raw, 5, "day")) return false;
+    {
+        size_t i;
+        for (i = 0; i < m->tidals_count; i++) if (!ais_write_tidal_window_imo236_tidal(&m->tidals[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_tidal_window_imo236(const nmea_ais_tidal_window_imo236 *m, nmea_ais_json_out *j)
+{
+    ais_json_reading(j, "month", (int64_t)m->month_raw, 1.0, 0.0, false, ais_tidal_window_imo236_month_specials, 1);
+    ais_json_reading(j, "day", (int64_t)m->day_raw, 1.0, 0.0, false, ais_tidal_window_imo236_day_specials, 1);
+    {
+        size_t i;
+        ais_json_key(j, "tidals");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->tidals_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_tidal_window_imo236_tidal(&m->tidals[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_vts_targets_target_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_vts_targets_target_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_vts_targets_target_course_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_vts_targets_target_second_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_vts_targets_target_speed_specials[] = {{255, "not_available"}};
+static bool ais_read_vts_targets_target(nmea_ais_reader *r, nmea_ais_vts_targets_target *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 2, "idtype", &raw)) return false;
+    m->idtype = (uint8_t)raw;
+    if (!ais_take(r, 42, "id", &raw)) return false;
+    m->id = (uint64_t)raw;
+    if (!ais_take(r, 4, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 9, "course", &raw)) return false;
+    m->course_raw = (uint16_t)raw;
+    if (!ais_take(r, 6, "second", &raw)) return false;
+    m->second_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "speed", &raw)) return false;
+    m->speed_raw = (uint8_t)raw;
+    return true;
+}
+
+static bool ais_write_vts_targets_target(const nmea_ais_vts_targets_target *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->idtype, 2, "idtype")) return false;
+    if (!ais_put(w, m->id, 42, "id")) return false;
+    if (!ais_put(w, m->spare, 4, "spare")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+    if (!ais_put(w, m->course_raw, 9, "course")) return false;
+    if (!ais_put(w, m->second_raw, 6, "second")) return false;
+    if (!ais_put(w, m->speed_raw, 8, "speed")) return false;
+    return true;
+}
+
+static void ais_json_vts_targets_target(const nmea_ais_vts_targets_target *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "idtype", (long long)m->idtype);
+    ais_json_int(j, "id", (long long)m->id);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_vts_targets_target_lat_specials, 1);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_vts_targets_target_lon_specials, 1);
+    ais_json_reading(j, "course", (int64_t)m->course_raw, 1.0, 0.0, false, ais_vts_targets_target_course_specials, 1);
+    ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_vts_targets_target_second_specials, 1);
+    ais_json_reading(j, "speed", (int64_t)m->speed_raw, 1.0, 0.0, false, ais_vts_targets_target_speed_specials, 1);
+}
+
+static bool ais_read_vts_targets(nmea_ais_reader *r, nmea_ais_vts_targets *m)
+{
+    {
+        size_t i;
+        if (!ais_entries(r, 1, 7, 120, 0, "targets", &m->targets_count)) return false;
+        for (i = 0; i < m->targets_count; i++) if (!ais_read_vts_targets_target(r, &m->targets[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_vts_targets(const nmea_ais_vts_targets *m, nmea_ais_writer *w)
+{
+    {
+        size_t i;
+        for (i = 0; i < m->targets_count; i++) if (!ais_write_vts_targets_target(&m->targets[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_vts_targets(const nmea_ais_vts_targets *m, nmea_ais_json_out *j)
+{
+    {
+        size_t i;
+        ais_json_key(j, "targets");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->targets_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_vts_targets_target(&m->targets[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
+    }
+    ais_json_bits(j, "trailing", m->trailing);
+}
+
+static const nmea_ais_special ais_vts_targets_imo289_target_lat_specials[] = {{5460000, "not_available"}};
+static const nmea_ais_special ais_vts_targets_imo289_target_lon_specials[] = {{10860000, "not_available"}};
+static const nmea_ais_special ais_vts_targets_imo289_target_course_specials[] = {{360, "not_available"}};
+static const nmea_ais_special ais_vts_targets_imo289_target_second_specials[] = {{60, "not_available"}};
+static const nmea_ais_special ais_vts_targets_imo289_target_speed_specials[] = {{255, "not_available"}};
+static bool ais_read_vts_targets_imo289_target(nmea_ais_reader *r, nmea_ais_vts_targets_imo289_target *m)
+{
+    uint64_t raw;
+    int64_t signed_raw;
+    if (!ais_take(r, 2, "idtype", &raw)) return false;
+    m->idtype = (uint8_t)raw;
+    if (!ais_take(r, 42, "id", &raw)) return false;
+    m->id = (uint64_t)raw;
+    if (!ais_take(r, 4, "spare", &raw)) return false;
+    m->spare = (uint8_t)raw;
+    if (!ais_take_signed(r, 24, "lat", &signed_raw)) return false;
+    m->lat_raw = (int32_t)signed_raw;
+    if (!ais_take_signed(r, 25, "lon", &signed_raw)) return false;
+    m->lon_raw = (int32_t)signed_raw;
+    if (!ais_take(r, 9, "course", &raw)) return false;
+    m->course_raw = (uint16_t)raw;
+    if (!ais_take(r, 6, "second", &raw)) return false;
+    m->second_raw = (uint8_t)raw;
+    if (!ais_take(r, 8, "speed", &raw)) return false;
+    m->speed_raw = (uint8_t)raw;
+    return true;
+}
+
+static bool ais_write_vts_targets_imo289_target(const nmea_ais_vts_targets_imo289_target *m, nmea_ais_writer *w)
+{
+    if (!ais_put(w, m->idtype, 2, "idtype")) return false;
+    if (!ais_put(w, m->id, 42, "id")) return false;
+    if (!ais_put(w, m->spare, 4, "spare")) return false;
+    if (!ais_put_signed(w, m->lat_raw, 24, "lat")) return false;
+    if (!ais_put_signed(w, m->lon_raw, 25, "lon")) return false;
+    if (!ais_put(w, m->course_raw, 9, "course")) return false;
+    if (!ais_put(w, m->second_raw, 6, "second")) return false;
+    if (!ais_put(w, m->speed_raw, 8, "speed")) return false;
+    return true;
+}
+
+static void ais_json_vts_targets_imo289_target(const nmea_ais_vts_targets_imo289_target *m, nmea_ais_json_out *j)
+{
+    ais_json_int(j, "idtype", (long long)m->idtype);
+    ais_json_int(j, "id", (long long)m->id);
+    ais_json_int(j, "spare", (long long)m->spare);
+    ais_json_reading(j, "lat", (int64_t)m->lat_raw, 60000.0, 0.0, true, ais_vts_targets_imo289_target_lat_specials, 1);
+    ais_json_reading(j, "lon", (int64_t)m->lon_raw, 60000.0, 0.0, true, ais_vts_targets_imo289_target_lon_specials, 1);
+    ais_json_reading(j, "course", (int64_t)m->course_raw, 1.0, 0.0, false, ais_vts_targets_imo289_target_course_specials, 1);
+    ais_json_reading(j, "second", (int64_t)m->second_raw, 1.0, 0.0, false, ais_vts_targets_imo289_target_second_specials, 1);
+    ais_json_reading(j, "speed", (int64_t)m->speed_raw, 1.0, 0.0, false, ais_vts_targets_imo289_target_speed_specials, 1);
+}
+
+static bool ais_read_vts_targets_imo289(nmea_ais_reader *r, nmea_ais_vts_targets_imo289 *m)
+{
+    {
+        size_t i;
+        if (!ais_entries(r, 1, 4, 120, 0, "targets", &m->targets_count)) return false;
+        for (i = 0; i < m->targets_count; i++) if (!ais_read_vts_targets_imo289_target(r, &m->targets[i])) return false;
+    }
+    m->trailing = ais_rest(r);
+    return true;
+}
+
+static bool ais_write_vts_targets_imo289(const nmea_ais_vts_targets_imo289 *m, nmea_ais_writer *w)
+{
+    {
+        size_t i;
+        for (i = 0; i < m->targets_count; i++) if (!ais_write_vts_targets_imo289_target(&m->targets[i], w)) return false;
+    }
+    if (!ais_put_bits(w, m->trailing, "trailing")) return false;
+    return true;
+}
+
+static void ais_json_vts_targets_imo289(const nmea_ais_vts_targets_imo289 *m, nmea_ais_json_out *j)
+{
+    {
+        size_t i;
+        ais_json_key(j, "targets");
+        ais_json_puts(j, "[");
+        for (i = 0; i < m->targets_count; i++) {
+            if (i) ais_json_puts(j, ",");
+            ais_json_open(j);
+            ais_json_vts_targets_imo289_target(&m->targets[i], j);
+            ais_json_close(j);
+        }
+        ais_json_puts(j, "]");
+    }
     ais_json_bits(j, "trailing", m->trailing);
 }
 
@@ -5525,9 +6319,17 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
         app->layout = NMEA_AIS_APP_AREA_NOTICE;
         return ais_read_area_notice(&r, &app->as.area_notice);
     }
-    if (dac == 235u && fid == 10u && (message_type == 6u)) {
+    if ((dac == 235u || dac == 250u) && fid == 10u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_ATON_MONITORING;
         return ais_read_aton_monitoring(&r, &app->as.aton_monitoring);
+    }
+    if (dac == 1u && fid == 18u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_CLEARANCE_TIME;
+        return ais_read_clearance_time(&r, &app->as.clearance_time);
+    }
+    if (dac == 1u && fid == 12u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_DANGEROUS_CARGO_IMO236;
+        return ais_read_dangerous_cargo_imo236(&r, &app->as.dangerous_cargo_imo236);
     }
     if (dac == 1u && fid == 26u && (message_type == 8u)) {
         app->layout = NMEA_AIS_APP_ENVIRONMENTAL;
@@ -5537,13 +6339,29 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
         app->layout = NMEA_AIS_APP_FUNCTION_INTERROGATION;
         return ais_read_function_interrogation(&r, &app->as.function_interrogation);
     }
+    if (dac == 200u && fid == 21u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_INLAND_ETA;
+        return ais_read_inland_eta(&r, &app->as.inland_eta);
+    }
     if (dac == 200u && fid == 55u && (message_type == 6u)) {
         app->layout = NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD;
         return ais_read_inland_persons_on_board(&r, &app->as.inland_persons_on_board);
     }
+    if (dac == 200u && fid == 22u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_INLAND_RTA;
+        return ais_read_inland_rta(&r, &app->as.inland_rta);
+    }
+    if (dac == 200u && fid == 40u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_INLAND_SIGNAL_STATUS;
+        return ais_read_inland_signal_status(&r, &app->as.inland_signal_status);
+    }
     if (dac == 200u && fid == 10u && (message_type == 8u)) {
         app->layout = NMEA_AIS_APP_INLAND_STATIC_VOYAGE;
         return ais_read_inland_static_voyage(&r, &app->as.inland_static_voyage);
+    }
+    if (dac == 200u && fid == 24u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_INLAND_WATER_LEVEL;
+        return ais_read_inland_water_level(&r, &app->as.inland_water_level);
     }
     if (dac == 1u && fid == 31u && (message_type == 8u)) {
         app->layout = NMEA_AIS_APP_METEO_HYDRO;
@@ -5565,6 +6383,22 @@ static bool ais_read_application(unsigned message_type, uint64_t dac, uint64_t f
         app->layout = NMEA_AIS_APP_TEXT_BROADCAST;
         return ais_read_text_broadcast(&r, &app->as.text_broadcast);
     }
+    if (dac == 1u && fid == 32u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_TIDAL_WINDOW;
+        return ais_read_tidal_window(&r, &app->as.tidal_window);
+    }
+    if (dac == 1u && fid == 14u && (message_type == 6u)) {
+        app->layout = NMEA_AIS_APP_TIDAL_WINDOW_IMO236;
+        return ais_read_tidal_window_imo236(&r, &app->as.tidal_window_imo236);
+    }
+    if (dac == 1u && fid == 16u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_VTS_TARGETS;
+        return ais_read_vts_targets(&r, &app->as.vts_targets);
+    }
+    if (dac == 1u && fid == 17u && (message_type == 8u)) {
+        app->layout = NMEA_AIS_APP_VTS_TARGETS_IMO289;
+        return ais_read_vts_targets_imo289(&r, &app->as.vts_targets_imo289);
+    }
     return false;
 }
 
@@ -5575,14 +6409,26 @@ static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writ
         return ais_write_area_notice(&app->as.area_notice, w);
     case NMEA_AIS_APP_ATON_MONITORING:
         return ais_write_aton_monitoring(&app->as.aton_monitoring, w);
+    case NMEA_AIS_APP_CLEARANCE_TIME:
+        return ais_write_clearance_time(&app->as.clearance_time, w);
+    case NMEA_AIS_APP_DANGEROUS_CARGO_IMO236:
+        return ais_write_dangerous_cargo_imo236(&app->as.dangerous_cargo_imo236, w);
     case NMEA_AIS_APP_ENVIRONMENTAL:
         return ais_write_environmental(&app->as.environmental, w);
     case NMEA_AIS_APP_FUNCTION_INTERROGATION:
         return ais_write_function_interrogation(&app->as.function_interrogation, w);
+    case NMEA_AIS_APP_INLAND_ETA:
+        return ais_write_inland_eta(&app->as.inland_eta, w);
     case NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD:
         return ais_write_inland_persons_on_board(&app->as.inland_persons_on_board, w);
+    case NMEA_AIS_APP_INLAND_RTA:
+        return ais_write_inland_rta(&app->as.inland_rta, w);
+    case NMEA_AIS_APP_INLAND_SIGNAL_STATUS:
+        return ais_write_inland_signal_status(&app->as.inland_signal_status, w);
     case NMEA_AIS_APP_INLAND_STATIC_VOYAGE:
         return ais_write_inland_static_voyage(&app->as.inland_static_voyage, w);
+    case NMEA_AIS_APP_INLAND_WATER_LEVEL:
+        return ais_write_inland_water_level(&app->as.inland_water_level, w);
     case NMEA_AIS_APP_METEO_HYDRO:
         return ais_write_meteo_hydro(&app->as.meteo_hydro, w);
     case NMEA_AIS_APP_METEO_HYDRO_IMO236:
@@ -5593,6 +6439,14 @@ static bool ais_write_application(const nmea_ais_application *app, nmea_ais_writ
         return ais_write_text_addressed(&app->as.text_addressed, w);
     case NMEA_AIS_APP_TEXT_BROADCAST:
         return ais_write_text_broadcast(&app->as.text_broadcast, w);
+    case NMEA_AIS_APP_TIDAL_WINDOW:
+        return ais_write_tidal_window(&app->as.tidal_window, w);
+    case NMEA_AIS_APP_TIDAL_WINDOW_IMO236:
+        return ais_write_tidal_window_imo236(&app->as.tidal_window_imo236, w);
+    case NMEA_AIS_APP_VTS_TARGETS:
+        return ais_write_vts_targets(&app->as.vts_targets, w);
+    case NMEA_AIS_APP_VTS_TARGETS_IMO289:
+        return ais_write_vts_targets_imo289(&app->as.vts_targets_imo289, w);
     }
     return false;
 }
@@ -5606,17 +6460,35 @@ static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_
     case NMEA_AIS_APP_ATON_MONITORING:
         ais_json_aton_monitoring(&app->as.aton_monitoring, j);
         break;
+    case NMEA_AIS_APP_CLEARANCE_TIME:
+        ais_json_clearance_time(&app->as.clearance_time, j);
+        break;
+    case NMEA_AIS_APP_DANGEROUS_CARGO_IMO236:
+        ais_json_dangerous_cargo_imo236(&app->as.dangerous_cargo_imo236, j);
+        break;
     case NMEA_AIS_APP_ENVIRONMENTAL:
         ais_json_environmental(&app->as.environmental, j);
         break;
     case NMEA_AIS_APP_FUNCTION_INTERROGATION:
         ais_json_function_interrogation(&app->as.function_interrogation, j);
         break;
+    case NMEA_AIS_APP_INLAND_ETA:
+        ais_json_inland_eta(&app->as.inland_eta, j);
+        break;
     case NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD:
         ais_json_inland_persons_on_board(&app->as.inland_persons_on_board, j);
         break;
+    case NMEA_AIS_APP_INLAND_RTA:
+        ais_json_inland_rta(&app->as.inland_rta, j);
+        break;
+    case NMEA_AIS_APP_INLAND_SIGNAL_STATUS:
+        ais_json_inland_signal_status(&app->as.inland_signal_status, j);
+        break;
     case NMEA_AIS_APP_INLAND_STATIC_VOYAGE:
         ais_json_inland_static_voyage(&app->as.inland_static_voyage, j);
+        break;
+    case NMEA_AIS_APP_INLAND_WATER_LEVEL:
+        ais_json_inland_water_level(&app->as.inland_water_level, j);
         break;
     case NMEA_AIS_APP_METEO_HYDRO:
         ais_json_meteo_hydro(&app->as.meteo_hydro, j);
@@ -5632,6 +6504,18 @@ static void ais_json_application(const nmea_ais_application *app, nmea_ais_json_
         break;
     case NMEA_AIS_APP_TEXT_BROADCAST:
         ais_json_text_broadcast(&app->as.text_broadcast, j);
+        break;
+    case NMEA_AIS_APP_TIDAL_WINDOW:
+        ais_json_tidal_window(&app->as.tidal_window, j);
+        break;
+    case NMEA_AIS_APP_TIDAL_WINDOW_IMO236:
+        ais_json_tidal_window_imo236(&app->as.tidal_window_imo236, j);
+        break;
+    case NMEA_AIS_APP_VTS_TARGETS:
+        ais_json_vts_targets(&app->as.vts_targets, j);
+        break;
+    case NMEA_AIS_APP_VTS_TARGETS_IMO289:
+        ais_json_vts_targets_imo289(&app->as.vts_targets_imo289, j);
         break;
     }
 }

@@ -13,12 +13,16 @@
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
 //   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
+//   spec/ais/applications/clearance_time.yaml, spec/ais/applications/dangerous_cargo_imo236.yaml,
 //   spec/ais/applications/environmental.yaml, spec/ais/applications/function_interrogation.yaml,
-//   spec/ais/applications/inland_persons_on_board.yaml,
-//   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
-//   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
-//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest 6e911df94d5df6a6)
+//   spec/ais/applications/inland_eta.yaml, spec/ais/applications/inland_persons_on_board.yaml,
+//   spec/ais/applications/inland_rta.yaml, spec/ais/applications/inland_signal_status.yaml,
+//   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/inland_water_level.yaml,
+//   spec/ais/applications/meteo_hydro.yaml, spec/ais/applications/meteo_hydro_imo236.yaml,
+//   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/text_addressed.yaml,
+//   spec/ais/applications/text_broadcast.yaml, spec/ais/applications/tidal_window.yaml,
+//   spec/ais/applications/tidal_window_imo236.yaml, spec/ais/applications/vts_targets.yaml,
+//   spec/ais/applications/vts_targets_imo289.yaml (digest 6541cbe400d5cd60)
 // Regenerate: make generate (python3 -m generator generate)
 
 /* The AIS messages of spec/ais: a struct per layout, decoded from an armored payload and encoded
@@ -293,7 +297,7 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_area_notice;
 
-/* AtoN monitoring data (UK and Ireland): AIS application DAC 235 FI 10 (in type 6). */
+/* AtoN monitoring data (UK and Ireland): AIS application DAC 235 or 250 FI 10 (in type 6). */
 typedef struct {
     uint16_t ana_int_raw; /* Internal supply voltage [volts] */
     uint16_t ana_ext1_raw; /* External voltage 1 [volts] */
@@ -307,6 +311,42 @@ typedef struct {
     bool has_spare;
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_aton_monitoring;
+
+/* Clearance time to enter port: AIS application DAC 1 FI 18 (in type 6). */
+typedef struct {
+    uint16_t linkage_raw; /* Message linkage ID */
+    uint8_t month_raw; /* Month (UTC) */
+    uint8_t day_raw; /* Day (UTC) */
+    uint8_t hour_raw; /* Hour (UTC) */
+    uint8_t minute_raw; /* Minute (UTC) */
+    nmea_ais_bits portname; /* Name of port and berth */
+    nmea_ais_bits destination; /* Destination */
+    int32_t lon_raw; /* Longitude [degrees] */
+    int32_t lat_raw; /* Latitude [degrees] */
+    uint64_t spare; /* Spare */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_clearance_time;
+
+/* Dangerous cargo indication (SN/Circ.236): AIS application DAC 1 FI 12 (in type 6). */
+typedef struct {
+    nmea_ais_bits lastport; /* Last port of call */
+    uint8_t lmonth_raw; /* Departure month (UTC) */
+    uint8_t lday_raw; /* Departure day (UTC) */
+    uint8_t lhour_raw; /* Departure hour (UTC) */
+    uint8_t lminute_raw; /* Departure minute (UTC) */
+    nmea_ais_bits nextport; /* Next port of call */
+    uint8_t nmonth_raw; /* Arrival month (UTC) */
+    uint8_t nday_raw; /* Arrival day (UTC) */
+    uint8_t nhour_raw; /* Arrival hour (UTC) */
+    uint8_t nminute_raw; /* Arrival minute (UTC) */
+    nmea_ais_bits dangerous; /* Main dangerous good */
+    nmea_ais_bits imdcat; /* IMD category */
+    uint16_t unid_raw; /* UN number */
+    uint16_t amount_raw; /* Amount of cargo */
+    uint8_t unit_raw; /* Unit of the amount */
+    uint8_t spare; /* Spare */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_dangerous_cargo_imo236;
 
 /* One entry of environmental_report. */
 typedef struct {
@@ -541,6 +581,23 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_function_interrogation;
 
+/* Inland ETA at lock, bridge or terminal: AIS application DAC 200 FI 21 (in type 6). */
+typedef struct {
+    nmea_ais_bits country; /* UN country code */
+    nmea_ais_bits locode; /* UN location code */
+    nmea_ais_bits section; /* Fairway section number */
+    nmea_ais_bits terminal; /* Terminal code */
+    nmea_ais_bits hectometre; /* Fairway hectometre */
+    uint8_t month_raw; /* Month (UTC) */
+    uint8_t day_raw; /* Day (UTC) */
+    uint8_t hour_raw; /* Hour (UTC) */
+    uint8_t minute_raw; /* Minute (UTC) */
+    uint8_t tugs_raw; /* Assisting tugboats */
+    uint16_t airdraught_raw; /* Air draught [metres] */
+    uint8_t spare; /* Spare */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_inland_eta;
+
 /* Inland number of persons on board: AIS application DAC 200 FI 55 (in type 6). */
 typedef struct {
     uint8_t crew_raw; /* Crew members on board */
@@ -550,6 +607,34 @@ typedef struct {
     bool has_spare;
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_inland_persons_on_board;
+
+/* Inland RTA at lock, bridge or terminal: AIS application DAC 200 FI 22 (in type 6). */
+typedef struct {
+    nmea_ais_bits country; /* UN country code */
+    nmea_ais_bits locode; /* UN location code */
+    nmea_ais_bits section; /* Fairway section number */
+    nmea_ais_bits terminal; /* Terminal code */
+    nmea_ais_bits hectometre; /* Fairway hectometre */
+    uint8_t month_raw; /* Month (UTC) */
+    uint8_t day_raw; /* Day (UTC) */
+    uint8_t hour_raw; /* Hour (UTC) */
+    uint8_t minute_raw; /* Minute (UTC) */
+    uint8_t status_raw; /* Lock, bridge or terminal status */
+    uint8_t spare; /* Spare */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_inland_rta;
+
+/* Inland signal status: AIS application DAC 200 FI 40 (in type 8). */
+typedef struct {
+    int32_t lon_raw; /* Longitude [degrees] */
+    int32_t lat_raw; /* Latitude [degrees] */
+    uint8_t form_raw; /* Signal form */
+    uint16_t orientation_raw; /* Orientation of the signal [degrees] */
+    uint8_t direction_raw; /* Direction of impact */
+    uint32_t status; /* Light status */
+    uint16_t spare; /* Spare */
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_inland_signal_status;
 
 /* Inland ship static and voyage related data: AIS application DAC 200 FI 10 (in type 8). */
 typedef struct {
@@ -567,6 +652,20 @@ typedef struct {
     bool has_spare;
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_inland_static_voyage;
+
+/* One entry of inland_water_level_gauge. */
+typedef struct {
+    uint16_t gaugeid; /* Gauge ID */
+    uint16_t level; /* Water level */
+} nmea_ais_inland_water_level_gauge;
+
+/* Inland water level: AIS application DAC 200 FI 24 (in type 8). */
+typedef struct {
+    nmea_ais_bits country; /* UN country code */
+    nmea_ais_inland_water_level_gauge gauges[4]; /* Gauges */
+    size_t gauges_count;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_inland_water_level;
 
 /* Meteorological and hydrographic data: AIS application DAC 1 FI 31 (in type 8). */
 typedef struct {
@@ -678,19 +777,109 @@ typedef struct {
     nmea_ais_bits trailing; /* bits after the layout, as sent */
 } nmea_ais_text_broadcast;
 
+/* One entry of tidal_window_tidal. */
+typedef struct {
+    int32_t lon_raw; /* Longitude [degrees] */
+    int32_t lat_raw; /* Latitude [degrees] */
+    uint8_t from_hour_raw; /* From hour (UTC) */
+    uint8_t from_min_raw; /* From minute (UTC) */
+    uint8_t to_hour_raw; /* To hour (UTC) */
+    uint8_t to_min_raw; /* To minute (UTC) */
+    uint16_t cdir_raw; /* Current direction [degrees] */
+    uint8_t cspeed_raw; /* Current speed [knots] */
+} nmea_ais_tidal_window_tidal;
+
+/* Tidal window: AIS application DAC 1 FI 32 (in type 6). */
+typedef struct {
+    uint8_t month_raw; /* Month (UTC) */
+    uint8_t day_raw; /* Day (UTC) */
+    nmea_ais_tidal_window_tidal tidals[3]; /* Tidal windows */
+    size_t tidals_count;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_tidal_window;
+
+/* One entry of tidal_window_imo236_tidal. */
+typedef struct {
+    int32_t lat_raw; /* Latitude [degrees] */
+    int32_t lon_raw; /* Longitude [degrees] */
+    uint8_t from_hour_raw; /* From hour (UTC) */
+    uint8_t from_min_raw; /* From minute (UTC) */
+    uint8_t to_hour_raw; /* To hour (UTC) */
+    uint8_t to_min_raw; /* To minute (UTC) */
+    uint16_t cdir_raw; /* Current direction [degrees] */
+    uint8_t cspeed_raw; /* Current speed [knots] */
+} nmea_ais_tidal_window_imo236_tidal;
+
+/* Tidal window (SN/Circ.236): AIS application DAC 1 FI 14 (in type 6). */
+typedef struct {
+    uint8_t month_raw; /* Month (UTC) */
+    uint8_t day_raw; /* Day (UTC) */
+    nmea_ais_tidal_window_imo236_tidal tidals[3]; /* Tidal windows */
+    size_t tidals_count;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_tidal_window_imo236;
+
+/* One entry of vts_targets_target. */
+typedef struct {
+    uint8_t idtype; /* Type of target identifier */
+    uint64_t id; /* Target identifier */
+    uint8_t spare; /* Spare */
+    int32_t lat_raw; /* Latitude [degrees] */
+    int32_t lon_raw; /* Longitude [degrees] */
+    uint16_t course_raw; /* Course over ground [degrees] */
+    uint8_t second_raw; /* Time stamp (UTC second) */
+    uint8_t speed_raw; /* Speed over ground [knots] */
+} nmea_ais_vts_targets_target;
+
+/* VTS targets: AIS application DAC 1 FI 16 (in type 8). */
+typedef struct {
+    nmea_ais_vts_targets_target targets[7]; /* Targets */
+    size_t targets_count;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_vts_targets;
+
+/* One entry of vts_targets_imo289_target. */
+typedef struct {
+    uint8_t idtype; /* Type of target identifier */
+    uint64_t id; /* Target identifier */
+    uint8_t spare; /* Spare */
+    int32_t lat_raw; /* Latitude [degrees] */
+    int32_t lon_raw; /* Longitude [degrees] */
+    uint16_t course_raw; /* Course over ground [degrees] */
+    uint8_t second_raw; /* Time stamp (UTC second) */
+    uint8_t speed_raw; /* Speed over ground [knots] */
+} nmea_ais_vts_targets_imo289_target;
+
+/* VTS-generated or synthetic targets: AIS application DAC 1 FI 17 (in type 8). */
+typedef struct {
+    nmea_ais_vts_targets_imo289_target targets[4]; /* Targets */
+    size_t targets_count;
+    nmea_ais_bits trailing; /* bits after the layout, as sent */
+} nmea_ais_vts_targets_imo289;
+
 /* An application message a binary message's data carries, by its DAC and FI. */
 typedef enum {
     NMEA_AIS_APP_AREA_NOTICE,
     NMEA_AIS_APP_ATON_MONITORING,
+    NMEA_AIS_APP_CLEARANCE_TIME,
+    NMEA_AIS_APP_DANGEROUS_CARGO_IMO236,
     NMEA_AIS_APP_ENVIRONMENTAL,
     NMEA_AIS_APP_FUNCTION_INTERROGATION,
+    NMEA_AIS_APP_INLAND_ETA,
     NMEA_AIS_APP_INLAND_PERSONS_ON_BOARD,
+    NMEA_AIS_APP_INLAND_RTA,
+    NMEA_AIS_APP_INLAND_SIGNAL_STATUS,
     NMEA_AIS_APP_INLAND_STATIC_VOYAGE,
+    NMEA_AIS_APP_INLAND_WATER_LEVEL,
     NMEA_AIS_APP_METEO_HYDRO,
     NMEA_AIS_APP_METEO_HYDRO_IMO236,
     NMEA_AIS_APP_PERSONS_ON_BOARD,
     NMEA_AIS_APP_TEXT_ADDRESSED,
     NMEA_AIS_APP_TEXT_BROADCAST,
+    NMEA_AIS_APP_TIDAL_WINDOW,
+    NMEA_AIS_APP_TIDAL_WINDOW_IMO236,
+    NMEA_AIS_APP_VTS_TARGETS,
+    NMEA_AIS_APP_VTS_TARGETS_IMO289,
 } nmea_ais_application_layout;
 
 typedef struct {
@@ -698,15 +887,25 @@ typedef struct {
     union {
         nmea_ais_area_notice area_notice;
         nmea_ais_aton_monitoring aton_monitoring;
+        nmea_ais_clearance_time clearance_time;
+        nmea_ais_dangerous_cargo_imo236 dangerous_cargo_imo236;
         nmea_ais_environmental environmental;
         nmea_ais_function_interrogation function_interrogation;
+        nmea_ais_inland_eta inland_eta;
         nmea_ais_inland_persons_on_board inland_persons_on_board;
+        nmea_ais_inland_rta inland_rta;
+        nmea_ais_inland_signal_status inland_signal_status;
         nmea_ais_inland_static_voyage inland_static_voyage;
+        nmea_ais_inland_water_level inland_water_level;
         nmea_ais_meteo_hydro meteo_hydro;
         nmea_ais_meteo_hydro_imo236 meteo_hydro_imo236;
         nmea_ais_persons_on_board persons_on_board;
         nmea_ais_text_addressed text_addressed;
         nmea_ais_text_broadcast text_broadcast;
+        nmea_ais_tidal_window tidal_window;
+        nmea_ais_tidal_window_imo236 tidal_window_imo236;
+        nmea_ais_vts_targets vts_targets;
+        nmea_ais_vts_targets_imo289 vts_targets_imo289;
     } as;
 } nmea_ais_application;
 

@@ -168,7 +168,7 @@ int main(int argc, char **argv)
 {
     static char record[8192], json[8192];
     char payload[512], fill[8], error[32];
-    int decoded = 0, refused = 0, failed = 0, assembled = 0;
+    int decoded = 0, refused = 0, failed = 0, assembled = 0, records = 0;
     FILE *file = argc > 2 ? fopen(argv[1], "r") : NULL;
     FILE *cases = argc > 2 ? fopen(argv[2], "r") : NULL;
     if (!file || !cases) {
@@ -183,6 +183,7 @@ int main(int argc, char **argv)
         const char *decode;
         bool ok;
         record[strcspn(record, "\n")] = '\0';
+        records++;
         member(record, "payload", payload, sizeof payload);
         member(record, "fill_bits", fill, sizeof fill);
         member(record, "error", error, sizeof error);
@@ -226,5 +227,7 @@ int main(int argc, char **argv)
     failed += built_messages();
     printf("%d decoded, %d refused, %d assembly cases of %d slots, %d failed\n", decoded, refused, assembled,
            NMEA_AIS_SLOTS, failed);
-    return failed || decoded != 54 || refused != 6 || !assembled;
+    /* Every record decoded or refused as it says (a record to refuse names its error), and the
+       vectors hold some of each. */
+    return failed || decoded + refused != records || !decoded || !refused || !assembled;
 }

@@ -13,12 +13,16 @@
 //   spec/ais/messages/single_slot_binary.yaml, spec/ais/messages/static_data_report.yaml,
 //   spec/ais/messages/static_voyage_data.yaml, spec/ais/messages/utc_inquiry.yaml,
 //   spec/ais/applications/area_notice.yaml, spec/ais/applications/aton_monitoring.yaml,
+//   spec/ais/applications/clearance_time.yaml, spec/ais/applications/dangerous_cargo_imo236.yaml,
 //   spec/ais/applications/environmental.yaml, spec/ais/applications/function_interrogation.yaml,
-//   spec/ais/applications/inland_persons_on_board.yaml,
-//   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/meteo_hydro.yaml,
-//   spec/ais/applications/meteo_hydro_imo236.yaml, spec/ais/applications/persons_on_board.yaml,
-//   spec/ais/applications/text_addressed.yaml, spec/ais/applications/text_broadcast.yaml
-//   (digest 8450fc4a327c1e33)
+//   spec/ais/applications/inland_eta.yaml, spec/ais/applications/inland_persons_on_board.yaml,
+//   spec/ais/applications/inland_rta.yaml, spec/ais/applications/inland_signal_status.yaml,
+//   spec/ais/applications/inland_static_voyage.yaml, spec/ais/applications/inland_water_level.yaml,
+//   spec/ais/applications/meteo_hydro.yaml, spec/ais/applications/meteo_hydro_imo236.yaml,
+//   spec/ais/applications/persons_on_board.yaml, spec/ais/applications/text_addressed.yaml,
+//   spec/ais/applications/text_broadcast.yaml, spec/ais/applications/tidal_window.yaml,
+//   spec/ais/applications/tidal_window_imo236.yaml, spec/ais/applications/vts_targets.yaml,
+//   spec/ais/applications/vts_targets_imo289.yaml (digest 1b894963098349aa)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The AIS messages of spec/ais: a struct per layout, read from and written to a payload's bits
@@ -3705,7 +3709,7 @@ impl<'a> AreaNotice<'a> {
     }
 }
 
-/// AtoN monitoring data (UK and Ireland): AIS application DAC 235 FI 10 (in type 6).
+/// AtoN monitoring data (UK and Ireland): AIS application DAC 235 or 250 FI 10 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct AtonMonitoring<'a> {
     /// Internal supply voltage [volts].
@@ -3800,6 +3804,280 @@ impl<'a> AtonMonitoring<'a> {
         if let Some(v) = self.spare {
             j.int("spare", v)?;
         }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Clearance time to enter port: AIS application DAC 1 FI 18 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ClearanceTime<'a> {
+    /// Message linkage ID.
+    pub linkage_raw: u16,
+    /// Month (UTC).
+    pub month_raw: u8,
+    /// Day (UTC).
+    pub day_raw: u8,
+    /// Hour (UTC).
+    pub hour_raw: u8,
+    /// Minute (UTC).
+    pub minute_raw: u8,
+    /// Name of port and berth.
+    pub portname: ais::SixBitText<'a>,
+    /// Destination.
+    pub destination: ais::SixBitText<'a>,
+    /// Longitude [degrees].
+    pub lon_raw: i32,
+    /// Latitude [degrees].
+    pub lat_raw: i32,
+    /// Spare.
+    pub spare: u64,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> ClearanceTime<'a> {
+    /// Message linkage ID, or its special value.
+    pub fn linkage(&self) -> ais::Reading<i64> {
+        let raw = self.linkage_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Month (UTC), or its special value.
+    pub fn month(&self) -> ais::Reading<i64> {
+        let raw = self.month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Hour (UTC), or its special value.
+    pub fn hour(&self) -> ais::Reading<i64> {
+        let raw = self.hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Minute (UTC), or its special value.
+    pub fn minute(&self) -> ais::Reading<i64> {
+        let raw = self.minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> ais::Reading<f64> {
+        let raw = self.lon_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")])
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> ais::Reading<f64> {
+        let raw = self.lat_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            linkage_raw: r.take(10, "linkage")? as u16,
+            month_raw: r.take(4, "month")? as u8,
+            day_raw: r.take(5, "day")? as u8,
+            hour_raw: r.take(5, "hour")? as u8,
+            minute_raw: r.take(6, "minute")? as u8,
+            portname: r.take_text(20, "portname")?,
+            destination: r.take_text(5, "destination")?,
+            lon_raw: r.take_signed(25, "lon")? as i32,
+            lat_raw: r.take_signed(24, "lat")? as i32,
+            spare: r.take(43, "spare")?,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.linkage_raw), 10, "linkage")?;
+        w.put(u64::from(self.month_raw), 4, "month")?;
+        w.put(u64::from(self.day_raw), 5, "day")?;
+        w.put(u64::from(self.hour_raw), 5, "hour")?;
+        w.put(u64::from(self.minute_raw), 6, "minute")?;
+        w.put_fixed(self.portname.bits(), 120, true, "portname")?;
+        w.put_fixed(self.destination.bits(), 30, true, "destination")?;
+        w.put_signed(i64::from(self.lon_raw), 25, "lon")?;
+        w.put_signed(i64::from(self.lat_raw), 24, "lat")?;
+        w.put(self.spare, 43, "spare")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("linkage", self.linkage(), "linkage_raw", i64::from(self.linkage_raw))?;
+        j.reading("month", self.month(), "month_raw", i64::from(self.month_raw))?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        j.reading("hour", self.hour(), "hour_raw", i64::from(self.hour_raw))?;
+        j.reading("minute", self.minute(), "minute_raw", i64::from(self.minute_raw))?;
+        j.text("portname", self.portname)?;
+        j.text("destination", self.destination)?;
+        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
+        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
+        j.int("spare", self.spare)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Dangerous cargo indication (SN/Circ.236): AIS application DAC 1 FI 12 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DangerousCargoImo236<'a> {
+    /// Last port of call.
+    pub lastport: ais::SixBitText<'a>,
+    /// Departure month (UTC).
+    pub lmonth_raw: u8,
+    /// Departure day (UTC).
+    pub lday_raw: u8,
+    /// Departure hour (UTC).
+    pub lhour_raw: u8,
+    /// Departure minute (UTC).
+    pub lminute_raw: u8,
+    /// Next port of call.
+    pub nextport: ais::SixBitText<'a>,
+    /// Arrival month (UTC).
+    pub nmonth_raw: u8,
+    /// Arrival day (UTC).
+    pub nday_raw: u8,
+    /// Arrival hour (UTC).
+    pub nhour_raw: u8,
+    /// Arrival minute (UTC).
+    pub nminute_raw: u8,
+    /// Main dangerous good.
+    pub dangerous: ais::SixBitText<'a>,
+    /// IMD category.
+    pub imdcat: ais::SixBitText<'a>,
+    /// UN number.
+    pub unid_raw: u16,
+    /// Amount of cargo.
+    pub amount_raw: u16,
+    /// Unit of the amount.
+    pub unit_raw: u8,
+    /// Spare.
+    pub spare: u8,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> DangerousCargoImo236<'a> {
+    /// Departure month (UTC), or its special value.
+    pub fn lmonth(&self) -> ais::Reading<i64> {
+        let raw = self.lmonth_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Departure day (UTC), or its special value.
+    pub fn lday(&self) -> ais::Reading<i64> {
+        let raw = self.lday_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Departure hour (UTC), or its special value.
+    pub fn lhour(&self) -> ais::Reading<i64> {
+        let raw = self.lhour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Departure minute (UTC), or its special value.
+    pub fn lminute(&self) -> ais::Reading<i64> {
+        let raw = self.lminute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Arrival month (UTC), or its special value.
+    pub fn nmonth(&self) -> ais::Reading<i64> {
+        let raw = self.nmonth_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Arrival day (UTC), or its special value.
+    pub fn nday(&self) -> ais::Reading<i64> {
+        let raw = self.nday_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Arrival hour (UTC), or its special value.
+    pub fn nhour(&self) -> ais::Reading<i64> {
+        let raw = self.nhour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Arrival minute (UTC), or its special value.
+    pub fn nminute(&self) -> ais::Reading<i64> {
+        let raw = self.nminute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// UN number, or its special value.
+    pub fn unid(&self) -> ais::Reading<i64> {
+        let raw = self.unid_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Amount of cargo, or its special value.
+    pub fn amount(&self) -> ais::Reading<i64> {
+        let raw = self.amount_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Unit of the amount, or its special value.
+    pub fn unit(&self) -> ais::Reading<i64> {
+        let raw = self.unit_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            lastport: r.take_text(5, "lastport")?,
+            lmonth_raw: r.take(4, "lmonth")? as u8,
+            lday_raw: r.take(5, "lday")? as u8,
+            lhour_raw: r.take(5, "lhour")? as u8,
+            lminute_raw: r.take(6, "lminute")? as u8,
+            nextport: r.take_text(5, "nextport")?,
+            nmonth_raw: r.take(4, "nmonth")? as u8,
+            nday_raw: r.take(5, "nday")? as u8,
+            nhour_raw: r.take(5, "nhour")? as u8,
+            nminute_raw: r.take(6, "nminute")? as u8,
+            dangerous: r.take_text(20, "dangerous")?,
+            imdcat: r.take_text(4, "imdcat")?,
+            unid_raw: r.take(13, "unid")? as u16,
+            amount_raw: r.take(10, "amount")? as u16,
+            unit_raw: r.take(2, "unit")? as u8,
+            spare: r.take(3, "spare")? as u8,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put_fixed(self.lastport.bits(), 30, true, "lastport")?;
+        w.put(u64::from(self.lmonth_raw), 4, "lmonth")?;
+        w.put(u64::from(self.lday_raw), 5, "lday")?;
+        w.put(u64::from(self.lhour_raw), 5, "lhour")?;
+        w.put(u64::from(self.lminute_raw), 6, "lminute")?;
+        w.put_fixed(self.nextport.bits(), 30, true, "nextport")?;
+        w.put(u64::from(self.nmonth_raw), 4, "nmonth")?;
+        w.put(u64::from(self.nday_raw), 5, "nday")?;
+        w.put(u64::from(self.nhour_raw), 5, "nhour")?;
+        w.put(u64::from(self.nminute_raw), 6, "nminute")?;
+        w.put_fixed(self.dangerous.bits(), 120, true, "dangerous")?;
+        w.put_fixed(self.imdcat.bits(), 24, true, "imdcat")?;
+        w.put(u64::from(self.unid_raw), 13, "unid")?;
+        w.put(u64::from(self.amount_raw), 10, "amount")?;
+        w.put(u64::from(self.unit_raw), 2, "unit")?;
+        w.put(u64::from(self.spare), 3, "spare")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.text("lastport", self.lastport)?;
+        j.reading("lmonth", self.lmonth(), "lmonth_raw", i64::from(self.lmonth_raw))?;
+        j.reading("lday", self.lday(), "lday_raw", i64::from(self.lday_raw))?;
+        j.reading("lhour", self.lhour(), "lhour_raw", i64::from(self.lhour_raw))?;
+        j.reading("lminute", self.lminute(), "lminute_raw", i64::from(self.lminute_raw))?;
+        j.text("nextport", self.nextport)?;
+        j.reading("nmonth", self.nmonth(), "nmonth_raw", i64::from(self.nmonth_raw))?;
+        j.reading("nday", self.nday(), "nday_raw", i64::from(self.nday_raw))?;
+        j.reading("nhour", self.nhour(), "nhour_raw", i64::from(self.nhour_raw))?;
+        j.reading("nminute", self.nminute(), "nminute_raw", i64::from(self.nminute_raw))?;
+        j.text("dangerous", self.dangerous)?;
+        j.text("imdcat", self.imdcat)?;
+        j.reading("unid", self.unid(), "unid_raw", i64::from(self.unid_raw))?;
+        j.reading("amount", self.amount(), "amount_raw", i64::from(self.amount_raw))?;
+        j.reading("unit", self.unit(), "unit_raw", i64::from(self.unit_raw))?;
+        j.int("spare", self.spare)?;
         j.text("trailing", self.trailing)?;
         Ok(())
     }
@@ -5413,6 +5691,123 @@ impl<'a> FunctionInterrogation<'a> {
     }
 }
 
+/// Inland ETA at lock, bridge or terminal: AIS application DAC 200 FI 21 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct InlandEta<'a> {
+    /// UN country code.
+    pub country: ais::SixBitText<'a>,
+    /// UN location code.
+    pub locode: ais::SixBitText<'a>,
+    /// Fairway section number.
+    pub section: ais::SixBitText<'a>,
+    /// Terminal code.
+    pub terminal: ais::SixBitText<'a>,
+    /// Fairway hectometre.
+    pub hectometre: ais::SixBitText<'a>,
+    /// Month (UTC).
+    pub month_raw: u8,
+    /// Day (UTC).
+    pub day_raw: u8,
+    /// Hour (UTC).
+    pub hour_raw: u8,
+    /// Minute (UTC).
+    pub minute_raw: u8,
+    /// Assisting tugboats.
+    pub tugs_raw: u8,
+    /// Air draught [metres].
+    pub airdraught_raw: u16,
+    /// Spare.
+    pub spare: u8,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> InlandEta<'a> {
+    /// Month (UTC), or its special value.
+    pub fn month(&self) -> ais::Reading<i64> {
+        let raw = self.month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Hour (UTC), or its special value.
+    pub fn hour(&self) -> ais::Reading<i64> {
+        let raw = self.hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Minute (UTC), or its special value.
+    pub fn minute(&self) -> ais::Reading<i64> {
+        let raw = self.minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Assisting tugboats, or its special value.
+    pub fn tugs(&self) -> ais::Reading<i64> {
+        let raw = self.tugs_raw;
+        ais::counted(i64::from(raw), 0, &[(7, "not_available")])
+    }
+    /// Air draught [metres], or its special value.
+    pub fn airdraught(&self) -> ais::Reading<f64> {
+        let raw = self.airdraught_raw;
+        ais::scaled(i64::from(raw), 100.0, 0.0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            country: r.take_text(2, "country")?,
+            locode: r.take_text(3, "locode")?,
+            section: r.take_text(5, "section")?,
+            terminal: r.take_text(5, "terminal")?,
+            hectometre: r.take_text(5, "hectometre")?,
+            month_raw: r.take(4, "month")? as u8,
+            day_raw: r.take(5, "day")? as u8,
+            hour_raw: r.take(5, "hour")? as u8,
+            minute_raw: r.take(6, "minute")? as u8,
+            tugs_raw: r.take(3, "tugs")? as u8,
+            airdraught_raw: r.take(12, "airdraught")? as u16,
+            spare: r.take(5, "spare")? as u8,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put_fixed(self.country.bits(), 12, true, "country")?;
+        w.put_fixed(self.locode.bits(), 18, true, "locode")?;
+        w.put_fixed(self.section.bits(), 30, true, "section")?;
+        w.put_fixed(self.terminal.bits(), 30, true, "terminal")?;
+        w.put_fixed(self.hectometre.bits(), 30, true, "hectometre")?;
+        w.put(u64::from(self.month_raw), 4, "month")?;
+        w.put(u64::from(self.day_raw), 5, "day")?;
+        w.put(u64::from(self.hour_raw), 5, "hour")?;
+        w.put(u64::from(self.minute_raw), 6, "minute")?;
+        w.put(u64::from(self.tugs_raw), 3, "tugs")?;
+        w.put(u64::from(self.airdraught_raw), 12, "airdraught")?;
+        w.put(u64::from(self.spare), 5, "spare")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.text("country", self.country)?;
+        j.text("locode", self.locode)?;
+        j.text("section", self.section)?;
+        j.text("terminal", self.terminal)?;
+        j.text("hectometre", self.hectometre)?;
+        j.reading("month", self.month(), "month_raw", i64::from(self.month_raw))?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        j.reading("hour", self.hour(), "hour_raw", i64::from(self.hour_raw))?;
+        j.reading("minute", self.minute(), "minute_raw", i64::from(self.minute_raw))?;
+        j.reading("tugs", self.tugs(), "tugs_raw", i64::from(self.tugs_raw))?;
+        j.reading("airdraught", self.airdraught(), "airdraught_raw", i64::from(self.airdraught_raw))?;
+        j.int("spare", self.spare)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
 /// Inland number of persons on board: AIS application DAC 200 FI 55 (in type 6).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct InlandPersonsOnBoard<'a> {
@@ -5483,6 +5878,200 @@ impl<'a> InlandPersonsOnBoard<'a> {
         if let Some(v) = self.spare {
             j.int("spare", v)?;
         }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Inland RTA at lock, bridge or terminal: AIS application DAC 200 FI 22 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct InlandRta<'a> {
+    /// UN country code.
+    pub country: ais::SixBitText<'a>,
+    /// UN location code.
+    pub locode: ais::SixBitText<'a>,
+    /// Fairway section number.
+    pub section: ais::SixBitText<'a>,
+    /// Terminal code.
+    pub terminal: ais::SixBitText<'a>,
+    /// Fairway hectometre.
+    pub hectometre: ais::SixBitText<'a>,
+    /// Month (UTC).
+    pub month_raw: u8,
+    /// Day (UTC).
+    pub day_raw: u8,
+    /// Hour (UTC).
+    pub hour_raw: u8,
+    /// Minute (UTC).
+    pub minute_raw: u8,
+    /// Lock, bridge or terminal status.
+    pub status_raw: u8,
+    /// Spare.
+    pub spare: u8,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> InlandRta<'a> {
+    /// Month (UTC), or its special value.
+    pub fn month(&self) -> ais::Reading<i64> {
+        let raw = self.month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Hour (UTC), or its special value.
+    pub fn hour(&self) -> ais::Reading<i64> {
+        let raw = self.hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// Minute (UTC), or its special value.
+    pub fn minute(&self) -> ais::Reading<i64> {
+        let raw = self.minute_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Lock, bridge or terminal status, or its special value.
+    pub fn status(&self) -> ais::Reading<i64> {
+        let raw = self.status_raw;
+        ais::counted(i64::from(raw), 0, &[(3, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            country: r.take_text(2, "country")?,
+            locode: r.take_text(3, "locode")?,
+            section: r.take_text(5, "section")?,
+            terminal: r.take_text(5, "terminal")?,
+            hectometre: r.take_text(5, "hectometre")?,
+            month_raw: r.take(4, "month")? as u8,
+            day_raw: r.take(5, "day")? as u8,
+            hour_raw: r.take(5, "hour")? as u8,
+            minute_raw: r.take(6, "minute")? as u8,
+            status_raw: r.take(2, "status")? as u8,
+            spare: r.take(2, "spare")? as u8,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put_fixed(self.country.bits(), 12, true, "country")?;
+        w.put_fixed(self.locode.bits(), 18, true, "locode")?;
+        w.put_fixed(self.section.bits(), 30, true, "section")?;
+        w.put_fixed(self.terminal.bits(), 30, true, "terminal")?;
+        w.put_fixed(self.hectometre.bits(), 30, true, "hectometre")?;
+        w.put(u64::from(self.month_raw), 4, "month")?;
+        w.put(u64::from(self.day_raw), 5, "day")?;
+        w.put(u64::from(self.hour_raw), 5, "hour")?;
+        w.put(u64::from(self.minute_raw), 6, "minute")?;
+        w.put(u64::from(self.status_raw), 2, "status")?;
+        w.put(u64::from(self.spare), 2, "spare")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.text("country", self.country)?;
+        j.text("locode", self.locode)?;
+        j.text("section", self.section)?;
+        j.text("terminal", self.terminal)?;
+        j.text("hectometre", self.hectometre)?;
+        j.reading("month", self.month(), "month_raw", i64::from(self.month_raw))?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        j.reading("hour", self.hour(), "hour_raw", i64::from(self.hour_raw))?;
+        j.reading("minute", self.minute(), "minute_raw", i64::from(self.minute_raw))?;
+        j.reading("status", self.status(), "status_raw", i64::from(self.status_raw))?;
+        j.int("spare", self.spare)?;
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// Inland signal status: AIS application DAC 200 FI 40 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct InlandSignalStatus<'a> {
+    /// Longitude [degrees].
+    pub lon_raw: i32,
+    /// Latitude [degrees].
+    pub lat_raw: i32,
+    /// Signal form.
+    pub form_raw: u8,
+    /// Orientation of the signal [degrees].
+    pub orientation_raw: u16,
+    /// Direction of impact.
+    pub direction_raw: u8,
+    /// Light status.
+    pub status: u32,
+    /// Spare.
+    pub spare: u16,
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> InlandSignalStatus<'a> {
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> ais::Reading<f64> {
+        let raw = self.lon_raw;
+        ais::scaled(i64::from(raw), 600000.0, 0.0, &[(108600000, "not_available")])
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> ais::Reading<f64> {
+        let raw = self.lat_raw;
+        ais::scaled(i64::from(raw), 600000.0, 0.0, &[(54600000, "not_available")])
+    }
+    /// Signal form, or its special value.
+    pub fn form(&self) -> ais::Reading<i64> {
+        let raw = self.form_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available"), (15, "unknown")])
+    }
+    /// Orientation of the signal [degrees], or its special value.
+    pub fn orientation(&self) -> ais::Reading<i64> {
+        let raw = self.orientation_raw;
+        ais::counted(i64::from(raw), 0, &[(511, "not_available")])
+    }
+    /// Direction of impact, or its special value.
+    pub fn direction(&self) -> ais::Reading<i64> {
+        let raw = self.direction_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            lon_raw: r.take_signed(28, "lon")? as i32,
+            lat_raw: r.take_signed(27, "lat")? as i32,
+            form_raw: r.take(4, "form")? as u8,
+            orientation_raw: r.take(9, "orientation")? as u16,
+            direction_raw: r.take(3, "direction")? as u8,
+            status: r.take(30, "status")? as u32,
+            spare: r.take(11, "spare")? as u16,
+            trailing: r.rest(),
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put_signed(i64::from(self.lon_raw), 28, "lon")?;
+        w.put_signed(i64::from(self.lat_raw), 27, "lat")?;
+        w.put(u64::from(self.form_raw), 4, "form")?;
+        w.put(u64::from(self.orientation_raw), 9, "orientation")?;
+        w.put(u64::from(self.direction_raw), 3, "direction")?;
+        w.put(u64::from(self.status), 30, "status")?;
+        w.put(u64::from(self.spare), 11, "spare")?;
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
+        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
+        j.reading("form", self.form(), "form_raw", i64::from(self.form_raw))?;
+        j.reading("orientation", self.orientation(), "orientation_raw", i64::from(self.orientation_raw))?;
+        j.reading("direction", self.direction(), "direction_raw", i64::from(self.direction_raw))?;
+        j.int("status", self.status)?;
+        j.int("spare", self.spare)?;
         j.text("trailing", self.trailing)?;
         Ok(())
     }
@@ -5607,6 +6196,87 @@ impl<'a> InlandStaticVoyage<'a> {
         j.flag("heading_q", self.heading_q)?;
         if let Some(v) = self.spare {
             j.int("spare", v)?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// One entry of InlandWaterLevelGauge.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct InlandWaterLevelGauge {
+    /// Gauge ID.
+    pub gaugeid: u16,
+    /// Water level.
+    pub level: u16,
+}
+
+impl InlandWaterLevelGauge {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'_>) -> Result<Self, ais::AisError> {
+        let m = Self { gaugeid: r.take(11, "gaugeid")? as u16, level: r.take(14, "level")? as u16 };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.gaugeid), 11, "gaugeid")?;
+        w.put(u64::from(self.level), 14, "level")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("gaugeid", self.gaugeid)?;
+        j.int("level", self.level)?;
+        Ok(())
+    }
+}
+
+/// Inland water level: AIS application DAC 200 FI 24 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct InlandWaterLevel<'a> {
+    /// UN country code.
+    pub country: ais::SixBitText<'a>,
+    /// Gauges: 1 to 4 entries.
+    pub gauges: [Option<InlandWaterLevelGauge>; 4],
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> InlandWaterLevel<'a> {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { country: r.take_text(2, "country")?, ..Self::default() };
+        let count = r.entries(1, 4, 25, 0, "gauges")?;
+        for slot in m.gauges.iter_mut().take(count) {
+            *slot = Some(InlandWaterLevelGauge::read(r)?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put_fixed(self.country.bits(), 12, true, "country")?;
+        for entry in self.gauges.iter().flatten() {
+            entry.write(w)?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.text("country", self.country)?;
+        {
+            let out = j.key("gauges")?;
+            out.write_char('[')?;
+            for (i, entry) in self.gauges.iter().flatten().enumerate() {
+                if i > 0 {
+                    out.write_char(',')?;
+                }
+                let mut e = ais::JsonObject::new(out)?;
+                entry.json_members(&mut e)?;
+                e.finish()?;
+            }
+            out.write_char(']')?;
         }
         j.text("trailing", self.trailing)?;
         Ok(())
@@ -6559,22 +7229,640 @@ impl<'a> TextBroadcast<'a> {
     }
 }
 
+/// One entry of TidalWindowTidal.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TidalWindowTidal {
+    /// Longitude [degrees].
+    pub lon_raw: i32,
+    /// Latitude [degrees].
+    pub lat_raw: i32,
+    /// From hour (UTC).
+    pub from_hour_raw: u8,
+    /// From minute (UTC).
+    pub from_min_raw: u8,
+    /// To hour (UTC).
+    pub to_hour_raw: u8,
+    /// To minute (UTC).
+    pub to_min_raw: u8,
+    /// Current direction [degrees].
+    pub cdir_raw: u16,
+    /// Current speed [knots].
+    pub cspeed_raw: u8,
+}
+
+impl TidalWindowTidal {
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> ais::Reading<f64> {
+        let raw = self.lon_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")])
+    }
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> ais::Reading<f64> {
+        let raw = self.lat_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")])
+    }
+    /// From hour (UTC), or its special value.
+    pub fn from_hour(&self) -> ais::Reading<i64> {
+        let raw = self.from_hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// From minute (UTC), or its special value.
+    pub fn from_min(&self) -> ais::Reading<i64> {
+        let raw = self.from_min_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// To hour (UTC), or its special value.
+    pub fn to_hour(&self) -> ais::Reading<i64> {
+        let raw = self.to_hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// To minute (UTC), or its special value.
+    pub fn to_min(&self) -> ais::Reading<i64> {
+        let raw = self.to_min_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Current direction [degrees], or its special value.
+    pub fn cdir(&self) -> ais::Reading<i64> {
+        let raw = self.cdir_raw;
+        ais::counted(i64::from(raw), 0, &[(360, "not_available")])
+    }
+    /// Current speed [knots], or its special value.
+    pub fn cspeed(&self) -> ais::Reading<f64> {
+        let raw = self.cspeed_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(255, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'_>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            lon_raw: r.take_signed(25, "lon")? as i32,
+            lat_raw: r.take_signed(24, "lat")? as i32,
+            from_hour_raw: r.take(5, "from_hour")? as u8,
+            from_min_raw: r.take(6, "from_min")? as u8,
+            to_hour_raw: r.take(5, "to_hour")? as u8,
+            to_min_raw: r.take(6, "to_min")? as u8,
+            cdir_raw: r.take(9, "cdir")? as u16,
+            cspeed_raw: r.take(8, "cspeed")? as u8,
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put_signed(i64::from(self.lon_raw), 25, "lon")?;
+        w.put_signed(i64::from(self.lat_raw), 24, "lat")?;
+        w.put(u64::from(self.from_hour_raw), 5, "from_hour")?;
+        w.put(u64::from(self.from_min_raw), 6, "from_min")?;
+        w.put(u64::from(self.to_hour_raw), 5, "to_hour")?;
+        w.put(u64::from(self.to_min_raw), 6, "to_min")?;
+        w.put(u64::from(self.cdir_raw), 9, "cdir")?;
+        w.put(u64::from(self.cspeed_raw), 8, "cspeed")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
+        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
+        j.reading("from_hour", self.from_hour(), "from_hour_raw", i64::from(self.from_hour_raw))?;
+        j.reading("from_min", self.from_min(), "from_min_raw", i64::from(self.from_min_raw))?;
+        j.reading("to_hour", self.to_hour(), "to_hour_raw", i64::from(self.to_hour_raw))?;
+        j.reading("to_min", self.to_min(), "to_min_raw", i64::from(self.to_min_raw))?;
+        j.reading("cdir", self.cdir(), "cdir_raw", i64::from(self.cdir_raw))?;
+        j.reading("cspeed", self.cspeed(), "cspeed_raw", i64::from(self.cspeed_raw))?;
+        Ok(())
+    }
+}
+
+/// Tidal window: AIS application DAC 1 FI 32 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TidalWindow<'a> {
+    /// Month (UTC).
+    pub month_raw: u8,
+    /// Day (UTC).
+    pub day_raw: u8,
+    /// Tidal windows: 1 to 3 entries.
+    pub tidals: [Option<TidalWindowTidal>; 3],
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> TidalWindow<'a> {
+    /// Month (UTC), or its special value.
+    pub fn month(&self) -> ais::Reading<i64> {
+        let raw = self.month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { month_raw: r.take(4, "month")? as u8, day_raw: r.take(5, "day")? as u8, ..Self::default() };
+        let count = r.entries(1, 3, 88, 0, "tidals")?;
+        for slot in m.tidals.iter_mut().take(count) {
+            *slot = Some(TidalWindowTidal::read(r)?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.month_raw), 4, "month")?;
+        w.put(u64::from(self.day_raw), 5, "day")?;
+        for entry in self.tidals.iter().flatten() {
+            entry.write(w)?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("month", self.month(), "month_raw", i64::from(self.month_raw))?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        {
+            let out = j.key("tidals")?;
+            out.write_char('[')?;
+            for (i, entry) in self.tidals.iter().flatten().enumerate() {
+                if i > 0 {
+                    out.write_char(',')?;
+                }
+                let mut e = ais::JsonObject::new(out)?;
+                entry.json_members(&mut e)?;
+                e.finish()?;
+            }
+            out.write_char(']')?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// One entry of TidalWindowImo236Tidal.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TidalWindowImo236Tidal {
+    /// Latitude [degrees].
+    pub lat_raw: i32,
+    /// Longitude [degrees].
+    pub lon_raw: i32,
+    /// From hour (UTC).
+    pub from_hour_raw: u8,
+    /// From minute (UTC).
+    pub from_min_raw: u8,
+    /// To hour (UTC).
+    pub to_hour_raw: u8,
+    /// To minute (UTC).
+    pub to_min_raw: u8,
+    /// Current direction [degrees].
+    pub cdir_raw: u16,
+    /// Current speed [knots].
+    pub cspeed_raw: u8,
+}
+
+impl TidalWindowImo236Tidal {
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> ais::Reading<f64> {
+        let raw = self.lat_raw;
+        ais::scaled(i64::from(raw), 600000.0, 0.0, &[(54600000, "not_available")])
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> ais::Reading<f64> {
+        let raw = self.lon_raw;
+        ais::scaled(i64::from(raw), 600000.0, 0.0, &[(108600000, "not_available")])
+    }
+    /// From hour (UTC), or its special value.
+    pub fn from_hour(&self) -> ais::Reading<i64> {
+        let raw = self.from_hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// From minute (UTC), or its special value.
+    pub fn from_min(&self) -> ais::Reading<i64> {
+        let raw = self.from_min_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// To hour (UTC), or its special value.
+    pub fn to_hour(&self) -> ais::Reading<i64> {
+        let raw = self.to_hour_raw;
+        ais::counted(i64::from(raw), 0, &[(24, "not_available")])
+    }
+    /// To minute (UTC), or its special value.
+    pub fn to_min(&self) -> ais::Reading<i64> {
+        let raw = self.to_min_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Current direction [degrees], or its special value.
+    pub fn cdir(&self) -> ais::Reading<i64> {
+        let raw = self.cdir_raw;
+        ais::counted(i64::from(raw), 0, &[(360, "not_available")])
+    }
+    /// Current speed [knots], or its special value.
+    pub fn cspeed(&self) -> ais::Reading<f64> {
+        let raw = self.cspeed_raw;
+        ais::scaled(i64::from(raw), 10.0, 0.0, &[(127, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'_>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            lat_raw: r.take_signed(27, "lat")? as i32,
+            lon_raw: r.take_signed(28, "lon")? as i32,
+            from_hour_raw: r.take(5, "from_hour")? as u8,
+            from_min_raw: r.take(6, "from_min")? as u8,
+            to_hour_raw: r.take(5, "to_hour")? as u8,
+            to_min_raw: r.take(6, "to_min")? as u8,
+            cdir_raw: r.take(9, "cdir")? as u16,
+            cspeed_raw: r.take(7, "cspeed")? as u8,
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put_signed(i64::from(self.lat_raw), 27, "lat")?;
+        w.put_signed(i64::from(self.lon_raw), 28, "lon")?;
+        w.put(u64::from(self.from_hour_raw), 5, "from_hour")?;
+        w.put(u64::from(self.from_min_raw), 6, "from_min")?;
+        w.put(u64::from(self.to_hour_raw), 5, "to_hour")?;
+        w.put(u64::from(self.to_min_raw), 6, "to_min")?;
+        w.put(u64::from(self.cdir_raw), 9, "cdir")?;
+        w.put(u64::from(self.cspeed_raw), 7, "cspeed")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
+        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
+        j.reading("from_hour", self.from_hour(), "from_hour_raw", i64::from(self.from_hour_raw))?;
+        j.reading("from_min", self.from_min(), "from_min_raw", i64::from(self.from_min_raw))?;
+        j.reading("to_hour", self.to_hour(), "to_hour_raw", i64::from(self.to_hour_raw))?;
+        j.reading("to_min", self.to_min(), "to_min_raw", i64::from(self.to_min_raw))?;
+        j.reading("cdir", self.cdir(), "cdir_raw", i64::from(self.cdir_raw))?;
+        j.reading("cspeed", self.cspeed(), "cspeed_raw", i64::from(self.cspeed_raw))?;
+        Ok(())
+    }
+}
+
+/// Tidal window (SN/Circ.236): AIS application DAC 1 FI 14 (in type 6).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TidalWindowImo236<'a> {
+    /// Month (UTC).
+    pub month_raw: u8,
+    /// Day (UTC).
+    pub day_raw: u8,
+    /// Tidal windows: 1 to 3 entries.
+    pub tidals: [Option<TidalWindowImo236Tidal>; 3],
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> TidalWindowImo236<'a> {
+    /// Month (UTC), or its special value.
+    pub fn month(&self) -> ais::Reading<i64> {
+        let raw = self.month_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Day (UTC), or its special value.
+    pub fn day(&self) -> ais::Reading<i64> {
+        let raw = self.day_raw;
+        ais::counted(i64::from(raw), 0, &[(0, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { month_raw: r.take(4, "month")? as u8, day_raw: r.take(5, "day")? as u8, ..Self::default() };
+        let count = r.entries(1, 3, 93, 0, "tidals")?;
+        for slot in m.tidals.iter_mut().take(count) {
+            *slot = Some(TidalWindowImo236Tidal::read(r)?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.month_raw), 4, "month")?;
+        w.put(u64::from(self.day_raw), 5, "day")?;
+        for entry in self.tidals.iter().flatten() {
+            entry.write(w)?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.reading("month", self.month(), "month_raw", i64::from(self.month_raw))?;
+        j.reading("day", self.day(), "day_raw", i64::from(self.day_raw))?;
+        {
+            let out = j.key("tidals")?;
+            out.write_char('[')?;
+            for (i, entry) in self.tidals.iter().flatten().enumerate() {
+                if i > 0 {
+                    out.write_char(',')?;
+                }
+                let mut e = ais::JsonObject::new(out)?;
+                entry.json_members(&mut e)?;
+                e.finish()?;
+            }
+            out.write_char(']')?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// One entry of VtsTargetsTarget.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct VtsTargetsTarget {
+    /// Type of target identifier.
+    pub idtype: u8,
+    /// Target identifier.
+    pub id: u64,
+    /// Spare.
+    pub spare: u8,
+    /// Latitude [degrees].
+    pub lat_raw: i32,
+    /// Longitude [degrees].
+    pub lon_raw: i32,
+    /// Course over ground [degrees].
+    pub course_raw: u16,
+    /// Time stamp (UTC second).
+    pub second_raw: u8,
+    /// Speed over ground [knots].
+    pub speed_raw: u8,
+}
+
+impl VtsTargetsTarget {
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> ais::Reading<f64> {
+        let raw = self.lat_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")])
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> ais::Reading<f64> {
+        let raw = self.lon_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")])
+    }
+    /// Course over ground [degrees], or its special value.
+    pub fn course(&self) -> ais::Reading<i64> {
+        let raw = self.course_raw;
+        ais::counted(i64::from(raw), 0, &[(360, "not_available")])
+    }
+    /// Time stamp (UTC second), or its special value.
+    pub fn second(&self) -> ais::Reading<i64> {
+        let raw = self.second_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Speed over ground [knots], or its special value.
+    pub fn speed(&self) -> ais::Reading<i64> {
+        let raw = self.speed_raw;
+        ais::counted(i64::from(raw), 0, &[(255, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'_>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            idtype: r.take(2, "idtype")? as u8,
+            id: r.take(42, "id")?,
+            spare: r.take(4, "spare")? as u8,
+            lat_raw: r.take_signed(24, "lat")? as i32,
+            lon_raw: r.take_signed(25, "lon")? as i32,
+            course_raw: r.take(9, "course")? as u16,
+            second_raw: r.take(6, "second")? as u8,
+            speed_raw: r.take(8, "speed")? as u8,
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.idtype), 2, "idtype")?;
+        w.put(self.id, 42, "id")?;
+        w.put(u64::from(self.spare), 4, "spare")?;
+        w.put_signed(i64::from(self.lat_raw), 24, "lat")?;
+        w.put_signed(i64::from(self.lon_raw), 25, "lon")?;
+        w.put(u64::from(self.course_raw), 9, "course")?;
+        w.put(u64::from(self.second_raw), 6, "second")?;
+        w.put(u64::from(self.speed_raw), 8, "speed")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("idtype", self.idtype)?;
+        j.int("id", self.id)?;
+        j.int("spare", self.spare)?;
+        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
+        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
+        j.reading("course", self.course(), "course_raw", i64::from(self.course_raw))?;
+        j.reading("second", self.second(), "second_raw", i64::from(self.second_raw))?;
+        j.reading("speed", self.speed(), "speed_raw", i64::from(self.speed_raw))?;
+        Ok(())
+    }
+}
+
+/// VTS targets: AIS application DAC 1 FI 16 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct VtsTargets<'a> {
+    /// Targets: 1 to 7 entries.
+    pub targets: [Option<VtsTargetsTarget>; 7],
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> VtsTargets<'a> {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { ..Self::default() };
+        let count = r.entries(1, 7, 120, 0, "targets")?;
+        for slot in m.targets.iter_mut().take(count) {
+            *slot = Some(VtsTargetsTarget::read(r)?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        for entry in self.targets.iter().flatten() {
+            entry.write(w)?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        {
+            let out = j.key("targets")?;
+            out.write_char('[')?;
+            for (i, entry) in self.targets.iter().flatten().enumerate() {
+                if i > 0 {
+                    out.write_char(',')?;
+                }
+                let mut e = ais::JsonObject::new(out)?;
+                entry.json_members(&mut e)?;
+                e.finish()?;
+            }
+            out.write_char(']')?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
+/// One entry of VtsTargetsImo289Target.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct VtsTargetsImo289Target {
+    /// Type of target identifier.
+    pub idtype: u8,
+    /// Target identifier.
+    pub id: u64,
+    /// Spare.
+    pub spare: u8,
+    /// Latitude [degrees].
+    pub lat_raw: i32,
+    /// Longitude [degrees].
+    pub lon_raw: i32,
+    /// Course over ground [degrees].
+    pub course_raw: u16,
+    /// Time stamp (UTC second).
+    pub second_raw: u8,
+    /// Speed over ground [knots].
+    pub speed_raw: u8,
+}
+
+impl VtsTargetsImo289Target {
+    /// Latitude [degrees], or its special value.
+    pub fn lat(&self) -> ais::Reading<f64> {
+        let raw = self.lat_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(5460000, "not_available")])
+    }
+    /// Longitude [degrees], or its special value.
+    pub fn lon(&self) -> ais::Reading<f64> {
+        let raw = self.lon_raw;
+        ais::scaled(i64::from(raw), 60000.0, 0.0, &[(10860000, "not_available")])
+    }
+    /// Course over ground [degrees], or its special value.
+    pub fn course(&self) -> ais::Reading<i64> {
+        let raw = self.course_raw;
+        ais::counted(i64::from(raw), 0, &[(360, "not_available")])
+    }
+    /// Time stamp (UTC second), or its special value.
+    pub fn second(&self) -> ais::Reading<i64> {
+        let raw = self.second_raw;
+        ais::counted(i64::from(raw), 0, &[(60, "not_available")])
+    }
+    /// Speed over ground [knots], or its special value.
+    pub fn speed(&self) -> ais::Reading<i64> {
+        let raw = self.speed_raw;
+        ais::counted(i64::from(raw), 0, &[(255, "not_available")])
+    }
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'_>) -> Result<Self, ais::AisError> {
+        let m = Self {
+            idtype: r.take(2, "idtype")? as u8,
+            id: r.take(42, "id")?,
+            spare: r.take(4, "spare")? as u8,
+            lat_raw: r.take_signed(24, "lat")? as i32,
+            lon_raw: r.take_signed(25, "lon")? as i32,
+            course_raw: r.take(9, "course")? as u16,
+            second_raw: r.take(6, "second")? as u8,
+            speed_raw: r.take(8, "speed")? as u8,
+        };
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        w.put(u64::from(self.idtype), 2, "idtype")?;
+        w.put(self.id, 42, "id")?;
+        w.put(u64::from(self.spare), 4, "spare")?;
+        w.put_signed(i64::from(self.lat_raw), 24, "lat")?;
+        w.put_signed(i64::from(self.lon_raw), 25, "lon")?;
+        w.put(u64::from(self.course_raw), 9, "course")?;
+        w.put(u64::from(self.second_raw), 6, "second")?;
+        w.put(u64::from(self.speed_raw), 8, "speed")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        j.int("idtype", self.idtype)?;
+        j.int("id", self.id)?;
+        j.int("spare", self.spare)?;
+        j.reading("lat", self.lat(), "lat_raw", i64::from(self.lat_raw))?;
+        j.reading("lon", self.lon(), "lon_raw", i64::from(self.lon_raw))?;
+        j.reading("course", self.course(), "course_raw", i64::from(self.course_raw))?;
+        j.reading("second", self.second(), "second_raw", i64::from(self.second_raw))?;
+        j.reading("speed", self.speed(), "speed_raw", i64::from(self.speed_raw))?;
+        Ok(())
+    }
+}
+
+/// VTS-generated or synthetic targets: AIS application DAC 1 FI 17 (in type 8).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct VtsTargetsImo289<'a> {
+    /// Targets: 1 to 4 entries.
+    pub targets: [Option<VtsTargetsImo289Target>; 4],
+    /// Bits after the layout's last field, as sent (a type 5 of 424 + 2 bits keeps 2).
+    pub trailing: ais::Bits<'a>,
+}
+
+impl<'a> VtsTargetsImo289<'a> {
+    /// Reads the layout's fields from `r`.
+    pub fn read(r: &mut ais::BitReader<'a>) -> Result<Self, ais::AisError> {
+        let mut m = Self { ..Self::default() };
+        let count = r.entries(1, 4, 120, 0, "targets")?;
+        for slot in m.targets.iter_mut().take(count) {
+            *slot = Some(VtsTargetsImo289Target::read(r)?);
+        }
+        m.trailing = r.rest();
+        Ok(m)
+    }
+    /// Writes the layout's fields to `w`.
+    pub fn write(&self, w: &mut ais::BitWriter) -> Result<(), ais::AisError> {
+        for entry in self.targets.iter().flatten() {
+            entry.write(w)?;
+        }
+        w.put_bits(self.trailing, "trailing")?;
+        Ok(())
+    }
+    /// The members of its decoded JSON (those of generated/vectors/ais.jsonl), in order.
+    pub fn json_members<W: fmt::Write>(&self, j: &mut ais::JsonObject<'_, W>) -> fmt::Result {
+        {
+            let out = j.key("targets")?;
+            out.write_char('[')?;
+            for (i, entry) in self.targets.iter().flatten().enumerate() {
+                if i > 0 {
+                    out.write_char(',')?;
+                }
+                let mut e = ais::JsonObject::new(out)?;
+                entry.json_members(&mut e)?;
+                e.finish()?;
+            }
+            out.write_char(']')?;
+        }
+        j.text("trailing", self.trailing)?;
+        Ok(())
+    }
+}
+
 /// An application message that the data bits of a binary message carry, by its DAC and FI.
 #[derive(Clone, Copy, Debug)]
 #[allow(clippy::large_enum_variant)] // no heap: an area notice holds its ten sub-areas in place
 pub enum Application<'a> {
     /// DAC 1 FI 22.
     AreaNotice(AreaNotice<'a>),
-    /// DAC 235 FI 10.
+    /// DAC 235 or 250 FI 10.
     AtonMonitoring(AtonMonitoring<'a>),
+    /// DAC 1 FI 18.
+    ClearanceTime(ClearanceTime<'a>),
+    /// DAC 1 FI 12.
+    DangerousCargoImo236(DangerousCargoImo236<'a>),
     /// DAC 1 FI 26.
     Environmental(Environmental<'a>),
     /// DAC 1 FI 2.
     FunctionInterrogation(FunctionInterrogation<'a>),
+    /// DAC 200 FI 21.
+    InlandEta(InlandEta<'a>),
     /// DAC 200 FI 55.
     InlandPersonsOnBoard(InlandPersonsOnBoard<'a>),
+    /// DAC 200 FI 22.
+    InlandRta(InlandRta<'a>),
+    /// DAC 200 FI 40.
+    InlandSignalStatus(InlandSignalStatus<'a>),
     /// DAC 200 FI 10.
     InlandStaticVoyage(InlandStaticVoyage<'a>),
+    /// DAC 200 FI 24.
+    InlandWaterLevel(InlandWaterLevel<'a>),
     /// DAC 1 FI 31.
     MeteoHydro(MeteoHydro<'a>),
     /// DAC 1 FI 11.
@@ -6585,6 +7873,14 @@ pub enum Application<'a> {
     TextAddressed(TextAddressed<'a>),
     /// DAC 1 FI 29.
     TextBroadcast(TextBroadcast<'a>),
+    /// DAC 1 FI 32.
+    TidalWindow(TidalWindow<'a>),
+    /// DAC 1 FI 14.
+    TidalWindowImo236(TidalWindowImo236<'a>),
+    /// DAC 1 FI 16.
+    VtsTargets(VtsTargets<'a>),
+    /// DAC 1 FI 17.
+    VtsTargetsImo289(VtsTargetsImo289<'a>),
 }
 
 impl<'a> Application<'a> {
@@ -6593,16 +7889,26 @@ impl<'a> Application<'a> {
     pub fn read(message_type: u8, dac: u64, fid: u64, data: ais::Bits<'a>) -> Option<Self> {
         match (dac, fid, message_type) {
             (1, 22, 8) => AreaNotice::read(&mut data.reader()).ok().map(Application::AreaNotice),
-            (235, 10, 6) => AtonMonitoring::read(&mut data.reader()).ok().map(Application::AtonMonitoring),
+            (235 | 250, 10, 6) => AtonMonitoring::read(&mut data.reader()).ok().map(Application::AtonMonitoring),
+            (1, 18, 6) => ClearanceTime::read(&mut data.reader()).ok().map(Application::ClearanceTime),
+            (1, 12, 6) => DangerousCargoImo236::read(&mut data.reader()).ok().map(Application::DangerousCargoImo236),
             (1, 26, 8) => Environmental::read(&mut data.reader()).ok().map(Application::Environmental),
             (1, 2, 6) => FunctionInterrogation::read(&mut data.reader()).ok().map(Application::FunctionInterrogation),
+            (200, 21, 6) => InlandEta::read(&mut data.reader()).ok().map(Application::InlandEta),
             (200, 55, 6) => InlandPersonsOnBoard::read(&mut data.reader()).ok().map(Application::InlandPersonsOnBoard),
+            (200, 22, 6) => InlandRta::read(&mut data.reader()).ok().map(Application::InlandRta),
+            (200, 40, 8) => InlandSignalStatus::read(&mut data.reader()).ok().map(Application::InlandSignalStatus),
             (200, 10, 8) => InlandStaticVoyage::read(&mut data.reader()).ok().map(Application::InlandStaticVoyage),
+            (200, 24, 8) => InlandWaterLevel::read(&mut data.reader()).ok().map(Application::InlandWaterLevel),
             (1, 31, 8) => MeteoHydro::read(&mut data.reader()).ok().map(Application::MeteoHydro),
             (1, 11, 8) => MeteoHydroImo236::read(&mut data.reader()).ok().map(Application::MeteoHydroImo236),
             (1, 40, 6) => PersonsOnBoard::read(&mut data.reader()).ok().map(Application::PersonsOnBoard),
             (1, 30, 6) => TextAddressed::read(&mut data.reader()).ok().map(Application::TextAddressed),
             (1, 29, 8) => TextBroadcast::read(&mut data.reader()).ok().map(Application::TextBroadcast),
+            (1, 32, 6) => TidalWindow::read(&mut data.reader()).ok().map(Application::TidalWindow),
+            (1, 14, 6) => TidalWindowImo236::read(&mut data.reader()).ok().map(Application::TidalWindowImo236),
+            (1, 16, 8) => VtsTargets::read(&mut data.reader()).ok().map(Application::VtsTargets),
+            (1, 17, 8) => VtsTargetsImo289::read(&mut data.reader()).ok().map(Application::VtsTargetsImo289),
             _ => None,
         }
     }
@@ -6612,15 +7918,25 @@ impl<'a> Application<'a> {
         match self {
             Application::AreaNotice(app) => app.write(w),
             Application::AtonMonitoring(app) => app.write(w),
+            Application::ClearanceTime(app) => app.write(w),
+            Application::DangerousCargoImo236(app) => app.write(w),
             Application::Environmental(app) => app.write(w),
             Application::FunctionInterrogation(app) => app.write(w),
+            Application::InlandEta(app) => app.write(w),
             Application::InlandPersonsOnBoard(app) => app.write(w),
+            Application::InlandRta(app) => app.write(w),
+            Application::InlandSignalStatus(app) => app.write(w),
             Application::InlandStaticVoyage(app) => app.write(w),
+            Application::InlandWaterLevel(app) => app.write(w),
             Application::MeteoHydro(app) => app.write(w),
             Application::MeteoHydroImo236(app) => app.write(w),
             Application::PersonsOnBoard(app) => app.write(w),
             Application::TextAddressed(app) => app.write(w),
             Application::TextBroadcast(app) => app.write(w),
+            Application::TidalWindow(app) => app.write(w),
+            Application::TidalWindowImo236(app) => app.write(w),
+            Application::VtsTargets(app) => app.write(w),
+            Application::VtsTargetsImo289(app) => app.write(w),
         }
     }
 
@@ -6629,15 +7945,25 @@ impl<'a> Application<'a> {
         match self {
             Application::AreaNotice(app) => app.json_members(j),
             Application::AtonMonitoring(app) => app.json_members(j),
+            Application::ClearanceTime(app) => app.json_members(j),
+            Application::DangerousCargoImo236(app) => app.json_members(j),
             Application::Environmental(app) => app.json_members(j),
             Application::FunctionInterrogation(app) => app.json_members(j),
+            Application::InlandEta(app) => app.json_members(j),
             Application::InlandPersonsOnBoard(app) => app.json_members(j),
+            Application::InlandRta(app) => app.json_members(j),
+            Application::InlandSignalStatus(app) => app.json_members(j),
             Application::InlandStaticVoyage(app) => app.json_members(j),
+            Application::InlandWaterLevel(app) => app.json_members(j),
             Application::MeteoHydro(app) => app.json_members(j),
             Application::MeteoHydroImo236(app) => app.json_members(j),
             Application::PersonsOnBoard(app) => app.json_members(j),
             Application::TextAddressed(app) => app.json_members(j),
             Application::TextBroadcast(app) => app.json_members(j),
+            Application::TidalWindow(app) => app.json_members(j),
+            Application::TidalWindowImo236(app) => app.json_members(j),
+            Application::VtsTargets(app) => app.json_members(j),
+            Application::VtsTargetsImo289(app) => app.json_members(j),
         }
     }
 }
