@@ -130,6 +130,9 @@ class _Record:
         self.borrows = False     # a member borrows the payload ('a)
         self.optional = False    # an optional field came before: the rest are Options
         self.width = 0           # an entry's bytes
+        # An entry of whole integers only, each (member, type, offset, bytes, key): read as one array of
+        # its bytes at fixed offsets (one length check an entry, not one a field); None otherwise.
+        self.plain: list[tuple[str, str, int, int, str]] | None = []
         self.values: dict[str, tuple[str, str]] = {}   # field or part id -> its value's expression and type
         for i, item in enumerate(items):
             if isinstance(item, PayloadGroup):
@@ -143,6 +146,9 @@ class _Record:
         _check(f)
         name, kind, key = member_name(f), plain_type(f), rust_str(f.id)
         width = f.bits // 8 if f.bits is not None else None
+        if self.plain is not None:
+            whole = width in (1, 2, 4, 8) and f.type not in ("ch", "bytes") and not f.optional and not self.optional
+            self.plain = [*self.plain, (name, kind, self.width, width or 0, key)] if whole else None
         self.width += width or 0
         self.borrows = self.borrows or "'a" in kind
         if f.optional:
@@ -323,6 +329,11 @@ def record_code(record: _Record, payload: Payload | None, message: BinaryMessage
         members.append("/// Bytes after the layout's last field, as sent (a newer firmware's additions).\n"
                        "pub trailing: &'a [u8],")
     reads = list(record.read)
+    if entry and record.plain:   # Group keeps whole entries only: the one check never fails there
+        reads = [f"let b: [u8; {record.width}] = r.array({record.plain[0][4]})?;"]
+        for name, kind, offset, width, _ in record.plain:
+            at = ", ".join(f"b[{offset + k}]" for k in range(width))
+            reads.append(f"let {name} = {kind}::from_{record.order}_bytes([{at}]);")
     inits = list(record.inits)
     if not entry:
         reads.append("let trailing = r.rest();")

@@ -493,13 +493,14 @@ pub struct NavGpsinfoSv {
 impl<'a> ubx::Entry<'a> for NavGpsinfoSv {
     const WIDTH: usize = 12;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let chn = u8::from_le_bytes(r.array("chn")?);
-        let svid = u8::from_le_bytes(r.array("svid")?);
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let cno = u8::from_le_bytes(r.array("cno")?);
-        let elev = i8::from_le_bytes(r.array("elev")?);
-        let azim = i16::from_le_bytes(r.array("azim")?);
-        let pr_res = f32::from_le_bytes(r.array("pr_res")?);
+        let b: [u8; 12] = r.array("chn")?;
+        let chn = u8::from_le_bytes([b[0]]);
+        let svid = u8::from_le_bytes([b[1]]);
+        let flags = u16::from_le_bytes([b[2], b[3]]);
+        let cno = u8::from_le_bytes([b[4]]);
+        let elev = i8::from_le_bytes([b[5]]);
+        let azim = i16::from_le_bytes([b[6], b[7]]);
+        let pr_res = f32::from_le_bytes([b[8], b[9], b[10], b[11]]);
         Ok(Self { chn, svid, flags, cno, elev, azim, pr_res })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -686,13 +687,14 @@ pub struct NavBdsinfoSv {
 impl<'a> ubx::Entry<'a> for NavBdsinfoSv {
     const WIDTH: usize = 12;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let chn = u8::from_le_bytes(r.array("chn")?);
-        let svid = u8::from_le_bytes(r.array("svid")?);
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let cno = u8::from_le_bytes(r.array("cno")?);
-        let elev = i8::from_le_bytes(r.array("elev")?);
-        let azim = i16::from_le_bytes(r.array("azim")?);
-        let pr_res = f32::from_le_bytes(r.array("pr_res")?);
+        let b: [u8; 12] = r.array("chn")?;
+        let chn = u8::from_le_bytes([b[0]]);
+        let svid = u8::from_le_bytes([b[1]]);
+        let flags = u16::from_le_bytes([b[2], b[3]]);
+        let cno = u8::from_le_bytes([b[4]]);
+        let elev = i8::from_le_bytes([b[5]]);
+        let azim = i16::from_le_bytes([b[6], b[7]]);
+        let pr_res = f32::from_le_bytes([b[8], b[9], b[10], b[11]]);
         Ok(Self { chn, svid, flags, cno, elev, azim, pr_res })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -879,13 +881,14 @@ pub struct NavGlninfoSv {
 impl<'a> ubx::Entry<'a> for NavGlninfoSv {
     const WIDTH: usize = 12;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let chn = u8::from_le_bytes(r.array("chn")?);
-        let svid = u8::from_le_bytes(r.array("svid")?);
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let cno = u8::from_le_bytes(r.array("cno")?);
-        let elev = i8::from_le_bytes(r.array("elev")?);
-        let azim = i16::from_le_bytes(r.array("azim")?);
-        let pr_res = f32::from_le_bytes(r.array("pr_res")?);
+        let b: [u8; 12] = r.array("chn")?;
+        let chn = u8::from_le_bytes([b[0]]);
+        let svid = u8::from_le_bytes([b[1]]);
+        let flags = u16::from_le_bytes([b[2], b[3]]);
+        let cno = u8::from_le_bytes([b[4]]);
+        let elev = i8::from_le_bytes([b[5]]);
+        let azim = i16::from_le_bytes([b[6], b[7]]);
+        let pr_res = f32::from_le_bytes([b[8], b[9], b[10], b[11]]);
         Ok(Self { chn, svid, flags, cno, elev, azim, pr_res })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {

@@ -502,7 +502,8 @@ pub struct MeasuredNavChannel {
 impl<'a> ubx::Entry<'a> for MeasuredNavChannel {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let prn = u8::from_be_bytes(r.array("prn")?);
+        let b: [u8; 1] = r.array("prn")?;
+        let prn = u8::from_be_bytes([b[0]]);
         Ok(Self { prn })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -807,20 +808,21 @@ pub struct TrackerDataChannel {
 impl<'a> ubx::Entry<'a> for TrackerDataChannel {
     const WIDTH: usize = 15;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let svid = u8::from_be_bytes(r.array("svid")?);
-        let azimuth = u8::from_be_bytes(r.array("azimuth")?);
-        let elevation_raw = u8::from_be_bytes(r.array("elevation")?);
-        let state = u16::from_be_bytes(r.array("state")?);
-        let cno1 = u8::from_be_bytes(r.array("cno1")?);
-        let cno2 = u8::from_be_bytes(r.array("cno2")?);
-        let cno3 = u8::from_be_bytes(r.array("cno3")?);
-        let cno4 = u8::from_be_bytes(r.array("cno4")?);
-        let cno5 = u8::from_be_bytes(r.array("cno5")?);
-        let cno6 = u8::from_be_bytes(r.array("cno6")?);
-        let cno7 = u8::from_be_bytes(r.array("cno7")?);
-        let cno8 = u8::from_be_bytes(r.array("cno8")?);
-        let cno9 = u8::from_be_bytes(r.array("cno9")?);
-        let cno10 = u8::from_be_bytes(r.array("cno10")?);
+        let b: [u8; 15] = r.array("svid")?;
+        let svid = u8::from_be_bytes([b[0]]);
+        let azimuth = u8::from_be_bytes([b[1]]);
+        let elevation_raw = u8::from_be_bytes([b[2]]);
+        let state = u16::from_be_bytes([b[3], b[4]]);
+        let cno1 = u8::from_be_bytes([b[5]]);
+        let cno2 = u8::from_be_bytes([b[6]]);
+        let cno3 = u8::from_be_bytes([b[7]]);
+        let cno4 = u8::from_be_bytes([b[8]]);
+        let cno5 = u8::from_be_bytes([b[9]]);
+        let cno6 = u8::from_be_bytes([b[10]]);
+        let cno7 = u8::from_be_bytes([b[11]]);
+        let cno8 = u8::from_be_bytes([b[12]]);
+        let cno9 = u8::from_be_bytes([b[13]]);
+        let cno10 = u8::from_be_bytes([b[14]]);
         Ok(Self { svid, azimuth, elevation_raw, state, cno1, cno2, cno3, cno4, cno5, cno6, cno7, cno8, cno9, cno10 })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -1359,9 +1361,10 @@ pub struct VisibleListSv {
 impl<'a> ubx::Entry<'a> for VisibleListSv {
     const WIDTH: usize = 5;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let svid = u8::from_be_bytes(r.array("svid")?);
-        let azimuth = i16::from_be_bytes(r.array("azimuth")?);
-        let elevation = i16::from_be_bytes(r.array("elevation")?);
+        let b: [u8; 5] = r.array("svid")?;
+        let svid = u8::from_be_bytes([b[0]]);
+        let azimuth = i16::from_be_bytes([b[1], b[2]]);
+        let elevation = i16::from_be_bytes([b[3], b[4]]);
         Ok(Self { svid, azimuth, elevation })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -2002,8 +2005,9 @@ pub struct SwitchToNmeaSentence {
 impl<'a> ubx::Entry<'a> for SwitchToNmeaSentence {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let rate = u8::from_be_bytes(r.array("rate")?);
-        let checksum = u8::from_be_bytes(r.array("checksum")?);
+        let b: [u8; 2] = r.array("rate")?;
+        let rate = u8::from_be_bytes([b[0]]);
+        let checksum = u8::from_be_bytes([b[1]]);
         Ok(Self { rate, checksum })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {

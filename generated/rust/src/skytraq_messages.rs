@@ -699,12 +699,13 @@ pub struct RawMeasMea {
 impl<'a> ubx::Entry<'a> for RawMeasMea {
     const WIDTH: usize = 23;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let svid = u8::from_be_bytes(r.array("svid")?);
-        let cn0 = u8::from_be_bytes(r.array("cn0")?);
-        let pseudorange = f64::from_be_bytes(r.array("pseudorange")?);
-        let carrier_phase = f64::from_be_bytes(r.array("carrier_phase")?);
-        let doppler = f32::from_be_bytes(r.array("doppler")?);
-        let status = u8::from_be_bytes(r.array("status")?);
+        let b: [u8; 23] = r.array("svid")?;
+        let svid = u8::from_be_bytes([b[0]]);
+        let cn0 = u8::from_be_bytes([b[1]]);
+        let pseudorange = f64::from_be_bytes([b[2], b[3], b[4], b[5], b[6], b[7], b[8], b[9]]);
+        let carrier_phase = f64::from_be_bytes([b[10], b[11], b[12], b[13], b[14], b[15], b[16], b[17]]);
+        let doppler = f32::from_be_bytes([b[18], b[19], b[20], b[21]]);
+        let status = u8::from_be_bytes([b[22]]);
         Ok(Self { svid, cn0, pseudorange, carrier_phase, doppler, status })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -858,14 +859,15 @@ pub struct SvChStatusSv {
 impl<'a> ubx::Entry<'a> for SvChStatusSv {
     const WIDTH: usize = 10;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let channel = u8::from_be_bytes(r.array("channel")?);
-        let svid = u8::from_be_bytes(r.array("svid")?);
-        let sv_status = u8::from_be_bytes(r.array("sv_status")?);
-        let ura = u8::from_be_bytes(r.array("ura")?);
-        let cn0 = u8::from_be_bytes(r.array("cn0")?);
-        let elevation = i16::from_be_bytes(r.array("elevation")?);
-        let azimuth = i16::from_be_bytes(r.array("azimuth")?);
-        let channel_status = u8::from_be_bytes(r.array("channel_status")?);
+        let b: [u8; 10] = r.array("channel")?;
+        let channel = u8::from_be_bytes([b[0]]);
+        let svid = u8::from_be_bytes([b[1]]);
+        let sv_status = u8::from_be_bytes([b[2]]);
+        let ura = u8::from_be_bytes([b[3]]);
+        let cn0 = u8::from_be_bytes([b[4]]);
+        let elevation = i16::from_be_bytes([b[5], b[6]]);
+        let azimuth = i16::from_be_bytes([b[7], b[8]]);
+        let channel_status = u8::from_be_bytes([b[9]]);
         Ok(Self { channel, svid, sv_status, ura, cn0, elevation, azimuth, channel_status })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {

@@ -347,7 +347,8 @@ pub struct AidAlmDwrdEntry {
 impl<'a> ubx::Entry<'a> for AidAlmDwrdEntry {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let dwrd = u32::from_le_bytes(r.array("dwrd")?);
+        let b: [u8; 4] = r.array("dwrd")?;
+        let dwrd = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
         Ok(Self { dwrd })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -3501,18 +3502,19 @@ pub struct CfgEsrcSource {
 impl<'a> ubx::Entry<'a> for CfgEsrcSource {
     const WIDTH: usize = 36;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let ext_int = u8::from_le_bytes(r.array("ext_int")?);
-        let source_type = u8::from_le_bytes(r.array("source_type")?);
-        let flags = u16::from_le_bytes(r.array("flags")?);
-        let freq_raw = u32::from_le_bytes(r.array("freq")?);
-        let reserved2 = u32::from_le_bytes(r.array("reserved2")?);
-        let with_temp_raw = u32::from_le_bytes(r.array("with_temp")?);
-        let with_age_raw = u32::from_le_bytes(r.array("with_age")?);
-        let time_to_temp = u16::from_le_bytes(r.array("time_to_temp")?);
-        let max_dev_life_time = u16::from_le_bytes(r.array("max_dev_life_time")?);
-        let offset = i32::from_le_bytes(r.array("offset")?);
-        let offset_uncertainty = u32::from_le_bytes(r.array("offset_uncertainty")?);
-        let jitter = u32::from_le_bytes(r.array("jitter")?);
+        let b: [u8; 36] = r.array("ext_int")?;
+        let ext_int = u8::from_le_bytes([b[0]]);
+        let source_type = u8::from_le_bytes([b[1]]);
+        let flags = u16::from_le_bytes([b[2], b[3]]);
+        let freq_raw = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+        let reserved2 = u32::from_le_bytes([b[8], b[9], b[10], b[11]]);
+        let with_temp_raw = u32::from_le_bytes([b[12], b[13], b[14], b[15]]);
+        let with_age_raw = u32::from_le_bytes([b[16], b[17], b[18], b[19]]);
+        let time_to_temp = u16::from_le_bytes([b[20], b[21]]);
+        let max_dev_life_time = u16::from_le_bytes([b[22], b[23]]);
+        let offset = i32::from_le_bytes([b[24], b[25], b[26], b[27]]);
+        let offset_uncertainty = u32::from_le_bytes([b[28], b[29], b[30], b[31]]);
+        let jitter = u32::from_le_bytes([b[32], b[33], b[34], b[35]]);
         Ok(Self {
             ext_int,
             source_type,
@@ -3677,8 +3679,9 @@ pub struct CfgFixseedMessage {
 impl<'a> ubx::Entry<'a> for CfgFixseedMessage {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let class_id = u8::from_le_bytes(r.array("class_id")?);
-        let msg_id = u8::from_le_bytes(r.array("msg_id")?);
+        let b: [u8; 2] = r.array("class_id")?;
+        let class_id = u8::from_le_bytes([b[0]]);
+        let msg_id = u8::from_le_bytes([b[1]]);
         Ok(Self { class_id, msg_id })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -3829,9 +3832,10 @@ pub struct CfgGeofenceFence {
 impl<'a> ubx::Entry<'a> for CfgGeofenceFence {
     const WIDTH: usize = 12;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let lat_raw = i32::from_le_bytes(r.array("lat")?);
-        let lon_raw = i32::from_le_bytes(r.array("lon")?);
-        let radius_raw = u32::from_le_bytes(r.array("radius")?);
+        let b: [u8; 12] = r.array("lat")?;
+        let lat_raw = i32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        let lon_raw = i32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+        let radius_raw = u32::from_le_bytes([b[8], b[9], b[10], b[11]]);
         Ok(Self { lat_raw, lon_raw, radius_raw })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -4035,11 +4039,12 @@ pub struct CfgGnssBlock {
 impl<'a> ubx::Entry<'a> for CfgGnssBlock {
     const WIDTH: usize = 8;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let res_trk_ch = u8::from_le_bytes(r.array("res_trk_ch")?);
-        let max_trk_ch = u8::from_le_bytes(r.array("max_trk_ch")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
+        let b: [u8; 8] = r.array("gnss_id")?;
+        let gnss_id_raw = u8::from_le_bytes([b[0]]);
+        let res_trk_ch = u8::from_le_bytes([b[1]]);
+        let max_trk_ch = u8::from_le_bytes([b[2]]);
+        let reserved1 = u8::from_le_bytes([b[3]]);
+        let flags = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
         Ok(Self { gnss_id_raw, res_trk_ch, max_trk_ch, reserved1, flags })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -4930,7 +4935,8 @@ pub struct CfgMsgRate {
 impl<'a> ubx::Entry<'a> for CfgMsgRate {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let rate = u8::from_le_bytes(r.array("rate")?);
+        let b: [u8; 1] = r.array("rate")?;
+        let rate = u8::from_le_bytes([b[0]]);
         Ok(Self { rate })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -7780,7 +7786,8 @@ pub struct CfgRinvDataEntry {
 impl<'a> ubx::Entry<'a> for CfgRinvDataEntry {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let data = u8::from_le_bytes(r.array("data")?);
+        let b: [u8; 1] = r.array("data")?;
+        let data = u8::from_le_bytes([b[0]]);
         Ok(Self { data })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -9705,7 +9712,8 @@ pub struct CfgTxslotEndEntry {
 impl<'a> ubx::Entry<'a> for CfgTxslotEndEntry {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let end = u32::from_le_bytes(r.array("end")?);
+        let b: [u8; 4] = r.array("end")?;
+        let end = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
         Ok(Self { end })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -10010,7 +10018,8 @@ pub struct CfgValdelV0Key {
 impl<'a> ubx::Entry<'a> for CfgValdelV0Key {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let key = u32::from_le_bytes(r.array("key")?);
+        let b: [u8; 4] = r.array("key")?;
+        let key = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
         Ok(Self { key })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -10122,7 +10131,8 @@ pub struct CfgValdelKey {
 impl<'a> ubx::Entry<'a> for CfgValdelKey {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let key = u32::from_le_bytes(r.array("key")?);
+        let b: [u8; 4] = r.array("key")?;
+        let key = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
         Ok(Self { key })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -10248,7 +10258,8 @@ pub struct CfgValgetPollKey {
 impl<'a> ubx::Entry<'a> for CfgValgetPollKey {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let key = u32::from_le_bytes(r.array("key")?);
+        let b: [u8; 4] = r.array("key")?;
+        let key = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
         Ok(Self { key })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -11065,7 +11076,8 @@ pub struct EsfMeasMeasurement {
 impl<'a> ubx::Entry<'a> for EsfMeasMeasurement {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let data = u32::from_le_bytes(r.array("data")?);
+        let b: [u8; 4] = r.array("data")?;
+        let data = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
         Ok(Self { data })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -11227,8 +11239,9 @@ pub struct EsfRawMeasurement {
 impl<'a> ubx::Entry<'a> for EsfRawMeasurement {
     const WIDTH: usize = 8;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let data = u32::from_le_bytes(r.array("data")?);
-        let s_tag = u32::from_le_bytes(r.array("s_tag")?);
+        let b: [u8; 8] = r.array("data")?;
+        let data = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        let s_tag = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
         Ok(Self { data, s_tag })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -11382,10 +11395,11 @@ pub struct EsfStatusSensor {
 impl<'a> ubx::Entry<'a> for EsfStatusSensor {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let sens_status1 = u8::from_le_bytes(r.array("sens_status1")?);
-        let sens_status2 = u8::from_le_bytes(r.array("sens_status2")?);
-        let freq = u8::from_le_bytes(r.array("freq")?);
-        let faults = u8::from_le_bytes(r.array("faults")?);
+        let b: [u8; 4] = r.array("sens_status1")?;
+        let sens_status1 = u8::from_le_bytes([b[0]]);
+        let sens_status2 = u8::from_le_bytes([b[1]]);
+        let freq = u8::from_le_bytes([b[2]]);
+        let faults = u8::from_le_bytes([b[3]]);
         Ok(Self { sens_status1, sens_status2, freq, faults })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -14056,7 +14070,8 @@ pub struct LogRetrievestringByte {
 impl<'a> ubx::Entry<'a> for LogRetrievestringByte {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let bytes = u8::from_le_bytes(r.array("bytes")?);
+        let b: [u8; 1] = r.array("bytes")?;
+        let bytes = u8::from_le_bytes([b[0]]);
         Ok(Self { bytes })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -14975,7 +14990,8 @@ pub struct MgaBdsHealthHealthCodeEntry {
 impl<'a> ubx::Entry<'a> for MgaBdsHealthHealthCodeEntry {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let health_code = u16::from_le_bytes(r.array("health_code")?);
+        let b: [u8; 2] = r.array("health_code")?;
+        let health_code = u16::from_le_bytes([b[0], b[1]]);
         Ok(Self { health_code })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -17652,7 +17668,8 @@ pub struct MgaGpsHealthHealthCodeEntry {
 impl<'a> ubx::Entry<'a> for MgaGpsHealthHealthCodeEntry {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let health_code = u8::from_le_bytes(r.array("health_code")?);
+        let b: [u8; 1] = r.array("health_code")?;
+        let health_code = u8::from_le_bytes([b[0]]);
         Ok(Self { health_code })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -19455,7 +19472,8 @@ pub struct MgaQzssHealthHealthCodeEntry {
 impl<'a> ubx::Entry<'a> for MgaQzssHealthHealthCodeEntry {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let health_code = u8::from_le_bytes(r.array("health_code")?);
+        let b: [u8; 1] = r.array("health_code")?;
+        let health_code = u8::from_le_bytes([b[0]]);
         Ok(Self { health_code })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -19732,7 +19750,8 @@ pub struct MonCommsProtId {
 impl<'a> ubx::Entry<'a> for MonCommsProtId {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let prot_ids = u8::from_le_bytes(r.array("prot_ids")?);
+        let b: [u8; 1] = r.array("prot_ids")?;
+        let prot_ids = u8::from_le_bytes([b[0]]);
         Ok(Self { prot_ids })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -19785,22 +19804,23 @@ pub struct MonCommsPort {
 impl<'a> ubx::Entry<'a> for MonCommsPort {
     const WIDTH: usize = 40;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let port_id = u16::from_le_bytes(r.array("port_id")?);
-        let tx_pending = u16::from_le_bytes(r.array("tx_pending")?);
-        let tx_bytes = u32::from_le_bytes(r.array("tx_bytes")?);
-        let tx_usage = u8::from_le_bytes(r.array("tx_usage")?);
-        let tx_peak_usage = u8::from_le_bytes(r.array("tx_peak_usage")?);
-        let rx_pending = u16::from_le_bytes(r.array("rx_pending")?);
-        let rx_bytes = u32::from_le_bytes(r.array("rx_bytes")?);
-        let rx_usage = u8::from_le_bytes(r.array("rx_usage")?);
-        let rx_peak_usage = u8::from_le_bytes(r.array("rx_peak_usage")?);
-        let overrun_errs = u16::from_le_bytes(r.array("overrun_errs")?);
-        let msgs0 = u16::from_le_bytes(r.array("msgs0")?);
-        let msgs1 = u16::from_le_bytes(r.array("msgs1")?);
-        let msgs2 = u16::from_le_bytes(r.array("msgs2")?);
-        let msgs3 = u16::from_le_bytes(r.array("msgs3")?);
-        let reserved1 = u64::from_le_bytes(r.array("reserved1")?);
-        let skipped = u32::from_le_bytes(r.array("skipped")?);
+        let b: [u8; 40] = r.array("port_id")?;
+        let port_id = u16::from_le_bytes([b[0], b[1]]);
+        let tx_pending = u16::from_le_bytes([b[2], b[3]]);
+        let tx_bytes = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+        let tx_usage = u8::from_le_bytes([b[8]]);
+        let tx_peak_usage = u8::from_le_bytes([b[9]]);
+        let rx_pending = u16::from_le_bytes([b[10], b[11]]);
+        let rx_bytes = u32::from_le_bytes([b[12], b[13], b[14], b[15]]);
+        let rx_usage = u8::from_le_bytes([b[16]]);
+        let rx_peak_usage = u8::from_le_bytes([b[17]]);
+        let overrun_errs = u16::from_le_bytes([b[18], b[19]]);
+        let msgs0 = u16::from_le_bytes([b[20], b[21]]);
+        let msgs1 = u16::from_le_bytes([b[22], b[23]]);
+        let msgs2 = u16::from_le_bytes([b[24], b[25]]);
+        let msgs3 = u16::from_le_bytes([b[26], b[27]]);
+        let reserved1 = u64::from_le_bytes([b[28], b[29], b[30], b[31], b[32], b[33], b[34], b[35]]);
+        let skipped = u32::from_le_bytes([b[36], b[37], b[38], b[39]]);
         Ok(Self {
             port_id,
             tx_pending,
@@ -20245,7 +20265,8 @@ pub struct MonHwVpEntry {
 impl<'a> ubx::Entry<'a> for MonHwVpEntry {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let vp = u8::from_le_bytes(r.array("vp")?);
+        let b: [u8; 1] = r.array("vp")?;
+        let vp = u8::from_le_bytes([b[0]]);
         Ok(Self { vp })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -20665,10 +20686,11 @@ pub struct MonHw3Pin {
 impl<'a> ubx::Entry<'a> for MonHw3Pin {
     const WIDTH: usize = 6;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let pin_id = u16::from_le_bytes(r.array("pin_id")?);
-        let pin_mask = u16::from_le_bytes(r.array("pin_mask")?);
-        let vp = u8::from_le_bytes(r.array("vp")?);
-        let reserved1 = u8::from_le_bytes(r.array("reserved1")?);
+        let b: [u8; 6] = r.array("pin_id")?;
+        let pin_id = u16::from_le_bytes([b[0], b[1]]);
+        let pin_mask = u16::from_le_bytes([b[2], b[3]]);
+        let vp = u8::from_le_bytes([b[4]]);
+        let reserved1 = u8::from_le_bytes([b[5]]);
         Ok(Self { pin_id, pin_mask, vp, reserved1 })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -20942,15 +20964,16 @@ pub struct MonIoPort {
 impl<'a> ubx::Entry<'a> for MonIoPort {
     const WIDTH: usize = 20;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let rx_bytes = u32::from_le_bytes(r.array("rx_bytes")?);
-        let tx_bytes = u32::from_le_bytes(r.array("tx_bytes")?);
-        let parity_errs = u16::from_le_bytes(r.array("parity_errs")?);
-        let framing_errs = u16::from_le_bytes(r.array("framing_errs")?);
-        let overrun_errs = u16::from_le_bytes(r.array("overrun_errs")?);
-        let break_cond = u16::from_le_bytes(r.array("break_cond")?);
-        let rx_busy = u8::from_le_bytes(r.array("rx_busy")?);
-        let tx_busy = u8::from_le_bytes(r.array("tx_busy")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let b: [u8; 20] = r.array("rx_bytes")?;
+        let rx_bytes = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        let tx_bytes = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+        let parity_errs = u16::from_le_bytes([b[8], b[9]]);
+        let framing_errs = u16::from_le_bytes([b[10], b[11]]);
+        let overrun_errs = u16::from_le_bytes([b[12], b[13]]);
+        let break_cond = u16::from_le_bytes([b[14], b[15]]);
+        let rx_busy = u8::from_le_bytes([b[16]]);
+        let tx_busy = u8::from_le_bytes([b[17]]);
+        let reserved1 = u16::from_le_bytes([b[18], b[19]]);
         Ok(Self {
             rx_bytes,
             tx_bytes,
@@ -21096,7 +21119,8 @@ pub struct MonMsgppMsg1Entry {
 impl<'a> ubx::Entry<'a> for MonMsgppMsg1Entry {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let msg1 = u16::from_le_bytes(r.array("msg1")?);
+        let b: [u8; 2] = r.array("msg1")?;
+        let msg1 = u16::from_le_bytes([b[0], b[1]]);
         Ok(Self { msg1 })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -21119,7 +21143,8 @@ pub struct MonMsgppMsg2Entry {
 impl<'a> ubx::Entry<'a> for MonMsgppMsg2Entry {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let msg2 = u16::from_le_bytes(r.array("msg2")?);
+        let b: [u8; 2] = r.array("msg2")?;
+        let msg2 = u16::from_le_bytes([b[0], b[1]]);
         Ok(Self { msg2 })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -21142,7 +21167,8 @@ pub struct MonMsgppMsg3Entry {
 impl<'a> ubx::Entry<'a> for MonMsgppMsg3Entry {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let msg3 = u16::from_le_bytes(r.array("msg3")?);
+        let b: [u8; 2] = r.array("msg3")?;
+        let msg3 = u16::from_le_bytes([b[0], b[1]]);
         Ok(Self { msg3 })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -21165,7 +21191,8 @@ pub struct MonMsgppMsg4Entry {
 impl<'a> ubx::Entry<'a> for MonMsgppMsg4Entry {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let msg4 = u16::from_le_bytes(r.array("msg4")?);
+        let b: [u8; 2] = r.array("msg4")?;
+        let msg4 = u16::from_le_bytes([b[0], b[1]]);
         Ok(Self { msg4 })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -21188,7 +21215,8 @@ pub struct MonMsgppMsg5Entry {
 impl<'a> ubx::Entry<'a> for MonMsgppMsg5Entry {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let msg5 = u16::from_le_bytes(r.array("msg5")?);
+        let b: [u8; 2] = r.array("msg5")?;
+        let msg5 = u16::from_le_bytes([b[0], b[1]]);
         Ok(Self { msg5 })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -21211,7 +21239,8 @@ pub struct MonMsgppMsg6Entry {
 impl<'a> ubx::Entry<'a> for MonMsgppMsg6Entry {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let msg6 = u16::from_le_bytes(r.array("msg6")?);
+        let b: [u8; 2] = r.array("msg6")?;
+        let msg6 = u16::from_le_bytes([b[0], b[1]]);
         Ok(Self { msg6 })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -21234,7 +21263,8 @@ pub struct MonMsgppSkippedEntry {
 impl<'a> ubx::Entry<'a> for MonMsgppSkippedEntry {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let skipped = u32::from_le_bytes(r.array("skipped")?);
+        let b: [u8; 4] = r.array("skipped")?;
+        let skipped = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
         Ok(Self { skipped })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -21390,10 +21420,11 @@ pub struct MonPatchEntrie {
 impl<'a> ubx::Entry<'a> for MonPatchEntrie {
     const WIDTH: usize = 16;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let patch_info = u32::from_le_bytes(r.array("patch_info")?);
-        let comparator_number = u32::from_le_bytes(r.array("comparator_number")?);
-        let patch_address = u32::from_le_bytes(r.array("patch_address")?);
-        let patch_data = u32::from_le_bytes(r.array("patch_data")?);
+        let b: [u8; 16] = r.array("patch_info")?;
+        let patch_info = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        let comparator_number = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+        let patch_address = u32::from_le_bytes([b[8], b[9], b[10], b[11]]);
+        let patch_data = u32::from_le_bytes([b[12], b[13], b[14], b[15]]);
         Ok(Self { patch_info, comparator_number, patch_address, patch_data })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -21560,12 +21591,13 @@ pub struct MonPmpEntrie {
 impl<'a> ubx::Entry<'a> for MonPmpEntrie {
     const WIDTH: usize = 20;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
-        let status = u32::from_le_bytes(r.array("status")?);
-        let reserved2 = u64::from_le_bytes(r.array("reserved2")?);
-        let cno = u8::from_le_bytes(r.array("cno")?);
-        let cno_frac_raw = u8::from_le_bytes(r.array("cno_frac")?);
-        let reserved3 = u16::from_le_bytes(r.array("reserved3")?);
+        let b: [u8; 20] = r.array("reserved1")?;
+        let reserved1 = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        let status = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+        let reserved2 = u64::from_le_bytes([b[8], b[9], b[10], b[11], b[12], b[13], b[14], b[15]]);
+        let cno = u8::from_le_bytes([b[16]]);
+        let cno_frac_raw = u8::from_le_bytes([b[17]]);
+        let reserved3 = u16::from_le_bytes([b[18], b[19]]);
         Ok(Self { reserved1, status, reserved2, cno, cno_frac_raw, reserved3 })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -21969,7 +22001,8 @@ pub struct MonRxbufPendingEntry {
 impl<'a> ubx::Entry<'a> for MonRxbufPendingEntry {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let pending = u16::from_le_bytes(r.array("pending")?);
+        let b: [u8; 2] = r.array("pending")?;
+        let pending = u16::from_le_bytes([b[0], b[1]]);
         Ok(Self { pending })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -21992,7 +22025,8 @@ pub struct MonRxbufUsageEntry {
 impl<'a> ubx::Entry<'a> for MonRxbufUsageEntry {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let usage = u8::from_le_bytes(r.array("usage")?);
+        let b: [u8; 1] = r.array("usage")?;
+        let usage = u8::from_le_bytes([b[0]]);
         Ok(Self { usage })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -22015,7 +22049,8 @@ pub struct MonRxbufPeakUsageEntry {
 impl<'a> ubx::Entry<'a> for MonRxbufPeakUsageEntry {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let peak_usage = u8::from_le_bytes(r.array("peak_usage")?);
+        let b: [u8; 1] = r.array("peak_usage")?;
+        let peak_usage = u8::from_le_bytes([b[0]]);
         Ok(Self { peak_usage })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -22640,10 +22675,11 @@ pub struct MonSptSensor {
 impl<'a> ubx::Entry<'a> for MonSptSensor {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let sensor_id = u8::from_le_bytes(r.array("sensor_id")?);
-        let drv_ver = u8::from_le_bytes(r.array("drv_ver")?);
-        let test_state = u8::from_le_bytes(r.array("test_state")?);
-        let drv_file_name = u8::from_le_bytes(r.array("drv_file_name")?);
+        let b: [u8; 4] = r.array("sensor_id")?;
+        let sensor_id = u8::from_le_bytes([b[0]]);
+        let drv_ver = u8::from_le_bytes([b[1]]);
+        let test_state = u8::from_le_bytes([b[2]]);
+        let drv_file_name = u8::from_le_bytes([b[3]]);
         Ok(Self { sensor_id, drv_ver, test_state, drv_file_name })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -22701,11 +22737,12 @@ pub struct MonSptResult {
 impl<'a> ubx::Entry<'a> for MonSptResult {
     const WIDTH: usize = 12;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let sensor_id_res = u16::from_le_bytes(r.array("sensor_id_res")?);
-        let sensor_type = u16::from_le_bytes(r.array("sensor_type")?);
-        let res_type = u16::from_le_bytes(r.array("res_type")?);
-        let reserved2 = u16::from_le_bytes(r.array("reserved2")?);
-        let value = i32::from_le_bytes(r.array("value")?);
+        let b: [u8; 12] = r.array("sensor_id_res")?;
+        let sensor_id_res = u16::from_le_bytes([b[0], b[1]]);
+        let sensor_type = u16::from_le_bytes([b[2], b[3]]);
+        let res_type = u16::from_le_bytes([b[4], b[5]]);
+        let reserved2 = u16::from_le_bytes([b[6], b[7]]);
+        let value = i32::from_le_bytes([b[8], b[9], b[10], b[11]]);
         Ok(Self { sensor_id_res, sensor_type, res_type, reserved2, value })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -23041,7 +23078,8 @@ pub struct MonTxbufPendingEntry {
 impl<'a> ubx::Entry<'a> for MonTxbufPendingEntry {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let pending = u16::from_le_bytes(r.array("pending")?);
+        let b: [u8; 2] = r.array("pending")?;
+        let pending = u16::from_le_bytes([b[0], b[1]]);
         Ok(Self { pending })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -23064,7 +23102,8 @@ pub struct MonTxbufUsageEntry {
 impl<'a> ubx::Entry<'a> for MonTxbufUsageEntry {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let usage = u8::from_le_bytes(r.array("usage")?);
+        let b: [u8; 1] = r.array("usage")?;
+        let usage = u8::from_le_bytes([b[0]]);
         Ok(Self { usage })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -23087,7 +23126,8 @@ pub struct MonTxbufPeakUsageEntry {
 impl<'a> ubx::Entry<'a> for MonTxbufPeakUsageEntry {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let peak_usage = u8::from_le_bytes(r.array("peak_usage")?);
+        let b: [u8; 1] = r.array("peak_usage")?;
+        let peak_usage = u8::from_le_bytes([b[0]]);
         Ok(Self { peak_usage })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -24806,13 +24846,14 @@ pub struct Nav2SatSv {
 impl<'a> ubx::Entry<'a> for Nav2SatSv {
     const WIDTH: usize = 12;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let cno = u8::from_le_bytes(r.array("cno")?);
-        let elev = i8::from_le_bytes(r.array("elev")?);
-        let azim = i16::from_le_bytes(r.array("azim")?);
-        let pr_res_raw = i16::from_le_bytes(r.array("pr_res")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
+        let b: [u8; 12] = r.array("gnss_id")?;
+        let gnss_id_raw = u8::from_le_bytes([b[0]]);
+        let sv_id = u8::from_le_bytes([b[1]]);
+        let cno = u8::from_le_bytes([b[2]]);
+        let elev = i8::from_le_bytes([b[3]]);
+        let azim = i16::from_le_bytes([b[4], b[5]]);
+        let pr_res_raw = i16::from_le_bytes([b[6], b[7]]);
+        let flags = u32::from_le_bytes([b[8], b[9], b[10], b[11]]);
         Ok(Self { gnss_id_raw, sv_id, cno, elev, azim, pr_res_raw, flags })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -25150,15 +25191,16 @@ pub struct Nav2SbasChannel {
 impl<'a> ubx::Entry<'a> for Nav2SbasChannel {
     const WIDTH: usize = 12;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let svid = u8::from_le_bytes(r.array("svid")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let udre = u8::from_le_bytes(r.array("udre")?);
-        let sv_sys = u8::from_le_bytes(r.array("sv_sys")?);
-        let sv_service = u8::from_le_bytes(r.array("sv_service")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let prc = i16::from_le_bytes(r.array("prc")?);
-        let reserved3 = u16::from_le_bytes(r.array("reserved3")?);
-        let ic = i16::from_le_bytes(r.array("ic")?);
+        let b: [u8; 12] = r.array("svid")?;
+        let svid = u8::from_le_bytes([b[0]]);
+        let flags = u8::from_le_bytes([b[1]]);
+        let udre = u8::from_le_bytes([b[2]]);
+        let sv_sys = u8::from_le_bytes([b[3]]);
+        let sv_service = u8::from_le_bytes([b[4]]);
+        let reserved2 = u8::from_le_bytes([b[5]]);
+        let prc = i16::from_le_bytes([b[6], b[7]]);
+        let reserved3 = u16::from_le_bytes([b[8], b[9]]);
+        let ic = i16::from_le_bytes([b[10], b[11]]);
         Ok(Self { svid, flags, udre, sv_sys, sv_service, reserved2, prc, reserved3, ic })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -25408,17 +25450,18 @@ pub struct Nav2SigSignal {
 impl<'a> ubx::Entry<'a> for Nav2SigSignal {
     const WIDTH: usize = 16;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let sig_id = u8::from_le_bytes(r.array("sig_id")?);
-        let freq_id = u8::from_le_bytes(r.array("freq_id")?);
-        let pr_res_raw = i16::from_le_bytes(r.array("pr_res")?);
-        let cno = u8::from_le_bytes(r.array("cno")?);
-        let quality_ind = u8::from_le_bytes(r.array("quality_ind")?);
-        let corr_source = u8::from_le_bytes(r.array("corr_source")?);
-        let iono_model = u8::from_le_bytes(r.array("iono_model")?);
-        let sig_flags = u16::from_le_bytes(r.array("sig_flags")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let b: [u8; 16] = r.array("gnss_id")?;
+        let gnss_id_raw = u8::from_le_bytes([b[0]]);
+        let sv_id = u8::from_le_bytes([b[1]]);
+        let sig_id = u8::from_le_bytes([b[2]]);
+        let freq_id = u8::from_le_bytes([b[3]]);
+        let pr_res_raw = i16::from_le_bytes([b[4], b[5]]);
+        let cno = u8::from_le_bytes([b[6]]);
+        let quality_ind = u8::from_le_bytes([b[7]]);
+        let corr_source = u8::from_le_bytes([b[8]]);
+        let iono_model = u8::from_le_bytes([b[9]]);
+        let sig_flags = u16::from_le_bytes([b[10], b[11]]);
+        let reserved1 = u32::from_le_bytes([b[12], b[13], b[14], b[15]]);
         Ok(Self {
             gnss_id_raw,
             sv_id,
@@ -28350,11 +28393,12 @@ pub struct NavDgpsChannel {
 impl<'a> ubx::Entry<'a> for NavDgpsChannel {
     const WIDTH: usize = 12;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let svid = u8::from_le_bytes(r.array("svid")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let age_c = u16::from_le_bytes(r.array("age_c")?);
-        let prc = f32::from_le_bytes(r.array("prc")?);
-        let prrc = f32::from_le_bytes(r.array("prrc")?);
+        let b: [u8; 12] = r.array("svid")?;
+        let svid = u8::from_le_bytes([b[0]]);
+        let flags = u8::from_le_bytes([b[1]]);
+        let age_c = u16::from_le_bytes([b[2], b[3]]);
+        let prc = f32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+        let prrc = f32::from_le_bytes([b[8], b[9], b[10], b[11]]);
         Ok(Self { svid, flags, age_c, prc, prrc })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -28893,8 +28937,9 @@ pub struct NavGeofenceFence {
 impl<'a> ubx::Entry<'a> for NavGeofenceFence {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let state = u8::from_le_bytes(r.array("state")?);
-        let id = u8::from_le_bytes(r.array("id")?);
+        let b: [u8; 2] = r.array("state")?;
+        let state = u8::from_le_bytes([b[0]]);
+        let id = u8::from_le_bytes([b[1]]);
         Ok(Self { state, id })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -29990,12 +30035,13 @@ pub struct NavOrbSv {
 impl<'a> ubx::Entry<'a> for NavOrbSv {
     const WIDTH: usize = 6;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let sv_flag = u8::from_le_bytes(r.array("sv_flag")?);
-        let eph = u8::from_le_bytes(r.array("eph")?);
-        let alm = u8::from_le_bytes(r.array("alm")?);
-        let other_orb = u8::from_le_bytes(r.array("other_orb")?);
+        let b: [u8; 6] = r.array("gnss_id")?;
+        let gnss_id_raw = u8::from_le_bytes([b[0]]);
+        let sv_id = u8::from_le_bytes([b[1]]);
+        let sv_flag = u8::from_le_bytes([b[2]]);
+        let eph = u8::from_le_bytes([b[3]]);
+        let alm = u8::from_le_bytes([b[4]]);
+        let other_orb = u8::from_le_bytes([b[5]]);
         Ok(Self { gnss_id_raw, sv_id, sv_flag, eph, alm, other_orb })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -32393,13 +32439,14 @@ pub struct NavSatSv {
 impl<'a> ubx::Entry<'a> for NavSatSv {
     const WIDTH: usize = 12;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let cno = u8::from_le_bytes(r.array("cno")?);
-        let elev = i8::from_le_bytes(r.array("elev")?);
-        let azim = i16::from_le_bytes(r.array("azim")?);
-        let pr_res_raw = i16::from_le_bytes(r.array("pr_res")?);
-        let flags = u32::from_le_bytes(r.array("flags")?);
+        let b: [u8; 12] = r.array("gnss_id")?;
+        let gnss_id_raw = u8::from_le_bytes([b[0]]);
+        let sv_id = u8::from_le_bytes([b[1]]);
+        let cno = u8::from_le_bytes([b[2]]);
+        let elev = i8::from_le_bytes([b[3]]);
+        let azim = i16::from_le_bytes([b[4], b[5]]);
+        let pr_res_raw = i16::from_le_bytes([b[6], b[7]]);
+        let flags = u32::from_le_bytes([b[8], b[9], b[10], b[11]]);
         Ok(Self { gnss_id_raw, sv_id, cno, elev, azim, pr_res_raw, flags })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -32737,15 +32784,16 @@ pub struct NavSbasChannel {
 impl<'a> ubx::Entry<'a> for NavSbasChannel {
     const WIDTH: usize = 12;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let svid = u8::from_le_bytes(r.array("svid")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let udre = u8::from_le_bytes(r.array("udre")?);
-        let sv_sys = u8::from_le_bytes(r.array("sv_sys")?);
-        let sv_service = u8::from_le_bytes(r.array("sv_service")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
-        let prc = i16::from_le_bytes(r.array("prc")?);
-        let reserved3 = u16::from_le_bytes(r.array("reserved3")?);
-        let ic = i16::from_le_bytes(r.array("ic")?);
+        let b: [u8; 12] = r.array("svid")?;
+        let svid = u8::from_le_bytes([b[0]]);
+        let flags = u8::from_le_bytes([b[1]]);
+        let udre = u8::from_le_bytes([b[2]]);
+        let sv_sys = u8::from_le_bytes([b[3]]);
+        let sv_service = u8::from_le_bytes([b[4]]);
+        let reserved2 = u8::from_le_bytes([b[5]]);
+        let prc = i16::from_le_bytes([b[6], b[7]]);
+        let reserved3 = u16::from_le_bytes([b[8], b[9]]);
+        let ic = i16::from_le_bytes([b[10], b[11]]);
         Ok(Self { svid, flags, udre, sv_sys, sv_service, reserved2, prc, reserved3, ic })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -32995,17 +33043,18 @@ pub struct NavSigSignal {
 impl<'a> ubx::Entry<'a> for NavSigSignal {
     const WIDTH: usize = 16;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let sig_id = u8::from_le_bytes(r.array("sig_id")?);
-        let freq_id = u8::from_le_bytes(r.array("freq_id")?);
-        let pr_res_raw = i16::from_le_bytes(r.array("pr_res")?);
-        let cno = u8::from_le_bytes(r.array("cno")?);
-        let quality_ind = u8::from_le_bytes(r.array("quality_ind")?);
-        let corr_source = u8::from_le_bytes(r.array("corr_source")?);
-        let iono_model = u8::from_le_bytes(r.array("iono_model")?);
-        let sig_flags = u16::from_le_bytes(r.array("sig_flags")?);
-        let reserved1 = u32::from_le_bytes(r.array("reserved1")?);
+        let b: [u8; 16] = r.array("gnss_id")?;
+        let gnss_id_raw = u8::from_le_bytes([b[0]]);
+        let sv_id = u8::from_le_bytes([b[1]]);
+        let sig_id = u8::from_le_bytes([b[2]]);
+        let freq_id = u8::from_le_bytes([b[3]]);
+        let pr_res_raw = i16::from_le_bytes([b[4], b[5]]);
+        let cno = u8::from_le_bytes([b[6]]);
+        let quality_ind = u8::from_le_bytes([b[7]]);
+        let corr_source = u8::from_le_bytes([b[8]]);
+        let iono_model = u8::from_le_bytes([b[9]]);
+        let sig_flags = u16::from_le_bytes([b[10], b[11]]);
+        let reserved1 = u32::from_le_bytes([b[12], b[13], b[14], b[15]]);
         Ok(Self {
             gnss_id_raw,
             sv_id,
@@ -34227,14 +34276,15 @@ pub struct NavSvinfoChannel {
 impl<'a> ubx::Entry<'a> for NavSvinfoChannel {
     const WIDTH: usize = 12;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let chn = u8::from_le_bytes(r.array("chn")?);
-        let svid = u8::from_le_bytes(r.array("svid")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let quality = u8::from_le_bytes(r.array("quality")?);
-        let cno = u8::from_le_bytes(r.array("cno")?);
-        let elev = i8::from_le_bytes(r.array("elev")?);
-        let azim = i16::from_le_bytes(r.array("azim")?);
-        let pr_res = i32::from_le_bytes(r.array("pr_res")?);
+        let b: [u8; 12] = r.array("chn")?;
+        let chn = u8::from_le_bytes([b[0]]);
+        let svid = u8::from_le_bytes([b[1]]);
+        let flags = u8::from_le_bytes([b[2]]);
+        let quality = u8::from_le_bytes([b[3]]);
+        let cno = u8::from_le_bytes([b[4]]);
+        let elev = i8::from_le_bytes([b[5]]);
+        let azim = i16::from_le_bytes([b[6], b[7]]);
+        let pr_res = i32::from_le_bytes([b[8], b[9], b[10], b[11]]);
         Ok(Self { chn, svid, flags, quality, cno, elev, azim, pr_res })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -36581,18 +36631,19 @@ pub struct RxmMeasxSv {
 impl<'a> ubx::Entry<'a> for RxmMeasxSv {
     const WIDTH: usize = 24;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let c_no = u8::from_le_bytes(r.array("c_no")?);
-        let mpath_indic = u8::from_le_bytes(r.array("mpath_indic")?);
-        let doppler_ms_raw = i32::from_le_bytes(r.array("doppler_ms")?);
-        let doppler_hz_raw = i32::from_le_bytes(r.array("doppler_hz")?);
-        let whole_chips = u16::from_le_bytes(r.array("whole_chips")?);
-        let frac_chips = u16::from_le_bytes(r.array("frac_chips")?);
-        let code_phase_raw = u32::from_le_bytes(r.array("code_phase")?);
-        let int_code_phase = u8::from_le_bytes(r.array("int_code_phase")?);
-        let pseu_range_rms_err = u8::from_le_bytes(r.array("pseu_range_rms_err")?);
-        let reserved4 = u16::from_le_bytes(r.array("reserved4")?);
+        let b: [u8; 24] = r.array("gnss_id")?;
+        let gnss_id_raw = u8::from_le_bytes([b[0]]);
+        let sv_id = u8::from_le_bytes([b[1]]);
+        let c_no = u8::from_le_bytes([b[2]]);
+        let mpath_indic = u8::from_le_bytes([b[3]]);
+        let doppler_ms_raw = i32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+        let doppler_hz_raw = i32::from_le_bytes([b[8], b[9], b[10], b[11]]);
+        let whole_chips = u16::from_le_bytes([b[12], b[13]]);
+        let frac_chips = u16::from_le_bytes([b[14], b[15]]);
+        let code_phase_raw = u32::from_le_bytes([b[16], b[17], b[18], b[19]]);
+        let int_code_phase = u8::from_le_bytes([b[20]]);
+        let pseu_range_rms_err = u8::from_le_bytes([b[21]]);
+        let reserved4 = u16::from_le_bytes([b[22], b[23]]);
         Ok(Self {
             gnss_id_raw,
             sv_id,
@@ -37551,20 +37602,21 @@ pub struct RxmRawxMeasurement {
 impl<'a> ubx::Entry<'a> for RxmRawxMeasurement {
     const WIDTH: usize = 32;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let pr_mes = f64::from_le_bytes(r.array("pr_mes")?);
-        let cp_mes = f64::from_le_bytes(r.array("cp_mes")?);
-        let do_mes = f32::from_le_bytes(r.array("do_mes")?);
-        let gnss_id_raw = u8::from_le_bytes(r.array("gnss_id")?);
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let sig_id = u8::from_le_bytes(r.array("sig_id")?);
-        let freq_id = u8::from_le_bytes(r.array("freq_id")?);
-        let locktime = u16::from_le_bytes(r.array("locktime")?);
-        let cno = u8::from_le_bytes(r.array("cno")?);
-        let pr_stdev = u8::from_le_bytes(r.array("pr_stdev")?);
-        let cp_stdev = u8::from_le_bytes(r.array("cp_stdev")?);
-        let do_stdev = u8::from_le_bytes(r.array("do_stdev")?);
-        let trk_stat = u8::from_le_bytes(r.array("trk_stat")?);
-        let reserved2 = u8::from_le_bytes(r.array("reserved2")?);
+        let b: [u8; 32] = r.array("pr_mes")?;
+        let pr_mes = f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]);
+        let cp_mes = f64::from_le_bytes([b[8], b[9], b[10], b[11], b[12], b[13], b[14], b[15]]);
+        let do_mes = f32::from_le_bytes([b[16], b[17], b[18], b[19]]);
+        let gnss_id_raw = u8::from_le_bytes([b[20]]);
+        let sv_id = u8::from_le_bytes([b[21]]);
+        let sig_id = u8::from_le_bytes([b[22]]);
+        let freq_id = u8::from_le_bytes([b[23]]);
+        let locktime = u16::from_le_bytes([b[24], b[25]]);
+        let cno = u8::from_le_bytes([b[26]]);
+        let pr_stdev = u8::from_le_bytes([b[27]]);
+        let cp_stdev = u8::from_le_bytes([b[28]]);
+        let do_stdev = u8::from_le_bytes([b[29]]);
+        let trk_stat = u8::from_le_bytes([b[30]]);
+        let reserved2 = u8::from_le_bytes([b[31]]);
         Ok(Self {
             pr_mes,
             cp_mes,
@@ -38072,7 +38124,8 @@ pub struct RxmSfrbxWord {
 impl<'a> ubx::Entry<'a> for RxmSfrbxWord {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let dwrd = u32::from_le_bytes(r.array("dwrd")?);
+        let b: [u8; 4] = r.array("dwrd")?;
+        let dwrd = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
         Ok(Self { dwrd })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -38326,10 +38379,11 @@ pub struct RxmSpartnkeyKeyInfoEntry {
 impl<'a> ubx::Entry<'a> for RxmSpartnkeyKeyInfoEntry {
     const WIDTH: usize = 8;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let encrypt_algorithm = u8::from_le_bytes(r.array("encrypt_algorithm")?);
-        let key_length_bytes = u8::from_le_bytes(r.array("key_length_bytes")?);
-        let valid_from_wno = u16::from_le_bytes(r.array("valid_from_wno")?);
-        let valid_from_tow = u32::from_le_bytes(r.array("valid_from_tow")?);
+        let b: [u8; 8] = r.array("encrypt_algorithm")?;
+        let encrypt_algorithm = u8::from_le_bytes([b[0]]);
+        let key_length_bytes = u8::from_le_bytes([b[1]]);
+        let valid_from_wno = u16::from_le_bytes([b[2], b[3]]);
+        let valid_from_tow = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
         Ok(Self { encrypt_algorithm, key_length_bytes, valid_from_wno, valid_from_tow })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -38358,7 +38412,8 @@ pub struct RxmSpartnkeyKey {
 impl<'a> ubx::Entry<'a> for RxmSpartnkeyKey {
     const WIDTH: usize = 1;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let key = u8::from_le_bytes(r.array("key")?);
+        let b: [u8; 1] = r.array("key")?;
+        let key = u8::from_le_bytes([b[0]]);
         Ok(Self { key })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -38506,11 +38561,12 @@ pub struct RxmSvsiSv {
 impl<'a> ubx::Entry<'a> for RxmSvsiSv {
     const WIDTH: usize = 6;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let svid = u8::from_le_bytes(r.array("svid")?);
-        let sv_flag = u8::from_le_bytes(r.array("sv_flag")?);
-        let azim = i16::from_le_bytes(r.array("azim")?);
-        let elev = i8::from_le_bytes(r.array("elev")?);
-        let age = u8::from_le_bytes(r.array("age")?);
+        let b: [u8; 6] = r.array("svid")?;
+        let svid = u8::from_le_bytes([b[0]]);
+        let sv_flag = u8::from_le_bytes([b[1]]);
+        let azim = i16::from_le_bytes([b[2], b[3]]);
+        let elev = i8::from_le_bytes([b[4]]);
+        let age = u8::from_le_bytes([b[5]]);
         Ok(Self { svid, sv_flag, azim, elev, age })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -38724,7 +38780,8 @@ pub struct SecSigCentFreq {
 impl<'a> ubx::Entry<'a> for SecSigCentFreq {
     const WIDTH: usize = 4;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let jam_state_cent_freq = u32::from_le_bytes(r.array("jam_state_cent_freq")?);
+        let b: [u8; 4] = r.array("jam_state_cent_freq")?;
+        let jam_state_cent_freq = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
         Ok(Self { jam_state_cent_freq })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -39064,10 +39121,11 @@ pub struct SecSiglogEvent {
 impl<'a> ubx::Entry<'a> for SecSiglogEvent {
     const WIDTH: usize = 8;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let time_elapsed = u32::from_le_bytes(r.array("time_elapsed")?);
-        let detection_type = u8::from_le_bytes(r.array("detection_type")?);
-        let event_type = u8::from_le_bytes(r.array("event_type")?);
-        let reserved1 = u16::from_le_bytes(r.array("reserved1")?);
+        let b: [u8; 8] = r.array("time_elapsed")?;
+        let time_elapsed = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        let detection_type = u8::from_le_bytes([b[4]]);
+        let event_type = u8::from_le_bytes([b[5]]);
+        let reserved1 = u16::from_le_bytes([b[6], b[7]]);
         Ok(Self { time_elapsed, detection_type, event_type, reserved1 })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
@@ -39806,15 +39864,16 @@ pub struct TimSmeasMea {
 impl<'a> ubx::Entry<'a> for TimSmeasMea {
     const WIDTH: usize = 24;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let source_id = u8::from_le_bytes(r.array("source_id")?);
-        let flags = u8::from_le_bytes(r.array("flags")?);
-        let phase_offset_frac_raw = i8::from_le_bytes(r.array("phase_offset_frac")?);
-        let phase_unc_frac_raw = u8::from_le_bytes(r.array("phase_unc_frac")?);
-        let phase_offset = i32::from_le_bytes(r.array("phase_offset")?);
-        let phase_unc = u32::from_le_bytes(r.array("phase_unc")?);
-        let reserved3 = u32::from_le_bytes(r.array("reserved3")?);
-        let freq_offset_raw = i32::from_le_bytes(r.array("freq_offset")?);
-        let freq_unc_raw = u32::from_le_bytes(r.array("freq_unc")?);
+        let b: [u8; 24] = r.array("source_id")?;
+        let source_id = u8::from_le_bytes([b[0]]);
+        let flags = u8::from_le_bytes([b[1]]);
+        let phase_offset_frac_raw = i8::from_le_bytes([b[2]]);
+        let phase_unc_frac_raw = u8::from_le_bytes([b[3]]);
+        let phase_offset = i32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+        let phase_unc = u32::from_le_bytes([b[8], b[9], b[10], b[11]]);
+        let reserved3 = u32::from_le_bytes([b[12], b[13], b[14], b[15]]);
+        let freq_offset_raw = i32::from_le_bytes([b[16], b[17], b[18], b[19]]);
+        let freq_unc_raw = u32::from_le_bytes([b[20], b[21], b[22], b[23]]);
         Ok(Self {
             source_id,
             flags,

@@ -143,8 +143,9 @@ pub struct NavDemoSv {
 impl<'a> ubx::Entry<'a> for NavDemoSv {
     const WIDTH: usize = 2;
     fn read(r: &mut ubx::ByteReader<'a>) -> Result<Self, UbxError> {
-        let sv_id = u8::from_le_bytes(r.array("sv_id")?);
-        let cno = u8::from_le_bytes(r.array("cno")?);
+        let b: [u8; 2] = r.array("sv_id")?;
+        let sv_id = u8::from_le_bytes([b[0]]);
+        let cno = u8::from_le_bytes([b[1]]);
         Ok(Self { sv_id, cno })
     }
     fn write(&self, w: &mut ubx::ByteWriter<'_>) -> Result<(), UbxError> {
