@@ -19,6 +19,11 @@ def test_the_readme_counts_what_the_spec_describes() -> None:
         "standard NMEA 0183 sentences": sum(not s.is_proprietary for s in spec.sentences),
         "AIS message types": len({t for p in spec.payloads if p.protocol == "ais" for t in p.types}),
         "u-blox UBX messages": len({(m.id) for m in spec.binary if m.protocol == "ubx"}),
+        "binary application messages": len(spec.applications),
+        "RTCM 3 message numbers": len({t for m in spec.bit_messages if m.protocol == "rtcm3" for t in m.types}),
+        "SkyTraq, SiRF \\(OSP\\) and CASIC binary messages":
+            sum(m.protocol in ("skytraq", "sirf", "casic") for m in spec.binary),
+        "Septentrio SBF blocks": sum(m.protocol == "sbf" for m in spec.binary),
         "proprietary sentences, commands and replies": len(proprietary),
         "manuals of": len({s.vendor for s in proprietary}),
         "receiver makers": len({manuals[s.vendor].maker for s in proprietary}),
