@@ -15,7 +15,7 @@ from .emit import RUNTIME, header, runtime_source
 from .emit_rust_ais import member_name
 from .emit_python_ais import title as title_of
 from .model import Payload, PayloadChoice, PayloadField, PayloadGroup, Spec
-from .names_c import layout_const, member
+from .names_c import ais_entry_record, ais_struct, layout_const, member
 from .reference_ais import after
 
 BITS = "nmea_ais_bits"
@@ -32,10 +32,6 @@ def c_type(f: PayloadField) -> str:
         return "bool"
     size = next(n for n in (8, 16, 32, 64) if f.bits <= n)
     return f"{'int' if f.type == 'int' else 'uint'}{size}_t"
-
-
-def struct_name(name: str) -> str:
-    return f"nmea_ais_{name}"
 
 
 class _Record:
@@ -130,9 +126,9 @@ class _Record:
         return f"ais_json_int(j, {key}, (long long){value});"
 
     def _group(self, g: PayloadGroup, following: list) -> None:
-        entry = _Record(self.name + "_" + (g.id[:-1] if g.id.endswith("s") else g.id + "_entry"), g.items, entry=True)
+        entry = _Record(ais_entry_record(self.name, g), g.items, entry=True)
         self.entries.append(entry)
-        key, struct = _c_str(g.id), struct_name(entry.name)
+        key, struct = _c_str(g.id), ais_struct(entry.name)
         self.members += [f"{struct} {g.id}[{g.max}]; /* {g.name} */", f"size_t {g.id}_count;"]
         self.read.append(f"{{ size_t i; if (!ais_entries(r, {g.min}, {g.max}, {g.entry_width}, {after(following)}, {key}, "
                          f"&m->{g.id}_count)) return false; for (i = 0; i < m->{g.id}_count; i++) "
@@ -229,7 +225,7 @@ def c_layout(code: str, indent: int = 0) -> str:
 
 def record_code(record: _Record, kind: str, doc: str) -> tuple[str, str]:
     """The struct (for the header) and the functions of a record."""
-    struct = struct_name(record.name)
+    struct = ais_struct(record.name)
     members = list(record.members)
     if kind != "entry":
         members.append("nmea_ais_bits trailing; /* bits after the layout, as sent */")

@@ -903,18 +903,14 @@ def fix_fields(spec: Spec, env: jinja2.Environment, gates: Gates) -> str:
         combined_talker=f"Some({rust_str(spec.combined_talker)})" if spec.combined_talker else "None")
 
 
-def frame_message_arms(spec: Spec) -> list[str]:
-    """json::write_frame_message's arm per protocol whose messages the crate types: the frame
-    decoded by its module (an RTCM 3 frame's payload between its 3-byte header and its CRC), its
-    JSON or its error's under the protocol's name."""
-    def arm(protocol: str, decoded: str) -> str:
-        return (f"Protocol::{protocol.capitalize()} => match {decoded} {{ "
-                f"Ok(m) => {{ out.write_str(\"\\\"{protocol}\\\":\")?; m.write_json(out)?; }} "
-                f"Err(e) => {{ out.write_str(\"\\\"{protocol}_error\\\":\")?; e.write_json(out)?; }} }},")
-    arms = [arm(p, f"crate::{p}_messages::Message::from_frame(frame)") for p in typed_natively(spec)]
+def frame_message_arms(spec: Spec) -> list[tuple[str, str, str]]:
+    """json::write_frame_message's arms, one per protocol whose messages the crate types: the
+    protocol's `Protocol` variant, its name in the JSON and how its module decodes a frame (an
+    RTCM 3 frame's payload sits between its 3-byte header and its CRC)."""
+    arms = [(p.capitalize(), p, f"crate::{p}_messages::Message::from_frame(frame)") for p in typed_natively(spec)]
     if spec.bit_messages:
-        arms.append(arm("rtcm3", "crate::rtcm3_messages::Message::from_payload("
-                                 "frame.get(3..frame.len().saturating_sub(3)).unwrap_or_default())"))
+        arms.append(("Rtcm3", "rtcm3", "crate::rtcm3_messages::Message::from_payload("
+                                       "frame.get(3..frame.len().saturating_sub(3)).unwrap_or_default())"))
     return sorted(arms)
 
 

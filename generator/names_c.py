@@ -3,7 +3,8 @@ naming.py renames them for --prefix), and which two things of a spec would share
 
 from __future__ import annotations
 
-from .model import BitfieldDef, Bits, BitValue, EnumDef, Group, Layout, Origin, Parameter, Sentence, Spec, TableDef
+from .model import (BitfieldDef, Bits, BitValue, EnumDef, Group, Layout, Origin, Parameter, PayloadChoice, PayloadGroup,
+                    Sentence, Spec, TableDef)
 from .names import NameClaims
 
 C_KEYWORDS = frozenset("""
@@ -82,6 +83,29 @@ def parameter_macro(t: TableDef, p: Parameter) -> str:
     return f"NMEA_{t.id.upper()}_{p.id.upper()}"
 
 
+def ais_struct(record: str) -> str:
+    """The struct of an AIS message, application or group entry (nmea_ais.h)."""
+    return f"nmea_ais_{record}"
+
+
+def ais_entry_record(record: str, group: PayloadGroup) -> str:
+    """The record of one entry of a group: area_notice_sub_area for area_notice's `sub_areas`."""
+    return f"{record}_{group.id[:-1] if group.id.endswith('s') else group.id + '_entry'}"
+
+
+def ais_records(name: str, items: list, origin: Origin) -> list[tuple[str, Origin]]:
+    """The records nmea_ais.h declares for a payload's items: its own (`name`) and one per group
+    entry."""
+    records = [(name, origin)]
+    for item in items:
+        if isinstance(item, PayloadGroup):
+            records += ais_records(ais_entry_record(name, item), item.items, item.origin)
+        elif isinstance(item, PayloadChoice):
+            for case in item.cases:
+                records += ais_records(name, case.items, origin)[1:]
+    return records
+
+
 def clashes(spec: Spec) -> list[tuple[Origin, str]]:
     """The C identifiers built from the spec's ids that two things would share."""
     names = NameClaims("C")
@@ -98,6 +122,10 @@ def clashes(spec: Spec) -> list[tuple[Origin, str]]:
             if group is not None and stores_entries(group):
                 for name in ([] if group.single else [entry_type(s, lay, group)]) + [group_accessor(s, lay, group)]:
                     names.claim(name, f"group {snake}.{group.id}", group.origin)
+    for payload in [*spec.applications, *spec.payloads]:
+        if payload.protocol == "ais":
+            for record, origin in ais_records(payload.id, payload.items, payload.origin):
+                names.claim(ais_struct(record), f"AIS record {record}", origin)
     for b in spec.bitfields:
         for bits in b.bits:
             what = f"bits {b.id}.{bits.id}"

@@ -300,3 +300,18 @@ def test_a_subset_compiles_without_a_warning(only: str, tmp_path: Path) -> None:
         done = subprocess.run(["clang", "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-fsyntax-only", *flags,
                                str(out / "c" / "nmea.c")], capture_output=True, text=True)
         assert done.returncode == 0, (flags, done.stderr[-2000:])
+
+
+def test_a_c_name_an_enum_and_an_ais_record_would_share_is_a_clash(spec) -> None:
+    """An enum `ais_<message>` would be typedef'd nmea_ais_<message>, the AIS message's struct
+    (nmea.h and nmea_ais.h meet in one build): the spec's checks say so, not the C compiler."""
+    from dataclasses import replace
+    from generator import names_c
+    assert names_c.clashes(spec) == []
+    record = next(p for p in spec.applications if any(hasattr(i, "max") for i in p.items))
+    entry = names_c.ais_records(record.id, record.items, record.origin)[1][0]   # a group entry's record
+    for clashing in (f"ais_{record.id}", f"ais_{entry}"):
+        enum = replace(spec.enums[0], id=clashing)
+        found = names_c.clashes(replace(spec, enums=[*spec.enums, enum]))
+        assert [message for _, message in found] == \
+            [f"the C name nmea_{clashing} of AIS record {clashing[4:]} is also the name of enum {clashing}"]
