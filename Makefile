@@ -230,10 +230,10 @@ build/c/test_stream_smallest: build/c/subset/c/nmea.c tests/c/test_stream.c
 # generated straight-line readers; test_ubx_8 (NMEA_UBX_MAX_ENTRIES=8) without them
 # (NMEA_UBX_NO_FAST_READ), so that the interpreter reads every payload too.
 UBX_LOGS := $(sort $(wildcard tests/data/ubx/*.log)) $(sort $(wildcard tests/data/rtcm3/*.log))
-# The logs of the other protocols the UBX pair types (SkyTraq, SiRF, CASIC, SBF), with their vectors.
+# The logs of the other protocols the UBX pair types (SkyTraq, SiRF, CASIC, SBF, Unicore), with their vectors.
 BINARY_LOGS := generated/vectors/binary.jsonl $(sort $(wildcard tests/data/skytraq/*.log)) \
         $(sort $(wildcard tests/data/sirf/*.log)) $(sort $(wildcard tests/data/casic/*.log)) \
-        $(sort $(wildcard tests/data/sbf/*.sbf))
+        $(sort $(wildcard tests/data/sbf/*.sbf)) $(sort $(wildcard tests/data/unicore/*.log))
 build/c/test_ubx: build/c/nmea-test.o generated/c/nmea_ubx.c generated/c/nmea_ubx.h runtime/c/test_ubx.c
 	@mkdir -p build/c
 	$(CC) $(CFLAGS) -O0 -I generated/c -o $@ build/c/nmea-test.o generated/c/nmea_ubx.c runtime/c/test_ubx.c

@@ -17,7 +17,7 @@ Report = Callable[..., None]   # checks._Reporter: (origin, rule, message, *yaml
 
 def _check_header_key(message: BinaryMessage, protocol: BinaryProtocol, report: Report) -> None:
     """A protocol without classes tells its messages by the payload's first bytes (SkyTraq, SiRF:
-    an id of a byte, a sub_id), or by its header's number and revision (SBF): the message gives
+    an id of a byte, a sub_id), or by its header's number and revision (SBF) or id (Unicore): the message gives
     what its protocol tells them by, each within the header field's bits."""
     if protocol.identity:
         if message.revision is not None:
@@ -32,7 +32,13 @@ def _check_header_key(message: BinaryMessage, protocol: BinaryProtocol, report: 
     widths = [int(f["type"][1:]) * (8 if f["type"][0] == "u" else 1) for f in fields]
     if message.sub_id is not None:
         report(message.origin, "B001", f"protocol {message.protocol} has no sub-ids: leave out sub_id", "sub_id")
-    if len(widths) != 2 or message.revision is None:
+    if len(widths) == 1:   # Unicore: the header's message id alone
+        if message.revision is not None:
+            report(message.origin, "B001", f"protocol {message.protocol} has no revisions: leave out revision",
+                   "revision")
+        elif message.msg_id >= 1 << widths[0]:
+            report(message.origin, "B001", f"id {message.msg_id} is over its {widths[0]} bits", "id")
+    elif len(widths) != 2 or message.revision is None:
         report(message.origin, "B001", f"protocol {message.protocol} tells a message by its number and revision: "
                "give revision", "revision")
     elif message.msg_id >= 1 << widths[0] or message.revision >= 1 << widths[1]:

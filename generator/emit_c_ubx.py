@@ -23,7 +23,7 @@ from __future__ import annotations
 import jinja2
 
 from .emit import RUNTIME, header, runtime_source, typed_natively
-from .emit_framing import framing, wire_key
+from .emit_framing import framing, kept_fields, wire_key
 from .emit_python_ubx import title
 from .model import BinaryProtocol, EnumDef, PayloadField, PayloadGroup, Spec
 from .names_c import member
@@ -421,23 +421,40 @@ def _framing_row(p: BinaryProtocol) -> str:
     """A protocol's row of ubx_framings (nmea_ubx_framing)."""
     f = framing(p)
     where = f"{p.origin.file}: frame"
-    if len(f.sync) != 2 or f.length_size != 2:
-        raise NotImplementedError(f"{where}: the UBX pair frames two sync bytes and a length of two bytes")
-    key_at = {at // 8 for _, at, _ in f.identity}
+    if len(f.sync) < 2 or f.length_size != 2:
+        raise NotImplementedError(f"{where}: the UBX pair frames two or three sync bytes and a length of two bytes")
+    # the header's bytes that hold the key (a class and an id byte; SBF's number and revision, Unicore's id)
+    key_at = {b for _, at, bits in f.identity for b in range(at // 8, (at + bits - 1) // 8 + 1)}
     if not key_at <= set(range(f.header)):   # the key starts the payload: its id (and sub-id)
         key_at = set()
-    elif len(f.identity) != 2 or len(key_at) != 2 or max(key_at) != min(key_at) + 1:
-        raise NotImplementedError(f"{where}: a key in the header is a class byte and an id byte")
+    elif len(key_at) != 2 or max(key_at) != min(key_at) + 1:
+        raise NotImplementedError(f"{where}: a key in the header is two bytes (a class and an id byte, or a word)")
     end = list(f.end) + [0] * (2 - len(f.end))
     fields = "{0, 0, 0}, {0, 0, 0}"
     if key_at:   # the key's fields in the 16-bit word of its two header bytes, in the protocol's byte order
         first = 8 * min(key_at)
-        fields = ", ".join(f'{{"{name}", {16 - (at - first) - bits if f.big_endian else at - first}, {bits}}}'
-                           for name, at, bits in f.identity)
-    return (f'{{"{p.id}", "{p.id.upper()}", {{0x{f.sync[0]:02X}, 0x{f.sync[1]:02X}}}, {f.header}, {f.length_at}, '
+        fields = ", ".join([f'{{"{name}", {16 - (at - first) - bits if f.big_endian else at - first}, {bits}}}'
+                            for name, at, bits in f.identity] + ["{0, 0, 0}"] * (2 - len(f.identity)))
+    sync = ", ".join(f"0x{b:02X}" for b in f.sync + bytes(3 - len(f.sync)))
+    kept = f"ubx_kept_{p.id}, {len(f.kept)}" if f.kept else "NULL, 0"
+    return (f'{{"{p.id}", "{p.id.upper()}", {{{sync}}}, {len(f.sync)}, {f.header}, {f.length_at}, '
             f'0x{f.length_mask:04X}, {min(key_at) if key_at else 0}, NMEA_UBX_CHECK_{f.checksum.upper()}, {f.check_from}, '
             f'{f.check_size}, {{0x{end[0]:02X}, 0x{end[1]:02X}}}, {len(f.end)}, {"true" if f.big_endian else "false"}, '
-            f'{f.length_adds}, {f.check_at}, {{{fields}}}}}')
+            f'{f.length_adds}, {f.check_at}, {{{fields}}}, {kept}}}')
+
+
+def _kept(p: BinaryProtocol) -> dict | None:
+    """A protocol's header fields that a message keeps (Unicore's time and status): its struct
+    (nmea_ubx_<protocol>_header, the member `header.<protocol>` of nmea_ubx_message) and its table
+    of nmea_ubx_header_field; None for a protocol with none."""
+    fields = kept_fields(p)
+    if not fields:
+        return None
+    types = {1: "uint8_t", 2: "uint16_t", 4: "uint32_t"}
+    return {"protocol": p.id, "struct": f"nmea_ubx_{p.id}_header", "name": p.name,
+            "members": [f"{types[k.size]} {k.id}; /* {k.doc} */" for k in fields],
+            "rows": [f'{{"{k.id}", {k.at}, {k.size}, offsetof(nmea_ubx_message, header.{p.id}.{k.id})}}'
+                     for k in fields]}
 
 
 def _pick(layouts: list[dict], first: int) -> list[tuple[str, int]]:
@@ -519,6 +536,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         classes.setdefault(k["key"][0], []).append(k)
     context = dict(layouts=layouts, ubx=keyed[:len(ubx)], others=keyed[len(ubx):], classes=sorted(classes.items()),
                    protocols=[p.id.upper() for p in protocols], framings=[_framing_row(p) for p in protocols],
+                   kept=[k for k in (_kept(p) for p in protocols) if k],
                    enums=[enum_table(enums[key]) for key in sorted(enums)],
                    runtime_h=(RUNTIME / "c" / "ubx.h").read_text(encoding="utf-8"),
                    runtime_c=runtime_source("ubx.c"))

@@ -11,6 +11,7 @@ import jinja2
 
 from . import emit_vectors
 from .emit import RUNTIME, markdown_banner
+from .emit_framing import kept_fields
 from .model import Field, Group, Layout, Manual, Ones, Payload, PayloadCase, PayloadField, PayloadGroup, ReplyRule, Sentence, Spec
 
 
@@ -285,8 +286,10 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                     + (f", {'SID' if m.protocol == 'sirf' else 'sub-id'} 0x{m.sub_id:02X} ({m.sub_id})"
                        if m.sub_id is not None else ""))
         prefix = "" if not m.prefix else " after the id" if m.sub_id is None else " after the id and sub-id"
+        kept = ", ".join(f"`{k.id}` (u{k.size} at byte {k.at})" for p in spec.protocols if p.id == m.protocol
+                         for k in kept_fields(p))
         files[f"docs/{m.protocol}/{m.id}.md"] = env.get_template("docs/ubx_message.md.j2").render(
-            banner=banner_of([m.origin.file]), m=m, documents=documents, identity=identity, prefix=prefix,
+            banner=banner_of([m.origin.file]), m=m, documents=documents, identity=identity, prefix=prefix, kept=kept,
             layouts=[{"layout": lay, "rows": binary_rows(lay),
                       "length": lay.fixed_width // 8 if lay.fixed_width is not None else None} for lay in m.layouts],
             examples=[{**v, "json": json.dumps(v["decode"], separators=(",", ":"))}

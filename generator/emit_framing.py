@@ -34,7 +34,7 @@ class FramingError(ValueError):
 @dataclass(frozen=True)
 class Framing:
     protocol: str               # ubx
-    sync: bytes                 # the sync bytes a rejected frame is handed on as (1 or 2)
+    sync: bytes                 # the sync bytes a rejected frame is handed on as (1 to 3)
     follow: tuple[int, int]     # the byte after the first sync byte: (value, mask) of its bits
     length_at: int              # the length field: its first byte, from the first sync byte
     length_size: int            # 1 or 2 bytes
@@ -48,6 +48,8 @@ class Framing:
     end: bytes                  # the bytes after the checksum that end a frame
     identity: tuple[tuple[str, int, int], ...]  # (name, bit offset from the sync, bits): what tells the message
     # (bits numbered most significant first in a big-endian frame, least significant first in a little-endian one)
+    kept: tuple[tuple[str, int, int], ...] = ()  # (name, byte offset from the sync, bytes): the header's fields
+    # of `identity: false` (Unicore's time and status), which a decoded message keeps and writes back
 
     @property
     def check_size(self) -> int:
@@ -73,8 +75,8 @@ def framing(p: BinaryProtocol) -> Framing:
     frame = p.frame
     where = f"{p.origin.file}: frame"
     sync = bytes(frame["sync"])
-    if not 1 <= len(sync) <= 2:
-        raise FramingError(f"{where}: sync of {len(sync)} bytes (the framers take 1 or 2)")
+    if not 1 <= len(sync) <= 3:
+        raise FramingError(f"{where}: sync of {len(sync)} bytes (the framers take 1 to 3)")
     if sync[0] in _LINE_BYTES or sync[0] == ord("$") and (len(sync) < 2 or chr(sync[1]).isalnum()):
         raise FramingError(f"{where}: sync {sync.hex(' ')} would take a line's bytes (a '$' sync needs a "
                            "second byte that starts no sentence)")
@@ -108,7 +110,7 @@ def framing(p: BinaryProtocol) -> Framing:
             if g["value"] != 0:
                 raise FramingError(f"{where}: a reserved field beside the length holds zeros")
             mask |= ((1 << width) - 1) << (high - at - width)
-    if len(sync) == 2:
+    if len(sync) >= 2:
         follow = (sync[1], 0xFF)
     else:   # fixed bits of the header's first byte
         value = mask_bits = 0
@@ -145,8 +147,27 @@ def framing(p: BinaryProtocol) -> Framing:
         at += _bits(g["type"])
     if len(identity) > 2 or any(width > 16 for _, _, width in identity):
         raise FramingError(f"{where}: at most two identity fields of 16 bits")
+    kept = tuple((g["id"], at // 8, width // 8) for g, at, width in fields if g.get("identity", True) is False)
+    if any(g["type"] not in ("u1", "u2", "u4") for g, _, _ in fields if g.get("identity", True) is False):
+        raise FramingError(f"{where}: a header field of `identity: false` is u1, u2 or u4")
     return Framing(p.id, sync, follow, length_at, length_size, big, mask, header, adds, checksum["algorithm"],
-                   offsets[first], check_at, bytes(frame.get("end", [])), tuple(identity))
+                   offsets[first], check_at, bytes(frame.get("end", [])), tuple(identity), kept)
+
+
+@dataclass(frozen=True)
+class KeptField:
+    """A header field of `identity: false` (Unicore's time and status) that a decoded message keeps
+    (its protocol's header type, generated in the three languages) and its frame is written with."""
+    id: str
+    at: int      # its first byte, from the first sync byte
+    size: int    # its bytes (1, 2 or 4: unsigned)
+    doc: str
+
+
+def kept_fields(p: BinaryProtocol) -> list[KeptField]:
+    """The header fields a decoded message of protocol `p` keeps (Framing.kept), with their docs."""
+    docs = {g["id"]: g.get("doc", g["id"]) for g in p.frame["header"]}
+    return [KeptField(name, at, size, docs[name]) for name, at, size in framing(p).kept]
 
 
 def header_key(f: Framing, values: tuple[int, ...]) -> tuple[int, ...]:
@@ -179,6 +200,11 @@ def framings(spec: Spec) -> list[Framing]:
             if a.sync[0] == b.sync[0] and (a.follow[0] ^ b.follow[0]) & a.follow[1] & b.follow[1] == 0:
                 raise FramingError(f"protocols {a.protocol} and {b.protocol} start alike: their sync bytes "
                                    "must differ within the first two bytes")
+    firsts = {f.sync[0] for f in out}
+    for f in out:   # a third sync byte that does not follow hands the two before it to the line
+        if len(f.sync) == 3 and (f.sync[1] in _LINE_BYTES + b"$" or f.sync[1] in firsts):
+            raise FramingError(f"protocol {f.protocol}: the second of three sync bytes, {f.sync[1]:02X}, "
+                               "ends or starts a line or a frame")
     return out
 
 
@@ -198,6 +224,12 @@ def _py_bytes(data: bytes) -> str:
 
 def _hex(data: bytes | tuple[int, ...]) -> str:
     return ", ".join(f"0x{b:02X}" for b in data)
+
+
+def _table_sync(f: Framing) -> bytes:
+    """The C and Rust tables' three sync bytes: the first, the second's bits under the follow mask,
+    the third (0 when the sync is shorter: sync_len says)."""
+    return (f.sync[:1] + bytes([f.follow[0]]) + f.sync[2:] + bytes(3))[:3]
 
 
 def c_header(table: list[Framing]) -> str:
@@ -227,7 +259,7 @@ def c_source(table: list[Framing]) -> str:
     rows = []
     for f in table:
         ids = ", ".join(f'{{"{n}", {at}, {bits}}}' for n, at, bits in f.identity) or "{0, 0, 0}"
-        rows.append(f"""    {{"{f.protocol}", {{{_hex(f.sync[:1] + bytes([f.follow[0]]))}}}, 0x{f.follow[1]:02X}, {len(f.sync)}, \
+        rows.append(f"""    {{"{f.protocol}", {{{_hex(_table_sync(f))}}}, 0x{f.follow[1]:02X}, {len(f.sync)}, \
 {f.length_at}, {f.length_size}, {int(f.big_endian)}, 0x{f.length_mask:04X}, {f.header}, {f.length_adds}, \
 NMEA_CHECKSUM_{f.checksum.upper()}, {f.check_from}, {f.check_at}, {f.check_size}, {{{_hex(f.end) or '0'}}}, {len(f.end)}, \
 {{{ids}}}}},""")
@@ -249,7 +281,7 @@ def rust_source(table: list[Framing]) -> str:
         ids = ", ".join(f'("{n}", {at}, {bits})' for n, at, bits in f.identity)
         rows.append(f"""    FrameFormat {{
         name: "{f.protocol}",
-        sync: [{_hex(f.sync[:1] + bytes([f.follow[0]]))}],
+        sync: [{_hex(_table_sync(f))}],
         follow_mask: 0x{f.follow[1]:02X},
         sync_len: {len(f.sync)},
         length_at: {f.length_at},
@@ -296,7 +328,7 @@ def python_source(table: list[Framing]) -> str:
                     f"{f.length_at}, {f.length_size}, {f.big_endian}, 0x{f.length_mask:04X}, {f.header}, "
                     f"{f.length_adds},\n            {f.checksum!r}, {f.check_from}, {f.check_at}, {f.check_size}, "
                     f"{_py_bytes(f.end)}, "
-                    f"{tuple(f.identity)!r}),")
+                    f"{tuple(f.identity)!r}" + (f",\n            {f.kept!r}" if f.kept else "") + "),")
     return _banner("#") + f'''"""The framing of each binary protocol of spec/binary (see stream.py)."""
 
 from __future__ import annotations
@@ -308,7 +340,7 @@ class Framing(NamedTuple):
     """How a binary protocol's frame is told from noise."""
 
     protocol: str  # its name in the tools' JSON
-    sync: bytes  # its sync bytes: what a rejected frame is handed on as
+    sync: bytes  # its sync bytes (1 to 3): what a rejected frame is handed on as; a third is checked as it comes
     follow: int  # the byte after the first sync byte, its bits under follow_mask
     follow_mask: int
     length_at: int  # the length field: its first byte, from the sync
@@ -325,6 +357,9 @@ class Framing(NamedTuple):
     # (name, bit offset from the sync, bits): what tells the message; the bits numbered most
     # significant first in a big-endian frame, least significant first in a little-endian one
     identity: tuple[tuple[str, int, int], ...]
+    # (name, byte offset from the sync, bytes): the header's other fields (Unicore's time and status),
+    # unsigned, which a decoded message keeps (binary.Header) and writes back
+    kept: tuple[tuple[str, int, int], ...] = ()
 
     @property
     def trailer(self) -> int:

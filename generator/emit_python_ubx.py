@@ -14,6 +14,7 @@ import jinja2
 
 from . import emit_ubx_config
 from .emit import header, runtime_file
+from .emit_framing import kept_fields
 from .emit_python import WIDTH, docstring
 from .emit_python_ais import entry_class, layout_lines, member
 from .model import BinaryMessage, Payload, PayloadField, PayloadGroup, Spec
@@ -78,10 +79,34 @@ def layout_view(message: BinaryMessage, layout: Payload) -> dict:
     }
 
 
+def _header_module(spec: Spec, protocol: str) -> str | None:
+    """nmeaspec.<protocol>_messages.frame_header: the protocol's Header (binary.Header), a member
+    per header field of `identity: false` (Unicore's time and status), None for a protocol with none."""
+    p = next(p for p in spec.protocols if p.id == protocol)
+    kept = kept_fields(p)
+    if not kept:
+        return None
+    lines = [header(spec, "#", [p.origin.file]) + f'"""The header fields a {p.name} message keeps."""', "",
+             "from __future__ import annotations", "", "from dataclasses import dataclass", "",
+             "from typing import ClassVar", "", "from .. import binary", "", "", "@dataclass",
+             "class Header(binary.Header):",
+             *("    " + line for line in docstring(
+                 f"The fields of a {p.name} frame's header besides its sync, message id and length, which a "
+                 "decoded message keeps and its frame is written with (0 in a message built by hand, unless "
+                 "set).", 4)), "",
+             f'    PROTOCOL: ClassVar[str] = "{protocol}"', ""]
+    for k in kept:
+        lines += [f"    {k.id}: int = 0", *("    " + line for line in docstring(f"{k.doc}: u{k.size}.", 4))]
+    return "\n".join(lines) + "\n"
+
+
 def _modules(spec: Spec, env: jinja2.Environment, protocol: str, messages: list[BinaryMessage]) -> dict[str, str]:
     """A module per message of `protocol` in nmeaspec.<protocol>_messages."""
     files: dict[str, str] = {}
     base = "ubx.Message" if protocol == "ubx" else "binary.Message"
+    kept = _header_module(spec, protocol)
+    if kept:
+        files[f"python/{PACKAGE}/{protocol}_messages/frame_header.py"] = kept
     for message in messages:
         fields = [m for layout in message.layouts for f in layout.fields for m in (f, *f.parts)]
         enums = sorted({f.enum.camel for f in fields if f.enum})
@@ -93,7 +118,8 @@ def _modules(spec: Spec, env: jinja2.Environment, protocol: str, messages: list[
         files[f"python/{PACKAGE}/{protocol}_messages/{message.id}.py"] = env.get_template(
             "python/ubx_message.py.j2").render(
             header=header(spec, "#", sources), message=message, enums=enums, modules=", ".join(modules),
-            uses_field=any(isinstance(i, PayloadGroup) for layout in message.layouts for i in layout.items),
+            uses_field=bool(kept) or any(isinstance(i, PayloadGroup) for layout in message.layouts
+                                         for i in layout.items), kept=bool(kept),
             layouts=[layout_view(message, layout) for layout in message.layouts], heading=heading, base=base,
             protocol=protocol, key=key)
     return files
@@ -112,7 +138,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             rows.append({"key": key, "layouts": [layout.camel for layout in m.layouts], "indent": len(key) + 9})
         files[f"python/{PACKAGE}/{protocol}_messages/__init__.py"] = env.get_template("python/binary_init.py.j2").render(
             header=header(spec, "#", [m.origin.file for m in others]), messages=others, rows=rows, name=name,
-            protocol=protocol, told="class and id" if others[0].msg_class else "block number and revision"
+            protocol=protocol, kept=any(kept_fields(p) for p in spec.protocols if p.id == protocol),
+            told="class and id" if others[0].msg_class else "block number and revision"
             if others[0].revision is not None else "id, and sub-id where the message has one",
             told_short="class and id" if others[0].msg_class else "block number and revision"
             if others[0].revision is not None else "id (and sub-id)")

@@ -19,7 +19,7 @@ from __future__ import annotations
 import jinja2
 
 from .emit import header, typed_natively
-from .emit_framing import framing, wire_key
+from .emit_framing import KeptField, framing, kept_fields, wire_key
 from .emit_python_ais import entry_class
 from .emit_python_ubx import identity, title as title_of
 from .emit_rust import rust_str, rustfmt
@@ -319,7 +319,7 @@ class _Record:
 
 
 def record_code(record: _Record, payload: Payload | None, message: BinaryMessage | None,
-                wire: tuple[int, ...] = ()) -> str:
+                wire: tuple[int, ...] = (), kept: bool = False) -> str:
     """The struct, its constants and accessors and its read/write/JSON code."""
     entry = payload is None
     borrows = record.borrows or not entry
@@ -346,6 +346,10 @@ def record_code(record: _Record, payload: Payload | None, message: BinaryMessage
     if not entry:
         write_body += " w.put(self.trailing);"
     doc = f"/// One entry of {record.name}." if entry else f"/// {title_of(message, payload)}"
+    if kept:   # the frame's header fields of `identity: false` (Unicore's time and status)
+        members = ["/// The frame's header fields besides its sync, message id and length (time and status).",
+                   "pub header: Header,", *members]
+        inits = [*inits, "header: Header::default()"]
     out = [doc, "#[derive(Clone, Copy, Debug, Default, PartialEq)]", f"pub struct {record.name}{lifetime} {{", *members,
            "}", ""]
     impl: list[str] = []
@@ -394,6 +398,9 @@ def record_code(record: _Record, payload: Payload | None, message: BinaryMessage
     else:
         reader = f"ubx::ByteReader::new(payload, Self::ADDRESS, (0, 0)).of_protocol({rust_str(message.protocol.upper())})"
         encode = f"ubx::encode_frame_of(buf, Protocol::{message.protocol.capitalize()}, Self::KEY, Self::ADDRESS, |w| self.write(w))"
+        if kept:
+            encode = (f"ubx::encode_frame_with(buf, Protocol::{message.protocol.capitalize()}, Self::KEY, Self::ADDRESS, "
+                      "|h| self.header.write(h), |w| self.write(w))")
         what = "`payload` (the bytes after its key)" if not message.msg_class else "`payload`"
         frame, vectors = "sync bytes to checksum and end bytes", "binary.jsonl"
     out += [f"impl<'a> {record.name}<'a> {{", *impl,
@@ -408,6 +415,7 @@ def record_code(record: _Record, payload: Payload | None, message: BinaryMessage
             f"{encode} }}",
             f"/// The members of its decoded JSON (those of generated/vectors/{vectors}), in order.\n"
             "pub fn json_members<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {"
+            + ("self.header.json(j)?; " if kept else "")
             + " ".join(record.json) + " ubx::json_hex(j, \"trailing\", self.trailing) }", "}", ""]
     return "\n".join(out)
 
@@ -472,7 +480,7 @@ def _blocks(spec: Spec, messages: list[BinaryMessage]) -> tuple[list[str], list[
             record = _Record(layout.camel, layout.items, message.address, names, order=order)
             for entry in record.entries:
                 blocks.append(record_code(entry, None, None))
-            blocks.append(record_code(record, layout, message, wire_key(spec, message)))
+            blocks.append(record_code(record, layout, message, wire_key(spec, message), bool(_kept(spec, message.protocol))))
             layouts.append(layout)
     return blocks, layouts
 
@@ -487,6 +495,42 @@ def _key_span(spec: Spec, protocol: str) -> tuple[int, int]:
     """The header's bytes that hold a message's key (where the header holds it)."""
     f = framing(next(p for p in spec.protocols if p.id == protocol))
     return min(at for _, at, _ in f.identity) // 8, (max(at + bits for _, at, bits in f.identity) + 7) // 8
+
+
+def _kept(spec: Spec, protocol: str) -> list[KeptField]:
+    """The header fields a decoded message of `protocol` keeps (Unicore's time and status)."""
+    return kept_fields(next(p for p in spec.protocols if p.id == protocol))
+
+
+def header_code(spec: Spec, protocol: str) -> str:
+    """The protocol's Header: a member per kept header field, read from and written to a frame's
+    header (sync bytes to the payload) at its place, and its JSON object (`header`)."""
+    p = next(p for p in spec.protocols if p.id == protocol)
+    kept, f = kept_fields(p), framing(p)
+    types = {1: "u8", 2: "u16", 4: "u32"}
+    order = "be" if f.big_endian else "le"
+    members = [line for k in kept for line in (f"/// {k.doc}.", f"pub {k.id}: {types[k.size]},")]
+    reads = [f"{k.id}: " + (f"h[{k.at}]" if k.size == 1 else f"{types[k.size]}::from_{order}_bytes([" +
+                            ", ".join(f"h[{k.at + i}]" for i in range(k.size)) + "])") for k in kept]
+    writes = [f"h[{k.at}] = self.{k.id};" if k.size == 1 else
+              f"h[{k.at}..{k.at + k.size}].copy_from_slice(&self.{k.id}.to_{order}_bytes());" for k in kept]
+    json = [f"o.int({rust_str(k.id)}, self.{k.id})?;" for k in kept]
+    return "\n".join([
+        f"/// The fields of a {p.name} frame's header besides its sync, message id and length, which a decoded",
+        "/// message keeps and its frame is written with (0 in a message built by hand, unless set).",
+        "#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]", "pub struct Header {", *members, "}", "",
+        "impl Header {",
+        f"/// The header's bytes, sync to payload.\npub const SIZE: usize = {f.header};",
+        "/// Its fields of a frame's header (sync bytes to the payload; bytes it lacks read as 0).",
+        "#[must_use]\npub fn read(header: &[u8]) -> Self {",
+        "let mut h = [0u8; Self::SIZE]; let n = header.len().min(Self::SIZE); h[..n].copy_from_slice(&header[..n]);",
+        f"Self {{ {', '.join(reads)} }} }}",
+        "/// Sets its fields in a frame's header (sync bytes to the payload; one shorter is left as it is).",
+        "pub fn write(&self, header: &mut [u8]) {",
+        "if let Some(h) = header.get_mut(..Self::SIZE) {", *writes, "} }",
+        "/// Writes its JSON object as the member `header`.",
+        "pub fn json<W: fmt::Write>(&self, j: &mut JsonObject<'_, W>) -> fmt::Result {",
+        "let mut o = JsonObject::new(j.key(\"header\")?)?;", *json, "o.finish() }", "}", ""])
 
 
 def protocols(spec: Spec) -> list[str]:
@@ -506,7 +550,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             protocol=protocol, variant=protocol.capitalize(),
             in_header=others[0].header_key, order=others[0].byte_order, enums=_enums(others),
             told="block number and revision" if others[0].revision is not None else "class and id",
-            key_span="{}..{}".format(*_key_span(spec, protocol)))
+            key_span="{}..{}".format(*_key_span(spec, protocol)),
+            header_struct=header_code(spec, protocol) if _kept(spec, protocol) else "")
     messages = [m for m in spec.binary if m.protocol == "ubx"]
     if not messages:
         return rustfmt(files)

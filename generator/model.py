@@ -976,6 +976,8 @@ class BinaryMessage:
             return self.id.upper().replace("_", "-", 1)
         if self.revision is not None:
             return f"{self.msg_id} rev {self.revision}"
+        if self.protocol == "unicore":   # its binary log's name: VERSIONB, BESTNAVB
+            return self.id.upper().replace("_", "")
         if self.protocol == "sirf":
             return f"MID {self.msg_id}" + (f" SID {self.sub_id}" if self.sub_id is not None else "")
         return f"0x{self.msg_id:02X}" + (f" 0x{self.sub_id:02X}" if self.sub_id is not None else "")

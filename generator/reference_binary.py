@@ -202,18 +202,26 @@ def decode(spec: Spec, frame: bytes) -> dict[str, Any]:
             return {"message": None, "class": msg_class, "id": msg_id, "payload": payload.hex()}
         return _decode_payload(message, payload)
     protocol, header, payload = protocol_frame(spec, frame)
+    kept = {f["id"]: header[f["id"]] for f in protocol.frame["header"] if f.get("identity", True) is False}
+    out = _decode_frame(spec, protocol, header, payload)
+    # the header's fields of `identity: false` (Unicore's time and status), which a message keeps
+    return out if not kept else {"message": out.pop("message"), "header": kept, **out}
+
+
+def _decode_frame(spec: Spec, protocol: BinaryProtocol, header: dict[str, int], payload: bytes) -> dict[str, Any]:
     if protocol.classes:
         message = message_of(spec, protocol.id, header["class"], header["id"])
         if message is None:
             return {"message": None, "class": header["class"], "id": header["id"], "payload": payload.hex()}
         return _decode_payload(message, payload)
-    if not protocol.identity:   # SBF: the header's block number and revision tell the message
-        key = tuple(header[f["id"]] for f in protocol.frame["header"]
-                    if not f.get("counts") and "value" not in f and f["id"] != protocol.frame["checksum"].get("at")
-                    and f.get("identity", True))
+    if not protocol.identity:   # SBF, Unicore: the header's block number and revision (its id) tell the message
+        names = [f["id"] for f in protocol.frame["header"]
+                 if not f.get("counts") and "value" not in f and f["id"] != protocol.frame["checksum"].get("at")
+                 and f.get("identity", True)]
+        key = tuple(header[name] for name in names)
         message = next((m for m in spec.binary if m.protocol == protocol.id and m.key == key), None)
         if message is None:
-            return {"message": None, **dict(zip(("number", "revision"), key)), "payload": payload.hex()}
+            return {"message": None, **dict(zip(names, key)), "payload": payload.hex()}
         return _decode_payload(message, payload)
     message = message_by_key(spec, protocol.id, payload)
     if message is None:

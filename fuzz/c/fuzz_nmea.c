@@ -221,20 +221,20 @@ static void model_binary(nmea_protocol protocol, nmea_frame_error error, const c
 }
 
 /* The frames of spec/binary, written here from the protocols' facts (not from the framer's table):
-   protocol, first two bytes (the second under a mask), sync bytes, header and trailer (checksum and
-   end bytes) sizes. */
+   protocol, first two bytes (the second under a mask), the third sync byte (when there are three),
+   sync bytes, header and trailer (checksum and end bytes) sizes. */
 static const struct {
     nmea_protocol protocol;
-    unsigned char first, second, mask;
+    unsigned char first, second, mask, third;
     size_t sync, header, trailer;
 } MODELS[] = {
-    {NMEA_UBX, 0xB5, 0x62, 0xFF, 2, 6, 2},     /* B5 62 class id length(LE) payload CK_A CK_B */
-    {NMEA_RTCM3, 0xD3, 0x00, 0xFC, 1, 3, 3},   /* D3, 6 zero bits, 10-bit length, payload, CRC-24Q */
-    {NMEA_SKYTRAQ, 0xA0, 0xA1, 0xFF, 2, 4, 3}, /* A0 A1 length(BE) payload XOR 0D 0A */
-    {NMEA_SIRF, 0xA0, 0xA2, 0xFF, 2, 4, 4},    /* A0 A2 0-bit, 15-bit length(BE) payload sum15(BE) B0 B3 */
-    {NMEA_CASIC, 0xBA, 0xCE, 0xFF, 2, 6, 4},   /* BA CE length(LE) class id payload sum32(LE) */
-    {NMEA_SBF, 0x24, 0x40, 0xFF, 2, 8, 0},     /* $ @ CRC(LE) id(LE) length(LE: the whole block) body */
-    {NMEA_UNICORE, 0xAA, 0x44, 0xFF, 2, 24, 4}, /* AA 44 B5 cpu id(LE) length(LE) time... body CRC-32(LE) */
+    {NMEA_UBX, 0xB5, 0x62, 0xFF, 0, 2, 6, 2},        /* B5 62 class id length(LE) payload CK_A CK_B */
+    {NMEA_RTCM3, 0xD3, 0x00, 0xFC, 0, 1, 3, 3},      /* D3, 6 zero bits, 10-bit length, payload, CRC-24Q */
+    {NMEA_SKYTRAQ, 0xA0, 0xA1, 0xFF, 0, 2, 4, 3},    /* A0 A1 length(BE) payload XOR 0D 0A */
+    {NMEA_SIRF, 0xA0, 0xA2, 0xFF, 0, 2, 4, 4},       /* A0 A2 0-bit, 15-bit length(BE) payload sum15(BE) B0 B3 */
+    {NMEA_CASIC, 0xBA, 0xCE, 0xFF, 0, 2, 6, 4},      /* BA CE length(LE) class id payload sum32(LE) */
+    {NMEA_SBF, 0x24, 0x40, 0xFF, 0, 2, 8, 0},        /* $ @ CRC(LE) id(LE) length(LE: the whole block) body */
+    {NMEA_UNICORE, 0xAA, 0x44, 0xFF, 0xB5, 3, 24, 4}, /* AA 44 B5 cpu id(LE) length(LE) time... body CRC-32(LE) */
 };
 
 /* The payload's length a frame's header gives. */
@@ -316,7 +316,8 @@ static size_t model_sync(const char *data, size_t size, size_t i, size_t *length
     nmea_protocol protocol;
     unsigned long sent = 0;
     for (m = 0; m < sizeof MODELS / sizeof MODELS[0]; m++)
-        if (left >= 2 && b[0] == MODELS[m].first && (b[1] & MODELS[m].mask) == MODELS[m].second)
+        if (left >= 2 && b[0] == MODELS[m].first && (b[1] & MODELS[m].mask) == MODELS[m].second
+            && (MODELS[m].sync < 3 || (left >= 3 && b[2] == MODELS[m].third)))
             break;
     if (m == sizeof MODELS / sizeof MODELS[0])
         return 0;
@@ -366,7 +367,7 @@ static void model_frame(const char *data, size_t size)
         char c = data[i];
         size_t after;
         if (((unsigned char)c == 0xB5 || (unsigned char)c == 0xD3 || (unsigned char)c == 0xA0 || (unsigned char)c == 0xBA
-             || c == '$')
+             || (unsigned char)c == 0xAA || c == '$')
             && tag == OUTSIDE
             && (after = model_sync(data, size, i, &length, &start)) != 0) {
             i = after - 1;

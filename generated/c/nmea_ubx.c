@@ -127,9 +127,14 @@
 //   spec/binary/skytraq/messages/msg_nack.yaml, spec/binary/skytraq/messages/nav_data.yaml,
 //   spec/binary/skytraq/messages/meas_time.yaml, spec/binary/skytraq/messages/raw_meas.yaml,
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
-//   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
+//   spec/binary/skytraq/messages/gps_subframe.yaml, spec/binary/unicore/messages/obsvm_b.yaml,
+//   spec/binary/unicore/messages/version_b.yaml, spec/binary/unicore/messages/adrnav_b.yaml,
+//   spec/binary/unicore/messages/bestnavxyz_b.yaml, spec/binary/unicore/messages/rtkstatus_b.yaml,
+//   spec/binary/unicore/messages/uniheading_b.yaml, spec/binary/unicore/messages/pvtsln_b.yaml,
+//   spec/binary/unicore/messages/bestnav_b.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 828b0fe3b9ce03e6)
+//   spec/enums/ubx_gnss_id.yaml, spec/enums/unicore_pos_type.yaml,
+//   spec/enums/unicore_sol_status.yaml (digest 21ecd31e26fbd35e)
 // Regenerate: make generate (python3 -m generator generate)
 
 #include "nmea_ubx.h"
@@ -300,6 +305,15 @@ static unsigned long ubx_check(nmea_ubx_check kind, const uint8_t *p, size_t len
                 sum = (sum & 0x8000 ? sum << 1 ^ 0x1021 : sum << 1) & 0xFFFF;
         }
         return (sum & 0xFF) << 8 | sum >> 8;
+    case NMEA_UBX_CHECK_CRC32: /* reflected 0xEDB88320, initial value 0, no final inversion; sent little endian
+                                  (bitwise: decoding a message is not the stream framer's hot path) */
+        for (i = 0; i < len; i++) {
+            unsigned bit;
+            sum ^= p[i];
+            for (bit = 0; bit < 8; bit++)
+                sum = sum & 1 ? sum >> 1 ^ 0xEDB88320ul : sum >> 1;
+        }
+        return (sum & 0xFF) << 24 | (sum >> 8 & 0xFF) << 16 | (sum >> 16 & 0xFF) << 8 | sum >> 24;
     default: /* SUM32: little-endian words, a short last one padded with zeros; sent little endian */
         for (i = 0; i < len; i++)
             sum = (sum + ((unsigned long)p[i] << 8 * (i & 3))) & 0xFFFFFFFFul;
@@ -999,6 +1013,49 @@ static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, 
     return last;
 }
 
+/* The header fields a message of protocol `f` keeps (its `header`), read from its frame into the
+   message at `m`. */
+static void ubx_read_kept(const nmea_ubx_framing *f, const uint8_t *frame, uint8_t *m)
+{
+    size_t i, k;
+    for (i = 0; i < f->n_kept; i++) {
+        const nmea_ubx_header_field *h = &f->kept[i];
+        uint64_t value = 0;
+        for (k = 0; k < h->size; k++)
+            value = value << 8 | frame[h->at + (f->big ? k : h->size - 1 - k)];
+        ubx_set(m + h->offset, h->size, value);
+    }
+}
+
+/* ... written from the message at `m` into a frame's header at `buf`. */
+static void ubx_write_kept(const nmea_ubx_framing *f, const uint8_t *m, uint8_t *buf)
+{
+    size_t i, k;
+    for (i = 0; i < f->n_kept; i++) {
+        const nmea_ubx_header_field *h = &f->kept[i];
+        uint64_t value = ubx_get(m + h->offset, h->size, false);
+        for (k = 0; k < h->size; k++)
+            buf[h->at + (f->big ? h->size - 1 - k : k)] = (uint8_t)(value >> 8 * k);
+    }
+}
+
+/* ... as the JSON member `header` (none for a protocol whose messages keep none). */
+static void ubx_json_kept(ubx_json_out *j, const nmea_ubx_framing *f, const uint8_t *m)
+{
+    size_t i;
+    if (!f->n_kept)
+        return;
+    ubx_json_key(j, "header");
+    ubx_json_puts(j, "{");
+    j->empty = true;
+    for (i = 0; i < f->n_kept; i++) {
+        ubx_json_key(j, f->kept[i].name);
+        ubx_json_number(j, ubx_get(m + f->kept[i].offset, f->kept[i].size, false), false);
+    }
+    ubx_json_puts(j, "}");
+    j->empty = false;
+}
+
 /* Reads a payload as layout `l` into the struct at `m`: its members before `trailing` zeroed first
    (every has_ flag false), then read; a group's entries are zeroed as they are read (the entries
    past a group's count are not: its count says how many hold a value). Only the layout's bytes are
@@ -1029,7 +1086,8 @@ static bool ubx_read_layout(const nmea_ubx_layout_info *l, const nmea_ubx_framin
    sync, header (the length, the key where the header holds it), the key where the payload starts
    with it, the payload, checksum and end bytes. Its length, 0 with the error set. */
 static size_t ubx_write_frame(const nmea_ubx_framing *f, const nmea_ubx_layout_info *l, const uint8_t *m,
-                              const nmea_ubx_unknown *unknown, uint8_t *buf, size_t cap, nmea_ubx_error *err)
+                              const nmea_ubx_unknown *unknown, const uint8_t *message, uint8_t *buf, size_t cap,
+                              nmea_ubx_error *err)
 {
     ubx_writer w;
     size_t payload, trailer = (size_t)(f->check_at ? 0 : f->check_size) + f->end_len, i, length;
@@ -1071,14 +1129,14 @@ static size_t ubx_write_frame(const nmea_ubx_framing *f, const nmea_ubx_layout_i
         return (size_t)ubx_fail(err, NMEA_UBX_BAD_VALUE, w.address, NULL);
     }
     memset(buf, 0, f->header);
-    buf[0] = f->sync[0];
-    buf[1] = f->sync[1];
+    memcpy(buf, f->sync, f->sync_len);
     buf[f->length_at + (f->big ? 1 : 0)] = (uint8_t)(length & 0xFF);
     buf[f->length_at + (f->big ? 0 : 1)] = (uint8_t)(length >> 8);
     if (f->key_at) {
         buf[f->key_at] = key[0];
         buf[f->key_at + 1] = key[1];
     }
+    ubx_write_kept(f, message, buf);
     sum = ubx_check((nmea_ubx_check)f->check, buf + f->check_from, w.len - f->check_from);
     for (i = 0; i < f->check_size; i++) /* after the payload, or in the header (SBF) */
         buf[(f->check_at ? f->check_at : w.len) + i] = (uint8_t)(sum >> 8 * (f->check_size - 1 - i));
@@ -1118,9 +1176,12 @@ static bool ubx_open_frame_of(const nmea_ubx_framing *f, const uint8_t *frame, s
 {
     size_t trailer = (size_t)(f->check_at ? 0 : f->check_size) + f->end_len, i, size;
     unsigned long sum, sent = 0;
-    if (len < (size_t)f->header + trailer || frame[0] != f->sync[0] || frame[1] != f->sync[1]) {
-        snprintf(err->text, sizeof err->text, "a %s frame is %02X %02X, a header of %u bytes, payload, checksum%s",
-                 f->upper, f->sync[0], f->sync[1], (unsigned)f->header, f->end_len ? " and end bytes" : "");
+    if (len < (size_t)f->header + trailer || memcmp(frame, f->sync, f->sync_len) != 0) {
+        char third[4] = "";
+        if (f->sync_len > 2)
+            snprintf(third, sizeof third, " %02X", f->sync[2]);
+        snprintf(err->text, sizeof err->text, "a %s frame is %02X %02X%s, a header of %u bytes, payload, checksum%s",
+                 f->upper, f->sync[0], f->sync[1], third, (unsigned)f->header, f->end_len ? " and end bytes" : "");
         return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
     }
     size = ((f->big ? (size_t)frame[f->length_at] << 8 | frame[f->length_at + 1]
@@ -1171,6 +1232,12 @@ static const nmea_ubx_codes ubx_enum_ubx_fix_type = {ubx_enum_ubx_fix_type_list,
 
 static const nmea_ubx_code ubx_enum_ubx_gnss_id_list[] = {{0, "gps"}, {1, "sbas"}, {2, "galileo"}, {3, "beidou"}, {4, "imes"}, {5, "qzss"}, {6, "glonass"}, {7, "navic"}};
 static const nmea_ubx_codes ubx_enum_ubx_gnss_id = {ubx_enum_ubx_gnss_id_list, 8};
+
+static const nmea_ubx_code ubx_enum_unicore_pos_type_list[] = {{0, "none"}, {1, "fixedpos"}, {2, "fixedheight"}, {8, "doppler_velocity"}, {16, "single"}, {17, "psrdiff"}, {18, "sbas"}, {32, "l1_float"}, {33, "ionofree_float"}, {34, "narrow_float"}, {48, "l1_int"}, {49, "wide_int"}, {50, "narrow_int"}, {52, "ins"}, {53, "ins_psrsp"}, {54, "ins_psrdiff"}, {55, "ins_rtkfloat"}, {56, "ins_rtkfixed"}, {68, "ppp_converging"}, {69, "ppp"}};
+static const nmea_ubx_codes ubx_enum_unicore_pos_type = {ubx_enum_unicore_pos_type_list, 20};
+
+static const nmea_ubx_code ubx_enum_unicore_sol_status_list[] = {{0, "sol_computed"}, {1, "insufficient_obs"}, {2, "no_convergence"}, {4, "cov_trace"}};
+static const nmea_ubx_codes ubx_enum_unicore_sol_status = {ubx_enum_unicore_sol_status_list, 4};
 
 /* NAV-POSECEF: nav_posecef_poll */
 static const nmea_ubx_item ubx_nav_posecef_poll_items[1] = {{"", NULL, 0, 0, 0, NMEA_UBX_ITEM_UNSIGNED, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}};
@@ -7476,6 +7543,297 @@ static const nmea_ubx_item ubx_skytraq_gps_subframe_items[] = {
     {"svid", NULL, offsetof(nmea_ubx_skytraq_gps_subframe, svid), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"subframe", NULL, offsetof(nmea_ubx_skytraq_gps_subframe, subframe), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
     {"words", NULL, offsetof(nmea_ubx_skytraq_gps_subframe, words), 0, 0, NMEA_UBX_ITEM_ARRAY, 30, 30, 0, NMEA_UBX_PRINT_HEX, false}
+};
+
+/* UNICORE OBSVMB: obsvm_b */
+static const nmea_ubx_scale ubx_unicore_obsvm_b_observation_psr_std_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_unicore_obsvm_b_observation_adr_std_scale = {10000.0, 0.0, true, NULL, 0};
+static const nmea_ubx_scale ubx_unicore_obsvm_b_observation_cn0_scale = {100.0, 0.0, true, NULL, 0};
+static const nmea_ubx_item ubx_unicore_obsvm_b_observation_items[] = {
+    {"glo_freq", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, glo_freq), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"prn", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, prn), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psr", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, psr), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"adr", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, adr), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psr_std", &ubx_unicore_obsvm_b_observation_psr_std_scale, offsetof(nmea_ubx_unicore_obsvm_b_observation, psr_std), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"adr_std", &ubx_unicore_obsvm_b_observation_adr_std_scale, offsetof(nmea_ubx_unicore_obsvm_b_observation, adr_std), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"dopp", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, dopp), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cn0", &ubx_unicore_obsvm_b_observation_cn0_scale, offsetof(nmea_ubx_unicore_obsvm_b_observation, cn0), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_SCALED, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"locktime", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, locktime), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tr_status", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, tr_status), 0, 0, NMEA_UBX_ITEM_WORD, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sv_chan", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, sv_chan), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"phase_lock", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, phase_lock), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 10, NMEA_UBX_PRINT_NUMBER, false},
+    {"code_lock", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, code_lock), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 12, NMEA_UBX_PRINT_NUMBER, false},
+    {"system", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, system), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 16, NMEA_UBX_PRINT_NUMBER, false},
+    {"signal_type", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, signal_type), 0, 0, NMEA_UBX_ITEM_PART, 5, 1, 21, NMEA_UBX_PRINT_NUMBER, false},
+    {"l2c_flag", NULL, offsetof(nmea_ubx_unicore_obsvm_b_observation, l2c_flag), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 26, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_unicore_obsvm_b_observations_group = {ubx_unicore_obsvm_b_observation_items, 17, NMEA_UBX_COUNT_FIELD, 4, offsetof(nmea_ubx_unicore_obsvm_b, num_obs), 0, 0, 65535, NMEA_UBX_UNICORE_OBSVM_B_OBSERVATIONS_MAX, 40, sizeof(nmea_ubx_unicore_obsvm_b_observation), 0, offsetof(nmea_ubx_unicore_obsvm_b, observations_count), 0, 0, NULL};
+static const nmea_ubx_item ubx_unicore_obsvm_b_items[] = {
+    {"num_obs", NULL, offsetof(nmea_ubx_unicore_obsvm_b, num_obs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"observations", &ubx_unicore_obsvm_b_observations_group, offsetof(nmea_ubx_unicore_obsvm_b, observations), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* UNICORE VERSIONB: version_b */
+static const nmea_ubx_item ubx_unicore_version_b_items[] = {
+    {"device", NULL, offsetof(nmea_ubx_unicore_version_b, device), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sw_version", NULL, offsetof(nmea_ubx_unicore_version_b, sw_version), 0, 0, NMEA_UBX_ITEM_ARRAY, 33, 33, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"auth_type", NULL, offsetof(nmea_ubx_unicore_version_b, auth_type), 0, 0, NMEA_UBX_ITEM_ARRAY, 129, 129, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"psn", NULL, offsetof(nmea_ubx_unicore_version_b, psn), 0, 0, NMEA_UBX_ITEM_ARRAY, 66, 66, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"efuse_id", NULL, offsetof(nmea_ubx_unicore_version_b, efuse_id), 0, 0, NMEA_UBX_ITEM_ARRAY, 33, 33, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"comp_time", NULL, offsetof(nmea_ubx_unicore_version_b, comp_time), 0, 0, NMEA_UBX_ITEM_ARRAY, 43, 43, 0, NMEA_UBX_PRINT_CHARS, false}
+};
+
+/* UNICORE ADRNAVB: adrnav_b */
+static const nmea_ubx_item ubx_unicore_adrnav_b_items[] = {
+    {"sol_status", &ubx_enum_unicore_sol_status, offsetof(nmea_ubx_unicore_adrnav_b, sol_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"pos_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_adrnav_b, pos_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"lat", NULL, offsetof(nmea_ubx_unicore_adrnav_b, lat), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lon", NULL, offsetof(nmea_ubx_unicore_adrnav_b, lon), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"height", NULL, offsetof(nmea_ubx_unicore_adrnav_b, height), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"undulation", NULL, offsetof(nmea_ubx_unicore_adrnav_b, undulation), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"datum_id", NULL, offsetof(nmea_ubx_unicore_adrnav_b, datum_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lat_std", NULL, offsetof(nmea_ubx_unicore_adrnav_b, lat_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lon_std", NULL, offsetof(nmea_ubx_unicore_adrnav_b, lon_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"height_std", NULL, offsetof(nmea_ubx_unicore_adrnav_b, height_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"station_id", NULL, offsetof(nmea_ubx_unicore_adrnav_b, station_id), 0, 0, NMEA_UBX_ITEM_ARRAY, 4, 4, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"diff_age", NULL, offsetof(nmea_ubx_unicore_adrnav_b, diff_age), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sol_age", NULL, offsetof(nmea_ubx_unicore_adrnav_b, sol_age), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_svs", NULL, offsetof(nmea_ubx_unicore_adrnav_b, num_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_soln_svs", NULL, offsetof(nmea_ubx_unicore_adrnav_b, num_soln_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_unicore_adrnav_b, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_sol_stat", NULL, offsetof(nmea_ubx_unicore_adrnav_b, ext_sol_stat), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rtk_verified", NULL, offsetof(nmea_ubx_unicore_adrnav_b, rtk_verified), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iono_correction", NULL, offsetof(nmea_ubx_unicore_adrnav_b, iono_correction), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_bds3_sig_mask", NULL, offsetof(nmea_ubx_unicore_adrnav_b, gal_bds3_sig_mask), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e1", NULL, offsetof(nmea_ubx_unicore_adrnav_b, gal_e1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e5b", NULL, offsetof(nmea_ubx_unicore_adrnav_b, gal_e5b), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e5a", NULL, offsetof(nmea_ubx_unicore_adrnav_b, gal_e5a), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1i", NULL, offsetof(nmea_ubx_unicore_adrnav_b, bds_b1i), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b3i", NULL, offsetof(nmea_ubx_unicore_adrnav_b, bds_b3i), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b2a", NULL, offsetof(nmea_ubx_unicore_adrnav_b, bds_b2a), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1c", NULL, offsetof(nmea_ubx_unicore_adrnav_b, bds_b1c), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_glo_bds2_sig_mask", NULL, offsetof(nmea_ubx_unicore_adrnav_b, gps_glo_bds2_sig_mask), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l1", NULL, offsetof(nmea_ubx_unicore_adrnav_b, gps_l1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l2", NULL, offsetof(nmea_ubx_unicore_adrnav_b, gps_l2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l5", NULL, offsetof(nmea_ubx_unicore_adrnav_b, gps_l5), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b3", NULL, offsetof(nmea_ubx_unicore_adrnav_b, bds_b3), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_l1", NULL, offsetof(nmea_ubx_unicore_adrnav_b, glo_l1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_l2", NULL, offsetof(nmea_ubx_unicore_adrnav_b, glo_l2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1", NULL, offsetof(nmea_ubx_unicore_adrnav_b, bds_b1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b2", NULL, offsetof(nmea_ubx_unicore_adrnav_b, bds_b2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_sol_status", &ubx_enum_unicore_sol_status, offsetof(nmea_ubx_unicore_adrnav_b, vel_sol_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"vel_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_adrnav_b, vel_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"latency", NULL, offsetof(nmea_ubx_unicore_adrnav_b, latency), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"age", NULL, offsetof(nmea_ubx_unicore_adrnav_b, age), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hor_spd", NULL, offsetof(nmea_ubx_unicore_adrnav_b, hor_spd), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"trk_gnd", NULL, offsetof(nmea_ubx_unicore_adrnav_b, trk_gnd), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vert_spd", NULL, offsetof(nmea_ubx_unicore_adrnav_b, vert_spd), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vert_spd_std", NULL, offsetof(nmea_ubx_unicore_adrnav_b, vert_spd_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hor_spd_std", NULL, offsetof(nmea_ubx_unicore_adrnav_b, hor_spd_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* UNICORE BESTNAVXYZB: bestnavxyz_b */
+static const nmea_ubx_item ubx_unicore_bestnavxyz_b_items[] = {
+    {"sol_status", &ubx_enum_unicore_sol_status, offsetof(nmea_ubx_unicore_bestnavxyz_b, sol_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"pos_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_bestnavxyz_b, pos_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"p_x", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, p_x), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"p_y", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, p_y), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"p_z", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, p_z), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"p_x_std", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, p_x_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"p_y_std", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, p_y_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"p_z_std", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, p_z_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_sol_status", &ubx_enum_unicore_sol_status, offsetof(nmea_ubx_unicore_bestnavxyz_b, vel_sol_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"vel_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_bestnavxyz_b, vel_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"vel_x", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, vel_x), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_y", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, vel_y), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_z", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, vel_z), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_x_std", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, vel_x_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_y_std", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, vel_y_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_z_std", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, vel_z_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"station_id", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, station_id), 0, 0, NMEA_UBX_ITEM_ARRAY, 4, 4, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"vel_latency", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, vel_latency), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"diff_age", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, diff_age), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sol_age", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, sol_age), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_svs", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, num_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_soln_svs", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, num_soln_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_gg_l1", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, num_gg_l1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_soln_multi_svs", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, num_soln_multi_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_sol_stat", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, ext_sol_stat), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rtk_verified", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, rtk_verified), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iono_correction", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, iono_correction), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_bds3_sig_mask", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, gal_bds3_sig_mask), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e1", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, gal_e1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e5b", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, gal_e5b), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e5a", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, gal_e5a), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1i", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, bds_b1i), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b3i", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, bds_b3i), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b2a", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, bds_b2a), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1c", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, bds_b1c), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_glo_bds2_sig_mask", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, gps_glo_bds2_sig_mask), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l1", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, gps_l1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l2", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, gps_l2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l5", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, gps_l5), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b3", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, bds_b3), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_l1", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, glo_l1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_l2", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, glo_l2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, bds_b1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b2", NULL, offsetof(nmea_ubx_unicore_bestnavxyz_b, bds_b2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* UNICORE RTKSTATUSB: rtkstatus_b */
+static const nmea_ubx_item ubx_unicore_rtkstatus_b_items[] = {
+    {"gps_source", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, gps_source), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_source1", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, bds_source1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_source2", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, bds_source2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_source", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, glo_source), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved3", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, reserved3), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_source1", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, gal_source1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_source2", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, gal_source2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"qzss_source", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, qzss_source), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved4", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, reserved4), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pos_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_rtkstatus_b, pos_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"calc_status", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, calc_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ion_detected", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, ion_detected), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"dual_rtk_flag", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, dual_rtk_flag), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"adr_number", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, adr_number), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved5", NULL, offsetof(nmea_ubx_unicore_rtkstatus_b, reserved5), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* UNICORE UNIHEADINGB: uniheading_b */
+static const nmea_ubx_item ubx_unicore_uniheading_b_items[] = {
+    {"sol_status", &ubx_enum_unicore_sol_status, offsetof(nmea_ubx_unicore_uniheading_b, sol_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"pos_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_uniheading_b, pos_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"length", NULL, offsetof(nmea_ubx_unicore_uniheading_b, length), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading", NULL, offsetof(nmea_ubx_unicore_uniheading_b, heading), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pitch", NULL, offsetof(nmea_ubx_unicore_uniheading_b, pitch), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_unicore_uniheading_b, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hdg_std", NULL, offsetof(nmea_ubx_unicore_uniheading_b, hdg_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ptch_std", NULL, offsetof(nmea_ubx_unicore_uniheading_b, ptch_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"station_id", NULL, offsetof(nmea_ubx_unicore_uniheading_b, station_id), 0, 0, NMEA_UBX_ITEM_ARRAY, 4, 4, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"num_svs", NULL, offsetof(nmea_ubx_unicore_uniheading_b, num_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_soln_svs", NULL, offsetof(nmea_ubx_unicore_uniheading_b, num_soln_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_obs", NULL, offsetof(nmea_ubx_unicore_uniheading_b, num_obs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_multi", NULL, offsetof(nmea_ubx_unicore_uniheading_b, num_multi), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved2", NULL, offsetof(nmea_ubx_unicore_uniheading_b, reserved2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_sol_stat", NULL, offsetof(nmea_ubx_unicore_uniheading_b, ext_sol_stat), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rtk_verified", NULL, offsetof(nmea_ubx_unicore_uniheading_b, rtk_verified), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iono_correction", NULL, offsetof(nmea_ubx_unicore_uniheading_b, iono_correction), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_bds3_sig_mask", NULL, offsetof(nmea_ubx_unicore_uniheading_b, gal_bds3_sig_mask), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e1", NULL, offsetof(nmea_ubx_unicore_uniheading_b, gal_e1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e5b", NULL, offsetof(nmea_ubx_unicore_uniheading_b, gal_e5b), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e5a", NULL, offsetof(nmea_ubx_unicore_uniheading_b, gal_e5a), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1i", NULL, offsetof(nmea_ubx_unicore_uniheading_b, bds_b1i), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b3i", NULL, offsetof(nmea_ubx_unicore_uniheading_b, bds_b3i), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b2a", NULL, offsetof(nmea_ubx_unicore_uniheading_b, bds_b2a), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1c", NULL, offsetof(nmea_ubx_unicore_uniheading_b, bds_b1c), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_glo_bds2_sig_mask", NULL, offsetof(nmea_ubx_unicore_uniheading_b, gps_glo_bds2_sig_mask), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l1", NULL, offsetof(nmea_ubx_unicore_uniheading_b, gps_l1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l2", NULL, offsetof(nmea_ubx_unicore_uniheading_b, gps_l2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l5", NULL, offsetof(nmea_ubx_unicore_uniheading_b, gps_l5), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b3", NULL, offsetof(nmea_ubx_unicore_uniheading_b, bds_b3), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_l1", NULL, offsetof(nmea_ubx_unicore_uniheading_b, glo_l1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_l2", NULL, offsetof(nmea_ubx_unicore_uniheading_b, glo_l2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1", NULL, offsetof(nmea_ubx_unicore_uniheading_b, bds_b1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b2", NULL, offsetof(nmea_ubx_unicore_uniheading_b, bds_b2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* UNICORE PVTSLNB: pvtsln_b */
+static const nmea_ubx_item ubx_unicore_pvtsln_b_prn_items[] = {
+    {"prn", NULL, offsetof(nmea_ubx_unicore_pvtsln_b_prn, prn), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+static const nmea_ubx_group ubx_unicore_pvtsln_b_prns_group = {ubx_unicore_pvtsln_b_prn_items, 1, NMEA_UBX_COUNT_LEFT, 1, 0, 0, 0, 65535, NMEA_UBX_UNICORE_PVTSLN_B_PRNS_MAX, 2, sizeof(nmea_ubx_unicore_pvtsln_b_prn), 0, offsetof(nmea_ubx_unicore_pvtsln_b, prns_count), 0, 0, NULL};
+static const nmea_ubx_item ubx_unicore_pvtsln_b_items[] = {
+    {"best_pos_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"best_pos_height", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_height), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"best_pos_lat", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_lat), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"best_pos_lon", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_lon), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"best_pos_height_std", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_height_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"best_pos_lat_std", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_lat_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"best_pos_lon_std", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_lon_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"best_pos_diff_age", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_diff_age), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psr_pos_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_pvtsln_b, psr_pos_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"psr_pos_height", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, psr_pos_height), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psr_pos_lat", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, psr_pos_lat), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psr_pos_lon", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, psr_pos_lon), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"undulation", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, undulation), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"best_pos_svs", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"best_pos_soln_svs", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, best_pos_soln_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psr_pos_svs", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, psr_pos_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psr_pos_soln_svs", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, psr_pos_soln_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psr_vel_north", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, psr_vel_north), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psr_vel_east", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, psr_vel_east), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"psr_vel_ground", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, psr_vel_ground), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_pvtsln_b, heading_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"heading_length", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, heading_length), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading_degree", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, heading_degree), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading_pitch", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, heading_pitch), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading_tracked_svs", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, heading_tracked_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading_soln_svs", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, heading_soln_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading_gg_l1", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, heading_gg_l1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"heading_gg_l1_l2", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, heading_gg_l1_l2), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gdop", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, gdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"pdop", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, pdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hdop", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, hdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"htdop", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, htdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"tdop", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, tdop), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"cutoff", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, cutoff), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"prn_num", NULL, offsetof(nmea_ubx_unicore_pvtsln_b, prn_num), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 2, 2, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"prns", &ubx_unicore_pvtsln_b_prns_group, offsetof(nmea_ubx_unicore_pvtsln_b, prns), 0, 0, NMEA_UBX_ITEM_GROUP, 0, 0, 0, NMEA_UBX_PRINT_NUMBER, false}
+};
+
+/* UNICORE BESTNAVB: bestnav_b */
+static const nmea_ubx_item ubx_unicore_bestnav_b_items[] = {
+    {"sol_status", &ubx_enum_unicore_sol_status, offsetof(nmea_ubx_unicore_bestnav_b, sol_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"pos_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_bestnav_b, pos_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"lat", NULL, offsetof(nmea_ubx_unicore_bestnav_b, lat), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lon", NULL, offsetof(nmea_ubx_unicore_bestnav_b, lon), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"height", NULL, offsetof(nmea_ubx_unicore_bestnav_b, height), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"undulation", NULL, offsetof(nmea_ubx_unicore_bestnav_b, undulation), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"datum_id", NULL, offsetof(nmea_ubx_unicore_bestnav_b, datum_id), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lat_std", NULL, offsetof(nmea_ubx_unicore_bestnav_b, lat_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"lon_std", NULL, offsetof(nmea_ubx_unicore_bestnav_b, lon_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"height_std", NULL, offsetof(nmea_ubx_unicore_bestnav_b, height_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"station_id", NULL, offsetof(nmea_ubx_unicore_bestnav_b, station_id), 0, 0, NMEA_UBX_ITEM_ARRAY, 4, 4, 0, NMEA_UBX_PRINT_CHARS, false},
+    {"diff_age", NULL, offsetof(nmea_ubx_unicore_bestnav_b, diff_age), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"sol_age", NULL, offsetof(nmea_ubx_unicore_bestnav_b, sol_age), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_svs", NULL, offsetof(nmea_ubx_unicore_bestnav_b, num_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"num_soln_svs", NULL, offsetof(nmea_ubx_unicore_bestnav_b, num_soln_svs), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"reserved1", NULL, offsetof(nmea_ubx_unicore_bestnav_b, reserved1), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 3, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"ext_sol_stat", NULL, offsetof(nmea_ubx_unicore_bestnav_b, ext_sol_stat), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"rtk_verified", NULL, offsetof(nmea_ubx_unicore_bestnav_b, rtk_verified), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"iono_correction", NULL, offsetof(nmea_ubx_unicore_bestnav_b, iono_correction), 0, 0, NMEA_UBX_ITEM_PART, 3, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_bds3_sig_mask", NULL, offsetof(nmea_ubx_unicore_bestnav_b, gal_bds3_sig_mask), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e1", NULL, offsetof(nmea_ubx_unicore_bestnav_b, gal_e1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e5b", NULL, offsetof(nmea_ubx_unicore_bestnav_b, gal_e5b), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gal_e5a", NULL, offsetof(nmea_ubx_unicore_bestnav_b, gal_e5a), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1i", NULL, offsetof(nmea_ubx_unicore_bestnav_b, bds_b1i), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b3i", NULL, offsetof(nmea_ubx_unicore_bestnav_b, bds_b3i), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b2a", NULL, offsetof(nmea_ubx_unicore_bestnav_b, bds_b2a), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1c", NULL, offsetof(nmea_ubx_unicore_bestnav_b, bds_b1c), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_glo_bds2_sig_mask", NULL, offsetof(nmea_ubx_unicore_bestnav_b, gps_glo_bds2_sig_mask), 0, 0, NMEA_UBX_ITEM_WORD, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l1", NULL, offsetof(nmea_ubx_unicore_bestnav_b, gps_l1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l2", NULL, offsetof(nmea_ubx_unicore_bestnav_b, gps_l2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 1, NMEA_UBX_PRINT_NUMBER, false},
+    {"gps_l5", NULL, offsetof(nmea_ubx_unicore_bestnav_b, gps_l5), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 2, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b3", NULL, offsetof(nmea_ubx_unicore_bestnav_b, bds_b3), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 3, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_l1", NULL, offsetof(nmea_ubx_unicore_bestnav_b, glo_l1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 4, NMEA_UBX_PRINT_NUMBER, false},
+    {"glo_l2", NULL, offsetof(nmea_ubx_unicore_bestnav_b, glo_l2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 5, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b1", NULL, offsetof(nmea_ubx_unicore_bestnav_b, bds_b1), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 6, NMEA_UBX_PRINT_NUMBER, false},
+    {"bds_b2", NULL, offsetof(nmea_ubx_unicore_bestnav_b, bds_b2), 0, 0, NMEA_UBX_ITEM_PART_FLAG, 1, 1, 7, NMEA_UBX_PRINT_NUMBER, false},
+    {"vel_sol_status", &ubx_enum_unicore_sol_status, offsetof(nmea_ubx_unicore_bestnav_b, vel_sol_status), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"vel_type", &ubx_enum_unicore_pos_type, offsetof(nmea_ubx_unicore_bestnav_b, vel_type), 0, 0, NMEA_UBX_ITEM_UNSIGNED, 4, 4, 0, NMEA_UBX_PRINT_CODE, false},
+    {"latency", NULL, offsetof(nmea_ubx_unicore_bestnav_b, latency), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"age", NULL, offsetof(nmea_ubx_unicore_bestnav_b, age), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hor_spd", NULL, offsetof(nmea_ubx_unicore_bestnav_b, hor_spd), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"trk_gnd", NULL, offsetof(nmea_ubx_unicore_bestnav_b, trk_gnd), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vert_spd", NULL, offsetof(nmea_ubx_unicore_bestnav_b, vert_spd), 0, 0, NMEA_UBX_ITEM_FLOAT, 8, 8, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"vert_spd_std", NULL, offsetof(nmea_ubx_unicore_bestnav_b, vert_spd_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false},
+    {"hor_spd_std", NULL, offsetof(nmea_ubx_unicore_bestnav_b, hor_spd_std), 0, 0, NMEA_UBX_ITEM_FLOAT, 4, 4, 0, NMEA_UBX_PRINT_NUMBER, false}
 };
 
 #ifndef NMEA_UBX_NO_FAST_READ
@@ -15168,6 +15526,643 @@ static bool ubx_skytraq_gps_subframe_fast(const uint8_t *p, size_t len, nmea_ubx
     return true;
 }
 
+static bool ubx_unicore_obsvm_b_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_unicore_obsvm_b *m = &out->as.unicore_obsvm_b;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    size_t k;
+    if (left < 4)
+        return false;
+    m->num_obs = ubx_u32(q);
+    q += 4;
+    left -= 4;
+    {
+        size_t count = (uint32_t)m->num_obs;
+        if (count * 40 > left || count > NMEA_UBX_UNICORE_OBSVM_B_OBSERVATIONS_MAX)
+            return false;
+        for (k = 0; k < count; k++, q += 40) {
+            nmea_ubx_unicore_obsvm_b_observation *e = &m->observations[k];
+            e->glo_freq = ubx_u16(q);
+            e->prn = ubx_u16(q + 2);
+            { /* a float's bits, as sent */
+                uint64_t bits = (uint64_t)ubx_u64(q + 4);
+                memcpy(&e->psr, &bits, 8);
+            }
+            { /* a float's bits, as sent */
+                uint64_t bits = (uint64_t)ubx_u64(q + 12);
+                memcpy(&e->adr, &bits, 8);
+            }
+            e->psr_std = ubx_u16(q + 20);
+            e->adr_std = ubx_u16(q + 22);
+            { /* a float's bits, as sent */
+                uint32_t bits = (uint32_t)ubx_u32(q + 24);
+                memcpy(&e->dopp, &bits, 4);
+            }
+            e->cn0 = ubx_u16(q + 28);
+            e->reserved1 = ubx_u16(q + 30);
+            { /* a float's bits, as sent */
+                uint32_t bits = (uint32_t)ubx_u32(q + 32);
+                memcpy(&e->locktime, &bits, 4);
+            }
+            w = ubx_u32(q + 36);
+            e->tr_status = (uint32_t)w;
+            e->sv_chan = (uint8_t)(w >> 5 & 0x1Fu);
+            e->phase_lock = (w >> 10 & 0x1u) != 0;
+            e->code_lock = (w >> 12 & 0x1u) != 0;
+            e->system = (uint8_t)(w >> 16 & 0x7u);
+            e->signal_type = (uint8_t)(w >> 21 & 0x1Fu);
+            e->l2c_flag = (w >> 26 & 0x1u) != 0;
+        }
+        left -= count * 40;
+        m->observations_count = (uint16_t)count;
+    }
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_unicore_version_b_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_unicore_version_b *m = &out->as.unicore_version_b;
+    const uint8_t *q = p;
+    size_t left = len;
+    if (left < 308)
+        return false;
+    m->device = ubx_u32(q);
+    memcpy(m->sw_version, q + 4, 33);
+    memcpy(m->auth_type, q + 37, 129);
+    memcpy(m->psn, q + 166, 66);
+    memcpy(m->efuse_id, q + 232, 33);
+    memcpy(m->comp_time, q + 265, 43);
+    q += 308;
+    left -= 308;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_unicore_adrnav_b_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_unicore_adrnav_b *m = &out->as.unicore_adrnav_b;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    if (left < 120)
+        return false;
+    m->sol_status = ubx_u32(q);
+    m->pos_type = ubx_u32(q + 4);
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 8);
+        memcpy(&m->lat, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 16);
+        memcpy(&m->lon, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 24);
+        memcpy(&m->height, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 32);
+        memcpy(&m->undulation, &bits, 4);
+    }
+    m->datum_id = ubx_u32(q + 36);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 40);
+        memcpy(&m->lat_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 44);
+        memcpy(&m->lon_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 48);
+        memcpy(&m->height_std, &bits, 4);
+    }
+    memcpy(m->station_id, q + 52, 4);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 56);
+        memcpy(&m->diff_age, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 60);
+        memcpy(&m->sol_age, &bits, 4);
+    }
+    m->num_svs = q[64];
+    m->num_soln_svs = q[65];
+    m->reserved1 = (uint32_t)ubx_le(q + 66, 3);
+    w = q[69];
+    m->ext_sol_stat = (uint8_t)w;
+    m->rtk_verified = (w & 0x1u) != 0;
+    m->iono_correction = (uint8_t)(w >> 1 & 0x7u);
+    w = q[70];
+    m->gal_bds3_sig_mask = (uint8_t)w;
+    m->gal_e1 = (w & 0x1u) != 0;
+    m->gal_e5b = (w >> 1 & 0x1u) != 0;
+    m->gal_e5a = (w >> 2 & 0x1u) != 0;
+    m->bds_b1i = (w >> 4 & 0x1u) != 0;
+    m->bds_b3i = (w >> 5 & 0x1u) != 0;
+    m->bds_b2a = (w >> 6 & 0x1u) != 0;
+    m->bds_b1c = (w >> 7 & 0x1u) != 0;
+    w = q[71];
+    m->gps_glo_bds2_sig_mask = (uint8_t)w;
+    m->gps_l1 = (w & 0x1u) != 0;
+    m->gps_l2 = (w >> 1 & 0x1u) != 0;
+    m->gps_l5 = (w >> 2 & 0x1u) != 0;
+    m->bds_b3 = (w >> 3 & 0x1u) != 0;
+    m->glo_l1 = (w >> 4 & 0x1u) != 0;
+    m->glo_l2 = (w >> 5 & 0x1u) != 0;
+    m->bds_b1 = (w >> 6 & 0x1u) != 0;
+    m->bds_b2 = (w >> 7 & 0x1u) != 0;
+    m->vel_sol_status = ubx_u32(q + 72);
+    m->vel_type = ubx_u32(q + 76);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 80);
+        memcpy(&m->latency, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 84);
+        memcpy(&m->age, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 88);
+        memcpy(&m->hor_spd, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 96);
+        memcpy(&m->trk_gnd, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 104);
+        memcpy(&m->vert_spd, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 112);
+        memcpy(&m->vert_spd_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 116);
+        memcpy(&m->hor_spd_std, &bits, 4);
+    }
+    q += 120;
+    left -= 120;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_unicore_bestnavxyz_b_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_unicore_bestnavxyz_b *m = &out->as.unicore_bestnavxyz_b;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    if (left < 115)
+        return false;
+    m->sol_status = ubx_u32(q);
+    m->pos_type = ubx_u32(q + 4);
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 8);
+        memcpy(&m->p_x, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 16);
+        memcpy(&m->p_y, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 24);
+        memcpy(&m->p_z, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 32);
+        memcpy(&m->p_x_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 36);
+        memcpy(&m->p_y_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 40);
+        memcpy(&m->p_z_std, &bits, 4);
+    }
+    m->vel_sol_status = ubx_u32(q + 44);
+    m->vel_type = ubx_u32(q + 48);
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 52);
+        memcpy(&m->vel_x, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 60);
+        memcpy(&m->vel_y, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 68);
+        memcpy(&m->vel_z, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 76);
+        memcpy(&m->vel_x_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 80);
+        memcpy(&m->vel_y_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 84);
+        memcpy(&m->vel_z_std, &bits, 4);
+    }
+    memcpy(m->station_id, q + 88, 4);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 92);
+        memcpy(&m->vel_latency, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 96);
+        memcpy(&m->diff_age, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 100);
+        memcpy(&m->sol_age, &bits, 4);
+    }
+    m->num_svs = q[104];
+    m->num_soln_svs = q[105];
+    m->num_gg_l1 = q[106];
+    m->num_soln_multi_svs = q[107];
+    m->reserved1 = ubx_u32(q + 108);
+    w = q[112];
+    m->ext_sol_stat = (uint8_t)w;
+    m->rtk_verified = (w & 0x1u) != 0;
+    m->iono_correction = (uint8_t)(w >> 1 & 0x7u);
+    w = q[113];
+    m->gal_bds3_sig_mask = (uint8_t)w;
+    m->gal_e1 = (w & 0x1u) != 0;
+    m->gal_e5b = (w >> 1 & 0x1u) != 0;
+    m->gal_e5a = (w >> 2 & 0x1u) != 0;
+    m->bds_b1i = (w >> 4 & 0x1u) != 0;
+    m->bds_b3i = (w >> 5 & 0x1u) != 0;
+    m->bds_b2a = (w >> 6 & 0x1u) != 0;
+    m->bds_b1c = (w >> 7 & 0x1u) != 0;
+    w = q[114];
+    m->gps_glo_bds2_sig_mask = (uint8_t)w;
+    m->gps_l1 = (w & 0x1u) != 0;
+    m->gps_l2 = (w >> 1 & 0x1u) != 0;
+    m->gps_l5 = (w >> 2 & 0x1u) != 0;
+    m->bds_b3 = (w >> 3 & 0x1u) != 0;
+    m->glo_l1 = (w >> 4 & 0x1u) != 0;
+    m->glo_l2 = (w >> 5 & 0x1u) != 0;
+    m->bds_b1 = (w >> 6 & 0x1u) != 0;
+    m->bds_b2 = (w >> 7 & 0x1u) != 0;
+    q += 115;
+    left -= 115;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_unicore_rtkstatus_b_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_unicore_rtkstatus_b *m = &out->as.unicore_rtkstatus_b;
+    const uint8_t *q = p;
+    size_t left = len;
+    if (left < 56)
+        return false;
+    m->gps_source = ubx_u32(q);
+    m->reserved1 = ubx_u32(q + 4);
+    m->bds_source1 = ubx_u32(q + 8);
+    m->bds_source2 = ubx_u32(q + 12);
+    m->reserved2 = ubx_u32(q + 16);
+    m->glo_source = ubx_u32(q + 20);
+    m->reserved3 = ubx_u32(q + 24);
+    m->gal_source1 = ubx_u32(q + 28);
+    m->gal_source2 = ubx_u32(q + 32);
+    m->qzss_source = ubx_u32(q + 36);
+    m->reserved4 = ubx_u32(q + 40);
+    m->pos_type = ubx_u32(q + 44);
+    m->calc_status = ubx_u32(q + 48);
+    m->ion_detected = q[52];
+    m->dual_rtk_flag = q[53];
+    m->adr_number = q[54];
+    m->reserved5 = q[55];
+    q += 56;
+    left -= 56;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_unicore_uniheading_b_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_unicore_uniheading_b *m = &out->as.unicore_uniheading_b;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    if (left < 44)
+        return false;
+    m->sol_status = ubx_u32(q);
+    m->pos_type = ubx_u32(q + 4);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 8);
+        memcpy(&m->length, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 12);
+        memcpy(&m->heading, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 16);
+        memcpy(&m->pitch, &bits, 4);
+    }
+    m->reserved1 = ubx_u32(q + 20);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 24);
+        memcpy(&m->hdg_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 28);
+        memcpy(&m->ptch_std, &bits, 4);
+    }
+    memcpy(m->station_id, q + 32, 4);
+    m->num_svs = q[36];
+    m->num_soln_svs = q[37];
+    m->num_obs = q[38];
+    m->num_multi = q[39];
+    m->reserved2 = q[40];
+    w = q[41];
+    m->ext_sol_stat = (uint8_t)w;
+    m->rtk_verified = (w & 0x1u) != 0;
+    m->iono_correction = (uint8_t)(w >> 1 & 0x7u);
+    w = q[42];
+    m->gal_bds3_sig_mask = (uint8_t)w;
+    m->gal_e1 = (w & 0x1u) != 0;
+    m->gal_e5b = (w >> 1 & 0x1u) != 0;
+    m->gal_e5a = (w >> 2 & 0x1u) != 0;
+    m->bds_b1i = (w >> 4 & 0x1u) != 0;
+    m->bds_b3i = (w >> 5 & 0x1u) != 0;
+    m->bds_b2a = (w >> 6 & 0x1u) != 0;
+    m->bds_b1c = (w >> 7 & 0x1u) != 0;
+    w = q[43];
+    m->gps_glo_bds2_sig_mask = (uint8_t)w;
+    m->gps_l1 = (w & 0x1u) != 0;
+    m->gps_l2 = (w >> 1 & 0x1u) != 0;
+    m->gps_l5 = (w >> 2 & 0x1u) != 0;
+    m->bds_b3 = (w >> 3 & 0x1u) != 0;
+    m->glo_l1 = (w >> 4 & 0x1u) != 0;
+    m->glo_l2 = (w >> 5 & 0x1u) != 0;
+    m->bds_b1 = (w >> 6 & 0x1u) != 0;
+    m->bds_b2 = (w >> 7 & 0x1u) != 0;
+    q += 44;
+    left -= 44;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_unicore_pvtsln_b_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_unicore_pvtsln_b *m = &out->as.unicore_pvtsln_b;
+    const uint8_t *q = p;
+    size_t left = len;
+    size_t k;
+    if (left < 142)
+        return false;
+    m->best_pos_type = ubx_u32(q);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 4);
+        memcpy(&m->best_pos_height, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 8);
+        memcpy(&m->best_pos_lat, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 16);
+        memcpy(&m->best_pos_lon, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 24);
+        memcpy(&m->best_pos_height_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 28);
+        memcpy(&m->best_pos_lat_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 32);
+        memcpy(&m->best_pos_lon_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 36);
+        memcpy(&m->best_pos_diff_age, &bits, 4);
+    }
+    m->psr_pos_type = ubx_u32(q + 40);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 44);
+        memcpy(&m->psr_pos_height, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 48);
+        memcpy(&m->psr_pos_lat, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 56);
+        memcpy(&m->psr_pos_lon, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 64);
+        memcpy(&m->undulation, &bits, 4);
+    }
+    m->best_pos_svs = q[68];
+    m->best_pos_soln_svs = q[69];
+    m->psr_pos_svs = q[70];
+    m->psr_pos_soln_svs = q[71];
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 72);
+        memcpy(&m->psr_vel_north, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 80);
+        memcpy(&m->psr_vel_east, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 88);
+        memcpy(&m->psr_vel_ground, &bits, 8);
+    }
+    m->heading_type = ubx_u32(q + 96);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 100);
+        memcpy(&m->heading_length, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 104);
+        memcpy(&m->heading_degree, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 108);
+        memcpy(&m->heading_pitch, &bits, 4);
+    }
+    m->heading_tracked_svs = q[112];
+    m->heading_soln_svs = q[113];
+    m->heading_gg_l1 = q[114];
+    m->heading_gg_l1_l2 = q[115];
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 116);
+        memcpy(&m->gdop, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 120);
+        memcpy(&m->pdop, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 124);
+        memcpy(&m->hdop, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 128);
+        memcpy(&m->htdop, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 132);
+        memcpy(&m->tdop, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 136);
+        memcpy(&m->cutoff, &bits, 4);
+    }
+    m->prn_num = ubx_u16(q + 140);
+    q += 142;
+    left -= 142;
+    {
+        size_t count = left > 0 ? (left - 0) / 2 : 0;
+        if (count > 65535)
+            count = 65535;
+        if (count * 2 > left || count > NMEA_UBX_UNICORE_PVTSLN_B_PRNS_MAX)
+            return false;
+        for (k = 0; k < count; k++, q += 2) {
+            nmea_ubx_unicore_pvtsln_b_prn *e = &m->prns[k];
+            e->prn = ubx_u16(q);
+        }
+        left -= count * 2;
+        m->prns_count = (uint16_t)count;
+    }
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
+static bool ubx_unicore_bestnav_b_fast(const uint8_t *p, size_t len, nmea_ubx_message *out)
+{
+    nmea_ubx_unicore_bestnav_b *m = &out->as.unicore_bestnav_b;
+    const uint8_t *q = p;
+    size_t left = len;
+    uint64_t w;
+    if (left < 120)
+        return false;
+    m->sol_status = ubx_u32(q);
+    m->pos_type = ubx_u32(q + 4);
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 8);
+        memcpy(&m->lat, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 16);
+        memcpy(&m->lon, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 24);
+        memcpy(&m->height, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 32);
+        memcpy(&m->undulation, &bits, 4);
+    }
+    m->datum_id = ubx_u32(q + 36);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 40);
+        memcpy(&m->lat_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 44);
+        memcpy(&m->lon_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 48);
+        memcpy(&m->height_std, &bits, 4);
+    }
+    memcpy(m->station_id, q + 52, 4);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 56);
+        memcpy(&m->diff_age, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 60);
+        memcpy(&m->sol_age, &bits, 4);
+    }
+    m->num_svs = q[64];
+    m->num_soln_svs = q[65];
+    m->reserved1 = (uint32_t)ubx_le(q + 66, 3);
+    w = q[69];
+    m->ext_sol_stat = (uint8_t)w;
+    m->rtk_verified = (w & 0x1u) != 0;
+    m->iono_correction = (uint8_t)(w >> 1 & 0x7u);
+    w = q[70];
+    m->gal_bds3_sig_mask = (uint8_t)w;
+    m->gal_e1 = (w & 0x1u) != 0;
+    m->gal_e5b = (w >> 1 & 0x1u) != 0;
+    m->gal_e5a = (w >> 2 & 0x1u) != 0;
+    m->bds_b1i = (w >> 4 & 0x1u) != 0;
+    m->bds_b3i = (w >> 5 & 0x1u) != 0;
+    m->bds_b2a = (w >> 6 & 0x1u) != 0;
+    m->bds_b1c = (w >> 7 & 0x1u) != 0;
+    w = q[71];
+    m->gps_glo_bds2_sig_mask = (uint8_t)w;
+    m->gps_l1 = (w & 0x1u) != 0;
+    m->gps_l2 = (w >> 1 & 0x1u) != 0;
+    m->gps_l5 = (w >> 2 & 0x1u) != 0;
+    m->bds_b3 = (w >> 3 & 0x1u) != 0;
+    m->glo_l1 = (w >> 4 & 0x1u) != 0;
+    m->glo_l2 = (w >> 5 & 0x1u) != 0;
+    m->bds_b1 = (w >> 6 & 0x1u) != 0;
+    m->bds_b2 = (w >> 7 & 0x1u) != 0;
+    m->vel_sol_status = ubx_u32(q + 72);
+    m->vel_type = ubx_u32(q + 76);
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 80);
+        memcpy(&m->latency, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 84);
+        memcpy(&m->age, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 88);
+        memcpy(&m->hor_spd, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 96);
+        memcpy(&m->trk_gnd, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint64_t bits = (uint64_t)ubx_u64(q + 104);
+        memcpy(&m->vert_spd, &bits, 8);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 112);
+        memcpy(&m->vert_spd_std, &bits, 4);
+    }
+    { /* a float's bits, as sent */
+        uint32_t bits = (uint32_t)ubx_u32(q + 116);
+        memcpy(&m->hor_spd_std, &bits, 4);
+    }
+    q += 120;
+    left -= 120;
+    m->trailing.ptr = q;
+    m->trailing.len = left;
+    return true;
+}
+
 typedef bool (*ubx_fast_reader)(const uint8_t *p, size_t len, nmea_ubx_message *out);
 
 /* By layout, in the order of ubx_layouts (NULL: a layout only a host sends, which the interpreter
@@ -15617,16 +16612,38 @@ static const ubx_fast_reader ubx_fast[] = {
     ubx_skytraq_sv_ch_status_fast,
     ubx_skytraq_rcv_state_fast,
     ubx_skytraq_gps_subframe_fast,
+    ubx_unicore_obsvm_b_fast,
+    ubx_unicore_version_b_fast,
+    ubx_unicore_adrnav_b_fast,
+    ubx_unicore_bestnavxyz_b_fast,
+    ubx_unicore_rtkstatus_b_fast,
+    ubx_unicore_uniheading_b_fast,
+    ubx_unicore_pvtsln_b_fast,
+    ubx_unicore_bestnav_b_fast,
 };
 #endif
 
+/* The header fields a Unicore binary message keeps. */
+static const nmea_ubx_header_field ubx_kept_unicore[] = {
+    {"cpu_idle", 3, 1, offsetof(nmea_ubx_message, header.unicore.cpu_idle)},
+    {"time_ref", 8, 1, offsetof(nmea_ubx_message, header.unicore.time_ref)},
+    {"time_status", 9, 1, offsetof(nmea_ubx_message, header.unicore.time_status)},
+    {"week", 10, 2, offsetof(nmea_ubx_message, header.unicore.week)},
+    {"time_of_week", 12, 4, offsetof(nmea_ubx_message, header.unicore.time_of_week)},
+    {"version", 16, 4, offsetof(nmea_ubx_message, header.unicore.version)},
+    {"reserved", 20, 1, offsetof(nmea_ubx_message, header.unicore.reserved)},
+    {"leap_seconds", 21, 1, offsetof(nmea_ubx_message, header.unicore.leap_seconds)},
+    {"output_delay", 22, 2, offsetof(nmea_ubx_message, header.unicore.output_delay)},
+};
+
 /* The framing of each protocol, by its nmea_ubx_protocol (spec/binary/<protocol>/protocol.yaml). */
 static const nmea_ubx_framing ubx_framings[] = {
-    {"ubx", "UBX", {0xB5, 0x62}, 6, 4, 0xFFFF, 2, NMEA_UBX_CHECK_FLETCHER8, 2, 2, {0x00, 0x00}, 0, false, 8, 0, {{"class", 0, 8}, {"id", 8, 8}}},
-    {"casic", "CASIC", {0xBA, 0xCE}, 6, 2, 0xFFFF, 4, NMEA_UBX_CHECK_SUM32, 2, 4, {0x00, 0x00}, 0, false, 10, 0, {{"class", 0, 8}, {"id", 8, 8}}},
-    {"sbf", "SBF", {0x24, 0x40}, 8, 6, 0xFFFF, 4, NMEA_UBX_CHECK_CRC16_CCITT, 4, 2, {0x00, 0x00}, 0, false, 0, 2, {{"number", 0, 13}, {"revision", 13, 3}}},
-    {"sirf", "SIRF", {0xA0, 0xA2}, 4, 2, 0xFFFF, 0, NMEA_UBX_CHECK_SUM15, 4, 2, {0xB0, 0xB3}, 2, true, 8, 0, {{0, 0, 0}, {0, 0, 0}}},
-    {"skytraq", "SKYTRAQ", {0xA0, 0xA1}, 4, 2, 0xFFFF, 0, NMEA_UBX_CHECK_XOR8, 4, 1, {0x0D, 0x0A}, 2, true, 7, 0, {{0, 0, 0}, {0, 0, 0}}},
+    {"ubx", "UBX", {0xB5, 0x62, 0x00}, 2, 6, 4, 0xFFFF, 2, NMEA_UBX_CHECK_FLETCHER8, 2, 2, {0x00, 0x00}, 0, false, 8, 0, {{"class", 0, 8}, {"id", 8, 8}}, NULL, 0},
+    {"casic", "CASIC", {0xBA, 0xCE, 0x00}, 2, 6, 2, 0xFFFF, 4, NMEA_UBX_CHECK_SUM32, 2, 4, {0x00, 0x00}, 0, false, 10, 0, {{"class", 0, 8}, {"id", 8, 8}}, NULL, 0},
+    {"sbf", "SBF", {0x24, 0x40, 0x00}, 2, 8, 6, 0xFFFF, 4, NMEA_UBX_CHECK_CRC16_CCITT, 4, 2, {0x00, 0x00}, 0, false, 0, 2, {{"number", 0, 13}, {"revision", 13, 3}}, NULL, 0},
+    {"sirf", "SIRF", {0xA0, 0xA2, 0x00}, 2, 4, 2, 0xFFFF, 0, NMEA_UBX_CHECK_SUM15, 4, 2, {0xB0, 0xB3}, 2, true, 8, 0, {{0, 0, 0}, {0, 0, 0}}, NULL, 0},
+    {"skytraq", "SKYTRAQ", {0xA0, 0xA1, 0x00}, 2, 4, 2, 0xFFFF, 0, NMEA_UBX_CHECK_XOR8, 4, 1, {0x0D, 0x0A}, 2, true, 7, 0, {{0, 0, 0}, {0, 0, 0}}, NULL, 0},
+    {"unicore", "UNICORE", {0xAA, 0x44, 0xB5}, 3, 24, 6, 0xFFFF, 4, NMEA_UBX_CHECK_CRC32, 0, 4, {0x00, 0x00}, 0, false, 28, 0, {{"message_id", 0, 16}, {0, 0, 0}}, ubx_kept_unicore, 9},
 };
 /* Every layout, in the order of nmea_ubx_layout: by class and id, then spec order. */
 static const nmea_ubx_layout_info ubx_layouts[] = {
@@ -16074,6 +17091,14 @@ static const nmea_ubx_layout_info ubx_layouts[] = {
     {"sv_ch_status", "0xDE", 0xDE, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, -1, -1, 0, ubx_skytraq_sv_ch_status_items, 3, 1, offsetof(nmea_ubx_skytraq_sv_ch_status, trailing)},
     {"rcv_state", "0xDF", 0xDF, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, 80, -1, 0, ubx_skytraq_rcv_state_items, 17, 1, offsetof(nmea_ubx_skytraq_rcv_state, trailing)},
     {"gps_subframe", "0xE0", 0xE0, 0x00, true, NMEA_UBX_PROTOCOL_SKYTRAQ, 32, -1, 0, ubx_skytraq_gps_subframe_items, 3, 1, offsetof(nmea_ubx_skytraq_gps_subframe, trailing)},
+    {"obsvm_b", "OBSVMB", 0x0C, 0x00, true, NMEA_UBX_PROTOCOL_UNICORE, -1, -1, 0, ubx_unicore_obsvm_b_items, 2, 0, offsetof(nmea_ubx_unicore_obsvm_b, trailing)},
+    {"version_b", "VERSIONB", 0x25, 0x00, true, NMEA_UBX_PROTOCOL_UNICORE, 308, -1, 0, ubx_unicore_version_b_items, 6, 0, offsetof(nmea_ubx_unicore_version_b, trailing)},
+    {"adrnav_b", "ADRNAVB", 0x8E, 0x00, true, NMEA_UBX_PROTOCOL_UNICORE, 120, -1, 0, ubx_unicore_adrnav_b_items, 45, 0, offsetof(nmea_ubx_unicore_adrnav_b, trailing)},
+    {"bestnavxyz_b", "BESTNAVXYZB", 0xF0, 0x00, true, NMEA_UBX_PROTOCOL_UNICORE, 115, -1, 0, ubx_unicore_bestnavxyz_b_items, 45, 0, offsetof(nmea_ubx_unicore_bestnavxyz_b, trailing)},
+    {"rtkstatus_b", "RTKSTATUSB", 0xFD, 0x01, true, NMEA_UBX_PROTOCOL_UNICORE, 56, -1, 0, ubx_unicore_rtkstatus_b_items, 17, 0, offsetof(nmea_ubx_unicore_rtkstatus_b, trailing)},
+    {"uniheading_b", "UNIHEADINGB", 0xCC, 0x03, true, NMEA_UBX_PROTOCOL_UNICORE, 44, -1, 0, ubx_unicore_uniheading_b_items, 34, 0, offsetof(nmea_ubx_unicore_uniheading_b, trailing)},
+    {"pvtsln_b", "PVTSLNB", 0xFD, 0x03, true, NMEA_UBX_PROTOCOL_UNICORE, -1, -1, 0, ubx_unicore_pvtsln_b_items, 36, 0, offsetof(nmea_ubx_unicore_pvtsln_b, trailing)},
+    {"bestnav_b", "BESTNAVB", 0x46, 0x08, true, NMEA_UBX_PROTOCOL_UNICORE, 120, -1, 0, ubx_unicore_bestnav_b_items, 45, 0, offsetof(nmea_ubx_unicore_bestnav_b, trailing)},
 };
 
 /* The layout a UBX payload of `len` bytes of class and id `msg_class`, `msg_id` is read as,
@@ -17320,6 +18345,14 @@ static const struct {
     {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDE, 0x00}, 441, 441}, /* SKYTRAQ 0xDE */
     {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xDF, 0x00}, 442, 442}, /* SKYTRAQ 0xDF */
     {NMEA_UBX_PROTOCOL_SKYTRAQ, 1, {0xE0, 0x00}, 443, 443}, /* SKYTRAQ 0xE0 */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x0C, 0x00}, 444, 444}, /* UNICORE OBSVMB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x25, 0x00}, 445, 445}, /* UNICORE VERSIONB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x8E, 0x00}, 446, 446}, /* UNICORE ADRNAVB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xF0, 0x00}, 447, 447}, /* UNICORE BESTNAVXYZB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xFD, 0x01}, 448, 448}, /* UNICORE RTKSTATUSB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xCC, 0x03}, 449, 449}, /* UNICORE UNIHEADINGB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0xFD, 0x03}, 450, 450}, /* UNICORE PVTSLNB */
+    {NMEA_UBX_PROTOCOL_UNICORE, 0, {0x46, 0x08}, 451, 451}, /* UNICORE BESTNAVB */
 };
 
 /* nmea_ubx_decode, inlined into nmea_ubx_decode_frame (a call less a frame). */
@@ -17381,6 +18414,7 @@ bool nmea_ubx_decode_frame_of(nmea_ubx_protocol protocol, const uint8_t *frame, 
     f = &ubx_framings[protocol];
     if (!ubx_open_frame_of(f, frame, len, &payload, &payload_len, err))
         return false;
+    ubx_read_kept(f, frame, (uint8_t *)out);
     key = f->key_at ? frame + f->key_at : payload;
     for (i = 0; i < sizeof ubx_keyed / sizeof ubx_keyed[0]; i++) {
         if (ubx_keyed[i].protocol != protocol)
@@ -17417,11 +18451,12 @@ size_t nmea_ubx_encode(const nmea_ubx_message *message, uint8_t *buf, size_t cap
             snprintf(err->text, sizeof err->text, "no protocol %u", (unsigned)message->as.unknown.protocol);
             return (size_t)ubx_fail(err, NMEA_UBX_BAD_VALUE, NULL, "protocol");
         }
-        return ubx_write_frame(&ubx_framings[message->as.unknown.protocol], NULL, NULL, &message->as.unknown, buf, cap,
-                               err);
+        return ubx_write_frame(&ubx_framings[message->as.unknown.protocol], NULL, NULL, &message->as.unknown,
+                               (const uint8_t *)message, buf, cap, err);
     }
     l = &ubx_layouts[message->layout];
-    return ubx_write_frame(&ubx_framings[l->protocol], l, (const uint8_t *)&message->as, NULL, buf, cap, err);
+    return ubx_write_frame(&ubx_framings[l->protocol], l, (const uint8_t *)&message->as, NULL, (const uint8_t *)message,
+                           buf, cap, err);
 }
 
 size_t nmea_ubx_json(const nmea_ubx_message *message, char *buf, size_t cap)
@@ -17436,10 +18471,11 @@ size_t nmea_ubx_json(const nmea_ubx_message *message, char *buf, size_t cap)
         const nmea_ubx_unknown *u = &message->as.unknown;
         const nmea_ubx_framing *f = &ubx_framings[u->protocol < sizeof ubx_framings / sizeof ubx_framings[0] ? u->protocol : 0];
         ubx_json_puts(&j, "null");
+        ubx_json_kept(&j, f, (const uint8_t *)message);
         if (f->key_at) { /* UBX, CASIC: the header's class and id; SBF: its block number and revision */
             unsigned word = f->big ? (unsigned)u->msg_class << 8 | u->msg_id : (unsigned)u->msg_id << 8 | u->msg_class;
             size_t k;
-            for (k = 0; k < 2; k++) {
+            for (k = 0; k < 2 && f->key_fields[k].name; k++) { /* (Unicore: its message id alone) */
                 ubx_json_puts(&j, ",\"");
                 ubx_json_puts(&j, f->key_fields[k].name);
                 ubx_json_puts(&j, "\":");
@@ -17457,6 +18493,7 @@ size_t nmea_ubx_json(const nmea_ubx_message *message, char *buf, size_t cap)
         ubx_json_puts(&j, "\"");
         ubx_json_puts(&j, l->id);
         ubx_json_puts(&j, "\"");
+        ubx_json_kept(&j, &ubx_framings[l->protocol], (const uint8_t *)message);
         ubx_json_items(&j, l->items, l->n_items, (const uint8_t *)&message->as);
         memcpy(&trailing, (const uint8_t *)&message->as + l->trailing, sizeof trailing);
         ubx_json_key(&j, "trailing");

@@ -127,12 +127,17 @@
 //   spec/binary/skytraq/messages/msg_nack.yaml, spec/binary/skytraq/messages/nav_data.yaml,
 //   spec/binary/skytraq/messages/meas_time.yaml, spec/binary/skytraq/messages/raw_meas.yaml,
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
-//   spec/binary/skytraq/messages/gps_subframe.yaml, spec/enums/sbf_datum.yaml,
+//   spec/binary/skytraq/messages/gps_subframe.yaml, spec/binary/unicore/messages/obsvm_b.yaml,
+//   spec/binary/unicore/messages/version_b.yaml, spec/binary/unicore/messages/adrnav_b.yaml,
+//   spec/binary/unicore/messages/bestnavxyz_b.yaml, spec/binary/unicore/messages/rtkstatus_b.yaml,
+//   spec/binary/unicore/messages/uniheading_b.yaml, spec/binary/unicore/messages/pvtsln_b.yaml,
+//   spec/binary/unicore/messages/bestnav_b.yaml, spec/enums/sbf_datum.yaml,
 //   spec/enums/sbf_pvt_error.yaml, spec/enums/sbf_time_system.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml (digest 6020995ad4707a35)
+//   spec/enums/ubx_gnss_id.yaml, spec/enums/unicore_pos_type.yaml,
+//   spec/enums/unicore_sol_status.yaml (digest 89f2cb32bf49ce72)
 // Regenerate: make generate (python3 -m generator generate)
 
-/* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ: spec/binary/<protocol>):
+/* The UBX messages of spec/binary/ubx (and those of CASIC, SBF, SIRF, SKYTRAQ, UNICORE: spec/binary/<protocol>):
    a struct per layout, every field typed, decoded from a frame's payload and encoded back to the
    same bytes, with no heap. Beside the NMEA pair and independent of it: a firmware links
    nmea_ubx.c only if it wants UBX (nmea.h's framer splits the frames out of a byte stream). */
@@ -201,7 +206,9 @@ typedef enum {
     NMEA_UBX_CHECK_XOR8,      /* the XOR of the bytes */
     NMEA_UBX_CHECK_SUM15,     /* the bytes' sum modulo 2^15, two bytes big endian */
     NMEA_UBX_CHECK_SUM32,     /* the sum of the bytes as 32-bit little-endian words, sent little endian */
-    NMEA_UBX_CHECK_CRC16_CCITT /* CRC-CCITT (polynomial 0x1021, initial value 0), sent little endian (SBF) */
+    NMEA_UBX_CHECK_CRC16_CCITT, /* CRC-CCITT (polynomial 0x1021, initial value 0), sent little endian (SBF) */
+    NMEA_UBX_CHECK_CRC32      /* CRC-32 (reflected 0xEDB88320, initial value 0, no final inversion), sent little
+                                 endian (Unicore) */
 } nmea_ubx_check;
 
 /* A field of the header that tells the message (an unknown message's JSON names it): its name, its
@@ -211,17 +218,29 @@ typedef struct {
     uint8_t low, bits;
 } nmea_ubx_key_field;
 
+/* A header field that a decoded message keeps and its frame is written with (Unicore's time and
+   status: spec/binary/<protocol>/protocol.yaml's fields of `identity: false`): its name, its first
+   byte in the frame, its bytes (1, 2 or 4: unsigned, in the protocol's byte order) and the offset of
+   its member (of as many bytes) in nmea_ubx_message. */
+typedef struct {
+    const char *name;
+    uint8_t at, size;
+    uint16_t offset;
+} nmea_ubx_header_field;
+
 /* The framing of a protocol (spec/binary/<protocol>/protocol.yaml; generated, not for use by hand).
    Offsets count from the first sync byte. */
 typedef struct {
     const char *name;     /* as the tools' JSON names it: skytraq */
     const char *upper;    /* as errors name it: SKYTRAQ */
-    uint8_t sync[2];
+    uint8_t sync[3];      /* its sync bytes, sync_len of them */
+    uint8_t sync_len;
     uint8_t header;       /* bytes before the payload, sync included */
     uint8_t length_at;    /* the length field's first byte (two bytes, the protocol's byte order) */
     uint16_t length_mask; /* its bits that count the payload's bytes */
     uint8_t key_at;       /* the header's byte of the class, then the id (UBX, CASIC; SBF: its two bytes of
-                             block number and revision); 0: the key is the payload's first byte (the id;
+                             block number and revision; Unicore: its 16-bit message id, little endian); 0: the
+                             key is the payload's first byte (the id;
                              SkyTraq, SiRF) */
     uint8_t check;        /* nmea_ubx_check */
     uint8_t check_from;   /* the first byte the checksum covers (to the payload's end) */
@@ -231,6 +250,8 @@ typedef struct {
     uint8_t length_adds;  /* the frame's bytes beyond what the length counts (0: it counts the whole frame: SBF) */
     uint8_t check_at;     /* the checksum's first byte in the header (SBF); 0: after the payload */
     nmea_ubx_key_field key_fields[2]; /* where the header holds the key: its fields */
+    const nmea_ubx_header_field *kept; /* the header fields a message keeps (`header`), n_kept of them */
+    uint8_t n_kept;
 } nmea_ubx_framing;
 
 /* The descriptors the interpreter walks (generated per layout; not for use by hand). */
@@ -345,7 +366,8 @@ typedef enum {
     NMEA_UBX_PROTOCOL_CASIC,
     NMEA_UBX_PROTOCOL_SBF,
     NMEA_UBX_PROTOCOL_SIRF,
-    NMEA_UBX_PROTOCOL_SKYTRAQ
+    NMEA_UBX_PROTOCOL_SKYTRAQ,
+    NMEA_UBX_PROTOCOL_UNICORE
 } nmea_ubx_protocol;
 
 /* The most entries any group's array holds; a firmware may lower it (a group counted by a field
@@ -596,6 +618,12 @@ typedef enum {
 #endif
 #ifndef NMEA_UBX_SKYTRAQ_SV_CH_STATUS_SVS_MAX
 #define NMEA_UBX_SKYTRAQ_SV_CH_STATUS_SVS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_UNICORE_OBSVM_B_OBSERVATIONS_MAX
+#define NMEA_UBX_UNICORE_OBSVM_B_OBSERVATIONS_MAX (1638 < NMEA_UBX_MAX_ENTRIES ? 1638 : NMEA_UBX_MAX_ENTRIES)
+#endif
+#ifndef NMEA_UBX_UNICORE_PVTSLN_B_PRNS_MAX
+#define NMEA_UBX_UNICORE_PVTSLN_B_PRNS_MAX (255 < NMEA_UBX_MAX_ENTRIES ? 255 : NMEA_UBX_MAX_ENTRIES)
 #endif
 /* The value of the field (a type, command or version byte) that picks a layout among those of its
    class and id: set it when building such a message. */
@@ -6948,6 +6976,304 @@ typedef struct {
     nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
 } nmea_ubx_skytraq_gps_subframe;
 
+/* One entry of observations (observations). */
+typedef struct {
+    uint16_t glo_freq; /* GLONASS frequency number (plus 7) */
+    uint16_t prn; /* Satellite number */
+    double psr; /* Pseudorange [m] (its bits as sent) */
+    double adr; /* Carrier phase (accumulated Doppler range) [cycles] (its bits as sent) */
+    uint16_t psr_std; /* Pseudorange standard deviation [m]; raw, value = raw / 100 */
+    uint16_t adr_std; /* Carrier phase standard deviation [cycles]; raw, value = raw / 10000 */
+    float dopp; /* Doppler [Hz] (its bits as sent) */
+    uint16_t cn0; /* Carrier to noise density ratio [dBHz]; raw, value = raw / 100 */
+    uint16_t reserved1; /* Reserved (reserved, as sent) */
+    float locktime; /* Continuous tracking time [s] (its bits as sent) */
+    uint32_t tr_status; /* Tracking status (bitfield) */
+    uint8_t sv_chan; /* Channel (tr_status bits 5-9) */
+    bool phase_lock; /* Carrier phase valid (tr_status bit 10) */
+    bool code_lock; /* Pseudorange valid (tr_status bit 12) */
+    uint8_t system; /* Satellite system (0 GPS, 1 GLONASS, 2 SBAS, 3 Galileo, 4 BDS, 5 QZSS, 6 NavIC) (tr_status bits 16-18) */
+    uint8_t signal_type; /* Signal type (tr_status bits 21-25) */
+    bool l2c_flag; /* L2C signal (GPS) (tr_status bit 26) */
+} nmea_ubx_unicore_obsvm_b_observation;
+
+/* Observations of the master antenna (OBSVMB): UNICORE OBSVMB (12), output. */
+typedef struct {
+    uint32_t num_obs; /* Observations */
+    uint16_t observations_count; /* the entries of observations */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_unicore_obsvm_b_observation observations[NMEA_UBX_UNICORE_OBSVM_B_OBSERVATIONS_MAX]; /* Observations */
+} nmea_ubx_unicore_obsvm_b;
+
+/* Version and authorization (VERSIONB): UNICORE VERSIONB (37), output. */
+typedef struct {
+    uint32_t device; /* Product type */
+    char sw_version[33]; /* Firmware version (as sent) */
+    char auth_type[129]; /* Authorization type (as sent) */
+    char psn[66]; /* Product serial number (as sent) */
+    char efuse_id[33]; /* Chip id (as sent) */
+    char comp_time[43]; /* Firmware build date (as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_unicore_version_b;
+
+/* RTK position and velocity (ADRNAVB): UNICORE ADRNAVB (142), output. */
+typedef struct {
+    uint32_t sol_status; /* Solution status; a code of unicore_sol_status (its JSON: the code's id) */
+    uint32_t pos_type; /* Position type; a code of unicore_pos_type (its JSON: the code's id) */
+    double lat; /* Latitude [deg] (its bits as sent) */
+    double lon; /* Longitude [deg] (its bits as sent) */
+    double height; /* Height above mean sea level [m] (its bits as sent) */
+    float undulation; /* Geoid undulation [m] (its bits as sent) */
+    uint32_t datum_id; /* Datum id (61 WGS84) */
+    float lat_std; /* Latitude standard deviation [m] (its bits as sent) */
+    float lon_std; /* Longitude standard deviation [m] (its bits as sent) */
+    float height_std; /* Height standard deviation [m] (its bits as sent) */
+    char station_id[4]; /* Base station id (as sent) */
+    float diff_age; /* Differential age [s] (its bits as sent) */
+    float sol_age; /* Solution age [s] (its bits as sent) */
+    uint8_t num_svs; /* Satellites tracked */
+    uint8_t num_soln_svs; /* Satellites used in the solution */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t ext_sol_stat; /* Extended solution status (bitfield) */
+    bool rtk_verified; /* RTK solution verified (ext_sol_stat bit 0) */
+    uint8_t iono_correction; /* Pseudorange ionosphere correction (ext_sol_stat bits 1-3) */
+    uint8_t gal_bds3_sig_mask; /* Galileo and BDS-3 signals used (bitfield) */
+    bool gal_e1; /* Galileo E1 (gal_bds3_sig_mask bit 0) */
+    bool gal_e5b; /* Galileo E5b (gal_bds3_sig_mask bit 1) */
+    bool gal_e5a; /* Galileo E5a (gal_bds3_sig_mask bit 2) */
+    bool bds_b1i; /* BDS B1I (gal_bds3_sig_mask bit 4) */
+    bool bds_b3i; /* BDS B3I (gal_bds3_sig_mask bit 5) */
+    bool bds_b2a; /* BDS B2a (gal_bds3_sig_mask bit 6) */
+    bool bds_b1c; /* BDS B1C (gal_bds3_sig_mask bit 7) */
+    uint8_t gps_glo_bds2_sig_mask; /* GPS, GLONASS and BDS-2 signals used (bitfield) */
+    bool gps_l1; /* GPS L1 (gps_glo_bds2_sig_mask bit 0) */
+    bool gps_l2; /* GPS L2 (gps_glo_bds2_sig_mask bit 1) */
+    bool gps_l5; /* GPS L5 (gps_glo_bds2_sig_mask bit 2) */
+    bool bds_b3; /* BDS B3 (gps_glo_bds2_sig_mask bit 3) */
+    bool glo_l1; /* GLONASS L1 (gps_glo_bds2_sig_mask bit 4) */
+    bool glo_l2; /* GLONASS L2 (gps_glo_bds2_sig_mask bit 5) */
+    bool bds_b1; /* BDS B1 (gps_glo_bds2_sig_mask bit 6) */
+    bool bds_b2; /* BDS B2 (gps_glo_bds2_sig_mask bit 7) */
+    uint32_t vel_sol_status; /* Velocity solution status; a code of unicore_sol_status (its JSON: the code's id) */
+    uint32_t vel_type; /* Velocity type; a code of unicore_pos_type (its JSON: the code's id) */
+    float latency; /* Velocity latency [s] (its bits as sent) */
+    float age; /* Velocity differential age [s] (its bits as sent) */
+    double hor_spd; /* Horizontal speed [m/s] (its bits as sent) */
+    double trk_gnd; /* Track over ground (true) [deg] (its bits as sent) */
+    double vert_spd; /* Vertical speed (up positive) [m/s] (its bits as sent) */
+    float vert_spd_std; /* Vertical speed standard deviation [m/s] (its bits as sent) */
+    float hor_spd_std; /* Horizontal speed standard deviation [m/s] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_unicore_adrnav_b;
+
+/* Best position and velocity in ECEF (BESTNAVXYZB): UNICORE BESTNAVXYZB (240), output. */
+typedef struct {
+    uint32_t sol_status; /* Solution status; a code of unicore_sol_status (its JSON: the code's id) */
+    uint32_t pos_type; /* Position type; a code of unicore_pos_type (its JSON: the code's id) */
+    double p_x; /* Position X [m] (its bits as sent) */
+    double p_y; /* Position Y [m] (its bits as sent) */
+    double p_z; /* Position Z [m] (its bits as sent) */
+    float p_x_std; /* Position X standard deviation [m] (its bits as sent) */
+    float p_y_std; /* Position Y standard deviation [m] (its bits as sent) */
+    float p_z_std; /* Position Z standard deviation [m] (its bits as sent) */
+    uint32_t vel_sol_status; /* Velocity solution status; a code of unicore_sol_status (its JSON: the code's id) */
+    uint32_t vel_type; /* Velocity type; a code of unicore_pos_type (its JSON: the code's id) */
+    double vel_x; /* Velocity X [m/s] (its bits as sent) */
+    double vel_y; /* Velocity Y [m/s] (its bits as sent) */
+    double vel_z; /* Velocity Z [m/s] (its bits as sent) */
+    float vel_x_std; /* Velocity X standard deviation [m/s] (its bits as sent) */
+    float vel_y_std; /* Velocity Y standard deviation [m/s] (its bits as sent) */
+    float vel_z_std; /* Velocity Z standard deviation [m/s] (its bits as sent) */
+    char station_id[4]; /* Base station id (as sent) */
+    float vel_latency; /* Velocity latency [s] (its bits as sent) */
+    float diff_age; /* Differential age [s] (its bits as sent) */
+    float sol_age; /* Solution age [s] (its bits as sent) */
+    uint8_t num_svs; /* Satellites tracked */
+    uint8_t num_soln_svs; /* Satellites used in the solution */
+    uint8_t num_gg_l1; /* Satellites with L1/E1/B1 signals used */
+    uint8_t num_soln_multi_svs; /* Satellites with multi-frequency signals used */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t ext_sol_stat; /* Extended solution status (bitfield) */
+    bool rtk_verified; /* RTK solution verified (ext_sol_stat bit 0) */
+    uint8_t iono_correction; /* Pseudorange ionosphere correction (ext_sol_stat bits 1-3) */
+    uint8_t gal_bds3_sig_mask; /* Galileo and BDS-3 signals used (bitfield) */
+    bool gal_e1; /* Galileo E1 (gal_bds3_sig_mask bit 0) */
+    bool gal_e5b; /* Galileo E5b (gal_bds3_sig_mask bit 1) */
+    bool gal_e5a; /* Galileo E5a (gal_bds3_sig_mask bit 2) */
+    bool bds_b1i; /* BDS B1I (gal_bds3_sig_mask bit 4) */
+    bool bds_b3i; /* BDS B3I (gal_bds3_sig_mask bit 5) */
+    bool bds_b2a; /* BDS B2a (gal_bds3_sig_mask bit 6) */
+    bool bds_b1c; /* BDS B1C (gal_bds3_sig_mask bit 7) */
+    uint8_t gps_glo_bds2_sig_mask; /* GPS, GLONASS and BDS-2 signals used (bitfield) */
+    bool gps_l1; /* GPS L1 (gps_glo_bds2_sig_mask bit 0) */
+    bool gps_l2; /* GPS L2 (gps_glo_bds2_sig_mask bit 1) */
+    bool gps_l5; /* GPS L5 (gps_glo_bds2_sig_mask bit 2) */
+    bool bds_b3; /* BDS B3 (gps_glo_bds2_sig_mask bit 3) */
+    bool glo_l1; /* GLONASS L1 (gps_glo_bds2_sig_mask bit 4) */
+    bool glo_l2; /* GLONASS L2 (gps_glo_bds2_sig_mask bit 5) */
+    bool bds_b1; /* BDS B1 (gps_glo_bds2_sig_mask bit 6) */
+    bool bds_b2; /* BDS B2 (gps_glo_bds2_sig_mask bit 7) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_unicore_bestnavxyz_b;
+
+/* RTK solution status (RTKSTATUSB): UNICORE RTKSTATUSB (509), output. */
+typedef struct {
+    uint32_t gps_source; /* GPS correction signals (bit mask) */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint32_t bds_source1; /* BDS correction signals (bit mask) */
+    uint32_t bds_source2; /* BDS correction signals, second word (bit mask) */
+    uint32_t reserved2; /* Reserved (reserved, as sent) */
+    uint32_t glo_source; /* GLONASS correction signals (bit mask) */
+    uint32_t reserved3; /* Reserved (reserved, as sent) */
+    uint32_t gal_source1; /* Galileo correction signals (bit mask) */
+    uint32_t gal_source2; /* Galileo correction signals, second word (bit mask) */
+    uint32_t qzss_source; /* QZSS correction signals (bit mask) */
+    uint32_t reserved4; /* Reserved (reserved, as sent) */
+    uint32_t pos_type; /* Position type; a code of unicore_pos_type (its JSON: the code's id) */
+    uint32_t calc_status; /* RTK computation status */
+    uint8_t ion_detected; /* Ionospheric scintillation detected */
+    uint8_t dual_rtk_flag; /* Dual RTK flag */
+    uint8_t adr_number; /* Satellites with carrier phase */
+    uint8_t reserved5; /* Reserved (reserved, as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_unicore_rtkstatus_b;
+
+/* Heading (UNIHEADINGB): UNICORE UNIHEADINGB (972), output. */
+typedef struct {
+    uint32_t sol_status; /* Solution status; a code of unicore_sol_status (its JSON: the code's id) */
+    uint32_t pos_type; /* Position type; a code of unicore_pos_type (its JSON: the code's id) */
+    float length; /* Baseline length [m] (its bits as sent) */
+    float heading; /* Heading (0 to 360) [deg] (its bits as sent) */
+    float pitch; /* Pitch (-90 to 90) [deg] (its bits as sent) */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    float hdg_std; /* Heading standard deviation [deg] (its bits as sent) */
+    float ptch_std; /* Pitch standard deviation [deg] (its bits as sent) */
+    char station_id[4]; /* Base station id (as sent) */
+    uint8_t num_svs; /* Satellites tracked */
+    uint8_t num_soln_svs; /* Satellites used in the solution */
+    uint8_t num_obs; /* Satellites above the elevation mask */
+    uint8_t num_multi; /* Satellites above the mask with multi-frequency signals */
+    uint8_t reserved2; /* Reserved (reserved, as sent) */
+    uint8_t ext_sol_stat; /* Extended solution status (bitfield) */
+    bool rtk_verified; /* RTK solution verified (ext_sol_stat bit 0) */
+    uint8_t iono_correction; /* Pseudorange ionosphere correction (ext_sol_stat bits 1-3) */
+    uint8_t gal_bds3_sig_mask; /* Galileo and BDS-3 signals used (bitfield) */
+    bool gal_e1; /* Galileo E1 (gal_bds3_sig_mask bit 0) */
+    bool gal_e5b; /* Galileo E5b (gal_bds3_sig_mask bit 1) */
+    bool gal_e5a; /* Galileo E5a (gal_bds3_sig_mask bit 2) */
+    bool bds_b1i; /* BDS B1I (gal_bds3_sig_mask bit 4) */
+    bool bds_b3i; /* BDS B3I (gal_bds3_sig_mask bit 5) */
+    bool bds_b2a; /* BDS B2a (gal_bds3_sig_mask bit 6) */
+    bool bds_b1c; /* BDS B1C (gal_bds3_sig_mask bit 7) */
+    uint8_t gps_glo_bds2_sig_mask; /* GPS, GLONASS and BDS-2 signals used (bitfield) */
+    bool gps_l1; /* GPS L1 (gps_glo_bds2_sig_mask bit 0) */
+    bool gps_l2; /* GPS L2 (gps_glo_bds2_sig_mask bit 1) */
+    bool gps_l5; /* GPS L5 (gps_glo_bds2_sig_mask bit 2) */
+    bool bds_b3; /* BDS B3 (gps_glo_bds2_sig_mask bit 3) */
+    bool glo_l1; /* GLONASS L1 (gps_glo_bds2_sig_mask bit 4) */
+    bool glo_l2; /* GLONASS L2 (gps_glo_bds2_sig_mask bit 5) */
+    bool bds_b1; /* BDS B1 (gps_glo_bds2_sig_mask bit 6) */
+    bool bds_b2; /* BDS B2 (gps_glo_bds2_sig_mask bit 7) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_unicore_uniheading_b;
+
+/* One entry of satellites used (as many as the bytes left hold) (prns). */
+typedef struct {
+    uint16_t prn; /* Satellite number */
+} nmea_ubx_unicore_pvtsln_b_prn;
+
+/* Position, velocity and heading (PVTSLNB): UNICORE PVTSLNB (1021), output. */
+typedef struct {
+    uint32_t best_pos_type; /* Best position type; a code of unicore_pos_type (its JSON: the code's id) */
+    float best_pos_height; /* Best position height above mean sea level [m] (its bits as sent) */
+    double best_pos_lat; /* Best position latitude [deg] (its bits as sent) */
+    double best_pos_lon; /* Best position longitude [deg] (its bits as sent) */
+    float best_pos_height_std; /* Best position height standard deviation [m] (its bits as sent) */
+    float best_pos_lat_std; /* Best position latitude standard deviation [m] (its bits as sent) */
+    float best_pos_lon_std; /* Best position longitude standard deviation [m] (its bits as sent) */
+    float best_pos_diff_age; /* Best position differential age [s] (its bits as sent) */
+    uint32_t psr_pos_type; /* Pseudorange position type; a code of unicore_pos_type (its JSON: the code's id) */
+    float psr_pos_height; /* Pseudorange position height above mean sea level [m] (its bits as sent) */
+    double psr_pos_lat; /* Pseudorange position latitude [deg] (its bits as sent) */
+    double psr_pos_lon; /* Pseudorange position longitude [deg] (its bits as sent) */
+    float undulation; /* Geoid undulation [m] (its bits as sent) */
+    uint8_t best_pos_svs; /* Satellites tracked (best position) */
+    uint8_t best_pos_soln_svs; /* Satellites used (best position) */
+    uint8_t psr_pos_svs; /* Satellites tracked (pseudorange position) */
+    uint8_t psr_pos_soln_svs; /* Satellites used (pseudorange position) */
+    double psr_vel_north; /* Pseudorange velocity north [m/s] (its bits as sent) */
+    double psr_vel_east; /* Pseudorange velocity east [m/s] (its bits as sent) */
+    double psr_vel_ground; /* Pseudorange speed over ground [m/s] (its bits as sent) */
+    uint32_t heading_type; /* Heading solution type; a code of unicore_pos_type (its JSON: the code's id) */
+    float heading_length; /* Baseline length [m] (its bits as sent) */
+    float heading_degree; /* Heading [deg] (its bits as sent) */
+    float heading_pitch; /* Pitch [deg] (its bits as sent) */
+    uint8_t heading_tracked_svs; /* Satellites tracked (heading) */
+    uint8_t heading_soln_svs; /* Satellites used (heading) */
+    uint8_t heading_gg_l1; /* Satellites with L1 signals used (heading) */
+    uint8_t heading_gg_l1_l2; /* Satellites with L1 and L2 signals used (heading) */
+    float gdop; /* Geometric dilution of precision (its bits as sent) */
+    float pdop; /* Position dilution of precision (its bits as sent) */
+    float hdop; /* Horizontal dilution of precision (its bits as sent) */
+    float htdop; /* Horizontal and time dilution of precision (its bits as sent) */
+    float tdop; /* Time dilution of precision (its bits as sent) */
+    float cutoff; /* Elevation mask [deg] (its bits as sent) */
+    uint16_t prn_num; /* Satellites listed */
+    uint16_t prns_count; /* the entries of prns */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+    nmea_ubx_unicore_pvtsln_b_prn prns[NMEA_UBX_UNICORE_PVTSLN_B_PRNS_MAX]; /* Satellites used (as many as the bytes left hold) */
+} nmea_ubx_unicore_pvtsln_b;
+
+/* Best position and velocity (BESTNAVB): UNICORE BESTNAVB (2118), output. */
+typedef struct {
+    uint32_t sol_status; /* Solution status; a code of unicore_sol_status (its JSON: the code's id) */
+    uint32_t pos_type; /* Position type; a code of unicore_pos_type (its JSON: the code's id) */
+    double lat; /* Latitude [deg] (its bits as sent) */
+    double lon; /* Longitude [deg] (its bits as sent) */
+    double height; /* Height above mean sea level [m] (its bits as sent) */
+    float undulation; /* Geoid undulation [m] (its bits as sent) */
+    uint32_t datum_id; /* Datum id (61 WGS84) */
+    float lat_std; /* Latitude standard deviation [m] (its bits as sent) */
+    float lon_std; /* Longitude standard deviation [m] (its bits as sent) */
+    float height_std; /* Height standard deviation [m] (its bits as sent) */
+    char station_id[4]; /* Base station id (as sent) */
+    float diff_age; /* Differential age [s] (its bits as sent) */
+    float sol_age; /* Solution age [s] (its bits as sent) */
+    uint8_t num_svs; /* Satellites tracked */
+    uint8_t num_soln_svs; /* Satellites used in the solution */
+    uint32_t reserved1; /* Reserved (reserved, as sent) */
+    uint8_t ext_sol_stat; /* Extended solution status (bitfield) */
+    bool rtk_verified; /* RTK solution verified (ext_sol_stat bit 0) */
+    uint8_t iono_correction; /* Pseudorange ionosphere correction (ext_sol_stat bits 1-3) */
+    uint8_t gal_bds3_sig_mask; /* Galileo and BDS-3 signals used (bitfield) */
+    bool gal_e1; /* Galileo E1 (gal_bds3_sig_mask bit 0) */
+    bool gal_e5b; /* Galileo E5b (gal_bds3_sig_mask bit 1) */
+    bool gal_e5a; /* Galileo E5a (gal_bds3_sig_mask bit 2) */
+    bool bds_b1i; /* BDS B1I (gal_bds3_sig_mask bit 4) */
+    bool bds_b3i; /* BDS B3I (gal_bds3_sig_mask bit 5) */
+    bool bds_b2a; /* BDS B2a (gal_bds3_sig_mask bit 6) */
+    bool bds_b1c; /* BDS B1C (gal_bds3_sig_mask bit 7) */
+    uint8_t gps_glo_bds2_sig_mask; /* GPS, GLONASS and BDS-2 signals used (bitfield) */
+    bool gps_l1; /* GPS L1 (gps_glo_bds2_sig_mask bit 0) */
+    bool gps_l2; /* GPS L2 (gps_glo_bds2_sig_mask bit 1) */
+    bool gps_l5; /* GPS L5 (gps_glo_bds2_sig_mask bit 2) */
+    bool bds_b3; /* BDS B3 (gps_glo_bds2_sig_mask bit 3) */
+    bool glo_l1; /* GLONASS L1 (gps_glo_bds2_sig_mask bit 4) */
+    bool glo_l2; /* GLONASS L2 (gps_glo_bds2_sig_mask bit 5) */
+    bool bds_b1; /* BDS B1 (gps_glo_bds2_sig_mask bit 6) */
+    bool bds_b2; /* BDS B2 (gps_glo_bds2_sig_mask bit 7) */
+    uint32_t vel_sol_status; /* Velocity solution status; a code of unicore_sol_status (its JSON: the code's id) */
+    uint32_t vel_type; /* Velocity type; a code of unicore_pos_type (its JSON: the code's id) */
+    float latency; /* Velocity latency [s] (its bits as sent) */
+    float age; /* Velocity differential age [s] (its bits as sent) */
+    double hor_spd; /* Horizontal speed [m/s] (its bits as sent) */
+    double trk_gnd; /* Track over ground (true) [deg] (its bits as sent) */
+    double vert_spd; /* Vertical speed (up positive) [m/s] (its bits as sent) */
+    float vert_spd_std; /* Vertical speed standard deviation [m/s] (its bits as sent) */
+    float hor_spd_std; /* Horizontal speed standard deviation [m/s] (its bits as sent) */
+    nmea_ubx_bytes trailing; /* the payload's bytes after the layout, as sent */
+} nmea_ubx_unicore_bestnav_b;
+
 /* The layout of a decoded message: one per direction of a class and id, or several told apart by
    length or by the value of a selector byte (type, version; spec order within a class and id). */
 typedef enum {
@@ -7395,12 +7721,38 @@ typedef enum {
     NMEA_UBX_MSG_SKYTRAQ_SV_CH_STATUS, /* SKYTRAQ 0xDE, output */
     NMEA_UBX_MSG_SKYTRAQ_RCV_STATE, /* SKYTRAQ 0xDF, output */
     NMEA_UBX_MSG_SKYTRAQ_GPS_SUBFRAME, /* SKYTRAQ 0xE0, output */
+    NMEA_UBX_MSG_UNICORE_OBSVM_B, /* UNICORE OBSVMB, output */
+    NMEA_UBX_MSG_UNICORE_VERSION_B, /* UNICORE VERSIONB, output */
+    NMEA_UBX_MSG_UNICORE_ADRNAV_B, /* UNICORE ADRNAVB, output */
+    NMEA_UBX_MSG_UNICORE_BESTNAVXYZ_B, /* UNICORE BESTNAVXYZB, output */
+    NMEA_UBX_MSG_UNICORE_RTKSTATUS_B, /* UNICORE RTKSTATUSB, output */
+    NMEA_UBX_MSG_UNICORE_UNIHEADING_B, /* UNICORE UNIHEADINGB, output */
+    NMEA_UBX_MSG_UNICORE_PVTSLN_B, /* UNICORE PVTSLNB, output */
+    NMEA_UBX_MSG_UNICORE_BESTNAV_B, /* UNICORE BESTNAVB, output */
     NMEA_UBX_MSG_UNKNOWN /* a class and id (a key) the spec does not describe: `unknown` */
 } nmea_ubx_layout;
+
+/* The fields of a Unicore binary frame's header besides its sync, message id and length, which a decoded
+   message keeps (its `header.unicore`) and its frame is written with (0 in a message built by
+   hand, unless set). */
+typedef struct {
+    uint8_t cpu_idle; /* The processor's idle time over the last second [%] */
+    uint8_t time_ref; /* The time system of the header's week and time of week (GPST, BDST) */
+    uint8_t time_status; /* The status of the header's time */
+    uint16_t week; /* The week number of the time system [week] */
+    uint32_t time_of_week; /* The time of week [ms] */
+    uint32_t version; /* The header's version field */
+    uint8_t reserved; /* Reserved */
+    uint8_t leap_seconds; /* The leap seconds between GPS time and UTC [s] */
+    uint16_t output_delay; /* The delay of the output after its epoch [ms] */
+} nmea_ubx_unicore_header;
 
 /* A decoded UBX message (or a message of another protocol the pair types). */
 typedef struct {
     nmea_ubx_layout layout;
+    union { /* the header fields a message of these protocols keeps */
+        nmea_ubx_unicore_header unicore;
+    } header;
     union {
         nmea_ubx_nav_posecef_poll nav_posecef_poll;
         nmea_ubx_nav_posecef nav_posecef;
@@ -7846,6 +8198,14 @@ typedef struct {
         nmea_ubx_skytraq_sv_ch_status skytraq_sv_ch_status;
         nmea_ubx_skytraq_rcv_state skytraq_rcv_state;
         nmea_ubx_skytraq_gps_subframe skytraq_gps_subframe;
+        nmea_ubx_unicore_obsvm_b unicore_obsvm_b;
+        nmea_ubx_unicore_version_b unicore_version_b;
+        nmea_ubx_unicore_adrnav_b unicore_adrnav_b;
+        nmea_ubx_unicore_bestnavxyz_b unicore_bestnavxyz_b;
+        nmea_ubx_unicore_rtkstatus_b unicore_rtkstatus_b;
+        nmea_ubx_unicore_uniheading_b unicore_uniheading_b;
+        nmea_ubx_unicore_pvtsln_b unicore_pvtsln_b;
+        nmea_ubx_unicore_bestnav_b unicore_bestnav_b;
         nmea_ubx_unknown unknown;
     } as;
 } nmea_ubx_message;

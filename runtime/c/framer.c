@@ -359,13 +359,33 @@ static bool frame_reject(nmea_framer *f, nmea_frame_error error, nmea_framed *ou
     return true;
 }
 
+static bool framer_byte(nmea_framer *f, char byte, nmea_framed *out);
+
+/* The sync bytes so far of a frame that turns out to be none (a third sync byte that does not
+   follow, or the stream's end): bytes of the line, as a first sync byte that no second follows
+   (the generator keeps line and sync bytes out of a three-byte sync's second). */
+static void frame_unstart(nmea_framer *f, nmea_framed *out)
+{
+    size_t i, n = f->frame_len;
+    f->frame_len = 0;
+    for (i = 0; i < n; i++)
+        (void)framer_line_byte(f, (char)f->frame[i], out);
+}
+
 /* A byte of the frame under way, after its first: true when it completes an item (the line before
-   the frame, the frame, or what rejects it). */
+   the frame, once its sync is whole; the frame, or what rejects it). */
 static bool frame_byte(nmea_framer *f, unsigned char c, nmea_framed *out)
 {
     const nmea_framing *p = FRAMING(f);
-    bool line = f->frame_len == 1 && framer_end_line(f, out);
+    bool line = false;
     size_t body, i;
+    if (f->frame_len < 3) { /* the sync's bytes (one test a byte after them, as before three-byte syncs) */
+        if (f->frame_len == 2 && p->sync_len > 2 && c != p->sync[2]) { /* a third sync byte, checked as it comes */
+            frame_unstart(f, out);
+            return framer_byte(f, (char)c, out); /* (it starts no frame whose third byte it is) */
+        }
+        line = f->frame_len + 1 == (p->sync_len > 2 ? 3u : 2u) && framer_end_line(f, out);
+    }
     f->frame[f->frame_len++] = c;
     if (f->frame_len == p->header) {
         f->frame_size = frame_size(p, f->frame);
@@ -521,9 +541,8 @@ bool nmea_framer_end(nmea_framer *f, nmea_framed *out)
     while (f->frame_len > 0 || f->replay > 0) {
         if (nmea_framer_next(f, out))
             return true;
-        if (f->frame_len == 1) {
-            f->frame_len = 0; /* a lone first sync byte: a byte of the line */
-            (void)framer_line_byte(f, (char)f->frame[0], out);
+        if (f->frame_len == 1 || (f->frame_len > 1 && f->frame_len < FRAMING(f)->sync_len)) {
+            frame_unstart(f, out); /* a sync cut short by the end: bytes of the line */
         } else if (f->frame_len > 1) {
             return frame_reject(f, NMEA_FRAME_CUT, out);
         }

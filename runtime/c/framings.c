@@ -6,12 +6,12 @@
 #ifndef NMEA_NO_BINARY_FRAMES
 /* The framing of each binary protocol, by its nmea_protocol less one. */
 const nmea_framing nmea_framings[NMEA_FRAMING_COUNT] = {
-    {"casic", {0xBA, 0xCE}, 0xFF, 2, 2, 2, 0, 0xFFFF, 6, 10, NMEA_CHECKSUM_SUM32, 2, 0, 4, {0}, 0, {{"class", 32, 8}, {"id", 40, 8}}},
-    {"rtcm3", {0xD3, 0x00}, 0xFC, 1, 1, 2, 1, 0xFFFF, 3, 6, NMEA_CHECKSUM_CRC24Q, 0, 0, 3, {0}, 0, {{"message_number", 24, 12}}},
-    {"sbf", {0x24, 0x40}, 0xFF, 2, 6, 2, 0, 0xFFFF, 8, 0, NMEA_CHECKSUM_CRC16_CCITT, 4, 2, 2, {0}, 0, {{"number", 32, 13}, {"revision", 45, 3}}},
-    {"sirf", {0xA0, 0xA2}, 0xFF, 2, 2, 2, 1, 0xFFFF, 4, 8, NMEA_CHECKSUM_SUM15, 4, 0, 2, {0xB0, 0xB3}, 2, {{"id", 32, 8}}},
-    {"skytraq", {0xA0, 0xA1}, 0xFF, 2, 2, 2, 1, 0xFFFF, 4, 7, NMEA_CHECKSUM_XOR8, 4, 0, 1, {0x0D, 0x0A}, 2, {{"id", 32, 8}}},
-    {"ubx", {0xB5, 0x62}, 0xFF, 2, 4, 2, 0, 0xFFFF, 6, 8, NMEA_CHECKSUM_FLETCHER8, 2, 0, 2, {0}, 0, {{"class", 16, 8}, {"id", 24, 8}}},
-    {"unicore", {0xAA, 0x44}, 0xFF, 2, 6, 2, 0, 0xFFFF, 24, 28, NMEA_CHECKSUM_CRC32, 0, 0, 4, {0}, 0, {{"message_id", 32, 16}}},
+    {"casic", {0xBA, 0xCE, 0x00}, 0xFF, 2, 2, 2, 0, 0xFFFF, 6, 10, NMEA_CHECKSUM_SUM32, 2, 0, 4, {0}, 0, {{"class", 32, 8}, {"id", 40, 8}}},
+    {"rtcm3", {0xD3, 0x00, 0x00}, 0xFC, 1, 1, 2, 1, 0xFFFF, 3, 6, NMEA_CHECKSUM_CRC24Q, 0, 0, 3, {0}, 0, {{"message_number", 24, 12}}},
+    {"sbf", {0x24, 0x40, 0x00}, 0xFF, 2, 6, 2, 0, 0xFFFF, 8, 0, NMEA_CHECKSUM_CRC16_CCITT, 4, 2, 2, {0}, 0, {{"number", 32, 13}, {"revision", 45, 3}}},
+    {"sirf", {0xA0, 0xA2, 0x00}, 0xFF, 2, 2, 2, 1, 0xFFFF, 4, 8, NMEA_CHECKSUM_SUM15, 4, 0, 2, {0xB0, 0xB3}, 2, {{"id", 32, 8}}},
+    {"skytraq", {0xA0, 0xA1, 0x00}, 0xFF, 2, 2, 2, 1, 0xFFFF, 4, 7, NMEA_CHECKSUM_XOR8, 4, 0, 1, {0x0D, 0x0A}, 2, {{"id", 32, 8}}},
+    {"ubx", {0xB5, 0x62, 0x00}, 0xFF, 2, 4, 2, 0, 0xFFFF, 6, 8, NMEA_CHECKSUM_FLETCHER8, 2, 0, 2, {0}, 0, {{"class", 16, 8}, {"id", 24, 8}}},
+    {"unicore", {0xAA, 0x44, 0xB5}, 0xFF, 3, 6, 2, 0, 0xFFFF, 24, 28, NMEA_CHECKSUM_CRC32, 0, 0, 4, {0}, 0, {{"message_id", 32, 16}}},
 };
 #endif

@@ -356,9 +356,10 @@ typedef enum { NMEA_CHECKSUM_FLETCHER8, NMEA_CHECKSUM_XOR8, NMEA_CHECKSUM_SUM15,
     which the generator writes (runtime/c/framings.c). Offsets count from the first sync byte. */
 typedef struct {
     const char *name;           /* its name in the tools' JSON: "ubx" */
-    unsigned char sync[2];      /* the first sync byte; the value of the next byte's bits under follow_mask */
+    unsigned char sync[3];      /* the first sync byte; the value of the next byte's bits under follow_mask;
+                                   the third (when sync_len is 3), checked as it comes */
     unsigned char follow_mask;
-    unsigned char sync_len;     /* its sync bytes (1 or 2): what a rejected frame is handed on as */
+    unsigned char sync_len;     /* its sync bytes (1 to 3): what a rejected frame is handed on as */
     unsigned char length_at;    /* the length field, big or little endian, of 1 or 2 bytes */
     unsigned char length_size;
     unsigned char big_endian;

@@ -220,12 +220,13 @@ static int log_frames(const char *path)
         got = fread(chunk, 1, sizeof chunk, file);
         while ((more = got ? nmea_framer_push(&framer, &p, &got, &item) : nmea_framer_end(&framer, &item))) {
             if ((item.protocol == NMEA_SKYTRAQ || item.protocol == NMEA_SIRF || item.protocol == NMEA_CASIC ||
-                 item.protocol == NMEA_SBF) &&
+                 item.protocol == NMEA_SBF || item.protocol == NMEA_UNICORE) &&
                 item.error == NMEA_FRAME_OK) {
-                nmea_ubx_protocol of = item.protocol == NMEA_SKYTRAQ ? NMEA_UBX_PROTOCOL_SKYTRAQ
-                                       : item.protocol == NMEA_SIRF  ? NMEA_UBX_PROTOCOL_SIRF
-                                       : item.protocol == NMEA_SBF   ? NMEA_UBX_PROTOCOL_SBF
-                                                                     : NMEA_UBX_PROTOCOL_CASIC;
+                nmea_ubx_protocol of = item.protocol == NMEA_SKYTRAQ   ? NMEA_UBX_PROTOCOL_SKYTRAQ
+                                       : item.protocol == NMEA_SIRF    ? NMEA_UBX_PROTOCOL_SIRF
+                                       : item.protocol == NMEA_SBF     ? NMEA_UBX_PROTOCOL_SBF
+                                       : item.protocol == NMEA_UNICORE ? NMEA_UBX_PROTOCOL_UNICORE
+                                                                       : NMEA_UBX_PROTOCOL_CASIC;
                 other_frames++;
                 round_trip(of, (const uint8_t *)item.ptr, item.len, &message, path);
             }
@@ -378,7 +379,7 @@ static void vectors(FILE *file, int *decoded, int *refused)
 
 /* The other protocols' messages by hand: a SkyTraq 0xA8 cut to 20 bytes after its id (naming the
    protocol, message and field), an id no layout describes kept with its payload, a SiRF frame whose
-   checksum is off by one. */
+   checksum is off by one, a Unicore message's header fields. */
 static void other_protocols(void)
 {
     static const uint8_t unknown[] = {0xA0, 0xA1, 0x00, 0x02, 0x7E, 0x01, 0x7F, 0x0D, 0x0A};
@@ -432,6 +433,31 @@ static void other_protocols(void)
         if (nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_SBF, frame, sizeof time, &message, &err) ||
             err.kind != NMEA_UBX_BAD_CHECKSUM) {
             printf("FAIL an SBF block whose CRC is off by one\n");
+            failed++;
+        }
+    }
+    {   /* Unicore: a message built by hand (an id no layout describes) has its header fields 0 unless
+           set; set, they are written into the frame and read back, and its JSON has them */
+        static char text[512];
+        memset(&message, 0, sizeof message);
+        message.layout = NMEA_UBX_MSG_UNKNOWN;
+        message.as.unknown.protocol = NMEA_UBX_PROTOCOL_UNICORE;
+        message.as.unknown.key_len = 2;
+        message.as.unknown.msg_class = 0xE8; /* message id 65512, little endian */
+        message.as.unknown.msg_id = 0xFF;
+        if (nmea_ubx_encode(&message, frame, sizeof frame, &err) != 28 || frame[10] != 0 || frame[11] != 0) {
+            printf("FAIL a Unicore message built by hand: %s\n", err.text);
+            failed++;
+        }
+        message.header.unicore.week = 2407;
+        message.header.unicore.time_of_week = 123457250u;
+        if (nmea_ubx_encode(&message, frame, sizeof frame, &err) != 28 || frame[10] != 0x67 || frame[11] != 0x09 ||
+            !nmea_ubx_decode_frame_of(NMEA_UBX_PROTOCOL_UNICORE, frame, 28, &message, &err) ||
+            message.header.unicore.week != 2407 || message.header.unicore.time_of_week != 123457250u ||
+            nmea_ubx_json(&message, text, sizeof text) == 0 ||
+            !strstr(text, "{\"message\":null,\"header\":{\"cpu_idle\":0,\"time_ref\":0,\"time_status\":0,\"week\":2407,"
+                          "\"time_of_week\":123457250,")) {
+            printf("FAIL a Unicore message's header fields: %s\n", text);
             failed++;
         }
     }
@@ -499,7 +525,7 @@ int main(int argc, char **argv)
     refusals();
     by_hand();
     other_protocols();
-    printf("%d decoded, %d refused, %d frames (and %d SkyTraq, SiRF, CASIC, SBF) of %d logs round-tripped, %d cut payloads, "
+    printf("%d decoded, %d refused, %d frames (and %d SkyTraq, SiRF, CASIC, SBF, Unicore) of %d logs round-tripped, %d cut payloads, "
            "%d over NMEA_UBX_MAX_ENTRIES %d, %d failed\n",
            decoded, refused, frames, other_frames, logs, cut_payloads, over_maximum, NMEA_UBX_MAX_ENTRIES, failed);
     return failed || decoded < 20 || refused < 2 || frames < 1000 || cut_payloads < 1000 ||

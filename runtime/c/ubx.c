@@ -164,6 +164,15 @@ static unsigned long ubx_check(nmea_ubx_check kind, const uint8_t *p, size_t len
                 sum = (sum & 0x8000 ? sum << 1 ^ 0x1021 : sum << 1) & 0xFFFF;
         }
         return (sum & 0xFF) << 8 | sum >> 8;
+    case NMEA_UBX_CHECK_CRC32: /* reflected 0xEDB88320, initial value 0, no final inversion; sent little endian
+                                  (bitwise: decoding a message is not the stream framer's hot path) */
+        for (i = 0; i < len; i++) {
+            unsigned bit;
+            sum ^= p[i];
+            for (bit = 0; bit < 8; bit++)
+                sum = sum & 1 ? sum >> 1 ^ 0xEDB88320ul : sum >> 1;
+        }
+        return (sum & 0xFF) << 24 | (sum >> 8 & 0xFF) << 16 | (sum >> 16 & 0xFF) << 8 | sum >> 24;
     default: /* SUM32: little-endian words, a short last one padded with zeros; sent little endian */
         for (i = 0; i < len; i++)
             sum = (sum + ((unsigned long)p[i] << 8 * (i & 3))) & 0xFFFFFFFFul;
@@ -775,6 +784,49 @@ static size_t ubx_layout_for(const nmea_ubx_layout_info *layouts, size_t first, 
     return last;
 }
 
+/* The header fields a message of protocol `f` keeps (its `header`), read from its frame into the
+   message at `m`. */
+static void ubx_read_kept(const nmea_ubx_framing *f, const uint8_t *frame, uint8_t *m)
+{
+    size_t i, k;
+    for (i = 0; i < f->n_kept; i++) {
+        const nmea_ubx_header_field *h = &f->kept[i];
+        uint64_t value = 0;
+        for (k = 0; k < h->size; k++)
+            value = value << 8 | frame[h->at + (f->big ? k : h->size - 1 - k)];
+        ubx_set(m + h->offset, h->size, value);
+    }
+}
+
+/* ... written from the message at `m` into a frame's header at `buf`. */
+static void ubx_write_kept(const nmea_ubx_framing *f, const uint8_t *m, uint8_t *buf)
+{
+    size_t i, k;
+    for (i = 0; i < f->n_kept; i++) {
+        const nmea_ubx_header_field *h = &f->kept[i];
+        uint64_t value = ubx_get(m + h->offset, h->size, false);
+        for (k = 0; k < h->size; k++)
+            buf[h->at + (f->big ? h->size - 1 - k : k)] = (uint8_t)(value >> 8 * k);
+    }
+}
+
+/* ... as the JSON member `header` (none for a protocol whose messages keep none). */
+static void ubx_json_kept(ubx_json_out *j, const nmea_ubx_framing *f, const uint8_t *m)
+{
+    size_t i;
+    if (!f->n_kept)
+        return;
+    ubx_json_key(j, "header");
+    ubx_json_puts(j, "{");
+    j->empty = true;
+    for (i = 0; i < f->n_kept; i++) {
+        ubx_json_key(j, f->kept[i].name);
+        ubx_json_number(j, ubx_get(m + f->kept[i].offset, f->kept[i].size, false), false);
+    }
+    ubx_json_puts(j, "}");
+    j->empty = false;
+}
+
 /* Reads a payload as layout `l` into the struct at `m`: its members before `trailing` zeroed first
    (every has_ flag false), then read; a group's entries are zeroed as they are read (the entries
    past a group's count are not: its count says how many hold a value). Only the layout's bytes are
@@ -805,7 +857,8 @@ static bool ubx_read_layout(const nmea_ubx_layout_info *l, const nmea_ubx_framin
    sync, header (the length, the key where the header holds it), the key where the payload starts
    with it, the payload, checksum and end bytes. Its length, 0 with the error set. */
 static size_t ubx_write_frame(const nmea_ubx_framing *f, const nmea_ubx_layout_info *l, const uint8_t *m,
-                              const nmea_ubx_unknown *unknown, uint8_t *buf, size_t cap, nmea_ubx_error *err)
+                              const nmea_ubx_unknown *unknown, const uint8_t *message, uint8_t *buf, size_t cap,
+                              nmea_ubx_error *err)
 {
     ubx_writer w;
     size_t payload, trailer = (size_t)(f->check_at ? 0 : f->check_size) + f->end_len, i, length;
@@ -847,14 +900,14 @@ static size_t ubx_write_frame(const nmea_ubx_framing *f, const nmea_ubx_layout_i
         return (size_t)ubx_fail(err, NMEA_UBX_BAD_VALUE, w.address, NULL);
     }
     memset(buf, 0, f->header);
-    buf[0] = f->sync[0];
-    buf[1] = f->sync[1];
+    memcpy(buf, f->sync, f->sync_len);
     buf[f->length_at + (f->big ? 1 : 0)] = (uint8_t)(length & 0xFF);
     buf[f->length_at + (f->big ? 0 : 1)] = (uint8_t)(length >> 8);
     if (f->key_at) {
         buf[f->key_at] = key[0];
         buf[f->key_at + 1] = key[1];
     }
+    ubx_write_kept(f, message, buf);
     sum = ubx_check((nmea_ubx_check)f->check, buf + f->check_from, w.len - f->check_from);
     for (i = 0; i < f->check_size; i++) /* after the payload, or in the header (SBF) */
         buf[(f->check_at ? f->check_at : w.len) + i] = (uint8_t)(sum >> 8 * (f->check_size - 1 - i));
@@ -894,9 +947,12 @@ static bool ubx_open_frame_of(const nmea_ubx_framing *f, const uint8_t *frame, s
 {
     size_t trailer = (size_t)(f->check_at ? 0 : f->check_size) + f->end_len, i, size;
     unsigned long sum, sent = 0;
-    if (len < (size_t)f->header + trailer || frame[0] != f->sync[0] || frame[1] != f->sync[1]) {
-        snprintf(err->text, sizeof err->text, "a %s frame is %02X %02X, a header of %u bytes, payload, checksum%s",
-                 f->upper, f->sync[0], f->sync[1], (unsigned)f->header, f->end_len ? " and end bytes" : "");
+    if (len < (size_t)f->header + trailer || memcmp(frame, f->sync, f->sync_len) != 0) {
+        char third[4] = "";
+        if (f->sync_len > 2)
+            snprintf(third, sizeof third, " %02X", f->sync[2]);
+        snprintf(err->text, sizeof err->text, "a %s frame is %02X %02X%s, a header of %u bytes, payload, checksum%s",
+                 f->upper, f->sync[0], f->sync[1], third, (unsigned)f->header, f->end_len ? " and end bytes" : "");
         return ubx_fail(err, NMEA_UBX_BAD_FRAME, NULL, NULL);
     }
     size = ((f->big ? (size_t)frame[f->length_at] << 8 | frame[f->length_at + 1]

@@ -59,7 +59,9 @@ typedef enum {
     NMEA_UBX_CHECK_XOR8,      /* the XOR of the bytes */
     NMEA_UBX_CHECK_SUM15,     /* the bytes' sum modulo 2^15, two bytes big endian */
     NMEA_UBX_CHECK_SUM32,     /* the sum of the bytes as 32-bit little-endian words, sent little endian */
-    NMEA_UBX_CHECK_CRC16_CCITT /* CRC-CCITT (polynomial 0x1021, initial value 0), sent little endian (SBF) */
+    NMEA_UBX_CHECK_CRC16_CCITT, /* CRC-CCITT (polynomial 0x1021, initial value 0), sent little endian (SBF) */
+    NMEA_UBX_CHECK_CRC32      /* CRC-32 (reflected 0xEDB88320, initial value 0, no final inversion), sent little
+                                 endian (Unicore) */
 } nmea_ubx_check;
 
 /* A field of the header that tells the message (an unknown message's JSON names it): its name, its
@@ -69,17 +71,29 @@ typedef struct {
     uint8_t low, bits;
 } nmea_ubx_key_field;
 
+/* A header field that a decoded message keeps and its frame is written with (Unicore's time and
+   status: spec/binary/<protocol>/protocol.yaml's fields of `identity: false`): its name, its first
+   byte in the frame, its bytes (1, 2 or 4: unsigned, in the protocol's byte order) and the offset of
+   its member (of as many bytes) in nmea_ubx_message. */
+typedef struct {
+    const char *name;
+    uint8_t at, size;
+    uint16_t offset;
+} nmea_ubx_header_field;
+
 /* The framing of a protocol (spec/binary/<protocol>/protocol.yaml; generated, not for use by hand).
    Offsets count from the first sync byte. */
 typedef struct {
     const char *name;     /* as the tools' JSON names it: skytraq */
     const char *upper;    /* as errors name it: SKYTRAQ */
-    uint8_t sync[2];
+    uint8_t sync[3];      /* its sync bytes, sync_len of them */
+    uint8_t sync_len;
     uint8_t header;       /* bytes before the payload, sync included */
     uint8_t length_at;    /* the length field's first byte (two bytes, the protocol's byte order) */
     uint16_t length_mask; /* its bits that count the payload's bytes */
     uint8_t key_at;       /* the header's byte of the class, then the id (UBX, CASIC; SBF: its two bytes of
-                             block number and revision); 0: the key is the payload's first byte (the id;
+                             block number and revision; Unicore: its 16-bit message id, little endian); 0: the
+                             key is the payload's first byte (the id;
                              SkyTraq, SiRF) */
     uint8_t check;        /* nmea_ubx_check */
     uint8_t check_from;   /* the first byte the checksum covers (to the payload's end) */
@@ -89,6 +103,8 @@ typedef struct {
     uint8_t length_adds;  /* the frame's bytes beyond what the length counts (0: it counts the whole frame: SBF) */
     uint8_t check_at;     /* the checksum's first byte in the header (SBF); 0: after the payload */
     nmea_ubx_key_field key_fields[2]; /* where the header holds the key: its fields */
+    const nmea_ubx_header_field *kept; /* the header fields a message keeps (`header`), n_kept of them */
+    uint8_t n_kept;
 } nmea_ubx_framing;
 
 /* The descriptors the interpreter walks (generated per layout; not for use by hand). */

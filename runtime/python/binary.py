@@ -15,15 +15,15 @@ itself with its protocol's framing.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from functools import cache
-from typing import Any, ClassVar, Literal
+from typing import Any, ClassVar, Literal, TypeVar
 
 from . import ubx
 from .framings import FRAMINGS, Framing
 from .runtime import NmeaError
 
-__all__ = ["Frame", "Message", "Unknown", "decode", "decode_frame", "message"]
+__all__ = ["Frame", "Header", "Message", "Unknown", "decode", "decode_frame", "message"]
 
 
 @cache
@@ -61,14 +61,58 @@ def _frame(f: Framing, header: bytearray, body: bytes) -> bytes:
     return bytes(out) + checksum + f.end
 
 
+H = TypeVar("H", bound="Header")
+
+
+@dataclass
+class Header:
+    """The fields of a frame's header besides its sync, length, key and checksum (Unicore's CPU
+    idle, time and status: the protocol.yaml header fields of `identity: false`, framings.Framing's
+    `kept`), which a decoded message keeps and its frame is written with. Each protocol that has
+    such fields has its subclass, generated (nmeaspec.unicore_messages.Header: a member per field,
+    0 by default)."""
+
+    PROTOCOL: ClassVar[str]
+    """The protocol's name in the tools' JSON: unicore."""
+
+    @classmethod
+    def read(cls: type[H], header: bytes) -> H:
+        """The fields of a frame's header (sync bytes to the payload), in the protocol's byte order."""
+        f = framing(cls.PROTOCOL)
+        order: Literal["big", "little"] = "big" if f.big_endian else "little"
+        return cls(**{name: int.from_bytes(header[at:at + size], order) for name, at, size in f.kept})
+
+    def write(self, header: bytearray, where: str) -> None:
+        """Sets its fields in a frame's header; NmeaError bad_value names a field its bytes cannot hold."""
+        from .ais import _bad_value
+
+        f = framing(self.PROTOCOL)
+        for name, at, size in f.kept:
+            value = getattr(self, name)
+            if not isinstance(value, int) or isinstance(value, bool) or not 0 <= value < 1 << 8 * size:
+                raise _bad_value(where, f"header.{name}", value, f"a whole number of {size} bytes")
+            header[at:at + size] = value.to_bytes(size, "big" if f.big_endian else "little")
+
+    def to_dict(self) -> dict[str, Any]:
+        """Its JSON object (`header` in a message's): each field by its id, in the header's order."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+def header_of(message: object) -> Header | None:
+    """The header fields a message or frame keeps (its `header`), None for a protocol with none."""
+    found = getattr(message, "header", None)
+    return found if isinstance(found, Header) else None
+
+
 @dataclass(frozen=True)
 class Frame:
-    """One frame: its protocol, its key (class and id; id; id and sub-id) and the payload after
-    the key."""
+    """One frame: its protocol, its key (class and id; id; id and sub-id), the payload after
+    the key, and the header's other fields (Unicore's time and status; None: zeros)."""
 
     protocol: str
     key: tuple[int, ...]
     payload: bytes
+    header: Header | None = None
 
     @property
     def address(self) -> str:
@@ -86,6 +130,8 @@ class Frame:
                 shift = 8 * last - at - bits if f.big_endian else at - 8 * first
                 word = int.from_bytes(header[first:last], order) & ~(((1 << bits) - 1) << shift)
                 header[first:last] = (word | (value & ((1 << bits) - 1)) << shift).to_bytes(last - first, order)
+        if self.header is not None:
+            self.header.write(header, self.address)
         return _frame(f, header, self.payload if in_header else bytes(self.key) + self.payload)
 
 
@@ -124,36 +170,51 @@ class Message(ubx.Message):
     """The bytes that tell the message: class and id (CASIC), id (and sub-id: SkyTraq, SiRF)."""
 
     def frame(self) -> Frame:  # type: ignore[override]
-        return Frame(self.NAME, self.KEY, self.payload())
+        return Frame(self.NAME, self.KEY, self.payload(), header_of(self))
 
     def encode(self) -> bytes:
+        header = header_of(self)
+        if header is not None:   # checked first, so that an error names the message: UNICORE BESTNAVB
+            header.write(bytearray(framing(self.NAME).header), f"{self.PROTOCOL} {self.ADDRESS}")
         return self.frame().encode()
+
+    def to_dict(self) -> dict[str, Any]:
+        """ubx.Message's JSON, with `header` after `message` where the protocol has header fields."""
+        out = super().to_dict()
+        header = header_of(self)
+        return out if header is None else {"message": out.pop("message"), "header": header.to_dict(), **out}
 
 
 @dataclass
 class Unknown:
-    """A frame of a key the spec does not describe, kept with its payload."""
+    """A frame of a key the spec does not describe, kept with its payload (and the header's other
+    fields, where its protocol has some: Unicore's time and status)."""
 
     protocol: str
     key: tuple[int, ...]
     payload: bytes
+    header: Header | None = None
 
     def encode(self) -> bytes:
-        return Frame(self.protocol, self.key, self.payload).encode()
+        return Frame(self.protocol, self.key, self.payload, self.header).encode()
 
     def to_dict(self) -> dict[str, Any]:
         f = framing(self.protocol)
-        keys = tuple(name for name, _, _ in f.identity) if len(self.key) == 2 and _header_key(f) else ("id",)
-        return {"message": None, **dict(zip(keys, self.key)), "payload": self.payload.hex()}
+        keys = tuple(name for name, _, _ in f.identity) if len(self.key) == len(f.identity) and _header_key(f) \
+            else ("id",)
+        return {"message": None, **({"header": self.header.to_dict()} if self.header is not None else {}),
+                **dict(zip(keys, self.key)), "payload": self.payload.hex()}
 
 
 ByKey = dict[tuple[int, ...], tuple[type[Message], ...]]
 
 
-def message(by_key: ByKey, protocol: str, header: bytes, payload: bytes) -> Message | Unknown:
+def message(by_key: ByKey, protocol: str, header: bytes, payload: bytes,
+            kept: type[Header] | None = None) -> Message | Unknown:
     """The message of a frame's header and payload: the layouts of its key (a header's class and
     id; the payload's id and sub-id, else its id), the one whose length and selector (type,
-    version) the payload has, else the main one; an Unknown when the spec describes no such key."""
+    version) the payload has, else the main one; an Unknown when the spec describes no such key.
+    `kept`: the protocol's Header, whose fields the message keeps (Unicore's time and status)."""
     f = framing(protocol)
     if _header_key(f):
         key = _key_of(f, header)
@@ -165,12 +226,14 @@ def message(by_key: ByKey, protocol: str, header: bytes, payload: bytes) -> Mess
         rest = payload[len(key):]
     layouts = by_key.get(key)
     if not layouts:
-        return Unknown(protocol, key, rest) if key else Unknown(protocol, (), b"")
+        return Unknown(protocol, key if key else (), rest if key else b"", kept.read(header) if kept else None)
     found = ubx.layout_for(layouts, rest).from_payload(rest)
     assert isinstance(found, Message)
+    if kept is not None:
+        setattr(found, "header", kept.read(header))  # the layout class declares it (generated)
     return found
 
 
-def decode(by_key: ByKey, protocol: str, data: bytes) -> Message | Unknown:
+def decode(by_key: ByKey, protocol: str, data: bytes, kept: type[Header] | None = None) -> Message | Unknown:
     """The message of one whole frame, its sync bytes, length and checksum checked."""
-    return message(by_key, protocol, *decode_frame(protocol, data))
+    return message(by_key, protocol, *decode_frame(protocol, data), kept)

@@ -13,7 +13,7 @@ class Framing(NamedTuple):
     """How a binary protocol's frame is told from noise."""
 
     protocol: str  # its name in the tools' JSON
-    sync: bytes  # its sync bytes: what a rejected frame is handed on as
+    sync: bytes  # its sync bytes (1 to 3): what a rejected frame is handed on as; a third is checked as it comes
     follow: int  # the byte after the first sync byte, its bits under follow_mask
     follow_mask: int
     length_at: int  # the length field: its first byte, from the sync
@@ -30,6 +30,9 @@ class Framing(NamedTuple):
     # (name, bit offset from the sync, bits): what tells the message; the bits numbered most
     # significant first in a big-endian frame, least significant first in a little-endian one
     identity: tuple[tuple[str, int, int], ...]
+    # (name, byte offset from the sync, bytes): the header's other fields (Unicore's time and status),
+    # unsigned, which a decoded message keeps (binary.Header) and writes back
+    kept: tuple[tuple[str, int, int], ...] = ()
 
     @property
     def trailer(self) -> int:
@@ -50,6 +53,7 @@ FRAMINGS = (
             'xor8', 4, 0, 1, b"\x0d\x0a", (('id', 32, 8),)),
     Framing('ubx', b"\xb5\x62", 0x62, 0xFF, 4, 2, False, 0xFFFF, 6, 8,
             'fletcher8', 2, 0, 2, b"", (('class', 16, 8), ('id', 24, 8))),
-    Framing('unicore', b"\xaa\x44", 0x44, 0xFF, 6, 2, False, 0xFFFF, 24, 28,
-            'crc32', 0, 0, 4, b"", (('message_id', 32, 16),)),
+    Framing('unicore', b"\xaa\x44\xb5", 0x44, 0xFF, 6, 2, False, 0xFFFF, 24, 28,
+            'crc32', 0, 0, 4, b"", (('message_id', 32, 16),),
+            (('cpu_idle', 3, 1), ('time_ref', 8, 1), ('time_status', 9, 1), ('week', 10, 2), ('time_of_week', 12, 4), ('version', 16, 4), ('reserved', 20, 1), ('leap_seconds', 21, 1), ('output_delay', 22, 2))),
 )

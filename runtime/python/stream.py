@@ -219,7 +219,7 @@ class BinaryFrame:
 @cache
 def typed(protocol: str) -> bool:
     """Whether the package types the messages of `protocol` (has nmeaspec.<protocol>_messages):
-    not Unicore's, nor a protocol a subset made with `generate --only` leaves out."""
+    not a protocol a subset made with `generate --only` leaves out."""
     return find_spec(f"{__package__}.{protocol}_messages") is not None
 
 
@@ -293,8 +293,8 @@ class Framer:
         short by the end, read again)."""
         out: list[Item] = []
         while self._frame:
-            if len(self._frame) == 1:  # a lone first sync byte
-                self._line_byte(self._frame.pop(), out)
+            if len(self._frame) == 1 or len(self._frame) < len(self._framing.sync):  # a sync cut short
+                self._unstart(out)
             else:
                 out.append(self._bad("cut", "the stream ends inside the frame"))
                 out += self.feed(self._rest())
@@ -321,8 +321,14 @@ class Framer:
             else:  # no frame: its first byte was one of the line
                 self._line_byte(frame.pop(), out)
                 return bytes((byte,))
-            self._finish(out)  # the line before the frame
         framing = self._framing
+        if len(frame) < 3:  # the sync's bytes
+            sync = framing.spec.sync
+            if len(frame) == 2 < len(sync) and byte != sync[2]:  # a third sync byte, checked as it comes
+                self._unstart(out)
+                return bytes((byte,))
+            if len(frame) + 1 == max(len(sync), 2):
+                self._finish(out)  # the line before the frame, its sync whole
         frame.append(byte)
         if len(frame) == framing.spec.header:
             self._size = framing.size(frame)
@@ -346,6 +352,13 @@ class Framer:
             frame.clear()
             self._size = 0
         return b""
+
+    def _unstart(self, out: list[Item]) -> None:
+        """The sync bytes so far of what turns out to be no frame (a third sync byte that does not
+        follow, or the stream's end): bytes of the line, as a first sync byte no second follows."""
+        for byte in self._frame:
+            self._line_byte(byte, out)
+        self._frame.clear()
 
     def _bad(self, reason: str, message: str) -> BadFrame:
         return BadFrame(self._framing.protocol, reason, message, bytes(self._frame[:len(self._framing.sync)]))

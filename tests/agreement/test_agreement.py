@@ -379,10 +379,10 @@ BINARY_CASES = (GGA + ACK + GGA + RTCM + b"$GPGGA" + ACK + b",1*00\r\n"
                 # under its header's 8 bytes; cut by a sentence; "$@" in a TAG block
                 + b"$GPGGA,2" + SBF + GGA + SBF[:2] + b"\x00" + SBF[3:] + GGA + SBF[:6] + b"\x04\x00" + GGA
                 + SBF[:12] + GGA + b"\\s:$@*00\\" + GGA
-                # Unicore: whole after a sentence's text; its CRC wrong; NovAtel's AA 44 12 (a length
-                # over the readers' 2,048 bytes); cut by a sentence
+                # Unicore: whole after a sentence's text; its CRC wrong; NovAtel's AA 44 12 and AA 44 AA
+                # (no frame: the third sync byte is checked as it comes); cut by a sentence; AA 44 before a sentence
                 + b"$GPGGA,3" + UNI + GGA + UNI[:-1] + b"\x00" + GGA + b"\xaa\x44\x12\x1c\x2a\x00\x00\x20" + bytes(range(0x30, 0x44)) + GGA
-                + UNI[:20] + GGA + ACK[:7])
+                + b"\xaa\x44\xaa\x44" + UNI + UNI[:20] + GGA + b"\xaa\x44" + GGA + ACK[:7])
 
 
 def test_binary_frames_in_stream() -> None:

@@ -14,7 +14,7 @@ import pytest
 from tests.agreement.test_agreement import ACK, BINARY_CASES, BINARY_LOGS, GGA, SBF_LOGS, run
 
 UBX_TOOLS = ["nmea-c", "nmea-rs", "nmea-py"]
-TYPED = ("ubx", "skytraq", "sirf", "casic", "sbf")   # the protocols whose messages the tools decode
+TYPED = ("ubx", "skytraq", "sirf", "casic", "sbf", "unicore")   # the protocols whose messages the tools decode
 
 
 def frame(msg_class: int, msg_id: int, payload: bytes) -> bytes:
@@ -83,7 +83,7 @@ def test_stream_ubx_prints_each_frames_message(name: str) -> None:
             assert o[f"{protocol}_error"] == json.loads(err.error_json())
             continue
         assert o[protocol] == message.to_dict()
-        assert message.encode() == data
+        assert message.encode() == data   # byte for byte (Unicore's header fields kept: its `header`)
     if name == "made-up frames":
         assert [o.get(o["protocol"], {}).get("message", o.get(f"{o['protocol']}_error", {}).get("name"))
                 for o in frames] == ["leap_s", None, "svs", "mon_ver", "nav_pvt", "ack_ack", "msl_alt", None, "nav_pv",

@@ -34,7 +34,7 @@ def test_the_table_of_ubx_and_rtcm3() -> None:
 
 
 @pytest.mark.parametrize("change, reason", [
-    (lambda f: f.__setitem__("sync", [1, 2, 3]), "sync of 3 bytes"),
+    (lambda f: f.__setitem__("sync", [1, 2, 3, 4]), "sync of 4 bytes"),
     (lambda f: f["checksum"].__setitem__("algorithm", "crc64"), "checksum crc64"),
     (lambda f: f["checksum"].__setitem__("over", ["payload", "class"]), "a checksum over"),
     (lambda f: f["header"][2].pop("counts"), "one header field counts the payload"),
@@ -57,6 +57,13 @@ def test_protocols_that_start_alike() -> None:
     SPEC2.protocols = [*SPEC.protocols, twin]
     with pytest.raises(emit_framing.FramingError, match="start alike"):
         emit_framing.framings(SPEC2)
+    # the second of three sync bytes goes to the line when the third does not follow: no line or sync byte
+    for second in (0x24, 0x0A, 0xB5):
+        uni = copy.deepcopy(next(p for p in SPEC.protocols if p.id == "unicore"))
+        uni.frame["sync"] = [0xAA, second, 0xB5]
+        SPEC2.protocols = [p for p in SPEC.protocols if p.id != "unicore"] + [uni]
+        with pytest.raises(emit_framing.FramingError, match="second of three sync bytes"):
+            emit_framing.framings(SPEC2)
 
 
 def test_the_table_of_skytraq_sirf_and_casic() -> None:
@@ -87,11 +94,12 @@ def test_the_table_of_sbf() -> None:
 
 
 def test_the_table_of_unicore() -> None:
-    """Unicore: synced on AA 44 (B5 the header's first field), a 24-byte header whose length counts
-    the body alone, its message id the one field that tells the message (the header's time and
-    status fields passed over: identity: false), a CRC-32 from the sync to the body's end."""
+    """Unicore: synced on AA 44 B5 (the third byte checked as it comes), a 24-byte header whose
+    length counts the body alone, its message id the one field that tells the message (the header's
+    time and status fields passed over: identity: false), a CRC-32 from the sync to the body's end."""
     uni = {f.protocol: f for f in emit_framing.framings(SPEC)}["unicore"]
     assert (uni.sync, uni.follow, uni.length_at, uni.length_size, uni.big_endian, uni.header, uni.length_adds) \
-        == (b"\xaa\x44", (0x44, 0xFF), 6, 2, False, 24, 28)
+        == (b"\xaa\x44\xb5", (0x44, 0xFF), 6, 2, False, 24, 28)
+    assert '{"unicore", {0xAA, 0x44, 0xB5}, 0xFF, 3,' in emit_framing.c_source(emit_framing.framings(SPEC))
     assert (uni.checksum, uni.check_at, uni.check_from, uni.check_size, uni.trailer) == ("crc32", 0, 0, 4, 4)
     assert uni.identity == (("message_id", 32, 16),)

@@ -193,8 +193,10 @@ def test_a_subset_of_binary_messages(spec) -> None:
     assert subset(spec, ["CFG-VALSET"]).config_keys and not subset(spec, ["CFG-VALSET"]).sentences
     both = {m.protocol for m in subset(spec, ["CFG-MSG"]).binary if m.id == "cfg_msg"}
     assert both == {"ubx", "casic"}   # a bare name: every protocol's message of that name
+    unicore = {m.id for m in spec.binary if m.protocol == "unicore"}
+    assert {m.id for m in subset(spec, ["unicore"]).binary} == unicore and len(unicore) == 8   # a protocol: all its messages
     for words, error in ((["ubx:NAV-NOPE"], "ubx has no message 'nav-nope'"), (["nope:NAV-PVT"], "unknown protocol 'nope'"),
-                         (["unicore"], "unicore has no messages")):
+                         (["unicore:BESTPOSB"], "unicore has no message 'bestposb'")):
         with pytest.raises(SelectionError, match=error):
             subset(spec, words)
 

@@ -24,6 +24,7 @@ def test_the_readme_counts_what_the_spec_describes() -> None:
         "SkyTraq, SiRF \\(OSP\\) and CASIC binary messages":
             sum(m.protocol in ("skytraq", "sirf", "casic") for m in spec.binary),
         "Septentrio SBF blocks": sum(m.protocol == "sbf" for m in spec.binary),
+        "Unicore binary logs": sum(m.protocol == "unicore" for m in spec.binary),
         "proprietary sentences, commands and replies": len(proprietary),
         "manuals of": len({s.vendor for s in proprietary}),
         "receiver makers": len({manuals[s.vendor].maker for s in proprietary}),

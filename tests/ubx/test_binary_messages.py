@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 from collections import Counter
-from dataclasses import replace
+from dataclasses import fields as dataclass_fields, replace
 from pathlib import Path
 
 import pytest
@@ -85,7 +85,7 @@ def test_every_described_frame_round_trips(protocol: str) -> None:
 
 def test_vectors_are_the_reference_decoders() -> None:
     vectors = [json.loads(line) for line in (ROOT / "generated" / "vectors" / "binary.jsonl").read_text().splitlines()]
-    assert {v["protocol"] for v in vectors} == {"skytraq", "sirf", "casic", "sbf"}
+    assert {v["protocol"] for v in vectors} == {"skytraq", "sirf", "casic", "sbf", "unicore"}
     for v in vectors:
         data = bytes.fromhex(v["frame"])
         if "error" in v:   # a frame every decoder refuses, with this kind of error
@@ -283,3 +283,57 @@ def test_pysbf2_agrees() -> None:
         assert o.round_trip == o.count > 0 and not o.differ, o.block
         assert all(o.agree[k] + o.special[k] == n for k, n in o.fields.items()), o.block
         assert all(name in oracle.LEFT_OUT for name in o.missing), o.block
+
+
+def test_pyunigps_agrees() -> None:
+    """pyunigps's values of the same Unicore frames (tests/ubx/pyunigps_oracle.py,
+    docs/unicore-agreement.md): every field compared agrees, each frame encodes back byte for byte,
+    pyunigps's fields left out and ours not compared each have their reason."""
+    from tests.ubx import pyunigps_oracle as oracle
+
+    found = oracle.outcomes()
+    assert oracle.DOC.read_text() == oracle.render(found), "run .venv/bin/python -m tests.ubx.pyunigps_oracle"
+    assert [o.message for o in found] == list(oracle.TYPED)
+    for o in found:
+        assert o.round_trip == o.count > 0 and not o.differ, o.message
+        assert o.fields and all(o.agree[k] == n for k, n in o.fields.items()), o.message
+        assert all(name in oracle.LEFT_OUT for name in o.missing), o.message
+        assert o.not_compared <= set(oracle.NOT_COMPARED), o.message
+
+
+def test_unicore_messages_and_their_errors() -> None:
+    """A Unicore frame is told by its header's message id: BESTNAVB's values and header fields; a
+    frame of an id the spec does not type kept with its payload and header fields; a message built
+    by hand has its header fields 0 unless set, one its bytes cannot hold named by message and field;
+    a body cut short named by message and field; a NovAtel-style third sync byte refused."""
+    from nmeaspec import unicore_messages
+    from tests.ubx import pyunigps_oracle as oracle
+
+    built = oracle.frames(oracle.BUILT.read_bytes())
+    frame = next(f for f in built if int.from_bytes(f[4:6], "little") == 2118)
+    best = unicore_messages.decode(frame)
+    assert isinstance(best, unicore_messages.BestnavB)
+    assert best.ADDRESS == "BESTNAVB" and best.to_dict()["pos_type"] == "narrow_int"
+    assert best.lat == pytest.approx(51.4761234567) and best.num_svs == 31
+    assert best.header == unicore_messages.Header(38, 1, 2, 2407, 123_457_250, 0x10204, 0, 18, 6)
+    assert list(best.to_dict())[:2] == ["message", "header"] and best.encode() == frame
+    test = (ROOT / "tests" / "data" / "unicore" / "pyunigps_frames.log").read_bytes()[:33]
+    unknown = unicore_messages.decode(test)
+    assert isinstance(unknown, binary.Unknown) and unknown.key == (65512,) and unknown.payload == bytes([1, 2, 3, 4, 5])
+    assert unknown.header is not None and unknown.header.week == 17459 and unknown.encode() == test
+    # built by hand: zeros in the header, or what is set
+    fields = {f.name: getattr(best, f.name) for f in dataclass_fields(best) if f.name != "header"}
+    assert unicore_messages.BestnavB(**fields).encode()[:24] == frame[:3] + b"\0" + frame[4:8] + bytes(16)
+    dated = unicore_messages.BestnavB(**fields, header=unicore_messages.Header(week=2407, time_of_week=123_457_250))
+    assert unicore_messages.decode(dated.encode()) == dated
+    dated.header.week = 1 << 16
+    with pytest.raises(NmeaError) as err:
+        dated.encode()
+    assert err.value.kind == "bad_value" and err.value.address == "UNICORE BESTNAVB" and err.value.name == "header.week"
+    cut = binary.Frame("unicore", (2118,), best.payload()[:40]).encode()
+    with pytest.raises(NmeaError) as err:
+        unicore_messages.decode(cut)
+    assert err.value.kind == "short_payload" and "BESTNAVB" in str(err.value)
+    with pytest.raises(NmeaError) as err:
+        unicore_messages.decode(b"\xaa\x44\x12" + built[0][3:])
+    assert err.value.kind == "bad_sync"

@@ -246,9 +246,10 @@ UNI_LOG = ROOT / "tests" / "data" / "unicore" / "pyunigps_frames.log"
 
 def test_unicore_frames_split_from_nmea_at_every_chunk_size() -> None:
     """The three frames alone, then between sentences with a damaged one, one cut short (read on
-    into the sentences after it, its CRC then wrong) and NovAtel's
-    AA 44 12 (whose length, read where Unicore's is, is over the framer's bytes): every frame whole,
-    its CRC-32 and id as the frame holds them, nothing else taken for a frame."""
+    into the sentences after it, its CRC then wrong) and NovAtel's AA 44 12 and AA 44 then other
+    bytes (the third sync byte checked as it comes: no frame, their bytes the line's, the sentence
+    after them handed on as soon as it ends): every frame whole, its CRC-32 and id as the frame
+    holds them, nothing else taken for a frame."""
     from tests.ubx.test_binary_protocols import checked
 
     log = UNI_LOG.read_bytes()
@@ -258,11 +259,31 @@ def test_unicore_frames_split_from_nmea_at_every_chunk_size() -> None:
     assert all(checked(f.data) == "unicore" for f in frames)
     uni = log[:33]
     novatel = b"\xaa\x44\x12\x1c\x2a\x00\x00\x20" + bytes(range(0x30, 0x44))
-    data = GGA + log[33:] + b"$GPGGA,2" + uni + GGA + uni[:-1] + b"\x00" + GGA + novatel + GGA + uni[:20] + GGA
+    data = (GGA + log[33:] + b"$GPGGA,2" + uni + GGA + uni[:-1] + b"\x00" + GGA + novatel + GGA + b"\xaa\x44\xaa\x44"
+            + uni + GGA + uni[:20] + GGA + b"\xaa\x44")
     items = split(data)
     assert kinds(items) == [GGA[:-2], "unicore", "unicore", b"$GPGGA,2", "unicore", GGA[:-2], "unicore bad_checksum",
-                            uni[2:-1] + b"\x00", GGA[:-2], "unicore too_long", novatel[2:], GGA[:-2],
-                            "unicore bad_checksum", uni[2:20], GGA[:-2]]
+                            uni[3:-1] + b"\x00", GGA[:-2], novatel, GGA[:-2], b"\xaa\x44\xaa\x44", "unicore", GGA[:-2],
+                            "unicore bad_checksum", uni[3:20], GGA[:-2], b"\xaa\x44"]
     assert joined(items) == without_line_endings(data, items)
     for chunk in range(1, len(data) + 1, 7):
         assert split(data, chunk) == items, chunk
+    # a sentence after NovAtel's sync is handed on the moment its line ends, not after 24 bytes
+    framer = stream.Framer(binary=True)
+    assert framer.feed(GGA + novatel[:3]) == [GGA[:-2]]
+    assert framer.feed(GGA) == [novatel[:3], GGA[:-2]]
+
+
+@pytest.mark.parametrize("kind", faults.KINDS)
+def test_damage_to_unicore_and_nmea_loses_no_intact_frame(kind: str) -> None:
+    """fuzz/faults.py's damage over Unicore frames (pyunigps's, tests/data/unicore) between NMEA
+    sentences and NovAtel-style AA 44 12 headers (the other stream: the same frames in reverse
+    order, with AA 44 before each)."""
+    from tests.ubx.pyunigps_oracle import frames as unicore_frames
+
+    built = unicore_frames(UNI_LOG.read_bytes() + (UNI_LOG.parent / "pyunigps_built.log").read_bytes())
+    novatel = b"\xaa\x44\x12\x1c\x2a\x00\x00\x20" + bytes(range(0x30, 0x44))
+    one = b"".join(frame + GGA + (novatel if i % 3 == 0 else b"") for i, frame in enumerate(built))
+    other = b"".join(b"\xaa\x44" + frame + b"$GPGGA,2*00\r\n" for frame in reversed(built))
+    assert len(frame_spans(one)) == len(frame_spans(other)) == len(built) == 11
+    assert_damage_keeps_frames(kind, [one, other])

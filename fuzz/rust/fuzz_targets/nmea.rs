@@ -139,18 +139,19 @@ impl From<Item<'_>> for Owned {
 /// in the whole input; a rejected one gives up its sync bytes only.
 fn model_frame(data: &[u8]) -> Option<(Owned, usize)> {
     // the frames of spec/binary, from the protocols' facts: name, first two bytes (the second
-    // under a mask), sync bytes, header and trailer (checksum and end bytes) sizes
-    const MODELS: [(&str, u8, u8, u8, usize, usize, usize); 7] = [
-        ("ubx", 0xB5, 0x62, 0xFF, 2, 6, 2),
-        ("rtcm3", 0xD3, 0x00, 0xFC, 1, 3, 3),
-        ("skytraq", 0xA0, 0xA1, 0xFF, 2, 4, 3),
-        ("sirf", 0xA0, 0xA2, 0xFF, 2, 4, 4),
-        ("casic", 0xBA, 0xCE, 0xFF, 2, 6, 4),
-        ("sbf", b'$', b'@', 0xFF, 2, 8, 0), // $@ CRC(LE) id(LE) length(LE: the whole block) body
-        ("unicore", 0xAA, 0x44, 0xFF, 2, 24, 4), // AA 44 B5 cpu id(LE) length(LE) time... body CRC-32(LE)
+    // under a mask), sync bytes, header and trailer (checksum and end bytes) sizes; a third sync byte
+    const MODELS: [(&str, u8, u8, u8, usize, usize, usize, u8); 7] = [
+        ("ubx", 0xB5, 0x62, 0xFF, 2, 6, 2, 0),
+        ("rtcm3", 0xD3, 0x00, 0xFC, 1, 3, 3, 0),
+        ("skytraq", 0xA0, 0xA1, 0xFF, 2, 4, 3, 0),
+        ("sirf", 0xA0, 0xA2, 0xFF, 2, 4, 4, 0),
+        ("casic", 0xBA, 0xCE, 0xFF, 2, 6, 4, 0),
+        ("sbf", b'$', b'@', 0xFF, 2, 8, 0, 0), // $@ CRC(LE) id(LE) length(LE: the whole block) body
+        ("unicore", 0xAA, 0x44, 0xFF, 3, 24, 4, 0xB5), // AA 44 B5 cpu id(LE) length(LE) time... body CRC-32(LE)
     ];
     let second = *data.get(1)?;
-    let &(name, _, _, _, sync, header, trailer) = MODELS.iter().find(|m| m.1 == data[0] && second & m.3 == m.2)?;
+    let &(name, _, _, _, sync, header, trailer, _) =
+        MODELS.iter().find(|m| m.1 == data[0] && second & m.3 == m.2 && (m.4 < 3 || data.get(2) == Some(&m.7)))?;
     let bad = |kind| Some((Owned::Bad(name, kind, data[..sync].to_vec()), sync));
     if data.len() < header {
         return bad("cut");
@@ -243,7 +244,7 @@ fn model(data: &[u8]) -> Vec<Owned> {
     while at < data.len() {
         let b = data[at];
         at += 1;
-        if matches!(b, 0xB5 | 0xD3 | 0xA0 | 0xBA | b'$') && tag == Tag::Outside {
+        if matches!(b, 0xB5 | 0xD3 | 0xA0 | 0xBA | 0xAA | b'$') && tag == Tag::Outside {
             if let Some((item, taken)) = model_frame(&data[at - 1..]) {
                 finish(&mut out, &mut line, &mut length);
                 out.push(item);

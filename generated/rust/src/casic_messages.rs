@@ -6,7 +6,7 @@
 //   spec/binary/casic/messages/nav_glninfo.yaml, spec/binary/casic/messages/ack_nak.yaml,
 //   spec/binary/casic/messages/ack_ack.yaml, spec/binary/casic/messages/cfg_prt.yaml,
 //   spec/binary/casic/messages/cfg_msg.yaml, spec/binary/casic/messages/cfg_rate.yaml,
-//   spec/binary/casic/messages/mon_ver.yaml (digest 4d2c5bec9bea19a2)
+//   spec/binary/casic/messages/mon_ver.yaml (digest d364031193629899)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The CASIC messages of spec/binary/casic: a struct per layout (named as the Python

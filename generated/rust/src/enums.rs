@@ -132,11 +132,12 @@
 //   spec/enums/ttm_target_status.yaml, spec/enums/ttm_units.yaml,
 //   spec/enums/ublox_autobauding.yaml, spec/enums/ublox_nav_status.yaml,
 //   spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml, spec/enums/ubx_fix_type.yaml,
-//   spec/enums/ubx_gnss_id.yaml, spec/enums/unicore_travel_direction.yaml,
+//   spec/enums/ubx_gnss_id.yaml, spec/enums/unicore_pos_type.yaml,
+//   spec/enums/unicore_sol_status.yaml, spec/enums/unicore_travel_direction.yaml,
 //   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 //   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 //   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-//   (digest 2a4887944ffe9284)
+//   (digest 7e7be95dff36f981)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -18430,6 +18431,218 @@ impl CodeEnum for UbxGnssId {
             Self::Qzss => "qzss",
             Self::Glonass => "glonass",
             Self::Navic => "navic",
+        }
+    }
+}
+
+/// Unicore position or velocity type: How a Unicore receiver's binary log's position, velocity or
+/// heading was computed (its position or velocity type field).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum UnicorePosType {
+    /// No solution.
+    None,
+    /// Position fixed by the FIX POSITION command.
+    Fixedpos,
+    /// Height fixed (not supported).
+    Fixedheight,
+    /// Velocity from instantaneous Doppler.
+    DopplerVelocity,
+    /// Single point positioning.
+    Single,
+    /// Pseudorange differential.
+    Psrdiff,
+    /// SBAS positioning.
+    Sbas,
+    /// L1 float solution.
+    L1Float,
+    /// Ionosphere-free float solution.
+    IonofreeFloat,
+    /// Narrow-lane float solution.
+    NarrowFloat,
+    /// L1 fixed solution.
+    L1Int,
+    /// Wide-lane fixed solution.
+    WideInt,
+    /// Narrow-lane fixed solution.
+    NarrowInt,
+    /// Inertial navigation.
+    Ins,
+    /// Inertial and single point positioning.
+    InsPsrsp,
+    /// Inertial and pseudorange differential.
+    InsPsrdiff,
+    /// Inertial and RTK float.
+    InsRtkfloat,
+    /// Inertial and RTK fixed.
+    InsRtkfixed,
+    /// PPP converging.
+    PppConverging,
+    /// Precise point positioning.
+    Ppp,
+}
+
+impl CodeEnum for UnicorePosType {
+    const EXPECTED: &'static str = "unicore_pos_type code (0 1 2 8 16 17 18 32 33 34 48 49 50 52 53 54 55 56 68 69)";
+    const EXPECTED_CHARS: &'static str =
+        "unicore_pos_type codes (0 1 2 8 16 17 18 32 33 34 48 49 50 52 53 54 55 56 68 69)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 2;
+    const ALL: &'static [Self] = &[
+        Self::None,
+        Self::Fixedpos,
+        Self::Fixedheight,
+        Self::DopplerVelocity,
+        Self::Single,
+        Self::Psrdiff,
+        Self::Sbas,
+        Self::L1Float,
+        Self::IonofreeFloat,
+        Self::NarrowFloat,
+        Self::L1Int,
+        Self::WideInt,
+        Self::NarrowInt,
+        Self::Ins,
+        Self::InsPsrsp,
+        Self::InsPsrdiff,
+        Self::InsRtkfloat,
+        Self::InsRtkfixed,
+        Self::PppConverging,
+        Self::Ppp,
+    ];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::None),
+            b"1" => Some(Self::Fixedpos),
+            b"2" => Some(Self::Fixedheight),
+            b"8" => Some(Self::DopplerVelocity),
+            b"16" => Some(Self::Single),
+            b"17" => Some(Self::Psrdiff),
+            b"18" => Some(Self::Sbas),
+            b"32" => Some(Self::L1Float),
+            b"33" => Some(Self::IonofreeFloat),
+            b"34" => Some(Self::NarrowFloat),
+            b"48" => Some(Self::L1Int),
+            b"49" => Some(Self::WideInt),
+            b"50" => Some(Self::NarrowInt),
+            b"52" => Some(Self::Ins),
+            b"53" => Some(Self::InsPsrsp),
+            b"54" => Some(Self::InsPsrdiff),
+            b"55" => Some(Self::InsRtkfloat),
+            b"56" => Some(Self::InsRtkfixed),
+            b"68" => Some(Self::PppConverging),
+            b"69" => Some(Self::Ppp),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::None => "0",
+            Self::Fixedpos => "1",
+            Self::Fixedheight => "2",
+            Self::DopplerVelocity => "8",
+            Self::Single => "16",
+            Self::Psrdiff => "17",
+            Self::Sbas => "18",
+            Self::L1Float => "32",
+            Self::IonofreeFloat => "33",
+            Self::NarrowFloat => "34",
+            Self::L1Int => "48",
+            Self::WideInt => "49",
+            Self::NarrowInt => "50",
+            Self::Ins => "52",
+            Self::InsPsrsp => "53",
+            Self::InsPsrdiff => "54",
+            Self::InsRtkfloat => "55",
+            Self::InsRtkfixed => "56",
+            Self::PppConverging => "68",
+            Self::Ppp => "69",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Fixedpos => "fixedpos",
+            Self::Fixedheight => "fixedheight",
+            Self::DopplerVelocity => "doppler_velocity",
+            Self::Single => "single",
+            Self::Psrdiff => "psrdiff",
+            Self::Sbas => "sbas",
+            Self::L1Float => "l1_float",
+            Self::IonofreeFloat => "ionofree_float",
+            Self::NarrowFloat => "narrow_float",
+            Self::L1Int => "l1_int",
+            Self::WideInt => "wide_int",
+            Self::NarrowInt => "narrow_int",
+            Self::Ins => "ins",
+            Self::InsPsrsp => "ins_psrsp",
+            Self::InsPsrdiff => "ins_psrdiff",
+            Self::InsRtkfloat => "ins_rtkfloat",
+            Self::InsRtkfixed => "ins_rtkfixed",
+            Self::PppConverging => "ppp_converging",
+            Self::Ppp => "ppp",
+        }
+    }
+}
+
+/// Unicore solution status: Whether a Unicore receiver's binary position, velocity or heading log
+/// holds a solution (its solution status field).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum UnicoreSolStatus {
+    /// Solution computed.
+    SolComputed,
+    /// Insufficient observations.
+    InsufficientObs,
+    /// No convergence: no valid solution.
+    NoConvergence,
+    /// The covariance matrix's trace over its maximum (1000 m).
+    CovTrace,
+}
+
+impl CodeEnum for UnicoreSolStatus {
+    const EXPECTED: &'static str = "unicore_sol_status code (0 1 2 4)";
+    const EXPECTED_CHARS: &'static str = "unicore_sol_status codes (0 1 2 4)";
+    const CLASS: CodeClass = CodeClass::Digits;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::SolComputed, Self::InsufficientObs, Self::NoConvergence, Self::CovTrace];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"0" => Some(Self::SolComputed),
+            b"1" => Some(Self::InsufficientObs),
+            b"2" => Some(Self::NoConvergence),
+            b"4" => Some(Self::CovTrace),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::SolComputed => "0",
+            Self::InsufficientObs => "1",
+            Self::NoConvergence => "2",
+            Self::CovTrace => "4",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::SolComputed => "sol_computed",
+            Self::InsufficientObs => "insufficient_obs",
+            Self::NoConvergence => "no_convergence",
+            Self::CovTrace => "cov_trace",
         }
     }
 }

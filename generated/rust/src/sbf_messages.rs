@@ -9,7 +9,7 @@
 //   spec/binary/sbf/messages/vel_cov_cartesian.yaml,
 //   spec/binary/sbf/messages/vel_cov_geodetic.yaml, spec/binary/sbf/messages/xpps_offset.yaml,
 //   spec/binary/sbf/messages/receiver_time.yaml, spec/binary/sbf/messages/end_of_pvt.yaml
-//   (digest e25e67b6e1ba6a54)
+//   (digest 4062b0ffe936acc3)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The Septentrio SBF messages of spec/binary/sbf: a struct per layout (named as the Python

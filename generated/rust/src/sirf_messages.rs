@@ -8,7 +8,7 @@
 //   spec/binary/sirf/messages/ok_to_send.yaml, spec/binary/sirf/messages/geodetic_nav.yaml,
 //   spec/binary/sirf/messages/pps_time.yaml, spec/binary/sirf/messages/switch_to_nmea.yaml,
 //   spec/binary/sirf/messages/poll_sw_version.yaml, spec/binary/sirf/messages/set_protocol.yaml,
-//   spec/binary/sirf/messages/dev_data.yaml (digest b09a8d2e725739a1)
+//   spec/binary/sirf/messages/dev_data.yaml (digest 34dc30fef66598e8)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The SiRF binary (OSP) messages of spec/binary/sirf: a struct per layout (named as the Python

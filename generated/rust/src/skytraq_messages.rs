@@ -6,7 +6,7 @@
 //   spec/binary/skytraq/messages/msg_nack.yaml, spec/binary/skytraq/messages/nav_data.yaml,
 //   spec/binary/skytraq/messages/meas_time.yaml, spec/binary/skytraq/messages/raw_meas.yaml,
 //   spec/binary/skytraq/messages/sv_ch_status.yaml, spec/binary/skytraq/messages/rcv_state.yaml,
-//   spec/binary/skytraq/messages/gps_subframe.yaml (digest 86a678c16afbdb2e)
+//   spec/binary/skytraq/messages/gps_subframe.yaml (digest 3ee6be7e9a06f0eb)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The SkyTraq binary messages of spec/binary/skytraq: a struct per layout (named as the Python

@@ -22,7 +22,7 @@ pub enum Protocol {
     Skytraq,
     /// ubx: sync B5 62.
     Ubx,
-    /// unicore: sync AA 44.
+    /// unicore: sync AA 44 B5.
     Unicore,
 }
 
@@ -43,7 +43,7 @@ impl Protocol {
 pub static FRAMINGS: [FrameFormat; 7] = [
     FrameFormat {
         name: "casic",
-        sync: [0xBA, 0xCE],
+        sync: [0xBA, 0xCE, 0x00],
         follow_mask: 0xFF,
         sync_len: 2,
         length_at: 2,
@@ -61,7 +61,7 @@ pub static FRAMINGS: [FrameFormat; 7] = [
     },
     FrameFormat {
         name: "rtcm3",
-        sync: [0xD3, 0x00],
+        sync: [0xD3, 0x00, 0x00],
         follow_mask: 0xFC,
         sync_len: 1,
         length_at: 1,
@@ -79,7 +79,7 @@ pub static FRAMINGS: [FrameFormat; 7] = [
     },
     FrameFormat {
         name: "sbf",
-        sync: [0x24, 0x40],
+        sync: [0x24, 0x40, 0x00],
         follow_mask: 0xFF,
         sync_len: 2,
         length_at: 6,
@@ -97,7 +97,7 @@ pub static FRAMINGS: [FrameFormat; 7] = [
     },
     FrameFormat {
         name: "sirf",
-        sync: [0xA0, 0xA2],
+        sync: [0xA0, 0xA2, 0x00],
         follow_mask: 0xFF,
         sync_len: 2,
         length_at: 2,
@@ -115,7 +115,7 @@ pub static FRAMINGS: [FrameFormat; 7] = [
     },
     FrameFormat {
         name: "skytraq",
-        sync: [0xA0, 0xA1],
+        sync: [0xA0, 0xA1, 0x00],
         follow_mask: 0xFF,
         sync_len: 2,
         length_at: 2,
@@ -133,7 +133,7 @@ pub static FRAMINGS: [FrameFormat; 7] = [
     },
     FrameFormat {
         name: "ubx",
-        sync: [0xB5, 0x62],
+        sync: [0xB5, 0x62, 0x00],
         follow_mask: 0xFF,
         sync_len: 2,
         length_at: 4,
@@ -151,9 +151,9 @@ pub static FRAMINGS: [FrameFormat; 7] = [
     },
     FrameFormat {
         name: "unicore",
-        sync: [0xAA, 0x44],
+        sync: [0xAA, 0x44, 0xB5],
         follow_mask: 0xFF,
-        sync_len: 2,
+        sync_len: 3,
         length_at: 6,
         length_size: 2,
         big_endian: false,

@@ -57,11 +57,12 @@ pub enum ChecksumKind {
 pub struct FrameFormat {
     /// Its name in the tools' JSON: `ubx`.
     pub name: &'static str,
-    /// The first sync byte; the value of the next byte's bits under `follow_mask`.
-    pub sync: [u8; 2],
+    /// The first sync byte; the value of the next byte's bits under `follow_mask`; the third
+    /// (when `sync_len` is 3), checked as it comes.
+    pub sync: [u8; 3],
     /// The bits of the byte after the first sync byte that must hold `sync[1]`.
     pub follow_mask: u8,
-    /// Its sync bytes (1 or 2): what a rejected frame is handed on as.
+    /// Its sync bytes (1 to 3): what a rejected frame is handed on as.
     pub sync_len: usize,
     /// The length field's first byte.
     pub length_at: usize,
@@ -358,9 +359,8 @@ impl Framer {
     /// and what a frame cut short by the end held; the framer is then at the start of a new stream.
     pub fn finish(&mut self, mut each: impl FnMut(Item<'_>)) {
         while self.frame_len > 0 {
-            if self.frame_len == 1 {
-                self.frame_len = 0; // a lone first sync byte: a byte of the line
-                self.line_byte(self.frame[0], &mut each);
+            if self.frame_len == 1 || self.frame_len < self.protocol.sync_len() {
+                self.unstart(&mut each); // a sync cut short by the end: bytes of the line
             } else {
                 self.reject(FrameError::Cut, &mut each);
                 self.read_again(&mut each);
@@ -403,8 +403,15 @@ impl Framer {
     fn frame_byte(&mut self, byte: u8, each: &mut impl FnMut(Item<'_>)) {
         let protocol = self.protocol;
         let framing = protocol.framing();
-        if self.frame_len == 1 {
-            self.end_line(each); // the line before the frame
+        if self.frame_len < 3 {
+            // the sync's bytes: a third one checked as it comes (no frame: it starts none whose third byte it is)
+            if self.frame_len == 2 && framing.sync_len > 2 && byte != framing.sync[2] {
+                self.unstart(each);
+                return self.step(byte, each);
+            }
+            if self.frame_len + 1 == framing.sync_len.max(2) {
+                self.end_line(each); // the line before the frame, its sync whole
+            }
         }
         self.frame[self.frame_len] = byte;
         self.frame_len += 1;
@@ -427,6 +434,16 @@ impl Framer {
             } else {
                 self.reject(FrameError::BadChecksum { sent, computed }, each);
             }
+        }
+    }
+
+    /// The sync bytes so far of what turns out to be no frame (a third sync byte that does not
+    /// follow, or the stream's end): bytes of the line, as a first sync byte no second follows.
+    fn unstart(&mut self, each: &mut impl FnMut(Item<'_>)) {
+        let (sync, len) = ([self.frame[0], self.frame[1]], self.frame_len.min(2));
+        self.frame_len = 0;
+        for &byte in &sync[..len] {
+            self.line_byte(byte, each);
         }
     }
 
@@ -624,6 +641,13 @@ mod tests {
             at + part.len()
         });
         binary_items(&stream[..len], b"$A|unicore|$B|");
+        // NovAtel's AA 44 12, AA 44 AA, AA 44 at the end: no frame, the third sync byte checked as it comes
+        binary_items(b"$A\n\xaa\x44\x12\x1c\x2a$B\n", b"$A|\xaa\x44\x12\x1c\x2a|$B|");
+        let len = [&b"\xaa\x44\xaa\x44"[..], UNI, b"\xaa\x44"].iter().fold(0, |at, part| {
+            stream[at..at + part.len()].copy_from_slice(part);
+            at + part.len()
+        });
+        binary_items(&stream[..len], b"\xaa\x44\xaa\x44|unicore|\xaa\x44|");
     }
 
     #[test]

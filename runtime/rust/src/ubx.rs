@@ -73,7 +73,7 @@ impl UbxErrorKind {
 /// bytes, as big-endian numbers of `width` bytes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Detail {
-    Sync { expected: [u8; 2], sent: [u8; 2], len: usize },
+    Sync { expected: [u8; 3], want: usize, sent: [u8; 3], len: usize },
     Header { need: usize, have: usize },
     Length { size: usize, have: usize },
     Checksum { sent: [u8; 2], computed: [u8; 2] },
@@ -152,9 +152,9 @@ impl fmt::Display for Message<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let field = self.0.field.unwrap_or("");
         match self.0.detail {
-            Detail::Sync { expected, sent, len } => {
+            Detail::Sync { expected, want, sent, len } => {
                 write!(f, "a {} frame starts with", self.0.protocol)?;
-                expected.iter().try_for_each(|byte| write!(f, " {byte:02X}"))?;
+                expected.iter().take(want).try_for_each(|byte| write!(f, " {byte:02X}"))?;
                 f.write_str(", not")?;
                 sent.iter().take(len).try_for_each(|byte| write!(f, " {byte:02X}"))
             }
@@ -211,9 +211,10 @@ impl std::error::Error for UbxError {}
 pub fn split_frame(data: &[u8]) -> Result<(u8, u8, &[u8]), UbxError> {
     let sync = data.len().min(2);
     if data[..sync] != SYNC[..sync] {
-        let mut sent = [0u8; 2];
+        let mut sent = [0u8; 3];
         sent[..sync].copy_from_slice(&data[..sync]);
-        return Err(UbxError::frame(UbxErrorKind::BadSync, None, Detail::Sync { expected: SYNC, sent, len: sync }));
+        let expected = [SYNC[0], SYNC[1], 0];
+        return Err(UbxError::frame(UbxErrorKind::BadSync, None, Detail::Sync { expected, want: 2, sent, len: sync }));
     }
     if data.len() < HEADER_SIZE {
         return Err(UbxError::frame(
@@ -496,9 +497,10 @@ pub fn split_frame_of(protocol: Protocol, data: &[u8]) -> Result<(&[u8], &[u8]),
     let error = |kind, detail| UbxError { kind, protocol: name, message: "", class_id: None, field: None, detail };
     let sync = data.len().min(f.sync_len);
     if data[..sync] != f.sync[..sync] {
-        let mut sent = [0u8; 2];
+        let mut sent = [0u8; 3];
         sent[..sync].copy_from_slice(&data[..sync]);
-        return Err(error(UbxErrorKind::BadSync, Detail::Sync { expected: f.sync, sent, len: sync }));
+        let (expected, want) = (f.sync, f.sync_len);
+        return Err(error(UbxErrorKind::BadSync, Detail::Sync { expected, want, sent, len: sync }));
     }
     if data.len() < f.header {
         return Err(error(UbxErrorKind::ShortFrame, Detail::Header { need: f.header, have: data.len() }));
@@ -549,6 +551,20 @@ pub fn encode_frame_of<'b>(
     message: &'static str,
     payload: impl FnOnce(&mut ByteWriter<'_>) -> Result<(), UbxError>,
 ) -> Result<&'b [u8], UbxError> {
+    encode_frame_with(buf, protocol, key, message, |_| {}, payload)
+}
+
+/// [`encode_frame_of`] with the header's other fields (Unicore's time and status, which a decoded
+/// message keeps): `header` sets them in the frame's header (sync bytes to the payload, zeros but
+/// for the sync, length and key) before the checksum is computed.
+pub fn encode_frame_with<'b>(
+    buf: &'b mut [u8],
+    protocol: Protocol,
+    key: &[u8],
+    message: &'static str,
+    header: impl FnOnce(&mut [u8]),
+    payload: impl FnOnce(&mut ByteWriter<'_>) -> Result<(), UbxError>,
+) -> Result<&'b [u8], UbxError> {
     let f = protocol.framing();
     let in_header = key_in_header(f);
     let room = buf.len().saturating_sub(f.header + f.trailer_len());
@@ -584,6 +600,7 @@ pub fn encode_frame_of<'b>(
         let at = f.identity.iter().map(|&(_, at, _)| at / 8).min().unwrap_or(f.header);
         buf[at..at + key.len()].copy_from_slice(key);
     }
+    header(&mut buf[..f.header]);
     let body = need - f.trailer_len();
     let (_, check) = f.check(&buf[..need]); // the checksum of what it covers, and the end bytes
     let (at, end) = if f.check_at == 0 {

@@ -14,7 +14,7 @@ use std::path::Path;
 use nmeaspec::stream::{Framer, Item, Protocol};
 use nmeaspec::ubx::UbxErrorKind;
 use nmeaspec::ubx_messages::{AckAck, Message, MgaIniClkd, MgaIniFreq, NavPvt};
-use nmeaspec::{casic_messages, sbf_messages, sirf_messages, skytraq_messages};
+use nmeaspec::{casic_messages, sbf_messages, sirf_messages, skytraq_messages, unicore_messages};
 
 const CRATE: &str = env!("CARGO_MANIFEST_DIR");
 
@@ -169,6 +169,11 @@ fn other_protocol(protocol: &str, frame: &[u8]) -> Result<(String, Vec<u8>), nme
             m.write_json(&mut json).unwrap();
             m.encode(&mut buf)?.to_vec()
         }
+        "unicore" => {
+            let m = unicore_messages::Message::from_frame(frame)?;
+            m.write_json(&mut json).unwrap();
+            m.encode(&mut buf)?.to_vec()
+        }
         _ => panic!("{protocol}"),
     };
     Ok((json, encoded))
@@ -314,4 +319,26 @@ fn sbf_blocks_keep_do_not_use_values_padding_and_crc() {
     let mut bad = frame.clone();
     bad[2] ^= 1;
     assert_eq!(sbf_messages::Message::from_frame(&bad).unwrap_err().kind, UbxErrorKind::BadChecksum);
+}
+
+#[test]
+fn unicore_messages_keep_their_header_fields() {
+    // a decoded message keeps the header's time and status and is encoded with them; one built by
+    // hand has them 0 unless set
+    let path = Path::new(CRATE).join("../../tests/data/unicore/pyunigps_built.log");
+    let log = fs::read(&path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
+    let at = log.windows(6).position(|w| w == [0xaa, 0x44, 0xb5, 0x26, 0x46, 0x08]).expect("BESTNAVB");
+    let frame = &log[at..at + 24 + 120 + 4];
+    let unicore_messages::Message::BestnavB(best) = unicore_messages::Message::from_frame(frame).unwrap() else {
+        panic!("not BESTNAVB")
+    };
+    assert_eq!((best.header.cpu_idle, best.header.week, best.header.time_of_week), (38, 2407, 123_457_250));
+    let mut buf = [0u8; 256];
+    assert_eq!(best.encode(&mut buf).unwrap(), frame);
+    let plain = unicore_messages::BestnavB { header: unicore_messages::Header::default(), ..best };
+    let encoded = plain.encode(&mut buf).unwrap().to_vec();
+    assert_eq!(encoded[8..24], [0u8; 16]);
+    let dated = unicore_messages::BestnavB { header: unicore_messages::Header { week: 2407, ..plain.header }, ..plain };
+    let encoded = dated.encode(&mut buf).unwrap().to_vec();
+    assert_eq!(unicore_messages::Message::from_frame(&encoded).unwrap(), unicore_messages::Message::BestnavB(dated));
 }
