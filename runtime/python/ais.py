@@ -689,7 +689,7 @@ def _case_test(case: Case) -> str:
     return " or ".join(tests)
 
 
-def compile_decoder(cls: type[Message]) -> Any:
+def compile_decoder(cls: type[Message] | type[Application]) -> Any:
     """decode(value, length, padding): the message of class `cls` from its payload's bits (one
     integer, `length` bits) and its fill bits' values, by straight-line code: every field's bits
     taken by constant shifts and masks, a choice by its selector's raw value, the members set at
@@ -709,7 +709,10 @@ def compile_decoder(cls: type[Message]) -> Any:
             return None
     if "__post_init__" in dir(cls):
         return None
-    members["padding"] = "padding"
+    if "padding" in members:  # a message's; an application has none
+        members["padding"] = "padding"
+    where = repr(f"AIS DAC {cls.DAC} FI {cls.FID}") if issubclass(cls, Application) else \
+        "'AIS type ' + str(value >> (length - 6))"
     code = ["def decode(value, length, padding):"]
     counter = [0]
 
@@ -729,7 +732,7 @@ def compile_decoder(cls: type[Message]) -> Any:
         rest = f"rest{counter[0]}"
         names[rest] = tuple(items)
         values = ", ".join(f"{member!r}: {var}" for member, var in set_.items())
-        return [f"{pad}reader = BitReader(value, length, 'AIS type ' + str(value >> (length - 6)))",
+        return [f"{pad}reader = BitReader(value, length, {where})",
                 f"{pad}reader.pos = {offset}",
                 f"{pad}values = {{{values}}}", f"{pad}read_items({rest}, reader, values)",
                 f"{pad}left = reader.remaining",
@@ -805,6 +808,11 @@ def compile_decoder(cls: type[Message]) -> Any:
                     return out + walk(tail, offset, set_, pad)
                 out.append(f"{pad}else:")
                 return out + walk(tail, offset, set_, pad + "    ")
+            if isinstance(item, Group) and i == len(items) - 1:
+                lines = _group_lines(item, offset, names, pad)
+                if lines is not None:
+                    set_[item.id] = "entries"
+                    return out + lines + build(set_, "bits_text(value & ((1 << left) - 1), left)", pad)
             return out + generic(items[i:], offset, set_, pad)
         return out + build(set_, f'"" if length == {offset} else bits_text(value & ((1 << (length - {offset})) - 1), '
                                  f'length - {offset})', pad)
@@ -813,6 +821,49 @@ def compile_decoder(cls: type[Message]) -> Any:
     source = "\n".join(code)
     exec(source, names)  # code built above from the spec's layout, never from input
     return names["decode"]
+
+
+def _group_lines(group: Group, offset: int, names: dict[str, Any], pad: str) -> list[str] | None:
+    """The lines of compile_decoder that read `group`, the layout's last item, from bit `offset`
+    on into `entries` (and the bits left after them into `left`), as read_items reads it: its
+    entries' count from the bits left (or a fixed count), each entry's fields of fixed width by
+    constant shifts and masks, its class made as compile_decoder makes a message. The count out
+    of bounds returns None (the generic reader says why). None for a group of another kind."""
+    fields = [f for f in group.fields if isinstance(f, Field)]
+    width = group.entry_width
+    if (group.count is not None and not isinstance(group.count, int) or group.after or group.stride is not None
+            or group.field_major or not width or len(fields) != len(group.fields)
+            or not all(type(f) in _STRAIGHT and f.width is not None and f.count is None and not f.optional
+                       for f in fields)):
+        return None
+    entry = group.entry
+    entry_fields = dataclasses.fields(entry)
+    if ([f.name for f in entry_fields] != [f.id for f in fields] or "__post_init__" in dir(entry)
+            or any(f.default is not None for f in entry_fields)):
+        return None
+    name = f"g{offset}_{group.id}"
+    names[name] = entry
+    count = f"min({group.max}, (length - {offset}) // {width})" if group.count is None else str(group.count)
+    out = [f"count = {count}",
+           f"if count < {group.min} or count * {width} > length - {offset}:",
+           "    return None",
+           "entries = []",
+           f"at = length - {offset}",
+           "for _ in range(count):",
+           f"    at -= {width}",
+           f"    v = value >> at & {(1 << width) - 1}",
+           f"    e = new({name})"]
+    end = 0
+    for n, f in enumerate(fields):
+        assert f.width is not None
+        end += f.width
+        shift = width - end
+        raw = "v" if shift == 0 else f"v >> {shift}"
+        if end != f.width:
+            raw = f"({raw}) & {(1 << f.width) - 1}"
+        out.append(f"    e.{f.id} = {_value_expr(f, f'{name}_{n}', f'({raw})', names)}")
+    out += ["    entries.append(e)", "left = at"]
+    return [pad + line for line in out]
 
 
 class WritePrefix(NamedTuple):
@@ -909,16 +960,20 @@ def _write_field(item: Field, name: str, names: dict[str, Any], pad: str, into: 
     return [pad + line[4:] for line in code]
 
 
-def compile_encoder(items: tuple[Item, ...]) -> Any:
+def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
     """encode(record): a message's armored payload and fill bits (Message.encode), its layout
     `items` written as write_items writes them, by straight-line code: each field in line
     (_write_field) or by its own to_raw (a variable width, data an application carries), a
     choice by the raw value of its selector's member, the message ending at an optional field
     left None; from a group on, write_items. Then its trailing bits, its fill bits (padding) and
-    the armor, in line wherever the layout ends. The errors' address is made only for an error."""
+    the armor, in line wherever the layout ends. The errors' address is made only for an error.
+    `raw`: encode(record, where), an application's bits (Application.raw_bits): its layout and
+    trailing bits as one integer and their count, errors naming `where`."""
     names: dict[str, Any] = {"Special": Special, "_where": _where, "BitWriter": BitWriter,
                              "write_items": write_items, "_bad_value": _bad_value,
                              "b2a_base64": binascii.b2a_base64, "BASE64_TO_ARMOR": _BASE64_TO_ARMOR}
+    if raw:  # errors name the `where` given, even an empty one
+        names["_where"] = _no_where
     counter = [0]
     by_id = {f.id: f for f in flat_fields(items)}  # as Record.field finds them
 
@@ -927,6 +982,13 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
         value, when the layout's path so far has fixed widths only): its trailing bits and fill
         bits added (as BitWriter.put_bits would), its armor returned."""
         usual: list[str] = []
+        if raw:  # an application's bits: its trailing bits after them
+            return [f"{pad}length = {length}",
+                    f"{pad}trailing = record.trailing",
+                    f"{pad}if trailing:",
+                    f"{pad}    bits = bits << len(trailing) | int(trailing, 2) & ((1 << len(trailing)) - 1)",
+                    f"{pad}    length += len(trailing)",
+                    f"{pad}return bits, length"]
         if known is not None:  # no trailing bits, fill bits of value 0: every size a constant
             fill = -known % 6
             zeros = -(known + fill) % 24
@@ -972,7 +1034,13 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
             elif isinstance(item, Field) and item.count is None:
                 names[name] = item
                 out.append(f"{pad}value = record.{item.id}")
-                if isinstance(item, Data):
+                application = isinstance(item, Data) and not raw
+                if application and item.width is None:  # its application's bits, as one integer
+                    out += [f"{pad}if value is None and record.application is not None:",
+                            f"{pad}    raw, width = record.application.raw_bits(where or _where(record))",
+                            f"{pad}else:"]
+                    pad += "    "
+                elif application:
                     out += [f"{pad}if value is None and record.application is not None:",
                             f"{pad}    value = record.application.bits(where or _where(record))"]
                 fallback = f"{name}.to_raw(value, where or _where(record))"
@@ -991,6 +1059,8 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                                f"if value.__class__ is str and TEXT_CHARS.issuperset(value) else {fallback}")
                 else:
                     out.append(f"{pad}raw, width = {fallback}")
+                if application and item.width is None:
+                    pad = pad[:-4]
                 out += [f"{pad}bits = bits << width | raw & ((1 << width) - 1)", f"{pad}length += width"]
                 fixed = False
             elif isinstance(item, Choice):
@@ -1019,9 +1089,15 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                               f"{pad}bits = writer.value", *finish("writer.length", pad)]
         return out + finish(f"length + {static}", pad, static if fixed else None)
 
-    code = ["def encode(record):", "    bits = length = 0", "    where = None", *walk(list(items), 0, "    ")]
+    head = ["def encode(record, where):", "    bits = length = 0"] if raw else \
+        ["def encode(record):", "    bits = length = 0", "    where = None"]
+    code = [*head, *walk(list(items), 0, "    ")]
     exec("\n".join(code), names)  # code built above from the spec's layout, never from input
     return names["encode"]
+
+
+def _no_where(record: Any) -> str:
+    return ""
 
 
 def _written(writer: BitWriter | ByteWriter) -> int:
@@ -1183,12 +1259,34 @@ class Application(Record):
     DAC: ClassVar[int]
     FID: ClassVar[int]
     CARRIERS: ClassVar[tuple[int, ...]]
+    _decoder: ClassVar[Any]
+    """decode(value, length, padding): the class's compiled decoder (compile_decoder, `padding`
+    unused), compiled on first use."""
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super(Application, cls).__init_subclass__(**kwargs)
+        if "LAYOUT" in cls.__dict__:
+            cls._decoder = _first_decoder(cls)
+
+            def first_raw(self: Application, where: str) -> tuple[int, int]:
+                raw_bits = compile_encoder(cls.LAYOUT, raw=True)
+                raw_bits.__doc__ = first_raw.__doc__
+                cls.raw_bits = raw_bits  # type: ignore[method-assign]
+                return raw_bits(self, where)  # type: ignore[no-any-return]
+
+            first_raw.__doc__ = Application.raw_bits.__doc__
+            cls.raw_bits = first_raw  # type: ignore[method-assign]
+
+    def raw_bits(self, where: str) -> tuple[int, int]:
+        """The data bits it is sent as, as one integer, and their count (each application class's
+        own, compiled on first use: compile_encoder); errors name `where`."""
+        raw_bits = compile_encoder(type(self).LAYOUT, raw=True)
+        return raw_bits(self, where)  # type: ignore[no-any-return]
 
     def bits(self, where: str) -> str:
         """The data bits it is sent as."""
-        writer = BitWriter()
-        self.write(writer, where)
-        return bits_text(writer.value, writer.length)
+        raw, length = self.raw_bits(where)
+        return bits_text(raw, length)
 
 
 @dataclass(kw_only=True, slots=True)
@@ -1209,11 +1307,7 @@ class Message(Record):
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super(Message, cls).__init_subclass__(**kwargs)
         if "LAYOUT" in cls.__dict__:
-            def first(value: int, length: int, padding: str) -> Message | None:
-                decoder = cls._decoder = compile_decoder(cls) or _no_decoder
-                return decoder(value, length, padding)
-
-            cls._decoder = first
+            cls._decoder = _first_decoder(cls)
 
             def first_encode(self: Message) -> tuple[str, int]:
                 encode = compile_encoder(cls.LAYOUT)
@@ -1236,6 +1330,15 @@ class Message(Record):
         if self.application is not None:
             out["application"] = self.application.to_dict()
         return {**out, "trailing": self.trailing, "padding": self.padding}
+
+
+def _first_decoder(cls: type[Message] | type[Application]) -> Any:
+    """The decoder of `cls` until its first use, which compiles it (compile_decoder)."""
+    def first(value: int, length: int, padding: str) -> Any:
+        decoder = cls._decoder = compile_decoder(cls) or _no_decoder
+        return decoder(value, length, padding)
+
+    return first
 
 
 def _no_decoder(value: int, length: int, padding: str) -> None:
@@ -1295,10 +1398,12 @@ def sentence_message(by_type: dict[int, type[Message]], applications: dict[tuple
     return decode(by_type, applications, payload or "", fill)
 
 
-def _application(message: Message, applications: dict[tuple[int, int], type[Application]]) -> Application | None:
+def _application(message: Message, applications: dict[tuple[int, int], type[Application]],
+                 compiled: bool = True) -> Application | None:
     """What the message's data bits carry, when an application of `applications` (by DAC and FI)
     is carried by its type and reads them; its data member is then set to None. Data that the
-    application does not read stays data."""
+    application does not read stays data. `compiled`: by the application's compiled decoder,
+    when it reads the bits (else, and always when False, by the generic reader)."""
     data = message.DISPATCH
     bits = getattr(message, data.id) if data is not None else None
     if data is None or bits is None:
@@ -1308,13 +1413,16 @@ def _application(message: Message, applications: dict[tuple[int, int], type[Appl
     cls = applications.get((dac, fid))
     if cls is None or getattr(message, "message_type") not in cls.CARRIERS:
         return None
-    reader = BitReader(int(bits, 2) if bits else 0, len(bits), f"AIS DAC {dac} FI {fid}")
+    raw = int(bits, 2) if bits else 0
     try:
-        values = cls.read(reader)
+        application: Application | None = cls._decoder(raw, len(bits), "") if compiled else None
+        if application is None:
+            reader = BitReader(raw, len(bits), f"AIS DAC {dac} FI {fid}")
+            application = cls(**cls.read(reader), trailing=bits[reader.pos:])
     except NmeaError:
         return None
     setattr(message, data.id, None)
-    return cls(**values, trailing=bits[reader.pos:])
+    return application
 
 
 def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int], type[Application]],

@@ -195,7 +195,7 @@ def _generic_decode(payload: str, fill_bits: int) -> ais.Message:
     trailing = ais.bits_text(value & ((1 << reader.remaining) - 1), reader.remaining)
     message = cls(**values, trailing=trailing, padding=padding)
     if cls.DISPATCH is not None:
-        message.application = ais._application(message, APPLICATIONS)
+        message.application = ais._application(message, APPLICATIONS, compiled=False)
     return message
 
 
