@@ -903,15 +903,17 @@ def _writes_in_line(item: Item, optional: bool = False) -> bool:
             and item.width is not None and (optional or not item.optional))
 
 
-def _write_field(item: Field, name: str, names: dict[str, Any], pad: str, into: str | None = None) -> list[str]:
+def _write_field(item: Field, name: str, names: dict[str, Any], pad: str, into: str | None = None,
+                 owner: str = "record") -> list[str]:
     """The lines that put `item`'s bits below `bits` (`record` the message, `where` the errors'
     address or None), `name` its name in `names`; `into`: the lines that set that variable to
-    them instead (to_raw's raw integer)."""
+    them instead (to_raw's raw integer); `owner`: the variable of the record that holds it (a
+    group's entry)."""
     width = item.width
     assert width is not None
     names[name] = item
     code: list[str] = []
-    code.append(f"    value = record.{item.id}")
+    code.append(f"    value = {owner}.{item.id}")
     fallback = f"{name}.to_raw(value, where or _where(record))[0]"
     if isinstance(item, Unsigned):
         low, high = item.bounds(width)
@@ -1082,6 +1084,16 @@ def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
                 if first:
                     return out + walk(tail, static, pad, fixed)
                 return out + [f"{pad}else:", *walk(tail, static, pad + "    ", fixed)]
+            elif (isinstance(item, Group) and i == len(items) - 1 and not item.after and item.stride is None
+                  and not item.field_major and (item.count is None or isinstance(item.count, int))
+                  and all(_writes_in_line(f) for f in item.fields)):
+                # a group that ends the layout, its entries' fields in line (as write_items writes them)
+                out += [f"{pad}for entry in record.{item.id}:"]
+                for n, f in enumerate(item.fields):
+                    assert isinstance(f, Field)
+                    out += _write_field(f, f"{name}_{n}", names, pad + "    ", owner="entry")
+                out.append(f"{pad}    length += {item.entry_width}")
+                return out + finish(f"length + {static}", pad)
             else:  # a group, a counted field: the generic writer
                 names[name] = tuple(items[i:])
                 return out + [f"{pad}writer = BitWriter()", f"{pad}writer.put(bits, length + {static})",
@@ -1391,11 +1403,35 @@ def sentence_message(by_type: dict[int, type[Message]], applications: dict[tuple
             and fill_bits.__class__ is Number else -1
     except (AttributeError, KeyError):
         fill = -1
-    if fill < 0:
+    if fill < 0 or not payload:
         if count is None or whole(count) != 1:
             return None
         fill = 0 if fill_bits is None else whole(fill_bits)
-    return decode(by_type, applications, payload or "", fill)
+        return decode(by_type, applications, payload or "", fill)
+    # decode's usual case in line (the fill bits 0-9, the payload's first character an armor one)
+    size = len(payload)
+    try:
+        value = int.from_bytes(_a2b_base64(payload.encode("ascii").translate(_ARMOR_TO_BASE64)
+                                           + _BASE64_PADS[size & 3], strict_mode=True), "big")
+    except (ValueError, UnicodeEncodeError):
+        value = -1
+    length = size * 6 - fill
+    if value < 0 or fill > 5 or length < 6:
+        return decode(by_type, applications, payload, fill)  # raises, saying why
+    value >>= _BASE64_DROPS[size & 3]
+    padding = ""
+    if fill:
+        padding = _FILL_TEXTS[fill][value & 31]
+        value >>= fill
+    cls = by_type.get(value >> (length - 6))
+    if cls is None:
+        return decode(by_type, applications, payload, fill)
+    message: Message | None = cls._decoder(value, length, padding)
+    if message is None:
+        return decode(by_type, applications, payload, fill)  # short, or ended by an optional field
+    if cls.DISPATCH is not None:
+        message.application = _application(message, applications)
+    return message
 
 
 def _application(message: Message, applications: dict[tuple[int, int], type[Application]],

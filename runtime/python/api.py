@@ -151,23 +151,27 @@ def _encapsulation(line: Any) -> Any:
         or not payload.isprintable()
     ):
         return _encapsulation_fields(line)
-    # runtime.checksum in line, for up to 128 bytes known to be ASCII
-    value = int.from_bytes(line[1:star].encode(), "little")
-    if star > 65:
+    # runtime.checksum in line, of the payload's up to 113 ASCII bytes (folded only as far as
+    # they need), the start's and the fill bits' sums kept from _learn
+    value = int.from_bytes(payload.encode(), "little")
+    size = star - 16
+    if size > 64:
         value ^= value >> 512
-    value ^= value >> 256
-    value ^= value >> 128
+    if size > 32:
+        value ^= value >> 256
+    if size > 16:
+        value ^= value >> 128
     value ^= value >> 64
     value ^= value >> 32
     value ^= value >> 16
-    computed = (value ^ value >> 8) & 0xFF
+    computed = (value ^ value >> 8 ^ head[2] ^ fill[1]) & 0xFF
     sent = line[star + 1 :]
     checksum = (
         "upper" if sent == _UPPER_HEX[computed] else "lower" if sent == _LOWER_HEX[computed] else None
     )
     if checksum is None:
         return None
-    return head[0](payload, fill, checksum)
+    return head[0](payload, fill[0], checksum)
 
 
 def _encapsulation_fields(line: Any) -> Any:
@@ -231,7 +235,8 @@ def _learn(line: str, sentence: Any) -> None:
         return
     fills = _FILLS.setdefault(cls, {})
     star = len(line) - 3
-    fills[line[star - 2 : star + 1]] = getattr(sentence, layout.field_ids[5])
+    fill = line[star - 2 : star + 1]  # ",0*": its value, the checksum of ",0"
+    fills[fill] = (getattr(sentence, layout.field_ids[5]), runtime.checksum(fill[:2]))
     # make(payload, fill_bits, checksum): the sentence as cls() makes it, its first members those
     # read from this start
     names = {f"v{n}": getattr(sentence, member) for n, member in enumerate(members[:5])}
@@ -240,7 +245,7 @@ def _learn(line: str, sentence: Any) -> None:
     code = ["def make(payload, fill, checksum):", "    s = new(cls)"]
     code += [f"    s.{member} = {value}" for member, value in zip(members, values)]
     exec("\n".join([*code, "    return s"]), names)  # noqa: S102 (made from the class's own members)
-    _HEADS[line[:14]] = (names["make"], fills)
+    _HEADS[line[:14]] = (names["make"], fills, runtime.checksum(line[1:14]))
 
 
 _ENCAPSULATION_CLASSES: dict[str, Any] = {}
@@ -248,10 +253,11 @@ _ENCAPSULATION_CLASSES: dict[str, Any] = {}
 _MAX_STAR = runtime.MAX_LINE - 3
 _HEADS: dict[str, tuple[Any, ...]] = {}
 """The starts _encapsulation reads (`!AIVDM,1,1,,A,`): (the function that makes a sentence of
-that start, the fill bits' values by text, as `,0*`), as _learn keeps them."""
+that start, the fill bits' values by text (as `,0*`) with their checksum, the start's checksum),
+as _learn keeps them."""
 _MAX_HEADS = 256
-_FILLS: dict[Any, dict[str, Any]] = {}
-"""The fill bits' values of each class in _HEADS, by text (`,0*`)."""
+_FILLS: dict[Any, dict[str, tuple[Any, int]]] = {}
+"""The fill bits' values of each class in _HEADS and the checksum of their text, by text (`,0*`)."""
 
 
 def _encapsulation_class(address: str) -> Any:
