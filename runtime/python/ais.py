@@ -569,6 +569,11 @@ class Prefix(NamedTuple):
     put_json: Any
 
 
+_TABLE_BITS = 10
+"""A number of at most this many bits that is signed, scaled or has special values is decoded by
+a table of its every value (1,024 at most)."""
+
+
 def _value_expr(item: Field, name: str, raw: str, names: dict[str, Any]) -> str:
     """The expression of `item`'s decoded value from `raw` (an expression of its raw bits,
     evaluated once), exactly what its from_raw gives: numbers (their unit and special values
@@ -578,6 +583,11 @@ def _value_expr(item: Field, name: str, raw: str, names: dict[str, Any]) -> str:
     names[name] = item
     width = item.width
     assert width is not None
+    if isinstance(item, Unsigned) and width <= _TABLE_BITS and (isinstance(item, Signed) or item.special
+                                                                 or item.divisor != 1 or item.base):
+        # a small field's every value, by its raw integer: its from_raw once for each
+        names[f"{name}_values"] = tuple(item.from_raw(code, width) for code in range(1 << width))
+        return f"{name}_values[{raw}]"
     if isinstance(item, Unsigned):
         if isinstance(item, Signed):  # two's complement: the sign bit's weight negated
             raw = f"(({raw} ^ {1 << (width - 1)}) - {1 << (width - 1)})"

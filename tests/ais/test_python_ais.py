@@ -277,7 +277,7 @@ def test_the_compiled_encoders_write_what_the_generic_writer_writes() -> None:
 
 
 def test_the_ais_sentence_fast_path_reads_what_the_general_path_reads() -> None:
-    """nmeaspec.parse of an `!` line in its usual form (api._encapsulation) against the general
+    """nmeaspec.parse of an `!` line in its usual form (the fast path at the start of api.parse) against the general
     path (a line given as bytes takes it): gpsd's sentences and damaged copies of a sample."""
     lines = []
     for path in sorted(DATA.iterdir()):
