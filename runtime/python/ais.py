@@ -700,15 +700,19 @@ def _case_test(case: Case) -> str:
 
 
 def compile_decoder(cls: type[Message] | type[Application]) -> Any:
-    """decode(value, length, padding): the message of class `cls` from its payload's bits (one
-    integer, `length` bits) and its fill bits' values, by straight-line code: every field's bits
-    taken by constant shifts and masks, a choice by its selector's raw value, the members set at
-    once. None when the payload is shorter than the fields it reads need: the generic reader
-    (Record.read) then says which field is missing, or that an optional one ends the message. A
-    group (or a field of another kind) is read from its offset on by the generic reader. The
-    members are exactly those Record.read and decode would give."""
+    """decode(value, length, padding, applications): the message of class `cls` from its payload's
+    bits (one integer, `length` bits) and its fill bits' values, by straight-line code: every
+    field's bits taken by constant shifts and masks, a choice by its selector's raw value, the
+    members set at once; the application of `applications` its data bits carry (a message whose
+    layout has a DISPATCH field), as _application finds it: when the data end the payload, by the
+    application's own decoder from their bits, else (and when that one does not read them) by
+    _application. None when the payload is shorter than the fields it reads need: the generic
+    reader (Record.read) then says which field is missing, or that an optional one ends the
+    message. A group (or a field of another kind) is read from its offset on by the generic
+    reader. The members are exactly those Record.read and decode would give."""
     names: dict[str, Any] = {"new": object.__new__, "cls": cls, "BitReader": BitReader,
-                             "read_items": read_items, "bits_text": bits_text}
+                             "read_items": read_items, "bits_text": bits_text, "application_of": _application,
+                             "NmeaError": NmeaError}
     members: dict[str, str] = {}  # each member's default, as a literal
     for f in dataclasses.fields(cls):
         if f.default is not dataclasses.MISSING and (f.default is None or isinstance(f.default, (str, int))):
@@ -721,18 +725,23 @@ def compile_decoder(cls: type[Message] | type[Application]) -> Any:
         return None
     if "padding" in members:  # a message's; an application has none
         members["padding"] = "padding"
+    dispatch = cls.DISPATCH if issubclass(cls, Message) else None
+    if dispatch is not None:  # its application set last, from the members it reads
+        del members["application"]
     where = repr(f"AIS DAC {cls.DAC} FI {cls.FID}") if issubclass(cls, Application) else \
         "'AIS type ' + str(value >> (length - 6))"
-    code = ["def decode(value, length, padding):"]
+    code = ["def decode(value, length, padding, applications):"]
     counter = [0]
 
-    def build(set_: dict[str, str], trailing: str, pad: str) -> list[str]:
+    def build(set_: dict[str, str], trailing: str, pad: str, application: str | None = None) -> list[str]:
         """The lines that end the message `m` (made first, each field's member set as it is read)
         of the members `set_` (id: its expression, `m.<id>` when set already): each member not yet
         set then set (slots: the generated classes'; a subclass without them keeps its own in its
-        dict)."""
+        dict), then its application (`application`, else _application's)."""
         values = {member: set_.get(member, trailing if member == "trailing" else default)
                   for member, default in members.items()}
+        if dispatch is not None:
+            values["application"] = application or "application_of(m, applications)"
         return [*(f"{pad}m.{member} = {value}" for member, value in values.items() if value != f"m.{member}"),
                 f"{pad}return m"]
 
@@ -789,6 +798,28 @@ def compile_decoder(cls: type[Message] | type[Application]) -> Any:
                 offset = end
                 i += len(run)
                 continue
+            if (item is dispatch and type(item) is Data and item.width is None and not item.optional
+                    and not item.after and i == len(items) - 1 and "message_type" in set_
+                    and all(member in set_ for member in item.dispatch)):
+                # the data that end the message, the application their DAC and FI name (as
+                # _application finds it) read from their bits; data when there is none
+                names["DATA"] = item
+                dac, fid = (set_[member] for member in item.dispatch)
+                data = build({**set_, item.id: "None"}, '""', pad + "        ", "application")
+                text = build({**set_, item.id: "bits_text(raw, width)"}, '""', pad, "None")
+                return out + [
+                    f"{pad}width = max(length - {offset}, 0)",
+                    f"{pad}raw = value & ((1 << width) - 1)",
+                    f"{pad}application_cls = applications.get(({dac}, {fid}))",
+                    f"{pad}if application_cls is not None and {set_['message_type']} in application_cls.CARRIERS:",
+                    f"{pad}    try:",
+                    f"{pad}        application = application_cls._decoder(raw, width, '', None)",
+                    f"{pad}    except NmeaError:  # (_application: the data stay data)",
+                    f"{pad}        application = None",
+                    f"{pad}    if application is not None:",
+                    *data,
+                    *build({**set_, item.id: "bits_text(raw, width)"}, '""', pad + "    "),
+                    *text]
             if (isinstance(item, (Text, Data)) and type(item) in _STRAIGHT and item.width is None
                     and item.count is None and not item.optional and not item.after and i == len(items) - 1):
                 # the variable field that ends the message: the bits left (text: whole characters)
@@ -979,13 +1010,13 @@ def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
     choice by the raw value of its selector's member, the message ending at an optional field
     left None; from a group on, write_items. Then its trailing bits, its fill bits (padding) and
     the armor, in line wherever the layout ends. The errors' address is made only for an error.
-    `raw`: encode(record, where), an application's bits (Application.raw_bits): its layout and
-    trailing bits as one integer and their count, errors naming `where`."""
+    `raw`: encode(record, where, message), an application's bits (Application.raw_bits): its
+    layout and trailing bits as one integer and their count, errors naming `where` or `message`."""
     names: dict[str, Any] = {"Special": Special, "_where": _where, "BitWriter": BitWriter,
                              "write_items": write_items, "_bad_value": _bad_value,
                              "b2a_base64": binascii.b2a_base64, "BASE64_TO_ARMOR": _BASE64_TO_ARMOR}
-    if raw:  # errors name the `where` given, even an empty one
-        names["_where"] = _no_where
+    if raw:  # errors name the `where` given, else the message's (none: an empty one)
+        names["_where"] = _message_where
     counter = [0]
     by_id = {f.id: f for f in flat_fields(items)}  # as Record.field finds them
 
@@ -1049,7 +1080,7 @@ def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
                 application = isinstance(item, Data) and not raw
                 if application and item.width is None:  # its application's bits, as one integer
                     out += [f"{pad}if value is None and record.application is not None:",
-                            f"{pad}    raw, width = record.application.raw_bits(where or _where(record))",
+                            f"{pad}    raw, width = record.application.raw_bits(where, record)",
                             f"{pad}else:"]
                     pad += "    "
                 elif application:
@@ -1066,8 +1097,8 @@ def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
                     names.update(a2b_base64=binascii.a2b_base64, TEXT_TO_BASE64=_TEXT_TO_BASE64,
                                  TEXT_CHARS=_TEXT_CHARS, PADS=_BASE64_PADS, DROPS=_BASE64_DROPS)
                     data = "value.encode('ascii').translate(TEXT_TO_BASE64) + PADS[len(value) & 3]"
-                    out.append(f"{pad}raw, width = (int.from_bytes(a2b_base64({data}, strict_mode=True), 'big') "
-                               f">> DROPS[len(value) & 3], len(value) * 6) "
+                    out.append(f"{pad}raw, width = (0, 0) if value == '' else (int.from_bytes(a2b_base64({data}, "
+                               f"strict_mode=True), 'big') >> DROPS[len(value) & 3], len(value) * 6) "
                                f"if value.__class__ is str and TEXT_CHARS.issuperset(value) else {fallback}")
                 else:
                     out.append(f"{pad}raw, width = {fallback}")
@@ -1111,15 +1142,18 @@ def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
                               f"{pad}bits = writer.value", *finish("writer.length", pad)]
         return out + finish(f"length + {static}", pad, static if fixed else None)
 
-    head = ["def encode(record, where):", "    bits = length = 0"] if raw else \
+    head = ["def encode(record, where, message):", "    bits = length = 0"] if raw else \
         ["def encode(record):", "    bits = length = 0", "    where = None"]
     code = [*head, *walk(list(items), 0, "    ")]
+    if raw:  # the errors' address: `where`, else the message's
+        code = [line.replace("_where(record)", "_where(message)") for line in code]
     exec("\n".join(code), names)  # code built above from the spec's layout, never from input
     return names["encode"]
 
 
-def _no_where(record: Any) -> str:
-    return ""
+def _message_where(message: Any) -> str:
+    """The errors' address of the message an application's bits are written for ("" for none)."""
+    return "" if message is None else _where(message)
 
 
 def _written(writer: BitWriter | ByteWriter) -> int:
@@ -1282,28 +1316,30 @@ class Application(Record):
     FID: ClassVar[int]
     CARRIERS: ClassVar[tuple[int, ...]]
     _decoder: ClassVar[Any]
-    """decode(value, length, padding): the class's compiled decoder (compile_decoder, `padding`
-    unused), compiled on first use."""
+    """decode(value, length, padding, applications): the class's compiled decoder (compile_decoder,
+    `padding` and `applications` unused), compiled on first use."""
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super(Application, cls).__init_subclass__(**kwargs)
         if "LAYOUT" in cls.__dict__:
             cls._decoder = _first_decoder(cls)
 
-            def first_raw(self: Application, where: str) -> tuple[int, int]:
+            def first_raw(self: Application, where: str | None, message: Any = None) -> tuple[int, int]:
                 raw_bits = compile_encoder(cls.LAYOUT, raw=True)
                 raw_bits.__doc__ = first_raw.__doc__
+                raw_bits.__defaults__ = (None,)
                 cls.raw_bits = raw_bits  # type: ignore[method-assign]
-                return raw_bits(self, where)  # type: ignore[no-any-return]
+                return raw_bits(self, where, message)  # type: ignore[no-any-return]
 
             first_raw.__doc__ = Application.raw_bits.__doc__
             cls.raw_bits = first_raw  # type: ignore[method-assign]
 
-    def raw_bits(self, where: str) -> tuple[int, int]:
+    def raw_bits(self, where: str | None, message: Any = None) -> tuple[int, int]:
         """The data bits it is sent as, as one integer, and their count (each application class's
-        own, compiled on first use: compile_encoder); errors name `where`."""
+        own, compiled on first use: compile_encoder); errors name `where`, else (None) the address
+        of `message`, the message it is written for."""
         raw_bits = compile_encoder(type(self).LAYOUT, raw=True)
-        return raw_bits(self, where)  # type: ignore[no-any-return]
+        return raw_bits(self, where, message)  # type: ignore[no-any-return]
 
     def bits(self, where: str) -> str:
         """The data bits it is sent as."""
@@ -1323,8 +1359,8 @@ class Message(Record):
 
     TYPES: ClassVar[tuple[int, ...]]
     _decoder: ClassVar[Any]
-    """decode(value, length, padding): the class's compiled decoder (compile_decoder), compiled
-    on first use (not when the package loads)."""
+    """decode(value, length, padding, applications): the class's compiled decoder
+    (compile_decoder), compiled on first use (not when the package loads)."""
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super(Message, cls).__init_subclass__(**kwargs)
@@ -1356,14 +1392,14 @@ class Message(Record):
 
 def _first_decoder(cls: type[Message] | type[Application]) -> Any:
     """The decoder of `cls` until its first use, which compiles it (compile_decoder)."""
-    def first(value: int, length: int, padding: str) -> Any:
+    def first(value: int, length: int, padding: str, applications: Any) -> Any:
         decoder = cls._decoder = compile_decoder(cls) or _no_decoder
-        return decoder(value, length, padding)
+        return decoder(value, length, padding, applications)
 
     return first
 
 
-def _no_decoder(value: int, length: int, padding: str) -> None:
+def _no_decoder(value: int, length: int, padding: str, applications: Any) -> None:
     """The decoder of a class compile_decoder does not compile: the generic reader reads it."""
     return None
 
@@ -1436,11 +1472,9 @@ def sentence_message(by_type: dict[int, type[Message]], applications: dict[tuple
     cls = by_type.get(value >> (length - 6))
     if cls is None:
         return decode(by_type, applications, payload, fill)
-    message: Message | None = cls._decoder(value, length, padding)
+    message: Message | None = cls._decoder(value, length, padding, applications)
     if message is None:
         return decode(by_type, applications, payload, fill)  # short, or ended by an optional field
-    if cls.DISPATCH is not None:
-        message.application = _application(message, applications)
     return message
 
 
@@ -1461,7 +1495,7 @@ def _application(message: Message, applications: dict[tuple[int, int], type[Appl
         return None
     raw = int(bits, 2) if bits else 0
     try:
-        application: Application | None = cls._decoder(raw, len(bits), "") if compiled else None
+        application: Application | None = cls._decoder(raw, len(bits), "", None) if compiled else None
         if application is None:
             reader = BitReader(raw, len(bits), f"AIS DAC {dac} FI {fid}")
             application = cls(**cls.read(reader), trailing=bits[reader.pos:])
@@ -1499,12 +1533,12 @@ def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int]
     if cls is None:
         raise NmeaError("unknown_message", f"message type {message_type} is not one the spec describes",
                         f"AIS type {message_type}", name="message_type")
-    message: Message | None = cls._decoder(value, length, padding)
+    message: Message | None = cls._decoder(value, length, padding, applications)
     if message is None:  # short, or ended by an optional field: the generic reader says how
         reader = BitReader(value, length, f"AIS type {message_type}")
         values = cls.read(reader)
         trailing = bits_text(reader.value & ((1 << reader.remaining) - 1), reader.remaining)
         message = cls(**values, trailing=trailing, padding=padding)
-    if cls.DISPATCH is not None:
-        message.application = _application(message, applications)
+        if cls.DISPATCH is not None:  # (a compiled decoder finds it itself)
+            message.application = _application(message, applications)
     return message
