@@ -834,8 +834,14 @@ def compile_decoder(cls: type[Message] | type[Application]) -> Any:
                 return out + build(set_, "bits_text(value & ((1 << left) - 1), left)", pad)
             if isinstance(item, Choice):
                 sel_end = item.offset + item.width
-                out += [f"{pad}if length < {sel_end}:", f"{pad}    return None",
-                        f"{pad}r = value >> (length - {sel_end}) & {(1 << item.width) - 1}"]
+                selector = cls.FIELDS.get(item.by)
+                if (item.by in set_ and selector is not None and selector.width == item.width
+                        and (type(selector) in (Field, Spare) or type(selector) is Unsigned and selector.divisor == 1
+                             and not selector.base and not selector.special)):
+                    out.append(f"{pad}r = {set_[item.by]}")  # its member: its raw value, read already
+                else:
+                    out += [f"{pad}if length < {sel_end}:", f"{pad}    return None",
+                            f"{pad}r = value >> (length - {sel_end}) & {(1 << item.width) - 1}"]
                 default = next((c for c in item.cases if not c.values and c.range is None), None)
                 first = True
                 for case in item.cases:
@@ -1014,7 +1020,8 @@ def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
     layout and trailing bits as one integer and their count, errors naming `where` or `message`."""
     names: dict[str, Any] = {"Special": Special, "_where": _where, "BitWriter": BitWriter,
                              "write_items": write_items, "_bad_value": _bad_value,
-                             "b2a_base64": binascii.b2a_base64, "BASE64_TO_ARMOR": _BASE64_TO_ARMOR}
+                             "b2a_base64": binascii.b2a_base64, "BASE64_TO_ARMOR": _BASE64_TO_ARMOR,
+                             "PADDINGS": _PADDINGS}
     if raw:  # errors name the `where` given, else the message's (none: an empty one)
         names["_where"] = _message_where
     counter = [0]
@@ -1040,6 +1047,13 @@ def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
             usual = [f"{pad}if not record.trailing and record.padding == \"\":",
                      f"{pad}    return b2a_base64({data}.to_bytes({(known + fill + zeros) // 8}, \"big\"), "
                      f"newline=False){chars}.translate(BASE64_TO_ARMOR).decode(\"ascii\"), {fill}"]
+            if fill:  # fill bits as sent (their values in padding), no trailing bits
+                shifted = f" << {zeros}" if zeros else ""
+                usual += [f"{pad}if not record.trailing and (p := PADDINGS.get(record.padding)) is not None "
+                          f"and len(record.padding) == {fill}:",
+                          f"{pad}    return b2a_base64(((bits << {fill} | p){shifted}).to_bytes("
+                          f"{(known + fill + zeros) // 8}, \"big\"), newline=False){chars}"
+                          f".translate(BASE64_TO_ARMOR).decode(\"ascii\"), {fill}"]
         return [*usual,
                 f"{pad}length = {length}",
                 f"{pad}trailing = record.trailing",
@@ -1420,6 +1434,8 @@ _BASE64_PADS = (b"", b"AAA", b"AA", b"A")
 """What a payload of n characters takes to a whole number of base64 groups, by n % 4; the
 bits they add (_BASE64_DROPS) are dropped."""
 _BASE64_DROPS = (0, 18, 12, 6)
+_PADDINGS = {bits_text(value, n): value for n in range(1, 6) for value in range(1 << n)}
+"""The value of each text of 1-5 fill bits ('0' and '1')."""
 _FILL_TEXTS = tuple(tuple(bits_text(low & ((1 << n) - 1), n) for low in range(32)) for n in range(6))
 """The fill bits' values of n fill bits as text, by the payload's last five bits."""
 
