@@ -569,6 +569,11 @@ class Prefix(NamedTuple):
     put_json: Any
 
 
+_TABLE_BITS = 10
+"""A number of at most this many bits that is signed, scaled or has special values is decoded by
+a table of its every value (1,024 at most)."""
+
+
 def _value_expr(item: Field, name: str, raw: str, names: dict[str, Any]) -> str:
     """The expression of `item`'s decoded value from `raw` (an expression of its raw bits,
     evaluated once), exactly what its from_raw gives: numbers (their unit and special values
@@ -578,6 +583,11 @@ def _value_expr(item: Field, name: str, raw: str, names: dict[str, Any]) -> str:
     names[name] = item
     width = item.width
     assert width is not None
+    if isinstance(item, Unsigned) and width <= _TABLE_BITS and (isinstance(item, Signed) or item.special
+                                                                 or item.divisor != 1 or item.base):
+        # a small field's every value, by its raw integer: its from_raw once for each
+        names[f"{name}_values"] = tuple(item.from_raw(code, width) for code in range(1 << width))
+        return f"{name}_values[{raw}]"
     if isinstance(item, Unsigned):
         if isinstance(item, Signed):  # two's complement: the sign bit's weight negated
             raw = f"(({raw} ^ {1 << (width - 1)}) - {1 << (width - 1)})"
@@ -689,16 +699,20 @@ def _case_test(case: Case) -> str:
     return " or ".join(tests)
 
 
-def compile_decoder(cls: type[Message]) -> Any:
-    """decode(value, length, padding): the message of class `cls` from its payload's bits (one
-    integer, `length` bits) and its fill bits' values, by straight-line code: every field's bits
-    taken by constant shifts and masks, a choice by its selector's raw value, the members set at
-    once. None when the payload is shorter than the fields it reads need: the generic reader
-    (Record.read) then says which field is missing, or that an optional one ends the message. A
-    group (or a field of another kind) is read from its offset on by the generic reader. The
-    members are exactly those Record.read and decode would give."""
+def compile_decoder(cls: type[Message] | type[Application]) -> Any:
+    """decode(value, length, padding, applications): the message of class `cls` from its payload's
+    bits (one integer, `length` bits) and its fill bits' values, by straight-line code: every
+    field's bits taken by constant shifts and masks, a choice by its selector's raw value, the
+    members set at once; the application of `applications` its data bits carry (a message whose
+    layout has a DISPATCH field), as _application finds it: when the data end the payload, by the
+    application's own decoder from their bits, else (and when that one does not read them) by
+    _application. None when the payload is shorter than the fields it reads need: the generic
+    reader (Record.read) then says which field is missing, or that an optional one ends the
+    message. A group (or a field of another kind) is read from its offset on by the generic
+    reader. The members are exactly those Record.read and decode would give."""
     names: dict[str, Any] = {"new": object.__new__, "cls": cls, "BitReader": BitReader,
-                             "read_items": read_items, "bits_text": bits_text}
+                             "read_items": read_items, "bits_text": bits_text, "application_of": _application,
+                             "NmeaError": NmeaError}
     members: dict[str, str] = {}  # each member's default, as a literal
     for f in dataclasses.fields(cls):
         if f.default is not dataclasses.MISSING and (f.default is None or isinstance(f.default, (str, int))):
@@ -709,17 +723,25 @@ def compile_decoder(cls: type[Message]) -> Any:
             return None
     if "__post_init__" in dir(cls):
         return None
-    members["padding"] = "padding"
-    code = ["def decode(value, length, padding):"]
+    if "padding" in members:  # a message's; an application has none
+        members["padding"] = "padding"
+    dispatch = cls.DISPATCH if issubclass(cls, Message) else None
+    if dispatch is not None:  # its application set last, from the members it reads
+        del members["application"]
+    where = repr(f"AIS DAC {cls.DAC} FI {cls.FID}") if issubclass(cls, Application) else \
+        "'AIS type ' + str(value >> (length - 6))"
+    code = ["def decode(value, length, padding, applications):"]
     counter = [0]
 
-    def build(set_: dict[str, str], trailing: str, pad: str) -> list[str]:
+    def build(set_: dict[str, str], trailing: str, pad: str, application: str | None = None) -> list[str]:
         """The lines that end the message `m` (made first, each field's member set as it is read)
         of the members `set_` (id: its expression, `m.<id>` when set already): each member not yet
         set then set (slots: the generated classes'; a subclass without them keeps its own in its
-        dict)."""
+        dict), then its application (`application`, else _application's)."""
         values = {member: set_.get(member, trailing if member == "trailing" else default)
                   for member, default in members.items()}
+        if dispatch is not None:
+            values["application"] = application or "application_of(m, applications)"
         return [*(f"{pad}m.{member} = {value}" for member, value in values.items() if value != f"m.{member}"),
                 f"{pad}return m"]
 
@@ -729,7 +751,7 @@ def compile_decoder(cls: type[Message]) -> Any:
         rest = f"rest{counter[0]}"
         names[rest] = tuple(items)
         values = ", ".join(f"{member!r}: {var}" for member, var in set_.items())
-        return [f"{pad}reader = BitReader(value, length, 'AIS type ' + str(value >> (length - 6)))",
+        return [f"{pad}reader = BitReader(value, length, {where})",
                 f"{pad}reader.pos = {offset}",
                 f"{pad}values = {{{values}}}", f"{pad}read_items({rest}, reader, values)",
                 f"{pad}left = reader.remaining",
@@ -776,6 +798,28 @@ def compile_decoder(cls: type[Message]) -> Any:
                 offset = end
                 i += len(run)
                 continue
+            if (item is dispatch and type(item) is Data and item.width is None and not item.optional
+                    and not item.after and i == len(items) - 1 and "message_type" in set_
+                    and all(member in set_ for member in item.dispatch)):
+                # the data that end the message, the application their DAC and FI name (as
+                # _application finds it) read from their bits; data when there is none
+                names["DATA"] = item
+                dac, fid = (set_[member] for member in item.dispatch)
+                data = build({**set_, item.id: "None"}, '""', pad + "        ", "application")
+                text = build({**set_, item.id: "bits_text(raw, width)"}, '""', pad, "None")
+                return out + [
+                    f"{pad}width = max(length - {offset}, 0)",
+                    f"{pad}raw = value & ((1 << width) - 1)",
+                    f"{pad}application_cls = applications.get(({dac}, {fid}))",
+                    f"{pad}if application_cls is not None and {set_['message_type']} in application_cls.CARRIERS:",
+                    f"{pad}    try:",
+                    f"{pad}        application = application_cls._decoder(raw, width, '', None)",
+                    f"{pad}    except NmeaError:  # (_application: the data stay data)",
+                    f"{pad}        application = None",
+                    f"{pad}    if application is not None:",
+                    *data,
+                    *build({**set_, item.id: "bits_text(raw, width)"}, '""', pad + "    "),
+                    *text]
             if (isinstance(item, (Text, Data)) and type(item) in _STRAIGHT and item.width is None
                     and item.count is None and not item.optional and not item.after and i == len(items) - 1):
                 # the variable field that ends the message: the bits left (text: whole characters)
@@ -790,8 +834,14 @@ def compile_decoder(cls: type[Message]) -> Any:
                 return out + build(set_, "bits_text(value & ((1 << left) - 1), left)", pad)
             if isinstance(item, Choice):
                 sel_end = item.offset + item.width
-                out += [f"{pad}if length < {sel_end}:", f"{pad}    return None",
-                        f"{pad}r = value >> (length - {sel_end}) & {(1 << item.width) - 1}"]
+                selector = cls.FIELDS.get(item.by)
+                if (item.by in set_ and selector is not None and selector.width == item.width
+                        and (type(selector) in (Field, Spare) or type(selector) is Unsigned and selector.divisor == 1
+                             and not selector.base and not selector.special)):
+                    out.append(f"{pad}r = {set_[item.by]}")  # its member: its raw value, read already
+                else:
+                    out += [f"{pad}if length < {sel_end}:", f"{pad}    return None",
+                            f"{pad}r = value >> (length - {sel_end}) & {(1 << item.width) - 1}"]
                 default = next((c for c in item.cases if not c.values and c.range is None), None)
                 first = True
                 for case in item.cases:
@@ -805,6 +855,11 @@ def compile_decoder(cls: type[Message]) -> Any:
                     return out + walk(tail, offset, set_, pad)
                 out.append(f"{pad}else:")
                 return out + walk(tail, offset, set_, pad + "    ")
+            if isinstance(item, Group) and i == len(items) - 1:
+                lines = _group_lines(item, offset, names, pad)
+                if lines is not None:
+                    set_[item.id] = "entries"
+                    return out + lines + build(set_, "bits_text(value & ((1 << left) - 1), left)", pad)
             return out + generic(items[i:], offset, set_, pad)
         return out + build(set_, f'"" if length == {offset} else bits_text(value & ((1 << (length - {offset})) - 1), '
                                  f'length - {offset})', pad)
@@ -813,6 +868,49 @@ def compile_decoder(cls: type[Message]) -> Any:
     source = "\n".join(code)
     exec(source, names)  # code built above from the spec's layout, never from input
     return names["decode"]
+
+
+def _group_lines(group: Group, offset: int, names: dict[str, Any], pad: str) -> list[str] | None:
+    """The lines of compile_decoder that read `group`, the layout's last item, from bit `offset`
+    on into `entries` (and the bits left after them into `left`), as read_items reads it: its
+    entries' count from the bits left (or a fixed count), each entry's fields of fixed width by
+    constant shifts and masks, its class made as compile_decoder makes a message. The count out
+    of bounds returns None (the generic reader says why). None for a group of another kind."""
+    fields = [f for f in group.fields if isinstance(f, Field)]
+    width = group.entry_width
+    if (group.count is not None and not isinstance(group.count, int) or group.after or group.stride is not None
+            or group.field_major or not width or len(fields) != len(group.fields)
+            or not all(type(f) in _STRAIGHT and f.width is not None and f.count is None and not f.optional
+                       for f in fields)):
+        return None
+    entry = group.entry
+    entry_fields = dataclasses.fields(entry)
+    if ([f.name for f in entry_fields] != [f.id for f in fields] or "__post_init__" in dir(entry)
+            or any(f.default is not None for f in entry_fields)):
+        return None
+    name = f"g{offset}_{group.id}"
+    names[name] = entry
+    count = f"min({group.max}, (length - {offset}) // {width})" if group.count is None else str(group.count)
+    out = [f"count = {count}",
+           f"if count < {group.min} or count * {width} > length - {offset}:",
+           "    return None",
+           "entries = []",
+           f"at = length - {offset}",
+           "for _ in range(count):",
+           f"    at -= {width}",
+           f"    v = value >> at & {(1 << width) - 1}",
+           f"    e = new({name})"]
+    end = 0
+    for n, f in enumerate(fields):
+        assert f.width is not None
+        end += f.width
+        shift = width - end
+        raw = "v" if shift == 0 else f"v >> {shift}"
+        if end != f.width:
+            raw = f"({raw}) & {(1 << f.width) - 1}"
+        out.append(f"    e.{f.id} = {_value_expr(f, f'{name}_{n}', f'({raw})', names)}")
+    out += ["    entries.append(e)", "left = at"]
+    return [pad + line for line in out]
 
 
 class WritePrefix(NamedTuple):
@@ -852,15 +950,17 @@ def _writes_in_line(item: Item, optional: bool = False) -> bool:
             and item.width is not None and (optional or not item.optional))
 
 
-def _write_field(item: Field, name: str, names: dict[str, Any], pad: str, into: str | None = None) -> list[str]:
+def _write_field(item: Field, name: str, names: dict[str, Any], pad: str, into: str | None = None,
+                 owner: str = "record") -> list[str]:
     """The lines that put `item`'s bits below `bits` (`record` the message, `where` the errors'
     address or None), `name` its name in `names`; `into`: the lines that set that variable to
-    them instead (to_raw's raw integer)."""
+    them instead (to_raw's raw integer); `owner`: the variable of the record that holds it (a
+    group's entry)."""
     width = item.width
     assert width is not None
     names[name] = item
     code: list[str] = []
-    code.append(f"    value = record.{item.id}")
+    code.append(f"    value = {owner}.{item.id}")
     fallback = f"{name}.to_raw(value, where or _where(record))[0]"
     if isinstance(item, Unsigned):
         low, high = item.bounds(width)
@@ -909,16 +1009,21 @@ def _write_field(item: Field, name: str, names: dict[str, Any], pad: str, into: 
     return [pad + line[4:] for line in code]
 
 
-def compile_encoder(items: tuple[Item, ...]) -> Any:
+def compile_encoder(items: tuple[Item, ...], raw: bool = False) -> Any:
     """encode(record): a message's armored payload and fill bits (Message.encode), its layout
     `items` written as write_items writes them, by straight-line code: each field in line
     (_write_field) or by its own to_raw (a variable width, data an application carries), a
     choice by the raw value of its selector's member, the message ending at an optional field
     left None; from a group on, write_items. Then its trailing bits, its fill bits (padding) and
-    the armor, in line wherever the layout ends. The errors' address is made only for an error."""
+    the armor, in line wherever the layout ends. The errors' address is made only for an error.
+    `raw`: encode(record, where, message), an application's bits (Application.raw_bits): its
+    layout and trailing bits as one integer and their count, errors naming `where` or `message`."""
     names: dict[str, Any] = {"Special": Special, "_where": _where, "BitWriter": BitWriter,
                              "write_items": write_items, "_bad_value": _bad_value,
-                             "b2a_base64": binascii.b2a_base64, "BASE64_TO_ARMOR": _BASE64_TO_ARMOR}
+                             "b2a_base64": binascii.b2a_base64, "BASE64_TO_ARMOR": _BASE64_TO_ARMOR,
+                             "PADDINGS": _PADDINGS}
+    if raw:  # errors name the `where` given, else the message's (none: an empty one)
+        names["_where"] = _message_where
     counter = [0]
     by_id = {f.id: f for f in flat_fields(items)}  # as Record.field finds them
 
@@ -927,6 +1032,13 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
         value, when the layout's path so far has fixed widths only): its trailing bits and fill
         bits added (as BitWriter.put_bits would), its armor returned."""
         usual: list[str] = []
+        if raw:  # an application's bits: its trailing bits after them
+            return [f"{pad}length = {length}",
+                    f"{pad}trailing = record.trailing",
+                    f"{pad}if trailing:",
+                    f"{pad}    bits = bits << len(trailing) | int(trailing, 2) & ((1 << len(trailing)) - 1)",
+                    f"{pad}    length += len(trailing)",
+                    f"{pad}return bits, length"]
         if known is not None:  # no trailing bits, fill bits of value 0: every size a constant
             fill = -known % 6
             zeros = -(known + fill) % 24
@@ -935,6 +1047,13 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
             usual = [f"{pad}if not record.trailing and record.padding == \"\":",
                      f"{pad}    return b2a_base64({data}.to_bytes({(known + fill + zeros) // 8}, \"big\"), "
                      f"newline=False){chars}.translate(BASE64_TO_ARMOR).decode(\"ascii\"), {fill}"]
+            if fill:  # fill bits as sent (their values in padding), no trailing bits
+                shifted = f" << {zeros}" if zeros else ""
+                usual += [f"{pad}if not record.trailing and (p := PADDINGS.get(record.padding)) is not None "
+                          f"and len(record.padding) == {fill}:",
+                          f"{pad}    return b2a_base64(((bits << {fill} | p){shifted}).to_bytes("
+                          f"{(known + fill + zeros) // 8}, \"big\"), newline=False){chars}"
+                          f".translate(BASE64_TO_ARMOR).decode(\"ascii\"), {fill}"]
         return [*usual,
                 f"{pad}length = {length}",
                 f"{pad}trailing = record.trailing",
@@ -972,7 +1091,13 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
             elif isinstance(item, Field) and item.count is None:
                 names[name] = item
                 out.append(f"{pad}value = record.{item.id}")
-                if isinstance(item, Data):
+                application = isinstance(item, Data) and not raw
+                if application and item.width is None:  # its application's bits, as one integer
+                    out += [f"{pad}if value is None and record.application is not None:",
+                            f"{pad}    raw, width = record.application.raw_bits(where, record)",
+                            f"{pad}else:"]
+                    pad += "    "
+                elif application:
                     out += [f"{pad}if value is None and record.application is not None:",
                             f"{pad}    value = record.application.bits(where or _where(record))"]
                 fallback = f"{name}.to_raw(value, where or _where(record))"
@@ -986,11 +1111,13 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                     names.update(a2b_base64=binascii.a2b_base64, TEXT_TO_BASE64=_TEXT_TO_BASE64,
                                  TEXT_CHARS=_TEXT_CHARS, PADS=_BASE64_PADS, DROPS=_BASE64_DROPS)
                     data = "value.encode('ascii').translate(TEXT_TO_BASE64) + PADS[len(value) & 3]"
-                    out.append(f"{pad}raw, width = (int.from_bytes(a2b_base64({data}, strict_mode=True), 'big') "
-                               f">> DROPS[len(value) & 3], len(value) * 6) "
+                    out.append(f"{pad}raw, width = (0, 0) if value == '' else (int.from_bytes(a2b_base64({data}, "
+                               f"strict_mode=True), 'big') >> DROPS[len(value) & 3], len(value) * 6) "
                                f"if value.__class__ is str and TEXT_CHARS.issuperset(value) else {fallback}")
                 else:
                     out.append(f"{pad}raw, width = {fallback}")
+                if application and item.width is None:
+                    pad = pad[:-4]
                 out += [f"{pad}bits = bits << width | raw & ((1 << width) - 1)", f"{pad}length += width"]
                 fixed = False
             elif isinstance(item, Choice):
@@ -1012,6 +1139,16 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                 if first:
                     return out + walk(tail, static, pad, fixed)
                 return out + [f"{pad}else:", *walk(tail, static, pad + "    ", fixed)]
+            elif (isinstance(item, Group) and i == len(items) - 1 and not item.after and item.stride is None
+                  and not item.field_major and (item.count is None or isinstance(item.count, int))
+                  and all(_writes_in_line(f) for f in item.fields)):
+                # a group that ends the layout, its entries' fields in line (as write_items writes them)
+                out += [f"{pad}for entry in record.{item.id}:"]
+                for n, f in enumerate(item.fields):
+                    assert isinstance(f, Field)
+                    out += _write_field(f, f"{name}_{n}", names, pad + "    ", owner="entry")
+                out.append(f"{pad}    length += {item.entry_width}")
+                return out + finish(f"length + {static}", pad)
             else:  # a group, a counted field: the generic writer
                 names[name] = tuple(items[i:])
                 return out + [f"{pad}writer = BitWriter()", f"{pad}writer.put(bits, length + {static})",
@@ -1019,9 +1156,18 @@ def compile_encoder(items: tuple[Item, ...]) -> Any:
                               f"{pad}bits = writer.value", *finish("writer.length", pad)]
         return out + finish(f"length + {static}", pad, static if fixed else None)
 
-    code = ["def encode(record):", "    bits = length = 0", "    where = None", *walk(list(items), 0, "    ")]
+    head = ["def encode(record, where, message):", "    bits = length = 0"] if raw else \
+        ["def encode(record):", "    bits = length = 0", "    where = None"]
+    code = [*head, *walk(list(items), 0, "    ")]
+    if raw:  # the errors' address: `where`, else the message's
+        code = [line.replace("_where(record)", "_where(message)") for line in code]
     exec("\n".join(code), names)  # code built above from the spec's layout, never from input
     return names["encode"]
+
+
+def _message_where(message: Any) -> str:
+    """The errors' address of the message an application's bits are written for ("" for none)."""
+    return "" if message is None else _where(message)
 
 
 def _written(writer: BitWriter | ByteWriter) -> int:
@@ -1183,12 +1329,36 @@ class Application(Record):
     DAC: ClassVar[int]
     FID: ClassVar[int]
     CARRIERS: ClassVar[tuple[int, ...]]
+    _decoder: ClassVar[Any]
+    """decode(value, length, padding, applications): the class's compiled decoder (compile_decoder,
+    `padding` and `applications` unused), compiled on first use."""
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super(Application, cls).__init_subclass__(**kwargs)
+        if "LAYOUT" in cls.__dict__:
+            cls._decoder = _first_decoder(cls)
+
+            def first_raw(self: Application, where: str | None, message: Any = None) -> tuple[int, int]:
+                raw_bits = compile_encoder(cls.LAYOUT, raw=True)
+                raw_bits.__doc__ = first_raw.__doc__
+                raw_bits.__defaults__ = (None,)
+                cls.raw_bits = raw_bits  # type: ignore[method-assign]
+                return raw_bits(self, where, message)  # type: ignore[no-any-return]
+
+            first_raw.__doc__ = Application.raw_bits.__doc__
+            cls.raw_bits = first_raw  # type: ignore[method-assign]
+
+    def raw_bits(self, where: str | None, message: Any = None) -> tuple[int, int]:
+        """The data bits it is sent as, as one integer, and their count (each application class's
+        own, compiled on first use: compile_encoder); errors name `where`, else (None) the address
+        of `message`, the message it is written for."""
+        raw_bits = compile_encoder(type(self).LAYOUT, raw=True)
+        return raw_bits(self, where, message)  # type: ignore[no-any-return]
 
     def bits(self, where: str) -> str:
         """The data bits it is sent as."""
-        writer = BitWriter()
-        self.write(writer, where)
-        return bits_text(writer.value, writer.length)
+        raw, length = self.raw_bits(where)
+        return bits_text(raw, length)
 
 
 @dataclass(kw_only=True, slots=True)
@@ -1203,17 +1373,13 @@ class Message(Record):
 
     TYPES: ClassVar[tuple[int, ...]]
     _decoder: ClassVar[Any]
-    """decode(value, length, padding): the class's compiled decoder (compile_decoder), compiled
-    on first use (not when the package loads)."""
+    """decode(value, length, padding, applications): the class's compiled decoder
+    (compile_decoder), compiled on first use (not when the package loads)."""
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super(Message, cls).__init_subclass__(**kwargs)
         if "LAYOUT" in cls.__dict__:
-            def first(value: int, length: int, padding: str) -> Message | None:
-                decoder = cls._decoder = compile_decoder(cls) or _no_decoder
-                return decoder(value, length, padding)
-
-            cls._decoder = first
+            cls._decoder = _first_decoder(cls)
 
             def first_encode(self: Message) -> tuple[str, int]:
                 encode = compile_encoder(cls.LAYOUT)
@@ -1238,7 +1404,16 @@ class Message(Record):
         return {**out, "trailing": self.trailing, "padding": self.padding}
 
 
-def _no_decoder(value: int, length: int, padding: str) -> None:
+def _first_decoder(cls: type[Message] | type[Application]) -> Any:
+    """The decoder of `cls` until its first use, which compiles it (compile_decoder)."""
+    def first(value: int, length: int, padding: str, applications: Any) -> Any:
+        decoder = cls._decoder = compile_decoder(cls) or _no_decoder
+        return decoder(value, length, padding, applications)
+
+    return first
+
+
+def _no_decoder(value: int, length: int, padding: str, applications: Any) -> None:
     """The decoder of a class compile_decoder does not compile: the generic reader reads it."""
     return None
 
@@ -1259,6 +1434,8 @@ _BASE64_PADS = (b"", b"AAA", b"AA", b"A")
 """What a payload of n characters takes to a whole number of base64 groups, by n % 4; the
 bits they add (_BASE64_DROPS) are dropped."""
 _BASE64_DROPS = (0, 18, 12, 6)
+_PADDINGS = {bits_text(value, n): value for n in range(1, 6) for value in range(1 << n)}
+"""The value of each text of 1-5 fill bits ('0' and '1')."""
 _FILL_TEXTS = tuple(tuple(bits_text(low & ((1 << n) - 1), n) for low in range(32)) for n in range(6))
 """The fill bits' values of n fill bits as text, by the payload's last five bits."""
 
@@ -1288,17 +1465,41 @@ def sentence_message(by_type: dict[int, type[Message]], applications: dict[tuple
             and fill_bits.__class__ is Number else -1
     except (AttributeError, KeyError):
         fill = -1
-    if fill < 0:
+    if fill < 0 or not payload:
         if count is None or whole(count) != 1:
             return None
         fill = 0 if fill_bits is None else whole(fill_bits)
-    return decode(by_type, applications, payload or "", fill)
+        return decode(by_type, applications, payload or "", fill)
+    # decode's usual case in line (the fill bits 0-9, the payload's first character an armor one)
+    size = len(payload)
+    try:
+        value = int.from_bytes(_a2b_base64(payload.encode("ascii").translate(_ARMOR_TO_BASE64)
+                                           + _BASE64_PADS[size & 3], strict_mode=True), "big")
+    except (ValueError, UnicodeEncodeError):
+        value = -1
+    length = size * 6 - fill
+    if value < 0 or fill > 5 or length < 6:
+        return decode(by_type, applications, payload, fill)  # raises, saying why
+    value >>= _BASE64_DROPS[size & 3]
+    padding = ""
+    if fill:
+        padding = _FILL_TEXTS[fill][value & 31]
+        value >>= fill
+    cls = by_type.get(value >> (length - 6))
+    if cls is None:
+        return decode(by_type, applications, payload, fill)
+    message: Message | None = cls._decoder(value, length, padding, applications)
+    if message is None:
+        return decode(by_type, applications, payload, fill)  # short, or ended by an optional field
+    return message
 
 
-def _application(message: Message, applications: dict[tuple[int, int], type[Application]]) -> Application | None:
+def _application(message: Message, applications: dict[tuple[int, int], type[Application]],
+                 compiled: bool = True) -> Application | None:
     """What the message's data bits carry, when an application of `applications` (by DAC and FI)
     is carried by its type and reads them; its data member is then set to None. Data that the
-    application does not read stays data."""
+    application does not read stays data. `compiled`: by the application's compiled decoder,
+    when it reads the bits (else, and always when False, by the generic reader)."""
     data = message.DISPATCH
     bits = getattr(message, data.id) if data is not None else None
     if data is None or bits is None:
@@ -1308,13 +1509,16 @@ def _application(message: Message, applications: dict[tuple[int, int], type[Appl
     cls = applications.get((dac, fid))
     if cls is None or getattr(message, "message_type") not in cls.CARRIERS:
         return None
-    reader = BitReader(int(bits, 2) if bits else 0, len(bits), f"AIS DAC {dac} FI {fid}")
+    raw = int(bits, 2) if bits else 0
     try:
-        values = cls.read(reader)
+        application: Application | None = cls._decoder(raw, len(bits), "", None) if compiled else None
+        if application is None:
+            reader = BitReader(raw, len(bits), f"AIS DAC {dac} FI {fid}")
+            application = cls(**cls.read(reader), trailing=bits[reader.pos:])
     except NmeaError:
         return None
     setattr(message, data.id, None)
-    return cls(**values, trailing=bits[reader.pos:])
+    return application
 
 
 def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int], type[Application]],
@@ -1345,12 +1549,12 @@ def decode(by_type: dict[int, type[Message]], applications: dict[tuple[int, int]
     if cls is None:
         raise NmeaError("unknown_message", f"message type {message_type} is not one the spec describes",
                         f"AIS type {message_type}", name="message_type")
-    message: Message | None = cls._decoder(value, length, padding)
+    message: Message | None = cls._decoder(value, length, padding, applications)
     if message is None:  # short, or ended by an optional field: the generic reader says how
         reader = BitReader(value, length, f"AIS type {message_type}")
         values = cls.read(reader)
         trailing = bits_text(reader.value & ((1 << reader.remaining) - 1), reader.remaining)
         message = cls(**values, trailing=trailing, padding=padding)
-    if cls.DISPATCH is not None:
-        message.application = _application(message, applications)
+        if cls.DISPATCH is not None:  # (a compiled decoder finds it itself)
+            message.application = _application(message, applications)
     return message

@@ -80,8 +80,51 @@ def parse(
     `lenient` keeps a sentence whose fields do not all fit their types: each such field is left
     empty and listed in the result's `problems` with its text, which the sentence is written back
     with, so the round trip stays exact. Text commands are always read strictly."""
-    if line[:1] == "!" and (sentence := _encapsulation(line)) is not None:
-        return sentence  # an AIS sentence in its usual form (str, no line ending), read as below
+    if line[:1] == "!":
+        # An encapsulation sentence (`!AIVDM,1,1,,A,15RTgt0PAso;90TKcjM8h6g208CQ,0*4A`: str, no
+        # line ending) read as the general path below reads it, with fewer steps: when its first
+        # 14 characters are a start read before (`!AIVDM,1,1,,A,`: its layout and the values of
+        # its first fields, see _learn), only its payload and fill bits are checked, as the
+        # general path checks them, and its checksum summed; else _encapsulation_fields. A line
+        # they do not read (a line ending, a checksum that does not match, a field its layout
+        # refuses) takes the general path, which reads it or says why not.
+        text: Any = line  # a str: bytes start with no "!"
+        head: Any = _HEADS.get(text[:14])
+        star = len(text) - 3
+        fill = None if head is None else head[1].get(text[star - 2 : star + 1])  # ",0*": read before
+        payload = text[14 : star - 2]
+        if (
+            fill is None
+            or star > 129  # a longer line (up to runtime.MAX_LINE): the general path
+            or not payload
+            or "," in payload
+            or "*" in payload
+            or not payload.isascii()
+            or not payload.isprintable()
+        ):
+            sentence = _encapsulation_fields(text)
+            if sentence is not None:
+                return sentence
+        else:
+            # runtime.checksum in line, of the payload's up to 113 ASCII bytes (folded only as far
+            # as they need), the start's and the fill bits' sums kept from _learn
+            value = int.from_bytes(payload.encode(), "little") ^ fill[1]
+            size = star - 16
+            if size > 64:
+                value ^= value >> 512
+            if size > 32:
+                value ^= value >> 256
+            if size > 16:
+                value ^= value >> 128
+            value ^= value >> 64
+            value ^= value >> 32
+            value ^= value >> 16
+            computed = (value ^ value >> 8) & 0xFF
+            sent = text[star + 1 :]
+            if sent == _UPPER_HEX[computed]:
+                return head[0](payload, fill[0], "upper")
+            if sent == _LOWER_HEX[computed]:
+                return head[0](payload, fill[0], "lower")
     if isinstance(line, bytes):
         line = line.decode("latin-1")
     if line.endswith("\n"):
@@ -128,51 +171,10 @@ def parse(
     return _read(frame.start, frame.address, frame.fields, checksum, line, lenient, strict)
 
 
-def _encapsulation(line: Any) -> Any:
-    """An encapsulation sentence (`!AIVDM,1,1,,A,15RTgt0PAso;90TKcjM8h6g208CQ,0*4A`) read as the
-    general path reads it, with fewer steps: when its first 14 characters are a start read before
-    (`!AIVDM,1,1,,A,`: its layout and the values of its first fields, see _learn), only its
-    payload and fill bits are checked, as the general path checks them, and its checksum summed;
-    else _encapsulation_fields. None for any other line (bytes, a line ending, a checksum that
-    does not match, a field its layout refuses): parse then reads it or says why not."""
-    head = _HEADS.get(line[:14])
-    if head is None:
-        return _encapsulation_fields(line)
-    star = len(line) - 3
-    fill = head[1].get(line[star - 2 : star + 1])  # ",0*": a fill text read before
-    payload = line[14 : star - 2]
-    if (
-        fill is None
-        or star > 129  # a longer line (up to runtime.MAX_LINE): the general path
-        or not payload
-        or "," in payload
-        or "*" in payload
-        or not payload.isascii()
-        or not payload.isprintable()
-    ):
-        return _encapsulation_fields(line)
-    # runtime.checksum in line, for up to 128 bytes known to be ASCII
-    value = int.from_bytes(line[1:star].encode(), "little")
-    if star > 65:
-        value ^= value >> 512
-    value ^= value >> 256
-    value ^= value >> 128
-    value ^= value >> 64
-    value ^= value >> 32
-    value ^= value >> 16
-    computed = (value ^ value >> 8) & 0xFF
-    sent = line[star + 1 :]
-    checksum = (
-        "upper" if sent == _UPPER_HEX[computed] else "lower" if sent == _LOWER_HEX[computed] else None
-    )
-    if checksum is None:
-        return None
-    return head[0](payload, fill, checksum)
-
-
 def _encapsulation_fields(line: Any) -> Any:
-    """_encapsulation's general path: split once, the checksum (two hex digits) summed in one
-    pass, its layout's compiled reader; the line's start kept for _encapsulation (_learn)."""
+    """An `!` line as parse's first step reads it when its start is not known: split once, the
+    checksum (two hex digits) summed in one pass, its layout's compiled reader; the line's start
+    kept for that step (_learn). None for a line it does not read."""
     fields = line.split(",")
     address = fields[0][1:]
     cls = _ENCAPSULATION_CLASSES.get(address)
@@ -210,7 +212,7 @@ def _encapsulation_fields(line: Any) -> Any:
 
 def _learn(line: str, sentence: Any) -> None:
     """Keeps the start of `line` (its first 14 characters, five fields: `!AIVDM,1,1,,A,`) and its
-    fill bits' text for _encapsulation, when its layout is an encapsulation's six fields (four, the
+    fill bits' text for parse's first step, when its layout is an encapsulation's six fields (four, the
     payload as text of any length, the fill bits), all required: the values the general path read
     from them are those it reads from the same texts again."""
     cls = type(sentence)
@@ -229,9 +231,14 @@ def _learn(line: str, sentence: Any) -> None:
         or hasattr(cls, "__post_init__")
     ):
         return
-    fills = _FILLS.setdefault(cls, {})
+    start = line[:14]
+    known = _HEADS.get(start)
+    fills = {} if known is None else known[1]
     star = len(line) - 3
-    fills[line[star - 2 : star + 1]] = getattr(sentence, layout.field_ids[5])
+    fill = line[star - 2 : star + 1]  # ",0*": its value, the checksum of the start and ",0"
+    fills[fill] = (getattr(sentence, layout.field_ids[5]), runtime.checksum(line[1:14] + fill[:2]))
+    if known is not None:
+        return
     # make(payload, fill_bits, checksum): the sentence as cls() makes it, its first members those
     # read from this start
     names = {f"v{n}": getattr(sentence, member) for n, member in enumerate(members[:5])}
@@ -240,18 +247,17 @@ def _learn(line: str, sentence: Any) -> None:
     code = ["def make(payload, fill, checksum):", "    s = new(cls)"]
     code += [f"    s.{member} = {value}" for member, value in zip(members, values)]
     exec("\n".join([*code, "    return s"]), names)  # noqa: S102 (made from the class's own members)
-    _HEADS[line[:14]] = (names["make"], fills)
+    _HEADS[start] = (names["make"], fills)
 
 
 _ENCAPSULATION_CLASSES: dict[str, Any] = {}
 """The class of each `!` address the fast path has read (AIVDM: Vdm)."""
 _MAX_STAR = runtime.MAX_LINE - 3
 _HEADS: dict[str, tuple[Any, ...]] = {}
-"""The starts _encapsulation reads (`!AIVDM,1,1,,A,`): (the function that makes a sentence of
-that start, the fill bits' values by text, as `,0*`), as _learn keeps them."""
+"""The starts parse reads in fewer steps (`!AIVDM,1,1,,A,`): (the function that makes a sentence
+of that start, the fill bits' values by text (as `,0*`), each with the checksum of the start and
+that text), as _learn keeps them."""
 _MAX_HEADS = 256
-_FILLS: dict[Any, dict[str, Any]] = {}
-"""The fill bits' values of each class in _HEADS, by text (`,0*`)."""
 
 
 def _encapsulation_class(address: str) -> Any:

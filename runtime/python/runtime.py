@@ -2334,6 +2334,45 @@ class Layout:
         joined: Callable[[Any, str], str] = names["joined"]
         return joined
 
+    def _compile_standard(self, fallback: Callable[[Any], str]) -> Callable[[Any], str] | None:
+        """to_sentence(s) of a standard sentence whose fields joined writes: _compile_joined's
+        f-string of its talker, address and fields, then checksum (up to 128 bytes) in line;
+        `fallback` writes a sentence with problems or a value without its text. None for a
+        layout without joined."""
+        fields = [item for item in self.items if isinstance(item, FieldSpec)]
+        if self.joined is None or self.kind != "standard":
+            return None
+        names: dict[str, Any] = {"text_of": text_of, "_Value": _Value, "fallback": fallback,
+                                 "checksummed": checksummed, "checksum": checksum, "HEX": _CHECKSUM_HEX}
+        texts = "".join(f",{{{_in_line(f, f's.{f.id}', names)}}}" for f in fields)
+        start, suffix = self.start, self.sentence
+        code = [
+            "def to_sentence(s):",
+            "    if s.problems:",
+            "        return fallback(s)",
+            "    try:",
+            f"        body = f'{{s.talker}}{suffix}{texts}'",
+            "    except AttributeError:  # a value that has not worked its text out yet",
+            "        return fallback(s)",
+            "    size = len(body)",
+            "    if s.checksum != 'upper' or size > 128:",
+            f"        return checksummed({start!r}, body, s.checksum)",
+            "    value = int.from_bytes(body.encode('latin-1'), 'little')  # checksum in line",
+            "    if size > 64:",
+            "        value ^= value >> 512",
+            "    if size > 32:",
+            "        value ^= value >> 256",
+            "    if size > 16:",
+            "        value ^= value >> 128",
+            "    value ^= value >> 64",
+            "    value ^= value >> 32",
+            "    value ^= value >> 16",
+            f"    return f'{start}{{body}}*{{HEX[(value ^ value >> 8) & 255]}}'",
+        ]
+        exec("\n".join(code), names)  # noqa: S102 (source made above from the layout's own items)
+        to_sentence: Callable[[Any], str] = names["to_sentence"]
+        return to_sentence
+
     def sentence_writer(self, address: str) -> Callable[[Any], str]:
         """to_sentence(sentence): its text (see Sentence.to_sentence), `address` that of a
         proprietary sentence or text command."""
@@ -2353,6 +2392,12 @@ class Layout:
         def proprietary(s: Any) -> str:
             return assemble(start, address, with_problems(write(s), s.problems), s.checksum)
 
+        def general(s: Any) -> str:
+            return assemble(start, s.talker + suffix, with_problems(write(s), s.problems), s.checksum)
+
+        compiled = self._compile_standard(general)
+        if compiled is not None:
+            return compiled
         return {"text": text_command, "standard": standard}.get(self.kind, proprietary)
 
     def json(self, sentence: Any, values: bool) -> str:
